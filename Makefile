@@ -1,0 +1,37 @@
+# The two commands a newcomer runs (see README.md):
+#   make run    set everything up, then parse/lint/render/verify the lab shaders
+#   make test   set everything up, then run the test suite
+SHELL := /bin/bash
+VENV ?= .venv
+PY := $(VENV)/bin/python
+STAMP := $(VENV)/.installed
+
+.PHONY: run test setup system-deps clean
+
+# Debian packages: glslang-tools is the reference compiler the tests compare
+# against; the EGL/Mesa packages give moderngl a headless llvmpipe context.
+DEBS := glslang-tools libegl1 libegl-mesa0 libgl1-mesa-dri
+system-deps:
+	@missing=""; for p in $(DEBS); do dpkg -s $$p >/dev/null 2>&1 || missing="$$missing $$p"; done; \
+	if [ -n "$$missing" ]; then \
+	  echo "installing Debian packages:$$missing"; \
+	  SUDO=$$( [ "$$(id -u)" = 0 ] || echo sudo ); \
+	  $$SUDO apt-get update -qq && $$SUDO env DEBIAN_FRONTEND=noninteractive apt-get install -y -qq $$missing; \
+	fi
+
+$(STAMP): pyproject.toml
+	python3 -m venv $(VENV)
+	$(PY) -m pip install -q --upgrade pip
+	$(PY) -m pip install -q -e '.[test]'
+	touch $(STAMP)
+
+setup: system-deps $(STAMP)
+
+run: setup
+	$(VENV)/bin/glslcheck parse lab_shaders tests/corpus
+
+test: setup
+	$(PY) -m pytest -q
+
+clean:
+	rm -rf $(VENV) build dist *.egg-info

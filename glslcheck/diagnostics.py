@@ -1,0 +1,107 @@
+"""Locations and diagnostics: the one location type and the data every stage reports.
+
+Detection is separate from reporting: a stage produces `Diagnostic` values (rule, message,
+location, severity, help); `format_text` turns one into the compiler-style text a user reads,
+with the source line and a caret. Every `Location` points into the user's own file, also after
+preprocessing and the Shadertoy wrapper.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+
+@dataclass(frozen=True, slots=True)
+class Location:
+    """A span in a user's file: 1-based lines and columns, end exclusive-ish (points at the last char + 1)."""
+
+    path: str
+    line: int
+    column: int
+    end_line: int | None = None
+    end_column: int | None = None
+
+    def __str__(self) -> str:
+        return f"{self.path}:{self.line}:{self.column}"
+
+    def start(self) -> "Location":
+        return Location(self.path, self.line, self.column)
+
+    def span_to(self, other: "Location") -> "Location":
+        """The span from this location's start to `other`'s end."""
+        return Location(
+            self.path,
+            self.line,
+            self.column,
+            other.end_line if other.end_line is not None else other.line,
+            other.end_column if other.end_column is not None else other.column,
+        )
+
+
+@dataclass(slots=True)
+class Diagnostic:
+    """One finding: a syntax error, a type error, or a lint rule hit."""
+
+    message: str
+    loc: Location | None
+    severity: str = "error"  # "error" | "warning" | "note"
+    rule: str = "syntax"
+    help: str | None = None
+    notes: list["Diagnostic"] = field(default_factory=list)
+
+
+class GlslError(Exception):
+    """Raised by a stage that cannot go on; carries the diagnostics to report (exit 1)."""
+
+    def __init__(self, diagnostics: list[Diagnostic] | Diagnostic):
+        if isinstance(diagnostics, Diagnostic):
+            diagnostics = [diagnostics]
+        self.diagnostics = diagnostics
+        super().__init__("; ".join(d.message for d in diagnostics))
+
+
+class InputError(Exception):
+    """A missing, unreadable or undecodable input, or bad usage (exit 2)."""
+
+
+_SOURCE_CACHE: dict[str, list[str]] = {}
+
+
+def register_source(path: str, text: str) -> None:
+    """Remember a file's text so diagnostics can quote its lines."""
+    _SOURCE_CACHE[path] = text.splitlines()
+
+
+def source_line(path: str, line: int) -> str | None:
+    lines = _SOURCE_CACHE.get(path)
+    if lines is None or not (1 <= line <= len(lines)):
+        return None
+    return lines[line - 1]
+
+
+def _caret_line(text: str, loc: Location) -> str:
+    """Spaces (tabs kept, so the caret aligns) then ^~~~ under the span on the first line."""
+    col = max(loc.column, 1)
+    prefix = "".join(ch if ch == "\t" else " " for ch in text[: col - 1])
+    if loc.end_line == loc.line and loc.end_column and loc.end_column > col:
+        width = loc.end_column - col
+    else:
+        width = 1
+    return prefix + "^" + "~" * (width - 1)
+
+
+def format_text(d: Diagnostic, show_rule: bool = False) -> str:
+    """`path:line:col: severity: message`, the source line, a caret, and `help:`."""
+    head = f"{d.loc}: " if d.loc else ""
+    kind = f"{d.rule}" if show_rule else d.severity
+    out = [f"{head}{kind}: {d.message}"]
+    if d.loc is not None:
+        text = source_line(d.loc.path, d.loc.line)
+        if text is not None:
+            out.append("    " + text.rstrip("\r\n"))
+            out.append("    " + _caret_line(text, d.loc))
+    for n in d.notes:
+        out.append(format_text(n))
+    if d.help:
+        out.append(f"  help: {d.help}")
+    return "\n".join(out)

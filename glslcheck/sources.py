@@ -1,0 +1,205 @@
+"""Reading shaders from disk: Shadertoy tab files, folders of them, and plain GLSL files.
+
+A shader is given as one file per Shadertoy tab (`Image`, `Common`, `Buffer A`..`Buffer D`,
+`Sound`, `Cube A`; extension `.glsl`, `.frag`, `.txt` or none; names matched case-insensitively
+with spaces, `_` and `-` ignored, so `Buffer A.glsl` and `buffer_a.glsl` are the same tab) or a
+folder of such files. A file whose name is not a tab name is taken as an Image tab. A file with
+its own `#version` line and a `main()` is a plain GLSL ES fragment shader, taken as it is.
+
+Text is decoded as UTF-8 (a BOM is dropped) and line endings are normalised to `\n` (CRLF and
+lone CR), which keeps every line and column of the user's file. Anything that cannot be read
+raises `InputError` (exit 2) with the path and, for bad bytes, the line and column.
+"""
+
+from __future__ import annotations
+
+import os
+import re
+from dataclasses import dataclass, field
+from pathlib import Path
+
+from .diagnostics import InputError, register_source
+
+SHADER_EXTENSIONS = (".glsl", ".frag", ".txt", "")
+# Canonical tab names in the order Shadertoy shows them.
+TAB_NAMES = ("Common", "Buffer A", "Buffer B", "Buffer C", "Buffer D", "Cube A", "Sound", "Image")
+_TAB_KEYS = {re.sub(r"[\s_\-]", "", t).lower(): t for t in TAB_NAMES}
+MAX_FILE_BYTES = 1_000_000
+
+
+@dataclass(slots=True)
+class Source:
+    """One file's text: `path` is how the user named it (used in every message)."""
+
+    path: str
+    text: str
+    tab: str = "Image"  # one of TAB_NAMES, or "GLSL" for a plain GLSL file
+
+    @property
+    def is_plain_glsl(self) -> bool:
+        return self.tab == "GLSL"
+
+
+@dataclass(slots=True)
+class Shader:
+    """A Shadertoy shader: its tabs by canonical name (or one plain GLSL file)."""
+
+    tabs: dict[str, Source] = field(default_factory=dict)
+    root: str = ""
+
+    @property
+    def image(self) -> Source | None:
+        return self.tabs.get("Image") or self.tabs.get("GLSL")
+
+    @property
+    def common(self) -> Source | None:
+        return self.tabs.get("Common")
+
+    def units_for(self, tab: str = "Image") -> list[Source]:
+        """The texts compiled for a pass, in order: Common first (as Shadertoy does), then the tab."""
+        src = self.tabs.get(tab)
+        if src is None:
+            raise InputError(f"{self.root}: no {tab} tab")
+        if src.is_plain_glsl or tab == "Common" or self.common is None:
+            return [src]
+        return [self.common, src]
+
+    def sources(self) -> list[Source]:
+        return [self.tabs[t] for t in (*TAB_NAMES, "GLSL") if t in self.tabs]
+
+
+def tab_name(path: str | os.PathLike) -> str | None:
+    """The canonical tab a file name denotes, or None when it names no tab."""
+    p = Path(path)
+    stem = p.name
+    for ext in SHADER_EXTENSIONS[:-1]:
+        if stem.lower().endswith(ext):
+            stem = stem[: -len(ext)]
+            break
+    return _TAB_KEYS.get(re.sub(r"[\s_\-]", "", stem).lower())
+
+
+def decode(data: bytes, path: str) -> str:
+    """UTF-8 text with the BOM dropped and line endings normalised; InputError on bad bytes."""
+    if data.startswith(b"\xef\xbb\xbf"):
+        data = data[3:]
+    try:
+        text = data.decode("utf-8")
+    except UnicodeDecodeError as e:
+        before = data[: e.start].decode("utf-8", "replace").replace("\r\n", "\n")
+        line = before.count("\n") + 1
+        col = len(before) - (before.rfind("\n") + 1) + 1
+        raise InputError(
+            f"{path}:{line}:{col}: error: the file is not UTF-8 text (byte 0x{data[e.start]:02x}); "
+            "save it as UTF-8"
+        ) from None
+    return text.replace("\r\n", "\n").replace("\r", "\n")
+
+
+def read_source(path: str | os.PathLike, tab: str | None = None) -> Source:
+    """Read one file as a Source; InputError when it is missing, unreadable, too big or not UTF-8."""
+    spath = str(path)
+    try:
+        size = os.path.getsize(spath)
+        if size > MAX_FILE_BYTES:
+            raise InputError(f"{spath}: error: the file is {size} bytes; glslcheck reads shader files up to {MAX_FILE_BYTES} bytes")
+        with open(spath, "rb") as f:
+            data = f.read()
+    except InputError:
+        raise
+    except IsADirectoryError:
+        raise InputError(f"{spath}: error: is a directory") from None
+    except FileNotFoundError:
+        raise InputError(f"{spath}: error: no such file") from None
+    except PermissionError:
+        raise InputError(f"{spath}: error: permission denied") from None
+    except OSError as e:
+        raise InputError(f"{spath}: error: cannot read the file ({e.strerror or e})") from None
+    text = decode(data, spath)
+    register_source(spath, text)
+    if tab is None:
+        tab = tab_name(spath) or "Image"
+    if _is_plain_glsl(text):
+        tab = "GLSL"
+    return Source(spath, text, tab)
+
+
+_VERSION_RE = re.compile(r"^[ \t]*#[ \t]*version\b", re.M)
+_MAIN_RE = re.compile(r"\bvoid\s+main\s*\(\s*(void\s*)?\)")
+
+
+def _is_plain_glsl(text: str) -> bool:
+    return bool(_VERSION_RE.search(text)) and bool(_MAIN_RE.search(text))
+
+
+def _is_tab_file(p: Path) -> bool:
+    return _is_shader_file(p) and tab_name(p) is not None
+
+
+def _is_shader_file(p: Path) -> bool:
+    return p.is_file() and not p.name.startswith(".") and p.suffix.lower() in SHADER_EXTENSIONS and (
+        p.suffix != "" or tab_name(p) is not None
+    )
+
+
+def load_shader(path: str | os.PathLike) -> Shader:
+    """A file (one tab; a sibling Common tab is picked up for an Image tab) or a folder of tabs."""
+    p = Path(path)
+    spath = str(path)
+    if not p.exists():
+        raise InputError(f"{spath}: error: no such file or directory")
+    shader = Shader(root=spath)
+    if p.is_dir():
+        files = sorted(f for f in p.iterdir() if _is_tab_file(f))
+        if not files:
+            raise InputError(f"{spath}: error: the folder holds no Shadertoy tab files (Image.glsl, Common.glsl, ...)")
+        for f in files:
+            src = read_source(f)
+            if src.tab in shader.tabs:
+                raise InputError(f"{f}: error: a second file for the {src.tab} tab (first: {shader.tabs[src.tab].path})")
+            shader.tabs[src.tab] = src
+        return shader
+    src = read_source(p)
+    shader.tabs[src.tab] = src
+    if src.tab not in ("Common", "GLSL"):
+        # Shadertoy prepends the Common tab to every pass: pick up a sibling Common file.
+        for f in sorted(p.parent.iterdir()) if p.parent.exists() else []:
+            if f != p and _is_tab_file(f) and tab_name(f) == "Common":
+                shader.tabs["Common"] = read_source(f)
+                break
+    return shader
+
+
+def find_shaders(paths: list[str]) -> list[Shader]:
+    """Expand command-line paths. A file is one shader; a folder holding tab files (Image.glsl,
+    Common.glsl, ...) is one shader; any other folder is walked: each of its sub-folders with
+    tab files is a shader, and each loose .glsl/.frag/.txt file is a shader of its own."""
+    out: list[Shader] = []
+    for path in paths:
+        p = Path(path)
+        if p.is_dir() and not any(_is_tab_file(f) for f in p.iterdir()):
+            found = _walk(p)
+            if not found:
+                raise InputError(f"{path}: error: no shader files found")
+            out.extend(found)
+        else:
+            out.append(load_shader(p))
+    return out
+
+
+def _walk(folder: Path) -> list[Shader]:
+    found: list[Shader] = []
+    for f in sorted(folder.iterdir()):
+        if f.name.startswith(".") or f.name == "__pycache__":
+            continue
+        if f.is_dir():
+            if any(_is_tab_file(g) for g in f.iterdir()):
+                found.append(load_shader(f))
+            else:
+                found.extend(_walk(f))
+        elif _is_shader_file(f) and f.suffix:
+            shader = Shader(root=str(f))
+            src = read_source(f)
+            shader.tabs[src.tab] = src
+            found.append(shader)
+    return found
