@@ -1,0 +1,84 @@
+"""The `glslcheck` command line: argument parsing only; each subcommand lives in
+`glslcheck/commands/<name>.py` with `add_arguments(parser)` and `run(args) -> int` and calls
+the library. Subcommand modules are imported lazily so one CLI call stays fast.
+
+Exit codes everywhere: 0 clean, 1 findings or errors in the shader, 2 usage or I/O errors.
+"""
+
+from __future__ import annotations
+
+import argparse
+import importlib
+import sys
+
+from .diagnostics import GlslError, InputError, format_text
+
+# (name, module, one-line help), in the order `--help` lists them.
+COMMANDS = [
+    ("parse", "parse", "parse shaders and report syntax errors"),
+    ("check", "check", "parse and type-check shaders (GLSL ES 3.00 and Shadertoy rules)"),
+    ("lint", "lint", "report every Lab 4 coding-standard deduction"),
+    ("rule", "rule", "explain a lint rule"),
+    ("install-hook", "install_hook", "install a git pre-commit hook that runs glslcheck lint"),
+    ("transpile", "transpile", "write the NumPy Python module for a shader"),
+    ("render", "render", "render a shader on the CPU (NumPy) or with OpenGL"),
+    ("verify", "verify", "render with NumPy and OpenGL and compare"),
+    ("bench", "bench", "time against error for precision modes and samples per pixel"),
+]
+
+
+class _Parser(argparse.ArgumentParser):
+    def error(self, message: str):  # usage errors exit 2 without a traceback
+        self.print_usage(sys.stderr)
+        self.exit(2, f"{self.prog}: error: {message}\n")
+
+
+def build_parser(only: str | None = None) -> argparse.ArgumentParser:
+    parser = _Parser(prog="glslcheck", description=__doc__.split("\n\n")[0])
+    from . import __version__
+
+    parser.add_argument("--version", action="version", version=f"glslcheck {__version__}")
+    sub = parser.add_subparsers(dest="command", metavar="COMMAND", parser_class=_Parser)
+    for name, module, help_ in COMMANDS:
+        if only is not None and name != only:
+            sub.add_parser(name, help=help_)
+            continue
+        try:
+            mod = importlib.import_module(f"glslcheck.commands.{module}")
+        except ModuleNotFoundError as e:
+            if e.name == f"glslcheck.commands.{module}":
+                continue
+            raise
+        p = sub.add_parser(name, help=help_, description=(mod.__doc__ or help_).strip())
+        mod.add_arguments(p)
+        p.set_defaults(_run=mod.run)
+    return parser
+
+
+def main(argv: list[str] | None = None) -> int:
+    argv = sys.argv[1:] if argv is None else argv
+    # Only import the chosen subcommand's module (startup time matters for hooks).
+    only = argv[0] if argv and not argv[0].startswith("-") else None
+    parser = build_parser(only)
+    args = parser.parse_args(argv)
+    if not getattr(args, "_run", None):
+        parser.print_help(sys.stderr)
+        return 2
+    try:
+        return int(args._run(args) or 0)
+    except InputError as e:
+        print(str(e), file=sys.stderr)
+        return 2
+    except GlslError as e:
+        for d in e.diagnostics:
+            print(format_text(d), file=sys.stderr)
+        return 1
+    except KeyboardInterrupt:
+        print("glslcheck: interrupted", file=sys.stderr)
+        return 2
+    except BrokenPipeError:
+        return 1
+
+
+if __name__ == "__main__":
+    sys.exit(main())
