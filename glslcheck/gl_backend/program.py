@@ -1,0 +1,263 @@
+"""Compiling a Shadertoy shader for the GL driver and rendering it into a float framebuffer.
+
+`compile_gl(shader)` wraps the Image tab (or a plain GLSL file) as Shadertoy does
+(`glslcheck.shadertoy.build_program`), compiles it with the driver and turns a driver error log
+into `GlslError` diagnostics located in the user's own files. `GLProgram.render(...)` draws a
+full-screen triangle into an RGBA32F framebuffer and returns the pixels as float32
+(height, width, 4), top row first, neither clamped nor quantised.
+
+Inputs, and what glslcheck feeds them (see `glslcheck.shadertoy.UNIFORMS`):
+
+- iResolution = (width, height, 1); iTime, iFrame, iMouse, iTimeDelta, iFrameRate from `render`.
+- iDate = `date`, by default the fixed `DEFAULT_DATE` (2026, 0, 1, 0.0) = 2026-01-01 00:00:00,
+  so renders are reproducible. Give a tuple (year, month 0-11, day, seconds) or a `datetime`.
+- iChannelTime all 0, iChannelResolution all 0, iSampleRate 44100, iChannel0..3 unbound
+  (texture() then returns (0, 0, 0, 1), GL's value for an incomplete texture).
+- Uniforms the shader does not use are skipped (the driver drops inactive uniforms, and trims
+  arrays to the highest index used).
+
+Supersampling: `samples = k*k` renders k*k times with fragCoord moved by the sub-pixel offset
+((i + 0.5)/k - 0.5, (j + 0.5)/k - 0.5), i, j = 0..k-1, and averages. The offset is a uniform
+`glslcheck_offset` that the footer adds (`mainImage(color, gl_FragCoord.xy + glslcheck_offset)`);
+it exists only in the program compiled for samples > 1, so a one-sample render runs exactly the
+program Shadertoy runs. The average is taken in float64 and rounded to float32 once.
+"""
+
+from __future__ import annotations
+
+import datetime as _dt
+import math
+import re
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from ..diagnostics import Diagnostic, GlslError, Location
+from ..shadertoy import DEFAULT_DATE, DEFAULT_SIZE, OFFSET_UNIFORM, UNIFORMS, Program, build_program
+from ..sources import Shader
+from .context import get_context
+
+RULE = "gl-compile"
+
+# A triangle that covers the viewport, from gl_VertexID alone (no vertex buffer):
+# ids 0, 1, 2 -> (-1, -1), (3, -1), (-1, 3).
+VERTEX_SHADER = """#version 300 es
+void main() {
+    vec2 p = vec2(float((gl_VertexID & 1) << 2) - 1.0, float((gl_VertexID & 2) << 1) - 1.0);
+    gl_Position = vec4(p, 0.0, 1.0);
+}
+"""
+
+# Mesa: "0:42(5): error: `y' undeclared"; other drivers: "ERROR: 0:42: ..." or "0(42) : error ...".
+_MESA_RE = re.compile(r"^\s*(\d+):(\d+)\((\d+)\):\s*(error|warning):\s*(.*)$", re.I)
+_GLSLANG_STYLE_RE = re.compile(r"^\s*(ERROR|WARNING):\s*(\d+):(\d+):\s*(.*)$", re.I)
+_NVIDIA_RE = re.compile(r"^\s*(\d+)\((\d+)\)\s*:\s*(error|warning)\s*\w*:\s*(.*)$", re.I)
+
+
+def parse_driver_log(log: str) -> list[tuple[int | None, int | None, str, str]]:
+    """(program line, column, severity, message) for each message in a driver's compile/link log.
+
+    Lines that carry no position but say "error" (linker messages) come back with line None.
+    """
+    out: list[tuple[int | None, int | None, str, str]] = []
+    for raw in log.splitlines():
+        if m := _MESA_RE.match(raw):
+            out.append((int(m[2]), int(m[3]), m[4].lower(), m[5].strip()))
+        elif m := _GLSLANG_STYLE_RE.match(raw):
+            out.append((int(m[3]), None, m[1].lower(), m[4].strip()))
+        elif m := _NVIDIA_RE.match(raw):
+            out.append((int(m[2]), None, m[3].lower(), m[4].strip()))
+        elif re.search(r"\berror\b", raw, re.I) and "Compiler failed" not in raw and "Linker failed" not in raw:
+            out.append((None, None, "error", raw.strip()))
+    return out
+
+
+def mesa_column(line_text: str, column: int) -> int:
+    """The real 1-based column for Mesa's `column`: its lexer counts a run of blanks as one column."""
+    counter, pos = 1, 0
+    while pos < len(line_text) and counter < column:
+        if line_text[pos] in " \t":
+            while pos < len(line_text) and line_text[pos] in " \t":
+                pos += 1
+        else:
+            pos += 1
+        counter += 1
+    return pos + 1
+
+
+def driver_diagnostics(program: Program, log: str) -> list[Diagnostic]:
+    """The errors in a driver log as diagnostics in the user's files (warnings are dropped).
+
+    A position inside Shadertoy's prelude or footer (e.g. a missing `mainImage`) has no user
+    location; the message then says which line of the wrapper it was.
+    """
+    diags: list[Diagnostic] = []
+    lines = program.text.split("\n")
+    for line, column, severity, message in parse_driver_log(log):
+        if severity != "error":
+            continue
+        where = program.locate(line) if line is not None else None
+        if where is None:
+            if line is not None:
+                message += f" (line {line} of the Shadertoy wrapper around the {program.tab} tab)"
+            help_ = ("the Image tab must define `void mainImage(out vec4 fragColor, in vec2 fragCoord)`"
+                     if "mainImage" in message else None)
+            diags.append(Diagnostic(message, None, rule=RULE, help=help_))
+        else:
+            path, user_line = where
+            column = mesa_column(lines[line - 1], column) if column and line <= len(lines) else 1
+            diags.append(Diagnostic(message, Location(path, user_line, column), rule=RULE))
+    if not diags:  # a failure we could not parse: keep the log visible rather than lose it
+        diags.append(Diagnostic(f"the OpenGL driver rejected the {program.tab} program:\n{log.strip()}",
+                                None, rule=RULE))
+    return diags
+
+
+def sample_offsets(samples: int) -> list[tuple[float, float]]:
+    """The k*k regular sub-pixel offsets for `samples` = k*k, in pixels, x varying fastest."""
+    k = math.isqrt(samples) if samples >= 1 else 0
+    if k < 1 or k * k != samples:
+        raise ValueError(f"samples must be a perfect square (1, 4, 9, 16, ...), not {samples}")
+    if k == 1:
+        return [(0.0, 0.0)]
+    return [((i + 0.5) / k - 0.5, (j + 0.5) / k - 0.5) for j in range(k) for i in range(k)]
+
+
+def _as_date(date) -> tuple[float, float, float, float]:
+    if date is None:
+        return DEFAULT_DATE
+    if isinstance(date, _dt.datetime):
+        midnight = date.replace(hour=0, minute=0, second=0, microsecond=0)
+        seconds = (date - midnight).total_seconds()
+        return (float(date.year), float(date.month - 1), float(date.day), seconds)
+    year, month, day, seconds = date
+    return (float(year), float(month), float(day), float(seconds))
+
+
+@dataclass(eq=False)
+class _Compiled:
+    """One driver program and the vertex array that draws it."""
+
+    program: Program
+    gl_program: object
+    vao: object
+
+
+@dataclass(eq=False)
+class GLProgram:
+    """A shader compiled for the GL driver; render it as often as needed."""
+
+    shader: Shader
+    program: Program  # the one-sample program (exactly what Shadertoy compiles)
+    ctx: object
+    _variants: dict[bool, _Compiled] = field(default_factory=dict, repr=False)
+
+    @property
+    def active_uniforms(self) -> list[str]:
+        """The uniforms the driver kept (those the shader actually uses)."""
+        prog = self._variants[False].gl_program
+        return [name for name in prog if not name.startswith("gl_")]
+
+    def _variant(self, samples_offset: bool) -> _Compiled:
+        if samples_offset not in self._variants:
+            program = build_program(self.shader, self.program.tab, samples_offset=samples_offset)
+            self._variants[samples_offset] = _compile(self.ctx, program)
+        return self._variants[samples_offset]
+
+    def render(
+        self,
+        size: tuple[int, int] = DEFAULT_SIZE,
+        time: float = 0.0,
+        frame: int = 0,
+        mouse: tuple[float, float, float, float] = (0.0, 0.0, 0.0, 0.0),
+        date=None,
+        time_delta: float = 1.0 / 60.0,
+        frame_rate: float = 60.0,
+        samples: int = 1,
+    ) -> np.ndarray:
+        """Render one frame: float32 array (height, width, 4), row 0 = top of the image.
+
+        `size` is (width, height). `date`: see the module docstring (default 2026-01-01 00:00).
+        `samples` must be a perfect square; see the module docstring for the sub-pixel grid.
+        Values are what the shader wrote (RGBA32F): not clamped to [0, 1], not quantised; the
+        Image pass has alpha 1.
+        """
+        width, height = int(size[0]), int(size[1])
+        if width < 1 or height < 1:
+            raise ValueError(f"size must be at least 1x1, not {width}x{height}")
+        offsets = sample_offsets(samples)
+        compiled = self._variant(samples > 1)
+        values = {
+            "iResolution": (float(width), float(height), 1.0),
+            "iTime": float(time),
+            "iFrame": int(frame),
+            "iMouse": tuple(float(v) for v in mouse),
+            "iDate": _as_date(date),
+            "iTimeDelta": float(time_delta),
+            "iFrameRate": float(frame_rate),
+        }
+        prog = compiled.gl_program
+        for u in UNIFORMS:
+            _set_uniform(prog, u.name, values.get(u.name, u.default), u.array_size)
+
+        ctx = self.ctx
+        texture = ctx.texture((width, height), 4, dtype="f4")
+        fbo = ctx.framebuffer(color_attachments=[texture])
+        try:
+            fbo.use()
+            total = None
+            for dx, dy in offsets:
+                if samples > 1:
+                    _set_uniform(prog, OFFSET_UNIFORM, (dx, dy))
+                fbo.clear(0.0, 0.0, 0.0, 0.0)
+                compiled.vao.render(vertices=3)
+                data = np.frombuffer(fbo.read(components=4, dtype="f4"), dtype=np.float32)
+                img = data.reshape(height, width, 4)
+                total = img.astype(np.float64) if total is None else total + img
+        finally:
+            fbo.release()
+            texture.release()
+        image = (total / len(offsets)).astype(np.float32)
+        return np.ascontiguousarray(image[::-1])  # GL rows go bottom-up; images top-down
+
+
+def _set_uniform(gl_program, name: str, value, array_size: int | None = None) -> None:
+    """Set a uniform if the driver kept it. The driver trims an array to the highest index the
+    shader uses (and reports a one-element array as a plain uniform), so arrays are cut to fit."""
+    if name not in gl_program:
+        return
+    uniform = gl_program[name]
+    if array_size:
+        items = list(value)[: max(uniform.array_length, 1)]
+        value = items[0] if len(items) == 1 else (items if isinstance(items[0], tuple) else tuple(items))
+    uniform.value = value
+
+
+def _compile(ctx, program: Program) -> _Compiled:
+    import moderngl
+
+    try:
+        gl_program = ctx.program(vertex_shader=VERTEX_SHADER, fragment_shader=program.text)
+    except moderngl.Error as e:
+        raise GlslError(driver_diagnostics(program, str(e))) from None
+    vao = ctx.vertex_array(gl_program, [])
+    return _Compiled(program, gl_program, vao)
+
+
+def compile_gl(shader: Shader, ctx=None) -> GLProgram:
+    """Compile the Image tab (or plain GLSL file) of `shader` with the GL driver.
+
+    Raises GlslError with diagnostics in the user's files when the driver rejects it, and
+    GLUnavailable (an InputError) when no context can be created. `ctx` defaults to the
+    process-wide context.
+    """
+    ctx = ctx if ctx is not None else get_context()
+    program = build_program(shader, "Image")
+    gl = GLProgram(shader, program, ctx)
+    gl._variants[False] = _compile(ctx, program)
+    return gl
+
+
+def render_shader(shader: Shader, **render_args) -> np.ndarray:
+    """Compile and render in one call; `render_args` are those of `GLProgram.render`."""
+    return compile_gl(shader).render(**render_args)
