@@ -1,0 +1,657 @@
+"""Parsing: preprocessed GLSL ES 3.00 text -> Lark LALR parse tree -> the typed AST (ast.py).
+
+Owns the Lark parser (built once per process from grammar/glsl.lark, its LALR tables cached on
+disk so a CLI call does not rebuild them), the lexer post-processor that tells struct type
+names from other identifiers, the pass that builds AST nodes from the parse tree (one
+`_build_<rule>` method per grammar rule), and the translation of Lark's errors into messages
+in words that point into the user's file.
+
+Entry points: `parse_shader(shader)` for a Shadertoy shader (Common + Image, as Shadertoy
+compiles them), `parse_units(sources)` for any list of files, and `parse_string(text)` for tests.
+"""
+
+from __future__ import annotations
+
+import os
+import sys
+import tempfile
+from dataclasses import dataclass, field
+from importlib import resources
+from typing import Callable, Iterator
+
+from lark import Lark, Token, Tree
+from lark.exceptions import UnexpectedCharacters, UnexpectedEOF, UnexpectedInput, UnexpectedToken
+from lark.lark import PostLex
+
+from . import ast as A
+from .diagnostics import Diagnostic, GlslError, Location, register_source
+from .sources import Shader, Source
+
+# GLSL ES 3.00 section 3.7: words reserved for future use; using one as a name is an error.
+RESERVED_WORDS = frozenset(
+    """attribute varying coherent volatile restrict readonly writeonly resource atomic_uint
+    noperspective patch sample subroutine common partition active asm class union enum typedef
+    template this goto inline noinline public static extern external interface long short double
+    half fixed unsigned superp input output hvec2 hvec3 hvec4 dvec2 dvec3 dvec4 fvec2 fvec3 fvec4
+    sampler3DRect filter image1D image2D image3D imageCube iimage1D iimage2D iimage3D iimageCube
+    uimage1D uimage2D uimage3D uimageCube image1DArray image2DArray iimage1DArray iimage2DArray
+    uimage1DArray uimage2DArray imageBuffer iimageBuffer uimageBuffer sampler1D sampler1DShadow
+    sampler1DArray sampler1DArrayShadow isampler1D isampler1DArray usampler1D usampler1DArray
+    sampler2DRect sampler2DRectShadow isampler2DRect usampler2DRect samplerBuffer isamplerBuffer
+    usamplerBuffer sampler2DMS isampler2DMS usampler2DMS sampler2DMSArray isampler2DMSArray
+    usampler2DMSArray trueup sizeof cast namespace using""".split()
+) - {"trueup"}
+
+# Words a user might mean: what each terminal is called in an error message.
+_TOKEN_WORDS = {
+    "IDENTIFIER": "a name",
+    "TYPE_NAME": "a type name",
+    "INTCONSTANT": "a number",
+    "FLOATCONSTANT": "a number",
+    "$END": "the end of the file",
+}
+
+_GRAMMAR_CACHE: dict[str, Lark] = {}
+
+
+def grammar_text() -> str:
+    """The grammar, read from the installed package (grammar/ ships as glslcheck.grammar)."""
+    return resources.files("glslcheck.grammar").joinpath("glsl.lark").read_text(encoding="utf-8")
+
+
+def _cache_path() -> str:
+    base = os.environ.get("XDG_CACHE_HOME") or os.path.join(os.path.expanduser("~"), ".cache")
+    folder = os.path.join(base, "glslcheck")
+    try:
+        os.makedirs(folder, exist_ok=True)
+        probe = os.path.join(folder, ".w")
+        with open(probe, "w"):
+            pass
+        os.unlink(probe)
+    except OSError:
+        folder = tempfile.gettempdir()
+    from . import __version__
+
+    return os.path.join(folder, f"glsl-lalr-{__version__}-{sys.version_info[0]}{sys.version_info[1]}.cache")
+
+
+class _TypeNames(PostLex):
+    """Turns an IDENTIFIER that names a declared struct into TYPE_NAME (the spec's TYPE_NAME),
+    rejects reserved words used as names, and remembers the open brackets and the previous
+    token for error messages. A name right after `struct` is always an IDENTIFIER."""
+
+    always_accept = ("IDENTIFIER",)
+
+    def __init__(self) -> None:
+        self.reset()
+
+    def reset(self) -> None:
+        self.struct_names: set[str] = set()
+        self.open_brackets: list[Token] = []
+        self.history: list[Token] = []
+        self.locate: Callable[[int, int], Location] | None = None
+
+    def process(self, stream: Iterator[Token]) -> Iterator[Token]:
+        after_struct = False
+        history = self.history
+        brackets = self.open_brackets
+        for tok in stream:
+            kind = tok.type
+            if kind == "IDENTIFIER":
+                value = tok.value
+                if after_struct:
+                    self.struct_names.add(value)
+                elif value in self.struct_names:
+                    tok = Token.new_borrow_pos("TYPE_NAME", value, tok)
+                if value in RESERVED_WORDS:
+                    raise GlslError(
+                        Diagnostic(
+                            f"'{value}' is a reserved word in GLSL ES 3.00 and cannot be used as a name",
+                            self._loc(tok),
+                            help=f"rename it, for example to '{value}_'",
+                        )
+                    )
+            after_struct = kind == "STRUCT"
+            v = tok.value
+            if v in ("{", "(", "["):
+                brackets.append(tok)
+            elif v in ("}", ")", "]") and brackets:
+                brackets.pop()
+            history.append(tok)
+            if len(history) > 64:
+                del history[:32]
+            yield tok
+
+    def _loc(self, tok: Token) -> Location:
+        assert self.locate is not None
+        return self.locate(tok.start_pos, tok.end_pos)
+
+
+def get_parser() -> tuple[Lark, _TypeNames]:
+    lark = _GRAMMAR_CACHE.get("lark")
+    if lark is None:
+        postlex = _TypeNames()
+        lark = Lark(
+            grammar_text(),
+            parser="lalr",
+            lexer="contextual",
+            strict=True,
+            propagate_positions=True,
+            maybe_placeholders=True,
+            postlex=postlex,
+            cache=_cache_path(),
+        )
+        _GRAMMAR_CACHE["lark"] = lark
+        _GRAMMAR_CACHE["postlex"] = postlex  # type: ignore[assignment]
+    return lark, _GRAMMAR_CACHE["postlex"]  # type: ignore[return-value]
+
+
+@dataclass
+class ParseResult:
+    """The AST of a program and what the preprocessor learned on the way."""
+
+    ast: A.TranslationUnit
+    pp: object  # preprocess.PPResult: text, locate, comments, macros, version, extensions
+    sources: list[Source] = field(default_factory=list)
+
+
+# ---------------------------------------------------------------------------------------------
+# Entry points
+# ---------------------------------------------------------------------------------------------
+
+
+def parse_units(units: list[Source], *, shadertoy: bool = True) -> ParseResult:
+    """Preprocess and parse files compiled together (Common then Image)."""
+    from .preprocess import preprocess
+
+    for u in units:
+        register_source(u.path, u.text)
+    plain = any(u.is_plain_glsl for u in units)
+    pp = preprocess(units, shadertoy=shadertoy and not plain)
+    tree = _parse_text(pp.text, pp.locate_span)
+    return ParseResult(tree, pp, list(units))
+
+
+def parse_shader(shader: Shader, tab: str = "Image") -> ParseResult:
+    """Parse one pass of a Shadertoy shader as Shadertoy compiles it (Common + the tab)."""
+    return parse_units(shader.units_for(tab))
+
+
+def parse_string(text: str, path: str = "<string>") -> A.TranslationUnit:
+    """Parse GLSL text (preprocessed as a Shadertoy Image tab); raises GlslError."""
+    return parse_units([Source(path, text)]).ast
+
+
+def _parse_text(text: str, locate_span: Callable[[int, int], Location]) -> A.TranslationUnit:
+    lark, postlex = get_parser()
+    postlex.reset()
+    postlex.locate = locate_span
+    try:
+        tree = lark.parse(text)
+    except UnexpectedInput as e:
+        raise GlslError(_syntax_error(e, text, postlex, locate_span)) from None
+    builder = _Builder(locate_span, text)
+    old = sys.getrecursionlimit()
+    # Deeply nested expressions (hundreds of levels) recurse in the builder: allow it.
+    sys.setrecursionlimit(max(old, 20000))
+    try:
+        return builder.build(tree)
+    except RecursionError:
+        raise GlslError(Diagnostic("the program is nested too deeply to analyse", locate_span(0, 0))) from None
+    finally:
+        sys.setrecursionlimit(old)
+
+
+# ---------------------------------------------------------------------------------------------
+# Syntax errors in words
+# ---------------------------------------------------------------------------------------------
+
+
+def _terminal_words(lark: Lark) -> dict[str, str]:
+    words = dict(_TOKEN_WORDS)
+    for t in lark.terminals:
+        if t.name not in words and t.pattern.type == "str":
+            words[t.name] = f"'{t.pattern.value}'"
+    return words
+
+
+_EXPRESSION_START = {"IDENTIFIER", "INTCONSTANT", "FLOATCONSTANT", "LPAR", "MINUS", "BANG", "TILDE", "TRUE", "FALSE"}
+_DECL_WORDS = {"const", "uniform", "in", "out", "inout", "highp", "mediump", "lowp", "flat", "smooth",
+               "invariant", "layout", "centroid", "struct", "precision"}
+
+
+def _what_statement(history: list[Token]) -> str:
+    """Name the construct that the last tokens belong to: declaration, return statement, ..."""
+    start = len(history)
+    depth = 0
+    while start > 0:
+        tok = history[start - 1]
+        if tok.value in (")", "]"):
+            depth += 1
+        elif tok.value in ("(", "["):
+            if depth == 0:
+                break
+            depth -= 1
+        elif depth == 0 and tok.value in (";", "{", "}"):
+            break
+        start -= 1
+    if start >= len(history):
+        return "statement"
+    first = history[start]
+    if first.type in ("TYPE_NAME",) or first.value in _DECL_WORDS or first.type in ("FLOAT", "INT", "UINT", "BOOL", "VOID") or (
+        first.value[:1].isalpha() and first.value in _BASIC_TYPES
+    ):
+        # `vec3 p = ...` or `vec3(1.0);`: a declaration unless a '(' follows the type.
+        if len(history) > start + 1 and history[start + 1].value == "(":
+            return "expression"
+        return "declaration"
+    if first.value == "return":
+        return "return statement"
+    return "statement"
+
+
+_BASIC_TYPES = frozenset(
+    """void float int uint bool vec2 vec3 vec4 bvec2 bvec3 bvec4 ivec2 ivec3 ivec4 uvec2 uvec3 uvec4
+    mat2 mat3 mat4 mat2x2 mat2x3 mat2x4 mat3x2 mat3x3 mat3x4 mat4x2 mat4x3 mat4x4 sampler2D sampler3D
+    samplerCube sampler2DShadow samplerCubeShadow sampler2DArray sampler2DArrayShadow isampler2D
+    isampler3D isamplerCube isampler2DArray usampler2D usampler3D usamplerCube usampler2DArray""".split()
+)
+
+
+def _describe(tok: Token) -> str:
+    if tok.type == "$END":
+        return "the end of the file"
+    if tok.type in ("IDENTIFIER", "TYPE_NAME"):
+        return f"'{tok.value}'"
+    return f"'{tok.value}'"
+
+
+def _syntax_error(e: UnexpectedInput, text: str, postlex: _TypeNames, locate_span) -> Diagnostic:
+    lark, _ = get_parser()
+    words = _terminal_words(lark)
+    history = postlex.history
+    if isinstance(e, UnexpectedCharacters):
+        pos = e.pos_in_stream
+        ch = text[pos] if pos < len(text) else ""
+        loc = locate_span(pos, pos + 1)
+        if ch == "\x00":
+            return Diagnostic("unexpected NUL byte; is this a binary file?", loc)
+        if ord(ch or " ") > 127:
+            return Diagnostic(
+                f"unexpected character '{ch}': GLSL source is ASCII outside comments",
+                loc,
+                help="names may use only the letters a-z and A-Z, digits and '_'",
+            )
+        if ch in "\"'":
+            return Diagnostic(f"unexpected {ch}: GLSL has no string or character literals", loc)
+        if ch == "#":
+            return Diagnostic("a '#' directive must start its own line", loc)
+        return Diagnostic(f"unexpected character '{ch}'", loc)
+    assert isinstance(e, (UnexpectedToken, UnexpectedEOF))
+    tok: Token = getattr(e, "token", None) or Token("$END", "")
+    expected = set(getattr(e, "expected", ()) or ())
+    at_end = tok.type == "$END"
+    prev = history[-2] if (history and history[-1] is tok) else (history[-1] if history else None)
+    if at_end:
+        end = len(text.rstrip())
+        end_loc = locate_span(max(end - 1, 0), max(end, 1))
+        if postlex.open_brackets:
+            opener = postlex.open_brackets[-1]
+            closer = {"{": "}", "(": ")", "[": "]"}[opener.value]
+            what = {"{": "block", "(": "parenthesis", "[": "bracket"}[opener.value]
+            return Diagnostic(
+                f"this '{opener.value}' is never closed: the file ends before its '{closer}'",
+                locate_span(opener.start_pos, opener.end_pos),
+                help=f"add the missing '{closer}' where the {what} should end",
+            )
+        if "SEMICOLON" in expected and prev is not None:
+            return Diagnostic(
+                f"expected ';' after this {_what_statement(history)}",
+                locate_span(prev.end_pos, prev.end_pos + 1) if prev.end_pos < len(text) else end_loc,
+            )
+        return Diagnostic("unexpected end of file", end_loc)
+    loc = locate_span(tok.start_pos, tok.end_pos)
+    if "SEMICOLON" in expected and prev is not None and tok.value not in (",",):
+        # As compilers do: point just past the previous token, where the ';' belongs.
+        what = _what_statement(history[:-1] if history and history[-1] is tok else history)
+        ploc = locate_span(prev.end_pos - 1, prev.end_pos)
+        ploc = Location(ploc.path, ploc.end_line or ploc.line, ploc.end_column or ploc.column + 1)
+        return Diagnostic(f"expected ';' after this {what}", ploc, help=f"found {_describe(tok)} instead")
+    if tok.value == "}" and prev is not None and prev.value in ("(", ",", "=", "+", "-", "*", "/"):
+        return Diagnostic("expected an expression before '}'", loc)
+    if expected and len(expected & _EXPRESSION_START) >= 3:
+        return Diagnostic(f"expected an expression, found {_describe(tok)}", loc)
+    names = sorted({words.get(x, x.lower()) for x in expected})
+    if tok.type == "IDENTIFIER" and prev is not None and prev.type == "IDENTIFIER":
+        return Diagnostic(
+            f"unexpected name '{tok.value}' after '{prev.value}'",
+            loc,
+            help=f"'{prev.value}' is not a type here; declare a struct named '{prev.value}' before using it, or add an operator",
+        )
+    if tok.type in ("TYPE_NAME",) or tok.value in _BASIC_TYPES:
+        if "IDENTIFIER" in expected:
+            return Diagnostic(f"'{tok.value}' is a type name and cannot be used as a name here", loc)
+    if 0 < len(names) <= 4:
+        listed = names[0] if len(names) == 1 else ", ".join(names[:-1]) + " or " + names[-1]
+        return Diagnostic(f"expected {listed}, found {_describe(tok)}", loc)
+    return Diagnostic(f"unexpected {_describe(tok)}", loc)
+
+
+# ---------------------------------------------------------------------------------------------
+# Parse tree -> AST
+# ---------------------------------------------------------------------------------------------
+
+
+class _Builder:
+    """Builds AST nodes: `_build_<rule>` for each grammar rule (or alias) of grammar/glsl.lark."""
+
+    def __init__(self, locate_span: Callable[[int, int], Location], text: str) -> None:
+        self.locate_span = locate_span
+        self.text = text
+
+    def build(self, tree: Tree) -> A.TranslationUnit:
+        decls = [self.node(c) for c in tree.children if c is not None]
+        unit = A.TranslationUnit(decls=decls)
+        if decls:
+            unit.loc = decls[0].loc.span_to(decls[-1].loc)
+        else:
+            unit.loc = self.locate_span(0, 0)
+        return unit
+
+    # -- helpers ------------------------------------------------------------------------------
+    def loc(self, item: Tree | Token) -> Location:
+        if isinstance(item, Token):
+            return self.locate_span(item.start_pos, item.end_pos)
+        meta = item.meta
+        if getattr(meta, "empty", True):
+            return self.locate_span(0, 0)
+        return self.locate_span(meta.start_pos, meta.end_pos)
+
+    def node(self, item):
+        if item is None:
+            return None
+        if isinstance(item, Token):
+            raise AssertionError(f"unexpected token {item!r}")
+        method = getattr(self, "_build_" + item.data)
+        result = method(item, item.children)
+        if result is not None and result.loc.line == 0:
+            result.loc = self.loc(item)
+        return result
+
+    def error(self, message: str, item, help: str | None = None):
+        raise GlslError(Diagnostic(message, self.loc(item), help=help))
+
+    @staticmethod
+    def trees(children) -> list[Tree]:
+        return [c for c in children if isinstance(c, Tree)]
+
+    # -- external declarations -----------------------------------------------------------------
+    def _build_function_definition(self, t, c):
+        return A.FunctionDefinition(proto=self.node(c[0]), body=self.node(c[1]))
+
+    def _build_function_prototype(self, t, c):
+        fst, name, params = c
+        qualifiers, rtype = self._fully_specified(fst)
+        return A.FunctionPrototype(
+            qualifiers=qualifiers,
+            return_type=rtype,
+            name=str(name),
+            params=[self.node(p) for p in params.children] if params is not None else [],
+            name_loc=self.loc(name),
+        )
+
+    def _build_parameter_declaration(self, t, c):
+        quals = [q for q in c if isinstance(q, Tree) and q.data == "parameter_qualifier"]
+        rest = [x for x in c if not (isinstance(x, Tree) and x.data == "parameter_qualifier")]
+        tspec, name, array = rest
+        words = []
+        for q in quals:
+            tok = q.children[0]
+            words.append(str(tok.children[0]) if isinstance(tok, Tree) else str(tok))
+        return A.Param(
+            qualifiers=words,
+            type=self.node(tspec),
+            name=str(name) if name is not None else None,
+            array=self.node(array),
+            name_loc=self.loc(name) if name is not None else self.loc(t),
+        )
+
+    def _build_function_declaration(self, t, c):
+        return A.FunctionDeclaration(proto=self.node(c[0]))
+
+    def _fully_specified(self, fst: Tree):
+        tq, tspec = fst.children
+        return (self._qualifiers(tq) if tq is not None else None), self.node(tspec)
+
+    def _build_variable_declaration(self, t, c):
+        qualifiers, tspec = self._fully_specified(c[0])
+        decls = [self.node(d) for d in c[1:] if d is not None]
+        return A.VariableDeclaration(qualifiers=qualifiers, type=tspec, declarators=decls)
+
+    def _build_declarator(self, t, c):
+        name, array, init = c
+        return A.Declarator(name=str(name), array=self.node(array), init=self.node(init), name_loc=self.loc(name))
+
+    def _build_precision_declaration(self, t, c):
+        return A.PrecisionDeclaration(precision=str(c[0].children[0]), type=self.node(c[1]))
+
+    def _build_block_declaration(self, t, c):
+        quals = self._qualifiers(c[0])
+        name = c[1]
+        members = [self.node(m) for m in c[2:] if isinstance(m, Tree) and m.data == "struct_member"]
+        tail = [x for x in c[2:] if not (isinstance(x, Tree) and x.data == "struct_member")]
+        inst, array = tail if len(tail) == 2 else (None, None)
+        return A.BlockDeclaration(
+            qualifiers=quals, block_name=str(name), members=members,
+            instance=str(inst) if inst is not None else None, array=self.node(array),
+        )
+
+    def _build_invariant_declaration(self, t, c):
+        return A.InvariantDeclaration(qualifiers=self._qualifiers(c[0]), names=[str(x) for x in c[1:]])
+
+    def _build_qualifier_declaration(self, t, c):
+        return A.QualifierDeclaration(qualifiers=self._qualifiers(c[0]))
+
+    def _qualifiers(self, tq: Tree) -> A.Qualifiers:
+        words: list[str] = []
+        layouts: list[A.Layout] = []
+        for q in tq.children:
+            if q.data == "layout_qualifier":
+                layouts.append(self.node(q))
+                words.append("layout")
+            else:
+                words.append(" ".join(str(x) for x in q.children))
+        node = A.Qualifiers(words=words, layouts=layouts)
+        node.loc = self.loc(tq)
+        return node
+
+    def _build_layout_qualifier(self, t, c):
+        return A.Layout(ids=[self.node(x) for x in c])
+
+    def _build_layout_id(self, t, c):
+        name, value = c
+        return A.LayoutId(name=str(name), value=self._int_value(value)[0] if value is not None else None)
+
+    def _build_layout_shared(self, t, c):
+        return A.LayoutId(name="shared")
+
+    # -- types ----------------------------------------------------------------------------------
+    def _build_type_specifier(self, t, c):
+        spec = self._nonarray(c[0])
+        spec.array = self.node(c[1])
+        spec.loc = self.loc(t)
+        return spec
+
+    def _nonarray(self, item: Tree) -> A.TypeSpec:
+        if item.data == "basic_type":
+            spec = A.TypeSpec(name=str(item.children[0]))
+        elif item.data == "type_name":
+            spec = A.TypeSpec(name=str(item.children[0]), is_struct_name=True)
+        else:
+            spec = A.TypeSpec(struct_=self.node(item))
+        spec.loc = self.loc(item)
+        return spec
+
+    def _build_array_specifier(self, t, c):
+        return A.ArraySpec(size=self.node(c[0]))
+
+    def _build_struct_specifier(self, t, c):
+        name = c[0]
+        return A.StructSpec(name=str(name) if name is not None else None, members=[self.node(m) for m in c[1:]])
+
+    def _build_struct_member(self, t, c):
+        tq, tspec, *decls = c
+        return A.StructMember(
+            qualifiers=self._qualifiers(tq) if tq is not None else None,
+            type=self.node(tspec),
+            declarators=[self.node(d) for d in decls],
+        )
+
+    def _build_struct_declarator(self, t, c):
+        return A.StructDeclarator(name=str(c[0]), array=self.node(c[1]))
+
+    # -- statements ----------------------------------------------------------------------------
+    def _build_compound_statement(self, t, c):
+        return A.Compound(stmts=[self.node(s) for s in c])
+
+    def _build_declaration_statement(self, t, c):
+        return A.DeclarationStatement(decl=self.node(c[0]))
+
+    def _build_expression_statement(self, t, c):
+        return A.ExpressionStatement(expr=self.node(c[0]))
+
+    def _build_if_statement(self, t, c):
+        return A.If(cond=self.node(c[0]), then=self.node(c[1]))
+
+    def _build_if_else_statement(self, t, c):
+        return A.If(cond=self.node(c[0]), then=self.node(c[1]), else_=self.node(c[2]))
+
+    def _build_switch_statement(self, t, c):
+        return A.Switch(expr=self.node(c[0]), body=[self.node(s) for s in c[1:]])
+
+    def _build_case_label(self, t, c):
+        return A.Case(expr=self.node(c[0]))
+
+    def _build_default_label(self, t, c):
+        return A.Case(expr=None)
+
+    def _build_while_statement(self, t, c):
+        return A.While(cond=self.node(c[0]), body=self.node(c[1]))
+
+    def _build_do_while_statement(self, t, c):
+        return A.DoWhile(body=self.node(c[0]), cond=self.node(c[1]))
+
+    def _build_for_statement(self, t, c):
+        init, cond, step, body = c
+        return A.For(init=self.node(init), cond=self.node(cond), step=self.node(step), body=self.node(body))
+
+    def _build_condition_declaration(self, t, c):
+        fst, name, init = c
+        qualifiers, tspec = self._fully_specified(fst)
+        return A.ConditionDeclaration(
+            qualifiers=qualifiers, type=tspec, name=str(name), init=self.node(init), name_loc=self.loc(name)
+        )
+
+    def _build_continue_statement(self, t, c):
+        return A.Continue()
+
+    def _build_break_statement(self, t, c):
+        return A.Break()
+
+    def _build_return_statement(self, t, c):
+        return A.Return(value=self.node(c[0]))
+
+    def _build_discard_statement(self, t, c):
+        return A.Discard()
+
+    # -- expressions ---------------------------------------------------------------------------
+    def _build_sequence(self, t, c):
+        left = self.node(c[0])
+        exprs = left.exprs if isinstance(left, A.Sequence) else [left]
+        return A.Sequence(exprs=[*exprs, self.node(c[1])])
+
+    def _build_assignment(self, t, c):
+        return A.Assignment(op=str(c[1].children[0]), target=self.node(c[0]), value=self.node(c[2]))
+
+    def _build_ternary(self, t, c):
+        return A.Ternary(cond=self.node(c[0]), then=self.node(c[1]), else_=self.node(c[2]))
+
+    def _build_binary(self, t, c):
+        return A.Binary(op=str(c[1]), left=self.node(c[0]), right=self.node(c[2]))
+
+    def _build_prefix(self, t, c):
+        return A.Unary(op=str(c[0]), operand=self.node(c[1]))
+
+    _build_unary = _build_prefix
+
+    def _build_postfix(self, t, c):
+        return A.Postfix(op=str(c[1]), operand=self.node(c[0]))
+
+    def _build_index(self, t, c):
+        trees = [x for x in c if not isinstance(x, Token)]
+        return A.Index(base=self.node(trees[0]), index=self.node(trees[1]))
+
+    def _build_field(self, t, c):
+        base, _dot, name = c
+        return A.Field(base=self.node(base), name=str(name), name_loc=self.loc(name))
+
+    def _build_method_call(self, t, c):
+        base, _dot, name = c[0], c[1], c[2]
+        return A.MethodCall(base=self.node(base), name=str(name))
+
+    def _build_function_call(self, t, c):
+        callee, args = c
+        if args is None or args.data == "void_arguments":
+            arg_nodes = []
+        else:
+            arg_nodes = [self.node(a) for a in args.children]
+        call = A.Call(args=arg_nodes, callee_loc=self.loc(callee))
+        kind = callee.data
+        if kind == "callee_name":
+            call.callee = str(callee.children[0])
+        elif kind == "callee_type":
+            call.callee = str(callee.children[0].children[0])
+            call.constructor = True
+        elif kind == "callee_type_name":
+            call.callee = str(callee.children[0])
+            call.constructor = True
+        else:  # callee_array: `float[3](...)`
+            spec = self._nonarray(callee.children[0])
+            call.callee = spec.name or ""
+            call.struct_ = spec.struct_
+            call.array = self.node(callee.children[1])
+            call.constructor = True
+        return call
+
+    def _build_identifier(self, t, c):
+        return A.Identifier(name=str(c[0]))
+
+    def _int_value(self, tok: Token) -> tuple[int, bool]:
+        text = str(tok)
+        unsigned = text[-1] in "uU"
+        digits = text[:-1] if unsigned else text
+        if digits[:2] in ("0x", "0X"):
+            value = int(digits[2:], 16)
+        elif len(digits) > 1 and digits[0] == "0":
+            if any(ch in "89" for ch in digits):
+                self.error(f"'{text}' is not a valid octal number (a leading 0 means octal)", tok,
+                           help=f"write {int(digits)} without the leading zero")
+            value = int(digits, 8)
+        else:
+            value = int(digits)
+        if value > 0xFFFFFFFF:
+            self.error(f"the integer literal '{text}' does not fit in 32 bits", tok)
+        if not unsigned and value > 0x7FFFFFFF:
+            value -= 1 << 32  # GLSL ES 3.00 4.1.3: the 32-bit pattern, read as a signed int
+        return value, unsigned
+
+    def _build_int_literal(self, t, c):
+        value, unsigned = self._int_value(c[0])
+        return A.IntLiteral(value=value, unsigned=unsigned, text=str(c[0]))
+
+    def _build_float_literal(self, t, c):
+        text = str(c[0])
+        return A.FloatLiteral(value=float(text.rstrip("fF")), text=text)
+
+    def _build_bool_literal(self, t, c):
+        return A.BoolLiteral(value=str(c[0]) == "true")
