@@ -152,6 +152,8 @@ def _define(name: str, category: str, cost: str, *sigs: str,
                      (sig.replace("[, float bias]", ", float"), True)]
         for text, frag in forms:
             for ret, params, quals in _expand(text.replace(" bias", "")):
+                if any(ov.params == params for ov in overloads):
+                    continue  # min(genType, float) at n=1 repeats min(genType, genType)
                 overloads.append(Overload(name, ret, params, quals, category, cost, frag))
     BUILTINS[name] = Builtin(name, category, cost, tuple(overloads))
 
@@ -345,7 +347,7 @@ def resolve(name: str, arg_types: list[Type]) -> Overload | str:
     shown = list(fn.overloads)
     if len(shown) > _MAX_CANDIDATES:
         # Long lists (texture, min, ...): keep those that agree on what was given right.
-        for keep in (lambda ov: len(ov.params) == len(args) and ov.params[:1] == args[:1],
+        for keep in (lambda ov: ov.params[:1] == args[:1] != (),
                      lambda ov: len(ov.params) == len(args)):
             narrowed = [ov for ov in fn.overloads if keep(ov)]
             if narrowed:
@@ -357,7 +359,7 @@ def resolve(name: str, arg_types: list[Type]) -> Overload | str:
     return f"no matching overload for '{call}'; candidates: {listed}{tail}"
 
 
-_MAX_CANDIDATES = 16
+_MAX_CANDIDATES = 24
 
 
 def is_builtin_function(name: str) -> bool:

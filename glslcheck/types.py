@@ -510,7 +510,7 @@ def swizzle_result(t: Type, fields: str) -> Type | str:
                 if letters.index(c) >= t.size:
                     return f"'.{fields}' selects '{c}', beyond the {t.size} components of '{t}'"
             return vector(t.base, len(fields))
-    if all(any(c in s for s in SWIZZLE_SETS) for c in fields):
+    if fields and all(any(c in s for s in SWIZZLE_SETS) for c in fields):
         return f"swizzle '.{fields}' mixes the sets xyzw, rgba and stpq"
     return f"'{t}' has no field '{fields}'"
 
