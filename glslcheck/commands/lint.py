@@ -1,0 +1,62 @@
+"""Report every Lab 4 coding-standard deduction in shader files and folders.
+
+Exit status: 0 no findings, 1 findings, 2 usage, input or configuration errors. Never modifies
+a shader file. Configuration: [tool.glslcheck] in the nearest pyproject.toml, or glslcheck.toml
+(see `glslcheck rule --all` for the rules).
+"""
+
+from __future__ import annotations
+
+import argparse
+import sys
+from pathlib import Path
+
+from ..diagnostics import InputError
+
+
+def _names(value: str) -> list[str]:
+    return [n.strip() for n in value.split(",") if n.strip()]
+
+
+def add_arguments(parser: argparse.ArgumentParser) -> None:
+    parser.add_argument("paths", nargs="+", metavar="PATH", help="shader files or folders")
+    parser.add_argument(
+        "--format", choices=("text", "json", "sarif", "github"), default="text", help="output format (default: text)"
+    )
+    parser.add_argument(
+        "--select", type=_names, action="extend", metavar="RULE,...", help="only these rules (replaces the configuration's)"
+    )
+    parser.add_argument(
+        "--ignore", type=_names, action="extend", metavar="RULE,...", help="not these rules (replaces the configuration's)"
+    )
+    parser.add_argument("--output", "-o", metavar="FILE", help="write the report to FILE instead of standard output")
+    parser.add_argument(
+        "--skip-non-shaders",
+        action="store_true",
+        help="leave out named files that are not shader files (.glsl, .frag, Shadertoy tab names, "
+        "tab-patterns); for git hooks given every staged file",
+    )
+
+
+def run(args: argparse.Namespace) -> int:
+    from ..lint import lint_paths
+    from ..lint.report import render
+
+    overrides = {}
+    if args.select is not None:
+        overrides["select"] = args.select
+    if args.ignore is not None:
+        overrides["ignore"] = args.ignore
+    result = lint_paths(args.paths, overrides, skip_non_shaders=args.skip_non_shaders)
+    text = render(result, args.format)
+    if args.output:
+        out = Path(args.output)
+        if out.exists() and any(out.resolve() == Path(p).resolve() for p in result.paths):
+            raise InputError(f"{args.output}: error: --output names a file being linted; lint never overwrites a shader")
+        try:
+            out.write_text(text, encoding="utf-8")
+        except OSError as e:
+            raise InputError(f"{args.output}: error: cannot write the report ({e.strerror or e})") from None
+    else:
+        sys.stdout.write(text)
+    return 1 if result.findings else 0

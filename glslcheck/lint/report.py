@@ -1,0 +1,210 @@
+"""Reporting lint findings: a `LintResult` in, text for a person or a tool out.
+
+Detection is the engine's job; this module only formats. Formats (`FORMATS`):
+
+    text    `path:line:col: rule-name message`, the source line with `^~~~` under the span, a
+            `help:` line, and a closing summary with the estimated deduction
+    json    {"findings": [{path, line, column, end_line, end_column, rule, severity, penalty,
+            message, help}], "summary": {files, findings, penalty}}
+    sarif   SARIF 2.1.0 for GitHub code scanning (one run; every rule in tool.driver.rules)
+    github  GitHub Actions workflow commands (`::warning file=...::message`)
+
+Lines and columns are 1-based and point into the user's file; an end column is the column just
+past the span's last character.
+"""
+
+from __future__ import annotations
+
+import json
+import os
+from pathlib import Path
+from typing import Callable
+from urllib.parse import quote
+
+from ..diagnostics import format_text
+from .engine import Finding, LintResult
+from .rules import all_rules
+
+SARIF_SCHEMA = "https://json.schemastore.org/sarif-2.1.0.json"
+SARIF_VERSION = "2.1.0"
+
+
+def _plural(n: int, word: str) -> str:
+    return f"{n} {word}{'' if n == 1 else 's'}"
+
+
+def summary_line(result: LintResult) -> str:
+    files = _plural(result.files, "file")
+    if not result.findings:
+        return f"no findings in {files}"
+    points = result.penalty
+    deduction = f"-{_plural(points, 'point')}" if points else "0 points"
+    return f"{_plural(len(result.findings), 'finding')} in {files}, estimated deduction: {deduction}"
+
+
+def format_finding(f: Finding) -> str:
+    """One finding as text: the compiler-style block of `diagnostics.format_text`, with the rule
+    name in place of the severity and no colon after it."""
+    block = format_text(f, show_rule=True)
+    head = f"{f.loc}: {f.rule}: " if f.loc else f"{f.rule}: "
+    if block.startswith(head):
+        block = head[:-2] + " " + block[len(head) :]
+    return block
+
+
+def text_report(result: LintResult) -> str:
+    blocks = [format_finding(f) for f in result.findings]
+    blocks.append(summary_line(result))
+    return "\n\n".join(blocks) + "\n"
+
+
+def finding_record(f: Finding) -> dict:
+    loc = f.loc
+    return {
+        "path": f.path,
+        "line": loc.line if loc else 1,
+        "column": loc.column if loc else 1,
+        "end_line": (loc.end_line or loc.line) if loc else 1,
+        "end_column": (loc.end_column or loc.column + 1) if loc else 2,
+        "rule": f.rule,
+        "severity": f.severity,
+        "penalty": f.penalty,
+        "message": f.message,
+        "help": f.help,
+    }
+
+
+def json_report(result: LintResult) -> str:
+    doc = {
+        "findings": [finding_record(f) for f in result.findings],
+        "summary": {"files": result.files, "findings": len(result.findings), "penalty": result.penalty},
+    }
+    return json.dumps(doc, indent=2, ensure_ascii=False) + "\n"
+
+
+def artifact_uri(path: str, root: str | None = None) -> str:
+    """A SARIF artifact URI: relative to `root` (default: the current directory) with `/`
+    separators and percent-escapes; an absolute `file://` URI for a file outside `root`."""
+    real = Path(path).resolve()
+    base = Path(root or os.getcwd()).resolve()
+    try:
+        rel = real.relative_to(base)
+    except ValueError:
+        return real.as_uri()
+    return quote(rel.as_posix())
+
+
+def sarif_level(severity: str) -> str:
+    return {"error": "error", "warning": "warning"}.get(severity, "note")
+
+
+def sarif_document(result: LintResult, root: str | None = None) -> dict:
+    from .. import __version__
+
+    rules = list(all_rules().values())
+    index = {r.name: i for i, r in enumerate(rules)}
+    driver_rules = []
+    for r in rules:
+        driver_rules.append(
+            {
+                "id": r.name,
+                "name": r.name,
+                "shortDescription": {"text": r.summary},
+                "fullDescription": {"text": r.section("What it does")},
+                "help": {"text": r.doc, "markdown": r.doc},
+                "defaultConfiguration": {"level": sarif_level(r.severity)},
+                "properties": {"penalty": r.penalty, "tags": [r.kind]},
+            }
+        )
+    results = []
+    for f in result.findings:
+        rec = finding_record(f)
+        message = f.message + (f"\nhelp: {f.help}" if f.help else "")
+        entry = {
+            "ruleId": f.rule,
+            "level": sarif_level(f.severity),
+            "message": {"text": message},
+            "locations": [
+                {
+                    "physicalLocation": {
+                        "artifactLocation": {"uri": artifact_uri(f.path, root)},
+                        "region": {
+                            "startLine": rec["line"],
+                            "startColumn": rec["column"],
+                            "endLine": rec["end_line"],
+                            "endColumn": rec["end_column"],
+                        },
+                    }
+                }
+            ],
+            "properties": {"penalty": f.penalty},
+        }
+        if f.rule in index:
+            entry["ruleIndex"] = index[f.rule]
+        results.append(entry)
+    return {
+        "$schema": SARIF_SCHEMA,
+        "version": SARIF_VERSION,
+        "runs": [
+            {
+                "tool": {
+                    "driver": {
+                        "name": "glslcheck",
+                        "version": __version__,
+                        "informationUri": "https://www.shadertoy.com/",
+                        "rules": driver_rules,
+                    }
+                },
+                "columnKind": "unicodeCodePoints",
+                "results": results,
+            }
+        ],
+    }
+
+
+def sarif_report(result: LintResult) -> str:
+    return json.dumps(sarif_document(result), indent=2, ensure_ascii=False) + "\n"
+
+
+def _escape_data(s: str) -> str:
+    return s.replace("%", "%25").replace("\r", "%0D").replace("\n", "%0A")
+
+
+def _escape_property(s: str) -> str:
+    return _escape_data(s).replace(":", "%3A").replace(",", "%2C")
+
+
+def github_report(result: LintResult) -> str:
+    out = []
+    for f in result.findings:
+        rec = finding_record(f)
+        command = {"error": "error", "warning": "warning"}.get(f.severity, "notice")
+        props = ",".join(
+            f"{k}={_escape_property(str(v))}"
+            for k, v in (
+                ("file", Path(f.path).as_posix()),
+                ("line", rec["line"]),
+                ("col", rec["column"]),
+                ("endLine", rec["end_line"]),
+                ("endColumn", rec["end_column"]),
+                ("title", f.rule),
+            )
+        )
+        message = f.message + (f"\nhelp: {f.help}" if f.help else "")
+        out.append(f"::{command} {props}::{_escape_data(message)}")
+    return "".join(line + "\n" for line in out)
+
+
+FORMATS: dict[str, Callable[[LintResult], str]] = {
+    "text": text_report,
+    "json": json_report,
+    "sarif": sarif_report,
+    "github": github_report,
+}
+
+
+def render(result: LintResult, fmt: str = "text") -> str:
+    try:
+        return FORMATS[fmt](result)
+    except KeyError:
+        raise ValueError(f"unknown format {fmt!r}; the formats are {', '.join(FORMATS)}") from None

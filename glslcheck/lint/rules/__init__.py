@@ -1,0 +1,108 @@
+"""The rule registry: the one table of every lint rule, and the checked view of a rule module.
+
+A rule is a module in this package that declares
+
+    NAME      the stable rule name users write in `--select` and `glslcheck: ignore[...]`;
+              it names the pattern, not the fix ("ignore missing-comment" reads naturally)
+    PENALTY   points the course deducts per finding: 1 for a course rule, 0 for worth-knowing
+    SEVERITY  "warning" for a course rule (PENALTY > 0), "note" for worth-knowing (PENALTY 0)
+    NEEDS     "text" (runs on every file), "ast" (runs only when the engine has a parse tree
+              and semantic model for the file) or "suppressions" (runs last, reading which
+              suppressions were used)
+    a docstring: one summary line, then the sections `## What it does`, `## Why is this bad?`,
+              `## Example` and `## Use instead` (docs/rules.md and `glslcheck rule` show it)
+    check(ctx) -> Iterable[Diagnostic]   ctx is a `glslcheck.lint.engine.LintContext`
+
+and has a row in `RULE_TABLE` below. Nothing else registers a rule.
+"""
+
+from __future__ import annotations
+
+import importlib
+import re
+from dataclasses import dataclass
+from functools import cache
+from types import ModuleType
+from typing import Callable, Iterable
+
+# Every rule: (NAME, module in this package). The order is the order docs and `--all` list them.
+RULE_TABLE: tuple[tuple[str, str], ...] = (
+    ("missing-comment", "missing_comment"),
+    ("missing-header", "missing_header"),
+    ("missing-credit", "missing_credit"),
+    ("unused-suppression", "unused_suppression"),
+)
+
+SECTIONS = ("What it does", "Why is this bad?", "Example", "Use instead")
+SEVERITIES = {"warning": "course rule", "note": "worth knowing"}
+NEEDS = ("text", "ast", "suppressions")
+_SECTION_RE = re.compile(r"^## (.+?)\s*$", re.M)
+
+
+@dataclass(frozen=True, slots=True)
+class Rule:
+    """A rule module's declarations, checked."""
+
+    name: str
+    penalty: int
+    severity: str
+    needs: str
+    summary: str  # the docstring's first line
+    doc: str  # the docstring after the summary line (markdown)
+    check: Callable[..., Iterable]
+    module: ModuleType
+
+    @property
+    def kind(self) -> str:
+        return SEVERITIES[self.severity]
+
+    def section(self, title: str) -> str:
+        return doc_sections(self.doc).get(title, "")
+
+
+def doc_sections(doc: str) -> dict[str, str]:
+    """`## Title` sections of a rule docstring: title -> body (stripped)."""
+    parts = _SECTION_RE.split(doc)
+    return {parts[i]: parts[i + 1].strip() for i in range(1, len(parts) - 1, 2)}
+
+
+def _load(name: str, module_name: str) -> Rule:
+    mod = importlib.import_module(f"{__name__}.{module_name}")
+    where = f"{mod.__name__}"
+    doc = (mod.__doc__ or "").strip()
+    summary, _, body = doc.partition("\n")
+    problems = []
+    if getattr(mod, "NAME", None) != name:
+        problems.append(f"NAME is {getattr(mod, 'NAME', None)!r}, the table says {name!r}")
+    penalty = getattr(mod, "PENALTY", None)
+    severity = getattr(mod, "SEVERITY", None)
+    if not isinstance(penalty, int) or penalty < 0:
+        problems.append(f"PENALTY must be an int >= 0, not {penalty!r}")
+    if severity not in SEVERITIES:
+        problems.append(f"SEVERITY must be one of {', '.join(SEVERITIES)}, not {severity!r}")
+    elif isinstance(penalty, int) and (severity == "warning") != (penalty > 0):
+        problems.append("a course rule (PENALTY > 0) is a warning, a worth-knowing one (PENALTY 0) a note")
+    if getattr(mod, "NEEDS", None) not in NEEDS:
+        problems.append(f"NEEDS must be one of {', '.join(NEEDS)}")
+    if not callable(getattr(mod, "check", None)):
+        problems.append("no check(ctx) function")
+    missing = [s for s in SECTIONS if s not in doc_sections(body)]
+    if missing:
+        problems.append(f"the docstring lacks the section(s) {', '.join(missing)}")
+    if problems:
+        raise TypeError(f"lint rule {where}: " + "; ".join(problems))
+    return Rule(name, penalty, severity, mod.NEEDS, summary.strip(), body.strip(), mod.check, mod)
+
+
+@cache
+def all_rules() -> dict[str, Rule]:
+    """Every rule by name, in table order (modules are imported and checked on first use)."""
+    return {name: _load(name, module) for name, module in RULE_TABLE}
+
+
+def rule_names() -> frozenset[str]:
+    return frozenset(name for name, _ in RULE_TABLE)
+
+
+def get_rule(name: str) -> Rule | None:
+    return all_rules().get(name)

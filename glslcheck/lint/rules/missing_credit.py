@@ -1,0 +1,66 @@
+"""No comment credits the starter framework or the sources code was borrowed from.
+
+## What it does
+Looks through every comment of the file for a credit: a mention of the starter framework or the
+instructor (`starter`, `framework`, `Buckstein`), a credit (`credit`, `adapted from`,
+`based on`, `borrowed from`, `inspired by`, `source:`, `reference:`, `thanks to`) or a link
+(`https://...`, `www....`). One finding per file, at line 1, when there is none.
+
+This is a note, not a deduction: the linter cannot tell whether anything was borrowed. But the
+course starter code is in every lab, and an uncited borrowing costs far more than a point.
+
+## Why is this bad?
+The course's coding standards: "Credit and provide a link to source materials (books, websites,
+forums, etc.) in your work wherever code from there is borrowed, and credit your instructor for
+the starter framework, even if it is adapted, modified or reworked (failure to cite sources and
+claiming source materials as one's own results in an instant final grade of F in the course)."
+
+## Example
+```glsl
+// Image.glsl: lit spheres (Lab 4)
+// Contributors: Ana Ruiz: lighting; Ben Li: optimization
+```
+
+## Use instead
+```glsl
+// Image.glsl: lit spheres (Lab 4)
+// Contributors: Ana Ruiz: lighting; Ben Li: optimization
+// Starter framework by Daniel S. Buckstein (GPR-200); ray-sphere test adapted from
+// "Ray Tracing in One Weekend", https://raytracing.github.io/
+```
+"""
+
+from __future__ import annotations
+
+import re
+from typing import Iterator
+
+from ...diagnostics import Diagnostic
+
+NAME = "missing-credit"
+PENALTY = 0
+SEVERITY = "note"
+NEEDS = "text"
+
+CREDIT_RE = re.compile(
+    r"\b(?:starter|framework|buckstein|credits?|credited|adapted|based\s+on|borrowed|courtesy"
+    r"|inspired\s+by|derived\s+from|taken\s+from|thanks?\s+to|acknowledge?ments?"
+    r"|(?:sources?|references?|refs?|citations?|cited?)\s*:)"
+    r"|https?://|\bwww\.",
+    re.I,
+)
+
+
+def check(ctx) -> Iterator[Diagnostic]:
+    if not ctx.source.text.strip():
+        return
+    if any(CREDIT_RE.search(c.text) for c in ctx.comments if not c.is_directive):
+        return
+    yield Diagnostic(
+        "no comment credits the starter framework or the sources code was borrowed from",
+        ctx.location(1, 1),
+        rule=NAME,
+        severity=SEVERITY,
+        help="credit the instructor's starter framework and link every borrowed source, e.g. "
+        "`// starter framework: Daniel S. Buckstein; sphere test adapted from <link>`",
+    )

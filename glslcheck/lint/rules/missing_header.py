@@ -1,0 +1,207 @@
+"""A file that does not open with a header naming it, its purpose and its contributors.
+
+## What it does
+Reads the comments at the top of the file, before its first line of code (a license block may
+come first), and checks that they
+1. name the file: its file name with or without extension, or its Shadertoy tab name
+   (`Image.glsl`, `File: Image`, `Buffer A tab`, or a line starting with the name);
+2. state its purpose: a `Purpose:`, `Description:`, `Brief:`, `Summary:` or `About:` label, a
+   sentence starting "This file/shader/tab ...", or words after the name (`Image: lit spheres`);
+3. list the contributors with what each did: an `Author(s):`, `Contributors:`, `By`,
+   `Written by`, `Created by`, `Modified by` or `Team:` label, each entry saying what that person
+   did (`Ana Ruiz: lighting`, `Ben Li - optimization`, `Cy (comments)`).
+
+One finding per file, at line 1, saying what is missing.
+
+## Why is this bad?
+The course's coding standards: "Add author information to the top of each code file (-1 for each
+omission). If you have a license, include the boiler plate template (fill it in with your own
+info) and add a separate block with: 1) the name and purpose of the file; and 2) a list of
+contributors and what they did."
+
+## Example
+```glsl
+// lighting lab
+void mainImage(out vec4 fragColor, in vec2 fragCoord)
+```
+
+## Use instead
+```glsl
+// Image.glsl: draws lit spheres with Lambert, Phong and Blinn-Phong shading (Lab 4)
+// Contributors:
+//   Ana Ruiz: sphere ray-tracing, point lights
+//   Ben Li: Blinn-Phong, optimization pass, comments
+void mainImage(out vec4 fragColor, in vec2 fragCoord)
+```
+"""
+
+from __future__ import annotations
+
+import re
+from pathlib import Path
+from typing import Iterator
+
+from ...diagnostics import Diagnostic
+from ...sources import tab_name
+from ..textscan import LineKind
+from .missing_credit import CREDIT_RE
+
+NAME = "missing-header"
+PENALTY = 1
+SEVERITY = "warning"
+NEEDS = "text"
+
+_SEP = r"[:=\-\u2013\u2014|(]"
+_PURPOSE_LABEL = re.compile(
+    r"^\W*(?:purpose|description|desc|brief|summary|about|overview|what it does)\b\s*[:\-\u2013\u2014]",
+    re.I | re.M,
+)
+_PURPOSE_SENTENCE = re.compile(
+    r"\bthis\s+(?:file|shader|tab|pass|buffer|program|code)\s+(?:is\s+|will\s+)?[a-z]+", re.I
+)
+_CONTRIB_LABEL = re.compile(
+    r"^\W*(?:authors?|contributors?|contributions|team(?:\s+members)?|programmers?|developers?"
+    r"|(?:written|created|made|modified|edited|coded|programmed)\s+by|by)\b\s*:?\s*(?P<rest>.*)$",
+    re.I,
+)
+_OTHER_LABEL = re.compile(
+    r"^\W*(?:file(?:name)?|tab|name|purpose|description|brief|summary|about|license|copyright"
+    r"|credits?|sources?|references?|date|version|course|instructor)\b\s*[:\-]",
+    re.I,
+)
+_DID = re.compile(
+    r"[:(\u2013\u2014]|\s-\s|\b(?:implement\w*|wrote|written|add(?:ed|s|ing)?|made|creat\w+|did|does"
+    r"|work(?:ed|s|ing)?|design\w*|modif\w+|refactor\w*|optimi[sz]\w*|comment\w*|document\w*"
+    r"|fix\w*|set\s+up|cod(?:ed|ing|e)|program\w*|buil[td]\w*|test\w*|debug\w*|help\w*|lead|led"
+    r"|lighting|shading|render\w*|math|structs?)\b",
+    re.I,
+)
+_TAB_WORDS = r"(?:tab|pass|buffer|shader|file)"
+
+
+def _flex(name: str) -> str:
+    """A regex for a name whose words may be joined by spaces, `_` or `-` (any case)."""
+    return r"[\s_\-]*".join(re.escape(w) for w in re.split(r"[\s_\-]+", name.strip()) if w)
+
+
+def _names(path: str, tab: str) -> tuple[str, list[str]]:
+    """The file's name with extension, and the other names that name it (stem, tab name)."""
+    p = Path(path)
+    others = [p.stem]
+    for t in (tab, tab_name(p)):
+        if t and t != "GLSL" and t not in others:
+            others.append(t)
+    return p.name, others
+
+
+def names_file(text: str, path: str, tab: str) -> bool:
+    full, others = _names(path, tab)
+    if re.search(rf"(?<![\w.]){_flex(full)}(?!\w)", text, re.I):
+        return True
+    for n in others:
+        f = _flex(n)
+        patterns = (
+            rf"^\W*(?:file\s*(?:name)?|filename|tab|name|shader|pass)\s*{_SEP}\s*[\"'`]?{f}(?!\w)",
+            rf"^[\W_]*[\"'`]?{f}[\"'`]?\s*(?:$|{_SEP}|,)",
+            rf"(?<!\w){f}\s+{_TAB_WORDS}\b",
+            rf"\b{_TAB_WORDS}\s*[:\-]?\s*[\"'`]?{f}(?!\w)",
+        )
+        if any(re.search(pat, text, re.I | re.M) for pat in patterns):
+            return True
+    return False
+
+
+def states_purpose(text: str, path: str, tab: str) -> bool:
+    if _PURPOSE_LABEL.search(text) or _PURPOSE_SENTENCE.search(text):
+        return True
+    full, others = _names(path, tab)
+    for n in (full, *others):
+        # words after the name on its line: `Image.glsl - draws lit spheres`
+        if re.search(rf"(?<!\w){_flex(n)}[\"'`]?\s*{_SEP}\s*\w+\W+\w+", text, re.I):
+            return True
+    return False
+
+
+def contributors(text: str) -> str:
+    """"ok", "none" (no contributor list), or "bare" (names without what each did)."""
+    lines = text.split("\n")
+    entries: list[str] = []
+    found = False
+    for i, line in enumerate(lines):
+        m = _CONTRIB_LABEL.match(line)
+        if not m:
+            continue
+        found = True
+        rest = m.group("rest").strip()
+        if rest:
+            entries.extend(e for e in re.split(r";", rest) if e.strip())
+        for follow in lines[i + 1 :]:
+            body = re.sub(r"^[\s*/#>\-\u2022\d.)]*", "", follow).strip()
+            if (
+                not body
+                or _CONTRIB_LABEL.match(follow)
+                or _OTHER_LABEL.match(follow)
+                or CREDIT_RE.search(follow)  # a credit line is no contributor
+            ):
+                break
+            entries.append(body)
+    if not found or not entries:
+        return "none"
+    return "ok" if all(_DID.search(e) for e in entries) else "bare"
+
+
+def header_text(ctx) -> str | None:
+    """The text of the comments before the first code line (directives left out), or None."""
+    first_code = next(
+        (i for i, k in enumerate(ctx.line_kinds, start=1) if k.has_code or k in (LineKind.BRACE, LineKind.BRACE_COMMENT)),
+        len(ctx.line_kinds) + 1,
+    )
+    parts = [c.text for c in ctx.comments if c.line < first_code and not c.is_directive]
+    return "\n".join(parts) if parts else None
+
+
+def missing_parts(ctx) -> list[str] | None:
+    """What the header lacks, as phrases; None when there is no header comment at all."""
+    text = header_text(ctx)
+    if text is None:
+        return None
+    path, tab = ctx.source.path, ctx.source.tab
+    missing = []
+    if not names_file(text, path, tab):
+        missing.append(f"does not name the file (`{Path(path).name}`)")
+    if not states_purpose(text, path, tab):
+        missing.append("states no purpose")
+    who = contributors(text)
+    if who == "none":
+        missing.append("lists no contributors with what each did")
+    elif who == "bare":
+        missing.append("lists contributors without what each did")
+    return missing
+
+
+def _join(phrases: list[str]) -> str:
+    return phrases[0] if len(phrases) == 1 else ", ".join(phrases[:-1]) + " and " + phrases[-1]
+
+
+def check(ctx) -> Iterator[Diagnostic]:
+    if not ctx.source.text.strip():
+        return
+    missing = missing_parts(ctx)
+    name = Path(ctx.source.path).name
+    if missing is None:
+        message = (
+            "the file opens with no header comment (it should name the file, state its purpose "
+            "and list the contributors with what each did)"
+        )
+    elif missing:
+        message = "the header " + _join(missing)
+    else:
+        return
+    yield Diagnostic(
+        message,
+        ctx.location(1, 1),
+        rule=NAME,
+        severity=SEVERITY,
+        help=f"open the file with a comment such as `// {name}: <what it does>` and "
+        "`// Contributors: <name>: <what they did>; ...`",
+    )

@@ -1,0 +1,177 @@
+"""The text view of a shader for lint rules that need no parse tree: comments and line kinds.
+
+`scan(text)` splits a file into its comments (`//` line comments, with GLSL ES 3.00's
+backslash line continuation, and `/* */` block comments spanning lines) and classifies every
+line once, so each text rule reads the same answer:
+
+    blank      whitespace only (outside any comment)
+    comment    comment text only (also every line a block comment occupies)
+    code       code and no comment; preprocessor lines (`#define` ...) are code too
+    trailing   code, then a comment on the same line (`x = 1.0; // why`)
+    leading    a comment, then code on the same line (`/* why */ x = 1.0;`, or code after a
+               block comment's closing `*/`)
+    brace      only braces and an optional `;` (`{`, `}`, `};`, `} {`) and no comment
+    brace-comment  a brace line with a comment (`{ // shade each light`)
+    directive  only a glslcheck directive comment (`// glslcheck: ignore[...]`): such a comment
+               is an instruction to the linter, not an explanation, so it counts as no comment
+
+GLSL has no string literals, so `//` and `/*` always open a comment outside one.
+"""
+
+from __future__ import annotations
+
+import re
+from dataclasses import dataclass
+from enum import Enum
+
+
+class LineKind(str, Enum):
+    BLANK = "blank"
+    COMMENT = "comment"
+    CODE = "code"
+    TRAILING = "trailing"
+    LEADING = "leading"
+    BRACE = "brace"
+    BRACE_COMMENT = "brace-comment"
+    DIRECTIVE = "directive"
+
+    @property
+    def has_code(self) -> bool:
+        return self in (LineKind.CODE, LineKind.TRAILING, LineKind.LEADING)
+
+    def __str__(self) -> str:
+        return self.value
+
+
+# A glslcheck directive inside a comment: `glslcheck: ignore[a, b]` or `glslcheck: ignore-file[a]`.
+# Prose such as "checked with glslcheck: ..." is no directive: the verb starts with `ignore` or is
+# followed by brackets.
+DIRECTIVE_RE = re.compile(
+    r"glslcheck\s*:\s*(?P<verb>ignore[A-Za-z-]*|[A-Za-z-]+(?=\s*\[))\s*(?:\[(?P<names>[^\]]*)\])?"
+)
+_ONLY_DIRECTIVES_RE = re.compile(r"^\s*(?:glslcheck\s*:\s*[A-Za-z-]*\s*(?:\[[^\]]*\])?[\s,;.]*)+$")
+_BRACE_ONLY_RE = re.compile(r"^\s*(?:[{}]\s*)+;?\s*$")
+
+
+@dataclass(frozen=True, slots=True)
+class Comment:
+    """One comment: `text` without its delimiters; 1-based position of its first and last char + 1."""
+
+    text: str
+    line: int
+    column: int
+    end_line: int
+    end_column: int
+    block: bool  # /* */ rather than //
+
+    @property
+    def is_directive(self) -> bool:
+        """Whether the comment holds only glslcheck directives (no explanation for a reader)."""
+        return bool(_ONLY_DIRECTIVES_RE.match(self.text))
+
+
+@dataclass(slots=True)
+class TextScan:
+    """The scan of one file: its lines, comments, each line's kind and its code with comments blanked."""
+
+    lines: list[str]
+    comments: list[Comment]
+    line_kinds: list[LineKind]  # index 0 is line 1
+    code_lines: list[str]  # each line with comment characters replaced by spaces (columns kept)
+
+    def kind(self, line: int) -> LineKind:
+        return self.line_kinds[line - 1]
+
+    def comments_on(self, line: int) -> list[Comment]:
+        return [c for c in self.comments if c.line <= line <= c.end_line]
+
+
+def scan(text: str) -> TextScan:
+    """Split `text` (line endings already `\\n`) into comments and classified lines."""
+    lines = text.split("\n")
+    if lines and lines[-1] == "" and text.endswith("\n"):
+        lines.pop()
+    comments: list[Comment] = []
+    code_chars = [list(line) for line in lines]
+    # Per line: columns (0-based) of the first code char and of the first real comment char.
+    first_code: list[int | None] = [None] * len(lines)
+    first_comment: list[int | None] = [None] * len(lines)
+    in_directive_comment = [False] * len(lines)
+
+    state = "code"  # "code" | "line" | "block"
+    start: tuple[int, int] = (0, 0)
+    buf: list[str] = []
+    touched: list[int] = []  # lines the current comment occupies
+
+    def close(end_row: int, end_col: int, block: bool) -> None:
+        c = Comment("".join(buf), start[0] + 1, start[1] + 1, end_row + 1, end_col + 1, block)
+        comments.append(c)
+        for row in touched:
+            if c.is_directive:
+                in_directive_comment[row] = True
+            else:
+                col = start[1] if row == start[0] else 0
+                if first_comment[row] is None or col < first_comment[row]:
+                    first_comment[row] = col
+
+    for row, line in enumerate(lines):
+        col = 0
+        n = len(line)
+        if state != "code":
+            touched.append(row)
+        while col < n:
+            ch = line[col]
+            if state == "code":
+                two = line[col : col + 2]
+                if two in ("//", "/*"):
+                    state = "line" if two == "//" else "block"
+                    start, buf, touched = (row, col), [], [row]
+                    code_chars[row][col] = code_chars[row][col + 1] = " "
+                    col += 2
+                    continue
+                if not ch.isspace() and first_code[row] is None:
+                    first_code[row] = col
+                col += 1
+            elif state == "line":
+                buf.append(ch)
+                code_chars[row][col] = " "
+                col += 1
+            else:  # block
+                if line.startswith("*/", col):
+                    code_chars[row][col] = code_chars[row][col + 1] = " "
+                    close(row, col + 2, True)
+                    state = "code"
+                    col += 2
+                    continue
+                buf.append(ch)
+                code_chars[row][col] = " "
+                col += 1
+        if state == "line":
+            if line.endswith("\\"):  # GLSL ES 3.00 line continuation: the comment goes on
+                buf.append("\n")
+            else:
+                close(row, n, False)
+                state = "code"
+        elif state == "block":
+            buf.append("\n")
+    if state != "code" and lines:  # an unterminated comment runs to the end of the file
+        close(len(lines) - 1, len(lines[-1]), state == "block")
+
+    code_lines = ["".join(chars) for chars in code_chars]
+    kinds = [
+        _classify(code_lines[i], first_code[i], first_comment[i], in_directive_comment[i])
+        for i in range(len(lines))
+    ]
+    return TextScan(lines, comments, kinds, code_lines)
+
+
+def _classify(code: str, code_col: int | None, comment_col: int | None, directive: bool) -> LineKind:
+    if code_col is None:
+        if comment_col is not None:
+            return LineKind.COMMENT
+        return LineKind.DIRECTIVE if directive else LineKind.BLANK
+    if _BRACE_ONLY_RE.match(code):
+        return LineKind.BRACE if comment_col is None else LineKind.BRACE_COMMENT
+    if comment_col is None:
+        return LineKind.CODE
+    return LineKind.LEADING if comment_col < code_col else LineKind.TRAILING
