@@ -1,0 +1,1 @@
+"""NumPy backend: the GLSL-to-Python transpiler and the runtime its output calls (``runtime``)."""

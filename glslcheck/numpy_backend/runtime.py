@@ -1,0 +1,1263 @@
+"""The NumPy runtime that transpiled GLSL ES 3.00 shaders call.
+
+This module owns the representation of GLSL values over many pixels ("lanes") and every
+GLSL ES 3.00 operator and built-in function (spec chapter 5 and chapter 8, texture lookups
+excepted) with the numeric behaviour of the reference GPU, Mesa llvmpipe (Mesa 22.3.6,
+LLVM 15). The transpiler emits readable Python such as::
+
+    rt = Runtime("float32")
+    with rt.errstate():
+        n = rt.normalize(rt.sub(p, c))
+        k = rt.max_(rt.dot(n, l), rt.const_float(0.0))
+
+Representation
+==============
+
+A GLSL value evaluated over ``L`` lanes is a NumPy array whose LAST axis is the lane axis.
+The lane axis has size ``L`` or size 1; size 1 means "the same in every lane" (uniforms,
+constants) and broadcasts against any lane count. The number of dimensions tells the
+GLSL shape apart, so a value never needs a type tag:
+
+==================  =======================  =============================================
+GLSL type           array shape              notes
+==================  =======================  =============================================
+float/int/uint/bool ``(L,)``                 1-D: a scalar
+vecK / ivecK ...    ``(K, L)``               ``v[i]`` is component i (a scalar)
+matCxR              ``(C, R, L)``            column-major: ``m[c]`` is column c, a vecR
+T[M] (array)        ``(M,) + shape(T)``      stacked with a leading array axis
+struct              :class:`Struct`          named fields, each a value as above
+S[M] (array of s.)  :class:`Struct`          struct-of-arrays: every field has leading M
+==================  =======================  =============================================
+
+Element dtypes: ``float`` is the runtime's float dtype (:attr:`Runtime.F`), ``int`` is
+``np.int32``, ``uint`` is ``np.uint32``, ``bool`` is ``np.bool_``.
+
+Because scalars are 1-D and vectors 2-D, NumPy broadcasting *is* GLSL's scalar-vector and
+scalar-matrix broadcasting: ``add(s, v)`` with ``s.shape == (L,)`` and ``v.shape == (3, L)``
+just works. Component-wise vector/matrix operations are plain ufuncs; the linear-algebra
+products have their own functions (:meth:`Runtime.mat_mul_vec`, :meth:`Runtime.vec_mul_mat`,
+:meth:`Runtime.mat_mul_mat`) because the transpiler knows the static types.
+
+Value semantics. The runtime never writes into an array it was given: every function returns
+a new array (or, where the result equals an input, the input itself). GLSL assignment of
+arrays and structs copies; with immutable arrays a Python assignment that shares the array is
+already a copy. Masked writes (:meth:`Runtime.assign`, :meth:`Runtime.assign_swizzle`,
+:meth:`Runtime.assign_index`, :meth:`Runtime.assign_field`) return the new value; the
+transpiler rebinds the variable: ``x = rt.assign(x, new, mask)``.
+
+Masks. Divergent control flow is executed for all lanes; a mask is a bool array of shape
+``(L,)`` or ``(1,)`` (or ``None`` meaning "all lanes") and a masked write keeps the old value
+in inactive lanes. A masked write always returns the full broadcast lane count.
+
+Constants. Python numbers accepted by the runtime are converted to the type of the other
+operand, but the transpiler should create literals with :meth:`Runtime.const_float`,
+:meth:`Runtime.const_int`, :meth:`Runtime.const_uint`, :meth:`Runtime.const_bool`
+(arrays of shape ``(1,)``) so the dtype is explicit.
+
+Precision
+=========
+
+``Runtime("float32")`` (default) is highp: IEEE binary32, every operation rounded to float32.
+``Runtime("float16")`` emulates mediump: values are stored as float16 and NumPy evaluates each
+float16 operation in float32 and rounds the result to float16 (one rounding per GLSL
+operation, like a GPU with 16-bit ALUs; ints stay 32-bit, as on every desktop GPU).
+``Runtime("float64")`` is a reference mode for measuring error. Every function keeps floats in
+the active dtype: internal constants are created in that dtype, so a float32 input never
+comes back float64 and float16 stays float16. ``floatBitsToInt`` & co. always reinterpret
+float32 bits (GLSL defines them on highp floats); in float16 mode the result of
+``intBitsToFloat`` is rounded to float16.
+
+Warnings. Division by zero, NaN and overflow are ordinary results on a GPU; the caller wraps
+the whole render in ``with rt.errstate():`` (``np.errstate(all="ignore")``) instead of each
+call paying for it.
+
+Numeric semantics (measured on llvmpipe)
+========================================
+
+Measured by rendering 1x1 ``#version 300 es`` fragment shaders with uniform inputs (so the
+GLSL compiler cannot constant-fold) into an RGBA32I target, reading bits back exactly
+(``tests/numpy/test_runtime_gl.py`` repeats all of these). "spec" is GLSL ES 3.00.
+
+=================================  =====================  =================  ================
+case                               spec                   llvmpipe           ours
+=================================  =====================  =================  ================
+pow(-2, 2)                         undefined (x < 0)      NaN                NaN
+pow(0, 0), pow(0, -1), pow(0, y)   undefined (x=0, y<=0)  0 (any y)          0
+pow(NaN, y)                        NaN                    0                  0
+pow(inf, 0), pow(1, inf)           NaN (0*inf)            NaN                NaN
+normalize(vec3(0))                 0/0                    NaN                NaN
+normalize(float 0.0)               0/0                    0 (= sign(x))      0
+sqrt(-1)                           undefined              NaN                NaN
+log(0), log2(0)                    undefined              -inf               -inf
+log(-1)                            undefined              NaN                NaN
+inversesqrt(0)                     undefined              +inf               +inf
+smoothstep(1, 1, x)                undefined              0 (x<=1), 1 (x>1)  same (formula)
+smoothstep(2, 1, 1.5)              undefined              0.5                0.5 (formula)
+mod(-7.5, 2)                       x - y*floor(x/y)       0.5                0.5
+mod(1, 0), mod(inf, 1)             formula                NaN                NaN
+int(-7) / 2                        -3 (truncation)        -3                 -3
+int / 0 (any sign)                 undefined              0                  0
+INT_MIN / -1                       undefined              INT_MIN            INT_MIN
+uint / 0u, uint % 0u               undefined              0xFFFFFFFF         0xFFFFFFFF
+-7 % 2 (run time)                  undefined (negative)   1 (!)              1   ``rem``
+7 % -2, -7 % -3 (run time)         undefined              7, -7              same
+-7 % 2 (constant-folded)           undefined              -1 (C remainder)   -1  ``rem_const``
+x % 0 (int)                        undefined              -1                 -1
+2147483647 + 1                     wraps                  INT_MIN            INT_MIN
+1 << 32, 1 << 33, -8 >> 33         undefined (>= 32)      1, 2, -4 (n & 31)  same
+clamp(0.5, 1, 0)                   min(max(x,lo),hi)      0                  0
+clamp(NaN, 0, 1)                   undefined              0                  0
+min/max(NaN, 1), (1, NaN)          undefined              1 (IEEE fmin/fmax) 1
+int(3.99), int(-3.99)              trunc                  3, -3              3, -3
+int(NaN), int(+-inf), int(+-3e9)   undefined              INT_MIN            INT_MIN
+uint(-1.0), uint(NaN), uint(5e9)   undefined              0xFFFFFFFF         0xFFFFFFFF
+uint(-0.5)                         undefined              0 (trunc)          0
+round(2.5), round(-2.5), round(.5) impl.-defined .5 dir.  2, -2, 0 (even)    even
+roundEven(2.5), roundEven(-2.5)    2, -2                  2, -2              2, -2
+1e38 * 10                          inf                    +inf               +inf
+0 * inf, 0/0                       NaN                    NaN                NaN
+atan(0, 0), atan(0, -0)            undefined              3*pi/4 (2.3561912) 3*pi/4
+atan(-0, -1)                       -pi                    -pi                -pi
+atan(inf, inf)                     pi/4                   0.78539485         nir formula
+fract(-0.25), fract(-1e-9)         x - floor(x)           0.75, 1.0          0.75, 1.0
+fract(inf)                         NaN                    NaN                NaN
+sign(-0.0), sign(NaN)              0                      +0, 0              +0, 0
+step(0, NaN)                       undefined              0                  0
+tanh(+-100)                        +-1                    +-1                +-1
+sinh(100), cosh(100)               inf                    inf                inf
+asin(2), acos(2), acosh(0.5)       undefined              NaN                NaN
+atanh(1)                           undefined              +inf               +inf
+packUnorm2x16(NaN)                 undefined              0                  0
+==================================================================================================
+
+Formulas (each matched bit-for-bit on 65536 random inputs unless a ULP figure is given):
+no fused multiply-add is formed (``a*b+c`` rounds twice); ``x/y`` and ``sqrt`` are correctly
+rounded; ``inversesqrt(x) = 1/sqrt(x)``; ``length = sqrt(dot)``; ``dot`` sums left to right;
+``normalize(v) = v * inversesqrt(dot(v, v))``; ``mix = x*(1-a) + y*a``;
+``smoothstep: t*(t*(3-2t))``; ``cross = a.yzx*b.zxy - a.zxy*b.yzx``; ``mod`` as the spec;
+``atan``/``atan(y, x)``: Mesa's NIR polynomial (``nir_atan``, ``nir_atan2``, within 3 ULP of
+llvmpipe; a libm atan is up to 350 ULP away); ``asin``/``acos``: Mesa's GLSL formula
+``sign(x)*(pi/2 - sqrt(1-|x|)*(pi/2 + |x|*(pi/4-1 + |x|*(p0 + |x|*p1))))`` (max 128 ULP,
+96% exact; libm is 90000 ULP away); ``sinh cosh tanh asinh acosh atanh``: Mesa's exp/log
+formulas; ``exp(x) = exp2(x*log2(e))``, ``log(x) = log2(x)*ln(2)``. llvmpipe's own ``exp2``
+and ``log2`` are polynomials we do not reproduce: NumPy's are correctly rounded, llvmpipe's
+are within 3 ULP (exp2) and within 2 ULP except near x = 1 (log2, absolute error 5e-7);
+``sin``/``cos`` agree within 1 ULP; ``pow`` within ~30 ULP (error amplified by y*log2(x)).
+
+Derivatives (measured): llvmpipe computes FINE derivatives on 2x2 quads whose lower-left
+pixel has even x and even y (gl_FragCoord space): ``dFdx`` at (x, y) is
+``v(x|1, y) - v(x&~1, y)`` -- different in the two rows of a quad -- and ``dFdy`` is
+``v(x, y|1) - v(x, y&~1)``; ``fwidth = |dFdx| + |dFdy|``. See :meth:`Runtime.dFdx`.
+"""
+
+from __future__ import annotations
+
+import math
+from typing import Any, Iterable
+
+import numpy as np
+
+__all__ = ["Runtime", "Struct", "GLSLRuntimeError", "PRECISIONS"]
+
+PRECISIONS = {"float16": np.float16, "float32": np.float32, "float64": np.float64,
+              "mediump": np.float16, "highp": np.float32}
+
+I32 = np.int32
+U32 = np.uint32
+BOOL = np.bool_
+INT_MIN = -(2**31)
+
+_SWIZZLE_SETS = ("xyzw", "rgba", "stpq")
+_SWIZZLE_CACHE: dict[str, tuple[int, ...]] = {}
+
+
+class GLSLRuntimeError(RuntimeError):
+    """A construct the runtime cannot evaluate (for example a texture lookup)."""
+
+
+def swizzle_indices(sw: str) -> tuple[int, ...]:
+    """Component indices of a swizzle string (``"xzy"`` -> ``(0, 2, 1)``); any of xyzw/rgba/stpq."""
+    got = _SWIZZLE_CACHE.get(sw)
+    if got is None:
+        for letters in _SWIZZLE_SETS:
+            if all(ch in letters for ch in sw):
+                got = tuple(letters.index(ch) for ch in sw)
+                break
+        else:
+            raise ValueError(f"bad swizzle {sw!r}")
+        _SWIZZLE_CACHE[sw] = got
+    return got
+
+
+class Struct:
+    """A GLSL struct value: a type name and an ordered set of named fields.
+
+    Fields are read as attributes (``s.pos``) or with ``s["pos"]``. A Struct is never modified
+    in place by the runtime; :meth:`Runtime.assign_field` returns a new one. An array of structs
+    is a Struct whose fields carry a leading array axis (struct-of-arrays).
+    """
+
+    __slots__ = ("_name", "_fields")
+
+    def __init__(self, _name: str, _fields: dict[str, Any] | None = None, **fields: Any) -> None:
+        object.__setattr__(self, "_name", _name)
+        d = dict(_fields or {})
+        d.update(fields)
+        object.__setattr__(self, "_fields", d)
+
+    def __getattr__(self, key: str) -> Any:
+        try:
+            return self._fields[key]
+        except KeyError:
+            raise AttributeError(key) from None
+
+    def __getitem__(self, key: str) -> Any:
+        return self._fields[key]
+
+    def __setattr__(self, key: str, value: Any) -> None:
+        raise AttributeError("Struct values are immutable; use Runtime.assign_field")
+
+    def replace(self, **changes: Any) -> "Struct":
+        d = dict(self._fields)
+        d.update(changes)
+        return Struct(self._name, d)
+
+    def map(self, fn) -> "Struct":
+        return Struct(self._name, {k: fn(v) for k, v in self._fields.items()})
+
+    @property
+    def type_name(self) -> str:
+        return self._name
+
+    @property
+    def fields(self) -> dict[str, Any]:
+        return dict(self._fields)
+
+    def __repr__(self) -> str:
+        inner = ", ".join(f"{k}={v!r}" for k, v in self._fields.items())
+        return f"{self._name}({inner})"
+
+
+def _lanes_of(*values: Any) -> int:
+    n = 1
+    for v in values:
+        if isinstance(v, np.ndarray) and v.ndim:
+            m = v.shape[-1]
+            if m != 1:
+                if n != 1 and n != m:
+                    raise ValueError(f"lane counts differ: {n} vs {m}")
+                n = m
+        elif isinstance(v, Struct):
+            n = max(n, _lanes_of(*v._fields.values()))
+    return n
+
+
+class Runtime:
+    """GLSL ES 3.00 operators and built-ins over lane arrays, in one float precision.
+
+    ``Runtime(precision)`` with precision ``"float32"`` (highp, default), ``"float16"``
+    (mediump emulation) or ``"float64"`` (reference). Instantiate once per render.
+    """
+
+    def __init__(self, precision: str = "float32") -> None:
+        try:
+            self.F = np.dtype(PRECISIONS[precision]).type
+        except KeyError:
+            raise ValueError(f"precision must be one of {sorted(PRECISIONS)}") from None
+        self.precision = precision
+        F = self.F
+        self._0 = F(0.0)
+        self._1 = F(1.0)
+        self._2 = F(2.0)
+        self._3 = F(3.0)
+        self._half = F(0.5)
+
+    # ------------------------------------------------------------------ plumbing
+    @staticmethod
+    def errstate():
+        """Context manager silencing NumPy floating-point warnings for a whole render."""
+        return np.errstate(all="ignore")
+
+    def c(self, x: float) -> Any:
+        """A float constant as a 0-d scalar of the active dtype (for internal formulas)."""
+        return self.F(x)
+
+    def _f(self, x: Any) -> np.ndarray:
+        """Coerce to a float array of the active dtype (no copy when already right)."""
+        if isinstance(x, np.ndarray):
+            if x.dtype == self.F:
+                return x
+            if x.dtype == BOOL:
+                return x.astype(self.F)
+            return x.astype(self.F)
+        return np.asarray(x, dtype=self.F)
+
+    @staticmethod
+    def _like(x: Any, ref: Any) -> Any:
+        """Python number -> array of ref's dtype (arrays are returned unchanged)."""
+        if isinstance(x, np.ndarray):
+            return x
+        if isinstance(ref, np.ndarray):
+            return np.asarray(x, dtype=ref.dtype)
+        if isinstance(x, bool):
+            return np.asarray(x, dtype=BOOL)
+        if isinstance(x, int):
+            return np.asarray(x, dtype=I32)
+        return np.asarray(x)
+
+    def _pair(self, a: Any, b: Any) -> tuple[np.ndarray, np.ndarray]:
+        if not isinstance(a, np.ndarray):
+            a = self._like(a, b) if isinstance(b, np.ndarray) else self._num(a)
+        if not isinstance(b, np.ndarray):
+            b = self._like(b, a)
+        return a, b
+
+    def _num(self, x: Any) -> np.ndarray:
+        if isinstance(x, (bool, np.bool_)):
+            return np.asarray(x, dtype=BOOL)
+        if isinstance(x, (int, np.integer)):
+            return np.asarray(x, dtype=I32)
+        return np.asarray(x, dtype=self.F)
+
+    # ------------------------------------------------------------------ constants
+    def const_float(self, x: float) -> np.ndarray:
+        """A float literal, uniform over lanes: shape (1,), active float dtype."""
+        return np.array([x], dtype=self.F)
+
+    f = const_float
+
+    @staticmethod
+    def const_int(x: int) -> np.ndarray:
+        """An int literal, shape (1,), int32 (values wrap to 32 bits like GLSL)."""
+        return np.array([x], dtype=np.int64).astype(I32)
+
+    @staticmethod
+    def const_uint(x: int) -> np.ndarray:
+        """A uint literal, shape (1,), uint32."""
+        return np.array([int(x) & 0xFFFFFFFF], dtype=U32)
+
+    @staticmethod
+    def const_bool(x: bool) -> np.ndarray:
+        """A bool literal, shape (1,)."""
+        return np.array([bool(x)], dtype=BOOL)
+
+    def zeros(self, shape: tuple[int, ...] = (), kind: str = "float", lanes: int = 1) -> np.ndarray:
+        """A zero value (WebGL zero-initialises every variable) of GLSL shape ``shape``.
+
+        ``kind`` is float/int/uint/bool; ``shape`` is ``()`` scalar, ``(K,)`` vector,
+        ``(C, R)`` matrix, with any leading array axes.
+        """
+        return np.zeros(tuple(shape) + (lanes,), dtype=self.dtype_of(kind))
+
+    def dtype_of(self, kind: str):
+        return {"float": self.F, "int": I32, "uint": U32, "bool": BOOL}[kind]
+
+    def broadcast_lanes(self, x: Any, lanes: int) -> Any:
+        """``x`` with its lane axis expanded to ``lanes`` (a fresh contiguous array)."""
+        if isinstance(x, Struct):
+            return x.map(lambda v: self.broadcast_lanes(v, lanes))
+        x = self._num(x) if not isinstance(x, np.ndarray) else x
+        if x.ndim == 0:
+            x = x.reshape(1)
+        return np.ascontiguousarray(np.broadcast_to(x, x.shape[:-1] + (lanes,)))
+
+    # ------------------------------------------------------------------ conversions
+    def to_float(self, x: Any) -> np.ndarray:
+        """``float(x)``/``vecK(x)`` conversion: bool -> 0/1, int/uint rounded to nearest."""
+        return self._f(x)
+
+    @staticmethod
+    def _float_to_i64(x: np.ndarray) -> np.ndarray:
+        return np.trunc(x.astype(np.float64))
+
+    def to_int(self, x: Any) -> np.ndarray:
+        """``int(x)``: float truncates toward zero; NaN, +-inf and values outside the int32
+        range give INT_MIN (llvmpipe/x86 ``cvttps2dq``); uint reinterprets the bits; bool 0/1."""
+        x = self._num(x) if not isinstance(x, np.ndarray) else x
+        k = x.dtype.kind
+        if k == "i":
+            return x if x.dtype == I32 else x.astype(I32)
+        if k == "u":
+            return x.astype(U32).view(I32)
+        if k == "b":
+            return x.astype(I32)
+        t = self._float_to_i64(x)
+        ok = (t >= -(2.0**31)) & (t < 2.0**31)
+        return np.where(ok, t, INT_MIN).astype(np.int64).astype(I32)
+
+    def to_uint(self, x: Any) -> np.ndarray:
+        """``uint(x)``: float truncates; results outside [0, 2**32) and NaN give 0xFFFFFFFF
+        (llvmpipe: uint(-1.0) = uint(NaN) = uint(5e9) = 0xFFFFFFFF, uint(-0.5) = 0);
+        int reinterprets the bits; bool 0/1."""
+        x = self._num(x) if not isinstance(x, np.ndarray) else x
+        k = x.dtype.kind
+        if k == "u":
+            return x if x.dtype == U32 else x.astype(U32)
+        if k == "i":
+            return x.astype(I32).view(U32)
+        if k == "b":
+            return x.astype(U32)
+        t = self._float_to_i64(x)
+        ok = (t >= 0.0) & (t < 2.0**32)
+        return np.where(ok, t, 0xFFFFFFFF).astype(np.int64).astype(U32)
+
+    def to_bool(self, x: Any) -> np.ndarray:
+        """``bool(x)``: x != 0 (NaN -> true)."""
+        x = self._num(x) if not isinstance(x, np.ndarray) else x
+        if x.dtype == BOOL:
+            return x
+        return x != 0
+
+    def convert(self, x: Any, kind: str) -> np.ndarray:
+        """Convert to ``kind`` in {"float", "int", "uint", "bool"}."""
+        return {"float": self.to_float, "int": self.to_int, "uint": self.to_uint,
+                "bool": self.to_bool}[kind](x)
+
+    # ------------------------------------------------------------------ constructors
+    def _components(self, args: Iterable[Any], kind: str) -> list[np.ndarray]:
+        comps: list[np.ndarray] = []
+        for a in args:
+            a = self._num(a) if not isinstance(a, np.ndarray) else a
+            a = self.convert(a, kind)
+            if a.ndim <= 1:
+                comps.append(a.reshape(-1) if a.ndim == 0 else a)
+            elif a.ndim == 2:
+                comps.extend(a)
+            elif a.ndim == 3:
+                for col in a:
+                    comps.extend(col)
+            else:
+                raise ValueError(f"cannot take components of an array of shape {a.shape}")
+        return comps
+
+    @staticmethod
+    def _stack(comps: list[np.ndarray]) -> np.ndarray:
+        lanes = _lanes_of(*comps)
+        out = np.empty((len(comps), lanes), dtype=comps[0].dtype)
+        for i, c in enumerate(comps):
+            out[i] = c
+        return out
+
+    def _vec(self, k: int, args: tuple, kind: str) -> np.ndarray:
+        comps = self._components(args, kind)
+        if len(comps) == 1:
+            comps = comps * k
+        if len(comps) < k:
+            raise ValueError(f"vec{k} constructor needs {k} components, got {len(comps)}")
+        return self._stack(comps[:k])
+
+    def vec(self, k: int, *args: Any) -> np.ndarray:
+        """``vecK(...)``: one scalar splats; otherwise the components of all arguments
+        (scalars, vectors, matrices column-major) in order, converted to float."""
+        return self._vec(k, args, "float")
+
+    def ivec(self, k: int, *args: Any) -> np.ndarray:
+        return self._vec(k, args, "int")
+
+    def uvec(self, k: int, *args: Any) -> np.ndarray:
+        return self._vec(k, args, "uint")
+
+    def bvec(self, k: int, *args: Any) -> np.ndarray:
+        return self._vec(k, args, "bool")
+
+    def mat(self, c: int, r: int, *args: Any) -> np.ndarray:
+        """``matCxR(...)``: a scalar gives scalar*identity; a matrix copies the overlapping
+        part and fills the rest from the identity; otherwise C*R components column-major."""
+        if len(args) == 1:
+            a = args[0]
+            a = self._num(a) if not isinstance(a, np.ndarray) else a
+            if a.ndim <= 1:
+                s = self._f(a).reshape(-1)
+                out = np.zeros((c, r, s.shape[-1]), dtype=self.F)
+                for i in range(min(c, r)):
+                    out[i, i] = s
+                return out
+            if a.ndim == 3:
+                a = self._f(a)
+                out = np.zeros((c, r, a.shape[-1]), dtype=self.F)
+                for i in range(min(c, r)):
+                    out[i, i] = self._1
+                cc, rr = min(c, a.shape[0]), min(r, a.shape[1])
+                out[:cc, :rr] = a[:cc, :rr]
+                return out
+        comps = self._components(args, "float")
+        if len(comps) < c * r:
+            raise ValueError(f"mat{c}x{r} constructor needs {c * r} components, got {len(comps)}")
+        return self._stack(comps[: c * r]).reshape(c, r, -1)
+
+    def array(self, *elements: Any) -> Any:
+        """``T[](e0, e1, ...)``: stack elements on a new leading axis (Structs field-wise)."""
+        if isinstance(elements[0], Struct):
+            s0 = elements[0]
+            return Struct(s0._name, {k: self.array(*(e._fields[k] for e in elements))
+                                     for k in s0._fields})
+        els = [self._num(e) if not isinstance(e, np.ndarray) else e for e in elements]
+        lanes = _lanes_of(*els)
+        shape = els[0].shape[:-1] + (lanes,) if els[0].ndim else (lanes,)
+        out = np.empty((len(els),) + shape, dtype=els[0].dtype)
+        for i, e in enumerate(els):
+            out[i] = e
+        return out
+
+    @staticmethod
+    def struct(name: str, **fields: Any) -> Struct:
+        """A struct value (constructor ``S(a, b)`` -> ``rt.struct("S", a=..., b=...)``)."""
+        return Struct(name, fields)
+
+    # ------------------------------------------------------------------ access
+    @staticmethod
+    def swizzle(v: np.ndarray, sw: str) -> np.ndarray:
+        """Read ``v.sw``: one letter gives a scalar (L,), several a vector (len, L).
+        Also applies to scalars (``f.xxx``) when ``v`` is 1-D."""
+        idx = swizzle_indices(sw)
+        if v.ndim == 1:
+            return v if len(idx) == 1 else np.stack([v] * len(idx))
+        if len(idx) == 1:
+            return v[idx[0]]
+        if idx == tuple(range(len(idx))):
+            return v[: len(idx)]
+        return v[list(idx)]
+
+    @staticmethod
+    def _mask_lanes(mask: Any) -> Any:
+        if mask is None:
+            return None
+        if isinstance(mask, np.ndarray) and mask.dtype != BOOL:
+            mask = mask.astype(BOOL)
+        return mask
+
+    def assign(self, old: Any, new: Any, mask: Any = None) -> Any:
+        """``old = new`` in lanes where ``mask`` is true (None: all lanes). Works for every
+        value kind including Structs; the result has the broadcast lane count and old's dtype."""
+        if isinstance(old, Struct):
+            return Struct(old._name, {k: self.assign(v, new._fields[k], mask)
+                                      for k, v in old._fields.items()})
+        new = self._like(new, old)
+        if mask is None:
+            return new if new.dtype == old.dtype else new.astype(old.dtype)
+        mask = self._mask_lanes(mask)
+        out = np.where(mask, new, old)
+        return out if out.dtype == old.dtype else out.astype(old.dtype)
+
+    def assign_swizzle(self, old: np.ndarray, sw: str, new: Any, mask: Any = None) -> np.ndarray:
+        """``old.sw = new`` under ``mask`` (``new`` is a scalar for one letter, else a vector)."""
+        idx = swizzle_indices(sw)
+        new = self._like(new, old)
+        lanes = _lanes_of(old, new, mask)
+        out = self.broadcast_lanes(old, lanes)
+        mask = self._mask_lanes(mask)
+        if len(idx) == 1:
+            comps = [new]
+        else:
+            comps = [new[i] for i in range(len(idx))]
+        for i, c in zip(idx, comps):
+            out[i] = c if mask is None else np.where(mask, c, out[i])
+        return out
+
+    def _clamp_index(self, idx: Any, size: int) -> Any:
+        if isinstance(idx, (int, np.integer)):
+            return min(max(int(idx), 0), size - 1)
+        idx = np.asarray(idx)
+        if idx.size == 1:
+            return min(max(int(idx.reshape(-1)[0]), 0), size - 1)
+        return np.clip(idx.astype(np.intp), 0, size - 1)
+
+    def index(self, arr: Any, idx: Any) -> Any:
+        """``arr[idx]`` for arrays (leading axis), vectors (component) and matrices (column).
+
+        ``idx`` is a Python int or an int array of lanes; out-of-range indices are clamped to
+        ``[0, size-1]`` per lane (ANGLE/WebGL behaviour)."""
+        if isinstance(arr, Struct):
+            return arr.map(lambda v: self.index(v, idx))
+        size = arr.shape[0]
+        i = self._clamp_index(idx, size)
+        if isinstance(i, int):
+            return arr[i]
+        lanes = _lanes_of(arr, i)
+        if size <= 4:  # a few selects beat fancy indexing for vectors and matrices
+            out = arr[0]
+            for k in range(1, size):
+                out = np.where(i == k, arr[k], out)
+            return np.broadcast_to(out, out.shape[:-1] + (lanes,)) if out.shape[-1] != lanes else out
+        a = np.broadcast_to(arr, arr.shape[:-1] + (lanes,))
+        i = np.broadcast_to(i, (lanes,))
+        picked = a[(i, Ellipsis, np.arange(lanes))]  # shape (lanes, ...)
+        return np.ascontiguousarray(np.moveaxis(picked, 0, -1))
+
+    def assign_index(self, old: Any, idx: Any, new: Any, mask: Any = None) -> Any:
+        """``old[idx] = new`` under ``mask`` with per-lane clamped ``idx``; returns the new value."""
+        if isinstance(old, Struct):
+            return Struct(old._name, {k: self.assign_index(v, idx, new._fields[k], mask)
+                                      for k, v in old._fields.items()})
+        new = self._like(new, old)
+        size = old.shape[0]
+        i = self._clamp_index(idx, size)
+        mask = self._mask_lanes(mask)
+        lanes = _lanes_of(old, new, mask, i if not isinstance(i, int) else None)
+        out = self.broadcast_lanes(old, lanes)
+        if isinstance(i, int):
+            out[i] = new if mask is None else np.where(mask, new, out[i])
+            return out
+        for k in range(size):
+            sel = i == k
+            if mask is not None:
+                sel = sel & mask
+            out[k] = np.where(sel, new, out[k])
+        return out
+
+    def assign_field(self, old: Struct, name: str, new: Any, mask: Any = None) -> Struct:
+        """``s.name = new`` under ``mask``; returns a new Struct."""
+        return old.replace(**{name: self.assign(old._fields[name], new, mask)})
+
+    @staticmethod
+    def field(s: Struct, name: str) -> Any:
+        return s._fields[name]
+
+    @staticmethod
+    def select(cond: Any, a: Any, b: Any) -> Any:
+        """``cond ? a : b`` evaluated for all lanes (Structs field-wise)."""
+        if isinstance(a, Struct):
+            return Struct(a._name, {k: Runtime.select(cond, v, b._fields[k])
+                                    for k, v in a._fields.items()})
+        return np.where(cond, a, b)
+
+    def any_lane(self, mask: Any) -> bool:
+        """True when some lane of a bool value is true (for skipping dead branches/loops)."""
+        return bool(np.any(mask))
+
+    # ------------------------------------------------------------------ arithmetic
+    def add(self, a: Any, b: Any) -> np.ndarray:
+        a, b = self._pair(a, b)
+        return np.add(a, b)
+
+    def sub(self, a: Any, b: Any) -> np.ndarray:
+        a, b = self._pair(a, b)
+        return np.subtract(a, b)
+
+    def mul(self, a: Any, b: Any) -> np.ndarray:
+        """Component-wise ``*`` (scalar*x, vec*vec, mat*scalar). Use ``mat_mul_*`` for the
+        linear-algebra products."""
+        a, b = self._pair(a, b)
+        return np.multiply(a, b)
+
+    def div(self, a: Any, b: Any) -> np.ndarray:
+        """``/``: float IEEE division; int truncates toward zero (x/0 = 0, INT_MIN/-1 =
+        INT_MIN); uint x/0 = 0xFFFFFFFF (llvmpipe)."""
+        a, b = self._pair(a, b)
+        k = a.dtype.kind
+        if k == "f":
+            return np.divide(a, b)
+        if k == "i":
+            a64, b64 = a.astype(np.int64), b.astype(np.int64)
+            bz = b64 == 0
+            q = np.abs(a64) // np.where(bz, 1, np.abs(b64))
+            q = np.where((a64 < 0) != (b64 < 0), -q, q)
+            return np.where(bz, 0, q).astype(I32)
+        bz = b == 0
+        q = a // np.where(bz, U32(1), b)
+        return np.where(bz, U32(0xFFFFFFFF), q).astype(U32)
+
+    def rem(self, a: Any, b: Any) -> np.ndarray:
+        """``%`` as llvmpipe evaluates it at run time: the UNSIGNED remainder of the 32-bit
+        patterns, also for int (so -7 % 2 == 1, 7 % -2 == 7); x % 0 == 0xFFFFFFFF (-1).
+        GLSL leaves negative operands undefined; non-negative operands give the C result."""
+        a, b = self._pair(a, b)
+        au = a.view(U32) if a.dtype == I32 else a
+        bu = b.view(U32) if b.dtype == I32 else b
+        bz = bu == 0
+        r = np.where(bz, U32(0xFFFFFFFF), au % np.where(bz, U32(1), bu)).astype(U32)
+        return r.view(I32) if a.dtype == I32 else r
+
+    def rem_const(self, a: Any, b: Any) -> np.ndarray:
+        """``%`` as Mesa's compiler folds it when both operands are compile-time constants
+        (after its constant propagation): the C remainder (sign of the dividend), -7 % 2 == -1."""
+        a, b = self._pair(a, b)
+        if a.dtype == U32:
+            return self.rem(a, b)
+        a64, b64 = a.astype(np.int64), b.astype(np.int64)
+        bz = b64 == 0
+        r = np.fmod(a64, np.where(bz, 1, b64))
+        return np.where(bz, -1, r).astype(I32)
+
+    def neg(self, a: Any) -> np.ndarray:
+        a = self._num(a) if not isinstance(a, np.ndarray) else a
+        return np.negative(a)
+
+    def pos(self, a: Any) -> Any:
+        return a
+
+    def inc(self, a: np.ndarray) -> np.ndarray:
+        """``a + 1`` in a's type (for ++/--; the transpiler handles pre/post order)."""
+        return np.add(a, np.asarray(1, dtype=a.dtype))
+
+    def dec(self, a: np.ndarray) -> np.ndarray:
+        return np.subtract(a, np.asarray(1, dtype=a.dtype))
+
+    # integer bit operations -------------------------------------------------------
+    @staticmethod
+    def _shift_count(a: np.ndarray, b: Any) -> np.ndarray:
+        b = np.asarray(b)
+        return (b.astype(np.int64) & 31).astype(a.dtype)
+
+    def shl(self, a: Any, b: Any) -> np.ndarray:
+        """``a << b``; the count is taken mod 32 (llvmpipe: 1 << 32 == 1, 1 << -1 == INT_MIN)."""
+        a = self._num(a) if not isinstance(a, np.ndarray) else a
+        n = self._shift_count(a, b)
+        if a.dtype == I32:
+            return np.left_shift(a.view(U32), n.view(U32)).view(I32)
+        return np.left_shift(a, n)
+
+    def shr(self, a: Any, b: Any) -> np.ndarray:
+        """``a >> b``: arithmetic for int, logical for uint; the count is taken mod 32."""
+        a = self._num(a) if not isinstance(a, np.ndarray) else a
+        return np.right_shift(a, self._shift_count(a, b))
+
+    def bit_and(self, a: Any, b: Any) -> np.ndarray:
+        a, b = self._pair(a, b)
+        return np.bitwise_and(a, b)
+
+    def bit_or(self, a: Any, b: Any) -> np.ndarray:
+        a, b = self._pair(a, b)
+        return np.bitwise_or(a, b)
+
+    def bit_xor(self, a: Any, b: Any) -> np.ndarray:
+        a, b = self._pair(a, b)
+        return np.bitwise_xor(a, b)
+
+    def bit_not(self, a: Any) -> np.ndarray:
+        a = self._num(a) if not isinstance(a, np.ndarray) else a
+        return np.invert(a)
+
+    # comparisons and logic -------------------------------------------------------
+    def lt(self, a: Any, b: Any) -> np.ndarray:
+        a, b = self._pair(a, b)
+        return np.less(a, b)
+
+    def le(self, a: Any, b: Any) -> np.ndarray:
+        a, b = self._pair(a, b)
+        return np.less_equal(a, b)
+
+    def gt(self, a: Any, b: Any) -> np.ndarray:
+        a, b = self._pair(a, b)
+        return np.greater(a, b)
+
+    def ge(self, a: Any, b: Any) -> np.ndarray:
+        a, b = self._pair(a, b)
+        return np.greater_equal(a, b)
+
+    def eq(self, a: Any, b: Any) -> np.ndarray:
+        """Scalar ``==`` (NaN == NaN is false). For vectors/matrices/arrays/structs use
+        :meth:`equal_all`."""
+        a, b = self._pair(a, b)
+        return np.equal(a, b)
+
+    def ne(self, a: Any, b: Any) -> np.ndarray:
+        a, b = self._pair(a, b)
+        return np.not_equal(a, b)
+
+    def equal_all(self, a: Any, b: Any) -> np.ndarray:
+        """Aggregate ``==`` on any value (vector, matrix, array, struct): one bool per lane."""
+        if isinstance(a, Struct):
+            res = None
+            for k, v in a._fields.items():
+                e = self.equal_all(v, b._fields[k])
+                res = e if res is None else res & e
+            return res
+        a, b = self._pair(a, b)
+        e = np.equal(a, b)
+        if e.ndim > 1:
+            e = e.reshape(-1, e.shape[-1]).all(axis=0)
+        return e
+
+    def nequal_all(self, a: Any, b: Any) -> np.ndarray:
+        return ~self.equal_all(a, b)
+
+    @staticmethod
+    def and_(a: Any, b: Any) -> np.ndarray:
+        """``&&`` with both operands evaluated (the transpiler masks side effects)."""
+        return np.logical_and(a, b)
+
+    @staticmethod
+    def or_(a: Any, b: Any) -> np.ndarray:
+        return np.logical_or(a, b)
+
+    @staticmethod
+    def xor_(a: Any, b: Any) -> np.ndarray:
+        """``^^``."""
+        return np.not_equal(np.asarray(a, dtype=BOOL), np.asarray(b, dtype=BOOL))
+
+    @staticmethod
+    def not_(a: Any) -> np.ndarray:
+        """``!`` on bool and the built-in ``not(bvec)``."""
+        return np.logical_not(a)
+
+    # ------------------------------------------------------------------ linear algebra
+    def dot(self, a: Any, b: Any) -> np.ndarray:
+        """Sum of products left to right, each rounded (no FMA), as llvmpipe."""
+        a, b = self._f(a), self._f(b)
+        if a.ndim == 1 and b.ndim == 1:
+            return np.multiply(a, b)
+        s = np.multiply(a[0], b[0])
+        for i in range(1, a.shape[0]):
+            s = np.add(s, np.multiply(a[i], b[i]))
+        return s
+
+    def mat_mul_vec(self, m: np.ndarray, v: np.ndarray) -> np.ndarray:
+        """``m * v``: matCxR (C,R,L) times vecC (C,L) -> vecR (R,L); sum of m[c]*v[c] in c order."""
+        m, v = self._f(m), self._f(v)
+        s = np.multiply(m[0], v[0])
+        for c in range(1, m.shape[0]):
+            s = np.add(s, np.multiply(m[c], v[c]))
+        return s
+
+    def vec_mul_mat(self, v: np.ndarray, m: np.ndarray) -> np.ndarray:
+        """``v * m``: vecR (R,L) times matCxR (C,R,L) -> vecC; component c is dot(v, m[c])."""
+        m, v = self._f(m), self._f(v)
+        return self._stack([self.dot(v, m[c]) for c in range(m.shape[0])])
+
+    def mat_mul_mat(self, a: np.ndarray, b: np.ndarray) -> np.ndarray:
+        """``a * b``: matKxR (K,R,L) times matCxK (C,K,L) -> matCxR; column c is a * b[c]."""
+        a, b = self._f(a), self._f(b)
+        cols = [self.mat_mul_vec(a, b[c]) for c in range(b.shape[0])]
+        lanes = _lanes_of(*cols)
+        out = np.empty((len(cols), a.shape[1], lanes), dtype=self.F)
+        for i, col in enumerate(cols):
+            out[i] = col
+        return out
+
+    def matrixCompMult(self, a: Any, b: Any) -> np.ndarray:
+        return np.multiply(self._f(a), self._f(b))
+
+    def outerProduct(self, c: np.ndarray, r: np.ndarray) -> np.ndarray:
+        """``outerProduct(c, r)``: matrix with r.length() columns, m[i][j] = c[j] * r[i]."""
+        c, r = self._f(c), self._f(r)
+        return np.multiply(c[None, :, :], r[:, None, :])
+
+    @staticmethod
+    def transpose(m: np.ndarray) -> np.ndarray:
+        return np.ascontiguousarray(np.swapaxes(m, 0, 1))
+
+    def determinant(self, m: np.ndarray) -> np.ndarray:
+        """Cofactor expansion along the first column, as Mesa's GLSL built-in."""
+        m = self._f(m)
+        n = m.shape[0]
+        if n == 2:
+            return m[0][0] * m[1][1] - m[1][0] * m[0][1]
+        if n == 3:
+            return (m[0][0] * (m[1][1] * m[2][2] - m[2][1] * m[1][2])
+                    - m[1][0] * (m[0][1] * m[2][2] - m[2][1] * m[0][2])
+                    + m[2][0] * (m[0][1] * m[1][2] - m[1][1] * m[0][2]))
+        # 4x4: Mesa's _determinant_mat4 (2x2 sub-determinants of the lower rows)
+        SubFactor00 = m[2][2] * m[3][3] - m[3][2] * m[2][3]
+        SubFactor01 = m[2][1] * m[3][3] - m[3][1] * m[2][3]
+        SubFactor02 = m[2][1] * m[3][2] - m[3][1] * m[2][2]
+        SubFactor03 = m[2][0] * m[3][3] - m[3][0] * m[2][3]
+        SubFactor04 = m[2][0] * m[3][2] - m[3][0] * m[2][2]
+        SubFactor05 = m[2][0] * m[3][1] - m[3][0] * m[2][1]
+        c0 = m[1][1] * SubFactor00 - m[1][2] * SubFactor01 + m[1][3] * SubFactor02
+        c1 = -(m[1][0] * SubFactor00 - m[1][2] * SubFactor03 + m[1][3] * SubFactor04)
+        c2 = m[1][0] * SubFactor01 - m[1][1] * SubFactor03 + m[1][3] * SubFactor05
+        c3 = -(m[1][0] * SubFactor02 - m[1][1] * SubFactor04 + m[1][2] * SubFactor05)
+        return m[0][0] * c0 + m[0][1] * c1 + m[0][2] * c2 + m[0][3] * c3
+
+    def inverse(self, m: np.ndarray) -> np.ndarray:
+        """Adjugate divided by the determinant (singular -> inf/NaN, as on the GPU)."""
+        m = self._f(m)
+        n = m.shape[0]
+        if n == 2:
+            det = self.determinant(m)
+            adj = np.empty_like(np.broadcast_to(m, m.shape))
+            adj[0][0], adj[0][1] = m[1][1], -m[0][1]
+            adj[1][0], adj[1][1] = -m[1][0], m[0][0]
+            return adj / det
+        # general cofactor formula: inv[c][r] = cof(r, c) / det, cof on the transposed
+        lanes = m.shape[-1]
+        adj = np.empty((n, n, lanes), dtype=self.F)
+        idx = list(range(n))
+        for c in range(n):
+            for r in range(n):
+                cols = [i for i in idx if i != r]
+                rows = [j for j in idx if j != c]
+                sub = m[np.ix_(cols, rows)]
+                minor = self.determinant(sub)
+                adj[c][r] = minor if (r + c) % 2 == 0 else -minor
+        det = self.determinant(m)
+        return adj / det
+
+    # ------------------------------------------------------------------ angle & trig
+    def radians(self, x: Any) -> np.ndarray:
+        return self._f(x) * self.F(math.pi / 180.0)
+
+    def degrees(self, x: Any) -> np.ndarray:
+        return self._f(x) * self.F(180.0 / math.pi)
+
+    def sin(self, x: Any) -> np.ndarray:
+        return np.sin(self._f(x))
+
+    def cos(self, x: Any) -> np.ndarray:
+        return np.cos(self._f(x))
+
+    def tan(self, x: Any) -> np.ndarray:
+        return np.tan(self._f(x))
+
+    def _asin_expr(self, x: np.ndarray, p0: float, p1: float) -> np.ndarray:
+        F = self.F
+        a = np.abs(x)
+        poly = F(math.pi / 2) + a * (F(math.pi / 4 - 1.0) + a * (F(p0) + a * F(p1)))
+        return self.sign(x) * (F(math.pi / 2) - np.sqrt(self._1 - a) * poly)
+
+    def asin(self, x: Any) -> np.ndarray:
+        """Mesa's polynomial asin (|x| > 1 -> NaN through sqrt)."""
+        return self._asin_expr(self._f(x), 0.086566724, -0.03102955)
+
+    def acos(self, x: Any) -> np.ndarray:
+        return self.F(math.pi / 2) - self._asin_expr(self._f(x), 0.08132463, -0.02363318)
+
+    _ATAN_COEFFS = (-0.0121323213173444, 0.0536813784310406, -0.1173503194786851,
+                    0.1938924977115610, -0.3326756418091246, 0.9999793128310355)
+
+    def _nir_atan(self, v: np.ndarray) -> np.ndarray:
+        F = self.F
+        a = np.abs(v)
+        le1 = a <= self._1
+        u = np.where(le1, v, self._1 / v)
+        x2 = u * u
+        r = np.full_like(x2, F(self._ATAN_COEFFS[0]))
+        for cf in self._ATAN_COEFFS[1:]:
+            r = r * x2 + F(cf)
+        bias = np.where(le1, self._0, F(-math.pi / 2))
+        return np.copysign(np.abs(u) * r + bias, v)
+
+    def atan(self, y: Any, x: Any = None) -> np.ndarray:
+        """``atan(y_over_x)`` and ``atan(y, x)`` following Mesa's NIR lowering (atan(0, 0) is
+        3*pi/4 on llvmpipe: the lowering pretends 0/0 = 1 on the left half-plane)."""
+        if x is None:
+            return self._nir_atan(self._f(y))
+        F = self.F
+        y, x = self._f(y), self._f(x)
+        flip = self._0 >= x
+        ax = np.abs(x)
+        s = np.where(flip, ax, y)
+        t = np.where(flip, y, ax)
+        scale = np.where(np.abs(t) >= F(1e18), F(0.25), self._1)
+        rcp = self._1 / (t * scale)
+        abs_s_over_t = np.abs(s * scale) * np.abs(rcp)
+        tan = np.where(ax == np.abs(y), self._1, abs_s_over_t)
+        arc = flip.astype(F) * F(math.pi / 2) + self._nir_atan(tan)
+        return np.where(np.fmin(y, rcp) < self._0, -arc, arc)
+
+    def sinh(self, x: Any) -> np.ndarray:
+        x = self._f(x)
+        return self._half * (np.exp(x) - np.exp(-x))
+
+    def cosh(self, x: Any) -> np.ndarray:
+        x = self._f(x)
+        return self._half * (np.exp(x) + np.exp(-x))
+
+    def tanh(self, x: Any) -> np.ndarray:
+        """(e^x - e^-x)/(e^x + e^-x) with x clamped to [-10, 10] (llvmpipe: tanh(100) = 1)."""
+        x = np.clip(self._f(x), self.F(-10.0), self.F(10.0))
+        e1, e2 = np.exp(x), np.exp(-x)
+        return (e1 - e2) / (e1 + e2)
+
+    def asinh(self, x: Any) -> np.ndarray:
+        x = self._f(x)
+        return self.sign(x) * np.log(np.abs(x) + np.sqrt(x * x + self._1))
+
+    def acosh(self, x: Any) -> np.ndarray:
+        x = self._f(x)
+        return np.log(x + np.sqrt(x * x - self._1))
+
+    def atanh(self, x: Any) -> np.ndarray:
+        x = self._f(x)
+        return self._half * np.log((self._1 + x) / (self._1 - x))
+
+    # ------------------------------------------------------------------ exponential
+    def pow(self, x: Any, y: Any) -> np.ndarray:
+        """``exp2(y * log2(x))`` with llvmpipe's edges: x < 0 -> NaN; x == 0 or x NaN -> 0
+        (for every y, including 0, negative and NaN)."""
+        x, y = self._f(x), self._f(y)
+        r = np.exp2(y * np.log2(x))
+        return np.where((x == self._0) | np.isnan(x), self._0, r)
+
+    def exp(self, x: Any) -> np.ndarray:
+        return np.exp2(self._f(x) * self.F(1.4426950408889634))
+
+    def log(self, x: Any) -> np.ndarray:
+        return np.log2(self._f(x)) * self.F(0.6931471805599453)
+
+    def exp2(self, x: Any) -> np.ndarray:
+        return np.exp2(self._f(x))
+
+    def log2(self, x: Any) -> np.ndarray:
+        return np.log2(self._f(x))
+
+    def sqrt(self, x: Any) -> np.ndarray:
+        return np.sqrt(self._f(x))
+
+    def inversesqrt(self, x: Any) -> np.ndarray:
+        return self._1 / np.sqrt(self._f(x))
+
+    # ------------------------------------------------------------------ common
+    def abs(self, x: Any) -> np.ndarray:
+        """abs for float and int (abs(INT_MIN) == INT_MIN)."""
+        x = self._num(x) if not isinstance(x, np.ndarray) else x
+        return np.abs(x)
+
+    def sign(self, x: Any) -> np.ndarray:
+        """1, -1 or 0 (sign(-0.0) == +0.0, sign(NaN) == 0, as llvmpipe); int too."""
+        x = self._num(x) if not isinstance(x, np.ndarray) else x
+        if x.dtype.kind == "i":
+            return np.sign(x)
+        one = x.dtype.type(1)
+        return np.where(x > 0, one, np.where(x < 0, -one, x.dtype.type(0)))
+
+    def floor(self, x: Any) -> np.ndarray:
+        return np.floor(self._f(x))
+
+    def ceil(self, x: Any) -> np.ndarray:
+        return np.ceil(self._f(x))
+
+    def trunc(self, x: Any) -> np.ndarray:
+        return np.trunc(self._f(x))
+
+    def round(self, x: Any) -> np.ndarray:
+        """Half-way cases go to even on llvmpipe (round(2.5) == 2, round(-2.5) == -2)."""
+        return np.rint(self._f(x))
+
+    def roundEven(self, x: Any) -> np.ndarray:
+        return np.rint(self._f(x))
+
+    def fract(self, x: Any) -> np.ndarray:
+        x = self._f(x)
+        return x - np.floor(x)
+
+    def mod(self, x: Any, y: Any) -> np.ndarray:
+        """``x - y * floor(x / y)`` in the float dtype (not np.mod/np.fmod)."""
+        x, y = self._f(x), self._f(y)
+        return x - y * np.floor(x / y)
+
+    def modf(self, x: Any) -> tuple[np.ndarray, np.ndarray]:
+        """Returns ``(fractional part, integer part)``, both with the sign of x; the
+        transpiler assigns the second to the ``out`` argument."""
+        x = self._f(x)
+        i = np.trunc(x)
+        return x - i, i
+
+    def min_(self, a: Any, b: Any) -> np.ndarray:
+        """``min``; a NaN operand yields the other operand (IEEE minNum, as llvmpipe)."""
+        a, b = self._pair(a, b)
+        return np.fmin(a, b) if a.dtype.kind == "f" else np.minimum(a, b)
+
+    def max_(self, a: Any, b: Any) -> np.ndarray:
+        a, b = self._pair(a, b)
+        return np.fmax(a, b) if a.dtype.kind == "f" else np.maximum(a, b)
+
+    def clamp(self, x: Any, lo: Any, hi: Any) -> np.ndarray:
+        """``min(max(x, lo), hi)`` exactly (lo > hi gives hi; NaN x gives lo)."""
+        return self.min_(self.max_(x, lo), hi)
+
+    def mix(self, x: Any, y: Any, a: Any) -> np.ndarray:
+        """``x*(1-a) + y*a``; with a bool ``a`` selects y where a is true."""
+        if isinstance(a, np.ndarray) and a.dtype == BOOL:
+            x, y = self._pair(x, y)
+            return np.where(a, y, x)
+        x, y, a = self._f(x), self._f(y), self._f(a)
+        return x * (self._1 - a) + y * a
+
+    def step(self, edge: Any, x: Any) -> np.ndarray:
+        """0 where x < edge else 1; NaN gives 0 (llvmpipe computes x >= edge)."""
+        edge, x = self._f(edge), self._f(x)
+        return (x >= edge).astype(self.F)
+
+    def smoothstep(self, e0: Any, e1: Any, x: Any) -> np.ndarray:
+        """t = clamp((x-e0)/(e1-e0), 0, 1); t*(t*(3-2t)). Equal edges follow the formula
+        (0/0 = NaN clamps to 0), as llvmpipe."""
+        e0, e1, x = self._f(e0), self._f(e1), self._f(x)
+        t = self.clamp((x - e0) / (e1 - e0), self._0, self._1)
+        return t * (t * (self._3 - self._2 * t))
+
+    @staticmethod
+    def isnan(x: np.ndarray) -> np.ndarray:
+        return np.isnan(x)
+
+    @staticmethod
+    def isinf(x: np.ndarray) -> np.ndarray:
+        return np.isinf(x)
+
+    def floatBitsToInt(self, x: Any) -> np.ndarray:
+        return self._f(x).astype(np.float32).view(I32)
+
+    def floatBitsToUint(self, x: Any) -> np.ndarray:
+        return self._f(x).astype(np.float32).view(U32)
+
+    def intBitsToFloat(self, x: Any) -> np.ndarray:
+        x = np.asarray(x, dtype=I32) if not isinstance(x, np.ndarray) else x
+        f = x.astype(I32).view(np.float32)
+        return f if self.F is np.float32 else f.astype(self.F)
+
+    def uintBitsToFloat(self, x: Any) -> np.ndarray:
+        x = np.asarray(x, dtype=U32) if not isinstance(x, np.ndarray) else x
+        f = x.astype(U32).view(np.float32)
+        return f if self.F is np.float32 else f.astype(self.F)
+
+    # ------------------------------------------------------------------ packing
+    @staticmethod
+    def _pack16(lo: np.ndarray, hi: np.ndarray) -> np.ndarray:
+        return (lo.astype(U32) & U32(0xFFFF)) | (hi.astype(U32) << U32(16))
+
+    def packSnorm2x16(self, v: np.ndarray) -> np.ndarray:
+        """round(clamp(c, -1, 1) * 32767) per component (round half to even; NaN -> 0)."""
+        v = self._f(v).astype(np.float32)
+        q = np.rint(np.nan_to_num(np.clip(v, -1.0, 1.0), nan=0.0) * np.float32(32767.0))
+        q = q.astype(np.int32).astype(np.int16).view(np.uint16)
+        return self._pack16(q[0], q[1])
+
+    def unpackSnorm2x16(self, p: Any) -> np.ndarray:
+        p = np.asarray(p).astype(U32)
+        lo = (p & U32(0xFFFF)).astype(np.uint16).view(np.int16)
+        hi = (p >> U32(16)).astype(np.uint16).view(np.int16)
+        v = np.stack([lo, hi]).astype(np.float32) / np.float32(32767.0)
+        return np.clip(v, -1.0, 1.0).astype(self.F)
+
+    def packUnorm2x16(self, v: np.ndarray) -> np.ndarray:
+        v = self._f(v).astype(np.float32)
+        q = np.rint(np.nan_to_num(np.clip(v, 0.0, 1.0), nan=0.0) * np.float32(65535.0))
+        q = q.astype(np.uint32)
+        return self._pack16(q[0], q[1])
+
+    def unpackUnorm2x16(self, p: Any) -> np.ndarray:
+        p = np.asarray(p).astype(U32)
+        v = np.stack([p & U32(0xFFFF), p >> U32(16)]).astype(np.float32) / np.float32(65535.0)
+        return v.astype(self.F)
+
+    def packHalf2x16(self, v: np.ndarray) -> np.ndarray:
+        h = self._f(v).astype(np.float32).astype(np.float16).view(np.uint16)
+        return self._pack16(h[0], h[1])
+
+    def unpackHalf2x16(self, p: Any) -> np.ndarray:
+        p = np.asarray(p).astype(U32)
+        h = np.stack([p & U32(0xFFFF), p >> U32(16)]).astype(np.uint16).view(np.float16)
+        return h.astype(self.F)
+
+    # ------------------------------------------------------------------ geometric
+    def length(self, x: Any) -> np.ndarray:
+        x = self._f(x)
+        if x.ndim == 1:
+            return np.abs(x)
+        return np.sqrt(self.dot(x, x))
+
+    def distance(self, a: Any, b: Any) -> np.ndarray:
+        return self.length(self.sub(self._f(a), self._f(b)))
+
+    def cross(self, a: Any, b: Any) -> np.ndarray:
+        a, b = self._f(a), self._f(b)
+        return self._stack([a[1] * b[2] - a[2] * b[1],
+                            a[2] * b[0] - a[0] * b[2],
+                            a[0] * b[1] - a[1] * b[0]])
+
+    def normalize(self, x: Any) -> np.ndarray:
+        """``x * inversesqrt(dot(x, x))`` (zero vector -> NaN); a float normalizes to sign(x)."""
+        x = self._f(x)
+        if x.ndim == 1:
+            return self.sign(x)
+        return x * (self._1 / np.sqrt(self.dot(x, x)))
+
+    def faceforward(self, n: Any, i: Any, nref: Any) -> np.ndarray:
+        n = self._f(n)
+        return np.where(self.dot(nref, i) < self._0, n, -n)
+
+    def reflect(self, i: Any, n: Any) -> np.ndarray:
+        i, n = self._f(i), self._f(n)
+        return i - self._2 * (self.dot(n, i) * n)
+
+    def refract(self, i: Any, n: Any, eta: Any) -> np.ndarray:
+        i, n, eta = self._f(i), self._f(n), self._f(eta)
+        d = self.dot(n, i)
+        k = self._1 - eta * eta * (self._1 - d * d)
+        r = eta * i - (eta * d + np.sqrt(k)) * n
+        return np.where(k < self._0, self._0, r)
+
+    # ------------------------------------------------------------------ vector relational
+    def lessThan(self, a: Any, b: Any) -> np.ndarray:
+        return self.lt(a, b)
+
+    def lessThanEqual(self, a: Any, b: Any) -> np.ndarray:
+        return self.le(a, b)
+
+    def greaterThan(self, a: Any, b: Any) -> np.ndarray:
+        return self.gt(a, b)
+
+    def greaterThanEqual(self, a: Any, b: Any) -> np.ndarray:
+        return self.ge(a, b)
+
+    def equal(self, a: Any, b: Any) -> np.ndarray:
+        return self.eq(a, b)
+
+    def notEqual(self, a: Any, b: Any) -> np.ndarray:
+        return self.ne(a, b)
+
+    @staticmethod
+    def any(v: np.ndarray) -> np.ndarray:
+        return np.any(v, axis=0)
+
+    @staticmethod
+    def all(v: np.ndarray) -> np.ndarray:
+        return np.all(v, axis=0)
+
+    @staticmethod
+    def not_vec(v: np.ndarray) -> np.ndarray:
+        """The built-in ``not(bvec)`` (``not`` is a Python keyword)."""
+        return np.logical_not(v)
+
+    # ------------------------------------------------------------------ derivatives
+    def _quad_diff(self, v: Any, width: int, axis: int) -> np.ndarray:
+        v = self._f(v)
+        if v.shape[-1] == 1:
+            return np.zeros_like(v)
+        n = v.shape[-1]
+        if n % width:
+            raise ValueError(f"lane count {n} is not a multiple of the tile width {width}")
+        height = n // width
+        img = v.reshape(v.shape[:-1] + (height, width))
+        ax = img.ndim - 2 + axis  # axis 1: x (columns), axis 0: y (rows)
+        size = img.shape[ax]
+        even = [slice(None)] * img.ndim
+        odd = [slice(None)] * img.ndim
+        even[ax] = slice(0, size - 1, 2)
+        odd[ax] = slice(1, size, 2)
+        d = img[tuple(odd)] - img[tuple(even)]
+        out = np.repeat(d, 2, axis=ax)
+        if size % 2:  # odd size: the last row/column reuses its left/lower neighbour pair
+            last = [slice(None)] * img.ndim
+            last[ax] = slice(size - 1, size)
+            prev = [slice(None)] * img.ndim
+            prev[ax] = slice(size - 2, size - 1)
+            if size > 1:
+                tail = img[tuple(last)] - img[tuple(prev)]
+            else:
+                tail = np.zeros_like(img[tuple(last)])
+            out = np.concatenate([out, tail], axis=ax)
+        return out.reshape(v.shape)
+
+    def dFdx(self, v: Any, width: int) -> np.ndarray:
+        """Fine x-derivative as llvmpipe: lanes are the rows of a ``width``-wide tile,
+        lane = y*width + x with y counted from the bottom (gl_FragCoord order), 2x2 quads start
+        at even x and y. ``dFdx(x, y) = v(x|1, y) - v(x&~1, y)``. An odd width's last column
+        uses the difference to its left neighbour (a GPU would use a helper pixel; render
+        with even sizes for exact results). Lane-uniform values have zero derivative."""
+        return self._quad_diff(v, width, 1)
+
+    def dFdy(self, v: Any, width: int) -> np.ndarray:
+        """Fine y-derivative: ``v(x, y|1) - v(x, y&~1)``; see :meth:`dFdx`."""
+        return self._quad_diff(v, width, 0)
+
+    def fwidth(self, v: Any, width: int) -> np.ndarray:
+        return np.abs(self.dFdx(v, width)) + np.abs(self.dFdy(v, width))
+
+    # ------------------------------------------------------------------ unsupported
+    @staticmethod
+    def texture_unsupported(name: str, line: int | None = None) -> None:
+        """Raise for texture lookups, which the NumPy backend does not evaluate."""
+        where = f" (line {line})" if line is not None else ""
+        raise GLSLRuntimeError(f"{name}{where}: texture lookups are not supported by the NumPy backend")
