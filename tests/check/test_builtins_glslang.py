@@ -207,3 +207,45 @@ def test_operators_and_constructors_agree_with_glslang(capsys):
     with capsys.disabled():
         print(f"\noperators/swizzles/constructors: glslang agreement {agree}/{len(cases)}")
     assert not bad, "\n\n".join(bad[:10])
+
+
+# --- reserved words, built-in variables, Shadertoy uniforms ----------------------------
+
+def _shader(decls: str, body: str) -> str:
+    return ("#version 300 es\nprecision highp float;\nprecision highp int;\n"
+            f"{decls}\nout vec4 o;\nvoid main() {{\n{body}\n    o = vec4(0.0);\n}}\n")
+
+
+def test_reserved_words_and_keywords_are_not_identifiers():
+    from glslcheck.builtins import KEYWORDS, RESERVED_WORDS
+    words = sorted(RESERVED_WORDS | KEYWORDS)
+    fine = ["buffer", "precise", "sampler", "texture2D", "main2", "iTime"]
+    programs = [_shader("", f"    float {w} = 1.0;") for w in words + fine]
+    verdicts = _compile_all(programs)
+    wrongly_accepted = [w for w, ok in zip(words, verdicts) if ok]
+    wrongly_rejected = [w for w, ok in zip(fine, verdicts[len(words):]) if not ok]
+    assert not wrongly_accepted and not wrongly_rejected
+
+
+def test_builtin_variable_types_match_glslang():
+    from glslcheck.builtins import BUILTIN_VARIABLES
+    body = []
+    for name, var in BUILTIN_VARIABLES.items():
+        if var.type.is_struct:
+            body += [f"    float x_{name}_{f} = {name}.{f};" for f, _ in var.type.fields]
+        elif var.storage == "out":
+            body.append(f"    {name} = {var.type}(0);")
+        else:
+            body.append(f"    {var.type} v_{name} = {name};")
+    assert _compile_all([_shader("", "\n".join(body))]) == [True]
+
+
+def test_shadertoy_uniform_declarations_compile():
+    from glslcheck.builtins import SHADERTOY_UNIFORMS
+    decls = "\n".join(
+        f"uniform {u.type} {name}{'' if u.array_size is None else f'[{u.array_size}]'};"
+        for name, u in SHADERTOY_UNIFORMS.items())
+    body = "\n".join(f"    {u.declared_type.element if u.array_size else u.declared_type} "
+                     f"x_{name} = {name}{'[0]' if u.array_size else ''};"
+                     for name, u in SHADERTOY_UNIFORMS.items() if not u.type.is_opaque)
+    assert _compile_all([_shader(decls, body)]) == [True]
