@@ -24,24 +24,26 @@ picture". The tolerance model, step by step (every number is argued where it is 
    PNGs differ by at most two levels, which no one sees.
 5. **Edge pixels** are over-tolerance pixels at a discontinuity that a sub-pixel shift
    explains: (a) the value jumps within the 3x3 neighbourhood (max - min of an over-tolerance
-   channel > `edge_threshold` = 0.1 in either image), and (b) for some neighbour q, the colour of
-   one image at p lies between the other image's colours at p and at q, in every over-tolerance
-   channel at once (within `abs_tol`), i.e. moving the sample point towards q would turn one
-   picture into the other. That is a silhouette, a branch boundary (`if (d < 0.0)`) or a
-   thresholded hash (`step(0.5, hash(p))`) where one float32 rounding flips a comparison.
+   channel > `edge_threshold` = 0.1 in either image), and (b) the shift works both ways: the
+   NumPy colour at p lies between the GL colours at p and at some neighbour q, and the GL
+   colour at p lies between the NumPy colours at p and at some neighbour q', in every
+   over-tolerance channel at once (within `abs_tol`): moving the sample point a little turns
+   each picture into the other there. That is a silhouette, a branch boundary
+   (`if (d < 0.0)`) or a thresholded hash (`step(0.5, hash(p))`) where one float32 rounding
+   flips a comparison. A wrong colour fails (b), even on an outline or one pixel thin, since
+   the other image has no such colour nearby.
    0.1 is 25 display levels across two pixels: far steeper than smooth shading at 800x450 (a
    full-range gradient across the image changes by ~1/800 per pixel), so smooth regions never
-   count as edges. Test (b) keeps a plain wrong colour, even inside a noisy texture, a mismatch;
-   a continuous hash (`fract(sin(x) * 43758.5453)`) that comes out different everywhere fails
-   as mismatches too, which is right: the CPU renderer must then copy the GPU's float32 `sin`,
-   and the report says so instead of the tolerance widening for every shader.
+   count as edges. A continuous hash (`fract(sin(x) * 43758.5453)`) that comes out different
+   everywhere fails as mismatches, which is right: the CPU renderer must then copy the GPU's
+   float32 `sin`, and the report says so instead of the tolerance widening for every shader.
    Edge pixels are counted apart (`edge_pixels`) and allowed up to `edge_fraction` = 0.5% of
    the pixels: 1800 at 800x450, the whole outline of a large object (a circle of radius 280
    has a 1760-pixel perimeter), while a rounding flip touches only a few outline pixels.
 6. **Other over-tolerance pixels** (`mismatched_pixels`, NaN mismatches included) are allowed up
    to `(1 - min_fraction)` of the pixels, with `min_fraction` = 0.999: 360 scattered pixels at
-   800x450 (a raymarcher that takes one step more at a grazing angle). A wrong block's rim looks
-   like a moved edge, but a 25x25 block still leaves 23x23 = 529 interior mismatches and fails.
+   800x450 (a raymarcher that takes one step more at a grazing angle). A 20x20 block of wrong
+   colour is 400 pixels, so a real local bug still fails.
 
    match = mismatched <= (1 - min_fraction) * pixels  and  edges <= edge_fraction * pixels
            and no NaN mismatch.
@@ -164,6 +166,12 @@ def _as_float(img: np.ndarray) -> np.ndarray:
 _NEIGHBOURS = [(dy, dx) for dy in (-1, 0, 1) for dx in (-1, 0, 1) if (dy, dx) != (0, 0)]
 
 
+def _between(x, y, yq, tol, channels) -> np.ndarray:
+    """Per candidate pixel: x within [min(y, yq), max(y, yq)] (+-tol) in every channel selected."""
+    inside = (x >= np.minimum(y, yq) - tol) & (x <= np.maximum(y, yq) + tol)
+    return (inside | ~channels).all(axis=-1)
+
+
 def _display(values: np.ndarray) -> np.ndarray:
     """What the screen shows: NaN as 0, +Inf as 1, -Inf as 0, everything clamped to [0, 1]."""
     return np.clip(np.nan_to_num(values, nan=0.0, posinf=1.0, neginf=0.0), 0.0, 1.0)
@@ -208,8 +216,8 @@ def compare(
     over = over_ch.any(axis=-1)
 
     # Step 5: an over-tolerance pixel is an edge when the neighbourhood jumps and a sub-pixel
-    # shift explains its value: towards some neighbour q, the value of one image lies between
-    # the other image's values at p and at q, in every over-tolerance channel at once.
+    # shift explains it both ways: a(p) lies between b(p) and b at some neighbour, and b(p)
+    # between a(p) and a at some neighbour, in every over-tolerance channel at once.
     # Only the candidate pixels are examined, so a near-identical pair compares quickly.
     edge_mask = np.zeros((height, width), dtype=bool)
     ys, xs = np.nonzero(over & ~nan_mask)
@@ -217,17 +225,17 @@ def compare(
         cand_over = over_ch[ys, xs]
         pa, pb = da[ys, xs], db[ys, xs]
         lo_a, hi_a, lo_b, hi_b = pa.copy(), pa.copy(), pb.copy(), pb.copy()
-        shifted = np.zeros(len(ys), dtype=bool)
+        a_explained = np.zeros(len(ys), dtype=bool)  # a(p) lies between b(p) and some b(q)
+        b_explained = np.zeros(len(ys), dtype=bool)  # b(p) lies between a(p) and some a(q)
         for dy, dx in _NEIGHBOURS:
             qy, qx = np.clip(ys + dy, 0, height - 1), np.clip(xs + dx, 0, width - 1)
             qa, qb = da[qy, qx], db[qy, qx]
             lo_a, hi_a = np.minimum(lo_a, qa), np.maximum(hi_a, qa)
             lo_b, hi_b = np.minimum(lo_b, qb), np.maximum(hi_b, qb)
-            for x, y, yq in ((pa, pb, qb), (pb, pa, qa)):
-                between = (x >= np.minimum(y, yq) - abs_tol) & (x <= np.maximum(y, yq) + abs_tol)
-                shifted |= (between | ~cand_over).all(axis=-1)
+            a_explained |= _between(pa, pb, qb, abs_tol, cand_over)
+            b_explained |= _between(pb, pa, qa, abs_tol, cand_over)
         steep = ((np.maximum(hi_a - lo_a, hi_b - lo_b) > edge_threshold) & cand_over).any(axis=-1)
-        edge_mask[ys, xs] = steep & shifted
+        edge_mask[ys, xs] = steep & a_explained & b_explained
     mismatch_mask = over & ~edge_mask  # NaN mismatches included
 
     mismatched = int(mismatch_mask.sum())

@@ -1,0 +1,70 @@
+"""Shared test fixtures.
+
+`gl` and `glslang` give the two external tools the tests compare against: a headless OpenGL
+context (Mesa llvmpipe through EGL) and glslangValidator. When one is missing, the tests that
+need it are skipped on a developer machine but FAIL on CI (any non-empty `CI` environment
+variable), so a CI image without them cannot pass silently.
+
+`make_shader` builds an in-memory Shadertoy shader from tab texts, for tests that need no files.
+"""
+
+from __future__ import annotations
+
+import os
+
+import pytest
+
+from glslcheck.diagnostics import register_source
+from glslcheck.sources import Shader, Source
+
+
+def _missing(what: str, reason: str) -> None:
+    if os.environ.get("CI"):
+        pytest.fail(f"{what} is required on CI: {reason}")
+    pytest.skip(f"no {what} on this machine (developer machine without it); CI fails instead")
+
+
+@pytest.fixture(scope="session")
+def gl():
+    """The process-wide moderngl context (standalone EGL)."""
+    from glslcheck.gl_backend import GLUnavailable, get_context
+
+    try:
+        return get_context()
+    except GLUnavailable as e:
+        if os.environ.get("CI"):
+            pytest.fail(f"an OpenGL context is required on CI: {e}")
+        pytest.skip("no OpenGL context on this machine (developer machine without EGL/Mesa); CI fails instead")
+
+
+@pytest.fixture(scope="session")
+def glslang():
+    """The path of glslangValidator."""
+    from glslcheck.glslang import glslang_path
+
+    path = glslang_path()
+    if path is None:
+        _missing("glslangValidator", "install the Debian package glslang-tools")
+    return path
+
+
+@pytest.fixture
+def make_shader():
+    """make_shader(image_text, common=None, **other_tabs) -> Shader with files Image.glsl, Common.glsl, ...
+
+    The texts are registered as sources so diagnostics can quote their lines.
+    """
+
+    def make(image: str | None = None, common: str | None = None, **tabs: str) -> Shader:
+        shader = Shader(root="<test>")
+        texts = {"Image": image, "Common": common}
+        texts.update({name.replace("_", " "): text for name, text in tabs.items()})
+        for tab, text in texts.items():
+            if text is None:
+                continue
+            path = f"{tab}.glsl"
+            register_source(path, text)
+            shader.tabs[tab] = Source(path, text, tab)
+        return shader
+
+    return make
