@@ -91,10 +91,12 @@ float traceScene(in sRay ray, out vec3 position, out vec3 normal)
     }
     // the ray position is evaluated a single time and reused for normal and lighting
     position = rayAt(ray, tBest);
-    // |p - c| is the radius on the surface, so dividing by it replaces normalize()
-    normal = (position - best.center) / best.radius;
     // a ray that kept kNoHit saw only background
-    return 1.0 - step(kNoHit, tBest);
+    float hit = 1.0 - step(kNoHit, tBest);
+    // |p - c| is the radius on the surface, so dividing by it replaces normalize(); on the
+    // background the mix substitutes a unit normal so later lighting math stays finite
+    normal = mix(vec3(0.0, 0.0, 1.0), (position - best.center) / best.radius, hit);
+    return hit;
 }
 
 // A point light: spherical influence from one position, fading with distance.
