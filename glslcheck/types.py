@@ -5,8 +5,8 @@ This module owns:
 * the type objects (spec chapter 4.1): scalars, vectors, matrices, ``void``, samplers,
   arrays and structs. All are immutable and hashable; every built-in type is a single
   interned object reachable through :data:`BY_NAME` (``BY_NAME["mat2"] is BY_NAME["mat2x2"]``);
-* the typing of operators (spec 5.9): :func:`binary_result`, :func:`unary_result`,
-  :func:`assign_result`;
+* the typing of operators (spec 5.8 - 5.10): :func:`binary_result`, :func:`unary_result`,
+  :func:`assign_result`, :func:`conditional_result`;
 * component selection and indexing (spec 5.5, 5.6, 5.7): :func:`swizzle_result`,
   :func:`swizzle_is_lvalue`, :func:`index_result`;
 * the constructor rules (spec 5.4): :func:`constructor_check`.
@@ -469,6 +469,21 @@ def assign_result(op: str, target: Type, value: Type) -> Type | str:
     if result != target:
         return f"'{target} {op} {value}' would produce '{result}', which does not fit in '{target}'"
     return target
+
+
+def conditional_result(cond: Type, if_true: Type, if_false: Type) -> Type | str:
+    """The type of ``cond ? if_true : if_false`` (spec 5.10)."""
+    if cond != BOOL:
+        hint = "; for bvec use mix() or any()/all()" if cond.base == "bool" else ""
+        return f"the condition of '?:' must be a bool, not '{cond}'{hint}"
+    if if_true.is_void or if_true.contains_opaque:
+        return f"'?:' cannot choose between values of type '{if_true}'"
+    if if_true != if_false:
+        why = (f": {_no_conversion(if_true, if_false)}"
+               if if_true.is_basic and if_false.is_basic and if_true.base != if_false.base
+               else "")
+        return f"the two branches of '?:' have different types '{if_true}' and '{if_false}'{why}"
+    return if_true
 
 
 def unary_result(op: str, operand: Type) -> Type | str:

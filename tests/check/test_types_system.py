@@ -4,7 +4,8 @@ import pytest
 
 from glslcheck import types as T
 from glslcheck.types import (
-    BY_NAME, ArrayType, StructType, binary_result, assign_result, constructor_check,
+    BY_NAME, ArrayType, StructType, binary_result, assign_result, conditional_result,
+    constructor_check,
     constructor_result, index_result, matrix, swizzle_is_lvalue, swizzle_result,
     unary_result, vector,
 )
@@ -187,6 +188,18 @@ def test_unknown_operator_raises():
 def test_assign(op, target, value, ok):
     r = assign_result(op, t(target), t(value))
     assert (r is t(target)) if ok else isinstance(r, str), r
+
+
+def test_conditional():
+    assert conditional_result(T.BOOL, t("vec3"), t("vec3")) is t("vec3")
+    assert conditional_result(T.BOOL, ArrayType(T.FLOAT, 2), ArrayType(T.FLOAT, 2)) == ArrayType(T.FLOAT, 2)
+    s = StructType("S", (("a", T.FLOAT),))
+    assert conditional_result(T.BOOL, s, s) is s
+    assert "mix()" in conditional_result(t("bvec2"), T.FLOAT, T.FLOAT)
+    assert "must be a bool" in conditional_result(T.INT, T.FLOAT, T.FLOAT)
+    assert "no implicit" in conditional_result(T.BOOL, T.FLOAT, T.INT)
+    assert "different types" in conditional_result(T.BOOL, t("vec2"), t("vec3"))
+    assert isinstance(conditional_result(T.BOOL, t("sampler2D"), t("sampler2D")), str)
 
 
 # --- unary operators -----------------------------------------------------------------
