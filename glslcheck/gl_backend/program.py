@@ -244,15 +244,16 @@ def _compile(ctx, program: Program) -> _Compiled:
     return _Compiled(program, gl_program, vao)
 
 
-def compile_gl(shader: Shader, ctx=None) -> GLProgram:
+def compile_gl(shader: Shader, ctx=None, *, tab: str = "Image") -> GLProgram:
     """Compile the Image tab (or plain GLSL file) of `shader` with the GL driver.
 
     Raises GlslError with diagnostics in the user's files when the driver rejects it, and
     GLUnavailable (an InputError) when no context can be created. `ctx` defaults to the
-    process-wide context.
+    process-wide context. `tab` may name a buffer ("Buffer A"): it renders as a single pass
+    with alpha kept and its iChannels unbound (glslcheck does not chain passes).
     """
     ctx = ctx if ctx is not None else get_context()
-    program = build_program(shader, "Image")
+    program = build_program(shader, tab)
     gl = GLProgram(shader, program, ctx)
     gl._variants[False] = _compile(ctx, program)
     return gl

@@ -85,3 +85,9 @@ def test_samples_must_be_a_perfect_square(gl, make_shader):
 def test_render_shader_in_one_call(gl, make_shader):
     img = render_shader(make_shader("void mainImage(out vec4 c, in vec2 p) { c = vec4(1.0); }\n"), size=(3, 3))
     assert img.shape == (3, 3, 4)
+
+
+def test_buffer_pass_keeps_alpha(gl, make_shader):
+    shader = make_shader(Buffer_A="void mainImage(out vec4 c, in vec2 p) { c = vec4(0.5, 0.5, 0.5, 0.25); }\n")
+    img = compile_gl(shader, tab="Buffer A").render(size=(2, 2))
+    assert np.all(img[..., 3] == 0.25)
