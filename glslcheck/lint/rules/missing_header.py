@@ -117,7 +117,7 @@ def states_purpose(text: str, path: str, tab: str) -> bool:
     full, others = _names(path, tab)
     for n in (full, *others):
         # words after the name on its line: `Image.glsl - draws lit spheres`
-        if re.search(rf"(?<!\w){_flex(n)}[\"'`]?\s*{_SEP}\s*\w+\W+\w+", text, re.I):
+        if re.search(rf"(?<!\w){_flex(n)}(?:\s+{_TAB_WORDS})?[\"'`]?\s*{_SEP}\s*\w+\W+\w+", text, re.I):
             return True
     return False
 

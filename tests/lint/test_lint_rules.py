@@ -1,0 +1,62 @@
+"""Rule snapshots: each folder under fixtures/ is linted and its findings compared with the
+folder's expected.json (GLSLCHECK_UPDATE_SNAPSHOTS=1 rewrites them); the registry's contract."""
+
+from __future__ import annotations
+
+import json
+import os
+import re
+from pathlib import Path
+
+import pytest
+
+from glslcheck.lint import lint_paths
+from glslcheck.lint.rules import RULE_TABLE, SECTIONS, all_rules, doc_sections
+
+from .conftest import FIXTURES
+
+UPDATE = os.environ.get("GLSLCHECK_UPDATE_SNAPSHOTS") == "1"
+FIXTURE_DIRS = sorted(p for p in FIXTURES.iterdir() if (p / "expected.json").is_file())
+
+
+def _found(folder: Path, select: list[str]) -> list[dict]:
+    result = lint_paths([folder], {"select": select})
+    return [
+        {
+            "file": Path(f.path).resolve().relative_to(folder).as_posix(),
+            "line": f.loc.line,
+            "column": f.loc.column,
+            "rule": f.rule,
+            "message": f.message,
+        }
+        for f in result.findings
+    ]
+
+
+@pytest.mark.parametrize("folder", FIXTURE_DIRS, ids=lambda p: p.name)
+def test_rule_fixture_matches_snapshot(folder: Path):
+    expected_file = folder / "expected.json"
+    expected = json.loads(expected_file.read_text(encoding="utf-8"))
+    found = _found(folder, expected["select"])
+    if UPDATE:
+        expected["findings"] = found
+        expected_file.write_text(json.dumps(expected, indent=2) + "\n", encoding="utf-8")
+    assert found == expected["findings"]
+
+
+def test_every_rule_has_a_fixture():
+    covered = {json.loads((d / "expected.json").read_text())["select"][0] for d in FIXTURE_DIRS}
+    covered |= {d.name for d in FIXTURE_DIRS}
+    assert {name for name, _ in RULE_TABLE} <= covered
+
+
+@pytest.mark.parametrize("name", [n for n, _ in RULE_TABLE])
+def test_rule_module_contract(name: str):
+    rule = all_rules()[name]
+    assert rule.name == rule.module.NAME == name
+    assert re.fullmatch(r"[a-z]+(-[a-z]+)*", name)
+    assert list(doc_sections(rule.doc)) == list(SECTIONS)
+    assert all(doc_sections(rule.doc).values())
+    assert (rule.severity, rule.penalty > 0) in (("warning", True), ("note", False))
+    assert rule.needs in ("text", "ast", "suppressions")
+    assert rule.summary.endswith(".")
