@@ -353,13 +353,15 @@ class Runtime:
         return {"float": self.F, "int": I32, "uint": U32, "bool": BOOL}[kind]
 
     def broadcast_lanes(self, x: Any, lanes: int) -> Any:
-        """``x`` with its lane axis expanded to ``lanes`` (a fresh contiguous array)."""
+        """``x`` with its lane axis expanded to ``lanes``: always a fresh, writable array."""
         if isinstance(x, Struct):
             return x.map(lambda v: self.broadcast_lanes(v, lanes))
         x = self._num(x) if not isinstance(x, np.ndarray) else x
         if x.ndim == 0:
             x = x.reshape(1)
-        return np.ascontiguousarray(np.broadcast_to(x, x.shape[:-1] + (lanes,)))
+        out = np.empty(x.shape[:-1] + (lanes,), dtype=x.dtype)
+        out[...] = x  # always a fresh writable array: callers may write into it
+        return out
 
     # ------------------------------------------------------------------ conversions
     def to_float(self, x: Any) -> np.ndarray:
