@@ -144,7 +144,8 @@ def lint_source(
                 f = _finding(rule, d, ctx)
                 if not is_suppressed(f, ctx.suppressions):
                     findings.append(f)
-    findings.sort(key=lambda f: (f.loc.line, f.loc.column, f.rule) if f.loc else (0, 0, f.rule))
+    order = {name: i for i, name in enumerate(rules)}  # ties in registry-table order
+    findings.sort(key=lambda f: (f.loc.line, f.loc.column, order[f.rule]))
     return findings
 
 

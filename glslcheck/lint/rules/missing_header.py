@@ -77,6 +77,7 @@ _DID = re.compile(
     re.I,
 )
 _TAB_WORDS = r"(?:tab|pass|buffer|shader|file)"
+_EXT = r"(?:\.(?:glsl|frag|txt))?"
 
 
 def _flex(name: str) -> str:
@@ -99,7 +100,7 @@ def names_file(text: str, path: str, tab: str) -> bool:
     if re.search(rf"(?<![\w.]){_flex(full)}(?!\w)", text, re.I):
         return True
     for n in others:
-        f = _flex(n)
+        f = _flex(n) + _EXT  # `Image.glsl` names the Image tab kept in Image.txt too
         patterns = (
             rf"^\W*(?:file\s*(?:name)?|filename|tab|name|shader|pass)\s*{_SEP}\s*[\"'`]?{f}(?!\w)",
             rf"^[\W_]*[\"'`]?{f}[\"'`]?\s*(?:$|{_SEP}|,)",
@@ -117,7 +118,7 @@ def states_purpose(text: str, path: str, tab: str) -> bool:
     full, others = _names(path, tab)
     for n in (full, *others):
         # words after the name on its line: `Image.glsl - draws lit spheres`
-        if re.search(rf"(?<!\w){_flex(n)}(?:\s+{_TAB_WORDS})?[\"'`]?\s*{_SEP}\s*\w+\W+\w+", text, re.I):
+        if re.search(rf"(?<!\w){_flex(n)}{_EXT}(?:\s+{_TAB_WORDS})?[\"'`]?\s*{_SEP}\s*\w+\W+\w+", text, re.I):
             return True
     return False
 

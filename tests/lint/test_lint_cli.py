@@ -1,0 +1,235 @@
+"""`glslcheck lint` and `glslcheck rule` from the command line: exit codes, config discovery,
+overrides, errors without tracebacks, files never modified, docs/rules.md up to date."""
+
+from __future__ import annotations
+
+import json
+import subprocess
+import sys
+from pathlib import Path
+
+import pytest
+
+from glslcheck.cli import main
+from glslcheck.lint import lint_paths
+from glslcheck.lint.rules import RULE_TABLE
+
+from .conftest import BAD_SHADER, CLEAN_SHADER, FIXTURES, REPO_ROOT, snapshot
+
+
+def glslcheck(*args: str, cwd: Path | None = None) -> subprocess.CompletedProcess:
+    return subprocess.run(
+        [sys.executable, "-m", "glslcheck", *args], cwd=cwd, capture_output=True, text=True
+    )
+
+
+@pytest.fixture
+def workdir(tmp_path, monkeypatch) -> Path:
+    monkeypatch.chdir(tmp_path)
+    return tmp_path
+
+
+# --- exit codes ---------------------------------------------------------------------------
+
+
+def test_exit_0_without_findings(workdir, capsys):
+    (workdir / "Image.glsl").write_text(CLEAN_SHADER)
+    assert main(["lint", "Image.glsl"]) == 0
+    assert capsys.readouterr().out == "no findings in 1 file\n"
+
+
+def test_exit_1_with_findings(workdir, capsys):
+    (workdir / "Image.glsl").write_text(BAD_SHADER)
+    assert main(["lint", "Image.glsl"]) == 1
+    assert "estimated deduction: -2 points" in capsys.readouterr().out
+
+
+def test_missing_file_exit_2_without_traceback(workdir):
+    proc = glslcheck("lint", "nope.glsl", cwd=workdir)
+    assert proc.returncode == 2
+    assert "nope.glsl" in proc.stderr and "Traceback" not in proc.stderr
+    assert proc.stdout == ""
+
+
+def test_unknown_rule_in_select_exit_2(workdir):
+    (workdir / "Image.glsl").write_text(CLEAN_SHADER)
+    proc = glslcheck("lint", "Image.glsl", "--select", "missing-comment,length-comparisn", cwd=workdir)
+    assert proc.returncode == 2
+    assert "--select names unknown rule(s) length-comparisn" in proc.stderr
+    assert "Traceback" not in proc.stderr
+
+
+def test_bad_format_is_usage_error(workdir):
+    (workdir / "Image.glsl").write_text(CLEAN_SHADER)
+    proc = glslcheck("lint", "Image.glsl", "--format", "xml", cwd=workdir)
+    assert proc.returncode == 2 and "Traceback" not in proc.stderr
+
+
+def test_not_utf8_exit_2(workdir):
+    (workdir / "Image.glsl").write_bytes(b"// caf\xe9\n")
+    assert glslcheck("lint", "Image.glsl", cwd=workdir).returncode == 2
+
+
+def test_output_file(workdir, capsys):
+    (workdir / "Image.glsl").write_text(BAD_SHADER)
+    assert main(["lint", "Image.glsl", "--format", "json", "--output", "report.json"]) == 1
+    assert capsys.readouterr().out == ""
+    assert json.loads((workdir / "report.json").read_text())["summary"]["findings"] == 3
+
+
+def test_output_never_overwrites_a_linted_file(workdir):
+    (workdir / "Image.glsl").write_text(BAD_SHADER)
+    proc = glslcheck("lint", "Image.glsl", "--output", "Image.glsl", cwd=workdir)
+    assert proc.returncode == 2
+    assert (workdir / "Image.glsl").read_text() == BAD_SHADER
+
+
+def test_folder_and_duplicate_paths(workdir):
+    lab = workdir / "lab4"
+    lab.mkdir()
+    (lab / "Image.glsl").write_text(CLEAN_SHADER)
+    (lab / "Common.glsl").write_text(BAD_SHADER)
+    result = lint_paths([lab, lab / "Image.glsl"])
+    assert result.files == 2
+    assert {Path(f.path).name for f in result.findings} == {"Common.glsl"}
+
+
+def test_named_image_file_lints_only_that_file(workdir):
+    (workdir / "Image.glsl").write_text(CLEAN_SHADER)
+    (workdir / "Common.glsl").write_text(BAD_SHADER)  # loaded as context, not linted
+    assert lint_paths(["Image.glsl"]).files == 1
+
+
+def test_skip_non_shaders(workdir, capsys):
+    (workdir / "README.md").write_text("# notes\n")
+    (workdir / "notes.txt").write_text("plain notes\n")
+    (workdir / "Image.txt").write_text(CLEAN_SHADER)
+    assert main(["lint", "--skip-non-shaders", "README.md", "notes.txt", "Image.txt"]) == 0
+    assert capsys.readouterr().out == "no findings in 1 file\n"
+
+
+# --- lint never modifies files -----------------------------------------------------------
+
+
+def test_lint_modifies_no_file(workdir):
+    shaders = sorted(p for p in FIXTURES.rglob("*") if p.is_file())
+    before = snapshot(shaders)
+    for fmt in ("text", "json", "sarif", "github"):
+        proc = glslcheck("lint", str(FIXTURES), "--format", fmt, cwd=workdir)
+        assert proc.returncode == 1, proc.stderr
+    assert snapshot(shaders) == before
+
+
+# --- configuration ------------------------------------------------------------------------
+
+
+def _rules_found(path: str | Path, **overrides) -> set[str]:
+    return {f.rule for f in lint_paths([path], overrides).findings}
+
+
+def test_pyproject_in_parent_folder(workdir):
+    (workdir / "pyproject.toml").write_text('[tool.glslcheck]\nignore = ["missing-comment"]\n')
+    (workdir / "lab" / "part1").mkdir(parents=True)
+    shader = workdir / "lab" / "part1" / "Image.glsl"
+    shader.write_text(BAD_SHADER)
+    assert _rules_found(shader) == {"missing-header", "missing-credit"}
+
+
+def test_pyproject_without_table_is_skipped(workdir):
+    (workdir / "pyproject.toml").write_text('[tool.glslcheck]\nselect = ["missing-header"]\n')
+    (workdir / "lab").mkdir()
+    (workdir / "lab" / "pyproject.toml").write_text('[project]\nname = "x"\n')
+    (workdir / "lab" / "Image.glsl").write_text(BAD_SHADER)
+    assert _rules_found(workdir / "lab" / "Image.glsl") == {"missing-header"}
+
+
+def test_glslcheck_toml(workdir):
+    (workdir / "glslcheck.toml").write_text('select = ["missing-comment"]\ncomment-span = 1\n')
+    (workdir / "Image.glsl").write_text("// two lines, one covered\nfloat a = 1.0;\nfloat b = 2.0;\n")
+    findings = lint_paths(["Image.glsl"]).findings
+    assert [(f.rule, f.loc.line) for f in findings] == [("missing-comment", 3)]
+
+
+def test_glslcheck_toml_wins_over_pyproject_in_same_folder(workdir):
+    (workdir / "glslcheck.toml").write_text('select = ["missing-credit"]\n')
+    (workdir / "pyproject.toml").write_text('[tool.glslcheck]\nselect = ["missing-header"]\n')
+    (workdir / "Image.glsl").write_text(BAD_SHADER)
+    assert _rules_found("Image.glsl") == {"missing-credit"}
+
+
+def test_config_from_cwd_when_none_above_the_file(tmp_path, monkeypatch):
+    cwd, elsewhere = tmp_path / "cwd", tmp_path / "elsewhere"
+    cwd.mkdir()
+    elsewhere.mkdir()
+    (cwd / "glslcheck.toml").write_text('select = ["missing-credit"]\n')
+    (elsewhere / "Image.glsl").write_text(BAD_SHADER)
+    monkeypatch.chdir(cwd)
+    assert _rules_found(elsewhere / "Image.glsl") == {"missing-credit"}
+
+
+def test_cli_overrides_config(workdir, capsys):
+    (workdir / "glslcheck.toml").write_text('select = ["missing-credit"]\nignore = ["missing-header"]\n')
+    (workdir / "Image.glsl").write_text(BAD_SHADER)
+    assert main(["lint", "Image.glsl", "--select", "missing-header,missing-comment", "--format", "json"]) == 1
+    found = {f["rule"] for f in json.loads(capsys.readouterr().out)["findings"]}
+    assert found == {"missing-comment"}  # --select replaced select; the file's ignore still holds
+    assert main(["lint", "Image.glsl", "--select", "missing-header", "--ignore", "", "--format", "json"]) == 1
+    found = {f["rule"] for f in json.loads(capsys.readouterr().out)["findings"]}
+    assert found == {"missing-header"}
+
+
+@pytest.mark.parametrize(
+    "config, message",
+    [
+        ('select = "missing-comment"\n', "`select` must be a list of rule names"),
+        ('ignore = ["no-such-rule"]\n', "`ignore` names unknown rule(s) no-such-rule"),
+        ("comment-span = 0\n", "`comment-span` must be a positive integer"),
+        ('colour = "red"\n', "unknown setting `colour`"),
+        ("select = [\n", "not valid TOML"),
+    ],
+)
+def test_bad_config_exit_2_names_the_file(workdir, config, message):
+    (workdir / "glslcheck.toml").write_text(config)
+    (workdir / "Image.glsl").write_text(CLEAN_SHADER)
+    proc = glslcheck("lint", "Image.glsl", cwd=workdir)
+    assert proc.returncode == 2
+    assert str(workdir / "glslcheck.toml") in proc.stderr
+    assert message in proc.stderr and "Traceback" not in proc.stderr
+
+
+def test_bad_pyproject_table_names_the_table(workdir):
+    (workdir / "pyproject.toml").write_text("[tool.glslcheck]\ncomment-span = true\n")
+    (workdir / "Image.glsl").write_text(CLEAN_SHADER)
+    proc = glslcheck("lint", "Image.glsl", cwd=workdir)
+    assert proc.returncode == 2
+    assert f"{workdir / 'pyproject.toml'} [tool.glslcheck]: error: `comment-span`" in proc.stderr
+
+
+# --- glslcheck rule and the generated docs ------------------------------------------------
+
+
+def test_rule_prints_docs(capsys):
+    assert main(["rule", "missing-comment"]) == 0
+    out = capsys.readouterr().out
+    assert out.startswith("missing-comment: Code lines that no comment explains.\n")
+    for section in ("## What it does", "## Why is this bad?", "## Example", "## Use instead"):
+        assert section in out
+
+
+def test_rule_all_lists_every_rule(capsys):
+    assert main(["rule", "--all"]) == 0
+    out = capsys.readouterr().out
+    for name, _ in RULE_TABLE:
+        assert name in out
+
+
+def test_rule_unknown_exit_2():
+    proc = glslcheck("rule", "missing-coment")
+    assert proc.returncode == 2 and "did you mean `missing-comment`" in proc.stderr
+
+
+def test_rules_doc_is_up_to_date():
+    proc = subprocess.run(
+        [sys.executable, str(REPO_ROOT / "tools" / "gen_rules_doc.py"), "--check"], capture_output=True, text=True
+    )
+    assert proc.returncode == 0, proc.stderr
