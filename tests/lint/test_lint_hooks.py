@@ -1,0 +1,145 @@
+"""Git hooks, run for real in a temporary repository: the pre-commit framework with a local
+hook configured like .pre-commit-hooks.yaml's, and the plain hook `glslcheck install-hook`
+writes. A commit with findings is refused, a clean one goes through, and no file is modified."""
+
+from __future__ import annotations
+
+import re
+import shlex
+import subprocess
+import sys
+from pathlib import Path
+
+import pytest
+import yaml
+
+from glslcheck.commands.install_hook import MARKER
+
+from .conftest import BAD_SHADER, CLEAN_SHADER, REPO_ROOT, GitRepo, snapshot
+
+HOOKS_YAML = REPO_ROOT / ".pre-commit-hooks.yaml"
+GLSLCHECK = f"{shlex.quote(sys.executable)} -m glslcheck"
+
+
+def _hook_definition() -> dict:
+    hooks = yaml.safe_load(HOOKS_YAML.read_text())
+    return next(h for h in hooks if h["id"] == "glslcheck-lint")
+
+
+def test_hook_definition():
+    hook = _hook_definition()
+    assert hook["entry"] == "glslcheck lint"
+    assert hook["language"] == "python"
+    assert hook["pass_filenames"] is True
+    files = re.compile(hook["files"])
+    for name in ("Image.glsl", "lab4/shade.frag", "lab4/Buffer A.txt", "lab4/buffer_b", "Common", "x/IMAGE.TXT"):
+        assert files.search(name), name
+    for name in ("README.md", "notes.txt", "lab4/image.png", "imagery.txt"):
+        assert not files.search(name), name
+
+
+def _commit(repo: GitRepo, name: str, text: str) -> tuple[subprocess.CompletedProcess, Path]:
+    path = repo.write(name, text)
+    repo.git("add", name)
+    before = snapshot([path])
+    proc = repo.git("commit", "-m", f"add {name}", check=False)
+    assert snapshot([path]) == before  # the hook modified nothing
+    return proc, path
+
+
+def _committed(repo: GitRepo, name: str) -> bool:
+    return name in repo.git("ls-tree", "-r", "--name-only", "HEAD").stdout.splitlines()
+
+
+def test_pre_commit_framework_runs_the_hook(git_repo: GitRepo):
+    hook = _hook_definition()
+    config = {
+        "repos": [
+            {
+                "repo": "local",
+                "hooks": [
+                    {
+                        "id": hook["id"],
+                        "name": hook["name"],
+                        "entry": f"{GLSLCHECK} lint",
+                        "language": "system",
+                        "files": hook["files"],
+                        "pass_filenames": hook["pass_filenames"],
+                    }
+                ],
+            }
+        ]
+    }
+    git_repo.write(".pre-commit-config.yaml", yaml.safe_dump(config))
+    git_repo.git("add", ".pre-commit-config.yaml")
+    git_repo.git("commit", "-q", "-m", "pre-commit config")
+    git_repo.run(sys.executable, "-m", "pre_commit", "install")
+
+    proc, _ = _commit(git_repo, "lab4/Image.glsl", BAD_SHADER)
+    assert proc.returncode != 0
+    assert "missing-comment" in proc.stdout + proc.stderr
+    assert not _committed(git_repo, "lab4/Image.glsl")
+
+    proc, _ = _commit(git_repo, "lab4/Image.glsl", CLEAN_SHADER)
+    assert proc.returncode == 0, proc.stdout + proc.stderr
+    assert _committed(git_repo, "lab4/Image.glsl")
+
+    proc, _ = _commit(git_repo, "notes.txt", "not a shader\n")  # not a shader: the hook skips it
+    assert proc.returncode == 0, proc.stdout + proc.stderr
+
+
+def test_install_hook_blocks_findings_and_passes_clean(git_repo: GitRepo):
+    proc = git_repo.run(sys.executable, "-m", "glslcheck", "install-hook")
+    assert proc.returncode == 0, proc.stderr
+    hook = git_repo.root / ".git" / "hooks" / "pre-commit"
+    assert MARKER in hook.read_text() and hook.stat().st_mode & 0o111
+
+    proc, _ = _commit(git_repo, "lab4/Buffer A.glsl", BAD_SHADER)
+    assert proc.returncode != 0
+    assert "lab4/Buffer A.glsl:1:1: missing-header" in proc.stdout + proc.stderr
+    assert not _committed(git_repo, "lab4/Buffer A.glsl")
+
+    proc, _ = _commit(git_repo, "lab4/Image.glsl", CLEAN_SHADER)
+    assert proc.returncode == 0, proc.stdout + proc.stderr
+    assert _committed(git_repo, "lab4/Image.glsl")
+
+    proc, _ = _commit(git_repo, "notes.txt", "not a shader\n")
+    assert proc.returncode == 0, proc.stdout + proc.stderr
+
+
+def test_install_hook_is_posix_sh(git_repo: GitRepo):
+    git_repo.run(sys.executable, "-m", "glslcheck", "install-hook")
+    hook = git_repo.root / ".git" / "hooks" / "pre-commit"
+    assert hook.read_text().startswith("#!/bin/sh\n")
+    assert subprocess.run(["sh", "-n", str(hook)]).returncode == 0
+
+
+def test_install_hook_refuses_foreign_hook(git_repo: GitRepo):
+    hook = git_repo.root / ".git" / "hooks" / "pre-commit"
+    hook.write_text("#!/bin/sh\necho mine\n")
+    proc = git_repo.run(sys.executable, "-m", "glslcheck", "install-hook", check=False)
+    assert proc.returncode == 2 and "--force" in proc.stderr
+    assert hook.read_text() == "#!/bin/sh\necho mine\n"
+
+    proc = git_repo.run(sys.executable, "-m", "glslcheck", "install-hook", "--force")
+    assert proc.returncode == 0 and "replaced" in proc.stdout
+    assert MARKER in hook.read_text()
+    assert (hook.parent / "pre-commit.glslcheck-backup").read_text() == "#!/bin/sh\necho mine\n"
+
+    proc = git_repo.run(sys.executable, "-m", "glslcheck", "install-hook")  # its own hook: updated
+    assert proc.returncode == 0 and "updated" in proc.stdout
+
+
+def test_install_hook_outside_a_repository(tmp_path):
+    from .conftest import git_env
+
+    (tmp_path / "home").mkdir()
+    proc = subprocess.run(
+        [sys.executable, "-m", "glslcheck", "install-hook"],
+        cwd=tmp_path,
+        env=git_env(tmp_path / "home"),
+        capture_output=True,
+        text=True,
+    )
+    assert proc.returncode == 2
+    assert "not inside a git repository" in proc.stderr and "Traceback" not in proc.stderr
