@@ -144,6 +144,10 @@ and ``log2`` are polynomials we do not reproduce: NumPy's are correctly rounded,
 are within 3 ULP (exp2) and within 2 ULP except near x = 1 (log2, absolute error 5e-7);
 ``sin``/``cos`` agree within 1 ULP; ``pow`` within ~30 ULP (error amplified by y*log2(x)).
 
+Subnormals: llvmpipe runs with x86 FTZ/DAZ, so subnormal inputs and results are zero there
+(``atan(0, 1e-45)`` is 3*pi/4 on llvmpipe, NaN here). NumPy keeps subnormals; we do not emulate
+flushing (it would cost a pass over every result). Shaders rarely reach |x| < 1.2e-38.
+
 Derivatives (measured): llvmpipe computes FINE derivatives on 2x2 quads whose lower-left
 pixel has even x and even y (gl_FragCoord space): ``dFdx`` at (x, y) is
 ``v(x|1, y) - v(x&~1, y)`` -- different in the two rows of a quad -- and ``dFdy`` is
