@@ -128,7 +128,7 @@ sinh(100), cosh(100)               inf                    inf                inf
 asin(2), acos(2), acosh(0.5)       undefined              NaN                NaN
 atanh(1)                           undefined              +inf               +inf
 packUnorm2x16(NaN)                 undefined              0                  0
-==================================================================================================
+=================================  =====================  =================  ================
 
 Formulas (each matched bit-for-bit on 65536 random inputs unless a ULP figure is given):
 no fused multiply-add is formed (``a*b+c`` rounds twice); ``x/y`` and ``sqrt`` are correctly
