@@ -86,7 +86,7 @@ def validate(text: str, stage: str = "frag") -> Result:
     try:
         with os.fdopen(fd, "w", encoding="utf-8") as f:
             f.write(text)
-        proc = subprocess.run([exe, path], capture_output=True, text=True, timeout=TIMEOUT_SECONDS)
+        proc = subprocess.run([exe, path], capture_output=True, text=True, errors="replace", timeout=TIMEOUT_SECONDS)
     except subprocess.TimeoutExpired:
         raise InputError(f"error: {EXECUTABLE} took more than {TIMEOUT_SECONDS} s") from None
     finally:

@@ -28,19 +28,7 @@ from .diagnostics import Diagnostic, GlslError, Location, register_source
 from .sources import Shader, Source
 
 # GLSL ES 3.00 section 3.7: words reserved for future use; using one as a name is an error.
-RESERVED_WORDS = frozenset(
-    """attribute varying coherent volatile restrict readonly writeonly resource atomic_uint
-    noperspective patch sample subroutine common partition active asm class union enum typedef
-    template this goto inline noinline public static extern external interface long short double
-    half fixed unsigned superp input output hvec2 hvec3 hvec4 dvec2 dvec3 dvec4 fvec2 fvec3 fvec4
-    sampler3DRect filter image1D image2D image3D imageCube iimage1D iimage2D iimage3D iimageCube
-    uimage1D uimage2D uimage3D uimageCube image1DArray image2DArray iimage1DArray iimage2DArray
-    uimage1DArray uimage2DArray imageBuffer iimageBuffer uimageBuffer sampler1D sampler1DShadow
-    sampler1DArray sampler1DArrayShadow isampler1D isampler1DArray usampler1D usampler1DArray
-    sampler2DRect sampler2DRectShadow isampler2DRect usampler2DRect samplerBuffer isamplerBuffer
-    usamplerBuffer sampler2DMS isampler2DMS usampler2DMS sampler2DMSArray isampler2DMSArray
-    usampler2DMSArray trueup sizeof cast namespace using""".split()
-) - {"trueup"}
+from .builtins import KEYWORDS, RESERVED_WORDS  # noqa: E402  (one table, shared with the checker)
 
 # Words a user might mean: what each terminal is called in an error message.
 _TOKEN_WORDS = {
@@ -79,8 +67,6 @@ class _TypeNames(PostLex):
     """Turns an IDENTIFIER that names a declared struct into TYPE_NAME (the spec's TYPE_NAME),
     rejects reserved words used as names, and remembers the open brackets and the previous
     token for error messages. A name right after `struct` is always an IDENTIFIER."""
-
-    always_accept = ("IDENTIFIER",)
 
     def __init__(self) -> None:
         self.reset()
@@ -134,7 +120,9 @@ def get_parser() -> tuple[Lark, _TypeNames]:
         lark = Lark(
             grammar_text(),
             parser="lalr",
-            lexer="contextual",
+            # The basic lexer, not the contextual one: a contextual lexer would read `float` as a
+            # name where only a name can follow (`float float;`), hiding the keyword.
+            lexer="basic",
             strict=True,
             propagate_positions=True,
             maybe_placeholders=True,
@@ -226,13 +214,13 @@ def _what_statement(history: list[Token]) -> str:
     depth = 0
     while start > 0:
         tok = history[start - 1]
-        if tok.value in (")", "]"):
+        if tok.value in (")", "]", "}"):
             depth += 1
-        elif tok.value in ("(", "["):
+        elif tok.value in ("(", "[", "{"):
             if depth == 0:
                 break
             depth -= 1
-        elif depth == 0 and tok.value in (";", "{", "}"):
+        elif depth == 0 and tok.value == ";":
             break
         start -= 1
     if start >= len(history):
@@ -256,6 +244,13 @@ _BASIC_TYPES = frozenset(
     samplerCube sampler2DShadow samplerCubeShadow sampler2DArray sampler2DArrayShadow isampler2D
     isampler3D isamplerCube isampler2DArray usampler2D usampler3D usamplerCube usampler2DArray""".split()
 )
+
+
+def _innermost_open(brackets: list[Token], tok: Token) -> Token | None:
+    """The innermost bracket still open before `tok` (which may itself have been pushed)."""
+    if brackets and brackets[-1] is tok:
+        return brackets[-2] if len(brackets) >= 2 else None
+    return brackets[-1] if brackets else None
 
 
 def _describe(tok: Token) -> str:
@@ -291,7 +286,10 @@ def _syntax_error(e: UnexpectedInput, text: str, postlex: _TypeNames, locate_spa
     tok: Token = getattr(e, "token", None) or Token("$END", "")
     expected = set(getattr(e, "expected", ()) or ())
     at_end = tok.type == "$END"
-    prev = history[-2] if (history and history[-1] is tok) else (history[-1] if history else None)
+    if history and history[-1] is tok:
+        prev = history[-2] if len(history) >= 2 else None
+    else:
+        prev = history[-1] if history else None
     if at_end:
         end = len(text.rstrip())
         end_loc = locate_span(max(end - 1, 0), max(end, 1))
@@ -311,7 +309,28 @@ def _syntax_error(e: UnexpectedInput, text: str, postlex: _TypeNames, locate_spa
             )
         return Diagnostic("unexpected end of file", end_loc)
     loc = locate_span(tok.start_pos, tok.end_pos)
-    if "SEMICOLON" in expected and prev is not None and tok.value not in (",",):
+    if tok.value == "else":
+        return Diagnostic("'else' without a matching 'if'", loc,
+                          help="an 'else' must follow the statement of an 'if'; check for a stray ';' or a missing '{'")
+    if tok.type == "IDENTIFIER" and prev is not None and prev.type == "IDENTIFIER":
+        return Diagnostic(
+            f"unexpected name '{tok.value}' after '{prev.value}'",
+            loc,
+            help=f"'{prev.value}' is not a type here; declare a struct named '{prev.value}' before using it, or add an operator",
+        )
+    if (tok.type == "TYPE_NAME" or tok.value in _BASIC_TYPES or tok.value in KEYWORDS) and "IDENTIFIER" in expected \
+            and prev is not None and (prev.value in _BASIC_TYPES or prev.type == "TYPE_NAME" or prev.value == "struct"):
+        return Diagnostic(f"'{tok.value}' is a keyword and cannot be used as a name", loc)
+    opener = _innermost_open(postlex.open_brackets, tok)
+    if opener is not None and opener.value in "([":
+        closer = ")" if opener.value == "(" else "]"
+        if ("RPAR" if closer == ")" else "RSQB") in expected and tok.value in ("{", ";", "}"):
+            oloc = locate_span(opener.start_pos, opener.end_pos)
+            return Diagnostic(
+                f"expected '{closer}' before {_describe(tok)}", loc,
+                notes=[Diagnostic(f"to match this '{opener.value}'", oloc, severity="note")],
+            )
+    if "SEMICOLON" in expected and prev is not None and tok.value not in (",",) and prev.value not in (";", "{"):
         # As compilers do: point just past the previous token, where the ';' belongs.
         what = _what_statement(history[:-1] if history and history[-1] is tok else history)
         ploc = locate_span(prev.end_pos - 1, prev.end_pos)
@@ -322,12 +341,6 @@ def _syntax_error(e: UnexpectedInput, text: str, postlex: _TypeNames, locate_spa
     if expected and len(expected & _EXPRESSION_START) >= 3:
         return Diagnostic(f"expected an expression, found {_describe(tok)}", loc)
     names = sorted({words.get(x, x.lower()) for x in expected})
-    if tok.type == "IDENTIFIER" and prev is not None and prev.type == "IDENTIFIER":
-        return Diagnostic(
-            f"unexpected name '{tok.value}' after '{prev.value}'",
-            loc,
-            help=f"'{prev.value}' is not a type here; declare a struct named '{prev.value}' before using it, or add an operator",
-        )
     if tok.type in ("TYPE_NAME",) or tok.value in _BASIC_TYPES:
         if "IDENTIFIER" in expected:
             return Diagnostic(f"'{tok.value}' is a type name and cannot be used as a name here", loc)
