@@ -149,11 +149,11 @@ void lightTerms(in sPointLight light, in vec3 position, in vec3 normal, in vec3 
     // Phong: R = reflect(-L, N) = 2(N.L)N - L, reusing N.L instead of letting reflect() redo it
     vec3 reflected = (nDotL + nDotL) * normal - lightDir;
     // the model picks the vector pair: N.H for Blinn-Phong, V.R for Phong (0/1 mix, no branch)
-    float kS = max(dot(mix(viewDir, normal, blinn), mix(reflected, halfway, blinn)), 0.0);
+    float cosSpecular = dot(mix(viewDir, normal, blinn), mix(reflected, halfway, blinn));
     // alpha' = 4 alpha keeps the Blinn-Phong highlight about as large as Phong's
     float exponent = mix(alpha, 4.0 * alpha, blinn);
-    // I_S = k_S^exponent on the already clamped coefficient
-    float specularIntensity = pow(max(kS, 0.0), exponent);
+    // I_S = max(0, k_S)^exponent, clamped before pow (pow of a negative base is undefined)
+    float specularIntensity = pow(max(cosSpecular, 0.0), exponent);
     // both reflections are tinted by the light's color C_L
     diffuse = diffuseIntensity * diffuseColor * light.color;
     specular = specularIntensity * specularColor * light.color;

@@ -132,7 +132,7 @@ void aimSpotLights(in float time, out sSpotLight spots[kSpotCount])
     vec3 centerC = vec3(0.0, -3.0, -3.0);
     // warm spot on the large sphere, cooler spots on the side spheres, a red one from below
     spots[0] = sSpotLight(centerA, normalize(vec3(0.6 * swayA, 0.4 * swayB, -5.0) - centerA), vec3(1.0, 0.85, 0.6), 20.0, 0.975, 0.99);
-    spots[1] = sSpotLight(centerB, normalize(vec3(2.0 + 0.4 * swayB, 0.6, -6.0) - centerB), vec3(0.5, 0.7, 1.0), 20.0, 0.985, 0.995);
+    spots[1] = sSpotLight(centerB, normalize(vec3(2.0 - 0.5 * swayA, 0.6, -6.0) - centerB), vec3(0.5, 0.7, 1.0), 20.0, 0.985, 0.995);
     spots[2] = sSpotLight(centerC, normalize(vec3(-2.2 + 0.5 * swayB, -0.3 + 0.3 * swayA, -7.0) - centerC), vec3(1.0, 0.35, 0.3), 20.0, 0.985, 0.995);
 }
 
