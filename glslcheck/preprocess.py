@@ -44,7 +44,7 @@ from .sources import Source
 __all__ = ["preprocess", "PPResult", "Comment", "Macro", "MAX_EXPANSION_DEPTH", "MAX_EXPANSION_TOKENS"]
 
 MAX_EXPANSION_DEPTH = 64  # nested macro expansions (and nested calls in arguments)
-MAX_EXPANSION_TOKENS = 500_000  # tokens produced by all macro expansions together
+MAX_EXPANSION_TOKENS = 200_000  # tokens produced by all macro expansions together
 MAX_IF_NESTING = 100  # parentheses and unary operators in one #if expression
 
 RULE = "preprocessor"
@@ -106,6 +106,10 @@ class PPResult:
         seg = self._segs[max(i, 0)]
         return seg, offset - seg.out_start
 
+    def _seg_len(self, seg: _Segment) -> int:
+        i = bisect_right(self._seg_starts, seg.out_start)
+        return (self._seg_starts[i] if i < len(self._seg_starts) else len(self.text)) - seg.out_start
+
     def locate(self, offset: int) -> Location:
         """The user's file, line and column of `offset` in `text` (a macro use for expanded text)."""
         if not self._segs:
@@ -117,9 +121,13 @@ class PPResult:
 
     def locate_span(self, start: int, end: int) -> Location:
         """The span in the user's file of `text[start:end]` (a point when end <= start)."""
-        first = self.locate(start)
         if end <= start or not self._segs:
-            return first
+            return self.locate(start)
+        seg, delta = self._seg(start)
+        if seg.end < 0 and end - seg.out_start - 1 < self._seg_len(seg):
+            # Both ends in one copied piece of text: the common case of a token.
+            return seg.unit.span(seg.start + delta, seg.start + end - seg.out_start)
+        first = self.locate(start)
         last_seg, delta = self._seg(end - 1)
         if last_seg.end >= 0:
             last = last_seg.unit.span(last_seg.start, last_seg.end)
@@ -143,7 +151,7 @@ _OPERATOR = (
 )
 _WS = " \t\n\v\f\r"
 _TOKEN_RE = re.compile(
-    rf"[{_WS}]*(?:(?P<id>[A-Za-z_][A-Za-z0-9_]*)|(?P<num>{_NUMBER})|(?P<op>{_OPERATOR})|(?P<other>.))",
+    rf"[{_WS}]*(?:(?P<id>[A-Za-z_][A-Za-z0-9_]*)|(?P<num>{_NUMBER})|(?P<op>{_OPERATOR})|(?P<other>[^{_WS}]))",
     re.S,
 )
 _IDENT_RE = re.compile(r"(?<![A-Za-z0-9_])[A-Za-z_][A-Za-z0-9_]*")
@@ -320,7 +328,13 @@ class _Unit:
     def span(self, s: int, e: int) -> Location:
         if e <= s:
             return self.point(s)
-        return self._raw_loc(self.s2r(s), self.s2r(e - 1) + 1)
+        rs, rl = self.s2r(s), self.s2r(e - 1)
+        line = bisect_right(self.line_starts, rs)
+        ls = self.line_starts[line - 1]
+        if line < len(self.line_starts) and rl >= self.line_starts[line]:
+            eline, ecol = self._raw_pos(rl)
+            return Location(self.path, line, rs - ls + 1, eline, ecol + 1)
+        return Location(self.path, line, rs - ls + 1, line, rl - ls + 2)
 
     def line_of(self, s: int) -> int:
         return self._raw_pos(self.s2r(s))[0]
@@ -422,6 +436,7 @@ class _Preprocessor:
         self.seg_starts: list[int] = []
         self.segs: list[_Segment] = []
         self.budget = MAX_EXPANSION_TOKENS
+        self.hide_cache: dict[tuple[frozenset[str], str], frozenset[str]] = {}
         self.seen_code = False  # a token before #version?
 
     # -- output ----------------------------------------------------------------------------
@@ -627,9 +642,13 @@ class _Preprocessor:
                     if i not in expanded:
                         expanded[i] = self._expand_list(args[i], depth + 1)
                     body.extend(expanded[i])
-        hide = hide | {name}
-        if len(hide) > MAX_EXPANSION_DEPTH:
-            raise self._expansion_error("deep", t)
+        key = (hide, name)
+        new_hide = self.hide_cache.get(key)
+        if new_hide is None:
+            new_hide = self.hide_cache[key] = hide | {name}
+            if len(new_hide) > MAX_EXPANSION_DEPTH:
+                raise self._expansion_error("deep", t)
+        hide = new_hide
         self.budget -= len(body)
         if self.budget < 0:
             raise self._expansion_error("large", t)
