@@ -873,8 +873,8 @@ class _Preprocessor:
     def _extension(self, toks: list[_Tok], nt: _Tok, hash_pos: int, nl: int) -> None:
         shape = [t.kind for t in toks[:3]] == [ID, OP, ID] and toks[1].text == ":"
         if not shape or len(toks) != 3:
-            bad = toks[len(toks) if shape else 0] if toks else nt
-            raise self._tok_error("#extension must read '#extension name : behavior'", toks[3] if shape else bad)
+            bad = toks[3] if shape else (toks[0] if toks else nt)
+            raise self._tok_error("#extension must read '#extension name : behavior'", bad)
         ext, behavior = toks[0].text, toks[2].text
         if behavior not in _BEHAVIORS:
             raise self._tok_error(

@@ -9,6 +9,8 @@ import subprocess
 import time
 
 import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
 
 from glslcheck.diagnostics import GlslError, Location
 from glslcheck.preprocess import MAX_EXPANSION_TOKENS, Comment, PPResult, _lex_all, preprocess
@@ -340,6 +342,8 @@ def test_extension_directive():
     assert "unknown #extension behavior 'bogus'" in error("#extension GL_X : bogus\n").message
     assert "'#extension all'" in error("#extension all : enable\n").message
     assert "name : behavior" in error("#extension GL_X enable\n").message
+    d = error("#extension GL_X : enable now\n")
+    assert "name : behavior" in d.message and d.loc.column == 26
 
 
 def test_version_in_shadertoy_tab_is_an_error():
@@ -381,6 +385,38 @@ def test_comment_inside_a_directive_does_not_end_it():
 
 
 # -- locations ---------------------------------------------------------------------------------
+
+
+@settings(max_examples=200, deadline=None)
+@given(st.text(alphabet="ab1.+ \t\n", max_size=60))
+def test_text_without_macros_maps_every_character_home(src):
+    r = pp(src)
+    assert r.text == src + ("" if src.endswith("\n") else "\n")
+    for i in range(len(src)):
+        line = src.count("\n", 0, i) + 1
+        col = i - (src.rfind("\n", 0, i) + 1) + 1
+        assert r.locate(i) == Location("Image.glsl", line, col)
+
+
+_PIECES = ["ab", "cd", " ", "\t", "\n", "\\\n", "/* x\n*/", "/**/", "// c\n", "1.5", "+"]
+
+
+@settings(max_examples=300, deadline=None)
+@given(st.lists(st.sampled_from(_PIECES), max_size=30))
+def test_tokens_map_to_their_text_across_comments_and_continuations(pieces):
+    src = "".join(pieces)
+    r = pp(src)
+    lines = src.split("\n")
+    offsets = [0]
+    for ln in lines:
+        offsets.append(offsets[-1] + len(ln) + 1)
+    for m in re.finditer(r"[a-z]+|1\.5", r.text):
+        loc = r.locate_span(m.start(), m.end())
+        a = offsets[loc.line - 1] + loc.column - 1
+        b = offsets[loc.end_line - 1] + loc.end_column - 1
+        assert src[a:b].replace("\\\n", "") == m.group()
+    # Lines stay in step with the user's (a file ending in backslash-newline gets one more).
+    assert r.text.count("\n") in (src.count("\n"), src.count("\n") + 1)
 
 
 def test_locate_plain_tokens():
