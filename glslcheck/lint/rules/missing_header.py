@@ -56,6 +56,7 @@ _PURPOSE_LABEL = re.compile(
     r"^\W*(?:purpose|description|desc|brief|summary|about|overview|what it does)\b\s*[:\-\u2013\u2014]",
     re.I | re.M,
 )
+_DOXYGEN_BRIEF = re.compile(r"^\W*[@\\](?:brief|details)\s+\w", re.I | re.M)
 _PURPOSE_SENTENCE = re.compile(
     r"\bthis\s+(?:file|shader|tab|pass|buffer|program|code)\s+(?:is\s+|will\s+)?[a-z]+", re.I
 )
@@ -113,7 +114,7 @@ def names_file(text: str, path: str, tab: str) -> bool:
 
 
 def states_purpose(text: str, path: str, tab: str) -> bool:
-    if _PURPOSE_LABEL.search(text) or _PURPOSE_SENTENCE.search(text):
+    if _PURPOSE_LABEL.search(text) or _PURPOSE_SENTENCE.search(text) or _DOXYGEN_BRIEF.search(text):
         return True
     full, others = _names(path, tab)
     for n in (full, *others):
@@ -135,7 +136,7 @@ def contributors(text: str) -> str:
         found = True
         rest = m.group("rest").strip()
         if rest:
-            entries.extend(e for e in re.split(r";", rest) if e.strip())
+            entries.extend(e for e in re.split(r";", rest) if e.strip() and not CREDIT_RE.search(e))
         for follow in lines[i + 1 :]:
             body = re.sub(r"^[\s*/#>\-\u2022\d.)]*", "", follow).strip()
             if (
