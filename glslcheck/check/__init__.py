@@ -1,0 +1,34 @@
+"""The semantic model: scopes, symbols and types of a parsed GLSL ES 3.00 / Shadertoy program.
+
+    from glslcheck.check import check, Model, Symbol, CheckError
+    model = check(parse_result, tab="Image")   # raises CheckError (a GlslError) on errors
+    model = check(parse_result, collect=True)  # never raises; see model.diagnostics
+
+`Model` answers: type_of(expr), symbol_of(identifier or declaring node), call_target(call),
+is_swizzle / swizzle_indices(field), const_value(expr), functions, structs, globals, entry,
+reachable_functions(), calls_from(function), uniforms_read(), diagnostics.
+
+`tab` is the Shadertoy pass ("Image", "Buffer A".."Buffer D", or "Common" for the Common tab
+compiled alone with only iDate and iSampleRate); a plain GLSL file (own #version and main) is
+recognised from its source and checked as such.
+"""
+
+from __future__ import annotations
+
+from typing import Any
+
+from .checker import Checker
+from .model import ERROR, CheckError, ErrorType, Model, Symbol
+
+__all__ = ["check", "Model", "Symbol", "CheckError", "ERROR", "ErrorType"]
+
+
+def check(parse_result: Any, tab: str = "Image", *, collect: bool = False) -> Model:
+    """Check a ParseResult (from parse_shader / parse_units) as the pass `tab`."""
+    model = Checker(parse_result, tab).run()
+    order = {s.path: i for i, s in enumerate(getattr(parse_result, "sources", []) or [])}
+    model.diagnostics.sort(key=lambda d: (order.get(d.loc.path, len(order)), d.loc.line, d.loc.column)
+                           if d.loc else (-1, 0, 0))
+    if not collect and model.errors:
+        raise CheckError(model.errors)
+    return model
