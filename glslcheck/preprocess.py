@@ -281,7 +281,7 @@ class _Unit:
             out.append(rep)
             olen += len(rep)
             pos = cend
-        if not out or not out[-1].endswith("\n"):
+        if not out or not out[-1].endswith("\n") or olen - 1 in self.soft_newlines:
             self._add_piece(olen, n, n)
             out.append("\n")
         self.stripped = "".join(out)
