@@ -28,6 +28,9 @@ Offsets inside an expansion map to the whole outermost macro use (name to closin
 `#line N [M]` only changes what `__LINE__` and `__FILE__` expand to; locations keep pointing
 at the real line of the user's file. `__LINE__` counts lines of the unit it is used in.
 
+Runaway macros cannot hang or overflow the stack: more than MAX_EXPANSION_DEPTH nested
+expansions, or more than MAX_EXPANSION_TOKENS tokens produced by expansion, is an error.
+
 Errors raise `GlslError` with one `Diagnostic(rule="preprocessor")` located in the user's
 file; warnings (a macro name with `__`) are collected in `PPResult.diagnostics`.
 """
@@ -111,7 +114,8 @@ class PPResult:
         return (self._seg_starts[i] if i < len(self._seg_starts) else len(self.text)) - seg.out_start
 
     def locate(self, offset: int) -> Location:
-        """The user's file, line and column of `offset` in `text` (a macro use for expanded text)."""
+        """The user's file, line and column of `offset` in `text`: a point for copied text, the
+        span of the whole (outermost) macro use for text that came from an expansion."""
         if not self._segs:
             return Location("<empty>", 1, 1)
         seg, delta = self._seg(offset)
