@@ -233,3 +233,14 @@ def test_rules_doc_is_up_to_date():
         [sys.executable, str(REPO_ROOT / "tools" / "gen_rules_doc.py"), "--check"], capture_output=True, text=True
     )
     assert proc.returncode == 0, proc.stderr
+
+
+def test_tab_patterns_make_more_files_shaders(workdir, capsys):
+    (workdir / "glslcheck.toml").write_text('tab-patterns = ["lab4/*.txt"]\n')
+    (workdir / "lab4").mkdir()
+    (workdir / "lab4" / "part1.txt").write_text(BAD_SHADER)
+    (workdir / "notes.txt").write_text("plain notes\n")
+    assert main(["lint", "--skip-non-shaders", "--format", "json", "lab4/part1.txt", "notes.txt"]) == 1
+    report = json.loads(capsys.readouterr().out)
+    assert report["summary"]["files"] == 1
+    assert {f["path"] for f in report["findings"]} == {"lab4/part1.txt"}

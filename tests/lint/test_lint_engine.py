@@ -11,7 +11,7 @@ from glslcheck.diagnostics import Diagnostic
 from glslcheck.lint import engine, lint_source
 from glslcheck.lint.rules import Rule, all_rules
 from glslcheck.lint.rules.missing_header import contributors, names_file, states_purpose
-from glslcheck.lint.textscan import LineKind, scan
+from glslcheck.lint.textscan import scan
 from glslcheck.sources import Source
 
 
