@@ -177,7 +177,9 @@ class Checker:
         if old is not None:
             what = {"uniform": "a Shadertoy uniform", "function": "a function", "struct": "a struct",
                     "param": "a parameter"}.get(old.kind, "a variable")
-            self.error(f"'{sym.name}' is already declared in this scope (as {what})", where,
+            msg = (f"'{sym.name}' is already declared by Shadertoy as a uniform" if old.kind == "uniform"
+                   else f"'{sym.name}' is already declared in this scope (as {what})")
+            self.error(msg, where,
                        help="rename one of them" if old.kind != "uniform" else
                        "Shadertoy declares this uniform already; remove your declaration or rename it")
         else:
@@ -344,6 +346,8 @@ class Checker:
             msg = f"cannot initialise '{d.name}' of type '{t}' with a value of type '{init_t}'"
             if hint:
                 msg += f"; GLSL ES has no implicit conversion: {hint}"
+            elif t.is_basic and init_t.is_basic and t.base != init_t.base:
+                msg += "; GLSL ES has no implicit conversion"
             self.error(msg, d.init, help=hint or self._conversion_help(t, init_t))
             return
         if storage == "const" and not self.is_const(d.init):
@@ -738,7 +742,10 @@ class Checker:
             return ERROR
         res = T.binary_result(n.op, lt, rt)
         if isinstance(res, str):
-            self.error(res, n, help=self._mix_hint(n.left, lt, n.right, rt))
+            hint = self._mix_hint(n.left, lt, n.right, rt)
+            if hint and hint.startswith("write"):
+                res = res.split(": GLSL ES has no implicit", 1)[0] + f": GLSL ES has no implicit conversion; {hint}"
+            self.error(res, n, help=hint)
             return ERROR
         if self.is_const(n.left) and self.is_const(n.right):
             self.consts[id(n)] = C.binary(n.op, lt, rt, res, self.consts[id(n.left)], self.consts[id(n.right)])

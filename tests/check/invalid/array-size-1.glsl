@@ -1,0 +1,7 @@
+// expect: greater than zero
+float a[0]; // ERROR
+
+void mainImage(out vec4 fragColor, in vec2 fragCoord)
+{
+    fragColor = vec4(0.0);
+}

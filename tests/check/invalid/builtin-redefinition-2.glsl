@@ -1,0 +1,7 @@
+// expect: is a built-in function
+float length(int x) { return 1.0; } // ERROR
+
+void mainImage(out vec4 fragColor, in vec2 fragCoord)
+{
+    fragColor = vec4(0.0);
+}

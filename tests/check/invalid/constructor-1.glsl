@@ -1,0 +1,10 @@
+// expect: not enough data
+vec3 f()
+{
+    return vec3(1.0, 2.0); // ERROR
+}
+
+void mainImage(out vec4 fragColor, in vec2 fragCoord)
+{
+    fragColor = vec4(0.0);
+}

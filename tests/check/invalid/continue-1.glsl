@@ -1,0 +1,14 @@
+// expect: 'continue' is only allowed inside a loop
+void f(int i)
+{
+    switch (i)
+    {
+    case 0:
+        continue; // ERROR
+    }
+}
+
+void mainImage(out vec4 fragColor, in vec2 fragCoord)
+{
+    fragColor = vec4(0.0);
+}

@@ -1,0 +1,8 @@
+// expect: is already defined
+float g() { return 1.0; }
+float g() { return 2.0; } // ERROR
+
+void mainImage(out vec4 fragColor, in vec2 fragCoord)
+{
+    fragColor = vec4(0.0);
+}

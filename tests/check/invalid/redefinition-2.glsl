@@ -1,0 +1,10 @@
+// expect: already declared in this scope
+void f(float x)
+{
+    float x = 1.0; // ERROR
+}
+
+void mainImage(out vec4 fragColor, in vec2 fragCoord)
+{
+    fragColor = vec4(0.0);
+}

@@ -1,0 +1,7 @@
+// expect: names starting with 'gl_'
+float gl_value = 1.0; // ERROR
+
+void mainImage(out vec4 fragColor, in vec2 fragCoord)
+{
+    fragColor = vec4(0.0);
+}

@@ -1,0 +1,10 @@
+// expect: void function cannot return a value
+void f()
+{
+    return 1.0; // ERROR
+}
+
+void mainImage(out vec4 fragColor, in vec2 fragCoord)
+{
+    fragColor = vec4(0.0);
+}
