@@ -416,7 +416,8 @@ class _Builder:
     def _build_parameter_declaration(self, t, c):
         quals = [q for q in c if isinstance(q, Tree) and q.data == "parameter_qualifier"]
         rest = [x for x in c if not (isinstance(x, Tree) and x.data == "parameter_qualifier")]
-        tspec, name, array = rest
+        tspec, name, *arrays = rest
+        array = self._one_array(arrays)
         words = []
         for q in quals:
             tok = q.children[0]
@@ -425,7 +426,7 @@ class _Builder:
             qualifiers=words,
             type=self.node(tspec),
             name=str(name) if name is not None else None,
-            array=self.node(array),
+            array=array,
             name_loc=self.loc(name) if name is not None else self.loc(t),
         )
 
@@ -442,8 +443,8 @@ class _Builder:
         return A.VariableDeclaration(qualifiers=qualifiers, type=tspec, declarators=decls)
 
     def _build_declarator(self, t, c):
-        name, array, init = c
-        return A.Declarator(name=str(name), array=self.node(array), init=self.node(init), name_loc=self.loc(name))
+        name, *arrays, init = c
+        return A.Declarator(name=str(name), array=self._one_array(arrays), init=self.node(init), name_loc=self.loc(name))
 
     def _build_precision_declaration(self, t, c):
         return A.PrecisionDeclaration(precision=str(c[0].children[0]), type=self.node(c[1]))
@@ -491,7 +492,7 @@ class _Builder:
     # -- types ----------------------------------------------------------------------------------
     def _build_type_specifier(self, t, c):
         spec = self._nonarray(c[0])
-        spec.array = self.node(c[1])
+        spec.array = self._one_array(c[1:])
         spec.loc = self.loc(t)
         return spec
 
@@ -504,6 +505,14 @@ class _Builder:
             spec = A.TypeSpec(struct_=self.node(item))
         spec.loc = self.loc(item)
         return spec
+
+    def _one_array(self, arrays: list) -> A.ArraySpec | None:
+        """GLSL ES 3.00 arrays have one dimension (4.1.9): a second `[]` is an error."""
+        arrays = [a for a in arrays if a is not None]
+        if len(arrays) > 1:
+            self.error("arrays of arrays are not allowed in GLSL ES 3.00: an array has one dimension", arrays[1],
+                       help="use a one-dimensional array and index it as [i * columns + j]")
+        return self.node(arrays[0]) if arrays else None
 
     def _build_array_specifier(self, t, c):
         return A.ArraySpec(size=self.node(c[0]))
@@ -521,7 +530,7 @@ class _Builder:
         )
 
     def _build_struct_declarator(self, t, c):
-        return A.StructDeclarator(name=str(c[0]), array=self.node(c[1]))
+        return A.StructDeclarator(name=str(c[0]), array=self._one_array(c[1:]))
 
     # -- statements ----------------------------------------------------------------------------
     def _build_compound_statement(self, t, c):
