@@ -96,11 +96,45 @@ class LintContext:
 def syntax_tree(source: Source, shader: Shader | None) -> tuple[Any, Any]:
     """The parse tree and semantic model that NEEDS = "ast" rules read, or (None, None).
 
-    The parser and checker have not landed yet, so every file is linted by its text alone. When
-    they do, this is the one place to build them (a file that does not parse gets (None, None):
-    its syntax errors are `glslcheck check`'s to report, and the text rules still run).
+    A pass tab (Image, Buffer A..D, or a plain GLSL file) is parsed and checked as Shadertoy
+    compiles it: Common first, then the tab. A Common tab is linted inside the first pass that
+    includes it (Image, else a Buffer), so its functions are seen with their callers; alone
+    when the shader has no pass tab. The tree covers every file of the program: AST rules report
+    only nodes whose `loc.path` is the linted file. A program is parsed and checked once for all
+    its files (a small cache keyed by the texts). A file that does not parse or check gets
+    (None, None): its errors are `glslcheck check`'s to report, and the text rules still run.
     """
-    return None, None
+    if shader is None:
+        return None, None
+    tab = source.tab
+    if tab == "Common":
+        tab = next((t for t in _PASS_TABS if t in shader.tabs), "Common")
+    elif tab not in _PASS_TABS:
+        return None, None  # Sound and Cube A tabs are not rendered by glslcheck
+    try:
+        units = shader.units_for(tab)
+    except Exception:  # noqa: BLE001 - an odd shader folder: lint the text only
+        return None, None
+    key = (tab, tuple((u.path, u.text) for u in units))
+    if key in _TREES:
+        return _TREES[key]
+    from ..check import check
+    from ..diagnostics import GlslError
+    from ..parse import parse_units
+
+    try:
+        model = check(parse_units(units), tab, collect=True)
+        tree = (None, None) if model.errors else (model.ast, model)
+    except (GlslError, RecursionError):
+        tree = (None, None)
+    if len(_TREES) >= 8:
+        _TREES.clear()
+    _TREES[key] = tree
+    return tree
+
+
+_PASS_TABS = ("Image", "Buffer A", "Buffer B", "Buffer C", "Buffer D", "GLSL")
+_TREES: dict[tuple, tuple[Any, Any]] = {}  # syntax_tree's cache: (tab, files' texts) -> tree
 
 
 def lint_source(
