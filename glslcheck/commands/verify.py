@@ -1,0 +1,214 @@
+"""glslcheck verify SHADER... [--size WxH] [--time T | --times T,T,... | --frames N [--fps F]]
+[--frame N] [--mouse X,Y,Z,W] [--precision float32|float16|float64] [--samples N]
+[--diff diff.png] [--format text|json]: render with NumPy and OpenGL and compare.
+
+Each SHADER is a tab file or a folder of tabs (see glslcheck/sources.py). Its Image tab is
+rendered by the NumPy backend and by the OpenGL driver (Mesa llvmpipe) with the same uniforms,
+and the two float images are compared by the tolerance model of glslcheck/compare.py: max and
+mean abs error, PSNR, pixels over tolerance ("mismatched"), edge pixels (differences a sub-pixel
+shift explains), NaN/Inf counts in each image, and where the differences lie (bounding box and
+worst pixels, with fragCoord).
+
+Frames: one at iTime 0 by default; --time T; --times 0,0.5,1 (one frame each, iFrame = --frame);
+--frames N with --fps F (iFrame = --frame + i, iTime = iFrame / F, iTimeDelta = 1/F). Several
+frames show a progress bar on stderr when it is a terminal (--progress forces it).
+
+--format json prints exactly {"match", "size", "max_abs_error", "mean_abs_error", "psnr_db",
+"mismatched_pixels", "edge_pixels", "nan_numpy", "nan_gl"} for one frame (psnr_db is null for
+identical images), or a JSON list of such objects, in order (shader by shader, then frame by
+frame), when more than one frame is verified. --diff diff.png writes the heat map of the
+differences (diff-0.png, diff-1.png, ... for several frames).
+
+Exit 0 when every frame matches, 1 on a mismatch or a GLSL error (diagnostics as file:line:col
+on stderr), 2 on usage or I/O errors, or when no OpenGL context can be created.
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import math
+import sys
+
+from ..diagnostics import GlslError, format_text
+from ..sources import find_shaders
+from ..verify import (
+    BACKENDS,
+    DEFAULT_FPS,
+    PRECISIONS,
+    Progress,
+    diff_paths,
+    frame_specs,
+    parse_count,
+    parse_fps,
+    parse_mouse,
+    parse_samples,
+    parse_size,
+    parse_time,
+    parse_times,
+    verify_frames,
+)
+
+
+def _arg_type(fn):
+    """Wrap a verify.parse_* function so argparse reports its message as a usage error (exit 2)."""
+
+    def convert(text):
+        try:
+            return fn(text)
+        except ValueError as e:
+            raise argparse.ArgumentTypeError(str(e)) from None
+
+    convert.__name__ = fn.__name__.replace("parse_", "")
+    return convert
+
+
+def _backends(text: str) -> tuple[str, str]:
+    names = tuple(t.strip() for t in text.split(","))
+    if len(names) != 2 or not all(n in BACKENDS for n in names):
+        raise ValueError(f"--backends takes two of {', '.join(BACKENDS)} separated by a comma, not {text!r}")
+    return names  # type: ignore[return-value]
+
+
+def add_arguments(p) -> None:
+    p.add_argument("paths", nargs="+", metavar="SHADER", help="tab files or folders of tab files")
+    p.add_argument("--size", type=_arg_type(parse_size), default=(800, 450), metavar="WxH",
+                   help="render size in pixels (default 800x450)")
+    when = p.add_mutually_exclusive_group()
+    when.add_argument("--time", type=_arg_type(parse_time), metavar="T", help="iTime in seconds (default 0)")
+    when.add_argument("--times", type=_arg_type(parse_times), metavar="T,T,...",
+                      help="verify one frame per time")
+    when.add_argument("--frames", type=_arg_type(parse_count), metavar="N",
+                      help="verify N consecutive frames at --fps")
+    p.add_argument("--fps", type=_arg_type(parse_fps), default=None, metavar="F",
+                   help=f"frames per second: iFrameRate, iTimeDelta = 1/F and the --frames clock (default {DEFAULT_FPS:g})")
+    p.add_argument("--frame", type=_arg_type(parse_count), default=0, metavar="N",
+                   help="iFrame (with --frames: the first frame) (default 0)")
+    p.add_argument("--mouse", type=_arg_type(parse_mouse), default=(0.0, 0.0, 0.0, 0.0), metavar="X,Y,Z,W",
+                   help="iMouse in pixels (default 0,0,0,0)")
+    p.add_argument("--precision", choices=PRECISIONS, default="float32",
+                   help="float mode of the NumPy backend; OpenGL is always highp float32 (default float32)")
+    p.add_argument("--samples", type=_arg_type(parse_samples), default=1, metavar="N",
+                   help="samples per pixel on both sides, a perfect square (default 1)")
+    p.add_argument("--diff", metavar="PNG", help="write the difference heat map (diff-<i>.png for several frames)")
+    p.add_argument("--format", choices=("text", "json"), default="text", help="output format (default text)")
+    p.add_argument("--progress", action=argparse.BooleanOptionalAction, default=None,
+                   help="progress bar on stderr for several frames (default: when stderr is a terminal)")
+    # For developers: compare other backend pairs (gl,gl checks the plumbing; first = "numpy" side).
+    p.add_argument("--backends", type=_arg_type(_backends), default=BACKENDS, help=argparse.SUPPRESS)
+
+
+def _frame_count(args) -> int:
+    if args.frames is not None:
+        return args.frames
+    if args.times is not None:
+        return len(args.times)
+    return 1
+
+
+def run(args) -> int:
+    if args.frames is not None and args.frames < 1:
+        print("glslcheck verify: error: --frames must be at least 1", file=sys.stderr)
+        return 2
+    frame_specs(args.time, args.times, args.frames, args.fps, args.frame)  # validates the schedule
+    shaders = find_shaders(args.paths)
+    total = len(shaders) * _frame_count(args)
+    show = args.progress if args.progress is not None else (total > 1 and sys.stderr.isatty())
+    progress = Progress(total, sys.stderr, enabled=bool(show) and total > 1)
+
+    results = []
+    glsl_errors = 0
+    try:
+        for index, shader in enumerate(shaders):
+            try:
+                frames = verify_frames(
+                    shader, size=args.size, time=args.time, times=args.times, frames=args.frames,
+                    fps=args.fps, frame=args.frame, mouse=args.mouse, precision=args.precision,
+                    samples=args.samples, backends=args.backends, progress=progress)
+                for result in frames:
+                    results.append(result)
+            except GlslError as e:
+                progress.finish()
+                glsl_errors += 1
+                for d in e.diagnostics:
+                    print(format_text(d), file=sys.stderr)
+                progress.done = (index + 1) * _frame_count(args)
+    finally:
+        progress.finish()
+
+    if args.diff and results:
+        from ..compare import write_diff_png
+
+        for result, path in zip(results, diff_paths(args.diff, len(results))):
+            try:
+                write_diff_png(result.comparison, path)
+            except OSError as e:
+                print(f"{path}: error: cannot write the diff image ({e.strerror or e})", file=sys.stderr)
+                return 2
+
+    if args.format == "json":
+        objects = [r.comparison.to_json() for r in results]
+        if len(objects) == 1:
+            print(json.dumps(objects[0]))
+        elif objects or not glsl_errors:
+            print(json.dumps(objects))
+    else:
+        _print_text(results, args, glsl_errors)
+    if glsl_errors or not all(r.match for r in results):
+        return 1
+    return 0
+
+
+def _print_text(results, args, glsl_errors: int) -> None:
+    out = sys.stdout
+    for result in results:
+        out.write(format_frame(result, args.precision, args.samples))
+    failed = sum(not r.match for r in results)
+    n = len(results)
+    frames = f"{n} frame{'s' if n != 1 else ''}"
+    if failed:
+        line = f"verify: MISMATCH in {failed} of {frames}"
+    elif n:
+        line = f"verify: match ({frames})"
+    else:
+        line = "verify: nothing verified"
+    if glsl_errors:
+        line += f"; {glsl_errors} shader{'s' if glsl_errors != 1 else ''} with GLSL errors"
+    out.write(line + "\n")
+
+
+def _num(v: float) -> str:
+    return "inf" if math.isinf(v) else f"{v:.4g}"
+
+
+def format_frame(result, precision: str = "float32", samples: int = 1, worst: int = 3) -> str:
+    """The short text table of one frame."""
+    c = result.comparison
+    s = result.spec
+    w, h = result.size
+    extra = ""
+    if precision != "float32":
+        extra += f"  {precision}"
+    if samples != 1:
+        extra += f"  {samples} samples"
+    lines = [f"{result.shader}  {w}x{h}  iTime {s.time:g}  iFrame {s.frame}{extra}"]
+    psnr = "inf" if math.isinf(c.psnr_db) else f"{c.psnr_db:.1f} dB"
+    lines.append(f"  max abs error    {_num(c.max_abs_error):<10}  mean {c.mean_abs_error:.3g}  PSNR {psnr}")
+    lines.append(f"  mismatched       {c.mismatched_pixels:<10}  budget {int(c.mismatch_budget)}"
+                 f"  (over {c.abs_tol * 255:.0f}/255)")
+    lines.append(f"  edge pixels      {c.edge_pixels:<10}  budget {int(c.edge_budget)}")
+    lines.append(f"  NaN/Inf pixels   numpy {c.nan_numpy}, gl {c.nan_gl}"
+                 + (f", {c.nan_mismatched_pixels} in one image only" if c.nan_mismatched_pixels else ""))
+    if c.bbox is not None:
+        x0, y0, x1, y1 = c.bbox
+        lines.append(f"  differences in   x {x0}..{x1 - 1}, y {y0}..{y1 - 1} (from the top left); "
+                     f"fragCoord x {x0 + 0.5}..{x1 - 0.5}, y {h - y1 + 0.5}..{h - y0 - 0.5}")
+    for p in c.worst[:worst]:
+        lines.append(f"  {p.kind:<8} pixel ({p.x}, {p.y}) fragCoord ({p.frag_coord[0]}, {p.frag_coord[1]}): "
+                     f"numpy {_rgb(p.numpy)} gl {_rgb(p.gl)}")
+    lines.append("  -> match" if c.match else "  -> MISMATCH")
+    return "\n".join(lines) + "\n"
+
+
+def _rgb(values) -> str:
+    return "(" + ", ".join(f"{v:.4g}" for v in values[:3]) + ")"
