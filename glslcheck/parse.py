@@ -124,7 +124,11 @@ def get_parser() -> tuple[Lark, _TypeNames]:
             # name where only a name can follow (`float float;`), hiding the keyword.
             lexer="basic",
             strict=True,
-            propagate_positions=True,
+            # Positions come from the tokens (see _Builder.loc): Lark's propagate_positions
+            # costs half the parse time, and keeping every token gives exact spans that
+            # include keywords and braces.
+            propagate_positions=False,
+            keep_all_tokens=True,
             maybe_placeholders=True,
             postlex=postlex,
             cache=_cache_path(),
@@ -355,6 +359,30 @@ def _syntax_error(e: UnexpectedInput, text: str, postlex: _TypeNames, locate_spa
 # ---------------------------------------------------------------------------------------------
 
 
+# Rules written with `!` in the grammar: their keyword and operator tokens are their value.
+_KEEP_TOKENS = frozenset(
+    """parameter_qualifier storage_qualifier interpolation_qualifier invariant_qualifier
+    precision_qualifier basic_type assign_op bool_literal binary prefix unary index method_call
+    field postfix""".split()
+)
+# Tokens that carry a value in every rule.
+_VALUE_TOKENS = frozenset({"IDENTIFIER", "TYPE_NAME", "INTCONSTANT", "FLOATCONSTANT"})
+
+
+def _edge_token(tree: Tree, end: int) -> Token | None:
+    """The first (end=0) or last (end=-1) token under a tree, or None for an empty one."""
+    children = tree.children if end == 0 else reversed(tree.children)
+    for child in children:
+        if child is None:
+            continue
+        if isinstance(child, Token):
+            return child
+        found = _edge_token(child, end)
+        if found is not None:
+            return found
+    return None
+
+
 class _Builder:
     """Builds AST nodes: `_build_<rule>` for each grammar rule (or alias) of grammar/glsl.lark."""
 
@@ -373,20 +401,27 @@ class _Builder:
 
     # -- helpers ------------------------------------------------------------------------------
     def loc(self, item: Tree | Token) -> Location:
+        """The span from the first to the last token of a subtree."""
         if isinstance(item, Token):
             return self.locate_span(item.start_pos, item.end_pos)
-        meta = item.meta
-        if getattr(meta, "empty", True):
+        first = _edge_token(item, 0)
+        if first is None:
             return self.locate_span(0, 0)
-        return self.locate_span(meta.start_pos, meta.end_pos)
+        last = _edge_token(item, -1)
+        return self.locate_span(first.start_pos, last.end_pos)
 
     def node(self, item):
         if item is None:
             return None
         if isinstance(item, Token):
             raise AssertionError(f"unexpected token {item!r}")
-        method = getattr(self, "_build_" + item.data)
-        result = method(item, item.children)
+        data = item.data
+        method = getattr(self, "_build_" + data)
+        children = item.children
+        if data not in _KEEP_TOKENS:
+            # Punctuation and keywords matter only for the span; the rule says the rest.
+            children = [c for c in children if not (isinstance(c, Token) and c.type not in _VALUE_TOKENS)]
+        result = method(item, children)
         if result is not None and result.loc.line == 0:
             result.loc = self.loc(item)
         return result
@@ -404,12 +439,13 @@ class _Builder:
 
     def _build_function_prototype(self, t, c):
         fst, name, params = c
+        params = params if isinstance(params, Tree) else None
         qualifiers, rtype = self._fully_specified(fst)
         return A.FunctionPrototype(
             qualifiers=qualifiers,
             return_type=rtype,
             name=str(name),
-            params=[self.node(p) for p in params.children] if params is not None else [],
+            params=[self.node(p) for p in self.trees(params.children)] if params is not None else [],
             name_loc=self.loc(name),
         )
 
@@ -483,7 +519,7 @@ class _Builder:
         return A.Layout(ids=[self.node(x) for x in c])
 
     def _build_layout_id(self, t, c):
-        name, value = c
+        name, value = c[0], c[-1]
         return A.LayoutId(name=str(name), value=self._int_value(value)[0] if value is not None else None)
 
     def _build_layout_shared(self, t, c):
@@ -626,7 +662,7 @@ class _Builder:
         if args is None or args.data == "void_arguments":
             arg_nodes = []
         else:
-            arg_nodes = [self.node(a) for a in args.children]
+            arg_nodes = [self.node(a) for a in self.trees(args.children)]
         call = A.Call(args=arg_nodes, callee_loc=self.loc(callee))
         kind = callee.data
         if kind == "callee_name":
@@ -644,6 +680,10 @@ class _Builder:
             call.array = self.node(callee.children[1])
             call.constructor = True
         return call
+
+    def _build_primary_expression(self, t, c):
+        # `( expression )`: the parentheses leave no node behind.
+        return self.node(c[0])
 
     def _build_identifier(self, t, c):
         return A.Identifier(name=str(c[0]))
