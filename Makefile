@@ -27,8 +27,10 @@ $(STAMP): pyproject.toml
 
 setup: system-deps $(STAMP)
 
+# The main job: check the lab and the corpus, lint the lab as the course grades it.
 run: setup
-	$(VENV)/bin/glslcheck parse lab_shaders tests/corpus
+	$(VENV)/bin/glslcheck check lab_shaders tests/corpus
+	$(VENV)/bin/glslcheck lint lab_shaders
 
 test: setup
 	$(PY) -m pytest -q
