@@ -60,7 +60,10 @@ def main(argv: list[str] | None = None) -> int:
     # Only import the chosen subcommand's module (startup time matters for hooks).
     only = argv[0] if argv and not argv[0].startswith("-") else None
     parser = build_parser(only)
-    args = parser.parse_args(argv)
+    try:
+        args = parser.parse_args(argv)
+    except SystemExit as e:  # usage errors (2) and --help/--version (0) return, not raise
+        return int(e.code or 0)
     if not getattr(args, "_run", None):
         parser.print_help(sys.stderr)
         return 2

@@ -1,0 +1,114 @@
+"""Reading shaders: tab names, folders, plain GLSL files, encodings, and I/O errors (exit 2)."""
+
+from __future__ import annotations
+
+import os
+
+import pytest
+
+from glslcheck.cli import main
+from glslcheck.diagnostics import InputError
+from glslcheck.sources import find_shaders, load_shader, read_source, tab_name
+
+
+@pytest.mark.parametrize(
+    "name,tab",
+    [("Image.glsl", "Image"), ("image", "Image"), ("IMAGE.FRAG", "Image"), ("Common.txt", "Common"),
+     ("Buffer A.glsl", "Buffer A"), ("buffer_a.glsl", "Buffer A"), ("buffer-b.frag", "Buffer B"),
+     ("BufferD", "Buffer D"), ("Cube A.glsl", "Cube A"), ("sound.glsl", "Sound"), ("spheres.glsl", None)],
+)
+def test_tab_names(name, tab):
+    assert tab_name(name) == tab
+
+
+def test_folder_of_tabs_and_common_first(tmp_path):
+    (tmp_path / "Image.glsl").write_text("void mainImage(out vec4 c, in vec2 f) { c = vec4(g()); }\n")
+    (tmp_path / "common.glsl").write_text("float g() { return 1.0; }\n")
+    (tmp_path / "notes.md").write_text("not a shader")
+    shader = load_shader(tmp_path)
+    assert sorted(shader.tabs) == ["Common", "Image"]
+    assert [s.tab for s in shader.units_for("Image")] == ["Common", "Image"]
+
+
+def test_image_file_picks_up_sibling_common(tmp_path):
+    (tmp_path / "Image.glsl").write_text("void mainImage(out vec4 c, in vec2 f) { c = vec4(g()); }\n")
+    (tmp_path / "Common.glsl").write_text("float g() { return 1.0; }\n")
+    shader = load_shader(tmp_path / "Image.glsl")
+    assert [s.tab for s in shader.units_for("Image")] == ["Common", "Image"]
+
+
+def test_two_files_for_one_tab_is_an_error(tmp_path):
+    (tmp_path / "Image.glsl").write_text("x")
+    (tmp_path / "image.frag").write_text("y")
+    with pytest.raises(InputError, match="second file for the Image tab"):
+        load_shader(tmp_path)
+
+
+def test_plain_glsl_file_is_taken_as_is(tmp_path):
+    p = tmp_path / "Image.glsl"
+    p.write_text("#version 300 es\nprecision highp float;\nout vec4 o;\nvoid main() { o = vec4(1.0); }\n")
+    assert read_source(p).is_plain_glsl
+
+
+def test_bom_crlf_and_lone_cr_keep_lines(tmp_path):
+    p = tmp_path / "Image.glsl"
+    p.write_bytes(b"\xef\xbb\xbf// a\r\nfloat x;\rfloat y;\n")
+    assert read_source(p).text == "// a\nfloat x;\nfloat y;\n"
+
+
+def test_non_utf8_names_line_and_column(tmp_path):
+    p = tmp_path / "Image.glsl"
+    p.write_bytes(b"// ok\n// caf\xe9\n")
+    with pytest.raises(InputError) as info:
+        read_source(p)
+    assert f"{p}:2:7: error: the file is not UTF-8" in str(info.value)
+
+
+def test_walk_finds_loose_files_and_tab_folders(tmp_path):
+    (tmp_path / "a.glsl").write_text("x")
+    (tmp_path / "part").mkdir()
+    (tmp_path / "part" / "Image.glsl").write_text("y")
+    shaders = find_shaders([str(tmp_path)])
+    assert len(shaders) == 2
+
+
+@pytest.mark.parametrize("command", ["parse", "check", "lint"])
+def test_missing_file_exits_2_without_traceback(command, tmp_path, capsys):
+    assert main([command, str(tmp_path / "nope.glsl")]) == 2
+    err = capsys.readouterr().err
+    assert "no such file" in err and "Traceback" not in err
+
+
+def test_unreadable_file_exits_2(tmp_path, capsys):
+    if os.geteuid() == 0:
+        pytest.skip("root can read any file; permission errors cannot be produced here")
+    p = tmp_path / "Image.glsl"
+    p.write_text("x")
+    p.chmod(0)
+    assert main(["parse", str(p)]) == 2
+    assert "permission denied" in capsys.readouterr().err
+
+
+def test_binary_file_exits_2(tmp_path, capsys):
+    p = tmp_path / "Image.glsl"
+    p.write_bytes(bytes(range(256)))
+    assert main(["parse", str(p)]) == 2
+    assert "not UTF-8" in capsys.readouterr().err
+
+
+def test_parse_cli_exit_codes_and_output(tmp_path, capsys):
+    good = tmp_path / "good.glsl"
+    good.write_text("void mainImage(out vec4 c, in vec2 f) { c = vec4(1.0); }\n")
+    bad = tmp_path / "bad.glsl"
+    bad.write_text("void mainImage(out vec4 c, in vec2 f) {\n    c = vec4(1.0)\n}\n")
+    assert main(["parse", str(good)]) == 0
+    assert main(["parse", "--print", str(good)]) == 0
+    assert "c = vec4(1.0);" in capsys.readouterr().out
+    assert main(["parse", "--ast", str(good)]) == 0
+    assert "FunctionDefinition" in capsys.readouterr().out
+    assert main(["parse", str(good), str(bad)]) == 1
+    err = capsys.readouterr().err
+    assert f"{bad}:2:18: error: expected ';' after this statement" in err
+    assert "    c = vec4(1.0)\n" in err and "^" in err
+    assert main(["parse"]) == 2
+    assert main(["frobnicate"]) == 2
