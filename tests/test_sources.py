@@ -2,8 +2,6 @@
 
 from __future__ import annotations
 
-import os
-
 import pytest
 
 from glslcheck.cli import main
@@ -79,12 +77,20 @@ def test_missing_file_exits_2_without_traceback(command, tmp_path, capsys):
     assert "no such file" in err and "Traceback" not in err
 
 
-def test_unreadable_file_exits_2(tmp_path, capsys):
-    if os.geteuid() == 0:
-        pytest.skip("root can read any file; permission errors cannot be produced here")
+def test_unreadable_file_exits_2(tmp_path, capsys, monkeypatch):
+    # As root (CI) chmod 0 does not stop a read, so the OS error is simulated at open().
     p = tmp_path / "Image.glsl"
     p.write_text("x")
-    p.chmod(0)
+    import builtins
+
+    real_open = builtins.open
+
+    def deny(file, *args, **kwargs):
+        if str(file) == str(p):
+            raise PermissionError(13, "Permission denied", str(file))
+        return real_open(file, *args, **kwargs)
+
+    monkeypatch.setattr(builtins, "open", deny)
     assert main(["parse", str(p)]) == 2
     assert "permission denied" in capsys.readouterr().err
 
