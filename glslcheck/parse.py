@@ -369,18 +369,25 @@ _KEEP_TOKENS = frozenset(
 _VALUE_TOKENS = frozenset({"IDENTIFIER", "TYPE_NAME", "INTCONSTANT", "FLOATCONSTANT"})
 
 
-def _edge_token(tree: Tree, end: int) -> Token | None:
-    """The first (end=0) or last (end=-1) token under a tree, or None for an empty one."""
+def _edge_token(tree: Tree, end: int, memo: dict) -> Token | None:
+    """The first (end=0) or last (end=-1) token under a tree, or None for an empty one.
+    Memoised per tree, so a long left-deep chain (`a + b + ... + z`) costs linear time."""
+    key = (id(tree), end)
+    if key in memo:
+        return memo[key]
+    found = None
     children = tree.children if end == 0 else reversed(tree.children)
     for child in children:
         if child is None:
             continue
         if isinstance(child, Token):
-            return child
-        found = _edge_token(child, end)
+            found = child
+            break
+        found = _edge_token(child, end, memo)
         if found is not None:
-            return found
-    return None
+            break
+    memo[key] = found
+    return found
 
 
 class _Builder:
@@ -389,6 +396,7 @@ class _Builder:
     def __init__(self, locate_span: Callable[[int, int], Location], text: str) -> None:
         self.locate_span = locate_span
         self.text = text
+        self._edges: dict = {}
 
     def build(self, tree: Tree) -> A.TranslationUnit:
         decls = [self.node(c) for c in tree.children if c is not None]
@@ -404,10 +412,10 @@ class _Builder:
         """The span from the first to the last token of a subtree."""
         if isinstance(item, Token):
             return self.locate_span(item.start_pos, item.end_pos)
-        first = _edge_token(item, 0)
+        first = _edge_token(item, 0, self._edges)
         if first is None:
             return self.locate_span(0, 0)
-        last = _edge_token(item, -1)
+        last = _edge_token(item, -1, self._edges)
         return self.locate_span(first.start_pos, last.end_pos)
 
     def node(self, item):
