@@ -1,0 +1,485 @@
+"""Compiling a shader to its NumPy module and rendering it: tiles, lanes, masks, compaction, stats.
+
+This module owns what happens around the generated code (`transpile.py`): executing the module
+in a restricted namespace (`__builtins__` empty; only `rt`, the runtime, and `X`, the lane
+helpers below, are visible), the per-invocation state `State` (uniforms, globals, discard mask,
+statistics), splitting the image into tiles rendered on a thread pool, supersampling, the
+frame cache for shaders that do not animate, and the error for a runaway loop.
+
+Library API:
+
+    prog = compile_numpy(shader)            # parse + check + transpile; GlslError on errors
+    img = prog.render(size=(800, 450), time=0.0, frame=0, mouse=(0, 0, 0, 0), date=None,
+                      time_delta=1/60, frame_rate=60.0, samples=1, precision="float32")
+    # img: float32 (height, width, 4), top row first; the GL backend's render() signature plus
+    # `precision` ("float16" | "float32" | "float64", the float dtype used inside the shader)
+    prog.last_stats                         # lanes per function/branch/loop of the last render
+    module = load_module("shader.py")       # a module written by `glslcheck transpile`
+
+Tiles: TILE_WIDTH x TILE_HEIGHT pixels (16384 lanes) keep every temporary of a large shader in
+the CPU caches; tiles start at even x and y, so derivative quads (2x2, see the runtime) never
+straddle two tiles. Tiles are rendered by `os.cpu_count()` threads (NumPy releases the GIL in
+its loops). Peak memory is a few tiles' temporaries plus the output image.
+"""
+
+from __future__ import annotations
+
+import linecache
+import math
+import os
+import sys
+import threading
+from collections import OrderedDict
+from concurrent.futures import ThreadPoolExecutor
+from dataclasses import dataclass, field
+from typing import Any
+
+import numpy as np
+
+from ..diagnostics import Diagnostic, GlslError, Location
+from ..shadertoy import DEFAULT_DATE, DEFAULT_SIZE, UNIFORMS_BY_NAME
+from .runtime import Runtime, Struct
+
+TILE_WIDTH = 128
+TILE_HEIGHT = 128
+COMPACT_FRACTION = 0.5  # compact a region when fewer than this fraction of the lanes take it
+COMPACT_MIN_LANES = 1024  # below this many lanes gathering costs more than it saves
+CACHE_FRAMES = 8
+# Uniforms that change from frame to frame; a shader that reads none of them renders one image
+# for a whole animation.
+ANIMATED_UNIFORMS = ("iTime", "iFrame", "iTimeDelta", "iDate", "iMouse", "iFrameRate")
+
+
+# ---------------------------------------------------------------------------------------------
+# Per-invocation state and the lane helpers the generated code calls as `X.<name>`
+# ---------------------------------------------------------------------------------------------
+
+
+class State:
+    """What one tile's invocation carries: `lanes`, `width` (tile width, for derivatives),
+    `frag_coord` (vec2 lanes), `frag_coord4` (gl_FragCoord), `discard` (mask), uniforms
+    `u_<name>`, globals `g_<name>`, `stats` (region id -> lanes, shared), `parent` (when this
+    is a compacted view of another state)."""
+
+    def __init__(self, **values: Any) -> None:
+        self.__dict__.update(values)
+
+
+@dataclass
+class _Gathered:
+    values: tuple
+    originals: tuple
+
+
+class Lanes:
+    """Mask and compaction helpers. A mask is None (all lanes of the current lane set) or a bool
+    array of shape (1,) or (lanes,)."""
+
+    NO = np.zeros(1, dtype=np.bool_)
+
+    def __init__(self, meta: dict) -> None:
+        self.meta = meta
+        self.loops = meta.get("loops", {})
+
+    # masks ------------------------------------------------------------------------------------
+    @staticmethod
+    def and_(a, b):
+        if a is None:
+            return b
+        if b is None:
+            return a
+        return a & b
+
+    @staticmethod
+    def or_(a, b):
+        if a is None or b is None:
+            return None
+        return a | b
+
+    def andnot(self, a, b):
+        if b is None:
+            return self.NO
+        nb = ~b
+        return nb if a is None else a & nb
+
+    def refresh(self, m, live, *drop):
+        m = self.and_(m, live)
+        for d in drop:
+            m = self.andnot(m, d)
+        return m
+
+    @staticmethod
+    def not_(m):
+        return None if m is None else ~m
+
+    @staticmethod
+    def live(m) -> bool:
+        return m is None or bool(m.any())
+
+    @staticmethod
+    def true(c) -> bool:
+        """A uniform condition's value (shape (1,) by construction of the uniformity analysis)."""
+        if c.shape[-1] != 1:
+            raise AssertionError("internal error: a condition judged uniform varies across lanes")
+        return bool(c.reshape(-1)[0])
+
+    # statistics and loops ---------------------------------------------------------------------
+    @staticmethod
+    def count(S, rid: int, m) -> None:
+        st = S.stats
+        if st is None:
+            return
+        n = S.lanes if m is None else (int(np.count_nonzero(m)) if m.shape[-1] != 1 else (S.lanes if m[0] else 0))
+        st[rid] = st.get(rid, 0) + n
+
+    def runaway(self, lid: int) -> None:
+        path, line, col = self.loops.get(lid, ("<shader>", 0, 0))
+        cap = self.meta.get("loop_cap", 0)
+        raise GlslError(Diagnostic(
+            f"this loop did not end after {cap:,} iterations; the NumPy renderer stops it (a GPU would "
+            "hang or reset)", Location(path, line, col), rule="numpy-runaway-loop",
+            help="check the loop's condition and step; give it a constant upper bound"))
+
+    # compaction -------------------------------------------------------------------------------
+    @staticmethod
+    def sparse(S, m):
+        """Active lane indices when compacting pays off, else None."""
+        if m is None or S.lanes < COMPACT_MIN_LANES or m.shape[-1] != S.lanes:
+            return None
+        idx = np.flatnonzero(m)
+        if len(idx) >= COMPACT_FRACTION * S.lanes:
+            return None
+        return idx
+
+    @staticmethod
+    def _take(v, idx, lanes):
+        if isinstance(v, np.ndarray):
+            if v.ndim and v.shape[-1] == lanes and lanes != 1:
+                return v[..., idx]
+            return v
+        if isinstance(v, Struct):
+            return v.map(lambda x: Lanes._take(x, idx, lanes))
+        return v
+
+    @staticmethod
+    def _put(old, new, idx, lanes):
+        if new is old:
+            return old
+        if isinstance(new, Struct):
+            return Struct(new.type_name, {k: Lanes._put(old[k], new[k], idx, lanes) for k in new.fields})
+        if not isinstance(new, np.ndarray):
+            return new
+        if old is None:  # a mask that was "every lane"
+            old = np.ones(lanes, dtype=np.bool_)
+        base = np.broadcast_to(old, np.broadcast_shapes(old.shape[:-1], new.shape[:-1]) + (lanes,))
+        out = np.array(base, dtype=old.dtype, copy=True)
+        out[..., idx] = new
+        return out
+
+    def gather(self, S, idx, values: tuple):
+        lanes = S.lanes
+        child = State(**S.__dict__)
+        child.parent = S
+        child.lanes = len(idx)
+        child.gathered = {}
+        for k, v in S.__dict__.items():
+            if k.startswith("g_") or k == "discard" or k == "frag_coord" or k == "frag_coord4":
+                g = self._take(v, idx, lanes)
+                setattr(child, k, g)
+                child.gathered[k] = g
+        gathered = tuple(self._take(v, idx, lanes) for v in values)
+        return child, _Gathered(gathered, values)
+
+    def scatter(self, S, idx, rec: _Gathered, values: tuple):
+        parent = S.parent
+        lanes = parent.lanes
+        for k, g in S.gathered.items():
+            v = getattr(S, k)
+            if v is not g:
+                setattr(parent, k, self._put(getattr(parent, k), v, idx, lanes))
+        for k, v in S.__dict__.items():  # globals first assigned inside the region
+            if k.startswith("g_") and k not in S.gathered:
+                setattr(parent, k, v)
+        out = tuple(self._put(o, v, idx, lanes) if v is not g else o
+                    for o, g, v in zip(rec.originals, rec.values, values))
+        return parent, out
+
+    def push(self, stack: list, S, m, values: tuple):
+        idx = self.sparse(S, m)
+        child, rec = self.gather(S, idx, values)
+        stack.append((idx, rec))
+        return child, rec.values
+
+    def unwind(self, stack: list, S, values: tuple):
+        while stack:
+            idx, rec = stack.pop()
+            S, values = self.scatter(S, idx, rec, values)
+        return S, values
+
+
+# ---------------------------------------------------------------------------------------------
+# Executing generated modules
+# ---------------------------------------------------------------------------------------------
+
+
+def execute_module(source: str, filename: str, meta: dict, precision: str = "float32") -> dict:
+    """Run generated code in a namespace that holds nothing but the runtime and the helpers.
+
+    The source is registered in `linecache` under `filename`, so tracebacks and debuggers show
+    the generated lines (each with its GLSL line in a comment)."""
+    linecache.cache[filename] = (len(source), None, source.splitlines(True), filename)
+    code = compile(source, filename, "exec")
+    ns: dict[str, Any] = {"__builtins__": {}, "__name__": "glslcheck_shader", "rt": Runtime(precision),
+                          "X": Lanes(meta)}
+    exec(code, ns)  # noqa: S102 - generated from a checked AST; every GLSL name is mangled
+    return ns
+
+
+def _uniform_value(rt: Runtime, name: str, value: Any) -> Any:
+    u = UNIFORMS_BY_NAME[name]
+    t = u.glsl_type
+
+    def one(v):
+        if t == "float":
+            return rt.const_float(float(v))
+        if t == "int":
+            return rt.const_int(int(v))
+        n = int(t[-1])
+        return rt.vec(n, *[rt.const_float(float(x)) for x in v])
+
+    if u.array_size:
+        return rt.array(*[one(v) for v in value])
+    return one(value)
+
+
+def _as_date(date) -> tuple[float, float, float, float]:
+    import datetime as _dt
+
+    if date is None:
+        return DEFAULT_DATE
+    if isinstance(date, _dt.datetime):
+        midnight = date.replace(hour=0, minute=0, second=0, microsecond=0)
+        return (float(date.year), float(date.month - 1), float(date.day), (date - midnight).total_seconds())
+    y, m, d, s = date
+    return (float(y), float(m), float(d), float(s))
+
+
+def sample_offsets(samples: int) -> list[tuple[float, float]]:
+    """The GL backend's k*k sub-pixel grid (same order, same values)."""
+    k = math.isqrt(samples) if samples >= 1 else 0
+    if k < 1 or k * k != samples:
+        raise ValueError(f"samples must be a perfect square (1, 4, 9, 16, ...), not {samples}")
+    if k == 1:
+        return [(0.0, 0.0)]
+    return [((i + 0.5) / k - 0.5, (j + 0.5) / k - 0.5) for j in range(k) for i in range(k)]
+
+
+@dataclass
+class RegionStat:
+    kind: str
+    function: str
+    path: str
+    line: int
+    lanes: int
+
+
+@dataclass(eq=False)
+class NumpyProgram:
+    """A shader transpiled to Python; render it as often as needed (thread-safe)."""
+
+    source: str
+    meta: dict
+    filename: str
+    threads: int | None = None
+    last_stats: list[RegionStat] = field(default_factory=list)
+    _modules: dict = field(default_factory=dict, repr=False)
+    _cache: OrderedDict = field(default_factory=OrderedDict, repr=False)
+    _lock: Any = field(default_factory=threading.Lock, repr=False)
+
+    @property
+    def uniforms(self) -> list[str]:
+        """The Shadertoy uniforms the generated code reads (the others are never computed)."""
+        return list(self.meta.get("uniforms", []))
+
+    @property
+    def animated(self) -> bool:
+        return any(u in ANIMATED_UNIFORMS for u in self.uniforms)
+
+    def module(self, precision: str = "float32") -> dict:
+        with self._lock:
+            if precision not in self._modules:
+                self._modules[precision] = execute_module(self.source, self.filename, self.meta, precision)
+            return self._modules[precision]
+
+    def render(
+        self,
+        size: tuple[int, int] = DEFAULT_SIZE,
+        time: float = 0.0,
+        frame: int = 0,
+        mouse: tuple[float, float, float, float] = (0.0, 0.0, 0.0, 0.0),
+        date=None,
+        time_delta: float = 1.0 / 60.0,
+        frame_rate: float = 60.0,
+        samples: int = 1,
+        precision: str = "float32",
+        stats: bool = False,
+    ) -> np.ndarray:
+        """Render one frame: float32 (height, width, 4), row 0 = top of the image, unclamped.
+
+        Arguments as `GLProgram.render`; `precision` is the float dtype inside the shader.
+        Discarded pixels are (0, 0, 0, 0), the GL backend's clear colour."""
+        width, height = int(size[0]), int(size[1])
+        if width < 1 or height < 1:
+            raise ValueError(f"size must be at least 1x1, not {width}x{height}")
+        offsets = sample_offsets(samples)
+        ns = self.module(precision)
+        rt = ns["rt"]
+        values = {
+            "iResolution": (float(width), float(height), 1.0),
+            "iTime": float(time), "iFrame": int(frame), "iMouse": tuple(float(v) for v in mouse),
+            "iDate": _as_date(date), "iTimeDelta": float(time_delta), "iFrameRate": float(frame_rate),
+        }
+        used = self.uniforms
+        key = (width, height, samples, precision, stats,
+               tuple((u, repr(values.get(u, UNIFORMS_BY_NAME[u].default))) for u in used))
+        if not stats:
+            with self._lock:
+                hit = self._cache.get(key)
+                if hit is not None:
+                    self._cache.move_to_end(key)
+                    return hit.copy()
+        base = {f"u_{u}": _uniform_value(rt, u, values.get(u, UNIFORMS_BY_NAME[u].default)) for u in used}
+        proto = State(**base, lanes=1, width=1, stats=None, discard=Lanes.NO, parent=None)
+        with rt.errstate():
+            ns["init_globals"](proto)
+        globals_ = {k: v for k, v in proto.__dict__.items() if k.startswith("g_")}
+        base.update(globals_)
+
+        tiles = [(x0, y0, min(TILE_WIDTH, width - x0), min(TILE_HEIGHT, height - y0))
+                 for y0 in range(0, height, TILE_HEIGHT) for x0 in range(0, width, TILE_WIDTH)]
+        image = np.empty((height, width, 4), dtype=np.float32)  # bottom row first until the end
+        all_stats: list[dict] = []
+
+        def run(tile):
+            x0, y0, tw, th = tile
+            lanes = tw * th
+            ys, xs = np.divmod(np.arange(lanes), tw)
+            acc = None
+            st: dict | None = {} if stats else None
+            for dx, dy in offsets:
+                fx = (xs + x0 + 0.5).astype(rt.F)
+                fy = (ys + y0 + 0.5).astype(rt.F)
+                frag = np.stack([fx + rt.F(dx), fy + rt.F(dy)]) if samples > 1 else np.stack([fx, fy])
+                frag4 = np.stack([fx, fy, np.full_like(fx, 0.5), np.ones_like(fx)])
+                S = State(**base, lanes=lanes, width=tw, frag_coord=frag, frag_coord4=frag4,
+                          discard=Lanes.NO, stats=st, parent=None)
+                with rt.errstate():
+                    color = ns["shade"](S)
+                    color = np.broadcast_to(color, (4, lanes)).astype(np.float64 if samples > 1 else np.float32)
+                    if S.discard is not Lanes.NO:
+                        color = np.where(np.broadcast_to(S.discard, (lanes,)), 0.0, color)
+                acc = color if acc is None else acc + color
+            if samples > 1:
+                acc = acc / len(offsets)
+            image[y0:y0 + th, x0:x0 + tw] = acc.T.reshape(th, tw, 4)
+            if st is not None:
+                all_stats.append(st)
+
+        threads = self.threads or os.cpu_count() or 1
+        if threads > 1 and len(tiles) > 1:
+            with ThreadPoolExecutor(max_workers=threads) as pool:
+                for f in [pool.submit(run, t) for t in tiles]:
+                    f.result()
+        else:
+            for t in tiles:
+                run(t)
+        out = np.ascontiguousarray(image[::-1])
+        if stats:
+            total: dict[int, int] = {}
+            for st in all_stats:
+                for k, v in st.items():
+                    total[k] = total.get(k, 0) + v
+            regions = self.meta.get("regions", {})
+            self.last_stats = [RegionStat(*regions[k], total.get(k, 0)) for k in sorted(regions)]
+        else:
+            with self._lock:
+                self._cache[key] = out.copy()
+                while len(self._cache) > CACHE_FRAMES:
+                    self._cache.popitem(last=False)
+        return out
+
+    def format_stats(self) -> str:
+        """The lanes that ran each function, branch and loop body in the last render."""
+        rows = [f"{'lanes':>12}  {'what':<10} {'function':<20} where"]
+        for r in self.last_stats:
+            rows.append(f"{r.lanes:>12,}  {r.kind:<10} {r.function:<20} {r.path}:{r.line}")
+        return "\n".join(rows)
+
+
+def compile_numpy(shader) -> NumpyProgram:
+    """Parse, check and transpile a shader's Image tab (or plain GLSL file)."""
+    from .transpile import transpile_shader
+
+    t = transpile_shader(shader)
+    prog = NumpyProgram(t.source, t.meta, t.filename)
+    prog.module("float32")  # a broken module fails here, not in the middle of a render
+    return prog
+
+
+def program_from_source(source: str, filename: str = "<glslcheck-numpy module>") -> NumpyProgram:
+    """A NumpyProgram from the text of a generated module (reads its SHADER_META)."""
+    import ast as pyast
+
+    tree = pyast.parse(source)
+    meta = None
+    for node in tree.body:
+        if isinstance(node, pyast.Assign) and any(getattr(t, "id", None) == "SHADER_META" for t in node.targets):
+            meta = pyast.literal_eval(node.value)
+    if meta is None:
+        raise ValueError(f"{filename}: not a module generated by glslcheck transpile (no SHADER_META)")
+    return NumpyProgram(source, meta, filename)
+
+
+def load_module(path: str) -> NumpyProgram:
+    """A module written by `glslcheck transpile`, ready to render."""
+    with open(path, encoding="utf-8") as f:
+        return program_from_source(f.read(), os.path.abspath(path))
+
+
+def standalone_globals(meta: dict) -> dict:
+    """What a generated module needs when run as a script (`python shader.py`)."""
+    precision = "float32"
+    argv = sys.argv[1:]
+    if "--precision" in argv:
+        precision = argv[argv.index("--precision") + 1]
+    return {"rt": Runtime(precision), "X": Lanes(meta)}
+
+
+def run_standalone(ns: dict) -> None:
+    """`python shader.py [-o out.png|out.npy] [--size WxH] [--time T] [--frame N] [--precision P]`."""
+    import argparse
+
+    p = argparse.ArgumentParser(description="Render this transpiled shader with NumPy.")
+    p.add_argument("-o", "--output", default="out.png")
+    p.add_argument("--size", default=f"{DEFAULT_SIZE[0]}x{DEFAULT_SIZE[1]}")
+    p.add_argument("--time", type=float, default=0.0)
+    p.add_argument("--frame", type=int, default=0)
+    p.add_argument("--precision", default="float32")
+    args = p.parse_args()
+    with open(ns["__file__"], encoding="utf-8") as f:
+        prog = program_from_source(f.read(), os.path.abspath(ns["__file__"]))
+    w, h = (int(v) for v in args.size.lower().split("x"))
+    img = prog.render(size=(w, h), time=args.time, frame=args.frame, precision=args.precision)
+    save_image(img, args.output)
+
+
+def save_image(img: np.ndarray, path: str) -> None:
+    """.npy: the float32 array; otherwise an 8-bit image (clamped to [0, 1], *255 + 0.5)."""
+    if str(path).lower().endswith(".npy"):
+        np.save(path, img.astype(np.float32))
+        return
+    from PIL import Image
+
+    with np.errstate(invalid="ignore"):
+        q = np.floor(np.clip(np.nan_to_num(img, nan=0.0), 0.0, 1.0) * 255.0 + 0.5).astype(np.uint8)
+    Image.fromarray(q, "RGBA").save(path)
