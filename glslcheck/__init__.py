@@ -1,3 +1,10 @@
 """glslcheck: parse, check, lint, render on the CPU and verify Shadertoy GLSL ES 3.00."""
 
 __version__ = "0.1.0"
+
+
+def compile(*args, **kwargs):  # noqa: A001 - the public entry point, `glslcheck.compile(path)`
+    """Compile a shader for rendering; see glslcheck.api (imported lazily to keep startup cheap)."""
+    from .api import compile as _compile
+
+    return _compile(*args, **kwargs)

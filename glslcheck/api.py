@@ -1,0 +1,97 @@
+"""The public Python API: compile a Shadertoy shader for a backend and render frames.
+
+    import glslcheck
+    prog = glslcheck.compile("lab_shaders/07_final", backend="numpy")   # or backend="gl"
+    img = prog.render(size=(800, 450), time=0.0, frame=0, mouse=(0, 0, 0, 0), date=None,
+                      precision="float32", samples=1)
+    # img: float32 numpy array (height, width, 4), top row first, values as the shader wrote them
+    #      (not clamped); the Image pass has alpha 1, discarded pixels are (0, 0, 0, 0).
+
+`path` is a tab file, a folder of tabs (see glslcheck/sources.py) or an already loaded
+`Shader`. `compile` raises GlslError (with file:line:col diagnostics) when the shader does not
+parse, check or compile, InputError when the path cannot be read, and GLUnavailable (an
+InputError) for backend="gl" without an OpenGL context.
+
+`render` also takes `time_delta` (iTimeDelta, default 1/60) and `frame_rate` (iFrameRate,
+default 60), as the GL backend does. `precision` is the float type inside the shader:
+"float32" (GLSL highp, the default), "float16" (mediump emulation) or "float64" (a reference);
+the GL backend only has "float32". `samples` = k*k renders a k x k grid of sub-pixel positions
+per pixel and averages them (the same grid on both backends). With backend="numpy",
+`render(..., stats=True)` counts the lanes that ran each function, branch and loop body;
+`prog.format_stats()` prints them.
+"""
+
+from __future__ import annotations
+
+import os
+from typing import Any
+
+import numpy as np
+
+from .shadertoy import DEFAULT_SIZE
+from .sources import Shader, load_shader
+
+BACKENDS = ("numpy", "gl")
+PRECISIONS = ("float16", "float32", "float64")
+
+
+class Program:
+    """A compiled shader: `render(...)` gives float32 (height, width, 4) images."""
+
+    def __init__(self, shader: Shader, backend: str, impl: Any) -> None:
+        self.shader = shader
+        self.backend = backend
+        self.impl = impl
+
+    def render(
+        self,
+        size: tuple[int, int] = DEFAULT_SIZE,
+        time: float = 0.0,
+        frame: int = 0,
+        mouse: tuple[float, float, float, float] = (0.0, 0.0, 0.0, 0.0),
+        date=None,
+        precision: str = "float32",
+        samples: int = 1,
+        time_delta: float = 1.0 / 60.0,
+        frame_rate: float = 60.0,
+        stats: bool = False,
+    ) -> np.ndarray:
+        """One frame; see the module docstring."""
+        if precision not in PRECISIONS:
+            raise ValueError(f"precision must be one of {', '.join(PRECISIONS)}, not {precision!r}")
+        common = dict(size=size, time=time, frame=frame, mouse=mouse, date=date, time_delta=time_delta,
+                      frame_rate=frame_rate, samples=samples)
+        if self.backend == "gl":
+            if precision != "float32":
+                raise ValueError("the GL backend renders in float32 only (the driver's highp)")
+            if stats:
+                raise ValueError("stats=True needs backend='numpy'")
+            return self.impl.render(**common)
+        return self.impl.render(**common, precision=precision, stats=stats)
+
+    def format_stats(self) -> str:
+        if self.backend != "numpy":
+            raise ValueError("lane statistics exist for backend='numpy' only")
+        return self.impl.format_stats()
+
+    @property
+    def source(self) -> str:
+        """The generated Python module (backend='numpy') or the GLSL program (backend='gl')."""
+        return self.impl.source if self.backend == "numpy" else self.impl.program.text
+
+    def __repr__(self) -> str:
+        return f"<glslcheck.Program {self.shader.root!r} backend={self.backend}>"
+
+
+def compile(path: str | os.PathLike | Shader, backend: str = "numpy") -> Program:  # noqa: A001
+    """Load, check and compile a shader for `backend` ("numpy" or "gl")."""
+    if backend not in BACKENDS:
+        raise ValueError(f"backend must be one of {', '.join(BACKENDS)}, not {backend!r}")
+    shader = path if isinstance(path, Shader) else load_shader(path)
+    if backend == "gl":
+        from .gl_backend import compile_gl
+
+        return Program(shader, "gl", compile_gl(shader))
+    from .numpy_backend.program import compile_numpy
+
+    return Program(shader, "numpy", compile_numpy(shader))
