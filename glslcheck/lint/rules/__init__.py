@@ -31,6 +31,12 @@ RULE_TABLE: tuple[tuple[str, str], ...] = (
     ("missing-header", "missing_header"),
     ("missing-credit", "missing_credit"),
     ("unused-suppression", "unused_suppression"),
+    ("uniform-outside-mainimage", "uniform_outside_mainimage"),
+    ("length-comparison", "length_comparison"),
+    ("sqrt-comparison", "sqrt_comparison"),
+    ("pow-small-exponent", "pow_small_exponent"),
+    ("pow-negative-base", "pow_negative_base"),
+    ("unguarded-sqrt", "unguarded_sqrt"),
 )
 
 SECTIONS = ("What it does", "Why is this bad?", "Example", "Use instead")

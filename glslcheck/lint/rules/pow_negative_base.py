@@ -1,0 +1,62 @@
+"""pow() of a base that can be negative: undefined in GLSL, NaN on most GPUs.
+
+## What it does
+Reports `pow(x, y)` when the base `x` can be shown to be possibly negative: it is (or is a
+variable last assigned, on every path, from) a dot product of two different vectors, a
+difference, a negation, `sin`/`cos`/`tan`, a `reflect`/`refract`/`cross` result or a negative
+constant, and is not made non-negative by `max(.., >= 0)`, `clamp(.., >= 0, ..)`, `abs`,
+`dot(v, v)`, `length`, `sqrt`, `exp`, `x * x`, `smoothstep`, `step`, `fract` or a uniform such as
+`iTime`. The analysis is conservative: a parameter or a user function's result of unknown sign
+is not reported. A dot product of two different vectors is taken to be a cosine in [-1, 1], so
+`pow(1.0 - max(dot(n, v), 0.0), 5.0)` is accepted.
+
+## Why is this bad?
+GLSL ES 3.00 (section 8.2): "pow: Results are undefined if x < 0". GPUs compute
+`exp2(y * log2(x))`, which is NaN for a negative `x`: black or flickering pixels where the
+surface faces away from the light. The Lab 4 specular term needs the clamped coefficient
+("we have a similar clamped coefficient"); the course's standards also ask for correct,
+thoughtful code ("Use the most efficient methods (-1 per inefficient/unnecessary practices)").
+
+## Example
+```glsl
+float specular = pow(dot(viewDir, reflected), alpha);
+```
+
+## Use instead
+```glsl
+float specular = pow(max(dot(viewDir, reflected), 0.0), alpha);
+```
+"""
+
+from __future__ import annotations
+
+from typing import Iterator
+
+from ...diagnostics import Diagnostic
+from ._exprs import builtin_call, facts, text
+
+NAME = "pow-negative-base"
+PENALTY = 1
+SEVERITY = "warning"
+NEEDS = "ast"
+
+
+def check(ctx) -> Iterator[Diagnostic]:
+    model = ctx.model
+    for fn in facts(ctx).in_file(ctx.path):
+        for node in fn.nodes:
+            if not builtin_call(model, node, "pow") or len(node.args) != 2:
+                continue
+            base = node.args[0]
+            why = fn.negative_witness(base)
+            if why is None:
+                continue
+            reason, source = why
+            where = "" if fn.contains(base, source) else f": {text(source)} (line {source.loc.line})"
+            yield Diagnostic(
+                f"the base of pow() can be negative ({reason}{where}); pow() is undefined there",
+                base.loc,
+                rule=NAME,
+                severity=SEVERITY,
+                help=f"clamp the base first: pow(max({text(base)}, 0.0), {text(node.args[1])})",
+            )

@@ -1,0 +1,74 @@
+"""pow() with a small constant exponent that a multiply or a square root computes faster.
+
+## What it does
+Reports `pow(x, e)` where the exponent `e` is a constant (a literal or a folded constant
+expression, every component equal) of 2, 3 or 4 (multiply `x` by itself), 0.5 (`sqrt`), -0.5
+(`inversesqrt`), 1 (`x` itself) or -1 (`1.0 / x`).
+
+## Why is this bad?
+The course's coding standards: "Use the most efficient methods (-1 per inefficient/unnecessary
+practices)". `pow` is evaluated as `exp2(e * log2(x))`: two transcendental functions where a
+multiply or one square root does. It is also undefined for `x < 0`, where `x * x` is not.
+
+## Example
+```glsl
+float attenuation = 1.0 / (1.0 + d / I + pow(d / I, 2.0));
+float fresnel = pow(k, 4.0);
+```
+
+## Use instead
+```glsl
+float dI = d / I;
+float attenuation = 1.0 / (1.0 + dI + dI * dI);
+float k2 = k * k;
+float fresnel = k2 * k2;
+```
+"""
+
+from __future__ import annotations
+
+from typing import Iterator
+
+from ...diagnostics import Diagnostic
+from ._exprs import _numbers, builtin_call, facts, text
+
+NAME = "pow-small-exponent"
+PENALTY = 1
+SEVERITY = "warning"
+NEEDS = "ast"
+
+
+def _replacement(e: float, x: str) -> str | None:
+    xx = x if x.replace("_", "").replace(".", "").isalnum() else f"({x})"
+    return {
+        2.0: f"{xx} * {xx}",
+        3.0: f"{xx} * {xx} * {xx}",
+        4.0: f"x2 * x2 with float x2 = {xx} * {xx}",
+        0.5: f"sqrt({x})",
+        -0.5: f"inversesqrt({x})",
+        1.0: f"{x}",
+        -1.0: f"1.0 / {xx}",
+    }.get(e)
+
+
+def check(ctx) -> Iterator[Diagnostic]:
+    model = ctx.model
+    for fn in facts(ctx).in_file(ctx.path):
+        for node in fn.nodes:
+            if not builtin_call(model, node, "pow") or len(node.args) != 2:
+                continue
+            values = _numbers(model.const_value(node.args[1]))
+            if not values or any(v != values[0] for v in values):
+                continue
+            fix = _replacement(values[0], text(node.args[0]))
+            if fix is None:
+                continue
+            e = values[0]
+            shown = f"{e:g}" if e != int(e) else f"{int(e)}"
+            yield Diagnostic(
+                f"pow() with the constant exponent {shown} costs two transcendentals",
+                node.loc,
+                rule=NAME,
+                severity=SEVERITY,
+                help=f"write {fix}",
+            )

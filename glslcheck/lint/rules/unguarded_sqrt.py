@@ -1,0 +1,62 @@
+"""sqrt() or inversesqrt() of a value that can be negative.
+
+## What it does
+Reports `sqrt(x)` and `inversesqrt(x)` when `x` can be shown to be possibly negative, with the
+same conservative analysis as `pow-negative-base`: a dot product of two different vectors, a
+difference (a discriminant `b * b - c`), a negation, `sin`/`cos`, ... not guarded by
+`max(.., 0.0)`, `abs`, `dot(v, v)` and the like. Values of unknown sign (parameters) are not
+reported.
+
+This is a note, not a deduction: the code may test the sign elsewhere (`if (disc < 0.0) return`),
+which this rule does not follow.
+
+## Why is this bad?
+GLSL ES 3.00 (section 8.2): "sqrt: Results are undefined if x < 0"; "inversesqrt: Results
+are undefined if x <= 0". GPUs return NaN, which spreads through every later computation of
+the pixel.
+
+## Example
+```glsl
+float disc = halfB * halfB - c;
+float t = -halfB - sqrt(disc);
+```
+
+## Use instead
+```glsl
+float disc = halfB * halfB - c;
+float t = -halfB - sqrt(max(disc, 0.0)); // the miss is masked with step(0.0, disc)
+```
+"""
+
+from __future__ import annotations
+
+from typing import Iterator
+
+from ...diagnostics import Diagnostic
+from ._exprs import builtin_call, facts, text
+
+NAME = "unguarded-sqrt"
+PENALTY = 0
+SEVERITY = "note"
+NEEDS = "ast"
+
+
+def check(ctx) -> Iterator[Diagnostic]:
+    model = ctx.model
+    for fn in facts(ctx).in_file(ctx.path):
+        for node in fn.nodes:
+            if not builtin_call(model, node, "sqrt", "inversesqrt") or len(node.args) != 1:
+                continue
+            arg = node.args[0]
+            why = fn.negative_witness(arg)
+            if why is None:
+                continue
+            reason, source = why
+            where = "" if fn.contains(arg, source) else f": {text(source)} (line {source.loc.line})"
+            yield Diagnostic(
+                f"the argument of {node.callee}() can be negative ({reason}{where})",
+                arg.loc,
+                rule=NAME,
+                severity=SEVERITY,
+                help=f"guard it: {node.callee}(max({text(arg)}, 0.0)), and mask the result where it was negative",
+            )

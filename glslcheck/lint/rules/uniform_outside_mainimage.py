@@ -1,0 +1,69 @@
+"""A Shadertoy uniform is read in a function other than mainImage.
+
+## What it does
+Reports every reference to a Shadertoy uniform (`iResolution`, `iTime`, `iTimeDelta`,
+`iFrameRate`, `iFrame`, `iChannelTime`, `iChannelResolution`, `iMouse`, `iDate`,
+`iSampleRate`, `iChannel0`..`iChannel3`) inside any function but `mainImage`, one finding per
+reference. A local variable or parameter that shadows a uniform's name (`float iTime = ...`) is
+not a uniform and is not reported.
+
+## Why is this bad?
+The course's coding standards: "Do not reference uniforms in functions other than 'mainImage'
+(-1 per instance): Use the 'mainImage' function provided to call your effect functions. Any
+uniform value to be used in a function must be passed as a parameter when the function is
+called from 'mainImage'." A function that reads only its parameters can be reused, tested with
+other values, and moved to the Common tab (where only `iDate` and `iSampleRate` exist).
+
+## Example
+```glsl
+vec3 lightPosition()
+{
+    return vec3(cos(iTime), 1.0, sin(iTime));
+}
+```
+
+## Use instead
+```glsl
+vec3 lightPosition(in float time)
+{
+    return vec3(cos(time), 1.0, sin(time));
+}
+// in mainImage: vec3 light = lightPosition(iTime);
+```
+"""
+
+from __future__ import annotations
+
+from typing import Iterator
+
+from ... import ast as A
+from ...diagnostics import Diagnostic
+from ._exprs import facts
+
+NAME = "uniform-outside-mainimage"
+PENALTY = 1
+SEVERITY = "warning"
+NEEDS = "ast"
+
+ENTRY = "mainImage"
+
+
+def check(ctx) -> Iterator[Diagnostic]:
+    model = ctx.model
+    for fn in facts(ctx).in_file(ctx.path):
+        name = fn.definition.proto.name
+        if name == ENTRY:
+            continue
+        for node in fn.nodes:
+            if type(node) is not A.Identifier:
+                continue
+            sym = model.symbol_of(node)
+            if sym is None or sym.kind != "uniform":
+                continue
+            yield Diagnostic(
+                f"the uniform '{node.name}' is read in '{name}', not in mainImage",
+                node.loc,
+                rule=NAME,
+                severity=SEVERITY,
+                help=f"add a parameter to '{name}' and pass {node.name} to it from mainImage",
+            )
