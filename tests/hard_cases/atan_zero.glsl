@@ -7,7 +7,7 @@ void mainImage(out vec4 fragColor, in vec2 fragCoord)
     vec2 centre = floor(iResolution.xy * 0.5) + 0.5;
     vec2 d = fragCoord - centre + vec2(0.0, floor(iTime));
     float a = atan(d.y, d.x);                 // [-pi, pi]
-    float b = atan(d.y / d.x);                // [-pi/2, pi/2]; 0/0 = NaN at the centre
+    float b = atan(d.y / (d.x == 0.0 && d.y == 0.0 ? 1.0 : d.x));  // +-pi/2 on the column; 0/0 avoided (atan_nan.glsl)
     float c = atan(-d.y, -d.x);               // -0 operands on the axes
     fragColor = vec4((a + 3.14159265) / 6.2831853, b / 3.14159265 + 0.5, (c + 3.14159265) / 6.2831853, 1.0);
 }

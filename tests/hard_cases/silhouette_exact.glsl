@@ -1,7 +1,7 @@
 // Hard case: pixels exactly on a silhouette.
 // Orthographic rays through pixel centres against a circle of whole-pixel radius 25 centred on a
-// pixel centre: every quantity is a whole number, so h = r*r - dot(d, d) is exactly 0 at the 12
-// pixel centres of the Pythagorean triples (0, 25), (7, 24), (15, 20) ... sqrt(h) is 0 there,
+// pixel centre: every quantity is a whole number, so h = r*r - dot(d, d) is exactly 0 at the 20
+// pixel centres (+-25, 0), (0, +-25), (+-7, +-24), (+-24, +-7), (+-15, +-20), (+-20, +-15): sqrt(h) is 0 there,
 // NaN outside, and `h == 0.0` lights those pixels alone.
 void mainImage(out vec4 fragColor, in vec2 fragCoord)
 {
@@ -10,6 +10,8 @@ void mainImage(out vec4 fragColor, in vec2 fragCoord)
     float radius = 25.0;
     float h = radius * radius - dot(d, d);
     float z = sqrt(h);                                 // NaN where h < 0
-    vec3 n = normalize(vec3(d, z));                    // (d, 0)/25 on the silhouette
+    // Guarded: normalize of a vector with a NaN component is NaN in IEEE arithmetic but finite
+    // (garbage) on llvmpipe, and GLSL does not require NaN propagation.
+    vec3 n = normalize(vec3(d, sqrt(max(h, 0.0))));    // (d, 0)/25 on the silhouette
     fragColor = vec4(z / radius, h == 0.0 ? 1.0 : 0.0, 0.5 + 0.5 * n.x, 1.0);
 }
