@@ -167,6 +167,8 @@ class Lanes:
             return old
         if isinstance(new, Struct):
             return Struct(new.type_name, {k: Lanes._put(old[k], new[k], idx, lanes) for k in new.fields})
+        if new is None:  # a mask meaning "every lane of the compacted set"
+            new = np.ones(len(idx), dtype=np.bool_)
         if not isinstance(new, np.ndarray):
             return new
         if old is None:  # a mask that was "every lane"

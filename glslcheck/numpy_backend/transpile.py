@@ -658,6 +658,9 @@ class Transpiler:
         if sym.kind in ("local", "param"):
             return "v_" + _ident(sym.unique_name or sym.name, node)
         if sym.kind == "global":
+            if sym.type.contains_opaque:
+                raise _error(f"'{sym.name}': textures are not supported by the NumPy backend yet", node,
+                             help="render with --backend gl")
             return "S.g_" + _ident(sym.unique_name or sym.name, node)
         if sym.kind == "uniform":
             from ..shadertoy import UNIFORMS_BY_NAME
@@ -837,17 +840,15 @@ class Transpiler:
         empty = True
         fake = type("G", (), {"name": "<globals>", "node": None})()
         self.fn = FnState(fake, None, True)  # type: ignore[arg-type]
-        for decl in self.model.ast.decls:
-            if not isinstance(decl, A.VariableDeclaration):
-                continue
-            for d in decl.declarators:
-                sym = self.model.symbol_of(d)
-                if sym is None or sym.kind != "global":
-                    continue
-                self.comment_line(d)
-                value = self.expr(d.init, None) if d.init is not None else self.zero(sym.type, d)
-                self.emit(f"{self.var_name(sym, d)} = {value}")
-                empty = False
+        for sym in self.model.globals:
+            if sym.kind != "global" or sym.type.contains_opaque:
+                continue  # samplers: an error where they are used
+            d = sym.node
+            init = d.init if isinstance(d, A.Declarator) else None
+            self.comment_line(d)
+            value = self.expr(init, None) if init is not None else self.zero(sym.type, d)
+            self.emit(f"{self.var_name(sym, d)} = {value}")
+            empty = False
         if empty:
             self.emit("pass")
         self.indent -= 1
@@ -1286,10 +1287,10 @@ class Transpiler:
         self.emit(f"    X.runaway({lid})")
         if ev_body.ret and fs.has_ret:
             self.emit(f"{live} = X.andnot({live}, _ret)")
-        if do_while:
+        if do_while or cond is None:
             self.emit(f"if not X.live({live}):")
             self.emit("    break")
-        elif cond is not None:
+        else:
             c = self.condition(cond, live)
             self.emit(f"{live} = X.and_({live}, {c})")
             self.emit(f"if not X.live({live}):")
