@@ -15,8 +15,10 @@ recognised from its source and checked as such.
 
 from __future__ import annotations
 
+import sys
 from typing import Any
 
+from ..diagnostics import Diagnostic, Location
 from .checker import Checker
 from .model import ERROR, CheckError, ErrorType, Model, Symbol
 
@@ -25,7 +27,18 @@ __all__ = ["check", "Model", "Symbol", "CheckError", "ERROR", "ErrorType"]
 
 def check(parse_result: Any, tab: str = "Image", *, collect: bool = False) -> Model:
     """Check a ParseResult (from parse_shader / parse_units) as the pass `tab`."""
-    model = Checker(parse_result, tab).run()
+    old = sys.getrecursionlimit()
+    # Blocks and expressions nested hundreds deep recurse in the checker (as in parse.py's
+    # builder): allow it; deeper than even this becomes an error at the file's start.
+    sys.setrecursionlimit(max(old, 20000))
+    try:
+        model = Checker(parse_result, tab).run()
+    except RecursionError:
+        sources = getattr(parse_result, "sources", None) or []
+        loc = Location(sources[-1].path, 1, 1) if sources else None
+        raise CheckError([Diagnostic("the program is nested too deeply to analyse", loc)]) from None
+    finally:
+        sys.setrecursionlimit(old)
     order = {s.path: i for i, s in enumerate(getattr(parse_result, "sources", []) or [])}
     model.diagnostics.sort(key=lambda d: (order.get(d.loc.path, len(order)), d.loc.line, d.loc.column)
                            if d.loc else (-1, 0, 0))

@@ -70,6 +70,11 @@ class Checker:
         names = {getattr(n, "name", None) for n in self.ast.walk()}
         names.discard(None)
         self.unique = UniqueNames({n for n in names if isinstance(n, str)})
+        # Default precisions in effect (spec 4.5.4: a fragment shader has none for float and for
+        # most samplers); Shadertoy's prelude sets float, int and sampler3D.
+        self.default_precision: dict[str, str] = {"int": "mediump", "sampler2D": "lowp", "samplerCube": "lowp"}
+        if not self.plain:
+            self.default_precision.update({"float": "highp", "int": "highp", "sampler3D": "mediump"})
         self.builtin_scope = Scope(None, "builtin")
         self.scope = Scope(self.builtin_scope, "global")
         self.global_scope = self.scope
@@ -157,6 +162,32 @@ class Checker:
         t = self.resolve_type(decl.type)
         if t is not ERROR and not (t in (T.FLOAT, T.INT) or t.is_opaque):
             self.error(f"a default precision can be set only for float, int and sampler types, not '{t}'", decl)
+        elif t is not ERROR:
+            self.default_precision[str(t)] = decl.precision
+
+    def require_precision(self, t: T.Type, words: Iterable[str], node: Any) -> None:
+        """A float or sampler declaration needs a precision: its own or a default (spec 4.5.4)."""
+        while t.is_array:
+            t = t.element
+        if t.base == "float":
+            key = "float"
+        elif t.is_opaque:
+            key = str(t)
+        else:
+            return
+        if key in self.default_precision or any(w in ("highp", "mediump", "lowp") for w in words):
+            return
+        self.error(f"no precision is given for '{key}' and this shader sets no default for it", node,
+                   help=f"add 'precision highp {key};' after the #version line")
+
+    def qualifier_words(self, words: list[str], node: Any) -> None:
+        """At most one storage and one precision qualifier (spec 4.3, 4.5.2)."""
+        storage = [w for w in words if w in ("const", "uniform", "in", "out", "inout", "centroid in", "centroid out")]
+        precision = [w for w in words if w in ("highp", "mediump", "lowp")]
+        if len(storage) > 1:
+            self.error(f"too many storage qualifiers: {' '.join(storage)}", node, help="keep one of them")
+        if len(precision) > 1:
+            self.error(f"too many precision qualifiers: {' '.join(precision)}", node, help="keep one of them")
 
     # -- names ---------------------------------------------------------------------------------
     def check_name(self, name: str, node: Any) -> bool:
@@ -257,6 +288,7 @@ class Checker:
             if mt is ERROR:
                 ok = False
                 continue
+            self.require_precision(mt, member.qualifiers.words if member.qualifiers else (), member.type)
             for d in member.declarators:
                 ft = self.with_array(mt, d.array, d)
                 if ft is ERROR:
@@ -292,12 +324,16 @@ class Checker:
     # -- declarations --------------------------------------------------------------------------
     def variable_declaration(self, decl: A.VariableDeclaration, is_global: bool) -> None:
         storage = decl.qualifiers.storage if decl.qualifiers is not None else None
+        if decl.qualifiers is not None:
+            self.qualifier_words(decl.qualifiers.words, decl.qualifiers)
         base = self.resolve_type(decl.type)
         if not decl.declarators:
             return  # `struct S {...};` or `float;`
         if storage in ("uniform", "in", "out", "centroid in", "centroid out") and not is_global:
             self.error(f"a local variable cannot be '{storage}'", decl.qualifiers,
                        help="only global variables take 'uniform', 'in' or 'out'")
+        if base is not ERROR:
+            self.require_precision(base, decl.qualifiers.words if decl.qualifiers else (), decl.type)
         for d in decl.declarators:
             self.declarator(d, base, storage, is_global, decl)
 
@@ -325,7 +361,7 @@ class Checker:
         sym = Symbol(d.name, "global" if is_global else "local", t, node=d, qualifier=storage)
         if d.init is not None:
             self.initializer(d, t, init_t, storage, is_global)
-            if storage == "const" and self.is_const(d.init):
+            if storage == "const" and self.is_const(d.init) and init_t == t:
                 sym.const_value = self.model.const_value(d.init)
         elif storage == "const":
             self.error(f"the const '{d.name}' needs an initial value", d,
@@ -365,8 +401,12 @@ class Checker:
     # -- functions -----------------------------------------------------------------------------
     def function(self, proto: A.FunctionPrototype, definition: A.FunctionDefinition | None) -> None:
         ret = self.resolve_type(proto.return_type)
+        if proto.qualifiers is not None:
+            self.qualifier_words(proto.qualifiers.words, proto.qualifiers)
         if proto.qualifiers is not None and proto.qualifiers.storage is not None:
             self.error(f"a function's return type cannot be '{proto.qualifiers.storage}'", proto.qualifiers)
+        if ret is not ERROR and not ret.is_void:
+            self.require_precision(ret, proto.qualifiers.words if proto.qualifiers else (), proto.return_type)
         if ret is not ERROR and ret.contains_opaque:
             self.error("a function cannot return a sampler", proto.return_type)
         if ret is not ERROR and ret.is_array and ret.array_size is None:
@@ -376,6 +416,9 @@ class Checker:
             pt = self.resolve_type(p.type)
             pt = self.with_array(pt, p.array, p)
             storage = [q for q in p.qualifiers if q in ("const", "in", "out", "inout")]
+            precision = [q for q in p.qualifiers if q in ("highp", "mediump", "lowp")]
+            if len(precision) > 1:
+                self.error(f"too many precision qualifiers: {' '.join(precision)}", p, help="keep one of them")
             if "const" in storage and any(q in ("out", "inout") for q in storage):
                 self.error(f"a parameter cannot be both 'const' and '{p.direction}'", p,
                            help="an 'out' parameter is written by the function; drop 'const'")
@@ -386,6 +429,8 @@ class Checker:
                     continue  # f(void)
                 self.error("a parameter cannot be 'void'", p)
                 pt = ERROR
+            if pt is not ERROR and not pt.is_void:
+                self.require_precision(pt, p.qualifiers, p.type or p)
             if pt is not ERROR and pt.is_array and pt.array_size is None:
                 self.error("an array parameter needs a size", p)
                 pt = ERROR

@@ -126,6 +126,21 @@ def _scalar_op(op: str, base: str, a: Any, b: Any) -> Any:
     raise ValueError(op)
 
 
+def _guarded(fn: Callable[..., Any]) -> Callable[..., Any]:
+    """A folding function gives UNKNOWN instead of failing on a value it did not expect."""
+
+    def wrapped(*args: Any) -> Any:
+        try:
+            return fn(*args)
+        except (TypeError, IndexError, ValueError, ZeroDivisionError, OverflowError):
+            return UNKNOWN
+
+    wrapped.__name__ = fn.__name__
+    wrapped.__doc__ = fn.__doc__
+    return wrapped
+
+
+@_guarded
 def binary(op: str, lt: T.Type, rt: T.Type, result: T.Type, a: Any, b: Any) -> Any:
     if not known(a, b):
         return UNKNOWN
@@ -168,6 +183,7 @@ def _linear_multiply(lt: T.Type, rt: T.Type, result: T.Type, a: Any, b: Any) -> 
     return build(result, out)
 
 
+@_guarded
 def unary(op: str, t: T.Type, v: Any) -> Any:
     if not known(v):
         return UNKNOWN
@@ -187,6 +203,7 @@ def unary(op: str, t: T.Type, v: Any) -> Any:
 # Constructors, selection
 
 
+@_guarded
 def construct(target: T.Type, arg_types: list[T.Type], values: list[Any]) -> Any:
     if not known(*values):
         return UNKNOWN
@@ -227,6 +244,7 @@ def _convert(c: Any, base: str) -> Any:
     return c
 
 
+@_guarded
 def swizzle(v: Any, indices: tuple[int, ...]) -> Any:
     if not known(v):
         return UNKNOWN
@@ -235,6 +253,7 @@ def swizzle(v: Any, indices: tuple[int, ...]) -> Any:
     return tuple(v[i] for i in indices)
 
 
+@_guarded
 def index(v: Any, i: Any) -> Any:
     if not known(v, i):
         return UNKNOWN
@@ -291,6 +310,7 @@ _COMPONENTWISE: dict[str, Callable[..., Any]] = {
 }
 
 
+@_guarded
 def builtin(name: str, param_types: tuple[T.Type, ...], result: T.Type, values: list[Any]) -> Any:
     """The value of built-in `name` on constant arguments, or UNKNOWN."""
     if not known(*values):

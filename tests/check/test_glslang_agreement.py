@@ -10,6 +10,7 @@ from __future__ import annotations
 
 import importlib.util
 import subprocess
+import sys
 from pathlib import Path
 
 import pytest
@@ -26,6 +27,7 @@ VALID = sorted(p for p in (ROOT / "tests" / "corpus").glob("*") if not p.name.st
 def _load_tool():
     spec = importlib.util.spec_from_file_location("mutation_agreement", ROOT / "tools" / "mutation_agreement.py")
     mod = importlib.util.module_from_spec(spec)
+    sys.modules["mutation_agreement"] = mod  # dataclasses look their module up
     spec.loader.exec_module(mod)
     return mod
 
