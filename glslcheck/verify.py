@@ -182,9 +182,15 @@ def compile_backend(shader: Shader, backend: str):
     if backend == "numpy":
         try:
             from . import api
+        except ImportError:
+            api = None
+        if api is not None and hasattr(api, "compile"):
+            return api.compile(shader, backend="numpy")
+        try:
+            from .numpy_backend.program import compile_numpy
         except ImportError as e:
             raise InputError(f"error: the NumPy backend is not available in this build ({e})") from None
-        return api.compile(shader, backend="numpy")
+        return compile_numpy(shader)
     raise ValueError(f"unknown backend {backend!r}; expected one of {', '.join(BACKENDS)}")
 
 
