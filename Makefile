@@ -27,10 +27,13 @@ $(STAMP): pyproject.toml
 
 setup: system-deps $(STAMP)
 
-# The main job: check the lab and the corpus, lint the lab as the course grades it.
+# The main job: check the lab and the corpus, lint the lab as the course grades it, render
+# the gallery on the CPU, and verify every part against OpenGL at several times.
 run: setup
 	$(VENV)/bin/glslcheck check lab_shaders tests/corpus
 	$(VENV)/bin/glslcheck lint lab_shaders
+	GLSLCHECK=$(VENV)/bin/glslcheck tools/update_gallery.sh
+	$(VENV)/bin/glslcheck verify lab_shaders/*/ --size 320x180 --times 0,1.7,5.3
 
 test: setup
 	$(PY) -m pytest -q
