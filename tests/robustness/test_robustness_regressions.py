@@ -1,0 +1,135 @@
+"""Regression tests for bad input (issue 9): one case per crash the fuzzer (tools/fuzz.py) or a
+hand-made limit case found, each with the minimal input, plus the inputs students really produce
+(BOM, CRLF, tabs, non-ASCII, NUL, empty files, comment-only files, binary files).
+
+Every case runs the command in-process through `glslcheck.cli.main` and asserts the contract
+of issue 9: no traceback, an exit code in {0, 1, 2}, every error line naming the user's file
+with a line and column inside it, and the file left unchanged.
+"""
+
+from __future__ import annotations
+
+import contextlib
+import io
+import re
+from pathlib import Path
+
+import pytest
+
+from glslcheck.cli import main
+
+MAIN = "void mainImage(out vec4 fragColor, in vec2 fragCoord) {"
+
+
+def run_cli(command: str, data: bytes | str, tmp_path: Path, name: str = "shader.glsl",
+            extra: tuple[str, ...] = ()) -> tuple[int, str, str]:
+    """Run `glslcheck COMMAND FILE` in-process; assert the issue-9 contract; return (rc, out, err)."""
+    path = tmp_path / name
+    raw = data.encode("utf-8") if isinstance(data, str) else data
+    path.write_bytes(raw)
+    out, err = io.StringIO(), io.StringIO()
+    with contextlib.redirect_stdout(out), contextlib.redirect_stderr(err):
+        rc = main([command, str(path), *extra])
+    out_s, err_s = out.getvalue(), err.getvalue()
+    assert "Traceback" not in out_s + err_s, err_s
+    assert rc in (0, 1, 2), (rc, err_s)
+    assert path.read_bytes() == raw, "the command modified the shader file"
+    lines = max(raw.count(b"\n"), raw.count(b"\r")) + 1
+    for line in (out_s + err_s).splitlines():
+        if ": error:" in line and not line.startswith("glslcheck"):
+            m = re.match(rf"{re.escape(str(path))}:(\d+):(\d+): error:", line)
+            assert m, f"an error without file:line:col: {line!r}"
+            assert 1 <= int(m.group(1)) <= lines, line
+    return rc, out_s, err_s
+
+
+def error_lines(err: str) -> list[str]:
+    return [line for line in err.splitlines() if ": error:" in line]
+
+
+# --- crashes found -------------------------------------------------------------------------
+
+
+@pytest.mark.parametrize("command", ["parse", "check", "lint"])
+def test_500_nested_blocks(tmp_path, command):
+    """Crash: the checker's statement walk recursed once per `{` and raised RecursionError at
+    about 330 levels (fixed in glslcheck/check/__init__.py: the recursion limit is raised while
+    checking, as parse.py does while building). 500 levels is a documented limit."""
+    text = "void mainImage(out vec4 c, in vec2 f) { " + "{" * 500 + "}" * 500 + " }\n"
+    rc, _, err = run_cli(command, text, tmp_path)
+    if command != "lint":
+        assert rc == 0, err
+
+
+def test_nesting_beyond_any_limit_is_an_error_at_1_1(tmp_path):
+    """5000 nested `1.0+(...)`: deeper than the recursion budget, so a clear error at 1:1."""
+    text = "void mainImage(out vec4 c, in vec2 f) { c = vec4(" + "1.0+(" * 5000 + "1.0" + ")" * 5000 + "); }\n"
+    rc, _, err = run_cli("check", text, tmp_path)
+    assert rc == 1
+    assert "nested too deeply" in err and ":1:1: error:" in err
+
+
+# --- inputs students produce ---------------------------------------------------------------
+
+GOOD = f"{MAIN}\n\tfragColor = vec4(fragCoord.x, 0.0, 0.0, 1.0);\n}}\n"
+
+
+@pytest.mark.parametrize("command", ["parse", "check"])
+@pytest.mark.parametrize(
+    "variant",
+    [
+        pytest.param(b"\xef\xbb\xbf" + GOOD.encode(), id="bom"),
+        pytest.param(GOOD.replace("\n", "\r\n").encode(), id="crlf"),
+        pytest.param(GOOD.replace("\n", "\r").encode(), id="cr"),
+        pytest.param(GOOD.replace("\n", "\r\n", 1).encode(), id="mixed"),
+        pytest.param(("// héllo wörld, 日本語 comment\n" + GOOD).encode(), id="non-ascii-comment"),
+    ],
+)
+def test_everyday_variants_are_clean(tmp_path, command, variant):
+    rc, _, err = run_cli(command, variant, tmp_path)
+    assert rc == 0, err
+
+
+@pytest.mark.parametrize("command", ["parse", "check", "lint"])
+def test_non_ascii_identifier_is_a_clear_error(tmp_path, command):
+    text = f"{MAIN}\n    float é = 1.0;\n    fragColor = vec4(é);\n}}\n"
+    rc, _, err = run_cli(command, text, tmp_path)
+    assert rc == 1
+    if command != "lint":
+        assert error_lines(err)[0].startswith(f"{tmp_path / 'shader.glsl'}:2:11: error:")
+
+
+@pytest.mark.parametrize("command", ["parse", "check"])
+def test_nul_byte(tmp_path, command):
+    rc, _, err = run_cli(command, f"{MAIN}\n    fragColor = vec4(1.0);\0\n}}\n", tmp_path)
+    assert rc == 1
+    assert ":2:27: error:" in err and "NUL" in err
+
+
+def test_empty_file(tmp_path):
+    """parse: an empty file is a valid (empty) program; check: an Image tab without mainImage
+    is an error at 1:1; lint: nothing to deduct from a file with no code."""
+    assert run_cli("parse", "", tmp_path)[0] == 0
+    rc, _, err = run_cli("check", "", tmp_path)
+    assert rc == 1 and ":1:1: error:" in err and "mainImage" in err
+    assert run_cli("lint", "", tmp_path)[0] in (0, 1)
+
+
+def test_comment_only_file(tmp_path):
+    text = "// nothing here yet\n/* TODO */\n"
+    assert run_cli("parse", text, tmp_path)[0] == 0
+    rc, _, err = run_cli("check", text, tmp_path)
+    assert rc == 1 and ":1:1: error:" in err
+
+
+@pytest.mark.parametrize("command", ["parse", "check", "lint"])
+def test_binary_file_is_exit_2(tmp_path, command):
+    rc, _, err = run_cli(command, b"\x89PNG\r\n\x1a\n\x00\x00\x00\rIHDR\xff\xfe", tmp_path)
+    assert rc == 2 and "not UTF-8" in err
+
+
+@pytest.mark.parametrize("command", ["parse", "check", "lint"])
+def test_unterminated_comment_and_half_written_function(tmp_path, command):
+    text = f"{MAIN}\n    fragColor = vec4(\n/* still typing"
+    rc, _, _ = run_cli(command, text, tmp_path)
+    assert rc == 1
