@@ -29,6 +29,7 @@ from .sources import Shader, Source
 
 # GLSL ES 3.00 section 3.7: words reserved for future use; using one as a name is an error.
 from .builtins import KEYWORDS, RESERVED_WORDS  # noqa: E402  (one table, shared with the checker)
+from .types import BY_NAME  # noqa: E402
 
 # Words a user might mean: what each terminal is called in an error message.
 _TOKEN_WORDS = {
@@ -242,12 +243,7 @@ def _what_statement(history: list[Token]) -> str:
     return "statement"
 
 
-_BASIC_TYPES = frozenset(
-    """void float int uint bool vec2 vec3 vec4 bvec2 bvec3 bvec4 ivec2 ivec3 ivec4 uvec2 uvec3 uvec4
-    mat2 mat3 mat4 mat2x2 mat2x3 mat2x4 mat3x2 mat3x3 mat3x4 mat4x2 mat4x3 mat4x4 sampler2D sampler3D
-    samplerCube sampler2DShadow samplerCubeShadow sampler2DArray sampler2DArrayShadow isampler2D
-    isampler3D isamplerCube isampler2DArray usampler2D usampler3D usamplerCube usampler2DArray""".split()
-)
+_BASIC_TYPES = frozenset(BY_NAME)  # every built-in type name, from the one type table
 
 
 def _innermost_open(brackets: list[Token], tok: Token) -> Token | None:
