@@ -37,6 +37,9 @@ RULE_TABLE: tuple[tuple[str, str], ...] = (
     ("pow-small-exponent", "pow_small_exponent"),
     ("pow-negative-base", "pow_negative_base"),
     ("unguarded-sqrt", "unguarded_sqrt"),
+    ("repeated-expression", "repeated_expression"),
+    ("loop-invariant", "loop_invariant"),
+    ("branch-replaceable", "branch_replaceable"),
 )
 
 SECTIONS = ("What it does", "Why is this bad?", "Example", "Use instead")

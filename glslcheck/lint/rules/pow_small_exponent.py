@@ -30,7 +30,7 @@ from __future__ import annotations
 from typing import Iterator
 
 from ...diagnostics import Diagnostic
-from ._exprs import _numbers, builtin_call, facts, text
+from ._exprs import _numbers, builtin_call, facts, is_simple, text, wrap
 
 NAME = "pow-small-exponent"
 PENALTY = 1
@@ -38,16 +38,20 @@ SEVERITY = "warning"
 NEEDS = "ast"
 
 
-def _replacement(e: float, x: str) -> str | None:
-    xx = x if x.replace("_", "").replace(".", "").isalnum() else f"({x})"
+def _replacement(e: float, base) -> str | None:
+    x = text(base)
+    if is_simple(base):
+        v, pre = x, ""
+    else:
+        v, pre = "v", f"float v = {x}; then "
     return {
-        2.0: f"{xx} * {xx}",
-        3.0: f"{xx} * {xx} * {xx}",
-        4.0: f"x2 * x2 with float x2 = {xx} * {xx}",
+        2.0: f"{pre}{v} * {v}",
+        3.0: f"{pre}{v} * {v} * {v}",
+        4.0: f"{pre}float v2 = {v} * {v}; then v2 * v2",
         0.5: f"sqrt({x})",
         -0.5: f"inversesqrt({x})",
         1.0: f"{x}",
-        -1.0: f"1.0 / {xx}",
+        -1.0: f"1.0 / {wrap(base)}",
     }.get(e)
 
 
@@ -60,7 +64,7 @@ def check(ctx) -> Iterator[Diagnostic]:
             values = _numbers(model.const_value(node.args[1]))
             if not values or any(v != values[0] for v in values):
                 continue
-            fix = _replacement(values[0], text(node.args[0]))
+            fix = _replacement(values[0], node.args[0])
             if fix is None:
                 continue
             e = values[0]

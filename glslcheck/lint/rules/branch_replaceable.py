@@ -1,0 +1,246 @@
+"""A branch selects what max, min, clamp, step or mix computes without one.
+
+## What it does
+Reports an `if`/`else` or a `?:` whose only job is a selection a built-in makes branch-free,
+and shows the replacement:
+
+* `a > b ? a : b` -> `max(a, b)`, `a < b ? a : b` -> `min(a, b)` (any of `< <= > >=`, either
+  order), and the statement forms `if (x < 0.0) x = 0.0;` -> `x = max(x, 0.0);`,
+  `if (a > b) m = a; else m = b;` -> `m = max(a, b);`;
+* a max of a min with constant bounds (`x < lo ? lo : (x > hi ? hi : x)`) -> `clamp(x, lo, hi)`;
+* `x >= e ? 1.0 : 0.0` -> `step(e, x)` (and the other comparisons, exactly:
+  `x > e ? 1.0 : 0.0` is `1.0 - step(x, e)`);
+* `x < e ? a : b` with `a` and `b` cheap float values (names, literals, fields, swizzles,
+  constants) -> `mix(a, b, step(e, x))`, also as `if (..) v = a; else v = b;`.
+
+The condition must be one comparison of two float (or, for min/max, int) scalars; the
+statement forms must be a single assignment to the same variable in each arm.
+
+## Why is this bad?
+The course's coding standards: "Use inefficient functions and methods sparingly and out of
+necessity (including but not limited to conditionals, square roots, etc.)" (-1 per instance).
+On a GPU the pixels of a group run in lockstep: a data-dependent branch makes the group run both
+arms; `max`, `min`, `clamp`, `step` and `mix` are single instructions.
+
+## Example
+```glsl
+float kD = dot(normal, lightDir);
+if (kD < 0.0) kD = 0.0;
+vec3 color = t > 0.0 ? surface : background;
+```
+
+## Use instead
+```glsl
+float kD = max(dot(normal, lightDir), 0.0);
+vec3 color = mix(background, surface, step(0.0, t)); // t == 0.0 counts as a hit here
+```
+"""
+
+from __future__ import annotations
+
+from typing import Any, Iterator
+
+from ... import ast as A
+from ...diagnostics import Diagnostic
+from ._exprs import _numbers, facts, text
+
+NAME = "branch-replaceable"
+PENALTY = 1
+SEVERITY = "warning"
+NEEDS = "ast"
+
+_OPS = ("<", "<=", ">", ">=")
+
+
+def check(ctx) -> Iterator[Diagnostic]:
+    for fn in facts(ctx).in_file(ctx.path):
+        inner: set[int] = set()  # ternaries already explained as part of a clamp
+        for node in fn.nodes:
+            if type(node) is A.Ternary and id(node) not in inner:
+                fix = _select(fn, node.cond, node.then, node.else_, inner)
+                if fix is not None:
+                    yield _finding(node, "?:", fix)
+            elif type(node) is A.If:
+                fix = _if_statement(fn, node)
+                if fix is not None:
+                    yield _finding(node, "if", fix)
+
+
+def _finding(node: Any, what: str, fix: tuple[str, str]) -> Diagnostic:
+    fn_name, replacement = fix
+    kind = "an if/else" if what == "if" else "a ?: selection"
+    return Diagnostic(
+        f"{kind} computes what {fn_name}() computes without a branch",
+        node.loc,
+        rule=NAME,
+        severity=SEVERITY,
+        help=f"write {replacement}",
+    )
+
+
+def _single_assignment(stmt: Any) -> A.Assignment | None:
+    while type(stmt) is A.Compound and len(stmt.stmts) == 1:
+        stmt = stmt.stmts[0]
+    if type(stmt) is A.ExpressionStatement and type(stmt.expr) is A.Assignment and stmt.expr.op == "=":
+        return stmt.expr
+    return None
+
+
+def _if_statement(fn, node: A.If) -> tuple[str, str] | None:
+    then = _single_assignment(node.then)
+    if then is None or not fn.is_pure(then.target):
+        return None
+    if node.else_ is None:
+        other = then.target  # if (c) x = a;  is  x = c ? a : x;
+        allow_mix = False
+    else:
+        other_assign = _single_assignment(node.else_)
+        if other_assign is None or fn.key(other_assign.target) != fn.key(then.target):
+            return None
+        other = other_assign.value
+        allow_mix = True
+    found = _select(fn, node.cond, then.value, other, set(), allow_mix=allow_mix)
+    if found is None:
+        return None
+    name, expr = found
+    return name, f"{text(then.target)} = {expr.removeprefix('`').removesuffix('`')};"
+
+
+def _comparison(fn, cond: Any, *bases: str) -> tuple[Any, str, Any] | None:
+    if type(cond) is not A.Binary or cond.op not in _OPS:
+        return None
+    t = fn.model.type_of(cond.left)
+    if not (getattr(t, "is_scalar", False) and t.base in bases) or fn.model.type_of(cond.right) != t:
+        return None
+    if not (fn.is_pure(cond.left) and fn.is_pure(cond.right)):
+        return None
+    return cond.left, cond.op, cond.right
+
+
+def _minmax(fn, cond, a, b) -> tuple[str, Any, Any] | None:
+    """('max' | 'min', x, y) when `cond ? a : b` is max(x, y) or min(x, y)."""
+    cmp = _comparison(fn, cond, "float", "int", "uint")
+    if cmp is None:
+        return None
+    left, op, right = cmp
+    kl, kr, ka, kb = fn.key(left), fn.key(right), fn.key(a), fn.key(b)
+    if (ka, kb) == (kl, kr):
+        return ("max" if op in (">", ">=") else "min"), left, right
+    if (ka, kb) == (kr, kl):
+        return ("min" if op in (">", ">=") else "max"), left, right
+    return None
+
+
+def _as_minmax(fn, e) -> tuple[str, Any, Any] | None:
+    if type(e) is A.Ternary:
+        return _minmax(fn, e.cond, e.then, e.else_)
+    if type(e) is A.Call and e.callee in ("min", "max") and len(e.args) == 2:
+        return e.callee, e.args[0], e.args[1]
+    return None
+
+
+def _clamp(fn, cond, a, b, inner: set[int]) -> tuple[str, str] | None:
+    """`x < lo ? lo : min(x, hi)` and its mirror images: clamp(x, lo, hi)."""
+    cmp = _comparison(fn, cond, "float", "int", "uint")
+    if cmp is None:
+        return None
+    left, op, right = cmp
+    if _is_const(fn, right) and not _is_const(fn, left):
+        x, bound = left, right
+    elif _is_const(fn, left) and not _is_const(fn, right):
+        x, bound, op = right, left, {"<": ">", "<=": ">=", ">": "<", ">=": "<="}[op]
+    else:
+        return None
+    kb = fn.key(bound)
+    if fn.key(a) == kb:
+        nested, bound_when_below = b, op in ("<", "<=")  # x < c ? c : N
+    elif fn.key(b) == kb:
+        nested, bound_when_below = a, op in (">", ">=")  # x > c ? N : c
+    else:
+        return None
+    sub = _as_minmax(fn, nested)
+    if sub is None or sub[0] != ("min" if bound_when_below else "max"):
+        return None
+    _, p, q = sub
+    kx = fn.key(x)
+    other = q if fn.key(p) == kx else p if fn.key(q) == kx else None
+    if other is None or not _is_const(fn, other):
+        return None
+    if type(nested) is A.Ternary:
+        inner.add(id(nested))
+    lo, hi = (bound, other) if bound_when_below else (other, bound)
+    return "clamp", f"clamp({text(x)}, {text(lo)}, {text(hi)})"
+
+
+def _is_const(fn, e) -> bool:
+    return len(_numbers(fn.model.const_value(e))) == 1
+
+
+def _select(fn, cond, a, b, inner: set[int], allow_mix: bool = True) -> tuple[str, str] | None:
+    """(built-in, replacement text) for `cond ? a : b`, or None."""
+    clamp = _clamp(fn, cond, a, b, inner)
+    if clamp is not None:
+        return clamp
+    mm = _minmax(fn, cond, a, b)
+    if mm is not None:
+        name, x, y = mm
+        # max(lo, min(x, hi)) / min(hi, max(x, lo)) with constant bounds: clamp
+        for bound, nested in ((x, y), (y, x)):
+            sub = _as_minmax(fn, nested)
+            if sub is None or sub[0] == name or not _is_const(fn, bound):
+                continue
+            _, p, q = sub
+            value, other = (p, q) if _is_const(fn, q) else (q, p)
+            if not _is_const(fn, other):
+                continue
+            lo, hi = (bound, other) if name == "max" else (other, bound)
+            if type(nested) is A.Ternary:
+                inner.add(id(nested))
+            return "clamp", f"clamp({text(value)}, {text(lo)}, {text(hi)})"
+        return name, f"{name}({text(x)}, {text(y)})"
+    cmp = _comparison(fn, cond, "float")
+    if cmp is None:
+        return None
+    left, op, right = cmp
+    # t is 1.0 exactly when the condition holds (sense True) or exactly when it fails (False)
+    if op == ">=":
+        t, sense = f"step({text(right)}, {text(left)})", True
+    elif op == "<":
+        t, sense = f"step({text(right)}, {text(left)})", False
+    elif op == "<=":
+        t, sense = f"step({text(left)}, {text(right)})", True
+    else:  # >
+        t, sense = f"step({text(left)}, {text(right)})", False
+    va, vb = _numbers(fn.model.const_value(a)), _numbers(fn.model.const_value(b))
+    if fn.model.type_of(a) == fn.model.type_of(cond.left) and len(va) == 1 and len(vb) == 1:
+        if (va[0], vb[0]) == (1.0, 0.0):
+            return "step", t if sense else f"1.0 - {t}{_near(left, op, right)}"
+        if (va[0], vb[0]) == (0.0, 1.0):
+            return "step", f"1.0 - {t}{_near(left, op, right)}" if sense else t
+    if not allow_mix or not (_cheap(fn, a) and _cheap(fn, b)):
+        return None
+    ta = fn.model.type_of(a)
+    if getattr(ta, "base", None) != "float" or not (ta.is_scalar or ta.is_vector):
+        return None
+    first, second = (b, a) if sense else (a, b)
+    return "mix", f"mix({text(first)}, {text(second)}, {t})"
+
+
+def _near(left, op, right) -> str:
+    """The simpler step() that differs only where the two sides are equal."""
+    edge, x = (right, left) if op in (">", ">=") else (left, right)
+    return f" (or step({text(edge)}, {text(x)}) if equality may count)"
+
+
+def _cheap(fn, e) -> bool:
+    """A value, not a computation: a name, literal, field, swizzle, constant or constructor of those."""
+    if fn.model.is_constant(e):
+        return True
+    t = type(e)
+    if t in (A.Identifier, A.FloatLiteral, A.IntLiteral):
+        return True
+    if t is A.Field:
+        return _cheap(fn, e.base)
+    if t is A.Unary and e.op == "-":
+        return _cheap(fn, e.operand)
+    return False

@@ -1,0 +1,97 @@
+"""An expression in a loop computes the same value on every iteration.
+
+## What it does
+Reports a non-trivial expression (at least two operations, or a call of a built-in costlier
+than an add) in the condition, body or step of a `for`, `while` or `do` loop that depends on
+nothing the loop changes: it reads no variable written anywhere in the loop (the loop counter
+included), no variable declared in the loop, calls no user function and no built-in with an
+`out` parameter, and reads no global variable when the loop calls a user function (which could
+write it). Only the largest such expression is reported, once, for the outermost loop it does
+not depend on.
+
+## Why is this bad?
+The course's coding standards: "Use the most efficient methods (-1 per inefficient/unnecessary
+practices)"; Lab 4 part 6 sums over lights, and part 7 asks to "remove redundant operations".
+Work that does not depend on the light is done once per light instead of once per pixel.
+
+## Example
+```glsl
+for (int i = 0; i < kLightCount; ++i)
+{
+    vec3 viewDir = normalize(eye - position);
+    color += shade(lights[i], position, normal, viewDir);
+}
+```
+
+## Use instead
+```glsl
+vec3 viewDir = normalize(eye - position); // the same for every light
+for (int i = 0; i < kLightCount; ++i)
+{
+    color += shade(lights[i], position, normal, viewDir);
+}
+```
+"""
+
+from __future__ import annotations
+
+from typing import Iterator
+
+from ... import ast as A
+from ...diagnostics import Diagnostic
+from ._exprs import facts, text
+
+NAME = "loop-invariant"
+PENALTY = 1
+SEVERITY = "warning"
+NEEDS = "ast"
+
+_LOOP_WORD = {A.For: "for", A.While: "while", A.DoWhile: "do-while"}
+
+
+def check(ctx) -> Iterator[Diagnostic]:
+    for fn in facts(ctx).in_file(ctx.path):
+        yield from _check_function(fn)
+
+
+def _check_function(fn) -> Iterator[Diagnostic]:
+    reported_spans: list[tuple[int, int]] = []
+    targets = {id(n.target) for n in fn.nodes if type(n) is A.Assignment}
+    found = []
+    for loop in fn.loops:
+        lo, hi = fn.enter[id(loop)], fn.exit[id(loop)]
+        written = {id(w.symbol) for ws in fn.writes.values() for w in ws if lo < w.pos < hi}
+        calls_user = any(lo < p < hi for p in fn.user_calls)
+        parts = [p for p in (loop.cond, loop.body, getattr(loop, "step", None)) if p is not None]
+        skip_until = 0
+        for n in fn.nodes:
+            e = fn.enter[id(n)]
+            if not (lo < e < hi) or e < skip_until:
+                continue
+            if not any(fn.contains(p, n) for p in parts):
+                continue  # the for-init runs once
+            if any(a <= e <= b for a, b in reported_spans):
+                continue
+            if not isinstance(n, A.Expr) or id(n) in targets:
+                continue
+            if not (fn.is_nontrivial(n) and fn.is_pure(n)):
+                continue
+            ops = fn.operands(n)
+            if any(id(s) in written for s in ops):
+                continue
+            if calls_user and any(s.kind == "global" and s.qualifier != "const" for s in ops):
+                continue
+            span = (fn.enter[id(n)], fn.exit[id(n)])
+            reported_spans.append(span)
+            skip_until = span[1]
+            found.append((n, loop))
+    found.sort(key=lambda pair: fn.enter[id(pair[0])])
+    for n, loop in found:
+        yield Diagnostic(
+            f"'{text(n)}' has the same value on every iteration of the {_LOOP_WORD[type(loop)]} "
+            f"loop at line {loop.loc.line}",
+            n.loc,
+            rule=NAME,
+            severity=SEVERITY,
+            help="compute it once before the loop, in a local variable, and use that inside",
+        )

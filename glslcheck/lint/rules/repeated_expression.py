@@ -1,0 +1,117 @@
+"""The same pure expression is computed again in a function, with the same operand values.
+
+## What it does
+Reports a non-trivial pure expression (at least two operations, like the ray position
+`ro + t * rd`, or a call of a built-in costlier than an add, like `dot`, `normalize`, `length`,
+`mix`) that a function evaluates again after an identical evaluation, when
+
+* the first evaluation happens on every path to the second one (the same straight-line code,
+  or an enclosing block: two occurrences in the two arms of an `if`/`else` or `?:` are not
+  repeated),
+* no variable it reads is written in between (an assignment, `++`/`--`, an `out` or `inout`
+  argument, or any write in a loop around the second one but not the first; a global it reads
+  is taken as written by any user function called in between), and
+* it calls no user function (not known to be pure) and no built-in with an `out` parameter.
+
+Expressions are compared by structure, variables by the declaration they name. The second and
+later evaluations are reported, not their sub-expressions; the message names the first line.
+
+## Why is this bad?
+The course's coding standards: "Use the most efficient methods (-1 per inefficient/unnecessary
+practices)", and the Lab 4 hint on the ray position: "How can we optimize this for repeated
+use? Hint: don't reimplement the formula every time you want to use it...". Part 7 asks to
+"remove redundant operations". Compilers often, but not always, merge repeated code; a local
+variable also names the value, which is the comment the standards ask for.
+
+## Example
+```glsl
+vec3 normal = normalize(ro + t * rd - center);
+vec3 toLight = light.center - (ro + t * rd);
+```
+
+## Use instead
+```glsl
+vec3 position = ro + t * rd; // the surface point, computed once
+vec3 normal = (position - center) / radius;
+vec3 toLight = light.center - position;
+```
+"""
+
+from __future__ import annotations
+
+from typing import Iterator
+
+from ... import ast as A
+from ...diagnostics import Diagnostic
+from ._exprs import facts, text
+
+NAME = "repeated-expression"
+PENALTY = 1
+SEVERITY = "warning"
+NEEDS = "ast"
+
+
+def _holder(fn, first) -> str | None:
+    """The local variable `first` was stored in (`float d = first;` / `d = first;`), if any."""
+    parent = fn.parent.get(id(first))
+    if type(parent) is A.Declarator and parent.init is first:
+        return parent.name
+    if type(parent) is A.Assignment and parent.op == "=" and parent.value is first \
+            and type(parent.target) is A.Identifier:
+        return parent.target.name
+    return None
+
+
+def _holder_symbol(fn, first):
+    parent = fn.parent.get(id(first))
+    if type(parent) is A.Declarator:
+        return fn.model.symbol_of(parent)
+    if type(parent) is A.Assignment:
+        return fn.model.symbol_of(parent.target)
+    return None
+
+
+def check(ctx) -> Iterator[Diagnostic]:
+    for fn in facts(ctx).in_file(ctx.path):
+        yield from _check_function(fn)
+
+
+def _check_function(fn) -> Iterator[Diagnostic]:
+    groups: dict = {}
+    targets = {id(n.target) for n in fn.nodes if type(n) is A.Assignment}
+    for n in fn.nodes:
+        if isinstance(n, A.Expr) and id(n) not in targets and fn.is_nontrivial(n) and fn.is_pure(n):
+            groups.setdefault(fn.key(n), []).append(n)
+    groups = {k: v for k, v in groups.items() if len(v) > 1}
+    if not groups:
+        return
+    # Largest expressions first, so a repeated expression hides its repeated parts.
+    order = sorted(groups.values(), key=lambda occ: -(fn.exit[id(occ[0])] - fn.enter[id(occ[0])]))
+    covered: set[int] = set()
+    found = []
+    for occ in order:
+        for j, b in enumerate(occ):
+            if id(b) in covered:
+                continue
+            operands = fn.operands(b)
+            first = next((a for a in occ[:j]
+                          if fn.dominates(a, b) and not fn.written_between(a, b, operands)), None)
+            if first is None:
+                continue
+            covered.update(id(n) for n in b.walk())
+            found.append((b, first))
+    found.sort(key=lambda pair: fn.enter[id(pair[0])])
+    for b, first in found:
+        holder = _holder(fn, first)
+        sym = _holder_symbol(fn, first) if holder else None
+        if holder and sym is not None and not fn.written_between(fn.parent[id(first)], b, [sym]):
+            fix = f"reuse '{holder}', which holds this value since line {first.loc.line}"
+        else:
+            fix = "compute it once into a local variable (named for what it is) and reuse that"
+        yield Diagnostic(
+            f"'{text(b)}' is computed again: the same value was computed at line {first.loc.line}",
+            b.loc,
+            rule=NAME,
+            severity=SEVERITY,
+            help=fix,
+        )
