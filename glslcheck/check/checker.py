@@ -188,6 +188,12 @@ class Checker:
             self.error(f"too many storage qualifiers: {' '.join(storage)}", node, help="keep one of them")
         if len(precision) > 1:
             self.error(f"too many precision qualifiers: {' '.join(precision)}", node, help="keep one of them")
+        interpolation = [w for w in words if w in ("flat", "smooth")]
+        if len(interpolation) > 1:
+            self.error(f"too many interpolation qualifiers: {' '.join(interpolation)}", node, help="keep one of them")
+        repeated = sorted({w for w in words if words.count(w) > 1 and w != "layout"})
+        if repeated and len(storage) <= 1 and len(precision) <= 1 and len(interpolation) <= 1:
+            self.error(f"the qualifier '{repeated[0]}' is repeated", node, help="write it once")
 
     # -- names ---------------------------------------------------------------------------------
     def check_name(self, name: str, node: Any) -> bool:
