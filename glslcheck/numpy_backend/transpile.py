@@ -597,7 +597,7 @@ class FnState:
 class Transpiler:
     """`Transpiler(model, tab_path).module()` -> (Python source, meta dict)."""
 
-    COMPACT_MIN_BODY = 2  # statements: tiny regions are not worth gathering
+    COMPACT_MIN_NODES = 24  # syntax nodes: smaller regions without calls or loops run masked
 
     def __init__(self, model: Any, path: str = "<shader>", source_text: str | None = None) -> None:
         self.model = model
@@ -1007,7 +1007,7 @@ class Transpiler:
         """Emit a varying region (already under `if X.live(mask):`) with compaction when sparse."""
         fs = self.fn
         rid = self.region(kind, node)
-        if fs.no_compact or self._region_uses_derivs(node):
+        if fs.no_compact or self._region_uses_derivs(node) or not self._worth_compacting(node):
             self.emit(f"X.count(S, {rid}, {mask})")
             emit_body(mask)
             return
@@ -1031,6 +1031,19 @@ class Transpiler:
         self.lines.extend(body_lines)
         self.emit(f"if {ix} is not None:")
         self.emit(f"    S, {tup if used else '_'} = X.scatter(S, {ix}, {saved}, {tup})")
+
+    def _worth_compacting(self, node: Any) -> bool:
+        """Gathering pays off for a region with a loop, a user call or some arithmetic; a
+        region of a few assignments (`break;`, `return 0.1;`) is cheaper to run masked."""
+        count = 0
+        for n in node.walk():
+            if isinstance(n, (A.For, A.While, A.DoWhile)):
+                return True
+            if isinstance(n, A.Call) and (_is_symbol(self.model.call_target(n))
+                                          or getattr(self.model.call_target(n), "cost", None) == B.EXPENSIVE):
+                return True
+            count += 1
+        return count >= self.COMPACT_MIN_NODES
 
     def _region_uses_derivs(self, node: Any) -> bool:
         for n in node.walk():

@@ -9,7 +9,7 @@ Run it on its own (needs numpy and glslcheck's runtime):
 or from Python: glslcheck.numpy_backend.program.load_module('shader.py').render(...)
 """
 
-SHADER_META = {'source': 'Image.glsl', 'entry': 'f_mainImage', 'plain': False, 'uniforms': ['iResolution'], 'regions': {1: ('function', 'map', 'Image.glsl', 1), 2: ('function', 'shade', 'Image.glsl', 5), 5: ('if', 'shade', 'Image.glsl', 6), 9: ('function', 'mainImage', 'Image.glsl', 10), 10: ('loop', 'mainImage', 'Image.glsl', 14), 16: ('if', 'mainImage', 'Image.glsl', 16)}, 'loops': {10: ('Image.glsl', 14, 5)}, 'uses_derivatives': False, 'loop_cap': 100000}
+SHADER_META = {'source': 'Image.glsl', 'entry': 'f_mainImage', 'plain': False, 'uniforms': ['iResolution'], 'regions': {1: ('function', 'map', 'Image.glsl', 1), 2: ('function', 'shade', 'Image.glsl', 5), 5: ('if', 'shade', 'Image.glsl', 6), 7: ('function', 'mainImage', 'Image.glsl', 10), 8: ('loop', 'mainImage', 'Image.glsl', 14), 14: ('if', 'mainImage', 'Image.glsl', 16)}, 'loops': {8: ('Image.glsl', 14, 5)}, 'uses_derivatives': False, 'loop_cap': 100000}
 
 if __name__ == "__main__":  # run on its own: python this_file.py --help
     from glslcheck.numpy_backend.program import standalone_globals
@@ -47,27 +47,20 @@ def f_shade(S, _m, v_n):
     _c3 = rt.lt(v_n[1], C_f_0p0)
     _m4 = X.and_(_m, _c3)
     if X.live(_m4):
-        _ix6 = X.sparse(S, _m4)
-        if _ix6 is not None:
-            S, _o7 = X.gather(S, _ix6, (_ret, _rv, ))
-            _ret, _rv, = _o7.values
-            _m4 = None
         X.count(S, 5, _m4)
         _rv = rt.assign(_rv, C_f_0p1, _m4)
         _ret = X.or_(_ret, _m4)
-        if _ix6 is not None:
-            S, (_ret, _rv, ) = X.scatter(S, _ix6, _o7, (_ret, _rv, ))
-    _m8 = X.refresh(_m, None, _ret)
-    if X.live(_m8):
+    _m6 = X.refresh(_m, None, _ret)
+    if X.live(_m6):
         # line 7: return n.y;
-        _rv = rt.assign(_rv, v_n[1], _m8)
-        _ret = X.or_(_ret, _m8)
+        _rv = rt.assign(_rv, v_n[1], _m6)
+        _ret = X.or_(_ret, _m6)
     return _rv
 
 
 def f_mainImage(S, _m, v_fragCoord):
     """void mainImage(out vec4, vec2) (line 10)."""
-    X.count(S, 9, _m)
+    X.count(S, 7, _m)
     v_fragColor = Z_float_4
     # line 11: vec2 uv = (2.0 * fragCoord - iResolution.xy) / iResolution.y;
     v_uv = rt.div(rt.sub(rt.mul(C_f_2p0, v_fragCoord), rt.swizzle(S.u_iResolution, "xy")), S.u_iResolution[1])
@@ -77,54 +70,47 @@ def f_mainImage(S, _m, v_fragCoord):
     v_t = C_f_0p0
     # line 14: for (int i = 0; i < 64; i++) {
     v_i = C_i_0
-    _live11 = _m
-    _n12 = 0
-    _k13 = []
+    _live9 = _m
+    _n10 = 0
+    _k11 = []
     while True:
-        _n12 += 1
-        if _n12 > 100000:
-            X.runaway(10)
-        _live11 = X.and_(_live11, rt.lt(v_i, C_i_64))
-        if not X.live(_live11):
+        _n10 += 1
+        if _n10 > 100000:
+            X.runaway(8)
+        _live9 = X.and_(_live9, rt.lt(v_i, C_i_64))
+        if not X.live(_live9):
             break
-        if X.sparse(S, _live11) is not None:
-            S, (_live11, _n12, v_i, v_rd, v_t,) = X.push(_k13, S, _live11, (_live11, _n12, v_i, v_rd, v_t,))
-            _live11 = None
-        X.count(S, 10, _live11)
+        if X.sparse(S, _live9) is not None:
+            S, (_live9, _n10, v_i, v_rd, v_t,) = X.push(_k11, S, _live9, (_live9, _n10, v_i, v_rd, v_t,))
+            _live9 = None
+        X.count(S, 8, _live9)
         # line 15: float d = map(rd * t);
-        v_d = f_map(S, _live11, rt.mul(v_rd, v_t))
+        v_d = f_map(S, _live9, rt.mul(v_rd, v_t))
         # line 16: if (d < 0.001) break;
-        _c14 = rt.lt(v_d, C_f_0p001)
-        _m15 = X.and_(_live11, _c14)
+        _c12 = rt.lt(v_d, C_f_0p001)
+        _m13 = X.and_(_live9, _c12)
+        if X.live(_m13):
+            X.count(S, 14, _m13)
+            _live9 = X.andnot(_live9, _m13)
+        _m15 = X.refresh(_live9, _live9)
         if X.live(_m15):
-            _ix17 = X.sparse(S, _m15)
-            if _ix17 is not None:
-                S, _o18 = X.gather(S, _ix17, (_live11, ))
-                _live11, = _o18.values
-                _m15 = None
-            X.count(S, 16, _m15)
-            _live11 = X.andnot(_live11, _m15)
-            if _ix17 is not None:
-                S, (_live11, ) = X.scatter(S, _ix17, _o18, (_live11, ))
-        _m19 = X.refresh(_live11, _live11)
-        if X.live(_m19):
             # line 17: t += d;
-            v_t = rt.assign(v_t, rt.add(v_t, v_d), _m19)
+            v_t = rt.assign(v_t, rt.add(v_t, v_d), _m15)
         # line 14: for (int i = 0; i < 64; i++) {
         v_i = rt.inc(v_i)
-    if _k13:
-        S, (_live11, _n12, v_i, v_rd, v_t,) = X.unwind(_k13, S, (_live11, _n12, v_i, v_rd, v_t,))
+    if _k11:
+        S, (_live9, _n10, v_i, v_rd, v_t,) = X.unwind(_k11, S, (_live9, _n10, v_i, v_rd, v_t,))
     # line 19: fragColor = vec4(vec3(t < 10.0 ? shade(normalize(rd * t - vec3(0.0, 0.0, 4.0))) : 0.0), 1.0);
-    _t20 = rt.lt(v_t, C_f_10p0)
-    _t21 = Z_float
-    _m23 = X.and_(_m, _t20)
-    if X.live(_m23):
-        _t21 = f_shade(S, _m23, rt.normalize(rt.sub(rt.mul(v_rd, v_t), rt.vec(3, C_f_0p0, C_f_0p0, C_f_4p0))))
-    _t22 = Z_float
-    _m24 = X.andnot(_m, _t20)
-    if X.live(_m24):
-        _t22 = C_f_0p0
-    v_fragColor = rt.assign(v_fragColor, rt.vec(4, rt.vec(3, rt.select(_t20, _t21, _t22)), C_f_1p0), _m)
+    _t16 = rt.lt(v_t, C_f_10p0)
+    _t17 = Z_float
+    _m19 = X.and_(_m, _t16)
+    if X.live(_m19):
+        _t17 = f_shade(S, _m19, rt.normalize(rt.sub(rt.mul(v_rd, v_t), rt.vec(3, C_f_0p0, C_f_0p0, C_f_4p0))))
+    _t18 = Z_float
+    _m20 = X.andnot(_m, _t16)
+    if X.live(_m20):
+        _t18 = C_f_0p0
+    v_fragColor = rt.assign(v_fragColor, rt.vec(4, rt.vec(3, rt.select(_t16, _t17, _t18)), C_f_1p0), _m)
     return (None, v_fragColor)
 
 

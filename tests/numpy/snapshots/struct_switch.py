@@ -9,7 +9,7 @@ Run it on its own (needs numpy and glslcheck's runtime):
 or from Python: glslcheck.numpy_backend.program.load_module('shader.py').render(...)
 """
 
-SHADER_META = {'source': 'Image.glsl', 'entry': 'f_mainImage', 'plain': False, 'uniforms': [], 'regions': {1: ('function', 'closest', 'Image.glsl', 3), 4: ('if', 'closest', 'Image.glsl', 5), 7: ('function', 'mainImage', 'Image.glsl', 8), 15: ('case', 'mainImage', 'Image.glsl', 14), 17: ('case', 'mainImage', 'Image.glsl', 15), 19: ('case', 'mainImage', 'Image.glsl', 16)}, 'loops': {}, 'uses_derivatives': False, 'loop_cap': 100000}
+SHADER_META = {'source': 'Image.glsl', 'entry': 'f_mainImage', 'plain': False, 'uniforms': [], 'regions': {1: ('function', 'closest', 'Image.glsl', 3), 4: ('if', 'closest', 'Image.glsl', 5), 5: ('function', 'mainImage', 'Image.glsl', 8), 13: ('case', 'mainImage', 'Image.glsl', 14), 15: ('case', 'mainImage', 'Image.glsl', 15), 17: ('case', 'mainImage', 'Image.glsl', 16)}, 'loops': {}, 'uses_derivatives': False, 'loop_cap': 100000}
 
 if __name__ == "__main__":  # run on its own: python this_file.py --help
     from glslcheck.numpy_backend.program import standalone_globals
@@ -37,58 +37,51 @@ def f_closest(S, _m, v_h, v_t):
     _c2 = v_better
     _m3 = X.and_(_m, _c2)
     if X.live(_m3):
-        _ix5 = X.sparse(S, _m3)
-        if _ix5 is not None:
-            S, _o6 = X.gather(S, _ix5, (v_h, v_t, ))
-            v_h, v_t, = _o6.values
-            _m3 = None
         X.count(S, 4, _m3)
         v_h = rt.assign_field(v_h, "m_t", v_t, _m3)
-        if _ix5 is not None:
-            S, (v_h, v_t, ) = X.scatter(S, _ix5, _o6, (v_h, v_t, ))
     return (None, v_h, v_better)
 
 
 def f_mainImage(S, _m, v_fragCoord):
     """void mainImage(out vec4, vec2) (line 8)."""
-    X.count(S, 7, _m)
+    X.count(S, 5, _m)
     v_fragColor = Z_float_4
     # line 9: Hit h = Hit(1e9, vec3(0.0));
     v_h_1 = rt.struct("s_Hit", m_t=C_f_1000000000p0, m_n=rt.vec(3, C_f_0p0))
     # line 10: bool b;
     v_b = Z_bool
     # line 11: closest(h, fragCoord.x, b);
-    _t8 = v_h_1
-    _t9 = f_closest(S, _m, _t8, v_fragCoord[0])
-    v_h_1 = rt.assign(v_h_1, _t9[1], _m)
-    v_b = rt.assign(v_b, _t9[2], _m)
-    _t9[0]
+    _t6 = v_h_1
+    _t7 = f_closest(S, _m, _t6, v_fragCoord[0])
+    v_h_1 = rt.assign(v_h_1, _t7[1], _m)
+    v_b = rt.assign(v_b, _t7[2], _m)
+    _t7[0]
     # line 12: vec3 c = vec3(0.0);
     v_c = rt.vec(3, C_f_0p0)
     # line 13: switch (int(fragCoord.y) % 3) {
-    _sv10 = rt.rem(rt.to_int(v_fragCoord[1]), C_i_3)
-    _d11 = rt.not_(rt.eq(_sv10, C_i_0) | rt.eq(_sv10, C_i_1))
-    _sl12 = _m
-    _fall13 = X.NO
+    _sv8 = rt.rem(rt.to_int(v_fragCoord[1]), C_i_3)
+    _d9 = rt.not_(rt.eq(_sv8, C_i_0) | rt.eq(_sv8, C_i_1))
+    _sl10 = _m
+    _fall11 = X.NO
     # line 14: case 0: c.r = 1.0;
-    _fall13 = X.or_(_fall13, rt.eq(_sv10, C_i_0))
-    _m14 = X.and_(X.and_(_sl12, _fall13), _m)
+    _fall11 = X.or_(_fall11, rt.eq(_sv8, C_i_0))
+    _m12 = X.and_(X.and_(_sl10, _fall11), _m)
+    if X.live(_m12):
+        X.count(S, 13, _m12)
+        v_c = rt.assign_swizzle(v_c, "x", C_f_1p0, _m12)
+    # line 15: case 1: c.g = 1.0; break;
+    _fall11 = X.or_(_fall11, rt.eq(_sv8, C_i_1))
+    _m14 = X.and_(X.and_(_sl10, _fall11), _m)
     if X.live(_m14):
         X.count(S, 15, _m14)
-        v_c = rt.assign_swizzle(v_c, "x", C_f_1p0, _m14)
-    # line 15: case 1: c.g = 1.0; break;
-    _fall13 = X.or_(_fall13, rt.eq(_sv10, C_i_1))
-    _m16 = X.and_(X.and_(_sl12, _fall13), _m)
+        v_c = rt.assign_swizzle(v_c, "y", C_f_1p0, _m14)
+        _sl10 = X.andnot(_sl10, _m14)
+    # line 16: default: c = h.n;
+    _fall11 = X.or_(_fall11, _d9)
+    _m16 = X.and_(X.and_(_sl10, _fall11), _m)
     if X.live(_m16):
         X.count(S, 17, _m16)
-        v_c = rt.assign_swizzle(v_c, "y", C_f_1p0, _m16)
-        _sl12 = X.andnot(_sl12, _m16)
-    # line 16: default: c = h.n;
-    _fall13 = X.or_(_fall13, _d11)
-    _m18 = X.and_(X.and_(_sl12, _fall13), _m)
-    if X.live(_m18):
-        X.count(S, 19, _m18)
-        v_c = rt.assign(v_c, rt.field(v_h_1, "m_n"), _m18)
+        v_c = rt.assign(v_c, rt.field(v_h_1, "m_n"), _m16)
     # line 18: fragColor = vec4(c, float(b));
     v_fragColor = rt.assign(v_fragColor, rt.vec(4, v_c, rt.to_float(v_b)), _m)
     return (None, v_fragColor)
