@@ -40,6 +40,10 @@ RULE_TABLE: tuple[tuple[str, str], ...] = (
     ("repeated-expression", "repeated_expression"),
     ("loop-invariant", "loop_invariant"),
     ("branch-replaceable", "branch_replaceable"),
+    ("normalize-known-length", "normalize_known_length"),
+    ("uninitialized-read", "uninitialized_read"),
+    ("unused-variable", "unused_variable"),
+    ("unused-function", "unused_function"),
 )
 
 SECTIONS = ("What it does", "Why is this bad?", "Example", "Use instead")

@@ -71,11 +71,22 @@ _CACHE: dict[str, Any] = {"model": None, "facts": None}
 
 
 def facts(ctx: Any) -> ProgramFacts:
-    """The facts of `ctx.model`, built once per program (the engine lints its files in a row)."""
+    """The facts of `ctx.model`, built once per program (the engine lints its files in a row).
+    Without a semantic model (a tree handed in by a test or a tool), no function has facts."""
+    if ctx.model is None:
+        return _NO_FACTS
     if _CACHE["model"] is not ctx.model:
         _CACHE["model"] = ctx.model
         _CACHE["facts"] = ProgramFacts(ctx.model)
     return _CACHE["facts"]
+
+
+class _NoFacts:
+    def in_file(self, path: str) -> list:
+        return []
+
+
+_NO_FACTS = _NoFacts()
 
 
 class Write:

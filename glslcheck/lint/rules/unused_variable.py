@@ -1,0 +1,139 @@
+"""A local or global variable is never read.
+
+## What it does
+Reports a variable declared in the file (a local in a function, or a global or `const` at
+file scope) that nothing in the program reads. Assigning it (`x = ...`, `x.y = ...`) is not a
+read; `x += 1.0`, an argument (also `out`: the call needs a variable to write, even when only
+another of its outputs is wanted) or any other use is.
+Parameters, uniforms and shader inputs/outputs are not reported. A Common tab is checked
+together with the Image tab, so a global of Common that only Image reads is used; when the
+shader has other passes too (Buffer A..D), Common's globals are not reported at all.
+
+This is a note, not a deduction.
+
+## Why is this bad?
+An unused variable is dead code: a leftover from an earlier version or a computation whose
+result was forgotten (often the bug). The course's coding standards ask to "remove redundant
+operations" (Lab 4, part 7) and that every line be explained, which a dead line cannot be.
+
+## Example
+```glsl
+float attenuation = 1.0 / (1.0 + d / intensity);
+vec3 color = kD * albedo * light.color;
+```
+
+## Use instead
+```glsl
+float attenuation = 1.0 / (1.0 + d / intensity);
+vec3 color = kD * attenuation * albedo * light.color;
+```
+"""
+
+from __future__ import annotations
+
+from typing import Any, Iterator
+
+from ... import ast as A
+from ... import builtins as B
+from ...check.model import Symbol
+from ...diagnostics import Diagnostic
+from ._exprs import facts
+
+NAME = "unused-variable"
+PENALTY = 0
+SEVERITY = "note"
+NEEDS = "ast"
+
+_PASSES = ("Image", "Buffer A", "Buffer B", "Buffer C", "Buffer D")
+
+
+def common_shared(ctx) -> bool:
+    """A Common tab that other passes than the one linted with it may use."""
+    if ctx.source.tab != "Common" or ctx.shader is None:
+        return False
+    return sum(t in ctx.shader.tabs for t in _PASSES) > 1
+
+
+def read_symbols(model: Any) -> set[int]:
+    """ids of every Symbol the program reads somewhere (cached on the program facts)."""
+    pf = _program_reads.get("model")
+    if pf is model:
+        return _program_reads["reads"]
+    reads: set[int] = set()
+    stack: list[tuple[Any, bool]] = [(model.ast, False)]
+    while stack:
+        node, write_only = stack.pop()
+        t = type(node)
+        if t is A.Identifier:
+            if not write_only:
+                sym = model.symbol_of(node)
+                if sym is not None:
+                    reads.add(id(sym))
+            continue
+        if t is A.Assignment:
+            stack.append((node.value, False))
+            stack.append((node.target, node.op == "="))
+            continue
+        if t in (A.Field, A.Index) and write_only:
+            stack.append((node.base, True))
+            if t is A.Index:
+                stack.append((node.index, False))
+            continue
+        if t is A.Call:
+            target = model.call_target(node)
+            if isinstance(target, Symbol):
+                dirs = [d for _, _, d in target.params]
+            elif isinstance(target, B.Overload):
+                dirs = list(target.qualifiers)
+            else:
+                dirs = []
+            for i, arg in enumerate(node.args):
+                stack.append((arg, False))  # an out argument: the call needs a variable there
+            for child in (node.struct_, node.array):
+                if child is not None:
+                    stack.append((child, False))
+            continue
+        for child in node.children():
+            stack.append((child, False))
+    _program_reads["model"] = model
+    _program_reads["reads"] = reads
+    return reads
+
+
+_program_reads: dict[str, Any] = {}
+
+
+def check(ctx) -> Iterator[Diagnostic]:
+    model = ctx.model
+    if model is None:
+        return
+    reads = read_symbols(model)
+    shared = common_shared(ctx)
+    for decl in model.ast.decls:
+        if decl.loc.path != ctx.path:
+            continue
+        if type(decl) is A.VariableDeclaration and not shared:
+            storage = decl.qualifiers.storage if decl.qualifiers else None
+            if storage not in (None, "const"):
+                continue
+            for d in decl.declarators:
+                yield from _unused(ctx, model, d, reads, "global")
+    for fn in facts(ctx).in_file(ctx.path):
+        for n in fn.nodes:
+            if type(n) is A.Declarator:
+                yield from _unused(ctx, model, n, reads, "local")
+
+
+def _unused(ctx, model, d: A.Declarator, reads: set[int], kind: str) -> Iterator[Diagnostic]:
+    sym = model.symbol_of(d)
+    if sym is None or id(sym) in reads:
+        return
+    loc = d.name_loc if d.name_loc.line else d.loc
+    what = "constant" if sym.qualifier == "const" else "variable"
+    yield Diagnostic(
+        f"the {kind} {what} '{d.name}' is never read",
+        loc,
+        rule=NAME,
+        severity=SEVERITY,
+        help=f"remove '{d.name}', or use it where its value was meant to go",
+    )
