@@ -85,7 +85,7 @@ def speed(repeat: int) -> None:
 def coverage(repeat: int) -> None:
     print("== coverage scaling (four-sphere scene)")
     results = {}
-    for label, scale in (("small", 0.55), ("large", 2.6)):
+    for label, scale in (("small", 0.85), ("large", 2.6)):
         prog = compile_numpy(_scene(scale))
         img = prog.render(size=SIZE)
         background = np.all(np.abs(img[..., :3] - img[0, 0, :3]) < 1e-6, axis=-1)

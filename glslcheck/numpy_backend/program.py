@@ -16,8 +16,8 @@ Library API:
     prog.last_stats                         # lanes per function/branch/loop of the last render
     module = load_module("shader.py")       # a module written by `glslcheck transpile`
 
-Tiles: TILE_WIDTH x TILE_HEIGHT pixels (16384 lanes) keep every temporary of a large shader in
-the CPU caches; tiles start at even x and y, so derivative quads (2x2, see the runtime) never
+Tiles: bands of about TILE_LANES pixels (up to TILE_WIDTH wide) keep a shader's temporaries
+small (a few hundred kB each); tiles start at even x and y, so derivative quads (2x2, see the runtime) never
 straddle two tiles. Tiles are rendered by `os.cpu_count()` threads (NumPy releases the GIL in
 its loops). Peak memory is a few tiles' temporaries plus the output image.
 """
@@ -40,8 +40,9 @@ from ..diagnostics import Diagnostic, GlslError, Location
 from ..shadertoy import DEFAULT_DATE, DEFAULT_SIZE, UNIFORMS_BY_NAME
 from .runtime import Runtime, Struct
 
-TILE_WIDTH = 128
-TILE_HEIGHT = 128
+TILE_LANES = 24576  # lanes per tile (measured best between 16k and 32k on llvmpipe's machine)
+TILE_WIDTH = 1024  # widest tile; wide bands keep rows contiguous in the output image
+TILE_HEIGHT = None  # None: TILE_LANES // tile width (rounded to even); set both to force a tile size
 COMPACT_FRACTION = 0.5  # compact a region when fewer than this fraction of the lanes take it
 COMPACT_MIN_LANES = 1024  # below this many lanes gathering costs more than it saves
 CACHE_FRAMES = 8
@@ -77,9 +78,18 @@ class Lanes:
 
     NO = np.zeros(1, dtype=np.bool_)
 
-    def __init__(self, meta: dict) -> None:
+    def __init__(self, meta: dict, rt: Runtime | None = None) -> None:
         self.meta = meta
         self.loops = meta.get("loops", {})
+        self.rt = rt
+
+    def put(self, old, new, m):
+        """`rt.assign(old, new, m)` that skips the select when the mask is uniform."""
+        if m is not None and m.shape[-1] == 1:
+            if not m[0]:
+                return old
+            m = None
+        return self.rt.assign(old, new, m)
 
     # masks ------------------------------------------------------------------------------------
     @staticmethod
@@ -231,8 +241,9 @@ def execute_module(source: str, filename: str, meta: dict, precision: str = "flo
     the generated lines (each with its GLSL line in a comment)."""
     linecache.cache[filename] = (len(source), None, source.splitlines(True), filename)
     code = compile(source, filename, "exec")
-    ns: dict[str, Any] = {"__builtins__": {}, "__name__": "glslcheck_shader", "rt": Runtime(precision),
-                          "X": Lanes(meta)}
+    ns: dict[str, Any] = {"__builtins__": {}, "__name__": "glslcheck_shader", "rt": None, "X": None}
+    ns["rt"] = rt = Runtime(precision)
+    ns["X"] = Lanes(meta, rt)
     with np.errstate(all="ignore"):  # constants may overflow in float16, as on a mediump GPU
         exec(code, ns)  # noqa: S102 - generated from a checked AST; every GLSL name is mangled
     return ns
@@ -358,8 +369,11 @@ class NumpyProgram:
         globals_ = {k: v for k, v in proto.__dict__.items() if k.startswith("g_")}
         base.update(globals_)
 
-        tiles = [(x0, y0, min(TILE_WIDTH, width - x0), min(TILE_HEIGHT, height - y0))
-                 for y0 in range(0, height, TILE_HEIGHT) for x0 in range(0, width, TILE_WIDTH)]
+        tw = min(TILE_WIDTH, width)
+        tw += tw % 2 if tw < width else 0  # tiles start at even x: derivative quads stay whole
+        th = TILE_HEIGHT or max(2, (TILE_LANES // tw) // 2 * 2)
+        tiles = [(x0, y0, min(tw, width - x0), min(th, height - y0))
+                 for y0 in range(0, height, th) for x0 in range(0, width, tw)]
         image = np.empty((height, width, 4), dtype=np.float32)  # bottom row first until the end
         all_stats: list[dict] = []
 
@@ -455,7 +469,8 @@ def standalone_globals(meta: dict) -> dict:
     argv = sys.argv[1:]
     if "--precision" in argv:
         precision = argv[argv.index("--precision") + 1]
-    return {"rt": Runtime(precision), "X": Lanes(meta)}
+    rt = Runtime(precision)
+    return {"rt": rt, "X": Lanes(meta, rt)}
 
 
 def run_standalone(ns: dict) -> None:

@@ -964,7 +964,7 @@ class Transpiler:
                 self.comment_line(s)
                 val = self.expr(s.value, mask) if s.value is not None else None
                 if val is not None and fs.rv is not None and mask not in (None, "_m"):
-                    val = f"rt.assign({fs.rv}, {val}, {mask})"
+                    val = f"X.put({fs.rv}, {val}, {mask})"
                 self.emit(self.final_return(val) if val is not None or fs.outs else "return None")
                 self.indent = start_indent
                 return True
@@ -1000,7 +1000,7 @@ class Transpiler:
         if mask is None:
             self.emit(f"{target} = {value}")
         else:
-            self.emit(f"{target} = rt.assign({target}, {value}, {mask})")
+            self.emit(f"{target} = X.put({target}, {value}, {mask})")
 
     # -- compaction ------------------------------------------------------------------------------
     def region_body(self, emit_body, mask: str, kind: str, node: Any) -> None:
@@ -1117,7 +1117,7 @@ class Transpiler:
             if dec.init is not None:
                 self.after_discarding_call(dec.init)
             if self.fn.switch_depth:
-                self.emit(f"{name} = rt.assign({name}, {value}, {mask})")
+                self.emit(f"{name} = X.put({name}, {value}, {mask})")
             else:
                 self.emit(f"{name} = {value}")
             if name not in self.fn.defined:

@@ -3,7 +3,7 @@
 // they cover: background pixels should cost almost nothing).
 #define SPHERE_SCALE 1.0
 
-const vec3 BACKGROUND = vec3(0.02, 0.03, 0.05);
+const vec3 BACKGROUND = vec3(0.15, 0.18, 0.25);  // already display-encoded
 
 struct Light { vec3 pos; vec3 color; };
 
@@ -53,6 +53,7 @@ void mainImage(out vec4 fragColor, in vec2 fragCoord) {
         for (int k = 0; k < 4; k++) {
             col += blinnPhong(p, n, v, albedos[hit], lights[k]);
         }
+        col = pow(col, vec3(1.0 / 2.2));  // gamma only where there is lighting to correct
     }
-    fragColor = vec4(pow(col, vec3(1.0 / 2.2)), 1.0);
+    fragColor = vec4(col, 1.0);
 }

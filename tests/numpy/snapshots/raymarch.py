@@ -48,12 +48,12 @@ def f_shade(S, _m, v_n):
     _m4 = X.and_(_m, _c3)
     if X.live(_m4):
         X.count(S, 5, _m4)
-        _rv = rt.assign(_rv, C_f_0p1, _m4)
+        _rv = X.put(_rv, C_f_0p1, _m4)
         _ret = X.or_(_ret, _m4)
     _m6 = X.refresh(_m, None, _ret)
     if X.live(_m6):
         # line 7: return n.y;
-        _rv = rt.assign(_rv, v_n[1], _m6)
+        _rv = X.put(_rv, v_n[1], _m6)
         _ret = X.or_(_ret, _m6)
     return _rv
 
@@ -95,7 +95,7 @@ def f_mainImage(S, _m, v_fragCoord):
         _m15 = X.refresh(_live9, _live9)
         if X.live(_m15):
             # line 17: t += d;
-            v_t = rt.assign(v_t, rt.add(v_t, v_d), _m15)
+            v_t = X.put(v_t, rt.add(v_t, v_d), _m15)
         # line 14: for (int i = 0; i < 64; i++) {
         v_i = rt.inc(v_i)
     if _k11:
@@ -110,7 +110,7 @@ def f_mainImage(S, _m, v_fragCoord):
     _m20 = X.andnot(_m, _t16)
     if X.live(_m20):
         _t18 = C_f_0p0
-    v_fragColor = rt.assign(v_fragColor, rt.vec(4, rt.vec(3, rt.select(_t16, _t17, _t18)), C_f_1p0), _m)
+    v_fragColor = X.put(v_fragColor, rt.vec(4, rt.vec(3, rt.select(_t16, _t17, _t18)), C_f_1p0), _m)
     return (None, v_fragColor)
 
 
