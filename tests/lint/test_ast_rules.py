@@ -1,0 +1,195 @@
+"""The AST lint rules beyond their snapshots: the reference lab is clean, the engine builds the
+tree and model they read, and the shared expression facts (_exprs.py) they rely on."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import pytest
+
+from glslcheck import ast as A
+from glslcheck.check import check
+from glslcheck.lint import engine, lint_paths, lint_source
+from glslcheck.lint.rules import all_rules
+from glslcheck.lint.rules._exprs import FnFacts
+from glslcheck.parse import parse_units
+from glslcheck.sources import Source, find_shaders
+
+from .conftest import REPO_ROOT
+
+LAB = REPO_ROOT / "lab_shaders"
+CORPUS = REPO_ROOT / "tests" / "corpus"
+AST_RULES = [r.name for r in all_rules().values() if r.needs == "ast"]
+HEADER = "// Image.glsl: a test\n// Contributors: Ana: all\n// starter framework by Daniel S. Buckstein\n"
+
+
+def _findings(text: str, select: list[str] | None = None, tmp_path: Path | None = None):
+    src = Source("Image.glsl", text)
+    shader = find_shaders.__globals__["Shader"](tabs={"Image": src}, root=".")
+    tree, model = engine.syntax_tree(src, shader)
+    assert model is not None, "the snippet must parse and check"
+    config = None
+    found = lint_source(src, config, shader, tree, model)
+    return [f for f in found if select is None or f.rule in select]
+
+
+def _function(text: str, name: str = "f") -> FnFacts:
+    model = check(parse_units([Source("Image.glsl", text)]), "Image")
+    d = next(d for d in model.ast.decls if isinstance(d, A.FunctionDefinition) and d.proto.name == name)
+    return FnFacts(d, model)
+
+
+def _calls(fn: FnFacts, callee: str) -> list[A.Call]:
+    return [n for n in fn.nodes if type(n) is A.Call and n.callee == callee]
+
+
+MAIN = "\nvoid mainImage(out vec4 fragColor, in vec2 fragCoord) { fragColor = vec4(0.0); }\n"
+
+
+# --- the reference lab and the corpus -------------------------------------------------------
+
+
+def test_reference_lab_has_no_findings():
+    result = lint_paths([LAB])
+    assert result.files == 34
+    assert [f"{f.path}:{f.loc.line}: {f.rule}" for f in result.findings] == []
+
+
+def test_every_lab_file_gets_a_tree_and_model():
+    for shader in find_shaders([str(LAB)]):
+        for source in shader.sources():
+            tree, model = engine.syntax_tree(source, shader)
+            assert model is not None and tree is model.ast, source.path
+
+
+@pytest.mark.parametrize("path", sorted(CORPUS.iterdir()), ids=lambda p: p.name)
+def test_ast_rules_run_on_the_corpus(path: Path):
+    result = lint_paths([path], {"select": AST_RULES})
+    assert result.files == 1
+    for f in result.findings:
+        assert f.loc.path == str(path) or Path(f.loc.path).resolve() == path.resolve()
+        assert f.help
+
+
+def test_corpus_phong_scene_findings():
+    found = {(f.rule, f.loc.line) for f in lint_paths([CORPUS / "spheres_phong.glsl"], {"select": AST_RULES}).findings}
+    # lights[2] is animated with iTime in mainImage (allowed); hitSphere returns early: no select
+    assert not any(rule == "uniform-outside-mainimage" for rule, _ in found)
+    assert ("unguarded-sqrt", 26) in found  # sqrt(h) after `if (h < 0.0) return`: a note only
+
+
+# --- the engine builds what AST rules read --------------------------------------------------
+
+
+def test_common_is_linted_inside_the_image_pass(tmp_path: Path):
+    # iDate is declared in the Common tab too (iTime there is a compile error, check's to report)
+    (tmp_path / "Common.glsl").write_text(HEADER + "float helper(in float x) { return x * iDate.w; }\n")
+    (tmp_path / "Image.glsl").write_text(
+        HEADER + "void mainImage(out vec4 fragColor, in vec2 fragCoord) { fragColor = vec4(helper(1.0)); }\n")
+    result = lint_paths([tmp_path], {"select": ["uniform-outside-mainimage", "unused-function"]})
+    assert [(Path(f.path).name, f.loc.line, f.rule) for f in result.findings] == [
+        ("Common.glsl", 4, "uniform-outside-mainimage")]
+
+
+def test_a_file_that_does_not_check_gets_text_rules_only(tmp_path: Path):
+    p = tmp_path / "Image.glsl"
+    p.write_text("void mainImage(out vec4 fragColor, in vec2 fragCoord) { fragColor = pow(x, 2.0); }\n")
+    src = Source(str(p), p.read_text())
+    shader = find_shaders([str(p)])[0]
+    assert engine.syntax_tree(src, shader) == (None, None)
+    rules = {f.rule for f in lint_paths([p]).findings}
+    assert "missing-header" in rules and "pow-small-exponent" not in rules
+
+
+def test_ast_findings_are_suppressed_like_any_other():
+    text = HEADER + "float f(in float x)\n{\n    return pow(x, 2.0); // glslcheck: ignore[pow-small-exponent]\n}\n" + MAIN
+    assert _findings(text, ["pow-small-exponent", "unused-suppression"]) == []
+
+
+# --- rule details worth pinning ------------------------------------------------------------
+
+
+def test_shadowing_local_is_not_a_uniform():
+    text = "float f(in float t)\n{\n    float iTime = t;\n    return iTime;\n}\n" + MAIN
+    assert _findings(text, ["uniform-outside-mainimage"]) == []
+
+
+def test_branch_replaceable_help_is_valid_glsl():
+    text = ("float f(in float a, in float b, in float x)\n{\n"
+            "    float m = a > b ? a : b;\n"
+            "    float c = x < 0.0 ? 0.0 : (x > 1.0 ? 1.0 : x);\n"
+            "    float s = x < 0.5 ? 2.0 : a;\n"
+            "    return m + c + s;\n}\n" + MAIN)
+    found = _findings(text, ["branch-replaceable"])
+    helps = [f.help.removeprefix("write ") for f in found]
+    assert helps == ["max(a, b)", "clamp(x, 0.0, 1.0)", "mix(2.0, a, step(0.5, x))"]
+    # each replacement checks as a float expression with the same variables
+    for h in helps:
+        check(parse_units([Source("t.glsl", f"float g(float a, float b, float x) {{ return {h}; }}" + MAIN)]))
+
+
+def test_length_comparison_flips_the_operator_for_a_right_hand_length():
+    text = "float f(in vec2 v, in float r)\n{\n    return float(r > length(v));\n}\n" + MAIN
+    (finding,) = _findings(text, ["length-comparison"])
+    assert finding.help.endswith("dot(v, v) < r * r")
+
+
+def test_repeated_expression_message_names_the_first_line():
+    text = ("vec3 f(in vec3 ro, in vec3 rd, in float t)\n{\n    vec3 a = ro + t * rd;\n"
+            "    vec3 b = (ro + t * rd) * 2.0;\n    return a + b;\n}\n" + MAIN)
+    (finding,) = _findings(text, ["repeated-expression"])
+    assert finding.loc.line == 4 and "line 3" in finding.message and "reuse 'a'" in finding.help
+
+
+# --- _exprs: keys, dominance, sign analysis -------------------------------------------------
+
+
+def test_keys_compare_variables_by_declaration():
+    fn = _function("float f(in float x)\n{\n    float a = x * 2.0 + 1.0;\n    {\n        float x = 3.0;\n"
+                   "        a += x * 2.0 + 1.0;\n    }\n    return a + (x * 2.0 + 1.0);\n}\n" + MAIN)
+    sums = [n for n in fn.nodes if type(n) is A.Binary and n.op == "+" and type(n.right) is A.FloatLiteral]
+    assert len(sums) == 3
+    assert fn.key(sums[0]) == fn.key(sums[2]) != fn.key(sums[1])
+
+
+def test_dominance_of_branches_and_loops():
+    fn = _function("float f(in float x, in bool c)\n{\n    float s = sin(x);\n"
+                   "    if (c) { s += sin(x); } else { s -= sin(x); }\n"
+                   "    for (int i = 0; i < 2; ++i) { s += sin(x); }\n    return s + sin(x);\n}\n" + MAIN)
+    first, then_, else_, loop, last = _calls(fn, "sin")
+    assert fn.dominates(first, then_) and fn.dominates(first, loop) and fn.dominates(first, last)
+    assert not fn.dominates(then_, else_) and not fn.dominates(then_, last)
+    assert not fn.dominates(loop, last)
+
+
+@pytest.mark.parametrize("expr, negative", [
+    ("dot(n, l)", True),
+    ("max(dot(n, l), 0.0)", False),
+    ("clamp(dot(n, l), 0.0, 1.0)", False),
+    ("1.0 - max(dot(n, l), 0.0)", False),
+    ("1.0 - x", True),
+    ("x", False),  # a parameter of unknown sign: no witness
+    ("-x", True),
+    ("x * x", False),
+    ("abs(x) + length(n)", False),
+    ("sin(x) * 0.5 + 0.5", False),
+    ("sin(x)", True),
+    ("dot(n, n)", False),
+    ("reflect(-l, n).x", True),
+    ("-2.0", True),
+    ("iTime * 0.5", False),
+    ("smoothstep(0.0, 1.0, x) - 0.5", True),
+    ("mix(0.2, 0.8, fract(x))", False),
+])
+def test_sign_analysis(expr: str, negative: bool):
+    fn = _function(f"float f(in vec3 n, in vec3 l, in float x)\n{{\n    return {expr};\n}}\n" + MAIN)
+    ret = next(n for n in fn.nodes if type(n) is A.Return)
+    assert (fn.negative_witness(ret.value) is not None) == negative
+
+
+def test_sign_analysis_follows_the_last_assignment_on_every_path():
+    fn = _function("float f(in vec3 n, in vec3 l, in bool c)\n{\n    float k = dot(n, l);\n"
+                   "    float a = pow(k, 2.5);\n    k = max(k, 0.0);\n    float b = pow(k, 2.5);\n"
+                   "    float m = dot(n, l);\n    if (c) { m = 1.0; }\n    return a + b + pow(m, 2.5);\n}\n" + MAIN)
+    bases = [c.args[0] for c in _calls(fn, "pow")]
+    assert [fn.negative_witness(b) is not None for b in bases] == [True, False, False]
