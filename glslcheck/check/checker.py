@@ -125,7 +125,15 @@ class Checker:
             self.precision_declaration(decl)
         elif isinstance(decl, A.BlockDeclaration):
             self.block_declaration(decl)
-        else:  # invariant / qualifier-only declarations: nothing to type
+        elif isinstance(decl, A.InvariantDeclaration):
+            # `invariant name;` / `qualifier name;` re-qualifies variables declared before.
+            for name in decl.names:
+                sym = self.scope.lookup(name)
+                if sym is None or sym.kind in ("function", "struct"):
+                    self.error(f"'{name}' is not a declared variable", decl,
+                               help="a qualifier followed by a name re-qualifies an existing variable; "
+                                    "to declare one, give its type")
+        else:  # qualifier-only declarations (`layout(std140) uniform;`): nothing to type
             pass
 
     def block_declaration(self, decl: A.BlockDeclaration) -> None:
