@@ -13,7 +13,7 @@ from glslcheck.lint import engine, lint_paths, lint_source
 from glslcheck.lint.rules import all_rules
 from glslcheck.lint.rules._exprs import FnFacts
 from glslcheck.parse import parse_units
-from glslcheck.sources import Source, find_shaders
+from glslcheck.sources import Shader, Source, find_shaders
 
 from .conftest import REPO_ROOT
 
@@ -23,13 +23,12 @@ AST_RULES = [r.name for r in all_rules().values() if r.needs == "ast"]
 HEADER = "// Image.glsl: a test\n// Contributors: Ana: all\n// starter framework by Daniel S. Buckstein\n"
 
 
-def _findings(text: str, select: list[str] | None = None, tmp_path: Path | None = None):
+def _findings(text: str, select: list[str] | None = None):
     src = Source("Image.glsl", text)
-    shader = find_shaders.__globals__["Shader"](tabs={"Image": src}, root=".")
+    shader = Shader(tabs={"Image": src}, root=".")
     tree, model = engine.syntax_tree(src, shader)
     assert model is not None, "the snippet must parse and check"
-    config = None
-    found = lint_source(src, config, shader, tree, model)
+    found = lint_source(src, None, shader, tree, model)
     return [f for f in found if select is None or f.rule in select]
 
 
