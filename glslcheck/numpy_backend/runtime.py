@@ -85,6 +85,11 @@ pow(-2, 2)                         undefined (x < 0)      NaN                NaN
 pow(0, 0), pow(0, -1), pow(0, y)   undefined (x=0, y<=0)  0 (any y)          0
 pow(NaN, y)                        NaN                    0                  0
 pow(inf, 0), pow(1, inf)           NaN (0*inf)            NaN                NaN
+pow(-0.5, 2.0) (literal exponent)  undefined (x < 0)      0.25 (x*x)         0.25 ``pow_const``
+pow(x, 1.0 | 4.0 | 0.0), x < 0     undefined              x, x^4, 1          same ``pow_const``
+pow(NaN, 0.0), pow(0, 0.0)         undefined              0                  0
+pow(x<0, 3.0 | 0.5 | -0.0 | 8.0)   undefined              NaN (no rewrite)   NaN
+pow(1.0, inf) (literal base 1)     NaN                    1                  1  ``pow_one``
 normalize(vec3(0))                 0/0                    NaN                NaN
 normalize(float 0.0)               0/0                    0 (= sign(x))      0
 sqrt(-1)                           undefined              NaN                NaN
@@ -119,6 +124,9 @@ roundEven(2.5), roundEven(-2.5)    2, -2                  2, -2              2, 
 atan(0, 0), atan(0, -0)            undefined              3*pi/4 (2.3561912) 3*pi/4
 atan(-0, -1)                       -pi                    -pi                -pi
 atan(inf, inf)                     pi/4                   0.78539485         nir formula
+atan(NaN), atan(-0)                NaN, -0                0, +0 (fsign)      0, +0
+atan(NaN, 1), atan(1, NaN)         NaN                    0, 0               0, 0
+atan(NaN, -1), atan(NaN, -inf)     NaN                    pi/2               pi/2
 fract(-0.25), fract(-1e-9)         x - floor(x)           0.75, 1.0          0.75, 1.0
 fract(inf)                         NaN                    NaN                NaN
 sign(-0.0), sign(NaN)              0                      +0, 0              +0, 0
@@ -129,6 +137,12 @@ asin(2), acos(2), acosh(0.5)       undefined              NaN                NaN
 atanh(1)                           undefined              +inf               +inf
 packUnorm2x16(NaN)                 undefined              0                  0
 =================================  =====================  =================  ================
+
+Literal operands (the rows marked ``pow_const`` / ``pow_one``, measured with a uniform base
+and a literal exponent): Mesa's compiler rewrites ``pow`` before run time when an exponent
+component is 1.0, 2.0, 4.0 or +0.0 (vector exponents per component), and ``pow(1.0, y)`` to 1;
+the transpiler emits those forms when the checker folds the operand to a constant. Mesa also
+propagates constants through plain local variables, which the transpiler does not follow.
 
 Formulas (each matched bit-for-bit on 65536 random inputs unless a ULP figure is given):
 no fused multiply-add is formed (``a*b+c`` rounds twice); ``x/y`` and ``sqrt`` are correctly
@@ -932,7 +946,9 @@ class Runtime:
         for cf in self._ATAN_COEFFS[1:]:
             r = r * x2 + F(cf)
         bias = np.where(le1, self._0, F(-math.pi / 2))
-        return np.copysign(np.abs(u) * r + bias, v)
+        # Mesa's sign fixup is `tmp * fsign(v)`: fsign(NaN) = fsign(-0) = 0 on llvmpipe, so
+        # atan(NaN) = 0 and atan(-0) = +0 (a NaN argument never reaches the result).
+        return np.where(a > self._0, np.copysign(np.abs(u) * r + bias, v), self._0)
 
     def atan(self, y: Any, x: Any = None) -> np.ndarray:
         """``atan(y_over_x)`` and ``atan(y, x)`` following Mesa's NIR lowering (atan(0, 0) is
@@ -985,6 +1001,34 @@ class Runtime:
         x, y = self._f(x), self._f(y)
         r = np.exp2(y * np.log2(x))
         return np.where((x == self._0) | np.isnan(x), self._0, r)
+
+    def pow_const(self, x: Any, c: Any) -> np.ndarray:
+        """``pow(x, c)`` with a compile-time constant exponent ``c`` (a Python float, or a tuple
+        of floats for a vector), compiled as Mesa compiles it: per component, an exponent of
+        1.0 is ``x``, 2.0 is ``x*x``, 4.0 is ``(x*x)*(x*x)`` (so pow(-0.5, 2.0) = 0.25 where
+        the run-time formula gives NaN), +0.0 is 1 except 0 for x == 0 or NaN (``log2(x) * 0``
+        folded to 0, then llvmpipe's x == 0 select); any other exponent (-0.0, 0.5, 3.0, ...)
+        is the run-time :meth:`pow`."""
+        x = self._f(x)
+        if isinstance(c, tuple):
+            if len(set(c)) == 1 and len({math.copysign(1.0, v) for v in c}) == 1:
+                return self.pow_const(x, c[0])
+            return np.stack([self.pow_const(x[i], v) for i, v in enumerate(c)])
+        if c == 1.0:
+            return x
+        if c == 2.0:
+            return x * x
+        if c == 4.0:
+            sq = x * x
+            return sq * sq
+        if c == 0.0 and math.copysign(1.0, c) > 0:
+            return np.where((x == self._0) | np.isnan(x), self._0, self._1)
+        return self.pow(x, self.F(c))
+
+    def pow_one(self, y: Any) -> np.ndarray:
+        """``pow(1.0, y)`` with a constant base of all ones: Mesa's GLSL compiler returns the
+        constant 1 (the run-time formula gives NaN for y = +-inf or NaN)."""
+        return np.ones_like(self._f(y))
 
     def exp(self, x: Any) -> np.ndarray:
         return np.exp2(self._f(x) * self.F(1.4426950408889634))

@@ -45,6 +45,9 @@ set") or a bool array; writes under a mask keep the old value elsewhere (`rt.ass
 * out/inout arguments: arguments are evaluated left to right once (index expressions of an
   l-value included); the callee returns `(value, out1, out2, ...)` and the caller copies the
   outs back under its own mask, left to right. `out` parameters start at zero.
+* `pow` with a constant exponent of 1.0, 2.0, 4.0 or +0.0 (per vector component) or a constant
+  base of ones is emitted as Mesa compiles it (`rt.pow_const`, `rt.pow_one`): products instead
+  of `exp2(y*log2(x))`, so `pow(-0.5, 2.0)` is 0.25 as on llvmpipe, not NaN.
 * compaction: when fewer than half of the lanes of a varying branch or loop iteration are
   active (and there are enough lanes to matter), the values the region uses are gathered to the
   active lanes (`X.gather` / `X.push`), the region runs on the short arrays with no mask, and the
@@ -73,6 +76,13 @@ _BIN_METHODS = {
     "<<": "shl", ">>": "shr", "&": "bit_and", "|": "bit_or", "^": "bit_xor",
     "&&": "and_", "||": "or_", "^^": "xor_",
 }
+
+
+def _components(v: Any) -> list[Any]:
+    """The scalars of a folded constant (a number or nested tuples), in order."""
+    if isinstance(v, (tuple, list)):
+        return [x for item in v for x in _components(item)]
+    return [v]
 
 
 def _error(message: str, node: Any, help: str | None = None) -> GlslError:
@@ -1625,6 +1635,10 @@ class Transpiler:
         if any(q == "out" for q in quals):
             raise _error(f"{name}() with an out parameter is not supported", e)
         args = self.exprs(e.args, mask)
+        if name == "pow":
+            rewritten = self.pow_rewrite(e, args)
+            if rewritten is not None:
+                return rewritten
         method = _RUNTIME_NAMES.get(name, name)
         from .runtime import Runtime
 
@@ -1633,6 +1647,22 @@ class Transpiler:
         if name in _DERIVATIVES:
             args.append("S.width")
         return f"rt.{method}({', '.join(args)})"
+
+    def pow_rewrite(self, e: A.Call, args: list[str]) -> str | None:
+        """Mesa's compile-time rewrites of `pow` (see `Runtime.pow_const`): a constant exponent
+        with a component of 1.0, 2.0, 4.0 or +0.0 becomes products (`rt.pow_const`), a constant
+        base of all ones becomes 1 (`rt.pow_one`); None: the run-time `rt.pow`."""
+        base = self.model.const_value(e.args[0])
+        if base is not None and all(v == 1.0 for v in _components(base)):
+            return f"rt.pow_one({args[1]})"
+        c = self.model.const_value(e.args[1])
+        if c is None:
+            return None
+        comps = [float(v) for v in _components(c)]
+        if not any(v in (1.0, 2.0, 4.0) or (v == 0.0 and str(v) == "0.0") for v in comps):
+            return None
+        lit = repr(comps[0]) if not isinstance(c, tuple) else "(" + ", ".join(map(repr, comps)) + ")"
+        return f"rt.pow_const({args[0]}, {lit})"
 
     def user_call(self, e: A.Call, fn: Any, mask: str | None) -> str:
         uni = self.fn.uni if self.fn is not None else None

@@ -29,12 +29,9 @@ TIMES = [0.0, 1.7, 5.3]
 VERIFIED = [
     "tangent_sphere", "silhouette_exact", "light_at_surface", "pow_edge", "far_camera",
     "intensities", "int_overflow", "mod_negative", "atan_zero", "int_mod_negative", "div_zero",
+    "pow_literal_exponent", "atan_nan",
 ]
-KNOWN_DIFFERENCES = {
-    "pow_literal_exponent": "Mesa rewrites pow(x, 1|2|4) to products before run time; the NumPy "
-                            "backend computes exp2(y*log2(x)) = NaN for x < 0",
-    "atan_nan": "llvmpipe's atan(NaN) is 0; the NumPy runtime returns NaN",
-}
+KNOWN_DIFFERENCES: dict[str, str] = {}  # name -> reason; none at present
 PINNED = ["constant_folding", "reassociation", "smoothstep_equal"]
 
 
@@ -115,9 +112,11 @@ def test_llvmpipe_pinned_folding_and_reassociation(gl):
 def test_numpy_pinned_choices():
     img = _render("constant_folding", "numpy")
     band = [_at(img, x, 45)[0] for x in (20, 60, 100, 140)]
-    # pow and atan are not folded (the run-time answers: NaN, 0, 3*pi/4); the transpiler folds
-    # int % of constants with C's remainder (runtime.rem_const), as Mesa does: -7 % 2 = -1.
-    assert np.isnan(band[0]) and band[1] == 0.0 and band[2] == 0.5
+    # pow and atan are not folded, but pow's literal exponent 2.0 is rewritten to x*x as Mesa
+    # does (pow(-2, 2) = 4, Mesa's folded answer too); pow(0, 0.0) and atan(0, 0) keep the
+    # run-time answers (0, 3*pi/4); the transpiler folds int % of constants with C's
+    # remainder (runtime.rem_const), as Mesa does: -7 % 2 = -1.
+    assert band[0] == 1.0 and band[1] == 0.0 and band[2] == 0.5
     assert band[3] == pytest.approx(2.3561912 + 0.25, abs=1e-6)  # llvmpipe's run-time 3*pi/4
     img = _render("reassociation", "numpy")
     k = np.float32(10.5 / W)                      # left third: IEEE left to right stays finite
