@@ -585,8 +585,10 @@ def commands_for(kind: str, rng: random.Random, results: dict[str, str], heavy_r
 
 def fuzz_range(seed: int, start: int, stop: int, *, heavy_rate: float, verify_rate: float,
                timeout_scale: float = 1.0, out_dir: Path | None = None, commands=LIGHT + HEAVY,
-               parse_rate: float = 1.0, progress=None, worker: Worker | None = None) -> tuple[collections.Counter, list[dict]]:
-    """Fuzz inputs start..stop-1 of run `seed` in one worker; (counts, flagged)."""
+               parse_rate: float = 1.0, progress=None, worker: Worker | None = None,
+               deadline: float | None = None) -> tuple[collections.Counter, list[dict]]:
+    """Fuzz inputs start..stop-1 of run `seed` in one worker; (counts, flagged). With
+    `deadline` (a time.monotonic() value), stop after the input running at that time."""
     seeds = seed_files()
     pool = POOL + sorted({t for s in seeds for text in s.values() for t in tokens(text)
                           if re.fullmatch(r"[A-Za-z_]\w*", t)})[:400]
@@ -596,6 +598,8 @@ def fuzz_range(seed: int, start: int, stop: int, *, heavy_rate: float, verify_ra
     flagged: list[dict] = []
     try:
         for index in range(start, stop):
+            if deadline is not None and time.monotonic() > deadline:
+                break
             kind, data = make_input(seed, index, seeds, pool)
             counts[("input", kind)] += 1
             rng = random.Random(f"{seed}:{index}:heavy")
