@@ -133,8 +133,11 @@ class Checker:
                     self.error(f"'{name}' is not a declared variable", decl,
                                help="a qualifier followed by a name re-qualifies an existing variable; "
                                     "to declare one, give its type")
-        else:  # qualifier-only declarations (`layout(std140) uniform;`): nothing to type
-            pass
+        elif isinstance(decl, A.QualifierDeclaration):  # `layout(std140) uniform;`
+            q = decl.qualifiers
+            if q is not None and q.storage not in ("uniform", "in", "out"):
+                self.error("a default layout needs 'uniform', 'in' or 'out' after it", decl,
+                           help="write e.g. 'layout(std140) uniform;'")
 
     def block_declaration(self, decl: A.BlockDeclaration) -> None:
         """`uniform Block { members } instance[N];` (spec 4.3.7): a struct-like type whose members
@@ -340,6 +343,9 @@ class Checker:
         storage = decl.qualifiers.storage if decl.qualifiers is not None else None
         if decl.qualifiers is not None:
             self.qualifier_words(decl.qualifiers.words, decl.qualifiers)
+            packing = {"std140", "shared", "packed", "row_major", "column_major"}
+            if storage != "uniform" and any(i.name in packing for l in decl.qualifiers.layouts for i in l.ids):
+                self.error("packing and matrix layout qualifiers apply only to uniforms", decl.qualifiers)
         base = self.resolve_type(decl.type)
         if not decl.declarators:
             return  # `struct S {...};` or `float;`
