@@ -98,7 +98,15 @@ def machine() -> list[str]:
         f"moderngl {moderngl.__version__}",
         f"GL         {gl}",
         f"glslang    glslangValidator {version}",
+        f"load       {_load()} (1/5/15-minute load average at the start; above {os.cpu_count()} other jobs compete)",
     ]
+
+
+def _load() -> str:
+    try:
+        return " ".join(f"{v:.1f}" for v in os.getloadavg())
+    except OSError:
+        return "unknown"
 
 
 # ---------------------------------------------------------------------------------------------
@@ -261,7 +269,7 @@ def main() -> int:
         print("\n".join(section(args.runs)) + "\n", flush=True)
     if not args.skip_memory:
         print("\n".join(section_memory()) + "\n", flush=True)
-    print(f"total {time.perf_counter() - started:.0f} s")
+    print(f"total {time.perf_counter() - started:.0f} s; load at the end {_load()}")
     return 0
 
 
