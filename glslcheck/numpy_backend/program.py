@@ -92,25 +92,41 @@ class Lanes:
         return self.rt.assign(old, new, m)
 
     # masks ------------------------------------------------------------------------------------
+    # A mask of shape (1,) is uniform: all of the current lanes or none. Combining it with
+    # another mask returns one of the operands instead of computing a full-lane array.
     @staticmethod
     def and_(a, b):
         if a is None:
             return b
         if b is None:
             return a
+        if a.shape[-1] == 1:
+            return b if a[0] else a
+        if b.shape[-1] == 1:
+            return a if b[0] else b
         return a & b
 
     @staticmethod
     def or_(a, b):
         if a is None or b is None:
             return None
+        if a.shape[-1] == 1:
+            return a if a[0] else b
+        if b.shape[-1] == 1:
+            return b if b[0] else a
         return a | b
 
     def andnot(self, a, b):
         if b is None:
             return self.NO
+        if b.shape[-1] == 1:
+            return self.NO if b[0] else a
         nb = ~b
-        return nb if a is None else a & nb
+        if a is None:
+            return nb
+        if a.shape[-1] == 1:
+            return nb if a[0] else a
+        return a & nb
 
     def refresh(self, m, live, *drop):
         m = self.and_(m, live)
@@ -374,31 +390,48 @@ class NumpyProgram:
         th = TILE_HEIGHT or max(2, (TILE_LANES // tw) // 2 * 2)
         tiles = [(x0, y0, min(tw, width - x0), min(th, height - y0))
                  for y0 in range(0, height, th) for x0 in range(0, width, tw)]
-        image = np.empty((height, width, 4), dtype=np.float32)  # bottom row first until the end
+        image = np.empty((height, width, 4), dtype=np.float32)  # top row first
         all_stats: list[dict] = []
+        need4 = "S.frag_coord4" in self.source  # gl_FragCoord: built only when the code reads it
+        grids: dict[tuple[int, int], tuple[np.ndarray, np.ndarray]] = {}
+        for _, _, w, h in tiles:  # pixel-centre offsets (float64) of each tile shape, made once
+            if (w, h) not in grids:
+                grids[(w, h)] = (np.tile(np.arange(w) + 0.5, h), np.repeat(np.arange(h) + 0.5, w))
 
         def run(tile):
             x0, y0, tw, th = tile
             lanes = tw * th
-            ys, xs = np.divmod(np.arange(lanes), tw)
+            gx, gy = grids[(tw, th)]
             acc = None
             st: dict | None = {} if stats else None
             for dx, dy in offsets:
-                fx = (xs + x0 + 0.5).astype(rt.F)
-                fy = (ys + y0 + 0.5).astype(rt.F)
-                frag = np.stack([fx + rt.F(dx), fy + rt.F(dy)]) if samples > 1 else np.stack([fx, fy])
-                frag4 = np.stack([fx, fy, np.full_like(fx, 0.5), np.ones_like(fx)])
-                S = State(**base, lanes=lanes, width=tw, frag_coord=frag, frag_coord4=frag4,
-                          discard=Lanes.NO, stats=st, parent=None)
+                frag = np.empty((2, lanes), dtype=rt.F)
+                np.add(gx, x0, out=frag[0], casting="unsafe")  # one rounding of x + 0.5 to F
+                np.add(gy, y0, out=frag[1], casting="unsafe")
+                frag4 = None
+                if need4:
+                    frag4 = np.empty((4, lanes), dtype=rt.F)
+                    frag4[:2] = frag
+                    frag4[2] = 0.5
+                    frag4[3] = 1.0
+                if samples > 1:
+                    frag[0] += rt.F(dx)
+                    frag[1] += rt.F(dy)
+                S = State(**base, lanes=lanes, width=tw, frag_coord=frag, discard=Lanes.NO, stats=st,
+                          parent=None)
+                if need4:
+                    S.frag_coord4 = frag4
                 with rt.errstate():
-                    color = ns["shade"](S)
-                    color = np.broadcast_to(color, (4, lanes)).astype(np.float64 if samples > 1 else np.float32)
+                    color = np.broadcast_to(ns["shade"](S), (4, lanes))
                     if S.discard is not Lanes.NO:
                         color = np.where(np.broadcast_to(S.discard, (lanes,)), 0.0, color)
+                    if samples > 1:
+                        color = color.astype(np.float64)
                 acc = color if acc is None else acc + color
             if samples > 1:
                 acc = acc / len(offsets)
-            image[y0:y0 + th, x0:x0 + tw] = acc.T.reshape(th, tw, 4)
+            # tile row 0 is the bottom one (y0); the image's row 0 is the top of the picture
+            image[height - y0 - th:height - y0, x0:x0 + tw] = acc.T.reshape(th, tw, 4)[::-1]
             if st is not None:
                 all_stats.append(st)
 
@@ -410,7 +443,7 @@ class NumpyProgram:
         else:
             for t in tiles:
                 run(t)
-        out = np.ascontiguousarray(image[::-1])
+        out = image
         if stats:
             total: dict[int, int] = {}
             for st in all_stats:

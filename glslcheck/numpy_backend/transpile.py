@@ -970,14 +970,18 @@ class Transpiler:
         start_indent = self.indent
         for i, s in enumerate(stmts):
             last = i == len(stmts) - 1
-            if top and last and isinstance(s, A.Return) and self.indent == start_indent:
+            if top and last and isinstance(s, A.Return):
+                # the function's last statement: return directly (when it is nested under the
+                # `if X.live(...)` of earlier returns, the final `return _rv` follows that `if`)
                 self.comment_line(s)
                 val = self.expr(s.value, mask) if s.value is not None else None
                 if val is not None and fs.rv is not None and mask not in (None, "_m"):
                     val = f"X.put({fs.rv}, {val}, {mask})"
                 self.emit(self.final_return(val) if val is not None or fs.outs else "return None")
+                nested = self.indent != start_indent
+                fs.nest -= self.indent - start_indent
                 self.indent = start_indent
-                return True
+                return not nested
             ev = events_of(s, self.facts, self.model)
             self.stmt(s, mask)
             if ev.any and not last:

@@ -53,8 +53,7 @@ def f_shade(S, _m, v_n):
     _m6 = X.refresh(_m, None, _ret)
     if X.live(_m6):
         # line 7: return n.y;
-        _rv = X.put(_rv, v_n[1], _m6)
-        _ret = X.or_(_ret, _m6)
+        return X.put(_rv, v_n[1], _m6)
     return _rv
 
 
