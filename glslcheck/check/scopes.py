@@ -43,14 +43,16 @@ class UniqueNames:
     def __init__(self, taken: set[str]) -> None:
         self.taken = set(taken)
         self.given: set[str] = set()
+        self.next: dict[str, int] = {}  # the next suffix to try per name: linear, not quadratic
 
     def make(self, name: str) -> str:
         if name not in self.given:
             self.given.add(name)
             return name
-        i = 1
+        i = self.next.get(name, 1)
         while f"{name}_{i}" in self.taken or f"{name}_{i}" in self.given:
             i += 1
+        self.next[name] = i + 1
         unique = f"{name}_{i}"
         self.given.add(unique)
         return unique
