@@ -54,8 +54,21 @@ DEFAULT_FPS = 60.0
 # Option parsers (usable as argparse `type=`: they raise ValueError with a readable message).
 
 
+# The largest image glslcheck renders: 4096x4096 pixels. Its float32 RGBA image alone is
+# 256 MiB; verify holds two of them (NumPy and GL) plus the comparison's arrays. 16384x16384
+# (4 GiB per image) ran out of memory with a traceback.
+MAX_PIXELS = 4096 * 4096
+
+
+def check_pixels(w: int, h: int, text: str) -> None:
+    """ValueError when w*h is above MAX_PIXELS."""
+    if w * h > MAX_PIXELS:
+        raise ValueError(f"a size of at most {MAX_PIXELS:,} pixels (e.g. 4096x4096), not {text!r} "
+                         f"({w * h:,} pixels, {w * h * 16 / 2**30:.1f} GiB per float image)")
+
+
 def parse_size(text: str) -> tuple[int, int]:
-    """'320x180' -> (320, 180); both at least 1 and at most 16384."""
+    """'320x180' -> (320, 180); both at least 1 and at most 16384, at most MAX_PIXELS in all."""
     parts = text.lower().replace("*", "x").split("x")
     try:
         if len(parts) != 2:
@@ -65,6 +78,7 @@ def parse_size(text: str) -> tuple[int, int]:
         raise ValueError(f"a size is WIDTHxHEIGHT in pixels, e.g. 320x180, not {text!r}") from None
     if not (1 <= w <= 16384 and 1 <= h <= 16384):
         raise ValueError(f"a size must be between 1x1 and 16384x16384, not {text!r}")
+    check_pixels(w, h, text)
     return w, h
 
 

@@ -43,6 +43,12 @@ def size_arg(text: str) -> tuple[int, int]:
         raise argparse.ArgumentTypeError(f"--size takes WIDTHxHEIGHT, e.g. 800x450, not {text!r}") from None
     if not (1 <= w <= 16384 and 1 <= h <= 16384):
         raise argparse.ArgumentTypeError(f"--size must be between 1x1 and 16384x16384, not {text!r}")
+    from ..verify import check_pixels
+
+    try:
+        check_pixels(w, h, text)
+    except ValueError as e:
+        raise argparse.ArgumentTypeError(f"--size takes {e}") from None
     return w, h
 
 
