@@ -79,8 +79,22 @@ def main(argv: list[str] | None = None) -> int:
     except KeyboardInterrupt:
         print("glslcheck: interrupted", file=sys.stderr)
         return 2
+    # A safety net, not the fix: each stage bounds its own recursion and memory (issue 9).
+    except RecursionError:
+        print(f"{_first_path(args)}:1:1: error: the program is nested too deeply to analyse", file=sys.stderr)
+        return 1
+    except MemoryError:
+        print(f"{_first_path(args)}: error: glslcheck ran out of memory on this shader"
+              " (a smaller --size or a smaller file helps)", file=sys.stderr)
+        return 2
     except BrokenPipeError:
         return 1
+
+
+def _first_path(args) -> str:
+    """The first shader path of a command's arguments, for the safety net's messages."""
+    paths = getattr(args, "paths", None) or [getattr(args, "shader", None) or getattr(args, "path", None)]
+    return str(paths[0]) if paths and paths[0] else "glslcheck"
 
 
 if __name__ == "__main__":
