@@ -500,8 +500,8 @@ def run_command(command: str, folder: Path, files: dict[str, Path], data: dict[s
 def _worker(conn, workdir: str) -> None:
     """Run (command, files) jobs sent by the parent until it sends None."""
     try:
-        os.nice(10)  # the machine is shared: fuzzing yields to interactive work
-    except OSError:
+        os.nice(int(os.environ.get("GLSLCHECK_FUZZ_NICE", "10")))  # the machine is shared: yield to others
+    except (OSError, ValueError):
         pass
     try:
         import resource
@@ -707,7 +707,7 @@ def main(argv: list[str] | None = None) -> int:
                 parse_rate=args.parse_rate, out_dir=Path(args.out), commands=commands)
     t0 = time.time()
     stop = args.start + args.count
-    step = max(50, min(2000, args.count // (args.jobs * 8) or 1))
+    step = max(50, min(500, args.count // (args.jobs * 8) or 1))
     chunks = [(args.seed, s, min(s + step, stop), opts) for s in range(args.start, stop, step)]
     counts: collections.Counter = collections.Counter()
     flagged: list[dict] = []
@@ -724,6 +724,8 @@ def main(argv: list[str] | None = None) -> int:
         done += sum(n for (k, _), n in c.items() if k == "input")
         print(f"[{time.time() - t0:6.0f} s] {done}/{args.count} inputs, {len(flagged)} flagged",
               file=sys.stderr, flush=True)
+        if args.json:  # after every chunk, so a stopped run keeps what it did
+            _write_json(args, counts, flagged, done, t0)
     print(f"python tools/fuzz.py --count {args.count} --seed {args.seed}"
           + (f" --start {args.start}" if args.start else "") + (f" --jobs {args.jobs}" if args.jobs > 1 else ""))
     print_counts(counts, flagged, time.time() - t0)
@@ -731,12 +733,16 @@ def main(argv: list[str] | None = None) -> int:
         print(f"  {f['outcome']} {f['command']} seed {f['seed']} input {f['index']} ({f['kind']}): "
               f"{f['detail'].strip().splitlines()[-1][:200] if f['detail'].strip() else ''}")
     if args.json:
-        Path(args.json).write_text(json.dumps({
-            "seed": args.seed, "start": args.start, "count": args.count,
-            "counts": {**{f"{c}/{o}": n for (c, o), n in sorted(counts.items())},
-                       "elapsed/total": time.time() - t0},
-            "flagged": flagged}, indent=1), encoding="utf-8")
+        _write_json(args, counts, flagged, done, t0)
     return 1 if flagged else 0
+
+
+def _write_json(args, counts, flagged, done: int, t0: float) -> None:
+    Path(args.json).write_text(json.dumps({
+        "seed": args.seed, "start": args.start, "count": done, "requested": args.count,
+        "counts": {**{f"{c}/{o}": n for (c, o), n in sorted(counts.items())},
+                   "elapsed/total": time.time() - t0},
+        "flagged": flagged}, indent=1), encoding="utf-8")
 
 
 if __name__ == "__main__":
