@@ -70,6 +70,7 @@ LOOP_CAP = 100_000  # iterations per execution of one loop before the render sto
 _IDENT = re.compile(r"^[A-Za-z_][A-Za-z0-9_]*$")
 _LOCAL_REF = re.compile(r"(?<![.\w\"'])(v_\w+|_[a-z]+\d*)\b")
 _RUNTIME_NAMES = {"min": "min_", "max": "max_", "not": "not_vec"}
+_FLOAT_OPERATORS = ("+", "-", "*", "/", "<", "<=", ">", ">=")  # printed as Python operators on floats
 _DERIVATIVES = ("dFdx", "dFdy", "fwidth")
 _BIN_METHODS = {
     "+": "add", "-": "sub", "*": "mul", "/": "div", "<": "lt", "<=": "le", ">": "gt", ">=": "ge",
@@ -1476,7 +1477,7 @@ class Transpiler:
             return self.incdec(e, mask, want_value=True)
         v = self.expr(e.operand, mask)
         if e.op == "-":
-            return f"rt.neg({v})"
+            return f"(-{v})" if self.type_of(e.operand).base == "float" else f"rt.neg({v})"
         if e.op == "+":
             return v
         if e.op == "!":
@@ -1524,6 +1525,10 @@ class Transpiler:
                 return f"rt.vec_mul_mat({left}, {right})"
         if op == "%":
             return f"rt.rem({left}, {right})"
+        if op in _FLOAT_OPERATORS and lt.base == "float" and rtp.base == "float":
+            # float operands are always arrays of the render dtype: NumPy's operator is exactly
+            # the runtime's ufunc (rt.add is np.add ...), without a Python call per operation
+            return f"({left} {op} {right})"
         return f"rt.{_BIN_METHODS[op]}({left}, {right})"
 
     def _print_Ternary(self, e: A.Ternary, mask: str | None) -> str:

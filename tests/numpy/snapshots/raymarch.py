@@ -35,7 +35,7 @@ def f_map(S, _m, v_p):
     """float map(vec3) (line 1)."""
     X.count(S, 1, _m)
     # line 2: return length(p - vec3(0.0, 0.0, 4.0)) - 1.0;
-    return rt.sub(rt.length(rt.sub(v_p, rt.vec(3, C_f_0p0, C_f_0p0, C_f_4p0))), C_f_1p0)
+    return (rt.length((v_p - rt.vec(3, C_f_0p0, C_f_0p0, C_f_4p0))) - C_f_1p0)
 
 
 def f_shade(S, _m, v_n):
@@ -44,7 +44,7 @@ def f_shade(S, _m, v_n):
     _ret = X.NO
     _rv = Z_float
     # line 6: if (n.y < 0.0) return 0.1;
-    _c3 = rt.lt(v_n[1], C_f_0p0)
+    _c3 = (v_n[1] < C_f_0p0)
     _m4 = X.and_(_m, _c3)
     if X.live(_m4):
         X.count(S, 5, _m4)
@@ -62,7 +62,7 @@ def f_mainImage(S, _m, v_fragCoord):
     X.count(S, 7, _m)
     v_fragColor = Z_float_4
     # line 11: vec2 uv = (2.0 * fragCoord - iResolution.xy) / iResolution.y;
-    v_uv = rt.div(rt.sub(rt.mul(C_f_2p0, v_fragCoord), rt.swizzle(S.u_iResolution, "xy")), S.u_iResolution[1])
+    v_uv = (((C_f_2p0 * v_fragCoord) - rt.swizzle(S.u_iResolution, "xy")) / S.u_iResolution[1])
     # line 12: vec3 rd = normalize(vec3(uv, 1.5));
     v_rd = rt.normalize(rt.vec(3, v_uv, C_f_1p5))
     # line 13: float t = 0.0;
@@ -84,9 +84,9 @@ def f_mainImage(S, _m, v_fragCoord):
             _live9 = None
         X.count(S, 8, _live9)
         # line 15: float d = map(rd * t);
-        v_d = f_map(S, _live9, rt.mul(v_rd, v_t))
+        v_d = f_map(S, _live9, (v_rd * v_t))
         # line 16: if (d < 0.001) break;
-        _c12 = rt.lt(v_d, C_f_0p001)
+        _c12 = (v_d < C_f_0p001)
         _m13 = X.and_(_live9, _c12)
         if X.live(_m13):
             X.count(S, 14, _m13)
@@ -94,17 +94,17 @@ def f_mainImage(S, _m, v_fragCoord):
         _m15 = X.refresh(_live9, _live9)
         if X.live(_m15):
             # line 17: t += d;
-            v_t = X.put(v_t, rt.add(v_t, v_d), _m15)
+            v_t = X.put(v_t, (v_t + v_d), _m15)
         # line 14: for (int i = 0; i < 64; i++) {
         v_i = rt.inc(v_i)
     if _k11:
         S, (_live9, _n10, v_i, v_rd, v_t,) = X.unwind(_k11, S, (_live9, _n10, v_i, v_rd, v_t,))
     # line 19: fragColor = vec4(vec3(t < 10.0 ? shade(normalize(rd * t - vec3(0.0, 0.0, 4.0))) : 0.0), 1.0);
-    _t16 = rt.lt(v_t, C_f_10p0)
+    _t16 = (v_t < C_f_10p0)
     _t17 = Z_float
     _m19 = X.and_(_m, _t16)
     if X.live(_m19):
-        _t17 = f_shade(S, _m19, rt.normalize(rt.sub(rt.mul(v_rd, v_t), rt.vec(3, C_f_0p0, C_f_0p0, C_f_4p0))))
+        _t17 = f_shade(S, _m19, rt.normalize(((v_rd * v_t) - rt.vec(3, C_f_0p0, C_f_0p0, C_f_4p0))))
     _t18 = Z_float
     _m20 = X.andnot(_m, _t16)
     if X.live(_m20):

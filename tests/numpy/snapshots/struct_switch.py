@@ -32,7 +32,7 @@ def f_closest(S, _m, v_h, v_t):
     X.count(S, 1, _m)
     v_better = Z_bool
     # line 4: better = t < h.t;
-    v_better = X.put(v_better, rt.lt(v_t, rt.field(v_h, "m_t")), _m)
+    v_better = X.put(v_better, (v_t < rt.field(v_h, "m_t")), _m)
     # line 5: if (better) h.t = t;
     _c2 = v_better
     _m3 = X.and_(_m, _c2)
