@@ -934,11 +934,16 @@ class Transpiler:
         for line in prologue:
             self.emit(line)
         body = node.body.stmts
-        ev = events_of(node.body, self.facts, self.model)
+        early = self.early_out(body)
+        if early is not None:
+            body = body[:-2]
+        ev = events_of(node.body, self.facts, self.model) if early is None else None
         tail = body[-1] if body and isinstance(body[-1], A.Return) else None
-        nontail_ret = any(isinstance(n, (A.Return, A.Discard)) and n is not tail for n in node.body.walk()) or (
-            ev.ret and any(isinstance(n, A.Call) and _is_symbol(self.model.call_target(n))
-                           and id(self.model.call_target(n)) in self.facts.may_discard for n in node.body.walk()))
+        nontail_ret = early is None and (
+            any(isinstance(n, (A.Return, A.Discard)) and n is not tail for n in node.body.walk()) or (
+                ev.ret and any(isinstance(n, A.Call) and _is_symbol(self.model.call_target(n))
+                               and id(self.model.call_target(n)) in self.facts.may_discard
+                               for n in node.body.walk())))
         if nontail_ret:
             fs.has_ret = True
             self.emit("_ret = X.NO")
@@ -948,10 +953,50 @@ class Transpiler:
                 self.emit(f"_rv = {self.zero(sym.type, proto)}")
                 fs.defined.append("_rv")
         ended = self.block(body, "_m", top=True)
-        if not ended:
+        if early is not None:
+            cond_stmt, ret = early
+            self.comment_line(cond_stmt)
+            c = self.tmp(self.expr(cond_stmt.cond, "_m"))
+            then = cond_stmt.then.stmts[0] if isinstance(cond_stmt.then, A.Compound) else cond_stmt.then
+            a = self.expr(then.value, "_m")
+            self.comment_line(ret)
+            b = self.expr(ret.value, "_m")
+            self.emit(self.final_return(f"rt.select({c}, {a}, {b})"))
+        elif not ended:
             self.emit(self.final_return())
         self.indent -= 1
         self.fn = None
+
+    def early_out(self, body: list[Any]) -> tuple[Any, Any] | None:
+        """`if (c) return K; return e;` ending a function, K a constant and c, e without side
+        effects: (the If, the last Return). The function then returns `select(c, K, e)`, with no
+        return mask: e is computed on every lane either way, and a select is cheaper than
+        masked writes of the return value. Any other return or discard in the body keeps the
+        general scheme."""
+        if len(body) < 2 or not isinstance(body[-1], A.Return) or body[-1].value is None:
+            return None
+        st = body[-2]
+        if not isinstance(st, A.If) or st.else_ is not None:
+            return None
+        then = st.then
+        if isinstance(then, A.Compound):
+            if len(then.stmts) != 1:
+                return None
+            then = then.stmts[0]
+        if not isinstance(then, A.Return) or then.value is None:
+            return None
+        if self.model.const_value(then.value) is None:
+            return None
+        if self.has_effects(st.cond) or self.has_effects(body[-1].value):
+            return None
+        for n in body[:-2]:
+            for m in n.walk():
+                if isinstance(m, (A.Return, A.Discard)):
+                    return None
+                if isinstance(m, A.Call) and _is_symbol(self.model.call_target(m)) \
+                        and id(self.model.call_target(m)) in self.facts.may_discard:
+                    return None
+        return st, body[-1]
 
     def final_return(self, value: str | None = None) -> str:
         fs = self.fn

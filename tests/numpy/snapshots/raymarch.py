@@ -9,7 +9,7 @@ Run it on its own (needs numpy and glslcheck's runtime):
 or from Python: glslcheck.numpy_backend.program.load_module('shader.py').render(...)
 """
 
-SHADER_META = {'source': 'Image.glsl', 'entry': 'f_mainImage', 'plain': False, 'uniforms': ['iResolution'], 'regions': {1: ('function', 'map', 'Image.glsl', 1), 2: ('function', 'shade', 'Image.glsl', 5), 5: ('if', 'shade', 'Image.glsl', 6), 7: ('function', 'mainImage', 'Image.glsl', 10), 8: ('loop', 'mainImage', 'Image.glsl', 14), 14: ('if', 'mainImage', 'Image.glsl', 16)}, 'loops': {8: ('Image.glsl', 14, 5)}, 'uses_derivatives': False, 'loop_cap': 100000}
+SHADER_META = {'source': 'Image.glsl', 'entry': 'f_mainImage', 'plain': False, 'uniforms': ['iResolution'], 'regions': {1: ('function', 'map', 'Image.glsl', 1), 2: ('function', 'shade', 'Image.glsl', 5), 4: ('function', 'mainImage', 'Image.glsl', 10), 5: ('loop', 'mainImage', 'Image.glsl', 14), 11: ('if', 'mainImage', 'Image.glsl', 16)}, 'loops': {5: ('Image.glsl', 14, 5)}, 'uses_derivatives': False, 'loop_cap': 100000}
 
 if __name__ == "__main__":  # run on its own: python this_file.py --help
     from glslcheck.numpy_backend.program import standalone_globals
@@ -27,8 +27,8 @@ C_i_64 = rt.const_int(64)
 C_f_0p001 = rt.const_float(0.001)
 C_f_10p0 = rt.const_float(10.0)
 C_vec4_1e20 = rt.vec(4, rt.const_float(1e20))
-Z_float = rt.zeros((), "float")
 Z_float_4 = rt.zeros((4,), "float")
+Z_float = rt.zeros((), "float")
 
 
 def f_map(S, _m, v_p):
@@ -41,25 +41,15 @@ def f_map(S, _m, v_p):
 def f_shade(S, _m, v_n):
     """float shade(vec3) (line 5)."""
     X.count(S, 2, _m)
-    _ret = X.NO
-    _rv = Z_float
     # line 6: if (n.y < 0.0) return 0.1;
-    _c3 = (v_n[1] < C_f_0p0)
-    _m4 = X.and_(_m, _c3)
-    if X.live(_m4):
-        X.count(S, 5, _m4)
-        _rv = X.put(_rv, C_f_0p1, _m4)
-        _ret = X.or_(_ret, _m4)
-    _m6 = X.refresh(_m, None, _ret)
-    if X.live(_m6):
-        # line 7: return n.y;
-        return X.put(_rv, v_n[1], _m6)
-    return _rv
+    _t3 = (v_n[1] < C_f_0p0)
+    # line 7: return n.y;
+    return rt.select(_t3, C_f_0p1, v_n[1])
 
 
 def f_mainImage(S, _m, v_fragCoord):
     """void mainImage(out vec4, vec2) (line 10)."""
-    X.count(S, 7, _m)
+    X.count(S, 4, _m)
     v_fragColor = Z_float_4
     # line 11: vec2 uv = (2.0 * fragCoord - iResolution.xy) / iResolution.y;
     v_uv = (((C_f_2p0 * v_fragCoord) - rt.swizzle(S.u_iResolution, "xy")) / S.u_iResolution[1])
@@ -69,47 +59,47 @@ def f_mainImage(S, _m, v_fragCoord):
     v_t = C_f_0p0
     # line 14: for (int i = 0; i < 64; i++) {
     v_i = C_i_0
-    _live9 = _m
-    _n10 = 0
-    _k11 = []
+    _live6 = _m
+    _n7 = 0
+    _k8 = []
     while True:
-        _n10 += 1
-        if _n10 > 100000:
-            X.runaway(8)
-        _live9 = X.and_(_live9, rt.lt(v_i, C_i_64))
-        if not X.live(_live9):
+        _n7 += 1
+        if _n7 > 100000:
+            X.runaway(5)
+        _live6 = X.and_(_live6, rt.lt(v_i, C_i_64))
+        if not X.live(_live6):
             break
-        if X.sparse(S, _live9) is not None:
-            S, (_live9, _n10, v_i, v_rd, v_t,) = X.push(_k11, S, _live9, (_live9, _n10, v_i, v_rd, v_t,))
-            _live9 = None
-        X.count(S, 8, _live9)
+        if X.sparse(S, _live6) is not None:
+            S, (_live6, _n7, v_i, v_rd, v_t,) = X.push(_k8, S, _live6, (_live6, _n7, v_i, v_rd, v_t,))
+            _live6 = None
+        X.count(S, 5, _live6)
         # line 15: float d = map(rd * t);
-        v_d = f_map(S, _live9, (v_rd * v_t))
+        v_d = f_map(S, _live6, (v_rd * v_t))
         # line 16: if (d < 0.001) break;
-        _c12 = (v_d < C_f_0p001)
-        _m13 = X.and_(_live9, _c12)
-        if X.live(_m13):
-            X.count(S, 14, _m13)
-            _live9 = X.andnot(_live9, _m13)
-        _m15 = X.refresh(_live9, _live9)
-        if X.live(_m15):
+        _c9 = (v_d < C_f_0p001)
+        _m10 = X.and_(_live6, _c9)
+        if X.live(_m10):
+            X.count(S, 11, _m10)
+            _live6 = X.andnot(_live6, _m10)
+        _m12 = X.refresh(_live6, _live6)
+        if X.live(_m12):
             # line 17: t += d;
-            v_t = X.put(v_t, (v_t + v_d), _m15)
+            v_t = X.put(v_t, (v_t + v_d), _m12)
         # line 14: for (int i = 0; i < 64; i++) {
         v_i = rt.inc(v_i)
-    if _k11:
-        S, (_live9, _n10, v_i, v_rd, v_t,) = X.unwind(_k11, S, (_live9, _n10, v_i, v_rd, v_t,))
+    if _k8:
+        S, (_live6, _n7, v_i, v_rd, v_t,) = X.unwind(_k8, S, (_live6, _n7, v_i, v_rd, v_t,))
     # line 19: fragColor = vec4(vec3(t < 10.0 ? shade(normalize(rd * t - vec3(0.0, 0.0, 4.0))) : 0.0), 1.0);
-    _t16 = (v_t < C_f_10p0)
-    _t17 = Z_float
-    _m19 = X.and_(_m, _t16)
-    if X.live(_m19):
-        _t17 = f_shade(S, _m19, rt.normalize(((v_rd * v_t) - rt.vec(3, C_f_0p0, C_f_0p0, C_f_4p0))))
-    _t18 = Z_float
-    _m20 = X.andnot(_m, _t16)
-    if X.live(_m20):
-        _t18 = C_f_0p0
-    v_fragColor = X.put(v_fragColor, rt.vec(4, rt.vec(3, rt.select(_t16, _t17, _t18)), C_f_1p0), _m)
+    _t13 = (v_t < C_f_10p0)
+    _t14 = Z_float
+    _m16 = X.and_(_m, _t13)
+    if X.live(_m16):
+        _t14 = f_shade(S, _m16, rt.normalize(((v_rd * v_t) - rt.vec(3, C_f_0p0, C_f_0p0, C_f_4p0))))
+    _t15 = Z_float
+    _m17 = X.andnot(_m, _t13)
+    if X.live(_m17):
+        _t15 = C_f_0p0
+    v_fragColor = X.put(v_fragColor, rt.vec(4, rt.vec(3, rt.select(_t13, _t14, _t15)), C_f_1p0), _m)
     return (None, v_fragColor)
 
 
