@@ -48,6 +48,11 @@ set") or a bool array; writes under a mask keep the old value elsewhere (`rt.ass
 * `pow` with a constant exponent of 1.0, 2.0, 4.0 or +0.0 (per vector component) or a constant
   base of ones is emitted as Mesa compiles it (`rt.pow_const`, `rt.pow_one`): products instead
   of `exp2(y*log2(x))`, so `pow(-0.5, 2.0)` is 0.25 as on llvmpipe, not NaN.
+* constant expressions inside functions (`vec3(0.6)`, `-1.0`, constant arrays and structs) are
+  module constants `C_x<n>`, computed once when the module is executed; float arithmetic and
+  comparisons print as NumPy operators (`(a * b)`: the runtime's ufuncs without a call).
+* a function ending in `if (c) return K; return e;` (K constant, no side effects) returns
+  `rt.select(c, K, e)` without a return mask: `e` runs on every lane either way.
 * compaction: when fewer than half of the lanes of a varying branch or loop iteration are
   active (and there are enough lanes to matter), the values the region uses are gathered to the
   active lanes (`X.gather` / `X.push`), the region runs on the short arrays with no mask, and the
@@ -77,6 +82,18 @@ _BIN_METHODS = {
     "<<": "shl", ">>": "shr", "&": "bit_and", "|": "bit_or", "^": "bit_xor",
     "&&": "and_", "||": "or_", "^^": "xor_",
 }
+
+
+_STRING = re.compile(r'"[^"]*"')
+_NAME = re.compile(r"(?<![.\w])([A-Za-z_]\w*)(\s*=(?!=))?")
+
+
+def _is_constant_text(text: str) -> bool:
+    """True when printed code refers to nothing but `rt` and module constants (no lanes, no S)."""
+    for name, kwarg in _NAME.findall(_STRING.sub('""', text)):
+        if not (kwarg or name == "rt" or name.startswith(("C_", "Z_"))):
+            return False
+    return True
 
 
 def _components(v: Any) -> list[Any]:
@@ -620,6 +637,8 @@ class Transpiler:
         self.facts = Facts(model, self.functions)
         self.lines: list[str] = []
         self.consts: dict[str, str] = {}  # name -> defining expression
+        self.const_exprs: dict[str, str] = {}  # printed constant expression -> its C_x name
+        self.in_const = False
         self.zero_defs: dict[str, str] = {}
         self.fn_names: dict[int, str] = {}
         self.struct_names: dict[int, str] = {}
@@ -1422,7 +1441,23 @@ class Transpiler:
         method = getattr(self, "_print_" + type(e).__name__, None)
         if method is None:
             raise _error(f"{type(e).__name__} expressions are not supported by the NumPy backend", e)
-        return method(e, mask)
+        if self.fn is None or self.in_const or self.model.const_value(e) is None:
+            return method(e, mask)
+        # a constant expression inside a function: computed once, as a module constant (the
+        # same runtime calls at import time instead of on every call in every tile)
+        self.in_const = True
+        n_lines = len(self.lines)
+        try:
+            text = method(e, mask)
+        finally:
+            self.in_const = False
+        if len(self.lines) != n_lines or "(" not in text or not _is_constant_text(text):
+            return text
+        name = self.const_exprs.get(text)
+        if name is None:
+            name = self.const_exprs[text] = f"C_x{len(self.const_exprs) + 1}"
+            self.consts[name] = text
+        return name
 
     def type_of(self, e: Any) -> Any:
         return self.model.type_of(e)

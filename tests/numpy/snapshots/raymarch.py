@@ -18,6 +18,7 @@ if __name__ == "__main__":  # run on its own: python this_file.py --help
 # Constants in the render precision (rt decides the float dtype).
 C_f_0p0 = rt.const_float(0.0)
 C_f_4p0 = rt.const_float(4.0)
+C_x1 = rt.vec(3, C_f_0p0, C_f_0p0, C_f_4p0)
 C_f_1p0 = rt.const_float(1.0)
 C_f_0p1 = rt.const_float(0.1)
 C_f_2p0 = rt.const_float(2.0)
@@ -35,7 +36,7 @@ def f_map(S, _m, v_p):
     """float map(vec3) (line 1)."""
     X.count(S, 1, _m)
     # line 2: return length(p - vec3(0.0, 0.0, 4.0)) - 1.0;
-    return (rt.length((v_p - rt.vec(3, C_f_0p0, C_f_0p0, C_f_4p0))) - C_f_1p0)
+    return (rt.length((v_p - C_x1)) - C_f_1p0)
 
 
 def f_shade(S, _m, v_n):
@@ -94,7 +95,7 @@ def f_mainImage(S, _m, v_fragCoord):
     _t14 = Z_float
     _m16 = X.and_(_m, _t13)
     if X.live(_m16):
-        _t14 = f_shade(S, _m16, rt.normalize(((v_rd * v_t) - rt.vec(3, C_f_0p0, C_f_0p0, C_f_4p0))))
+        _t14 = f_shade(S, _m16, rt.normalize(((v_rd * v_t) - C_x1)))
     _t15 = Z_float
     _m17 = X.andnot(_m, _t13)
     if X.live(_m17):

@@ -18,6 +18,8 @@ if __name__ == "__main__":  # run on its own: python this_file.py --help
 # Constants in the render precision (rt decides the float dtype).
 C_f_1000000000p0 = rt.const_float(1000000000.0)
 C_f_0p0 = rt.const_float(0.0)
+C_x1 = rt.struct("s_Hit", m_t=C_f_1000000000p0, m_n=rt.vec(3, C_f_0p0))
+C_x2 = rt.vec(3, C_f_0p0)
 C_i_3 = rt.const_int(3)
 C_i_0 = rt.const_int(0)
 C_i_1 = rt.const_int(1)
@@ -47,7 +49,7 @@ def f_mainImage(S, _m, v_fragCoord):
     X.count(S, 5, _m)
     v_fragColor = Z_float_4
     # line 9: Hit h = Hit(1e9, vec3(0.0));
-    v_h_1 = rt.struct("s_Hit", m_t=C_f_1000000000p0, m_n=rt.vec(3, C_f_0p0))
+    v_h_1 = C_x1
     # line 10: bool b;
     v_b = Z_bool
     # line 11: closest(h, fragCoord.x, b);
@@ -57,7 +59,7 @@ def f_mainImage(S, _m, v_fragCoord):
     v_b = X.put(v_b, _t7[2], _m)
     _t7[0]
     # line 12: vec3 c = vec3(0.0);
-    v_c = rt.vec(3, C_f_0p0)
+    v_c = C_x2
     # line 13: switch (int(fragCoord.y) % 3) {
     _sv8 = rt.rem(rt.to_int(v_fragCoord[1]), C_i_3)
     _d9 = rt.not_(rt.eq(_sv8, C_i_0) | rt.eq(_sv8, C_i_1))
