@@ -65,6 +65,18 @@ class State:
     def __init__(self, **values: Any) -> None:
         self.__dict__.update(values)
 
+    def __getattr__(self, name: str) -> Any:
+        # a compacted view gathers globals and fragment coordinates on first use only
+        lazy = self.__dict__.get("lazy")
+        if lazy is None or name not in lazy:
+            raise AttributeError(name)
+        lazy.discard(name)
+        parent = self.parent
+        g = Lanes._take(getattr(parent, name), self.idx, parent.lanes)
+        self.__dict__[name] = g
+        self.gathered[name] = g
+        return g
+
 
 @dataclass
 class _Gathered:
@@ -204,17 +216,28 @@ class Lanes:
         out[..., idx] = new
         return out
 
+    _LANE_FIELDS = ("discard", "frag_coord", "frag_coord4")
+
     def gather(self, S, idx, values: tuple):
+        """A compacted view of S (and of `values`) on the lanes `idx`. Globals and fragment
+        coordinates are gathered when the region first reads them (`State.__getattr__`)."""
         lanes = S.lanes
-        child = State(**S.__dict__)
+        fields = {}
+        lazy = set(S.__dict__.get("lazy") or ())  # fields S itself has not gathered yet
+        for k, v in S.__dict__.items():
+            if k.startswith("g_") or k in self._LANE_FIELDS:
+                if isinstance(v, np.ndarray) and (v.shape[-1] == 1 or lanes == 1):
+                    fields[k] = v  # uniform: the same array serves the compacted lanes
+                else:
+                    lazy.add(k)
+            elif k not in ("lazy", "gathered", "idx"):
+                fields[k] = v
+        child = State(**fields)
         child.parent = S
         child.lanes = len(idx)
-        child.gathered = {}
-        for k, v in S.__dict__.items():
-            if k.startswith("g_") or k == "discard" or k == "frag_coord" or k == "frag_coord4":
-                g = self._take(v, idx, lanes)
-                setattr(child, k, g)
-                child.gathered[k] = g
+        child.idx = idx
+        child.lazy = lazy
+        child.gathered = {k: fields[k] for k in fields if k.startswith("g_") or k in self._LANE_FIELDS}
         gathered = tuple(self._take(v, idx, lanes) for v in values)
         return child, _Gathered(gathered, values)
 
@@ -222,12 +245,15 @@ class Lanes:
         parent = S.parent
         lanes = parent.lanes
         for k, g in S.gathered.items():
-            v = getattr(S, k)
+            v = S.__dict__[k]
             if v is not g:
                 setattr(parent, k, self._put(getattr(parent, k), v, idx, lanes))
-        for k, v in S.__dict__.items():  # globals first assigned inside the region
+        for k, v in S.__dict__.items():  # globals written in the region before any read of them
             if k.startswith("g_") and k not in S.gathered:
-                setattr(parent, k, v)
+                if k in S.lazy or hasattr(parent, k):
+                    setattr(parent, k, self._put(getattr(parent, k), v, idx, lanes))
+                else:
+                    setattr(parent, k, v)
         out = tuple(self._put(o, v, idx, lanes) if v is not g else o
                     for o, g, v in zip(rec.originals, rec.values, values))
         return parent, out
@@ -391,6 +417,8 @@ class NumpyProgram:
         tiles = [(x0, y0, min(tw, width - x0), min(th, height - y0))
                  for y0 in range(0, height, th) for x0 in range(0, width, tw)]
         image = np.empty((height, width, 4), dtype=np.float32)  # top row first
+        # the frame cache's copy, written by each tile while its rows are still in the CPU cache
+        cached = None if stats else np.empty_like(image)
         all_stats: list[dict] = []
         need4 = "S.frag_coord4" in self.source  # gl_FragCoord: built only when the code reads it
         grids: dict[tuple[int, int], tuple[np.ndarray, np.ndarray]] = {}
@@ -431,7 +459,10 @@ class NumpyProgram:
             if samples > 1:
                 acc = acc / len(offsets)
             # tile row 0 is the bottom one (y0); the image's row 0 is the top of the picture
-            image[height - y0 - th:height - y0, x0:x0 + tw] = acc.T.reshape(th, tw, 4)[::-1]
+            rows = slice(height - y0 - th, height - y0)
+            image[rows, x0:x0 + tw] = acc.T.reshape(th, tw, 4)[::-1]
+            if cached is not None:
+                cached[rows, x0:x0 + tw] = image[rows, x0:x0 + tw]
             if st is not None:
                 all_stats.append(st)
 
@@ -453,7 +484,7 @@ class NumpyProgram:
             self.last_stats = [RegionStat(*regions[k], total.get(k, 0)) for k in sorted(regions)]
         else:
             with self._lock:
-                self._cache[key] = out.copy()
+                self._cache[key] = cached
                 while len(self._cache) > CACHE_FRAMES:
                     self._cache.popitem(last=False)
         return out

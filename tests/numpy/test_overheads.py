@@ -1,0 +1,140 @@
+"""The NumPy backend's overhead cuts change no pixel: lazy gathering of globals and fragment
+coordinates in compacted regions (nested too), uniform masks, early-out returns as selects,
+constant expressions as module constants, tiles written straight into the image, the frame cache.
+
+Each shader is rendered with compaction on and off (COMPACT_FRACTION = 0 never compacts) and
+with several tile sizes; the images must be bit-identical.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+from glslcheck.numpy_backend import program as P
+from glslcheck.numpy_backend.program import Lanes, compile_numpy
+from glslcheck.numpy_backend.transpile import transpile_shader
+
+# Globals read and written inside sparse (compacted) branches and loops, nested; gl_FragCoord
+# read only inside the sparse branch; an early-out function; constant arrays and structs.
+SHADER = """
+struct Ball { vec3 c; float r; };
+float g_acc = 0.0;
+vec2 g_seen = vec2(-1.0);
+int g_count = 0;
+
+float hit(vec2 p, Ball b) {
+    float d = length(p - b.c.xy);
+    if (d > b.r) return -1.0;
+    return b.r - d;
+}
+
+void mainImage(out vec4 fragColor, in vec2 fragCoord) {
+    vec2 p = fragCoord / iResolution.y;
+    Ball balls[3] = Ball[3](Ball(vec3(0.3, 0.3, 0.0), 0.08), Ball(vec3(0.9, 0.5, 0.0), 0.05),
+                            Ball(vec3(1.4, 0.7, 0.0), 0.12));
+    float best = -1.0;
+    int k = -1;
+    for (int i = 0; i < 3; i++) {
+        float h = hit(p, balls[i]);
+        if (h > best) { best = h; k = i; }
+    }
+    vec3 col = vec3(0.1);
+    if (k >= 0) {                           // about 5% of the pixels: compacted
+        g_acc += best;
+        if (gl_FragCoord.x > 0.5 * iResolution.x) {   // nested sparse branch
+            g_seen = gl_FragCoord.xy;
+            g_count += 2;
+        }
+        for (int j = 0; j < 4; j++) {
+            if (float(j) * 0.03 > best) break;   // lanes leave at different times
+            g_count++;
+        }
+        col = vec3(best * 10.0, float(g_count) * 0.1, g_seen.x / iResolution.x);
+    }
+    if (k == 2 && fragCoord.y < 0.7 * iResolution.y) discard;
+    fragColor = vec4(col + g_acc, 1.0);
+}
+"""
+
+
+def _render(prog, **kw):
+    prog._cache.clear()
+    return prog.render(size=(96, 54), **kw)
+
+
+@pytest.fixture
+def knobs(monkeypatch):
+    def set_(**values):
+        for k, v in values.items():
+            monkeypatch.setattr(P, k, v)
+    return set_
+
+
+def test_compaction_and_tiles_change_no_pixel(make_shader, knobs):
+    prog = compile_numpy(make_shader(SHADER))
+    knobs(COMPACT_MIN_LANES=16)
+    reference = None
+    for fraction in (0.0, 0.5, 0.9):
+        for lanes in (64, 600, 10_000):
+            knobs(COMPACT_FRACTION=fraction, TILE_LANES=lanes)
+            img = _render(prog)
+            if reference is None:
+                reference = img
+                assert np.isfinite(img).all() and (img[..., 3] == 0).any() and (img[..., 3] == 1).any()
+            else:
+                assert np.array_equal(img, reference, equal_nan=True), (fraction, lanes)
+
+
+def test_compacted_rendering_matches_gl(gl, make_shader, knobs):
+    from glslcheck.gl_backend import compile_gl
+
+    shader = make_shader(SHADER)
+    knobs(COMPACT_MIN_LANES=16, TILE_LANES=600)
+    ours = _render(compile_numpy(shader))
+    theirs = compile_gl(shader).render(size=(96, 54))
+    assert np.allclose(ours, theirs, rtol=1e-5, atol=1e-5)
+
+
+def test_frame_cache_is_a_separate_copy(make_shader):
+    prog = compile_numpy(make_shader(SHADER))
+    a = prog.render(size=(32, 18))
+    keep = a.copy()
+    a[:] = 7.0                                   # the caller owns the returned image
+    b = prog.render(size=(32, 18))               # a cache hit
+    assert np.array_equal(b, keep, equal_nan=True)
+    b[:] = 3.0
+    assert np.array_equal(prog.render(size=(32, 18)), keep, equal_nan=True)
+
+
+def test_image_rows_run_top_to_bottom(make_shader, knobs):
+    prog = compile_numpy(make_shader(
+        "void mainImage(out vec4 o, in vec2 f) { o = vec4(f, gl_FragCoord.x + gl_FragCoord.y, 1.0); }"))
+    knobs(TILE_LANES=40)
+    img = _render(prog)
+    h, w = img.shape[:2]
+    assert np.array_equal(img[:, 0, 1], np.arange(h, dtype=np.float32)[::-1] + 0.5)
+    assert np.array_equal(img[0, :, 0], np.arange(w, dtype=np.float32) + 0.5)
+    assert np.array_equal(img[..., 2], img[..., 0] + img[..., 1])  # gl_FragCoord.xy = fragCoord
+
+
+def test_uniform_masks_combine_without_lane_arrays():
+    X = Lanes({})
+    T, F = np.ones(1, bool), np.zeros(1, bool)
+    m = np.array([True, False, True])
+    assert X.and_(T, m) is m and X.and_(m, T) is m and X.and_(F, m) is F and X.and_(m, F) is F
+    assert X.or_(F, m) is m and X.or_(m, F) is m and X.or_(T, m) is T
+    assert X.andnot(m, T) is X.NO and X.andnot(m, F) is m and X.andnot(None, F) is None
+    assert np.array_equal(X.andnot(T, m), ~m) and X.andnot(F, m) is F
+    assert np.array_equal(X.and_(m, ~m), np.zeros(3, bool))
+
+
+def test_generated_code_shapes(make_shader):
+    code = transpile_shader(make_shader(SHADER)).source
+    # the early-out function returns a select, without return masks
+    hit = code[code.index("def f_hit("):code.index("def f_mainImage(")]
+    assert "rt.select(" in hit and "_ret" not in hit and "_rv" not in hit
+    # the constant array of structs is built once, at module level
+    assert "v_balls = C_x" in code
+    # float arithmetic prints as operators
+    assert "(v_fragCoord / " in code
