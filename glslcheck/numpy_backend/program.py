@@ -330,6 +330,19 @@ def sample_offsets(samples: int) -> list[tuple[float, float]]:
     return [((i + 0.5) / k - 0.5, (j + 0.5) / k - 0.5) for j in range(k) for i in range(k)]
 
 
+_POOLS: dict[int, ThreadPoolExecutor] = {}
+_POOLS_LOCK = threading.Lock()
+
+
+def _pool(threads: int) -> ThreadPoolExecutor:
+    """A process-wide pool of `threads` tile workers (made once, not per render)."""
+    with _POOLS_LOCK:
+        pool = _POOLS.get(threads)
+        if pool is None:
+            pool = _POOLS[threads] = ThreadPoolExecutor(max_workers=threads, thread_name_prefix="glslcheck-tile")
+        return pool
+
+
 @dataclass
 class RegionStat:
     kind: str
@@ -468,9 +481,16 @@ class NumpyProgram:
 
         threads = self.threads or os.cpu_count() or 1
         if threads > 1 and len(tiles) > 1:
-            with ThreadPoolExecutor(max_workers=threads) as pool:
-                for f in [pool.submit(run, t) for t in tiles]:
+            futures = [_pool(threads).submit(run, t) for t in tiles]
+            try:
+                for f in futures:
                     f.result()
+            finally:
+                for f in futures:  # after an error: drop the tiles not started yet ...
+                    f.cancel()
+                for f in futures:  # ... and let the running ones finish before returning
+                    if not f.cancelled():
+                        f.exception()
         else:
             for t in tiles:
                 run(t)

@@ -594,6 +594,10 @@ class Runtime:
         if isinstance(i, int):
             return arr[i]
         lanes = _lanes_of(arr, i)
+        if arr.shape[-1] == 1 and i.ndim == 1 and i.shape[0] == lanes:
+            # a uniform array (a constant table) read at lane-varying indices: one gather,
+            # already contiguous with the lane axis last
+            return np.take(np.moveaxis(arr[..., 0], 0, -1), i, axis=-1)
         if size <= 4:  # a few selects beat fancy indexing for vectors and matrices
             out = arr[0]
             for k in range(1, size):
@@ -818,8 +822,12 @@ class Runtime:
         if a.ndim == 1 and b.ndim == 1:
             return np.multiply(a, b)
         s = np.multiply(a[0], b[0])
-        for i in range(1, a.shape[0]):
-            s = np.add(s, np.multiply(a[i], b[i]))
+        if a.shape[0] > 1:  # every product has the same shape: accumulate in place
+            t = np.multiply(a[1], b[1])
+            s += t
+            for i in range(2, a.shape[0]):
+                np.multiply(a[i], b[i], out=t)
+                s += t
         return s
 
     def mat_mul_vec(self, m: np.ndarray, v: np.ndarray) -> np.ndarray:
@@ -1195,7 +1203,8 @@ class Runtime:
         x = self._f(x)
         if x.ndim == 1:
             return np.abs(x)
-        return np.sqrt(self.dot(x, x))
+        d = self.dot(x, x)
+        return np.sqrt(d, out=d)
 
     def distance(self, a: Any, b: Any) -> np.ndarray:
         return self.length(self.sub(self._f(a), self._f(b)))
@@ -1211,7 +1220,10 @@ class Runtime:
         x = self._f(x)
         if x.ndim == 1:
             return self.sign(x)
-        return x * (self._1 / np.sqrt(self.dot(x, x)))
+        d = self.dot(x, x)  # a fresh array: sqrt and the reciprocal reuse it
+        np.sqrt(d, out=d)
+        np.divide(self._1, d, out=d)
+        return x * d
 
     def faceforward(self, n: Any, i: Any, nref: Any) -> np.ndarray:
         n = self._f(n)
