@@ -330,6 +330,33 @@ def sample_offsets(samples: int) -> list[tuple[float, float]]:
     return [((i + 0.5) / k - 0.5, (j + 0.5) / k - 0.5) for j in range(k) for i in range(k)]
 
 
+class _FrameCache(OrderedDict):
+    """The frame cache (key -> image). Its images are never handed out (a hit returns a copy),
+    so the buffers of dropped entries are kept (at most SPARE_FRAMES) for the next frames'
+    copies: a fresh buffer costs page faults on first write, about as much as the copy itself."""
+
+    SPARE_FRAMES = 2
+
+    def __init__(self) -> None:
+        super().__init__()
+        self.spare: list[np.ndarray] = []
+
+    def buffer(self, shape: tuple[int, ...]) -> np.ndarray:
+        for i, b in enumerate(self.spare):
+            if b.shape == shape:
+                return self.spare.pop(i)
+        return np.empty(shape, dtype=np.float32)
+
+    def recycle(self, image: np.ndarray) -> None:
+        self.spare.append(image)
+        del self.spare[:-self.SPARE_FRAMES]
+
+    def clear(self) -> None:
+        for image in list(self.values())[-self.SPARE_FRAMES:]:
+            self.recycle(image)
+        super().clear()
+
+
 _POOLS: dict[int, ThreadPoolExecutor] = {}
 _POOLS_LOCK = threading.Lock()
 
@@ -362,7 +389,7 @@ class NumpyProgram:
     threads: int | None = None
     last_stats: list[RegionStat] = field(default_factory=list)
     _modules: dict = field(default_factory=dict, repr=False)
-    _cache: OrderedDict = field(default_factory=OrderedDict, repr=False)
+    _cache: OrderedDict = field(default_factory=lambda: _FrameCache(), repr=False)
     _lock: Any = field(default_factory=threading.Lock, repr=False)
 
     @property
@@ -431,7 +458,10 @@ class NumpyProgram:
                  for y0 in range(0, height, th) for x0 in range(0, width, tw)]
         image = np.empty((height, width, 4), dtype=np.float32)  # top row first
         # the frame cache's copy, written by each tile while its rows are still in the CPU cache
-        cached = None if stats else np.empty_like(image)
+        cached = None
+        if not stats:
+            with self._lock:
+                cached = self._cache.buffer(image.shape)
         all_stats: list[dict] = []
         need4 = "S.frag_coord4" in self.source  # gl_FragCoord: built only when the code reads it
         grids: dict[tuple[int, int], tuple[np.ndarray, np.ndarray]] = {}
@@ -506,7 +536,7 @@ class NumpyProgram:
             with self._lock:
                 self._cache[key] = cached
                 while len(self._cache) > CACHE_FRAMES:
-                    self._cache.popitem(last=False)
+                    self._cache.recycle(self._cache.popitem(last=False)[1])
         return out
 
     def format_stats(self) -> str:
