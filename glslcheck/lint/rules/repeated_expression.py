@@ -71,6 +71,9 @@ def _holder_symbol(fn, first):
     return None
 
 
+_CANDIDATES = 64  # earlier occurrences tried as the one to reuse
+
+
 def check(ctx) -> Iterator[Diagnostic]:
     for fn in facts(ctx).in_file(ctx.path):
         yield from _check_function(fn)
@@ -94,7 +97,9 @@ def _check_function(fn) -> Iterator[Diagnostic]:
             if id(b) in covered:
                 continue
             operands = fn.operands(b)
-            first = next((a for a in occ[:j]
+            # The first _CANDIDATES occurrences only: the same for any real shader, linear (not
+            # quadratic) for a generated file repeating one expression thousands of times.
+            first = next((a for a in occ[:min(j, _CANDIDATES)]
                           if fn.dominates(a, b) and not fn.written_between(a, b, operands)), None)
             if first is None:
                 continue
