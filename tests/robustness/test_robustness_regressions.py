@@ -37,6 +37,8 @@ def run_cli(command: str, data: bytes | str, tmp_path: Path, name: str = "shader
     lines = max(raw.count(b"\n"), raw.count(b"\r")) + 1
     for line in (out_s + err_s).splitlines():
         if ": error:" in line and not line.startswith("glslcheck"):
+            if rc == 2 and line.startswith(f"{path}: error:"):
+                continue  # a file-level I/O or resource error (exit 2): the file, no position
             m = re.match(rf"{re.escape(str(path))}:(\d+):(\d+): error:", line)
             assert m, f"an error without file:line:col: {line!r}"
             assert 1 <= int(m.group(1)) <= lines, line
@@ -133,3 +135,44 @@ def test_unterminated_comment_and_half_written_function(tmp_path, command):
     text = f"{MAIN}\n    fragColor = vec4(\n/* still typing"
     rc, _, _ = run_cli(command, text, tmp_path)
     assert rc == 1
+
+
+def test_not_utf8_after_a_lone_cr_names_the_right_line(tmp_path):
+    """Found by tools/fuzz.py: the not-UTF-8 message counted a lone CR (old Mac line end) as no
+    line break, though every other message does, so it named line 1 for a byte on line 3
+    (fixed in 305e32f)."""
+    rc, _, err = run_cli("parse", b"a\rb\rc\xb1\n", tmp_path)
+    assert rc == 2 and ":3:2: error: the file is not UTF-8" in err
+
+
+@pytest.mark.parametrize("command", ["render", "verify"])
+def test_huge_size_is_a_usage_error(tmp_path, command):
+    """--size 16384x16384 allocated a 4 GiB image and died with a MemoryError traceback
+    (fixed in c249fb7: at most 4096*4096 pixels)."""
+    extra = ("--size", "16384x16384") + (("-o", str(tmp_path / "o.npy")) if command == "render" else ())
+    rc, _, err = run_cli(command, f"{MAIN} fragColor = vec4(1.0); }}\n", tmp_path, extra=extra)
+    assert rc == 2 and "16,777,216 pixels" in err
+
+
+@pytest.mark.parametrize("error, code", [(RecursionError, 1), (MemoryError, 2)])
+def test_safety_net_turns_recursion_and_memory_errors_into_messages(tmp_path, monkeypatch, error, code):
+    """The last resort in cli.main (a4fb23f): a stage that still runs out of stack or memory
+    prints one line naming the shader instead of a traceback."""
+    import glslcheck.check as check_module
+
+    def boom(*args, **kwargs):
+        raise error()
+
+    monkeypatch.setattr(check_module, "check", boom)
+    rc, _, err = run_cli("check", GOOD, tmp_path)
+    assert rc == code
+    assert err.startswith(str(tmp_path / "shader.glsl"))
+
+
+@pytest.mark.parametrize("command", ["parse", "check", "lint", "transpile"])
+def test_lint_and_other_commands_never_modify_the_file(tmp_path, command):
+    """Issue 9: the pre-commit hook and lint never modify a file (run_cli compares the bytes),
+    also for a file with findings in every rule family."""
+    text = "\xef\xbb\xbfvoid mainImage(out vec4 c, in vec2 p)\r\n{\tfloat x = pow(p.x, 2.0);  \r\n c = vec4(x); }"
+    extra = ("-o", str(tmp_path / "out.py")) if command == "transpile" else ()
+    run_cli(command, text.encode("latin-1"), tmp_path, extra=extra)
