@@ -442,6 +442,7 @@ class _Preprocessor:
         self.budget = MAX_EXPANSION_TOKENS
         self.hide_cache: dict[tuple[frozenset[str], str], frozenset[str]] = {}
         self.seen_code = False  # a token before #version?
+        self.seen_tokens = False  # a line of code (not a directive) before an #extension?
 
     # -- output ----------------------------------------------------------------------------
 
@@ -537,6 +538,8 @@ class _Preprocessor:
                 run_end = nl + 1
                 if f < nl and not self.seen_code:
                     self.seen_code = True
+                if f < nl:
+                    self.seen_tokens = True
             else:
                 self._mark_inactive(u, start, nl)
                 self._emit_blank(u, i)
@@ -875,6 +878,15 @@ class _Preprocessor:
     # #extension, #version, #line --------------------------------------------------------
 
     def _extension(self, toks: list[_Tok], nt: _Tok, hash_pos: int, nl: int) -> None:
+        # GLSL ES 3.00 3.4: #extension comes before any code. Shadertoy puts its precision and
+        # uniform declarations before a tab's text, so in a tab it always comes after code;
+        # WebGL 2 (ANGLE) and Mesa reject the program.
+        if self.shadertoy:
+            raise self._error(
+                "#extension is not allowed in a Shadertoy tab: Shadertoy's own declarations come first, "
+                "and an #extension after code is rejected by WebGL 2", hash_pos, nl)
+        if self.seen_tokens:
+            raise self._error("#extension must come before any code in the shader", hash_pos, nl)
         shape = [t.kind for t in toks[:3]] == [ID, OP, ID] and toks[1].text == ":"
         if not shape or len(toks) != 3:
             bad = toks[3] if shape else (toks[0] if toks else nt)

@@ -1,8 +1,7 @@
 // Corpus: the preprocessor — object-like and function-like macros, nested expansion,
-// conditionals with defined and integer expressions, #pragma, #extension, __LINE__,
+// conditionals with defined and integer expressions, #pragma, __LINE__,
 // GL_ES, __VERSION__, HW_PERFORMANCE and line continuation.
 #pragma optimize(on)
-#extension GL_OES_standard_derivatives : enable
 #define PI 3.14159265
 #define TAU (2.0 * PI)
 #define SQ(x) ((x) * (x))

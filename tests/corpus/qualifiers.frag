@@ -1,7 +1,9 @@
 #version 300 es
 // Corpus: a plain GLSL ES 3.00 fragment shader (its own #version and main), for the
-// qualifiers a Shadertoy tab never shows: layout, interface blocks, default qualifiers,
+// directives and qualifiers a Shadertoy tab never shows: #extension, layout, interface blocks, default qualifiers,
 // interpolation qualifiers, invariant and precision on declarations.
+#extension GL_EXT_shader_texture_lod : enable
+#extension all : warn
 precision highp float;
 precision highp int;
 

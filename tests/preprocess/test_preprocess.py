@@ -336,14 +336,25 @@ def test_pragmas():
 
 
 def test_extension_directive():
-    r = pp("#extension GL_OES_standard_derivatives : enable\n#extension all : warn\n")
+    # #extension is checked in plain GLSL files, where it can come before any code.
+    plain = dict(shadertoy=False)
+    r = pp("#extension GL_OES_standard_derivatives : enable\n#extension all : warn\n", **plain)
     assert [(n, b) for n, b, _ in r.extensions] == [("GL_OES_standard_derivatives", "enable"), ("all", "warn")]
     assert r.extensions[0][2].line == 1
-    assert "unknown #extension behavior 'bogus'" in error("#extension GL_X : bogus\n").message
-    assert "'#extension all'" in error("#extension all : enable\n").message
-    assert "name : behavior" in error("#extension GL_X enable\n").message
-    d = error("#extension GL_X : enable now\n")
+    assert "unknown #extension behavior 'bogus'" in error("#extension GL_X : bogus\n", **plain).message
+    assert "'#extension all'" in error("#extension all : enable\n", **plain).message
+    assert "name : behavior" in error("#extension GL_X enable\n", **plain).message
+    d = error("#extension GL_X : enable now\n", **plain)
     assert "name : behavior" in d.message and d.loc.column == 26
+    d = error("float x;\n#extension GL_X : enable\n", **plain)
+    assert "before any code" in d.message and d.loc.line == 2
+
+
+def test_extension_in_a_shadertoy_tab_is_an_error():
+    # Shadertoy's declarations precede the tab, so the driver sees the #extension after code
+    # (Mesa: "#extension directive is not allowed in the middle of a shader").
+    d = error("// a comment first\n#extension GL_OES_standard_derivatives : enable\n")
+    assert "not allowed in a Shadertoy tab" in d.message and (d.loc.line, d.loc.column) == (2, 1)
 
 
 def test_version_in_shadertoy_tab_is_an_error():
