@@ -193,7 +193,7 @@ class Lanes:
     def _take(v, idx, lanes):
         if isinstance(v, np.ndarray):
             if v.ndim and v.shape[-1] == lanes and lanes != 1:
-                return v[..., idx]
+                return np.take(v, idx, axis=-1)  # several times faster than v[..., idx]
             return v
         if isinstance(v, Struct):
             return v.map(lambda x: Lanes._take(x, idx, lanes))
