@@ -18,8 +18,15 @@ Library API:
 
 Tiles: bands of about TILE_LANES pixels (up to TILE_WIDTH wide) keep a shader's temporaries
 small (a few hundred kB each); tiles start at even x and y, so derivative quads (2x2, see the runtime) never
-straddle two tiles. Tiles are rendered by `os.cpu_count()` threads (NumPy releases the GIL in
-its loops). Peak memory is a few tiles' temporaries plus the output image.
+straddle two tiles. Tiles are rendered by `os.cpu_count()` threads of one process-wide pool
+(NumPy releases the GIL in its loops) and write their rows straight into the top-first image
+(and into the frame cache's copy, whose buffers are reused). Peak memory is a few tiles'
+temporaries plus the output image and its cached copy.
+
+Fixed costs per tile are kept off the lanes: fragment coordinates come from a grid made once per
+render (gl_FragCoord only when the code reads it), uniform (1,) masks combine without full-lane
+arrays, and a compacted view (`Lanes.gather`) gathers globals and fragment coordinates only
+when the region first reads them.
 """
 
 from __future__ import annotations

@@ -56,7 +56,8 @@ set") or a bool array; writes under a mask keep the old value elsewhere (`rt.ass
 * compaction: when fewer than half of the lanes of a varying branch or loop iteration are
   active (and there are enough lanes to matter), the values the region uses are gathered to the
   active lanes (`X.gather` / `X.push`), the region runs on the short arrays with no mask, and the
-  values are scattered back afterwards. Regions that use derivatives are never compacted.
+  values are scattered back afterwards (globals and fragment coordinates are gathered on first
+  read). Regions that use derivatives are never compacted.
 """
 
 from __future__ import annotations
