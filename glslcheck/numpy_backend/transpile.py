@@ -929,11 +929,11 @@ class Transpiler:
         proto = node.proto
         params = []
         prologue = []
-        for p, (pname, ptype, direction) in zip(proto.params, sym.params):
+        for k, (p, (pname, ptype, direction)) in enumerate(zip(proto.params, sym.params)):
             psym = self.model.symbol_of(p)
-            if psym is None:
-                continue
-            pyname = self.var_name(psym, p)
+            # An unnamed parameter (`void mainImage(out vec4, in vec2 c)`) still takes its
+            # argument and, for out/inout, hands a value back: callers count on both.
+            pyname = self.var_name(psym, p) if psym is not None else f"_unnamed{k}"
             fs.defined.append(pyname)
             if direction == "out":
                 prologue.append(f"{pyname} = {self.zero(ptype, p)}")
