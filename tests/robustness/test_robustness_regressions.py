@@ -176,3 +176,17 @@ def test_lint_and_other_commands_never_modify_the_file(tmp_path, command):
     text = "\xef\xbb\xbfvoid mainImage(out vec4 c, in vec2 p)\r\n{\tfloat x = pow(p.x, 2.0);  \r\n c = vec4(x); }"
     extra = ("-o", str(tmp_path / "out.py")) if command == "transpile" else ()
     run_cli(command, text.encode("latin-1"), tmp_path, extra=extra)
+
+
+@pytest.mark.parametrize("text", [
+    "void mainImage(out vec4 , in vec2 fragCoord) {}\n",
+    "float f(float) { return 0.5; }\nvoid g(out float, inout vec2 q) { q += 1.0; }\n"
+    f"{MAIN}\n    vec2 q = fragCoord; float z; g(z, q);\n    fragColor = vec4(f(2.0), q * 0.01, 1.0);\n}}\n",
+])
+def test_unnamed_parameters_render(tmp_path, text):
+    """Found by tools/fuzz.py (seed 9, inputs 18849 and 66533, mutants of the lint fixtures):
+    the transpiler dropped unnamed parameters, so `shade` unpacked None (TypeError traceback).
+    glslangValidator accepts unnamed parameters in a definition (fixed in 4f423c0)."""
+    assert run_cli("check", text, tmp_path)[0] == 0
+    rc, _, err = run_cli("render", text, tmp_path, extra=("--size", "4x2", "-o", str(tmp_path / "o.npy")))
+    assert rc == 0, err
