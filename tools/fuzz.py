@@ -1,6 +1,14 @@
 """Fuzz glslcheck's command line (issue 9: bad input never breaks glslcheck).
 
     python tools/fuzz.py --count 100000 --seed 1 [--jobs 2] [--heavy-rate 0.05] [--verify-rate 0.05]
+    python tools/fuzz.py --seed 9 --show 18849          # print one input
+    python tools/fuzz.py --merge a.json b.json          # combine the counts of split runs
+
+The 100,000-input run of issue 9 was split in two processes (2 cores) and merged:
+
+    python tools/fuzz.py --count 50000 --start 0     --seed 9 --parse-rate 0.34 --heavy-rate 0.03 \
+        --verify-rate 0.03 --json c0.json     (and --start 50000 --json c50000.json)
+    python tools/fuzz.py --merge c0.json c50000.json
 
 Inputs, each reproducible from (seed, index) alone:
 
