@@ -34,8 +34,9 @@ Flagged outcomes (anything but ok / findings / usage): `exception` (escaped main
 file:line:col in one of the input's files, or an exit 1 that printed no error), `bad-location`
 (a line outside the file), `modified` (a command changed the input file), `gen-rejected`
 (a generated program that parse/check refuse), `mismatch` (a generated program that verify
-finds different; a mutant's mismatch is a finding: it may compute undefined values). Flagged inputs are written to --out with a note. Prints counts per entry
-point and outcome; exits 1 when anything was flagged.
+finds different; a mutant's mismatch is a finding: it may compute undefined values).
+Flagged inputs are written to --out with a note. Prints counts per entry point and outcome;
+exits 1 when anything was flagged.
 """
 
 from __future__ import annotations
