@@ -602,7 +602,9 @@ def fuzz_range(seed: int, start: int, stop: int, *, heavy_rate: float, verify_ra
     pool = POOL + sorted({t for s in seeds for text in s.values() for t in tokens(text)
                           if re.fullmatch(r"[A-Za-z_]\w*", t)})[:400]
     own = worker is None
-    worker = worker or Worker(mp.get_context("fork"))
+    # Spawn, not fork: a process that already holds an OpenGL (EGL) context (pytest, after the GL
+    # tests) cannot hand it to a forked child, whose renders then hang or fail to compile.
+    worker = worker or Worker(mp.get_context("spawn"))
     counts: collections.Counter = collections.Counter()
     flagged: list[dict] = []
     try:

@@ -15,7 +15,7 @@ input is a function of (seed, index) alone, so a flagged input is reproduced wit
 from __future__ import annotations
 
 import collections
-import importlib.util
+import importlib
 import sys
 import time
 from concurrent.futures import ThreadPoolExecutor
@@ -29,11 +29,12 @@ MIN_INPUTS = 400  # even a very slow runner gets this far, or the harness itself
 
 
 def _fuzz_module():
-    spec = importlib.util.spec_from_file_location("glslcheck_fuzz", ROOT / "tools" / "fuzz.py")
-    module = importlib.util.module_from_spec(spec)
-    sys.modules[spec.name] = module
-    spec.loader.exec_module(module)
-    return module
+    # Imported by name from tools/ (not from a file spec): the harness's workers are spawned
+    # processes, which import the module that defines their entry point by its name.
+    tools = str(ROOT / "tools")
+    if tools not in sys.path:
+        sys.path.insert(0, tools)
+    return importlib.import_module("fuzz")
 
 
 def test_short_fuzz_run_has_no_flagged_inputs(tmp_path):
