@@ -380,8 +380,9 @@ _VALUE_TOKENS = frozenset({"IDENTIFIER", "TYPE_NAME", "INTCONSTANT", "FLOATCONST
 
 def _edge_token(tree: Tree, end: int, memo: dict) -> Token | None:
     """The first (end=0) or last (end=-1) token under a tree, or None for an empty one.
-    Memoised per tree, so a long left-deep chain (`a + b + ... + z`) costs linear time."""
-    key = (id(tree), end)
+    Memoised per tree (`memo` is one dict per end), so a long left-deep chain
+    (`a + b + ... + z`) costs linear time."""
+    key = id(tree)
     if key in memo:
         return memo[key]
     found = None
@@ -389,7 +390,7 @@ def _edge_token(tree: Tree, end: int, memo: dict) -> Token | None:
     for child in children:
         if child is None:
             continue
-        if isinstance(child, Token):
+        if type(child) is Token:
             found = child
             break
         found = _edge_token(child, end, memo)
@@ -405,7 +406,9 @@ class _Builder:
     def __init__(self, locate_span: Callable[[int, int], Location], text: str) -> None:
         self.locate_span = locate_span
         self.text = text
-        self._edges: dict = {}
+        self._firsts: dict = {}
+        self._lasts: dict = {}
+        self._spans: dict = {}
 
     def build(self, tree: Tree) -> A.TranslationUnit:
         decls = [self.node(c) for c in tree.children if c is not None]
@@ -420,12 +423,21 @@ class _Builder:
     def loc(self, item: Tree | Token) -> Location:
         """The span from the first to the last token of a subtree."""
         if isinstance(item, Token):
-            return self.locate_span(item.start_pos, item.end_pos)
-        first = _edge_token(item, 0, self._edges)
+            return self._span(item.start_pos, item.end_pos)
+        first = _edge_token(item, 0, self._firsts)
         if first is None:
             return self.locate_span(0, 0)
-        last = _edge_token(item, -1, self._edges)
-        return self.locate_span(first.start_pos, last.end_pos)
+        last = _edge_token(item, -1, self._lasts)
+        return self._span(first.start_pos, last.end_pos)
+
+    def _span(self, start: int, end: int) -> Location:
+        # Nested nodes often share both ends (a declaration and its type, a call and its
+        # callee): locate each span once.
+        key = (start, end)
+        loc = self._spans.get(key)
+        if loc is None:
+            loc = self._spans[key] = self.locate_span(start, end)
+        return loc
 
     def node(self, item):
         if item is None:
