@@ -32,7 +32,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from ..diagnostics import Diagnostic, GlslError, Location
+from ..diagnostics import Diagnostic, GlslError, Location, source_line
 from ..shadertoy import DEFAULT_DATE, DEFAULT_SIZE, OFFSET_UNIFORM, UNIFORMS, Program, build_program
 from ..sources import Shader
 from .context import get_context
@@ -100,9 +100,10 @@ def driver_diagnostics(program: Program, log: str) -> list[Diagnostic]:
         if where is None:
             if line is not None:
                 message += f" (line {line} of the Shadertoy wrapper around the {program.tab} tab)"
-            help_ = ("the Image tab must define `void mainImage(out vec4 fragColor, in vec2 fragCoord)`"
-                     if "mainImage" in message else None)
-            diags.append(Diagnostic(message, None, rule=RULE, help=help_))
+            help_ = ("the Image tab must define `void mainImage(out vec4 fragColor, in vec2 fragCoord)`, "
+                     "with both parameters named" if "mainImage" in message else None)
+            # The wrapper's only link to the user's text is its call of mainImage: point there.
+            diags.append(Diagnostic(message, _entry_location(program), rule=RULE, help=help_))
         else:
             path, user_line = where
             column = mesa_column(lines[line - 1], column) if column and line <= len(lines) else 1
@@ -111,6 +112,22 @@ def driver_diagnostics(program: Program, log: str) -> list[Diagnostic]:
         diags.append(Diagnostic(f"the OpenGL driver rejected the {program.tab} program:\n{log.strip()}",
                                 None, rule=RULE))
     return diags
+
+
+def _entry_location(program: Program) -> Location | None:
+    """Where the user's tab defines mainImage (or, failing that, the tab file's first line)."""
+    tab_paths = [seg.path for seg in program.segments]
+    if not tab_paths:
+        return None
+    for path in reversed(tab_paths):  # the pass's own tab comes after Common
+        for number in range(1, 100_000):
+            text = source_line(path, number)
+            if text is None:
+                break
+            m = re.search(r"\bmainImage\s*\(", text)
+            if m:
+                return Location(path, number, m.start() + 1, number, m.start() + len("mainImage") + 1)
+    return Location(tab_paths[-1], 1, 1)
 
 
 def sample_offsets(samples: int) -> list[tuple[float, float]]:
