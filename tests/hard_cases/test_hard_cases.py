@@ -31,12 +31,11 @@ VERIFIED = [
     "intensities", "int_overflow", "mod_negative", "atan_zero", "int_mod_negative", "div_zero",
     "pow_literal_exponent", "atan_nan",
 ]
-KNOWN_DIFFERENCES: dict[str, str] = {}  # name -> reason; none at present
 PINNED = ["constant_folding", "reassociation", "smoothstep_equal"]
 
 
 def test_every_case_is_listed():
-    listed = set(VERIFIED) | set(KNOWN_DIFFERENCES) | set(PINNED)
+    listed = set(VERIFIED) | set(PINNED)
     on_disk = {p.stem for p in HERE.glob("*.glsl")}
     assert listed == on_disk
     readme = (HERE / "README.md").read_text()
@@ -57,13 +56,6 @@ def _at(img: np.ndarray, x: int, y: int) -> np.ndarray:
 def test_verify_passes(gl, name):
     for time, comparison in zip(TIMES, verify(HERE / f"{name}.glsl", size=SIZE, times=TIMES)):
         assert comparison.match, f"{name} at iTime {time}: {comparison.summary()}"
-
-
-def test_known_differences_still_differ(gl):
-    # Each case listed in KNOWN_DIFFERENCES must still fail verify; one that now verifies must
-    # move to VERIFIED. (The list is empty today: both former entries now match llvmpipe.)
-    now_verify = [name for name in sorted(KNOWN_DIFFERENCES) if verify(HERE / f"{name}.glsl", size=SIZE)[0].match]
-    assert now_verify == [], f"{now_verify} now verify: move them to VERIFIED and update README.md"
 
 
 # --- what llvmpipe returns (the README's middle column), at the pixels the shaders aim at -----
