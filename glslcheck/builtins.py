@@ -25,6 +25,8 @@ from typing import NamedTuple
 
 from glslcheck import types as T
 from glslcheck.types import BY_NAME, ArrayType, StructType, Type
+from glslcheck.shadertoy import COMMON_ONLY_UNIFORMS as _COMMON_ONLY
+from glslcheck.shadertoy import UNIFORMS as _SHADERTOY_TABLE
 
 # Categories: the sections of spec chapter 8.
 ANGLE_TRIG = "angle-trig"  # 8.1
@@ -415,23 +417,14 @@ class Uniform(NamedTuple):
         return self.type if self.array_size is None else ArrayType(self.type, self.array_size)
 
 
+# The uniforms come from the one table of what Shadertoy declares (glslcheck/shadertoy.py,
+# which the GL wrapper and both renderers use too), typed here for the checker.
 SHADERTOY_UNIFORMS: dict[str, Uniform] = {
-    "iResolution": Uniform(T.VEC3, None, "viewport resolution in pixels (width, height, 1)"),
-    "iTime": Uniform(T.FLOAT, None, "playback time in seconds"),
-    "iTimeDelta": Uniform(T.FLOAT, None, "render time of the last frame in seconds"),
-    "iFrameRate": Uniform(T.FLOAT, None, "frames per second"),
-    "iFrame": Uniform(T.INT, None, "frame number, from 0"),
-    "iChannelTime": Uniform(T.FLOAT, 4, "playback time of each channel in seconds"),
-    "iChannelResolution": Uniform(T.VEC3, 4, "resolution of each channel in pixels"),
-    "iMouse": Uniform(T.VEC4, None, "xy: position while pressed, zw: click position (signed)"),
-    "iDate": Uniform(T.VEC4, None, "(year, month 0-11, day 1-31, seconds since midnight)"),
-    "iSampleRate": Uniform(T.FLOAT, None, "sound sample rate, 44100.0"),
-    **{f"iChannel{i}": Uniform(T.SAMPLERS["sampler2D"], None, f"input channel {i}")
-       for i in range(4)},
+    u.name: Uniform(T.BY_NAME[u.glsl_type], u.array_size, u.doc) for u in _SHADERTOY_TABLE
 }
 
 #: The only uniforms declared when Shadertoy compiles the Common tab on its own.
-COMMON_TAB_UNIFORMS = frozenset({"iDate", "iSampleRate"})
+COMMON_TAB_UNIFORMS = frozenset(_COMMON_ONLY)
 
 
 # ---------------------------------------------------------------------------------------
