@@ -244,9 +244,7 @@ def _what_statement(history: list[Token]) -> str:
     if start >= len(history):
         return "statement"
     first = history[start]
-    if first.type in ("TYPE_NAME",) or first.value in _DECL_WORDS or first.type in ("FLOAT", "INT", "UINT", "BOOL", "VOID") or (
-        first.value[:1].isalpha() and first.value in _BASIC_TYPES
-    ):
+    if first.type == "TYPE_NAME" or first.value in _DECL_WORDS or first.value in _BASIC_TYPES:
         # `vec3 p = ...` or `vec3(1.0);`: a declaration unless a '(' follows the type.
         if len(history) > start + 1 and history[start + 1].value == "(":
             return "expression"
@@ -267,11 +265,7 @@ def _innermost_open(brackets: list[Token], tok: Token) -> Token | None:
 
 
 def _describe(tok: Token) -> str:
-    if tok.type == "$END":
-        return "the end of the file"
-    if tok.type in ("IDENTIFIER", "TYPE_NAME"):
-        return f"'{tok.value}'"
-    return f"'{tok.value}'"
+    return "the end of the file" if tok.type == "$END" else f"'{tok.value}'"
 
 
 def _syntax_error(e: UnexpectedInput, text: str, postlex: _TypeNames, locate_span) -> Diagnostic:
