@@ -54,11 +54,7 @@ def _cache_path() -> str:
     folder = os.path.join(base, "glslcheck")
     try:
         os.makedirs(folder, exist_ok=True)
-        probe = os.path.join(folder, ".w")
-        with open(probe, "w"):
-            pass
-        os.unlink(probe)
-    except OSError:
+    except OSError:  # no writable home: the temp folder (Lark only logs a failed cache write)
         folder = tempfile.gettempdir()
     from . import __version__
 
