@@ -18,7 +18,6 @@ import numpy as np
 import pytest
 
 from glslcheck.compare import compare
-from glslcheck.diagnostics import GlslError
 from glslcheck.numpy_backend import program as P
 from glslcheck.sources import load_shader
 
