@@ -590,14 +590,17 @@ class Runtime:
         if isinstance(arr, Struct):
             return arr.map(lambda v: self.index(v, idx))
         size = arr.shape[0]
+        if (arr.shape[-1] == 1 and isinstance(idx, np.ndarray) and idx.ndim == 1 and idx.shape[0] > 1
+                and arr.ndim > 1):
+            # a uniform array (a constant table) read at lane-varying indices: one gather that
+            # clamps as it reads (mode="clip"), contiguous with the lane axis last
+            table = arr[..., 0]
+            table = table.transpose(tuple(range(1, table.ndim)) + (0,))
+            return np.take(table, idx, axis=-1, mode="clip")
         i = self._clamp_index(idx, size)
         if isinstance(i, int):
             return arr[i]
         lanes = _lanes_of(arr, i)
-        if arr.shape[-1] == 1 and i.ndim == 1 and i.shape[0] == lanes:
-            # a uniform array (a constant table) read at lane-varying indices: one gather,
-            # already contiguous with the lane axis last
-            return np.take(np.moveaxis(arr[..., 0], 0, -1), i, axis=-1)
         if size <= 4:  # a few selects beat fancy indexing for vectors and matrices
             out = arr[0]
             for k in range(1, size):
@@ -1031,6 +1034,15 @@ class Runtime:
             return sq * sq
         if c == 0.0 and math.copysign(1.0, c) > 0:
             return np.where((x == self._0) | np.isnan(x), self._0, self._1)
+        cf = self.F(c)
+        if x.ndim and cf > self._0 and np.isfinite(cf):
+            # exp2(c * log2(0)) = exp2(-inf) is already 0 for c > 0 (in the render precision):
+            # only a NaN base needs llvmpipe's 0 (a negative base stays NaN). One buffer.
+            r = np.log2(x)
+            np.multiply(cf, r, out=r)
+            np.exp2(r, out=r)
+            np.copyto(r, self._0, where=np.isnan(x))
+            return r
         return self.pow(x, self.F(c))
 
     def pow_one(self, y: Any) -> np.ndarray:

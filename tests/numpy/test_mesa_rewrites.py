@@ -42,6 +42,14 @@ def test_pow_const_products():
     # not rewritten: the run-time formula (NaN for x < 0, 0 for x == 0 or NaN)
     for c in (-0.0, 0.5, 3.0, 8.0, -1.0):
         assert _same(RT.pow_const(x, c), RT.pow(x, RT.const_float(c)))
+    # positive exponents take a shorter path (exp2(c * log2(0)) is already 0): same values,
+    # including +inf, 1 and denormal bases and extreme exponents, in every precision
+    wide = _f(-0.5, -2.0, 0.0, -0.0, NAN, -INF, INF, 1.0, 3.0, 1e-40, 0.999, 1e30)
+    for prec in ("float16", "float32", "float64"):
+        rt = Runtime(prec)
+        xs = wide.astype(rt.F)
+        for c in (48.0, 1.0 / 2.2, 1e-30, 1e30, 3.0):
+            assert _same(rt.pow_const(xs, c), rt.pow(xs, rt.const_float(c))), (prec, c)
     assert RT.pow_const(x, 2.0).dtype == np.float32
     assert Runtime("float16").pow_const(_f(-0.5).astype(np.float16), 2.0).dtype == np.float16
 
