@@ -1,10 +1,14 @@
-"""Parsing: preprocessed GLSL ES 3.00 text -> Lark LALR parse tree -> the typed AST (ast.py).
+"""Parsing: preprocessed GLSL ES 3.00 text -> tokens -> Lark LALR parse tree -> the typed AST (ast.py).
 
-Owns the Lark parser (built once per process from grammar/glsl.lark, its LALR tables cached on
-disk so a CLI call does not rebuild them), the lexer post-processor that tells struct type
-names from other identifiers, the pass that builds AST nodes from the parse tree (one
-`_build_<rule>` method per grammar rule), and the translation of Lark's errors into messages
-in words that point into the user's file.
+Owns the Lark grammar object (built once per process from grammar/glsl.lark, its LALR tables
+cached on disk so a CLI call does not rebuild them), the pass that builds AST nodes from the
+parse tree (one `_build_<rule>` method per grammar rule), and the translation of Lark's errors
+into messages in words that point into the user's file.
+
+Lark supplies the terminals, the tables and the tree-building callbacks; two small modules run
+them faster than Lark's general-purpose loops do, with the same results: lexer.py (one master
+regex over Lark's terminals, plus the struct-name rule) and lalr.py (the LALR loop over Lark's
+table). tests/parse/test_fast_parser.py checks both against Lark itself.
 
 Entry points: `parse_shader(shader)` for a Shadertoy shader (Common + Image, as Shadertoy
 compiles them), `parse_units(sources)` for any list of files, and `parse_string(text)` for tests.
@@ -18,18 +22,19 @@ import sys
 import tempfile
 from dataclasses import dataclass, field
 from importlib import resources
-from typing import Callable, Iterator
+from typing import Callable
 
 from lark import Lark, Token, Tree
 from lark.exceptions import UnexpectedCharacters, UnexpectedEOF, UnexpectedInput, UnexpectedToken
-from lark.lark import PostLex
 
 from . import ast as A
 from .diagnostics import Diagnostic, GlslError, Location, register_source
+from .lalr import Driver
+from .lexer import Lexer, ReservedWordError, Tokens
 from .sources import Shader, Source
 
-# GLSL ES 3.00 section 3.7: words reserved for future use; using one as a name is an error.
-from .builtins import KEYWORDS, RESERVED_WORDS  # noqa: E402  (one table, shared with the checker)
+# The keywords (3.6), to tell "a keyword used as a name" in error messages.
+from .builtins import KEYWORDS  # noqa: E402  (one table, shared with the checker)
 from .types import BY_NAME  # noqa: E402
 
 # Words a user might mean: what each terminal is called in an error message.
@@ -41,7 +46,7 @@ _TOKEN_WORDS = {
     "$END": "the end of the file",
 }
 
-_GRAMMAR_CACHE: dict[str, Lark] = {}
+_GRAMMAR_CACHE: dict[str, Parser] = {}
 
 
 def grammar_text() -> str:
@@ -61,79 +66,47 @@ def _cache_path() -> str:
     return os.path.join(folder, f"glsl-lalr-{__version__}-{sys.version_info[0]}{sys.version_info[1]}.cache")
 
 
-class _TypeNames(PostLex):
-    """Turns an IDENTIFIER that names a declared struct into TYPE_NAME (the spec's TYPE_NAME),
-    rejects reserved words used as names, and remembers the open brackets and the previous
-    token for error messages. A name right after `struct` is always an IDENTIFIER."""
+@dataclass(frozen=True)
+class Parser:
+    """The loaded grammar and what runs it: Lark (grammar, tables, tree callbacks), the lexer
+    made from Lark's terminals (lexer.py) and the LALR driver over Lark's table (lalr.py)."""
 
-    def __init__(self) -> None:
-        self.reset()
-
-    def reset(self) -> None:
-        self.struct_names: set[str] = set()
-        self.open_brackets: list[Token] = []
-        self.history: list[Token] = []
-        self.locate: Callable[[int, int], Location] | None = None
-
-    def process(self, stream: Iterator[Token]) -> Iterator[Token]:
-        after_struct = False
-        history = self.history
-        brackets = self.open_brackets
-        for tok in stream:
-            kind = tok.type
-            if kind == "IDENTIFIER":
-                value = tok.value
-                if after_struct:
-                    self.struct_names.add(value)
-                elif value in self.struct_names:
-                    tok = Token.new_borrow_pos("TYPE_NAME", value, tok)
-                if value in RESERVED_WORDS:
-                    raise GlslError(
-                        Diagnostic(
-                            f"'{value}' is a reserved word in GLSL ES 3.00 and cannot be used as a name",
-                            self._loc(tok),
-                            help=f"rename it, for example to '{value}_'",
-                        )
-                    )
-            after_struct = kind == "STRUCT"
-            v = tok.value
-            if v in ("{", "(", "["):
-                brackets.append(tok)
-            elif v in ("}", ")", "]") and brackets:
-                brackets.pop()
-            history.append(tok)
-            if len(history) > 64:
-                del history[:32]
-            yield tok
-
-    def _loc(self, tok: Token) -> Location:
-        assert self.locate is not None
-        return self.locate(tok.start_pos, tok.end_pos)
+    lark: Lark
+    lexer: Lexer
+    driver: Driver
+    words: dict[str, str]  # what each terminal is called in an error message
 
 
-def get_parser() -> tuple[Lark, _TypeNames]:
-    lark = _GRAMMAR_CACHE.get("lark")
-    if lark is None:
-        postlex = _TypeNames()
-        lark = Lark(
-            grammar_text(),
-            parser="lalr",
-            # The basic lexer, not the contextual one: a contextual lexer would read `float` as a
-            # name where only a name can follow (`float float;`), hiding the keyword.
-            lexer="basic",
-            strict=True,
-            # Positions come from the tokens (see _Builder.loc): Lark's propagate_positions
-            # costs half the parse time, and keeping every token gives exact spans that
-            # include keywords and braces.
-            propagate_positions=False,
-            keep_all_tokens=True,
-            maybe_placeholders=True,
-            postlex=postlex,
-            cache=_cache_path(),
-        )
-        _GRAMMAR_CACHE["lark"] = lark
-        _GRAMMAR_CACHE["postlex"] = postlex  # type: ignore[assignment]
-    return lark, _GRAMMAR_CACHE["postlex"]  # type: ignore[return-value]
+LARK_OPTIONS = dict(
+    parser="lalr",
+    # Lark's basic lexer, not the contextual one, is the lexer lexer.py reproduces: a
+    # contextual lexer would read `float` as a name where only a name can follow
+    # (`float float;`), hiding the keyword.
+    lexer="basic",
+    strict=True,
+    # Positions come from the tokens (see _Builder.loc): Lark's propagate_positions
+    # costs half the parse time, and keeping every token gives exact spans that
+    # include keywords and braces.
+    propagate_positions=False,
+    keep_all_tokens=True,
+    maybe_placeholders=True,
+)
+
+
+def get_parser() -> Parser:
+    parser = _GRAMMAR_CACHE.get("parser")
+    if parser is None:
+        lark = Lark(grammar_text(), **LARK_OPTIONS, cache=_cache_path())
+        lalr = lark.parser.parser.parser  # lark 1.x: ParsingFrontend -> LALR_Parser -> _Parser
+        parser = Parser(lark, Lexer(lark.lexer_conf), Driver(lalr.parse_table, lalr.callbacks), _terminal_words(lark))
+        _GRAMMAR_CACHE["parser"] = parser
+    return parser
+
+
+def parse_tree(text: str) -> Tree:
+    """Lark's parse tree of preprocessed text; raises Lark's UnexpectedInput or ReservedWordError."""
+    parser = get_parser()
+    return parser.driver.parse(parser.lexer.tokenize(text))
 
 
 @dataclass
@@ -185,13 +158,21 @@ def _parse_text(text: str, locate_span: Callable[[int, int], Location]) -> A.Tra
 
 
 def _parse_text_no_gc(text: str, locate_span: Callable[[int, int], Location]) -> A.TranslationUnit:
-    lark, postlex = get_parser()
-    postlex.reset()
-    postlex.locate = locate_span
+    parser = get_parser()
+    lexed = parser.lexer.tokenize(text)
     try:
-        tree = lark.parse(text)
+        tree = parser.driver.parse(lexed)
+    except ReservedWordError as e:
+        value = e.token.value
+        raise GlslError(
+            Diagnostic(
+                f"'{value}' is a reserved word in GLSL ES 3.00 and cannot be used as a name",
+                locate_span(e.token.start_pos, e.token.end_pos),
+                help=f"rename it, for example to '{value}_'",
+            )
+        ) from None
     except UnexpectedInput as e:
-        raise GlslError(_syntax_error(e, text, postlex, locate_span)) from None
+        raise GlslError(_syntax_error(e, lexed, locate_span)) from None
     builder = _Builder(locate_span, text)
     old = sys.getrecursionlimit()
     # Deeply nested expressions (hundreds of levels) recurse in the builder: allow it.
@@ -264,10 +245,14 @@ def _describe(tok: Token) -> str:
     return "the end of the file" if tok.type == "$END" else f"'{tok.value}'"
 
 
-def _syntax_error(e: UnexpectedInput, text: str, postlex: _TypeNames, locate_span) -> Diagnostic:
-    lark, _ = get_parser()
-    words = _terminal_words(lark)
-    history = postlex.history
+def _syntax_error(e: UnexpectedInput, lexed: Tokens, locate_span) -> Diagnostic:
+    words = get_parser().words
+    text = lexed.text
+    # What the parser had seen: the tokens up to the one it failed on (all of them at the end
+    # of the file or at a lexer error).
+    seen = lexed.count_through(e.token) if isinstance(e, UnexpectedToken) else len(lexed.tokens)
+    history = lexed.history(seen)
+    open_brackets = lexed.open_brackets(seen)
     if isinstance(e, UnexpectedCharacters):
         pos = e.pos_in_stream
         ch = text[pos] if pos < len(text) else ""
@@ -296,8 +281,8 @@ def _syntax_error(e: UnexpectedInput, text: str, postlex: _TypeNames, locate_spa
     if at_end:
         end = len(text.rstrip())
         end_loc = locate_span(max(end - 1, 0), max(end, 1))
-        if postlex.open_brackets:
-            opener = postlex.open_brackets[-1]
+        if open_brackets:
+            opener = open_brackets[-1]
             closer = {"{": "}", "(": ")", "[": "]"}[opener.value]
             what = {"{": "block", "(": "parenthesis", "[": "bracket"}[opener.value]
             return Diagnostic(
@@ -324,7 +309,7 @@ def _syntax_error(e: UnexpectedInput, text: str, postlex: _TypeNames, locate_spa
     if (tok.type == "TYPE_NAME" or tok.value in _BASIC_TYPES or tok.value in KEYWORDS) and "IDENTIFIER" in expected \
             and prev is not None and (prev.value in _BASIC_TYPES or prev.type == "TYPE_NAME" or prev.value == "struct"):
         return Diagnostic(f"'{tok.value}' is a keyword and cannot be used as a name", loc)
-    opener = _innermost_open(postlex.open_brackets, tok)
+    opener = _innermost_open(open_brackets, tok)
     if opener is not None and opener.value in "([":
         closer = ")" if opener.value == "(" else "]"
         if ("RPAR" if closer == ")" else "RSQB") in expected and tok.value in ("{", ";", "}"):

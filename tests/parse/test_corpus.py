@@ -9,7 +9,7 @@ import pytest
 from lark import Tree
 
 from glslcheck import ast as A
-from glslcheck.parse import get_parser, parse_shader, parse_units
+from glslcheck.parse import get_parser, parse_shader, parse_tree, parse_units
 from glslcheck.printer import to_glsl
 from glslcheck.sources import Source, find_shaders
 
@@ -52,14 +52,11 @@ def _parse_tree(path: Path) -> Tree:
     (shader,) = find_shaders([str(path)])
     units = shader.units_for(shader.image.tab)
     pp = preprocess(units, shadertoy=not units[-1].is_plain_glsl)
-    lark, postlex = get_parser()
-    postlex.reset()
-    postlex.locate = pp.locate_span
-    return lark.parse(pp.text)
+    return parse_tree(pp.text)
 
 
 def test_corpus_hits_every_grammar_rule_and_terminal():
-    lark, _ = get_parser()
+    lark = get_parser().lark
     expected_trees: set[str] = set()
     for rule in lark.rules:
         name = rule.alias or rule.origin.name

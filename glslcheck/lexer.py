@@ -1,0 +1,231 @@
+"""Lexing: preprocessed GLSL text -> a list of Lark `Token`s, as Lark's basic lexer would give them.
+
+Owns the scanner the parser runs on, and the one lexical rule the grammar cannot say: an
+IDENTIFIER that names a declared struct is a TYPE_NAME (the spec's TYPE_NAME token, section 9),
+and a word reserved for future use (3.8) cannot be a name.
+
+The terminals, their regular expressions, priorities and names all come from the grammar Lark
+loaded (grammar/glsl.lark); this module only arranges them for speed:
+
+* one master regular expression, its alternatives in the order Lark's basic lexer tries them
+  (priority, then longest possible match, then name), so the same text gives the same
+  terminal: floats before integers, `<<=` before `<<` before `<`;
+* keywords are not alternatives of their own: a word is matched as an IDENTIFIER and then
+  looked up in a dict of the grammar's keyword strings, which is what Lark does too;
+* the tokens are built directly, with the same type, value, positions, lines and columns.
+
+The whole text is lexed before parsing. An error (an unexpected character, a reserved word
+used as a name) is not raised at once but kept in `Tokens.error`: the parser raises it when it
+reaches that point, so an earlier syntax error is still the one reported, as with Lark's lazy
+lexer.
+
+Tested against Lark's own lexer on the corpus, the lab shaders and mutations of them
+(tests/parse/test_fast_parser.py).
+"""
+
+from __future__ import annotations
+
+import re
+from dataclasses import dataclass
+
+from lark import Token
+from lark.exceptions import UnexpectedCharacters
+
+from .builtins import RESERVED_WORDS
+
+IDENTIFIER = "IDENTIFIER"
+TYPE_NAME = "TYPE_NAME"
+STRUCT = "STRUCT"
+
+# Lark's basic lexer keeps at most this many tokens of history (a window between 33 and 64);
+# the error messages that look back at the statement so far see the same window.
+_HISTORY_MAX = 64
+_HISTORY_DROP = 32
+
+_new_str = str.__new__
+
+
+class ReservedWordError(Exception):
+    """A reserved word (GLSL ES 3.00 section 3.8) used as a name; `token` is where."""
+
+    def __init__(self, token: Token) -> None:
+        super().__init__(token.value)
+        self.token = token
+
+
+@dataclass
+class Tokens:
+    """The tokens of a text and the error that stopped the lexer, if any (raised by the parser
+    when it has consumed every token before it)."""
+
+    text: str
+    tokens: list[Token]
+    error: Exception | None
+
+    def history(self, count: int) -> list[Token]:
+        """The last tokens as Lark's post-lexer saw them after `count` tokens (its window)."""
+        if count > _HISTORY_MAX:
+            kept = _HISTORY_MAX - _HISTORY_DROP + 1 + (count - _HISTORY_MAX - 1) % _HISTORY_DROP
+        else:
+            kept = count
+        return self.tokens[count - kept:count]
+
+    def open_brackets(self, count: int) -> list[Token]:
+        """The brackets still open after the first `count` tokens, outermost first."""
+        stack: list[Token] = []
+        for tok in self.tokens[:count]:
+            v = tok.value
+            if v in ("{", "(", "["):
+                stack.append(tok)
+            elif v in ("}", ")", "]") and stack:
+                stack.pop()
+        return stack
+
+    def count_through(self, tok: Token) -> int:
+        """How many tokens the parser had seen when it failed on `tok` (all of them at the end)."""
+        for i in range(len(self.tokens) - 1, -1, -1):
+            if self.tokens[i] is tok:
+                return i + 1
+        return len(self.tokens)
+
+
+class Lexer:
+    """The scanner for one loaded grammar (build it once per process from `lark.lexer_conf`)."""
+
+    def __init__(self, lexer_conf) -> None:
+        terminals = list(lexer_conf.terminals)
+        flags = lexer_conf.g_regex_flags
+        self.ignore = frozenset(lexer_conf.ignore)
+        self.terminals_by_name = lexer_conf.terminals_by_name
+        # Lark's basic lexer tries terminals in this order; the first alternative that matches wins.
+        terminals.sort(key=lambda t: (-t.priority, -t.pattern.max_width, -len(t.pattern.value), t.name))
+        # A string terminal that a regex terminal of the same priority matches in full (a
+        # keyword and IDENTIFIER) is found by looking the regex's match up, not by scanning.
+        self.keywords: dict[str, dict[str, str]] = {}
+        embedded = set()
+        for retok in terminals:
+            if retok.pattern.type != "re":
+                continue
+            words: dict[str, str] = {}
+            for strtok in terminals:
+                if strtok.pattern.type != "str" or strtok.priority != retok.priority:
+                    continue
+                word = strtok.pattern.value
+                m = re.match(retok.pattern.to_regexp(), word, flags)
+                if m and m.group(0) == word:
+                    words.setdefault(word, strtok.name)
+                    if strtok.pattern.flags <= retok.pattern.flags:
+                        embedded.add(strtok.name)
+            if words:
+                self.keywords[retok.name] = words
+        if set(self.keywords) - {IDENTIFIER}:
+            raise ValueError(f"only IDENTIFIER may contain keywords, not {sorted(set(self.keywords) - {IDENTIFIER})}")
+        scanned = [t for t in terminals if t.name not in embedded]
+        self.allowed = {t.name for t in scanned} - self.ignore
+        # The ignored terminals (white space) are skipped before each token: they start with
+        # characters no other terminal starts with, so trying them first changes nothing.
+        skip = "|".join(t.pattern.to_regexp() for t in scanned if t.name in self.ignore)
+        # Each run of consecutive string terminals (the operators) is one alternative, its
+        # strings in the same order, and the match is looked up: one named group per operator
+        # would make the regex engine do group bookkeeping for each alternative it tries.
+        self.literals: dict[str, dict[str, str]] = {}
+        self.multiline_literals = False
+        parts: list[str] = []
+        run: list = []
+        for t in [t for t in scanned if t.name not in self.ignore] + [None]:
+            if t is not None and t.pattern.type == "str":
+                run.append(t)
+                continue
+            if run:
+                group = f"_literal{len(self.literals)}"
+                names: dict[str, str] = {}
+                for lit in run:
+                    names.setdefault(lit.pattern.value, lit.name)
+                    self.multiline_literals |= "\n" in lit.pattern.value
+                self.literals[group] = names
+                parts.append(f"(?P<{group}>{'|'.join(lit.pattern.to_regexp() for lit in run)})")
+                run = []
+            if t is not None:
+                parts.append(f"(?P<{t.name}>{t.pattern.to_regexp()})")
+        # After the last token only ignored text may remain (`\Z`); any other character that
+        # no terminal matches is the lexer error.
+        self.error_kind = "_unexpected"
+        self.master = re.compile(
+            f"(?:{skip})*(?:{'|'.join(parts)}|(?P<{self.error_kind}>[\\s\\S])|\\Z)" if skip
+            else f"(?:{'|'.join(parts)}|(?P<{self.error_kind}>[\\s\\S])|\\Z)",
+            flags,
+        )
+
+    def tokenize(self, text: str) -> Tokens:
+        """Every token of `text`; an error stops the lexer and is kept in `Tokens.error`."""
+        tokens: list[Token] = []
+        append = tokens.append
+        keywords = self.keywords.get(IDENTIFIER, {})
+        literals = self.literals
+        multiline_literals = self.multiline_literals
+        error_kind = self.error_kind
+        reserved = RESERVED_WORDS
+        count = text.count
+        rfind = text.rfind
+        struct_names: set[str] = set()
+        after_struct = False
+        error: Exception | None = None
+        line = 1
+        line_start = 0  # the position where `line` starts
+        prev_end = 0
+        for m in self.master.finditer(text):
+            kind = m.lastgroup
+            if kind is None:  # only ignored text was left
+                break
+            start = m.start(kind)
+            end = m.end()
+            if start != prev_end and count("\n", prev_end, start):
+                line += count("\n", prev_end, start)
+                line_start = rfind("\n", prev_end, start) + 1
+            prev_end = end
+            value = text[start:end]
+            names = None
+            if kind == IDENTIFIER:
+                word_kind = keywords.get(value)
+                if word_kind is not None:
+                    kind = word_kind
+                    after_struct = word_kind == STRUCT
+                else:
+                    # The struct-name rule: a name right after `struct` declares a type name.
+                    if after_struct:
+                        struct_names.add(value)
+                        after_struct = False
+                    elif value in struct_names:
+                        kind = TYPE_NAME
+                    if value in reserved:
+                        error = ReservedWordError(self._token(kind, value, start, end, line, line_start))
+                        break
+            else:
+                after_struct = False
+                names = literals.get(kind)
+                if names is not None:
+                    kind = names[value]
+                elif kind == error_kind:
+                    error = UnexpectedCharacters(
+                        text, start, line, start - line_start + 1, allowed=self.allowed,
+                        token_history=tokens[-1:] or None, terminals_by_name=self.terminals_by_name,
+                    )
+                    break
+            tok = _new_str(Token, value)
+            tok.type = kind
+            tok.value = value
+            tok.start_pos = start
+            tok.end_pos = end
+            tok.line = tok.end_line = line
+            tok.column = start - line_start + 1
+            if (names is None or multiline_literals) and "\n" in value:  # none in this grammar
+                line += value.count("\n")
+                line_start = start + value.rindex("\n") + 1
+                tok.end_line = line
+            tok.end_column = end - line_start + 1
+            append(tok)
+        return Tokens(text, tokens, error)
+
+    @staticmethod
+    def _token(kind: str, value: str, start: int, end: int, line: int, line_start: int) -> Token:
+        return Token(kind, value, start, line, start - line_start + 1, line, end - line_start + 1, end)
