@@ -10,7 +10,8 @@ that a step is a dict lookup and an integer test:
 * a rule is `(size, name of its left side, callback)`: Lark's own callback, or None when that
   callback would return its one child unchanged (a `?rule` with one alternative symbol, the
   precedence ladder's `?additive_expression: multiplicative_expression`), so those
-  reductions only move the state.
+  reductions only move the state, and a whole run of them (an operand climbing the ladder
+  from primary_expression to expression) is one memoised step.
 
 The trees are the ones `Lark.parse` builds, and a missing action raises Lark's
 `UnexpectedToken` with the token and the expected terminals, as Lark does
@@ -60,6 +61,22 @@ class Driver:
                 out[name] = ~i
         self.actions = actions
         self.rules = rules
+        # (state below, state, lookahead) -> the state after the run of one-child reductions
+        # that starts there; filled as parses meet them.
+        self.chains: dict[tuple[int, int, str], int] = {}
+
+    def _chain(self, below: int, state: int, kind: str) -> int:
+        """Run the one-child reductions from `state` on lookahead `kind`: each pops `state` and
+        pushes the goto from `below` (the state under it, which stays), so the end state depends
+        only on these three."""
+        actions = self.actions
+        start = state
+        while True:
+            act = actions[state].get(kind)
+            if act is None or act >= 0 or self.rules[~act][2] is not None:
+                self.chains[below, start, kind] = state
+                return state
+            state = actions[below][self.rules[~act][1]]
 
     def expected(self, state: int) -> set[str]:
         """The terminals the table accepts in `state` (what Lark puts in UnexpectedToken)."""
@@ -70,6 +87,7 @@ class Driver:
         parser gets that far."""
         actions = self.actions
         rules = self.rules
+        chains = self.chains
         state = self.start_state
         states = [state]
         values: list = []
@@ -87,8 +105,14 @@ class Driver:
                         break
                     size, origin, callback = rules[~act]
                     if callback is None:
-                        del states[-1]
-                    elif size:
+                        # The precedence ladder's runs of one-child reductions: one step.
+                        below = states[-2]
+                        top = chains.get((below, state, kind))
+                        if top is None:
+                            top = self._chain(below, state, kind)
+                        states[-1] = state = top
+                        continue
+                    if size:
                         children = values[-size:]
                         del values[-size:]
                         del states[-size:]

@@ -12,6 +12,8 @@ loaded (grammar/glsl.lark); this module only arranges them for speed:
   terminal: floats before integers, `<<=` before `<<` before `<`;
 * keywords are not alternatives of their own: a word is matched as an IDENTIFIER and then
   looked up in a dict of the grammar's keyword strings, which is what Lark does too;
+  likewise each run of operator strings is one alternative, the match looked up by its text;
+* ignored white space is skipped by the same match, before the token;
 * the tokens are built directly, with the same type, value, positions, lines and columns.
 
 The whole text is lexed before parsing. An error (an unexpected character, a reserved word
@@ -37,8 +39,10 @@ IDENTIFIER = "IDENTIFIER"
 TYPE_NAME = "TYPE_NAME"
 STRUCT = "STRUCT"
 
-# Lark's basic lexer keeps at most this many tokens of history (a window between 33 and 64);
-# the error messages that look back at the statement so far see the same window.
+# The syntax error messages look back at the last tokens the parser saw (to name the
+# statement, to find the previous token). They have always seen a window of 33 to 64 tokens:
+# the post-lexer that kept them dropped the oldest 32 past 64. `Tokens.history` gives the same
+# window, so no message changes.
 _HISTORY_MAX = 64
 _HISTORY_DROP = 32
 
@@ -63,7 +67,7 @@ class Tokens:
     error: Exception | None
 
     def history(self, count: int) -> list[Token]:
-        """The last tokens as Lark's post-lexer saw them after `count` tokens (its window)."""
+        """The window of last tokens the error messages see after the parser saw `count`."""
         if count > _HISTORY_MAX:
             kept = _HISTORY_MAX - _HISTORY_DROP + 1 + (count - _HISTORY_MAX - 1) % _HISTORY_DROP
         else:
@@ -122,9 +126,11 @@ class Lexer:
             raise ValueError(f"only IDENTIFIER may contain keywords, not {sorted(set(self.keywords) - {IDENTIFIER})}")
         scanned = [t for t in terminals if t.name not in embedded]
         self.allowed = {t.name for t in scanned} - self.ignore
-        # The ignored terminals (white space) are skipped before each token: they start with
-        # characters no other terminal starts with, so trying them first changes nothing.
+        # The ignored terminals (white space) are skipped before each token. They start with
+        # characters no other terminal starts with, so trying them first changes nothing (a
+        # property of this grammar, which tests/parse/test_fast_parser.py checks against Lark).
         skip = "|".join(t.pattern.to_regexp() for t in scanned if t.name in self.ignore)
+        prefix = f"(?:{skip})*" if skip else ""
         # Each run of consecutive string terminals (the operators) is one alternative, its
         # strings in the same order, and the match is looked up: one named group per operator
         # would make the regex engine do group bookkeeping for each alternative it tries.
@@ -150,11 +156,7 @@ class Lexer:
         # After the last token only ignored text may remain (`\Z`); any other character that
         # no terminal matches is the lexer error.
         self.error_kind = "_unexpected"
-        self.master = re.compile(
-            f"(?:{skip})*(?:{'|'.join(parts)}|(?P<{self.error_kind}>[\\s\\S])|\\Z)" if skip
-            else f"(?:{'|'.join(parts)}|(?P<{self.error_kind}>[\\s\\S])|\\Z)",
-            flags,
-        )
+        self.master = re.compile(f"{prefix}(?:{'|'.join(parts)}|(?P<{self.error_kind}>[\\s\\S])|\\Z)", flags)
 
     def tokenize(self, text: str) -> Tokens:
         """Every token of `text`; an error stops the lexer and is kept in `Tokens.error`."""
@@ -177,8 +179,7 @@ class Lexer:
             kind = m.lastgroup
             if kind is None:  # only ignored text was left
                 break
-            start = m.start(kind)
-            end = m.end()
+            start, end = m.span(kind)
             if start != prev_end and count("\n", prev_end, start):
                 line += count("\n", prev_end, start)
                 line_start = rfind("\n", prev_end, start) + 1
