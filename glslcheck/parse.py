@@ -353,25 +353,41 @@ _KEEP_TOKENS = frozenset(
 _VALUE_TOKENS = frozenset({"IDENTIFIER", "TYPE_NAME", "INTCONSTANT", "FLOATCONSTANT"})
 
 
-def _edge_token(tree: Tree, end: int, memo: dict) -> Token | None:
-    """The first (end=0) or last (end=-1) token under a tree, or None for an empty one.
-    Memoised per tree (`memo` is one dict per end), so a long left-deep chain
-    (`a + b + ... + z`) costs linear time."""
-    key = id(tree)
-    if key in memo:
-        return memo[key]
+_MISSING = object()
+
+
+def _first_token(tree: Tree, memo: dict) -> Token | None:
+    """The first token under a tree, or None for an empty one. Memoised per tree, so a long
+    left-deep chain (`a + b + ... + z`) costs linear time."""
+    found = memo.get(id(tree), _MISSING)
+    if found is not _MISSING:
+        return found
     found = None
-    children = tree.children if end == 0 else reversed(tree.children)
-    for child in children:
+    for child in tree.children:
         if child is None:
             continue
-        if type(child) is Token:
-            found = child
-            break
-        found = _edge_token(child, end, memo)
+        found = child if type(child) is Token else _first_token(child, memo)
         if found is not None:
             break
-    memo[key] = found
+    memo[id(tree)] = found
+    return found
+
+
+def _last_token(tree: Tree, memo: dict) -> Token | None:
+    """The last token under a tree, or None for an empty one (memoised like _first_token)."""
+    found = memo.get(id(tree), _MISSING)
+    if found is not _MISSING:
+        return found
+    found = None
+    children = tree.children
+    for i in range(len(children) - 1, -1, -1):
+        child = children[i]
+        if child is None:
+            continue
+        found = child if type(child) is Token else _last_token(child, memo)
+        if found is not None:
+            break
+    memo[id(tree)] = found
     return found
 
 
@@ -397,15 +413,13 @@ class _Builder:
     # -- helpers ------------------------------------------------------------------------------
     def loc(self, item: Tree | Token) -> Location:
         """The span from the first to the last token of a subtree."""
-        if isinstance(item, Token):
-            return self._span(item.start_pos, item.end_pos)
-        first = _edge_token(item, 0, self._firsts)
-        if first is None:
-            return self.locate_span(0, 0)
-        last = _edge_token(item, -1, self._lasts)
-        return self._span(first.start_pos, last.end_pos)
-
-    def _span(self, start: int, end: int) -> Location:
+        if type(item) is Token:
+            start, end = item.start_pos, item.end_pos
+        else:
+            first = _first_token(item, self._firsts)
+            if first is None:
+                return self.locate_span(0, 0)
+            start, end = first.start_pos, _last_token(item, self._lasts).end_pos
         # Nested nodes often share both ends (a declaration and its type, a call and its
         # callee): locate each span once.
         key = (start, end)
@@ -417,15 +431,14 @@ class _Builder:
     def node(self, item):
         if item is None:
             return None
-        if isinstance(item, Token):
+        if type(item) is Token:
             raise AssertionError(f"unexpected token {item!r}")
         data = item.data
-        method = getattr(self, "_build_" + data)
         children = item.children
         if data not in _KEEP_TOKENS:
             # Punctuation and keywords matter only for the span; the rule says the rest.
-            children = [c for c in children if not (isinstance(c, Token) and c.type not in _VALUE_TOKENS)]
-        result = method(item, children)
+            children = [c for c in children if type(c) is not Token or c.type in _VALUE_TOKENS]
+        result = _BUILDERS[data](self, item, children)
         if result is not None and result.loc.line == 0:
             result.loc = self.loc(item)
         return result
@@ -721,3 +734,7 @@ class _Builder:
 
     def _build_bool_literal(self, t, c):
         return A.BoolLiteral(value=str(c[0]) == "true")
+
+
+# `_build_<rule>` by rule name, for the builder's dispatch.
+_BUILDERS = {name[len("_build_"):]: f for name, f in vars(_Builder).items() if name.startswith("_build_")}

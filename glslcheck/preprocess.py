@@ -127,10 +127,14 @@ class PPResult:
         """The span in the user's file of `text[start:end]` (a point when end <= start)."""
         if end <= start or not self._segs:
             return self.locate(start)
-        seg, delta = self._seg(start)
-        if seg.end < 0 and end - seg.out_start - 1 < self._seg_len(seg):
-            # Both ends in one copied piece of text: the common case of a token.
-            return seg.unit.span(seg.start + delta, seg.start + end - seg.out_start)
+        # _seg and _seg_len, inlined: the parser locates every AST node through here.
+        starts = self._seg_starts
+        seg = self._segs[max(bisect_right(starts, start) - 1, 0)]
+        if seg.end < 0:
+            i = bisect_right(starts, seg.out_start)
+            if end <= (starts[i] if i < len(starts) else len(self.text)):
+                # Both ends in one copied piece of text: the common case of a token.
+                return seg.unit.span(seg.start + start - seg.out_start, seg.start + end - seg.out_start)
         first = self.locate(start)
         last_seg, delta = self._seg(end - 1)
         if last_seg.end >= 0:
@@ -332,10 +336,16 @@ class _Unit:
     def span(self, s: int, e: int) -> Location:
         if e <= s:
             return self.point(s)
-        rs, rl = self.s2r(s), self.s2r(e - 1)
-        line = bisect_right(self.line_starts, rs)
-        ls = self.line_starts[line - 1]
-        if line < len(self.line_starts) and rl >= self.line_starts[line]:
+        # s2r(s) and s2r(e - 1), inlined (every AST node's location comes through here).
+        bp_s = self.bp_s
+        i = bisect_right(bp_s, s) - 1
+        rs = self.bp_r[i] + (s - bp_s[i]) if i >= 0 else s
+        i = bisect_right(bp_s, e - 1) - 1
+        rl = self.bp_r[i] + (e - 1 - bp_s[i]) if i >= 0 else e - 1
+        line_starts = self.line_starts
+        line = bisect_right(line_starts, rs)
+        ls = line_starts[line - 1]
+        if line < len(line_starts) and rl >= line_starts[line]:
             eline, ecol = self._raw_pos(rl)
             return Location(self.path, line, rs - ls + 1, eline, ecol + 1)
         return Location(self.path, line, rs - ls + 1, line, rl - ls + 2)
