@@ -235,6 +235,9 @@ class Struct:
     def __setattr__(self, key: str, value: Any) -> None:
         raise AttributeError("Struct values are immutable; use Runtime.assign_field")
 
+    def __reduce__(self):  # pickled by value (globals travel to render worker processes)
+        return (Struct, (self._name, self._fields))
+
     def replace(self, **changes: Any) -> "Struct":
         d = dict(self._fields)
         d.update(changes)
@@ -1143,7 +1146,11 @@ class Runtime:
             x, y = self._pair(x, y)
             return np.where(a, y, x)
         x, y, a = self._f(x), self._f(y), self._f(a)
-        return x * (self._1 - a) + y * a
+        r = x * (self._1 - a)
+        t = y * a
+        if r.shape == t.shape and r.ndim:  # the sum in r's buffer
+            return np.add(r, t, out=r)
+        return r + t
 
     def step(self, edge: Any, x: Any) -> np.ndarray:
         """0 where x < edge else 1; NaN gives 0 (llvmpipe computes x >= edge)."""
