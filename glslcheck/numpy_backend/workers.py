@@ -48,6 +48,23 @@ WORKER_MODULES = 8  # compiled programs a worker keeps
 # in a new worker than in a process that had already grown its heap. The worker keeps up to
 # 128 MB of freed memory instead (glibc; other allocators ignore these variables).
 MALLOC_ENV = {"MALLOC_MMAP_THRESHOLD_": str(32 * 2**20), "MALLOC_TRIM_THRESHOLD_": str(128 * 2**20)}
+M_TRIM_THRESHOLD, M_MMAP_THRESHOLD = -1, -3  # mallopt parameters (malloc.h)
+
+
+def tune_malloc() -> bool:
+    """The same malloc settings for this process (the CLI's render, verify and bench commands
+    call it; a library user's process is left alone). True when applied."""
+    if not sys.platform.startswith("linux"):
+        return False
+    try:
+        import ctypes
+
+        libc = ctypes.CDLL("libc.so.6")
+        return bool(libc.mallopt(M_MMAP_THRESHOLD, 32 * 2**20)) and bool(libc.mallopt(M_TRIM_THRESHOLD, 128 * 2**20))
+    except (OSError, AttributeError):  # not glibc
+        return False
+
+
 HEADER = 64  # bytes before the image in a frame's shared file: the next-tile counter
 
 
