@@ -8,7 +8,7 @@ in the same run (so a busy machine shifts both sides alike):
    of the already loaded sources) against the glslangValidator process (it has no warm mode).
 2. NumPy render time against GL on Mesa llvmpipe at 800x450: bench_render.py's four-sphere,
    four-point-light Blinn-Phong scene and lab 07_final (float32, 1 sample; the NumPy frame
-   cache is emptied before every render).
+   cache is emptied before every render), NumPy on worker processes and on threads.
 3. Coverage scaling: the sphere scene with spheres covering ~10% and nearly 100% of the pixels.
 4. Peak memory of a 3840x2160 NumPy render, in a fresh subprocess (ru_maxrss; a 8x8 render in
    another fresh subprocess is the baseline: interpreter, NumPy, the compiled shader).
@@ -190,23 +190,31 @@ def _pair(shader):
 
 
 def _render_fns(shader, size=SIZE) -> dict:
+    """NumPy on worker processes, NumPy on threads of this process, GL: one function each."""
     numpy_prog, gl_prog = _pair(shader)
 
-    def numpy_render():
-        numpy_prog.impl._cache.clear()  # the frame cache would answer a still shader at once
-        numpy_prog.render(size=size)
+    def numpy_render(mode):
+        def render():
+            numpy_prog.impl.parallel = mode
+            numpy_prog.impl._cache.clear()  # the frame cache would answer a still shader at once
+            numpy_prog.render(size=size)
+            assert numpy_prog.impl.last_parallel == mode
+        return render
 
-    return {"numpy": numpy_render, "gl": lambda: gl_prog.render(size=size)}
+    return {"processes": numpy_render("processes"), "threads": numpy_render("threads"),
+            "gl": lambda: gl_prog.render(size=size)}
 
 
 def section_render(runs: int) -> list[str]:
-    lines = [f"2. NumPy (float32, 1 sample) against GL on llvmpipe at {SIZE[0]}x{SIZE[1]} (ratio = numpy / gl)"]
+    lines = [f"2. NumPy (float32, 1 sample) against GL on llvmpipe at {SIZE[0]}x{SIZE[1]} (ratio = numpy / gl;",
+             f"   NumPy on {os.cpu_count()} worker processes and on {os.cpu_count()} threads)"]
     scenes = [("four spheres, four lights (Blinn-Phong)", load_shader(bench_render.SCENE)),
               ("lab 07_final", load_shader(bench_render.FINAL))]
-    lines.append(f"   {'':44s} {'numpy':>11s} {'gl':>11s}   ratio")
+    lines.append(f"   {'':40s} {'processes':>11s} {'threads':>11s} {'gl':>11s}   ratios")
     for label, shader in scenes:
         t = paired(_render_fns(shader), runs)
-        lines.append(f"   {label:44s} {ms(t['numpy'])} {ms(t['gl'])}   {t['numpy'] / t['gl']:5.2f}x")
+        lines.append(f"   {label:40s} {ms(t['processes'])} {ms(t['threads'])} {ms(t['gl'])}   "
+                     f"{t['processes'] / t['gl']:5.2f}x {t['threads'] / t['gl']:5.2f}x")
     return lines
 
 
@@ -215,7 +223,7 @@ def section_coverage(runs: int) -> list[str]:
 
     lines = ["3. coverage scaling: the sphere scene, small against large spheres (same run)"]
     results = {}
-    lines.append(f"   {'':44s} {'numpy':>11s} {'gl':>11s}   numpy/gl")
+    lines.append(f"   {'':40s} {'processes':>11s} {'threads':>11s} {'gl':>11s}")
     for label, scale in (("small", 0.85), ("large", 2.6)):
         shader = bench_render._scene(scale)
         img = glslcheck.compile(shader, backend="numpy").render(size=SIZE)
@@ -223,9 +231,9 @@ def section_coverage(runs: int) -> list[str]:
         coverage = 1.0 - float(background.mean())
         t = paired(_render_fns(shader), runs)
         results[label] = t
-        lines.append(f"   {label + f' spheres, {coverage:.0%} of the pixels':44s} {ms(t['numpy'])} {ms(t['gl'])}"
-                     f"   {t['numpy'] / t['gl']:5.2f}x")
-    for side in ("numpy", "gl"):
+        lines.append(f"   {label + f' spheres, {coverage:.0%} of the pixels':40s} {ms(t['processes'])} "
+                     f"{ms(t['threads'])} {ms(t['gl'])}")
+    for side in ("processes", "threads", "gl"):
         lines.append(f"   {side}: time(small) / time(large) = {results['small'][side] / results['large'][side]:.0%}")
     return lines
 
@@ -236,10 +244,10 @@ def section_coverage(runs: int) -> list[str]:
 
 def _child(size) -> tuple[float, int, int]:
     """(render seconds, tracemalloc peak, ru_maxrss bytes) of bench_render's child at `size`."""
-    code = bench_render._MEMORY_CHILD.format(root=str(ROOT), scene=bench_render.FINAL)
+    code = bench_render._MEMORY_CHILD.format(root=str(ROOT), scene=bench_render.FINAL, mode="threads")
     code = code.replace("(3840, 2160)", repr(tuple(size)))
     out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True).stdout.split()
-    return float(out[-3]), int(out[-2]), int(out[-1])
+    return float(out[-4]), int(out[-3]), int(out[-2])
 
 
 def section_memory() -> list[str]:

@@ -55,6 +55,9 @@ def build_parser(only: str | None = None) -> argparse.ArgumentParser:
     return parser
 
 
+_RENDERING = ("render", "verify", "bench")  # the commands that run the NumPy renderer
+
+
 def main(argv: list[str] | None = None) -> int:
     argv = sys.argv[1:] if argv is None else argv
     # Only import the chosen subcommand's module (startup time matters for hooks).
@@ -67,6 +70,10 @@ def main(argv: list[str] | None = None) -> int:
     if not getattr(args, "_run", None):
         parser.print_help(sys.stderr)
         return 2
+    if args.command in _RENDERING:
+        from .numpy_backend.workers import tune_malloc
+
+        tune_malloc()  # tile temporaries reuse freed memory instead of page-faulting (workers.py)
     try:
         return int(args._run(args) or 0)
     except InputError as e:

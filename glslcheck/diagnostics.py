@@ -59,6 +59,9 @@ class GlslError(Exception):
         self.diagnostics = diagnostics
         super().__init__("; ".join(d.message for d in diagnostics))
 
+    def __reduce__(self):  # pickled by its diagnostics (errors come back from render workers)
+        return (type(self), (self.diagnostics,))
+
 
 class InputError(Exception):
     """A missing, unreadable or undecodable input, or bad usage (exit 2)."""

@@ -235,6 +235,9 @@ class Struct:
     def __setattr__(self, key: str, value: Any) -> None:
         raise AttributeError("Struct values are immutable; use Runtime.assign_field")
 
+    def __reduce__(self):  # pickled by value (globals travel to render worker processes)
+        return (Struct, (self._name, self._fields))
+
     def replace(self, **changes: Any) -> "Struct":
         d = dict(self._fields)
         d.update(changes)
@@ -270,6 +273,9 @@ def _lanes_of(*values: Any) -> int:
     return n
 
 
+_CONVERTERS = {"float": "to_float", "int": "to_int", "uint": "to_uint", "bool": "to_bool"}
+
+
 class Runtime:
     """GLSL ES 3.00 operators and built-ins over lane arrays, in one float precision.
 
@@ -284,6 +290,7 @@ class Runtime:
             raise ValueError(f"precision must be one of {sorted(PRECISIONS)}") from None
         self.precision = precision
         F = self.F
+        self._dtype = np.dtype(F)  # `x.dtype is self._dtype`: the fast test in _f
         self._0 = F(0.0)
         self._1 = F(1.0)
         self._2 = F(2.0)
@@ -303,7 +310,7 @@ class Runtime:
     def _f(self, x: Any) -> np.ndarray:
         """Coerce to a float array of the active dtype (no copy when already right)."""
         if isinstance(x, np.ndarray):
-            if x.dtype == self.F:
+            if x.dtype is self._dtype or x.dtype == self._dtype:
                 return x
             if x.dtype == BOOL:
                 return x.astype(self.F)
@@ -430,8 +437,9 @@ class Runtime:
 
     def convert(self, x: Any, kind: str) -> np.ndarray:
         """Convert to ``kind`` in {"float", "int", "uint", "bool"}."""
-        return {"float": self.to_float, "int": self.to_int, "uint": self.to_uint,
-                "bool": self.to_bool}[kind](x)
+        if kind == "float":  # the common case, without building bound methods per call
+            return self._f(x)
+        return getattr(self, _CONVERTERS[kind])(x)
 
     # ------------------------------------------------------------------ constructors
     def _components(self, args: Iterable[Any], kind: str) -> list[np.ndarray]:
@@ -1010,8 +1018,22 @@ class Runtime:
         """``exp2(y * log2(x))`` with llvmpipe's edges: x < 0 -> NaN; x == 0 or x NaN -> 0
         (for every y, including 0, negative and NaN)."""
         x, y = self._f(x), self._f(y)
-        r = np.exp2(y * np.log2(x))
-        return np.where((x == self._0) | np.isnan(x), self._0, r)
+        r = np.log2(x)
+        one_y = y.size == 1
+        if one_y and r.ndim:  # one buffer for every step
+            np.multiply(y, r, out=r)
+            np.exp2(r, out=r)
+        else:
+            r = np.exp2(y * r)
+        yv = float(y.reshape(-1)[0]) if one_y else 0.0
+        if 0.0 < yv < math.inf:
+            zero = np.isnan(x)  # exp2(y * log2(0)) = exp2(-inf) is already 0 for y > 0
+        else:
+            zero = (x == self._0) | np.isnan(x)
+        if r.ndim and zero.shape == r.shape:
+            np.copyto(r, self._0, where=zero)
+            return r
+        return np.where(zero, self._0, r)
 
     def pow_const(self, x: Any, c: Any) -> np.ndarray:
         """``pow(x, c)`` with a compile-time constant exponent ``c`` (a Python float, or a tuple
@@ -1034,15 +1056,6 @@ class Runtime:
             return sq * sq
         if c == 0.0 and math.copysign(1.0, c) > 0:
             return np.where((x == self._0) | np.isnan(x), self._0, self._1)
-        cf = self.F(c)
-        if x.ndim and cf > self._0 and np.isfinite(cf):
-            # exp2(c * log2(0)) = exp2(-inf) is already 0 for c > 0 (in the render precision):
-            # only a NaN base needs llvmpipe's 0 (a negative base stays NaN). One buffer.
-            r = np.log2(x)
-            np.multiply(cf, r, out=r)
-            np.exp2(r, out=r)
-            np.copyto(r, self._0, where=np.isnan(x))
-            return r
         return self.pow(x, self.F(c))
 
     def pow_one(self, y: Any) -> np.ndarray:
@@ -1133,7 +1146,11 @@ class Runtime:
             x, y = self._pair(x, y)
             return np.where(a, y, x)
         x, y, a = self._f(x), self._f(y), self._f(a)
-        return x * (self._1 - a) + y * a
+        r = x * (self._1 - a)
+        t = y * a
+        if r.shape == t.shape and r.ndim:  # the sum in r's buffer
+            return np.add(r, t, out=r)
+        return r + t
 
     def step(self, edge: Any, x: Any) -> np.ndarray:
         """0 where x < edge else 1; NaN gives 0 (llvmpipe computes x >= edge)."""

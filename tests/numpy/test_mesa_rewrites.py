@@ -42,16 +42,29 @@ def test_pow_const_products():
     # not rewritten: the run-time formula (NaN for x < 0, 0 for x == 0 or NaN)
     for c in (-0.0, 0.5, 3.0, 8.0, -1.0):
         assert _same(RT.pow_const(x, c), RT.pow(x, RT.const_float(c)))
-    # positive exponents take a shorter path (exp2(c * log2(0)) is already 0): same values,
-    # including +inf, 1 and denormal bases and extreme exponents, in every precision
-    wide = _f(-0.5, -2.0, 0.0, -0.0, NAN, -INF, INF, 1.0, 3.0, 1e-40, 0.999, 1e30)
-    for prec in ("float16", "float32", "float64"):
-        rt = Runtime(prec)
-        xs = wide.astype(rt.F)
-        for c in (48.0, 1.0 / 2.2, 1e-30, 1e30, 3.0):
-            assert _same(rt.pow_const(xs, c), rt.pow(xs, rt.const_float(c))), (prec, c)
     assert RT.pow_const(x, 2.0).dtype == np.float32
     assert Runtime("float16").pow_const(_f(-0.5).astype(np.float16), 2.0).dtype == np.float16
+
+
+def test_pow_in_one_buffer_equals_the_formula():
+    """`pow` computes in place and skips the x == 0 test for a positive scalar exponent
+    (exp2(y * log2(0)) is already 0 then): the values must equal the plain formula
+    exp2(y * log2(x)), 0 for x == 0 or NaN, for every exponent kind, shape and precision."""
+    xs = [-0.5, -2.0, 0.0, -0.0, NAN, -INF, INF, 1.0, 3.0, 1e-40, 0.999, 1e30]
+    for prec in ("float16", "float32", "float64"):
+        rt = Runtime(prec)
+        x = np.asarray(xs, dtype=rt.F)
+        for y in (48.0, 1.0 / 2.2, 1e-30, 1e30, 3.0, 0.0, -0.0, -1.0, -1e30, NAN, INF, -INF):
+            yv = rt.const_float(y)
+            with np.errstate(all="ignore"):
+                want = np.where((x == 0) | np.isnan(x), rt.F(0), np.exp2(yv * np.log2(x)))
+                assert _same(rt.pow(x, yv), want), (prec, y)          # lanes ** uniform
+                assert _same(rt.pow(x[:, None].repeat(2, 1), yv), np.stack([want, want], 1))  # vec2
+                ys = np.full(x.shape, yv)
+                assert _same(rt.pow(x, ys), want), (prec, y)          # lanes ** lanes
+                assert _same(rt.pow(x[4:5], ys), np.where(np.isnan(x[4]) | (x[4] == 0), rt.F(0),
+                                                            np.exp2(ys * np.log2(x[4])))), (prec, y)
+            assert rt.pow(x, yv).dtype == rt.F
 
 
 def test_pow_const_vector_exponent_is_per_component():

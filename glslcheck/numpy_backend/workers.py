@@ -1,0 +1,324 @@
+"""Rendering a frame's tiles in worker processes.
+
+Why processes: NumPy releases the GIL inside each operation, but a shader runs hundreds of short
+operations per tile, and two threads then hand the GIL back and forth at every one of them. On
+the benchmark machine two threads render the sparse four-sphere scene no faster than one
+(benchmarks/bench_render.py prints both); two processes render it 1.5x faster.
+
+Design:
+- A process-wide pool of workers, each a fresh interpreter (`python -m
+  glslcheck.numpy_backend.workers FD`) that imports only NumPy and this package; nothing of the
+  caller is inherited (no GL context, threads or locks), and the caller's `__main__` is never
+  imported. Parent and worker talk over a socket pair with `multiprocessing.connection`.
+- A worker compiles a program's module the first time it sees the program's key and keeps the
+  last few.
+- The image is written into an anonymous shared-memory file (memfd) whose descriptor the
+  workers receive over their socket; it is kept while frames keep their size. Workers take
+  tiles from a counter at the start of that file (under a POSIX lock) until none is left,
+  write their rows straight into the shared image, and the parent copies the finished image
+  out (the caller's array; the file serves the next frame).
+- A GlslError raised in a worker (a runaway loop, with its GLSL line) is raised in the caller.
+  If a worker dies or cannot start, the pool closes, `Unavailable` is raised and the caller
+  renders the frame with threads.
+
+Linux only (memfd_create and descriptor passing over the socket); elsewhere `available()` is
+False and renders use threads.
+"""
+
+from __future__ import annotations
+
+import atexit
+import fcntl
+import hashlib
+import mmap
+import os
+import socket
+import subprocess
+import sys
+import threading
+from collections import OrderedDict
+from multiprocessing import reduction
+from multiprocessing.connection import Connection
+from typing import Any
+
+import numpy as np
+
+WORKER_MODULES = 8  # compiled programs a worker keeps
+# A fresh process's malloc maps every block above 128 kB anew and returns it on free, so each
+# tile temporary (a few hundred kB) page-faults on first write: the same tiles took 1.7x longer
+# in a new worker than in a process that had already grown its heap. The worker keeps up to
+# 128 MB of freed memory instead (glibc; other allocators ignore these variables).
+MALLOC_ENV = {"MALLOC_MMAP_THRESHOLD_": str(32 * 2**20), "MALLOC_TRIM_THRESHOLD_": str(128 * 2**20)}
+M_TRIM_THRESHOLD, M_MMAP_THRESHOLD = -1, -3  # mallopt parameters (malloc.h)
+
+
+def tune_malloc() -> bool:
+    """The same malloc settings for this process (the CLI's render, verify and bench commands
+    call it; a library user's process is left alone). True when applied."""
+    if not sys.platform.startswith("linux"):
+        return False
+    try:
+        import ctypes
+
+        libc = ctypes.CDLL("libc.so.6")
+        return bool(libc.mallopt(M_MMAP_THRESHOLD, 32 * 2**20)) and bool(libc.mallopt(M_TRIM_THRESHOLD, 128 * 2**20))
+    except (OSError, AttributeError):  # not glibc
+        return False
+
+
+HEADER = 64  # bytes before the image in a frame's shared file: the next-tile counter
+
+
+class Unavailable(Exception):
+    """The process pool cannot render this frame (not supported here, or a worker died)."""
+
+
+def available() -> bool:
+    return sys.platform.startswith("linux") and hasattr(os, "memfd_create") and _DISABLED is None
+
+
+_DISABLED: str | None = None  # why the pool was given up for this process, if it was
+_POOL: "_Pool | None" = None
+_POOL_LOCK = threading.Lock()
+
+
+def program_key(source: str, meta: dict, precision: str) -> str:
+    return hashlib.sha1(f"{precision}\0{meta!r}\0{source}".encode("utf-8")).hexdigest()
+
+
+def render(key: str, source: str, filename: str, meta: dict, precision: str, spec: Any,
+           tiles: list[tuple[int, int, int, int]], workers: int) -> tuple[np.ndarray, list[dict]]:
+    """Render `tiles` of the frame `spec` with `workers` processes: (image, per-tile stats)."""
+    global _POOL
+    with _POOL_LOCK:  # one frame at a time through the pool
+        if not available():
+            raise Unavailable(_DISABLED or "worker processes need Linux")
+        if _POOL is None or _POOL.size != workers:
+            if _POOL is not None:
+                _POOL.close()
+            _POOL = _Pool(workers)
+        try:
+            return _POOL.render(key, source, filename, meta, precision, spec, tiles)
+        except Unavailable as e:
+            _give_up(str(e))
+            raise
+
+
+def running() -> bool:
+    """True when a pool is up (starting one costs a few tenths of a second)."""
+    return _POOL is not None
+
+
+def shutdown() -> None:
+    global _POOL
+    with _POOL_LOCK:
+        if _POOL is not None:
+            _POOL.close()
+            _POOL = None
+
+
+def _give_up(reason: str) -> None:
+    global _POOL, _DISABLED
+    if _POOL is not None:
+        _POOL.close()
+        _POOL = None
+    _DISABLED = reason
+
+
+atexit.register(shutdown)
+
+
+class _Worker:
+    def __init__(self) -> None:
+        ours, theirs = socket.socketpair()
+        env = dict(os.environ)
+        # the worker imports the same glslcheck as this process (a source tree, a worktree, ...)
+        root = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+        env["PYTHONPATH"] = root + (os.pathsep + env["PYTHONPATH"] if env.get("PYTHONPATH") else "")
+        env.update(MALLOC_ENV)
+        try:
+            self.proc = subprocess.Popen(
+                [sys.executable, "-m", "glslcheck.numpy_backend.workers", str(theirs.fileno())],
+                pass_fds=(theirs.fileno(),), env=env, stdin=subprocess.DEVNULL, close_fds=True)
+        finally:
+            theirs.close()
+        self.conn = Connection(ours.detach())
+        self.frame = 0  # the number of the frame file this worker has mapped
+
+    def close(self) -> None:
+        try:
+            self.conn.send(None)
+        except OSError:
+            pass
+        self.conn.close()
+        try:
+            self.proc.wait(timeout=2)
+        except subprocess.TimeoutExpired:
+            self.proc.kill()
+            self.proc.wait()
+
+
+class _Frame:
+    """The shared file the workers write a frame into: a next-tile counter, then the image.
+    Kept while frames keep their size: a new file page-faults on every first write (3.8 ms
+    for an 800x450 image against 0.4 ms to copy it out of a mapped one)."""
+
+    def __init__(self, shape: tuple[int, int, int], number: int) -> None:
+        self.shape = shape
+        self.number = number
+        self.fd = os.memfd_create("glslcheck-frame", os.MFD_CLOEXEC)
+        os.ftruncate(self.fd, HEADER + shape[0] * shape[1] * shape[2] * 4)
+        self.mm = mmap.mmap(self.fd, HEADER + shape[0] * shape[1] * shape[2] * 4)
+        self.counter = np.frombuffer(self.mm, dtype=np.int64, count=1)
+        self.image = np.frombuffer(self.mm, dtype=np.float32, offset=HEADER).reshape(shape)
+
+    def close(self) -> None:
+        del self.counter, self.image
+        self.mm.close()
+        os.close(self.fd)
+
+
+class _Pool:
+    def __init__(self, size: int) -> None:
+        self.size = size
+        self.workers: list[_Worker] = []
+        self.frame: _Frame | None = None
+        try:
+            for _ in range(size):
+                self.workers.append(_Worker())
+        except OSError as e:
+            self.close()
+            raise Unavailable(f"cannot start a render worker: {e}") from None
+
+    def close(self) -> None:
+        for w in self.workers:
+            w.close()
+        self.workers = []
+        if self.frame is not None:
+            self.frame.close()
+            self.frame = None
+
+    def render(self, key, source, filename, meta, precision, spec, tiles):
+        shape = (spec.height, spec.width, 4)
+        if self.frame is None or self.frame.shape != shape:
+            number = self.frame.number + 1 if self.frame is not None else 1
+            if self.frame is not None:
+                self.frame.close()
+            self.frame = _Frame(shape, number)
+        frame = self.frame
+        frame.counter[0] = 0
+        try:
+            for w in self.workers:  # the source too (tens of kB): a worker may have dropped it
+                new_file = w.frame != frame.number
+                w.conn.send((key, source, filename, meta, precision, spec, tiles, shape, frame.number, new_file))
+                if new_file:
+                    reduction.send_handle(w.conn, frame.fd, w.proc.pid)
+                    w.frame = frame.number
+        except OSError as e:
+            raise Unavailable(f"a render worker stopped: {e}") from None
+        stats: list[dict] = []
+        errors: list[BaseException] = []
+        try:
+            for w in self.workers:
+                tile_stats, error = w.conn.recv()
+                stats.extend(tile_stats)
+                if error is not None:
+                    errors.append(error)
+        except (EOFError, OSError) as e:
+            raise Unavailable(f"a render worker stopped: {e or type(e).__name__}") from None
+        if errors:
+            raise errors[0]
+        return frame.image.copy(), stats  # the caller's own array; the file serves the next frame
+
+
+# ---------------------------------------------------------------------------------------------
+# The worker process
+# ---------------------------------------------------------------------------------------------
+
+
+def _picklable(e: BaseException) -> BaseException:
+    import pickle
+
+    try:
+        pickle.loads(pickle.dumps(e))
+        return e
+    except Exception:  # noqa: BLE001 - any exception must reach the caller as something
+        return RuntimeError(f"{type(e).__name__}: {e}")
+
+
+def _serve(conn: Connection) -> None:
+    modules: OrderedDict[str, dict] = OrderedDict()
+    grids: dict = {}
+    fd, mm = -1, None  # the frame file, mapped while frames keep their size
+    while True:
+        try:
+            msg = conn.recv()
+        except EOFError:
+            return
+        if msg is None:
+            return
+        key, source, filename, meta, precision, spec, tiles, shape, number, new_file = msg
+        if new_file:
+            if mm is not None:
+                mm.close()
+                os.close(fd)
+            fd = reduction.recv_handle(conn)
+            mm = mmap.mmap(fd, HEADER + shape[0] * shape[1] * shape[2] * 4)
+        stats: list[dict] = []
+        try:
+            _render_frame(fd, mm, modules, grids, key, source, filename, meta, precision, spec, tiles,
+                          shape, stats)
+            error = None
+        except BaseException as e:  # noqa: BLE001 - reported to the caller, which raises it
+            _take_tile(fd, mm, stop=len(tiles))  # the other workers stop too
+            e.__traceback__ = e.__context__ = e.__cause__ = None  # frames hold views of the file
+            error = _picklable(e)
+        conn.send((stats, error))
+
+
+def _take_tile(fd: int, mm: mmap.mmap, stop: int | None = None) -> int:
+    """The next tile index from the frame's shared counter (a POSIX lock around it)."""
+    fcntl.lockf(fd, fcntl.LOCK_EX, HEADER, 0)
+    try:
+        counter = np.frombuffer(mm, dtype=np.int64, count=1)
+        i = int(counter[0])
+        counter[0] = stop if stop is not None else i + 1
+        del counter
+        return i
+    finally:
+        fcntl.lockf(fd, fcntl.LOCK_UN, HEADER, 0)
+
+
+def _render_frame(fd, mm, modules, grids, key, source, filename, meta, precision, spec, tiles, shape,
+                  stats):
+    from . import program
+    from .program import execute_module, render_tile
+
+    program.COMPACT_FRACTION, program.COMPACT_MIN_LANES = spec.compaction  # as the caller has them
+    ns = modules.get(key)
+    if ns is None:
+        ns = modules[key] = execute_module(source, filename, meta, precision)
+        while len(modules) > WORKER_MODULES:
+            modules.popitem(last=False)
+    modules.move_to_end(key)
+    image = np.frombuffer(mm, dtype=np.float32, offset=HEADER).reshape(shape)
+    while True:
+        i = _take_tile(fd, mm)
+        if i >= len(tiles):
+            return
+        st = render_tile(ns, spec, tiles[i], image, grids=grids)
+        if st is not None:
+            stats.append(st)
+
+
+def main(argv: list[str]) -> int:
+    conn = Connection(int(argv[0]))
+    try:
+        _serve(conn)
+    except (EOFError, OSError, KeyboardInterrupt):
+        pass
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main(sys.argv[1:]))

@@ -1,0 +1,169 @@
+"""Rendering tiles in worker processes (glslcheck/numpy_backend/workers.py) changes no pixel,
+no statistic and no error: every frame here is rendered with processes and with threads and
+must be bit-identical. A worker that dies makes the frame fall back to threads.
+
+Worker processes need Linux (memfd_create); elsewhere these tests are skipped and say so (CI
+runs on Linux, where a skip would be a bug: the CI check below fails instead).
+"""
+
+from __future__ import annotations
+
+import os
+import signal
+
+import numpy as np
+import pytest
+
+from glslcheck.diagnostics import GlslError
+from glslcheck.numpy_backend import program as P
+from glslcheck.numpy_backend import workers
+
+from test_overheads import SHADER as SPARSE_SHADER  # compaction, globals, discard, gl_FragCoord
+from test_overheads import knobs  # noqa: F401 - the fixture
+
+DERIVATIVES = """
+void mainImage(out vec4 o, in vec2 f) {
+    float v = sin(f.x * 0.37) * cos(f.y * 0.21) + (f.x > 20.0 ? 1.0 : 0.0);
+    o = vec4(dFdx(v), dFdy(v), fwidth(v * v), 1.0);
+}
+"""
+
+RUNAWAY = """
+void mainImage(out vec4 o, in vec2 f) {
+    float acc = 0.0;
+    while (f.y > 30.0 && acc >= 0.0) { acc += 1.0; }
+    o = vec4(acc);
+}
+"""
+
+
+@pytest.fixture(autouse=True)
+def fresh_pool():
+    if not workers.available():
+        if os.environ.get("CI"):
+            pytest.fail("worker processes are unavailable on the CI machine (Linux): " + str(workers._DISABLED))
+        pytest.skip("worker processes need Linux with memfd_create (this machine: threads only)")
+    yield
+    workers.shutdown()
+    workers._DISABLED = None
+
+
+def _both(prog, **kw):
+    """The same frame rendered by worker processes and by threads."""
+    prog.threads = 2
+    prog.parallel = "processes"
+    prog._cache.clear()
+    a = prog.render(**kw)
+    assert prog.last_parallel == "processes"
+    stats_a = list(prog.last_stats)
+    prog.parallel = "threads"
+    prog._cache.clear()
+    b = prog.render(**kw)
+    assert prog.last_parallel == "threads"
+    return a, b, stats_a, list(prog.last_stats)
+
+
+@pytest.mark.parametrize("kw", [
+    dict(size=(96, 54)),
+    dict(size=(96, 54), stats=True),
+    dict(size=(60, 40), samples=4),
+    dict(size=(61, 37), precision="float16"),
+    dict(size=(61, 37), precision="float64", time=1.5),
+])
+def test_processes_render_what_threads_render(make_shader, knobs, kw):
+    knobs(COMPACT_MIN_LANES=16, TILE_LANES=600)  # many tiles, compacted regions in most
+    prog = P.compile_numpy(make_shader(SPARSE_SHADER))
+    a, b, sa, sb = _both(prog, **kw)
+    assert a.shape == b.shape and a.dtype == b.dtype == np.float32
+    assert np.array_equal(a, b, equal_nan=True)
+    assert sa == sb
+    if kw.get("stats"):
+        assert any(s.lanes for s in sa)
+
+
+def test_derivative_quads_stay_whole_in_workers(make_shader, knobs):
+    knobs(TILE_LANES=200)
+    prog = P.compile_numpy(make_shader(DERIVATIVES))
+    a, b, _, _ = _both(prog, size=(64, 30))
+    assert np.array_equal(a, b, equal_nan=True) and np.isfinite(a).all()
+
+
+def test_a_runaway_loop_in_a_worker_is_the_same_located_error(make_shader, knobs):
+    knobs(TILE_LANES=400)
+    prog = P.compile_numpy(make_shader(RUNAWAY))
+    prog.threads, prog.parallel = 2, "processes"
+    with pytest.raises(GlslError) as e:
+        prog.render(size=(40, 40))
+    d = e.value.diagnostics[0]
+    assert d.loc.line == 4 and "did not end" in d.message
+    prog.parallel = "threads"
+    with pytest.raises(GlslError) as t:
+        prog.render(size=(40, 40))
+    assert t.value.diagnostics[0].message == d.message and t.value.diagnostics[0].loc == d.loc
+    # the pool is still usable after an error
+    ok = P.compile_numpy(make_shader(DERIVATIVES))
+    ok.threads, ok.parallel = 2, "processes"
+    ok.render(size=(32, 32))
+    assert ok.last_parallel == "processes"
+
+
+def test_returned_images_are_the_callers(make_shader, knobs):
+    knobs(TILE_LANES=600)
+    prog = P.compile_numpy(make_shader(SPARSE_SHADER))
+    prog.threads, prog.parallel = 2, "processes"
+    first = prog.render(size=(48, 32), time=0.0)
+    keep = first.copy()
+    first[:] = 5.0  # the caller may write to it; the frame cache keeps its own copy
+    again = prog.render(size=(48, 32), time=0.0)
+    assert np.array_equal(again, keep, equal_nan=True)
+    prog._cache.clear()
+    third = prog.render(size=(48, 32), time=0.0)  # a new shared file: `again` is untouched
+    assert np.array_equal(again, keep, equal_nan=True) and np.array_equal(third, keep, equal_nan=True)
+
+
+def test_a_dead_worker_falls_back_to_threads(make_shader, knobs):
+    knobs(TILE_LANES=600)
+    prog = P.compile_numpy(make_shader(SPARSE_SHADER))
+    prog.threads, prog.parallel = 2, "processes"
+    want = prog.render(size=(48, 32))
+    assert prog.last_parallel == "processes"
+    os.kill(workers._POOL.workers[0].proc.pid, signal.SIGKILL)
+    workers._POOL.workers[0].proc.wait()
+    prog._cache.clear()
+    got = prog.render(size=(48, 32))
+    assert prog.last_parallel == "threads" and np.array_equal(got, want, equal_nan=True)
+    assert not workers.available() and "stopped" in workers._DISABLED
+
+
+def test_auto_starts_processes_only_after_enough_rendering(make_shader, knobs):
+    knobs(TILE_LANES=600, PROCESSES_AFTER=3600.0)
+    prog = P.compile_numpy(make_shader(SPARSE_SHADER))
+    prog.threads, prog.parallel = 2, "auto"
+    prog.render(size=(48, 32))
+    assert prog.last_parallel == "threads" and not workers.running()
+    knobs(PROCESSES_AFTER=0.0)
+    prog._cache.clear()
+    prog.render(size=(48, 32))
+    assert prog.last_parallel == "processes" and workers.running()
+    one = P.compile_numpy(make_shader(DERIVATIVES))  # a pool that is up serves every program
+    one.threads, one.parallel = 2, "auto"
+    knobs(PROCESSES_AFTER=3600.0)
+    one.render(size=(48, 32))
+    assert one.last_parallel == "processes"
+
+
+def test_shutdown_ends_the_workers(make_shader, knobs):
+    knobs(TILE_LANES=600)
+    prog = P.compile_numpy(make_shader(DERIVATIVES))
+    prog.threads, prog.parallel = 2, "processes"
+    prog.render(size=(32, 32))
+    procs = [w.proc for w in workers._POOL.workers]
+    workers.shutdown()
+    assert all(p.poll() is not None for p in procs) and not workers.running()
+
+
+def test_unknown_parallel_mode_is_refused(make_shader):
+    prog = P.compile_numpy(make_shader(DERIVATIVES))
+    prog.threads, prog.parallel = 2, "fibres"
+    with pytest.raises(ValueError, match="parallel"):
+        prog.render(size=(8, 8))
