@@ -3,8 +3,9 @@
 This module owns what happens around the generated code (`transpile.py`): executing the module
 in a restricted namespace (`__builtins__` empty; only `rt`, the runtime, and `X`, the lane
 helpers below, are visible), the per-invocation state `State` (uniforms, globals, discard mask,
-statistics), splitting the image into tiles rendered on a thread pool, supersampling, the
-frame cache for shaders that do not animate, and the error for a runaway loop.
+statistics), splitting the image into tiles rendered by worker processes or a thread pool,
+supersampling, the frame cache for shaders that do not animate, and the error for a runaway
+loop.
 
 Library API:
 
@@ -14,14 +15,20 @@ Library API:
     # img: float32 (height, width, 4), top row first; the GL backend's render() signature plus
     # `precision` ("float16" | "float32" | "float64", the float dtype used inside the shader)
     prog.last_stats                         # lanes per function/branch/loop of the last render
+    prog.parallel = "auto"                  # or "processes" / "threads" (env GLSLCHECK_PARALLEL)
     module = load_module("shader.py")       # a module written by `glslcheck transpile`
 
 Tiles: bands of about TILE_LANES pixels (up to TILE_WIDTH wide) keep a shader's temporaries
 small (a few hundred kB each); tiles start at even x and y, so derivative quads (2x2, see the runtime) never
-straddle two tiles. Tiles are rendered by `os.cpu_count()` threads of one process-wide pool
-(NumPy releases the GIL in its loops) and write their rows straight into the top-first image
-(and into the frame cache's copy, whose buffers are reused). Peak memory is a few tiles'
-temporaries plus the output image and its cached copy.
+straddle two tiles (`frame_tiles`; `render_tile` renders one). `os.cpu_count()` worker
+processes (workers.py) or threads of one process-wide pool render them. Threads share the GIL,
+which NumPy releases only inside each operation: a tile runs hundreds of short ones, so two
+threads gain little (nothing on a sparse scene). Processes do not share it but cost a few
+tenths of a second to start, so `parallel="auto"` uses threads until a program has rendered
+for PROCESSES_AFTER seconds in this process (or a pool is already up). Tiles write their rows
+straight into the top-first image (with threads also into the frame cache's copy, whose
+buffers are reused). Peak memory is a few tiles' temporaries per worker plus the output image
+and its cached copy.
 
 Fixed costs per tile are kept off the lanes: fragment coordinates come from a grid made once per
 render (gl_FragCoord only when the code reads it), uniform (1,) masks combine without full-lane

@@ -98,10 +98,17 @@ def render(key: str, source: str, filename: str, meta: dict, precision: str, spe
                 _POOL.close()
             _POOL = _Pool(workers)
         try:
-            return _POOL.render(key, source, filename, meta, precision, spec, tiles)
+            image, stats, errors = _POOL.render(key, source, filename, meta, precision, spec, tiles)
         except Unavailable as e:
             _give_up(str(e))
             raise
+        except BaseException:  # interrupted mid-frame (Ctrl-C, ...): replies may still be on
+            _POOL.close(now=True)  # the way, so these workers cannot serve another frame
+            _POOL = None
+            raise
+    if errors:  # raised in a worker, every worker has answered: the pool stays usable
+        raise errors[0]
+    return image, stats
 
 
 def running() -> bool:
@@ -139,17 +146,22 @@ class _Worker:
         try:
             self.proc = subprocess.Popen(
                 [sys.executable, "-m", "glslcheck.numpy_backend.workers", str(theirs.fileno())],
-                pass_fds=(theirs.fileno(),), env=env, stdin=subprocess.DEVNULL, close_fds=True)
+                pass_fds=(theirs.fileno(),), env=env, stdin=subprocess.DEVNULL, close_fds=True,
+                start_new_session=True)  # Ctrl-C reaches the caller, which ends the workers
         finally:
             theirs.close()
         self.conn = Connection(ours.detach())
         self.frame = 0  # the number of the frame file this worker has mapped
 
-    def close(self) -> None:
-        try:
-            self.conn.send(None)
-        except OSError:
-            pass
+    def close(self, now: bool = False) -> None:
+        """Ask the worker to end (at once with `now`: it may be in the middle of a frame)."""
+        if now:
+            self.proc.kill()
+        else:
+            try:
+                self.conn.send(None)
+            except OSError:
+                pass
         self.conn.close()
         try:
             self.proc.wait(timeout=2)
@@ -190,9 +202,9 @@ class _Pool:
             self.close()
             raise Unavailable(f"cannot start a render worker: {e}") from None
 
-    def close(self) -> None:
+    def close(self, now: bool = False) -> None:
         for w in self.workers:
-            w.close()
+            w.close(now)
         self.workers = []
         if self.frame is not None:
             self.frame.close()
@@ -227,8 +239,8 @@ class _Pool:
         except (EOFError, OSError) as e:
             raise Unavailable(f"a render worker stopped: {e or type(e).__name__}") from None
         if errors:
-            raise errors[0]
-        return frame.image.copy(), stats  # the caller's own array; the file serves the next frame
+            return None, stats, errors
+        return frame.image.copy(), stats, errors  # the caller's own array; the file serves the next frame
 
 
 # ---------------------------------------------------------------------------------------------

@@ -167,3 +167,29 @@ def test_unknown_parallel_mode_is_refused(make_shader):
     prog.threads, prog.parallel = 2, "fibres"
     with pytest.raises(ValueError, match="parallel"):
         prog.render(size=(8, 8))
+
+
+def test_an_interrupted_frame_closes_the_pool(make_shader, knobs, monkeypatch):
+    """Ctrl-C while workers render: their answers may still come, so the pool must not serve
+    another frame; the next render starts new workers and is right."""
+    knobs(TILE_LANES=600)
+    prog = P.compile_numpy(make_shader(SPARSE_SHADER))
+    prog.threads, prog.parallel = 2, "processes"
+    want = prog.render(size=(48, 32))
+    old = workers._POOL
+    procs = [w.proc for w in old.workers]
+    real = workers._Pool.render
+
+    def interrupted(self, *a):
+        real(self, *a)
+        raise KeyboardInterrupt
+
+    monkeypatch.setattr(workers._Pool, "render", interrupted)
+    prog._cache.clear()
+    with pytest.raises(KeyboardInterrupt):
+        prog.render(size=(48, 32))
+    assert workers._POOL is None and procs and all(p.poll() is not None for p in procs)
+    monkeypatch.setattr(workers._Pool, "render", real)
+    prog._cache.clear()
+    assert np.array_equal(prog.render(size=(48, 32)), want, equal_nan=True)
+    assert prog.last_parallel == "processes" and workers._POOL is not old
