@@ -11,7 +11,8 @@ in the same run (so a busy machine shifts both sides alike):
    cache is emptied before every render), NumPy on worker processes and on threads.
 3. Coverage scaling: the sphere scene with spheres covering ~10% and nearly 100% of the pixels.
 4. Peak memory of a 3840x2160 NumPy render, in a fresh subprocess (ru_maxrss; a 8x8 render in
-   another fresh subprocess is the baseline: interpreter, NumPy, the compiled shader).
+   another fresh subprocess is the baseline: interpreter, NumPy, the compiled shader), on
+   threads and on worker processes (the caller and its largest worker times their number).
 
 Timings are medians of --runs measurements after a warm-up; the two sides of each ratio are
 measured alternately. Printed, not asserted: timings are facts about a machine.
@@ -242,25 +243,30 @@ def section_coverage(runs: int) -> list[str]:
 # 4. Memory.
 
 
-def _child(size) -> tuple[float, int, int]:
-    """(render seconds, tracemalloc peak, ru_maxrss bytes) of bench_render's child at `size`."""
-    code = bench_render._MEMORY_CHILD.format(root=str(ROOT), scene=bench_render.FINAL, mode="threads")
+def _child(size, mode: str = "threads") -> tuple[float, int, int, int]:
+    """(render seconds, tracemalloc peak, ru_maxrss bytes, largest worker's ru_maxrss) of
+    bench_render's child at `size`."""
+    code = bench_render._MEMORY_CHILD.format(root=str(ROOT), scene=bench_render.FINAL, mode=mode)
     code = code.replace("(3840, 2160)", repr(tuple(size)))
     out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True).stdout.split()
-    return float(out[-4]), int(out[-3]), int(out[-2])
+    return float(out[-4]), int(out[-3]), int(out[-2]), int(out[-1])
 
 
 def section_memory() -> list[str]:
-    seconds, traced, rss = _child(UHD)
-    _, _, base = _child((8, 8))
+    seconds, traced, rss, _ = _child(UHD)
+    _, _, base, _ = _child((8, 8))
+    p_seconds, _, p_rss, worker = _child(UHD, "processes")
+    workers = os.cpu_count() or 1
     image = UHD[0] * UHD[1] * 4 * 4
     mib = 2 ** 20
     return [
         f"4. memory of a {UHD[0]}x{UHD[1]} NumPy render of lab 07_final (fresh subprocess each)",
-        f"   peak resident {rss / mib:.0f} MiB; baseline (8x8 render) {base / mib:.0f} MiB; "
+        f"   threads: peak resident {rss / mib:.0f} MiB; baseline (8x8 render) {base / mib:.0f} MiB; "
         f"render adds {(rss - base) / mib:.0f} MiB = {(rss - base) / image:.1f} x the float32 RGBA image "
         f"({image / mib:.0f} MiB)",
         f"   tracemalloc peak {traced / mib:.0f} MiB; render {seconds:.2f} s",
+        f"   worker processes: caller {p_rss / mib:.0f} MiB + {workers} workers of at most {worker / mib:.0f} MiB "
+        f"= {(p_rss + workers * worker) / mib:.0f} MiB at most; render {p_seconds:.2f} s (workers started first)",
     ]
 
 
