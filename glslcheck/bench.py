@@ -21,7 +21,9 @@ renders once, round-robin, so background load on a shared machine falls on all o
 a configuration's time is the median of its rounds. A render is the whole `Program.render`
 call: uniforms, every sample, averaging, and the float32 image back in memory (for GL also the
 framebuffer read-back). The NumPy backend keeps a cache of frames for shaders that do not
-animate; it is emptied before every timed NumPy render, so each one really renders.
+animate; it is emptied before every timed NumPy render, so each one really renders. NumPy
+renders on worker processes where available (glslcheck/numpy_backend/workers.py), all of
+them: GLSLCHECK_PARALLEL=threads times threads instead.
 `ratio_to_gl` is a configuration's time over the time of GL at 1 sample of the same shader,
 measured in the same run.
 
@@ -129,6 +131,18 @@ def _forget_frames(program) -> None:
         cache.clear()
 
 
+def _pin_parallel(program) -> None:
+    """Every NumPy configuration on the same kind of workers: "auto" would move to worker
+    processes part-way through and mix the two in one table. A bench renders many frames, so
+    it takes what "auto" moves to (processes, where available) unless GLSLCHECK_PARALLEL or
+    the caller chose otherwise."""
+    impl = getattr(program, "impl", program)
+    if getattr(impl, "parallel", None) == "auto":
+        from .numpy_backend import workers
+
+        impl.parallel = "processes" if workers.available() else "threads"
+
+
 def _compile_both(shader: Shader):
     """(gl, numpy) programs; GL first so a missing context is reported before a slow transpile."""
     from .api import compile as compile_program
@@ -160,6 +174,7 @@ def bench_shader(
     shader = shader if isinstance(shader, Shader) else load_shader(shader)
     name = shader.root or (shader.image.path if shader.image else "<shader>")
     gl, numpy_prog = programs if programs is not None else _compile_both(shader)
+    _pin_parallel(numpy_prog)
     configs = configurations(samples)
     by_backend = {"gl": gl, "numpy": numpy_prog}
     kwargs = dict(size=tuple(size), time=float(time))

@@ -148,3 +148,20 @@ def test_table_and_plot(rows_and_programs, tmp_path):
                            r.mean_abs_error, r.psnr_db, r.pixels_over_1_255, pareto=r.pareto) for r in rows], path)
     with Image.open(path) as im:
         assert im.format == "PNG" and im.width > im.height > 200
+
+
+def test_numpy_configurations_share_one_kind_of_worker(make_shader, monkeypatch):
+    """"auto" would move to worker processes part-way through a bench and mix processes and
+    threads in one table: the bench pins one (processes where available) unless told."""
+    from glslcheck.bench import _pin_parallel
+    from glslcheck.numpy_backend import workers
+    from glslcheck.numpy_backend.program import compile_numpy
+
+    monkeypatch.delenv("GLSLCHECK_PARALLEL", raising=False)
+    prog = compile_numpy(make_shader("void mainImage(out vec4 o, in vec2 f) { o = vec4(f, 0.0, 1.0); }"))
+    assert prog.parallel == "auto"
+    _pin_parallel(prog)
+    assert prog.parallel == ("processes" if workers.available() else "threads")
+    prog.parallel = "threads"  # chosen by the caller (or GLSLCHECK_PARALLEL): kept
+    _pin_parallel(prog)
+    assert prog.parallel == "threads"
