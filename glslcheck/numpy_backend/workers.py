@@ -93,18 +93,20 @@ def render(key: str, source: str, filename: str, meta: dict, precision: str, spe
     with _POOL_LOCK:  # one frame at a time through the pool
         if not available():
             raise Unavailable(_DISABLED or "worker processes need Linux")
-        if _POOL is None or _POOL.size != workers:
-            if _POOL is not None:
-                _POOL.close()
-            _POOL = _Pool(workers)
         try:
+            if _POOL is None or _POOL.size != workers:
+                if _POOL is not None:
+                    _POOL.close()
+                    _POOL = None
+                _POOL = _Pool(workers)
             image, stats, errors = _POOL.render(key, source, filename, meta, precision, spec, tiles)
         except Unavailable as e:
             _give_up(str(e))
             raise
         except BaseException:  # interrupted mid-frame (Ctrl-C, ...): replies may still be on
-            _POOL.close(now=True)  # the way, so these workers cannot serve another frame
-            _POOL = None
+            if _POOL is not None:  # the way, so these workers cannot serve another frame
+                _POOL.close(now=True)
+                _POOL = None
             raise
     if errors:  # raised in a worker, every worker has answered: the pool stays usable
         raise errors[0]
@@ -127,7 +129,7 @@ def shutdown() -> None:
 def _give_up(reason: str) -> None:
     global _POOL, _DISABLED
     if _POOL is not None:
-        _POOL.close()
+        _POOL.close(now=True)  # the frame is abandoned: a live worker may still be in it
         _POOL = None
     _DISABLED = reason
 
@@ -147,6 +149,7 @@ class _Worker:
             self.proc = subprocess.Popen(
                 [sys.executable, "-m", "glslcheck.numpy_backend.workers", str(theirs.fileno())],
                 pass_fds=(theirs.fileno(),), env=env, stdin=subprocess.DEVNULL, close_fds=True,
+                stderr=subprocess.DEVNULL,  # a worker that fails is reported as Unavailable, no traceback
                 start_new_session=True)  # Ctrl-C reaches the caller, which ends the workers
         finally:
             theirs.close()

@@ -193,3 +193,13 @@ def test_an_interrupted_frame_closes_the_pool(make_shader, knobs, monkeypatch):
     prog._cache.clear()
     assert np.array_equal(prog.render(size=(48, 32)), want, equal_nan=True)
     assert prog.last_parallel == "processes" and workers._POOL is not old
+
+
+def test_workers_that_cannot_start_leave_threads(make_shader, knobs, monkeypatch):
+    knobs(TILE_LANES=600)
+    prog = P.compile_numpy(make_shader(DERIVATIVES))
+    prog.threads, prog.parallel = 2, "processes"
+    monkeypatch.setattr(workers.sys, "executable", "/nonexistent/python")
+    img = prog.render(size=(48, 32))
+    assert prog.last_parallel == "threads" and np.isfinite(img).all()
+    assert not workers.available() and "cannot start" in workers._DISABLED
