@@ -403,6 +403,49 @@ def frame_tiles(width: int, height: int) -> list[tuple[int, int, int, int]]:
             for y0 in range(0, height, th) for x0 in range(0, width, tw)]
 
 
+# Fragment coordinates of tiles already rendered, read-only, by (tile, dtype, sample offset,
+# gl_FragCoord wanted): building them again was 5% of a frame of the four-sphere scene. Kept up
+# to FRAG_CACHE_LANES lanes (a 1920x1080 frame twice over; past that they are made per tile).
+FRAG_CACHE_LANES = 2 * 1920 * 1080
+_FRAGS: dict = {}
+_FRAG_LANES = [0]
+
+
+def _fragments(rt, tile, dx: float, dy: float, need4: bool, grids: dict | None):
+    """gl_FragCoord.xy (2, lanes) and, when the code reads it, gl_FragCoord (4, lanes)."""
+    key = (tile, rt.F, dx, dy, need4)
+    got = _FRAGS.get(key)
+    if got is not None:
+        return got
+    x0, y0, tw, th = tile
+    lanes = tw * th
+    grid = grids.get((tw, th)) if grids is not None else None
+    if grid is None:  # pixel-centre offsets (float64) of this tile shape
+        grid = (np.tile(np.arange(tw) + 0.5, th), np.repeat(np.arange(th) + 0.5, tw))
+        if grids is not None:
+            grids[(tw, th)] = grid
+    gx, gy = grid
+    frag = np.empty((2, lanes), dtype=rt.F)
+    np.add(gx, x0, out=frag[0], casting="unsafe")  # one rounding of x + 0.5 to F
+    np.add(gy, y0, out=frag[1], casting="unsafe")
+    frag4 = None
+    if need4:  # gl_FragCoord: the pixel centre, whatever the sample
+        frag4 = np.empty((4, lanes), dtype=rt.F)
+        frag4[:2] = frag
+        frag4[2] = 0.5
+        frag4[3] = 1.0
+        frag4.flags.writeable = False
+    if dx or dy:  # then the sample's offset, rounded to F again
+        frag[0] += rt.F(dx)
+        frag[1] += rt.F(dy)
+    frag.flags.writeable = False  # shared by every frame: generated code never writes inputs
+    got = (frag, frag4)
+    if _FRAG_LANES[0] + lanes <= FRAG_CACHE_LANES:
+        _FRAGS[key] = got
+        _FRAG_LANES[0] += lanes
+    return got
+
+
 def render_tile(ns: dict, spec: FrameSpec, tile: tuple[int, int, int, int], image: np.ndarray,
                 cached: np.ndarray | None = None, grids: dict | None = None) -> dict | None:
     """Run the shader on one tile and write its rows into `image` (and `cached`); returns the
@@ -410,28 +453,12 @@ def render_tile(ns: dict, spec: FrameSpec, tile: tuple[int, int, int, int], imag
     rt = ns["rt"]
     x0, y0, tw, th = tile
     lanes = tw * th
-    grid = grids.get((tw, th)) if grids is not None else None
-    if grid is None:  # pixel-centre offsets (float64) of this tile shape, made once per shape
-        grid = (np.tile(np.arange(tw) + 0.5, th), np.repeat(np.arange(th) + 0.5, tw))
-        if grids is not None:
-            grids[(tw, th)] = grid
-    gx, gy = grid
     samples = len(spec.offsets)
     acc = None
     st: dict | None = {} if spec.stats else None
     for dx, dy in spec.offsets:
-        frag = np.empty((2, lanes), dtype=rt.F)
-        np.add(gx, x0, out=frag[0], casting="unsafe")  # one rounding of x + 0.5 to F
-        np.add(gy, y0, out=frag[1], casting="unsafe")
-        frag4 = None
-        if spec.need4:
-            frag4 = np.empty((4, lanes), dtype=rt.F)
-            frag4[:2] = frag
-            frag4[2] = 0.5
-            frag4[3] = 1.0
-        if samples > 1:
-            frag[0] += rt.F(dx)
-            frag[1] += rt.F(dy)
+        frag, frag4 = _fragments(rt, tile, dx if samples > 1 else 0.0, dy if samples > 1 else 0.0,
+                                 spec.need4, grids)
         S = State(**spec.base, lanes=lanes, width=tw, frag_coord=frag, discard=Lanes.NO, stats=st,
                   parent=None)
         if spec.need4:
