@@ -1,0 +1,48 @@
+"""The benchmark scripts in benchmarks/ still run and print every figure they promise.
+
+One quick round each (timings are not asserted: they are facts about a machine, see the
+scripts' docstrings); what is checked is that each section prints its lines, so a refactoring
+of the backends cannot silently break the scripts whose output the docs quote.
+"""
+
+from __future__ import annotations
+
+import subprocess
+import sys
+from pathlib import Path
+
+import pytest
+
+ROOT = Path(__file__).resolve().parents[2]
+
+
+def _run(script: str, *args: str, timeout: int = 240) -> str:
+    done = subprocess.run([sys.executable, str(ROOT / "benchmarks" / script), *args], cwd=ROOT,
+                          capture_output=True, text=True, timeout=timeout)
+    assert done.returncode == 0, done.stderr[-2000:]
+    assert "Traceback" not in done.stderr
+    return done.stdout
+
+
+def test_bench_parse_prints_its_figures(glslang):
+    out = _run("bench_parse.py", "--runs", "1")
+    for line in ("warm preprocess+parse+AST", "check on top of parse", "one CLI call `glslcheck parse`",
+                 "glslangValidator on the same program"):
+        assert line in out, out
+
+
+@pytest.mark.parametrize("args", [("--repeat", "1")])
+def test_bench_render_prints_its_figures(gl, args):
+    out = _run("bench_render.py", *args)
+    for line in ("four spheres, four lights", "lab 07_final", "numpy processes", "threads",
+                 "time(small) / time(large) on processes", "one-thread CPU", "llvmpipe for reference",
+                 "threads  : render", "processes: render", "(limit 2048 MiB)"):
+        assert line in out, out
+
+
+def test_run_all_prints_every_section(gl, glslang):
+    out = _run("run_all.py", "--runs", "1", "--skip-memory")
+    for line in ("1. parse + check against glslangValidator", "2. NumPy (float32, 1 sample) against GL",
+                 "3. coverage scaling", "processes: time(small) / time(large)",
+                 "threads: time(small) / time(large)", "gl: time(small) / time(large)"):
+        assert line in out, out
