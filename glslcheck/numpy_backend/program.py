@@ -30,8 +30,9 @@ straight into the top-first image (with threads also into the frame cache's copy
 buffers are reused). Peak memory is a few tiles' temporaries per worker plus the output image
 and its cached copy.
 
-Fixed costs per tile are kept off the lanes: fragment coordinates come from a grid made once per
-render (gl_FragCoord only when the code reads it), uniform (1,) masks combine without full-lane
+Fixed costs per tile are kept off the lanes: a tile's fragment coordinates are made once and kept
+read-only for later frames (gl_FragCoord only when the code reads it; `_fragments`), uniform
+(1,) masks combine without full-lane
 arrays, and a compacted view (`Lanes.gather`) gathers globals and fragment coordinates only
 when the region first reads them.
 """
