@@ -9,6 +9,7 @@ from __future__ import annotations
 
 import argparse
 import importlib
+import os
 import sys
 
 from .diagnostics import GlslError, InputError, format_text
@@ -51,11 +52,16 @@ def build_parser(only: str | None = None) -> argparse.ArgumentParser:
             raise
         p = sub.add_parser(name, help=help_, description=(mod.__doc__ or help_).strip())
         mod.add_arguments(p)
+        if name in _RENDERING:
+            p.add_argument("--parallel", choices=PARALLEL_MODES, default=None,
+                           help="NumPy tiles on worker processes, on threads, or auto: threads until a program "
+                                "has rendered for a second, then processes (default: $GLSLCHECK_PARALLEL or auto)")
         p.set_defaults(_run=mod.run)
     return parser
 
 
 _RENDERING = ("render", "verify", "bench")  # the commands that run the NumPy renderer
+PARALLEL_MODES = ("auto", "threads", "processes")  # NumpyProgram.parallel
 
 
 def main(argv: list[str] | None = None) -> int:
@@ -73,7 +79,25 @@ def main(argv: list[str] | None = None) -> int:
     if args.command in _RENDERING:
         from .numpy_backend.workers import tune_malloc
 
+        if not args.parallel and os.environ.get("GLSLCHECK_PARALLEL", "auto") not in PARALLEL_MODES:
+            print(f"glslcheck: error: GLSLCHECK_PARALLEL must be one of {', '.join(PARALLEL_MODES)}, "
+                  f"not {os.environ['GLSLCHECK_PARALLEL']!r}", file=sys.stderr)
+            return 2
         tune_malloc()  # tile temporaries reuse freed memory instead of page-faulting (workers.py)
+    before = os.environ.get("GLSLCHECK_PARALLEL")
+    if getattr(args, "parallel", None):
+        os.environ["GLSLCHECK_PARALLEL"] = args.parallel  # read by every NumPy program made below
+    try:
+        return _run(args)
+    finally:
+        if getattr(args, "parallel", None):  # as it was: main() may be called again in-process
+            if before is None:
+                os.environ.pop("GLSLCHECK_PARALLEL", None)
+            else:
+                os.environ["GLSLCHECK_PARALLEL"] = before
+
+
+def _run(args) -> int:
     try:
         return int(args._run(args) or 0)
     except InputError as e:

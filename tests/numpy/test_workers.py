@@ -203,3 +203,29 @@ def test_workers_that_cannot_start_leave_threads(make_shader, knobs, monkeypatch
     img = prog.render(size=(48, 32))
     assert prog.last_parallel == "threads" and np.isfinite(img).all()
     assert not workers.available() and "cannot start" in workers._DISABLED
+
+
+def test_cli_parallel_option_and_environment(tmp_path, monkeypatch, capsys):
+    from glslcheck.cli import main
+
+    shader = tmp_path / "Image.glsl"
+    shader.write_text(DERIVATIVES)
+    seen = []
+    real = P.NumpyProgram.render
+
+    def spy(self, *a, **k):
+        seen.append(self.parallel)
+        return real(self, *a, **k)
+
+    monkeypatch.setattr(P.NumpyProgram, "render", spy)
+    monkeypatch.delenv("GLSLCHECK_PARALLEL", raising=False)
+    out = str(tmp_path / "o.npy")
+    assert main(["render", str(shader), "--size", "64x40", "-o", out, "--parallel", "processes"]) == 0
+    assert seen[-1] == "processes" and "GLSLCHECK_PARALLEL" not in os.environ  # restored
+    monkeypatch.setenv("GLSLCHECK_PARALLEL", "threads")
+    assert main(["render", str(shader), "--size", "64x40", "-o", out]) == 0
+    assert seen[-1] == "threads"
+    monkeypatch.setenv("GLSLCHECK_PARALLEL", "fibres")
+    assert main(["render", str(shader), "--size", "64x40", "-o", out]) == 2
+    assert "GLSLCHECK_PARALLEL must be one of auto, threads, processes, not 'fibres'" in capsys.readouterr().err
+    assert main(["render", str(shader), "--parallel", "fibres"]) == 2  # argparse: a usage error
