@@ -391,7 +391,7 @@ class FrameSpec:
     offsets: list  # sub-pixel sample offsets
     need4: bool  # the code reads gl_FragCoord: build it
     stats: bool  # count the lanes of each region
-    compaction: tuple = ()  # (COMPACT_FRACTION, COMPACT_MIN_LANES) of the caller, for workers
+    compaction: tuple  # (COMPACT_FRACTION, COMPACT_MIN_LANES) of the caller, for workers
 
 
 def frame_tiles(width: int, height: int) -> list[tuple[int, int, int, int]]:
@@ -410,9 +410,10 @@ def frame_tiles(width: int, height: int) -> list[tuple[int, int, int, int]]:
 FRAG_CACHE_LANES = 2 * 1920 * 1080
 _FRAGS: dict = {}
 _FRAG_LANES = [0]
+_GRIDS: dict = {}  # (w, h) -> pixel-centre offsets (float64) of a tile shape; a frame has few shapes
 
 
-def _fragments(rt, tile, dx: float, dy: float, need4: bool, grids: dict | None):
+def _fragments(rt, tile, dx: float, dy: float, need4: bool):
     """gl_FragCoord.xy (2, lanes) and, when the code reads it, gl_FragCoord (4, lanes)."""
     key = (tile, rt.F, dx, dy, need4)
     got = _FRAGS.get(key)
@@ -420,11 +421,9 @@ def _fragments(rt, tile, dx: float, dy: float, need4: bool, grids: dict | None):
         return got
     x0, y0, tw, th = tile
     lanes = tw * th
-    grid = grids.get((tw, th)) if grids is not None else None
-    if grid is None:  # pixel-centre offsets (float64) of this tile shape
-        grid = (np.tile(np.arange(tw) + 0.5, th), np.repeat(np.arange(th) + 0.5, tw))
-        if grids is not None:
-            grids[(tw, th)] = grid
+    grid = _GRIDS.get((tw, th))
+    if grid is None:
+        grid = _GRIDS[(tw, th)] = (np.tile(np.arange(tw) + 0.5, th), np.repeat(np.arange(th) + 0.5, tw))
     gx, gy = grid
     frag = np.empty((2, lanes), dtype=rt.F)
     np.add(gx, x0, out=frag[0], casting="unsafe")  # one rounding of x + 0.5 to F
@@ -448,7 +447,7 @@ def _fragments(rt, tile, dx: float, dy: float, need4: bool, grids: dict | None):
 
 
 def render_tile(ns: dict, spec: FrameSpec, tile: tuple[int, int, int, int], image: np.ndarray,
-                cached: np.ndarray | None = None, grids: dict | None = None) -> dict | None:
+                cached: np.ndarray | None = None) -> dict | None:
     """Run the shader on one tile and write its rows into `image` (and `cached`); returns the
     tile's lane counts per region when `spec.stats`, else None."""
     rt = ns["rt"]
@@ -459,7 +458,7 @@ def render_tile(ns: dict, spec: FrameSpec, tile: tuple[int, int, int, int], imag
     st: dict | None = {} if spec.stats else None
     for dx, dy in spec.offsets:
         frag, frag4 = _fragments(rt, tile, dx if samples > 1 else 0.0, dy if samples > 1 else 0.0,
-                                 spec.need4, grids)
+                                 spec.need4)
         S = State(**spec.base, lanes=lanes, width=tw, frag_coord=frag, discard=Lanes.NO, stats=st,
                   parent=None)
         if spec.need4:
@@ -629,10 +628,9 @@ class NumpyProgram:
 
     def _render_threads(self, ns, spec, tiles, image, cached, threads, all_stats) -> None:
         self.last_parallel = "threads" if threads > 1 and len(tiles) > 1 else "one thread"
-        grids: dict = {}
 
         def run(tile):
-            st = render_tile(ns, spec, tile, image, cached, grids)
+            st = render_tile(ns, spec, tile, image, cached)
             if st is not None:
                 all_stats.append(st)
 

@@ -48,7 +48,8 @@ WORKER_MODULES = 8  # compiled programs a worker keeps
 # tile temporary (a few hundred kB) page-faults on first write: the same tiles took 1.7x longer
 # in a new worker than in a process that had already grown its heap. The worker keeps up to
 # 128 MB of freed memory instead (glibc; other allocators ignore these variables).
-MALLOC_ENV = {"MALLOC_MMAP_THRESHOLD_": str(32 * 2**20), "MALLOC_TRIM_THRESHOLD_": str(128 * 2**20)}
+MMAP_THRESHOLD, TRIM_THRESHOLD = 32 * 2**20, 128 * 2**20
+MALLOC_ENV = {"MALLOC_MMAP_THRESHOLD_": str(MMAP_THRESHOLD), "MALLOC_TRIM_THRESHOLD_": str(TRIM_THRESHOLD)}
 M_TRIM_THRESHOLD, M_MMAP_THRESHOLD = -1, -3  # mallopt parameters (malloc.h)
 
 
@@ -61,7 +62,7 @@ def tune_malloc() -> bool:
         import ctypes
 
         libc = ctypes.CDLL("libc.so.6")
-        return bool(libc.mallopt(M_MMAP_THRESHOLD, 32 * 2**20)) and bool(libc.mallopt(M_TRIM_THRESHOLD, 128 * 2**20))
+        return bool(libc.mallopt(M_MMAP_THRESHOLD, MMAP_THRESHOLD)) and bool(libc.mallopt(M_TRIM_THRESHOLD, TRIM_THRESHOLD))
     except (OSError, AttributeError):  # not glibc
         return False
 
@@ -263,7 +264,6 @@ def _picklable(e: BaseException) -> BaseException:
 
 def _serve(conn: Connection) -> None:
     modules: OrderedDict[str, dict] = OrderedDict()
-    grids: dict = {}
     fd, mm = -1, None  # the frame file, mapped while frames keep their size
     while True:
         try:
@@ -281,7 +281,7 @@ def _serve(conn: Connection) -> None:
             mm = mmap.mmap(fd, HEADER + shape[0] * shape[1] * shape[2] * 4)
         stats: list[dict] = []
         try:
-            _render_frame(fd, mm, modules, grids, key, source, filename, meta, precision, spec, tiles,
+            _render_frame(fd, mm, modules, key, source, filename, meta, precision, spec, tiles,
                           shape, stats)
             error = None
         except BaseException as e:  # noqa: BLE001 - reported to the caller, which raises it
@@ -304,7 +304,7 @@ def _take_tile(fd: int, mm: mmap.mmap, stop: int | None = None) -> int:
         fcntl.lockf(fd, fcntl.LOCK_UN, HEADER, 0)
 
 
-def _render_frame(fd, mm, modules, grids, key, source, filename, meta, precision, spec, tiles, shape,
+def _render_frame(fd, mm, modules, key, source, filename, meta, precision, spec, tiles, shape,
                   stats):
     from . import program
     from .program import execute_module, render_tile
@@ -321,7 +321,7 @@ def _render_frame(fd, mm, modules, grids, key, source, filename, meta, precision
         i = _take_tile(fd, mm)
         if i >= len(tiles):
             return
-        st = render_tile(ns, spec, tiles[i], image, grids=grids)
+        st = render_tile(ns, spec, tiles[i], image)
         if st is not None:
             stats.append(st)
 

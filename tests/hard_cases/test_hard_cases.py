@@ -1,11 +1,10 @@
 """The hard cases (see README.md here): verify (NumPy vs llvmpipe) on each, and pins.
 
-Three kinds of test:
+Two kinds of test:
 - `test_verify_passes`: cases where GLSL and llvmpipe give a definite run-time answer; the NumPy
-  backend must copy it (NaN/Inf included) and verify must pass at several times.
-- `test_known_difference`: cases where the NumPy backend does not (yet) copy a deterministic
-  llvmpipe answer; strict xfail, so a fix shows up as XPASS and the entry moves up.
-- `test_numpy_pinned` / `test_llvmpipe_pinned`: where llvmpipe's answer depends on constant
+  backend must copy it (NaN/Inf included) and verify must pass at several times. (No known
+  difference is left: see README.md here.)
+- `test_numpy_pinned_*` / `test_llvmpipe_pinned_*`: where llvmpipe's answer depends on constant
   folding, reassociation, or is garbage, the NumPy backend's documented choice is pinned, and so
   is what llvmpipe returns (when it is deterministic), so the README table stays true.
 """
