@@ -27,7 +27,8 @@ threads gain little (nothing on a sparse scene). Processes do not share it but c
 tenths of a second to start, so `parallel="auto"` uses threads until a program has rendered
 for PROCESSES_AFTER seconds in this process (or a pool is already up). Tiles write their rows
 straight into the top-first image (with threads also into the frame cache's copy, whose
-buffers are reused). Peak memory is a few tiles' temporaries per worker plus the output image
+buffers are reused; worker processes write a shared file that the caller and the cache map
+without copying it). Peak memory is a few tiles' temporaries per worker plus the output image
 and its cached copy.
 
 Fixed costs per tile are kept off the lanes: a tile's fragment coordinates are made once and kept
@@ -62,6 +63,7 @@ TILE_HEIGHT = None  # None: TILE_LANES // tile width (rounded to even); set both
 COMPACT_FRACTION = 0.5  # compact a region when fewer than this fraction of the lanes take it
 COMPACT_MIN_LANES = 1024  # below this many lanes gathering costs more than it saves
 CACHE_FRAMES = 8
+CACHE_BYTES = 256 * 2**20  # and at most this much of them (a 3840x2160 frame is 127 MiB), the newest always kept
 PROCESSES_AFTER = 1.0  # seconds a program renders in this process before "auto" starts worker processes
 # Uniforms that change from frame to frame; a shader that reads none of them renders one image
 # for a whole animation.
@@ -170,6 +172,12 @@ class Lanes:
     @staticmethod
     def live(m) -> bool:
         return m is None or bool(m.any())
+
+    @staticmethod
+    def every(c) -> bool:
+        """True when every lane of a bool value is true (inactive lanes included: a cheap,
+        conservative test that lets a select skip computing its other side)."""
+        return bool(c.all())
 
     @staticmethod
     def true(c) -> bool:
@@ -355,9 +363,11 @@ def sample_offsets(samples: int) -> list[tuple[float, float]]:
 
 
 class _FrameCache(OrderedDict):
-    """The frame cache (key -> image). Its images are never handed out (a hit returns a copy),
-    so the buffers of dropped entries are kept (at most SPARE_FRAMES) for the next frames'
-    copies: a fresh buffer costs page faults on first write, about as much as the copy itself."""
+    """The frame cache (key -> image). Its images are never handed out (a hit returns a copy).
+    With threads, each is a copy the tiles write beside the caller's image, and the buffers of
+    dropped entries are kept (at most SPARE_FRAMES) for the next frames' copies: a fresh buffer
+    costs page faults on first write, about as much as the copy itself. With worker processes,
+    each is a read-only view of the frame's shared file (workers.py), no copy at all."""
 
     SPARE_FRAMES = 2
 
@@ -372,8 +382,9 @@ class _FrameCache(OrderedDict):
         return np.empty(shape, dtype=np.float32)
 
     def recycle(self, image: np.ndarray) -> None:
-        self.spare.append(image)
-        del self.spare[:-self.SPARE_FRAMES]
+        if image.base is None:  # not a worker frame file's view: dropping that frees the file
+            self.spare.append(image)
+            del self.spare[:-self.SPARE_FRAMES]
 
     def clear(self) -> None:
         for image in list(self.values())[-self.SPARE_FRAMES:]:
@@ -587,18 +598,18 @@ class NumpyProgram:
         tiles = frame_tiles(width, height)
         threads = self.threads or os.cpu_count() or 1
         all_stats: list[dict] = []
-        image = None
+        image = cached = None
         started = _time.perf_counter()
         if self._use_processes(threads, tiles):
             from . import workers
 
             try:
-                image, all_stats = workers.render(self._key(precision), self.source, self.filename,
-                                                  self.meta, precision, spec, tiles, threads)
+                # the image and the cache's read-only view share the pixels (copy-on-write)
+                image, cached, all_stats = workers.render(self._key(precision), self.source, self.filename,
+                                                          self.meta, precision, spec, tiles, threads)
                 self.last_parallel = "processes"
             except workers.Unavailable:
                 image, all_stats = None, []  # the pool is gone for this process: threads below
-        cached = None
         if image is None:
             image = np.empty((height, width, 4), dtype=np.float32)  # top row first
             # the frame cache's copy, written by each tile while its rows are still in the CPU cache
@@ -606,10 +617,6 @@ class NumpyProgram:
                 with self._lock:
                     cached = self._cache.buffer(image.shape)
             self._render_threads(ns, spec, tiles, image, cached, threads, all_stats)
-        elif not stats:
-            with self._lock:
-                cached = self._cache.buffer(image.shape)
-            np.copyto(cached, image)
         self._render_seconds += _time.perf_counter() - started
         out = image
         if stats:
@@ -622,7 +629,8 @@ class NumpyProgram:
         else:
             with self._lock:
                 self._cache[key] = cached
-                while len(self._cache) > CACHE_FRAMES:
+                while len(self._cache) > CACHE_FRAMES or (
+                        len(self._cache) > 1 and sum(v.nbytes for v in self._cache.values()) > CACHE_BYTES):
                     self._cache.recycle(self._cache.popitem(last=False)[1])
         return out
 

@@ -52,7 +52,8 @@ set") or a bool array; writes under a mask keep the old value elsewhere (`rt.ass
   module constants `C_x<n>`, computed once when the module is executed; float arithmetic and
   comparisons print as NumPy operators (`(a * b)`: the runtime's ufuncs without a call).
 * a function ending in `if (c) return K; return e;` (K constant, no side effects) returns
-  `rt.select(c, K, e)` without a return mask: `e` runs on every lane either way.
+  `rt.select(c, K, e)` without a return mask: `e` runs on every lane, unless c holds in every
+  lane (a tile of pixels that all miss a sphere), which returns K without computing `e`.
 * compaction: when fewer than half of the lanes of a varying branch or loop iteration are
   active (and there are enough lanes to matter), the values the region uses are gathered to the
   active lanes (`X.gather` / `X.push`), the region runs on the short arrays with no mask, and the
@@ -979,6 +980,10 @@ class Transpiler:
             c = self.tmp(self.expr(cond_stmt.cond, "_m"))
             then = cond_stmt.then.stmts[0] if isinstance(cond_stmt.then, A.Compound) else cond_stmt.then
             a = self.expr(then.value, "_m")
+            self.emit(f"if X.every({c}):  # no lane goes on: the rest is not computed")
+            self.indent += 1
+            self.emit(self.final_return(a))
+            self.indent -= 1
             self.comment_line(ret)
             b = self.expr(ret.value, "_m")
             self.emit(self.final_return(f"rt.select({c}, {a}, {b})"))

@@ -107,6 +107,45 @@ def test_frame_cache_is_a_separate_copy(make_shader):
     assert np.array_equal(prog.render(size=(32, 18)), keep, equal_nan=True)
 
 
+def test_frame_cache_is_bounded_in_frames_and_bytes(make_shader, knobs):
+    prog = compile_numpy(make_shader(SHADER))
+    prog.parallel = "threads"
+    for w in range(8, 8 + 2 * (P.CACHE_FRAMES + 3), 2):
+        prog.render(size=(w, 8))
+    assert len(prog._cache) == P.CACHE_FRAMES   # the oldest went first
+    knobs(CACHE_BYTES=3 * 40 * 30 * 16)          # room for three 40x30 RGBA float32 frames
+    for t in range(5):
+        prog.render(size=(40, 30 + t))
+    assert len(prog._cache) == 2                 # 40x33 and 40x34 fit, a third would not
+    prog.render(size=(400, 300))                 # larger than the limit alone: still cached
+    assert list(prog._cache.values())[0].shape == (300, 400, 4) and len(prog._cache) == 1
+
+
+EARLY_OUT = """
+float rise(float y) {
+    float d = y - 4.0;
+    if (d < 0.0) return -1.0;   // every lane of the two bottom tiles returns here
+    return sqrt(d);
+}
+void mainImage(out vec4 o, in vec2 f) { o = vec4(rise(f.y), 0.0, 0.0, 1.0); }
+"""
+
+
+def test_early_out_skips_the_rest_where_no_lane_goes_on(make_shader, knobs, monkeypatch):
+    prog = compile_numpy(make_shader(EARLY_OUT))
+    prog.threads = 1
+    knobs(TILE_LANES=32, TILE_WIDTH=16)         # 16x8 image: four tiles of two rows
+    rt = prog.module()["rt"]
+    sqrt_lanes = []
+    real = rt.sqrt
+    monkeypatch.setattr(rt, "sqrt", lambda x: sqrt_lanes.append(np.size(x)) or real(x))
+    img = prog.render(size=(16, 8))
+    assert sqrt_lanes == [32, 32]               # only the tiles of rows 4-7 compute the rest
+    y = np.arange(8, dtype=np.float32)[::-1] + np.float32(0.5)  # top row first
+    want = np.where(y < 4.0, np.float32(-1.0), np.sqrt(y - np.float32(4.0)))
+    assert np.array_equal(img[..., 0], np.repeat(want[:, None], 16, axis=1))
+
+
 def test_image_rows_run_top_to_bottom(make_shader, knobs):
     prog = compile_numpy(make_shader(
         "void mainImage(out vec4 o, in vec2 f) { o = vec4(f, gl_FragCoord.x + gl_FragCoord.y, 1.0); }"))
@@ -134,6 +173,7 @@ def test_generated_code_shapes(make_shader):
     # the early-out function returns a select, without return masks
     hit = code[code.index("def f_hit("):code.index("def f_mainImage(")]
     assert "rt.select(" in hit and "_ret" not in hit and "_rv" not in hit
+    assert "if X.every(" in hit  # ... and skips the rest where every lane returns early
     # the constant array of structs is built once, at module level
     assert "v_balls = C_x" in code
     # float arithmetic prints as operators

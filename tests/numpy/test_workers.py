@@ -121,6 +121,36 @@ def test_returned_images_are_the_callers(make_shader, knobs):
     assert np.array_equal(again, keep, equal_nan=True) and np.array_equal(third, keep, equal_nan=True)
 
 
+def test_frame_files_are_reused_only_when_nothing_holds_them(make_shader, knobs):
+    """Frames are handed out without a copy (workers._FrameFile): a file takes a new frame only
+    when neither the caller's image (nor any view of it) nor the frame cache holds the last."""
+    knobs(TILE_LANES=600)
+    prog = P.compile_numpy(make_shader(SPARSE_SHADER))
+    prog.threads, prog.parallel = 2, "processes"
+    files = lambda: workers._POOL.files  # noqa: E731
+
+    for t in (0.0, 1.0, 2.0):
+        prog._cache.clear()
+        prog.render(size=(48, 32), time=t)  # dropped at once: the one file serves every frame
+    assert len(files()) == 1
+    prog._cache.clear()                     # (a cache hit would be a copy, not the file)
+    first = prog.render(size=(48, 32), time=3.0)
+    rows = first[5:9, ::2]                  # a view keeps the file as well as the image does
+    keep = rows.copy()
+    del first
+    prog._cache.clear()
+    second = prog.render(size=(48, 32), time=4.0)
+    assert len(files()) == 2 and np.array_equal(rows, keep, equal_nan=True)
+    rows[:] = -1.0                          # a private copy-on-write mapping: the file is untouched
+    prog._cache.clear()
+    assert np.array_equal(prog.render(size=(48, 32), time=3.0)[5:9, ::2], keep, equal_nan=True)
+    del rows, second
+    for t in range(6):                      # frames of new sizes, nothing held: free files are
+        prog._cache.clear()                 # closed beyond the spares
+        prog.render(size=(48 + 2 * t, 32), time=0.0)
+    assert len(files()) == 1 + workers._Pool.SPARE_FILES
+
+
 def test_a_dead_worker_falls_back_to_threads(make_shader, knobs):
     knobs(TILE_LANES=600)
     prog = P.compile_numpy(make_shader(SPARSE_SHADER))

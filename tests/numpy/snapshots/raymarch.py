@@ -44,6 +44,8 @@ def f_shade(S, _m, v_n):
     X.count(S, 2, _m)
     # line 6: if (n.y < 0.0) return 0.1;
     _t3 = (v_n[1] < C_f_0p0)
+    if X.every(_t3):  # no lane goes on: the rest is not computed
+        return C_f_0p1
     # line 7: return n.y;
     return rt.select(_t3, C_f_0p1, v_n[1])
 
