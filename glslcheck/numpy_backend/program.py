@@ -475,19 +475,26 @@ def render_tile(ns: dict, spec: FrameSpec, tile: tuple[int, int, int, int], imag
         if spec.need4:
             S.frag_coord4 = frag4
         with rt.errstate():
-            color = np.broadcast_to(ns["shade"](S), (4, lanes))
-            if S.discard is not Lanes.NO:
-                color = np.where(np.broadcast_to(S.discard, (lanes,)), 0.0, color)
-            if samples > 1:
-                color = color.astype(np.float64)
+            color = ns["shade"](S)  # RGB (a Shadertoy shader: alpha is 1) or RGBA (plain GLSL)
+            if S.discard is not Lanes.NO or samples > 1:
+                if len(color) == 3:
+                    color = np.concatenate([np.broadcast_to(color, (3, lanes)), np.ones((1, lanes), color.dtype)])
+                color = np.broadcast_to(color, (4, lanes))
+                if S.discard is not Lanes.NO:
+                    color = np.where(np.broadcast_to(S.discard, (lanes,)), 0.0, color)
+                if samples > 1:
+                    color = color.astype(np.float64)
+            color = np.broadcast_to(color, (len(color), lanes))
         acc = color if acc is None else acc + color
     if samples > 1:
         acc = acc / samples
     # tile row 0 is the bottom one (y0); the image's row 0 is the top of the picture
     rows = slice(spec.height - y0 - th, spec.height - y0)
     dst = image[rows, x0:x0 + tw][::-1]
-    for c in range(4):  # one channel at a time: 2.5x faster than one transposed copy
+    for c in range(len(acc)):  # one channel at a time: 2.5x faster than one transposed copy
         dst[..., c] = acc[c].reshape(th, tw)
+    if len(acc) == 3:
+        dst[..., 3] = 1.0
     if cached is not None:
         cached[rows, x0:x0 + tw] = image[rows, x0:x0 + tw]
     return st

@@ -900,7 +900,7 @@ class Transpiler:
                 raise _error("a plain GLSL shader needs an 'out vec4' variable", entry.node)
             self.emit(f"return {self.var_name(outs[0], entry.node)}")
         else:
-            self.emit('"""Shadertoy\'s main(): color = vec4(1e20); mainImage(color, fragCoord); alpha 1."""')
+            self.emit('"""Shadertoy\'s main(): color = vec4(1e20); mainImage(color, fragCoord); its RGB."""')
             args = []
             init = self.consts.setdefault("C_vec4_1e20", "rt.vec(4, rt.const_float(1e20))") and "C_vec4_1e20"
             (_, _, d0), (_, _, d1) = entry.params
@@ -916,7 +916,7 @@ class Transpiler:
             else:
                 self.emit(f"_r = {call}")
                 self.emit("_color = _r[1]" if d0 != "in" else f"_color = {init}")
-            self.emit(f'return rt.vec(4, rt.swizzle(_color, "xyz"), {self.const_float(1.0)})')
+            self.emit('return rt.swizzle(_color, "xyz")  # RGB: the caller sets alpha to 1')
         self.indent -= 1
 
     # -- functions -----------------------------------------------------------------------------
@@ -1372,6 +1372,10 @@ class Transpiler:
         self.emit(f"{count} = 0")
         ind = induction_variable(s, self.model)
         ev_body = events_of(body, self.facts, self.model)
+        if (not do_while and cond is not None and not isinstance(cond, A.ConditionDeclaration)
+                and not ev_body.any and fs.uni is not None and fs.uni.is_uniform(cond)):
+            self.uniform_loop(lid, live, count, mask, cond, body, step, ind)
+            return
         compact = not fs.no_compact and not self._region_uses_derivs(s)
         snapshot = set(fs.defined)
         stack = self.fresh("k") if compact else None
@@ -1431,6 +1435,31 @@ class Transpiler:
             self.lines[compact_at:compact_at] = push
             self.emit(f"if {stack}:")
             self.emit(f"    S, ({', '.join(used)},) = X.unwind({stack}, S, {tup})")
+
+    def uniform_loop(self, lid: int, live: str, count: str, mask: str | None, cond: Any, body: Any,
+                     step: Any, ind: Any) -> None:
+        """A loop whose condition is the same in every lane and whose body cannot leave it
+        early (no break, continue, return or discard): every iteration runs on the lanes that
+        entered, so it is plain Python control flow with no mask of its own."""
+        fs = self.fn
+        assert self.lines[-2].strip() == f"{live} = {mask}"
+        del self.lines[-2]  # the loop's lanes are the enclosing ones throughout: no mask of its own
+        self.emit("while True:")
+        self.indent += 1
+        self.emit(f"{count} += 1")
+        self.emit(f"if {count} > {LOOP_CAP}:")
+        self.emit(f"    X.runaway({lid})")
+        c = self.condition(cond, mask)
+        self.emit(f"if not X.true({c}):")
+        self.emit("    break")
+        fs.loops.append(LoopCtx("loop", mask if mask is not None else "None", None))
+        self.emit(f"X.count(S, {lid}, {mask})")
+        self.sub(body, mask)
+        fs.loops.pop()
+        if step is not None:
+            self.comment_line(step)
+            self.effect(step, None if ind is not None else mask)
+        self.indent -= 1
 
     def condition(self, cond: Any, mask: str | None) -> str:
         if isinstance(cond, A.ConditionDeclaration):

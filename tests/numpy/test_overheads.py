@@ -146,6 +146,41 @@ def test_early_out_skips_the_rest_where_no_lane_goes_on(make_shader, knobs, monk
     assert np.array_equal(img[..., 0], np.repeat(want[:, None], 16, axis=1))
 
 
+UNIFORM_LOOPS = """
+void mainImage(out vec4 o, in vec2 f) {
+    float acc = 0.0;
+    for (int i = 0; i < 3; i++) {              // the same trip count in every lane
+        if (f.x > float(i) * 4.0) acc += 1.0;  // a varying body
+    }
+    int j = 0;
+    for (int k = 0; k < 5; k++) {              // a uniform condition but a varying break
+        if (f.y < float(k) * 2.0) break;
+        j++;
+    }
+    o = vec4(acc, float(j), 0.0, 1.0);
+}
+"""
+
+
+def test_uniform_loops_run_as_plain_python_loops(make_shader):
+    shader = make_shader(UNIFORM_LOOPS)
+    code = transpile_shader(shader).source
+    first, second = code.split("# line 8:")[0], code.split("# line 8:")[1]
+    assert "if not X.true(rt.lt(v_i, " in first and "_live" not in first  # no mask of its own
+    assert "_live" in second and "X.and_(_live" in second                # a lane may leave early
+    prog = compile_numpy(shader)
+    img = prog.render(size=(12, 10), stats=True)
+    x = np.arange(12, dtype=np.float32) + np.float32(0.5)
+    y = np.arange(10, dtype=np.float32)[::-1] + np.float32(0.5)        # top row first
+    acc = sum((x > np.float32(4 * i)).astype(np.float32) for i in range(3))
+    j = np.minimum(np.floor(y / 2) + 1, 5)                              # first k with y < 2k
+    assert np.array_equal(img[..., 0], np.broadcast_to(acc, (10, 12)))
+    assert np.array_equal(img[..., 1], np.broadcast_to(j[:, None], (10, 12)))
+    loops = {s.line: s.lanes for s in prog.last_stats if s.kind == "loop"}
+    assert loops[4] == 3 * 120                 # three iterations of every lane
+    assert loops[8] == int(np.where(j < 5, j + 1, 5).sum()) * 12  # up to the one that breaks
+
+
 def test_image_rows_run_top_to_bottom(make_shader, knobs):
     prog = compile_numpy(make_shader(
         "void mainImage(out vec4 o, in vec2 f) { o = vec4(f, gl_FragCoord.x + gl_FragCoord.y, 1.0); }"))

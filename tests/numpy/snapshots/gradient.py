@@ -39,10 +39,10 @@ def init_globals(S):
 
 
 def shade(S):
-    """Shadertoy's main(): color = vec4(1e20); mainImage(color, fragCoord); alpha 1."""
+    """Shadertoy's main(): color = vec4(1e20); mainImage(color, fragCoord); its RGB."""
     _r = f_mainImage(S, None, S.frag_coord)
     _color = _r[1]
-    return rt.vec(4, rt.swizzle(_color, "xyz"), C_f_1p0)
+    return rt.swizzle(_color, "xyz")  # RGB: the caller sets alpha to 1
 
 
 if __name__ == "__main__":
