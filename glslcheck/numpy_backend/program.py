@@ -40,6 +40,7 @@ when the region first reads them.
 
 from __future__ import annotations
 
+import functools
 import linecache
 import math
 import os
@@ -63,6 +64,7 @@ TILE_HEIGHT = None  # None: TILE_LANES // tile width (rounded to even); set both
 COMPACT_FRACTION = 0.5  # compact a region when fewer than this fraction of the lanes take it
 COMPACT_MIN_LANES = 1024  # below this many lanes gathering costs more than it saves
 CACHE_FRAMES = 8
+_CPUS = os.cpu_count()
 CACHE_BYTES = 256 * 2**20  # and at most this much of them (a 3840x2160 frame is 127 MiB), the newest always kept
 PROCESSES_AFTER = 1.0  # seconds a program renders in this process before "auto" starts worker processes
 # Uniforms that change from frame to frame; a shader that reads none of them renders one image
@@ -408,9 +410,15 @@ class FrameSpec:
 def frame_tiles(width: int, height: int) -> list[tuple[int, int, int, int]]:
     """(x0, y0, w, h) of each tile, y0 from the bottom; tiles start at even x and y, so 2x2
     derivative quads never straddle two tiles."""
-    tw = min(TILE_WIDTH, width)
+    return _frame_tiles(width, height, TILE_WIDTH, TILE_HEIGHT, TILE_LANES)
+
+
+@functools.lru_cache(maxsize=64)
+def _frame_tiles(width: int, height: int, tile_width: int, tile_height: int | None,
+                 tile_lanes: int) -> list[tuple[int, int, int, int]]:
+    tw = min(tile_width, width)
     tw += tw % 2 if tw < width else 0
-    th = TILE_HEIGHT or max(2, (TILE_LANES // tw) // 2 * 2)
+    th = tile_height or max(2, (tile_lanes // tw) // 2 * 2)
     return [(x0, y0, min(tw, width - x0), min(th, height - y0))
             for y0 in range(0, height, th) for x0 in range(0, width, tw)]
 
@@ -491,10 +499,16 @@ def render_tile(ns: dict, spec: FrameSpec, tile: tuple[int, int, int, int], imag
     # tile row 0 is the bottom one (y0); the image's row 0 is the top of the picture
     rows = slice(spec.height - y0 - th, spec.height - y0)
     dst = image[rows, x0:x0 + tw][::-1]
-    for c in range(len(acc)):  # one channel at a time: 2.5x faster than one transposed copy
-        dst[..., c] = acc[c].reshape(th, tw)
-    if len(acc) == 3:
-        dst[..., 3] = 1.0
+    block = image[rows, x0:x0 + tw].reshape(th, tw * 4)  # a view: each image row's pixels are contiguous
+    if acc.strides[-1] == 0 and np.may_share_memory(block, image):
+        # the same colour in every pixel (a background tile): whole rows of it, one pass
+        pixel = np.append(acc[:, 0], [1.0]) if len(acc) == 3 else acc[:, 0]
+        block[...] = np.tile(pixel.astype(np.float32), tw)
+    else:
+        for c in range(len(acc)):  # one channel at a time: 2.5x faster than one transposed copy
+            dst[..., c] = acc[c].reshape(th, tw)
+        if len(acc) == 3:
+            dst[..., 3] = 1.0
     if cached is not None:
         cached[rows, x0:x0 + tw] = image[rows, x0:x0 + tw]
     return st
@@ -539,6 +553,8 @@ class NumpyProgram:
     _keys: dict = field(default_factory=dict, repr=False)
     _modules: dict = field(default_factory=dict, repr=False)
     _cache: OrderedDict = field(default_factory=lambda: _FrameCache(), repr=False)
+    _specs: OrderedDict = field(default_factory=OrderedDict, repr=False)  # frame key -> FrameSpec
+    _tile_order: dict = field(default_factory=dict, repr=False)  # tiles -> indices, slowest first
     _lock: Any = field(default_factory=threading.Lock, repr=False)
 
     @property
@@ -593,17 +609,30 @@ class NumpyProgram:
                 if hit is not None:
                     self._cache.move_to_end(key)
                     return hit.copy()
-        base = {f"u_{u}": _uniform_value(rt, u, values.get(u, UNIFORMS_BY_NAME[u].default)) for u in used}
-        proto = State(**base, lanes=1, width=1, stats=None, discard=Lanes.NO, parent=None)
-        with rt.errstate():
-            ns["init_globals"](proto)
-        globals_ = {k: v for k, v in proto.__dict__.items() if k.startswith("g_")}
-        base.update(globals_)
-
-        spec = FrameSpec(width, height, base, offsets, "S.frag_coord4" in self.source, stats,
-                         (COMPACT_FRACTION, COMPACT_MIN_LANES))
+        spec_key = (key, COMPACT_FRACTION, COMPACT_MIN_LANES)
+        with self._lock:
+            spec = self._specs.get(spec_key)
+        if spec is None:  # uniform values and globals: the same for every frame with this key
+            base = {f"u_{u}": _uniform_value(rt, u, values.get(u, UNIFORMS_BY_NAME[u].default)) for u in used}
+            proto = State(**base, lanes=1, width=1, stats=None, discard=Lanes.NO, parent=None)
+            with rt.errstate():
+                ns["init_globals"](proto)
+            globals_ = {k: v for k, v in proto.__dict__.items() if k.startswith("g_")}
+            base.update(globals_)
+            spec = FrameSpec(width, height, base, offsets, "S.frag_coord4" in self.source, stats,
+                             (COMPACT_FRACTION, COMPACT_MIN_LANES))
+            with self._lock:
+                self._specs[spec_key] = spec
+                while len(self._specs) > CACHE_FRAMES:
+                    self._specs.popitem(last=False)
         tiles = frame_tiles(width, height)
-        threads = self.threads or os.cpu_count() or 1
+        threads = self.threads or _CPUS or 1
+        # the tiles that took longest in the last frame of this size go first, so that the
+        # workers finish together (the order changes no pixel: each tile writes its own rows)
+        tiles_key = tuple(tiles)
+        with self._lock:
+            order = self._tile_order.get(tiles_key)
+        run_tiles = [tiles[i] for i in order] if order is not None else tiles
         all_stats: list[dict] = []
         image = cached = None
         started = _time.perf_counter()
@@ -612,18 +641,26 @@ class NumpyProgram:
 
             try:
                 # the image and the cache's read-only view share the pixels (copy-on-write)
-                image, cached, all_stats = workers.render(self._key(precision), self.source, self.filename,
-                                                          self.meta, precision, spec, tiles, threads)
+                image, cached, all_stats, seconds = workers.render(
+                    self._key(precision), self.source, self.filename, self.meta, precision, spec,
+                    run_tiles, threads)
                 self.last_parallel = "processes"
             except workers.Unavailable:
                 image, all_stats = None, []  # the pool is gone for this process: threads below
+        seconds: dict[tuple, float] = {}
         if image is None:
             image = np.empty((height, width, 4), dtype=np.float32)  # top row first
             # the frame cache's copy, written by each tile while its rows are still in the CPU cache
             if not stats:
                 with self._lock:
                     cached = self._cache.buffer(image.shape)
-            self._render_threads(ns, spec, tiles, image, cached, threads, all_stats)
+            seconds = self._render_threads(ns, spec, run_tiles, image, cached, threads, all_stats)
+        if len(seconds) == len(tiles):
+            cost = [seconds[t] for t in tiles]
+            with self._lock:
+                self._tile_order[tiles_key] = sorted(range(len(tiles)), key=lambda i: -cost[i])
+                while len(self._tile_order) > CACHE_FRAMES:
+                    del self._tile_order[next(iter(self._tile_order))]
         self._render_seconds += _time.perf_counter() - started
         out = image
         if stats:
@@ -641,11 +678,15 @@ class NumpyProgram:
                     self._cache.recycle(self._cache.popitem(last=False)[1])
         return out
 
-    def _render_threads(self, ns, spec, tiles, image, cached, threads, all_stats) -> None:
+    def _render_threads(self, ns, spec, tiles, image, cached, threads, all_stats) -> dict:
+        """Render `tiles` on this process's threads: {tile: seconds it took}."""
         self.last_parallel = "threads" if threads > 1 and len(tiles) > 1 else "one thread"
+        seconds: dict = {}
 
         def run(tile):
+            t0 = _time.perf_counter()
             st = render_tile(ns, spec, tile, image, cached)
+            seconds[tile] = _time.perf_counter() - t0
             if st is not None:
                 all_stats.append(st)
 
@@ -663,6 +704,7 @@ class NumpyProgram:
         else:
             for t in tiles:
                 run(t)
+        return seconds
 
     def _use_processes(self, threads: int, tiles: list) -> bool:
         """Worker processes for frames of several tiles when asked to, or ("auto") once this

@@ -37,6 +37,7 @@ import socket
 import subprocess
 import sys
 import threading
+import time
 import weakref
 from collections import OrderedDict
 from multiprocessing import reduction
@@ -90,9 +91,10 @@ def program_key(source: str, meta: dict, precision: str) -> str:
 
 
 def render(key: str, source: str, filename: str, meta: dict, precision: str, spec: Any,
-           tiles: list[tuple[int, int, int, int]], workers: int) -> tuple[np.ndarray, np.ndarray, list[dict]]:
-    """Render `tiles` of the frame `spec` with `workers` processes: (the caller's image, a
-    read-only view of the same pixels for the frame cache, per-tile stats); see `_FrameFile`."""
+           tiles: list[tuple[int, int, int, int]], workers: int) -> tuple[np.ndarray, np.ndarray, list[dict], dict]:
+    """Render `tiles` of the frame `spec` with `workers` processes, in that order: (the caller's
+    image, a read-only view of the same pixels for the frame cache (see `_FrameFile`), per-tile
+    stats, {tile: seconds it took})."""
     global _POOL
     with _POOL_LOCK:  # one frame at a time through the pool
         if not available():
@@ -103,7 +105,7 @@ def render(key: str, source: str, filename: str, meta: dict, precision: str, spe
                     _POOL.close()
                     _POOL = None
                 _POOL = _Pool(workers)
-            image, shared, stats, errors = _POOL.render(key, source, filename, meta, precision, spec, tiles)
+            image, shared, stats, seconds, errors = _POOL.render(key, source, filename, meta, precision, spec, tiles)
         except Unavailable as e:
             _give_up(str(e))
             raise
@@ -114,7 +116,7 @@ def render(key: str, source: str, filename: str, meta: dict, precision: str, spe
             raise
     if errors:  # raised in a worker, every worker has answered: the pool stays usable
         raise errors[0]
-    return image, shared, stats
+    return image, shared, stats, seconds
 
 
 def running() -> bool:
@@ -281,19 +283,21 @@ class _Pool:
         except OSError as e:
             raise Unavailable(f"a render worker stopped: {e}") from None
         stats: list[dict] = []
+        seconds: dict = {}
         errors: list[BaseException] = []
         try:
             for w in self.workers:
-                tile_stats, error = w.conn.recv()
+                tile_stats, tile_seconds, error = w.conn.recv()
                 stats.extend(tile_stats)
+                seconds.update(tile_seconds)
                 if error is not None:
                     errors.append(error)
         except (EOFError, OSError) as e:
             raise Unavailable(f"a render worker stopped: {e or type(e).__name__}") from None
         if errors:
-            return None, None, stats, errors
+            return None, None, stats, seconds, errors
         image, shared = file.hand_out()
-        return image, shared, stats, errors
+        return image, shared, stats, seconds, errors
 
 
 # ---------------------------------------------------------------------------------------------
@@ -332,15 +336,16 @@ def _serve(conn: Connection) -> None:
             files[number] = (fd, mmap.mmap(fd, HEADER + shape[0] * shape[1] * shape[2] * 4))
         fd, mm = files[number]
         stats: list[dict] = []
+        seconds: dict = {}  # tile -> seconds it took here (the caller orders the next frame's tiles)
         try:
             _render_frame(fd, mm, modules, key, source, filename, meta, precision, spec, tiles,
-                          shape, stats)
+                          shape, stats, seconds)
             error = None
         except BaseException as e:  # noqa: BLE001 - reported to the caller, which raises it
             _take_tile(fd, mm, stop=len(tiles))  # the other workers stop too
             e.__traceback__ = e.__context__ = e.__cause__ = None  # frames hold views of the file
             error = _picklable(e)
-        conn.send((stats, error))
+        conn.send((stats, seconds, error))
 
 
 def _take_tile(fd: int, mm: mmap.mmap, stop: int | None = None) -> int:
@@ -357,7 +362,7 @@ def _take_tile(fd: int, mm: mmap.mmap, stop: int | None = None) -> int:
 
 
 def _render_frame(fd, mm, modules, key, source, filename, meta, precision, spec, tiles, shape,
-                  stats):
+                  stats, seconds):
     from . import program
     from .program import execute_module, render_tile
 
@@ -373,7 +378,9 @@ def _render_frame(fd, mm, modules, key, source, filename, meta, precision, spec,
         i = _take_tile(fd, mm)
         if i >= len(tiles):
             return
+        t0 = time.perf_counter()
         st = render_tile(ns, spec, tiles[i], image)
+        seconds[tiles[i]] = time.perf_counter() - t0
         if st is not None:
             stats.append(st)
 

@@ -181,6 +181,56 @@ def test_uniform_loops_run_as_plain_python_loops(make_shader):
     assert loops[8] == int(np.where(j < 5, j + 1, 5).sum()) * 12  # up to the one that breaks
 
 
+UNEVEN = """
+void mainImage(out vec4 o, in vec2 f) {
+    float acc = 0.0;
+    for (int i = 0; i < 400; i++) {     // rows above y = 24 loop 400 times, the others never
+        if (f.y < 24.0) break;
+        acc = sin(acc + f.x * 0.01);
+    }
+    o = vec4(acc, f.y, 0.0, 1.0);
+}
+"""
+
+
+def test_the_slowest_tiles_of_a_frame_go_first_in_the_next(make_shader, knobs):
+    prog = compile_numpy(make_shader(UNEVEN))
+    prog.threads = 1
+    knobs(TILE_LANES=16 * 8, TILE_WIDTH=16)              # 16x32: four tiles of eight rows
+    first = _render_sized(prog, (16, 32))
+    tiles = P.frame_tiles(16, 32)
+    order = prog._tile_order[tuple(tiles)]
+    assert [tiles[i][1] for i in order[:1]] == [24] and tiles[order[-1]][1] < 24
+    again = _render_sized(prog, (16, 32))                # rendered in that order: the same image
+    assert np.array_equal(first, again, equal_nan=True)
+
+
+def _render_sized(prog, size):
+    prog._cache.clear()
+    return prog.render(size=size)
+
+
+def test_tiles_of_one_colour_are_written_whole(make_shader, knobs, monkeypatch):
+    prog = compile_numpy(make_shader(
+        "void mainImage(out vec4 o, in vec2 f) {\n"
+        "    vec4 c = vec4(0.25, 0.5, 0.75, 0.3);\n"
+        "    if (f.x < 10.0) c = vec4(f, 0.5, 0.0);   // no lane of the tiles right of x = 16 runs it\n"
+        "    o = c;\n"
+        "}"))
+    tiles = []
+    real = np.tile                                       # the one-colour path repeats one pixel
+    monkeypatch.setattr(P.np, "tile", lambda a, n: (len(a) == 4 and tiles.append(n)) or real(a, n))
+    knobs(TILE_LANES=8 * 6, TILE_WIDTH=8)                  # 8x6 tiles, three rows of them
+    img = _render_sized(prog, (30, 14))
+    assert sorted(tiles) == [6, 6, 6, 8, 8, 8]               # x0 = 16 and 24 (6 wide), in 3 rows of tiles
+    assert np.array_equal(img[:, 10:], np.broadcast_to(np.float32([0.25, 0.5, 0.75, 1.0]), (14, 20, 4)))
+    x = np.arange(10, dtype=np.float32) + np.float32(0.5)
+    y = np.arange(14, dtype=np.float32)[::-1] + np.float32(0.5)
+    assert np.array_equal(img[:, :10, 0], np.broadcast_to(x, (14, 10)))
+    assert np.array_equal(img[:, :10, 1], np.broadcast_to(y[:, None], (14, 10)))
+    assert np.all(img[:, :10, 2:] == np.float32([0.5, 1.0]))   # alpha is 1, as Shadertoy makes it
+
+
 def test_image_rows_run_top_to_bottom(make_shader, knobs):
     prog = compile_numpy(make_shader(
         "void mainImage(out vec4 o, in vec2 f) { o = vec4(f, gl_FragCoord.x + gl_FragCoord.y, 1.0); }"))
