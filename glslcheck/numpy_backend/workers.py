@@ -71,6 +71,7 @@ def tune_malloc() -> bool:
 
 
 HEADER = 64  # bytes before the image in a frame's shared file: the next-tile counter
+MAX_MAPPINGS = 64  # frames handed out as mappings and still alive; later ones are copies
 
 
 class Unavailable(Exception):
@@ -205,13 +206,27 @@ class _FrameFile:
     def free(self) -> bool:
         return all(ref() is None for ref in self.holders)
 
-    def hand_out(self) -> tuple[np.ndarray, np.ndarray]:
-        """(the caller's copy-on-write image, a read-only shared view for the frame cache)."""
+    def hand_out(self, mappings: list) -> tuple[np.ndarray, np.ndarray]:
+        """(the caller's copy-on-write image, a read-only shared view for the frame cache).
+
+        Each mapping holds a file descriptor (Python's mmap keeps a duplicate), so past
+        MAX_MAPPINGS images still alive (`mappings`: weak references to them) the caller gets
+        a plain copy instead, as it does if the mapping cannot be made."""
         count = self.shape[0] * self.shape[1] * self.shape[2]
-        private = mmap.mmap(self.fd, self.size, flags=mmap.MAP_PRIVATE)
-        mine = np.frombuffer(private, dtype=np.float32, offset=HEADER, count=count)
         shared = np.frombuffer(self.mm, dtype=np.float32, offset=HEADER, count=count)
         shared.flags.writeable = False
+        mappings[:] = [ref for ref in mappings if ref() is not None]
+        mine = None
+        if len(mappings) < MAX_MAPPINGS:
+            try:
+                private = mmap.mmap(self.fd, self.size, flags=mmap.MAP_PRIVATE)
+                mine = np.frombuffer(private, dtype=np.float32, offset=HEADER, count=count)
+                mappings.append(weakref.ref(mine))
+            except OSError:  # out of descriptors or address space: copy
+                mine = None
+        if mine is None:
+            self.holders = (weakref.ref(shared),)
+            return shared.reshape(self.shape).copy(), shared.reshape(self.shape)
         # every view of these arrays keeps them alive (NumPy points a view's base at them)
         self.holders = (weakref.ref(mine), weakref.ref(shared))
         return mine.reshape(self.shape), shared.reshape(self.shape)
@@ -228,6 +243,10 @@ class _FrameFile:
 
 class _Pool:
     SPARE_FILES = 2  # free frame files kept for the next frames (the others are closed)
+    # files still held (by the caller or the frame cache) that the pool keeps open to reuse
+    # once they are free; older ones are let go (closed here and in the workers: their memory
+    # lives on in the caller's arrays), so holding many frames does not hold as many descriptors
+    KEPT_FILES = 12
 
     def __init__(self, size: int) -> None:
         self.size = size
@@ -235,6 +254,7 @@ class _Pool:
         self.files: list[_FrameFile] = []
         self.numbers = 0  # frame files made so far (a file's number names it to the workers)
         self.retired: list[int] = []  # closed files the workers still have mapped
+        self.mappings: list = []  # weak references to the images handed out as mappings
         try:
             for _ in range(size):
                 self.workers.append(_Worker())
@@ -257,11 +277,15 @@ class _Pool:
         file = next((f for f in free if f.shape == shape), None)
         if file is None:
             self.numbers += 1
-            file = _FrameFile(shape, self.numbers)
+            try:
+                file = _FrameFile(shape, self.numbers)
+            except OSError as e:  # out of memory or descriptors
+                raise Unavailable(f"cannot make a shared frame file: {e}") from None
             self.files.append(file)
         else:
             free.remove(file)
-        for f in free[self.SPARE_FILES:]:
+        held = [f for f in self.files if f not in free and f is not file]
+        for f in free[self.SPARE_FILES:] + held[:-self.KEPT_FILES]:  # oldest first
             f.close()
             self.files.remove(f)
             self.retired.append(f.number)
@@ -296,7 +320,7 @@ class _Pool:
             raise Unavailable(f"a render worker stopped: {e or type(e).__name__}") from None
         if errors:
             return None, None, stats, seconds, errors
-        image, shared = file.hand_out()
+        image, shared = file.hand_out(self.mappings)
         return image, shared, stats, seconds, errors
 
 

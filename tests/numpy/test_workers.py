@@ -151,6 +151,30 @@ def test_frame_files_are_reused_only_when_nothing_holds_them(make_shader, knobs)
     assert len(files()) == 1 + workers._Pool.SPARE_FILES
 
 
+def test_frames_held_by_the_caller_hold_no_descriptors_beyond_a_few(make_shader, knobs, monkeypatch):
+    knobs(TILE_LANES=600)
+    prog = P.compile_numpy(make_shader(SPARSE_SHADER))
+    prog.threads, prog.parallel = 2, "processes"
+    fds = lambda: len(os.listdir("/proc/self/fd"))  # noqa: E731
+    prog.render(size=(48, 32), time=0.0)
+    before = fds()
+    frames = []
+    for t in range(40):                     # an animation kept in memory (a GIF's frames)
+        prog._cache.clear()
+        frames.append(prog.render(size=(48, 32), time=float(t)))
+    assert len(workers._POOL.files) <= workers._Pool.KEPT_FILES + 1
+    # two per file open in the pool (its descriptor and the mapping's duplicate: Python's mmap
+    # keeps one) and one per image that is a mapping; past MAX_MAPPINGS images are copies
+    held = fds()
+    assert held <= before + 2 * (workers._Pool.KEPT_FILES + 1) + len(frames)
+    monkeypatch.setattr(workers, "MAX_MAPPINGS", 8)   # 40 are alive: the next ones are copies
+    more = [prog.render(size=(48, 32), time=float(t)) for t in range(100, 140) if not prog._cache.clear()]
+    assert all(img.base is None for img in more) and fds() <= held + 2
+    prog._cache.clear()
+    for t, img in enumerate(frames):        # every frame is intact, the oldest included
+        assert np.array_equal(img, prog.render(size=(48, 32), time=float(t)), equal_nan=True)
+
+
 def test_a_dead_worker_falls_back_to_threads(make_shader, knobs):
     knobs(TILE_LANES=600)
     prog = P.compile_numpy(make_shader(SPARSE_SHADER))
