@@ -15,9 +15,12 @@ Design:
 - The image is written into an anonymous shared-memory file (memfd) whose descriptor the
   workers receive over their socket. Workers take tiles from a counter at the start of that
   file (under a POSIX lock) until none is left and write their rows straight into the shared
-  image. The finished frame is not copied: the caller gets a copy-on-write mapping of the file
-  and the frame cache a read-only view of it; the file takes another frame once both are gone
-  (`_FrameFile`).
+  image, in the order the caller gives (the slowest tiles of its last frame first, so the
+  workers finish together). The finished frame is not copied: the caller gets a copy-on-write
+  mapping of the file and the frame cache a read-only view of it; the file takes another frame
+  once both are gone (`_FrameFile`). A caller that keeps many frames gets copies past
+  MAX_MAPPINGS of them, and the pool lets go of held files past KEPT_FILES, so descriptors
+  stay bounded.
 - A GlslError raised in a worker (a runaway loop, with its GLSL line) is raised in the caller.
   If a worker dies or cannot start, the pool closes, `Unavailable` is raised and the caller
   renders the frame with threads.
