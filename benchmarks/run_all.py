@@ -225,11 +225,9 @@ def section_coverage(runs: int) -> list[str]:
     lines = ["3. coverage scaling: the sphere scene, small against large spheres (same run)"]
     results = {}
     lines.append(f"   {'':40s} {'processes':>11s} {'threads':>11s} {'gl':>11s}")
-    for label, scale in (("small", 0.85), ("large", 2.6)):
-        shader = bench_render._scene(scale)
-        img = glslcheck.compile(shader, backend="numpy").render(size=SIZE)
-        background = np.all(np.abs(img[..., :3] - img[0, 0, :3]) < 1e-6, axis=-1)
-        coverage = 1.0 - float(background.mean())
+    for label, radius in (("small", bench_render.SMALL_RADIUS), ("large", bench_render.LARGE_RADIUS)):
+        shader = bench_render._scene(radius)
+        coverage = bench_render.sphere_coverage(glslcheck.compile(shader, backend="numpy"))
         t = paired(_render_fns(shader), runs)
         results[label] = t
         lines.append(f"   {label + f' spheres, {coverage:.0%} of the pixels':40s} {ms(t['processes'])} "
