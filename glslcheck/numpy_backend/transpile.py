@@ -273,6 +273,14 @@ def out_directions(target: Any) -> list[str]:
     return []
 
 
+def _is_simple(e: Any) -> bool:
+    """A value read without computing anything per lane: a literal, a variable, or a field or
+    component of one (`!` of one too)."""
+    while isinstance(e, (A.Field, A.Unary)) and (not isinstance(e, A.Unary) or e.op == "!"):
+        e = e.operand if isinstance(e, A.Unary) else e.base
+    return isinstance(e, (A.Identifier, A.IntLiteral, A.FloatLiteral, A.BoolLiteral))
+
+
 def events_of(stmt: Any, facts: Facts, model: Any, in_loop_or_switch: bool = False) -> Events:
     """Events that escape `stmt` (a break/continue inside a nested loop does not escape it)."""
 
@@ -1560,7 +1568,9 @@ class Transpiler:
 
     def _print_Binary(self, e: A.Binary, mask: str | None) -> str:
         op = e.op
-        if op in ("&&", "||") and self.has_effects(e.right):
+        if op in ("&&", "||") and (self.has_effects(e.right) or not _is_simple(e.right)):
+            # the right side only where the left does not decide: skipped when no lane needs
+            # it (`t > 0.0 && t < best` in a tile where every t is -1)
             return self.short_circuit(e, mask)
         left, right = self.exprs([e.left, e.right], mask)
         lt, rtp = self.type_of(e.left), self.type_of(e.right)

@@ -231,6 +231,33 @@ def test_tiles_of_one_colour_are_written_whole(make_shader, knobs, monkeypatch):
     assert np.all(img[:, :10, 2:] == np.float32([0.5, 1.0]))   # alpha is 1, as Shadertoy makes it
 
 
+SHORT_CIRCUIT = """
+void mainImage(out vec4 o, in vec2 f) {
+    bool both = f.y > 4.0 && sqrt(f.x) > 2.0;     // the right side where the left holds
+    bool either = f.y < 4.0 || sqrt(f.x) > 2.0;   // ... where the left does not
+    o = vec4(both ? 1.0 : 0.0, either ? 1.0 : 0.0, 0.0, 1.0);
+}
+"""
+
+
+def test_a_pure_right_operand_of_and_or_is_skipped_where_no_lane_needs_it(make_shader, knobs, monkeypatch):
+    prog = compile_numpy(make_shader(SHORT_CIRCUIT))
+    prog.threads = 1
+    knobs(TILE_LANES=32, TILE_WIDTH=16)            # 16x8: four tiles of two rows
+    rt = prog.module()["rt"]
+    sqrt_lanes = []
+    real = rt.sqrt
+    monkeypatch.setattr(rt, "sqrt", lambda x: sqrt_lanes.append(np.size(x)) or real(x))
+    img = prog.render(size=(16, 8))
+    # rows 0-3 (y < 4): `&&` is decided by its left side there, and `||` above
+    assert sqrt_lanes == [32, 32, 32, 32]          # 2 tiles x `||`, 2 tiles x `&&`
+    x = np.arange(16, dtype=np.float32) + np.float32(0.5)
+    y = np.arange(8, dtype=np.float32)[::-1, None] + np.float32(0.5)
+    big = np.sqrt(x) > 2.0
+    assert np.array_equal(img[..., 0], ((y > 4.0) & big).astype(np.float32))
+    assert np.array_equal(img[..., 1], ((y < 4.0) | big).astype(np.float32))
+
+
 def test_image_rows_run_top_to_bottom(make_shader, knobs):
     prog = compile_numpy(make_shader(
         "void mainImage(out vec4 o, in vec2 f) { o = vec4(f, gl_FragCoord.x + gl_FragCoord.y, 1.0); }"))
