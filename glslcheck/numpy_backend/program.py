@@ -634,6 +634,7 @@ class NumpyProgram:
             order = self._tile_order.get(tiles_key)
         run_tiles = [tiles[i] for i in order] if order is not None else tiles
         all_stats: list[dict] = []
+        seconds: dict[tuple, float] = {}  # tile -> seconds it took
         image = cached = None
         started = _time.perf_counter()
         if self._use_processes(threads, tiles):
@@ -647,7 +648,6 @@ class NumpyProgram:
                 self.last_parallel = "processes"
             except workers.Unavailable:
                 image, all_stats = None, []  # the pool is gone for this process: threads below
-        seconds: dict[tuple, float] = {}
         if image is None:
             image = np.empty((height, width, 4), dtype=np.float32)  # top row first
             # the frame cache's copy, written by each tile while its rows are still in the CPU cache

@@ -175,6 +175,20 @@ def test_frames_held_by_the_caller_hold_no_descriptors_beyond_a_few(make_shader,
         assert np.array_equal(img, prog.render(size=(48, 32), time=float(t)), equal_nan=True)
 
 
+def test_workers_report_tile_times_for_the_next_frames_order(make_shader, knobs):
+    from test_overheads import UNEVEN  # rows above y = 24 loop 400 times, the others never
+
+    knobs(TILE_LANES=16 * 8, TILE_WIDTH=16)              # 16x32: four tiles of eight rows
+    prog = P.compile_numpy(make_shader(UNEVEN))
+    prog.threads, prog.parallel = 2, "processes"
+    first = prog.render(size=(16, 32))
+    assert prog.last_parallel == "processes"
+    tiles = P.frame_tiles(16, 32)
+    assert tiles[prog._tile_order[tuple(tiles)][0]][1] == 24  # the slow tile goes first next time
+    prog._cache.clear()
+    assert np.array_equal(prog.render(size=(16, 32)), first, equal_nan=True)
+
+
 def test_a_dead_worker_falls_back_to_threads(make_shader, knobs):
     knobs(TILE_LANES=600)
     prog = P.compile_numpy(make_shader(SPARSE_SHADER))
