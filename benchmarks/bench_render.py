@@ -168,7 +168,7 @@ def coverage(repeat: int) -> None:
               f"{t[label, 'processes'] * 1000:5.1f} ms, threads {t[label, 'threads'] * 1000:5.1f} ms, "
               f"one thread {t[label, 'cpu'] * 1000:5.1f} ms CPU; gl {t[label, 'gl'] * 1000:5.1f} ms")
     r = {k: t["small", k] / t["large", k] for k in keys}
-    print(f"time(small) / time(large) on processes = {r['processes']:.0%} (target <= 35%); "
+    print(f"time(small) / time(large) on processes = {r['processes']:.1%} (target <= 35%); "
           f"threads {r['threads']:.0%}; one-thread CPU {r['cpu']:.0%}; llvmpipe for reference {r['gl']:.0%}")
 
 
