@@ -189,6 +189,20 @@ def test_workers_report_tile_times_for_the_next_frames_order(make_shader, knobs)
     assert np.array_equal(prog.render(size=(16, 32)), first, equal_nan=True)
 
 
+def test_another_glslcheck_in_the_working_directory_does_not_shadow_the_workers(make_shader, knobs,
+                                                                              tmp_path, monkeypatch):
+    # `python -m` puts the working directory first on sys.path: workers start in the package root
+    (tmp_path / "glslcheck").mkdir()
+    (tmp_path / "glslcheck" / "__init__.py").write_text("raise ImportError('not this glslcheck')\n")
+    monkeypatch.chdir(tmp_path)
+    workers.shutdown()
+    knobs(TILE_LANES=600)
+    prog = P.compile_numpy(make_shader(SPARSE_SHADER))
+    prog.threads, prog.parallel = 2, "processes"
+    prog.render(size=(48, 32))
+    assert prog.last_parallel == "processes" and workers._DISABLED is None
+
+
 def test_a_dead_worker_falls_back_to_threads(make_shader, knobs):
     knobs(TILE_LANES=600)
     prog = P.compile_numpy(make_shader(SPARSE_SHADER))
