@@ -407,7 +407,7 @@ class FrameSpec:
     compaction: tuple  # (COMPACT_FRACTION, COMPACT_MIN_LANES) of the caller, for workers
 
 
-def frame_tiles(width: int, height: int) -> list[tuple[int, int, int, int]]:
+def frame_tiles(width: int, height: int) -> tuple[tuple[int, int, int, int], ...]:
     """(x0, y0, w, h) of each tile, y0 from the bottom; tiles start at even x and y, so 2x2
     derivative quads never straddle two tiles."""
     return _frame_tiles(width, height, TILE_WIDTH, TILE_HEIGHT, TILE_LANES)
@@ -415,12 +415,12 @@ def frame_tiles(width: int, height: int) -> list[tuple[int, int, int, int]]:
 
 @functools.lru_cache(maxsize=64)
 def _frame_tiles(width: int, height: int, tile_width: int, tile_height: int | None,
-                 tile_lanes: int) -> list[tuple[int, int, int, int]]:
+                 tile_lanes: int) -> tuple[tuple[int, int, int, int], ...]:
     tw = min(tile_width, width)
     tw += tw % 2 if tw < width else 0
     th = tile_height or max(2, (tile_lanes // tw) // 2 * 2)
-    return [(x0, y0, min(tw, width - x0), min(th, height - y0))
-            for y0 in range(0, height, th) for x0 in range(0, width, tw)]
+    return tuple((x0, y0, min(tw, width - x0), min(th, height - y0))  # a tuple: the cache shares it
+                 for y0 in range(0, height, th) for x0 in range(0, width, tw))
 
 
 # Fragment coordinates of tiles already rendered, read-only, by (tile, dtype, sample offset,
@@ -498,13 +498,13 @@ def render_tile(ns: dict, spec: FrameSpec, tile: tuple[int, int, int, int], imag
         acc = acc / samples
     # tile row 0 is the bottom one (y0); the image's row 0 is the top of the picture
     rows = slice(spec.height - y0 - th, spec.height - y0)
-    dst = image[rows, x0:x0 + tw][::-1]
-    block = image[rows, x0:x0 + tw].reshape(th, tw * 4)  # a view: each image row's pixels are contiguous
-    if acc.strides[-1] == 0 and np.may_share_memory(block, image):
-        # the same colour in every pixel (a background tile): whole rows of it, one pass
+    if acc.strides[-1] == 0:
+        # the same colour in every pixel (a background tile): whole rows of it, one pass; the
+        # reshape is a view, since the 4 channels of a row's pixels are contiguous
         pixel = np.append(acc[:, 0], [1.0]) if len(acc) == 3 else acc[:, 0]
-        block[...] = np.tile(pixel.astype(np.float32), tw)
+        image[rows, x0:x0 + tw].reshape(th, tw * 4)[...] = np.tile(pixel.astype(np.float32), tw)
     else:
+        dst = image[rows, x0:x0 + tw][::-1]
         for c in range(len(acc)):  # one channel at a time: 2.5x faster than one transposed copy
             dst[..., c] = acc[c].reshape(th, tw)
         if len(acc) == 3:
@@ -554,7 +554,7 @@ class NumpyProgram:
     _modules: dict = field(default_factory=dict, repr=False)
     _cache: OrderedDict = field(default_factory=lambda: _FrameCache(), repr=False)
     _specs: OrderedDict = field(default_factory=OrderedDict, repr=False)  # frame key -> FrameSpec
-    _tile_order: dict = field(default_factory=dict, repr=False)  # tiles -> indices, slowest first
+    _tile_order: OrderedDict = field(default_factory=OrderedDict, repr=False)  # tiles -> indices, slowest first
     _lock: Any = field(default_factory=threading.Lock, repr=False)
 
     @property
@@ -629,9 +629,8 @@ class NumpyProgram:
         threads = self.threads or _CPUS or 1
         # the tiles that took longest in the last frame of this size go first, so that the
         # workers finish together (the order changes no pixel: each tile writes its own rows)
-        tiles_key = tuple(tiles)
         with self._lock:
-            order = self._tile_order.get(tiles_key)
+            order = self._tile_order.get(tiles)
         run_tiles = [tiles[i] for i in order] if order is not None else tiles
         all_stats: list[dict] = []
         seconds: dict[tuple, float] = {}  # tile -> seconds it took
@@ -658,9 +657,9 @@ class NumpyProgram:
         if len(seconds) == len(tiles):
             cost = [seconds[t] for t in tiles]
             with self._lock:
-                self._tile_order[tiles_key] = sorted(range(len(tiles)), key=lambda i: -cost[i])
+                self._tile_order[tiles] = sorted(range(len(tiles)), key=lambda i: -cost[i])
                 while len(self._tile_order) > CACHE_FRAMES:
-                    del self._tile_order[next(iter(self._tile_order))]
+                    self._tile_order.popitem(last=False)
         self._render_seconds += _time.perf_counter() - started
         out = image
         if stats:

@@ -1374,16 +1374,16 @@ class Transpiler:
         fs = self.fn
         lid = self.region("loop", s)
         self.loops[lid] = (s.loc.path, s.loc.line, s.loc.column)
-        live = self.fresh("live")
-        count = self.fresh("n")
-        self.emit(f"{live} = {mask}")
-        self.emit(f"{count} = 0")
         ind = induction_variable(s, self.model)
         ev_body = events_of(body, self.facts, self.model)
         if (not do_while and cond is not None and not isinstance(cond, A.ConditionDeclaration)
                 and not ev_body.any and fs.uni is not None and fs.uni.is_uniform(cond)):
-            self.uniform_loop(lid, live, count, mask, cond, body, step, ind)
+            self.uniform_loop(lid, mask, cond, body, step, ind)
             return
+        live = self.fresh("live")
+        count = self.fresh("n")
+        self.emit(f"{live} = {mask}")
+        self.emit(f"{count} = 0")
         compact = not fs.no_compact and not self._region_uses_derivs(s)
         snapshot = set(fs.defined)
         stack = self.fresh("k") if compact else None
@@ -1444,14 +1444,13 @@ class Transpiler:
             self.emit(f"if {stack}:")
             self.emit(f"    S, ({', '.join(used)},) = X.unwind({stack}, S, {tup})")
 
-    def uniform_loop(self, lid: int, live: str, count: str, mask: str | None, cond: Any, body: Any,
-                     step: Any, ind: Any) -> None:
+    def uniform_loop(self, lid: int, mask: str | None, cond: Any, body: Any, step: Any, ind: Any) -> None:
         """A loop whose condition is the same in every lane and whose body cannot leave it
         early (no break, continue, return or discard): every iteration runs on the lanes that
         entered, so it is plain Python control flow with no mask of its own."""
         fs = self.fn
-        assert self.lines[-2].strip() == f"{live} = {mask}"
-        del self.lines[-2]  # the loop's lanes are the enclosing ones throughout: no mask of its own
+        count = self.fresh("n")
+        self.emit(f"{count} = 0")
         self.emit("while True:")
         self.indent += 1
         self.emit(f"{count} += 1")

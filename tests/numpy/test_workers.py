@@ -48,6 +48,13 @@ def fresh_pool():
     workers._DISABLED = None
 
 
+def _on_processes(make_shader, source: str):
+    """A program of `source` that renders on two worker processes."""
+    prog = P.compile_numpy(make_shader(source))
+    prog.threads, prog.parallel = 2, "processes"
+    return prog
+
+
 def _both(prog, **kw):
     """The same frame rendered by worker processes and by threads."""
     prog.threads = 2
@@ -90,8 +97,7 @@ def test_derivative_quads_stay_whole_in_workers(make_shader, knobs):
 
 def test_a_runaway_loop_in_a_worker_is_the_same_located_error(make_shader, knobs):
     knobs(TILE_LANES=400)
-    prog = P.compile_numpy(make_shader(RUNAWAY))
-    prog.threads, prog.parallel = 2, "processes"
+    prog = _on_processes(make_shader, RUNAWAY)
     with pytest.raises(GlslError) as e:
         prog.render(size=(40, 40))
     d = e.value.diagnostics[0]
@@ -101,16 +107,14 @@ def test_a_runaway_loop_in_a_worker_is_the_same_located_error(make_shader, knobs
         prog.render(size=(40, 40))
     assert t.value.diagnostics[0].message == d.message and t.value.diagnostics[0].loc == d.loc
     # the pool is still usable after an error
-    ok = P.compile_numpy(make_shader(DERIVATIVES))
-    ok.threads, ok.parallel = 2, "processes"
+    ok = _on_processes(make_shader, DERIVATIVES)
     ok.render(size=(32, 32))
     assert ok.last_parallel == "processes"
 
 
 def test_returned_images_are_the_callers(make_shader, knobs):
     knobs(TILE_LANES=600)
-    prog = P.compile_numpy(make_shader(SPARSE_SHADER))
-    prog.threads, prog.parallel = 2, "processes"
+    prog = _on_processes(make_shader, SPARSE_SHADER)
     first = prog.render(size=(48, 32), time=0.0)
     keep = first.copy()
     first[:] = 5.0  # the caller may write to it; the frame cache keeps its own copy
@@ -125,8 +129,7 @@ def test_frame_files_are_reused_only_when_nothing_holds_them(make_shader, knobs)
     """Frames are handed out without a copy (workers._FrameFile): a file takes a new frame only
     when neither the caller's image (nor any view of it) nor the frame cache holds the last."""
     knobs(TILE_LANES=600)
-    prog = P.compile_numpy(make_shader(SPARSE_SHADER))
-    prog.threads, prog.parallel = 2, "processes"
+    prog = _on_processes(make_shader, SPARSE_SHADER)
     files = lambda: workers._POOL.files  # noqa: E731
 
     for t in (0.0, 1.0, 2.0):
@@ -153,8 +156,7 @@ def test_frame_files_are_reused_only_when_nothing_holds_them(make_shader, knobs)
 
 def test_frames_held_by_the_caller_hold_no_descriptors_beyond_a_few(make_shader, knobs, monkeypatch):
     knobs(TILE_LANES=600)
-    prog = P.compile_numpy(make_shader(SPARSE_SHADER))
-    prog.threads, prog.parallel = 2, "processes"
+    prog = _on_processes(make_shader, SPARSE_SHADER)
     fds = lambda: len(os.listdir("/proc/self/fd"))  # noqa: E731
     prog.render(size=(48, 32), time=0.0)
     before = fds()
@@ -179,8 +181,7 @@ def test_workers_report_tile_times_for_the_next_frames_order(make_shader, knobs)
     from test_overheads import UNEVEN  # rows above y = 24 loop 400 times, the others never
 
     knobs(TILE_LANES=16 * 8, TILE_WIDTH=16)              # 16x32: four tiles of eight rows
-    prog = P.compile_numpy(make_shader(UNEVEN))
-    prog.threads, prog.parallel = 2, "processes"
+    prog = _on_processes(make_shader, UNEVEN)
     first = prog.render(size=(16, 32))
     assert prog.last_parallel == "processes"
     tiles = P.frame_tiles(16, 32)
@@ -197,16 +198,14 @@ def test_another_glslcheck_in_the_working_directory_does_not_shadow_the_workers(
     monkeypatch.chdir(tmp_path)
     workers.shutdown()
     knobs(TILE_LANES=600)
-    prog = P.compile_numpy(make_shader(SPARSE_SHADER))
-    prog.threads, prog.parallel = 2, "processes"
+    prog = _on_processes(make_shader, SPARSE_SHADER)
     prog.render(size=(48, 32))
     assert prog.last_parallel == "processes" and workers._DISABLED is None
 
 
 def test_a_dead_worker_falls_back_to_threads(make_shader, knobs):
     knobs(TILE_LANES=600)
-    prog = P.compile_numpy(make_shader(SPARSE_SHADER))
-    prog.threads, prog.parallel = 2, "processes"
+    prog = _on_processes(make_shader, SPARSE_SHADER)
     want = prog.render(size=(48, 32))
     assert prog.last_parallel == "processes"
     os.kill(workers._POOL.workers[0].proc.pid, signal.SIGKILL)
@@ -236,8 +235,7 @@ def test_auto_starts_processes_only_after_enough_rendering(make_shader, knobs):
 
 def test_shutdown_ends_the_workers(make_shader, knobs):
     knobs(TILE_LANES=600)
-    prog = P.compile_numpy(make_shader(DERIVATIVES))
-    prog.threads, prog.parallel = 2, "processes"
+    prog = _on_processes(make_shader, DERIVATIVES)
     prog.render(size=(32, 32))
     procs = [w.proc for w in workers._POOL.workers]
     workers.shutdown()
@@ -255,8 +253,7 @@ def test_an_interrupted_frame_closes_the_pool(make_shader, knobs, monkeypatch):
     """Ctrl-C while workers render: their answers may still come, so the pool must not serve
     another frame; the next render starts new workers and is right."""
     knobs(TILE_LANES=600)
-    prog = P.compile_numpy(make_shader(SPARSE_SHADER))
-    prog.threads, prog.parallel = 2, "processes"
+    prog = _on_processes(make_shader, SPARSE_SHADER)
     want = prog.render(size=(48, 32))
     old = workers._POOL
     procs = [w.proc for w in old.workers]
@@ -279,8 +276,7 @@ def test_an_interrupted_frame_closes_the_pool(make_shader, knobs, monkeypatch):
 
 def test_workers_that_cannot_start_leave_threads(make_shader, knobs, monkeypatch):
     knobs(TILE_LANES=600)
-    prog = P.compile_numpy(make_shader(DERIVATIVES))
-    prog.threads, prog.parallel = 2, "processes"
+    prog = _on_processes(make_shader, DERIVATIVES)
     monkeypatch.setattr(workers.sys, "executable", "/nonexistent/python")
     img = prog.render(size=(48, 32))
     assert prog.last_parallel == "threads" and np.isfinite(img).all()
