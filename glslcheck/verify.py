@@ -31,6 +31,7 @@ The schedule (`frame_specs`):
 from __future__ import annotations
 
 import inspect
+import logging
 import math
 import os
 import sys
@@ -310,6 +311,7 @@ def verify_frames(
         # The GL side first: a missing context is reported before a slower NumPy transpile.
         by_name = {b: compile_backend(shader, b) for b in sorted(backends, key=lambda b: b != "gl")}
         programs = [by_name[b] for b in backends]
+    emulate_driver(programs)
     pair = _Pair(programs)
     name = shader.root or (shader.image.path if shader.image else "<shader>")
     for w_h in size_list:
@@ -320,6 +322,26 @@ def verify_frames(
                 progress.step(f"{name} t={spec.time:g}")
             yield FrameResult(name, spec, (int(w_h[0]), int(w_h[1])), comparison,
                               numpy_img if keep_images else None, gl_img if keep_images else None)
+
+
+def emulate_driver(programs: Sequence) -> None:
+    """Have every program that emulates a driver (the NumPy side) compute what the measured
+    driver (the GL side) does where GLSL leaves a value undefined and the CPU decides
+    (glslcheck/driver_profile.py). A driver that follows no known model is reported on stderr,
+    and the NumPy side keeps its prediction for this machine."""
+    programs = [getattr(p, "impl", p) for p in programs]  # api.Program wraps a backend's program
+    models = {p.float_to_uint_model for p in programs if hasattr(p, "float_to_uint_model")}
+    if not models:
+        return
+    model = models.pop() if len(models) == 1 else None
+    if model is None:
+        logging.getLogger("glslcheck").warning(
+            "note: the GL driver's uint(x) of negative, NaN or huge x follows no model glslcheck "
+            "knows (glslcheck/driver_profile.py); pixels that depend on such conversions may differ")
+        return
+    for p in programs:
+        if hasattr(p, "emulate_float_to_uint"):
+            p.emulate_float_to_uint(model)
 
 
 def verify(shader, **options) -> list[Comparison]:

@@ -35,6 +35,7 @@ import numpy as np
 from ..diagnostics import Diagnostic, GlslError, Location, source_line
 from ..shadertoy import DEFAULT_DATE, DEFAULT_SIZE, OFFSET_UNIFORM, UNIFORMS, Program, build_program
 from ..sources import Shader
+from ..driver_profile import driver_model
 from .context import get_context
 
 RULE = "gl-compile"
@@ -168,6 +169,12 @@ class GLProgram:
     program: Program  # the one-sample program (exactly what Shadertoy compiles)
     ctx: object
     _variants: dict[bool, _Compiled] = field(default_factory=dict, repr=False)
+
+    @property
+    def float_to_uint_model(self) -> str | None:
+        """How this driver computes uint(x) where the CPU decides (glslcheck/driver_profile.py),
+        measured once per context; None when it follows no known model."""
+        return driver_model(self.ctx)
 
     @property
     def active_uniforms(self) -> list[str]:

@@ -55,6 +55,7 @@ from typing import Any
 import numpy as np
 
 from ..diagnostics import Diagnostic, GlslError, Location
+from ..driver_profile import host_model
 from ..shadertoy import DEFAULT_DATE, DEFAULT_SIZE, UNIFORMS_BY_NAME
 from .runtime import Runtime, Struct
 
@@ -318,7 +319,7 @@ def execute_module(source: str, filename: str, meta: dict, precision: str = "flo
     linecache.cache[filename] = (len(source), None, source.splitlines(True), filename)
     code = compile(source, filename, "exec")
     ns: dict[str, Any] = {"__builtins__": {}, "__name__": "glslcheck_shader", "rt": None, "X": None}
-    ns["rt"] = rt = Runtime(precision)
+    ns["rt"] = rt = Runtime(precision, meta.get("float_to_uint"))
     ns["X"] = Lanes(meta, rt)
     with np.errstate(all="ignore"):  # constants may overflow in float16, as on a mediump GPU
         exec(code, ns)  # noqa: S102 - generated from a checked AST; every GLSL name is mangled
@@ -566,6 +567,17 @@ class NumpyProgram:
     def animated(self) -> bool:
         return any(u in ANIMATED_UNIFORMS for u in self.uniforms)
 
+    def emulate_float_to_uint(self, model: str) -> None:
+        """Compute ``uint(x)`` of out-of-range floats as `model` does (glslcheck/driver_profile.py;
+        by default this machine's prediction): verify sets the model it measured on the driver."""
+        with self._lock:
+            if self.meta.get("float_to_uint", host_model()) != model:
+                self.meta = {**self.meta, "float_to_uint": model}
+                self._modules.clear()
+                self._keys.clear()
+                self._cache.clear()
+                self._specs.clear()
+
     def module(self, precision: str = "float32") -> dict:
         with self._lock:
             if precision not in self._modules:
@@ -773,7 +785,7 @@ def standalone_globals(meta: dict) -> dict:
     argv = sys.argv[1:]
     if "--precision" in argv:
         precision = argv[argv.index("--precision") + 1]
-    rt = Runtime(precision)
+    rt = Runtime(precision, meta.get("float_to_uint"))
     return {"rt": rt, "X": Lanes(meta, rt)}
 
 

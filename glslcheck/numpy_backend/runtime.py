@@ -115,7 +115,7 @@ clamp(NaN, 0, 1)                   undefined              0                  0
 min/max(NaN, 1), (1, NaN)          undefined              1 (IEEE fmin/fmax) 1
 int(3.99), int(-3.99)              trunc                  3, -3              3, -3
 int(NaN), int(+-inf), int(+-3e9)   undefined              INT_MIN            INT_MIN
-uint(-1.0), uint(NaN), uint(5e9)   undefined              0xFFFFFFFF         0xFFFFFFFF
+uint(-1.0), uint(NaN), uint(5e9)   undefined              the CPU decides    the driver's model
 uint(-0.5)                         undefined              0 (trunc)          0
 round(2.5), round(-2.5), round(.5) impl.-defined .5 dir.  2, -2, 0 (even)    even
 roundEven(2.5), roundEven(-2.5)    2, -2                  2, -2              2, -2
@@ -174,6 +174,8 @@ import math
 from typing import Any, Iterable
 
 import numpy as np
+
+from ..driver_profile import FLOAT_TO_UINT, float_to_uint, host_model
 
 __all__ = ["Runtime", "Struct", "GLSLRuntimeError", "PRECISIONS"]
 
@@ -283,12 +285,17 @@ class Runtime:
     (mediump emulation) or ``"float64"`` (reference). Instantiate once per render.
     """
 
-    def __init__(self, precision: str = "float32") -> None:
+    def __init__(self, precision: str = "float32", float_to_uint: str | None = None) -> None:
         try:
             self.F = np.dtype(PRECISIONS[precision]).type
         except KeyError:
             raise ValueError(f"precision must be one of {sorted(PRECISIONS)}") from None
         self.precision = precision
+        # how uint(x) treats negatives, NaN and x >= 2**32 (undefined; the CPU decides on
+        # llvmpipe): a model of glslcheck/driver_profile.py, by default this machine's
+        self.float_to_uint = float_to_uint or host_model()
+        if self.float_to_uint not in FLOAT_TO_UINT:
+            raise ValueError(f"float_to_uint must be one of {sorted(FLOAT_TO_UINT)}")
         F = self.F
         self._dtype = np.dtype(F)  # `x.dtype is self._dtype`: the fast test in _f
         self._0 = F(0.0)
@@ -413,9 +420,9 @@ class Runtime:
         return np.where(ok, t, INT_MIN).astype(np.int64).astype(I32)
 
     def to_uint(self, x: Any) -> np.ndarray:
-        """``uint(x)``: float truncates; results outside [0, 2**32) and NaN give 0xFFFFFFFF
-        (llvmpipe: uint(-1.0) = uint(NaN) = uint(5e9) = 0xFFFFFFFF, uint(-0.5) = 0);
-        int reinterprets the bits; bool 0/1."""
+        """``uint(x)``: float truncates; negatives, NaN and values past 2**32 are undefined and
+        follow the runtime's ``float_to_uint`` model (glslcheck/driver_profile.py: what llvmpipe
+        computes on this kind of CPU); int reinterprets the bits; bool 0/1."""
         x = self._num(x) if not isinstance(x, np.ndarray) else x
         k = x.dtype.kind
         if k == "u":
@@ -424,9 +431,7 @@ class Runtime:
             return x.astype(I32).view(U32)
         if k == "b":
             return x.astype(U32)
-        t = self._float_to_i64(x)
-        ok = (t >= 0.0) & (t < 2.0**32)
-        return np.where(ok, t, 0xFFFFFFFF).astype(np.int64).astype(U32)
+        return float_to_uint(x, self.float_to_uint)
 
     def to_bool(self, x: Any) -> np.ndarray:
         """``bool(x)``: x != 0 (NaN -> true)."""

@@ -115,3 +115,42 @@ def test_supersampling_and_precision_reach_the_numpy_side(gl):
     c16 = verify(part, size=(64, 36), precision="float16")[0]
     c64 = verify(part, size=(64, 36), precision="float64")[0]
     assert c16.max_abs_error >= c64.max_abs_error
+
+
+# uint(x) of a negative or huge x: the CPU decides what llvmpipe returns (driver_profile.py).
+UINT_HASH = """
+void mainImage(out vec4 fragColor, in vec2 fragCoord)
+{
+    // negative, in-range and past 2**32 values across the image, through a uint hash
+    float x = (fragCoord.x - 80.0) * 1.0e8 + fragCoord.y;
+    uint h = uint(x) * 2654435761u;
+    fragColor = vec4(float(h >> 24) / 255.0, float((h >> 16) & 255u) / 255.0, 0.0, 1.0);
+}
+"""
+
+
+def test_verify_emulates_the_drivers_float_to_uint(gl, tmp_path):
+    """verify measures the driver's model and the NumPy side follows it; forced to any other
+    model, the same frame mismatches (so the emulation is what makes it match)."""
+    from glslcheck.driver_profile import FLOAT_TO_UINT, driver_model
+    from glslcheck.verify import compile_backend
+
+    path = tmp_path / "uint_hash.glsl"
+    path.write_text(UINT_HASH)
+    shader = load_shader(path)
+    live = driver_model(gl)
+    other = next(m for m in FLOAT_TO_UINT if m != live)
+    numpy_side = compile_backend(shader, "numpy")
+    getattr(numpy_side, "impl", numpy_side).emulate_float_to_uint(other)
+    # verify's own programs, the NumPy side first set to a model that is not the driver's
+    [comparison] = verify(path, size=(160, 90), programs=[numpy_side, compile_backend(shader, "gl")])
+    assert comparison.match, comparison.summary()
+    gl_side = compile_backend(shader, "gl")
+    for model in FLOAT_TO_UINT:
+        if model == live:
+            continue
+        numpy_side = compile_backend(shader, "numpy")
+        getattr(numpy_side, "impl", numpy_side).emulate_float_to_uint(model)
+        a = numpy_side.render(size=(160, 90))
+        b = gl_side.render(size=(160, 90))
+        assert not np.array_equal(a, b), model
