@@ -116,6 +116,9 @@ class Layout(Node):
     ids: list[LayoutId] = LIST
 
 
+PRECISION_QUALIFIERS = ("highp", "mediump", "lowp")  # GLSL ES 3.00 section 4.5.2
+
+
 class Qualifiers(Node):
     """Storage, precision, interpolation, invariant and layout qualifiers in source order.
     `words` holds the keywords ("const", "uniform", "in", "centroid in", "highp", "flat", ...)."""
@@ -133,7 +136,7 @@ class Qualifiers(Node):
     @property
     def precision(self) -> str | None:
         for w in self.words:
-            if w in ("highp", "mediump", "lowp"):
+            if w in PRECISION_QUALIFIERS:
                 return w
         return None
 

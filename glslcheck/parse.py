@@ -147,7 +147,7 @@ def _parse_text_no_gc(text: str, locate_span: Callable[[int, int], Location]) ->
 
 
 _EXPRESSION_START = {"IDENTIFIER", "INTCONSTANT", "FLOATCONSTANT", "LPAR", "MINUS", "BANG", "TILDE", "TRUE", "FALSE"}
-_DECL_WORDS = {"const", "uniform", "in", "out", "inout", "highp", "mediump", "lowp", "flat", "smooth",
+_DECL_WORDS = {"const", "uniform", "in", "out", "inout", *A.PRECISION_QUALIFIERS, "flat", "smooth",
                "invariant", "layout", "centroid", "struct", "precision"}
 
 
