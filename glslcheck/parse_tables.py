@@ -71,8 +71,15 @@ def grammar_text() -> str:
 
 
 def grammar_hash(text: str) -> str:
-    from hashlib import sha256
-
+    """The SHA-256 of the grammar's text, from CPython's built-in implementation when there is
+    one: hashlib loads OpenSSL, a few milliseconds of every start-up."""
+    try:
+        from _sha2 import sha256  # CPython 3.12+
+    except ImportError:
+        try:
+            from _sha256 import sha256  # CPython 3.11
+        except ImportError:
+            from hashlib import sha256
     return sha256(text.encode("utf-8")).hexdigest()
 
 
