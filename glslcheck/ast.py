@@ -1,29 +1,74 @@
 """The typed GLSL ES 3.00 syntax tree, and a visitor.
 
-Every node is a slotted dataclass. Its class attribute `_children` names the fields that hold
-child nodes (a node, a list of nodes, or None); every other field is a plain attribute. Every
-node carries `loc`, the span of its text in the user's own file (after preprocessing and the
-Shadertoy wrapper, a location still points into the tab file the user wrote).
+Every node class declares its fields once, as annotated class attributes with their defaults
+(`LIST` for a fresh empty list); from that one declaration the node gets `__slots__`, an
+`__init__` (the fields in order, then the keyword-only `loc`), a `__repr__`, `_fields`, and
+`_children`: the fields whose declared type names a node class (a node, a list of nodes, or
+None) are its children, in field order; every other field is a plain attribute. This is
+pycparser's `_c_ast.cfg` idea without a generated file: the methods of every class are
+compiled together in one step when this module is imported, which costs a small fraction of
+what `@dataclass` did (start-up time matters for the pre-commit hook, issue 18).
+
+Every node carries `loc`, the span of its text in the user's own file (after preprocessing
+and the Shadertoy wrapper, a location still points into the tab file the user wrote).
 
 `children()`, `walk()`, `NodeVisitor` and `dump()` are derived from `_children`, so a new node
 class only has to declare its fields. `dump()` gives a location-free nested tuple: two trees
 with equal dumps are the same program (used by the parse -> print -> parse round trip).
+`NodeVisitor` dispatches on the node's class by method name (`visit_If`, or any prefix:
+the printer's `_stmt_If`), falling back along the class's bases, and returns what the method
+returns.
 """
 
 from __future__ import annotations
 
-from dataclasses import dataclass, field, fields
-from typing import Any, Iterator, Optional
+import re
+from typing import Any, Callable, Iterator, Optional
 
 from .diagnostics import Location
 
 _NOLOC = Location("<builtin>", 0, 0)
 
 
-@dataclass(slots=True, eq=False)
-class Node:
-    loc: Location = field(default=_NOLOC, kw_only=True, repr=False)
-    _children = ()
+class _Factory:
+    """A default made fresh for each node (`LIST`: a new empty list)."""
+
+    def __init__(self, make: Callable[[], Any], text: str) -> None:
+        self.make = make
+        self.text = text
+
+    def __repr__(self) -> str:
+        return self.text
+
+
+LIST = _Factory(list, "LIST")
+
+_NODE_CLASSES: dict[str, type] = {}
+
+
+class _NodeMeta(type):
+    """Turns a node class's annotated fields into `__slots__` and records their defaults; the
+    methods are made for all classes at once by `_make_methods` at the end of the module."""
+
+    def __new__(mcls, name, bases, ns):
+        own = [f for f in ns.get("__annotations__", {}) if not f.startswith("_")]
+        inherited = [f for b in bases for f in getattr(b, "_fields", ())]
+        defaults = {f: ns.pop(f) for f in own if f in ns}
+        missing = [f for f in own if f not in defaults]
+        if missing:
+            raise TypeError(f"{name}: fields {missing} need a default")
+        ns["__slots__"] = tuple(own)
+        cls = super().__new__(mcls, name, bases, ns)
+        cls._fields = tuple(inherited + own)
+        cls._defaults = {**{k: v for b in bases for k, v in getattr(b, "_defaults", {}).items()}, **defaults}
+        _NODE_CLASSES[name] = cls
+        return cls
+
+
+class Node(metaclass=_NodeMeta):
+    loc: Location = _NOLOC
+    _children: tuple[str, ...] = ()
+    _fields: tuple[str, ...] = ()
 
     def children(self) -> Iterator["Node"]:
         """The child nodes, in source order of the fields."""
@@ -54,36 +99,32 @@ class Node:
 # ---------------------------------------------------------------------------------------------
 
 
-@dataclass(slots=True, eq=False)
 class ArraySpec(Node):
     """`[size]` or `[]` (size None)."""
 
     size: Optional["Expr"] = None
-    _children = ("size",)
 
 
-@dataclass(slots=True, eq=False)
 class LayoutId(Node):
     name: str = ""
     value: int | None = None
 
 
-@dataclass(slots=True, eq=False)
 class Layout(Node):
     """`layout(location = 0, std140)`."""
 
-    ids: list[LayoutId] = field(default_factory=list)
-    _children = ("ids",)
+    ids: list[LayoutId] = LIST
 
 
-@dataclass(slots=True, eq=False)
+PRECISION_QUALIFIERS = ("highp", "mediump", "lowp")  # GLSL ES 3.00 section 4.5.2
+
+
 class Qualifiers(Node):
     """Storage, precision, interpolation, invariant and layout qualifiers in source order.
     `words` holds the keywords ("const", "uniform", "in", "centroid in", "highp", "flat", ...)."""
 
-    words: list[str] = field(default_factory=list)
-    layouts: list[Layout] = field(default_factory=list)
-    _children = ("layouts",)
+    words: list[str] = LIST
+    layouts: list[Layout] = LIST
 
     @property
     def storage(self) -> str | None:
@@ -95,36 +136,29 @@ class Qualifiers(Node):
     @property
     def precision(self) -> str | None:
         for w in self.words:
-            if w in ("highp", "mediump", "lowp"):
+            if w in PRECISION_QUALIFIERS:
                 return w
         return None
 
 
-@dataclass(slots=True, eq=False)
 class StructMember(Node):
     qualifiers: Optional[Qualifiers] = None
     type: Optional["TypeSpec"] = None
-    declarators: list["StructDeclarator"] = field(default_factory=list)
-    _children = ("qualifiers", "type", "declarators")
+    declarators: list["StructDeclarator"] = LIST
 
 
-@dataclass(slots=True, eq=False)
 class StructDeclarator(Node):
     name: str = ""
     array: Optional[ArraySpec] = None
-    _children = ("array",)
 
 
-@dataclass(slots=True, eq=False)
 class StructSpec(Node):
     """`struct Name { members }` (name None for an anonymous struct)."""
 
     name: str | None = None
-    members: list[StructMember] = field(default_factory=list)
-    _children = ("members",)
+    members: list[StructMember] = LIST
 
 
-@dataclass(slots=True, eq=False)
 class TypeSpec(Node):
     """A type as written: a built-in type name, a struct name, or a struct definition;
     optionally with an array size (`float[3]`)."""
@@ -133,7 +167,6 @@ class TypeSpec(Node):
     struct_: Optional[StructSpec] = None
     array: Optional[ArraySpec] = None
     is_struct_name: bool = False  # `name` refers to a user struct
-    _children = ("struct_", "array")
 
     @property
     def type_name(self) -> str:
@@ -147,127 +180,102 @@ class TypeSpec(Node):
 # ---------------------------------------------------------------------------------------------
 
 
-@dataclass(slots=True, eq=False)
 class Expr(Node):
     pass
 
 
-@dataclass(slots=True, eq=False)
 class Identifier(Expr):
     name: str = ""
 
 
-@dataclass(slots=True, eq=False)
 class IntLiteral(Expr):
     value: int = 0
     unsigned: bool = False
     text: str = ""
 
 
-@dataclass(slots=True, eq=False)
 class FloatLiteral(Expr):
     value: float = 0.0
     text: str = ""
 
 
-@dataclass(slots=True, eq=False)
 class BoolLiteral(Expr):
     value: bool = False
 
 
-@dataclass(slots=True, eq=False)
 class Binary(Expr):
     """`left op right` for every binary operator but assignment and the comma."""
 
     op: str = "+"
     left: Optional[Expr] = None
     right: Optional[Expr] = None
-    _children = ("left", "right")
 
 
-@dataclass(slots=True, eq=False)
 class Unary(Expr):
     """Prefix `+ - ! ~ ++ --` (op) applied to operand."""
 
     op: str = "-"
     operand: Optional[Expr] = None
-    _children = ("operand",)
 
 
-@dataclass(slots=True, eq=False)
 class Postfix(Expr):
     """Postfix `++` / `--`."""
 
     op: str = "++"
     operand: Optional[Expr] = None
-    _children = ("operand",)
 
 
-@dataclass(slots=True, eq=False)
 class Assignment(Expr):
     """`target op value` with op one of `= += -= *= /= %= <<= >>= &= ^= |=`."""
 
     op: str = "="
     target: Optional[Expr] = None
     value: Optional[Expr] = None
-    _children = ("target", "value")
 
 
-@dataclass(slots=True, eq=False)
 class Ternary(Expr):
     cond: Optional[Expr] = None
     then: Optional[Expr] = None
     else_: Optional[Expr] = None
-    _children = ("cond", "then", "else_")
 
 
-@dataclass(slots=True, eq=False)
 class Sequence(Expr):
     """The comma operator: `a, b, c` evaluates all, yields the last."""
 
-    exprs: list[Expr] = field(default_factory=list)
-    _children = ("exprs",)
+    exprs: list[Expr] = LIST
 
 
-@dataclass(slots=True, eq=False)
 class Call(Expr):
     """A function call or a constructor: `f(x)`, `vec3(1.0)`, `S(a, b)`, `float[3](a, b, c)`.
     `callee` is the name as written; `constructor` is True when it names a type (a built-in
     type, a struct, or an array type with `array` set)."""
 
     callee: str = ""
-    args: list[Expr] = field(default_factory=list)
-    constructor: bool = False
-    array: Optional[ArraySpec] = None
     struct_: Optional[StructSpec] = None  # `struct {...}[2](...)`, legal but rare
-    callee_loc: Location = field(default=_NOLOC, repr=False)
-    _children = ("struct_", "array", "args")
+    array: Optional[ArraySpec] = None
+    args: list[Expr] = LIST
+    constructor: bool = False
+    callee_loc: Location = _NOLOC
 
 
-@dataclass(slots=True, eq=False)
 class Index(Expr):
     base: Optional[Expr] = None
     index: Optional[Expr] = None
-    _children = ("base", "index")
 
 
-@dataclass(slots=True, eq=False)
 class Field(Expr):
     """`base.name`: a struct member or a vector swizzle (the checker tells which)."""
 
     base: Optional[Expr] = None
     name: str = ""
-    name_loc: Location = field(default=_NOLOC, repr=False)
-    _children = ("base",)
+    name_loc: Location = _NOLOC
 
 
-@dataclass(slots=True, eq=False)
 class MethodCall(Expr):
     """`base.name()`: GLSL ES 3.00 has one method, `.length()` of arrays."""
 
     base: Optional[Expr] = None
     name: str = ""
-    _children = ("base",)
 
 
 # ---------------------------------------------------------------------------------------------
@@ -275,35 +283,29 @@ class MethodCall(Expr):
 # ---------------------------------------------------------------------------------------------
 
 
-@dataclass(slots=True, eq=False)
 class Declarator(Node):
     """One name of a variable declaration: `name[array] = init`."""
 
     name: str = ""
     array: Optional[ArraySpec] = None
     init: Optional[Expr] = None
-    name_loc: Location = field(default=_NOLOC, repr=False)
-    _children = ("array", "init")
+    name_loc: Location = _NOLOC
 
 
-@dataclass(slots=True, eq=False)
 class VariableDeclaration(Node):
     """`qualifiers type a = 1.0, b[2];` (no declarators: `struct S {...};` or `float;`)."""
 
     qualifiers: Optional[Qualifiers] = None
     type: Optional[TypeSpec] = None
-    declarators: list[Declarator] = field(default_factory=list)
-    _children = ("qualifiers", "type", "declarators")
+    declarators: list[Declarator] = LIST
 
 
-@dataclass(slots=True, eq=False)
 class Param(Node):
-    qualifiers: list[str] = field(default_factory=list)  # "const", "in", "out", "inout", precision
+    qualifiers: list[str] = LIST  # "const", "in", "out", "inout", precision
     type: Optional[TypeSpec] = None
     name: str | None = None
     array: Optional[ArraySpec] = None
-    name_loc: Location = field(default=_NOLOC, repr=False)
-    _children = ("type", "array")
+    name_loc: Location = _NOLOC
 
     @property
     def direction(self) -> str:
@@ -313,67 +315,53 @@ class Param(Node):
         return "in"
 
 
-@dataclass(slots=True, eq=False)
 class FunctionPrototype(Node):
     qualifiers: Optional[Qualifiers] = None
     return_type: Optional[TypeSpec] = None
     name: str = ""
-    params: list[Param] = field(default_factory=list)
-    name_loc: Location = field(default=_NOLOC, repr=False)
-    _children = ("qualifiers", "return_type", "params")
+    params: list[Param] = LIST
+    name_loc: Location = _NOLOC
 
 
-@dataclass(slots=True, eq=False)
 class FunctionDeclaration(Node):
     """A prototype alone: `float f(float x);`."""
 
     proto: Optional[FunctionPrototype] = None
-    _children = ("proto",)
 
 
-@dataclass(slots=True, eq=False)
 class FunctionDefinition(Node):
     proto: Optional[FunctionPrototype] = None
     body: Optional["Compound"] = None
-    _children = ("proto", "body")
 
 
-@dataclass(slots=True, eq=False)
 class PrecisionDeclaration(Node):
     """`precision highp float;`."""
 
     precision: str = "highp"
     type: Optional[TypeSpec] = None
-    _children = ("type",)
 
 
-@dataclass(slots=True, eq=False)
 class BlockDeclaration(Node):
     """An interface block: `uniform Block { vec4 a; } name[2];`."""
 
     qualifiers: Optional[Qualifiers] = None
     block_name: str = ""
-    members: list[StructMember] = field(default_factory=list)
+    members: list[StructMember] = LIST
     instance: str | None = None
     array: Optional[ArraySpec] = None
-    _children = ("qualifiers", "members", "array")
 
 
-@dataclass(slots=True, eq=False)
 class InvariantDeclaration(Node):
     """`invariant a, b;` (redeclaring outputs as invariant)."""
 
     qualifiers: Optional[Qualifiers] = None
-    names: list[str] = field(default_factory=list)
-    _children = ("qualifiers",)
+    names: list[str] = LIST
 
 
-@dataclass(slots=True, eq=False)
 class QualifierDeclaration(Node):
     """A qualifier alone: `layout(std140) uniform;`."""
 
     qualifiers: Optional[Qualifiers] = None
-    _children = ("qualifiers",)
 
 
 # ---------------------------------------------------------------------------------------------
@@ -381,55 +369,41 @@ class QualifierDeclaration(Node):
 # ---------------------------------------------------------------------------------------------
 
 
-@dataclass(slots=True, eq=False)
 class Stmt(Node):
     pass
 
 
-@dataclass(slots=True, eq=False)
 class Compound(Stmt):
-    stmts: list[Node] = field(default_factory=list)
-    _children = ("stmts",)
+    stmts: list[Node] = LIST
 
 
-@dataclass(slots=True, eq=False)
 class DeclarationStatement(Stmt):
     decl: Optional[Node] = None
-    _children = ("decl",)
 
 
-@dataclass(slots=True, eq=False)
 class ExpressionStatement(Stmt):
     """`expr;` or the empty statement `;` (expr None)."""
 
     expr: Optional[Expr] = None
-    _children = ("expr",)
 
 
-@dataclass(slots=True, eq=False)
 class If(Stmt):
     cond: Optional[Expr] = None
     then: Optional[Stmt] = None
     else_: Optional[Stmt] = None
-    _children = ("cond", "then", "else_")
 
 
-@dataclass(slots=True, eq=False)
 class Switch(Stmt):
     expr: Optional[Expr] = None
-    body: list[Stmt] = field(default_factory=list)
-    _children = ("expr", "body")
+    body: list[Stmt] = LIST
 
 
-@dataclass(slots=True, eq=False)
 class Case(Stmt):
     """`case expr:` (expr None for `default:`)."""
 
     expr: Optional[Expr] = None
-    _children = ("expr",)
 
 
-@dataclass(slots=True, eq=False)
 class ConditionDeclaration(Node):
     """The `bool b = f()` of `while (bool b = f())`."""
 
@@ -437,60 +411,92 @@ class ConditionDeclaration(Node):
     type: Optional[TypeSpec] = None
     name: str = ""
     init: Optional[Expr] = None
-    name_loc: Location = field(default=_NOLOC, repr=False)
-    _children = ("qualifiers", "type", "init")
+    name_loc: Location = _NOLOC
 
 
-@dataclass(slots=True, eq=False)
 class While(Stmt):
     cond: Optional[Node] = None  # Expr or ConditionDeclaration
     body: Optional[Stmt] = None
-    _children = ("cond", "body")
 
 
-@dataclass(slots=True, eq=False)
 class DoWhile(Stmt):
     body: Optional[Stmt] = None
     cond: Optional[Expr] = None
-    _children = ("body", "cond")
 
 
-@dataclass(slots=True, eq=False)
 class For(Stmt):
     init: Optional[Stmt] = None  # DeclarationStatement or ExpressionStatement
     cond: Optional[Node] = None  # Expr, ConditionDeclaration or None
     step: Optional[Expr] = None
     body: Optional[Stmt] = None
-    _children = ("init", "cond", "step", "body")
 
 
-@dataclass(slots=True, eq=False)
 class Break(Stmt):
     pass
 
 
-@dataclass(slots=True, eq=False)
 class Continue(Stmt):
     pass
 
 
-@dataclass(slots=True, eq=False)
 class Return(Stmt):
     value: Optional[Expr] = None
-    _children = ("value",)
 
 
-@dataclass(slots=True, eq=False)
 class Discard(Stmt):
     pass
 
 
-@dataclass(slots=True, eq=False)
 class TranslationUnit(Node):
     """A whole program: the external declarations of every tab, in order (Common first)."""
 
-    decls: list[Node] = field(default_factory=list)
-    _children = ("decls",)
+    decls: list[Node] = LIST
+
+
+def _is_location(name: str) -> bool:
+    return name == "loc" or name.endswith("_loc")
+
+
+def _make_methods() -> None:
+    """`_children`, `__init__`, `__repr__` and `__match_args__` of every node class, from its
+    declared fields; the methods of all classes are compiled in one `exec`."""
+    names = set(_NODE_CLASSES)
+    source: list[str] = []
+    env: dict[str, Any] = {"_NOLOC": _NOLOC}
+    for cls in _NODE_CLASSES.values():
+        annotations = {}
+        for klass in reversed(cls.__mro__):
+            annotations.update(getattr(klass, "__annotations__", {}))
+        cls._children = tuple(f for f in cls._fields
+                              if not names.isdisjoint(re.findall(r"[A-Za-z_]\w*", annotations[f])))
+        positional = [f for f in cls._fields if f != "loc"]
+        params, body = [], []
+        for f in positional:
+            default = cls._defaults[f]
+            key = f"_d_{cls.__name__}_{f}"
+            env[key] = default
+            params.append(f"{f}={key}")
+            if isinstance(default, _Factory):
+                body.append(f"    self.{f} = {key}.make() if {f} is {key} else {f}")
+            else:
+                body.append(f"    self.{f} = {f}")
+        body.append("    self.loc = loc")
+        shown = [f for f in positional if not _is_location(f)]
+        fmt = ", ".join(f"{f}={{self.{f}!r}}" for f in shown)
+        source += [f"def _init_{cls.__name__}(self, {''.join(p + ', ' for p in params)}*, loc=_NOLOC):",
+                   *body,
+                   f"def _repr_{cls.__name__}(self):",
+                   f"    return f'{cls.__name__}({fmt})'"]
+        cls.__match_args__ = tuple(positional)
+    exec("\n".join(source), env)  # noqa: S102 - our own declarations, compiled once
+    for cls in _NODE_CLASSES.values():
+        cls.__init__ = env[f"_init_{cls.__name__}"]
+        cls.__repr__ = env[f"_repr_{cls.__name__}"]
+        cls.__init__.__qualname__ = f"{cls.__name__}.__init__"
+        cls.__repr__.__qualname__ = f"{cls.__name__}.__repr__"
+
+
+_make_methods()
 
 
 # ---------------------------------------------------------------------------------------------
@@ -499,18 +505,51 @@ class TranslationUnit(Node):
 
 
 class NodeVisitor:
-    """`visit(node)` calls `visit_<ClassName>(node)` when defined, else `generic_visit`, which
-    visits the children."""
+    """Dispatch on a node's class by method name, with return values.
 
-    def visit(self, node: Node) -> Any:
-        method = getattr(self, "visit_" + type(node).__name__, None)
+    `visit(node, *args)` calls `self.visit_<ClassName>(node, *args)` and returns its value;
+    when the class has no such method, the method for its nearest base class that has one
+    (`visit_Expr`, `visit_Stmt`, `visit_Node`), else `generic_visit`, which visits the
+    children. `dispatch(prefix, node, *args)` does the same for any method prefix, so one
+    visitor can have several families (the printer's `_stmt_If` and `_expr_Binary`); a node
+    with no method for its prefix goes to `missing(prefix, node)`, which raises TypeError.
+    The method found for each (visitor class, prefix, node class) is remembered.
+    """
+
+    _methods: dict[tuple[type, str, type], Callable[..., Any] | None] = {}
+
+    def visit(self, node: Node, *args: Any) -> Any:
+        method = self._method("visit_", type(node))
         if method is None:
-            return self.generic_visit(node)
-        return method(node)
+            return self.generic_visit(node, *args)
+        return method(self, node, *args)
 
-    def generic_visit(self, node: Node) -> None:
+    def generic_visit(self, node: Node, *args: Any) -> None:
         for child in node.children():
-            self.visit(child)
+            self.visit(child, *args)
+
+    def dispatch(self, prefix: str, node: Node, *args: Any) -> Any:
+        method = self._method(prefix, type(node))
+        if method is None:
+            return self.missing(prefix, node)
+        return method(self, node, *args)
+
+    def missing(self, prefix: str, node: Node) -> Any:
+        raise TypeError(f"{type(self).__name__} has no {prefix}{type(node).__name__}")
+
+    def _method(self, prefix: str, node_class: type) -> Callable[..., Any] | None:
+        key = (type(self), prefix, node_class)
+        try:
+            return NodeVisitor._methods[key]
+        except KeyError:
+            pass
+        method = None
+        for klass in node_class.__mro__:
+            method = getattr(type(self), prefix + klass.__name__, None)
+            if method is not None:
+                break
+        NodeVisitor._methods[key] = method
+        return method
 
 
 def dump(node: Any) -> Any:
@@ -520,10 +559,10 @@ def dump(node: Any) -> Any:
     if not isinstance(node, Node):
         return node
     out: list[Any] = [type(node).__name__]
-    for f in fields(node):
-        if f.name == "loc" or f.name.endswith("_loc"):
+    for name in node._fields:
+        if _is_location(name):
             continue
-        out.append((f.name, dump(getattr(node, f.name))))
+        out.append((name, dump(getattr(node, name))))
     return tuple(out)
 
 
@@ -534,16 +573,16 @@ def format_tree(node: Any, indent: int = 0) -> str:
         return "\n".join(format_tree(n, indent) for n in node)
     attrs = []
     kids = []
-    for f in fields(node):
-        if f.name == "loc" or f.name.endswith("_loc"):
+    for name in node._fields:
+        if _is_location(name):
             continue
-        value = getattr(node, f.name)
-        if f.name in node._children:
+        value = getattr(node, name)
+        if name in node._children:
             if value is None or value == []:
                 continue
-            kids.append((f.name, value))
+            kids.append((name, value))
         elif value not in (None, [], False, ""):
-            attrs.append(f"{f.name}={value!r}")
+            attrs.append(f"{name}={value!r}")
     loc = node.loc
     where = f"{loc.line}:{loc.column}-{loc.end_line}:{loc.end_column}" if loc.line else ""
     lines = [f"{pad}{type(node).__name__} {' '.join(attrs)} @{where}".rstrip()]

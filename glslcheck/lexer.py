@@ -1,11 +1,12 @@
-"""Lexing: preprocessed GLSL text -> a list of Lark `Token`s, as Lark's basic lexer would give them.
+"""Lexing: preprocessed GLSL text -> a list of `Token`s, as Lark's basic lexer would give them.
 
 Owns the scanner the parser runs on, and the one lexical rule the grammar cannot say: an
 IDENTIFIER that names a declared struct is a TYPE_NAME (the spec's TYPE_NAME token, section 9),
 and a word reserved for future use (3.8) cannot be a name.
 
-The terminals, their regular expressions, priorities and names all come from the grammar Lark
-loaded (grammar/glsl.lark); this module only arranges them for speed:
+The terminals, their regular expressions, priorities and names all come from the grammar, as
+Lark loads it (grammar/glsl.lark); `lexer_tables` arranges them for speed ahead of time
+(parse_tables.py ships the result, so Lark is not imported at run time):
 
 * one master regular expression, its alternatives in the order Lark's basic lexer tries them
   (priority, then longest possible match, then name), so the same text gives the same
@@ -30,14 +31,55 @@ from __future__ import annotations
 import re
 from dataclasses import dataclass
 
-from lark import Token
-from lark.exceptions import UnexpectedCharacters
-
 from .builtins import RESERVED_WORDS
 
 IDENTIFIER = "IDENTIFIER"
 TYPE_NAME = "TYPE_NAME"
 STRUCT = "STRUCT"
+ERROR_KIND = "_unexpected"  # the master regex's group for a character no terminal matches
+
+
+class Token(str):
+    """A token: its text, with the same attributes as Lark's Token (the parse tree's leaves)."""
+
+    __slots__ = ("type", "value", "start_pos", "end_pos", "line", "column", "end_line", "end_column")
+
+    def __new__(cls, type: str, value: str, start_pos: int | None = None, line: int | None = None,
+                column: int | None = None,
+                end_line: int | None = None, end_column: int | None = None, end_pos: int | None = None):
+        tok = str.__new__(cls, value)
+        tok.type = type
+        tok.value = value
+        tok.start_pos = start_pos
+        tok.line = line
+        tok.column = column
+        tok.end_line = end_line
+        tok.end_column = end_column
+        tok.end_pos = end_pos
+        return tok
+
+    @classmethod
+    def new_borrow_pos(cls, type: str, value: str, borrow: Token) -> Token:
+        return cls(type, value, borrow.start_pos, borrow.line, borrow.column, borrow.end_line,
+                   borrow.end_column, borrow.end_pos)
+
+    def __repr__(self) -> str:
+        return f"Token({self.type!r}, {self.value!r})"
+
+
+class UnexpectedInput(Exception):
+    """A syntax error the lexer or the parser met (parse.py words it for the user)."""
+
+
+class UnexpectedCharacters(UnexpectedInput):
+    """A character no terminal matches, at `pos_in_stream` (line and column from 1)."""
+
+    def __init__(self, text: str, pos_in_stream: int, line: int, column: int, allowed: frozenset[str]) -> None:
+        super().__init__(f"unexpected character {text[pos_in_stream:pos_in_stream + 1]!r} at line {line}, column {column}")
+        self.pos_in_stream = pos_in_stream
+        self.line = line
+        self.column = column
+        self.allowed = allowed
 
 # The syntax error messages look back at the last tokens the parser saw (to name the
 # statement, to find the previous token). They have always seen a window of 33 to 64 tokens:
@@ -93,70 +135,85 @@ class Tokens:
         return len(self.tokens)
 
 
-class Lexer:
-    """The scanner for one loaded grammar (build it once per process from `lark.lexer_conf`)."""
+def lexer_tables(lexer_conf) -> dict:
+    """The scanner's tables for a grammar Lark loaded (`lark.lexer_conf`), as JSON-ready data
+    (parse_tables.py builds them ahead of time; `Lexer` runs them)."""
+    terminals = list(lexer_conf.terminals)
+    flags = lexer_conf.g_regex_flags
+    ignore = frozenset(lexer_conf.ignore)
+    # Lark's basic lexer tries terminals in this order; the first alternative that matches wins.
+    terminals.sort(key=lambda t: (-t.priority, -t.pattern.max_width, -len(t.pattern.value), t.name))
+    # A string terminal that a regex terminal of the same priority matches in full (a
+    # keyword and IDENTIFIER) is found by looking the regex's match up, not by scanning.
+    keywords: dict[str, dict[str, str]] = {}
+    embedded = set()
+    for retok in terminals:
+        if retok.pattern.type != "re":
+            continue
+        words: dict[str, str] = {}
+        for strtok in terminals:
+            if strtok.pattern.type != "str" or strtok.priority != retok.priority:
+                continue
+            word = strtok.pattern.value
+            m = re.match(retok.pattern.to_regexp(), word, flags)
+            if m and m.group(0) == word:
+                words.setdefault(word, strtok.name)
+                if strtok.pattern.flags <= retok.pattern.flags:
+                    embedded.add(strtok.name)
+        if words:
+            keywords[retok.name] = words
+    if set(keywords) - {IDENTIFIER}:
+        raise ValueError(f"only IDENTIFIER may contain keywords, not {sorted(set(keywords) - {IDENTIFIER})}")
+    scanned = [t for t in terminals if t.name not in embedded]
+    # The ignored terminals (white space) are skipped before each token. They start with
+    # characters no other terminal starts with, so trying them first changes nothing (a
+    # property of this grammar, which tests/parse/test_fast_parser.py checks against Lark).
+    skip = "|".join(t.pattern.to_regexp() for t in scanned if t.name in ignore)
+    prefix = f"(?:{skip})*" if skip else ""
+    # Each run of consecutive string terminals (the operators) is one alternative, its
+    # strings in the same order, and the match is looked up: one named group per operator
+    # would make the regex engine do group bookkeeping for each alternative it tries.
+    literals: dict[str, dict[str, str]] = {}
+    multiline_literals = False
+    parts: list[str] = []
+    run: list = []
+    for t in [t for t in scanned if t.name not in ignore] + [None]:
+        if t is not None and t.pattern.type == "str":
+            run.append(t)
+            continue
+        if run:
+            group = f"_literal{len(literals)}"
+            names: dict[str, str] = {}
+            for lit in run:
+                names.setdefault(lit.pattern.value, lit.name)
+                multiline_literals |= "\n" in lit.pattern.value
+            literals[group] = names
+            parts.append(f"(?P<{group}>{'|'.join(lit.pattern.to_regexp() for lit in run)})")
+            run = []
+        if t is not None:
+            parts.append(f"(?P<{t.name}>{t.pattern.to_regexp()})")
+    # After the last token only ignored text may remain (`\Z`); any other character that
+    # no terminal matches is the lexer error.
+    return {
+        "pattern": f"{prefix}(?:{'|'.join(parts)}|(?P<{ERROR_KIND}>[\\s\\S])|\\Z)",
+        "flags": int(flags),
+        "keywords": keywords,
+        "literals": literals,
+        "multiline_literals": multiline_literals,
+        "allowed": sorted({t.name for t in scanned} - ignore),
+    }
 
-    def __init__(self, lexer_conf) -> None:
-        terminals = list(lexer_conf.terminals)
-        flags = lexer_conf.g_regex_flags
-        self.ignore = frozenset(lexer_conf.ignore)
-        self.terminals_by_name = lexer_conf.terminals_by_name
-        # Lark's basic lexer tries terminals in this order; the first alternative that matches wins.
-        terminals.sort(key=lambda t: (-t.priority, -t.pattern.max_width, -len(t.pattern.value), t.name))
-        # A string terminal that a regex terminal of the same priority matches in full (a
-        # keyword and IDENTIFIER) is found by looking the regex's match up, not by scanning.
-        self.keywords: dict[str, dict[str, str]] = {}
-        embedded = set()
-        for retok in terminals:
-            if retok.pattern.type != "re":
-                continue
-            words: dict[str, str] = {}
-            for strtok in terminals:
-                if strtok.pattern.type != "str" or strtok.priority != retok.priority:
-                    continue
-                word = strtok.pattern.value
-                m = re.match(retok.pattern.to_regexp(), word, flags)
-                if m and m.group(0) == word:
-                    words.setdefault(word, strtok.name)
-                    if strtok.pattern.flags <= retok.pattern.flags:
-                        embedded.add(strtok.name)
-            if words:
-                self.keywords[retok.name] = words
-        if set(self.keywords) - {IDENTIFIER}:
-            raise ValueError(f"only IDENTIFIER may contain keywords, not {sorted(set(self.keywords) - {IDENTIFIER})}")
-        scanned = [t for t in terminals if t.name not in embedded]
-        self.allowed = {t.name for t in scanned} - self.ignore
-        # The ignored terminals (white space) are skipped before each token. They start with
-        # characters no other terminal starts with, so trying them first changes nothing (a
-        # property of this grammar, which tests/parse/test_fast_parser.py checks against Lark).
-        skip = "|".join(t.pattern.to_regexp() for t in scanned if t.name in self.ignore)
-        prefix = f"(?:{skip})*" if skip else ""
-        # Each run of consecutive string terminals (the operators) is one alternative, its
-        # strings in the same order, and the match is looked up: one named group per operator
-        # would make the regex engine do group bookkeeping for each alternative it tries.
-        self.literals: dict[str, dict[str, str]] = {}
-        self.multiline_literals = False
-        parts: list[str] = []
-        run: list = []
-        for t in [t for t in scanned if t.name not in self.ignore] + [None]:
-            if t is not None and t.pattern.type == "str":
-                run.append(t)
-                continue
-            if run:
-                group = f"_literal{len(self.literals)}"
-                names: dict[str, str] = {}
-                for lit in run:
-                    names.setdefault(lit.pattern.value, lit.name)
-                    self.multiline_literals |= "\n" in lit.pattern.value
-                self.literals[group] = names
-                parts.append(f"(?P<{group}>{'|'.join(lit.pattern.to_regexp() for lit in run)})")
-                run = []
-            if t is not None:
-                parts.append(f"(?P<{t.name}>{t.pattern.to_regexp()})")
-        # After the last token only ignored text may remain (`\Z`); any other character that
-        # no terminal matches is the lexer error.
-        self.error_kind = "_unexpected"
-        self.master = re.compile(f"{prefix}(?:{'|'.join(parts)}|(?P<{self.error_kind}>[\\s\\S])|\\Z)", flags)
+
+class Lexer:
+    """The scanner for one grammar, from its tables (`lexer_tables`; build it once per process)."""
+
+    def __init__(self, tables: dict) -> None:
+        self.keywords: dict[str, dict[str, str]] = tables["keywords"]
+        self.literals: dict[str, dict[str, str]] = tables["literals"]
+        self.multiline_literals: bool = tables["multiline_literals"]
+        self.allowed = frozenset(tables["allowed"])
+        self.error_kind = ERROR_KIND
+        self.master = re.compile(tables["pattern"], tables["flags"])
 
     def tokenize(self, text: str) -> Tokens:
         """Every token of `text`; an error stops the lexer and is kept in `Tokens.error`."""
@@ -207,10 +264,7 @@ class Lexer:
                 if names is not None:
                     kind = names[value]
                 elif kind == error_kind:
-                    error = UnexpectedCharacters(
-                        text, start, line, start - line_start + 1, allowed=self.allowed,
-                        token_history=tokens[-1:] or None, terminals_by_name=self.terminals_by_name,
-                    )
+                    error = UnexpectedCharacters(text, start, line, start - line_start + 1, self.allowed)
                     break
             tok = _new_str(Token, value)
             tok.type = kind

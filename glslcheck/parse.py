@@ -1,14 +1,14 @@
-"""Parsing: preprocessed GLSL ES 3.00 text -> tokens -> Lark LALR parse tree -> the typed AST (ast.py).
+"""Parsing: preprocessed GLSL ES 3.00 text -> tokens -> LALR parse tree -> the typed AST (ast.py).
 
-Owns the Lark grammar object (built once per process from grammar/glsl.lark, its LALR tables
-cached on disk so a CLI call does not rebuild them), the pass that builds AST nodes from the
-parse tree (one `_build_<rule>` method per grammar rule), and the translation of Lark's errors
-into messages in words that point into the user's file.
+Owns the loaded parser (once per process, from the tables parse_tables.py ships beside
+grammar/glsl.lark: nothing is built or cached at run time), the pass that builds AST nodes from
+the parse tree (one `_build_<rule>` method per grammar rule), and the translation of syntax
+errors into messages in words that point into the user's file.
 
-Lark supplies the terminals, the tables and the tree-building callbacks; two small modules run
-them faster than Lark's general-purpose loops do, with the same results: lexer.py (one master
-regex over Lark's terminals, plus the struct-name rule) and lalr.py (the LALR loop over Lark's
-table). tests/parse/test_fast_parser.py checks both against Lark itself.
+Lark supplies the terminals, the tables and the tree shapes, ahead of time; two small modules
+run them faster than Lark's general-purpose loops do, with the same results: lexer.py (one
+master regex over the grammar's terminals, plus the struct-name rule) and lalr.py (the LALR
+loop over the table). tests/parse/test_fast_parser.py checks both against Lark itself.
 
 Entry points: `parse_shader(shader)` for a Shadertoy shader (Common + Image, as Shadertoy
 compiles them), `parse_units(sources)` for any list of files, and `parse_string(text)` for tests.
@@ -17,94 +17,50 @@ compiles them), `parse_units(sources)` for any list of files, and `parse_string(
 from __future__ import annotations
 
 import gc
-import os
 import sys
-import tempfile
 from dataclasses import dataclass, field
-from importlib import resources
 from typing import Callable
 
-from lark import Lark, Token, Tree
-from lark.exceptions import UnexpectedCharacters, UnexpectedEOF, UnexpectedInput, UnexpectedToken
-
 from . import ast as A
+from . import parse_tables
 from .diagnostics import Diagnostic, GlslError, Location, register_source
-from .lalr import Driver
-from .lexer import Lexer, ReservedWordError, Tokens
+from .lalr import Driver, Tree, UnexpectedToken
+from .lexer import Lexer, ReservedWordError, Token, Tokens, UnexpectedCharacters, UnexpectedInput
 from .sources import Shader, Source
 
 # The keywords (3.6), to tell "a keyword used as a name" in error messages.
 from .builtins import KEYWORDS  # noqa: E402  (one table, shared with the checker)
 from .types import BY_NAME  # noqa: E402
 
-# Words a user might mean: what each terminal is called in an error message.
-_TOKEN_WORDS = {
-    "IDENTIFIER": "a name",
-    "TYPE_NAME": "a type name",
-    "INTCONSTANT": "a number",
-    "FLOATCONSTANT": "a number",
-    "$END": "the end of the file",
-}
-
 _GRAMMAR_CACHE: dict[str, Parser] = {}
 
 
 def grammar_text() -> str:
     """The grammar, read from the installed package (grammar/ ships as glslcheck.grammar)."""
-    return resources.files("glslcheck.grammar").joinpath("glsl.lark").read_text(encoding="utf-8")
-
-
-def _cache_path() -> str:
-    base = os.environ.get("XDG_CACHE_HOME") or os.path.join(os.path.expanduser("~"), ".cache")
-    folder = os.path.join(base, "glslcheck")
-    try:
-        os.makedirs(folder, exist_ok=True)
-    except OSError:  # no writable home: the temp folder (Lark only logs a failed cache write)
-        folder = tempfile.gettempdir()
-    from . import __version__
-
-    return os.path.join(folder, f"glsl-lalr-{__version__}-{sys.version_info[0]}{sys.version_info[1]}.cache")
+    return parse_tables.grammar_text()
 
 
 @dataclass(frozen=True)
 class Parser:
-    """The loaded grammar and what runs it: Lark (grammar, tables, tree callbacks), the lexer
-    made from Lark's terminals (lexer.py) and the LALR driver over Lark's table (lalr.py)."""
+    """The loaded grammar's tables and what runs them: the lexer (lexer.py) and the LALR
+    driver (lalr.py), both made from the tables parse_tables.py ships with the grammar."""
 
-    lark: Lark
     lexer: Lexer
     driver: Driver
     words: dict[str, str]  # what each terminal is called in an error message
 
 
-LARK_OPTIONS = dict(
-    parser="lalr",
-    # Lark's basic lexer, not the contextual one, is the lexer lexer.py reproduces: a
-    # contextual lexer would read `float` as a name where only a name can follow
-    # (`float float;`), hiding the keyword.
-    lexer="basic",
-    strict=True,
-    # Positions come from the tokens (see _Builder.loc): Lark's propagate_positions
-    # costs half the parse time, and keeping every token gives exact spans that
-    # include keywords and braces.
-    propagate_positions=False,
-    keep_all_tokens=True,
-    maybe_placeholders=True,
-)
-
-
 def get_parser() -> Parser:
     parser = _GRAMMAR_CACHE.get("parser")
     if parser is None:
-        lark = Lark(grammar_text(), **LARK_OPTIONS, cache=_cache_path())
-        lalr = lark.parser.parser.parser  # lark 1.x: ParsingFrontend -> LALR_Parser -> _Parser
-        parser = Parser(lark, Lexer(lark.lexer_conf), Driver(lalr.parse_table, lalr.callbacks), _terminal_words(lark))
+        tables = parse_tables.load()
+        parser = Parser(Lexer(tables["lexer"]), Driver(tables["parser"]), tables["words"])
         _GRAMMAR_CACHE["parser"] = parser
     return parser
 
 
 def parse_tree(text: str) -> Tree:
-    """Lark's parse tree of preprocessed text; raises Lark's UnexpectedInput or ReservedWordError."""
+    """The parse tree of preprocessed text; raises UnexpectedInput or ReservedWordError."""
     parser = get_parser()
     return parser.driver.parse(parser.lexer.tokenize(text))
 
@@ -190,16 +146,8 @@ def _parse_text_no_gc(text: str, locate_span: Callable[[int, int], Location]) ->
 # ---------------------------------------------------------------------------------------------
 
 
-def _terminal_words(lark: Lark) -> dict[str, str]:
-    words = dict(_TOKEN_WORDS)
-    for t in lark.terminals:
-        if t.name not in words and t.pattern.type == "str":
-            words[t.name] = f"'{t.pattern.value}'"
-    return words
-
-
 _EXPRESSION_START = {"IDENTIFIER", "INTCONSTANT", "FLOATCONSTANT", "LPAR", "MINUS", "BANG", "TILDE", "TRUE", "FALSE"}
-_DECL_WORDS = {"const", "uniform", "in", "out", "inout", "highp", "mediump", "lowp", "flat", "smooth",
+_DECL_WORDS = {"const", "uniform", "in", "out", "inout", *A.PRECISION_QUALIFIERS, "flat", "smooth",
                "invariant", "layout", "centroid", "struct", "precision"}
 
 
@@ -270,9 +218,9 @@ def _syntax_error(e: UnexpectedInput, lexed: Tokens, locate_span) -> Diagnostic:
         if ch == "#":
             return Diagnostic("a '#' directive must start its own line", loc)
         return Diagnostic(f"unexpected character '{ch}'", loc)
-    assert isinstance(e, (UnexpectedToken, UnexpectedEOF))
-    tok: Token = getattr(e, "token", None) or Token("$END", "")
-    expected = set(getattr(e, "expected", ()) or ())
+    assert isinstance(e, UnexpectedToken)
+    tok: Token = e.token
+    expected = set(e.expected)
     at_end = tok.type == "$END"
     if history and history[-1] is tok:
         prev = history[-2] if len(history) >= 2 else None

@@ -12,11 +12,12 @@ Nothing here compiles or renders; it only builds text.
 
 from __future__ import annotations
 
+import math
 from bisect import bisect_right
 from dataclasses import dataclass
 
 from .diagnostics import InputError
-from .sources import Shader, Source
+from .sources import TAB_NAMES, Shader, Source
 
 # A fixed iDate so renders are reproducible: 2026-01-01 00:00:00 (Shadertoy's month is 0-based).
 DEFAULT_DATE: tuple[float, float, float, float] = (2026.0, 0.0, 1.0, 0.0)
@@ -80,9 +81,36 @@ precision mediump sampler3D;
 #define HW_PERFORMANCE 1
 """
 
-# Passes we can wrap: the Image tab and the buffers (all call mainImage). Sound (mainSound) and
-# Cube A (mainCubemap) have other entry points and are not rendered by glslcheck.
-PASS_TABS = ("Buffer A", "Buffer B", "Buffer C", "Buffer D", "Image")
+# Passes we can wrap: the Image tab and the buffers (all call mainImage), in the order Shadertoy
+# renders them (the buffers first). Sound (mainSound) and Cube A (mainCubemap) have other entry
+# points and are not rendered by glslcheck. The tab names themselves: sources.TAB_NAMES.
+BUFFER_TABS = tuple(t for t in TAB_NAMES if t.startswith("Buffer "))
+PASS_TABS = (*BUFFER_TABS, "Image")
+
+
+def sample_offsets(samples: int) -> list[tuple[float, float]]:
+    """The k*k regular sub-pixel offsets for `samples` = k*k, in pixels, x varying fastest
+    (both backends supersample with the same grid, in the same order)."""
+    k = math.isqrt(samples) if samples >= 1 else 0
+    if k < 1 or k * k != samples:
+        raise ValueError(f"samples must be a perfect square (1, 4, 9, 16, ...), not {samples}")
+    if k == 1:
+        return [(0.0, 0.0)]
+    return [((i + 0.5) / k - 0.5, (j + 0.5) / k - 0.5) for j in range(k) for i in range(k)]
+
+
+def as_date(date) -> tuple[float, float, float, float]:
+    """iDate's value: (year, month 0-11, day 1-31, seconds since midnight) from a datetime or a
+    4-tuple (taken as it is); DEFAULT_DATE for None."""
+    if date is None:
+        return DEFAULT_DATE
+    import datetime
+
+    if isinstance(date, datetime.datetime):
+        midnight = date.replace(hour=0, minute=0, second=0, microsecond=0)
+        return (float(date.year), float(date.month - 1), float(date.day), (date - midnight).total_seconds())
+    year, month, day, seconds = date
+    return (float(year), float(month), float(day), float(seconds))
 
 
 @dataclass(frozen=True, slots=True)

@@ -27,7 +27,6 @@ from .scopes import Scope, UniqueNames
 
 # What the Shadertoy wrapper declares besides the uniforms (shadertoy.py's footer and prelude).
 WRAPPER_OUTPUT = "shadertoy_out_color"
-SHADERTOY_TABS = ("Image", "Buffer A", "Buffer B", "Buffer C", "Buffer D", "Common", "Cube A", "Sound")
 
 
 def _int_hint(node: A.Node) -> str | None:
@@ -186,7 +185,7 @@ class Checker:
             key = str(t)
         else:
             return
-        if key in self.default_precision or any(w in ("highp", "mediump", "lowp") for w in words):
+        if key in self.default_precision or any(w in A.PRECISION_QUALIFIERS for w in words):
             return
         self.error(f"no precision is given for '{key}' and this shader sets no default for it", node,
                    help=f"add 'precision highp {key};' after the #version line")
@@ -194,7 +193,7 @@ class Checker:
     def qualifier_words(self, words: list[str], node: Any) -> None:
         """At most one storage and one precision qualifier (spec 4.3, 4.5.2)."""
         storage = [w for w in words if w in ("const", "uniform", "in", "out", "inout", "centroid in", "centroid out")]
-        precision = [w for w in words if w in ("highp", "mediump", "lowp")]
+        precision = [w for w in words if w in A.PRECISION_QUALIFIERS]
         if len(storage) > 1:
             self.error(f"too many storage qualifiers: {' '.join(storage)}", node, help="keep one of them")
         if len(precision) > 1:
@@ -436,7 +435,7 @@ class Checker:
             pt = self.resolve_type(p.type)
             pt = self.with_array(pt, p.array, p)
             storage = [q for q in p.qualifiers if q in ("const", "in", "out", "inout")]
-            precision = [q for q in p.qualifiers if q in ("highp", "mediump", "lowp")]
+            precision = [q for q in p.qualifiers if q in A.PRECISION_QUALIFIERS]
             if len(precision) > 1:
                 self.error(f"too many precision qualifiers: {' '.join(precision)}", p, help="keep one of them")
             if "const" in storage and any(q in ("out", "inout") for q in storage):

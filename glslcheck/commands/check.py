@@ -11,9 +11,10 @@ from __future__ import annotations
 import sys
 
 from ..diagnostics import GlslError, format_text
+from ..shadertoy import PASS_TABS
 from ..sources import find_shaders
 
-_CHECKED_TABS = ("Buffer A", "Buffer B", "Buffer C", "Buffer D", "Image", "GLSL")
+_CHECKED_TABS = (*PASS_TABS, "GLSL")
 
 
 def add_arguments(p) -> None:

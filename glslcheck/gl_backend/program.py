@@ -25,15 +25,14 @@ program Shadertoy runs. The average is taken in float64 and rounded to float32 o
 
 from __future__ import annotations
 
-import datetime as _dt
-import math
 import re
 from dataclasses import dataclass, field
 
 import numpy as np
 
 from ..diagnostics import Diagnostic, GlslError, Location, source_line
-from ..shadertoy import DEFAULT_DATE, DEFAULT_SIZE, OFFSET_UNIFORM, UNIFORMS, Program, build_program
+from ..shadertoy import DEFAULT_SIZE, OFFSET_UNIFORM, UNIFORMS, Program, build_program, sample_offsets
+from ..shadertoy import as_date as _as_date
 from ..sources import Shader
 from ..driver_profile import driver_model
 from .context import get_context
@@ -129,27 +128,6 @@ def _entry_location(program: Program) -> Location | None:
             if m:
                 return Location(path, number, m.start() + 1, number, m.start() + len("mainImage") + 1)
     return Location(tab_paths[-1], 1, 1)
-
-
-def sample_offsets(samples: int) -> list[tuple[float, float]]:
-    """The k*k regular sub-pixel offsets for `samples` = k*k, in pixels, x varying fastest."""
-    k = math.isqrt(samples) if samples >= 1 else 0
-    if k < 1 or k * k != samples:
-        raise ValueError(f"samples must be a perfect square (1, 4, 9, 16, ...), not {samples}")
-    if k == 1:
-        return [(0.0, 0.0)]
-    return [((i + 0.5) / k - 0.5, (j + 0.5) / k - 0.5) for j in range(k) for i in range(k)]
-
-
-def _as_date(date) -> tuple[float, float, float, float]:
-    if date is None:
-        return DEFAULT_DATE
-    if isinstance(date, _dt.datetime):
-        midnight = date.replace(hour=0, minute=0, second=0, microsecond=0)
-        seconds = (date - midnight).total_seconds()
-        return (float(date.year), float(date.month - 1), float(date.day), seconds)
-    year, month, day, seconds = date
-    return (float(year), float(month), float(day), float(seconds))
 
 
 @dataclass(eq=False)

@@ -19,6 +19,7 @@ from pathlib import Path
 from typing import Any, Iterable, Mapping, Sequence
 
 from ..diagnostics import Diagnostic, Location, register_source, source_line
+from ..shadertoy import BUFFER_TABS
 from ..sources import Shader, Source, find_shaders
 from .config import COMMAND_LINE, ConfigFinder, LintConfig, apply_overrides
 from .rules import Rule, all_rules, rule_names
@@ -133,7 +134,7 @@ def syntax_tree(source: Source, shader: Shader | None) -> tuple[Any, Any]:
     return tree
 
 
-_PASS_TABS = ("Image", "Buffer A", "Buffer B", "Buffer C", "Buffer D", "GLSL")
+_PASS_TABS = ("Image", *BUFFER_TABS, "GLSL")  # Common is linted inside the first one present
 _TREES: dict[tuple, tuple[Any, Any]] = {}  # syntax_tree's cache: (tab, files' texts) -> tree
 
 

@@ -42,7 +42,6 @@ from __future__ import annotations
 
 import functools
 import linecache
-import math
 import os
 import sys
 import threading
@@ -56,7 +55,8 @@ import numpy as np
 
 from ..diagnostics import Diagnostic, GlslError, Location
 from ..driver_profile import host_model
-from ..shadertoy import DEFAULT_DATE, DEFAULT_SIZE, UNIFORMS_BY_NAME
+from ..shadertoy import DEFAULT_SIZE, UNIFORMS_BY_NAME, sample_offsets
+from ..shadertoy import as_date as _as_date
 from .runtime import Runtime, Struct
 
 TILE_LANES = 49152  # lanes per tile: fewer calls in compacted regions; full-lane work measured flat 24k-49k
@@ -341,28 +341,6 @@ def _uniform_value(rt: Runtime, name: str, value: Any) -> Any:
     if u.array_size:
         return rt.array(*[one(v) for v in value])
     return one(value)
-
-
-def _as_date(date) -> tuple[float, float, float, float]:
-    import datetime as _dt
-
-    if date is None:
-        return DEFAULT_DATE
-    if isinstance(date, _dt.datetime):
-        midnight = date.replace(hour=0, minute=0, second=0, microsecond=0)
-        return (float(date.year), float(date.month - 1), float(date.day), (date - midnight).total_seconds())
-    y, m, d, s = date
-    return (float(y), float(m), float(d), float(s))
-
-
-def sample_offsets(samples: int) -> list[tuple[float, float]]:
-    """The GL backend's k*k sub-pixel grid (same order, same values)."""
-    k = math.isqrt(samples) if samples >= 1 else 0
-    if k < 1 or k * k != samples:
-        raise ValueError(f"samples must be a perfect square (1, 4, 9, 16, ...), not {samples}")
-    if k == 1:
-        return [(0.0, 0.0)]
-    return [((i + 0.5) / k - 0.5, (j + 0.5) / k - 0.5) for j in range(k) for i in range(k)]
 
 
 class _FrameCache(OrderedDict):

@@ -16,13 +16,16 @@ import random
 from pathlib import Path
 
 import pytest
-from lark import Lark, Token, Tree
-from lark.exceptions import UnexpectedCharacters, UnexpectedToken
+from lark import Lark, Token
+from lark import Tree as LarkTree
+from lark import exceptions as lark_exceptions
 from lark.lark import PostLex
 
 from glslcheck.builtins import RESERVED_WORDS
-from glslcheck.lexer import ReservedWordError
-from glslcheck.parse import LARK_OPTIONS, _cache_path, get_parser, grammar_text
+from glslcheck.lalr import Tree, UnexpectedToken
+from glslcheck.lexer import ReservedWordError, UnexpectedCharacters
+from glslcheck.parse import get_parser, grammar_text
+from glslcheck.parse_tables import LARK_OPTIONS
 from glslcheck.preprocess import preprocess
 from glslcheck.sources import find_shaders
 
@@ -70,7 +73,7 @@ class _Reference(PostLex):
 @pytest.fixture(scope="module")
 def reference():
     post = _Reference()
-    return Lark(grammar_text(), **LARK_OPTIONS, postlex=post, cache=_cache_path()), post
+    return Lark(grammar_text(), **LARK_OPTIONS, postlex=post), post
 
 
 def _texts(source: Path) -> list[str]:
@@ -133,9 +136,10 @@ def _tok(t: Token) -> tuple:
 
 
 def _tree(item):
-    if isinstance(item, Tree):
+    """A tree as nested tuples: Lark's (the reference) and lalr.py's alike."""
+    if isinstance(item, (Tree, LarkTree)):
         return (item.data, tuple(_tree(c) for c in item.children))
-    return _tok(item) if isinstance(item, Token) else item
+    return _tok(item) if isinstance(item, str) else item
 
 
 def _reference_tokens(reference, text: str):
@@ -145,7 +149,7 @@ def _reference_tokens(reference, text: str):
     try:
         for tok in lark.lex(text):
             out.append(_tok(tok))
-    except UnexpectedCharacters as e:
+    except lark_exceptions.UnexpectedCharacters as e:
         return out, ("character", e.pos_in_stream, e.line, e.column)
     except _Reserved as e:
         return out, ("reserved", _tok(e.tok))
@@ -167,10 +171,10 @@ def _reference_parse(reference, text: str):
     post.reset()
     try:
         return ("tree", _tree(lark.parse(text)))
-    except UnexpectedToken as e:
+    except lark_exceptions.UnexpectedToken as e:
         return ("token", _tok(e.token), sorted(e.expected), [_tok(t) for t in post.history],
                 [_tok(t) for t in post.open_brackets])
-    except UnexpectedCharacters as e:
+    except lark_exceptions.UnexpectedCharacters as e:
         return ("character", e.pos_in_stream, [_tok(t) for t in post.history], [_tok(t) for t in post.open_brackets])
     except _Reserved as e:
         return ("reserved", _tok(e.tok))

@@ -1,4 +1,5 @@
-"""The grammar ships inside the wheel: an installed (non-editable) glslcheck finds it."""
+"""The grammar and its parser tables ship inside the wheel: an installed (non-editable)
+glslcheck finds them."""
 
 from __future__ import annotations
 
@@ -21,6 +22,7 @@ def test_wheel_contains_grammar_and_parses_from_it(tmp_path):
     with zipfile.ZipFile(wheel) as z:
         names = z.namelist()
         assert "glslcheck/grammar/glsl.lark" in names
+        assert "glslcheck/grammar/glsl_tables.json" in names  # the parser's tables (parse_tables.py)
         z.extractall(tmp_path / "site")
     # Run from an unrelated folder with only the unpacked wheel on the path: the source tree's
     # grammar/ folder is not reachable, so the grammar must come from the package data.
@@ -34,3 +36,4 @@ def test_wheel_contains_grammar_and_parses_from_it(tmp_path):
     out = subprocess.run([sys.executable, "-c", code], cwd=tmp_path, env=env, capture_output=True, text=True)
     assert out.returncode == 0, out.stderr
     assert out.stdout.strip() == "TranslationUnit"
+    assert out.stderr == ""  # the shipped tables match the shipped grammar: nothing rebuilt

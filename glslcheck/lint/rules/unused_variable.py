@@ -37,6 +37,7 @@ from ... import ast as A
 from ... import builtins as B
 from ...check.model import Symbol
 from ...diagnostics import Diagnostic
+from ...shadertoy import PASS_TABS
 from ._exprs import facts
 
 NAME = "unused-variable"
@@ -44,14 +45,12 @@ PENALTY = 0
 SEVERITY = "note"
 NEEDS = "ast"
 
-_PASSES = ("Image", "Buffer A", "Buffer B", "Buffer C", "Buffer D")
-
 
 def common_shared(ctx) -> bool:
     """A Common tab that other passes than the one linted with it may use."""
     if ctx.source.tab != "Common" or ctx.shader is None:
         return False
-    return sum(t in ctx.shader.tabs for t in _PASSES) > 1
+    return sum(t in ctx.shader.tabs for t in PASS_TABS) > 1
 
 
 def read_symbols(model: Any) -> set[int]:

@@ -1,0 +1,143 @@
+"""Benchmark: `glslcheck lint` and `check` as whole processes (what a pre-commit hook pays on
+every commit), against glslangValidator on the same programs, timed alternately in the same run.
+
+Like hyperfine: one warm-up of each command, then `--runs` rounds that run each command once,
+in turn; the median wall time of each is printed with the ratio to glslangValidator's, and
+beside it the median CPU time (user + system) of the process, which waiting for a busy
+machine's cores does not inflate. The
+interpreter's own start-up (`python -c pass`, and `python -S -c pass` without site-packages)
+is printed as the floor no Python tool can go under.
+
+Targets (issue 18): `glslcheck lint FILE` on one 200-line file <= 150 ms; `glslcheck lint
+lab_shaders` <= 0.5 s. Printed, not asserted: timings are facts about a machine.
+
+The commands run as a user runs them, with the package's .pyc files in place (pip writes them
+at install time; the warm-up writes them here even when PYTHONDONTWRITEBYTECODE is set in this
+environment). `--no-pyc` measures the other case: every module compiled from source at each
+start (an empty PYTHONPYCACHEPREFIX and PYTHONDONTWRITEBYTECODE=1).
+
+    python benchmarks/bench_startup.py [--runs N] [--no-pyc]
+"""
+
+from __future__ import annotations
+
+import argparse
+import os
+import resource
+import shutil
+import statistics
+import subprocess
+import sys
+import tempfile
+import time
+from pathlib import Path
+
+ROOT = Path(__file__).resolve().parents[1]
+sys.path.insert(0, str(ROOT))
+
+LAB = ROOT / "lab_shaders"
+# One ~200-line lab file: the longest tab of the lab (its Common tab, checked alone as
+# Shadertoy compiles it for the Common pass).
+FILE = LAB / "bonus_animated_lights" / "Common.glsl"
+
+
+def paired(commands: dict[str, list[str]], runs: int, env: dict[str, str]) -> dict[str, tuple[float, float]]:
+    """Median (wall, CPU) seconds of each command: one warm-up each, then `runs` rounds running
+    each once. CPU is the child's user + system time: on a machine shared with other jobs the
+    wall time also counts waiting for a core, the CPU time does not (on an idle machine the two
+    agree for these one-thread processes)."""
+
+    def once(cmd: list[str]) -> tuple[float, float]:
+        before = resource.getrusage(resource.RUSAGE_CHILDREN)
+        t = time.perf_counter()
+        done = subprocess.run(cmd, env=env, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE)
+        elapsed = time.perf_counter() - t
+        after = resource.getrusage(resource.RUSAGE_CHILDREN)
+        if done.returncode not in (0, 1):  # 1: findings, a normal outcome of lint
+            raise SystemExit(f"{' '.join(cmd)} failed ({done.returncode}):\n{done.stderr.decode()[-2000:]}")
+        cpu = (after.ru_utime - before.ru_utime) + (after.ru_stime - before.ru_stime)
+        return elapsed, cpu
+
+    for cmd in commands.values():
+        once(cmd)
+    times: dict[str, list[tuple[float, float]]] = {k: [] for k in commands}
+    for _ in range(runs):
+        for k, cmd in commands.items():
+            times[k].append(once(cmd))
+    return {k: (statistics.median(w for w, _ in v), statistics.median(c for _, c in v)) for k, v in times.items()}
+
+
+def _programs(paths: list[Path], tmp: Path) -> list[str]:
+    """Each Shadertoy program of the shaders under `paths`, wrapped as Shadertoy compiles it
+    (Common alone, then Common + each other tab), written as .frag files for glslangValidator."""
+    from glslcheck.shadertoy import build_program
+    from glslcheck.sources import find_shaders
+
+    files = []
+    for shader in find_shaders([str(p) for p in paths]):
+        tabs = (["Common"] if shader.common is not None else []) + [t for t in shader.tabs if t != "Common"]
+        for tab in tabs:
+            f = tmp / f"{len(files):02d}_{Path(shader.root).name}_{tab.replace(' ', '_')}.frag"
+            f.write_text(build_program(shader, tab).text)
+            files.append(str(f))
+    return files
+
+
+def _ms(wall: float, cpu: float) -> str:
+    return f"{wall * 1000:7.1f} ms ({cpu * 1000:5.1f})"
+
+
+def _load() -> str:
+    try:
+        return " ".join(f"{v:.1f}" for v in os.getloadavg())
+    except OSError:
+        return "unknown"
+
+
+def main() -> int:
+    ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    ap.add_argument("--runs", type=int, default=21)
+    ap.add_argument("--no-pyc", action="store_true", help="compile every module from source at each start")
+    args = ap.parse_args()
+    glslang = shutil.which("glslangValidator")
+    if not glslang:
+        print("glslangValidator not installed: nothing to compare against", file=sys.stderr)
+        return 2
+    exe = shutil.which("glslcheck") or str(Path(sys.executable).with_name("glslcheck"))
+    python = str(Path(exe).with_name("python"))
+    env = dict(os.environ)
+    with tempfile.TemporaryDirectory() as tmp:
+        tmp = Path(tmp)
+        if args.no_pyc:
+            env.update(PYTHONDONTWRITEBYTECODE="1", PYTHONPYCACHEPREFIX=str(tmp / "no-pyc"))
+        else:
+            env.pop("PYTHONDONTWRITEBYTECODE", None)
+        one = _programs([FILE], tmp)
+        lab = _programs([LAB], tmp)
+        lines = FILE.read_text().count("\n")
+        rows = [
+            (f"lint FILE ({lines} lines)", [exe, "lint", str(FILE)], [glslang, *one], 0.150),
+            (f"check FILE ({lines} lines)", [exe, "check", str(FILE)], [glslang, *one], None),
+            (f"lint lab_shaders ({len(lab)} programs)", [exe, "lint", str(LAB)], [glslang, *lab], 0.5),
+            (f"check lab_shaders ({len(lab)} programs)", [exe, "check", str(LAB)], [glslang, *lab], None),
+        ]
+        floor = paired({"python -c pass": [python, "-c", "pass"], "python -S -c pass": [python, "-S", "-c", "pass"]},
+                       args.runs, env)
+        print(f"glslcheck start-up (benchmarks/bench_startup.py, median of {args.runs} runs, "
+              f"{'no .pyc: compiled from source' if args.no_pyc else 'with .pyc'})")
+        print(f"load {_load()} (1/5/15-minute load average at the start; {os.cpu_count()} cores)")
+        print(f"   {'whole process: wall time (CPU time)':40s} {'glslcheck':>19s} {'glslang':>19s}   ratio (CPU)   target")
+        for label, ours, theirs, target in rows:
+            t = paired({"ours": ours, "glslang": theirs}, args.runs, env)
+            (wall, cpu), (ref_wall, ref_cpu) = t["ours"], t["glslang"]
+            verdict = "" if target is None else f"{target * 1000:4.0f} ms {'met' if wall <= target else 'missed'}"
+            print(f"   {label:40s} {_ms(wall, cpu)} {_ms(ref_wall, ref_cpu)}  {wall / ref_wall:5.2f}x ({cpu / ref_cpu:5.2f}x)"
+                  f"   {verdict}")
+        for label, (wall, cpu) in floor.items():
+            print(f"   {label:40s} {_ms(wall, cpu)}   (the interpreter alone)")
+        print(f"load at the end {_load()}")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

@@ -1,0 +1,39 @@
+"""Start-up (issue 18): `glslcheck lint`, `check` and `parse` run in every pre-commit hook, so
+they must not import what only rendering needs (NumPy, moderngl, Pillow) nor Lark (the parser's
+tables ship as data, glslcheck/parse_tables.py). Deterministic: a fresh interpreter runs the
+command and reports which modules it loaded; no timing is asserted (see
+benchmarks/bench_startup.py for the times)."""
+
+from __future__ import annotations
+
+import json
+import subprocess
+import sys
+from pathlib import Path
+
+import pytest
+
+ROOT = Path(__file__).resolve().parents[1]
+HEAVY = ("numpy", "moderngl", "PIL", "lark", "multiprocessing", "concurrent")
+
+_RUN = """
+import io, json, sys, contextlib
+from glslcheck.cli import main
+out = io.StringIO()
+with contextlib.redirect_stdout(out), contextlib.redirect_stderr(io.StringIO()):
+    code = main(sys.argv[1:])
+print(json.dumps({"code": code, "modules": sorted(sys.modules)}))
+"""
+
+
+@pytest.mark.parametrize("command", [["lint"], ["check"], ["parse"], ["lint", "--format", "json"]])
+def test_lint_check_and_parse_load_no_renderer_and_no_lark(command):
+    shader = ROOT / "lab_shaders" / "07_final"
+    done = subprocess.run([sys.executable, "-c", _RUN, command[0], str(shader), *command[1:]],
+                          capture_output=True, text=True, cwd=ROOT, timeout=120)
+    assert done.returncode == 0, done.stderr
+    report = json.loads(done.stdout.strip().splitlines()[-1])
+    assert report["code"] in (0, 1)
+    loaded = {m.split(".")[0] for m in report["modules"]}
+    assert "glslcheck.parse" in report["modules"]  # the command did its work
+    assert not loaded & set(HEAVY), sorted(loaded & set(HEAVY))
