@@ -123,11 +123,14 @@ def score(verbose: bool) -> int:
         findings, stderr, rc = lint_json([local_path(e)])
         if "Traceback" in stderr or rc not in (0, 1):
             not_full.append(f"{e['id']}: exit {rc}: {stderr.strip().splitlines()[-1:]}")
-        skipped = [f for f in findings if f["rule"] in ("compile-error", "rule-not-run")]
-        if skipped:
-            not_full.append(f"{e['id']}: " + "; ".join(f"{f['rule']} {f['line']}: {f['message']}" for f in skipped))
+        errors = [f"line {f['line']}" for f in findings if f["rule"] == "compile-error" and f["severity"] == "error"]
+        not_run = [f["message"].split(" could not run")[0] for f in findings if " could not run " in f["message"]]
+        if errors or not_run:
+            not_full.append(f"{e['id']}: compile errors at {', '.join(errors) or '-'}; rules that could not run "
+                            f"everywhere: {', '.join(not_run) or 'none'}")
         want = [lab for lab in labels["files"].get(e["id"], []) if lab["rule"] in rules]
-        got = [f for f in findings if f["rule"] in rules]
+        # a "could not run" note (compile-error, severity note) is not a finding to score
+        got = [f for f in findings if f["rule"] in rules and f["severity"] != "note"]
         used: set[int] = set()
         for lab in want:
             lab_lines = set(lab["lines"])
@@ -157,7 +160,7 @@ def score(verbose: bool) -> int:
         rec = f"{t / (t + n):.2f}" if t + n else "-"
         pre = f"{t / (t + p):.2f}" if t + p else "-"
         print(f"{rule:28} {t + n:6d} {t + p:6d} {t:4d} {rec:>7} {pre:>9}")
-    print("files that did not lint fully:" if not_full else "every file linted fully")
+    print("files that did not lint fully (as the linter reports it):" if not_full else "every file linted fully")
     for line in not_full:
         print("  " + line)
     return 0

@@ -39,7 +39,14 @@ def summary_line(result: LintResult) -> str:
         return f"no findings in {files}"
     points = result.penalty
     deduction = f"-{_plural(points, 'point')}" if points else "0 points"
-    return f"{_plural(len(result.findings), 'finding')} in {files}, estimated deduction: {deduction}"
+    line = f"{_plural(len(result.findings), 'finding')} in {files}, estimated deduction: {deduction}"
+    errors = sum(1 for f in result.findings if f.severity == "error")
+    if errors:
+        line += (
+            f" ({_plural(errors, 'compile error')}, not counted: they are not coding-standard "
+            "deductions, and the code they are in was not fully linted)"
+        )
+    return line
 
 
 def format_finding(f: Finding) -> str:
@@ -53,7 +60,19 @@ def format_finding(f: Finding) -> str:
 
 
 def text_report(result: LintResult) -> str:
-    blocks = [format_finding(f) for f in result.findings]
+    blocks: list[str] = []
+    not_run = False  # the last block lists rules that could not run: one line each
+    for f in result.findings:
+        if f.rule == "compile-error" and f.severity == "note":
+            line = f"{f.loc}: {f.rule} {f.message}"
+            if not_run:
+                blocks[-1] += "\n" + line
+            else:
+                blocks.append(line)
+            not_run = True
+            continue
+        blocks.append(format_finding(f))
+        not_run = False
     blocks.append(summary_line(result))
     return "\n\n".join(blocks) + "\n"
 

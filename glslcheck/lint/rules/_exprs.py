@@ -56,10 +56,24 @@ class ProgramFacts:
             d for d in model.ast.decls if isinstance(d, A.FunctionDefinition) and d.body is not None
         ]
         self._fns: dict[int, FnFacts] = {}
+        errors = [d.loc for d in model.errors if d.loc is not None]
+        # functions with a compile error: their types are partly unknown (error recovery)
+        self.broken: set[int] = {
+            id(d) for d in self.definitions
+            if any(e.path == d.loc.path and d.loc.line <= e.line <= (d.loc.end_line or d.loc.line) for e in errors)
+        }
 
-    def in_file(self, path: str) -> list["FnFacts"]:
-        """Facts of every function defined in the file `path`, in source order."""
-        return [self.fn(d) for d in self.definitions if d.loc.path == path]
+    def in_file(self, path: str, *, with_broken: bool = False) -> list["FnFacts"]:
+        """Facts of every function defined in the file `path`, in source order; a function with
+        a compile error only `with_broken` (for rules that read names and scopes only)."""
+        return [
+            self.fn(d) for d in self.definitions
+            if d.loc.path == path and (with_broken or id(d) not in self.broken)
+        ]
+
+    def broken_in_file(self, path: str) -> list[A.FunctionDefinition]:
+        """The functions defined in `path` that have a compile error, in source order."""
+        return [d for d in self.definitions if d.loc.path == path and id(d) in self.broken]
 
     def fn(self, definition: A.FunctionDefinition) -> "FnFacts":
         f = self._fns.get(id(definition))
@@ -83,7 +97,10 @@ def facts(ctx: Any) -> ProgramFacts:
 
 
 class _NoFacts:
-    def in_file(self, path: str) -> list:
+    def in_file(self, path: str, *, with_broken: bool = False) -> list:
+        return []
+
+    def broken_in_file(self, path: str) -> list:
         return []
 
 

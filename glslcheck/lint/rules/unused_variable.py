@@ -43,6 +43,7 @@ NAME = "unused-variable"
 PENALTY = 0
 SEVERITY = "note"
 NEEDS = "ast"
+READS = "program"  # a read in code that does not compile may be missing
 
 _PASSES = ("Image", "Buffer A", "Buffer B", "Buffer C", "Buffer D")
 
