@@ -91,11 +91,32 @@ _PLACES = re.compile(r"\blines? ((?:\d+(?:, | and )?)+)")
 def finding_lines(f: dict) -> set[int]:
     """The lines a finding points at: its own, and the places its message or JSON lists."""
     lines = {f["line"]}
-    lines.update(p["line"] for p in f.get("places", ()))
+    lines.update(n["line"] for n in f.get("notes", ()))
     if f["rule"] in ("repeated-expression", "loop-invariant"):
         for m in _PLACES.finditer(f["message"]):
             lines.update(int(n) for n in re.findall(r"\d+", m.group(1)))
     return lines
+
+
+def match(labels: list[dict], findings: list[dict]) -> dict[int, int]:
+    """A maximum matching of labels to findings (label index -> finding index): same rule and a
+    shared line; augmenting paths, so the order of labels and findings does not matter."""
+    can = [[i for i, f in enumerate(findings) if f["rule"] == lab["rule"] and finding_lines(f) & set(lab["lines"])]
+           for lab in labels]
+    owner: dict[int, int] = {}  # finding -> label
+
+    def augment(j: int, seen: set[int]) -> bool:
+        for i in can[j]:
+            if i not in seen:
+                seen.add(i)
+                if i not in owner or augment(owner[i], seen):
+                    owner[i] = j
+                    return True
+        return False
+
+    for j in range(len(labels)):
+        augment(j, set())
+    return {j: i for i, j in owner.items()}
 
 
 def lint_json(paths: list[Path]) -> tuple[list[dict], str, int]:
@@ -131,20 +152,15 @@ def score(verbose: bool) -> int:
         want = [lab for lab in labels["files"].get(e["id"], []) if lab["rule"] in rules]
         # a "could not run" note (compile-error, severity note) is not a finding to score
         got = [f for f in findings if f["rule"] in rules and f["severity"] != "note"]
-        used: set[int] = set()
-        for lab in want:
-            lab_lines = set(lab["lines"])
-            hit = next(
-                (i for i, f in enumerate(got) if i not in used and f["rule"] == lab["rule"] and finding_lines(f) & lab_lines),
-                None,
-            )
-            if hit is None:
+        pairs = match(want, got)
+        used = set(pairs.values())
+        for j, lab in enumerate(want):
+            if j in pairs:
+                tp[lab["rule"]] += 1
+            else:
                 fn[lab["rule"]] += 1
                 if verbose:
                     print(f"  missed  {e['id']}:{lab['lines'][0]} {lab['rule']}: {lab['why']}")
-            else:
-                used.add(hit)
-                tp[lab["rule"]] += 1
         for i, f in enumerate(got):
             if i not in used:
                 fp[f["rule"]] += 1
