@@ -4,6 +4,13 @@ Owns the scanner the parser runs on, and the one lexical rule the grammar cannot
 IDENTIFIER that names a declared struct is a TYPE_NAME (the spec's TYPE_NAME token, section 9),
 and a word reserved for future use (3.8) cannot be a name.
 
+The struct-name rule is scope-aware, as C lexers track typedef names: a variable or parameter
+may reuse a struct's name in an inner scope (spec 4.2.2-4.2.3: the inner name hides the type),
+as in `bool hit(in sphere sphere) { return sphere.radius > 0.0; }`. A struct name right after a
+type (`sphere sphere`: two types are never adjacent) is the declared name, an IDENTIFIER, and
+the type name stays hidden until that scope closes: the block's `}` for a local, the function
+body's `}` (or the prototype's `;`) for a parameter.
+
 The terminals, their regular expressions, priorities and names all come from the grammar, as
 Lark loads it (grammar/glsl.lark); `lexer_tables` arranges them for speed ahead of time
 (parse_tables.py ships the result, so Lark is not imported at run time):
@@ -32,6 +39,9 @@ import re
 from dataclasses import dataclass
 
 from .builtins import RESERVED_WORDS
+from .types import BY_NAME
+
+_TYPE_WORDS = frozenset(BY_NAME)  # a word after one of these (or a TYPE_NAME) is a declared name
 
 IDENTIFIER = "IDENTIFIER"
 TYPE_NAME = "TYPE_NAME"
@@ -228,6 +238,11 @@ class Lexer:
         rfind = text.rfind
         struct_names: set[str] = set()
         after_struct = False
+        # scopes: a struct name hidden by a variable or parameter of that name, and the brace
+        # depth at which it shows again (a parameter's: its function's depth, after the body)
+        depth = parens = 0
+        hidden: list[tuple[str, int, bool]] = []  # (name, depth it shows again at, parameter)
+        prev_type = False  # the previous token is a type: a struct name now is a declared name
         error: Exception | None = None
         line = 1
         line_start = 0  # the position where `line` starts
@@ -254,7 +269,11 @@ class Lexer:
                         struct_names.add(value)
                         after_struct = False
                     elif value in struct_names:
-                        kind = TYPE_NAME
+                        if prev_type and (depth > 0 or parens > 0):
+                            struct_names.discard(value)  # `sphere sphere`: hides the type
+                            hidden.append((value, depth if parens else depth - 1, parens > 0))
+                        else:
+                            kind = TYPE_NAME
                     if value in reserved:
                         error = ReservedWordError(self._token(kind, value, start, end, line, line_start))
                         break
@@ -263,9 +282,12 @@ class Lexer:
                 names = literals.get(kind)
                 if names is not None:
                     kind = names[value]
+                    if hidden or value in "{}();":
+                        depth, parens = self._scope(value, depth, parens, hidden, struct_names)
                 elif kind == error_kind:
                     error = UnexpectedCharacters(text, start, line, start - line_start + 1, self.allowed)
                     break
+            prev_type = kind == TYPE_NAME or value in _TYPE_WORDS
             tok = _new_str(Token, value)
             tok.type = kind
             tok.value = value
@@ -280,6 +302,27 @@ class Lexer:
             tok.end_column = end - line_start + 1
             append(tok)
         return Tokens(text, tokens, error)
+
+    @staticmethod
+    def _scope(value: str, depth: int, parens: int, hidden: list, struct_names: set[str]) -> tuple[int, int]:
+        """Brace and parenthesis depth after the punctuation `value`; a struct name hidden in a
+        scope that closes here is a type name again."""
+        if value == "{":
+            depth += 1
+        elif value == "}":
+            depth -= 1
+        elif value == "(":
+            parens += 1
+        elif value == ")":
+            parens = max(parens - 1, 0)
+        if value in "};" and parens == 0:
+            while hidden:
+                name, show, parameter = hidden[-1]
+                if not ((value == "}" and depth <= show) or (value == ";" and parameter and depth == show)):
+                    break
+                struct_names.add(name)
+                hidden.pop()
+        return depth, parens
 
     @staticmethod
     def _token(kind: str, value: str, start: int, end: int, line: int, line_start: int) -> Token:

@@ -126,10 +126,14 @@ def read_source(path: str | os.PathLike, tab: str | None = None) -> Source:
 
 _VERSION_RE = re.compile(r"^[ \t]*#[ \t]*version\b", re.M)
 _MAIN_RE = re.compile(r"\bvoid\s+main\s*\(\s*(void\s*)?\)")
+_COMMENT_RE = re.compile(r"/\*.*?(\*/|\Z)|//[^\n]*", re.S)
 
 
 def _is_plain_glsl(text: str) -> bool:
-    return bool(_VERSION_RE.search(text)) and bool(_MAIN_RE.search(text))
+    """Own `#version` and `main()` in the code: a `main()` or `#version` kept in a comment (the
+    wrapper a student pasted as a note) does not make a Shadertoy tab a plain GLSL file."""
+    code = _COMMENT_RE.sub(" ", text)
+    return bool(_VERSION_RE.search(code)) and bool(_MAIN_RE.search(code))
 
 
 def _is_tab_file(p: Path) -> bool:

@@ -9,11 +9,19 @@ tree: `ctx.ast is not None`), then "suppressions" — turns each `Diagnostic` a 
 a `Finding` (the rule's name, severity and penalty), and drops the findings a
 `glslcheck: ignore[...]` comment silences. Reporting is `report.py`'s job; the engine never
 modifies a file.
+
+A file that does not compile still gets every finding the linter can make: its compile errors
+come first (rule `compile-error`, severity error, no penalty), the AST rules run on every
+function that checks (a function with an error is left out; the uniform rule, which needs only
+names and scopes, reads it too), and one `compile-error` note per rule names the functions it
+could not run in. A syntax error drops the one top-level declaration it is in (a function keeps
+its prototype, so its callers still check) and the parse is tried again (`program_tree`).
 """
 
 from __future__ import annotations
 
 import os
+import re
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any, Iterable, Mapping, Sequence
@@ -69,6 +77,8 @@ class LintContext:
     suppressions: list[Suppression] = field(default_factory=list)
     rules_run: frozenset[str] = frozenset()  # rules whose findings were checked for suppression
     known_rules: frozenset[str] = frozenset()
+    compile_errors: list[Diagnostic] = field(default_factory=list)  # this file's, in line order
+    dropped: list[tuple[str, int, int, str]] = field(default_factory=list)  # by syntax recovery
 
     @property
     def path(self) -> str:
@@ -94,48 +104,111 @@ class LintContext:
         return Location(self.path, line, column, end_line, end_column)
 
 
+@dataclass(slots=True)
+class ProgramTree:
+    """What the AST rules of one file read: the tree and model of its program (None when not even
+    recovery gave a tree), the program's compile errors, and the declarations recovery dropped
+    (path, first line, last line, name)."""
+
+    ast: Any = None
+    model: Any = None
+    errors: list[Diagnostic] = field(default_factory=list)
+    dropped: list[tuple[str, int, int, str]] = field(default_factory=list)
+
+
 def syntax_tree(source: Source, shader: Shader | None) -> tuple[Any, Any]:
-    """The parse tree and semantic model that NEEDS = "ast" rules read, or (None, None).
+    """The parse tree and semantic model that NEEDS = "ast" rules read, or (None, None); see
+    `program_tree` (this is its tree and model when the program compiles)."""
+    tree = program_tree(source, shader)
+    return (tree.ast, tree.model) if not tree.errors else (None, None)
+
+
+def program_tree(source: Source, shader: Shader | None) -> ProgramTree:
+    """The tree, model and compile errors of the program `source` belongs to.
 
     A pass tab (Image, Buffer A..D, or a plain GLSL file) is parsed and checked as Shadertoy
     compiles it: Common first, then the tab. A Common tab is linted inside the first pass that
     includes it (Image, else a Buffer), so its functions are seen with their callers; alone
     when the shader has no pass tab. The tree covers every file of the program: AST rules report
     only nodes whose `loc.path` is the linted file. A program is parsed and checked once for all
-    its files (a small cache keyed by the texts). A file that does not parse or check gets
-    (None, None): its errors are `glslcheck check`'s to report, and the text rules still run.
+    its files (a small cache keyed by the texts). A syntax error drops its top-level declaration
+    and the parse is retried (at most `_MAX_RECOVERIES` times); type errors are collected by the
+    checker, which goes on with the next statement.
     """
     if shader is None:
-        return None, None
+        return ProgramTree()
     tab = source.tab
     if tab == "Common":
         tab = next((t for t in _PASS_TABS if t in shader.tabs), "Common")
     elif tab not in _PASS_TABS:
-        return None, None  # Sound and Cube A tabs are not rendered by glslcheck
+        return ProgramTree()  # Sound and Cube A tabs are not rendered by glslcheck
     try:
         units = shader.units_for(tab)
     except Exception:  # noqa: BLE001 - an odd shader folder: lint the text only
-        return None, None
+        return ProgramTree()
     key = (tab, tuple((u.path, u.text) for u in units))
     if key in _TREES:
         return _TREES[key]
-    from ..check import check
-    from ..diagnostics import GlslError
-    from ..parse import parse_units
-
-    try:
-        model = check(parse_units(units), tab, collect=True)
-        tree = (None, None) if model.errors else (model.ast, model)
-    except (GlslError, RecursionError):
-        tree = (None, None)
+    tree = _build_tree(units, tab)
+    for u in units:  # recovery parsed blanked copies: quote the user's own text
+        register_source(u.path, u.text)
     if len(_TREES) >= 8:
         _TREES.clear()
     _TREES[key] = tree
     return tree
 
 
+_MAX_RECOVERIES = 8
+
+
+def _build_tree(units: list[Source], tab: str) -> ProgramTree:
+    from ..check import check
+    from ..diagnostics import GlslError
+    from ..parse import parse_units
+    from .recover import drop_declaration
+
+    errors: list[Diagnostic] = []
+    dropped: list[tuple[str, int, int, str]] = []
+    for _ in range(_MAX_RECOVERIES + 1):
+        try:
+            parsed = parse_units(units)
+            break
+        except GlslError as e:
+            errors.extend(d for d in e.diagnostics if d.severity == "error")
+            loc = next((d.loc for d in e.diagnostics if d.loc is not None), None)
+            units, region = drop_declaration(units, loc, dropped) if loc is not None else (units, None)
+            if region is None:
+                return ProgramTree(errors=errors, dropped=dropped)
+            dropped.append(region)
+        except RecursionError:
+            return ProgramTree(errors=errors, dropped=dropped)
+    else:
+        return ProgramTree(errors=errors, dropped=dropped)
+    try:
+        model = check(parsed, tab, collect=True)
+    except (GlslError, RecursionError) as e:
+        return ProgramTree(errors=errors + list(getattr(e, "diagnostics", [])), dropped=dropped)
+    if dropped:  # a kept prototype has no body: "declared but not defined" is not the user's error
+        texts = {u.path: u.text.split("\n") for u in units}
+        model.diagnostics = [d for d in model.diagnostics if not _in_dropped(d, dropped, texts)]
+    model.diagnostics[:0] = errors
+    return ProgramTree(model.ast, model, model.errors, dropped)
+
+
+def _in_dropped(d: Diagnostic, dropped: list[tuple[str, int, int, str]], texts: dict[str, list[str]]) -> bool:
+    """Whether a check error comes from recovery: inside a dropped declaration, or a call of a
+    function whose body was dropped (its kept prototype has no definition)."""
+    if d.loc is None:
+        return False
+    if any(d.loc.path == path and first <= d.loc.line <= last for path, first, last, _ in dropped):
+        return True
+    lines = texts.get(d.loc.path, [])
+    at = lines[d.loc.line - 1][d.loc.column - 1 :] if 0 < d.loc.line <= len(lines) else ""
+    return "definition" in d.message and any(re.match(rf"{name}\s*\(", at) for *_, name in dropped)
+
+
 _PASS_TABS = ("Image", *BUFFER_TABS, "GLSL")  # Common is linted inside the first one present
-_TREES: dict[tuple, tuple[Any, Any]] = {}  # syntax_tree's cache: (tab, files' texts) -> tree
+_TREES: dict[tuple, ProgramTree] = {}  # program_tree's cache: (tab, files' texts) -> tree
 
 
 def lint_source(
@@ -144,8 +217,12 @@ def lint_source(
     shader: Shader | None = None,
     ast: Any = None,
     model: Any = None,
+    *,
+    errors: Sequence[Diagnostic] = (),
+    dropped: Sequence[tuple[str, int, int, str]] = (),
 ) -> list[Finding]:
-    """Lint one file; findings in line order."""
+    """Lint one file; its compile errors (`errors`, of the program: this file's are reported)
+    first, then every finding in line order. `dropped`: declarations syntax recovery took out."""
     config = config or LintConfig()
     rules = all_rules()
     if source_line(source.path, 1) is None:
@@ -162,17 +239,21 @@ def lint_source(
         ast=ast,
         model=model,
         known_rules=frozenset(rules),
+        compile_errors=[d for d in errors if d.loc is not None and d.loc.path == source.path],
+        dropped=[d for d in dropped if d[0] == source.path],
     )
     ctx.suppressions = find_suppressions(source.path, text_scan.comments)
     findings: list[Finding] = []
     ran: set[str] = set()
     for phase in PHASES:
-        if phase == "ast" and ctx.ast is None:
-            continue
         if phase == "suppressions":
             ctx.rules_run = frozenset(ran)
         for rule in rules.values():
             if rule.needs != phase or not config.enabled(rule.name):
+                continue
+            if phase == "ast" and config.enabled(COMPILE_ERROR) and (ctx.compile_errors or ctx.dropped):
+                findings.extend(_not_run(rule, ctx))
+            if phase == "ast" and (ctx.ast is None or (rule.reads == "program" and _has_errors(ctx))):
                 continue
             ran.add(rule.name)
             for d in rule.check(ctx):
@@ -180,8 +261,51 @@ def lint_source(
                 if not is_suppressed(f, ctx.suppressions):
                     findings.append(f)
     order = {name: i for i, name in enumerate(rules)}  # ties in registry-table order
-    findings.sort(key=lambda f: (f.loc.line, f.loc.column, order[f.rule]))
+    # compile errors first, then which rules could not run, then the findings in line order
+    first = {(COMPILE_ERROR, "error"): 0, (COMPILE_ERROR, "note"): 1}
+    findings.sort(key=lambda f: (first.get((f.rule, f.severity), 2), f.loc.line, f.loc.column, order[f.rule]))
     return findings
+
+
+COMPILE_ERROR = "compile-error"
+
+
+def _has_errors(ctx: LintContext) -> bool:
+    return bool(ctx.compile_errors or ctx.dropped or (ctx.model is not None and ctx.model.errors))
+
+
+def _not_run(rule: Rule, ctx: LintContext) -> list[Finding]:
+    """One note when the AST rule `rule` could not run on all of this file: on which functions
+    (they do not compile), or on the whole file (no tree, or a rule that reads the whole
+    program, which has errors)."""
+    first = (ctx.compile_errors or [None])[0]
+    if ctx.ast is None or (rule.reads == "program" and _has_errors(ctx)):
+        if first is None:
+            return []
+        why = "the file does not parse" if ctx.ast is None else "it reads the whole program, which does not compile"
+        where, loc = "on this file", first.loc
+    else:
+        from .rules._exprs import facts
+
+        broken = [] if rule.reads == "names" else facts(ctx).broken_in_file(ctx.path)
+        places = [(d.proto.name, d.loc.line) for d in broken]
+        places += [(name, line) for _, line, _, name in ctx.dropped]
+        if not places:
+            return []
+        places.sort(key=lambda p: p[1])
+        where = "in " + ", ".join(f"'{name}' (line {line})" for name, line in places)
+        why = "it does not compile" if len(places) == 1 else "they do not compile"
+        loc = ctx.location(places[0][1])
+    return [
+        Finding(
+            message=f"{rule.name} could not run {where}: {why}",
+            loc=loc,
+            severity="note",
+            rule=COMPILE_ERROR,
+            help="fix the compile errors above, then lint again for this rule's findings there",
+            penalty=0,
+        )
+    ]
 
 
 def _finding(rule: Rule, d: Diagnostic, ctx: LintContext) -> Finding:
@@ -238,8 +362,13 @@ def lint_paths(
                 continue
             seen.add(real)
             linted.append(source.path)
-            ast, model = syntax_tree(source, shader)
-            findings.extend(lint_source(source, finder.for_file(source.path), shader, ast, model))
+            tree = program_tree(source, shader)
+            findings.extend(
+                lint_source(
+                    source, finder.for_file(source.path), shader, tree.ast, tree.model,
+                    errors=tree.errors, dropped=tree.dropped,
+                )
+            )
     return LintResult(findings, len(linted), linted)
 
 

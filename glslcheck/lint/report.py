@@ -5,7 +5,7 @@ Detection is the engine's job; this module only formats. Formats (`FORMATS`):
     text    `path:line:col: rule-name message`, the source line with `^~~~` under the span, a
             `help:` line, and a closing summary with the estimated deduction
     json    {"findings": [{path, line, column, end_line, end_column, rule, severity, penalty,
-            message, help}], "summary": {files, findings, penalty}}
+            message, help, notes: [{line, column, message}]}], "summary": {files, findings, penalty}}
     sarif   SARIF 2.1.0 for GitHub code scanning (one run; every rule in tool.driver.rules)
     github  GitHub Actions workflow commands (`::warning file=...::message`)
 
@@ -39,7 +39,14 @@ def summary_line(result: LintResult) -> str:
         return f"no findings in {files}"
     points = result.penalty
     deduction = f"-{_plural(points, 'point')}" if points else "0 points"
-    return f"{_plural(len(result.findings), 'finding')} in {files}, estimated deduction: {deduction}"
+    line = f"{_plural(len(result.findings), 'finding')} in {files}, estimated deduction: {deduction}"
+    errors = sum(1 for f in result.findings if f.severity == "error")
+    if errors:
+        line += (
+            f" ({_plural(errors, 'compile error')}, not counted: they are not coding-standard "
+            "deductions, and the code they are in was not fully linted)"
+        )
+    return line
 
 
 def format_finding(f: Finding) -> str:
@@ -53,7 +60,19 @@ def format_finding(f: Finding) -> str:
 
 
 def text_report(result: LintResult) -> str:
-    blocks = [format_finding(f) for f in result.findings]
+    blocks: list[str] = []
+    not_run = False  # the last block lists rules that could not run: one line each
+    for f in result.findings:
+        if f.rule == "compile-error" and f.severity == "note":
+            line = f"{f.loc}: {f.rule} {f.message}"
+            if not_run:
+                blocks[-1] += "\n" + line
+            else:
+                blocks.append(line)
+            not_run = True
+            continue
+        blocks.append(format_finding(f))
+        not_run = False
     blocks.append(summary_line(result))
     return "\n\n".join(blocks) + "\n"
 
@@ -71,6 +90,10 @@ def finding_record(f: Finding) -> dict:
         "penalty": f.penalty,
         "message": f.message,
         "help": f.help,
+        # the other places a finding is about (every evaluation of a repeated value)
+        "notes": [
+            {"line": n.loc.line, "column": n.loc.column, "message": n.message} for n in f.notes if n.loc is not None
+        ],
     }
 
 

@@ -137,7 +137,7 @@ def test_repeated_expression_message_names_the_first_line():
     text = ("vec3 f(in vec3 ro, in vec3 rd, in float t)\n{\n    vec3 a = ro + t * rd;\n"
             "    vec3 b = (ro + t * rd) * 2.0;\n    return a + b;\n}\n" + MAIN)
     (finding,) = _findings(text, ["repeated-expression"])
-    assert finding.loc.line == 4 and "line 3" in finding.message and "reuse 'a'" in finding.help
+    assert finding.loc.line == 4 and "lines 3 and 4" in finding.message and "reuse 'a'" in finding.help
 
 
 # --- _exprs: keys, dominance, sign analysis -------------------------------------------------

@@ -49,7 +49,8 @@ def test_json_format_exact_shape(linted):
     doc = json.loads(render(linted, "json"))
     assert set(doc) == {"findings", "summary"}
     assert doc["summary"] == {"files": 2, "findings": 3, "penalty": 2}
-    keys = ["path", "line", "column", "end_line", "end_column", "rule", "severity", "penalty", "message", "help"]
+    keys = ["path", "line", "column", "end_line", "end_column", "rule", "severity", "penalty", "message", "help",
+            "notes"]
     for f in doc["findings"]:
         assert list(f) == keys
     comment = next(f for f in doc["findings"] if f["rule"] == "missing-comment")
@@ -64,6 +65,7 @@ def test_json_format_exact_shape(linted):
         "penalty": 1,
         "message": "2 lines of code without a comment (lines 1-3)",
         "help": "add a comment above saying why these lines are there",
+        "notes": [],
     }
     credit = next(f for f in doc["findings"] if f["rule"] == "missing-credit")
     assert (credit["severity"], credit["penalty"]) == ("note", 0)

@@ -57,6 +57,6 @@ def test_rule_module_contract(name: str):
     assert re.fullmatch(r"[a-z]+(-[a-z]+)*", name)
     assert list(doc_sections(rule.doc)) == list(SECTIONS)
     assert all(doc_sections(rule.doc).values())
-    assert (rule.severity, rule.penalty > 0) in (("warning", True), ("note", False))
+    assert (rule.severity, rule.penalty > 0) in (("warning", True), ("note", False), ("error", False))
     assert rule.needs in ("text", "ast", "suppressions")
     assert rule.summary.endswith(".")

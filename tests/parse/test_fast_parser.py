@@ -28,6 +28,7 @@ from glslcheck.parse import get_parser, grammar_text
 from glslcheck.parse_tables import LARK_OPTIONS
 from glslcheck.preprocess import preprocess
 from glslcheck.sources import find_shaders
+from glslcheck.types import BY_NAME
 
 ROOT = Path(__file__).resolve().parents[2]
 SOURCES = sorted(p for p in (ROOT / "tests" / "corpus").iterdir() if p.is_file()) + sorted(
@@ -42,7 +43,11 @@ class _Reserved(Exception):
 
 
 class _Reference(PostLex):
-    """IDENTIFIER -> TYPE_NAME after `struct S`, reserved words rejected, history kept."""
+    """IDENTIFIER -> TYPE_NAME after `struct S`, reserved words rejected, history kept.
+
+    Scopes: a struct name declared as a variable or parameter (`S S`, right after a type)
+    is an IDENTIFIER, and not a type name until its scope closes (`}` of its block, or of its
+    function's body for a parameter, or a prototype's `;`)."""
 
     def reset(self) -> None:
         self.struct_names: set[str] = set()
@@ -51,15 +56,30 @@ class _Reference(PostLex):
 
     def process(self, stream):
         after_struct = False
+        after_type = False
+        braces = parens = 0
+        hiding: list[tuple[str, int, bool]] = []  # (name, braces when it shows again, parameter)
         for tok in stream:
             if tok.type == "IDENTIFIER":
                 if after_struct:
                     self.struct_names.add(tok.value)
+                elif tok.value in self.struct_names and after_type and (braces or parens):
+                    self.struct_names.remove(tok.value)
+                    hiding.append((tok.value, braces if parens else braces - 1, parens > 0))
                 elif tok.value in self.struct_names:
                     tok = Token.new_borrow_pos("TYPE_NAME", tok.value, tok)
                 if tok.value in RESERVED_WORDS:
                     raise _Reserved(tok)
             after_struct = tok.type == "STRUCT"
+            after_type = tok.type == "TYPE_NAME" or tok.value in BY_NAME
+            braces += {"{": 1, "}": -1}.get(tok.value, 0)
+            parens = max(parens + {"(": 1, ")": -1}.get(tok.value, 0), 0)
+            for name, shows, parameter in reversed(list(hiding)):
+                if parens or not ((tok.value == "}" and braces <= shows)
+                                  or (tok.value == ";" and parameter and braces == shows)):
+                    break
+                self.struct_names.add(name)
+                hiding.pop()
             if tok.value in ("{", "(", "["):
                 self.open_brackets.append(tok)
             elif tok.value in ("}", ")", "]") and self.open_brackets:

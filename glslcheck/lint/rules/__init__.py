@@ -9,6 +9,10 @@ A rule is a module in this package that declares
     NEEDS     "text" (runs on every file), "ast" (runs only when the engine has a parse tree
               and semantic model for the file) or "suppressions" (runs last, reading which
               suppressions were used)
+    READS     optional, for an "ast" rule in a program with compile errors: "functions" (the
+              default: it reads types, so it runs on the functions that check), "names" (names
+              and scopes only: it runs on every function) or "program" (it needs the whole
+              program to be right, so it does not run at all)
     a docstring: one summary line, then the sections `## What it does`, `## Why is this bad?`,
               `## Example` and `## Use instead` (docs/rules.md and `glslcheck rule` show it)
     check(ctx) -> Iterable[Diagnostic]   ctx is a `glslcheck.lint.engine.LintContext`
@@ -27,6 +31,7 @@ from typing import Callable, Iterable
 
 # Every rule: (NAME, module in this package). The order is the order docs and `--all` list them.
 RULE_TABLE: tuple[tuple[str, str], ...] = (
+    ("compile-error", "compile_error"),
     ("missing-comment", "missing_comment"),
     ("missing-header", "missing_header"),
     ("missing-credit", "missing_credit"),
@@ -47,8 +52,9 @@ RULE_TABLE: tuple[tuple[str, str], ...] = (
 )
 
 SECTIONS = ("What it does", "Why is this bad?", "Example", "Use instead")
-SEVERITIES = {"warning": "course rule", "note": "worth knowing"}
+SEVERITIES = {"error": "compile error", "warning": "course rule", "note": "worth knowing"}
 NEEDS = ("text", "ast", "suppressions")
+READS = ("functions", "names", "program")
 _SECTION_RE = re.compile(r"^## (.+?)\s*$", re.M)
 
 
@@ -64,6 +70,7 @@ class Rule:
     doc: str  # the docstring after the summary line (markdown)
     check: Callable[..., Iterable]
     module: ModuleType
+    reads: str = "functions"
 
     @property
     def kind(self) -> str:
@@ -97,6 +104,8 @@ def _load(name: str, module_name: str) -> Rule:
         problems.append("a course rule (PENALTY > 0) is a warning, a worth-knowing one (PENALTY 0) a note")
     if getattr(mod, "NEEDS", None) not in NEEDS:
         problems.append(f"NEEDS must be one of {', '.join(NEEDS)}")
+    if getattr(mod, "READS", "functions") not in READS:
+        problems.append(f"READS must be one of {', '.join(READS)}")
     if not callable(getattr(mod, "check", None)):
         problems.append("no check(ctx) function")
     missing = [s for s in SECTIONS if s not in doc_sections(body)]
@@ -104,7 +113,10 @@ def _load(name: str, module_name: str) -> Rule:
         problems.append(f"the docstring lacks the section(s) {', '.join(missing)}")
     if problems:
         raise TypeError(f"lint rule {where}: " + "; ".join(problems))
-    return Rule(name, penalty, severity, mod.NEEDS, summary.strip(), body.strip(), mod.check, mod)
+    return Rule(
+        name, penalty, severity, mod.NEEDS, summary.strip(), body.strip(), mod.check, mod,
+        getattr(mod, "READS", "functions"),
+    )
 
 
 @cache

@@ -56,10 +56,24 @@ class ProgramFacts:
             d for d in model.ast.decls if isinstance(d, A.FunctionDefinition) and d.body is not None
         ]
         self._fns: dict[int, FnFacts] = {}
+        errors = [d.loc for d in model.errors if d.loc is not None]
+        # functions with a compile error: their types are partly unknown (error recovery)
+        self.broken: set[int] = {
+            id(d) for d in self.definitions
+            if any(e.path == d.loc.path and d.loc.line <= e.line <= (d.loc.end_line or d.loc.line) for e in errors)
+        }
 
-    def in_file(self, path: str) -> list["FnFacts"]:
-        """Facts of every function defined in the file `path`, in source order."""
-        return [self.fn(d) for d in self.definitions if d.loc.path == path]
+    def in_file(self, path: str, *, with_broken: bool = False) -> list["FnFacts"]:
+        """Facts of every function defined in the file `path`, in source order; a function with
+        a compile error only `with_broken` (for rules that read names and scopes only)."""
+        return [
+            self.fn(d) for d in self.definitions
+            if d.loc.path == path and (with_broken or id(d) not in self.broken)
+        ]
+
+    def broken_in_file(self, path: str) -> list[A.FunctionDefinition]:
+        """The functions defined in `path` that have a compile error, in source order."""
+        return [d for d in self.definitions if d.loc.path == path and id(d) in self.broken]
 
     def fn(self, definition: A.FunctionDefinition) -> "FnFacts":
         f = self._fns.get(id(definition))
@@ -83,7 +97,10 @@ def facts(ctx: Any) -> ProgramFacts:
 
 
 class _NoFacts:
-    def in_file(self, path: str) -> list:
+    def in_file(self, path: str, *, with_broken: bool = False) -> list:
+        return []
+
+    def broken_in_file(self, path: str) -> list:
         return []
 
 
@@ -94,6 +111,71 @@ def _any_between(positions: list[int], lo: int, hi: int) -> bool:
     """Whether the sorted `positions` hold a value strictly between lo and hi."""
     i = bisect_right(positions, lo)
     return i < len(positions) and positions[i] < hi
+
+
+_JUMPS = (A.Return, A.Break, A.Continue, A.Discard)
+
+
+def _is_literal(e: Any) -> bool:
+    return type(e) in (A.FloatLiteral, A.IntLiteral)
+
+
+def _model_cache(model: Any, name: str) -> dict:
+    cache = model.__dict__.get(name)
+    if cache is None:
+        cache = model.__dict__[name] = {}
+    return cache
+
+
+def pure_function(model: Any, sym: Symbol, _seen: frozenset = frozenset()) -> bool:
+    """A user function whose result depends only on its arguments: `in` parameters only, no
+    write to a global, no read of a global variable that is not const (uniforms are constant in
+    a frame), and only pure functions called (`float lenSq(vec2 v) { return dot(v, v); }`)."""
+    cache = _model_cache(model, "_lint_pure")
+    if id(sym) in cache:
+        return cache[id(sym)]
+    d = sym.node
+    ok = (isinstance(d, A.FunctionDefinition) and d.body is not None and id(sym) not in _seen
+          and all(direction == "in" for _, _, direction in sym.params))
+    if ok:
+        for n in d.body.walk():
+            t = type(n)
+            if t is A.Identifier:
+                s = model.symbol_of(n)
+                if s is not None and s.kind == "global" and s.qualifier != "const":
+                    ok = False
+            elif t is A.Call:
+                target = model.call_target(n)
+                if target is None or (isinstance(target, B.Overload) and target.out_params) or (
+                        isinstance(target, Symbol) and not pure_function(model, target, _seen | {id(sym)})):
+                    ok = False
+            if not ok:
+                break
+    if not _seen:
+        cache[id(sym)] = ok
+    return ok
+
+
+def function_cost(model: Any, sym: Symbol) -> bool:
+    """Whether calling the user function costs more than an add: two operations or a costly
+    built-in in its body (a wrapper like `asPoint(v)`, `vec4(v, 1.0)`, does not)."""
+    cache = _model_cache(model, "_lint_cost")
+    if id(sym) not in cache:
+        cache[id(sym)] = False  # a recursive call (an error anyway) costs nothing more
+        ops, costly = 0, False
+        d = sym.node
+        for n in (d.body.walk() if isinstance(d, A.FunctionDefinition) and d.body is not None else ()):
+            if type(n) in (A.Binary, A.Ternary) or (type(n) is A.Unary and n.op != "+"):
+                ops += 1
+            elif type(n) is A.Call:
+                target = model.call_target(n)
+                if isinstance(target, B.Overload):
+                    ops += 1
+                    costly = costly or B.COST_ORDER[target.cost] > B.COST_ORDER[B.CHEAP]
+                elif isinstance(target, Symbol):
+                    costly = costly or function_cost(model, target)
+        cache[id(sym)] = costly or ops >= 2
+    return cache[id(sym)]
 
 
 class Write:
@@ -122,6 +204,7 @@ class FnFacts:
         self.user_calls: list[int] = []  # positions of calls to user functions
         self.loops: list[Any] = []  # loop statements, outermost first
         self.nodes: list[Any] = []  # every node in execution order
+        self.dead: list[tuple[int, int]] = []  # (enter, exit) of statements after a return/jump
         self._clock = 0
         self._keys: dict[int, Any] = {}
         self._pure: dict[int, bool] = {}
@@ -172,6 +255,13 @@ class FnFacts:
             inner = region + ((i, "loop"),)
             for child in node.children():
                 self._visit(child, inner, node)
+        elif t is A.Compound:
+            jumped = False
+            for child in node.stmts:
+                self._visit(child, region, node)
+                if jumped:  # after `return`, `break`, `continue` or `discard`: never runs
+                    self.dead.append((self.enter[id(child)], self.exit[id(child)]))
+                jumped = jumped or type(child) in _JUMPS
         elif t is A.Switch:
             self._visit(node.expr, region, node)
             case = 0
@@ -231,6 +321,11 @@ class FnFacts:
         return None, whole
 
     # -- positions and paths -------------------------------------------------------------------
+    def is_dead(self, node: Any) -> bool:
+        """`node` is in a statement after a `return` (or break/continue/discard) of its block."""
+        pos = self.enter.get(id(node), -1)
+        return any(lo <= pos <= hi for lo, hi in self.dead)
+
     def contains(self, outer: Any, inner: Any) -> bool:
         return self.enter[id(outer)] <= self.enter[id(inner)] and self.exit[id(inner)] <= self.exit[id(outer)]
 
@@ -325,7 +420,7 @@ class FnFacts:
             return False
         if t is A.Call:
             target = self.model.call_target(e)
-            if isinstance(target, Symbol) or target is None:
+            if target is None or (isinstance(target, Symbol) and not pure_function(self.model, target)):
                 return False
             if isinstance(target, B.Overload) and target.out_params:
                 return False
@@ -338,13 +433,15 @@ class FnFacts:
         if r is None:
             n, costly = 0, False
             t = type(e)
-            if t in (A.Binary, A.Ternary) or (t is A.Unary and e.op != "+"):
-                n = 1
+            if t in (A.Binary, A.Ternary) or (t is A.Unary and e.op != "+" and not _is_literal(e.operand)):
+                n = 1  # (a negative literal, `-1.0`, is a constant, not an operation)
             elif t is A.Call:
                 target = self.model.call_target(e)
                 if isinstance(target, B.Overload):
                     n = 1
                     costly = B.COST_ORDER[target.cost] > B.COST_ORDER[B.CHEAP]
+                elif isinstance(target, Symbol):  # a pure user function: what its body costs
+                    n, costly = 1, function_cost(self.model, target)
             for c in e.children():
                 cn, cc = self.op_count(c)
                 n += cn
@@ -358,6 +455,19 @@ class FnFacts:
             return False
         n, costly = self.op_count(e)
         return n >= 2 or costly
+
+    def worth_reusing(self, e: Any) -> bool:
+        """Non-trivial, or one float or vector arithmetic operation that is not a sign change
+        (`d * invI`, `light.center - position`; not `-1.0 * n`): a value a TA expects to be
+        computed once."""
+        if self.is_nontrivial(e):
+            return True
+        if type(e) is not A.Binary or e.op not in ("+", "-", "*", "/") or self.model.is_constant(e):
+            return False
+        if self.op_count(e)[0] != 1 or not is_float_type(self.model.type_of(e)):
+            return False
+        unit = [x for x in (e.left, e.right) if _numbers(self.model.const_value(x)) in ([1.0], [-1.0])]
+        return not (unit and e.op in ("*", "/"))
 
     def operands(self, e: Any) -> frozenset:
         """The variables (Symbols) an expression reads."""

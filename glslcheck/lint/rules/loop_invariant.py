@@ -74,8 +74,10 @@ def _check_function(fn) -> Iterator[Diagnostic]:
                 continue
             if not isinstance(n, A.Expr) or id(n) in targets:
                 continue
-            if not (fn.is_nontrivial(n) and fn.is_pure(n)):
+            if not (fn.worth_reusing(n) and fn.is_pure(n)) or fn.is_dead(n):
                 continue
+            if not fn.is_nontrivial(n) and not fn.contains(loop.body, n):
+                continue  # a bound like `i < n - 1`: one operation, idiomatic, hoisted by compilers
             ops = fn.operands(n)
             if any(id(s) in written for s in ops):
                 continue
@@ -86,12 +88,21 @@ def _check_function(fn) -> Iterator[Diagnostic]:
             skip_until = span[1]
             found.append((n, loop))
     found.sort(key=lambda pair: fn.enter[id(pair[0])])
+    values: dict = {}  # one finding per invariant value and loop, all its places listed
     for n, loop in found:
+        values.setdefault((fn.key(n), id(loop)), []).append((n, loop))
+    for places in values.values():
+        n, loop = places[0]
+        lines = sorted({p.loc.line for p, _ in places})
+        where = f"line {lines[0]}" if len(lines) == 1 else \
+            "lines " + ", ".join(map(str, lines[:-1])) + f" and {lines[-1]}"
+        times = "" if len(places) == 1 else f" (computed {len(places)} times in it, at {where})"
         yield Diagnostic(
             f"'{text(n)}' has the same value on every iteration of the {_LOOP_WORD[type(loop)]} "
-            f"loop at line {loop.loc.line}",
+            f"loop at line {loop.loc.line}{times}",
             n.loc,
             rule=NAME,
             severity=SEVERITY,
             help="compute it once before the loop, in a local variable, and use that inside",
+            notes=[Diagnostic("also computed here", p.loc, severity="note") for p, _ in places[1:]],
         )

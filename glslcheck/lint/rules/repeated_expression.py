@@ -72,18 +72,24 @@ def _holder_symbol(fn, first):
 
 
 _CANDIDATES = 64  # earlier occurrences tried as the one to reuse
-
-
 def check(ctx) -> Iterator[Diagnostic]:
     for fn in facts(ctx).in_file(ctx.path):
         yield from _check_function(fn)
+
+
+def _places(nodes) -> str:
+    lines = sorted({n.loc.line for n in nodes})
+    if len(lines) == 1:
+        return f"line {lines[0]}"
+    return "lines " + ", ".join(map(str, lines[:-1])) + f" and {lines[-1]}"
 
 
 def _check_function(fn) -> Iterator[Diagnostic]:
     groups: dict = {}
     targets = {id(n.target) for n in fn.nodes if type(n) is A.Assignment}
     for n in fn.nodes:
-        if isinstance(n, A.Expr) and id(n) not in targets and fn.is_nontrivial(n) and fn.is_pure(n):
+        if isinstance(n, A.Expr) and id(n) not in targets and fn.worth_reusing(n) and fn.is_pure(n) \
+                and not fn.is_dead(n):
             groups.setdefault(fn.key(n), []).append(n)
     groups = {k: v for k, v in groups.items() if len(v) > 1}
     if not groups:
@@ -91,8 +97,10 @@ def _check_function(fn) -> Iterator[Diagnostic]:
     # Largest expressions first, so a repeated expression hides its repeated parts.
     order = sorted(groups.values(), key=lambda occ: -(fn.exit[id(occ[0])] - fn.enter[id(occ[0])]))
     covered: set[int] = set()
-    found = []
+    values: list[list] = []  # one per repeated value: [first, repeats..., parts merged in]
+    owner: dict[int, list] = {}  # id of a node inside a reported occurrence -> its value
     for occ in order:
+        chains: dict[int, list] = {}  # id(first occurrence) -> the occurrences of that value
         for j, b in enumerate(occ):
             if id(b) in covered:
                 continue
@@ -103,20 +111,46 @@ def _check_function(fn) -> Iterator[Diagnostic]:
                           if fn.dominates(a, b) and not fn.written_between(a, b, operands)), None)
             if first is None:
                 continue
+            root = next((k for k, chain in chains.items() if first in chain), None)
+            chain = chains.setdefault(root if root is not None else id(first), [first] if root is None else [])
+            chain.append(b)
             covered.update(id(n) for n in b.walk())
-            found.append((b, first))
-    found.sort(key=lambda pair: fn.enter[id(pair[0])])
-    for b, first in found:
+        for chain in chains.values():
+            # a repeated part of a value already reported (sin(t) in `sin(t) * k`, both
+            # repeated) is the same inefficiency when at most one of its places is outside
+            # that value: its places join that value's finding
+            outside = [n for n in chain if id(n) not in owner]
+            host = next((owner[id(n)] for n in chain if id(n) in owner), None)
+            if host is not None and len(outside) <= 1:
+                host.extend(n for n in chain if n not in host)
+                continue
+            values.append(chain)
+            for n in chain:
+                for m in n.walk():
+                    owner.setdefault(id(m), chain)
+    values.sort(key=lambda chain: fn.enter[id(chain[1])])
+    for chain in values:
+        first, b = chain[0], chain[1]
+        same = [n for n in chain if fn.key(n) == fn.key(first)]
+        parts: dict = {}  # repeated parts merged into this value: key -> their places
+        for n in chain:
+            if fn.key(n) != fn.key(first):
+                parts.setdefault(fn.key(n), []).append(n)
         holder = _holder(fn, first)
         sym = _holder_symbol(fn, first) if holder else None
         if holder and sym is not None and not fn.written_between(fn.parent[id(first)], b, [sym]):
             fix = f"reuse '{holder}', which holds this value since line {first.loc.line}"
         else:
             fix = "compute it once into a local variable (named for what it is) and reuse that"
-        yield Diagnostic(
-            f"'{text(b)}' is computed again: the same value was computed at line {first.loc.line}",
-            b.loc,
-            rule=NAME,
-            severity=SEVERITY,
-            help=fix,
-        )
+        times = "twice" if len(same) == 2 else f"{len(same)} times"
+        message = f"'{text(first)}' is computed {times}, with the same value, at {_places(same)}"
+        for places in parts.values():
+            message += f"; its part '{text(places[0])}' also at {_places(places)}"
+        notes, seen = [], {(b.loc.line, b.loc.column)}
+        for n in chain:
+            where = (n.loc.line, n.loc.column)
+            if where not in seen:
+                seen.add(where)
+                what = "also computed here" if fn.key(n) == fn.key(first) else f"'{text(n)}' also computed here"
+                notes.append(Diagnostic(what, n.loc, severity="note"))
+        yield Diagnostic(message, b.loc, rule=NAME, severity=SEVERITY, help=fix, notes=notes)

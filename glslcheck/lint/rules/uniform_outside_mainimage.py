@@ -44,13 +44,14 @@ NAME = "uniform-outside-mainimage"
 PENALTY = 1
 SEVERITY = "warning"
 NEEDS = "ast"
+READS = "names"  # a function with a compile error is still read: uniforms are names
 
 ENTRY = "mainImage"
 
 
 def check(ctx) -> Iterator[Diagnostic]:
     model = ctx.model
-    for fn in facts(ctx).in_file(ctx.path):
+    for fn in facts(ctx).in_file(ctx.path, with_broken=True):
         name = fn.definition.proto.name
         if name == ENTRY:
             continue

@@ -38,6 +38,7 @@ NAME = "unused-function"
 PENALTY = 0
 SEVERITY = "note"
 NEEDS = "ast"
+READS = "program"  # a call in code that does not compile may be missing
 
 
 def check(ctx) -> Iterator[Diagnostic]:

@@ -44,6 +44,7 @@ NAME = "unused-variable"
 PENALTY = 0
 SEVERITY = "note"
 NEEDS = "ast"
+READS = "program"  # a read in code that does not compile may be missing
 
 
 def common_shared(ctx) -> bool:

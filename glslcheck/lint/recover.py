@@ -1,0 +1,142 @@
+"""Syntax-error recovery for the linter: drop the top-level declaration a syntax error is in.
+
+A student's file with one syntax error should still get every finding the rest of it earns.
+The LALR parser stops at the first error, so the engine (`program_tree`) asks this module to
+take the declaration holding the error out of the user's text and parses again:
+
+* a function definition keeps its prototype (`float f(in vec3 p)` + `;`), so every caller
+  still checks; only its body is blanked;
+* anything else (a struct, a global, a function whose header is the broken part, a second
+  error in a kept prototype) is blanked whole.
+
+Blanking replaces characters with spaces and keeps every newline, so every location after the
+drop still points at the user's own line and column. Declarations are found on the file's text
+with comments and preprocessor lines skipped (a macro body's braces do not count); a file whose
+braces do not balance around the error gives up (None), and the linter reports the error alone.
+"""
+
+from __future__ import annotations
+
+import re
+from dataclasses import replace
+from typing import Iterator
+
+from ..diagnostics import Location
+from ..sources import Source
+
+_CALLED_NAME = re.compile(r"([A-Za-z_]\w*)\s*\(")  # the name a function header declares
+
+
+def _code_chars(text: str) -> Iterator[tuple[int, str]]:
+    """(offset, char) of the text outside comments and preprocessor lines."""
+    i, n = 0, len(text)
+    line_start = True
+    while i < n:
+        c = text[i]
+        if text.startswith("//", i):
+            j = text.find("\n", i)
+            i = n if j < 0 else j
+            continue
+        if text.startswith("/*", i):
+            j = text.find("*/", i + 2)
+            i = n if j < 0 else j + 2
+            continue
+        if line_start and c == "#":
+            j = i
+            while True:  # a directive continues over backslash-newlines
+                k = text.find("\n", j)
+                if k < 0:
+                    j = n
+                    break
+                if text[k - 1] == "\\":
+                    j = k + 1
+                    continue
+                j = k
+                break
+            i = j
+            continue
+        if c == "\n":
+            line_start = True
+        elif not c.isspace():
+            line_start = False
+        yield i, c
+        i += 1
+
+
+def declarations(text: str) -> list[tuple[int, int, int | None]]:
+    """Top-level declarations as (start, end, body_start): [start, end) covers the declaration up
+    to its closing `;` or `}`; body_start is the offset of a function body's `{` (else None).
+    None when the braces do not balance."""
+    out: list[tuple[int, int, int | None]] = []
+    depth, start, body = 0, None, None
+    for i, c in _code_chars(text):
+        if start is None and not c.isspace():
+            start, body = i, None
+        if c == "{":
+            if depth == 0 and body is None and text[start:i].rstrip().endswith(")"):
+                body = i
+            depth += 1
+        elif c == "}":
+            depth -= 1
+            if depth < 0:
+                return out
+            if depth == 0 and body is not None:
+                out.append((start, i + 1, body))
+                start = None
+        elif c == ";" and depth == 0 and start is not None:
+            out.append((start, i + 1, None))
+            start = None
+    if start is not None:
+        out.append((start, len(text), None))
+    return out
+
+
+def _blank(text: str, a: int, b: int) -> str:
+    return text[:a] + re.sub(r"[^\n]", " ", text[a:b]) + text[b:]
+
+
+def _offset(text: str, line: int, column: int) -> int:
+    pos = 0
+    for _ in range(line - 1):
+        j = text.find("\n", pos)
+        if j < 0:
+            return len(text)
+        pos = j + 1
+    return pos + max(column - 1, 0)
+
+
+def drop_declaration(
+    units: list[Source], loc: Location, dropped: list[tuple[str, int, int, str]]
+) -> tuple[list[Source], tuple[str, int, int, str] | None]:
+    """`units` with the declaration holding `loc` dropped, and the dropped region (path, first
+    line, last line, function or declaration name); (units, None) when nothing can be dropped."""
+    index = next((i for i, u in enumerate(units) if u.path == loc.path), None)
+    if index is None:
+        return units, None
+    unit = units[index]
+    text = unit.text
+    at = _offset(text, loc.line, loc.column)
+    found = None
+    for start, end, body in declarations(text):
+        if start <= at < end or (found is None and at < start):
+            found = (start, end, body)
+            break
+    if found is None:
+        return units, None
+    start, end, body = found
+    first = text.count("\n", 0, start) + 1
+    last = text.count("\n", 0, end) + 1
+    header = text[start:body] if body is not None else text[start:end]
+    name_match = _CALLED_NAME.search(header)
+    name = name_match.group(1) if name_match else header.split("\n")[0].strip()[:40]
+    again = any(p == unit.path and f == first for p, f, _, _ in dropped)
+    if body is not None and at >= body and not again:
+        new_text = _blank(text, body + 1, end)
+        new_text = new_text[:body] + ";" + new_text[body + 1 :]
+    else:
+        new_text = _blank(text, start, end)
+    if new_text == text:
+        return units, None
+    new_units = list(units)
+    new_units[index] = replace(unit, text=new_text)
+    return new_units, (unit.path, first, last, name)
