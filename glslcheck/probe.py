@@ -333,6 +333,9 @@ def _leaves(v: Any) -> list[Any]:
     return [v]
 
 
+_TINY32 = float(np.finfo(np.float32).tiny)
+
+
 def bits_kept(v32: Any, v64: Any) -> int | None:
     """Significant bits of v64 that v32 keeps (module docstring); None when there is no float."""
     out = None
@@ -344,6 +347,9 @@ def bits_kept(v32: Any, v64: Any) -> int | None:
         if a.dtype.kind != "f" or a.shape != b.shape:
             continue
         a, b = a.astype(np.float64), b.astype(np.float64)
+        # a shadow below float32's smallest normal (2^-126) is zero in float32 (GPUs flush it)
+        b = np.where(np.abs(b) < _TINY32, 0.0, b)
+        a = np.where(np.abs(a) < _TINY32, 0.0, a)
         same = (a == b) | (np.isnan(a) & np.isnan(b))
         if same.all():
             bits = 24
@@ -416,8 +422,8 @@ def format_pixel(report: PixelReport, shader: str, inputs: Inputs) -> str:
     fx, fy = report.frag_coord
     w, h = inputs.size
     out = [f"{shader}: pixel {x},{y} from the top left (fragCoord {fx:g}, {fy:g}) of {w}x{h}, iTime {inputs.time:g}",
-           "each step: file:line, the source line, then what it did; float values in float32, "
-           "then [float64 shadow, bits of it kept]", ""]
+           "each step: file:line, the source line, then what it did; float values in float32, then "
+           "[the float64 shadow (when it differs), bits of it kept]", ""]
     _format_steps(report.steps, 0, len(report.steps), out, [None], 0)
     if report.truncated:
         out.append(f"... {report.truncated:,} more steps not recorded")
@@ -432,7 +438,9 @@ def format_pixel(report: PixelReport, shader: str, inputs: Inputs) -> str:
 
 
 def _describe(s: Step) -> str:
-    shadow = f"   [f64 {fmt(s.value64, False)}, {s.bits} bits]" if s.bits is not None else ""
+    shadow = ""
+    if s.bits is not None:  # the shadow only where it tells something the float32 value does not
+        shadow = f"   [{s.bits} bits]" if s.bits == 24 else f"   [f64 {fmt(s.value64, False)}, {s.bits} bits]"
     if s.kind == "assign":
         return f"{s.name} = {fmt(s.value)}{shadow}"
     if s.kind == "return":
