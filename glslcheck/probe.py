@@ -25,6 +25,7 @@ from __future__ import annotations
 import difflib
 import math
 import os
+import threading
 from dataclasses import dataclass, field
 from typing import Any
 
@@ -153,6 +154,7 @@ class Probe:
         self.filename = f"<glslcheck-probe {self.path}>"
         self._modules: dict[str, dict] = {}
         self._program = None
+        self._tracers = _PerThread()
 
     def module(self, precision: str) -> dict:
         from .numpy_backend.program import execute_module
@@ -180,10 +182,11 @@ class Probe:
 
         ns = self.module(precision)
         rt = ns["rt"]
+        ns["T"] = self._tracers
+        self._tracers.local.tracer = tracer
         values = inputs.values()
         uniforms = {f"u_{u}": _uniform_value(rt, u, values.get(u, UNIFORMS_BY_NAME[u].default))
                     for u in self.meta["uniforms"]}
-        ns["T"] = tracer
         lanes = frags.shape[-1]
         with rt.errstate():
             proto = State(**uniforms, lanes=1, width=1, stats=None, discard=Lanes.NO, parent=None)
@@ -262,7 +265,7 @@ class Probe:
     def nan_origins(self, inputs: Inputs) -> NanReport:
         """Render the frame, then run the traced module on its NaN/Inf pixels and group them by
         where their first NaN or Inf appeared."""
-        from .numpy_backend.program import TILE_LANES
+        from .numpy_backend.program import TILE_LANES, _pool
 
         w, h = inputs.size
         img = self.program().render(size=inputs.size, time=inputs.time, frame=inputs.frame, mouse=inputs.mouse,
@@ -284,29 +287,50 @@ class Probe:
             lx, ly, width, chunk = fx, fy, 1, TILE_LANES
         origin = np.full(len(lx), -1, np.int64)
         operation = np.full(len(lx), -1, np.int64)
-        for start in range(0, len(lx), chunk):
+
+        def scan(start: int) -> None:
             sl = slice(start, start + chunk)
             frags = np.stack([lx[sl] + 0.5, ly[sl] + 0.5])
             t = LaneTracer(frags.shape[1], self.sites)
             self.run("float32", inputs, frags, width if width == 2 else frags.shape[1], t)
             origin[sl], operation[sl] = t.origin, t.operation
-        # back to the NaN/Inf pixels only (a quad's other pixels may be fine)
-        key = {(int(a), int(b)): i for i, (a, b) in enumerate(zip(lx, ly))}
-        idx = np.array([key[(int(a), int(b))] for a, b in zip(fx, fy)])
-        groups: dict[tuple[int, int], list[int]] = {}
-        for k, (o, op) in enumerate(zip(origin[idx], operation[idx])):
-            groups.setdefault((int(o), int(op)), []).append(k)
-        for (o, op), members in groups.items():
-            m = np.array(members)
+
+        self.module("float32")  # executed once, before the threads share it
+        starts = range(0, len(lx), chunk)
+        threads = os.cpu_count() or 1
+        if threads > 1 and len(starts) > 1:
+            for f in [_pool(threads).submit(scan, s) for s in starts]:
+                f.result()
+        else:
+            for s in starts:
+                scan(s)
+        if width == 2:  # from quad lanes back to the NaN/Inf pixels (a quad's other pixels may be fine)
+            q = np.searchsorted(quads[:, 0] * (w + 2) + quads[:, 1], (fy & ~1) * (w + 2) + (fx & ~1))
+            idx = 4 * q + 2 * (fy & 1) + (fx & 1)
+            origin, operation = origin[idx], operation[idx]
+        keys = (origin + 1) * len(OPERATIONS) + operation
+        for key in np.unique(keys):
+            m = keys == key
+            o, op = int(key // len(OPERATIONS)) - 1, int(key % len(OPERATIONS))
             if o >= 0:
                 org = self.origin(o, op)
             else:
                 org = Origin(None, None, None, "", "unknown (no traced operation made it)")
-            org.pixels = len(m)
+            org.pixels = int(m.sum())
             org.box = (int(xs[m].min()), int(ys[m].min()), int(xs[m].max()), int(ys[m].max()))
             report.origins.append(org)
         report.origins.sort(key=lambda o: (-o.pixels, o.file or "", o.line or 0, o.column or 0))
         return report
+
+
+class _PerThread:
+    """The modules' `T`: the tracer of the calling thread (--nan scans chunks on threads)."""
+
+    def __init__(self) -> None:
+        self.local = threading.local()
+
+    def __getattr__(self, name: str) -> Any:
+        return getattr(self.local.tracer, name)
 
 
 def first_unstable(probe: Probe, x: int, y: int, inputs: Inputs, min_bits: int = UNSTABLE_BITS) -> Step | None:

@@ -73,6 +73,7 @@ class Site:
     expr: str = ""
     function: str = ""
     params: tuple[str, ...] = ()  # a call's in and inout parameters, in order
+    loop_step: bool = False  # the step of a for loop (run unmasked for an induction variable)
 
 
 class TraceTranspiler(Transpiler):
@@ -88,6 +89,7 @@ class TraceTranspiler(Transpiler):
         self._ops: list[tuple[Any, str | None]] = []  # (expression, mask) of the operators being printed
         self._loop_bodies: dict[int, int] = {}  # id(loop body) -> loop site
         self._glsl: dict[str, str] = {}  # Python name -> GLSL name
+        self._loop_steps: set[int] = set()  # id() of for-loop steps
 
     # -- sites -------------------------------------------------------------------------------------
     def site(self, kind: str, node: Any, name: str = "", expr: Any = None, params: tuple = ()) -> int:
@@ -98,7 +100,8 @@ class TraceTranspiler(Transpiler):
             code = (source_line(loc.path, loc.line) or "").strip()
             text = to_glsl(expr) if expr is not None else ""
             fname = self.fn.sym.name if self.fn is not None else ""
-            self.sites.append(Site(kind, loc.path, loc.line, loc.column, code, name, text, fname, params))
+            self.sites.append(Site(kind, loc.path, loc.line, loc.column, code, name, text, fname, params,
+                                   id(node) in self._loop_steps))
             sid = self._site_ids[key] = len(self.sites) - 1
         return sid
 
@@ -159,7 +162,7 @@ class TraceTranspiler(Transpiler):
 
     def _stmt_Break(self, s: A.Break, mask: str | None) -> None:
         super()._stmt_Break(s, mask)
-        self._event(s, "branch", "break", mask)
+        self._event(s, "branch", "break" if self.fn.loops[-1].kind == "loop" else "break (switch)", mask)
 
     def _stmt_Continue(self, s: A.Continue, mask: str | None) -> None:
         super()._stmt_Continue(s, mask)
@@ -173,6 +176,8 @@ class TraceTranspiler(Transpiler):
         name = {"For": "for", "While": "while", "DoWhile": "do"}.get(type(s).__name__, "loop")
         sid = self.site("loop", s, name)
         self._loop_bodies[id(body)] = sid
+        if step is not None:
+            self._loop_steps.add(id(step))
         self.emit(f"T.le(S, {sid}, {mask})")
         super().loop(s, mask, cond, body, step, do_while)
         self.emit(f"T.lx(S, {sid}, {mask})")
@@ -498,7 +503,7 @@ class PixelTracer(LaneTracer):
         self.lane = lane
         self.records: list[Record] = []
         self.truncated = 0  # steps not recorded past MAX_STEPS
-        self._loops: list[int] = []  # iteration counters of the loops the lane is in
+        self._loops: list[list] = []  # [iterations, depth, left] of each loop the lane is in
 
     def on(self, S: Any, mask: Any) -> int | None:
         """The probed lane's index in S when it is active here, else None."""
@@ -523,11 +528,26 @@ class PixelTracer(LaneTracer):
         if i is not None:
             self._record(Record(site, self.depth, lane_value(value, i) if value is not None else None))
 
+    def _leave(self, site: int, depth: int) -> None:
+        """The lane left its innermost loop (break), its call's loops (return) or every loop
+        (discard): the unmasked step of an induction variable no longer applies to it."""
+        name = self.sites[site].name
+        if name == "break":
+            if self._loops:
+                self._loops[-1][2] = True
+            return
+        for loop in self._loops:
+            if name == "discard" or loop[1] == depth:
+                loop[2] = True
+
     def a(self, S, site, mask, value):
         super().a(S, site, mask, value)
-        self._step(S, site, mask, value)
+        if not (self.sites[site].loop_step and self._loops and self._loops[-1][2]):
+            self._step(S, site, mask, value)
 
     def r(self, S, site, mask, value):
+        if self.on(S, mask) is not None:
+            self._leave(site, self.depth)
         self._step(S, site, mask, value)
         return super().r(S, site, mask, value)
 
@@ -536,21 +556,23 @@ class PixelTracer(LaneTracer):
         return cond
 
     def e(self, S, site, mask):
+        if self.on(S, mask) is not None and self.sites[site].name in ("break", "discard"):
+            self._leave(site, self.depth)
         self._step(S, site, mask, None)
 
     def le(self, S, site, mask):
         if self.on(S, mask) is not None:
-            self._loops.append(0)
+            self._loops.append([0, self.depth, False])
             self._record(Record(site, self.depth, what="start"))
 
     def li(self, S, site, mask):
         if self.on(S, mask) is not None and self._loops:
-            self._loops[-1] += 1
-            self._record(Record(site, self.depth, what="iteration", count=self._loops[-1]))
+            self._loops[-1][0] += 1
+            self._record(Record(site, self.depth, what="iteration", count=self._loops[-1][0]))
 
     def lx(self, S, site, mask):
         if self.on(S, mask) is not None and self._loops:
-            self._record(Record(site, self.depth, what="end", count=self._loops.pop()))
+            self._record(Record(site, self.depth, what="end", count=self._loops.pop()[0]))
 
     def call(self, S, site, mask, f, call_mask, *args):
         i = self.on(S, mask)

@@ -51,6 +51,9 @@ def test_normalize_of_zero_vector_found_at_its_line_and_operation(make_shader):
     assert probed.first_nan.operation == "normalize of a zero vector" and probed.first_nan.line == 3
     assert np.isnan(probed.color[0])
     assert p.pixel(3, 4, SMALL).first_nan is None
+    # with a derivative the lanes run as 2x2 quads: the quad's three finite pixels are not counted
+    quads = Probe(make_shader(NORMALIZE_ZERO.replace("1.0);\n}", "dFdx(fragCoord.x));\n}"))).nan_origins(SMALL)
+    assert [(o.line, o.pixels, o.box) for o in quads.origins] == [(3, 1, (4, 4, 4, 4))]
 
 
 def test_operations_are_told_apart_and_a_discarded_select_side_is_no_origin(make_shader):
@@ -202,6 +205,8 @@ def test_loops_early_return_out_parameters_structs_and_arrays(make_shader):
     assert loop[0].name == "for start" and loop[-1].name == "for end" and loop[-1].value == 51
     assert [s.value for s in loop if s.name == "for iteration"] == list(range(1, 52))
     assert [s.name for s in steps_at(report, 5, "branch")].count("break") == 1
+    # i is stepped 50 times: not after the break (the induction variable's step runs unmasked)
+    assert [int(s.value) for s in steps_at(report, 4, "assign")] == list(range(0, 51))
     [ret] = steps_at(report, 8)
     assert (ret.kind, ret.name, ret.value) == ("return", "sumTo", 1225.0)
     # early return from inside the loop of firstPositive: line 13 never runs
