@@ -375,6 +375,8 @@ def bits_kept(v32: Any, v64: Any) -> int | None:
         b = np.where(np.abs(b) < _TINY32, 0.0, b)
         a = np.where(np.abs(a) < _TINY32, 0.0, a)
         same = (a == b) | (np.isnan(a) & np.isnan(b))
+        if same.all() and not np.isfinite(a).all():
+            continue  # NaN or Inf in both: no bits to count
         if same.all():
             bits = 24
         elif not (np.isfinite(a).all() and np.isfinite(b).all()):
@@ -406,16 +408,16 @@ def to_py(v: Any, f32: bool) -> Any:
         return {k: to_py(x, f32) for k, x in v.items()}
     if isinstance(v, (list, tuple)):
         return [to_py(x, f32) for x in v]
-    if isinstance(v, (bool, int, float, str)):
+    if isinstance(v, str):
         return v
-    a = np.asarray(v)
+    a = np.asarray(v)  # also Python and NumPy scalars (np.float64 is a float: NaN must become "nan")
     if a.ndim:
         return [to_py(x, f32) for x in a]
     if a.dtype.kind == "f":
         return _float(a, f32)
     if a.dtype.kind == "b":
         return bool(a)
-    return int(a)
+    return int(a) if a.dtype.kind in "iu" else a.item()
 
 
 def fmt(v: Any, f32: bool = True) -> str:
@@ -535,12 +537,13 @@ def _short(path: str) -> str:
 def format_nan(report: NanReport, shader: str, inputs: Inputs) -> str:
     """The text `glslcheck probe --nan` prints."""
     w, h = inputs.size
-    out = [f"{shader}: {w}x{h}, iTime {inputs.time:g}: {report.nan_pixels} NaN pixels, {report.inf_pixels} Inf pixels"]
+    out = [f"{shader}: {w}x{h}, iTime {inputs.time:g}: {_count(report.nan_pixels, 'NaN pixel')}, "
+           f"{_count(report.inf_pixels, 'Inf pixel')}"]
     for o in report.origins:
         x0, y0, x1, y1 = o.box
         where = f"{_short(o.file)}:{o.line}:{o.column}: " if o.file else ""
         out.append("")
-        out.append(f"{where}{o.operation} in `{o.code}`: the first NaN/Inf of {o.pixels} pixels, "
+        out.append(f"{where}{o.operation} in `{o.code}`: the first NaN/Inf of {_count(o.pixels, 'pixel')}, "
                    f"in {x0},{y0} .. {x1},{y1} (from the top left)")
         if o.file:
             text = source_line(o.file, o.line) or ""
@@ -551,3 +554,7 @@ def format_nan(report: NanReport, shader: str, inputs: Inputs) -> str:
     if not report.origins:
         out.append("no pixel is NaN or Inf")
     return "\n".join(out)
+
+
+def _count(n: int, what: str) -> str:
+    return f"{n} {what}{'s' if n != 1 else ''}"

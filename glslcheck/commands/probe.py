@@ -59,7 +59,7 @@ def run(args) -> int:
     probe = Probe(args.path)
     if args.nan:
         report = probe.nan_origins(inputs)
-        print(json.dumps(report.to_json(), indent=1) if args.format == "json"
+        print(json.dumps(report.to_json()) if args.format == "json"
               else format_nan(report, args.path, inputs))
         return 1 if report.nan_pixels or report.inf_pixels else 0
     if args.frag_coord is not None:
@@ -70,7 +70,7 @@ def run(args) -> int:
         report = probe.pixel(None, None, inputs, frag_coord=(fx, fy))
     else:
         report = probe.pixel(*args.pixel, inputs)
-    print(json.dumps(report.to_json(), indent=1) if args.format == "json"
+    print(json.dumps(report.to_json()) if args.format == "json"
           else format_pixel(report, args.path, inputs))
     return 0
 

@@ -266,6 +266,8 @@ def test_bits_kept():
     assert bits_kept(np.array(f32(1e-7)), np.array(1.1e-7)) == 3
     assert bits_kept(np.array(f32(0.0)), np.array(1e-60)) == 24  # below float32's range
     assert bits_kept(np.array(f32("nan")), np.array(1.0)) == 0
+    assert bits_kept(np.array(f32("nan")), np.array(float("nan"))) is None  # no bits to count
+    assert bits_kept(np.array([f32("inf"), f32(1.0)]), np.array([float("inf"), 1.0])) is None
     assert bits_kept(np.array(True), np.array(True)) is None
 
 
@@ -278,13 +280,19 @@ def write_shader(tmp_path, text, name="Image.glsl"):
     return str(path)
 
 
+def strict_json(name):
+    raise AssertionError(f"{name} is not JSON")
+
+
 def test_cli_pixel_json_has_exactly_the_issue_fields(tmp_path, capsys):
     path = write_shader(tmp_path, NORMALIZE_ZERO)
     assert main(["probe", path, "--pixel", "4,4", "--size", "8x8", "--format", "json"]) == 0
-    out = json.loads(capsys.readouterr().out)
+    out = json.loads(capsys.readouterr().out, parse_constant=strict_json)
     assert list(out) == ["pixel", "frag_coord", "color", "steps", "first_nan"]
     assert out["pixel"] == [4, 4] and out["frag_coord"] == [4.5, 3.5]
     assert out["color"][:3] == ["nan", "nan", "nan"] and out["color"][3] == 1.0
+    [d] = [s for s in out["steps"] if s["name"] == "d"]
+    assert d["value"] == d["value64"] == ["nan", "nan", "nan"] and d["bits"] is None
     assert all(list(s) == ["file", "line", "code", "kind", "name", "value", "value64", "bits"] for s in out["steps"])
     assert out["first_nan"] == {"file": path, "line": 3, "column": 14, "code": "normalize(vec3(p, 0.0))",
                                 "operation": "normalize of a zero vector"}
@@ -341,3 +349,16 @@ def test_lab_pixel_color_matches_the_render(shader):
     img = api.compile(shader).render(size=inputs.size)
     report = Probe(shader).pixel(32, 18, inputs)
     assert report.color == tuple(float(c) for c in img[18, 32])
+
+
+def test_the_readme_demo_shader(capsys):
+    # README's example: the light lies in the lit plane; the pixel under it is NaN
+    shader = "tests/probe/shaders/light_in_plane"
+    assert main(["probe", shader, "--nan"]) == 1
+    out = capsys.readouterr().out
+    assert "1 NaN pixel, 0 Inf pixels" in out
+    assert "Image.glsl:15:20: normalize of a zero vector in `normalize(light - p)`" in out
+    assert "in 200,329 .. 200,329" in out
+    assert main(["probe", shader, "--pixel", "200,329"]) == 0
+    out = capsys.readouterr().out
+    assert "toLight = (nan, nan, nan)" in out and "fragColor = (nan, nan, nan, 1)" in out
