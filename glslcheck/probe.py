@@ -475,8 +475,10 @@ def _describe(s: Step) -> str:
         args = ", ".join(f"{k}={fmt(v)}" for k, v in s.value.items())
         return f"call {s.name}({args})" + (f"   [{s.bits} bits]" if s.bits is not None else "")
     if s.kind == "branch":
-        if s.name == "if":
-            return "if: true, the then branch runs" if s.value else "if: false, " + "the then branch is skipped"
+        if s.name in ("if", "if/else"):
+            if s.value:
+                return "if: true, the then branch runs"
+            return "if: false, the else branch runs" if s.name == "if/else" else "if: false, the then branch is skipped"
         if s.name == "switch":
             return f"switch on {fmt(s.value)}"
         return s.name

@@ -10,8 +10,13 @@ the branches taken, each loop iteration (a long loop shows its first and last fe
 calls with their arguments and return values, discard, and the final fragColor. JSON:
 {"pixel": [x, y], "frag_coord": [fx, fy], "color": [r, g, b, a], "steps": [{"file", "line",
 "code", "kind": "assign|branch|loop|call|return|discard", "name", "value", "value64", "bits"}],
-"first_nan": {"file", "line", "column", "code", "operation"} | null}; non-finite floats are the
-strings "nan", "inf" and "-inf".
+"first_nan": {"file", "line", "column", "code", "operation"} | null}. Names and values by kind:
+assign: the variable and its whole value after the write; branch: "if", "if/else" or "switch"
+with the condition or selector, "break", "continue"; loop: "for start", "for iteration" with its
+number, "for end" with the iteration count (also "while", "do"); call: the function with its
+arguments by parameter name; return: the function and the returned value. Vectors are lists,
+matrices lists of columns, structs objects; non-finite floats are "nan", "inf" and "-inf"; bits
+is null where there is no float to compare or no float64 step to pair with.
 
 --nan renders the frame and groups every NaN or Inf pixel by the operation where its first NaN
 or Inf appeared (file:line:col, the expression, what made it: 0/0, sqrt or log of a negative,

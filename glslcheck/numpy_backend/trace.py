@@ -121,7 +121,7 @@ class TraceTranspiler(Transpiler):
     def gen_function(self, sym: Any) -> None:
         for n in sym.node.body.walk():
             if isinstance(n, A.If):
-                self._watch[id(n.cond)] = ("b", n, "if")
+                self._watch[id(n.cond)] = ("b", n, "if" if n.else_ is None else "if/else")
             elif isinstance(n, A.Switch):
                 self._watch[id(n.expr)] = ("b", n, "switch")
             elif isinstance(n, A.Return) and n.value is not None:
@@ -429,8 +429,8 @@ class LaneTracer:
             new = (self.origin[ids] < 0) & (self.pending[ids] < 0)
             if new.any():
                 local, ids = local[new], ids[new]
-                name = getattr(fn, "__name__", "") if not isinstance(fn, np.ufunc) else fn.__name__
-                name = self.sites[site].name if self.sites[site].name in _PY_OPERATORS else name
+                name = self.sites[site].name
+                name = name if name in _PY_OPERATORS else getattr(fn, "__name__", name)
                 self.pending[ids] = site
                 self.pending_op[ids] = classify(name, tuple(_at(a, local) for a in args), len(ids))
                 self.pending_depth[ids] = self.depth
