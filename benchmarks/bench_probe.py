@@ -51,7 +51,7 @@ def child(args: list[str]) -> tuple[float, float]:
     """(wall, CPU) seconds of one glslcheck process."""
     before = resource.getrusage(resource.RUSAGE_CHILDREN)
     t = time.perf_counter()
-    subprocess.run(GLSLCHECK + args, check=True, stdout=subprocess.DEVNULL, cwd=ROOT)
+    subprocess.run(GLSLCHECK + args, check=True, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL, cwd=ROOT)
     wall = time.perf_counter() - t
     after = resource.getrusage(resource.RUSAGE_CHILDREN)
     return wall, (after.ru_utime - before.ru_utime) + (after.ru_stime - before.ru_stime)

@@ -362,3 +362,10 @@ def test_the_readme_demo_shader(capsys):
     assert main(["probe", shader, "--pixel", "200,329"]) == 0
     out = capsys.readouterr().out
     assert "toLight = (nan, nan, nan)" in out and "fragColor = (nan, nan, nan, 1)" in out
+
+
+def test_verify_mentions_probe_nan_when_the_numpy_image_has_nan(tmp_path, capsys, gl):
+    path = write_shader(tmp_path, NORMALIZE_ZERO)
+    main(["verify", path, "--size", "8x8"])
+    out = capsys.readouterr().out
+    assert f"note: 1 pixel is NaN: `glslcheck probe {path} --nan --size 8x8`" in out
