@@ -6,7 +6,9 @@ asserted about bits)."""
 
 from __future__ import annotations
 
+import glob
 import json
+import os
 
 import numpy as np
 import pytest
@@ -222,6 +224,58 @@ def test_loops_early_return_out_parameters_structs_and_arrays(make_shader):
     assert gone.color == (0.0, 0.0, 0.0, 0.0)
 
 
+MORE_CONTROL = """\
+mat2 rot(float a) { float c = cos(a), s = sin(a); return mat2(c, s, -s, c); }
+void bump(inout vec2 v, float k) { v *= k; }
+float pick(int i) {
+    switch (i) {
+        case 0: return 0.25;
+        case 1:
+        case 2: return 0.5;
+        default: break;
+    }
+    return 1.0;
+}
+void mainImage(out vec4 fragColor, in vec2 fragCoord) {
+    int n = int(fragCoord.x);
+    float acc = 0.0;
+    int k = 0;
+    while (k < 10) {
+        k++;
+        if (k % 2 == 0) continue;
+        acc += 1.0;
+    }
+    do { acc -= 0.5; } while (acc > 4.0);
+    vec2 v = rot(0.0) * vec2(1.0, 2.0);
+    bump(v, 0.5);
+    fragColor = vec4(acc, pick(n), v);
+}
+"""
+
+
+def test_switch_while_do_continue_inout_and_matrices(make_shader):
+    p = Probe(make_shader(MORE_CONTROL))
+    report = p.pixel(1, 0, SMALL)  # n = 1
+    loop = steps_at(report, 16, "loop")
+    assert [s.name for s in loop][:2] == ["while start", "while iteration"]
+    assert (loop[-1].name, loop[-1].value) == ("while end", 10)
+    assert [s.name for s in steps_at(report, 18, "branch")].count("continue") == 5
+    assert [(s.name, float(s.value)) for s in steps_at(report, 19)] == [("acc", float(a)) for a in range(1, 6)]
+    do = steps_at(report, 21, "loop")
+    assert (do[0].name, do[-1].name, do[-1].value) == ("do start", "do end", 2)
+    [rot] = [s.to_json() for s in steps_at(report, 1, "return")]
+    assert rot["value"] == [[1.0, 0.0], [-0.0, 1.0]]  # a mat2 as its columns
+    assert [(s.kind, s.name) for s in steps_at(report, 23)] == [("call", "bump"), ("assign", "v")]
+    assert steps_at(report, 23)[1].to_json()["value"] == [0.5, 1.0]
+    [switch] = steps_at(report, 4)
+    assert (switch.kind, switch.name, int(switch.value)) == ("branch", "switch", 1)
+    assert [float(s.value) for s in steps_at(report, 7, "return")] == [0.5]
+    assert report.color == (4.0, 0.5, 0.5, 1.0)
+    other = p.pixel(5, 0, SMALL)  # n = 5: default, break out of the switch, return 1.0
+    assert [s.name for s in steps_at(other, 8)] == ["break (switch)"]
+    assert [float(s.value) for s in steps_at(other, 10)] == [1.0]
+
+
 def test_common_tab_and_macros_point_at_the_users_lines(make_shader):
     common = """\
 #define SQUARE(x) ((x) * (x))
@@ -341,27 +395,27 @@ def test_the_normal_module_has_no_tracing(make_shader):
     assert "T.call(" in traced and "T.li(" in traced
 
 
-@pytest.mark.parametrize("shader", ["lab_shaders/07_final", "lab_shaders/bonus_cel_shading"])
-def test_lab_pixel_color_matches_the_render(shader):
+ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+EVERY_SHADER = sorted(glob.glob(os.path.join(ROOT, "tests", "corpus", "*.glsl"))
+                      + glob.glob(os.path.join(ROOT, "tests", "corpus", "*.frag"))
+                      + glob.glob(os.path.join(ROOT, "lab_shaders", "*", "")))
+
+
+@pytest.mark.parametrize("shader", EVERY_SHADER, ids=lambda p: os.path.relpath(p, ROOT))
+def test_traced_module_computes_what_the_render_computes(shader):
+    # the traced module is the normal one plus hooks: the probed pixels' colours are the
+    # render's, bit for bit, and --nan counts the render's NaN/Inf pixels
     from glslcheck import api
 
-    inputs = Inputs(size=(64, 36))
-    img = api.compile(shader).render(size=inputs.size)
-    report = Probe(shader).pixel(32, 18, inputs)
-    assert report.color == tuple(float(c) for c in img[18, 32])
-
-
-def test_the_readme_demo_shader(capsys):
-    # README's example: the light lies in the lit plane; the pixel under it is NaN
-    shader = "tests/probe/shaders/light_in_plane"
-    assert main(["probe", shader, "--nan"]) == 1
-    out = capsys.readouterr().out
-    assert "1 NaN pixel, 0 Inf pixels" in out
-    assert "Image.glsl:15:20: normalize of a zero vector in `normalize(light - p)`" in out
-    assert "in 200,329 .. 200,329" in out
-    assert main(["probe", shader, "--pixel", "200,329"]) == 0
-    out = capsys.readouterr().out
-    assert "toLight = (nan, nan, nan)" in out and "fragColor = (nan, nan, nan, 1)" in out
+    inputs = Inputs(size=(32, 18), time=1.5)
+    img = api.compile(shader).render(size=inputs.size, time=inputs.time)
+    p = Probe(shader)
+    for x, y in ((16, 9), (3, 14), (29, 2)):
+        got = np.array(p.pixel(x, y, inputs).color, np.float32)
+        assert np.array_equal(got, img[y, x], equal_nan=True), (x, y)
+    report = p.nan_origins(inputs)
+    assert report.nan_pixels == int(np.isnan(img).any(axis=-1).sum())
+    assert sum(o.pixels for o in report.origins) == report.nan_pixels + report.inf_pixels
 
 
 def test_verify_mentions_probe_nan_when_the_numpy_image_has_nan(tmp_path, capsys, gl):
