@@ -25,6 +25,7 @@ COMMANDS = [
     ("render", "render", "render a shader on the CPU (NumPy) or with OpenGL"),
     ("verify", "verify", "render with NumPy and OpenGL and compare"),
     ("bench", "bench", "time against error for precision modes and samples per pixel"),
+    ("probe", "probe", "trace one pixel statement by statement, or find where NaN pixels came from"),
 ]
 
 

@@ -79,10 +79,8 @@ def _number(text: str) -> float:
     return v
 
 
-def add_arguments(p) -> None:
-    p.add_argument("path", metavar="SHADER", help="a tab file or a folder of tab files")
-    p.add_argument("-o", "--output", default="out.png", metavar="FILE",
-                   help="out.png, out.npy, or anim.gif with --frames (default out.png)")
+def add_uniform_arguments(p) -> None:
+    """The uniform options (--size --time --frame --mouse --date), shared with `glslcheck probe`."""
     p.add_argument("--size", type=size_arg, default=(800, 450), metavar="WxH", help="default 800x450")
     p.add_argument("--time", type=_number, default=0.0, metavar="T", help="iTime in seconds (default 0)")
     p.add_argument("--frame", type=int, default=0, metavar="N", help="iFrame (default 0)")
@@ -90,6 +88,13 @@ def add_arguments(p) -> None:
                    metavar="X,Y,Z,W", help="iMouse (default 0,0,0,0)")
     p.add_argument("--date", type=lambda t: _floats(t, 4, "--date"), default=None, metavar="Y,M,D,S",
                    help="iDate: year, month 0-11, day, seconds since midnight (default 2026,0,1,0)")
+
+
+def add_arguments(p) -> None:
+    p.add_argument("path", metavar="SHADER", help="a tab file or a folder of tab files")
+    p.add_argument("-o", "--output", default="out.png", metavar="FILE",
+                   help="out.png, out.npy, or anim.gif with --frames (default out.png)")
+    add_uniform_arguments(p)
     p.add_argument("--precision", choices=("float16", "float32", "float64"), default="float32",
                    help="float type inside the shader (NumPy backend; default float32 = highp)")
     p.add_argument("--samples", type=_samples, default=1, metavar="N", help="samples per pixel, a square (default 1)")
@@ -125,8 +130,19 @@ def run(args) -> int:
             raise InputError(f"{out}: error: cannot write the image ({e.strerror or e})") from None
         if args.stats:
             print(prog.format_stats())
+        _nan_note(img, args)
         return 0
     return _animation(prog, args, common)
+
+
+def _nan_note(img, args) -> None:
+    import numpy as np
+
+    nan = int(np.isnan(img).any(axis=-1).sum())
+    if nan:
+        from .probe import nan_hint
+
+        print(f"{args.path}: note: {nan_hint(args.path, nan, args.size, args.time)}", file=sys.stderr)
 
 
 def _animation(prog, args, common) -> int:

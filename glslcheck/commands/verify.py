@@ -199,6 +199,10 @@ def format_frame(result, precision: str = "float32", samples: int = 1, worst: in
     lines.append(f"  edge pixels      {c.edge_pixels:<10}  budget {int(c.edge_budget)}")
     lines.append(f"  NaN/Inf pixels   numpy {c.nan_numpy}, gl {c.nan_gl}"
                  + (f", {c.nan_mismatched_pixels} in one image only" if c.nan_mismatched_pixels else ""))
+    if c.nan_numpy:
+        from .probe import nan_hint
+
+        lines.append(f"  note: {nan_hint(result.shader, c.nan_numpy, result.size, s.time)}")
     if c.bbox is not None:
         x0, y0, x1, y1 = c.bbox
         lines.append(f"  differences in   x {x0}..{x1 - 1}, y {y0}..{y1 - 1} (from the top left); "

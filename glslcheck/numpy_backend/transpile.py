@@ -1815,7 +1815,7 @@ class Transpiler:
                 outs.append((len(outs) + 1, lv))
                 if d == "inout":
                     args.append(self.tmp(self.read(lv)))
-        call = f"{self.fn_name(fn)}(S, {call_mask}{''.join(', ' + x for x in args)})"
+        call = self.call_text(e, fn, call_mask, args, mask)
         if not outs:
             return call
         r = self.fresh("t")
@@ -1823,6 +1823,10 @@ class Transpiler:
         for k, lv in outs:
             self.write(lv, f"{r}[{k}]", mask)
         return f"{r}[0]"
+
+    def call_text(self, e: A.Call, fn: Any, call_mask: str | None, args: list[str], mask: str | None) -> str:
+        """The Python call of user function `fn` (the tracing transpiler, trace.py, wraps it)."""
+        return f"{self.fn_name(fn)}(S, {call_mask}{''.join(', ' + x for x in args)})"
 
     # -- l-values ------------------------------------------------------------------------------
     def lvalue(self, e: Any, mask: str | None) -> LValue:
