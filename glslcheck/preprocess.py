@@ -935,9 +935,11 @@ class _Preprocessor:
         expr = self._expand_list(toks, 0)
         nums = []
         for t in expr:
-            if t.kind != NUM or not t.text.isdigit():
+            # GLSL ES 3.00 section 3.4: "constant integer expressions"; an integer literal in
+            # any base (decimal, octal 010, hex 0x10) is one, as Mesa and glslang accept.
+            if t.kind != NUM or not _INT_RE.fullmatch(t.text):
                 raise self._tok_error(f"#line takes a line number and an optional source number, not '{t.text}'", t)
-            nums.append(int(t.text))
+            nums.append(int(t.text, 8) if t.text.startswith("0") and t.text[1:].isdigit() else int(t.text, 0))
         if not 1 <= len(nums) <= 2:
             raise self._tok_error("#line takes a line number and an optional source number", nt)
         next_line = self.unit.line_of(nl) + 1
