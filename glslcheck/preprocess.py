@@ -412,6 +412,7 @@ _BINARY_PREC = {
     "<": 7, ">": 7, "<=": 7, ">=": 7, "<<": 8, ">>": 8, "+": 9, "-": 9, "*": 10, "/": 10, "%": 10,
 }
 _INT_RE = re.compile(r"0[xX][0-9A-Fa-f]+|0[0-7]*|[1-9][0-9]*")
+_INVARIANT_ALL_RE = re.compile(r"STDGL[ \t]+invariant[ \t]*\([ \t]*all[ \t]*\)[ \t]*")
 
 
 def _wrap32(v: int) -> int:
@@ -714,6 +715,12 @@ class _Preprocessor:
             loc = u.span(hash_pos, nl)
             if name == "error":
                 raise GlslError(Diagnostic(f"#error: {rest}" if rest else "#error", loc, rule=RULE))
+            if (self.version or (300 if self.shadertoy else 100)) == 300 and _INVARIANT_ALL_RE.fullmatch(rest):
+                # GLSL ES 3.00 section 4.6.1: only a vertex shader's outputs can be invariant;
+                # Mesa: "pragma `invariant(all)' cannot be used in a fragment shader".
+                raise GlslError(Diagnostic("#pragma STDGL invariant(all) cannot be used in a fragment shader "
+                                           "(GLSL ES 3.00 section 4.6.1)", loc, rule=RULE,
+                                           help="remove it: a fragment shader's outputs are never invariant"))
             self.pragmas.append((rest, loc))
             return
         toks = _lex_all(text, name_tok.end, nl)

@@ -39,6 +39,10 @@ def check(parse_result: Any, tab: str = "Image", *, collect: bool = False) -> Mo
         raise CheckError([Diagnostic("the program is nested too deeply to analyse", loc)]) from None
     finally:
         sys.setrecursionlimit(old)
+    if not model.errors:  # undefined behaviour the backends may not agree on (hazards.py)
+        from .hazards import hazard_warnings
+
+        model.diagnostics.extend(hazard_warnings(model))
     order = {s.path: i for i, s in enumerate(getattr(parse_result, "sources", []) or [])}
     model.diagnostics.sort(key=lambda d: (order.get(d.loc.path, len(order)), d.loc.line, d.loc.column)
                            if d.loc else (-1, 0, 0))

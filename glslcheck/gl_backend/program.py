@@ -33,7 +33,8 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from ..diagnostics import Diagnostic, GlslError, Location, source_line
-from ..shadertoy import DEFAULT_DATE, DEFAULT_SIZE, OFFSET_UNIFORM, UNIFORMS, Program, build_program
+from ..shadertoy import (DEFAULT_DATE, DEFAULT_SIZE, OFFSET_UNIFORM, UNIFORMS, UNIFORMS_BY_NAME, Program,
+                         build_program)
 from ..sources import Shader
 from .context import get_context
 
@@ -293,12 +294,20 @@ class GLProgram:
         return np.ascontiguousarray(image[::-1])  # GL rows go bottom-up; images top-down
 
 
+# GL's type enums of the GLSL types Shadertoy's uniforms have.
+_GL_TYPES = {"float": 0x1406, "int": 0x1404, "vec2": 0x8B50, "vec3": 0x8B51, "vec4": 0x8B52,
+             "sampler2D": 0x8B5E, "sampler3D": 0x8B5F, "samplerCube": 0x8B60}
+
+
 def _set_uniform(gl_program, name: str, value, array_size: int | None = None) -> None:
     """Set a uniform if the driver kept it. The driver trims an array to the highest index the
     shader uses (and reports a one-element array as a plain uniform), so arrays are cut to fit."""
     if name not in gl_program:
         return
     uniform = gl_program[name]
+    expected = _GL_TYPES.get(UNIFORMS_BY_NAME[name].glsl_type) if name in UNIFORMS_BY_NAME else None
+    if expected is not None and getattr(uniform, "gl_type", expected) != expected:
+        return  # a plain file's uniform of another type: not fed, 0 as on NumPy (shadertoy.fed_uniform)
     if array_size:
         items = list(value)[: max(uniform.array_length, 1)]
         value = items[0] if len(items) == 1 else (items if isinstance(items[0], tuple) else tuple(items))
