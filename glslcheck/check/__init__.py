@@ -33,16 +33,16 @@ def check(parse_result: Any, tab: str = "Image", *, collect: bool = False) -> Mo
     sys.setrecursionlimit(max(old, 20000))
     try:
         model = Checker(parse_result, tab).run()
+        if not model.errors:  # undefined behaviour the backends may not agree on (hazards.py)
+            from .hazards import hazard_warnings
+
+            model.diagnostics.extend(hazard_warnings(model))
     except RecursionError:
         sources = getattr(parse_result, "sources", None) or []
         loc = Location(sources[-1].path, 1, 1) if sources else None
         raise CheckError([Diagnostic("the program is nested too deeply to analyse", loc)]) from None
     finally:
         sys.setrecursionlimit(old)
-    if not model.errors:  # undefined behaviour the backends may not agree on (hazards.py)
-        from .hazards import hazard_warnings
-
-        model.diagnostics.extend(hazard_warnings(model))
     order = {s.path: i for i, s in enumerate(getattr(parse_result, "sources", []) or [])}
     model.diagnostics.sort(key=lambda d: (order.get(d.loc.path, len(order)), d.loc.line, d.loc.column)
                            if d.loc else (-1, 0, 0))

@@ -16,14 +16,14 @@ from pathlib import Path
 import pytest
 
 CLEAN = """\
-// Image.glsl: paints the screen one colour (a clean shader for the hook tests)
-// Contributors: Ana Ruiz: the colour; Ben Li: the comments
+// Image.glsl: one flat teal colour over the whole screen (passes every lint rule)
+// Contributors: Mia Chen: the shader; Omar Haddad: its comments
 // Starter framework by Daniel S. Buckstein.
 
-// write a constant colour to every pixel
+// every pixel gets the same teal
 void mainImage(out vec4 fragColor, in vec2 fragCoord)
 {
-    fragColor = vec4(0.2, 0.4, 0.6, 1.0);
+    fragColor = vec4(0.1, 0.5, 0.5, 1.0);
 }
 """
 # No header and no comments: the linter reports missing-header at 1:1.
