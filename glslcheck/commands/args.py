@@ -83,9 +83,13 @@ def _whole(text: str, what: str) -> int:
         raise ValueError(f"{what} must be a whole number, not {text!r}") from None
 
 
+def _show(v: float) -> str:
+    return f"{v:,}" if isinstance(v, int) else f"{v:g}"
+
+
 def _in_range(value, low, high, what: str, text: str):
     if not low <= value <= high:
-        raise ValueError(f"{what} must be from {low:g} to {high:g}, not {text!r}")
+        raise ValueError(f"{what} must be from {_show(low)} to {_show(high)}, not {text!r}")
     return value
 
 
@@ -110,7 +114,8 @@ def parse_floats(text: str, count: int | None = None, what: str = "value",
     if count is not None and len(values) != count:
         raise ValueError(f"{what} needs {count} comma-separated number{'s' if count != 1 else ''}, not {text!r}")
     if not all(math.isfinite(v) and abs(v) <= limit for v in values):
-        raise ValueError(f"{what} must be finite numbers from -{limit:.10g} to {limit:.10g}, not {text!r}")
+        kind = "a finite number" if count == 1 else "finite numbers"
+        raise ValueError(f"{what} must be {kind} from -{limit:.10g} to {limit:.10g}, not {text!r}")
     return values
 
 

@@ -111,3 +111,14 @@ def test_time_1e39_is_a_usage_error_not_a_runtime_warning(tmp_path):
     assert proc.returncode == 2
     assert "--time" in proc.stderr and "RuntimeWarning" not in proc.stderr and "Traceback" not in proc.stderr
     assert not (tmp_path / "a.png").exists()
+
+
+def test_a_long_schedule_is_not_built_first():
+    """`verify --frames 100000000` built its whole frame list before the first frame."""
+    from glslcheck.verify import frame_specs
+
+    specs = frame_specs(frames=10**8, fps=30.0, frame=5)
+    assert len(specs) == 10**8 and sys.getsizeof(specs) < 1000
+    assert (specs[0].frame, specs[-1].frame) == (5, 10**8 + 4)
+    assert specs[3].time == 8 / 30.0 and specs[3].time_delta == 1 / 30.0
+    assert [s.frame for s in specs[:3]] == [5, 6, 7]
