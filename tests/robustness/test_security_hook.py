@@ -170,3 +170,39 @@ def test_lint_staged_outside_a_repository(tmp_path: Path):
                           capture_output=True, text=True)
     assert proc.returncode == 2 and "not inside a git work tree" in proc.stderr
     assert "Traceback" not in proc.stderr
+
+
+def test_hook_names_a_bad_staged_configuration_by_its_own_path(repo: Repo):
+    repo.write("lab4/glslcheck.toml", "select = 3\n")
+    repo.write("lab4/Image.glsl", CLEAN)
+    repo.git("add", "lab4")
+    proc = repo.commit()
+    assert proc.returncode != 0
+    assert "lab4/glslcheck.toml" in proc.stderr and "glslcheck-staged" not in proc.stderr, proc.stderr
+
+
+def test_hook_leaves_large_non_shader_files_alone(repo: Repo, monkeypatch):
+    repo.write("video.bin", "x" * 100_000)
+    repo.write("lab4/Image.glsl", CLEAN)
+    repo.git("add", "video.bin", "lab4/Image.glsl")
+    monkeypatch.chdir(repo.root)
+    for key, value in repo.env.items():
+        monkeypatch.setenv(key, value)
+    from glslcheck.hook import staged_checkout
+
+    with staged_checkout() as names:
+        assert names == ["lab4/Image.glsl"]
+        assert sorted(str(p) for p in Path(".").rglob("*") if p.is_file()) == ["lab4/Image.glsl"]
+
+
+def test_hook_on_the_first_commit(tmp_path: Path):
+    root = tmp_path / "fresh"
+    root.mkdir()
+    r = Repo(root)
+    r.git("init", "-q", "-b", "main")
+    assert subprocess.run([sys.executable, "-m", "glslcheck", "install-hook"], cwd=root, env=r.env,
+                          capture_output=True).returncode == 0
+    r.write("Image.glsl", BAD)
+    r.git("add", "Image.glsl")
+    proc = r.commit()
+    assert proc.returncode != 0 and "Image.glsl:1:1: missing-header" in proc.stdout + proc.stderr
