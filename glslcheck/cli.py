@@ -124,9 +124,11 @@ def _run(args) -> int:
         _discard_stdout()
         return 1
     except OSError as e:  # writing the report to stdout (`lint > /dev/full`); files raise InputError
-        _discard_stdout()
-        where = f" {e.filename}" if e.filename else " to standard output"
-        print(f"glslcheck: error: cannot write{where} ({e.strerror or e})", file=sys.stderr)
+        if e.filename:
+            print(f"{e.filename}: error: {e.strerror or e}", file=sys.stderr)
+        else:
+            _discard_stdout()
+            print(f"glslcheck: error: cannot write to standard output ({e.strerror or e})", file=sys.stderr)
         return 2
 
 

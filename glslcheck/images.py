@@ -20,7 +20,9 @@ Write errors come back as `InputError` (exit 2) naming the path and the reason.
 from __future__ import annotations
 
 import contextlib
+import io
 import os
+import stat
 import tempfile
 from pathlib import Path
 from typing import Iterator
@@ -55,8 +57,22 @@ def _mode_for_new_files() -> int:
 def atomic_write(path: str | os.PathLike, what: str = "file") -> Iterator[str]:
     """Yield a temporary file name next to `path`; rename it over `path` when the block ends
     without an exception, remove it otherwise (also on KeyboardInterrupt). An OSError while
-    writing becomes InputError("<path>: error: cannot write the <what> (<reason>)")."""
-    target = Path(path)
+    writing becomes InputError("<path>: error: cannot write the <what> (<reason>)").
+
+    A symbolic link is written through (its target is replaced); a path that is not a regular
+    file (/dev/null, a FIFO) is written directly, never replaced. The file gets the mode the
+    old one had, or a new file's mode (0666 less the umask)."""
+    target = Path(os.path.realpath(path))
+    try:
+        old = os.stat(target)
+    except OSError:
+        old = None
+    if old is not None and not stat.S_ISREG(old.st_mode):
+        try:
+            yield str(path)
+        except OSError as e:
+            raise InputError(f"{path}: error: cannot write the {what} ({e.strerror or e})") from None
+        return
     try:
         fd, tmp = tempfile.mkstemp(prefix=f".{target.name}.", suffix=".tmp", dir=target.parent)
         os.close(fd)
@@ -65,7 +81,7 @@ def atomic_write(path: str | os.PathLike, what: str = "file") -> Iterator[str]:
     done = False
     try:
         yield tmp
-        os.chmod(tmp, _mode_for_new_files())
+        os.chmod(tmp, stat.S_IMODE(old.st_mode) if old is not None else _mode_for_new_files())
         os.replace(tmp, target)
         done = True
     except OSError as e:
@@ -80,8 +96,10 @@ def save_image(img: np.ndarray, path: str | os.PathLike) -> None:
     """`.npy`: the float32 array; otherwise an 8-bit RGBA image in the format the extension names."""
     with atomic_write(path, "image") as tmp:
         if str(path).lower().endswith(".npy"):
+            buffer = io.BytesIO()  # np.save seeks: write it whole, so a pipe can take it too
+            np.save(buffer, np.asarray(img, dtype=np.float32))
             with open(tmp, "wb") as f:
-                np.save(f, np.asarray(img, dtype=np.float32))
+                f.write(buffer.getbuffer())
             return
         from PIL import Image
 

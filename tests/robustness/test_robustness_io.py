@@ -174,3 +174,28 @@ def test_gif_frames_decode_as_pillow_writes_them(tmp_path: Path):
             b.seek(i)
             assert a.info["duration"] == b.info["duration"] == 40
             assert np.array_equal(np.asarray(a.convert("RGB")), np.asarray(b.convert("RGB")))
+
+
+def test_an_output_that_is_not_a_regular_file_is_written_not_replaced(tmp_path: Path):
+    fifo = tmp_path / "out.npy"
+    os.mkfifo(fifo)
+    import threading
+
+    got = []
+    reader = threading.Thread(target=lambda: got.append(open(fifo, "rb").read()))
+    reader.start()
+    save_image(np.zeros((2, 2, 4), np.float32), fifo)
+    reader.join(timeout=30)
+    assert got and got[0].startswith(b"\x93NUMPY")
+    assert fifo.is_fifo()  # still the FIFO: nothing was renamed over it (as /dev/null must stay)
+
+
+def test_an_output_symlink_is_written_through_and_keeps_the_mode(tmp_path: Path):
+    real = tmp_path / "real.png"
+    real.write_bytes(b"old")
+    real.chmod(0o640)
+    link = tmp_path / "link.png"
+    link.symlink_to(real)
+    save_image(np.zeros((2, 2, 4), np.float32), link)
+    assert link.is_symlink() and real.read_bytes().startswith(b"\x89PNG")
+    assert real.stat().st_mode & 0o777 == 0o640
