@@ -70,10 +70,10 @@ def run(args: argparse.Namespace) -> int:
         out = Path(args.output)
         if out.exists() and any(out.resolve() == Path(p).resolve() for p in result.paths):
             raise InputError(f"{args.output}: error: --output names a file being linted; lint never overwrites a shader")
-        try:
-            out.write_text(text, encoding="utf-8")
-        except OSError as e:
-            raise InputError(f"{args.output}: error: cannot write the report ({e.strerror or e})") from None
+        from ..images import atomic_write
+
+        with atomic_write(out, "report") as tmp:  # InputError (exit 2) when it cannot be written
+            Path(tmp).write_text(text, encoding="utf-8")
     else:
         sys.stdout.write(text)
     return 1 if result.findings else 0
