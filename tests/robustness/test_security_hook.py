@@ -206,3 +206,20 @@ def test_hook_on_the_first_commit(tmp_path: Path):
     r.git("add", "Image.glsl")
     proc = r.commit()
     assert proc.returncode != 0 and "Image.glsl:1:1: missing-header" in proc.stdout + proc.stderr
+
+
+def test_hook_checks_out_the_index_common_tab_next_to_a_staged_image(repo: Repo, monkeypatch):
+    repo.write("lab4/Common.glsl", "// committed helpers\nvec3 tint() { return vec3(0.5); }\n")
+    repo.git("add", "lab4/Common.glsl")
+    assert repo.commit().returncode == 0
+    repo.write("lab4/Image.glsl", CLEAN)
+    repo.git("add", "lab4/Image.glsl")
+    (repo.root / "lab4/Common.glsl").write_text("// the work tree's unstaged copy\n")
+    monkeypatch.chdir(repo.root)
+    for key, value in repo.env.items():
+        monkeypatch.setenv(key, value)
+    from glslcheck.hook import staged_checkout
+
+    with staged_checkout() as names:
+        assert names == ["lab4/Image.glsl"]  # Common is context, not a target
+        assert Path("lab4/Common.glsl").read_text() == "// committed helpers\nvec3 tint() { return vec3(0.5); }\n"
