@@ -211,7 +211,7 @@ def test_hook_on_the_first_commit(tmp_path: Path):
 def test_hook_checks_out_the_index_common_tab_next_to_a_staged_image(repo: Repo, monkeypatch):
     repo.write("lab4/Common.glsl", "// committed helpers\nvec3 tint() { return vec3(0.5); }\n")
     repo.git("add", "lab4/Common.glsl")
-    assert repo.commit().returncode == 0
+    repo.git("commit", "-q", "--no-verify", "-m", "helpers")
     repo.write("lab4/Image.glsl", CLEAN)
     repo.git("add", "lab4/Image.glsl")
     (repo.root / "lab4/Common.glsl").write_text("// the work tree's unstaged copy\n")
