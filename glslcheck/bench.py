@@ -491,4 +491,6 @@ def write_plot(rows: Sequence[Row], path: str | os.PathLike, title: str | None =
         draw.text((x + 20 * S, y), text, font=f_axis, fill=(0, 0, 0), anchor="lm")
 
     img = img.resize((width // S, height // S), Image.LANCZOS)
-    img.save(os.fspath(path))
+    from .images import save_pil
+
+    save_pil(img, path, "plot")  # atomic; InputError (exit 2) when it cannot be written

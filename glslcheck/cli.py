@@ -127,7 +127,9 @@ def main(argv: list[str] | None = None) -> int:
 
 def _run(args) -> int:
     try:
-        return int(args._run(args) or 0)
+        code = int(args._run(args) or 0)
+        sys.stdout.flush()  # a full disk or a closed pipe shows here, not at interpreter exit
+        return code
     except InputError as e:
         print(str(e), file=sys.stderr)
         return 2
@@ -147,7 +149,26 @@ def _run(args) -> int:
               " (a smaller --size or a smaller file helps)", file=sys.stderr)
         return 2
     except BrokenPipeError:
+        _discard_stdout()
         return 1
+    except OSError as e:  # writing the report to stdout (`lint > /dev/full`); files raise InputError
+        if e.filename:
+            print(f"{e.filename}: error: {e.strerror or e}", file=sys.stderr)
+        else:
+            _discard_stdout()
+            print(f"glslcheck: error: cannot write to standard output ({e.strerror or e})", file=sys.stderr)
+        return 2
+
+
+def _discard_stdout() -> None:
+    """Point stdout at /dev/null, so the interpreter's last flush of what could not be written
+    fails no second time ("Exception ignored ... OSError" and exit 120)."""
+    try:
+        devnull = os.open(os.devnull, os.O_WRONLY)
+        os.dup2(devnull, sys.stdout.fileno())
+        os.close(devnull)
+    except (OSError, ValueError, AttributeError):  # stdout is not a file (captured in tests)
+        pass
 
 
 def _first_path(args) -> str:

@@ -318,7 +318,7 @@ def write_diff_png(comparison_or_imgs, path: str | os.PathLike) -> Comparison:
     explained by a discontinuity are cyan-blue, NaN/Inf in one image only magenta.
     Same size as the renders, row 0 at the top.
     """
-    from PIL import Image
+    from .images import save_rgb
 
     comp = comparison_or_imgs
     if not isinstance(comp, Comparison):
@@ -329,5 +329,5 @@ def write_diff_png(comparison_or_imgs, path: str | os.PathLike) -> Comparison:
     rgb = heat_colours(comp.error_map)
     rgb[comp.edge_mask] = EDGE_COLOUR
     rgb[comp.nan_mask] = NAN_COLOUR
-    Image.fromarray(rgb).save(os.fspath(path))
+    save_rgb(rgb, path, "diff image")  # atomic; InputError (exit 2) when it cannot be written
     return comp

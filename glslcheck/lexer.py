@@ -2,7 +2,7 @@
 
 Owns the scanner the parser runs on, and the one lexical rule the grammar cannot say: an
 IDENTIFIER that names a declared struct is a TYPE_NAME (the spec's TYPE_NAME token, section 9),
-and a word reserved for future use (3.8) cannot be a name.
+and a word reserved for future use (3.8), or longer than 1024 characters (3.8), cannot be a name.
 
 The struct-name rule is scope-aware, as C lexers track typedef names: a variable or parameter
 may reuse a struct's name in an inner scope (spec 4.2.2-4.2.3: the inner name hides the type),
@@ -101,12 +101,34 @@ _HISTORY_DROP = 32
 _new_str = str.__new__
 
 
-class ReservedWordError(Exception):
-    """A reserved word (GLSL ES 3.00 section 3.8) used as a name; `token` is where."""
+# GLSL ES 3.00 section 3.8: "The maximum length of an identifier is 1024 characters." (Mesa
+# rejects a longer one: "Identifier `...' exceeds 1024 characters".)
+MAX_IDENTIFIER_LENGTH = 1024
+
+
+class BadNameError(Exception):
+    """A word that cannot be a name; `token` is where, `message` and `help` say why."""
+
+    def __init__(self, token: Token, message: str, help: str | None = None) -> None:
+        super().__init__(message)
+        self.token, self.message, self.help = token, message, help
+
+
+class ReservedWordError(BadNameError):
+    """A reserved word (GLSL ES 3.00 section 3.8) used as a name."""
 
     def __init__(self, token: Token) -> None:
-        super().__init__(token.value)
-        self.token = token
+        value = token.value
+        super().__init__(token, f"'{value}' is a reserved word in GLSL ES 3.00 and cannot be used as a name",
+                         f"rename it, for example to '{value}_'")
+
+
+class LongIdentifierError(BadNameError):
+    """An identifier longer than MAX_IDENTIFIER_LENGTH characters."""
+
+    def __init__(self, token: Token) -> None:
+        super().__init__(token, f"an identifier of {len(token.value)} characters; GLSL ES 3.00 allows at most "
+                                f"{MAX_IDENTIFIER_LENGTH} (section 3.8)", "use a shorter name")
 
 
 @dataclass
@@ -276,6 +298,9 @@ class Lexer:
                             kind = TYPE_NAME
                     if value in reserved:
                         error = ReservedWordError(self._token(kind, value, start, end, line, line_start))
+                        break
+                    if len(value) > MAX_IDENTIFIER_LENGTH:
+                        error = LongIdentifierError(self._token(kind, value, start, end, line, line_start))
                         break
             else:
                 after_struct = False

@@ -25,7 +25,7 @@ from . import ast as A
 from . import parse_tables
 from .diagnostics import Diagnostic, GlslError, Location, register_source
 from .lalr import Driver, Tree, UnexpectedToken
-from .lexer import Lexer, ReservedWordError, Token, Tokens, UnexpectedCharacters, UnexpectedInput
+from .lexer import BadNameError, Lexer, Token, Tokens, UnexpectedCharacters, UnexpectedInput
 from .sources import Shader, Source
 
 # The keywords (3.6), to tell "a keyword used as a name" in error messages.
@@ -60,7 +60,7 @@ def get_parser() -> Parser:
 
 
 def parse_tree(text: str) -> Tree:
-    """The parse tree of preprocessed text; raises UnexpectedInput or ReservedWordError."""
+    """The parse tree of preprocessed text; raises UnexpectedInput or BadNameError."""
     parser = get_parser()
     return parser.driver.parse(parser.lexer.tokenize(text))
 
@@ -118,15 +118,8 @@ def _parse_text_no_gc(text: str, locate_span: Callable[[int, int], Location]) ->
     lexed = parser.lexer.tokenize(text)
     try:
         tree = parser.driver.parse(lexed)
-    except ReservedWordError as e:
-        value = e.token.value
-        raise GlslError(
-            Diagnostic(
-                f"'{value}' is a reserved word in GLSL ES 3.00 and cannot be used as a name",
-                locate_span(e.token.start_pos, e.token.end_pos),
-                help=f"rename it, for example to '{value}_'",
-            )
-        ) from None
+    except BadNameError as e:  # a reserved word or an over-long identifier
+        raise GlslError(Diagnostic(e.message, locate_span(e.token.start_pos, e.token.end_pos), help=e.help)) from None
     except UnexpectedInput as e:
         raise GlslError(_syntax_error(e, lexed, locate_span)) from None
     builder = _Builder(locate_span, text)

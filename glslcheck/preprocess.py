@@ -412,6 +412,7 @@ _BINARY_PREC = {
     "<": 7, ">": 7, "<=": 7, ">=": 7, "<<": 8, ">>": 8, "+": 9, "-": 9, "*": 10, "/": 10, "%": 10,
 }
 _INT_RE = re.compile(r"0[xX][0-9A-Fa-f]+|0[0-7]*|[1-9][0-9]*")
+_INVARIANT_ALL_RE = re.compile(r"STDGL[ \t]+invariant[ \t]*\([ \t]*all[ \t]*\)[ \t]*")
 
 
 def _wrap32(v: int) -> int:
@@ -714,6 +715,12 @@ class _Preprocessor:
             loc = u.span(hash_pos, nl)
             if name == "error":
                 raise GlslError(Diagnostic(f"#error: {rest}" if rest else "#error", loc, rule=RULE))
+            if (self.version or (300 if self.shadertoy else 100)) == 300 and _INVARIANT_ALL_RE.fullmatch(rest):
+                # GLSL ES 3.00 section 4.6.1: only a vertex shader's outputs can be invariant;
+                # Mesa: "pragma `invariant(all)' cannot be used in a fragment shader".
+                raise GlslError(Diagnostic("#pragma STDGL invariant(all) cannot be used in a fragment shader "
+                                           "(GLSL ES 3.00 section 4.6.1)", loc, rule=RULE,
+                                           help="remove it: a fragment shader's outputs are never invariant"))
             self.pragmas.append((rest, loc))
             return
         toks = _lex_all(text, name_tok.end, nl)
@@ -935,9 +942,11 @@ class _Preprocessor:
         expr = self._expand_list(toks, 0)
         nums = []
         for t in expr:
-            if t.kind != NUM or not t.text.isdigit():
+            # GLSL ES 3.00 section 3.4: "constant integer expressions"; an integer literal in
+            # any base (decimal, octal 010, hex 0x10) is one, as Mesa and glslang accept.
+            if t.kind != NUM or not _INT_RE.fullmatch(t.text):
                 raise self._tok_error(f"#line takes a line number and an optional source number, not '{t.text}'", t)
-            nums.append(int(t.text))
+            nums.append(int(t.text, 8) if t.text.startswith("0") and t.text[1:].isdigit() else int(t.text, 0))
         if not 1 <= len(nums) <= 2:
             raise self._tok_error("#line takes a line number and an optional source number", nt)
         next_line = self.unit.line_of(nl) + 1

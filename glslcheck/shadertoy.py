@@ -44,6 +44,11 @@ class Uniform:
         suffix = f"[{self.array_size}]" if self.array_size else ""
         return f"uniform {self.glsl_type:<9} {self.name}{suffix};"
 
+    @property
+    def type_name(self) -> str:
+        """The declared type as glslcheck's types print it: 'vec3', 'float[4]'."""
+        return f"{self.glsl_type}[{self.array_size}]" if self.array_size else self.glsl_type
+
 
 # In the order Shadertoy declares them (one line each; the line count of the prelude depends on it).
 UNIFORMS: tuple[Uniform, ...] = (
@@ -65,6 +70,14 @@ UNIFORMS: tuple[Uniform, ...] = (
     Uniform("iChannel3", "sampler2D", 3, None, "input 3"),
 )
 UNIFORMS_BY_NAME: dict[str, Uniform] = {u.name: u for u in UNIFORMS}
+
+
+def fed_uniform(name: str, type_name: str) -> Uniform | None:
+    """The Shadertoy input a plain GLSL file's `uniform <type> <name>;` receives: the one of that
+    name when declared with Shadertoy's type ('vec3', 'float[4]'), else None (it then stays 0,
+    on both backends). A plain file that declares `uniform vec3 iResolution;` gets the size."""
+    u = UNIFORMS_BY_NAME.get(name)
+    return u if u is not None and u.type_name == type_name else None
 # Shadertoy compiles the Common tab on its own with only these declared.
 COMMON_ONLY_UNIFORMS: tuple[str, ...] = ("iDate", "iSampleRate")
 

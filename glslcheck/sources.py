@@ -13,8 +13,10 @@ raises `InputError` (exit 2) with the path and, for bad bytes, the line and colu
 
 from __future__ import annotations
 
+import errno
 import os
 import re
+import stat
 from dataclasses import dataclass, field
 from pathlib import Path
 
@@ -97,24 +99,24 @@ def decode(data: bytes, path: str) -> str:
 
 
 def read_source(path: str | os.PathLike, tab: str | None = None) -> Source:
-    """Read one file as a Source; InputError when it is missing, unreadable, too big or not UTF-8."""
+    """Read one file as a Source; InputError when it is missing, unreadable, not a regular file,
+    too big or not UTF-8."""
     spath = str(path)
     try:
-        size = os.path.getsize(spath)
-        if size > MAX_FILE_BYTES:
+        # O_NONBLOCK: opening a FIFO must not wait for a writer; it is refused just below.
+        fd = os.open(spath, os.O_RDONLY | os.O_NONBLOCK | getattr(os, "O_CLOEXEC", 0))
+        with os.fdopen(fd, "rb") as f:
+            mode = os.fstat(f.fileno()).st_mode
+            if not stat.S_ISREG(mode):
+                raise InputError(f"{spath}: error: {_not_regular(mode)}, not a regular file; glslcheck reads shader files")
+            data = f.read(MAX_FILE_BYTES + 1)  # never more, whatever the file's size claims
+        if len(data) > MAX_FILE_BYTES:
+            size = max(os.path.getsize(spath), len(data))
             raise InputError(f"{spath}: error: the file is {size} bytes; glslcheck reads shader files up to {MAX_FILE_BYTES} bytes")
-        with open(spath, "rb") as f:
-            data = f.read()
     except InputError:
         raise
-    except IsADirectoryError:
-        raise InputError(f"{spath}: error: is a directory") from None
-    except FileNotFoundError:
-        raise InputError(f"{spath}: error: no such file") from None
-    except PermissionError:
-        raise InputError(f"{spath}: error: permission denied") from None
     except OSError as e:
-        raise InputError(f"{spath}: error: cannot read the file ({e.strerror or e})") from None
+        raise InputError(f"{spath}: error: {os_error_text(e)}") from None
     text = decode(data, spath)
     register_source(spath, text)
     if tab is None:
@@ -122,6 +124,41 @@ def read_source(path: str | os.PathLike, tab: str | None = None) -> Source:
     if _is_plain_glsl(text):
         tab = "GLSL"
     return Source(spath, text, tab)
+
+
+def os_error_text(e: OSError) -> str:
+    """What an OSError on opening a path means, in words ("no such file", "a symlink loop", ...)."""
+    if e.errno == errno.ENOENT:
+        return "no such file"
+    if e.errno == errno.ELOOP:
+        return "a loop of symbolic links (or too many of them in a row); it names no file"
+    if e.errno == errno.EISDIR:
+        return "is a directory"
+    if e.errno in (errno.EACCES, errno.EPERM):
+        return "permission denied"
+    if e.errno == errno.ENOTDIR:
+        return "a part of the path is not a folder"
+    if e.errno == errno.ENAMETOOLONG:
+        return "the file name is too long"
+    return f"cannot read the file ({e.strerror or e})"
+
+
+def check_path(path: str | os.PathLike) -> None:
+    """InputError unless `path` names something (a file or folder): missing, a symlink loop, ..."""
+    try:
+        os.stat(path)
+    except OSError as e:
+        text = os_error_text(e)
+        raise InputError(f"{path}: error: {'no such file or directory' if text == 'no such file' else text}") from None
+
+
+def _not_regular(mode: int) -> str:
+    for test, what in ((stat.S_ISFIFO, "is a FIFO (named pipe)"), (stat.S_ISCHR, "is a character device"),
+                       (stat.S_ISBLK, "is a block device"), (stat.S_ISSOCK, "is a socket"),
+                       (stat.S_ISDIR, "is a directory")):
+        if test(mode):
+            return what
+    return "is a special file"
 
 
 _VERSION_RE = re.compile(r"^[ \t]*#[ \t]*version\b", re.M)
@@ -150,8 +187,7 @@ def load_shader(path: str | os.PathLike) -> Shader:
     """A file (one tab; a sibling Common tab is picked up for an Image tab) or a folder of tabs."""
     p = Path(path)
     spath = str(path)
-    if not p.exists():
-        raise InputError(f"{spath}: error: no such file or directory")
+    check_path(spath)
     shader = Shader(root=spath)
     if p.is_dir():
         files = sorted(f for f in p.iterdir() if _is_tab_file(f))

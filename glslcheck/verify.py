@@ -1,9 +1,9 @@
 """Verifying the CPU renderer: render one shader with the NumPy backend and with OpenGL
 (Mesa llvmpipe) at the same inputs, frame by frame, and compare the two images.
 
-This module owns the frame schedule (which times, frame numbers and rates a run covers), the
-pairing of the two backends, and the option parsers the `verify` command uses for sizes, time
-lists and mouse positions. The verdict itself (metrics, tolerance model, diff image) belongs to
+This module owns the frame schedule (which times, frame numbers and rates a run covers) and the
+pairing of the two backends; the command-line values and their limits are in
+`glslcheck.commands.args`, shared by every command. The verdict itself (metrics, tolerance model, diff image) belongs to
 `glslcheck.compare`; each frame's outcome is a `compare.Comparison`.
 
 Library API:
@@ -32,7 +32,7 @@ from __future__ import annotations
 
 import inspect
 import logging
-import math
+from collections import abc
 import os
 import sys
 from dataclasses import dataclass
@@ -52,94 +52,6 @@ DEFAULT_FPS = 60.0
 
 
 # ---------------------------------------------------------------------------------------------
-# Option parsers (usable as argparse `type=`: they raise ValueError with a readable message).
-
-
-# The largest image glslcheck renders: 4096x4096 pixels. Its float32 RGBA image alone is
-# 256 MiB; verify holds two of them (NumPy and GL) plus the comparison's arrays. 16384x16384
-# (4 GiB per image) ran out of memory with a traceback.
-MAX_PIXELS = 4096 * 4096
-
-
-def check_pixels(w: int, h: int, text: str) -> None:
-    """ValueError when w*h is above MAX_PIXELS."""
-    if w * h > MAX_PIXELS:
-        raise ValueError(f"a size of at most {MAX_PIXELS:,} pixels (e.g. 4096x4096), not {text!r} "
-                         f"({w * h:,} pixels, {w * h * 16 / 2**30:.1f} GiB per float image)")
-
-
-def parse_size(text: str) -> tuple[int, int]:
-    """'320x180' -> (320, 180); both at least 1 and at most 16384, at most MAX_PIXELS in all."""
-    parts = text.lower().replace("*", "x").split("x")
-    try:
-        if len(parts) != 2:
-            raise ValueError
-        w, h = int(parts[0]), int(parts[1])
-    except ValueError:
-        raise ValueError(f"a size is WIDTHxHEIGHT in pixels, e.g. 320x180, not {text!r}") from None
-    if not (1 <= w <= 16384 and 1 <= h <= 16384):
-        raise ValueError(f"a size must be between 1x1 and 16384x16384, not {text!r}")
-    check_pixels(w, h, text)
-    return w, h
-
-
-def parse_floats(text: str, count: int | None = None, what: str = "value") -> tuple[float, ...]:
-    """'0,0.5,1' -> (0.0, 0.5, 1.0); finite numbers only; exactly `count` of them if given."""
-    items = [t.strip() for t in text.split(",")]
-    try:
-        values = tuple(float(t) for t in items)
-    except ValueError:
-        raise ValueError(f"{what} must be comma-separated numbers, not {text!r}") from None
-    if not all(math.isfinite(v) for v in values):
-        raise ValueError(f"{what} must be finite numbers, not {text!r}")
-    if count is not None and len(values) != count:
-        raise ValueError(f"{what} needs {count} comma-separated numbers, not {text!r}")
-    return values
-
-
-def parse_time(text: str) -> float:
-    return parse_floats(text, 1, "a time")[0]
-
-
-def parse_times(text: str) -> tuple[float, ...]:
-    return parse_floats(text, None, "--times")
-
-
-def parse_mouse(text: str) -> tuple[float, float, float, float]:
-    """'X,Y,Z,W' -> iMouse (pixels; signs of Z and W as on Shadertoy)."""
-    return parse_floats(text, 4, "--mouse")  # type: ignore[return-value]
-
-
-def parse_samples(text: str) -> int:
-    """A perfect square >= 1 (the k*k sub-pixel grid both backends use)."""
-    try:
-        n = int(text)
-    except ValueError:
-        raise ValueError(f"--samples must be an integer, not {text!r}") from None
-    k = math.isqrt(n) if n >= 1 else 0
-    if k < 1 or k * k != n or n > 256:
-        raise ValueError(f"--samples must be a perfect square from 1 to 256 (1, 4, 9, 16, ...), not {text!r}")
-    return n
-
-
-def parse_count(text: str) -> int:
-    try:
-        n = int(text)
-    except ValueError:
-        raise ValueError(f"expected a whole number, not {text!r}") from None
-    if n < 0:
-        raise ValueError(f"expected a number >= 0, not {text!r}")
-    return n
-
-
-def parse_fps(text: str) -> float:
-    fps = parse_floats(text, 1, "--fps")[0]
-    if fps <= 0:
-        raise ValueError(f"--fps must be positive, not {text!r}")
-    return fps
-
-
-# ---------------------------------------------------------------------------------------------
 # The frame schedule.
 
 
@@ -153,14 +65,38 @@ class FrameSpec:
     frame_rate: float = DEFAULT_FPS
 
 
+@dataclass(frozen=True, slots=True)
+class Frames(abc.Sequence):
+    """`length` consecutive frames from iFrame `start` at `rate`, made one at a time when asked
+    for (`--frames 100000000` holds no list of 10^8 frames)."""
+
+    start: int
+    length: int
+    rate: float
+
+    def __len__(self) -> int:
+        return self.length
+
+    def __getitem__(self, i):
+        if isinstance(i, slice):
+            return [self[j] for j in range(*i.indices(self.length))]
+        if i < 0:
+            i += self.length
+        if not 0 <= i < self.length:
+            raise IndexError(i)
+        n = self.start + i
+        return FrameSpec(n / self.rate, n, 1.0 / self.rate, self.rate)
+
+
 def frame_specs(
     time: float | None = None,
     times: Sequence[float] | None = None,
     frames: int | None = None,
     fps: float | None = None,
     frame: int | None = None,
-) -> list[FrameSpec]:
-    """The frames one run renders (see the module docstring); ValueError on conflicting options."""
+) -> Sequence[FrameSpec]:
+    """The frames one run renders (see the module docstring); ValueError on conflicting options.
+    `frames=N` gives a lazy sequence (`Frames`), the others a list."""
     given = [name for name, v in (("time", time), ("times", times), ("frames", frames)) if v is not None]
     if len(given) > 1:
         raise ValueError(f"give only one of --{', --'.join(given)}")
@@ -172,7 +108,7 @@ def frame_specs(
     if frames is not None:
         if frames < 1:
             raise ValueError("frames must be at least 1")
-        return [FrameSpec((start + i) / rate, start + i, delta, rate) for i in range(frames)]
+        return Frames(start, int(frames), rate)
     if times is not None:
         if not len(times):
             raise ValueError("times is empty")
@@ -349,14 +285,16 @@ def verify(shader, **options) -> list[Comparison]:
     return [r.comparison for r in verify_frames(shader, **options)]
 
 
-def diff_paths(path: str | os.PathLike, count: int) -> list[Path]:
-    """`diff.png` for one frame; `diff-0.png`, `diff-1.png`, ... for several."""
+def diff_paths(path: str | os.PathLike, count: int) -> Iterator[Path]:
+    """`diff.png` for one frame; `diff-0.png`, `diff-1.png`, ... for several (made as needed)."""
     p = Path(path)
     if count == 1:
-        return [p]
+        yield p
+        return
     suffix = p.suffix or ".png"
     stem = p.name[: -len(p.suffix)] if p.suffix else p.name
-    return [p.with_name(f"{stem}-{i}{suffix}") for i in range(count)]
+    for i in range(count):
+        yield p.with_name(f"{stem}-{i}{suffix}")
 
 
 # ---------------------------------------------------------------------------------------------

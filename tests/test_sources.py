@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+import os
+
 import pytest
 
 from glslcheck.cli import main
@@ -78,19 +80,18 @@ def test_missing_file_exits_2_without_traceback(command, tmp_path, capsys):
 
 
 def test_unreadable_file_exits_2(tmp_path, capsys, monkeypatch):
-    # As root (CI) chmod 0 does not stop a read, so the OS error is simulated at open().
+    # As root (CI) chmod 0 does not stop a read, so the OS error is simulated at os.open()
+    # (read_source opens with os.open, O_NONBLOCK, so a FIFO is refused instead of waited on).
     p = tmp_path / "Image.glsl"
     p.write_text("x")
-    import builtins
-
-    real_open = builtins.open
+    real_open = os.open
 
     def deny(file, *args, **kwargs):
         if str(file) == str(p):
             raise PermissionError(13, "Permission denied", str(file))
         return real_open(file, *args, **kwargs)
 
-    monkeypatch.setattr(builtins, "open", deny)
+    monkeypatch.setattr(os, "open", deny)
     assert main(["parse", str(p)]) == 2
     assert "permission denied" in capsys.readouterr().err
 

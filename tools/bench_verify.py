@@ -17,7 +17,8 @@ ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT))
 
 from glslcheck.sources import load_shader  # noqa: E402
-from glslcheck.verify import compile_backend, parse_size, verify  # noqa: E402
+from glslcheck.commands.args import parse_size  # noqa: E402
+from glslcheck.verify import compile_backend, verify  # noqa: E402
 
 
 def main() -> int:

@@ -33,6 +33,10 @@ def check(parse_result: Any, tab: str = "Image", *, collect: bool = False) -> Mo
     sys.setrecursionlimit(max(old, 20000))
     try:
         model = Checker(parse_result, tab).run()
+        if not model.errors:  # undefined behaviour the backends may not agree on (hazards.py)
+            from .hazards import hazard_warnings
+
+            model.diagnostics.extend(hazard_warnings(model))
     except RecursionError:
         sources = getattr(parse_result, "sources", None) or []
         loc = Location(sources[-1].path, 1, 1) if sources else None

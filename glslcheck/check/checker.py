@@ -448,6 +448,11 @@ class Checker:
                     continue  # f(void)
                 self.error("a parameter cannot be 'void'", p)
                 pt = ERROR
+            if definition is not None and p.name is None and pt is not ERROR and not pt.is_void:
+                # The spec lets a prototype omit names; Mesa also rejects a nameless parameter of
+                # a definition ("formal parameter lacks a name"), so check does as the driver.
+                self.error("a parameter of a function definition needs a name", p,
+                           help="name it, e.g. 'out vec4 fragColor, in vec2 fragCoord' for mainImage")
             if pt is not ERROR and not pt.is_void:
                 self.require_precision(pt, p.qualifiers, p.type or p)
             if pt is not ERROR and pt.is_array and pt.array_size is None:

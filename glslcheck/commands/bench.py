@@ -31,9 +31,10 @@ import sys
 
 from ..bench import DEFAULT_RUNS, DEFAULT_SIZE, bench_shader, configurations, format_table, write_plot
 from ..diagnostics import GlslError, format_text
+from ..images import check_output
 from ..sources import find_shaders
-from ..verify import Progress, parse_size, parse_time
-from .verify import _arg_type
+from ..verify import Progress
+from . import args as A
 
 
 class _BenchProgress(Progress):
@@ -50,24 +51,14 @@ class _BenchProgress(Progress):
         self._drawn = True
 
 
-def _runs(text: str) -> int:
-    try:
-        n = int(text)
-    except ValueError:
-        raise argparse.ArgumentTypeError(f"--runs must be a whole number, not {text!r}") from None
-    if n < 1:
-        raise argparse.ArgumentTypeError(f"--runs must be at least 1, not {text!r}")
-    return n
-
-
 def add_arguments(p) -> None:
     p.add_argument("paths", nargs="+", metavar="SHADER", help="tab files or folders of tab files")
     w, h = DEFAULT_SIZE
-    p.add_argument("--size", type=_arg_type(parse_size), default=DEFAULT_SIZE, metavar="WxH",
+    p.add_argument("--size", type=A.arg(A.parse_size), default=DEFAULT_SIZE, metavar="WxH",
                    help=f"render size in pixels (default {w}x{h})")
-    p.add_argument("--runs", type=_runs, default=DEFAULT_RUNS, metavar="N",
+    p.add_argument("--runs", type=A.arg(A.parse_runs), default=DEFAULT_RUNS, metavar="N",
                    help=f"timed renders per configuration after one warm-up; the median is reported (default {DEFAULT_RUNS})")
-    p.add_argument("--time", type=_arg_type(parse_time), default=0.0, metavar="T", help="iTime in seconds (default 0)")
+    p.add_argument("--time", type=A.arg(A.parse_time), default=0.0, metavar="T", help="iTime in seconds (default 0)")
     p.add_argument("--format", choices=("text", "json"), default="text", help="output format (default text)")
     p.add_argument("--plot", metavar="PNG", help="write the time-against-error plot")
     p.add_argument("--progress", action=argparse.BooleanOptionalAction, default=None,
@@ -75,6 +66,8 @@ def add_arguments(p) -> None:
 
 
 def run(args) -> int:
+    if args.plot:
+        check_output(args.plot, (".png",), "plot")  # before the minutes of measuring, not after
     shaders = find_shaders(args.paths)
     per_shader = len(configurations()) * (args.runs + 1)
     show = args.progress if args.progress is not None else sys.stderr.isatty()
@@ -96,11 +89,7 @@ def run(args) -> int:
         progress.finish()
 
     if args.plot and rows:
-        try:
-            write_plot(rows, args.plot, title=_plot_title(args))
-        except OSError as e:
-            print(f"{args.plot}: error: cannot write the plot ({e.strerror or e})", file=sys.stderr)
-            return 2
+        write_plot(rows, args.plot, title=_plot_title(args))  # atomic; InputError (exit 2) on failure
 
     if args.format == "json":
         print(json.dumps({"rows": [r.to_json() for r in rows]}))

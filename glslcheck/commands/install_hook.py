@@ -1,10 +1,11 @@
 """Install a git pre-commit hook that runs `glslcheck lint` on the staged shader files.
 
 The hook is a plain POSIX sh script in the repository's hooks folder (`core.hooksPath` is
-honoured). It lints the staged files that were added, copied or modified and are shader files
-(.glsl, .frag, a Shadertoy tab name, or a `tab-patterns` glob of the configuration), and stops
-the commit when there is a finding; `git commit --no-verify` skips it once. It lints the files as
-they are in the work tree. A hook that glslcheck did not write is left alone unless --force is
+honoured). It runs `glslcheck lint --staged` (see glslcheck/hook.py): the staged version of the
+files that were added, copied, modified or renamed and are shader files (.glsl, .frag, a
+Shadertoy tab name, or a `tab-patterns` glob of the configuration), and stops the commit when
+there is a finding; `git commit --no-verify` skips it once. It runs the Python that installed it
+in isolated mode, so a `glslcheck/` folder in the repository is never imported. A hook that glslcheck did not write is left alone unless --force is
 given (it is then kept as pre-commit.glslcheck-backup). Exit 2 outside a git repository.
 """
 
@@ -15,6 +16,7 @@ import os
 import shlex
 import subprocess
 import sys
+import tempfile
 from pathlib import Path
 
 from ..diagnostics import InputError
@@ -23,32 +25,20 @@ MARKER = "# glslcheck-managed-hook: written by `glslcheck install-hook`"
 
 HOOK_TEMPLATE = """#!/bin/sh
 {marker}
-# Lints the staged shader files with glslcheck; a finding stops the commit.
+# Lints the staged version of the staged shader files with glslcheck; a finding stops the commit.
 # Skip it once with `git commit --no-verify`; reinstall with `glslcheck install-hook`.
 
+# The installed glslcheck, run isolated ({flags}): a `glslcheck/` folder in the repository is
+# never imported in its place.
 PYTHON={python}
-run_glslcheck() {{
-    if [ -x "$PYTHON" ]; then
-        "$PYTHON" -m glslcheck "$@"
-    elif command -v glslcheck >/dev/null 2>&1; then
-        glslcheck "$@"
-    else
-        echo "glslcheck pre-commit hook: glslcheck is not installed ($PYTHON is gone)" >&2
-        exit 1
-    fi
-}}
-
-# The staged files that were added, copied or modified, one per line.
-set --
-while IFS= read -r file; do
-    [ -n "$file" ] && set -- "$@" "$file"
-done <<EOF
-$(git -c core.quotePath=false diff --cached --name-only --diff-filter=ACM)
-EOF
-[ "$#" -eq 0 ] && exit 0
-
-# glslcheck leaves out the files that are not shaders (--skip-non-shaders).
-run_glslcheck lint --skip-non-shaders -- "$@"
+if [ -x "$PYTHON" ]; then
+    exec "$PYTHON" {flags} -m glslcheck lint --staged
+elif command -v glslcheck >/dev/null 2>&1; then
+    exec glslcheck lint --staged
+else
+    echo "glslcheck pre-commit hook: glslcheck is not installed ($PYTHON is gone)" >&2
+    exit 1
+fi
 """
 
 
@@ -57,7 +47,23 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
 
 
 def hook_text(python: str | None = None) -> str:
-    return HOOK_TEMPLATE.format(marker=MARKER, python=shlex.quote(python or sys.executable))
+    python = python or sys.executable
+    return HOOK_TEMPLATE.format(marker=MARKER, python=shlex.quote(python), flags=isolation_flags(python))
+
+
+def isolation_flags(python: str) -> str:
+    """`-I` (isolated: no current folder or script folder on sys.path, no PYTHON* variables, no
+    user site-packages) when `python -I` imports this very glslcheck; `-E -P` (the first two
+    only) when glslcheck is installed in the user's site-packages, which -I leaves out."""
+    import glslcheck
+
+    with tempfile.TemporaryDirectory() as neutral:
+        try:
+            proc = subprocess.run([python, "-I", "-c", "import glslcheck; print(glslcheck.__file__)"],
+                                  cwd=neutral, capture_output=True, text=True, timeout=60)
+        except (OSError, subprocess.TimeoutExpired):
+            return "-I"
+    return "-I" if proc.stdout.strip() == glslcheck.__file__ else "-E -P"
 
 
 def hook_path(cwd: str | os.PathLike | None = None) -> Path:

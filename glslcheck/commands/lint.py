@@ -19,7 +19,7 @@ def _names(value: str) -> list[str]:
 
 
 def add_arguments(parser: argparse.ArgumentParser) -> None:
-    parser.add_argument("paths", nargs="+", metavar="PATH", help="shader files or folders")
+    parser.add_argument("paths", nargs="*", metavar="PATH", help="shader files or folders")
     parser.add_argument(
         "--format", choices=("text", "json", "sarif", "github"), default="text", help="output format (default: text)"
     )
@@ -36,6 +36,12 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
         help="leave out named files that are not shader files (.glsl, .frag, Shadertoy tab names, "
         "tab-patterns); for git hooks given every staged file",
     )
+    parser.add_argument(
+        "--staged",
+        action="store_true",
+        help="lint the staged (index) version of every staged shader file, as the commit will hold it "
+        "(the pre-commit hook's mode; paths are relative to the top of the work tree)",
+    )
 
 
 def run(args: argparse.Namespace) -> int:
@@ -47,16 +53,27 @@ def run(args: argparse.Namespace) -> int:
         overrides["select"] = args.select
     if args.ignore is not None:
         overrides["ignore"] = args.ignore
-    result = lint_paths(args.paths, overrides, skip_non_shaders=args.skip_non_shaders)
-    text = render(result, args.format)
+    if args.staged:
+        if args.paths:
+            raise InputError("glslcheck lint: error: --staged lints the staged files; give no PATH with it")
+        from ..hook import staged_checkout
+
+        with staged_checkout() as names:  # messages name the repository-relative paths
+            result = lint_paths(names, overrides, skip_non_shaders=True)
+            text = render(result, args.format)
+    elif not args.paths:
+        raise InputError("glslcheck lint: error: give at least one PATH (or --staged)")
+    else:
+        result = lint_paths(args.paths, overrides, skip_non_shaders=args.skip_non_shaders)
+        text = render(result, args.format)
     if args.output:
         out = Path(args.output)
         if out.exists() and any(out.resolve() == Path(p).resolve() for p in result.paths):
             raise InputError(f"{args.output}: error: --output names a file being linted; lint never overwrites a shader")
-        try:
-            out.write_text(text, encoding="utf-8")
-        except OSError as e:
-            raise InputError(f"{args.output}: error: cannot write the report ({e.strerror or e})") from None
+        from ..images import atomic_write
+
+        with atomic_write(out, "report") as tmp:  # InputError (exit 2) when it cannot be written
+            Path(tmp).write_text(text, encoding="utf-8")
     else:
         sys.stdout.write(text)
     return 1 if result.findings else 0

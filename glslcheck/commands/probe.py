@@ -35,7 +35,8 @@ import json
 import math
 
 from ..diagnostics import InputError
-from .render import _floats, add_uniform_arguments
+from . import args as A
+from .render import add_uniform_arguments
 
 
 def _pixel(text: str) -> tuple[int, int]:
@@ -50,7 +51,7 @@ def add_arguments(p) -> None:
     p.add_argument("path", metavar="SHADER", help="a tab file or a folder of tab files")
     what = p.add_mutually_exclusive_group(required=True)
     what.add_argument("--pixel", type=_pixel, metavar="X,Y", help="the pixel to trace, from the top left")
-    what.add_argument("--frag-coord", type=lambda t: _floats(t, 2, "--frag-coord"), metavar="FX,FY",
+    what.add_argument("--frag-coord", type=A.arg(lambda t: A.parse_floats(t, 2, "--frag-coord")), metavar="FX,FY",
                       help="the fragCoord to trace (origin at the bottom left, pixel centres at .5)")
     what.add_argument("--nan", action="store_true", help="find where the frame's NaN and Inf pixels came from")
     add_uniform_arguments(p)

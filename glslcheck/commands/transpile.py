@@ -11,8 +11,6 @@ from __future__ import annotations
 
 import sys
 
-from ..diagnostics import InputError
-
 
 def add_arguments(p) -> None:
     p.add_argument("path", metavar="SHADER", help="a tab file or a folder of tab files")
@@ -27,9 +25,9 @@ def run(args) -> int:
     if args.output is None:
         sys.stdout.write(result.source)
         return 0
-    try:
-        with open(args.output, "w", encoding="utf-8") as f:
+    from ..images import atomic_write
+
+    with atomic_write(args.output, "module") as tmp:  # InputError (exit 2) when it cannot be written
+        with open(tmp, "w", encoding="utf-8") as f:
             f.write(result.source)
-    except OSError as e:
-        raise InputError(f"{args.output}: error: cannot write ({e.strerror or e})") from None
     return 0

@@ -30,37 +30,11 @@ import json
 import math
 import sys
 
-from ..diagnostics import GlslError, format_text
+from ..diagnostics import GlslError, InputError, format_text
+from ..images import check_output
 from ..sources import find_shaders
-from ..verify import (
-    BACKENDS,
-    DEFAULT_FPS,
-    PRECISIONS,
-    Progress,
-    diff_paths,
-    frame_specs,
-    parse_count,
-    parse_fps,
-    parse_mouse,
-    parse_samples,
-    parse_size,
-    parse_time,
-    parse_times,
-    verify_frames,
-)
-
-
-def _arg_type(fn):
-    """Wrap a verify.parse_* function so argparse reports its message as a usage error (exit 2)."""
-
-    def convert(text):
-        try:
-            return fn(text)
-        except ValueError as e:
-            raise argparse.ArgumentTypeError(str(e)) from None
-
-    convert.__name__ = fn.__name__.replace("parse_", "")
-    return convert
+from ..verify import BACKENDS, DEFAULT_FPS, Progress, diff_paths, frame_specs, verify_frames
+from . import args as A
 
 
 def _backends(text: str) -> tuple[str, str]:
@@ -72,30 +46,32 @@ def _backends(text: str) -> tuple[str, str]:
 
 def add_arguments(p) -> None:
     p.add_argument("paths", nargs="+", metavar="SHADER", help="tab files or folders of tab files")
-    p.add_argument("--size", type=_arg_type(parse_size), default=(800, 450), metavar="WxH",
+    p.add_argument("--size", type=A.arg(A.parse_size), default=(800, 450), metavar="WxH",
                    help="render size in pixels (default 800x450)")
     when = p.add_mutually_exclusive_group()
-    when.add_argument("--time", type=_arg_type(parse_time), metavar="T", help="iTime in seconds (default 0)")
-    when.add_argument("--times", type=_arg_type(parse_times), metavar="T,T,...",
+    when.add_argument("--time", type=A.arg(A.parse_time), metavar="T", help="iTime in seconds (default 0)")
+    when.add_argument("--times", type=A.arg(A.parse_times), metavar="T,T,...",
                       help="verify one frame per time")
-    when.add_argument("--frames", type=_arg_type(parse_count), metavar="N",
+    when.add_argument("--frames", type=A.arg(A.parse_frames), metavar="N",
                       help="verify N consecutive frames at --fps")
-    p.add_argument("--fps", type=_arg_type(parse_fps), default=None, metavar="F",
+    p.add_argument("--fps", type=A.arg(A.parse_fps), default=None, metavar="F",
                    help=f"frames per second: iFrameRate, iTimeDelta = 1/F and the --frames clock (default {DEFAULT_FPS:g})")
-    p.add_argument("--frame", type=_arg_type(parse_count), default=0, metavar="N",
+    p.add_argument("--frame", type=A.arg(A.parse_frame), default=0, metavar="N",
                    help="iFrame (with --frames: the first frame) (default 0)")
-    p.add_argument("--mouse", type=_arg_type(parse_mouse), default=(0.0, 0.0, 0.0, 0.0), metavar="X,Y,Z,W",
+    p.add_argument("--mouse", type=A.arg(A.parse_mouse), default=(0.0, 0.0, 0.0, 0.0), metavar="X,Y,Z,W",
                    help="iMouse in pixels (default 0,0,0,0)")
-    p.add_argument("--precision", choices=PRECISIONS, default="float32",
+    p.add_argument("--date", type=A.arg(A.parse_date), default=None, metavar="Y,M,D,S",
+                   help="iDate: year, month 0-11, day, seconds since midnight (default 2026,0,1,0)")
+    p.add_argument("--precision", choices=A.PRECISIONS, default="float32",
                    help="float mode of the NumPy backend; OpenGL is always highp float32 (default float32)")
-    p.add_argument("--samples", type=_arg_type(parse_samples), default=1, metavar="N",
+    p.add_argument("--samples", type=A.arg(A.parse_samples), default=1, metavar="N",
                    help="samples per pixel on both sides, a perfect square (default 1)")
     p.add_argument("--diff", metavar="PNG", help="write the difference heat map (diff-<i>.png for several frames)")
     p.add_argument("--format", choices=("text", "json"), default="text", help="output format (default text)")
     p.add_argument("--progress", action=argparse.BooleanOptionalAction, default=None,
                    help="progress bar on stderr for several frames (default: when stderr is a terminal)")
     # For developers: compare other backend pairs (gl,gl checks the plumbing; first = "numpy" side).
-    p.add_argument("--backends", type=_arg_type(_backends), default=BACKENDS, help=argparse.SUPPRESS)
+    p.add_argument("--backends", type=A.arg(_backends), default=BACKENDS, help=argparse.SUPPRESS)
 
 
 def _frame_count(args) -> int:
@@ -107,10 +83,13 @@ def _frame_count(args) -> int:
 
 
 def run(args) -> int:
-    if args.frames is not None and args.frames < 1:
-        print("glslcheck verify: error: --frames must be at least 1", file=sys.stderr)
-        return 2
-    frame_specs(args.time, args.times, args.frames, args.fps, args.frame)  # validates the schedule
+    if args.diff:
+        check_output(args.diff, (".png",), "diff image")
+    try:
+        A.check_schedule(args.frame, args.frames, args.fps or DEFAULT_FPS)
+        frame_specs(args.time, args.times, args.frames, args.fps, args.frame)  # conflicting options
+    except ValueError as e:
+        raise InputError(f"glslcheck verify: error: {e}") from None
     shaders = find_shaders(args.paths)
     total = len(shaders) * _frame_count(args)
     show = args.progress if args.progress is not None else (total > 1 and sys.stderr.isatty())
@@ -118,14 +97,16 @@ def run(args) -> int:
 
     results = []
     glsl_errors = 0
+    paths = iter(diff_paths(args.diff, total)) if args.diff else None
     try:
         for index, shader in enumerate(shaders):
             try:
                 frames = verify_frames(
                     shader, size=args.size, time=args.time, times=args.times, frames=args.frames,
-                    fps=args.fps, frame=args.frame, mouse=args.mouse, precision=args.precision,
+                    fps=args.fps, frame=args.frame, mouse=args.mouse, date=args.date, precision=args.precision,
                     samples=args.samples, backends=args.backends, progress=progress)
                 for result in frames:
+                    _keep(result, paths)
                     results.append(result)
             except GlslError as e:
                 progress.finish()
@@ -136,15 +117,6 @@ def run(args) -> int:
     finally:
         progress.finish()
 
-    if args.diff and results:
-        from ..compare import write_diff_png
-
-        for result, path in zip(results, diff_paths(args.diff, len(results))):
-            try:
-                write_diff_png(result.comparison, path)
-            except OSError as e:
-                print(f"{path}: error: cannot write the diff image ({e.strerror or e})", file=sys.stderr)
-                return 2
 
     if args.format == "json":
         objects = [r.comparison.to_json() for r in results]
@@ -157,6 +129,17 @@ def run(args) -> int:
     if glsl_errors or not all(r.match for r in results):
         return 1
     return 0
+
+
+def _keep(result, diff_paths) -> None:
+    """Write a frame's diff image at once (numbered over the frames asked for, as --diff says),
+    then drop its per-pixel maps: a run of many frames keeps only their summaries."""
+    if diff_paths is not None:
+        from ..compare import write_diff_png
+
+        write_diff_png(result.comparison, next(diff_paths))  # atomic; InputError (exit 2) on failure
+    c = result.comparison
+    c.error_map = c.edge_mask = c.nan_mask = None
 
 
 def _print_text(results, args, glsl_errors: int) -> None:

@@ -31,7 +31,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from ..diagnostics import Diagnostic, GlslError, Location, source_line
-from ..shadertoy import DEFAULT_SIZE, OFFSET_UNIFORM, UNIFORMS, Program, build_program, sample_offsets
+from ..shadertoy import DEFAULT_SIZE, OFFSET_UNIFORM, UNIFORMS, UNIFORMS_BY_NAME, Program, build_program, sample_offsets
 from ..shadertoy import as_date as _as_date
 from ..sources import Shader
 from ..driver_profile import driver_model
@@ -48,8 +48,9 @@ void main() {
 }
 """
 
-# Mesa: "0:42(5): error: `y' undeclared"; other drivers: "ERROR: 0:42: ..." or "0(42) : error ...".
-_MESA_RE = re.compile(r"^\s*(\d+):(\d+)\((\d+)\):\s*(error|warning):\s*(.*)$", re.I)
+# Mesa: "0:42(5): error: `y' undeclared", "0:3(1): preprocessor error: #error boom";
+# other drivers: "ERROR: 0:42: ..." or "0(42) : error ...".
+_MESA_RE = re.compile(r"^\s*(\d+):(\d+)\((\d+)\):\s*(?:preprocessor\s+)?(error|warning):\s*(.*)$", re.I)
 _GLSLANG_STYLE_RE = re.compile(r"^\s*(ERROR|WARNING):\s*(\d+):(\d+):\s*(.*)$", re.I)
 _NVIDIA_RE = re.compile(r"^\s*(\d+)\((\d+)\)\s*:\s*(error|warning)\s*\w*:\s*(.*)$", re.I)
 
@@ -58,18 +59,59 @@ def parse_driver_log(log: str) -> list[tuple[int | None, int | None, str, str]]:
     """(program line, column, severity, message) for each message in a driver's compile/link log.
 
     Lines that carry no position but say "error" (linker messages) come back with line None.
+    The line is the driver's, which a `#line` directive renumbers (see `_driver_entries`).
     """
-    out: list[tuple[int | None, int | None, str, str]] = []
+    return [entry[1:] for entry in _driver_entries(log)]
+
+
+def _driver_entries(log: str) -> list[tuple[int, int | None, int | None, str, str]]:
+    """(source string number, line, column, severity, message), as parse_driver_log."""
+    out: list[tuple[int, int | None, int | None, str, str]] = []
     for raw in log.splitlines():
         if m := _MESA_RE.match(raw):
-            out.append((int(m[2]), int(m[3]), m[4].lower(), m[5].strip()))
+            out.append((int(m[1]), int(m[2]), int(m[3]), m[4].lower(), m[5].strip()))
         elif m := _GLSLANG_STYLE_RE.match(raw):
-            out.append((int(m[3]), None, m[1].lower(), m[4].strip()))
+            out.append((int(m[2]), int(m[3]), None, m[1].lower(), m[4].strip()))
         elif m := _NVIDIA_RE.match(raw):
-            out.append((int(m[2]), None, m[3].lower(), m[4].strip()))
+            out.append((int(m[1]), int(m[2]), None, m[3].lower(), m[4].strip()))
         elif re.search(r"\berror\b", raw, re.I) and "Compiler failed" not in raw and "Linker failed" not in raw:
-            out.append((None, None, "error", raw.strip()))
+            out.append((0, None, None, "error", raw.strip()))
     return out
+
+
+_LINE_DIRECTIVE_RE = re.compile(r"^[ \t]*#[ \t]*line[ \t]+(\w+)(?:[ \t]+(\w+))?[ \t]*(?://.*)?$")
+
+
+def _c_integer(text: str | None) -> int | None:
+    """A C integer literal (decimal, 0x hex, 0 octal) or None."""
+    if text is None or not re.fullmatch(r"0[xX][0-9a-fA-F]+|0[0-7]*|[1-9][0-9]*", text):
+        return None
+    return int(text, 16) if text[:2].lower() == "0x" else int(text, 8) if text.startswith("0") else int(text)
+
+
+def driver_line_map(text: str) -> dict[tuple[int | None, int], list[int]]:
+    """The program line the driver means by (source string number, line) after `#line`s.
+
+    `#line N [S]` makes the next line line N (of source string S); GLSL ES 3.00 section 3.4.
+    Mesa (22) prints source string 0 whatever S says, so each line is also keyed (None, line),
+    for a lookup that ignores the source number. Where `#line` makes lines share a number, all
+    are listed in program order (the caller prefers one in the user's text over the wrapper's). A `#line` whose
+    arguments are not integer literals (macros, expressions) stops the map: the lines after it
+    are left out, and their errors fall back to the location of mainImage.
+    """
+    mapping: dict[tuple[int | None, int], list[int]] = {}
+    source, number = 0, 1
+    for program_line, line in enumerate(text.split("\n"), start=1):
+        mapping.setdefault((source, number), []).append(program_line)
+        if source:
+            mapping.setdefault((None, number), []).append(program_line)
+        number += 1
+        if "line" in line and (m := _LINE_DIRECTIVE_RE.match(line)):
+            new_line, new_source = _c_integer(m[1]), _c_integer(m[2]) if m[2] else source
+            if new_line is None or new_source is None:
+                break
+            source, number = new_source, new_line
+    return mapping
 
 
 def mesa_column(line_text: str, column: int) -> int:
@@ -93,10 +135,11 @@ def driver_diagnostics(program: Program, log: str) -> list[Diagnostic]:
     """
     diags: list[Diagnostic] = []
     lines = program.text.split("\n")
-    for line, column, severity, message in parse_driver_log(log):
+    renumbered = driver_line_map(program.text)
+    for source, reported, column, severity, message in _driver_entries(log):
         if severity != "error":
             continue
-        where = program.locate(line) if line is not None else None
+        line, where = _program_line(program, renumbered, source, reported)
         if where is None:
             if line is not None:
                 message += f" (line {line} of the Shadertoy wrapper around the {program.tab} tab)"
@@ -112,6 +155,18 @@ def driver_diagnostics(program: Program, log: str) -> list[Diagnostic]:
         diags.append(Diagnostic(f"the OpenGL driver rejected the {program.tab} program:\n{log.strip()}",
                                 None, rule=RULE))
     return diags
+
+
+def _program_line(program: Program, renumbered: dict, source: int, reported: int | None):
+    """(program line, user location or None) of a driver's (source, line): the first candidate
+    in the user's text, else the first one at all (see driver_line_map)."""
+    if reported is None:
+        return None, None
+    candidates = renumbered.get((source, reported), []) + renumbered.get((None, reported), [])
+    for line in candidates:
+        if (where := program.locate(line)) is not None:
+            return line, where
+    return (candidates[0] if candidates else None), None
 
 
 def _entry_location(program: Program) -> Location | None:
@@ -223,12 +278,20 @@ class GLProgram:
         return np.ascontiguousarray(image[::-1])  # GL rows go bottom-up; images top-down
 
 
+# GL's type enums of the GLSL types Shadertoy's uniforms have.
+_GL_TYPES = {"float": 0x1406, "int": 0x1404, "vec2": 0x8B50, "vec3": 0x8B51, "vec4": 0x8B52,
+             "sampler2D": 0x8B5E, "sampler3D": 0x8B5F, "samplerCube": 0x8B60}
+
+
 def _set_uniform(gl_program, name: str, value, array_size: int | None = None) -> None:
     """Set a uniform if the driver kept it. The driver trims an array to the highest index the
     shader uses (and reports a one-element array as a plain uniform), so arrays are cut to fit."""
     if name not in gl_program:
         return
     uniform = gl_program[name]
+    expected = _GL_TYPES.get(UNIFORMS_BY_NAME[name].glsl_type) if name in UNIFORMS_BY_NAME else None
+    if expected is not None and getattr(uniform, "gl_type", expected) != expected:
+        return  # a plain file's uniform of another type: not fed, 0 as on NumPy (shadertoy.fed_uniform)
     if array_size:
         items = list(value)[: max(uniform.array_length, 1)]
         value = items[0] if len(items) == 1 else (items if isinstance(items[0], tuple) else tuple(items))

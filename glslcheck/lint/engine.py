@@ -28,7 +28,7 @@ from typing import Any, Iterable, Mapping, Sequence
 
 from ..diagnostics import Diagnostic, Location, register_source, source_line
 from ..shadertoy import BUFFER_TABS
-from ..sources import Shader, Source, find_shaders
+from ..sources import Shader, Source, check_path, find_shaders
 from .config import COMMAND_LINE, ConfigFinder, LintConfig, apply_overrides
 from .rules import Rule, all_rules, rule_names
 from .suppress import Suppression, find_suppressions, is_suppressed
@@ -346,6 +346,8 @@ def lint_paths(
     """
     finder = ConfigFinder(check_overrides(config_overrides), rule_names())
     wanted = [str(p) for p in paths]
+    for p in wanted:
+        check_path(p)  # a symlink loop is named as one before any path is resolved
     if skip_non_shaders:
         wanted = [p for p in wanted if Path(p).is_dir() or is_shader_name(p, finder.for_file(p))]
     if not wanted:

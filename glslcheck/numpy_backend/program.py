@@ -782,16 +782,6 @@ def run_standalone(ns: dict) -> None:
         prog = program_from_source(f.read(), os.path.abspath(ns["__file__"]))
     w, h = (int(v) for v in args.size.lower().split("x"))
     img = prog.render(size=(w, h), time=args.time, frame=args.frame, precision=args.precision)
+    from ..images import save_image
+
     save_image(img, args.output)
-
-
-def save_image(img: np.ndarray, path: str) -> None:
-    """.npy: the float32 array; otherwise an 8-bit image (clamped to [0, 1], *255 + 0.5)."""
-    if str(path).lower().endswith(".npy"):
-        np.save(path, img.astype(np.float32))
-        return
-    from PIL import Image
-
-    with np.errstate(invalid="ignore"):
-        q = np.floor(np.clip(np.nan_to_num(img, nan=0.0), 0.0, 1.0) * 255.0 + 0.5).astype(np.uint8)
-    Image.fromarray(q, "RGBA").save(path)

@@ -697,6 +697,9 @@ class Transpiler:
     def var_name(self, sym: Any, node: Any) -> str:
         if sym.kind in ("local", "param"):
             return "v_" + _ident(sym.unique_name or sym.name, node)
+        if sym.kind == "global" and sym.qualifier == "uniform" and self._fed(sym):
+            self.uniforms.add(sym.name)  # a plain file's own `uniform vec3 iResolution;`
+            return "S.u_" + sym.name
         if sym.kind == "global":
             if sym.type.contains_opaque:
                 raise _error(f"'{sym.name}': textures are not supported by the NumPy backend yet", node,
@@ -850,6 +853,14 @@ class Transpiler:
         out.append("    from glslcheck.numpy_backend.program import run_standalone")
         out.append("    run_standalone(globals())")
         return "\n".join(out) + "\n", meta
+
+    @staticmethod
+    def _fed(sym: Any) -> bool:
+        """Whether a declared uniform gets Shadertoy's value (shadertoy.fed_uniform), as on GL."""
+        from ..shadertoy import fed_uniform
+
+        u = fed_uniform(sym.name, str(sym.type))
+        return u is not None and not u.glsl_type.startswith("sampler")
 
     def _uniforms_from_model(self) -> set[str]:
         try:

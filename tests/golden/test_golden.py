@@ -17,10 +17,10 @@ from __future__ import annotations
 
 from pathlib import Path
 
-import numpy as np
 import pytest
 
 from glslcheck.compare import compare
+from glslcheck.images import load_image, quantise, save_image
 from glslcheck.sources import load_shader
 from glslcheck.verify import compile_backend
 
@@ -30,25 +30,6 @@ LAB_PARTS = sorted(p.name for p in (ROOT / "lab_shaders").iterdir() if (p / "Ima
 SIZE = (320, 180)
 TIME = 1.0
 GOLDEN_TOL = 3.0 / 255.0  # verify's 2/255 plus two half-steps of 8-bit rounding (docstring)
-
-
-def quantise(img: np.ndarray) -> np.ndarray:
-    """uint8 RGB as the display shows it: NaN -> 0, +Inf -> 255, clamped, rounded half up."""
-    rgb = np.nan_to_num(np.asarray(img, np.float64)[..., :3], nan=0.0, posinf=1.0, neginf=0.0)
-    return np.floor(np.clip(rgb, 0.0, 1.0) * 255.0 + 0.5).astype(np.uint8)
-
-
-def read_png(path: Path) -> np.ndarray:
-    from PIL import Image
-
-    with Image.open(path) as im:
-        return np.asarray(im.convert("RGB"))
-
-
-def write_png(path: Path, rgb: np.ndarray) -> None:
-    from PIL import Image
-
-    Image.fromarray(rgb).save(path)
 
 
 def test_every_lab_part_has_a_golden():
@@ -65,9 +46,9 @@ def test_render_matches_golden(gl, update_golden, part, backend):
     shader = load_shader(ROOT / "lab_shaders" / part)
     path = GOLDEN / f"{part}.png"
     if update_golden and backend == "gl":
-        write_png(path, quantise(compile_backend(shader, "gl").render(size=SIZE, time=TIME)))
+        save_image(compile_backend(shader, "gl").render(size=SIZE, time=TIME), path)  # 8-bit, as quantise
     img = compile_backend(shader, backend).render(size=SIZE, time=TIME)
     assert img.shape == (SIZE[1], SIZE[0], 4)
-    golden = read_png(path)
-    comparison = compare(quantise(img), golden, abs_tol=GOLDEN_TOL)
+    golden = load_image(path)  # float RGBA in [0, 1]: the 8-bit values / 255
+    comparison = compare(quantise(img), golden, abs_tol=GOLDEN_TOL)  # compare scales uint8 by 1/255
     assert comparison.match, f"{part} ({backend}) vs {path.name}: {comparison.summary()}"

@@ -330,9 +330,13 @@ def test_error_directive():
 
 
 def test_pragmas():
-    r = pp("#pragma STDGL invariant(all)\n#pragma optimize(on)\n#pragma debug(off)\n")
-    assert [p for p, _ in r.pragmas] == ["STDGL invariant(all)", "optimize(on)", "debug(off)"]
+    r = pp("#pragma STDGL foo\n#pragma optimize(on)\n#pragma debug(off)\n")
+    assert [p for p, _ in r.pragmas] == ["STDGL foo", "optimize(on)", "debug(off)"]
     assert r.pragmas[1][1].line == 2
+    # GLSL ES 3.00 4.6.1: invariant(all) is for vertex shaders; Mesa rejects it in a fragment shader.
+    assert "cannot be used in a fragment shader" in error("#pragma STDGL invariant( all )\n").message
+    plain_100 = pp("#version 100\n#pragma STDGL invariant(all)\n", shadertoy=False)  # ES 1.00 allows it
+    assert [p for p, _ in plain_100.pragmas] == ["STDGL invariant(all)"]
 
 
 def test_extension_directive():
