@@ -4,17 +4,16 @@ every commit), against glslangValidator on the same programs, timed alternately 
 Like hyperfine: one warm-up of each command, then `--runs` rounds that run each command once,
 in turn; the median wall time of each is printed with the ratio to glslangValidator's, and
 beside it the median CPU time (user + system) of the process, which waiting for a busy
-machine's cores does not inflate. The
-interpreter's own start-up (`python -c pass`, and `python -S -c pass` without site-packages)
-is printed as the floor no Python tool can go under.
+machine's cores does not inflate. The interpreter's own start-up (`python -c pass` in the same
+environment) is printed as the floor no Python tool can go under.
 
 Targets (issue 18): `glslcheck lint FILE` on one 200-line file <= 150 ms; `glslcheck lint
 lab_shaders` <= 0.5 s. Printed, not asserted: timings are facts about a machine.
 
 Two set-ups are measured: (1) the dev venv's `glslcheck` (`make setup`: an editable install,
 whose import hook costs every start tens of milliseconds in `site`), and (2) the wheel
-installed as pip installs it into a hook's environment (unpacked, .pyc compiled), run by the
-base interpreter. Both with the package's .pyc files in place (pip writes them at install
+installed as pip installs it into a hook's environment (unpacked into a fresh venv, .pyc
+compiled). Both with the package's .pyc files in place (pip writes them at install
 time; the warm-up writes them here even when PYTHONDONTWRITEBYTECODE is set in this
 environment). `--no-pyc` measures the other case: every module compiled from source at each
 start (an empty PYTHONPYCACHEPREFIX and PYTHONDONTWRITEBYTECODE=1).
@@ -99,22 +98,27 @@ def _load() -> str:
 
 
 def _installed(tmp: Path) -> tuple[list[str], dict[str, str]]:
-    """glslcheck as a pre-commit hook's environment has it: the wheel unpacked into a folder
-    with its .pyc compiled (as pip does), run by the base interpreter, so without the
-    editable install's import hook (tens of milliseconds of `site` in the dev venv)."""
+    """glslcheck as a pre-commit hook's environment has it: a fresh venv with the wheel
+    unpacked into its site-packages and compiled to .pyc (as pip installs it), so without the
+    dev venv's editable-install import hook (tens of milliseconds of `site` at every start).
+    Lint and check need none of the dependencies (test_import_hygiene.py), so none is installed."""
     wheels = tmp / "wheel"
     subprocess.run([sys.executable, "-m", "pip", "wheel", "--no-deps", "--no-build-isolation", "-q",
                     "-w", str(wheels), str(ROOT)], check=True, capture_output=True)
     (wheel,) = wheels.glob("glslcheck-*.whl")
-    site = tmp / "site"
+    venv = tmp / "hook-venv"
+    base = getattr(sys, "_base_executable", sys.executable)
+    subprocess.run([base, "-m", "venv", "--without-pip", str(venv)], check=True)
+    python = venv / "bin" / "python"
+    site = subprocess.run([str(python), "-c", "import sysconfig; print(sysconfig.get_paths()['purelib'])"],
+                          check=True, capture_output=True, text=True).stdout.strip()
     with zipfile.ZipFile(wheel) as z:
         z.extractall(site)
-    base = getattr(sys, "_base_executable", sys.executable)
-    subprocess.run([base, "-m", "compileall", "-q", str(site)], check=True)
-    env = dict(os.environ, PYTHONPATH=str(site))
+    subprocess.run([str(python), "-m", "compileall", "-q", site], check=True)
+    env = dict(os.environ)
     env.pop("PYTHONDONTWRITEBYTECODE", None)
     # -P: not the current folder first on sys.path (it would be this checkout's glslcheck/).
-    return [base, "-s", "-P", "-c", "import sys; from glslcheck.cli import main; sys.exit(main())"], env
+    return [str(python), "-P", "-c", "import sys; from glslcheck.cli import main; sys.exit(main())"], env
 
 
 def _section(title: str, exe: list[str], python: list[str], env: dict[str, str], glslang: str,
