@@ -4,19 +4,21 @@ every commit), against glslangValidator on the same programs, timed alternately 
 Like hyperfine: one warm-up of each command, then `--runs` rounds that run each command once,
 in turn; the median wall time of each is printed with the ratio to glslangValidator's, and
 beside it the median CPU time (user + system) of the process, which waiting for a busy
-machine's cores does not inflate. The
-interpreter's own start-up (`python -c pass`, and `python -S -c pass` without site-packages)
-is printed as the floor no Python tool can go under.
+machine's cores does not inflate. The interpreter's own start-up (`python -c pass` in the same
+environment) is printed as the floor no Python tool can go under.
 
 Targets (issue 18): `glslcheck lint FILE` on one 200-line file <= 150 ms; `glslcheck lint
 lab_shaders` <= 0.5 s. Printed, not asserted: timings are facts about a machine.
 
-The commands run as a user runs them, with the package's .pyc files in place (pip writes them
-at install time; the warm-up writes them here even when PYTHONDONTWRITEBYTECODE is set in this
+Two set-ups are measured: (1) the dev venv's `glslcheck` (`make setup`: an editable install,
+whose import hook costs every start tens of milliseconds in `site`), and (2) the wheel
+installed as pip installs it into a hook's environment (unpacked into a fresh venv, .pyc
+compiled). Both with the package's .pyc files in place (pip writes them at install
+time; the warm-up writes them here even when PYTHONDONTWRITEBYTECODE is set in this
 environment). `--no-pyc` measures the other case: every module compiled from source at each
 start (an empty PYTHONPYCACHEPREFIX and PYTHONDONTWRITEBYTECODE=1).
 
-    python benchmarks/bench_startup.py [--runs N] [--no-pyc]
+    python benchmarks/bench_startup.py [--runs N] [--no-pyc] [--only venv|installed]
 """
 
 from __future__ import annotations
@@ -30,6 +32,7 @@ import subprocess
 import sys
 import tempfile
 import time
+import zipfile
 from pathlib import Path
 
 ROOT = Path(__file__).resolve().parents[1]
@@ -53,7 +56,7 @@ def paired(commands: dict[str, list[str]], runs: int, env: dict[str, str]) -> di
         done = subprocess.run(cmd, env=env, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE)
         elapsed = time.perf_counter() - t
         after = resource.getrusage(resource.RUSAGE_CHILDREN)
-        if done.returncode not in (0, 1):  # 1: findings, a normal outcome of lint
+        if done.returncode not in (0, 1) or b"Traceback" in done.stderr:  # 1: findings, a normal outcome
             raise SystemExit(f"{' '.join(cmd)} failed ({done.returncode}):\n{done.stderr.decode()[-2000:]}")
         cpu = (after.ru_utime - before.ru_utime) + (after.ru_stime - before.ru_stime)
         return elapsed, cpu
@@ -94,10 +97,57 @@ def _load() -> str:
         return "unknown"
 
 
+def _installed(tmp: Path) -> tuple[list[str], dict[str, str]]:
+    """glslcheck as a pre-commit hook's environment has it: a fresh venv with the wheel
+    unpacked into its site-packages and compiled to .pyc (as pip installs it), so without the
+    dev venv's editable-install import hook (tens of milliseconds of `site` at every start).
+    Lint and check need none of the dependencies (test_import_hygiene.py), so none is installed."""
+    wheels = tmp / "wheel"
+    subprocess.run([sys.executable, "-m", "pip", "wheel", "--no-deps", "--no-build-isolation", "-q",
+                    "-w", str(wheels), str(ROOT)], check=True, capture_output=True)
+    (wheel,) = wheels.glob("glslcheck-*.whl")
+    venv = tmp / "hook-venv"
+    base = getattr(sys, "_base_executable", sys.executable)
+    subprocess.run([base, "-m", "venv", "--without-pip", str(venv)], check=True)
+    python = venv / "bin" / "python"
+    site = subprocess.run([str(python), "-c", "import sysconfig; print(sysconfig.get_paths()['purelib'])"],
+                          check=True, capture_output=True, text=True).stdout.strip()
+    with zipfile.ZipFile(wheel) as z:
+        z.extractall(site)
+    subprocess.run([str(python), "-m", "compileall", "-q", site], check=True)
+    env = dict(os.environ)
+    env.pop("PYTHONDONTWRITEBYTECODE", None)
+    # -P: not the current folder first on sys.path (it would be this checkout's glslcheck/).
+    return [str(python), "-P", "-c", "import sys; from glslcheck.cli import main; sys.exit(main())"], env
+
+
+def _section(title: str, exe: list[str], python: list[str], env: dict[str, str], glslang: str,
+             one: list[str], lab: list[str], runs: int) -> None:
+    lines = FILE.read_text().count("\n")
+    rows = [
+        (f"lint FILE ({lines} lines)", [*exe, "lint", str(FILE)], [glslang, *one], 0.150),
+        (f"check FILE ({lines} lines)", [*exe, "check", str(FILE)], [glslang, *one], None),
+        (f"lint lab_shaders ({len(lab)} programs)", [*exe, "lint", str(LAB)], [glslang, *lab], 0.5),
+        (f"check lab_shaders ({len(lab)} programs)", [*exe, "check", str(LAB)], [glslang, *lab], None),
+    ]
+    print(f"{title} (load {_load()})")
+    print(f"   {'whole process: wall time (CPU time)':40s} {'glslcheck':>19s} {'glslang':>19s}   ratio (CPU)   target")
+    for label, ours, theirs, target in rows:
+        t = paired({"ours": ours, "glslang": theirs}, runs, env)
+        (wall, cpu), (ref_wall, ref_cpu) = t["ours"], t["glslang"]
+        verdict = "" if target is None else f"{target * 1000:4.0f} ms {'met' if wall <= target else 'missed'}"
+        print(f"   {label:40s} {_ms(wall, cpu)} {_ms(ref_wall, ref_cpu)}  {wall / ref_wall:5.2f}x ({cpu / ref_cpu:5.2f}x)"
+              f"   {verdict}")
+    floor = paired({"python -c pass": [*python, "-c", "pass"]}, runs, env)
+    for label, (wall, cpu) in floor.items():
+        print(f"   {label:40s} {_ms(wall, cpu)}   (the interpreter alone)")
+
+
 def main() -> int:
     ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     ap.add_argument("--runs", type=int, default=21)
     ap.add_argument("--no-pyc", action="store_true", help="compile every module from source at each start")
+    ap.add_argument("--only", choices=("venv", "installed"), help="measure one of the two set-ups")
     args = ap.parse_args()
     glslang = shutil.which("glslangValidator")
     if not glslang:
@@ -105,37 +155,27 @@ def main() -> int:
         return 2
     exe = shutil.which("glslcheck") or str(Path(sys.executable).with_name("glslcheck"))
     python = str(Path(exe).with_name("python"))
-    env = dict(os.environ)
+    print(f"glslcheck start-up (benchmarks/bench_startup.py, median of {args.runs} runs, "
+          f"{'no .pyc: compiled from source' if args.no_pyc else 'with .pyc'}; {os.cpu_count()} cores; "
+          f"load = 1/5/15-minute load average)")
     with tempfile.TemporaryDirectory() as tmp:
         tmp = Path(tmp)
-        if args.no_pyc:
-            env.update(PYTHONDONTWRITEBYTECODE="1", PYTHONPYCACHEPREFIX=str(tmp / "no-pyc"))
-        else:
-            env.pop("PYTHONDONTWRITEBYTECODE", None)
         one = _programs([FILE], tmp)
         lab = _programs([LAB], tmp)
-        lines = FILE.read_text().count("\n")
-        rows = [
-            (f"lint FILE ({lines} lines)", [exe, "lint", str(FILE)], [glslang, *one], 0.150),
-            (f"check FILE ({lines} lines)", [exe, "check", str(FILE)], [glslang, *one], None),
-            (f"lint lab_shaders ({len(lab)} programs)", [exe, "lint", str(LAB)], [glslang, *lab], 0.5),
-            (f"check lab_shaders ({len(lab)} programs)", [exe, "check", str(LAB)], [glslang, *lab], None),
-        ]
-        floor = paired({"python -c pass": [python, "-c", "pass"], "python -S -c pass": [python, "-S", "-c", "pass"]},
-                       args.runs, env)
-        print(f"glslcheck start-up (benchmarks/bench_startup.py, median of {args.runs} runs, "
-              f"{'no .pyc: compiled from source' if args.no_pyc else 'with .pyc'})")
-        print(f"load {_load()} (1/5/15-minute load average at the start; {os.cpu_count()} cores)")
-        print(f"   {'whole process: wall time (CPU time)':40s} {'glslcheck':>19s} {'glslang':>19s}   ratio (CPU)   target")
-        for label, ours, theirs, target in rows:
-            t = paired({"ours": ours, "glslang": theirs}, args.runs, env)
-            (wall, cpu), (ref_wall, ref_cpu) = t["ours"], t["glslang"]
-            verdict = "" if target is None else f"{target * 1000:4.0f} ms {'met' if wall <= target else 'missed'}"
-            print(f"   {label:40s} {_ms(wall, cpu)} {_ms(ref_wall, ref_cpu)}  {wall / ref_wall:5.2f}x ({cpu / ref_cpu:5.2f}x)"
-                  f"   {verdict}")
-        for label, (wall, cpu) in floor.items():
-            print(f"   {label:40s} {_ms(wall, cpu)}   (the interpreter alone)")
-        print(f"load at the end {_load()}")
+        env = dict(os.environ)
+        env.pop("PYTHONDONTWRITEBYTECODE", None)
+        if args.no_pyc:
+            env.update(PYTHONDONTWRITEBYTECODE="1", PYTHONPYCACHEPREFIX=str(tmp / "no-pyc"))
+        if args.only in (None, "venv"):
+            _section(f"1. the dev venv's `glslcheck` (editable install: `make setup`)", [exe], [python], env,
+                     glslang, one, lab, args.runs)
+        if args.only in (None, "installed"):
+            command, installed_env = _installed(tmp)
+            if args.no_pyc:
+                installed_env.update(PYTHONDONTWRITEBYTECODE="1", PYTHONPYCACHEPREFIX=str(tmp / "no-pyc"))
+            _section("2. installed from the wheel (what a pre-commit hook's environment runs)", command,
+                     command[:2], installed_env, glslang, one, lab, args.runs)
+    print(f"load at the end {_load()}")
     return 0
 
 

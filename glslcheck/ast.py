@@ -2,12 +2,12 @@
 
 Every node class declares its fields once, as annotated class attributes with their defaults
 (`LIST` for a fresh empty list); from that one declaration the node gets `__slots__`, an
-`__init__` (the fields in order, then the keyword-only `loc`), a `__repr__`, `_fields`, and
+`__init__` (the fields in order, then the keyword-only `loc`), its `__repr__`, `_fields`, and
 `_children`: the fields whose declared type names a node class (a node, a list of nodes, or
 None) are its children, in field order; every other field is a plain attribute. This is
-pycparser's `_c_ast.cfg` idea without a generated file: the methods of every class are
-compiled together in one step when this module is imported, which costs a small fraction of
-what `@dataclass` did (start-up time matters for the pre-commit hook, issue 18).
+pycparser's `_c_ast.cfg` idea without a generated file: the `__init__`s are copies of a few
+compiled templates renamed to each class's fields, which costs a small fraction of what
+`@dataclass` did at import (start-up time matters for the pre-commit hook, issue 18).
 
 Every node carries `loc`, the span of its text in the user's own file (after preprocessing
 and the Shadertoy wrapper, a location still points into the tab file the user wrote).
@@ -23,6 +23,7 @@ returns.
 from __future__ import annotations
 
 import re
+from types import FunctionType
 from typing import Any, Callable, Iterator, Optional
 
 from .diagnostics import Location
@@ -69,6 +70,11 @@ class Node(metaclass=_NodeMeta):
     loc: Location = _NOLOC
     _children: tuple[str, ...] = ()
     _fields: tuple[str, ...] = ()
+    _shown: tuple[str, ...] = ()  # the fields __repr__ shows: all but locations
+
+    def __repr__(self) -> str:
+        fields = ", ".join(f"{name}={getattr(self, name)!r}" for name in self._shown)
+        return f"{type(self).__name__}({fields})"
 
     def children(self) -> Iterator["Node"]:
         """The child nodes, in source order of the fields."""
@@ -457,43 +463,49 @@ def _is_location(name: str) -> bool:
     return name == "loc" or name.endswith("_loc")
 
 
+_INIT_TEMPLATES: dict[int, Any] = {}
+
+
+def _init_template(count: int):
+    """The code of an `__init__` with `count` positional parameters (`_f0`, `_f1`, ...; a
+    `_Factory` default is replaced by what it makes) and the keyword-only `loc`. Compiled once
+    per count; each class gets a copy renamed to its own fields, so importing this module does
+    not compile one `__init__` per class (what made `@dataclass` slow to import)."""
+    code = _INIT_TEMPLATES.get(count)
+    if code is None:
+        params = "".join(f"_f{i}, " for i in range(count))
+        body = [f"    self._f{i} = _f{i}.make() if type(_f{i}) is _Factory else _f{i}" for i in range(count)]
+        source = "\n".join([f"def __init__(self, {params}*, loc):", *body, "    self.loc = loc"])
+        env: dict[str, Any] = {}
+        exec(source, globals(), env)  # noqa: S102 - a fixed template, no user input
+        code = _INIT_TEMPLATES[count] = env["__init__"].__code__
+    return code
+
+
 def _make_methods() -> None:
-    """`_children`, `__init__`, `__repr__` and `__match_args__` of every node class, from its
-    declared fields; the methods of all classes are compiled in one `exec`."""
+    """`_children`, `__init__`, `__match_args__` and the fields `__repr__` shows, of every node
+    class, from its declared fields."""
     names = set(_NODE_CLASSES)
-    source: list[str] = []
-    env: dict[str, Any] = {"_NOLOC": _NOLOC}
     for cls in _NODE_CLASSES.values():
         annotations = {}
         for klass in reversed(cls.__mro__):
             annotations.update(getattr(klass, "__annotations__", {}))
         cls._children = tuple(f for f in cls._fields
                               if not names.isdisjoint(re.findall(r"[A-Za-z_]\w*", annotations[f])))
-        positional = [f for f in cls._fields if f != "loc"]
-        params, body = [], []
-        for f in positional:
-            default = cls._defaults[f]
-            key = f"_d_{cls.__name__}_{f}"
-            env[key] = default
-            params.append(f"{f}={key}")
-            if isinstance(default, _Factory):
-                body.append(f"    self.{f} = {key}.make() if {f} is {key} else {f}")
-            else:
-                body.append(f"    self.{f} = {f}")
-        body.append("    self.loc = loc")
-        shown = [f for f in positional if not _is_location(f)]
-        fmt = ", ".join(f"{f}={{self.{f}!r}}" for f in shown)
-        source += [f"def _init_{cls.__name__}(self, {''.join(p + ', ' for p in params)}*, loc=_NOLOC):",
-                   *body,
-                   f"def _repr_{cls.__name__}(self):",
-                   f"    return f'{cls.__name__}({fmt})'"]
-        cls.__match_args__ = tuple(positional)
-    exec("\n".join(source), env)  # noqa: S102 - our own declarations, compiled once
-    for cls in _NODE_CLASSES.values():
-        cls.__init__ = env[f"_init_{cls.__name__}"]
-        cls.__repr__ = env[f"_repr_{cls.__name__}"]
-        cls.__init__.__qualname__ = f"{cls.__name__}.__init__"
-        cls.__repr__.__qualname__ = f"{cls.__name__}.__repr__"
+        positional = tuple(f for f in cls._fields if f != "loc")
+        defaults = tuple(cls._defaults[f] for f in positional)
+        template = _init_template(len(positional))
+        rename = {f"_f{i}": f for i, f in enumerate(positional)}
+        code = template.replace(
+            co_varnames=tuple(rename.get(n, n) for n in template.co_varnames),
+            co_names=tuple(rename.get(n, n) for n in template.co_names),
+            co_qualname=f"{cls.__name__}.__init__",
+        )
+        init = FunctionType(code, globals(), "__init__", defaults)
+        init.__kwdefaults__ = {"loc": _NOLOC}
+        cls.__init__ = init
+        cls.__match_args__ = positional
+        cls._shown = tuple(f for f in positional if not _is_location(f))
 
 
 _make_methods()

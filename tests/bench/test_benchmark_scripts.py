@@ -46,3 +46,10 @@ def test_run_all_prints_every_section(gl, glslang):
                  "3. coverage scaling", "processes: time(small) / time(large)",
                  "threads: time(small) / time(large)", "gl: time(small) / time(large)"):
         assert line in out, out
+
+
+def test_bench_startup_prints_its_figures(glslang):
+    out = _run("bench_startup.py", "--runs", "1", "--only", "venv")
+    for line in ("lint FILE (", "check FILE (", "lint lab_shaders (34 programs)", "check lab_shaders (34 programs)",
+                 "python -c pass", "ratio (CPU)"):
+        assert line in out, out
