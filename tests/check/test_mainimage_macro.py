@@ -38,7 +38,8 @@ def test_an_error_in_the_macro_points_at_the_macro(make_shader):
 def test_a_mainimage_macro_in_common(make_shader):
     # the Image pass (Common, then Image, then the wrapper) expands it; Common compiled alone
     # has no wrapper call, so there it is only a macro
-    shader = make_shader("// the image is Common's macro\n", common=GOLF)
+    # (a macro body in Common reading iTime would be taken for Common code: not modelled)
+    shader = make_shader("// the image is Common's macro\n", common="#define mainImage(O, U) O = vec4(U * 0.01, 0.5, 1.0)\n")
     assert check(parse_shader(shader, "Image"), "Image").entry.name == "mainImage"
     common = check(parse_shader(shader, "Common"), "Common", collect=True)
     assert common.entry is None and not common.errors
