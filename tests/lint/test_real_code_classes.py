@@ -257,3 +257,32 @@ void mainImage(out vec4 fragColor, in vec2 fragCoord)
 """
     (f,) = _lint(tmp_path, text, ["missing-comment"]).findings
     assert (f.severity, f.penalty, f.loc.line) == ("note", 0, 6)
+
+
+def test_the_same_value_written_differently(tmp_path: Path):
+    text = HEADER + """
+// squared length
+float lenSq(in vec2 x)
+{
+    return dot(x, x);
+}
+
+// inside the circle, then the sphere's height from the same squared distance written out
+float height(in vec3 dp, in float rSq, in vec4 rd)
+{
+    float lSq = lenSq(dp.xy);
+    float a = length(rd) * length(rd);
+    return lSq <= rSq ? sqrt(rSq - (dp.x * dp.x + dp.y * dp.y)) * a : 0.0;
+}
+
+// the image
+void mainImage(out vec4 fragColor, in vec2 fragCoord)
+{
+    fragColor = vec4(height(vec3(fragCoord, 0.0), 1.0, vec4(1.0)));
+}
+"""
+    found = [(f.loc.line, f.message) for f in _lint(tmp_path, text, ["repeated-expression"]).findings]
+    assert found == [
+        (15, "'length(rd)' is computed twice, with the same value, at line 15"),
+        (16, "'lenSq(dp.xy)' is computed twice, with the same value, at lines 14 and 16"),
+    ]

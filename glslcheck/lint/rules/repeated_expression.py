@@ -16,7 +16,11 @@ variables, like `d * invIntensity` or `light.center - position`, but not a sign 
 * it calls no built-in with an `out` parameter and only pure user functions (`in` parameters
   only, no global variable read or written, only pure functions called: `lenSq(v)`).
 
-Expressions are compared by structure, variables by the declaration they name; code after a
+Expressions are compared by value, variables by the declaration they name: operands of `+` and
+`*` in any order and grouping (not a matrix product), a component by its index (`v.x`, `v.r`),
+`dot(a, b)` as its sum of products and a pure one-line user function by what it returns, so
+`lenSq(dp.xy)` and `dp.x * dp.x + dp.y * dp.y` are the same value, and so are the two
+`length(v)` in `length(v) * length(v)`. Code after a
 `return` (or `break`, `continue`, `discard`) never runs and is not counted. One finding per
 repeated value, at its second evaluation, listing every place it is computed (in the message,
 and as notes: the JSON `notes`): the deduction counts one inefficient practice once. A repeated
