@@ -286,3 +286,11 @@ void mainImage(out vec4 fragColor, in vec2 fragCoord)
         (15, "'length(rd)' is computed twice, with the same value, at line 15"),
         (16, "'lenSq(dp.xy)' is computed twice, with the same value, at lines 14 and 16"),
     ]
+
+
+def test_a_broken_directive_drops_only_its_line(tmp_path: Path):
+    text = HEADER + "#define SCALE(x (x * 2.0)\n// a uniform in a helper\nfloat t() { return iTime; }\n" \
+        "// the image\nvoid mainImage(out vec4 fragColor, in vec2 fragCoord) { fragColor = vec4(t()); }\n"
+    found = [(f.rule, f.severity, f.loc.line) for f in _lint(tmp_path, text).findings]
+    assert found[0] == ("compile-error", "error", 4)
+    assert ("uniform-outside-mainimage", "warning", 6) in found
