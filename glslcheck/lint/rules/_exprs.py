@@ -414,7 +414,7 @@ class FnFacts:
         if t is A.Call and e.array is None and e.struct_ is None:
             target = self.model.call_target(e)
             if e.callee == "dot" and len(e.args) == 2 and isinstance(target, B.Overload):
-                n = getattr(self.model.type_of(e.args[0]), "size", None)
+                n = getattr(self.model._types.get(id(e.args[0])), "size", None)
                 if isinstance(n, int) and n > 1:
                     products = (("*", tuple(sorted((self._component(e.args[0], i), self._component(e.args[1], i)),
                                                    key=repr))) for i in range(n))
@@ -439,8 +439,8 @@ class FnFacts:
         """`+` always; `*` unless a matrix is involved (a matrix product has an order)."""
         if e.op == "+":
             return True
-        types = (self.model.type_of(e.left), self.model.type_of(e.right))
-        return not any(getattr(t, "is_matrix", False) for t in types)
+        types = (self.model._types.get(id(e.left)), self.model._types.get(id(e.right)))
+        return None not in types and not any(getattr(t, "is_matrix", False) for t in types)
 
     def _terms(self, e: Any, op: str) -> list[Any]:
         """The operands of a chain of the same commuting operator: `a + (b + c)` -> a, b, c."""
