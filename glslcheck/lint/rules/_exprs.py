@@ -407,7 +407,8 @@ class FnFacts:
             return ("Z", e.value)
         if t is A.Binary:
             if e.op in ("+", "*") and self._commutes(e):
-                return (e.op, tuple(sorted((self.key(x) for x in self._terms(e, e.op)), key=repr)))
+                # operands in a fixed order (by hash: any order works, the same within a run)
+                return (e.op, tuple(sorted((self.key(x) for x in self._terms(e, e.op)), key=hash)))
             return ("B", e.op, self.key(e.left), self.key(e.right))
         if t is A.Unary and e.op not in ("++", "--"):
             return ("U", e.op, self.key(e.operand))
@@ -417,8 +418,8 @@ class FnFacts:
                 n = getattr(self.model._types.get(id(e.args[0])), "size", None)
                 if isinstance(n, int) and n > 1:
                     products = (("*", tuple(sorted((self._component(e.args[0], i), self._component(e.args[1], i)),
-                                                   key=repr))) for i in range(n))
-                    return ("+", tuple(sorted(products, key=repr)))
+                                                   key=hash))) for i in range(n))
+                    return ("+", tuple(sorted(products, key=hash)))
             inlined = self._inline(e, target)
             if inlined is not None:
                 return inlined
@@ -527,20 +528,21 @@ class FnFacts:
 
     def is_nontrivial(self, e: Any) -> bool:
         """At least two operations, or a call of a built-in costlier than an add; not constant."""
-        if not isinstance(e, A.Expr) or self.model.is_constant(e):
+        if not isinstance(e, A.Expr):
             return False
         n, costly = self.op_count(e)
-        return n >= 2 or costly
+        return (n >= 2 or costly) and not self.model.is_constant(e)
 
     def worth_reusing(self, e: Any) -> bool:
         """Non-trivial, or one float or vector arithmetic operation that is not a sign change
         (`d * invI`, `light.center - position`; not `-1.0 * n`): a value a TA expects to be
         computed once."""
-        if self.is_nontrivial(e):
-            return True
-        if type(e) is not A.Binary or e.op not in ("+", "-", "*", "/") or self.model.is_constant(e):
-            return False
-        if self.op_count(e)[0] != 1 or not is_float_type(self.model.type_of(e)):
+        if type(e) is not A.Binary or e.op not in ("+", "-", "*", "/"):
+            return self.is_nontrivial(e)
+        n, costly = self.op_count(e)
+        if n >= 2 or costly:
+            return not self.model.is_constant(e)
+        if n != 1 or not is_float_type(self.model.type_of(e)) or self.model.is_constant(e):
             return False
         unit = [x for x in (e.left, e.right) if _numbers(self.model.const_value(x)) in ([1.0], [-1.0])]
         return not (unit and e.op in ("*", "/"))
