@@ -12,8 +12,9 @@ take the declaration holding the error out of the user's text and parses again:
 
 Blanking replaces characters with spaces and keeps every newline, so every location after the
 drop still points at the user's own line and column. Declarations are found on the file's text
-with comments and preprocessor lines skipped (a macro body's braces do not count); a file whose
-braces do not balance around the error gives up (None), and the linter reports the error alone.
+with comments and preprocessor lines skipped (a macro body's braces do not count); a
+declaration never closed runs to the end of the file and is blanked whole; an error in a file
+that is not one of the units gives up (None), and the linter reports the error alone.
 """
 
 from __future__ import annotations
