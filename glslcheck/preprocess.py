@@ -514,9 +514,28 @@ class _Preprocessor:
     def run(self, units: list[Source]) -> PPResult:
         for index, src in enumerate(units):
             self._unit(_Unit(src, index))
+        if self.shadertoy and units and units[-1].tab != "Common":
+            self._wrapper_call(len(units))
         text = "".join(self.out)
         return PPResult(text, self.version, self.extensions, self.pragmas, self.comments, self.macros,
                         self.diagnostics, self.seg_starts, self.segs)
+
+    def _wrapper_call(self, index: int) -> None:
+        """Shadertoy compiles its wrapper after the user's code, so a user macro `mainImage(O, U)`
+        (code golf: `#define mainImage(O, U) O = ...`) expands inside the wrapper's call
+        `mainImage(color, gl_FragCoord.xy);`. Model that call as the entry function: its header
+        is written as it is, its body is the call expanded by the user's macro (placed on the
+        macro's line, so messages point at it)."""
+        macro = self.macros.get("mainImage")
+        if macro is None or macro.params is None or len(macro.params) != 2 or macro.loc is None:
+            return
+        pad = "\n" * (macro.loc.line - 1)
+        header = Source(macro.loc.path, pad + "void mainImage(out vec4 glslcheck_color, in vec2 glslcheck_coord) {\n")
+        body = Source(macro.loc.path, pad + "glslcheck_color = vec4(1e20); mainImage(glslcheck_color, glslcheck_coord); }\n")
+        del self.macros["mainImage"]  # the header names the function; only the call expands
+        self._unit(_Unit(header, index))
+        self.macros["mainImage"] = macro
+        self._unit(_Unit(body, index + 1))
 
     def _unit(self, u: _Unit) -> None:
         self.unit = u

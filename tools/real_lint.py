@@ -37,9 +37,18 @@ CORPUS = ROOT / "tests" / "real_lint"
 TEXTS = CORPUS / "texts"
 
 
-def load() -> tuple[list[dict], dict]:
+def load(corrected: bool = True) -> tuple[list[dict], dict]:
+    """The manifest and the labels; with `corrected`, the labels' documented corrections applied."""
     manifest = json.loads((CORPUS / "manifest.json").read_text())
     labels = json.loads((CORPUS / "labels.json").read_text())
+    if corrected:
+        for c in labels.get("corrections", []):
+            files = labels["files"].setdefault(c["file"], [])
+            if c["action"] == "add":
+                files.append(c["label"])
+            else:
+                gone = next(lab for lab in files if lab["rule"] == c["label"]["rule"] and lab["lines"] == c["label"]["lines"])
+                files.remove(gone)
     return manifest, labels
 
 
@@ -119,9 +128,11 @@ def match(labels: list[dict], findings: list[dict]) -> dict[int, int]:
     return {j: i for i, j in owner.items()}
 
 
-def lint_json(paths: list[Path]) -> tuple[list[dict], str, int]:
+def lint_json(paths: list[Path], root: Path = ROOT) -> tuple[list[dict], str, int]:
+    """`glslcheck lint --format json` of the glslcheck in `root` (its folder comes first on the
+    path of `python -m`): another checkout scores an older linter on the same labels."""
     cmd = [sys.executable, "-m", "glslcheck", "lint", "--format", "json", *map(str, paths)]
-    run = subprocess.run(cmd, capture_output=True, text=True, cwd=ROOT)
+    run = subprocess.run(cmd, capture_output=True, text=True, cwd=root)
     try:
         findings = json.loads(run.stdout)["findings"]
     except (ValueError, KeyError):
@@ -129,8 +140,8 @@ def lint_json(paths: list[Path]) -> tuple[list[dict], str, int]:
     return findings, run.stderr, run.returncode
 
 
-def score(verbose: bool) -> int:
-    manifest, labels = load()
+def score(verbose: bool, corrected: bool = True, root: Path = ROOT) -> int:
+    manifest, labels = load(corrected)
     rules = labels["rules"]
     present = [e for e in manifest if local_path(e).exists()]
     for e in manifest:
@@ -141,7 +152,7 @@ def score(verbose: bool) -> int:
     tp, fp, fn = Counter(), Counter(), Counter()
     not_full = []
     for e in present:
-        findings, stderr, rc = lint_json([local_path(e)])
+        findings, stderr, rc = lint_json([local_path(e).resolve()], root)
         if "Traceback" in stderr or rc not in (0, 1):
             not_full.append(f"{e['id']}: exit {rc}: {stderr.strip().splitlines()[-1:]}")
         errors = [f"line {f['line']}" for f in findings if f["rule"] == "compile-error" and f["severity"] == "error"]
@@ -166,7 +177,8 @@ def score(verbose: bool) -> int:
                 fp[f["rule"]] += 1
                 if verbose:
                     print(f"  extra   {e['id']}:{f['line']} {f['rule']}: {f['message']}")
-    print(f"{len(present)} of {len(manifest)} files, {sum(len(v) for v in labels['files'].values())} labels")
+    which = "with the documented corrections" if corrected else "as first labelled, before any linter run"
+    print(f"{len(present)} of {len(manifest)} files, {sum(len(v) for v in labels['files'].values())} labels ({which})")
     print(f"{'rule':28} {'labels':>6} {'found':>6} {'tp':>4} {'recall':>7} {'precision':>9}")
     for rule in [*rules, "overall"]:
         if rule == "overall":
@@ -190,10 +202,13 @@ def main() -> int:
     p.add_argument("--clone", action="store_true", help="clone repositories without a mirror")
     s = sub.add_parser("score", help="lint the local texts and score against the labels")
     s.add_argument("--verbose", "-v", action="store_true", help="list every miss and extra finding")
+    s.add_argument("--as-labelled", action="store_true", help="the labels as first made, without the corrections")
+    s.add_argument("--glslcheck-root", type=Path, default=ROOT,
+                   help="score the glslcheck of another checkout (e.g. `git archive <commit>` unpacked)")
     args = ap.parse_args()
     if args.cmd == "populate":
         return populate(args.mirrors, args.clone)
-    return score(args.verbose)
+    return score(args.verbose, not args.as_labelled, args.glslcheck_root.resolve())
 
 
 if __name__ == "__main__":

@@ -312,14 +312,15 @@ def _finding(rule: Rule, d: Diagnostic, ctx: LintContext) -> Finding:
     loc = d.loc or ctx.location(1)
     if loc.end_line is None or loc.end_column is None:
         loc = ctx.location(loc.line, loc.column, loc.end_line, loc.end_column)
+    advisory = d.severity == "note" and rule.severity == "warning"  # a course rule's advice
     return Finding(
         message=d.message,
         loc=loc,
-        severity=rule.severity,
+        severity="note" if advisory else rule.severity,
         rule=rule.name,
         help=d.help,
         notes=list(d.notes),
-        penalty=rule.penalty,
+        penalty=0 if advisory else rule.penalty,
     )
 
 

@@ -7,12 +7,14 @@ take the declaration holding the error out of the user's text and parses again:
 * a function definition keeps its prototype (`float f(in vec3 p)` + `;`), so every caller
   still checks; only its body is blanked;
 * anything else (a struct, a global, a function whose header is the broken part, a second
-  error in a kept prototype) is blanked whole.
+  error in a kept prototype) is blanked whole;
+* a preprocessor directive with an error is blanked (its line only).
 
 Blanking replaces characters with spaces and keeps every newline, so every location after the
 drop still points at the user's own line and column. Declarations are found on the file's text
-with comments and preprocessor lines skipped (a macro body's braces do not count); a file whose
-braces do not balance around the error gives up (None), and the linter reports the error alone.
+with comments and preprocessor lines skipped (a macro body's braces do not count); a
+declaration never closed runs to the end of the file and is blanked whole; an error in a file
+that is not one of the units gives up (None), and the linter reports the error alone.
 """
 
 from __future__ import annotations
@@ -115,6 +117,16 @@ def drop_declaration(
         return units, None
     unit = units[index]
     text = unit.text
+    lines = text.split("\n")
+    if 0 < loc.line <= len(lines) and lines[loc.line - 1].lstrip().startswith("#"):
+        # a preprocessor error: drop that directive line (uses of its macro fail where they are)
+        start = _offset(text, loc.line, 1)
+        new_text = _blank(text, start, start + len(lines[loc.line - 1]))
+        if new_text == text:
+            return units, None
+        new_units = list(units)
+        new_units[index] = replace(unit, text=new_text)
+        return new_units, (unit.path, loc.line, loc.line, lines[loc.line - 1].strip()[:40])
     at = _offset(text, loc.line, loc.column)
     found = None
     for start, end, body in declarations(text):

@@ -190,3 +190,60 @@ def _classify(code: str, code_col: int | None, comment_col: int | None, directiv
     if comment_col is None:
         return LineKind.CODE
     return LineKind.LEADING if comment_col < code_col else LineKind.TRAILING
+
+
+_IF_RE = re.compile(r"^\s*#\s*(ifdef|ifndef|if|elif|else|endif|define|undef)\b\s*(.*)$")
+_DEFINED_RE = re.compile(r"^!?\s*defined\s*\(?\s*(\w+)\s*\)?\s*$")
+
+
+def inactive_lines(lines: list[str], defined: set[str] | None = None) -> set[int]:
+    """1-based lines inside `#if` branches the preprocessor skips: what it does not compile is
+    not linted as code. Decided only where sure (`#ifdef`, `#ifndef`, `#if defined(X)`,
+    `#if 0`/`#if 1`, with the macros this file defines or undefines above); any other `#if` is
+    taken as active on every branch."""
+    names = set(defined or ())
+    out: set[int] = set()
+    stack: list[tuple[bool, bool, bool]] = []  # (this branch active, a branch was taken, sure)
+    for number, line in enumerate(lines, start=1):
+        m = _IF_RE.match(line)
+        active = all(a for a, _, _ in stack)
+        if m is None:
+            if not active:
+                out.add(number)
+            continue
+        word, rest = m.group(1), m.group(2).split("//")[0].strip()
+        if word in ("define", "undef"):
+            if active:
+                name = rest.split("(")[0].split()[0] if rest.split() else ""
+                (names.add if word == "define" else names.discard)(name)
+            else:
+                out.add(number)
+            continue
+        if word in ("ifdef", "ifndef", "if"):
+            value = _condition(word, rest, names)
+            stack.append((value is not False, value is True, value is not None))
+        elif word in ("elif", "else") and stack:
+            _, taken, sure = stack[-1]
+            value = True if word == "else" else _condition("if", rest, names)
+            if not sure or value is None:
+                stack[-1] = (True, taken, False)
+            else:
+                stack[-1] = (not taken and value, taken or value, True)
+        elif word == "endif" and stack:
+            stack.pop()
+        if not all(a for a, _, _ in stack) and word not in ("if", "ifdef", "ifndef", "elif", "else"):
+            out.add(number)
+    return out
+
+
+def _condition(word: str, rest: str, names: set[str]) -> bool | None:
+    """The value of a `#if`-family condition when sure, else None."""
+    if word in ("ifdef", "ifndef"):
+        name = rest.split()[0] if rest.split() else ""
+        return (name in names) == (word == "ifdef")
+    m = _DEFINED_RE.match(rest)
+    if m:
+        return (m.group(1) in names) != rest.lstrip().startswith("!")
+    if rest in ("0", "1"):
+        return rest == "1"
+    return None

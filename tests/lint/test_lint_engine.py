@@ -86,7 +86,9 @@ def test_header_wordings_accepted(header):
     [
         ("Authors: Ana Ruiz, Ben Li", "bare"),
         ("By Ana and Ben", "bare"),
-        ("Written by Madeline Cody", "bare"),
+        ("Written by Madeline Cody", "ok"),  # one author did all of it: no role list to give
+        ("Copyright 2020 Ana Ruiz and Ben Li\nAuthors:\n  Ana Ruiz (lighting)\n  Ben Li (comments)", "ok"),
+        ("Copyright 2020 Dan Buckstein\nCopyright 2020 Ana Ruiz", "ok"),  # the license names her
         ("Lab 4 lighting", "none"),
         ("Authors:\n\nAna: lighting", "none"),
     ],

@@ -116,6 +116,9 @@ def _any_between(positions: list[int], lo: int, hi: int) -> bool:
 _JUMPS = (A.Return, A.Break, A.Continue, A.Discard)
 
 
+_SWIZZLE_SETS = ("xyzw", "rgba", "stpq")
+
+
 def _is_literal(e: Any) -> bool:
     return type(e) in (A.FloatLiteral, A.IntLiteral)
 
@@ -207,6 +210,8 @@ class FnFacts:
         self.dead: list[tuple[int, int]] = []  # (enter, exit) of statements after a return/jump
         self._clock = 0
         self._keys: dict[int, Any] = {}
+        self._subst: dict[int, Any] = {}  # parameter symbol -> argument key, while inlining
+        self._subst_stack: list[dict[int, Any]] = []
         self._pure: dict[int, bool] = {}
         self._ops: dict[int, tuple[int, bool]] = {}
         self._operands: dict[int, frozenset] = {}
@@ -372,7 +377,15 @@ class FnFacts:
 
     # -- expression properties -----------------------------------------------------------------
     def key(self, e: Any) -> Any:
-        """A structural key: equal keys mean the same computation on the same variables."""
+        """A structural key: equal keys mean the same computation on the same variables.
+
+        The same value written differently gets the same key: `+` and `*` operands in any order
+        and grouping (not a matrix product), a component by its index (`v.x`, `v.r`, `v.xy.x`),
+        `dot(a, b)` as the sum of its component products, and a pure user function returning
+        one expression as that expression of its arguments: `lenSq(dp.xy)` is
+        `dp.x * dp.x + dp.y * dp.y`."""
+        if self._subst:  # inside an inlined user function: keys depend on the call
+            return self._key(e)
         i = id(e)
         k = self._keys.get(i)
         if k is None:
@@ -383,6 +396,8 @@ class FnFacts:
         t = type(e)
         if t is A.Identifier:
             sym = self.model.symbol_of(e)
+            if sym is not None and id(sym) in self._subst:
+                return self._subst[id(sym)]
             return ("I", id(sym) if sym is not None else e.name)
         if t is A.FloatLiteral:
             return ("F", e.value)
@@ -391,12 +406,27 @@ class FnFacts:
         if t is A.BoolLiteral:
             return ("Z", e.value)
         if t is A.Binary:
+            if e.op in ("+", "*") and self._commutes(e):
+                # operands in a fixed order (by hash: any order works, the same within a run)
+                return (e.op, tuple(sorted((self.key(x) for x in self._terms(e, e.op)), key=hash)))
             return ("B", e.op, self.key(e.left), self.key(e.right))
         if t is A.Unary and e.op not in ("++", "--"):
             return ("U", e.op, self.key(e.operand))
         if t is A.Call and e.array is None and e.struct_ is None:
+            target = self.model.call_target(e)
+            if e.callee == "dot" and len(e.args) == 2 and isinstance(target, B.Overload):
+                n = getattr(self.model._types.get(id(e.args[0])), "size", None)
+                if isinstance(n, int) and n > 1:
+                    products = (("*", tuple(sorted((self._component(e.args[0], i), self._component(e.args[1], i)),
+                                                   key=hash))) for i in range(n))
+                    return ("+", tuple(sorted(products, key=hash)))
+            inlined = self._inline(e, target)
+            if inlined is not None:
+                return inlined
             return ("C", e.callee, tuple(self.key(a) for a in e.args))
         if t is A.Field:
+            if self.model.is_swizzle(e) and len(self.model.swizzle_indices(e)) == 1:
+                return self._component(e.base, self.model.swizzle_indices(e)[0])
             return (".", e.name, self.key(e.base))
         if t is A.Index:
             return ("[", self.key(e.base), self.key(e.index))
@@ -405,6 +435,53 @@ class FnFacts:
         if t is A.MethodCall:
             return ("M", e.name, self.key(e.base))
         return ("X", id(e))  # assignments, ++/--, sequences: never the same twice
+
+    def _commutes(self, e: Any) -> bool:
+        """`+` always; `*` unless a matrix is involved (a matrix product has an order)."""
+        if e.op == "+":
+            return True
+        types = (self.model._types.get(id(e.left)), self.model._types.get(id(e.right)))
+        return None not in types and not any(getattr(t, "is_matrix", False) for t in types)
+
+    def _terms(self, e: Any, op: str) -> list[Any]:
+        """The operands of a chain of the same commuting operator: `a + (b + c)` -> a, b, c."""
+        if type(e) is A.Binary and e.op == op and self._commutes(e):
+            return self._terms(e.left, op) + self._terms(e.right, op)
+        return [e]
+
+    def _component(self, e: Any, i: int) -> Any:
+        """The key of component `i` of the vector `e` (swizzles composed: `v.zy` 0 is `v.z`)."""
+        while type(e) is A.Field and self.model.is_swizzle(e):
+            i = self.model.swizzle_indices(e)[i]
+            e = e.base
+        k = self.key(e)
+        while k[0] == "." and isinstance(k[1], str) and i < len(k[1]):  # a swizzle passed in
+            sets = [c for c in _SWIZZLE_SETS if k[1][i] in c]
+            if not sets or not all(ch in sets[0] for ch in k[1]):
+                break
+            i, k = sets[0].index(k[1][i]), k[2]
+        return ("comp", i, k)
+
+    def _inline(self, call: Any, target: Any) -> Any:
+        """The key of a pure user function's single returned expression with its parameters
+        replaced by the arguments' keys; None when the function is not that simple."""
+        d = getattr(target, "node", None)
+        if not isinstance(target, Symbol) or not isinstance(d, A.FunctionDefinition) or d.body is None \
+                or len(self._subst_stack) >= 4 or not pure_function(self.model, target):
+            return None
+        stmts = d.body.stmts
+        if len(stmts) != 1 or type(stmts[0]) is not A.Return or stmts[0].value is None:
+            return None
+        params = [self.model.symbol_of(p) for p in d.proto.params]
+        if None in params or len(params) != len(call.args):
+            return None
+        subst = {id(p): self.key(a) for p, a in zip(params, call.args)}
+        self._subst_stack.append(self._subst)
+        self._subst = {**self._subst, **subst}
+        try:
+            return self.key(stmts[0].value)
+        finally:
+            self._subst = self._subst_stack.pop()
 
     def is_pure(self, e: Any) -> bool:
         """No writes and no calls of user functions or of built-ins with out parameters."""
@@ -451,20 +528,21 @@ class FnFacts:
 
     def is_nontrivial(self, e: Any) -> bool:
         """At least two operations, or a call of a built-in costlier than an add; not constant."""
-        if not isinstance(e, A.Expr) or self.model.is_constant(e):
+        if not isinstance(e, A.Expr):
             return False
         n, costly = self.op_count(e)
-        return n >= 2 or costly
+        return (n >= 2 or costly) and not self.model.is_constant(e)
 
     def worth_reusing(self, e: Any) -> bool:
         """Non-trivial, or one float or vector arithmetic operation that is not a sign change
         (`d * invI`, `light.center - position`; not `-1.0 * n`): a value a TA expects to be
         computed once."""
-        if self.is_nontrivial(e):
-            return True
-        if type(e) is not A.Binary or e.op not in ("+", "-", "*", "/") or self.model.is_constant(e):
-            return False
-        if self.op_count(e)[0] != 1 or not is_float_type(self.model.type_of(e)):
+        if type(e) is not A.Binary or e.op not in ("+", "-", "*", "/"):
+            return self.is_nontrivial(e)
+        n, costly = self.op_count(e)
+        if n >= 2 or costly:
+            return not self.model.is_constant(e)
+        if n != 1 or not is_float_type(self.model.type_of(e)) or self.model.is_constant(e):
             return False
         unit = [x for x in (e.left, e.right) if _numbers(self.model.const_value(x)) in ([1.0], [-1.0])]
         return not (unit and e.op in ("*", "/"))

@@ -1,13 +1,16 @@
 """An expression in a loop computes the same value on every iteration.
 
 ## What it does
-Reports a non-trivial expression (at least two operations, or a call of a built-in costlier
-than an add) in the condition, body or step of a `for`, `while` or `do` loop that depends on
-nothing the loop changes: it reads no variable written anywhere in the loop (the loop counter
-included), no variable declared in the loop, calls no user function and no built-in with an
-`out` parameter, and reads no global variable when the loop calls a user function (which could
-write it). Only the largest such expression is reported, once, for the outermost loop it does
-not depend on.
+Reports an expression worth computing once (at least two operations, a call of a built-in
+costlier than an add or of a pure user function, or in the loop body one float or vector
+operation such as the ambient term `ambientIntensity * ambientColor`) in the condition, body
+or step of a `for`, `while` or `do` loop that depends on nothing the loop changes: it reads no
+variable written anywhere in the loop (the loop counter included), no variable declared in the
+loop, calls only pure user functions and no built-in with an `out` parameter, and reads no
+global variable when the loop calls a user function (which could write it). One operation in a
+loop bound (`i < n - 1`) is idiomatic and not reported; nor is code after a `return` or `break`.
+Only the largest such expression is reported, for the outermost loop it does not depend on,
+one finding per value with every place it is computed in that loop.
 
 ## Why is this bad?
 The course's coding standards: "Use the most efficient methods (-1 per inefficient/unnecessary

@@ -12,6 +12,12 @@ code like any other. A `glslcheck:` directive is not an explanation and covers n
 
 One finding per run of consecutive uncovered code lines, at the run's first line.
 
+Code in an `#ifdef`/`#if` branch the preprocessor skips is not compiled and is not linted
+(where that is sure: `#ifdef`, `#ifndef`, `#if defined(X)`, `#if 0`). A comment that only
+credits or marks ("Code from class by ...", "// part 3", "// TEST", a `-----` rule) says where
+code came from, not why it is there: the lines only it covers are reported as advisory notes
+(no points), apart from the deductions.
+
 ## Why is this bad?
 The course's coding standards: "Every section, block and line of code must be commented
 (-1 per ambiguous section/block/line). Clearly state the intent, the 'why' behind each section,
@@ -37,8 +43,10 @@ from __future__ import annotations
 
 from typing import Iterator
 
+import re
+
 from ...diagnostics import Diagnostic
-from ..textscan import LineKind
+from ..textscan import LineKind, inactive_lines
 
 NAME = "missing-comment"
 PENALTY = 1
@@ -78,14 +86,52 @@ def uncovered_runs(kinds: list[LineKind], span: int) -> list[tuple[int, int, int
     return runs
 
 
+# A comment that only credits or marks ("code from class by ...", "// part 3", "// TEST"):
+# it says where the code came from or where a part starts, not why the code is there.
+ATTRIBUTION_RE = re.compile(
+    r"^[\s*/!-]*(?:"
+    r"(?:code\s+|taken\s+|copied\s+|adapted\s+|borrowed\s+)?from\s+(?:class|the\s+starter|lecture)\b[^.;]*"
+    r"|(?:\w+\s+){0,3}by\s+(?-i:[A-Z][\w.]*)(?:\s+(?-i:[A-Z][\w.]*)){0,3}"  # "Code by Dan Buckstein"
+    r"|(?:part|step|section)\s*[#\d.]+|test|todo"  # a bare marker
+    r"|-{3,}|={3,}|\*{3,})[\s*/!.:-]*$",
+    re.I,
+)
+
+
+def _attributions(ctx) -> set[int]:
+    """Lines of whole-line comments that only attribute or mark."""
+    return {
+        c.line for c in ctx.comments
+        if c.line == c.end_line and ctx.line_kinds[c.line - 1] is LineKind.COMMENT and ATTRIBUTION_RE.match(c.text)
+    }
+
+
 def check(ctx) -> Iterator[Diagnostic]:
-    for first, last, count in uncovered_runs(ctx.line_kinds, ctx.config.comment_span):
-        lines = f"line {first}" if first == last else f"lines {first}-{last}"
-        noun = "line" if count == 1 else "lines"
-        yield Diagnostic(
-            f"{count} {noun} of code without a comment ({lines})",
-            ctx.location(first),
-            rule=NAME,
-            severity=SEVERITY,
-            help=HELP,
-        )
+    # code the preprocessor skips (an inactive #ifdef branch) is not compiled: not linted
+    inactive = inactive_lines(ctx.lines)
+    kinds = [LineKind.DIRECTIVE if n in inactive else k for n, k in enumerate(ctx.line_kinds, start=1)]
+    span = ctx.config.comment_span
+    runs = uncovered_runs(kinds, span)
+    for first, last, count in runs:
+        yield _finding(ctx, first, last, count, SEVERITY, "without a comment")
+    # lines that only an attribution or a marker "explains": advisory, not a deduction
+    marks = _attributions(ctx)
+    if marks:
+        plain = [LineKind.BLANK if n in marks else k for n, k in enumerate(kinds, start=1)]
+        seen = {line for first, last, _ in runs for line in range(first, last + 1)}
+        for first, last, count in uncovered_runs(plain, span):
+            if not any(line in seen for line in range(first, last + 1)):
+                yield _finding(ctx, first, last, count, "note",
+                               "explained only by a comment that credits or marks (not why the code is there)")
+
+
+def _finding(ctx, first: int, last: int, count: int, severity: str, what: str) -> Diagnostic:
+    lines = f"line {first}" if first == last else f"lines {first}-{last}"
+    noun = "line" if count == 1 else "lines"
+    return Diagnostic(
+        f"{count} {noun} of code {what} ({lines})",
+        ctx.location(first),
+        rule=NAME,
+        severity=severity,
+        help=HELP,
+    )

@@ -1,9 +1,11 @@
 """The same pure expression is computed again in a function, with the same operand values.
 
 ## What it does
-Reports a non-trivial pure expression (at least two operations, like the ray position
-`ro + t * rd`, or a call of a built-in costlier than an add, like `dot`, `normalize`, `length`,
-`mix`) that a function evaluates again after an identical evaluation, when
+Reports a pure expression worth reusing (at least two operations, like the ray position
+`ro + t * rd`; a call of a built-in costlier than an add, like `dot`, `normalize`, `length`,
+`mix`, or of a pure user function that costs as much; or one float or vector operation on
+variables, like `d * invIntensity` or `light.center - position`, but not a sign change like
+`-1.0 * n`) that a function evaluates again after an identical evaluation, when
 
 * the first evaluation happens on every path to the second one (the same straight-line code,
   or an enclosing block: two occurrences in the two arms of an `if`/`else` or `?:` are not
@@ -11,10 +13,20 @@ Reports a non-trivial pure expression (at least two operations, like the ray pos
 * no variable it reads is written in between (an assignment, `++`/`--`, an `out` or `inout`
   argument, or any write in a loop around the second one but not the first; a global it reads
   is taken as written by any user function called in between), and
-* it calls no user function (not known to be pure) and no built-in with an `out` parameter.
+* it calls no built-in with an `out` parameter and only pure user functions (`in` parameters
+  only, no global variable read or written, only pure functions called: `lenSq(v)`).
 
-Expressions are compared by structure, variables by the declaration they name. The second and
-later evaluations are reported, not their sub-expressions; the message names the first line.
+Expressions are compared by value, variables by the declaration they name: operands of `+` and
+`*` in any order and grouping (not a matrix product), a component by its index (`v.x`, `v.r`),
+`dot(a, b)` as its sum of products and a pure one-line user function by what it returns, so
+`lenSq(dp.xy)` and `dp.x * dp.x + dp.y * dp.y` are the same value, and so are the two
+`length(v)` in `length(v) * length(v)`. Code after a
+`return` (or `break`, `continue`, `discard`) never runs and is not counted. One finding per
+repeated value, at its second evaluation, listing every place it is computed (in the message,
+and as notes: the JSON `notes`): the deduction counts one inefficient practice once. A repeated
+value's repeated parts are not reported again; a part that is also repeated elsewhere at most
+once (`sin(t)` at line 5 and inside `sin(t) * k` twice at line 6) joins the larger value's
+finding.
 
 ## Why is this bad?
 The course's coding standards: "Use the most efficient methods (-1 per inefficient/unnecessary

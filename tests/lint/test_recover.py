@@ -1,0 +1,49 @@
+"""Syntax-error recovery (glslcheck/lint/recover.py): which text is dropped, and that every kept
+line stays where it was."""
+
+from __future__ import annotations
+
+from glslcheck.diagnostics import Location
+from glslcheck.lint.recover import declarations, drop_declaration
+from glslcheck.sources import Source
+
+TEXT = """// a comment { with a brace
+#define BODY { return 1.0; }
+float f(in float x)
+{
+    return x * 2.0
+}
+struct S { float a; };
+float g = 1.0;
+void mainImage(out vec4 c, in vec2 p) { c = vec4(f(p.x)); }
+"""
+
+
+def test_declarations_skip_comments_and_directives():
+    found = [TEXT[a:b].split("\n")[0] for a, b, _ in declarations(TEXT)]
+    assert found == ["float f(in float x)", "struct S { float a; };", "float g = 1.0;",
+                     "void mainImage(out vec4 c, in vec2 p) { c = vec4(f(p.x)); }"]
+
+
+def test_a_body_error_keeps_the_prototype_and_every_line():
+    units = [Source("Image.glsl", TEXT)]
+    new, region = drop_declaration(units, Location("Image.glsl", 6, 1), [])
+    assert region == ("Image.glsl", 3, 6, "f")
+    lines = new[0].text.split("\n")
+    assert len(lines) == len(TEXT.split("\n"))
+    assert lines[2] == "float f(in float x)" and lines[3].strip() == ";" and lines[4].strip() == ""
+    assert lines[8] == TEXT.split("\n")[8]  # mainImage untouched
+
+
+def test_a_second_error_in_the_same_declaration_blanks_it_whole():
+    units = [Source("Image.glsl", TEXT)]
+    new, region = drop_declaration(units, Location("Image.glsl", 3, 7), [("Image.glsl", 3, 6, "f")])
+    assert region[:3] == ("Image.glsl", 3, 6)
+    assert new[0].text.split("\n")[2].strip() == ""
+
+
+def test_an_unclosed_function_is_blanked_to_the_end_and_other_files_are_not_touched():
+    units = [Source("Image.glsl", "float g = 1.0;\nvoid f() { if (x) { }\n")]
+    new, region = drop_declaration(units, Location("Image.glsl", 2, 12), [])
+    assert region == ("Image.glsl", 2, 3, "f") and new[0].text == "float g = 1.0;\n" + " " * 21 + "\n"
+    assert drop_declaration(units, Location("Other.glsl", 1, 1), [])[1] is None
