@@ -276,6 +276,184 @@ def _lanes_of(*values: Any) -> int:
 _CONVERTERS = {"float": "to_float", "int": "to_int", "uint": "to_uint", "bool": "to_bool"}
 
 
+# ---------------------------------------------------------------------------------------------
+# llvmpipe's own float32 algorithms (gallivm), step by step.
+#
+# Mesa 22.3.6 compiles GLSL sin, cos, exp2, log2 (and pow, exp, log built on them) to LLVM IR
+# with the code in src/gallium/auxiliary/gallivm/lp_bld_arit.c; the functions below repeat
+# each IR instruction in float32 so the NumPy backend gets the same bits (measured bit for bit
+# on 400,000 inputs each, subnormals, +-0, +-Inf, NaN and |x| up to 3e38 included:
+# tests/numpy/test_llvmpipe_math_gl.py). CPU dependence, recorded where it arises:
+#
+# - ``lp_build_mad``/``lp_build_fmuladd`` emit ``llvm.fmuladd``, which LLVM fuses into one
+#   rounding on a CPU with FMA (x86 FMA3: Haswell and later) and evaluates as a multiply and
+#   an add elsewhere. :data:`HOST_FMA` reads the CPU flags; ``Runtime(fma=...)`` overrides.
+#   GLSL's own ``a*b + c`` is never fused (llvmpipe does not set NIR's fuse_ffma): only the
+#   steps inside these built-ins are.
+# - llvmpipe runs shaders with MXCSR DAZ|FTZ (lp_build_fpstate_set_denorms_zero): subnormal
+#   operands count as zero inside these algorithms (:func:`_daz`).
+# - out-of-range float->int conversions inside them (``cvttps2dq``) give INT_MIN on every x86
+#   CPU (SSE2 and AVX-512 alike): that is what makes cos(1e10) = 1 there.
+
+
+def _host_fma() -> bool:
+    """True when this CPU fuses ``llvm.fmuladd`` (x86 ``fma`` flag; non-x86 Linux: the
+    architectures llvmpipe targets with a fused multiply-add, aarch64 and ppc64le, always do)."""
+    import platform
+
+    machine = platform.machine().lower()
+    if machine not in ("x86_64", "amd64", "i386", "i686"):
+        return machine in ("aarch64", "arm64", "ppc64le", "ppc64")
+    try:
+        with open("/proc/cpuinfo", encoding="ascii", errors="replace") as f:
+            for line in f:
+                if line.startswith("flags"):
+                    return " fma " in f" {line.split(':', 1)[-1].strip()} "
+    except OSError:
+        pass
+    return True  # every x86-64 CPU sold since 2013 (Haswell, Piledriver) has FMA3
+
+
+HOST_FMA = _host_fma()
+_F32 = np.float32
+_FLT_MIN = _F32(1.17549435e-38)
+
+
+def _daz(x: np.ndarray) -> np.ndarray:
+    """Subnormals as zero (same sign), as an x86 operand with MXCSR.DAZ set."""
+    return np.where(np.abs(x) < _FLT_MIN, x * _F32(0.0), x)
+
+
+def _fma32(a: Any, b: Any, c: Any) -> np.ndarray:
+    """float32 ``a*b + c`` with ONE rounding, like vfmadd: the float64 product of two float32
+    values is exact; the float64 sum is rounded to odd (Boldo-Melquiond), so rounding it to
+    float32 afterwards is the correctly rounded fused result (no double rounding)."""
+    p = np.multiply(a, b, dtype=np.float64)
+    c = np.asarray(c, dtype=np.float64)
+    s = p + c
+    bb = s - p
+    err = (p - (s - bb)) + (c - bb)  # TwoSum: s + err == p + c exactly
+    even = (s.view(np.int64) & 1) == 0
+    fix = (err != 0) & even & np.isfinite(s)
+    if fix.any():
+        s = np.where(fix, np.nextafter(s, np.where(err > 0, np.inf, -np.inf)), s)
+    return s.astype(_F32)
+
+
+def _cvtt(x: np.ndarray) -> np.ndarray:
+    """x86 ``cvttps2dq``: truncate to int32; NaN and out-of-range give INT_MIN."""
+    t = np.trunc(x.astype(np.float64))
+    ok = (t >= -(2.0**31)) & (t < 2.0**31)
+    return np.where(ok, t, -(2.0**31)).astype(np.int64).astype(I32)
+
+
+def _sse_min(a: Any, b: Any) -> np.ndarray:
+    """``minps a, b``: ``a < b ? a : b`` (a NaN in either gives b)."""
+    return np.where(a < b, a, b)
+
+
+def _sse_max(a: Any, b: Any) -> np.ndarray:
+    return np.where(a > b, a, b)
+
+
+class LlvmpipeMath:
+    """gallivm's float32 sin/cos/exp2/log2/pow (lp_bld_arit.c, Mesa 22.3), with or without
+    FMA. All inputs and results are float32 arrays."""
+
+    # lp_build_exp2_polynomial, EXP_POLY_DEGREE 5 (the first coefficient is 1.0 exactly)
+    EXP2 = (1.0, 0.693153073200168932794, 0.240153617044375388211, 0.0558263180532956664775,
+            0.00898934009049466391101, 0.00187757667519147912699)
+    # lp_build_log2_polynomial, LOG_POLY_DEGREE 4
+    LOG2 = (2.88539009343309178325, 0.961791550404184197881, 0.577440339438736392009,
+            0.403343858251329912514, 0.406718052498846252698)
+
+    def __init__(self, fma: bool = HOST_FMA) -> None:
+        self.fma = fma
+
+    def mad(self, a: Any, b: Any, c: Any) -> np.ndarray:
+        """``llvm.fmuladd``: fused on an FMA CPU, else a*b then + c."""
+        if self.fma:
+            return _fma32(a, b, c)
+        return np.add(np.multiply(a, b, dtype=_F32), c, dtype=_F32)
+
+    def polynomial(self, x: np.ndarray, coeffs: tuple[float, ...]) -> np.ndarray:
+        """``lp_build_polynomial``: even and odd coefficients in x*x separately (each by
+        Horner with mad), then ``mad(odd, x, even)``."""
+        x2 = x * x
+        even = odd = None
+        for i in range(len(coeffs) - 1, -1, -1):
+            c = _F32(coeffs[i])
+            if i % 2 == 0:
+                even = c if even is None else self.mad(x2, even, c)
+            else:
+                odd = c if odd is None else self.mad(x2, odd, c)
+        return self.mad(odd, x, even)
+
+    def sin_or_cos(self, a: np.ndarray, cos: bool) -> np.ndarray:
+        """``lp_build_sin_or_cos``: Cephes sinf/cosf as in sse_mathfun: j = (int(|x|*4/pi) + 1)
+        & ~1, three-part Cody-Waite reduction by pi/4 (DP1..DP3), one of two polynomials, sign
+        by integer bit tricks, clamped to [-1, 1] with minps/maxps (a NaN from an overflowed
+        reduction becomes +1), and NaN for non-finite input. For |x| >= 2**31 * pi/4 the
+        conversion gives INT_MIN, so the "reduced" argument is huge and the result is a
+        clamped +-1 (cos(1e10) = 1, sin(1e10) = -1)."""
+        ai = a.view(I32)
+        x_abs = _daz((ai & I32(0x7FFFFFFF)).view(_F32))
+        emm2_add = (_cvtt(x_abs * _F32(1.27323954473516)).astype(np.int64) + 1).astype(I32)
+        emm2_and = emm2_add & I32(~1)
+        y_2 = emm2_and.astype(_F32)
+        if cos:
+            emm2_2 = (emm2_and.astype(np.int64) - 2).astype(I32)
+            sign_bit = ((I32(4) & ~emm2_2).view(U32) << U32(29)).view(I32)
+        else:
+            emm2_2 = emm2_and
+            sign_bit = (ai ^ (emm2_add.view(U32) << U32(29)).view(I32)) & I32(INT_MIN)
+        x_1 = self.mad(y_2, _F32(-0.78515625), x_abs)
+        x_2 = self.mad(y_2, _F32(-2.4187564849853515625e-4), x_1)
+        x_3 = self.mad(y_2, _F32(-3.77489497744594108e-8), x_2)
+        z = x_3 * x_3
+        y_6 = self.mad(self.mad(z, _F32(2.443315711809948e-005), _F32(-1.388731625493765e-003)),
+                       z, _F32(4.166664568298827e-002))
+        y_10 = ((y_6 * z) * z - z * _F32(0.5)) + _F32(1.0)
+        y2_6 = self.mad(self.mad(z, _F32(-1.9515295891e-4), _F32(8.3321608736e-3)),
+                        z, _F32(-1.6666654611e-1))
+        y2_9 = self.mad(y2_6 * z, x_3, x_3)
+        y = np.where((emm2_2 & 2) == 0, y2_9, y_10)
+        y = (y.view(I32) ^ sign_bit).view(_F32)
+        y = _sse_max(_sse_min(y, _F32(1.0)), _F32(-1.0))  # lp_build_clamp
+        return np.where(np.isfinite(a), y, _F32(np.nan))
+
+    def exp2(self, x: np.ndarray) -> np.ndarray:
+        """``lp_build_exp2``: clamp to [-126.99999, 128] (NaN passes), split floor/fraction,
+        2**ipart from the exponent bits times a degree-5 polynomial of the fraction."""
+        x = _sse_max(_F32(-126.99999), _sse_min(_F32(128.0), _daz(x)))
+        ipart = np.floor(x)
+        fpart = x - ipart
+        expipart = ((_cvtt(ipart).astype(np.int64) + 127) << 23).astype(U32).view(_F32)
+        return expipart * self.polynomial(fpart, self.EXP2)
+
+    def log2(self, x: np.ndarray) -> np.ndarray:
+        """``lp_build_log2_safe``: exponent + y*P(y*y) with y = (m-1)/(m+1) for the mantissa m
+        in [1, 2); then +Inf for +Inf, -Inf for 0 (subnormals too), NaN for x < 0. The edge
+        masks are unordered compares, so NaN input hits all three and ends NaN."""
+        i = x.view(I32)
+        logexp = (((i & I32(0x7F800000)) >> 23) - 127).astype(_F32)
+        mant = ((i & I32(0x007FFFFF)) | I32(0x3F800000)).view(_F32)
+        y = (mant - _F32(1.0)) / (mant + _F32(1.0))
+        res = self.mad(y, self.polynomial(y * y, self.LOG2), logexp)
+        xd = _daz(x)
+        nan = np.isnan(x)
+        res = np.where((xd < _F32(0.0)) | nan, _F32(np.nan),
+                       np.where(xd == _F32(0.0), _F32(-np.inf),
+                                np.where(x == _F32(np.inf), _F32(np.inf), res)))
+        return res
+
+    def pow(self, x: np.ndarray, y: np.ndarray) -> np.ndarray:
+        """``lp_build_pow``: exp2(log2_safe(x) * y), then 0 where x == 0 (an unordered compare:
+        NaN x gives 0 too; so do subnormal x)."""
+        r = self.exp2(self.log2(x) * y)
+        return np.where((_daz(x) == _F32(0.0)) | np.isnan(x), _F32(0.0), r)
+
+
 class Runtime:
     """GLSL ES 3.00 operators and built-ins over lane arrays, in one float precision.
 
@@ -283,13 +461,16 @@ class Runtime:
     (mediump emulation) or ``"float64"`` (reference). Instantiate once per render.
     """
 
-    def __init__(self, precision: str = "float32") -> None:
+    def __init__(self, precision: str = "float32", fma: bool | None = None) -> None:
         try:
             self.F = np.dtype(PRECISIONS[precision]).type
         except KeyError:
             raise ValueError(f"precision must be one of {sorted(PRECISIONS)}") from None
         self.precision = precision
         F = self.F
+        # float32 (highp) evaluates sin/cos/exp2/log2/pow with llvmpipe's own algorithms;
+        # float16 and float64 keep NumPy's (float64 is the accuracy reference).
+        self.lp = LlvmpipeMath(HOST_FMA if fma is None else fma) if F is np.float32 else None
         self._dtype = np.dtype(F)  # `x.dtype is self._dtype`: the fast test in _f
         self._0 = F(0.0)
         self._1 = F(1.0)
@@ -931,93 +1112,117 @@ class Runtime:
         return self._f(x) * self.F(180.0 / math.pi)
 
     def sin(self, x: Any) -> np.ndarray:
+        if self.lp is not None:
+            return self.lp.sin_or_cos(self._f(x), cos=False)
         return np.sin(self._f(x))
 
     def cos(self, x: Any) -> np.ndarray:
+        if self.lp is not None:
+            return self.lp.sin_or_cos(self._f(x), cos=True)
         return np.cos(self._f(x))
 
     def tan(self, x: Any) -> np.ndarray:
+        if self.lp is not None:
+            x = self._f(x)
+            return self.sin(x) / self.cos(x)
         return np.tan(self._f(x))
 
     def _asin_expr(self, x: np.ndarray, p0: float, p1: float) -> np.ndarray:
+        """Mesa's GLSL built-in (builtin_functions.cpp ``asin_expr``); its constants are float
+        literals, so ``M_PI_4f - 1.0f`` is rounded to float32 twice, as in C."""
         F = self.F
         a = np.abs(x)
-        poly = F(math.pi / 2) + a * (F(math.pi / 4 - 1.0) + a * (F(p0) + a * F(p1)))
+        c1 = F(F(math.pi / 4) - F(1.0))
+        poly = F(math.pi / 2) + a * (c1 + a * (F(p0) + a * F(p1)))
         return self.sign(x) * (F(math.pi / 2) - np.sqrt(self._1 - a) * poly)
 
     def asin(self, x: Any) -> np.ndarray:
         """Mesa's polynomial asin (|x| > 1 -> NaN through sqrt)."""
-        return self._asin_expr(self._f(x), 0.086566724, -0.03102955)
+        return self._asin_expr(self._daz(x), 0.086566724, -0.03102955)
 
     def acos(self, x: Any) -> np.ndarray:
-        return self.F(math.pi / 2) - self._asin_expr(self._f(x), 0.08132463, -0.02363318)
+        return self.F(math.pi / 2) - self._asin_expr(self._daz(x), 0.08132463, -0.02363318)
 
-    _ATAN_COEFFS = (-0.0121323213173444, 0.0536813784310406, -0.1173503194786851,
-                    0.1938924977115610, -0.3326756418091246, 0.9999793128310355)
+    # nir_atan's odd polynomial x*c0 + x^3*c1 + ... + x^11*c5 (Mesa 22.3 nir_builtin_builder.c)
+    _ATAN_COEFFS = (0.9999793128310355, -0.3326756418091246, 0.1938924977115610,
+                    -0.1173503194786851, 0.0536813784310406, -0.0121323213173444)
+
+    def _daz(self, x: Any) -> np.ndarray:
+        """Subnormal operands read as zero in float32 (llvmpipe's DAZ); other modes unchanged."""
+        x = self._f(x)
+        return _daz(x) if self.lp is not None else x
 
     def _nir_atan(self, v: np.ndarray) -> np.ndarray:
+        """Mesa 22.3 ``nir_atan``: x = min(|v|, 1) / max(|v|, 1); the six terms x^(2k+1)*c_k
+        (x^3 = x^2*x, x^5 = x^3*x^2, ...) summed left to right; for |v| > 1 the fixup
+        ``(t*-2 + pi/2) + t``; then times ``fsign(v)`` (fsign(NaN) = fsign(-0) = 0 on llvmpipe,
+        so atan(NaN) = 0 and atan(-0) = +0). Bit-exact with llvmpipe except 1 ULP on ~0.2% of
+        arguments within 0.85 < |v| < 1.2 (measured: tests/numpy/test_llvmpipe_math_gl.py)."""
         F = self.F
         a = np.abs(v)
-        le1 = a <= self._1
-        u = np.where(le1, v, self._1 / v)
-        x2 = u * u
-        r = np.full_like(x2, F(self._ATAN_COEFFS[0]))
+        x = self._daz(np.fmin(a, self._1) / np.fmax(a, self._1))  # FTZ of the quotient
+        x2 = x * x
+        p = x
+        t = x * F(self._ATAN_COEFFS[0])
         for cf in self._ATAN_COEFFS[1:]:
-            r = r * x2 + F(cf)
-        bias = np.where(le1, self._0, F(-math.pi / 2))
-        # Mesa's sign fixup is `tmp * fsign(v)`: fsign(NaN) = fsign(-0) = 0 on llvmpipe, so
-        # atan(NaN) = 0 and atan(-0) = +0 (a NaN argument never reaches the result).
-        return np.where(a > self._0, np.copysign(np.abs(u) * r + bias, v), self._0)
+            p = p * x2
+            t = t + p * F(cf)
+        t = self._daz(t)  # FTZ: a subnormal sum (|v| < 1.2e-38 / 0.99998) is 0 there
+        t = np.where(self._1 < a, (t * F(-2.0) + F(math.pi / 2)) + t, t)
+        return t * self.sign(v)
 
     def atan(self, y: Any, x: Any = None) -> np.ndarray:
         """``atan(y_over_x)`` and ``atan(y, x)`` following Mesa's NIR lowering (atan(0, 0) is
         3*pi/4 on llvmpipe: the lowering pretends 0/0 = 1 on the left half-plane)."""
         if x is None:
-            return self._nir_atan(self._f(y))
+            return self._nir_atan(self._daz(y))
         F = self.F
-        y, x = self._f(y), self._f(x)
+        y, x = self._daz(y), self._daz(x)
         flip = self._0 >= x
         ax = np.abs(x)
         s = np.where(flip, ax, y)
         t = np.where(flip, y, ax)
         scale = np.where(np.abs(t) >= F(1e18), F(0.25), self._1)
         rcp = self._1 / (t * scale)
-        abs_s_over_t = np.abs(s * scale) * np.abs(rcp)
+        abs_s_over_t = self._daz(np.abs(s * scale) * np.abs(rcp))  # FTZ of the product
         tan = np.where(ax == np.abs(y), self._1, abs_s_over_t)
         arc = flip.astype(F) * F(math.pi / 2) + self._nir_atan(tan)
         return np.where(np.fmin(y, rcp) < self._0, -arc, arc)
 
     def sinh(self, x: Any) -> np.ndarray:
         x = self._f(x)
-        return self._half * (np.exp(x) - np.exp(-x))
+        return self._half * (self.exp(x) - self.exp(-x))
 
     def cosh(self, x: Any) -> np.ndarray:
         x = self._f(x)
-        return self._half * (np.exp(x) + np.exp(-x))
+        return self._half * (self.exp(x) + self.exp(-x))
 
     def tanh(self, x: Any) -> np.ndarray:
-        """(e^x - e^-x)/(e^x + e^-x) with x clamped to [-10, 10] (llvmpipe: tanh(100) = 1)."""
-        x = np.clip(self._f(x), self.F(-10.0), self.F(10.0))
-        e1, e2 = np.exp(x), np.exp(-x)
+        """(e^x - e^-x)/(e^x + e^-x) with x clamped to [-10, 10] by GLSL clamp (llvmpipe:
+        tanh(100) = 1; tanh(NaN) = -1, since clamp(NaN, -10, 10) = -10)."""
+        x = self.clamp(self._f(x), self.F(-10.0), self.F(10.0))
+        e1, e2 = self.exp(x), self.exp(-x)
         return (e1 - e2) / (e1 + e2)
 
     def asinh(self, x: Any) -> np.ndarray:
         x = self._f(x)
-        return self.sign(x) * np.log(np.abs(x) + np.sqrt(x * x + self._1))
+        return self.sign(x) * self.log(np.abs(x) + np.sqrt(x * x + self._1))
 
     def acosh(self, x: Any) -> np.ndarray:
         x = self._f(x)
-        return np.log(x + np.sqrt(x * x - self._1))
+        return self.log(x + np.sqrt(x * x - self._1))
 
     def atanh(self, x: Any) -> np.ndarray:
         x = self._f(x)
-        return self._half * np.log((self._1 + x) / (self._1 - x))
+        return self._half * self.log((self._1 + x) / (self._1 - x))
 
     # ------------------------------------------------------------------ exponential
     def pow(self, x: Any, y: Any) -> np.ndarray:
         """``exp2(y * log2(x))`` with llvmpipe's edges: x < 0 -> NaN; x == 0 or x NaN -> 0
         (for every y, including 0, negative and NaN)."""
         x, y = self._f(x), self._f(y)
+        if self.lp is not None:
+            return self.lp.pow(x, _daz(y))
         r = np.log2(x)
         one_y = y.size == 1
         if one_y and r.ndim:  # one buffer for every step
@@ -1064,15 +1269,21 @@ class Runtime:
         return np.ones_like(self._f(y))
 
     def exp(self, x: Any) -> np.ndarray:
-        return np.exp2(self._f(x) * self.F(1.4426950408889634))
+        """``exp2(x * log2(e))`` (lp_build_exp; a subnormal x is 0 in the product, DAZ)."""
+        return self.exp2(self._daz(x) * self.F(1.4426950408889634))
 
     def log(self, x: Any) -> np.ndarray:
-        return np.log2(self._f(x)) * self.F(0.6931471805599453)
+        """``log2(x) * ln(2)`` (lp_build_log_safe)."""
+        return self.log2(x) * self.F(0.6931471805599453)
 
     def exp2(self, x: Any) -> np.ndarray:
+        if self.lp is not None:
+            return self.lp.exp2(self._f(x))
         return np.exp2(self._f(x))
 
     def log2(self, x: Any) -> np.ndarray:
+        if self.lp is not None:
+            return self.lp.log2(self._f(x))
         return np.log2(self._f(x))
 
     def sqrt(self, x: Any) -> np.ndarray:
