@@ -319,6 +319,7 @@ def execute_module(source: str, filename: str, meta: dict, precision: str = "flo
     code = compile(source, filename, "exec")
     ns: dict[str, Any] = {"__builtins__": {}, "__name__": "glslcheck_shader", "rt": None, "X": None}
     ns["rt"] = rt = Runtime(precision)
+    rt.fold_constants = True  # Mesa's folding of constants (Runtime.fmul); uniforms are read-only
     ns["X"] = Lanes(meta, rt)
     with np.errstate(all="ignore"):  # constants may overflow in float16, as on a mediump GPU
         exec(code, ns)  # noqa: S102 - generated from a checked AST; every GLSL name is mangled
@@ -337,9 +338,9 @@ def _uniform_value(rt: Runtime, name: str, value: Any) -> Any:
         n = int(t[-1])
         return rt.vec(n, *[rt.const_float(float(x)) for x in v])
 
-    if u.array_size:
-        return rt.array(*[one(v) for v in value])
-    return one(value)
+    value = rt.array(*[one(v) for v in value]) if u.array_size else one(value)
+    value.flags.writeable = False  # an input, not a constant: Runtime.fmul does not fold it
+    return value
 
 
 def _as_date(date) -> tuple[float, float, float, float]:
@@ -774,6 +775,7 @@ def standalone_globals(meta: dict) -> dict:
     if "--precision" in argv:
         precision = argv[argv.index("--precision") + 1]
     rt = Runtime(precision)
+    rt.fold_constants = True
     return {"rt": rt, "X": Lanes(meta, rt)}
 
 

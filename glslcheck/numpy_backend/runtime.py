@@ -316,6 +316,7 @@ def _host_fma() -> bool:
 
 HOST_FMA = _host_fma()
 _F32 = np.float32
+_POW_REWRITTEN = (0.0, 1.0, 2.0, 4.0)  # exponents Mesa's compiler rewrites (Runtime.pow_const)
 _FLT_MIN = _F32(1.17549435e-38)
 
 
@@ -471,6 +472,9 @@ class Runtime:
         # float32 (highp) evaluates sin/cos/exp2/log2/pow with llvmpipe's own algorithms;
         # float16 and float64 keep NumPy's (float64 is the accuracy reference).
         self.lp = LlvmpipeMath(HOST_FMA if fma is None else fma) if F is np.float32 else None
+        # Mesa's constant folding (fmul, dot, mix, pow): on for transpiled shaders, whose
+        # uniform inputs are read-only arrays (see fmul); off for direct calls, which get IEEE.
+        self.fold_constants = False
         self._dtype = np.dtype(F)  # `x.dtype is self._dtype`: the fast test in _f
         self._0 = F(0.0)
         self._1 = F(1.0)
@@ -856,6 +860,34 @@ class Runtime:
         a, b = self._pair(a, b)
         return np.multiply(a, b)
 
+    def fmul(self, a: np.ndarray, b: np.ndarray) -> np.ndarray:
+        """Float ``a * b`` as Mesa compiles it: NIR folds ``x * 0.0`` to ``0.0`` when the zero is
+        a compile-time constant (nir_opt_algebraic's inexact ``fmul(a, 0.0) -> 0.0``), so NaN or
+        Inf times a constant zero component is 0 on llvmpipe (measured: ``v * vec3(1, 0, 0)``
+        keeps NaN only in x; ``mix(NaN, y, 1.0)`` is y). Here a lane-uniform operand (the same
+        value in every lane: a constant, or a value built from constants) with zero components
+        gives 0 there. Approximation: a uniform input that happens to be 0 (iTime at t = 0)
+        also folds, where llvmpipe would give NaN for a NaN or Inf other operand; uniforms
+        read directly (read-only arrays, and their swizzles) do not. Only with
+        ``fold_constants`` (set for transpiled shaders)."""
+        r = a * b
+        if self.fold_constants:
+            for z, other in ((a, b), (b, a)):
+                if self._const_zero(z, other):
+                    r = np.where(z == 0, self._0, r)
+        return r
+
+    @staticmethod
+    def _const(z: np.ndarray) -> bool:
+        """z may be a compile-time constant: lane-uniform and not a uniform input (read-only)."""
+        return z.ndim > 0 and z.shape[-1] == 1 and z.flags.writeable
+
+    def _const_zero(self, z: np.ndarray, other: np.ndarray) -> bool:
+        """Mesa folds z * other to 0 where z is a constant zero and other is not a constant
+        (two constants are multiplied out at compile time, IEEE: 0 * inf = NaN)."""
+        return (self.fold_constants and self._const(z) and z.size <= 16 and not z.all()
+                and not self._const(other))
+
     def div(self, a: Any, b: Any) -> np.ndarray:
         """``/``: float IEEE division; int truncates toward zero (x/0 = 0, INT_MIN/-1 =
         INT_MIN); uint x/0 = 0xFFFFFFFF (llvmpipe)."""
@@ -1012,7 +1044,14 @@ class Runtime:
         """Sum of products left to right, each rounded (no FMA), as llvmpipe."""
         a, b = self._f(a), self._f(b)
         if a.ndim == 1 and b.ndim == 1:
-            return np.multiply(a, b)
+            return self.fmul(a, b)
+        if self._const_zero(a, b) or self._const_zero(b, a):
+            # a constant zero component drops its product (NIR folds x * 0.0 to 0.0), so a NaN
+            # there does not reach the sum: dot(vec3(NaN, 1, 2), vec3(0, 1, 1)) = 3 on llvmpipe
+            s = self.fmul(a[0], b[0])
+            for i in range(1, a.shape[0]):
+                s = s + self.fmul(a[i], b[i])
+            return s
         s = np.multiply(a[0], b[0])
         if a.shape[0] > 1:  # every product has the same shape: accumulate in place
             t = np.multiply(a[1], b[1])
@@ -1221,6 +1260,15 @@ class Runtime:
         """``exp2(y * log2(x))`` with llvmpipe's edges: x < 0 -> NaN; x == 0 or x NaN -> 0
         (for every y, including 0, negative and NaN)."""
         x, y = self._f(x), self._f(y)
+        if (self.fold_constants and y.ndim and y.shape[-1] == 1 and y.size <= 4 and y.flags.writeable
+                and np.isin(y, _POW_REWRITTEN).all() and not np.signbit(y).any()):
+            # an exponent the same in every lane (a constant after Mesa's propagation) of 0, 1,
+            # 2 or 4: Mesa rewrites pow there (pow_const); as fmul, a uniform input equal to
+            # one of these is taken for a constant too
+            c = tuple(float(v) for v in y.reshape(-1))
+            if not any(c):  # NIR's fpow(a, 0.0) -> 1.0 (measured: pow(0, e) = 1 for a zeroed e)
+                return np.ones(np.broadcast_shapes(x.shape, y.shape), dtype=self.F)
+            return self.pow_const(x, c if y.ndim > 1 else c[0])
         if self.lp is not None:
             return self.lp.pow(x, _daz(y))
         r = np.log2(x)
@@ -1357,8 +1405,8 @@ class Runtime:
             x, y = self._pair(x, y)
             return np.where(a, y, x)
         x, y, a = self._f(x), self._f(y), self._f(a)
-        r = x * (self._1 - a)
-        t = y * a
+        r = self.fmul(x, self._1 - a)  # a constant a of 0 or 1 drops the other side (fmul)
+        t = self.fmul(y, a)
         if r.shape == t.shape and r.ndim:  # the sum in r's buffer
             return np.add(r, t, out=r)
         return r + t

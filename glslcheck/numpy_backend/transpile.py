@@ -1647,6 +1647,8 @@ class Transpiler:
                 return f"rt.vec_mul_mat({left}, {right})"
         if op == "%":
             return f"rt.rem({left}, {right})"
+        if op == "*" and lt.base == "float" and rtp.base == "float":
+            return f"rt.fmul({left}, {right})"  # NaN times a constant zero is 0 (Runtime.fmul)
         if op in _FLOAT_OPERATORS and lt.base == "float" and rtp.base == "float":
             # float operands are always arrays of the render dtype: NumPy's operator is exactly
             # the runtime's ufunc (rt.add is np.add ...), without a Python call per operation
