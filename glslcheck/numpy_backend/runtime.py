@@ -146,7 +146,7 @@ propagates constants through plain local variables, which the transpiler does no
 
 Formulas (each matched bit-for-bit on 65536 random inputs unless a ULP figure is given):
 no fused multiply-add is formed (``a*b+c`` rounds twice); ``x/y`` and ``sqrt`` are correctly
-rounded; ``inversesqrt(x) = 1/sqrt(x)``; ``length = sqrt(dot)``; ``dot`` sums left to right;
+rounded; ``inversesqrt(x) = 1/sqrt(x)``; ``length = sqrt(dot)``; ``dot`` sums right to left;
 ``normalize(v) = v * inversesqrt(dot(v, v))``; ``mix = x*(1-a) + y*a``;
 ``smoothstep: t*(t*(3-2t))``; ``cross = a.yzx*b.zxy - a.zxy*b.yzx``; ``mod`` as the spec;
 ``atan``/``atan(y, x)``: Mesa's NIR polynomial (``nir_atan``, ``nir_atan2``, within 3 ULP of
@@ -1041,22 +1041,26 @@ class Runtime:
 
     # ------------------------------------------------------------------ linear algebra
     def dot(self, a: Any, b: Any) -> np.ndarray:
-        """Sum of products left to right, each rounded (no FMA), as llvmpipe."""
+        """Sum of products RIGHT to left, each rounded (no FMA), as llvmpipe:
+        ``x0*y0 + (x1*y1 + (x2*y2 + x3*y3))`` (measured bit-exact on 60,000 random vec3/vec4
+        pairs, constant or not; left to right matches only 56-76%). Mesa's factoring of products
+        that share an operand (``dot(v, v.zxy)``: a*c + b*a -> a*(c + b)) is not copied."""
         a, b = self._f(a), self._f(b)
         if a.ndim == 1 and b.ndim == 1:
             return self.fmul(a, b)
+        n = a.shape[0]
         if self._const_zero(a, b) or self._const_zero(b, a):
             # a constant zero component drops its product (NIR folds x * 0.0 to 0.0), so a NaN
             # there does not reach the sum: dot(vec3(NaN, 1, 2), vec3(0, 1, 1)) = 3 on llvmpipe
-            s = self.fmul(a[0], b[0])
-            for i in range(1, a.shape[0]):
-                s = s + self.fmul(a[i], b[i])
+            s = self.fmul(a[n - 1], b[n - 1])
+            for i in range(n - 2, -1, -1):
+                s = self.fmul(a[i], b[i]) + s
             return s
-        s = np.multiply(a[0], b[0])
-        if a.shape[0] > 1:  # every product has the same shape: accumulate in place
-            t = np.multiply(a[1], b[1])
+        s = np.multiply(a[n - 1], b[n - 1])
+        if n > 1:  # every product has the same shape: accumulate in place (t + s == s + t)
+            t = np.multiply(a[n - 2], b[n - 2])
             s += t
-            for i in range(2, a.shape[0]):
+            for i in range(n - 3, -1, -1):
                 np.multiply(a[i], b[i], out=t)
                 s += t
         return s
