@@ -206,6 +206,7 @@ def format_frame(result, precision: str = "float32", samples: int = 1, worst: in
     for p in c.worst[:worst]:
         lines.append(f"  {p.kind:<8} pixel ({p.x}, {p.y}) fragCoord ({p.frag_coord[0]}, {p.frag_coord[1]}): "
                      f"numpy {_rgb(p.numpy)} gl {_rgb(p.gl)}")
+    lines.extend(f"  note: {n}" for n in getattr(result, "notes", ()))
     lines.append("  -> match" if c.match else "  -> MISMATCH")
     return "\n".join(lines) + "\n"
 

@@ -1395,6 +1395,8 @@ class Transpiler:
         self.emit(f"{count} += 1")
         self.emit(f"if {count} > {LOOP_CAP}:")
         self.emit(f"    X.runaway({lid})")
+        self.emit(f"if X.tick(S, {lid}, {count}):")  # llvmpipe's loop limiter, if rendering with one
+        self.emit("    break")
         if ev_body.ret and fs.has_ret:
             self.emit(f"{live} = X.andnot({live}, _ret)")
         if do_while or cond is None:
@@ -1456,6 +1458,8 @@ class Transpiler:
         self.emit(f"{count} += 1")
         self.emit(f"if {count} > {LOOP_CAP}:")
         self.emit(f"    X.runaway({lid})")
+        self.emit(f"if X.tick(S, {lid}, {count}):")  # llvmpipe's loop limiter, if rendering with one
+        self.emit("    break")
         c = self.condition(cond, mask)
         self.emit(f"if not X.true({c}):")
         self.emit("    break")

@@ -69,6 +69,8 @@ def f_mainImage(S, _m, v_fragCoord):
         _n7 += 1
         if _n7 > 100000:
             X.runaway(5)
+        if X.tick(S, 5, _n7):
+            break
         _live6 = X.and_(_live6, rt.lt(v_i, C_i_64))
         if not X.live(_live6):
             break
