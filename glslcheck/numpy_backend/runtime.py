@@ -326,18 +326,22 @@ def _daz(x: np.ndarray) -> np.ndarray:
 
 
 def _fma32(a: Any, b: Any, c: Any) -> np.ndarray:
-    """float32 ``a*b + c`` with ONE rounding, like vfmadd: the float64 product of two float32
-    values is exact; the float64 sum is rounded to odd (Boldo-Melquiond), so rounding it to
-    float32 afterwards is the correctly rounded fused result (no double rounding)."""
+    """float32 ``a*b + c`` with ONE rounding, like vfmadd. The float64 product of two float32
+    values is exact; the float64 sum rounds once more, which can change the float32 result
+    only when it lands exactly on a float32 midpoint (low 29 mantissa bits 1000...0) after an
+    inexact addition. Those few elements get the exact error (TwoSum) and are moved one float64
+    step towards it, so rounding to float32 is the correctly rounded fused result."""
     p = np.multiply(a, b, dtype=np.float64)
-    c = np.asarray(c, dtype=np.float64)
-    s = p + c
-    bb = s - p
-    err = (p - (s - bb)) + (c - bb)  # TwoSum: s + err == p + c exactly
-    even = (s.view(np.int64) & 1) == 0
-    fix = (err != 0) & even & np.isfinite(s)
-    if fix.any():
-        s = np.where(fix, np.nextafter(s, np.where(err > 0, np.inf, -np.inf)), s)
+    s = np.add(p, c, dtype=np.float64)
+    mid = (s.view(np.int64) & 0x1FFFFFFF) == 0x10000000
+    if mid.any():
+        i = np.flatnonzero(mid.reshape(-1))
+        ps = np.broadcast_to(p, s.shape).reshape(-1)[i]
+        cs = np.broadcast_to(np.asarray(c, np.float64), s.shape).reshape(-1)[i]
+        ss = s.reshape(-1)[i]
+        bb = ss - ps
+        err = (ps - (ss - bb)) + (cs - bb)  # TwoSum: ss + err == ps + cs exactly
+        s.reshape(-1)[i] = np.where(err != 0, np.nextafter(ss, np.where(err > 0, np.inf, -np.inf)), ss)
     return s.astype(_F32)
 
 
