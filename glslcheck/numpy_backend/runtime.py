@@ -136,6 +136,10 @@ sinh(100), cosh(100)               inf                    inf                inf
 asin(2), acos(2), acosh(0.5)       undefined              NaN                NaN
 atanh(1)                           undefined              +inf               +inf
 packUnorm2x16(NaN)                 undefined              0                  0
+packSnorm2x16(NaN)                 undefined              -32767 (0x8001)    -32767
+mix(NaN, y, 1.0) (constant 1.0)    NaN                    y (folded)         y  ``fmul``
+NaN * vec3(1, 0, 0) (constant)     NaN everywhere         (NaN, 0, 0)        same ``fmul``
+cos(1e10), sin(1e10)               cos, sin               1, -1 (clamped)    1, -1
 =================================  =====================  =================  ================
 
 Literal operands (the rows marked ``pow_const`` / ``pow_one``, measured with a uniform base
@@ -145,22 +149,50 @@ the transpiler emits those forms when the checker folds the operand to a constan
 propagates constants through plain local variables, which the transpiler does not follow.
 
 Formulas (each matched bit-for-bit on 65536 random inputs unless a ULP figure is given):
-no fused multiply-add is formed (``a*b+c`` rounds twice); ``x/y`` and ``sqrt`` are correctly
-rounded; ``inversesqrt(x) = 1/sqrt(x)``; ``length = sqrt(dot)``; ``dot`` sums right to left;
-``normalize(v) = v * inversesqrt(dot(v, v))``; ``mix = x*(1-a) + y*a``;
-``smoothstep: t*(t*(3-2t))``; ``cross = a.yzx*b.zxy - a.zxy*b.yzx``; ``mod`` as the spec;
-``atan``/``atan(y, x)``: Mesa's NIR polynomial (``nir_atan``, ``nir_atan2``, within 3 ULP of
-llvmpipe; a libm atan is up to 350 ULP away); ``asin``/``acos``: Mesa's GLSL formula
-``sign(x)*(pi/2 - sqrt(1-|x|)*(pi/2 + |x|*(pi/4-1 + |x|*(p0 + |x|*p1))))`` (max 128 ULP,
-96% exact; libm is 90000 ULP away); ``sinh cosh tanh asinh acosh atanh``: Mesa's exp/log
-formulas; ``exp(x) = exp2(x*log2(e))``, ``log(x) = log2(x)*ln(2)``. llvmpipe's own ``exp2``
-and ``log2`` are polynomials we do not reproduce: NumPy's are correctly rounded, llvmpipe's
-are within 3 ULP (exp2) and within 2 ULP except near x = 1 (log2, absolute error 5e-7);
-``sin``/``cos`` agree within 1 ULP; ``pow`` within ~30 ULP (error amplified by y*log2(x)).
+no fused multiply-add is formed for GLSL arithmetic (``a*b+c`` rounds twice); ``x/y`` (also by
+a constant) and ``sqrt`` are correctly rounded; ``inversesqrt(x) = 1/sqrt(x)``;
+``length = sqrt(dot)``; ``dot`` sums RIGHT to left (``x0*y0 + (x1*y1 + x2*y2)``, 60,000 random
+vec3/vec4 pairs; Mesa's factoring of products that share an operand, ``dot(v, v.zxy)``, is not
+copied); ``mat * vec`` sums its columns left to right; ``normalize(v) = v *
+inversesqrt(dot(v, v))``; ``mix = x*(1-a) + y*a``; ``smoothstep: t*(t*(3-2t))``;
+``cross = a.yzx*b.zxy - a.zxy*b.yzx``; ``mod`` as the spec.
 
-Subnormals: llvmpipe runs with x86 FTZ/DAZ, so subnormal inputs and results are zero there
-(``atan(0, 1e-45)`` is 3*pi/4 on llvmpipe, NaN here). NumPy keeps subnormals; we do not emulate
-flushing (it would cost a pass over every result). Shaders rarely reach |x| < 1.2e-38.
+Transcendentals, float32 (:class:`LlvmpipeMath`, bit-exact with llvmpipe on ~125,000 inputs
+each, subnormal, huge (cos(1e10) = 1) and non-finite ones included:
+``tests/gl/test_llvmpipe_math.py``): ``sin``/``cos`` are gallivm's ``lp_build_sin_or_cos``
+(Cephes sinf/cosf: Cody-Waite reduction by pi/4, two polynomials, clamp to [-1, 1]; Mesa
+src/gallium/auxiliary/gallivm/lp_bld_arit.c), ``tan = sin/cos``; ``exp2`` is ``lp_build_exp2``
+(clamp to [-126.99999, 128], 2**floor times a degree-5 polynomial), ``log2`` is
+``lp_build_log2_safe`` (exponent + odd polynomial in (m-1)/(m+1)), ``pow = exp2(log2(x)*y)``
+with 0 where x == 0 or NaN (``lp_build_pow``), ``exp(x) = exp2(x*log2(e))``,
+``log(x) = log2(x)*ln(2)`` (``lp_build_exp``, ``lp_build_log_safe``); ``sinh cosh tanh asinh
+acosh atanh``: Mesa's GLSL formulas over those (``tanh(NaN) = -1``: its clamp(x, -10, 10)
+takes NaN to -10); ``asin``/``acos``: Mesa's GLSL formula ``sign(x)*(pi/2 - sqrt(1-|x|)*(pi/2
++ |x|*(pi/4-1 + |x|*(p0 + |x|*p1))))`` with float32 constants (builtin_functions.cpp);
+``atan``/``atan(y, x)``: Mesa 22.3's ``nir_atan``/``nir_atan2`` (nir_builtin_builder.c: six
+power terms summed left to right), within 1 ULP of llvmpipe on 0.007% of inputs (all with
+0.85 < |x| < 1.2), bit-exact elsewhere. CPU dependence: gallivm builds these polynomials with
+``llvm.fmuladd``, fused on a CPU with FMA (Haswell and later; this machine: AVX2 + FMA, no
+AVX-512) and not fused without: :data:`HOST_FMA` follows this CPU, ``Runtime(fma=...)`` picks
+either; the two differ on ~1% of sin arguments. AVX-512 does not change these results (the
+same instructions, wider). ``precision="float64"`` keeps NumPy's libm: it is the accuracy
+reference, not an emulation.
+
+Mesa's compiler folds constants (``fold_constants``, on for transpiled shaders, see
+:meth:`Runtime.fmul`): ``x * 0.0`` is 0 when the zero is a compile-time constant, even for
+x = NaN or Inf, per component (``NaN * vec3(1, 0, 0)`` is (NaN, 0, 0); ``dot(vec3(NaN, 1, 2),
+vec3(0, 1, 1))`` is 3; ``mix(NaN, y, 1.0)`` is y); two constants multiply out (0 * inf =
+NaN); ``pow`` with a constant exponent 0, 1, 2 or 4 is rewritten (0 gives 1 there). A value
+counts as constant when it is the same in every lane and is not a uniform input (uniforms are
+read-only arrays): a value computed from uniforms that happens to be 0 is taken for a constant
+too, the one approximation.
+
+Subnormals: llvmpipe runs with x86 FTZ/DAZ (lp_build_fpstate_set_denorms_zero), so subnormal
+inputs and results are zero there (``atan(0, 1e-45)`` is 3*pi/4 on llvmpipe). The built-ins
+above flush their operands and the intermediate results that can be subnormal
+(:func:`_daz`); plain GLSL arithmetic keeps subnormals here (flushing every result would cost
+a pass per operation): ``1e-20 * 1e-20`` is 0 there and 1e-40 here, which only shows when a
+later product scales it back up.
 
 Derivatives (measured): llvmpipe computes FINE derivatives on 2x2 quads whose lower-left
 pixel has even x and even y (gl_FragCoord space): ``dFdx`` at (x, y) is
@@ -1461,9 +1493,11 @@ class Runtime:
         return (lo.astype(U32) & U32(0xFFFF)) | (hi.astype(U32) << U32(16))
 
     def packSnorm2x16(self, v: np.ndarray) -> np.ndarray:
-        """round(clamp(c, -1, 1) * 32767) per component (round half to even; NaN -> 0)."""
+        """round(clamp(c, -1, 1) * 32767) per component (round half to even). NaN gives -32767
+        (0x8001) as on llvmpipe, whose clamp is max-then-min with IEEE maxNum: max(NaN, -1) is
+        -1 (measured)."""
         v = self._f(v).astype(np.float32)
-        q = np.rint(np.nan_to_num(np.clip(v, -1.0, 1.0), nan=0.0) * np.float32(32767.0))
+        q = np.rint(np.nan_to_num(np.clip(v, -1.0, 1.0), nan=-1.0) * np.float32(32767.0))
         q = q.astype(np.int32).astype(np.int16).view(np.uint16)
         return self._pack16(q[0], q[1])
 

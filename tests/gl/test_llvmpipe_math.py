@@ -104,3 +104,18 @@ def test_float64_mode_keeps_numpy_math():
     np.testing.assert_array_equal(rt.sin(x), np.sin(x))
     np.testing.assert_array_equal(rt.exp2(x), np.exp2(x))
     np.testing.assert_array_equal(rt.log2(np.abs(x)), np.log2(np.abs(x)))
+
+
+def test_pack_snorm_of_nan_is_minus_one(gl):
+    """llvmpipe clamps with max-then-min (IEEE maxNum): packSnorm2x16 of NaN is -32767 (0x8001),
+    as for -1.0; packUnorm2x16 of NaN is 0."""
+    a = np.array([0.0, 0.0, 0.0], np.float32)
+    b = np.array([0.0, 1.0, 0.0], np.float32)
+    c = np.array([0.5, -2.0, 0.25], np.float32)
+    got = evaluate(gl, "", a, b, c, stmt="float n = a / b; o = ivec4(int(packSnorm2x16(vec2(n, c))),"
+                   " int(packSnorm2x16(vec2(c, n))), int(packUnorm2x16(vec2(n, c))), 0);")
+    with RT.errstate():
+        n = a / b
+        ours = np.stack([RT.packSnorm2x16(np.stack([n, c])), RT.packSnorm2x16(np.stack([c, n])),
+                         RT.packUnorm2x16(np.stack([n, c]))], 1).view(np.int32)
+    np.testing.assert_array_equal(ours, got[:, :3])
