@@ -174,9 +174,9 @@ power terms summed left to right), within 1 ULP of llvmpipe on 0.007% of inputs 
 0.85 < |x| < 1.2), bit-exact elsewhere. CPU dependence: gallivm builds these polynomials with
 ``llvm.fmuladd``, fused on a CPU with FMA (Haswell and later; this machine: AVX2 + FMA, no
 AVX-512) and not fused without: :data:`HOST_FMA` follows this CPU, ``Runtime(fma=...)`` picks
-either; the two differ on ~1% of sin arguments. AVX-512 does not change these results (the
-same instructions, wider). ``precision="float64"`` keeps NumPy's libm: it is the accuracy
-reference, not an emulation.
+either; the two differ on ~1% of sin arguments. AVX-512 should not change these results (the
+same IEEE operations, wider; not measured: no AVX-512 machine here). ``precision="float64"``
+keeps NumPy's libm: it is the accuracy reference, not an emulation.
 
 Mesa's compiler folds constants (``fold_constants``, on for transpiled shaders, see
 :meth:`Runtime.fmul`): ``x * 0.0`` is 0 when the zero is a compile-time constant, even for
