@@ -48,6 +48,14 @@ picture". The tolerance model, step by step (every number is argued where it is 
    match = mismatched <= (1 - min_fraction) * pixels  and  edges <= edge_fraction * pixels
            and no NaN mismatch.
 
+7. **Unstable pixels** (with `reference`, the float64 render of the same frame, which `verify`
+   adds when a frame fails steps 1-6): an over-tolerance pixel where BOTH float32 renders are
+   more than `abs_tol` from the float64 value (or non-finite where it is not) is ill-conditioned
+   in float32 (a camera 2000 units from a unit sphere, `b*b - c` cancelling): it is counted in
+   `unstable_pixels` and left out of the budgets. The verdict is then "match-unstable" (JSON
+   `"verdict"`; `"match"` stays true). A pixel where only the NumPy render strays from the
+   reference is still a mismatch: a transpiler bug cannot hide here.
+
 Metrics (`max_abs_error`, `mean_abs_error`, `psnr_db`) are over the clamped RGB values. Where
 the differences lie is kept too: the bounding box of over-tolerance pixels and the worst pixels,
 each in image space (x, y from the top-left, as in the PNG) and in fragCoord space (pixel
@@ -69,8 +77,9 @@ DEFAULT_EDGE_THRESHOLD = 0.1
 DEFAULT_EDGE_FRACTION = 0.005
 WORST_PIXELS = 10
 
-JSON_KEYS = ("match", "size", "max_abs_error", "mean_abs_error", "psnr_db",
-             "mismatched_pixels", "edge_pixels", "nan_numpy", "nan_gl")
+JSON_KEYS = ("match", "verdict", "size", "max_abs_error", "mean_abs_error", "psnr_db",
+             "mismatched_pixels", "edge_pixels", "nan_numpy", "nan_gl", "unstable_pixels",
+             "unstable_lines")
 
 # Diff image colours (RGB 0-255).
 EDGE_COLOUR = (0, 200, 255)  # cyan-blue: an over-tolerance pixel explained by a discontinuity
@@ -114,11 +123,27 @@ class Comparison:
     error_map: np.ndarray | None = field(default=None, repr=False)
     edge_mask: np.ndarray | None = field(default=None, repr=False)
     nan_mask: np.ndarray | None = field(default=None, repr=False)
+    # Unstable pixels (step 7): over tolerance, but both float32 renders are far from the
+    # float64 reference there; counted apart, not as mismatches.
+    unstable_pixels: int = 0
+    unstable_mask: np.ndarray | None = field(default=None, repr=False)
+    # [{"file", "line", "code", "pixels"}]: the statement where precision is lost. TODO: needs
+    # the per-statement float64 shadow of `glslcheck probe`'s tracing mode; empty until then.
+    unstable_lines: list = field(default_factory=list)
+
+    @property
+    def verdict(self) -> str:
+        """"match", "match-unstable" (a match only once unstable pixels are set apart) or
+        "mismatch"."""
+        if not self.match:
+            return "mismatch"
+        return "match-unstable" if self.unstable_pixels else "match"
 
     def to_json(self) -> dict:
         """Exactly the keys in JSON_KEYS; psnr_db is null for identical images (JSON has no inf)."""
         return {
             "match": bool(self.match),
+            "verdict": self.verdict,
             "size": [int(self.size[0]), int(self.size[1])],
             "max_abs_error": float(self.max_abs_error),
             "mean_abs_error": float(self.mean_abs_error),
@@ -127,6 +152,8 @@ class Comparison:
             "edge_pixels": int(self.edge_pixels),
             "nan_numpy": int(self.nan_numpy),
             "nan_gl": int(self.nan_gl),
+            "unstable_pixels": int(self.unstable_pixels),
+            "unstable_lines": list(self.unstable_lines),
         }
 
     def dumps(self) -> str:
@@ -186,8 +213,11 @@ def compare(
     edge_threshold: float = DEFAULT_EDGE_THRESHOLD,
     edge_fraction: float = DEFAULT_EDGE_FRACTION,
     include_alpha: bool = False,
+    reference: np.ndarray | None = None,
 ) -> Comparison:
-    """Compare two renders of one shader (float (h, w, 3|4), top row first) by the module's model."""
+    """Compare two renders of one shader (float (h, w, 3|4), top row first) by the module's model.
+
+    `reference` (the float64 render of the same frame) enables step 7: unstable pixels."""
     a, b = _as_float(numpy_img), _as_float(gl_img)
     if a.shape[:2] != b.shape[:2]:
         raise ValueError(f"the images differ in size: numpy {a.shape[1]}x{a.shape[0]}, "
@@ -238,6 +268,22 @@ def compare(
         edge_mask[ys, xs] = steep & a_explained & b_explained
     mismatch_mask = over & ~edge_mask  # NaN mismatches included
 
+    # Step 7: unstable pixels. Where both float32 renders are more than abs_tol away from the
+    # float64 reference (displayed values, or a NaN/Inf the reference does not have), float32
+    # itself cannot compute the pixel: the two renderers rounding differently is not a bug.
+    # A pixel where only the NumPy render strays from the reference stays a mismatch.
+    unstable = np.zeros((height, width), dtype=bool)
+    if reference is not None:
+        r = _as_float(reference)[..., :channels]
+        dr = _display(r)
+        fin_r = np.isfinite(r)
+        far_a = (np.abs(da - dr) > abs_tol) | (fin_a != fin_r)
+        far_b = (np.abs(db - dr) > abs_tol) | (fin_b != fin_r)
+        unstable = (over_ch & far_a & far_b).any(axis=-1) & over
+        mismatch_mask &= ~unstable
+        nan_mask = nan_mask & ~unstable
+        edge_mask &= ~unstable
+
     mismatched = int(mismatch_mask.sum())
     edges = int(edge_mask.sum())
     nan_mismatched = int(nan_mask.sum())
@@ -276,6 +322,8 @@ def compare(
         error_map=error_map.astype(np.float32),
         edge_mask=edge_mask,
         nan_mask=nan_mask,
+        unstable_pixels=int(unstable.sum()),
+        unstable_mask=unstable,
     )
 
 

@@ -42,7 +42,7 @@ from typing import Iterator, Sequence
 import numpy as np
 
 from .compare import Comparison, compare
-from .diagnostics import InputError
+from .diagnostics import GlslError, InputError
 from .shadertoy import DEFAULT_SIZE
 from .sources import Shader, load_shader
 
@@ -172,16 +172,24 @@ class _Pair:
         self._common = common
         self._accepted = accepted
 
-    def render(self, spec: FrameSpec, size, mouse, date, precision, samples) -> list[np.ndarray]:
+    def render(self, spec: FrameSpec, size, mouse, date, precision, samples,
+               only_first: bool = False) -> list[np.ndarray]:
         shared = {"size": size, "time": spec.time, "frame": spec.frame, "mouse": mouse, "date": date,
                   "samples": samples, "time_delta": spec.time_delta, "frame_rate": spec.frame_rate}
         images = []
-        for program, accepted in zip(self.programs, self._accepted):
+        for program, accepted in zip(self.programs[:1] if only_first else self.programs, self._accepted):
             kwargs = {k: v for k, v in shared.items() if self._common is None or k in self._common}
             if accepted is None or "precision" in accepted:
                 kwargs["precision"] = precision
             images.append(program.render(**kwargs))
         return images
+
+    def reference(self, spec: FrameSpec, size, mouse, date, samples) -> np.ndarray | None:
+        """The float64 render of the program under test (None when it has no precision)."""
+        accepted = self._accepted[0]
+        if accepted is not None and "precision" not in accepted:
+            return None
+        return self.render(spec, size, mouse, date, "float64", samples, only_first=True)[0]
 
 
 # ---------------------------------------------------------------------------------------------
@@ -198,6 +206,7 @@ class FrameResult:
     comparison: Comparison
     numpy_image: np.ndarray | None = None
     gl_image: np.ndarray | None = None
+    notes: tuple[str, ...] = ()  # what the report should say besides the metrics
 
     @property
     def match(self) -> bool:
@@ -245,19 +254,61 @@ def verify_frames(
     shader = _as_shader(shader)
     if programs is None:
         # The GL side first: a missing context is reported before a slower NumPy transpile.
-        by_name = {b: compile_backend(shader, b) for b in sorted(backends, key=lambda b: b != "gl")}
+        by_name = {}
+        for b in sorted(backends, key=lambda b: b != "gl"):
+            try:
+                by_name[b] = compile_backend(shader, b)
+            except GlslError as driver:
+                if b != "gl" or "numpy" not in backends:
+                    raise
+                # our own front end's diagnostics are clearer than the driver's cascade (and
+                # carry fix-its, e.g. iGlobalTime -> iTime): report them when it also fails
+                try:
+                    compile_backend(shader, "numpy")
+                except GlslError as ours:
+                    raise ours from None
+                raise driver
         programs = [by_name[b] for b in backends]
     emulate_driver(programs)
+    for p in programs:
+        llvmpipe_loop_limit(p)
     pair = _Pair(programs)
     name = shader.root or (shader.image.path if shader.image else "<shader>")
     for w_h in size_list:
         for spec in specs:
             numpy_img, gl_img = pair.render(spec, w_h, tuple(mouse), date, precision, samples)
             comparison = compare(numpy_img, gl_img, **(compare_options or {}))
+            if not comparison.match and precision == "float32":
+                # unstable pixels: only worth a float64 render when the frame fails (compare.py)
+                ref = pair.reference(spec, w_h, tuple(mouse), date, samples)
+                if ref is not None:
+                    comparison = compare(numpy_img, gl_img, reference=ref, **(compare_options or {}))
             if progress is not None:
                 progress.step(f"{name} t={spec.time:g}")
+            notes = tuple(f"{path}:{line}: this loop reached llvmpipe's limit of {LLVMPIPE_LOOP_LIMIT:,} "
+                          "loop passes per pixel and was stopped on both sides (a GPU runs it to the end)"
+                          for path, line in limited_loops(programs[0]))
             yield FrameResult(name, spec, (int(w_h[0]), int(w_h[1])), comparison,
-                              numpy_img if keep_images else None, gl_img if keep_images else None)
+                              numpy_img if keep_images else None, gl_img if keep_images else None, notes)
+
+
+# llvmpipe stops every loop once an invocation has made 65,535 loop passes in all
+# (gallivm's LP_MAX_TGSI_LOOP_ITERATIONS, one budget shared by all loops); a 70,000-pass loop
+# that adds 1/70000 gives 0.9367 there. The NumPy side emulates it when verifying.
+LLVMPIPE_LOOP_LIMIT = 65535
+
+
+def llvmpipe_loop_limit(program) -> None:
+    """Make a NumPy program stop loops as llvmpipe does (see NumpyProgram.loop_limit)."""
+    impl = getattr(program, "impl", program)
+    if hasattr(impl, "loop_limit"):
+        impl.loop_limit = LLVMPIPE_LOOP_LIMIT
+
+
+def limited_loops(program) -> list[tuple[str, int]]:
+    """(file, line) of loops the emulated limit stopped, for the verify report."""
+    impl = getattr(program, "impl", program)
+    return impl.limited_loops() if hasattr(impl, "limited_loops") else []
 
 
 def emulate_driver(programs: Sequence) -> None:

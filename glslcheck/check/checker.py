@@ -46,6 +46,10 @@ def _float_hint(node: A.Node) -> str | None:
     return None
 
 
+# Uniforms Shadertoy renamed (iGlobalTime became iTime in 2017); old shaders still use them.
+_RENAMED_UNIFORMS = {"iGlobalTime": "iTime"}
+
+
 class Checker:
     def __init__(self, parse_result: Any, tab: str) -> None:
         self.pr = parse_result
@@ -788,6 +792,11 @@ class Checker:
             return
         if B.is_builtin_function(n.name):
             self.error(f"'{n.name}' is a built-in function; call it with arguments: {n.name}(...)", n)
+            return
+        if n.name in _RENAMED_UNIFORMS and not self.plain:
+            new = _RENAMED_UNIFORMS[n.name]
+            self.error(f"'{n.name}' is Shadertoy's old name for '{new}', which Shadertoy no longer "
+                       "declares", n, help=f"replace '{n.name}' with '{new}'")
             return
         self.error(f"'{n.name}' is not declared", n, help=self._did_you_mean(n.name))
 

@@ -13,9 +13,11 @@ Frames: one at iTime 0 by default; --time T; --times 0,0.5,1 (one frame each, iF
 --frames N with --fps F (iFrame = --frame + i, iTime = iFrame / F, iTimeDelta = 1/F). Several
 frames show a progress bar on stderr when it is a terminal (--progress forces it).
 
---format json prints exactly {"match", "size", "max_abs_error", "mean_abs_error", "psnr_db",
-"mismatched_pixels", "edge_pixels", "nan_numpy", "nan_gl"} for one frame (psnr_db is null for
-identical images), or a JSON list of such objects, in order (shader by shader, then frame by
+--format json prints exactly {"match", "verdict", "size", "max_abs_error", "mean_abs_error",
+"psnr_db", "mismatched_pixels", "edge_pixels", "nan_numpy", "nan_gl", "unstable_pixels",
+"unstable_lines"} for one frame (psnr_db is null for identical images; verdict is "match",
+"match-unstable" or "mismatch"; unstable pixels are those where both float32 renders are far
+from the float64 reference, see compare.py; unstable_lines is empty for now), or a JSON list of such objects, in order (shader by shader, then frame by
 frame), when more than one frame is verified. --diff diff.png writes the heat map of the
 differences (diff-0.png, diff-1.png, ... for several frames).
 
@@ -193,7 +195,14 @@ def format_frame(result, precision: str = "float32", samples: int = 1, worst: in
     for p in c.worst[:worst]:
         lines.append(f"  {p.kind:<8} pixel ({p.x}, {p.y}) fragCoord ({p.frag_coord[0]}, {p.frag_coord[1]}): "
                      f"numpy {_rgb(p.numpy)} gl {_rgb(p.gl)}")
-    lines.append("  -> match" if c.match else "  -> MISMATCH")
+    if c.unstable_pixels:
+        lines.append(f"  unstable pixels  {c.unstable_pixels:<10}  both float32 renders far from the float64 "
+                     "reference (not counted)")
+    lines.extend(f"  note: {n}" for n in getattr(result, "notes", ()))
+    if c.match and c.unstable_pixels:
+        lines.append(f"  -> match, except {c.unstable_pixels} unstable pixels")
+    else:
+        lines.append("  -> match" if c.match else "  -> MISMATCH")
     return "\n".join(lines) + "\n"
 
 

@@ -36,6 +36,7 @@ from ..shadertoy import as_date as _as_date
 from ..sources import Shader
 from ..driver_profile import driver_model
 from .context import get_context
+from .zero_init import zero_initialized
 
 RULE = "gl-compile"
 
@@ -318,6 +319,15 @@ def compile_gl(shader: Shader, ctx=None, *, tab: str = "Image") -> GLProgram:
     with alpha kept and its iChannels unbound (glslcheck does not chain passes).
     """
     ctx = ctx if ctx is not None else get_context()
+    zeroed = zero_initialized(shader, tab)  # WebGL zeroes struct locals; Mesa does not
+    if zeroed is not shader:
+        try:
+            program = build_program(zeroed, tab)
+            gl = GLProgram(zeroed, program, ctx)
+            gl._variants[False] = _compile(ctx, program)
+            return gl
+        except GlslError:
+            pass  # the driver's own errors come from the user's text, compiled below
     program = build_program(shader, tab)
     gl = GLProgram(shader, program, ctx)
     gl._variants[False] = _compile(ctx, program)

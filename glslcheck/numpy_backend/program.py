@@ -84,6 +84,8 @@ class State:
     `u_<name>`, globals `g_<name>`, `stats` (region id -> lanes, shared), `parent` (when this
     is a compacted view of another state)."""
 
+    budget = None  # [passes left] of llvmpipe's loop limiter when emulated (Lanes.tick), else None
+
     def __init__(self, **values: Any) -> None:
         self.__dict__.update(values)
 
@@ -116,6 +118,7 @@ class Lanes:
         self.meta = meta
         self.loops = meta.get("loops", {})
         self.rt = rt
+        self.limited: set[int] = set()  # loops llvmpipe's pass budget stopped (see tick)
 
     def put(self, old, new, m):
         """`rt.assign(old, new, m)` that skips the select when the mask is uniform."""
@@ -197,6 +200,27 @@ class Lanes:
             return
         n = S.lanes if m is None else (int(np.count_nonzero(m)) if m.shape[-1] != 1 else (S.lanes if m[0] else 0))
         st[rid] = st.get(rid, 0) + n
+
+    def tick(self, S, lid: int, n: int) -> bool:
+        """llvmpipe's loop limiter, when the program renders with `loop_limit` (gallivm
+        lp_exec_endloop, LP_MAX_TGSI_LOOP_ITERATIONS = 65535): one budget per invocation shared
+        by every loop; each pass of a loop costs 1 (the pass that ends it on its condition too:
+        llvmpipe masks the lanes out and runs to the loop's end), and a loop goes round again
+        only while the budget is positive. Called at the top of pass `n` of loop `lid`: the
+        check belongs to the end of pass n - 1. Matches llvmpipe's pass counts exactly:
+        `for (i < 70000)` runs 65,535 times; two loops of 40,000 run 40,000 and 25,534; a loop
+        entered with no budget left runs once; 100 x 1,000 nested runs 65,405 inner passes.
+        The budget is per tile here and per 8-lane group there: for loops whose pass count
+        differs between pixels it can bite at a slightly different pass. True when the loop
+        must stop (recorded in `limited`)."""
+        budget = S.budget
+        if budget is None:
+            return False
+        if n > 1 and budget[0] <= 0:
+            self.limited.add(lid)
+            return True
+        budget[0] -= 1
+        return False
 
     def runaway(self, lid: int) -> None:
         path, line, col = self.loops.get(lid, ("<shader>", 0, 0))
@@ -320,6 +344,7 @@ def execute_module(source: str, filename: str, meta: dict, precision: str = "flo
     code = compile(source, filename, "exec")
     ns: dict[str, Any] = {"__builtins__": {}, "__name__": "glslcheck_shader", "rt": None, "X": None}
     ns["rt"] = rt = Runtime(precision, meta.get("float_to_uint"))
+    rt.fold_constants = True  # Mesa's folding of constants (Runtime.fmul); uniforms are read-only
     ns["X"] = Lanes(meta, rt)
     with np.errstate(all="ignore"):  # constants may overflow in float16, as on a mediump GPU
         exec(code, ns)  # noqa: S102 - generated from a checked AST; every GLSL name is mangled
@@ -338,9 +363,9 @@ def _uniform_value(rt: Runtime, name: str, value: Any) -> Any:
         n = int(t[-1])
         return rt.vec(n, *[rt.const_float(float(x)) for x in v])
 
-    if u.array_size:
-        return rt.array(*[one(v) for v in value])
-    return one(value)
+    value = rt.array(*[one(v) for v in value]) if u.array_size else one(value)
+    value.flags.writeable = False  # an input, not a constant: Runtime.fmul does not fold it
+    return value
 
 
 class _FrameCache(OrderedDict):
@@ -457,8 +482,9 @@ def render_tile(ns: dict, spec: FrameSpec, tile: tuple[int, int, int, int], imag
     for dx, dy in spec.offsets:
         frag, frag4 = _fragments(rt, tile, dx if samples > 1 else 0.0, dy if samples > 1 else 0.0,
                                  spec.need4)
+        limit = spec.base.get("loop_limit")
         S = State(**spec.base, lanes=lanes, width=tw, frag_coord=frag, discard=Lanes.NO, stats=st,
-                  parent=None)
+                  parent=None, budget=None if limit is None else [limit])
         if spec.need4:
             S.frag_coord4 = frag4
         with rt.errstate():
@@ -528,6 +554,9 @@ class NumpyProgram:
     # program has rendered for PROCESSES_AFTER seconds in this process
     parallel: str = field(default_factory=lambda: os.environ.get("GLSLCHECK_PARALLEL", "auto"))
     last_parallel: str = ""  # how the last frame was rendered: "processes", "threads", "one thread"
+    # llvmpipe's loop limiter (Lanes.tick): None = loops run until they end (a runaway loop is an
+    # error after LOOP_CAP passes); 65535 = stop as llvmpipe does (verify sets it)
+    loop_limit: int | None = None
     _render_seconds: float = field(default=0.0, repr=False)
     _keys: dict = field(default_factory=dict, repr=False)
     _modules: dict = field(default_factory=dict, repr=False)
@@ -555,6 +584,16 @@ class NumpyProgram:
                 self._keys.clear()
                 self._cache.clear()
                 self._specs.clear()
+
+    def limited_loops(self) -> list[tuple[str, int]]:
+        """(file, line) of the loops llvmpipe's limiter stopped in this process's renders since
+        the last call (worker processes keep their own record)."""
+        found = set()
+        for ns in self._modules.values():
+            x = ns.get("X")
+            found |= {tuple(x.loops.get(lid, ("<shader>", 0, 0))[:2]) for lid in getattr(x, "limited", ())}
+            getattr(x, "limited", set()).clear()
+        return sorted(found)
 
     def module(self, precision: str = "float32") -> dict:
         with self._lock:
@@ -591,7 +630,7 @@ class NumpyProgram:
             "iDate": _as_date(date), "iTimeDelta": float(time_delta), "iFrameRate": float(frame_rate),
         }
         used = self.uniforms
-        key = (width, height, samples, precision, stats,
+        key = (width, height, samples, precision, stats, self.loop_limit,
                tuple((u, repr(values.get(u, UNIFORMS_BY_NAME[u].default))) for u in used))
         if not stats:
             with self._lock:
@@ -604,7 +643,8 @@ class NumpyProgram:
             spec = self._specs.get(spec_key)
         if spec is None:  # uniform values and globals: the same for every frame with this key
             base = {f"u_{u}": _uniform_value(rt, u, values.get(u, UNIFORMS_BY_NAME[u].default)) for u in used}
-            proto = State(**base, lanes=1, width=1, stats=None, discard=Lanes.NO, parent=None)
+            base["loop_limit"] = self.loop_limit
+            proto = State(**base, lanes=1, width=1, stats=None, discard=Lanes.NO, parent=None, budget=None)
             with rt.errstate():
                 ns["init_globals"](proto)
             globals_ = {k: v for k, v in proto.__dict__.items() if k.startswith("g_")}
@@ -764,6 +804,7 @@ def standalone_globals(meta: dict) -> dict:
     if "--precision" in argv:
         precision = argv[argv.index("--precision") + 1]
     rt = Runtime(precision, meta.get("float_to_uint"))
+    rt.fold_constants = True
     return {"rt": rt, "X": Lanes(meta, rt)}
 
 

@@ -1406,6 +1406,8 @@ class Transpiler:
         self.emit(f"{count} += 1")
         self.emit(f"if {count} > {LOOP_CAP}:")
         self.emit(f"    X.runaway({lid})")
+        self.emit(f"if X.tick(S, {lid}, {count}):")  # llvmpipe's loop limiter, if rendering with one
+        self.emit("    break")
         if ev_body.ret and fs.has_ret:
             self.emit(f"{live} = X.andnot({live}, _ret)")
         if do_while or cond is None:
@@ -1467,6 +1469,8 @@ class Transpiler:
         self.emit(f"{count} += 1")
         self.emit(f"if {count} > {LOOP_CAP}:")
         self.emit(f"    X.runaway({lid})")
+        self.emit(f"if X.tick(S, {lid}, {count}):")  # llvmpipe's loop limiter, if rendering with one
+        self.emit("    break")
         c = self.condition(cond, mask)
         self.emit(f"if not X.true({c}):")
         self.emit("    break")
@@ -1552,14 +1556,12 @@ class Transpiler:
         return t
 
     def exprs(self, items: list[Any], mask: str | None) -> list[str]:
-        """Evaluate expressions left to right; earlier results go to temporaries when a later
-        one has effects that must be emitted as statements first."""
-        out: list[str] = []
-        for i, e in enumerate(items):
-            if i > 0 and self.needs_hoist(e):
-                out = [self.tmp(o) for o in out]
-            out.append(self.expr(e, mask))
-        return out
+        """Evaluate expressions as Mesa does: a later operand's side effects (calls with out
+        arguments, assignments, ++/--) are emitted as statements first and every operand is
+        read after them, so `vec4(ip, modf(x, ip), ...)` and `vec2(i, i++)` see the updated
+        value in every position (measured on llvmpipe; GLSL IR hoists such calls and reads
+        variables lazily). Earlier operands are not copied to temporaries."""
+        return [self.expr(e, mask) for e in items]
 
     def _print_IntLiteral(self, e: A.IntLiteral, mask: str | None) -> str:
         return self.const_int(e.value, e.unsigned or self.type_of(e) == T.UINT)
@@ -1660,6 +1662,8 @@ class Transpiler:
                 return f"rt.vec_mul_mat({left}, {right})"
         if op == "%":
             return f"rt.rem({left}, {right})"
+        if op == "*" and lt.base == "float" and rtp.base == "float":
+            return f"rt.fmul({left}, {right})"  # NaN times a constant zero is 0 (Runtime.fmul)
         if op in _FLOAT_OPERATORS and lt.base == "float" and rtp.base == "float":
             # float operands are always arrays of the render dtype: NumPy's operator is exactly
             # the runtime's ufunc (rt.add is np.add ...), without a Python call per operation
@@ -1816,9 +1820,7 @@ class Transpiler:
         args: list[str] = []
         outs: list[tuple[int, LValue]] = []
         directions = [d for _, _, d in fn.params]
-        for i, (a, d) in enumerate(zip(e.args, directions)):
-            if i > 0 and self.needs_hoist(a):
-                args = [self.tmp(p) for p in args]
+        for a, d in zip(e.args, directions):  # read after earlier side effects, as exprs()
             if d == "in":
                 args.append(self.expr(a, mask))
             else:

@@ -15,6 +15,7 @@ from pathlib import Path
 import numpy as np
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[2]))
+sys.path.insert(0, str(Path(__file__).resolve().parent))
 
 from glslcheck.gl_backend import compile_gl, get_context, renderer_name  # noqa: E402
 from glslcheck.gl_backend.program import VERTEX_SHADER  # noqa: E402
@@ -95,6 +96,60 @@ def render_time() -> float:
     return (time.perf_counter() - start) / runs
 
 
+# Whole-range measurements: llvmpipe against the NumPy runtime on many inputs at once
+# (tests/gl/llvmpipe_eval.py). (GLSL expression, runtime function, inputs a, inputs b)
+def _bulk_cases():
+    from glslcheck.numpy_backend.runtime import Runtime
+
+    rt = Runtime("float32")
+    rng = np.random.default_rng(1)
+    x = np.concatenate([rng.uniform(-50, 50, 50000),
+                        rng.standard_normal(20000) * 10.0 ** rng.uniform(-44, 38, 20000)]).astype(np.float32)
+    y = rng.permutation(x)
+    pos = np.abs(x)
+    return rt, [
+        ("sin(a)", rt.sin, x, None), ("cos(a)", rt.cos, x, None), ("cos(a), a times 1e6", rt.cos, x * np.float32(1e6), None),
+        ("exp2(a)", rt.exp2, x, None), ("log2(a)", rt.log2, pos, None), ("pow(a, b)", rt.pow, pos, y * np.float32(0.1)),
+        ("atan(a)", rt.atan, x, None), ("atan(a, b)", rt.atan, x, y), ("asin(a)", rt.asin, x * np.float32(0.02), None),
+        ("length(vec3(a, b, a))", lambda a, b: rt.length(rt.vec(3, a, b, a)), x, y),
+        ("dot(vec4(a, b, 1.0, a), vec4(b, 0.5, a, 2.0))",
+         lambda a, b: rt.dot(rt.vec(4, a, b, 1.0, a), rt.vec(4, b, 0.5, a, 2.0)), x, y),
+    ]
+
+
+LOOPS = [
+    ("one loop of 70,000", "int k = 0; for (int i = 0; i < n; i++) k++; o.x = k;", 70000),
+    ("two loops of 40,000", "int k = 0, m = 0; for (int i = 0; i < n; i++) k++; for (int i = 0; i < n; i++) m++;"
+     " o.x = k; o.y = m;", 40000),
+    ("100 x 1,000 nested", "int k = 0, j2 = 0; for (int j = 0; j < 100 + n * 0; j++) { j2++; for (int i = 0; i < n; i++) k++; }"
+     " o.x = k; o.y = j2;", 1000),
+]
+
+
+def bulk_lines(ctx) -> list[str]:
+    from llvmpipe_eval import evaluate as evaluate_many, ulp_distance
+
+    rt, cases = _bulk_cases()
+    lines = ["", "## The NumPy runtime against llvmpipe on many inputs", "",
+             "70,000 inputs per case (uniform in [-50, 50], then magnitudes from 1e-44 to 1e38), read",
+             "back bit for bit; `Runtime(\"float32\")` on this CPU (FMA: "
+             f"{rt.lp.fma if rt.lp else '-'}). Loop counts: passes llvmpipe runs (its limiter).", "",
+             "| expression | bit-exact | max ULP |", "|---|---|---|"]
+    with rt.errstate():
+        for expr, fn, a, b in cases:
+            got = evaluate_many(ctx, expr.split(",")[0] if "times" in expr else expr, a, b)
+            ours = np.asarray(fn(a) if b is None else fn(a, b), np.float32)
+            u = ulp_distance(ours, got)
+            lines.append(f"| `{expr}` | {100.0 * np.mean(u == 0):.3f}% | {int(u.max())} |")
+    lines += ["", "The `length`/`dot` residue is subnormal products: llvmpipe flushes them to zero (DAZ/FTZ),",
+              "the NumPy runtime keeps them in plain arithmetic (the inputs below 1e-19 produce them).",
+              "", "| loops (n from a texture) | llvmpipe passes |", "|---|---|"]
+    for name, stmt, n in LOOPS:
+        got = evaluate_many(ctx, "", np.array([n], np.float32), stmt=f"int n = int(a); {stmt}")[0]
+        lines.append(f"| {name} | {int(got[0]):,}" + (f", {int(got[1]):,}" if got[1] else "") + " |")
+    return lines
+
+
 def main() -> None:
     ctx = get_context()
     rows = []
@@ -119,8 +174,8 @@ def main() -> None:
         "",
         f"Render time: a simple 800x450 Shadertoy shader (the default new-shader colour cycle) takes "
         f"{seconds * 1000:.1f} ms per frame on llvmpipe, including the float framebuffer read-back.",
-        "",
     ]
+    lines += bulk_lines(ctx) + [""]
     out = Path(__file__).with_name("llvmpipe_measurements.md")
     out.write_text("\n".join(lines))
     print("\n".join(lines))

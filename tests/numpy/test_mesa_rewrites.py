@@ -51,7 +51,9 @@ def test_pow_in_one_buffer_equals_the_formula():
     (exp2(y * log2(0)) is already 0 then): the values must equal the plain formula
     exp2(y * log2(x)), 0 for x == 0 or NaN, for every exponent kind, shape and precision."""
     xs = [-0.5, -2.0, 0.0, -0.0, NAN, -INF, INF, 1.0, 3.0, 1e-40, 0.999, 1e30]
-    for prec in ("float16", "float32", "float64"):
+    # float32 evaluates llvmpipe's own exp2/log2 (checked against the driver bit for bit in
+    # tests/numpy/test_llvmpipe_math_gl.py); the NumPy formula is the other precisions'.
+    for prec in ("float16", "float64"):
         rt = Runtime(prec)
         x = np.asarray(xs, dtype=rt.F)
         for y in (48.0, 1.0 / 2.2, 1e-30, 1e30, 3.0, 0.0, -0.0, -1.0, -1e30, NAN, INF, -INF):

@@ -118,18 +118,21 @@ def test_sqrt_and_division_correctly_rounded(x, y):
 
 @SET
 @given(st.floats(min_value=-100, max_value=100, width=32))
-def test_sin_cos_within_2_ulp(x):
-    # NumPy's float32 sin/cos are SIMD implementations documented within 1 ULP for these
-    # arguments; the reference float64 result rounded to float32 adds at most 0.5 ULP.
-    assert ulp_distance(RT.sin(arr(x))[0], f32(math.sin(x))) <= 2
-    assert ulp_distance(RT.cos(arr(x))[0], f32(math.cos(x))) <= 2
+def test_sin_cos_absolute_error(x):
+    # float32 sin/cos are llvmpipe's Cephes polynomials (bit-exact with the driver, see
+    # tests/numpy/test_llvmpipe_math_gl.py): three-part Cody-Waite reduction by pi/4, whose
+    # error grows with |x| (~|x| * 2**-48), plus the degree-7/8 polynomials' 6e-8. Measured max
+    # over 2,000,001 points of [-100, 100]: 7.7e-8, with and without FMA; bound 1e-7.
+    assert abs(float(RT.sin(arr(x))[0]) - math.sin(x)) <= 1e-7
+    assert abs(float(RT.cos(arr(x))[0]) - math.cos(x)) <= 1e-7
 
 
 @SET
 @given(st.floats(min_value=-100, max_value=100, width=32))
-def test_exp2_within_2_ulp(x):
-    # np.exp2 in float32: <= 1 ULP; rounding the reference: 0.5 ULP.
-    assert ulp_distance(RT.exp2(arr(x))[0], f32(2.0**x)) <= 2
+def test_exp2_relative_error(x):
+    # llvmpipe's exp2: exact 2**floor(x) times a degree-5 minimax polynomial of the fraction
+    # (relative error ~3e-7 = 4.3 float32 ULP, measured max over 2,000,001 points); bound 5 ULP.
+    assert abs(float(RT.exp2(arr(x))[0]) / 2.0**x - 1.0) <= 5 * 2.0**-24
 
 
 @SET

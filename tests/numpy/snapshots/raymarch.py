@@ -55,7 +55,7 @@ def f_mainImage(S, _m, v_fragCoord):
     X.count(S, 4, _m)
     v_fragColor = Z_float_4
     # line 11: vec2 uv = (2.0 * fragCoord - iResolution.xy) / iResolution.y;
-    v_uv = (((C_f_2p0 * v_fragCoord) - rt.swizzle(S.u_iResolution, "xy")) / S.u_iResolution[1])
+    v_uv = ((rt.fmul(C_f_2p0, v_fragCoord) - rt.swizzle(S.u_iResolution, "xy")) / S.u_iResolution[1])
     # line 12: vec3 rd = normalize(vec3(uv, 1.5));
     v_rd = rt.normalize(rt.vec(3, v_uv, C_f_1p5))
     # line 13: float t = 0.0;
@@ -69,6 +69,8 @@ def f_mainImage(S, _m, v_fragCoord):
         _n7 += 1
         if _n7 > 100000:
             X.runaway(5)
+        if X.tick(S, 5, _n7):
+            break
         _live6 = X.and_(_live6, rt.lt(v_i, C_i_64))
         if not X.live(_live6):
             break
@@ -77,7 +79,7 @@ def f_mainImage(S, _m, v_fragCoord):
             _live6 = None
         X.count(S, 5, _live6)
         # line 15: float d = map(rd * t);
-        v_d = f_map(S, _live6, (v_rd * v_t))
+        v_d = f_map(S, _live6, rt.fmul(v_rd, v_t))
         # line 16: if (d < 0.001) break;
         _c9 = (v_d < C_f_0p001)
         _m10 = X.and_(_live6, _c9)
@@ -97,7 +99,7 @@ def f_mainImage(S, _m, v_fragCoord):
     _t14 = Z_float
     _m16 = X.and_(_m, _t13)
     if X.live(_m16):
-        _t14 = f_shade(S, _m16, rt.normalize(((v_rd * v_t) - C_x1)))
+        _t14 = f_shade(S, _m16, rt.normalize((rt.fmul(v_rd, v_t) - C_x1)))
     _t15 = Z_float
     _m17 = X.andnot(_m, _t13)
     if X.live(_m17):

@@ -1,0 +1,112 @@
+"""What emulating llvmpipe's math costs the NumPy backend (ratios measured in one process).
+
+    python benchmarks/bench_llvmpipe_math.py [--repeat N]
+
+1. Per built-in: `Runtime("float32")` (llvmpipe's sin/cos/exp2/log2/pow step by step, with a
+   correctly rounded fused multiply-add on an FMA CPU) against NumPy's own float32 ufunc on the
+   same 1,000,000 arguments; best of N each, in turns. Ratio = emulated / NumPy.
+2. Whole frames at 800x450: the four-sphere scene (benchmarks/scenes/four_spheres) and a value
+   noise shader (a sin hash, 5 octaves), rendered with the emulation and with the runtime's
+   transcendental functions swapped back to NumPy's (`rt.lp = None`) and Mesa's constant
+   folding off (`rt.fold_constants = False`); best of N each, frame cache cleared. Ratio =
+   emulated / plain. No target: the emulation buys bit-exact agreement with llvmpipe (the
+   verify tests), and this says what it costs.
+"""
+
+from __future__ import annotations
+
+import argparse
+import os
+import sys
+import time
+
+import numpy as np
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+ROOT = os.path.dirname(HERE)
+sys.path.insert(0, ROOT)
+
+from glslcheck.diagnostics import register_source  # noqa: E402
+from glslcheck.numpy_backend.program import compile_numpy  # noqa: E402
+from glslcheck.numpy_backend.runtime import HOST_FMA, Runtime  # noqa: E402
+from glslcheck.sources import Shader, Source, load_shader  # noqa: E402
+
+NOISE = """
+float hash(vec2 p) { return fract(sin(dot(p, vec2(127.1, 311.7))) * 43758.5453); }
+float noise(vec2 p) {
+    vec2 i = floor(p), f = fract(p);
+    vec2 u = f * f * (3.0 - 2.0 * f);
+    return mix(mix(hash(i), hash(i + vec2(1.0, 0.0)), u.x),
+               mix(hash(i + vec2(0.0, 1.0)), hash(i + vec2(1.0, 1.0)), u.x), u.y);
+}
+void mainImage(out vec4 fragColor, in vec2 fragCoord) {
+    vec2 p = fragCoord / iResolution.y * 8.0 + iTime;
+    float v = 0.0, a = 0.5;
+    for (int o = 0; o < 5; o++) { v += a * noise(p); p *= 2.0; a *= 0.5; }
+    fragColor = vec4(vec3(pow(v, 1.5), exp(-v), log(1.0 + v)), 1.0);
+}
+"""
+
+
+def best(fn, repeat: int) -> float:
+    times = []
+    for _ in range(repeat):
+        t = time.perf_counter()
+        fn()
+        times.append(time.perf_counter() - t)
+    return min(times)
+
+
+def builtins(repeat: int) -> None:
+    rt = Runtime("float32")
+    rng = np.random.default_rng(0)
+    x = rng.uniform(-100, 100, 1_000_000).astype(np.float32)
+    pos = np.abs(x) + np.float32(1e-3)
+    y = rng.uniform(-4, 4, x.size).astype(np.float32)
+    cases = [("sin", lambda: rt.sin(x), lambda: np.sin(x)),
+             ("cos", lambda: rt.cos(x), lambda: np.cos(x)),
+             ("exp2", lambda: rt.exp2(y), lambda: np.exp2(y)),
+             ("log2", lambda: rt.log2(pos), lambda: np.log2(pos)),
+             ("pow", lambda: rt.pow(pos, y), lambda: np.exp2(y * np.log2(pos)))]
+    print(f"1. built-ins on 1,000,000 float32 arguments (FMA CPU: {HOST_FMA}), best of {repeat}")
+    with rt.errstate():
+        for name, ours, numpy in cases:
+            a = best(ours, repeat)
+            b = best(numpy, repeat)
+            print(f"   {name:<5} emulated {a * 1e3:7.1f} ms   numpy {b * 1e3:6.1f} ms   ratio {a / b:5.1f}x")
+
+
+def frames(repeat: int) -> None:
+    register_source("noise/Image.glsl", NOISE)
+    scenes = [("four spheres", load_shader(os.path.join(HERE, "scenes", "four_spheres", "Image.glsl"))),
+              ("value noise", Shader({"Image": Source("noise/Image.glsl", NOISE)}, "noise"))]
+    print(f"2. frames at 800x450, best of {repeat} (emulated vs NumPy math, folding off)")
+    for name, shader in scenes:
+        prog = compile_numpy(shader)
+        prog.parallel = "threads"
+        rt = prog.module("float32")["rt"]
+        lp, fold = rt.lp, rt.fold_constants
+
+        def render():
+            prog._cache.clear()
+            prog.render(size=(800, 450), time=1.0)
+
+        timings = {}
+        for mode in ("emulated", "plain"):
+            rt.lp, rt.fold_constants = (lp, fold) if mode == "emulated" else (None, False)
+            timings[mode] = best(render, repeat)
+        rt.lp, rt.fold_constants = lp, fold
+        print(f"   {name:<13} emulated {timings['emulated']:6.3f} s   plain {timings['plain']:6.3f} s   "
+              f"ratio {timings['emulated'] / timings['plain']:4.2f}x")
+
+
+def main() -> None:
+    p = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    p.add_argument("--repeat", type=int, default=5)
+    args = p.parse_args()
+    builtins(args.repeat)
+    frames(max(1, args.repeat // 2))
+
+
+if __name__ == "__main__":
+    main()

@@ -1,0 +1,188 @@
+"""Score `glslcheck verify` on real public Shadertoy shaders (tests/real_verify/manifest.json).
+
+The repository keeps only the manifest (repository, path, commit, and a label saying what each
+shader is); the texts are third-party code and stay out of it. `fetch` re-reads them into
+tests/real_verify/texts/ (git-ignored), `score` verifies each one as `glslcheck verify` does:
+
+    python tools/real_verify.py fetch [--mirror DIR]   # DIR/<owner>+<name>/repo git dirs, else
+                                                       # raw.githubusercontent.com over HTTPS
+    python tools/real_verify.py score [--size 160x90] [--times 0,1.7,5.3] [--timeout 300]
+                                      [--only ID,...] [--json out.json]
+
+Each shader runs in its own process (a crash, a hang or a runaway loop costs one shader, not
+the run) and gets one verdict:
+
+- match: every frame verifies (the compare.py tolerance model, the same as the CLI);
+- mismatch: some frame does not; the reason names the frame, the over-tolerance and NaN/Inf
+  pixel counts;
+- does not compile: the GL driver rejects the shader (a GLSL error on Shadertoy's side too);
+- unsupported: the NumPy backend refuses it (texture lookups, a construct it does not
+  transpile) or stops it (a loop bound);
+- timeout / error: the process took longer than --timeout or failed otherwise.
+
+The summary line is the figure the issue asks for: matches among the shaders that compile.
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import os
+import subprocess
+import sys
+import time
+import urllib.parse
+import urllib.request
+from pathlib import Path
+
+ROOT = Path(__file__).resolve().parents[1]
+MANIFEST = ROOT / "tests" / "real_verify" / "manifest.json"
+TEXTS = ROOT / "tests" / "real_verify" / "texts"
+
+
+def load_manifest() -> list[dict]:
+    return json.loads(MANIFEST.read_text())["shaders"]
+
+
+def text_path(entry: dict) -> Path:
+    return TEXTS / f"{entry['id']}.glsl"
+
+
+def _from_mirror(mirror: Path, entry: dict) -> bytes | None:
+    gitdir = mirror / entry["repo"].replace("/", "+", 1) / "repo"
+    if not gitdir.is_dir():
+        return None
+    out = subprocess.run(["git", "--git-dir", str(gitdir), "show", f"{entry['commit']}:{entry['path']}"],
+                         capture_output=True)
+    return out.stdout if out.returncode == 0 else None
+
+
+def _from_github(entry: dict) -> bytes:
+    url = (f"https://raw.githubusercontent.com/{entry['repo']}/{entry['commit']}/"
+           f"{urllib.parse.quote(entry['path'])}")
+    with urllib.request.urlopen(url, timeout=30) as response:
+        return response.read()
+
+
+def fetch(mirror: Path | None) -> int:
+    TEXTS.mkdir(parents=True, exist_ok=True)
+    missing = 0
+    for entry in load_manifest():
+        target = text_path(entry)
+        if target.exists():
+            continue
+        data = _from_mirror(mirror, entry) if mirror else None
+        if data is None:
+            try:
+                data = _from_github(entry)
+            except OSError as e:
+                print(f"{entry['id']}: cannot read {entry['repo']}:{entry['path']}@{entry['commit'][:10]} ({e})",
+                      file=sys.stderr)
+                missing += 1
+                continue
+        target.write_bytes(data)
+    print(f"{len(load_manifest()) - missing} texts in {TEXTS.relative_to(ROOT)}, {missing} missing")
+    return 1 if missing else 0
+
+
+def verify_one(path: str, size: tuple[int, int], times: list[float]) -> dict:
+    """The verdict of one shader file (run inside the child process)."""
+    from glslcheck.diagnostics import GlslError
+    from glslcheck.sources import load_shader
+    from glslcheck.verify import compile_backend, verify_frames
+
+    shader = load_shader(path)
+    try:
+        gl = compile_backend(shader, "gl")
+    except GlslError as e:
+        return {"verdict": "does not compile", "reason": "; ".join(d.message for d in e.diagnostics)[:200]}
+    try:
+        numpy = compile_backend(shader, "numpy")
+    except GlslError as e:
+        return {"verdict": "unsupported", "reason": "; ".join(d.message for d in e.diagnostics)[:200]}
+    frames = []
+    try:
+        for r in verify_frames(shader, size=size, times=times, programs=[numpy, gl]):
+            frames.append((r.spec.time, r.comparison))
+    except GlslError as e:
+        return {"verdict": "unsupported", "reason": "; ".join(d.message for d in e.diagnostics)[:200]}
+    bad = [(t, c) for t, c in frames if not c.match]
+    if not bad:
+        return {"verdict": "match", "reason": ""}
+    t, c = bad[0]
+    j = c.to_json()
+    return {"verdict": "mismatch",
+            "reason": (f"{len(bad)}/{len(frames)} frames; t={t:g}: {j['mismatched_pixels']} over tolerance, "
+                       f"{j['edge_pixels']} edge, NaN/Inf numpy {j['nan_numpy']} gl {j['nan_gl']}, "
+                       f"max err {j['max_abs_error']:.3g}")}
+
+
+ORDER = ("match", "mismatch", "does not compile", "unsupported", "timeout", "error")
+
+
+def score(size: str, times: str, timeout: float, only: set[str] | None, out: Path | None) -> int:
+    entries = [e for e in load_manifest() if not only or e["id"] in only]
+    absent = [e["id"] for e in entries if not text_path(e).exists()]
+    if absent:
+        print(f"{len(absent)} texts are missing ({', '.join(absent[:5])} ...): run `python tools/real_verify.py fetch`",
+              file=sys.stderr)
+        return 2
+    results = []
+    for entry in entries:
+        started = time.perf_counter()
+        cmd = [sys.executable, __file__, "_one", str(text_path(entry)), size, times]
+        try:
+            proc = subprocess.run(cmd, capture_output=True, text=True, timeout=timeout, cwd=ROOT)
+            lines = proc.stdout.strip().splitlines()
+            if proc.returncode == 0 and lines:
+                result = json.loads(lines[-1])
+            else:
+                tail = (proc.stderr.strip().splitlines() or ["(no output)"])[-1]
+                result = {"verdict": "error", "reason": tail[:200]}
+        except subprocess.TimeoutExpired:
+            result = {"verdict": "timeout", "reason": f"over {timeout:g} s"}
+        result.update(id=entry["id"], kind=entry["kind"], seconds=round(time.perf_counter() - started, 1))
+        results.append(result)
+        print(f"{entry['id']:<24} {result['verdict']:<17} {result['seconds']:6.1f}s  {result['reason']}", flush=True)
+    counts = {v: sum(r["verdict"] == v for r in results) for v in ORDER}
+    compiled = len(results) - counts["does not compile"]
+    lab4 = [r for r in results if r["kind"] == "lab4"]
+    print()
+    print("  ".join(f"{v}: {n}" for v, n in counts.items()))
+    print(f"match among the {compiled} shaders that compile: {counts['match']}/{compiled} = "
+          f"{100.0 * counts['match'] / max(compiled, 1):.1f}%; Lab 4 submissions: "
+          f"{sum(r['verdict'] == 'match' for r in lab4)}/{len(lab4)} match, "
+          f"{sum(r['verdict'] == 'mismatch' for r in lab4)} mismatch")
+    if out:
+        out.write_text(json.dumps(results, indent=1))
+    return 0
+
+
+def main(argv: list[str] | None = None) -> int:
+    argv = sys.argv[1:] if argv is None else argv
+    if argv[:1] == ["_one"]:
+        path, size, times = argv[1:4]
+        from glslcheck.verify import parse_size, parse_times
+
+        print(json.dumps(verify_one(path, parse_size(size), list(parse_times(times)))))
+        return 0
+    p = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    sub = p.add_subparsers(dest="command", required=True)
+    f = sub.add_parser("fetch", help="re-read the texts into tests/real_verify/texts/")
+    f.add_argument("--mirror", type=Path, default=Path(os.environ["REAL_VERIFY_MIRROR"])
+                   if os.environ.get("REAL_VERIFY_MIRROR") else None,
+                   help="a folder of <owner>+<name>/repo git directories to read before GitHub")
+    s = sub.add_parser("score", help="verify every shader and print the counts")
+    s.add_argument("--size", default="160x90")
+    s.add_argument("--times", default="0,1.7,5.3")
+    s.add_argument("--timeout", type=float, default=300.0)
+    s.add_argument("--only", default="", help="comma-separated ids")
+    s.add_argument("--json", type=Path, help="write the per-shader results here")
+    args = p.parse_args(argv)
+    if args.command == "fetch":
+        return fetch(args.mirror)
+    return score(args.size, args.times, args.timeout, set(filter(None, args.only.split(","))) or None, args.json)
+
+
+if __name__ == "__main__":
+    sys.exit(main())
