@@ -127,8 +127,8 @@ class Comparison:
     # float64 reference there; counted apart, not as mismatches.
     unstable_pixels: int = 0
     unstable_mask: np.ndarray | None = field(default=None, repr=False)
-    # [{"file", "line", "code", "pixels"}]: the statement where precision is lost. TODO: needs
-    # the per-statement float64 shadow of `glslcheck probe`'s tracing mode; empty until then.
+    # [{"file", "line", "code", "bits", "pixels"}]: the statements where the unstable pixels
+    # lose their precision, filled in by verify.unstable_lines (glslcheck probe's tracing).
     unstable_lines: list = field(default_factory=list)
 
     @property

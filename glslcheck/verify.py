@@ -283,6 +283,9 @@ def verify_frames(
                 ref = pair.reference(spec, w_h, tuple(mouse), date, samples)
                 if ref is not None:
                     comparison = compare(numpy_img, gl_img, reference=ref, **(compare_options or {}))
+                    if comparison.unstable_pixels:
+                        comparison.unstable_lines = unstable_lines(
+                            shader, comparison, w_h, spec, tuple(mouse), date)
             if progress is not None:
                 progress.step(f"{name} t={spec.time:g}")
             notes = tuple(f"{path}:{line}: this loop reached llvmpipe's limit of {LLVMPIPE_LOOP_LIMIT:,} "
@@ -290,6 +293,40 @@ def verify_frames(
                           for path, line in limited_loops(programs[0]))
             yield FrameResult(name, spec, (int(w_h[0]), int(w_h[1])), comparison,
                               numpy_img if keep_images else None, gl_img if keep_images else None, notes)
+
+
+UNSTABLE_PROBES = 24  # unstable pixels traced per frame to name the lines that lose precision
+
+
+def unstable_lines(shader: Shader, comparison: Comparison, size, spec: FrameSpec, mouse, date) -> list[dict]:
+    """Where the unstable pixels lose their precision: up to UNSTABLE_PROBES of them, spread over
+    the image, are traced by `glslcheck probe` (float32 beside its float64 shadow) and each is
+    attributed to its first statement that keeps fewer than probe.UNSTABLE_BITS bits. Entries
+    {"file", "line", "code", "bits", "pixels"}, most pixels first; "pixels" extrapolates the
+    traced share to all unstable pixels, and "bits" is the fewest kept at that line."""
+    from .probe import Inputs, Probe, first_unstable
+
+    mask = comparison.unstable_mask
+    if mask is None or not mask.any():
+        return []
+    ys, xs = np.nonzero(mask)
+    picks = np.unique(np.linspace(0, len(xs) - 1, min(UNSTABLE_PROBES, len(xs))).astype(int))
+    try:
+        probe = Probe(shader)
+    except Exception:  # noqa: BLE001 - attribution is a hint: a shader probe cannot trace keeps its count
+        return []
+    inputs = Inputs(size=(int(size[0]), int(size[1])), time=spec.time, frame=spec.frame, mouse=mouse, date=date)
+    found: dict[tuple, list] = {}
+    for i in picks:
+        step = first_unstable(probe, int(xs[i]), int(ys[i]), inputs)
+        if step is not None:
+            entry = found.setdefault((step.file, step.line, step.code.strip()), [0, step.bits])
+            entry[0] += 1
+            entry[1] = min(entry[1], step.bits)
+    scale = len(xs) / len(picks)
+    lines = [{"file": f, "line": ln, "code": code, "bits": int(bits), "pixels": int(round(n * scale))}
+             for (f, ln, code), (n, bits) in found.items()]
+    return sorted(lines, key=lambda d: (-d["pixels"], d["file"], d["line"]))
 
 
 # llvmpipe stops every loop once an invocation has made 65,535 loop passes in all

@@ -17,7 +17,8 @@ frames show a progress bar on stderr when it is a terminal (--progress forces it
 "psnr_db", "mismatched_pixels", "edge_pixels", "nan_numpy", "nan_gl", "unstable_pixels",
 "unstable_lines"} for one frame (psnr_db is null for identical images; verdict is "match",
 "match-unstable" or "mismatch"; unstable pixels are those where both float32 renders are far
-from the float64 reference, see compare.py; unstable_lines is empty for now), or a JSON list of such objects, in order (shader by shader, then frame by
+from the float64 reference, see compare.py; unstable_lines names the statements where they lose
+precision, traced by glslcheck probe on a sample of them), or a JSON list of such objects, in order (shader by shader, then frame by
 frame), when more than one frame is verified. --diff diff.png writes the heat map of the
 differences (diff-0.png, diff-1.png, ... for several frames).
 
@@ -199,8 +200,13 @@ def format_frame(result, precision: str = "float32", samples: int = 1, worst: in
         lines.append(f"  unstable pixels  {c.unstable_pixels:<10}  both float32 renders far from the float64 "
                      "reference (not counted)")
     lines.extend(f"  note: {n}" for n in getattr(result, "notes", ()))
+    for u in c.unstable_lines[:3]:
+        lines.append(f"  precision lost   {u['file']}:{u['line']} `{u['code']}` keeps {u['bits']} of 24 bits "
+                     f"(~{u['pixels']} unstable pixels)")
     if c.match and c.unstable_pixels:
-        lines.append(f"  -> match, except {c.unstable_pixels} unstable pixels")
+        where = (f": line {c.unstable_lines[0]['line']} `{c.unstable_lines[0]['code']}` keeps "
+                 f"{c.unstable_lines[0]['bits']} of 24 bits" if c.unstable_lines else "")
+        lines.append(f"  -> match, except {c.unstable_pixels} unstable pixels{where}")
     else:
         lines.append("  -> match" if c.match else "  -> MISMATCH")
     return "\n".join(lines) + "\n"

@@ -73,3 +73,30 @@ def test_verify_reports_a_verdict_on_an_ill_conditioned_shader(gl, make_shader):
     (r,) = verify_frames(shader, size=(64, 36))
     data = r.comparison.to_json()
     assert data["match"] and data["verdict"] in ("match", "match-unstable")
+
+
+def test_unstable_lines_name_the_statement_that_loses_precision(gl, make_shader):
+    """The far camera's float32 renders are far from float64 where `b * b - cc` cancels
+    (`float h = ...`; its operands keep all their bits). Made to disagree with each
+    other there, the two renders give unstable pixels, and verify's attribution (probe's float64
+    shadow on a sample of them) names that line with the bits it keeps."""
+    from glslcheck.verify import FrameSpec, unstable_lines
+
+    shader = make_shader(FAR_CAMERA)
+    size = (64, 36)
+    numpy_side, gl_side = compile_backend(shader, "numpy"), compile_backend(shader, "gl")
+    ref = numpy_side.render(size=size, precision="float64")
+    gl_img = gl_side.render(size=size)
+    far = np.abs(gl_img[..., 0] - ref[..., 0]) > 0.05  # where float32 itself fails
+    assert far.sum() > 10
+    numpy_img = gl_img.copy()
+    numpy_img[..., 0] = np.where(far, 1.0 - numpy_img[..., 0], numpy_img[..., 0])
+    c = compare(numpy_img, gl_img, reference=ref)
+    assert 10 < c.unstable_pixels <= int(far.sum())  # (flipping a value near 0.5 changes little)
+    lines = unstable_lines(shader, c, size, FrameSpec(time=0.0, frame=0), (0.0, 0.0, 0.0, 0.0), None)
+    assert lines, "no line named"
+    top = lines[0]
+    line = next(i for i, t in enumerate(FAR_CAMERA.split("\n"), 1) if "float h = b * b - cc;" in t)
+    assert top["line"] == line and "b * b - cc" in top["code"], lines
+    assert top["bits"] < 16 and 0 < top["pixels"] <= c.unstable_pixels
+    assert set(top) == {"file", "line", "code", "bits", "pixels"}
