@@ -9,8 +9,9 @@ STAMP := $(VENV)/.installed
 .PHONY: run test setup system-deps clean
 
 # Debian packages: glslang-tools is the reference compiler the tests compare
-# against; the EGL/Mesa packages give moderngl a headless llvmpipe context.
-DEBS := glslang-tools libegl1 libegl-mesa0 libgl1-mesa-dri
+# against; the EGL/Mesa packages give moderngl a headless llvmpipe context; chromium is the
+# browser of the WebGL backend (Playwright drives it; `playwright install` is never run).
+DEBS := glslang-tools libegl1 libegl-mesa0 libgl1-mesa-dri chromium
 system-deps:
 	@missing=""; for p in $(DEBS); do dpkg -s $$p >/dev/null 2>&1 || missing="$$missing $$p"; done; \
 	if [ -n "$$missing" ]; then \
@@ -22,7 +23,7 @@ system-deps:
 $(STAMP): pyproject.toml
 	python3 -m venv $(VENV)
 	$(PY) -m pip install -q --upgrade pip
-	$(PY) -m pip install -q -e '.[test]'
+	$(PY) -m pip install -q -e '.[test,webgl]'
 	touch $(STAMP)
 
 setup: system-deps $(STAMP)
