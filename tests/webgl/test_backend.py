@@ -1,0 +1,99 @@
+"""The WebGL backend renders what Shadertoy's page renders, and maps ANGLE's errors to the user's lines."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+from glslcheck.diagnostics import GlslError
+from glslcheck.webgl_backend import compile_webgl, get_browser
+
+SIZE = (160, 90)  # small: the machine is shared
+
+W, H = SIZE
+
+
+def test_uniforms_reach_the_shader_as_shadertoy_sets_them(webgl, make_shader):
+    # One uniform per pixel column range; every value is exact in float32, so equality is fair.
+    shader = make_shader("""
+void mainImage(out vec4 fragColor, in vec2 fragCoord)
+{
+    int column = int(fragCoord.x) / 10;
+    vec4 v = vec4(0.0);
+    if (column == 0) v = vec4(iResolution, iTime);
+    else if (column == 1) v = iMouse;
+    else if (column == 2) v = iDate;
+    else if (column == 3) v = vec4(float(iFrame), iTimeDelta, iFrameRate, iSampleRate);
+    else if (column == 4) v = vec4(iChannelTime[0], iChannelTime[3], iChannelResolution[0].x, iChannelResolution[3].z);
+    else if (column == 5) v = texture(iChannel0, vec2(0.5));
+    fragColor = v;
+}
+""")
+    img = compile_webgl(shader).render(size=SIZE, time=1.5, frame=7, mouse=(10.0, 20.0, -3.0, 4.0),
+                                       date=(2024.0, 5.0, 17.0, 3600.5), time_delta=0.25, frame_rate=4.0)
+    assert img.shape == (H, W, 4) and img.dtype == np.float32
+    row = img[H // 2]
+    # The Image pass forces alpha to 1 (Shadertoy's footer), so only xyz carries the values.
+    assert row[0, :3].tolist() == [W, H, 1.0]
+    assert row[15, :3].tolist() == [10.0, 20.0, -3.0]
+    assert row[25, :3].tolist() == [2024.0, 5.0, 17.0]
+    assert row[35, :3].tolist() == [7.0, 0.25, 4.0]
+    assert row[45, :3].tolist() == [0.0, 0.0, 0.0]
+    assert row[55].tolist() == [0.0, 0.0, 0.0, 1.0]  # an unbound channel samples as (0, 0, 0, 1)
+    assert (img[..., 3] == 1.0).all()
+
+
+def test_float_target_is_read_back_unclamped_and_unquantised(webgl, make_shader):
+    shader = make_shader("void mainImage(out vec4 c, in vec2 f) { c = vec4(f.x, -f.y, 0.3, 0.0); }")
+    img = compile_webgl(shader).render(size=SIZE)
+    x = np.arange(W, dtype=np.float32) + 0.5
+    y = np.arange(H, dtype=np.float32)[::-1] + 0.5  # row 0 is the top: fragCoord.y = H - 0.5
+    assert (img[..., 0] == x[None, :]).all()
+    assert (img[..., 1] == -y[:, None]).all()
+    # An 8-bit target would give 77/255 = 0.30196 here; the float target gives float32(0.3).
+    assert (img[..., 2] == np.float32(0.3)).all()
+
+
+def test_buffer_tab_keeps_alpha(webgl, make_shader):
+    shader = make_shader("void mainImage(out vec4 c, in vec2 f) { c = vec4(0.0); }",
+                         Buffer_A="void mainImage(out vec4 c, in vec2 f) { c = vec4(0.25, 0.5, 0.75, 0.125); }")
+    img = compile_webgl(shader, tab="Buffer A").render(size=(8, 4))
+    assert (img == np.float32([0.25, 0.5, 0.75, 0.125])).all()
+
+
+def test_supersampling_uses_the_gl_backends_grid(webgl, make_shader):
+    # The average of fragCoord over the 2x2 grid is the pixel centre again; its x*x is not.
+    shader = make_shader("void mainImage(out vec4 c, in vec2 f) { c = vec4(f.x, f.x * f.x, 0.0, 1.0); }")
+    img = compile_webgl(shader).render(size=(16, 2), samples=4)
+    x = np.arange(16, dtype=np.float64) + 0.5
+    assert np.allclose(img[0, :, 0], x, atol=1e-6)
+    # mean of (x -+ 0.25)^2 = x^2 + 0.0625: the offsets are +-1/4 pixel, as gl_backend.sample_offsets
+    assert np.allclose(img[0, :, 1], x * x + 0.0625, rtol=1e-6)
+
+
+def test_one_browser_serves_every_shader(webgl, make_shader):
+    a = compile_webgl(make_shader("void mainImage(out vec4 c, in vec2 f) { c = vec4(1.0); }"))
+    b = compile_webgl(make_shader("void mainImage(out vec4 c, in vec2 f) { c = vec4(0.5); }"))
+    assert a.browser is b.browser is get_browser() is webgl
+    assert a.render(size=(2, 2))[0, 0, 0] == 1.0 and b.render(size=(2, 2))[0, 0, 0] == 0.5
+
+
+def test_angle_errors_point_into_the_users_tab_and_line(webgl, make_shader):
+    shader = make_shader("void mainImage(out vec4 c, in vec2 f)\n{\n    float k = 1;\n    c = vec4(k);\n}\n",
+                         common="float helper(float x)\n{\n    return x;\n}\n")
+    with pytest.raises(GlslError) as e:
+        compile_webgl(shader)
+    d = e.value.diagnostics[0]
+    assert d.rule == "webgl-compile" and d.message.startswith("WebGL: ")
+    assert "cannot convert from 'const int' to 'highp float'" in d.message
+    # line 3 of Image.glsl (after the prelude and the 4 lines of Common), at the quoted '='
+    assert (d.loc.path, d.loc.line, d.loc.column) == ("Image.glsl", 3, 13)
+
+
+def test_angle_error_in_common_points_into_common(webgl, make_shader):
+    shader = make_shader("void mainImage(out vec4 c, in vec2 f) { c = vec4(helper(1.0)); }\n",
+                         common="float helper(float x)\n{\n    return x + undefinedThing;\n}\n")
+    with pytest.raises(GlslError) as e:
+        compile_webgl(shader)
+    locs = {(d.loc.path, d.loc.line) for d in e.value.diagnostics if d.loc}
+    assert ("Common.glsl", 3) in locs
