@@ -25,6 +25,7 @@ COMMANDS = [
     ("render", "render", "render a shader on the CPU (NumPy) or with OpenGL"),
     ("verify", "verify", "render with NumPy and OpenGL and compare"),
     ("bench", "bench", "time against error for precision modes and samples per pixel"),
+    ("report", "report", "one HTML page: source and findings, every backend's render, differences, verdicts"),
 ]
 
 
@@ -60,7 +61,7 @@ def build_parser(only: str | None = None) -> argparse.ArgumentParser:
     return parser
 
 
-_RENDERING = ("render", "verify", "bench")  # the commands that run the NumPy renderer
+_RENDERING = ("render", "verify", "bench", "report")  # the commands that run the NumPy renderer
 PARALLEL_MODES = ("auto", "threads", "processes")  # NumpyProgram.parallel
 
 

@@ -116,6 +116,10 @@ class Browser:
             self.page.evaluate("(ids) => window.glslcheck.release(ids)", ids)
         return self.page.evaluate(f"(args) => window.glslcheck.{function}(...args)", list(args))
 
+    def new_page(self, **options):
+        """Another page of this browser (e.g. to load a report); the caller closes it."""
+        return self._browser.new_page(**options)
+
     def close(self) -> None:
         """Close the browser and Playwright's driver (each at most once; errors ignored)."""
         browser, self._browser = self._browser, None
