@@ -28,8 +28,10 @@ from __future__ import annotations
 import atexit
 import os
 import shutil
+import signal
 import time
 from importlib import resources
+from pathlib import Path
 
 from ..diagnostics import InputError
 
@@ -47,6 +49,8 @@ FLAGS = (
     "--disable-sync",
     "--no-first-run",
 )
+ENV_TIMEOUT = "GLSLCHECK_WEBGL_TIMEOUT"
+DEFAULT_TIMEOUT = 60.0
 # Launching takes 1-4 s on an idle machine; a loaded shared one may need far more.
 LAUNCH_TIMEOUT_MS = 120_000
 
@@ -55,6 +59,27 @@ _browser: "Browser | None" = None
 
 class WebGLUnavailable(InputError):
     """No headless Chromium with WebGL 2 and float render targets (an environment problem)."""
+
+
+class WebGLTimeout(Exception):
+    """A call into the page ran longer than `call_timeout()` seconds; the browser was ended."""
+
+    def __init__(self, seconds: float):
+        super().__init__(f"it ran for more than {seconds:g} s")
+        self.seconds = seconds
+
+
+def call_timeout() -> float:
+    """Seconds one compile or render may take in the browser: $GLSLCHECK_WEBGL_TIMEOUT, else 60
+    (a 800x450 frame of lab 07_final takes 2.7 s on a 2-core machine at load 11)."""
+    try:
+        value = float(os.environ.get(ENV_TIMEOUT, DEFAULT_TIMEOUT))
+    except ValueError:
+        raise InputError(f"error: ${ENV_TIMEOUT} must be a number of seconds, not "
+                         f"{os.environ[ENV_TIMEOUT]!r}") from None
+    if not value > 0:
+        raise InputError(f"error: ${ENV_TIMEOUT} must be positive, not {os.environ[ENV_TIMEOUT]!r}")
+    return value
 
 
 def chromium_path() -> str | None:
@@ -78,7 +103,10 @@ class Browser:
             from playwright.sync_api import sync_playwright
         except ImportError as e:
             raise WebGLUnavailable(f"error: the WebGL backend needs Playwright ({e}); {ADVICE}") from None
+        from playwright.sync_api import TimeoutError as PlaywrightTimeout
+
         self.Error = PlaywrightError
+        self.TimeoutError = PlaywrightTimeout
         executable = chromium_path()
         if executable is None:
             raise WebGLUnavailable(f"error: no Chromium executable found (${ENV_EXECUTABLE} or "
@@ -88,6 +116,7 @@ class Browser:
         start = time.perf_counter()
         self._playwright = None
         self._browser = None
+        before = _browser_roots()
         try:
             self._playwright = sync_playwright().start()
             self._browser = self._playwright.chromium.launch(
@@ -103,18 +132,41 @@ class Browser:
             self.close()
             raise WebGLUnavailable(f"error: headless Chromium ({executable}): {error}; {ADVICE}")
         self.info = self.page.evaluate("() => window.glslcheck.info()")
+        self._roots = _browser_roots() - before  # this browser's main process (for a timeout's kill)
         self.startup_seconds = time.perf_counter() - start
+
+    @property
+    def closed(self) -> bool:
+        return self._browser is None
 
     @property
     def version(self) -> str:
         return self._browser.version if self._browser is not None else ""
 
     def call(self, function: str, *args):
-        """`window.glslcheck.<function>(*args)` in the page; its JSON result."""
+        """`window.glslcheck.<function>(*args)` in the page; its JSON result.
+
+        A call that runs longer than `call_timeout()` (an endless loop in a shader blocks the
+        page in readPixels; SwiftShader has no watchdog that stops it) raises WebGLTimeout and
+        ends this browser: its page cannot be used again. The call runs as the predicate of
+        `wait_for_function`, whose timeout the driver enforces outside the blocked page; the
+        result is kept in the page and fetched by one more evaluate.
+        """
         if self.pending_release:
             ids, self.pending_release = self.pending_release, []
             self.page.evaluate("(ids) => window.glslcheck.release(ids)", ids)
-        return self.page.evaluate(f"(args) => window.glslcheck.{function}(...args)", list(args))
+        timeout = call_timeout()
+        try:
+            self.page.wait_for_function(
+                f"(args) => {{ window.glslcheck.out = window.glslcheck.{function}(...args); return true; }}",
+                arg=list(args), timeout=timeout * 1000.0)
+        except self.TimeoutError:
+            # A page blocked in the GPU process makes Playwright's graceful close wait 30 s: end
+            # this browser's processes first (by their ids), then close what is left.
+            _kill_trees(self._roots)
+            self.close()
+            raise WebGLTimeout(timeout) from None
+        return self.page.evaluate("() => { const out = window.glslcheck.out; window.glslcheck.out = null; return out; }")
 
     def new_page(self, **options):
         """Another page of this browser (e.g. to load a report); the caller closes it."""
@@ -133,10 +185,56 @@ class Browser:
                 pass
 
 
+BROWSER_NAMES = {"chromium", "chrome"}
+
+
+def _process_tree() -> tuple[dict[int, list[int]], dict[int, str]]:
+    """(children of each pid, command name of each pid) from Linux's /proc; empty elsewhere."""
+    children: dict[int, list[int]] = {}
+    comm: dict[int, str] = {}
+    for stat in Path("/proc").glob("[0-9]*/stat"):
+        try:
+            head, tail = stat.read_text().rsplit(")", 1)
+        except (OSError, ValueError):
+            continue
+        pid = int(stat.parent.name)
+        comm[pid] = head.split("(", 1)[1]
+        children.setdefault(int(tail.split()[1]), []).append(pid)
+    return children, comm
+
+
+def _browser_roots() -> set[int]:
+    """Our descendants that are a browser's main process (a browser whose parent is not one)."""
+    children, comm = _process_tree()
+    roots, todo = set(), [os.getpid()]
+    while todo:
+        parent = todo.pop()
+        for c in children.get(parent, []):
+            todo.append(c)
+            if comm.get(c) in BROWSER_NAMES and comm.get(parent) not in BROWSER_NAMES:
+                roots.add(c)
+    return roots
+
+
+def _kill_trees(roots: set[int]) -> None:
+    """SIGKILL each of `roots` and every process under it (our own browser's processes only)."""
+    children, _ = _process_tree()
+    todo, found = list(roots), []
+    while todo:
+        pid = todo.pop()
+        found.append(pid)
+        todo.extend(children.get(pid, []))
+    for pid in found:
+        try:
+            os.kill(pid, signal.SIGKILL)
+        except OSError:
+            pass
+
+
 def get_browser() -> Browser:
     """The process-wide browser, started on first use (WebGLUnavailable when it cannot start)."""
     global _browser
-    if _browser is None:
+    if _browser is None or _browser.closed:
         _browser = Browser()
     return _browser
 

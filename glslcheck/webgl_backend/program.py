@@ -30,10 +30,10 @@ from dataclasses import dataclass, field, replace
 import numpy as np
 
 from ..diagnostics import Diagnostic, GlslError, Location, source_line
-from ..gl_backend.program import _as_date, driver_diagnostics, parse_driver_log, sample_offsets
+from ..gl_backend.program import _as_date, _entry_location, driver_diagnostics, parse_driver_log, sample_offsets
 from ..shadertoy import DEFAULT_SIZE, OFFSET_UNIFORM, UNIFORMS, Program, build_program
 from ..sources import Shader
-from .browser import Browser, get_browser
+from .browser import Browser, WebGLTimeout, get_browser
 
 RULE = "webgl-compile"
 
@@ -104,7 +104,11 @@ def angle_diagnostics(program: Program, log: str, stage: str = "compile") -> lis
 
 def _compile(browser: Browser, program: Program) -> tuple[int, list[str]]:
     """(program id in the page, active uniform names); GlslError with ANGLE's messages."""
-    result = browser.call("compile", VERTEX_SHADER, program.text)
+    try:
+        result = browser.call("compile", VERTEX_SHADER, program.text)
+    except WebGLTimeout as e:
+        raise GlslError(Diagnostic(f"WebGL: compiling the {program.tab} program took more than {e.seconds:g} s "
+                                   "in the browser, which was ended", _entry_location(program), rule=RULE)) from None
     if "id" in result:
         return result["id"], result["active"]
     if "vertexLog" in result:  # our own vertex stage: a broken browser, not the user's shader
@@ -169,8 +173,17 @@ class WebGLProgram:
         program_id = self._variant(samples > 1)
         uniforms = uniform_values(width, height, time, frame, mouse, date, time_delta, frame_rate)
         js_offsets = [list(o) if samples > 1 else None for o in offsets]
+        if self.browser.closed:
+            raise GlslError(Diagnostic("WebGL: the browser this program was compiled in has ended (after a "
+                                       "timeout); compile the shader again", None, rule=RULE))
         try:
             data = self.browser.call("render", program_id, width, height, uniforms, js_offsets)
+        except WebGLTimeout as e:
+            raise GlslError(Diagnostic(
+                f"WebGL: the {self.program.tab} program ran for more than {e.seconds:g} s in the browser (an "
+                f"endless or very long loop?); the browser was ended", _entry_location(self.program), rule=RULE,
+                help="a loop whose count depends on a uniform or a pixel may never end; bound it with a "
+                     "constant, or raise $GLSLCHECK_WEBGL_TIMEOUT for a slow shader")) from None
         except self.browser.Error as e:
             first = str(e).strip().splitlines()[0] if str(e).strip() else type(e).__name__
             raise GlslError(Diagnostic(f"WebGL: rendering the {self.program.tab} program failed: {first}",
@@ -182,7 +195,7 @@ class WebGLProgram:
         """Delete the page's programs (the browser keeps running for the next shader)."""
         ids = list(self._variants.values())
         self._variants.clear()
-        if ids:
+        if ids and not self.browser.closed:
             self.browser.call("release", ids)
 
 

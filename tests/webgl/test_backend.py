@@ -2,6 +2,10 @@
 
 from __future__ import annotations
 
+import os
+import subprocess
+import sys
+
 import numpy as np
 import pytest
 
@@ -97,3 +101,37 @@ def test_angle_error_in_common_points_into_common(webgl, make_shader):
         compile_webgl(shader)
     locs = {(d.loc.path, d.loc.line) for d in e.value.diagnostics if d.loc}
     assert ("Common.glsl", 3) in locs
+
+
+
+ENDLESS = """
+import sys
+from glslcheck.diagnostics import GlslError, register_source
+from glslcheck.sources import Shader, Source
+from glslcheck.webgl_backend import compile_webgl, get_browser
+
+text = ("void mainImage(out vec4 c, in vec2 f)\\n{\\n    float s = 0.0;\\n"
+        "    for (int i = 0; i < 2000000000; i++) { s += sin(float(i) + f.x); }\\n    c = vec4(s);\\n}\\n")
+register_source("Image.glsl", text)
+shader = Shader(root="<test>")
+shader.tabs["Image"] = Source("Image.glsl", text, "Image")
+first = get_browser()
+try:
+    compile_webgl(shader).render(size=(2, 2))
+except GlslError as e:
+    d = e.diagnostics[0]
+    print(d.loc, d.message)
+# the next use starts a new browser, which works
+print(first.closed, get_browser() is not first, get_browser().call("info")["renderer"][:5])
+"""
+
+
+def test_an_endless_loop_times_out_and_the_next_render_gets_a_new_browser(webgl):
+    # In a child process: a timeout ends the browser it happens in (here not the session's), and
+    # Playwright's sync API allows one browser driver per thread.
+    env = dict(os.environ, GLSLCHECK_WEBGL_TIMEOUT="3")
+    proc = subprocess.run([sys.executable, "-c", ENDLESS], capture_output=True, text=True, timeout=300, env=env)
+    assert proc.returncode == 0, proc.stderr
+    first, second = proc.stdout.splitlines()
+    assert first.startswith("Image.glsl:1:6 WebGL: the Image program ran for more than 3 s in the browser")
+    assert second == "True True ANGLE"
