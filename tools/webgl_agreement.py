@@ -9,8 +9,8 @@ then Common + each pass tab; glslcheck.check.agreement.passes) is accepted:
 - ANGLE: WebGL 2 in headless Chromium compiles and links it (`webgl_diagnostics`), which is what
   a Shadertoy user's browser does.
 
-Corpora: tests/check/invalid (every fixture is invalid: the rejection rate is the figure), the
-valid shaders (tests/corpus, lab_shaders: the acceptance rate), and the mutants of
+Corpora: tests/check/invalid (every fixture is invalid: the rejection rate is the figure),
+tests/webgl/invalid (what ANGLE alone rejects, now rules of our checker), the valid shaders (tests/corpus, lab_shaders: the acceptance rate), and the mutants of
 tools/mutation_agreement.py (pairwise agreement). Every shader where ANGLE and another judge
 disagree is listed with both sides' first message.
 
@@ -67,9 +67,9 @@ def verdicts(shader: Shader) -> dict[str, list[str]]:
             "angle": angle_errors(shader)}
 
 
-def invalid_fixtures() -> list[tuple[str, Shader]]:
+def invalid_fixtures(folder: Path) -> list[tuple[str, Shader]]:
     out = []
-    for path in sorted((ROOT / "tests" / "check" / "invalid").glob("*.glsl")):
+    for path in sorted(folder.glob("*.glsl")):
         text = path.read_text(encoding="utf-8")
         lines = text.splitlines()
         tab = "Common" if len(lines) > 1 and lines[1].strip() == "// tab: Common" else "Image"
@@ -111,7 +111,8 @@ def main(argv: list[str] | None = None) -> int:
     browser = get_browser()
     print(f"ANGLE: {browser.info['renderer']}, Chromium {browser.version}\n")
     out: list[str] = []
-    out += summarise("tests/check/invalid", [(k, verdicts(s)) for k, s in invalid_fixtures()])
+    for folder in ("tests/check/invalid", "tests/webgl/invalid"):
+        out += summarise(folder, [(k, verdicts(s)) for k, s in invalid_fixtures(ROOT / folder)])
     out += summarise("valid shaders (tests/corpus, lab_shaders)",
                      [(Path(s.root).name, verdicts(s)) for s in valid_shaders()])
     if args.mutants:
