@@ -29,12 +29,16 @@ $(STAMP): pyproject.toml
 setup: system-deps $(STAMP)
 
 # The main job: check the lab and the corpus, lint the lab as the course grades it, render
-# the gallery on the CPU, and verify every part against OpenGL at several times.
+# the gallery on the CPU, verify every part against OpenGL at several times and against WebGL
+# (Shadertoy's browser), and write the HTML report of the lab (build/report.html).
 run: setup
 	$(VENV)/bin/glslcheck check lab_shaders tests/corpus
+	$(VENV)/bin/glslcheck check lab_shaders --webgl
 	$(VENV)/bin/glslcheck lint lab_shaders
 	GLSLCHECK=$(VENV)/bin/glslcheck tools/update_gallery.sh
 	$(VENV)/bin/glslcheck verify lab_shaders/*/ --size 320x180 --times 0,1.7,5.3
+	$(VENV)/bin/glslcheck verify lab_shaders/*/ --size 320x180 --times 0,1.7 --against webgl
+	mkdir -p build && $(VENV)/bin/glslcheck report lab_shaders -o build/report.html --time 1.7
 
 test: setup
 	$(PY) -m pytest -q
