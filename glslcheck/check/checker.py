@@ -217,6 +217,9 @@ class Checker:
                        help=f"rename it, for example to '{name[3:] or 'value'}'")
             return False
         self.webgl(webgl_rules.name_problem(name), node)
+        problem = webgl_rules.double_underscore_problem(name)
+        if problem:
+            self.warning(problem[0], node, help=problem[1])
         return True
 
     def webgl(self, problem: tuple[str, str] | None, node: Any) -> None:

@@ -35,7 +35,7 @@ def load(path: Path) -> tuple[Shader, str, int]:
 
 
 def test_fixtures_exist():
-    assert len(FIXTURES) >= 7
+    assert len(FIXTURES) >= 6
 
 
 @pytest.mark.parametrize("path", FIXTURES, ids=lambda p: p.stem)
@@ -46,6 +46,20 @@ def test_we_reject_what_angle_rejects(path, webgl):
     angle = webgl_diagnostics(shader, "Image")
     assert any(d.loc is not None and d.loc.path == str(path) and d.loc.line == line for d in angle), (
         f"{path.name}: ANGLE said {[(str(d.loc), d.message) for d in angle]}")
+
+
+def test_double_underscore_warns_where_angle_rejects(webgl, make_shader):
+    # The one ANGLE rejection our checker only warns about (webgl_rules.py says why).
+    shader = make_shader("const float light__power = 2.0;\n"
+                         "void mainImage(out vec4 c, in vec2 f) { c = vec4(light__power); }\n")
+    from glslcheck.check import check
+    from glslcheck.parse import parse_shader
+
+    ours = check(parse_shader(shader, "Image"), "Image").diagnostics
+    assert [(d.severity, d.loc.line) for d in ours] == [("warning", 1)]
+    assert "Shadertoy's browser rejects it" in ours[0].message
+    angle = webgl_diagnostics(shader, "Image")
+    assert angle[0].loc.line == 1 and "two consecutive underscores" in angle[0].message  # then its uses
 
 
 def test_plain_glsl_gets_warnings_not_errors(tmp_path, capsys):

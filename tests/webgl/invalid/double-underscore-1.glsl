@@ -1,7 +1,0 @@
-// expect: names containing '__' are reserved
-const float light__power = 2.0; // ERROR
-
-void mainImage(out vec4 fragColor, in vec2 fragCoord)
-{
-    fragColor = vec4(light__power);
-}
