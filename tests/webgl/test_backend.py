@@ -135,3 +135,17 @@ def test_an_endless_loop_times_out_and_the_next_render_gets_a_new_browser(webgl)
     first, second = proc.stdout.splitlines()
     assert first.startswith("Image.glsl:1:6 WebGL: the Image program ran for more than 3 s in the browser")
     assert second == "True True ANGLE"
+
+
+def test_a_missing_browser_is_an_input_error_with_advice(webgl, monkeypatch, capsys):
+    from glslcheck.cli import main
+    from glslcheck.webgl_backend import Browser, WebGLUnavailable
+
+    monkeypatch.setenv("GLSLCHECK_CHROMIUM", "/nonexistent/chromium")
+    with pytest.raises(WebGLUnavailable) as e:
+        Browser()
+    assert "apt-get install chromium" in str(e.value) and "glslcheck[webgl]" in str(e.value)
+    monkeypatch.delenv("GLSLCHECK_CHROMIUM")
+    monkeypatch.setenv("GLSLCHECK_WEBGL_TIMEOUT", "-1")
+    assert main(["check", "lab_shaders/07_final", "--webgl"]) == 2
+    assert "GLSLCHECK_WEBGL_TIMEOUT must be positive" in capsys.readouterr().err
