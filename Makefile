@@ -9,8 +9,9 @@ STAMP := $(VENV)/.installed
 .PHONY: run test setup system-deps clean
 
 # Debian packages: glslang-tools is the reference compiler the tests compare
-# against; the EGL/Mesa packages give moderngl a headless llvmpipe context.
-DEBS := glslang-tools libegl1 libegl-mesa0 libgl1-mesa-dri
+# against; the EGL/Mesa packages give moderngl a headless llvmpipe context; chromium is the
+# browser of the WebGL backend (Playwright drives it; `playwright install` is never run).
+DEBS := glslang-tools libegl1 libegl-mesa0 libgl1-mesa-dri chromium
 system-deps:
 	@missing=""; for p in $(DEBS); do dpkg -s $$p >/dev/null 2>&1 || missing="$$missing $$p"; done; \
 	if [ -n "$$missing" ]; then \
@@ -22,18 +23,22 @@ system-deps:
 $(STAMP): pyproject.toml
 	python3 -m venv $(VENV)
 	$(PY) -m pip install -q --upgrade pip
-	$(PY) -m pip install -q -e '.[test]'
+	$(PY) -m pip install -q -e '.[test,webgl]'
 	touch $(STAMP)
 
 setup: system-deps $(STAMP)
 
 # The main job: check the lab and the corpus, lint the lab as the course grades it, render
-# the gallery on the CPU, and verify every part against OpenGL at several times.
+# the gallery on the CPU, verify every part against OpenGL at several times and against WebGL
+# (Shadertoy's browser), and write the HTML report of the lab (build/report.html).
 run: setup
 	$(VENV)/bin/glslcheck check lab_shaders tests/corpus
+	$(VENV)/bin/glslcheck check lab_shaders --webgl
 	$(VENV)/bin/glslcheck lint lab_shaders
 	GLSLCHECK=$(VENV)/bin/glslcheck tools/update_gallery.sh
 	$(VENV)/bin/glslcheck verify lab_shaders/*/ --size 320x180 --times 0,1.7,5.3
+	$(VENV)/bin/glslcheck verify lab_shaders/*/ --size 320x180 --times 0,1.7 --against webgl
+	mkdir -p build && $(VENV)/bin/glslcheck report lab_shaders -o build/report.html --time 1.7
 
 test: setup
 	$(PY) -m pytest -q

@@ -1,7 +1,7 @@
 """The public Python API: compile a Shadertoy shader for a backend and render frames.
 
     import glslcheck
-    prog = glslcheck.compile("lab_shaders/07_final", backend="numpy")   # or backend="gl"
+    prog = glslcheck.compile("lab_shaders/07_final", backend="numpy")   # or "gl", "webgl"
     img = prog.render(size=(800, 450), time=0.0, frame=0, mouse=(0, 0, 0, 0), date=None,
                       precision="float32", samples=1)
     # img: float32 numpy array (height, width, 4), top row first, values as the shader wrote them
@@ -10,7 +10,8 @@
 `path` is a tab file, a folder of tabs (see glslcheck/sources.py) or an already loaded
 `Shader`. `compile` raises GlslError (with file:line:col diagnostics) when the shader does not
 parse, check or compile, InputError when the path cannot be read, and GLUnavailable (an
-InputError) for backend="gl" without an OpenGL context.
+InputError) for backend="gl" without an OpenGL context (WebGLUnavailable for backend="webgl"
+without headless Chromium: glslcheck/webgl_backend).
 
 `render` also takes `time_delta` (iTimeDelta, default 1/60) and `frame_rate` (iFrameRate,
 default 60), as the GL backend does. `precision` is the float type inside the shader:
@@ -31,7 +32,7 @@ import numpy as np
 from .shadertoy import DEFAULT_SIZE
 from .sources import Shader, load_shader
 
-BACKENDS = ("numpy", "gl")
+BACKENDS = ("numpy", "gl", "webgl")
 PRECISIONS = ("float16", "float32", "float64")
 
 
@@ -61,9 +62,9 @@ class Program:
             raise ValueError(f"precision must be one of {', '.join(PRECISIONS)}, not {precision!r}")
         common = dict(size=size, time=time, frame=frame, mouse=mouse, date=date, time_delta=time_delta,
                       frame_rate=frame_rate, samples=samples)
-        if self.backend == "gl":
+        if self.backend in ("gl", "webgl"):
             if precision != "float32":
-                raise ValueError("the GL backend renders in float32 only (the driver's highp)")
+                raise ValueError(f"the {self.backend.upper()} backend renders in float32 only (the driver's highp)")
             if stats:
                 raise ValueError("stats=True needs backend='numpy'")
             return self.impl.render(**common)
@@ -92,6 +93,10 @@ def compile(path: str | os.PathLike | Shader, backend: str = "numpy") -> Program
         from .gl_backend import compile_gl
 
         return Program(shader, "gl", compile_gl(shader))
+    if backend == "webgl":
+        from .webgl_backend import compile_webgl
+
+        return Program(shader, "webgl", compile_webgl(shader))
     from .numpy_backend.program import compile_numpy
 
     return Program(shader, "numpy", compile_numpy(shader))

@@ -72,7 +72,7 @@ class Config:
     @property
     def label(self) -> str:
         """Short name for tables and plots: 'gl x4', 'f16 x16'."""
-        name = "gl" if self.backend == "gl" else "f" + self.precision.removeprefix("float")
+        name = self.backend if self.backend != "numpy" else "f" + self.precision.removeprefix("float")
         return f"{name} x{self.samples}"
 
     @property
@@ -80,9 +80,11 @@ class Config:
         return (self.backend, self.precision, self.samples) == REFERENCE
 
 
-def configurations(samples: Sequence[int] = SAMPLES) -> list[Config]:
-    """GL first (its one-sample time is the unit of `ratio_to_gl`), then NumPy by precision."""
+def configurations(samples: Sequence[int] = SAMPLES, webgl: bool = False) -> list[Config]:
+    """GL first (its one-sample time is the unit of `ratio_to_gl`), then WebGL (headless
+    Chromium, when asked for), then NumPy by precision."""
     configs = [Config("gl", "float32", s) for s in samples]
+    configs += [Config("webgl", "float32", s) for s in samples if webgl]
     configs += [Config("numpy", p, s) for p in NUMPY_PRECISIONS for s in samples]
     return configs
 
@@ -161,6 +163,7 @@ def bench_shader(
     programs: tuple | None = None,
     step: Callable[[str], None] | None = None,
     clock: Callable[[], float] = _time.perf_counter,
+    webgl: bool = False,
 ) -> list[Row]:
     """Time and measure every configuration of one shader (see the module docstring).
 
@@ -175,8 +178,12 @@ def bench_shader(
     name = shader.root or (shader.image.path if shader.image else "<shader>")
     gl, numpy_prog = programs if programs is not None else _compile_both(shader)
     _pin_parallel(numpy_prog)
-    configs = configurations(samples)
+    configs = configurations(samples, webgl)
     by_backend = {"gl": gl, "numpy": numpy_prog}
+    if webgl:  # WebGL 2 in headless Chromium (glslcheck/webgl_backend)
+        from .api import compile as compile_program
+
+        by_backend["webgl"] = compile_program(shader, backend="webgl")
     kwargs = dict(size=tuple(size), time=float(time))
 
     def render(config: Config) -> tuple[np.ndarray, float]:
@@ -282,7 +289,7 @@ def format_table(rows: Sequence[Row], size: tuple[int, int] | None = None, runs:
 # ---------------------------------------------------------------------------------------------
 # The plot: time (x, log) against mean abs error (y, log), one panel per shader. Pillow only.
 
-COLOURS = {"gl": (40, 40, 40), "float16": (214, 39, 40), "float32": (31, 119, 180), "float64": (44, 160, 44)}
+COLOURS = {"gl": (40, 40, 40), "webgl": (148, 103, 189), "float16": (214, 39, 40), "float32": (31, 119, 180), "float64": (44, 160, 44)}
 FRONT_COLOUR = (255, 127, 14)
 GRID = (225, 225, 225)
 SCALE = 2  # drawn at twice the size, then downsampled: Pillow's shapes have no antialiasing
@@ -298,7 +305,7 @@ def _font(size: int):
 
 
 def _colour(config: Config) -> tuple[int, int, int]:
-    return COLOURS["gl" if config.backend == "gl" else config.precision]
+    return COLOURS[config.precision if config.backend == "numpy" else config.backend]
 
 
 def _marker(draw, x: float, y: float, samples: int, colour, r: float) -> None:

@@ -26,6 +26,7 @@ COMMANDS = [
     ("verify", "verify", "render with NumPy and OpenGL and compare"),
     ("bench", "bench", "time against error for precision modes and samples per pixel"),
     ("probe", "probe", "trace one pixel statement by statement, or find where NaN pixels came from"),
+    ("report", "report", "one HTML page: source and findings, every backend's render, differences, verdicts"),
 ]
 
 
@@ -88,7 +89,7 @@ def build_parser(only: str | None = None) -> argparse.ArgumentParser:
     return parser
 
 
-_RENDERING = ("render", "verify", "bench")  # the commands that run the NumPy renderer
+_RENDERING = ("render", "verify", "bench", "report")  # the commands that run the NumPy renderer
 PARALLEL_MODES = ("auto", "threads", "processes")  # NumpyProgram.parallel
 
 

@@ -47,6 +47,7 @@ from .shadertoy import DEFAULT_SIZE
 from .sources import Shader, load_shader
 
 BACKENDS = ("numpy", "gl")
+ALL_BACKENDS = ("numpy", "gl", "webgl")  # webgl: headless Chromium (glslcheck/webgl_backend)
 PRECISIONS = ("float32", "float16", "float64")
 DEFAULT_FPS = 60.0
 
@@ -121,15 +122,20 @@ def frame_specs(
 
 
 def compile_backend(shader: Shader, backend: str):
-    """A compiled program of `backend` ("numpy" or "gl") with a `render(size=..., ...)` method.
+    """A compiled program of `backend` ("numpy", "gl" or "webgl") with a `render(size=..., ...)` method.
 
     GlslError (exit 1) when the shader does not compile, GLUnavailable (exit 2) without a GL
-    context, InputError (exit 2) when the NumPy backend is not installed in this build.
+    context, WebGLUnavailable (exit 2) without headless Chromium, InputError (exit 2) when the
+    NumPy backend is not installed in this build.
     """
     if backend == "gl":
         from .gl_backend import compile_gl
 
         return compile_gl(shader)
+    if backend == "webgl":
+        from .webgl_backend import compile_webgl
+
+        return compile_webgl(shader)
     if backend == "numpy":
         try:
             from . import api
@@ -142,7 +148,7 @@ def compile_backend(shader: Shader, backend: str):
         except ImportError as e:
             raise InputError(f"error: the NumPy backend is not available in this build ({e})") from None
         return compile_numpy(shader)
-    raise ValueError(f"unknown backend {backend!r}; expected one of {', '.join(BACKENDS)}")
+    raise ValueError(f"unknown backend {backend!r}; expected one of {', '.join(ALL_BACKENDS)}")
 
 
 def _accepted(program) -> set[str] | None:
@@ -253,13 +259,13 @@ def verify_frames(
     size_list = [tuple(s) for s in (sizes or [size])]
     shader = _as_shader(shader)
     if programs is None:
-        # The GL side first: a missing context is reported before a slower NumPy transpile.
+        # GL/WebGL first: a missing context or browser is reported before a slower NumPy transpile.
         by_name = {}
-        for b in sorted(backends, key=lambda b: b != "gl"):
+        for b in sorted(backends, key=lambda b: b == "numpy"):
             try:
                 by_name[b] = compile_backend(shader, b)
             except GlslError as driver:
-                if b != "gl" or "numpy" not in backends:
+                if b == "numpy" or "numpy" not in backends:
                     raise
                 # our own front end's diagnostics are clearer than the driver's cascade (and
                 # carry fix-its, e.g. iGlobalTime -> iTime): report them when it also fails

@@ -162,7 +162,7 @@ def main(argv: list[str] | None = None) -> int:
     argv = sys.argv[1:] if argv is None else argv
     if argv[:1] == ["_one"]:
         path, size, times = argv[1:4]
-        from glslcheck.verify import parse_size, parse_times
+        from glslcheck.commands.args import parse_size, parse_times
 
         print(json.dumps(verify_one(path, parse_size(size), list(parse_times(times)))))
         return 0

@@ -22,6 +22,7 @@ from .. import builtins as B
 from .. import types as T
 from ..diagnostics import Diagnostic, Location
 from . import consteval as C
+from . import webgl_rules
 from .model import ERROR, Model, Symbol
 from .scopes import Scope, UniqueNames
 
@@ -148,6 +149,9 @@ class Checker:
         storage = decl.qualifiers.storage if decl.qualifiers is not None else None
         if storage != "uniform":
             self.error(f"a fragment shader's interface block must be 'uniform', not '{storage}'", decl)
+        if decl.qualifiers is not None:
+            layout_ids = [i.name for l in decl.qualifiers.layouts for i in l.ids]
+            self.webgl(webgl_rules.block_layout_problem(layout_ids), decl.qualifiers)
         fields: list[tuple[str, T.Type]] = []
         for member in decl.members:
             if member.type is not None and member.type.struct_ is not None:
@@ -215,10 +219,17 @@ class Checker:
             self.error(f"'{name}': names starting with 'gl_' are reserved for OpenGL", node,
                        help=f"rename it, for example to '{name[3:] or 'value'}'")
             return False
-        if "__" in name:
-            self.warning(f"'{name}': names containing '__' are reserved in GLSL ES 3.00", node,
-                         help=f"rename it, for example to '{name.replace('__', '_')}'")
+        self.webgl(webgl_rules.name_problem(name), node)
+        problem = webgl_rules.double_underscore_problem(name)
+        if problem:
+            self.warning(problem[0], node, help=problem[1])
         return True
+
+    def webgl(self, problem: tuple[str, str] | None, node: Any) -> None:
+        """A WebGL rule (webgl_rules.py: what Shadertoy's browser rejects): an error in a Shadertoy
+        tab, a warning in a plain GLSL ES file, which need not run in WebGL."""
+        if problem:
+            self.error(problem[0], node, help=problem[1], severity="warning" if self.plain else "error")
 
     def declare(self, sym: Symbol, node: Any, where: Any) -> None:
         """Add `sym` to the current scope, reporting a redefinition in the same scope."""
@@ -938,6 +949,7 @@ class Checker:
         if a.is_void:
             self.error("the branches of '?:' cannot be void", n)
             return ERROR
+        self.webgl(webgl_rules.ternary_problem(a), n)
         if self.is_const(n.cond) and self.is_const(n.then) and self.is_const(n.else_):
             c = self.consts[id(n.cond)]
             self.consts[id(n)] = C.UNKNOWN if c is C.UNKNOWN else self.consts[id(n.then if c else n.else_)]

@@ -1,9 +1,10 @@
 """glslcheck bench SHADER... [--size WxH] [--runs N] [--time T] [--format text|json]
-[--plot out.png]: render time against error for GL and the NumPy precision modes.
+[--plot out.png] [--webgl]: render time against error for GL and the NumPy precision modes.
 
 For each SHADER (a tab file or a folder of tabs) the Image tab is rendered 12 ways: by the
 OpenGL driver (Mesa llvmpipe, highp = float32) and by the NumPy backend at float16, float32 and
-float64, each at 1, 4 and 16 samples per pixel. Each is timed (median of --runs rounds after a
+float64, each at 1, 4 and 16 samples per pixel (--webgl adds WebGL 2 in headless Chromium at
+each, in the plot's purple without a legend entry). Each is timed (median of --runs rounds after a
 warm-up render; the rounds go round-robin over the configurations so machine load falls on all
 alike) and compared with the reference, NumPy float64 at 16 samples per pixel.
 
@@ -61,6 +62,8 @@ def add_arguments(p) -> None:
     p.add_argument("--time", type=A.arg(A.parse_time), default=0.0, metavar="T", help="iTime in seconds (default 0)")
     p.add_argument("--format", choices=("text", "json"), default="text", help="output format (default text)")
     p.add_argument("--plot", metavar="PNG", help="write the time-against-error plot")
+    p.add_argument("--webgl", action="store_true",
+                   help="also time WebGL 2 in headless Chromium (ANGLE on SwiftShader) at each sample count")
     p.add_argument("--progress", action=argparse.BooleanOptionalAction, default=None,
                    help="progress bar on stderr (default: when stderr is a terminal)")
 
@@ -69,7 +72,7 @@ def run(args) -> int:
     if args.plot:
         check_output(args.plot, (".png",), "plot")  # before the minutes of measuring, not after
     shaders = find_shaders(args.paths)
-    per_shader = len(configurations()) * (args.runs + 1)
+    per_shader = len(configurations(webgl=args.webgl)) * (args.runs + 1)
     show = args.progress if args.progress is not None else sys.stderr.isatty()
     progress = _BenchProgress(len(shaders) * per_shader, sys.stderr, enabled=bool(show))
 
@@ -78,7 +81,8 @@ def run(args) -> int:
     try:
         for index, shader in enumerate(shaders):
             try:
-                rows += bench_shader(shader, size=args.size, runs=args.runs, time=args.time, step=progress.step)
+                rows += bench_shader(shader, size=args.size, runs=args.runs, time=args.time, step=progress.step,
+                                     webgl=args.webgl)
             except GlslError as e:
                 progress.finish()
                 glsl_errors += 1

@@ -3,6 +3,9 @@
 Each PATH is a tab file or a folder of tabs (see glslcheck/sources.py). Every pass is checked as
 Shadertoy compiles it: the Common tab alone (only iDate and iSampleRate declared), then Common
 followed by each pass tab (Image, Buffer A..D). An error in the Common tab is reported once.
+With --webgl each of those programs is also compiled by WebGL 2 in headless Chromium (ANGLE,
+the compiler Shadertoy's page uses) and ANGLE's errors are reported in the user's tab and line
+(rule webgl-compile, messages starting "WebGL:"); a program ANGLE rejects counts as an error.
 Exit 0 when every program is clean (warnings allowed), 1 on errors, 2 on usage or I/O errors.
 """
 
@@ -21,6 +24,8 @@ def add_arguments(p) -> None:
     p.add_argument("paths", nargs="+", metavar="PATH", help="tab files or folders of tab files")
     p.add_argument("-q", "--quiet", action="store_true", help="print only errors and warnings")
     p.add_argument("--no-warnings", action="store_true", help="do not print warnings")
+    p.add_argument("--webgl", action="store_true",
+                   help="also compile each program with WebGL 2 in headless Chromium (ANGLE) and report its errors")
 
 
 def passes(shader) -> list[str]:
@@ -45,6 +50,10 @@ def run(args) -> int:
                 diagnostics = check(result, tab, collect=True).diagnostics
             except GlslError as e:
                 diagnostics = e.diagnostics
+            if args.webgl:  # ANGLE's verdict on the same program (glslcheck/webgl_backend)
+                from ..webgl_backend import webgl_diagnostics
+
+                diagnostics = list(diagnostics) + webgl_diagnostics(shader, tab)
             errors = 0
             for d in diagnostics:
                 key = (str(d.loc), d.message, d.severity)

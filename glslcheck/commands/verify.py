@@ -1,6 +1,6 @@
 """glslcheck verify SHADER... [--size WxH] [--time T | --times T,T,... | --frames N [--fps F]]
 [--frame N] [--mouse X,Y,Z,W] [--precision float32|float16|float64] [--samples N]
-[--diff diff.png] [--format text|json]: render with NumPy and OpenGL and compare.
+[--diff diff.png] [--format text|json] [--against gl|webgl]: render with NumPy and OpenGL and compare.
 
 Each SHADER is a tab file or a folder of tabs (see glslcheck/sources.py). Its Image tab is
 rendered by the NumPy backend and by the OpenGL driver (Mesa llvmpipe) with the same uniforms,
@@ -8,6 +8,12 @@ and the two float images are compared by the tolerance model of glslcheck/compar
 mean abs error, PSNR, pixels over tolerance ("mismatched"), edge pixels (differences a sub-pixel
 shift explains), NaN/Inf counts in each image, and where the differences lie (bounding box and
 worst pixels, with fragCoord).
+
+--against webgl compares with WebGL 2 in headless Chromium (ANGLE on SwiftShader, as Shadertoy's
+page renders; glslcheck/webgl_backend). Each frame is also rendered with GL: a pixel where the two
+drivers differ depends on the driver, and there NumPy need only match the closer of the two
+("driver-dependent" in the report; glslcheck/webgl_backend/drivers.py). `--backends gl,webgl`
+compares the two drivers with each other.
 
 Frames: one at iTime 0 by default; --time T; --times 0,0.5,1 (one frame each, iFrame = --frame);
 --frames N with --fps F (iFrame = --frame + i, iTime = iFrame / F, iTimeDelta = 1/F). Several
@@ -36,14 +42,14 @@ import sys
 from ..diagnostics import GlslError, InputError, format_text
 from ..images import check_output
 from ..sources import find_shaders
-from ..verify import BACKENDS, DEFAULT_FPS, Progress, diff_paths, frame_specs, verify_frames
+from ..verify import ALL_BACKENDS, BACKENDS, DEFAULT_FPS, Progress, diff_paths, frame_specs, verify_frames
 from . import args as A
 
 
 def _backends(text: str) -> tuple[str, str]:
     names = tuple(t.strip() for t in text.split(","))
-    if len(names) != 2 or not all(n in BACKENDS for n in names):
-        raise ValueError(f"--backends takes two of {', '.join(BACKENDS)} separated by a comma, not {text!r}")
+    if len(names) != 2 or not all(n in ALL_BACKENDS for n in names):
+        raise ValueError(f"--backends takes two of {', '.join(ALL_BACKENDS)} separated by a comma, not {text!r}")
     return names  # type: ignore[return-value]
 
 
@@ -73,8 +79,11 @@ def add_arguments(p) -> None:
     p.add_argument("--format", choices=("text", "json"), default="text", help="output format (default text)")
     p.add_argument("--progress", action=argparse.BooleanOptionalAction, default=None,
                    help="progress bar on stderr for several frames (default: when stderr is a terminal)")
-    # For developers: compare other backend pairs (gl,gl checks the plumbing; first = "numpy" side).
-    p.add_argument("--backends", type=A.arg(_backends), default=BACKENDS, help=argparse.SUPPRESS)
+    p.add_argument("--against", choices=("gl", "webgl"), default=None,
+                   help="the reference NumPy is compared with: gl (Mesa llvmpipe, default) or webgl "
+                        "(headless Chromium, ANGLE on SwiftShader)")
+    p.add_argument("--backends", type=A.arg(_backends), default=None, metavar="A,B",
+                   help="compare two other backends, e.g. gl,webgl (the drivers with each other)")
 
 
 def _frame_count(args) -> int:
@@ -93,6 +102,9 @@ def run(args) -> int:
         frame_specs(args.time, args.times, args.frames, args.fps, args.frame)  # conflicting options
     except ValueError as e:
         raise InputError(f"glslcheck verify: error: {e}") from None
+    if args.against and args.backends:
+        raise InputError("glslcheck verify: error: give --against or --backends, not both")
+    args.backends = args.backends or (("numpy", args.against) if args.against else BACKENDS)
     shaders = find_shaders(args.paths)
     total = len(shaders) * _frame_count(args)
     show = args.progress if args.progress is not None else (total > 1 and sys.stderr.isatty())
@@ -104,10 +116,15 @@ def run(args) -> int:
     try:
         for index, shader in enumerate(shaders):
             try:
-                frames = verify_frames(
-                    shader, size=args.size, time=args.time, times=args.times, frames=args.frames,
-                    fps=args.fps, frame=args.frame, mouse=args.mouse, date=args.date, precision=args.precision,
-                    samples=args.samples, backends=args.backends, progress=progress)
+                options = dict(size=args.size, time=args.time, times=args.times, frames=args.frames,
+                               fps=args.fps, frame=args.frame, mouse=args.mouse, date=args.date,
+                               precision=args.precision, samples=args.samples, progress=progress)
+                if args.against == "webgl":  # NumPy vs WebGL, driver-dependent pixels apart
+                    from ..webgl_backend.drivers import verify_against_webgl
+
+                    frames = verify_against_webgl(shader, **options)
+                else:
+                    frames = verify_frames(shader, backends=args.backends, **options)
                 for result in frames:
                     _keep(result, paths)
                     results.append(result)
@@ -148,7 +165,7 @@ def _keep(result, diff_paths) -> None:
 def _print_text(results, args, glsl_errors: int) -> None:
     out = sys.stdout
     for result in results:
-        out.write(format_frame(result, args.precision, args.samples))
+        out.write(format_frame(result, args.precision, args.samples, names=args.backends))
     failed = sum(not r.match for r in results)
     n = len(results)
     frames = f"{n} frame{'s' if n != 1 else ''}"
@@ -167,8 +184,10 @@ def _num(v: float) -> str:
     return "inf" if math.isinf(v) else f"{v:.4g}"
 
 
-def format_frame(result, precision: str = "float32", samples: int = 1, worst: int = 3) -> str:
-    """The short text table of one frame."""
+def format_frame(result, precision: str = "float32", samples: int = 1, worst: int = 3,
+                 names: tuple[str, str] = BACKENDS) -> str:
+    """The short text table of one frame; `names` label the two sides (default numpy, gl)."""
+    a, b = names
     c = result.comparison
     s = result.spec
     w, h = result.size
@@ -183,19 +202,26 @@ def format_frame(result, precision: str = "float32", samples: int = 1, worst: in
     lines.append(f"  mismatched       {c.mismatched_pixels:<10}  budget {int(c.mismatch_budget)}"
                  f"  (over {c.abs_tol * 255:.0f}/255)")
     lines.append(f"  edge pixels      {c.edge_pixels:<10}  budget {int(c.edge_budget)}")
-    lines.append(f"  NaN/Inf pixels   numpy {c.nan_numpy}, gl {c.nan_gl}"
+    lines.append(f"  NaN/Inf pixels   {a} {c.nan_numpy}, {b} {c.nan_gl}"
                  + (f", {c.nan_mismatched_pixels} in one image only" if c.nan_mismatched_pixels else ""))
     if c.nan_numpy:
         from .probe import nan_hint
 
         lines.append(f"  note: {nan_hint(result.shader, c.nan_numpy, result.size, s.time)}")
+    drivers = getattr(result, "drivers", None)
+    if drivers is not None:  # verify --against webgl (glslcheck/webgl_backend/drivers.py)
+        plain = result.plain
+        lines.append(f"  driver-dependent {result.driver_pixels:<10}  pixels where gl and webgl differ; "
+                     f"there {a} need match only the closer driver")
+        lines.append(f"  {a} vs {b} alone {plain.mismatched_pixels} mismatched, {plain.edge_pixels} edge, "
+                     f"max abs error {_num(plain.max_abs_error)}")
     if c.bbox is not None:
         x0, y0, x1, y1 = c.bbox
         lines.append(f"  differences in   x {x0}..{x1 - 1}, y {y0}..{y1 - 1} (from the top left); "
                      f"fragCoord x {x0 + 0.5}..{x1 - 0.5}, y {h - y1 + 0.5}..{h - y0 - 0.5}")
     for p in c.worst[:worst]:
         lines.append(f"  {p.kind:<8} pixel ({p.x}, {p.y}) fragCoord ({p.frag_coord[0]}, {p.frag_coord[1]}): "
-                     f"numpy {_rgb(p.numpy)} gl {_rgb(p.gl)}")
+                     f"{a} {_rgb(p.numpy)} {b} {_rgb(p.gl)}")
     if c.unstable_pixels:
         lines.append(f"  unstable pixels  {c.unstable_pixels:<10}  both float32 renders far from the float64 "
                      "reference (not counted)")

@@ -28,7 +28,8 @@ void split(in vec4 v, out vec2 lo, inout vec2 hi)
 
 Material pick(Material a, Material b, bool first)
 {
-    return first ? a : b;
+    if (first) return a;  // WebGL does not allow '?:' on structs (glslcheck/check/webgl_rules.py)
+    return b;
 }
 
 highp float sum3(lowp float a, mediump float b, highp float c) { return a + b + c; }

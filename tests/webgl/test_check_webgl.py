@@ -1,0 +1,83 @@
+"""`check --webgl` and the WebGL rules of our checker (glslcheck/check/webgl_rules.py).
+
+Each fixture in tests/webgl/invalid is something ANGLE (Shadertoy's browser) rejects although
+glslangValidator and Mesa accept it (tools/webgl_agreement.py found them). Same format as
+tests/check/invalid: `// expect: <part of our message>` and `// ERROR` on the line. For each,
+our checker must reject it there, and ANGLE must too, on the same line (so the rule is not our
+invention).
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import pytest
+
+from glslcheck.check.agreement import our_errors
+from glslcheck.cli import main
+from glslcheck.diagnostics import register_source
+from glslcheck.sources import Shader, Source
+from glslcheck.webgl_backend import webgl_diagnostics
+
+HERE = Path(__file__).parent / "invalid"
+FIXTURES = sorted(HERE.glob("*.glsl"))
+
+
+def load(path: Path) -> tuple[Shader, str, int]:
+    text = path.read_text(encoding="utf-8")
+    lines = text.splitlines()
+    expect = lines[0].removeprefix("// expect: ").strip()
+    line = next(i + 1 for i, t in enumerate(lines) if t.rstrip().endswith("// ERROR"))
+    shader = Shader(root=str(path))
+    register_source(str(path), text)
+    shader.tabs["Image"] = Source(str(path), text, "Image")
+    return shader, expect, line
+
+
+def test_fixtures_exist():
+    assert len(FIXTURES) >= 6
+
+
+@pytest.mark.parametrize("path", FIXTURES, ids=lambda p: p.stem)
+def test_we_reject_what_angle_rejects(path, webgl):
+    shader, expect, line = load(path)
+    ours = [d for d in our_errors(shader) if expect in d.message]
+    assert ours and ours[0].loc.line == line, f"{path.name}: {[(str(d.loc), d.message) for d in our_errors(shader)]}"
+    angle = webgl_diagnostics(shader, "Image")
+    assert any(d.loc is not None and d.loc.path == str(path) and d.loc.line == line for d in angle), (
+        f"{path.name}: ANGLE said {[(str(d.loc), d.message) for d in angle]}")
+
+
+def test_double_underscore_warns_where_angle_rejects(webgl, make_shader):
+    # The one ANGLE rejection our checker only warns about (webgl_rules.py says why).
+    shader = make_shader("const float light__power = 2.0;\n"
+                         "void mainImage(out vec4 c, in vec2 f) { c = vec4(light__power); }\n")
+    from glslcheck.check import check
+    from glslcheck.parse import parse_shader
+
+    ours = check(parse_shader(shader, "Image"), "Image").diagnostics
+    assert [(d.severity, d.loc.line) for d in ours] == [("warning", 1)]
+    assert "Shadertoy's browser rejects it" in ours[0].message
+    angle = webgl_diagnostics(shader, "Image")
+    assert angle[0].loc.line == 1 and "two consecutive underscores" in angle[0].message  # then its uses
+
+
+def test_plain_glsl_gets_warnings_not_errors(tmp_path, capsys):
+    path = tmp_path / "plain.frag"
+    path.write_text("#version 300 es\nprecision highp float;\nout vec4 o;\nfloat webgl_k = 1.0;\n"
+                    "void main() { o = vec4(webgl_k); }\n")
+    assert main(["check", str(path)]) == 0
+    assert "warning: 'webgl_k': names starting with 'webgl_' are reserved by WebGL" in capsys.readouterr().err
+
+
+def test_check_webgl_reports_angle_in_the_users_line(tmp_path, capsys, webgl):
+    folder = tmp_path / "shader"
+    folder.mkdir()
+    (folder / "Common.glsl").write_text("float helper(float x)\n{\n    return x;\n}\n")
+    # An int assigned to a float: ANGLE's message must come out at Image.glsl line 3, at the '='.
+    (folder / "Image.glsl").write_text("void mainImage(out vec4 c, in vec2 f)\n{\n    float k = 1;\n"
+                                       "    c = vec4(helper(k));\n}\n")
+    assert main(["check", str(folder), "--webgl"]) == 1
+    err = capsys.readouterr().err
+    assert f"{folder / 'Image.glsl'}:3:13: error: WebGL: '=' : cannot convert from 'const int' to 'highp float'" in err
+    assert main(["check", "lab_shaders/07_final", "--webgl"]) == 0
