@@ -127,9 +127,10 @@ def compile_backend(shader: Shader, backend: str):
     context, InputError (exit 2) when the NumPy backend is not installed in this build.
     """
     if backend == "gl":
+        from .channels import MultipassProgram, needs_passes
         from .gl_backend import compile_gl
 
-        return compile_gl(shader)
+        return MultipassProgram(shader, "gl") if needs_passes(shader) else compile_gl(shader)
     if backend == "numpy":
         try:
             from . import api

@@ -231,6 +231,7 @@ class GLProgram:
         time_delta: float = 1.0 / 60.0,
         frame_rate: float = 60.0,
         samples: int = 1,
+        channels=None,
     ) -> np.ndarray:
         """Render one frame: float32 array (height, width, 4), row 0 = top of the image.
 
@@ -253,6 +254,12 @@ class GLProgram:
             "iTimeDelta": float(time_delta),
             "iFrameRate": float(frame_rate),
         }
+        inputs = []
+        if channels is not None:  # `channels`: iChannel0..3 as channels.ChannelInput or None
+            from ..channels import channel_uniforms
+
+            values.update(channel_uniforms(channels))
+            values.update({f"iChannel{i}": i for i in range(4)})
         prog = compiled.gl_program
         for u in UNIFORMS:
             _set_uniform(prog, u.name, values.get(u.name, u.default), u.array_size)
@@ -261,6 +268,7 @@ class GLProgram:
         texture = ctx.texture((width, height), 4, dtype="f4")
         fbo = ctx.framebuffer(color_attachments=[texture])
         try:
+            inputs = [_bind_channel(ctx, unit, c) for unit, c in enumerate(channels or ()) if c is not None]
             fbo.use()
             total = None
             for dx, dy in offsets:
@@ -274,8 +282,28 @@ class GLProgram:
         finally:
             fbo.release()
             texture.release()
+            for t in inputs:
+                t.release()
         image = (total / len(offsets)).astype(np.float32)
         return np.ascontiguousarray(image[::-1])  # GL rows go bottom-up; images top-down
+
+
+def _bind_channel(ctx, unit: int, channel):
+    """Upload a channels.ChannelInput as an RGBA32F texture on `unit` with its filter and wrap.
+    Its texels' row 0 is texture coordinate t near 0, which is OpenGL's first row."""
+    import moderngl
+
+    h, w = channel.texels.shape[:2]
+    tex = ctx.texture((w, h), 4, np.ascontiguousarray(channel.texels, dtype=np.float32).tobytes(), dtype="f4")
+    if channel.filter == "mipmap":
+        tex.build_mipmaps()
+        tex.filter = (moderngl.LINEAR_MIPMAP_LINEAR, moderngl.LINEAR)
+    else:
+        mode = moderngl.NEAREST if channel.filter == "nearest" else moderngl.LINEAR
+        tex.filter = (mode, mode)
+    tex.repeat_x = tex.repeat_y = channel.wrap == "repeat"
+    tex.use(unit)
+    return tex
 
 
 # GL's type enums of the GLSL types Shadertoy's uniforms have.

@@ -176,6 +176,7 @@ from typing import Any, Iterable
 import numpy as np
 
 from ..driver_profile import FLOAT_TO_UINT, float_to_uint, host_model
+from .textures import TextureFunctions
 
 __all__ = ["Runtime", "Struct", "GLSLRuntimeError", "PRECISIONS"]
 
@@ -278,7 +279,7 @@ def _lanes_of(*values: Any) -> int:
 _CONVERTERS = {"float": "to_float", "int": "to_int", "uint": "to_uint", "bool": "to_bool"}
 
 
-class Runtime:
+class Runtime(TextureFunctions):  # texture lookups: textures.py
     """GLSL ES 3.00 operators and built-ins over lane arrays, in one float precision.
 
     ``Runtime(precision)`` with precision ``"float32"`` (highp, default), ``"float16"``

@@ -79,6 +79,9 @@ _LOCAL_REF = re.compile(r"(?<![.\w\"'])(v_\w+|_[a-z]+\d*)\b")
 _RUNTIME_NAMES = {"min": "min_", "max": "max_", "not": "not_vec"}
 _FLOAT_OPERATORS = ("+", "-", "*", "/", "<", "<=", ">", ">=")  # printed as Python operators on floats
 _DERIVATIVES = ("dFdx", "dFdy", "fwidth")
+# The lookups on a sampler2D that textures.TextureFunctions evaluates.
+_TEXTURE_FUNCTIONS = ("texture", "textureLod", "textureGrad", "textureProj", "textureOffset", "texelFetch",
+                      "texelFetchOffset", "textureSize")
 _BIN_METHODS = {
     "+": "add", "-": "sub", "*": "mul", "/": "div", "<": "lt", "<=": "le", ">": "gt", ">=": "ge",
     "<<": "shl", ">>": "shr", "&": "bit_and", "|": "bit_or", "^": "bit_xor",
@@ -637,7 +640,9 @@ class Transpiler:
 
     COMPACT_MIN_NODES = 24  # syntax nodes: smaller regions without calls or loops run masked
 
-    def __init__(self, model: Any, path: str = "<shader>", source_text: str | None = None) -> None:
+    def __init__(self, model: Any, path: str = "<shader>", source_text: str | None = None,
+                 keep_alpha: bool = False) -> None:
+        self.keep_alpha = keep_alpha  # a Buffer pass: Shadertoy keeps the alpha mainImage wrote
         self.model = model
         self.path = path
         self.entry = model.entry
@@ -711,10 +716,10 @@ class Transpiler:
             u = UNIFORMS_BY_NAME.get(sym.name)
             if u is None:
                 raise _error(f"unknown uniform '{sym.name}'", node)
-            if u.glsl_type.startswith("sampler"):
-                raise _error(f"'{sym.name}': textures are not supported by the NumPy backend yet", node,
+            if u.glsl_type.startswith("sampler") and u.glsl_type != "sampler2D":
+                raise _error(f"'{sym.name}': {u.glsl_type} is not supported by the NumPy backend yet", node,
                              help="render with --backend gl")
-            self.uniforms.add(sym.name)
+            self.uniforms.add(sym.name)  # a sampler's value: a channels.ChannelInput (textures.py)
             return "S.u_" + sym.name
         if sym.kind == "builtin-var":
             if sym.name == "gl_FragCoord":
@@ -864,8 +869,7 @@ class Transpiler:
 
     def _uniforms_from_model(self) -> set[str]:
         try:
-            return {u for u in self.model.uniforms_read() if not u.startswith("iChannel") or u.startswith("iChannelTime")
-                    or u.startswith("iChannelResolution")}
+            return set(self.model.uniforms_read())  # samplers included: channels.ChannelInput values
         except Exception:  # pragma: no cover - the model's API is still settling
             return set()
 
@@ -935,7 +939,10 @@ class Transpiler:
             else:
                 self.emit(f"_r = {call}")
                 self.emit("_color = _r[1]" if d0 != "in" else f"_color = {init}")
-            self.emit('return rt.swizzle(_color, "xyz")  # RGB: the caller sets alpha to 1')
+            if self.keep_alpha:
+                self.emit("return _color  # a Buffer pass keeps alpha")
+            else:
+                self.emit('return rt.swizzle(_color, "xyz")  # RGB: the caller sets alpha to 1')
         self.indent -= 1
 
     # -- functions -----------------------------------------------------------------------------
@@ -1767,8 +1774,10 @@ class Transpiler:
     def builtin_call(self, e: A.Call, ov: Any, mask: str | None) -> str:
         name = ov.name
         if getattr(ov, "category", None) == B.TEXTURE or name.startswith("texture") or name.startswith("texel"):
-            raise _error(f"{name}(): texture lookups are not supported by the NumPy backend yet", e,
-                         help="render this shader with --backend gl")
+            if name not in _TEXTURE_FUNCTIONS or str(self.type_of(e.args[0])) != "sampler2D":
+                raise _error(f"{name}(): this texture lookup is not supported by the NumPy backend yet", e,
+                             help="render this shader with --backend gl")
+            return f"rt.{name}({', '.join(self.exprs(e.args, mask))})"  # textures.py
         quals = list(getattr(ov, "qualifiers", ()) or ())
         if name == "modf":
             x = self.expr(e.args[0], mask)
@@ -1909,18 +1918,20 @@ class Transpiled:
     filename: str
 
 
-def transpile(model: Any, path: str = "<shader>") -> Transpiled:
+def transpile(model: Any, path: str = "<shader>", keep_alpha: bool = False) -> Transpiled:
     """Generate the Python module of a checked program (model from glslcheck.check)."""
-    source, meta = Transpiler(model, path).module()
+    source, meta = Transpiler(model, path, keep_alpha=keep_alpha).module()
     return Transpiled(source, meta, f"<glslcheck-numpy {_printable(path, 200)}>")
 
 
-def transpile_shader(shader: Any) -> Transpiled:
-    """Parse, check and transpile a Shadertoy shader (its Image tab, or a plain GLSL file)."""
+def transpile_shader(shader: Any, tab: str | None = None) -> Transpiled:
+    """Parse, check and transpile a Shadertoy shader (its Image tab, or a plain GLSL file, or the
+    Buffer tab `tab`, which keeps its alpha)."""
     from ..parse import parse_shader
 
-    tab = "Image" if "Image" in shader.tabs else ("GLSL" if "GLSL" in shader.tabs else "Image")
+    if tab is None:
+        tab = "Image" if "Image" in shader.tabs else ("GLSL" if "GLSL" in shader.tabs else "Image")
     pr = parse_shader(shader, tab)
     model = check_program(pr)
     src = shader.tabs.get(tab)
-    return transpile(model, src.path if src is not None else shader.root)
+    return transpile(model, src.path if src is not None else shader.root, keep_alpha=tab.startswith("Buffer"))

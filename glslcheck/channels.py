@@ -1,0 +1,342 @@
+"""Channels and passes: `channels.json`, image textures, and Buffer A-D rendered frame after frame.
+
+This module owns the channel bindings of a shader folder and the multipass schedule; the
+backends only sample the `ChannelInput`s they are handed (GL: gl_backend/program.py, NumPy:
+numpy_backend/textures.py).
+
+channels.json, in the shader's folder (one object per tab that has inputs):
+
+    {"Buffer A": {"iChannel0": {"buffer": "Buffer A"}},
+     "Image": {"iChannel0": {"buffer": "Buffer A", "filter": "linear"},
+               "iChannel1": {"texture": "tex.png", "filter": "mipmap", "wrap": "repeat", "vflip": true}}}
+
+Each binding has `buffer` (a Buffer tab) or `texture` (an image path relative to the folder, read
+with Pillow), and optional `filter` (nearest | linear | mipmap; default mipmap for textures,
+linear for buffers), `wrap` (clamp | repeat; default repeat for textures, clamp for buffers) and
+`vflip` (default true for textures, false for buffers: Shadertoy flips images so that their top
+row is at t = 1).
+
+Passes, as Shadertoy runs them: every frame renders Buffer A, B, C, D (those the shader has),
+then Image. Buffers are RGBA float32 (Shadertoy allocates its buffers as 32-bit float RGBA
+textures where the browser can render to them, which WebGL 2 can), sized like the Image,
+cleared to zero before frame 0, and double-buffered: a pass reads what earlier passes of this
+frame wrote, and its own and later buffers' previous frame. Hence every cycle between buffers is a
+feedback and valid; the one cycle that is not (reading the Image tab, which nothing can read
+on Shadertoy) is an error. Image files are sampled as RGBA float32 texels (value / 255) on both
+backends (see numpy_backend/textures.py for why, and for what llvmpipe's filtering does).
+
+Sampler precision: Shadertoy's prelude declares `precision mediump sampler3D;` and nothing for
+sampler2D, so iChannel0-3 are lowp (the ES 3.00 fragment default); glslcheck compiles the same
+prelude on GL and the NumPy backend truncates lookups as llvmpipe does unless the user's code
+declares `precision highp sampler2D;` (`ChannelInput.lowp`).
+
+Errors (InputError, exit 2, naming channels.json and the key): bad JSON, an unknown tab or
+key, a missing or unreadable image, an unsupported input kind, bad values. A pass reading an
+iChannel its tab does not bind is a GlslError (exit 1) at the read.
+"""
+
+from __future__ import annotations
+
+import itertools
+import json
+import re
+from dataclasses import dataclass, field
+from pathlib import Path
+
+import numpy as np
+
+from .diagnostics import Diagnostic, GlslError, InputError, Location
+from .shadertoy import BUFFER_TABS, PASS_TABS
+from .sources import Shader
+
+CHANNELS_FILE = "channels.json"
+FILTERS = ("nearest", "linear", "mipmap")
+WRAPS = ("clamp", "repeat")
+_DEFAULTS = {"texture": ("mipmap", "repeat", True), "buffer": ("linear", "clamp", False)}
+_UNSUPPORTED = ("cubemap", "video", "webcam", "microphone", "music", "sound", "keyboard", "volume")
+_SERIAL = itertools.count()
+_COMMENT_RE = re.compile(r"/\*.*?(\*/|\Z)|//[^\n]*", re.S)
+_PRECISION_RE = re.compile(r"\bprecision\s+(lowp|mediump|highp)\s+sampler2D\s*;")
+
+
+@dataclass(frozen=True, slots=True)
+class Binding:
+    """One entry of channels.json: iChannel`channel` of `tab` reads `buffer` or `texture`."""
+
+    tab: str
+    channel: int
+    buffer: str | None
+    texture: str | None  # the path as written, relative to the folder
+    filter: str
+    wrap: str
+    vflip: bool
+
+
+@dataclass(eq=False)
+class ChannelInput:
+    """What a backend samples: `texels` float32 (height, width, 4), row 0 at t near 0 (OpenGL's
+    first row); `lowp`: the pass samples with lowp precision (see the module docstring)."""
+
+    texels: np.ndarray
+    filter: str = "linear"
+    wrap: str = "clamp"
+    lowp: bool = True
+    serial: int = field(default_factory=lambda: next(_SERIAL))
+
+    def __repr__(self) -> str:  # unique: the NumPy backend's frame cache keys on it
+        return f"ChannelInput#{self.serial}"
+
+
+def channel_uniforms(channels) -> dict:
+    """The sampler values and iChannelResolution of iChannel0..3 (None: unbound, size 0)."""
+    chans = list(channels) + [None] * (4 - len(channels))
+    values = {f"iChannel{i}": c for i, c in enumerate(chans)}
+    values["iChannelResolution"] = tuple(
+        (0.0, 0.0, 0.0) if c is None else (float(c.texels.shape[1]), float(c.texels.shape[0]), 1.0) for c in chans)
+    return values
+
+
+def folder_of(shader: Shader) -> Path:
+    root = Path(shader.root)
+    return root if root.is_dir() else root.parent
+
+
+def load_bindings(shader: Shader) -> tuple[str | None, list[Binding]]:
+    """(path of channels.json or None, its bindings), validated against the shader's tabs."""
+    path = folder_of(shader) / CHANNELS_FILE
+    if not path.is_file():
+        return None, []
+    spath = str(path)
+    try:
+        text = path.read_text(encoding="utf-8")
+    except (OSError, UnicodeDecodeError) as e:
+        raise InputError(f"{spath}: error: cannot read the file ({e})") from None
+    try:
+        data = json.loads(text)
+    except json.JSONDecodeError as e:
+        raise InputError(f"{spath}:{e.lineno}:{e.colno}: error: not valid JSON: {e.msg}") from None
+
+    def fail(key: str, message: str):
+        raise InputError(f"{spath}: error: {key}: {message}")
+
+    if not isinstance(data, dict):
+        fail("the top level", "must be an object of tabs, e.g. {\"Image\": {\"iChannel0\": {\"buffer\": \"Buffer A\"}}}")
+    out: list[Binding] = []
+    for tab, chans in data.items():
+        if tab not in PASS_TABS:
+            fail(json.dumps(tab), f"unknown tab (tabs with inputs: {', '.join(PASS_TABS)})")
+        if tab not in shader.tabs:
+            fail(json.dumps(tab), f"the shader has no {tab} tab (no '{tab}.glsl' in the folder)")
+        if not isinstance(chans, dict):
+            fail(json.dumps(tab), "must be an object of channels (iChannel0 .. iChannel3)")
+        for key, spec in chans.items():
+            where = f"{json.dumps(tab)}.{json.dumps(key)}"
+            m = re.fullmatch(r"iChannel([0-3])", key)
+            if m is None:
+                fail(where, "unknown key (expected iChannel0 .. iChannel3)")
+            out.append(_binding(shader, tab, int(m.group(1)), spec, where, fail))
+    return spath, out
+
+
+def _binding(shader: Shader, tab: str, channel: int, spec, where: str, fail) -> Binding:
+    if not isinstance(spec, dict):
+        fail(where, "must be an object with \"buffer\" or \"texture\"")
+    kinds = [k for k in ("buffer", "texture") if k in spec]
+    other = [k for k in spec if k not in ("buffer", "texture", "filter", "wrap", "vflip")]
+    for k in other:
+        if k in _UNSUPPORTED:
+            fail(f"{where}.{json.dumps(k)}", f"{k} inputs are not supported yet (tab {tab}, iChannel{channel})")
+        fail(f"{where}.{json.dumps(k)}", "unknown key (expected buffer or texture, filter, wrap, vflip)")
+    if len(kinds) != 1:
+        fail(where, "needs exactly one of \"buffer\" (a tab) and \"texture\" (an image file)")
+    kind = kinds[0]
+    value = spec[kind]
+    if not isinstance(value, str):
+        fail(f"{where}.{json.dumps(kind)}", "must be a string")
+    if kind == "buffer":
+        if value == "Image":
+            fail(f"{where}.\"buffer\"", "the Image tab cannot be an input (a cycle that is no feedback: "
+                 "Shadertoy offers only Buffer A .. Buffer D)")
+        if value not in BUFFER_TABS:
+            fail(f"{where}.\"buffer\"", f"unknown tab {value!r} (expected one of {', '.join(BUFFER_TABS)})")
+        if value not in shader.tabs:
+            fail(f"{where}.\"buffer\"", f"the shader has no {value} tab (no '{value}.glsl' in the folder)")
+    filt, wrap, vflip = _DEFAULTS[kind]
+    filt = spec.get("filter", filt)
+    wrap = spec.get("wrap", wrap)
+    vflip = spec.get("vflip", vflip)
+    if filt not in FILTERS:
+        fail(f"{where}.\"filter\"", f"must be one of {', '.join(FILTERS)}, not {json.dumps(filt)}")
+    if wrap not in WRAPS:
+        fail(f"{where}.\"wrap\"", f"must be one of {', '.join(WRAPS)}, not {json.dumps(wrap)}")
+    if not isinstance(vflip, bool):
+        fail(f"{where}.\"vflip\"", f"must be true or false, not {json.dumps(vflip)}")
+    if kind == "texture":
+        _read_image(folder_of(shader) / value, f"{where}.\"texture\"", fail)  # fail early
+    return Binding(tab, channel, value if kind == "buffer" else None, value if kind == "texture" else None,
+                   filt, wrap, vflip)
+
+
+def _read_image(path: Path, where: str, fail) -> np.ndarray:
+    """RGBA float32 (height, width, 4), first row = the image's top, values v / 255."""
+    from PIL import Image, UnidentifiedImageError
+
+    try:
+        with Image.open(path) as im:
+            rgba = np.asarray(im.convert("RGBA"), dtype=np.float32)
+    except FileNotFoundError:
+        fail(where, f"no such file {str(path)!r}")
+    except (OSError, UnidentifiedImageError, ValueError) as e:
+        fail(where, f"cannot read the image {str(path)!r} ({e})")
+    return rgba / np.float32(255.0)
+
+
+def sampler_is_lowp(shader: Shader, tab: str) -> bool:
+    """Whether sampler2D is lowp/mediump in the pass (no `precision highp sampler2D;` in its code)."""
+    last = None
+    for src in shader.units_for(tab):
+        for m in _PRECISION_RE.finditer(_COMMENT_RE.sub(" ", src.text)):
+            last = m.group(1)
+    return last != "highp"
+
+
+def channel_reads(shader: Shader, tab: str) -> dict[int, Location]:
+    """The iChannels the pass's code names, each with where it first does (comments skipped)."""
+    found: dict[int, Location] = {}
+    for src in shader.units_for(tab):
+        code = _COMMENT_RE.sub(lambda m: re.sub(r"[^\n]", " ", m.group(0)), src.text)
+        for m in re.finditer(r"\biChannel([0-3])\b", code):
+            n = int(m.group(1))
+            if n not in found:
+                line = code.count("\n", 0, m.start()) + 1
+                col = m.start() - (code.rfind("\n", 0, m.start()) + 1) + 1
+                found[n] = Location(src.path, line, col, line, col + len(m.group(0)))
+    return found
+
+
+def needs_passes(shader: Shader) -> bool:
+    """Whether the shader has buffers, a channels.json, or reads an iChannel."""
+    if "GLSL" in shader.tabs:
+        return False
+    return (any(t in shader.tabs for t in BUFFER_TABS) or (folder_of(shader) / CHANNELS_FILE).is_file()
+            or ("Image" in shader.tabs and bool(channel_reads(shader, "Image"))))
+
+
+class MultipassProgram:
+    """Buffer A-D and Image of one shader on one backend, carried from frame to frame.
+
+    `render(size=..., time=..., frame=N, ...)` returns the `output` pass of frame N (default the
+    Image). Frames continue the previous render when `frame` is the next one at the same size;
+    otherwise the buffers are cleared and frames 0 .. N-1 run first (iTime = time - (N - i) *
+    time_delta), so the buffers hold what Shadertoy's would after N frames.
+    """
+
+    def __init__(self, shader: Shader, backend: str, output: str = "Image") -> None:
+        self.shader = shader
+        self.backend = backend
+        self.channels_path, bindings = load_bindings(shader)
+        self.passes = [t for t in PASS_TABS if t in shader.tabs]
+        if output not in self.passes:
+            raise InputError(f"{shader.root}: error: --pass {output!r}: the shader has no such tab "
+                             f"(it has {', '.join(self.passes)})")
+        self.output = output
+        self.bindings = {t: {b.channel: b for b in bindings if b.tab == t} for t in self.passes}
+        self._check_reads()
+        self.textures = {}
+        for b in bindings:
+            if b.texture is not None:
+                def fail(key, message, b=b):
+                    raise InputError(f"{self.channels_path}: error: {key}: {message}")
+                self.textures[b.texture] = _read_image(folder_of(shader) / b.texture,
+                                                       f'"{b.tab}"."iChannel{b.channel}"."texture"', fail)
+            if backend == "numpy" and b.filter == "mipmap":
+                raise InputError(f"{self.channels_path}: error: \"{b.tab}\".\"iChannel{b.channel}\".\"filter\": "
+                                 "mipmap filtering is not supported by the NumPy backend yet; use "
+                                 "\"linear\" or \"nearest\", or --backend gl")
+        self.lowp = {t: sampler_is_lowp(shader, t) for t in self.passes}
+        self.programs = {t: self._compile(t) for t in self.passes}
+        self._state: dict[str, np.ndarray] = {}
+        self._key = None
+        self._next = 0
+
+    def _check_reads(self) -> None:
+        diags = []
+        for tab in self.passes:
+            for n, loc in sorted(channel_reads(self.shader, tab).items()):
+                if n not in self.bindings[tab]:
+                    where = self.channels_path or f"{folder_of(self.shader) / CHANNELS_FILE} (missing)"
+                    diags.append(Diagnostic(f"iChannel{n} is read but not bound: {where} has no "
+                                            f"\"{tab}\": {{\"iChannel{n}\": ...}}", loc, rule="unbound-channel"))
+        if diags:
+            raise GlslError(diags)
+
+    def _compile(self, tab: str):
+        if self.backend == "gl":
+            from .gl_backend import compile_gl
+
+            return compile_gl(self.shader, tab=tab)
+        from .numpy_backend.program import compile_numpy
+
+        return compile_numpy(self.shader, tab if tab != "Image" else None)
+
+    # -- what verify and the api look for on a backend program
+    @property
+    def program(self):  # GL: the output pass's Program (its text)
+        return self.programs[self.output].program
+
+    @property
+    def source(self) -> str:
+        return self.programs[self.output].source
+
+    @property
+    def float_to_uint_model(self):
+        return self.programs[self.output].float_to_uint_model
+
+    def emulate_float_to_uint(self, model: str) -> None:
+        for p in self.programs.values():
+            if hasattr(p, "emulate_float_to_uint"):  # the NumPy side only
+                p.emulate_float_to_uint(model)
+
+    def format_stats(self) -> str:
+        return self.programs[self.output].format_stats()
+
+    def _inputs(self, tab: str) -> list:
+        chans = []
+        for n in range(4):
+            b = self.bindings[tab].get(n)
+            if b is None:
+                chans.append(None)
+                continue
+            # buffers are stored bottom row first, images top row first (unflipped, as uploaded)
+            texels = self._state[b.buffer] if b.buffer is not None else self.textures[b.texture]
+            if b.vflip:
+                texels = texels[::-1]
+            chans.append(ChannelInput(np.ascontiguousarray(texels), b.filter, b.wrap, self.lowp[tab]))
+        return chans
+
+    def render(self, size=(800, 450), time: float = 0.0, frame: int = 0, time_delta: float = 1.0 / 60.0,
+               samples: int = 1, **rest) -> np.ndarray:
+        """One frame of the output pass; arguments as the backend's render (see the class)."""
+        if self.backend == "gl":
+            if rest.pop("precision", "float32") != "float32":
+                raise ValueError("the GL backend renders in float32 only (the driver's highp)")
+            rest.pop("stats", None)
+        width, height = int(size[0]), int(size[1])
+        key = (width, height, rest.get("precision"))
+        if key != self._key or frame != self._next:
+            self._state = {t: np.zeros((height, width, 4), np.float32) for t in self.passes if t != "Image"}
+            self._key, self._next = key, 0
+        out = None
+        while self._next <= frame:
+            i = self._next
+            t = time - (frame - i) * time_delta
+            for tab in self.passes:
+                img = self.programs[tab].render(size=(width, height), time=t, frame=i, time_delta=time_delta,
+                                                samples=samples if tab == "Image" else 1,
+                                                channels=self._inputs(tab), **rest)
+                if tab != "Image":
+                    self._state[tab] = np.ascontiguousarray(img[::-1])  # row 0 = bottom, as GL stores it
+                if tab == self.output:
+                    out = img
+            self._next = i + 1
+        return out
