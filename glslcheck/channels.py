@@ -26,9 +26,10 @@ on Shadertoy) is an error. Image files are sampled as RGBA float32 texels (value
 backends (see numpy_backend/textures.py for why, and for what llvmpipe's filtering does).
 
 Sampler precision: Shadertoy's prelude declares `precision mediump sampler3D;` and nothing for
-sampler2D, so iChannel0-3 are lowp (the ES 3.00 fragment default); glslcheck compiles the same
-prelude on GL and the NumPy backend truncates lookups as llvmpipe does unless the user's code
-declares `precision highp sampler2D;` (`ChannelInput.lowp`).
+sampler2D, so iChannel0-3 are declared lowp (the ES 3.00 fragment default) before any user code;
+a `precision highp sampler2D;` in the user's tab comes after their declaration and does not
+change them (measured: llvmpipe still truncates). glslcheck compiles the same prelude on GL, and
+the NumPy backend truncates every lookup as llvmpipe does (numpy_backend/textures.py).
 
 Errors (InputError, exit 2, naming channels.json and the key): bad JSON, an unknown tab or
 key, a missing or unreadable image, an unsupported input kind, bad values. A pass reading an
@@ -56,7 +57,6 @@ _DEFAULTS = {"texture": ("mipmap", "repeat", True), "buffer": ("linear", "clamp"
 _UNSUPPORTED = ("cubemap", "video", "webcam", "microphone", "music", "sound", "keyboard", "volume")
 _SERIAL = itertools.count()
 _COMMENT_RE = re.compile(r"/\*.*?(\*/|\Z)|//[^\n]*", re.S)
-_PRECISION_RE = re.compile(r"\bprecision\s+(lowp|mediump|highp)\s+sampler2D\s*;")
 
 
 @dataclass(frozen=True, slots=True)
@@ -75,7 +75,7 @@ class Binding:
 @dataclass(eq=False)
 class ChannelInput:
     """What a backend samples: `texels` float32 (height, width, 4), row 0 at t near 0 (OpenGL's
-    first row); `lowp`: the pass samples with lowp precision (see the module docstring)."""
+    first row); `lowp`: lookups return lowp results (always, for Shadertoy's iChannels)."""
 
     texels: np.ndarray
     filter: str = "linear"
@@ -191,15 +191,6 @@ def _read_image(path: Path, where: str, fail) -> np.ndarray:
     return rgba / np.float32(255.0)
 
 
-def sampler_is_lowp(shader: Shader, tab: str) -> bool:
-    """Whether sampler2D is lowp/mediump in the pass (no `precision highp sampler2D;` in its code)."""
-    last = None
-    for src in shader.units_for(tab):
-        for m in _PRECISION_RE.finditer(_COMMENT_RE.sub(" ", src.text)):
-            last = m.group(1)
-    return last != "highp"
-
-
 def channel_reads(shader: Shader, tab: str) -> dict[int, Location]:
     """The iChannels the pass's code names, each with where it first does (comments skipped)."""
     found: dict[int, Location] = {}
@@ -253,7 +244,6 @@ class MultipassProgram:
                 raise InputError(f"{self.channels_path}: error: \"{b.tab}\".\"iChannel{b.channel}\".\"filter\": "
                                  "mipmap filtering is not supported by the NumPy backend yet; use "
                                  "\"linear\" or \"nearest\", or --backend gl")
-        self.lowp = {t: sampler_is_lowp(shader, t) for t in self.passes}
         self.programs = {t: self._compile(t) for t in self.passes}
         self._state: dict[str, np.ndarray] = {}
         self._key = None
@@ -311,7 +301,7 @@ class MultipassProgram:
             texels = self._state[b.buffer] if b.buffer is not None else self.textures[b.texture]
             if b.vflip:
                 texels = texels[::-1]
-            chans.append(ChannelInput(np.ascontiguousarray(texels), b.filter, b.wrap, self.lowp[tab]))
+            chans.append(ChannelInput(np.ascontiguousarray(texels), b.filter, b.wrap))
         return chans
 
     def render(self, size=(800, 450), time: float = 0.0, frame: int = 0, time_delta: float = 1.0 / 60.0,

@@ -17,11 +17,14 @@ What llvmpipe does, measured with tests/channels/measure_sampling.py (Mesa 22.3.
   1.3e-6 absolute on texel values around 3, measured on a 7x5 texture of normal random values),
   never by 1/255 of anything, which compare.py's tolerance (an absolute tolerance in 1/255
   steps) accepts; tests compare linear filtering with a tolerance of 4e-6 * max |texel|.
-- precision: Shadertoy's prelude declares `precision mediump sampler3D` only, so `sampler2D`
-  keeps the ES 3.00 fragment default, lowp, and llvmpipe honours it: every lookup result (after
-  filtering) has its float32 mantissa truncated to 10 bits (the low 13 bits cleared; pi reads
-  3.140625). `ChannelInput.lowp` says the pass runs without `precision highp sampler2D;`, and
-  the lookups here truncate the same way.
+- precision: Shadertoy's prelude declares `precision mediump sampler3D` only, so the iChannel
+  uniforms it declares are lowp sampler2D (the ES 3.00 fragment default), and llvmpipe honours
+  it: every lookup result (after filtering) has its float32 mantissa truncated to 10 bits (the
+  low 13 bits cleared; pi reads 3.140625). A `precision highp sampler2D;` in the user's tab comes
+  after the uniforms' declarations and changes nothing (measured). The lookups here truncate the
+  same way (`ChannelInput.lowp`). Not emulated: GLSL's precision propagation, by which an
+  expression whose operands are all lowp (`texture(...) * 2.0`) is lowp and llvmpipe truncates
+  its result again; a lookup stored in a (highp) variable first is exact on both backends.
 - mipmap filtering (llvmpipe's per-quad LOD and "brilinear" blend) is not emulated: a channel
   with filter "mipmap" is refused by the NumPy backend before rendering (see channels.py).
 """

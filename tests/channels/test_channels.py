@@ -1,0 +1,154 @@
+"""Channels and passes (glslcheck/channels.py): channels.json, images, Buffer A-D with feedback,
+on both backends, against the GL driver; and the errors of bad channels.json files."""
+
+from __future__ import annotations
+
+import json
+import subprocess
+import sys
+
+import numpy as np
+import pytest
+from PIL import Image
+
+from glslcheck import api
+from glslcheck.verify import verify_frames
+
+SIZE = (64, 36)
+
+FEEDBACK = """void mainImage(out vec4 fragColor, in vec2 fragCoord) {
+    vec2 uv = fragCoord / iResolution.xy;
+    vec4 prev = texture(iChannel0, uv);
+    vec4 img = texture(iChannel1, uv * 2.0 + vec2(0.1 * iTime, 0.0));
+    fragColor = mix(prev, img, 0.1) + vec4(0.01 * sin(iTime), 0.0, 0.0, float(iFrame) * 0.01);
+}
+"""
+IMAGE = """void mainImage(out vec4 fragColor, in vec2 fragCoord) {
+    vec2 uv = fragCoord / iResolution.xy;
+    ivec2 t = ivec2(fragCoord) % textureSize(iChannel1, 0);
+    fragColor = texture(iChannel0, uv) + 0.25 * texelFetch(iChannel1, t, 0) + iChannelResolution[1].x * 1e-3;
+}
+"""
+
+
+def _png(path, w=13, h=9, seed=0):
+    rng = np.random.default_rng(seed)
+    Image.fromarray(rng.integers(0, 256, (h, w, 4), dtype=np.uint8), "RGBA").save(path)
+
+
+def _folder(tmp_path, tabs: dict, channels) -> str:
+    for name, text in tabs.items():
+        (tmp_path / f"{name}.glsl").write_text(text)
+    if channels is not None:
+        (tmp_path / "channels.json").write_text(channels if isinstance(channels, str) else json.dumps(channels))
+    return str(tmp_path)
+
+
+@pytest.fixture
+def feedback(tmp_path):
+    _png(tmp_path / "tex.png")
+    return _folder(tmp_path, {"Buffer A": FEEDBACK, "Image": IMAGE}, {
+        "Buffer A": {"iChannel0": {"buffer": "Buffer A"}, "iChannel1": {"texture": "tex.png", "filter": "linear"}},
+        "Image": {"iChannel0": {"buffer": "Buffer A", "filter": "nearest"},
+                  "iChannel1": {"texture": "tex.png", "filter": "nearest"}}})
+
+
+def test_feedback_with_a_texture_verifies_over_30_frames(gl, feedback):
+    results = list(verify_frames(feedback, size=SIZE, frames=30))
+    assert len(results) == 30 and all(r.match for r in results)
+    # the linear lookups differ from llvmpipe's in the last float32 bits, which the 10-bit
+    # (lowp) truncation of each result can turn into one unit of 2^-11 relative: bounded so
+    assert max(r.comparison.max_abs_error for r in results) < 2.0**-11
+
+
+def test_buffers_carry_state_and_render_frame_n_replays(gl, feedback):
+    prog = api.compile(feedback, backend="gl", output="Buffer A")
+    frames = [prog.render(size=SIZE, frame=i, time=i / 60) for i in range(4)]
+    fresh = api.compile(feedback, backend="gl", output="Buffer A").render(size=SIZE, frame=3, time=3 / 60)
+    assert np.array_equal(frames[3], fresh)  # frame 3 alone runs frames 0..3
+    assert not np.array_equal(frames[2], frames[3])
+    # cleared to zero before frame 0 and alpha kept (not forced to 1): alpha = mix(0, texel.a, 0.1)
+    assert 0.0 < frames[0][..., 3].max() <= 0.1
+
+
+def _sampling_case(tmp_path, filt, wrap, vflip, highp):
+    _png(tmp_path / "tex.png", 7, 5, seed=3)
+    head = "precision highp sampler2D;\n" if highp else ""
+    body = head + """void mainImage(out vec4 c, in vec2 p) {
+    vec2 uv = (p + 0.123) / iResolution.xy * 2.6 - 0.8;
+    c = texture(iChannel0, uv);
+}
+"""
+    return _folder(tmp_path, {"Image": body},
+                   {"Image": {"iChannel0": {"texture": "tex.png", "filter": filt, "wrap": wrap, "vflip": vflip}}})
+
+
+@pytest.mark.parametrize("highp", [False, True])
+@pytest.mark.parametrize("vflip", [False, True])
+@pytest.mark.parametrize("wrap", ["clamp", "repeat"])
+@pytest.mark.parametrize("filt", ["nearest", "linear"])
+def test_each_filter_and_wrap_against_gl(gl, tmp_path, filt, wrap, vflip, highp):
+    folder = _sampling_case(tmp_path, filt, wrap, vflip, highp)
+    ours = api.compile(folder, backend="numpy").render(size=SIZE)
+    theirs = api.compile(folder, backend="gl").render(size=SIZE)
+    if filt == "nearest":
+        assert np.array_equal(ours, theirs)  # bit for bit (the same 10-bit lowp truncation)
+    else:
+        # float32 weights ordered differently by llvmpipe's code: a few ulps (textures.py); with
+        # lowp each result is truncated to 10 mantissa bits, so a last-bit difference can cross one
+        # truncation step of 2^-10 relative (texels are at most 1)
+        tol = 2.0**-10  # iChannel0 is lowp even with `precision highp sampler2D;` (see textures.py)
+        assert np.abs(ours - theirs).max() <= tol
+    assert ours[..., :3].std() > 0.1  # the texture really was sampled
+
+
+def test_lowp_sampler_truncates_like_llvmpipe(gl, tmp_path):
+    (tmp_path / "tex.png").unlink(missing_ok=True)
+    _png(tmp_path / "tex.png", 7, 5, seed=3)
+    # the lookup's result stored in a highp variable first: an expression of lowp operands only
+    # (texelFetch(...) * 3.14) is itself lowp and llvmpipe truncates its result too (not emulated)
+    body = "void mainImage(out vec4 c, in vec2 p) { vec4 t = texelFetch(iChannel0, ivec2(p) % 5, 0); c = t * 3.14159265; }\n"
+    folder = _folder(tmp_path, {"Image": body}, {"Image": {"iChannel0": {"texture": "tex.png", "filter": "nearest"}}})
+    ours = api.compile(folder, backend="numpy").render(size=SIZE)
+    theirs = api.compile(folder, backend="gl").render(size=SIZE)
+    assert np.array_equal(ours, theirs)
+
+
+def _cli(*args):
+    return subprocess.run([sys.executable, "-m", "glslcheck", *args], capture_output=True, text=True, timeout=120)
+
+
+BAD = [
+    ({"Image": {"iChannel0": {"texture": "missing.png"}}}, 2, '"Image"."iChannel0"."texture": no such file'),
+    ({"Image": {"iChannel0": {"texture": "bad.png"}}}, 2, "cannot read the image"),
+    ({"Buffer Z": {"iChannel0": {"buffer": "Buffer A"}}}, 2, '"Buffer Z": unknown tab'),
+    ({"Image": {"iChannel0": {"buffer": "Buffer B"}}}, 2, "the shader has no Buffer B tab"),
+    ({"Image": {"iChannel0": {"buffer": "Image"}}}, 2, "cannot be an input"),
+    ({"Image": {"iChannel7": {"buffer": "Buffer A"}}}, 2, '"Image"."iChannel7": unknown key'),
+    ({"Image": {"iChannel0": {"buffer": "Buffer A", "filter": "cubic"}}}, 2, '"filter": must be one of'),
+    ({"Image": {"iChannel0": {"keyboard": True}}}, 2, "keyboard inputs are not supported yet (tab Image, iChannel0)"),
+    ("{\"Image\": ", 2, "channels.json:1:11: error: not valid JSON"),
+    ({"Image": {"iChannel1": {"buffer": "Buffer A"}}}, 1, "Image.glsl:2:29: error: iChannel0 is read but not bound"),
+]
+
+
+@pytest.mark.parametrize("channels, code, message", BAD)
+@pytest.mark.parametrize("command", ["render", "verify"])
+def test_bad_channels_json(tmp_path, channels, code, message, command):
+    (tmp_path / "bad.png").write_bytes(b"not a png")
+    image = "void mainImage(out vec4 c, in vec2 p) {\n    c = vec4(1.0) * texture(iChannel0, p);\n}\n"
+    folder = _folder(tmp_path, {"Buffer A": "void mainImage(out vec4 c, in vec2 p) { c = vec4(1.0); }\n",
+                                "Image": image}, channels)
+    args = ["-o", str(tmp_path / "out.png")] if command == "render" else ["--size", "8x8"]
+    r = _cli(command, folder, *args)
+    assert r.returncode == code, r.stderr
+    assert message in r.stderr and "Traceback" not in r.stderr
+    assert not (tmp_path / "out.png").exists()
+
+
+def test_numpy_backend_refuses_mipmap_with_the_key(tmp_path):
+    _png(tmp_path / "tex.png")
+    folder = _folder(tmp_path, {"Image": "void mainImage(out vec4 c, in vec2 p) { c = texture(iChannel0, p); }\n"},
+                     {"Image": {"iChannel0": {"texture": "tex.png"}}})  # textures default to mipmap
+    r = _cli("render", folder, "-o", str(tmp_path / "o.png"))
+    assert r.returncode == 2 and '"Image"."iChannel0"."filter": mipmap filtering is not supported' in r.stderr
