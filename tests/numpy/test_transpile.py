@@ -172,7 +172,7 @@ def test_module_runs_without_builtins(make_shader):
 
 
 def test_texture_lookup_is_a_located_error(make_shader):
-    shader = make_shader(_image("vec2 uv = fragCoord;\n    fragColor = texture(iChannel0, uv);"))
+    shader = make_shader(_image("vec2 uv = fragCoord;\n    fragColor = textureLodOffset(iChannel0, uv, 0.0, ivec2(1));"))
     with pytest.raises(GlslError) as e:
         transpile_shader(shader)
     d = e.value.diagnostics[0]
