@@ -65,16 +65,17 @@ class TextureFunctions:
         out[3] = 1.0
         return out
 
-    def _sample(self, s, p: np.ndarray) -> np.ndarray:
-        """Filter level 0 of `s` at texture coordinates p (2, lanes) float32."""
+    def _sample(self, s, p: np.ndarray, offset=(0, 0)) -> np.ndarray:
+        """Filter level 0 of `s` at texture coordinates p (2, lanes) float32, `offset` texels
+        added to the texel coordinates (textureOffset) before the wrap."""
         p = np.asarray(p, dtype=np.float32)
         if s is None:
             return self._unbound(p.shape[-1])
         h, w = s.texels.shape[:2]
         u, v = p[0], p[1]
         if s.filter == "nearest":
-            ix = _wrap(np.floor(u * np.float32(w)).astype(np.int64), w, s.wrap)
-            iy = _wrap(np.floor(v * np.float32(h)).astype(np.int64), h, s.wrap)
+            ix = _wrap(np.floor(u * np.float32(w)).astype(np.int64) + offset[0], w, s.wrap)
+            iy = _wrap(np.floor(v * np.float32(h)).astype(np.int64) + offset[1], h, s.wrap)
             return self._tex_result(s, s.texels[iy, ix])
         if s.filter != "linear":
             raise ValueError(f"the NumPy backend does not emulate {s.filter!r} filtering")
@@ -85,7 +86,7 @@ class TextureFunctions:
         y = v * np.float32(h) - np.float32(0.5)
         x0, y0 = np.floor(x), np.floor(y)
         fx, fy = (x - x0)[..., None], (y - y0)[..., None]
-        x0, y0 = x0.astype(np.int64), y0.astype(np.int64)
+        x0, y0 = x0.astype(np.int64) + offset[0], y0.astype(np.int64) + offset[1]
         xa, xb = _wrap(x0, w, s.wrap), _wrap(x0 + 1, w, s.wrap)
         ya, yb = _wrap(y0, h, s.wrap), _wrap(y0 + 1, h, s.wrap)
         t = s.texels
@@ -117,14 +118,9 @@ class TextureFunctions:
         return self._sample(s, p[:2] / p[-1])
 
     def textureOffset(self, s, p, offset, *rest) -> np.ndarray:
-        """The texel offset is added after scaling: (u * width + offset) / width."""
-        p = self._coords(p)
-        if s is None:
-            return self._unbound(p.shape[-1])
-        h, w = s.texels.shape[:2]
-        off = np.asarray(offset).astype(np.float32)
-        q = np.stack([p[0] + off[0] / np.float32(w), p[1] + off[1] / np.float32(h)])
-        return self._sample(s, q)
+        """The (constant) texel offset is added to the integer texel coordinates, before the wrap."""
+        off = np.asarray(offset).astype(np.int64)
+        return self._sample(s, self._coords(p), (off[0], off[1]))
 
     def texelFetch(self, s, p, lod, *rest) -> np.ndarray:
         """The texel at integer coordinates; out of range (undefined in ES 3.00) reads 0."""

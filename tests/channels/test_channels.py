@@ -152,3 +152,37 @@ def test_numpy_backend_refuses_mipmap_with_the_key(tmp_path):
                      {"Image": {"iChannel0": {"texture": "tex.png"}}})  # textures default to mipmap
     r = _cli("render", folder, "-o", str(tmp_path / "o.png"))
     assert r.returncode == 2 and '"Image"."iChannel0"."filter": mipmap filtering is not supported' in r.stderr
+
+
+LOOKUPS = [
+    "look(iChannel0, uv * 1.7)",  # a sampler passed to a helper
+    "textureLod(iChannel0, uv, 0.0)",
+    "textureProj(iChannel0, vec3(uv, 2.0))",
+    "textureProj(iChannel0, vec4(uv, 0.0, 3.0))",
+    "textureOffset(iChannel0, uv, ivec2(1, -1))",
+    "texelFetchOffset(iChannel0, ivec2(fragCoord) % 8, 0, ivec2(1, 0))",
+    "textureGrad(iChannel0, uv, vec2(0.01), vec2(0.01))",
+    "vec4(vec2(textureSize(iChannel0, 0)), iChannelResolution[0].xy)",
+]
+
+
+@pytest.mark.parametrize("filt", ["nearest", "linear"])
+@pytest.mark.parametrize("lookup", LOOKUPS)
+def test_each_lookup_builtin_against_gl(gl, tmp_path, lookup, filt):
+    _png(tmp_path / "tex.png", 7, 5, seed=4)
+    body = f"""vec4 look(sampler2D s, vec2 uv) {{
+    return texture(s, uv);
+}}
+void mainImage(out vec4 fragColor, in vec2 fragCoord) {{
+    vec2 uv = fragCoord / iResolution.xy * 1.3 - 0.1;
+    fragColor = {lookup};
+}}
+"""
+    folder = _folder(tmp_path, {"Image": body},
+                     {"Image": {"iChannel0": {"texture": "tex.png", "filter": filt, "wrap": "repeat"}}})
+    ours = api.compile(folder, backend="numpy").render(size=SIZE)
+    theirs = api.compile(folder, backend="gl").render(size=SIZE)
+    if filt == "nearest":
+        assert np.array_equal(ours, theirs)
+    else:  # see test_each_filter_and_wrap_against_gl
+        assert np.abs(ours - theirs).max() <= 2.0**-10
