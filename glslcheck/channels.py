@@ -82,9 +82,35 @@ class ChannelInput:
     wrap: str = "clamp"
     lowp: bool = True
     serial: int = field(default_factory=lambda: next(_SERIAL))
+    _levels: list | None = field(default=None, repr=False)
 
     def __repr__(self) -> str:  # unique: the NumPy backend's frame cache keys on it
         return f"ChannelInput#{self.serial}"
+
+    def levels(self) -> list[np.ndarray]:
+        """The mipmap levels (level 0 = texels), made once: see `mip_levels`."""
+        if self._levels is None:
+            self._levels = mip_levels(self.texels)
+        return self._levels
+
+
+def mip_levels(texels: np.ndarray) -> list[np.ndarray]:
+    """glslcheck's mipmap pyramid, uploaded as it is to GL too (a driver's glGenerateMipmap is
+    implementation-defined): level k+1 is max(1, size >> 1) on each side, each texel the float32
+    mean ((a + b) + (c + d)) * 0.25 of its 2x2 block of level k (an odd last row or column is
+    left out, as the halved size is rounded down)."""
+    levels = [np.ascontiguousarray(texels, dtype=np.float32)]
+    while max(levels[-1].shape[:2]) > 1:
+        t = levels[-1]
+        h, w = t.shape[:2]
+        h2, w2 = max(1, h // 2), max(1, w // 2)
+        ys = np.minimum(np.arange(h2) * 2, h - 1)
+        xs = np.minimum(np.arange(w2) * 2, w - 1)
+        ys1, xs1 = np.minimum(ys + 1, h - 1), np.minimum(xs + 1, w - 1)
+        a, b = t[ys][:, xs], t[ys][:, xs1]
+        c, d = t[ys1][:, xs], t[ys1][:, xs1]
+        levels.append(((a + b) + (c + d)) * np.float32(0.25))
+    return levels
 
 
 def channel_uniforms(channels) -> dict:
@@ -240,10 +266,6 @@ class MultipassProgram:
                     raise InputError(f"{self.channels_path}: error: {key}: {message}")
                 self.textures[b.texture] = _read_image(folder_of(shader) / b.texture,
                                                        f'"{b.tab}"."iChannel{b.channel}"."texture"', fail)
-            if backend == "numpy" and b.filter == "mipmap":
-                raise InputError(f"{self.channels_path}: error: \"{b.tab}\".\"iChannel{b.channel}\".\"filter\": "
-                                 "mipmap filtering is not supported by the NumPy backend yet; use "
-                                 "\"linear\" or \"nearest\", or --backend gl")
         self.programs = {t: self._compile(t) for t in self.passes}
         self._state: dict[str, np.ndarray] = {}
         self._key = None

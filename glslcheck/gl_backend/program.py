@@ -295,8 +295,10 @@ def _bind_channel(ctx, unit: int, channel):
 
     h, w = channel.texels.shape[:2]
     tex = ctx.texture((w, h), 4, np.ascontiguousarray(channel.texels, dtype=np.float32).tobytes(), dtype="f4")
-    if channel.filter == "mipmap":
-        tex.build_mipmaps()
+    if channel.filter == "mipmap":  # glslcheck's own pyramid (channels.mip_levels), as the NumPy side
+        tex.build_mipmaps()  # allocates the levels
+        for level, texels in enumerate(channel.levels()[1:], 1):
+            tex.write(np.ascontiguousarray(texels).tobytes(), level=level)
         tex.filter = (moderngl.LINEAR_MIPMAP_LINEAR, moderngl.LINEAR)
     else:
         mode = moderngl.NEAREST if channel.filter == "nearest" else moderngl.LINEAR

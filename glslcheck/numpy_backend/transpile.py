@@ -82,6 +82,8 @@ _DERIVATIVES = ("dFdx", "dFdy", "fwidth")
 # The lookups on a sampler2D that textures.TextureFunctions evaluates.
 _TEXTURE_FUNCTIONS = ("texture", "textureLod", "textureGrad", "textureProj", "textureOffset", "texelFetch",
                       "texelFetchOffset", "textureSize")
+# Lookups whose mipmap level comes from derivatives (2x2 quads): their regions are never compacted.
+_IMPLICIT_LOD = ("texture", "textureProj", "textureOffset")
 _BIN_METHODS = {
     "+": "add", "-": "sub", "*": "mul", "/": "div", "<": "lt", "<=": "le", ">": "gt", ">=": "ge",
     "<<": "shl", ">>": "shr", "&": "bit_and", "|": "bit_or", "^": "bit_xor",
@@ -205,7 +207,7 @@ class Facts:
                             self.may_discard.add(id(fn))
                         if id(tgt) in self.uses_derivs:
                             self.uses_derivs.add(id(fn))
-                    elif getattr(tgt, "name", None) in _DERIVATIVES:
+                    elif getattr(tgt, "name", None) in _DERIVATIVES + _IMPLICIT_LOD:
                         self.uses_derivs.add(id(fn))
                 for target in self._written_targets(node):
                     sym = model.symbol_of(target)
@@ -1160,7 +1162,7 @@ class Transpiler:
         for n in node.walk():
             if isinstance(n, A.Call):
                 tgt = self.model.call_target(n)
-                if getattr(tgt, "name", None) in _DERIVATIVES and not _is_symbol(tgt):
+                if getattr(tgt, "name", None) in _DERIVATIVES + _IMPLICIT_LOD and not _is_symbol(tgt):
                     return True
                 if _is_symbol(tgt) and id(tgt) in self.facts.uses_derivs:
                     return True
@@ -1777,7 +1779,8 @@ class Transpiler:
             if name not in _TEXTURE_FUNCTIONS or str(self.type_of(e.args[0])) != "sampler2D":
                 raise _error(f"{name}(): this texture lookup is not supported by the NumPy backend yet", e,
                              help="render this shader with --backend gl")
-            return f"rt.{name}({', '.join(self.exprs(e.args, mask))})"  # textures.py
+            width = ", width=S.width" if name in _IMPLICIT_LOD else ""
+            return f"rt.{name}({', '.join(self.exprs(e.args, mask))}{width})"  # textures.py
         quals = list(getattr(ov, "qualifiers", ()) or ())
         if name == "modf":
             x = self.expr(e.args[0], mask)
