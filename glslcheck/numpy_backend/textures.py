@@ -13,10 +13,11 @@ What llvmpipe does, measured with tests/channels/measure_sampling.py (Mesa 22.3.
 - linear on float textures: float32 weights (not 8-bit fixed point: a 2x1 texture 0..1 gave
   4096 distinct, exact weights over 4096 pixels). The weight x = u * width - 0.5, x0 = floor(x),
   w = x - x0, and lerp a + w * (b - a) along x then y. llvmpipe's generated code orders or fuses
-  a few of these float32 operations differently: the results differ in the last bits (at most
-  1.3e-6 absolute on texel values around 3, measured on a 7x5 texture of normal random values),
-  never by 1/255 of anything, which compare.py's tolerance (an absolute tolerance in 1/255
-  steps) accepts; tests compare linear filtering with a tolerance of 4e-6 * max |texel|.
+  a few of these float32 operations differently: about a third of the results differ in the
+  last bit (at most 2.4e-7 absolute on a 7x5 texture of normal random texels up to 2.9, both
+  wraps), never by 1/255 of anything, which compare.py's tolerance (in 1/255 steps) accepts.
+  After the lowp truncation below such a last-bit difference can cross one truncation step
+  (2^-10 relative), the bound the tests use.
 - precision: Shadertoy's prelude declares `precision mediump sampler3D` only, so the iChannel
   uniforms it declares are lowp sampler2D (the ES 3.00 fragment default), and llvmpipe honours
   it: every lookup result (after filtering) has its float32 mantissa truncated to 10 bits (the
