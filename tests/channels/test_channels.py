@@ -202,3 +202,59 @@ void mainImage(out vec4 fragColor, in vec2 fragCoord) {{
         assert np.array_equal(ours, theirs)
     else:  # see test_each_filter_and_wrap_against_gl
         assert np.abs(ours - theirs).max() <= 2.0**-10
+
+
+def _export(tmp_path, image_inputs_extra=(), media="abc123.png"):
+    """A Shadertoy JSON export of the feedback shader, its image in media/ beside it."""
+    (tmp_path / "media").mkdir(exist_ok=True)
+    _png(tmp_path / "media" / "abc123.png")
+    sampler = {"filter": "linear", "wrap": "repeat", "vflip": "true", "srgb": "false", "internal": "byte"}
+    buffer_in = {"id": 257, "src": "/media/previz/buffer00.png", "ctype": "buffer", "channel": 0,
+                 "sampler": {**sampler, "wrap": "clamp"}, "published": 1}
+    tex_in = {"id": 30, "src": f"/media/a/{media}", "ctype": "texture", "channel": 1, "sampler": sampler}
+    data = {"Shader": {"ver": "0.1", "info": {"name": "feedback"}, "renderpass": [
+        {"inputs": [buffer_in, tex_in], "outputs": [{"id": 257, "channel": 0}], "code": FEEDBACK,
+         "name": "Buffer A", "type": "buffer"},
+        {"inputs": [{**buffer_in, "sampler": {**sampler, "filter": "nearest"}},
+                    {**tex_in, "sampler": {**sampler, "filter": "nearest"}}, *image_inputs_extra],
+         "outputs": [{"id": 37, "channel": 0}], "code": IMAGE, "name": "Image", "type": "image"}]}}
+    path = tmp_path / "shader.json"
+    path.write_text(json.dumps(data))
+    return str(path)
+
+
+def test_shadertoy_json_export_verifies_over_frames(gl, tmp_path):
+    path = _export(tmp_path)
+    results = list(verify_frames(path, size=SIZE, frames=10))
+    assert len(results) == 10 and all(r.match for r in results)
+    # the same shader as a folder with channels.json renders the same pixels
+    folder = tmp_path / "folder"
+    folder.mkdir()
+    _png(folder / "tex.png")
+    _folder(folder, {"Buffer A": FEEDBACK, "Image": IMAGE}, {
+        "Buffer A": {"iChannel0": {"buffer": "Buffer A"}, "iChannel1": {"texture": "tex.png", "filter": "linear"}},
+        "Image": {"iChannel0": {"buffer": "Buffer A", "filter": "nearest"},
+                  "iChannel1": {"texture": "tex.png", "filter": "nearest", "wrap": "repeat"}}})
+    a = api.compile(path, backend="numpy").render(size=SIZE, frame=4, time=4 / 60)
+    b = api.compile(str(folder), backend="numpy").render(size=SIZE, frame=4, time=4 / 60)
+    assert np.array_equal(a, b)
+
+
+@pytest.mark.parametrize("extra, media, message", [
+    ([{"id": 9, "src": "/presets/tex00.jpg", "ctype": "keyboard", "channel": 2}], "abc123.png",
+     "the Image pass, iChannel2: keyboard inputs are not supported yet"),
+    ([], "nothere.png", "the Buffer A pass, iChannel1: no such file"),
+])
+def test_shadertoy_json_export_errors(tmp_path, extra, media, message):
+    path = _export(tmp_path, extra, media)
+    r = _cli("render", path, "-o", str(tmp_path / "o.png"))
+    assert r.returncode == 2 and message in r.stderr and "Traceback" not in r.stderr, r.stderr
+
+
+def test_shadertoy_json_export_errors_point_into_the_pass(tmp_path):
+    path = _export(tmp_path)
+    data = json.loads(open(path).read())
+    data["Shader"]["renderpass"][1]["code"] = "void mainImage(out vec4 c, in vec2 p) {\n  c = vec4(undefined_x);\n}\n"
+    open(path, "w").write(json.dumps(data))
+    r = _cli("render", path, "-o", str(tmp_path / "o.png"))
+    assert r.returncode == 1 and f"{path} [Image]:2:12: error: 'undefined_x' is not declared" in r.stderr
