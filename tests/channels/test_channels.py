@@ -258,3 +258,9 @@ def test_shadertoy_json_export_errors_point_into_the_pass(tmp_path):
     open(path, "w").write(json.dumps(data))
     r = _cli("render", path, "-o", str(tmp_path / "o.png"))
     assert r.returncode == 1 and f"{path} [Image]:2:12: error: 'undefined_x' is not declared" in r.stderr
+
+
+def test_probe_refuses_channels_with_a_clear_error(feedback, tmp_path):
+    r = _cli("probe", feedback, "--pixel", "3,3")
+    assert r.returncode == 2 and "probe does not support buffers and channels yet" in r.stderr
+    assert "Traceback" not in r.stderr
