@@ -1,7 +1,8 @@
 """Texture sampling on the CPU: the GLSL ES 3.00 lookup built-ins over lanes, as llvmpipe does them.
 
-This module owns `texture`, `textureLod`, `textureGrad`, `textureProj`, `textureOffset`,
-`texelFetch`, `texelFetchOffset` and `textureSize` for the NumPy backend. `Runtime` inherits
+This module owns the ES 3.00 lookups on a sampler2D for the NumPy backend: `texture`,
+`textureLod`, `textureGrad`, `textureOffset`, their `Proj` and `Offset` combinations,
+`texelFetch`, `texelFetchOffset` and `textureSize`. `Runtime` inherits
 them (`TextureFunctions`), so generated code calls `rt.texture(S.u_iChannel0, uv, S.width)`.
 A sampler value is a `glslcheck.channels.ChannelInput` (texels float32 (height, width, 4), row
 0 = texture coordinate t near 0, i.e. the bottom as OpenGL uploads it) or None (unbound: GL's
@@ -75,6 +76,16 @@ def _bilinear(t: np.ndarray, u, v, offset, wrap: str) -> np.ndarray:
     lo = a + fx * (b - a)
     hi = c + fx * (d - c)
     return lo + fy * (hi - lo)
+
+
+def _offset(offset) -> tuple:
+    off = np.asarray(offset).astype(np.int64)
+    return off[0], off[1]
+
+
+def _project(p) -> np.ndarray:
+    p = np.asarray(p, dtype=np.float32)
+    return p[:2] / p[-1]
 
 
 def _fast_log2(x: np.ndarray) -> np.ndarray:
@@ -187,28 +198,50 @@ class TextureFunctions:
         return self._sample(s, p, lod=self._implicit_lod(s, p, width, bias))
 
     def textureLod(self, s, p, lod) -> np.ndarray:
-        return self._sample(s, self._coords(p), lod=lod if s is not None and s.filter == "mipmap" else None)
+        return self.textureLodOffset(s, p, lod, (0, 0))
+
+    def textureLodOffset(self, s, p, lod, offset) -> np.ndarray:
+        mip = s is not None and s.filter == "mipmap"
+        return self._sample(s, self._coords(p), _offset(offset), lod if mip else None)
 
     def textureGrad(self, s, p, dpdx, dpdy) -> np.ndarray:
+        return self.textureGradOffset(s, p, dpdx, dpdy, (0, 0))
+
+    def textureGradOffset(self, s, p, dpdx, dpdy, offset) -> np.ndarray:
+        """The LOD from the given gradients, by the implicit LOD's formula (`_implicit_lod`)."""
         p = self._coords(p)
         if s is None or s.filter != "mipmap":
-            return self._sample(s, p)
+            return self._sample(s, p, _offset(offset))
         h, w = s.texels.shape[:2]
         size = np.array([w, h], dtype=np.float32).reshape(2, *([1] * (np.ndim(dpdx) - 1)))
         dx, dy = np.asarray(dpdx, np.float32) * size, np.asarray(dpdy, np.float32) * size
         rho2 = np.maximum((dx * dx).sum(axis=0), (dy * dy).sum(axis=0))
-        return self._sample(s, p, lod=np.float32(0.5) * _fast_log2(rho2))
+        return self._sample(s, p, _offset(offset), np.float32(0.5) * _fast_log2(rho2))
+
+    # the projective forms: coordinates p.xy / p.z (vec3) or p.xy / p.w (vec4), then as above
+    def textureProjOffset(self, s, p, offset, bias=None, width=None) -> np.ndarray:
+        return self.textureOffset(s, _project(p), offset, bias, width)
+
+    def textureProjLod(self, s, p, lod) -> np.ndarray:
+        return self.textureLod(s, _project(p), lod)
+
+    def textureProjLodOffset(self, s, p, lod, offset) -> np.ndarray:
+        return self.textureLodOffset(s, _project(p), lod, offset)
+
+    def textureProjGrad(self, s, p, dpdx, dpdy) -> np.ndarray:
+        return self.textureGrad(s, _project(p), dpdx, dpdy)
+
+    def textureProjGradOffset(self, s, p, dpdx, dpdy, offset) -> np.ndarray:
+        return self.textureGradOffset(s, _project(p), dpdx, dpdy, offset)
 
     def textureProj(self, s, p, bias=None, width=None) -> np.ndarray:
         """textureProj(sampler2D, vec3 | vec4): coordinates p.xy / p.z (vec3) or / p.w (vec4)."""
-        p = self._coords(p)
-        return self.texture(s, p[:2] / p[-1], bias, width)
+        return self.texture(s, _project(p), bias, width)
 
     def textureOffset(self, s, p, offset, bias=None, width=None) -> np.ndarray:
         """The (constant) texel offset is added to the integer texel coordinates, before the wrap."""
         p = self._coords(p)
-        off = np.asarray(offset).astype(np.int64)
-        return self._sample(s, p, (off[0], off[1]), self._implicit_lod(s, p, width, bias))
+        return self._sample(s, p, _offset(offset), self._implicit_lod(s, p, width, bias))
 
     def texelFetch(self, s, p, lod, *rest) -> np.ndarray:
         """The texel at integer coordinates; out of range (undefined in ES 3.00) reads 0."""

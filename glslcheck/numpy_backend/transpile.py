@@ -81,9 +81,11 @@ _FLOAT_OPERATORS = ("+", "-", "*", "/", "<", "<=", ">", ">=")  # printed as Pyth
 _DERIVATIVES = ("dFdx", "dFdy", "fwidth")
 # The lookups on a sampler2D that textures.TextureFunctions evaluates.
 _TEXTURE_FUNCTIONS = ("texture", "textureLod", "textureGrad", "textureProj", "textureOffset", "texelFetch",
-                      "texelFetchOffset", "textureSize")
+                      "texelFetchOffset", "textureSize", "textureLodOffset", "textureGradOffset",
+                      "textureProjOffset", "textureProjLod", "textureProjLodOffset", "textureProjGrad",
+                      "textureProjGradOffset")
 # Lookups whose mipmap level comes from derivatives (2x2 quads): their regions are never compacted.
-_IMPLICIT_LOD = ("texture", "textureProj", "textureOffset")
+_IMPLICIT_LOD = ("texture", "textureProj", "textureOffset", "textureProjOffset")
 _BIN_METHODS = {
     "+": "add", "-": "sub", "*": "mul", "/": "div", "<": "lt", "<=": "le", ">": "gt", ">=": "ge",
     "<<": "shl", ">>": "shr", "&": "bit_and", "|": "bit_or", "^": "bit_xor",

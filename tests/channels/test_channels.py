@@ -156,6 +156,8 @@ MIPMAP_UV = """float s = exp2(fragCoord.x / 10.0 - 1.0) * (1.0 + 0.3 * fragCoord
     "texture(iChannel0, uv, 0.7)",  # with a bias
     "textureLod(iChannel0, uv, fragCoord.x / 9.0 - 0.5)",
     "textureGrad(iChannel0, uv, vec2(fragCoord.x / 900.0, 0.0), vec2(0.0, fragCoord.y / 300.0))",
+    "textureProjOffset(iChannel0, vec3(uv, 1.5), ivec2(1, 0))",
+    "textureProjLod(iChannel0, vec3(uv, 1.5), fragCoord.y / 6.0)",
 ])
 def test_mipmap_against_gl(gl, tmp_path, lookup, wrap):
     _png(tmp_path / "tex.png", 70, 50, seed=5)  # odd level sizes on the way down: 70x50, 35x25, 17x12, ...
@@ -179,6 +181,13 @@ LOOKUPS = [
     "texelFetchOffset(iChannel0, ivec2(fragCoord) % 8, 0, ivec2(1, 0))",
     "textureGrad(iChannel0, uv, vec2(0.01), vec2(0.01))",
     "vec4(vec2(textureSize(iChannel0, 0)), iChannelResolution[0].xy)",
+    "textureLodOffset(iChannel0, uv, 0.0, ivec2(-1, 2))",
+    "textureGradOffset(iChannel0, uv, vec2(0.01), vec2(0.01), ivec2(2, 0))",
+    "textureProjOffset(iChannel0, vec3(uv, 1.5), ivec2(0, 1))",
+    "textureProjLod(iChannel0, vec4(uv, 0.0, 0.7), 0.0)",
+    "textureProjLodOffset(iChannel0, vec3(uv, 0.8), 0.0, ivec2(1, 1))",
+    "textureProjGrad(iChannel0, vec3(uv, 1.2), vec2(0.01), vec2(0.01))",
+    "textureProjGradOffset(iChannel0, vec4(uv, 0.0, 1.2), vec2(0.01), vec2(0.01), ivec2(-2, 0))",
 ]
 
 
