@@ -273,3 +273,29 @@ def test_probe_refuses_channels_with_a_clear_error(feedback, tmp_path):
     r = _cli("probe", feedback, "--pixel", "3,3")
     assert r.returncode == 2 and "probe does not support buffers and channels yet" in r.stderr
     assert "Traceback" not in r.stderr
+
+
+def test_lint_channel_uniforms_follow_the_uniform_rule(tmp_path):
+    from glslcheck.lint import lint_paths
+
+    text = """vec4 helper(sampler2D tex, vec2 uv)
+{
+    return texture(tex, uv);
+}
+
+vec4 direct(vec2 uv)
+{
+    return texture(iChannel1, uv);
+}
+
+void mainImage(out vec4 fragColor, in vec2 fragCoord)
+{
+    vec2 uv = fragCoord / iResolution.xy;
+    fragColor = helper(iChannel0, uv) + direct(uv);
+}
+"""
+    (tmp_path / "Image.glsl").write_text(text)
+    found = [(f.loc.line, f.message) for f in lint_paths([tmp_path / "Image.glsl"]).findings
+             if f.rule == "uniform-outside-mainimage"]
+    # the sampler passed in as a parameter is fine; iChannel1 read in the helper is flagged
+    assert found == [(8, "the uniform 'iChannel1' is read in 'direct', not in mainImage")]
