@@ -10,7 +10,8 @@ shift explains), NaN/Inf counts in each image, and where the differences lie (bo
 worst pixels, with fragCoord).
 
 Frames: one at iTime 0 by default; --time T; --times 0,0.5,1 (one frame each, iFrame = --frame);
---frames N with --fps F (iFrame = --frame + i, iTime = iFrame / F, iTimeDelta = 1/F). Several
+--frames N with --fps F (iFrame = --frame + i, iTime = iFrame / F, iTimeDelta = 1/F; Buffer A-D
+carried from frame to frame, see glslcheck/channels.py). Several
 frames show a progress bar on stderr when it is a terminal (--progress forces it).
 
 --format json prints exactly {"match", "size", "max_abs_error", "mean_abs_error", "psnr_db",

@@ -345,7 +345,8 @@ def compile_gl(shader: Shader, ctx=None, *, tab: str = "Image") -> GLProgram:
     Raises GlslError with diagnostics in the user's files when the driver rejects it, and
     GLUnavailable (an InputError) when no context can be created. `ctx` defaults to the
     process-wide context. `tab` may name a buffer ("Buffer A"): it renders as a single pass
-    with alpha kept and its iChannels unbound (glslcheck does not chain passes).
+    with alpha kept; its iChannels are unbound unless `render(channels=...)` binds them
+    (glslcheck.channels.MultipassProgram chains the passes frame after frame).
     """
     ctx = ctx if ctx is not None else get_context()
     program = build_program(shader, tab)
