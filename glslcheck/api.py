@@ -84,11 +84,17 @@ class Program:
         return f"<glslcheck.Program {self.shader.root!r} backend={self.backend}>"
 
 
-def compile(path: str | os.PathLike | Shader, backend: str = "numpy") -> Program:  # noqa: A001
-    """Load, check and compile a shader for `backend` ("numpy" or "gl")."""
+def compile(path: str | os.PathLike | Shader, backend: str = "numpy", output: str = "Image") -> Program:  # noqa: A001
+    """Load, check and compile a shader for `backend` ("numpy" or "gl"). A shader with Buffer
+    tabs, a channels.json or iChannel reads runs its passes frame after frame (channels.py);
+    `output` chooses the pass `render` returns ("Buffer A", ...)."""
     if backend not in BACKENDS:
         raise ValueError(f"backend must be one of {', '.join(BACKENDS)}, not {backend!r}")
     shader = path if isinstance(path, Shader) else load_shader(path)
+    from .channels import MultipassProgram, needs_passes
+
+    if output != "Image" or needs_passes(shader):
+        return Program(shader, backend, MultipassProgram(shader, backend, output))
     if backend == "gl":
         from .gl_backend import compile_gl
 

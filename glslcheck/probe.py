@@ -144,6 +144,13 @@ class Probe:
         from .sources import Shader, load_shader
 
         self.shader = shader if isinstance(shader, Shader) else load_shader(shader)
+        from .channels import needs_passes
+
+        if needs_passes(self.shader):  # its iChannels would read unbound textures: say so instead
+            from .diagnostics import InputError
+
+            raise InputError(f"{self.shader.root}: error: probe does not support buffers and channels yet "
+                             "(glslcheck/channels.py); render or verify it instead")
         tab = "Image" if "Image" in self.shader.tabs else ("GLSL" if "GLSL" in self.shader.tabs else "Image")
         self.model = check_program(parse_shader(self.shader, tab))
         src = self.shader.tabs.get(tab)

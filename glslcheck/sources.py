@@ -48,6 +48,7 @@ class Shader:
 
     tabs: dict[str, Source] = field(default_factory=dict)
     root: str = ""
+    channels: list | None = None  # channels.Binding list of a Shadertoy JSON export (else channels.json)
 
     @property
     def image(self) -> Source | None:
@@ -188,6 +189,10 @@ def load_shader(path: str | os.PathLike) -> Shader:
     p = Path(path)
     spath = str(path)
     check_path(spath)
+    if p.suffix.lower() == ".json" and p.is_file():  # Shadertoy's export of a whole shader
+        from .channels import load_shadertoy_json
+
+        return load_shadertoy_json(p)
     shader = Shader(root=spath)
     if p.is_dir():
         files = sorted(f for f in p.iterdir() if _is_tab_file(f))

@@ -129,13 +129,15 @@ def compile_backend(shader: Shader, backend: str):
     NumPy backend is not installed in this build.
     """
     if backend == "gl":
+        from .channels import MultipassProgram, needs_passes
         from .gl_backend import compile_gl
 
-        return compile_gl(shader)
+        return MultipassProgram(shader, "gl") if needs_passes(shader) else compile_gl(shader)
     if backend == "webgl":
+        from .channels import MultipassProgram, needs_passes
         from .webgl_backend import compile_webgl
 
-        return compile_webgl(shader)
+        return MultipassProgram(shader, "webgl") if needs_passes(shader) else compile_webgl(shader)
     if backend == "numpy":
         try:
             from . import api

@@ -1,6 +1,8 @@
 """glslcheck render SHADER [-o out.png|out.npy|anim.gif] [--size WxH] [--time T] [--frame N]
 [--mouse X,Y,Z,W] [--date Y,M,D,S] [--precision float16|float32|float64] [--samples N]
-[--backend numpy|gl|webgl] [--stats] [--frames N --fps F]: render a shader's Image tab.
+[--backend numpy|gl|webgl] [--stats] [--frames N --fps F] [--pass TAB]: render a shader's Image
+tab (or, with --pass "Buffer A", a buffer). Buffers and channels.json: see glslcheck/channels.py;
+--frame N of a multipass shader runs frames 0..N.
 
 The NumPy backend (default) renders on the CPU; --backend gl uses the OpenGL driver (Mesa
 llvmpipe); --backend webgl renders as Shadertoy's page does, with WebGL 2 in headless Chromium
@@ -53,6 +55,8 @@ def add_arguments(p) -> None:
                    help="render an animation of N frames")
     p.add_argument("--fps", type=A.arg(A.parse_fps), default=60.0, metavar="F",
                    help="frames per second of --frames (default 60)")
+    p.add_argument("--pass", dest="pass_name", default="Image", metavar="TAB",
+                   help='the pass to write, e.g. "Buffer A" (default Image; buffers run frames 0..N, channels.py)')
 
 
 def run(args) -> int:
@@ -73,7 +77,7 @@ def run(args) -> int:
     if args.backend != "numpy" and args.precision != "float32":
         raise InputError(f"error: the {args.backend.upper()} backend renders in float32 only; "
                          "drop --precision or use --backend numpy")
-    prog = api.compile(args.path, backend=args.backend)
+    prog = api.compile(args.path, backend=args.backend, output=args.pass_name)
     common = dict(size=args.size, mouse=args.mouse, date=args.date, precision=args.precision, samples=args.samples)
     if args.frames is None:
         img = prog.render(time=args.time, frame=args.frame, stats=args.stats, **common)

@@ -16,7 +16,8 @@ drivers differ depends on the driver, and there NumPy need only match the closer
 compares the two drivers with each other.
 
 Frames: one at iTime 0 by default; --time T; --times 0,0.5,1 (one frame each, iFrame = --frame);
---frames N with --fps F (iFrame = --frame + i, iTime = iFrame / F, iTimeDelta = 1/F). Several
+--frames N with --fps F (iFrame = --frame + i, iTime = iFrame / F, iTimeDelta = 1/F; Buffer A-D
+carried from frame to frame, see glslcheck/channels.py). Several
 frames show a progress bar on stderr when it is a terminal (--progress forces it).
 
 --format json prints exactly {"match", "verdict", "size", "max_abs_error", "mean_abs_error",

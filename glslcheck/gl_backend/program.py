@@ -232,6 +232,7 @@ class GLProgram:
         time_delta: float = 1.0 / 60.0,
         frame_rate: float = 60.0,
         samples: int = 1,
+        channels=None,
     ) -> np.ndarray:
         """Render one frame: float32 array (height, width, 4), row 0 = top of the image.
 
@@ -254,6 +255,12 @@ class GLProgram:
             "iTimeDelta": float(time_delta),
             "iFrameRate": float(frame_rate),
         }
+        inputs = []
+        if channels is not None:  # `channels`: iChannel0..3 as channels.ChannelInput or None
+            from ..channels import channel_uniforms
+
+            values.update(channel_uniforms(channels))
+            values.update({f"iChannel{i}": i for i in range(4)})
         prog = compiled.gl_program
         for u in UNIFORMS:
             _set_uniform(prog, u.name, values.get(u.name, u.default), u.array_size)
@@ -262,6 +269,7 @@ class GLProgram:
         texture = ctx.texture((width, height), 4, dtype="f4")
         fbo = ctx.framebuffer(color_attachments=[texture])
         try:
+            inputs = [_bind_channel(ctx, unit, c) for unit, c in enumerate(channels or ()) if c is not None]
             fbo.use()
             total = None
             for dx, dy in offsets:
@@ -275,8 +283,30 @@ class GLProgram:
         finally:
             fbo.release()
             texture.release()
+            for t in inputs:
+                t.release()
         image = (total / len(offsets)).astype(np.float32)
         return np.ascontiguousarray(image[::-1])  # GL rows go bottom-up; images top-down
+
+
+def _bind_channel(ctx, unit: int, channel):
+    """Upload a channels.ChannelInput as an RGBA32F texture on `unit` with its filter and wrap.
+    Its texels' row 0 is texture coordinate t near 0, which is OpenGL's first row."""
+    import moderngl
+
+    h, w = channel.texels.shape[:2]
+    tex = ctx.texture((w, h), 4, np.ascontiguousarray(channel.texels, dtype=np.float32).tobytes(), dtype="f4")
+    if channel.filter == "mipmap":  # glslcheck's own pyramid (channels.mip_levels), as the NumPy side
+        tex.build_mipmaps()  # allocates the levels
+        for level, texels in enumerate(channel.levels()[1:], 1):
+            tex.write(np.ascontiguousarray(texels).tobytes(), level=level)
+        tex.filter = (moderngl.LINEAR_MIPMAP_LINEAR, moderngl.LINEAR)
+    else:
+        mode = moderngl.NEAREST if channel.filter == "nearest" else moderngl.LINEAR
+        tex.filter = (mode, mode)
+    tex.repeat_x = tex.repeat_y = channel.wrap == "repeat"
+    tex.use(unit)
+    return tex
 
 
 # GL's type enums of the GLSL types Shadertoy's uniforms have.
@@ -316,7 +346,8 @@ def compile_gl(shader: Shader, ctx=None, *, tab: str = "Image") -> GLProgram:
     Raises GlslError with diagnostics in the user's files when the driver rejects it, and
     GLUnavailable (an InputError) when no context can be created. `ctx` defaults to the
     process-wide context. `tab` may name a buffer ("Buffer A"): it renders as a single pass
-    with alpha kept and its iChannels unbound (glslcheck does not chain passes).
+    with alpha kept; its iChannels are unbound unless `render(channels=...)` binds them
+    (glslcheck.channels.MultipassProgram chains the passes frame after frame).
     """
     ctx = ctx if ctx is not None else get_context()
     zeroed = zero_initialized(shader, tab)  # WebGL zeroes struct locals; Mesa does not

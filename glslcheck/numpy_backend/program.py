@@ -354,6 +354,8 @@ def execute_module(source: str, filename: str, meta: dict, precision: str = "flo
 def _uniform_value(rt: Runtime, name: str, value: Any) -> Any:
     u = UNIFORMS_BY_NAME[name]
     t = u.glsl_type
+    if t.startswith("sampler"):
+        return value if not isinstance(value, int) else None  # a channels.ChannelInput; None: unbound
 
     def one(v):
         if t == "float":
@@ -613,10 +615,12 @@ class NumpyProgram:
         samples: int = 1,
         precision: str = "float32",
         stats: bool = False,
+        channels=None,
     ) -> np.ndarray:
         """Render one frame: float32 (height, width, 4), row 0 = top of the image, unclamped.
 
         Arguments as `GLProgram.render`; `precision` is the float dtype inside the shader.
+        `channels`: the inputs of iChannel0..3 (glslcheck.channels.ChannelInput or None).
         Discarded pixels are (0, 0, 0, 0), the GL backend's clear colour."""
         width, height = int(size[0]), int(size[1])
         if width < 1 or height < 1:
@@ -629,6 +633,10 @@ class NumpyProgram:
             "iTime": float(time), "iFrame": int(frame), "iMouse": tuple(float(v) for v in mouse),
             "iDate": _as_date(date), "iTimeDelta": float(time_delta), "iFrameRate": float(frame_rate),
         }
+        if channels is not None:  # each ChannelInput's repr is unique: a new input is a new frame key
+            from ..channels import channel_uniforms
+
+            values.update(channel_uniforms(channels))
         used = self.uniforms
         key = (width, height, samples, precision, stats, self.loop_limit,
                tuple((u, repr(values.get(u, UNIFORMS_BY_NAME[u].default))) for u in used))
@@ -767,11 +775,11 @@ class NumpyProgram:
         return "\n".join(rows)
 
 
-def compile_numpy(shader) -> NumpyProgram:
-    """Parse, check and transpile a shader's Image tab (or plain GLSL file)."""
+def compile_numpy(shader, tab: str | None = None) -> NumpyProgram:
+    """Parse, check and transpile a shader's Image tab (or plain GLSL file, or Buffer `tab`)."""
     from .transpile import transpile_shader
 
-    t = transpile_shader(shader)
+    t = transpile_shader(shader, tab)
     prog = NumpyProgram(t.source, t.meta, t.filename)
     prog.module("float32")  # a broken module fails here, not in the middle of a render
     return prog

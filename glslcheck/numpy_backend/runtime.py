@@ -208,6 +208,7 @@ from typing import Any, Iterable
 import numpy as np
 
 from ..driver_profile import FLOAT_TO_UINT, float_to_uint, host_fma, host_model
+from .textures import TextureFunctions
 
 __all__ = ["Runtime", "Struct", "GLSLRuntimeError", "PRECISIONS"]
 
@@ -475,7 +476,7 @@ class LlvmpipeMath:
         return np.where((_daz(x) == _F32(0.0)) | np.isnan(x), _F32(0.0), r)
 
 
-class Runtime:
+class Runtime(TextureFunctions):  # texture lookups: textures.py
     """GLSL ES 3.00 operators and built-ins over lane arrays, in one float precision.
 
     ``Runtime(precision)`` with precision ``"float32"`` (highp, default), ``"float16"``

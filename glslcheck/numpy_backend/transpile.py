@@ -79,6 +79,13 @@ _LOCAL_REF = re.compile(r"(?<![.\w\"'])(v_\w+|_[a-z]+\d*)\b")
 _RUNTIME_NAMES = {"min": "min_", "max": "max_", "not": "not_vec"}
 _FLOAT_OPERATORS = ("+", "-", "*", "/", "<", "<=", ">", ">=")  # printed as Python operators on floats
 _DERIVATIVES = ("dFdx", "dFdy", "fwidth")
+# The lookups on a sampler2D that textures.TextureFunctions evaluates.
+_TEXTURE_FUNCTIONS = ("texture", "textureLod", "textureGrad", "textureProj", "textureOffset", "texelFetch",
+                      "texelFetchOffset", "textureSize", "textureLodOffset", "textureGradOffset",
+                      "textureProjOffset", "textureProjLod", "textureProjLodOffset", "textureProjGrad",
+                      "textureProjGradOffset")
+# Lookups whose mipmap level comes from derivatives (2x2 quads): their regions are never compacted.
+_IMPLICIT_LOD = ("texture", "textureProj", "textureOffset", "textureProjOffset")
 _BIN_METHODS = {
     "+": "add", "-": "sub", "*": "mul", "/": "div", "<": "lt", "<=": "le", ">": "gt", ">=": "ge",
     "<<": "shl", ">>": "shr", "&": "bit_and", "|": "bit_or", "^": "bit_xor",
@@ -202,7 +209,7 @@ class Facts:
                             self.may_discard.add(id(fn))
                         if id(tgt) in self.uses_derivs:
                             self.uses_derivs.add(id(fn))
-                    elif getattr(tgt, "name", None) in _DERIVATIVES:
+                    elif getattr(tgt, "name", None) in _DERIVATIVES + _IMPLICIT_LOD:
                         self.uses_derivs.add(id(fn))
                 for target in self._written_targets(node):
                     sym = model.symbol_of(target)
@@ -637,7 +644,9 @@ class Transpiler:
 
     COMPACT_MIN_NODES = 24  # syntax nodes: smaller regions without calls or loops run masked
 
-    def __init__(self, model: Any, path: str = "<shader>", source_text: str | None = None) -> None:
+    def __init__(self, model: Any, path: str = "<shader>", source_text: str | None = None,
+                 keep_alpha: bool = False) -> None:
+        self.keep_alpha = keep_alpha  # a Buffer pass: Shadertoy keeps the alpha mainImage wrote
         self.model = model
         self.path = path
         self.entry = model.entry
@@ -711,10 +720,10 @@ class Transpiler:
             u = UNIFORMS_BY_NAME.get(sym.name)
             if u is None:
                 raise _error(f"unknown uniform '{sym.name}'", node)
-            if u.glsl_type.startswith("sampler"):
-                raise _error(f"'{sym.name}': textures are not supported by the NumPy backend yet", node,
+            if u.glsl_type.startswith("sampler") and u.glsl_type != "sampler2D":
+                raise _error(f"'{sym.name}': {u.glsl_type} is not supported by the NumPy backend yet", node,
                              help="render with --backend gl")
-            self.uniforms.add(sym.name)
+            self.uniforms.add(sym.name)  # a sampler's value: a channels.ChannelInput (textures.py)
             return "S.u_" + sym.name
         if sym.kind == "builtin-var":
             if sym.name == "gl_FragCoord":
@@ -864,8 +873,7 @@ class Transpiler:
 
     def _uniforms_from_model(self) -> set[str]:
         try:
-            return {u for u in self.model.uniforms_read() if not u.startswith("iChannel") or u.startswith("iChannelTime")
-                    or u.startswith("iChannelResolution")}
+            return set(self.model.uniforms_read())  # samplers included: channels.ChannelInput values
         except Exception:  # pragma: no cover - the model's API is still settling
             return set()
 
@@ -935,7 +943,10 @@ class Transpiler:
             else:
                 self.emit(f"_r = {call}")
                 self.emit("_color = _r[1]" if d0 != "in" else f"_color = {init}")
-            self.emit('return rt.swizzle(_color, "xyz")  # RGB: the caller sets alpha to 1')
+            if self.keep_alpha:
+                self.emit("return _color  # a Buffer pass keeps alpha")
+            else:
+                self.emit('return rt.swizzle(_color, "xyz")  # RGB: the caller sets alpha to 1')
         self.indent -= 1
 
     # -- functions -----------------------------------------------------------------------------
@@ -1153,7 +1164,7 @@ class Transpiler:
         for n in node.walk():
             if isinstance(n, A.Call):
                 tgt = self.model.call_target(n)
-                if getattr(tgt, "name", None) in _DERIVATIVES and not _is_symbol(tgt):
+                if getattr(tgt, "name", None) in _DERIVATIVES + _IMPLICIT_LOD and not _is_symbol(tgt):
                     return True
                 if _is_symbol(tgt) and id(tgt) in self.facts.uses_derivs:
                     return True
@@ -1771,8 +1782,11 @@ class Transpiler:
     def builtin_call(self, e: A.Call, ov: Any, mask: str | None) -> str:
         name = ov.name
         if getattr(ov, "category", None) == B.TEXTURE or name.startswith("texture") or name.startswith("texel"):
-            raise _error(f"{name}(): texture lookups are not supported by the NumPy backend yet", e,
-                         help="render this shader with --backend gl")
+            if name not in _TEXTURE_FUNCTIONS or str(self.type_of(e.args[0])) != "sampler2D":
+                raise _error(f"{name}(): this texture lookup is not supported by the NumPy backend yet", e,
+                             help="render this shader with --backend gl")
+            width = ", width=S.width" if name in _IMPLICIT_LOD else ""
+            return f"rt.{name}({', '.join(self.exprs(e.args, mask))}{width})"  # textures.py
         quals = list(getattr(ov, "qualifiers", ()) or ())
         if name == "modf":
             x = self.expr(e.args[0], mask)
@@ -1911,18 +1925,20 @@ class Transpiled:
     filename: str
 
 
-def transpile(model: Any, path: str = "<shader>") -> Transpiled:
+def transpile(model: Any, path: str = "<shader>", keep_alpha: bool = False) -> Transpiled:
     """Generate the Python module of a checked program (model from glslcheck.check)."""
-    source, meta = Transpiler(model, path).module()
+    source, meta = Transpiler(model, path, keep_alpha=keep_alpha).module()
     return Transpiled(source, meta, f"<glslcheck-numpy {_printable(path, 200)}>")
 
 
-def transpile_shader(shader: Any) -> Transpiled:
-    """Parse, check and transpile a Shadertoy shader (its Image tab, or a plain GLSL file)."""
+def transpile_shader(shader: Any, tab: str | None = None) -> Transpiled:
+    """Parse, check and transpile a Shadertoy shader (its Image tab, or a plain GLSL file, or the
+    Buffer tab `tab`, which keeps its alpha)."""
     from ..parse import parse_shader
 
-    tab = "Image" if "Image" in shader.tabs else ("GLSL" if "GLSL" in shader.tabs else "Image")
+    if tab is None:
+        tab = "Image" if "Image" in shader.tabs else ("GLSL" if "GLSL" in shader.tabs else "Image")
     pr = parse_shader(shader, tab)
     model = check_program(pr)
     src = shader.tabs.get(tab)
-    return transpile(model, src.path if src is not None else shader.root)
+    return transpile(model, src.path if src is not None else shader.root, keep_alpha=tab.startswith("Buffer"))

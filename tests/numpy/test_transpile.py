@@ -172,7 +172,8 @@ def test_module_runs_without_builtins(make_shader):
 
 
 def test_texture_lookup_is_a_located_error(make_shader):
-    shader = make_shader(_image("vec2 uv = fragCoord;\n    fragColor = texture(iChannel0, uv);"))
+    # iChannel0-3 are sampled (numpy_backend/textures.py); a sampler uniform of the user's own is not
+    shader = make_shader(_image("vec2 uv = fragCoord;\n    fragColor = texture(myTex, uv);", "uniform sampler2D myTex;"))
     with pytest.raises(GlslError) as e:
         transpile_shader(shader)
     d = e.value.diagnostics[0]

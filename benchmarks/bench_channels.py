@@ -1,0 +1,85 @@
+"""Benchmark of textured and multipass shaders: the NumPy backend against the GL driver.
+
+    python benchmarks/bench_channels.py [--frames N] [--repeat R] [--size WxH]
+
+Scenes (benchmarks/scenes): `textured` (one pass sampling an image with mipmap and linear
+filtering; its tex.png, 256x256 noise, is written into a temporary copy of the folder) and
+`feedback` (Buffer A reads its own previous frame, Image reads Buffer A). Each backend renders
+N consecutive frames (buffers carried, see glslcheck/channels.py), the two backends in turns,
+R rounds; reported: the best time per frame of each and the ratio numpy / gl. NumPy runs on
+worker processes and on threads of this process (NumpyProgram.parallel).
+"""
+
+from __future__ import annotations
+
+import argparse
+import os
+import shutil
+import sys
+import tempfile
+import time
+
+import numpy as np
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+sys.path.insert(0, os.path.dirname(HERE))
+
+from glslcheck import api  # noqa: E402
+
+SCENES = ("textured", "feedback")
+
+
+def _copy_scene(name: str, into: str) -> str:
+    dst = os.path.join(into, name)
+    shutil.copytree(os.path.join(HERE, "scenes", name), dst)
+    if name == "textured":
+        from PIL import Image
+
+        rng = np.random.default_rng(7)
+        Image.fromarray(rng.integers(0, 256, (256, 256, 4), dtype=np.uint8), "RGBA").save(os.path.join(dst, "tex.png"))
+    return dst
+
+
+def _per_frame(prog, frames: int, size, start: int) -> float:
+    t0 = time.perf_counter()
+    for i in range(start, start + frames):
+        prog.render(size=size, frame=i, time=i / 60.0)
+    return (time.perf_counter() - t0) / frames
+
+
+def _set_mode(prog, mode: str) -> None:
+    """NumpyProgram.parallel of every pass (api.Program -> MultipassProgram -> one per tab)."""
+    for p in prog.impl.programs.values():
+        p.parallel = mode
+
+
+def main() -> None:
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("--frames", type=int, default=10)
+    ap.add_argument("--repeat", type=int, default=3)
+    ap.add_argument("--size", default="800x450")
+    args = ap.parse_args()
+    size = tuple(int(v) for v in args.size.lower().split("x"))
+    started = time.perf_counter()
+    print(f"textured and multipass shaders, {size[0]}x{size[1]}, {args.frames} consecutive frames, "
+          f"best of {args.repeat} rounds (ms per frame; ratio = numpy / gl)")
+    print(f"{'':<38}{'processes':>10}{'threads':>10}{'gl':>10}   ratios")
+    with tempfile.TemporaryDirectory() as tmp:
+        for name in SCENES:
+            folder = _copy_scene(name, tmp)
+            progs = {"gl": api.compile(folder, backend="gl")}
+            for mode in ("processes", "threads"):  # one program each: each carries its own buffers
+                progs[mode] = api.compile(folder, backend="numpy")
+                _set_mode(progs[mode], mode)
+            best = {k: float("inf") for k in progs}
+            for r in range(args.repeat):
+                start = r * args.frames  # consecutive frames continue the buffers (no replay)
+                for k, prog in progs.items():
+                    best[k] = min(best[k], _per_frame(prog, args.frames, size, start))
+            p, t, g = (best[k] * 1000 for k in ("processes", "threads", "gl"))
+            print(f"   {name:<35}{p:>8.1f} ms{t:>7.1f} ms{g:>7.1f} ms   {p / g:.2f}x  {t / g:.2f}x")
+    print(f"total {time.perf_counter() - started:.0f} s; load at the end {' '.join(f'{v:.1f}' for v in os.getloadavg())}")
+
+
+if __name__ == "__main__":
+    main()

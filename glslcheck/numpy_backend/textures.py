@@ -1,0 +1,269 @@
+"""Texture sampling on the CPU: the GLSL ES 3.00 lookup built-ins over lanes, as llvmpipe does them.
+
+This module owns the ES 3.00 lookups on a sampler2D for the NumPy backend: `texture`,
+`textureLod`, `textureGrad`, `textureOffset`, their `Proj` and `Offset` combinations,
+`texelFetch`, `texelFetchOffset` and `textureSize`. `Runtime` inherits
+them (`TextureFunctions`), so generated code calls `rt.texture(S.u_iChannel0, uv, S.width)`.
+A sampler value is a `glslcheck.channels.ChannelInput` (texels float32 (height, width, 4), row
+0 = texture coordinate t near 0, i.e. the bottom as OpenGL uploads it) or None (unbound: GL's
+incomplete texture, which reads (0, 0, 0, 1) and has size 0).
+
+What llvmpipe does, measured with tests/channels/measure_sampling.py (Mesa 22.3.6, LLVM 15):
+
+- nearest: texel floor(u * width) (float32 product), then the wrap; bit for bit equal.
+- linear on float textures: float32 weights (not 8-bit fixed point: a 2x1 texture 0..1 gave
+  4096 distinct, exact weights over 4096 pixels). The weight x = u * width - 0.5, x0 = floor(x),
+  w = x - x0, and lerp a + w * (b - a) along x then y. llvmpipe's generated code orders or fuses
+  a few of these float32 operations differently: about a third of the results differ in the
+  last bit (at most 2.4e-7 absolute on a 7x5 texture of normal random texels up to 2.9, both
+  wraps), never by 1/255 of anything, which compare.py's tolerance (in 1/255 steps) accepts.
+  After the lowp truncation below such a last-bit difference can cross one truncation step
+  (2^-10 relative), the bound the tests use.
+- precision: Shadertoy's prelude declares `precision mediump sampler3D` only, so the iChannel
+  uniforms it declares are lowp sampler2D (the ES 3.00 fragment default), and llvmpipe honours
+  it: every lookup result (after filtering) has its float32 mantissa truncated to 10 bits (the
+  low 13 bits cleared; pi reads 3.140625). A `precision highp sampler2D;` in the user's tab comes
+  after the uniforms' declarations and changes nothing (measured). The lookups here truncate the
+  same way (`ChannelInput.lowp`). Not emulated: GLSL's precision propagation, by which an
+  expression whose operands are all lowp (`texture(...) * 2.0`) is lowp and llvmpipe truncates
+  its result again; a lookup stored in a (highp) variable first is exact on both backends.
+- mipmap: the levels are glslcheck's own 2x2 box pyramid (channels.mip_levels), uploaded level
+  by level to GL too, so both sample the same texels; the LOD is llvmpipe's, per 2x2 quad
+  (`_implicit_lod`, measured to 4.3e-6 of a level), clamped to the levels, and the two levels'
+  bilinear results are blended a + frac(lod) * (b - a).
+"""
+
+from __future__ import annotations
+
+from typing import Any
+
+import numpy as np
+
+_LOWP_MASK = np.uint32(0xFFFFE000)  # keep sign, exponent and the top 10 mantissa bits
+
+
+def _truncate_lowp(v: np.ndarray) -> np.ndarray:
+    """llvmpipe's lowp/mediump sampler result: float32 with the mantissa cut to 10 bits."""
+    v = np.ascontiguousarray(v, dtype=np.float32)
+    return (v.view(np.uint32) & _LOWP_MASK).view(np.float32)
+
+
+def _wrap(i: np.ndarray, n: int, wrap: str) -> np.ndarray:
+    return np.mod(i, n) if wrap == "repeat" else np.clip(i, 0, n - 1)
+
+
+def _nearest(t: np.ndarray, u, v, offset, wrap: str) -> np.ndarray:
+    h, w = t.shape[:2]
+    ix = _wrap(np.floor(u * np.float32(w)).astype(np.int64) + offset[0], w, wrap)
+    iy = _wrap(np.floor(v * np.float32(h)).astype(np.int64) + offset[1], h, wrap)
+    return t[iy, ix]
+
+
+def _bilinear(t: np.ndarray, u, v, offset, wrap: str) -> np.ndarray:
+    """One level's bilinear filter (see the module docstring for the measured agreement)."""
+    h, w = t.shape[:2]
+    if wrap == "repeat":  # the closest of the orders measured (see the module docstring)
+        u = u - np.floor(u)
+        v = v - np.floor(v)
+    x = u * np.float32(w) - np.float32(0.5)
+    y = v * np.float32(h) - np.float32(0.5)
+    x0, y0 = np.floor(x), np.floor(y)
+    fx, fy = (x - x0)[..., None], (y - y0)[..., None]
+    x0, y0 = x0.astype(np.int64) + offset[0], y0.astype(np.int64) + offset[1]
+    xa, xb = _wrap(x0, w, wrap), _wrap(x0 + 1, w, wrap)
+    ya, yb = _wrap(y0, h, wrap), _wrap(y0 + 1, h, wrap)
+    a, b, c, d = t[ya, xa], t[ya, xb], t[yb, xa], t[yb, xb]
+    lo = a + fx * (b - a)
+    hi = c + fx * (d - c)
+    return lo + fy * (hi - lo)
+
+
+def _offset(offset) -> tuple:
+    off = np.asarray(offset).astype(np.int64)
+    return off[0], off[1]
+
+
+def _project(p) -> np.ndarray:
+    p = np.asarray(p, dtype=np.float32)
+    return p[:2] / p[-1]
+
+
+def _fast_log2(x: np.ndarray) -> np.ndarray:
+    """exponent + (mantissa - 1) for x = mantissa * 2^exponent, mantissa in [1, 2) (-inf at 0)."""
+    m, e = np.frexp(np.asarray(x, dtype=np.float32))
+    with np.errstate(divide="ignore"):
+        out = (e - 1).astype(np.float32) + (m * np.float32(2) - np.float32(1))
+    return np.where(x > 0, out, np.float32(-np.inf)).astype(np.float32)
+
+
+def _quad_corner_diff(v: np.ndarray, width: int, axis: int) -> np.ndarray:
+    """Per 2x2 quad of a `width`-wide tile (lanes row by row from the bottom): the difference
+    between the quad's bottom-left pixel and its right (axis 1) or upper (axis 0) neighbour,
+    repeated over the quad. An odd last column or row pairs with its left or lower neighbour."""
+    n = v.shape[-1]
+    img = v.reshape(v.shape[:-1] + (n // width, width))
+    other = 1 - axis
+    size = img.shape[-2 + axis]
+    if size < 2:
+        return np.zeros_like(v)
+    take = lambda a, sl, ax: a[(Ellipsis, sl, slice(None)) if ax == 0 else (Ellipsis, sl)]  # noqa: E731
+    base = take(take(img, slice(0, None, 2), axis), slice(0, None, 2), other)
+    step = take(take(img, slice(1, None, 2), axis), slice(0, None, 2), other)
+    if step.shape != base.shape:  # odd size: the last pixel pairs with the one before it
+        last = take(take(img, slice(size - 1, size), axis), slice(0, None, 2), other) - \
+            take(take(img, slice(size - 2, size - 1), axis), slice(0, None, 2), other)
+        d = np.concatenate([step - take(base, slice(0, step.shape[-2 + axis]), axis), last], axis=img.ndim - 2 + axis)
+    else:
+        d = step - base
+    d = np.repeat(np.repeat(d, 2, axis=img.ndim - 2), 2, axis=img.ndim - 1)
+    d = d[..., : img.shape[-2], : img.shape[-1]]
+    return np.ascontiguousarray(d).reshape(v.shape)
+
+
+class TextureFunctions:
+    """The texture lookup built-ins; mixed into `Runtime` (which provides `F` and `_f`)."""
+
+    F: Any
+
+    def _tex_result(self, s, texels: np.ndarray) -> np.ndarray:
+        """(4, lanes) in the runtime's float type, truncated as a lowp sampler returns it."""
+        out = np.moveaxis(texels, -1, 0)
+        if s.lowp:
+            out = _truncate_lowp(out)
+        return np.ascontiguousarray(out, dtype=self.F)
+
+    def _unbound(self, lanes: int) -> np.ndarray:
+        out = np.zeros((4, lanes), dtype=self.F)
+        out[3] = 1.0
+        return out
+
+    def _sample(self, s, p: np.ndarray, offset=(0, 0), lod=None) -> np.ndarray:
+        """Filter `s` at texture coordinates p (2, lanes) float32, `offset` texels added to the
+        texel coordinates (textureOffset) before the wrap. `lod` (lanes,) selects the mipmap
+        levels of a "mipmap" channel (None: level 0); other filters read level 0 only."""
+        p = np.asarray(p, dtype=np.float32)
+        if s is None:
+            return self._unbound(p.shape[-1])
+        u, v = p[0], p[1]
+        if s.filter == "nearest":
+            return self._tex_result(s, _nearest(s.texels, u, v, offset, s.wrap))
+        if s.filter == "linear" or lod is None:
+            return self._tex_result(s, _bilinear(s.texels, u, v, offset, s.wrap))
+        levels = s.levels()
+        lod = np.clip(np.broadcast_to(np.asarray(lod, dtype=np.float32), u.shape), 0.0, len(levels) - 1)
+        lo = np.floor(lod)
+        frac = (lod - lo)[..., None]
+        lo = lo.astype(np.int64)
+        out = np.empty(np.broadcast_shapes(u.shape, v.shape) + (4,), dtype=np.float32)
+        for k in np.unique(lo):  # lanes by their lower level: bilinear there and one level up
+            sel = lo == k
+            us, vs = np.broadcast_to(u, sel.shape)[sel], np.broadcast_to(v, sel.shape)[sel]
+            a = _bilinear(levels[k], us, vs, offset, s.wrap)
+            if k + 1 < len(levels):
+                b = _bilinear(levels[k + 1], us, vs, offset, s.wrap)
+                a = a + frac[sel] * (b - a)
+            out[sel] = a
+        return self._tex_result(s, out)
+
+    def _implicit_lod(self, s, p: np.ndarray, width: int | None, bias=None):
+        """llvmpipe's LOD of a 2x2 quad (measured, tests/channels/measure_sampling.py): the
+        derivatives of the scaled coordinates between the quad's bottom-left pixel and its right
+        and upper neighbours, lod = 0.5 * fast_log2(max(dx.dx, dy.dy)) with fast_log2 the
+        piecewise-linear exponent + (mantissa - 1), the same for the four pixels."""
+        if s is None or s.filter != "mipmap" or width is None:
+            return None
+        h, w = s.texels.shape[:2]
+        scaled = np.stack([p[0] * np.float32(w), p[1] * np.float32(h)])
+        if scaled.shape[-1] == 1:
+            rho2 = np.zeros(1, np.float32)
+        else:
+            dx = _quad_corner_diff(scaled, width, 1)
+            dy = _quad_corner_diff(scaled, width, 0)
+            rho2 = np.maximum((dx * dx).sum(axis=0), (dy * dy).sum(axis=0))
+        lod = np.float32(0.5) * _fast_log2(rho2)
+        if bias is not None:
+            lod = lod + np.asarray(bias, dtype=np.float32)
+        return lod
+
+    @staticmethod
+    def _coords(p: Any) -> np.ndarray:
+        return np.asarray(p, dtype=np.float32)
+
+    # -- the built-ins (spec 8.8); `width` (the tile width) is for the implicit LOD of mipmaps
+    def texture(self, s, p, bias=None, width=None) -> np.ndarray:
+        """texture(sampler2D, vec2[, float bias]) with the channel's filter and wrap. Without
+        mipmaps the LOD (and so the bias) only chooses between the magnification and
+        minification filters, which glslcheck always sets alike."""
+        p = self._coords(p)
+        return self._sample(s, p, lod=self._implicit_lod(s, p, width, bias))
+
+    def textureLod(self, s, p, lod) -> np.ndarray:
+        return self.textureLodOffset(s, p, lod, (0, 0))
+
+    def textureLodOffset(self, s, p, lod, offset) -> np.ndarray:
+        mip = s is not None and s.filter == "mipmap"
+        return self._sample(s, self._coords(p), _offset(offset), lod if mip else None)
+
+    def textureGrad(self, s, p, dpdx, dpdy) -> np.ndarray:
+        return self.textureGradOffset(s, p, dpdx, dpdy, (0, 0))
+
+    def textureGradOffset(self, s, p, dpdx, dpdy, offset) -> np.ndarray:
+        """The LOD from the given gradients, by the implicit LOD's formula (`_implicit_lod`)."""
+        p = self._coords(p)
+        if s is None or s.filter != "mipmap":
+            return self._sample(s, p, _offset(offset))
+        h, w = s.texels.shape[:2]
+        size = np.array([w, h], dtype=np.float32).reshape(2, *([1] * (np.ndim(dpdx) - 1)))
+        dx, dy = np.asarray(dpdx, np.float32) * size, np.asarray(dpdy, np.float32) * size
+        rho2 = np.maximum((dx * dx).sum(axis=0), (dy * dy).sum(axis=0))
+        return self._sample(s, p, _offset(offset), np.float32(0.5) * _fast_log2(rho2))
+
+    # the projective forms: coordinates p.xy / p.z (vec3) or p.xy / p.w (vec4), then as above
+    def textureProjOffset(self, s, p, offset, bias=None, width=None) -> np.ndarray:
+        return self.textureOffset(s, _project(p), offset, bias, width)
+
+    def textureProjLod(self, s, p, lod) -> np.ndarray:
+        return self.textureLod(s, _project(p), lod)
+
+    def textureProjLodOffset(self, s, p, lod, offset) -> np.ndarray:
+        return self.textureLodOffset(s, _project(p), lod, offset)
+
+    def textureProjGrad(self, s, p, dpdx, dpdy) -> np.ndarray:
+        return self.textureGrad(s, _project(p), dpdx, dpdy)
+
+    def textureProjGradOffset(self, s, p, dpdx, dpdy, offset) -> np.ndarray:
+        return self.textureGradOffset(s, _project(p), dpdx, dpdy, offset)
+
+    def textureProj(self, s, p, bias=None, width=None) -> np.ndarray:
+        """textureProj(sampler2D, vec3 | vec4): coordinates p.xy / p.z (vec3) or / p.w (vec4)."""
+        return self.texture(s, _project(p), bias, width)
+
+    def textureOffset(self, s, p, offset, bias=None, width=None) -> np.ndarray:
+        """The (constant) texel offset is added to the integer texel coordinates, before the wrap."""
+        p = self._coords(p)
+        return self._sample(s, p, _offset(offset), self._implicit_lod(s, p, width, bias))
+
+    def texelFetch(self, s, p, lod, *rest) -> np.ndarray:
+        """The texel at integer coordinates; out of range (undefined in ES 3.00) reads 0."""
+        p = np.asarray(p)
+        lanes = p.shape[-1]
+        if s is None:
+            return self._unbound(lanes)
+        h, w = s.texels.shape[:2]
+        x, y = p[0].astype(np.int64), p[1].astype(np.int64)
+        level = np.broadcast_to(np.asarray(lod), x.shape)
+        inside = (x >= 0) & (x < w) & (y >= 0) & (y < h) & (level == 0)
+        texels = s.texels[np.clip(y, 0, h - 1), np.clip(x, 0, w - 1)] * inside[..., None]
+        return self._tex_result(s, texels)
+
+    def texelFetchOffset(self, s, p, lod, offset) -> np.ndarray:
+        return self.texelFetch(s, np.asarray(p) + np.asarray(offset), lod)
+
+    @staticmethod
+    def textureSize(s, lod) -> np.ndarray:
+        """ivec2 of level `lod`: max(1, size >> lod); (0, 0) when unbound."""
+        lod = np.asarray(lod, dtype=np.int32)
+        if s is None:
+            return np.zeros((2,) + lod.shape, dtype=np.int32)
+        h, w = s.texels.shape[:2]
+        return np.stack([np.maximum(np.int32(w) >> lod, 1), np.maximum(np.int32(h) >> lod, 1)]).astype(np.int32)
