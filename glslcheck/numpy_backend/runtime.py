@@ -345,7 +345,7 @@ def _daz(x: np.ndarray) -> np.ndarray:
     tiny = np.abs(x) < _FLT_MIN
     if not tiny.any():
         return x
-    return np.where(tiny, x * _F32(0.0), x)
+    return np.where(tiny, np.copysign(_F32(0.0), x), x)
 
 
 def _fma32(a: Any, b: Any, c: Any) -> np.ndarray:
