@@ -470,23 +470,14 @@ class LlvmpipeMath:
         return _blocked(self._tan, a)
 
     def _sin(self, a: np.ndarray) -> np.ndarray:
-        ai, emm2_add, emm2_and, y_10, y2_9 = self._sin_cos_reduced(a)
-        sign_bit = (ai ^ (emm2_add.view(U32) << U32(29)).view(I32)) & I32(INT_MIN)
-        return self._sin_cos_result(a, emm2_and, sign_bit, y_10, y2_9)
+        return self._sin_cos_result(a, self._sin_cos_reduced(a), cos=False)
 
     def _cos(self, a: np.ndarray) -> np.ndarray:
-        _, _, emm2_and, y_10, y2_9 = self._sin_cos_reduced(a)
-        emm2_2 = emm2_and - I32(2)  # wraps, as psubd
-        sign_bit = ((I32(4) & ~emm2_2).view(U32) << U32(29)).view(I32)
-        return self._sin_cos_result(a, emm2_2, sign_bit, y_10, y2_9)
+        return self._sin_cos_result(a, self._sin_cos_reduced(a), cos=True)
 
     def _tan(self, a: np.ndarray) -> np.ndarray:
-        ai, emm2_add, emm2_and, y_10, y2_9 = self._sin_cos_reduced(a)
-        sign_bit = (ai ^ (emm2_add.view(U32) << U32(29)).view(I32)) & I32(INT_MIN)
-        s = self._sin_cos_result(a, emm2_and, sign_bit, y_10, y2_9)
-        emm2_2 = emm2_and - I32(2)
-        sign_bit = ((I32(4) & ~emm2_2).view(U32) << U32(29)).view(I32)
-        return s / self._sin_cos_result(a, emm2_2, sign_bit, y_10, y2_9)
+        reduced = self._sin_cos_reduced(a)
+        return self._sin_cos_result(a, reduced, cos=False) / self._sin_cos_result(a, reduced, cos=True)
 
     def _sin_cos_reduced(self, a: np.ndarray) -> tuple[np.ndarray, ...]:
         """The part sin and cos share: |x| (DAZ), j = emm2_add & ~1, the reduced argument
@@ -518,10 +509,18 @@ class LlvmpipeMath:
         return ai, emm2_add, emm2_and, y_10, y2_9
 
     @staticmethod
-    def _sin_cos_result(a: np.ndarray, emm2_2: np.ndarray, sign_bit: np.ndarray,
-                        y_10: np.ndarray, y2_9: np.ndarray) -> np.ndarray:
-        """Polynomial selection by bit 1 of emm2_2, the sign, the clamp and NaN for non-finite
-        input. ``fmin(y, 1)``/``fmax(., -1)`` are minps/maxps here: a NaN y becomes 1 in both."""
+    def _sin_cos_result(a: np.ndarray, reduced: tuple[np.ndarray, ...], cos: bool) -> np.ndarray:
+        """From :meth:`_sin_cos_reduced`: the sign (sin: the argument's sign flipped by bit 2
+        of j; cos: bit 2 of j - 2, inverted), the polynomial picked by bit 1 of j (cos: of j - 2), the
+        clamp and NaN for non-finite input. ``fmin(y, 1)``/``fmax(., -1)`` are minps/maxps
+        here: a NaN y becomes 1 in both."""
+        ai, emm2_add, emm2_and, y_10, y2_9 = reduced
+        if cos:
+            emm2_2 = emm2_and - I32(2)  # wraps, as psubd
+            sign_bit = ((I32(4) & ~emm2_2).view(U32) << U32(29)).view(I32)
+        else:
+            emm2_2 = emm2_and
+            sign_bit = (ai ^ (emm2_add.view(U32) << U32(29)).view(I32)) & I32(INT_MIN)
         # y = (emm2_2 & 2) == 0 ? y2_9 : y_10, as a bit select: np.where on a mask that
         # changes from lane to lane costs several times these four integer passes
         keep = ((emm2_2 & I32(2)) >> 1) - I32(1)  # all ones where bit 1 is clear
