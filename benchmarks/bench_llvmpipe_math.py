@@ -4,7 +4,8 @@
 
 1. Per built-in: `Runtime("float32")` (llvmpipe's sin/cos/exp2/log2/pow step by step, with a
    correctly rounded fused multiply-add on an FMA CPU) against NumPy's own float32 ufunc on the
-   same 1,000,000 arguments; best of N each, in turns. Ratio = emulated / NumPy.
+   same 1,000,000 arguments, then on one render tile's worth (TILE_LANES, 49,152: the size a
+   frame's built-in calls have); best of N each, in turns. Ratio = emulated / NumPy.
 2. Whole frames at 800x450: the four-sphere scene (benchmarks/scenes/four_spheres) and a value
    noise shader (a sin hash, 5 octaves), rendered with the emulation and with the runtime's
    transcendental functions swapped back to NumPy's (`rt.lp = None`) and Mesa's constant
@@ -27,7 +28,7 @@ ROOT = os.path.dirname(HERE)
 sys.path.insert(0, ROOT)
 
 from glslcheck.diagnostics import register_source  # noqa: E402
-from glslcheck.numpy_backend.program import compile_numpy  # noqa: E402
+from glslcheck.numpy_backend.program import TILE_LANES, compile_numpy  # noqa: E402
 from glslcheck.numpy_backend.runtime import HOST_FMA, Runtime  # noqa: E402
 from glslcheck.sources import Shader, Source, load_shader  # noqa: E402
 
@@ -60,20 +61,23 @@ def best(fn, repeat: int) -> float:
 def builtins(repeat: int) -> None:
     rt = Runtime("float32")
     rng = np.random.default_rng(0)
-    x = rng.uniform(-100, 100, 1_000_000).astype(np.float32)
-    pos = np.abs(x) + np.float32(1e-3)
-    y = rng.uniform(-4, 4, x.size).astype(np.float32)
-    cases = [("sin", lambda: rt.sin(x), lambda: np.sin(x)),
-             ("cos", lambda: rt.cos(x), lambda: np.cos(x)),
-             ("exp2", lambda: rt.exp2(y), lambda: np.exp2(y)),
-             ("log2", lambda: rt.log2(pos), lambda: np.log2(pos)),
-             ("pow", lambda: rt.pow(pos, y), lambda: np.exp2(y * np.log2(pos)))]
-    print(f"1. built-ins on 1,000,000 float32 arguments (FMA CPU: {HOST_FMA}), best of {repeat}")
-    with rt.errstate():
-        for name, ours, numpy in cases:
-            a = best(ours, repeat)
-            b = best(numpy, repeat)
-            print(f"   {name:<5} emulated {a * 1e3:7.1f} ms   numpy {b * 1e3:6.1f} ms   ratio {a / b:5.1f}x")
+    for lanes, calls in ((1_000_000, 1), (TILE_LANES, 20)):
+        x = rng.uniform(-100, 100, lanes).astype(np.float32)
+        pos = np.abs(x) + np.float32(1e-3)
+        y = rng.uniform(-4, 4, x.size).astype(np.float32)
+        cases = [("sin", lambda: rt.sin(x), lambda: np.sin(x)),
+                 ("cos", lambda: rt.cos(x), lambda: np.cos(x)),
+                 ("tan", lambda: rt.tan(x), lambda: np.tan(x)),
+                 ("exp2", lambda: rt.exp2(y), lambda: np.exp2(y)),
+                 ("log2", lambda: rt.log2(pos), lambda: np.log2(pos)),
+                 ("pow", lambda: rt.pow(pos, y), lambda: np.exp2(y * np.log2(pos)))]
+        print(f"1. built-ins on {lanes:,} float32 arguments (FMA CPU: {HOST_FMA}), {calls} call(s), "
+              f"best of {repeat}")
+        with rt.errstate():
+            for name, ours, numpy in cases:
+                a = best(lambda: [ours() for _ in range(calls)], repeat) / calls
+                b = best(lambda: [numpy() for _ in range(calls)], repeat) / calls
+                print(f"   {name:<5} emulated {a * 1e3:7.2f} ms   numpy {b * 1e3:6.2f} ms   ratio {a / b:5.1f}x")
 
 
 def frames(repeat: int) -> None:
