@@ -390,15 +390,6 @@ def _cvtt(x: np.ndarray) -> np.ndarray:
     return x.astype(I32)
 
 
-def _sse_min(a: Any, b: Any) -> np.ndarray:
-    """``minps a, b``: ``a < b ? a : b`` (a NaN in either gives b)."""
-    return np.where(a < b, a, b)
-
-
-def _sse_max(a: Any, b: Any) -> np.ndarray:
-    return np.where(a > b, a, b)
-
-
 def _blocked(fn: Any, *args: np.ndarray) -> np.ndarray:
     """``fn(*args)`` (float32 in, float32 out, elementwise) evaluated on blocks of
     :data:`_BLOCK` lanes of the broadcast arguments: the two dozen temporaries of a built-in
