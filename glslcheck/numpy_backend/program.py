@@ -48,13 +48,13 @@ import sys
 import threading
 import time as _time
 from collections import OrderedDict
-from concurrent.futures import ThreadPoolExecutor
+from concurrent.futures import FIRST_EXCEPTION, ThreadPoolExecutor, wait
 from dataclasses import dataclass, field
 from typing import Any
 
 import numpy as np
 
-from ..diagnostics import Diagnostic, GlslError, Location
+from ..diagnostics import Diagnostic, GlslError, InputError, Location
 from ..shadertoy import DEFAULT_DATE, DEFAULT_SIZE, UNIFORMS_BY_NAME
 from .runtime import Runtime, Struct
 
@@ -67,6 +67,12 @@ CACHE_FRAMES = 8
 _CPUS = os.cpu_count()
 CACHE_BYTES = 256 * 2**20  # and at most this much of them (a 3840x2160 frame is 127 MiB), the newest always kept
 PROCESSES_AFTER = 1.0  # seconds a program renders in this process before "auto" starts worker processes
+# The whole-frame budget: a frame that is still rendering after this many seconds stops with an
+# error at the loop (or function) it was in, whatever each loop's own cap (LOOP_CAP iterations
+# per loop execution: loops nested two deep may still run 10**10 times). Checked at every region
+# entry and loop iteration (`Lanes.count`); environment variable GLSLCHECK_FRAME_SECONDS, or
+# `NumpyProgram.frame_seconds`.
+FRAME_SECONDS = 300.0
 # Uniforms that change from frame to frame; a shader that reads none of them renders one image
 # for a whole animation.
 ANIMATED_UNIFORMS = ("iTime", "iFrame", "iTimeDelta", "iDate", "iMouse", "iFrameRate")
@@ -77,11 +83,40 @@ ANIMATED_UNIFORMS = ("iTime", "iFrame", "iTimeDelta", "iDate", "iMouse", "iFrame
 # ---------------------------------------------------------------------------------------------
 
 
+class Budget:
+    """When a frame must stop: at `deadline` (`time.monotonic()`, one clock for every process of
+    the machine, so worker processes get it in their message) or once `cancelled` (Ctrl-C in
+    the caller, or an error in another tile). Picklable."""
+
+    def __init__(self, seconds: float) -> None:
+        self.seconds = seconds
+        self.deadline = _time.monotonic() + seconds
+        self.cancelled = False
+
+
+class Cancelled(Exception):
+    """A tile stopped because its frame was cancelled (the frame's own error is raised)."""
+
+
+def frame_seconds() -> float:
+    """The frame budget in seconds: GLSLCHECK_FRAME_SECONDS, else FRAME_SECONDS."""
+    text = os.environ.get("GLSLCHECK_FRAME_SECONDS", "").strip()
+    try:
+        value = float(text) if text else FRAME_SECONDS
+    except ValueError:
+        value = math.nan
+    if not 0 < value < math.inf:
+        raise InputError(f"error: GLSLCHECK_FRAME_SECONDS must be a positive number of seconds, not {text!r}")
+    return value
+
+
 class State:
     """What one tile's invocation carries: `lanes`, `width` (tile width, for derivatives),
     `frag_coord` (vec2 lanes), `frag_coord4` (gl_FragCoord), `discard` (mask), uniforms
     `u_<name>`, globals `g_<name>`, `stats` (region id -> lanes, shared), `parent` (when this
-    is a compacted view of another state)."""
+    is a compacted view of another state), `budget` (the frame's `Budget`; None: no limit)."""
+
+    budget: Budget | None = None
 
     def __init__(self, **values: Any) -> None:
         self.__dict__.update(values)
@@ -188,14 +223,30 @@ class Lanes:
             raise AssertionError("internal error: a condition judged uniform varies across lanes")
         return bool(c.reshape(-1)[0])
 
-    # statistics and loops ---------------------------------------------------------------------
-    @staticmethod
-    def count(S, rid: int, m) -> None:
+    # statistics, budget and loops ---------------------------------------------------------------
+    def count(self, S, rid: int, m) -> None:
+        """Called on entering each function, branch and loop iteration: stops the frame when it
+        is over its budget or cancelled, and counts the lanes when statistics are on."""
+        b = S.budget
+        if b is not None and (b.cancelled or _time.monotonic() > b.deadline):
+            self.over_budget(b, rid)
         st = S.stats
         if st is None:
             return
         n = S.lanes if m is None else (int(np.count_nonzero(m)) if m.shape[-1] != 1 else (S.lanes if m[0] else 0))
         st[rid] = st.get(rid, 0) + n
+
+    def over_budget(self, budget: Budget, rid: int) -> None:
+        if budget.cancelled:
+            raise Cancelled()
+        kind, function, path, line = self.meta.get("regions", {}).get(rid, ("", "", "<shader>", 0))
+        _, _, col = self.loops.get(rid, (path, line, 1))
+        where = "this loop" if kind == "loop" else f"this {kind}" if kind in ("if", "else", "case") else f"'{function}'"
+        raise GlslError(Diagnostic(
+            f"the frame was still rendering after {budget.seconds:g} s on the CPU, in {where}; the NumPy "
+            "renderer stops it (a GPU would hang or reset)", Location(path, line, col), rule="numpy-frame-budget",
+            help="bound the loops' iteration counts (nested loops multiply); "
+                 "GLSLCHECK_FRAME_SECONDS sets the budget"))
 
     def runaway(self, lid: int) -> None:
         path, line, col = self.loops.get(lid, ("<shader>", 0, 0))
@@ -466,9 +517,9 @@ def _fragments(rt, tile, dx: float, dy: float, need4: bool):
 
 
 def render_tile(ns: dict, spec: FrameSpec, tile: tuple[int, int, int, int], image: np.ndarray,
-                cached: np.ndarray | None = None) -> dict | None:
+                cached: np.ndarray | None = None, budget: Budget | None = None) -> dict | None:
     """Run the shader on one tile and write its rows into `image` (and `cached`); returns the
-    tile's lane counts per region when `spec.stats`, else None."""
+    tile's lane counts per region when `spec.stats`, else None. `budget`: the frame's."""
     rt = ns["rt"]
     x0, y0, tw, th = tile
     lanes = tw * th
@@ -479,7 +530,7 @@ def render_tile(ns: dict, spec: FrameSpec, tile: tuple[int, int, int, int], imag
         frag, frag4 = _fragments(rt, tile, dx if samples > 1 else 0.0, dy if samples > 1 else 0.0,
                                  spec.need4)
         S = State(**spec.base, lanes=lanes, width=tw, frag_coord=frag, discard=Lanes.NO, stats=st,
-                  parent=None)
+                  parent=None, budget=budget)
         if spec.need4:
             S.frag_coord4 = frag4
         with rt.errstate():
@@ -549,6 +600,7 @@ class NumpyProgram:
     # program has rendered for PROCESSES_AFTER seconds in this process
     parallel: str = field(default_factory=lambda: os.environ.get("GLSLCHECK_PARALLEL", "auto"))
     last_parallel: str = ""  # how the last frame was rendered: "processes", "threads", "one thread"
+    frame_seconds: float | None = None  # the frame budget; None: GLSLCHECK_FRAME_SECONDS or FRAME_SECONDS
     _render_seconds: float = field(default=0.0, repr=False)
     _keys: dict = field(default_factory=dict, repr=False)
     _modules: dict = field(default_factory=dict, repr=False)
@@ -625,6 +677,7 @@ class NumpyProgram:
                 self._specs[spec_key] = spec
                 while len(self._specs) > CACHE_FRAMES:
                     self._specs.popitem(last=False)
+        budget = Budget(self.frame_seconds if self.frame_seconds is not None else frame_seconds())
         tiles = frame_tiles(width, height)
         threads = self.threads or _CPUS or 1
         # the tiles that took longest in the last frame of this size go first, so that the
@@ -643,7 +696,7 @@ class NumpyProgram:
                 # the image and the cache's read-only view share the pixels (copy-on-write)
                 image, cached, all_stats, seconds = workers.render(
                     self._key(precision), self.source, self.filename, self.meta, precision, spec,
-                    run_tiles, threads)
+                    run_tiles, threads, budget)
                 self.last_parallel = "processes"
             except workers.Unavailable:
                 image, all_stats = None, []  # the pool is gone for this process: threads below
@@ -653,7 +706,7 @@ class NumpyProgram:
             if not stats:
                 with self._lock:
                     cached = self._cache.buffer(image.shape)
-            seconds = self._render_threads(ns, spec, run_tiles, image, cached, threads, all_stats)
+            seconds = self._render_threads(ns, spec, run_tiles, image, cached, threads, all_stats, budget)
         if len(seconds) == len(tiles):
             cost = [seconds[t] for t in tiles]
             with self._lock:
@@ -677,29 +730,45 @@ class NumpyProgram:
                     self._cache.recycle(self._cache.popitem(last=False)[1])
         return out
 
-    def _render_threads(self, ns, spec, tiles, image, cached, threads, all_stats) -> dict:
-        """Render `tiles` on this process's threads: {tile: seconds it took}."""
+    def _render_threads(self, ns, spec, tiles, image, cached, threads, all_stats, budget=None) -> dict:
+        """Render `tiles` on this process's threads: {tile: seconds it took}. On an error or
+        Ctrl-C the budget is cancelled, so the tiles still running stop at their next region."""
         self.last_parallel = "threads" if threads > 1 and len(tiles) > 1 else "one thread"
         seconds: dict = {}
 
         def run(tile):
             t0 = _time.perf_counter()
-            st = render_tile(ns, spec, tile, image, cached)
+            try:
+                st = render_tile(ns, spec, tile, image, cached, budget)
+            except BaseException:
+                if budget is not None:  # the other tiles stop at their next region
+                    budget.cancelled = True
+                raise
             seconds[tile] = _time.perf_counter() - t0
             if st is not None:
                 all_stats.append(st)
 
         if threads > 1 and len(tiles) > 1:
             futures = [_pool(threads).submit(run, t) for t in tiles]
+            pending = set(futures)
             try:
-                for f in futures:
-                    f.result()
+                while pending:  # waits of 0.1 s: Ctrl-C is seen between them on every platform
+                    done, pending = wait(pending, timeout=0.1, return_when=FIRST_EXCEPTION)
+                    if any(f.exception() is not None for f in done):
+                        break
+            except BaseException:
+                if budget is not None:
+                    budget.cancelled = True
+                raise
             finally:
                 for f in futures:  # after an error: drop the tiles not started yet ...
                     f.cancel()
                 for f in futures:  # ... and let the running ones finish before returning
                     if not f.cancelled():
                         f.exception()
+            errors = [f.exception() for f in futures if not f.cancelled() and f.exception() is not None]
+            if errors:  # the tile's own error, not the Cancelled of the tiles it stopped
+                raise next((e for e in errors if not isinstance(e, Cancelled)), errors[0])
         else:
             for t in tiles:
                 run(t)
