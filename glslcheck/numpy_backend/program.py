@@ -57,6 +57,7 @@ import numpy as np
 from ..diagnostics import Diagnostic, GlslError, InputError, Location
 from ..shadertoy import DEFAULT_DATE, DEFAULT_SIZE, UNIFORMS_BY_NAME
 from .runtime import Runtime, Struct
+from .transpile import SMALL_STATE
 
 TILE_LANES = 49152  # lanes per tile: fewer calls in compacted regions; full-lane work measured flat 24k-49k
 TILE_WIDTH = 1024  # widest tile; wide bands keep rows contiguous in the output image
@@ -73,6 +74,13 @@ PROCESSES_AFTER = 1.0  # seconds a program renders in this process before "auto"
 # entry and loop iteration (`Lanes.count`); environment variable GLSLCHECK_FRAME_SECONDS, or
 # `NumpyProgram.frame_seconds`.
 FRAME_SECONDS = 300.0
+# The memory budget: the tiles rendering at once (one per thread or worker) hold at most this
+# fraction of the machine's memory, or of the address space `ulimit -v` leaves this process;
+# environment variable GLSLCHECK_MEMORY_MB. A tile's lanes times the shader's per-lane state
+# (estimated by the transpiler, `transpile.lane_state`) must fit: large local arrays get smaller
+# tiles, and a shader whose 2x2 tile does not fit is refused with an error at its largest variable.
+MEMORY_FRACTION = 0.5
+MIN_TILE_LANES = 4  # one 2x2 derivative quad
 # Uniforms that change from frame to frame; a shader that reads none of them renders one image
 # for a whole animation.
 ANIMATED_UNIFORMS = ("iTime", "iFrame", "iTimeDelta", "iDate", "iMouse", "iFrameRate")
@@ -96,6 +104,48 @@ class Budget:
 
 class Cancelled(Exception):
     """A tile stopped because its frame was cancelled (the frame's own error is raised)."""
+
+
+def memory_budget() -> int:
+    """Bytes the tiles rendering at once may hold: GLSLCHECK_MEMORY_MB, else MEMORY_FRACTION of
+    the machine's memory or of the address space left under `ulimit -v`, whichever is less."""
+    text = os.environ.get("GLSLCHECK_MEMORY_MB", "").strip()
+    if text:
+        try:
+            value = float(text)
+        except ValueError:
+            value = math.nan
+        if not 0 < value < math.inf:
+            raise InputError(f"error: GLSLCHECK_MEMORY_MB must be a positive number of megabytes, not {text!r}")
+        return int(value * 2**20)
+    avail = 2**40  # unknown: no limit from the machine
+    try:
+        avail = os.sysconf("SC_PAGE_SIZE") * os.sysconf("SC_PHYS_PAGES")
+    except (ValueError, OSError, AttributeError):
+        pass
+    try:
+        import resource
+
+        soft = resource.getrlimit(resource.RLIMIT_AS)[0]
+        if soft != resource.RLIM_INFINITY:
+            with open("/proc/self/statm") as f:  # the address space in use now (Linux)
+                used = int(f.read().split()[0]) * os.sysconf("SC_PAGE_SIZE")
+            avail = min(avail, max(0, soft - used))
+    except (ImportError, OSError, ValueError):
+        pass
+    return int(MEMORY_FRACTION * avail)
+
+
+def lane_bytes(meta: dict, precision: str) -> tuple[int, Location | None]:
+    """(estimated bytes of one lane's state, where its largest variable is declared)."""
+    state = meta.get("lane_state")
+    scalars = state[0] if state else SMALL_STATE
+    loc = Location(state[1], state[2], state[3]) if state else None
+    return scalars * (8 if precision == "float64" else 4), loc
+
+
+def _megabytes(n: int) -> str:
+    return f"{n / 2**20:,.0f} MB" if n >= 2**20 else f"{n / 2**10:,.0f} kB"
 
 
 def frame_seconds() -> float:
@@ -245,7 +295,7 @@ class Lanes:
         raise GlslError(Diagnostic(
             f"the frame was still rendering after {budget.seconds:g} s on the CPU, in {where}; the NumPy "
             "renderer stops it (a GPU would hang or reset)", Location(path, line, col), rule="numpy-frame-budget",
-            help="bound the loops' iteration counts (nested loops multiply); "
+            help="bound the loops' iteration counts (nested loops multiply) and the arrays' sizes; "
                  "GLSLCHECK_FRAME_SECONDS sets the budget"))
 
     def runaway(self, lid: int) -> None:
@@ -458,16 +508,17 @@ class FrameSpec:
     compaction: tuple  # (COMPACT_FRACTION, COMPACT_MIN_LANES) of the caller, for workers
 
 
-def frame_tiles(width: int, height: int) -> tuple[tuple[int, int, int, int], ...]:
+def frame_tiles(width: int, height: int, lanes: int | None = None) -> tuple[tuple[int, int, int, int], ...]:
     """(x0, y0, w, h) of each tile, y0 from the bottom; tiles start at even x and y, so 2x2
-    derivative quads never straddle two tiles."""
-    return _frame_tiles(width, height, TILE_WIDTH, TILE_HEIGHT, TILE_LANES)
+    derivative quads never straddle two tiles. `lanes`: at most this many per tile (memory)."""
+    tile_lanes = TILE_LANES if lanes is None else max(MIN_TILE_LANES, min(TILE_LANES, lanes))
+    return _frame_tiles(width, height, TILE_WIDTH, TILE_HEIGHT, tile_lanes)
 
 
 @functools.lru_cache(maxsize=64)
 def _frame_tiles(width: int, height: int, tile_width: int, tile_height: int | None,
                  tile_lanes: int) -> tuple[tuple[int, int, int, int], ...]:
-    tw = min(tile_width, width)
+    tw = min(tile_width, width, max(2, tile_lanes // 4 * 2))  # narrower than a 2-row band of lanes
     tw += tw % 2 if tw < width else 0
     th = tile_height or max(2, (tile_lanes // tw) // 2 * 2)
     return tuple((x0, y0, min(tw, width - x0), min(th, height - y0))  # a tuple: the cache shares it
@@ -678,8 +729,9 @@ class NumpyProgram:
                 while len(self._specs) > CACHE_FRAMES:
                     self._specs.popitem(last=False)
         budget = Budget(self.frame_seconds if self.frame_seconds is not None else frame_seconds())
-        tiles = frame_tiles(width, height)
         threads = self.threads or _CPUS or 1
+        tile_lanes, threads = self._fit_memory(precision, threads)
+        tiles = frame_tiles(width, height, tile_lanes)
         # the tiles that took longest in the last frame of this size go first, so that the
         # workers finish together (the order changes no pixel: each tile writes its own rows)
         with self._lock:
@@ -773,6 +825,26 @@ class NumpyProgram:
             for t in tiles:
                 run(t)
         return seconds
+
+    def _fit_memory(self, precision: str, threads: int) -> tuple[int, int]:
+        """(lanes per tile, tiles at once) that keep the tiles' state within `memory_budget()`:
+        fewer lanes per tile, then one tile at a time; a located GlslError when even one 2x2
+        tile does not fit."""
+        per_lane, loc = lane_bytes(self.meta, precision)
+        limit = memory_budget()
+        lanes = limit // (threads * per_lane)
+        if lanes < MIN_TILE_LANES:
+            threads = 1
+            lanes = limit // per_lane
+        if lanes < MIN_TILE_LANES:
+            raise GlslError(Diagnostic(
+                f"this shader needs about {_megabytes(per_lane)} per pixel on the CPU (its largest variable is "
+                f"declared here): even a 2x2 tile would take {_megabytes(MIN_TILE_LANES * per_lane)}, more than "
+                f"the memory budget of {_megabytes(limit)}", loc or Location(self.meta.get("source", "<shader>"), 1, 1),
+                rule="numpy-memory-budget",
+                help="use smaller arrays, or render with --backend gl; GLSLCHECK_MEMORY_MB sets the budget "
+                     f"(default {MEMORY_FRACTION:.0%} of the machine's memory)"))
+        return min(TILE_LANES, lanes), threads
 
     def _use_processes(self, threads: int, tiles: list) -> bool:
         """Worker processes for frames of several tiles when asked to, or ("auto") once this

@@ -82,6 +82,10 @@ SPILL_HEIGHT = 24  # an expression this many syntax levels high is computed into
 OUTLINE_INDENT = 48  # a statement starting this deep goes to a helper function
 OUTLINE_EXPR_INDENT = 64  # an expression (nested `&&`, ternaries with effects) from this deep too
 OUTLINE_LOOPS = 16  # and a statement inside this many Python loops of one function
+# Per-lane state above which the module's SHADER_META carries "lane_state" (scalars per lane,
+# where the largest variable is declared) so the renderer sizes tiles to its memory budget;
+# below it the renderer assumes this many (`program.lane_bytes`).
+SMALL_STATE = 1024
 _IDENT = re.compile(r"^[A-Za-z_][A-Za-z0-9_]*$")
 _LOCAL_REF = re.compile(r"(?<![.\w\"'])(v_\w+|_[a-z]+\d*)\b")
 _ASSIGNED = re.compile(r"^(?!(?:if|elif|while|return) )([^=]*?)\s*[-+*/]?=(?!=)")  # a stripped statement's targets
@@ -718,6 +722,38 @@ class PythonLimits:
         return value
 
 
+def _scalars(t: Any) -> int:
+    """Scalars in one lane's value of type t."""
+    if t.is_array:
+        return (t.array_size or 0) * _scalars(t.element)
+    if t.is_struct:
+        return sum(_scalars(ft) for _, ft in t.fields)
+    if t.is_matrix:
+        return t.cols * t.rows
+    return t.size if t.is_vector else 1
+
+
+def lane_state(model: Any, functions: list[Any]) -> tuple[int, Any]:
+    """(an estimate of the scalars one lane holds at once, the declaration of the largest
+    variable): every variable of every function (as if all were alive together), two more
+    copies of the largest one (a masked write to an array builds the new array beside the old)
+    and 256 scalars of temporaries."""
+    nodes = [g.node for g in model.globals if g.kind == "global" and not g.type.contains_opaque]
+    for fn in functions:
+        nodes += fn.node.proto.params
+        nodes += [n for n in fn.node.body.walk() if isinstance(n, (A.Declarator, A.ConditionDeclaration))]
+    total, largest, at = 0, 0, None
+    for n in nodes:
+        sym = model.symbol_of(n)
+        if sym is None or sym.type.contains_opaque:
+            continue
+        k = _scalars(sym.type)
+        total += k
+        if k > largest:
+            largest, at = k, n
+    return total + 2 * largest + 256, at
+
+
 def too_complex(message: str, loc: Any) -> GlslError:
     return GlslError(Diagnostic(
         f"this program is too complex to render on the CPU ({message})", loc, rule=RULE,
@@ -984,6 +1020,10 @@ class Transpiler(PythonLimits):
             "uses_derivatives": bool(self.facts.uses_derivs),
             "loop_cap": LOOP_CAP,
         }
+        scalars, at = lane_state(self.model, self.functions)
+        if scalars > SMALL_STATE and at is not None:
+            loc = at.loc
+            meta["lane_state"] = (scalars, loc.path, loc.line, loc.column)
         out = [self.header(), "", f"SHADER_META = {meta!r}", ""]
         out.append("if __name__ == \"__main__\":  # run on its own: python this_file.py --help")
         out.append("    from glslcheck.numpy_backend.program import standalone_globals")
