@@ -812,6 +812,7 @@ class FnState:
         self.no_compact = 0
         self.nest = 0
         self.blocks = 0  # Python loops around the current line, in this Python function
+        self.switch_locals: set[str] = set()  # declared in a switch body: bound before the switch
 
 
 class Transpiler(PythonLimits):
@@ -1411,7 +1412,7 @@ class Transpiler(PythonLimits):
             value = self.expr(dec.init, mask) if dec.init is not None else self.zero(sym.type, dec)
             if dec.init is not None:
                 self.after_discarding_call(dec.init)
-            if self.fn.switch_depth:
+            if name in self.fn.switch_locals:  # (one in a block inside a case is scoped to it)
                 self.emit(f"{name} = X.put({name}, {value}, {mask})")
             else:
                 self.emit(f"{name} = {value}")
@@ -1427,6 +1428,7 @@ class Transpiler(PythonLimits):
                         name = self.var_name(sym, dec)
                         self.emit(f"{name} = {self.zero(sym.type, dec)}")
                         self.fn.defined.append(name)
+                        self.fn.switch_locals.add(name)
 
     def _stmt_If(self, s: A.If, mask: str | None) -> None:
         self.comment_line(s)
