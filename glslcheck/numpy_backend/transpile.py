@@ -205,6 +205,7 @@ class Facts:
         self._calls_cache: dict[int, list[Any]] = {}
         self.events: dict[int, Events] = {}  # node id -> events_of(node)
         self._discarding: dict[int, bool] = {}  # node id -> a discarding call in its subtree
+        self._write_counts: dict[int, int] | None = None
         for fn in functions:
             body = fn.node.body
             for node in body.walk():
@@ -236,6 +237,20 @@ class Facts:
                     tgt = model.call_target(node)
                     if _is_symbol(tgt) and id(tgt) in self.reads_lane_state:
                         self.reads_lane_state.add(id(fn))
+
+    def write_counts(self) -> dict[int, int]:
+        """Symbol id -> how many places in the program's functions write it (assignments,
+        ++/--, out and inout arguments), counted in one walk."""
+        if self._write_counts is None:
+            counts: dict[int, int] = {}
+            for fn in self.functions:
+                for node in fn.node.body.walk():
+                    for target in self._written_targets(node):
+                        sym = self.model.symbol_of(target)
+                        if sym is not None:
+                            counts[id(sym)] = counts.get(id(sym), 0) + 1
+            self._write_counts = counts
+        return self._write_counts
 
     def discarding_call(self, n: Any) -> bool:
         """True when n is a call of a user function that may discard."""
@@ -527,7 +542,7 @@ class Uniformity:
         return mu
 
     def loop(self, s: Any, mu: bool) -> bool:
-        ind = induction_variable(s, self.model)
+        ind = induction_variable(s, self.model, self.tr.facts)
         if isinstance(s, A.For) and s.init is not None:
             self.stmt(s.init, mu)
         cond = s.cond
@@ -562,9 +577,11 @@ class Uniformity:
         return mu and (not ev.ret or not self.fn_varying_return)
 
 
-def induction_variable(s: Any, model: Any) -> Any:
+def induction_variable(s: Any, model: Any, facts: Facts | None = None) -> Any:
     """The Symbol of a for loop's induction variable: declared in the init, written only by the
-    step (`i++`, `++i`, `i--`, `i += e`, `i -= e`, `i = i + e`); else None."""
+    step (`i++`, `++i`, `i--`, `i += e`, `i -= e`, `i = i + e`); else None. With `facts`, the
+    body is not walked: the variable is scoped to the loop, so it is written nowhere but the
+    step when the program writes it once in all (`Facts.write_counts`)."""
     if not isinstance(s, A.For) or not isinstance(s.init, A.DeclarationStatement):
         return None
     decl = s.init.decl
@@ -591,6 +608,8 @@ def induction_variable(s: Any, model: Any) -> Any:
             return None
         if isinstance(n, A.Call) and any(d != "in" for d in out_directions(model.call_target(n))):
             return None
+    if facts is not None:
+        return sym if facts.write_counts().get(id(sym), 0) == 1 else None
     for part in (s.cond, s.body):
         if part is None:
             continue
@@ -1578,7 +1597,7 @@ class Transpiler(PythonLimits):
         fs = self.fn
         lid = self.region("loop", s)
         self.loops[lid] = (s.loc.path, s.loc.line, s.loc.column)
-        ind = induction_variable(s, self.model)
+        ind = induction_variable(s, self.model, self.facts)
         ev_body = events_of(body, self.facts, self.model)
         if (not do_while and cond is not None and not isinstance(cond, A.ConditionDeclaration)
                 and not ev_body.any and fs.uni is not None and fs.uni.is_uniform(cond)):
