@@ -459,12 +459,15 @@ def _nest_statements(rng: random.Random, depth: int) -> str:
     return body + " ".join(reversed(tail))
 
 
-def hostile_program(rng: random.Random) -> str:
+HOSTILE_SHAPES = ("nest", "loops", "elseif", "parens", "ternary", "andand", "sum", "array", "runaway",
+                  "calls", "switch")
+
+
+def hostile_program(rng: random.Random, shape: str | None = None) -> str:
     """A program `check` accepts that pushes the transpiler and the renderer to their limits:
     transpile and render must succeed or stop with a located error, never crash, hang or run
-    out of memory."""
-    shape = rng.choice(("nest", "nest", "loops", "elseif", "parens", "ternary", "andand", "sum",
-                        "array", "runaway", "calls", "switch"))
+    out of memory. `shape`: one of HOSTILE_SHAPES (default: a random one, "nest" twice as often)."""
+    shape = shape or rng.choice(HOSTILE_SHAPES + ("nest",))
     n = rng.choice((10, 20, 30, 60, 100, 200, 300))
     pre = ""
     body = "float x = fragCoord.x * 0.1;\n"
