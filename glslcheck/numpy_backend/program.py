@@ -4,8 +4,9 @@ This module owns what happens around the generated code (`transpile.py`): execut
 in a restricted namespace (`__builtins__` empty; only `rt`, the runtime, and `X`, the lane
 helpers below, are visible), the per-invocation state `State` (uniforms, globals, discard mask,
 statistics), splitting the image into tiles rendered by worker processes or a thread pool,
-supersampling, the frame cache for shaders that do not animate, and the error for a runaway
-loop.
+supersampling, the frame cache for shaders that do not animate, the error for a runaway
+loop, and the frame's budgets: time (FRAME_SECONDS, `Budget`) and memory (MEMORY_FRACTION,
+tiles sized to the shader's per-lane state, `NumpyProgram._fit_memory`).
 
 Library API:
 
@@ -94,12 +95,37 @@ ANIMATED_UNIFORMS = ("iTime", "iFrame", "iTimeDelta", "iDate", "iMouse", "iFrame
 class Budget:
     """When a frame must stop: at `deadline` (`time.monotonic()`, one clock for every process of
     the machine, so worker processes get it in their message) or once `cancelled` (Ctrl-C in
-    the caller, or an error in another tile). Picklable."""
+    the caller, or an error in another tile). The generated code's `X.count` reads one flag,
+    `stop`, which a timer thread sets at the deadline (reading the clock there instead cost
+    more than the rest of `X.count`). Picklable (without its timer)."""
 
     def __init__(self, seconds: float) -> None:
         self.seconds = seconds
         self.deadline = _time.monotonic() + seconds
         self.cancelled = False
+        self.stop = False
+        self._timer: threading.Timer | None = None
+
+    def __getstate__(self) -> dict:
+        return {**self.__dict__, "_timer": None}
+
+    def cancel(self) -> None:
+        self.cancelled = self.stop = True
+
+    def start(self) -> "Budget":
+        """Arm the deadline in this process (until `finish`)."""
+        self._timer = threading.Timer(max(0.0, self.deadline - _time.monotonic()), self._expire)
+        self._timer.daemon = True
+        self._timer.start()
+        return self
+
+    def _expire(self) -> None:
+        self.stop = True
+
+    def finish(self) -> None:
+        if self._timer is not None:
+            self._timer.cancel()
+            self._timer = None
 
 
 class Cancelled(Exception):
@@ -278,7 +304,7 @@ class Lanes:
         """Called on entering each function, branch and loop iteration: stops the frame when it
         is over its budget or cancelled, and counts the lanes when statistics are on."""
         b = S.budget
-        if b is not None and (b.cancelled or _time.monotonic() > b.deadline):
+        if b is not None and b.stop:
             self.over_budget(b, rid)
         st = S.stats
         if st is None:
@@ -758,7 +784,11 @@ class NumpyProgram:
             if not stats:
                 with self._lock:
                     cached = self._cache.buffer(image.shape)
-            seconds = self._render_threads(ns, spec, run_tiles, image, cached, threads, all_stats, budget)
+            budget.start()
+            try:
+                seconds = self._render_threads(ns, spec, run_tiles, image, cached, threads, all_stats, budget)
+            finally:
+                budget.finish()
         if len(seconds) == len(tiles):
             cost = [seconds[t] for t in tiles]
             with self._lock:
@@ -794,7 +824,7 @@ class NumpyProgram:
                 st = render_tile(ns, spec, tile, image, cached, budget)
             except BaseException:
                 if budget is not None:  # the other tiles stop at their next region
-                    budget.cancelled = True
+                    budget.cancel()
                 raise
             seconds[tile] = _time.perf_counter() - t0
             if st is not None:
@@ -810,7 +840,7 @@ class NumpyProgram:
                         break
             except BaseException:
                 if budget is not None:
-                    budget.cancelled = True
+                    budget.cancel()
                 raise
             finally:
                 for f in futures:  # after an error: drop the tiles not started yet ...

@@ -417,15 +417,21 @@ def _render_frame(fd, mm, modules, key, source, filename, meta, precision, spec,
             modules.popitem(last=False)
     modules.move_to_end(key)
     image = np.frombuffer(mm, dtype=np.float32, offset=HEADER).reshape(shape)
-    while True:
-        i = _take_tile(fd, mm)
-        if i >= len(tiles):
-            return
-        t0 = time.perf_counter()
-        st = render_tile(ns, spec, tiles[i], image, budget=budget)
-        seconds[tiles[i]] = time.perf_counter() - t0
-        if st is not None:
-            stats.append(st)
+    if budget is not None:
+        budget.start()  # the frame's deadline, on this machine's one monotonic clock
+    try:
+        while True:
+            i = _take_tile(fd, mm)
+            if i >= len(tiles):
+                return
+            t0 = time.perf_counter()
+            st = render_tile(ns, spec, tiles[i], image, budget=budget)
+            seconds[tiles[i]] = time.perf_counter() - t0
+            if st is not None:
+                stats.append(st)
+    finally:
+        if budget is not None:
+            budget.finish()
 
 
 def _watch_parent(lifeline: int) -> None:
