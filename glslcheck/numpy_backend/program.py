@@ -611,7 +611,10 @@ def render_tile(ns: dict, spec: FrameSpec, tile: tuple[int, int, int, int], imag
         if spec.need4:
             S.frag_coord4 = frag4
         with rt.errstate():
-            color = ns["shade"](S)  # RGB (a Shadertoy shader: alpha is 1) or RGBA (plain GLSL)
+            try:
+                color = ns["shade"](S)  # RGB (a Shadertoy shader: alpha is 1) or RGBA (plain GLSL)
+            except RecursionError as e:  # a chain of calls nested about a thousand deep
+                raise _too_deep(ns, e) from None
             if S.discard is not Lanes.NO or samples > 1:
                 if len(color) == 3:
                     color = np.concatenate([np.broadcast_to(color, (3, lanes)), np.ones((1, lanes), color.dtype)])
@@ -640,6 +643,22 @@ def render_tile(ns: dict, spec: FrameSpec, tile: tuple[int, int, int, int], imag
     if cached is not None:
         cached[rows, x0:x0 + tw] = image[rows, x0:x0 + tw]
     return st
+
+
+def _too_deep(ns: dict, e: RecursionError) -> GlslError:
+    """A located error for Python's recursion limit reached by the generated code: at the GLSL
+    line of the innermost generated frame (GLSL has no recursion: a long chain of calls)."""
+    from .transpile import _glsl_location, too_complex
+
+    path = ns.get("SHADER_META", {}).get("source", "<shader>")
+    loc = Location(path, 1, 1)
+    tb = e.__traceback__
+    while tb is not None:
+        code = tb.tb_frame.f_code
+        if tb.tb_frame.f_globals is ns and code.co_filename in linecache.cache:
+            loc = _glsl_location("".join(linecache.cache[code.co_filename][2]), tb.tb_lineno, path)
+        tb = tb.tb_next
+    return too_complex("its function calls are nested too deeply for Python", loc)
 
 
 _POOLS: dict[int, ThreadPoolExecutor] = {}

@@ -167,6 +167,21 @@ def test_what_python_still_refuses_is_a_located_error():
     assert "too complex to render on the CPU" in d.message
 
 
+def test_1200_deep_call_chain_is_a_located_error(tmp_path):
+    """GLSL has no recursion, but a chain of 1200 functions each calling the previous one
+    reaches Python's recursion limit while rendering: an error at a function of the chain."""
+    n = 1200
+    text = "float f0(float v) { return v * 0.5; }\n" + "".join(
+        f"float f{k}(float v) {{ return f{k - 1}(v) + 1.0; }}\n" for k in range(1, n))
+    text += MAIN + f"    c = vec4(f{n - 1}(p.x));\n}}\n"
+    prog = P.compile_numpy(load_shader(str(write(tmp_path, "shader.glsl", text))))
+    with pytest.raises(GlslError) as e:
+        prog.render(size=(4, 2))
+    d = e.value.diagnostics[0]
+    assert "too complex to render on the CPU" in d.message and d.loc.path.endswith("shader.glsl")
+    assert 1 <= d.loc.line <= n, d
+
+
 @pytest.mark.parametrize("shape", ["ternaries", "ifs"])
 def test_transpile_time_is_near_linear_in_the_depth(tmp_path, make_shader, shape):
     """Transpiling 10x deeper takes under RATIO (35) times as long (linear: ~10; the ternaries
