@@ -437,13 +437,14 @@ class Lanes:
 # ---------------------------------------------------------------------------------------------
 
 
-def execute_module(source: str, filename: str, meta: dict, precision: str = "float32") -> dict:
+def execute_module(source: str, filename: str, meta: dict, precision: str = "float32", code: Any = None) -> dict:
     """Run generated code in a namespace that holds nothing but the runtime and the helpers.
 
     The source is registered in `linecache` under `filename`, so tracebacks and debuggers show
     the generated lines (each with its GLSL line in a comment)."""
     linecache.cache[filename] = (len(source), None, source.splitlines(True), filename)
-    code = compile(source, filename, "exec")
+    if code is None:
+        code = compile(source, filename, "exec")
     ns: dict[str, Any] = {"__builtins__": {}, "__name__": "glslcheck_shader", "rt": None, "X": None}
     ns["rt"] = rt = Runtime(precision)
     ns["X"] = Lanes(meta, rt)
@@ -704,6 +705,7 @@ class NumpyProgram:
     _specs: OrderedDict = field(default_factory=OrderedDict, repr=False)  # frame key -> FrameSpec
     _tile_order: OrderedDict = field(default_factory=OrderedDict, repr=False)  # tiles -> indices, slowest first
     _lock: Any = field(default_factory=threading.Lock, repr=False)
+    _code: Any = field(default=None, repr=False)  # the compiled module, when the transpiler made it
 
     @property
     def uniforms(self) -> list[str]:
@@ -717,7 +719,7 @@ class NumpyProgram:
     def module(self, precision: str = "float32") -> dict:
         with self._lock:
             if precision not in self._modules:
-                self._modules[precision] = execute_module(self.source, self.filename, self.meta, precision)
+                self._modules[precision] = execute_module(self.source, self.filename, self.meta, precision, self._code)
             return self._modules[precision]
 
     def render(
@@ -932,7 +934,7 @@ def compile_numpy(shader) -> NumpyProgram:
     from .transpile import transpile_shader
 
     t = transpile_shader(shader)
-    prog = NumpyProgram(t.source, t.meta, t.filename)
+    prog = NumpyProgram(t.source, t.meta, t.filename, _code=t.code)
     prog.module("float32")  # a broken module fails here, not in the middle of a render
     return prog
 

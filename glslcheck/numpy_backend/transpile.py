@@ -2124,6 +2124,7 @@ class Transpiled:
     source: str
     meta: dict
     filename: str
+    code: Any = None  # the compiled module (compiled once, to check it: see `compile_generated`)
 
 
 def transpile(model: Any, path: str = "<shader>") -> Transpiled:
@@ -2140,8 +2141,7 @@ def transpile(model: Any, path: str = "<shader>") -> Transpiled:
     finally:
         sys.setrecursionlimit(old)
     filename = f"<glslcheck-numpy {_printable(path, 200)}>"
-    compile_generated(source, filename, path)
-    return Transpiled(source, meta, filename)
+    return Transpiled(source, meta, filename, compile_generated(source, filename, path))
 
 
 def transpile_shader(shader: Any) -> Transpiled:
