@@ -76,6 +76,7 @@ NORMAL = {"ok", "findings", "usage"}
 # 10-100 ms; render/verify at 8x8 under a second). --timeout-scale multiplies them.
 BUDGET = {"parse": 20, "check": 20, "lint": 20, "transpile": 30, "render": 60, "verify": 60}
 FRAME_SECONDS = 10  # the NumPy renderer's frame budget in the workers (GLSLCHECK_FRAME_SECONDS)
+WALL_FACTOR = 10  # a command blocked (no CPU used) this many budgets long is a timeout too
 
 # ---------------------------------------------------------------------------------------------
 # Seeds and tokens
@@ -669,16 +670,32 @@ class Worker:
         self.proc.start()
 
     def run(self, command: str, data: dict[str, bytes], budget: float) -> tuple[str, str]:
+        """The command's (outcome, detail); "timeout" when the worker spends `budget` seconds of
+        CPU on it (a loop), or WALL_FACTOR times that of wall-clock time (blocked). CPU time, not
+        wall time: on a shared machine a niced worker may wait minutes for a core."""
         self.conn.send((command, data))
-        if self.conn.poll(budget):
-            try:
-                return self.conn.recv()
-            except EOFError:
-                pass
-            self.restart()
-            return "exception", "the worker process died (a crash in C code?)"
+        cpu0, start = self.cpu_seconds(), time.monotonic()
+        while not self.conn.poll(1.0):
+            cpu = self.cpu_seconds() - cpu0
+            wall = time.monotonic() - start
+            if cpu > budget or wall > budget * WALL_FACTOR:
+                self.restart()
+                return "timeout", f"{command} ran longer than {budget:g} s (CPU {cpu:.0f} s, wall {wall:.0f} s)"
+        try:
+            return self.conn.recv()
+        except EOFError:
+            pass
         self.restart()
-        return "timeout", f"{command} ran longer than {budget:g} s"
+        return "exception", "the worker process died (a crash in C code?)"
+
+    def cpu_seconds(self) -> float:
+        """CPU seconds the worker process has used (Linux /proc; elsewhere 0: wall time only)."""
+        try:
+            with open(f"/proc/{self.proc.pid}/stat") as f:
+                fields = f.read().rsplit(")", 1)[1].split()
+            return (int(fields[11]) + int(fields[12])) / os.sysconf("SC_CLK_TCK")
+        except (OSError, ValueError, IndexError):
+            return 0.0
 
     def restart(self) -> None:
         self.proc.kill()
