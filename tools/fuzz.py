@@ -21,6 +21,13 @@ Inputs, each reproducible from (seed, index) alone:
             (functions with in/out/inout parameters, structs, arrays, loops, branches on
             uniform values, built-ins); `parse` and `check` must accept them and, on a sample,
             `verify` must find the NumPy and OpenGL images equal;
+- hostile:  valid programs at the limits (issue 16; --hostile-rate of the inputs, drawn from a
+            separate random stream so the other inputs of a seed stay the same): statements
+            nested up to 250 deep (if/else/loops/switch/blocks), 40 nested loops, else-if
+            chains, 900 nested parentheses, 300 nested ternaries and &&/||, sums of 3000
+            terms, local arrays up to 4,000,000 floats, runaway nested loops of 99,999
+            iterations, 300-deep call chains; parse and check must accept them, transpile
+            and render (8x8, frame budget FRAME_SECONDS) end ok or with a located error;
 - soup:     random sequences of GLSL tokens;
 - bytes:    random bytes.
 
@@ -68,6 +75,8 @@ NORMAL = {"ok", "findings", "usage"}
 # Per-command time budgets in seconds: generous, the machine is shared (a typical call takes
 # 10-100 ms; render/verify at 8x8 under a second). --timeout-scale multiplies them.
 BUDGET = {"parse": 20, "check": 20, "lint": 20, "transpile": 30, "render": 60, "verify": 60}
+FRAME_SECONDS = 10  # the NumPy renderer's frame budget in the workers (GLSLCHECK_FRAME_SECONDS)
+WALL_FACTOR = 10  # a command blocked (no CPU used) this many budgets long is a timeout too
 
 # ---------------------------------------------------------------------------------------------
 # Seeds and tokens
@@ -407,11 +416,118 @@ def random_program(rng: random.Random) -> str:
 
 
 # ---------------------------------------------------------------------------------------------
+# Valid but hostile programs (issue 16): deep nesting, long chains, huge arrays, runaway loops
+
+MAIN = "void mainImage(out vec4 fragColor, in vec2 fragCoord) {\n"
+
+
+def _cond(rng: random.Random, k: int) -> str:
+    """A condition that varies across pixels (fragCoord) or is the same for all (iTime)."""
+    return rng.choice((f"fragCoord.x > {k % 9}.5", f"fragCoord.y < {k % 7}.0", f"iTime > {k % 5}.0",
+                       f"x < {k % 11}.0"))
+
+
+def _nest_statements(rng: random.Random, depth: int) -> str:
+    """`depth` statements nested in each other, of mixed kinds (loops kept to a few iterations)."""
+    head, tail = [], []
+    loops = 0
+    for k in range(depth):
+        kind = rng.choice(("if", "if", "block", "for", "while", "switch", "else"))
+        if kind in ("for", "while") and loops >= 12:
+            kind = "if"  # 2**12 iterations at most
+        if kind == "if":
+            head.append(f"if ({_cond(rng, k)}) {{ x += 0.5; ")
+            tail.append("}")
+        elif kind == "else":
+            head.append(f"if ({_cond(rng, k)}) {{ x -= 0.25; }} else {{ ")
+            tail.append("}")
+        elif kind == "block":
+            head.append("{ ")
+            tail.append("}")
+        elif kind == "for":
+            loops += 1
+            head.append(f"for (int i{k} = 0; i{k} < {rng.choice((1, 2))}; i{k}++) {{ x += 1.0; "
+                        + (f"if ({_cond(rng, k)}) continue; " if rng.random() < 0.3 else ""))
+            tail.append(f"{'if (fragCoord.x < 3.0) break; ' if rng.random() < 0.3 else ''}}}")
+        elif kind == "while":
+            loops += 1
+            head.append(f"int w{k} = 0; while (w{k} < {rng.choice((1, 2))}) {{ w{k}++; ")
+            tail.append("}")
+        else:
+            head.append(f"switch (int(fragCoord.x) % 3) {{ case 0: x += 1.0; case 1: {{ ")
+            tail.append("} break; default: x -= 1.0; }")
+    body = "".join(head) + "x += 1.0; " + ("if (fragCoord.y > 5.0) return; " if rng.random() < 0.2 else "")
+    return body + " ".join(reversed(tail))
+
+
+HOSTILE_SHAPES = ("nest", "loops", "elseif", "parens", "ternary", "andand", "sum", "array", "runaway",
+                  "calls", "switch")
+
+
+def hostile_program(rng: random.Random, shape: str | None = None) -> str:
+    """A program `check` accepts that pushes the transpiler and the renderer to their limits:
+    transpile and render must succeed or stop with a located error, never crash, hang or run
+    out of memory. `shape`: one of HOSTILE_SHAPES (default: a random one, "nest" twice as often)."""
+    shape = shape or rng.choice(HOSTILE_SHAPES + ("nest",))
+    n = rng.choice((10, 20, 30, 60, 100, 200, 300))
+    pre = ""
+    body = "float x = fragCoord.x * 0.1;\n"
+    if shape == "nest":
+        body += _nest_statements(rng, min(n, 250))
+    elif shape == "loops":  # the first loops run once: 2**10 iterations at most
+        m = min(n, 40)
+        body += "".join(f"for (int i{k} = 0; i{k} < {2 if k >= m - 10 else 1}; i{k}++) {{ " for k in range(m))
+        body += "x += 1.0; " + ("if (fragCoord.x < 4.0) break; " if rng.random() < 0.5 else "") + "}" * m
+    elif shape == "elseif":
+        body += "if (x < 0.0) x = 0.0;" + "".join(
+            f" else if ({rng.choice(('x', 'iTime', 'fragCoord.y'))} < {k}.0) x += {k}.0;" for k in range(1, n))
+        body += " else x = 1.0;"
+    elif shape == "parens":
+        op = rng.choice(("+", "*", "-"))
+        body += "x = " + f"fragCoord.x {op} (" * (n * 3) + "1.0" + ")" * (n * 3) + ";"
+    elif shape == "ternary":
+        e = "x"
+        for k in range(n):
+            side = f"(x += {k % 3}.0)" if rng.random() < 0.2 else f"{k}.0"
+            e = f"({_cond(rng, k)} ? {e} : {side})" if rng.random() < 0.5 else f"({_cond(rng, k)} ? {side} : {e})"
+        body += f"x = {e};"
+    elif shape == "andand":
+        ops = [rng.choice(("&&", "||")) for _ in range(n)]
+        body += "bool b = " + "".join(f"({_cond(rng, k)} {ops[k]} " for k in range(n)) + "true" + ")" * n + ";"
+        body += " x += b ? 1.0 : 0.0;"
+    elif shape == "sum":
+        body += "x = " + " + ".join(f"sin(x * {k % 13}.0)" for k in range(n * 10)) + ";"
+    elif shape == "array":
+        size = rng.choice((1000, 65536, 100000, 1000000, 4000000))
+        body += (f"float a[{size}];\na[int(fragCoord.x) % {size}] = 1.0;\n"
+                 f"x += a[int(fragCoord.y) % {size}] + a[{size - 1}];")
+    elif shape == "runaway":
+        m = rng.choice((2, 3))
+        body += "".join(f"for (int r{k} = 0; r{k} < 99999; r{k}++) {{ " for k in range(m)) + "x += 1.0; " + "}" * m
+    elif shape == "calls":
+        pre = "float f0(float v) { return v * 0.5; }\n" + "".join(
+            f"float f{k}(float v) {{ return f{k - 1}(v) + {k % 3}.0; }}\n" for k in range(1, n))
+        body += f"x = f{n - 1}(x);"
+    else:  # switch
+        m = min(n, 100)
+        body += "int s = int(fragCoord.x) % 4;\n" + "switch (s) { case 0: x += 1.0; case 1: { " * m
+        body += "x *= 2.0;" + " } break; default: x -= 1.0; }" * m
+    return pre + MAIN + body + "\nfragColor = vec4(vec3(fract(x * 0.01)), 1.0);\n}\n"
+
+
+# ---------------------------------------------------------------------------------------------
 # Inputs
 
 
-def make_input(seed: int, index: int, seeds: list[dict[str, str]], pool: list[str]) -> tuple[str, dict[str, bytes]]:
+HOSTILE_RATE = 0.05  # share of inputs replaced by hostile programs (the others stay as they were)
+
+
+def make_input(seed: int, index: int, seeds: list[dict[str, str]], pool: list[str],
+               hostile_rate: float = HOSTILE_RATE) -> tuple[str, dict[str, bytes]]:
     """(kind, {file name: bytes}) for input `index` of run `seed`."""
+    pick = random.Random(f"{seed}:{index}:hostile")
+    if pick.random() < hostile_rate:
+        return "hostile", {"shader.glsl": hostile_program(pick).encode()}
     rng = random.Random(f"{seed}:{index}")
     x = rng.random()
     if x < 0.55:
@@ -521,6 +637,8 @@ def _worker(conn, workdir: str) -> None:
             resource.setrlimit(resource.RLIMIT_AS, (3 << 30, 3 << 30))
     except (ImportError, ValueError, OSError):
         pass
+    # a runaway frame stops (a located error) well inside the render budget below
+    os.environ.setdefault("GLSLCHECK_FRAME_SECONDS", str(FRAME_SECONDS))
     folder = Path(workdir)
     while True:
         job = conn.recv()
@@ -552,16 +670,32 @@ class Worker:
         self.proc.start()
 
     def run(self, command: str, data: dict[str, bytes], budget: float) -> tuple[str, str]:
+        """The command's (outcome, detail); "timeout" when the worker spends `budget` seconds of
+        CPU on it (a loop), or WALL_FACTOR times that of wall-clock time (blocked). CPU time, not
+        wall time: on a shared machine a niced worker may wait minutes for a core."""
         self.conn.send((command, data))
-        if self.conn.poll(budget):
-            try:
-                return self.conn.recv()
-            except EOFError:
-                pass
-            self.restart()
-            return "exception", "the worker process died (a crash in C code?)"
+        cpu0, start = self.cpu_seconds(), time.monotonic()
+        while not self.conn.poll(1.0):
+            cpu = self.cpu_seconds() - cpu0
+            wall = time.monotonic() - start
+            if cpu > budget or wall > budget * WALL_FACTOR:
+                self.restart()
+                return "timeout", f"{command} ran longer than {budget:g} s (CPU {cpu:.0f} s, wall {wall:.0f} s)"
+        try:
+            return self.conn.recv()
+        except EOFError:
+            pass
         self.restart()
-        return "timeout", f"{command} ran longer than {budget:g} s"
+        return "exception", "the worker process died (a crash in C code?)"
+
+    def cpu_seconds(self) -> float:
+        """CPU seconds the worker process has used (Linux /proc; elsewhere 0: wall time only)."""
+        try:
+            with open(f"/proc/{self.proc.pid}/stat") as f:
+                fields = f.read().rsplit(")", 1)[1].split()
+            return (int(fields[11]) + int(fields[12])) / os.sysconf("SC_CLK_TCK")
+        except (OSError, ValueError, IndexError):
+            return 0.0
 
     def restart(self) -> None:
         self.proc.kill()
@@ -581,6 +715,8 @@ class Worker:
 
 def commands_for(kind: str, rng: random.Random, results: dict[str, str], heavy_rate: float, verify_rate: float) -> list[str]:
     """Which heavy commands an input gets, once its light results are known."""
+    if kind == "hostile":  # the NumPy path only: Mesa's compile time on such nesting is the driver's
+        return ["transpile", "render"]
     cmds = []
     checked = results.get("check") == "ok"
     if checked or rng.random() < heavy_rate:
@@ -595,7 +731,7 @@ def commands_for(kind: str, rng: random.Random, results: dict[str, str], heavy_r
 def fuzz_range(seed: int, start: int, stop: int, *, heavy_rate: float, verify_rate: float,
                timeout_scale: float = 1.0, out_dir: Path | None = None, commands=LIGHT + HEAVY,
                parse_rate: float = 1.0, progress=None, worker: Worker | None = None,
-               deadline: float | None = None) -> tuple[collections.Counter, list[dict]]:
+               deadline: float | None = None, hostile_rate: float = HOSTILE_RATE) -> tuple[collections.Counter, list[dict]]:
     """Fuzz inputs start..stop-1 of run `seed` in one worker; (counts, flagged). With
     `deadline` (a time.monotonic() value), stop after the input running at that time."""
     seeds = seed_files()
@@ -611,7 +747,7 @@ def fuzz_range(seed: int, start: int, stop: int, *, heavy_rate: float, verify_ra
         for index in range(start, stop):
             if deadline is not None and time.monotonic() > deadline:
                 break
-            kind, data = make_input(seed, index, seeds, pool)
+            kind, data = make_input(seed, index, seeds, pool, hostile_rate)
             counts[("input", kind)] += 1
             rng = random.Random(f"{seed}:{index}:heavy")
             results: dict[str, str] = {}
@@ -622,7 +758,8 @@ def fuzz_range(seed: int, start: int, stop: int, *, heavy_rate: float, verify_ra
                 t0 = time.perf_counter()
                 outcome, detail = worker.run(command, data, BUDGET[command] * timeout_scale)
                 counts[("seconds", command)] += time.perf_counter() - t0
-                if kind == "generate" and command in ("parse", "check", "transpile", "render") and outcome != "ok":
+                if (kind == "generate" and command in ("parse", "check", "transpile", "render")
+                        or kind == "hostile" and command in ("parse", "check")) and outcome != "ok":
                     if outcome in NORMAL:
                         outcome = "gen-rejected"
                 if outcome == "mismatch" and kind != "generate":
@@ -684,6 +821,8 @@ def main(argv: list[str] | None = None) -> int:
     p.add_argument("--heavy-rate", type=float, default=0.05,
                    help="share of inputs that get render (x4 when check passes) and transpile though check failed")
     p.add_argument("--verify-rate", type=float, default=0.05, help="share of generated programs that get verify")
+    p.add_argument("--hostile-rate", type=float, default=HOSTILE_RATE,
+                   help=f"share of inputs that are hostile valid programs (default {HOSTILE_RATE})")
     p.add_argument("--parse-rate", type=float, default=1.0,
                    help="share of inputs that also get `parse` (check runs the parser on all; default 1)")
     p.add_argument("--commands", default=",".join(LIGHT + HEAVY), help="entry points to run")
@@ -711,7 +850,7 @@ def main(argv: list[str] | None = None) -> int:
         seeds = seed_files()
         pool = POOL + sorted({t for s in seeds for text in s.values() for t in tokens(text)
                               if re.fullmatch(r"[A-Za-z_]\w*", t)})[:400]
-        kind, data = make_input(args.seed, args.show, seeds, pool)
+        kind, data = make_input(args.seed, args.show, seeds, pool, args.hostile_rate)
         for name, raw in data.items():
             print(f"== {kind}: {name} ({len(raw)} bytes)")
             sys.stdout.write(raw.decode("utf-8", "backslashreplace"))
@@ -719,7 +858,8 @@ def main(argv: list[str] | None = None) -> int:
 
     commands = tuple(c.strip() for c in args.commands.split(",") if c.strip())
     opts = dict(heavy_rate=args.heavy_rate, verify_rate=args.verify_rate, timeout_scale=args.timeout_scale,
-                parse_rate=args.parse_rate, out_dir=Path(args.out), commands=commands)
+                parse_rate=args.parse_rate, out_dir=Path(args.out), commands=commands,
+                hostile_rate=args.hostile_rate)
     t0 = time.time()
     stop = args.start + args.count
     step = max(50, min(500, args.count // (args.jobs * 8) or 1))

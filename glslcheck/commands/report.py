@@ -15,7 +15,6 @@ from __future__ import annotations
 
 import sys
 
-from ..diagnostics import InputError
 from . import args as A
 
 

@@ -4,8 +4,9 @@ This module owns what happens around the generated code (`transpile.py`): execut
 in a restricted namespace (`__builtins__` empty; only `rt`, the runtime, and `X`, the lane
 helpers below, are visible), the per-invocation state `State` (uniforms, globals, discard mask,
 statistics), splitting the image into tiles rendered by worker processes or a thread pool,
-supersampling, the frame cache for shaders that do not animate, and the error for a runaway
-loop.
+supersampling, the frame cache for shaders that do not animate, the error for a runaway
+loop, and the frame's budgets: time (FRAME_SECONDS, `Budget`) and memory (MEMORY_FRACTION,
+tiles sized to the shader's per-lane state, `NumpyProgram._fit_memory`).
 
 Library API:
 
@@ -42,22 +43,24 @@ from __future__ import annotations
 
 import functools
 import linecache
+import math
 import os
 import sys
 import threading
 import time as _time
 from collections import OrderedDict
-from concurrent.futures import ThreadPoolExecutor
+from concurrent.futures import FIRST_EXCEPTION, ThreadPoolExecutor, wait
 from dataclasses import dataclass, field
 from typing import Any
 
 import numpy as np
 
-from ..diagnostics import Diagnostic, GlslError, Location
+from ..diagnostics import Diagnostic, GlslError, InputError, Location
 from ..driver_profile import host_model
 from ..shadertoy import DEFAULT_SIZE, UNIFORMS_BY_NAME, sample_offsets
 from ..shadertoy import as_date as _as_date
 from .runtime import Runtime, Struct
+from .transpile import SMALL_STATE
 
 TILE_LANES = 49152  # lanes per tile: fewer calls in compacted regions; full-lane work measured flat 24k-49k
 TILE_WIDTH = 1024  # widest tile; wide bands keep rows contiguous in the output image
@@ -68,6 +71,19 @@ CACHE_FRAMES = 8
 _CPUS = os.cpu_count()
 CACHE_BYTES = 256 * 2**20  # and at most this much of them (a 3840x2160 frame is 127 MiB), the newest always kept
 PROCESSES_AFTER = 1.0  # seconds a program renders in this process before "auto" starts worker processes
+# The whole-frame budget: a frame that is still rendering after this many seconds stops with an
+# error at the loop (or function) it was in, whatever each loop's own cap (LOOP_CAP iterations
+# per loop execution: loops nested two deep may still run 10**10 times). Checked at every region
+# entry and loop iteration (`Lanes.count`); environment variable GLSLCHECK_FRAME_SECONDS, or
+# `NumpyProgram.frame_seconds`.
+FRAME_SECONDS = 300.0
+# The memory budget: the tiles rendering at once (one per thread or worker) hold at most this
+# fraction of the machine's memory, or of the address space `ulimit -v` leaves this process;
+# environment variable GLSLCHECK_MEMORY_MB. A tile's lanes times the shader's per-lane state
+# (estimated by the transpiler, `transpile.lane_state`) must fit: large local arrays get smaller
+# tiles, and a shader whose 2x2 tile does not fit is refused with an error at its largest variable.
+MEMORY_FRACTION = 0.5
+MIN_TILE_LANES = 4  # one 2x2 derivative quad
 # Uniforms that change from frame to frame; a shader that reads none of them renders one image
 # for a whole animation.
 ANIMATED_UNIFORMS = ("iTime", "iFrame", "iTimeDelta", "iDate", "iMouse", "iFrameRate")
@@ -78,13 +94,109 @@ ANIMATED_UNIFORMS = ("iTime", "iFrame", "iTimeDelta", "iDate", "iMouse", "iFrame
 # ---------------------------------------------------------------------------------------------
 
 
+class Budget:
+    """When a frame must stop: at `deadline` (`time.monotonic()`, one clock for every process of
+    the machine, so worker processes get it in their message) or once `cancelled` (Ctrl-C in
+    the caller, or an error in another tile). The generated code's `X.count` reads one flag,
+    `stop`, which a timer thread sets at the deadline (reading the clock there instead cost
+    more than the rest of `X.count`). Picklable (without its timer)."""
+
+    def __init__(self, seconds: float) -> None:
+        self.seconds = seconds
+        self.deadline = _time.monotonic() + seconds
+        self.cancelled = False
+        self.stop = False
+        self._timer: threading.Timer | None = None
+
+    def __getstate__(self) -> dict:
+        return {**self.__dict__, "_timer": None}
+
+    def cancel(self) -> None:
+        self.cancelled = self.stop = True
+
+    def start(self) -> "Budget":
+        """Arm the deadline in this process (until `finish`)."""
+        self._timer = threading.Timer(max(0.0, self.deadline - _time.monotonic()), self._expire)
+        self._timer.daemon = True
+        self._timer.start()
+        return self
+
+    def _expire(self) -> None:
+        self.stop = True
+
+    def finish(self) -> None:
+        if self._timer is not None:
+            self._timer.cancel()
+            self._timer = None
+
+
+class Cancelled(Exception):
+    """A tile stopped because its frame was cancelled (the frame's own error is raised)."""
+
+
+def memory_budget() -> int:
+    """Bytes the tiles rendering at once may hold: GLSLCHECK_MEMORY_MB, else MEMORY_FRACTION of
+    the machine's memory or of the address space left under `ulimit -v`, whichever is less."""
+    text = os.environ.get("GLSLCHECK_MEMORY_MB", "").strip()
+    if text:
+        try:
+            value = float(text)
+        except ValueError:
+            value = math.nan
+        if not 0 < value < math.inf:
+            raise InputError(f"error: GLSLCHECK_MEMORY_MB must be a positive number of megabytes, not {text!r}")
+        return int(value * 2**20)
+    avail = 2**40  # unknown: no limit from the machine
+    try:
+        avail = os.sysconf("SC_PAGE_SIZE") * os.sysconf("SC_PHYS_PAGES")
+    except (ValueError, OSError, AttributeError):
+        pass
+    try:
+        import resource
+
+        soft = resource.getrlimit(resource.RLIMIT_AS)[0]
+        if soft != resource.RLIM_INFINITY:
+            with open("/proc/self/statm") as f:  # the address space in use now (Linux)
+                used = int(f.read().split()[0]) * os.sysconf("SC_PAGE_SIZE")
+            avail = min(avail, max(0, soft - used))
+    except (ImportError, OSError, ValueError):
+        pass
+    return int(MEMORY_FRACTION * avail)
+
+
+def lane_bytes(meta: dict, precision: str) -> tuple[int, Location | None]:
+    """(estimated bytes of one lane's state, where its largest variable is declared)."""
+    state = meta.get("lane_state")
+    scalars = state[0] if state else SMALL_STATE
+    loc = Location(state[1], state[2], state[3]) if state else None
+    return scalars * (8 if precision == "float64" else 4), loc
+
+
+def _megabytes(n: int) -> str:
+    return f"{n / 2**20:,.0f} MB" if n >= 2**20 else f"{n / 2**10:,.0f} kB"
+
+
+def frame_seconds() -> float:
+    """The frame budget in seconds: GLSLCHECK_FRAME_SECONDS, else FRAME_SECONDS."""
+    text = os.environ.get("GLSLCHECK_FRAME_SECONDS", "").strip()
+    try:
+        value = float(text) if text else FRAME_SECONDS
+    except ValueError:
+        value = math.nan
+    if not 0 < value < math.inf:
+        raise InputError(f"error: GLSLCHECK_FRAME_SECONDS must be a positive number of seconds, not {text!r}")
+    return value
+
+
 class State:
     """What one tile's invocation carries: `lanes`, `width` (tile width, for derivatives),
     `frag_coord` (vec2 lanes), `frag_coord4` (gl_FragCoord), `discard` (mask), uniforms
     `u_<name>`, globals `g_<name>`, `stats` (region id -> lanes, shared), `parent` (when this
-    is a compacted view of another state)."""
+    is a compacted view of another state), `budget` (the frame's `Budget`; None: no limit)."""
 
-    budget = None  # [passes left] of llvmpipe's loop limiter when emulated (Lanes.tick), else None
+    budget: Budget | None = None
+
+    passes = None  # [passes left] of llvmpipe's loop limiter when emulated (Lanes.tick), else None
 
     def __init__(self, **values: Any) -> None:
         self.__dict__.update(values)
@@ -192,9 +304,13 @@ class Lanes:
             raise AssertionError("internal error: a condition judged uniform varies across lanes")
         return bool(c.reshape(-1)[0])
 
-    # statistics and loops ---------------------------------------------------------------------
-    @staticmethod
-    def count(S, rid: int, m) -> None:
+    # statistics, budget and loops ---------------------------------------------------------------
+    def count(self, S, rid: int, m) -> None:
+        """Called on entering each function, branch and loop iteration: stops the frame when it
+        is over its budget or cancelled, and counts the lanes when statistics are on."""
+        b = S.budget
+        if b is not None and b.stop:
+            self.over_budget(b, rid)
         st = S.stats
         if st is None:
             return
@@ -203,7 +319,7 @@ class Lanes:
 
     def tick(self, S, lid: int, n: int) -> bool:
         """llvmpipe's loop limiter, when the program renders with `loop_limit` (gallivm
-        lp_exec_endloop, LP_MAX_TGSI_LOOP_ITERATIONS = 65535): one budget per invocation shared
+        lp_exec_endloop, LP_MAX_TGSI_LOOP_ITERATIONS = 65535): one pass budget per invocation shared
         by every loop; each pass of a loop costs 1 (the pass that ends it on its condition too:
         llvmpipe masks the lanes out and runs to the loop's end), and a loop goes round again
         only while the budget is positive. Called at the top of pass `n` of loop `lid`: the
@@ -213,14 +329,26 @@ class Lanes:
         The budget is per tile here and per 8-lane group there: for loops whose pass count
         differs between pixels it can bite at a slightly different pass. True when the loop
         must stop (recorded in `limited`)."""
-        budget = S.budget
-        if budget is None:
+        passes = S.passes
+        if passes is None:
             return False
-        if n > 1 and budget[0] <= 0:
+        if n > 1 and passes[0] <= 0:
             self.limited.add(lid)
             return True
-        budget[0] -= 1
+        passes[0] -= 1
         return False
+
+    def over_budget(self, budget: Budget, rid: int) -> None:
+        if budget.cancelled:
+            raise Cancelled()
+        kind, function, path, line = self.meta.get("regions", {}).get(rid, ("", "", "<shader>", 0))
+        _, _, col = self.loops.get(rid, (path, line, 1))
+        where = "this loop" if kind == "loop" else f"this {kind}" if kind in ("if", "else", "case") else f"'{function}'"
+        raise GlslError(Diagnostic(
+            f"the frame was still rendering after {budget.seconds:g} s on the CPU, in {where}; the NumPy "
+            "renderer stops it (a GPU would hang or reset)", Location(path, line, col), rule="numpy-frame-budget",
+            help="bound the loops' iteration counts (nested loops multiply) and the arrays' sizes; "
+                 "GLSLCHECK_FRAME_SECONDS sets the budget"))
 
     def runaway(self, lid: int) -> None:
         path, line, col = self.loops.get(lid, ("<shader>", 0, 0))
@@ -335,13 +463,14 @@ class Lanes:
 # ---------------------------------------------------------------------------------------------
 
 
-def execute_module(source: str, filename: str, meta: dict, precision: str = "float32") -> dict:
+def execute_module(source: str, filename: str, meta: dict, precision: str = "float32", code: Any = None) -> dict:
     """Run generated code in a namespace that holds nothing but the runtime and the helpers.
 
     The source is registered in `linecache` under `filename`, so tracebacks and debuggers show
     the generated lines (each with its GLSL line in a comment)."""
     linecache.cache[filename] = (len(source), None, source.splitlines(True), filename)
-    code = compile(source, filename, "exec")
+    if code is None:
+        code = compile(source, filename, "exec")
     ns: dict[str, Any] = {"__builtins__": {}, "__name__": "glslcheck_shader", "rt": None, "X": None}
     ns["rt"] = rt = Runtime(precision, meta.get("float_to_uint"))
     rt.fold_constants = True  # Mesa's folding of constants (Runtime.fmul); uniforms are read-only
@@ -413,16 +542,17 @@ class FrameSpec:
     compaction: tuple  # (COMPACT_FRACTION, COMPACT_MIN_LANES) of the caller, for workers
 
 
-def frame_tiles(width: int, height: int) -> tuple[tuple[int, int, int, int], ...]:
+def frame_tiles(width: int, height: int, lanes: int | None = None) -> tuple[tuple[int, int, int, int], ...]:
     """(x0, y0, w, h) of each tile, y0 from the bottom; tiles start at even x and y, so 2x2
-    derivative quads never straddle two tiles."""
-    return _frame_tiles(width, height, TILE_WIDTH, TILE_HEIGHT, TILE_LANES)
+    derivative quads never straddle two tiles. `lanes`: at most this many per tile (memory)."""
+    tile_lanes = TILE_LANES if lanes is None else max(MIN_TILE_LANES, min(TILE_LANES, lanes))
+    return _frame_tiles(width, height, TILE_WIDTH, TILE_HEIGHT, tile_lanes)
 
 
 @functools.lru_cache(maxsize=64)
 def _frame_tiles(width: int, height: int, tile_width: int, tile_height: int | None,
                  tile_lanes: int) -> tuple[tuple[int, int, int, int], ...]:
-    tw = min(tile_width, width)
+    tw = min(tile_width, width, max(2, tile_lanes // 4 * 2))  # narrower than a 2-row band of lanes
     tw += tw % 2 if tw < width else 0
     th = tile_height or max(2, (tile_lanes // tw) // 2 * 2)
     return tuple((x0, y0, min(tw, width - x0), min(th, height - y0))  # a tuple: the cache shares it
@@ -472,9 +602,9 @@ def _fragments(rt, tile, dx: float, dy: float, need4: bool):
 
 
 def render_tile(ns: dict, spec: FrameSpec, tile: tuple[int, int, int, int], image: np.ndarray,
-                cached: np.ndarray | None = None) -> dict | None:
+                cached: np.ndarray | None = None, budget: Budget | None = None) -> dict | None:
     """Run the shader on one tile and write its rows into `image` (and `cached`); returns the
-    tile's lane counts per region when `spec.stats`, else None."""
+    tile's lane counts per region when `spec.stats`, else None. `budget`: the frame's."""
     rt = ns["rt"]
     x0, y0, tw, th = tile
     lanes = tw * th
@@ -486,11 +616,14 @@ def render_tile(ns: dict, spec: FrameSpec, tile: tuple[int, int, int, int], imag
                                  spec.need4)
         limit = spec.base.get("loop_limit")
         S = State(**spec.base, lanes=lanes, width=tw, frag_coord=frag, discard=Lanes.NO, stats=st,
-                  parent=None, budget=None if limit is None else [limit])
+                  parent=None, budget=budget, passes=None if limit is None else [limit])
         if spec.need4:
             S.frag_coord4 = frag4
         with rt.errstate():
-            color = ns["shade"](S)  # RGB (a Shadertoy shader: alpha is 1) or RGBA (plain GLSL)
+            try:
+                color = ns["shade"](S)  # RGB (a Shadertoy shader: alpha is 1) or RGBA (plain GLSL)
+            except RecursionError as e:  # a chain of calls nested about a thousand deep
+                raise _too_deep(ns, e) from None
             if S.discard is not Lanes.NO or samples > 1:
                 if len(color) == 3:
                     color = np.concatenate([np.broadcast_to(color, (3, lanes)), np.ones((1, lanes), color.dtype)])
@@ -519,6 +652,22 @@ def render_tile(ns: dict, spec: FrameSpec, tile: tuple[int, int, int, int], imag
     if cached is not None:
         cached[rows, x0:x0 + tw] = image[rows, x0:x0 + tw]
     return st
+
+
+def _too_deep(ns: dict, e: RecursionError) -> GlslError:
+    """A located error for Python's recursion limit reached by the generated code: at the GLSL
+    line of the innermost generated frame (GLSL has no recursion: a long chain of calls)."""
+    from .transpile import _glsl_location, too_complex
+
+    path = ns.get("SHADER_META", {}).get("source", "<shader>")
+    loc = Location(path, 1, 1)
+    tb = e.__traceback__
+    while tb is not None:
+        code = tb.tb_frame.f_code
+        if tb.tb_frame.f_globals is ns and code.co_filename in linecache.cache:
+            loc = _glsl_location("".join(linecache.cache[code.co_filename][2]), tb.tb_lineno, path)
+        tb = tb.tb_next
+    return too_complex("its function calls are nested too deeply for Python", loc)
 
 
 _POOLS: dict[int, ThreadPoolExecutor] = {}
@@ -559,6 +708,7 @@ class NumpyProgram:
     # llvmpipe's loop limiter (Lanes.tick): None = loops run until they end (a runaway loop is an
     # error after LOOP_CAP passes); 65535 = stop as llvmpipe does (verify sets it)
     loop_limit: int | None = None
+    frame_seconds: float | None = None  # the frame budget; None: GLSLCHECK_FRAME_SECONDS or FRAME_SECONDS
     _render_seconds: float = field(default=0.0, repr=False)
     _keys: dict = field(default_factory=dict, repr=False)
     _modules: dict = field(default_factory=dict, repr=False)
@@ -566,6 +716,7 @@ class NumpyProgram:
     _specs: OrderedDict = field(default_factory=OrderedDict, repr=False)  # frame key -> FrameSpec
     _tile_order: OrderedDict = field(default_factory=OrderedDict, repr=False)  # tiles -> indices, slowest first
     _lock: Any = field(default_factory=threading.Lock, repr=False)
+    _code: Any = field(default=None, repr=False)  # the compiled module, when the transpiler made it
 
     @property
     def uniforms(self) -> list[str]:
@@ -600,7 +751,7 @@ class NumpyProgram:
     def module(self, precision: str = "float32") -> dict:
         with self._lock:
             if precision not in self._modules:
-                self._modules[precision] = execute_module(self.source, self.filename, self.meta, precision)
+                self._modules[precision] = execute_module(self.source, self.filename, self.meta, precision, self._code)
             return self._modules[precision]
 
     def render(
@@ -663,8 +814,10 @@ class NumpyProgram:
                 self._specs[spec_key] = spec
                 while len(self._specs) > CACHE_FRAMES:
                     self._specs.popitem(last=False)
-        tiles = frame_tiles(width, height)
+        budget = Budget(self.frame_seconds if self.frame_seconds is not None else frame_seconds())
         threads = self.threads or _CPUS or 1
+        tile_lanes, threads = self._fit_memory(precision, threads)
+        tiles = frame_tiles(width, height, tile_lanes)
         # the tiles that took longest in the last frame of this size go first, so that the
         # workers finish together (the order changes no pixel: each tile writes its own rows)
         with self._lock:
@@ -681,7 +834,7 @@ class NumpyProgram:
                 # the image and the cache's read-only view share the pixels (copy-on-write)
                 image, cached, all_stats, seconds = workers.render(
                     self._key(precision), self.source, self.filename, self.meta, precision, spec,
-                    run_tiles, threads)
+                    run_tiles, threads, budget)
                 self.last_parallel = "processes"
             except workers.Unavailable:
                 image, all_stats = None, []  # the pool is gone for this process: threads below
@@ -691,7 +844,11 @@ class NumpyProgram:
             if not stats:
                 with self._lock:
                     cached = self._cache.buffer(image.shape)
-            seconds = self._render_threads(ns, spec, run_tiles, image, cached, threads, all_stats)
+            budget.start()
+            try:
+                seconds = self._render_threads(ns, spec, run_tiles, image, cached, threads, all_stats, budget)
+            finally:
+                budget.finish()
         if len(seconds) == len(tiles):
             cost = [seconds[t] for t in tiles]
             with self._lock:
@@ -715,33 +872,69 @@ class NumpyProgram:
                     self._cache.recycle(self._cache.popitem(last=False)[1])
         return out
 
-    def _render_threads(self, ns, spec, tiles, image, cached, threads, all_stats) -> dict:
-        """Render `tiles` on this process's threads: {tile: seconds it took}."""
+    def _render_threads(self, ns, spec, tiles, image, cached, threads, all_stats, budget=None) -> dict:
+        """Render `tiles` on this process's threads: {tile: seconds it took}. On an error or
+        Ctrl-C the budget is cancelled, so the tiles still running stop at their next region."""
         self.last_parallel = "threads" if threads > 1 and len(tiles) > 1 else "one thread"
         seconds: dict = {}
 
         def run(tile):
             t0 = _time.perf_counter()
-            st = render_tile(ns, spec, tile, image, cached)
+            try:
+                st = render_tile(ns, spec, tile, image, cached, budget)
+            except BaseException:
+                if budget is not None:  # the other tiles stop at their next region
+                    budget.cancel()
+                raise
             seconds[tile] = _time.perf_counter() - t0
             if st is not None:
                 all_stats.append(st)
 
         if threads > 1 and len(tiles) > 1:
             futures = [_pool(threads).submit(run, t) for t in tiles]
+            pending = set(futures)
             try:
-                for f in futures:
-                    f.result()
+                while pending:  # waits of 0.1 s: Ctrl-C is seen between them on every platform
+                    done, pending = wait(pending, timeout=0.1, return_when=FIRST_EXCEPTION)
+                    if any(f.exception() is not None for f in done):
+                        break
+            except BaseException:
+                if budget is not None:
+                    budget.cancel()
+                raise
             finally:
                 for f in futures:  # after an error: drop the tiles not started yet ...
                     f.cancel()
                 for f in futures:  # ... and let the running ones finish before returning
                     if not f.cancelled():
                         f.exception()
+            errors = [f.exception() for f in futures if not f.cancelled() and f.exception() is not None]
+            if errors:  # the tile's own error, not the Cancelled of the tiles it stopped
+                raise next((e for e in errors if not isinstance(e, Cancelled)), errors[0])
         else:
             for t in tiles:
                 run(t)
         return seconds
+
+    def _fit_memory(self, precision: str, threads: int) -> tuple[int, int]:
+        """(lanes per tile, tiles at once) that keep the tiles' state within `memory_budget()`:
+        fewer lanes per tile, then one tile at a time; a located GlslError when even one 2x2
+        tile does not fit."""
+        per_lane, loc = lane_bytes(self.meta, precision)
+        limit = memory_budget()
+        lanes = limit // (threads * per_lane)
+        if lanes < MIN_TILE_LANES:
+            threads = 1
+            lanes = limit // per_lane
+        if lanes < MIN_TILE_LANES:
+            raise GlslError(Diagnostic(
+                f"this shader needs about {_megabytes(per_lane)} per pixel on the CPU (its largest variable is "
+                f"declared here): even a 2x2 tile would take {_megabytes(MIN_TILE_LANES * per_lane)}, more than "
+                f"the memory budget of {_megabytes(limit)}", loc or Location(self.meta.get("source", "<shader>"), 1, 1),
+                rule="numpy-memory-budget",
+                help="use smaller arrays, or render with --backend gl; GLSLCHECK_MEMORY_MB sets the budget "
+                     f"(default {MEMORY_FRACTION:.0%} of the machine's memory)"))
+        return min(TILE_LANES, lanes), threads
 
     def _use_processes(self, threads: int, tiles: list) -> bool:
         """Worker processes for frames of several tiles when asked to, or ("auto") once this
@@ -780,7 +973,7 @@ def compile_numpy(shader, tab: str | None = None) -> NumpyProgram:
     from .transpile import transpile_shader
 
     t = transpile_shader(shader, tab)
-    prog = NumpyProgram(t.source, t.meta, t.filename)
+    prog = NumpyProgram(t.source, t.meta, t.filename, _code=t.code)
     prog.module("float32")  # a broken module fails here, not in the middle of a render
     return prog
 

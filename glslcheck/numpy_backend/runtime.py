@@ -945,6 +945,15 @@ class Runtime(TextureFunctions):  # texture lookups: textures.py
         if isinstance(i, int):
             out[i] = new if mask is None else np.where(mask, new, out[i])
             return out
+        if size > 4:  # one scatter, not a pass per element (float a[100000]: 100,000 passes)
+            ln = np.arange(lanes)
+            i = np.broadcast_to(i, (lanes,))
+            new = np.broadcast_to(new, out.shape[1:])
+            if mask is not None:
+                on = np.broadcast_to(mask, (lanes,))
+                ln, i, new = ln[on], i[on], new[..., on]
+            out[(i, Ellipsis, ln)] = np.moveaxis(new, -1, 0)
+            return out
         for k in range(size):
             sel = i == k
             if mask is not None:

@@ -64,6 +64,7 @@ set") or a bool array; writes under a mask keep the old value elsewhere (`rt.ass
 from __future__ import annotations
 
 import re
+import sys
 from dataclasses import dataclass, field
 from typing import Any
 
@@ -74,8 +75,20 @@ from ..diagnostics import Diagnostic, GlslError, Location
 
 RULE = "numpy-transpile"
 LOOP_CAP = 100_000  # iterations per execution of one loop before the render stops with an error
+# Python's own limits, which deep GLSL would reach through the generated code (CPython 3.11:
+# 100 levels of indentation, 200 nested brackets, 20 nested loops in one function; see "Python's
+# limits" below). Normal shaders stay far below these thresholds, so their code is unchanged.
+SPILL_HEIGHT = 24  # an expression this many syntax levels high is computed into a temporary
+OUTLINE_INDENT = 48  # a statement starting this deep goes to a helper function
+OUTLINE_EXPR_INDENT = 64  # an expression (nested `&&`, ternaries with effects) from this deep too
+OUTLINE_LOOPS = 16  # and a statement inside this many Python loops of one function
+# Per-lane state above which the module's SHADER_META carries "lane_state" (scalars per lane,
+# where the largest variable is declared) so the renderer sizes tiles to its memory budget;
+# below it the renderer assumes this many (`program.lane_bytes`).
+SMALL_STATE = 1024
 _IDENT = re.compile(r"^[A-Za-z_][A-Za-z0-9_]*$")
 _LOCAL_REF = re.compile(r"(?<![.\w\"'])(v_\w+|_[a-z]+\d*)\b")
+_ASSIGNED = re.compile(r"^(?!(?:if|elif|while|return) )([^=]*?)\s*[-+*/]?=(?!=)")  # a stripped statement's targets
 _RUNTIME_NAMES = {"min": "min_", "max": "max_", "not": "not_vec"}
 _FLOAT_OPERATORS = ("+", "-", "*", "/", "<", "<=", ">", ">=")  # printed as Python operators on floats
 _DERIVATIVES = ("dFdx", "dFdy", "fwidth")
@@ -197,6 +210,9 @@ class Facts:
         self.written_globals: set[int] = set()
         self.reads_lane_state: set[int] = set()  # reads gl_FragCoord or a written global
         self._calls_cache: dict[int, list[Any]] = {}
+        self.events: dict[int, Events] = {}  # node id -> events_of(node)
+        self._discarding: dict[int, bool] = {}  # node id -> a discarding call in its subtree
+        self._write_counts: dict[int, int] | None = None
         for fn in functions:
             body = fn.node.body
             for node in body.walk():
@@ -228,6 +244,30 @@ class Facts:
                     tgt = model.call_target(node)
                     if _is_symbol(tgt) and id(tgt) in self.reads_lane_state:
                         self.reads_lane_state.add(id(fn))
+
+    def write_counts(self) -> dict[int, int]:
+        """Symbol id -> how many places in the program's functions write it (assignments,
+        ++/--, out and inout arguments), counted in one walk."""
+        if self._write_counts is None:
+            counts: dict[int, int] = {}
+            for fn in self.functions:
+                for node in fn.node.body.walk():
+                    for target in self._written_targets(node):
+                        sym = self.model.symbol_of(target)
+                        if sym is not None:
+                            counts[id(sym)] = counts.get(id(sym), 0) + 1
+            self._write_counts = counts
+        return self._write_counts
+
+    def discarding_call(self, n: Any) -> bool:
+        """True when n is a call of a user function that may discard."""
+        if not isinstance(n, A.Call):
+            return False
+        tgt = self.model.call_target(n)
+        return _is_symbol(tgt) and id(tgt) in self.may_discard
+
+    def has_discarding_call(self, node: Any) -> bool:
+        return _fold(node, self._discarding, lambda n, kids: any(kids) or self.discarding_call(n))
 
     def _written_targets(self, node: Any) -> list[Any]:
         """The base identifiers a node writes (assignment, ++/--, out arguments)."""
@@ -289,30 +329,24 @@ def _is_simple(e: Any) -> bool:
 
 
 def events_of(stmt: Any, facts: Facts, model: Any, in_loop_or_switch: bool = False) -> Events:
-    """Events that escape `stmt` (a break/continue inside a nested loop does not escape it)."""
+    """Events that escape `stmt` (a break/continue inside a nested loop does not escape it).
+    Memoized per node (`facts.events`): asked of every statement at every nesting level."""
 
-    def walk(n: Any, depth_brk: int, depth_cont: int) -> Events:
-        ev = NO_EVENTS
+    def own(n: Any, kids: list[Events]) -> Events:
         if isinstance(n, A.Break):
-            return Events(brk=depth_brk == 0)
+            return Events(brk=True)
         if isinstance(n, A.Continue):
-            return Events(cont=depth_cont == 0)
-        if isinstance(n, (A.Return, A.Discard)):
-            ev = Events(ret=True)
-        if isinstance(n, A.Call):
-            tgt = model.call_target(n)
-            if _is_symbol(tgt) and id(tgt) in facts.may_discard:
-                ev = ev | Events(ret=True)
-        nb, nc = depth_brk, depth_cont
+            return Events(cont=True)
+        ev = Events(ret=True) if isinstance(n, (A.Return, A.Discard)) or facts.discarding_call(n) else NO_EVENTS
+        for k in kids:
+            ev = ev | k
         if isinstance(n, (A.For, A.While, A.DoWhile)):
-            nb, nc = depth_brk + 1, depth_cont + 1
-        elif isinstance(n, A.Switch):
-            nb = depth_brk + 1
-        for c in n.children():
-            ev = ev | walk(c, nb, nc)
+            return Events(ret=ev.ret)
+        if isinstance(n, A.Switch):
+            return Events(cont=ev.cont, ret=ev.ret)
         return ev
 
-    return walk(stmt, 0, 0)
+    return _fold(stmt, facts.events, own)
 
 
 # ---------------------------------------------------------------------------------------------
@@ -447,12 +481,9 @@ class Uniformity:
         return mu
 
     def _discarding_call(self, s: Any) -> bool:
-        for n in s.walk():
-            if isinstance(n, A.Call):
-                tgt = self.model.call_target(n)
-                if _is_symbol(tgt) and id(tgt) in self.tr.facts.may_discard:
-                    self.fn_varying_return = True
-                    return True
+        if self.tr.facts.has_discarding_call(s):
+            self.fn_varying_return = True
+            return True
         return False
 
     def stmt(self, s: Any, mu: bool) -> bool:
@@ -518,7 +549,7 @@ class Uniformity:
         return mu
 
     def loop(self, s: Any, mu: bool) -> bool:
-        ind = induction_variable(s, self.model)
+        ind = induction_variable(s, self.model, self.tr.facts)
         if isinstance(s, A.For) and s.init is not None:
             self.stmt(s.init, mu)
         cond = s.cond
@@ -553,9 +584,11 @@ class Uniformity:
         return mu and (not ev.ret or not self.fn_varying_return)
 
 
-def induction_variable(s: Any, model: Any) -> Any:
+def induction_variable(s: Any, model: Any, facts: Facts | None = None) -> Any:
     """The Symbol of a for loop's induction variable: declared in the init, written only by the
-    step (`i++`, `++i`, `i--`, `i += e`, `i -= e`, `i = i + e`); else None."""
+    step (`i++`, `++i`, `i--`, `i += e`, `i -= e`, `i = i + e`); else None. With `facts`, the
+    body is not walked: the variable is scoped to the loop, so it is written nowhere but the
+    step when the program writes it once in all (`Facts.write_counts`)."""
     if not isinstance(s, A.For) or not isinstance(s.init, A.DeclarationStatement):
         return None
     decl = s.init.decl
@@ -582,6 +615,8 @@ def induction_variable(s: Any, model: Any) -> Any:
             return None
         if isinstance(n, A.Call) and any(d != "in" for d in out_directions(model.call_target(n))):
             return None
+    if facts is not None:
+        return sym if facts.write_counts().get(id(sym), 0) == 1 else None
     for part in (s.cond, s.body):
         if part is None:
             continue
@@ -605,6 +640,171 @@ def induction_variable(s: Any, model: Any) -> Any:
 # ---------------------------------------------------------------------------------------------
 # Code emission
 # ---------------------------------------------------------------------------------------------
+
+
+# ---------------------------------------------------------------------------------------------
+# Python's limits: generated code that CPython can always compile
+# ---------------------------------------------------------------------------------------------
+
+
+def _fold(root: Any, memo: dict[int, Any], own) -> Any:
+    """`own(node, [values of its children])` computed bottom-up over root's subtree and memoized
+    by node id, so that asking it of every node of a tree stays linear (iterative: expressions
+    nest thousands deep)."""
+    if id(root) in memo:
+        return memo[id(root)]
+    stack: list[tuple[Any, bool]] = [(root, False)]
+    while stack:
+        node, done = stack.pop()
+        if id(node) in memo:
+            continue
+        kids = list(node.children())
+        if done:
+            memo[id(node)] = own(node, [memo[id(k)] for k in kids])
+        else:
+            stack.append((node, True))
+            stack.extend((k, False) for k in kids if id(k) not in memo)
+    return memo[id(root)]
+
+
+class PythonLimits:
+    """What keeps the generated code inside CPython's limits, whatever the GLSL's nesting:
+
+    * an expression node SPILL_HEIGHT syntax levels high (or a multiple of it) is computed into a
+      temporary, so no printed expression nests more than about 2 * SPILL_HEIGHT brackets (the
+      tokenizer allows 200). Earlier operands of such an expression go to temporaries first
+      (`needs_hoist`), so the evaluation order is kept;
+    * a statement that would start OUTLINE_INDENT levels deep, or inside OUTLINE_LOOPS Python
+      loops of one function (CPython allows 100 levels and 20 loops), is emitted as a
+      module-level helper `h_<function>_<n>(S, locals...)` that returns the locals it may
+      change; the caller rebinds them. An expression that would start OUTLINE_EXPR_INDENT deep
+      (nested `&&`, ternaries with side effects) is outlined the same way, returning its value;
+    * the transpiler's own recursion is given room as the checker's is, and the generated module
+      is compiled once before it is handed out: whatever still fails (a limit this scheme does
+      not foresee) is a located "too complex to render on the CPU" error, not a traceback.
+
+    Mixed into `Transpiler` (it provides `lines`, `indent`, `fn`, `emit`, `tmp`, `fresh`)."""
+
+    def local_names(self, lines: list[str]) -> set[str]:
+        """The local names (`v_...`, `_...`) the code of these generated lines mentions. Each
+        line is scanned once (`_line_names`): regions nested hundreds deep ask it of the same
+        lines again and again."""
+        out: set[str] = set()
+        cache = self._line_names
+        for ln in lines:
+            names = cache.get(ln)
+            if names is None:
+                names = cache[ln] = frozenset(m.group(1) for m in _LOCAL_REF.finditer(ln.split("#", 1)[0]))
+            out |= names
+        return out
+
+    def _height(self, e: Any) -> int:
+        return _fold(e, self._heights, lambda n, kids: 1 + max(kids, default=0))
+
+    def spill(self, e: Any, text: str) -> str:
+        """`text` (the printed `e`), or a temporary holding it when e is SPILL_HEIGHT * k high."""
+        h = self._height(e)
+        if h >= SPILL_HEIGHT and h % SPILL_HEIGHT == 0 and self.fn is not None:
+            return self.tmp(text)
+        return text
+
+    def too_deep(self, limit: int, loops: bool = True) -> bool:
+        fs = self.fn
+        return fs is not None and (self.indent >= limit or (loops and fs.blocks >= OUTLINE_LOOPS))
+
+    def outline(self, build, node: Any) -> str | None:
+        """Emit what `build()` emits (and its value, if it returns one) in a new module-level
+        function of the locals it reads; emit the call here and return the value's name."""
+        fs = self.fn
+        defined = set(fs.defined)
+        saved = self.lines, self.indent, fs.nest, fs.blocks
+        self.lines, self.indent, fs.nest, fs.blocks, self.last_line = [], 1, 0, 0, None
+        try:
+            value = build()
+            if value is not None:
+                value = self.tmp(value)
+            body = self.lines
+        finally:
+            self.lines, self.indent, fs.nest, fs.blocks = saved
+            self.last_line = None
+        used = sorted(self.local_names(body) & defined)
+        # the locals it may rebind: every name left of an `=` (more than needed is harmless)
+        targets = {m.group(1) for ln in body for t in _ASSIGNED.findall(ln.split("#", 1)[0].strip())
+                   for m in _LOCAL_REF.finditer(t)}
+        out = ([value] if value is not None and value in fs.defined else []) + [u for u in used if u in targets]
+        self.n += 1
+        sym = fs.sym
+        base = self.fn_name(sym)[2:] if getattr(sym, "kind", None) == "function" else "globals"
+        name = f"h_{base}_{self.n}"
+        loc = getattr(node, "loc", None)
+        where = f" line {loc.line}" if loc is not None and loc.line else ""
+        self.helpers.append("\n".join(
+            [f"def {name}({', '.join(['S'] + used)}):",
+             f'    """Part of {_printable(sym.name, 60)}{where}, a function of its own to stay within'
+             ' Python\'s nesting limits."""']
+            + body + [f"    return ({''.join(o + ', ' for o in out)})", ""]))
+        call = f"{name}({', '.join(['S'] + used)})"
+        self.emit(f"{''.join(o + ', ' for o in out)}= {call}" if out else call)
+        return value
+
+
+def _scalars(t: Any) -> int:
+    """Scalars in one lane's value of type t."""
+    if t.is_array:
+        return (t.array_size or 0) * _scalars(t.element)
+    if t.is_struct:
+        return sum(_scalars(ft) for _, ft in t.fields)
+    if t.is_matrix:
+        return t.cols * t.rows
+    return t.size if t.is_vector else 1
+
+
+def lane_state(model: Any, functions: list[Any]) -> tuple[int, Any]:
+    """(an estimate of the scalars one lane holds at once, the declaration of the largest
+    variable): every variable of every function (as if all were alive together), two more
+    copies of the largest one (a masked write to an array builds the new array beside the old)
+    and 256 scalars of temporaries."""
+    nodes = [g.node for g in model.globals if g.kind == "global" and not g.type.contains_opaque]
+    for fn in functions:
+        nodes += fn.node.proto.params
+        nodes += [n for n in fn.node.body.walk() if isinstance(n, (A.Declarator, A.ConditionDeclaration))]
+    total, largest, at = 0, 0, None
+    for n in nodes:
+        sym = model.symbol_of(n)
+        if sym is None or sym.type.contains_opaque:
+            continue
+        k = _scalars(sym.type)
+        total += k
+        if k > largest:
+            largest, at = k, n
+    return total + 2 * largest + 256, at
+
+
+def too_complex(message: str, loc: Any) -> GlslError:
+    return GlslError(Diagnostic(
+        f"this program is too complex to render on the CPU ({message})", loc, rule=RULE,
+        help="simplify the nesting here, or render with --backend gl"))
+
+
+def _glsl_location(source: str, lineno: int, path: str) -> Location:
+    """The GLSL line of generated line `lineno`: the nearest `# line N` comment above it."""
+    lines = source.splitlines()
+    for text in reversed(lines[: max(lineno, 1)]):
+        m = re.match(r"\s*# (?:(.*) )?line (\d+): ", text)
+        if m and (m.group(1) is None or m.group(1) == _printable(path, 60)):
+            return Location(path, int(m.group(2)), 1)
+    return Location(path, 1, 1)
+
+
+def compile_generated(source: str, filename: str, path: str) -> Any:
+    """The code object of a generated module; a located GlslError if Python cannot compile it."""
+    try:
+        return compile(source, filename, "exec")
+    except (SyntaxError, RecursionError, MemoryError, ValueError) as e:
+        lineno = getattr(e, "lineno", None) or 1
+        msg = getattr(e, "msg", None) or str(e) or type(e).__name__
+        raise too_complex(f"Python cannot compile the generated code: {msg}",
+                          _glsl_location(source, lineno, path)) from None
 
 
 @dataclass
@@ -637,9 +837,11 @@ class FnState:
         self.switch_depth = 0
         self.no_compact = 0
         self.nest = 0
+        self.blocks = 0  # Python loops around the current line, in this Python function
+        self.switch_locals: set[str] = set()  # declared in a switch body: bound before the switch
 
 
-class Transpiler:
+class Transpiler(PythonLimits):
     """`Transpiler(model, tab_path).module()` -> (Python source, meta dict)."""
 
     COMPACT_MIN_NODES = 24  # syntax nodes: smaller regions without calls or loops run masked
@@ -669,6 +871,12 @@ class Transpiler:
         self.last_line: tuple[str, int] | None = None
         self.plain = self.entry.name == "main"
         self.uniforms: set[str] = set()
+        self.helpers: list[str] = []  # functions split off the current one (PythonLimits.outline)
+        self._heights: dict[int, int] = {}  # node id -> memoized facts about its subtree
+        self._effects: dict[int, bool] = {}
+        self._hoists: dict[int, bool] = {}
+        self._derivs: dict[int, bool] = {}
+        self._line_names: dict[str, frozenset] = {}
 
     # -- small emission helpers ----------------------------------------------------------------
     def emit(self, text: str) -> None:
@@ -825,11 +1033,12 @@ class Transpiler:
         for fn in self.functions:
             self.lines = []
             self.gen_function(fn)
-            funcs.append("\n".join(self.lines))
+            funcs += self.helpers + ["\n".join(self.lines)]
+            self.helpers = []
         self.lines = []
         self.fn = None
         self.gen_globals()
-        init = "\n".join(self.lines)
+        init = "\n".join(self.helpers + self.lines)
         self.lines = []
         self.gen_shade()
         shade = "\n".join(self.lines)
@@ -843,6 +1052,10 @@ class Transpiler:
             "uses_derivatives": bool(self.facts.uses_derivs),
             "loop_cap": LOOP_CAP,
         }
+        scalars, at = lane_state(self.model, self.functions)
+        if scalars > SMALL_STATE and at is not None:
+            loc = at.loc
+            meta["lane_state"] = (scalars, loc.path, loc.line, loc.column)
         out = [self.header(), "", f"SHADER_META = {meta!r}", ""]
         out.append("if __name__ == \"__main__\":  # run on its own: python this_file.py --help")
         out.append("    from glslcheck.numpy_backend.program import standalone_globals")
@@ -1133,8 +1346,7 @@ class Transpiler:
         self.emit(f"X.count(S, {rid}, {mask})")
         emit_body(mask)
         body_lines = self.lines[start:]
-        used = sorted({m.group(1) for ln in body_lines for m in _LOCAL_REF.finditer(ln.split("#", 1)[0])
-                       if m.group(1) in snapshot} - {mask})
+        used = sorted((self.local_names(body_lines) & snapshot) - {mask})
         del self.lines[start:]
         tup = "(" + "".join(n + ", " for n in used) + ")"
         self.emit(f"{ix} = X.sparse(S, {mask})")
@@ -1158,16 +1370,22 @@ class Transpiler:
                                           or getattr(self.model.call_target(n), "cost", None) == B.EXPENSIVE):
                 return True
             count += 1
-        return count >= self.COMPACT_MIN_NODES
+            if count >= self.COMPACT_MIN_NODES:
+                return True  # (so a region nested hundreds deep is not walked whole)
+        return False
 
     def _region_uses_derivs(self, node: Any) -> bool:
-        for n in node.walk():
-            if isinstance(n, A.Call):
-                tgt = self.model.call_target(n)
-                if getattr(tgt, "name", None) in _DERIVATIVES + _IMPLICIT_LOD and not _is_symbol(tgt):
-                    return True
-                if _is_symbol(tgt) and id(tgt) in self.facts.uses_derivs:
-                    return True
+        return _fold(node, self._derivs, self._derivs_here)
+
+    def _derivs_here(self, n: Any, kids: list[bool]) -> bool:
+        if any(kids):
+            return True
+        if isinstance(n, A.Call):
+            tgt = self.model.call_target(n)
+            if getattr(tgt, "name", None) in _DERIVATIVES + _IMPLICIT_LOD and not _is_symbol(tgt):
+                return True
+            if _is_symbol(tgt) and id(tgt) in self.facts.uses_derivs:
+                return True
         return False
 
     # -- statements ----------------------------------------------------------------------------
@@ -1175,7 +1393,11 @@ class Transpiler:
         method = getattr(self, "_stmt_" + type(s).__name__, None)
         if method is None:
             raise _error(f"{type(s).__name__} statements are not supported by the NumPy backend", s)
-        method(s, mask)
+        self.where = s
+        if self.too_deep(OUTLINE_INDENT):
+            self.outline(lambda: method(s, mask), s)
+        else:
+            method(s, mask)
 
     def _stmt_Compound(self, s: A.Compound, mask: str | None) -> None:
         if not s.stmts:
@@ -1231,7 +1453,7 @@ class Transpiler:
             value = self.expr(dec.init, mask) if dec.init is not None else self.zero(sym.type, dec)
             if dec.init is not None:
                 self.after_discarding_call(dec.init)
-            if self.fn.switch_depth:
+            if name in self.fn.switch_locals:  # (one in a block inside a case is scoped to it)
                 self.emit(f"{name} = X.put({name}, {value}, {mask})")
             else:
                 self.emit(f"{name} = {value}")
@@ -1247,6 +1469,7 @@ class Transpiler:
                         name = self.var_name(sym, dec)
                         self.emit(f"{name} = {self.zero(sym.type, dec)}")
                         self.fn.defined.append(name)
+                        self.fn.switch_locals.add(name)
 
     def _stmt_If(self, s: A.If, mask: str | None) -> None:
         self.comment_line(s)
@@ -1396,7 +1619,7 @@ class Transpiler:
         fs = self.fn
         lid = self.region("loop", s)
         self.loops[lid] = (s.loc.path, s.loc.line, s.loc.column)
-        ind = induction_variable(s, self.model)
+        ind = induction_variable(s, self.model, self.facts)
         ev_body = events_of(body, self.facts, self.model)
         if (not do_while and cond is not None and not isinstance(cond, A.ConditionDeclaration)
                 and not ev_body.any and fs.uni is not None and fs.uni.is_uniform(cond)):
@@ -1414,6 +1637,7 @@ class Transpiler:
         start_lines = len(self.lines)
         self.emit("while True:")
         self.indent += 1
+        fs.blocks += 1
         self.emit(f"{count} += 1")
         self.emit(f"if {count} > {LOOP_CAP}:")
         self.emit(f"    X.runaway({lid})")
@@ -1453,10 +1677,10 @@ class Transpiler:
                     self.emit(f"{smask} = X.andnot({live}, _ret)")
                 self.effect(step, smask)
         self.indent -= 1
+        fs.blocks -= 1
         if stack:
             loop_lines = self.lines[start_lines:]
-            used = sorted({m.group(1) for ln in loop_lines for m in _LOCAL_REF.finditer(ln.split("#", 1)[0])
-                           if m.group(1) in snapshot} | {live})
+            used = sorted((self.local_names(loop_lines) & snapshot) | {live})
             tup = "(" + ", ".join(used) + ",)"
             pad = "    " * (self.indent + 1)
             push = [
@@ -1477,6 +1701,7 @@ class Transpiler:
         self.emit(f"{count} = 0")
         self.emit("while True:")
         self.indent += 1
+        fs.blocks += 1
         self.emit(f"{count} += 1")
         self.emit(f"if {count} > {LOOP_CAP}:")
         self.emit(f"    X.runaway({lid})")
@@ -1493,6 +1718,7 @@ class Transpiler:
             self.comment_line(step)
             self.effect(step, None if ind is not None else mask)
         self.indent -= 1
+        fs.blocks -= 1
 
     def condition(self, cond: Any, mask: str | None) -> str:
         if isinstance(cond, A.ConditionDeclaration):
@@ -1509,8 +1735,10 @@ class Transpiler:
         method = getattr(self, "_print_" + type(e).__name__, None)
         if method is None:
             raise _error(f"{type(e).__name__} expressions are not supported by the NumPy backend", e)
+        if self.too_deep(OUTLINE_EXPR_INDENT, loops=False):
+            return self.outline(lambda: self.expr(e, mask), e)
         if self.fn is None or self.in_const or self.model.const_value(e) is None:
-            return method(e, mask)
+            return self.spill(e, method(e, mask))
         # a constant expression inside a function: computed once, as a module constant (the
         # same runtime calls at import time instead of on every call in every tile)
         self.in_const = True
@@ -1520,7 +1748,7 @@ class Transpiler:
         finally:
             self.in_const = False
         if len(self.lines) != n_lines or "(" not in text or not _is_constant_text(text):
-            return text
+            return self.spill(e, text)
         name = self.const_exprs.get(text)
         if name is None:
             name = self.const_exprs[text] = f"C_x{len(self.const_exprs) + 1}"
@@ -1531,33 +1759,37 @@ class Transpiler:
         return self.model.type_of(e)
 
     def needs_hoist(self, e: Any) -> bool:
-        for n in e.walk():
-            if isinstance(n, (A.Assignment, A.Sequence)):
+        """True when evaluating e emits statements (so earlier operands go to temporaries
+        first): effects, or a part high enough to be spilled (`PythonLimits.spill`)."""
+        return self._height(e) >= SPILL_HEIGHT or _fold(e, self._hoists, self._hoists_here)
+
+    def _hoists_here(self, n: Any, kids: list[bool]) -> bool:
+        if any(kids) or isinstance(n, (A.Assignment, A.Sequence)):
+            return True
+        if isinstance(n, (A.Unary, A.Postfix)) and n.op in ("++", "--"):
+            return True
+        if isinstance(n, A.Call):
+            tgt = self.model.call_target(n)
+            if any(d != "in" for d in out_directions(tgt)):
                 return True
-            if isinstance(n, (A.Unary, A.Postfix)) and n.op in ("++", "--"):
+            if _is_symbol(tgt) and id(tgt) in self.facts.may_discard:
                 return True
-            if isinstance(n, A.Call):
-                tgt = self.model.call_target(n)
-                if any(d != "in" for d in out_directions(tgt)):
-                    return True
-                if _is_symbol(tgt) and id(tgt) in self.facts.may_discard:
-                    return True
-            if isinstance(n, (A.Ternary, A.Binary)) and (not isinstance(n, A.Binary) or n.op in ("&&", "||")):
-                if self.has_effects(n.then if isinstance(n, A.Ternary) else n.right) or (
-                        isinstance(n, A.Ternary) and self.has_effects(n.else_)):
-                    return True
+        if isinstance(n, (A.Ternary, A.Binary)) and (not isinstance(n, A.Binary) or n.op in ("&&", "||")):
+            if self.has_effects(n.then if isinstance(n, A.Ternary) else n.right) or (
+                    isinstance(n, A.Ternary) and self.has_effects(n.else_)):
+                return True
         return False
 
     def has_effects(self, e: Any) -> bool:
-        for n in e.walk():
-            if isinstance(n, (A.Assignment, A.Sequence)):
-                return True
-            if isinstance(n, (A.Unary, A.Postfix)) and n.op in ("++", "--"):
-                return True
-            if isinstance(n, A.Call) and (_is_symbol(self.model.call_target(n))
-                                          or any(d != "in" for d in out_directions(self.model.call_target(n)))):
-                return True
-        return False
+        return _fold(e, self._effects, self._effects_here)
+
+    def _effects_here(self, n: Any, kids: list[bool]) -> bool:
+        if any(kids) or isinstance(n, (A.Assignment, A.Sequence)):
+            return True
+        if isinstance(n, (A.Unary, A.Postfix)) and n.op in ("++", "--"):
+            return True
+        return isinstance(n, A.Call) and (_is_symbol(self.model.call_target(n))
+                                          or any(d != "in" for d in out_directions(self.model.call_target(n))))
 
     def tmp(self, value: str) -> str:
         if value.startswith(("C_", "Z_")) and value.replace("_", "").isalnum():
@@ -1923,12 +2155,24 @@ class Transpiled:
     source: str
     meta: dict
     filename: str
+    code: Any = None  # the compiled module (compiled once, to check it: see `compile_generated`)
 
 
 def transpile(model: Any, path: str = "<shader>", keep_alpha: bool = False) -> Transpiled:
-    """Generate the Python module of a checked program (model from glslcheck.check)."""
-    source, meta = Transpiler(model, path, keep_alpha=keep_alpha).module()
-    return Transpiled(source, meta, f"<glslcheck-numpy {_printable(path, 200)}>")
+    """Generate the Python module of a checked program (model from glslcheck.check); a located
+    GlslError when it is too complex for Python (see `PythonLimits`)."""
+    tr = Transpiler(model, path, keep_alpha=keep_alpha)
+    old = sys.getrecursionlimit()
+    sys.setrecursionlimit(max(old, 20000))  # expressions nested as deep as the checker allows
+    try:
+        source, meta = tr.module()
+    except RecursionError:
+        where = getattr(tr, "where", None)
+        raise too_complex("it is nested too deeply", getattr(where, "loc", None) or Location(path, 1, 1)) from None
+    finally:
+        sys.setrecursionlimit(old)
+    filename = f"<glslcheck-numpy {_printable(path, 200)}>"
+    return Transpiled(source, meta, filename, compile_generated(source, filename, path))
 
 
 def transpile_shader(shader: Any, tab: str | None = None) -> Transpiled:

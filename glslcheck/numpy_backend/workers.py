@@ -21,6 +21,9 @@ Design:
   once both are gone (`_FrameFile`). A caller that keeps many frames gets copies past
   MAX_MAPPINGS of them, and the pool lets go of held files past KEPT_FILES, so descriptors
   stay bounded.
+- A worker dies with its parent, at once, even mid-tile (killed, SIGTERM, a crash): it watches
+  the read end of a pipe only the parent holds open (`_watch_parent`). The frame's deadline
+  (`program.Budget`) travels with each frame; Ctrl-C in the caller kills the workers.
 - A GlslError raised in a worker (a runaway loop, with its GLSL line) is raised in the caller.
   If a worker dies or cannot start, the pool closes, `Unavailable` is raised and the caller
   renders the frame with threads.
@@ -95,10 +98,11 @@ def program_key(source: str, meta: dict, precision: str) -> str:
 
 
 def render(key: str, source: str, filename: str, meta: dict, precision: str, spec: Any,
-           tiles: list[tuple[int, int, int, int]], workers: int) -> tuple[np.ndarray, np.ndarray, list[dict], dict]:
+           tiles: list[tuple[int, int, int, int]], workers: int,
+           budget: Any = None) -> tuple[np.ndarray, np.ndarray, list[dict], dict]:
     """Render `tiles` of the frame `spec` with `workers` processes, in that order: (the caller's
     image, a read-only view of the same pixels for the frame cache (see `_FrameFile`), per-tile
-    stats, {tile: seconds it took})."""
+    stats, {tile: seconds it took}). `budget`: the frame's `program.Budget` (its deadline)."""
     global _POOL
     with _POOL_LOCK:  # one frame at a time through the pool
         if not available():
@@ -109,7 +113,8 @@ def render(key: str, source: str, filename: str, meta: dict, precision: str, spe
                     _POOL.close()
                     _POOL = None
                 _POOL = _Pool(workers)
-            image, shared, stats, seconds, errors = _POOL.render(key, source, filename, meta, precision, spec, tiles)
+            image, shared, stats, seconds, errors = _POOL.render(key, source, filename, meta, precision, spec, tiles,
+                                                                 budget)
         except Unavailable as e:
             _give_up(str(e))
             raise
@@ -150,6 +155,11 @@ atexit.register(shutdown)
 class _Worker:
     def __init__(self) -> None:
         ours, theirs = socket.socketpair()
+        # the worker's lifeline: it reads the other end of this pipe, which nobody writes, and
+        # exits when the read returns end-of-file, that is when this process is gone (killed,
+        # SIGTERM, a crash: no atexit needed). PR_SET_PDEATHSIG would fire when the *thread* that
+        # started the worker ends, and a pool made in a short-lived thread must outlive it.
+        lifeline, self.lifeline = os.pipe()  # neither end is inherited by other children
         env = dict(os.environ)
         # the worker imports the same glslcheck as this process (a source tree, a worktree, ...)
         root = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
@@ -157,13 +167,17 @@ class _Worker:
         env.update(MALLOC_ENV)
         try:
             self.proc = subprocess.Popen(
-                [sys.executable, "-m", "glslcheck.numpy_backend.workers", str(theirs.fileno())],
-                pass_fds=(theirs.fileno(),), env=env, stdin=subprocess.DEVNULL, close_fds=True,
+                [sys.executable, "-m", "glslcheck.numpy_backend.workers", str(theirs.fileno()), str(lifeline)],
+                pass_fds=(theirs.fileno(), lifeline), env=env, stdin=subprocess.DEVNULL, close_fds=True,
                 cwd=root,  # `-m` puts the working directory first on sys.path: another checkout there would win
                 stderr=subprocess.DEVNULL,  # a worker that fails is reported as Unavailable, no traceback
                 start_new_session=True)  # Ctrl-C reaches the caller, which ends the workers
+        except BaseException:
+            os.close(self.lifeline)
+            raise
         finally:
             theirs.close()
+            os.close(lifeline)
         self.conn = Connection(ours.detach())
         self.files: set[int] = set()  # the numbers of the frame files this worker has mapped
 
@@ -182,6 +196,8 @@ class _Worker:
         except subprocess.TimeoutExpired:
             self.proc.kill()
             self.proc.wait()
+        finally:
+            os.close(self.lifeline)
 
 
 class _FrameFile:
@@ -294,7 +310,7 @@ class _Pool:
             self.retired.append(f.number)
         return file
 
-    def render(self, key, source, filename, meta, precision, spec, tiles):
+    def render(self, key, source, filename, meta, precision, spec, tiles, budget=None):
         file = self._file((spec.height, spec.width, 4))
         file.counter[0] = 0
         retired, self.retired = self.retired, []
@@ -302,7 +318,7 @@ class _Pool:
             for w in self.workers:  # the source too (tens of kB): a worker may have dropped it
                 new_file = file.number not in w.files
                 w.conn.send((key, source, filename, meta, precision, spec, tiles, file.shape,
-                             file.number, new_file, retired))
+                             file.number, new_file, retired, budget))
                 w.files.difference_update(retired)
                 if new_file:
                     reduction.send_handle(w.conn, file.fd, w.proc.pid)
@@ -352,7 +368,7 @@ def _serve(conn: Connection) -> None:
             return
         if msg is None:
             return
-        key, source, filename, meta, precision, spec, tiles, shape, number, new_file, retired = msg
+        key, source, filename, meta, precision, spec, tiles, shape, number, new_file, retired, budget = msg
         for n in retired:  # files the caller has closed
             fd, mm = files.pop(n, (-1, None))
             if mm is not None:
@@ -366,7 +382,7 @@ def _serve(conn: Connection) -> None:
         seconds: dict = {}  # tile -> seconds it took here (the caller orders the next frame's tiles)
         try:
             _render_frame(fd, mm, modules, key, source, filename, meta, precision, spec, tiles,
-                          shape, stats, seconds)
+                          shape, stats, seconds, budget)
             error = None
         except BaseException as e:  # noqa: BLE001 - reported to the caller, which raises it
             _take_tile(fd, mm, stop=len(tiles))  # the other workers stop too
@@ -389,7 +405,7 @@ def _take_tile(fd: int, mm: mmap.mmap, stop: int | None = None) -> int:
 
 
 def _render_frame(fd, mm, modules, key, source, filename, meta, precision, spec, tiles, shape,
-                  stats, seconds):
+                  stats, seconds, budget=None):
     from . import program
     from .program import execute_module, render_tile
 
@@ -401,18 +417,41 @@ def _render_frame(fd, mm, modules, key, source, filename, meta, precision, spec,
             modules.popitem(last=False)
     modules.move_to_end(key)
     image = np.frombuffer(mm, dtype=np.float32, offset=HEADER).reshape(shape)
-    while True:
-        i = _take_tile(fd, mm)
-        if i >= len(tiles):
-            return
-        t0 = time.perf_counter()
-        st = render_tile(ns, spec, tiles[i], image)
-        seconds[tiles[i]] = time.perf_counter() - t0
-        if st is not None:
-            stats.append(st)
+    if budget is not None:
+        budget.start()  # the frame's deadline, on this machine's one monotonic clock
+    try:
+        while True:
+            i = _take_tile(fd, mm)
+            if i >= len(tiles):
+                return
+            t0 = time.perf_counter()
+            st = render_tile(ns, spec, tiles[i], image, budget=budget)
+            seconds[tiles[i]] = time.perf_counter() - t0
+            if st is not None:
+                stats.append(st)
+    finally:
+        if budget is not None:
+            budget.finish()
+
+
+def _watch_parent(lifeline: int) -> None:
+    """End this worker at once when the parent is gone (its end of the lifeline pipe closed),
+    even in the middle of a tile: an orphan would go on at 100% CPU."""
+
+    def watch() -> None:
+        try:
+            while os.read(lifeline, 1):
+                pass
+        except OSError:
+            pass
+        os._exit(0)
+
+    threading.Thread(target=watch, name="glslcheck-lifeline", daemon=True).start()
 
 
 def main(argv: list[str]) -> int:
+    if len(argv) > 1:
+        _watch_parent(int(argv[1]))
     conn = Connection(int(argv[0]))
     try:
         _serve(conn)

@@ -42,8 +42,10 @@ def test_short_fuzz_run_has_no_flagged_inputs(tmp_path):
     deadline = time.monotonic() + RUN_SECONDS
 
     def chunk(k: int):
+        # hostile programs take seconds each: test_fuzz_hostile.py runs each shape once
         return fuzz.fuzz_range(SEED, k * PER_WORKER, (k + 1) * PER_WORKER, heavy_rate=0.01,
-                               verify_rate=0.02, parse_rate=0.2, out_dir=tmp_path, deadline=deadline)
+                               verify_rate=0.02, parse_rate=0.2, out_dir=tmp_path, deadline=deadline,
+                               hostile_rate=0.0)
 
     counts: collections.Counter = collections.Counter()
     flagged: list[dict] = []
