@@ -50,12 +50,9 @@ class Inputs:
     date: Any = None
 
     def values(self) -> dict:
-        from .numpy_backend.program import _as_date
+        from .shadertoy import frame_uniforms
 
-        w, h = self.size
-        return {"iResolution": (float(w), float(h), 1.0), "iTime": float(self.time), "iFrame": int(self.frame),
-                "iMouse": tuple(float(v) for v in self.mouse), "iDate": _as_date(self.date),
-                "iTimeDelta": 1.0 / 60.0, "iFrameRate": 60.0}
+        return frame_uniforms(*self.size, self.time, self.frame, self.mouse, self.date)
 
 
 @dataclass

@@ -126,6 +126,23 @@ def as_date(date) -> tuple[float, float, float, float]:
     return (float(year), float(month), float(day), float(seconds))
 
 
+def frame_uniforms(width: int, height: int, time: float = 0.0, frame: int = 0,
+                   mouse=(0.0, 0.0, 0.0, 0.0), date=None, time_delta: float = 1.0 / 60.0,
+                   frame_rate: float = 60.0) -> dict:
+    """The values of one frame's Shadertoy uniforms, as every backend sets them (the others keep
+    their table defaults): iResolution (width, height, 1), iTime, iFrame, iMouse, iDate
+    (`as_date`), iTimeDelta, iFrameRate."""
+    return {
+        "iResolution": (float(width), float(height), 1.0),
+        "iTime": float(time),
+        "iFrame": int(frame),
+        "iMouse": tuple(float(v) for v in mouse),
+        "iDate": as_date(date),
+        "iTimeDelta": float(time_delta),
+        "iFrameRate": float(frame_rate),
+    }
+
+
 @dataclass(frozen=True, slots=True)
 class Segment:
     """Program lines `start .. start+count-1` (1-based) are lines `first_line ..` of `path`."""

@@ -31,8 +31,8 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from ..diagnostics import Diagnostic, GlslError, Location, source_line
-from ..shadertoy import DEFAULT_SIZE, OFFSET_UNIFORM, UNIFORMS, UNIFORMS_BY_NAME, Program, build_program, sample_offsets
-from ..shadertoy import as_date as _as_date
+from ..shadertoy import (DEFAULT_SIZE, OFFSET_UNIFORM, UNIFORMS, UNIFORMS_BY_NAME, Program, build_program,
+                         frame_uniforms, sample_offsets)
 from ..sources import Shader
 from ..driver_profile import driver_model
 from .context import get_context
@@ -246,15 +246,7 @@ class GLProgram:
             raise ValueError(f"size must be at least 1x1, not {width}x{height}")
         offsets = sample_offsets(samples)
         compiled = self._variant(samples > 1)
-        values = {
-            "iResolution": (float(width), float(height), 1.0),
-            "iTime": float(time),
-            "iFrame": int(frame),
-            "iMouse": tuple(float(v) for v in mouse),
-            "iDate": _as_date(date),
-            "iTimeDelta": float(time_delta),
-            "iFrameRate": float(frame_rate),
-        }
+        values = frame_uniforms(width, height, time, frame, mouse, date, time_delta, frame_rate)
         inputs = []
         if channels is not None:  # `channels`: iChannel0..3 as channels.ChannelInput or None
             from ..channels import channel_uniforms

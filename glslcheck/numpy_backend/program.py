@@ -57,8 +57,7 @@ import numpy as np
 
 from ..diagnostics import Diagnostic, GlslError, InputError, Location
 from ..driver_profile import host_model
-from ..shadertoy import DEFAULT_SIZE, UNIFORMS_BY_NAME, sample_offsets
-from ..shadertoy import as_date as _as_date
+from ..shadertoy import DEFAULT_SIZE, UNIFORMS_BY_NAME, frame_uniforms, sample_offsets
 from .runtime import Runtime, Struct
 from .transpile import SMALL_STATE
 
@@ -779,11 +778,7 @@ class NumpyProgram:
         offsets = sample_offsets(samples)
         ns = self.module(precision)
         rt = ns["rt"]
-        values = {
-            "iResolution": (float(width), float(height), 1.0),
-            "iTime": float(time), "iFrame": int(frame), "iMouse": tuple(float(v) for v in mouse),
-            "iDate": _as_date(date), "iTimeDelta": float(time_delta), "iFrameRate": float(frame_rate),
-        }
+        values = frame_uniforms(width, height, time, frame, mouse, date, time_delta, frame_rate)
         if channels is not None:  # each ChannelInput's repr is unique: a new input is a new frame key
             from ..channels import channel_uniforms
 

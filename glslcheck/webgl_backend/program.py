@@ -30,8 +30,9 @@ from dataclasses import dataclass, field, replace
 import numpy as np
 
 from ..diagnostics import Diagnostic, GlslError, Location, source_line
-from ..gl_backend.program import _as_date, _entry_location, driver_diagnostics, parse_driver_log, sample_offsets
-from ..shadertoy import DEFAULT_SIZE, OFFSET_UNIFORM, UNIFORMS, Program, build_program
+from ..gl_backend.program import _entry_location, driver_diagnostics, parse_driver_log
+from ..shadertoy import (DEFAULT_SIZE, OFFSET_UNIFORM, UNIFORMS, Program, build_program, frame_uniforms,
+                         sample_offsets)
 from ..sources import Shader
 from .browser import Browser, WebGLTimeout, get_browser
 
@@ -60,15 +61,7 @@ def _flatten(value) -> list[float]:
 def uniform_values(width: int, height: int, time: float, frame: int, mouse, date, time_delta: float,
                    frame_rate: float) -> list[list]:
     """[[name, kind, values], ...] for every Shadertoy uniform, in the table's order."""
-    given = {
-        "iResolution": (float(width), float(height), 1.0),
-        "iTime": float(time),
-        "iFrame": int(frame),
-        "iMouse": tuple(float(v) for v in mouse),
-        "iDate": _as_date(date),
-        "iTimeDelta": float(time_delta),
-        "iFrameRate": float(frame_rate),
-    }
+    given = frame_uniforms(width, height, time, frame, mouse, date, time_delta, frame_rate)
     out = []
     for u in UNIFORMS:
         kind = _KINDS[u.glsl_type] + ("v" if u.array_size else "")
