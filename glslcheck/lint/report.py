@@ -61,20 +61,42 @@ def format_finding(f: Finding) -> str:
 
 def text_report(result: LintResult) -> str:
     blocks: list[str] = []
-    not_run = False  # the last block lists rules that could not run: one line each
+    not_run: list[Finding] = []  # a run of "rule could not run" notes: one block, folded
+
+    def flush() -> None:
+        if not_run:
+            blocks.append(_not_run_block(not_run))
+            not_run.clear()
+
     for f in result.findings:
         if f.rule == "compile-error" and f.severity == "note":
-            line = f"{f.loc}: {f.rule} {f.message}"
-            if not_run:
-                blocks[-1] += "\n" + line
-            else:
-                blocks.append(line)
-            not_run = True
+            not_run.append(f)
             continue
+        flush()
         blocks.append(format_finding(f))
-        not_run = False
+    flush()
     blocks.append(summary_line(result))
     return "\n\n".join(blocks) + "\n"
+
+
+def _not_run_block(notes: list[Finding]) -> str:
+    """The rules that could not run, one line per place and reason (the JSON keeps one record
+    per rule): `Image.glsl:2:1: compile-error 11 rules could not run in 'mainImage' (line 2): it
+    does not compile (uniform-outside-mainimage, length-comparison, ...)`."""
+    groups: dict[tuple[str, str], list[str]] = {}
+    for f in notes:
+        rule, sep, rest = f.message.partition(" could not run ")
+        key = (str(f.loc), rest if sep else f.message)
+        groups.setdefault(key, []).append(rule if sep else "")
+    lines = []
+    for (loc, rest), rules in groups.items():
+        if len(rules) == 1 and rules[0]:
+            lines.append(f"{loc}: compile-error {rules[0]} could not run {rest}")
+        elif all(rules):
+            lines.append(f"{loc}: compile-error {len(rules)} rules could not run {rest} ({', '.join(rules)})")
+        else:
+            lines.extend(f"{loc}: compile-error {rest}" for _ in rules)
+    return "\n".join(lines)
 
 
 def finding_record(f: Finding) -> dict:

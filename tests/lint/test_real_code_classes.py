@@ -62,6 +62,22 @@ def test_compile_errors_come_first_and_the_rest_is_still_linted(tmp_path: Path):
     assert not any(m.startswith("uniform-outside-mainimage") for m in not_run)
 
 
+def test_text_report_folds_the_rules_that_could_not_run_per_place(tmp_path: Path):
+    """The text a student reads names each broken function once, with every rule that skipped
+    it; the JSON keeps one record per rule."""
+    from glslcheck.lint.report import text_report
+
+    result = _lint(tmp_path, BROKEN)
+    notes = [f for f in result.findings if f.rule == "compile-error" and f.severity == "note"]
+    text = text_report(result)
+    folded = [line for line in text.splitlines() if "could not run" in line]
+    assert len(notes) > len(folded) >= 2
+    where = next(line for line in folded if "in 'lightAt' (line 6)" in line)
+    skipped = [f.message.split()[0] for f in notes if "in 'lightAt' (line 6)" in f.message]
+    assert f"{len(skipped)} rules could not run in 'lightAt' (line 6): it does not compile" in where
+    assert all(rule in where for rule in skipped)
+
+
 def test_compile_errors_cost_no_points_and_the_summary_says_so(tmp_path: Path):
     result = _lint(tmp_path, BROKEN)
     error = next(f for f in result.findings if f.severity == "error")
