@@ -258,9 +258,9 @@ class MultipassProgram:
     """
 
     def __init__(self, shader: Shader, backend: str, output: str = "Image") -> None:
-        if backend not in ("numpy", "gl"):
+        if backend not in ("numpy", "gl", "webgl"):
             raise InputError(f"{shader.root}: error: buffers, channels and --pass are not supported on the "
-                             f"{backend} backend yet; use --backend numpy or gl")
+                             f"{backend} backend; use --backend numpy, gl or webgl")
         self.shader = shader
         self.backend = backend
         self.channels_path, bindings = load_bindings(shader)
@@ -279,6 +279,9 @@ class MultipassProgram:
                 self.textures[b.texture] = _read_image(folder_of(shader) / b.texture,
                                                        f'"{b.tab}"."iChannel{b.channel}"."texture"', fail)
         self.programs = {t: self._compile(t) for t in self.passes}
+        # Lookups return lowp results as llvmpipe's do (numpy_backend/textures.py); False gives
+        # the exact float32 results SwiftShader's WebGL returns (it ignores lowp, measured).
+        self.lowp_samplers = True
         self._state: dict[str, np.ndarray] = {}
         self._key = None
         self._next = 0
@@ -299,6 +302,10 @@ class MultipassProgram:
             from .gl_backend import compile_gl
 
             return compile_gl(self.shader, tab=tab)
+        if self.backend == "webgl":
+            from .webgl_backend import compile_webgl
+
+            return compile_webgl(self.shader, tab=tab)
         from .numpy_backend.program import compile_numpy
 
         return compile_numpy(self.shader, tab if tab != "Image" else None)
@@ -335,15 +342,15 @@ class MultipassProgram:
             texels = self._state[b.buffer] if b.buffer is not None else self.textures[b.texture]
             if b.vflip:
                 texels = texels[::-1]
-            chans.append(ChannelInput(np.ascontiguousarray(texels), b.filter, b.wrap))
+            chans.append(ChannelInput(np.ascontiguousarray(texels), b.filter, b.wrap, self.lowp_samplers))
         return chans
 
     def render(self, size=(800, 450), time: float = 0.0, frame: int = 0, time_delta: float = 1.0 / 60.0,
                samples: int = 1, **rest) -> np.ndarray:
         """One frame of the output pass; arguments as the backend's render (see the class)."""
-        if self.backend == "gl":
+        if self.backend in ("gl", "webgl"):
             if rest.pop("precision", "float32") != "float32":
-                raise ValueError("the GL backend renders in float32 only (the driver's highp)")
+                raise ValueError(f"the {self.backend} backend renders in float32 only (the driver's highp)")
             rest.pop("stats", None)
         width, height = int(size[0]), int(size[1])
         key = (width, height, rest.get("precision"))

@@ -22,6 +22,9 @@
     state.error = "WebGL 2 has no EXT_color_buffer_float (no float render target)";
     return;
   }
+  // Linear and mipmap filtering of the RGBA32F channel textures (Shadertoy enables it too; a
+  // float texture without it is incomplete under a linear filter and reads (0, 0, 0, 1)).
+  state.floatLinear = gl.getExtension("OES_texture_float_linear") !== null;
 
   // Shadertoy's vertex stage: one triangle over the viewport from a vertex buffer at location 0.
   const triangle = gl.createBuffer();
@@ -124,6 +127,56 @@
     }
   }
 
+  function fromBase64(text) {
+    const raw = atob(text);
+    const bytes = new Uint8Array(raw.length);
+    for (let i = 0; i < raw.length; i++) bytes[i] = raw.charCodeAt(i);
+    return new Float32Array(bytes.buffer);
+  }
+
+  // Channel textures, each {width, height, filter, wrap, levels: [base64 RGBA32F, ...]} with
+  // level 0 first and row 0 at t near 0 (OpenGL's first row): glslcheck's own mipmap pyramid
+  // (channels.mip_levels) is uploaded level by level, as on the GL backend, so every backend
+  // samples the same texels. The units are 0..3 as iChannel0..3; null leaves a unit unbound.
+  function bindChannels(channels) {
+    const made = [];
+    channels.forEach((c, unit) => {
+      gl.activeTexture(gl.TEXTURE0 + unit);
+      if (c === null) { gl.bindTexture(gl.TEXTURE_2D, null); return; }
+      if (c.filter !== "nearest" && !state.floatLinear) {
+        throw new Error("WebGL 2 has no OES_texture_float_linear: linear filtering of float channels is not available");
+      }
+      const texture = gl.createTexture();
+      made.push(texture);
+      gl.bindTexture(gl.TEXTURE_2D, texture);
+      gl.pixelStorei(gl.UNPACK_ALIGNMENT, 1);
+      gl.pixelStorei(gl.UNPACK_FLIP_Y_WEBGL, false);
+      gl.texStorage2D(gl.TEXTURE_2D, c.levels.length, gl.RGBA32F, c.width, c.height);
+      c.levels.forEach((data, level) => {
+        const w = Math.max(1, c.width >> level), h = Math.max(1, c.height >> level);
+        gl.texSubImage2D(gl.TEXTURE_2D, level, 0, 0, w, h, gl.RGBA, gl.FLOAT, fromBase64(data));
+      });
+      const mag = c.filter === "nearest" ? gl.NEAREST : gl.LINEAR;
+      const min = c.filter === "mipmap" ? gl.LINEAR_MIPMAP_LINEAR : mag;
+      gl.texParameteri(gl.TEXTURE_2D, gl.TEXTURE_MIN_FILTER, min);
+      gl.texParameteri(gl.TEXTURE_2D, gl.TEXTURE_MAG_FILTER, mag);
+      const wrap = c.wrap === "repeat" ? gl.REPEAT : gl.CLAMP_TO_EDGE;
+      gl.texParameteri(gl.TEXTURE_2D, gl.TEXTURE_WRAP_S, wrap);
+      gl.texParameteri(gl.TEXTURE_2D, gl.TEXTURE_WRAP_T, wrap);
+    });
+    gl.activeTexture(gl.TEXTURE0);
+    return made;
+  }
+
+  function unbindChannels(made) {
+    for (let unit = 0; unit < 4; unit++) {
+      gl.activeTexture(gl.TEXTURE0 + unit);
+      gl.bindTexture(gl.TEXTURE_2D, null);
+    }
+    gl.activeTexture(gl.TEXTURE0);
+    for (const texture of made) gl.deleteTexture(texture);
+  }
+
   // Little-endian float32 bytes as base64 (the cheapest way through the DevTools protocol).
   function base64(floats) {
     const bytes = new Uint8Array(floats.buffer, floats.byteOffset, floats.byteLength);
@@ -136,10 +189,19 @@
 
   // One frame: every sub-pixel offset drawn and read back, summed in float64 (JS numbers) in
   // the order given, divided once and rounded to float32 once (as the GL backend does).
-  state.render = (id, width, height, uniforms, offsets) => {
+  state.render = (id, width, height, uniforms, offsets, channels) => {
     const entry = state.programs.get(id);
     if (!entry) throw new Error(`no program ${id}`);
-    const t = target(width, height);
+    const t = target(width, height); // first: making a target binds (then unbinds) a texture
+    const made = channels ? bindChannels(channels) : [];
+    try {
+      return draw(entry, t, width, height, uniforms, offsets);
+    } finally {
+      unbindChannels(made);
+    }
+  };
+
+  function draw(entry, t, width, height, uniforms, offsets) {
     gl.bindFramebuffer(gl.FRAMEBUFFER, t.fbo);
     gl.viewport(0, 0, width, height);
     gl.disable(gl.BLEND);
@@ -164,5 +226,5 @@
     const out = new Float32Array(sum.length);
     for (let i = 0; i < sum.length; i++) out[i] = sum[i] / offsets.length;
     return base64(out);
-  };
+  }
 })();

@@ -59,14 +59,30 @@ def _flatten(value) -> list[float]:
 
 
 def uniform_values(width: int, height: int, time: float, frame: int, mouse, date, time_delta: float,
-                   frame_rate: float) -> list[list]:
-    """[[name, kind, values], ...] for every Shadertoy uniform, in the table's order."""
+                   frame_rate: float, channels=None) -> list[list]:
+    """[[name, kind, values], ...] for every Shadertoy uniform, in the table's order;
+    `channels` (iChannel0..3, see `WebGLProgram.render`) set iChannelResolution."""
     given = frame_uniforms(width, height, time, frame, mouse, date, time_delta, frame_rate)
+    if channels is not None:
+        from ..channels import channel_uniforms
+
+        given["iChannelResolution"] = channel_uniforms(channels)["iChannelResolution"]
     out = []
     for u in UNIFORMS:
         kind = _KINDS[u.glsl_type] + ("v" if u.array_size else "")
         out.append([u.name, kind, _flatten(given.get(u.name, u.default))])
     return out
+
+
+def _channel_json(channel) -> dict | None:
+    """A channels.ChannelInput as harness.js `bindChannels` takes it (levels as base64 float32)."""
+    if channel is None:
+        return None
+    levels = channel.levels() if channel.filter == "mipmap" else [channel.texels]
+    h, w = channel.texels.shape[:2]
+    return {"width": w, "height": h, "filter": channel.filter, "wrap": channel.wrap,
+            "levels": [base64.b64encode(np.ascontiguousarray(t, dtype="<f4").tobytes()).decode("ascii")
+                       for t in levels]}
 
 
 # ANGLE quotes the token it complains about first: "'=' : cannot convert from ...".
@@ -157,20 +173,26 @@ class WebGLProgram:
         time_delta: float = 1.0 / 60.0,
         frame_rate: float = 60.0,
         samples: int = 1,
+        channels=None,
     ) -> np.ndarray:
-        """One frame: float32 (height, width, 4), row 0 = top; see `GLProgram.render`."""
+        """One frame: float32 (height, width, 4), row 0 = top; see `GLProgram.render`.
+
+        `channels`: iChannel0..3 as `channels.ChannelInput` or None (unbound), uploaded as
+        RGBA32F textures with their filter, wrap and glslcheck's mipmap levels, as on GL
+        (glslcheck.channels.MultipassProgram chains the passes frame after frame)."""
         width, height = int(size[0]), int(size[1])
         if width < 1 or height < 1:
             raise ValueError(f"size must be at least 1x1, not {width}x{height}")
         offsets = sample_offsets(samples)
         program_id = self._variant(samples > 1)
-        uniforms = uniform_values(width, height, time, frame, mouse, date, time_delta, frame_rate)
+        uniforms = uniform_values(width, height, time, frame, mouse, date, time_delta, frame_rate, channels)
+        js_channels = None if channels is None else [_channel_json(c) for c in channels]
         js_offsets = [list(o) if samples > 1 else None for o in offsets]
         if self.browser.closed:
             raise GlslError(Diagnostic("WebGL: the browser this program was compiled in has ended (after a "
                                        "timeout); compile the shader again", None, rule=RULE))
         try:
-            data = self.browser.call("render", program_id, width, height, uniforms, js_offsets)
+            data = self.browser.call("render", program_id, width, height, uniforms, js_offsets, js_channels)
         except WebGLTimeout as e:
             raise GlslError(Diagnostic(
                 f"WebGL: the {self.program.tab} program ran for more than {e.seconds:g} s in the browser (an "
