@@ -25,6 +25,12 @@ feedback and valid; the one cycle that is not (reading the Image tab, which noth
 on Shadertoy) is an error. Image files are sampled as RGBA float32 texels (value / 255) on both
 backends (see numpy_backend/textures.py for why, and for what llvmpipe's filtering does).
 
+iChannelResolution[N] is (width, height, 1) of the image or the buffer (the Image's size);
+iChannelTime[N] stays 0 for both: Shadertoy's page (effect.js, `EffectPass.Paint_Image`, as kept
+in public copies such as DustinBrett/daedalOS public/System/ShaderToy/CoastalLandscape/effect.js)
+starts it at 0 and sets it only for video and music inputs (their currentTime) and microphone or
+muted music (10 + iTime), none of which glslcheck supports. Tested on all three backends.
+
 Sampler precision: Shadertoy's prelude declares `precision mediump sampler3D;` and nothing for
 sampler2D, so iChannel0-3 are declared lowp (the ES 3.00 fragment default) before any user code;
 a `precision highp sampler2D;` in the user's tab comes after their declaration and does not
@@ -414,8 +420,9 @@ def load_shadertoy_json(path) -> Shader:
             fail(f"renderpass[{i}]", "needs a \"code\" string")
         kind = rp.get("type", "image")
         tab = _ST_TABS.get(kind)
-        if kind == "buffer":
-            name = rp.get("name", "")
+        if kind == "buffer":  # named "Buffer A" or, in older exports, "Buf A"
+            m = re.fullmatch(r"Buf(?:fer)? ?([A-D])", str(rp.get("name", "")).strip())
+            name = f"Buffer {m.group(1)}" if m else ""
             tab = name if name in BUFFER_TABS and name not in shader.tabs else next(buffers, None)
         if tab is None or tab in shader.tabs:
             fail(f"renderpass[{i}] ({rp.get('name', kind)})", f"a pass of type {kind!r} glslcheck cannot place")

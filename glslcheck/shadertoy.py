@@ -55,7 +55,7 @@ UNIFORMS: tuple[Uniform, ...] = (
     Uniform("iResolution", "vec3", (float(DEFAULT_SIZE[0]), float(DEFAULT_SIZE[1]), 1.0), None,
             "viewport size in pixels: (width, height, 1.0)"),
     Uniform("iTime", "float", 0.0, None, "seconds since the start"),
-    Uniform("iChannelTime", "float", (0.0, 0.0, 0.0, 0.0), 4, "playback time of each input, 0 when none"),
+    Uniform("iChannelTime", "float", (0.0, 0.0, 0.0, 0.0), 4, "playback time of each input: 0 for images and buffers, as Shadertoy (channels.py)"),
     Uniform("iMouse", "vec4", (0.0, 0.0, 0.0, 0.0), None,
             "xy: position while the button is down, zw: where the click started (signs: SHADERTOY.md)"),
     Uniform("iDate", "vec4", DEFAULT_DATE, None, "(year, month 0-11, day 1-31, seconds since midnight)"),

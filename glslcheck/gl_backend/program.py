@@ -11,8 +11,9 @@ Inputs, and what glslcheck feeds them (see `glslcheck.shadertoy.UNIFORMS`):
 - iResolution = (width, height, 1); iTime, iFrame, iMouse, iTimeDelta, iFrameRate from `render`.
 - iDate = `date`, by default the fixed `DEFAULT_DATE` (2026, 0, 1, 0.0) = 2026-01-01 00:00:00,
   so renders are reproducible. Give a tuple (year, month 0-11, day, seconds) or a `datetime`.
-- iChannelTime all 0, iChannelResolution all 0, iSampleRate 44100, iChannel0..3 unbound
-  (texture() then returns (0, 0, 0, 1), GL's value for an incomplete texture).
+- iChannelTime all 0 (Shadertoy's value for images and buffers, channels.py), iSampleRate 44100;
+  without `channels` iChannelResolution all 0 and iChannel0..3 unbound (texture() then returns
+  (0, 0, 0, 1), GL's value for an incomplete texture).
 - Uniforms the shader does not use are skipped (the driver drops inactive uniforms, and trims
   arrays to the highest index used).
 

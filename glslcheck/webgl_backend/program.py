@@ -10,8 +10,16 @@ gives the same float32 (height, width, 4) image, top row first: drawn into an RG
 (EXT_color_buffer_float) and read back with `readPixels(FLOAT)`, neither clamped nor quantised.
 
 Uniforms are set as Shadertoy's page sets them (glslcheck/shadertoy.py `UNIFORMS`: iResolution,
-iTime, iMouse, iChannelTime, iDate, iChannelResolution, iSampleRate, iChannel0..3 = units 0..3
-with no texture bound, iFrame, iTimeDelta, iFrameRate); inactive ones are skipped by WebGL.
+iTime, iMouse, iChannelTime, iDate, iChannelResolution, iSampleRate, iChannel0..3 = units 0..3,
+iFrame, iTimeDelta, iFrameRate); inactive ones are skipped by WebGL. `render(channels=...)` binds
+the channels (glslcheck.channels.ChannelInput) as RGBA32F textures on units 0..3, with their
+filter, wrap and glslcheck's mipmap levels, as the GL backend does; without it they are unbound.
+
+What SwiftShader's WebGL does with them (measured, tests/webgl/test_channels_webgl.py): it
+ignores lowp, so lookups return the exact float32 filtered value where llvmpipe (and the NumPy
+backend) truncate to 10 mantissa bits; nearest and linear lookups and explicit-LOD mipmap
+lookups are otherwise equal to NumPy's to float32 rounding. Its implicit LOD, projective lookups
+and per-pixel-LOD textureLodOffset differ from llvmpipe's: driver-dependent pixels.
 Supersampling uses the `glslcheck_offset` program variant and the sub-pixel grid of the GL
 backend (`gl_backend.sample_offsets`), summed in float64 and rounded to float32 once.
 

@@ -299,3 +299,43 @@ void mainImage(out vec4 fragColor, in vec2 fragCoord)
              if f.rule == "uniform-outside-mainimage"]
     # the sampler passed in as a parameter is fine; iChannel1 read in the helper is flagged
     assert found == [(8, "the uniform 'iChannel1' is read in 'direct', not in mainImage")]
+
+
+CHANNEL_TIME = """void mainImage(out vec4 fragColor, in vec2 fragCoord) {
+    float used = texture(iChannel0, vec2(0.5)).x * 0.0 + texture(iChannel1, vec2(0.5)).a * 0.0;
+    fragColor = vec4(iChannelTime[0], iChannelTime[1], iChannelTime[2] + used, iChannelTime[3] + 1.0);
+}
+"""
+
+
+def channel_time_case(tmp_path):
+    """A buffer on iChannel0 and an image on iChannel1, both read, each iChannelTime written out."""
+    _png(tmp_path / "tex.png")
+    return _folder(tmp_path, {"Buffer A": "void mainImage(out vec4 c, in vec2 p) { c = vec4(iTime); }\n",
+                              "Image": CHANNEL_TIME},
+                   {"Image": {"iChannel0": {"buffer": "Buffer A"}, "iChannel1": {"texture": "tex.png"}}})
+
+
+@pytest.mark.parametrize("backend", ["numpy", "gl"])
+def test_channel_time_is_zero_for_images_and_buffers(gl, tmp_path, backend):
+    # Shadertoy's page (its effect.js, Paint_Image) starts iChannelTime at 0 and sets it only for
+    # video (currentTime), music (currentTime, or 10 + iTime when muted) and microphone inputs:
+    # for images and buffers it stays 0 at every iTime. Rendered at iTime 3.0, frame 2.
+    img = api.compile(channel_time_case(tmp_path), backend=backend).render(size=(8, 4), time=3.0, frame=2)
+    assert np.array_equal(img, np.broadcast_to(np.float32([0.0, 0.0, 0.0, 1.0]), img.shape))
+
+
+def test_shadertoy_json_export_older_buffer_names(tmp_path):
+    # Older exports name the buffers "Buf A" .. "Buf D" (e.g. Shadertoy's MscXDn): "Buf C" is the
+    # Buffer C tab, whatever the order of the passes in the file
+    _export(tmp_path)
+    data = json.loads((tmp_path / "shader.json").read_text())
+    data["Shader"]["renderpass"][0]["name"] = "Buf C"
+    data["Shader"]["renderpass"].reverse()
+    (tmp_path / "old.json").write_text(json.dumps(data))
+    from glslcheck.sources import load_shader
+
+    shader = load_shader(str(tmp_path / "old.json"))
+    assert set(shader.tabs) == {"Buffer C", "Image"}
+    assert sorted((b.tab, b.channel, b.buffer) for b in shader.channels if b.buffer) == \
+        [("Buffer C", 0, "Buffer C"), ("Image", 0, "Buffer C")]

@@ -132,3 +132,10 @@ def test_render_pass_on_webgl(webgl, feedback, tmp_path):
                  "--size", "64x36", "-o", str(out)]) == 0
     ref = api.compile(feedback, backend="webgl", output="Buffer A").render(size=SIZE, frame=2, time=0.05)
     assert np.array_equal(np.load(out), ref)
+
+
+def test_channel_time_is_zero_for_images_and_buffers_on_webgl(webgl, tmp_path):
+    from test_channels import channel_time_case  # the case and its source: tests/channels
+
+    img = api.compile(channel_time_case(tmp_path), backend="webgl").render(size=(8, 4), time=3.0, frame=2)
+    assert np.array_equal(img, np.broadcast_to(np.float32([0.0, 0.0, 0.0, 1.0]), img.shape))
