@@ -24,9 +24,20 @@ What llvmpipe does, measured with tests/channels/measure_sampling.py (Mesa 22.3.
   it: every lookup result (after filtering) has its float32 mantissa truncated to 10 bits (the
   low 13 bits cleared; pi reads 3.140625). A `precision highp sampler2D;` in the user's tab comes
   after the uniforms' declarations and changes nothing (measured). The lookups here truncate the
-  same way (`ChannelInput.lowp`). Not emulated: GLSL's precision propagation, by which an
-  expression whose operands are all lowp (`texture(...) * 2.0`) is lowp and llvmpipe truncates
-  its result again; a lookup stored in a (highp) variable first is exact on both backends.
+  same way (`ChannelInput.lowp`).
+- precision of the arithmetic on those results (measured, measure_sampling.py part 4): llvmpipe
+  lowers GLSL's precision rules to float16. An operation whose operands are all lowp or mediump
+  (a lookup's result, a lowp/mediump variable; a constant takes its partner's precision) runs in
+  float16 with round to nearest, `texture(...) * 3.14159265` included (1024 of 1024 products equal
+  to the float16 ones), and past 65504 it is inf; one highp operand (iTime, a highp variable, a
+  uniform) makes it float32. glslcheck's NumPy backend does not propagate precision: it computes
+  such expressions in float32, which differ from llvmpipe's by up to about 2^-11 relative per
+  operation (0.0018 on `texelFetch(...) * pi` for texels up to 1, inside compare.py's 1/255 steps),
+  and verify reports a mismatch only where a lowp/mediump-only expression overflows float16 or
+  accumulates such errors. Storing the lookup in a highp variable first (`vec4 t = texture(...);`,
+  the default float precision is highp) makes the rest float32 and equal on every backend.
+  SwiftShader's WebGL computes lowp and mediump in float32 (measured: exact lookups, and a
+  mediump x * 1e5 past 65504 stays finite).
 - mipmap: the levels are glslcheck's own 2x2 box pyramid (channels.mip_levels), uploaded level
   by level to GL too, so both sample the same texels; the LOD is llvmpipe's, per 2x2 quad
   (`_implicit_lod`, measured to 4.3e-6 of a level), clamped to the levels, and the two levels'

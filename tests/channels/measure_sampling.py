@@ -5,7 +5,9 @@ copies: (1) lowp/mediump sampler2D results are float32 with the low 13 mantissa 
 (highp: exact); (2) linear filtering of an RGBA32F texture uses float32 weights (4096 distinct,
 exact weights across a 2-texel texture), and how far textures.py's bilinear order is from the
 driver's on random texels; (3) the implicit LOD of LINEAR_MIPMAP_LINEAR: levels filled with
-their own index make the result equal the LOD, compared with 0.5 * fast_log2(max |d|^2) per quad.
+their own index make the result equal the LOD, compared with 0.5 * fast_log2(max |d|^2) per quad;
+(4) arithmetic whose operands are all lowp/mediump (a lookup's result, a lowp or mediump
+variable, constants) runs in float16 with round to nearest: past 65504 it is inf.
 """
 
 from __future__ import annotations
@@ -87,6 +89,25 @@ def main() -> None:
     lod = np.clip(np.float32(0.5) * _fast_log2(np.maximum((dx * dx).sum(0), (dy * dy).sum(0))), 0, levels - 1)
     print(f"implicit LOD per quad, 0.5 * fast_log2(max |d|^2): max error {np.abs(lod.reshape(h, w) - got).max():.3g} "
           "of a level")
+
+    # (4) arithmetic on lowp/mediump operands only (lookup results, lowp/mediump variables): float16
+    w, h = 32, 16
+    fx, fy = np.meshgrid((np.arange(w) + 0.5).astype(np.float32), (np.arange(h) + 0.5).astype(np.float32))
+    x = (fx / np.float32(7) + fy / np.float32(3)).astype(np.float16)  # RNE to float16
+    got = run(ctx, "mediump float x = f.x / 7.0 + f.y / 3.0; o = vec4(x * 3.3, x + 0.123, x * 1000.0 * 100.0, "
+                   "1.0 / (x * 1000.0 + 1e6));", chan, (w, h))
+    f16 = [x * np.float16(3.3), x + np.float16(0.123)]
+    print("mediump variable arithmetic as float16 (round to nearest): "
+          + ", ".join(f"{int((got[..., i] != m.astype(np.float32)).sum())} of {m.size} differ" for i, m in enumerate(f16))
+          + f"; x * 1e5 (over 65504): {np.isinf(got[..., 2]).mean():.0%} inf; 1 / (x * 1000 + 1e6) (the sum past "
+          f"float16's range): {(got[..., 3] == 0).mean():.0%} zero")
+    w = h = 16
+    texel = trunc.astype(np.float16)  # the lookup's 10-bit result is exact in float16 where in range
+    got = run(ctx, "o = texelFetch(t, ivec2(f), 0) * 3.14159265;", chan, (w, h))
+    ok = np.abs(trunc) < 60000 / 3.2
+    model = (texel * np.float16(3.14159265)).astype(np.float32)
+    print(f"lookup * 3.14159265 without a highp operand: float16 product {int((got != model)[ok].sum())} of "
+          f"{int(ok.sum())} in-range values differ; float32 product {int((got != trunc * np.float32(3.14159265))[ok].sum())}")
 
 
 if __name__ == "__main__":
