@@ -1,13 +1,15 @@
 """Benchmark of textured and multipass shaders: the NumPy backend against the GL driver.
 
-    python benchmarks/bench_channels.py [--frames N] [--repeat R] [--size WxH]
+    python benchmarks/bench_channels.py [--frames N] [--repeat R] [--size WxH] [--webgl]
 
 Scenes (benchmarks/scenes): `textured` (one pass sampling an image with mipmap and linear
 filtering; its tex.png, 256x256 noise, is written into a temporary copy of the folder) and
 `feedback` (Buffer A reads its own previous frame, Image reads Buffer A). Each backend renders
 N consecutive frames (buffers carried, see glslcheck/channels.py), the two backends in turns,
 R rounds; reported: the best time per frame of each and the ratio numpy / gl. NumPy runs on
-worker processes and on threads of this process (NumpyProgram.parallel).
+worker processes and on threads of this process (NumpyProgram.parallel). --webgl adds the WebGL
+backend (headless Chromium, SwiftShader; the channels go to the page each pass) and its ratio
+webgl / gl.
 """
 
 from __future__ import annotations
@@ -58,16 +60,19 @@ def main() -> None:
     ap.add_argument("--frames", type=int, default=10)
     ap.add_argument("--repeat", type=int, default=3)
     ap.add_argument("--size", default="800x450")
+    ap.add_argument("--webgl", action="store_true", help="also time the WebGL backend")
     args = ap.parse_args()
     size = tuple(int(v) for v in args.size.lower().split("x"))
     started = time.perf_counter()
     print(f"textured and multipass shaders, {size[0]}x{size[1]}, {args.frames} consecutive frames, "
           f"best of {args.repeat} rounds (ms per frame; ratio = numpy / gl)")
-    print(f"{'':<38}{'processes':>10}{'threads':>10}{'gl':>10}   ratios")
+    print(f"{'':<38}{'processes':>10}{'threads':>10}{'gl':>10}   ratios" + ("   webgl     ratio" if args.webgl else ""))
     with tempfile.TemporaryDirectory() as tmp:
         for name in SCENES:
             folder = _copy_scene(name, tmp)
             progs = {"gl": api.compile(folder, backend="gl")}
+            if args.webgl:
+                progs["webgl"] = api.compile(folder, backend="webgl")
             for mode in ("processes", "threads"):  # one program each: each carries its own buffers
                 progs[mode] = api.compile(folder, backend="numpy")
                 _set_mode(progs[mode], mode)
@@ -77,7 +82,11 @@ def main() -> None:
                 for k, prog in progs.items():
                     best[k] = min(best[k], _per_frame(prog, args.frames, size, start))
             p, t, g = (best[k] * 1000 for k in ("processes", "threads", "gl"))
-            print(f"   {name:<35}{p:>8.1f} ms{t:>7.1f} ms{g:>7.1f} ms   {p / g:.2f}x  {t / g:.2f}x")
+            line = f"   {name:<35}{p:>8.1f} ms{t:>7.1f} ms{g:>7.1f} ms   {p / g:.2f}x  {t / g:.2f}x"
+            if args.webgl:
+                w = best["webgl"] * 1000
+                line += f"  {w:>7.1f} ms  {w / g:.2f}x"
+            print(line)
     print(f"total {time.perf_counter() - started:.0f} s; load at the end {' '.join(f'{v:.1f}' for v in os.getloadavg())}")
 
 

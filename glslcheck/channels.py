@@ -43,7 +43,10 @@ Shadertoy's own JSON export of a shader (`glslcheck render shader.json`, see
 
 Errors (InputError, exit 2, naming channels.json and the key): bad JSON, an unknown tab or
 key, a missing or unreadable image, an unsupported input kind, bad values. A pass reading an
-iChannel its tab does not bind is a GlslError (exit 1) at the read.
+iChannel its tab does not bind is a GlslError (exit 1) at the read, unless the shader is
+Shadertoy's own export: Shadertoy runs such a read (the unit has no texture, it reads (0, 0, 0, 1)
+and its size is 0; e.g. the public shader fsXcR8 reads iChannel1 with no input there), and so do
+glslcheck's backends.
 """
 
 from __future__ import annotations
@@ -293,6 +296,10 @@ class MultipassProgram:
         self._next = 0
 
     def _check_reads(self) -> None:
+        if self.shader.channels is not None:
+            # Shadertoy's own export: Shadertoy runs a read of a channel without an input (the
+            # unit has no texture: (0, 0, 0, 1), size 0), so glslcheck does too
+            return
         diags = []
         for tab in self.passes:
             for n, loc in sorted(channel_reads(self.shader, tab).items()):

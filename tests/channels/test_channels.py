@@ -339,3 +339,18 @@ def test_shadertoy_json_export_older_buffer_names(tmp_path):
     assert set(shader.tabs) == {"Buffer C", "Image"}
     assert sorted((b.tab, b.channel, b.buffer) for b in shader.channels if b.buffer) == \
         [("Buffer C", 0, "Buffer C"), ("Image", 0, "Buffer C")]
+
+
+def test_shadertoy_json_export_reads_an_unbound_channel_as_shadertoy_does(gl, tmp_path):
+    # Shadertoy runs a pass that reads a channel with no input (a real public shader does, see
+    # channels.py): the unit has no texture, so lookups give (0, 0, 0, 1) (textureSize of such a
+    # unit is left undefined by ES 3.00: llvmpipe says 1x1, not pinned here)
+    path = _export(tmp_path)
+    data = json.loads((tmp_path / "shader.json").read_text())
+    image = data["Shader"]["renderpass"][1]
+    image["code"] = ("void mainImage(out vec4 c, in vec2 p) { c = textureLod(iChannel2, p / iResolution.xy, 0.0)"
+                     " + texelFetch(iChannel3, ivec2(0), 0) * 0.5 + 0.0 * texture(iChannel0, vec2(0.5)); }\n")
+    (tmp_path / "unbound.json").write_text(json.dumps(data))
+    for backend in ("numpy", "gl"):
+        img = api.compile(str(tmp_path / "unbound.json"), backend=backend).render(size=(8, 4))
+        assert np.array_equal(img, np.broadcast_to(np.float32([0.0, 0.0, 0.0, 1.0]), img.shape)), backend
