@@ -606,15 +606,20 @@ def render_tile(ns: dict, spec: FrameSpec, tile: tuple[int, int, int, int], imag
     tile's lane counts per region when `spec.stats`, else None. `budget`: the frame's."""
     rt = ns["rt"]
     x0, y0, tw, th = tile
-    lanes = tw * th
+    # A GPU shades whole 2x2 quads: at an odd right or top edge the quad's other pixels are
+    # helper invocations outside the viewport, which derivatives (and implicit mipmap LODs) read
+    # (llvmpipe, measured on a real shader at 16x9). A shader that uses derivatives gets the same
+    # helper column/row here; they are rendered and dropped.
+    ew, eh = (tw + tw % 2, th + th % 2) if ns["X"].meta.get("uses_derivatives") else (tw, th)
+    lanes = ew * eh
     samples = len(spec.offsets)
     acc = None
     st: dict | None = {} if spec.stats else None
     for dx, dy in spec.offsets:
-        frag, frag4 = _fragments(rt, tile, dx if samples > 1 else 0.0, dy if samples > 1 else 0.0,
-                                 spec.need4)
+        frag, frag4 = _fragments(rt, tile if (ew, eh) == (tw, th) else (x0, y0, ew, eh),
+                                 dx if samples > 1 else 0.0, dy if samples > 1 else 0.0, spec.need4)
         limit = spec.base.get("loop_limit")
-        S = State(**spec.base, lanes=lanes, width=tw, frag_coord=frag, discard=Lanes.NO, stats=st,
+        S = State(**spec.base, lanes=lanes, width=ew, frag_coord=frag, discard=Lanes.NO, stats=st,
                   parent=None, budget=budget, passes=None if limit is None else [limit])
         if spec.need4:
             S.frag_coord4 = frag4
@@ -645,7 +650,7 @@ def render_tile(ns: dict, spec: FrameSpec, tile: tuple[int, int, int, int], imag
     else:
         dst = image[rows, x0:x0 + tw][::-1]
         for c in range(len(acc)):  # one channel at a time: 2.5x faster than one transposed copy
-            dst[..., c] = acc[c].reshape(th, tw)
+            dst[..., c] = acc[c].reshape(eh, ew)[:th, :tw]
         if len(acc) == 3:
             dst[..., 3] = 1.0
     if cached is not None:

@@ -1734,9 +1734,10 @@ class Runtime(TextureFunctions):  # texture lookups: textures.py
     def dFdx(self, v: Any, width: int) -> np.ndarray:
         """Fine x-derivative as llvmpipe: lanes are the rows of a ``width``-wide tile,
         lane = y*width + x with y counted from the bottom (gl_FragCoord order), 2x2 quads start
-        at even x and y. ``dFdx(x, y) = v(x|1, y) - v(x&~1, y)``. An odd width's last column
-        uses the difference to its left neighbour (a GPU would use a helper pixel; render
-        with even sizes for exact results). Lane-uniform values have zero derivative."""
+        at even x and y. ``dFdx(x, y) = v(x|1, y) - v(x&~1, y)``. Tiles of a shader that uses
+        derivatives are rendered with llvmpipe's helper column/row at an odd edge (program.py
+        `render_tile`), so quads are whole; an odd width seen here anyway (the probe's strips)
+        uses the difference to its left neighbour. Lane-uniform values have zero derivative."""
         return self._quad_diff(v, width, 1)
 
     def dFdy(self, v: Any, width: int) -> np.ndarray:

@@ -354,3 +354,22 @@ def test_shadertoy_json_export_reads_an_unbound_channel_as_shadertoy_does(gl, tm
     for backend in ("numpy", "gl"):
         img = api.compile(str(tmp_path / "unbound.json"), backend=backend).render(size=(8, 4))
         assert np.array_equal(img, np.broadcast_to(np.float32([0.0, 0.0, 0.0, 1.0]), img.shape)), backend
+
+
+@pytest.mark.parametrize("size", [(15, 9), (9, 14)])
+def test_odd_sizes_shade_helper_pixels_as_llvmpipe(gl, tmp_path, size):
+    # An odd right or top edge: llvmpipe's 2x2 quads there take helper pixels outside the
+    # viewport, which the derivatives and the implicit LOD read; the NumPy side renders the same
+    # helper column/row (numpy_backend/program.py render_tile). Without them these differed by up
+    # to 0.56 (dFdy) and the implicit LOD picked other levels in the last row or column.
+    _png(tmp_path / "tex.png", 70, 50, seed=5)
+    body = f"""void mainImage(out vec4 fragColor, in vec2 fragCoord) {{
+    {MIPMAP_UV}
+    fragColor = texture(iChannel0, uv) + vec4(dFdx(fragCoord.x * fragCoord.x * 0.01),
+                                              dFdy(fragCoord.y * fragCoord.y * 0.01), 0.0, 0.0);
+}}
+"""
+    folder = _folder(tmp_path, {"Image": body}, {"Image": {"iChannel0": {"texture": "tex.png"}}})
+    ours = api.compile(folder, backend="numpy").render(size=size)
+    theirs = api.compile(folder, backend="gl").render(size=size)
+    assert np.abs(ours - theirs).max() <= 2.0**-10  # as test_mipmap_against_gl
