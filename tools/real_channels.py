@@ -24,10 +24,7 @@ Verdicts, one per shader, each in its own process (as tools/real_verify.py):
 
 from __future__ import annotations
 
-import argparse
 import json
-import os
-import subprocess
 import sys
 import time
 from pathlib import Path
@@ -35,7 +32,7 @@ from pathlib import Path
 HERE = Path(__file__).resolve().parent
 sys.path.insert(0, str(HERE))
 
-from real_verify import ORDER, _from_github, _from_mirror  # noqa: E402
+from real_verify import ORDER, _from_github, _from_mirror, arguments, run_child  # noqa: E402
 
 ROOT = HERE.parent
 MANIFEST = ROOT / "tests" / "real_channels" / "manifest.json"
@@ -146,17 +143,7 @@ def score(size: str, frames: int, timeout: float, only: set[str] | None, out: Pa
     results = []
     for entry in entries:
         started = time.perf_counter()
-        cmd = [sys.executable, __file__, "_one", str(shader_path(entry)), size, str(frames)]
-        try:
-            proc = subprocess.run(cmd, capture_output=True, text=True, timeout=timeout, cwd=ROOT)
-            lines = proc.stdout.strip().splitlines()
-            if proc.returncode == 0 and lines:
-                result = json.loads(lines[-1])
-            else:
-                tail = (proc.stderr.strip().splitlines() or ["(no output)"])[-1]
-                result = {"verdict": "error", "reason": tail[:200]}
-        except subprocess.TimeoutExpired:
-            result = {"verdict": "timeout", "reason": f"over {timeout:g} s"}
+        result = run_child([sys.executable, __file__, "_one", str(shader_path(entry)), size, str(frames)], timeout)
         result.update(id=entry["id"], kind=entry["kind"], seconds=round(time.perf_counter() - started, 1))
         results.append(result)
         print(f"{entry['id']:<32} {entry['kind']:<17} {result['verdict']:<17} {result['seconds']:6.1f}s  "
@@ -179,18 +166,7 @@ def main(argv: list[str] | None = None) -> int:
 
         print(json.dumps(verify_one(path, parse_size(size), int(frames))))
         return 0
-    p = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
-    sub = p.add_subparsers(dest="command", required=True)
-    f = sub.add_parser("fetch", help="re-read the shaders and their textures into tests/real_channels/texts/")
-    f.add_argument("--mirror", type=Path, default=Path(os.environ["REAL_VERIFY_MIRROR"])
-                   if os.environ.get("REAL_VERIFY_MIRROR") else None,
-                   help="a folder of <owner>+<name>/repo git directories to read before GitHub")
-    s = sub.add_parser("score", help="verify every shader over frames and print the counts")
-    s.add_argument("--size", default="64x36")
-    s.add_argument("--frames", type=int, default=3)
-    s.add_argument("--timeout", type=float, default=300.0)
-    s.add_argument("--only", default="", help="comma-separated ids")
-    s.add_argument("--json", type=Path, help="write the per-shader results here")
+    p = arguments(__doc__, "tests/real_channels/texts/", "64x36", "--frames", {"type": int, "default": 3})
     args = p.parse_args(argv)
     if args.command == "fetch":
         return fetch(args.mirror)

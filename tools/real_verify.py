@@ -120,6 +120,19 @@ def verify_one(path: str, size: tuple[int, int], times: list[float]) -> dict:
 ORDER = ("match", "mismatch", "does not compile", "unsupported", "timeout", "error")
 
 
+def run_child(cmd: list[str], timeout: float) -> dict:
+    """The verdict a `_one` child process prints as its last line (timeout / error otherwise)."""
+    try:
+        proc = subprocess.run(cmd, capture_output=True, text=True, timeout=timeout, cwd=ROOT)
+    except subprocess.TimeoutExpired:
+        return {"verdict": "timeout", "reason": f"over {timeout:g} s"}
+    lines = proc.stdout.strip().splitlines()
+    if proc.returncode == 0 and lines:
+        return json.loads(lines[-1])
+    tail = (proc.stderr.strip().splitlines() or ["(no output)"])[-1]
+    return {"verdict": "error", "reason": tail[:200]}
+
+
 def score(size: str, times: str, timeout: float, only: set[str] | None, out: Path | None) -> int:
     entries = [e for e in load_manifest() if not only or e["id"] in only]
     absent = [e["id"] for e in entries if not text_path(e).exists()]
@@ -130,17 +143,7 @@ def score(size: str, times: str, timeout: float, only: set[str] | None, out: Pat
     results = []
     for entry in entries:
         started = time.perf_counter()
-        cmd = [sys.executable, __file__, "_one", str(text_path(entry)), size, times]
-        try:
-            proc = subprocess.run(cmd, capture_output=True, text=True, timeout=timeout, cwd=ROOT)
-            lines = proc.stdout.strip().splitlines()
-            if proc.returncode == 0 and lines:
-                result = json.loads(lines[-1])
-            else:
-                tail = (proc.stderr.strip().splitlines() or ["(no output)"])[-1]
-                result = {"verdict": "error", "reason": tail[:200]}
-        except subprocess.TimeoutExpired:
-            result = {"verdict": "timeout", "reason": f"over {timeout:g} s"}
+        result = run_child([sys.executable, __file__, "_one", str(text_path(entry)), size, times], timeout)
         result.update(id=entry["id"], kind=entry["kind"], seconds=round(time.perf_counter() - started, 1))
         results.append(result)
         print(f"{entry['id']:<24} {result['verdict']:<17} {result['seconds']:6.1f}s  {result['reason']}", flush=True)
@@ -158,6 +161,23 @@ def score(size: str, times: str, timeout: float, only: set[str] | None, out: Pat
     return 0
 
 
+def arguments(doc: str, texts: str, size: str, schedule: str, schedule_options: dict) -> argparse.ArgumentParser:
+    """The fetch / score command line of this tool and of tools/real_channels.py."""
+    p = argparse.ArgumentParser(description=doc.split("\n\n")[0])
+    sub = p.add_subparsers(dest="command", required=True)
+    f = sub.add_parser("fetch", help=f"re-read the texts into {texts}")
+    f.add_argument("--mirror", type=Path, default=Path(os.environ["REAL_VERIFY_MIRROR"])
+                   if os.environ.get("REAL_VERIFY_MIRROR") else None,
+                   help="a folder of <owner>+<name>/repo git directories to read before GitHub")
+    s = sub.add_parser("score", help="verify every shader and print the counts")
+    s.add_argument("--size", default=size)
+    s.add_argument(schedule, **schedule_options)
+    s.add_argument("--timeout", type=float, default=300.0)
+    s.add_argument("--only", default="", help="comma-separated ids")
+    s.add_argument("--json", type=Path, help="write the per-shader results here")
+    return p
+
+
 def main(argv: list[str] | None = None) -> int:
     argv = sys.argv[1:] if argv is None else argv
     if argv[:1] == ["_one"]:
@@ -166,18 +186,7 @@ def main(argv: list[str] | None = None) -> int:
 
         print(json.dumps(verify_one(path, parse_size(size), list(parse_times(times)))))
         return 0
-    p = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
-    sub = p.add_subparsers(dest="command", required=True)
-    f = sub.add_parser("fetch", help="re-read the texts into tests/real_verify/texts/")
-    f.add_argument("--mirror", type=Path, default=Path(os.environ["REAL_VERIFY_MIRROR"])
-                   if os.environ.get("REAL_VERIFY_MIRROR") else None,
-                   help="a folder of <owner>+<name>/repo git directories to read before GitHub")
-    s = sub.add_parser("score", help="verify every shader and print the counts")
-    s.add_argument("--size", default="160x90")
-    s.add_argument("--times", default="0,1.7,5.3")
-    s.add_argument("--timeout", type=float, default=300.0)
-    s.add_argument("--only", default="", help="comma-separated ids")
-    s.add_argument("--json", type=Path, help="write the per-shader results here")
+    p = arguments(__doc__, "tests/real_verify/texts/", "160x90", "--times", {"default": "0,1.7,5.3"})
     args = p.parse_args(argv)
     if args.command == "fetch":
         return fetch(args.mirror)

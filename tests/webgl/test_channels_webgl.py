@@ -29,7 +29,7 @@ from glslcheck.verify import compile_backend
 from glslcheck.webgl_backend.drivers import verify_against_webgl
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "channels"))
-from test_channels import FEEDBACK, IMAGE, MIPMAP_UV, SIZE, _folder, _png, _sampling_case  # noqa: E402
+from test_channels import MIPMAP_UV, SIZE, _folder, _png, _sampling_case, feedback  # noqa: E402,F401 (a fixture)
 
 ROOT = Path(__file__).resolve().parents[2]
 
@@ -39,15 +39,6 @@ def _exact_numpy(folder):
     prog = api.compile(folder, backend="numpy")
     prog.impl.lowp_samplers = False
     return prog
-
-
-@pytest.fixture
-def feedback(tmp_path):
-    _png(tmp_path / "tex.png")
-    return _folder(tmp_path, {"Buffer A": FEEDBACK, "Image": IMAGE}, {
-        "Buffer A": {"iChannel0": {"buffer": "Buffer A"}, "iChannel1": {"texture": "tex.png", "filter": "linear"}},
-        "Image": {"iChannel0": {"buffer": "Buffer A", "filter": "nearest"},
-                  "iChannel1": {"texture": "tex.png", "filter": "nearest"}}})
 
 
 def test_feedback_with_a_texture_over_30_frames(webgl, gl, feedback):
