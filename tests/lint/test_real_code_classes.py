@@ -310,3 +310,32 @@ def test_a_broken_directive_drops_only_its_line(tmp_path: Path):
     found = [(f.rule, f.severity, f.loc.line) for f in _lint(tmp_path, text).findings]
     assert found[0] == ("compile-error", "error", 4)
     assert ("uniform-outside-mainimage", "warning", 6) in found
+
+
+def test_a_value_written_again_inside_a_product_chain(tmp_path: Path):
+    # `d / k * d / k` is ((d / k) * d) / k: `d / k` twice, though only one is a subtree;
+    # `c * d / k` writes it once more; `(d * d) / (k * c)` does not write `d / k` (as in the
+    # course's attenuation formula, `(d * d) / (k * k)`): not a place of it
+    text = HEADER + """
+// attenuation, written three ways
+float atten(in float d, in float k, in float c)
+{
+    float a = 1.0 / (1.0 + d / k * d / k * c);
+    float b = 1.0 / (2.0 + (d * d) / (k * c));
+    return a + b + c * d / k;
+}
+
+// integer quotients round: `i / j * i / j` is not `(i / j) * (i / j)`
+int steps(in int i, in int j)
+{
+    return i / j * i / j;
+}
+
+// the image
+void mainImage(out vec4 fragColor, in vec2 fragCoord)
+{
+    fragColor = vec4(atten(fragCoord.x, 2.0, 3.0) + float(steps(int(fragCoord.x), 3)));
+}
+"""
+    found = [(f.loc.line, f.message) for f in _lint(tmp_path, text, ["repeated-expression"]).findings]
+    assert found == [(8, "'d / k' is computed 3 times, with the same value, at lines 8 and 10")]

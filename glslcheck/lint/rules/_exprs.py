@@ -406,9 +406,10 @@ class FnFacts:
         if t is A.BoolLiteral:
             return ("Z", e.value)
         if t is A.Binary:
-            if e.op in ("+", "*") and self._commutes(e):
+            terms = self.terms(e)
+            if terms is not None:
                 # operands in a fixed order (by hash: any order works, the same within a run)
-                return (e.op, tuple(sorted((self.key(x) for x in self._terms(e, e.op)), key=hash)))
+                return ("+" if e.op == "+" else "*", tuple(sorted(terms, key=hash)))
             return ("B", e.op, self.key(e.left), self.key(e.right))
         if t is A.Unary and e.op not in ("++", "--"):
             return ("U", e.op, self.key(e.operand))
@@ -437,17 +438,52 @@ class FnFacts:
         return ("X", id(e))  # assignments, ++/--, sequences: never the same twice
 
     def _commutes(self, e: Any) -> bool:
-        """`+` always; `*` unless a matrix is involved (a matrix product has an order)."""
+        """`+` always; `*` unless a matrix is involved (a matrix product has an order); `/` of
+        floats (a float quotient is a product by the inverse: `a / b * c` is `a * c / b`; an
+        integer quotient rounds, so it is not)."""
         if e.op == "+":
             return True
         types = (self.model._types.get(id(e.left)), self.model._types.get(id(e.right)))
-        return None not in types and not any(getattr(t, "is_matrix", False) for t in types)
+        if None in types or any(getattr(t, "is_matrix", False) for t in types):
+            return False
+        return e.op == "*" or all(getattr(t, "base", None) == "float" for t in types)
 
-    def _terms(self, e: Any, op: str) -> list[Any]:
-        """The operands of a chain of the same commuting operator: `a + (b + c)` -> a, b, c."""
-        if type(e) is A.Binary and e.op == op and self._commutes(e):
-            return self._terms(e.left, op) + self._terms(e.right, op)
-        return [e]
+    def terms(self, e: Any) -> list[Any] | None:
+        """The keys of the operands of a chain of `+`, or of `*` and `/` (a divisor as
+        ("inv", its key)), in any grouping: `a / b * a / b` -> a, inv b, a, inv b. None when
+        `e` is not such a chain (a matrix product, an integer quotient, another operator)."""
+        if type(e) is not A.Binary or e.op not in ("+", "*", "/") or not self._commutes(e):
+            return None
+        ops = ("+",) if e.op == "+" else ("*", "/")
+        out: list[Any] = []
+
+        def walk(x: Any, inverse: bool) -> None:
+            if type(x) is A.Binary and x.op in ops and self._commutes(x):
+                walk(x.left, inverse)
+                walk(x.right, inverse != (x.op == "/"))
+            else:
+                k = self.key(x)
+                out.append(("inv", k) if inverse else k)
+
+        walk(e, False)
+        return out
+
+    def written_factors(self, e: Any) -> tuple[list[Any], list[Any]] | None:
+        """A `*`/`/` chain as written, left to right: its nodes down the left side (`e`, then
+        `e.left`, ...) and the keys of its factors, a divisor as ("inv", key) and a parenthesised
+        right operand as one factor (`a / b * a / b` -> a, inv b, a, inv b; `(d * d) / (i * i)`
+        -> d, d, inv (i * i)). None when `e` is not a float or integer product chain."""
+        if type(e) is not A.Binary or e.op not in ("*", "/") or not self._commutes(e):
+            return None
+        spine, keys = [], []
+        x = e
+        while type(x) is A.Binary and x.op in ("*", "/") and self._commutes(x):
+            spine.append(x)
+            k = self.key(x.right)
+            keys.append(("inv", k) if x.op == "/" else k)
+            x = x.left
+        keys.append(self.key(x))
+        return spine, keys[::-1]
 
     def _component(self, e: Any, i: int) -> Any:
         """The key of component `i` of the vector `e` (swizzles composed: `v.zy` 0 is `v.z`)."""
