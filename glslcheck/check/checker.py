@@ -52,8 +52,9 @@ _RENAMED_UNIFORMS = {"iGlobalTime": "iTime"}
 
 
 class Checker:
-    def __init__(self, parse_result: Any, tab: str) -> None:
+    def __init__(self, parse_result: Any, tab: str, channel_types: dict[str, T.Type] | None = None) -> None:
         self.pr = parse_result
+        self.channel_types = channel_types or {}  # iChannelN -> its sampler type (channel_types.py)
         self.ast: A.TranslationUnit = parse_result.ast
         sources = list(getattr(parse_result, "sources", []) or [])
         self.plain = any(getattr(s, "is_plain_glsl", False) for s in sources) or tab == "GLSL"
@@ -104,8 +105,8 @@ class Checker:
         allowed = B.COMMON_TAB_UNIFORMS if self.tab == "Common" else B.SHADERTOY_UNIFORMS.keys()
         for name, u in B.SHADERTOY_UNIFORMS.items():
             if name in allowed:
-                self.scope.names[name] = Symbol(name, "uniform", u.declared_type, qualifier="uniform",
-                                                unique_name=name)
+                self.scope.names[name] = Symbol(name, "uniform", self.channel_types.get(name, u.declared_type),
+                                                qualifier="uniform", unique_name=name)
                 self.unique.given.add(name)
         if self.tab != "Common":
             self.scope.names[WRAPPER_OUTPUT] = Symbol(WRAPPER_OUTPUT, "global", T.VEC4, qualifier="out",
