@@ -23,6 +23,7 @@ from .. import types as T
 from ..diagnostics import Diagnostic, Location
 from . import consteval as C
 from . import webgl_rules
+from ..preprocess import WRAPPER_COLOR
 from .model import ERROR, Model, Symbol
 from .scopes import Scope, UniqueNames
 
@@ -785,12 +786,20 @@ class Checker:
             return ERROR
         self.symbols[id(n)] = sym
         if sym.kind == "uniform":
-            if n.loc.path in self.common_paths and n.name not in B.COMMON_TAB_UNIFORMS:
+            if n.loc.path in self.common_paths and n.name not in B.COMMON_TAB_UNIFORMS \
+                    and not self._in_macro_entry():
                 self._common_uniform_error(n)
             self.model._uniforms_from.setdefault(self.func, set()).add(n.name)
         if sym.qualifier == "const" and sym.kind != "param":
             self.consts[id(n)] = sym.const_value if sym.const_value is not None else C.UNKNOWN
         return sym.type
+
+    def _in_macro_entry(self) -> bool:
+        """In the entry function modelled for a `#define mainImage(O, U)` (preprocess.py): the
+        macro expands in the pass's wrapper, where every uniform is declared, even when the
+        macro is defined in Common (Common compiled alone never expands it)."""
+        f = self.func
+        return f is not None and f.name == "mainImage" and bool(f.params) and f.params[0][0] == WRAPPER_COLOR
 
     def _common_uniform_error(self, n: A.Identifier) -> None:
         self.error(f"'{n.name}' is not available in the Common tab: the Common tab is compiled by Shadertoy "

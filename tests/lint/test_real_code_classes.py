@@ -339,3 +339,19 @@ void mainImage(out vec4 fragColor, in vec2 fragCoord)
 """
     found = [(f.loc.line, f.message) for f in _lint(tmp_path, text, ["repeated-expression"]).findings]
     assert found == [(8, "'d / k' is computed 3 times, with the same value, at lines 8 and 10")]
+
+
+def test_a_mainimage_macro_in_common_reads_the_pass_uniforms(tmp_path: Path):
+    # the macro expands in the Image pass's wrapper, where iTime is declared; Common compiled
+    # alone never expands it. A Common *function* reading iTime is still an error.
+    (tmp_path / "Common.glsl").write_text(
+        HEADER + "// the whole image, golfed\n#define mainImage(O, U) O = vec4(sin(iTime), U / iResolution.xy, 1.0)\n")
+    (tmp_path / "Image.glsl").write_text(HEADER + "// the image is the Common tab's macro\n")
+    result = lint_paths([tmp_path / "Common.glsl", tmp_path / "Image.glsl"], {"select": ["compile-error"]})
+    assert result.findings == []
+    (tmp_path / "Common.glsl").write_text(
+        HEADER + "// the time\nfloat t() { return iTime; }\n"
+        "#define mainImage(O, U) O = vec4(t(), U / iResolution.xy, 1.0)\n")
+    found = [(f.rule, f.loc.line, "'iTime' is not available in the Common tab" in f.message)
+             for f in lint_paths([tmp_path / "Common.glsl"], {"select": ["compile-error"]}).findings]
+    assert (("compile-error", 5, True)) in found
