@@ -22,9 +22,9 @@ from typing import Any
 from ..diagnostics import Diagnostic, Location
 from .channel_types import SAMPLER_CUBE, cube_channels
 from .checker import Checker
-from .model import ERROR, CheckError, ErrorType, Model, Symbol
+from .model import ERROR, CallTarget, CheckError, Constructor, ErrorType, Model, Symbol
 
-__all__ = ["check", "Model", "Symbol", "CheckError", "ERROR", "ErrorType"]
+__all__ = ["check", "Model", "Symbol", "Constructor", "CallTarget", "CheckError", "ERROR", "ErrorType"]
 
 
 def check(parse_result: Any, tab: str = "Image", *, collect: bool = False) -> Model:

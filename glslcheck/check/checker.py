@@ -24,7 +24,7 @@ from ..diagnostics import Diagnostic, Location
 from . import consteval as C
 from . import webgl_rules
 from ..preprocess import WRAPPER_COLOR
-from .model import ERROR, Model, Symbol
+from .model import ERROR, Constructor, Model, Symbol
 from .scopes import Scope, UniqueNames
 
 # What the Shadertoy wrapper declares besides the uniforms (shadertoy.py's footer and prelude).
@@ -1153,7 +1153,7 @@ class Checker:
                         break
             self.error(res, where, help=hint)
             return ERROR
-        self.model._calls[id(n)] = ("constructor", res)
+        self.model._calls[id(n)] = Constructor("constructor", res)
         if all(self.is_const(a) for a in n.args):
             self.consts[id(n)] = C.construct(res, arg_types, [self.consts[id(a)] for a in n.args])
         return res

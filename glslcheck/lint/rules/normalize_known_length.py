@@ -44,13 +44,17 @@ vec3 normal = (position - sphere.center) / sphere.radius; // |p - c| is the radi
 
 from __future__ import annotations
 
-from typing import Any, Iterator
+from typing import TYPE_CHECKING, Any, Iterator
 
 from ... import ast as A
 from ... import types as T
 from ...check.model import Symbol
 from ...diagnostics import Diagnostic
-from ._exprs import builtin_call, calls_in, facts, text, wrap
+from ...analysis import builtin_call, calls_in, program_facts
+from ._text import text, wrap
+
+if TYPE_CHECKING:
+    from ..engine import LintContext
 
 NAME = "normalize-known-length"
 PENALTY = 1
@@ -60,8 +64,8 @@ NEEDS = "ast"
 _MAX_DEPTH = 8  # assignments and fields followed back from one value
 
 
-def check(ctx) -> Iterator[Diagnostic]:
-    for fn in facts(ctx).in_file(ctx.path):
+def check(ctx: LintContext) -> Iterator[Diagnostic]:
+    for fn in program_facts(ctx.model).in_file(ctx.path):
         normalizes = [n for n in fn.nodes if type(n) is A.Call and _is_normalize(fn, n)]
         if not normalizes:
             continue
@@ -73,7 +77,7 @@ def check(ctx) -> Iterator[Diagnostic]:
             found = found or _sphere_normal(fn, call)
             if found is not None:
                 message, fix = found
-                yield Diagnostic(message, call.loc, rule=NAME, severity=SEVERITY, help=fix)
+                yield Diagnostic(message, call.loc, help=fix)
 
 
 def _is_normalize(fn, call: A.Call) -> bool:

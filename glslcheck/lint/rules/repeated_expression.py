@@ -56,11 +56,15 @@ vec3 toLight = light.center - position;
 from __future__ import annotations
 
 from collections import Counter
-from typing import Iterator
+from typing import TYPE_CHECKING, Iterator
 
 from ... import ast as A
 from ...diagnostics import Diagnostic
-from ._exprs import facts, text
+from ...analysis import program_facts, written_variable
+from ._text import text
+
+if TYPE_CHECKING:
+    from ..engine import LintContext
 
 NAME = "repeated-expression"
 PENALTY = 1
@@ -84,13 +88,13 @@ def _holder_symbol(fn, first):
     if type(parent) is A.Declarator:
         return fn.model.symbol_of(parent)
     if type(parent) is A.Assignment:
-        return fn.model.symbol_of(parent.target)
+        return written_variable(fn.model, parent.target)[0]
     return None
 
 
 _CANDIDATES = 64  # earlier occurrences tried as the one to reuse
-def check(ctx) -> Iterator[Diagnostic]:
-    for fn in facts(ctx).in_file(ctx.path):
+def check(ctx: LintContext) -> Iterator[Diagnostic]:
+    for fn in program_facts(ctx.model).in_file(ctx.path):
         yield from _check_function(fn)
 
 
@@ -209,4 +213,4 @@ def _check_function(fn) -> Iterator[Diagnostic]:
                 seen.add(where)
                 what = "also computed here" if k == key else f"'{text(sample[k])}' also computed here"
                 notes.append(Diagnostic(what, n.loc, severity="note"))
-        yield Diagnostic(message, b.loc, rule=NAME, severity=SEVERITY, help=fix, notes=notes)
+        yield Diagnostic(message, b.loc, help=fix, notes=notes)

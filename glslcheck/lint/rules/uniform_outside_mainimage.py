@@ -34,11 +34,14 @@ vec3 lightPosition(in float time)
 
 from __future__ import annotations
 
-from typing import Iterator
+from typing import TYPE_CHECKING, Iterator
 
 from ... import ast as A
 from ...diagnostics import Diagnostic
-from ._exprs import facts
+from ...analysis import program_facts
+
+if TYPE_CHECKING:
+    from ..engine import LintContext
 
 NAME = "uniform-outside-mainimage"
 PENALTY = 1
@@ -49,9 +52,9 @@ READS = "names"  # a function with a compile error is still read: uniforms are n
 ENTRY = "mainImage"
 
 
-def check(ctx) -> Iterator[Diagnostic]:
+def check(ctx: LintContext) -> Iterator[Diagnostic]:
     model = ctx.model
-    for fn in facts(ctx).in_file(ctx.path, with_broken=True):
+    for fn in program_facts(ctx.model).in_file(ctx.path, with_broken=True):
         name = fn.definition.proto.name
         if name == ENTRY:
             continue
@@ -64,7 +67,5 @@ def check(ctx) -> Iterator[Diagnostic]:
             yield Diagnostic(
                 f"the uniform '{node.name}' is read in '{name}', not in mainImage",
                 node.loc,
-                rule=NAME,
-                severity=SEVERITY,
                 help=f"add a parameter to '{name}' and pass {node.name} to it from mainImage",
             )
