@@ -355,3 +355,25 @@ def test_a_mainimage_macro_in_common_reads_the_pass_uniforms(tmp_path: Path):
     found = [(f.rule, f.loc.line, "'iTime' is not available in the Common tab" in f.message)
              for f in lint_paths([tmp_path / "Common.glsl"], {"select": ["compile-error"]}).findings]
     assert (("compile-error", 5, True)) in found
+
+
+def test_a_uniform_the_shader_declares_is_a_uniform_too(tmp_path: Path):
+    text = HEADER + """
+// the diffuse map (a uniform of the shader's own)
+uniform sampler2D diffuseMap;
+
+// the texture's colour (reads the uniform: a deduction, as for iChannel0)
+vec4 diffuse(in vec2 uv)
+{
+    return texture(diffuseMap, uv) + texture(iChannel0, uv);
+}
+
+// the image
+void mainImage(out vec4 fragColor, in vec2 fragCoord)
+{
+    fragColor = diffuse(fragCoord) + texture(diffuseMap, fragCoord);
+}
+"""
+    found = [(f.loc.line, f.message) for f in _lint(tmp_path, text, ["uniform-outside-mainimage"]).findings]
+    assert found == [(11, "the uniform 'diffuseMap' is read in 'diffuse', not in mainImage"),
+                     (11, "the uniform 'iChannel0' is read in 'diffuse', not in mainImage")]

@@ -41,8 +41,8 @@ from __future__ import annotations
 from typing import TYPE_CHECKING, Any, Iterator
 
 from ... import ast as A
-from ...diagnostics import Diagnostic
 from ...analysis import numbers, program_facts
+from ...diagnostics import Diagnostic
 from ._text import text
 
 if TYPE_CHECKING:

@@ -48,9 +48,9 @@ from typing import TYPE_CHECKING, Any, Iterator
 
 from ... import ast as A
 from ... import types as T
+from ...analysis import builtin_call, calls_in, program_facts
 from ...check.model import Symbol
 from ...diagnostics import Diagnostic
-from ...analysis import builtin_call, calls_in, program_facts
 from ._text import text, wrap
 
 if TYPE_CHECKING:

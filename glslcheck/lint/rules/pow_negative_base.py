@@ -32,8 +32,8 @@ from __future__ import annotations
 
 from typing import TYPE_CHECKING, Iterator
 
-from ...diagnostics import Diagnostic
 from ...analysis import builtin_call, program_facts
+from ...diagnostics import Diagnostic
 from ._text import text
 
 if TYPE_CHECKING:

@@ -29,8 +29,8 @@ from __future__ import annotations
 
 from typing import TYPE_CHECKING, Iterator
 
-from ...diagnostics import Diagnostic
 from ...analysis import builtin_call, numbers, program_facts
+from ...diagnostics import Diagnostic
 from ._text import is_atom, text, wrap
 
 if TYPE_CHECKING:

@@ -59,8 +59,8 @@ from collections import Counter
 from typing import TYPE_CHECKING, Iterator
 
 from ... import ast as A
-from ...diagnostics import Diagnostic
 from ...analysis import program_facts, written_variable
+from ...diagnostics import Diagnostic
 from ._text import text
 
 if TYPE_CHECKING:

@@ -25,8 +25,8 @@ from __future__ import annotations
 from typing import TYPE_CHECKING, Iterator
 
 from ... import ast as A
-from ...diagnostics import Diagnostic
 from ...analysis import builtin_call, program_facts
+from ...diagnostics import Diagnostic
 from ._text import COMPARISONS, FLIPPED, squared, text
 
 if TYPE_CHECKING:

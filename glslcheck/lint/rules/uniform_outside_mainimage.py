@@ -3,7 +3,8 @@
 ## What it does
 Reports every reference to a Shadertoy uniform (`iResolution`, `iTime`, `iTimeDelta`,
 `iFrameRate`, `iFrame`, `iChannelTime`, `iChannelResolution`, `iMouse`, `iDate`,
-`iSampleRate`, `iChannel0`..`iChannel3`) inside any function but `mainImage`, one finding per
+`iSampleRate`, `iChannel0`..`iChannel3`), or to a uniform the shader declares itself
+(`uniform sampler2D diffuseMap;`), inside any function but `mainImage`, one finding per
 reference. A local variable or parameter that shadows a uniform's name (`float iTime = ...`) is
 not a uniform and is not reported.
 
@@ -37,8 +38,8 @@ from __future__ import annotations
 from typing import TYPE_CHECKING, Iterator
 
 from ... import ast as A
-from ...diagnostics import Diagnostic
 from ...analysis import program_facts
+from ...diagnostics import Diagnostic
 
 if TYPE_CHECKING:
     from ..engine import LintContext
@@ -62,7 +63,7 @@ def check(ctx: LintContext) -> Iterator[Diagnostic]:
             if type(node) is not A.Identifier:
                 continue
             sym = model.symbol_of(node)
-            if sym is None or sym.kind != "uniform":
+            if sym is None or not (sym.kind == "uniform" or (sym.kind == "global" and sym.qualifier == "uniform")):
                 continue
             yield Diagnostic(
                 f"the uniform '{node.name}' is read in '{name}', not in mainImage",

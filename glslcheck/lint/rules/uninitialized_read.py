@@ -36,8 +36,8 @@ from __future__ import annotations
 from typing import TYPE_CHECKING, Any, Iterator
 
 from ... import ast as A
-from ...diagnostics import Diagnostic
 from ...analysis import param_directions, program_facts, written_variable
+from ...diagnostics import Diagnostic
 
 if TYPE_CHECKING:
     from ..engine import LintContext

@@ -30,8 +30,8 @@ from __future__ import annotations
 
 from typing import TYPE_CHECKING, Iterator
 
-from ...diagnostics import Diagnostic
 from ...analysis import program_facts
+from ...diagnostics import Diagnostic
 from .unused_variable import common_shared
 
 if TYPE_CHECKING:
