@@ -205,6 +205,37 @@ void mainImage(out vec4 fragColor, in vec2 fragCoord)
     assert f.loc.line == 23 and "0.5" in f.message and "/ 0.5" in f.help
 
 
+def test_a_normalize_written_out_is_a_normalize(tmp_path: Path):
+    # the same sphere, its normal normalized by hand (`v / sqrt(dot(v, v))`, `v / length(v)`)
+    # of a hit point written `vec3(ro + t * rd)`: the radius is known; a light vector is not
+    text = HEADER + """
+// the ray parameter where the ray meets the sphere
+float hit_sphere(in vec3 center, in float radius, in vec4 rd, in vec4 ro)
+{
+    vec3 oc = vec3(ro) - center;
+    float a = dot(rd, rd);
+    float half_b = dot(oc, vec3(rd));
+    float c = dot(oc, oc) - radius * radius;
+    float discriminant = half_b * half_b - a * c;
+    return discriminant < 0.0 ? -1.0 : (-half_b - sqrt(discriminant)) / a;
+}
+
+// the image: the normal of the hit point, and a light vector
+void mainImage(out vec4 fragColor, in vec2 fragCoord)
+{
+    vec4 rd = vec4(fragCoord / iResolution.xy - 0.5, -1.0, 0.0);
+    vec4 ro = vec4(0.0, 0.0, 0.0, 1.0);
+    float t = hit_sphere(vec3(0, 0, -1), 0.5, rd, ro);
+    vec3 d = vec3(ro + t * rd) - vec3(0, 0, -1);
+    vec3 n = d / sqrt(dot(d, d));
+    vec3 l = (vec3(2.0) - d) / length(vec3(2.0) - d);
+    fragColor = vec4(n * 0.5 + 0.5 + l, 1.0);
+}
+"""
+    (f,) = _lint(tmp_path, text, ["normalize-known-length"]).findings
+    assert f.loc.line == 23 and "written out" in f.message and f.help == "divide by the radius: d / 0.5"
+
+
 # --- 4. repeats, lengths, inactive code, comments ---------------------------------------------
 
 

@@ -66,18 +66,19 @@ _MAX_DEPTH = 8  # assignments and fields followed back from one value
 
 def check(ctx: LintContext) -> Iterator[Diagnostic]:
     for fn in program_facts(ctx.model).in_file(ctx.path):
-        normalizes = [n for n in fn.nodes if type(n) is A.Call and _is_normalize(fn, n)]
+        normalizes = [(n, n.args[0]) for n in fn.nodes if type(n) is A.Call and _is_normalize(fn, n)]
+        normalizes += [(n, v) for n in fn.nodes if (v := _written_out(fn, n)) is not None]
         if not normalizes:
             continue
         known = [c for c in calls_in(fn, "length", "distance", "dot") if _measured_key(fn, c) is not None]
-        for call in normalizes:
+        for node, v in sorted(normalizes, key=lambda nv: fn.enter[id(nv[0])]):
             found = None
-            if builtin_call(fn.model, call, "normalize"):
-                found = _already_measured(fn, call, known)
-            found = found or _sphere_normal(fn, call)
+            if builtin_call(fn.model, node, "normalize"):
+                found = _already_measured(fn, node, known)
+            found = found or _sphere_normal(fn, node, v)
             if found is not None:
                 message, fix = found
-                yield Diagnostic(message, call.loc, help=fix)
+                yield Diagnostic(message, node.loc, help=fix)
 
 
 def _is_normalize(fn, call: A.Call) -> bool:
@@ -111,6 +112,29 @@ def _is_normalize(fn, call: A.Call) -> bool:
         return (type(r) is A.Call and r.callee == "inversesqrt" and len(r.args) == 1 and call_of(r.args[0], "dot", 2)) \
             or (type(r) is A.Binary and r.op == "/" and _number(r.left) == 1.0 and call_of(r.right, "length", 1))
     return False
+
+
+def _written_out(fn, e) -> Any:
+    """`v` when `e` normalizes it by hand: `v / length(v)`, `v / sqrt(dot(v, v))`,
+    `v * inversesqrt(dot(v, v))` (either order), with the built-ins; else None."""
+    if type(e) is not A.Binary or e.op not in ("/", "*"):
+        return None
+    pairs = [(e.left, e.right)] if e.op == "/" else [(e.left, e.right), (e.right, e.left)]
+    model = fn.model
+    for v, m in pairs:
+        if not getattr(model.type_of(v), "is_vector", False):
+            continue
+        if e.op == "/" and builtin_call(model, m, "length") and fn.key(m.args[0]) == fn.key(v):
+            return v
+        if e.op == "/" and builtin_call(model, m, "sqrt"):
+            m = m.args[0]
+        elif not (e.op == "*" and builtin_call(model, m, "inversesqrt")):
+            continue
+        else:
+            m = m.args[0]
+        if builtin_call(model, m, "dot") and fn.key(m.args[0]) == fn.key(v) == fn.key(m.args[1]):
+            return v
+    return None
 
 
 def _number(e) -> float | None:
@@ -164,31 +188,41 @@ def _difference(fn, v) -> A.Binary | None:
     return None
 
 
-def _sphere_normal(fn, call: A.Call) -> tuple[str, str] | None:
+def _sphere_normal(fn, call, v) -> tuple[str, str] | None:
     """`normalize(p - c)` where p provably lies on the sphere of center c: p is a ray's point
     `o + t * d` with t the hit of that ray with that sphere (a user function that intersects a
     sphere, called with the same origin, direction and center), or `c + r * normalize(u)`.
     Values are followed through local assignments and struct fields; anything else is unsure,
     and unsure is silent."""
-    v = call.args[0]
     diff = _difference(fn, v)
     if diff is None or not getattr(fn.model.type_of(diff), "is_vector", False):
         return None
     center = _vkey(fn, diff.right)
-    point = _resolve(fn, _unswizzle(diff.left))
+    point = _resolve(fn, _unswizzle(diff.left, fn.model))
     radius, why = _on_sphere(fn, point, center)
     if radius is None:
         return None
-    name = "normalize()" if builtin_call(fn.model, call, "normalize") else f"{call.callee}() (a normalize)"
+    if builtin_call(fn.model, call, "normalize"):
+        name = "normalize()"
+    elif type(call) is A.Call:
+        name = f"{call.callee}() (a normalize)"
+    else:
+        name = f"'{text(call)}' (a normalize written out)"
     return (f"{name} of {text(diff)}, {why}: its length is the radius, {radius}",
             f"divide by the radius: {wrap(v)} / {radius}")
 
 
-def _unswizzle(e):
-    """`p.xyz` -> `p`: a point's first components stand for the point."""
-    while type(e) is A.Field and e.name in ("xyz", "rgb", "stp", "xy"):
-        e = e.base
-    return e
+def _unswizzle(e, model):
+    """`p.xyz` -> `p`: a point's first components stand for the point; so does `vec3(p)` of a
+    wider vector `p` (a constructor keeps the first components)."""
+    while True:
+        if type(e) is A.Field and e.name in ("xyz", "rgb", "stp", "xy"):
+            e = e.base
+        elif type(e) is A.Call and len(e.args) == 1 and e.callee in ("vec2", "vec3") \
+                and getattr(model.type_of(e.args[0]), "is_vector", False):
+            e = e.args[0]
+        else:
+            return e
 
 
 def _resolve(fn, e, depth: int = 0):
@@ -196,7 +230,7 @@ def _resolve(fn, e, depth: int = 0):
     through assignments on every path; `e` itself when that is not sure."""
     while depth < _MAX_DEPTH:
         depth += 1
-        e = _unswizzle(e)
+        e = _unswizzle(e, fn.model)
         if type(e) is A.Identifier:
             sym = fn.model.symbol_of(e)
             value = fn.reaching_value(e, sym) if sym is not None and sym.kind == "local" else None
@@ -291,10 +325,10 @@ def _sphere_hit(fn, call: A.Call) -> dict | None:
 
     def root(e):
         """(parameter index, field name or None) of a parameter or a parameter's field."""
-        e = _unswizzle(e)
+        e = _unswizzle(e, model)
         field = None
         if type(e) is A.Field and not model.is_swizzle(e):
-            e, field = _unswizzle(e.base), e.name
+            e, field = _unswizzle(e.base, model), e.name
         if type(e) is A.Identifier and e.name in params and model.symbol_of(e) is not None \
                 and model.symbol_of(e).kind == "param":
             return params.index(e.name), field
