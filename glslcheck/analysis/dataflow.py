@@ -94,6 +94,39 @@ class ProgramFacts:
             f = self._fns[id(definition)] = FunctionFacts(definition, self.model)
         return f
 
+    def call_sites(self, function: Symbol) -> list[tuple["FunctionFacts", A.Call]]:
+        """Every call of the user function `function` in a function that checks: (the caller's
+        facts, the call), in source order."""
+        sites = self.__dict__.setdefault("_sites", None)
+        if sites is None:
+            sites = self._sites = {}
+            for d in self.definitions:
+                if id(d) in self.broken:
+                    continue
+                caller = self.fn(d)
+                for n in caller.nodes:
+                    if type(n) is A.Call:
+                        target = self.model.call_target(n)
+                        if isinstance(target, Symbol):
+                            sites.setdefault(id(target), []).append((caller, n))
+        return sites.get(id(function), [])
+
+    def argument(self, fn: "FunctionFacts", param: Symbol) -> tuple["FunctionFacts", A.Expr] | None:
+        """The value an `in` parameter of `fn` holds, followed across the call: (the caller's
+        facts, the argument) when `fn` has exactly one call site, in another function, and never
+        writes the parameter; else None (several callers may pass different values)."""
+        if param.kind != "param" or fn.symbol is None or fn.writes_to(param):
+            return None
+        params = [self.model.symbol_of(p) for p in fn.definition.proto.params]
+        if param not in params or fn.symbol.params[params.index(param)][2] != "in":
+            return None
+        sites = self.call_sites(fn.symbol)
+        if len(sites) != 1 or sites[0][0] is fn:
+            return None
+        caller, call = sites[0]
+        i = params.index(param)
+        return (caller, call.args[i]) if i < len(call.args) else None
+
 
 _CACHE: dict[str, Any] = {"model": None, "facts": None}
 
@@ -483,6 +516,17 @@ class FunctionFacts(ValueRanges):
         keys.append(self.key(x))
         return spine, keys[::-1]
 
+    def component_key(self, e: Any, i: int) -> Any:
+        """The key of component `i` of the vector `e` (`v.x` for `v`, 0)."""
+        return self._component(e, i)
+
+    @staticmethod
+    def sum_of_squares_key(keys: list[Any]) -> Any:
+        """The key `x * x + y * y + ...` (and `dot(v, v)`, `lenSq(v)`) gets for these
+        component keys."""
+        squares = (("*", tuple(sorted((k, k), key=hash))) for k in keys)
+        return ("+", tuple(sorted(squares, key=hash)))
+
     def _component(self, e: Any, i: int) -> Any:
         """The key of component `i` of the vector `e` (swizzles composed: `v.zy` 0 is `v.z`)."""
         while type(e) is A.Field and self.model.is_swizzle(e):
@@ -596,7 +640,8 @@ class FunctionFacts(ValueRanges):
 
     def reaching_value(self, ident: A.Identifier, sym: Symbol) -> Any:
         """The expression last assigned to `sym` before `ident` when that assignment is on every
-        path to it, no other write can reach it, and it assigns the whole value; else None."""
+        path to it, no other write can reach it, it assigns the whole value and no variable the
+        expression reads is written in between (so it still has that value); else None."""
         pos = self.enter.get(id(ident))
         if pos is None:
             return None
@@ -610,6 +655,10 @@ class FunctionFacts(ValueRanges):
         for loop in self.enclosing_loops(ident):  # a later write in the loop reaches it again
             if any(w.pos > pos and self.contains(loop, w.node) for w in ws):
                 return None
+        # `l = lengthSq(dp.xy); dp.xy = ...; use(l)`: l no longer equals its expression
+        others = self.operands(last.value) - {sym}
+        if others and self.written_between(last.node, ident, others):
+            return None
         return last.value
 
 

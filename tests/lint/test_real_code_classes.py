@@ -236,6 +236,43 @@ void mainImage(out vec4 fragColor, in vec2 fragCoord)
     assert f.loc.line == 23 and "written out" in f.message and f.help == "divide by the radius: d / 0.5"
 
 
+PROCEDURAL = HEADER + """
+// the squared length
+float lenSq(in vec2 v) { return dot(v, v); }
+
+// the normal of the procedural sphere's point; its values come from the one caller
+vec3 shade(in vec3 c, in vec2 d, in float lSq, in float rSq)
+{
+    vec3 pos = c + vec3(d, sqrt(rSq - lSq));
+    return normalize(pos - c);
+}
+
+// the image
+void mainImage(out vec4 fragColor, in vec2 fragCoord)
+{
+    vec3 c = vec3(0.0, 0.0, -4.0);
+    vec2 d = fragCoord - c.xy;
+    float lSq = lenSq(d);
+    fragColor = vec4(shade(c, d, lSq, 0.5 * 0.5), 1.0);
+}
+"""
+
+
+def test_a_procedural_sphere_normal_followed_across_the_call(tmp_path: Path):
+    (f,) = _lint(tmp_path, PROCEDURAL, ["normalize-known-length"]).findings
+    assert f.loc.line == 12 and "built on the sphere" in f.message and f.help == "divide by the radius: (pos - c) / 0.5"
+
+
+def test_unsure_values_across_calls_are_silent(tmp_path: Path):
+    # a second caller may pass anything; a squared length taken before d changes (f04's
+    # `lSq = lengthSq(dp.xy)` before `dp.xy = ...`) is not the squared length of the new d
+    second = PROCEDURAL.replace("fragColor = vec4(shade(c, d, lSq, 0.5 * 0.5), 1.0);",
+                                "fragColor = vec4(shade(c, d, lSq, 0.25) + shade(c, d, 1.0, 0.25), 1.0);")
+    stale = PROCEDURAL.replace("float lSq = lenSq(d);", "float lSq = lenSq(d);\n    d *= 2.0;")
+    for text in (second, stale):
+        assert _lint(tmp_path, text, ["normalize-known-length"]).findings == []
+
+
 # --- 4. repeats, lengths, inactive code, comments ---------------------------------------------
 
 
