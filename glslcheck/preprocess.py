@@ -46,6 +46,9 @@ from .sources import Source
 
 __all__ = ["preprocess", "PPResult", "Comment", "Macro", "MAX_EXPANSION_DEPTH", "MAX_EXPANSION_TOKENS"]
 
+# The first parameter of the entry function modelled for a `mainImage` macro (see _wrapper_call):
+# the checker knows that function's body by it (it is compiled in the pass, never in Common alone).
+WRAPPER_COLOR = "glslcheck_color"
 MAX_EXPANSION_DEPTH = 64  # nested macro expansions (and nested calls in arguments)
 MAX_EXPANSION_TOKENS = 200_000  # tokens produced by all macro expansions together
 MAX_IF_NESTING = 100  # parentheses and unary operators in one #if expression
@@ -530,8 +533,8 @@ class _Preprocessor:
         if macro is None or macro.params is None or len(macro.params) != 2 or macro.loc is None:
             return
         pad = "\n" * (macro.loc.line - 1)
-        header = Source(macro.loc.path, pad + "void mainImage(out vec4 glslcheck_color, in vec2 glslcheck_coord) {\n")
-        body = Source(macro.loc.path, pad + "glslcheck_color = vec4(1e20); mainImage(glslcheck_color, glslcheck_coord); }\n")
+        header = Source(macro.loc.path, pad + f"void mainImage(out vec4 {WRAPPER_COLOR}, in vec2 glslcheck_coord) {{\n")
+        body = Source(macro.loc.path, pad + f"{WRAPPER_COLOR} = vec4(1e20); mainImage({WRAPPER_COLOR}, glslcheck_coord); }}\n")
         del self.macros["mainImage"]  # the header names the function; only the call expands
         self._unit(_Unit(header, index))
         self.macros["mainImage"] = macro

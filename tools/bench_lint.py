@@ -31,7 +31,8 @@ def main(argv: list[str] | None = None) -> int:
 
     t0 = time.perf_counter()
     from glslcheck.lint import engine, lint_paths
-    from glslcheck.lint.rules import _exprs, all_rules
+    from glslcheck.analysis import dataflow
+    from glslcheck.lint.rules import all_rules
 
     all_rules()
     t_import = time.perf_counter() - t0
@@ -40,7 +41,7 @@ def main(argv: list[str] | None = None) -> int:
 
     def run() -> tuple[float, int, int]:
         engine._TREES.clear()
-        _exprs._CACHE.update(model=None, facts=None)
+        dataflow._CACHE.update(model=None, facts=None)
         start, start_cpu = time.perf_counter(), time.process_time()
         result = lint_paths(args.paths)
         cpu.append(time.process_time() - start_cpu)

@@ -8,6 +8,7 @@ never committed: they live in tests/real_lint/texts/<id>/<file name> (git-ignore
     python tools/real_lint.py populate --mirrors DIR   copy the texts out of git mirrors
     python tools/real_lint.py populate --clone         ... or clone the repositories (network)
     python tools/real_lint.py score [--verbose]        recall and precision per rule and overall
+    python tools/real_lint.py score --only f27-f37     ... of some files only
 
 `populate --mirrors DIR` reads each file with `git --git-dir=<mirror> show <commit>:<path>`,
 where <mirror> is DIR/<owner>+<name>/repo (or .../repo/.git): the layout the agents' `fetch`
@@ -140,9 +141,26 @@ def lint_json(paths: list[Path], root: Path = ROOT) -> tuple[list[dict], str, in
     return findings, run.stderr, run.returncode
 
 
-def score(verbose: bool, corrected: bool = True, root: Path = ROOT) -> int:
+def _ids(spec: str | None) -> set[str] | None:
+    """`f27-f37,f40` -> {"f27", ..., "f37", "f40"}; None for every file."""
+    if not spec:
+        return None
+    out: set[str] = set()
+    for part in spec.split(","):
+        lo, _, hi = part.strip().partition("-")
+        hi = hi or lo
+        width = len(lo) - 1
+        out.update(f"f{i:0{width}d}" for i in range(int(lo[1:]), int(hi[1:]) + 1))
+    return out
+
+
+def score(verbose: bool, corrected: bool = True, root: Path = ROOT, only: str | None = None) -> int:
     manifest, labels = load(corrected)
     rules = labels["rules"]
+    ids = _ids(only)
+    if ids is not None:
+        manifest = [e for e in manifest if e["id"] in ids]
+        labels = {**labels, "files": {k: v for k, v in labels["files"].items() if k in ids}}
     present = [e for e in manifest if local_path(e).exists()]
     for e in manifest:
         if e not in present:
@@ -205,10 +223,11 @@ def main() -> int:
     s.add_argument("--as-labelled", action="store_true", help="the labels as first made, without the corrections")
     s.add_argument("--glslcheck-root", type=Path, default=ROOT,
                    help="score the glslcheck of another checkout (e.g. `git archive <commit>` unpacked)")
+    s.add_argument("--only", metavar="IDS", help="score these files only, e.g. f27-f37 or f01,f04")
     args = ap.parse_args()
     if args.cmd == "populate":
         return populate(args.mirrors, args.clone)
-    return score(args.verbose, not args.as_labelled, args.glslcheck_root.resolve())
+    return score(args.verbose, not args.as_labelled, args.glslcheck_root.resolve(), args.only)
 
 
 if __name__ == "__main__":

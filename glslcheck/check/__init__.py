@@ -10,7 +10,8 @@ reachable_functions(), calls_from(function), uniforms_read(), diagnostics.
 
 `tab` is the Shadertoy pass ("Image", "Buffer A".."Buffer D", or "Common" for the Common tab
 compiled alone with only iDate and iSampleRate); a plain GLSL file (own #version and main) is
-recognised from its source and checked as such.
+recognised from its source and checked as such. An iChannel the program samples only as a cube
+map is declared samplerCube, as Shadertoy's wrapper does for a bound cube map (channel_types.py).
 """
 
 from __future__ import annotations
@@ -19,10 +20,11 @@ import sys
 from typing import Any
 
 from ..diagnostics import Diagnostic, Location
+from .channel_types import SAMPLER_CUBE, cube_channels
 from .checker import Checker
-from .model import ERROR, CheckError, ErrorType, Model, Symbol
+from .model import ERROR, CallTarget, CheckError, Constructor, ErrorType, Model, Symbol
 
-__all__ = ["check", "Model", "Symbol", "CheckError", "ERROR", "ErrorType"]
+__all__ = ["check", "Model", "Symbol", "Constructor", "CallTarget", "CheckError", "ERROR", "ErrorType"]
 
 
 def check(parse_result: Any, tab: str = "Image", *, collect: bool = False) -> Model:
@@ -33,6 +35,9 @@ def check(parse_result: Any, tab: str = "Image", *, collect: bool = False) -> Mo
     sys.setrecursionlimit(max(old, 20000))
     try:
         model = Checker(parse_result, tab).run()
+        cube = cube_channels(model) if model.errors else frozenset()
+        if cube:  # channels sampled only as cube maps: Shadertoy declares them samplerCube
+            model = Checker(parse_result, tab, {c: SAMPLER_CUBE for c in cube}).run()
         if not model.errors:  # undefined behaviour the backends may not agree on (hazards.py)
             from .hazards import hazard_warnings
 

@@ -23,7 +23,8 @@ from .. import types as T
 from ..diagnostics import Diagnostic, Location
 from . import consteval as C
 from . import webgl_rules
-from .model import ERROR, Model, Symbol
+from ..preprocess import WRAPPER_COLOR
+from .model import ERROR, Constructor, Model, Symbol
 from .scopes import Scope, UniqueNames
 
 # What the Shadertoy wrapper declares besides the uniforms (shadertoy.py's footer and prelude).
@@ -52,8 +53,9 @@ _RENAMED_UNIFORMS = {"iGlobalTime": "iTime"}
 
 
 class Checker:
-    def __init__(self, parse_result: Any, tab: str) -> None:
+    def __init__(self, parse_result: Any, tab: str, channel_types: dict[str, T.Type] | None = None) -> None:
         self.pr = parse_result
+        self.channel_types = channel_types or {}  # iChannelN -> its sampler type (channel_types.py)
         self.ast: A.TranslationUnit = parse_result.ast
         sources = list(getattr(parse_result, "sources", []) or [])
         self.plain = any(getattr(s, "is_plain_glsl", False) for s in sources) or tab == "GLSL"
@@ -104,8 +106,8 @@ class Checker:
         allowed = B.COMMON_TAB_UNIFORMS if self.tab == "Common" else B.SHADERTOY_UNIFORMS.keys()
         for name, u in B.SHADERTOY_UNIFORMS.items():
             if name in allowed:
-                self.scope.names[name] = Symbol(name, "uniform", u.declared_type, qualifier="uniform",
-                                                unique_name=name)
+                self.scope.names[name] = Symbol(name, "uniform", self.channel_types.get(name, u.declared_type),
+                                                qualifier="uniform", unique_name=name)
                 self.unique.given.add(name)
         if self.tab != "Common":
             self.scope.names[WRAPPER_OUTPUT] = Symbol(WRAPPER_OUTPUT, "global", T.VEC4, qualifier="out",
@@ -784,12 +786,20 @@ class Checker:
             return ERROR
         self.symbols[id(n)] = sym
         if sym.kind == "uniform":
-            if n.loc.path in self.common_paths and n.name not in B.COMMON_TAB_UNIFORMS:
+            if n.loc.path in self.common_paths and n.name not in B.COMMON_TAB_UNIFORMS \
+                    and not self._in_macro_entry():
                 self._common_uniform_error(n)
             self.model._uniforms_from.setdefault(self.func, set()).add(n.name)
         if sym.qualifier == "const" and sym.kind != "param":
             self.consts[id(n)] = sym.const_value if sym.const_value is not None else C.UNKNOWN
         return sym.type
+
+    def _in_macro_entry(self) -> bool:
+        """In the entry function modelled for a `#define mainImage(O, U)` (preprocess.py): the
+        macro expands in the pass's wrapper, where every uniform is declared, even when the
+        macro is defined in Common (Common compiled alone never expands it)."""
+        f = self.func
+        return f is not None and f.name == "mainImage" and bool(f.params) and f.params[0][0] == WRAPPER_COLOR
 
     def _common_uniform_error(self, n: A.Identifier) -> None:
         self.error(f"'{n.name}' is not available in the Common tab: the Common tab is compiled by Shadertoy "
@@ -1143,7 +1153,7 @@ class Checker:
                         break
             self.error(res, where, help=hint)
             return ERROR
-        self.model._calls[id(n)] = ("constructor", res)
+        self.model._calls[id(n)] = Constructor("constructor", res)
         if all(self.is_const(a) for a in n.args):
             self.consts[id(n)] = C.construct(res, arg_types, [self.consts[id(a)] for a in n.args])
         return res

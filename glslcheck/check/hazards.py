@@ -28,6 +28,7 @@ from typing import Any, Iterator
 
 from .. import ast as A
 from ..diagnostics import Diagnostic
+from .model import Symbol
 
 RULE = "undefined-behaviour"
 
@@ -330,9 +331,8 @@ class _Flow:
                 mask |= self.target_mask(n.target)
             elif type(n) is A.Call:
                 target = self.model.call_target(n)
-                params = getattr(target, "params", None)
-                if target is not None and getattr(target, "kind", None) == "function" and params:
-                    for arg, (_, _, direction) in zip(n.args, params):
+                if isinstance(target, Symbol) and target.params:
+                    for arg, (_, _, direction) in zip(n.args, target.params):
                         if direction in ("out", "inout"):
                             mask |= self.target_mask(arg)
         return mask

@@ -10,9 +10,10 @@ in dictionaries keyed by `id(node)`; the model holds the AST so those ids stay v
 from __future__ import annotations
 
 from dataclasses import dataclass, field
-from typing import Any
+from typing import Any, Literal, NamedTuple, Union
 
 from .. import types as T
+from ..builtins import Overload
 from ..diagnostics import Diagnostic, GlslError
 
 
@@ -30,6 +31,16 @@ class ErrorType(T.Type):
 
 
 ERROR = ErrorType()
+
+
+class Constructor(NamedTuple):
+    """The target of a constructor call (`vec3(...)`, `float[2](...)`, a struct's name): the type
+    it builds. A named tuple whose first item is "constructor", so code written against the old
+    ("constructor", Type) tuple (the NumPy transpiler's `_is_constructor`) reads it unchanged;
+    new code asks `isinstance(target, Constructor)`."""
+
+    kind: Literal["constructor"]
+    type: T.Type
 
 
 class CheckError(GlslError):
@@ -99,8 +110,9 @@ class Model:
         """The symbol an Identifier refers to, or the symbol a declaring node declares."""
         return self._symbols.get(id(node))
 
-    def call_target(self, call: Any) -> Any:
-        """A user function Symbol, a builtins.Overload, or ("constructor", Type)."""
+    def call_target(self, call: Any) -> "CallTarget | None":
+        """What a call calls: a user function's Symbol, a built-in's Overload, or a Constructor
+        (None for a call that did not check). Tell them apart with isinstance."""
         return self._calls.get(id(call))
 
     def is_swizzle(self, node: Any) -> bool:
@@ -157,3 +169,7 @@ class Model:
     @property
     def errors(self) -> list[Diagnostic]:
         return [d for d in self.diagnostics if d.severity == "error"]
+
+
+#: What `Model.call_target` returns for a call that checked.
+CallTarget = Union[Symbol, Overload, Constructor]

@@ -285,9 +285,9 @@ def _not_run(rule: Rule, ctx: LintContext) -> list[Finding]:
         why = "the file does not parse" if ctx.ast is None else "it reads the whole program, which does not compile"
         where, loc = "on this file", first.loc
     else:
-        from .rules._exprs import facts
+        from ..analysis import program_facts
 
-        broken = [] if rule.reads == "names" else facts(ctx).broken_in_file(ctx.path)
+        broken = [] if rule.reads == "names" else program_facts(ctx.model).broken_in_file(ctx.path)
         places = [(d.proto.name, d.loc.line) for d in broken]
         places += [(name, line) for _, line, _, name in ctx.dropped]
         if not places:

@@ -1,5 +1,5 @@
 """The AST lint rules beyond their snapshots: the reference lab is clean, the engine builds the
-tree and model they read, and the shared expression facts (_exprs.py) they rely on."""
+tree and model they read, and the shared analysis (glslcheck/analysis) they rely on."""
 
 from __future__ import annotations
 
@@ -11,7 +11,7 @@ from glslcheck import ast as A
 from glslcheck.check import check
 from glslcheck.lint import engine, lint_paths, lint_source
 from glslcheck.lint.rules import all_rules
-from glslcheck.lint.rules._exprs import FnFacts
+from glslcheck.analysis import FunctionFacts
 from glslcheck.parse import parse_units
 from glslcheck.sources import Shader, Source, find_shaders
 
@@ -32,13 +32,13 @@ def _findings(text: str, select: list[str] | None = None):
     return [f for f in found if select is None or f.rule in select]
 
 
-def _function(text: str, name: str = "f") -> FnFacts:
+def _function(text: str, name: str = "f") -> FunctionFacts:
     model = check(parse_units([Source("Image.glsl", text)]), "Image")
     d = next(d for d in model.ast.decls if isinstance(d, A.FunctionDefinition) and d.proto.name == name)
-    return FnFacts(d, model)
+    return FunctionFacts(d, model)
 
 
-def _calls(fn: FnFacts, callee: str) -> list[A.Call]:
+def _calls(fn: FunctionFacts, callee: str) -> list[A.Call]:
     return [n for n in fn.nodes if type(n) is A.Call and n.callee == callee]
 
 
@@ -140,7 +140,7 @@ def test_repeated_expression_message_names_the_first_line():
     assert finding.loc.line == 4 and "lines 3 and 4" in finding.message and "reuse 'a'" in finding.help
 
 
-# --- _exprs: keys, dominance, sign analysis -------------------------------------------------
+# --- analysis: keys, dominance, sign analysis ----------------------------------------------
 
 
 def test_keys_compare_variables_by_declaration():
@@ -192,3 +192,28 @@ def test_sign_analysis_follows_the_last_assignment_on_every_path():
                    "    float m = dot(n, l);\n    if (c) { m = 1.0; }\n    return a + b + pow(m, 2.5);\n}\n" + MAIN)
     bases = [c.args[0] for c in _calls(fn, "pow")]
     assert [fn.negative_witness(b) is not None for b in bases] == [True, False, False]
+
+
+def test_one_answer_for_lvalues_and_call_targets():
+    from glslcheck.analysis import param_directions, written_variable
+    from glslcheck.builtins import Overload
+    from glslcheck.check.model import Constructor, Symbol
+
+    fn = _function("struct S { vec3 p[2]; };\n"
+                   "void g(in float a, out vec3 b, inout int c) { b = vec3(a); c += 1; }\n"
+                   "void f() { S s; vec3 v; int k = 0; v.x = 1.0; s.p[k].y = 2.0; g(1.0, v, k);"
+                   " float m = modf(1.5, v.z); v = vec3(m); }" + MAIN)
+    model = fn.model
+    targets = [n.target for n in fn.nodes if type(n) is A.Assignment]
+    assert [(written_variable(model, t)[0].name, written_variable(model, t)[1]) for t in targets] == [
+        ("v", False), ("s", False), ("v", True)]
+    (g,) = _calls(fn, "g")
+    (modf,) = _calls(fn, "modf")
+    (vec3,) = [n for n in _calls(fn, "vec3")]
+    assert isinstance(model.call_target(g), Symbol) and param_directions(model.call_target(g)) == ["in", "out", "inout"]
+    assert isinstance(model.call_target(modf), Overload) and param_directions(model.call_target(modf)) == ["in", "out"]
+    target = model.call_target(vec3)
+    assert isinstance(target, Constructor) and str(target.type) == "vec3" and param_directions(target) == []
+    # the writes the analysis records come from the same two answers: v by g's out and modf's out
+    v = written_variable(model, targets[0])[0]
+    assert [w.kind for w in fn.writes_to(v)] == ["decl", "part", "out", "out", "="]

@@ -28,6 +28,7 @@ def _found(folder: Path, select: list[str]) -> list[dict]:
             "column": f.loc.column,
             "rule": f.rule,
             "message": f.message,
+            "help": f.help,  # the suggested rewrite: what students read
         }
         for f in result.findings
     ]

@@ -205,6 +205,74 @@ void mainImage(out vec4 fragColor, in vec2 fragCoord)
     assert f.loc.line == 23 and "0.5" in f.message and "/ 0.5" in f.help
 
 
+def test_a_normalize_written_out_is_a_normalize(tmp_path: Path):
+    # the same sphere, its normal normalized by hand (`v / sqrt(dot(v, v))`, `v / length(v)`)
+    # of a hit point written `vec3(ro + t * rd)`: the radius is known; a light vector is not
+    text = HEADER + """
+// the ray parameter where the ray meets the sphere
+float hit_sphere(in vec3 center, in float radius, in vec4 rd, in vec4 ro)
+{
+    vec3 oc = vec3(ro) - center;
+    float a = dot(rd, rd);
+    float half_b = dot(oc, vec3(rd));
+    float c = dot(oc, oc) - radius * radius;
+    float discriminant = half_b * half_b - a * c;
+    return discriminant < 0.0 ? -1.0 : (-half_b - sqrt(discriminant)) / a;
+}
+
+// the image: the normal of the hit point, and a light vector
+void mainImage(out vec4 fragColor, in vec2 fragCoord)
+{
+    vec4 rd = vec4(fragCoord / iResolution.xy - 0.5, -1.0, 0.0);
+    vec4 ro = vec4(0.0, 0.0, 0.0, 1.0);
+    float t = hit_sphere(vec3(0, 0, -1), 0.5, rd, ro);
+    vec3 d = vec3(ro + t * rd) - vec3(0, 0, -1);
+    vec3 n = d / sqrt(dot(d, d));
+    vec3 l = (vec3(2.0) - d) / length(vec3(2.0) - d);
+    fragColor = vec4(n * 0.5 + 0.5 + l, 1.0);
+}
+"""
+    (f,) = _lint(tmp_path, text, ["normalize-known-length"]).findings
+    assert f.loc.line == 23 and "written out" in f.message and f.help == "divide by the radius: d / 0.5"
+
+
+PROCEDURAL = HEADER + """
+// the squared length
+float lenSq(in vec2 v) { return dot(v, v); }
+
+// the normal of the procedural sphere's point; its values come from the one caller
+vec3 shade(in vec3 c, in vec2 d, in float lSq, in float rSq)
+{
+    vec3 pos = c + vec3(d, sqrt(rSq - lSq));
+    return normalize(pos - c);
+}
+
+// the image
+void mainImage(out vec4 fragColor, in vec2 fragCoord)
+{
+    vec3 c = vec3(0.0, 0.0, -4.0);
+    vec2 d = fragCoord - c.xy;
+    float lSq = lenSq(d);
+    fragColor = vec4(shade(c, d, lSq, 0.5 * 0.5), 1.0);
+}
+"""
+
+
+def test_a_procedural_sphere_normal_followed_across_the_call(tmp_path: Path):
+    (f,) = _lint(tmp_path, PROCEDURAL, ["normalize-known-length"]).findings
+    assert f.loc.line == 12 and "built on the sphere" in f.message and f.help == "divide by the radius: (pos - c) / 0.5"
+
+
+def test_unsure_values_across_calls_are_silent(tmp_path: Path):
+    # a second caller may pass anything; a squared length taken before d changes (f04's
+    # `lSq = lengthSq(dp.xy)` before `dp.xy = ...`) is not the squared length of the new d
+    second = PROCEDURAL.replace("fragColor = vec4(shade(c, d, lSq, 0.5 * 0.5), 1.0);",
+                                "fragColor = vec4(shade(c, d, lSq, 0.25) + shade(c, d, 1.0, 0.25), 1.0);")
+    stale = PROCEDURAL.replace("float lSq = lenSq(d);", "float lSq = lenSq(d);\n    d *= 2.0;")
+    for text in (second, stale):
+        assert _lint(tmp_path, text, ["normalize-known-length"]).findings == []
+
+
 # --- 4. repeats, lengths, inactive code, comments ---------------------------------------------
 
 
@@ -310,3 +378,70 @@ def test_a_broken_directive_drops_only_its_line(tmp_path: Path):
     found = [(f.rule, f.severity, f.loc.line) for f in _lint(tmp_path, text).findings]
     assert found[0] == ("compile-error", "error", 4)
     assert ("uniform-outside-mainimage", "warning", 6) in found
+
+
+def test_a_value_written_again_inside_a_product_chain(tmp_path: Path):
+    # `d / k * d / k` is ((d / k) * d) / k: `d / k` twice, though only one is a subtree;
+    # `c * d / k` writes it once more; `(d * d) / (k * c)` does not write `d / k` (as in the
+    # course's attenuation formula, `(d * d) / (k * k)`): not a place of it
+    text = HEADER + """
+// attenuation, written three ways
+float atten(in float d, in float k, in float c)
+{
+    float a = 1.0 / (1.0 + d / k * d / k * c);
+    float b = 1.0 / (2.0 + (d * d) / (k * c));
+    return a + b + c * d / k;
+}
+
+// integer quotients round: `i / j * i / j` is not `(i / j) * (i / j)`
+int steps(in int i, in int j)
+{
+    return i / j * i / j;
+}
+
+// the image
+void mainImage(out vec4 fragColor, in vec2 fragCoord)
+{
+    fragColor = vec4(atten(fragCoord.x, 2.0, 3.0) + float(steps(int(fragCoord.x), 3)));
+}
+"""
+    found = [(f.loc.line, f.message) for f in _lint(tmp_path, text, ["repeated-expression"]).findings]
+    assert found == [(8, "'d / k' is computed 3 times, with the same value, at lines 8 and 10")]
+
+
+def test_a_mainimage_macro_in_common_reads_the_pass_uniforms(tmp_path: Path):
+    # the macro expands in the Image pass's wrapper, where iTime is declared; Common compiled
+    # alone never expands it. A Common *function* reading iTime is still an error.
+    (tmp_path / "Common.glsl").write_text(
+        HEADER + "// the whole image, golfed\n#define mainImage(O, U) O = vec4(sin(iTime), U / iResolution.xy, 1.0)\n")
+    (tmp_path / "Image.glsl").write_text(HEADER + "// the image is the Common tab's macro\n")
+    result = lint_paths([tmp_path / "Common.glsl", tmp_path / "Image.glsl"], {"select": ["compile-error"]})
+    assert result.findings == []
+    (tmp_path / "Common.glsl").write_text(
+        HEADER + "// the time\nfloat t() { return iTime; }\n"
+        "#define mainImage(O, U) O = vec4(t(), U / iResolution.xy, 1.0)\n")
+    found = [(f.rule, f.loc.line, "'iTime' is not available in the Common tab" in f.message)
+             for f in lint_paths([tmp_path / "Common.glsl"], {"select": ["compile-error"]}).findings]
+    assert (("compile-error", 5, True)) in found
+
+
+def test_a_uniform_the_shader_declares_is_a_uniform_too(tmp_path: Path):
+    text = HEADER + """
+// the diffuse map (a uniform of the shader's own)
+uniform sampler2D diffuseMap;
+
+// the texture's colour (reads the uniform: a deduction, as for iChannel0)
+vec4 diffuse(in vec2 uv)
+{
+    return texture(diffuseMap, uv) + texture(iChannel0, uv);
+}
+
+// the image
+void mainImage(out vec4 fragColor, in vec2 fragCoord)
+{
+    fragColor = diffuse(fragCoord) + texture(diffuseMap, fragCoord);
+}
+"""
+    found = [(f.loc.line, f.message) for f in _lint(tmp_path, text, ["uniform-outside-mainimage"]).findings]
+    assert found == [(11, "the uniform 'diffuseMap' is read in 'diffuse', not in mainImage"),
+                     (11, "the uniform 'iChannel0' is read in 'diffuse', not in mainImage")]

@@ -15,7 +15,10 @@ A rule is a module in this package that declares
               program to be right, so it does not run at all)
     a docstring: one summary line, then the sections `## What it does`, `## Why is this bad?`,
               `## Example` and `## Use instead` (docs/rules.md and `glslcheck rule` show it)
-    check(ctx) -> Iterable[Diagnostic]   ctx is a `glslcheck.lint.engine.LintContext`
+    check(ctx: LintContext) -> Iterable[Diagnostic]   (`glslcheck.lint.engine.LintContext`);
+              a finding's message, location, help and notes come from the Diagnostic, its rule,
+              severity and penalty from the module (the engine sets them); a course rule marks
+              advice that costs nothing with `severity="note"`
 
 and has a row in `RULE_TABLE` below. Nothing else registers a rule.
 """

@@ -38,11 +38,15 @@ vec3 color = mix(background, surface, step(0.0, t)); // t == 0.0 counts as a hit
 
 from __future__ import annotations
 
-from typing import Any, Iterator
+from typing import TYPE_CHECKING, Any, Iterator
 
 from ... import ast as A
+from ...analysis import numbers, program_facts
 from ...diagnostics import Diagnostic
-from ._exprs import _numbers, facts, text
+from ._text import text
+
+if TYPE_CHECKING:
+    from ..engine import LintContext
 
 NAME = "branch-replaceable"
 PENALTY = 1
@@ -52,8 +56,8 @@ NEEDS = "ast"
 _OPS = ("<", "<=", ">", ">=")
 
 
-def check(ctx) -> Iterator[Diagnostic]:
-    for fn in facts(ctx).in_file(ctx.path):
+def check(ctx: LintContext) -> Iterator[Diagnostic]:
+    for fn in program_facts(ctx.model).in_file(ctx.path):
         inner: set[int] = set()  # ternaries already explained as part of a clamp
         for node in fn.nodes:
             if type(node) is A.Ternary and id(node) not in inner:
@@ -72,8 +76,6 @@ def _finding(node: Any, what: str, fix: tuple[str, str]) -> Diagnostic:
     return Diagnostic(
         f"{kind} computes what {fn_name}() computes without a branch",
         node.loc,
-        rule=NAME,
-        severity=SEVERITY,
         help=f"write {replacement}",
     )
 
@@ -173,7 +175,7 @@ def _clamp(fn, cond, a, b, inner: set[int]) -> tuple[str, str] | None:
 
 
 def _is_const(fn, e) -> bool:
-    return len(_numbers(fn.model.const_value(e))) == 1
+    return len(numbers(fn.model.const_value(e))) == 1
 
 
 def _select(fn, cond, a, b, inner: set[int], allow_mix: bool = True) -> tuple[str, str] | None:
@@ -211,7 +213,7 @@ def _select(fn, cond, a, b, inner: set[int], allow_mix: bool = True) -> tuple[st
         t, sense = f"step({text(left)}, {text(right)})", True
     else:  # >
         t, sense = f"step({text(left)}, {text(right)})", False
-    va, vb = _numbers(fn.model.const_value(a)), _numbers(fn.model.const_value(b))
+    va, vb = numbers(fn.model.const_value(a)), numbers(fn.model.const_value(b))
     if fn.model.type_of(a) == fn.model.type_of(cond.left) and len(va) == 1 and len(vb) == 1:
         if (va[0], vb[0]) == (1.0, 0.0):
             return "step", t if sense else f"1.0 - {t}{_near(left, op, right)}"

@@ -39,9 +39,12 @@ vec4 shade(in vec3 n)
 
 from __future__ import annotations
 
-from typing import Iterator
+from typing import TYPE_CHECKING, Iterator
 
 from ...diagnostics import Diagnostic
+
+if TYPE_CHECKING:
+    from ..engine import LintContext
 
 NAME = "compile-error"
 PENALTY = 0
@@ -49,12 +52,10 @@ SEVERITY = "error"
 NEEDS = "text"  # the engine hands every file its program's errors (ctx.compile_errors)
 
 
-def check(ctx) -> Iterator[Diagnostic]:
+def check(ctx: LintContext) -> Iterator[Diagnostic]:
     for error in ctx.compile_errors:
         yield Diagnostic(
             error.message,
             error.loc,
-            rule=NAME,
-            severity=SEVERITY,
             help=error.help or "Shadertoy does not compile this: fix it first (`glslcheck check` prints the same error)",
         )

@@ -26,11 +26,15 @@ if (distSq <= radius * radius) inCircle = 1.0;
 
 from __future__ import annotations
 
-from typing import Iterator
+from typing import TYPE_CHECKING, Iterator
 
 from ... import ast as A
+from ...analysis import builtin_call, program_facts
 from ...diagnostics import Diagnostic
-from ._exprs import COMPARISONS, FLIPPED, builtin_call, facts, squared, text
+from ._text import COMPARISONS, FLIPPED, squared, text
+
+if TYPE_CHECKING:
+    from ..engine import LintContext
 
 NAME = "length-comparison"
 PENALTY = 1
@@ -38,9 +42,9 @@ SEVERITY = "warning"
 NEEDS = "ast"
 
 
-def check(ctx) -> Iterator[Diagnostic]:
+def check(ctx: LintContext) -> Iterator[Diagnostic]:
     model = ctx.model
-    for fn in facts(ctx).in_file(ctx.path):
+    for fn in program_facts(ctx.model).in_file(ctx.path):
         for node in fn.nodes:
             if type(node) is not A.Binary or node.op not in COMPARISONS:
                 continue
@@ -59,7 +63,5 @@ def check(ctx) -> Iterator[Diagnostic]:
                 yield Diagnostic(
                     f"{side.callee}() is compared with a bound: its square root is not needed",
                     side.loc,
-                    rule=NAME,
-                    severity=SEVERITY,
                     help=fix,
                 )

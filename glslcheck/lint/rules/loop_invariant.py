@@ -38,11 +38,15 @@ for (int i = 0; i < kLightCount; ++i)
 
 from __future__ import annotations
 
-from typing import Iterator
+from typing import TYPE_CHECKING, Iterator
 
 from ... import ast as A
+from ...analysis import program_facts
 from ...diagnostics import Diagnostic
-from ._exprs import facts, text
+from ._text import text
+
+if TYPE_CHECKING:
+    from ..engine import LintContext
 
 NAME = "loop-invariant"
 PENALTY = 1
@@ -52,8 +56,8 @@ NEEDS = "ast"
 _LOOP_WORD = {A.For: "for", A.While: "while", A.DoWhile: "do-while"}
 
 
-def check(ctx) -> Iterator[Diagnostic]:
-    for fn in facts(ctx).in_file(ctx.path):
+def check(ctx: LintContext) -> Iterator[Diagnostic]:
+    for fn in program_facts(ctx.model).in_file(ctx.path):
         yield from _check_function(fn)
 
 
@@ -104,8 +108,6 @@ def _check_function(fn) -> Iterator[Diagnostic]:
             f"'{text(n)}' has the same value on every iteration of the {_LOOP_WORD[type(loop)]} "
             f"loop at line {loop.loc.line}{times}",
             n.loc,
-            rule=NAME,
-            severity=SEVERITY,
             help="compute it once before the loop, in a local variable, and use that inside",
             notes=[Diagnostic("also computed here", p.loc, severity="note") for p, _ in places[1:]],
         )

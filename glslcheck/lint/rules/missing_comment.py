@@ -41,12 +41,15 @@ vec3 col = a * lightColor; // the light reaching the surface
 
 from __future__ import annotations
 
-from typing import Iterator
+from typing import TYPE_CHECKING, Iterator
 
 import re
 
 from ...diagnostics import Diagnostic
 from ..textscan import LineKind, inactive_lines
+
+if TYPE_CHECKING:
+    from ..engine import LintContext
 
 NAME = "missing-comment"
 PENALTY = 1
@@ -106,14 +109,14 @@ def _attributions(ctx) -> set[int]:
     }
 
 
-def check(ctx) -> Iterator[Diagnostic]:
+def check(ctx: LintContext) -> Iterator[Diagnostic]:
     # code the preprocessor skips (an inactive #ifdef branch) is not compiled: not linted
     inactive = inactive_lines(ctx.lines)
     kinds = [LineKind.DIRECTIVE if n in inactive else k for n, k in enumerate(ctx.line_kinds, start=1)]
     span = ctx.config.comment_span
     runs = uncovered_runs(kinds, span)
     for first, last, count in runs:
-        yield _finding(ctx, first, last, count, SEVERITY, "without a comment")
+        yield _finding(ctx, first, last, count, False, "without a comment")
     # lines that only an attribution or a marker "explains": advisory, not a deduction
     marks = _attributions(ctx)
     if marks:
@@ -121,17 +124,16 @@ def check(ctx) -> Iterator[Diagnostic]:
         seen = {line for first, last, _ in runs for line in range(first, last + 1)}
         for first, last, count in uncovered_runs(plain, span):
             if not any(line in seen for line in range(first, last + 1)):
-                yield _finding(ctx, first, last, count, "note",
+                yield _finding(ctx, first, last, count, True,
                                "explained only by a comment that credits or marks (not why the code is there)")
 
 
-def _finding(ctx, first: int, last: int, count: int, severity: str, what: str) -> Diagnostic:
+def _finding(ctx: LintContext, first: int, last: int, count: int, advisory: bool, what: str) -> Diagnostic:
     lines = f"line {first}" if first == last else f"lines {first}-{last}"
     noun = "line" if count == 1 else "lines"
     return Diagnostic(
         f"{count} {noun} of code {what} ({lines})",
         ctx.location(first),
-        rule=NAME,
-        severity=severity,
+        severity="note" if advisory else SEVERITY,  # a note: advice, not a deduction
         help=HELP,
     )

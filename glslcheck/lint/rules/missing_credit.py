@@ -33,9 +33,12 @@ claiming source materials as one's own results in an instant final grade of F in
 from __future__ import annotations
 
 import re
-from typing import Iterator
+from typing import TYPE_CHECKING, Iterator
 
 from ...diagnostics import Diagnostic
+
+if TYPE_CHECKING:
+    from ..engine import LintContext
 
 NAME = "missing-credit"
 PENALTY = 0
@@ -51,7 +54,7 @@ CREDIT_RE = re.compile(
 )
 
 
-def check(ctx) -> Iterator[Diagnostic]:
+def check(ctx: LintContext) -> Iterator[Diagnostic]:
     if not ctx.source.text.strip():
         return
     if any(CREDIT_RE.search(c.text) for c in ctx.comments if not c.is_directive):
@@ -59,8 +62,6 @@ def check(ctx) -> Iterator[Diagnostic]:
     yield Diagnostic(
         "no comment credits the starter framework or the sources code was borrowed from",
         ctx.location(1, 1),
-        rule=NAME,
-        severity=SEVERITY,
         help="credit the instructor's starter framework and link every borrowed source, e.g. "
         "`// starter framework: Daniel S. Buckstein; sphere test adapted from <link>`",
     )

@@ -49,12 +49,15 @@ from __future__ import annotations
 
 import re
 from pathlib import Path
-from typing import Iterator
+from typing import TYPE_CHECKING, Iterator
 
 from ...diagnostics import Diagnostic
 from ...sources import tab_name
 from ..textscan import LineKind
 from .missing_credit import CREDIT_RE
+
+if TYPE_CHECKING:
+    from ..engine import LintContext
 
 NAME = "missing-header"
 PENALTY = 1
@@ -220,7 +223,7 @@ def _join(phrases: list[str]) -> str:
     return phrases[0] if len(phrases) == 1 else ", ".join(phrases[:-1]) + " and " + phrases[-1]
 
 
-def check(ctx) -> Iterator[Diagnostic]:
+def check(ctx: LintContext) -> Iterator[Diagnostic]:
     if not ctx.source.text.strip():
         return
     missing = missing_parts(ctx)
@@ -237,8 +240,6 @@ def check(ctx) -> Iterator[Diagnostic]:
     yield Diagnostic(
         message,
         ctx.location(1, 1),
-        rule=NAME,
-        severity=SEVERITY,
         help=f"open the file with a comment such as `// {name}: <what it does>` and "
         "`// Contributors: <name>: <what they did>; ...`",
     )

@@ -9,10 +9,17 @@ Reports `normalize(v)` when the length of `v` is already known in that function:
   `o + t * d` and `t` the result of a user function that intersects a ray with a sphere (it
   computes `oc = origin - center`, `dot(oc, direction)`, `radius * radius` and a `sqrt`),
   called with that same origin `o`, direction `d` and center `c`; or `p` is
-  `c + r * normalize(u)`. Values are followed through local variables assigned on every path,
-  struct fields (`s.center = ...`, `Sphere(c, r)`) and literal spheres
-  (`hit_sphere(vec3(0, 0, -1), 0.5, ...)`). When any link is unsure (a point passed in as a
-  parameter, a light's center, the ray origin, another sphere's hit), the rule is silent.
+  `c + r * normalize(u)`; or `p` is the procedural sphere's point
+  `c + vec3(dp.xy, sqrt(r * r - dot(dp.xy, dp.xy)))` (however the squares are written:
+  `rSq - lSq`, `dp.z = ...`, `lenSq(dp.xy)`). Values are followed through local variables
+  assigned on every path (while what they were computed from is unchanged), vector components
+  (`dp.z = ...`), struct fields (`s.center = ...`, `Sphere(c, r)`), literal spheres
+  (`hit_sphere(vec3(0, 0, -1), 0.5, ...)`) and across calls: an `in` parameter the function
+  never writes, of a function called from one place only, holds that call's argument (for the
+  values that make the point and the radius; two parameters are never taken for one value because
+  the caller passes the same argument to both). When any
+  link is unsure (a function called from several places, a light's center, the ray origin,
+  another sphere's hit, a squared length taken before the vector changed), the rule is silent.
   A hand-written normalize (a function returning `v / length(v)` or
   `v * inversesqrt(dot(v, v))`) counts as normalize here;
 * **a length already computed**: `length(v)` (or `distance(a, b)` for `v = a - b`) was
@@ -44,13 +51,17 @@ vec3 normal = (position - sphere.center) / sphere.radius; // |p - c| is the radi
 
 from __future__ import annotations
 
-from typing import Any, Iterator
+from typing import TYPE_CHECKING, Any, Iterator
 
 from ... import ast as A
 from ... import types as T
-from ...check.model import Symbol
+from ...analysis import builtin_call, calls_in, program_facts
+from ...check.model import Constructor, Symbol
 from ...diagnostics import Diagnostic
-from ._exprs import builtin_call, calls_in, facts, text, wrap
+from ._text import text, wrap
+
+if TYPE_CHECKING:
+    from ..engine import LintContext
 
 NAME = "normalize-known-length"
 PENALTY = 1
@@ -60,20 +71,21 @@ NEEDS = "ast"
 _MAX_DEPTH = 8  # assignments and fields followed back from one value
 
 
-def check(ctx) -> Iterator[Diagnostic]:
-    for fn in facts(ctx).in_file(ctx.path):
-        normalizes = [n for n in fn.nodes if type(n) is A.Call and _is_normalize(fn, n)]
+def check(ctx: LintContext) -> Iterator[Diagnostic]:
+    for fn in program_facts(ctx.model).in_file(ctx.path):
+        normalizes = [(n, n.args[0]) for n in fn.nodes if type(n) is A.Call and _is_normalize(fn, n)]
+        normalizes += [(n, v) for n in fn.nodes if (v := _written_out(fn, n)) is not None]
         if not normalizes:
             continue
         known = [c for c in calls_in(fn, "length", "distance", "dot") if _measured_key(fn, c) is not None]
-        for call in normalizes:
+        for node, v in sorted(normalizes, key=lambda nv: fn.enter[id(nv[0])]):
             found = None
-            if builtin_call(fn.model, call, "normalize"):
-                found = _already_measured(fn, call, known)
-            found = found or _sphere_normal(fn, call)
+            if builtin_call(fn.model, node, "normalize"):
+                found = _already_measured(fn, node, known)
+            found = found or _sphere_normal(fn, node, v)
             if found is not None:
                 message, fix = found
-                yield Diagnostic(message, call.loc, rule=NAME, severity=SEVERITY, help=fix)
+                yield Diagnostic(message, node.loc, help=fix)
 
 
 def _is_normalize(fn, call: A.Call) -> bool:
@@ -107,6 +119,29 @@ def _is_normalize(fn, call: A.Call) -> bool:
         return (type(r) is A.Call and r.callee == "inversesqrt" and len(r.args) == 1 and call_of(r.args[0], "dot", 2)) \
             or (type(r) is A.Binary and r.op == "/" and _number(r.left) == 1.0 and call_of(r.right, "length", 1))
     return False
+
+
+def _written_out(fn, e) -> Any:
+    """`v` when `e` normalizes it by hand: `v / length(v)`, `v / sqrt(dot(v, v))`,
+    `v * inversesqrt(dot(v, v))` (either order), with the built-ins; else None."""
+    if type(e) is not A.Binary or e.op not in ("/", "*"):
+        return None
+    pairs = [(e.left, e.right)] if e.op == "/" else [(e.left, e.right), (e.right, e.left)]
+    model = fn.model
+    for v, m in pairs:
+        if not getattr(model.type_of(v), "is_vector", False):
+            continue
+        if e.op == "/" and builtin_call(model, m, "length") and fn.key(m.args[0]) == fn.key(v):
+            return v
+        if e.op == "/" and builtin_call(model, m, "sqrt"):
+            m = m.args[0]
+        elif not (e.op == "*" and builtin_call(model, m, "inversesqrt")):
+            continue
+        else:
+            m = m.args[0]
+        if builtin_call(model, m, "dot") and fn.key(m.args[0]) == fn.key(v) == fn.key(m.args[1]):
+            return v
+    return None
 
 
 def _number(e) -> float | None:
@@ -160,50 +195,95 @@ def _difference(fn, v) -> A.Binary | None:
     return None
 
 
-def _sphere_normal(fn, call: A.Call) -> tuple[str, str] | None:
+def _sphere_normal(fn, call, v) -> tuple[str, str] | None:
     """`normalize(p - c)` where p provably lies on the sphere of center c: p is a ray's point
     `o + t * d` with t the hit of that ray with that sphere (a user function that intersects a
     sphere, called with the same origin, direction and center), or `c + r * normalize(u)`.
     Values are followed through local assignments and struct fields; anything else is unsure,
     and unsure is silent."""
-    v = call.args[0]
     diff = _difference(fn, v)
     if diff is None or not getattr(fn.model.type_of(diff), "is_vector", False):
         return None
     center = _vkey(fn, diff.right)
-    point = _resolve(fn, _unswizzle(diff.left))
-    radius, why = _on_sphere(fn, point, center)
+    radius, why = _on_sphere(*_resolve(fn, _unswizzle(diff.left, fn.model)), center, fn)
     if radius is None:
         return None
-    name = "normalize()" if builtin_call(fn.model, call, "normalize") else f"{call.callee}() (a normalize)"
+    if builtin_call(fn.model, call, "normalize"):
+        name = "normalize()"
+    elif type(call) is A.Call:
+        name = f"{call.callee}() (a normalize)"
+    else:
+        name = f"'{text(call)}' (a normalize written out)"
     return (f"{name} of {text(diff)}, {why}: its length is the radius, {radius}",
             f"divide by the radius: {wrap(v)} / {radius}")
 
 
-def _unswizzle(e):
-    """`p.xyz` -> `p`: a point's first components stand for the point."""
-    while type(e) is A.Field and e.name in ("xyz", "rgb", "stp", "xy"):
-        e = e.base
-    return e
+def _unswizzle(e, model):
+    """`p.xyz` -> `p`: a point's first components stand for the point; so does `vec3(p)` of a
+    wider vector `p` (a constructor keeps the first components)."""
+    while True:
+        if type(e) is A.Field and e.name in ("xyz", "rgb", "stp", "xy"):
+            e = e.base
+        elif type(e) is A.Call and len(e.args) == 1 and e.callee in ("vec2", "vec3") \
+                and getattr(model.type_of(e.args[0]), "is_vector", False):
+            e = e.args[0]
+        else:
+            return e
 
 
-def _resolve(fn, e, depth: int = 0):
-    """The expression a local variable (or a local struct's field) holds at `e`, followed back
-    through assignments on every path; `e` itself when that is not sure."""
+def _resolve(fn, e, depth: int = 0, params_only: bool = False, across_calls: bool = True):
+    """(facts, expression): what a local variable, a local struct's field or an `in` parameter
+    holds at `e`, followed back through assignments on every path and, for a parameter of a
+    function called from one place only, to the argument of that call (in the caller's facts);
+    `(fn, e)` itself when that is not sure. With `params_only`, parameters only (a variable of
+    the caller then stands for itself, as in the keys of what was resolved fully)."""
     while depth < _MAX_DEPTH:
         depth += 1
-        e = _unswizzle(e)
+        e = _unswizzle(e, fn.model)
+        value, where = None, fn
         if type(e) is A.Identifier:
             sym = fn.model.symbol_of(e)
-            value = fn.reaching_value(e, sym) if sym is not None and sym.kind == "local" else None
-        elif type(e) is A.Field and not fn.model.is_swizzle(e) and type(e.base) is A.Identifier:
-            value = _field_value(fn, e.base, e.name, e)
-        else:
-            value = None
+            if sym is not None and sym.kind == "local" and not params_only:
+                value = fn.reaching_value(e, sym)
+            elif sym is not None and sym.kind == "param" and across_calls:
+                where, value = _argument(fn, sym)
+        elif params_only:
+            pass
+        elif type(e) is A.Field and type(e.base) is A.Identifier and fn.model.is_swizzle(e):
+            if len(e.name) == 1:  # one component of a local vector: `dp.z = ...`
+                value = _field_value(fn, e.base, e.name, e)
+        elif type(e) is A.Field and type(e.base) is A.Identifier:
+            base = fn.model.symbol_of(e.base)
+            if base is not None and base.kind == "param" and across_calls:  # a field of a struct passed in
+                arg_fn, arg = _argument(fn, base)
+                if arg is not None:
+                    arg_fn, arg = _resolve(arg_fn, arg, depth)
+                    value, where = _field_in(arg_fn, arg, e.name), arg_fn
+            elif base is not None and base.kind != "param":
+                value = _field_value(fn, e.base, e.name, e)
         if value is None:
-            return e
-        e = value
-    return e
+            return fn, e
+        fn, e = where, value
+    return fn, e
+
+
+def _argument(fn, sym) -> tuple[Any, Any]:
+    """(caller's facts, argument) of an `in` parameter when its function has one call site."""
+    found = program_facts(fn.model).argument(fn, sym)
+    return found if found is not None else (fn, None)
+
+
+def _field_in(fn, e, name: str) -> Any:
+    """The field `name` of the struct value `e` (a local struct or a constructor), else None."""
+    if type(e) is A.Identifier:
+        return _field_value(fn, e, name, e)
+    if type(e) is A.Call:
+        st = fn.model.type_of(e)
+        if isinstance(st, T.StructType) and e.callee == st.name:
+            names = [f for f, _ in st.fields]
+            if name in names and len(e.args) == len(names):
+                return e.args[names.index(name)]
+    return None
 
 
 def _field_value(fn, base: A.Identifier, name: str, at) -> Any:
@@ -218,21 +298,35 @@ def _field_value(fn, base: A.Identifier, name: str, at) -> Any:
         if w.kind == "part" and type(node) is A.Assignment and type(node.target) is A.Field \
                 and type(node.target.base) is A.Identifier:
             if node.target.name != name:
-                continue  # another field: this one is unchanged
-            return node.value if node.op == "=" and fn.dominates(node, at) else None
+                if _disjoint(fn, node.target, at):
+                    continue  # another field or other components: this one is unchanged
+                return None
+            if node.op != "=" or not fn.dominates(node, at) \
+                    or fn.written_between(node, at, fn.operands(node.value) - {sym}):
+                return None
+            return node.value
         if w.kind in ("=", "init") and type(w.value) is A.Call and fn.dominates(node, at):
-            st = fn.model.type_of(w.value)
-            if isinstance(st, T.StructType) and w.value.callee == st.name:
-                names = [f for f, _ in st.fields]
-                if name in names and len(w.value.args) == len(names):
-                    return w.value.args[names.index(name)]
+            return _field_in(fn, w.value, name)
         return None
     return None
 
 
+def _disjoint(fn, target: A.Field, at) -> bool:
+    """The write `target` leaves the field or components `at` reads alone: another struct field,
+    or a swizzle with no component in common (`dp.z = ...` and `dp.xy`)."""
+    model = fn.model
+    if model.is_swizzle(target) != (type(at) is A.Field and model.is_swizzle(at)):
+        return False
+    if not model.is_swizzle(target):
+        return True
+    return not set(model.swizzle_indices(target)) & set(model.swizzle_indices(at))
+
+
 def _vkey(fn, e, depth: int = 0) -> Any:
     """A key of the value of `e`: variables and fields replaced by what they hold when sure."""
-    e = _resolve(fn, e)
+    # within the function only: two parameters stay two values even when the one caller passes
+    # the same argument to both (`unsure(s, s)`: the function is written for two spheres)
+    fn, e = _resolve(fn, e, across_calls=False)
     if depth > _MAX_DEPTH:
         return fn.key(e)
     t = type(e)
@@ -245,29 +339,71 @@ def _vkey(fn, e, depth: int = 0) -> Any:
     return fn.key(e)
 
 
-def _on_sphere(fn, point, center) -> tuple[str | None, str]:
-    """(radius text, how we know) when `point` lies on a sphere whose center's value key is
-    `center`; (None, "") when that is not sure."""
+def _on_sphere(fn, point, center, home) -> tuple[str | None, str]:
+    """(radius text, how we know) when `point` (in the facts `fn`) lies on a sphere whose
+    center's value key is `center`; (None, "") when that is not sure. `home` is the function of
+    the normalize: the radius is named as it can write it."""
     if type(point) is not A.Binary or point.op != "+":
         return None, ""
     for o, m in ((point.left, point.right), (point.right, point.left)):
-        if type(m) is not A.Binary or m.op != "*":
-            continue
+        # c + vec3(dp.xy, sqrt(r * r - dot(dp.xy, dp.xy))): the procedural sphere's point
+        radius = _procedural_offset(fn, m, home) if _vkey(fn, o) == center else None
+        if radius is not None:
+            return radius, "a point built on the sphere (center + (dp.xy, sqrt(r^2 - |dp.xy|^2)))"
         # c + r * normalize(u): a point at distance r from c
-        for r, u in ((m.left, m.right), (m.right, m.left)):
-            if _vkey(fn, o) == center and type(_resolve(fn, u)) is A.Call and _is_normalize(fn, _resolve(fn, u)):
+        for r, u in ((m.left, m.right), (m.right, m.left)) if type(m) is A.Binary and m.op == "*" else ():
+            unit_fn, unit = _resolve(fn, u)
+            if _vkey(fn, o) == center and type(unit) is A.Call and _is_normalize(unit_fn, unit):
                 return text(r), f"a point at distance {text(r)} from {text(o)}"
         # o + t * d with t = hit(o, d, sphere)
-        for t, d in ((m.left, m.right), (m.right, m.left)):
-            hit = _resolve(fn, t)
+        for t, d in ((m.left, m.right), (m.right, m.left)) if type(m) is A.Binary and m.op == "*" else ():
+            hit_fn, hit = _resolve(fn, t)
             if type(hit) is not A.Call:
                 continue
-            roles = _sphere_hit(fn, hit)
+            roles = _sphere_hit(hit_fn, hit)
             if roles is None:
                 continue
             if roles["center"] == center and roles["origin"] == _vkey(fn, o) and roles["direction"] == _vkey(fn, d):
                 return roles["radius"], f"the hit point of the ray with the sphere {hit.callee}() intersects"
     return None, ""
+
+
+def _procedural_offset(fn, m, home) -> str | None:
+    """The radius (as text) when `m` is `vec3(x, y, sqrt(z))` (or `vec3(v.xy, sqrt(z))`) with z
+    the value r * r - (x * x + y * y) (written as `rSq - lSq`, `dp.z = ...`, lenSq(dp.xy), ...):
+    an offset of length r. Values are followed as by `_resolve` (across a call too); the squared
+    length and x, y must end in the same function's values (else unsure: None)."""
+    m_fn, m = _resolve(fn, m)
+    if type(m) is not A.Call or m.callee != "vec3" or not isinstance(m_fn.model.call_target(m), Constructor):
+        return None
+    args = m.args
+    if len(args) == 3:
+        (x_fn, x), (part_fn, y) = _resolve(m_fn, args[0], params_only=True), _resolve(m_fn, args[1], params_only=True)
+        if x_fn is not part_fn:
+            return None
+        parts = [part_fn.key(x), part_fn.key(y)]
+    elif len(args) == 2 and getattr(m_fn.model.type_of(args[0]), "size", None) == 2:
+        part_fn, v = _resolve(m_fn, args[0], params_only=True)
+        parts = [part_fn.component_key(v, 0), part_fn.component_key(v, 1)]
+    else:
+        return None
+    root_fn, root = _resolve(m_fn, args[-1])
+    if not builtin_call(root_fn.model, root, "sqrt"):
+        return None
+    z_fn, z = _resolve(root_fn, root.args[0])
+    if type(z) is not A.Binary or z.op != "-":
+        return None
+    sq_fn, sq = _resolve(z_fn, z.right)
+    r_fn, r2 = _resolve(z_fn, z.left)
+    if sq_fn is not part_fn or sq_fn.key(sq) != part_fn.sum_of_squares_key(parts):
+        return None
+    if type(r2) is not A.Binary or r2.op != "*" or r_fn.key(r2.left) != r_fn.key(r2.right):
+        return None
+    # the radius as the normalize's function can write it: its own variable, or a literal
+    r = _resolve(r_fn, r2.left, across_calls=r_fn is not home)[1]
+    if type(r) in (A.FloatLiteral, A.IntLiteral):
+        return text(r)
+    return text(r2.left) if r_fn is home else f"sqrt({text(z.left)})"
 
 
 def _sphere_hit(fn, call: A.Call) -> dict | None:
@@ -287,10 +423,10 @@ def _sphere_hit(fn, call: A.Call) -> dict | None:
 
     def root(e):
         """(parameter index, field name or None) of a parameter or a parameter's field."""
-        e = _unswizzle(e)
+        e = _unswizzle(e, model)
         field = None
         if type(e) is A.Field and not model.is_swizzle(e):
-            e, field = _unswizzle(e.base), e.name
+            e, field = _unswizzle(e.base, model), e.name
         if type(e) is A.Identifier and e.name in params and model.symbol_of(e) is not None \
                 and model.symbol_of(e).kind == "param":
             return params.index(e.name), field
@@ -330,30 +466,27 @@ def _sphere_hit(fn, call: A.Call) -> dict | None:
 
 
 def _role_arg(fn, call: A.Call, r):
+    """(facts, expression) of what the call passes for the role `r` (a parameter, or a field of
+    one); (fn, ("field", argument, field)) when the field's value is not known; None."""
     index, field = r
     if index >= len(call.args):
         return None
     arg = call.args[index]
     if field is None:
-        return arg
-    base = _resolve(fn, arg)
-    if type(base) is A.Identifier:
-        value = _field_value(fn, base, field, call)
-        if value is not None:
-            return value
-    if type(base) is A.Call:  # a constructor S(center, radius) passed in place
-        st = fn.model.type_of(base)
-        if isinstance(st, T.StructType) and base.callee == st.name:
-            names = [f for f, _ in st.fields]
-            if field in names and len(base.args) == len(names):
-                return base.args[names.index(field)]
-    return ("field", arg, field)
+        return fn, arg
+    base_fn, base = _resolve(fn, arg, across_calls=False)  # compared by key: see _vkey
+    value = _field_value(fn, base, field, call) if base_fn is fn and type(base) is A.Identifier \
+        else _field_in(base_fn, base, field)
+    if value is not None:
+        return base_fn, value
+    return fn, ("field", arg, field)
 
 
 def _role_key(fn, call: A.Call, r) -> Any:
-    e = _role_arg(fn, call, r)
-    if e is None:
+    found = _role_arg(fn, call, r)
+    if found is None:
         return None
+    fn, e = found
     if isinstance(e, tuple):
         _, arg, field = e
         return (".", field, _vkey(fn, arg))
@@ -361,11 +494,13 @@ def _role_key(fn, call: A.Call, r) -> Any:
 
 
 def _role_text(fn, call: A.Call, r) -> str | None:
-    e = _role_arg(fn, call, r)
-    if e is None:
+    found = _role_arg(fn, call, r)
+    if found is None:
         return None
-    if isinstance(e, tuple):
-        _, arg, field = e
-        return f"{text(arg)}.{field}"
-    value = _resolve(fn, e)
+    value_fn, e = found
+    index, field = r
+    if isinstance(e, tuple) or value_fn is not fn:  # unknown, or known only from the caller:
+        arg = call.args[index]                      # name it as this function can
+        return f"{text(arg)}.{field}" if field else text(arg)
+    value = _resolve(fn, e, across_calls=False)[1]
     return text(value) if type(value) in (A.FloatLiteral, A.IntLiteral) else text(e)

@@ -30,10 +30,14 @@ float specular = pow(max(dot(viewDir, reflected), 0.0), alpha);
 
 from __future__ import annotations
 
-from typing import Iterator
+from typing import TYPE_CHECKING, Iterator
 
+from ...analysis import builtin_call, program_facts
 from ...diagnostics import Diagnostic
-from ._exprs import builtin_call, facts, text
+from ._text import text
+
+if TYPE_CHECKING:
+    from ..engine import LintContext
 
 NAME = "pow-negative-base"
 PENALTY = 1
@@ -41,9 +45,9 @@ SEVERITY = "warning"
 NEEDS = "ast"
 
 
-def check(ctx) -> Iterator[Diagnostic]:
+def check(ctx: LintContext) -> Iterator[Diagnostic]:
     model = ctx.model
-    for fn in facts(ctx).in_file(ctx.path):
+    for fn in program_facts(ctx.model).in_file(ctx.path):
         for node in fn.nodes:
             if not builtin_call(model, node, "pow") or len(node.args) != 2:
                 continue
@@ -56,7 +60,5 @@ def check(ctx) -> Iterator[Diagnostic]:
             yield Diagnostic(
                 f"the base of pow() can be negative ({reason}{where}); pow() is undefined there",
                 base.loc,
-                rule=NAME,
-                severity=SEVERITY,
                 help=f"clamp the base first: pow(max({text(base)}, 0.0), {text(node.args[1])})",
             )

@@ -27,10 +27,14 @@ float fresnel = k2 * k2;
 
 from __future__ import annotations
 
-from typing import Iterator
+from typing import TYPE_CHECKING, Iterator
 
+from ...analysis import builtin_call, numbers, program_facts
 from ...diagnostics import Diagnostic
-from ._exprs import _numbers, builtin_call, facts, is_simple, text, wrap
+from ._text import is_atom, text, wrap
+
+if TYPE_CHECKING:
+    from ..engine import LintContext
 
 NAME = "pow-small-exponent"
 PENALTY = 1
@@ -40,7 +44,7 @@ NEEDS = "ast"
 
 def _replacement(e: float, base) -> str | None:
     x = text(base)
-    if is_simple(base):
+    if is_atom(base):
         v, pre = x, ""
     else:
         v, pre = "v", f"float v = {x}; then "
@@ -55,13 +59,13 @@ def _replacement(e: float, base) -> str | None:
     }.get(e)
 
 
-def check(ctx) -> Iterator[Diagnostic]:
+def check(ctx: LintContext) -> Iterator[Diagnostic]:
     model = ctx.model
-    for fn in facts(ctx).in_file(ctx.path):
+    for fn in program_facts(ctx.model).in_file(ctx.path):
         for node in fn.nodes:
             if not builtin_call(model, node, "pow") or len(node.args) != 2:
                 continue
-            values = _numbers(model.const_value(node.args[1]))
+            values = numbers(model.const_value(node.args[1]))
             if not values or any(v != values[0] for v in values):
                 continue
             fix = _replacement(values[0], node.args[0])
@@ -72,7 +76,5 @@ def check(ctx) -> Iterator[Diagnostic]:
             yield Diagnostic(
                 f"pow() with the constant exponent {shown} costs two transcendentals",
                 node.loc,
-                rule=NAME,
-                severity=SEVERITY,
                 help=f"write {fix}",
             )

@@ -17,10 +17,14 @@ variables, like `d * invIntensity` or `light.center - position`, but not a sign 
   only, no global variable read or written, only pure functions called: `lenSq(v)`).
 
 Expressions are compared by value, variables by the declaration they name: operands of `+` and
-`*` in any order and grouping (not a matrix product), a component by its index (`v.x`, `v.r`),
+`*` in any order and grouping (not a matrix product), a float quotient as a product by the
+inverse (`a / b * c` is `a * c / b`; integer division rounds, so not there), a component by its index (`v.x`, `v.r`),
 `dot(a, b)` as its sum of products and a pure one-line user function by what it returns, so
 `lenSq(dp.xy)` and `dp.x * dp.x + dp.y * dp.y` are the same value, and so are the two
-`length(v)` in `length(v) * length(v)`. Code after a
+`length(v)` in `length(v) * length(v)`. A one-operation value written again inside a longer
+product chain counts there too: `a / b * a / b` is `((a / b) * a) / b` and computes `a / b`
+twice (where its two factors stand side by side as written: `(d * d) / (k * k)` does not write
+`d / k`). Code after a
 `return` (or `break`, `continue`, `discard`) never runs and is not counted. One finding per
 repeated value, at its second evaluation, listing every place it is computed (in the message,
 and as notes: the JSON `notes`): the deduction counts one inefficient practice once. A repeated
@@ -51,11 +55,16 @@ vec3 toLight = light.center - position;
 
 from __future__ import annotations
 
-from typing import Iterator
+from collections import Counter
+from typing import TYPE_CHECKING, Iterator
 
 from ... import ast as A
+from ...analysis import program_facts, written_variable
 from ...diagnostics import Diagnostic
-from ._exprs import facts, text
+from ._text import text
+
+if TYPE_CHECKING:
+    from ..engine import LintContext
 
 NAME = "repeated-expression"
 PENALTY = 1
@@ -79,14 +88,48 @@ def _holder_symbol(fn, first):
     if type(parent) is A.Declarator:
         return fn.model.symbol_of(parent)
     if type(parent) is A.Assignment:
-        return fn.model.symbol_of(parent.target)
+        return written_variable(fn.model, parent.target)[0]
     return None
 
 
 _CANDIDATES = 64  # earlier occurrences tried as the one to reuse
-def check(ctx) -> Iterator[Diagnostic]:
-    for fn in facts(ctx).in_file(ctx.path):
+def check(ctx: LintContext) -> Iterator[Diagnostic]:
+    for fn in program_facts(ctx.model).in_file(ctx.path):
         yield from _check_function(fn)
+
+
+def _within_chains(fn, groups: dict) -> dict[int, object]:
+    """Values written again inside a `*`/`/` chain without being a part of its tree:
+    `a / b * a / b` is `((a / b) * a) / b`, computing `a / b` twice, and `c * a / b` computes
+    `a / b` once. A value of one operation counts where its two factors stand next to each other
+    as written
+    (`(d * d) / (i * i)` does not write `d / i`). For each such chain (innermost first; a chain
+    holding one already counted does not count it again), the key of the value (one met
+    elsewhere as a part of its own, `a / b`) gets the chain as one more place in its group;
+    returns id(chain) -> that key."""
+    found: dict[int, object] = {}
+    wanted = {k: Counter(k[1]) for k in groups if k[0] == "*" and len(k[1]) == 2}  # one operation
+    if not wanted:
+        return found
+    for n in sorted(fn.nodes, key=lambda m: fn.exit[id(m)]):
+        written = fn.written_factors(n) if type(n) is A.Binary else None
+        if written is None or not fn.is_pure(n) or fn.is_dead(n):
+            continue
+        spine, keys = written
+        for k, need in wanted.items():
+            size, times, i = sum(need.values()), 0, 0
+            while i + size <= len(keys):  # non-overlapping runs of the value's factors
+                if Counter(keys[i:i + size]) == need:
+                    times, i = times + 1, i + size
+                else:
+                    i += 1
+            counted = sum(fn.key(m) == k or found.get(id(m)) == k for m in spine[1:])
+            if times > counted + (fn.key(n) == k):
+                found[id(n)] = k
+                groups[k].append(n)
+                groups[k].sort(key=lambda m: fn.exit[id(m)])
+                break
+    return found
 
 
 def _places(nodes) -> str:
@@ -103,15 +146,18 @@ def _check_function(fn) -> Iterator[Diagnostic]:
         if isinstance(n, A.Expr) and id(n) not in targets and fn.worth_reusing(n) and fn.is_pure(n) \
                 and not fn.is_dead(n):
             groups.setdefault(fn.key(n), []).append(n)
+    within = _within_chains(fn, groups)
     groups = {k: v for k, v in groups.items() if len(v) > 1}
     if not groups:
         return
+    # a value's text: one place that computes it as a tree of its own (not inside a chain)
+    sample = {k: next(n for n in occ if within.get(id(n)) != k) for k, occ in groups.items()}
     # Largest expressions first, so a repeated expression hides its repeated parts.
-    order = sorted(groups.values(), key=lambda occ: -(fn.exit[id(occ[0])] - fn.enter[id(occ[0])]))
+    order = sorted(groups.items(), key=lambda kv: -(fn.exit[id(kv[1][0])] - fn.enter[id(kv[1][0])]))
     covered: set[int] = set()
-    values: list[list] = []  # one per repeated value: [first, repeats..., parts merged in]
+    values: list[list] = []  # per repeated value: (place, key) of first, repeats..., parts merged in
     owner: dict[int, list] = {}  # id of a node inside a reported occurrence -> its value
-    for occ in order:
+    for k, occ in order:
         chains: dict[int, list] = {}  # id(first occurrence) -> the occurrences of that value
         for j, b in enumerate(occ):
             if id(b) in covered:
@@ -120,10 +166,11 @@ def _check_function(fn) -> Iterator[Diagnostic]:
             # The first _CANDIDATES occurrences only: the same for any real shader, linear (not
             # quadratic) for a generated file repeating one expression thousands of times.
             first = next((a for a in occ[:min(j, _CANDIDATES)]
-                          if fn.dominates(a, b) and not fn.written_between(a, b, operands)), None)
+                          if (fn.dominates(a, b) or (id(b) in within and fn.contains(b, a)))
+                          and not fn.written_between(a, b, operands)), None)
             if first is None:
                 continue
-            root = next((k for k, chain in chains.items() if first in chain), None)
+            root = next((r for r, chain in chains.items() if first in chain), None)
             chain = chains.setdefault(root if root is not None else id(first), [first] if root is None else [])
             chain.append(b)
             covered.update(id(n) for n in b.walk())
@@ -131,38 +178,39 @@ def _check_function(fn) -> Iterator[Diagnostic]:
             # a repeated part of a value already reported (sin(t) in `sin(t) * k`, both
             # repeated) is the same inefficiency when at most one of its places is outside
             # that value: its places join that value's finding
+            places = [(n, k) for n in chain]
             outside = [n for n in chain if id(n) not in owner]
             host = next((owner[id(n)] for n in chain if id(n) in owner), None)
             if host is not None and len(outside) <= 1:
-                host.extend(n for n in chain if n not in host)
+                host.extend(p for p in places if p not in host)
                 continue
-            values.append(chain)
+            values.append(places)
             for n in chain:
                 for m in n.walk():
-                    owner.setdefault(id(m), chain)
-    values.sort(key=lambda chain: fn.enter[id(chain[1])])
-    for chain in values:
-        first, b = chain[0], chain[1]
-        same = [n for n in chain if fn.key(n) == fn.key(first)]
+                    owner.setdefault(id(m), places)
+    values.sort(key=lambda places: fn.enter[id(places[1][0])])
+    for places in values:
+        (first, key), (b, _) = places[0], places[1]
+        same = [n for n, k in places if k == key]
         parts: dict = {}  # repeated parts merged into this value: key -> their places
-        for n in chain:
-            if fn.key(n) != fn.key(first):
-                parts.setdefault(fn.key(n), []).append(n)
-        holder = _holder(fn, first)
+        for n, k in places:
+            if k != key:
+                parts.setdefault(k, []).append(n)
+        holder = _holder(fn, first) if within.get(id(first)) != key else None
         sym = _holder_symbol(fn, first) if holder else None
         if holder and sym is not None and not fn.written_between(fn.parent[id(first)], b, [sym]):
             fix = f"reuse '{holder}', which holds this value since line {first.loc.line}"
         else:
             fix = "compute it once into a local variable (named for what it is) and reuse that"
         times = "twice" if len(same) == 2 else f"{len(same)} times"
-        message = f"'{text(first)}' is computed {times}, with the same value, at {_places(same)}"
-        for places in parts.values():
-            message += f"; its part '{text(places[0])}' also at {_places(places)}"
+        message = f"'{text(sample[key])}' is computed {times}, with the same value, at {_places(same)}"
+        for k, where in parts.items():
+            message += f"; its part '{text(sample[k])}' also at {_places(where)}"
         notes, seen = [], {(b.loc.line, b.loc.column)}
-        for n in chain:
+        for n, k in places:
             where = (n.loc.line, n.loc.column)
             if where not in seen:
                 seen.add(where)
-                what = "also computed here" if fn.key(n) == fn.key(first) else f"'{text(n)}' also computed here"
+                what = "also computed here" if k == key else f"'{text(sample[k])}' also computed here"
                 notes.append(Diagnostic(what, n.loc, severity="note"))
-        yield Diagnostic(message, b.loc, rule=NAME, severity=SEVERITY, help=fix, notes=notes)
+        yield Diagnostic(message, b.loc, help=fix, notes=notes)

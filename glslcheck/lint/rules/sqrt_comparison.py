@@ -22,11 +22,15 @@ if (distSq < radius * radius) hit = 1.0;
 
 from __future__ import annotations
 
-from typing import Iterator
+from typing import TYPE_CHECKING, Iterator
 
 from ... import ast as A
+from ...analysis import builtin_call, program_facts
 from ...diagnostics import Diagnostic
-from ._exprs import COMPARISONS, FLIPPED, builtin_call, facts, squared, text
+from ._text import COMPARISONS, FLIPPED, squared, text
+
+if TYPE_CHECKING:
+    from ..engine import LintContext
 
 NAME = "sqrt-comparison"
 PENALTY = 1
@@ -34,9 +38,9 @@ SEVERITY = "warning"
 NEEDS = "ast"
 
 
-def check(ctx) -> Iterator[Diagnostic]:
+def check(ctx: LintContext) -> Iterator[Diagnostic]:
     model = ctx.model
-    for fn in facts(ctx).in_file(ctx.path):
+    for fn in program_facts(ctx.model).in_file(ctx.path):
         for node in fn.nodes:
             if type(node) is not A.Binary or node.op not in COMPARISONS:
                 continue
@@ -48,7 +52,5 @@ def check(ctx) -> Iterator[Diagnostic]:
                 yield Diagnostic(
                     "sqrt() is compared with a bound: compare its argument with the squared bound",
                     side.loc,
-                    rule=NAME,
-                    severity=SEVERITY,
                     help=f"write {x} {op} {bound} (for a bound >= 0)",
                 )

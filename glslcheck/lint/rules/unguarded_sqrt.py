@@ -30,10 +30,14 @@ float t = -halfB - sqrt(max(disc, 0.0)); // the miss is masked with step(0.0, di
 
 from __future__ import annotations
 
-from typing import Iterator
+from typing import TYPE_CHECKING, Iterator
 
+from ...analysis import builtin_call, program_facts
 from ...diagnostics import Diagnostic
-from ._exprs import builtin_call, facts, text
+from ._text import text
+
+if TYPE_CHECKING:
+    from ..engine import LintContext
 
 NAME = "unguarded-sqrt"
 PENALTY = 0
@@ -41,9 +45,9 @@ SEVERITY = "note"
 NEEDS = "ast"
 
 
-def check(ctx) -> Iterator[Diagnostic]:
+def check(ctx: LintContext) -> Iterator[Diagnostic]:
     model = ctx.model
-    for fn in facts(ctx).in_file(ctx.path):
+    for fn in program_facts(ctx.model).in_file(ctx.path):
         for node in fn.nodes:
             if not builtin_call(model, node, "sqrt", "inversesqrt") or len(node.args) != 1:
                 continue
@@ -56,7 +60,5 @@ def check(ctx) -> Iterator[Diagnostic]:
             yield Diagnostic(
                 f"the argument of {node.callee}() can be negative ({reason}{where})",
                 arg.loc,
-                rule=NAME,
-                severity=SEVERITY,
                 help=f"guard it: {node.callee}(max({text(arg)}, 0.0)), and mask the result where it was negative",
             )

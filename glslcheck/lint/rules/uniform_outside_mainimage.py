@@ -3,7 +3,8 @@
 ## What it does
 Reports every reference to a Shadertoy uniform (`iResolution`, `iTime`, `iTimeDelta`,
 `iFrameRate`, `iFrame`, `iChannelTime`, `iChannelResolution`, `iMouse`, `iDate`,
-`iSampleRate`, `iChannel0`..`iChannel3`) inside any function but `mainImage`, one finding per
+`iSampleRate`, `iChannel0`..`iChannel3`), or to a uniform the shader declares itself
+(`uniform sampler2D diffuseMap;`), inside any function but `mainImage`, one finding per
 reference. A local variable or parameter that shadows a uniform's name (`float iTime = ...`) is
 not a uniform and is not reported.
 
@@ -34,11 +35,14 @@ vec3 lightPosition(in float time)
 
 from __future__ import annotations
 
-from typing import Iterator
+from typing import TYPE_CHECKING, Iterator
 
 from ... import ast as A
+from ...analysis import program_facts
 from ...diagnostics import Diagnostic
-from ._exprs import facts
+
+if TYPE_CHECKING:
+    from ..engine import LintContext
 
 NAME = "uniform-outside-mainimage"
 PENALTY = 1
@@ -49,9 +53,9 @@ READS = "names"  # a function with a compile error is still read: uniforms are n
 ENTRY = "mainImage"
 
 
-def check(ctx) -> Iterator[Diagnostic]:
+def check(ctx: LintContext) -> Iterator[Diagnostic]:
     model = ctx.model
-    for fn in facts(ctx).in_file(ctx.path, with_broken=True):
+    for fn in program_facts(ctx.model).in_file(ctx.path, with_broken=True):
         name = fn.definition.proto.name
         if name == ENTRY:
             continue
@@ -59,12 +63,10 @@ def check(ctx) -> Iterator[Diagnostic]:
             if type(node) is not A.Identifier:
                 continue
             sym = model.symbol_of(node)
-            if sym is None or sym.kind != "uniform":
+            if sym is None or not (sym.kind == "uniform" or (sym.kind == "global" and sym.qualifier == "uniform")):
                 continue
             yield Diagnostic(
                 f"the uniform '{node.name}' is read in '{name}', not in mainImage",
                 node.loc,
-                rule=NAME,
-                severity=SEVERITY,
                 help=f"add a parameter to '{name}' and pass {node.name} to it from mainImage",
             )

@@ -33,13 +33,14 @@ color += kS * specularColor;
 
 from __future__ import annotations
 
-from typing import Any, Iterator
+from typing import TYPE_CHECKING, Any, Iterator
 
 from ... import ast as A
-from ... import builtins as B
-from ...check.model import Symbol
+from ...analysis import param_directions, program_facts, written_variable
 from ...diagnostics import Diagnostic
-from ._exprs import facts
+
+if TYPE_CHECKING:
+    from ..engine import LintContext
 
 NAME = "uninitialized-read"
 PENALTY = 0
@@ -47,8 +48,8 @@ SEVERITY = "note"
 NEEDS = "ast"
 
 
-def check(ctx) -> Iterator[Diagnostic]:
-    for fn in facts(ctx).in_file(ctx.path):
+def check(ctx: LintContext) -> Iterator[Diagnostic]:
+    for fn in program_facts(ctx.model).in_file(ctx.path):
         tracked = {id(w.symbol): w for ws in fn.writes.values() for w in ws if w.kind == "decl"}
         if not tracked:
             continue
@@ -62,8 +63,6 @@ def check(ctx) -> Iterator[Diagnostic]:
                 f"'{ident.name}' may be read before it is assigned a value "
                 f"(declared at line {decl.node.loc.line} without an initializer)",
                 ident.loc,
-                rule=NAME,
-                severity=SEVERITY,
                 help=f"initialise '{ident.name}' where it is declared, or assign it on every path before this read",
             )
 
@@ -179,10 +178,7 @@ class _Flow:
         if type(root) is A.Identifier:
             if reads:
                 self.read(root, st)
-            sym = self.model.symbol_of(root)
-            if sym is not None:
-                return st | {id(sym)}
-            return st
+            return st | self._root(root)
         return self.expr(root, st)
 
     def expr(self, e: Any, st: set) -> set:
@@ -208,13 +204,7 @@ class _Flow:
             self.expr(e.right, set(st))
             return st
         if t is A.Call:
-            target = self.model.call_target(e)
-            if isinstance(target, Symbol):
-                dirs = [d for _, _, d in target.params]
-            elif isinstance(target, B.Overload):
-                dirs = list(target.qualifiers)
-            else:
-                dirs = []
+            dirs = param_directions(self.model.call_target(e))
             outs = []
             for i, arg in enumerate(e.args):
                 d = dirs[i] if i < len(dirs) else "in"
@@ -234,9 +224,7 @@ class _Flow:
         return st
 
     def _root(self, e: Any) -> set:
-        while type(e) in (A.Field, A.Index):
-            e = e.base
-        sym = self.model.symbol_of(e) if type(e) is A.Identifier else None
+        sym, _ = written_variable(self.model, e)
         return {id(sym)} if sym is not None else set()
 
 

@@ -28,11 +28,14 @@ vec3 blinnPhong(in vec3 n, in vec3 l, in vec3 v) { /* ... */ }
 
 from __future__ import annotations
 
-from typing import Iterator
+from typing import TYPE_CHECKING, Iterator
 
+from ...analysis import program_facts
 from ...diagnostics import Diagnostic
-from ._exprs import facts
 from .unused_variable import common_shared
+
+if TYPE_CHECKING:
+    from ..engine import LintContext
 
 NAME = "unused-function"
 PENALTY = 0
@@ -41,14 +44,14 @@ NEEDS = "ast"
 READS = "program"  # a call in code that does not compile may be missing
 
 
-def check(ctx) -> Iterator[Diagnostic]:
+def check(ctx: LintContext) -> Iterator[Diagnostic]:
     model = ctx.model
     if model is None:
         return
     if model.entry is None or common_shared(ctx):
         return
     reachable = {id(s) for s in model.reachable_functions()}
-    for fn in facts(ctx).in_file(ctx.path):
+    for fn in program_facts(ctx.model).in_file(ctx.path):
         sym = fn.symbol
         if sym is None or id(sym) in reachable or sym is model.entry:
             continue
@@ -56,7 +59,5 @@ def check(ctx) -> Iterator[Diagnostic]:
         yield Diagnostic(
             f"the function '{proto.name}' is never called from {model.entry.name}",
             proto.name_loc if proto.name_loc.line else proto.loc,
-            rule=NAME,
-            severity=SEVERITY,
             help=f"remove '{proto.name}', or call it where its result was meant to be used",
         )

@@ -30,9 +30,12 @@ col += ambient;
 from __future__ import annotations
 
 import difflib
-from typing import Iterator
+from typing import TYPE_CHECKING, Iterator
 
 from ...diagnostics import Diagnostic
+
+if TYPE_CHECKING:
+    from ..engine import LintContext
 
 NAME = "unused-suppression"
 PENALTY = 0
@@ -40,14 +43,12 @@ SEVERITY = "note"
 NEEDS = "suppressions"
 
 
-def check(ctx) -> Iterator[Diagnostic]:
+def check(ctx: LintContext) -> Iterator[Diagnostic]:
     for s in ctx.suppressions:
         if s.problem is not None:
             yield Diagnostic(
                 f"glslcheck cannot read this directive: {s.problem}",
                 s.loc,
-                rule=NAME,
-                severity=SEVERITY,
                 help="write `glslcheck: ignore[rule-name]` or `glslcheck: ignore-file[rule-name]`",
             )
             continue
@@ -59,15 +60,11 @@ def check(ctx) -> Iterator[Diagnostic]:
                 yield Diagnostic(
                     f"the suppression names `{name}`, which is no glslcheck rule",
                     s.loc,
-                    rule=NAME,
-                    severity=SEVERITY,
                     help=f"{hint}`glslcheck rule --all` lists the rules",
                 )
             elif name in ctx.rules_run and name not in s.used:
                 yield Diagnostic(
                     f"unused suppression: `{name}` has no finding {where}",
                     s.loc,
-                    rule=NAME,
-                    severity=SEVERITY,
                     help="remove the suppression",
                 )

@@ -31,14 +31,17 @@ vec3 color = kD * attenuation * albedo * light.color;
 
 from __future__ import annotations
 
-from typing import Any, Iterator
+from typing import TYPE_CHECKING, Any, Iterator
 
 from ... import ast as A
 from ... import builtins as B
 from ...check.model import Symbol
 from ...diagnostics import Diagnostic
 from ...shadertoy import PASS_TABS
-from ._exprs import facts
+from ...analysis import program_facts
+
+if TYPE_CHECKING:
+    from ..engine import LintContext
 
 NAME = "unused-variable"
 PENALTY = 0
@@ -103,7 +106,7 @@ def read_symbols(model: Any) -> set[int]:
 _program_reads: dict[str, Any] = {}
 
 
-def check(ctx) -> Iterator[Diagnostic]:
+def check(ctx: LintContext) -> Iterator[Diagnostic]:
     model = ctx.model
     if model is None:
         return
@@ -118,7 +121,7 @@ def check(ctx) -> Iterator[Diagnostic]:
                 continue
             for d in decl.declarators:
                 yield from _unused(ctx, model, d, reads, "global")
-    for fn in facts(ctx).in_file(ctx.path):
+    for fn in program_facts(ctx.model).in_file(ctx.path):
         for n in fn.nodes:
             if type(n) is A.Declarator:
                 yield from _unused(ctx, model, n, reads, "local")
@@ -133,7 +136,5 @@ def _unused(ctx, model, d: A.Declarator, reads: set[int], kind: str) -> Iterator
     yield Diagnostic(
         f"the {kind} {what} '{d.name}' is never read",
         loc,
-        rule=NAME,
-        severity=SEVERITY,
         help=f"remove '{d.name}', or use it where its value was meant to go",
     )

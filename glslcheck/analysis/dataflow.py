@@ -1,61 +1,74 @@
-"""Shared facts about expressions for the AST lint rules (not a rule: no NAME, not in the table).
+"""Dataflow facts of a checked program's functions, computed once per program and cached.
 
-Owns what several rules ask of one function body, computed once per program and cached:
-
-* `facts(ctx)` -> `ProgramFacts`: the functions defined in the linted file, each as `FnFacts`;
-* `FnFacts`: an execution-order walk of one function (a `for` is walked init, cond, body,
+* `program_facts(model)` -> `ProgramFacts`: every function definition, each as `FunctionFacts`
+  (those with a compile error apart: `broken`);
+* `FunctionFacts`: an execution-order walk of one function (a `for` is walked init, cond, body,
   step), with for every node its enter/exit position, its *region* (the chain of branches and
   loops it is evaluated under: if/else arms, `?:` arms, the right side of `&&`/`||`, switch
   cases, loop bodies), every write to a variable (`=`, compound assignment, `++`/`--`, an
   `out`/`inout` argument, a declarator) and every call of a user function;
-* pure-expression keys (`key`: structural, identifiers by the symbol they name, locations
-  ignored), `operands`, `is_pure`, `op_count`, `is_nontrivial`, `dominates` (A is evaluated
-  before B on every path to B) and `written_between` (a write to an operand between A and B);
-* a sign analysis, `value_range(expr)`: an interval (lo, hi; None for unbounded) and, when the
-  value can be negative, a *witness*: the sub-expression that makes it so (a dot product of two
-  different vectors, a difference, a negation, sin/cos, a reflect/refract/cross result, a
-  negative constant). Unknown values (a parameter, a user function's result) have no witness:
-  rules report "can be negative" only with one. Dot products of different vectors are taken as
-  cosines in [-1, 1] (lighting code dots unit vectors), so `1.0 - max(dot(n, v), 0.0)` is known
-  to be >= 0. A variable's value is the one assigned by its last write before the use when that
-  write is on every path to the use (else unknown).
+* pure-expression keys (`key`: the same key for the same value, identifiers by the symbol they
+  name, locations ignored), `operands`, `is_pure`, `op_count`, `is_nontrivial`, `dominates` (A
+  is evaluated before B on every path to B), `written_between` (a write to an operand between A
+  and B) and `reaching_value` (the value a variable holds at a use);
+* the sign analysis of `glslcheck.analysis.values` (`value_range`, `negative_witness`);
+* shared answers about l-values and calls: `written_variable` (which variable an l-value writes,
+  and whether all of it) and `param_directions` (in/out/inout of each argument of a call).
 
 Everything is keyed by `id(node)`: the model keeps the tree alive for as long as the facts.
 """
 
 from __future__ import annotations
 
-import math
-import re
 from bisect import bisect_right
 from typing import Any, Iterable, Iterator
 
-from ... import ast as A
-from ... import builtins as B
-from ...check.model import Symbol
-from ...diagnostics import Location
-from ...printer import to_glsl
-
-COMPARISONS = ("<", "<=", ">", ">=")
-FLIPPED = {"<": ">", "<=": ">=", ">": "<", ">=": "<="}  # a op b  <=>  b FLIPPED[op] a
-_NONNEG_UNIFORMS = {"iTime", "iTimeDelta", "iFrameRate", "iFrame", "iChannelTime",
-                    "iChannelResolution", "iResolution", "iDate", "iSampleRate"}
+from .. import ast as A
+from .. import builtins as B
+from ..check.model import CallTarget, Model, Symbol
+from .values import ValueRanges, numbers
 
 
-# ---------------------------------------------------------------------------------------------
-# Program and function facts
-# ---------------------------------------------------------------------------------------------
+def written_variable(model: Model, target: A.Expr) -> tuple[Symbol | None, bool]:
+    """The variable an l-value writes (`v`, `v.x`, `a[i].f` all write `v`/`a`) and whether it
+    writes all of it; (None, ...) when the l-value is not rooted in a variable."""
+    whole = True
+    while isinstance(target, (A.Field, A.Index)):
+        whole = False
+        target = target.base
+    if isinstance(target, A.Identifier):
+        return model.symbol_of(target), whole
+    return None, whole
+
+
+def param_directions(target: CallTarget | None) -> list[str]:
+    """"in", "out" or "inout" for each parameter of a call's target (a constructor: none)."""
+    if isinstance(target, Symbol):
+        return [d for _, _, d in target.params]
+    if isinstance(target, B.Overload):
+        return list(target.qualifiers)
+    return []
+
+
+def builtin_call(model: Model, e: A.Node, *names: str) -> bool:
+    """`e` is a call of one of the built-in functions `names` (not a user function so named)."""
+    return (type(e) is A.Call and e.callee in names
+            and isinstance(model.call_target(e), B.Overload))
+
+
+def is_float_type(t: Any) -> bool:
+    return getattr(t, "base", None) == "float" and (t.is_scalar or t.is_vector)
 
 
 class ProgramFacts:
     """The AST facts of one checked program (shared by every AST rule and every file of it)."""
 
-    def __init__(self, model: Any) -> None:
+    def __init__(self, model: Model) -> None:
         self.model = model
         self.definitions: list[A.FunctionDefinition] = [
             d for d in model.ast.decls if isinstance(d, A.FunctionDefinition) and d.body is not None
         ]
-        self._fns: dict[int, FnFacts] = {}
+        self._fns: dict[int, FunctionFacts] = {}
         errors = [d.loc for d in model.errors if d.loc is not None]
         # functions with a compile error: their types are partly unknown (error recovery)
         self.broken: set[int] = {
@@ -63,7 +76,7 @@ class ProgramFacts:
             if any(e.path == d.loc.path and d.loc.line <= e.line <= (d.loc.end_line or d.loc.line) for e in errors)
         }
 
-    def in_file(self, path: str, *, with_broken: bool = False) -> list["FnFacts"]:
+    def in_file(self, path: str, *, with_broken: bool = False) -> list["FunctionFacts"]:
         """Facts of every function defined in the file `path`, in source order; a function with
         a compile error only `with_broken` (for rules that read names and scopes only)."""
         return [
@@ -75,24 +88,57 @@ class ProgramFacts:
         """The functions defined in `path` that have a compile error, in source order."""
         return [d for d in self.definitions if d.loc.path == path and id(d) in self.broken]
 
-    def fn(self, definition: A.FunctionDefinition) -> "FnFacts":
+    def fn(self, definition: A.FunctionDefinition) -> "FunctionFacts":
         f = self._fns.get(id(definition))
         if f is None:
-            f = self._fns[id(definition)] = FnFacts(definition, self.model)
+            f = self._fns[id(definition)] = FunctionFacts(definition, self.model)
         return f
+
+    def call_sites(self, function: Symbol) -> list[tuple["FunctionFacts", A.Call]]:
+        """Every call of the user function `function` in a function that checks: (the caller's
+        facts, the call), in source order."""
+        sites = self.__dict__.setdefault("_sites", None)
+        if sites is None:
+            sites = self._sites = {}
+            for d in self.definitions:
+                if id(d) in self.broken:
+                    continue
+                caller = self.fn(d)
+                for n in caller.nodes:
+                    if type(n) is A.Call:
+                        target = self.model.call_target(n)
+                        if isinstance(target, Symbol):
+                            sites.setdefault(id(target), []).append((caller, n))
+        return sites.get(id(function), [])
+
+    def argument(self, fn: "FunctionFacts", param: Symbol) -> tuple["FunctionFacts", A.Expr] | None:
+        """The value an `in` parameter of `fn` holds, followed across the call: (the caller's
+        facts, the argument) when `fn` has exactly one call site, in another function, and never
+        writes the parameter; else None (several callers may pass different values)."""
+        if param.kind != "param" or fn.symbol is None or fn.writes_to(param):
+            return None
+        params = [self.model.symbol_of(p) for p in fn.definition.proto.params]
+        if param not in params or fn.symbol.params[params.index(param)][2] != "in":
+            return None
+        sites = self.call_sites(fn.symbol)
+        if len(sites) != 1 or sites[0][0] is fn:
+            return None
+        caller, call = sites[0]
+        i = params.index(param)
+        return (caller, call.args[i]) if i < len(call.args) else None
 
 
 _CACHE: dict[str, Any] = {"model": None, "facts": None}
 
 
-def facts(ctx: Any) -> ProgramFacts:
-    """The facts of `ctx.model`, built once per program (the engine lints its files in a row).
+def program_facts(model: Model | None) -> "ProgramFacts | _NoFacts":
+    """The facts of `model`, built once per program (the linter lints its files in a row).
     Without a semantic model (a tree handed in by a test or a tool), no function has facts."""
-    if ctx.model is None:
+    if model is None:
         return _NO_FACTS
-    if _CACHE["model"] is not ctx.model:
-        _CACHE["model"] = ctx.model
-        _CACHE["facts"] = ProgramFacts(ctx.model)
+    if _CACHE["model"] is not model:
+        _CACHE["model"] = model
+        _CACHE["facts"] = ProgramFacts(model)
     return _CACHE["facts"]
 
 
@@ -123,14 +169,14 @@ def _is_literal(e: Any) -> bool:
     return type(e) in (A.FloatLiteral, A.IntLiteral)
 
 
-def _model_cache(model: Any, name: str) -> dict:
+def _model_cache(model: Model, name: str) -> dict:
     cache = model.__dict__.get(name)
     if cache is None:
         cache = model.__dict__[name] = {}
     return cache
 
 
-def pure_function(model: Any, sym: Symbol, _seen: frozenset = frozenset()) -> bool:
+def pure_function(model: Model, sym: Symbol, _seen: frozenset = frozenset()) -> bool:
     """A user function whose result depends only on its arguments: `in` parameters only, no
     write to a global, no read of a global variable that is not const (uniforms are constant in
     a frame), and only pure functions called (`float lenSq(vec2 v) { return dot(v, v); }`)."""
@@ -159,7 +205,7 @@ def pure_function(model: Any, sym: Symbol, _seen: frozenset = frozenset()) -> bo
     return ok
 
 
-def function_cost(model: Any, sym: Symbol) -> bool:
+def function_cost(model: Model, sym: Symbol) -> bool:
     """Whether calling the user function costs more than an add: two operations or a costly
     built-in in its body (a wrapper like `asPoint(v)`, `vec4(v, 1.0)`, does not)."""
     cache = _model_cache(model, "_lint_cost")
@@ -192,10 +238,10 @@ class Write:
         self.symbol, self.pos, self.kind, self.value, self.node = symbol, pos, kind, value, node
 
 
-class FnFacts:
+class FunctionFacts(ValueRanges):
     """An execution-order walk of one function definition (see the module docstring)."""
 
-    def __init__(self, definition: A.FunctionDefinition, model: Any) -> None:
+    def __init__(self, definition: A.FunctionDefinition, model: Model) -> None:
         self.definition = definition
         self.model = model
         self.symbol: Symbol | None = model.symbol_of(definition.proto)
@@ -284,12 +330,12 @@ class FnFacts:
         t = type(node)
         pos = self.exit[id(node)]
         if t is A.Assignment:
-            sym, whole = self.target_symbol(node.target)
+            sym, whole = written_variable(self.model, node.target)
             if sym is not None:
                 kind = ("=" if whole else "part") if node.op == "=" else "op"
                 self._add(Write(sym, pos, kind, node.value if kind == "=" else None, node))
         elif t in (A.Unary, A.Postfix) and node.op in ("++", "--"):
-            sym, _ = self.target_symbol(node.operand)
+            sym, _ = written_variable(self.model, node.operand)
             if sym is not None:
                 self._add(Write(sym, pos, "op", None, node))
         elif t is A.Declarator or t is A.ConditionDeclaration:
@@ -301,29 +347,14 @@ class FnFacts:
             target = self.model.call_target(node)
             if isinstance(target, Symbol):
                 self.user_calls.append(pos)
-                dirs = [d for _, _, d in target.params]
-            elif isinstance(target, B.Overload):
-                dirs = list(target.qualifiers)
-            else:
-                return
-            for arg, d in zip(node.args, dirs):
+            for arg, d in zip(node.args, param_directions(target)):
                 if d in ("out", "inout"):
-                    sym, _ = self.target_symbol(arg)
+                    sym, _ = written_variable(self.model, arg)
                     if sym is not None:
                         self._add(Write(sym, pos, "out", None, node))
 
     def _add(self, w: Write) -> None:
         self.writes.setdefault(id(w.symbol), []).append(w)
-
-    def target_symbol(self, target: Any) -> tuple[Symbol | None, bool]:
-        """The variable an l-value writes and whether it writes all of it."""
-        whole = True
-        while isinstance(target, (A.Field, A.Index)):
-            whole = False
-            target = target.base
-        if isinstance(target, A.Identifier):
-            return self.model.symbol_of(target), whole
-        return None, whole
 
     # -- positions and paths -------------------------------------------------------------------
     def is_dead(self, node: Any) -> bool:
@@ -406,9 +437,10 @@ class FnFacts:
         if t is A.BoolLiteral:
             return ("Z", e.value)
         if t is A.Binary:
-            if e.op in ("+", "*") and self._commutes(e):
+            terms = self.terms(e)
+            if terms is not None:
                 # operands in a fixed order (by hash: any order works, the same within a run)
-                return (e.op, tuple(sorted((self.key(x) for x in self._terms(e, e.op)), key=hash)))
+                return ("+" if e.op == "+" else "*", tuple(sorted(terms, key=hash)))
             return ("B", e.op, self.key(e.left), self.key(e.right))
         if t is A.Unary and e.op not in ("++", "--"):
             return ("U", e.op, self.key(e.operand))
@@ -437,17 +469,63 @@ class FnFacts:
         return ("X", id(e))  # assignments, ++/--, sequences: never the same twice
 
     def _commutes(self, e: Any) -> bool:
-        """`+` always; `*` unless a matrix is involved (a matrix product has an order)."""
+        """`+` always; `*` unless a matrix is involved (a matrix product has an order); `/` of
+        floats (a float quotient is a product by the inverse: `a / b * c` is `a * c / b`; an
+        integer quotient rounds, so it is not)."""
         if e.op == "+":
             return True
         types = (self.model._types.get(id(e.left)), self.model._types.get(id(e.right)))
-        return None not in types and not any(getattr(t, "is_matrix", False) for t in types)
+        if None in types or any(getattr(t, "is_matrix", False) for t in types):
+            return False
+        return e.op == "*" or all(getattr(t, "base", None) == "float" for t in types)
 
-    def _terms(self, e: Any, op: str) -> list[Any]:
-        """The operands of a chain of the same commuting operator: `a + (b + c)` -> a, b, c."""
-        if type(e) is A.Binary and e.op == op and self._commutes(e):
-            return self._terms(e.left, op) + self._terms(e.right, op)
-        return [e]
+    def terms(self, e: Any) -> list[Any] | None:
+        """The keys of the operands of a chain of `+`, or of `*` and `/` (a divisor as
+        ("inv", its key)), in any grouping: `a / b * a / b` -> a, inv b, a, inv b. None when
+        `e` is not such a chain (a matrix product, an integer quotient, another operator)."""
+        if type(e) is not A.Binary or e.op not in ("+", "*", "/") or not self._commutes(e):
+            return None
+        ops = ("+",) if e.op == "+" else ("*", "/")
+        out: list[Any] = []
+
+        def walk(x: Any, inverse: bool) -> None:
+            if type(x) is A.Binary and x.op in ops and self._commutes(x):
+                walk(x.left, inverse)
+                walk(x.right, inverse != (x.op == "/"))
+            else:
+                k = self.key(x)
+                out.append(("inv", k) if inverse else k)
+
+        walk(e, False)
+        return out
+
+    def written_factors(self, e: Any) -> tuple[list[Any], list[Any]] | None:
+        """A `*`/`/` chain as written, left to right: its nodes down the left side (`e`, then
+        `e.left`, ...) and the keys of its factors, a divisor as ("inv", key) and a parenthesised
+        right operand as one factor (`a / b * a / b` -> a, inv b, a, inv b; `(d * d) / (i * i)`
+        -> d, d, inv (i * i)). None when `e` is not a float or integer product chain."""
+        if type(e) is not A.Binary or e.op not in ("*", "/") or not self._commutes(e):
+            return None
+        spine, keys = [], []
+        x = e
+        while type(x) is A.Binary and x.op in ("*", "/") and self._commutes(x):
+            spine.append(x)
+            k = self.key(x.right)
+            keys.append(("inv", k) if x.op == "/" else k)
+            x = x.left
+        keys.append(self.key(x))
+        return spine, keys[::-1]
+
+    def component_key(self, e: Any, i: int) -> Any:
+        """The key of component `i` of the vector `e` (`v.x` for `v`, 0)."""
+        return self._component(e, i)
+
+    @staticmethod
+    def sum_of_squares_key(keys: list[Any]) -> Any:
+        """The key `x * x + y * y + ...` (and `dot(v, v)`, `lenSq(v)`) gets for these
+        component keys."""
+        squares = (("*", tuple(sorted((k, k), key=hash))) for k in keys)
+        return ("+", tuple(sorted(squares, key=hash)))
 
     def _component(self, e: Any, i: int) -> Any:
         """The key of component `i` of the vector `e` (swizzles composed: `v.zy` 0 is `v.z`)."""
@@ -544,7 +622,7 @@ class FnFacts:
             return not self.model.is_constant(e)
         if n != 1 or not is_float_type(self.model.type_of(e)) or self.model.is_constant(e):
             return False
-        unit = [x for x in (e.left, e.right) if _numbers(self.model.const_value(x)) in ([1.0], [-1.0])]
+        unit = [x for x in (e.left, e.right) if numbers(self.model.const_value(x)) in ([1.0], [-1.0])]
         return not (unit and e.op in ("*", "/"))
 
     def operands(self, e: Any) -> frozenset:
@@ -562,7 +640,8 @@ class FnFacts:
 
     def reaching_value(self, ident: A.Identifier, sym: Symbol) -> Any:
         """The expression last assigned to `sym` before `ident` when that assignment is on every
-        path to it, no other write can reach it, and it assigns the whole value; else None."""
+        path to it, no other write can reach it, it assigns the whole value and no variable the
+        expression reads is written in between (so it still has that value); else None."""
         pos = self.enter.get(id(ident))
         if pos is None:
             return None
@@ -576,260 +655,15 @@ class FnFacts:
         for loop in self.enclosing_loops(ident):  # a later write in the loop reaches it again
             if any(w.pos > pos and self.contains(loop, w.node) for w in ws):
                 return None
+        # `l = lengthSq(dp.xy); dp.xy = ...; use(l)`: l no longer equals its expression
+        others = self.operands(last.value) - {sym}
+        if others and self.written_between(last.node, ident, others):
+            return None
         return last.value
 
-    # -- sign analysis -------------------------------------------------------------------------
-    def value_range(self, e: Any, depth: int = 0) -> tuple:
-        """(lo, hi, witness) of an expression; lo/hi None when unbounded; witness is None or
-        (reason, node) when the value can be negative for a reason the rules can name."""
-        i = id(e)
-        r = self._ranges.get(i)
-        if r is None:
-            r = self._range(e, depth)
-            self._ranges[i] = r
-        return r
 
-    def _range(self, e: Any, depth: int) -> tuple:
-        unknown = (None, None, None)
-        if depth > 24:
-            return unknown
-        value = self.model.const_value(e)
-        nums = _numbers(value)
-        if nums:
-            lo, hi = min(nums), max(nums)
-            return (lo, hi, ("a negative constant", e) if lo < 0 else None)
-        rec = lambda x: self.value_range(x, depth + 1)  # noqa: E731
-        t = type(e)
-        if t is A.Identifier:
-            sym = self.model.symbol_of(e)
-            if sym is None:
-                return unknown
-            if sym.kind == "uniform":
-                return (0.0, None, None) if sym.name in _NONNEG_UNIFORMS else unknown
-            if sym.kind == "local":
-                v = self.reaching_value(e, sym)
-                return rec(v) if v is not None else unknown
-            return unknown
-        if t is A.Field:
-            if self.model.is_swizzle(e):
-                return rec(e.base)
-            return unknown
-        if t is A.Index:
-            base_t = self.model.type_of(e.base)
-            return rec(e.base) if getattr(base_t, "is_vector", False) or getattr(base_t, "is_matrix", False) else unknown
-        if t is A.Unary:
-            if e.op == "+":
-                return rec(e.operand)
-            if e.op == "-":
-                lo, hi, why = rec(e.operand)
-                nlo = -hi if hi is not None else None
-                nhi = -lo if lo is not None else None
-                if nlo is not None and nlo >= 0:
-                    return (nlo, nhi, None)
-                return (nlo, nhi, ("a negation", e))
-            return unknown
-        if t is A.Binary:
-            return self._binary_range(e, rec)
-        if t is A.Ternary:
-            return _join(rec(e.then), rec(e.else_))
-        if t is A.Call:
-            return self._call_range(e, rec)
-        return unknown
-
-    def _binary_range(self, e: A.Binary, rec) -> tuple:
-        op = e.op
-        a, b = rec(e.left), rec(e.right)
-        (alo, ahi, aw), (blo, bhi, bw) = a, b
-        if op == "+":
-            lo = _add(alo, blo)
-            hi = _add(ahi, bhi)
-            return (lo, hi, None if _nonneg(lo) else (aw or bw))
-        if op == "-":
-            lo = _sub(alo, bhi)
-            hi = _sub(ahi, blo)
-            if _nonneg(lo):
-                return (lo, hi, None)
-            return (lo, hi, aw or ("a difference", e))
-        if op == "*":
-            if self.key(e.left) == self.key(e.right):  # x * x
-                return (0.0, None if alo is None or ahi is None else max(alo * alo, ahi * ahi), None)
-            if _nonneg(alo) and _nonneg(blo):
-                return (alo * blo, _mul(ahi, bhi), None)
-            if None not in (alo, ahi, blo, bhi):
-                ps = [alo * blo, alo * bhi, ahi * blo, ahi * bhi]
-                lo, hi = min(ps), max(ps)
-                return (lo, hi, None if lo >= 0 else (aw or bw))
-            return (None, None, aw or bw)
-        if op == "/":
-            if _nonneg(alo) and blo is not None and blo > 0:
-                return (0.0, None, None)
-            return (None, None, aw or bw)
-        return (None, None, None)
-
-    def _call_range(self, e: A.Call, rec) -> tuple:
-        target = self.model.call_target(e)
-        if isinstance(target, tuple) and target and target[0] == "constructor":
-            if not e.args:
-                return (None, None, None)
-            return _join(*(rec(a) for a in e.args))
-        if not isinstance(target, B.Overload):
-            return (None, None, None)
-        name, args = e.callee, e.args
-        if name == "dot":
-            if self.key(args[0]) == self.key(args[1]):
-                return (0.0, None, None)
-            return (-1.0, 1.0, ("a dot product of two different vectors", e))
-        if name in ("length", "distance", "sqrt", "inversesqrt", "exp", "exp2", "pow"):
-            return (0.0, None, None)
-        if name == "abs":
-            lo, hi, _ = rec(args[0])
-            return (0.0, None if lo is None or hi is None else max(abs(lo), abs(hi)), None)
-        if name in ("smoothstep", "step", "fract"):
-            return (0.0, 1.0, None)
-        if name in ("sin", "cos"):
-            return (-1.0, 1.0, (f"{name}() is negative over half its period", e))
-        if name in ("tan", "asin", "atan", "sinh", "tanh", "sign", "dFdx", "dFdy"):
-            return (None, None, (f"{name}() can be negative", e))
-        if name in ("reflect", "refract", "cross", "faceforward", "normalize"):
-            return (-1.0 if name == "normalize" else None, 1.0 if name == "normalize" else None,
-                    (f"the components of {name}() can be negative", e))
-        if name == "max":
-            (alo, ahi, aw), (blo, bhi, bw) = rec(args[0]), rec(args[1])
-            known = [x for x in (alo, blo) if x is not None]
-            lo = max(known) if known else None  # max(a, b) >= a and >= b
-            hi = None if ahi is None or bhi is None else max(ahi, bhi)
-            if _nonneg(lo):
-                return (lo, hi, None)
-            # negative only when both are: name a reason only when both sides have one
-            return (lo, hi, aw if aw is not None and bw is not None else None)
-        if name == "min":
-            (alo, ahi, aw), (blo, bhi, bw) = rec(args[0]), rec(args[1])
-            lo = None if alo is None or blo is None else min(alo, blo)
-            hi = None
-            if ahi is not None or bhi is not None:
-                hi = min(x for x in (ahi, bhi) if x is not None)
-            return (lo, hi, None if _nonneg(lo) else (aw or bw))
-        if name == "clamp":
-            _, _, xw = rec(args[0])
-            llo, _, lw = rec(args[1])
-            _, hhi, _ = rec(args[2])
-            if _nonneg(llo):
-                return (llo, hhi, None)
-            return (llo, hhi, lw or xw)
-        if name == "mix":
-            return _join(rec(args[0]), rec(args[1]))
-        if name == "mod":
-            lo, hi, _ = rec(args[1])
-            return (0.0, hi, None) if lo is not None and lo > 0 else (None, None, None)
-        return (None, None, None)
-
-    def negative_witness(self, e: Any) -> tuple[str, Any] | None:
-        """(reason, node) when `e` can be negative for a nameable reason, else None."""
-        lo, _, why = self.value_range(e)
-        if _nonneg(lo):
-            return None
-        return why
-
-
-def _numbers(value: Any) -> list[float]:
-    if isinstance(value, bool) or value is None:
-        return []
-    if isinstance(value, (int, float)):
-        return [float(value)] if math.isfinite(value) else []
-    if isinstance(value, tuple):
-        out: list[float] = []
-        for v in value:
-            sub = _numbers(v)
-            if not sub:
-                return []
-            out += sub
-        return out
-    return []
-
-
-def _nonneg(x: float | None) -> bool:
-    return x is not None and x >= 0
-
-
-def _add(a, b):
-    return None if a is None or b is None else a + b
-
-
-def _sub(a, b):
-    return None if a is None or b is None else a - b
-
-
-def _mul(a, b):
-    return None if a is None or b is None else a * b
-
-
-def _join(*ranges: tuple) -> tuple:
-    los = [r[0] for r in ranges]
-    his = [r[1] for r in ranges]
-    lo = None if any(x is None for x in los) else min(los)
-    hi = None if any(x is None for x in his) else max(his)
-    why = None if _nonneg(lo) else next((r[2] for r in ranges if r[2] is not None), None)
-    return (lo, hi, why)
-
-
-# ---------------------------------------------------------------------------------------------
-# Small helpers the rules share
-# ---------------------------------------------------------------------------------------------
-
-
-def text(e: Any) -> str:
-    """GLSL text of an expression, shortened for a message."""
-    s = to_glsl(e)
-    return s if len(s) <= 60 else s[:57] + "..."
-
-
-def builtin_call(model: Any, e: Any, *names: str) -> bool:
-    """`e` is a call of one of the built-in functions `names` (not a user function so named)."""
-    return (type(e) is A.Call and e.callee in names
-            and isinstance(model.call_target(e), B.Overload))
-
-
-def is_float_type(t: Any) -> bool:
-    return getattr(t, "base", None) == "float" and (t.is_scalar or t.is_vector)
-
-
-def line_of(node: Any) -> int:
-    return node.loc.line
-
-
-def calls_in(fn: FnFacts, *names: str) -> Iterator[A.Call]:
+def calls_in(fn: FunctionFacts, *names: str) -> Iterator[A.Call]:
     """Calls of the built-ins `names` in a function, in execution order."""
     for n in fn.nodes:
         if type(n) is A.Call and n.callee in names and isinstance(fn.model.call_target(n), B.Overload):
             yield n
-
-
-def looks_like(name: str, pattern: str) -> bool:
-    return re.search(pattern, name, re.I) is not None
-
-
-def loc_of(node: Any) -> Location:
-    return node.loc
-
-
-def is_simple(e: Any) -> bool:
-    """A name, a literal, or a field/swizzle/element of one: no parentheses needed around it."""
-    while type(e) in (A.Field, A.Index):
-        e = e.base
-    return type(e) in (A.Identifier, A.FloatLiteral, A.IntLiteral, A.BoolLiteral)
-
-
-def wrap(e: Any) -> str:
-    """GLSL text of `e`, in parentheses unless it is simple."""
-    return text(e) if is_simple(e) or type(e) is A.Call else f"({text(e)})"
-
-
-def squared(model: Any, e: Any) -> str:
-    """`r * r` for an expression, or the folded square of a constant bound."""
-    nums = _numbers(model.const_value(e))
-    if len(nums) == 1:
-        v = nums[0] * nums[0]
-        s = repr(v) if v != int(v) or abs(v) >= 1e16 else f"{int(v)}.0"
-        return s if len(s) < 12 else f"{v:g}"
-    w = wrap(e)
-    return f"{w} * {w}"
