@@ -426,7 +426,7 @@ class Checker:
             self.error(f"the initializer of the const '{d.name}' is not a constant expression", d.init,
                        help="use literals, other consts and built-in functions only, or drop 'const'")
         elif is_global and not self.is_const(d.init):
-            self.error(f"a global variable's initializer must be a constant expression in GLSL ES 3.00", d.init,
+            self.error("a global variable's initializer must be a constant expression in GLSL ES 3.00", d.init,
                        help="declare the global without a value and assign it in mainImage, or pass the value as a parameter")
 
     def _conversion_help(self, want: T.Type, got: T.Type) -> str | None:

