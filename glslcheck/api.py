@@ -29,11 +29,11 @@ from typing import Any
 
 import numpy as np
 
+from .precision import check_precision
 from .shadertoy import DEFAULT_SIZE
 from .sources import Shader, load_shader
 
 BACKENDS = ("numpy", "gl", "webgl")
-PRECISIONS = ("float16", "float32", "float64")
 
 
 class Program:
@@ -58,8 +58,7 @@ class Program:
         stats: bool = False,
     ) -> np.ndarray:
         """One frame; see the module docstring."""
-        if precision not in PRECISIONS:
-            raise ValueError(f"precision must be one of {', '.join(PRECISIONS)}, not {precision!r}")
+        check_precision(precision)
         common = dict(size=size, time=time, frame=frame, mouse=mouse, date=date, time_delta=time_delta,
                       frame_rate=frame_rate, samples=samples)
         if self.backend in ("gl", "webgl"):

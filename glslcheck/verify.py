@@ -43,12 +43,12 @@ import numpy as np
 
 from .compare import Comparison, compare
 from .diagnostics import GlslError, InputError
+from .precision import check_precision
 from .shadertoy import DEFAULT_SIZE
 from .sources import Shader, load_shader
 
 BACKENDS = ("numpy", "gl")
 ALL_BACKENDS = ("numpy", "gl", "webgl")  # webgl: headless Chromium (glslcheck/webgl_backend)
-PRECISIONS = ("float32", "float16", "float64")
 DEFAULT_FPS = 60.0
 
 
@@ -255,8 +255,7 @@ def verify_frames(
     test, reported as "numpy"); `programs` gives already compiled programs instead. Both are
     compiled before the first frame, so a GLSL error or a missing GL context surfaces at once.
     """
-    if precision not in PRECISIONS:
-        raise ValueError(f"precision must be one of {', '.join(PRECISIONS)}, not {precision!r}")
+    check_precision(precision)
     specs = frame_specs(time, times, frames, fps, frame)
     size_list = [tuple(s) for s in (sizes or [size])]
     shader = _as_shader(shader)
