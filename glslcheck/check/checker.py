@@ -6,7 +6,8 @@ typing of every expression (no implicit conversions), l-values, constant express
 flow placement (`break`, `continue`, `switch`), array sizes and constant indexes, the Shadertoy
 entry point and the uniforms each tab sees. The typing rules themselves live in `types.py` and
 the built-in table in `builtins.py`; this module applies them to the tree and records the
-results on a `Model`. Errors are collected, never raised here; `check()` decides.
+results on a `Model`. Errors are collected, never raised here; `check()` decides. Statements
+go to `stmt_<Node>` methods and expressions to `expr_<Node>` ones (`ast.NodeVisitor.dispatch`).
 
 Where GLSL leaves a choice, the behaviour follows glslangValidator on the program Shadertoy
 builds (see tests/check/test_glslang_agreement.py for the cases where it deliberately does not).
@@ -51,7 +52,7 @@ def _float_hint(node: A.Node) -> str | None:
 _RENAMED_UNIFORMS = {"iGlobalTime": "iTime"}
 
 
-class Checker:
+class Checker(A.NodeVisitor):
     def __init__(self, parse_result: Any, tab: str) -> None:
         self.pr = parse_result
         self.ast: A.TranslationUnit = parse_result.ast
@@ -576,11 +577,16 @@ class Checker:
             self.stmt(s)
 
     def stmt(self, s: A.Node) -> None:
-        method = getattr(self, "stmt_" + type(s).__name__, None)
-        if method is None:
-            self.error(f"unexpected {type(s).__name__} here", s)
-            return
-        method(s)
+        self.dispatch("stmt_", s)
+
+    def missing(self, prefix: str, node: A.Node) -> T.Type | None:
+        """A node with no `stmt_` (or `expr_`) method where a statement (or expression) goes:
+        an error at it (the expression's type is ERROR, which silences the errors above it)."""
+        if prefix == "expr_":
+            self.error(f"'{type(node).__name__}' is not an expression", node)
+            return ERROR
+        self.error(f"unexpected {type(node).__name__} here", node)
+        return None
 
     def stmt_Compound(self, s: A.Compound) -> None:
         self.push("block")
@@ -749,12 +755,7 @@ class Checker:
         return id(node) in self.consts
 
     def expr(self, node: A.Node) -> T.Type:
-        method = getattr(self, "expr_" + type(node).__name__, None)
-        if method is None:
-            self.error(f"'{type(node).__name__}' is not an expression", node)
-            t = ERROR
-        else:
-            t = method(node)
+        t = self.dispatch("expr_", node)
         self.types[id(node)] = t
         return t
 
