@@ -397,12 +397,14 @@ def diff_paths(path: str | os.PathLike, count: int) -> Iterator[Path]:
 
 
 class Progress:
-    """A one-line progress bar redrawn with '\\r': `[#####.....] 5/10 label`.
+    """A one-line progress bar redrawn with '\\r': `verify [#####.....] 5/10 label`.
 
-    Disabled (a no-op) when `enabled` is False. `finish()` ends the line.
+    Disabled (a no-op) when `enabled` is False. `finish()` ends the line. `NAME` starts the line
+    (bench's bar is a subclass with its own).
     """
 
     WIDTH = 24
+    NAME = "verify"
 
     def __init__(self, total: int, stream=None, enabled: bool = True):
         self.total = max(int(total), 1)
@@ -417,7 +419,7 @@ class Progress:
             return
         filled = self.WIDTH * min(self.done, self.total) // self.total
         bar = "#" * filled + "." * (self.WIDTH - filled)
-        line = f"\rverify [{bar}] {self.done}/{self.total} {label}"
+        line = f"\r{self.NAME} [{bar}] {self.done}/{self.total} {label}"
         self.stream.write(line[:120].ljust(80))
         self.stream.flush()
         self._drawn = True

@@ -852,12 +852,8 @@ class Checker(A.NodeVisitor):
         return None
 
     def expr_Unary(self, n: A.Unary) -> T.Type:
-        t = self.expr(n.operand)
-        if t is ERROR:
-            return ERROR
-        res = T.unary_result(n.op, t)
-        if isinstance(res, str):
-            self.error(res, n)
+        t, res = self._unary(n)
+        if res is ERROR:
             return ERROR
         if n.op in ("++", "--"):
             self.require_lvalue(n.operand, f"'{n.op}'")
@@ -866,15 +862,22 @@ class Checker(A.NodeVisitor):
         return res
 
     def expr_Postfix(self, n: A.Postfix) -> T.Type:
+        _, res = self._unary(n)
+        if res is not ERROR:
+            self.require_lvalue(n.operand, f"'{n.op}'")
+        return res
+
+    def _unary(self, n: A.Unary | A.Postfix) -> tuple[T.Type, T.Type]:
+        """(the operand's type, the result's) of a prefix or postfix operator; the result is
+        ERROR after an error (the operator's is reported here)."""
         t = self.expr(n.operand)
         if t is ERROR:
-            return ERROR
+            return t, ERROR
         res = T.unary_result(n.op, t)
         if isinstance(res, str):
             self.error(res, n)
-            return ERROR
-        self.require_lvalue(n.operand, f"'{n.op}'")
-        return res
+            return t, ERROR
+        return t, res
 
     def expr_Assignment(self, n: A.Assignment) -> T.Type:
         tt = self.expr(n.target)

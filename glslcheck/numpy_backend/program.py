@@ -47,7 +47,7 @@ import numpy as np
 
 from ..diagnostics import Diagnostic, GlslError, InputError, Location
 from ..driver_profile import host_model
-from ..shadertoy import DEFAULT_SIZE, UNIFORMS_BY_NAME, frame_uniforms, sample_offsets
+from ..shadertoy import DEFAULT_SIZE, UNIFORMS_BY_NAME, FrameInputs, frame_inputs
 from . import workers
 from .frame import (MIN_TILE_LANES, Budget, Cancelled, Compaction, FrameSpec, Lanes, State,
                     execute_module, frame_tiles, render_tile)
@@ -279,42 +279,27 @@ class NumpyProgram:
                 self._modules[precision] = execute_module(self.source, self.filename, self.meta, precision, self._code)
             return self._modules[precision]
 
-    def render(
-        self,
-        size: tuple[int, int] = DEFAULT_SIZE,
-        time: float = 0.0,
-        frame: int = 0,
-        mouse: tuple[float, float, float, float] = (0.0, 0.0, 0.0, 0.0),
-        date=None,
-        time_delta: float = 1.0 / 60.0,
-        frame_rate: float = 60.0,
-        samples: int = 1,
-        precision: str = "float32",
-        stats: bool = False,
-        channels=None,
-    ) -> np.ndarray:
+    @frame_inputs
+    def render(self, inputs: FrameInputs, precision: str = "float32", stats: bool = False,
+               channels=None) -> np.ndarray:
         """Render one frame: float32 (height, width, 4), row 0 = top of the image, unclamped.
 
-        Arguments as `GLProgram.render`; `precision` is the float dtype inside the shader.
-        `channels`: the inputs of iChannel0..3 (glslcheck.channels.ChannelInput or None).
-        Discarded pixels are (0, 0, 0, 0), the GL backend's clear colour."""
-        width, height = int(size[0]), int(size[1])
-        if width < 1 or height < 1:
-            raise ValueError(f"size must be at least 1x1, not {width}x{height}")
-        offsets = sample_offsets(samples)
+        Arguments as `GLProgram.render` (`shadertoy.FrameInputs`, then `channels`: the inputs of
+        iChannel0..3, glslcheck.channels.ChannelInput or None); `precision` is the float dtype
+        inside the shader. Discarded pixels are (0, 0, 0, 0), the GL backend's clear colour."""
         ns = self.module(precision)
-        values = frame_uniforms(width, height, time, frame, mouse, date, time_delta, frame_rate)
+        values = inputs.uniforms()
         if channels is not None:  # each ChannelInput's repr is unique: a new input is a new frame key
             from ..channels import channel_uniforms
 
             values.update(channel_uniforms(channels))
-        key = _FrameKey(width, height, samples, precision, stats, self.loop_limit,
+        key = _FrameKey(inputs.width, inputs.height, inputs.samples, precision, stats, self.loop_limit,
                         tuple((u, repr(values.get(u, UNIFORMS_BY_NAME[u].default))) for u in self.uniforms))
         if not stats:
             hit = self._cached(key)
             if hit is not None:
                 return hit
-        spec = self._frame_spec(key, ns, values, offsets)
+        spec = self._frame_spec(key, ns, values, inputs.offsets)
         image, cached, all_stats = self._schedule(ns, spec, precision)
         self._store(key, cached, all_stats)
         return image
