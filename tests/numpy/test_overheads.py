@@ -222,6 +222,7 @@ def test_tiles_of_one_colour_are_written_whole(make_shader, knobs, monkeypatch):
         "    if (f.x < 10.0) c = vec4(f, 0.5, 0.0);   // no lane of the tiles right of x = 16 runs it\n"
         "    o = c;\n"
         "}"))
+    prog.threads = 1  # in this process (a pool left up by an earlier test would take "auto" frames)
     tiles = []
     real = np.tile                                       # the one-colour path repeats one pixel
     monkeypatch.setattr(F.np, "tile", lambda a, n: (len(a) == 4 and tiles.append(n)) or real(a, n))
