@@ -28,7 +28,8 @@ ROOT = os.path.dirname(HERE)
 sys.path.insert(0, ROOT)
 
 from glslcheck.diagnostics import register_source  # noqa: E402
-from glslcheck.numpy_backend.program import TILE_LANES, compile_numpy  # noqa: E402
+from glslcheck.numpy_backend.frame import TILE_LANES  # noqa: E402
+from glslcheck.numpy_backend.program import compile_numpy  # noqa: E402
 from glslcheck.numpy_backend.runtime import HOST_FMA, Runtime  # noqa: E402
 from glslcheck.sources import Shader, Source, load_shader  # noqa: E402
 

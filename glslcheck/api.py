@@ -29,11 +29,11 @@ from typing import Any
 
 import numpy as np
 
-from .shadertoy import DEFAULT_SIZE
+from .precision import check_precision
+from .shadertoy import FrameInputs, frame_inputs
 from .sources import Shader, load_shader
 
 BACKENDS = ("numpy", "gl", "webgl")
-PRECISIONS = ("float16", "float32", "float64")
 
 
 class Program:
@@ -44,24 +44,12 @@ class Program:
         self.backend = backend
         self.impl = impl
 
-    def render(
-        self,
-        size: tuple[int, int] = DEFAULT_SIZE,
-        time: float = 0.0,
-        frame: int = 0,
-        mouse: tuple[float, float, float, float] = (0.0, 0.0, 0.0, 0.0),
-        date=None,
-        precision: str = "float32",
-        samples: int = 1,
-        time_delta: float = 1.0 / 60.0,
-        frame_rate: float = 60.0,
-        stats: bool = False,
-    ) -> np.ndarray:
-        """One frame; see the module docstring."""
-        if precision not in PRECISIONS:
-            raise ValueError(f"precision must be one of {', '.join(PRECISIONS)}, not {precision!r}")
-        common = dict(size=size, time=time, frame=frame, mouse=mouse, date=date, time_delta=time_delta,
-                      frame_rate=frame_rate, samples=samples)
+    @frame_inputs
+    def render(self, inputs: FrameInputs, precision: str = "float32", stats: bool = False) -> np.ndarray:
+        """One frame; see the module docstring (the arguments: `shadertoy.FrameInputs`, then
+        `precision` and `stats`)."""
+        check_precision(precision)
+        common = inputs.keywords()
         if self.backend in ("gl", "webgl"):
             if precision != "float32":
                 raise ValueError(f"the {self.backend.upper()} backend renders in float32 only (the driver's highp)")

@@ -48,10 +48,10 @@ from typing import Callable, Sequence
 import numpy as np
 
 from .compare import compare
+from .precision import PRECISIONS
 from .sources import Shader, load_shader
 
 SAMPLES = (1, 4, 16)
-NUMPY_PRECISIONS = ("float16", "float32", "float64")
 REFERENCE = ("numpy", "float64", 16)  # backend, precision, samples
 DEFAULT_SIZE = (400, 225)
 DEFAULT_RUNS = 3
@@ -85,7 +85,7 @@ def configurations(samples: Sequence[int] = SAMPLES, webgl: bool = False) -> lis
     Chromium, when asked for), then NumPy by precision."""
     configs = [Config("gl", "float32", s) for s in samples]
     configs += [Config("webgl", "float32", s) for s in samples if webgl]
-    configs += [Config("numpy", p, s) for p in NUMPY_PRECISIONS for s in samples]
+    configs += [Config("numpy", p, s) for p in PRECISIONS for s in samples]
     return configs
 
 
@@ -489,7 +489,7 @@ def write_plot(rows: Sequence[Row], path: str | os.PathLike, title: str | None =
 
     # Legend: colours are backends and precisions, shapes are samples per pixel.
     symbols = [lambda x, y, c=COLOURS[k]: draw.rectangle([x, y - 6 * S, x + 12 * S, y + 6 * S], fill=c)
-               for k in ("gl", "float16", "float32", "float64")]
+               for k in ("gl", *PRECISIONS)]
     symbols += [lambda x, y, n=n: _marker(draw, x + 6 * S, y, n, (110, 110, 110), 6 * S) for n in (1, 4, 16)]
     symbols.append(lambda x, y: draw.line([(x - 4 * S, y), (x + 14 * S, y)], fill=FRONT_COLOUR, width=3 * S))
     for symbol, text, (x, row) in zip(symbols, LEGEND, legend):

@@ -161,7 +161,7 @@ class Probe:
         self._tracers = _PerThread()
 
     def module(self, precision: str) -> dict:
-        from .numpy_backend.program import execute_module
+        from .numpy_backend.frame import execute_module
 
         if precision not in self._modules:
             self._modules[precision] = execute_module(self.source, self.filename, self.meta, precision)
@@ -181,7 +181,8 @@ class Probe:
     def run(self, precision: str, inputs: Inputs, frags: np.ndarray, width: int, tracer: LaneTracer) -> np.ndarray:
         """RGBA (4, lanes) of the traced module on fragment coordinates `frags` (2, lanes),
         lanes in rows of `width` (for derivatives), with `tracer` as T."""
-        from .numpy_backend.program import Lanes, State, _uniform_value
+        from .numpy_backend.frame import Lanes, State
+        from .numpy_backend.program import _uniform_value
         from .shadertoy import UNIFORMS_BY_NAME
 
         ns = self.module(precision)
@@ -269,7 +270,8 @@ class Probe:
     def nan_origins(self, inputs: Inputs) -> NanReport:
         """Render the frame, then run the traced module on its NaN/Inf pixels and group them by
         where their first NaN or Inf appeared."""
-        from .numpy_backend.program import TILE_LANES, _pool
+        from .numpy_backend.frame import TILE_LANES
+        from .numpy_backend.program import _pool
 
         w, h = inputs.size
         img = self.program().render(size=inputs.size, time=inputs.time, frame=inputs.frame, mouse=inputs.mouse,

@@ -43,12 +43,12 @@ import numpy as np
 
 from .compare import Comparison, compare
 from .diagnostics import GlslError, InputError
+from .precision import check_precision
 from .shadertoy import DEFAULT_SIZE
 from .sources import Shader, load_shader
 
 BACKENDS = ("numpy", "gl")
 ALL_BACKENDS = ("numpy", "gl", "webgl")  # webgl: headless Chromium (glslcheck/webgl_backend)
-PRECISIONS = ("float32", "float16", "float64")
 DEFAULT_FPS = 60.0
 
 
@@ -255,8 +255,7 @@ def verify_frames(
     test, reported as "numpy"); `programs` gives already compiled programs instead. Both are
     compiled before the first frame, so a GLSL error or a missing GL context surfaces at once.
     """
-    if precision not in PRECISIONS:
-        raise ValueError(f"precision must be one of {', '.join(PRECISIONS)}, not {precision!r}")
+    check_precision(precision)
     specs = frame_specs(time, times, frames, fps, frame)
     size_list = [tuple(s) for s in (sizes or [size])]
     shader = _as_shader(shader)
@@ -398,12 +397,14 @@ def diff_paths(path: str | os.PathLike, count: int) -> Iterator[Path]:
 
 
 class Progress:
-    """A one-line progress bar redrawn with '\\r': `[#####.....] 5/10 label`.
+    """A one-line progress bar redrawn with '\\r': `verify [#####.....] 5/10 label`.
 
-    Disabled (a no-op) when `enabled` is False. `finish()` ends the line.
+    Disabled (a no-op) when `enabled` is False. `finish()` ends the line. `NAME` starts the line
+    (bench's bar is a subclass with its own).
     """
 
     WIDTH = 24
+    NAME = "verify"
 
     def __init__(self, total: int, stream=None, enabled: bool = True):
         self.total = max(int(total), 1)
@@ -418,7 +419,7 @@ class Progress:
             return
         filled = self.WIDTH * min(self.done, self.total) // self.total
         bar = "#" * filled + "." * (self.WIDTH - filled)
-        line = f"\rverify [{bar}] {self.done}/{self.total} {label}"
+        line = f"\r{self.NAME} [{bar}] {self.done}/{self.total} {label}"
         self.stream.write(line[:120].ljust(80))
         self.stream.flush()
         self._drawn = True

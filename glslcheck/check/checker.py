@@ -6,7 +6,8 @@ typing of every expression (no implicit conversions), l-values, constant express
 flow placement (`break`, `continue`, `switch`), array sizes and constant indexes, the Shadertoy
 entry point and the uniforms each tab sees. The typing rules themselves live in `types.py` and
 the built-in table in `builtins.py`; this module applies them to the tree and records the
-results on a `Model`. Errors are collected, never raised here; `check()` decides.
+results on a `Model`. Errors are collected, never raised here; `check()` decides. Statements
+go to `stmt_<Node>` methods and expressions to `expr_<Node>` ones (`ast.NodeVisitor.dispatch`).
 
 Where GLSL leaves a choice, the behaviour follows glslangValidator on the program Shadertoy
 builds (see tests/check/test_glslang_agreement.py for the cases where it deliberately does not).
@@ -52,7 +53,7 @@ def _float_hint(node: A.Node) -> str | None:
 _RENAMED_UNIFORMS = {"iGlobalTime": "iTime"}
 
 
-class Checker:
+class Checker(A.NodeVisitor):
     def __init__(self, parse_result: Any, tab: str, channel_types: dict[str, T.Type] | None = None) -> None:
         self.pr = parse_result
         self.channel_types = channel_types or {}  # iChannelN -> its sampler type (channel_types.py)
@@ -578,11 +579,16 @@ class Checker:
             self.stmt(s)
 
     def stmt(self, s: A.Node) -> None:
-        method = getattr(self, "stmt_" + type(s).__name__, None)
-        if method is None:
-            self.error(f"unexpected {type(s).__name__} here", s)
-            return
-        method(s)
+        self.dispatch("stmt_", s)
+
+    def missing(self, prefix: str, node: A.Node) -> T.Type | None:
+        """A node with no `stmt_` (or `expr_`) method where a statement (or expression) goes:
+        an error at it (the expression's type is ERROR, which silences the errors above it)."""
+        if prefix == "expr_":
+            self.error(f"'{type(node).__name__}' is not an expression", node)
+            return ERROR
+        self.error(f"unexpected {type(node).__name__} here", node)
+        return None
 
     def stmt_Compound(self, s: A.Compound) -> None:
         self.push("block")
@@ -751,12 +757,7 @@ class Checker:
         return id(node) in self.consts
 
     def expr(self, node: A.Node) -> T.Type:
-        method = getattr(self, "expr_" + type(node).__name__, None)
-        if method is None:
-            self.error(f"'{type(node).__name__}' is not an expression", node)
-            t = ERROR
-        else:
-            t = method(node)
+        t = self.dispatch("expr_", node)
         self.types[id(node)] = t
         return t
 
@@ -861,12 +862,8 @@ class Checker:
         return None
 
     def expr_Unary(self, n: A.Unary) -> T.Type:
-        t = self.expr(n.operand)
-        if t is ERROR:
-            return ERROR
-        res = T.unary_result(n.op, t)
-        if isinstance(res, str):
-            self.error(res, n)
+        t, res = self._unary(n)
+        if res is ERROR:
             return ERROR
         if n.op in ("++", "--"):
             self.require_lvalue(n.operand, f"'{n.op}'")
@@ -875,15 +872,22 @@ class Checker:
         return res
 
     def expr_Postfix(self, n: A.Postfix) -> T.Type:
+        _, res = self._unary(n)
+        if res is not ERROR:
+            self.require_lvalue(n.operand, f"'{n.op}'")
+        return res
+
+    def _unary(self, n: A.Unary | A.Postfix) -> tuple[T.Type, T.Type]:
+        """(the operand's type, the result's) of a prefix or postfix operator; the result is
+        ERROR after an error (the operator's is reported here)."""
         t = self.expr(n.operand)
         if t is ERROR:
-            return ERROR
+            return t, ERROR
         res = T.unary_result(n.op, t)
         if isinstance(res, str):
             self.error(res, n)
-            return ERROR
-        self.require_lvalue(n.operand, f"'{n.op}'")
-        return res
+            return t, ERROR
+        return t, res
 
     def expr_Assignment(self, n: A.Assignment) -> T.Type:
         tt = self.expr(n.target)

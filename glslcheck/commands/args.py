@@ -30,6 +30,8 @@ import argparse
 import math
 from typing import Callable, Sequence
 
+from ..precision import PRECISIONS  # noqa: F401 - the --precision choices of render and verify
+
 MAX_SIDE = 16384
 MAX_PIXELS = 4096 * 4096
 MAX_SAMPLES = 256
@@ -38,7 +40,6 @@ MAX_FRAME = 2**31 - 1
 MAX_FRAMES = 1_000_000
 MIN_FPS, MAX_FPS = 0.001, 1000.0
 MAX_RUNS = 1000
-PRECISIONS = ("float32", "float16", "float64")
 
 
 def arg(parse: Callable[[str], object]) -> Callable[[str], object]:

@@ -41,15 +41,7 @@ from . import args as A
 class _BenchProgress(Progress):
     """verify's progress bar, named 'bench'."""
 
-    def step(self, label: str = "") -> None:
-        self.done += 1
-        if not self.enabled:
-            return
-        filled = self.WIDTH * min(self.done, self.total) // self.total
-        bar = "#" * filled + "." * (self.WIDTH - filled)
-        self.stream.write(f"\rbench [{bar}] {self.done}/{self.total} {label}"[:120].ljust(80))
-        self.stream.flush()
-        self._drawn = True
+    NAME = "bench"
 
 
 def add_arguments(p) -> None:

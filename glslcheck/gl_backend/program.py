@@ -32,8 +32,8 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from ..diagnostics import Diagnostic, GlslError, Location, source_line
-from ..shadertoy import (DEFAULT_SIZE, OFFSET_UNIFORM, UNIFORMS, UNIFORMS_BY_NAME, Program, build_program,
-                         frame_uniforms, sample_offsets)
+from ..shadertoy import (OFFSET_UNIFORM, UNIFORMS, UNIFORMS_BY_NAME, FrameInputs, Program, build_program,
+                         frame_inputs, sample_offsets)  # sample_offsets: re-exported by gl_backend
 from ..sources import Shader
 from ..driver_profile import driver_model
 from .context import get_context
@@ -223,32 +223,20 @@ class GLProgram:
             self._variants[samples_offset] = _compile(self.ctx, program)
         return self._variants[samples_offset]
 
-    def render(
-        self,
-        size: tuple[int, int] = DEFAULT_SIZE,
-        time: float = 0.0,
-        frame: int = 0,
-        mouse: tuple[float, float, float, float] = (0.0, 0.0, 0.0, 0.0),
-        date=None,
-        time_delta: float = 1.0 / 60.0,
-        frame_rate: float = 60.0,
-        samples: int = 1,
-        channels=None,
-    ) -> np.ndarray:
+    @frame_inputs
+    def render(self, inputs: FrameInputs, channels=None) -> np.ndarray:
         """Render one frame: float32 array (height, width, 4), row 0 = top of the image.
 
-        `size` is (width, height). `date`: see the module docstring (default 2026-01-01 00:00).
-        `samples` must be a perfect square; see the module docstring for the sub-pixel grid.
-        Values are what the shader wrote (RGBA32F): not clamped to [0, 1], not quantised; the
-        Image pass has alpha 1.
+        Arguments: `shadertoy.FrameInputs` (size=(width, height), time, frame, mouse, date,
+        time_delta, frame_rate, samples), then `channels`. `date`: see the module docstring
+        (default 2026-01-01 00:00). `samples` must be a perfect square; see the module docstring
+        for the sub-pixel grid. Values are what the shader wrote (RGBA32F): not clamped to
+        [0, 1], not quantised; the Image pass has alpha 1.
         """
-        width, height = int(size[0]), int(size[1])
-        if width < 1 or height < 1:
-            raise ValueError(f"size must be at least 1x1, not {width}x{height}")
-        offsets = sample_offsets(samples)
+        width, height, samples, offsets = inputs.width, inputs.height, inputs.samples, inputs.offsets
         compiled = self._variant(samples > 1)
-        values = frame_uniforms(width, height, time, frame, mouse, date, time_delta, frame_rate)
-        inputs = []
+        values = inputs.uniforms()
+        channel_textures = []
         if channels is not None:  # `channels`: iChannel0..3 as channels.ChannelInput or None
             from ..channels import channel_uniforms
 
@@ -262,7 +250,7 @@ class GLProgram:
         texture = ctx.texture((width, height), 4, dtype="f4")
         fbo = ctx.framebuffer(color_attachments=[texture])
         try:
-            inputs = [_bind_channel(ctx, unit, c) for unit, c in enumerate(channels or ()) if c is not None]
+            channel_textures = [_bind_channel(ctx, unit, c) for unit, c in enumerate(channels or ()) if c is not None]
             fbo.use()
             total = None
             for dx, dy in offsets:
@@ -276,7 +264,7 @@ class GLProgram:
         finally:
             fbo.release()
             texture.release()
-            for t in inputs:
+            for t in channel_textures:
                 t.release()
         image = (total / len(offsets)).astype(np.float32)
         return np.ascontiguousarray(image[::-1])  # GL rows go bottom-up; images top-down

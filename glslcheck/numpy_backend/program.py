@@ -1,12 +1,12 @@
-"""Compiling a shader to its NumPy module and rendering it: tiles, lanes, masks, compaction, stats.
+"""Compiling a shader to its NumPy module and rendering its frames: scheduling, caches, budgets, stats.
 
-This module owns what happens around the generated code (`transpile.py`): executing the module
-in a restricted namespace (`__builtins__` empty; only `rt`, the runtime, and `X`, the lane
-helpers below, are visible), the per-invocation state `State` (uniforms, globals, discard mask,
-statistics), splitting the image into tiles rendered by worker processes or a thread pool,
-supersampling, the frame cache for shaders that do not animate, the error for a runaway
-loop, and the frame's budgets: time (FRAME_SECONDS, `Budget`) and memory (MEMORY_FRACTION,
-tiles sized to the shader's per-lane state, `NumpyProgram._fit_memory`).
+This module owns what happens around one frame: the frame cache for shaders that do not
+animate, the uniform values and globals every tile shares (`FrameSpec`), the order and the
+workers of the tiles (worker processes, workers.py, or a thread pool), the frame's budgets,
+time (FRAME_SECONDS, `frame.Budget`) and memory (MEMORY_FRACTION, tiles sized to the shader's
+per-lane state, `NumpyProgram._fit_memory`), and the lane statistics. What runs inside a tile
+(the namespace of the generated code, `State`, `Lanes`, `render_tile`) is frame.py's, shared
+with the worker processes; the imports go one way: program -> workers -> frame.
 
 Library API:
 
@@ -17,32 +17,22 @@ Library API:
     # `precision` ("float16" | "float32" | "float64", the float dtype used inside the shader)
     prog.last_stats                         # lanes per function/branch/loop of the last render
     prog.parallel = "auto"                  # or "processes" / "threads" (env GLSLCHECK_PARALLEL)
+    prog.compaction = Compaction(min_lanes=16)  # when sparse regions run on gathered lanes
     module = load_module("shader.py")       # a module written by `glslcheck transpile`
 
-Tiles: bands of about TILE_LANES pixels (up to TILE_WIDTH wide) keep a shader's temporaries
-small (a few hundred kB each); tiles start at even x and y, so derivative quads (2x2, see the runtime) never
-straddle two tiles (`frame_tiles`; `render_tile` renders one). `os.cpu_count()` worker
-processes (workers.py) or threads of one process-wide pool render them. Threads share the GIL,
-which NumPy releases only inside each operation: a tile runs hundreds of short ones, so two
-threads gain little (nothing on a sparse scene). Processes do not share it but cost a few
-tenths of a second to start, so `parallel="auto"` uses threads until a program has rendered
-for PROCESSES_AFTER seconds in this process (or a pool is already up). Tiles write their rows
-straight into the top-first image (with threads also into the frame cache's copy, whose
-buffers are reused; worker processes write a shared file that the caller and the cache map
-without copying it). Peak memory is a few tiles' temporaries per worker plus the output image
-and its cached copy.
-
-Fixed costs per tile are kept off the lanes: a tile's fragment coordinates are made once and kept
-read-only for later frames (gl_FragCoord only when the code reads it; `_fragments`), uniform
-(1,) masks combine without full-lane
-arrays, and a compacted view (`Lanes.gather`) gathers globals and fragment coordinates only
-when the region first reads them.
+A frame is cut into tiles (`frame.frame_tiles`); `os.cpu_count()` worker processes or threads
+of one process-wide pool render them. Threads share the GIL, which NumPy releases only inside
+each operation: a tile runs hundreds of short ones, so two threads gain little (nothing on a
+sparse scene). Processes do not share it but cost a few tenths of a second to start, so
+`parallel="auto"` uses threads until a program has rendered for PROCESSES_AFTER seconds in
+this process (or a pool is already up). Tiles write their rows straight into the top-first
+image (with threads also into the frame cache's copy, whose buffers are reused; worker
+processes write a shared file that the caller and the cache map without copying it). Peak
+memory is a few tiles' temporaries per worker plus the output image and its cached copy.
 """
 
 from __future__ import annotations
 
-import functools
-import linecache
 import math
 import os
 import sys
@@ -51,21 +41,19 @@ import time as _time
 from collections import OrderedDict
 from concurrent.futures import FIRST_EXCEPTION, ThreadPoolExecutor, wait
 from dataclasses import dataclass, field
-from typing import Any
+from typing import Any, NamedTuple
 
 import numpy as np
 
 from ..diagnostics import Diagnostic, GlslError, InputError, Location
 from ..driver_profile import host_model
-from ..shadertoy import DEFAULT_SIZE, UNIFORMS_BY_NAME, frame_uniforms, sample_offsets
-from .runtime import Runtime, Struct
-from .transpile import SMALL_STATE
+from ..shadertoy import DEFAULT_SIZE, UNIFORMS_BY_NAME, FrameInputs, frame_inputs
+from . import workers
+from .frame import (MIN_TILE_LANES, Budget, Cancelled, Compaction, FrameSpec, Lanes, State,
+                    execute_module, frame_tiles, render_tile)
+from .runtime import Runtime
+from .transpile import SMALL_STATE, transpile_shader
 
-TILE_LANES = 49152  # lanes per tile: fewer calls in compacted regions; full-lane work measured flat 24k-49k
-TILE_WIDTH = 1024  # widest tile; wide bands keep rows contiguous in the output image
-TILE_HEIGHT = None  # None: TILE_LANES // tile width (rounded to even); set both to force a tile size
-COMPACT_FRACTION = 0.5  # compact a region when fewer than this fraction of the lanes take it
-COMPACT_MIN_LANES = 1024  # below this many lanes gathering costs more than it saves
 CACHE_FRAMES = 8
 _CPUS = os.cpu_count()
 CACHE_BYTES = 256 * 2**20  # and at most this much of them (a 3840x2160 frame is 127 MiB), the newest always kept
@@ -82,55 +70,10 @@ FRAME_SECONDS = 300.0
 # (estimated by the transpiler, `transpile.lane_state`) must fit: large local arrays get smaller
 # tiles, and a shader whose 2x2 tile does not fit is refused with an error at its largest variable.
 MEMORY_FRACTION = 0.5
-MIN_TILE_LANES = 4  # one 2x2 derivative quad
 # Uniforms that change from frame to frame; a shader that reads none of them renders one image
 # for a whole animation.
 ANIMATED_UNIFORMS = ("iTime", "iFrame", "iTimeDelta", "iDate", "iMouse", "iFrameRate")
 
-
-# ---------------------------------------------------------------------------------------------
-# Per-invocation state and the lane helpers the generated code calls as `X.<name>`
-# ---------------------------------------------------------------------------------------------
-
-
-class Budget:
-    """When a frame must stop: at `deadline` (`time.monotonic()`, one clock for every process of
-    the machine, so worker processes get it in their message) or once `cancelled` (Ctrl-C in
-    the caller, or an error in another tile). The generated code's `X.count` reads one flag,
-    `stop`, which a timer thread sets at the deadline (reading the clock there instead cost
-    more than the rest of `X.count`). Picklable (without its timer)."""
-
-    def __init__(self, seconds: float) -> None:
-        self.seconds = seconds
-        self.deadline = _time.monotonic() + seconds
-        self.cancelled = False
-        self.stop = False
-        self._timer: threading.Timer | None = None
-
-    def __getstate__(self) -> dict:
-        return {**self.__dict__, "_timer": None}
-
-    def cancel(self) -> None:
-        self.cancelled = self.stop = True
-
-    def start(self) -> "Budget":
-        """Arm the deadline in this process (until `finish`)."""
-        self._timer = threading.Timer(max(0.0, self.deadline - _time.monotonic()), self._expire)
-        self._timer.daemon = True
-        self._timer.start()
-        return self
-
-    def _expire(self) -> None:
-        self.stop = True
-
-    def finish(self) -> None:
-        if self._timer is not None:
-            self._timer.cancel()
-            self._timer = None
-
-
-class Cancelled(Exception):
-    """A tile stopped because its frame was cancelled (the frame's own error is raised)."""
 
 
 def memory_budget() -> int:
@@ -187,297 +130,6 @@ def frame_seconds() -> float:
     return value
 
 
-class State:
-    """What one tile's invocation carries: `lanes`, `width` (tile width, for derivatives),
-    `frag_coord` (vec2 lanes), `frag_coord4` (gl_FragCoord), `discard` (mask), uniforms
-    `u_<name>`, globals `g_<name>`, `stats` (region id -> lanes, shared), `parent` (when this
-    is a compacted view of another state), `budget` (the frame's `Budget`; None: no limit)."""
-
-    budget: Budget | None = None
-
-    passes = None  # [passes left] of llvmpipe's loop limiter when emulated (Lanes.tick), else None
-
-    def __init__(self, **values: Any) -> None:
-        self.__dict__.update(values)
-
-    def __getattr__(self, name: str) -> Any:
-        # a compacted view gathers globals and fragment coordinates on first use only
-        lazy = self.__dict__.get("lazy")
-        if lazy is None or name not in lazy:
-            raise AttributeError(name)
-        lazy.discard(name)
-        parent = self.parent
-        g = Lanes._take(getattr(parent, name), self.idx, parent.lanes)
-        self.__dict__[name] = g
-        self.gathered[name] = g
-        return g
-
-
-@dataclass
-class _Gathered:
-    values: tuple
-    originals: tuple
-
-
-class Lanes:
-    """Mask and compaction helpers. A mask is None (all lanes of the current lane set) or a bool
-    array of shape (1,) or (lanes,)."""
-
-    NO = np.zeros(1, dtype=np.bool_)
-
-    def __init__(self, meta: dict, rt: Runtime | None = None) -> None:
-        self.meta = meta
-        self.loops = meta.get("loops", {})
-        self.rt = rt
-        self.limited: set[int] = set()  # loops llvmpipe's pass budget stopped (see tick)
-
-    def put(self, old, new, m):
-        """`rt.assign(old, new, m)` that skips the select when the mask is uniform."""
-        if m is not None and m.shape[-1] == 1:
-            if not m[0]:
-                return old
-            m = None
-        return self.rt.assign(old, new, m)
-
-    # masks ------------------------------------------------------------------------------------
-    # A mask of shape (1,) is uniform: all of the current lanes or none. Combining it with
-    # another mask returns one of the operands instead of computing a full-lane array.
-    @staticmethod
-    def and_(a, b):
-        if a is None:
-            return b
-        if b is None:
-            return a
-        if a.shape[-1] == 1:
-            return b if a[0] else a
-        if b.shape[-1] == 1:
-            return a if b[0] else b
-        return a & b
-
-    @staticmethod
-    def or_(a, b):
-        if a is None or b is None:
-            return None
-        if a.shape[-1] == 1:
-            return a if a[0] else b
-        if b.shape[-1] == 1:
-            return b if b[0] else a
-        return a | b
-
-    def andnot(self, a, b):
-        if b is None:
-            return self.NO
-        if b.shape[-1] == 1:
-            return self.NO if b[0] else a
-        nb = ~b
-        if a is None:
-            return nb
-        if a.shape[-1] == 1:
-            return nb if a[0] else a
-        return a & nb
-
-    def refresh(self, m, live, *drop):
-        m = self.and_(m, live)
-        for d in drop:
-            m = self.andnot(m, d)
-        return m
-
-    @staticmethod
-    def not_(m):
-        return None if m is None else ~m
-
-    @staticmethod
-    def live(m) -> bool:
-        return m is None or bool(m.any())
-
-    @staticmethod
-    def every(c) -> bool:
-        """True when every lane of a bool value is true (inactive lanes included: a cheap,
-        conservative test that lets a select skip computing its other side)."""
-        return bool(c.all())
-
-    @staticmethod
-    def true(c) -> bool:
-        """A uniform condition's value (shape (1,) by construction of the uniformity analysis)."""
-        if c.shape[-1] != 1:
-            raise AssertionError("internal error: a condition judged uniform varies across lanes")
-        return bool(c.reshape(-1)[0])
-
-    # statistics, budget and loops ---------------------------------------------------------------
-    def count(self, S, rid: int, m) -> None:
-        """Called on entering each function, branch and loop iteration: stops the frame when it
-        is over its budget or cancelled, and counts the lanes when statistics are on."""
-        b = S.budget
-        if b is not None and b.stop:
-            self.over_budget(b, rid)
-        st = S.stats
-        if st is None:
-            return
-        n = S.lanes if m is None else (int(np.count_nonzero(m)) if m.shape[-1] != 1 else (S.lanes if m[0] else 0))
-        st[rid] = st.get(rid, 0) + n
-
-    def tick(self, S, lid: int, n: int) -> bool:
-        """llvmpipe's loop limiter, when the program renders with `loop_limit` (gallivm
-        lp_exec_endloop, LP_MAX_TGSI_LOOP_ITERATIONS = 65535): one pass budget per invocation shared
-        by every loop; each pass of a loop costs 1 (the pass that ends it on its condition too:
-        llvmpipe masks the lanes out and runs to the loop's end), and a loop goes round again
-        only while the budget is positive. Called at the top of pass `n` of loop `lid`: the
-        check belongs to the end of pass n - 1. Matches llvmpipe's pass counts exactly:
-        `for (i < 70000)` runs 65,535 times; two loops of 40,000 run 40,000 and 25,534; a loop
-        entered with no budget left runs once; 100 x 1,000 nested runs 65,405 inner passes.
-        The budget is per tile here and per 8-lane group there: for loops whose pass count
-        differs between pixels it can bite at a slightly different pass. True when the loop
-        must stop (recorded in `limited`)."""
-        passes = S.passes
-        if passes is None:
-            return False
-        if n > 1 and passes[0] <= 0:
-            self.limited.add(lid)
-            return True
-        passes[0] -= 1
-        return False
-
-    def over_budget(self, budget: Budget, rid: int) -> None:
-        if budget.cancelled:
-            raise Cancelled()
-        kind, function, path, line = self.meta.get("regions", {}).get(rid, ("", "", "<shader>", 0))
-        _, _, col = self.loops.get(rid, (path, line, 1))
-        where = "this loop" if kind == "loop" else f"this {kind}" if kind in ("if", "else", "case") else f"'{function}'"
-        raise GlslError(Diagnostic(
-            f"the frame was still rendering after {budget.seconds:g} s on the CPU, in {where}; the NumPy "
-            "renderer stops it (a GPU would hang or reset)", Location(path, line, col), rule="numpy-frame-budget",
-            help="bound the loops' iteration counts (nested loops multiply) and the arrays' sizes; "
-                 "GLSLCHECK_FRAME_SECONDS sets the budget"))
-
-    def runaway(self, lid: int) -> None:
-        path, line, col = self.loops.get(lid, ("<shader>", 0, 0))
-        cap = self.meta.get("loop_cap", 0)
-        raise GlslError(Diagnostic(
-            f"this loop did not end after {cap:,} iterations; the NumPy renderer stops it (a GPU would "
-            "hang or reset)", Location(path, line, col), rule="numpy-runaway-loop",
-            help="check the loop's condition and step; give it a constant upper bound"))
-
-    # compaction -------------------------------------------------------------------------------
-    @staticmethod
-    def sparse(S, m):
-        """Active lane indices when compacting pays off, else None."""
-        if m is None or S.lanes < COMPACT_MIN_LANES or m.shape[-1] != S.lanes:
-            return None
-        idx = np.flatnonzero(m)
-        if len(idx) >= COMPACT_FRACTION * S.lanes:
-            return None
-        return idx
-
-    @staticmethod
-    def _take(v, idx, lanes):
-        if isinstance(v, np.ndarray):
-            if v.ndim and v.shape[-1] == lanes and lanes != 1:
-                return np.take(v, idx, axis=-1)  # several times faster than v[..., idx]
-            return v
-        if isinstance(v, Struct):
-            return v.map(lambda x: Lanes._take(x, idx, lanes))
-        return v
-
-    @staticmethod
-    def _put(old, new, idx, lanes):
-        if new is old:
-            return old
-        if isinstance(new, Struct):
-            return Struct(new.type_name, {k: Lanes._put(old[k], new[k], idx, lanes) for k in new.fields})
-        if new is None:  # a mask meaning "every lane of the compacted set"
-            new = np.ones(len(idx), dtype=np.bool_)
-        if not isinstance(new, np.ndarray):
-            return new
-        if old is None:  # a mask that was "every lane"
-            old = np.ones(lanes, dtype=np.bool_)
-        base = np.broadcast_to(old, np.broadcast_shapes(old.shape[:-1], new.shape[:-1]) + (lanes,))
-        out = np.array(base, dtype=old.dtype, copy=True)
-        if out.ndim == 1:
-            out[idx] = new
-            return out
-        # one row at a time: 2.5x faster than out[..., idx] = new on (3, lanes)
-        rows = out.reshape(-1, lanes)
-        news = np.broadcast_to(new, out.shape[:-1] + (len(idx),)).reshape(-1, len(idx))
-        for r in range(rows.shape[0]):
-            rows[r][idx] = news[r]
-        return out
-
-    _LANE_FIELDS = ("discard", "frag_coord", "frag_coord4")
-
-    def gather(self, S, idx, values: tuple):
-        """A compacted view of S (and of `values`) on the lanes `idx`. Globals and fragment
-        coordinates are gathered when the region first reads them (`State.__getattr__`)."""
-        lanes = S.lanes
-        fields = {}
-        lazy = set(S.__dict__.get("lazy") or ())  # fields S itself has not gathered yet
-        for k, v in S.__dict__.items():
-            if k.startswith("g_") or k in self._LANE_FIELDS:
-                if isinstance(v, np.ndarray) and (v.shape[-1] == 1 or lanes == 1):
-                    fields[k] = v  # uniform: the same array serves the compacted lanes
-                else:
-                    lazy.add(k)
-            elif k not in ("lazy", "gathered", "idx"):
-                fields[k] = v
-        child = State(**fields)
-        child.parent = S
-        child.lanes = len(idx)
-        child.idx = idx
-        child.lazy = lazy
-        child.gathered = {k: fields[k] for k in fields if k.startswith("g_") or k in self._LANE_FIELDS}
-        gathered = tuple(self._take(v, idx, lanes) for v in values)
-        return child, _Gathered(gathered, values)
-
-    def scatter(self, S, idx, rec: _Gathered, values: tuple):
-        parent = S.parent
-        lanes = parent.lanes
-        for k, g in S.gathered.items():
-            v = S.__dict__[k]
-            if v is not g:
-                setattr(parent, k, self._put(getattr(parent, k), v, idx, lanes))
-        for k, v in S.__dict__.items():  # globals written in the region before any read of them
-            if k.startswith("g_") and k not in S.gathered:
-                if k in S.lazy or hasattr(parent, k):
-                    setattr(parent, k, self._put(getattr(parent, k), v, idx, lanes))
-                else:
-                    setattr(parent, k, v)
-        out = tuple(self._put(o, v, idx, lanes) if v is not g else o
-                    for o, g, v in zip(rec.originals, rec.values, values))
-        return parent, out
-
-    def push(self, stack: list, S, m, values: tuple):
-        idx = self.sparse(S, m)
-        child, rec = self.gather(S, idx, values)
-        stack.append((idx, rec))
-        return child, rec.values
-
-    def unwind(self, stack: list, S, values: tuple):
-        while stack:
-            idx, rec = stack.pop()
-            S, values = self.scatter(S, idx, rec, values)
-        return S, values
-
-
-# ---------------------------------------------------------------------------------------------
-# Executing generated modules
-# ---------------------------------------------------------------------------------------------
-
-
-def execute_module(source: str, filename: str, meta: dict, precision: str = "float32", code: Any = None) -> dict:
-    """Run generated code in a namespace that holds nothing but the runtime and the helpers.
-
-    The source is registered in `linecache` under `filename`, so tracebacks and debuggers show
-    the generated lines (each with its GLSL line in a comment)."""
-    linecache.cache[filename] = (len(source), None, source.splitlines(True), filename)
-    if code is None:
-        code = compile(source, filename, "exec")
-    ns: dict[str, Any] = {"__builtins__": {}, "__name__": "glslcheck_shader", "rt": None, "X": None}
-    ns["rt"] = rt = Runtime(precision, meta.get("float_to_uint"))
-    rt.fold_constants = True  # Mesa's folding of constants (Runtime.fmul); uniforms are read-only
-    ns["X"] = Lanes(meta, rt)
-    with np.errstate(all="ignore"):  # constants may overflow in float16, as on a mediump GPU
-        exec(code, ns)  # noqa: S102 - generated from a checked AST; every GLSL name is mangled
-    return ns
-
 
 def _uniform_value(rt: Runtime, name: str, value: Any) -> Any:
     u = UNIFORMS_BY_NAME[name]
@@ -528,151 +180,6 @@ class _FrameCache(OrderedDict):
         super().clear()
 
 
-@dataclass
-class FrameSpec:
-    """What every tile of one frame needs; picklable (it travels to worker processes)."""
-
-    width: int
-    height: int
-    base: dict  # u_<uniform> and g_<global> values, the same for every pixel
-    offsets: list  # sub-pixel sample offsets
-    need4: bool  # the code reads gl_FragCoord: build it
-    stats: bool  # count the lanes of each region
-    compaction: tuple  # (COMPACT_FRACTION, COMPACT_MIN_LANES) of the caller, for workers
-
-
-def frame_tiles(width: int, height: int, lanes: int | None = None) -> tuple[tuple[int, int, int, int], ...]:
-    """(x0, y0, w, h) of each tile, y0 from the bottom; tiles start at even x and y, so 2x2
-    derivative quads never straddle two tiles. `lanes`: at most this many per tile (memory)."""
-    tile_lanes = TILE_LANES if lanes is None else max(MIN_TILE_LANES, min(TILE_LANES, lanes))
-    return _frame_tiles(width, height, TILE_WIDTH, TILE_HEIGHT, tile_lanes)
-
-
-@functools.lru_cache(maxsize=64)
-def _frame_tiles(width: int, height: int, tile_width: int, tile_height: int | None,
-                 tile_lanes: int) -> tuple[tuple[int, int, int, int], ...]:
-    tw = min(tile_width, width, max(2, tile_lanes // 4 * 2))  # narrower than a 2-row band of lanes
-    tw += tw % 2 if tw < width else 0
-    th = tile_height or max(2, (tile_lanes // tw) // 2 * 2)
-    return tuple((x0, y0, min(tw, width - x0), min(th, height - y0))  # a tuple: the cache shares it
-                 for y0 in range(0, height, th) for x0 in range(0, width, tw))
-
-
-# Fragment coordinates of tiles already rendered, read-only, by (tile, dtype, sample offset,
-# gl_FragCoord wanted): building them again was 5% of a frame of the four-sphere scene. Kept up
-# to FRAG_CACHE_LANES lanes (a 1920x1080 frame twice over; past that they are made per tile).
-FRAG_CACHE_LANES = 2 * 1920 * 1080
-_FRAGS: dict = {}
-_FRAG_LANES = [0]
-_GRIDS: dict = {}  # (w, h) -> pixel-centre offsets (float64) of a tile shape; a frame has few shapes
-
-
-def _fragments(rt, tile, dx: float, dy: float, need4: bool):
-    """gl_FragCoord.xy (2, lanes) and, when the code reads it, gl_FragCoord (4, lanes)."""
-    key = (tile, rt.F, dx, dy, need4)
-    got = _FRAGS.get(key)
-    if got is not None:
-        return got
-    x0, y0, tw, th = tile
-    lanes = tw * th
-    grid = _GRIDS.get((tw, th))
-    if grid is None:
-        grid = _GRIDS[(tw, th)] = (np.tile(np.arange(tw) + 0.5, th), np.repeat(np.arange(th) + 0.5, tw))
-    gx, gy = grid
-    frag = np.empty((2, lanes), dtype=rt.F)
-    np.add(gx, x0, out=frag[0], casting="unsafe")  # one rounding of x + 0.5 to F
-    np.add(gy, y0, out=frag[1], casting="unsafe")
-    frag4 = None
-    if need4:  # gl_FragCoord: the pixel centre, whatever the sample
-        frag4 = np.empty((4, lanes), dtype=rt.F)
-        frag4[:2] = frag
-        frag4[2] = 0.5
-        frag4[3] = 1.0
-        frag4.flags.writeable = False
-    if dx or dy:  # then the sample's offset, rounded to F again
-        frag[0] += rt.F(dx)
-        frag[1] += rt.F(dy)
-    frag.flags.writeable = False  # shared by every frame: generated code never writes inputs
-    got = (frag, frag4)
-    if _FRAG_LANES[0] + lanes <= FRAG_CACHE_LANES:
-        _FRAGS[key] = got
-        _FRAG_LANES[0] += lanes
-    return got
-
-
-def render_tile(ns: dict, spec: FrameSpec, tile: tuple[int, int, int, int], image: np.ndarray,
-                cached: np.ndarray | None = None, budget: Budget | None = None) -> dict | None:
-    """Run the shader on one tile and write its rows into `image` (and `cached`); returns the
-    tile's lane counts per region when `spec.stats`, else None. `budget`: the frame's."""
-    rt = ns["rt"]
-    x0, y0, tw, th = tile
-    # A GPU shades whole 2x2 quads: at an odd right or top edge the quad's other pixels are
-    # helper invocations outside the viewport, which derivatives (and implicit mipmap LODs) read
-    # (llvmpipe, measured on a real shader at 16x9). A shader that uses derivatives gets the same
-    # helper column/row here; they are rendered and dropped.
-    ew, eh = (tw + tw % 2, th + th % 2) if ns["X"].meta.get("uses_derivatives") else (tw, th)
-    lanes = ew * eh
-    samples = len(spec.offsets)
-    acc = None
-    st: dict | None = {} if spec.stats else None
-    for dx, dy in spec.offsets:
-        frag, frag4 = _fragments(rt, tile if (ew, eh) == (tw, th) else (x0, y0, ew, eh),
-                                 dx if samples > 1 else 0.0, dy if samples > 1 else 0.0, spec.need4)
-        limit = spec.base.get("loop_limit")
-        S = State(**spec.base, lanes=lanes, width=ew, frag_coord=frag, discard=Lanes.NO, stats=st,
-                  parent=None, budget=budget, passes=None if limit is None else [limit])
-        if spec.need4:
-            S.frag_coord4 = frag4
-        with rt.errstate():
-            try:
-                color = ns["shade"](S)  # RGB (a Shadertoy shader: alpha is 1) or RGBA (plain GLSL)
-            except RecursionError as e:  # a chain of calls nested about a thousand deep
-                raise _too_deep(ns, e) from None
-            if S.discard is not Lanes.NO or samples > 1:
-                if len(color) == 3:
-                    color = np.concatenate([np.broadcast_to(color, (3, lanes)), np.ones((1, lanes), color.dtype)])
-                color = np.broadcast_to(color, (4, lanes))
-                if S.discard is not Lanes.NO:
-                    color = np.where(np.broadcast_to(S.discard, (lanes,)), 0.0, color)
-                if samples > 1:
-                    color = color.astype(np.float64)
-            color = np.broadcast_to(color, (len(color), lanes))
-        acc = color if acc is None else acc + color
-    if samples > 1:
-        acc = acc / samples
-    # tile row 0 is the bottom one (y0); the image's row 0 is the top of the picture
-    rows = slice(spec.height - y0 - th, spec.height - y0)
-    if acc.strides[-1] == 0:
-        # the same colour in every pixel (a background tile): whole rows of it, one pass; the
-        # reshape is a view, since the 4 channels of a row's pixels are contiguous
-        pixel = np.append(acc[:, 0], [1.0]) if len(acc) == 3 else acc[:, 0]
-        image[rows, x0:x0 + tw].reshape(th, tw * 4)[...] = np.tile(pixel.astype(np.float32), tw)
-    else:
-        dst = image[rows, x0:x0 + tw][::-1]
-        for c in range(len(acc)):  # one channel at a time: 2.5x faster than one transposed copy
-            dst[..., c] = acc[c].reshape(eh, ew)[:th, :tw]
-        if len(acc) == 3:
-            dst[..., 3] = 1.0
-    if cached is not None:
-        cached[rows, x0:x0 + tw] = image[rows, x0:x0 + tw]
-    return st
-
-
-def _too_deep(ns: dict, e: RecursionError) -> GlslError:
-    """A located error for Python's recursion limit reached by the generated code: at the GLSL
-    line of the innermost generated frame (GLSL has no recursion: a long chain of calls)."""
-    from .transpile import _glsl_location, too_complex
-
-    path = ns.get("SHADER_META", {}).get("source", "<shader>")
-    loc = Location(path, 1, 1)
-    tb = e.__traceback__
-    while tb is not None:
-        code = tb.tb_frame.f_code
-        if tb.tb_frame.f_globals is ns and code.co_filename in linecache.cache:
-            loc = _glsl_location("".join(linecache.cache[code.co_filename][2]), tb.tb_lineno, path)
-        tb = tb.tb_next
-    return too_complex("its function calls are nested too deeply for Python", loc)
-
 
 _POOLS: dict[int, ThreadPoolExecutor] = {}
 _POOLS_LOCK = threading.Lock()
@@ -685,6 +192,19 @@ def _pool(threads: int) -> ThreadPoolExecutor:
         if pool is None:
             pool = _POOLS[threads] = ThreadPoolExecutor(max_workers=threads, thread_name_prefix="glslcheck-tile")
         return pool
+
+
+class _FrameKey(NamedTuple):
+    """What decides a frame's pixels (the frame cache's key): size, samples, precision, stats,
+    llvmpipe's loop limit and the values of the uniforms the shader reads."""
+
+    width: int
+    height: int
+    samples: int
+    precision: str
+    stats: bool
+    loop_limit: int | None
+    uniforms: tuple
 
 
 @dataclass
@@ -713,6 +233,7 @@ class NumpyProgram:
     # error after LOOP_CAP passes); 65535 = stop as llvmpipe does (verify sets it)
     loop_limit: int | None = None
     frame_seconds: float | None = None  # the frame budget; None: GLSLCHECK_FRAME_SECONDS or FRAME_SECONDS
+    compaction: Compaction = Compaction()  # when a sparse region runs on a gathered copy of its lanes
     _render_seconds: float = field(default=0.0, repr=False)
     _keys: dict = field(default_factory=dict, repr=False)
     _modules: dict = field(default_factory=dict, repr=False)
@@ -758,68 +279,71 @@ class NumpyProgram:
                 self._modules[precision] = execute_module(self.source, self.filename, self.meta, precision, self._code)
             return self._modules[precision]
 
-    def render(
-        self,
-        size: tuple[int, int] = DEFAULT_SIZE,
-        time: float = 0.0,
-        frame: int = 0,
-        mouse: tuple[float, float, float, float] = (0.0, 0.0, 0.0, 0.0),
-        date=None,
-        time_delta: float = 1.0 / 60.0,
-        frame_rate: float = 60.0,
-        samples: int = 1,
-        precision: str = "float32",
-        stats: bool = False,
-        channels=None,
-    ) -> np.ndarray:
+    @frame_inputs
+    def render(self, inputs: FrameInputs, precision: str = "float32", stats: bool = False,
+               channels=None) -> np.ndarray:
         """Render one frame: float32 (height, width, 4), row 0 = top of the image, unclamped.
 
-        Arguments as `GLProgram.render`; `precision` is the float dtype inside the shader.
-        `channels`: the inputs of iChannel0..3 (glslcheck.channels.ChannelInput or None).
-        Discarded pixels are (0, 0, 0, 0), the GL backend's clear colour."""
-        width, height = int(size[0]), int(size[1])
-        if width < 1 or height < 1:
-            raise ValueError(f"size must be at least 1x1, not {width}x{height}")
-        offsets = sample_offsets(samples)
+        Arguments as `GLProgram.render` (`shadertoy.FrameInputs`, then `channels`: the inputs of
+        iChannel0..3, glslcheck.channels.ChannelInput or None); `precision` is the float dtype
+        inside the shader. Discarded pixels are (0, 0, 0, 0), the GL backend's clear colour."""
         ns = self.module(precision)
-        rt = ns["rt"]
-        values = frame_uniforms(width, height, time, frame, mouse, date, time_delta, frame_rate)
+        values = inputs.uniforms()
         if channels is not None:  # each ChannelInput's repr is unique: a new input is a new frame key
             from ..channels import channel_uniforms
 
             values.update(channel_uniforms(channels))
-        used = self.uniforms
-        key = (width, height, samples, precision, stats, self.loop_limit,
-               tuple((u, repr(values.get(u, UNIFORMS_BY_NAME[u].default))) for u in used))
+        key = _FrameKey(inputs.width, inputs.height, inputs.samples, precision, stats, self.loop_limit,
+                        tuple((u, repr(values.get(u, UNIFORMS_BY_NAME[u].default))) for u in self.uniforms))
         if not stats:
-            with self._lock:
-                hit = self._cache.get(key)
-                if hit is not None:
-                    self._cache.move_to_end(key)
-                    return hit.copy()
-        spec_key = (key, COMPACT_FRACTION, COMPACT_MIN_LANES)
+            hit = self._cached(key)
+            if hit is not None:
+                return hit
+        spec = self._frame_spec(key, ns, values, inputs.offsets)
+        image, cached, all_stats = self._schedule(ns, spec, precision)
+        self._store(key, cached, all_stats)
+        return image
+
+    def _cached(self, key: _FrameKey) -> np.ndarray | None:
+        """A copy of the frame cache's image for `key` (the caller may write it), or None."""
+        with self._lock:
+            hit = self._cache.get(key)
+            if hit is None:
+                return None
+            self._cache.move_to_end(key)
+            return hit.copy()
+
+    def _frame_spec(self, key: _FrameKey, ns: dict, values: dict, offsets: list) -> FrameSpec:
+        """The frame's FrameSpec: uniform values and globals (run once, on one lane), the same
+        for every frame with this key and compaction, so kept for the last CACHE_FRAMES keys."""
+        spec_key = (key, self.compaction)
         with self._lock:
             spec = self._specs.get(spec_key)
-        if spec is None:  # uniform values and globals: the same for every frame with this key
-            base = {f"u_{u}": _uniform_value(rt, u, values.get(u, UNIFORMS_BY_NAME[u].default)) for u in used}
-            base["loop_limit"] = self.loop_limit
-            proto = State(**base, lanes=1, width=1, stats=None, discard=Lanes.NO, parent=None, budget=None)
-            with rt.errstate():
-                ns["init_globals"](proto)
-            globals_ = {k: v for k, v in proto.__dict__.items() if k.startswith("g_")}
-            base.update(globals_)
-            spec = FrameSpec(width, height, base, offsets, "S.frag_coord4" in self.source, stats,
-                             (COMPACT_FRACTION, COMPACT_MIN_LANES))
-            with self._lock:
-                self._specs[spec_key] = spec
-                while len(self._specs) > CACHE_FRAMES:
-                    self._specs.popitem(last=False)
+        if spec is not None:
+            return spec
+        rt = ns["rt"]
+        base = {f"u_{u}": _uniform_value(rt, u, values.get(u, UNIFORMS_BY_NAME[u].default)) for u in self.uniforms}
+        base["loop_limit"] = self.loop_limit
+        proto = State(**base, lanes=1, width=1, stats=None, discard=Lanes.NO, parent=None, budget=None)
+        with rt.errstate():
+            ns["init_globals"](proto)
+        base.update({k: v for k, v in proto.__dict__.items() if k.startswith("g_")})
+        spec = FrameSpec(key.width, key.height, base, offsets, "S.frag_coord4" in self.source, key.stats,
+                         self.compaction)
+        with self._lock:
+            self._specs[spec_key] = spec
+            while len(self._specs) > CACHE_FRAMES:
+                self._specs.popitem(last=False)
+        return spec
+
+    def _schedule(self, ns: dict, spec: FrameSpec, precision: str) -> tuple[np.ndarray, np.ndarray | None, list[dict]]:
+        """Render the frame's tiles within its time and memory budgets, on worker processes or
+        threads: (the caller's image, the frame cache's copy (None with stats), per-tile stats).
+        The tiles that took longest in the last frame of this size go first, so that the workers
+        finish together (the order changes no pixel: each tile writes its own rows)."""
         budget = Budget(self.frame_seconds if self.frame_seconds is not None else frame_seconds())
-        threads = self.threads or _CPUS or 1
-        tile_lanes, threads = self._fit_memory(precision, threads)
-        tiles = frame_tiles(width, height, tile_lanes)
-        # the tiles that took longest in the last frame of this size go first, so that the
-        # workers finish together (the order changes no pixel: each tile writes its own rows)
+        tile_lanes, threads = self._fit_memory(precision, self.threads or _CPUS or 1)
+        tiles = frame_tiles(spec.width, spec.height, tile_lanes)
         with self._lock:
             order = self._tile_order.get(tiles)
         run_tiles = [tiles[i] for i in order] if order is not None else tiles
@@ -828,8 +352,6 @@ class NumpyProgram:
         image = cached = None
         started = _time.perf_counter()
         if self._use_processes(threads, tiles):
-            from . import workers
-
             try:
                 # the image and the cache's read-only view share the pixels (copy-on-write)
                 image, cached, all_stats, seconds = workers.render(
@@ -839,9 +361,9 @@ class NumpyProgram:
             except workers.Unavailable:
                 image, all_stats = None, []  # the pool is gone for this process: threads below
         if image is None:
-            image = np.empty((height, width, 4), dtype=np.float32)  # top row first
+            image = np.empty((spec.height, spec.width, 4), dtype=np.float32)  # top row first
             # the frame cache's copy, written by each tile while its rows are still in the CPU cache
-            if not stats:
+            if not spec.stats:
                 with self._lock:
                     cached = self._cache.buffer(image.shape)
             budget.start()
@@ -856,21 +378,24 @@ class NumpyProgram:
                 while len(self._tile_order) > CACHE_FRAMES:
                     self._tile_order.popitem(last=False)
         self._render_seconds += _time.perf_counter() - started
-        out = image
-        if stats:
+        return image, cached, all_stats
+
+    def _store(self, key: _FrameKey, cached: np.ndarray | None, all_stats: list[dict]) -> None:
+        """After a frame: its lane statistics in `last_stats` (a frame with stats is not
+        cached), else its copy in the frame cache, bounded by CACHE_FRAMES and CACHE_BYTES."""
+        if key.stats:
             total: dict[int, int] = {}
             for st in all_stats:
                 for k, v in st.items():
                     total[k] = total.get(k, 0) + v
             regions = self.meta.get("regions", {})
             self.last_stats = [RegionStat(*regions[k], total.get(k, 0)) for k in sorted(regions)]
-        else:
-            with self._lock:
-                self._cache[key] = cached
-                while len(self._cache) > CACHE_FRAMES or (
-                        len(self._cache) > 1 and sum(v.nbytes for v in self._cache.values()) > CACHE_BYTES):
-                    self._cache.recycle(self._cache.popitem(last=False)[1])
-        return out
+            return
+        with self._lock:
+            self._cache[key] = cached
+            while len(self._cache) > CACHE_FRAMES or (
+                    len(self._cache) > 1 and sum(v.nbytes for v in self._cache.values()) > CACHE_BYTES):
+                self._cache.recycle(self._cache.popitem(last=False)[1])
 
     def _render_threads(self, ns, spec, tiles, image, cached, threads, all_stats, budget=None) -> dict:
         """Render `tiles` on this process's threads: {tile: seconds it took}. On an error or
@@ -917,7 +442,7 @@ class NumpyProgram:
         return seconds
 
     def _fit_memory(self, precision: str, threads: int) -> tuple[int, int]:
-        """(lanes per tile, tiles at once) that keep the tiles' state within `memory_budget()`:
+        """(at most this many lanes per tile, tiles at once) that keep the tiles' state within `memory_budget()`:
         fewer lanes per tile, then one tile at a time; a located GlslError when even one 2x2
         tile does not fit."""
         per_lane, loc = lane_bytes(self.meta, precision)
@@ -934,7 +459,7 @@ class NumpyProgram:
                 rule="numpy-memory-budget",
                 help="use smaller arrays, or render with --backend gl; GLSLCHECK_MEMORY_MB sets the budget "
                      f"(default {MEMORY_FRACTION:.0%} of the machine's memory)"))
-        return min(TILE_LANES, lanes), threads
+        return lanes, threads  # frame_tiles makes tiles of at most TILE_LANES
 
     def _use_processes(self, threads: int, tiles: list) -> bool:
         """Worker processes for frames of several tiles when asked to, or ("auto") once this
@@ -946,8 +471,6 @@ class NumpyProgram:
             raise ValueError(f"parallel must be 'auto', 'threads' or 'processes', not {mode!r}")
         if mode == "threads" or threads < 2 or len(tiles) < 2:
             return False
-        from . import workers
-
         if not workers.available():
             return False
         return mode == "processes" or workers.running() or self._render_seconds >= PROCESSES_AFTER
@@ -955,9 +478,7 @@ class NumpyProgram:
     def _key(self, precision: str) -> str:
         key = self._keys.get(precision)
         if key is None:
-            from .workers import program_key
-
-            key = self._keys[precision] = program_key(self.source, self.meta, precision)
+            key = self._keys[precision] = workers.program_key(self.source, self.meta, precision)
         return key
 
     def format_stats(self) -> str:
@@ -970,8 +491,6 @@ class NumpyProgram:
 
 def compile_numpy(shader, tab: str | None = None) -> NumpyProgram:
     """Parse, check and transpile a shader's Image tab (or plain GLSL file, or Buffer `tab`)."""
-    from .transpile import transpile_shader
-
     t = transpile_shader(shader, tab)
     prog = NumpyProgram(t.source, t.meta, t.filename, _code=t.code)
     prog.module("float32")  # a broken module fails here, not in the middle of a render

@@ -208,12 +208,10 @@ from typing import Any, Iterable
 import numpy as np
 
 from ..driver_profile import FLOAT_TO_UINT, float_to_uint, host_fma, host_model
+from ..precision import check_precision
 from .textures import TextureFunctions
 
-__all__ = ["Runtime", "Struct", "GLSLRuntimeError", "PRECISIONS"]
-
-PRECISIONS = {"float16": np.float16, "float32": np.float32, "float64": np.float64,
-              "mediump": np.float16, "highp": np.float32}
+__all__ = ["Runtime", "Struct", "GLSLRuntimeError"]
 
 I32 = np.int32
 U32 = np.uint32
@@ -587,10 +585,7 @@ class Runtime(TextureFunctions):  # texture lookups: textures.py
 
     def __init__(self, precision: str = "float32", float_to_uint: str | None = None,
                  fma: bool | None = None) -> None:
-        try:
-            self.F = np.dtype(PRECISIONS[precision]).type
-        except KeyError:
-            raise ValueError(f"precision must be one of {sorted(PRECISIONS)}") from None
+        self.F = np.dtype(check_precision(precision)).type  # "float32" is np.float32's name
         self.precision = precision
         # how uint(x) treats negatives, NaN and x >= 2**32 (undefined; the CPU decides on
         # llvmpipe): a model of glslcheck/driver_profile.py, by default this machine's

@@ -23,7 +23,7 @@ Design:
   stay bounded.
 - A worker dies with its parent, at once, even mid-tile (killed, SIGTERM, a crash): it watches
   the read end of a pipe only the parent holds open (`_watch_parent`). The frame's deadline
-  (`program.Budget`) travels with each frame; Ctrl-C in the caller kills the workers.
+  (`frame.Budget`) travels with each frame; Ctrl-C in the caller kills the workers.
 - A GlslError raised in a worker (a runaway loop, with its GLSL line) is raised in the caller.
   If a worker dies or cannot start, the pool closes, `Unavailable` is raised and the caller
   renders the frame with threads.
@@ -51,6 +51,8 @@ from multiprocessing.connection import Connection
 from typing import Any
 
 import numpy as np
+
+from .frame import execute_module, render_tile
 
 WORKER_MODULES = 8  # compiled programs a worker keeps
 # A fresh process's malloc maps every block above 128 kB anew and returns it on free, so each
@@ -102,7 +104,7 @@ def render(key: str, source: str, filename: str, meta: dict, precision: str, spe
            budget: Any = None) -> tuple[np.ndarray, np.ndarray, list[dict], dict]:
     """Render `tiles` of the frame `spec` with `workers` processes, in that order: (the caller's
     image, a read-only view of the same pixels for the frame cache (see `_FrameFile`), per-tile
-    stats, {tile: seconds it took}). `budget`: the frame's `program.Budget` (its deadline)."""
+    stats, {tile: seconds it took}). `budget`: the frame's `frame.Budget` (its deadline)."""
     global _POOL
     with _POOL_LOCK:  # one frame at a time through the pool
         if not available():
@@ -406,10 +408,6 @@ def _take_tile(fd: int, mm: mmap.mmap, stop: int | None = None) -> int:
 
 def _render_frame(fd, mm, modules, key, source, filename, meta, precision, spec, tiles, shape,
                   stats, seconds, budget=None):
-    from . import program
-    from .program import execute_module, render_tile
-
-    program.COMPACT_FRACTION, program.COMPACT_MIN_LANES = spec.compaction  # as the caller has them
     ns = modules.get(key)
     if ns is None:
         ns = modules[key] = execute_module(source, filename, meta, precision)

@@ -39,8 +39,8 @@ import numpy as np
 
 from ..diagnostics import Diagnostic, GlslError, Location, source_line
 from ..gl_backend.program import _entry_location, driver_diagnostics, parse_driver_log
-from ..shadertoy import (DEFAULT_SIZE, OFFSET_UNIFORM, UNIFORMS, Program, build_program, frame_uniforms,
-                         sample_offsets)
+from ..shadertoy import (OFFSET_UNIFORM, UNIFORMS, FrameInputs, Program, build_program, frame_inputs,
+                         frame_uniforms)
 from ..sources import Shader
 from .browser import Browser, WebGLTimeout, get_browser
 
@@ -171,31 +171,19 @@ class WebGLProgram:
             self._variants[samples_offset] = _compile(self.browser, program)[0]
         return self._variants[samples_offset]
 
-    def render(
-        self,
-        size: tuple[int, int] = DEFAULT_SIZE,
-        time: float = 0.0,
-        frame: int = 0,
-        mouse: tuple[float, float, float, float] = (0.0, 0.0, 0.0, 0.0),
-        date=None,
-        time_delta: float = 1.0 / 60.0,
-        frame_rate: float = 60.0,
-        samples: int = 1,
-        channels=None,
-    ) -> np.ndarray:
+    @frame_inputs
+    def render(self, inputs: FrameInputs, channels=None) -> np.ndarray:
         """One frame: float32 (height, width, 4), row 0 = top; see `GLProgram.render`.
 
         `channels`: iChannel0..3 as `channels.ChannelInput` or None (unbound), uploaded as
         RGBA32F textures with their filter, wrap and glslcheck's mipmap levels, as on GL
         (glslcheck.channels.MultipassProgram chains the passes frame after frame)."""
-        width, height = int(size[0]), int(size[1])
-        if width < 1 or height < 1:
-            raise ValueError(f"size must be at least 1x1, not {width}x{height}")
-        offsets = sample_offsets(samples)
+        width, height, samples = inputs.width, inputs.height, inputs.samples
         program_id = self._variant(samples > 1)
-        uniforms = uniform_values(width, height, time, frame, mouse, date, time_delta, frame_rate, channels)
+        uniforms = uniform_values(width, height, inputs.time, inputs.frame, inputs.mouse, inputs.date,
+                                  inputs.time_delta, inputs.frame_rate, channels)
         js_channels = None if channels is None else [_channel_json(c) for c in channels]
-        js_offsets = [list(o) if samples > 1 else None for o in offsets]
+        js_offsets = [list(o) if samples > 1 else None for o in inputs.offsets]
         if self.browser.closed:
             raise GlslError(Diagnostic("WebGL: the browser this program was compiled in has ended (after a "
                                        "timeout); compile the shader again", None, rule=RULE))

@@ -2,8 +2,8 @@
 coordinates in compacted regions (nested too), uniform masks, early-out returns as selects,
 constant expressions as module constants, tiles written straight into the image, the frame cache.
 
-Each shader is rendered with compaction on and off (COMPACT_FRACTION = 0 never compacts) and
-with several tile sizes; the images must be bit-identical.
+Each shader is rendered with compaction on and off (`Compaction(fraction=0)` never compacts)
+and with several tile sizes; the images must be bit-identical.
 """
 
 from __future__ import annotations
@@ -11,8 +11,10 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
+from glslcheck.numpy_backend import frame as F
 from glslcheck.numpy_backend import program as P
-from glslcheck.numpy_backend.program import Lanes, compile_numpy
+from glslcheck.numpy_backend.frame import Compaction, Lanes
+from glslcheck.numpy_backend.program import compile_numpy
 from glslcheck.numpy_backend.transpile import transpile_shader
 
 # Globals read and written inside sparse (compacted) branches and loops, nested; gl_FragCoord
@@ -65,19 +67,20 @@ def _render(prog, **kw):
 
 @pytest.fixture
 def knobs(monkeypatch):
+    """Set module settings for one test: tile sizes (frame.py), frame cache and pool (program.py)."""
     def set_(**values):
         for k, v in values.items():
-            monkeypatch.setattr(P, k, v)
+            monkeypatch.setattr(F if hasattr(F, k) else P, k, v)
     return set_
 
 
 def test_compaction_and_tiles_change_no_pixel(make_shader, knobs):
     prog = compile_numpy(make_shader(SHADER))
-    knobs(COMPACT_MIN_LANES=16)
     reference = None
     for fraction in (0.0, 0.5, 0.9):
         for lanes in (64, 600, 10_000):
-            knobs(COMPACT_FRACTION=fraction, TILE_LANES=lanes)
+            prog.compaction = Compaction(fraction=fraction, min_lanes=16)
+            knobs(TILE_LANES=lanes)
             img = _render(prog)
             if reference is None:
                 reference = img
@@ -90,8 +93,10 @@ def test_compacted_rendering_matches_gl(gl, make_shader, knobs):
     from glslcheck.gl_backend import compile_gl
 
     shader = make_shader(SHADER)
-    knobs(COMPACT_MIN_LANES=16, TILE_LANES=600)
-    ours = _render(compile_numpy(shader))
+    knobs(TILE_LANES=600)
+    prog = compile_numpy(shader)
+    prog.compaction = Compaction(min_lanes=16)
+    ours = _render(prog)
     theirs = compile_gl(shader).render(size=(96, 54))
     assert np.allclose(ours, theirs, rtol=1e-5, atol=1e-5)
 
@@ -198,7 +203,7 @@ def test_the_slowest_tiles_of_a_frame_go_first_in_the_next(make_shader, knobs):
     prog.threads = 1
     knobs(TILE_LANES=16 * 8, TILE_WIDTH=16)              # 16x32: four tiles of eight rows
     first = _render_sized(prog, (16, 32))
-    tiles = P.frame_tiles(16, 32)
+    tiles = F.frame_tiles(16, 32)
     order = prog._tile_order[tuple(tiles)]
     assert [tiles[i][1] for i in order[:1]] == [24] and tiles[order[-1]][1] < 24
     again = _render_sized(prog, (16, 32))                # rendered in that order: the same image
@@ -217,9 +222,10 @@ def test_tiles_of_one_colour_are_written_whole(make_shader, knobs, monkeypatch):
         "    if (f.x < 10.0) c = vec4(f, 0.5, 0.0);   // no lane of the tiles right of x = 16 runs it\n"
         "    o = c;\n"
         "}"))
+    prog.threads = 1  # in this process (a pool left up by an earlier test would take "auto" frames)
     tiles = []
     real = np.tile                                       # the one-colour path repeats one pixel
-    monkeypatch.setattr(P.np, "tile", lambda a, n: (len(a) == 4 and tiles.append(n)) or real(a, n))
+    monkeypatch.setattr(F.np, "tile", lambda a, n: (len(a) == 4 and tiles.append(n)) or real(a, n))
     knobs(TILE_LANES=8 * 6, TILE_WIDTH=8)                  # 8x6 tiles, three rows of them
     img = _render_sized(prog, (30, 14))
     assert sorted(tiles) == [6, 6, 6, 8, 8, 8]               # x0 = 16 and 24 (6 wide), in 3 rows of tiles

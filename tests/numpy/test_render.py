@@ -18,6 +18,7 @@ import numpy as np
 import pytest
 
 from glslcheck.compare import compare
+from glslcheck.numpy_backend import frame as F
 from glslcheck.numpy_backend import program as P
 from glslcheck.sources import load_shader
 
@@ -76,11 +77,12 @@ def test_corpus_matches_gl(gl, path):
 
 
 @pytest.mark.parametrize("path", CORPUS + LABS, ids=lambda p: os.path.relpath(p, ROOT))
-def test_corpus_same_with_and_without_compaction(path, monkeypatch):
+def test_corpus_same_with_and_without_compaction(path):
     shader, prog = _load(path)
     ref = prog.render(size=(160, 90), time=0.5)
-    monkeypatch.setattr(P, "COMPACT_MIN_LANES", 1)
-    again = P.compile_numpy(shader).render(size=(160, 90), time=0.5)
+    prog = P.compile_numpy(shader)
+    prog.compaction = F.Compaction(min_lanes=1)
+    again = prog.render(size=(160, 90), time=0.5)
     np.testing.assert_array_equal(ref, again)
 
 
@@ -267,7 +269,7 @@ def test_samples_4_matches_gl(gl, make_shader):
 
 
 def test_tiles_and_odd_sizes(gl, make_shader, monkeypatch):
-    monkeypatch.setattr(P, "TILE_WIDTH", 16)
-    monkeypatch.setattr(P, "TILE_HEIGHT", 8)
+    monkeypatch.setattr(F, "TILE_WIDTH", 16)
+    monkeypatch.setattr(F, "TILE_HEIGHT", 8)
     body = "vec2 uv = fragCoord / iResolution.xy; fragColor = vec4(uv, dFdx(uv.x * uv.x) * 100.0, 1.0);"
     _match(gl, make_shader(_image(body)), size=(37, 19))

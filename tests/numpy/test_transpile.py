@@ -16,6 +16,7 @@ import numpy as np
 import pytest
 
 from glslcheck.diagnostics import GlslError
+from glslcheck.numpy_backend import frame as F
 from glslcheck.numpy_backend import program as P
 from glslcheck.numpy_backend.transpile import LOOP_CAP, transpile_shader
 
@@ -270,13 +271,13 @@ def test_sparse_branches_are_compacted_and_counted(make_shader, monkeypatch):
     fragColor = vec4(c, 1.0);"""
     shader = make_shader(_image(body))
     gathered = []
-    real = P.Lanes.gather
+    real = F.Lanes.gather
 
     def counting(self, S, idx, values):
         gathered.append(len(idx))
         return real(self, S, idx, values)
 
-    monkeypatch.setattr(P.Lanes, "gather", counting)
+    monkeypatch.setattr(F.Lanes, "gather", counting)
     prog = P.compile_numpy(shader)
     img = prog.render(size=(64, 64), stats=True)
     assert gathered and max(gathered) == 8 * 64
@@ -284,8 +285,9 @@ def test_sparse_branches_are_compacted_and_counted(make_shader, monkeypatch):
     assert stats[("function", 2)] == 64 * 64
     assert stats[("if", 5)] == 8 * 64
     assert stats[("loop", 5)] == 4 * 8 * 64
-    monkeypatch.setattr(P, "COMPACT_MIN_LANES", 10**9)
-    np.testing.assert_array_equal(img, P.compile_numpy(shader).render(size=(64, 64)))
+    uncompacted = P.compile_numpy(shader)
+    uncompacted.compaction = F.Compaction(min_lanes=10**9)
+    np.testing.assert_array_equal(img, uncompacted.render(size=(64, 64)))
 
 
 # -- the module on its own, the API and the CLI ----------------------------------------------

@@ -15,6 +15,7 @@ import numpy as np
 import pytest
 
 from glslcheck.diagnostics import GlslError
+from glslcheck.numpy_backend import frame as F
 from glslcheck.numpy_backend import program as P
 from glslcheck.numpy_backend import workers
 
@@ -78,8 +79,9 @@ def _both(prog, **kw):
     dict(size=(61, 37), precision="float64", time=1.5),
 ])
 def test_processes_render_what_threads_render(make_shader, knobs, kw):
-    knobs(COMPACT_MIN_LANES=16, TILE_LANES=600)  # many tiles, compacted regions in most
+    knobs(TILE_LANES=600)  # many tiles, compacted regions in most
     prog = P.compile_numpy(make_shader(SPARSE_SHADER))
+    prog.compaction = F.Compaction(min_lanes=16)
     a, b, sa, sb = _both(prog, **kw)
     assert a.shape == b.shape and a.dtype == b.dtype == np.float32
     assert np.array_equal(a, b, equal_nan=True)
@@ -184,7 +186,7 @@ def test_workers_report_tile_times_for_the_next_frames_order(make_shader, knobs)
     prog = _on_processes(make_shader, UNEVEN)
     first = prog.render(size=(16, 32))
     assert prog.last_parallel == "processes"
-    tiles = P.frame_tiles(16, 32)
+    tiles = F.frame_tiles(16, 32)
     assert tiles[prog._tile_order[tuple(tiles)][0]][1] == 24  # the slow tile goes first next time
     prog._cache.clear()
     assert np.array_equal(prog.render(size=(16, 32)), first, equal_nan=True)

@@ -99,7 +99,7 @@ void mainImage(out vec4 fragColor, in vec2 fragCoord) {
 
 def test_nan_scan_on_many_lanes_with_compaction_and_derivatives(make_shader):
     # 64x64 = 4096 lanes: in shade(), the branch a quarter of them take is compacted (it has a
-    # loop, and 1024 lanes is program.py's COMPACT_MIN_LANES); there they divide 0/0, the others
+    # loop, and 1024 lanes is the default Compaction.min_lanes); there they divide 0/0, the others
     # take pow of a negative base. mainImage takes a derivative: the lanes run as 2x2 quads.
     src = """\
 float shade(vec2 fc) {

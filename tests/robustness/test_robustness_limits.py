@@ -29,6 +29,7 @@ import pytest
 from test_robustness_resources import PEAK_MB, RATIO, measure, write
 
 from glslcheck.diagnostics import GlslError
+from glslcheck.numpy_backend import frame as F
 from glslcheck.numpy_backend import program as P
 from glslcheck.numpy_backend.transpile import compile_generated, transpile
 from glslcheck.sources import load_shader
@@ -270,10 +271,10 @@ def test_huge_array_renders_in_small_tiles_within_the_budget(tmp_path, monkeypat
 
 def test_tiles_respect_a_lane_limit():
     for w, h, lanes in ((64, 64, 40), (800, 450, 1000), (7, 5, 4), (3000, 2, 9)):
-        tiles = P.frame_tiles(w, h, lanes)
+        tiles = F.frame_tiles(w, h, lanes)
         cover = np.zeros((h, w), dtype=int)
         for x0, y0, tw, th in tiles:
-            assert tw * th <= max(lanes, P.MIN_TILE_LANES) and x0 % 2 == 0 and y0 % 2 == 0
+            assert tw * th <= max(lanes, F.MIN_TILE_LANES) and x0 % 2 == 0 and y0 % 2 == 0
             cover[y0:y0 + th, x0:x0 + tw] += 1
         assert np.all(cover == 1), (w, h, lanes)
 
