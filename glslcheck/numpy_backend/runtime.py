@@ -170,8 +170,9 @@ acosh atanh``: Mesa's GLSL formulas over those (``tanh(NaN) = -1``: its clamp(x,
 takes NaN to -10); ``asin``/``acos``: Mesa's GLSL formula ``sign(x)*(pi/2 - sqrt(1-|x|)*(pi/2
 + |x|*(pi/4-1 + |x|*(p0 + |x|*p1))))`` with float32 constants (builtin_functions.cpp);
 ``atan``/``atan(y, x)``: Mesa 22.3's ``nir_atan``/``nir_atan2`` (nir_builtin_builder.c: six
-power terms summed left to right), within 1 ULP of llvmpipe on 0.007% of inputs (all with
-0.85 < |x| < 1.2), bit-exact elsewhere. CPU dependence: gallivm builds these polynomials with
+power terms summed left to right, the last one reassociated by nir_opt_algebraic), bit-exact;
+``mix``: the formula nir_lower_flrp picks for the call (:meth:`Runtime.mix`); Mesa's
+reassociations of sums and products: :mod:`nir_fold`. CPU dependence: gallivm builds these polynomials with
 ``llvm.fmuladd``, fused on a CPU with FMA (Haswell and later; this machine: AVX2 + FMA, no
 AVX-512) and not fused without: :data:`HOST_FMA` follows this CPU, ``Runtime(fma=...)`` picks
 either; the two differ on ~1% of sin arguments. AVX-512 should not change these results (the
