@@ -131,8 +131,8 @@ def _used_once(tr: Any, e: Any) -> bool:
                 operands.update((id(n.left), id(n.right)))
                 t = to_glsl(n)
                 texts[t] = texts.get(t, 0) + 1
-            elif isinstance(n, A.Call):
-                operands.update(id(a) for a in n.args)
+            elif isinstance(n, A.Call) and (n.constructor or _builtin(tr, n)):
+                operands.update(id(a) for a in n.args)  # (a user function may read it twice)
         parents[key] = (texts, operands)
     texts, operands = parents[key]
     return id(e) in operands and texts.get(to_glsl(e), 0) <= 1
@@ -187,8 +187,8 @@ def _factor(tr: Any, e: A.Binary, mask: str | None) -> str | None:
     """``a*b + a*c`` (either operand order, products possibly stored in never-written locals)
     as ``a * (b + c)``."""
     left, right = _factors(tr, e.left), _factors(tr, e.right)
-    if left is None or right is None:
-        return None
+    if left is None or right is None or sorted(left[0]) == sorted(right[0]):
+        return None  # (x*y + x*y is CSE'd to p + p first)
     for i in (0, 1):
         for j in (0, 1):
             if left[0][i] == right[0][j]:
