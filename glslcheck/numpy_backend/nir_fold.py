@@ -15,6 +15,9 @@ The rules copied here, each measured bit for bit against llvmpipe on 50,000 rand
   not constant; the variant that keeps a product ``b`` whole is tried first, so
   ``(a*b + c) + K`` is ``(c + K) + a*b``); subtraction is addition of the negation;
 - the same for products (``(a * b) * #c -> (a * #c) * b``, also ``#c * (a * b)``);
+- constants merged (``#a * (b * #c) -> (a*c) * b``, ``#a + (b + #c) -> (a + c) + b``, with
+  no "used once" condition, so also through a never-written local: ``uv = q * 1.2`` then
+  ``uv * 0.2`` is ``q * 0.24``, the constant folded in float32);
 - ``dot(u, v) + #c``: the constant lands in the innermost addition of the dot product, which
   llvmpipe sums right to left: ``u.x*v.x + (u.y*v.y + (u.z*v.z + #c))``.
 
@@ -73,7 +76,47 @@ def binary(tr: Any, e: A.Binary, mask: str | None) -> str | None:
         folded = _factor(tr, e, mask)
         if folded is not None:
             return folded
+    folded = _merge_constants(tr, e, mask)
+    if folded is not None:
+        return folded
     return _sink(tr, e, mask)
+
+
+def _merge_constants(tr: Any, e: A.Binary, mask: str | None) -> str | None:
+    """``#a * (b * #c) -> (a*c) * b`` and ``#a + (b + #c) -> (a + c) + b`` (no "used once"
+    condition: they reach through any SSA value, here a never-written local such as
+    ``vec2 uv = q * 1.2; ... uv * 0.2``, which is ``q * 0.24`` on llvmpipe: 1.2*0.2 is folded
+    in float32). Subtraction is addition of the negation."""
+    if e.op == "-" and not _const(tr, e.right):
+        return None
+    k_node, x_node = (e.right, e.left) if _const(tr, e.right) else (e.left, e.right)
+    if not _const(tr, k_node) or _const(tr, x_node):
+        return None
+    inner = x_node
+    if isinstance(inner, A.Identifier):
+        inner = _stable_init(tr, inner)
+    ops = ("*",) if e.op == "*" else _SUMS
+    if not (isinstance(inner, A.Binary) and inner.op in ops) or tr.has_effects(inner):
+        return None
+    if _const(tr, inner.right) and not _const(tr, inner.left):
+        b_node, c_node, c_sign, b_sign = inner.left, inner.right, inner.op, "+"
+    elif _const(tr, inner.left) and not _const(tr, inner.right):
+        b_node, c_node, c_sign, b_sign = inner.right, inner.left, "+", inner.op
+    else:
+        return None
+    if tr.type_of(inner) != tr.type_of(x_node):
+        return None
+    tk, tc, tb, tx = tr.exprs([k_node, c_node, b_node, x_node], mask)
+    t = tr.type_of(e)
+    if e.op == "*":
+        rewritten = tr.binary_values("*", t, t, tb, f"({tk} * {tc})")
+        written = tr.binary_values("*", t, t, tx, tk) if x_node is e.left else tr.binary_values("*", t, t, tk, tx)
+    else:
+        k = f"(-{tk})" if e.op == "-" else tk
+        c = f"(-{tc})" if c_sign == "-" else tc
+        rewritten = f"(({k} + {c}) {b_sign} {tb})"
+        written = f"({tx} {e.op} {tk})" if x_node is e.left else f"({tk} {e.op} {tx})"
+    return f"({rewritten} if rt.lp else {written})"
 
 
 def _const(tr: Any, node: Any) -> bool:

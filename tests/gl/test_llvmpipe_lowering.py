@@ -8,7 +8,8 @@ float32 mode. Each shader below computes its operands with opaque built-ins (fra
 floor: values NIR does not look into) over 160x90 pixels. Without the rewrites (written order,
 strict mix everywhere) these channels differ from llvmpipe (measured): constants_sunk 680, 4718
 and 5163 pixels in its first three, factoring 979, 6694, 6556, mix_constant_operands 1169 and
-2074 (second and third), mix_forms 5623 (first), mix_shared_operands 3261 (third); the other
+2074 (second and third), mix_forms 5623 (first), mix_shared_operands 3261 (third),
+constants_merged 3600, 3200, 2165 (first three); the other
 channels pin forms that give the same bits here.
 """
 
@@ -38,6 +39,10 @@ CASES = {
     # a*b + c*a -> a*(b + c), also through a local product (a hash of a real shader)
     "factoring": """vec2 uv = 50.0 * fract(p / 3.14159265);
         c = vec4(fract(uv.x * uv.y * (uv.x + uv.y)), a * b + d * a, e * 1.37 + e * b, 2.7182817 * (a * b));""",
+    # #a * (b * #c) -> (a*c) * b and #a + (b + #c) -> (a + c) + b, also through a local
+    "constants_merged": """vec2 uv = (2.0 * p - iResolution.xy) / min(iResolution.x, iResolution.y) * 1.2;
+        vec2 w = uv * 0.2; float q = b + 0.37;
+        c = vec4(w, (q - 1.3) * 1.0, 2.5 - (q + 1.7));""",
 }
 
 
