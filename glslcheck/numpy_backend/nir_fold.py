@@ -41,26 +41,72 @@ from ..printer import to_glsl
 _SUMS = ("+", "-")
 
 
-# -- mix: the flrp lowering's view of the other mix calls ------------------------------------
+# -- mix: nir_lower_flrp's choice, decided from what the compiler knows -------------------------
 def mix_hint(tr: Any, call: A.Call) -> list[str]:
-    """Extra arguments for ``rt.mix``: ``["'shared'"]`` when another float-weighted `mix` of
-    the same function has the same weight and the same ``x`` (or the same ``y``), as SSA
-    values (here: the same GLSL text). Without FFMA (llvmpipe), nir_lower_flrp then picks the
-    strict ``x*(1-t) + y*t`` hoping to share ``x*(1-t)``; otherwise the run-time rules apply."""
+    """The extra argument of ``rt.mix``: the formula nir_lower_flrp (Mesa 22.3, no FFMA on
+    llvmpipe) picks for this float-weighted `mix`, in its order: x and y constants whose
+    exponents differ by at most 11 -> "fast" ``x + t*(y-x)``; x a constant of all +1 / -1 ->
+    "one" / "minus_one"; y a constant of all +1 or -1 -> "strict" ``x*(1-t) + y*t``; another
+    mix of the function with the same t and the same x (or y) -> "strict"; a constant t ->
+    "strict"; else "fast". "Constant": a constant expression or a never-written local
+    initialised by one (NIR propagates it); "the same": the same GLSL text (SSA after CSE).
+    Decided here, from the source, so a one-pixel probe run picks what the render picks."""
     if len(call.args) != 3 or tr.fn is None or tr.type_of(call.args[2]).base != "float":
         return []
+    x, y, t = call.args
+    cx, cy = _constant_value(tr, x), _constant_value(tr, y)
+    if cx is not None and cy is not None and _similar(cx, cy):
+        return ["'fast'"]
+    for v, form in ((cx, "one"), (cy, "strict")):
+        if v is not None and len(set(v)) == 1 and v[0] == 1.0:
+            return [f"'{form}'"]
+        if v is not None and len(set(v)) == 1 and v[0] == -1.0:
+            return [f"'{'minus_one' if form == 'one' else form}'"]
+    if id(call) in _shared_mixes(tr) or _constant_value(tr, t) is not None:
+        return ["'strict'"]
+    return ["'fast'"]
+
+
+def _constant_value(tr: Any, node: Any) -> list[float] | None:
+    """The scalars of a constant operand (see :func:`mix_hint`), else None."""
+    v = tr.model.const_value(node)
+    if v is None and isinstance(node, A.Identifier):
+        init = _stable_init(tr, node)
+        v = tr.model.const_value(init) if init is not None else None
+    if v is None:
+        return None
+    flat: list[float] = []
+    stack = [v]
+    while stack:
+        item = stack.pop(0)
+        if isinstance(item, (tuple, list)):
+            stack[:0] = list(item)
+        else:
+            flat.append(float(item))
+    return flat
+
+
+def _similar(a: list[float], b: list[float]) -> bool:
+    """``sources_are_constants_with_similar_magnitudes``: frexp exponents at most 11 apart."""
+    import math
+
+    n = max(len(a), len(b))
+    a, b = a * (n // len(a)), b * (n // len(b))
+    return all(abs(math.frexp(p)[1] - math.frexp(q)[1]) <= 11 for p, q in zip(a, b))
+
+
+def _shared_mixes(tr: Any) -> set[int]:
+    """Float-weighted mix calls of the current function that share t and x (or t and y) with
+    another one (get_similar_flrp_stats)."""
     cache = tr.__dict__.setdefault("_nir_fold_mix", {})
     key = id(tr.fn.sym)
     if key not in cache:
         calls = [n for n in tr.fn.sym.node.body.walk() if isinstance(n, A.Call) and n.callee == "mix"
-                 and len(n.args) == 3 and tr.type_of(n.args[2]).base == "float"]
+                 and len(n.args) == 3 and _builtin(tr, n) and tr.type_of(n.args[2]).base == "float"]
         texts = [(n, [to_glsl(a) for a in n.args]) for n in calls]
-        shared = set()
-        for n, (x, y, t) in texts:
-            if any(m is not n and t == t2 and (x == x2 or y == y2) for m, (x2, y2, t2) in texts):
-                shared.add(id(n))
-        cache[key] = shared
-    return ["'shared'"] if id(call) in cache[key] else []
+        cache[key] = {id(n) for n, (x, y, t) in texts
+                      if any(m is not n and t == t2 and (x == x2 or y == y2) for m, (x2, y2, t2) in texts)}
+    return cache[key]
 
 
 # -- binary expressions -----------------------------------------------------------------------
@@ -104,8 +150,11 @@ def _merge_constants(tr: Any, e: A.Binary, mask: str | None) -> str | None:
         b_node, c_node, c_sign, b_sign = inner.right, inner.left, "+", inner.op
     else:
         return None
-    if tr.type_of(inner) != tr.type_of(x_node):
-        return None
+    if tr.type_of(inner) != tr.type_of(x_node) or not _varying(tr, b_node):
+        return None  # (all constant after propagation: NIR folds it left to right)
+    b_inner = _stable_init(tr, b_node) if isinstance(b_node, A.Identifier) else b_node
+    if isinstance(b_inner, A.Binary) and b_inner.op in ops and (_const(tr, b_inner.left) or _const(tr, b_inner.right)):
+        return None  # NIR would merge further into b: not copied
     tk, tc, tb, tx = tr.exprs([k_node, c_node, b_node, x_node], mask)
     t = tr.type_of(e)
     if e.op == "*":
@@ -262,6 +311,24 @@ def _stable_vector(tr: Any, node: Any) -> bool:
         return False
     return all(_opaque(tr, x) or (isinstance(x, A.Call) and x.constructor and len(x.args) > 1
                                   and all(_opaque(tr, a) for a in x.args)) for x in (init.left, init.right))
+
+
+def _varying(tr: Any, node: Any, depth: int = 0) -> bool:
+    """The value depends on an input (a uniform, fragCoord, a parameter, a written variable):
+    it is not a constant after NIR's constant propagation."""
+    if depth > 8:
+        return True
+    for n in node.walk():
+        if isinstance(n, A.Identifier):
+            s = tr.model.symbol_of(n)
+            if s is None or s.const_value is not None:
+                continue
+            if s.kind != "local":
+                return True
+            init = _stable_init(tr, n)
+            if init is None or _varying(tr, init, depth + 1):
+                return True
+    return False
 
 
 def _builtin(tr: Any, call: A.Call) -> bool:

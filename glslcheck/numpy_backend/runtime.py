@@ -1565,19 +1565,27 @@ class Runtime(TextureFunctions):  # texture lookups: textures.py
         compiler knows): ``"strict"`` ``x*(1-a) + y*a`` (a constant ``a``, or ``y`` = +-1),
         ``"fast"`` ``x + a*(y-x)`` (run-time ``a``: measured bit for bit), ``"one"`` /
         ``"minus_one"`` ``(x - a) + y*a`` / ``(x + a) + y*a`` for a constant ``x`` of +1 / -1.
-        None or ``"shared"``: :meth:`_flrp_form` picks it from the operands. float64 and float16 keep the GLSL
+        None: :meth:`_flrp_form` guesses it from the operands. float64 and float16 keep the GLSL
         formula."""
         if isinstance(a, np.ndarray) and a.dtype == BOOL:
             x, y = self._pair(x, y)
             return np.where(a, y, x)
         x, y, a = self._f(x), self._f(y), self._f(a)
         if self.lp is not None:
-            if form in (None, "shared"):
-                form = self._flrp_form(x, y, a, shared=form == "shared")
+            if form is None:
+                form = self._flrp_form(x, y, a)
             if form == "fast":
                 r = np.subtract(y, x)
                 r = np.multiply(a, r, out=r if r.shape == np.broadcast_shapes(r.shape, a.shape) else None)
-                return np.add(x, r, out=r if r.shape == np.broadcast_shapes(r.shape, x.shape) else None)
+                r = np.add(x, r, out=r if r.shape == np.broadcast_shapes(r.shape, x.shape) else None)
+                # a lane whose weight is exactly 0 or 1 is taken for NIR's b2f(c) (step(),
+                # 1.0 - step(), float(bool), their products: the lab shaders' branchless
+                # selects): ``flrp(x, y, b2f(c))`` is ``bcsel(c, y, x)`` in nir_opt_algebraic,
+                # before the lowering. Per lane, so a one-pixel probe run agrees with the render.
+                ends = (a == self._0) | (a == self._1)
+                if ends.any():
+                    r = np.where(a == self._1, y, np.where(a == self._0, x, r))
+                return r
             if form in ("one", "minus_one"):
                 r = (x - a) if form == "one" else (x + a)
                 return r + y * a
@@ -1587,13 +1595,13 @@ class Runtime(TextureFunctions):  # texture lookups: textures.py
             return np.add(r, t, out=r)
         return r + t
 
-    def _flrp_form(self, x: np.ndarray, y: np.ndarray, a: np.ndarray, shared: bool = False) -> str:
+    def _flrp_form(self, x: np.ndarray, y: np.ndarray, a: np.ndarray) -> str:
         """The lowering ``convert_flrp_instruction`` (Mesa nir_lower_flrp.c; llvmpipe sets
         lower_ffma32, so no FMA form) picks for ``mix(x, y, a)``, in its order: x and y both
         constants whose exponents differ by at most 11 -> fast; x a constant of all +1 / -1 ->
-        one / minus_one; y a constant of all +1 or all -1 -> strict; ``shared`` (another mix
-        of the function has the same a and x, or a and y: :func:`nir_fold.mix_hint`) -> strict;
-        a constant -> strict; else fast. "Constant" is :meth:`_const` (lane-uniform and not a uniform input, as for
+        one / minus_one; y a constant of all +1 or all -1 -> strict; a constant -> strict; else
+        fast. For direct calls only: transpiled code passes the form :func:`nir_fold.mix_hint`
+        decides from the source (this run-time guess depends on the lane count). "Constant" is :meth:`_const` (lane-uniform and not a uniform input, as for
         :meth:`fmul`) with ``fold_constants``; direct calls count a lane-uniform ``a`` only.
         Approximation: a value computed from uniforms only (``sin(iTime)``) counts as a
         constant here, where Mesa sees a run-time value."""
@@ -1610,7 +1618,7 @@ class Runtime(TextureFunctions):  # texture lookups: textures.py
             return "minus_one"
         if cy and ((y == self._1).all() or (y == -self._1).all()):
             return "strict"
-        return "strict" if shared or self._const(a) else "fast"
+        return "strict" if self._const(a) else "fast"
 
     def step(self, edge: Any, x: Any) -> np.ndarray:
         """0 where x < edge else 1; NaN gives 0 (llvmpipe computes x >= edge)."""
