@@ -170,8 +170,9 @@ acosh atanh``: Mesa's GLSL formulas over those (``tanh(NaN) = -1``: its clamp(x,
 takes NaN to -10); ``asin``/``acos``: Mesa's GLSL formula ``sign(x)*(pi/2 - sqrt(1-|x|)*(pi/2
 + |x|*(pi/4-1 + |x|*(p0 + |x|*p1))))`` with float32 constants (builtin_functions.cpp);
 ``atan``/``atan(y, x)``: Mesa 22.3's ``nir_atan``/``nir_atan2`` (nir_builtin_builder.c: six
-power terms summed left to right), within 1 ULP of llvmpipe on 0.007% of inputs (all with
-0.85 < |x| < 1.2), bit-exact elsewhere. CPU dependence: gallivm builds these polynomials with
+power terms summed left to right, the last one reassociated by nir_opt_algebraic), bit-exact;
+``mix``: the formula nir_lower_flrp picks for the call (:meth:`Runtime.mix`); Mesa's
+reassociations of sums and products: :mod:`nir_fold`. CPU dependence: gallivm builds these polynomials with
 ``llvm.fmuladd``, fused on a CPU with FMA (Haswell and later; this machine: AVX2 + FMA, no
 AVX-512) and not fused without: :data:`HOST_FMA` follows this CPU, ``Runtime(fma=...)`` picks
 either; the two differ on ~1% of sin arguments. AVX-512 should not change these results (the
@@ -1196,6 +1197,19 @@ class Runtime(TextureFunctions):  # texture lookups: textures.py
                 s += t
         return s
 
+    def dot_add(self, a: Any, b: Any, k: Any) -> np.ndarray:
+        """``dot(a, b) + k`` for a constant ``k`` as Mesa compiles it (nir_fold): the constant
+        joins the innermost addition, ``x0*y0 + (x1*y1 + (x2*y2 + k))``."""
+        a, b = self._f(a), self._f(b)
+        if a.ndim == 1 and b.ndim == 1:
+            return self.fmul(a, b) + self._f(k)
+        n = max(a.shape[0], b.shape[0])
+        a, b = (np.broadcast_to(v, (n,) + v.shape[1:]) if v.ndim == 1 else v for v in (a, b))
+        s = self.fmul(a[n - 1], b[n - 1]) + self._f(k)
+        for i in range(n - 2, -1, -1):
+            s = self.fmul(a[i], b[i]) + s
+        return s
+
     def mat_mul_vec(self, m: np.ndarray, v: np.ndarray) -> np.ndarray:
         """``m * v``: matCxR (C,R,L) times vecC (C,L) -> vecR (R,L); sum of m[c]*v[c] in c order."""
         m, v = self._f(m), self._f(v)
@@ -1329,15 +1343,20 @@ class Runtime(TextureFunctions):  # texture lookups: textures.py
         """Mesa 22.3 ``nir_atan``: x = min(|v|, 1) / max(|v|, 1); the six terms x^(2k+1)*c_k
         (x^3 = x^2*x, x^5 = x^3*x^2, ...) summed left to right; for |v| > 1 the fixup
         ``(t*-2 + pi/2) + t``; then times ``fsign(v)`` (fsign(NaN) = fsign(-0) = 0 on llvmpipe,
-        so atan(NaN) = 0 and atan(-0) = +0). Bit-exact with llvmpipe except 1 ULP on ~0.2% of
-        arguments within 0.85 < |v| < 1.2 (measured: tests/numpy/test_llvmpipe_math_gl.py)."""
+        so atan(NaN) = 0 and atan(-0) = +0). The last term is not ``(x^9*x^2)*c5``:
+        nir_opt_algebraic's constant reassociation ``(a*b)*#c -> (a*#c)*b`` (a*b used once,
+        the rule :mod:`nir_fold` describes) makes it ``(x^9*c5)*x^2``. Bit-exact with llvmpipe
+        (measured: tests/gl/test_llvmpipe_math.py)."""
         F = self.F
         a = np.abs(v)
         x = self._daz(np.fmin(a, self._1) / np.fmax(a, self._1))  # FTZ of the quotient
         x2 = x * x
         p = x
         t = x * F(self._ATAN_COEFFS[0])
-        for cf in self._ATAN_COEFFS[1:]:
+        for k, cf in enumerate(self._ATAN_COEFFS[1:], 1):
+            if k == len(self._ATAN_COEFFS) - 1 and self.lp is not None:
+                t = t + (p * F(cf)) * x2  # x^11 is used once only: reassociated
+                break
             p = p * x2
             t = t + p * F(cf)
         t = self._daz(t)  # FTZ: a subnormal sum (|v| < 1.2e-38 / 0.99998) is 0 there
@@ -1533,17 +1552,68 @@ class Runtime(TextureFunctions):  # texture lookups: textures.py
         """``min(max(x, lo), hi)`` exactly (lo > hi gives hi; NaN x gives lo)."""
         return self.min_(self.max_(x, lo), hi)
 
-    def mix(self, x: Any, y: Any, a: Any) -> np.ndarray:
-        """``x*(1-a) + y*a``; with a bool ``a`` selects y where a is true."""
+    def mix(self, x: Any, y: Any, a: Any, form: str | None = None) -> np.ndarray:
+        """``x*(1-a) + y*a``; with a bool ``a`` selects y where a is true.
+
+        In float32 (llvmpipe) mode, ``form`` is the formula Mesa's nir_lower_flrp picks for this
+        call (llvmpipe has no FFMA; :func:`nir_fold.mix_form` decides from the operands the
+        compiler knows): ``"strict"`` ``x*(1-a) + y*a`` (a constant ``a``, or ``y`` = +-1),
+        ``"fast"`` ``x + a*(y-x)`` (run-time ``a``: measured bit for bit), ``"one"`` /
+        ``"minus_one"`` ``(x - a) + y*a`` / ``(x + a) + y*a`` for a constant ``x`` of +1 / -1.
+        None: :meth:`_flrp_form` guesses it from the operands. float64 and float16 keep the GLSL
+        formula."""
         if isinstance(a, np.ndarray) and a.dtype == BOOL:
             x, y = self._pair(x, y)
             return np.where(a, y, x)
         x, y, a = self._f(x), self._f(y), self._f(a)
+        if self.lp is not None:
+            if form is None:
+                form = self._flrp_form(x, y, a)
+            if form == "fast":
+                r = np.subtract(y, x)
+                r = np.multiply(a, r, out=r if r.shape == np.broadcast_shapes(r.shape, a.shape) else None)
+                r = np.add(x, r, out=r if r.shape == np.broadcast_shapes(r.shape, x.shape) else None)
+                # a lane whose weight is exactly 0 or 1 is taken for NIR's b2f(c) (step(),
+                # 1.0 - step(), float(bool), their products: the lab shaders' branchless
+                # selects): ``flrp(x, y, b2f(c))`` is ``bcsel(c, y, x)`` in nir_opt_algebraic,
+                # before the lowering. Per lane, so a one-pixel probe run agrees with the render.
+                ends = (a == self._0) | (a == self._1)
+                if ends.any():
+                    r = np.where(a == self._1, y, np.where(a == self._0, x, r))
+                return r
+            if form in ("one", "minus_one"):
+                r = (x - a) if form == "one" else (x + a)
+                return r + y * a
         r = self.fmul(x, self._1 - a)  # a constant a of 0 or 1 drops the other side (fmul)
         t = self.fmul(y, a)
         if r.shape == t.shape and r.ndim:  # the sum in r's buffer
             return np.add(r, t, out=r)
         return r + t
+
+    def _flrp_form(self, x: np.ndarray, y: np.ndarray, a: np.ndarray) -> str:
+        """The lowering ``convert_flrp_instruction`` (Mesa nir_lower_flrp.c; llvmpipe sets
+        lower_ffma32, so no FMA form) picks for ``mix(x, y, a)``, in its order: x and y both
+        constants whose exponents differ by at most 11 -> fast; x a constant of all +1 / -1 ->
+        one / minus_one; y a constant of all +1 or all -1 -> strict; a constant -> strict; else
+        fast. For direct calls only: transpiled code passes the form :func:`nir_fold.mix_hint`
+        decides from the source (this run-time guess depends on the lane count). "Constant" is :meth:`_const` (lane-uniform and not a uniform input, as for
+        :meth:`fmul`) with ``fold_constants``; direct calls count a lane-uniform ``a`` only.
+        Approximation: a value computed from uniforms only (``sin(iTime)``) counts as a
+        constant here, where Mesa sees a run-time value."""
+        if not self.fold_constants:
+            return "strict" if a.ndim == 0 or a.shape[-1] == 1 else "fast"
+        cx, cy = self._const(x) and x.size <= 16, self._const(y) and y.size <= 16
+        if cx and cy:
+            ex, ey = np.frexp(np.broadcast_arrays(x, y)[0])[1], np.frexp(np.broadcast_arrays(y, x)[0])[1]
+            if (np.abs(ex - ey) <= 11).all():
+                return "fast"
+        if cx and (x == self._1).all():
+            return "one"
+        if cx and (x == -self._1).all():
+            return "minus_one"
+        if cy and ((y == self._1).all() or (y == -self._1).all()):
+            return "strict"
+        return "strict" if self._const(a) else "fast"
 
     def step(self, edge: Any, x: Any) -> np.ndarray:
         """0 where x < edge else 1; NaN gives 0 (llvmpipe computes x >= edge)."""

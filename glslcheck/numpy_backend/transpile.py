@@ -72,6 +72,7 @@ from .. import ast as A
 from .. import builtins as B
 from .. import types as T
 from ..diagnostics import Diagnostic, GlslError, Location
+from . import nir_fold
 
 RULE = "numpy-transpile"
 LOOP_CAP = 100_000  # iterations per execution of one loop before the render stops with an error
@@ -1822,6 +1823,9 @@ class Transpiler(PythonLimits):
         return self.var_name(sym, e)
 
     def _print_Binary(self, e: A.Binary, mask: str | None) -> str:
+        folded = nir_fold.binary(self, e, mask)  # Mesa's reassociations (llvmpipe mode)
+        if folded is not None:
+            return folded
         op = e.op
         if op in ("&&", "||") and (self.has_effects(e.right) or not _is_simple(e.right)):
             # the right side only where the left does not decide: skipped when no lane needs
@@ -2029,6 +2033,8 @@ class Transpiler(PythonLimits):
         if any(q == "out" for q in quals):
             raise _error(f"{name}() with an out parameter is not supported", e)
         args = self.exprs(e.args, mask)
+        if name == "mix":
+            args += nir_fold.mix_hint(self, e)  # Mesa's flrp lowering: see nir_fold
         if name == "pow":
             rewritten = self.pow_rewrite(e, args)
             if rewritten is not None:

@@ -246,8 +246,9 @@ def test_out_of_range_dynamic_index_is_clamped(make_shader):
 
 def test_precision_modes_use_their_dtypes(make_shader):
     prog = P.compile_numpy(make_shader(_image(
-        "float e = 1.0 / 1024.0; float t = iTime * 1e-8;"
-        "fragColor = vec4((1.0 + e * 0.4 - 1.0) * 1024.0, (1.0 + t - 1.0) * 1e8, 0.0, 1.0);")))
+        # u is 1 at run time but no constant: Mesa would reassociate (1.0 + t) - 1.0 into t
+        "float e = 1.0 / 1024.0; float t = iTime * 1e-8; float u = iResolution.x / iResolution.x;"
+        "fragColor = vec4((1.0 + e * 0.4 - 1.0) * 1024.0, (1.0 + t - u) * 1e8, 0.0, 1.0);")))
     seen = {}
     for precision in ("float16", "float32", "float64"):
         ns = prog.module(precision)

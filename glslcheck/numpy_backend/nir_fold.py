@@ -1,0 +1,427 @@
+"""Mesa's NIR rewrites that change float32 bits, emitted by the transpiler for llvmpipe mode.
+
+Mesa 22.3's compiler reassociates float arithmetic that GLSL ES 3.00 leaves unordered (no
+`precise`): nir_opt_algebraic's inexact (`~`) rules rewrite the written expression, so llvmpipe
+computes other float32 roundings than the source spells. A hash (`fract(x * 43758.5453)`)
+amplifies the last bit, so verify mismatches unless the NumPy backend rewrites the same way.
+The rules copied here, each measured bit for bit against llvmpipe on 50,000 random operands
+(tests/gl/test_llvmpipe_lowering.py):
+
+- factoring (``('~fadd', ('fmul', a, b), ('fmul', a, c)) -> a * (b + c)``): ``a*b + c*a``
+  is ``a * (b + c)``; NIR sees through SSA values, so a product stored in a local that is
+  never written again counts too (``vec2 uv = 50.0 * f; ... uv.x + uv.y`` is
+  ``50.0 * (f.x + f.y)``);
+- constants sunk into a sum (``(a + b) + #c -> (a + #c) + b``, both sums used once, a and b
+  not constant; the variant that keeps a product ``b`` whole is tried first, so
+  ``(a*b + c) + K`` is ``(c + K) + a*b``); subtraction is addition of the negation;
+- the same for products (``(a * b) * #c -> (a * #c) * b``, also ``#c * (a * b)``);
+- constants merged (``#a * (b * #c) -> (a*c) * b``, ``#a + (b + #c) -> (a + c) + b``, with
+  no "used once" condition, so also through a never-written local: ``uv = q * 1.2`` then
+  ``uv * 0.2`` is ``q * 0.24``, the constant folded in float32);
+- ``dot(u, v) + #c``: the constant lands in the innermost addition of the dot product, which
+  llvmpipe sums right to left: ``u.x*v.x + (u.y*v.y + (u.z*v.z + #c))``.
+
+Each rewrite is emitted as ``(<rewritten> if rt.lp else <written>)``: float32 renders take
+Mesa's order, float64 (the accuracy reference) and float16 keep the written one. Not copied
+(measured, left as written): longer chains such as ``(a + b + c) + K`` (llvmpipe gives
+``(a + b) + (c + K)``, which the rules above alone do not explain), and values reached through
+variables other than the product look-through above.
+
+`mix` is lowered by nir_lower_flrp, whose choice depends on the other `mix` calls of the
+shader (:func:`mix_hint`); the rest of that choice is made at run time (`Runtime._flrp_form`).
+"""
+
+from __future__ import annotations
+
+from typing import Any
+
+from .. import ast as A
+from ..printer import to_glsl
+
+_SUMS = ("+", "-")
+
+
+# -- mix: nir_lower_flrp's choice, decided from what the compiler knows -------------------------
+def mix_hint(tr: Any, call: A.Call) -> list[str]:
+    """The extra argument of ``rt.mix``: the formula nir_lower_flrp (Mesa 22.3, no FFMA on
+    llvmpipe) picks for this float-weighted `mix`, in its order: x and y constants whose
+    exponents differ by at most 11 -> "fast" ``x + t*(y-x)``; x a constant of all +1 / -1 ->
+    "one" / "minus_one"; y a constant of all +1 or -1 -> "strict" ``x*(1-t) + y*t``; another
+    mix of the function with the same t and the same x (or y) -> "strict"; a constant t ->
+    "strict"; else "fast". "Constant": a constant expression or a never-written local
+    initialised by one (NIR propagates it); "the same": the same GLSL text (SSA after CSE).
+    Decided here, from the source, so a one-pixel probe run picks what the render picks."""
+    if len(call.args) != 3 or tr.fn is None or tr.type_of(call.args[2]).base != "float":
+        return []
+    x, y, t = call.args
+    cx, cy = _constant_value(tr, x), _constant_value(tr, y)
+    if cx is not None and cy is not None and _similar(cx, cy):
+        return ["'fast'"]
+    for v, form in ((cx, "one"), (cy, "strict")):
+        if v is not None and len(set(v)) == 1 and v[0] == 1.0:
+            return [f"'{form}'"]
+        if v is not None and len(set(v)) == 1 and v[0] == -1.0:
+            return [f"'{'minus_one' if form == 'one' else form}'"]
+    if id(call) in _shared_mixes(tr) or _constant_value(tr, t) is not None:
+        return ["'strict'"]
+    return ["'fast'"]
+
+
+def _constant_value(tr: Any, node: Any) -> list[float] | None:
+    """The scalars of a constant operand (see :func:`mix_hint`), else None."""
+    v = tr.model.const_value(node)
+    if v is None and isinstance(node, A.Identifier):
+        init = _stable_init(tr, node)
+        v = tr.model.const_value(init) if init is not None else None
+    if v is None:
+        return None
+    flat: list[float] = []
+    stack = [v]
+    while stack:
+        item = stack.pop(0)
+        if isinstance(item, (tuple, list)):
+            stack[:0] = list(item)
+        else:
+            flat.append(float(item))
+    return flat
+
+
+def _similar(a: list[float], b: list[float]) -> bool:
+    """``sources_are_constants_with_similar_magnitudes``: frexp exponents at most 11 apart."""
+    import math
+
+    n = max(len(a), len(b))
+    a, b = a * (n // len(a)), b * (n // len(b))
+    return all(abs(math.frexp(p)[1] - math.frexp(q)[1]) <= 11 for p, q in zip(a, b))
+
+
+def _shared_mixes(tr: Any) -> set[int]:
+    """Float-weighted mix calls of the current function that share t and x (or t and y) with
+    another one (get_similar_flrp_stats)."""
+    cache = tr.__dict__.setdefault("_nir_fold_mix", {})
+    key = id(tr.fn.sym)
+    if key not in cache:
+        calls = [n for n in tr.fn.sym.node.body.walk() if isinstance(n, A.Call) and n.callee == "mix"
+                 and len(n.args) == 3 and _builtin(tr, n) and tr.type_of(n.args[2]).base == "float"]
+        texts = [(n, [to_glsl(a) for a in n.args]) for n in calls]
+        cache[key] = {id(n) for n, (x, y, t) in texts
+                      if any(m is not n and t == t2 and (x == x2 or y == y2) for m, (x2, y2, t2) in texts)}
+    return cache[key]
+
+
+# -- binary expressions -----------------------------------------------------------------------
+def binary(tr: Any, e: A.Binary, mask: str | None) -> str | None:
+    """The generated code of ``e`` when a rule above rewrites it, else None."""
+    if e.op not in ("+", "-", "*") or tr.fn is None:
+        return None
+    if tr.type_of(e).base != "float" or tr.type_of(e.left).is_matrix or tr.type_of(e.right).is_matrix:
+        return None
+    if tr.has_effects(e):
+        return None
+    if e.op == "+":
+        folded = _factor(tr, e, mask)
+        if folded is not None:
+            return folded
+    folded = _merge_constants(tr, e, mask)
+    if folded is not None:
+        return folded
+    return _sink(tr, e, mask)
+
+
+def _merge_constants(tr: Any, e: A.Binary, mask: str | None) -> str | None:
+    """``#a * (b * #c) -> (a*c) * b`` and ``#a + (b + #c) -> (a + c) + b`` (no "used once"
+    condition: they reach through any SSA value, here a never-written local such as
+    ``vec2 uv = q * 1.2; ... uv * 0.2``, which is ``q * 0.24`` on llvmpipe: 1.2*0.2 is folded
+    in float32). Subtraction is addition of the negation."""
+    if e.op == "-" and not _const(tr, e.right):
+        return None
+    k_node, x_node = (e.right, e.left) if _const(tr, e.right) else (e.left, e.right)
+    if not _const(tr, k_node) or _const(tr, x_node):
+        return None
+    inner = x_node
+    if isinstance(inner, A.Identifier):
+        inner = _stable_init(tr, inner)
+    ops = ("*",) if e.op == "*" else _SUMS
+    if not (isinstance(inner, A.Binary) and inner.op in ops) or tr.has_effects(inner):
+        return None
+    if _const(tr, inner.right) and not _const(tr, inner.left):
+        b_node, c_node, c_sign, b_sign = inner.left, inner.right, inner.op, "+"
+    elif _const(tr, inner.left) and not _const(tr, inner.right):
+        b_node, c_node, c_sign, b_sign = inner.right, inner.left, "+", inner.op
+    else:
+        return None
+    if tr.type_of(inner) != tr.type_of(x_node) or not _varying(tr, b_node):
+        return None  # (all constant after propagation: NIR folds it left to right)
+    b_inner = _stable_init(tr, b_node) if isinstance(b_node, A.Identifier) else b_node
+    if isinstance(b_inner, A.Binary) and b_inner.op in ops and (_const(tr, b_inner.left) or _const(tr, b_inner.right)):
+        return None  # NIR would merge further into b: not copied
+    tk, tc, tb, tx = tr.exprs([k_node, c_node, b_node, x_node], mask)
+    t = tr.type_of(e)
+    if e.op == "*":
+        rewritten = tr.binary_values("*", t, t, tb, f"({tk} * {tc})")
+        written = tr.binary_values("*", t, t, tx, tk) if x_node is e.left else tr.binary_values("*", t, t, tk, tx)
+    else:
+        k = f"(-{tk})" if e.op == "-" else tk
+        c = f"(-{tc})" if c_sign == "-" else tc
+        rewritten = f"(({k} + {c}) {b_sign} {tb})"
+        written = f"({tx} {e.op} {tk})" if x_node is e.left else f"({tk} {e.op} {tx})"
+    return f"({rewritten} if rt.lp else {written})"
+
+
+def _const(tr: Any, node: Any) -> bool:
+    return tr.model.const_value(node) is not None
+
+
+def _is_product(tr: Any, node: Any) -> bool:
+    return isinstance(node, A.Binary) and node.op == "*" and not _const(tr, node)
+
+
+# built-ins whose NIR result is an fadd or fmul (lowered to arithmetic): their values are not
+# opaque to nir_opt_algebraic
+_ARITHMETIC_BUILTINS = {"dot", "mix", "smoothstep", "normalize", "cross", "reflect", "refract",
+                        "faceforward", "radians", "degrees", "mod", "step", "atan", "asin", "acos",
+                        "tan", "sinh", "cosh", "tanh", "asinh", "acosh", "atanh", "exp", "log", "pow"}
+
+
+def _opaque(tr: Any, node: Any, depth: int = 0) -> bool:
+    """The value reaches NIR as something no algebraic rule looks into: a uniform, a
+    never-written parameter of mainImage, a built-in computed by its own instruction (sin,
+    fract, floor, sqrt, ...), a swizzle of one, or a never-written local initialised so."""
+    if depth > 8:
+        return False
+    if isinstance(node, A.Field):
+        return _opaque(tr, node.base, depth + 1)
+    if isinstance(node, A.Call):
+        if node.constructor:
+            return False
+        return (_builtin(tr, node) and node.callee not in _ARITHMETIC_BUILTINS
+                and not _const(tr, node))
+    if isinstance(node, A.Identifier):
+        sym = tr.model.symbol_of(node)
+        if sym is None or _const(tr, node):
+            return False
+        if sym.kind in ("uniform", "builtin-var"):
+            return True
+        if sym.kind == "param":
+            return tr.fn.is_entry and id(sym) not in _written(tr)
+        init = _stable_init(tr, node)
+        return init is not None and _opaque(tr, init, depth + 1)
+    return False
+
+
+def _used_once(tr: Any, e: Any) -> bool:
+    """``e`` feeds one instruction: its GLSL text appears once in the function (NIR's CSE
+    would merge a copy) and it is an operand of a larger expression (a value stored in a
+    variable feeds every use of the variable)."""
+    parents = tr.__dict__.setdefault("_nir_fold_parents", {})
+    key = id(tr.fn.sym)
+    if key not in parents:
+        texts: dict[str, int] = {}
+        operands: set[int] = set()
+        for n in tr.fn.sym.node.body.walk():
+            if isinstance(n, A.Binary):
+                operands.update((id(n.left), id(n.right)))
+                t = to_glsl(n)
+                texts[t] = texts.get(t, 0) + 1
+            elif isinstance(n, A.Call) and (n.constructor or _builtin(tr, n)):
+                operands.update(id(a) for a in n.args)  # (a user function may read it twice)
+        parents[key] = (texts, operands)
+    texts, operands = parents[key]
+    return id(e) in operands and texts.get(to_glsl(e), 0) <= 1
+
+
+def _sink(tr: Any, e: A.Binary, mask: str | None) -> str | None:
+    """Constants sunk into a two-term sum or product, or into a dot product."""
+    inner, k, k_left = e.left, e.right, False
+    if _const(tr, inner) and not _const(tr, k):
+        inner, k, k_left = e.right, e.left, True
+    if not _const(tr, k) or _const(tr, inner) or tr.type_of(k) != tr.type_of(e):
+        return None
+    if not (_used_once(tr, e) and _used_once(tr, inner)):
+        return None
+    ops = _SUMS if e.op in _SUMS else ("*",)
+    if k_left and e.op == "-":
+        return None  # #c - (a + b): the negation sits between the two sums
+    if (isinstance(inner, A.Call) and inner.callee == "dot" and e.op in _SUMS and _builtin(tr, inner)
+            and all(_stable_vector(tr, x) for x in inner.args)):
+        u, v, kk = tr.exprs([*inner.args, k], mask)
+        signed = f"(-{kk})" if e.op == "-" else kk
+        return f"(rt.dot_add({u}, {v}, {signed}) if rt.lp else (rt.dot({u}, {v}) {e.op} {kk}))"
+    if not (isinstance(inner, A.Binary) and inner.op in ops):
+        return None
+    a, b = inner.left, inner.right
+    if ops == ("*",):
+        if not (_opaque(tr, a) and _opaque(tr, b)):
+            return None  # an operand NIR would look into further: not copied
+    elif not all(_opaque(tr, x) or (_is_product(tr, x) and all(_opaque(tr, f) or _const(tr, f) for f in
+                                                               (x.left, x.right))) for x in (a, b)):
+        return None  # a longer chain, or an operand NIR looks into: not copied
+    if tr.type_of(a) != tr.type_of(e) or tr.type_of(b) != tr.type_of(e):
+        return None  # a broadcast operand: keep it simple
+    ta, tb, tk = tr.exprs([a, b, k], mask)
+    t = tr.type_of(e)
+    if ops == ("*",):
+        prod = lambda x, y: tr.binary_values("*", t, t, x, y)  # noqa: E731
+        written = prod(prod(ta, tb), tk) if not k_left else prod(tk, prod(ta, tb))
+        return f"({prod(prod(ta, tk), tb)} if rt.lp else {written})"
+    # a sum: a +- b +- k; the constant joins a unless only a is a product (then b)
+    sb = inner.op
+    written = f"(({ta} {sb} {tb}) {e.op} {tk})"
+    if _is_product(tr, a) and not _is_product(tr, b):
+        first = f"((-{tb}) {e.op} {tk})" if sb == "-" else f"({tb} {e.op} {tk})"
+        rewritten = f"({first} + {ta})"
+    else:
+        rewritten = f"(({ta} {e.op} {tk}) {sb} {tb})"
+    return f"({rewritten} if rt.lp else {written})"
+
+
+def _factor(tr: Any, e: A.Binary, mask: str | None) -> str | None:
+    """``a*b + a*c`` (either operand order, products possibly stored in never-written locals)
+    as ``a * (b + c)``."""
+    left, right = _factors(tr, e.left), _factors(tr, e.right)
+    if left is None or right is None or sorted(left[0]) == sorted(right[0]):
+        return None  # (x*y + x*y is CSE'd to p + p first)
+    for i in (0, 1):
+        for j in (0, 1):
+            if left[0][i] == right[0][j]:
+                shared, b, c = left[1][i], left[1][1 - i], right[1][1 - j]
+                break
+        else:
+            continue
+        break
+    else:
+        return None
+    rest = [x[0] if isinstance(x, tuple) else x for x in (b, c)]
+    if not all(_opaque(tr, x) or _const(tr, x) for x in rest) or all(_const(tr, x) for x in rest):
+        return None  # b + c would be rewritten further (or folded): not copied
+    t = tr.type_of(e)
+    ts, tb, tc = (_code(tr, x, mask) for x in (shared, b, c))
+    tl, trr = tr.exprs([e.left, e.right], mask)
+    rewritten = tr.binary_values("*", t, t, ts, f"({tb} + {tc})")  # float, no matrix: rt.fmul
+    return f"({rewritten} if rt.lp else ({tl} + {trr}))"
+
+
+def _stable_vector(tr: Any, node: Any) -> bool:
+    """A never-written vector local initialised as the difference of two opaque vectors
+    (``vec3 oc = ro - center``: measured). A vector built from scalars is left out: there
+    llvmpipe's bits follow neither order (other rules, such as ``sqrt(x) * sqrt(x) -> x``,
+    reach into the components)."""
+    init = _stable_init(tr, node) if isinstance(node, A.Identifier) else None
+    if not (isinstance(init, A.Binary) and init.op == "-"):
+        return False
+    return all(_opaque(tr, x) or (isinstance(x, A.Call) and x.constructor and len(x.args) > 1
+                                  and all(_opaque(tr, a) for a in x.args)) for x in (init.left, init.right))
+
+
+def _varying(tr: Any, node: Any, depth: int = 0) -> bool:
+    """The value depends on an input (a uniform, fragCoord, a parameter, a written variable):
+    it is not a constant after NIR's constant propagation."""
+    if depth > 8:
+        return True
+    for n in node.walk():
+        if isinstance(n, A.Identifier):
+            s = tr.model.symbol_of(n)
+            if s is None or s.const_value is not None:
+                continue
+            if s.kind != "local":
+                return True
+            init = _stable_init(tr, n)
+            if init is None or _varying(tr, init, depth + 1):
+                return True
+    return False
+
+
+def _builtin(tr: Any, call: A.Call) -> bool:
+    """The call names a built-in function (not a user function, not a constructor)."""
+    tgt = tr.model.call_target(call)
+    return tgt is not None and not isinstance(tgt, tuple) and getattr(tgt, "kind", None) != "function"
+
+
+def _factors(tr: Any, node: Any) -> tuple[tuple[str, str], tuple[Any, Any]] | None:
+    """The two factors of a product ``node`` (their GLSL texts, and nodes or (node, component)
+    pairs), looking through a never-written local defined as a product; None otherwise."""
+    if _is_product(tr, node):
+        if tr.type_of(node.left) != tr.type_of(node.right) and not (
+                tr.type_of(node.left).is_scalar or tr.type_of(node.right).is_scalar):
+            return None
+        return (to_glsl(node.left), to_glsl(node.right)), (node.left, node.right)
+    comp = None
+    if isinstance(node, A.Field) and isinstance(node.base, A.Identifier) and len(node.name) == 1:
+        comp = "xyzwrgbastpq".index(node.name) % 4 if node.name in "xyzwrgbastpq" else None
+        if comp is None:
+            return None
+        node = node.base
+    if not isinstance(node, A.Identifier):
+        return None
+    init = _stable_init(tr, node)
+    if init is None or not _is_product(tr, init):
+        return None
+    parts = []
+    for f in (init.left, init.right):
+        ft = tr.type_of(f)
+        if comp is not None and not ft.is_scalar:
+            parts.append(((f, comp), f"({to_glsl(f)})[{comp}]"))
+        elif comp is None and not ft == tr.type_of(init) and not ft.is_scalar:
+            return None
+        else:
+            parts.append((f, to_glsl(f)))
+    return (parts[0][1], parts[1][1]), (parts[0][0], parts[1][0])
+
+
+def _code(tr: Any, x: Any, mask: str | None) -> str | None:
+    if isinstance(x, tuple):
+        node, comp = x
+        return f"{tr.expr(node, mask)}[{comp}]"
+    return tr.expr(x, mask)
+
+
+def _stable_init(tr: Any, ident: A.Identifier) -> Any:
+    """The initializer of a local that is written only by its declaration, whose identifiers
+    are all such locals, never-written parameters, uniforms or constants; else None."""
+    sym = tr.model.symbol_of(ident)
+    if sym is None or sym.kind != "local" or not isinstance(sym.node, A.Declarator) or sym.node.init is None:
+        return None
+    init = sym.node.init
+    if tr.has_effects(init):
+        return None
+    written = _written(tr)
+    if id(sym) in written:
+        return None
+    for n in init.walk():
+        if isinstance(n, A.Identifier):
+            s = tr.model.symbol_of(n)
+            if s is None:
+                continue
+            if s.kind in ("local", "param") and id(s) in written:
+                return None
+            if s.kind == "global" and s.const_value is None:
+                return None
+    return init
+
+
+def _written(tr: Any) -> set[int]:
+    """Symbols of the current function that are assigned, incremented or passed to a user
+    function (which might write them through out/inout)."""
+    cache = tr.__dict__.setdefault("_nir_fold_written", {})
+    key = id(tr.fn.sym)
+    if key not in cache:
+        out: set[int] = set()
+
+        def roots(x: Any) -> None:
+            while isinstance(x, (A.Field, A.Index)):
+                x = x.base
+            if isinstance(x, A.Identifier):
+                s = tr.model.symbol_of(x)
+                if s is not None:
+                    out.add(id(s))
+
+        for n in tr.fn.sym.node.walk():
+            if isinstance(n, A.Assignment):
+                roots(n.target)
+            elif isinstance(n, (A.Unary, A.Postfix)) and n.op in ("++", "--"):
+                roots(n.operand)
+            elif isinstance(n, A.Call) and getattr(tr.model.call_target(n), "kind", None) == "function":
+                for a in n.args:
+                    roots(a)
+        cache[key] = out
+    return cache[key]

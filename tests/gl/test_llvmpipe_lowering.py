@@ -1,0 +1,65 @@
+"""Mesa's rewrites of float arithmetic, rendered by llvmpipe and by the NumPy backend bit for bit.
+
+GLSL ES 3.00 has no `precise`, so Mesa reassociates: `mix` becomes one of four formulas
+(nir_lower_flrp: which one depends on the operands the compiler knows and on the other `mix`
+calls), and nir_opt_algebraic factors `a*b + a*c` and sinks constants into sums, products and
+dot products. `glslcheck/numpy_backend/nir_fold.py` and `Runtime.mix` repeat the rewrites in
+float32 mode. Each shader below computes its operands with opaque built-ins (fract, sin, sqrt,
+floor: values NIR does not look into) over 160x90 pixels. Without the rewrites (written order,
+strict mix everywhere) these channels differ from llvmpipe (measured): constants_sunk 680, 4718
+and 5163 pixels in its first three, factoring 979, 6694, 6556, mix_constant_operands 1169 and
+2074 (second and third), mix_forms 5623 (first), mix_shared_operands 3261 (third),
+constants_merged 3600, 3200, 2165 (first three); the other
+channels pin forms that give the same bits here.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+from glslcheck.verify import compile_backend
+
+OPERANDS = """
+    float a = fract(p.x * 0.1371 + p.y * 0.0917), b = sin(p.y * 0.917 + p.x * 0.0311);
+    float d = fract(p.x * 0.01377 + p.y * 0.0311), t = fract(p.x * 0.0173 + p.y * 0.0071);
+    float e = sqrt(p.x), f = floor(p.y * 0.3);
+"""
+CASES = {
+    # run-time weight: x + t*(y - x); constant weight: x*(1 - t) + y*t; x = +-1: (x -+ t) + y*t
+    "mix_forms": "c = vec4(mix(a, b, t), mix(a, b, 0.37), mix(1.0, d, t), mix(-1.0, e, t));",
+    # y = 1 -> strict; constant x and y of similar size -> fast; 1e-6 and 1 are not similar
+    "mix_constant_operands": "c = vec4(mix(a, 1.0, t), mix(0.3, 1.0, t), mix(1.0, 0.7, t), mix(1e-6, 1.0, t));",
+    # another mix with the same weight and x (or y): strict for both
+    "mix_shared_operands": "c = vec4(mix(a, b, t), mix(a, d, t), mix(e, f, t), mix(d, b, t + 0.5));",
+    # (a + b) + K -> (a + K) + b; (e*f + b) - K -> (b - K) + e*f; (a*b)*K -> (a*K)*b;
+    # dot(o, o) - K -> o.x*o.x + (o.y*o.y + (o.z*o.z - K))
+    "constants_sunk": """vec3 o = vec3(e, b, d) - vec3(d, e, b);
+        c = vec4((a + b) + 2.7182817, (e * f + b) - 2.7182817, (a * b) * 2.7182817, dot(o, o) - 2.7182817);""",
+    # a*b + c*a -> a*(b + c), also through a local product (a hash of a real shader)
+    "factoring": """vec2 uv = 50.0 * fract(p / 3.14159265);
+        c = vec4(fract(uv.x * uv.y * (uv.x + uv.y)), a * b + d * a, e * 1.37 + e * b, 2.7182817 * (a * b));""",
+    # #a * (b * #c) -> (a*c) * b and #a + (b + #c) -> (a + c) + b, also through a local
+    "constants_merged": """vec2 uv = (2.0 * p - iResolution.xy) / min(iResolution.x, iResolution.y) * 1.2;
+        vec2 w = uv * 0.2; float q = b + 0.37;
+        c = vec4(w, (q - 1.3) * 1.0, 2.5 - (q + 1.7));""",
+}
+
+
+@pytest.mark.parametrize("name", sorted(CASES))
+def test_numpy_rewrites_as_mesa(gl, make_shader, name):
+    shader = make_shader("void mainImage(out vec4 c, in vec2 p) {" + OPERANDS + CASES[name] + "}")
+    got_gl = compile_backend(shader, "gl").render(size=(160, 90))
+    got_np = compile_backend(shader, "numpy").render(size=(160, 90))
+    same = (np.asarray(got_np, np.float32).view(np.int32) == np.asarray(got_gl, np.float32).view(np.int32))
+    assert same.all(), (name, (~same).reshape(-1, 4).sum(0).tolist())
+
+
+def test_float64_reference_keeps_the_written_order(make_shader):
+    """The rewrites are float32 (llvmpipe) only: the float64 render computes the source's order,
+    so it differs from the float32 render by float32 rounding only."""
+    shader = make_shader("void mainImage(out vec4 c, in vec2 p) {" + OPERANDS + CASES["constants_sunk"] + "}")
+    prog = compile_backend(shader, "numpy")
+    f32 = np.asarray(prog.render(size=(32, 16)), np.float64)
+    f64 = np.asarray(prog.render(size=(32, 16), precision="float64"), np.float64)
+    assert np.allclose(f32, f64, rtol=1e-5, atol=1e-3)
