@@ -23,7 +23,7 @@ SHADER = "void mainImage(out vec4 o, in vec2 f) { o = vec4(f / iResolution.xy, i
 @pytest.mark.parametrize("cls, options", [
     (NumpyProgram, ["precision", "stats", "channels"]),
     (GLProgram, ["channels"]),
-    (WebGLProgram, []),
+    (WebGLProgram, ["channels"]),
     (Program, ["precision", "stats"]),
 ])
 def test_every_render_takes_the_frame_inputs_then_its_options(cls, options):
