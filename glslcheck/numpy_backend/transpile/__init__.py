@@ -27,9 +27,13 @@ Execution model
 All pixels of a tile are lanes. A mask (`_m..`) is `None` ("every lane of the current lane
 set") or a bool array; writes under a mask keep the old value elsewhere (`rt.assign`).
 
+* uniform values (the same in every lane: they depend only on constants, uniforms and uniform
+  variables; numpy_backend/uniformity.py) are arrays of one lane, computed once per tile.
+  A write needs no mask where no lane the mask leaves out reads the variable again (declared
+  in the same branch, or the others returned: `Uniformity.is_free`), so
+  `Light L[4]; L[0] = Light(...);` after an early return stays one value per tile.
 * `if`/`?:`/`&&`/`||` with a lane-dependent condition run each side under its mask, and only
-  when some lane takes it. A uniform condition (the same in every lane: it depends only on
-  constants and uniforms, see `Uniformity`) is a plain Python `if`.
+  when some lane takes it. A uniform condition is a plain Python `if`.
 * loops keep `_live` (lanes still looping): the condition, `break` and `return` remove lanes;
   `continue` sets `_cnt` for the rest of the iteration. The Python loop ends when no lane is
   live. A `for` loop's induction variable (declared in the init, changed only by the step) is

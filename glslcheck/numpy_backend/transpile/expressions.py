@@ -24,6 +24,7 @@ class LValue:
     base: str
     base_type: Any
     path: list[tuple] = field(default_factory=list)
+    free: bool = False  # written without a mask (`Uniformity.is_free`: no lane left out reads it again)
 
 
 class Expressions:
@@ -361,7 +362,8 @@ class Expressions:
     def lvalue(self, e: Any, mask: str | None) -> LValue:
         if isinstance(e, A.Identifier):
             sym = self.model.symbol_of(e)
-            return LValue(self.var_name(sym, e), sym.type)
+            uni = self.fn.uni if self.fn is not None else None
+            return LValue(self.var_name(sym, e), sym.type, free=uni is not None and uni.is_free(e))
         if isinstance(e, A.Field):
             lv = self.lvalue(e.base, mask)
             bt = self.type_of(e.base)
@@ -401,7 +403,7 @@ class Expressions:
 
     def write(self, lv: LValue, value: str, mask: str | None) -> None:
         new = value
-        m = mask
+        m = None if lv.free else mask
         for k in range(len(lv.path) - 1, -1, -1):
             parent = self.read(lv, k)
             kind, arg = lv.path[k]

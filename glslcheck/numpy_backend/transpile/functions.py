@@ -37,7 +37,7 @@ class Functions:
     def gen_function(self, sym: Any) -> None:
         node = sym.node
         is_entry = sym is self.entry
-        uni = Uniformity(self, sym, is_entry)
+        uni = Uniformity(self.model, self.facts, sym, is_entry)
         self.fn = fs = FnState(sym, uni, is_entry)
         if id(sym) in self.facts.uses_derivs:
             fs.no_compact += 1
@@ -150,7 +150,8 @@ class Functions:
     def user_call(self, e: A.Call, fn: Any, mask: str | None) -> str:
         uni = self.fn.uni if self.fn is not None else None
         call_mask = mask
-        if uni is not None and self.facts.closed(fn) and all(uni.is_uniform(a) for a in e.args):
+        if uni is not None and self.facts.closed(fn) and all(
+                uni.is_uniform(a) or d == "out" for a, (_, _, d) in zip(e.args, fn.params)):
             call_mask = None  # same arguments in every lane: compute once, for all lanes
         args: list[str] = []
         outs: list[tuple[int, LValue]] = []

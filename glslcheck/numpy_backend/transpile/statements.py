@@ -382,14 +382,7 @@ class Statements:
         if stack:
             self.emit(f"{stack} = []")
         start_lines = len(self.lines)
-        self.emit("while True:")
-        self.indent += 1
-        fs.blocks += 1
-        self.emit(f"{count} += 1")
-        self.emit(f"if {count} > {LOOP_CAP}:")
-        self.emit(f"    X.runaway({lid})")
-        self.emit(f"if X.tick(S, {lid}, {count}):")  # llvmpipe's loop limiter, if rendering with one
-        self.emit("    break")
+        self.loop_top(lid, count)
         if ev_body.ret and fs.has_ret:
             self.emit(f"{live} = X.andnot({live}, _ret)")
         if do_while or cond is None:
@@ -439,6 +432,18 @@ class Statements:
             self.emit(f"if {stack}:")
             self.emit(f"    S, ({', '.join(used)},) = X.unwind({stack}, S, {tup})")
 
+    def loop_top(self, lid: int, count: str) -> None:
+        """Open a loop's `while True:` with its guards: the iteration count (`LOOP_CAP`, a located
+        error past it) and llvmpipe's loop limiter, if rendering with one (`X.tick`)."""
+        self.emit("while True:")
+        self.indent += 1
+        self.fn.blocks += 1
+        self.emit(f"{count} += 1")
+        self.emit(f"if {count} > {LOOP_CAP}:")
+        self.emit(f"    X.runaway({lid})")
+        self.emit(f"if X.tick(S, {lid}, {count}):")
+        self.emit("    break")
+
     def uniform_loop(self, lid: int, mask: str | None, cond: Any, body: Any, step: Any, ind: Any) -> None:
         """A loop whose condition is the same in every lane and whose body cannot leave it
         early (no break, continue, return or discard): every iteration runs on the lanes that
@@ -446,14 +451,7 @@ class Statements:
         fs = self.fn
         count = self.fresh("n")
         self.emit(f"{count} = 0")
-        self.emit("while True:")
-        self.indent += 1
-        fs.blocks += 1
-        self.emit(f"{count} += 1")
-        self.emit(f"if {count} > {LOOP_CAP}:")
-        self.emit(f"    X.runaway({lid})")
-        self.emit(f"if X.tick(S, {lid}, {count}):")  # llvmpipe's loop limiter, if rendering with one
-        self.emit("    break")
+        self.loop_top(lid, count)
         c = self.condition(cond, mask)
         self.emit(f"if not X.true({c}):")
         self.emit("    break")

@@ -104,7 +104,7 @@ def f_mainImage(S, _m, v_fragCoord):
     _m17 = X.andnot(_m, _t13)
     if X.live(_m17):
         _t15 = C_f_0p0
-    v_fragColor = X.put(v_fragColor, rt.vec(4, rt.vec(3, rt.select(_t13, _t14, _t15)), C_f_1p0), _m)
+    v_fragColor = rt.vec(4, rt.vec(3, rt.select(_t13, _t14, _t15)), C_f_1p0)
     return (None, v_fragColor)
 
 

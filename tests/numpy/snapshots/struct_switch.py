@@ -34,7 +34,7 @@ def f_closest(S, _m, v_h, v_t):
     X.count(S, 1, _m)
     v_better = Z_bool
     # line 4: better = t < h.t;
-    v_better = X.put(v_better, (v_t < rt.field(v_h, "m_t")), _m)
+    v_better = (v_t < rt.field(v_h, "m_t"))
     # line 5: if (better) h.t = t;
     _c2 = v_better
     _m3 = X.and_(_m, _c2)
@@ -55,8 +55,8 @@ def f_mainImage(S, _m, v_fragCoord):
     # line 11: closest(h, fragCoord.x, b);
     _t6 = v_h_1
     _t7 = f_closest(S, _m, _t6, v_fragCoord[0])
-    v_h_1 = X.put(v_h_1, _t7[1], _m)
-    v_b = X.put(v_b, _t7[2], _m)
+    v_h_1 = _t7[1]
+    v_b = _t7[2]
     _t7[0]
     # line 12: vec3 c = vec3(0.0);
     v_c = C_x2
@@ -85,7 +85,7 @@ def f_mainImage(S, _m, v_fragCoord):
         X.count(S, 17, _m16)
         v_c = X.put(v_c, rt.field(v_h_1, "m_n"), _m16)
     # line 18: fragColor = vec4(c, float(b));
-    v_fragColor = X.put(v_fragColor, rt.vec(4, v_c, rt.to_float(v_b)), _m)
+    v_fragColor = rt.vec(4, v_c, rt.to_float(v_b))
     return (None, v_fragColor)
 
 
