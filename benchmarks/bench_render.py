@@ -10,7 +10,9 @@
    same run; best and median of N renders each (the NumPy frame cache is cleared before every
    render). Ratio = numpy / gl; the floor is 6x, the target 3x. NumPy is timed on worker
    processes (what long renders use, see glslcheck/numpy_backend/workers.py) and on threads of
-   this process. `--speed-only` runs this part alone.
+   this process; and as CPU time, NumPy on one thread against llvmpipe's CPU time over all its
+   threads (the work each does: the least moved by other load on a shared machine).
+   `--speed-only` runs this part alone.
 2. Coverage scaling: the sphere scene with small spheres (10% of the pixels) and with large
    ones (99%; the share is counted from the render statistics: the lanes that ran the scene's
    hit branch). Background pixels should cost almost nothing (masked branches
@@ -142,16 +144,21 @@ def speed(repeat: int) -> None:
         gl.render(size=SIZE)
         for mode in MODES:
             _numpy_time(prog, 1, mode=mode)  # warm-up
-        t: dict[str, list[float]] = {m: [] for m in MODES + ("gl",)}
+        t: dict[str, list[float]] = {m: [] for m in MODES + ("gl", "cpu", "gl cpu")}
         for _ in range(repeat):  # in turns, so a slow spell of a shared machine hits all
             for mode in MODES:
                 t[mode].append(_numpy_time(prog, 1, warm=False, mode=mode))
             t["gl"].append(_best(lambda: gl.render(size=SIZE), 1))
+            t["cpu"].append(_numpy_cpu_time(prog, 1, warm=False))
+            c0 = time.process_time()  # llvmpipe's threads are this process's: all of its CPU time
+            gl.render(size=SIZE)
+            t["gl cpu"].append(time.process_time() - c0)
         for how, pick in (("best", min), ("median", statistics.median)):
             v = {k: pick(x) for k, x in t.items()}
             print(f"{name:40s} {how:6s} gl {v['gl'] * 1000:6.1f} ms   numpy processes {v['processes'] * 1000:6.1f} ms "
                   f"= {v['processes'] / v['gl']:5.2f}x   threads {v['threads'] * 1000:6.1f} ms "
-                  f"= {v['threads'] / v['gl']:5.2f}x")
+                  f"= {v['threads'] / v['gl']:5.2f}x   CPU: numpy one thread {v['cpu'] * 1000:6.1f} ms, "
+                  f"gl {v['gl cpu'] * 1000:6.1f} ms = {v['cpu'] / v['gl cpu']:5.2f}x")
     print(f"(floor 6x, target 3x); load at the end {_load()}")
 
 
