@@ -27,6 +27,7 @@
 from __future__ import annotations
 
 import argparse
+import itertools
 import os
 import subprocess
 import sys
@@ -66,10 +67,20 @@ def _best(fn, repeat: int) -> float:
 MODES = ("processes", "threads")  # NumpyProgram.parallel: worker processes, or threads of this process
 
 
+_FRAMES = itertools.count()
+
+
+def frame_time() -> float:
+    """A new iTime for every NumPy frame, as an animation has: nothing computed from iTime can
+    be reused from an earlier frame (the frame cache is emptied too; lane_memo.py keeps what
+    depends on constants only)."""
+    return next(_FRAMES) * 0.01
+
+
 def _numpy_time(prog, repeat: int, size=SIZE, warm: bool = True, mode: str = "processes") -> float:
     def once():
         prog._cache.clear()
-        prog.render(size=size)
+        prog.render(size=size, time=frame_time())
 
     prog.parallel = mode
     if warm:
@@ -86,12 +97,12 @@ def _numpy_cpu_time(prog, repeat: int, size=SIZE, warm: bool = True) -> float:
     try:
         prog._cache.clear()
         if warm:
-            prog.render(size=size)
+            prog.render(size=size, time=frame_time())
         best = float("inf")
         for _ in range(repeat):
             prog._cache.clear()
             t0 = time.process_time()
-            prog.render(size=size)
+            prog.render(size=size, time=frame_time())
             best = min(best, time.process_time() - t0)
         return best
     finally:

@@ -58,6 +58,7 @@ import numpy as np
 from ..diagnostics import Diagnostic, GlslError, InputError, Location
 from ..driver_profile import host_model
 from ..shadertoy import DEFAULT_SIZE, UNIFORMS_BY_NAME, frame_uniforms, sample_offsets
+from .lane_memo import MemoMath
 from .runtime import Runtime, Struct
 from .transpile import SMALL_STATE
 
@@ -473,6 +474,7 @@ def execute_module(source: str, filename: str, meta: dict, precision: str = "flo
     ns: dict[str, Any] = {"__builtins__": {}, "__name__": "glslcheck_shader", "rt": None, "X": None}
     ns["rt"] = rt = Runtime(precision, meta.get("float_to_uint"))
     rt.fold_constants = True  # Mesa's folding of constants (Runtime.fmul); uniforms are read-only
+    rt.lp = MemoMath(rt.lp) if rt.lp is not None else None  # uniform inputs: computed once (lane_memo.py)
     ns["X"] = Lanes(meta, rt)
     with np.errstate(all="ignore"):  # constants may overflow in float16, as on a mediump GPU
         exec(code, ns)  # noqa: S102 - generated from a checked AST; every GLSL name is mangled

@@ -309,3 +309,47 @@ def test_uniform_transcendentals_round_as_llvmpipe(gl, make_shader):
         a = P.compile_numpy(shader).render(size=(8, 2), time=t)
         b = compile_gl(shader, gl).render(size=(8, 2), time=t)
         np.testing.assert_array_equal(a, b)
+
+
+def test_memo_math_gives_the_emulations_bits_and_computes_each_input_once():
+    """lane_memo.MemoMath in front of LlvmpipeMath: one-lane inputs (uniform values) answered
+    from the table are the emulation's own results bit for bit (-0.0, NaN and inf included);
+    lane arrays go straight through."""
+    from glslcheck.numpy_backend.lane_memo import MemoMath
+    from glslcheck.numpy_backend.runtime import LlvmpipeMath
+
+    lp = LlvmpipeMath()
+    memo = MemoMath(lp)
+    values = np.array([0.0, -0.0, 1.7, -3.0e5, 1e-40, np.nan, np.inf, 12345.678], dtype=np.float32)
+    y = np.full(1, 1.3, dtype=np.float32)
+    with np.errstate(all="ignore"):  # (NaN and inf inputs, as a render runs them)
+        for v in values:
+            x = np.array([v], dtype=np.float32)
+            for _ in range(2):  # the second time from the table
+                for got, want in ((memo.sin_or_cos(x, cos=False), lp.sin_or_cos(x, cos=False)),
+                                  (memo.sin_or_cos(x, cos=True), lp.sin_or_cos(x, cos=True)),
+                                  (memo.exp2(x), lp.exp2(x)), (memo.log2(x), lp.log2(x)),
+                                  (memo.pow(x, y), lp.pow(x, y))):
+                    assert got.tobytes() == want.tobytes()
+    assert memo.misses == 5 * len(values) and memo.hits == 5 * len(values)
+    lanes = np.linspace(-10, 10, 1000, dtype=np.float32)
+    assert memo.sin_or_cos(lanes, cos=False).tobytes() == lp.sin_or_cos(lanes, cos=False).tobytes()
+    assert memo.misses == 5 * len(values)  # (not through the table)
+    out = memo.exp2(np.array([2.0], dtype=np.float32))
+    out[0] = 99.0  # the caller owns what it gets: the table keeps its own copy
+    assert memo.exp2(np.array([2.0], dtype=np.float32))[0] == 4.0
+
+
+def test_frames_are_the_same_with_and_without_the_memo(make_shader, monkeypatch):
+    shader = make_shader(_image("""
+    float acc = 0.0;
+    for (int i = 0; i < 5; i++) {
+        float a = sin(float(i) * 0.7 + iTime);
+        acc += a * cos(fragCoord.x * 0.3 + float(i));
+    }
+    fragColor = vec4(acc, pow(abs(sin(iTime)), 2.5), exp2(-fragCoord.y * 0.1), 1.0);"""))
+    frames = [P.compile_numpy(shader).render(size=(24, 12), time=t) for t in (0.5, 0.5, 1.25)]
+    monkeypatch.setattr(P, "MemoMath", lambda lp: lp)
+    plain = [P.compile_numpy(shader).render(size=(24, 12), time=t) for t in (0.5, 0.5, 1.25)]
+    for a, b in zip(frames, plain):
+        np.testing.assert_array_equal(a, b)
