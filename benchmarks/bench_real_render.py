@@ -9,7 +9,10 @@ best of `--repeat` frames each, every frame at a new iTime (0.01 apart, as an an
 NumPy frame cache is emptied and nothing computed from iTime is reused). Ratio = numpy / gl. It prints one line
 per shader, slowest ratio first, then the geometric mean (the issue's targets: <= 1.5x, and no
 shader over 6x) and the load average at the start and the end (a shared machine moves both sides
-of a ratio alike, single timings much more). Shaders that a backend refuses are listed, not timed.
+of a ratio alike, single timings much more). Each frame's CPU time is measured too (this
+process's: llvmpipe's threads are in it) and its ratio printed beside: the least disturbed by
+other load, and with `--mode one` the work NumPy does against the work llvmpipe does. Shaders
+that a backend refuses are listed, not timed.
 """
 
 from __future__ import annotations
@@ -19,6 +22,7 @@ import json
 import math
 import os
 import sys
+import time
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 ROOT = os.path.dirname(HERE)
@@ -52,11 +56,13 @@ def measure(path: str, size: tuple[int, int], repeat: int, mode: str) -> dict:
 
     numpy_frame()  # warm-up: module execution, thread pool or workers
     gl_frame()
-    t_np = t_gl = float("inf")
+    t = {"numpy": float("inf"), "gl": float("inf"), "numpy cpu": float("inf"), "gl cpu": float("inf")}
     for _ in range(repeat):  # in turns
-        t_np = min(t_np, _best(numpy_frame, 1))
-        t_gl = min(t_gl, _best(gl_frame, 1))
-    return {"numpy": t_np, "gl": t_gl, "ratio": t_np / t_gl}
+        for name, fn in (("numpy", numpy_frame), ("gl", gl_frame)):
+            c0 = time.process_time()  # this process's CPU time: llvmpipe's threads included
+            t[name] = min(t[name], _best(fn, 1))
+            t[name + " cpu"] = min(t[name + " cpu"], time.process_time() - c0)
+    return dict(t, ratio=t["numpy"] / t["gl"], cpu_ratio=t["numpy cpu"] / t["gl cpu"])
 
 
 def main() -> int:
@@ -81,21 +87,25 @@ def main() -> int:
             skipped[e["id"]] = "not fetched"
             continue
         try:
-            results[e["id"]] = dict(measure(str(path), size, args.repeat, args.mode), kind=e.get("kind", ""))
+            results[e["id"]] = r = dict(measure(str(path), size, args.repeat, args.mode), kind=e.get("kind", ""))
+            print(f"  ({e['id']}: {r['ratio']:.2f}x, CPU {r['cpu_ratio']:.2f}x, load {_load()})", flush=True)
         except GlslError as err:
             skipped[e["id"]] = str(err).splitlines()[0][:100]
         except Exception as err:  # a shader the GL driver rejects, ...
             skipped[e["id"]] = f"{type(err).__name__}: {str(err).splitlines()[0][:100] if str(err) else ''}"
     for sid, r in sorted(results.items(), key=lambda kv: -kv[1]["ratio"]):
         print(f"  {sid:22s} {r['kind']:16s} numpy {r['numpy'] * 1000:8.1f} ms  gl {r['gl'] * 1000:7.1f} ms  "
-              f"{r['ratio']:6.2f}x", flush=True)
+              f"{r['ratio']:6.2f}x   CPU numpy {r['numpy cpu'] * 1000:8.1f} ms  gl {r['gl cpu'] * 1000:7.1f} ms  "
+              f"{r['cpu_ratio']:6.2f}x", flush=True)
     for sid, why in skipped.items():
         print(f"  {sid:22s} not timed: {why}")
-    if results:
-        geo = math.exp(sum(math.log(r["ratio"]) for r in results.values()) / len(results))
-        worst = max(results.items(), key=lambda kv: kv[1]["ratio"])
-        print(f"{len(results)} shaders: geometric mean {geo:.2f}x (target 1.5x); worst {worst[0]} "
-              f"{worst[1]['ratio']:.1f}x (target 6x); over 6x: {sum(r['ratio'] > 6 for r in results.values())}")
+    for key, what in (("ratio", "wall time"), ("cpu_ratio", "CPU time")):
+        if not results:
+            break
+        geo = math.exp(sum(math.log(r[key]) for r in results.values()) / len(results))
+        worst = max(results.items(), key=lambda kv: kv[1][key])
+        print(f"{what}: {len(results)} shaders, geometric mean {geo:.2f}x (target 1.5x); worst {worst[0]} "
+              f"{worst[1][key]:.1f}x (target 6x); over 6x: {sum(r[key] > 6 for r in results.values())}")
     print(f"load at the end {_load()}")
     if args.json:
         with open(args.json, "w") as f:
