@@ -353,3 +353,57 @@ def test_frames_are_the_same_with_and_without_the_memo(make_shader, monkeypatch)
     plain = [P.compile_numpy(shader).render(size=(24, 12), time=t) for t in (0.5, 0.5, 1.25)]
     for a, b in zip(frames, plain):
         np.testing.assert_array_equal(a, b)
+
+
+# Code after early exits is compacted (Statements.rest_compacted): most lanes leave mainImage
+# (x < 80 of 128), the rest runs on the gathered lanes (3072 of a 128x64 tile), where most
+# leave shade() and split() early again (y < 40 of 64): their rest is gathered once more.
+AFTER_EARLY_EXITS = _image("""
+    vec3 base = vec3(0.1);
+    if (fragCoord.x < 80.0) { fragColor = vec4(base, 1.0); return; }
+    float acc = shade(fragCoord);
+    vec2 p = fragCoord * 0.05;
+    for (int i = 0; i < 6; i++) {
+        if (p.y > 1.2 && i > 2) continue;
+        p = p * 1.1 + vec2(0.1 * sin(float(i) + iTime), 0.2);
+        if (length(p) > 3.0) break;
+        acc += 0.05 * length(p);
+    }
+    vec3 o; float k = split(fragCoord.y, o);
+    fragColor = vec4(acc, k * 0.1, o.z * 0.01 + base.x, 1.0);""", """
+float shade(vec2 f) {
+    if (f.y < 40.0) return 0.5;
+    float s = 0.0;
+    for (int i = 0; i < 4; i++) { s += sin(f.x * 0.1 + float(i)) * 0.1; }
+    vec3 n = normalize(vec3(f, 3.0));
+    return s + n.x * n.y;
+}
+float split(float y, out vec3 o) {
+    o = vec3(1.0, 2.0, 3.0);
+    if (y < 40.0) return 1.0;
+    o = vec3(y, y * 2.0, y * 3.0);
+    float t = y * 0.5 + sqrt(y) * 0.25 + exp2(-y * 0.1);
+    return t * t;
+}""")
+
+
+def test_code_after_early_exits_is_compacted_and_changes_no_pixel(gl, make_shader, monkeypatch):
+    from glslcheck.compare import compare
+    from glslcheck.gl_backend import compile_gl
+    from glslcheck.numpy_backend.transpile import Transpiler
+
+    shader = make_shader(AFTER_EARLY_EXITS)
+    assert "rest" in {k for k, *_ in P.compile_numpy(shader).meta["regions"].values()}
+    prog = P.compile_numpy(shader)
+    prog.parallel, prog.threads = "threads", 1
+    seen = []
+    real = P.Lanes.gather
+    monkeypatch.setattr(P.Lanes, "gather", lambda self, S, idx, values: seen.append(len(idx)) or real(self, S, idx, values))
+    fast = prog.render(size=(128, 64), time=0.8)
+    assert sorted(seen)[-1] == 48 * 64 and len(seen) >= 3  # mainImage's rest, then shade's and split's
+    monkeypatch.setattr(P.Lanes, "gather", real)
+    monkeypatch.setattr(Transpiler, "rest_compacted", lambda self, rest, mask: False)
+    masked = P.compile_numpy(shader).render(size=(128, 64), time=0.8)
+    np.testing.assert_array_equal(fast, masked)
+    c = compare(fast, compile_gl(shader, gl).render(size=(128, 64), time=0.8))
+    assert c.match, (c.max_abs_error, c.mismatched_pixels)

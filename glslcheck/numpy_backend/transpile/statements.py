@@ -10,6 +10,7 @@ from typing import Any
 from ... import ast as A
 from ... import builtins as B
 from ... import types as T
+from ...diagnostics import Location
 from .common import (_DERIVATIVES, _IMPLICIT_LOD, LOOP_CAP, OUTLINE_INDENT, _error, _fold, _is_symbol)
 from .facts import Events, events_of, induction_variable
 
@@ -51,9 +52,27 @@ class Statements:
                     self.emit(f"if X.live({mask}):")
                     self.indent += 1
                     fs.nest += 1
+                    if self.rest_compacted(stmts[i + 1:], mask):
+                        break
         fs.nest -= self.indent - start_indent
         self.indent = start_indent
         return False
+
+    def rest_compacted(self, rest: list[Any], mask: str) -> bool:
+        """The statements after an early exit (`if (miss) { ...; return; }`, a `break` or
+        `continue`) run on the lanes still going, often few of them: emit them as a compacted
+        region (`region_body`) when that pays off, and return True; else emit nothing and return
+        False (they follow under the `if X.live(...)` inline). A `return` among them assigns the
+        return value under the mask (no Python `return` inside the gathered region: the
+        scatter must run); the function's `return _rv` follows the block."""
+        fs = self.fn
+        if fs.no_compact or not rest:
+            return False
+        node = A.Compound(stmts=rest, loc=getattr(rest[0], "loc", None) or Location(self.path, 0, 0))
+        if self._region_uses_derivs(node) or not self._worth_compacting(node):
+            return False
+        self.region_body(lambda m: self.block(rest, m), mask, "rest", node)
+        return True
 
     def refresh(self, mask: str | None, ev: Events) -> str:
         fs = self.fn
