@@ -258,18 +258,14 @@ class Statements:
             return
         c = self.fresh("c")
         self.emit(f"{c} = {cond}")
-        mt = self.fresh("m")
-        self.emit(f"{mt} = X.and_({mask}, {c})")
-        self.emit(f"if X.live({mt}):")
-        self.indent += 1
-        self.region_body(lambda m: self.sub(s.then, m), mt, "if", s.then)
-        self.indent -= 1
-        if s.else_ is not None:
-            me = self.fresh("m")
-            self.emit(f"{me} = X.andnot({mask}, {c})")
-            self.emit(f"if X.live({me}):")
+        for branch, how, kind in ((s.then, "and_", "if"), (s.else_, "andnot", "else")):
+            if branch is None:
+                continue
+            mb = self.fresh("m")
+            self.emit(f"{mb} = X.{how}({mask}, {c})")
+            self.emit(f"if X.live({mb}):")
             self.indent += 1
-            self.region_body(lambda m: self.sub(s.else_, m), me, "else", s.else_)
+            self.region_body(lambda m, branch=branch: self.sub(branch, m), mb, kind, branch)
             self.indent -= 1
 
     def sub(self, s: Any, mask: str | None) -> None:
