@@ -2,12 +2,17 @@
 
     python benchmarks/bench_render.py [--repeat N] [--skip-memory]
 
-1. Speed: the four-sphere, four-point-light Blinn-Phong scene (benchmarks/scenes/four_spheres)
-   and the lab's final scene (lab_shaders/07_final, if present) at 800x450, rendered by both
-   backends in turns in the same run; best of N renders each (the NumPy frame cache is cleared
-   before every render). Ratio = numpy / gl; the floor is 6x, the target 3x. NumPy is timed on
-   worker processes (what long renders use, see glslcheck/numpy_backend/workers.py) and on
-   threads of this process.
+1. Speed: the scenes of `SCENES` at 800x450 (the four-sphere, four-point-light Blinn-Phong
+   scene of benchmarks/scenes/four_spheres; the same scene with its lights built element by
+   element in mainImage after background pixels have returned, benchmarks/scenes/lights_array;
+   a scene in the shape of real Lab 4 submissions, benchmarks/scenes/lab4_submission; the lab's
+   final scene, lab_shaders/07_final, if present), rendered by both backends in turns in the
+   same run; best and median of N renders each (the NumPy frame cache is cleared before every
+   render). Ratio = numpy / gl; the floor is 6x, the target 3x. NumPy is timed on worker
+   processes (what long renders use, see glslcheck/numpy_backend/workers.py) and on threads of
+   this process; and as CPU time, NumPy on one thread against llvmpipe's CPU time over all its
+   threads (the work each does: the least moved by other load on a shared machine).
+   `--speed-only` runs this part alone.
 2. Coverage scaling: the sphere scene with small spheres (10% of the pixels) and with large
    ones (99%; the share is counted from the render statistics: the lanes that ran the scene's
    hit branch). Background pixels should cost almost nothing (masked branches
@@ -22,6 +27,7 @@
 from __future__ import annotations
 
 import argparse
+import itertools
 import os
 import subprocess
 import sys
@@ -39,6 +45,13 @@ from glslcheck.numpy_backend.program import compile_numpy  # noqa: E402
 
 SCENE = os.path.join(HERE, "scenes", "four_spheres", "Image.glsl")
 FINAL = os.path.join(ROOT, "lab_shaders", "07_final")
+# The speed scenes: (label, shader folder). run_all.py renders the same list.
+SCENES = [
+    ("four spheres, four lights (Blinn-Phong)", os.path.dirname(SCENE)),
+    ("lights array built in mainImage", os.path.join(HERE, "scenes", "lights_array")),
+    ("Lab 4 submission shape", os.path.join(HERE, "scenes", "lab4_submission")),
+    ("lab 07_final", FINAL),
+]
 SIZE = (800, 450)
 
 
@@ -54,10 +67,20 @@ def _best(fn, repeat: int) -> float:
 MODES = ("processes", "threads")  # NumpyProgram.parallel: worker processes, or threads of this process
 
 
+_FRAMES = itertools.count()
+
+
+def frame_time() -> float:
+    """A new iTime for every NumPy frame, as an animation has: nothing computed from iTime can
+    be reused from an earlier frame (the frame cache is emptied too; lane_memo.py keeps what
+    depends on constants only)."""
+    return next(_FRAMES) * 0.01
+
+
 def _numpy_time(prog, repeat: int, size=SIZE, warm: bool = True, mode: str = "processes") -> float:
     def once():
         prog._cache.clear()
-        prog.render(size=size)
+        prog.render(size=size, time=frame_time())
 
     prog.parallel = mode
     if warm:
@@ -74,12 +97,12 @@ def _numpy_cpu_time(prog, repeat: int, size=SIZE, warm: bool = True) -> float:
     try:
         prog._cache.clear()
         if warm:
-            prog.render(size=size)
+            prog.render(size=size, time=frame_time())
         best = float("inf")
         for _ in range(repeat):
             prog._cache.clear()
             t0 = time.process_time()
-            prog.render(size=size)
+            prog.render(size=size, time=frame_time())
             best = min(best, time.process_time() - t0)
         return best
     finally:
@@ -116,27 +139,42 @@ def sphere_coverage(prog) -> float:
 
 
 def speed(repeat: int) -> None:
+    import statistics
+
     from glslcheck.gl_backend import compile_gl, renderer_name
 
-    print(f"== speed at {SIZE[0]}x{SIZE[1]} (best of {repeat}, in turns); GL: {renderer_name()}; "
-          f"NumPy on {os.cpu_count()} worker processes and on {os.cpu_count()} threads")
-    scenes = [("four spheres, four lights (Blinn-Phong)", load_shader(SCENE))]
-    if os.path.isdir(FINAL):
-        scenes.append(("lab 07_final", load_shader(FINAL)))
-    for name, shader in scenes:
+    print(f"== speed at {SIZE[0]}x{SIZE[1]} (best and median of {repeat}, in turns); GL: {renderer_name()}; "
+          f"NumPy on {os.cpu_count()} worker processes and on {os.cpu_count()} threads; "
+          f"load {_load()} (1/5/15-minute load average)")
+    for name, folder in SCENES:
+        if not os.path.isdir(folder):
+            continue
+        shader = load_shader(folder)
         prog = compile_numpy(shader)
         gl = compile_gl(shader)
         gl.render(size=SIZE)
         for mode in MODES:
             _numpy_time(prog, 1, mode=mode)  # warm-up
-        t = {m: float("inf") for m in MODES + ("gl",)}
+        t: dict[str, list[float]] = {m: [] for m in MODES + ("gl", "cpu", "gl cpu")}
         for _ in range(repeat):  # in turns, so a slow spell of a shared machine hits all
             for mode in MODES:
-                t[mode] = min(t[mode], _numpy_time(prog, 1, warm=False, mode=mode))
-            t["gl"] = min(t["gl"], _best(lambda: gl.render(size=SIZE), 1))
-        print(f"{name:42s} gl {t['gl'] * 1000:6.1f} ms   numpy processes {t['processes'] * 1000:6.1f} ms "
-              f"= {t['processes'] / t['gl']:4.2f}x   threads {t['threads'] * 1000:6.1f} ms "
-              f"= {t['threads'] / t['gl']:4.2f}x   (floor 6x, target 3x)")
+                t[mode].append(_numpy_time(prog, 1, warm=False, mode=mode))
+            t["gl"].append(_best(lambda: gl.render(size=SIZE), 1))
+            t["cpu"].append(_numpy_cpu_time(prog, 1, warm=False))
+            c0 = time.process_time()  # llvmpipe's threads are this process's: all of its CPU time
+            gl.render(size=SIZE)
+            t["gl cpu"].append(time.process_time() - c0)
+        for how, pick in (("best", min), ("median", statistics.median)):
+            v = {k: pick(x) for k, x in t.items()}
+            print(f"{name:40s} {how:6s} gl {v['gl'] * 1000:6.1f} ms   numpy processes {v['processes'] * 1000:6.1f} ms "
+                  f"= {v['processes'] / v['gl']:5.2f}x   threads {v['threads'] * 1000:6.1f} ms "
+                  f"= {v['threads'] / v['gl']:5.2f}x   CPU: numpy one thread {v['cpu'] * 1000:6.1f} ms, "
+                  f"gl {v['gl cpu'] * 1000:6.1f} ms = {v['cpu'] / v['gl cpu']:5.2f}x")
+    print(f"(floor 6x, target 3x); load at the end {_load()}")
+
+
+def _load() -> str:
+    return " ".join(f"{x:.1f}" for x in os.getloadavg())
 
 
 def coverage(repeat: int) -> None:
@@ -212,8 +250,11 @@ def main() -> int:
     p = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     p.add_argument("--repeat", type=int, default=9)
     p.add_argument("--skip-memory", action="store_true")
+    p.add_argument("--speed-only", action="store_true", help="part 1 only")
     args = p.parse_args()
     speed(args.repeat)
+    if args.speed_only:
+        return 0
     coverage(args.repeat)
     if not args.skip_memory:
         memory()

@@ -209,11 +209,9 @@ def _render_fns(shader, size=SIZE) -> dict:
 def section_render(runs: int) -> list[str]:
     lines = [f"2. NumPy (float32, 1 sample) against GL on llvmpipe at {SIZE[0]}x{SIZE[1]} (ratio = numpy / gl;",
              f"   NumPy on {os.cpu_count()} worker processes and on {os.cpu_count()} threads)"]
-    scenes = [("four spheres, four lights (Blinn-Phong)", load_shader(bench_render.SCENE)),
-              ("lab 07_final", load_shader(bench_render.FINAL))]
     lines.append(f"   {'':40s} {'processes':>11s} {'threads':>11s} {'gl':>11s}   ratios")
-    for label, shader in scenes:
-        t = paired(_render_fns(shader), runs)
+    for label, folder in bench_render.SCENES:
+        t = paired(_render_fns(load_shader(folder)), runs)
         lines.append(f"   {label:40s} {ms(t['processes'])} {ms(t['threads'])} {ms(t['gl'])}   "
                      f"{t['processes'] / t['gl']:5.2f}x {t['threads'] / t['gl']:5.2f}x")
     return lines

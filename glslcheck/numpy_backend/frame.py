@@ -34,6 +34,7 @@ from typing import Any
 import numpy as np
 
 from ..diagnostics import Diagnostic, GlslError, Location
+from .lane_memo import MemoMath
 from .runtime import Runtime, Struct
 from .transpile import _glsl_location, too_complex
 
@@ -388,6 +389,7 @@ def execute_module(source: str, filename: str, meta: dict, precision: str = "flo
     ns: dict[str, Any] = {"__builtins__": {}, "__name__": "glslcheck_shader", "rt": None, "X": None}
     ns["rt"] = rt = Runtime(precision, meta.get("float_to_uint"))
     rt.fold_constants = True  # Mesa's folding of constants (Runtime.fmul); uniforms are read-only
+    rt.lp = MemoMath(rt.lp) if rt.lp is not None else None  # uniform inputs: computed once (lane_memo.py)
     ns["X"] = Lanes(meta, rt)
     with np.errstate(all="ignore"):  # constants may overflow in float16, as on a mediump GPU
         exec(code, ns)  # noqa: S102 - generated from a checked AST; every GLSL name is mangled

@@ -1,6 +1,6 @@
 """The tracing emission mode of the transpiler and the tracers its modules call (`glslcheck probe`).
 
-`TraceTranspiler` is the code generator of transpile.py with hooks added: the module it writes
+`TraceTranspiler` is the code generator of transpile/ with hooks added: the module it writes
 runs the same lane model and the same runtime calls, plus calls of `T`, a tracer that the caller
 puts in the module's namespace before a run (`ns["T"] = tracer`):
 

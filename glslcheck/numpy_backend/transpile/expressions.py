@@ -1,0 +1,426 @@
+"""Expressions and l-values: operators, constructors, built-in calls (Mesa's `pow` rewrites),
+ternaries and short-circuit operators over lanes, constant expressions hoisted to module
+constants, and reads and masked writes through fields, swizzles and indices. Mixed into
+`Transpiler`."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from typing import Any
+
+from ... import ast as A
+from ... import builtins as B
+from ... import types as T
+from .common import (_BIN_METHODS, _DERIVATIVES, _FLOAT_OPERATORS, _IDENT, _IMPLICIT_LOD, _RUNTIME_NAMES,
+                     _TEXTURE_FUNCTIONS, OUTLINE_EXPR_INDENT, SPILL_HEIGHT, _components, _error, _fold,
+                     _is_constant_text, _is_constructor, _is_symbol)
+from .. import nir_fold
+from .facts import _is_simple, out_directions
+
+@dataclass
+class LValue:
+    """An l-value with its index expressions already evaluated: base name and an access path.
+    path items: ("field", "m_name") | ("swz", (i, j, ...)) | ("index", "expr", type_of_base)."""
+
+    base: str
+    base_type: Any
+    path: list[tuple] = field(default_factory=list)
+    free: bool = False  # written without a mask (`Uniformity.is_free`: no lane left out reads it again)
+
+
+class Expressions:
+    """The expression pass of `Transpiler`."""
+
+    # -- expressions ---------------------------------------------------------------------------
+    def expr(self, e: Any, mask: str | None) -> str:
+        method = getattr(self, "_print_" + type(e).__name__, None)
+        if method is None:
+            raise _error(f"{type(e).__name__} expressions are not supported by the NumPy backend", e)
+        if self.too_deep(OUTLINE_EXPR_INDENT, loops=False):
+            return self.outline(lambda: self.expr(e, mask), e)
+        if self.fn is None or self.in_const or self.model.const_value(e) is None:
+            return self.spill(e, method(e, mask))
+        # a constant expression inside a function: computed once, as a module constant (the
+        # same runtime calls at import time instead of on every call in every tile)
+        self.in_const = True
+        n_lines = len(self.lines)
+        try:
+            text = method(e, mask)
+        finally:
+            self.in_const = False
+        if len(self.lines) != n_lines or "(" not in text or not _is_constant_text(text):
+            return self.spill(e, text)
+        name = self.const_exprs.get(text)
+        if name is None:
+            name = self.const_exprs[text] = f"C_x{len(self.const_exprs) + 1}"
+            self.consts[name] = text
+        return name
+
+    def type_of(self, e: Any) -> Any:
+        return self.model.type_of(e)
+
+    def needs_hoist(self, e: Any) -> bool:
+        """True when evaluating e emits statements (so earlier operands go to temporaries
+        first): effects, or a part high enough to be spilled (`PythonLimits.spill`)."""
+        return self._height(e) >= SPILL_HEIGHT or _fold(e, self._hoists, self._hoists_here)
+
+    def _hoists_here(self, n: Any, kids: list[bool]) -> bool:
+        if any(kids) or isinstance(n, (A.Assignment, A.Sequence)):
+            return True
+        if isinstance(n, (A.Unary, A.Postfix)) and n.op in ("++", "--"):
+            return True
+        if isinstance(n, A.Call):
+            tgt = self.model.call_target(n)
+            if any(d != "in" for d in out_directions(tgt)):
+                return True
+            if _is_symbol(tgt) and id(tgt) in self.facts.may_discard:
+                return True
+        if isinstance(n, (A.Ternary, A.Binary)) and (not isinstance(n, A.Binary) or n.op in ("&&", "||")):
+            if self.has_effects(n.then if isinstance(n, A.Ternary) else n.right) or (
+                    isinstance(n, A.Ternary) and self.has_effects(n.else_)):
+                return True
+        return False
+
+    def has_effects(self, e: Any) -> bool:
+        return _fold(e, self._effects, self._effects_here)
+
+    def _effects_here(self, n: Any, kids: list[bool]) -> bool:
+        if any(kids) or isinstance(n, (A.Assignment, A.Sequence)):
+            return True
+        if isinstance(n, (A.Unary, A.Postfix)) and n.op in ("++", "--"):
+            return True
+        return isinstance(n, A.Call) and (_is_symbol(self.model.call_target(n))
+                                          or any(d != "in" for d in out_directions(self.model.call_target(n))))
+
+    def tmp(self, value: str) -> str:
+        if value.startswith(("C_", "Z_")) and value.replace("_", "").isalnum():
+            return value
+        t = self.fresh("t")
+        self.emit(f"{t} = {value}")
+        return t
+
+    def exprs(self, items: list[Any], mask: str | None) -> list[str]:
+        """Evaluate expressions as Mesa does: a later operand's side effects (calls with out
+        arguments, assignments, ++/--) are emitted as statements first and every operand is
+        read after them, so `vec4(ip, modf(x, ip), ...)` and `vec2(i, i++)` see the updated
+        value in every position (measured on llvmpipe; GLSL IR hoists such calls and reads
+        variables lazily). Earlier operands are not copied to temporaries."""
+        return [self.expr(e, mask) for e in items]
+
+    def _print_IntLiteral(self, e: A.IntLiteral, mask: str | None) -> str:
+        return self.const_int(e.value, e.unsigned or self.type_of(e) == T.UINT)
+
+    def _print_FloatLiteral(self, e: A.FloatLiteral, mask: str | None) -> str:
+        return self.const_float(e.value)
+
+    def _print_BoolLiteral(self, e: A.BoolLiteral, mask: str | None) -> str:
+        return self.const_bool(e.value)
+
+    def _print_Identifier(self, e: A.Identifier, mask: str | None) -> str:
+        sym = self.model.symbol_of(e)
+        if sym is None:
+            raise _error(f"'{e.name}' has no symbol", e)
+        return self.var_name(sym, e)
+
+    def _print_Binary(self, e: A.Binary, mask: str | None) -> str:
+        folded = nir_fold.binary(self, e, mask)  # Mesa's reassociations (llvmpipe mode)
+        if folded is not None:
+            return folded
+        op = e.op
+        if op in ("&&", "||") and (self.has_effects(e.right) or not _is_simple(e.right)):
+            # the right side only where the left does not decide: skipped when no lane needs
+            # it (`t > 0.0 && t < best` in a tile where every t is -1)
+            return self.short_circuit(e, mask)
+        left, right = self.exprs([e.left, e.right], mask)
+        lt, rtp = self.type_of(e.left), self.type_of(e.right)
+        if op in ("==", "!="):
+            if lt.is_scalar and rtp.is_scalar:
+                return f"rt.{'eq' if op == '==' else 'ne'}({left}, {right})"
+            return f"rt.{'equal_all' if op == '==' else 'nequal_all'}({left}, {right})"
+        if op == "%" and self.model.const_value(e.left) is not None and self.model.const_value(e.right) is not None:
+            return f"rt.rem_const({left}, {right})"
+        if op not in _BIN_METHODS and op != "%":
+            raise _error(f"the operator '{op}' is not supported", e)
+        return self.binary_values(op, lt, rtp, left, right)
+
+    def short_circuit(self, e: A.Binary, mask: str | None) -> str:
+        left = self.tmp(self.expr(e.left, mask))
+        res = self.fresh("t")
+        self.emit(f"{res} = {self.const_bool(e.op == '||')}")
+        m = self.fresh("m")
+        self.emit(f"{m} = X.{'and_' if e.op == '&&' else 'andnot'}({mask}, {left})")
+        self.emit(f"if X.live({m}):")
+        self.indent += 1
+        right = self.expr(e.right, m)
+        self.emit(f"{res} = {right}")
+        self.indent -= 1
+        return f"rt.{'and_' if e.op == '&&' else 'or_'}({left}, {res})"
+
+    def _print_Unary(self, e: A.Unary, mask: str | None) -> str:
+        if e.op in ("++", "--"):
+            return self.incdec(e, mask, want_value=True)
+        v = self.expr(e.operand, mask)
+        if e.op == "-":
+            return f"(-{v})" if self.type_of(e.operand).base == "float" else f"rt.neg({v})"
+        if e.op == "+":
+            return v
+        if e.op == "!":
+            return f"rt.not_({v})"
+        if e.op == "~":
+            return f"rt.bit_not({v})"
+        raise _error(f"the operator '{e.op}' is not supported", e)
+
+    def _print_Postfix(self, e: A.Postfix, mask: str | None) -> str:
+        return self.incdec(e, mask, want_value=True)
+
+    def incdec(self, e: Any, mask: str | None, want_value: bool) -> str:
+        lv = self.lvalue(e.operand, mask)
+        old = self.tmp(self.read(lv)) if (want_value and isinstance(e, A.Postfix)) else self.read(lv)
+        fn = "inc" if e.op == "++" else "dec"
+        new = f"rt.{fn}({old})"
+        if want_value and isinstance(e, A.Unary):
+            new = self.tmp(new)
+        self.write(lv, new, mask)
+        return old if isinstance(e, A.Postfix) else new
+
+    def _print_Assignment(self, e: A.Assignment, mask: str | None) -> str:
+        return self.assignment(e, mask, want_value=True)
+
+    def assignment(self, e: A.Assignment, mask: str | None, want_value: bool) -> str:
+        lv = self.lvalue(e.target, mask)
+        value = self.expr(e.value, mask)
+        if e.op != "=":
+            value = self.binary_values(e.op[:-1], self.type_of(e.target), self.type_of(e.value),
+                                       self.read(lv), value)
+        if want_value:
+            value = self.tmp(value)
+        self.write(lv, value, mask)
+        return value
+
+    @staticmethod
+    def binary_values(op: str, lt: Any, rtp: Any, left: str, right: str) -> str:
+        """`left op right` for operand types lt, rtp (matrix products by shape)."""
+        if op == "*" and (lt.is_matrix or rtp.is_matrix):
+            if lt.is_matrix and rtp.is_matrix:
+                return f"rt.mat_mul_mat({left}, {right})"
+            if lt.is_matrix and rtp.is_vector:
+                return f"rt.mat_mul_vec({left}, {right})"
+            if lt.is_vector and rtp.is_matrix:
+                return f"rt.vec_mul_mat({left}, {right})"
+        if op == "%":
+            return f"rt.rem({left}, {right})"
+        if op == "*" and lt.base == "float" and rtp.base == "float":
+            return f"rt.fmul({left}, {right})"  # NaN times a constant zero is 0 (Runtime.fmul)
+        if op in _FLOAT_OPERATORS and lt.base == "float" and rtp.base == "float":
+            # float operands are always arrays of the render dtype: NumPy's operator is exactly
+            # the runtime's ufunc (rt.add is np.add ...), without a Python call per operation
+            return f"({left} {op} {right})"
+        return f"rt.{_BIN_METHODS[op]}({left}, {right})"
+
+    def _print_Ternary(self, e: A.Ternary, mask: str | None) -> str:
+        fs = self.fn
+        effects = self.has_effects(e.then) or self.has_effects(e.else_)
+        if not effects:
+            if fs is not None and fs.uni is not None and fs.uni.is_uniform(e.cond):
+                c = self.expr(e.cond, mask)
+                if self.needs_hoist(e.then) or self.needs_hoist(e.else_):
+                    c = self.tmp(c)
+                a = self.expr(e.then, mask)
+                b = self.expr(e.else_, mask)
+                return f"({a} if X.true({c}) else {b})"
+            c, a, b = self.exprs([e.cond, e.then, e.else_], mask)
+            return f"rt.select({c}, {a}, {b})"
+        c = self.tmp(self.expr(e.cond, mask))
+        t = self.type_of(e)
+        res_a, res_b = self.fresh("t"), self.fresh("t")
+        for res, branch, how in ((res_a, e.then, "and_"), (res_b, e.else_, "andnot")):
+            self.emit(f"{res} = {self.zero(t, e)}")
+            m = self.fresh("m")
+            self.emit(f"{m} = X.{how}({mask}, {c})")
+            self.emit(f"if X.live({m}):")
+            self.indent += 1
+            self.emit(f"{res} = {self.expr(branch, m)}")
+            self.indent -= 1
+        return f"rt.select({c}, {res_a}, {res_b})"
+
+    def _print_Sequence(self, e: A.Sequence, mask: str | None) -> str:
+        for x in e.exprs[:-1]:
+            self.effect(x, mask)
+        return self.expr(e.exprs[-1], mask)
+
+    def _print_Index(self, e: A.Index, mask: str | None) -> str:
+        base, idx = self.exprs([e.base, e.index], mask)
+        cv = self.model.const_value(e.index)
+        bt = self.type_of(e.base)
+        if isinstance(cv, int) and not isinstance(cv, bool):
+            if bt.is_array and bt.element.is_struct:
+                return f"rt.index({base}, {cv})"
+            return f"{base}[{cv}]"
+        return f"rt.index({base}, {idx})"
+
+    def _print_Field(self, e: A.Field, mask: str | None) -> str:
+        base = self.expr(e.base, mask)
+        bt = self.type_of(e.base)
+        if bt.is_struct:
+            return f'rt.field({base}, "{self.member(e.name, e)}")'
+        idx = self.model.swizzle_indices(e)
+        if bt.is_scalar:
+            return base if len(idx) == 1 else f'rt.swizzle({base}, "{"x" * len(idx)}")'
+        if len(idx) == 1:
+            return f"{base}[{idx[0]}]"
+        return f'rt.swizzle({base}, "{"".join("xyzw"[i] for i in idx)}")'
+
+    def _print_MethodCall(self, e: A.MethodCall, mask: str | None) -> str:
+        bt = self.type_of(e.base)
+        if e.name == "length":
+            if bt.is_array:
+                return self.const_int(bt.array_size, False)
+            if bt.is_vector:
+                return self.const_int(bt.size, False)
+            if bt.is_matrix:
+                return self.const_int(bt.cols, False)
+        raise _error(f"the method '.{e.name}()' is not supported", e)
+
+    def _print_Call(self, e: A.Call, mask: str | None) -> str:
+        tgt = self.model.call_target(e)
+        if _is_constructor(tgt):
+            return self.constructor(e, tgt[1], mask)
+        if _is_symbol(tgt):
+            return self.user_call(e, tgt, mask)
+        if tgt is None:
+            raise _error(f"the call of '{e.callee}' was not resolved by the checker", e)
+        return self.builtin_call(e, tgt, mask)
+
+    def constructor(self, e: A.Call, t: Any, mask: str | None) -> str:
+        args = self.exprs(e.args, mask)
+        if t.is_array:
+            return f"rt.array({', '.join(args)})"
+        if t.is_struct:
+            fields = ", ".join(f"{self.member(fname, e)}={a}" for (fname, _), a in zip(t.fields, args))
+            return f'rt.struct("{self.struct_name(t)}", {fields})'
+        if t.is_scalar:
+            at = self.type_of(e.args[0])
+            a = args[0]
+            if at.is_matrix:
+                a = f"{a}[0][0]"
+            elif at.is_vector:
+                a = f"{a}[0]"
+            if at.base == t.base:
+                return a
+            return f"rt.to_{t.base}({a})"
+        if t.is_vector:
+            fn = {"float": "vec", "int": "ivec", "uint": "uvec", "bool": "bvec"}[t.base]
+            return f"rt.{fn}({t.size}, {', '.join(args)})"
+        if t.is_matrix:
+            return f"rt.mat({t.cols}, {t.rows}, {', '.join(args)})"
+        raise _error(f"constructing '{t}' is not supported", e)
+
+    def builtin_call(self, e: A.Call, ov: Any, mask: str | None) -> str:
+        name = ov.name
+        if getattr(ov, "category", None) == B.TEXTURE or name.startswith("texture") or name.startswith("texel"):
+            if name not in _TEXTURE_FUNCTIONS or str(self.type_of(e.args[0])) != "sampler2D":
+                raise _error(f"{name}(): this texture lookup is not supported by the NumPy backend yet", e,
+                             help="render this shader with --backend gl")
+            width = ", width=S.width" if name in _IMPLICIT_LOD else ""
+            return f"rt.{name}({', '.join(self.exprs(e.args, mask))}{width})"  # textures.py
+        quals = list(getattr(ov, "qualifiers", ()) or ())
+        if name == "modf":
+            x = self.expr(e.args[0], mask)
+            lv = self.lvalue(e.args[1], mask)
+            r = self.tmp(f"rt.modf({x})")
+            self.write(lv, f"{r}[1]", mask)
+            return f"{r}[0]"
+        if any(q == "out" for q in quals):
+            raise _error(f"{name}() with an out parameter is not supported", e)
+        args = self.exprs(e.args, mask)
+        if name == "mix":
+            args += nir_fold.mix_hint(self, e)  # Mesa's flrp lowering: see nir_fold
+        if name == "pow":
+            rewritten = self.pow_rewrite(e, args)
+            if rewritten is not None:
+                return rewritten
+        method = _RUNTIME_NAMES.get(name, name)
+        from ..runtime import Runtime
+
+        if not _IDENT.match(method) or not hasattr(Runtime, method):
+            raise _error(f"the built-in {name}() is not supported by the NumPy backend", e)
+        if name in _DERIVATIVES:
+            args.append("S.width")
+        return f"rt.{method}({', '.join(args)})"
+
+    def pow_rewrite(self, e: A.Call, args: list[str]) -> str | None:
+        """Mesa's compile-time rewrites of `pow` (see `Runtime.pow_const`): a constant exponent
+        with a component of 1.0, 2.0, 4.0 or +0.0 becomes products (`rt.pow_const`), a constant
+        base of all ones becomes 1 (`rt.pow_one`); None: the run-time `rt.pow`."""
+        base = self.model.const_value(e.args[0])
+        if base is not None and all(v == 1.0 for v in _components(base)):
+            return f"rt.pow_one({args[1]})"
+        c = self.model.const_value(e.args[1])
+        if c is None:
+            return None
+        comps = [float(v) for v in _components(c)]
+        if not any(v in (1.0, 2.0, 4.0) or (v == 0.0 and str(v) == "0.0") for v in comps):
+            return None
+        lit = repr(comps[0]) if not isinstance(c, tuple) else "(" + ", ".join(map(repr, comps)) + ")"
+        return f"rt.pow_const({args[0]}, {lit})"
+
+    # -- l-values ------------------------------------------------------------------------------
+    def lvalue(self, e: Any, mask: str | None) -> LValue:
+        if isinstance(e, A.Identifier):
+            sym = self.model.symbol_of(e)
+            uni = self.fn.uni if self.fn is not None else None
+            return LValue(self.var_name(sym, e), sym.type, free=uni is not None and uni.is_free(e))
+        if isinstance(e, A.Field):
+            lv = self.lvalue(e.base, mask)
+            bt = self.type_of(e.base)
+            if bt.is_struct:
+                lv.path.append(("field", self.member(e.name, e)))
+            else:
+                idx = self.model.swizzle_indices(e)
+                if bt.is_scalar:
+                    return lv
+                if lv.path and lv.path[-1][0] == "swz":
+                    prev = lv.path.pop()[1]
+                    idx = tuple(prev[i] for i in idx)
+                lv.path.append(("swz", tuple(idx)))
+            return lv
+        if isinstance(e, A.Index):
+            lv = self.lvalue(e.base, mask)
+            cv = self.model.const_value(e.index)
+            if isinstance(cv, int) and not isinstance(cv, bool):
+                idx = str(cv)
+            else:
+                idx = self.tmp(self.expr(e.index, mask))
+            lv.path.append(("index", idx))
+            return lv
+        raise _error("this expression cannot be assigned to", e)
+
+    def read(self, lv: LValue, upto: int | None = None) -> str:
+        v = lv.base
+        for item in lv.path[:upto]:
+            kind, arg = item
+            if kind == "field":
+                v = f'rt.field({v}, "{arg}")'
+            elif kind == "swz":
+                v = f"{v}[{arg[0]}]" if len(arg) == 1 else f'rt.swizzle({v}, "{"".join("xyzw"[i] for i in arg)}")'
+            else:
+                v = f"rt.index({v}, {arg})"
+        return v
+
+    def write(self, lv: LValue, value: str, mask: str | None) -> None:
+        new = value
+        m = None if lv.free else mask
+        for k in range(len(lv.path) - 1, -1, -1):
+            parent = self.read(lv, k)
+            kind, arg = lv.path[k]
+            if kind == "field":
+                new = f'rt.assign_field({parent}, "{arg}", {new}, {m})'
+            elif kind == "swz":
+                new = f'rt.assign_swizzle({parent}, "{"".join("xyzw"[i] for i in arg)}", {new}, {m})'
+            else:
+                new = f"rt.assign_index({parent}, {arg}, {new}, {m})"
+            m = None
+        if lv.path:
+            self.emit(f"{lv.base} = {new}")
+        else:
+            self.assign_stmt(lv.base, new, m)
