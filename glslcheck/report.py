@@ -279,17 +279,21 @@ def _png(rgb: np.ndarray) -> str:
     return "data:image/png;base64," + base64.b64encode(buf.getvalue()).decode("ascii")
 
 
-def render_png(image: np.ndarray) -> str:
-    """A render as the screen shows it (RGB clamped to [0, 1], *255 + 0.5, as `render -o x.png`)."""
+def _screen(image: np.ndarray) -> np.ndarray:
+    """RGB as the screen shows it: clamped to [0, 1], *255 + 0.5, NaN as 0 (as `render -o x.png`)."""
     with np.errstate(invalid="ignore"):
         q = np.floor(np.clip(np.nan_to_num(image[..., :3], nan=0.0), 0.0, 1.0) * 255.0 + 0.5)
-    return _png(q.astype(np.uint8))
+    return q.astype(np.uint8)
+
+
+def render_png(image: np.ndarray) -> str:
+    """A render as the screen shows it."""
+    return _png(_screen(image))
 
 
 def nan_map_png(image: np.ndarray) -> str:
     """The render as the screen shows it, its NaN/Inf pixels in compare's NaN colour."""
-    with np.errstate(invalid="ignore"):
-        q = np.floor(np.clip(np.nan_to_num(image[..., :3], nan=0.0), 0.0, 1.0) * 255.0 + 0.5).astype(np.uint8)
+    q = _screen(image)
     q[(~np.isfinite(image)).any(axis=-1)] = NAN_COLOUR
     return _png(q)
 
