@@ -249,12 +249,22 @@ def mark_pareto(rows: Sequence[Row]) -> list[Row]:
 # ---------------------------------------------------------------------------------------------
 # Text table.
 
+TABLE_NOTE = ("error: RGB as displayed (clamped to [0, 1]) against NumPy float64 at 16 samples per pixel;"
+               " x GL@1: time over GL at 1 sample, same run; * = Pareto front (time, mean abs error)")
 HEADER = ("config", "backend", "precision", "samples", "median ms", "x GL@1",
           "max abs err", "mean abs err", "PSNR dB", "px > 1/255", "front")
 
 
 def _g(v: float) -> str:
     return "0" if v == 0 else f"{v:.3g}" if v >= 1e-3 else f"{v:.2e}"
+
+
+def row_cells(r: Row) -> tuple[str, ...]:
+    """A row's cells under HEADER, as the text table (and glslcheck report's table) shows them."""
+    return (r.config.label, r.config.backend, r.config.precision, str(r.config.samples),
+            f"{r.median_ms:.1f}", f"{r.ratio_to_gl:.2f}", _g(r.max_abs_error), _g(r.mean_abs_error),
+            "inf" if math.isinf(r.psnr_db) else f"{r.psnr_db:.1f}", str(r.pixels_over_1_255),
+            "*" if r.pareto else "")
 
 
 def format_table(rows: Sequence[Row], size: tuple[int, int] | None = None, runs: int | None = None,
@@ -271,18 +281,13 @@ def format_table(rows: Sequence[Row], size: tuple[int, int] | None = None, runs:
         if runs:
             head += f"  median of {runs} run{'s' if runs != 1 else ''}"
         out.append(head)
-        cells = [HEADER] + [(
-            r.config.label, r.config.backend, r.config.precision, str(r.config.samples),
-            f"{r.median_ms:.1f}", f"{r.ratio_to_gl:.2f}", _g(r.max_abs_error), _g(r.mean_abs_error),
-            "inf" if math.isinf(r.psnr_db) else f"{r.psnr_db:.1f}", str(r.pixels_over_1_255),
-            "*" if r.pareto else "") for r in mine]
+        cells = [HEADER] + [row_cells(r) for r in mine]
         widths = [max(len(row[i]) for row in cells) for i in range(len(HEADER))]
         for row in cells:
             parts = [c.ljust(w) if i in (0, 1, 2) else c.rjust(w) for i, (c, w) in enumerate(zip(row, widths))]
             out.append("  " + "  ".join(parts).rstrip())
         out.append("")
-    out.append("error: RGB as displayed (clamped to [0, 1]) against NumPy float64 at 16 samples per pixel;"
-               " x GL@1: time over GL at 1 sample, same run; * = Pareto front (time, mean abs error)")
+    out.append(TABLE_NOTE)
     return "\n".join(out) + "\n"
 
 
@@ -334,8 +339,9 @@ def _tick_text(e: int, unit: str = "") -> str:
     return text + unit
 
 
-LEGEND = ("GL (llvmpipe, float32)", "NumPy float16", "NumPy float32", "NumPy float64",
-          "1 sample", "4 samples", "16 samples", "Pareto front (ringed)")
+LEGEND_COLOURS = {"gl": "GL (llvmpipe, float32)", "webgl": "WebGL (ANGLE, SwiftShader)", "float16": "NumPy float16",
+                  "float32": "NumPy float32", "float64": "NumPy float64"}
+LEGEND_SHAPES = ("1 sample", "4 samples", "16 samples", "Pareto front (ringed)")
 
 
 def _legend_layout(text_widths: Sequence[float], width: int) -> list[tuple[float, int]]:
@@ -366,7 +372,9 @@ def write_plot(rows: Sequence[Row], path: str | os.PathLike, title: str | None =
     width = pw * len(shaders)
     f_title, f_axis, f_tick, f_label = _font(17 * S), _font(13 * S), _font(11 * S), _font(11 * S)
     measure = ImageDraw.Draw(Image.new("RGB", (1, 1)))
-    legend = _legend_layout([measure.textlength(t, font=f_axis) for t in LEGEND], width)
+    colour_keys = [k for k in LEGEND_COLOURS if k != "webgl" or any(r.config.backend == "webgl" for r in rows)]
+    texts = [LEGEND_COLOURS[k] for k in colour_keys] + list(LEGEND_SHAPES)
+    legend = _legend_layout([measure.textlength(t, font=f_axis) for t in texts], width)
     legend_h = (18 + 22 * (legend[-1][1] + 1)) * S
     height = title_h + ph + legend_h
     img = Image.new("RGB", (width, height), (255, 255, 255))
@@ -489,10 +497,10 @@ def write_plot(rows: Sequence[Row], path: str | os.PathLike, title: str | None =
 
     # Legend: colours are backends and precisions, shapes are samples per pixel.
     symbols = [lambda x, y, c=COLOURS[k]: draw.rectangle([x, y - 6 * S, x + 12 * S, y + 6 * S], fill=c)
-               for k in ("gl", *PRECISIONS)]
+               for k in colour_keys]
     symbols += [lambda x, y, n=n: _marker(draw, x + 6 * S, y, n, (110, 110, 110), 6 * S) for n in (1, 4, 16)]
     symbols.append(lambda x, y: draw.line([(x - 4 * S, y), (x + 14 * S, y)], fill=FRONT_COLOUR, width=3 * S))
-    for symbol, text, (x, row) in zip(symbols, LEGEND, legend):
+    for symbol, text, (x, row) in zip(symbols, texts, legend):
         y = title_h + ph + (11 + 22 * row) * S
         symbol(x, y)
         draw.text((x + 20 * S, y), text, font=f_axis, fill=(0, 0, 0), anchor="lm")

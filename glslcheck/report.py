@@ -10,7 +10,13 @@ shaders get an index at the top) the page shows
 - for each pair of backends the heat map of their differences (glslcheck.compare's colours:
   black equal, red to white larger, cyan a discontinuity, magenta NaN in one image only) with
   verify's numbers and verdict; NumPy against WebGL is the driver-aware verdict of
-  `verify --against webgl` (glslcheck/webgl_backend/drivers.py).
+  `verify --against webgl` (glslcheck/webgl_backend/drivers.py);
+- where a render has NaN or Inf pixels, where they came from: `probe --nan`'s origins
+  (glslcheck/probe.py), each also under its source line, and a map of those pixels;
+- the accuracy/time table and plot of `glslcheck bench` (glslcheck/bench.py: each backend,
+  NumPy at float16/32/64, 1, 4 and 16 samples per pixel, time against error), measured at a
+  small size (BENCH_SIZE, 64x36: the twelve to fifteen configurations, float16 at 16 samples the
+  slowest, then take seconds, not minutes, per shader) and said so on the page.
 
 No network at view time: the CSS is inline and every image is a PNG data URI. A backend that is
 not available here (no GL context, no browser) is named with the reason, the rest of the page
@@ -19,7 +25,7 @@ backend and returns its console errors (and takes a screenshot), which is how th
 
 Library API:
 
-    page = build_report(["lab_shaders"], size=(320, 180), time=1.7)
+    page = build_report(["lab_shaders"], size=(320, 180), time=1.7, bench=(64, 36), bench_runs=3)
     page.html; page.ok   # ok: every shader clean, rendered and matching
     errors = load_in_browser("report.html", screenshot="report.png")
 """
@@ -31,18 +37,28 @@ import html
 import io
 import itertools
 import math
+import os
+import tempfile
 import time as _time
 from dataclasses import dataclass, field
 from pathlib import Path
+from typing import TYPE_CHECKING
 
 import numpy as np
 
+from .bench import HEADER as BENCH_HEADER
+from .bench import TABLE_NOTE, Row, row_cells
 from .compare import EDGE_COLOUR, NAN_COLOUR, Comparison, compare, heat_colours
-from .diagnostics import Diagnostic, GlslError, InputError
+from .diagnostics import Diagnostic, GlslError, InputError, Location
 from .sources import Shader, find_shaders
+
+if TYPE_CHECKING:
+    from .probe import NanReport
 
 BACKEND_NAMES = {"numpy": "NumPy (CPU)", "gl": "GL (Mesa llvmpipe)", "webgl": "WebGL (ANGLE, SwiftShader)"}
 DEFAULT_SIZE = (320, 180)
+BENCH_SIZE = (64, 36)  # the bench renders 12-15 configurations x (runs + 1) at this size: keep it small
+BENCH_RUNS = 3  # bench's own default: the median of three rounds
 
 CSS = """
 body { font: 14px/1.45 system-ui, sans-serif; margin: 0 auto; max-width: 1200px; padding: 16px 24px;
@@ -66,7 +82,10 @@ pre.src span.ln { display: inline-block; width: 3.5em; color: #8c959f; text-alig
 pre.src .hit { background: #fff8c5; display: inline-block; min-width: 100%; }
 pre.src .note { display: block; color: #a40e26; padding-left: calc(3.5em + 10px); white-space: pre-wrap; }
 pre.src .note.lint { color: #7d4e00; }
+pre.src .note.nan { color: #9c1f9c; }
 ul.diags { margin: 4px 0; padding-left: 20px; } code { font-size: 12.5px; }
+table.bench tr.front td { background: #fff3e0; } table.bench td { padding: 2px 8px; font-size: 12.5px; }
+img.plot { max-width: 520px; border: 1px solid #d8dee4; background: #fff; }
 .index td:first-child a { font-weight: 600; }
 """
 
@@ -84,6 +103,12 @@ class ShaderReport:
     unavailable: dict[str, str] = field(default_factory=dict)  # backend -> why
     pairs: list[tuple[str, str, Comparison, str]] = field(default_factory=list)  # a, b, comparison, note
     angle: bool = False  # ANGLE's verdict is part of `check`
+    nonfinite: dict[str, int] = field(default_factory=dict)  # backend -> NaN/Inf pixels of its render
+    nan: NanReport | None = None  # probe --nan on the NumPy render, when a render has NaN/Inf pixels
+    nan_note: str = ""  # why there are no origins to show
+    bench: list[Row] = field(default_factory=list)  # glslcheck bench's rows
+    bench_note: str = ""  # why there is no table
+    bench_load: tuple[float, float, float] | None = None  # load average when the bench ran
 
     @property
     def errors(self) -> int:
@@ -159,9 +184,42 @@ def _backend_ready(backend: str) -> str | None:
     return None
 
 
+def _nan_origins(report: ShaderReport, size, time: float) -> None:
+    """`probe --nan` when a render has NaN/Inf pixels: the probe traces the NumPy backend's
+    module, so it finds the origins of NumPy's own NaN pixels (the others are counted)."""
+    for b, image in report.renders.items():
+        report.nonfinite[b] = int((~np.isfinite(image)).any(axis=-1).sum())
+    if not any(report.nonfinite.values()):
+        return
+    from .probe import Inputs, Probe
+
+    try:
+        report.nan = Probe(report.shader).nan_origins(Inputs(size=tuple(size), time=float(time)))
+    except (GlslError, InputError) as e:  # e.g. buffers and channels, which the probe does not trace
+        report.nan_note = str(e).removeprefix("error: ")
+
+
+def _bench(report: ShaderReport, size, runs: int, time: float) -> None:
+    """`glslcheck bench`'s table for one shader, WebGL included when the page shows it."""
+    from .bench import bench_shader
+
+    if "gl" in report.unavailable:  # the bench's times are ratios to GL at one sample
+        report.bench_note = f"not measured: GL is not available ({report.unavailable['gl']})"
+        return
+    report.bench_load = os.getloadavg() if hasattr(os, "getloadavg") else None
+    try:
+        report.bench = bench_shader(report.shader, size=tuple(size), runs=runs, time=float(time),
+                                    webgl="webgl" in report.renders)
+    except (GlslError, InputError) as e:  # a render only the bench makes fails (float16, 16 samples)
+        said = "; ".join(f"{d.loc}: {d.message}" if d.loc else d.message for d in getattr(e, "diagnostics", []))
+        report.bench_note = "not measured: " + (said or str(e).removeprefix("error: "))
+
+
 def gather(shader: Shader, *, size=DEFAULT_SIZE, time: float = 0.0, backends=("numpy", "gl", "webgl"),
-           ready: dict[str, str | None] | None = None) -> ShaderReport:
-    """Check, lint, render with each backend and compare every pair, for one shader."""
+           ready: dict[str, str | None] | None = None, bench=BENCH_SIZE, bench_runs: int = BENCH_RUNS) -> ShaderReport:
+    """Check, lint, render with each backend and compare every pair, for one shader; then the
+    NaN origins (when a render has NaN/Inf pixels) and, unless `bench` is None, the bench at
+    that size."""
     from .verify import _Pair, FrameSpec, compile_backend, emulate_driver
     from .webgl_backend.drivers import driver_verdict
 
@@ -203,6 +261,9 @@ def gather(shader: Shader, *, size=DEFAULT_SIZE, time: float = 0.0, backends=("n
             report.pairs.append((a, b, verdict, note))
         else:
             report.pairs.append((a, b, compare(r[a], r[b]), ""))
+    _nan_origins(report, size, time)
+    if bench is not None and r:
+        _bench(report, bench, bench_runs, time)
     return report
 
 
@@ -218,11 +279,33 @@ def _png(rgb: np.ndarray) -> str:
     return "data:image/png;base64," + base64.b64encode(buf.getvalue()).decode("ascii")
 
 
-def render_png(image: np.ndarray) -> str:
-    """A render as the screen shows it (RGB clamped to [0, 1], *255 + 0.5, as `render -o x.png`)."""
+def _screen(image: np.ndarray) -> np.ndarray:
+    """RGB as the screen shows it: clamped to [0, 1], *255 + 0.5, NaN as 0 (as `render -o x.png`)."""
     with np.errstate(invalid="ignore"):
         q = np.floor(np.clip(np.nan_to_num(image[..., :3], nan=0.0), 0.0, 1.0) * 255.0 + 0.5)
-    return _png(q.astype(np.uint8))
+    return q.astype(np.uint8)
+
+
+def render_png(image: np.ndarray) -> str:
+    """A render as the screen shows it."""
+    return _png(_screen(image))
+
+
+def nan_map_png(image: np.ndarray) -> str:
+    """The render as the screen shows it, its NaN/Inf pixels in compare's NaN colour."""
+    q = _screen(image)
+    q[(~np.isfinite(image)).any(axis=-1)] = NAN_COLOUR
+    return _png(q)
+
+
+def plot_png(rows: list[Row], title: str) -> str:
+    """bench's time-against-error plot (bench.write_plot) as a data URI."""
+    from .bench import write_plot
+
+    with tempfile.TemporaryDirectory(prefix="glslcheck-report-") as folder:
+        path = Path(folder) / "plot.png"
+        write_plot(rows, path, title=title)
+        return "data:image/png;base64," + base64.b64encode(path.read_bytes()).decode("ascii")
 
 
 def diff_png(c: Comparison) -> str:
@@ -268,7 +351,8 @@ def _source_html(shader: Shader, diags: list[Diagnostic]) -> str:
             # a note is a block of its own: no newline after it, or the listing gets blank lines
             rows.append(f'<span class="hit">{text}</span>' if hits else text + "\n")
             for d in hits:
-                kind = "lint" if d.rule not in ("type", "syntax", "webgl-compile", "gl-compile") else "check"
+                kind = ("nan" if d.rule == NAN_RULE else
+                        "lint" if d.rule not in ("type", "syntax", "webgl-compile", "gl-compile") else "check")
                 rows.append(f'<span class="note {kind}">{"^".rjust(d.loc.column)} {_e(d.severity)} '
                             f'[{_e(d.rule)}] {_e(d.message)}</span>')
         parts.append(f"<h3>{_e(src.path)}</h3><pre class=\"src\">" + "".join(rows) + "</pre>")
@@ -277,6 +361,81 @@ def _source_html(shader: Shader, diags: list[Diagnostic]) -> str:
         parts.append('<ul class="diags">' + "".join(
             f"<li>{_e(d.severity)} [{_e(d.rule)}] {_e(d.message)}</li>" for d in rest) + "</ul>")
     return "\n".join(parts)
+
+
+NAN_RULE = "nan-origin"  # the probe's origins, shown under their source lines like findings
+
+
+def _origin_notes(r: ShaderReport) -> list[Diagnostic]:
+    if r.nan is None:
+        return []
+    return [Diagnostic(f"{o.operation} in `{o.code}`: the first NaN/Inf of {o.pixels} pixel{'s' * (o.pixels != 1)}",
+                       Location(o.file, o.line, o.column), severity="note", rule=NAN_RULE)
+            for o in r.nan.origins if o.file]
+
+
+def _nan_html(r: ShaderReport) -> str:
+    """NaN/Inf pixels per render and, from `probe --nan`, where NumPy's came from."""
+    if not any(r.nonfinite.values()):
+        return ""
+    counts = ", ".join(f"{BACKEND_NAMES[b]} {n}" for b, n in r.nonfinite.items())
+    out = ["<h3>NaN and Inf pixels: where they came from</h3>",
+           f'<p class="meta">Pixels with a NaN or Inf channel per render: {_e(counts)}. The origins are '
+           "<code>glslcheck probe --nan</code>'s (glslcheck/probe.py): it runs the NumPy backend's traced module "
+           "on each such pixel of the NumPy render and groups the pixels by the first operation that made a "
+           "NaN or Inf. Each origin is also noted under its source line below.</p>"]
+    if r.nan is None:
+        out.append(f'<p><span class="badge off">no origins</span> {_e(r.nan_note)}</p>')
+        return "\n".join(out)
+    rows = []
+    for o in r.nan.origins:
+        where = f"{o.file}:{o.line}:{o.column}" if o.file else "-"
+        x0, y0, x1, y1 = o.box
+        rows.append(f"<tr><td><code>{_e(where)}</code></td><td>{_e(o.operation)}</td><td><code>{_e(o.code)}</code></td>"
+                    f'<td class="num">{o.pixels}</td><td class="num">{x0},{y0} .. {x1},{y1}</td>'
+                    f"<td>{_e(o.help)}</td></tr>")
+    if not rows:
+        rows.append('<tr><td colspan="6">the NumPy render has no NaN or Inf pixel: only the drivers made them</td></tr>')
+    figure = ""
+    if "numpy" in r.renders and r.nonfinite.get("numpy"):
+        figure = (f'<figure><img class="render" alt="NaN/Inf pixels of the NumPy render" '
+                  f'src="{nan_map_png(r.renders["numpy"])}"><figcaption>NumPy render, NaN/Inf pixels in magenta'
+                  "</figcaption></figure>")
+    out.append(f'<div class="images">{figure}<table class="nan"><tr><th>where</th><th>operation</th><th>code</th>'
+               f"<th>pixels</th><th>box (x, y from the top left)</th><th>help</th></tr>{''.join(rows)}</table></div>")
+    return "\n".join(out)
+
+
+def _bench_html(r: ShaderReport, runs: int, size, time: float) -> str:
+    """bench's table and plot, with what was measured and how."""
+    out = ["<h3>Accuracy against time (glslcheck bench)</h3>"]
+    if not r.bench:
+        if r.bench_note:
+            out.append(f'<p><span class="badge off">no table</span> {_e(r.bench_note)}</p>')
+        return "\n".join(out) if r.bench_note else ""
+    w, h = size
+    load = (f" Load average when measured: {r.bench_load[0]:.2f}, {r.bench_load[1]:.2f}, {r.bench_load[2]:.2f} "
+            f"on {os.cpu_count()} CPUs: times on a busy machine are slower and noisier; compare rows, "
+            "which share the load (round-robin), rather than absolute times.") if r.bench_load else ""
+    out.append(f'<p class="meta">Measured as <code>glslcheck bench --size {w}x{h} --runs {runs} --time {time:g}'
+               f'{" --webgl" if any(x.config.backend == "webgl" for x in r.bench) else ""}</code> does '
+               "(glslcheck/bench.py), at this small size to keep the report quick. Each configuration (backend, "
+               "precision, samples per pixel on a 1x1, 2x2 or 4x4 sub-pixel grid) renders once to warm up, then "
+               f"{runs} round{'s' * (runs != 1)} in turn; its time is the median of its rounds of the whole render call (uniforms, "
+               "every sample, the averaging, the image back in memory). Error: RGB as the screen shows it "
+               "(clamped to [0, 1]) against NumPy float64 at 16 samples per pixel, with compare.py's metrics; "
+               f"px &gt; 1/255: pixels off by more than one 8-bit step.{_e(load)}</p>")
+    head = "".join(f"<th>{_e(c)}</th>" for c in BENCH_HEADER)
+    rows = []
+    for x in r.bench:
+        cells = row_cells(x)
+        tds = "".join(f"<td>{_e(c)}</td>" if i < 3 else f'<td class="num">{_e(c)}</td>' for i, c in enumerate(cells))
+        rows.append(('<tr class="front">' if x.pareto else "<tr>") + tds + "</tr>")
+    title = f"render time against error at {w}x{h} (reference: NumPy float64 at 16 samples)"
+    out.append(f'<div class="images"><table class="bench"><tr>{head}</tr>{"".join(rows)}</table>'
+               f'<img class="plot" alt="render time against error" src="{plot_png(r.bench, title)}"></div>')
+    out.append(f'<p class="meta">{_e(TABLE_NOTE)} (shaded rows).</p>')
+    return "\n".join(out)
 
 
 def _pair_table(a: str, b: str, c: Comparison) -> str:
@@ -288,7 +447,7 @@ def _pair_table(a: str, b: str, c: Comparison) -> str:
     return "<table>" + "".join(f"<tr><td>{k}</td><td class=\"num\">{_e(v)}</td></tr>" for k, v in rows) + "</table>"
 
 
-def _section(r: ShaderReport, size, time: float) -> str:
+def _section(r: ShaderReport, size, time: float, bench_size=BENCH_SIZE, bench_runs: int = BENCH_RUNS) -> str:
     out = [f'<h2 id="{_anchor(r.name)}">{_e(r.name)} {_badge(r.ok, "ok", "problems")}</h2>']
     errors = r.errors
     warnings = sum(d.severity == "warning" for d in r.check)
@@ -326,12 +485,15 @@ def _section(r: ShaderReport, size, time: float) -> str:
         out.append('<p class="meta">Heat map: black = equal, red to yellow to white = larger differences, '
                    "cyan = a difference a sub-pixel shift explains (an edge), magenta = NaN/Inf in one image "
                    "only. Tolerance and budgets: glslcheck/compare.py.</p>")
+    out.append(_nan_html(r))
+    out.append(_bench_html(r, bench_runs, bench_size, time))
     out.append("<h3>Source, check and lint findings</h3>")
-    out.append(_source_html(r.shader, r.check + r.lint))
+    out.append(_source_html(r.shader, r.check + r.lint + _origin_notes(r)))
     return "\n".join(out)
 
 
-def page_html(reports: list[ShaderReport], size, time: float, title: str) -> str:
+def page_html(reports: list[ShaderReport], size, time: float, title: str, bench_size=BENCH_SIZE,
+              bench_runs: int = BENCH_RUNS) -> str:
     from . import __version__
 
     head = (f"<!DOCTYPE html>\n<html lang=\"en\"><head><meta charset=\"utf-8\">"
@@ -349,18 +511,20 @@ def page_html(reports: list[ShaderReport], size, time: float, title: str) -> str
                         f'<td class="num">{len(r.lint)}</td><td>{verdicts}</td></tr>')
         body.append('<table class="index"><tr><th>shader</th><th>check</th><th>lint findings</th>'
                     "<th>verify</th></tr>" + "".join(rows) + "</table>")
-    body += [_section(r, size, time) for r in reports]
+    body += [_section(r, size, time, bench_size, bench_runs) for r in reports]
     return head + "\n".join(body) + "\n</body></html>\n"
 
 
 def build_report(paths, *, size=DEFAULT_SIZE, time: float = 0.0, backends=("numpy", "gl", "webgl"),
-                 title: str | None = None) -> Page:
-    """The page for every shader under `paths` (see the module docstring)."""
+                 title: str | None = None, bench=BENCH_SIZE, bench_runs: int = BENCH_RUNS) -> Page:
+    """The page for every shader under `paths` (see the module docstring); `bench` is the
+    bench's render size, None to leave the table out."""
     shaders = find_shaders([str(p) for p in paths])
     ready = {b: _backend_ready(b) for b in backends}
-    reports = [gather(s, size=size, time=time, backends=backends, ready=ready) for s in shaders]
+    reports = [gather(s, size=size, time=time, backends=backends, ready=ready, bench=bench, bench_runs=bench_runs)
+               for s in shaders]
     title = title or ("glslcheck report: " + ", ".join(str(p) for p in paths))
-    return Page(page_html(reports, size, time, title), reports)
+    return Page(page_html(reports, size, time, title, bench, bench_runs), reports)
 
 
 def load_in_browser(path, screenshot=None, width: int = 1280, height: int | None = None) -> list[str]:

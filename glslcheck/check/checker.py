@@ -223,9 +223,6 @@ class Checker(A.NodeVisitor):
                        help=f"rename it, for example to '{name[3:] or 'value'}'")
             return False
         self.webgl(webgl_rules.name_problem(name), node)
-        problem = webgl_rules.double_underscore_problem(name)
-        if problem:
-            self.warning(problem[0], node, help=problem[1])
         return True
 
     def webgl(self, problem: tuple[str, str] | None, node: Any) -> None:
@@ -450,6 +447,10 @@ class Checker(A.NodeVisitor):
             self.error("a function returning an array must give its size", proto.return_type)
         params: list[tuple[str, T.Type, str]] = []
         for p in proto.params:
+            if p.type is not None and p.type.struct_ is not None:  # ANGLE and Mesa reject it, glslang does not
+                self.error("a parameter's type cannot define a struct", p.type,
+                           help=f"declare 'struct {p.type.struct_.name or 'S'} {{ ... }};' before the function "
+                                "and use its name as the type")
             pt = self.resolve_type(p.type)
             pt = self.with_array(pt, p.array, p)
             storage = [q for q in p.qualifiers if q in ("const", "in", "out", "inout")]

@@ -40,10 +40,15 @@ POSITIONS = {
 }
 
 
-def _shader(position: str, name: str) -> str:
+def _shader(position: str, name: str, plain: bool | None = None) -> dict[str, str]:
+    """make_shader's arguments: a Shadertoy Image tab, or for a name with `__` (an error in a
+    tab: no browser compiles it; glslcheck/check/webgl_rules.py) a plain GLSL ES file."""
     decl, use = POSITIONS[position](name)
-    return (decl + "void mainImage(out vec4 fragColor, in vec2 fragCoord) {\n"
-            f"    float acc = 0.0;\n    {use}\n    fragColor = vec4(acc, fragCoord.x * 0.1, 0.0, 1.0);\n}}\n")
+    body = f"    float acc = 0.0;\n    {use}\n    fragColor = vec4(acc, fragCoord.x * 0.1, 0.0, 1.0);\n}}\n"
+    if plain if plain is not None else "__" in name:
+        return {"GLSL": "#version 300 es\nprecision highp float;\nout vec4 fragColor;\n" + decl
+                + "void main() {\n    vec2 fragCoord = gl_FragCoord.xy;\n" + body}
+    return {"image": decl + "void mainImage(out vec4 fragColor, in vec2 fragCoord) {\n" + body}
 
 
 def _code_identifiers(source: str) -> set[str]:
@@ -59,11 +64,11 @@ def test_hostile_names_are_mangled_and_inert(make_shader, position):
         if name in {"lambda", "def", "class", "import", "global", "nonlocal", "yield", "None", "True", "pass"} \
                 and position == "struct type":
             continue  # covered by the other positions; keeps the struct case simple
-        shader = make_shader(_shader(position, name))
+        shader = make_shader(**_shader(position, name))
         src = transpile_shader(shader).source
         # Names the generator itself writes for any shader (rt, X, numpy in the standalone
         # footer, ...) are its own: the user's name must not add a bare use of any of them.
-        own = _code_identifiers(transpile_shader(make_shader(_shader(position, "q"))).source)
+        own = _code_identifiers(transpile_shader(make_shader(**_shader(position, "q", "__" in name))).source)
         assert name not in _code_identifiers(src) - own, f"{position} {name!r} reached the generated code unmangled"
         code = "\n".join(line.split("#", 1)[0] for line in src.splitlines())
         assert not re.search(r"\.\s*__\w+", code), f"{position} {name!r}: dunder attribute access"

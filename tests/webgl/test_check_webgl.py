@@ -1,10 +1,12 @@
 """`check --webgl` and the WebGL rules of our checker (glslcheck/check/webgl_rules.py).
 
 Each fixture in tests/webgl/invalid is something ANGLE (Shadertoy's browser) rejects although
-glslangValidator and Mesa accept it (tools/webgl_agreement.py found them). Same format as
-tests/check/invalid: `// expect: <part of our message>` and `// ERROR` on the line. For each,
-our checker must reject it there, and ANGLE must too, on the same line (so the rule is not our
-invention).
+glslangValidator accepts it (tools/webgl_agreement.py found them; Mesa accepts most of them and
+rejects a struct defined in a parameter's type and `#pragma STDGL invariant(all)`, so those two
+are not WebGL's own rules but are kept here, where glslang's rejection is not required). Same
+format as tests/check/invalid: `// expect: <part of our message>` and `// ERROR` on the line. For
+each, our checker must reject it there, ANGLE must too, on the same line (so the rule is not our
+invention), and glslangValidator must accept it (else it belongs in tests/check/invalid).
 """
 
 from __future__ import annotations
@@ -13,7 +15,7 @@ from pathlib import Path
 
 import pytest
 
-from glslcheck.check.agreement import our_errors
+from glslcheck.check.agreement import glslang_errors, our_errors
 from glslcheck.cli import main
 from glslcheck.diagnostics import register_source
 from glslcheck.sources import Shader, Source
@@ -48,18 +50,26 @@ def test_we_reject_what_angle_rejects(path, webgl):
         f"{path.name}: ANGLE said {[(str(d.loc), d.message) for d in angle]}")
 
 
-def test_double_underscore_warns_where_angle_rejects(webgl, make_shader):
-    # The one ANGLE rejection our checker only warns about (webgl_rules.py says why).
-    shader = make_shader("const float light__power = 2.0;\n"
-                         "void mainImage(out vec4 c, in vec2 f) { c = vec4(light__power); }\n")
+@pytest.mark.parametrize("path", FIXTURES, ids=lambda p: p.stem)
+def test_glslang_accepts_them(path, glslang):
+    shader, _expect, _line = load(path)
+    assert not glslang_errors(shader), f"{path.name}: glslangValidator rejects it: move it to tests/check/invalid"
+
+
+def test_double_underscore_is_an_error_in_a_tab_and_a_warning_in_a_plain_file(tmp_path, capsys, make_shader):
     from glslcheck.check import check
     from glslcheck.parse import parse_shader
 
-    ours = check(parse_shader(shader, "Image"), "Image").diagnostics
-    assert [(d.severity, d.loc.line) for d in ours] == [("warning", 1)]
-    assert "Shadertoy's browser rejects it" in ours[0].message
-    angle = webgl_diagnostics(shader, "Image")
-    assert angle[0].loc.line == 1 and "two consecutive underscores" in angle[0].message  # then its uses
+    shader = make_shader("const float light__power = 2.0;\n"
+                         "void mainImage(out vec4 c, in vec2 f) { c = vec4(light__power); }\n")
+    ours = check(parse_shader(shader, "Image"), "Image", collect=True).diagnostics
+    assert [(d.severity, d.loc.line) for d in ours] == [("error", 1)]
+    assert "Shadertoy's browser rejects it" in ours[0].message and ours[0].help == "rename it, for example to 'light_power'"
+    path = tmp_path / "plain.frag"  # a plain GLSL ES file need not run in WebGL: the spec allows the name
+    path.write_text("#version 300 es\nprecision highp float;\nout vec4 o;\nfloat a__b = 1.0;\n"
+                    "void main() { o = vec4(a__b); }\n")
+    assert main(["check", str(path)]) == 0
+    assert f"{path}:4:7: warning: 'a__b': names containing '__' are reserved" in capsys.readouterr().err
 
 
 def test_plain_glsl_gets_warnings_not_errors(tmp_path, capsys):
