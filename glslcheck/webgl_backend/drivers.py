@@ -45,10 +45,15 @@ class DriverFrameResult(FrameResult):
 def closest_driver(numpy_img: np.ndarray, webgl_img: np.ndarray, gl_img: np.ndarray,
                    driver_mask: np.ndarray) -> np.ndarray:
     """WebGL's image with each driver-dependent pixel taken from whichever driver is closer to
-    NumPy (max abs difference over RGB, NaN as far as possible)."""
+    NumPy (max abs difference over RGB; a NaN in both, or the same infinity in both, is no
+    difference, as `compare` counts them; a NaN in one only is as far as possible)."""
+    ref = numpy_img[..., :3].astype(np.float64)
+
     def distance(img):
+        got = img[..., :3].astype(np.float64)
         with np.errstate(invalid="ignore"):
-            d = np.abs(img[..., :3].astype(np.float64) - numpy_img[..., :3])
+            d = np.abs(got - ref)
+        d[(got == ref) | (np.isnan(got) & np.isnan(ref))] = 0.0
         return np.nan_to_num(d, nan=np.inf).max(axis=-1)
 
     take_gl = driver_mask & (distance(gl_img) < distance(webgl_img))

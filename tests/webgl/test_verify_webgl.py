@@ -51,8 +51,11 @@ def test_the_closer_driver_is_taken_only_where_drivers_differ():
     mask = np.array([[True, False, True]])
     out = closest_driver(numpy_img, webgl_img, gl_img, mask)
     assert out[0, :, 0].tolist() == [0.0, 0.5, 0.0]
-    gl_img[0, 2] = np.nan  # NaN is never the closer value
+    gl_img[0, 2] = np.nan  # NaN is never the closer value to a number
     assert closest_driver(numpy_img, webgl_img, gl_img, mask)[0, 2, 0] == 0.5
+    nan_numpy = numpy_img.copy()
+    nan_numpy[0, 2] = np.nan  # but NaN in NumPy and GL alike is no difference (compare's rule)
+    assert np.isnan(closest_driver(nan_numpy, webgl_img, gl_img, mask)[0, 2, 0])
     verdict, plain, drivers = driver_verdict(numpy_img[..., :3], webgl_img[..., :3], gl_img[..., :3])
     assert not plain.match and drivers.nan_numpy == 1
 
