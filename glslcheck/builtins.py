@@ -20,10 +20,10 @@ into concrete overloads.
 from __future__ import annotations
 
 from collections.abc import Callable, Iterator, Mapping
-from dataclasses import dataclass
 from typing import Any, NamedTuple
 
 from glslcheck import types as T
+from glslcheck.records import record
 from glslcheck.types import BY_NAME, ArrayType, StructType, Type
 from glslcheck.shadertoy import COMMON_ONLY_UNIFORMS as _COMMON_ONLY
 from glslcheck.shadertoy import UNIFORMS as _SHADERTOY_TABLE
@@ -50,7 +50,7 @@ EXPENSIVE = "expensive"
 COST_ORDER = {CHEAP: 0, MEDIUM: 1, EXPENSIVE: 2}
 
 
-@dataclass(frozen=True, slots=True)
+@record(frozen=True)
 class Overload:
     """One concrete signature of a built-in function."""
 
@@ -78,7 +78,7 @@ class Overload:
         return f"{self.returns} {self.signature()}"
 
 
-@dataclass(frozen=True, slots=True)
+@record(frozen=True)
 class Builtin:
     """A built-in function name with all its overloads."""
 

@@ -6,8 +6,9 @@ compare=False)` to leave a field out of `__repr__` or `__eq__`). `@record` gives
 `__slots__`, an `__init__` taking the fields in order, `__repr__` (`Name(a=1, b='x')`),
 `__eq__` between instances of the same class comparing the fields as one tuple, `__hash__` of
 that tuple when frozen (a mutable record with `eq` is unhashable, an `eq=False` one compares
-and hashes by identity), `__match_args__` and pickling by its fields; `frozen=True` makes
-assigning a field an error. Options: `frozen`, `eq`, `slots` (default True).
+and hashes by identity) and `__match_args__`; a method the class defines itself is kept.
+`frozen=True` makes assigning a field an error (a frozen record pickles by its fields).
+Options: `frozen`, `eq`, `slots` (default True; False keeps a `__dict__`).
 
 Why not `@dataclass`: it compiles the source text of six to nine methods for every class it
 makes, about 3.5 M instructions (a millisecond) per frozen class, and a one-file `glslcheck lint`
@@ -170,20 +171,25 @@ def _process(cls: type, frozen: bool, eq: bool, slots: bool) -> type:
         cls = type(cls)(cls.__name__, cls.__bases__, ns)
     else:
         for name in own:
-            if hasattr(cls, name):
+            if name in cls.__dict__:
                 delattr(cls, name)
     cls._field_specs = specs
     cls._fields = names
     cls._shown = tuple(n for n in names if specs[n].repr)
     cls._key = staticmethod(_tuple_getter(tuple(n for n in names if specs[n].compare)))
     cls.__match_args__ = names
-    cls.__init__ = _make_init(cls, names, tuple(defaults), frozen)
-    cls.__repr__ = _repr
-    cls.__reduce__ = _reduce
-    if eq:
-        cls.__eq__ = _eq
+    # As @dataclass: a method the class defines itself is kept.
+    own_methods = {
+        "__init__": _make_init(cls, names, tuple(defaults), frozen),
+        "__repr__": _repr,
+        **({"__eq__": _eq} if eq else {}),
+        # A frozen record cannot be unpickled field by field (its __setattr__ refuses): by value.
+        **({"__setattr__": _frozen_setattr, "__delattr__": _frozen_delattr, "__reduce__": _reduce} if frozen else {}),
+    }
+    for name, method in own_methods.items():
+        if name not in ns:
+            setattr(cls, name, method)
+    explicit_hash = ns.get("__hash__", None) is not None or ("__hash__" in ns and "__eq__" not in ns)
+    if eq and not explicit_hash:
         cls.__hash__ = _hash if frozen else None
-    if frozen:
-        cls.__setattr__ = _frozen_setattr
-        cls.__delattr__ = _frozen_delattr
     return cls
