@@ -14,9 +14,8 @@ from __future__ import annotations
 
 import math
 from bisect import bisect_right
-from dataclasses import dataclass
-
 from .diagnostics import InputError
+from .records import record
 from .sources import TAB_NAMES, Shader, Source
 
 # A fixed iDate so renders are reproducible: 2026-01-01 00:00:00 (Shadertoy's month is 0-based).
@@ -24,7 +23,7 @@ DEFAULT_DATE: tuple[float, float, float, float] = (2026.0, 0.0, 1.0, 0.0)
 DEFAULT_SIZE: tuple[int, int] = (800, 450)
 
 
-@dataclass(frozen=True, slots=True)
+@record(frozen=True)
 class Uniform:
     """One Shadertoy input: `uniform <glsl_type> <name>[<array_size>];` and the value we feed it.
 
@@ -143,7 +142,7 @@ def frame_uniforms(width: int, height: int, time: float = 0.0, frame: int = 0,
     }
 
 
-@dataclass(frozen=True, slots=True)
+@record(frozen=True)
 class Segment:
     """Program lines `start .. start+count-1` (1-based) are lines `first_line ..` of `path`."""
 
@@ -153,7 +152,7 @@ class Segment:
     first_line: int = 1
 
 
-@dataclass(frozen=True, slots=True)
+@record(frozen=True)
 class Program:
     """A whole GLSL program as handed to a compiler, with the user's lines inside it."""
 
