@@ -19,11 +19,11 @@ into concrete overloads.
 
 from __future__ import annotations
 
-import re
-from dataclasses import dataclass
-from typing import NamedTuple
+from collections.abc import Callable, Iterator, Mapping
+from typing import Any, NamedTuple
 
 from glslcheck import types as T
+from glslcheck.records import record
 from glslcheck.types import BY_NAME, ArrayType, StructType, Type
 from glslcheck.shadertoy import COMMON_ONLY_UNIFORMS as _COMMON_ONLY
 from glslcheck.shadertoy import UNIFORMS as _SHADERTOY_TABLE
@@ -50,7 +50,7 @@ EXPENSIVE = "expensive"
 COST_ORDER = {CHEAP: 0, MEDIUM: 1, EXPENSIVE: 2}
 
 
-@dataclass(frozen=True, slots=True)
+@record(frozen=True)
 class Overload:
     """One concrete signature of a built-in function."""
 
@@ -78,7 +78,7 @@ class Overload:
         return f"{self.returns} {self.signature()}"
 
 
-@dataclass(frozen=True, slots=True)
+@record(frozen=True)
 class Builtin:
     """A built-in function name with all its overloads."""
 
@@ -100,7 +100,6 @@ _GEN_N = {
 }
 _MATS = [T.matrix(c, r) for c in (2, 3, 4) for r in (2, 3, 4)]
 _SQUARE_MATS = [T.MAT2, T.MAT3, T.MAT4]
-_SIG = re.compile(r"^\s*(\w+)\s+(\w+)\s*\((.*)\)\s*$")
 
 
 def _concrete(word: str, n: int | None, g: str, mat: Type | None) -> Type:
@@ -116,12 +115,12 @@ def _concrete(word: str, n: int | None, g: str, mat: Type | None) -> Type:
 
 def _expand(sig: str) -> list[tuple[Type, tuple[Type, ...], tuple[str, ...]]]:
     """``"genType pow(genType, genType)"`` -> its concrete (return, params, qualifiers)."""
-    m = _SIG.match(sig)
-    if not m:
+    head, paren, params = sig.partition("(")
+    ret, *name = head.split()
+    if not paren or len(name) != 1 or not params.rstrip().endswith(")"):
         raise ValueError(f"bad signature {sig!r}")
-    ret, _name, params = m.groups()
     words, quals = [], []
-    for p in filter(None, (p.strip() for p in params.split(","))):
+    for p in filter(None, (p.strip() for p in params.rstrip()[:-1].split(","))):
         q, _, w = p.rpartition(" ")
         words.append(w)
         quals.append(q or "in")
@@ -140,32 +139,69 @@ def _expand(sig: str) -> list[tuple[Type, tuple[Type, ...], tuple[str, ...]]]:
     return out
 
 
-BUILTINS: dict[str, Builtin] = {}
+class _Table(Mapping):
+    """:data:`BUILTINS`: function name -> :class:`Builtin`, built from the definitions below,
+    which keep the spec's generic signatures; a function's concrete overloads are expanded
+    when it is first looked up. A lint or check run looks up a few dozen of the 90-odd
+    functions: expanding all of their 900-odd overloads at import was a sixth of the
+    instructions of a one-file `glslcheck lint` (issue 18). Iterating over the names or testing
+    `name in BUILTINS` expands nothing."""
+
+    def __init__(self) -> None:
+        # name -> (category, cost, [(signature, fragment_only) ...] or a function making the
+        # overloads' (return, params) rows)
+        self._defs: dict[str, tuple[str, str, Any]] = {}
+        self._built: dict[str, Builtin] = {}
+
+    def __getitem__(self, name: str) -> Builtin:
+        fn = self._built.get(name)
+        if fn is None:
+            category, cost, forms = self._defs[name]  # KeyError: not a built-in
+            fn = self._built[name] = Builtin(name, category, cost, tuple(_overloads(name, category, cost, forms)))
+        return fn
+
+    def __contains__(self, name: object) -> bool:
+        return name in self._defs
+
+    def __iter__(self) -> Iterator[str]:
+        return iter(self._defs)
+
+    def __len__(self) -> int:
+        return len(self._defs)
+
+
+def _overloads(name: str, category: str, cost: str, forms) -> list[Overload]:
+    if callable(forms):  # _define_explicit's rows
+        return [Overload(name, ret, params, ("in",) * len(params), category, cost) for ret, params in forms()]
+    overloads: list[Overload] = []
+    for text, frag in forms:
+        for ret, params, quals in _expand(text):
+            if any(ov.params == params for ov in overloads):
+                continue  # min(genType, float) at n=1 repeats min(genType, genType)
+            overloads.append(Overload(name, ret, params, quals, category, cost, frag))
+    return overloads
+
+
+BUILTINS: Mapping[str, Builtin] = _Table()
 
 
 def _define(name: str, category: str, cost: str, *sigs: str,
             fragment_only: bool = False) -> None:
     """Add overloads of ``name``; signatures ending in ``[, float bias]`` come in both forms."""
-    overloads: list[Overload] = list(BUILTINS[name].overloads) if name in BUILTINS else []
+    forms = BUILTINS._defs.setdefault(name, (category, cost, []))[2]
     for sig in sigs:
-        forms = [(sig, fragment_only)]
         if "[, float bias]" in sig:
-            forms = [(sig.replace("[, float bias]", ""), fragment_only),
-                     (sig.replace("[, float bias]", ", float"), True)]
-        for text, frag in forms:
-            for ret, params, quals in _expand(text.replace(" bias", "")):
-                if any(ov.params == params for ov in overloads):
-                    continue  # min(genType, float) at n=1 repeats min(genType, genType)
-                overloads.append(Overload(name, ret, params, quals, category, cost, frag))
-    BUILTINS[name] = Builtin(name, category, cost, tuple(overloads))
+            forms.append((sig.replace("[, float bias]", ""), fragment_only))
+            forms.append((sig.replace("[, float bias]", ", float"), True))
+        else:
+            forms.append((sig, fragment_only))
 
 
 def _define_explicit(name: str, category: str, cost: str,
-                     rows: list[tuple[Type, tuple[Type, ...]]]) -> None:
-    """Add overloads that the generic names cannot express (transpose, outerProduct)."""
-    BUILTINS[name] = Builtin(name, category, cost, tuple(
-        Overload(name, ret, params, ("in",) * len(params), category, cost)
-        for ret, params in rows))
+                     rows: Callable[[], list[tuple[Type, tuple[Type, ...]]]]) -> None:
+    """Add overloads that the generic names cannot express (transpose, outerProduct): `rows()`
+    gives their (return, params)."""
+    BUILTINS._defs[name] = (category, cost, rows)
 
 
 # 8.1 Angle and trigonometry functions.
@@ -227,9 +263,9 @@ _define("refract", GEOMETRIC, EXPENSIVE, "genType refract(genType, genType, floa
 # 8.6 Matrix functions.
 _define("matrixCompMult", MATRIX, MEDIUM, "mat matrixCompMult(mat, mat)")
 _define_explicit("outerProduct", MATRIX, MEDIUM,  # matCxR outerProduct(vecR c, vecC r)
-                 [(m, (T.vector("float", m.rows), T.vector("float", m.cols))) for m in _MATS])
+                 lambda: [(m, (T.vector("float", m.rows), T.vector("float", m.cols))) for m in _MATS])
 _define_explicit("transpose", MATRIX, CHEAP,
-                 [(T.matrix(m.rows, m.cols), (m,)) for m in _MATS])
+                 lambda: [(T.matrix(m.rows, m.cols), (m,)) for m in _MATS])
 _define("determinant", MATRIX, MEDIUM, "float determinant(sqmat)")
 _define("inverse", MATRIX, EXPENSIVE, "sqmat inverse(sqmat)")
 

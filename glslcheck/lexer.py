@@ -36,9 +36,9 @@ Tested against Lark's own lexer on the corpus, the lab shaders and mutations of 
 from __future__ import annotations
 
 import re
-from dataclasses import dataclass
 
 from .builtins import RESERVED_WORDS
+from .records import record
 from .types import BY_NAME
 
 _TYPE_WORDS = frozenset(BY_NAME)  # a word after one of these (or a TYPE_NAME) is a declared name
@@ -131,7 +131,7 @@ class LongIdentifierError(BadNameError):
                                 f"{MAX_IDENTIFIER_LENGTH} (section 3.8)", "use a shorter name")
 
 
-@dataclass
+@record(slots=False)
 class Tokens:
     """The tokens of a text and the error that stopped the lexer, if any (raised by the parser
     when it has consumed every token before it)."""

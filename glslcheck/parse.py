@@ -18,7 +18,6 @@ from __future__ import annotations
 
 import gc
 import sys
-from dataclasses import dataclass, field
 from typing import Callable
 
 from . import ast as A
@@ -26,6 +25,7 @@ from . import parse_tables
 from .diagnostics import Diagnostic, GlslError, Location, register_source
 from .lalr import Driver, Tree, UnexpectedToken
 from .lexer import BadNameError, Lexer, Token, Tokens, UnexpectedCharacters, UnexpectedInput
+from .records import field, record
 from .sources import Shader, Source
 
 # The keywords (3.6), to tell "a keyword used as a name" in error messages.
@@ -40,7 +40,7 @@ def grammar_text() -> str:
     return parse_tables.grammar_text()
 
 
-@dataclass(frozen=True)
+@record(frozen=True, slots=False)
 class Parser:
     """The loaded grammar's tables and what runs them: the lexer (lexer.py) and the LALR
     driver (lalr.py), both made from the tables parse_tables.py ships with the grammar."""
@@ -65,7 +65,7 @@ def parse_tree(text: str) -> Tree:
     return parser.driver.parse(parser.lexer.tokenize(text))
 
 
-@dataclass
+@record(slots=False)
 class ParseResult:
     """The AST of a program and what the preprocessor learned on the way."""
 

@@ -27,7 +27,7 @@ from typing import Any
 
 TABLES_FILE = "glsl_tables.json"
 GRAMMAR_FILE = "glsl.lark"
-FORMAT = 1  # bump when the layout of the JSON changes
+FORMAT = 2  # bump when the layout of the JSON changes
 
 # The Lark options the tables are built with (Lark is only used here, ahead of time).
 LARK_OPTIONS = dict(
@@ -91,7 +91,36 @@ def read_tables(path: str, grammar: str) -> dict[str, Any]:
         raise StaleTablesError(f"{path} has an old format")
     if tables.get("grammar_sha256") != grammar_hash(grammar):
         raise StaleTablesError(f"{path} was built from another version of {GRAMMAR_FILE}")
+    parser = tables["parser"]
+    parser["actions"] = _unpack_actions(parser.pop("keys"), parser["actions"])
     return tables
+
+
+# How the file stores the LALR actions (`actions[state]`: terminal or rule name -> action, see
+# lalr.py): the 404 states' 15 459 entries have only 113 distinct lists of names, and more than
+# half of the states do one thing whatever comes next (reduce by one rule). So the file lists
+# the distinct name lists once (`keys`) and each state as `[index into keys, its actions]`, the
+# actions one number when they are all the same: JSON then reads a fifth of the strings and
+# half of the numbers, and `dict.fromkeys` / `dict(zip(...))` rebuild each state's dict.
+
+
+def _pack_actions(actions: list[dict[str, int]]) -> tuple[list[list[str]], list[list]]:
+    keys: list[list[str]] = []
+    index: dict[tuple[str, ...], int] = {}
+    rows: list[list] = []
+    for row in actions:
+        names = tuple(row)
+        k = index.get(names)
+        if k is None:
+            k = index[names] = len(keys)
+            keys.append(list(names))
+        values = list(row.values())
+        rows.append([k, values[0] if len(set(values)) == 1 else values])
+    return keys, rows
+
+
+def _unpack_actions(keys: list[list[str]], rows: list[list]) -> list[dict[str, int]]:
+    return [dict.fromkeys(keys[k], v) if type(v) is int else dict(zip(keys[k], v)) for k, v in rows]
 
 
 def load() -> dict[str, Any]:
@@ -143,14 +172,15 @@ def build(grammar: str) -> dict[str, Any]:
 
 def dumps(tables: dict[str, Any]) -> str:
     """The file's text: one line per LALR state, so a grammar change gives a readable diff."""
-    parser = tables["parser"]
+    keys, rows = _pack_actions(tables["parser"]["actions"])
+    parser = {**tables["parser"], "keys": keys, "actions": rows}
     head = {k: v for k, v in tables.items() if k != "parser"}
     lines = ["{"]
     for key, value in head.items():
         lines.append(f"  {json.dumps(key)}: {json.dumps(value, sort_keys=True)},")
     lines.append('  "parser": {')
     for key, value in parser.items():
-        if key in ("actions", "rules"):
+        if key in ("actions", "rules", "keys"):
             rows = [f"    {json.dumps(row, sort_keys=True)}" for row in value]
             lines.append(f"   {json.dumps(key)}: [\n" + ",\n".join(rows) + "\n   ],")
         else:

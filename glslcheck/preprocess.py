@@ -39,9 +39,8 @@ from __future__ import annotations
 
 import re
 from bisect import bisect_right
-from dataclasses import dataclass, field
-
 from .diagnostics import Diagnostic, GlslError, Location
+from .records import field, record
 from .sources import Source
 
 __all__ = ["preprocess", "PPResult", "Comment", "Macro", "MAX_EXPANSION_DEPTH", "MAX_EXPANSION_TOKENS"]
@@ -59,7 +58,7 @@ RULE = "preprocessor"
 # Data the rest of glslcheck reads
 
 
-@dataclass(slots=True)
+@record
 class Comment:
     """One comment of the user's text, as written (`//...` or `/*...*/`)."""
 
@@ -69,7 +68,7 @@ class Comment:
     active: bool = True  # False inside an #if group that is skipped
 
 
-@dataclass(slots=True)
+@record
 class Macro:
     """A macro: `params` is None for an object-like macro; `body` holds the token texts."""
 
@@ -85,7 +84,7 @@ class Macro:
         return self.name in ("__LINE__", "__FILE__")
 
 
-@dataclass(slots=True)
+@record
 class _Segment:
     out_start: int
     unit: "_Unit"
@@ -93,7 +92,7 @@ class _Segment:
     end: int = -1  # -1: linear copy of the text; otherwise the end of the macro use
 
 
-@dataclass
+@record(slots=False)
 class PPResult:
     """The preprocessed program and everything the later stages need from the directives."""
 
@@ -423,7 +422,7 @@ def _wrap32(v: int) -> int:
     return v - 0x100000000 if v & 0x80000000 else v
 
 
-@dataclass(slots=True)
+@record
 class _Cond:
     loc: Location  # the #if / #ifdef / #ifndef
     parent_active: bool

@@ -18,6 +18,7 @@ from dataclasses import dataclass, fields
 from typing import Any, Callable
 
 from .diagnostics import InputError
+from .records import record
 from .sources import TAB_NAMES, Shader, Source
 
 # A fixed iDate so renders are reproducible: 2026-01-01 00:00:00 (Shadertoy's month is 0-based).
@@ -25,7 +26,7 @@ DEFAULT_DATE: tuple[float, float, float, float] = (2026.0, 0.0, 1.0, 0.0)
 DEFAULT_SIZE: tuple[int, int] = (800, 450)
 
 
-@dataclass(frozen=True, slots=True)
+@record(frozen=True)
 class Uniform:
     """One Shadertoy input: `uniform <glsl_type> <name>[<array_size>];` and the value we feed it.
 
@@ -211,7 +212,7 @@ def frame_inputs(render: Callable) -> Callable:
     return wrapper
 
 
-@dataclass(frozen=True, slots=True)
+@record(frozen=True)
 class Segment:
     """Program lines `start .. start+count-1` (1-based) are lines `first_line ..` of `path`."""
 
@@ -221,7 +222,7 @@ class Segment:
     first_line: int = 1
 
 
-@dataclass(frozen=True, slots=True)
+@record(frozen=True)
 class Program:
     """A whole GLSL program as handed to a compiler, with the user's lines inside it."""
 

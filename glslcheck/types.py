@@ -18,7 +18,7 @@ Functions that can fail return either a :class:`Type` or an error message in pla
 
 from __future__ import annotations
 
-from dataclasses import dataclass, field
+from .records import field, record
 
 BASES = ("float", "int", "uint", "bool")
 _VECTOR_PREFIX = {"float": "vec", "int": "ivec", "uint": "uvec", "bool": "bvec"}
@@ -30,7 +30,7 @@ class Type:
     __slots__ = ()
 
     # ``base``: "float" | "int" | "uint" | "bool" for scalars, vectors and matrices, else
-    # None. Declared by each subclass (a default here would leak into the dataclasses).
+    # None. Declared by each subclass (a default here would leak into the records).
 
     @property
     def size(self) -> int:
@@ -77,7 +77,7 @@ class Type:
         return self.is_opaque
 
 
-@dataclass(frozen=True, slots=True)
+@record(frozen=True)
 class ScalarType(Type):
     """``float``, ``int``, ``uint`` or ``bool``."""
 
@@ -105,7 +105,7 @@ class ScalarType(Type):
         return self.base
 
 
-@dataclass(frozen=True, slots=True)
+@record(frozen=True)
 class VectorType(Type):
     """``vecN``, ``ivecN``, ``uvecN``, ``bvecN`` with N in 2..4."""
 
@@ -134,7 +134,7 @@ class VectorType(Type):
         return f"{_VECTOR_PREFIX[self.base]}{self.n}"
 
 
-@dataclass(frozen=True, slots=True)
+@record(frozen=True)
 class MatrixType(Type):
     """``matCxR``: C columns of R rows, always of float (``mat3`` is ``mat3x3``)."""
 
@@ -171,7 +171,7 @@ class MatrixType(Type):
         return f"mat{self.ncols}x{self.nrows}"
 
 
-@dataclass(frozen=True, slots=True)
+@record(frozen=True)
 class VoidType(Type):
     """The return type of functions that return nothing."""
 
@@ -183,7 +183,7 @@ class VoidType(Type):
         return "void"
 
 
-@dataclass(frozen=True, slots=True)
+@record(frozen=True)
 class SamplerType(Type):
     """An opaque sampler type (spec 4.1.7).
 
@@ -209,7 +209,7 @@ class SamplerType(Type):
         return self.name
 
 
-@dataclass(frozen=True, slots=True)
+@record(frozen=True)
 class ArrayType(Type):
     """``element[size]``; ``size`` is None for an unsized array (``float[](...)``)."""
 
@@ -228,7 +228,7 @@ class ArrayType(Type):
         return f"{self.element}[{'' if self.array_size is None else self.array_size}]"
 
 
-@dataclass(frozen=True, slots=True, eq=False)
+@record(frozen=True, eq=False)
 class StructType(Type):
     """A user struct. Equality is nominal: one declaration, one type (identity)."""
 

@@ -37,3 +37,16 @@ def test_lint_check_and_parse_load_no_renderer_and_no_lark(command):
     loaded = {m.split(".")[0] for m in report["modules"]}
     assert "glslcheck.parse" in report["modules"]  # the command did its work
     assert not loaded & set(HEAVY), sorted(loaded & set(HEAVY))
+
+
+def test_check_expands_only_the_builtin_functions_it_looks_up():
+    """builtins.BUILTINS keeps the spec's generic signatures and expands a function's overloads
+    on its first look-up (expanding all of them at import was a sixth of a one-file lint)."""
+    code = ("import io, contextlib, sys; from glslcheck.cli import main; from glslcheck import builtins as B\n"
+            "with contextlib.redirect_stdout(io.StringIO()): main(sys.argv[1:])\n"
+            "print(len(B.BUILTINS._built), len(B.BUILTINS), 'texture' in B.BUILTINS._built)")
+    done = subprocess.run([sys.executable, "-c", code, "check", str(ROOT / "lab_shaders" / "07_final")],
+                          capture_output=True, text=True, cwd=ROOT, timeout=120)
+    assert done.returncode == 0, done.stderr
+    built, total, texture = done.stdout.split()
+    assert 0 < int(built) < int(total) == 89 and texture == "False"

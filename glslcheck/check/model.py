@@ -9,12 +9,12 @@ in dictionaries keyed by `id(node)`; the model holds the AST so those ids stay v
 
 from __future__ import annotations
 
-from dataclasses import dataclass, field
 from typing import Any, Literal, NamedTuple, Union
 
 from .. import types as T
 from ..builtins import Overload
 from ..diagnostics import Diagnostic, GlslError
+from ..records import field, record
 
 
 class ErrorType(T.Type):
@@ -47,7 +47,7 @@ class CheckError(GlslError):
     """Raised by `check()` when the program has errors (carries every diagnostic)."""
 
 
-@dataclass(eq=False)
+@record(eq=False, slots=False)
 class Symbol:
     """A declared name. Symbols compare by identity: two `x` in different scopes differ.
 

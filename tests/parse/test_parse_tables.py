@@ -71,7 +71,9 @@ def test_damaged_tables_are_not_used(grammar_copy, capsys, damage):
     if damage == "truncated":
         tables_file.write_text(text[: len(text) // 2], encoding="utf-8")
     else:
-        tables_file.write_text(text.replace('"format": 1', '"format": 0'), encoding="utf-8")
+        old = f'"format": {parse_tables.FORMAT},'
+        assert old in text
+        tables_file.write_text(text.replace(old, '"format": 0,'), encoding="utf-8")
     tables = parse_tables.load()
     assert "building the parser tables in memory" in capsys.readouterr().err
     assert tables["format"] == parse_tables.FORMAT

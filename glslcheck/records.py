@@ -1,0 +1,195 @@
+"""Record classes for the start-up path: `@record`, what `@dataclass` gives, made cheaply.
+
+A record class is declared as for `@dataclass`: annotated fields in order, a default after the
+annotation (`field(default_factory=list)` for a fresh value per instance, `field(repr=False,
+compare=False)` to leave a field out of `__repr__` or `__eq__`). `@record` gives it
+`__slots__`, an `__init__` taking the fields in order, `__repr__` (`Name(a=1, b='x')`),
+`__eq__` between instances of the same class comparing the fields as one tuple, `__hash__` of
+that tuple when frozen (a mutable record with `eq` is unhashable, an `eq=False` one compares
+and hashes by identity) and `__match_args__`; a method the class defines itself is kept.
+`frozen=True` makes assigning a field an error (a frozen record pickles by its fields).
+Options: `frozen`, `eq`, `slots` (default True; False keeps a `__dict__`).
+
+Why not `@dataclass`: it compiles the source text of six to nine methods for every class it
+makes, about 3.5 M instructions (a millisecond) per frozen class, and a one-file `glslcheck lint`
+made 35 of them before it read the file (issue 18). Here the methods are shared by every record
+class, and each `__init__` is a copy of one compiled template per field count renamed to the
+class's fields (as ast.py does for the AST's nodes): no code is compiled per class.
+"""
+
+from __future__ import annotations
+
+from operator import attrgetter
+from types import FunctionType
+from typing import Any, Callable
+
+__all__ = ["record", "field", "FrozenInstanceError"]
+
+_MISSING = object()
+
+
+class FrozenInstanceError(AttributeError):
+    """A field of a frozen record was assigned or deleted (as dataclasses.FrozenInstanceError)."""
+
+
+class _Field:
+    __slots__ = ("default", "factory", "repr", "compare")
+
+    def __init__(self, default: Any, factory: Callable[[], Any] | None, repr: bool, compare: bool) -> None:
+        self.default = default
+        self.factory = factory
+        self.repr = repr
+        self.compare = compare
+
+
+def field(*, default: Any = _MISSING, default_factory: Callable[[], Any] | None = None,
+          repr: bool = True, compare: bool = True) -> Any:
+    """A field's options, as `dataclasses.field` takes them (the subset glslcheck uses)."""
+    if default is not _MISSING and default_factory is not None:
+        raise ValueError("a field cannot have both a default and a default_factory")
+    return _Field(default, default_factory, repr, compare)
+
+
+class _Factory:
+    """The default of a `default_factory` field: `__init__` calls `make` for each instance."""
+
+    __slots__ = ("make",)
+
+    def __init__(self, make: Callable[[], Any]) -> None:
+        self.make = make
+
+    def __repr__(self) -> str:
+        return f"<factory {getattr(self.make, '__name__', self.make)}>"
+
+
+_TEMPLATES: dict[tuple[int, bool], Any] = {}
+
+
+def _init_template(count: int, frozen: bool):
+    """The code of an `__init__(self, _f0, ..., _f{count-1})` storing each argument (a
+    `_Factory` default replaced by what it makes), compiled once per count."""
+    key = (count, frozen)
+    code = _TEMPLATES.get(key)
+    if code is None:
+        params = "".join(f", _f{i}" for i in range(count))
+        value = "_f{0}.make() if type(_f{0}) is _Factory else _f{0}"
+        store = "    _setattr(self, '_f{0}', " + value + ")" if frozen else "    self._f{0} = " + value
+        body = [store.format(i) for i in range(count)] or ["    pass"]
+        env: dict[str, Any] = {}
+        exec("\n".join([f"def __init__(self{params}):", *body]), {}, env)  # noqa: S102 - a fixed template
+        code = _TEMPLATES[key] = env["__init__"].__code__
+    return code
+
+
+def _make_init(cls: type, names: tuple[str, ...], defaults: tuple, frozen: bool) -> FunctionType:
+    template = _init_template(len(names), frozen)
+    rename = {f"_f{i}": name for i, name in enumerate(names)}
+    code = template.replace(
+        co_varnames=tuple(rename.get(n, n) for n in template.co_varnames),
+        co_names=tuple(rename.get(n, n) for n in template.co_names),
+        co_consts=tuple(rename.get(c, c) if type(c) is str else c for c in template.co_consts),
+        co_qualname=f"{cls.__qualname__}.__init__",
+    )
+    scope = {"_Factory": _Factory, "_setattr": object.__setattr__, "__builtins__": __builtins__}
+    return FunctionType(code, scope, "__init__", defaults or None)
+
+
+def _tuple_getter(names: tuple[str, ...]) -> Callable[[Any], tuple]:
+    """`obj -> (obj.a, obj.b, ...)`, a tuple for any number of names."""
+    if len(names) >= 2:
+        return attrgetter(*names)
+    if names:
+        get = attrgetter(names[0])
+        return lambda obj: (get(obj),)
+    return lambda obj: ()
+
+
+# The methods every record class shares: they read the class's `_key` (the compared fields as a
+# tuple), `_shown` (the fields __repr__ shows) and `_fields`.
+
+
+def _repr(self) -> str:
+    shown = ", ".join(f"{name}={getattr(self, name)!r}" for name in self._shown)
+    return f"{type(self).__qualname__}({shown})"
+
+
+def _eq(self, other):
+    if other.__class__ is not self.__class__:
+        return NotImplemented
+    return self._key(self) == self._key(other)
+
+
+def _hash(self) -> int:
+    return hash(self._key(self))
+
+
+def _frozen_setattr(self, name: str, value: Any) -> None:
+    if name in self._fields:
+        raise FrozenInstanceError(f"cannot assign to field {name!r}")
+    object.__setattr__(self, name, value)
+
+
+def _frozen_delattr(self, name: str) -> None:
+    if name in self._fields:
+        raise FrozenInstanceError(f"cannot delete field {name!r}")
+    object.__delattr__(self, name)
+
+
+def _reduce(self):
+    return type(self), tuple(getattr(self, name) for name in self._fields)
+
+
+def record(cls: type | None = None, /, *, frozen: bool = False, eq: bool = True, slots: bool = True):
+    """Make `cls` a record class (see the module's docstring); `@record` or `@record(...)`."""
+    if cls is None:
+        return lambda c: _process(c, frozen, eq, slots)
+    return _process(cls, frozen, eq, slots)
+
+
+def _process(cls: type, frozen: bool, eq: bool, slots: bool) -> type:
+    ns = dict(cls.__dict__)
+    own = [n for n in ns.get("__annotations__", {}) if not n.startswith("__")]
+    specs: dict[str, _Field] = {}
+    for base in reversed(cls.__mro__[1:]):
+        specs.update(getattr(base, "_field_specs", {}))
+    for name in own:
+        value = ns.pop(name, _MISSING)
+        specs[name] = value if isinstance(value, _Field) else _Field(value, None, True, True)
+    names = tuple(specs)
+    defaults = []
+    for name, spec in specs.items():
+        if spec.factory is not None:
+            defaults.append(_Factory(spec.factory))
+        elif spec.default is not _MISSING:
+            defaults.append(spec.default)
+        elif defaults:
+            raise TypeError(f"{cls.__name__}: field {name!r} without a default follows one with a default")
+    if slots:
+        ns["__slots__"] = tuple(own)
+        ns.pop("__dict__", None)
+        ns.pop("__weakref__", None)
+        cls = type(cls)(cls.__name__, cls.__bases__, ns)
+    else:
+        for name in own:
+            if name in cls.__dict__:
+                delattr(cls, name)
+    cls._field_specs = specs
+    cls._fields = names
+    cls._shown = tuple(n for n in names if specs[n].repr)
+    cls._key = staticmethod(_tuple_getter(tuple(n for n in names if specs[n].compare)))
+    cls.__match_args__ = names
+    # As @dataclass: a method the class defines itself is kept.
+    own_methods = {
+        "__init__": _make_init(cls, names, tuple(defaults), frozen),
+        "__repr__": _repr,
+        **({"__eq__": _eq} if eq else {}),
+        # A frozen record cannot be unpickled field by field (its __setattr__ refuses): by value.
+        **({"__setattr__": _frozen_setattr, "__delattr__": _frozen_delattr, "__reduce__": _reduce} if frozen else {}),
+    }
+    for name, method in own_methods.items():
+        if name not in ns:
+            setattr(cls, name, method)
+    explicit_hash = ns.get("__hash__", None) is not None or ("__hash__" in ns and "__eq__" not in ns)
+    if eq and not explicit_hash:
+        cls.__hash__ = _hash if frozen else None
+    return cls

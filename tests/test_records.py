@@ -1,0 +1,122 @@
+"""glslcheck/records.py: `@record` must give what `@dataclass` gave the classes that use it
+(fields, defaults, factories, equality, hashing, frozenness, repr, pickling), since it replaced
+it on the start-up path (issue 18)."""
+
+from __future__ import annotations
+
+import dataclasses
+import pickle
+
+import pytest
+
+from glslcheck import types as T
+from glslcheck.records import FrozenInstanceError, field, record
+
+
+@record(frozen=True)
+class Point:
+    """A frozen record."""
+
+    x: int
+    y: int = 0
+    tag: str = field(default="", compare=False, repr=False)
+
+
+@record
+class Bag:
+    name: str
+    items: list = field(default_factory=list)
+
+
+@record(eq=False, slots=False)
+class Ident:
+    name: str
+
+    def __repr__(self) -> str:
+        return f"<{self.name}>"
+
+
+@dataclasses.dataclass(frozen=True)
+class DataPoint:
+    x: int
+    y: int = 0
+    tag: str = dataclasses.field(default="", compare=False, repr=False)
+
+
+def test_init_takes_the_fields_in_order_by_position_or_name_with_defaults():
+    assert (Point(1).x, Point(1).y) == (1, 0)
+    assert (Point(1, 2).y, Point(y=3, x=4).x) == (2, 4)
+    with pytest.raises(TypeError):
+        Point()
+    with pytest.raises(TypeError):
+        Point(1, 2, "t", 4)
+    assert Point.__match_args__ == ("x", "y", "tag")
+
+
+def test_a_factory_default_is_made_fresh_for_each_instance():
+    a, b = Bag("a"), Bag("b")
+    a.items.append(1)
+    assert b.items == [] and a.items == [1]
+    assert Bag("c", [2]).items == [2]
+
+
+def test_equality_and_hash_are_those_of_the_same_dataclass():
+    assert Point(1, 2, "a") == Point(1, 2, "b")  # tag: compare=False
+    assert Point(1, 2) != Point(2, 1) and Point(1) != DataPoint(1)
+    assert hash(Point(1, 2, "a")) == hash(DataPoint(1, 2, "b")) == hash((1, 2))
+    assert Bag("a") == Bag("a") and Bag("a") != Bag("b")
+    with pytest.raises(TypeError):
+        hash(Bag("a"))  # mutable with eq: unhashable, as a dataclass
+    x = Ident("x")
+    assert x != Ident("x") and x == x and hash(x) == object.__hash__(x)
+
+
+def test_repr_matches_the_dataclass_repr_and_keeps_an_own_repr():
+    assert repr(Point(1, 2, "t")) == repr(DataPoint(1, 2, "t")).replace("DataPoint", "Point")
+    assert repr(Bag("a")) == "Bag(name='a', items=[])"
+    assert repr(Ident("x")) == "<x>"
+
+
+def test_frozen_fields_cannot_be_assigned_or_deleted():
+    p = Point(1)
+    with pytest.raises(FrozenInstanceError):
+        p.x = 2
+    with pytest.raises(FrozenInstanceError):
+        del p.y
+    assert isinstance(FrozenInstanceError(), AttributeError)
+    b = Bag("a")
+    b.name = "b"
+    assert b.name == "b"
+
+
+def test_slots_unless_asked_otherwise():
+    assert Point.__slots__ == ("x", "y", "tag") and not hasattr(Point(1), "__dict__")
+    with pytest.raises(AttributeError):
+        Bag("a").other = 1
+    ident = Ident("x")
+    ident.other = 1  # slots=False keeps a __dict__
+    assert ident.other == 1
+
+
+def test_records_pickle_by_value():
+    for value in (Point(1, 2, "t"), Bag("a", [1, 2]), T.VEC3, T.MAT2, T.ArrayType(T.FLOAT, 3)):
+        assert pickle.loads(pickle.dumps(value)) == value
+    assert pickle.loads(pickle.dumps(Point(1, 2, "t"))).tag == "t"
+
+
+def test_a_field_without_default_after_one_with_a_default_is_an_error():
+    with pytest.raises(TypeError, match="follows one with a default"):
+        @record
+        class Bad:
+            a: int = 0
+            b: int
+
+
+def test_the_type_objects_keep_their_dataclass_semantics():
+    assert T.vector("float", 3) is T.VEC3 and T.VectorType("float", 3) == T.VEC3
+    assert hash(T.VectorType("float", 3)) == hash(T.VEC3) and T.VEC3 != T.IVEC3
+    assert T.VoidType() == T.VOID
+    s1 = T.StructType("S", (("a", T.FLOAT),))
+    assert s1 != T.StructType("S", (("a", T.FLOAT),)) and s1 == s1  # nominal: by identity
+    with pytest.raises(AttributeError):
+        T.VEC3.n = 4
