@@ -671,17 +671,38 @@ def _worker(conn, workdir: str) -> None:
         if job is None:
             return
         command, data, extra = job
-        for f in folder.iterdir():
-            if f.is_dir():
-                shutil.rmtree(f, ignore_errors=True)
-            else:
-                f.unlink()
-        files = {}
-        for name, raw in data.items():
-            p = folder / name
-            p.write_bytes(raw)
-            files[name] = p
-        conn.send(run_command(command, folder, files, data, extra))
+        conn.send(run_command(command, folder, _write_input(folder, data), data, extra))
+
+
+def _write_input(folder: Path, data: dict[str, bytes]) -> dict[str, Path]:
+    """The input's files, alone in `folder` (what a command left there before is removed)."""
+    for f in folder.iterdir():
+        if f.is_dir():
+            shutil.rmtree(f, ignore_errors=True)
+        else:
+            f.unlink()
+    files = {}
+    for name, raw in data.items():
+        p = folder / name
+        p.write_bytes(raw)
+        files[name] = p
+    return files
+
+
+class InProcess:
+    """Runs each command in this process, with no time budget and no memory limit: the reference
+    of benchmarks/bench_fuzz.py (the same commands without the worker's pipe and watchdog).
+    For inputs known to end; a `Worker` for anything else."""
+
+    def __init__(self) -> None:
+        self.dir = tempfile.mkdtemp(prefix="glslcheck-fuzz-")
+
+    def run(self, command: str, data: dict[str, bytes], budget: float, extra: tuple[str, ...] = ()) -> tuple[str, str]:
+        folder = Path(self.dir)
+        return run_command(command, folder, _write_input(folder, data), data, extra)
+
+    def close(self) -> None:
+        shutil.rmtree(self.dir, ignore_errors=True)
 
 
 class Worker:
