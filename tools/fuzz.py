@@ -10,6 +10,17 @@ The 100,000-input run of issue 9 was split in two processes (2 cores) and merged
         --verify-rate 0.03 --json c0.json     (and --start 50000 --json c50000.json)
     python tools/fuzz.py --merge c0.json c50000.json
 
+The run of issue 16 (mixed and hostile inputs, under a memory limit, in the background on a
+shared machine; it checkpoints to --json after every chunk of CHUNK inputs, stops cleanly at
+--max-seconds or on SIGTERM with the counts so far, and --resume continues it):
+
+    ulimit -v 8000000; GLSLCHECK_FUZZ_NICE=0 nohup nice -n 10 python tools/fuzz.py --count 100000 \
+        --seed 16 --jobs 2 --parse-rate 0.34 --heavy-rate 0.03 --verify-rate 0.03 --hostile-rate 0.05 \
+        --max-seconds 5000 --json run.json [--resume run.json] > fuzz.log 2>&1 &
+
+Its throughput is benchmarks/bench_fuzz.py's: the harness adds nothing measurable to the cost
+of the commands themselves (about 9 inputs per CPU second with these rates).
+
 Inputs, each reproducible from (seed, index) alone:
 
 - mutate:   token-level mutations of tests/corpus, lab_shaders, tests/hard_cases,
@@ -33,8 +44,9 @@ Inputs, each reproducible from (seed, index) alone:
 
 Each input goes through every entry point in-process via `glslcheck.cli.main` with stdout
 and stderr captured: parse, check and lint always; transpile when check accepts the program (and
-on a sample of the rest); render and verify at 8x8 on samples. A worker process runs the
-inputs; the parent kills and restarts it when one command exceeds its time budget.
+on a sample of the rest); render and verify at 8x8 on samples. --jobs worker processes (spawned
+once per run, each with a 3 GB address-space limit) run the inputs; the parent kills and
+restarts one when a command exceeds its time budget (CPU seconds of the worker).
 
 Flagged outcomes (anything but ok / findings / usage): `exception` (escaped main), `traceback`
 (in the output), `bad-exit` (not 0, 1 or 2), `timeout`, `no-location` (an error message without
