@@ -108,8 +108,9 @@ RUNAWAY = ("void mainImage(out vec4 c, in vec2 p) {\n    float x = 0.0;\n"
            "    c = vec4(x);\n}\n")
 
 
-@pytest.mark.parametrize("command", ["render", "probe"])
-def test_frame_budget_stops_the_frame_and_leaves_the_environment_as_it_was(command, tmp_path, capsys, monkeypatch):
+@pytest.mark.parametrize("command,options", [("render", ["-o", "a.npy"]), ("probe", ["--nan"])])
+def test_frame_budget_stops_the_frame_and_leaves_the_environment_as_it_was(command, options, tmp_path, capsys,
+                                                                           monkeypatch):
     """--frame-budget overrides GLSLCHECK_FRAME_SECONDS (here 30 s, so that without the option
     the test fails rather than hangs) for one command: the runaway loops stop at 0.2 s with the
     error at the inner loop, and the variable is as it was after main() returns (main may run
@@ -117,7 +118,7 @@ def test_frame_budget_stops_the_frame_and_leaves_the_environment_as_it_was(comma
     monkeypatch.setenv("GLSLCHECK_FRAME_SECONDS", "30")
     shader = tmp_path / "Image.glsl"
     shader.write_text(RUNAWAY)
-    argv = ["-o", str(tmp_path / "a.npy")] if command == "render" else ["--nan"]
+    argv = [str(tmp_path / o) if o.endswith(".npy") else o for o in options]
     code = main([command, str(shader), *argv, "--size", "8x8", "--frame-budget", "0.2"])
     err = capsys.readouterr().err
     assert code == 1, err
@@ -158,3 +159,15 @@ def test_a_long_schedule_is_not_built_first():
     assert (specs[0].frame, specs[-1].frame) == (5, 10**8 + 4)
     assert specs[3].time == 8 / 30.0 and specs[3].time_delta == 1 / 30.0
     assert [s.frame for s in specs[:3]] == [5, 6, 7]
+
+
+def test_frame_budget_stops_a_probe_trace(tmp_path):
+    """`probe --pixel` traced a runaway loop with no budget at all (10**10 iterations: hours);
+    now the trace stops as a frame does. A subprocess with a timeout, so the old behaviour fails
+    the test instead of hanging it."""
+    shader = tmp_path / "Image.glsl"
+    shader.write_text(RUNAWAY)
+    proc = subprocess.run([sys.executable, "-m", "glslcheck", "probe", str(shader), "--pixel", "0,0", "--size", "8x8",
+                           "--frame-budget", "0.5"], capture_output=True, text=True, timeout=120)
+    assert proc.returncode == 1, proc.stderr
+    assert f"{shader}:3:39: error: the frame was still rendering after 0.5 s" in proc.stderr, proc.stderr
