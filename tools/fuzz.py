@@ -901,7 +901,9 @@ def main(argv: list[str] | None = None) -> int:
             doc = json.loads(Path(name).read_text(encoding="utf-8"))
             counts.update({tuple(k.split("/", 1)): v for k, v in doc["counts"].items()})
             flagged += doc["flagged"]
-            ranges.append(f"seed {doc['seed']} inputs {doc['start']}..{doc['start'] + doc['count'] - 1}")
+            spans = doc.get("chunks") or [[doc["start"], doc["start"] + doc["count"]]]
+            ranges.append(f"seed {doc['seed']}: {doc['count']} inputs in {min(b for b, _ in spans)}.."
+                          f"{max(e for _, e in spans) - 1}")
         print("merged: " + "; ".join(ranges))
         print_counts(counts, flagged, counts.get(("elapsed", "total"), 0))
         return 1 if flagged else 0
