@@ -85,11 +85,16 @@ def build_parser(only: str | None = None) -> argparse.ArgumentParser:
             p.add_argument("--parallel", choices=PARALLEL_MODES, default=None,
                            help="NumPy tiles on worker processes, on threads, or auto: threads until a program "
                                 "has rendered for a second, then processes (default: $GLSLCHECK_PARALLEL or auto)")
+        if name in _BUDGETED:
+            from .commands.args import add_frame_budget
+
+            add_frame_budget(p)
         p.set_defaults(_run=mod.run)
     return parser
 
 
 _RENDERING = ("render", "verify", "bench", "report")  # the commands that run the NumPy renderer
+_BUDGETED = _RENDERING + ("probe",)  # and those that take --frame-budget (probe's --nan renders a frame)
 PARALLEL_MODES = ("auto", "threads", "processes")  # NumpyProgram.parallel
 
 
@@ -128,17 +133,15 @@ def _main(argv: list[str]) -> int:
                   f"not {os.environ['GLSLCHECK_PARALLEL']!r}", file=sys.stderr)
             return 2
         tune_malloc()  # tile temporaries reuse freed memory instead of page-faulting (workers.py)
-    before = os.environ.get("GLSLCHECK_PARALLEL")
-    if getattr(args, "parallel", None):
-        os.environ["GLSLCHECK_PARALLEL"] = args.parallel  # read by every NumPy program made below
-    try:
+    if args.command not in _BUDGETED:
         return _run(args)
-    finally:
-        if getattr(args, "parallel", None):  # as it was: main() may be called again in-process
-            if before is None:
-                os.environ.pop("GLSLCHECK_PARALLEL", None)
-            else:
-                os.environ["GLSLCHECK_PARALLEL"] = before
+    from .commands.args import environment
+
+    budget = getattr(args, "frame_budget", None)
+    # read by every NumPy program made below; as they were after: main() may run again in-process
+    with environment(GLSLCHECK_PARALLEL=getattr(args, "parallel", None),
+                     GLSLCHECK_FRAME_SECONDS=None if budget is None else repr(budget)):
+        return _run(args)
 
 
 def _run(args) -> int:

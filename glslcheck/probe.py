@@ -181,8 +181,8 @@ class Probe:
     def run(self, precision: str, inputs: Inputs, frags: np.ndarray, width: int, tracer: LaneTracer) -> np.ndarray:
         """RGBA (4, lanes) of the traced module on fragment coordinates `frags` (2, lanes),
         lanes in rows of `width` (for derivatives), with `tracer` as T."""
-        from .numpy_backend.frame import Lanes, State
-        from .numpy_backend.program import _uniform_value
+        from .numpy_backend.frame import Budget, Lanes, State
+        from .numpy_backend.program import _uniform_value, frame_seconds
         from .shadertoy import UNIFORMS_BY_NAME
 
         ns = self.module(precision)
@@ -201,7 +201,11 @@ class Probe:
             S.lanes, S.width, S.frag_coord = lanes, width, frag
             if "S.frag_coord4" in self.source:
                 S.frag_coord4 = np.concatenate([frag, np.full((1, lanes), 0.5, rt.F), np.ones((1, lanes), rt.F)])
-            color = ns["shade"](S)
+            S.budget = Budget(frame_seconds()).start()  # a runaway trace stops as a frame does
+            try:
+                color = ns["shade"](S)
+            finally:
+                S.budget.finish()
             color = np.broadcast_to(color, (len(color), lanes)).astype(np.float64)
             if len(color) == 3:
                 color = np.concatenate([color, np.ones((1, lanes))])

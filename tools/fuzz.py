@@ -10,6 +10,20 @@ The 100,000-input run of issue 9 was split in two processes (2 cores) and merged
         --verify-rate 0.03 --json c0.json     (and --start 50000 --json c50000.json)
     python tools/fuzz.py --merge c0.json c50000.json
 
+The run of issue 16 (mixed and hostile inputs, under a memory limit, in the background on a
+shared machine; it checkpoints to --json after every chunk of CHUNK inputs, stops cleanly at
+--max-seconds or on SIGTERM with the counts so far, and --resume continues it):
+
+    ulimit -v 8000000; GLSLCHECK_FUZZ_NICE=0 nohup nice -n 10 python tools/fuzz.py --count 100000 \
+        --seed 16 --jobs 2 --parse-rate 0.34 --heavy-rate 0.03 --verify-rate 0.03 --hostile-rate 0.05 \
+        --max-seconds 5000 --json run.json [--resume run.json] > fuzz.log 2>&1 &
+
+Run on 2026-12-01 at commit aa8ab17 (2 cores shared by 8 agents, load average 8 to 25, 92
+minutes, stopped by --max-seconds): 21,163 of the 100,000 inputs (mutate 11,029, generate 5,075,
+soup 2,456, bytes 1,579, hostile 1,024; transpile 6,910, render 2,105, verify 177), 0 flagged.
+Its throughput is benchmarks/bench_fuzz.py's: the harness adds nothing measurable to the cost
+of the commands themselves (about 9 inputs per CPU second with these rates).
+
 Inputs, each reproducible from (seed, index) alone:
 
 - mutate:   token-level mutations of tests/corpus, lab_shaders, tests/hard_cases,
@@ -33,8 +47,9 @@ Inputs, each reproducible from (seed, index) alone:
 
 Each input goes through every entry point in-process via `glslcheck.cli.main` with stdout
 and stderr captured: parse, check and lint always; transpile when check accepts the program (and
-on a sample of the rest); render and verify at 8x8 on samples. A worker process runs the
-inputs; the parent kills and restarts it when one command exceeds its time budget.
+on a sample of the rest); render and verify at 8x8 on samples. --jobs worker processes (spawned
+once per run, each with a 3 GB address-space limit) run the inputs; the parent kills and
+restarts one when a command exceeds its time budget (CPU seconds of the worker).
 
 Flagged outcomes (anything but ok / findings / usage): `exception` (escaped main), `traceback`
 (in the output), `bad-exit` (not 0, 1 or 2), `timeout`, `no-location` (an error message without
@@ -51,6 +66,7 @@ from __future__ import annotations
 import argparse
 import collections
 import contextlib
+import functools
 import hashlib
 import io
 import json
@@ -76,6 +92,11 @@ NORMAL = {"ok", "findings", "usage"}
 # 10-100 ms; render/verify at 8x8 under a second). --timeout-scale multiplies them.
 BUDGET = {"parse": 20, "check": 20, "lint": 20, "transpile": 30, "render": 60, "verify": 60}
 FRAME_SECONDS = 10  # the NumPy renderer's frame budget in the workers (GLSLCHECK_FRAME_SECONDS)
+# ... and of a hostile program's render (its --frame-budget): the runaway loops run to it, so it
+# bounds their wall time. The largest other hostile renders take up to 2 s of CPU at 8x8: on a
+# loaded machine some of them stop too, which is an outcome they may have (a located error).
+HOSTILE_FRAME_SECONDS = 2
+CHUNK = 100  # inputs per chunk: a worker's unit of work, and of --json checkpoints
 WALL_FACTOR = 10  # a command blocked (no CPU used) this many budgets long is a timeout too
 
 # ---------------------------------------------------------------------------------------------
@@ -106,6 +127,16 @@ ODD_BYTES = [b"\x00", b"\xef\xbb\xbf", b"\r", b"\r\n", b"\t", b"\xff", b"\xc3", 
 EXTREME_NUMBERS = ["0", "0.0", "-0.0", "1e38", "3.5e38", "1e-45", "1e-50", "2147483647", "2147483648",
                    "4294967295u", "4294967296u", "0xffffffff", "0x100000000", "99999999999999999999",
                    "1e999", "100000", "65536", "-2147483648", "1000000000"]
+
+
+@functools.lru_cache(maxsize=1)
+def seeds_and_pool() -> tuple[list[dict[str, str]], list[str]]:
+    """The seed programs and the token pool of insertions, read once per process (every chunk
+    of a run used to read and tokenise the whole corpus again)."""
+    seeds = seed_files()
+    pool = POOL + sorted({t for s in seeds for text in s.values() for t in tokens(text)
+                          if re.fullmatch(r"[A-Za-z_]\w*", t)})[:400]
+    return seeds, pool
 
 
 def seed_files() -> list[dict[str, str]]:
@@ -596,11 +627,12 @@ def judge(command: str, rc, out: str, err: str, files: dict[str, Path], data: di
     return {0: "ok", 1: "findings", 2: "usage"}[rc], ""
 
 
-def run_command(command: str, folder: Path, files: dict[str, Path], data: dict[str, bytes]) -> tuple[str, str]:
+def run_command(command: str, folder: Path, files: dict[str, Path], data: dict[str, bytes],
+                extra: tuple[str, ...] = ()) -> tuple[str, str]:
     from glslcheck.cli import main
 
     target = str(files[next(iter(files))]) if len(files) == 1 else str(folder)
-    argv = [command, target]
+    argv = [command, target, *extra]
     if command == "transpile":
         argv += ["-o", str(folder / "out.py")]
     elif command == "render":
@@ -623,7 +655,10 @@ def run_command(command: str, folder: Path, files: dict[str, Path], data: dict[s
 
 
 def _worker(conn, workdir: str) -> None:
-    """Run (command, files) jobs sent by the parent until it sends None."""
+    """Run (command, files, extra arguments) jobs sent by the parent until it sends None."""
+    import signal
+
+    signal.signal(signal.SIGINT, signal.SIG_IGN)  # Ctrl-C stops the parent, which stops the workers
     try:
         os.nice(int(os.environ.get("GLSLCHECK_FUZZ_NICE", "10")))  # the machine is shared: yield to others
     except (OSError, ValueError):
@@ -639,23 +674,50 @@ def _worker(conn, workdir: str) -> None:
         pass
     # a runaway frame stops (a located error) well inside the render budget below
     os.environ.setdefault("GLSLCHECK_FRAME_SECONDS", str(FRAME_SECONDS))
+    import glslcheck.cli  # noqa: F401 - loaded before the first job, whose budget it would spend
+    import glslcheck.numpy_backend.program  # noqa: F401
+
     folder = Path(workdir)
     while True:
-        job = conn.recv()
+        try:
+            job = conn.recv()
+        except (EOFError, OSError):  # the parent is gone: so is this worker
+            return
         if job is None:
             return
-        command, data = job
-        for f in folder.iterdir():
-            if f.is_dir():
-                shutil.rmtree(f, ignore_errors=True)
-            else:
-                f.unlink()
-        files = {}
-        for name, raw in data.items():
-            p = folder / name
-            p.write_bytes(raw)
-            files[name] = p
-        conn.send(run_command(command, folder, files, data))
+        command, data, extra = job
+        conn.send(run_command(command, folder, _write_input(folder, data), data, extra))
+
+
+def _write_input(folder: Path, data: dict[str, bytes]) -> dict[str, Path]:
+    """The input's files, alone in `folder` (what a command left there before is removed)."""
+    for f in folder.iterdir():
+        if f.is_dir():
+            shutil.rmtree(f, ignore_errors=True)
+        else:
+            f.unlink()
+    files = {}
+    for name, raw in data.items():
+        p = folder / name
+        p.write_bytes(raw)
+        files[name] = p
+    return files
+
+
+class InProcess:
+    """Runs each command in this process, with no time budget and no memory limit: the reference
+    of benchmarks/bench_fuzz.py (the same commands without the worker's pipe and watchdog).
+    For inputs known to end; a `Worker` for anything else."""
+
+    def __init__(self) -> None:
+        self.dir = tempfile.mkdtemp(prefix="glslcheck-fuzz-")
+
+    def run(self, command: str, data: dict[str, bytes], budget: float, extra: tuple[str, ...] = ()) -> tuple[str, str]:
+        folder = Path(self.dir)
+        return run_command(command, folder, _write_input(folder, data), data, extra)
+
+    def close(self) -> None:
+        shutil.rmtree(self.dir, ignore_errors=True)
 
 
 class Worker:
@@ -669,11 +731,13 @@ class Worker:
         self.proc = self.ctx.Process(target=_worker, args=(child, self.dir), daemon=True)
         self.proc.start()
 
-    def run(self, command: str, data: dict[str, bytes], budget: float) -> tuple[str, str]:
+    def run(self, command: str, data: dict[str, bytes], budget: float,
+            extra: tuple[str, ...] = ()) -> tuple[str, str]:
         """The command's (outcome, detail); "timeout" when the worker spends `budget` seconds of
         CPU on it (a loop), or WALL_FACTOR times that of wall-clock time (blocked). CPU time, not
-        wall time: on a shared machine a niced worker may wait minutes for a core."""
-        self.conn.send((command, data))
+        wall time: on a shared machine a niced worker may wait minutes for a core. `extra`:
+        more arguments for the command line."""
+        self.conn.send((command, data, tuple(extra)))
         cpu0, start = self.cpu_seconds(), time.monotonic()
         while not self.conn.poll(1.0):
             cpu = self.cpu_seconds() - cpu0
@@ -731,12 +795,12 @@ def commands_for(kind: str, rng: random.Random, results: dict[str, str], heavy_r
 def fuzz_range(seed: int, start: int, stop: int, *, heavy_rate: float, verify_rate: float,
                timeout_scale: float = 1.0, out_dir: Path | None = None, commands=LIGHT + HEAVY,
                parse_rate: float = 1.0, progress=None, worker: Worker | None = None,
-               deadline: float | None = None, hostile_rate: float = HOSTILE_RATE) -> tuple[collections.Counter, list[dict]]:
+               deadline: float | None = None, hostile_rate: float = HOSTILE_RATE,
+               halt=None) -> tuple[collections.Counter, list[dict]]:
     """Fuzz inputs start..stop-1 of run `seed` in one worker; (counts, flagged). With
-    `deadline` (a time.monotonic() value), stop after the input running at that time."""
-    seeds = seed_files()
-    pool = POOL + sorted({t for s in seeds for text in s.values() for t in tokens(text)
-                          if re.fullmatch(r"[A-Za-z_]\w*", t)})[:400]
+    `deadline` (a time.monotonic() value), stop after the input running at that time; with
+    `halt` (a threading.Event), once it is set."""
+    seeds, pool = seeds_and_pool()
     own = worker is None
     # Spawn, not fork: a process that already holds an OpenGL (EGL) context (pytest, after the GL
     # tests) cannot hand it to a forked child, whose renders then hang or fail to compile.
@@ -745,7 +809,7 @@ def fuzz_range(seed: int, start: int, stop: int, *, heavy_rate: float, verify_ra
     flagged: list[dict] = []
     try:
         for index in range(start, stop):
-            if deadline is not None and time.monotonic() > deadline:
+            if deadline is not None and time.monotonic() > deadline or halt is not None and halt.is_set():
                 break
             kind, data = make_input(seed, index, seeds, pool, hostile_rate)
             counts[("input", kind)] += 1
@@ -756,7 +820,8 @@ def fuzz_range(seed: int, start: int, stop: int, *, heavy_rate: float, verify_ra
             while todo:
                 command = todo.pop(0)
                 t0 = time.perf_counter()
-                outcome, detail = worker.run(command, data, BUDGET[command] * timeout_scale)
+                extra = ("--frame-budget", f"{HOSTILE_FRAME_SECONDS:g}") if kind == "hostile" and command == "render" else ()
+                outcome, detail = worker.run(command, data, BUDGET[command] * timeout_scale, extra)
                 counts[("seconds", command)] += time.perf_counter() - t0
                 if (kind == "generate" and command in ("parse", "check", "transpile", "render")
                         or kind == "hostile" and command in ("parse", "check")) and outcome != "ok":
@@ -789,11 +854,6 @@ def _save(out_dir: Path, seed, index, command, outcome, detail, data) -> None:
     for name, raw in data.items():
         (folder / name).write_bytes(raw)
     (folder / "NOTE.txt").write_text(f"glslcheck {command}: {outcome}\n\n{detail}\n", encoding="utf-8")
-
-
-def _chunk(args) -> tuple[collections.Counter, list[dict]]:
-    seed, start, stop, opts = args
-    return fuzz_range(seed, start, stop, **opts)
 
 
 def print_counts(counts: collections.Counter, flagged: list[dict], elapsed: float, file=sys.stdout) -> None:
@@ -831,6 +891,9 @@ def main(argv: list[str] | None = None) -> int:
     p.add_argument("--json", metavar="FILE", help="also write the counts and flagged inputs as JSON")
     p.add_argument("--merge", nargs="+", metavar="JSON", help="print the combined counts of --json files and exit")
     p.add_argument("--show", type=int, metavar="INDEX", help="print input INDEX of --seed and exit")
+    p.add_argument("--max-seconds", type=float, metavar="S",
+                   help="stop after S seconds (the inputs in flight finish; the counts so far are printed)")
+    p.add_argument("--resume", metavar="JSON", help="continue the run a --json file recorded (same --seed)")
     args = p.parse_args(argv)
 
     if args.merge:
@@ -841,15 +904,15 @@ def main(argv: list[str] | None = None) -> int:
             doc = json.loads(Path(name).read_text(encoding="utf-8"))
             counts.update({tuple(k.split("/", 1)): v for k, v in doc["counts"].items()})
             flagged += doc["flagged"]
-            ranges.append(f"seed {doc['seed']} inputs {doc['start']}..{doc['start'] + doc['count'] - 1}")
+            spans = doc.get("chunks") or [[doc["start"], doc["start"] + doc["count"]]]
+            ranges.append(f"seed {doc['seed']}: {doc['count']} inputs in {min(b for b, _ in spans)}.."
+                          f"{max(e for _, e in spans) - 1}")
         print("merged: " + "; ".join(ranges))
         print_counts(counts, flagged, counts.get(("elapsed", "total"), 0))
         return 1 if flagged else 0
 
     if args.show is not None:
-        seeds = seed_files()
-        pool = POOL + sorted({t for s in seeds for text in s.values() for t in tokens(text)
-                              if re.fullmatch(r"[A-Za-z_]\w*", t)})[:400]
+        seeds, pool = seeds_and_pool()
         kind, data = make_input(args.seed, args.show, seeds, pool, args.hostile_rate)
         for name, raw in data.items():
             print(f"== {kind}: {name} ({len(raw)} bytes)")
@@ -860,44 +923,121 @@ def main(argv: list[str] | None = None) -> int:
     opts = dict(heavy_rate=args.heavy_rate, verify_rate=args.verify_rate, timeout_scale=args.timeout_scale,
                 parse_rate=args.parse_rate, out_dir=Path(args.out), commands=commands,
                 hostile_rate=args.hostile_rate)
+    return run(args, opts)
+
+
+def run(args, opts: dict) -> int:
+    """Inputs --start .. --start+--count-1 in chunks of CHUNK on --jobs worker processes that
+    live for the whole run; the counts go to --json after every chunk (with the chunks done, so
+    --resume continues a stopped run), and the run stops cleanly (counts printed) at
+    --max-seconds, on SIGTERM or on Ctrl-C."""
+    import queue
+    import signal
+    import threading
+    from concurrent.futures import FIRST_COMPLETED, ThreadPoolExecutor, wait
+
     t0 = time.time()
     stop = args.start + args.count
-    step = max(50, min(500, args.count // (args.jobs * 8) or 1))
-    chunks = [(args.seed, s, min(s + step, stop), opts) for s in range(args.start, stop, step)]
     counts: collections.Counter = collections.Counter()
     flagged: list[dict] = []
-    done = 0
-    if args.jobs <= 1:
-        results = map(_chunk, chunks)
-    else:  # threads only feed the worker processes, which do the work
-        from concurrent.futures import ThreadPoolExecutor
+    done_chunks: list[list[int]] = []
+    if args.resume:
+        doc = json.loads(Path(args.resume).read_text(encoding="utf-8"))
+        if doc.get("seed") != args.seed:
+            print(f"fuzz: --resume {args.resume} is a run of seed {doc.get('seed')}, not {args.seed}", file=sys.stderr)
+            return 2
+        counts.update({tuple(k.split("/", 1)): v for k, v in doc["counts"].items() if k != "elapsed/total"})
+        flagged += doc["flagged"]
+        done_chunks += doc.get("chunks", [])
+        t0 -= doc["counts"].get("elapsed/total", 0)
+    chunks = [(s, min(s + CHUNK, e)) for b, e in _todo(args.start, stop, done_chunks) for s in range(b, e, CHUNK)]
+    halt = threading.Event()
+    deadline = None if args.max_seconds is None else time.monotonic() + args.max_seconds
 
-        results = ThreadPoolExecutor(args.jobs).map(_chunk, chunks)
-    for c, f in results:
-        counts.update(c)
-        flagged.extend(f)
-        done += sum(n for (k, _), n in c.items() if k == "input")
-        print(f"[{time.time() - t0:6.0f} s] {done}/{args.count} inputs, {len(flagged)} flagged",
-              file=sys.stderr, flush=True)
-        if args.json:  # after every chunk, so a stopped run keeps what it did
-            _write_json(args, counts, flagged, done, t0)
+    def on_term(signum, frame):  # SIGTERM: finish the inputs in flight, write the counts, exit
+        halt.set()
+
+    signal.signal(signal.SIGTERM, on_term)
+    ctx = mp.get_context("spawn")
+    workers: queue.Queue = queue.Queue()
+    started = [Worker(ctx) for _ in range(max(1, args.jobs))]
+    for w in started:
+        workers.put(w)
+
+    def chunk(span):
+        w = workers.get()
+        try:
+            return span, fuzz_range(args.seed, *span, worker=w, deadline=deadline, halt=halt, **opts)
+        finally:
+            workers.put(w)
+
+    status = 0
+    try:
+        with ThreadPoolExecutor(len(started)) as pool:
+            pending = {pool.submit(chunk, span) for span in chunks[:len(started)]}
+            rest = iter(chunks[len(started):])
+            while pending:
+                try:
+                    finished, pending = wait(pending, timeout=5, return_when=FIRST_COMPLETED)
+                except KeyboardInterrupt:
+                    halt.set()
+                    continue
+                for fut in finished:
+                    span, (c, f) = fut.result()
+                    counts.update(c)
+                    flagged.extend(f)
+                    n = sum(v for (k, _), v in c.items() if k == "input")
+                    if n:  # a chunk stopped early did its first n inputs (--resume does the rest)
+                        done_chunks.append([span[0], span[0] + n])
+                    if not halt.is_set() and (deadline is None or time.monotonic() < deadline):
+                        nxt = next(rest, None)
+                        if nxt is not None:
+                            pending.add(pool.submit(chunk, nxt))
+                    total = sum(v for (k, _), v in counts.items() if k == "input")
+                    print(f"[{time.time() - t0:6.0f} s] {total} inputs ({total / max(time.time() - t0, 1e-9):.1f}/s), "
+                          f"{len(flagged)} flagged", file=sys.stderr, flush=True)
+                    if args.json:  # after every chunk, so a stopped run keeps what it did
+                        _write_json(args, counts, flagged, done_chunks, t0)
+    finally:
+        for w in started:
+            w.close()
+    total = sum(v for (k, _), v in counts.items() if k == "input")
     print(f"python tools/fuzz.py --count {args.count} --seed {args.seed}"
-          + (f" --start {args.start}" if args.start else "") + (f" --jobs {args.jobs}" if args.jobs > 1 else ""))
+          + (f" --start {args.start}" if args.start else "") + (f" --jobs {args.jobs}" if args.jobs > 1 else "")
+          + (f" ({total} inputs done: stopped early)" if total < args.count else ""))
     print_counts(counts, flagged, time.time() - t0)
     for f in flagged[:20]:
         print(f"  {f['outcome']} {f['command']} seed {f['seed']} input {f['index']} ({f['kind']}): "
               f"{f['detail'].strip().splitlines()[-1][:200] if f['detail'].strip() else ''}")
     if args.json:
-        _write_json(args, counts, flagged, done, t0)
-    return 1 if flagged else 0
+        _write_json(args, counts, flagged, done_chunks, t0)
+    return 1 if flagged else status
 
 
-def _write_json(args, counts, flagged, done: int, t0: float) -> None:
-    Path(args.json).write_text(json.dumps({
+def _todo(start: int, stop: int, done: list[list[int]]) -> list[tuple[int, int]]:
+    """The index ranges of start..stop-1 that no span of `done` covers."""
+    todo, at = [], start
+    for b, e in sorted(done):
+        if b > at:
+            todo.append((at, min(b, stop)))
+        at = max(at, e)
+    if at < stop:
+        todo.append((at, stop))
+    return [(b, e) for b, e in todo if b < e]
+
+
+def _write_json(args, counts, flagged, chunks: list[list[int]], t0: float) -> None:
+    """The run so far, written to a temporary file and renamed (a kill mid-write keeps the last)."""
+    done = sum(n for (k, _), n in counts.items() if k == "input")
+    path = Path(args.json)
+    tmp = path.with_name(path.name + ".tmp")
+    tmp.write_text(json.dumps({
         "seed": args.seed, "start": args.start, "count": done, "requested": args.count,
+        "chunks": sorted(chunks),
         "counts": {**{f"{c}/{o}": n for (c, o), n in sorted(counts.items())},
                    "elapsed/total": time.time() - t0},
         "flagged": flagged}, indent=1), encoding="utf-8")
+    os.replace(tmp, path)
 
 
 if __name__ == "__main__":

@@ -22,12 +22,19 @@ The limits, and why:
 - fps: MIN_FPS..MAX_FPS = 0.001..1000 frames per second (iTimeDelta = 1/fps stays a normal float32).
 - date (iDate): year 0..9999, month 0..11, day 1..31 (whole numbers), seconds 0 <= s < 86400.
 - runs (bench): 1..1000.
+- frame budget (--frame-budget, every command that renders on the NumPy backend): seconds one
+  frame may render before it stops with an error at the loop it was in, MIN_FRAME_SECONDS..
+  MAX_FRAME_SECONDS = 0.01..86400 (a day: a longer frame is a hang, not a render; below 10 ms
+  the timer's own resolution decides). The default stays GLSLCHECK_FRAME_SECONDS, else
+  numpy_backend.program.FRAME_SECONDS (300 s); the option overrides both for one command.
 """
 
 from __future__ import annotations
 
 import argparse
+import contextlib
 import math
+import os
 from typing import Callable, Sequence
 
 from ..precision import PRECISIONS  # noqa: F401 - the --precision choices of render and verify
@@ -40,6 +47,7 @@ MAX_FRAME = 2**31 - 1
 MAX_FRAMES = 1_000_000
 MIN_FPS, MAX_FPS = 0.001, 1000.0
 MAX_RUNS = 1000
+MIN_FRAME_SECONDS, MAX_FRAME_SECONDS = 0.01, 86400.0
 
 
 def arg(parse: Callable[[str], object]) -> Callable[[str], object]:
@@ -151,6 +159,37 @@ def parse_fps(text: str) -> float:
 
 def parse_runs(text: str) -> int:
     return _in_range(_whole(text, "--runs"), 1, MAX_RUNS, "--runs", text)
+
+
+def parse_frame_budget(text: str) -> float:
+    """Seconds one frame may render on the CPU: MIN_FRAME_SECONDS..MAX_FRAME_SECONDS."""
+    seconds = parse_floats(text, 1, "--frame-budget", limit=MAX_FRAME_SECONDS)[0]
+    return _in_range(seconds, MIN_FRAME_SECONDS, MAX_FRAME_SECONDS, "--frame-budget", text)
+
+
+def add_frame_budget(p: argparse.ArgumentParser) -> None:
+    """`--frame-budget SECONDS` on a command that renders with the NumPy backend."""
+    p.add_argument("--frame-budget", type=arg(parse_frame_budget), default=None, metavar="SECONDS",
+                   help="stop a NumPy frame still rendering after SECONDS with an error at the loop it was in "
+                        f"({MIN_FRAME_SECONDS:g} to {MAX_FRAME_SECONDS:g}; default: $GLSLCHECK_FRAME_SECONDS or 300)")
+
+
+@contextlib.contextmanager
+def environment(**values: str | None):
+    """The environment variables `values` (those not None) set while the block runs, then as
+    they were: options the NumPy programs made by a command read from the environment
+    (--parallel: GLSLCHECK_PARALLEL, --frame-budget: GLSLCHECK_FRAME_SECONDS), and main() may
+    run again in the same process."""
+    before = {name: os.environ.get(name) for name, value in values.items() if value is not None}
+    os.environ.update({name: values[name] for name in before})
+    try:
+        yield
+    finally:
+        for name, value in before.items():
+            if value is None:
+                os.environ.pop(name, None)
+            else:
+                os.environ[name] = value
 
 
 def parse_date(text: str) -> tuple[float, float, float, float]:

@@ -262,7 +262,7 @@ class Lanes:
             f"the frame was still rendering after {budget.seconds:g} s on the CPU, in {where}; the NumPy "
             "renderer stops it (a GPU would hang or reset)", Location(path, line, col), rule="numpy-frame-budget",
             help="bound the loops' iteration counts (nested loops multiply) and the arrays' sizes; "
-                 "GLSLCHECK_FRAME_SECONDS sets the budget"))
+                 "--frame-budget SECONDS (or GLSLCHECK_FRAME_SECONDS) sets the budget"))
 
     def runaway(self, lid: int) -> None:
         path, line, col = self.loops.get(lid, ("<shader>", 0, 0))

@@ -4,6 +4,7 @@ issue 16 are usage errors (exit 2 with a message), not warnings, tracebacks or h
 
 from __future__ import annotations
 
+import os
 import subprocess
 import sys
 
@@ -12,7 +13,7 @@ import pytest
 from glslcheck.cli import build_parser, main
 from glslcheck.commands import args as A
 
-RENDERING = ("render", "verify", "bench")
+RENDERING = ("render", "verify", "bench", "report", "probe")  # every command that renders on the CPU
 
 GOOD = {
     "--size": ["320x180", "320X180", "320*180", "1x1", "16384x1", "4096x4096"],
@@ -26,6 +27,7 @@ GOOD = {
     "--date": ["2026,0,1,0", "1999,11,31,86399.5"],
     "--precision": ["float16", "float32", "float64"],
     "--runs": ["1", "1000"],
+    "--frame-budget": ["0.01", "1", "2.5", "300", "86400", "1e3"],
 }
 BAD = {
     "--size": ["320", "0x10", "16385x1", "4097x4096", "axb", "320x180x2", ""],
@@ -39,6 +41,7 @@ BAD = {
     "--date": ["2026,12,1,0", "2026,0,0,0", "2026,0,1,86400", "2026.5,0,1,0", "2026,0,1", "1e39,0,1,0"],
     "--precision": ["float128", "mediump"],
     "--runs": ["0", "1001", "2.5"],
+    "--frame-budget": ["0", "-1", "0.001", "86401", "1e39", "inf", "nan", "1,2", "x", ""],
 }
 
 
@@ -51,6 +54,7 @@ def _options(command: str) -> set[str]:
 def _parse(command: str, option: str, value: str) -> int:
     """0 when the parser takes the value, else the usage error's exit code."""
     extra = ["--frames", "2", "-o", "a.gif"] if command == "render" and option == "--fps" else []
+    extra += ["--nan"] if command == "probe" else []  # probe needs one of --pixel, --frag-coord, --nan
     argv = [command, "shader.glsl", *extra, f"{option}={value}"]
     try:
         build_parser(command).parse_args(argv)
@@ -67,6 +71,8 @@ def test_the_shared_options_are_on_every_rendering_command():
                    "--precision"):
         assert option in _options("render") and option in _options("verify"), option
     assert {"--size", "--time", "--runs"} <= _options("bench")
+    for command in RENDERING:
+        assert "--frame-budget" in _options(command), command
 
 
 @pytest.mark.parametrize("command,option", CASES)
@@ -91,6 +97,37 @@ def test_the_parsers_agree_with_their_documented_limits():
     assert A.parse_frames(str(A.MAX_FRAMES)) == A.MAX_FRAMES
     with pytest.raises(ValueError, match="--frames"):
         A.parse_frames(str(A.MAX_FRAMES + 1))
+    assert A.parse_frame_budget(str(A.MIN_FRAME_SECONDS)) == A.MIN_FRAME_SECONDS
+    assert A.parse_frame_budget(str(A.MAX_FRAME_SECONDS)) == A.MAX_FRAME_SECONDS
+    with pytest.raises(ValueError, match="--frame-budget must be from 0.01 to 86400"):
+        A.parse_frame_budget("0")
+
+
+RUNAWAY = ("void mainImage(out vec4 c, in vec2 p) {\n    float x = 0.0;\n"
+           "    for (int i = 0; i < 99999; i++) { for (int j = 0; j < 99999; j++) { x += 1.0; } }\n"
+           "    c = vec4(x);\n}\n")
+
+
+@pytest.mark.parametrize("command,options", [("render", ["-o", "a.npy"]), ("probe", ["--nan"])])
+def test_frame_budget_stops_the_frame_and_leaves_the_environment_as_it_was(command, options, tmp_path, capsys,
+                                                                           monkeypatch):
+    """--frame-budget overrides GLSLCHECK_FRAME_SECONDS (here 30 s, so that without the option
+    the test fails rather than hangs) for one command: the runaway loops stop at 0.2 s with the
+    error at the inner loop, and the variable is as it was after main() returns (main may run
+    again in the same process)."""
+    monkeypatch.setenv("GLSLCHECK_FRAME_SECONDS", "30")
+    shader = tmp_path / "Image.glsl"
+    shader.write_text(RUNAWAY)
+    argv = [str(tmp_path / o) if o.endswith(".npy") else o for o in options]
+    code = main([command, str(shader), *argv, "--size", "8x8", "--frame-budget", "0.2"])
+    err = capsys.readouterr().err
+    assert code == 1, err
+    assert f"{shader}:3:39: error: the frame was still rendering after 0.2 s" in err, err
+    assert "--frame-budget SECONDS" in err  # the help names the option
+    assert os.environ["GLSLCHECK_FRAME_SECONDS"] == "30"
+    monkeypatch.delenv("GLSLCHECK_FRAME_SECONDS")
+    main([command, str(shader), *argv, "--size", "8x8", "--frame-budget", "0.2"])
+    assert "GLSLCHECK_FRAME_SECONDS" not in os.environ
 
 
 @pytest.mark.parametrize("command", ["render", "verify"])
@@ -122,3 +159,15 @@ def test_a_long_schedule_is_not_built_first():
     assert (specs[0].frame, specs[-1].frame) == (5, 10**8 + 4)
     assert specs[3].time == 8 / 30.0 and specs[3].time_delta == 1 / 30.0
     assert [s.frame for s in specs[:3]] == [5, 6, 7]
+
+
+def test_frame_budget_stops_a_probe_trace(tmp_path):
+    """`probe --pixel` traced a runaway loop with no budget at all (10**10 iterations: hours);
+    now the trace stops as a frame does. A subprocess with a timeout, so the old behaviour fails
+    the test instead of hanging it."""
+    shader = tmp_path / "Image.glsl"
+    shader.write_text(RUNAWAY)
+    proc = subprocess.run([sys.executable, "-m", "glslcheck", "probe", str(shader), "--pixel", "0,0", "--size", "8x8",
+                           "--frame-budget", "0.5"], capture_output=True, text=True, timeout=120)
+    assert proc.returncode == 1, proc.stderr
+    assert f"{shader}:3:39: error: the frame was still rendering after 0.5 s" in proc.stderr, proc.stderr
