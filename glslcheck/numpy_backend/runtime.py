@@ -337,6 +337,9 @@ _FLT_MIN = _F32(1.17549435e-38)
 
 
 _BLOCK = 65536  # lanes per pass inside LlvmpipeMath (a render tile, 49152 lanes, is one block)
+# up to this many lanes a call checks its fused multiply-adds for midpoints once at the end
+# (LlvmpipeMath._fast); above, keeping every float64 sum alive costs more than the checks it saves
+_DEFER_LANES = 4096
 
 
 def _daz(x: np.ndarray) -> np.ndarray:
@@ -348,6 +351,28 @@ def _daz(x: np.ndarray) -> np.ndarray:
     return np.where(tiny, np.copysign(_F32(0.0), x), x)
 
 
+_LOW29 = np.int64(0x1FFFFFFF)  # NumPy scalars: a Python int operand costs a type resolution per call
+_MID29 = np.int64(0x10000000)
+
+
+def _fma_sum(a: Any, b: Any, c: Any) -> np.ndarray:
+    """float64 ``a*b + c`` of float32 operands (the product exact, the sum rounded once), in a
+    new buffer. ``a.astype`` then in-place steps: half the cost of ``np.multiply(a, b,
+    dtype=np.float64)`` on a few hundred lanes, the same bits."""
+    b_shape = getattr(b, "shape", ())  # (np.shape/np.ndim cost microseconds on a scalar)
+    if type(a) is np.ndarray and (b_shape == a.shape or not b_shape):
+        s = a.astype(np.float64)
+        np.multiply(s, b, out=s)
+    else:
+        s = np.multiply(a, b, dtype=np.float64)
+    c_shape = getattr(c, "shape", ())
+    if c_shape == s.shape or not c_shape:
+        np.add(s, c, out=s)
+    else:
+        s = np.add(s, c, dtype=np.float64)
+    return s
+
+
 def _fma32(a: Any, b: Any, c: Any) -> np.ndarray:
     """float32 ``a*b + c`` with ONE rounding, like vfmadd. The float64 product of two float32
     values is exact; the float64 sum rounds once more, which can change the float32 result
@@ -356,15 +381,10 @@ def _fma32(a: Any, b: Any, c: Any) -> np.ndarray:
     step towards it, so rounding to float32 is the correctly rounded fused result. (The sum is
     made in the product's buffer, which then holds the midpoint test; the operands of the rare
     midpoints are re-read and their float64 sum made again, the same bits.)"""
-    s = np.multiply(a, b, dtype=np.float64)
-    c_shape = getattr(c, "shape", ())  # (np.shape/np.ndim cost microseconds on a scalar)
-    if c_shape == s.shape or not c_shape:
-        np.add(s, c, out=s)
-    else:
-        s = np.add(s, c, dtype=np.float64)
+    s = _fma_sum(a, b, c)
     r = s.astype(_F32)
-    low = np.bitwise_and(s.view(np.int64), 0x1FFFFFFF, out=s.view(np.int64))
-    mid = low == 0x10000000
+    low = np.bitwise_and(s.view(np.int64), _LOW29, out=s.view(np.int64))
+    mid = low == _MID29
     if mid.any():
         at = np.nonzero(mid)
         ps = np.multiply(np.broadcast_to(a, r.shape)[at], np.broadcast_to(b, r.shape)[at], dtype=np.float64)
@@ -432,6 +452,25 @@ class LlvmpipeMath:
             return _fma32(a, b, c)
         return np.add(np.multiply(a, b, dtype=_F32), c, dtype=_F32)
 
+    def _fast(self, name: str) -> Any:
+        """The algorithm ``name`` (``"_exp2"``, ...) with its fused multiply-adds checked for
+        float32 midpoints once at the end instead of after each one (:class:`_DeferredFma`):
+        three NumPy calls fewer per fused step, which is most of the cost on the few hundred
+        lanes a call has after compaction. When a float64 sum is a midpoint anywhere (rare), the
+        call is made again on the reference path, which corrects each one: the same bits
+        either way. Without FMA there is nothing to defer."""
+        ref = getattr(self, name)
+        if not self.fma:
+            return ref
+
+        def run(*args: np.ndarray) -> np.ndarray:
+            if args[0].size > _DEFER_LANES:
+                return ref(*args)
+            d = _DeferredFma()
+            r = getattr(d, name)(*args)
+            return ref(*args) if d.midpoint() else r
+        return run
+
     def polynomial(self, x: np.ndarray, coeffs: tuple[float, ...]) -> np.ndarray:
         """``lp_build_polynomial``: even and odd coefficients in x*x separately (each by
         Horner with mad), then ``mad(odd, x, even)``."""
@@ -453,12 +492,12 @@ class LlvmpipeMath:
         reduction becomes +1), and NaN for non-finite input. For |x| >= 2**31 * pi/4 the
         conversion gives INT_MIN, so the "reduced" argument is huge and the result is a
         clamped +-1 (cos(1e10) = 1, sin(1e10) = -1)."""
-        return _blocked(self._cos if cos else self._sin, a)
+        return _blocked(self._fast("_cos" if cos else "_sin"), a)
 
     def tan(self, a: np.ndarray) -> np.ndarray:
         """``sin(x) / cos(x)`` (Mesa's GLSL tan), both from one reduction and one evaluation
         of each polynomial: the two share everything but the final selection and sign."""
-        return _blocked(self._tan, a)
+        return _blocked(self._fast("_tan"), a)
 
     def _sin(self, a: np.ndarray) -> np.ndarray:
         return self._sin_cos_result(a, self._sin_cos_reduced(a), cos=False)
@@ -531,18 +570,18 @@ class LlvmpipeMath:
     def exp2(self, x: np.ndarray) -> np.ndarray:
         """``lp_build_exp2``: clamp to [-126.99999, 128] (NaN passes), split floor/fraction,
         2**ipart from the exponent bits times a degree-5 polynomial of the fraction."""
-        return _blocked(self._exp2, x)
+        return _blocked(self._fast("_exp2"), x)
 
     def log2(self, x: np.ndarray) -> np.ndarray:
         """``lp_build_log2_safe``: exponent + y*P(y*y) with y = (m-1)/(m+1) for the mantissa m
         in [1, 2); then +Inf for +Inf, -Inf for 0 (subnormals too), NaN for x < 0. The edge
         masks are unordered compares, so NaN input hits all three and ends NaN."""
-        return _blocked(self._log2, x)
+        return _blocked(self._fast("_log2"), x)
 
     def pow(self, x: np.ndarray, y: np.ndarray) -> np.ndarray:
         """``lp_build_pow``: exp2(log2_safe(x) * y), then 0 where x == 0 (an unordered compare:
         NaN x gives 0 too; so do subnormal x)."""
-        return _blocked(self._pow, x, y)
+        return _blocked(self._fast("_pow"), x, y)
 
     def _exp2(self, x: np.ndarray) -> np.ndarray:
         # minps(128, x) then maxps(-126.99999, .): a NaN x passes both, as in np.minimum/maximum
@@ -575,6 +614,33 @@ class LlvmpipeMath:
         if zero.any():
             r = np.where(zero, _F32(0.0), r)
         return r
+
+
+class _DeferredFma(LlvmpipeMath):
+    """An FMA LlvmpipeMath for ONE call (a fresh instance per call: render threads share the
+    runtime) whose fused multiply-adds round the float64 sum to float32 at once and keep the
+    sum; :meth:`midpoint` then tells whether any sum is a float32 midpoint, the only case where
+    that rounding differs from the fused one (see :func:`_fma32`)."""
+
+    def __init__(self) -> None:
+        super().__init__(fma=True)
+        self.sums: list[np.ndarray] = []
+
+    def mad(self, a: Any, b: Any, c: Any, exact: bool = False) -> np.ndarray:
+        if exact:
+            return np.add(np.multiply(a, b, dtype=_F32), c, dtype=_F32)
+        s = _fma_sum(a, b, c)
+        self.sums.append(s)
+        return s.astype(_F32)
+
+    def midpoint(self) -> bool:
+        """Whether any kept float64 sum has low 29 mantissa bits 1000...0 (the sums are
+        this instance's own buffers, overwritten by the test)."""
+        if not self.sums:
+            return False
+        flat = np.concatenate([s.reshape(-1) for s in self.sums])
+        low = np.bitwise_and(flat.view(np.int64), _LOW29, out=flat.view(np.int64))
+        return bool((low == _MID29).any())
 
 
 class Runtime(TextureFunctions):  # texture lookups: textures.py
