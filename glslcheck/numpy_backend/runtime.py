@@ -442,6 +442,11 @@ class LlvmpipeMath:
     LOG2 = (2.88539009343309178325, 0.961791550404184197881, 0.577440339438736392009,
             0.403343858251329912514, 0.406718052498846252698)
 
+    # the cosine's polynomial (y_6) and the sine's (y2_6) in lp_build_sin_or_cos, as columns
+    SIN_COS = np.array([[2.443315711809948e-005, -1.9515295891e-4],
+                        [-1.388731625493765e-003, 8.3321608736e-3],
+                        [4.166664568298827e-002, -1.6666654611e-1]], dtype=_F32)[:, :, None]
+
     def __init__(self, fma: bool = HOST_FMA) -> None:
         self.fma = fma
 
@@ -526,16 +531,16 @@ class LlvmpipeMath:
         x_2 = self.mad(y_2, _F32(-2.4187564849853515625e-4), x_1, exact=j_max < 2**13)
         x_3 = self.mad(y_2, _F32(-3.77489497744594108e-8), x_2)
         z = x_3 * x_3
-        y_6 = self.mad(self.mad(z, _F32(2.443315711809948e-005), _F32(-1.388731625493765e-003)),
-                       z, _F32(4.166664568298827e-002))
-        y_10 = y_6 * z
+        # both polynomials have the form mad(mad(z, p0, p1), z, p2) * z: evaluated as one
+        # (2, lanes) array, row 0 the cosine's coefficients and row 1 the sine's (elementwise,
+        # so the same bits as two calls, in half the NumPy calls)
+        both = self.mad(self.mad(z, self.SIN_COS[0], self.SIN_COS[1]), z, self.SIN_COS[2])
+        both *= z
+        y_10 = both[0]  # y_6 * z
         y_10 *= z
         y_10 -= z * _F32(0.5)
         y_10 += _F32(1.0)  # ((y_6*z)*z - z*0.5) + 1.0
-        y2_6 = self.mad(self.mad(z, _F32(-1.9515295891e-4), _F32(8.3321608736e-3)),
-                        z, _F32(-1.6666654611e-1))
-        y2_6 *= z
-        y2_9 = self.mad(y2_6, x_3, x_3)
+        y2_9 = self.mad(both[1], x_3, x_3)  # y2_6 = both[1]
         return ai, emm2_add, emm2_and, y_10, y2_9
 
     @staticmethod
