@@ -366,7 +366,7 @@ def _fma_sum(a: Any, b: Any, c: Any) -> np.ndarray:
     else:
         s = np.multiply(a, b, dtype=np.float64)
     c_shape = getattr(c, "shape", ())
-    if c_shape == s.shape or not c_shape:
+    if c_shape == s.shape or not c_shape or np.broadcast_shapes(c_shape, s.shape) == s.shape:
         np.add(s, c, out=s)
     else:
         s = np.add(s, c, dtype=np.float64)
@@ -531,11 +531,16 @@ class LlvmpipeMath:
         x_2 = self.mad(y_2, _F32(-2.4187564849853515625e-4), x_1, exact=j_max < 2**13)
         x_3 = self.mad(y_2, _F32(-3.77489497744594108e-8), x_2)
         z = x_3 * x_3
-        # both polynomials have the form mad(mad(z, p0, p1), z, p2) * z: evaluated as one
-        # (2, lanes) array, row 0 the cosine's coefficients and row 1 the sine's (elementwise,
-        # so the same bits as two calls, in half the NumPy calls)
-        both = self.mad(self.mad(z, self.SIN_COS[0], self.SIN_COS[1]), z, self.SIN_COS[2])
-        both *= z
+        # both polynomials have the form mad(mad(z, p0, p1), z, p2) * z: on few lanes evaluated
+        # as one (2, lanes) array, row 0 the cosine's coefficients and row 1 the sine's
+        # (elementwise, so the same bits as two calls, in half the NumPy calls); on a tile two
+        # arrays of one row each are faster (measured: 1.2x the time with the stacked form)
+        p = self.SIN_COS
+        if z.size <= _DEFER_LANES:
+            both = self.mad(self.mad(z, p[0], p[1]), z, p[2])
+            both *= z
+        else:
+            both = [self.mad(self.mad(z, p[0, i, 0], p[1, i, 0]), z, p[2, i, 0]) * z for i in (0, 1)]
         y_10 = both[0]  # y_6 * z
         y_10 *= z
         y_10 -= z * _F32(0.5)
