@@ -536,9 +536,11 @@ class LlvmpipeMath:
         # (elementwise, so the same bits as two calls, in half the NumPy calls); on a tile two
         # arrays of one row each are faster (measured: 1.2x the time with the stacked form)
         p = self.SIN_COS
-        if z.size <= _DEFER_LANES:
-            both = self.mad(self.mad(z, p[0], p[1]), z, p[2])
-            both *= z
+        if z.size <= _DEFER_LANES:  # (flat: the argument may be a vector, e.g. of shape (3, 1))
+            zf = z.reshape(-1)
+            both = self.mad(self.mad(zf, p[0], p[1]), zf, p[2])
+            both *= zf
+            both = [row.reshape(z.shape) for row in both]
         else:
             both = [self.mad(self.mad(z, p[0, i, 0], p[1, i, 0]), z, p[2, i, 0]) * z for i in (0, 1)]
         y_10 = both[0]  # y_6 * z

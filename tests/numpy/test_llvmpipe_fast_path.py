@@ -41,10 +41,12 @@ def _bits(a: np.ndarray) -> np.ndarray:
 
 
 @pytest.mark.parametrize("fma", [True, False])
-@pytest.mark.parametrize("n", [40, 300, runtime._DEFER_LANES, 20_000])
-def test_fast_path_equals_reference(fma, n):
+@pytest.mark.parametrize("shape", [(40,), (300,), (runtime._DEFER_LANES,), (20_000,), (3, 1), (4, 50)])
+def test_fast_path_equals_reference(fma, shape):
+    """Lane arrays of each size, and vectors (components first: (3, 1) is a vec3 of one lane)."""
     lp = LlvmpipeMath(fma)
-    x, y = _sample(n), _sample(n)
+    n = int(np.prod(shape))
+    x, y = _sample(max(n, 40))[:n].reshape(shape), _sample(max(n, 40))[:n].reshape(shape)
     with np.errstate(all="ignore"):
         for name, args in (("_sin", (x,)), ("_cos", (x,)), ("_tan", (x,)), ("_exp2", (x,)),
                            ("_exp2", (x * np.float32(1e-2),)), ("_log2", (x,)),
