@@ -12,12 +12,18 @@
    folding off (`rt.fold_constants = False`); best of N each, frame cache cleared. Ratio =
    emulated / plain. No target: the emulation buys bit-exact agreement with llvmpipe (the
    verify tests), and this says what it costs.
+3. ``--against REV``: this tree's LlvmpipeMath against the one in git revision REV (its
+   runtime.py loaded as a second module), on the lane counts a call has after compaction (300)
+   and on one tile (TILE_LANES); both on the same arguments, in turns, CPU time (user+sys,
+   best of N rounds); the results must agree bit for bit. Ratio = this tree / REV.
 """
 
 from __future__ import annotations
 
 import argparse
+import importlib.util
 import os
+import subprocess
 import sys
 import time
 
@@ -105,10 +111,55 @@ def frames(repeat: int) -> None:
               f"ratio {timings['emulated'] / timings['plain']:4.2f}x")
 
 
+def runtime_at(rev: str):
+    """glslcheck/numpy_backend/runtime.py as of git revision ``rev``, imported as a sibling
+    module of the package (its relative imports resolve to this tree's modules)."""
+    text = subprocess.run(["git", "-C", ROOT, "show", f"{rev}:glslcheck/numpy_backend/runtime.py"],
+                          check=True, capture_output=True, text=True).stdout
+    name = "glslcheck.numpy_backend._runtime_at_rev"
+    spec = importlib.util.spec_from_loader(name, loader=None)
+    mod = importlib.util.module_from_spec(spec)
+    mod.__package__ = "glslcheck.numpy_backend"
+    sys.modules[name] = mod
+    exec(compile(text, f"{rev}:runtime.py", "exec"), mod.__dict__)
+    return mod
+
+
+def against(rev: str, repeat: int) -> None:
+    old_lp, new_lp = runtime_at(rev).LlvmpipeMath(), Runtime("float32").lp
+    rng = np.random.default_rng(1)
+    print(f"3. LlvmpipeMath of this tree vs {rev}, CPU time per call, best of {repeat} rounds "
+          f"(FMA CPU: {HOST_FMA}; load average {' '.join(f'{v:.1f}' for v in os.getloadavg())})")
+    for lanes, calls in ((300, 400), (TILE_LANES, 4)):
+        x = rng.uniform(-100, 100, lanes).astype(np.float32)
+        pos = np.abs(x) + np.float32(1e-3)
+        y = rng.uniform(-4, 4, lanes).astype(np.float32)
+        cases = [("sin", lambda lp: lp.sin_or_cos(x, cos=False)), ("cos", lambda lp: lp.sin_or_cos(x, cos=True)),
+                 ("exp2", lambda lp: lp.exp2(y)), ("log2", lambda lp: lp.log2(pos)),
+                 ("pow", lambda lp: lp.pow(pos, y))]
+        with np.errstate(all="ignore"):
+            for name, fn in cases:
+                assert np.array_equal(fn(new_lp).view(np.int32), fn(old_lp).view(np.int32)), name
+                t = {"old": [], "new": []}
+                for _ in range(repeat):
+                    for key, lp in (("old", old_lp), ("new", new_lp)):
+                        c = time.process_time()
+                        for _ in range(calls):
+                            fn(lp)
+                        t[key].append((time.process_time() - c) / calls)
+                a, b = min(t["new"]), min(t["old"])
+                print(f"   {lanes:>6,} lanes {name:<5} this {a * 1e6:8.1f} us   {rev} {b * 1e6:8.1f} us   "
+                      f"ratio {a / b:4.2f}")
+
+
 def main() -> None:
     p = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     p.add_argument("--repeat", type=int, default=5)
+    p.add_argument("--against", metavar="REV", help="compare LlvmpipeMath with git revision REV only")
     args = p.parse_args()
+    if args.against:
+        against(args.against, args.repeat)
+        return
     builtins(args.repeat)
     frames(max(1, args.repeat // 2))
 

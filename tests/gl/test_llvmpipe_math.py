@@ -52,6 +52,17 @@ EXACT = [
     ("log(a)", RT.log, POS, None),
     ("pow(a, b)", RT.pow, POS, Y * np.float32(0.2)),
     ("pow(a, b)", RT.pow, X, Y),
+    # a constant base of 2: nir_opt_algebraic's fpow(2.0, a) -> fexp2(a), which the transpiler
+    # copies (pow_rewrite); the driver's pow(2.0, a) must be our exp2 bit for bit
+    ("pow(2.0, a)", RT.exp2, X * np.float32(3.0), None),
+    ("pow(vec2(2.0), vec2(a, b)).y", lambda a, b: RT.exp2(b), X, Y * np.float32(3.0)),
+    # literal exponents: 1, 2, 4 are products (pow_const), 0.5 and 3 stay exp2(y * log2(x))
+    # (products of |a| < 1e-9 are subnormal: plain multiplies keep them where llvmpipe flushes
+    # them, see NORMAL below, so those are left out)
+    ("pow(a, 2.0)", lambda a: RT.pow_const(a, 2.0), X[~(np.abs(X) < 1e-9) | (X == 0)], None),
+    ("pow(a, 4.0)", lambda a: RT.pow_const(a, 4.0), X[~(np.abs(X) < 1e-9) | (X == 0)], None),
+    ("pow(a, 0.5)", lambda a: RT.pow(a, np.float32(0.5)), POS, None),
+    ("pow(a, 3.0)", lambda a: RT.pow(a, np.float32(3.0)), X, None),
     ("asin(a)", RT.asin, UNIT, None),
     ("acos(a)", RT.acos, UNIT, None),
     ("sinh(a)", RT.sinh, X, None),

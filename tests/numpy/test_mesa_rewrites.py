@@ -96,13 +96,14 @@ def test_transpiler_emits_the_rewrites(make_shader):
         "void mainImage(out vec4 o, in vec2 f) {\n"
         "    float x = -f.x;\n"
         "    o = vec4(pow(x, 2.0), pow(x, E), pow(x, 3.0), pow(1.0, x))\n"
-        "      + pow(vec4(x), vec4(1.0, 0.0, 0.5, 2.0));\n"
+        "      + pow(vec4(x), vec4(1.0, 0.0, 0.5, 2.0)) + pow(2.0, x) + pow(vec2(2.0), vec2(x)).x;\n"
         "}\n"))
     code = code if isinstance(code, str) else str(code)
     assert "rt.pow_const(v_x, 2.0)" in code
     assert "rt.pow_const(v_x, 4.0)" in code
     assert "rt.pow(v_x, " in code                       # 3.0: not rewritten
     assert "rt.pow_one(v_x)" in code
+    assert "rt.exp2(v_x)" in code and "rt.exp2(rt.vec(2, v_x))" in code  # fpow(2.0, a) -> fexp2(a)
     assert "(1.0, 0.0, 0.5, 2.0))" in code
 
 

@@ -351,10 +351,14 @@ class Expressions:
     def pow_rewrite(self, e: A.Call, args: list[str]) -> str | None:
         """Mesa's compile-time rewrites of `pow` (see `Runtime.pow_const`): a constant exponent
         with a component of 1.0, 2.0, 4.0 or +0.0 becomes products (`rt.pow_const`), a constant
-        base of all ones becomes 1 (`rt.pow_one`); None: the run-time `rt.pow`."""
+        base of all ones becomes 1 (`rt.pow_one`), a constant base of all twos becomes `exp2`
+        (nir_opt_algebraic's `fpow(2.0, a) -> fexp2(a)`: the same bits as the run-time formula,
+        whose log2(2.0) is exactly 1, without the log2); None: the run-time `rt.pow`."""
         base = self.model.const_value(e.args[0])
         if base is not None and all(v == 1.0 for v in _components(base)):
             return f"rt.pow_one({args[1]})"
+        if base is not None and all(v == 2.0 for v in _components(base)):
+            return f"rt.exp2({args[1]})"
         c = self.model.const_value(e.args[1])
         if c is None:
             return None
