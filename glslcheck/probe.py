@@ -219,9 +219,12 @@ class Probe:
         return PixelReport((x, y), (fx, fy), tuple(float(np.float32(c)) for c in color), steps, first,
                            t32.truncated)
 
-    def traces(self, x: int | None, y: int | None, inputs: Inputs, frag_coord: tuple[float, float] | None = None):
+    def traces(self, x: int | None, y: int | None, inputs: Inputs, frag_coord: tuple[float, float] | None = None,
+               stop_bits: int | None = None):
         """The float32 and float64 runs of pixel (x, y) (or `frag_coord`): ((x, y), (fx, fy),
-        RGBA of the float32 run, its PixelTracer, the float64 one's)."""
+        RGBA of the float32 run, its PixelTracer, the float64 one's). With `stop_bits` the
+        float64 run goes first and the float32 run stops at its first step that keeps fewer
+        bits of its shadow while both follow the same path (_ShadowedTracer; RGBA None then)."""
         w, h = inputs.size
         if frag_coord is None:
             if not (0 <= x < w and 0 <= y < h):
@@ -238,10 +241,18 @@ class Probe:
             width = 2
         else:
             frags, lane, width = np.array([[fx], [fy]]), 0, 1
-        t32 = PixelTracer(frags.shape[1], self.sites, lane)
-        color = self.run("float32", inputs, frags, width, t32)[:, lane]
         t64 = PixelTracer(frags.shape[1], self.sites, lane)
+        if stop_bits is None:
+            t32 = PixelTracer(frags.shape[1], self.sites, lane)
+            color = self.run("float32", inputs, frags, width, t32)[:, lane]
+            self.run("float64", inputs, frags, width, t64)
+            return (x, y), (fx, fy), color, t32, t64
         self.run("float64", inputs, frags, width, t64)
+        t32 = _ShadowedTracer(frags.shape[1], self.sites, lane, t64.records, stop_bits)
+        try:
+            color = self.run("float32", inputs, frags, width, t32)[:, lane]
+        except _Departed:
+            color = None
         return (x, y), (fx, fy), color, t32, t64
 
     def origin(self, site: int, operation: int) -> Origin:
@@ -375,26 +386,62 @@ def first_unstable(probe: Probe, x: int, y: int, inputs: Inputs, min_bits: int =
     than `min_bits` bits of its float64 shadow (Step: file, line, code, bits), or None: the steps
     `probe.pixel` reports, compared in order and only up to the first that departs. Where the
     two runs part before any value departs, at most `realign` steps are realigned (None: all)."""
-    return first_unstable_traced(probe, *probe.traces(x, y, inputs)[3:], min_bits, realign)
+    return first_unstable_traced(probe, *probe.traces(x, y, inputs, stop_bits=min_bits)[3:], min_bits, realign)
 
 
 def first_unstable_traced(probe: Probe, t32: PixelTracer, t64: PixelTracer, min_bits: int = UNSTABLE_BITS,
                           realign: int | None = REALIGN_STEPS) -> Step | None:
-    """first_unstable on the two runs of a pixel (Probe.traces)."""
+    """first_unstable on the two runs of a pixel (Probe.traces; a _ShadowedTracer has compared
+    the steps up to where the runs part already)."""
     r32, r64 = t32.records, t64.records
+    checked = getattr(t32, "checked", 0)
     for i, j in pairs(r32, r64, realign):
-        r = r32[i]
-        s = probe.sites[r.site]
-        if s.kind not in BITS_KINDS or r64[j].value is None:
+        if i < checked:
             continue
-        value, v64 = r.value, r64[j].value
-        if s.kind == "call":
-            value, v64 = dict(zip(s.params, value)), dict(zip(s.params, v64))
-        bits = bits_kept(value, v64)
+        site = probe.sites[r32[i].site]
+        value, v64, bits = _compared(site, r32[i], r64[j])
         if bits is not None and bits < min_bits:
-            return Step(s.path, s.line, s.column, s.code, s.kind, _step_name(s, r.what), value, v64, bits,
-                        r.depth, r.what, r.count)
+            r = r32[i]
+            return Step(site.path, site.line, site.column, site.code, site.kind, _step_name(site, r.what), value,
+                        v64, bits, r.depth, r.what, r.count)
     return None
+
+
+def _compared(site: Site, r: Any, r64: Any) -> tuple[Any, Any, int | None]:
+    """A step's float32 value, its float64 shadow (a call's arguments by name) and the bits kept
+    (None for steps not compared)."""
+    value, v64 = r.value, r64.value
+    if site.kind not in BITS_KINDS or v64 is None:
+        return value, v64, None
+    if site.kind == "call":
+        value, v64 = dict(zip(site.params, value)), dict(zip(site.params, v64))
+    return value, v64, bits_kept(value, v64)
+
+
+class _Departed(Exception):
+    """The float32 run's step departed from its shadow: the run stops (_ShadowedTracer)."""
+
+
+class _ShadowedTracer(PixelTracer):
+    """The float32 run's PixelTracer for first_unstable: while its steps follow the float64 run's
+    (`shadow`, the same site, depth and loop marker), each is compared with its shadow as it is
+    recorded (`checked` counts them) and the run stops at the first that keeps fewer than
+    `min_bits` bits; the rest of a pixel's run costs nothing then."""
+
+    def __init__(self, lanes: int, sites: list[Site], lane: int, shadow: list, min_bits: int) -> None:
+        super().__init__(lanes, sites, lane)
+        self.shadow, self.min_bits = shadow, min_bits
+        self.checked = 0
+
+    def _record(self, rec: Any) -> None:
+        super()._record(rec)
+        k = self.checked
+        if k != len(self.records) - 1 or k >= len(self.shadow) or _key(self.shadow[k]) != _key(rec):
+            return  # parted (or past the recording limit): first_unstable_traced realigns
+        bits = _compared(self.sites[rec.site], rec, self.shadow[k])[2]
+        if bits is not None and bits < self.min_bits:
+            raise _Departed
+        self.checked = k + 1
 
 
 # ---------------------------------------------------------------------------------------------

@@ -303,8 +303,8 @@ def verify_frames(
 
 
 UNSTABLE_PROBES = 24  # unstable pixels traced per frame to name the lines that lose precision
-# ... and the steps (float32 and float64 runs together) they may trace per frame: about 0.1 ms of
-# CPU each, so ~40 s; a path tracer's pixel runs ~17,000 steps and gets fewer pixels traced
+# ... and the steps (float64 runs, and float32 runs up to their first departure) they may trace
+# per frame: about 0.1 ms of CPU each, so ~40 s; a path tracer's pixel runs ~9,000 steps
 UNSTABLE_STEPS = 400_000
 
 
@@ -316,7 +316,7 @@ def unstable_lines(shader: Shader, comparison: Comparison, size, spec: FrameSpec
     steps have run (at least one pixel). Entries {"file", "line", "code", "bits", "pixels",
     "sampled"}, most pixels first; "pixels" extrapolates the traced share to all unstable pixels,
     "bits" is the fewest kept at that line and "sampled" the number of pixels traced."""
-    from .probe import Inputs, Probe, first_unstable_traced
+    from .probe import UNSTABLE_BITS, Inputs, Probe, first_unstable_traced
 
     mask = comparison.unstable_mask
     if mask is None or not mask.any():
@@ -333,7 +333,7 @@ def unstable_lines(shader: Shader, comparison: Comparison, size, spec: FrameSpec
     for i in picks[_spread(len(picks))]:
         if steps >= UNSTABLE_STEPS:
             break
-        t32, t64 = probe.traces(int(xs[i]), int(ys[i]), inputs)[3:]
+        t32, t64 = probe.traces(int(xs[i]), int(ys[i]), inputs, stop_bits=UNSTABLE_BITS)[3:]
         steps += len(t32.records) + t32.truncated + len(t64.records) + t64.truncated
         sampled += 1
         step = first_unstable_traced(probe, t32, t64)
