@@ -304,8 +304,8 @@ def verify_frames(
 
 UNSTABLE_PROBES = 24  # unstable pixels traced per frame to name the lines that lose precision
 # ... and the steps (float64 runs, and float32 runs up to their first departure) they may trace
-# per frame: about 0.1 ms of CPU each, so ~40 s; a path tracer's pixel runs ~9,000 steps
-UNSTABLE_STEPS = 400_000
+# per frame: about 0.1 ms of CPU each, so ~20 s; a path tracer's pixel runs ~9,000 steps
+UNSTABLE_STEPS = 200_000
 
 
 def unstable_lines(shader: Shader, comparison: Comparison, size, spec: FrameSpec, mouse, date) -> list[dict]:
