@@ -360,7 +360,9 @@ def pairs(r32: list, r64: list, realign: int | None = None) -> Iterator[tuple[in
     i; where they part, `difflib` realigns the two rest of the runs (the float64 run took another
     branch or ran another number of iterations; an unpaired step has no shadow). `realign`: the
     longest rest realigned (difflib's time grows about quadratically with it); past it the
-    pairs stop at the parting."""
+    pairs stop at the parting. (difflib over the whole runs, longest block first, could pair a
+    loop step with another iteration's shadow even where the runs never parted before: a
+    31-pathtrace pixel blamed `vec2 f = vec2(float(i), float(j)) / ...` for 0 bits that way.)"""
     n = min(len(r32), len(r64))
     i = 0
     while i < n and _key(r32[i]) == _key(r64[i]):
