@@ -13,10 +13,10 @@ Library API (the `glslcheck probe` command and verify's unstable pixels call it)
 
 The steps come from the traced module (numpy_backend/trace.py) run on the probed pixel's lane
 (its 2x2 quad when the shader takes derivatives) twice: in float32, the render's precision, and
-in float64, the shadow. The two runs are paired step by step (`difflib` realigns them where the
-float64 run took another branch or ran another number of iterations; an unpaired step has no
-shadow). `bits`: how many significant bits of the float64 shadow the float32 value keeps,
-min(24, floor(-log2(|v32 - v64| / |v64|))) with |.| the largest component (a vector or matrix
+in float64, the shadow. The two runs are paired step by step (`pairs`: where they part, `difflib`
+realigns the rest, the float64 run having taken another branch or run another number of
+iterations; an unpaired step has no shadow). `bits`: how many significant bits of the float64
+shadow the float32 value keeps, min(24, floor(-log2(|v32 - v64| / |v64|))) with |.| the largest component (a vector or matrix
 is judged as a whole: a component that is tiny next to the others does not count), 24 when equal.
 """
 
@@ -27,7 +27,7 @@ import math
 import os
 import threading
 from dataclasses import dataclass, field
-from typing import Any
+from typing import Any, Iterator
 
 import numpy as np
 
@@ -36,6 +36,7 @@ from .numpy_backend.runtime import Struct
 from .numpy_backend.trace import HELP, OPERATIONS, LaneTracer, PixelTracer, Site, TraceTranspiler
 
 UNSTABLE_BITS = 16  # first_unstable: a value keeping fewer bits than this has lost more than a third of float32's 24
+BITS_KINDS = ("assign", "return", "call")  # the steps whose values are compared with their shadow
 FIRST_ITERATIONS, LAST_ITERATIONS = 3, 2  # a longer loop prints these iterations and folds the others
 
 
@@ -215,6 +216,19 @@ class Probe:
     def pixel(self, x: int | None, y: int | None, inputs: Inputs,
               frag_coord: tuple[float, float] | None = None) -> PixelReport:
         """Every step pixel (x, y) (from the top left) executed, or the pixel at `frag_coord`."""
+        (x, y), (fx, fy), color, t32, t64 = self.traces(x, y, inputs, frag_coord)
+        lane = t32.lane
+        steps = self._steps(t32, t64)
+        first = self.origin(int(t32.origin[lane]), int(t32.operation[lane])) if t32.origin[lane] >= 0 else None
+        return PixelReport((x, y), (fx, fy), tuple(float(np.float32(c)) for c in color), steps, first,
+                           t32.truncated)
+
+    def traces(self, x: int | None, y: int | None, inputs: Inputs, frag_coord: tuple[float, float] | None = None,
+               stop_bits: int | None = None):
+        """The float32 and float64 runs of pixel (x, y) (or `frag_coord`): ((x, y), (fx, fy),
+        RGBA of the float32 run, its PixelTracer, the float64 one's). With `stop_bits` the
+        float64 run goes first and the float32 run stops at its first step that keeps fewer
+        bits of its shadow while both follow the same path (_ShadowedTracer; RGBA None then)."""
         w, h = inputs.size
         if frag_coord is None:
             if not (0 <= x < w and 0 <= y < h):
@@ -231,14 +245,19 @@ class Probe:
             width = 2
         else:
             frags, lane, width = np.array([[fx], [fy]]), 0, 1
-        t32 = PixelTracer(frags.shape[1], self.sites, lane)
-        color = self.run("float32", inputs, frags, width, t32)[:, lane]
         t64 = PixelTracer(frags.shape[1], self.sites, lane)
+        if stop_bits is None:
+            t32 = PixelTracer(frags.shape[1], self.sites, lane)
+            color = self.run("float32", inputs, frags, width, t32)[:, lane]
+            self.run("float64", inputs, frags, width, t64)
+            return (x, y), (fx, fy), color, t32, t64
         self.run("float64", inputs, frags, width, t64)
-        steps = self._steps(t32, t64)
-        first = self.origin(int(t32.origin[lane]), int(t32.operation[lane])) if t32.origin[lane] >= 0 else None
-        return PixelReport((x, y), (fx, fy), tuple(float(np.float32(c)) for c in color), steps, first,
-                           t32.truncated)
+        t32 = _ShadowedTracer(frags.shape[1], self.sites, lane, t64.records, stop_bits)
+        try:
+            color = self.run("float32", inputs, frags, width, t32)[:, lane]
+        except _Departed:
+            color = None
+        return (x, y), (fx, fy), color, t32, t64
 
     def origin(self, site: int, operation: int) -> Origin:
         s = self.sites[site]
@@ -246,15 +265,7 @@ class Probe:
 
     def _steps(self, t32: PixelTracer, t64: PixelTracer) -> list[Step]:
         r32, r64 = t32.records, t64.records
-        keys32 = [(r.site, r.depth, r.what) for r in r32]
-        keys64 = [(r.site, r.depth, r.what) for r in r64]
-        pair: dict[int, int] = {}
-        if keys32 == keys64:
-            pair = {i: i for i in range(len(r32))}
-        else:
-            sm = difflib.SequenceMatcher(None, keys32, keys64, autojunk=False)
-            for a, b, n in sm.get_matching_blocks():
-                pair.update({a + k: b + k for k in range(n)})
+        pair = dict(pairs(r32, r64))
         steps = []
         for i, r in enumerate(r32):
             s = self.sites[r.site]
@@ -265,7 +276,7 @@ class Probe:
                 v64 = dict(zip(s.params, v64)) if v64 is not None else None
             elif s.kind == "loop":
                 value = v64 = r.count if r.what != "start" else None
-            bits = bits_kept(value, v64) if s.kind in ("assign", "return", "call") and v64 is not None else None
+            bits = bits_kept(value, v64) if s.kind in BITS_KINDS and v64 is not None else None
             steps.append(Step(s.path, s.line, s.column, s.code, s.kind, _step_name(s, r.what), value, v64, bits,
                               r.depth, r.what, r.count))
         return steps
@@ -343,13 +354,100 @@ class _PerThread:
         return getattr(self.local.tracer, name)
 
 
-def first_unstable(probe: Probe, x: int, y: int, inputs: Inputs, min_bits: int = UNSTABLE_BITS) -> Step | None:
+def _key(r: Any) -> tuple:
+    return (r.site, r.depth, r.what)
+
+
+def pairs(r32: list, r64: list, realign: int | None = None) -> Iterator[tuple[int, int]]:
+    """(i, j): record r32[i] paired with its shadow r64[j], in order of i. While both runs follow
+    the same path (the same site, depth and loop marker step by step) step i is paired with step
+    i; where they part, `difflib` realigns the two rest of the runs (the float64 run took another
+    branch or ran another number of iterations; an unpaired step has no shadow). `realign`: the
+    longest rest realigned (difflib's time grows about quadratically with it); past it the
+    pairs stop at the parting. (difflib over the whole runs, longest block first, could pair a
+    loop step with another iteration's shadow even where the runs never parted before: a
+    31-pathtrace pixel blamed `vec2 f = vec2(float(i), float(j)) / ...` for 0 bits that way.)"""
+    n = min(len(r32), len(r64))
+    i = 0
+    while i < n and _key(r32[i]) == _key(r64[i]):
+        yield i, i
+        i += 1
+    if i == n or (realign is not None and max(len(r32), len(r64)) - i > realign):
+        return
+    sm = difflib.SequenceMatcher(None, [_key(r) for r in r32[i:]], [_key(r) for r in r64[i:]], autojunk=False)
+    for a, b, size in sm.get_matching_blocks():
+        for k in range(size):
+            yield i + a + k, i + b + k
+
+
+# first_unstable: the longest rest of a run realigned where the float32 and float64 runs part
+# before any value departs; past it the pixel gives no answer (a path tracer's bounces take
+# thousands of steps, and difflib took seconds per pixel on them)
+REALIGN_STEPS = 2_000
+
+
+def first_unstable(probe: Probe, x: int, y: int, inputs: Inputs, min_bits: int = UNSTABLE_BITS,
+                   realign: int | None = REALIGN_STEPS) -> Step | None:
     """The first statement of pixel (x, y) (from the top left) whose float32 value keeps fewer
-    than `min_bits` bits of its float64 shadow (Step: file, line, code, bits), or None."""
-    for s in probe.pixel(x, y, inputs).steps:
-        if s.bits is not None and s.bits < min_bits:
-            return s
+    than `min_bits` bits of its float64 shadow (Step: file, line, code, bits), or None: the steps
+    `probe.pixel` reports, compared in order and only up to the first that departs. Where the
+    two runs part before any value departs, at most `realign` steps are realigned (None: all)."""
+    return first_unstable_traced(probe, *probe.traces(x, y, inputs, stop_bits=min_bits)[3:], min_bits, realign)
+
+
+def first_unstable_traced(probe: Probe, t32: PixelTracer, t64: PixelTracer, min_bits: int = UNSTABLE_BITS,
+                          realign: int | None = REALIGN_STEPS) -> Step | None:
+    """first_unstable on the two runs of a pixel (Probe.traces; a _ShadowedTracer has compared
+    the steps up to where the runs part already)."""
+    r32, r64 = t32.records, t64.records
+    checked = getattr(t32, "checked", 0)
+    for i, j in pairs(r32, r64, realign):
+        if i < checked:
+            continue
+        site = probe.sites[r32[i].site]
+        value, v64, bits = _compared(site, r32[i], r64[j])
+        if bits is not None and bits < min_bits:
+            r = r32[i]
+            return Step(site.path, site.line, site.column, site.code, site.kind, _step_name(site, r.what), value,
+                        v64, bits, r.depth, r.what, r.count)
     return None
+
+
+def _compared(site: Site, r: Any, r64: Any) -> tuple[Any, Any, int | None]:
+    """A step's float32 value, its float64 shadow (a call's arguments by name) and the bits kept
+    (None for steps not compared)."""
+    value, v64 = r.value, r64.value
+    if site.kind not in BITS_KINDS or v64 is None:
+        return value, v64, None
+    if site.kind == "call":
+        value, v64 = dict(zip(site.params, value)), dict(zip(site.params, v64))
+    return value, v64, bits_kept(value, v64)
+
+
+class _Departed(Exception):
+    """The float32 run's step departed from its shadow: the run stops (_ShadowedTracer)."""
+
+
+class _ShadowedTracer(PixelTracer):
+    """The float32 run's PixelTracer for first_unstable: while its steps follow the float64 run's
+    (`shadow`, the same site, depth and loop marker), each is compared with its shadow as it is
+    recorded (`checked` counts them) and the run stops at the first that keeps fewer than
+    `min_bits` bits; the rest of a pixel's run costs nothing then."""
+
+    def __init__(self, lanes: int, sites: list[Site], lane: int, shadow: list, min_bits: int) -> None:
+        super().__init__(lanes, sites, lane)
+        self.shadow, self.min_bits = shadow, min_bits
+        self.checked = 0
+
+    def _record(self, rec: Any) -> None:
+        super()._record(rec)
+        k = self.checked
+        if k != len(self.records) - 1 or k >= len(self.shadow) or _key(self.shadow[k]) != _key(rec):
+            return  # parted (or past the recording limit): first_unstable_traced realigns
+        bits = _compared(self.sites[rec.site], rec, self.shadow[k])[2]
+        if bits is not None and bits < self.min_bits:
+            raise _Departed
+        self.checked = k + 1
 
 
 # ---------------------------------------------------------------------------------------------
@@ -371,29 +469,50 @@ _TINY32 = float(np.finfo(np.float32).tiny)
 
 
 def bits_kept(v32: Any, v64: Any) -> int | None:
-    """Significant bits of v64 that v32 keeps (module docstring); None when there is no float."""
-    out = None
+    """Significant bits of v64 that v32 keeps (module docstring); None when there is no float.
+    Each float leaf (a scalar, vector or matrix, a struct's or a call's member) is judged as a
+    whole, all leaves at once in one flat array."""
     a_all, b_all = _leaves(v32), _leaves(v64)
     if len(a_all) != len(b_all):
         return None
+    pa, pb, sizes = [], [], []
     for a, b in zip(a_all, b_all):
         a, b = np.asarray(a), np.asarray(b)
-        if a.dtype.kind != "f" or a.shape != b.shape:
-            continue
-        a, b = a.astype(np.float64), b.astype(np.float64)
+        if a.dtype.kind == "f" and a.shape == b.shape:
+            pa.append(a.reshape(-1))
+            pb.append(b.reshape(-1))
+            sizes.append(a.size)
+    if not pa:
+        return None
+    out = 24 if 0 in sizes else None  # an empty leaf: nothing differs
+    keep = [k for k, n in enumerate(sizes) if n]
+    if not keep:
+        return out
+    sizes = [sizes[k] for k in keep]
+    a = np.concatenate([pa[k] for k in keep]).astype(np.float64)
+    b = np.concatenate([pb[k] for k in keep]).astype(np.float64)
+    starts = np.cumsum([0] + sizes[:-1])
+    with np.errstate(invalid="ignore", over="ignore"):
         # a shadow below float32's smallest normal (2^-126) is zero in float32 (GPUs flush it)
         b = np.where(np.abs(b) < _TINY32, 0.0, b)
         a = np.where(np.abs(a) < _TINY32, 0.0, a)
-        same = (a == b) | (np.isnan(a) & np.isnan(b))
-        if same.all() and not np.isfinite(a).all():
+        fin_a, fin_b = np.isfinite(a), np.isfinite(b)
+        fin = fin_a & fin_b
+        same = np.logical_and.reduceat((a == b) | (np.isnan(a) & np.isnan(b)), starts)
+        finite_a = np.logical_and.reduceat(fin_a, starts)
+        finite = np.logical_and.reduceat(fin, starts)
+        err = np.maximum.reduceat(np.where(fin, np.abs(a - b), 0.0), starts)
+        scale = np.maximum.reduceat(np.where(fin, np.abs(b), 0.0), starts)
+    for k in range(len(sizes)):
+        if same[k] and not finite_a[k]:
             continue  # NaN or Inf in both: no bits to count
-        if same.all():
+        if same[k]:
             bits = 24
-        elif not (np.isfinite(a).all() and np.isfinite(b).all()):
+        elif not finite[k]:
             bits = 0
         else:
-            err, scale = float(np.max(np.abs(a - b))), float(np.max(np.abs(b)))
-            bits = 0 if scale == 0.0 or err >= scale else min(24, int(math.floor(-math.log2(err / scale))))
+            e, sc = float(err[k]), float(scale[k])
+            bits = 0 if sc == 0.0 or e >= sc else min(24, int(math.floor(-math.log2(e / sc))))
         out = bits if out is None else min(out, bits)
     return out
 

@@ -303,15 +303,20 @@ def verify_frames(
 
 
 UNSTABLE_PROBES = 24  # unstable pixels traced per frame to name the lines that lose precision
+# ... and the steps (float64 runs, and float32 runs up to their first departure) they may trace
+# per frame: about 0.1 ms of CPU each, so ~20 s; a path tracer's pixel runs ~9,000 steps
+UNSTABLE_STEPS = 200_000
 
 
 def unstable_lines(shader: Shader, comparison: Comparison, size, spec: FrameSpec, mouse, date) -> list[dict]:
     """Where the unstable pixels lose their precision: up to UNSTABLE_PROBES of them, spread over
     the image, are traced by `glslcheck probe` (float32 beside its float64 shadow) and each is
-    attributed to its first statement that keeps fewer than probe.UNSTABLE_BITS bits. Entries
-    {"file", "line", "code", "bits", "pixels"}, most pixels first; "pixels" extrapolates the
-    traced share to all unstable pixels, and "bits" is the fewest kept at that line."""
-    from .probe import Inputs, Probe, first_unstable
+    attributed to its first statement that keeps fewer than probe.UNSTABLE_BITS bits. Pixels are
+    traced in an order that keeps the traced ones spread over the image, until UNSTABLE_STEPS
+    steps have run (at least one pixel). Entries {"file", "line", "code", "bits", "pixels",
+    "sampled"}, most pixels first; "pixels" extrapolates the traced share to all unstable pixels,
+    "bits" is the fewest kept at that line and "sampled" the number of pixels traced."""
+    from .probe import UNSTABLE_BITS, Inputs, Probe, first_unstable_traced
 
     mask = comparison.unstable_mask
     if mask is None or not mask.any():
@@ -324,16 +329,29 @@ def unstable_lines(shader: Shader, comparison: Comparison, size, spec: FrameSpec
         return []
     inputs = Inputs(size=(int(size[0]), int(size[1])), time=spec.time, frame=spec.frame, mouse=mouse, date=date)
     found: dict[tuple, list] = {}
-    for i in picks:
-        step = first_unstable(probe, int(xs[i]), int(ys[i]), inputs)
+    sampled = steps = 0
+    for i in picks[_spread(len(picks))]:
+        if steps >= UNSTABLE_STEPS:
+            break
+        t32, t64 = probe.traces(int(xs[i]), int(ys[i]), inputs, stop_bits=UNSTABLE_BITS)[3:]
+        steps += len(t32.records) + t32.truncated + len(t64.records) + t64.truncated
+        sampled += 1
+        step = first_unstable_traced(probe, t32, t64)
         if step is not None:
             entry = found.setdefault((step.file, step.line, step.code.strip()), [0, step.bits])
             entry[0] += 1
             entry[1] = min(entry[1], step.bits)
-    scale = len(xs) / len(picks)
-    lines = [{"file": f, "line": ln, "code": code, "bits": int(bits), "pixels": int(round(n * scale))}
-             for (f, ln, code), (n, bits) in found.items()]
+    scale = len(xs) / sampled
+    lines = [{"file": f, "line": ln, "code": code, "bits": int(bits), "pixels": int(round(n * scale)),
+              "sampled": sampled} for (f, ln, code), (n, bits) in found.items()]
     return sorted(lines, key=lambda d: (-d["pixels"], d["file"], d["line"]))
+
+
+def _spread(n: int) -> list[int]:
+    """0..n-1 in bit-reversed order (0, n/2, n/4, 3n/4, ...): every prefix is spread over the range."""
+    bits = max(1, (n - 1).bit_length())
+    order = [int(f"{k:0{bits}b}"[::-1], 2) for k in range(1 << bits)]
+    return [k for k in order if k < n]
 
 
 # llvmpipe stops every loop once an invocation has made 65,535 loop passes in all

@@ -160,6 +160,40 @@ def test_cancellation_of_a_far_camera_shows_in_the_bits_column_at_its_line(make_
     assert f"local = " in text and f"{local.bits} bits]" in text
 
 
+# The float32 run skips the `if` (1 + 1.5e-8 rounds to 1) where the float64 shadow takes it: the
+# runs part at line 4 before any value departs (`a` keeps all 24 bits), and the first departure,
+# `d` (0 against 0.15 in float64 at x = 1, 0 bits), comes after the parting.
+PARTING = """\
+void mainImage(out vec4 fragColor, in vec2 fragCoord) {
+    float a = 1.0 + fragCoord.x * 1e-8;
+    float s = 0.0;
+    if (a > 1.0) { s = 1.0; }
+    float d = fract(a * 1e7);
+    fragColor = vec4(d, s, 0.0, 1.0);
+}
+"""
+
+
+def test_first_unstable_compares_up_to_the_first_departure_and_realigns_where_the_runs_part(make_shader):
+    p = Probe(make_shader(PARTING))
+    report = p.pixel(1, 2, SMALL)
+    [d] = steps_at(report, 5)
+    assert d.bits == 0 and not steps_at(report, 4, "assign")  # float32 skipped `s = 1.0`
+    first = first_unstable(p, 1, 2, SMALL)
+    assert (first.line, first.bits) == (5, 0)
+    # the first step of the full report below the threshold, for every pixel
+    for x in range(8):
+        scan = next(s for s in p.pixel(x, 2, SMALL).steps if s.bits is not None and s.bits < 16)
+        got = first_unstable(p, x, 2, SMALL, realign=None)
+        assert (got.line, got.code, got.bits, got.value, got.value64) == (
+            scan.line, scan.code, scan.bits, scan.value, scan.value64)
+    # with no realignment allowed the pixel gives no answer past the parting
+    assert first_unstable(p, 1, 2, SMALL, realign=0) is None
+    # the far camera's runs never part: the same answer as the report's first unstable step
+    far = Probe(make_shader(FAR_CAMERA))
+    assert first_unstable(far, 1, 2, SMALL, realign=0).line == 7
+
+
 CONTROL = """\
 struct Light { vec3 pos; float power; };
 float sumTo(int n) {
@@ -324,6 +358,12 @@ def test_bits_kept():
     assert bits_kept(np.array(f32("nan")), np.array(float("nan"))) is None  # no bits to count
     assert bits_kept(np.array([f32("inf"), f32(1.0)]), np.array([float("inf"), 1.0])) is None
     assert bits_kept(np.array(True), np.array(True)) is None
+    # several leaves (a call's arguments, a struct): the fewest bits of the leaves with bits
+    args = {"a": np.array([f32(1.0), f32(2.0)]), "n": np.array(3), "b": np.array(f32(1.0))}
+    shadow = {"a": np.array([1.0, 2.0]), "n": np.array(3), "b": np.array(1.0 + 2.0 ** -10)}
+    assert bits_kept(args, shadow) == 10
+    assert bits_kept([np.array(f32("nan")), np.array(f32(1.0))], [np.array(float("nan")), np.array(1.0)]) == 24
+    assert bits_kept([np.zeros(0, f32), np.array(f32("nan"))], [np.zeros(0), np.array(float("nan"))]) == 24
 
 
 # -- the command ---------------------------------------------------------------------------------

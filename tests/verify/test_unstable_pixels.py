@@ -75,11 +75,12 @@ def test_verify_reports_a_verdict_on_an_ill_conditioned_shader(gl, make_shader):
     assert data["match"] and data["verdict"] in ("match", "match-unstable")
 
 
-def test_unstable_lines_name_the_statement_that_loses_precision(gl, make_shader):
+def test_unstable_lines_name_the_statement_that_loses_precision(gl, make_shader, monkeypatch):
     """The far camera's float32 renders are far from float64 where `b * b - cc` cancels
     (`float h = ...`; its operands keep all their bits). Made to disagree with each
     other there, the two renders give unstable pixels, and verify's attribution (probe's float64
     shadow on a sample of them) names that line with the bits it keeps."""
+    from glslcheck import verify
     from glslcheck.verify import FrameSpec, unstable_lines
 
     shader = make_shader(FAR_CAMERA)
@@ -99,4 +100,9 @@ def test_unstable_lines_name_the_statement_that_loses_precision(gl, make_shader)
     line = next(i for i, t in enumerate(FAR_CAMERA.split("\n"), 1) if "float h = b * b - cc;" in t)
     assert top["line"] == line and "b * b - cc" in top["code"], lines
     assert top["bits"] < 16 and 0 < top["pixels"] <= c.unstable_pixels
-    assert set(top) == {"file", "line", "code", "bits", "pixels"}
+    assert set(top) == {"file", "line", "code", "bits", "pixels", "sampled"}
+    assert top["sampled"] == min(verify.UNSTABLE_PROBES, c.unstable_pixels)
+    # a step budget one pixel exhausts: one pixel is traced and stands for all of them
+    monkeypatch.setattr(verify, "UNSTABLE_STEPS", 1)
+    [one] = unstable_lines(shader, c, size, FrameSpec(time=0.0, frame=0), (0.0, 0.0, 0.0, 0.0), None)
+    assert one["sampled"] == 1 and one["pixels"] == c.unstable_pixels and one["line"] == line
