@@ -91,11 +91,22 @@ class Node(metaclass=_NodeMeta):
 
     def walk(self) -> Iterator["Node"]:
         """This node and all its descendants, depth first, parents before children (iterative)."""
+        # `children()` inlined: a generator per node was most of a walk's cost, and the checker,
+        # hazards and rules walk whole programs (issue 18: start-up of `glslcheck lint`).
         stack = [self]
+        pop = stack.pop
         while stack:
-            node = stack.pop()
+            node = pop()
             yield node
-            kids = list(node.children())
+            kids = []
+            for name in node._children:
+                value = getattr(node, name)
+                if value is None:
+                    continue
+                if isinstance(value, list):
+                    kids.extend([item for item in value if item is not None])
+                else:
+                    kids.append(value)
             kids.reverse()
             stack.extend(kids)
 

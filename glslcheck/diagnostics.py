@@ -8,10 +8,10 @@ preprocessing and the Shadertoy wrapper.
 
 from __future__ import annotations
 
-from dataclasses import dataclass, field
+from .records import record, field
 
 
-@dataclass(frozen=True, slots=True)
+@record(frozen=True)
 class Location:
     """A span in a user's file: 1-based lines and columns, end exclusive-ish (points at the last char + 1)."""
 
@@ -38,7 +38,7 @@ class Location:
         )
 
 
-@dataclass(slots=True)
+@record
 class Diagnostic:
     """One finding: a syntax error, a type error, or a lint rule hit."""
 

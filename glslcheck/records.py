@@ -23,7 +23,7 @@ from operator import attrgetter
 from types import FunctionType
 from typing import Any, Callable
 
-__all__ = ["record", "field", "FrozenInstanceError"]
+__all__ = ["record", "field", "replace", "FrozenInstanceError"]
 
 _MISSING = object()
 
@@ -193,3 +193,11 @@ def _process(cls: type, frozen: bool, eq: bool, slots: bool) -> type:
     if eq and not explicit_hash:
         cls.__hash__ = _hash if frozen else None
     return cls
+
+
+def replace(obj: Any, /, **changes: Any) -> Any:
+    """A copy of the record `obj` with the fields in `changes` set (as `dataclasses.replace`)."""
+    unknown = set(changes) - set(obj._fields)
+    if unknown:
+        raise TypeError(f"{type(obj).__name__} has no field {sorted(unknown)[0]!r}")
+    return type(obj)(*(changes[n] if n in changes else getattr(obj, n) for n in obj._fields))

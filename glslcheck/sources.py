@@ -17,7 +17,7 @@ import errno
 import os
 import re
 import stat
-from dataclasses import dataclass, field
+from .records import record, field
 from pathlib import Path
 
 from .diagnostics import InputError, register_source
@@ -29,7 +29,7 @@ _TAB_KEYS = {re.sub(r"[\s_\-]", "", t).lower(): t for t in TAB_NAMES}
 MAX_FILE_BYTES = 1_000_000
 
 
-@dataclass(slots=True)
+@record
 class Source:
     """One file's text: `path` is how the user named it (used in every message)."""
 
@@ -42,7 +42,7 @@ class Source:
         return self.tab == "GLSL"
 
 
-@dataclass(slots=True)
+@record
 class Shader:
     """A Shadertoy shader: its tabs by canonical name (or one plain GLSL file)."""
 

@@ -14,7 +14,9 @@ from pathlib import Path
 import pytest
 
 ROOT = Path(__file__).resolve().parents[1]
-HEAVY = ("numpy", "moderngl", "PIL", "lark", "multiprocessing", "concurrent")
+# dataclasses: its per-class code generation cost a one-file lint about 40 M instructions; the
+# start-up path uses glslcheck.records.
+HEAVY = ("numpy", "moderngl", "PIL", "lark", "multiprocessing", "concurrent", "dataclasses")
 
 _RUN = """
 import io, json, sys, contextlib

@@ -10,7 +10,7 @@ import pickle
 import pytest
 
 from glslcheck import types as T
-from glslcheck.records import FrozenInstanceError, field, record
+from glslcheck.records import FrozenInstanceError, field, record, replace
 
 
 @record(frozen=True)
@@ -51,6 +51,18 @@ def test_init_takes_the_fields_in_order_by_position_or_name_with_defaults():
     with pytest.raises(TypeError):
         Point(1, 2, "t", 4)
     assert Point.__match_args__ == ("x", "y", "tag")
+
+
+def test_replace_copies_with_the_given_fields_changed_as_dataclasses_replace():
+    p = Point(1, 2, "t")
+    q = replace(p, y=5)
+    assert (q.x, q.y, q.tag) == (1, 5, "t") and (p.x, p.y) == (1, 2)
+    d = dataclasses.replace(DataPoint(1, 2, "t"), y=5)
+    assert (q.x, q.y, q.tag) == (d.x, d.y, d.tag)
+    bag = Bag("a", [1])
+    assert replace(bag, name="b").items is bag.items  # a shallow copy, as dataclasses.replace
+    with pytest.raises(TypeError):
+        replace(p, z=1)
 
 
 def test_a_factory_default_is_made_fresh_for_each_instance():

@@ -22,7 +22,7 @@ from __future__ import annotations
 
 import os
 import tomllib
-from dataclasses import dataclass, field, replace
+from ..records import record, field, replace
 from pathlib import Path
 from typing import Any, Mapping
 
@@ -39,7 +39,7 @@ KEYS: dict[str, tuple[type, str]] = {
 }
 
 
-@dataclass(frozen=True, slots=True)
+@record(frozen=True)
 class LintConfig:
     """The settings in force for one file; `path` is the file they came from (None: defaults)."""
 
@@ -53,7 +53,7 @@ class LintConfig:
         return (self.select is None or rule in self.select) and rule not in self.ignore
 
 
-@dataclass(slots=True)
+@record
 class ConfigFinder:
     """Finds and caches the configuration of each folder; `overrides` (settings keys) win."""
 

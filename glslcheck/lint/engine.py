@@ -22,7 +22,7 @@ from __future__ import annotations
 
 import os
 import re
-from dataclasses import dataclass, field
+from ..records import record, field
 from pathlib import Path
 from typing import Any, Iterable, Mapping, Sequence
 
@@ -37,7 +37,7 @@ from .textscan import Comment, LineKind, TextScan, scan
 PHASES = ("text", "ast", "suppressions")
 
 
-@dataclass(slots=True)
+@record
 class Finding(Diagnostic):
     """A lint rule hit: a Diagnostic (rule = rule NAME, loc in the user's file) and its penalty."""
 
@@ -48,7 +48,7 @@ class Finding(Diagnostic):
         return self.loc.path if self.loc is not None else ""
 
 
-@dataclass(slots=True)
+@record
 class LintResult:
     """What one lint run found: every unsuppressed finding and how many files were linted."""
 
@@ -61,7 +61,7 @@ class LintResult:
         return sum(f.penalty for f in self.findings)
 
 
-@dataclass(slots=True)
+@record
 class LintContext:
     """Everything a rule's check(ctx) may read about one file."""
 
@@ -104,7 +104,7 @@ class LintContext:
         return Location(self.path, line, column, end_line, end_column)
 
 
-@dataclass(slots=True)
+@record
 class ProgramTree:
     """What the AST rules of one file read: the tree and model of its program (None when not even
     recovery gave a tree), the program's compile errors, and the declarations recovery dropped

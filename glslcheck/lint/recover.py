@@ -20,7 +20,7 @@ that is not one of the units gives up (None), and the linter reports the error a
 from __future__ import annotations
 
 import re
-from dataclasses import replace
+from ..records import replace
 from typing import Iterator
 
 from ..diagnostics import Location

@@ -12,7 +12,7 @@ directive it cannot read.
 
 from __future__ import annotations
 
-from dataclasses import dataclass, field
+from ..records import record, field
 from typing import Iterable
 
 from ..diagnostics import Diagnostic, Location
@@ -21,7 +21,7 @@ from .textscan import DIRECTIVE_RE, Comment
 VERBS = {"ignore": False, "ignore-file": True}  # verb -> applies to the whole file
 
 
-@dataclass(slots=True)
+@record
 class Suppression:
     """One `glslcheck:` directive in a comment. `names` empty and `problem` set when unreadable."""
 

@@ -21,7 +21,7 @@ GLSL has no string literals, so `//` and `/*` always open a comment outside one.
 from __future__ import annotations
 
 import re
-from dataclasses import dataclass
+from ..records import record
 from enum import Enum
 
 
@@ -53,7 +53,7 @@ _ONLY_DIRECTIVES_RE = re.compile(r"^\s*(?:glslcheck\s*:\s*[A-Za-z-]*\s*(?:\[[^\]
 _BRACE_ONLY_RE = re.compile(r"^\s*(?:[{}]\s*)+;?\s*$")
 
 
-@dataclass(frozen=True, slots=True)
+@record(frozen=True)
 class Comment:
     """One comment: `text` without its delimiters; 1-based position of its first and last char + 1."""
 
@@ -70,7 +70,7 @@ class Comment:
         return bool(_ONLY_DIRECTIVES_RE.match(self.text))
 
 
-@dataclass(slots=True)
+@record
 class TextScan:
     """The scan of one file: its lines, comments, each line's kind and its code with comments blanked."""
 

@@ -27,7 +27,7 @@ from __future__ import annotations
 
 import importlib
 import re
-from dataclasses import dataclass
+from ...records import record
 from functools import cache
 from types import ModuleType
 from typing import Callable, Iterable
@@ -61,7 +61,7 @@ READS = ("functions", "names", "program")
 _SECTION_RE = re.compile(r"^## (.+?)\s*$", re.M)
 
 
-@dataclass(frozen=True, slots=True)
+@record(frozen=True)
 class Rule:
     """A rule module's declarations, checked."""
 
