@@ -22,7 +22,7 @@ def text(e: Any) -> str:
 
 def is_atom(e: Any) -> bool:
     """A name, a literal, or a field/swizzle/element of one: printed inside a larger expression
-    it needs no parentheses. (Not the NumPy transpiler's `_is_simple`, which asks whether a value
+    it needs no parentheses. (Not the NumPy transpiler's `is_plain_read`, which asks whether a value
     is read without computing anything per lane.)"""
     while type(e) in (A.Field, A.Index):
         e = e.base
