@@ -24,6 +24,7 @@ from .dataflow import (
     ProgramFacts,
     Write,
     builtin_call,
+    builtin_calls,
     calls_in,
     function_cost,
     is_float_type,
@@ -36,6 +37,6 @@ from .values import NONNEGATIVE_UNIFORMS, ValueRanges, numbers
 
 __all__ = [
     "FunctionFacts", "ProgramFacts", "Write", "ValueRanges", "NONNEGATIVE_UNIFORMS",
-    "builtin_call", "calls_in", "function_cost", "is_float_type", "numbers", "param_directions",
+    "builtin_call", "builtin_calls", "calls_in", "function_cost", "is_float_type", "numbers", "param_directions",
     "program_facts", "pure_function", "written_variable",
 ]
