@@ -23,6 +23,8 @@ expected terminals, as Lark does
 
 from __future__ import annotations
 
+from itertools import chain
+
 from .lexer import Token, Tokens, UnexpectedInput
 
 END = "$END"
@@ -200,7 +202,9 @@ class Driver:
         tok = None
         kind = ""
         try:
-            for tok in lexed.tokens:
+            # one loop for the tokens and the end of input: the end state has no action, so the
+            # END lookahead's KeyError there is the accept (no test per step)
+            for tok in chain(lexed.tokens, _end_of_input(lexed)):
                 kind = tok.type
                 while True:
                     act = actions[state][kind]
@@ -228,31 +232,18 @@ class Driver:
                     state = actions[states[-1]][origin]
                     states.append(state)
         except KeyError:
+            if state == self.end_state and kind == END:
+                return values[-1]
             if kind in actions[state]:
                 raise  # not a missing action: a bug, not a syntax error
             raise UnexpectedToken(tok, self.expected(state)) from None
-        if lexed.error is not None:
-            raise lexed.error
-        end = Token.new_borrow_pos(END, "", tok) if tok is not None else Token(END, "", 0, 1, 1)
-        end_state = self.end_state
-        row = actions[state]
-        while True:
-            act = row.get(END)
-            if act is None:
-                raise UnexpectedToken(end, self.expected(state))
-            assert act < 0, "the end of input is never shifted"
-            size, origin, callback = rules[~act]
-            if callback is None:
-                del states[-1]
-            elif size:
-                children = values[-size:]
-                del values[-size:]
-                del states[-size:]
-                values.append(callback(children))
-            else:
-                values.append(callback([]))
-            state = actions[states[-1]][origin]
-            states.append(state)
-            if state == end_state:
-                return values[-1]
-            row = actions[state]
+        raise AssertionError("the end of input is never shifted")
+
+
+def _end_of_input(lexed: Tokens):
+    """The END token after the last token (at its position), once the parser got there: the
+    lexer's error first, if it stopped early."""
+    if lexed.error is not None:
+        raise lexed.error
+    last = lexed.tokens[-1] if lexed.tokens else None
+    yield Token.new_borrow_pos(END, "", last) if last is not None else Token(END, "", 0, 1, 1)

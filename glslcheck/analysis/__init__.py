@@ -12,9 +12,9 @@
   for every stage.
 * `values.py`: the sign analysis (`value_range`: bounds and why a value can be negative).
 
-It reads the semantic model (`glslcheck.check.Model`) and the AST only; the lint rules
-(glslcheck/lint/rules) are its users, and the NumPy transpiler should be (its `lvalue_base` /
-`out_directions` are `written_variable` / `param_directions`).
+It reads the semantic model (`glslcheck.check.Model`) and the AST only; its users are the lint
+rules (glslcheck/lint/rules) and the NumPy transpiler (numpy_backend/transpile/facts.py and
+uniformity.py ask `written_variable` and `param_directions`).
 """
 
 from __future__ import annotations
@@ -24,6 +24,7 @@ from .dataflow import (
     ProgramFacts,
     Write,
     builtin_call,
+    builtin_calls,
     calls_in,
     function_cost,
     is_float_type,
@@ -36,6 +37,6 @@ from .values import NONNEGATIVE_UNIFORMS, ValueRanges, numbers
 
 __all__ = [
     "FunctionFacts", "ProgramFacts", "Write", "ValueRanges", "NONNEGATIVE_UNIFORMS",
-    "builtin_call", "calls_in", "function_cost", "is_float_type", "numbers", "param_directions",
+    "builtin_call", "builtin_calls", "calls_in", "function_cost", "is_float_type", "numbers", "param_directions",
     "program_facts", "pure_function", "written_variable",
 ]

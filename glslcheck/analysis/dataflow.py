@@ -56,6 +56,17 @@ def builtin_call(model: Model, e: A.Node, *names: str) -> bool:
             and isinstance(model.call_target(e), B.Overload))
 
 
+def builtin_calls(model: Model, path: str, *names: str,
+                  arity: int | None = None) -> Iterator[tuple["FunctionFacts", A.Call]]:
+    """Every call of one of the built-in functions `names` (with `arity` arguments, if given) in
+    the functions defined in the file `path` (those with a compile error apart), in source
+    order, with the facts of the function it is in."""
+    for fn in program_facts(model).in_file(path):
+        for node in fn.nodes:
+            if builtin_call(model, node, *names) and (arity is None or len(node.args) == arity):
+                yield fn, node
+
+
 def is_float_type(t: Any) -> bool:
     return getattr(t, "base", None) == "float" and (t.is_scalar or t.is_vector)
 

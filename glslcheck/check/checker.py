@@ -1158,7 +1158,7 @@ class Checker(A.NodeVisitor):
                         break
             self.error(res, where, help=hint)
             return ERROR
-        self.model._calls[id(n)] = Constructor("constructor", res)
+        self.model._calls[id(n)] = Constructor(res)
         if all(self.is_const(a) for a in n.args):
             self.consts[id(n)] = C.construct(res, arg_types, [self.consts[id(a)] for a in n.args])
         return res

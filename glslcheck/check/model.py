@@ -9,7 +9,7 @@ in dictionaries keyed by `id(node)`; the model holds the AST so those ids stay v
 
 from __future__ import annotations
 
-from typing import Any, Literal, NamedTuple, Union
+from typing import Any, Union
 
 from .. import types as T
 from ..builtins import Overload
@@ -33,13 +33,11 @@ class ErrorType(T.Type):
 ERROR = ErrorType()
 
 
-class Constructor(NamedTuple):
+@record(frozen=True)
+class Constructor:
     """The target of a constructor call (`vec3(...)`, `float[2](...)`, a struct's name): the type
-    it builds. A named tuple whose first item is "constructor", so code written against the old
-    ("constructor", Type) tuple (the NumPy transpiler's `_is_constructor`) reads it unchanged;
-    new code asks `isinstance(target, Constructor)`."""
+    it builds. Tell it from a Symbol or an Overload with `isinstance(target, Constructor)`."""
 
-    kind: Literal["constructor"]
     type: T.Type
 
 

@@ -36,6 +36,8 @@ from __future__ import annotations
 from typing import Any
 
 from .. import ast as A
+from .. import builtins as B
+from ..check.model import Symbol
 from ..printer import to_glsl
 
 _SUMS = ("+", "-")
@@ -334,7 +336,7 @@ def _varying(tr: Any, node: Any, depth: int = 0) -> bool:
 def _builtin(tr: Any, call: A.Call) -> bool:
     """The call names a built-in function (not a user function, not a constructor)."""
     tgt = tr.model.call_target(call)
-    return tgt is not None and not isinstance(tgt, tuple) and getattr(tgt, "kind", None) != "function"
+    return isinstance(tgt, B.Overload)
 
 
 def _factors(tr: Any, node: Any) -> tuple[tuple[str, str], tuple[Any, Any]] | None:
@@ -420,7 +422,7 @@ def _written(tr: Any) -> set[int]:
                 roots(n.target)
             elif isinstance(n, (A.Unary, A.Postfix)) and n.op in ("++", "--"):
                 roots(n.operand)
-            elif isinstance(n, A.Call) and getattr(tr.model.call_target(n), "kind", None) == "function":
+            elif isinstance(n, A.Call) and isinstance(tr.model.call_target(n), Symbol):
                 for a in n.args:
                     roots(a)
         cache[key] = out

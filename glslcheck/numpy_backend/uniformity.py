@@ -49,8 +49,9 @@ from __future__ import annotations
 from typing import Any
 
 from .. import ast as A
-from .transpile.common import _is_symbol
-from .transpile.facts import NO_EVENTS, Facts, events_of, induction_variable, lvalue_base, out_directions
+from ..analysis import param_directions, written_variable
+from ..check.model import Symbol
+from .transpile.facts import NO_EVENTS, Facts, events_of, induction_variable
 
 
 class Uniformity:
@@ -67,7 +68,7 @@ class Uniformity:
         self.divergent_loops: set[int] = set()  # loop node ids whose live mask may diverge
         self.decl_level: dict[int, int | None] = {}  # symbol id -> level of its declaration (None: never free)
         self.decl_seq: dict[int, int] = {}  # symbol id -> declarations seen before it in this pass
-        self.free: set[int] = set()  # ids of the base identifiers of free writes
+        self.free: set[int] = set()  # ids of the l-values (whole targets) of free writes
         self.cache: dict[int, bool] = {}
         # out and inout parameters are copied back to the caller in every lane it called with:
         # free writes only when no lane can leave the function before the end (no return but
@@ -103,9 +104,10 @@ class Uniformity:
         """The analysis' verdict on an expression node (False for nodes it never saw)."""
         return self.cache.get(id(e), False)
 
-    def is_free(self, base: Any) -> bool:
-        """True when the write whose l-value has the identifier node `base` needs no mask."""
-        return id(base) in self.free
+    def is_free(self, target: Any) -> bool:
+        """True when the write to the l-value `target` (an assignment's target, the operand of
+        ++/--, an out argument: the whole l-value, `v.x` not `v`) needs no mask."""
+        return id(target) in self.free
 
     def is_varying(self, sym: Any) -> bool:
         """True when the variable (a symbol) may differ between lanes."""
@@ -144,9 +146,9 @@ class Uniformity:
             return ok and self.mu
         if isinstance(e, A.Call):
             tgt = m.call_target(e)
-            dirs = out_directions(tgt)
+            dirs = param_directions(tgt)
             args_u = [self.uniform(a) or (i < len(dirs) and dirs[i] == "out") for i, a in enumerate(e.args)]
-            if _is_symbol(tgt):
+            if isinstance(tgt, Symbol):
                 res = all(args_u) and self.facts.closed(tgt)
                 if id(tgt) in self.facts.may_discard and not self.mu:
                     self.fn_varying_return = True
@@ -182,15 +184,12 @@ class Uniformity:
 
     def write(self, target: Any, uniform: bool) -> None:
         """A write of a value (uniform or not) to the l-value `target` at the current point."""
-        base = lvalue_base(target)
-        if base is None:
-            return
-        sym = self.model.symbol_of(base)
+        sym = written_variable(self.model, target)[0]
         if sym is None or sym.kind not in ("local", "param"):
             return
         free = self.allow_free and self.decl_level.get(id(sym)) == self.level
         if free:
-            self.free.add(id(base))
+            self.free.add(id(target))
         if free and not self.mu:
             # a loop that runs with a live mask (any loop but a plain Python one) may be compacted
             # (program.Lanes.push): a variable from outside it comes back from the scatter with

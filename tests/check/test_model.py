@@ -7,7 +7,7 @@ import pytest
 from glslcheck import ast as A
 from glslcheck import builtins as B
 from glslcheck import types as T
-from glslcheck.check import CheckError, Model, Symbol, check
+from glslcheck.check import CheckError, Constructor, Model, Symbol, check
 from glslcheck.cli import main
 from glslcheck.parse import parse_shader
 
@@ -83,7 +83,7 @@ def test_call_targets(model):
     norm = model.call_target(nodes(model, A.Call, callee="normalize")[0])
     assert isinstance(norm, B.Overload) and norm.returns == T.VEC3
     ctor = model.call_target(nodes(model, A.Call, callee="Ray")[0])
-    assert ctor[0] == "constructor" and ctor[1] is model.structs["Ray"]
+    assert isinstance(ctor, Constructor) and ctor.type is model.structs["Ray"]
 
 
 def test_constants(model):

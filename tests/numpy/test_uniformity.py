@@ -14,7 +14,8 @@ import numpy as np
 import pytest
 
 from glslcheck.numpy_backend import program as P
-from glslcheck.numpy_backend.transpile import Facts, check_program
+from glslcheck.analysis import written_variable
+from glslcheck.numpy_backend.transpile import Facts, check_program, written_lvalues
 from glslcheck.numpy_backend.uniformity import Uniformity
 from glslcheck.parse import parse_shader
 from glslcheck import ast as A
@@ -33,21 +34,8 @@ def analyse(make_shader, text: str, fn_name: str = "mainImage"):
     uni = Uniformity(model, facts, fn, fn is model.entry)
     writes: dict[str, list[bool]] = {}
     for node in fn.node.body.walk():
-        targets = []
-        if isinstance(node, A.Assignment):
-            targets.append(node.target)
-        elif isinstance(node, (A.Unary, A.Postfix)) and node.op in ("++", "--"):
-            targets.append(node.operand)
-        elif isinstance(node, A.Call):
-            from glslcheck.numpy_backend.transpile import out_directions
-
-            dirs = out_directions(model.call_target(node))
-            targets += [a for a, d in zip(node.args, dirs) if d in ("out", "inout")]
-        for t in targets:
-            from glslcheck.numpy_backend.transpile import lvalue_base
-
-            base = lvalue_base(t)
-            writes.setdefault(base.name, []).append(uni.is_free(base))
+        for t in written_lvalues(model, node):
+            writes.setdefault(written_variable(model, t)[0].name, []).append(uni.is_free(t))
     return uni, model, writes
 
 
@@ -273,7 +261,7 @@ vec3 shade(vec3 p) {
 def test_free_writes_change_no_pixel(make_shader, monkeypatch, name):
     shader = make_shader(SAME_WITH_MASKS[name])
     fast = P.compile_numpy(shader).render(size=(24, 12), time=1.3)
-    monkeypatch.setattr(Uniformity, "is_free", lambda self, base: False)
+    monkeypatch.setattr(Uniformity, "is_free", lambda self, target: False)
     masked = P.compile_numpy(shader).render(size=(24, 12), time=1.3)
     np.testing.assert_array_equal(fast, masked)
 
@@ -288,7 +276,7 @@ def test_lab_shaders_render_the_same_without_free_writes(monkeypatch):
     root = os.path.join(os.path.dirname(__file__), "..", "..", "lab_shaders")
     shaders = {p: load_shader(p) for p in sorted(glob.glob(os.path.join(root, "*", "")))}
     fast = {p: P.compile_numpy(s).render(size=(96, 54), time=2.0) for p, s in shaders.items()}
-    monkeypatch.setattr(Uniformity, "is_free", lambda self, base: False)
+    monkeypatch.setattr(Uniformity, "is_free", lambda self, target: False)
     for p, s in shaders.items():
         np.testing.assert_array_equal(fast[p], P.compile_numpy(s).render(size=(96, 54), time=2.0), err_msg=p)
 

@@ -3,15 +3,38 @@ not in the table). The analysis they report on lives in glslcheck/analysis."""
 
 from __future__ import annotations
 
-from typing import Any
+from typing import Any, Iterator
 
 from ... import ast as A
-from ...analysis import numbers
+from ...analysis import builtin_call, numbers, program_facts
 from ...check.model import Model
 from ...printer import to_glsl
 
 COMPARISONS = ("<", "<=", ">", ">=")
 FLIPPED = {"<": ">", "<=": ">=", ">": "<", ">=": "<="}  # a op b  <=>  b FLIPPED[op] a
+
+
+def negative_reason(fn: Any, e: A.Expr) -> str | None:
+    """Why `e` can be negative (`FunctionFacts.negative_witness`) as the rules say it: the reason,
+    followed by `: <source> (line N)` when its source lies outside `e`; None: it cannot."""
+    why = fn.negative_witness(e)
+    if why is None:
+        return None
+    reason, source = why
+    return reason if fn.contains(e, source) else f"{reason}: {text(source)} (line {source.loc.line})"
+
+
+def compared_calls(model: Model, path: str, *names: str) -> Iterator[tuple[A.Call, A.Expr, str]]:
+    """Every side of a comparison (`<`, `<=`, `>`, `>=`) in the file `path` that calls one of the
+    built-in functions `names`: (the call, the other side, the operator read with the call on
+    the left: `r > length(v)` gives `<`)."""
+    for fn in program_facts(model).in_file(path):
+        for node in fn.nodes:
+            if type(node) is not A.Binary or node.op not in COMPARISONS:
+                continue
+            for side, other in ((node.left, node.right), (node.right, node.left)):
+                if builtin_call(model, side, *names):
+                    yield side, other, node.op if side is node.left else FLIPPED[node.op]
 
 
 def text(e: Any) -> str:
@@ -22,7 +45,7 @@ def text(e: Any) -> str:
 
 def is_atom(e: Any) -> bool:
     """A name, a literal, or a field/swizzle/element of one: printed inside a larger expression
-    it needs no parentheses. (Not the NumPy transpiler's `_is_simple`, which asks whether a value
+    it needs no parentheses. (Not the NumPy transpiler's `is_plain_read`, which asks whether a value
     is read without computing anything per lane.)"""
     while type(e) in (A.Field, A.Index):
         e = e.base

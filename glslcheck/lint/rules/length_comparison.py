@@ -28,10 +28,8 @@ from __future__ import annotations
 
 from typing import TYPE_CHECKING, Iterator
 
-from ... import ast as A
-from ...analysis import builtin_call, program_facts
 from ...diagnostics import Diagnostic
-from ._text import COMPARISONS, FLIPPED, squared, text
+from ._text import compared_calls, squared, text
 
 if TYPE_CHECKING:
     from ..engine import LintContext
@@ -43,25 +41,17 @@ NEEDS = "ast"
 
 
 def check(ctx: LintContext) -> Iterator[Diagnostic]:
-    model = ctx.model
-    for fn in program_facts(ctx.model).in_file(ctx.path):
-        for node in fn.nodes:
-            if type(node) is not A.Binary or node.op not in COMPARISONS:
-                continue
-            for side, other in ((node.left, node.right), (node.right, node.left)):
-                op = node.op if side is node.left else FLIPPED[node.op]
-                if not builtin_call(model, side, "length", "distance"):
-                    continue
-                bound = squared(model, other)
-                if side.callee == "length":
-                    v = text(side.args[0])
-                    fix = f"compare dot(v, v) with the squared bound: with v = {v}, dot(v, v) {op} {bound}"
-                else:
-                    a, b = text(side.args[0]), text(side.args[1])
-                    fix = (f"compare the squared distance: with d = {a} - {b}, "
-                           f"dot(d, d) {op} {bound}")
-                yield Diagnostic(
-                    f"{side.callee}() is compared with a bound: its square root is not needed",
-                    side.loc,
-                    help=fix,
-                )
+    for side, other, op in compared_calls(ctx.model, ctx.path, "length", "distance"):
+        bound = squared(ctx.model, other)
+        if side.callee == "length":
+            v = text(side.args[0])
+            fix = f"compare dot(v, v) with the squared bound: with v = {v}, dot(v, v) {op} {bound}"
+        else:
+            a, b = text(side.args[0]), text(side.args[1])
+            fix = (f"compare the squared distance: with d = {a} - {b}, "
+                   f"dot(d, d) {op} {bound}")
+        yield Diagnostic(
+            f"{side.callee}() is compared with a bound: its square root is not needed",
+            side.loc,
+            help=fix,
+        )

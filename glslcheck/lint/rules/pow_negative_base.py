@@ -32,9 +32,9 @@ from __future__ import annotations
 
 from typing import TYPE_CHECKING, Iterator
 
-from ...analysis import builtin_call, program_facts
+from ...analysis import builtin_calls
 from ...diagnostics import Diagnostic
-from ._text import text
+from ._text import negative_reason, text
 
 if TYPE_CHECKING:
     from ..engine import LintContext
@@ -46,19 +46,12 @@ NEEDS = "ast"
 
 
 def check(ctx: LintContext) -> Iterator[Diagnostic]:
-    model = ctx.model
-    for fn in program_facts(ctx.model).in_file(ctx.path):
-        for node in fn.nodes:
-            if not builtin_call(model, node, "pow") or len(node.args) != 2:
-                continue
-            base = node.args[0]
-            why = fn.negative_witness(base)
-            if why is None:
-                continue
-            reason, source = why
-            where = "" if fn.contains(base, source) else f": {text(source)} (line {source.loc.line})"
+    for fn, node in builtin_calls(ctx.model, ctx.path, "pow", arity=2):
+        base = node.args[0]
+        why = negative_reason(fn, base)
+        if why is not None:
             yield Diagnostic(
-                f"the base of pow() can be negative ({reason}{where}); pow() is undefined there",
+                f"the base of pow() can be negative ({why}); pow() is undefined there",
                 base.loc,
                 help=f"clamp the base first: pow(max({text(base)}, 0.0), {text(node.args[1])})",
             )

@@ -29,7 +29,7 @@ from __future__ import annotations
 
 from typing import TYPE_CHECKING, Iterator
 
-from ...analysis import builtin_call, numbers, program_facts
+from ...analysis import builtin_calls, numbers
 from ...diagnostics import Diagnostic
 from ._text import is_atom, text, wrap
 
@@ -60,21 +60,17 @@ def _replacement(e: float, base) -> str | None:
 
 
 def check(ctx: LintContext) -> Iterator[Diagnostic]:
-    model = ctx.model
-    for fn in program_facts(ctx.model).in_file(ctx.path):
-        for node in fn.nodes:
-            if not builtin_call(model, node, "pow") or len(node.args) != 2:
-                continue
-            values = numbers(model.const_value(node.args[1]))
-            if not values or any(v != values[0] for v in values):
-                continue
-            fix = _replacement(values[0], node.args[0])
-            if fix is None:
-                continue
-            e = values[0]
-            shown = f"{e:g}" if e != int(e) else f"{int(e)}"
-            yield Diagnostic(
-                f"pow() with the constant exponent {shown} costs two transcendentals",
-                node.loc,
-                help=f"write {fix}",
-            )
+    for _, node in builtin_calls(ctx.model, ctx.path, "pow", arity=2):
+        values = numbers(ctx.model.const_value(node.args[1]))
+        if not values or any(v != values[0] for v in values):
+            continue
+        fix = _replacement(values[0], node.args[0])
+        if fix is None:
+            continue
+        e = values[0]
+        shown = f"{e:g}" if e != int(e) else f"{int(e)}"
+        yield Diagnostic(
+            f"pow() with the constant exponent {shown} costs two transcendentals",
+            node.loc,
+            help=f"write {fix}",
+        )

@@ -24,10 +24,8 @@ from __future__ import annotations
 
 from typing import TYPE_CHECKING, Iterator
 
-from ... import ast as A
-from ...analysis import builtin_call, program_facts
 from ...diagnostics import Diagnostic
-from ._text import COMPARISONS, FLIPPED, squared, text
+from ._text import compared_calls, squared, text
 
 if TYPE_CHECKING:
     from ..engine import LintContext
@@ -39,18 +37,10 @@ NEEDS = "ast"
 
 
 def check(ctx: LintContext) -> Iterator[Diagnostic]:
-    model = ctx.model
-    for fn in program_facts(ctx.model).in_file(ctx.path):
-        for node in fn.nodes:
-            if type(node) is not A.Binary or node.op not in COMPARISONS:
-                continue
-            for side, other in ((node.left, node.right), (node.right, node.left)):
-                op = node.op if side is node.left else FLIPPED[node.op]
-                if not builtin_call(model, side, "sqrt"):
-                    continue
-                x, bound = text(side.args[0]), squared(model, other)
-                yield Diagnostic(
-                    "sqrt() is compared with a bound: compare its argument with the squared bound",
-                    side.loc,
-                    help=f"write {x} {op} {bound} (for a bound >= 0)",
-                )
+    for side, other, op in compared_calls(ctx.model, ctx.path, "sqrt"):
+        x, bound = text(side.args[0]), squared(ctx.model, other)
+        yield Diagnostic(
+            "sqrt() is compared with a bound: compare its argument with the squared bound",
+            side.loc,
+            help=f"write {x} {op} {bound} (for a bound >= 0)",
+        )

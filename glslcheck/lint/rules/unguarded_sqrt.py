@@ -32,9 +32,9 @@ from __future__ import annotations
 
 from typing import TYPE_CHECKING, Iterator
 
-from ...analysis import builtin_call, program_facts
+from ...analysis import builtin_calls
 from ...diagnostics import Diagnostic
-from ._text import text
+from ._text import negative_reason, text
 
 if TYPE_CHECKING:
     from ..engine import LintContext
@@ -46,19 +46,12 @@ NEEDS = "ast"
 
 
 def check(ctx: LintContext) -> Iterator[Diagnostic]:
-    model = ctx.model
-    for fn in program_facts(ctx.model).in_file(ctx.path):
-        for node in fn.nodes:
-            if not builtin_call(model, node, "sqrt", "inversesqrt") or len(node.args) != 1:
-                continue
-            arg = node.args[0]
-            why = fn.negative_witness(arg)
-            if why is None:
-                continue
-            reason, source = why
-            where = "" if fn.contains(arg, source) else f": {text(source)} (line {source.loc.line})"
+    for fn, node in builtin_calls(ctx.model, ctx.path, "sqrt", "inversesqrt", arity=1):
+        arg = node.args[0]
+        why = negative_reason(fn, arg)
+        if why is not None:
             yield Diagnostic(
-                f"the argument of {node.callee}() can be negative ({reason}{where})",
+                f"the argument of {node.callee}() can be negative ({why})",
                 arg.loc,
                 help=f"guard it: {node.callee}(max({text(arg)}, 0.0)), and mask the result where it was negative",
             )

@@ -79,7 +79,7 @@ set") or a bool array; writes under a mask keep the old value elsewhere (`rt.ass
 from .common import (LOOP_CAP, OUTLINE_EXPR_INDENT, OUTLINE_INDENT, OUTLINE_LOOPS, RULE, SMALL_STATE,
                      SPILL_HEIGHT, check_program)
 from .expressions import LValue
-from .facts import Events, Facts, events_of, induction_variable, lvalue_base, out_directions
+from .facts import Events, Facts, events_of, induction_variable, written_lvalues, written_variables
 from .functions import FnState
 from .limits import PythonLimits, _glsl_location, compile_generated, lane_state, too_complex
 from .module import Transpiled, Transpiler, transpile, transpile_shader
@@ -87,6 +87,6 @@ from .statements import LoopCtx
 from ..uniformity import Uniformity
 
 __all__ = ["LOOP_CAP", "OUTLINE_EXPR_INDENT", "OUTLINE_INDENT", "OUTLINE_LOOPS", "RULE", "SMALL_STATE", "SPILL_HEIGHT",
-           "check_program", "LValue", "Events", "Facts", "events_of", "induction_variable", "lvalue_base",
-           "out_directions", "FnState", "PythonLimits", "_glsl_location", "compile_generated", "lane_state",
+           "check_program", "LValue", "Events", "Facts", "events_of", "induction_variable", "written_lvalues",
+           "written_variables", "FnState", "PythonLimits", "_glsl_location", "compile_generated", "lane_state",
            "too_complex", "Transpiled", "Transpiler", "transpile", "transpile_shader", "LoopCtx", "Uniformity"]

@@ -104,14 +104,6 @@ def check_program(parse_result: Any) -> Any:
     return model
 
 
-def _is_symbol(target: Any) -> bool:
-    return hasattr(target, "kind") and getattr(target, "kind", None) == "function"
-
-
-def _is_constructor(target: Any) -> bool:
-    return isinstance(target, tuple) and len(target) == 2 and target[0] == "constructor"
-
-
 def _fold(root: Any, memo: dict[int, Any], own) -> Any:
     """`own(node, [values of its children])` computed bottom-up over root's subtree and memoized
     by node id, so that asking it of every node of a tree stays linear (iterative: expressions

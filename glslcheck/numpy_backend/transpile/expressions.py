@@ -13,9 +13,11 @@ from ... import builtins as B
 from ... import types as T
 from .common import (_BIN_METHODS, _DERIVATIVES, _FLOAT_OPERATORS, _IDENT, _IMPLICIT_LOD, _RUNTIME_NAMES,
                      _TEXTURE_FUNCTIONS, OUTLINE_EXPR_INDENT, SPILL_HEIGHT, _components, _error, _fold,
-                     _is_constant_text, _is_constructor, _is_symbol)
+                     _is_constant_text)
 from .. import nir_fold
-from .facts import _is_simple, out_directions
+from ...analysis import param_directions
+from ...check.model import Constructor, Symbol
+from .facts import is_plain_read
 
 @dataclass
 class LValue:
@@ -71,9 +73,9 @@ class Expressions:
             return True
         if isinstance(n, A.Call):
             tgt = self.model.call_target(n)
-            if any(d != "in" for d in out_directions(tgt)):
+            if any(d != "in" for d in param_directions(tgt)):
                 return True
-            if _is_symbol(tgt) and id(tgt) in self.facts.may_discard:
+            if isinstance(tgt, Symbol) and id(tgt) in self.facts.may_discard:
                 return True
         if isinstance(n, (A.Ternary, A.Binary)) and (not isinstance(n, A.Binary) or n.op in ("&&", "||")):
             if self.has_effects(n.then if isinstance(n, A.Ternary) else n.right) or (
@@ -89,8 +91,8 @@ class Expressions:
             return True
         if isinstance(n, (A.Unary, A.Postfix)) and n.op in ("++", "--"):
             return True
-        return isinstance(n, A.Call) and (_is_symbol(self.model.call_target(n))
-                                          or any(d != "in" for d in out_directions(self.model.call_target(n))))
+        return isinstance(n, A.Call) and (isinstance(self.model.call_target(n), Symbol)
+                                          or any(d != "in" for d in param_directions(self.model.call_target(n))))
 
     def tmp(self, value: str) -> str:
         if value.startswith(("C_", "Z_")) and value.replace("_", "").isalnum():
@@ -127,7 +129,7 @@ class Expressions:
         if folded is not None:
             return folded
         op = e.op
-        if op in ("&&", "||") and (self.has_effects(e.right) or not _is_simple(e.right)):
+        if op in ("&&", "||") and (self.has_effects(e.right) or not is_plain_read(e.right)):
             # the right side only where the left does not decide: skipped when no lane needs
             # it (`t > 0.0 && t < best` in a tile where every t is -1)
             return self.short_circuit(e, mask)
@@ -283,9 +285,9 @@ class Expressions:
 
     def _print_Call(self, e: A.Call, mask: str | None) -> str:
         tgt = self.model.call_target(e)
-        if _is_constructor(tgt):
-            return self.constructor(e, tgt[1], mask)
-        if _is_symbol(tgt):
+        if isinstance(tgt, Constructor):
+            return self.constructor(e, tgt.type, mask)
+        if isinstance(tgt, Symbol):
             return self.user_call(e, tgt, mask)
         if tgt is None:
             raise _error(f"the call of '{e.callee}' was not resolved by the checker", e)
@@ -370,12 +372,18 @@ class Expressions:
 
     # -- l-values ------------------------------------------------------------------------------
     def lvalue(self, e: Any, mask: str | None) -> LValue:
+        """The l-value a write (assignment, ++/--, out argument) writes: `e` is the whole target."""
+        lv = self.lvalue_path(e, mask)
+        uni = self.fn.uni if self.fn is not None else None
+        lv.free = uni is not None and uni.is_free(e)
+        return lv
+
+    def lvalue_path(self, e: Any, mask: str | None) -> LValue:
         if isinstance(e, A.Identifier):
             sym = self.model.symbol_of(e)
-            uni = self.fn.uni if self.fn is not None else None
-            return LValue(self.var_name(sym, e), sym.type, free=uni is not None and uni.is_free(e))
+            return LValue(self.var_name(sym, e), sym.type)
         if isinstance(e, A.Field):
-            lv = self.lvalue(e.base, mask)
+            lv = self.lvalue_path(e.base, mask)
             bt = self.type_of(e.base)
             if bt.is_struct:
                 lv.path.append(("field", self.member(e.name, e)))
@@ -389,7 +397,7 @@ class Expressions:
                 lv.path.append(("swz", tuple(idx)))
             return lv
         if isinstance(e, A.Index):
-            lv = self.lvalue(e.base, mask)
+            lv = self.lvalue_path(e.base, mask)
             cv = self.model.const_value(e.index)
             if isinstance(cv, int) and not isinstance(cv, bool):
                 idx = str(cv)

@@ -8,7 +8,9 @@ from dataclasses import dataclass
 from typing import Any
 
 from ... import ast as A
-from .common import _DERIVATIVES, _IMPLICIT_LOD, _fold, _is_symbol
+from ...analysis import param_directions, written_variable
+from ...check.model import Symbol
+from .common import _DERIVATIVES, _IMPLICIT_LOD, _fold
 
 @dataclass(frozen=True)
 class Events:
@@ -49,16 +51,15 @@ class Facts:
                     self.may_discard.add(id(fn))
                 elif isinstance(node, A.Call):
                     tgt = model.call_target(node)
-                    if _is_symbol(tgt):
+                    if isinstance(tgt, Symbol):
                         if id(tgt) in self.may_discard:
                             self.may_discard.add(id(fn))
                         if id(tgt) in self.uses_derivs:
                             self.uses_derivs.add(id(fn))
                     elif getattr(tgt, "name", None) in _DERIVATIVES + _IMPLICIT_LOD:
                         self.uses_derivs.add(id(fn))
-                for target in self._written_targets(node):
-                    sym = model.symbol_of(target)
-                    if sym is not None and sym.kind == "global":
+                for sym in self.written_variables(node):
+                    if sym.kind == "global":
                         self.written_globals.add(id(sym))
         for fn in functions:
             for node in fn.node.body.walk():
@@ -71,7 +72,7 @@ class Facts:
                         self.reads_lane_state.add(id(fn))
                 elif isinstance(node, A.Call):
                     tgt = model.call_target(node)
-                    if _is_symbol(tgt) and id(tgt) in self.reads_lane_state:
+                    if isinstance(tgt, Symbol) and id(tgt) in self.reads_lane_state:
                         self.reads_lane_state.add(id(fn))
 
     def write_counts(self) -> dict[int, int]:
@@ -81,10 +82,8 @@ class Facts:
             counts: dict[int, int] = {}
             for fn in self.functions:
                 for node in fn.node.body.walk():
-                    for target in self._written_targets(node):
-                        sym = self.model.symbol_of(target)
-                        if sym is not None:
-                            counts[id(sym)] = counts.get(id(sym), 0) + 1
+                    for sym in self.written_variables(node):
+                        counts[id(sym)] = counts.get(id(sym), 0) + 1
             self._write_counts = counts
         return self._write_counts
 
@@ -93,24 +92,14 @@ class Facts:
         if not isinstance(n, A.Call):
             return False
         tgt = self.model.call_target(n)
-        return _is_symbol(tgt) and id(tgt) in self.may_discard
+        return isinstance(tgt, Symbol) and id(tgt) in self.may_discard
 
     def has_discarding_call(self, node: Any) -> bool:
         return _fold(node, self._discarding, lambda n, kids: any(kids) or self.discarding_call(n))
 
-    def _written_targets(self, node: Any) -> list[Any]:
-        """The base identifiers a node writes (assignment, ++/--, out arguments)."""
-        out: list[Any] = []
-        if isinstance(node, A.Assignment):
-            out.append(lvalue_base(node.target))
-        elif isinstance(node, (A.Unary, A.Postfix)) and node.op in ("++", "--"):
-            out.append(lvalue_base(node.operand))
-        elif isinstance(node, A.Call):
-            tgt = self.model.call_target(node)
-            for i, d in enumerate(out_directions(tgt)):
-                if d in ("out", "inout") and i < len(node.args):
-                    out.append(lvalue_base(node.args[i]))
-        return [o for o in out if o is not None]
+    def written_variables(self, node: Any) -> list[Symbol]:
+        """The variables a node itself writes (assignment, ++/--, out and inout arguments)."""
+        return written_variables(self.model, node)
 
     def closed(self, fn: Any) -> bool:
         """A call of `fn` with uniform arguments gives a uniform result (no lane state read or
@@ -122,34 +111,35 @@ class Facts:
         if key not in self._calls_cache:
             res = False
             for node in fn.node.body.walk():
-                for target in self._written_targets(node):
-                    sym = self.model.symbol_of(target)
-                    if sym is not None and sym.kind == "global":
-                        res = True
+                if any(sym.kind == "global" for sym in self.written_variables(node)):
+                    res = True
                 if isinstance(node, A.Call):
                     tgt = self.model.call_target(node)
-                    if _is_symbol(tgt) and tgt is not fn and self.writes_globals(tgt):
+                    if isinstance(tgt, Symbol) and tgt is not fn and self.writes_globals(tgt):
                         res = True
             self._calls_cache[key] = [res]
         return self._calls_cache[key][0]
 
 
-def lvalue_base(e: Any) -> Any:
-    while isinstance(e, (A.Field, A.Index)):
-        e = e.base
-    return e if isinstance(e, A.Identifier) else None
-
-
-def out_directions(target: Any) -> list[str]:
-    if _is_symbol(target):
-        return [d for _, _, d in target.params]
-    quals = getattr(target, "qualifiers", None)
-    if quals is not None:
-        return list(quals)
+def written_lvalues(model: Any, node: Any) -> list[Any]:
+    """The l-values a node itself writes: an assignment's target, the operand of ++/--, the
+    out and inout arguments of a call."""
+    if isinstance(node, A.Assignment):
+        return [node.target]
+    if isinstance(node, (A.Unary, A.Postfix)) and node.op in ("++", "--"):
+        return [node.operand]
+    if isinstance(node, A.Call):
+        dirs = param_directions(model.call_target(node))
+        return [a for a, d in zip(node.args, dirs) if d != "in"]
     return []
 
 
-def _is_simple(e: Any) -> bool:
+def written_variables(model: Any, node: Any) -> list[Symbol]:
+    """The variables a node itself writes (`written_variable` of each of its `written_lvalues`)."""
+    return [sym for t in written_lvalues(model, node) if (sym := written_variable(model, t)[0]) is not None]
+
+
+def is_plain_read(e: Any) -> bool:
     """A value read without computing anything per lane: a literal, a variable, or a field or
     component of one (`!` of one too)."""
     while isinstance(e, (A.Field, A.Unary)) and (not isinstance(e, A.Unary) or e.op == "!"):
@@ -207,7 +197,7 @@ def induction_variable(s: Any, model: Any, facts: Facts | None = None) -> Any:
             continue
         if isinstance(n, A.Assignment) or (isinstance(n, (A.Unary, A.Postfix)) and n.op in ("++", "--")):
             return None
-        if isinstance(n, A.Call) and any(d != "in" for d in out_directions(model.call_target(n))):
+        if isinstance(n, A.Call) and written_lvalues(model, n):
             return None
     if facts is not None:
         return sym if facts.write_counts().get(id(sym), 0) == 1 else None
@@ -215,17 +205,6 @@ def induction_variable(s: Any, model: Any, facts: Facts | None = None) -> Any:
         if part is None:
             continue
         for n in part.walk():
-            base = None
-            if isinstance(n, A.Assignment):
-                base = lvalue_base(n.target)
-            elif isinstance(n, (A.Unary, A.Postfix)) and n.op in ("++", "--"):
-                base = lvalue_base(n.operand)
-            elif isinstance(n, A.Call):
-                tgt = model.call_target(n)
-                for i, d in enumerate(out_directions(tgt)):
-                    if d != "in" and i < len(n.args) and (b := lvalue_base(n.args[i])) is not None:
-                        if model.symbol_of(b) is sym:
-                            return None
-            if base is not None and model.symbol_of(base) is sym:
+            if any(w is sym for w in written_variables(model, n)):
                 return None
     return sym

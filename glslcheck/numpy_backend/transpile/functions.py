@@ -11,7 +11,8 @@ from ..uniformity import Uniformity
 from .expressions import LValue
 from .statements import LoopCtx
 from .facts import events_of
-from .common import _is_symbol, _printable
+from ...check.model import Symbol
+from .common import _printable
 
 class FnState:
     def __init__(self, sym: Any, uni: Uniformity, is_entry: bool) -> None:
@@ -76,7 +77,7 @@ class Functions:
         tail = body[-1] if body and isinstance(body[-1], A.Return) else None
         nontail_ret = early is None and (
             any(isinstance(n, (A.Return, A.Discard)) and n is not tail for n in node.body.walk()) or (
-                ev.ret and any(isinstance(n, A.Call) and _is_symbol(self.model.call_target(n))
+                ev.ret and any(isinstance(n, A.Call) and isinstance(self.model.call_target(n), Symbol)
                                and id(self.model.call_target(n)) in self.facts.may_discard
                                for n in node.body.walk())))
         if nontail_ret:
@@ -132,7 +133,7 @@ class Functions:
             for m in n.walk():
                 if isinstance(m, (A.Return, A.Discard)):
                     return None
-                if isinstance(m, A.Call) and _is_symbol(self.model.call_target(m)) \
+                if isinstance(m, A.Call) and isinstance(self.model.call_target(m), Symbol) \
                         and id(self.model.call_target(m)) in self.facts.may_discard:
                     return None
         return st, body[-1]

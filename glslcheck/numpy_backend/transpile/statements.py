@@ -11,7 +11,8 @@ from ... import ast as A
 from ... import builtins as B
 from ... import types as T
 from ...diagnostics import Location
-from .common import (_DERIVATIVES, _IMPLICIT_LOD, LOOP_CAP, OUTLINE_INDENT, _error, _fold, _is_symbol)
+from .common import (_DERIVATIVES, _IMPLICIT_LOD, LOOP_CAP, OUTLINE_INDENT, _error, _fold)
+from ...check.model import Symbol
 from .facts import Events, events_of, induction_variable
 
 @dataclass
@@ -132,7 +133,7 @@ class Statements:
         for n in node.walk():
             if isinstance(n, (A.For, A.While, A.DoWhile)):
                 return True
-            if isinstance(n, A.Call) and (_is_symbol(self.model.call_target(n))
+            if isinstance(n, A.Call) and (isinstance(self.model.call_target(n), Symbol)
                                           or getattr(self.model.call_target(n), "cost", None) == B.EXPENSIVE):
                 return True
             count += 1
@@ -148,9 +149,9 @@ class Statements:
             return True
         if isinstance(n, A.Call):
             tgt = self.model.call_target(n)
-            if getattr(tgt, "name", None) in _DERIVATIVES + _IMPLICIT_LOD and not _is_symbol(tgt):
+            if getattr(tgt, "name", None) in _DERIVATIVES + _IMPLICIT_LOD and not isinstance(tgt, Symbol):
                 return True
-            if _is_symbol(tgt) and id(tgt) in self.facts.uses_derivs:
+            if isinstance(tgt, Symbol) and id(tgt) in self.facts.uses_derivs:
                 return True
         return False
 
@@ -187,7 +188,7 @@ class Statements:
                 self.effect(x, mask)
         else:
             value = self.expr(e, mask)
-            if isinstance(e, A.Call) and _is_symbol(self.model.call_target(e)):
+            if isinstance(e, A.Call) and isinstance(self.model.call_target(e), Symbol):
                 self.emit(value)
             elif "(" in value and not value.startswith(("C_", "Z_")):
                 self.emit(value)
@@ -200,7 +201,7 @@ class Statements:
         for n in e.walk():
             if isinstance(n, A.Call):
                 tgt = self.model.call_target(n)
-                if _is_symbol(tgt) and id(tgt) in self.facts.may_discard:
+                if isinstance(tgt, Symbol) and id(tgt) in self.facts.may_discard:
                     self.emit("_ret = X.or_(_ret, S.discard)")
                     return
 
