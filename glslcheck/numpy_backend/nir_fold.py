@@ -38,6 +38,7 @@ from typing import Any
 from .. import ast as A
 from .. import builtins as B
 from ..check.model import Symbol
+from ..diagnostics import Location
 from ..printer import to_glsl
 
 _SUMS = ("+", "-")
@@ -218,18 +219,49 @@ def _used_once(tr: Any, e: Any) -> bool:
     parents = tr.__dict__.setdefault("_nir_fold_parents", {})
     key = id(tr.fn.sym)
     if key not in parents:
-        texts: dict[str, int] = {}
+        shapes = _shapes(tr.fn.sym.node.body)
+        counts: dict[int, int] = {}
         operands: set[int] = set()
         for n in tr.fn.sym.node.body.walk():
             if isinstance(n, A.Binary):
                 operands.update((id(n.left), id(n.right)))
-                t = to_glsl(n)
-                texts[t] = texts.get(t, 0) + 1
+                counts[shapes[id(n)]] = counts.get(shapes[id(n)], 0) + 1
             elif isinstance(n, A.Call) and (n.constructor or _builtin(tr, n)):
                 operands.update(id(a) for a in n.args)  # (a user function may read it twice)
-        parents[key] = (texts, operands)
-    texts, operands = parents[key]
-    return id(e) in operands and texts.get(to_glsl(e), 0) <= 1
+        parents[key] = (shapes, counts, operands)
+    shapes, counts, operands = parents[key]
+    return id(e) in operands and counts.get(shapes.get(id(e), -1), 0) <= 1
+
+
+def _shapes(root: Any) -> dict[int, int]:
+    """id(node) -> a number shared by exactly the nodes of the same shape (same class, same
+    fields, same shapes of children; locations left out): what equal GLSL text means, found in
+    one pass (hash-consing) instead of printing every subtree, which is quadratic in a chain
+    `a + b + c + ...` of thousands of terms (issue 16's hostile sums)."""
+    ids: dict[int, int] = {}
+    table: dict[tuple, int] = {}
+    stack: list[tuple[Any, bool]] = [(root, False)]
+    while stack:
+        node, ready = stack.pop()
+        if not ready:
+            stack.append((node, True))
+            stack.extend((c, False) for c in node.children())
+            continue
+        parts: list[Any] = [type(node)]
+        for name in node._fields:
+            value = getattr(node, name)
+            if name in node._children:
+                if isinstance(value, list):
+                    value = tuple(ids[id(v)] for v in value)
+                elif value is not None:
+                    value = ids[id(value)]
+            elif isinstance(value, Location):
+                continue
+            elif isinstance(value, list):
+                value = tuple(value)
+            parts.append(value)
+        ids[id(node)] = table.setdefault(tuple(parts), len(table))
+    return ids
 
 
 def _sink(tr: Any, e: A.Binary, mask: str | None) -> str | None:

@@ -14,6 +14,7 @@ import math
 import numpy as np
 import pytest
 
+from glslcheck import ast as A
 from glslcheck.numpy_backend.program import compile_numpy
 from glslcheck.numpy_backend.runtime import Runtime
 from glslcheck.numpy_backend.transpile import transpile_shader
@@ -137,3 +138,55 @@ def test_rewrites_match_llvmpipe(gl, make_shader):
     # the rewritten products are exact (no exp2/log2 approximation on either side)
     exact = ours[-1, :, :3]  # row 0 (bottom row): pow(x, 2.0), pow(x, 1.0), pow(x, 4.0)
     assert np.array_equal(exact[~np.isnan(exact)], theirs[-1, :, :3][~np.isnan(exact)])
+
+
+def test_nir_fold_shapes_are_equal_exactly_where_the_glsl_text_is():
+    # nir_fold._used_once counts copies of a value by shape (hash-consing, linear) instead of
+    # printing every subtree (quadratic in a long chain): both must mean the same thing.
+    from pathlib import Path
+
+    from glslcheck.numpy_backend.nir_fold import _shapes
+    from glslcheck.parse import parse_shader
+    from glslcheck.printer import to_glsl
+    from glslcheck.sources import find_shaders
+
+    root = Path(__file__).resolve().parents[2]
+    checked = 0
+    for shader in find_shaders([str(root / "lab_shaders"), str(root / "tests" / "corpus")]):
+        for tab in shader.tabs:
+            if tab == "Common":
+                continue
+            ast = parse_shader(shader, tab).ast
+            shapes = _shapes(ast)
+            by_text: dict[str, set[int]] = {}
+            for node in ast.walk():
+                if isinstance(node, (A.Expr,)):
+                    by_text.setdefault(to_glsl(node), set()).add(shapes[id(node)])
+                    checked += 1
+            assert all(len(s) == 1 for s in by_text.values())  # one text: one shape
+            texts_of: dict[int, set[str]] = {}
+            for text, s in by_text.items():
+                texts_of.setdefault(next(iter(s)), set()).add(text)
+            assert all(len(t) == 1 for t in texts_of.values())  # one shape: one text
+    assert checked > 5000
+
+
+def test_nir_fold_on_a_chain_of_thousands_of_terms_is_linear(make_shader, monkeypatch):
+    # 3,000 terms: printing every partial sum was 4.5 million node prints (142 s). Counted, not
+    # timed: the GLSL text nir_fold prints stays within a small multiple of the source's size.
+    from glslcheck.numpy_backend import nir_fold
+
+    printed = [0]
+    real = nir_fold.to_glsl
+
+    def counting(node):
+        text = real(node)
+        printed[0] += len(text)
+        return text
+
+    monkeypatch.setattr(nir_fold, "to_glsl", counting)
+    body = " + ".join(f"sin(x * {k % 13}.0)" for k in range(3000))
+    source = ("void mainImage(out vec4 o, in vec2 f) {\n    float x = f.x;\n"
+              f"    x = {body};\n    o = vec4(x);\n}}\n")
+    transpile_shader(make_shader(source), "Image")
+    assert printed[0] < 10 * len(source), printed[0]
