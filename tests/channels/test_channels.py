@@ -373,3 +373,42 @@ def test_odd_sizes_shade_helper_pixels_as_llvmpipe(gl, tmp_path, size):
     ours = api.compile(folder, backend="numpy").render(size=size)
     theirs = api.compile(folder, backend="gl").render(size=size)
     assert np.abs(ours - theirs).max() <= 2.0**-10  # as test_mipmap_against_gl
+
+
+def _host_has_fma() -> bool:
+    try:
+        with open("/proc/cpuinfo") as f:
+            return " fma " in f.read()
+    except OSError:
+        return False
+
+
+@pytest.mark.parametrize("filt", ["linear", "mipmap"])
+@pytest.mark.parametrize("wrap", ["clamp", "repeat"])
+@pytest.mark.parametrize("lookup", [
+    "texture(iChannel0, uv)",
+    "texture(iChannel0, uv, fragCoord.x / 20.0 - 1.0)",  # a bias that differs within a quad
+    "textureLod(iChannel0, uv, fragCoord.y / 9.0 - 0.5)",
+])
+def test_filtering_bit_for_bit_on_a_ramp_of_scales(gl, tmp_path, lookup, wrap, filt):
+    # A ramp of scales (0 to about 12 texels per pixel along x, LOD 0 to about 3.6) and
+    # anisotropies on a texture whose sides are neither powers of two nor equal (the LOD's size
+    # factor then rounds). The coordinates are exact in float32 on both backends (half-integers,
+    # sums of small products, a power-of-two divisor). llvmpipe's lerps are fused multiply-adds
+    # (LLVM's fmuladd) on a host with FMA, which the NumPy side copies (textures.py): equal bit
+    # for bit there; elsewhere only to a few ulps (2^-10 after the lowp truncation).
+    _png(tmp_path / "tex.png", 50, 70, seed=6)
+    body = f"""void mainImage(out vec4 fragColor, in vec2 fragCoord) {{
+    vec2 uv = vec2(fragCoord.x * fragCoord.x + fragCoord.y * 3.0, fragCoord.y * fragCoord.y * 0.5 + fragCoord.x) / 512.0;
+    fragColor = {lookup};
+}}
+"""
+    folder = _folder(tmp_path, {"Image": body},
+                     {"Image": {"iChannel0": {"texture": "tex.png", "filter": filt, "wrap": wrap}}})
+    ours = api.compile(folder, backend="numpy").render(size=SIZE)
+    theirs = api.compile(folder, backend="gl").render(size=SIZE)
+    assert ours[..., :3].std() > 0.01
+    if _host_has_fma():
+        assert np.array_equal(ours, theirs), f"{int((ours != theirs).sum())} of {ours.size} values differ"
+    else:
+        assert np.abs(ours - theirs).max() <= 2.0**-10
