@@ -108,11 +108,18 @@ def _project(p) -> np.ndarray:
 
 
 def _fast_log2(x: np.ndarray) -> np.ndarray:
-    """exponent + (mantissa - 1) for x = mantissa * 2^exponent, mantissa in [1, 2) (-inf at 0)."""
-    m, e = np.frexp(np.asarray(x, dtype=np.float32))
-    with np.errstate(divide="ignore"):
-        out = (e - 1).astype(np.float32) + (m * np.float32(2) - np.float32(1))
-    return np.where(x > 0, out, np.float32(-np.inf)).astype(np.float32)
+    """Mesa's lp_build_fast_log2 on the float32 bits: (exponent field - 127 - 1) + the mantissa
+    with the exponent of 1.0 (in [1, 2)). No special cases: 0 gives -127, +inf 128 and a NaN
+    about 128.5, which the LOD clamp turns into the first and the last level."""
+    bits = np.ascontiguousarray(x, dtype=np.float32).view(np.uint32)
+    exponent = ((bits >> np.uint32(23)) & np.uint32(0xFF)).astype(np.int32) - 128
+    mantissa = ((bits & np.uint32(0x007FFFFF)) | np.uint32(0x3F800000)).view(np.float32)
+    return exponent.astype(np.float32) + mantissa
+
+
+def _max_x86(a: np.ndarray, b: np.ndarray) -> np.ndarray:
+    """lp_build_max as llvmpipe emits it on x86 (maxps): a > b ? a : b, so b where either is NaN."""
+    return np.where(a > b, a, b)
 
 
 def _quad_corner_diff(v: np.ndarray, width: int, axis: int) -> np.ndarray:
@@ -199,7 +206,7 @@ class TextureFunctions:
             size = np.array([w, h], dtype=np.float32)[:, None]
             dx = _quad_corner_diff(p, width, 1) * size
             dy = _quad_corner_diff(p, width, 0) * size
-            rho2 = np.maximum(dx[0] * dx[0] + dx[1] * dx[1], dy[0] * dy[0] + dy[1] * dy[1])
+            rho2 = _max_x86(dx[0] * dx[0] + dx[1] * dx[1], dy[0] * dy[0] + dy[1] * dy[1])
         lod = np.float32(0.5) * _fast_log2(rho2)
         if bias is not None:
             lod = lod + np.asarray(bias, dtype=np.float32)
@@ -235,7 +242,8 @@ class TextureFunctions:
         h, w = s.texels.shape[:2]
         size = np.array([w, h], dtype=np.float32).reshape(2, *([1] * (np.ndim(dpdx) - 1)))
         dx, dy = np.asarray(dpdx, np.float32) * size, np.asarray(dpdy, np.float32) * size
-        rho2 = np.maximum((dx * dx).sum(axis=0), (dy * dy).sum(axis=0))
+        rho2 = _max_x86(dx[0] * dx[0] + dx[1] * dx[1], dy[0] * dy[0] + dy[1] * dy[1])
+        rho2 = np.where(np.isfinite(rho2), rho2, np.float32(0))  # lp_build_rho: explicit derivatives only
         return self._sample(s, p, _offset(offset), np.float32(0.5) * _fast_log2(rho2))
 
     # the projective forms: coordinates p.xy / p.z (vec3) or p.xy / p.w (vec4), then as above
