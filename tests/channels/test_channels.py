@@ -412,3 +412,26 @@ def test_filtering_bit_for_bit_on_a_ramp_of_scales(gl, tmp_path, lookup, wrap, f
         assert np.array_equal(ours, theirs), f"{int((ours != theirs).sum())} of {ours.size} values differ"
     else:
         assert np.abs(ours - theirs).max() <= 2.0**-10
+
+
+def test_implicit_lod_of_a_quad_with_a_nan_derivative(gl, tmp_path):
+    # Two pixels of one 2x2 quad look up at x = +inf: the quad's x difference is inf - inf =
+    # NaN, its y difference inf. llvmpipe's max (x86 maxps) keeps the inf and its fast_log2 of
+    # the bits gives LOD 64: the last level for the whole quad (textures.py). np.maximum kept
+    # the NaN, which gave level 0. The inf pixels themselves (their wrap of inf is the driver's
+    # business) are left out of the comparison.
+    _png(tmp_path / "tex.png", 16, 16, seed=7)
+    body = """void mainImage(out vec4 fragColor, in vec2 fragCoord) {
+    vec2 uv = fragCoord / 64.0;
+    if (fragCoord.y < 1.0 && fragCoord.x > 30.0 && fragCoord.x < 32.0) uv.x = iResolution.x * 1e37 * 1e37;
+    fragColor = texture(iChannel0, uv);
+}
+"""
+    folder = _folder(tmp_path, {"Image": body}, {"Image": {"iChannel0": {"texture": "tex.png"}}})
+    ours = api.compile(folder, backend="numpy").render(size=SIZE)
+    theirs = api.compile(folder, backend="gl").render(size=SIZE)
+    keep = np.ones(ours.shape[:2], bool)
+    keep[-1, 30:32] = False  # images are top-down: GL's row 0 is the last
+    assert np.abs(ours - theirs)[keep].max() <= 2.0**-10  # as test_mipmap_against_gl
+    last = ours[-2, 30]  # the quad's upper pixels read the 1x1 last level, as llvmpipe
+    assert np.abs(last - ours[-2, 31]).max() <= 2.0**-10 and np.abs(last - ours[-2, 29]).max() > 0.01
