@@ -12,13 +12,16 @@ What llvmpipe does, measured with tests/channels/measure_sampling.py (Mesa 22.3.
 
 - nearest: texel floor(u * width) (float32 product), then the wrap; bit for bit equal.
 - linear on float textures: float32 weights (not 8-bit fixed point: a 2x1 texture 0..1 gave
-  4096 distinct, exact weights over 4096 pixels). The weight x = u * width - 0.5, x0 = floor(x),
-  w = x - x0, and lerp a + w * (b - a) along x then y. llvmpipe's generated code orders or fuses
-  a few of these float32 operations differently: about a third of the results differ in the
-  last bit (at most 2.4e-7 absolute on a 7x5 texture of normal random texels up to 2.9, both
-  wraps), never by 1/255 of anything, which compare.py's tolerance (in 1/255 steps) accepts.
-  After the lowp truncation below such a last-bit difference can cross one truncation step
-  (2^-10 relative), the bound the tests use.
+  4096 distinct, exact weights over 4096 pixels; RGBA32F is not an 8-bit AoS format, so llvmpipe
+  takes its SoA path). The weight x = u * width - 0.5 (a product and a sum, not fused), x0 =
+  floor(x), w = x - x0, and Mesa's lp_build_lerp (gallivm/lp_bld_arit.c) along x then y:
+  lp_build_mad(w, b - a, a), an llvm.fmuladd that LLVM fuses into one FMA on a host with FMA
+  (`_lerp` emulates the FMA through float64). Bit for bit equal on a 50x70 texture over a ramp
+  of scales, anisotropies and rotations, both wraps (16384 of 16384 values; the unfused
+  a + w * (b - a) matched 8575 and 15401; tests/channels/test_channels.py
+  test_filtering_bit_for_bit_on_a_ramp_of_scales). On a host without FMA llvmpipe does not
+  fuse: a last-bit difference, which after the lowp truncation below can cross one truncation
+  step (2^-10 relative), the bound the tests use there.
 - precision: Shadertoy's prelude declares `precision mediump sampler3D` only, so the iChannel
   uniforms it declares are lowp sampler2D (the ES 3.00 fragment default), and llvmpipe honours
   it: every lookup result (after filtering) has its float32 mantissa truncated to 10 bits (the
@@ -39,9 +42,28 @@ What llvmpipe does, measured with tests/channels/measure_sampling.py (Mesa 22.3.
   SwiftShader's WebGL computes lowp and mediump in float32 (measured: exact lookups, and a
   mediump x * 1e5 past 65504 stays finite).
 - mipmap: the levels are glslcheck's own 2x2 box pyramid (channels.mip_levels), uploaded level
-  by level to GL too, so both sample the same texels; the LOD is llvmpipe's, per 2x2 quad
-  (`_implicit_lod`, measured to 4.3e-6 of a level), clamped to the levels, and the two levels'
-  bilinear results are blended a + frac(lod) * (b - a).
+  by level to GL too, so both sample the same texels. The LOD is Mesa 22.3's
+  lp_build_lod_selector (gallivm/lp_bld_sample.c) with llvmpipe's default GALLIVM_PERF flags
+  (lp_bld_sample_soa.c: no_rho_approx and no_brilinear are set unless GALLIVM_PERF names
+  rho_approx / brilinear, so neither approximation is on; no_quad_lod is off, so the implicit
+  LOD is one per 2x2 quad):
+  lp_build_rho takes the coordinates' differences between the quad's bottom-left pixel and its
+  right and upper neighbours, *then* multiplies them by the level-0 size (differencing the
+  scaled coordinates rounds differently on a size that is not a power of two), rho^2 =
+  max(ds^2 + dt^2 along x, along y) with max as x86 maxps (the second operand where either is
+  NaN), no sqrt; lod = 0.5 * lp_build_fast_log2(rho^2), which reads the float's exponent field
+  and its mantissa in [1, 2) with no special case (0 -> -127, inf -> 128, NaN -> about 128.5);
+  plus the shader's bias per pixel (a per-pixel bias makes the LOD per pixel, the rho staying
+  the quad's); lp_build_linear_mip_levels clamps it to the levels; the fraction lod - floor(lod)
+  blends the two levels' bilinear results with the same fused lerp. Brilinear filtering
+  (lp_build_brilinear_rho / lp_build_brilinear_lod, BRILINEAR_FACTOR), which snaps the fraction
+  near integers, is only used with GALLIVM_PERF=brilinear. textureGrad uses the given
+  derivatives per pixel and zeroes an inf/NaN rho, as lp_build_rho does for explicit ones.
+  Measured (as measure_sampling.py part 3: levels filled with their index): the LOD
+  equal bit for bit on 4096 of 4096 pixels of a ramp of scales 2^-2..2^8, anisotropies 1..16 and
+  rotations, with and without a per-pixel bias, and at coordinates near 1000; whole lookups on
+  random RGBA32F texels equal on 16384 of 16384 values (texture, with a bias, textureLod), were
+  12012, 12318 and 8935 before (unfused lerps, scaled differences).
 """
 
 from __future__ import annotations

@@ -399,7 +399,8 @@ def test_filtering_bit_for_bit_on_a_ramp_of_scales(gl, tmp_path, lookup, wrap, f
     # for bit there; elsewhere only to a few ulps (2^-10 after the lowp truncation).
     _png(tmp_path / "tex.png", 50, 70, seed=6)
     body = f"""void mainImage(out vec4 fragColor, in vec2 fragCoord) {{
-    vec2 uv = vec2(fragCoord.x * fragCoord.x + fragCoord.y * 3.0, fragCoord.y * fragCoord.y * 0.5 + fragCoord.x) / 512.0;
+    vec2 uv = vec2(fragCoord.x * fragCoord.x + fragCoord.y * 3.0,
+                   fragCoord.y * fragCoord.y * 0.5 + fragCoord.x) / 512.0;
     fragColor = {lookup};
 }}
 """
