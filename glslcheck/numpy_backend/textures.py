@@ -22,6 +22,12 @@ What llvmpipe does, measured with tests/channels/measure_sampling.py (Mesa 22.3.
   test_filtering_bit_for_bit_on_a_ramp_of_scales). On a host without FMA llvmpipe does not
   fuse: a last-bit difference, which after the lowp truncation below can cross one truncation
   step (2^-10 relative), the bound the tests use there.
+- clamp with linear filtering (lp_build_sample_wrap_linear, CLAMP_TO_EDGE): the coordinate is
+  clamped as a float before its integer conversion, min(u * size + offset, size) - 0.5, then
+  max(0), so 1e30 and +inf read the last texel and -1e30, -inf the first (converting first
+  overflowed: 1e30 read the first texel, inf gave NaN). A NaN coordinate through a whole
+  Shadertoy render still differs (not emulated); repeat with huge or non-finite coordinates is
+  not emulated either (llvmpipe's NPOT repeat path: lp_build_coord_repeat_npot_linear).
 - precision: Shadertoy's prelude declares `precision mediump sampler3D` only, so the iChannel
   uniforms it declares are lowp sampler2D (the ES 3.00 fragment default), and llvmpipe honours
   it: every lookup result (after filtering) has its float32 mantissa truncated to 10 bits (the
@@ -108,8 +114,13 @@ def _bilinear(t: np.ndarray, u, v, offset, wrap: str) -> np.ndarray:
     if wrap == "repeat":  # the closest of the orders measured (see the module docstring)
         u = u - np.floor(u)
         v = v - np.floor(v)
-    x = u * np.float32(w) - np.float32(0.5)
-    y = v * np.float32(h) - np.float32(0.5)
+        x = u * np.float32(w) - np.float32(0.5)
+        y = v * np.float32(h) - np.float32(0.5)
+    else:  # lp_build_sample_wrap_linear, CLAMP_TO_EDGE: min(u * size + offset, size) (NaN: size),
+        # - 0.5, max(0): no integer overflow for huge or infinite coordinates
+        x = np.maximum(np.fmin(u * np.float32(w) + np.float32(offset[0]), np.float32(w)) - np.float32(0.5), 0)
+        y = np.maximum(np.fmin(v * np.float32(h) + np.float32(offset[1]), np.float32(h)) - np.float32(0.5), 0)
+        offset = (0, 0)
     x0, y0 = np.floor(x), np.floor(y)
     fx, fy = (x - x0)[..., None], (y - y0)[..., None]
     x0, y0 = x0.astype(np.int64) + offset[0], y0.astype(np.int64) + offset[1]

@@ -436,3 +436,25 @@ def test_implicit_lod_of_a_quad_with_a_nan_derivative(gl, tmp_path):
     assert np.abs(ours - theirs)[keep].max() <= 2.0**-10  # as test_mipmap_against_gl
     last = ours[-2, 30]  # the quad's upper pixels read the 1x1 last level, as llvmpipe
     assert np.abs(last - ours[-2, 31]).max() <= 2.0**-10 and np.abs(last - ours[-2, 29]).max() > 0.01
+
+
+@pytest.mark.parametrize("filt", ["linear", "mipmap"])
+def test_clamp_of_huge_infinite_and_nan_coordinates(gl, tmp_path, filt):
+    # llvmpipe's CLAMP_TO_EDGE for linear filtering clamps the float coordinate before its
+    # integer conversion (min(u * size, size); lp_build_sample_wrap_linear): 1e30 and inf read
+    # the last texel, -1e30 and -inf the first. Converting first overflowed (1e30 read the first
+    # texel, inf gave NaN). Both neighbours are one edge texel, so the result is exact whatever
+    # the lerp's rounding. (A NaN coordinate still differs through the whole pipeline: not
+    # emulated.)
+    _png(tmp_path / "tex.png", 16, 16, seed=8)
+    body = """void mainImage(out vec4 fragColor, in vec2 fragCoord) {
+    float inf = iResolution.x * 1e37 * 1e37;
+    float u[6] = float[6](1e30, -1e30, inf, -inf, 3e9, 1e20);
+    fragColor = texture(iChannel0, vec2(u[int(fragCoord.x) % 6], u[int(fragCoord.y) % 6]));
+}
+"""
+    folder = _folder(tmp_path, {"Image": body},
+                     {"Image": {"iChannel0": {"texture": "tex.png", "filter": filt, "wrap": "clamp"}}})
+    ours = api.compile(folder, backend="numpy").render(size=(12, 12))
+    theirs = api.compile(folder, backend="gl").render(size=(12, 12))
+    assert np.isfinite(theirs).all() and np.array_equal(ours, theirs)
