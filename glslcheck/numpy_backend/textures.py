@@ -12,13 +12,22 @@ What llvmpipe does, measured with tests/channels/measure_sampling.py (Mesa 22.3.
 
 - nearest: texel floor(u * width) (float32 product), then the wrap; bit for bit equal.
 - linear on float textures: float32 weights (not 8-bit fixed point: a 2x1 texture 0..1 gave
-  4096 distinct, exact weights over 4096 pixels). The weight x = u * width - 0.5, x0 = floor(x),
-  w = x - x0, and lerp a + w * (b - a) along x then y. llvmpipe's generated code orders or fuses
-  a few of these float32 operations differently: about a third of the results differ in the
-  last bit (at most 2.4e-7 absolute on a 7x5 texture of normal random texels up to 2.9, both
-  wraps), never by 1/255 of anything, which compare.py's tolerance (in 1/255 steps) accepts.
-  After the lowp truncation below such a last-bit difference can cross one truncation step
-  (2^-10 relative), the bound the tests use.
+  4096 distinct, exact weights over 4096 pixels; RGBA32F is not an 8-bit AoS format, so llvmpipe
+  takes its SoA path). The weight x = u * width - 0.5 (a product and a sum, not fused), x0 =
+  floor(x), w = x - x0, and Mesa's lp_build_lerp (gallivm/lp_bld_arit.c) along x then y:
+  lp_build_mad(w, b - a, a), an llvm.fmuladd that LLVM fuses into one FMA on a host with FMA
+  (`_lerp` emulates the FMA through float64). Bit for bit equal on a 50x70 texture over a ramp
+  of scales, anisotropies and rotations, both wraps (16384 of 16384 values; the unfused
+  a + w * (b - a) matched 8575 and 15401; tests/channels/test_channels.py
+  test_filtering_bit_for_bit_on_a_ramp_of_scales). On a host without FMA llvmpipe does not
+  fuse: a last-bit difference, which after the lowp truncation below can cross one truncation
+  step (2^-10 relative), the bound the tests use there.
+- clamp with linear filtering (lp_build_sample_wrap_linear, CLAMP_TO_EDGE): the coordinate is
+  clamped as a float before its integer conversion, min(u * size + offset, size) - 0.5, then
+  max(0), so 1e30 and +inf read the last texel and -1e30, -inf the first (converting first
+  overflowed: 1e30 read the first texel, inf gave NaN). A NaN coordinate through a whole
+  Shadertoy render still differs (not emulated); repeat with huge or non-finite coordinates is
+  not emulated either (llvmpipe's NPOT repeat path: lp_build_coord_repeat_npot_linear).
 - precision: Shadertoy's prelude declares `precision mediump sampler3D` only, so the iChannel
   uniforms it declares are lowp sampler2D (the ES 3.00 fragment default), and llvmpipe honours
   it: every lookup result (after filtering) has its float32 mantissa truncated to 10 bits (the
@@ -39,9 +48,28 @@ What llvmpipe does, measured with tests/channels/measure_sampling.py (Mesa 22.3.
   SwiftShader's WebGL computes lowp and mediump in float32 (measured: exact lookups, and a
   mediump x * 1e5 past 65504 stays finite).
 - mipmap: the levels are glslcheck's own 2x2 box pyramid (channels.mip_levels), uploaded level
-  by level to GL too, so both sample the same texels; the LOD is llvmpipe's, per 2x2 quad
-  (`_implicit_lod`, measured to 4.3e-6 of a level), clamped to the levels, and the two levels'
-  bilinear results are blended a + frac(lod) * (b - a).
+  by level to GL too, so both sample the same texels. The LOD is Mesa 22.3's
+  lp_build_lod_selector (gallivm/lp_bld_sample.c) with llvmpipe's default GALLIVM_PERF flags
+  (lp_bld_sample_soa.c: no_rho_approx and no_brilinear are set unless GALLIVM_PERF names
+  rho_approx / brilinear, so neither approximation is on; no_quad_lod is off, so the implicit
+  LOD is one per 2x2 quad):
+  lp_build_rho takes the coordinates' differences between the quad's bottom-left pixel and its
+  right and upper neighbours, *then* multiplies them by the level-0 size (differencing the
+  scaled coordinates rounds differently on a size that is not a power of two), rho^2 =
+  max(ds^2 + dt^2 along x, along y) with max as x86 maxps (the second operand where either is
+  NaN), no sqrt; lod = 0.5 * lp_build_fast_log2(rho^2), which reads the float's exponent field
+  and its mantissa in [1, 2) with no special case (0 -> -127, inf -> 128, NaN -> about 128.5);
+  plus the shader's bias per pixel (a per-pixel bias makes the LOD per pixel, the rho staying
+  the quad's); lp_build_linear_mip_levels clamps it to the levels; the fraction lod - floor(lod)
+  blends the two levels' bilinear results with the same fused lerp. Brilinear filtering
+  (lp_build_brilinear_rho / lp_build_brilinear_lod, BRILINEAR_FACTOR), which snaps the fraction
+  near integers, is only used with GALLIVM_PERF=brilinear. textureGrad uses the given
+  derivatives per pixel and zeroes an inf/NaN rho, as lp_build_rho does for explicit ones.
+  Measured (as measure_sampling.py part 3: levels filled with their index): the LOD
+  equal bit for bit on 4096 of 4096 pixels of a ramp of scales 2^-2..2^8, anisotropies 1..16 and
+  rotations, with and without a per-pixel bias, and at coordinates near 1000; whole lookups on
+  random RGBA32F texels equal on 16384 of 16384 values (texture, with a bias, textureLod), were
+  12012, 12318 and 8935 before (unfused lerps, scaled differences).
 """
 
 from __future__ import annotations
@@ -57,6 +85,16 @@ def _truncate_lowp(v: np.ndarray) -> np.ndarray:
     """llvmpipe's lowp/mediump sampler result: float32 with the mantissa cut to 10 bits."""
     v = np.ascontiguousarray(v, dtype=np.float32)
     return (v.view(np.uint32) & _LOWP_MASK).view(np.float32)
+
+
+def _lerp(a: np.ndarray, b: np.ndarray, w: np.ndarray) -> np.ndarray:
+    """llvmpipe's lp_build_lerp on floats: fmuladd(w, b - a, a), which LLVM fuses into one FMA
+    on x86-64 (measured: bit for bit equal). NumPy has no fma: the product of two float32 values
+    is exact in float64, the float64 sum is then rounded to float32 (a second rounding that can
+    differ from a single one only when the exact sum needs more than 53 bits and lies within
+    2^-29 ulp of a float32 tie: not seen in the measurements)."""
+    d = (b - a).astype(np.float64)
+    return (np.asarray(w, np.float64) * d + a.astype(np.float64)).astype(np.float32)
 
 
 def _wrap(i: np.ndarray, n: int, wrap: str) -> np.ndarray:
@@ -76,17 +114,20 @@ def _bilinear(t: np.ndarray, u, v, offset, wrap: str) -> np.ndarray:
     if wrap == "repeat":  # the closest of the orders measured (see the module docstring)
         u = u - np.floor(u)
         v = v - np.floor(v)
-    x = u * np.float32(w) - np.float32(0.5)
-    y = v * np.float32(h) - np.float32(0.5)
+        x = u * np.float32(w) - np.float32(0.5)
+        y = v * np.float32(h) - np.float32(0.5)
+    else:  # lp_build_sample_wrap_linear, CLAMP_TO_EDGE: min(u * size + offset, size) (NaN: size),
+        # - 0.5, max(0): no integer overflow for huge or infinite coordinates
+        x = np.maximum(np.fmin(u * np.float32(w) + np.float32(offset[0]), np.float32(w)) - np.float32(0.5), 0)
+        y = np.maximum(np.fmin(v * np.float32(h) + np.float32(offset[1]), np.float32(h)) - np.float32(0.5), 0)
+        offset = (0, 0)
     x0, y0 = np.floor(x), np.floor(y)
     fx, fy = (x - x0)[..., None], (y - y0)[..., None]
     x0, y0 = x0.astype(np.int64) + offset[0], y0.astype(np.int64) + offset[1]
     xa, xb = _wrap(x0, w, wrap), _wrap(x0 + 1, w, wrap)
     ya, yb = _wrap(y0, h, wrap), _wrap(y0 + 1, h, wrap)
     a, b, c, d = t[ya, xa], t[ya, xb], t[yb, xa], t[yb, xb]
-    lo = a + fx * (b - a)
-    hi = c + fx * (d - c)
-    return lo + fy * (hi - lo)
+    return _lerp(_lerp(a, b, fx), _lerp(c, d, fx), fy)
 
 
 def _offset(offset) -> tuple:
@@ -100,11 +141,18 @@ def _project(p) -> np.ndarray:
 
 
 def _fast_log2(x: np.ndarray) -> np.ndarray:
-    """exponent + (mantissa - 1) for x = mantissa * 2^exponent, mantissa in [1, 2) (-inf at 0)."""
-    m, e = np.frexp(np.asarray(x, dtype=np.float32))
-    with np.errstate(divide="ignore"):
-        out = (e - 1).astype(np.float32) + (m * np.float32(2) - np.float32(1))
-    return np.where(x > 0, out, np.float32(-np.inf)).astype(np.float32)
+    """Mesa's lp_build_fast_log2 on the float32 bits: (exponent field - 127 - 1) + the mantissa
+    with the exponent of 1.0 (in [1, 2)). No special cases: 0 gives -127, +inf 128 and a NaN
+    about 128.5, which the LOD clamp turns into the first and the last level."""
+    bits = np.ascontiguousarray(x, dtype=np.float32).view(np.uint32)
+    exponent = ((bits >> np.uint32(23)) & np.uint32(0xFF)).astype(np.int32) - 128
+    mantissa = ((bits & np.uint32(0x007FFFFF)) | np.uint32(0x3F800000)).view(np.float32)
+    return exponent.astype(np.float32) + mantissa
+
+
+def _max_x86(a: np.ndarray, b: np.ndarray) -> np.ndarray:
+    """lp_build_max as llvmpipe emits it on x86 (maxps): a > b ? a : b, so b where either is NaN."""
+    return np.where(a > b, a, b)
 
 
 def _quad_corner_diff(v: np.ndarray, width: int, axis: int) -> np.ndarray:
@@ -172,7 +220,7 @@ class TextureFunctions:
             a = _bilinear(levels[k], us, vs, offset, s.wrap)
             if k + 1 < len(levels):
                 b = _bilinear(levels[k + 1], us, vs, offset, s.wrap)
-                a = a + frac[sel] * (b - a)
+                a = _lerp(a, b, frac[sel])
             out[sel] = a
         return self._tex_result(s, out)
 
@@ -184,13 +232,14 @@ class TextureFunctions:
         if s is None or s.filter != "mipmap" or width is None:
             return None
         h, w = s.texels.shape[:2]
-        scaled = np.stack([p[0] * np.float32(w), p[1] * np.float32(h)])
-        if scaled.shape[-1] == 1:
+        p = np.asarray(p, dtype=np.float32)
+        if p.shape[-1] == 1:
             rho2 = np.zeros(1, np.float32)
-        else:
-            dx = _quad_corner_diff(scaled, width, 1)
-            dy = _quad_corner_diff(scaled, width, 0)
-            rho2 = np.maximum((dx * dx).sum(axis=0), (dy * dy).sum(axis=0))
+        else:  # the coordinates' differences, then scaled by the size (not the scaled coordinates')
+            size = np.array([w, h], dtype=np.float32)[:, None]
+            dx = _quad_corner_diff(p, width, 1) * size
+            dy = _quad_corner_diff(p, width, 0) * size
+            rho2 = _max_x86(dx[0] * dx[0] + dx[1] * dx[1], dy[0] * dy[0] + dy[1] * dy[1])
         lod = np.float32(0.5) * _fast_log2(rho2)
         if bias is not None:
             lod = lod + np.asarray(bias, dtype=np.float32)
@@ -226,7 +275,8 @@ class TextureFunctions:
         h, w = s.texels.shape[:2]
         size = np.array([w, h], dtype=np.float32).reshape(2, *([1] * (np.ndim(dpdx) - 1)))
         dx, dy = np.asarray(dpdx, np.float32) * size, np.asarray(dpdy, np.float32) * size
-        rho2 = np.maximum((dx * dx).sum(axis=0), (dy * dy).sum(axis=0))
+        rho2 = _max_x86(dx[0] * dx[0] + dx[1] * dx[1], dy[0] * dy[0] + dy[1] * dy[1])
+        rho2 = np.where(np.isfinite(rho2), rho2, np.float32(0))  # lp_build_rho: explicit derivatives only
         return self._sample(s, p, _offset(offset), np.float32(0.5) * _fast_log2(rho2))
 
     # the projective forms: coordinates p.xy / p.z (vec3) or p.xy / p.w (vec4), then as above

@@ -373,3 +373,88 @@ def test_odd_sizes_shade_helper_pixels_as_llvmpipe(gl, tmp_path, size):
     ours = api.compile(folder, backend="numpy").render(size=size)
     theirs = api.compile(folder, backend="gl").render(size=size)
     assert np.abs(ours - theirs).max() <= 2.0**-10  # as test_mipmap_against_gl
+
+
+def _host_has_fma() -> bool:
+    try:
+        with open("/proc/cpuinfo") as f:
+            return " fma " in f.read()
+    except OSError:
+        return False
+
+
+@pytest.mark.parametrize("filt", ["linear", "mipmap"])
+@pytest.mark.parametrize("wrap", ["clamp", "repeat"])
+@pytest.mark.parametrize("lookup", [
+    "texture(iChannel0, uv)",
+    "texture(iChannel0, uv, fragCoord.x / 20.0 - 1.0)",  # a bias that differs within a quad
+    "textureLod(iChannel0, uv, fragCoord.y / 9.0 - 0.5)",
+])
+def test_filtering_bit_for_bit_on_a_ramp_of_scales(gl, tmp_path, lookup, wrap, filt):
+    # A ramp of scales (0 to about 12 texels per pixel along x, LOD 0 to about 3.6) and
+    # anisotropies on a texture whose sides are neither powers of two nor equal (the LOD's size
+    # factor then rounds). The coordinates are exact in float32 on both backends (half-integers,
+    # sums of small products, a power-of-two divisor). llvmpipe's lerps are fused multiply-adds
+    # (LLVM's fmuladd) on a host with FMA, which the NumPy side copies (textures.py): equal bit
+    # for bit there; elsewhere only to a few ulps (2^-10 after the lowp truncation).
+    _png(tmp_path / "tex.png", 50, 70, seed=6)
+    body = f"""void mainImage(out vec4 fragColor, in vec2 fragCoord) {{
+    vec2 uv = vec2(fragCoord.x * fragCoord.x + fragCoord.y * 3.0,
+                   fragCoord.y * fragCoord.y * 0.5 + fragCoord.x) / 512.0;
+    fragColor = {lookup};
+}}
+"""
+    folder = _folder(tmp_path, {"Image": body},
+                     {"Image": {"iChannel0": {"texture": "tex.png", "filter": filt, "wrap": wrap}}})
+    ours = api.compile(folder, backend="numpy").render(size=SIZE)
+    theirs = api.compile(folder, backend="gl").render(size=SIZE)
+    assert ours[..., :3].std() > 0.01
+    if _host_has_fma():
+        assert np.array_equal(ours, theirs), f"{int((ours != theirs).sum())} of {ours.size} values differ"
+    else:
+        assert np.abs(ours - theirs).max() <= 2.0**-10
+
+
+def test_implicit_lod_of_a_quad_with_a_nan_derivative(gl, tmp_path):
+    # Two pixels of one 2x2 quad look up at x = +inf: the quad's x difference is inf - inf =
+    # NaN, its y difference inf. llvmpipe's max (x86 maxps) keeps the inf and its fast_log2 of
+    # the bits gives LOD 64: the last level for the whole quad (textures.py). np.maximum kept
+    # the NaN, which gave level 0. The inf pixels themselves (their wrap of inf is the driver's
+    # business) are left out of the comparison.
+    _png(tmp_path / "tex.png", 16, 16, seed=7)
+    body = """void mainImage(out vec4 fragColor, in vec2 fragCoord) {
+    vec2 uv = fragCoord / 64.0;
+    if (fragCoord.y < 1.0 && fragCoord.x > 30.0 && fragCoord.x < 32.0) uv.x = iResolution.x * 1e37 * 1e37;
+    fragColor = texture(iChannel0, uv);
+}
+"""
+    folder = _folder(tmp_path, {"Image": body}, {"Image": {"iChannel0": {"texture": "tex.png"}}})
+    ours = api.compile(folder, backend="numpy").render(size=SIZE)
+    theirs = api.compile(folder, backend="gl").render(size=SIZE)
+    keep = np.ones(ours.shape[:2], bool)
+    keep[-1, 30:32] = False  # images are top-down: GL's row 0 is the last
+    assert np.abs(ours - theirs)[keep].max() <= 2.0**-10  # as test_mipmap_against_gl
+    last = ours[-2, 30]  # the quad's upper pixels read the 1x1 last level, as llvmpipe
+    assert np.abs(last - ours[-2, 31]).max() <= 2.0**-10 and np.abs(last - ours[-2, 29]).max() > 0.01
+
+
+@pytest.mark.parametrize("filt", ["linear", "mipmap"])
+def test_clamp_of_huge_infinite_and_nan_coordinates(gl, tmp_path, filt):
+    # llvmpipe's CLAMP_TO_EDGE for linear filtering clamps the float coordinate before its
+    # integer conversion (min(u * size, size); lp_build_sample_wrap_linear): 1e30 and inf read
+    # the last texel, -1e30 and -inf the first. Converting first overflowed (1e30 read the first
+    # texel, inf gave NaN). Both neighbours are one edge texel, so the result is exact whatever
+    # the lerp's rounding. (A NaN coordinate still differs through the whole pipeline: not
+    # emulated.)
+    _png(tmp_path / "tex.png", 16, 16, seed=8)
+    body = """void mainImage(out vec4 fragColor, in vec2 fragCoord) {
+    float inf = iResolution.x * 1e37 * 1e37;
+    float u[6] = float[6](1e30, -1e30, inf, -inf, 3e9, 1e20);
+    fragColor = texture(iChannel0, vec2(u[int(fragCoord.x) % 6], u[int(fragCoord.y) % 6]));
+}
+"""
+    folder = _folder(tmp_path, {"Image": body},
+                     {"Image": {"iChannel0": {"texture": "tex.png", "filter": filt, "wrap": "clamp"}}})
+    ours = api.compile(folder, backend="numpy").render(size=(12, 12))
+    theirs = api.compile(folder, backend="gl").render(size=(12, 12))
+    assert np.isfinite(theirs).all() and np.array_equal(ours, theirs)
