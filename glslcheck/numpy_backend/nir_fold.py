@@ -155,6 +155,8 @@ def _merge_constants(tr: Any, e: A.Binary, mask: str | None) -> str | None:
         return None
     if tr.type_of(inner) != tr.type_of(x_node) or not _varying(tr, b_node):
         return None  # (all constant after propagation: NIR folds it left to right)
+    if _has_matrix(tr, b_node, c_node):
+        return None  # m * v is no elementwise product: NIR lowers it to columns first
     b_inner = _stable_init(tr, b_node) if isinstance(b_node, A.Identifier) else b_node
     if isinstance(b_inner, A.Binary) and b_inner.op in ops and (_const(tr, b_inner.left) or _const(tr, b_inner.right)):
         return None  # NIR would merge further into b: not copied
@@ -176,7 +178,13 @@ def _const(tr: Any, node: Any) -> bool:
 
 
 def _is_product(tr: Any, node: Any) -> bool:
-    return isinstance(node, A.Binary) and node.op == "*" and not _const(tr, node)
+    """A product of numbers or vectors (a matrix product is no elementwise product)."""
+    return (isinstance(node, A.Binary) and node.op == "*" and not _const(tr, node)
+            and not _has_matrix(tr, node.left, node.right))
+
+
+def _has_matrix(tr: Any, *nodes: Any) -> bool:
+    return any(tr.type_of(n).is_matrix for n in nodes)
 
 
 # built-ins whose NIR result is an fadd or fmul (lowered to arithmetic): their values are not
@@ -284,6 +292,8 @@ def _sink(tr: Any, e: A.Binary, mask: str | None) -> str | None:
     if not (isinstance(inner, A.Binary) and inner.op in ops):
         return None
     a, b = inner.left, inner.right
+    if _has_matrix(tr, a, b):
+        return None  # a matrix product is not reassociated as numbers are
     if ops == ("*",):
         if not (_opaque(tr, a) and _opaque(tr, b)):
             return None  # an operand NIR would look into further: not copied

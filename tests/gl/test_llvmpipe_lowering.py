@@ -63,3 +63,21 @@ def test_float64_reference_keeps_the_written_order(make_shader):
     f32 = np.asarray(prog.render(size=(32, 16)), np.float64)
     f64 = np.asarray(prog.render(size=(32, 16), precision="float64"), np.float64)
     assert np.allclose(f32, f64, rtol=1e-5, atol=1e-3)
+
+
+def test_a_matrix_product_is_not_reassociated_as_numbers(gl, make_shader):
+    """`m * p * 2.02` with a constant matrix (the fbm of the real shader Elevated): the constant
+    merge once read it as the elementwise `p * (2.02 * m)`, a wrong value of the wrong shape
+    (a traceback in mix). NIR lowers m * p to columns before any reassociation; the rounding of
+    those column sums is not what this test is about, so it compares to GL within 4 ULP-scale
+    units of the values (|q| < 20 here: 1e-5 absolute)."""
+    shader = make_shader("""const mat2 m2 = mat2(0.8, 0.6, -0.6, 0.8);
+void mainImage(out vec4 c, in vec2 p) {
+    vec2 q = fract(p * 0.0173);
+    q = m2 * q * 2.02;
+    q = m2 * q * 2.03;
+    c = vec4(q, mix(vec3(0.2), vec3(0.9), q.x * 0.1));
+}""")
+    got_gl = np.asarray(compile_backend(shader, "gl").render(size=(64, 36)))
+    got_np = np.asarray(compile_backend(shader, "numpy").render(size=(64, 36)))
+    np.testing.assert_allclose(got_np, got_gl, rtol=0, atol=1e-5)
