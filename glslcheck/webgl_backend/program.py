@@ -33,12 +33,13 @@ from __future__ import annotations
 import base64
 import re
 import weakref
-from dataclasses import dataclass, field, replace
+from dataclasses import dataclass, field
 
 import numpy as np
 
 from ..diagnostics import Diagnostic, GlslError, Location, source_line
 from ..gl_backend.program import _entry_location, driver_diagnostics, parse_driver_log
+from ..records import replace
 from ..shadertoy import (OFFSET_UNIFORM, UNIFORMS, FrameInputs, Program, build_program, frame_inputs,
                          frame_uniforms)
 from ..sources import Shader
