@@ -12,6 +12,7 @@ import pytest
 from PIL import Image
 
 from glslcheck import api
+from glslcheck.driver_profile import host_fma
 from glslcheck.verify import verify_frames
 
 SIZE = (64, 36)
@@ -345,7 +346,7 @@ def test_shadertoy_json_export_reads_an_unbound_channel_as_shadertoy_does(gl, tm
     # Shadertoy runs a pass that reads a channel with no input (a real public shader does, see
     # channels.py): the unit has no texture, so lookups give (0, 0, 0, 1) (textureSize of such a
     # unit is left undefined by ES 3.00: llvmpipe says 1x1, not pinned here)
-    path = _export(tmp_path)
+    _export(tmp_path)
     data = json.loads((tmp_path / "shader.json").read_text())
     image = data["Shader"]["renderpass"][1]
     image["code"] = ("void mainImage(out vec4 c, in vec2 p) { c = textureLod(iChannel2, p / iResolution.xy, 0.0)"
@@ -375,14 +376,6 @@ def test_odd_sizes_shade_helper_pixels_as_llvmpipe(gl, tmp_path, size):
     assert np.abs(ours - theirs).max() <= 2.0**-10  # as test_mipmap_against_gl
 
 
-def _host_has_fma() -> bool:
-    try:
-        with open("/proc/cpuinfo") as f:
-            return " fma " in f.read()
-    except OSError:
-        return False
-
-
 @pytest.mark.parametrize("filt", ["linear", "mipmap"])
 @pytest.mark.parametrize("wrap", ["clamp", "repeat"])
 @pytest.mark.parametrize("lookup", [
@@ -409,7 +402,7 @@ def test_filtering_bit_for_bit_on_a_ramp_of_scales(gl, tmp_path, lookup, wrap, f
     ours = api.compile(folder, backend="numpy").render(size=SIZE)
     theirs = api.compile(folder, backend="gl").render(size=SIZE)
     assert ours[..., :3].std() > 0.01
-    if _host_has_fma():
+    if host_fma():  # llvmpipe fuses the lerps only where the CPU has FMA (driver_profile)
         assert np.array_equal(ours, theirs), f"{int((ours != theirs).sum())} of {ours.size} values differ"
     else:
         assert np.abs(ours - theirs).max() <= 2.0**-10
