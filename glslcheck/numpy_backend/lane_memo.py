@@ -52,6 +52,7 @@ class MemoMath:
             self.hits += 1
             return out.copy()  # a fresh array, as the call itself returns
 
+        self.__dict__[name] = call  # made once per name: later calls skip __getattr__
         return call
 
     @staticmethod
