@@ -119,14 +119,17 @@ def _megabytes(n: int) -> str:
 
 
 def frame_seconds() -> float:
-    """The frame budget in seconds: GLSLCHECK_FRAME_SECONDS, else FRAME_SECONDS."""
+    """The frame budget in seconds: GLSLCHECK_FRAME_SECONDS, else FRAME_SECONDS. The variable
+    takes the range `--frame-budget` takes (commands/args.py, the one home of both limits)."""
+    from ..commands.args import MAX_FRAME_SECONDS, MIN_FRAME_SECONDS
     text = os.environ.get("GLSLCHECK_FRAME_SECONDS", "").strip()
     try:
         value = float(text) if text else FRAME_SECONDS
     except ValueError:
         value = math.nan
-    if not 0 < value < math.inf:
-        raise InputError(f"error: GLSLCHECK_FRAME_SECONDS must be a positive number of seconds, not {text!r}")
+    if not MIN_FRAME_SECONDS <= value <= MAX_FRAME_SECONDS:
+        raise InputError(f"error: GLSLCHECK_FRAME_SECONDS must be a number of seconds from {MIN_FRAME_SECONDS:g} "
+                         f"to {MAX_FRAME_SECONDS:g} (like --frame-budget), not {text!r}")
     return value
 
 

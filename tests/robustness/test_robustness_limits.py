@@ -236,8 +236,21 @@ def test_frame_budget_from_the_environment(tmp_path):
     env["GLSLCHECK_FRAME_SECONDS"] = "soon"
     r = subprocess.run([sys.executable, "-m", "glslcheck", "render", str(path), *out],
                        env=env, capture_output=True, text=True, timeout=600)
-    assert r.returncode == 2 and "GLSLCHECK_FRAME_SECONDS must be a positive number" in r.stderr, r.stderr
+    assert r.returncode == 2 and "GLSLCHECK_FRAME_SECONDS must be a number of seconds" in r.stderr, r.stderr
     assert "Traceback" not in r.stderr
+
+
+@pytest.mark.parametrize("text", ["1e9", "0.001", "0", "-5", "inf", "nan"])
+def test_frame_budget_from_the_environment_takes_the_option_range(monkeypatch, text):
+    """GLSLCHECK_FRAME_SECONDS is held to --frame-budget's range (0.01 to 86400 s): a budget of
+    31 years is no budget, and 1 ms is below the timer's resolution."""
+    from glslcheck.diagnostics import InputError
+    from glslcheck.numpy_backend.program import frame_seconds
+    monkeypatch.setenv("GLSLCHECK_FRAME_SECONDS", text)
+    with pytest.raises(InputError, match="from 0.01 to 86400"):
+        frame_seconds()
+    monkeypatch.setenv("GLSLCHECK_FRAME_SECONDS", "86400")
+    assert frame_seconds() == 86400.0
 
 
 # --- memory ------------------------------------------------------------------------------------
