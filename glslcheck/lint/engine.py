@@ -204,7 +204,7 @@ def _in_dropped(d: Diagnostic, dropped: list[tuple[str, int, int, str]], texts: 
         return True
     lines = texts.get(d.loc.path, [])
     at = lines[d.loc.line - 1][d.loc.column - 1 :] if 0 < d.loc.line <= len(lines) else ""
-    return "definition" in d.message and any(re.match(rf"{name}\s*\(", at) for *_, name in dropped)
+    return "definition" in d.message and any(re.match(rf"{re.escape(name)}\s*\(", at) for *_, name in dropped)
 
 
 _PASS_TABS = ("Image", *BUFFER_TABS, "GLSL")  # Common is linted inside the first one present

@@ -47,3 +47,17 @@ def test_an_unclosed_function_is_blanked_to_the_end_and_other_files_are_not_touc
     new, region = drop_declaration(units, Location("Image.glsl", 2, 12), [])
     assert region == ("Image.glsl", 2, 3, "f") and new[0].text == "float g = 1.0;\n" + " " * 21 + "\n"
     assert drop_declaration(units, Location("Other.glsl", 1, 1), [])[1] is None
+
+
+def test_a_dropped_declaration_whose_text_is_no_regular_expression(tmp_path, capsys):
+    """Found by the fuzzer (seed 16, inputs 28811 and 29258): a dropped declaration that names no
+    function is remembered by its first line, `float g = (1.0 +;`, and that text went into a
+    regular expression unescaped: `re.error` and a traceback instead of the compile errors."""
+    from glslcheck.cli import main
+    path = tmp_path / "Image.glsl"
+    path.write_text("// Image.glsl\nfloat g = (1.0 +;\nfloat f(float x);\n"
+                    "void mainImage(out vec4 c, in vec2 p) {\n    c = vec4(f(p.x));\n}\n")
+    assert main(["lint", str(path)]) == 1
+    out = capsys.readouterr().out
+    assert "Image.glsl:2:17: compile-error expected an expression" in out
+    assert "Image.glsl:5:14: compile-error 'float f(float)' is declared but has no definition" in out
