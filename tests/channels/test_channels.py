@@ -451,3 +451,35 @@ def test_clamp_of_huge_infinite_and_nan_coordinates(gl, tmp_path, filt):
     ours = api.compile(folder, backend="numpy").render(size=(12, 12))
     theirs = api.compile(folder, backend="gl").render(size=(12, 12))
     assert np.isfinite(theirs).all() and np.array_equal(ours, theirs)
+
+
+@pytest.mark.parametrize("filt", ["nearest", "linear", "mipmap"])
+@pytest.mark.parametrize("wrap", ["repeat", "clamp"])
+@pytest.mark.parametrize("w, h", [(16, 16), (12, 10), (16, 10)])
+def test_wrap_of_huge_and_infinite_coordinates_on_pot_and_npot_sizes(gl, tmp_path, w, h, wrap, filt):
+    # llvmpipe wraps each axis by its own formula (lp_build_sample_wrap_nearest / _linear),
+    # chosen by whether level 0's size on that axis is a power of two (textures.py
+    # _axis_nearest, _axis_linear): repeat on a power of two scales first (u * n - 0.5) and
+    # masks the int32 index, so past 2^31 texels the index is INT_MIN & (n - 1) = 0; other sizes
+    # take the fraction first; nearest clamp truncates to int32 (1e30 reads the *first* texel).
+    # glslcheck took the fraction first everywhere (space_ship's exhaust noise, a
+    # 256x256 repeat texture at coordinates near 1e7: 3 edge pixels over budget) and converted
+    # nearest coordinates to int64. Offsets (textureOffset) go in before the repeat, in
+    # normalised units on a size that is not a power of two. An infinite coordinate gives NaN
+    # weights under linear repeat on both sides (NaN compares equal here).
+    _png(tmp_path / "tex.png", w, h, seed=9)
+    lookup = "textureLodOffset(iChannel0, uv, 0.0, off)" if filt == "mipmap" else "textureOffset(iChannel0, uv, off)"
+    body = f"""void mainImage(out vec4 fragColor, in vec2 fragCoord) {{
+    float inf = iResolution.x * 1e37 * 1e37;
+    float u[8] = float[8](1e30, -1e30, inf, -inf, 3e9 + 0.7, 1.2e7 + 0.3, -7.77e5 - 0.1, 0.37);
+    vec2 uv = vec2(u[int(fragCoord.x) % 8], u[int(fragCoord.y) % 8]) + fragCoord * vec2(0.013, 0.021);
+    const ivec2 off = ivec2(-3, 5);
+    if (fragCoord.x > 8.0) fragColor = texture(iChannel0, uv);
+    else fragColor = {lookup};
+}}
+"""
+    folder = _folder(tmp_path, {"Image": body},
+                     {"Image": {"iChannel0": {"texture": "tex.png", "filter": filt, "wrap": wrap}}})
+    ours = api.compile(folder, backend="numpy").render(size=(16, 16))
+    theirs = api.compile(folder, backend="gl").render(size=(16, 16))
+    assert np.array_equal(ours, theirs, equal_nan=True), f"{int((ours != theirs).sum())} of {ours.size} values differ"
