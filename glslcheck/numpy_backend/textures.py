@@ -40,8 +40,11 @@ What llvmpipe does, measured with tests/channels/measure_sampling.py (Mesa 22.3.
   when the fraction came first everywhere).
 - precision: Shadertoy's prelude declares `precision mediump sampler3D` only, so the iChannel
   uniforms it declares are lowp sampler2D (the ES 3.00 fragment default), and llvmpipe honours
-  it: every lookup result (after filtering) has its float32 mantissa truncated to 10 bits (the
-  low 13 bits cleared; pi reads 3.140625). A `precision highp sampler2D;` in the user's tab comes
+  it: every lookup result (after filtering) is converted to float16 rounding towards zero and
+  back: its float32 mantissa truncated to 10 bits (the low 13 bits cleared; pi reads 3.140625),
+  finite values past 65504 give 65504 (elevated's Image pass unpacks a velocity stored as
+  about 5e5 in Buffer A's alpha: it reads 65504 on llvmpipe), values below 2^-14 are float16
+  subnormals (multiples of 2^-24, truncated). A `precision highp sampler2D;` in the user's tab comes
   after the uniforms' declarations and changes nothing (measured). The lookups here truncate the
   same way (`ChannelInput.lowp`).
 - precision of the arithmetic on those results (measured, measure_sampling.py part 4): llvmpipe
@@ -92,9 +95,19 @@ _LOWP_MASK = np.uint32(0xFFFFE000)  # keep sign, exponent and the top 10 mantiss
 
 
 def _truncate_lowp(v: np.ndarray) -> np.ndarray:
-    """llvmpipe's lowp/mediump sampler result: float32 with the mantissa cut to 10 bits."""
+    """llvmpipe's lowp/mediump sampler result: the float32 converted to float16 rounding towards
+    zero (gallivm's float-to-half conversion) and back: the mantissa cut to 10 bits, a finite
+    magnitude past 65504 gives 65504 (not inf), below 2^-14 a multiple of 2^-24 (subnormal,
+    truncated); inf and NaN stay (measured with texelFetch: 1e5 -> 65504, 5e37 -> 65504,
+    1e-5 -> 9.954e-6, 3e-8 -> 0)."""
     v = np.ascontiguousarray(v, dtype=np.float32)
-    return (v.view(np.uint32) & _LOWP_MASK).view(np.float32)
+    out = (v.view(np.uint32) & _LOWP_MASK).view(np.float32)
+    a = np.abs(v)
+    if (a < np.float32(2.0**-14)).any() or (np.isfinite(a) & (a > np.float32(65504))).any():
+        sub = np.copysign(np.floor(a * np.float32(2.0**24)) * np.float32(2.0**-24), v)
+        out = np.where(a < np.float32(2.0**-14), sub, out)
+        out = np.where(np.isfinite(a) & (a > np.float32(65504)), np.copysign(np.float32(65504), v), out)
+    return out.astype(np.float32, copy=False)
 
 
 def _lerp(a: np.ndarray, b: np.ndarray, w: np.ndarray) -> np.ndarray:

@@ -483,3 +483,57 @@ def test_wrap_of_huge_and_infinite_coordinates_on_pot_and_npot_sizes(gl, tmp_pat
     ours = api.compile(folder, backend="numpy").render(size=(16, 16))
     theirs = api.compile(folder, backend="gl").render(size=(16, 16))
     assert np.array_equal(ours, theirs, equal_nan=True), f"{int((ours != theirs).sum())} of {ours.size} values differ"
+
+
+def test_lowp_lookups_are_float16_rounded_towards_zero(gl, tmp_path):
+    # A lowp lookup's result is float16 rounded towards zero (gallivm's float-to-half), not only
+    # a 10-bit mantissa: a finite value past 65504 reads 65504 (elevated's Image pass unpacks a
+    # velocity of about 5e5 from Buffer A's alpha: 387 pixels over tolerance when it read 5e5),
+    # below 2^-14 a float16 subnormal (a multiple of 2^-24, truncated); inf and NaN stay.
+    buf = """void mainImage(out vec4 fragColor, in vec2 fragCoord) {
+    float inf = iResolution.x * 1e37 * 1e37;
+    float v[12] = float[12](1e5, -7e4, 5e37, 65519.0, 65504.0, 1e-5, -3e-8, 1.6212e-6,
+                            inf, -inf, 3.14159265, 6e-5);
+    int i = int(fragCoord.x) % 12;
+    fragColor = vec4(v[i], -v[i] * 0.5, v[i] * float(int(fragCoord.y) + 1), 1.0);
+}
+"""
+    image = """void mainImage(out vec4 fragColor, in vec2 fragCoord) {
+    fragColor = texelFetch(iChannel0, ivec2(fragCoord), 0);
+}
+"""
+    folder = _folder(tmp_path, {"Buffer A": buf, "Image": image}, {"Image": {"iChannel0": {"buffer": "Buffer A"}}})
+    ours = api.compile(folder, backend="numpy").render(size=(12, 4))
+    theirs = api.compile(folder, backend="gl").render(size=(12, 4))
+    assert np.array_equal(ours, theirs, equal_nan=True), f"{int((ours != theirs).sum())} of {ours.size} values differ"
+    assert (np.abs(theirs[np.isfinite(theirs)]) <= 65504).all() and (theirs == 65504).any()
+
+
+@pytest.mark.parametrize("lookup", ["texture(iChannel0, p)", "vec4(dFdx(p.x), dFdy(p.y), fwidth(p))"])
+def test_derivatives_of_values_computed_under_a_branch(gl, tmp_path, lookup):
+    # A function called under a varying `if` (elevated's cloud fbm in its sky branch): llvmpipe
+    # computes its SSA values (`p = m * p` at the parameter's declaration level) in every lane
+    # of a quad, the lanes outside the branch included, and a lookup's implicit LOD or a
+    # derivative reads them. The NumPy backend kept those lanes' old `p` (a masked write):
+    # boundary quads read another LOD (elevated: 25 sky pixels, up to 0.32). Now such writes
+    # are unmasked (uniformity.py); a diagonal condition splits quads.
+    _png(tmp_path / "tex.png", 64, 64, seed=10)
+    body = f"""vec4 look(vec2 p) {{
+    vec4 f = vec4(0.0);
+    p = mat2(0.8, -0.6, 0.6, 0.8) * p * 2.02;
+    f += {lookup};
+    p = p * p * 1.7;
+    f += {lookup};
+    return f;
+}}
+
+void mainImage(out vec4 fragColor, in vec2 fragCoord) {{
+    vec2 uv = fragCoord * fragCoord / 800.0;
+    fragColor = vec4(0.5);
+    if (fragCoord.x + fragCoord.y > 20.0) fragColor = look(uv);
+}}
+"""
+    folder = _folder(tmp_path, {"Image": body}, {"Image": {"iChannel0": {"texture": "tex.png"}}})
+    ours = api.compile(folder, backend="numpy").render(size=(24, 16))
+    theirs = api.compile(folder, backend="gl").render(size=(24, 16))
+    assert np.abs(ours - theirs).max() <= 2.0**-10  # as test_mipmap_against_gl (exact on an FMA host)
