@@ -74,7 +74,9 @@ What llvmpipe does, measured with tests/channels/measure_sampling.py (Mesa 22.3.
   and its mantissa in [1, 2) with no special case (0 -> -127, inf -> 128, NaN -> about 128.5);
   plus the shader's bias per pixel (a per-pixel bias makes the LOD per pixel, the rho staying
   the quad's); lp_build_linear_mip_levels clamps it to the levels; the fraction lod - floor(lod)
-  blends the two levels' bilinear results with the same fused lerp. Brilinear filtering
+  blends the two levels' bilinear results with the same fused lerp, and only when some lane's
+  fraction is above 0 (lp_build_sample_mipmap's need_lerp): an integer LOD reads one level, so
+  an infinite texel one level up does not make 0 * inf = NaN (test_an_integer_lod_reads_one_level). Brilinear filtering
   (lp_build_brilinear_rho / lp_build_brilinear_lod, BRILINEAR_FACTOR), which snaps the fraction
   near integers, is only used with GALLIVM_PERF=brilinear. textureGrad uses the given
   derivatives per pixel and zeroes an inf/NaN rho, as lp_build_rho does for explicit ones.
@@ -127,6 +129,8 @@ def _to_int32(x: np.ndarray) -> np.ndarray:
     """x86's cvttps2dq (LLVM's fptosi there): truncation towards zero; a NaN or a value outside
     int32 gives INT_MIN (0x80000000). Kept in int64 (the wraps below only read low bits or clamp)."""
     ok = (x >= np.float32(-2.0**31)) & (x < np.float32(2.0**31))
+    if ok.all():  # the usual case: one conversion (astype truncates towards zero)
+        return x.astype(np.int64)
     return np.where(ok, np.trunc(np.where(ok, x, 0)), _INT_MIN).astype(np.int64)
 
 
@@ -283,16 +287,25 @@ class TextureFunctions:
         lo = np.floor(lod)
         frac = (lod - lo)[..., None]
         lo = lo.astype(np.int64)
+        ks = np.unique(lo)
+        if len(ks) == 1:  # one level for every lane (textureLod(s, p, 0.0)): no selection
+            return self._tex_result(s, self._two_levels(levels, ks[0], u, v, offset, s.wrap, pot, frac))
         out = np.empty(np.broadcast_shapes(u.shape, v.shape) + (4,), dtype=np.float32)
-        for k in np.unique(lo):  # lanes by their lower level: bilinear there and one level up
+        for k in ks:  # lanes by their lower level: bilinear there and one level up
             sel = lo == k
             us, vs = np.broadcast_to(u, sel.shape)[sel], np.broadcast_to(v, sel.shape)[sel]
-            a = _bilinear(levels[k], us, vs, offset, s.wrap, pot)
-            if k + 1 < len(levels):
-                b = _bilinear(levels[k + 1], us, vs, offset, s.wrap, pot)
-                a = _lerp(a, b, frac[sel])
-            out[sel] = a
+            out[sel] = self._two_levels(levels, k, us, vs, offset, s.wrap, pot, frac[sel])
         return self._tex_result(s, out)
+
+    @staticmethod
+    def _two_levels(levels, k, u, v, offset, wrap, pot, frac) -> np.ndarray:
+        """Level k's bilinear result, blended with level k + 1's by `frac`: lp_build_sample_mipmap
+        samples the upper level only when some lane's fraction is above 0 (a NaN is not), so
+        an integer LOD reads one level."""
+        a = _bilinear(levels[k], u, v, offset, wrap, pot)
+        if k + 1 < len(levels) and (frac > 0).any():
+            a = _lerp(a, _bilinear(levels[k + 1], u, v, offset, wrap, pot), frac)
+        return a
 
     def _implicit_lod(self, s, p: np.ndarray, width: int | None, bias=None):
         """llvmpipe's LOD of a 2x2 quad (measured, tests/channels/measure_sampling.py): the

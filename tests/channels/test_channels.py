@@ -537,3 +537,24 @@ void mainImage(out vec4 fragColor, in vec2 fragCoord) {{
     ours = api.compile(folder, backend="numpy").render(size=(24, 16))
     theirs = api.compile(folder, backend="gl").render(size=(24, 16))
     assert np.abs(ours - theirs).max() <= 2.0**-10  # as test_mipmap_against_gl (exact on an FMA host)
+
+
+@pytest.mark.parametrize("lod", ["0.0", "1.0", "fragCoord.x / 16.0"])
+def test_an_integer_lod_reads_one_level(gl, tmp_path, lod):
+    # lp_build_sample_mipmap filters the upper level only when some lane's LOD fraction is
+    # above 0: with an integer LOD an infinite texel of the next level does not turn the result
+    # into NaN (0 * inf), as the fused lerp with weight 0 would (textures.py _two_levels).
+    buf = """void mainImage(out vec4 fragColor, in vec2 fragCoord) {
+    float inf = iResolution.x * 1e37 * 1e37;
+    fragColor = vec4(fragCoord.x > 10.0 && fragCoord.y > 5.0 ? inf : fragCoord.x / 16.0, 0.5, -inf, 1.0);
+}
+"""
+    image = f"""void mainImage(out vec4 fragColor, in vec2 fragCoord) {{
+    fragColor = textureLod(iChannel0, fragCoord / iResolution.xy, {lod});
+}}
+"""
+    folder = _folder(tmp_path, {"Buffer A": buf, "Image": image},
+                     {"Image": {"iChannel0": {"buffer": "Buffer A", "filter": "mipmap"}}})
+    ours = api.compile(folder, backend="numpy", output="Image").render(size=(16, 8))
+    theirs = api.compile(folder, backend="gl", output="Image").render(size=(16, 8))
+    assert np.array_equal(ours, theirs, equal_nan=True), f"{int((ours != theirs).sum())} of {ours.size} values differ"
