@@ -42,6 +42,7 @@ from typing import Iterator, Sequence
 import numpy as np
 
 from .compare import Comparison, compare
+from .mediump import mediump_notes
 from .diagnostics import GlslError, InputError
 from .precision import check_precision
 from .shadertoy import DEFAULT_SIZE
@@ -281,6 +282,7 @@ def verify_frames(
         llvmpipe_loop_limit(p)
     pair = _Pair(programs)
     name = shader.root or (shader.image.path if shader.image else "<shader>")
+    mediump = mediump_notes(shader) if "numpy" in backends else ()  # float16 arithmetic (mediump.py)
     for w_h in size_list:
         for spec in specs:
             numpy_img, gl_img = pair.render(spec, w_h, tuple(mouse), date, precision, samples)
@@ -297,7 +299,7 @@ def verify_frames(
                 progress.step(f"{name} t={spec.time:g}")
             notes = tuple(f"{path}:{line}: this loop reached llvmpipe's limit of {LLVMPIPE_LOOP_LIMIT:,} "
                           "loop passes per pixel and was stopped on both sides (a GPU runs it to the end)"
-                          for path, line in limited_loops(programs[0]))
+                          for path, line in limited_loops(programs[0])) + mediump
             yield FrameResult(name, spec, (int(w_h[0]), int(w_h[1])), comparison,
                               numpy_img if keep_images else None, gl_img if keep_images else None, notes)
 

@@ -26,12 +26,25 @@ What llvmpipe does, measured with tests/channels/measure_sampling.py (Mesa 22.3.
   clamped as a float before its integer conversion, min(u * size + offset, size) - 0.5, then
   max(0), so 1e30 and +inf read the last texel and -1e30, -inf the first (converting first
   overflowed: 1e30 read the first texel, inf gave NaN). A NaN coordinate through a whole
-  Shadertoy render still differs (not emulated); repeat with huge or non-finite coordinates is
-  not emulated either (llvmpipe's NPOT repeat path: lp_build_coord_repeat_npot_linear).
+  Shadertoy render still differs (not emulated).
+- the wrap per axis (lp_build_sample_wrap_nearest / lp_build_sample_wrap_linear), chosen by
+  whether level 0's size on that axis is a power of two (llvmpipe's static pot_width/height, for
+  every level): repeat on a power of two is u * n (- 0.5 for linear), then floor, the int32 index
+  masked with n - 1; on other sizes the fraction u - floor(u) comes first (nearest: kept below 1,
+  NaN -> 1 - 2^-24, then truncated), and a texel offset is added to u in normalised units
+  (offset / n) before the repeat; nearest clamp is int32 truncation of u * n + offset, clamped.
+  The float-to-int conversions are x86's (INT_MIN for NaN and past 2^31), so huge and infinite
+  coordinates read what llvmpipe reads: equal bit for bit on 16x16, 12x10 and 16x10 textures at
+  +-1e30, +-inf, 3e9, 1.2e7, -7.8e5, with and without offsets (test_channels.py
+  test_wrap_of_huge_and_infinite_coordinates_on_pot_and_npot_sizes; 11 of its 18 cases differed
+  when the fraction came first everywhere).
 - precision: Shadertoy's prelude declares `precision mediump sampler3D` only, so the iChannel
   uniforms it declares are lowp sampler2D (the ES 3.00 fragment default), and llvmpipe honours
-  it: every lookup result (after filtering) has its float32 mantissa truncated to 10 bits (the
-  low 13 bits cleared; pi reads 3.140625). A `precision highp sampler2D;` in the user's tab comes
+  it: every lookup result (after filtering) is converted to float16 rounding towards zero and
+  back: its float32 mantissa truncated to 10 bits (the low 13 bits cleared; pi reads 3.140625),
+  finite values past 65504 give 65504 (elevated's Image pass unpacks a velocity stored as
+  about 5e5 in Buffer A's alpha: it reads 65504 on llvmpipe), values below 2^-14 are float16
+  subnormals (multiples of 2^-24, truncated). A `precision highp sampler2D;` in the user's tab comes
   after the uniforms' declarations and changes nothing (measured). The lookups here truncate the
   same way (`ChannelInput.lowp`).
 - precision of the arithmetic on those results (measured, measure_sampling.py part 4): llvmpipe
@@ -61,7 +74,9 @@ What llvmpipe does, measured with tests/channels/measure_sampling.py (Mesa 22.3.
   and its mantissa in [1, 2) with no special case (0 -> -127, inf -> 128, NaN -> about 128.5);
   plus the shader's bias per pixel (a per-pixel bias makes the LOD per pixel, the rho staying
   the quad's); lp_build_linear_mip_levels clamps it to the levels; the fraction lod - floor(lod)
-  blends the two levels' bilinear results with the same fused lerp. Brilinear filtering
+  blends the two levels' bilinear results with the same fused lerp, and only when some lane's
+  fraction is above 0 (lp_build_sample_mipmap's need_lerp): an integer LOD reads one level, so
+  an infinite texel one level up does not make 0 * inf = NaN (test_an_integer_lod_reads_one_level). Brilinear filtering
   (lp_build_brilinear_rho / lp_build_brilinear_lod, BRILINEAR_FACTOR), which snaps the fraction
   near integers, is only used with GALLIVM_PERF=brilinear. textureGrad uses the given
   derivatives per pixel and zeroes an inf/NaN rho, as lp_build_rho does for explicit ones.
@@ -82,9 +97,19 @@ _LOWP_MASK = np.uint32(0xFFFFE000)  # keep sign, exponent and the top 10 mantiss
 
 
 def _truncate_lowp(v: np.ndarray) -> np.ndarray:
-    """llvmpipe's lowp/mediump sampler result: float32 with the mantissa cut to 10 bits."""
+    """llvmpipe's lowp/mediump sampler result: the float32 converted to float16 rounding towards
+    zero (gallivm's float-to-half conversion) and back: the mantissa cut to 10 bits, a finite
+    magnitude past 65504 gives 65504 (not inf), below 2^-14 a multiple of 2^-24 (subnormal,
+    truncated); inf and NaN stay (measured with texelFetch: 1e5 -> 65504, 5e37 -> 65504,
+    1e-5 -> 9.954e-6, 3e-8 -> 0)."""
     v = np.ascontiguousarray(v, dtype=np.float32)
-    return (v.view(np.uint32) & _LOWP_MASK).view(np.float32)
+    out = (v.view(np.uint32) & _LOWP_MASK).view(np.float32)
+    a = np.abs(v)
+    if (a < np.float32(2.0**-14)).any() or (np.isfinite(a) & (a > np.float32(65504))).any():
+        sub = np.copysign(np.floor(a * np.float32(2.0**24)) * np.float32(2.0**-24), v)
+        out = np.where(a < np.float32(2.0**-14), sub, out)
+        out = np.where(np.isfinite(a) & (a > np.float32(65504)), np.copysign(np.float32(65504), v), out)
+    return out.astype(np.float32, copy=False)
 
 
 def _lerp(a: np.ndarray, b: np.ndarray, w: np.ndarray) -> np.ndarray:
@@ -97,35 +122,83 @@ def _lerp(a: np.ndarray, b: np.ndarray, w: np.ndarray) -> np.ndarray:
     return (np.asarray(w, np.float64) * d + a.astype(np.float64)).astype(np.float32)
 
 
-def _wrap(i: np.ndarray, n: int, wrap: str) -> np.ndarray:
-    return np.mod(i, n) if wrap == "repeat" else np.clip(i, 0, n - 1)
+_INT_MIN = -(2**31)
 
 
-def _nearest(t: np.ndarray, u, v, offset, wrap: str) -> np.ndarray:
+def _to_int32(x: np.ndarray) -> np.ndarray:
+    """x86's cvttps2dq (LLVM's fptosi there): truncation towards zero; a NaN or a value outside
+    int32 gives INT_MIN (0x80000000). Kept in int64 (the wraps below only read low bits or clamp)."""
+    ok = (x >= np.float32(-2.0**31)) & (x < np.float32(2.0**31))
+    if ok.all():  # the usual case: one conversion (astype truncates towards zero)
+        return x.astype(np.int64)
+    return np.where(ok, np.trunc(np.where(ok, x, 0)), _INT_MIN).astype(np.int64)
+
+
+def _ifloor_fract(x: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """lp_build_ifloor_fract with SSE4.1: floor as a float, the weight x - floor(x), the integer
+    by _to_int32 (so a huge or infinite x has weight 0 or NaN and integer INT_MIN)."""
+    fl = np.floor(x)
+    return _to_int32(fl), x - fl
+
+
+def _fract_safe(u: np.ndarray) -> np.ndarray:
+    """lp_build_fract_safe: u - floor(u), kept below 1 (min with 1 - 2^-24; a NaN, from an
+    infinite u, gives the second operand too)."""
+    return np.where(u - np.floor(u) < np.float32(1 - 2.0**-24), u - np.floor(u), np.float32(1 - 2.0**-24))
+
+
+def _axis_nearest(u: np.ndarray, n: int, pot: bool, wrap: str, off) -> np.ndarray:
+    """lp_build_sample_wrap_nearest along one axis: the texel index for coordinate u, size n
+    (`pot`: level 0's size on this axis is a power of two, llvmpipe's static pot_width/height)."""
+    nf = np.float32(n)
+    if wrap != "repeat":  # CLAMP_TO_EDGE: itrunc(u * n + offset), clamped as an integer
+        return np.clip(_to_int32(u * nf + np.asarray(off).astype(np.float32)), 0, n - 1)
+    if pot:  # ifloor(u * n) + offset, & (n - 1)
+        return (_to_int32(np.floor(u * nf)) + off) & (n - 1)
+    if np.any(off):  # the offset in normalised units, before the repeat
+        u = u + np.asarray(off).astype(np.float32) / nf
+    return _to_int32(_fract_safe(u) * nf)
+
+
+def _axis_linear(u: np.ndarray, n: int, pot: bool, wrap: str, off):
+    """lp_build_sample_wrap_linear along one axis: the two texel indices and the weight."""
+    nf, half = np.float32(n), np.float32(0.5)
+    if wrap != "repeat":  # CLAMP_TO_EDGE: min(u * n + offset, n) (NaN: n), - 0.5, max(0): no
+        # integer overflow for huge or infinite coordinates
+        x = np.maximum(np.fmin(u * nf + np.asarray(off).astype(np.float32), nf) - half, 0)
+        i0, w = _ifloor_fract(x)
+        return i0, np.minimum(i0 + 1, n - 1), w
+    if pot:  # u * n - 0.5 (+ offset), ifloor_fract, & (n - 1): huge coordinates read texels 0, 1
+        i0, w = _ifloor_fract(u * nf - half + np.asarray(off).astype(np.float32))
+        return i0 & (n - 1), (i0 + 1) & (n - 1), w
+    if np.any(off):  # lp_build_coord_repeat_npot_linear, the offset in normalised units first
+        u = u + np.asarray(off).astype(np.float32) / nf
+    x = (u - np.floor(u)) * nf - half
+    i0, w = _ifloor_fract(x)
+    i0 = np.where(~(x >= 0), n - 1, i0)  # an unordered compare: NaN too
+    return i0, np.where(i0 != n - 1, i0 + 1, 0), w
+
+
+def _pot(t: np.ndarray) -> tuple[bool, bool]:
+    """Whether the texture's width and height (level 0) are powers of two."""
     h, w = t.shape[:2]
-    ix = _wrap(np.floor(u * np.float32(w)).astype(np.int64) + offset[0], w, wrap)
-    iy = _wrap(np.floor(v * np.float32(h)).astype(np.int64) + offset[1], h, wrap)
-    return t[iy, ix]
+    return (w & (w - 1)) == 0, (h & (h - 1)) == 0
 
 
-def _bilinear(t: np.ndarray, u, v, offset, wrap: str) -> np.ndarray:
-    """One level's bilinear filter (see the module docstring for the measured agreement)."""
+def _nearest(t: np.ndarray, u, v, offset, wrap: str, pot=None) -> np.ndarray:
     h, w = t.shape[:2]
-    if wrap == "repeat":  # the closest of the orders measured (see the module docstring)
-        u = u - np.floor(u)
-        v = v - np.floor(v)
-        x = u * np.float32(w) - np.float32(0.5)
-        y = v * np.float32(h) - np.float32(0.5)
-    else:  # lp_build_sample_wrap_linear, CLAMP_TO_EDGE: min(u * size + offset, size) (NaN: size),
-        # - 0.5, max(0): no integer overflow for huge or infinite coordinates
-        x = np.maximum(np.fmin(u * np.float32(w) + np.float32(offset[0]), np.float32(w)) - np.float32(0.5), 0)
-        y = np.maximum(np.fmin(v * np.float32(h) + np.float32(offset[1]), np.float32(h)) - np.float32(0.5), 0)
-        offset = (0, 0)
-    x0, y0 = np.floor(x), np.floor(y)
-    fx, fy = (x - x0)[..., None], (y - y0)[..., None]
-    x0, y0 = x0.astype(np.int64) + offset[0], y0.astype(np.int64) + offset[1]
-    xa, xb = _wrap(x0, w, wrap), _wrap(x0 + 1, w, wrap)
-    ya, yb = _wrap(y0, h, wrap), _wrap(y0 + 1, h, wrap)
+    pot = _pot(t) if pot is None else pot
+    return t[_axis_nearest(v, h, pot[1], wrap, offset[1]), _axis_nearest(u, w, pot[0], wrap, offset[0])]
+
+
+def _bilinear(t: np.ndarray, u, v, offset, wrap: str, pot=None) -> np.ndarray:
+    """One level's bilinear filter (see the module docstring for the measured agreement).
+    `pot`: level 0's (width, height) power-of-two flags (default: this level's)."""
+    h, w = t.shape[:2]
+    pot = _pot(t) if pot is None else pot
+    xa, xb, fx = _axis_linear(u, w, pot[0], wrap, offset[0])
+    ya, yb, fy = _axis_linear(v, h, pot[1], wrap, offset[1])
+    fx, fy = fx[..., None], fy[..., None]
     a, b, c, d = t[ya, xa], t[ya, xb], t[yb, xa], t[yb, xb]
     return _lerp(_lerp(a, b, fx), _lerp(c, d, fx), fy)
 
@@ -209,20 +282,30 @@ class TextureFunctions:
         if s.filter == "linear" or lod is None:
             return self._tex_result(s, _bilinear(s.texels, u, v, offset, s.wrap))
         levels = s.levels()
+        pot = _pot(levels[0])
         lod = np.clip(np.broadcast_to(np.asarray(lod, dtype=np.float32), u.shape), 0.0, len(levels) - 1)
         lo = np.floor(lod)
         frac = (lod - lo)[..., None]
         lo = lo.astype(np.int64)
+        ks = np.unique(lo)
+        if len(ks) == 1:  # one level for every lane (textureLod(s, p, 0.0)): no selection
+            return self._tex_result(s, self._two_levels(levels, ks[0], u, v, offset, s.wrap, pot, frac))
         out = np.empty(np.broadcast_shapes(u.shape, v.shape) + (4,), dtype=np.float32)
-        for k in np.unique(lo):  # lanes by their lower level: bilinear there and one level up
+        for k in ks:  # lanes by their lower level: bilinear there and one level up
             sel = lo == k
             us, vs = np.broadcast_to(u, sel.shape)[sel], np.broadcast_to(v, sel.shape)[sel]
-            a = _bilinear(levels[k], us, vs, offset, s.wrap)
-            if k + 1 < len(levels):
-                b = _bilinear(levels[k + 1], us, vs, offset, s.wrap)
-                a = _lerp(a, b, frac[sel])
-            out[sel] = a
+            out[sel] = self._two_levels(levels, k, us, vs, offset, s.wrap, pot, frac[sel])
         return self._tex_result(s, out)
+
+    @staticmethod
+    def _two_levels(levels, k, u, v, offset, wrap, pot, frac) -> np.ndarray:
+        """Level k's bilinear result, blended with level k + 1's by `frac`: lp_build_sample_mipmap
+        samples the upper level only when some lane's fraction is above 0 (a NaN is not), so
+        an integer LOD reads one level."""
+        a = _bilinear(levels[k], u, v, offset, wrap, pot)
+        if k + 1 < len(levels) and (frac > 0).any():
+            a = _lerp(a, _bilinear(levels[k + 1], u, v, offset, wrap, pot), frac)
+        return a
 
     def _implicit_lod(self, s, p: np.ndarray, width: int | None, bias=None):
         """llvmpipe's LOD of a 2x2 quad (measured, tests/channels/measure_sampling.py): the

@@ -33,9 +33,18 @@ generator two things about one function, as a GPU compiler's divergence analysis
   parameters get free writes only in a function no lane leaves early (no `return` but the last
   statement, no `discard`): the caller copies them back in every lane it called with. Return
   values and globals are always written under the mask, and so are variables declared in a
-  `switch` body (they are declared before the switch and written under the case's mask). Functions that
-  use derivatives (`dFdx`, implicit-LOD texture lookups) get no free writes: their inactive
-  lanes must keep the values llvmpipe's masked stores keep, which a neighbour's derivative reads.
+  `switch` body (they are declared before the switch and written under the case's mask). In
+  functions that use derivatives (`dFdx`, implicit-LOD texture lookups) a neighbour's
+  derivative reads the inactive lanes, so they must hold what llvmpipe's do: its NIR values are
+  SSA, computed in every lane of the SIMD vector whatever the exec mask, and only values merged
+  across control flow (phis, turned into registers) are stored under the mask. There a write is
+  free only at its variable's declaration level and loop depth (an SSA value; a write inside a
+  loop the variable is declared outside of is a loop-carried register, a masked store):
+  `vec2 p = ...; f += texture(c, p); p = m * p; f += texture(c, p);` in a function called
+  under a varying `if` gives the second lookup's quad the neighbours' own `m * p`, as llvmpipe
+  (tests/channels test_derivatives_of_values_computed_under_a_branch). A variable declared
+  outside a branch and written inside it stays masked (llvmpipe computes the new value in every
+  lane until the branch ends: not emulated).
 
 A variable is uniform when every write to it stores a uniform value at a uniform index and is
 free, or (in `mainImage`, whose lanes start all active) happens under a uniform mask. The
@@ -67,6 +76,7 @@ class Uniformity:
         self.varying: set[int] = set()  # symbol ids
         self.divergent_loops: set[int] = set()  # loop node ids whose live mask may diverge
         self.decl_level: dict[int, int | None] = {}  # symbol id -> level of its declaration (None: never free)
+        self.decl_loops: dict[int, int] = {}  # symbol id -> loops/switches around its declaration
         self.decl_seq: dict[int, int] = {}  # symbol id -> declarations seen before it in this pass
         self.free: set[int] = set()  # ids of the l-values (whole targets) of free writes
         self.cache: dict[int, bool] = {}
@@ -187,7 +197,8 @@ class Uniformity:
         sym = written_variable(self.model, target)[0]
         if sym is None or sym.kind not in ("local", "param"):
             return
-        free = self.allow_free and self.decl_level.get(id(sym)) == self.level
+        free = self.decl_level.get(id(sym)) == self.level and (
+            self.allow_free or self.decl_loops.get(id(sym), 0) == len(self.loop_flags))
         if free:
             self.free.add(id(target))
         if free and not self.mu:
@@ -205,6 +216,7 @@ class Uniformity:
         self.decl_seq[id(sym)] = self.seq
         self.decl_level[id(sym)] = None if self.switch_depth and level is None else (
             self.level if level is None else level)
+        self.decl_loops[id(sym)] = len(self.loop_flags)
         if not uniform:
             self.varying.add(id(sym))
 

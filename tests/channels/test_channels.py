@@ -451,3 +451,110 @@ def test_clamp_of_huge_infinite_and_nan_coordinates(gl, tmp_path, filt):
     ours = api.compile(folder, backend="numpy").render(size=(12, 12))
     theirs = api.compile(folder, backend="gl").render(size=(12, 12))
     assert np.isfinite(theirs).all() and np.array_equal(ours, theirs)
+
+
+@pytest.mark.parametrize("filt", ["nearest", "linear", "mipmap"])
+@pytest.mark.parametrize("wrap", ["repeat", "clamp"])
+@pytest.mark.parametrize("w, h", [(16, 16), (12, 10), (16, 10)])
+def test_wrap_of_huge_and_infinite_coordinates_on_pot_and_npot_sizes(gl, tmp_path, w, h, wrap, filt):
+    # llvmpipe wraps each axis by its own formula (lp_build_sample_wrap_nearest / _linear),
+    # chosen by whether level 0's size on that axis is a power of two (textures.py
+    # _axis_nearest, _axis_linear): repeat on a power of two scales first (u * n - 0.5) and
+    # masks the int32 index, so past 2^31 texels the index is INT_MIN & (n - 1) = 0; other sizes
+    # take the fraction first; nearest clamp truncates to int32 (1e30 reads the *first* texel).
+    # glslcheck took the fraction first everywhere (space_ship's exhaust noise, a
+    # 256x256 repeat texture at coordinates near 1e7: 3 edge pixels over budget) and converted
+    # nearest coordinates to int64. Offsets (textureOffset) go in before the repeat, in
+    # normalised units on a size that is not a power of two. An infinite coordinate gives NaN
+    # weights under linear repeat on both sides (NaN compares equal here).
+    _png(tmp_path / "tex.png", w, h, seed=9)
+    lookup = "textureLodOffset(iChannel0, uv, 0.0, off)" if filt == "mipmap" else "textureOffset(iChannel0, uv, off)"
+    body = f"""void mainImage(out vec4 fragColor, in vec2 fragCoord) {{
+    float inf = iResolution.x * 1e37 * 1e37;
+    float u[8] = float[8](1e30, -1e30, inf, -inf, 3e9 + 0.7, 1.2e7 + 0.3, -7.77e5 - 0.1, 0.37);
+    vec2 uv = vec2(u[int(fragCoord.x) % 8], u[int(fragCoord.y) % 8]) + fragCoord * vec2(0.013, 0.021);
+    const ivec2 off = ivec2(-3, 5);
+    if (fragCoord.x > 8.0) fragColor = texture(iChannel0, uv);
+    else fragColor = {lookup};
+}}
+"""
+    folder = _folder(tmp_path, {"Image": body},
+                     {"Image": {"iChannel0": {"texture": "tex.png", "filter": filt, "wrap": wrap}}})
+    ours = api.compile(folder, backend="numpy").render(size=(16, 16))
+    theirs = api.compile(folder, backend="gl").render(size=(16, 16))
+    assert np.array_equal(ours, theirs, equal_nan=True), f"{int((ours != theirs).sum())} of {ours.size} values differ"
+
+
+def test_lowp_lookups_are_float16_rounded_towards_zero(gl, tmp_path):
+    # A lowp lookup's result is float16 rounded towards zero (gallivm's float-to-half), not only
+    # a 10-bit mantissa: a finite value past 65504 reads 65504 (elevated's Image pass unpacks a
+    # velocity of about 5e5 from Buffer A's alpha: 387 pixels over tolerance when it read 5e5),
+    # below 2^-14 a float16 subnormal (a multiple of 2^-24, truncated); inf and NaN stay.
+    buf = """void mainImage(out vec4 fragColor, in vec2 fragCoord) {
+    float inf = iResolution.x * 1e37 * 1e37;
+    float v[12] = float[12](1e5, -7e4, 5e37, 65519.0, 65504.0, 1e-5, -3e-8, 1.6212e-6,
+                            inf, -inf, 3.14159265, 6e-5);
+    int i = int(fragCoord.x) % 12;
+    fragColor = vec4(v[i], -v[i] * 0.5, v[i] * float(int(fragCoord.y) + 1), 1.0);
+}
+"""
+    image = """void mainImage(out vec4 fragColor, in vec2 fragCoord) {
+    fragColor = texelFetch(iChannel0, ivec2(fragCoord), 0);
+}
+"""
+    folder = _folder(tmp_path, {"Buffer A": buf, "Image": image}, {"Image": {"iChannel0": {"buffer": "Buffer A"}}})
+    ours = api.compile(folder, backend="numpy").render(size=(12, 4))
+    theirs = api.compile(folder, backend="gl").render(size=(12, 4))
+    assert np.array_equal(ours, theirs, equal_nan=True), f"{int((ours != theirs).sum())} of {ours.size} values differ"
+    assert (np.abs(theirs[np.isfinite(theirs)]) <= 65504).all() and (theirs == 65504).any()
+
+
+@pytest.mark.parametrize("lookup", ["texture(iChannel0, p)", "vec4(dFdx(p.x), dFdy(p.y), fwidth(p))"])
+def test_derivatives_of_values_computed_under_a_branch(gl, tmp_path, lookup):
+    # A function called under a varying `if` (elevated's cloud fbm in its sky branch): llvmpipe
+    # computes its SSA values (`p = m * p` at the parameter's declaration level) in every lane
+    # of a quad, the lanes outside the branch included, and a lookup's implicit LOD or a
+    # derivative reads them. The NumPy backend kept those lanes' old `p` (a masked write):
+    # boundary quads read another LOD (elevated: 25 sky pixels, up to 0.32). Now such writes
+    # are unmasked (uniformity.py); a diagonal condition splits quads.
+    _png(tmp_path / "tex.png", 64, 64, seed=10)
+    body = f"""vec4 look(vec2 p) {{
+    vec4 f = vec4(0.0);
+    p = mat2(0.8, -0.6, 0.6, 0.8) * p * 2.02;
+    f += {lookup};
+    p = p * p * 1.7;
+    f += {lookup};
+    return f;
+}}
+
+void mainImage(out vec4 fragColor, in vec2 fragCoord) {{
+    vec2 uv = fragCoord * fragCoord / 800.0;
+    fragColor = vec4(0.5);
+    if (fragCoord.x + fragCoord.y > 20.0) fragColor = look(uv);
+}}
+"""
+    folder = _folder(tmp_path, {"Image": body}, {"Image": {"iChannel0": {"texture": "tex.png"}}})
+    ours = api.compile(folder, backend="numpy").render(size=(24, 16))
+    theirs = api.compile(folder, backend="gl").render(size=(24, 16))
+    assert np.abs(ours - theirs).max() <= 2.0**-10  # as test_mipmap_against_gl (exact on an FMA host)
+
+
+@pytest.mark.parametrize("lod", ["0.0", "1.0", "fragCoord.x / 16.0"])
+def test_an_integer_lod_reads_one_level(gl, tmp_path, lod):
+    # lp_build_sample_mipmap filters the upper level only when some lane's LOD fraction is
+    # above 0: with an integer LOD an infinite texel of the next level does not turn the result
+    # into NaN (0 * inf), as the fused lerp with weight 0 would (textures.py _two_levels).
+    buf = """void mainImage(out vec4 fragColor, in vec2 fragCoord) {
+    float inf = iResolution.x * 1e37 * 1e37;
+    fragColor = vec4(fragCoord.x > 10.0 && fragCoord.y > 5.0 ? inf : fragCoord.x / 16.0, 0.5, -inf, 1.0);
+}
+"""
+    image = f"""void mainImage(out vec4 fragColor, in vec2 fragCoord) {{
+    fragColor = textureLod(iChannel0, fragCoord / iResolution.xy, {lod});
+}}
+"""
+    folder = _folder(tmp_path, {"Buffer A": buf, "Image": image},
+                     {"Image": {"iChannel0": {"buffer": "Buffer A", "filter": "mipmap"}}})
+    ours = api.compile(folder, backend="numpy", output="Image").render(size=(16, 8))
+    theirs = api.compile(folder, backend="gl", output="Image").render(size=(16, 8))
+    assert np.array_equal(ours, theirs, equal_nan=True), f"{int((ours != theirs).sum())} of {ours.size} values differ"

@@ -133,12 +133,18 @@ float early(out float o, float x) { o = 1.0; if (x > 0.5) return 0.0; o = 2.0; r
     assert varying(uni, model, "o")
 
 
-def test_no_free_writes_where_derivatives_read_neighbours(make_shader):
+def test_where_derivatives_read_neighbours_only_ssa_values_are_free(make_shader):
+    # llvmpipe computes SSA values in every lane (a neighbour's dFdx reads them) and stores only
+    # values merged across control flow under the mask: a write at the declaration's level and
+    # loop depth is free (w, fragColor), one inside a branch or loop around it keeps its mask (v,
+    # u); tests/channels test_derivatives_of_values_computed_under_a_branch against the driver
     uni, _, writes = analyse(make_shader, _image("""
     float v = fragCoord.x;
+    float u = 0.0;
     if (fragCoord.y > 2.0) { float w = 0.0; w = v * v; v = dFdx(w); }
-    fragColor = vec4(v);"""))
-    assert writes == {"w": [False], "v": [False], "fragColor": [False]}
+    for (int i = 0; i < 2; i++) u = u + dFdy(v);
+    fragColor = vec4(v + u);"""))
+    assert writes == {"w": [True], "v": [False], "u": [False], "i": [False], "fragColor": [True]}
 
 
 def test_switch_bodies_keep_their_masks(make_shader):
