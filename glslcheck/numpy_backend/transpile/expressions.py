@@ -134,6 +134,9 @@ class Expressions:
             # it (`t > 0.0 && t < best` in a tile where every t is -1)
             return self.short_circuit(e, mask)
         left, right = self.exprs([e.left, e.right], mask)
+        zero = nir_fold.zero_add(self, e, left, right)  # x + 0.0 is x on llvmpipe (nir_fold)
+        if zero is not None:
+            return zero
         lt, rtp = self.type_of(e.left), self.type_of(e.right)
         if op in ("==", "!="):
             if lt.is_scalar and rtp.is_scalar:
