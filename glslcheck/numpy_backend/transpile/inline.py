@@ -66,7 +66,6 @@ def _body_expression(tr: Any, fn: Any) -> Any:
     if (len(stmts) == 1 and isinstance(stmts[0], A.Return) and stmts[0].value is not None
             and all(d == "in" for _, _, d in fn.params)):
         value = stmts[0].value
-        params = {id(tr.model.symbol_of(p)) for p in fn.node.proto.params}
         for n in value.walk():
             if isinstance(n, A.Call) and (isinstance(tr.model.call_target(n), Symbol) or n.callee == "mix"):
                 value = None
@@ -75,17 +74,17 @@ def _body_expression(tr: Any, fn: Any) -> Any:
                     isinstance(n, A.Assignment) or n.op in ("++", "--")):
                 value = None  # (a parameter written: not a plain read of the argument)
                 break
-        if value is not None and None in params:
-            value = None
+        if value is not None and any(tr.model.symbol_of(p) is None for p in fn.node.proto.params):
+            value = None  # (an unnamed parameter)
     memo[id(fn)] = value
     return value
 
 
-def worth_inlining(tr: Any, call: A.Call, fn: Any) -> bool:
-    """Some argument is a product by a constant that the callee hands to a ``dot`` with a
-    constant (nir_fold.merged_dot then merges the constants), and inlining is allowed."""
-    from .. import nir_fold
-
+def worth_inlining(tr: Any, call: A.Call, fn: Any, constant_product: Any) -> bool:
+    """Some argument is a product by a constant (`constant_product(tr, node)`:
+    nir_fold.constant_product, passed in so this module does not import nir_fold, which
+    imports it) that the callee hands to a ``dot`` with a constant (nir_fold.merged_dot then
+    merges the constants), and inlining is allowed."""
     if tr.fn is None or tr.__dict__.get("_inline_frames") or any(tr.has_effects(a) for a in call.args):
         return False  # (one level: a call inside an inlined body stays a call)
     value = _body_expression(tr, fn)
@@ -93,7 +92,7 @@ def worth_inlining(tr: Any, call: A.Call, fn: Any) -> bool:
         return False
     products = set()
     for p, arg in zip(fn.node.proto.params, call.args):
-        if nir_fold.constant_product(tr, arg):
+        if constant_product(tr, arg):
             products.add(id(tr.model.symbol_of(p)))
     if not products:
         return False
@@ -120,7 +119,13 @@ def inline_call(tr: Any, call: A.Call, fn: Any, mask: str | None) -> str:
         params[id(tr.model.symbol_of(p))] = (code, arg)
     frames = tr.__dict__.setdefault("_inline_frames", [])
     frames.append({"fn": fn, "params": params})
+    value = _body_expression(tr, fn)
+    # the tracing transpiler (numpy_backend/trace.py, glslcheck probe) records a function's
+    # return value: inlined, the expression is part of the caller's statement, not a return
+    watch = tr.__dict__.get("_watch", {}).pop(id(value), None)
     try:
-        return tr.expr(_body_expression(tr, fn), mask)
+        return tr.expr(value, mask)
     finally:
         frames.pop()
+        if watch is not None:
+            tr._watch[id(value)] = watch
