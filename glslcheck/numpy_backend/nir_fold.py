@@ -23,6 +23,8 @@ The rules copied here, each measured bit for bit against llvmpipe on 50,000 rand
 - constants merged into a dot product, ``dot(x * #c, #K)`` is ``dot(x, K * c)``, tree by tree
   (:func:`merged_dot`), also through the parameter of a call inlined for it
   (transpile/inline.py: Mesa inlines every function before these passes);
+- constants are what Mesa knows as constants: also a global variable initialised by a
+  constant expression and never written (:func:`_constant_global`: GLSL IR propagates it);
 - an added constant zero dropped, ``fadd(a, 0.0) -> a`` (:func:`zero_add`, ``Runtime.fadd``),
   also where the zero comes through a function argument or an out parameter
   (transpile/constant_flow.py): it keeps the sign of a -0.0.
@@ -82,6 +84,8 @@ def mix_hint(tr: Any, call: A.Call) -> list[str]:
 def _constant_value(tr: Any, node: Any) -> list[float] | None:
     """The scalars of a constant operand (see :func:`mix_hint`), else None."""
     v = tr.model.const_value(node)
+    if v is None and isinstance(node, A.Identifier) and _constant_global(tr, tr.model.symbol_of(node)):
+        v = tr.model.const_value(tr.model.symbol_of(node).node.init)
     if v is None and isinstance(node, A.Identifier):
         init = _stable_init(tr, node)
         v = tr.model.const_value(init) if init is not None else None
@@ -303,7 +307,21 @@ def _read_once(tr: Any, ident: A.Identifier) -> bool:
 
 
 def _const(tr: Any, node: Any) -> bool:
-    return tr.model.const_value(node) is not None
+    if tr.model.const_value(node) is not None:
+        return True
+    return isinstance(node, A.Identifier) and _constant_global(tr, tr.model.symbol_of(node))
+
+
+def _constant_global(tr: Any, sym: Any) -> bool:
+    """A global variable (not `const`) initialised by a constant expression and never written:
+    a constant to Mesa (GLSL IR propagates it, opt_constant_variable), so to every rule here
+    (``float PI = 3.14159265;`` then ``fract(p / PI)``: measured, the rules apply as for a
+    `const`)."""
+    if sym is None or sym.kind != "global" or sym.const_value is not None:
+        return False
+    init = sym.node.init if isinstance(sym.node, A.Declarator) else None
+    return (init is not None and tr.model.const_value(init) is not None
+            and id(sym) not in tr.facts.written_globals)
 
 
 def _is_product(tr: Any, node: Any) -> bool:
@@ -494,7 +512,7 @@ def _varying(tr: Any, node: Any, depth: int = 0) -> bool:
     for n in node.walk():
         if isinstance(n, A.Identifier):
             s = tr.model.symbol_of(n)
-            if s is None or s.const_value is not None:
+            if s is None or s.const_value is not None or _constant_global(tr, s):
                 continue
             if s.kind != "local":
                 return True
@@ -570,7 +588,7 @@ def _stable_init(tr: Any, ident: A.Identifier) -> Any:
                 continue
             if s.kind in ("local", "param") and id(s) in written:
                 return None
-            if s.kind == "global" and s.const_value is None:
+            if s.kind == "global" and s.const_value is None and not _constant_global(tr, s):
                 return None
     return init
 
