@@ -79,7 +79,7 @@ WORST_PIXELS = 10
 
 JSON_KEYS = ("match", "verdict", "size", "max_abs_error", "mean_abs_error", "psnr_db",
              "mismatched_pixels", "edge_pixels", "nan_numpy", "nan_gl", "unstable_pixels",
-             "unstable_lines")
+             "unstable_lines", "driver")
 
 # Diff image colours (RGB 0-255).
 EDGE_COLOUR = (0, 200, 255)  # cyan-blue: an over-tolerance pixel explained by a discontinuity
@@ -130,6 +130,10 @@ class Comparison:
     # [{"file", "line", "code", "bits", "pixels"}]: the statements where the unstable pixels
     # lose their precision, filled in by verify.unstable_lines (glslcheck probe's tracing).
     unstable_lines: list = field(default_factory=list)
+    # {"renderer", "mesa", "emulated"} of the GL side, set by verify (None: not a GL driver);
+    # "emulated" is false when the NumPy backend's bit-exact emulation was not copied from it
+    # (glslcheck/driver_profile.py): a difference may then be the driver's.
+    driver: dict | None = None
 
     @property
     def verdict(self) -> str:
@@ -154,6 +158,7 @@ class Comparison:
             "nan_gl": int(self.nan_gl),
             "unstable_pixels": int(self.unstable_pixels),
             "unstable_lines": list(self.unstable_lines),
+            "driver": dict(self.driver) if self.driver is not None else None,
         }
 
     def dumps(self) -> str:

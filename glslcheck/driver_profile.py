@@ -23,6 +23,12 @@ are fused only where the CPU has FMA (`host_fma`).
 ``int(f)`` is the same on every x86-64 CPU (``cvttps2dq``: ``0x80000000`` for NaN and out of
 range) and is not listed here.
 
+The NumPy backend's float32 mode copies more than these values: llvmpipe's sin, exp2, log2, atan
+and texture filtering, and Mesa's rewrites of the arithmetic (nir_opt_algebraic, nir_lower_flrp),
+from one Mesa release, `EMULATED_MESA`. Another Mesa may compute other bits, and another driver
+surely does; `emulation_note` says so for `glslcheck verify` instead of letting a difference
+read as a transpiler bug, and the bit-exact tests under tests/gl fail naming the release.
+
 The NumPy backend cannot ask the CPU which instructions llvmpipe picked, so it predicts the model
 from the CPU's flags (`host_model`), and `glslcheck verify`, which has the driver at hand,
 measures it once per GL context (`measure` renders `PROBE_INPUTS` and `identify` names the model
@@ -170,6 +176,38 @@ def measure(ctx) -> list[int]:
     finally:
         for obj in objects:
             obj.release()
+
+
+# The Mesa release whose llvmpipe the float32 NumPy emulation copies bit for bit (measured with
+# Mesa 22.3.6 and LLVM 15.0.6, Debian 12): its algorithms are quoted from that release's source.
+EMULATED_MESA = "22.3"
+
+
+def driver_name(ctx) -> tuple[str, str | None]:
+    """(GL_RENDERER, Mesa version or None) of a moderngl context: ``("llvmpipe (LLVM 15.0.6,
+    256 bits)", "22.3.6")`` from GL_VERSION ``"4.5 (Core Profile) Mesa 22.3.6"``."""
+    info = ctx.info
+    version = str(info.get("GL_VERSION", ""))
+    words = version.split()
+    mesa = words[words.index("Mesa") + 1] if "Mesa" in words[:-1] else None
+    return str(info.get("GL_RENDERER", "")), mesa
+
+
+def is_emulated(renderer: str, mesa: str | None) -> bool:
+    """True when the driver is the llvmpipe of `EMULATED_MESA` (any patch release)."""
+    return renderer.startswith("llvmpipe") and mesa is not None and (
+        mesa == EMULATED_MESA or mesa.startswith(EMULATED_MESA + "."))
+
+
+def emulation_note(ctx) -> str | None:
+    """None for the driver the NumPy backend emulates; else one line saying which driver this
+    is and that differences in the last bits may be the driver's, not bugs."""
+    renderer, mesa = driver_name(ctx)
+    if is_emulated(renderer, mesa):
+        return None
+    driver = f"{renderer}, Mesa {mesa}" if mesa else renderer
+    return (f"the GL driver is {driver}; the NumPy backend copies llvmpipe of Mesa {EMULATED_MESA} bit for "
+            "bit, so differences in hash-like or sign-of-zero pixels may be this driver's, not a bug")
 
 
 _MEASURED: dict[int, str | None] = {}

@@ -278,6 +278,7 @@ def verify_frames(
                 raise driver
         programs = [by_name[b] for b in backends]
     emulate_driver(programs)
+    driver, driver_note = gl_driver(programs)
     for p in programs:
         llvmpipe_loop_limit(p)
     pair = _Pair(programs)
@@ -297,9 +298,12 @@ def verify_frames(
                             shader, comparison, w_h, spec, tuple(mouse), date)
             if progress is not None:
                 progress.step(f"{name} t={spec.time:g}")
+            comparison.driver = driver
             notes = tuple(f"{path}:{line}: this loop reached llvmpipe's limit of {LLVMPIPE_LOOP_LIMIT:,} "
                           "loop passes per pixel and was stopped on both sides (a GPU runs it to the end)"
                           for path, line in limited_loops(programs[0])) + mediump
+            if driver_note is not None and not comparison.match:
+                notes += (driver_note,)
             yield FrameResult(name, spec, (int(w_h[0]), int(w_h[1])), comparison,
                               numpy_img if keep_images else None, gl_img if keep_images else None, notes)
 
@@ -393,6 +397,20 @@ def emulate_driver(programs: Sequence) -> None:
     for p in programs:
         if hasattr(p, "emulate_float_to_uint"):
             p.emulate_float_to_uint(model)
+
+
+def gl_driver(programs: Sequence) -> tuple[dict | None, str | None]:
+    """The GL side's {"renderer", "mesa", "emulated"} (None when no side is a GL driver), and
+    the note verify prints with a mismatch when the NumPy backend's bit-exact emulation was
+    copied from another driver (driver_profile.emulation_note), else None."""
+    from .driver_profile import driver_name, emulation_note, is_emulated
+
+    for p in programs[1:]:
+        ctx = getattr(getattr(p, "impl", p), "ctx", None)
+        if ctx is not None and hasattr(ctx, "info"):
+            renderer, mesa = driver_name(ctx)
+            return {"renderer": renderer, "mesa": mesa, "emulated": is_emulated(renderer, mesa)}, emulation_note(ctx)
+    return None, None
 
 
 def verify(shader, **options) -> list[Comparison]:

@@ -22,10 +22,13 @@ frames show a progress bar on stderr when it is a terminal (--progress forces it
 
 --format json prints exactly {"match", "verdict", "size", "max_abs_error", "mean_abs_error",
 "psnr_db", "mismatched_pixels", "edge_pixels", "nan_numpy", "nan_gl", "unstable_pixels",
-"unstable_lines"} for one frame (psnr_db is null for identical images; verdict is "match",
+"unstable_lines", "driver"} for one frame (psnr_db is null for identical images; verdict is "match",
 "match-unstable" or "mismatch"; unstable pixels are those where both float32 renders are far
 from the float64 reference, see compare.py; unstable_lines names the statements where they lose
-precision, traced by glslcheck probe on a sample of them), or a JSON list of such objects, in order (shader by shader, then frame by
+precision, traced by glslcheck probe on a sample of them; driver is {"renderer", "mesa",
+"emulated"} of the GL side, emulated false when the NumPy backend's bit-exact emulation was
+copied from another driver than this one, llvmpipe of Mesa 22.3: a mismatch then also says so
+in the text output, since it may be the driver's), or a JSON list of such objects, in order (shader by shader, then frame by
 frame), when more than one frame is verified. --diff diff.png writes the heat map of the
 differences (diff-0.png, diff-1.png, ... for several frames).
 

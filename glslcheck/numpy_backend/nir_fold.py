@@ -19,7 +19,15 @@ The rules copied here, each measured bit for bit against llvmpipe on 50,000 rand
   no "used once" condition, so also through a never-written local: ``uv = q * 1.2`` then
   ``uv * 0.2`` is ``q * 0.24``, the constant folded in float32);
 - ``dot(u, v) + #c``: the constant lands in the innermost addition of the dot product, which
-  llvmpipe sums right to left: ``u.x*v.x + (u.y*v.y + (u.z*v.z + #c))``.
+  llvmpipe sums right to left: ``u.x*v.x + (u.y*v.y + (u.z*v.z + #c))``;
+- constants merged into a dot product, ``dot(x * #c, #K)`` is ``dot(x, K * c)``, tree by tree
+  (:func:`merged_dot`), also through the parameter of a call inlined for it
+  (transpile/inline.py: Mesa inlines every function before these passes);
+- constants are what Mesa knows as constants: also a global variable initialised by a
+  constant expression and never written (:func:`_constant_global`: GLSL IR propagates it);
+- an added constant zero dropped, ``fadd(a, 0.0) -> a`` (:func:`zero_add`, ``Runtime.fadd``),
+  also where the zero comes through a function argument or an out parameter
+  (transpile/constant_flow.py): it keeps the sign of a -0.0.
 
 Each rewrite is emitted as ``(<rewritten> if rt.lp else <written>)``: float32 renders take
 Mesa's order, float64 (the accuracy reference) and float16 keep the written one. Not copied
@@ -37,9 +45,12 @@ from typing import Any
 
 from .. import ast as A
 from .. import builtins as B
+from ..analysis import param_directions
 from ..check.model import Symbol
 from ..diagnostics import Location
 from ..printer import to_glsl
+from .transpile.constant_flow import constant_flow
+from .transpile.inline import bound_argument, inline_owner
 
 _SUMS = ("+", "-")
 
@@ -73,6 +84,8 @@ def mix_hint(tr: Any, call: A.Call) -> list[str]:
 def _constant_value(tr: Any, node: Any) -> list[float] | None:
     """The scalars of a constant operand (see :func:`mix_hint`), else None."""
     v = tr.model.const_value(node)
+    if v is None and isinstance(node, A.Identifier) and _constant_global(tr, tr.model.symbol_of(node)):
+        v = tr.model.const_value(tr.model.symbol_of(node).node.init)
     if v is None and isinstance(node, A.Identifier):
         init = _stable_init(tr, node)
         v = tr.model.const_value(init) if init is not None else None
@@ -110,6 +123,28 @@ def _shared_mixes(tr: Any) -> set[int]:
         cache[key] = {id(n) for n, (x, y, t) in texts
                       if any(m is not n and t == t2 and (x == x2 or y == y2) for m, (x2, y2, t2) in texts)}
     return cache[key]
+
+
+# -- an added constant zero ---------------------------------------------------------------------
+def zero_add(tr: Any, e: A.Binary, left: str, right: str) -> str | None:
+    """``rt.fadd(l, r)`` / ``rt.fsub(l, r)`` for a float ``+`` / ``-`` whose operand may be a
+    constant zero once Mesa has inlined the function, else None (the plain operator).
+
+    Mesa 22.3's nir_opt_algebraic drops ``fadd(a, 0.0)`` (``('fadd(is_only_used_as_float)',
+    'a@32', 0.0) -> a``; llvmpipe lowers ``a - b`` to ``fadd(a, fneg(b))``), which keeps the
+    sign of a -0.0 that IEEE addition would make +0.0. NIR applies it after inlining every
+    function, so the zero may come through an argument or an out parameter, not only a
+    literal: `transpile.constant_flow` finds the operands that may be one, and the runtime
+    (`Runtime.fadd`) checks the value they hold. Elsewhere, the common case, the operator
+    stays a NumPy operator without a Python call."""
+    if e.op not in _SUMS or tr.fn is None:
+        return None
+    if any(tr.type_of(x).base != "float" for x in (e, e.left, e.right)):
+        return None
+    flow = constant_flow(tr)
+    if not (flow.may_be_zero_constant(e.left) or flow.may_be_zero_constant(e.right)):
+        return None
+    return f"rt.{'fadd' if e.op == '+' else 'fsub'}({left}, {right})"
 
 
 # -- binary expressions -----------------------------------------------------------------------
@@ -173,8 +208,120 @@ def _merge_constants(tr: Any, e: A.Binary, mask: str | None) -> str | None:
     return f"({rewritten} if rt.lp else {written})"
 
 
+def merged_dot(tr: Any, call: A.Call, args: list[str], mask: str | None) -> str | None:
+    """``dot(v, #K)`` where v is a chain of products by constants, ``(x * #c1) * #c2``, also
+    through never-written locals and inlined parameters (:func:`_stable_init`).
+
+    Two compilers merge the constants, in this order (measured bit for bit, Mesa 22.3):
+    GLSL IR first folds the constants of one expression tree (``r * 2.1 * 0.7`` is
+    ``r * (2.1*0.7)``; its tree grafting puts a variable written once and read once, such as an
+    inlined argument, into the tree that reads it); then NIR lowers the dot product to
+    component products and its reassociation ``('~fmul', '#a', ('fmul', 'b(is_not_const)',
+    '#c')) -> ('fmul', ('fmul', a, c), b)`` (nir_opt_algebraic.py) merges K with each tree's
+    constant, the outer tree first. So ``vec2 uv = q * 1.2`` read twice and ``dot(uv * 0.2, K)``
+    is ``dot(q, (K * 0.2) * 1.2)`` (``K * (0.2 * 1.2)`` differs in 70% of the pixels), and
+    ``dot(r * 2.1 * 0.7, K)`` is ``dot(r, K * (2.1 * 0.7))``. Float32 only, like every rule."""
+    if len(call.args) != 2 or tr.fn is None or tr.type_of(call).base != "float":
+        return None
+    u, w = call.args
+    if _const(tr, w) and not _const(tr, u):
+        v, k, v_first = u, w, True
+    elif _const(tr, u) and not _const(tr, w):
+        v, k, v_first = w, u, False
+    else:
+        return None
+    x, trees = _product_chain(tr, v)
+    if not trees or not _varying(tr, x) or tr.type_of(x) != tr.type_of(v) or tr.has_effects(x):
+        return None
+    built = _stable_init(tr, x) if isinstance(x, A.Identifier) else x
+    if isinstance(built, A.Call) and built.constructor:
+        return None  # NIR merges further into each component (vec3(p * 0.37, ...)): not copied
+    t = tr.type_of(v)
+    tx, tk = tr.exprs([x, k], mask)
+    merged = tk
+    for tree in trees:
+        codes = tr.exprs(tree[::-1], mask)  # GLSL IR folds the tree's constants inner first
+        folded = codes[0]
+        for c in codes[1:]:
+            folded = tr.binary_values("*", t, t, folded, c)
+        merged = tr.binary_values("*", t, t, merged, folded)
+    rewritten = f"rt.dot({tx}, {merged})" if v_first else f"rt.dot({merged}, {tx})"
+    return f"({rewritten} if rt.lp else rt.dot({args[0]}, {args[1]}))"
+
+
+def _product_chain(tr: Any, v: Any) -> tuple[Any, list[list[Any]]]:
+    """(x, trees) for ``v = (x * #c2) * #c1``: the constant factors grouped by the GLSL IR
+    expression tree they sit in, outer tree and outer factor first. A never-written local read
+    once (or an inlined parameter, read once in its function) is grafted into the tree that
+    reads it; another one starts a new tree. ([] when v is no such product.)"""
+    trees: list[list[Any]] = [[]]
+    node = v
+    for _ in range(16):
+        inner = node
+        while isinstance(inner, A.Identifier):
+            init = _stable_init(tr, inner)
+            if init is None:
+                break
+            if not _read_once(tr, inner) and trees[-1]:
+                trees.append([])
+            inner = init
+        if not (isinstance(inner, A.Binary) and inner.op == "*") or _has_matrix(tr, inner.left, inner.right):
+            break
+        if tr.type_of(inner) != tr.type_of(v) or tr.has_effects(inner):
+            break
+        if _const(tr, inner.right) and not _const(tr, inner.left):
+            trees[-1].append(inner.right)
+            node = inner.left
+        elif _const(tr, inner.left) and not _const(tr, inner.right):
+            trees[-1].append(inner.left)
+            node = inner.right
+        else:
+            break
+    return node, [tree for tree in trees if tree]
+
+
+def constant_product(tr: Any, node: Any) -> bool:
+    """``node`` is, or is a never-written local initialised by, a product of a constant and a
+    value that is not constant (the start of :func:`_product_chain`)."""
+    if tr.fn is None or tr.has_effects(node):
+        return False
+    _, trees = _product_chain(tr, node)
+    return bool(trees)
+
+
+def _read_once(tr: Any, ident: A.Identifier) -> bool:
+    """The variable is read at one place of its function (GLSL IR grafts its value there)."""
+    sym = tr.model.symbol_of(ident)
+    owner = inline_owner(tr, sym)
+    body = owner.node.body if owner is not None else tr.fn.sym.node.body
+    reads = tr.__dict__.setdefault("_nir_fold_reads", {})
+    if id(body) not in reads:
+        counts: dict[int, int] = {}
+        for n in body.walk():
+            if isinstance(n, A.Identifier):
+                s = tr.model.symbol_of(n)
+                if s is not None:
+                    counts[id(s)] = counts.get(id(s), 0) + 1
+        reads[id(body)] = counts
+    return reads[id(body)].get(id(sym), 0) == 1
+
+
 def _const(tr: Any, node: Any) -> bool:
-    return tr.model.const_value(node) is not None
+    if tr.model.const_value(node) is not None:
+        return True
+    return isinstance(node, A.Identifier) and _constant_global(tr, tr.model.symbol_of(node))
+
+
+def _constant_global(tr: Any, sym: Any) -> bool:
+    """A global variable (not `const`) initialised by a constant expression and never written:
+    a constant to Mesa (GLSL IR propagates it, opt_constant_variable), so to every rule here
+    (``float PI = 3.14159265;`` then ``fract(p / PI)``: measured, the rules apply as for a
+    `const`)."""
+    if sym is None or sym.kind != "global" or sym.const_value is not None:
+        return False
+    init = sym.node.init if isinstance(sym.node, A.Declarator) else None
+    return (init is not None and tr.model.const_value(init) is not None
+            and id(sym) not in tr.facts.written_globals)
 
 
 def _is_product(tr: Any, node: Any) -> bool:
@@ -365,7 +512,7 @@ def _varying(tr: Any, node: Any, depth: int = 0) -> bool:
     for n in node.walk():
         if isinstance(n, A.Identifier):
             s = tr.model.symbol_of(n)
-            if s is None or s.const_value is not None:
+            if s is None or s.const_value is not None or _constant_global(tr, s):
                 continue
             if s.kind != "local":
                 return True
@@ -423,6 +570,9 @@ def _stable_init(tr: Any, ident: A.Identifier) -> Any:
     """The initializer of a local that is written only by its declaration, whose identifiers
     are all such locals, never-written parameters, uniforms or constants; else None."""
     sym = tr.model.symbol_of(ident)
+    bound = bound_argument(tr, sym)  # a parameter of an inlined call (transpile/inline.py)
+    if bound is not None:
+        return None if tr.has_effects(bound) else bound
     if sym is None or sym.kind != "local" or not isinstance(sym.node, A.Declarator) or sym.node.init is None:
         return None
     init = sym.node.init
@@ -438,14 +588,14 @@ def _stable_init(tr: Any, ident: A.Identifier) -> Any:
                 continue
             if s.kind in ("local", "param") and id(s) in written:
                 return None
-            if s.kind == "global" and s.const_value is None:
+            if s.kind == "global" and s.const_value is None and not _constant_global(tr, s):
                 return None
     return init
 
 
 def _written(tr: Any) -> set[int]:
-    """Symbols of the current function that are assigned, incremented or passed to a user
-    function (which might write them through out/inout)."""
+    """Symbols of the current function that are assigned, incremented or passed to an out or
+    inout parameter of a user function."""
     cache = tr.__dict__.setdefault("_nir_fold_written", {})
     key = id(tr.fn.sym)
     if key not in cache:
@@ -465,7 +615,8 @@ def _written(tr: Any) -> set[int]:
             elif isinstance(n, (A.Unary, A.Postfix)) and n.op in ("++", "--"):
                 roots(n.operand)
             elif isinstance(n, A.Call) and isinstance(tr.model.call_target(n), Symbol):
-                for a in n.args:
-                    roots(a)
+                for a, d in zip(n.args, param_directions(tr.model.call_target(n))):
+                    if d != "in":
+                        roots(a)
         cache[key] = out
     return cache[key]

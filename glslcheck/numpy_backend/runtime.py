@@ -183,7 +183,8 @@ Mesa's compiler folds constants (``fold_constants``, on for transpiled shaders, 
 :meth:`Runtime.fmul`): ``x * 0.0`` is 0 when the zero is a compile-time constant, even for
 x = NaN or Inf, per component (``NaN * vec3(1, 0, 0)`` is (NaN, 0, 0); ``dot(vec3(NaN, 1, 2),
 vec3(0, 1, 1))`` is 3; ``mix(NaN, y, 1.0)`` is y); two constants multiply out (0 * inf =
-NaN); ``pow`` with a constant exponent 0, 1, 2 or 4 is rewritten (0 gives 1 there). A value
+NaN); ``x + 0.0`` is x and ``0.0 - x`` is -x, keeping the sign of a zero (:meth:`Runtime.fadd`,
+float32 only); ``pow`` with a constant exponent 0, 1, 2 or 4 is rewritten (0 gives 1 there). A value
 counts as constant when it is the same in every lane and is not a uniform input (uniforms are
 read-only arrays): a value computed from uniforms that happens to be 0 is taken for a constant
 too, the one approximation.
@@ -1085,6 +1086,35 @@ class Runtime(TextureFunctions):  # texture lookups: textures.py
             for z, other in ((a, b), (b, a)):
                 if self._const_zero(z, other):
                     r = np.where(z == 0, self._0, r)
+        return r
+
+    def fadd(self, a: np.ndarray, b: np.ndarray) -> np.ndarray:
+        """Float ``a + b`` as Mesa 22.3 compiles it for llvmpipe: nir_opt_algebraic drops an
+        addition of a constant zero, ``(('fadd(is_only_used_as_float)', 'a@32', 0.0), a)``
+        (GL does not ask to preserve signed zeros), so ``x + 0.0`` keeps a -0.0 that IEEE
+        addition turns into +0.0 (then ``1.0 / x`` is -inf, not +inf). NIR matches each
+        component after scalarising, and sees constants through inlined function arguments
+        and out parameters, as `fmul`'s constant zero does here: an operand that is
+        lane-uniform and not a uniform input (`_const`) counts as a constant. Measured bit for
+        bit against llvmpipe in tests/gl/test_llvmpipe_lowering.py. float32 (llvmpipe) mode
+        only: float64, the accuracy reference, adds as IEEE does."""
+        r = a + b
+        if self.lp is not None and self.fold_constants:
+            for z, other in ((a, b), (b, a)):
+                if self._const_zero(z, other):
+                    r = np.where(z == 0, other, r)
+        return r
+
+    def fsub(self, a: np.ndarray, b: np.ndarray) -> np.ndarray:
+        """Float ``a - b`` as Mesa compiles it: llvmpipe asks for ``lower_fsub``, so it is
+        ``fadd(a, fneg(b))`` and `fadd`'s rule applies: ``0.0 - x`` is ``-x`` (-0.0 for x = +0,
+        measured), ``x - 0.0`` is x. float32 (llvmpipe) mode only, as `fadd`."""
+        r = a - b
+        if self.lp is not None and self.fold_constants:
+            if self._const_zero(a, b):
+                r = np.where(a == 0, -b, r)
+            if self._const_zero(b, a):
+                r = np.where(b == 0, a, r)
         return r
 
     @staticmethod

@@ -107,7 +107,7 @@ def test_json_keys_are_exact():
     data = compare(_gradient(), _disc(10)).to_json()
     assert tuple(data) == JSON_KEYS == ("match", "verdict", "size", "max_abs_error", "mean_abs_error",
                                         "psnr_db", "mismatched_pixels", "edge_pixels", "nan_numpy",
-                                        "nan_gl", "unstable_pixels", "unstable_lines")
+                                        "nan_gl", "unstable_pixels", "unstable_lines", "driver")
     assert data["size"] == [W, H]
     json.dumps(data, allow_nan=False)
 

@@ -9,6 +9,9 @@ inputs at once (uniform grid, random, subnormal, huge, +-0, +-Inf, NaN) and comp
 CPU dependence: the steps llvmpipe builds with `llvm.fmuladd` are fused on a CPU with FMA and
 not fused without; `Runtime()` follows this machine (`HOST_FMA`), and a test checks that the
 other choice is measurably different, so a wrong detection cannot pass.
+
+Written for llvmpipe of Mesa 22.3: the bit-exact tests take the `llvmpipe` fixture
+(tests/gl/conftest.py), which fails naming that release on another driver.
 """
 
 from __future__ import annotations
@@ -81,9 +84,9 @@ EXACT = [
 
 
 @pytest.mark.parametrize("case", EXACT, ids=[f"{c[0]}-{i}" for i, c in enumerate(EXACT)])
-def test_builtin_is_bit_exact_with_llvmpipe(gl, case):
+def test_builtin_is_bit_exact_with_llvmpipe(llvmpipe, case):
     expr, fn, a, b = case
-    got = evaluate(gl, expr, a, b)
+    got = evaluate(llvmpipe, expr, a, b)
     with RT.errstate():
         ours = np.asarray(fn(a) if b is None else fn(a, b))
     assert ours.dtype == np.float32
@@ -111,20 +114,20 @@ NORMAL = [
 
 
 @pytest.mark.parametrize("case", NORMAL, ids=[c[0] for c in NORMAL])
-def test_builtin_on_normal_operands_is_bit_exact_with_llvmpipe(gl, case):
+def test_builtin_on_normal_operands_is_bit_exact_with_llvmpipe(llvmpipe, case):
     expr, fn = case
     c = NT if expr.startswith("mix") else NC
-    got = evaluate(gl, expr, NA, NB, c)
+    got = evaluate(llvmpipe, expr, NA, NB, c)
     with RT.errstate():
         ours = np.asarray(fn(NA, NB, c), np.float32)
     bad = np.flatnonzero(ulp_distance(ours, got))
     assert bad.size == 0, (expr, bad.size, NA[bad[:3]], NB[bad[:3]], c[bad[:3]], got[bad[:3]], ours[bad[:3]])
 
 
-def test_fma_choice_follows_this_cpu(gl):
+def test_fma_choice_follows_this_cpu(llvmpipe):
     """Runtime() fuses llvm.fmuladd exactly when this CPU does: the other choice differs from
     the driver on some inputs (about 1% of sin arguments), the detected one on none."""
-    got = evaluate(gl, "sin(a)", X)
+    got = evaluate(llvmpipe, "sin(a)", X)
     other = Runtime("float32", fma=not HOST_FMA)
     with RT.errstate():
         assert np.count_nonzero(ulp_distance(RT.sin(X), got)) == 0

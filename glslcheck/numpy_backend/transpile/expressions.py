@@ -15,6 +15,7 @@ from .common import (_BIN_METHODS, _DERIVATIVES, _FLOAT_OPERATORS, _IDENT, _IMPL
                      _TEXTURE_FUNCTIONS, OUTLINE_EXPR_INDENT, SPILL_HEIGHT, _components, _error, _fold,
                      _is_constant_text)
 from .. import nir_fold
+from .inline import bound_code
 from ...analysis import param_directions
 from ...check.model import Constructor, Symbol
 from .facts import is_plain_read
@@ -122,7 +123,8 @@ class Expressions:
         sym = self.model.symbol_of(e)
         if sym is None:
             raise _error(f"'{e.name}' has no symbol", e)
-        return self.var_name(sym, e)
+        bound = bound_code(self, sym)  # a parameter of an inlined call (inline.py)
+        return bound if bound is not None else self.var_name(sym, e)
 
     def _print_Binary(self, e: A.Binary, mask: str | None) -> str:
         folded = nir_fold.binary(self, e, mask)  # Mesa's reassociations (llvmpipe mode)
@@ -134,6 +136,9 @@ class Expressions:
             # it (`t > 0.0 && t < best` in a tile where every t is -1)
             return self.short_circuit(e, mask)
         left, right = self.exprs([e.left, e.right], mask)
+        zero = nir_fold.zero_add(self, e, left, right)  # x + 0.0 is x on llvmpipe (nir_fold)
+        if zero is not None:
+            return zero
         lt, rtp = self.type_of(e.left), self.type_of(e.right)
         if op in ("==", "!="):
             if lt.is_scalar and rtp.is_scalar:
@@ -337,6 +342,10 @@ class Expressions:
         args = self.exprs(e.args, mask)
         if name == "mix":
             args += nir_fold.mix_hint(self, e)  # Mesa's flrp lowering: see nir_fold
+        if name == "dot":
+            merged = nir_fold.merged_dot(self, e, args, mask)  # constants merged into a dot product
+            if merged is not None:
+                return merged
         if name == "pow":
             rewritten = self.pow_rewrite(e, args)
             if rewritten is not None:

@@ -13,6 +13,8 @@ from .statements import LoopCtx
 from .facts import events_of
 from ...check.model import Symbol
 from .common import _printable
+from .inline import inline_call, worth_inlining
+from .. import nir_fold
 
 class FnState:
     def __init__(self, sym: Any, uni: Uniformity, is_entry: bool) -> None:
@@ -149,6 +151,8 @@ class Functions:
         return f"return {ret}"
 
     def user_call(self, e: A.Call, fn: Any, mask: str | None) -> str:
+        if worth_inlining(self, e, fn, nir_fold.constant_product):
+            return inline_call(self, e, fn, mask)  # Mesa's rewrites reach into an argument: inline.py
         uni = self.fn.uni if self.fn is not None else None
         call_mask = mask
         if uni is not None and self.facts.closed(fn) and all(

@@ -36,7 +36,7 @@ def f_map(S, _m, v_p):
     """float map(vec3) (line 1)."""
     X.count(S, 1, _m)
     # line 2: return length(p - vec3(0.0, 0.0, 4.0)) - 1.0;
-    return (rt.length((v_p - C_x1)) - C_f_1p0)
+    return (rt.length(rt.fsub(v_p, C_x1)) - C_f_1p0)
 
 
 def f_shade(S, _m, v_n):
@@ -99,7 +99,7 @@ def f_mainImage(S, _m, v_fragCoord):
     _t14 = Z_float
     _m16 = X.and_(_m, _t13)
     if X.live(_m16):
-        _t14 = f_shade(S, _m16, rt.normalize((rt.fmul(v_rd, v_t) - C_x1)))
+        _t14 = f_shade(S, _m16, rt.normalize(rt.fsub(rt.fmul(v_rd, v_t), C_x1)))
     _t15 = Z_float
     _m17 = X.andnot(_m, _t13)
     if X.live(_m17):
