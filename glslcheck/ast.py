@@ -23,11 +23,11 @@ returns.
 from __future__ import annotations
 
 import re
-from operator import attrgetter
 from types import FunctionType
 from typing import Any, Callable, Iterator, Optional
 
 from .diagnostics import Location
+from .records import tuple_getter
 
 _NOLOC = Location("<builtin>", 0, 0)
 
@@ -478,16 +478,6 @@ def _is_location(name: str) -> bool:
     return name == "loc" or name.endswith("_loc")
 
 
-def _tuple_getter(names: tuple[str, ...]) -> Callable[[Any], tuple]:
-    """`node -> (node.a, node.b, ...)` for any number of names (one C call for two or more)."""
-    if len(names) >= 2:
-        return attrgetter(*names)
-    if names:
-        get = attrgetter(names[0])
-        return lambda node: (get(node),)
-    return lambda node: ()
-
-
 _INIT_TEMPLATES: dict[int, Any] = {}
 
 
@@ -517,7 +507,7 @@ def _make_methods() -> None:
             annotations.update(getattr(klass, "__annotations__", {}))
         cls._children = tuple(f for f in cls._fields
                               if not names.isdisjoint(re.findall(r"[A-Za-z_]\w*", annotations[f])))
-        cls._children_reversed = staticmethod(_tuple_getter(cls._children[::-1]))
+        cls._children_reversed = staticmethod(tuple_getter(cls._children[::-1]))
         positional = tuple(f for f in cls._fields if f != "loc")
         defaults = tuple(cls._defaults[f] for f in positional)
         template = _init_template(len(positional))

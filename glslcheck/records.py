@@ -34,7 +34,7 @@ from operator import attrgetter
 from types import FunctionType, MemberDescriptorType
 from typing import Any, Callable
 
-__all__ = ["record", "field", "replace", "FrozenInstanceError"]
+__all__ = ["record", "field", "replace", "FrozenInstanceError", "tuple_getter"]
 
 _MISSING = object()
 
@@ -122,8 +122,8 @@ def _object_setattr_to(name: str, obj: Any, value: Any) -> None:
     object.__setattr__(obj, name, value)
 
 
-def _tuple_getter(names: tuple[str, ...]) -> Callable[[Any], tuple]:
-    """`obj -> (obj.a, obj.b, ...)`, a tuple for any number of names."""
+def tuple_getter(names: tuple[str, ...]) -> Callable[[Any], tuple]:
+    """`obj -> (obj.a, obj.b, ...)`, a tuple for any number of names (one C call for two or more)."""
     if len(names) >= 2:
         return attrgetter(*names)
     if names:
@@ -204,7 +204,7 @@ def _process(cls: type, frozen: bool, eq: bool, slots: bool) -> type:
     cls._field_specs = specs
     cls._fields = names
     cls._shown = tuple(n for n in names if specs[n].repr)
-    cls._key = staticmethod(_tuple_getter(tuple(n for n in names if specs[n].compare)))
+    cls._key = staticmethod(tuple_getter(tuple(n for n in names if specs[n].compare)))
     cls.__match_args__ = names
     # As @dataclass: a method the class defines itself is kept.
     own_methods = {
