@@ -27,6 +27,7 @@ from types import FunctionType
 from typing import Any, Callable, Iterator, Optional
 
 from .diagnostics import Location
+from .records import tuple_getter
 
 _NOLOC = Location("<builtin>", 0, 0)
 
@@ -69,6 +70,7 @@ class _NodeMeta(type):
 class Node(metaclass=_NodeMeta):
     loc: Location = _NOLOC
     _children: tuple[str, ...] = ()
+    _children_reversed: Callable[["Node"], tuple] = staticmethod(lambda node: ())
     _fields: tuple[str, ...] = ()
     _shown: tuple[str, ...] = ()  # the fields __repr__ shows: all but locations
 
@@ -92,23 +94,25 @@ class Node(metaclass=_NodeMeta):
     def walk(self) -> Iterator["Node"]:
         """This node and all its descendants, depth first, parents before children (iterative)."""
         # `children()` inlined: a generator per node was most of a walk's cost, and the checker,
-        # hazards and rules walk whole programs (issue 18: start-up of `glslcheck lint`).
+        # hazards and rules walk whole programs (issue 18: start-up of `glslcheck lint`). The
+        # child fields are read in one call, last first (`_children_reversed`), and pushed so
+        # that the first child is popped first.
         stack = [self]
         pop = stack.pop
+        push = stack.append
+        extend = stack.extend
         while stack:
             node = pop()
             yield node
-            kids = []
-            for name in node._children:
-                value = getattr(node, name)
+            for value in node._children_reversed(node):
                 if value is None:
                     continue
-                if isinstance(value, list):
-                    kids.extend([item for item in value if item is not None])
+                if type(value) is list:
+                    if None in value:
+                        value = [item for item in value if item is not None]
+                    extend(reversed(value))
                 else:
-                    kids.append(value)
-            kids.reverse()
-            stack.extend(kids)
+                    push(value)
 
 
 # ---------------------------------------------------------------------------------------------
@@ -503,6 +507,7 @@ def _make_methods() -> None:
             annotations.update(getattr(klass, "__annotations__", {}))
         cls._children = tuple(f for f in cls._fields
                               if not names.isdisjoint(re.findall(r"[A-Za-z_]\w*", annotations[f])))
+        cls._children_reversed = staticmethod(tuple_getter(cls._children[::-1]))
         positional = tuple(f for f in cls._fields if f != "loc")
         defaults = tuple(cls._defaults[f] for f in positional)
         template = _init_template(len(positional))

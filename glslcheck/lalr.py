@@ -32,13 +32,18 @@ END = "$END"
 
 class Tree:
     """A node of the parse tree: its rule (or alias) name and its children (trees, tokens, and
-    None for an absent `[optional]` part), as Lark's Tree has them."""
+    None for an absent `[optional]` part), as Lark's Tree has them; and, as a token has them,
+    `start_pos` and `end_pos`: where its first token starts and its last token ends in the
+    text (None for a tree without tokens). `Driver.parse` sets them as it reduces, from the
+    children it reduces (a tree's tokens are exactly those: the tables keep every token)."""
 
-    __slots__ = ("data", "children")
+    __slots__ = ("data", "children", "start_pos", "end_pos")
 
-    def __init__(self, data: str, children: list) -> None:
+    def __init__(self, data: str, children: list, start_pos: int | None = None, end_pos: int | None = None) -> None:
         self.data = data
         self.children = children
+        self.start_pos = start_pos
+        self.end_pos = end_pos
 
     def __repr__(self) -> str:
         return f"Tree({self.data!r}, {self.children!r})"
@@ -226,7 +231,19 @@ class Driver:
                         children = values[-size:]
                         del values[-size:]
                         del states[-size:]
-                        values.append(callback(children))
+                        value = callback(children)
+                        if type(value) is Tree:
+                            # The tree's span, bottom-up: from its first token to its last
+                            # (children without tokens, empty trees, have None).
+                            start = children[0].start_pos
+                            if start is None:
+                                start = next((c.start_pos for c in children if c.start_pos is not None), None)
+                            end = children[-1].end_pos
+                            if end is None:
+                                end = next((c.end_pos for c in reversed(children) if c.end_pos is not None), None)
+                            value.start_pos = start
+                            value.end_pos = end
+                        values.append(value)
                     else:
                         values.append(callback([]))
                     state = actions[states[-1]][origin]

@@ -294,52 +294,12 @@ _KEEP_TOKENS = frozenset(
 _VALUE_TOKENS = frozenset({"IDENTIFIER", "TYPE_NAME", "INTCONSTANT", "FLOATCONSTANT"})
 
 
-_MISSING = object()
-
-
-def _first_token(tree: Tree, memo: dict) -> Token | None:
-    """The first token under a tree, or None for an empty one. Memoised per tree, so a long
-    left-deep chain (`a + b + ... + z`) costs linear time."""
-    found = memo.get(id(tree), _MISSING)
-    if found is not _MISSING:
-        return found
-    found = None
-    for child in tree.children:
-        if child is None:
-            continue
-        found = child if type(child) is Token else _first_token(child, memo)
-        if found is not None:
-            break
-    memo[id(tree)] = found
-    return found
-
-
-def _last_token(tree: Tree, memo: dict) -> Token | None:
-    """The last token under a tree, or None for an empty one (memoised like _first_token)."""
-    found = memo.get(id(tree), _MISSING)
-    if found is not _MISSING:
-        return found
-    found = None
-    children = tree.children
-    for i in range(len(children) - 1, -1, -1):
-        child = children[i]
-        if child is None:
-            continue
-        found = child if type(child) is Token else _last_token(child, memo)
-        if found is not None:
-            break
-    memo[id(tree)] = found
-    return found
-
-
 class _Builder:
     """Builds AST nodes: `_build_<rule>` for each grammar rule (or alias) of grammar/glsl.lark."""
 
     def __init__(self, locate_span: Callable[[int, int], Location], text: str) -> None:
         self.locate_span = locate_span
         self.text = text
-        self._firsts: dict = {}
-        self._lasts: dict = {}
         self._spans: dict = {}
 
     def build(self, tree: Tree) -> A.TranslationUnit:
@@ -353,14 +313,11 @@ class _Builder:
 
     # -- helpers ------------------------------------------------------------------------------
     def loc(self, item: Tree | Token) -> Location:
-        """The span from the first to the last token of a subtree."""
-        if type(item) is Token:
-            start, end = item.start_pos, item.end_pos
-        else:
-            first = _first_token(item, self._firsts)
-            if first is None:
-                return self.locate_span(0, 0)
-            start, end = first.start_pos, _last_token(item, self._lasts).end_pos
+        """The span from the first to the last token of a subtree (lalr.Driver sets a tree's
+        `start_pos` and `end_pos` as a token has them)."""
+        start, end = item.start_pos, item.end_pos
+        if start is None:  # a tree without tokens
+            return self.locate_span(0, 0)
         # Nested nodes often share both ends (a declaration and its type, a call and its
         # callee): locate each span once.
         key = (start, end)

@@ -129,14 +129,15 @@ class PPResult:
         """The span in the user's file of `text[start:end]` (a point when end <= start)."""
         if end <= start or not self._segs:
             return self.locate(start)
-        # _seg and _seg_len, inlined: the parser locates every AST node through here.
+        # _seg and _seg_len, inlined: the parser locates every AST node through here. The
+        # segments' starts increase strictly (each holds some text), from 0.
         starts = self._seg_starts
-        seg = self._segs[max(bisect_right(starts, start) - 1, 0)]
-        if seg.end < 0:
-            i = bisect_right(starts, seg.out_start)
-            if end <= (starts[i] if i < len(starts) else len(self.text)):
-                # Both ends in one copied piece of text: the common case of a token.
-                return seg.unit.span(seg.start + start - seg.out_start, seg.start + end - seg.out_start)
+        i = bisect_right(starts, start) - 1
+        seg = self._segs[i]
+        if seg.end < 0 and i >= 0 and end <= (starts[i + 1] if i + 1 < len(starts) else len(self.text)):
+            # Both ends in one copied piece of text: the common case of a token.
+            shift = seg.start - seg.out_start
+            return seg.unit.span(start + shift, end + shift)
         first = self.locate(start)
         last_seg, delta = self._seg(end - 1)
         if last_seg.end >= 0:

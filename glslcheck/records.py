@@ -12,18 +12,29 @@ Options: `frozen`, `eq`, `slots` (default True; False keeps a `__dict__`).
 
 Why not `@dataclass`: it compiles the source text of six to nine methods for every class it
 makes, about 3.5 M instructions (a millisecond) per frozen class, and a one-file `glslcheck lint`
-made 35 of them before it read the file (issue 18). Here the methods are shared by every record
-class, and each `__init__` is a copy of one compiled template per field count renamed to the
-class's fields (as ast.py does for the AST's nodes): no code is compiled per class.
+makes 36 record classes before it reads the file (issue 18). Here the methods are shared by every
+record class, and each `__init__` is a copy of one compiled template per field count renamed to
+the class's fields (as ast.py does for the AST's nodes): no code is compiled per class.
+
+Measured again when the review asked whether plain (lazily imported) dataclasses would do
+(issue 18, session 6; cachegrind `I refs` of the whole process, dev venv, .pyc written, every
+`@record` made a `@dataclass` with the same options, lint output unchanged on
+tests/real_lint): `glslcheck lint FILE` (203 lines) 455 M -> 562 M (+23%, about 35 ms at the
+3.07 M instructions per ms of a quiet machine, against a 150 ms target that is 460 M);
+`lint lab_shaders` 2103 M -> 2207 M. Of the 106 M, `import dataclasses` (and `inspect`, `ast`,
+`dis`, `tokenize` with it) is 22 M; the rest, about 2.3 M a class, is the methods compiled for
+the 36 classes. Importing dataclasses lazily saves nothing: every one of those classes is on the
+lint path.
 """
 
 from __future__ import annotations
 
+from functools import partial
 from operator import attrgetter
-from types import FunctionType
+from types import FunctionType, MemberDescriptorType
 from typing import Any, Callable
 
-__all__ = ["record", "field", "replace", "FrozenInstanceError"]
+__all__ = ["record", "field", "replace", "FrozenInstanceError", "tuple_getter"]
 
 _MISSING = object()
 
@@ -62,27 +73,33 @@ class _Factory:
         return f"<factory {getattr(self.make, '__name__', self.make)}>"
 
 
-_TEMPLATES: dict[tuple[int, bool], Any] = {}
+_TEMPLATES: dict[tuple[int, bool, tuple[bool, ...]], Any] = {}
 
 
-def _init_template(count: int, frozen: bool):
+def _init_template(count: int, frozen: bool, factories: tuple[bool, ...]):
     """The code of an `__init__(self, _f0, ..., _f{count-1})` storing each argument (a
-    `_Factory` default replaced by what it makes), compiled once per count."""
-    key = (count, frozen)
+    `_Factory` default replaced by what it makes, for the fields that have one), compiled once
+    per shape. A frozen record's fields are stored through `_set0`, `_set1`, ... (each the
+    `__set__` of the field's slot: a third of the cost of `object.__setattr__`, which a frozen
+    record's `__setattr__` leaves as the only other way; `glslcheck lint lab_shaders` makes
+    13,000 `Location`s)."""
+    key = (count, frozen, factories)
     code = _TEMPLATES.get(key)
     if code is None:
         params = "".join(f", _f{i}" for i in range(count))
-        value = "_f{0}.make() if type(_f{0}) is _Factory else _f{0}"
-        store = "    _setattr(self, '_f{0}', " + value + ")" if frozen else "    self._f{0} = " + value
-        body = [store.format(i) for i in range(count)] or ["    pass"]
+        body = []
+        for i, factory in enumerate(factories):
+            value = f"_f{i}.make() if type(_f{i}) is _Factory else _f{i}" if factory else f"_f{i}"
+            body.append(f"    _set{i}(self, {value})" if frozen else f"    self._f{i} = {value}")
         env: dict[str, Any] = {}
-        exec("\n".join([f"def __init__(self{params}):", *body]), {}, env)  # noqa: S102 - a fixed template
+        exec("\n".join([f"def __init__(self{params}):", *(body or ["    pass"])]), {}, env)  # noqa: S102 - a fixed template
         code = _TEMPLATES[key] = env["__init__"].__code__
     return code
 
 
 def _make_init(cls: type, names: tuple[str, ...], defaults: tuple, frozen: bool) -> FunctionType:
-    template = _init_template(len(names), frozen)
+    factories = tuple(cls._field_specs[name].factory is not None for name in names)
+    template = _init_template(len(names), frozen, factories)
     rename = {f"_f{i}": name for i, name in enumerate(names)}
     code = template.replace(
         co_varnames=tuple(rename.get(n, n) for n in template.co_varnames),
@@ -90,12 +107,23 @@ def _make_init(cls: type, names: tuple[str, ...], defaults: tuple, frozen: bool)
         co_consts=tuple(rename.get(c, c) if type(c) is str else c for c in template.co_consts),
         co_qualname=f"{cls.__qualname__}.__init__",
     )
-    scope = {"_Factory": _Factory, "_setattr": object.__setattr__, "__builtins__": __builtins__}
+    scope = {"_Factory": _Factory, "__builtins__": __builtins__}
+    if frozen:
+        for i, name in enumerate(names):
+            slot = next((k.__dict__[name] for k in cls.__mro__ if name in k.__dict__), None)
+            if type(slot) is MemberDescriptorType:
+                scope[f"_set{i}"] = slot.__set__
+            else:  # no slot (slots=False): through object.__setattr__
+                scope[f"_set{i}"] = partial(_object_setattr_to, name)
     return FunctionType(code, scope, "__init__", defaults or None)
 
 
-def _tuple_getter(names: tuple[str, ...]) -> Callable[[Any], tuple]:
-    """`obj -> (obj.a, obj.b, ...)`, a tuple for any number of names."""
+def _object_setattr_to(name: str, obj: Any, value: Any) -> None:
+    object.__setattr__(obj, name, value)
+
+
+def tuple_getter(names: tuple[str, ...]) -> Callable[[Any], tuple]:
+    """`obj -> (obj.a, obj.b, ...)`, a tuple for any number of names (one C call for two or more)."""
     if len(names) >= 2:
         return attrgetter(*names)
     if names:
@@ -176,7 +204,7 @@ def _process(cls: type, frozen: bool, eq: bool, slots: bool) -> type:
     cls._field_specs = specs
     cls._fields = names
     cls._shown = tuple(n for n in names if specs[n].repr)
-    cls._key = staticmethod(_tuple_getter(tuple(n for n in names if specs[n].compare)))
+    cls._key = staticmethod(tuple_getter(tuple(n for n in names if specs[n].compare)))
     cls.__match_args__ = names
     # As @dataclass: a method the class defines itself is kept.
     own_methods = {

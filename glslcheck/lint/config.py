@@ -21,7 +21,6 @@ key or rule name, a wrong type) raises `InputError` naming the configuration fil
 from __future__ import annotations
 
 import os
-import tomllib
 from ..records import record, field, replace
 from pathlib import Path
 from typing import Any, Mapping
@@ -59,7 +58,7 @@ class ConfigFinder:
 
     overrides: Mapping[str, Any] = field(default_factory=dict)
     known_rules: frozenset[str] = frozenset()
-    _by_dir: dict[Path, LintConfig] = field(default_factory=dict)
+    _by_dir: dict[Path, LintConfig | None] = field(default_factory=dict)  # None: none up from there
     _cwd_config: LintConfig | None = None
 
     def for_file(self, path: str | os.PathLike) -> LintConfig:
@@ -82,9 +81,10 @@ class ConfigFinder:
             result = load_config_in(d, self.known_rules)
             if result is not None:
                 break
+        # Each folder visited has the answer found above it, also "none" (then the next file of
+        # a folder without configuration does not read every parent's pyproject.toml again).
         for d in visited:
-            if result is not None:
-                self._by_dir[d] = result
+            self._by_dir[d] = result
         return result
 
 
@@ -105,6 +105,8 @@ def load_config_in(folder: Path, known_rules: frozenset[str]) -> LintConfig | No
 
 
 def _read_toml(path: Path) -> dict[str, Any]:
+    import tomllib  # only where a folder has a configuration file (start-up, issue 18)
+
     try:
         with open(path, "rb") as f:
             return tomllib.load(f)

@@ -205,8 +205,8 @@ def inactive_lines(lines: list[str], defined: set[str] | None = None) -> set[int
     out: set[int] = set()
     stack: list[tuple[bool, bool, bool]] = []  # (this branch active, a branch was taken, sure)
     for number, line in enumerate(lines, start=1):
-        m = _IF_RE.match(line)
-        active = all(a for a, _, _ in stack)
+        m = _IF_RE.match(line) if "#" in line else None  # most lines: no directive to match
+        active = not stack or all(a for a, _, _ in stack)
         if m is None:
             if not active:
                 out.add(number)

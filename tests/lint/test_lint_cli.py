@@ -171,6 +171,24 @@ def test_config_from_cwd_when_none_above_the_file(tmp_path, monkeypatch):
     assert _rules_found(elsewhere / "Image.glsl") == {"missing-credit"}
 
 
+def test_folders_without_configuration_are_read_once(tmp_path, monkeypatch):
+    """The files of a folder with no configuration above it do not each read every parent's
+    pyproject.toml again (a lab of 34 files read this repository's 34 times: issue 18)."""
+    from glslcheck.lint import config
+
+    lab = tmp_path / "lab"
+    for name in ("a", "b"):
+        (lab / name).mkdir(parents=True)
+    (tmp_path / "pyproject.toml").write_text('[project]\nname = "not-glslcheck-settings"\n')
+    reads = []
+    monkeypatch.setattr(config, "_read_toml", lambda path, read=config._read_toml: reads.append(path) or read(path))
+    monkeypatch.chdir(tmp_path)
+    finder = config.ConfigFinder({}, frozenset())
+    found = [finder.for_file(lab / name / tab) for name in ("a", "b") for tab in ("Image.glsl", "Common.glsl")]
+    assert found == [config.LintConfig()] * 4
+    assert reads == [tmp_path / "pyproject.toml"]
+
+
 def test_cli_overrides_config(workdir, capsys):
     (workdir / "glslcheck.toml").write_text('select = ["missing-credit"]\nignore = ["missing-header"]\n')
     (workdir / "Image.glsl").write_text(BAD_SHADER)
