@@ -210,6 +210,7 @@ import numpy as np
 
 from ..driver_profile import FLOAT_TO_UINT, float_to_uint, host_fma, host_model
 from ..precision import check_precision
+from . import llvmpipe_fast
 from .textures import TextureFunctions
 
 __all__ = ["Runtime", "Struct", "GLSLRuntimeError"]
@@ -449,6 +450,7 @@ class LlvmpipeMath:
 
     def __init__(self, fma: bool = HOST_FMA) -> None:
         self.fma = fma
+        self._kernels: dict[str, Any] = {}
 
     def mad(self, a: Any, b: Any, c: Any, exact: bool = False) -> np.ndarray:
         """``llvm.fmuladd``: fused on an FMA CPU, else a*b then + c. ``exact``: the caller
@@ -476,6 +478,21 @@ class LlvmpipeMath:
             return ref(*args) if d.midpoint() else r
         return run
 
+    def _kernel(self, name: str) -> Any:
+        """The algorithm ``name`` as llvmpipe_fast's kernel (the same steps in fewer NumPy
+        calls, for arguments in the common range), else, where the kernel declines (edge
+        arguments, a float32 midpoint), :meth:`_fast`: the same bits either way. Made once
+        per name (a hot path: one call per tile, loop iteration and march step)."""
+        run = self._kernels.get(name)
+        if run is None:
+            fast, slow, fma = _FAST_KERNELS[name], self._fast(name), self.fma
+
+            def run(*args: np.ndarray) -> np.ndarray:
+                r = fast(*args, fma)
+                return slow(*args) if r is None else r
+            self._kernels[name] = run
+        return run
+
     def polynomial(self, x: np.ndarray, coeffs: tuple[float, ...]) -> np.ndarray:
         """``lp_build_polynomial``: even and odd coefficients in x*x separately (each by
         Horner with mad), then ``mad(odd, x, even)``."""
@@ -497,7 +514,7 @@ class LlvmpipeMath:
         reduction becomes +1), and NaN for non-finite input. For |x| >= 2**31 * pi/4 the
         conversion gives INT_MIN, so the "reduced" argument is huge and the result is a
         clamped +-1 (cos(1e10) = 1, sin(1e10) = -1)."""
-        return _blocked(self._fast("_cos" if cos else "_sin"), a)
+        return _blocked(self._kernel("_cos" if cos else "_sin"), a)
 
     def tan(self, a: np.ndarray) -> np.ndarray:
         """``sin(x) / cos(x)`` (Mesa's GLSL tan), both from one reduction and one evaluation
@@ -582,18 +599,18 @@ class LlvmpipeMath:
     def exp2(self, x: np.ndarray) -> np.ndarray:
         """``lp_build_exp2``: clamp to [-126.99999, 128] (NaN passes), split floor/fraction,
         2**ipart from the exponent bits times a degree-5 polynomial of the fraction."""
-        return _blocked(self._fast("_exp2"), x)
+        return _blocked(self._kernel("_exp2"), x)
 
     def log2(self, x: np.ndarray) -> np.ndarray:
         """``lp_build_log2_safe``: exponent + y*P(y*y) with y = (m-1)/(m+1) for the mantissa m
         in [1, 2); then +Inf for +Inf, -Inf for 0 (subnormals too), NaN for x < 0. The edge
         masks are unordered compares, so NaN input hits all three and ends NaN."""
-        return _blocked(self._fast("_log2"), x)
+        return _blocked(self._kernel("_log2"), x)
 
     def pow(self, x: np.ndarray, y: np.ndarray) -> np.ndarray:
         """``lp_build_pow``: exp2(log2_safe(x) * y), then 0 where x == 0 (an unordered compare:
         NaN x gives 0 too; so do subnormal x)."""
-        return _blocked(self._fast("_pow"), x, y)
+        return _blocked(self._kernel("_pow"), x, y)
 
     def _exp2(self, x: np.ndarray) -> np.ndarray:
         # minps(128, x) then maxps(-126.99999, .): a NaN x passes both, as in np.minimum/maximum
@@ -626,6 +643,15 @@ class LlvmpipeMath:
         if zero.any():
             r = np.where(zero, _F32(0.0), r)
         return r
+
+
+_FAST_KERNELS = {  # LlvmpipeMath._kernel: name -> kernel(*args, fma), None where it declines
+    "_sin": lambda a, fma: llvmpipe_fast.sin_cos(a, fma, cos=False),
+    "_cos": lambda a, fma: llvmpipe_fast.sin_cos(a, fma, cos=True),
+    "_exp2": llvmpipe_fast.exp2,
+    "_log2": llvmpipe_fast.log2,
+    "_pow": llvmpipe_fast.pow,
+}
 
 
 class _DeferredFma(LlvmpipeMath):
