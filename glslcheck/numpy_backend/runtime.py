@@ -416,6 +416,8 @@ def _blocked(fn: Any, *args: np.ndarray) -> np.ndarray:
     on a million lanes (8 MB each in float64) are then tile-sized and recycled by the allocator
     instead of being faulted in anew at every step (3-5x less CPU time at 1,000,000 lanes).
     Same bits as one call (every step is elementwise). 0-d arguments run as 1-lane arrays."""
+    if len(args) == 1 and type(args[0]) is np.ndarray and args[0].ndim and args[0].size <= _BLOCK:
+        return fn(args[0])  # the usual call: one lane array of a tile or less
     args = tuple(np.asarray(v) for v in args)
     shape = args[0].shape if len(args) == 1 else np.broadcast_shapes(*(v.shape for v in args))
     if not shape:
@@ -1108,8 +1110,12 @@ class Runtime(TextureFunctions):  # texture lookups: textures.py
         ``fold_constants`` (set for transpiled shaders)."""
         r = a * b
         if self.fold_constants:
-            for z, other in ((a, b), (b, a)):
-                if self._const_zero(z, other):
+            # _const_zero of (a, b) or of (b, a): one operand constant, the other not (a hot
+            # path: both tests made once)
+            ca, cb = self._const(a), self._const(b)
+            if ca != cb:
+                z = a if ca else b
+                if z.size <= 16 and not z.all():
                     r = np.where(z == 0, self._0, r)
         return r
 
@@ -1181,6 +1187,8 @@ class Runtime(TextureFunctions):  # texture lookups: textures.py
     @staticmethod
     def _shift_count(a: np.ndarray, b: Any) -> np.ndarray:
         b = np.asarray(b)
+        if b.size == 1:  # a uniform count, usually a constant (xorshift's << 13): no array steps
+            return np.array(int(b.reshape(-1)[0]) & 31, a.dtype).reshape(b.shape)
         return (b.astype(np.int64) & 31).astype(a.dtype)
 
     def shl(self, a: Any, b: Any) -> np.ndarray:
