@@ -15,8 +15,9 @@ with the same roundings, for the common case only, and say so first:
   one buffer (the product of two float32 values is exact there, the sum rounded once) and
   rounded to float32; a float64 sum that is exactly a float32 midpoint is the only case where
   that double rounding can differ from the fused one (see runtime._fma32), and one test over
-  the whole buffer at the end finds it: then the kernel returns None too (rare: about one call
-  in several thousand on random arguments);
+  the whole buffer at the end finds it: the lanes where one is are then computed again by the
+  reference (rare on random arguments, a few lanes of a frame where values are short
+  fractions: colours of 0.5, exact powers of two);
 - the two Horner chains of a polynomial (even and odd coefficients), and sin/cos's two
   polynomials, are evaluated as the two rows of one array: elementwise, so the same bits in
   half the calls.
@@ -83,7 +84,7 @@ _INF_BITS = 0x7F800000
 
 class _Fused:
     """``llvm.fmuladd`` for one kernel call: with FMA, each product and sum in float64 rows of
-    one buffer, rounded to float32 at once, the rows checked for midpoints by :meth:`exact`;
+    one buffer, rounded to float32 at once, the rows checked for midpoints by :meth:`midpoints`;
     without FMA a float32 multiply then add."""
 
     __slots__ = ("fma", "buf", "used")
@@ -104,14 +105,31 @@ class _Fused:
         np.add(s, c, out=s)
         return s.astype(F32)
 
-    def exact(self) -> bool:
-        """No float64 sum is a float32 midpoint: each rounding equals the fused one (the rows
-        are overwritten by the test)."""
+    def midpoints(self) -> np.ndarray | None:
+        """None when no float64 sum is a float32 midpoint (each rounding equals the fused
+        one), else the lanes where one is (the rows are overwritten by the test)."""
         if not self.used:
-            return True
+            return None
         low = self.buf[:self.used].view(I64)
         np.bitwise_and(low, _LOW29, out=low)
-        return not (low == _MID29).any()
+        mid = low == _MID29
+        if not mid.any():
+            return None
+        return mid.any(axis=0)
+
+
+def _fix(r: np.ndarray, bad: np.ndarray | None, ref: Any, *args: np.ndarray) -> np.ndarray | None:
+    """``r`` (flat) with the lanes ``bad`` (a float32 midpoint in a fused step, where the
+    double rounding may differ) recomputed by ``ref``, the reference algorithm, on those lanes
+    of the flat ``args`` alone: every step is elementwise, so the same bits as the whole call.
+    None (decline) without ``ref``."""
+    if bad is None:
+        return r
+    if ref is None:
+        return None
+    at = np.flatnonzero(bad)
+    r[at] = ref(*(a[at] for a in args))
+    return r
 
 
 def _flat(x: np.ndarray) -> np.ndarray:
@@ -124,8 +142,9 @@ def _normal_or_zero(xi: np.ndarray) -> bool:
     return not ((xi != 0) & (xi < _MIN_NORMAL_BITS)).any()
 
 
-def sin_cos(a: np.ndarray, fma: bool, cos: bool) -> np.ndarray | None:
-    """LlvmpipeMath._sin/_cos for |x| < 2**29, finite; None otherwise or on a midpoint."""
+def sin_cos(a: np.ndarray, fma: bool, cos: bool, ref: Any = None) -> np.ndarray | None:
+    """LlvmpipeMath._sin/_cos for |x| < 2**29, finite; None otherwise. ``ref``: the reference
+    for the lanes of a float32 midpoint (:func:`_fix`)."""
     shape = a.shape
     a = _flat(a)
     ai = a.view(I32)
@@ -156,8 +175,7 @@ def sin_cos(a: np.ndarray, fma: bool, cos: bool) -> np.ndarray | None:
     y_10 -= z * _HALF
     y_10 += _ONE
     y2_9 = f.mad(both[1], x_3, x_3)
-    if fma and not f.exact():
-        return None
+    bad = f.midpoints() if fma else None
     if cos:
         j -= _I2  # emm2_2 (wraps, as psubd)
         sign = ((_I4 & ~j).view(U32) << _U29).view(I32)
@@ -171,12 +189,23 @@ def sin_cos(a: np.ndarray, fma: bool, cos: bool) -> np.ndarray | None:
         # sin(x_3) and y_10 = 1 + (a - z/2) with 0 <= a < z/2: both within [-1, 1] already
         np.fmin(y, _ONE, out=y)
         np.fmax(y, _MINUS_ONE, out=y)
-    return y.reshape(shape)
+    y = _fix(y, bad, ref, a)
+    return None if y is None else y.reshape(shape)
 
 
-def exp2(x: np.ndarray, fma: bool) -> np.ndarray | None:
-    """LlvmpipeMath._exp2 without NaN or subnormals; None otherwise or on a midpoint."""
-    shape = x.shape
+def exp2(x: np.ndarray, fma: bool, ref: Any = None) -> np.ndarray | None:
+    """LlvmpipeMath._exp2 without NaN or subnormals; None otherwise (``ref``: see
+    :func:`sin_cos`)."""
+    r = _exp2(x, fma)
+    return None if r is None else _reshape(_fix(r[0], r[1], ref, _flat(x)), x.shape)
+
+
+def _reshape(r: np.ndarray | None, shape: tuple[int, ...]) -> np.ndarray | None:
+    return None if r is None else r.reshape(shape)
+
+
+def _exp2(x: np.ndarray, fma: bool) -> tuple[np.ndarray, np.ndarray | None] | None:
+    """exp2 of the flattened ``x`` and the lanes of a midpoint (or None), or None (declined)."""
     x = _flat(x)
     xi = x.view(I32) & _ABS
     hi = xi.max()
@@ -196,15 +225,18 @@ def exp2(x: np.ndarray, fma: bool) -> np.ndarray | None:
     x2 = fpart * fpart
     r = f.mad(f.mad(x2, _EXP2_C1, _EXP2_C2, rows=2), x2, _EXP2_C3, rows=2)  # odd, even chains
     p = f.mad(r[0], fpart, r[1])
-    if fma and not f.exact():
-        return None
-    return np.multiply(e.view(F32), p, out=p).reshape(shape)
+    return np.multiply(e.view(F32), p, out=p), (f.midpoints() if fma else None)
 
 
-def log2(x: np.ndarray, fma: bool) -> np.ndarray | None:
+def log2(x: np.ndarray, fma: bool, ref: Any = None) -> np.ndarray | None:
     """LlvmpipeMath._log2 for every x normal, positive and finite (where its edges change
-    nothing); None otherwise or on a midpoint."""
-    shape = x.shape
+    nothing); None otherwise (``ref``: see :func:`sin_cos`)."""
+    r = _log2(x, fma)
+    return None if r is None else _reshape(_fix(r[0], r[1], ref, _flat(x)), x.shape)
+
+
+def _log2(x: np.ndarray, fma: bool) -> tuple[np.ndarray, np.ndarray | None] | None:
+    """log2 of the flattened ``x`` and the lanes of a midpoint (or None), or None (declined)."""
     x = _flat(x)
     i = x.view(I32)
     if i.min() < _MIN_NORMAL_BITS or i.max() >= _INF_BITS:
@@ -223,26 +255,38 @@ def log2(x: np.ndarray, fma: bool) -> np.ndarray | None:
     even = f.mad(x2, r[0], _LOG2_C0)
     p = f.mad(r[1], w, even)
     res = f.mad(y, p, logexp.astype(F32))
-    if fma and not f.exact():
-        return None
-    return res.reshape(shape)
+    return res, (f.midpoints() if fma else None)
 
 
-def pow(x: np.ndarray, y: np.ndarray, fma: bool) -> np.ndarray | None:
+def pow(x: np.ndarray, y: np.ndarray, fma: bool, ref: Any = None) -> np.ndarray | None:
     """LlvmpipeMath._pow: exp2(log2(x) * y), then 0 where x is +-0 (or subnormal, or NaN:
     declined here). Lanes of x == 0 are computed as x = 1 and then set to 0, which is what the
     reference gives them whatever the rest yields (every step is elementwise); None where a
-    kernel declines."""
-    lg = log2(x, fma)
+    kernel declines (``ref``: see :func:`sin_cos`, here of both arguments)."""
+    lg = _log2(x, fma)
     zero = None
     if lg is None:
         zero = x == _ZERO
         if not zero.any():
             return None
-        lg = log2(np.where(zero, _ONE, x), fma)
+        lg = _log2(np.where(zero, _ONE, x), fma)
         if lg is None:
             return None
-    r = exp2(lg * y, fma)
-    if r is not None and zero is not None:
+    lg, bad_x = lg
+    t = lg.reshape(x.shape) * y
+    e = _exp2(t, fma)
+    if e is None:
+        return None
+    r, bad = e
+    r = r.reshape(t.shape)
+    if zero is not None:
         np.copyto(r, _ZERO, where=zero)
-    return r
+    if bad_x is not None:
+        bad_x = np.broadcast_to(bad_x.reshape(x.shape), t.shape).reshape(-1)
+        bad = bad_x if bad is None else bad | bad_x
+    if bad is None:
+        return r
+    if ref is None:
+        return None
+    flat = _fix(r.reshape(-1), bad, ref, *(np.broadcast_to(v, t.shape).reshape(-1) for v in (x, y)))
+    return flat.reshape(t.shape)

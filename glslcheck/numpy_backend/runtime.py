@@ -483,14 +483,20 @@ class LlvmpipeMath:
     def _kernel(self, name: str) -> Any:
         """The algorithm ``name`` as llvmpipe_fast's kernel (the same steps in fewer NumPy
         calls, for arguments in the common range), else, where the kernel declines (edge
-        arguments, a float32 midpoint), :meth:`_fast`: the same bits either way. Made once
+        arguments), :meth:`_fast`, which also recomputes the lanes of a float32 midpoint in
+        the kernel: the same bits either way. Up to :data:`_DEFER_LANES` lanes: on larger
+        arrays (whole tiles) the kernel's float64 rows cost as much as the calls they save
+        (measured alternately in one process: 1.5-1.8x faster at 143 lanes, 1.2-1.5x at
+        3600, even at 16000-48000 for sin and exp2, pow slower there). Made once
         per name (a hot path: one call per tile, loop iteration and march step)."""
         run = self._kernels.get(name)
         if run is None:
             fast, slow, fma = _FAST_KERNELS[name], self._fast(name), self.fma
 
             def run(*args: np.ndarray) -> np.ndarray:
-                r = fast(*args, fma)
+                if max(a.size for a in args) > _DEFER_LANES:
+                    return slow(*args)
+                r = fast(*args, fma, slow)  # slow: also for the lanes of a float32 midpoint
                 return slow(*args) if r is None else r
             self._kernels[name] = run
         return run
@@ -647,9 +653,9 @@ class LlvmpipeMath:
         return r
 
 
-_FAST_KERNELS = {  # LlvmpipeMath._kernel: name -> kernel(*args, fma), None where it declines
-    "_sin": lambda a, fma: llvmpipe_fast.sin_cos(a, fma, cos=False),
-    "_cos": lambda a, fma: llvmpipe_fast.sin_cos(a, fma, cos=True),
+_FAST_KERNELS = {  # LlvmpipeMath._kernel: name -> kernel(*args, fma, ref), None where it declines
+    "_sin": lambda a, fma, ref: llvmpipe_fast.sin_cos(a, fma, False, ref),
+    "_cos": lambda a, fma, ref: llvmpipe_fast.sin_cos(a, fma, True, ref),
     "_exp2": llvmpipe_fast.exp2,
     "_log2": llvmpipe_fast.log2,
     "_pow": llvmpipe_fast.pow,

@@ -55,11 +55,13 @@ def _bits(a: np.ndarray) -> np.ndarray:
     return np.where(np.isnan(a), np.int32(0x7FC00000), a.view(np.int32))
 
 
-def _kernel(name: str, fma: bool):
-    return {"_sin": lambda a: llvmpipe_fast.sin_cos(a, fma, cos=False),
-            "_cos": lambda a: llvmpipe_fast.sin_cos(a, fma, cos=True),
-            "_exp2": lambda a: llvmpipe_fast.exp2(a, fma), "_log2": lambda a: llvmpipe_fast.log2(a, fma),
-            "_pow": lambda a, b: llvmpipe_fast.pow(a, b, fma)}[name]
+def _kernel(name: str, fma: bool, ref=None):
+    """The kernel; ``ref`` recomputes the lanes of a float32 midpoint (without it the kernel
+    declines there)."""
+    return {"_sin": lambda a: llvmpipe_fast.sin_cos(a, fma, False, ref),
+            "_cos": lambda a: llvmpipe_fast.sin_cos(a, fma, True, ref),
+            "_exp2": lambda a: llvmpipe_fast.exp2(a, fma, ref), "_log2": lambda a: llvmpipe_fast.log2(a, fma, ref),
+            "_pow": lambda a, b: llvmpipe_fast.pow(a, b, fma, ref)}[name]
 
 
 def _public(lp: LlvmpipeMath, name: str):
@@ -75,7 +77,7 @@ def test_kernel_equals_reference(name, fma):
     reference's bits, and most calls must be taken (else the test compares nothing)."""
     lp = LlvmpipeMath(fma)
     lo, hi, positive = KERNELS[name]
-    kernel, public = _kernel(name, fma), _public(lp, name)
+    kernel, public = _kernel(name, fma, lp._fast(name)), _public(lp, name)
     taken = lanes = 0
     with np.errstate(all="ignore"):
         while lanes < 2_000_000:
@@ -118,25 +120,45 @@ def test_specials_one_by_one(name):
 
 
 def test_fused_rows_find_a_midpoint():
-    """1 * (1 + 2**-23) + 2**-24 is a float32 midpoint of its float64 sum: `_Fused.exact`
-    must see it (then a kernel declines); 1 * 1.5 + 0.25 is not."""
-    one = np.ones(3, F32)
+    """1 * (1 + 2**-23) + 2**-24 is a float32 midpoint of its float64 sum: `_Fused.midpoints`
+    must see it, in its lane (in a later row too); 1 * 1.5 + 0.25 is not."""
+    v = np.array([1.0, 1.0, 1.0], F32)
+    c = np.array([0.25, 2**-24, 0.25], F32)
     f = llvmpipe_fast._Fused(True, 2, 3)
-    f.mad(one, F32(1 + 2**-23), F32(2**-24))
-    assert not f.exact()
+    f.mad(v, F32(1.5), F32(0.25))
+    f.mad(v, F32(1 + 2**-23), c)
+    assert f.midpoints().tolist() == [False, True, False]
     f = llvmpipe_fast._Fused(True, 2, 3)
-    f.mad(one, F32(1.5), F32(0.25))
-    assert f.exact()
+    f.mad(v, F32(1.5), F32(0.25))
+    assert f.midpoints() is None
 
 
-def test_a_declined_midpoint_gives_the_reference(monkeypatch):
-    """A kernel whose midpoint test fires returns None, and the public method then gives the
-    reference's bits."""
-    monkeypatch.setattr(llvmpipe_fast._Fused, "exact", lambda self: False)
-    x = RNG.uniform(0.5, 50.0, 300).astype(F32)
+def test_midpoint_lanes_get_the_reference(monkeypatch):
+    """Lanes flagged as midpoints are recomputed by the reference on those lanes alone
+    (without one the kernel declines): checked by flagging every third lane of a call and
+    giving a reference that negates its result, which must then show in exactly those lanes;
+    the public method's result is the reference's bit for bit."""
+    real = llvmpipe_fast._Fused.midpoints
+
+    def every_third(self):
+        real(self)
+        return np.arange(self.buf.shape[1]) % 3 == 0
+
+    monkeypatch.setattr(llvmpipe_fast._Fused, "midpoints", every_third)
+    x = RNG.uniform(0.5, 50.0, 300).astype(F32).reshape(3, 100)
+    flagged = (np.arange(300) % 3 == 0).reshape(3, 100)
     lp = LlvmpipeMath(True)
     with np.errstate(all="ignore"):
         for name in sorted(KERNELS):
-            args = (x,) if name != "_pow" else (x, x * F32(0.01))
+            args = (x,) if name != "_pow" else (x, x[:1] * F32(0.01))  # pow: y broadcast
+            want = _blocked(getattr(lp, name), *args)
             assert _kernel(name, True)(*args) is None
-            assert np.array_equal(_bits(_public(lp, name)(*args)), _bits(_blocked(getattr(lp, name), *args)))
+            calls = []
+
+            def negated_ref(*a, _name=name):
+                calls.append(a[0].size)
+                return -getattr(lp, _name)(*a)
+            got = _kernel(name, True, negated_ref)(*args)
+            assert calls == [100]
+            assert np.array_equal(_bits(got), _bits(np.where(flagged, -want, want)))
+            assert np.array_equal(_bits(_public(lp, name)(*args)), _bits(want))
