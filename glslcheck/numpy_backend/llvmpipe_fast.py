@@ -9,8 +9,8 @@ with the same roundings, for the common case only, and say so first:
 
 - one or two reductions over the argument's bits decide whether every lane is in the range
   where the edge handling changes nothing (no NaN, Inf, subnormal or out-of-range conversion;
-  for log2 every x normal and positive; for exp2 no clamp applies). Otherwise a kernel returns
-  None and the caller takes the reference path;
+  for log2 every x normal and positive; exp2 clamps only when some |x| > 126; pow takes x = +-0
+  too). Otherwise a kernel returns None and the caller takes the reference path;
 - the fused multiply-adds (``llvm.fmuladd``, fused on an FMA CPU) are made in float64 rows of
   one buffer (the product of two float32 values is exact there, the sum rounded once) and
   rounded to float32; a float64 sum that is exactly a float32 midpoint is the only case where
@@ -21,6 +21,9 @@ with the same roundings, for the common case only, and say so first:
 - the two Horner chains of a polynomial (even and odd coefficients), and sin/cos's two
   polynomials, are evaluated as the two rows of one array: elementwise, so the same bits in
   half the calls.
+
+LlvmpipeMath uses the kernels up to 4096 lanes a call (runtime._DEFER_LANES): on whole tiles
+their float64 rows cost as much as the calls they save.
 
 Every kernel is checked bit for bit against the reference on millions of inputs, specials
 included (tests/numpy/test_llvmpipe_fast_kernels.py). Without FMA a fused step is a float32
