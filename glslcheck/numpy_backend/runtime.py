@@ -211,6 +211,7 @@ import numpy as np
 
 from ..driver_profile import FLOAT_TO_UINT, float_to_uint, host_fma, host_model
 from ..precision import check_precision
+from . import llvmpipe_fast
 from .textures import TextureFunctions
 
 __all__ = ["Runtime", "Struct", "GLSLRuntimeError"]
@@ -416,6 +417,8 @@ def _blocked(fn: Any, *args: np.ndarray) -> np.ndarray:
     on a million lanes (8 MB each in float64) are then tile-sized and recycled by the allocator
     instead of being faulted in anew at every step (3-5x less CPU time at 1,000,000 lanes).
     Same bits as one call (every step is elementwise). 0-d arguments run as 1-lane arrays."""
+    if len(args) == 1 and type(args[0]) is np.ndarray and args[0].ndim and args[0].size <= _BLOCK:
+        return fn(args[0])  # the usual call: one lane array of a tile or less
     args = tuple(np.asarray(v) for v in args)
     shape = args[0].shape if len(args) == 1 else np.broadcast_shapes(*(v.shape for v in args))
     if not shape:
@@ -450,6 +453,7 @@ class LlvmpipeMath:
 
     def __init__(self, fma: bool = HOST_FMA) -> None:
         self.fma = fma
+        self._kernels: dict[str, Any] = {}
 
     def mad(self, a: Any, b: Any, c: Any, exact: bool = False) -> np.ndarray:
         """``llvm.fmuladd``: fused on an FMA CPU, else a*b then + c. ``exact``: the caller
@@ -477,6 +481,27 @@ class LlvmpipeMath:
             return ref(*args) if d.midpoint() else r
         return run
 
+    def _kernel(self, name: str) -> Any:
+        """The algorithm ``name`` as llvmpipe_fast's kernel (the same steps in fewer NumPy
+        calls, for arguments in the common range), else, where the kernel declines (edge
+        arguments), :meth:`_fast`, which also recomputes the lanes of a float32 midpoint in
+        the kernel: the same bits either way. Up to :data:`_DEFER_LANES` lanes: on larger
+        arrays (whole tiles) the kernel's float64 rows cost as much as the calls they save
+        (measured alternately in one process: 1.5-1.8x faster at 143 lanes, 1.2-1.5x at
+        3600, even at 16000-48000 for sin and exp2, pow slower there). Made once
+        per name (a hot path: one call per tile, loop iteration and march step)."""
+        run = self._kernels.get(name)
+        if run is None:
+            fast, slow, fma = _FAST_KERNELS[name], self._fast(name), self.fma
+
+            def run(*args: np.ndarray) -> np.ndarray:
+                if max(a.size for a in args) > _DEFER_LANES:
+                    return slow(*args)
+                r = fast(*args, fma, slow)  # slow: also for the lanes of a float32 midpoint
+                return slow(*args) if r is None else r
+            self._kernels[name] = run
+        return run
+
     def polynomial(self, x: np.ndarray, coeffs: tuple[float, ...]) -> np.ndarray:
         """``lp_build_polynomial``: even and odd coefficients in x*x separately (each by
         Horner with mad), then ``mad(odd, x, even)``."""
@@ -498,7 +523,7 @@ class LlvmpipeMath:
         reduction becomes +1), and NaN for non-finite input. For |x| >= 2**31 * pi/4 the
         conversion gives INT_MIN, so the "reduced" argument is huge and the result is a
         clamped +-1 (cos(1e10) = 1, sin(1e10) = -1)."""
-        return _blocked(self._fast("_cos" if cos else "_sin"), a)
+        return _blocked(self._kernel("_cos" if cos else "_sin"), a)
 
     def tan(self, a: np.ndarray) -> np.ndarray:
         """``sin(x) / cos(x)`` (Mesa's GLSL tan), both from one reduction and one evaluation
@@ -583,18 +608,18 @@ class LlvmpipeMath:
     def exp2(self, x: np.ndarray) -> np.ndarray:
         """``lp_build_exp2``: clamp to [-126.99999, 128] (NaN passes), split floor/fraction,
         2**ipart from the exponent bits times a degree-5 polynomial of the fraction."""
-        return _blocked(self._fast("_exp2"), x)
+        return _blocked(self._kernel("_exp2"), x)
 
     def log2(self, x: np.ndarray) -> np.ndarray:
         """``lp_build_log2_safe``: exponent + y*P(y*y) with y = (m-1)/(m+1) for the mantissa m
         in [1, 2); then +Inf for +Inf, -Inf for 0 (subnormals too), NaN for x < 0. The edge
         masks are unordered compares, so NaN input hits all three and ends NaN."""
-        return _blocked(self._fast("_log2"), x)
+        return _blocked(self._kernel("_log2"), x)
 
     def pow(self, x: np.ndarray, y: np.ndarray) -> np.ndarray:
         """``lp_build_pow``: exp2(log2_safe(x) * y), then 0 where x == 0 (an unordered compare:
         NaN x gives 0 too; so do subnormal x)."""
-        return _blocked(self._fast("_pow"), x, y)
+        return _blocked(self._kernel("_pow"), x, y)
 
     def _exp2(self, x: np.ndarray) -> np.ndarray:
         # minps(128, x) then maxps(-126.99999, .): a NaN x passes both, as in np.minimum/maximum
@@ -627,6 +652,15 @@ class LlvmpipeMath:
         if zero.any():
             r = np.where(zero, _F32(0.0), r)
         return r
+
+
+_FAST_KERNELS = {  # LlvmpipeMath._kernel: name -> kernel(*args, fma, ref), None where it declines
+    "_sin": lambda a, fma, ref: llvmpipe_fast.sin_cos(a, fma, False, ref),
+    "_cos": lambda a, fma, ref: llvmpipe_fast.sin_cos(a, fma, True, ref),
+    "_exp2": llvmpipe_fast.exp2,
+    "_log2": llvmpipe_fast.log2,
+    "_pow": llvmpipe_fast.pow,
+}
 
 
 class _DeferredFma(LlvmpipeMath):
@@ -1083,8 +1117,12 @@ class Runtime(TextureFunctions):  # texture lookups: textures.py
         ``fold_constants`` (set for transpiled shaders)."""
         r = a * b
         if self.fold_constants:
-            for z, other in ((a, b), (b, a)):
-                if self._const_zero(z, other):
+            # _const_zero of (a, b) or of (b, a): one operand constant, the other not (a hot
+            # path: both tests made once)
+            ca, cb = self._const(a), self._const(b)
+            if ca != cb:
+                z = a if ca else b
+                if z.size <= 16 and not z.all():
                     r = np.where(z == 0, self._0, r)
         return r
 
@@ -1185,6 +1223,8 @@ class Runtime(TextureFunctions):  # texture lookups: textures.py
     @staticmethod
     def _shift_count(a: np.ndarray, b: Any) -> np.ndarray:
         b = np.asarray(b)
+        if b.size == 1:  # a uniform count, usually a constant (xorshift's << 13): no array steps
+            return np.array(int(b.reshape(-1)[0]) & 31, a.dtype).reshape(b.shape)
         return (b.astype(np.int64) & 31).astype(a.dtype)
 
     def shl(self, a: Any, b: Any) -> np.ndarray:
