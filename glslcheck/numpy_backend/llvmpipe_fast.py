@@ -57,26 +57,35 @@ _U29 = _c(29, U32)
 # sin/cos: |x| below 2**29 (bits 0x4E000000) keeps j = int(|x| * 4/pi) + 1 far from int32
 # overflow (cvttps2dq's INT_MIN case) and excludes Inf and NaN
 _SIN_MAX_BITS = 0x4E000000
-_FOPI = _c(1.27323954473516, F32)
-_DP = tuple(_c(v, F32) for v in (-0.78515625, -2.4187564849853515625e-4, -3.77489497744594108e-8))
-# the cosine's polynomial (row 0) and the sine's (row 1), as in LlvmpipeMath.SIN_COS
-_SC = np.array([[2.443315711809948e-005, -1.9515295891e-4],
-                [-1.388731625493765e-003, 8.3321608736e-3],
-                [4.166664568298827e-002, -1.6666654611e-1]], dtype=F32)[:, :, None]
+# gallivm's constants (lp_bld_arit.c, Mesa 22.3): the one home of them, which
+# runtime.LlvmpipeMath's reference path reads too. lp_build_sin_or_cos: 4/pi, the three parts
+# of pi/4 (DP1..DP3) and the cosine's polynomial (column 0) beside the sine's (column 1)
+FOUR_OVER_PI = 1.27323954473516
+DP = (-0.78515625, -2.4187564849853515625e-4, -3.77489497744594108e-8)
+SIN_COS = np.array([[2.443315711809948e-005, -1.9515295891e-4],
+                    [-1.388731625493765e-003, 8.3321608736e-3],
+                    [4.166664568298827e-002, -1.6666654611e-1]], dtype=F32)[:, :, None]
+_FOPI = _c(FOUR_OVER_PI, F32)
+_DP = tuple(_c(v, F32) for v in DP)
+_SC = SIN_COS
 _ZERO, _HALF, _ONE, _MINUS_ONE = (_c(v, F32) for v in (0.0, 0.5, 1.0, -1.0))
 
 # exp2: |x| <= 126 (bits 0x42FC0000): neither clamp (128, -126.99999) applies
 _EXP2_MAX_BITS = 0x42FC0000
 _EXP2_HI, _EXP2_LO = _c(128.0, F32), _c(-126.99999, F32)
-_EXP2 = (1.0, 0.693153073200168932794, 0.240153617044375388211, 0.0558263180532956664775,
-         0.00898934009049466391101, 0.00187757667519147912699)
+# lp_build_exp2_polynomial, EXP_POLY_DEGREE 5 (the first coefficient is 1.0 exactly)
+EXP2 = (1.0, 0.693153073200168932794, 0.240153617044375388211, 0.0558263180532956664775,
+        0.00898934009049466391101, 0.00187757667519147912699)
+_EXP2 = EXP2
 _EXP2_C1 = np.array([[_EXP2[5]], [_EXP2[4]]], F32)  # odd and even chain: first coefficients
 _EXP2_C2 = np.array([[_EXP2[3]], [_EXP2[2]]], F32)
 _EXP2_C3 = np.array([[_EXP2[1]], [_EXP2[0]]], F32)
 _B127, _I23 = _c(127, I32), _c(23, I32)
 
-_LOG2 = (2.88539009343309178325, 0.961791550404184197881, 0.577440339438736392009,
-         0.403343858251329912514, 0.406718052498846252698)
+# lp_build_log2_polynomial, LOG_POLY_DEGREE 4
+LOG2 = (2.88539009343309178325, 0.961791550404184197881, 0.577440339438736392009,
+        0.403343858251329912514, 0.406718052498846252698)
+_LOG2 = LOG2
 _LOG2_C1 = np.array([[_LOG2[4]], [_LOG2[3]]], F32)  # even and odd chain
 _LOG2_C2 = np.array([[_LOG2[2]], [_LOG2[1]]], F32)
 _LOG2_C0 = _c(_LOG2[0], F32)

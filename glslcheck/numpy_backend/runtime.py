@@ -439,17 +439,9 @@ class LlvmpipeMath:
     FMA. All inputs and results are float32 arrays. The public methods split large arrays
     into blocks (:func:`_blocked`); the ``_``-prefixed ones are the algorithms, step by step."""
 
-    # lp_build_exp2_polynomial, EXP_POLY_DEGREE 5 (the first coefficient is 1.0 exactly)
-    EXP2 = (1.0, 0.693153073200168932794, 0.240153617044375388211, 0.0558263180532956664775,
-            0.00898934009049466391101, 0.00187757667519147912699)
-    # lp_build_log2_polynomial, LOG_POLY_DEGREE 4
-    LOG2 = (2.88539009343309178325, 0.961791550404184197881, 0.577440339438736392009,
-            0.403343858251329912514, 0.406718052498846252698)
-
-    # the cosine's polynomial (y_6) and the sine's (y2_6) in lp_build_sin_or_cos, as columns
-    SIN_COS = np.array([[2.443315711809948e-005, -1.9515295891e-4],
-                        [-1.388731625493765e-003, 8.3321608736e-3],
-                        [4.166664568298827e-002, -1.6666654611e-1]], dtype=_F32)[:, :, None]
+    # gallivm's coefficients, kept in llvmpipe_fast (their one home): the exp2 and log2
+    # polynomials, and the cosine's (y_6) and sine's (y2_6) polynomials of lp_build_sin_or_cos
+    EXP2, LOG2, SIN_COS = llvmpipe_fast.EXP2, llvmpipe_fast.LOG2, llvmpipe_fast.SIN_COS
 
     def __init__(self, fma: bool = HOST_FMA) -> None:
         self.fma = fma
@@ -545,7 +537,7 @@ class LlvmpipeMath:
         x_3 and both polynomials of it (y_10 the cosine one, y2_9 the sine one)."""
         ai = a.view(I32)
         x_abs = _daz((ai & I32(0x7FFFFFFF)).view(_F32))
-        emm2_add = _cvtt(x_abs * _F32(1.27323954473516))
+        emm2_add = _cvtt(x_abs * _F32(llvmpipe_fast.FOUR_OVER_PI))
         emm2_add += I32(1)  # wraps at INT_MAX, as paddd
         emm2_and = emm2_add & I32(~1)
         y_2 = emm2_and.astype(_F32)
@@ -553,9 +545,9 @@ class LlvmpipeMath:
         # |x| < ~51000, resp. ~6400) the float32 product is exact and the fused multiply-add
         # rounds like a multiply then an add (the cheap form). INT_MIN reads as 2**31 here.
         j_max = int(emm2_and.view(U32).max(initial=0))
-        x_1 = self.mad(y_2, _F32(-0.78515625), x_abs, exact=j_max < 2**16)
-        x_2 = self.mad(y_2, _F32(-2.4187564849853515625e-4), x_1, exact=j_max < 2**13)
-        x_3 = self.mad(y_2, _F32(-3.77489497744594108e-8), x_2)
+        x_1 = self.mad(y_2, _F32(llvmpipe_fast.DP[0]), x_abs, exact=j_max < 2**16)
+        x_2 = self.mad(y_2, _F32(llvmpipe_fast.DP[1]), x_1, exact=j_max < 2**13)
+        x_3 = self.mad(y_2, _F32(llvmpipe_fast.DP[2]), x_2)
         z = x_3 * x_3
         # both polynomials have the form mad(mad(z, p0, p1), z, p2) * z: on few lanes evaluated
         # as one (2, lanes) array, row 0 the cosine's coefficients and row 1 the sine's
