@@ -103,6 +103,7 @@ def test_each_filter_and_wrap_against_gl(gl, tmp_path, filt, wrap, vflip, highp)
     assert ours[..., :3].std() > 0.1  # the texture really was sampled
 
 
+@pytest.mark.usefixtures("llvmpipe")  # bit for bit with Mesa 22.3's llvmpipe
 def test_lowp_sampler_truncates_like_llvmpipe(gl, tmp_path):
     (tmp_path / "tex.png").unlink(missing_ok=True)
     _png(tmp_path / "tex.png", 7, 5, seed=3)
@@ -357,6 +358,7 @@ def test_shadertoy_json_export_reads_an_unbound_channel_as_shadertoy_does(gl, tm
         assert np.array_equal(img, np.broadcast_to(np.float32([0.0, 0.0, 0.0, 1.0]), img.shape)), backend
 
 
+@pytest.mark.usefixtures("llvmpipe")  # bit for bit with Mesa 22.3's llvmpipe
 @pytest.mark.parametrize("size", [(15, 9), (9, 14)])
 def test_odd_sizes_shade_helper_pixels_as_llvmpipe(gl, tmp_path, size):
     # An odd right or top edge: llvmpipe's 2x2 quads there take helper pixels outside the
@@ -376,6 +378,7 @@ def test_odd_sizes_shade_helper_pixels_as_llvmpipe(gl, tmp_path, size):
     assert np.abs(ours - theirs).max() <= 2.0**-10  # as test_mipmap_against_gl
 
 
+@pytest.mark.usefixtures("llvmpipe")  # bit for bit with Mesa 22.3's llvmpipe
 @pytest.mark.parametrize("filt", ["linear", "mipmap"])
 @pytest.mark.parametrize("wrap", ["clamp", "repeat"])
 @pytest.mark.parametrize("lookup", [
@@ -408,6 +411,7 @@ def test_filtering_bit_for_bit_on_a_ramp_of_scales(gl, tmp_path, lookup, wrap, f
         assert np.abs(ours - theirs).max() <= 2.0**-10
 
 
+@pytest.mark.usefixtures("llvmpipe")  # bit for bit with Mesa 22.3's llvmpipe
 def test_implicit_lod_of_a_quad_with_a_nan_derivative(gl, tmp_path):
     # Two pixels of one 2x2 quad look up at x = +inf: the quad's x difference is inf - inf =
     # NaN, its y difference inf. llvmpipe's max (x86 maxps) keeps the inf and its fast_log2 of
@@ -431,6 +435,7 @@ def test_implicit_lod_of_a_quad_with_a_nan_derivative(gl, tmp_path):
     assert np.abs(last - ours[-2, 31]).max() <= 2.0**-10 and np.abs(last - ours[-2, 29]).max() > 0.01
 
 
+@pytest.mark.usefixtures("llvmpipe")  # bit for bit with Mesa 22.3's llvmpipe
 @pytest.mark.parametrize("filt", ["linear", "mipmap"])
 def test_clamp_of_huge_infinite_and_nan_coordinates(gl, tmp_path, filt):
     # llvmpipe's CLAMP_TO_EDGE for linear filtering clamps the float coordinate before its
@@ -453,6 +458,7 @@ def test_clamp_of_huge_infinite_and_nan_coordinates(gl, tmp_path, filt):
     assert np.isfinite(theirs).all() and np.array_equal(ours, theirs)
 
 
+@pytest.mark.usefixtures("llvmpipe")  # bit for bit with Mesa 22.3's llvmpipe
 @pytest.mark.parametrize("filt", ["nearest", "linear", "mipmap"])
 @pytest.mark.parametrize("wrap", ["repeat", "clamp"])
 @pytest.mark.parametrize("w, h", [(16, 16), (12, 10), (16, 10)])
@@ -485,6 +491,7 @@ def test_wrap_of_huge_and_infinite_coordinates_on_pot_and_npot_sizes(gl, tmp_pat
     assert np.array_equal(ours, theirs, equal_nan=True), f"{int((ours != theirs).sum())} of {ours.size} values differ"
 
 
+@pytest.mark.usefixtures("llvmpipe")  # bit for bit with Mesa 22.3's llvmpipe
 def test_lowp_lookups_are_float16_rounded_towards_zero(gl, tmp_path):
     # A lowp lookup's result is float16 rounded towards zero (gallivm's float-to-half), not only
     # a 10-bit mantissa: a finite value past 65504 reads 65504 (elevated's Image pass unpacks a
@@ -509,6 +516,7 @@ def test_lowp_lookups_are_float16_rounded_towards_zero(gl, tmp_path):
     assert (np.abs(theirs[np.isfinite(theirs)]) <= 65504).all() and (theirs == 65504).any()
 
 
+@pytest.mark.usefixtures("llvmpipe")  # bit for bit with Mesa 22.3's llvmpipe
 @pytest.mark.parametrize("lookup", ["texture(iChannel0, p)", "vec4(dFdx(p.x), dFdy(p.y), fwidth(p))"])
 def test_derivatives_of_values_computed_under_a_branch(gl, tmp_path, lookup):
     # A function called under a varying `if` (elevated's cloud fbm in its sky branch): llvmpipe
@@ -539,6 +547,7 @@ void mainImage(out vec4 fragColor, in vec2 fragCoord) {{
     assert np.abs(ours - theirs).max() <= 2.0**-10  # as test_mipmap_against_gl (exact on an FMA host)
 
 
+@pytest.mark.usefixtures("llvmpipe")  # bit for bit with Mesa 22.3's llvmpipe
 @pytest.mark.parametrize("lod", ["0.0", "1.0", "fragCoord.x / 16.0"])
 def test_an_integer_lod_reads_one_level(gl, tmp_path, lod):
     # lp_build_sample_mipmap filters the upper level only when some lane's LOD fraction is
