@@ -355,24 +355,53 @@ def lint_paths(
         return LintResult([], 0, [])
     files = {Path(p).resolve() for p in wanted if not Path(p).is_dir()}
     folders = [Path(p).resolve() for p in wanted if Path(p).is_dir()]
-    findings: list[Finding] = []
     linted: list[str] = []
     seen: set[Path] = set()
+    work: list[list[tuple[Shader, Source, LintConfig]]] = []  # per shader: its files to lint
     for shader in find_shaders(wanted):
+        todo = []
         for source in shader.sources():
             real = Path(source.path).resolve()
             if real in seen or not (real in files or any(real.is_relative_to(d) for d in folders)):
                 continue
             seen.add(real)
             linted.append(source.path)
+            todo.append((shader, source, finder.for_file(source.path)))  # InputError: bad configuration
+        if todo:
+            work.append(todo)
+    return LintResult(lint_work(work), len(linted), linted)
+
+
+def lint_work(work: list[list[tuple[Shader, Source, LintConfig]]]) -> list[Finding]:
+    """The findings of each (shader, file, configuration), in order; on two cores when the run is
+    large enough (lint/parallel.py: the same findings either way)."""
+    if len(work) < 2:
+        return _lint_files(work)
+    from ..diagnostics import _SOURCE_CACHE  # the texts reports quote: the child's come back
+    from .parallel import run_split
+
+    sizes = [sum(len(s.text) for s in todo[0][0].sources()) for todo in work]
+    return run_split(work, sizes, _lint_files, _load_for_workers, _SOURCE_CACHE)
+
+
+def _load_for_workers() -> None:
+    """What every program's lint needs, loaded once before the work is split (fork shares it)."""
+    from .. import check, parse, preprocess  # noqa: F401
+    from ..analysis import program_facts  # noqa: F401
+    from . import recover  # noqa: F401
+
+    parse.get_parser()
+
+
+def _lint_files(work: list[list[tuple[Shader, Source, LintConfig]]]) -> list[Finding]:
+    findings: list[Finding] = []
+    for todo in work:
+        for shader, source, config in todo:
             tree = program_tree(source, shader)
             findings.extend(
-                lint_source(
-                    source, finder.for_file(source.path), shader, tree.ast, tree.model,
-                    errors=tree.errors, dropped=tree.dropped,
-                )
+                lint_source(source, config, shader, tree.ast, tree.model, errors=tree.errors, dropped=tree.dropped)
             )
-    return LintResult(findings, len(linted), linted)
+    return findings
 
 
 def is_shader_name(path: str, config: LintConfig) -> bool:
