@@ -24,10 +24,13 @@ from __future__ import annotations
 
 import re
 from types import FunctionType
-from typing import Any, Callable, Iterator, Optional
 
 from .diagnostics import Location
 from .records import tuple_getter
+
+TYPE_CHECKING = False  # not typing's: importing typing costs every start-up (issue 18)
+if TYPE_CHECKING:
+    from typing import Any, Callable, Iterator, Optional
 
 _NOLOC = Location("<builtin>", 0, 0)
 

@@ -19,14 +19,18 @@ into concrete overloads.
 
 from __future__ import annotations
 
+from collections import namedtuple
 from collections.abc import Callable, Iterator, Mapping
-from typing import Any, NamedTuple
 
 from glslcheck import types as T
 from glslcheck.records import record
 from glslcheck.types import BY_NAME, ArrayType, StructType, Type
 from glslcheck.shadertoy import COMMON_ONLY_UNIFORMS as _COMMON_ONLY
 from glslcheck.shadertoy import UNIFORMS as _SHADERTOY_TABLE
+
+TYPE_CHECKING = False  # not typing's: importing typing costs every start-up (issue 18)
+if TYPE_CHECKING:
+    from typing import Any
 
 # Categories: the sections of spec chapter 8.
 ANGLE_TRIG = "angle-trig"  # 8.1
@@ -408,13 +412,13 @@ def is_builtin_function(name: str) -> bool:
 # Built-in variables and constants of the fragment shader (spec 7.2 - 7.4).
 
 
-class BuiltinVariable(NamedTuple):
-    name: str
-    type: Type
-    #: "in" (read-only input), "out" (write-only output), "const" or "uniform".
-    storage: str
-    #: The value of a constant (the spec's minimum maximum), else None.
-    value: int | None = None
+class BuiltinVariable(namedtuple("BuiltinVariable", "name type storage value", defaults=(None,))):
+    """A built-in variable: `name`, its `type` (Type), `storage`: "in" (read-only input),
+    "out" (write-only output), "const" or "uniform"; `value`: a constant's value (the spec's
+    minimum maximum), else None. (collections.namedtuple: typing's NamedTuple would import
+    typing at every start-up, issue 18.)"""
+
+    __slots__ = ()
 
 
 GL_DEPTH_RANGE_PARAMETERS = StructType(
@@ -442,10 +446,11 @@ BUILTIN_VARIABLES: dict[str, BuiltinVariable] = {v.name: v for v in [
 # What Shadertoy declares before a tab.
 
 
-class Uniform(NamedTuple):
-    type: Type  # the element type for arrays
-    array_size: int | None
-    comment: str
+class Uniform(namedtuple("Uniform", "type array_size comment")):
+    """A Shadertoy uniform: `type` (Type; the element type for arrays), `array_size` (int or
+    None), `comment`."""
+
+    __slots__ = ()
 
     @property
     def declared_type(self) -> Type:

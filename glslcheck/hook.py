@@ -27,9 +27,12 @@ import shutil
 import subprocess
 import tempfile
 from pathlib import PurePosixPath
-from typing import Iterator
 
 from .diagnostics import InputError
+
+TYPE_CHECKING = False  # not typing's: importing typing costs every start-up (issue 18)
+if TYPE_CHECKING:
+    from typing import Iterator
 
 CONFIG_FILES = ("glslcheck.toml", "pyproject.toml")
 

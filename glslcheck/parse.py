@@ -18,7 +18,6 @@ from __future__ import annotations
 
 import gc
 import sys
-from typing import Callable
 
 from . import ast as A
 from . import parse_tables
@@ -31,6 +30,10 @@ from .sources import Shader, Source
 # The keywords (3.6), to tell "a keyword used as a name" in error messages.
 from .builtins import KEYWORDS  # noqa: E402  (one table, shared with the checker)
 from .types import BY_NAME  # noqa: E402
+
+TYPE_CHECKING = False  # not typing's: importing typing costs every start-up (issue 18)
+if TYPE_CHECKING:
+    from typing import Callable
 
 _GRAMMAR_CACHE: dict[str, Parser] = {}
 

@@ -23,7 +23,10 @@ from __future__ import annotations
 import json
 import os
 import sys
-from typing import Any
+
+TYPE_CHECKING = False  # not typing's: importing typing costs every start-up (issue 18)
+if TYPE_CHECKING:
+    from typing import Any
 
 TABLES_FILE = "glsl_tables.json"
 GRAMMAR_FILE = "glsl.lark"

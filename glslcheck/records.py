@@ -32,7 +32,10 @@ from __future__ import annotations
 from functools import partial
 from operator import attrgetter
 from types import FunctionType, MemberDescriptorType
-from typing import Any, Callable
+
+TYPE_CHECKING = False  # not typing's: importing typing costs every start-up (issue 18)
+if TYPE_CHECKING:
+    from typing import Any, Callable
 
 __all__ = ["record", "field", "replace", "FrozenInstanceError", "tuple_getter"]
 

@@ -14,11 +14,14 @@ from __future__ import annotations
 
 import math
 from bisect import bisect_right
-from typing import Any
 
 from .diagnostics import InputError
 from .records import record
 from .sources import TAB_NAMES, Shader, Source
+
+TYPE_CHECKING = False  # not typing's: importing typing costs every start-up (issue 18)
+if TYPE_CHECKING:
+    from typing import Any
 
 # A fixed iDate so renders are reproducible: 2026-01-01 00:00:00 (Shadertoy's month is 0-based).
 DEFAULT_DATE: tuple[float, float, float, float] = (2026.0, 0.0, 1.0, 0.0)

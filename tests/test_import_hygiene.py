@@ -41,6 +41,22 @@ def test_lint_check_and_parse_load_no_renderer_and_no_lark(command):
     assert not loaded & set(HEAVY), sorted(loaded & set(HEAVY))
 
 
+def test_lint_does_not_import_typing(tmp_path):
+    """`typing` is a few milliseconds of every start-up: the lint path names its types under
+    `if TYPE_CHECKING:` only. (Run outside this repository: its pyproject.toml is read with
+    tomllib, which imports typing itself.)"""
+    import shutil
+
+    shader = tmp_path / "shader"
+    shutil.copytree(ROOT / "lab_shaders" / "07_final", shader)
+    done = subprocess.run([sys.executable, "-c", _RUN, "lint", str(shader)],
+                          capture_output=True, text=True, cwd=tmp_path, timeout=120)
+    assert done.returncode == 0, done.stderr
+    report = json.loads(done.stdout.strip().splitlines()[-1])
+    assert "glslcheck.lint.rules.repeated_expression" in report["modules"]  # the rules ran
+    assert "typing" not in report["modules"]
+
+
 def test_check_expands_only_the_builtin_functions_it_looks_up():
     """builtins.BUILTINS keeps the spec's generic signatures and expands a function's overloads
     on its first look-up (expanding all of them at import was a sixth of a one-file lint)."""

@@ -21,12 +21,15 @@ Everything is keyed by `id(node)`: the model keeps the tree alive for as long as
 from __future__ import annotations
 
 from bisect import bisect_right
-from typing import Any, Iterable, Iterator
 
 from .. import ast as A
 from .. import builtins as B
 from ..check.model import CallTarget, Model, Symbol
 from .values import ValueRanges, numbers
+
+TYPE_CHECKING = False  # not typing's: importing typing costs every start-up (issue 18)
+if TYPE_CHECKING:
+    from typing import Any, Iterable, Iterator
 
 
 def written_variable(model: Model, target: A.Expr) -> tuple[Symbol | None, bool]:

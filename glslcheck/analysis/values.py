@@ -16,13 +16,14 @@ reaching definitions it reads.
 from __future__ import annotations
 
 import math
-from typing import TYPE_CHECKING, Any
 
 from .. import ast as A
 from .. import builtins as B
 from ..check.model import Constructor
 
+TYPE_CHECKING = False  # not typing's: importing typing costs every start-up (issue 18)
 if TYPE_CHECKING:
+    from typing import Any
     from ..check.model import Model
 
 Range = tuple  # (lo: float | None, hi: float | None, witness: tuple[str, node] | None)

@@ -17,12 +17,15 @@ map is declared samplerCube, as Shadertoy's wrapper does for a bound cube map (c
 from __future__ import annotations
 
 import sys
-from typing import Any
 
 from ..diagnostics import Diagnostic, Location
 from .channel_types import SAMPLER_CUBE, cube_channels
 from .checker import Checker
 from .model import ERROR, CallTarget, CheckError, Constructor, ErrorType, Model, Symbol
+
+TYPE_CHECKING = False  # not typing's: importing typing costs every start-up (issue 18)
+if TYPE_CHECKING:
+    from typing import Any
 
 __all__ = ["check", "Model", "Symbol", "Constructor", "CallTarget", "CheckError", "ERROR", "ErrorType"]
 

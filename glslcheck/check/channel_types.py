@@ -23,12 +23,15 @@ uses of one channel keeps the errors of one of them: no binding could make both 
 
 from __future__ import annotations
 
-from typing import Any
 
 from .. import ast as A
 from .. import builtins as B
 from .. import types as T
 from .model import ErrorType
+
+TYPE_CHECKING = False  # not typing's: importing typing costs every start-up (issue 18)
+if TYPE_CHECKING:
+    from typing import Any
 
 CHANNELS = tuple(f"iChannel{i}" for i in range(4))
 SAMPLER_2D = T.SAMPLERS["sampler2D"]

@@ -16,7 +16,6 @@ builds (see tests/check/test_glslang_agreement.py for the cases where it deliber
 from __future__ import annotations
 
 import difflib
-from typing import Any, Iterable
 
 from .. import ast as A
 from .. import builtins as B
@@ -27,6 +26,10 @@ from . import webgl_rules
 from ..preprocess import WRAPPER_COLOR
 from .model import ERROR, Constructor, Model, Symbol
 from .scopes import Scope, UniqueNames
+
+TYPE_CHECKING = False  # not typing's: importing typing costs every start-up (issue 18)
+if TYPE_CHECKING:
+    from typing import Any, Iterable
 
 # What the Shadertoy wrapper declares besides the uniforms (shadertoy.py's footer and prelude).
 WRAPPER_OUTPUT = "shadertoy_out_color"

@@ -12,9 +12,12 @@ from __future__ import annotations
 
 import math
 import struct
-from typing import Any, Callable
 
 from .. import types as T
+
+TYPE_CHECKING = False  # not typing's: importing typing costs every start-up (issue 18)
+if TYPE_CHECKING:
+    from typing import Any, Callable
 
 
 class _Unknown:

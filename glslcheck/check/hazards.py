@@ -24,11 +24,14 @@ give different pixels; `check` warns (never errors) and `verify` may then report
 from __future__ import annotations
 
 import math
-from typing import Any, Iterator
 
 from .. import ast as A
 from ..diagnostics import Diagnostic
 from .model import Symbol
+
+TYPE_CHECKING = False  # not typing's: importing typing costs every start-up (issue 18)
+if TYPE_CHECKING:
+    from typing import Any, Iterator
 
 RULE = "undefined-behaviour"
 

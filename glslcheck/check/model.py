@@ -9,12 +9,14 @@ in dictionaries keyed by `id(node)`; the model holds the AST so those ids stay v
 
 from __future__ import annotations
 
-from typing import Any, Union
-
 from .. import types as T
 from ..builtins import Overload
 from ..diagnostics import Diagnostic, GlslError
 from ..records import field, record
+
+TYPE_CHECKING = False  # not typing's: importing typing costs every start-up (issue 18)
+if TYPE_CHECKING:
+    from typing import Any
 
 
 class ErrorType(T.Type):
@@ -170,4 +172,4 @@ class Model:
 
 
 #: What `Model.call_target` returns for a call that checked.
-CallTarget = Union[Symbol, Overload, Constructor]
+CallTarget = Symbol | Overload | Constructor

@@ -23,9 +23,12 @@ from __future__ import annotations
 import os
 from ..records import record, field, replace
 from pathlib import Path
-from typing import Any, Mapping
 
 from ..diagnostics import InputError
+
+TYPE_CHECKING = False  # not typing's: importing typing costs every start-up (issue 18)
+if TYPE_CHECKING:
+    from typing import Any, Mapping
 
 DEFAULT_COMMENT_SPAN = 3
 # key -> (python type of the value, description used in error messages)

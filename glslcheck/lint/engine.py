@@ -24,7 +24,6 @@ import os
 import re
 from ..records import record, field
 from pathlib import Path
-from typing import Any, Iterable, Mapping, Sequence
 
 from ..diagnostics import Diagnostic, Location, register_source, source_line
 from ..shadertoy import BUFFER_TABS
@@ -33,6 +32,10 @@ from .config import COMMAND_LINE, ConfigFinder, LintConfig, apply_overrides
 from .rules import Rule, all_rules, rule_names
 from .suppress import Suppression, find_suppressions, is_suppressed
 from .textscan import Comment, LineKind, TextScan, scan
+
+TYPE_CHECKING = False  # not typing's: importing typing costs every start-up (issue 18)
+if TYPE_CHECKING:
+    from typing import Any, Iterable, Mapping, Sequence
 
 PHASES = ("text", "ast", "suppressions")
 

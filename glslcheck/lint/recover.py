@@ -21,10 +21,13 @@ from __future__ import annotations
 
 import re
 from ..records import replace
-from typing import Iterator
 
 from ..diagnostics import Location
 from ..sources import Source
+
+TYPE_CHECKING = False  # not typing's: importing typing costs every start-up (issue 18)
+if TYPE_CHECKING:
+    from typing import Iterator
 
 _CALLED_NAME = re.compile(r"([A-Za-z_]\w*)\s*\(")  # the name a function header declares
 

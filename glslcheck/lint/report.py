@@ -18,12 +18,15 @@ from __future__ import annotations
 import json
 import os
 from pathlib import Path
-from typing import Callable
 from urllib.parse import quote
 
 from ..diagnostics import format_text
 from .engine import Finding, LintResult
 from .rules import all_rules
+
+TYPE_CHECKING = False  # not typing's: importing typing costs every start-up (issue 18)
+if TYPE_CHECKING:
+    from typing import Callable
 
 SARIF_SCHEMA = "https://json.schemastore.org/sarif-2.1.0.json"
 SARIF_VERSION = "2.1.0"

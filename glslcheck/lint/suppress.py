@@ -13,10 +13,13 @@ directive it cannot read.
 from __future__ import annotations
 
 from ..records import record, field
-from typing import Iterable
 
 from ..diagnostics import Diagnostic, Location
 from .textscan import DIRECTIVE_RE, Comment
+
+TYPE_CHECKING = False  # not typing's: importing typing costs every start-up (issue 18)
+if TYPE_CHECKING:
+    from typing import Iterable
 
 VERBS = {"ignore": False, "ignore-file": True}  # verb -> applies to the whole file
 

@@ -30,7 +30,10 @@ import re
 from ...records import record
 from functools import cache
 from types import ModuleType
-from typing import Callable, Iterable
+
+TYPE_CHECKING = False  # not typing's: importing typing costs every start-up (issue 18)
+if TYPE_CHECKING:
+    from typing import Callable, Iterable
 
 # Every rule: (NAME, module in this package). The order is the order docs and `--all` list them.
 RULE_TABLE: tuple[tuple[str, str], ...] = (

@@ -3,12 +3,15 @@ not in the table). The analysis they report on lives in glslcheck/analysis."""
 
 from __future__ import annotations
 
-from typing import Any, Iterator
 
 from ... import ast as A
 from ...analysis import builtin_call, numbers, program_facts
 from ...check.model import Model
 from ...printer import to_glsl
+
+TYPE_CHECKING = False  # not typing's: importing typing costs every start-up (issue 18)
+if TYPE_CHECKING:
+    from typing import Any, Iterator
 
 COMPARISONS = ("<", "<=", ">", ">=")
 FLIPPED = {"<": ">", "<=": ">=", ">": "<", ">=": "<="}  # a op b  <=>  b FLIPPED[op] a

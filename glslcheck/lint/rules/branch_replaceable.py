@@ -38,14 +38,15 @@ vec3 color = mix(background, surface, step(0.0, t)); // t == 0.0 counts as a hit
 
 from __future__ import annotations
 
-from typing import TYPE_CHECKING, Any, Iterator
 
 from ... import ast as A
 from ...analysis import numbers, program_facts
 from ...diagnostics import Diagnostic
 from ._text import text
 
+TYPE_CHECKING = False  # not typing's: importing typing costs every start-up (issue 18)
 if TYPE_CHECKING:
+    from typing import Any, Iterator
     from ..engine import LintContext
 
 NAME = "branch-replaceable"

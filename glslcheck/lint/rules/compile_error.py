@@ -39,11 +39,12 @@ vec4 shade(in vec3 n)
 
 from __future__ import annotations
 
-from typing import TYPE_CHECKING, Iterator
 
 from ...diagnostics import Diagnostic
 
+TYPE_CHECKING = False  # not typing's: importing typing costs every start-up (issue 18)
 if TYPE_CHECKING:
+    from typing import Iterator
     from ..engine import LintContext
 
 NAME = "compile-error"

@@ -38,14 +38,15 @@ for (int i = 0; i < kLightCount; ++i)
 
 from __future__ import annotations
 
-from typing import TYPE_CHECKING, Iterator
 
 from ... import ast as A
 from ...analysis import program_facts
 from ...diagnostics import Diagnostic
 from ._text import text
 
+TYPE_CHECKING = False  # not typing's: importing typing costs every start-up (issue 18)
 if TYPE_CHECKING:
+    from typing import Iterator
     from ..engine import LintContext
 
 NAME = "loop-invariant"

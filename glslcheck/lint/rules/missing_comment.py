@@ -41,14 +41,15 @@ vec3 col = a * lightColor; // the light reaching the surface
 
 from __future__ import annotations
 
-from typing import TYPE_CHECKING, Iterator
 
 import re
 
 from ...diagnostics import Diagnostic
 from ..textscan import LineKind, inactive_lines
 
+TYPE_CHECKING = False  # not typing's: importing typing costs every start-up (issue 18)
 if TYPE_CHECKING:
+    from typing import Iterator
     from ..engine import LintContext
 
 NAME = "missing-comment"

@@ -33,11 +33,12 @@ claiming source materials as one's own results in an instant final grade of F in
 from __future__ import annotations
 
 import re
-from typing import TYPE_CHECKING, Iterator
 
 from ...diagnostics import Diagnostic
 
+TYPE_CHECKING = False  # not typing's: importing typing costs every start-up (issue 18)
 if TYPE_CHECKING:
+    from typing import Iterator
     from ..engine import LintContext
 
 NAME = "missing-credit"

@@ -49,14 +49,15 @@ from __future__ import annotations
 
 import re
 from pathlib import Path
-from typing import TYPE_CHECKING, Iterator
 
 from ...diagnostics import Diagnostic
 from ...sources import tab_name
 from ..textscan import LineKind
 from .missing_credit import CREDIT_RE
 
+TYPE_CHECKING = False  # not typing's: importing typing costs every start-up (issue 18)
 if TYPE_CHECKING:
+    from typing import Iterator
     from ..engine import LintContext
 
 NAME = "missing-header"

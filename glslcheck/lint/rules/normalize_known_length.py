@@ -51,7 +51,6 @@ vec3 normal = (position - sphere.center) / sphere.radius; // |p - c| is the radi
 
 from __future__ import annotations
 
-from typing import TYPE_CHECKING, Any, Iterator
 
 from ... import ast as A
 from ... import types as T
@@ -60,7 +59,9 @@ from ...check.model import Constructor, Symbol
 from ...diagnostics import Diagnostic
 from ._text import text, wrap
 
+TYPE_CHECKING = False  # not typing's: importing typing costs every start-up (issue 18)
 if TYPE_CHECKING:
+    from typing import Any, Iterator
     from ..engine import LintContext
 
 NAME = "normalize-known-length"

@@ -27,13 +27,14 @@ float fresnel = k2 * k2;
 
 from __future__ import annotations
 
-from typing import TYPE_CHECKING, Iterator
 
 from ...analysis import builtin_calls, numbers
 from ...diagnostics import Diagnostic
 from ._text import is_atom, text, wrap
 
+TYPE_CHECKING = False  # not typing's: importing typing costs every start-up (issue 18)
 if TYPE_CHECKING:
+    from typing import Iterator
     from ..engine import LintContext
 
 NAME = "pow-small-exponent"

@@ -56,14 +56,15 @@ vec3 toLight = light.center - position;
 from __future__ import annotations
 
 from collections import Counter
-from typing import TYPE_CHECKING, Iterator
 
 from ... import ast as A
 from ...analysis import program_facts, written_variable
 from ...diagnostics import Diagnostic
 from ._text import text
 
+TYPE_CHECKING = False  # not typing's: importing typing costs every start-up (issue 18)
 if TYPE_CHECKING:
+    from typing import Iterator
     from ..engine import LintContext
 
 NAME = "repeated-expression"

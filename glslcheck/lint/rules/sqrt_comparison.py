@@ -22,12 +22,13 @@ if (distSq < radius * radius) hit = 1.0;
 
 from __future__ import annotations
 
-from typing import TYPE_CHECKING, Iterator
 
 from ...diagnostics import Diagnostic
 from ._text import compared_calls, squared, text
 
+TYPE_CHECKING = False  # not typing's: importing typing costs every start-up (issue 18)
 if TYPE_CHECKING:
+    from typing import Iterator
     from ..engine import LintContext
 
 NAME = "sqrt-comparison"

@@ -35,13 +35,14 @@ vec3 lightPosition(in float time)
 
 from __future__ import annotations
 
-from typing import TYPE_CHECKING, Iterator
 
 from ... import ast as A
 from ...analysis import program_facts
 from ...diagnostics import Diagnostic
 
+TYPE_CHECKING = False  # not typing's: importing typing costs every start-up (issue 18)
 if TYPE_CHECKING:
+    from typing import Iterator
     from ..engine import LintContext
 
 NAME = "uniform-outside-mainimage"

@@ -33,13 +33,14 @@ color += kS * specularColor;
 
 from __future__ import annotations
 
-from typing import TYPE_CHECKING, Any, Iterator
 
 from ... import ast as A
 from ...analysis import param_directions, program_facts, written_variable
 from ...diagnostics import Diagnostic
 
+TYPE_CHECKING = False  # not typing's: importing typing costs every start-up (issue 18)
 if TYPE_CHECKING:
+    from typing import Any, Iterator
     from ..engine import LintContext
 
 NAME = "uninitialized-read"

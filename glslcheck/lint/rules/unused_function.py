@@ -28,13 +28,14 @@ vec3 blinnPhong(in vec3 n, in vec3 l, in vec3 v) { /* ... */ }
 
 from __future__ import annotations
 
-from typing import TYPE_CHECKING, Iterator
 
 from ...analysis import program_facts
 from ...diagnostics import Diagnostic
 from .unused_variable import common_shared
 
+TYPE_CHECKING = False  # not typing's: importing typing costs every start-up (issue 18)
 if TYPE_CHECKING:
+    from typing import Iterator
     from ..engine import LintContext
 
 NAME = "unused-function"

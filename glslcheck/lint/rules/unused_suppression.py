@@ -30,11 +30,12 @@ col += ambient;
 from __future__ import annotations
 
 import difflib
-from typing import TYPE_CHECKING, Iterator
 
 from ...diagnostics import Diagnostic
 
+TYPE_CHECKING = False  # not typing's: importing typing costs every start-up (issue 18)
 if TYPE_CHECKING:
+    from typing import Iterator
     from ..engine import LintContext
 
 NAME = "unused-suppression"

@@ -31,14 +31,15 @@ vec3 color = kD * attenuation * albedo * light.color;
 
 from __future__ import annotations
 
-from typing import TYPE_CHECKING, Any, Iterator
 
 from ... import ast as A
 from ...diagnostics import Diagnostic
 from ...shadertoy import PASS_TABS
 from ...analysis import program_facts
 
+TYPE_CHECKING = False  # not typing's: importing typing costs every start-up (issue 18)
 if TYPE_CHECKING:
+    from typing import Any, Iterator
     from ..engine import LintContext
 
 NAME = "unused-variable"
