@@ -65,8 +65,9 @@ def builtin_calls(model: Model, path: str, *names: str,
     the functions defined in the file `path` (those with a compile error apart), in source
     order, with the facts of the function it is in."""
     for fn in program_facts(model).in_file(path):
-        for node in fn.nodes:
-            if builtin_call(model, node, *names) and (arity is None or len(node.args) == arity):
+        for node in fn.calls:  # builtin_call, inlined: the calls only, not every node
+            if node.callee in names and (arity is None or len(node.args) == arity) \
+                    and isinstance(model.call_target(node), B.Overload):
                 yield fn, node
 
 
@@ -267,6 +268,7 @@ class FunctionFacts(ValueRanges):
         self.user_calls: list[int] = []  # positions of calls to user functions
         self.loops: list[Any] = []  # loop statements, outermost first
         self.nodes: list[Any] = []  # every node in execution order
+        self.calls: list[A.Call] = []  # the calls among them, in the same order
         self.dead: list[tuple[int, int]] = []  # (enter, exit) of statements after a return/jump
         self._clock = 0
         self._keys: dict[int, Any] = {}
@@ -282,6 +284,7 @@ class FunctionFacts(ValueRanges):
         except RecursionError:  # absurdly deep nesting: no facts, no findings
             self.ok = False
             self.nodes = []
+            self.calls = []
 
     # -- the walk ------------------------------------------------------------------------------
     def _tick(self) -> int:
@@ -297,6 +300,8 @@ class FunctionFacts(ValueRanges):
         self.parent[i] = parent
         self.nodes.append(node)
         t = type(node)
+        if t is A.Call:
+            self.calls.append(node)
         if t is A.If:
             self._visit(node.cond, region, node)
             self._visit(node.then, region + ((i, 0),), node)
@@ -678,6 +683,6 @@ class FunctionFacts(ValueRanges):
 
 def calls_in(fn: FunctionFacts, *names: str) -> Iterator[A.Call]:
     """Calls of the built-ins `names` in a function, in execution order."""
-    for n in fn.nodes:
-        if type(n) is A.Call and n.callee in names and isinstance(fn.model.call_target(n), B.Overload):
+    for n in fn.calls:
+        if n.callee in names and isinstance(fn.model.call_target(n), B.Overload):
             yield n

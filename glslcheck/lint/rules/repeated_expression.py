@@ -94,6 +94,7 @@ def _holder_symbol(fn, first):
 
 
 _CANDIDATES = 64  # earlier occurrences tried as the one to reuse
+_LEAVES = (A.Identifier, A.FloatLiteral, A.IntLiteral, A.BoolLiteral)
 def check(ctx: LintContext) -> Iterator[Diagnostic]:
     for fn in program_facts(ctx.model).in_file(ctx.path):
         yield from _check_function(fn)
@@ -144,6 +145,8 @@ def _check_function(fn) -> Iterator[Diagnostic]:
     groups: dict = {}
     targets = {id(n.target) for n in fn.nodes if type(n) is A.Assignment}
     for n in fn.nodes:
+        if type(n) in _LEAVES:  # no operation: never worth reusing (half the nodes, skipped cheaply)
+            continue
         if isinstance(n, A.Expr) and id(n) not in targets and fn.worth_reusing(n) and fn.is_pure(n) \
                 and not fn.is_dead(n):
             groups.setdefault(fn.key(n), []).append(n)
