@@ -55,8 +55,6 @@ vec3 toLight = light.center - position;
 
 from __future__ import annotations
 
-from collections import Counter
-
 from ... import ast as A
 from ...analysis import program_facts, written_variable
 from ...diagnostics import Diagnostic
@@ -110,21 +108,26 @@ def _within_chains(fn, groups: dict) -> dict[int, object]:
     elsewhere as a part of its own, `a / b`) gets the chain as one more place in its group;
     returns id(chain) -> that key."""
     found: dict[int, object] = {}
-    wanted = {k: Counter(k[1]) for k in groups if k[0] == "*" and len(k[1]) == 2}  # one operation
+    wanted = [k for k in groups if k[0] == "*" and len(k[1]) == 2]  # one operation: two factors
     if not wanted:
         return found
-    for n in sorted(fn.nodes, key=lambda m: fn.exit[id(m)]):
-        written = fn.written_factors(n) if type(n) is A.Binary else None
+    binaries = [m for m in fn.nodes if type(m) is A.Binary]
+    for n in sorted(binaries, key=lambda m: fn.exit[id(m)]):
+        written = fn.written_factors(n)
         if written is None or not fn.is_pure(n) or fn.is_dead(n):
             continue
         spine, keys = written
-        for k, need in wanted.items():
-            size, times, i = sum(need.values()), 0, 0
-            while i + size <= len(keys):  # non-overlapping runs of the value's factors
-                if Counter(keys[i:i + size]) == need:
-                    times, i = times + 1, i + size
+        for k in wanted:
+            x, y = k[1]
+            times, i = 0, 0
+            while i + 2 <= len(keys):  # non-overlapping pairs of the value's two factors, either order
+                a, b = keys[i], keys[i + 1]
+                if (a == x and b == y) or (a == y and b == x):
+                    times, i = times + 1, i + 2
                 else:
                     i += 1
+            if not times:
+                continue
             counted = sum(fn.key(m) == k or found.get(id(m)) == k for m in spine[1:])
             if times > counted + (fn.key(n) == k):
                 found[id(n)] = k
