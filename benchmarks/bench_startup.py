@@ -18,7 +18,13 @@ time; the warm-up writes them here even when PYTHONDONTWRITEBYTECODE is set in t
 environment). `--no-pyc` measures the other case: every module compiled from source at each
 start (an empty PYTHONPYCACHEPREFIX and PYTHONDONTWRITEBYTECODE=1).
 
-    python benchmarks/bench_startup.py [--runs N] [--no-pyc] [--only venv|installed]
+`lint lab_shaders` runs its programs on two cores when it may (glslcheck/lint/parallel.py); the
+row `GLSLCHECK_JOBS=1` is the same command in one process. Its CPU time counts both processes.
+`--outside` copies the lab into a temporary folder and runs every command from there, as in a
+student's repository: here this repository's own pyproject.toml is read for a [tool.glslcheck]
+table at every start (tomllib, with `typing`: about 40 M instructions a run).
+
+    python benchmarks/bench_startup.py [--runs N] [--no-pyc] [--only venv|installed] [--outside]
 """
 
 from __future__ import annotations
@@ -44,16 +50,19 @@ LAB = ROOT / "lab_shaders"
 FILE = LAB / "bonus_animated_lights" / "Common.glsl"
 
 
-def paired(commands: dict[str, list[str]], runs: int, env: dict[str, str]) -> dict[str, tuple[float, float]]:
+def paired(commands: dict[str, list[str]], runs: int, env: dict[str, str],
+           extra: dict[str, dict[str, str]] | None = None, cwd: Path | None = None) -> dict[str, tuple[float, float]]:
     """Median (wall, CPU) seconds of each command: one warm-up each, then `runs` rounds running
-    each once. CPU is the child's user + system time: on a machine shared with other jobs the
-    wall time also counts waiting for a core, the CPU time does not (on an idle machine the two
-    agree for these one-thread processes)."""
+    each once. CPU is the child's user + system time (and its own children's): on a machine
+    shared with other jobs the wall time also counts waiting for a core, the CPU time does not
+    (on an idle machine the two agree for one-process commands). `extra`: environment variables
+    of some commands."""
 
-    def once(cmd: list[str]) -> tuple[float, float]:
+    def once(name: str, cmd: list[str]) -> tuple[float, float]:
         before = resource.getrusage(resource.RUSAGE_CHILDREN)
         t = time.perf_counter()
-        done = subprocess.run(cmd, env=env, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE)
+        done = subprocess.run(cmd, env={**env, **(extra or {}).get(name, {})}, cwd=cwd,
+                              stdout=subprocess.DEVNULL, stderr=subprocess.PIPE)
         elapsed = time.perf_counter() - t
         after = resource.getrusage(resource.RUSAGE_CHILDREN)
         if done.returncode not in (0, 1) or b"Traceback" in done.stderr:  # 1: findings, a normal outcome
@@ -61,12 +70,12 @@ def paired(commands: dict[str, list[str]], runs: int, env: dict[str, str]) -> di
         cpu = (after.ru_utime - before.ru_utime) + (after.ru_stime - before.ru_stime)
         return elapsed, cpu
 
-    for cmd in commands.values():
-        once(cmd)
+    for k, cmd in commands.items():
+        once(k, cmd)
     times: dict[str, list[tuple[float, float]]] = {k: [] for k in commands}
     for _ in range(runs):
         for k, cmd in commands.items():
-            times[k].append(once(cmd))
+            times[k].append(once(k, cmd))
     return {k: (statistics.median(w for w, _ in v), statistics.median(c for _, c in v)) for k, v in times.items()}
 
 
@@ -122,23 +131,26 @@ def _installed(tmp: Path) -> tuple[list[str], dict[str, str]]:
 
 
 def _section(title: str, exe: list[str], python: list[str], env: dict[str, str], glslang: str,
-             one: list[str], lab: list[str], runs: int) -> None:
-    lines = FILE.read_text().count("\n")
+             one: list[str], lab: list[str], runs: int, where: Path = ROOT) -> None:
+    file, folder = where / FILE.relative_to(ROOT), where / LAB.relative_to(ROOT)
+    lines = file.read_text().count("\n")
     rows = [
-        (f"lint FILE ({lines} lines)", [*exe, "lint", str(FILE)], [glslang, *one], 0.150),
-        (f"check FILE ({lines} lines)", [*exe, "check", str(FILE)], [glslang, *one], None),
-        (f"lint lab_shaders ({len(lab)} programs)", [*exe, "lint", str(LAB)], [glslang, *lab], 0.5),
-        (f"check lab_shaders ({len(lab)} programs)", [*exe, "check", str(LAB)], [glslang, *lab], None),
+        (f"lint FILE ({lines} lines)", [*exe, "lint", str(file)], [glslang, *one], 0.150, {}),
+        (f"check FILE ({lines} lines)", [*exe, "check", str(file)], [glslang, *one], None, {}),
+        (f"lint lab_shaders ({len(lab)} programs)", [*exe, "lint", str(folder)], [glslang, *lab], 0.5, {}),
+        ("  ... GLSLCHECK_JOBS=1 (one process)", [*exe, "lint", str(folder)], [glslang, *lab], 0.5,
+         {"ours": {"GLSLCHECK_JOBS": "1"}}),
+        (f"check lab_shaders ({len(lab)} programs)", [*exe, "check", str(folder)], [glslang, *lab], None, {}),
     ]
     print(f"{title} (load {_load()})")
     print(f"   {'whole process: wall time (CPU time)':40s} {'glslcheck':>19s} {'glslang':>19s}   ratio (CPU)   target")
-    for label, ours, theirs, target in rows:
-        t = paired({"ours": ours, "glslang": theirs}, runs, env)
+    for label, ours, theirs, target, extra in rows:
+        t = paired({"ours": ours, "glslang": theirs}, runs, env, extra, cwd=where)
         (wall, cpu), (ref_wall, ref_cpu) = t["ours"], t["glslang"]
         verdict = "" if target is None else f"{target * 1000:4.0f} ms {'met' if wall <= target else 'missed'}"
         print(f"   {label:40s} {_ms(wall, cpu)} {_ms(ref_wall, ref_cpu)}  {wall / ref_wall:5.2f}x ({cpu / ref_cpu:5.2f}x)"
               f"   {verdict}")
-    floor = paired({"python -c pass": [*python, "-c", "pass"]}, runs, env)
+    floor = paired({"python -c pass": [*python, "-c", "pass"]}, runs, env, cwd=where)
     for label, (wall, cpu) in floor.items():
         print(f"   {label:40s} {_ms(wall, cpu)}   (the interpreter alone)")
 
@@ -148,6 +160,8 @@ def main() -> int:
     ap.add_argument("--runs", type=int, default=21)
     ap.add_argument("--no-pyc", action="store_true", help="compile every module from source at each start")
     ap.add_argument("--only", choices=("venv", "installed"), help="measure one of the two set-ups")
+    ap.add_argument("--outside", action="store_true",
+                    help="copy the lab into a temporary folder and run there (no pyproject.toml above it)")
     args = ap.parse_args()
     glslang = shutil.which("glslangValidator")
     if not glslang:
@@ -164,17 +178,24 @@ def main() -> int:
         lab = _programs([LAB], tmp)
         env = dict(os.environ)
         env.pop("PYTHONDONTWRITEBYTECODE", None)
+        env.pop("GLSLCHECK_JOBS", None)
+        where = ROOT
+        if args.outside:
+            where = tmp / "student-repo"
+            shutil.copytree(LAB, where / LAB.relative_to(ROOT))
+            print(f"shaders copied to {where} (no pyproject.toml above it), commands run from there")
         if args.no_pyc:
             env.update(PYTHONDONTWRITEBYTECODE="1", PYTHONPYCACHEPREFIX=str(tmp / "no-pyc"))
         if args.only in (None, "venv"):
             _section(f"1. the dev venv's `glslcheck` (editable install: `make setup`)", [exe], [python], env,
-                     glslang, one, lab, args.runs)
+                     glslang, one, lab, args.runs, where)
         if args.only in (None, "installed"):
             command, installed_env = _installed(tmp)
             if args.no_pyc:
                 installed_env.update(PYTHONDONTWRITEBYTECODE="1", PYTHONPYCACHEPREFIX=str(tmp / "no-pyc"))
+            installed_env.pop("GLSLCHECK_JOBS", None)
             _section("2. installed from the wheel (what a pre-commit hook's environment runs)", command,
-                     command[:2], installed_env, glslang, one, lab, args.runs)
+                     command[:2], installed_env, glslang, one, lab, args.runs, where)
     print(f"load at the end {_load()}")
     return 0
 
