@@ -62,6 +62,16 @@ def test_a_failing_child_is_redone_here(monkeypatch):
 
 def test_an_error_in_the_first_half_is_raised_and_the_child_reaped(monkeypatch):
     monkeypatch.setenv("GLSLCHECK_JOBS", "2")
+    forked = []
+    fork = os.fork
+
+    def recording_fork():
+        pid = fork()
+        if pid:
+            forked.append(pid)
+        return pid
+
+    monkeypatch.setattr(parallel.os, "fork", recording_fork)
 
     def lint(items):
         if 0 in items:
@@ -70,8 +80,9 @@ def test_an_error_in_the_first_half_is_raised_and_the_child_reaped(monkeypatch):
 
     with pytest.raises(ValueError, match="first half"):
         parallel.run_split(list(range(4)), [5000] * 4, lint, lambda: None, {})
+    assert len(forked) == 1
     with pytest.raises(ChildProcessError):
-        os.waitpid(-1, os.WNOHANG)  # no child left behind
+        os.waitpid(forked[0], os.WNOHANG)  # the child was reaped: not left behind
 
 
 def test_small_runs_and_one_job_stay_in_this_process(monkeypatch):
