@@ -15,7 +15,8 @@ configuration, and the findings are concatenated in the order of the programs. I
 fails in any way (it crashed, was killed, raised: a bug or an unreadable file), this process
 lints the child's half itself, so an error is reported exactly as one process reports it.
 
-`GLSLCHECK_JOBS=1` (or no `os.fork`, or one usable core) lints in this process only. Start-up
+`GLSLCHECK_JOBS=1` (or no `os.fork`, one usable core, or a machine whose cores are all busy, by
+the load average) lints in this process only; `GLSLCHECK_JOBS=2` splits whatever the load. Start-up
 is what a pre-commit hook pays (issue 18, docs/performance.md): a fork costs about a
 millisecond, so one small program is not worth it and runs here.
 """
@@ -37,16 +38,24 @@ MIN_TEXT = 8000
 
 
 def jobs() -> int:
-    """How many processes may lint: 1 or 2 (`GLSLCHECK_JOBS`, else the usable cores, at most 2)."""
+    """How many processes may lint: 1 or 2. `GLSLCHECK_JOBS` when set; else 2 when this process
+    may use two or more cores and the machine has one to spare: a 1-minute load average of at
+    least the cores less a half means the other cores are busy, and a second process would only
+    take turns with the first (the same wall time, the fork's CPU time more)."""
+    if not hasattr(os, "fork"):
+        return 1
     env = os.environ.get("GLSLCHECK_JOBS", "").strip()
     if env.isdigit() and int(env) >= 1:
-        wanted = int(env)
-    else:
-        try:
-            wanted = len(os.sched_getaffinity(0))
-        except (AttributeError, OSError):
-            wanted = os.cpu_count() or 1
-    return 2 if wanted >= 2 and hasattr(os, "fork") else 1
+        return 2 if int(env) >= 2 else 1
+    try:
+        cores = len(os.sched_getaffinity(0))
+    except (AttributeError, OSError):
+        cores = os.cpu_count() or 1
+    try:
+        busy = os.getloadavg()[0] >= cores - 0.5
+    except (AttributeError, OSError):
+        busy = False
+    return 2 if cores >= 2 and not busy else 1
 
 
 def split_point(sizes: list[int]) -> int:

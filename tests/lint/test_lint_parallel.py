@@ -98,6 +98,23 @@ def test_small_runs_and_one_job_stay_in_this_process(monkeypatch):
     assert parallel.run_split(list(range(4)), [5000] * 4, lint, lambda: None, {}) == [0, 1, 2, 3]
 
 
+def test_jobs(monkeypatch):
+    monkeypatch.setattr(parallel.os, "sched_getaffinity", lambda pid: {0, 1}, raising=False)
+    monkeypatch.delenv("GLSLCHECK_JOBS", raising=False)
+    monkeypatch.setattr(parallel.os, "getloadavg", lambda: (0.3, 0.5, 0.5))
+    assert parallel.jobs() == 2  # a quiet two-core machine
+    monkeypatch.setattr(parallel.os, "getloadavg", lambda: (3.9, 3.0, 2.0))
+    assert parallel.jobs() == 1  # both cores busy: a second process would only take turns
+    monkeypatch.setenv("GLSLCHECK_JOBS", "2")
+    assert parallel.jobs() == 2  # asked for
+    monkeypatch.setenv("GLSLCHECK_JOBS", "1")
+    monkeypatch.setattr(parallel.os, "getloadavg", lambda: (0.0, 0.0, 0.0))
+    assert parallel.jobs() == 1
+    monkeypatch.delenv("GLSLCHECK_JOBS")
+    monkeypatch.setattr(parallel.os, "sched_getaffinity", lambda pid: {0}, raising=False)
+    assert parallel.jobs() == 1  # one usable core
+
+
 def test_split_point_halves_the_text():
     assert parallel.split_point([1, 1]) == 1
     assert parallel.split_point([10, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1]) == 1
