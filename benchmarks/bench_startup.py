@@ -18,8 +18,9 @@ time; the warm-up writes them here even when PYTHONDONTWRITEBYTECODE is set in t
 environment). `--no-pyc` measures the other case: every module compiled from source at each
 start (an empty PYTHONPYCACHEPREFIX and PYTHONDONTWRITEBYTECODE=1).
 
-`lint lab_shaders` runs its programs on two cores when it may (glslcheck/lint/parallel.py); the
-row `GLSLCHECK_JOBS=1` is the same command in one process. Its CPU time counts both processes.
+`lint lab_shaders` runs its programs on two cores when it may (glslcheck/lint/parallel.py: not
+when the 1-minute load average says both cores are busy); the row `GLSLCHECK_JOBS=1` is the same
+command in one process. Its CPU time counts both processes.
 `--outside` copies the lab into a temporary folder and runs every command from there, as in a
 student's repository: here this repository's own pyproject.toml is read for a [tool.glslcheck]
 table at every start (tomllib, with `typing`: about 40 M instructions a run).
