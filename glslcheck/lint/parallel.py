@@ -42,7 +42,7 @@ def jobs() -> int:
     may use two or more cores and the machine has one to spare: a 1-minute load average of at
     least the cores less a half means the other cores are busy, and a second process would only
     take turns with the first (the same wall time, the fork's CPU time more)."""
-    if not hasattr(os, "fork"):
+    if not hasattr(os, "fork") or _threads():
         return 1
     env = os.environ.get("GLSLCHECK_JOBS", "").strip()
     if env.isdigit() and int(env) >= 1:
@@ -56,6 +56,15 @@ def jobs() -> int:
     except (AttributeError, OSError):
         busy = False
     return 2 if cores >= 2 and not busy else 1
+
+
+def _threads() -> bool:
+    """Whether this process runs other threads (a program calling lint_paths may): a forked
+    child gets only the forking thread, and a lock another thread held stays held there."""
+    import sys
+
+    threading = sys.modules.get("threading")  # not imported: no thread was started through it
+    return threading is not None and threading.active_count() > 1
 
 
 def split_point(sizes: list[int]) -> int:

@@ -115,6 +115,21 @@ def test_jobs(monkeypatch):
     assert parallel.jobs() == 1  # one usable core
 
 
+def test_no_fork_beside_other_threads(monkeypatch):
+    import threading
+
+    monkeypatch.setenv("GLSLCHECK_JOBS", "2")
+    assert parallel.jobs() == 2
+    stop = threading.Event()
+    thread = threading.Thread(target=stop.wait)
+    thread.start()
+    try:
+        assert parallel.jobs() == 1  # a child would hold only this thread, and its locks
+    finally:
+        stop.set()
+        thread.join()
+
+
 def test_split_point_halves_the_text():
     assert parallel.split_point([1, 1]) == 1
     assert parallel.split_point([10, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1]) == 1
