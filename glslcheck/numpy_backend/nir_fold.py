@@ -371,6 +371,18 @@ def _used_once(tr: Any, e: Any) -> bool:
     """``e`` feeds one instruction: its GLSL text appears once in the function (NIR's CSE
     would merge a copy) and it is an operand of a larger expression (a value stored in a
     variable feeds every use of the variable)."""
+    return id(e) in _uses(tr)[2] and _one_copy(tr, e)
+
+
+def _one_copy(tr: Any, e: Any) -> bool:
+    """The GLSL text of ``e`` appears once in the function (NIR's CSE would merge a copy)."""
+    shapes, counts, _ = _uses(tr)
+    return counts.get(shapes.get(id(e), -1), 0) <= 1
+
+
+def _uses(tr: Any) -> tuple[dict[int, int], dict[int, int], set[int]]:
+    """(shape of each node, copies of each shape among the binary expressions, ids of the
+    operands of binary expressions and built-in calls) of the current function."""
     parents = tr.__dict__.setdefault("_nir_fold_parents", {})
     key = id(tr.fn.sym)
     if key not in parents:
@@ -384,8 +396,7 @@ def _used_once(tr: Any, e: Any) -> bool:
             elif isinstance(n, A.Call) and (n.constructor or _builtin(tr, n)):
                 operands.update(id(a) for a in n.args)  # (a user function may read it twice)
         parents[key] = (shapes, counts, operands)
-    shapes, counts, operands = parents[key]
-    return id(e) in operands and counts.get(shapes.get(id(e), -1), 0) <= 1
+    return parents[key]
 
 
 def _shapes(root: Any) -> dict[int, int]:
@@ -420,55 +431,196 @@ def _shapes(root: Any) -> dict[int, int]:
 
 
 def _sink(tr: Any, e: A.Binary, mask: str | None) -> str | None:
-    """Constants sunk into a two-term sum or product, or into a dot product."""
+    """Constants sunk into a sum (:func:`_sink_sum`), a two-term product, or a dot product."""
     inner, k, k_left = e.left, e.right, False
     if _const(tr, inner) and not _const(tr, k):
         inner, k, k_left = e.right, e.left, True
-    if not _const(tr, k) or _const(tr, inner) or tr.type_of(k) != tr.type_of(e):
+    if not _const(tr, k) or _const(tr, inner):
         return None
-    if not (_used_once(tr, e) and _used_once(tr, inner)):
+    if tr.type_of(k) != tr.type_of(e) and not (e.op in _SUMS and tr.type_of(k).is_scalar):
+        return None  # (a scalar constant added to a vector is added to each component)
+    if not _used_once(tr, e):
         return None
-    ops = _SUMS if e.op in _SUMS else ("*",)
     if k_left and e.op == "-":
         return None  # #c - (a + b): the negation sits between the two sums
-    if (isinstance(inner, A.Call) and inner.callee == "dot" and e.op in _SUMS and _builtin(tr, inner)
-            and all(_stable_vector(tr, x) for x in inner.args)):
-        u, v, kk = tr.exprs([*inner.args, k], mask)
-        signed = f"(-{kk})" if e.op == "-" else kk
-        return f"(rt.dot_add({u}, {v}, {signed}) if rt.lp else (rt.dot({u}, {v}) {e.op} {kk}))"
-    if not (isinstance(inner, A.Binary) and inner.op in ops):
+    if e.op in _SUMS:
+        return _sink_sum(tr, e, inner, k, mask)
+    if not (_used_once(tr, inner) and isinstance(inner, A.Binary) and inner.op == "*"):
         return None
     a, b = inner.left, inner.right
     if _has_matrix(tr, a, b):
         return None  # a matrix product is not reassociated as numbers are
-    if ops == ("*",):
-        if not (_opaque(tr, a) and _opaque(tr, b)):
-            return None  # an operand NIR would look into further: not copied
-    elif not all(_opaque(tr, x) or (_is_product(tr, x) and all(_opaque(tr, f) or _const(tr, f) for f in
-                                                               (x.left, x.right))) for x in (a, b)):
-        return None  # a longer chain, or an operand NIR looks into: not copied
+    if not (_opaque(tr, a) and _opaque(tr, b)):
+        return None  # an operand NIR would look into further: not copied
     if tr.type_of(a) != tr.type_of(e) or tr.type_of(b) != tr.type_of(e):
         return None  # a broadcast operand: keep it simple
     ta, tb, tk = tr.exprs([a, b, k], mask)
     t = tr.type_of(e)
-    if ops == ("*",):
-        prod = lambda x, y: tr.binary_values("*", t, t, x, y)  # noqa: E731
-        written = prod(prod(ta, tb), tk) if not k_left else prod(tk, prod(ta, tb))
-        return f"({prod(prod(ta, tk), tb)} if rt.lp else {written})"
-    # a sum: a +- b +- k; the constant joins a unless only a is a product (then b)
-    sb = inner.op
-    written = f"(({ta} {sb} {tb}) {e.op} {tk})"
-    if _is_product(tr, a) and not _is_product(tr, b):
-        first = f"((-{tb}) {e.op} {tk})" if sb == "-" else f"({tb} {e.op} {tk})"
-        rewritten = f"({first} + {ta})"
+    prod = lambda x, y: tr.binary_values("*", t, t, x, y)  # noqa: E731
+    written = prod(prod(ta, tb), tk) if not k_left else prod(tk, prod(ta, tb))
+    return f"({prod(prod(ta, tk), tb)} if rt.lp else {written})"
+
+
+def _sink_sum(tr: Any, e: A.Binary, inner: Any, k: Any, mask: str | None) -> str | None:
+    """``(a + b) + #c -> (a + #c) + b`` as nir_opt_algebraic applies it: first the variant that
+    keeps a product ``b`` whole (``is_fmul``, so the constant joins the other term), else the
+    constant joins ``a``; the new sum ``a + #c`` is matched again, so the constant sinks down
+    a chain of sums each used once: ``uv = (p.xy + K*p.z) + f.xy; uv + 0.5`` is
+    ``((p.xy + 0.5) + K*p.z) + f.xy`` (iq's noise). A sum may be the initializer of a
+    never-written local read once (to NIR the same SSA value, used once). Not copied (None):
+    a chain GLSL IR rebalances first (:func:`_rebalanced`), a ``dot`` other than
+    ``dot(oc, oc)`` (:func:`_stable_vector`), a term that is none of opaque, product, sum."""
+    if (isinstance(inner, A.Call) and inner.callee == "dot" and _builtin(tr, inner)
+            and all(_stable_vector(tr, x) for x in inner.args)):
+        u, v, kk = tr.exprs([*inner.args, k], mask)
+        signed = f"(-{kk})" if e.op == "-" else kk
+        return f"(rt.dot_add({u}, {v}, {signed}) if rt.lp else (rt.dot({u}, {v}) {e.op} {kk}))"
+    plan = _sum_plan(tr, inner, tr.type_of(e), 0)
+    if plan is None or plan[0] != "sum" or _rebalanced(tr, e):
+        return None
+    leaves: list[Any] = []
+    _plan_leaves(plan, leaves)
+    codes = tr.exprs([*leaves, e.left, e.right, k], mask)
+    tk = f"(-{codes[-1]})" if e.op == "-" else codes[-1]
+    rewritten = _plan_code(plan, iter(codes), tk)
+    return f"({rewritten} if rt.lp else ({codes[-3]} {e.op} {codes[-2]}))"
+
+
+def _sum_plan(tr: Any, x: Any, t: Any, depth: int) -> tuple | None:
+    """Where a constant added to ``x`` goes: ("leaf", x) when x is a term it stays beside,
+    ("sum", receiver plan, other term, operator, receiver on the left) when x is a sum used
+    once, None where the rewrite is not copied."""
+    if tr.type_of(x) != t or tr.has_effects(x):
+        return None  # (a broadcast operand: keep it simple)
+    inner = x
+    if isinstance(x, A.Identifier) and _read_once(tr, x):
+        init = _stable_init(tr, x) or _reaching_value(tr, x, unchanged=True)
+        inner = init if init is not None and _one_copy(tr, init) else x
+    elif not _used_once(tr, x):
+        inner = None
+    if not (isinstance(inner, A.Binary) and inner.op in _SUMS) or depth > 16:
+        return ("leaf", x) if _opaque(tr, x) or _fmul(tr, x) or _sum(tr, x) else None
+    a, b = inner.left, inner.right
+    if any(_const(tr, y) or _has_matrix(tr, y) or tr.type_of(y) != t for y in (a, b)):
+        return None
+    if not all(_opaque(tr, y) or _fmul(tr, y) or _sum(tr, y) for y in (a, b)):
+        return None  # a term NIR looks into (a call inlined, a mix, ...): not copied
+    if _factor_parts(tr, inner) is not None:
+        return ("leaf", x)  # factored first (a*b + a*c -> a*(b + c)): a product, no sum
+    if _fmul(tr, b) or not _fmul(tr, a):
+        recv = _sum_plan(tr, a, t, depth + 1)
+        return None if recv is None else ("sum", recv, b, inner.op, True)
+    if inner.op == "-":
+        return ("sum", ("neg", b), a, "+", False)  # fneg(b) + #c: no sum to sink into
+    recv = _sum_plan(tr, b, t, depth + 1)
+    return None if recv is None else ("sum", recv, a, "+", False)
+
+
+def _plan_leaves(plan: tuple, out: list[Any]) -> None:
+    """The nodes of a :func:`_sum_plan` in the order :func:`_plan_code` reads their codes."""
+    if plan[0] == "sum":
+        _plan_leaves(plan[1], out)
+        out.append(plan[2])
     else:
-        rewritten = f"(({ta} {e.op} {tk}) {sb} {tb})"
-    return f"({rewritten} if rt.lp else {written})"
+        out.append(plan[1])
+
+
+def _plan_code(plan: tuple, codes: Any, k: str) -> str:
+    if plan[0] == "leaf":
+        return f"({next(codes)} + {k})"
+    if plan[0] == "neg":
+        return f"((-{next(codes)}) + {k})"
+    recv = _plan_code(plan[1], codes, k)
+    other = next(codes)
+    return f"({recv} {plan[3]} {other})" if plan[4] else f"({recv} + {other})"
+
+
+def _sum(tr: Any, node: Any) -> bool:
+    """A sum or difference (no product: :func:`_fmul` tells which term keeps the constant)."""
+    return isinstance(node, A.Binary) and node.op in _SUMS
+
+
+def _rebalanced(tr: Any, e: A.Binary) -> bool:
+    """GLSL IR's do_rebalance_tree balances an expression tree of three or more additions of
+    the same type whose leaves are variables (at most one constant) before NIR sees it:
+    ``(a + b + c) + K`` reaches NIR as ``(a + b) + (c + K)`` (measured)."""
+    stack, ops, constants = [e], 0, 0
+    while stack:
+        n = stack.pop()
+        if isinstance(n, A.Binary):
+            if n.op != "+" or tr.type_of(n) != tr.type_of(e):
+                return False
+            ops += 1
+            stack += [n.left, n.right]
+        elif _const(tr, n):
+            constants += 1
+        elif not (isinstance(n, A.Identifier) or (isinstance(n, A.Field) and tr.model.is_swizzle(n))):
+            return False
+    return ops >= 3 and constants <= 1
+
+
+def _fmul(tr: Any, node: Any) -> bool:
+    """The value is a product in NIR (nir_search's ``is_fmul``): a product of numbers or
+    vectors, a local whose value here is one (its initializer, or the assignment that reaches
+    this read: ``f = f*f*(3.0 - 2.0*f); ... f.xy``), or a component of either."""
+    while isinstance(node, A.Field) and tr.model.is_swizzle(node):
+        node = node.base
+    if isinstance(node, A.Identifier):
+        node = _stable_init(tr, node) or _reaching_value(tr, node)
+    return node is not None and _is_product(tr, node)
+
+
+def _reaching_value(tr: Any, ident: A.Identifier, unchanged: bool = False) -> Any:
+    """The value the last whole assignment (or initializer) of a local gave it, when that write
+    runs before this read on every path and nothing writes the variable in between (in
+    program order, loops included: analysis.dataflow); else None. Its operands may have
+    changed since (``f = f*f*...`` reads the old f): with `unchanged`, only a value whose
+    variables nothing writes in between either, so its expression computes it again here."""
+    sym = tr.model.symbol_of(ident)
+    if sym is None or sym.kind != "local" or tr.fn is None:
+        return None
+    from ..analysis.dataflow import FunctionFacts
+
+    cache = tr.__dict__.setdefault("_nir_fold_facts", {})
+    key = id(tr.fn.sym)
+    if key not in cache:
+        cache[key] = FunctionFacts(tr.fn.sym.node, tr.model)
+    facts = cache[key]
+    if not facts.ok or id(ident) not in facts.enter:
+        return None  # (a node of an inlined body: another function's)
+    before = [w for w in facts.writes_to(sym) if w.pos < facts.enter[id(ident)]]
+    if not before or before[-1].kind not in ("=", "init") or before[-1].value is None:
+        return None
+    w = before[-1]
+    if not facts.dominates(w.node, ident) or facts.written_between(w.node, ident, [sym]):
+        return None
+    if unchanged:
+        if tr.has_effects(w.value):
+            return None
+        read = [tr.model.symbol_of(n) for n in w.value.walk() if isinstance(n, A.Identifier)]
+        if sym in read or facts.written_between(w.node, ident, [r for r in read if r is not None]):
+            return None
+    return w.value
 
 
 def _factor(tr: Any, e: A.Binary, mask: str | None) -> str | None:
     """``a*b + a*c`` (either operand order, products possibly stored in never-written locals)
     as ``a * (b + c)``."""
+    parts = _factor_parts(tr, e)
+    if parts is None:
+        return None
+    shared, b, c = parts
+    t = tr.type_of(e)
+    ts, tb, tc = (_code(tr, x, mask) for x in (shared, b, c))
+    tl, trr = tr.exprs([e.left, e.right], mask)
+    rewritten = tr.binary_values("*", t, t, ts, f"({tb} + {tc})")  # float, no matrix: rt.fmul
+    return f"({rewritten} if rt.lp else ({tl} + {trr}))"
+
+
+def _factor_parts(tr: Any, e: Any) -> tuple[Any, Any, Any] | None:
+    """(a, b, c) when the sum ``e`` is ``a*b + a*c`` as :func:`_factor` rewrites it, else None."""
+    if not (isinstance(e, A.Binary) and e.op == "+"):
+        return None
     left, right = _factors(tr, e.left), _factors(tr, e.right)
     if left is None or right is None or sorted(left[0]) == sorted(right[0]):
         return None  # (x*y + x*y is CSE'd to p + p first)
@@ -485,11 +637,7 @@ def _factor(tr: Any, e: A.Binary, mask: str | None) -> str | None:
     rest = [x[0] if isinstance(x, tuple) else x for x in (b, c)]
     if not all(_opaque(tr, x) or _const(tr, x) for x in rest) or all(_const(tr, x) for x in rest):
         return None  # b + c would be rewritten further (or folded): not copied
-    t = tr.type_of(e)
-    ts, tb, tc = (_code(tr, x, mask) for x in (shared, b, c))
-    tl, trr = tr.exprs([e.left, e.right], mask)
-    rewritten = tr.binary_values("*", t, t, ts, f"({tb} + {tc})")  # float, no matrix: rt.fmul
-    return f"({rewritten} if rt.lp else ({tl} + {trr}))"
+    return shared, b, c
 
 
 def _stable_vector(tr: Any, node: Any) -> bool:

@@ -9,7 +9,7 @@ floor: values NIR does not look into) over 160x90 pixels. Without the rewrites (
 strict mix everywhere) these channels differ from llvmpipe (measured): constants_sunk 680, 4718
 and 5163 pixels in its first three, factoring 979, 6694, 6556, mix_constant_operands 1169 and
 2074 (second and third), mix_forms 5623 (first), mix_shared_operands 3261 (third),
-constants_merged 3600, 3200, 2165 (first three); the other
+constants_merged 3600, 3200, 2165 (first three), constants_sunk_further 30, 4667, 1103; the other
 channels pin forms that give the same bits here.
 
 Written for llvmpipe of Mesa 22.3 (the `llvmpipe` fixture of tests/gl/conftest.py fails naming
@@ -42,6 +42,14 @@ CASES = {
     # a*b + c*a -> a*(b + c), also through a local product (a hash of a real shader)
     "factoring": """vec2 uv = 50.0 * fract(p / 3.14159265);
         c = vec4(fract(uv.x * uv.y * (uv.x + uv.y)), a * b + d * a, e * 1.37 + e * b, 2.7182817 * (a * b));""",
+    # (a + b) + K with longer terms: K sinks down a chain of sums used once, also through a
+    # local read once (a sum stored, or assigned before: iq's noise, `uv + 0.5` with
+    # uv = (p.xy + K2*p.z) + f.xy and f = f*f*(3 - 2f)), beside products of any factors
+    "constants_sunk_further": """vec3 x3 = vec3(a * 20.0, b * 30.0, d * 7.0), fl = floor(x3), fr = fract(x3);
+        fr = fr*fr*(3.0 - 2.0*fr);
+        vec2 uv = (fl.xy + vec2(37.0, 17.0)*fl.z) + fr.xy;
+        float v = fl.y - fr.y*(b + 1.0);
+        c = vec4(((uv + 0.5) / 256.0).x, (v - 2.7182817) * e, a*b*d + e + 1.37, 1.0);""",
     # #a * (b * #c) -> (a*c) * b and #a + (b + #c) -> (a + c) + b, also through a local
     "constants_merged": """vec2 uv = (2.0 * p - iResolution.xy) / min(iResolution.x, iResolution.y) * 1.2;
         vec2 w = uv * 0.2; float q = b + 0.37;
