@@ -13,7 +13,9 @@ The rules copied here, each measured bit for bit against llvmpipe on 50,000 rand
   ``50.0 * (f.x + f.y)``);
 - constants sunk into a sum (``(a + b) + #c -> (a + #c) + b``, both sums used once, a and b
   not constant; the variant that keeps a product ``b`` whole is tried first, so
-  ``(a*b + c) + K`` is ``(c + K) + a*b``); subtraction is addition of the negation;
+  ``(a*b + c) + K`` is ``(c + K) + a*b``); subtraction is addition of the negation; the new
+  sum is matched again, so the constant sinks down a chain of sums used once, also through
+  a local read once (:func:`_sink_sum`: iq's noise);
 - the same for products (``(a * b) * #c -> (a * #c) * b``, also ``#c * (a * b)``);
 - constants merged (``#a * (b * #c) -> (a*c) * b``, ``#a + (b + #c) -> (a + c) + b``, with
   no "used once" condition, so also through a never-written local: ``uv = q * 1.2`` then
@@ -23,6 +25,9 @@ The rules copied here, each measured bit for bit against llvmpipe on 50,000 rand
 - constants merged into a dot product, ``dot(x * #c, #K)`` is ``dot(x, K * c)``, tree by tree
   (:func:`merged_dot`), also through the parameter of a call inlined for it
   (transpile/inline.py: Mesa inlines every function before these passes);
+- NIR sees SSA values: a variable assigned again still stands for its value, so ``p = m*p*2.02;
+  p = m*p*2.03`` is ``(m*2.02) * (m*p)`` for a constant matrix m, and ``(y * #c) * #k`` is
+  ``y * (c*k)`` through such a variable too (:func:`_keep_factor`, :func:`_merge_into_matrix`);
 - constants are what Mesa knows as constants: also a global variable initialised by a
   constant expression and never written (:func:`_constant_global`: GLSL IR propagates it);
 - an added constant zero dropped, ``fadd(a, 0.0) -> a`` (:func:`zero_add`, ``Runtime.fadd``),
@@ -31,9 +36,11 @@ The rules copied here, each measured bit for bit against llvmpipe on 50,000 rand
 
 Each rewrite is emitted as ``(<rewritten> if rt.lp else <written>)``: float32 renders take
 Mesa's order, float64 (the accuracy reference) and float16 keep the written one. Not copied
-(measured, left as written): longer chains such as ``(a + b + c) + K`` (llvmpipe gives
-``(a + b) + (c + K)``, which the rules above alone do not explain), and values reached through
-variables other than the product look-through above.
+(measured, left as written): chains GLSL IR rebalances before NIR sees them, such as
+``(a + b + c) + K`` of variables (llvmpipe gives ``(a + b) + (c + K)``: do_rebalance_tree),
+rewrites that reach across a user function's return value or along ``+=`` chains (NIR
+inlines every function; volcanic's ``displacement(...) - 0.4``), and constants propagated
+through out/inout parameters into matrix products (gargantua's camera rotation).
 
 `mix` is lowered by nir_lower_flrp, whose choice depends on the other `mix` calls of the
 shader (:func:`mix_hint`); the rest of that choice is made at run time (`Runtime._flrp_form`).
@@ -182,9 +189,13 @@ def _keep_factor(tr: Any, e: A.Binary, mask: str | None) -> str | None:
     y, k = (e.right, e.left) if k_left else (e.left, e.right)
     if not _const(tr, k) or _const(tr, y) or tr.type_of(y) != tr.type_of(e):
         return None
+    if not isinstance(y, (A.Binary, A.Call)) or _fmul(tr, y) and _product_parts(tr, y):
+        return None  # (a plain read is no new value to keep; a longer chain: not copied)
     w = _write_of(tr, e)
-    if w is None or id(w.symbol) not in _merge_reads(tr) or _fmul(tr, y) and _product_parts(tr, y):
-        return None
+    if w is None or id(w.symbol) not in _written(tr):
+        return None  # (a variable written once: its initializer is read again instead)
+    if not any(_reaching_value(tr, r) is e for r in _merge_reads(tr).get(id(w.symbol), ())):
+        return None  # (no product by a constant reads this value)
     ty = tr.tmp(tr.expr(y, mask))
     tk = tr.expr(k, mask)
     tr.__dict__.setdefault("_nir_fold_kept", {})[id(e)] = (ty, tr.lines)
@@ -205,17 +216,18 @@ def _write_of(tr: Any, value: Any) -> Any:
     return index[key].get(id(value))
 
 
-def _merge_reads(tr: Any) -> set[int]:
-    """Symbols the current function reads as a factor of a product by a constant."""
+def _merge_reads(tr: Any) -> dict[int, list[A.Identifier]]:
+    """id(symbol) -> the reads of it as a factor of a product by a constant, in the current
+    function."""
     cache = tr.__dict__.setdefault("_nir_fold_merge_reads", {})
     key = id(tr.fn.sym)
     if key not in cache:
-        out: set[int] = set()
+        out: dict[int, list[A.Identifier]] = {}
         for n in tr.fn.sym.node.body.walk():
             if isinstance(n, A.Binary) and n.op == "*":
                 for a, b in ((n.left, n.right), (n.right, n.left)):
                     if isinstance(b, A.Identifier) and _const(tr, a) and tr.model.symbol_of(b) is not None:
-                        out.add(id(tr.model.symbol_of(b)))
+                        out.setdefault(id(tr.model.symbol_of(b)), []).append(b)
         cache[key] = out
     return cache[key]
 

@@ -9,7 +9,7 @@ floor: values NIR does not look into) over 160x90 pixels. Without the rewrites (
 strict mix everywhere) these channels differ from llvmpipe (measured): constants_sunk 680, 4718
 and 5163 pixels in its first three, factoring 979, 6694, 6556, mix_constant_operands 1169 and
 2074 (second and third), mix_forms 5623 (first), mix_shared_operands 3261 (third),
-constants_merged 3600, 3200, 2165 (first three), constants_sunk_further 30, 4667, 1103; the other
+constants_merged 3600, 3200, 2165 (first three), constants_sunk_further 30, 4667, 1103, constants_merged_through_assignments 5035, 7837, 9300; the other
 channels pin forms that give the same bits here.
 
 Written for llvmpipe of Mesa 22.3 (the `llvmpipe` fixture of tests/gl/conftest.py fails naming
@@ -50,6 +50,15 @@ CASES = {
         vec2 uv = (fl.xy + vec2(37.0, 17.0)*fl.z) + fr.xy;
         float v = fl.y - fr.y*(b + 1.0);
         c = vec4(((uv + 0.5) / 256.0).x, (v - 2.7182817) * e, a*b*d + e + 1.37, 1.0);""",
+    # a product by a constant seen through a variable assigned again (SSA): #M * (y * #c) ->
+    # (M*c) * y for a constant matrix (iq's fbm: p = m*p*2.02; p = m*p*2.03), and
+    # (y * #c) * #k -> y * (c*k)
+    "constants_merged_through_assignments": """const mat3 m = mat3(0.0, 0.8, 0.6, -0.8, 0.36, -0.48, -0.6, -0.48, 0.64);
+        vec3 r = vec3(a, b, d);
+        r = m*r*2.02;
+        r = m*r*2.03;
+        vec3 w = r * 3.5;
+        c = vec4(r.x, w.y, (m*r*2.01).z, 1.0);""",
     # #a * (b * #c) -> (a*c) * b and #a + (b + #c) -> (a + c) + b, also through a local
     "constants_merged": """vec2 uv = (2.0 * p - iResolution.xy) / min(iResolution.x, iResolution.y) * 1.2;
         vec2 w = uv * 0.2; float q = b + 0.37;
@@ -172,7 +181,12 @@ def test_a_global_initialised_by_a_constant_and_never_written_is_a_constant(llvm
     assert same.all(), (~same).reshape(-1, 4).sum(0).tolist()
 
 
-@pytest.mark.parametrize("text", [ZERO_ADDS, MERGED_DOTS, GLOBAL_CONSTANTS], ids=["zero_adds", "merged_dots", "globals"])
+SSA_VALUES = ("void mainImage(out vec4 c, in vec2 p) {" + OPERANDS + CASES["constants_sunk_further"]
+              + CASES["constants_merged_through_assignments"].replace("c = vec4(", "c += vec4(") + "}")
+
+
+@pytest.mark.parametrize("text", [ZERO_ADDS, MERGED_DOTS, GLOBAL_CONSTANTS, SSA_VALUES],
+                         ids=["zero_adds", "merged_dots", "globals", "ssa_values"])
 def test_float64_reference_is_the_same_without_these_rewrites(make_shader, monkeypatch, text):
     """The rewrites and the inlining above are float32 (llvmpipe) only: the float64 render is
     bit for bit the one of the code generated without them."""
@@ -185,5 +199,7 @@ def test_float64_reference_is_the_same_without_these_rewrites(make_shader, monke
     monkeypatch.setattr(nir_fold, "merged_dot", lambda *a: None)
     monkeypatch.setattr(nir_fold, "zero_add", lambda *a: None)
     monkeypatch.setattr(nir_fold, "_constant_global", lambda *a: False)
+    for name in ("_sink_sum", "_keep_factor", "_merge_into_matrix"):
+        monkeypatch.setattr(nir_fold, name, lambda *a: None)
     without = np.asarray(compile_backend(make_shader(text), "numpy").render(size=(32, 18), precision="float64"))
     assert with_them.view(np.int64).tolist() == without.view(np.int64).tolist()
