@@ -25,6 +25,8 @@ The rules copied here, each measured bit for bit against llvmpipe on 50,000 rand
 - constants merged into a dot product, ``dot(x * #c, #K)`` is ``dot(x, K * c)``, tree by tree
   (:func:`merged_dot`), also through the parameter of a call inlined for it
   (transpile/inline.py: Mesa inlines every function before these passes);
+- a constant added to a call's result sinks into the ``+=`` chain the function returns
+  (:func:`sunk_return`: ``displacement(x) - 0.4`` of iq's terrain);
 - NIR sees SSA values: a variable assigned again still stands for its value, so ``p = m*p*2.02;
   p = m*p*2.03`` is ``(m*2.02) * (m*p)`` for a constant matrix m, and ``(y * #c) * #k`` is
   ``y * (c*k)`` through such a variable too (:func:`_keep_factor`, :func:`_merge_into_matrix`);
@@ -38,9 +40,11 @@ Each rewrite is emitted as ``(<rewritten> if rt.lp else <written>)``: float32 re
 Mesa's order, float64 (the accuracy reference) and float16 keep the written one. Not copied
 (measured, left as written): chains GLSL IR rebalances before NIR sees them, such as
 ``(a + b + c) + K`` of variables (llvmpipe gives ``(a + b) + (c + K)``: do_rebalance_tree),
-rewrites that reach across a user function's return value or along ``+=`` chains (NIR
-inlines every function; volcanic's ``displacement(...) - 0.4``), and constants propagated
-through out/inout parameters into matrix products (gargantua's camera rotation).
+other rewrites that reach across a call (NIR inlines every function: only a constant added to
+a returned ``+=`` chain is followed, :func:`sunk_return`, and products by constants merged
+into a ``dot`` through an argument, transpile/inline.py), and constants propagated through
+out/inout parameters into matrix products (gargantua's camera rotation: its eye position's
+constant components and rotation angle, folded by Mesa into ``(cos(-0.45)*10) * sin(x)``).
 
 `mix` is lowered by nir_lower_flrp, whose choice depends on the other `mix` calls of the
 shader (:func:`mix_hint`); the rest of that choice is made at run time (`Runtime._flrp_form`).
@@ -159,8 +163,10 @@ def binary(tr: Any, e: A.Binary, mask: str | None) -> str | None:
     """The generated code of ``e`` when a rule above rewrites it, else None."""
     if e.op not in ("+", "-", "*") or tr.fn is None:
         return None
-    if tr.type_of(e).base != "float" or tr.has_effects(e):
+    if tr.type_of(e).base != "float":
         return None
+    if tr.has_effects(e):
+        return _sink_into_call(tr, e, mask)
     if tr.type_of(e.left).is_matrix or tr.type_of(e.right).is_matrix:
         return _merge_into_matrix(tr, e, mask)
     if e.op == "+":
@@ -891,3 +897,145 @@ def _written(tr: Any) -> set[int]:
                         roots(a)
         cache[key] = out
     return cache[key]
+
+
+# -- a constant added to a function's result, sunk into the sum it returns ----------------------
+def sunk_return(tr: Any, fn: Any) -> list[tuple[Any, Any, str]] | None:
+    """The sum a user function returns when a caller adds a constant to its result and NIR,
+    which inlines every function, would sink that constant into it (:func:`_sink_sum`):
+    ``float f; f = 0.5*noise(p); f += 0.25*noise(q); ... return f;`` called as
+    ``displacement(x) - 0.4`` (iq's terrain) is ``((0.5*noise(p) - 0.4) + 0.25*noise(q)) + ...``
+    on llvmpipe. Only the plain shape: the function's last statement returns a float local
+    that nothing else reads, written by statements of the function's body (no branch, no loop)
+    as ``f = a`` (or an initializer) then ``f += t`` / ``f -= t``; no out parameter, no other
+    return. The terms [(write, value, operator)], else None. Such a function takes one more
+    argument, the constant (None: add nothing; :func:`return_constant_args`), its terms are
+    kept in temporaries (:func:`keep_term`) and its return reads them (:func:`sunk_return_value`)."""
+    cache = tr.__dict__.setdefault("_nir_fold_sunk_returns", {})
+    if id(fn) not in cache:
+        cache[id(fn)] = None
+        if id(fn) in _sink_calls(tr) and all(d == "in" for _, _, d in fn.params):
+            saved = tr.fn
+            tr.fn = _Standin(fn)
+            try:
+                cache[id(fn)] = _return_chain(tr, fn)
+            finally:
+                tr.fn = saved
+    return cache[id(fn)]
+
+
+class _Standin:
+    """What the rules read of the transpiler's current function (`tr.fn`), for another one."""
+
+    def __init__(self, sym: Any) -> None:
+        self.sym, self.is_entry = sym, False
+
+
+def _sink_calls(tr: Any) -> set[int]:
+    """ids of the user functions some call of which has a constant added to its result."""
+    found = tr.__dict__.get("_nir_fold_sink_calls")
+    if found is None:
+        found = tr.__dict__["_nir_fold_sink_calls"] = set()
+        for sym in tr.model.reachable_functions():
+            for n in sym.node.body.walk():
+                if isinstance(n, A.Binary) and n.op in _SUMS:
+                    for call, k in ((n.left, n.right), (n.right, n.left)):
+                        target = tr.model.call_target(call) if isinstance(call, A.Call) else None
+                        if isinstance(target, Symbol) and tr.model.const_value(k) is not None:
+                            found.add(id(target))
+    return found
+
+
+def _return_chain(tr: Any, fn: Any) -> list[tuple[Any, Any, str]] | None:
+    body = fn.node.body.stmts
+    if not body or not isinstance(body[-1], A.Return) or not isinstance(body[-1].value, A.Identifier):
+        return None
+    ret = body[-1].value
+    sym = tr.model.symbol_of(ret)
+    if sym is None or sym.kind != "local" or tr.type_of(ret).base != "float" or tr.type_of(ret).is_matrix:
+        return None
+    if any(isinstance(n, (A.Return, A.Discard)) and n is not body[-1] for n in fn.node.body.walk()):
+        return None
+    top = {id(st.expr) for st in body if isinstance(st, A.ExpressionStatement)}
+    top |= {id(d) for st in body if isinstance(st, A.DeclarationStatement)
+            and isinstance(st.decl, A.VariableDeclaration) for d in st.decl.declarators}
+    writes = [w for w in _facts(tr).writes_to(sym) if w.kind != "decl"]
+    if len(writes) < 2 or writes[0].kind not in ("=", "init") or writes[0].value is None:
+        return None
+    chain = [(writes[0].node, writes[0].value, "+")]
+    for w in writes[1:]:
+        if not (isinstance(w.node, A.Assignment) and w.node.op in ("+=", "-=")):
+            return None
+        chain.append((w.node, w.node.value, w.node.op[0]))
+    targets = {id(w.node.target) for w in writes if isinstance(w.node, A.Assignment)}
+    for n in fn.node.body.walk():
+        if isinstance(n, A.Identifier) and tr.model.symbol_of(n) is sym and n is not ret and id(n) not in targets:
+            return None  # (f read elsewhere: an intermediate sum used twice)
+    if any(id(w) not in top or tr.type_of(v) != tr.type_of(ret) for w, v, _ in chain):
+        return None
+    first = chain[0][1]
+    if not (_opaque(tr, first) or _fmul(tr, first)):
+        return None  # a sum would take the constant further
+    if not all(_opaque(tr, v) or _fmul(tr, v) or _sum(tr, v) for _, v, _ in chain[1:]):
+        return None
+    if isinstance(first, A.Call) and isinstance(tr.model.call_target(first), Symbol):
+        return None  # (a user function's result: what NIR sees in it is not followed)
+    return chain
+
+
+def _sink_into_call(tr: Any, e: A.Binary, mask: str | None) -> str | None:
+    """``f(...) +- #c`` where f has a :func:`sunk_return`: the call, passed the constant in
+    llvmpipe mode (the callee adds it where NIR sinks it), else None."""
+    if e.op not in _SUMS:
+        return None
+    call, k = (e.left, e.right) if isinstance(e.left, A.Call) else (e.right, e.left)
+    target = tr.model.call_target(call) if isinstance(call, A.Call) else None
+    if (not isinstance(target, Symbol) or tr.model.const_value(k) is None or tr.type_of(k) != tr.type_of(e)
+            or call is e.right and e.op == "-" or sunk_return(tr, target) is None):
+        return None
+    if not (_used_once(tr, e) and _used_once(tr, call)):
+        return None
+    tk = tr.expr(k, mask)
+    signed = f"(-{tk})" if e.op == "-" else tk
+    tr.__dict__.setdefault("_nir_fold_call_k", {})[id(call)] = f"({signed} if rt.lp else None)"
+    result = tr.tmp(tr.expr(call, mask))
+    return f"({result} if rt.lp else ({result} {e.op} {tk}))"
+
+
+def return_constant_args(tr: Any, call: A.Call, fn: Any) -> list[str]:
+    """The extra argument of a call of a function with a :func:`sunk_return`: the constant the
+    caller adds (:func:`_sink_sum`, llvmpipe mode) or None; [] for other functions."""
+    if sunk_return(tr, fn) is None:
+        return []
+    return [tr.__dict__.get("_nir_fold_call_k", {}).get(id(call), "None")]
+
+
+def keep_term(tr: Any, node: Any, code: str) -> str:
+    """The code of a term of a :func:`sunk_return` sum, kept in a temporary; other values as
+    they are. ``node``: the assignment or declarator that writes it."""
+    if tr.fn is None or isinstance(tr.fn, _Standin):
+        return code
+    chain = sunk_return(tr, tr.fn.sym)
+    if chain is None or not any(w is node for w, _, _ in chain):
+        return code
+    t = tr.tmp(code)
+    tr.__dict__.setdefault("_nir_fold_terms", {})[id(node)] = t
+    return t
+
+
+def sunk_return_value(tr: Any, ret: A.Return, code: str) -> str:
+    """The returned value of a function with a :func:`sunk_return`: ``code`` when the caller
+    adds nothing (``_k`` None), else the sum with the constant sunk as NIR sinks it."""
+    chain = sunk_return(tr, tr.fn.sym) if tr.fn is not None else None
+    terms = tr.__dict__.get("_nir_fold_terms", {})
+    if chain is None or ret.value is None or not all(id(w) in terms for w, _, _ in chain):
+        return code
+    codes = [terms[id(w)] for w, _, _ in chain]
+    (_, a, _), (_, t1, op1) = chain[0], chain[1]
+    if _fmul(tr, t1) or not _fmul(tr, a):
+        sunk = f"(({codes[0]} + _k) {op1} {codes[1]})"
+    else:  # only a is a product: the constant joins the other term (its negation for -=)
+        sunk = f"(({'-' if op1 == '-' else ''}{codes[1]} + _k) + {codes[0]})"
+    for (_, _, op), c in zip(chain[2:], codes[2:]):
+        sunk = f"({sunk} {op} {c})"
+    return f"({code} if _k is None else {sunk})"
