@@ -954,8 +954,10 @@ def _return_chain(tr: Any, fn: Any) -> list[tuple[Any, Any, str]] | None:
     sym = tr.model.symbol_of(ret)
     if sym is None or sym.kind != "local" or tr.type_of(ret).base != "float" or tr.type_of(ret).is_matrix:
         return None
-    if any(isinstance(n, (A.Return, A.Discard)) and n is not body[-1] for n in fn.node.body.walk()):
-        return None
+    for n in fn.node.body.walk():
+        if isinstance(n, (A.Return, A.Discard)) and n is not body[-1] or isinstance(n, A.Call) and id(
+                tr.model.call_target(n)) in tr.facts.may_discard:
+            return None  # (an early exit: the return would not be the function's last statement)
     top = {id(st.expr) for st in body if isinstance(st, A.ExpressionStatement)}
     top |= {id(d) for st in body if isinstance(st, A.DeclarationStatement)
             and isinstance(st.decl, A.VariableDeclaration) for d in st.decl.declarators}
