@@ -987,7 +987,11 @@ def _return_chain(tr: Any, fn: Any) -> list[tuple[Any, Any, str]] | None:
 
 def _sink_into_call(tr: Any, e: A.Binary, mask: str | None) -> str | None:
     """``f(...) +- #c`` where f has a :func:`sunk_return`: the call, passed the constant in
-    llvmpipe mode (the callee adds it where NIR sinks it), else None."""
+    llvmpipe mode (the callee adds it where NIR sinks it), else None. Not where the function
+    computes the same sum for another call of this function (same arguments, or any other call
+    of a vector function: NIR scalarises, then CSE merges equal components): that sum is used
+    twice there, and the constant stays outside (measured). Calls in other functions are not
+    compared: a copy CSE merges across functions is not detected."""
     if e.op not in _SUMS:
         return None
     call, k = (e.left, e.right) if isinstance(e.left, A.Call) else (e.right, e.left)
@@ -997,6 +1001,11 @@ def _sink_into_call(tr: Any, e: A.Binary, mask: str | None) -> str | None:
         return None
     if not (_used_once(tr, e) and _used_once(tr, call)):
         return None
+    shapes = _uses(tr)[0]
+    others = [n for n in tr.fn.sym.node.body.walk()
+              if isinstance(n, A.Call) and n is not call and tr.model.call_target(n) is target]
+    if any(shapes.get(id(n)) == shapes.get(id(call)) for n in others) or others and tr.type_of(call).is_vector:
+        return None  # NIR's CSE merges the inlined copies (per component for a vector): used twice
     tk = tr.expr(k, mask)
     signed = f"(-{tk})" if e.op == "-" else tk
     tr.__dict__.setdefault("_nir_fold_call_k", {})[id(call)] = f"({signed} if rt.lp else None)"
