@@ -623,11 +623,11 @@ def _sum_plan(tr: Any, x: Any, t: Any, depth: int) -> tuple | None:
     elif not _used_once(tr, x):
         inner = None
     if not (isinstance(inner, A.Binary) and inner.op in _SUMS) or depth > 16:
-        return ("leaf", x) if _opaque(tr, x) or _fmul(tr, x) or _sum(tr, x) else None
+        return ("leaf", x) if _known_term(tr, x) else None
     a, b = inner.left, inner.right
     if any(_const(tr, y) or _has_matrix(tr, y) or tr.type_of(y) != t for y in (a, b)):
         return None
-    if not all(_opaque(tr, y) or _fmul(tr, y) or _sum(tr, y) for y in (a, b)):
+    if not all(_known_term(tr, y) for y in (a, b)):
         return None  # a term NIR looks into (a call inlined, a mix, ...): not copied
     if _factor_parts(tr, inner) is not None:
         return ("leaf", x)  # factored first (a*b + a*c -> a*(b + c)): a product, no sum
@@ -657,6 +657,19 @@ def _plan_code(plan: tuple, codes: Any, k: str) -> str:
     recv = _plan_code(plan[1], codes, k)
     other = next(codes)
     return f"({recv} {plan[3]} {other})" if plan[4] else f"({recv} + {other})"
+
+
+def _known_term(tr: Any, node: Any) -> bool:
+    """A term whose kind to NIR is known: opaque, a product (:func:`_fmul`), a sum, or a
+    selection (``c ? x : y``, a bcsel: no product), written or the value of a local here."""
+    if _opaque(tr, node) or _fmul(tr, node) or _sum(tr, node):
+        return True
+    if isinstance(node, A.Identifier):
+        node = _stable_init(tr, node) or _reaching_value(tr, node)
+    if not isinstance(node, A.Ternary):
+        return False
+    x, y = node.then, node.else_  # (c ? a*b : a*d is a * (c ? b : d) to NIR: not copied)
+    return not (isinstance(x, A.Binary) and isinstance(y, A.Binary) and x.op == y.op)
 
 
 def _sum(tr: Any, node: Any) -> bool:
@@ -978,7 +991,7 @@ def _return_chain(tr: Any, fn: Any) -> list[tuple[Any, Any, str]] | None:
     first = chain[0][1]
     if not (_opaque(tr, first) or _fmul(tr, first)):
         return None  # a sum would take the constant further
-    if not all(_opaque(tr, v) or _fmul(tr, v) or _sum(tr, v) for _, v, _ in chain[1:]):
+    if not all(_known_term(tr, v) for _, v, _ in chain[1:]):
         return None
     if isinstance(first, A.Call) and isinstance(tr.model.call_target(first), Symbol):
         return None  # (a user function's result: what NIR sees in it is not followed)

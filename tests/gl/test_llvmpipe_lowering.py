@@ -9,7 +9,7 @@ floor: values NIR does not look into) over 160x90 pixels. Without the rewrites (
 strict mix everywhere) these channels differ from llvmpipe (measured): constants_sunk 680, 4718
 and 5163 pixels in its first three, factoring 979, 6694, 6556, mix_constant_operands 1169 and
 2074 (second and third), mix_forms 5623 (first), mix_shared_operands 3261 (third),
-constants_merged 3600, 3200, 2165 (first three), constants_sunk_further 30, 4667, 1103, constants_merged_through_assignments 5035, 7837, 9300; the other
+constants_merged 3600, 3200, 2165 (first three), constants_sunk_further 30, 4667, 1103, constants_merged_through_assignments 5035, 7837, 9300, constants_sunk_beside_a_selection 3498, 6900, 1538; the other
 channels pin forms that give the same bits here.
 
 Written for llvmpipe of Mesa 22.3 (the `llvmpipe` fixture of tests/gl/conftest.py fails naming
@@ -50,6 +50,9 @@ CASES = {
         vec2 uv = (fl.xy + vec2(37.0, 17.0)*fl.z) + fr.xy;
         float v = fl.y - fr.y*(b + 1.0);
         c = vec4(((uv + 0.5) / 256.0).x, (v - 2.7182817) * e, a*b*d + e + 1.37, 1.0);""",
+    # beside a selection (a bcsel: no product), through locals: (u + f*a) + K -> (u + K) + f*a
+    "constants_sunk_beside_a_selection": """float u = d > 0.5 ? a*b : e; float v = u + f*a; float w = t > 0.3 ? e : b;
+        c = vec4(v + 0.9, (w - d*e) - 1.7, (a > 0.5 ? a : d) + e*t + 2.3, 1.0);""",
     # a product by a constant seen through a variable assigned again (SSA): #M * (y * #c) ->
     # (M*c) * y for a constant matrix (iq's fbm: p = m*p*2.02; p = m*p*2.03), and
     # (y * #c) * #k -> y * (c*k)
