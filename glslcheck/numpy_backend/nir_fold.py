@@ -13,7 +13,9 @@ The rules copied here, each measured bit for bit against llvmpipe on 50,000 rand
   ``50.0 * (f.x + f.y)``);
 - constants sunk into a sum (``(a + b) + #c -> (a + #c) + b``, both sums used once, a and b
   not constant; the variant that keeps a product ``b`` whole is tried first, so
-  ``(a*b + c) + K`` is ``(c + K) + a*b``); subtraction is addition of the negation;
+  ``(a*b + c) + K`` is ``(c + K) + a*b``); subtraction is addition of the negation; the new
+  sum is matched again, so the constant sinks down a chain of sums used once, also through
+  a local read once (:func:`_sink_sum`: iq's noise);
 - the same for products (``(a * b) * #c -> (a * #c) * b``, also ``#c * (a * b)``);
 - constants merged (``#a * (b * #c) -> (a*c) * b``, ``#a + (b + #c) -> (a + c) + b``, with
   no "used once" condition, so also through a never-written local: ``uv = q * 1.2`` then
@@ -23,6 +25,11 @@ The rules copied here, each measured bit for bit against llvmpipe on 50,000 rand
 - constants merged into a dot product, ``dot(x * #c, #K)`` is ``dot(x, K * c)``, tree by tree
   (:func:`merged_dot`), also through the parameter of a call inlined for it
   (transpile/inline.py: Mesa inlines every function before these passes);
+- a constant added to a call's result sinks into the ``+=`` chain the function returns
+  (:func:`sunk_return`: ``displacement(x) - 0.4`` of iq's terrain);
+- NIR sees SSA values: a variable assigned again still stands for its value, so ``p = m*p*2.02;
+  p = m*p*2.03`` is ``(m*2.02) * (m*p)`` for a constant matrix m, and ``(y * #c) * #k`` is
+  ``y * (c*k)`` through such a variable too (:func:`_keep_factor`, :func:`_merge_into_matrix`);
 - constants are what Mesa knows as constants: also a global variable initialised by a
   constant expression and never written (:func:`_constant_global`: GLSL IR propagates it);
 - an added constant zero dropped, ``fadd(a, 0.0) -> a`` (:func:`zero_add`, ``Runtime.fadd``),
@@ -31,9 +38,13 @@ The rules copied here, each measured bit for bit against llvmpipe on 50,000 rand
 
 Each rewrite is emitted as ``(<rewritten> if rt.lp else <written>)``: float32 renders take
 Mesa's order, float64 (the accuracy reference) and float16 keep the written one. Not copied
-(measured, left as written): longer chains such as ``(a + b + c) + K`` (llvmpipe gives
-``(a + b) + (c + K)``, which the rules above alone do not explain), and values reached through
-variables other than the product look-through above.
+(measured, left as written): chains GLSL IR rebalances before NIR sees them, such as
+``(a + b + c) + K`` of variables (llvmpipe gives ``(a + b) + (c + K)``: do_rebalance_tree),
+other rewrites that reach across a call (NIR inlines every function: only a constant added to
+a returned ``+=`` chain is followed, :func:`sunk_return`, and products by constants merged
+into a ``dot`` through an argument, transpile/inline.py), and constants propagated through
+out/inout parameters into matrix products (gargantua's camera rotation: its eye position's
+constant components and rotation angle, folded by Mesa into ``(cos(-0.45)*10) * sin(x)``).
 
 `mix` is lowered by nir_lower_flrp, whose choice depends on the other `mix` calls of the
 shader (:func:`mix_hint`); the rest of that choice is made at run time (`Runtime._flrp_form`).
@@ -152,10 +163,12 @@ def binary(tr: Any, e: A.Binary, mask: str | None) -> str | None:
     """The generated code of ``e`` when a rule above rewrites it, else None."""
     if e.op not in ("+", "-", "*") or tr.fn is None:
         return None
-    if tr.type_of(e).base != "float" or tr.type_of(e.left).is_matrix or tr.type_of(e.right).is_matrix:
+    if tr.type_of(e).base != "float":
         return None
     if tr.has_effects(e):
-        return None
+        return _sink_into_call(tr, e, mask)
+    if tr.type_of(e.left).is_matrix or tr.type_of(e.right).is_matrix:
+        return _merge_into_matrix(tr, e, mask)
     if e.op == "+":
         folded = _factor(tr, e, mask)
         if folded is not None:
@@ -163,7 +176,111 @@ def binary(tr: Any, e: A.Binary, mask: str | None) -> str | None:
     folded = _merge_constants(tr, e, mask)
     if folded is not None:
         return folded
-    return _sink(tr, e, mask)
+    folded = _sink(tr, e, mask)
+    return folded if folded is not None else _keep_factor(tr, e, mask)
+
+
+# -- a product by a constant, seen through a variable assigned again ----------------------------
+def _keep_factor(tr: Any, e: A.Binary, mask: str | None) -> str | None:
+    """``x = y * #c`` where x is read later in a product by a constant: the code of the
+    product, y's value kept in a temporary for that read (:func:`_product_parts`). NIR sees
+    through x to y however often x is assigned (``p = m*p*2.02; p = m*p*2.03;`` in an fbm:
+    the second is ``(m*2.02) * (m*p)``, SSA); the generated code has one variable per GLSL
+    one, so the value y had is kept here, in float32 and float64 mode alike (the same
+    values: only llvmpipe mode reads the temporary)."""
+    if e.op != "*" or tr.type_of(e.left) != tr.type_of(e.right) and not (
+            tr.type_of(e.left).is_scalar or tr.type_of(e.right).is_scalar):
+        return None
+    k_left = _const(tr, e.left)
+    y, k = (e.right, e.left) if k_left else (e.left, e.right)
+    if not _const(tr, k) or _const(tr, y) or tr.type_of(y) != tr.type_of(e):
+        return None
+    if not isinstance(y, (A.Binary, A.Call)) or _fmul(tr, y) and _product_parts(tr, y):
+        return None  # (a plain read is no new value to keep; a longer chain: not copied)
+    w = _write_of(tr, e)
+    if w is None or id(w.symbol) not in _written(tr):
+        return None  # (a variable written once: its initializer is read again instead)
+    if not any(_reaching_value(tr, r) is e for r in _merge_reads(tr).get(id(w.symbol), ())):
+        return None  # (no product by a constant reads this value)
+    ty = tr.tmp(tr.expr(y, mask))
+    tk = tr.expr(k, mask)
+    tr.__dict__.setdefault("_nir_fold_kept", {})[id(e)] = (ty, tr.lines)
+    t = tr.type_of(e)
+    return tr.binary_values("*", t, t, tk, ty) if k_left else tr.binary_values("*", t, t, ty, tk)
+
+
+def _write_of(tr: Any, value: Any) -> Any:
+    """The write (analysis.dataflow.Write) of a local whose whole new value is ``value``."""
+    facts = _facts(tr)
+    if not facts.ok:
+        return None
+    index = tr.__dict__.setdefault("_nir_fold_writes", {})
+    key = id(tr.fn.sym)
+    if key not in index:
+        index[key] = {id(w.value): w for ws in facts.writes.values() for w in ws
+                      if w.kind in ("=", "init") and w.value is not None and w.symbol.kind in ("local", "param")}
+    return index[key].get(id(value))
+
+
+def _merge_reads(tr: Any) -> dict[int, list[A.Identifier]]:
+    """id(symbol) -> the reads of it as a factor of a product by a constant, in the current
+    function."""
+    cache = tr.__dict__.setdefault("_nir_fold_merge_reads", {})
+    key = id(tr.fn.sym)
+    if key not in cache:
+        out: dict[int, list[A.Identifier]] = {}
+        for n in tr.fn.sym.node.body.walk():
+            if isinstance(n, A.Binary) and n.op == "*":
+                for a, b in ((n.left, n.right), (n.right, n.left)):
+                    if isinstance(b, A.Identifier) and _const(tr, a) and tr.model.symbol_of(b) is not None:
+                        out.setdefault(id(tr.model.symbol_of(b)), []).append(b)
+        cache[key] = out
+    return cache[key]
+
+
+def _product_parts(tr: Any, node: Any) -> tuple[Any, Any, str | None] | None:
+    """(y, #c, code) when the value of the variable ``node`` is ``y * #c`` to NIR: a
+    never-written local's initializer (code None: y is computed again here), or the
+    assignment reaching this read when :func:`_keep_factor` kept y (code: its temporary)."""
+    if not isinstance(node, A.Identifier):
+        return None
+    init, code = _stable_init(tr, node), None
+    if init is None:
+        init = _reaching_value(tr, node)
+        kept = tr.__dict__.get("_nir_fold_kept", {}).get(id(init))
+        if kept is None or kept[1] is not tr.lines:
+            return None  # (not kept, or kept in another Python function: an outlined part)
+        code = kept[0]
+    if not (isinstance(init, A.Binary) and init.op == "*") or _has_matrix(tr, init.left, init.right):
+        return None
+    if _const(tr, init.right) and not _const(tr, init.left):
+        return init.left, init.right, code
+    if _const(tr, init.left) and not _const(tr, init.right):
+        return init.right, init.left, code
+    return None
+
+
+def _merge_into_matrix(tr: Any, e: A.Binary, mask: str | None) -> str | None:
+    """``#M * v`` with v a vector whose value is ``y * #c`` (c a scalar): NIR lowers the
+    product to columns, ``M[j][i] * (y[j] * c)``, and merges each constant, ``(M[j][i]*c) *
+    y[j]`` (``('~fmul', '#a', ('fmul', 'b(is_not_const)', '#c'))``): ``(M * c) * y``, M * c
+    folded in float32 (measured: ``p = m*p*2.02; p = m*p*2.03`` of iq's fbm)."""
+    if e.op != "*" or not (tr.type_of(e.left).is_matrix and tr.type_of(e.right).is_vector):
+        return None
+    if tr.model.const_value(e.left) is None and not _const(tr, e.left):
+        return None
+    parts = _product_parts(tr, e.right)
+    if parts is None or not tr.type_of(parts[1]).is_scalar or tr.type_of(parts[0]) != tr.type_of(e.right):
+        return None
+    y, c, code = parts
+    if code is None and (not _varying(tr, y) or tr.has_effects(y)):
+        return None
+    tm, tc, tv = tr.exprs([e.left, c, e.right], mask)
+    ty = code if code is not None else tr.expr(y, mask)
+    mt, vt = tr.type_of(e.left), tr.type_of(e.right)
+    merged = tr.binary_values("*", mt, tr.type_of(c), tm, tc)
+    rewritten = tr.binary_values("*", mt, vt, merged, ty)
+    return f"({rewritten} if rt.lp else {tr.binary_values('*', mt, vt, tm, tv)})"
 
 
 def _merge_constants(tr: Any, e: A.Binary, mask: str | None) -> str | None:
@@ -176,9 +293,11 @@ def _merge_constants(tr: Any, e: A.Binary, mask: str | None) -> str | None:
     k_node, x_node = (e.right, e.left) if _const(tr, e.right) else (e.left, e.right)
     if not _const(tr, k_node) or _const(tr, x_node):
         return None
-    inner = x_node
+    inner, kept = x_node, None
     if isinstance(inner, A.Identifier):
-        inner = _stable_init(tr, inner)
+        parts = _product_parts(tr, inner) if e.op == "*" else None
+        kept = parts[2] if parts is not None else None  # (y's value kept: :func:`_keep_factor`)
+        inner = _reaching_value(tr, inner) if kept is not None else _stable_init(tr, inner)
     ops = ("*",) if e.op == "*" else _SUMS
     if not (isinstance(inner, A.Binary) and inner.op in ops) or tr.has_effects(inner):
         return None
@@ -193,9 +312,14 @@ def _merge_constants(tr: Any, e: A.Binary, mask: str | None) -> str | None:
     if _has_matrix(tr, b_node, c_node):
         return None  # m * v is no elementwise product: NIR lowers it to columns first
     b_inner = _stable_init(tr, b_node) if isinstance(b_node, A.Identifier) else b_node
-    if isinstance(b_inner, A.Binary) and b_inner.op in ops and (_const(tr, b_inner.left) or _const(tr, b_inner.right)):
-        return None  # NIR would merge further into b: not copied
-    tk, tc, tb, tx = tr.exprs([k_node, c_node, b_node, x_node], mask)
+    if (isinstance(b_inner, A.Binary) and b_inner.op in ops and (_const(tr, b_inner.left) or _const(tr, b_inner.right))
+            and not _has_matrix(tr, b_inner.left, b_inner.right)):
+        return None  # NIR would merge further into b: not copied (m * v is a sum of columns)
+    if kept is not None:
+        tk, tc, tx = tr.exprs([k_node, c_node, x_node], mask)
+        tb = kept
+    else:
+        tk, tc, tb, tx = tr.exprs([k_node, c_node, b_node, x_node], mask)
     t = tr.type_of(e)
     if e.op == "*":
         rewritten = tr.binary_values("*", t, t, tb, f"({tk} * {tc})")
@@ -371,6 +495,18 @@ def _used_once(tr: Any, e: Any) -> bool:
     """``e`` feeds one instruction: its GLSL text appears once in the function (NIR's CSE
     would merge a copy) and it is an operand of a larger expression (a value stored in a
     variable feeds every use of the variable)."""
+    return id(e) in _uses(tr)[2] and _one_copy(tr, e)
+
+
+def _one_copy(tr: Any, e: Any) -> bool:
+    """The GLSL text of ``e`` appears once in the function (NIR's CSE would merge a copy)."""
+    shapes, counts, _ = _uses(tr)
+    return counts.get(shapes.get(id(e), -1), 0) <= 1
+
+
+def _uses(tr: Any) -> tuple[dict[int, int], dict[int, int], set[int]]:
+    """(shape of each node, copies of each shape among the binary expressions, ids of the
+    operands of binary expressions and built-in calls) of the current function."""
     parents = tr.__dict__.setdefault("_nir_fold_parents", {})
     key = id(tr.fn.sym)
     if key not in parents:
@@ -384,8 +520,7 @@ def _used_once(tr: Any, e: Any) -> bool:
             elif isinstance(n, A.Call) and (n.constructor or _builtin(tr, n)):
                 operands.update(id(a) for a in n.args)  # (a user function may read it twice)
         parents[key] = (shapes, counts, operands)
-    shapes, counts, operands = parents[key]
-    return id(e) in operands and counts.get(shapes.get(id(e), -1), 0) <= 1
+    return parents[key]
 
 
 def _shapes(root: Any) -> dict[int, int]:
@@ -420,55 +555,214 @@ def _shapes(root: Any) -> dict[int, int]:
 
 
 def _sink(tr: Any, e: A.Binary, mask: str | None) -> str | None:
-    """Constants sunk into a two-term sum or product, or into a dot product."""
+    """Constants sunk into a sum (:func:`_sink_sum`), a two-term product, or a dot product."""
     inner, k, k_left = e.left, e.right, False
     if _const(tr, inner) and not _const(tr, k):
         inner, k, k_left = e.right, e.left, True
-    if not _const(tr, k) or _const(tr, inner) or tr.type_of(k) != tr.type_of(e):
+    if not _const(tr, k) or _const(tr, inner):
         return None
-    if not (_used_once(tr, e) and _used_once(tr, inner)):
+    if tr.type_of(k) != tr.type_of(e) and not (e.op in _SUMS and tr.type_of(k).is_scalar):
+        return None  # (a scalar constant added to a vector is added to each component)
+    if not _used_once(tr, e):
         return None
-    ops = _SUMS if e.op in _SUMS else ("*",)
     if k_left and e.op == "-":
         return None  # #c - (a + b): the negation sits between the two sums
-    if (isinstance(inner, A.Call) and inner.callee == "dot" and e.op in _SUMS and _builtin(tr, inner)
-            and all(_stable_vector(tr, x) for x in inner.args)):
-        u, v, kk = tr.exprs([*inner.args, k], mask)
-        signed = f"(-{kk})" if e.op == "-" else kk
-        return f"(rt.dot_add({u}, {v}, {signed}) if rt.lp else (rt.dot({u}, {v}) {e.op} {kk}))"
-    if not (isinstance(inner, A.Binary) and inner.op in ops):
+    if e.op in _SUMS:
+        return _sink_sum(tr, e, inner, k, mask)
+    if not (_used_once(tr, inner) and isinstance(inner, A.Binary) and inner.op == "*"):
         return None
     a, b = inner.left, inner.right
     if _has_matrix(tr, a, b):
         return None  # a matrix product is not reassociated as numbers are
-    if ops == ("*",):
-        if not (_opaque(tr, a) and _opaque(tr, b)):
-            return None  # an operand NIR would look into further: not copied
-    elif not all(_opaque(tr, x) or (_is_product(tr, x) and all(_opaque(tr, f) or _const(tr, f) for f in
-                                                               (x.left, x.right))) for x in (a, b)):
-        return None  # a longer chain, or an operand NIR looks into: not copied
+    if not (_opaque(tr, a) and _opaque(tr, b)):
+        return None  # an operand NIR would look into further: not copied
     if tr.type_of(a) != tr.type_of(e) or tr.type_of(b) != tr.type_of(e):
         return None  # a broadcast operand: keep it simple
     ta, tb, tk = tr.exprs([a, b, k], mask)
     t = tr.type_of(e)
-    if ops == ("*",):
-        prod = lambda x, y: tr.binary_values("*", t, t, x, y)  # noqa: E731
-        written = prod(prod(ta, tb), tk) if not k_left else prod(tk, prod(ta, tb))
-        return f"({prod(prod(ta, tk), tb)} if rt.lp else {written})"
-    # a sum: a +- b +- k; the constant joins a unless only a is a product (then b)
-    sb = inner.op
-    written = f"(({ta} {sb} {tb}) {e.op} {tk})"
-    if _is_product(tr, a) and not _is_product(tr, b):
-        first = f"((-{tb}) {e.op} {tk})" if sb == "-" else f"({tb} {e.op} {tk})"
-        rewritten = f"({first} + {ta})"
+    prod = lambda x, y: tr.binary_values("*", t, t, x, y)  # noqa: E731
+    written = prod(prod(ta, tb), tk) if not k_left else prod(tk, prod(ta, tb))
+    return f"({prod(prod(ta, tk), tb)} if rt.lp else {written})"
+
+
+def _sink_sum(tr: Any, e: A.Binary, inner: Any, k: Any, mask: str | None) -> str | None:
+    """``(a + b) + #c -> (a + #c) + b`` as nir_opt_algebraic applies it: first the variant that
+    keeps a product ``b`` whole (``is_fmul``, so the constant joins the other term), else the
+    constant joins ``a``; the new sum ``a + #c`` is matched again, so the constant sinks down
+    a chain of sums each used once: ``uv = (p.xy + K*p.z) + f.xy; uv + 0.5`` is
+    ``((p.xy + 0.5) + K*p.z) + f.xy`` (iq's noise). A sum may be the initializer of a
+    never-written local read once (to NIR the same SSA value, used once). Not copied (None):
+    a chain GLSL IR rebalances first (:func:`_rebalanced`), a ``dot`` other than
+    ``dot(oc, oc)`` (:func:`_stable_vector`), a term that is none of opaque, product, sum."""
+    if (isinstance(inner, A.Call) and inner.callee == "dot" and _builtin(tr, inner)
+            and all(_stable_vector(tr, x) for x in inner.args)):
+        u, v, kk = tr.exprs([*inner.args, k], mask)
+        signed = f"(-{kk})" if e.op == "-" else kk
+        return f"(rt.dot_add({u}, {v}, {signed}) if rt.lp else (rt.dot({u}, {v}) {e.op} {kk}))"
+    plan = _sum_plan(tr, inner, tr.type_of(e), 0)
+    if plan is None or plan[0] != "sum" or _rebalanced(tr, e):
+        return None
+    leaves: list[Any] = []
+    _plan_leaves(plan, leaves)
+    codes = tr.exprs([*leaves, e.left, e.right, k], mask)
+    tk = f"(-{codes[-1]})" if e.op == "-" else codes[-1]
+    rewritten = _plan_code(plan, iter(codes), tk)
+    return f"({rewritten} if rt.lp else ({codes[-3]} {e.op} {codes[-2]}))"
+
+
+def _sum_plan(tr: Any, x: Any, t: Any, depth: int) -> tuple | None:
+    """Where a constant added to ``x`` goes: ("leaf", x) when x is a term it stays beside,
+    ("sum", receiver plan, other term, operator, receiver on the left) when x is a sum used
+    once, None where the rewrite is not copied."""
+    if tr.type_of(x) != t or tr.has_effects(x):
+        return None  # (a broadcast operand: keep it simple)
+    inner = x
+    if isinstance(x, A.Identifier) and _read_once(tr, x):
+        init = _stable_init(tr, x) or _reaching_value(tr, x, unchanged=True)
+        inner = init if init is not None and _one_copy(tr, init) else x
+    elif not _used_once(tr, x):
+        inner = None
+    if not (isinstance(inner, A.Binary) and inner.op in _SUMS) or depth > 16:
+        return ("leaf", x) if _known_term(tr, x) else None
+    a, b = inner.left, inner.right
+    if any(_const(tr, y) or _has_matrix(tr, y) or tr.type_of(y) != t for y in (a, b)):
+        return None
+    if not all(_known_term(tr, y) for y in (a, b)):
+        return None  # a term NIR looks into (a call inlined, a mix, ...): not copied
+    if _factor_parts(tr, inner) is not None:
+        return ("leaf", x)  # factored first (a*b + a*c -> a*(b + c)): a product, no sum
+    if _fmul(tr, b) or not _fmul(tr, a):
+        recv = _sum_plan(tr, a, t, depth + 1)
+        return None if recv is None else ("sum", recv, b, inner.op, True)
+    if inner.op == "-":
+        return ("sum", ("neg", b), a, "+", False)  # fneg(b) + #c: no sum to sink into
+    recv = _sum_plan(tr, b, t, depth + 1)
+    return None if recv is None else ("sum", recv, a, "+", False)
+
+
+def _plan_leaves(plan: tuple, out: list[Any]) -> None:
+    """The nodes of a :func:`_sum_plan` in the order :func:`_plan_code` reads their codes."""
+    if plan[0] == "sum":
+        _plan_leaves(plan[1], out)
+        out.append(plan[2])
     else:
-        rewritten = f"(({ta} {e.op} {tk}) {sb} {tb})"
-    return f"({rewritten} if rt.lp else {written})"
+        out.append(plan[1])
+
+
+def _plan_code(plan: tuple, codes: Any, k: str) -> str:
+    if plan[0] == "leaf":
+        return f"({next(codes)} + {k})"
+    if plan[0] == "neg":
+        return f"((-{next(codes)}) + {k})"
+    recv = _plan_code(plan[1], codes, k)
+    other = next(codes)
+    return f"({recv} {plan[3]} {other})" if plan[4] else f"({recv} + {other})"
+
+
+def _known_term(tr: Any, node: Any) -> bool:
+    """A term whose kind to NIR is known: opaque, a product (:func:`_fmul`), a sum, or a
+    selection (``c ? x : y``, a bcsel: no product), written or the value of a local here."""
+    if _opaque(tr, node) or _fmul(tr, node) or _sum(tr, node):
+        return True
+    if isinstance(node, A.Identifier):
+        node = _stable_init(tr, node) or _reaching_value(tr, node)
+    if not isinstance(node, A.Ternary):
+        return False
+    x, y = node.then, node.else_  # (c ? a*b : a*d is a * (c ? b : d) to NIR: not copied)
+    return not (isinstance(x, A.Binary) and isinstance(y, A.Binary) and x.op == y.op)
+
+
+def _sum(tr: Any, node: Any) -> bool:
+    """A sum or difference (no product: :func:`_fmul` tells which term keeps the constant)."""
+    return isinstance(node, A.Binary) and node.op in _SUMS
+
+
+def _rebalanced(tr: Any, e: A.Binary) -> bool:
+    """GLSL IR's do_rebalance_tree balances an expression tree of three or more additions of
+    the same type whose leaves are variables (at most one constant) before NIR sees it:
+    ``(a + b + c) + K`` reaches NIR as ``(a + b) + (c + K)`` (measured)."""
+    stack, ops, constants = [e], 0, 0
+    while stack:
+        n = stack.pop()
+        if isinstance(n, A.Binary):
+            if n.op != "+" or tr.type_of(n) != tr.type_of(e):
+                return False
+            ops += 1
+            stack += [n.left, n.right]
+        elif _const(tr, n):
+            constants += 1
+        elif not (isinstance(n, A.Identifier) or (isinstance(n, A.Field) and tr.model.is_swizzle(n))):
+            return False
+    return ops >= 3 and constants <= 1
+
+
+def _fmul(tr: Any, node: Any) -> bool:
+    """The value is a product in NIR (nir_search's ``is_fmul``): a product of numbers or
+    vectors, a local whose value here is one (its initializer, or the assignment that reaches
+    this read: ``f = f*f*(3.0 - 2.0*f); ... f.xy``), or a component of either."""
+    while isinstance(node, A.Field) and tr.model.is_swizzle(node):
+        node = node.base
+    if isinstance(node, A.Identifier):
+        node = _stable_init(tr, node) or _reaching_value(tr, node)
+    return node is not None and _is_product(tr, node)
+
+
+def _facts(tr: Any) -> Any:
+    """analysis.dataflow's execution-order facts of the current function, made once."""
+    from ..analysis.dataflow import FunctionFacts
+
+    cache = tr.__dict__.setdefault("_nir_fold_facts", {})
+    key = id(tr.fn.sym)
+    if key not in cache:
+        cache[key] = FunctionFacts(tr.fn.sym.node, tr.model)
+    return cache[key]
+
+
+def _reaching_value(tr: Any, ident: A.Identifier, unchanged: bool = False) -> Any:
+    """The value the last whole assignment (or initializer) of a local gave it, when that write
+    runs before this read on every path and nothing writes the variable in between (in
+    program order, loops included: analysis.dataflow); else None. Its operands may have
+    changed since (``f = f*f*...`` reads the old f): with `unchanged`, only a value whose
+    variables nothing writes in between either, so its expression computes it again here."""
+    sym = tr.model.symbol_of(ident)
+    if sym is None or sym.kind not in ("local", "param") or tr.fn is None:
+        return None
+    facts = _facts(tr)
+    if not facts.ok or id(ident) not in facts.enter:
+        return None  # (a node of an inlined body: another function's)
+    before = [w for w in facts.writes_to(sym) if w.pos < facts.enter[id(ident)]]
+    if not before or before[-1].kind not in ("=", "init") or before[-1].value is None:
+        return None
+    w = before[-1]
+    if not facts.dominates(w.node, ident) or facts.written_between(w.node, ident, [sym]):
+        return None
+    if unchanged:
+        if tr.has_effects(w.value):
+            return None
+        read = [tr.model.symbol_of(n) for n in w.value.walk() if isinstance(n, A.Identifier)]
+        if sym in read or facts.written_between(w.node, ident, [r for r in read if r is not None]):
+            return None
+    return w.value
 
 
 def _factor(tr: Any, e: A.Binary, mask: str | None) -> str | None:
     """``a*b + a*c`` (either operand order, products possibly stored in never-written locals)
     as ``a * (b + c)``."""
+    parts = _factor_parts(tr, e)
+    if parts is None:
+        return None
+    shared, b, c = parts
+    t = tr.type_of(e)
+    ts, tb, tc = (_code(tr, x, mask) for x in (shared, b, c))
+    tl, trr = tr.exprs([e.left, e.right], mask)
+    rewritten = tr.binary_values("*", t, t, ts, f"({tb} + {tc})")  # float, no matrix: rt.fmul
+    return f"({rewritten} if rt.lp else ({tl} + {trr}))"
+
+
+def _factor_parts(tr: Any, e: Any) -> tuple[Any, Any, Any] | None:
+    """(a, b, c) when the sum ``e`` is ``a*b + a*c`` as :func:`_factor` rewrites it, else None."""
+    if not (isinstance(e, A.Binary) and e.op == "+"):
+        return None
     left, right = _factors(tr, e.left), _factors(tr, e.right)
     if left is None or right is None or sorted(left[0]) == sorted(right[0]):
         return None  # (x*y + x*y is CSE'd to p + p first)
@@ -485,11 +779,7 @@ def _factor(tr: Any, e: A.Binary, mask: str | None) -> str | None:
     rest = [x[0] if isinstance(x, tuple) else x for x in (b, c)]
     if not all(_opaque(tr, x) or _const(tr, x) for x in rest) or all(_const(tr, x) for x in rest):
         return None  # b + c would be rewritten further (or folded): not copied
-    t = tr.type_of(e)
-    ts, tb, tc = (_code(tr, x, mask) for x in (shared, b, c))
-    tl, trr = tr.exprs([e.left, e.right], mask)
-    rewritten = tr.binary_values("*", t, t, ts, f"({tb} + {tc})")  # float, no matrix: rt.fmul
-    return f"({rewritten} if rt.lp else ({tl} + {trr}))"
+    return shared, b, c
 
 
 def _stable_vector(tr: Any, node: Any) -> bool:
@@ -620,3 +910,156 @@ def _written(tr: Any) -> set[int]:
                         roots(a)
         cache[key] = out
     return cache[key]
+
+
+# -- a constant added to a function's result, sunk into the sum it returns ----------------------
+def sunk_return(tr: Any, fn: Any) -> list[tuple[Any, Any, str]] | None:
+    """The sum a user function returns when a caller adds a constant to its result and NIR,
+    which inlines every function, would sink that constant into it (:func:`_sink_sum`):
+    ``float f; f = 0.5*noise(p); f += 0.25*noise(q); ... return f;`` called as
+    ``displacement(x) - 0.4`` (iq's terrain) is ``((0.5*noise(p) - 0.4) + 0.25*noise(q)) + ...``
+    on llvmpipe. Only the plain shape: the function's last statement returns a float local
+    that nothing else reads, written by statements of the function's body (no branch, no loop)
+    as ``f = a`` (or an initializer) then ``f += t`` / ``f -= t``; no out parameter, no other
+    return. The terms [(write, value, operator)], else None. Such a function takes one more
+    argument, the constant (None: add nothing; :func:`return_constant_args`), its terms are
+    kept in temporaries (:func:`keep_term`) and its return reads them (:func:`sunk_return_value`)."""
+    cache = tr.__dict__.setdefault("_nir_fold_sunk_returns", {})
+    if id(fn) not in cache:
+        cache[id(fn)] = None
+        if id(fn) in _sink_calls(tr) and all(d == "in" for _, _, d in fn.params):
+            saved = tr.fn
+            tr.fn = _Standin(fn)
+            try:
+                cache[id(fn)] = _return_chain(tr, fn)
+            finally:
+                tr.fn = saved
+    return cache[id(fn)]
+
+
+class _Standin:
+    """What the rules read of the transpiler's current function (`tr.fn`), for another one."""
+
+    def __init__(self, sym: Any) -> None:
+        self.sym, self.is_entry = sym, False
+
+
+def _sink_calls(tr: Any) -> set[int]:
+    """ids of the user functions some call of which has a constant added to its result."""
+    found = tr.__dict__.get("_nir_fold_sink_calls")
+    if found is None:
+        found = tr.__dict__["_nir_fold_sink_calls"] = set()
+        for sym in tr.model.reachable_functions():
+            for n in sym.node.body.walk():
+                if isinstance(n, A.Binary) and n.op in _SUMS:
+                    for call, k in ((n.left, n.right), (n.right, n.left)):
+                        target = tr.model.call_target(call) if isinstance(call, A.Call) else None
+                        if isinstance(target, Symbol) and tr.model.const_value(k) is not None:
+                            found.add(id(target))
+    return found
+
+
+def _return_chain(tr: Any, fn: Any) -> list[tuple[Any, Any, str]] | None:
+    body = fn.node.body.stmts
+    if not body or not isinstance(body[-1], A.Return) or not isinstance(body[-1].value, A.Identifier):
+        return None
+    ret = body[-1].value
+    sym = tr.model.symbol_of(ret)
+    if sym is None or sym.kind != "local" or tr.type_of(ret).base != "float" or tr.type_of(ret).is_matrix:
+        return None
+    for n in fn.node.body.walk():
+        if isinstance(n, (A.Return, A.Discard)) and n is not body[-1] or isinstance(n, A.Call) and id(
+                tr.model.call_target(n)) in tr.facts.may_discard:
+            return None  # (an early exit: the return would not be the function's last statement)
+    top = {id(st.expr) for st in body if isinstance(st, A.ExpressionStatement)}
+    top |= {id(d) for st in body if isinstance(st, A.DeclarationStatement)
+            and isinstance(st.decl, A.VariableDeclaration) for d in st.decl.declarators}
+    writes = [w for w in _facts(tr).writes_to(sym) if w.kind != "decl"]
+    if len(writes) < 2 or writes[0].kind not in ("=", "init") or writes[0].value is None:
+        return None
+    chain = [(writes[0].node, writes[0].value, "+")]
+    for w in writes[1:]:
+        if not (isinstance(w.node, A.Assignment) and w.node.op in ("+=", "-=")):
+            return None
+        chain.append((w.node, w.node.value, w.node.op[0]))
+    targets = {id(w.node.target) for w in writes if isinstance(w.node, A.Assignment)}
+    for n in fn.node.body.walk():
+        if isinstance(n, A.Identifier) and tr.model.symbol_of(n) is sym and n is not ret and id(n) not in targets:
+            return None  # (f read elsewhere: an intermediate sum used twice)
+    if any(id(w) not in top or tr.type_of(v) != tr.type_of(ret) for w, v, _ in chain):
+        return None
+    first = chain[0][1]
+    if not (_opaque(tr, first) or _fmul(tr, first)):
+        return None  # a sum would take the constant further
+    if not all(_known_term(tr, v) for _, v, _ in chain[1:]):
+        return None
+    if isinstance(first, A.Call) and isinstance(tr.model.call_target(first), Symbol):
+        return None  # (a user function's result: what NIR sees in it is not followed)
+    return chain
+
+
+def _sink_into_call(tr: Any, e: A.Binary, mask: str | None) -> str | None:
+    """``f(...) +- #c`` where f has a :func:`sunk_return`: the call, passed the constant in
+    llvmpipe mode (the callee adds it where NIR sinks it), else None. Not where the function
+    computes the same sum for another call of this function (same arguments, or any other call
+    of a vector function: NIR scalarises, then CSE merges equal components): that sum is used
+    twice there, and the constant stays outside (measured). Calls in other functions are not
+    compared: a copy CSE merges across functions is not detected."""
+    if e.op not in _SUMS:
+        return None
+    call, k = (e.left, e.right) if isinstance(e.left, A.Call) else (e.right, e.left)
+    target = tr.model.call_target(call) if isinstance(call, A.Call) else None
+    if (not isinstance(target, Symbol) or tr.model.const_value(k) is None or tr.type_of(k) != tr.type_of(e)
+            or call is e.right and e.op == "-" or sunk_return(tr, target) is None):
+        return None
+    if not (_used_once(tr, e) and _used_once(tr, call)):
+        return None
+    shapes = _uses(tr)[0]
+    others = [n for n in tr.fn.sym.node.body.walk()
+              if isinstance(n, A.Call) and n is not call and tr.model.call_target(n) is target]
+    if any(shapes.get(id(n)) == shapes.get(id(call)) for n in others) or others and tr.type_of(call).is_vector:
+        return None  # NIR's CSE merges the inlined copies (per component for a vector): used twice
+    tk = tr.expr(k, mask)
+    signed = f"(-{tk})" if e.op == "-" else tk
+    tr.__dict__.setdefault("_nir_fold_call_k", {})[id(call)] = f"({signed} if rt.lp else None)"
+    result = tr.tmp(tr.expr(call, mask))
+    return f"({result} if rt.lp else ({result} {e.op} {tk}))"
+
+
+def return_constant_args(tr: Any, call: A.Call, fn: Any) -> list[str]:
+    """The extra argument of a call of a function with a :func:`sunk_return`: the constant the
+    caller adds (:func:`_sink_sum`, llvmpipe mode) or None; [] for other functions."""
+    if sunk_return(tr, fn) is None:
+        return []
+    return [tr.__dict__.get("_nir_fold_call_k", {}).get(id(call), "None")]
+
+
+def keep_term(tr: Any, node: Any, code: str) -> str:
+    """The code of a term of a :func:`sunk_return` sum, kept in a temporary; other values as
+    they are. ``node``: the assignment or declarator that writes it."""
+    if tr.fn is None or isinstance(tr.fn, _Standin):
+        return code
+    chain = sunk_return(tr, tr.fn.sym)
+    if chain is None or not any(w is node for w, _, _ in chain):
+        return code
+    t = tr.tmp(code)
+    tr.__dict__.setdefault("_nir_fold_terms", {})[id(node)] = t
+    return t
+
+
+def sunk_return_value(tr: Any, ret: A.Return, code: str) -> str:
+    """The returned value of a function with a :func:`sunk_return`: ``code`` when the caller
+    adds nothing (``_k`` None), else the sum with the constant sunk as NIR sinks it."""
+    chain = sunk_return(tr, tr.fn.sym) if tr.fn is not None else None
+    terms = tr.__dict__.get("_nir_fold_terms", {})
+    if chain is None or ret.value is None or not all(id(w) in terms for w, _, _ in chain):
+        return code
+    codes = [terms[id(w)] for w, _, _ in chain]
+    (_, a, _), (_, t1, op1) = chain[0], chain[1]
+    if _fmul(tr, t1) or not _fmul(tr, a):
+        sunk = f"(({codes[0]} + _k) {op1} {codes[1]})"
+    else:  # only a is a product: the constant joins the other term (its negation for -=)
+        sunk = f"(({'-' if op1 == '-' else ''}{codes[1]} + _k) + {codes[0]})"
+    for (_, _, op), c in zip(chain[2:], codes[2:]):
+        sunk = f"({sunk} {op} {c})"
+    return f"({code} if _k is None else {sunk})"

@@ -195,7 +195,7 @@ class Expressions:
 
     def assignment(self, e: A.Assignment, mask: str | None, want_value: bool) -> str:
         lv = self.lvalue(e.target, mask)
-        value = self.expr(e.value, mask)
+        value = nir_fold.keep_term(self, e, self.expr(e.value, mask))
         if e.op != "=":
             value = self.binary_values(e.op[:-1], self.type_of(e.target), self.type_of(e.value),
                                        self.read(lv), value)

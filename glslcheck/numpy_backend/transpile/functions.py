@@ -60,6 +60,8 @@ class Functions:
             if direction != "in":
                 fs.outs.append(pyname)
         fs.defined.append("_m")
+        if nir_fold.sunk_return(self, sym) is not None:
+            params.append("_k")  # a constant the caller adds to the result (nir_fold.sunk_return)
         self.last_line = None
         sig = ", ".join(["S", "_m"] + params)
         self.emit(f"def {self.fn_name(sym)}({sig}):")
@@ -169,6 +171,7 @@ class Functions:
                 outs.append((len(outs) + 1, lv))
                 if d == "inout":
                     args.append(self.tmp(self.read(lv)))
+        args += nir_fold.return_constant_args(self, e, fn)
         call = self.call_text(e, fn, call_mask, args, mask)
         if not outs:
             return call

@@ -14,6 +14,7 @@ from ...diagnostics import Location
 from .common import (_DERIVATIVES, _IMPLICIT_LOD, LOOP_CAP, OUTLINE_INDENT, _error, _fold)
 from ...check.model import Symbol
 from .facts import Events, events_of, induction_variable
+from .. import nir_fold
 
 @dataclass
 class LoopCtx:
@@ -38,6 +39,7 @@ class Statements:
                 # `if X.live(...)` of earlier returns, the final `return _rv` follows that `if`)
                 self.comment_line(s)
                 val = self.expr(s.value, mask) if s.value is not None else None
+                val = nir_fold.sunk_return_value(self, s, val)  # (a constant the caller adds)
                 if val is not None and fs.rv is not None and mask not in (None, "_m"):
                     val = f"X.put({fs.rv}, {val}, {mask})"
                 self.emit(self.final_return(val) if val is not None or fs.outs else "return None")
@@ -219,6 +221,7 @@ class Statements:
             name = self.var_name(sym, dec)
             value = self.expr(dec.init, mask) if dec.init is not None else self.zero(sym.type, dec)
             if dec.init is not None:
+                value = nir_fold.keep_term(self, dec, value)
                 self.after_discarding_call(dec.init)
             if name in self.fn.switch_locals:  # (one in a block inside a case is scoped to it)
                 self.emit(f"{name} = X.put({name}, {value}, {mask})")
