@@ -1710,16 +1710,23 @@ class Runtime(TextureFunctions):  # texture lookups: textures.py
             if form is None:
                 form = self._flrp_form(x, y, a)
             if form == "fast":
-                r = np.subtract(y, x)
-                r = np.multiply(a, r, out=r if r.shape == np.broadcast_shapes(r.shape, a.shape) else None)
-                r = np.add(x, r, out=r if r.shape == np.broadcast_shapes(r.shape, x.shape) else None)
                 # a lane whose weight is exactly 0 or 1 is taken for NIR's b2f(c) (step(),
                 # 1.0 - step(), float(bool), their products: the lab shaders' branchless
                 # selects): ``flrp(x, y, b2f(c))`` is ``bcsel(c, y, x)`` in nir_opt_algebraic,
                 # before the lowering. Per lane, so a one-pixel probe run agrees with the render.
-                ends = (a == self._0) | (a == self._1)
-                if ends.any():
-                    r = np.where(a == self._1, y, np.where(a == self._0, x, r))
+                # Where every lane is such a select (a branchless shader's whole tile), the
+                # arithmetic is skipped: the same values, a third of the passes.
+                one, zero = a == self._1, a == self._0
+                n_one, n_zero = np.count_nonzero(one), np.count_nonzero(zero)
+                if n_one + n_zero == a.size:
+                    return np.where(one, y, x)
+                r = np.subtract(y, x)
+                r = np.multiply(a, r, out=r if r.shape == np.broadcast_shapes(r.shape, a.shape) else None)
+                r = np.add(x, r, out=r if r.shape == np.broadcast_shapes(r.shape, x.shape) else None)
+                if n_one:  # r is a new array of the broadcast shape here
+                    np.copyto(r, y, where=one)
+                if n_zero:
+                    np.copyto(r, x, where=zero)
                 return r
             if form in ("one", "minus_one"):
                 r = (x - a) if form == "one" else (x + a)
