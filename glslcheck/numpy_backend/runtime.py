@@ -434,6 +434,16 @@ def _blocked(fn: Any, *args: np.ndarray) -> np.ndarray:
     return out.reshape(shape)
 
 
+def _keeps_shape(r: np.ndarray, v: np.ndarray) -> bool:
+    """Whether broadcasting ``v`` against ``r`` leaves ``r``'s shape (so ``r`` can take the
+    result in place): the usual cases by their shapes, the rest by np.broadcast_shapes (which
+    costs a few microseconds a call)."""
+    rs, vs = r.shape, v.shape
+    if rs == vs or (v.ndim <= r.ndim and (v.size == 1 or rs[r.ndim - v.ndim:] == vs)):
+        return True
+    return rs == np.broadcast_shapes(rs, vs)
+
+
 class LlvmpipeMath:
     """gallivm's float32 sin/cos/exp2/log2/pow (lp_bld_arit.c, Mesa 22.3), with or without
     FMA. All inputs and results are float32 arrays. The public methods split large arrays
@@ -1114,7 +1124,7 @@ class Runtime(TextureFunctions):  # texture lookups: textures.py
             ca, cb = self._const(a), self._const(b)
             if ca != cb:
                 z = a if ca else b
-                if z.size <= 16 and not z.all():
+                if z.size <= 16 and np.count_nonzero(z) != z.size:  # (z.all() costs 4x that)
                     r = np.where(z == 0, self._0, r)
         return r
 
@@ -1155,8 +1165,8 @@ class Runtime(TextureFunctions):  # texture lookups: textures.py
     def _const_zero(self, z: np.ndarray, other: np.ndarray) -> bool:
         """Mesa folds z * other to 0 where z is a constant zero and other is not a constant
         (two constants are multiplied out at compile time, IEEE: 0 * inf = NaN)."""
-        return (self.fold_constants and self._const(z) and z.size <= 16 and not z.all()
-                and not self._const(other))
+        return (self.fold_constants and self._const(z) and z.size <= 16 and not self._const(other)
+                and np.count_nonzero(z) != z.size)
 
     def div(self, a: Any, b: Any) -> np.ndarray:
         """``/``: float IEEE division; int truncates toward zero (x/0 = 0, INT_MIN/-1 =
@@ -1721,8 +1731,8 @@ class Runtime(TextureFunctions):  # texture lookups: textures.py
                 if n_one + n_zero == a.size:
                     return np.where(one, y, x)
                 r = np.subtract(y, x)
-                r = np.multiply(a, r, out=r if r.shape == np.broadcast_shapes(r.shape, a.shape) else None)
-                r = np.add(x, r, out=r if r.shape == np.broadcast_shapes(r.shape, x.shape) else None)
+                r = np.multiply(a, r, out=r if _keeps_shape(r, a) else None)
+                r = np.add(x, r, out=r if _keeps_shape(r, x) else None)
                 if n_one:  # r is a new array of the broadcast shape here
                     np.copyto(r, y, where=one)
                 if n_zero:
