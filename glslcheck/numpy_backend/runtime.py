@@ -1564,7 +1564,8 @@ class Runtime(TextureFunctions):  # texture lookups: textures.py
         (for every y, including 0, negative and NaN)."""
         x, y = self._f(x), self._f(y)
         if (self.fold_constants and y.ndim and y.shape[-1] == 1 and y.size <= 4 and y.flags.writeable
-                and np.isin(y, _POW_REWRITTEN).all() and not np.signbit(y).any()):
+                and all(float(v) in _POW_REWRITTEN for v in y.reshape(-1))  # (np.isin: 0.2 ms a call)
+                and not np.signbit(y).any()):
             # an exponent the same in every lane (a constant after Mesa's propagation) of 0, 1,
             # 2 or 4: Mesa rewrites pow there (pow_const); as fmul, a uniform input equal to
             # one of these is taken for a constant too
