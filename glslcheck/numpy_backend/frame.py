@@ -52,9 +52,11 @@ class Compaction:
 
     fraction: float = 0.5  # compact a region when fewer than this fraction of the lanes take it
     min_lanes: int = 1024  # below this many lanes gathering costs more than it saves
-    # a loop's live lanes, checked at every pass: gathered once, the short arrays serve every
-    # later pass, so compacting pays off much earlier than for a branch run once
-    loop_fraction: float = 0.9
+    # the same for a loop's live lanes, checked at every pass. Gathered once, the short arrays
+    # serve every later pass, so compacting earlier could pay off; measured at 0.75 and 0.9
+    # (docs/performance.md, session 7) it moved no real shader beyond the noise of a shared
+    # machine and added gathers to a Mandelbrot loop whose lanes leave a few at a time
+    loop_fraction: float = 0.5
 
 
 # ---------------------------------------------------------------------------------------------
