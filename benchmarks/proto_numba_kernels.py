@@ -40,8 +40,10 @@ import numpy as np
 HERE = os.path.dirname(os.path.abspath(__file__))
 ROOT = os.path.dirname(HERE)
 sys.path.insert(0, ROOT)
+sys.path.insert(0, HERE)
 
 import numba  # noqa: E402
+from bench_render import _best  # noqa: E402
 
 from glslcheck.numpy_backend import llvmpipe_fast as lf  # noqa: E402
 from glslcheck.numpy_backend.runtime import HOST_FMA, LlvmpipeMath  # noqa: E402
@@ -205,15 +207,6 @@ def check(n: int, lm: LlvmpipeMath) -> None:
         print(f"   pow ({'one exponent' if y.size == 1 else 'per-lane exponents'}): {n:,} lanes, {diff} differ")
 
 
-def _cpu(fn, repeat: int) -> float:
-    best = float("inf")
-    for _ in range(repeat):
-        t0 = time.process_time()
-        fn()
-        best = min(best, time.process_time() - t0)
-    return best
-
-
 def _subprocess_seconds(code: str) -> float:
     t0 = time.perf_counter()
     subprocess.run([sys.executable, "-c", code], check=True, cwd=ROOT,
@@ -259,8 +252,8 @@ def main() -> int:
                                  ("pow", lambda: numba_pow(x, y, lm), lambda: lm.pow(x, y))):
             tn = tf = float("inf")
             for _ in range(3):  # in turns
-                tf = min(tf, _cpu(fast, args.repeat))
-                tn = min(tn, _cpu(slow, args.repeat))
+                tf = min(tf, _best(fast, args.repeat, time.process_time))
+                tn = min(tn, _best(slow, args.repeat, time.process_time))
             print(f"   {name} {n:6d} lanes: NumPy {tn * 1e6:8.1f} us   numba {tf * 1e6:7.1f} us   {tn / tf:6.1f}x")
     print(f"load at the end {' '.join(f'{v:.1f}' for v in os.getloadavg())}")
     return 0
