@@ -20,6 +20,7 @@ from ...analysis import param_directions
 from ...check.model import Constructor, Symbol
 from .facts import is_plain_read
 
+
 def _nonzero_literal(text: str) -> bool:
     """``text`` is a float literal's module constant (`Names.const_float`: ``C_f_0p25``,
     ``C_f_m1em10``, ``C_f_inf``, ``C_f_nan``) that is not zero in float16 either (float16 keeps
@@ -234,7 +235,7 @@ class Expressions:
                 return f"rt.fmul({left}, {right})"  # NaN times a constant zero is 0 (Runtime.fmul)
             # a float literal that is not zero (in any precision) is a constant operand with no
             # zero component: Runtime.fmul would only multiply, so the operator does, without
-            # a Python call and two tests per operation (most products in raymarchers)
+            # a Python call and two tests per operation (121 of elephant Buffer A's 266 products)
             return f"({left} * {right})"
         if op in _FLOAT_OPERATORS and lt.base == "float" and rtp.base == "float":
             # float operands are always arrays of the render dtype: NumPy's operator is exactly
