@@ -52,6 +52,11 @@ class Compaction:
 
     fraction: float = 0.5  # compact a region when fewer than this fraction of the lanes take it
     min_lanes: int = 1024  # below this many lanes gathering costs more than it saves
+    # the same for a loop's live lanes, checked at every pass. Gathered once, the short arrays
+    # serve every later pass, so compacting earlier could pay off; measured at 0.75 and 0.9
+    # (docs/performance.md, session 7) it moved no real shader beyond the noise of a shared
+    # machine and added gathers to a Mandelbrot loop whose lanes leave a few at a time
+    loop_fraction: float = 0.5
 
 
 # ---------------------------------------------------------------------------------------------
@@ -274,15 +279,20 @@ class Lanes:
 
     # compaction -------------------------------------------------------------------------------
     @staticmethod
-    def sparse(S, m):
-        """Active lane indices when compacting pays off, else None."""
+    def sparse(S, m, fraction: float | None = None):
+        """Active lane indices when compacting pays off (fewer than ``fraction``, by default
+        the region's `Compaction.fraction`, of the lanes are active), else None."""
         c = S.compaction
         if m is None or S.lanes < c.min_lanes or m.shape[-1] != S.lanes:
             return None
-        idx = np.flatnonzero(m)
-        if len(idx) >= c.fraction * S.lanes:
-            return None
-        return idx
+        if np.count_nonzero(m) >= (c.fraction if fraction is None else fraction) * S.lanes:
+            return None  # (counted first: no index array on the passes that do not compact)
+        return np.flatnonzero(m)
+
+    @staticmethod
+    def loop_sparse(S, m):
+        """`sparse` for a loop's live lanes, at the top of each pass (`Compaction.loop_fraction`)."""
+        return Lanes.sparse(S, m, S.compaction.loop_fraction)
 
     @staticmethod
     def _take(v, idx, lanes):
@@ -361,7 +371,7 @@ class Lanes:
         return parent, out
 
     def push(self, stack: list, S, m, values: tuple):
-        idx = self.sparse(S, m)
+        idx = self.loop_sparse(S, m)
         child, rec = self.gather(S, idx, values)
         stack.append((idx, rec))
         return child, rec.values

@@ -434,6 +434,16 @@ def _blocked(fn: Any, *args: np.ndarray) -> np.ndarray:
     return out.reshape(shape)
 
 
+def _keeps_shape(r: np.ndarray, v: np.ndarray) -> bool:
+    """Whether broadcasting ``v`` against ``r`` leaves ``r``'s shape (so ``r`` can take the
+    result in place): the usual cases by their shapes, the rest by np.broadcast_shapes (which
+    costs a few microseconds a call)."""
+    rs, vs = r.shape, v.shape
+    if rs == vs or (v.ndim <= r.ndim and (v.size == 1 or rs[r.ndim - v.ndim:] == vs)):
+        return True
+    return rs == np.broadcast_shapes(rs, vs)
+
+
 class LlvmpipeMath:
     """gallivm's float32 sin/cos/exp2/log2/pow (lp_bld_arit.c, Mesa 22.3), with or without
     FMA. All inputs and results are float32 arrays. The public methods split large arrays
@@ -1114,7 +1124,7 @@ class Runtime(TextureFunctions):  # texture lookups: textures.py
             ca, cb = self._const(a), self._const(b)
             if ca != cb:
                 z = a if ca else b
-                if z.size <= 16 and not z.all():
+                if z.size <= 16 and np.count_nonzero(z) != z.size:  # (z.all() costs 4x that)
                     r = np.where(z == 0, self._0, r)
         return r
 
@@ -1155,8 +1165,8 @@ class Runtime(TextureFunctions):  # texture lookups: textures.py
     def _const_zero(self, z: np.ndarray, other: np.ndarray) -> bool:
         """Mesa folds z * other to 0 where z is a constant zero and other is not a constant
         (two constants are multiplied out at compile time, IEEE: 0 * inf = NaN)."""
-        return (self.fold_constants and self._const(z) and z.size <= 16 and not z.all()
-                and not self._const(other))
+        return (self.fold_constants and self._const(z) and z.size <= 16 and not self._const(other)
+                and np.count_nonzero(z) != z.size)
 
     def div(self, a: Any, b: Any) -> np.ndarray:
         """``/``: float IEEE division; int truncates toward zero (x/0 = 0, INT_MIN/-1 =
@@ -1554,7 +1564,8 @@ class Runtime(TextureFunctions):  # texture lookups: textures.py
         (for every y, including 0, negative and NaN)."""
         x, y = self._f(x), self._f(y)
         if (self.fold_constants and y.ndim and y.shape[-1] == 1 and y.size <= 4 and y.flags.writeable
-                and np.isin(y, _POW_REWRITTEN).all() and not np.signbit(y).any()):
+                and all(float(v) in _POW_REWRITTEN for v in y.reshape(-1))  # (np.isin: 0.2 ms a call)
+                and not np.signbit(y).any()):
             # an exponent the same in every lane (a constant after Mesa's propagation) of 0, 1,
             # 2 or 4: Mesa rewrites pow there (pow_const); as fmul, a uniform input equal to
             # one of these is taken for a constant too
@@ -1710,16 +1721,23 @@ class Runtime(TextureFunctions):  # texture lookups: textures.py
             if form is None:
                 form = self._flrp_form(x, y, a)
             if form == "fast":
-                r = np.subtract(y, x)
-                r = np.multiply(a, r, out=r if r.shape == np.broadcast_shapes(r.shape, a.shape) else None)
-                r = np.add(x, r, out=r if r.shape == np.broadcast_shapes(r.shape, x.shape) else None)
                 # a lane whose weight is exactly 0 or 1 is taken for NIR's b2f(c) (step(),
                 # 1.0 - step(), float(bool), their products: the lab shaders' branchless
                 # selects): ``flrp(x, y, b2f(c))`` is ``bcsel(c, y, x)`` in nir_opt_algebraic,
                 # before the lowering. Per lane, so a one-pixel probe run agrees with the render.
-                ends = (a == self._0) | (a == self._1)
-                if ends.any():
-                    r = np.where(a == self._1, y, np.where(a == self._0, x, r))
+                # Where every lane is such a select (a branchless shader's whole tile), the
+                # arithmetic is skipped: the same values, a third of the passes.
+                one, zero = a == self._1, a == self._0
+                n_one, n_zero = np.count_nonzero(one), np.count_nonzero(zero)
+                if n_one + n_zero == a.size:
+                    return np.where(one, y, x)
+                r = np.subtract(y, x)
+                r = np.multiply(a, r, out=r if _keeps_shape(r, a) else None)
+                r = np.add(x, r, out=r if _keeps_shape(r, x) else None)
+                if n_one:  # r is a new array of the broadcast shape here
+                    np.copyto(r, y, where=one)
+                if n_zero:
+                    np.copyto(r, x, where=zero)
                 return r
             if form in ("one", "minus_one"):
                 r = (x - a) if form == "one" else (x + a)

@@ -2,8 +2,9 @@
 coordinates in compacted regions (nested too), uniform masks, early-out returns as selects,
 constant expressions as module constants, tiles written straight into the image, the frame cache.
 
-Each shader is rendered with compaction on and off (`Compaction(fraction=0)` never compacts)
-and with several tile sizes; the images must be bit-identical.
+Each shader is rendered with compaction on and off (`Compaction(fraction=0,
+loop_fraction=0)` never compacts), with loops compacted earlier than branches, and with several
+tile sizes; the images must be bit-identical.
 """
 
 from __future__ import annotations
@@ -77,16 +78,16 @@ def knobs(monkeypatch):
 def test_compaction_and_tiles_change_no_pixel(make_shader, knobs):
     prog = compile_numpy(make_shader(SHADER))
     reference = None
-    for fraction in (0.0, 0.5, 0.9):
+    for fraction, loop_fraction in ((0.0, 0.0), (0.5, 0.5), (0.5, 0.9), (0.9, 0.9)):
         for lanes in (64, 600, 10_000):
-            prog.compaction = Compaction(fraction=fraction, min_lanes=16)
+            prog.compaction = Compaction(fraction=fraction, min_lanes=16, loop_fraction=loop_fraction)
             knobs(TILE_LANES=lanes)
             img = _render(prog)
             if reference is None:
                 reference = img
                 assert np.isfinite(img).all() and (img[..., 3] == 0).any() and (img[..., 3] == 1).any()
             else:
-                assert np.array_equal(img, reference, equal_nan=True), (fraction, lanes)
+                assert np.array_equal(img, reference, equal_nan=True), (fraction, loop_fraction, lanes)
 
 
 def test_compacted_rendering_matches_gl(gl, make_shader, knobs):

@@ -347,3 +347,21 @@ def test_cli_render_and_transpile(tmp_path):
     assert main(["render", str(bad), "-o", str(tmp_path / "b.png")]) == 1
     assert main(["transpile", str(path), "-o", str(tmp_path / "s.py")]) == 0
     assert "def f_mainImage" in (tmp_path / "s.py").read_text()
+
+
+def test_products_with_nonzero_literals_are_plain_and_fold_as_before(make_shader):
+    """A float product with a nonzero literal is the `*` operator (Runtime.fmul has no zero to
+    fold there); a zero literal, and one that is zero in float16 (1e-10), keep rt.fmul, whose
+    constant zero turns NaN into 0 (Mesa folds x * 0.0). The pixels in every precision are what
+    rt.fmul gives: NaN times 0.0 (and times 1e-10 in float16) is 0, times 0.5 stays NaN."""
+    shader = make_shader(_image(
+        "    float n = sqrt(fragCoord.x - 1e9);   // NaN in every pixel\n"
+        "    fragColor = vec4(n * 0.5, n * 0.0, 1e-10 * n, 1.0);"))
+    source = transpile_shader(shader).source
+    assert "(v_n * C_f_0p5)" in source
+    assert "rt.fmul(v_n, C_f_0p0)" in source and "rt.fmul(C_f_1em10, v_n)" in source
+    prog = P.compile_numpy(shader)
+    for precision, tiny_folds in (("float32", False), ("float64", False), ("float16", True)):
+        img = prog.render(size=(4, 2), precision=precision)
+        assert np.isnan(img[..., 0]).all() and (img[..., 1] == 0).all(), precision
+        assert (img[..., 2] == 0).all() if tiny_folds else np.isnan(img[..., 2]).all(), precision

@@ -20,6 +20,20 @@ from ...analysis import param_directions
 from ...check.model import Constructor, Symbol
 from .facts import is_plain_read
 
+
+def _nonzero_literal(text: str) -> bool:
+    """``text`` is a float literal's module constant (`Names.const_float`: ``C_f_0p25``,
+    ``C_f_m1em10``, ``C_f_inf``, ``C_f_nan``) that is not zero in float16 either (float16 keeps
+    nothing below 2**-24; a literal of 1e-10 is a zero there, which Runtime.fmul folds)."""
+    if not text.startswith("C_f_") or not _IDENT.fullmatch(text):
+        return False
+    try:
+        v = float(text[4:].replace("m", "-").replace("p", "."))
+    except ValueError:
+        return False
+    return not abs(v) < 2.0**-24  # (NaN: not zero)
+
+
 @dataclass
 class LValue:
     """An l-value with its index expressions already evaluated: base name and an access path.
@@ -217,7 +231,12 @@ class Expressions:
         if op == "%":
             return f"rt.rem({left}, {right})"
         if op == "*" and lt.base == "float" and rtp.base == "float":
-            return f"rt.fmul({left}, {right})"  # NaN times a constant zero is 0 (Runtime.fmul)
+            if not (_nonzero_literal(left) or _nonzero_literal(right)):
+                return f"rt.fmul({left}, {right})"  # NaN times a constant zero is 0 (Runtime.fmul)
+            # a float literal that is not zero (in any precision) is a constant operand with no
+            # zero component: Runtime.fmul would only multiply, so the operator does, without
+            # a Python call and two tests per operation (121 of elephant Buffer A's 266 products)
+            return f"({left} * {right})"
         if op in _FLOAT_OPERATORS and lt.base == "float" and rtp.base == "float":
             # float operands are always arrays of the render dtype: NumPy's operator is exactly
             # the runtime's ufunc (rt.add is np.add ...), without a Python call per operation

@@ -443,7 +443,7 @@ class Statements:
             tup = "(" + ", ".join(used) + ",)"
             pad = "    " * (self.indent + 1)
             push = [
-                f"{pad}if X.sparse(S, {live}) is not None:",
+                f"{pad}if X.loop_sparse(S, {live}) is not None:",
                 f"{pad}    S, ({', '.join(used)},) = X.push({stack}, S, {live}, {tup})",
                 f"{pad}    {live} = None",
             ]

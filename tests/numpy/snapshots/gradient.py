@@ -29,7 +29,7 @@ def f_mainImage(S, _m, v_fragCoord):
     # line 3: vec2 uv = fragCoord / iResolution.xy;
     v_uv = (v_fragCoord / rt.swizzle(S.u_iResolution, "xy"))
     # line 4: fragColor = vec4(uv, 0.5 + 0.5 * sin(iTime), 1.0);
-    v_fragColor = rt.vec(4, v_uv, (C_f_0p5 + rt.fmul(C_f_0p5, rt.sin(S.u_iTime))), C_f_1p0)
+    v_fragColor = rt.vec(4, v_uv, (C_f_0p5 + (C_f_0p5 * rt.sin(S.u_iTime))), C_f_1p0)
     return (None, v_fragColor)
 
 

@@ -55,7 +55,7 @@ def f_mainImage(S, _m, v_fragCoord):
     X.count(S, 4, _m)
     v_fragColor = Z_float_4
     # line 11: vec2 uv = (2.0 * fragCoord - iResolution.xy) / iResolution.y;
-    v_uv = ((rt.fmul(C_f_2p0, v_fragCoord) - rt.swizzle(S.u_iResolution, "xy")) / S.u_iResolution[1])
+    v_uv = (((C_f_2p0 * v_fragCoord) - rt.swizzle(S.u_iResolution, "xy")) / S.u_iResolution[1])
     # line 12: vec3 rd = normalize(vec3(uv, 1.5));
     v_rd = rt.normalize(rt.vec(3, v_uv, C_f_1p5))
     # line 13: float t = 0.0;
@@ -74,7 +74,7 @@ def f_mainImage(S, _m, v_fragCoord):
         _live6 = X.and_(_live6, rt.lt(v_i, C_i_64))
         if not X.live(_live6):
             break
-        if X.sparse(S, _live6) is not None:
+        if X.loop_sparse(S, _live6) is not None:
             S, (_live6, _n7, v_i, v_rd, v_t,) = X.push(_k8, S, _live6, (_live6, _n7, v_i, v_rd, v_t,))
             _live6 = None
         X.count(S, 5, _live6)
