@@ -24,11 +24,14 @@ INF = float("inf")
 
 @pytest.fixture(scope="module")
 def gl():
-    try:
-        import moderngl
+    # glslcheck's own context: it asks Mesa for WebGL's zero initialisation (glsl_zero_init),
+    # which Mesa reads once per process, at the first EGL context; a bare moderngl context made
+    # here first would leave every later test's uninitialised locals undefined
+    from glslcheck.gl_backend.context import GLUnavailable, create_context
 
-        ctx = moderngl.create_context(standalone=True, backend="egl")
-    except Exception as exc:  # pragma: no cover - depends on the machine
+    try:
+        ctx = create_context()
+    except GLUnavailable as exc:  # pragma: no cover - depends on the machine
         if os.environ.get("CI"):
             pytest.fail(f"CI is set but no EGL context could be created: {exc}")
         pytest.skip(f"no EGL context: {exc}")
