@@ -32,7 +32,16 @@ def test_two_processes_print_what_one_prints(folder, fmt):
     assert (two.returncode, two.stdout, two.stderr) == (one.returncode, one.stdout, one.stderr)
 
 
-def test_the_child_lints_the_second_half(monkeypatch):
+@pytest.fixture
+def no_other_threads(monkeypatch):
+    """Earlier tests of the suite leave the NumPy backend's tile threads (program._POOLS, kept
+    for the next render) alive in this process, and `jobs` rightly refuses to fork beside them:
+    the tests that exercise the fork say the process runs no other thread.
+    test_no_fork_beside_other_threads checks that rule itself, in a fresh interpreter."""
+    monkeypatch.setattr(parallel, "_threads", lambda: False)
+
+
+def test_the_child_lints_the_second_half(monkeypatch, no_other_threads):
     monkeypatch.setenv("GLSLCHECK_JOBS", "2")
     parent = os.getpid()
     registry: dict = {}
@@ -48,7 +57,7 @@ def test_the_child_lints_the_second_half(monkeypatch):
     assert registry == {f"file{i}": [f"line of {i}"] for i in range(6)}  # the child's texts came back
 
 
-def test_a_failing_child_is_redone_here(monkeypatch):
+def test_a_failing_child_is_redone_here(monkeypatch, no_other_threads):
     monkeypatch.setenv("GLSLCHECK_JOBS", "2")
     parent = os.getpid()
 
@@ -60,7 +69,7 @@ def test_a_failing_child_is_redone_here(monkeypatch):
     assert parallel.run_split(list(range(4)), [5000] * 4, lint, lambda: None, {}) == [0, 1, 2, 3]
 
 
-def test_an_error_in_the_first_half_is_raised_and_the_child_reaped(monkeypatch):
+def test_an_error_in_the_first_half_is_raised_and_the_child_reaped(monkeypatch, no_other_threads):
     monkeypatch.setenv("GLSLCHECK_JOBS", "2")
     forked = []
     fork = os.fork
@@ -98,7 +107,7 @@ def test_small_runs_and_one_job_stay_in_this_process(monkeypatch):
     assert parallel.run_split(list(range(4)), [5000] * 4, lint, lambda: None, {}) == [0, 1, 2, 3]
 
 
-def test_jobs(monkeypatch):
+def test_jobs(monkeypatch, no_other_threads):
     monkeypatch.setattr(parallel.os, "sched_getaffinity", lambda pid: {0, 1}, raising=False)
     monkeypatch.delenv("GLSLCHECK_JOBS", raising=False)
     monkeypatch.setattr(parallel.os, "getloadavg", lambda: (0.3, 0.5, 0.5))
@@ -115,19 +124,25 @@ def test_jobs(monkeypatch):
     assert parallel.jobs() == 1  # one usable core
 
 
-def test_no_fork_beside_other_threads(monkeypatch):
-    import threading
-
-    monkeypatch.setenv("GLSLCHECK_JOBS", "2")
-    assert parallel.jobs() == 2
-    stop = threading.Event()
-    thread = threading.Thread(target=stop.wait)
-    thread.start()
-    try:
-        assert parallel.jobs() == 1  # a child would hold only this thread, and its locks
-    finally:
-        stop.set()
-        thread.join()
+def test_no_fork_beside_other_threads():
+    # a fresh interpreter: this test process may already run other tests' threads
+    code = """if True:
+        import threading
+        from glslcheck.lint import parallel
+        assert parallel.jobs() == 2, "no other thread yet"
+        stop = threading.Event()
+        thread = threading.Thread(target=stop.wait)
+        thread.start()
+        try:
+            assert parallel.jobs() == 1, "a child would hold only this thread, and its locks"
+        finally:
+            stop.set()
+            thread.join()
+        assert parallel.jobs() == 2, "the thread has ended"
+    """
+    env = {**os.environ, "GLSLCHECK_JOBS": "2"}
+    done = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, env=env, cwd=REPO_ROOT)
+    assert done.returncode == 0, done.stderr
 
 
 def test_split_point_halves_the_text():
@@ -137,7 +152,7 @@ def test_split_point_halves_the_text():
     assert parallel.split_point([3, 3, 3, 3]) == 2
 
 
-def test_lint_paths_in_process_matches(monkeypatch):
+def test_lint_paths_in_process_matches(monkeypatch, no_other_threads):
     from glslcheck.lint import lint_paths
 
     monkeypatch.setenv("GLSLCHECK_JOBS", "1")
