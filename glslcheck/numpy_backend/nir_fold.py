@@ -36,6 +36,10 @@ The rules copied here, each measured bit for bit against llvmpipe on 50,000 rand
   also where the zero comes through a function argument or an out parameter
   (transpile/constant_flow.py): it keeps the sign of a -0.0.
 
+Not a rewrite of the order but of the type: arithmetic on lowp lookups (Shadertoy's iChannels
+are lowp) is float16 on llvmpipe (Mesa's lower_precision.cpp), copied for trees of ``+ - * /``
+over lookups and constants (:func:`lowp_tree`).
+
 Each rewrite is emitted as ``(<rewritten> if rt.lp else <written>)``: float32 renders take
 Mesa's order, float64 (the accuracy reference) and float16 keep the written one. Not copied
 (measured, left as written): chains GLSL IR rebalances before NIR sees them, such as
@@ -60,6 +64,7 @@ from ..analysis import param_directions
 from ..check.model import Symbol
 from ..diagnostics import Location
 from ..printer import to_glsl
+from .transpile.common import _TEXTURE_FUNCTIONS
 from .transpile.constant_flow import constant_flow
 from .transpile.inline import bound_argument, inline_owner
 
@@ -158,9 +163,89 @@ def zero_add(tr: Any, e: A.Binary, left: str, right: str) -> str | None:
     return f"rt.{'fadd' if e.op == '+' else 'fsub'}({left}, {right})"
 
 
+# -- arithmetic on lowp lookups: float16 -------------------------------------------------------
+_LOWP_OPS = ("+", "-", "*", "/")
+
+
+def lowp_tree(tr: Any, e: A.Binary, mask: str | None) -> str | None:
+    """``e`` computed in float16 where llvmpipe does, else None.
+
+    Mesa's GLSL compiler lowers GLSL ES precision to float16 (glsl/lower_precision.cpp, on
+    for llvmpipe): an operation whose operands are all lowp or mediump runs in float16, a
+    constant taking its partner's precision (rounded to float16 to nearest), and the result
+    is converted to float32 where a highp operand or variable takes it. Shadertoy's iChannels
+    are lowp sampler2D (numpy_backend/textures.py), so ``2.1 + 0.1*textureLod(iChannel2, uv,
+    0.0).x`` (elephant's terrain height) is two float16 operations on llvmpipe: 2.130859375
+    where float32 gives 2.1319335. Copied for trees of ``+ - * /`` and negation whose leaves
+    are constants and lookups on an iChannel (swizzled or not), at least one lookup; measured
+    bit for bit (tests/gl/test_llvmpipe_lowering.py). Emitted as ``(rt.lowp_full(<float16
+    tree>) if rt.lowp_arith(<samplers>) else <written>)``: float64 and float16 renders, and
+    samplers that are not lowp (the WebGL comparison's), keep float32. Not copied: built-in
+    calls on such values (``smoothstep(0.3, 0.4, texture(..).x)`` is float16 on llvmpipe too,
+    not measured), lookups through a sampler parameter, mediump/lowp variables (see
+    glslcheck/mediump.py), and NIR's reassociations inside the float16 tree."""
+    if tr.fn is None or getattr(tr, "lowp_written", None) is not None and id(e) in tr.lowp_written:
+        return None
+    nodes: list[Any] = []
+    samplers: list[Any] = []
+    if _lowp_kind(tr, e, nodes, samplers) != "low":
+        return None
+    low = _lowp_code(tr, e, mask, {id(n) for n in nodes})
+    tr.lowp_written = {id(n) for n in nodes}  # the written form: this tree without the rule
+    try:
+        written = tr.expr(e, mask)
+    finally:
+        tr.lowp_written = None
+    used = ", ".join(dict.fromkeys(tr.expr(s, mask) for s in samplers))
+    return f"(rt.lowp_full({low}) if rt.lowp_arith({used}) else {written})"
+
+
+def _lowp_kind(tr: Any, node: Any, nodes: list[Any], samplers: list[Any]) -> str | None:
+    """"const", "low" (float16 on llvmpipe) or None (float32) for a node of such a tree;
+    collects the tree's operation nodes and the samplers its lookups read."""
+    t = tr.type_of(node)
+    if t.base != "float" or t.is_matrix or t.is_array or tr.has_effects(node):
+        return None
+    if _const(tr, node):
+        return "const"
+    if isinstance(node, A.Field):
+        return _lowp_kind(tr, node.base, nodes, samplers) if isinstance(node.base, (A.Call, A.Field)) else None
+    if isinstance(node, A.Call):
+        sampler = node.args[0] if node.args else None
+        sym = tr.model.symbol_of(sampler) if isinstance(sampler, A.Identifier) else None
+        if (getattr(tr.model.call_target(node), "name", None) not in _TEXTURE_FUNCTIONS or sym is None
+                or sym.kind != "uniform" or str(tr.type_of(sampler)) != "sampler2D"):
+            return None
+        samplers.append(sampler)
+        return "low"
+    if isinstance(node, A.Unary) and node.op == "-":
+        kind = _lowp_kind(tr, node.operand, nodes, samplers)
+    elif isinstance(node, A.Binary) and node.op in _LOWP_OPS:
+        kinds = {_lowp_kind(tr, node.left, nodes, samplers), _lowp_kind(tr, node.right, nodes, samplers)}
+        kind = None if None in kinds else "low"
+    else:
+        return None
+    if kind == "low":
+        nodes.append(node)
+    return kind
+
+
+def _lowp_code(tr: Any, node: Any, mask: str | None, ops: set[int]) -> str:
+    """The float16 code of a tree found by :func:`_lowp_kind`: leaves rounded to float16
+    (``rt.half``), each operation a NumPy float16 operation (one rounding each)."""
+    if id(node) not in ops:
+        return f"rt.half({tr.expr(node, mask)})"
+    if isinstance(node, A.Unary):
+        return f"(-{_lowp_code(tr, node.operand, mask, ops)})"
+    return f"({_lowp_code(tr, node.left, mask, ops)} {node.op} {_lowp_code(tr, node.right, mask, ops)})"
+
+
 # -- binary expressions -----------------------------------------------------------------------
 def binary(tr: Any, e: A.Binary, mask: str | None) -> str | None:
     """The generated code of ``e`` when a rule above rewrites it, else None."""
+    low = lowp_tree(tr, e, mask) if e.op in _LOWP_OPS else None
+    if low is not None:
+        return low
     if e.op not in ("+", "-", "*") or tr.fn is None:
         return None
     if tr.type_of(e).base != "float":
