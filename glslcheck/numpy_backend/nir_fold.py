@@ -177,7 +177,8 @@ def lowp_tree(tr: Any, e: A.Binary, mask: str | None) -> str | None:
     are lowp sampler2D (numpy_backend/textures.py), so ``2.1 + 0.1*textureLod(iChannel2, uv,
     0.0).x`` (elephant's terrain height) is two float16 operations on llvmpipe: 2.130859375
     where float32 gives 2.1319335. Copied for trees of ``+ - * /`` and negation whose leaves
-    are constants and lookups on an iChannel (swizzled or not), at least one lookup; measured
+    are literal constants (a `const` variable or a never-written global is a highp variable
+    here, measured) and lookups on an iChannel (swizzled or not), at least one lookup; measured
     bit for bit (tests/gl/test_llvmpipe_lowering.py). Emitted as ``(rt.lowp_full(<float16
     tree>) if rt.lowp_arith(<samplers>) else <written>)``: float64 and float16 renders, and
     samplers that are not lowp (the WebGL comparison's), keep float32. Not copied: built-in
@@ -206,8 +207,10 @@ def _lowp_kind(tr: Any, node: Any, nodes: list[Any], samplers: list[Any]) -> str
     t = tr.type_of(node)
     if t.base != "float" or t.is_matrix or t.is_array or tr.has_effects(node):
         return None
-    if _const(tr, node):
-        return "const"
+    if tr.model.const_value(node) is not None:
+        # literals only: a `const` variable or a never-written global is highp (measured:
+        # `const float K = 0.1; K * texture(..).x` is float32 on llvmpipe)
+        return "const" if not any(isinstance(n, A.Identifier) for n in node.walk()) else None
     if isinstance(node, A.Field):
         return _lowp_kind(tr, node.base, nodes, samplers) if isinstance(node.base, (A.Call, A.Field)) else None
     if isinstance(node, A.Call):
