@@ -210,7 +210,10 @@ def _lowp_kind(tr: Any, node: Any, nodes: list[Any], samplers: list[Any]) -> str
     if tr.model.const_value(node) is not None:
         # literals only: a `const` variable or a never-written global is highp (measured:
         # `const float K = 0.1; K * texture(..).x` is float32 on llvmpipe)
-        return "const" if not any(isinstance(n, A.Identifier) for n in node.walk()) else None
+        # (a zero is left to the float32 forms: Mesa drops `x + 0.0` and `x * 0.0`, NaN too)
+        if any(isinstance(n, A.Identifier) for n in node.walk()) or not all(_constant_value(tr, node) or [0.0]):
+            return None
+        return "const"
     if isinstance(node, A.Field):
         return _lowp_kind(tr, node.base, nodes, samplers) if isinstance(node.base, (A.Call, A.Field)) else None
     if isinstance(node, A.Call):
