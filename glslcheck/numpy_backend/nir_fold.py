@@ -187,10 +187,12 @@ def lowp_tree(tr: Any, e: A.Binary, mask: str | None) -> str | None:
     glslcheck/mediump.py), and NIR's reassociations inside the float16 tree."""
     if tr.fn is None or getattr(tr, "lowp_written", None) is not None and id(e) in tr.lowp_written:
         return None
+    memo = tr.__dict__.setdefault("_nir_fold_lowp", {})  # id(node) -> kind: linear in a chain
+    if _lowp_kind(tr, e, memo) != "low" or tr.has_effects(e):
+        return None
     nodes: list[Any] = []
     samplers: list[Any] = []
-    if _lowp_kind(tr, e, nodes, samplers) != "low":
-        return None
+    _lowp_parts(e, memo, nodes, samplers)
     low = _lowp_code(tr, e, mask, {id(n) for n in nodes})
     tr.lowp_written = {id(n) for n in nodes}  # the written form: this tree without the rule
     try:
@@ -201,39 +203,59 @@ def lowp_tree(tr: Any, e: A.Binary, mask: str | None) -> str | None:
     return f"(rt.lowp_full({low}) if rt.lowp_arith({used}) else {written})"
 
 
-def _lowp_kind(tr: Any, node: Any, nodes: list[Any], samplers: list[Any]) -> str | None:
-    """"const", "low" (float16 on llvmpipe) or None (float32) for a node of such a tree;
-    collects the tree's operation nodes and the samplers its lookups read."""
-    t = tr.type_of(node)
-    if t.base != "float" or t.is_matrix or t.is_array or tr.has_effects(node):
-        return None
-    if tr.model.const_value(node) is not None:
-        # literals only: a `const` variable or a never-written global is highp (measured:
+def _lowp_kind(tr: Any, node: Any, memo: dict[int, Any]) -> str | None:
+    """"const" (a literal constant), "lookup" (an iChannel lookup, swizzled or not), "low" (an
+    operation float16 on llvmpipe) or None (float32) for a node of such a tree (memoised)."""
+    key = id(node)
+    if key not in memo:
+        memo[key] = _lowp_kind_of(tr, node, memo)
+    return memo[key]
+
+
+def _lowp_kind_of(tr: Any, node: Any, memo: dict[int, Any]) -> str | None:
+    if isinstance(node, (A.FloatLiteral, A.IntLiteral)):
+        return "const"
+    if isinstance(node, A.Identifier):
+        return None  # (a `const` variable or a never-written global is highp: measured,
         # `const float K = 0.1; K * texture(..).x` is float32 on llvmpipe)
-        # (a zero is left to the float32 forms: Mesa drops `x + 0.0` and `x * 0.0`, NaN too)
-        if any(isinstance(n, A.Identifier) for n in node.walk()) or not all(_constant_value(tr, node) or [0.0]):
+    kids = list(node.children())
+    if tr.model.const_value(node) is not None:
+        # literals only; a zero is left to the float32 forms (Mesa drops `x + 0.0` and
+        # `x * 0.0`, a NaN operand too)
+        if not all(_lowp_kind(tr, k, memo) == "const" for k in kids) or not all(_constant_value(tr, node) or [0.0]):
             return None
         return "const"
+    t = tr.type_of(node)
+    if t.base != "float" or t.is_matrix or t.is_array:
+        return None
     if isinstance(node, A.Field):
-        return _lowp_kind(tr, node.base, nodes, samplers) if isinstance(node.base, (A.Call, A.Field)) else None
+        return "lookup" if _lowp_kind(tr, node.base, memo) == "lookup" else None
     if isinstance(node, A.Call):
         sampler = node.args[0] if node.args else None
         sym = tr.model.symbol_of(sampler) if isinstance(sampler, A.Identifier) else None
         if (getattr(tr.model.call_target(node), "name", None) not in _TEXTURE_FUNCTIONS or sym is None
                 or sym.kind != "uniform" or str(tr.type_of(sampler)) != "sampler2D"):
             return None
-        samplers.append(sampler)
-        return "low"
+        return "lookup"
     if isinstance(node, A.Unary) and node.op == "-":
-        kind = _lowp_kind(tr, node.operand, nodes, samplers)
-    elif isinstance(node, A.Binary) and node.op in _LOWP_OPS:
-        kinds = {_lowp_kind(tr, node.left, nodes, samplers), _lowp_kind(tr, node.right, nodes, samplers)}
-        kind = None if None in kinds else "low"
-    else:
-        return None
+        return "low" if _lowp_kind(tr, node.operand, memo) in ("low", "lookup") else None
+    if isinstance(node, A.Binary) and node.op in _LOWP_OPS:
+        kinds = {_lowp_kind(tr, node.left, memo), _lowp_kind(tr, node.right, memo)}
+        return None if None in kinds or kinds == {"const"} else "low"
+    return None
+
+
+def _lowp_parts(node: Any, memo: dict[int, Any], nodes: list[Any], samplers: list[Any]) -> None:
+    """The operation nodes of a float16 tree and the samplers its lookups read."""
+    kind = memo.get(id(node))
     if kind == "low":
         nodes.append(node)
-    return kind
+        for k in (node.operand,) if isinstance(node, A.Unary) else (node.left, node.right):
+            _lowp_parts(k, memo, nodes, samplers)
+    elif kind == "lookup":
+        while isinstance(node, A.Field):
+            node = node.base
+        samplers.append(node.args[0])
 
 
 def _lowp_code(tr: Any, node: Any, mask: str | None, ops: set[int]) -> str:
