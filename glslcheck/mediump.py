@@ -24,8 +24,9 @@ operation, 0.0005 on a colour of 1, inside the tolerance), but overflows past 65
 hash such as `fract(sin(x) * 43758.5453)` into other values, which the tolerance rightly does
 not absorb. Declaring `precision highp float;` compares like with like. A lookup's own lowp
 result (Shadertoy's samplers are lowp) is emulated (numpy_backend/textures.py); arithmetic on
-it directly (`0.5 * texture(...)`) is float16 on llvmpipe too and float32 here, within the same
-2^-11 per operation, and is not flagged (nearly every textured shader does it).
+it directly (`0.5 * texture(...)`) is float16 on llvmpipe too, and here for `+ - * /` over lookups
+and constants (numpy_backend/nir_fold.py `lowp_tree`); built-in calls on it stay float32, within
+the same 2^-11 per operation, and are not flagged (nearly every textured shader has them).
 """
 
 from __future__ import annotations

@@ -52,12 +52,16 @@ What llvmpipe does, measured with tests/channels/measure_sampling.py (Mesa 22.3.
   (a lookup's result, a lowp/mediump variable; a constant takes its partner's precision) runs in
   float16 with round to nearest, `texture(...) * 3.14159265` included (1024 of 1024 products equal
   to the float16 ones), and past 65504 it is inf; one highp operand (iTime, a highp variable, a
-  uniform) makes it float32. glslcheck's NumPy backend does not propagate precision: it computes
-  such expressions in float32, which differ from llvmpipe's by up to about 2^-11 relative per
-  operation (0.0018 on `texelFetch(...) * pi` for texels up to 1, inside compare.py's 1/255 steps),
-  and verify reports a mismatch only where a lowp/mediump-only expression overflows float16 or
-  accumulates such errors. Storing the lookup in a highp variable first (`vec4 t = texture(...);`,
-  the default float precision is highp) makes the rest float32 and equal on every backend.
+  uniform) makes it float32. The NumPy backend copies this for trees of `+ - * /` and negation
+  over lookups on an iChannel and constants (numpy_backend/nir_fold.py `lowp_tree`, bit for bit:
+  test_channels.py test_arithmetic_on_lowp_lookups_is_float16; elephant's terrain height
+  `2.1 + 0.1*textureLod(..).x` is 2.130859375 on llvmpipe, 2.1319335 in float32). It does not
+  propagate precision further: built-in calls on such values (`smoothstep(.., texture(..).x)`),
+  lookups through a sampler parameter and mediump/lowp variables stay float32, within about
+  2^-11 relative per operation of llvmpipe's, and verify reports a mismatch only where a
+  lowp/mediump-only expression overflows float16 or accumulates such errors. Storing the lookup
+  in a highp variable first (`vec4 t = texture(...);`, the default float precision is highp)
+  makes the rest float32 and equal on every backend.
   SwiftShader's WebGL computes lowp and mediump in float32 (measured: exact lookups, and a
   mediump x * 1e5 past 65504 stays finite).
 - mipmap: the levels are glslcheck's own 2x2 box pyramid (channels.mip_levels), uploaded level
@@ -256,6 +260,7 @@ class TextureFunctions:
     """The texture lookup built-ins; mixed into `Runtime` (which provides `F` and `_f`)."""
 
     F: Any
+    lp: Any
 
     def _tex_result(self, s, texels: np.ndarray) -> np.ndarray:
         """(4, lanes) in the runtime's float type, truncated as a lowp sampler returns it."""
@@ -263,6 +268,21 @@ class TextureFunctions:
         if s.lowp:
             out = _truncate_lowp(out)
         return np.ascontiguousarray(out, dtype=self.F)
+
+    def lowp_arith(self, *samplers) -> bool:
+        """Whether arithmetic on these samplers' lookups is float16, as on llvmpipe: float32 mode
+        (llvmpipe's) and lowp samplers (an unbound channel is lowp too). nir_fold.lowp_tree."""
+        return self.lp is not None and all(s is None or s.lowp for s in samplers)
+
+    @staticmethod
+    def half(x) -> np.ndarray:
+        """A float16 operand of nir_fold.lowp_tree's code (rounded to nearest; a lookup's lowp
+        result is already a float16 value)."""
+        return np.asarray(x, dtype=np.float16)
+
+    def lowp_full(self, x: np.ndarray) -> np.ndarray:
+        """The float16 result of such a tree as the render's float type (exact)."""
+        return np.asarray(x, dtype=self.F)
 
     def _unbound(self, lanes: int) -> np.ndarray:
         out = np.zeros((4, lanes), dtype=self.F)

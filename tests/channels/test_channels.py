@@ -567,3 +567,36 @@ def test_an_integer_lod_reads_one_level(gl, tmp_path, lod):
     ours = api.compile(folder, backend="numpy", output="Image").render(size=(16, 8))
     theirs = api.compile(folder, backend="gl", output="Image").render(size=(16, 8))
     assert np.array_equal(ours, theirs, equal_nan=True), f"{int((ours != theirs).sum())} of {ours.size} values differ"
+
+
+@pytest.mark.usefixtures("llvmpipe")  # bit for bit with Mesa 22.3's llvmpipe
+def test_arithmetic_on_lowp_lookups_is_float16(gl, tmp_path):
+    # Mesa lowers GLSL's precision rules to float16 (glsl/lower_precision.cpp): an operation
+    # whose operands are lowp lookups and constants runs in float16, each constant rounded to
+    # float16 (nir_fold.lowp_tree). elephant's terrain, `2.1 + 0.1*textureLod(..).x`, reads
+    # 2.130859375 where float32 gives 2.1319335: its raymarch stopped elsewhere in 93 of 144
+    # pixels of Buffer A at 16x9. Measured: float32 arithmetic equals llvmpipe in 0-797 of the
+    # 2048 pixels of these expressions, float16 in all. A highp operand (the variable `h`,
+    # iTime) keeps float32, and so does a `const` variable or a never-written global (highp
+    # variables, unlike literals: alien_corridor's Buffer A mismatched when they counted as
+    # constants); `rgb` stays as it is (a swizzled lookup alone is no operation).
+    _png(tmp_path / "tex.png", 61, 37, seed=4)
+    body = """const float K = 0.1;
+float PI = 3.14159265;
+
+void mainImage(out vec4 fragColor, in vec2 fragCoord) {
+    vec2 uv = fragCoord / iResolution.xy * 0.37 + 0.01;
+    float h = textureLod(iChannel0, uv, 0.0).x;
+    vec4 a = vec4(2.1 + 0.1 * textureLod(iChannel0, uv, 0.0).x,
+                  textureLod(iChannel0, uv, 0.0).x * texture(iChannel0, uv * 3.0).y - 1.7,
+                  -texture(iChannel0, uv).z * 0.3 + 2.1,
+                  texture(iChannel0, uv).w / 3.0 + 0.1);
+    vec4 b = vec4(2.0 * texture(iChannel0, uv).rgb - 1.0, 2.1 + 0.1 * h + texture(iChannel0, uv).y * iTime);
+    vec4 c = vec4(K * texture(iChannel0, uv).x, PI * texture(iChannel0, uv).y, (2.0 * 0.05) * h, 0.0);
+    fragColor = int(fragCoord.y) % 3 == 0 ? a : int(fragCoord.y) % 3 == 1 ? b : c;
+}
+"""
+    folder = _folder(tmp_path, {"Image": body}, {"Image": {"iChannel0": {"texture": "tex.png"}}})
+    ours = api.compile(folder, backend="numpy").render(size=(64, 32), time=0.7)
+    theirs = api.compile(folder, backend="gl").render(size=(64, 32), time=0.7)
+    assert np.array_equal(ours, theirs), f"{int((ours != theirs).sum())} of {ours.size} values differ"
