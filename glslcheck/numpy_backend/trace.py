@@ -210,12 +210,12 @@ class TraceTranspiler(Transpiler):
         finally:
             self._ops.pop()
 
-    def binary_values(self, op: str, lt: Any, rtp: Any, left: str, right: str) -> str:  # type: ignore[override]
-        text = Transpiler.binary_values(op, lt, rtp, left, right)
+    def binary_values(self, op: str, lt: Any, rtp: Any, left: str, right: str) -> str:
+        text = super().binary_values(op, lt, rtp, left, right)
         if op not in _PY_OPERATORS or "float" not in (lt.base, rtp.base) or not self._ops or not self._traced():
             return text
         node, mask = self._ops[-1]
-        shape = Transpiler.binary_values(op, lt, rtp, "A", "B")
+        shape = super().binary_values(op, lt, rtp, "A", "B")
         if shape == f"(A {op} B)":
             fn = f"T.{_PY_OPERATORS[op]}"
         elif shape.startswith("rt.") and shape.endswith("(A, B)"):

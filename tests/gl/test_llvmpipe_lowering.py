@@ -12,7 +12,7 @@ and 5163 pixels in its first three, factoring 979, 6694, 6556, mix_constant_oper
 constants_merged 3600, 3200, 2165 (first three), constants_sunk_further 30, 4667, 1103, constants_merged_through_assignments 5035, 7837, 9300, constants_sunk_beside_a_selection 3498, 6900, 1538; the other
 channels pin forms that give the same bits here.
 
-Written for llvmpipe of Mesa 22.3 (the `llvmpipe` fixture of tests/gl/conftest.py fails naming
+Written for llvmpipe of Mesa 22.3 (the `llvmpipe` fixture of tests/conftest.py fails naming
 that release on another driver).
 """
 

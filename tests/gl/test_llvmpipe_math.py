@@ -11,7 +11,7 @@ not fused without; `Runtime()` follows this machine (`HOST_FMA`), and a test che
 other choice is measurably different, so a wrong detection cannot pass.
 
 Written for llvmpipe of Mesa 22.3: the bit-exact tests take the `llvmpipe` fixture
-(tests/gl/conftest.py), which fails naming that release on another driver.
+(tests/conftest.py), which fails naming that release on another driver.
 """
 
 from __future__ import annotations

@@ -21,19 +21,6 @@ from ...check.model import Constructor, Symbol
 from .facts import is_plain_read
 
 
-def _nonzero_literal(text: str) -> bool:
-    """``text`` is a float literal's module constant (`Names.const_float`: ``C_f_0p25``,
-    ``C_f_m1em10``, ``C_f_inf``, ``C_f_nan``) that is not zero in float16 either (float16 keeps
-    nothing below 2**-24; a literal of 1e-10 is a zero there, which Runtime.fmul folds)."""
-    if not text.startswith("C_f_") or not _IDENT.fullmatch(text):
-        return False
-    try:
-        v = float(text[4:].replace("m", "-").replace("p", "."))
-    except ValueError:
-        return False
-    return not abs(v) < 2.0**-24  # (NaN: not zero)
-
-
 @dataclass
 class LValue:
     """An l-value with its index expressions already evaluated: base name and an access path.
@@ -207,6 +194,13 @@ class Expressions:
     def _print_Assignment(self, e: A.Assignment, mask: str | None) -> str:
         return self.assignment(e, mask, want_value=True)
 
+    def _nonzero_literal(self, text: str) -> bool:
+        """``text`` is a float literal's module constant (`Names.const_float`: ``C_f_0p25``)
+        that is not zero in float16 either (float16 keeps nothing below 2**-24; a literal of
+        1e-10 is a zero there, which Runtime.fmul folds). NaN is not zero."""
+        v = self.float_consts.get(text)
+        return v is not None and not abs(v) < 2.0**-24
+
     def assignment(self, e: A.Assignment, mask: str | None, want_value: bool) -> str:
         lv = self.lvalue(e.target, mask)
         value = nir_fold.keep_term(self, e, self.expr(e.value, mask))
@@ -218,8 +212,7 @@ class Expressions:
         self.write(lv, value, mask)
         return value
 
-    @staticmethod
-    def binary_values(op: str, lt: Any, rtp: Any, left: str, right: str) -> str:
+    def binary_values(self, op: str, lt: Any, rtp: Any, left: str, right: str) -> str:
         """`left op right` for operand types lt, rtp (matrix products by shape)."""
         if op == "*" and (lt.is_matrix or rtp.is_matrix):
             if lt.is_matrix and rtp.is_matrix:
@@ -231,7 +224,7 @@ class Expressions:
         if op == "%":
             return f"rt.rem({left}, {right})"
         if op == "*" and lt.base == "float" and rtp.base == "float":
-            if not (_nonzero_literal(left) or _nonzero_literal(right)):
+            if not (self._nonzero_literal(left) or self._nonzero_literal(right)):
                 return f"rt.fmul({left}, {right})"  # NaN times a constant zero is 0 (Runtime.fmul)
             # a float literal that is not zero (in any precision) is a constant operand with no
             # zero component: Runtime.fmul would only multiply, so the operator does, without

@@ -35,6 +35,7 @@ class Transpiler(Names, Functions, Statements, Expressions, PythonLimits):
         self.facts = Facts(model, self.functions)
         self.lines: list[str] = []
         self.consts: dict[str, str] = {}  # name -> defining expression
+        self.float_consts: dict[str, float] = {}  # a float literal's name -> its value (const_float)
         self.const_exprs: dict[str, str] = {}  # printed constant expression -> its C_x name
         self.in_const = False
         self.zero_defs: dict[str, str] = {}

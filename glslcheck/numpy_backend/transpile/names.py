@@ -114,6 +114,7 @@ class Names:
             text = lit.replace("-", "m").replace("+", "").replace(".", "p")
         name = "C_f_" + text
         self.consts.setdefault(name, f"rt.const_float({lit})")
+        self.float_consts[name] = float(v)
         return name
 
     def const_int(self, v: int, unsigned: bool) -> str:
