@@ -65,9 +65,8 @@ def builtin_calls(model: Model, path: str, *names: str,
     the functions defined in the file `path` (those with a compile error apart), in source
     order, with the facts of the function it is in."""
     for fn in program_facts(model).in_file(path):
-        for node in fn.calls:  # builtin_call, inlined: the calls only, not every node
-            if node.callee in names and (arity is None or len(node.args) == arity) \
-                    and isinstance(model.call_target(node), B.Overload):
+        for node in calls_in(fn, *names):  # the function's calls only, not every node
+            if arity is None or len(node.args) == arity:
                 yield fn, node
 
 
