@@ -23,7 +23,7 @@ system-deps:
 $(STAMP): pyproject.toml
 	python3 -m venv $(VENV)
 	$(PY) -m pip install -q --upgrade pip
-	$(PY) -m pip install -q -e '.[test,webgl]'
+	$(PY) -m pip install -q -e '.[test,webgl,jit]'
 	touch $(STAMP)
 
 setup: system-deps $(STAMP)

@@ -211,7 +211,7 @@ import numpy as np
 
 from ..driver_profile import FLOAT_TO_UINT, float_to_uint, host_fma, host_model
 from ..precision import check_precision
-from . import llvmpipe_fast
+from . import jit, llvmpipe_fast
 from .textures import TextureFunctions
 
 __all__ = ["Runtime", "Struct", "GLSLRuntimeError"]
@@ -494,14 +494,15 @@ class LlvmpipeMath:
         per name (a hot path: one call per tile, loop iteration and march step)."""
         run = self._kernels.get(name)
         if run is None:
-            fast, slow, fma = _FAST_KERNELS[name], self._fast(name), self.fma
+            fast, slow, fma = _FAST_KERNELS.get(name), self._fast(name), self.fma
 
             def run(*args: np.ndarray) -> np.ndarray:
                 if max(a.size for a in args) > _DEFER_LANES:
                     return slow(*args)
                 r = fast(*args, fma, slow)  # slow: also for the lanes of a float32 midpoint
                 return slow(*args) if r is None else r
-            self._kernels[name] = run
+            # compiled kernels (numba) where jit.py's rule says they pay; else run itself
+            self._kernels[name] = run = jit.dispatch(name, run if fast else slow, fma)
         return run
 
     def polynomial(self, x: np.ndarray, coeffs: tuple[float, ...]) -> np.ndarray:
@@ -530,7 +531,7 @@ class LlvmpipeMath:
     def tan(self, a: np.ndarray) -> np.ndarray:
         """``sin(x) / cos(x)`` (Mesa's GLSL tan), both from one reduction and one evaluation
         of each polynomial: the two share everything but the final selection and sign."""
-        return _blocked(self._fast("_tan"), a)
+        return _blocked(self._kernel("_tan"), a)
 
     def _sin(self, a: np.ndarray) -> np.ndarray:
         return self._sin_cos_result(a, self._sin_cos_reduced(a), cos=False)

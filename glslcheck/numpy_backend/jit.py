@@ -1,0 +1,239 @@
+"""Compiled kernels for the llvmpipe math emulation, used when they pay (issue 18).
+
+runtime.LlvmpipeMath's sin, cos, tan, exp2, log2 and pow are 30-70 NumPy operations a call. A
+raymarcher makes tens of thousands of such calls a frame on the few hundred lanes a march loop
+keeps after compaction, and there the calls are all overhead: numpy_backend/jit_kernels.py makes
+the same float32 steps in one compiled loop (numba), 10-12x faster a call at 143 lanes, 2-3x at
+3,600, about even on a whole tile (docs/performance.md, "Compiled math kernels"). The frames are
+the same bits with and without them (tests/numpy/test_jit_*.py).
+
+numba is an optional extra (``pip install 'glslcheck[jit]'``); without it nothing changes. It is
+not free: ``import numba`` and loading the kernels' machine code from numba's cache take
+0.7-2 s of wall time; compiling them the first time, before there is a cache, 6-10 s. So the kernels are loaded the way a tiered JIT promotes a function:
+
+- ``--jit auto`` (the default; ``$GLSLCHECK_JIT``): the process counts the time its calls of
+  the emulation on up to :data:`LANES` lanes take on the NumPy path (the calls the kernels
+  speed up; whole tiles gain nothing), and loads the kernels once that time exceeds what
+  loading them costs: the wall time the last load took in this cache (recorded beside it), or
+  :data:`COLD_SECONDS` before there was one. From then on those calls go to the kernels. A
+  render that would gain less than the load costs never pays it (a lab scene spends well under
+  a second there); one that spends much more gains nearly all of the difference, and never
+  loses more than the load (the rule of renting skis until their price is spent). The count is
+  per process, over every render it makes (a `verify` of many shaders, the frames of a
+  `bench`); each worker process (--parallel processes) counts its own.
+- ``--jit on``: load them when the first render makes its math functions (an error if numba
+  is missing); ``--jit off``: never, numba is not imported.
+
+numba's cache goes to ``$NUMBA_CACHE_DIR`` when the user set it, else to
+``$XDG_CACHE_HOME/glslcheck/numba`` (``~/.cache/glslcheck/numba``): set before numba is
+imported, so nothing is written into site-packages or the source tree.
+
+The hook: runtime.LlvmpipeMath._kernel passes each NumPy function it makes through
+:func:`dispatch`, which returns it unchanged (off, numba missing, a function without kernel) or
+wrapped. A call the kernel declines (edge arguments that give NaN, see jit_kernels) goes to the
+NumPy function: the same bits either way.
+"""
+
+from __future__ import annotations
+
+import importlib.util
+import json
+import os
+import sys
+import threading
+import time
+from typing import Any, Callable
+
+import numpy as np
+
+from ..diagnostics import InputError
+
+MODES = ("auto", "on", "off")
+LANES = 16384  # calls on up to this many lanes use the kernels (a 48,000-lane tile: NumPy is as fast)
+COLD_SECONDS = 10.0  # the load cost assumed before one was measured in this cache (a first compile: 6-10 s)
+_RECORD = "glslcheck-jit.json"  # in the cache directory: the last load's wall time
+
+_F32 = np.dtype(np.float32)
+# LlvmpipeMath's algorithm name -> (jit_kernels function, its `which`)
+_KERNELS = {"_sin": ("trig", 0), "_cos": ("trig", 1), "_tan": ("trig", 2),
+            "_exp2": ("explog", 0), "_log2": ("explog", 1), "_pow": ("explog", 2)}
+
+
+def mode() -> str:
+    """``$GLSLCHECK_JIT`` (set by --jit), else ``"auto"``."""
+    value = os.environ.get("GLSLCHECK_JIT", "").strip() or "auto"
+    if value not in MODES:
+        raise InputError(f"error: GLSLCHECK_JIT must be one of {', '.join(MODES)}, not {value!r}")
+    return value
+
+
+def available() -> bool:
+    """Whether numba is installed (without importing it)."""
+    if _STATE.available is None:
+        _STATE.available = importlib.util.find_spec("numba") is not None
+    return _STATE.available
+
+
+def cache_dir() -> str:
+    """Where numba keeps the compiled kernels: $NUMBA_CACHE_DIR, else the user's cache."""
+    given = os.environ.get("NUMBA_CACHE_DIR")
+    if given:
+        return given
+    base = os.environ.get("XDG_CACHE_HOME") or os.path.join(os.path.expanduser("~"), ".cache")
+    return os.path.join(base, "glslcheck", "numba")
+
+
+class _State:
+    """The process's view of the kernels: loaded or not, and the time counted towards loading."""
+
+    def __init__(self) -> None:
+        self.lock = threading.Lock()
+        self.available: bool | None = None
+        self.kernels: Any = None  # the jit_kernels module once loaded
+        self.failed: str | None = None  # why loading failed (then never tried again)
+        self.spent = 0.0  # seconds of small-lane NumPy calls (auto); `+=` from tile threads may
+        # lose an update now and then, which only delays the switch by a call
+        self.threshold: float | None = None
+        self.load_seconds: float | None = None
+
+
+_STATE = _State()
+
+
+def _stamp() -> list:
+    """What the recorded load time depends on: numba's version and the kernels' source."""
+    from importlib.metadata import version
+
+    st = os.stat(os.path.join(os.path.dirname(__file__), "jit_kernels.py"))
+    return [version("numba"), st.st_mtime_ns, st.st_size]
+
+
+def threshold() -> float:
+    """Seconds of small-lane calls after which auto loads the kernels: the last load's wall time
+    in this cache, else :data:`COLD_SECONDS`."""
+    if _STATE.threshold is None:
+        seconds = COLD_SECONDS
+        try:
+            with open(os.path.join(cache_dir(), _RECORD)) as f:
+                record = json.load(f)
+            if record.get("stamp") == _stamp():
+                seconds = float(record["seconds"])
+        except (OSError, ValueError, KeyError, TypeError):
+            pass
+        _STATE.threshold = seconds
+    return _STATE.threshold
+
+
+def load(required: bool = False) -> Any:
+    """The jit_kernels module, imported (numba's cache directory set first) on the first call;
+    None when numba is missing or fails (a warning, once), an InputError then if ``required``."""
+    with _STATE.lock:
+        if _STATE.kernels is None and _STATE.failed is None:
+            if not available():
+                _STATE.failed = "numba is not installed (pip install 'glslcheck[jit]')"
+            else:
+                _import()
+        if _STATE.kernels is None and required:
+            raise InputError(f"error: --jit on: {_STATE.failed}")
+        return _STATE.kernels
+
+
+def _import() -> None:
+    path = cache_dir()
+    t0 = time.perf_counter()
+    try:
+        os.environ.setdefault("NUMBA_CACHE_DIR", path)  # read when numba is imported ...
+        from numba.core import config
+
+        config.CACHE_DIR = path  # ... and here if it already was
+        from . import jit_kernels
+    except Exception as e:  # an incompatible numba, a compile error: the NumPy path stays
+        _STATE.failed = f"numba's kernels failed to load ({type(e).__name__}: {e})"
+        print(f"glslcheck: warning: {_STATE.failed}; using NumPy", file=sys.stderr)
+        return
+    _STATE.load_seconds = time.perf_counter() - t0
+    _STATE.kernels = jit_kernels
+    try:  # the next process's threshold
+        os.makedirs(path, exist_ok=True)
+        tmp = os.path.join(path, f"{_RECORD}.{os.getpid()}")
+        with open(tmp, "w") as f:
+            json.dump({"seconds": round(_STATE.load_seconds, 3), "stamp": _stamp()}, f)
+        os.replace(tmp, os.path.join(path, _RECORD))
+    except OSError:
+        pass
+
+
+def dispatch(name: str, run: Callable[..., np.ndarray], fma: bool) -> Callable[..., np.ndarray]:
+    """LlvmpipeMath's NumPy function ``run`` of the algorithm ``name`` (``"_sin"``, ...), or a
+    function that takes the compiled kernel instead where :func:`mode` and the rule above say so
+    (same arguments, same bits)."""
+    m = mode()
+    if m == "off" or name not in _KERNELS:
+        return run
+    if m == "on":
+        return compiled(name, run, fma, load(required=True))
+    if not available():
+        return run
+    fast = None
+    state = _STATE
+    clock = time.perf_counter
+
+    def auto(*args: np.ndarray) -> np.ndarray:
+        nonlocal fast
+        if fast is not None:
+            return fast(*args)
+        if state.kernels is not None:
+            fast = compiled(name, run, fma, state.kernels)
+            return fast(*args)
+        if state.failed is not None or max(a.size for a in args) > LANES:
+            return run(*args)
+        t0 = clock()
+        r = run(*args)
+        state.spent += clock() - t0
+        if state.spent > (state.threshold or threshold()):
+            load()
+        return r
+    return auto
+
+
+def compiled(name: str, run: Callable[..., np.ndarray], fma: bool, kernels: Any) -> Callable[..., np.ndarray]:
+    """``run`` with its calls on up to :data:`LANES` float32 lanes made by the kernel."""
+    kind, which = _KERNELS[name]
+    kernel = getattr(kernels, kind)
+
+    if kind == "trig":
+        def call(a: np.ndarray) -> np.ndarray:
+            if a.size > LANES or a.dtype != _F32:
+                return run(a)
+            out = np.empty(a.shape, _F32)
+            if kernel(np.ascontiguousarray(a).reshape(-1), out.reshape(-1), fma, which):
+                return out
+            return run(a)
+        return call
+
+    def call2(x: np.ndarray, y: np.ndarray | None = None) -> np.ndarray:
+        args = (x,) if y is None else (x, y)
+        if y is None:
+            y = x
+            shape = x.shape
+        else:
+            shape = _shape(x, y)
+        size = x.size if y is x else int(np.prod(shape))
+        if size > LANES or x.dtype != _F32 or y.dtype != _F32:
+            return run(*args)
+        xf, yf = (np.ascontiguousarray(v if v.size in (1, size) else np.broadcast_to(v, shape)).reshape(-1)
+                  for v in (x, y))
+        out = np.empty(shape, _F32)
+        if kernel(xf, yf, out.reshape(-1), fma, which):
+            return out
+        return run(*args)
+    return call2
+
+
+def _shape(x: np.ndarray, y: np.ndarray) -> tuple[int, ...]:
+    """The broadcast shape of ``x`` and ``y`` (the usual cases without np.broadcast_shapes)."""
+    if x.shape == y.shape or (y.size == 1 and y.ndim <= x.ndim):
+        return x.shape
+    if x.size == 1 and x.ndim <= y.ndim:
+        return y.shape
+    return np.broadcast_shapes(x.shape, y.shape)

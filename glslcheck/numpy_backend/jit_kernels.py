@@ -1,0 +1,203 @@
+"""The llvmpipe math emulation as compiled loops (numba): one pass over the lanes per call.
+
+runtime.LlvmpipeMath makes gallivm's sin/cos/exp2/log2/pow (lp_bld_arit.c) as 30-70 NumPy
+operations; on the few hundred lanes of a compacted march loop each costs more than its
+arithmetic. These kernels make the same float32 operations, in the same order with the same
+roundings, lane by lane in one compiled loop (10-12x fewer microseconds a call at 143 lanes,
+2-3x at 3,600, about even on a whole tile: docs/performance.md, "Compiled math kernels").
+
+Imported only by numpy_backend/jit.py, which sets numba's cache directory first and decides
+when loading them pays (importing numba and loading the machine code from numba's cache take
+seconds); nothing else in glslcheck imports numba.
+
+- A fused multiply-add (``llvm.fmuladd``, fused on an FMA CPU) is LLVM's own ``llvm.fma.f32``
+  (:func:`_fma`): one rounding, as vfmadd, which runtime._fma32 emulates in float64; without
+  FMA it is a float32 multiply then add, as llvmpipe does there. numba compiles without
+  fast-math, so nothing else is contracted or reordered.
+- DAZ: a subnormal operand of these algorithms reads as a zero of its sign, as in
+  LlvmpipeMath (runtime._daz).
+- Each kernel first scans its arguments and returns False, writing nothing useful, where some
+  lane would give a NaN (the bits of a NaN LLVM makes here need not be the ones NumPy's
+  reference writes) or leave the range where the reference's integer conversions cannot
+  overflow (sin/cos/tan: |x| >= 2**29); the caller then takes the NumPy path. Every other
+  edge (+-0, subnormals, +-Inf where the result is finite or an infinity) is computed here.
+
+Bit for bit against LlvmpipeMath's reference, both FMA modes: tests/numpy/test_jit_kernels.py.
+"""
+
+from __future__ import annotations
+
+import numba
+import numpy as np
+from llvmlite import ir
+from numba.core import types
+from numba.extending import intrinsic
+
+from . import llvmpipe_fast as lf
+
+F32 = np.float32
+_OPTS = dict(cache=True, nogil=True, error_model="numpy")  # error_model: x / 0 is IEEE, no exception
+_ONE, _MONE, _HALF, _ZERO = F32(1.0), F32(-1.0), F32(0.5), F32(0.0)
+_FOPI = F32(lf.FOUR_OVER_PI)
+_DP0, _DP1, _DP2 = (F32(v) for v in lf.DP)
+# SIN_COS[row, 0] the cosine's polynomial (y_6), SIN_COS[row, 1] the sine's (y2_6)
+_C0, _C1, _C2 = (F32(lf.SIN_COS[r, 0, 0]) for r in range(3))
+_S0, _S1, _S2 = (F32(lf.SIN_COS[r, 1, 0]) for r in range(3))
+_E0, _E1, _E2, _E3, _E4, _E5 = (F32(v) for v in lf.EXP2)
+_L0, _L1, _L2, _L3, _L4 = (F32(v) for v in lf.LOG2)
+_EXP2_HI, _EXP2_LO = F32(128.0), F32(-126.99999)
+_INF = F32(np.inf)
+_ABS = 0x7FFFFFFF
+_MIN_NORMAL_BITS = 0x00800000
+_INF_BITS = 0x7F800000
+_SIN_MAX_BITS = 0x4E000000  # |x| < 2**29: j = int(|x| * 4/pi) + 1 stays far from int32 overflow
+
+
+@intrinsic
+def _fma(typingctx, a, b, c):
+    """float32 ``a*b + c`` rounded once: LLVM's llvm.fma.f32 (vfmadd on an FMA CPU, a correctly
+    rounded libm fmaf elsewhere)."""
+    sig = types.float32(types.float32, types.float32, types.float32)
+
+    def codegen(context, builder, signature, args):
+        f = ir.FloatType()
+        fn = builder.module.declare_intrinsic("llvm.fma", [f], fnty=ir.FunctionType(f, [f, f, f]))
+        return builder.call(fn, args)
+    return sig, codegen
+
+
+@intrinsic
+def _bits(typingctx, x):
+    """The bits of float32 ``x`` as uint32."""
+    def codegen(context, builder, signature, args):
+        return builder.bitcast(args[0], ir.IntType(32))
+    return types.uint32(types.float32), codegen
+
+
+@intrinsic
+def _float(typingctx, u):
+    """The float32 whose bits are uint32 ``u``."""
+    def codegen(context, builder, signature, args):
+        return builder.bitcast(args[0], ir.FloatType())
+    return types.float32(types.uint32), codegen
+
+
+@numba.njit(inline="always", **_OPTS)
+def _mad(a, b, c, fma):
+    """``llvm.fmuladd`` of float32 scalars, as LlvmpipeMath.mad."""
+    if fma:
+        return _fma(a, b, c)
+    return F32(F32(a * b) + c)
+
+
+@numba.njit(inline="always", **_OPTS)
+def _daz(x):
+    """A subnormal x as a zero of its sign (MXCSR.DAZ), as runtime._daz."""
+    if (np.int64(_bits(x)) & _ABS) < _MIN_NORMAL_BITS:
+        return _float(_bits(x) & np.uint32(0x80000000))
+    return x
+
+
+@numba.njit("boolean(float32[::1], float32[::1], boolean, int64)", **_OPTS)
+def trig(a, out, fma, which):
+    """LlvmpipeMath._sin (``which`` 0), _cos (1) or _tan (2, sin over cos of one reduction) of
+    ``a`` into ``out`` (same size); False (declined) where some |x| >= 2**29 or is not finite."""
+    n = a.size
+    for k in range(n):
+        if (np.int64(_bits(a[k])) & _ABS) >= _SIN_MAX_BITS:
+            return False
+    for k in range(n):
+        ai = np.int64(_bits(a[k]))
+        x_abs = _daz(_float(np.uint32(ai & _ABS)))
+        j_add = np.int64(np.int32(F32(x_abs * _FOPI))) + 1  # in range: cvttps2dq truncates so
+        j = j_add & ~np.int64(1)
+        y_2 = F32(j)
+        x_1 = _mad(y_2, _DP0, x_abs, fma)
+        x_2 = _mad(y_2, _DP1, x_1, fma)
+        x_3 = _mad(y_2, _DP2, x_2, fma)
+        z = F32(x_3 * x_3)
+        y_6 = F32(_mad(_mad(z, _C0, _C1, fma), z, _C2, fma) * z)
+        y2_6 = F32(_mad(_mad(z, _S0, _S1, fma), z, _S2, fma) * z)
+        y_10 = F32(F32(F32(y_6 * z) - F32(z * _HALF)) + _ONE)
+        y2_9 = _mad(y2_6, x_3, x_3, fma)
+        s = _ZERO
+        c = _ZERO
+        if which != 1:  # sin: bit 1 of j picks the polynomial; the sign bit is x's flipped by bit 2 of j_add
+            s = y2_9 if (j & 2) == 0 else y_10
+            if ((ai >> 31) ^ (j_add >> 2)) & 1:
+                s = -s
+            s = min(max(s, _MONE), _ONE)  # lp_build_clamp (no NaN here)
+        if which != 0:  # cos: the same of j - 2, the sign bit set where its bit 2 is clear
+            j2 = j - 2
+            c = y2_9 if (j2 & 2) == 0 else y_10
+            if (j2 >> 2) & 1 == 0:
+                c = -c
+            c = min(max(c, _MONE), _ONE)
+        out[k] = s if which == 0 else c if which == 1 else F32(s / c)
+    return True
+
+
+@numba.njit(inline="always", **_OPTS)
+def _exp2(x, fma):
+    """LlvmpipeMath._exp2 of one lane, x not NaN: clamp, 2**floor(x) from the exponent bits
+    times the degree-5 polynomial of the fraction."""
+    x = min(max(_daz(x), _EXP2_LO), _EXP2_HI)
+    ipart = F32(np.floor(x))
+    fpart = F32(x - ipart)
+    x2 = F32(fpart * fpart)
+    odd = _mad(x2, _mad(x2, _E5, _E3, fma), _E1, fma)
+    even = _mad(x2, _mad(x2, _E4, _E2, fma), _E0, fma)
+    p = _mad(odd, fpart, even, fma)
+    return F32(_float(np.uint32((np.int64(ipart) + 127) << 23)) * p)
+
+
+@numba.njit(inline="always", **_OPTS)
+def _log2(x, fma):
+    """LlvmpipeMath._log2 of one lane, x positive (or a zero, or subnormal) and not NaN: the
+    exponent plus y * P(y*y), y = (m-1)/(m+1); -Inf for a zero after DAZ, +Inf for +Inf."""
+    b = np.int64(_bits(x))
+    if (b & _ABS) < _MIN_NORMAL_BITS:
+        return -_INF
+    if b == _INF_BITS:
+        return _INF
+    logexp = F32(((b & _INF_BITS) >> 23) - 127)
+    mant = _float(np.uint32((b & 0x007FFFFF) | 0x3F800000))
+    y = F32(F32(mant - _ONE) / F32(mant + _ONE))
+    w = F32(y * y)
+    x2 = F32(w * w)
+    even = _mad(x2, _mad(x2, _L4, _L2, fma), _L0, fma)
+    odd = _mad(x2, _L3, _L1, fma)
+    return _mad(y, _mad(odd, w, even, fma), logexp, fma)
+
+
+@numba.njit("boolean(float32[::1], float32[::1], float32[::1], boolean, int64)", **_OPTS)
+def explog(x, y, out, fma, which):
+    """LlvmpipeMath._exp2 (``which`` 0), _log2 (1) of ``x``, or _pow (2) of ``x`` and ``y``, into
+    ``out``; x and y have out's size or one element (broadcast). False (declined) where some
+    lane's result would be a NaN: exp2 of NaN, log2 of a negative number or NaN, pow where
+    log2(x) * y is NaN (x < 0; 0 * Inf)."""
+    n = out.size
+    nx = x.size
+    ny = y.size
+    for k in range(nx):
+        b = np.int64(_bits(x[k]))
+        if (b & _ABS) > _INF_BITS:
+            if which != 2:
+                return False  # NaN (pow: x NaN gives 0, below)
+        elif which != 0 and b >= 0x80000000 and (b & _ABS) >= _MIN_NORMAL_BITS:
+            return False  # a negative number: log2 is NaN
+    for k in range(n):
+        xk = x[k if nx > 1 else 0]
+        if which == 0:
+            out[k] = _exp2(xk, fma)
+        elif which == 1:
+            out[k] = _log2(xk, fma)
+        else:
+            if (np.int64(_bits(xk)) & _ABS) < _MIN_NORMAL_BITS or xk != xk:
+                out[k] = _ZERO  # x == 0 after DAZ, or NaN (an unordered compare)
+                continue
+            t = F32(_log2(xk, fma) * y[k if ny > 1 else 0])
+            if t != t:
+                return False
+            out[k] = _exp2(t, fma)
+    return True
