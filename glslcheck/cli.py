@@ -85,6 +85,10 @@ def build_parser(only: str | None = None) -> argparse.ArgumentParser:
             p.add_argument("--parallel", choices=PARALLEL_MODES, default=None,
                            help="NumPy tiles on worker processes, on threads, or auto: threads until a program "
                                 "has rendered for a second, then processes (default: $GLSLCHECK_PARALLEL or auto)")
+            p.add_argument("--jit", choices=JIT_MODES, default=None,
+                           help="the llvmpipe math on few lanes by compiled kernels (the optional numba extra): "
+                                "on, off, or auto: once a process has spent in that math what loading them "
+                                "costs (default: $GLSLCHECK_JIT or auto)")
         if name in _BUDGETED:
             from .commands.args import add_frame_budget
 
@@ -96,6 +100,7 @@ def build_parser(only: str | None = None) -> argparse.ArgumentParser:
 _RENDERING = ("render", "verify", "bench", "report")  # the commands that run the NumPy renderer
 _BUDGETED = _RENDERING + ("probe",)  # and those that take --frame-budget (probe's --nan renders a frame)
 PARALLEL_MODES = ("auto", "threads", "processes")  # NumpyProgram.parallel
+JIT_MODES = ("auto", "on", "off")  # numpy_backend/jit.py (not imported here: it imports NumPy)
 
 
 def main(argv: list[str] | None = None) -> int:
@@ -128,10 +133,12 @@ def _main(argv: list[str]) -> int:
     if args.command in _RENDERING:
         from .numpy_backend.workers import tune_malloc
 
-        if not args.parallel and os.environ.get("GLSLCHECK_PARALLEL", "auto") not in PARALLEL_MODES:
-            print(f"glslcheck: error: GLSLCHECK_PARALLEL must be one of {', '.join(PARALLEL_MODES)}, "
-                  f"not {os.environ['GLSLCHECK_PARALLEL']!r}", file=sys.stderr)
-            return 2
+        for given, name, modes in ((args.parallel, "GLSLCHECK_PARALLEL", PARALLEL_MODES),
+                                   (args.jit, "GLSLCHECK_JIT", JIT_MODES)):
+            if not given and os.environ.get(name, "auto") not in modes:
+                print(f"glslcheck: error: {name} must be one of {', '.join(modes)}, "
+                      f"not {os.environ[name]!r}", file=sys.stderr)
+                return 2
         tune_malloc()  # tile temporaries reuse freed memory instead of page-faulting (workers.py)
     if args.command not in _BUDGETED:
         return _run(args)
@@ -139,7 +146,7 @@ def _main(argv: list[str]) -> int:
 
     budget = getattr(args, "frame_budget", None)
     # read by every NumPy program made below; as they were after: main() may run again in-process
-    with environment(GLSLCHECK_PARALLEL=getattr(args, "parallel", None),
+    with environment(GLSLCHECK_PARALLEL=getattr(args, "parallel", None), GLSLCHECK_JIT=getattr(args, "jit", None),
                      GLSLCHECK_FRAME_SECONDS=None if budget is None else repr(budget)):
         return _run(args)
 

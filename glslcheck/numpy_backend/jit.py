@@ -9,7 +9,8 @@ the same bits with and without them (tests/numpy/test_jit_*.py).
 
 numba is an optional extra (``pip install 'glslcheck[jit]'``); without it nothing changes. It is
 not free: ``import numba`` and loading the kernels' machine code from numba's cache take
-0.7-2 s of wall time; compiling them the first time, before there is a cache, 6-10 s. So the kernels are loaded the way a tiered JIT promotes a function:
+0.7-2 s of wall time; compiling them the first time, before there is a cache, 6-10 s. So the
+kernels are loaded the way a tiered JIT promotes a function:
 
 - ``--jit auto`` (the default; ``$GLSLCHECK_JIT``): the process counts the time its calls of
   the emulation on up to :data:`LANES` lanes take on the NumPy path (the calls the kernels
