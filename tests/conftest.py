@@ -38,6 +38,18 @@ def gl():
         pytest.skip("no OpenGL context on this machine (developer machine without EGL/Mesa); CI fails instead")
 
 
+@pytest.fixture(scope="session")
+def jit_kernels():
+    """numba's compiled kernels of the llvmpipe math (numpy_backend/jit.py), loaded once. numba
+    is the optional `jit` extra: skipped without it on a developer machine, a failure on CI
+    (make setup, which .ci/run calls, installs the extra)."""
+    from glslcheck.numpy_backend import jit
+
+    if not jit.available():
+        _missing("numba", "pip install -e '.[jit]' (make setup does)")
+    return jit.load(required=True)
+
+
 @pytest.fixture
 def llvmpipe(gl):
     """The GL context, for the tests that compare the NumPy backend with the driver bit for bit.

@@ -207,7 +207,7 @@ def compiled(name: str, run: Callable[..., np.ndarray], fma: bool, kernels: Any)
             if a.size > LANES or a.dtype != _F32:
                 return run(a)
             out = np.empty(a.shape, _F32)
-            if kernel(np.ascontiguousarray(a).reshape(-1), out.reshape(-1), fma, which):
+            if kernel(_flat(a), out.reshape(-1), fma, which):
                 return out
             return run(a)
         return call
@@ -222,13 +222,20 @@ def compiled(name: str, run: Callable[..., np.ndarray], fma: bool, kernels: Any)
         size = x.size if y is x else int(np.prod(shape))
         if size > LANES or x.dtype != _F32 or y.dtype != _F32:
             return run(*args)
-        xf, yf = (np.ascontiguousarray(v if v.size in (1, size) else np.broadcast_to(v, shape)).reshape(-1)
-                  for v in (x, y))
+        xf, yf = (_flat(v if v.size in (1, size) else np.broadcast_to(v, shape)) for v in (x, y))
         out = np.empty(shape, _F32)
         if kernel(xf, yf, out.reshape(-1), fma, which):
             return out
         return run(*args)
     return call2
+
+
+def _flat(v: np.ndarray) -> np.ndarray:
+    """``v``'s lanes as the kernels take them: one contiguous row (a copy of a strided view or
+    of a read-only array, a uniform input: the kernels are compiled for writable arrays only)."""
+    if v.flags.c_contiguous and v.flags.writeable:
+        return v.reshape(-1)
+    return np.array(v, _F32, order="C").reshape(-1)
 
 
 def _shape(x: np.ndarray, y: np.ndarray) -> tuple[int, ...]:
