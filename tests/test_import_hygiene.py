@@ -16,7 +16,7 @@ import pytest
 ROOT = Path(__file__).resolve().parents[1]
 # dataclasses: its per-class code generation cost a one-file lint about 40 M instructions; the
 # start-up path uses glslcheck.records.
-HEAVY = ("numpy", "moderngl", "PIL", "lark", "multiprocessing", "concurrent", "dataclasses")
+HEAVY = ("numpy", "moderngl", "PIL", "lark", "multiprocessing", "concurrent", "dataclasses", "numba", "llvmlite")
 
 _RUN = """
 import io, json, sys, contextlib
@@ -68,3 +68,19 @@ def test_check_expands_only_the_builtin_functions_it_looks_up():
     assert done.returncode == 0, done.stderr
     built, total, texture = done.stdout.split()
     assert 0 < int(built) < int(total) == 89 and texture == "False"
+
+
+@pytest.mark.parametrize("jit", ["auto", "off"])
+def test_a_cheap_render_never_loads_numba(tmp_path, jit):
+    """numba (the optional `jit` extra, numpy_backend/jit.py) costs 0.7-2 s to load: a render
+    that spends less than that in the llvmpipe math on few lanes (a lab scene) must not load it
+    in auto mode, and --jit off never does. (Installed or not, this holds; on a machine without
+    numba it holds trivially.)"""
+    done = subprocess.run([sys.executable, "-c", _RUN, "render", str(ROOT / "lab_shaders" / "07_final"), "--size",
+                           "200x112", "--parallel", "threads", "--jit", jit, "-o", str(tmp_path / "out.png")],
+                          capture_output=True, text=True, cwd=ROOT, timeout=300)
+    assert done.returncode == 0, done.stderr
+    report = json.loads(done.stdout.strip().splitlines()[-1])
+    assert report["code"] == 0 and (tmp_path / "out.png").exists()
+    assert "glslcheck.numpy_backend.runtime" in report["modules"]  # the NumPy backend rendered
+    assert not {m.split(".")[0] for m in report["modules"]} & {"numba", "llvmlite"}
