@@ -204,11 +204,12 @@ def compiled(name: str, run: Callable[..., np.ndarray], fma: bool, kernels: Any)
 
     if kind == "trig":
         def call(a: np.ndarray) -> np.ndarray:
-            if a.size > LANES or a.dtype != _F32:
+            n = a.size
+            if n > LANES or a.dtype is not _F32:
                 return run(a)
-            out = np.empty(a.shape, _F32)
-            if kernel(_flat(a), out.reshape(-1), fma, which):
-                return out
+            out = np.empty(n, _F32)
+            if kernel(_flat(a), out, fma, which):
+                return out if a.ndim == 1 else out.reshape(a.shape)
             return run(a)
         return call
 
@@ -220,7 +221,7 @@ def compiled(name: str, run: Callable[..., np.ndarray], fma: bool, kernels: Any)
         else:
             shape = _shape(x, y)
         size = x.size if y is x else int(np.prod(shape))
-        if size > LANES or x.dtype != _F32 or y.dtype != _F32:
+        if size > LANES or x.dtype is not _F32 or y.dtype is not _F32:
             return run(*args)
         xf, yf = (_flat(v if v.size in (1, size) else np.broadcast_to(v, shape)) for v in (x, y))
         out = np.empty(shape, _F32)
@@ -233,8 +234,9 @@ def compiled(name: str, run: Callable[..., np.ndarray], fma: bool, kernels: Any)
 def _flat(v: np.ndarray) -> np.ndarray:
     """``v``'s lanes as the kernels take them: one contiguous row (a copy of a strided view or
     of a read-only array, a uniform input: the kernels are compiled for writable arrays only)."""
-    if v.flags.c_contiguous and v.flags.writeable:
-        return v.reshape(-1)
+    flags = v.flags
+    if flags.c_contiguous and flags.writeable:
+        return v if v.ndim == 1 else v.reshape(-1)
     return np.array(v, _F32, order="C").reshape(-1)
 
 
