@@ -2,10 +2,11 @@
 
 runtime.LlvmpipeMath's sin, cos, tan, exp2, log2 and pow are 30-70 NumPy operations a call. A
 raymarcher makes tens of thousands of such calls a frame on the few hundred lanes a march loop
-keeps after compaction, and there the calls are all overhead: numpy_backend/jit_kernels.py makes
-the same float32 steps in one compiled loop (numba), 10-12x faster a call at 143 lanes, 2-3x at
-3,600, about even on a whole tile (docs/performance.md, "Compiled math kernels"). The frames are
-the same bits with and without them (tests/numpy/test_jit_*.py).
+keeps after compaction, and there the calls are all overhead; on a whole tile each operation
+is a pass over memory. numpy_backend/jit_kernels.py makes the same float32 steps in one
+compiled loop (numba), which LLVM vectorises: 8-40x less CPU a call at 143 lanes, 7-20x at
+3,600, 9-20x on a 48,000-lane tile (pow the least; docs/performance.md, "Compiled math
+kernels"). The frames are the same bits with and without them (tests/numpy/test_jit_*.py).
 
 numba is an optional extra (``pip install 'glslcheck[jit]'``); without it nothing changes. It is
 not free: ``import numba`` and loading the kernels' machine code from numba's cache take
@@ -13,8 +14,7 @@ not free: ``import numba`` and loading the kernels' machine code from numba's ca
 kernels are loaded the way a tiered JIT promotes a function:
 
 - ``--jit auto`` (the default; ``$GLSLCHECK_JIT``): the process counts the time its calls of
-  the emulation on up to :data:`LANES` lanes take on the NumPy path (the calls the kernels
-  speed up; whole tiles gain nothing), and loads the kernels once that time exceeds what
+  the emulation take on the NumPy path, and loads the kernels once that time exceeds what
   loading them costs: the wall time the last load took in this cache (recorded beside it), or
   :data:`COLD_SECONDS` before there was one. From then on those calls go to the kernels. A
   render that would gain less than the load costs never pays it (a lab scene spends well under
@@ -39,6 +39,7 @@ from __future__ import annotations
 
 import importlib.util
 import json
+import math
 import os
 import sys
 import threading
@@ -50,11 +51,11 @@ import numpy as np
 from ..diagnostics import InputError
 
 MODES = ("auto", "on", "off")
-LANES = 16384  # calls on up to this many lanes use the kernels (a 48,000-lane tile: NumPy is as fast)
 COLD_SECONDS = 10.0  # the load cost assumed before one was measured in this cache (a first compile: 6-10 s)
 _RECORD = "glslcheck-jit.json"  # in the cache directory: the last load's wall time
 
 _F32 = np.dtype(np.float32)
+_ONE_LANE = np.zeros(1, np.float32)  # explog's y where it reads none
 # LlvmpipeMath's algorithm name -> (jit_kernels function, its `which`)
 _KERNELS = {"_sin": ("trig", 0), "_cos": ("trig", 1), "_tan": ("trig", 2),
             "_exp2": ("explog", 0), "_log2": ("explog", 1), "_pow": ("explog", 2)}
@@ -186,7 +187,7 @@ def dispatch(name: str, run: Callable[..., np.ndarray], fma: bool) -> Callable[.
         if state.kernels is not None:
             fast = compiled(name, run, fma, state.kernels)
             return fast(*args)
-        if state.failed is not None or max(a.size for a in args) > LANES:
+        if state.failed is not None:
             return run(*args)
         t0 = clock()
         r = run(*args)
@@ -198,14 +199,14 @@ def dispatch(name: str, run: Callable[..., np.ndarray], fma: bool) -> Callable[.
 
 
 def compiled(name: str, run: Callable[..., np.ndarray], fma: bool, kernels: Any) -> Callable[..., np.ndarray]:
-    """``run`` with its calls on up to :data:`LANES` float32 lanes made by the kernel."""
+    """``run`` with its calls on float32 arrays made by the kernel (``run`` where it declines)."""
     kind, which = _KERNELS[name]
     kernel = getattr(kernels, kind)
 
     if kind == "trig":
         def call(a: np.ndarray) -> np.ndarray:
             n = a.size
-            if n > LANES or a.dtype is not _F32:
+            if a.dtype is not _F32:
                 return run(a)
             out = np.empty(n, _F32)
             if kernel(_flat(a), out, fma, which):
@@ -214,20 +215,22 @@ def compiled(name: str, run: Callable[..., np.ndarray], fma: bool, kernels: Any)
         return call
 
     def call2(x: np.ndarray, y: np.ndarray | None = None) -> np.ndarray:
-        args = (x,) if y is None else (x, y)
-        if y is None:
-            y = x
-            shape = x.shape
-        else:
-            shape = _shape(x, y)
-        size = x.size if y is x else int(np.prod(shape))
-        if size > LANES or x.dtype is not _F32 or y.dtype is not _F32:
-            return run(*args)
-        xf, yf = (_flat(v if v.size in (1, size) else np.broadcast_to(v, shape)) for v in (x, y))
-        out = np.empty(shape, _F32)
-        if kernel(xf, yf, out.reshape(-1), fma, which):
-            return out
-        return run(*args)
+        if y is None:  # exp2, log2 (the kernel ignores y)
+            n = x.size
+            if x.dtype is not _F32:
+                return run(x)
+            out = np.empty(n, _F32)
+            if kernel(_flat(x), _ONE_LANE, out, fma, which):
+                return out if x.ndim == 1 else out.reshape(x.shape)
+            return run(x)
+        shape, n = _shape(x, y)  # pow
+        if x.dtype is not _F32 or y.dtype is not _F32:
+            return run(x, y)
+        out = np.empty(n, _F32)
+        if kernel(_flat(x if x.size in (1, n) else np.broadcast_to(x, shape)),
+                  _flat(y if y.size in (1, n) else np.broadcast_to(y, shape)), out, fma, which):
+            return out if len(shape) == 1 else out.reshape(shape)
+        return run(x, y)
     return call2
 
 
@@ -240,10 +243,13 @@ def _flat(v: np.ndarray) -> np.ndarray:
     return np.array(v, _F32, order="C").reshape(-1)
 
 
-def _shape(x: np.ndarray, y: np.ndarray) -> tuple[int, ...]:
-    """The broadcast shape of ``x`` and ``y`` (the usual cases without np.broadcast_shapes)."""
-    if x.shape == y.shape or (y.size == 1 and y.ndim <= x.ndim):
-        return x.shape
+def _shape(x: np.ndarray, y: np.ndarray) -> tuple[tuple[int, ...], int]:
+    """The broadcast shape of ``x`` and ``y`` and its size (the usual cases without
+    np.broadcast_shapes)."""
+    xs, ys = x.shape, y.shape
+    if xs == ys or (y.size == 1 and y.ndim <= x.ndim):
+        return xs, x.size
     if x.size == 1 and x.ndim <= y.ndim:
-        return y.shape
-    return np.broadcast_shapes(x.shape, y.shape)
+        return ys, y.size
+    shape = np.broadcast_shapes(xs, ys)
+    return shape, math.prod(shape)

@@ -91,25 +91,21 @@ def test_on_uses_the_kernels_from_the_first_call(state, monkeypatch):
 
 
 def test_auto_loads_once_small_calls_have_cost_the_load(state, monkeypatch):
-    """Calls on up to LANES lanes are timed on NumPy until their time exceeds the threshold
-    (the last load's time); then the kernels are loaded and every later small call, of every
-    function and LlvmpipeMath made before or after, takes them. Whole-tile calls never count
-    and stay on NumPy."""
+    """Calls are timed on NumPy until their time exceeds the threshold (the last load's time);
+    then the kernels are loaded and every later call, of every function and LlvmpipeMath made
+    before or after, takes them. Calls of a dtype other than float32 stay on NumPy."""
     monkeypatch.setenv("GLSLCHECK_JIT", "auto")
     state.threshold = 0.05
     lp = LlvmpipeMath(True)
     small = np.linspace(0.1, 3, 143, dtype=F32)
-    big = np.linspace(0.1, 3, jit.LANES + 1, dtype=F32)
-    for _ in range(3):
-        lp.exp2(big)
-    assert state.spent == 0.0 and not state.loads
     while not state.loads:
         assert np.array_equal(lp.exp2(small), _blocked(lp._exp2, small))
     assert state.loads[0] > 0.05 and state.fake.calls == 0  # the call that crossed ran on NumPy
     lp.exp2(small)
     LlvmpipeMath(False).pow(small, small)
-    lp.exp2(big)
-    assert state.fake.calls == 2 and len(state.loads) == 1
+    lp.exp2(np.linspace(0.1, 3, 50_000, dtype=F32))
+    lp.exp2(small.astype(np.float64))
+    assert state.fake.calls == 3 and len(state.loads) == 1
 
 
 def test_threshold_is_the_recorded_load_time_of_this_cache(state, monkeypatch, tmp_path):

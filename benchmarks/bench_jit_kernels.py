@@ -1,0 +1,150 @@
+"""numba's compiled kernels of the llvmpipe math (numpy_backend/jit_kernels.py) against the NumPy
+emulation they replace: their cost, their bits, their speed per call.
+
+    python benchmarks/bench_jit_kernels.py [--lanes 143,3600,16000,48000] [--check N] [--repeat N]
+
+Needs the optional extra (`pip install -e '.[jit]'`; `make setup` installs it). It prints
+
+1. the cost of the kernels, wall time of fresh processes: ``import numba`` (against a bare
+   ``import numpy``), and ``jit.load()`` (numba imported, the kernels compiled or read from
+   numba's cache) with an empty cache directory (the first use on a machine) and again with
+   that directory filled (every later process);
+2. bit for bit: ``jit.compiled`` of each function against LlvmpipeMath's reference on
+   ``--check`` arguments (every scale, multiples of 1/8, zeros), with and without FMA; the count
+   of lanes that differ must be 0 (tests/numpy/test_jit_kernels.py checks specials too);
+3. CPU time per call, best of ``--repeat`` in turns: the LlvmpipeMath public method as a render
+   calls it, with ``--jit off`` (NumPy: llvmpipe_fast's kernels up to 4096 lanes, the reference
+   above) and ``--jit on`` (the compiled kernel); ratio = off / on. The lane counts: a
+   compacted march loop (143), a small tile or loop (3600), a larger one (16000), a whole
+   48,000-lane tile.
+"""
+
+from __future__ import annotations
+
+import argparse
+import os
+import subprocess
+import sys
+import tempfile
+import time
+
+import numpy as np
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+ROOT = os.path.dirname(HERE)
+sys.path.insert(0, ROOT)
+sys.path.insert(0, HERE)
+
+from bench_render import _best  # noqa: E402
+
+from glslcheck.numpy_backend import jit  # noqa: E402
+from glslcheck.numpy_backend.runtime import HOST_FMA, LlvmpipeMath, _blocked  # noqa: E402
+
+F32 = np.float32
+FUNCTIONS = ("_sin", "_cos", "_tan", "_exp2", "_log2", "_pow")
+
+
+def _public(lp: LlvmpipeMath, name: str):
+    """The method a render calls (through the runtime's dispatch to the kernels or NumPy)."""
+    return {"_sin": lambda a: lp.sin_or_cos(a, cos=False), "_cos": lambda a: lp.sin_or_cos(a, cos=True),
+            "_tan": lp.tan, "_exp2": lp.exp2, "_log2": lp.log2, "_pow": lp.pow}[name]
+
+
+def _arguments(n: int, rng: np.random.Generator, name: str) -> tuple[np.ndarray, ...]:
+    """Every scale: uniform magnitudes over decades, multiples of 1/8, zeros."""
+    hi = {"_exp2": 2, "_pow": 3, "_log2": 30}.get(name, 5)
+    v = (rng.uniform(-1, 1, n) * 10.0 ** rng.uniform(-6, hi, n)).astype(F32)
+    eighths = rng.random(n) < 0.2
+    v[eighths] = (np.round(v[eighths] * 8) / 8).astype(F32)
+    v[rng.random(n) < 0.01] = 0.0
+    if name in ("_log2", "_pow"):
+        v = np.abs(v)
+    return (v, rng.uniform(-4, 40, n).astype(F32)) if name == "_pow" else (v,)
+
+
+def check(n: int) -> None:
+    rng = np.random.default_rng(18)
+    kernels = jit.load(required=True)
+    for fma in (True, False):
+        lp = LlvmpipeMath(fma)
+        for name in FUNCTIONS:
+            args = _arguments(n, rng, name)
+            declined = []
+
+            def run(*a, _name=name):
+                declined.append(1)
+                return _blocked(getattr(lp, _name), *a)
+            differ = taken = 0
+            fn = jit.compiled(name, run, fma, kernels)
+            with np.errstate(all="ignore"):
+                for i in range(0, n, 4096):
+                    part = tuple(a[i:i + 4096] for a in args)
+                    before = len(declined)
+                    got, want = fn(*part), _blocked(getattr(lp, name), *part)
+                    taken += part[0].size if len(declined) == before else 0
+                    differ += int((got.view(np.int32) != want.view(np.int32)).sum())
+            print(f"   {name[1:]:4s} FMA {fma!s:5s}: {n:,} lanes, {taken:,} by the kernel, {differ} differ")
+
+
+def _seconds(code: str, env: dict) -> float:
+    t0 = time.perf_counter()
+    subprocess.run([sys.executable, "-c", code], check=True, cwd=ROOT, env=env)
+    return time.perf_counter() - t0
+
+
+def costs() -> None:
+    env = dict(os.environ, PYTHONPATH=ROOT)
+    base = min(_seconds("import numpy", env) for _ in range(3))
+    imp = min(_seconds("import numpy, numba", env) for _ in range(3))
+    print(f"   import numpy {base * 1000:.0f} ms; import numpy, numba {imp * 1000:.0f} ms (+{(imp - base) * 1000:.0f} ms)")
+    load = ("import time; t = time.perf_counter(); from glslcheck.numpy_backend import jit; jit.load(True); "
+            "print(f'{(time.perf_counter() - t) * 1000:.0f} ms', end='')")
+    with tempfile.TemporaryDirectory() as cache:
+        env["NUMBA_CACHE_DIR"] = cache
+        for what in ("empty cache (compiles)", "from numba's cache"):
+            print(f"   jit.load(), {what}: ", end="", flush=True)
+            _seconds(load, env)
+            print()
+
+
+def main() -> int:
+    ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    ap.add_argument("--lanes", default="143,3600,16000,48000")
+    ap.add_argument("--check", type=int, default=1_000_000)
+    ap.add_argument("--repeat", type=int, default=15)
+    args = ap.parse_args()
+    import numba
+
+    print(f"numba {numba.__version__}, NumPy {np.__version__}, FMA {HOST_FMA}; load "
+          f"{' '.join(f'{v:.1f}' for v in os.getloadavg())}")
+    print("1. cost of the kernels (fresh processes, wall time)")
+    costs()
+    print("2. bit for bit against LlvmpipeMath's reference")
+    check(args.check)
+    print(f"3. CPU time per call, best of {args.repeat} in turns (the public method; ratio = off / on)")
+    rng = np.random.default_rng(7)
+    math = {}
+    for mode in ("off", "on"):
+        os.environ["GLSLCHECK_JIT"] = mode
+        math[mode] = lp = LlvmpipeMath(HOST_FMA)
+        for name in FUNCTIONS:  # the mode is read when the runtime makes each function
+            lp._kernel(name)
+    del os.environ["GLSLCHECK_JIT"]
+    for n in (int(v) for v in args.lanes.split(",")):
+        for name in FUNCTIONS:
+            a = rng.uniform(-50, 50, n).astype(F32)
+            call = (a,) if name in ("_sin", "_cos", "_tan") else (np.abs(a) * F32(0.02),) if name != "_pow" \
+                else (rng.uniform(0, 1, n).astype(F32), np.array([F32(32.0)]))
+            t = {m: float("inf") for m in math}
+            for _ in range(3):
+                for m, lp in math.items():
+                    fn = _public(lp, name)
+                    t[m] = min(t[m], _best(lambda: fn(*call), args.repeat, time.process_time))
+            print(f"   {name[1:]:4s} {n:6d} lanes: off {t['off'] * 1e6:8.1f} us   on {t['on'] * 1e6:8.1f} us"
+                  f"   {t['off'] / t['on']:6.1f}x")
+    print(f"load at the end {' '.join(f'{v:.1f}' for v in os.getloadavg())}")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
