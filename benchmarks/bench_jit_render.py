@@ -71,9 +71,9 @@ def run_once(path: str, size: str, extra: list[str], mode: str, out: str) -> dic
 
 def main() -> int:
     ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
-    ap.add_argument("--runs", type=int, default=3)
-    ap.add_argument("--modes", default="off,on,auto")
-    ap.add_argument("--only", default="", help="comma-separated names of SHADERS")
+    for flag, kw in (("--runs", dict(type=int, default=3)), ("--modes", dict(default="off,on,auto")),
+                     ("--only", dict(default="", help="comma-separated names of SHADERS"))):
+        ap.add_argument(flag, **kw)
     args = ap.parse_args()
     modes = args.modes.split(",")
     names = [n for n in SHADERS if not args.only or n in args.only.split(",")]
