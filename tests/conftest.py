@@ -19,6 +19,13 @@ from glslcheck.diagnostics import register_source
 from glslcheck.sources import Shader, Source
 
 
+# numba's kernels (numpy_backend/jit.py) are off unless a test turns them on: in auto mode the
+# process would switch to them once the tests before had spent a second in the llvmpipe math,
+# so what a test of the NumPy path exercised would depend on the tests run before it. The
+# kernels' own tests (tests/numpy/test_jit*.py) set the mode they test.
+os.environ.setdefault("GLSLCHECK_JIT", "off")
+
+
 def _missing(what: str, reason: str) -> None:
     if os.environ.get("CI"):
         pytest.fail(f"{what} is required on CI: {reason}")

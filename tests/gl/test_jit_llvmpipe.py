@@ -1,0 +1,45 @@
+"""numba's compiled math kernels (numpy_backend/jit.py) against llvmpipe itself, bit for bit.
+
+tests/numpy/test_jit_kernels.py compares the kernels with LlvmpipeMath's NumPy reference, which
+tests/gl/test_llvmpipe_math.py compares with the driver; this closes the loop directly: the
+cases of test_llvmpipe_math.py whose runtime function is a built-in the kernels compute (sin,
+cos, tan, exp2, exp, log2, log, pow), evaluated by a runtime with `--jit on`. Each case is one
+call per block of 65,536 lanes (runtime._blocked): the first block holds the uniform arguments
+and is the kernel's; the second holds the spread magnitudes and the edges, and where those
+include a NaN or a huge angle the kernel declines it to NumPy. Needs numba (`jit_kernels`:
+skipped without it on a developer machine, a failure on CI) and Mesa 22.3's llvmpipe.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+from llvmpipe_eval import evaluate, ulp_distance
+from test_llvmpipe_math import EXACT, RT
+
+from glslcheck.numpy_backend import jit
+from glslcheck.numpy_backend.runtime import Runtime
+
+KERNEL_BUILTINS = ("sin", "cos", "tan", "exp2", "exp", "log2", "log", "pow")
+CASES = [c for c in EXACT if getattr(c[1], "__self__", None) is RT and c[1].__name__ in KERNEL_BUILTINS]
+
+
+@pytest.mark.parametrize("case", CASES, ids=[f"{c[0]}-{i}" for i, c in enumerate(CASES)])
+def test_kernels_are_bit_exact_with_llvmpipe(llvmpipe, jit_kernels, monkeypatch, case):
+    expr, fn, a, b = case
+    monkeypatch.setenv("GLSLCHECK_JIT", "on")
+    calls = []
+    real = jit.compiled
+
+    def counting(name, run, fma, kernels):
+        fn = real(name, run, fma, kernels)
+        return lambda *args: calls.append(name) or fn(*args)
+    monkeypatch.setattr(jit, "compiled", counting)
+    rt = Runtime("float32")
+    ours_fn = getattr(rt, fn.__name__)
+    got = evaluate(llvmpipe, expr, a, b)
+    with rt.errstate():
+        ours = np.asarray(ours_fn(a) if b is None else ours_fn(a, b))
+    assert calls, "the kernels were not called"
+    bad = np.flatnonzero(ulp_distance(ours, got))
+    assert bad.size == 0, (expr, bad.size, a[bad[:5]], got[bad[:5]], ours[bad[:5]])
