@@ -86,7 +86,7 @@ def build_parser(only: str | None = None) -> argparse.ArgumentParser:
                            help="NumPy tiles on worker processes, on threads, or auto: threads until a program "
                                 "has rendered for a second, then processes (default: $GLSLCHECK_PARALLEL or auto)")
             p.add_argument("--jit", choices=JIT_MODES, default=None,
-                           help="the llvmpipe math on few lanes by compiled kernels (the optional numba extra): "
+                           help="llvmpipe's sin, cos, exp2, log2, pow... by compiled kernels (the optional numba extra): "
                                 "on, off, or auto: once a process has spent in that math what loading them "
                                 "costs (default: $GLSLCHECK_JIT or auto)")
         if name in _BUDGETED:
