@@ -99,8 +99,8 @@ def main() -> int:
                 best = {k: min(r[k] for r in res[m]) for k in ("wall", "cpu")}
                 med = {k: statistics.median(r[k] for r in res[m]) for k in ("wall", "cpu")}
                 last = res[m][-1]
-                jit = ("kernels loaded in %.2f s after %.2f s of small calls" % (last["load"], last["spent"])
-                       if last["loaded"] else f"no kernels ({last['spent']:.2f} s of small calls counted)")
+                jit = ("kernels loaded in %.2f s after %.2f s of math on NumPy" % (last["load"], last["spent"])
+                       if last["loaded"] else f"no kernels ({last['spent']:.2f} s of math on NumPy counted)")
                 print(f"  {m:4s} wall {best['wall']:7.2f} s (median {med['wall']:7.2f}, x{base['wall'] / best['wall']:.2f})"
                       f"  cpu {best['cpu']:7.2f} s (median {med['cpu']:7.2f}, x{base['cpu'] / best['cpu']:.2f})"
                       f"  {jit}; {differ[m]} values differ")

@@ -4,7 +4,7 @@ runtime.LlvmpipeMath makes gallivm's sin/cos/exp2/log2/pow (lp_bld_arit.c) as 30
 operations; on the few hundred lanes of a compacted march loop each costs more than its
 arithmetic. These kernels make the same float32 operations, in the same order with the same
 roundings, lane by lane in one compiled loop without a branch out of it, which LLVM
-vectorises (8-40x less CPU a call at 143 lanes, 9-20x on a whole tile: docs/performance.md,
+vectorises (10-40x less CPU a call at 143 lanes, 6-9x on a whole tile: docs/performance.md,
 "Compiled math kernels").
 
 Imported only by numpy_backend/jit.py, which sets numba's cache directory first and decides

@@ -6,7 +6,8 @@ from them on the few lanes left, with edge arguments: zeros, negative bases, hug
 rendered with `--jit off` and `--jit on`, with and without FMA (runtime.HOST_FMA, which llvmpipe
 follows), and the float32 frames compared bit for bit (NaN included). At 64x36 every call of
 the emulation goes to a kernel (or is declined by it) on at most 2,304 lanes; 07_final also at
-200x112, a whole tile of 22,400 lanes beside compacted regions. Skipped without numba on a developer machine, a failure on CI (`jit_kernels`).
+200x112, a whole tile of 22,400 lanes beside compacted regions. Skipped without numba on a
+developer machine, a failure on CI (`jit_kernels`).
 """
 
 from __future__ import annotations
