@@ -93,7 +93,7 @@ class _State:
         self.available: bool | None = None
         self.kernels: Any = None  # the jit_kernels module once loaded
         self.failed: str | None = None  # why loading failed (then never tried again)
-        self.spent = 0.0  # seconds of small-lane NumPy calls (auto); `+=` from tile threads may
+        self.spent = 0.0  # seconds of the emulation's NumPy calls (auto); `+=` from tile threads may
         # lose an update now and then, which only delays the switch by a call
         self.threshold: float | None = None
         self.load_seconds: float | None = None
@@ -111,8 +111,8 @@ def _stamp() -> list:
 
 
 def threshold() -> float:
-    """Seconds of small-lane calls after which auto loads the kernels: the last load's wall time
-    in this cache, else :data:`COLD_SECONDS`."""
+    """Seconds of the emulation's calls on NumPy after which auto loads the kernels: the last
+    load's wall time in this cache, else :data:`COLD_SECONDS`."""
     if _STATE.threshold is None:
         seconds = COLD_SECONDS
         try:
@@ -204,23 +204,18 @@ def compiled(name: str, run: Callable[..., np.ndarray], fma: bool, kernels: Any)
     kernel = getattr(kernels, kind)
 
     if kind == "trig":
-        def call(a: np.ndarray) -> np.ndarray:
-            n = a.size
-            if a.dtype is not _F32:
-                return run(a)
-            out = np.empty(n, _F32)
-            if kernel(_flat(a), out, fma, which):
-                return out if a.ndim == 1 else out.reshape(a.shape)
-            return run(a)
-        return call
+        def one(a: np.ndarray, out: np.ndarray) -> bool:
+            return kernel(a, out, fma, which)
+    else:
+        def one(a: np.ndarray, out: np.ndarray) -> bool:  # exp2, log2: explog reads no y
+            return kernel(a, _ONE_LANE, out, fma, which)
 
-    def call2(x: np.ndarray, y: np.ndarray | None = None) -> np.ndarray:
-        if y is None:  # exp2, log2 (the kernel ignores y)
-            n = x.size
+    def call(x: np.ndarray, y: np.ndarray | None = None) -> np.ndarray:
+        if y is None:
             if x.dtype is not _F32:
                 return run(x)
-            out = np.empty(n, _F32)
-            if kernel(_flat(x), _ONE_LANE, out, fma, which):
+            out = np.empty(x.size, _F32)
+            if one(_flat(x), out):
                 return out if x.ndim == 1 else out.reshape(x.shape)
             return run(x)
         shape, n = _shape(x, y)  # pow
@@ -231,7 +226,7 @@ def compiled(name: str, run: Callable[..., np.ndarray], fma: bool, kernels: Any)
                   _flat(y if y.size in (1, n) else np.broadcast_to(y, shape)), out, fma, which):
             return out if len(shape) == 1 else out.reshape(shape)
         return run(x, y)
-    return call2
+    return call
 
 
 def _flat(v: np.ndarray) -> np.ndarray:
