@@ -65,6 +65,7 @@ from ..check.model import Symbol
 from ..diagnostics import Location
 from ..printer import to_glsl
 from .transpile.common import _TEXTURE_FUNCTIONS
+from .transpile.call_fold import out_roots, product_sums
 from .transpile.constant_flow import constant_flow
 from .transpile.inline import bound_argument, inline_owner
 
@@ -284,6 +285,8 @@ def binary(tr: Any, e: A.Binary, mask: str | None) -> str | None:
         return _merge_into_matrix(tr, e, mask)
     if e.op == "+":
         folded = _factor(tr, e, mask)
+        if folded is None:
+            folded = _fused_after_call(tr, e, mask)
         if folded is not None:
             return folded
     folded = _merge_constants(tr, e, mask)
@@ -674,8 +677,8 @@ def _sink(tr: Any, e: A.Binary, mask: str | None) -> str | None:
         inner, k, k_left = e.right, e.left, True
     if not _const(tr, k) or _const(tr, inner):
         return None
-    if tr.type_of(k) != tr.type_of(e) and not (e.op in _SUMS and tr.type_of(k).is_scalar):
-        return None  # (a scalar constant added to a vector is added to each component)
+    if tr.type_of(k) != tr.type_of(e) and not tr.type_of(k).is_scalar:
+        return None  # (a scalar constant added to or multiplying a vector: each component)
     if not _used_once(tr, e):
         return None
     if k_left and e.op == "-":
@@ -687,15 +690,98 @@ def _sink(tr: Any, e: A.Binary, mask: str | None) -> str | None:
     a, b = inner.left, inner.right
     if _has_matrix(tr, a, b):
         return None  # a matrix product is not reassociated as numbers are
-    if not (_opaque(tr, a) and _opaque(tr, b)):
+    if not ((_opaque(tr, a) or _settled(tr, a)) and (_opaque(tr, b) or _settled(tr, b) or _scaled(tr, b))):
         return None  # an operand NIR would look into further: not copied
-    if tr.type_of(a) != tr.type_of(e) or tr.type_of(b) != tr.type_of(e):
-        return None  # a broadcast operand: keep it simple
+    t, ty = tr.type_of(e), [tr.type_of(x) for x in (a, b, k)]
+    if any(x != t and not x.is_scalar for x in ty):
+        return None
     ta, tb, tk = tr.exprs([a, b, k], mask)
-    t = tr.type_of(e)
-    prod = lambda x, y: tr.binary_values("*", t, t, x, y)  # noqa: E731
-    written = prod(prod(ta, tb), tk) if not k_left else prod(tk, prod(ta, tb))
-    return f"({prod(prod(ta, tk), tb)} if rt.lp else {written})"
+    prod = lambda x, y, tx, ty: tr.binary_values("*", tx, ty, x, y)  # noqa: E731
+    ab, ak = tr.type_of(inner), (ty[0] if ty[0] == t else ty[2])  # (types of a*b, a*#c)
+    written = prod(prod(ta, tb, ty[0], ty[1]), tk, ab, ty[2]) if not k_left else prod(
+        tk, prod(ta, tb, ty[0], ty[1]), ty[2], ab)
+    return f"({prod(prod(ta, tk, ty[0], ty[2]), tb, ak, ty[1])} if rt.lp else {written})"
+
+
+def _fused_after_call(tr: Any, e: A.Binary, mask: str | None) -> str | None:
+    """``x + e`` where x's value, written by a call folded per call site
+    (transpile/call_fold.py), is ``p1 + p2`` in a component, two products, and this is x's
+    only read: ``(p1 + e) + p2`` there. llvmpipe fuses ``p1 + p2`` into ``ffma(p2's factors,
+    p1)`` (nir_opt_algebraic_late, fuse_ffma32), ``ffma(a, b, fmul(c, d)) + e`` becomes
+    ``ffma(a, b, ffma(c, d, e))``, and lower_ffma32 splits each ffma into a product and a sum
+    (measured: gargantua's ``raypos = eyepos + eyevec*dither*far/200`` after RotateCamera,
+    576 of 576 pixels; ``(a*e + b*h) + d`` is ``(a*e + d) + b*h`` in every pixel, while
+    ``(a*e + b) + d`` keeps its order). In the written code, inside one expression, not
+    copied here."""
+    for x, other in ((e.left, e.right), (e.right, e.left)):
+        w = _call_write(tr, x)
+        if w is None:
+            continue
+        sums = product_sums(tr, w.node, tr.model.symbol_of(x))
+        tx, to = tr.type_of(x), tr.type_of(other)
+        if (sums is None or not any(sums) or to.base != "float" or to.is_matrix or tx.is_matrix
+                or to != tx and not to.is_scalar or tr.has_effects(other)):
+            continue
+        reads = [n for n in tr.fn.sym.node.body.walk() if isinstance(n, A.Identifier)
+                 and tr.model.symbol_of(n) is tr.model.symbol_of(x) and _facts(tr).enter.get(id(n), -1) > _facts(tr).exit[id(w.node)]]
+        if reads != [x]:
+            return None  # (x read again: the sum is used twice)
+        tl, trr = tr.exprs([e.left, e.right], mask)
+        if other is e.right:
+            trr = to_code = tr.tmp(trr)
+        else:
+            tl = to_code = tr.tmp(tl)
+        tx_code = tl if x is e.left else trr
+        parts = []
+        for i, s in enumerate(sums):
+            oi = f"{to_code}[{i}]" if to.is_vector else to_code
+            xi = f"{tx_code}[{i}]" if tx.is_vector else tx_code
+            parts.append(f"(({s[0]} + {oi}) + {s[1]})" if s is not None else f"({xi} + {oi})")
+        rewritten = parts[0] if tx.is_scalar else f"rt.vec({tx.size}, {', '.join(parts)})"
+        return f"({rewritten} if rt.lp else {tr.binary_values('+', tr.type_of(e.left), tr.type_of(e.right), tl, trr)})"
+    return None
+
+
+def _call_write(tr: Any, node: Any) -> Any:
+    """The write (analysis.dataflow.Write) of a call of a user function that gave the variable
+    ``node`` its value here (an out or inout argument, nothing written since), else None."""
+    sym = tr.model.symbol_of(node) if isinstance(node, A.Identifier) else None
+    if sym is None or sym.kind not in ("local", "param"):
+        return None
+    facts = _facts(tr)
+    if not facts.ok or id(node) not in facts.enter:
+        return None
+    before = [w for w in facts.writes_to(sym) if w.pos < facts.enter[id(node)]]
+    if not before or before[-1].kind != "out" or not isinstance(before[-1].node, A.Call):
+        return None
+    w = before[-1]
+    if not facts.dominates(w.node, node) or facts.written_between(w.node, node, [sym]):
+        return None
+    return w
+
+
+def _settled(tr: Any, node: Any) -> bool:
+    """A variable whose value here is what a call of a user function wrote into it (an out or
+    inout argument, nothing written since), where that value is, to NIR after inlining, a sum
+    or a built-in's result in every component (transpile/call_fold.out_roots: gargantua's
+    eyevec after RotateCamera): no algebraic rule looks into it as a factor."""
+    w = _call_write(tr, node)
+    if w is None:
+        return False
+    roots = out_roots(tr, w.node, tr.model.symbol_of(node))
+    return roots is not None and roots <= {"+", "call"}
+
+
+def _scaled(tr: Any, node: Any) -> bool:
+    """A never-written local initialised as a product by a constant (``float dither = rand(uv)
+    * 2.0``): beside ``(a * dither) * #c`` NIR leaves it whole, measured (gargantua: ``((eyevec
+    * dither) * 15.0) / 200.0`` is ``((eyevec * 15.0) * dither) / 200.0``)."""
+    sym = tr.model.symbol_of(node) if isinstance(node, A.Identifier) else None
+    if sym is None or sym.kind != "local" or not isinstance(sym.node, A.Declarator) or id(sym) in _written(tr):
+        return False
+    init = sym.node.init  # (its value, whatever calls compute it: a user function's result too)
+    return (isinstance(init, A.Binary) and init.op == "*" and not _has_matrix(tr, init.left, init.right)
+            and _const(tr, init.left) != _const(tr, init.right))
 
 
 def _sink_sum(tr: Any, e: A.Binary, inner: Any, k: Any, mask: str | None) -> str | None:
