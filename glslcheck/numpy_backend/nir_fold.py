@@ -16,12 +16,23 @@ The rules copied here, each measured bit for bit against llvmpipe on 50,000 rand
   ``(a*b + c) + K`` is ``(c + K) + a*b``); subtraction is addition of the negation; the new
   sum is matched again, so the constant sinks down a chain of sums used once, also through
   a local read once (:func:`_sink_sum`: iq's noise);
-- the same for products (``(a * b) * #c -> (a * #c) * b``, also ``#c * (a * b)``);
+- the same for products (``(a * b) * #c -> (a * #c) * b``, also ``#c * (a * b)``), also past a
+  broadcast operand (a vector times a scalar), where a factor is a variable a folded call
+  wrote as a sum (:func:`_settled`) or a never-written product by a constant
+  (:func:`_scaled`): gargantua's ``eyevec * dither * far`` is ``(eyevec * far) * dither``;
 - constants merged (``#a * (b * #c) -> (a*c) * b``, ``#a + (b + #c) -> (a + c) + b``, with
   no "used once" condition, so also through a never-written local: ``uv = q * 1.2`` then
   ``uv * 0.2`` is ``q * 0.24``, the constant folded in float32);
 - ``dot(u, v) + #c``: the constant lands in the innermost addition of the dot product, which
-  llvmpipe sums right to left: ``u.x*v.x + (u.y*v.y + (u.z*v.z + #c))``;
+  llvmpipe sums right to left: ``u.x*v.x + (u.y*v.y + (u.z*v.z + #c))``; a squared length
+  ``pow(length(x), 2.0)`` or ``pow(distance(x, #0), 2.0)`` is that dot product
+  (``sqrt(a)*sqrt(a) -> a``), with the constant inside unless another length, normalize or dot
+  of x shares it (:func:`_squared_length`, :func:`_shared_dot`);
+- a sum of two products returned through a folded call (transpile/call_fold.py) and read once,
+  ``(p1 + p2) + e``, is ``(p1 + e) + p2``: llvmpipe fuses ``p1 + p2`` into an ffma, moves e
+  into its addend and splits it again (fuse_ffma32 with lower_ffma32: :func:`_fused_after_call`,
+  measured; inside one written expression, ``(a*b + c*d) + e``, measured the same but not
+  copied);
 - constants merged into a dot product, ``dot(x * #c, #K)`` is ``dot(x, K * c)``, tree by tree
   (:func:`merged_dot`), also through the parameter of a call inlined for it
   (transpile/inline.py: Mesa inlines every function before these passes);
@@ -44,11 +55,12 @@ Each rewrite is emitted as ``(<rewritten> if rt.lp else <written>)``: float32 re
 Mesa's order, float64 (the accuracy reference) and float16 keep the written one. Not copied
 (measured, left as written): chains GLSL IR rebalances before NIR sees them, such as
 ``(a + b + c) + K`` of variables (llvmpipe gives ``(a + b) + (c + K)``: do_rebalance_tree),
-other rewrites that reach across a call (NIR inlines every function: only a constant added to
-a returned ``+=`` chain is followed, :func:`sunk_return`, and products by constants merged
-into a ``dot`` through an argument, transpile/inline.py), and constants propagated through
-out/inout parameters into matrix products (gargantua's camera rotation: its eye position's
-constant components and rotation angle, folded by Mesa into ``(cos(-0.45)*10) * sin(x)``).
+other rewrites that reach across a call (NIR inlines every function: followed are a constant
+added to a returned ``+=`` chain, :func:`sunk_return`, products by constants merged into a
+``dot`` through an argument, transpile/inline.py, and constants a call site passes in, folded
+and merged through the callee's arithmetic, matrix products included, for straight-line
+callees: transpile/call_fold.py, gargantua's camera rotation ``(cos(-0.45)*10) * sin(x)``),
+and a squared length that is not followed by a constant sum (``sqrt(a)*sqrt(a)`` stays).
 
 `mix` is lowered by nir_lower_flrp, whose choice depends on the other `mix` calls of the
 shader (:func:`mix_hint`); the rest of that choice is made at run time (`Runtime._flrp_form`).

@@ -41,6 +41,18 @@ constant only where its writes are top-level statements before the call), callee
 branches, loops, arrays, structs or non-float arithmetic, ``vec * mat``, and the rewrites that
 need "used once" (constants sunk into sums: nir_fold's sink and sunk_return stay the rules for
 those).
+
+What it tells nir_fold about a folded call's results: :func:`out_roots` (the operation at the
+root of each component, so ``(eyevec * dither) * far`` may move its constant: eyevec is a
+sum to NIR) and :func:`product_sums` (the two products of a component ``p1 + p2``, for
+``(p1 + e) + p2``).
+
+It does not replace the two older rules that reach across a call. inline.py's inlining for
+``merged_dot`` needs the caller's never-written local seen through (``uv = q * 1.2`` passed as
+``uv * 0.2``) and a ``dot`` with a constant merged, neither evaluated here (an argument that
+is not a constant component is a run-time value); nir_fold.sunk_return sinks a constant into
+a ``+=`` chain, a rewrite that needs "used once", not copied here. Both stay as they are, and
+their generated code is unchanged.
 """
 
 from __future__ import annotations
