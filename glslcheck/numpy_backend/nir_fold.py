@@ -685,9 +685,9 @@ def _shapes(root: Any) -> dict[int, int]:
 def _sink(tr: Any, e: A.Binary, mask: str | None) -> str | None:
     """Constants sunk into a sum (:func:`_sink_sum`), a two-term product, or a dot product."""
     inner, k, k_left = e.left, e.right, False
-    if _const(tr, inner) and not _const(tr, k):
+    if _const(tr, inner) and not _const(tr, k) or e.op == "*" and _local_constant(tr, inner):
         inner, k, k_left = e.right, e.left, True
-    if not _const(tr, k) or _const(tr, inner):
+    if not (_const(tr, k) or e.op == "*" and _local_constant(tr, k)) or _const(tr, inner):
         return None
     if tr.type_of(k) != tr.type_of(e) and not tr.type_of(k).is_scalar:
         return None  # (a scalar constant added to or multiplying a vector: each component)
@@ -702,7 +702,8 @@ def _sink(tr: Any, e: A.Binary, mask: str | None) -> str | None:
     a, b = inner.left, inner.right
     if _has_matrix(tr, a, b):
         return None  # a matrix product is not reassociated as numbers are
-    if not ((_opaque(tr, a) or _settled(tr, a)) and (_opaque(tr, b) or _settled(tr, b) or _scaled(tr, b))):
+    if not ((_opaque(tr, a) or _settled(tr, a) or _normalized_once(tr, a) is not None)
+            and (_opaque(tr, b) or _settled(tr, b) or _scaled(tr, b))):
         return None  # an operand NIR would look into further: not copied
     t, ty = tr.type_of(e), [tr.type_of(x) for x in (a, b, k)]
     if any(x != t and not x.is_scalar for x in ty):
@@ -712,7 +713,40 @@ def _sink(tr: Any, e: A.Binary, mask: str | None) -> str | None:
     ab, ak = tr.type_of(inner), (ty[0] if ty[0] == t else ty[2])  # (types of a*b, a*#c)
     written = prod(prod(ta, tb, ty[0], ty[1]), tk, ab, ty[2]) if not k_left else prod(
         tk, prod(ta, tb, ty[0], ty[1]), ty[2], ab)
+    x = _normalized_once(tr, a)
+    if x is not None:  # a = x * inversesqrt(dot(x, x)) to NIR, used once: the constant sinks into it
+        tx = tr.tmp(tr.expr(x, mask))
+        scaled = prod(tx, tk, ty[0], ty[2])
+        ta_k = prod(scaled, f"rt.inversesqrt(rt.dot({tx}, {tx}))", ty[0], tr.type_of(k))
+        return f"({prod(ta_k, tb, ak, ty[1])} if rt.lp else {written})"
     return f"({prod(prod(ta, tk, ty[0], ty[2]), tb, ak, ty[1])} if rt.lp else {written})"
+
+
+def _local_constant(tr: Any, node: Any) -> bool:
+    """A never-written local initialised by a constant expression (``float warpAmount = 5.0;``):
+    a constant to NIR (GLSL IR's constant propagation), counted as one by the product sink."""
+    sym = tr.model.symbol_of(node) if isinstance(node, A.Identifier) else None
+    if sym is None or sym.kind != "local" or not isinstance(sym.node, A.Declarator) or sym.node.init is None:
+        return False
+    return tr.model.const_value(sym.node.init) is not None and id(sym) not in _written(tr)
+
+
+def _normalized_once(tr: Any, node: Any) -> Any:
+    """x when ``node`` reads a never-written local initialised as ``normalize(x)`` (x a vector)
+    and read only here: NIR sees ``x * frsq(dot(x, x))`` used once, and a constant multiplying
+    it sinks on to x: ``(normalize(x) * b) * #c`` is ``((x * #c) * inversesqrt(dot(x, x))) * b``
+    (measured: gargantua's WarpSpace, ``singularityVector * warpFactor * warpAmount``, 1 of
+    43,200 values off on a copy of the function, 8 with the constant beside normalize's
+    result); else None."""
+    sym = tr.model.symbol_of(node) if isinstance(node, A.Identifier) else None
+    if sym is None or sym.kind != "local" or not isinstance(sym.node, A.Declarator) or id(sym) in _written(tr):
+        return None
+    init = sym.node.init
+    if not (isinstance(init, A.Call) and init.callee == "normalize" and _builtin(tr, init)
+            and tr.type_of(init.args[0]).is_vector and not tr.has_effects(init)):
+        return None
+    reads = [n for n in tr.fn.sym.node.body.walk() if isinstance(n, A.Identifier) and tr.model.symbol_of(n) is sym]
+    return init.args[0] if reads == [node] else None
 
 
 def _fused_after_call(tr: Any, e: A.Binary, mask: str | None) -> str | None:
@@ -786,12 +820,15 @@ def _settled(tr: Any, node: Any) -> bool:
 
 def _scaled(tr: Any, node: Any) -> bool:
     """A never-written local initialised as a product by a constant (``float dither = rand(uv)
-    * 2.0``): beside ``(a * dither) * #c`` NIR leaves it whole, measured (gargantua: ``((eyevec
-    * dither) * 15.0) / 200.0`` is ``((eyevec * 15.0) * dither) / 200.0``)."""
+    * 2.0``) or a constant divided by a value (``1.0 / (...)``): beside ``(a * dither) * #c``
+    NIR leaves it whole, measured (gargantua: ``((eyevec * dither) * 15.0) / 200.0`` is
+    ``((eyevec * 15.0) * dither) / 200.0``; WarpSpace's warpFactor likewise)."""
     sym = tr.model.symbol_of(node) if isinstance(node, A.Identifier) else None
     if sym is None or sym.kind != "local" or not isinstance(sym.node, A.Declarator) or id(sym) in _written(tr):
         return False
     init = sym.node.init  # (its value, whatever calls compute it: a user function's result too)
+    if isinstance(init, A.Binary) and init.op == "/" and _const(tr, init.left) and not _const(tr, init.right):
+        return tr.type_of(init).is_scalar  # (1.0 / y, gargantua's warpFactor: measured the same)
     return (isinstance(init, A.Binary) and init.op == "*" and not _has_matrix(tr, init.left, init.right)
             and _const(tr, init.left) != _const(tr, init.right))
 
