@@ -18,8 +18,11 @@ The rules copied here, each measured bit for bit against llvmpipe on 50,000 rand
   a local read once (:func:`_sink_sum`: iq's noise);
 - the same for products (``(a * b) * #c -> (a * #c) * b``, also ``#c * (a * b)``), also past a
   broadcast operand (a vector times a scalar), where a factor is a variable a folded call
-  wrote as a sum (:func:`_settled`) or a never-written product by a constant
-  (:func:`_scaled`): gargantua's ``eyevec * dither * far`` is ``(eyevec * far) * dither``;
+  wrote as a sum (:func:`_settled`), a never-written product by a constant or ``1.0 / y``
+  (:func:`_scaled`), the constant possibly a never-written local (:func:`_local_constant`):
+  gargantua's ``eyevec * dither * far`` is ``(eyevec * far) * dither``; a factor
+  ``normalize(x)`` read once takes the constant on into x, ``((x * #c) *
+  inversesqrt(dot(x, x))) * b`` (:func:`_normalized_once`);
 - constants merged (``#a * (b * #c) -> (a*c) * b``, ``#a + (b + #c) -> (a + c) + b``, with
   no "used once" condition, so also through a never-written local: ``uv = q * 1.2`` then
   ``uv * 0.2`` is ``q * 0.24``, the constant folded in float32);
