@@ -16,12 +16,26 @@ The rules copied here, each measured bit for bit against llvmpipe on 50,000 rand
   ``(a*b + c) + K`` is ``(c + K) + a*b``); subtraction is addition of the negation; the new
   sum is matched again, so the constant sinks down a chain of sums used once, also through
   a local read once (:func:`_sink_sum`: iq's noise);
-- the same for products (``(a * b) * #c -> (a * #c) * b``, also ``#c * (a * b)``);
+- the same for products (``(a * b) * #c -> (a * #c) * b``, also ``#c * (a * b)``), also past a
+  broadcast operand (a vector times a scalar), where a factor is a variable a folded call
+  wrote as a sum (:func:`_settled`), a never-written product by a constant or ``1.0 / y``
+  (:func:`_scaled`), the constant possibly a never-written local (:func:`_local_constant`):
+  gargantua's ``eyevec * dither * far`` is ``(eyevec * far) * dither``; a factor
+  ``normalize(x)`` read once takes the constant on into x, ``((x * #c) *
+  inversesqrt(dot(x, x))) * b`` (:func:`_normalized_once`);
 - constants merged (``#a * (b * #c) -> (a*c) * b``, ``#a + (b + #c) -> (a + c) + b``, with
   no "used once" condition, so also through a never-written local: ``uv = q * 1.2`` then
   ``uv * 0.2`` is ``q * 0.24``, the constant folded in float32);
 - ``dot(u, v) + #c``: the constant lands in the innermost addition of the dot product, which
-  llvmpipe sums right to left: ``u.x*v.x + (u.y*v.y + (u.z*v.z + #c))``;
+  llvmpipe sums right to left: ``u.x*v.x + (u.y*v.y + (u.z*v.z + #c))``; a squared length
+  ``pow(length(x), 2.0)`` or ``pow(distance(x, #0), 2.0)`` is that dot product
+  (``sqrt(a)*sqrt(a) -> a``), with the constant inside unless another length, normalize or dot
+  of x shares it (:func:`_squared_length`, :func:`_shared_dot`);
+- a sum of two products returned through a folded call (transpile/call_fold.py) and read once,
+  ``(p1 + p2) + e``, is ``(p1 + e) + p2``: llvmpipe fuses ``p1 + p2`` into an ffma, moves e
+  into its addend and splits it again (fuse_ffma32 with lower_ffma32: :func:`_fused_after_call`,
+  measured; inside one written expression, ``(a*b + c*d) + e``, measured the same but not
+  copied);
 - constants merged into a dot product, ``dot(x * #c, #K)`` is ``dot(x, K * c)``, tree by tree
   (:func:`merged_dot`), also through the parameter of a call inlined for it
   (transpile/inline.py: Mesa inlines every function before these passes);
@@ -44,11 +58,12 @@ Each rewrite is emitted as ``(<rewritten> if rt.lp else <written>)``: float32 re
 Mesa's order, float64 (the accuracy reference) and float16 keep the written one. Not copied
 (measured, left as written): chains GLSL IR rebalances before NIR sees them, such as
 ``(a + b + c) + K`` of variables (llvmpipe gives ``(a + b) + (c + K)``: do_rebalance_tree),
-other rewrites that reach across a call (NIR inlines every function: only a constant added to
-a returned ``+=`` chain is followed, :func:`sunk_return`, and products by constants merged
-into a ``dot`` through an argument, transpile/inline.py), and constants propagated through
-out/inout parameters into matrix products (gargantua's camera rotation: its eye position's
-constant components and rotation angle, folded by Mesa into ``(cos(-0.45)*10) * sin(x)``).
+other rewrites that reach across a call (NIR inlines every function: followed are a constant
+added to a returned ``+=`` chain, :func:`sunk_return`, products by constants merged into a
+``dot`` through an argument, transpile/inline.py, and constants a call site passes in, folded
+and merged through the callee's arithmetic, matrix products included, for straight-line
+callees: transpile/call_fold.py, gargantua's camera rotation ``(cos(-0.45)*10) * sin(x)``),
+and a squared length that is not followed by a constant sum (``sqrt(a)*sqrt(a)`` stays).
 
 `mix` is lowered by nir_lower_flrp, whose choice depends on the other `mix` calls of the
 shader (:func:`mix_hint`); the rest of that choice is made at run time (`Runtime._flrp_form`).
@@ -65,6 +80,7 @@ from ..check.model import Symbol
 from ..diagnostics import Location
 from ..printer import to_glsl
 from .transpile.common import _TEXTURE_FUNCTIONS
+from .transpile.call_fold import out_roots, product_sums
 from .transpile.constant_flow import constant_flow
 from .transpile.inline import bound_argument, inline_owner
 
@@ -284,6 +300,8 @@ def binary(tr: Any, e: A.Binary, mask: str | None) -> str | None:
         return _merge_into_matrix(tr, e, mask)
     if e.op == "+":
         folded = _factor(tr, e, mask)
+        if folded is None:
+            folded = _fused_after_call(tr, e, mask)
         if folded is not None:
             return folded
     folded = _merge_constants(tr, e, mask)
@@ -670,12 +688,12 @@ def _shapes(root: Any) -> dict[int, int]:
 def _sink(tr: Any, e: A.Binary, mask: str | None) -> str | None:
     """Constants sunk into a sum (:func:`_sink_sum`), a two-term product, or a dot product."""
     inner, k, k_left = e.left, e.right, False
-    if _const(tr, inner) and not _const(tr, k):
+    if _const(tr, inner) and not _const(tr, k) or e.op == "*" and _local_constant(tr, inner):
         inner, k, k_left = e.right, e.left, True
-    if not _const(tr, k) or _const(tr, inner):
+    if not (_const(tr, k) or e.op == "*" and _local_constant(tr, k)) or _const(tr, inner):
         return None
-    if tr.type_of(k) != tr.type_of(e) and not (e.op in _SUMS and tr.type_of(k).is_scalar):
-        return None  # (a scalar constant added to a vector is added to each component)
+    if tr.type_of(k) != tr.type_of(e) and not tr.type_of(k).is_scalar:
+        return None  # (a scalar constant added to or multiplying a vector: each component)
     if not _used_once(tr, e):
         return None
     if k_left and e.op == "-":
@@ -687,15 +705,135 @@ def _sink(tr: Any, e: A.Binary, mask: str | None) -> str | None:
     a, b = inner.left, inner.right
     if _has_matrix(tr, a, b):
         return None  # a matrix product is not reassociated as numbers are
-    if not (_opaque(tr, a) and _opaque(tr, b)):
+    if not ((_opaque(tr, a) or _settled(tr, a) or _normalized_once(tr, a) is not None)
+            and (_opaque(tr, b) or _settled(tr, b) or _scaled(tr, b))):
         return None  # an operand NIR would look into further: not copied
-    if tr.type_of(a) != tr.type_of(e) or tr.type_of(b) != tr.type_of(e):
-        return None  # a broadcast operand: keep it simple
+    t, ty = tr.type_of(e), [tr.type_of(x) for x in (a, b, k)]
+    if any(x != t and not x.is_scalar for x in ty):
+        return None
     ta, tb, tk = tr.exprs([a, b, k], mask)
-    t = tr.type_of(e)
-    prod = lambda x, y: tr.binary_values("*", t, t, x, y)  # noqa: E731
-    written = prod(prod(ta, tb), tk) if not k_left else prod(tk, prod(ta, tb))
-    return f"({prod(prod(ta, tk), tb)} if rt.lp else {written})"
+    prod = lambda x, y, tx, ty: tr.binary_values("*", tx, ty, x, y)  # noqa: E731
+    ab, ak = tr.type_of(inner), (ty[0] if ty[0] == t else ty[2])  # (types of a*b, a*#c)
+    written = prod(prod(ta, tb, ty[0], ty[1]), tk, ab, ty[2]) if not k_left else prod(
+        tk, prod(ta, tb, ty[0], ty[1]), ty[2], ab)
+    x = _normalized_once(tr, a)
+    if x is not None:  # a = x * inversesqrt(dot(x, x)) to NIR, used once: the constant sinks into it
+        tx = tr.tmp(tr.expr(x, mask))
+        scaled = prod(tx, tk, ty[0], ty[2])
+        ta_k = prod(scaled, f"rt.inversesqrt(rt.dot({tx}, {tx}))", ty[0], tr.type_of(k))
+        return f"({prod(ta_k, tb, ak, ty[1])} if rt.lp else {written})"
+    return f"({prod(prod(ta, tk, ty[0], ty[2]), tb, ak, ty[1])} if rt.lp else {written})"
+
+
+def _local_constant(tr: Any, node: Any) -> bool:
+    """A never-written local initialised by a constant expression (``float warpAmount = 5.0;``):
+    a constant to NIR (GLSL IR's constant propagation), counted as one by the product sink."""
+    sym = tr.model.symbol_of(node) if isinstance(node, A.Identifier) else None
+    if sym is None or sym.kind != "local" or not isinstance(sym.node, A.Declarator) or sym.node.init is None:
+        return False
+    return tr.model.const_value(sym.node.init) is not None and id(sym) not in _written(tr)
+
+
+def _normalized_once(tr: Any, node: Any) -> Any:
+    """x when ``node`` reads a never-written local initialised as ``normalize(x)`` (x a vector)
+    and read only here: NIR sees ``x * frsq(dot(x, x))`` used once, and a constant multiplying
+    it sinks on to x: ``(normalize(x) * b) * #c`` is ``((x * #c) * inversesqrt(dot(x, x))) * b``
+    (measured: gargantua's WarpSpace, ``singularityVector * warpFactor * warpAmount``, 1 of
+    43,200 values off on a copy of the function, 8 with the constant beside normalize's
+    result); else None."""
+    sym = tr.model.symbol_of(node) if isinstance(node, A.Identifier) else None
+    if sym is None or sym.kind != "local" or not isinstance(sym.node, A.Declarator) or id(sym) in _written(tr):
+        return None
+    init = sym.node.init
+    if not (isinstance(init, A.Call) and init.callee == "normalize" and _builtin(tr, init)
+            and tr.type_of(init.args[0]).is_vector and not tr.has_effects(init)):
+        return None
+    reads = [n for n in tr.fn.sym.node.body.walk() if isinstance(n, A.Identifier) and tr.model.symbol_of(n) is sym]
+    return init.args[0] if reads == [node] else None
+
+
+def _fused_after_call(tr: Any, e: A.Binary, mask: str | None) -> str | None:
+    """``x + e`` where x's value, written by a call folded per call site
+    (transpile/call_fold.py), is ``p1 + p2`` in a component, two products, and this is x's
+    only read: ``(p1 + e) + p2`` there. llvmpipe fuses ``p1 + p2`` into ``ffma(p2's factors,
+    p1)`` (nir_opt_algebraic_late, fuse_ffma32), ``ffma(a, b, fmul(c, d)) + e`` becomes
+    ``ffma(a, b, ffma(c, d, e))``, and lower_ffma32 splits each ffma into a product and a sum
+    (measured: gargantua's ``raypos = eyepos + eyevec*dither*far/200`` after RotateCamera,
+    576 of 576 pixels; ``(a*e + b*h) + d`` is ``(a*e + d) + b*h`` in every pixel, while
+    ``(a*e + b) + d`` keeps its order). In the written code, inside one expression, not
+    copied here."""
+    for x, other in ((e.left, e.right), (e.right, e.left)):
+        w = _call_write(tr, x)
+        if w is None:
+            continue
+        sums = product_sums(tr, w.node, tr.model.symbol_of(x))
+        tx, to = tr.type_of(x), tr.type_of(other)
+        if (sums is None or not any(sums) or to.base != "float" or to.is_matrix or tx.is_matrix
+                or to != tx and not to.is_scalar or tr.has_effects(other)):
+            continue
+        reads = [n for n in tr.fn.sym.node.body.walk() if isinstance(n, A.Identifier)
+                 and tr.model.symbol_of(n) is tr.model.symbol_of(x) and _facts(tr).enter.get(id(n), -1) > _facts(tr).exit[id(w.node)]]
+        if reads != [x]:
+            return None  # (x read again: the sum is used twice)
+        tl, trr = tr.exprs([e.left, e.right], mask)
+        if other is e.right:
+            trr = to_code = tr.tmp(trr)
+        else:
+            tl = to_code = tr.tmp(tl)
+        tx_code = tl if x is e.left else trr
+        parts = []
+        for i, s in enumerate(sums):
+            oi = f"{to_code}[{i}]" if to.is_vector else to_code
+            xi = f"{tx_code}[{i}]" if tx.is_vector else tx_code
+            parts.append(f"(({s[0]} + {oi}) + {s[1]})" if s is not None else f"({xi} + {oi})")
+        rewritten = parts[0] if tx.is_scalar else f"rt.vec({tx.size}, {', '.join(parts)})"
+        return f"({rewritten} if rt.lp else {tr.binary_values('+', tr.type_of(e.left), tr.type_of(e.right), tl, trr)})"
+    return None
+
+
+def _call_write(tr: Any, node: Any) -> Any:
+    """The write (analysis.dataflow.Write) of a call of a user function that gave the variable
+    ``node`` its value here (an out or inout argument, nothing written since), else None."""
+    sym = tr.model.symbol_of(node) if isinstance(node, A.Identifier) else None
+    if sym is None or sym.kind not in ("local", "param"):
+        return None
+    facts = _facts(tr)
+    if not facts.ok or id(node) not in facts.enter:
+        return None
+    before = [w for w in facts.writes_to(sym) if w.pos < facts.enter[id(node)]]
+    if not before or before[-1].kind != "out" or not isinstance(before[-1].node, A.Call):
+        return None
+    w = before[-1]
+    if not facts.dominates(w.node, node) or facts.written_between(w.node, node, [sym]):
+        return None
+    return w
+
+
+def _settled(tr: Any, node: Any) -> bool:
+    """A variable whose value here is what a call of a user function wrote into it (an out or
+    inout argument, nothing written since), where that value is, to NIR after inlining, a sum
+    or a built-in's result in every component (transpile/call_fold.out_roots: gargantua's
+    eyevec after RotateCamera): no algebraic rule looks into it as a factor."""
+    w = _call_write(tr, node)
+    if w is None:
+        return False
+    roots = out_roots(tr, w.node, tr.model.symbol_of(node))
+    return roots is not None and roots <= {"+", "call"}
+
+
+def _scaled(tr: Any, node: Any) -> bool:
+    """A never-written local initialised as a product by a constant (``float dither = rand(uv)
+    * 2.0``) or a constant divided by a value (``1.0 / (...)``): beside ``(a * dither) * #c``
+    NIR leaves it whole, measured (gargantua: ``((eyevec * dither) * 15.0) / 200.0`` is
+    ``((eyevec * 15.0) * dither) / 200.0``; WarpSpace's warpFactor likewise)."""
+    sym = tr.model.symbol_of(node) if isinstance(node, A.Identifier) else None
+    if sym is None or sym.kind != "local" or not isinstance(sym.node, A.Declarator) or id(sym) in _written(tr):
+        return False
+    init = sym.node.init  # (its value, whatever calls compute it: a user function's result too)
+    if isinstance(init, A.Binary) and init.op == "/" and _const(tr, init.left) and not _const(tr, init.right):
+        return tr.type_of(init).is_scalar  # (1.0 / y, gargantua's warpFactor: measured the same)
+    return (isinstance(init, A.Binary) and init.op == "*" and not _has_matrix(tr, init.left, init.right)
+            and _const(tr, init.left) != _const(tr, init.right))
 
 
 def _sink_sum(tr: Any, e: A.Binary, inner: Any, k: Any, mask: str | None) -> str | None:
@@ -712,6 +850,13 @@ def _sink_sum(tr: Any, e: A.Binary, inner: Any, k: Any, mask: str | None) -> str
         u, v, kk = tr.exprs([*inner.args, k], mask)
         signed = f"(-{kk})" if e.op == "-" else kk
         return f"(rt.dot_add({u}, {v}, {signed}) if rt.lp else (rt.dot({u}, {v}) {e.op} {kk}))"
+    squared = _squared_length(tr, inner)
+    if squared is not None:
+        u, kk, written = tr.exprs([squared, k, inner], mask)
+        signed = f"(-{kk})" if e.op == "-" else kk
+        if _shared_dot(tr, squared, inner):  # (dot(x, x) used twice after CSE: the constant stays outside)
+            return f"((rt.dot({u}, {u}) {e.op} {kk}) if rt.lp else ({written} {e.op} {kk}))"
+        return f"(rt.dot_add({u}, {u}, {signed}) if rt.lp else ({written} {e.op} {kk}))"
     plan = _sum_plan(tr, inner, tr.type_of(e), 0)
     if plan is None or plan[0] != "sum" or _rebalanced(tr, e):
         return None
@@ -721,6 +866,60 @@ def _sink_sum(tr: Any, e: A.Binary, inner: Any, k: Any, mask: str | None) -> str
     tk = f"(-{codes[-1]})" if e.op == "-" else codes[-1]
     rewritten = _plan_code(plan, iter(codes), tk)
     return f"({rewritten} if rt.lp else ({codes[-3]} {e.op} {codes[-2]}))"
+
+
+def _squared_length(tr: Any, node: Any) -> Any:
+    """x when ``node`` is ``pow(L, 2.0)`` and L is ``length(x)`` or ``distance(x, #0)`` (or a
+    never-written local initialised so), x a parameter the function never writes: to NIR
+    ``fsqrt(dot(x, x))`` squared is the dot product itself (fpow(a, 2.0) -> a*a, then
+    sqrt(a)*sqrt(a) -> a), so ``pow(L, 2.0) + #c`` is ``dot(x, x) + #c`` with the constant in
+    its innermost addition (measured: gargantua's ``1.0 / (pow(distance(raypos, origin),
+    2.0) + 0.000001)``, 14,400 of 14,400 pixels; the written ``sqrt(d)*sqrt(d) + c`` differs
+    in 6,014); else None."""
+    if not (isinstance(node, A.Call) and node.callee == "pow" and _builtin(tr, node) and len(node.args) == 2
+            and _constant_value(tr, node.args[1]) == [2.0] and tr.type_of(node).is_scalar):
+        return None
+    length = node.args[0]
+    if isinstance(length, A.Identifier):
+        length = _stable_init(tr, length)
+    if not (isinstance(length, A.Call) and _builtin(tr, length) and length.callee in ("length", "distance")):
+        return None
+    args = list(length.args)
+    if length.callee == "distance":
+        zero = [a for a in args if (_constant_value(tr, a) or [1.0]) and not any(_constant_value(tr, a) or [1.0])]
+        if len(zero) != 1:
+            return None
+        args.remove(zero[0])
+    x = args[0]
+    sym = tr.model.symbol_of(x) if isinstance(x, A.Identifier) else None
+    if sym is None or sym.kind != "param" or id(sym) in _written(tr) or not tr.type_of(x).is_vector:
+        return None
+    return x
+
+
+def _shared_dot(tr: Any, x: Any, pow_call: Any) -> bool:
+    """Another ``length``, ``distance``, ``normalize`` or ``dot`` of the current function reads
+    the parameter x (alone, negated or subtracted from a constant): after inlining and CSE its
+    ``dot(x, x)`` is the squared length's too, used twice, and a constant added to one of them
+    stays outside (measured: ``glow(r) = pow(length(r), 2.0) - 0.37`` beside ``warp(r)``)."""
+    sym = tr.model.symbol_of(x)
+    own = set()
+    for n in pow_call.walk():
+        own.add(id(n))
+    init = _stable_init(tr, pow_call.args[0]) if isinstance(pow_call.args[0], A.Identifier) else None
+    for n in (init.walk() if init is not None else ()):
+        own.add(id(n))
+    for n in tr.fn.sym.node.body.walk():
+        if (id(n) in own or not isinstance(n, A.Call) or n.callee not in ("length", "distance", "normalize", "dot")
+                or not _builtin(tr, n)):
+            continue
+        for a in n.args:
+            while isinstance(a, A.Unary) and a.op == "-" or isinstance(a, A.Binary) and a.op == "-" and (
+                    _constant_value(tr, a.left) is not None):
+                a = a.operand if isinstance(a, A.Unary) else a.right
+            if isinstance(a, A.Identifier) and tr.model.symbol_of(a) is sym:
+                return True
+    return False
 
 
 def _sum_plan(tr: Any, x: Any, t: Any, depth: int) -> tuple | None:

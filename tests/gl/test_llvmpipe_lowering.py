@@ -223,8 +223,135 @@ void mainImage(out vec4 c, in vec2 q) {
 }"""
 
 
-@pytest.mark.parametrize("text", [ZERO_ADDS, MERGED_DOTS, GLOBAL_CONSTANTS, SSA_VALUES, RETURNED_SUMS],
-                         ids=["zero_adds", "merged_dots", "globals", "ssa_values", "returned_sums"])
+# gargantua's camera (tests/real_channels, Buffer A): a position with constant components and a
+# constant angle passed into rotate()'s matrix products, two calls deep; and a constant
+# component reaching a compound assignment through a call (elephant's `p.y -= 2.4`)
+CALL_CONSTANTS = """vec3 rotate(vec3 p, float x, float y, float z) {
+    mat3 matx = mat3(1.0, 0.0, 0.0, 0.0, cos(x), sin(x), 0.0, -sin(x), cos(x));
+    mat3 maty = mat3(cos(y), 0.0, -sin(y), 0.0, 1.0, 0.0, sin(y), 0.0, cos(y));
+    mat3 matz = mat3(cos(z), sin(z), 0.0, -sin(z), cos(z), 0.0, 0.0, 0.0, 1.0);
+    p = matx * p;
+    p = matz * p;
+    p = maty * p;
+    return p;
+}
+void camera(inout vec3 dir, inout vec3 pos, float ax, float ay) {
+    vec3 angle = vec3(ax * 0.05 + 0.05, 1.0 + ay, -0.45);
+    dir = rotate(dir, angle.x, angle.y, angle.z);
+    pos = rotate(pos, angle.x, angle.y, angle.z);
+}
+float lift(vec3 ro, float t, vec3 rd) { vec3 p = ro + t * rd; p.y -= 2.4; return p.y * 3.7; }
+void mainImage(out vec4 c, in vec2 q) {
+    float ax = fract(q.x * 0.1371 + q.y * 0.0917), ay = sin(q.y * 0.917 + q.x * 0.0311);
+    vec3 dir = normalize(vec3(q * 0.01, 6.0));
+    vec3 pos = vec3(0.0, -0.0, -10.0);
+    pos.x += fract(q.y * 0.0173) * 3.0 - 1.5;
+    camera(dir, pos, ax, ay);
+    vec3 ro = vec3(ax, 1.6, ay);
+    c = vec4(pos, lift(ro, fract(q.x * 0.01377 + q.y * 0.0311), dir));
+}"""
+# gargantua's first ray step, pos read once after the call: eyepos + eyevec * dither * far / 200
+CALL_CONSTANTS_STEP = CALL_CONSTANTS.split("    vec3 ro =")[0] + """    float dither = fract(q.x * 0.01377 + q.y * 0.0311) * 2.0;
+    const float far = 15.0;
+    c = vec4(pos + dir * dither * far / 200.0, 1.0);
+}"""
+
+
+def test_constants_propagated_into_a_call_per_component(llvmpipe, make_shader):
+    """NIR inlines every function, scalarises, then folds: pos = (x, -0.0, -10.0) passed inout
+    through camera() into rotate() with the constant angle -0.45 is ``sin(-0.45)*x +
+    (cos(-0.45)*10)*sin(ax)`` in y (``#a * (b * #c)`` across two calls: the real shader
+    gargantua; transpile/call_fold.py). Measured without it: 463, 6711 and 364 of the 14,400
+    pixels of pos's three channels differed from llvmpipe. The fourth channel, lift()'s
+    ``(1.6 + t*rd.y) - 2.4`` folded to ``(1.6 - 2.4) + t*rd.y`` through a component written
+    by a compound assignment, gives llvmpipe's bits either way here (no pixel differed)."""
+    shader = make_shader(CALL_CONSTANTS)
+    got_gl = np.asarray(compile_backend(shader, "gl").render(size=(160, 90)), np.float32)
+    got_np = np.asarray(compile_backend(shader, "numpy").render(size=(160, 90)), np.float32)
+    same = got_np.view(np.int32) == got_gl.view(np.int32)
+    assert same.all(), (~same).reshape(-1, 4).sum(0).tolist()
+
+
+def test_a_sum_returned_through_a_folded_call_fuses_with_its_next_addition(llvmpipe, make_shader):
+    """gargantua's first ray step, ``pos + dir * dither * far / 200.0`` with pos folded by the
+    call (each component ``p1 + p2`` of two products) and read only there: llvmpipe fuses and
+    splits again, ``(p1 + step) + p2`` (nir_fold._fused_after_call), and ``(dir * dither) *
+    15.0`` is ``(dir * 15.0) * dither`` (the product sink past a broadcast operand: dir is what
+    the call wrote, dither a product by a constant). Measured: 3832, 4665 and 3901 pixels
+    differed from llvmpipe with the call folded alone, 4127, 8716 and 4021 without any of it."""
+    shader = make_shader(CALL_CONSTANTS_STEP)
+    got_gl = np.asarray(compile_backend(shader, "gl").render(size=(160, 90)), np.float32)
+    got_np = np.asarray(compile_backend(shader, "numpy").render(size=(160, 90)), np.float32)
+    same = got_np.view(np.int32) == got_gl.view(np.int32)
+    assert same.all(), (~same).reshape(-1, 4).sum(0).tolist()
+
+
+SQUARED_LENGTHS = """float warp(vec3 r) {
+    vec3 origin = vec3(0.0);
+    float d = distance(r, origin);
+    return 1.0 / (pow(d, 2.0) + 0.000001);
+}
+float glow(vec3 r) { return (pow(length(r), 2.0) - 0.37) * 1.5; }
+float steer(vec3 r) {  // gargantua's WarpSpace: normalize() shares the dot product
+    vec3 origin = vec3(0.0);
+    float d = distance(r, origin);
+    vec3 v = normalize(origin - r);
+    return v.x / (pow(d, 2.0) + 0.000001);
+}
+void mainImage(out vec4 c, in vec2 q) {
+    vec3 r = vec3(sin(q.x * 0.37), fract(q.y * 0.013), sqrt(q.x)) * 3.0 - 1.0;
+    c = vec4(warp(r), glow(r.yzx), steer(r.zxy), 1.0);
+}"""
+
+
+def test_a_squared_length_plus_a_constant_is_a_dot_product(llvmpipe, make_shader):
+    """``pow(distance(r, vec3(0.0)), 2.0) + K`` (gargantua's WarpSpace) is ``dot(r, r) + K`` on
+    llvmpipe: fpow(a, 2.0) -> a*a, sqrt(a)*sqrt(a) -> a, and K joins the dot product's
+    innermost addition, unless another length/normalize/dot of r shares that dot product
+    (steer(): K stays outside; nir_fold._squared_length). Measured without the rule: 6048,
+    6791 and 6168 of the 14,400 pixels differed from llvmpipe; with K always sunk, 477 of
+    steer()'s."""
+    shader = make_shader(SQUARED_LENGTHS)
+    got_gl = np.asarray(compile_backend(shader, "gl").render(size=(160, 90)), np.float32)
+    got_np = np.asarray(compile_backend(shader, "numpy").render(size=(160, 90)), np.float32)
+    same = got_np.view(np.int32) == got_gl.view(np.int32)
+    assert same.all(), (~same).reshape(-1, 4).sum(0).tolist()
+
+
+NORMALIZED_STEPS = """void warp(inout vec3 e, inout vec3 r) {  // gargantua's WarpSpace
+    vec3 origin = vec3(0.0);
+    float d = distance(r, origin);
+    float wf = 1.0 / (pow(d, 2.0) + 0.000001);
+    vec3 sv = normalize(origin - r);
+    float wa = 5.0;
+    e = e + sv * wf * wa / float(200);
+}
+void mainImage(out vec4 c, in vec2 q) {
+    vec3 r = vec3(sin(q.x * 0.37), fract(q.y * 0.013), sqrt(q.x)) * 3.0 - 1.0;
+    vec3 e = normalize(vec3(fract(q.x * 0.0173), sin(q.y * 0.31), 0.5));
+    warp(e, r);
+    c = vec4(e, 1.0);
+}"""
+
+
+def test_a_constant_sinks_into_a_normalize_used_once(llvmpipe, make_shader):
+    """``(sv * wf) * wa`` with sv = normalize(x) read once, wf = 1.0 / (...) and the local
+    constant wa = 5.0: NIR sees sv as ``x * frsq(dot(x, x))``, and the constant sinks twice,
+    ``((x * 5.0) * inversesqrt(dot(x, x))) * wf`` (nir_fold._normalized_once). Measured
+    without it: 5, 0 and 3 of the 14,400 pixels differed from llvmpipe (1 ulp; gargantua's
+    second ray step)."""
+    shader = make_shader(NORMALIZED_STEPS)
+    got_gl = np.asarray(compile_backend(shader, "gl").render(size=(160, 90)), np.float32)
+    got_np = np.asarray(compile_backend(shader, "numpy").render(size=(160, 90)), np.float32)
+    same = got_np.view(np.int32) == got_gl.view(np.int32)
+    assert same.all(), (~same).reshape(-1, 4).sum(0).tolist()
+
+
+@pytest.mark.parametrize("text", [ZERO_ADDS, MERGED_DOTS, GLOBAL_CONSTANTS, SSA_VALUES, RETURNED_SUMS, CALL_CONSTANTS,
+                                  CALL_CONSTANTS_STEP, SQUARED_LENGTHS, NORMALIZED_STEPS],
+                         ids=["zero_adds", "merged_dots", "globals", "ssa_values", "returned_sums", "call_constants",
+                              "call_constants_step", "squared_lengths",
+                              "normalized_steps"])
 def test_float64_reference_is_the_same_without_these_rewrites(make_shader, monkeypatch, text):
     """The rewrites and the inlining above are float32 (llvmpipe) only: the float64 render is
     bit for bit the one of the code generated without them."""
@@ -234,10 +361,12 @@ def test_float64_reference_is_the_same_without_these_rewrites(make_shader, monke
     shader = make_shader(text)
     with_them = np.asarray(compile_backend(shader, "numpy").render(size=(32, 18), precision="float64"))
     monkeypatch.setattr(functions, "worth_inlining", lambda *a: False)
+    monkeypatch.setattr(functions, "folded_call", lambda *a: None)
     monkeypatch.setattr(nir_fold, "merged_dot", lambda *a: None)
     monkeypatch.setattr(nir_fold, "zero_add", lambda *a: None)
     monkeypatch.setattr(nir_fold, "_constant_global", lambda *a: False)
-    for name in ("_sink_sum", "_keep_factor", "_merge_into_matrix", "sunk_return"):
+    for name in ("_sink_sum", "_keep_factor", "_merge_into_matrix", "sunk_return", "_fused_after_call",
+                 "_squared_length", "_sink"):
         monkeypatch.setattr(nir_fold, name, lambda *a: None)
     without = np.asarray(compile_backend(make_shader(text), "numpy").render(size=(32, 18), precision="float64"))
     assert with_them.view(np.int64).tolist() == without.view(np.int64).tolist()

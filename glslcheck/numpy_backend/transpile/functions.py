@@ -14,6 +14,7 @@ from .facts import events_of
 from ...check.model import Symbol
 from .common import _printable
 from .inline import inline_call, worth_inlining
+from .call_fold import folded_call
 from .. import nir_fold
 
 class FnState:
@@ -155,6 +156,9 @@ class Functions:
     def user_call(self, e: A.Call, fn: Any, mask: str | None) -> str:
         if worth_inlining(self, e, fn, nir_fold.constant_product):
             return inline_call(self, e, fn, mask)  # Mesa's rewrites reach into an argument: inline.py
+        folded = folded_call(self, e, fn, mask)  # constants propagated into the call: call_fold.py
+        if folded is not None:
+            return folded
         uni = self.fn.uni if self.fn is not None else None
         call_mask = mask
         if uni is not None and self.facts.closed(fn) and all(
