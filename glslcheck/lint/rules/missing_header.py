@@ -48,10 +48,9 @@ void mainImage(out vec4 fragColor, in vec2 fragCoord)
 from __future__ import annotations
 
 import re
-from pathlib import Path
 
 from ...diagnostics import Diagnostic
-from ...sources import tab_name
+from ...sources import path_name, path_stem, tab_name
 from ..textscan import LineKind
 from .missing_credit import CREDIT_RE
 
@@ -102,12 +101,11 @@ def _flex(name: str) -> str:
 
 def _names(path: str, tab: str) -> tuple[str, list[str]]:
     """The file's name with extension, and the other names that name it (stem, tab name)."""
-    p = Path(path)
-    others = [p.stem]
-    for t in (tab, tab_name(p)):
+    others = [path_stem(path)]
+    for t in (tab, tab_name(path)):
         if t and t != "GLSL" and t not in others:
             others.append(t)
-    return p.name, others
+    return path_name(path), others
 
 
 _TITLE = re.compile(r"^\W*(?:titt?le|name)\s*[:\-]\s*\w", re.I | re.M)  # `Title: Lab 2 effects`
@@ -207,7 +205,7 @@ def missing_parts(ctx) -> list[str] | None:
     path, tab = ctx.source.path, ctx.source.tab
     missing = []
     if not names_file(text, path, tab):
-        missing.append(f"does not name the file (`{Path(path).name}`)")
+        missing.append(f"does not name the file (`{path_name(path)}`)")
     if not states_purpose(text, path, tab):
         missing.append("states no purpose")
     who = contributors(text)
@@ -228,7 +226,7 @@ def check(ctx: LintContext) -> Iterator[Diagnostic]:
     if not ctx.source.text.strip():
         return
     missing = missing_parts(ctx)
-    name = Path(ctx.source.path).name
+    name = path_name(ctx.source.path)
     if missing is None:
         message = (
             "the file opens with no header comment (it should name the file, state its purpose "
