@@ -17,6 +17,7 @@ import errno
 import os
 import re
 import stat
+from .regexes import compiled
 from .records import record, field
 
 from .diagnostics import InputError, register_source
@@ -24,7 +25,8 @@ from .diagnostics import InputError, register_source
 SHADER_EXTENSIONS = (".glsl", ".frag", ".txt", "")
 # Canonical tab names in the order Shadertoy shows them.
 TAB_NAMES = ("Common", "Buffer A", "Buffer B", "Buffer C", "Buffer D", "Cube A", "Sound", "Image")
-_TAB_KEYS = {re.sub(r"[\s_\-]", "", t).lower(): t for t in TAB_NAMES}
+_SEPARATORS = compiled(r"[\s_\-]")  # spaces, `_` and `-` in a tab file's name
+_TAB_KEYS = {_SEPARATORS.sub("", t).lower(): t for t in TAB_NAMES}
 MAX_FILE_BYTES = 1_000_000
 
 
@@ -121,7 +123,7 @@ def tab_name(path: str | os.PathLike) -> str | None:
         if stem.lower().endswith(ext):
             stem = stem[: -len(ext)]
             break
-    return _TAB_KEYS.get(re.sub(r"[\s_\-]", "", stem).lower())
+    return _TAB_KEYS.get(_SEPARATORS.sub("", stem).lower())
 
 
 def decode(data: bytes, path: str) -> str:
@@ -204,9 +206,9 @@ def _not_regular(mode: int) -> str:
     return "is a special file"
 
 
-_VERSION_RE = re.compile(r"^[ \t]*#[ \t]*version\b", re.M)
-_MAIN_RE = re.compile(r"\bvoid\s+main\s*\(\s*(void\s*)?\)")
-_COMMENT_RE = re.compile(r"/\*.*?(\*/|\Z)|//[^\n]*", re.S)
+_VERSION_RE = compiled(r"^[ \t]*#[ \t]*version\b", re.M)
+_MAIN_RE = compiled(r"\bvoid\s+main\s*\(\s*(void\s*)?\)")
+_COMMENT_RE = compiled(r"/\*.*?(\*/|\Z)|//[^\n]*", re.S)
 
 
 def _is_plain_glsl(text: str) -> bool:

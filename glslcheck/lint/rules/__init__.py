@@ -27,6 +27,7 @@ from __future__ import annotations
 
 import importlib
 import re
+from ...regexes import compiled
 from ...records import record
 from functools import cache
 from types import ModuleType
@@ -61,7 +62,7 @@ SECTIONS = ("What it does", "Why is this bad?", "Example", "Use instead")
 SEVERITIES = {"error": "compile error", "warning": "course rule", "note": "worth knowing"}
 NEEDS = ("text", "ast", "suppressions")
 READS = ("functions", "names", "program")
-_SECTION_RE = re.compile(r"^## (.+?)\s*$", re.M)
+_SECTION_RE = compiled(r"^## (.+?)\s*$", re.M)
 
 
 @record(frozen=True)
