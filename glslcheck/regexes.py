@@ -1,21 +1,22 @@
 """The lint path's regular expressions, compiled ahead of time as the interpreter compiles
 modules ahead of time into .pyc files (issue 18: start-up).
 
-Python's `re` parses and compiles every pattern in Python at each start: the 30 patterns a
+Python's `re` parses and compiles every pattern in Python at each start: the 35 patterns a
 `glslcheck lint FILE` compiles (the lexer's, the preprocessor's, the text scan's, the header and
-comment rules' word lists) cost about 45 M of its 365 M instructions, more than any other
-stage of the start-up. `re.compile` ends by handing the compiled program (a list of integers)
-to `_sre.compile`; `_regex_code.py` holds those programs, written by
+comment rules' word lists) cost about 37 M of its 365 M instructions (cachegrind). `re.compile`
+ends by handing the compiled program (a list of integers) to `_sre.compile`, CPython's
+internal constructor of a `re.Pattern`; `_regex_code.py` holds those programs, written by
 
     python -m glslcheck.regexes
 
 for the patterns the lint path asks for, with the fingerprint of the interpreter whose `re`
-wrote them (`_sre.MAGIC`, the engine's code format). `compiled(pattern, flags)` gives
-`_sre.compile` the stored program when the running interpreter has that fingerprint and
-`re.compile(pattern, flags)` otherwise (another Python version, a pattern not in the file): the
-same `re.Pattern` either way. tests/test_regexes.py checks that the file holds every pattern
-the lint path compiles and that each stored program is the one this interpreter's `re` makes,
-so a changed pattern fails the tests until the file is written again.
+wrote them (its version, `_sre.MAGIC`: the engine's code format, its word size and byte
+order). `compiled(pattern, flags)` gives `_sre.compile` the stored program when the running
+interpreter has that fingerprint, and is `re.compile(pattern, flags)` otherwise (another Python
+version or implementation, a pattern not in the file): the same `re.Pattern` either way, and
+`_sre.compile` checks every program it is given. tests/test_regexes.py checks that the file
+holds exactly the patterns the lint path compiles and that each stored program is the one this
+interpreter's `re` makes, so a changed pattern fails the tests until the file is written again.
 """
 
 from __future__ import annotations
@@ -39,7 +40,7 @@ def fingerprint() -> tuple:
     if _sre is None:
         return (sys.implementation.name,)
     return (sys.implementation.name, sys.version_info[:2], _sre.MAGIC, _sre.CODESIZE, _sre.MAXREPEAT,
-            _sre.MAXGROUPS, sys.maxunicode)
+            _sre.MAXGROUPS, sys.maxunicode, sys.byteorder, memoryview(b"").cast("I").itemsize)
 
 
 def _stored() -> dict:
@@ -68,7 +69,8 @@ def compiled(pattern: str, flags: int = 0) -> re.Pattern:
     indexgroup = [None] * (groups + 1)
     for name, index in names:
         indexgroup[index] = name
-    return _sre.compile(pattern, final_flags, list(code), groups, dict(names), tuple(indexgroup))
+    return _sre.compile(pattern, final_flags, memoryview(code).cast("I").tolist(), groups, dict(names),
+                        tuple(indexgroup))
 
 
 def program(pattern: str, flags: int) -> tuple:
@@ -80,8 +82,13 @@ def program(pattern: str, flags: int) -> tuple:
     parsed = _parser.parse(pattern, flags)
     code = _compiler._code(parsed, flags)
     names = tuple(sorted(parsed.state.groupdict.items(), key=lambda item: item[1]))
-    # the opcodes are named ints (`re._constants`): stored as their numbers
-    return (int(flags | parsed.state.flags), tuple(int(c) for c in code), parsed.state.groups - 1, names)
+    # The program as the bytes of its native 32-bit words (`_sre.CODESIZE` 4, in the fingerprint
+    # with the byte order): one bytes literal compiles in a moment when no .pyc can be written,
+    # where a tuple of thousands of numbers took more than the patterns themselves.
+    words = memoryview(bytearray(4 * len(code))).cast("I")
+    for i, c in enumerate(code):
+        words[i] = c
+    return (int(flags | parsed.state.flags), words.tobytes(), parsed.state.groups - 1, names)
 
 
 def lint_path_patterns() -> list[tuple[str, int]]:
