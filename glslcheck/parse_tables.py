@@ -209,5 +209,10 @@ def write_generated(path: str, text: str) -> None:
     print(f"wrote {path}")
 
 
+def write_generated_module(name: str, text: str) -> None:
+    """`write_generated` for a module of the glslcheck package (`_regex_code.py`, `_init_code.py`)."""
+    write_generated(os.path.join(os.path.dirname(os.path.abspath(__file__)), name), text)
+
+
 if __name__ == "__main__":
     sys.exit(main())

@@ -127,12 +127,9 @@ def source(patterns: list[tuple[str, int]]) -> str:
 
 
 def main() -> int:
-    import os
+    from .parse_tables import write_generated_module
 
-    from .parse_tables import write_generated
-
-    write_generated(os.path.join(os.path.dirname(os.path.abspath(__file__)), "_regex_code.py"),
-                    source(lint_path_patterns()))
+    write_generated_module("_regex_code.py", source(lint_path_patterns()))
     return 0
 
 
