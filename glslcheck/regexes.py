@@ -1,7 +1,7 @@
 """The lint path's regular expressions, compiled ahead of time as the interpreter compiles
 modules ahead of time into .pyc files (issue 18: start-up).
 
-Python's `re` parses and compiles every pattern in Python at each start: the 35 patterns a
+Python's `re` parses and compiles every pattern in Python at each start: the 34 patterns a
 `glslcheck lint FILE` compiles (the lexer's, the preprocessor's, the text scan's, the header and
 comment rules' word lists) cost about 37 M of its 365 M instructions (cachegrind). `re.compile`
 ends by handing the compiled program (a list of integers) to `_sre.compile`, CPython's
