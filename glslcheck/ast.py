@@ -26,7 +26,7 @@ import re
 from types import FunctionType
 
 from .diagnostics import Location
-from .records import tuple_getter
+from .records import init_code, tuple_getter
 
 TYPE_CHECKING = False  # not typing's: importing typing costs every start-up (issue 18)
 if TYPE_CHECKING:
@@ -494,9 +494,7 @@ def _init_template(count: int):
         params = "".join(f"_f{i}, " for i in range(count))
         body = [f"    self._f{i} = _f{i}.make() if type(_f{i}) is _Factory else _f{i}" for i in range(count)]
         source = "\n".join([f"def __init__(self, {params}*, loc):", *body, "    self.loc = loc"])
-        env: dict[str, Any] = {}
-        exec(source, globals(), env)  # noqa: S102 - a fixed template, no user input
-        code = _INIT_TEMPLATES[count] = env["__init__"].__code__
+        code = _INIT_TEMPLATES[count] = init_code(source)  # a fixed template, no user input
     return code
 
 

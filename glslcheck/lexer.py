@@ -37,6 +37,7 @@ from __future__ import annotations
 
 import re
 
+from .regexes import compiled
 from .builtins import RESERVED_WORDS
 from .records import record
 from .types import BY_NAME
@@ -245,7 +246,7 @@ class Lexer:
         self.multiline_literals: bool = tables["multiline_literals"]
         self.allowed = frozenset(tables["allowed"])
         self.error_kind = ERROR_KIND
-        self.master = re.compile(tables["pattern"], tables["flags"])
+        self.master = compiled(tables["pattern"], tables["flags"])
 
     def tokenize(self, text: str) -> Tokens:
         """Every token of `text`; an error stops the lexer and is kept in `Tokens.error`."""

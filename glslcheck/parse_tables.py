@@ -196,14 +196,22 @@ def dumps(tables: dict[str, Any]) -> str:
 
 def main(argv: list[str] | None = None) -> int:
     """Rebuild glslcheck/grammar/glsl_tables.json from glsl.lark (run after editing the grammar)."""
-    path = os.path.join(grammar_folder(), TABLES_FILE)
-    text = dumps(build(grammar_text()))
+    write_generated(os.path.join(grammar_folder(), TABLES_FILE), dumps(build(grammar_text())))
+    return 0
+
+
+def write_generated(path: str, text: str) -> None:
+    """Replace a generated file in one step (a reader never sees half of it) and say so."""
     tmp = path + ".tmp"
     with open(tmp, "w", encoding="utf-8") as f:
         f.write(text)
     os.replace(tmp, path)
     print(f"wrote {path}")
-    return 0
+
+
+def write_generated_module(name: str, text: str) -> None:
+    """`write_generated` for a module of the glslcheck package (`_regex_code.py`, `_init_code.py`)."""
+    write_generated(os.path.join(os.path.dirname(os.path.abspath(__file__)), name), text)
 
 
 if __name__ == "__main__":

@@ -39,6 +39,7 @@ from __future__ import annotations
 
 import re
 from bisect import bisect_right
+from .regexes import compiled
 from .diagnostics import Diagnostic, GlslError, Location
 from .records import field, record
 from .sources import Source
@@ -161,13 +162,14 @@ _OPERATOR = (
     r"|[-+*/%<>=!~&|^?:;,.()\[\]{}\#]"
 )
 _WS = " \t\n\v\f\r"
-_TOKEN_RE = re.compile(
+_TOKEN_RE = compiled(
     rf"[{_WS}]*(?:(?P<id>[A-Za-z_][A-Za-z0-9_]*)|(?P<num>{_NUMBER})|(?P<op>{_OPERATOR})|(?P<other>[^{_WS}]))",
     re.S,
 )
-_IDENT_RE = re.compile(r"(?<![A-Za-z0-9_])[A-Za-z_][A-Za-z0-9_]*")
-_LEAD_WS_RE = re.compile(rf"[{_WS}]*")
-_COMMENT_RE = re.compile(r"//|/\*")
+_IDENT_RE = compiled(r"(?<![A-Za-z0-9_])[A-Za-z_][A-Za-z0-9_]*")
+_LEAD_WS_RE = compiled(rf"[{_WS}]*")
+_COMMENT_RE = compiled(r"//|/\*")
+_NEWLINE_RE = compiled("\n")
 _EMPTY: frozenset[str] = frozenset()
 
 
@@ -229,7 +231,7 @@ class _Unit:
         self.index = index
         raw = src.text
         self.raw = raw
-        self.line_starts = [0] + [m.end() for m in re.finditer("\n", raw)]
+        self.line_starts = [0] + [m.end() for m in _NEWLINE_RE.finditer(raw)]
         # Phase 1: splice lines. clean offset c maps to raw c + 2 * (splices at clean offsets <= c).
         if "\\\n" in raw:
             pieces = raw.split("\\\n")
@@ -360,7 +362,7 @@ class _Unit:
 
     def newlines(self) -> list[int]:
         if self._nl_positions is None:
-            self._nl_positions = [m.start() for m in re.finditer("\n", self.stripped)]
+            self._nl_positions = [m.start() for m in _NEWLINE_RE.finditer(self.stripped)]
             if self.splices:  # the line after each newline, in the user's file
                 self._nl_targets = [self.line_of(p) + 1 for p in self._nl_positions]
         return self._nl_positions
@@ -414,8 +416,8 @@ _BINARY_PREC = {
     "||": 1, "&&": 2, "|": 3, "^": 4, "&": 5, "==": 6, "!=": 6,
     "<": 7, ">": 7, "<=": 7, ">=": 7, "<<": 8, ">>": 8, "+": 9, "-": 9, "*": 10, "/": 10, "%": 10,
 }
-_INT_RE = re.compile(r"0[xX][0-9A-Fa-f]+|0[0-7]*|[1-9][0-9]*")
-_INVARIANT_ALL_RE = re.compile(r"STDGL[ \t]+invariant[ \t]*\([ \t]*all[ \t]*\)[ \t]*")
+_INT_RE = compiled(r"0[xX][0-9A-Fa-f]+|0[0-7]*|[1-9][0-9]*")
+_INVARIANT_ALL_RE = compiled(r"STDGL[ \t]+invariant[ \t]*\([ \t]*all[ \t]*\)[ \t]*")
 
 
 def _wrap32(v: int) -> int:

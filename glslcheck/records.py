@@ -94,10 +94,84 @@ def _init_template(count: int, frozen: bool, factories: tuple[bool, ...]):
         for i, factory in enumerate(factories):
             value = f"_f{i}.make() if type(_f{i}) is _Factory else _f{i}" if factory else f"_f{i}"
             body.append(f"    _set{i}(self, {value})" if frozen else f"    self._f{i} = {value}")
-        env: dict[str, Any] = {}
-        exec("\n".join([f"def __init__(self{params}):", *(body or ["    pass"])]), {}, env)  # noqa: S102 - a fixed template
-        code = _TEMPLATES[key] = env["__init__"].__code__
+        code = _TEMPLATES[key] = init_code("\n".join([f"def __init__(self{params}):", *(body or ["    pass"])]))
     return code
+
+
+# The `__init__` templates of the lint path, compiled ahead of time (issue 18): compiling the 27
+# templates a `glslcheck lint FILE` makes (this module's and ast.py's) cost 23 M of its 320 M
+# instructions. `_init_code.py` holds them as functions, compiled into its .pyc like any module,
+# keyed by the exact text `init_code` would compile; `python -m glslcheck.records` writes it,
+# and tests/test_records.py checks that it holds exactly the lint path's templates.
+_precompiled: dict | None = None
+_recorded: list[str] | None = None  # the texts asked for, while the generator records them
+
+
+def init_code(source: str):
+    """The code of `def __init__(...)` in `source` (a template: no user input), from
+    `_init_code.py` when it holds that text, else compiled here."""
+    global _precompiled
+    if _recorded is not None:
+        _recorded.append(source)
+    if _precompiled is None:
+        try:
+            from ._init_code import SOURCES as _precompiled
+        except ImportError:  # the generator's first run
+            _precompiled = {}
+    function = _precompiled.get(source)
+    if function is not None:
+        return function.__code__.replace(co_name="__init__", co_qualname="__init__")
+    env: dict[str, Any] = {}
+    exec(source, {}, env)  # noqa: S102 - a fixed template
+    return env["__init__"].__code__
+
+
+def lint_path_templates() -> list[str]:
+    """Every template `init_code` is asked for by `glslcheck lint` and `check` of the lab's
+    shaders, in a fresh interpreter (the templates are made as the modules are imported)."""
+    import json
+    import os
+    import subprocess
+    import sys
+
+    lab = os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(__file__))), "lab_shaders")
+    script = (
+        "import io, json, sys, contextlib; from glslcheck import records; records._recorded = []; "
+        "records._precompiled = {}\n"
+        "from glslcheck.cli import main\n"
+        "with contextlib.redirect_stdout(io.StringIO()):\n"
+        f"    main(['lint', {lab!r}]); main(['check', {lab!r}])\n"
+        "print(json.dumps(records._recorded))\n"
+    )
+    done = subprocess.run([sys.executable, "-c", script], capture_output=True, text=True, check=True,
+                          env={**os.environ, "GLSLCHECK_JOBS": "1"})
+    return sorted(set(json.loads(done.stdout)))
+
+
+def init_code_source(templates: list[str]) -> str:
+    """The text of `_init_code.py` for `templates`."""
+    lines = [
+        '"""The `__init__` templates of the lint path, compiled ahead of time (see `init_code` in',
+        "glslcheck/records.py). Written by `python -m glslcheck.records`; do not edit.",
+        '"""',
+        "",
+    ]
+    for i, source in enumerate(templates):
+        head, sep, body = source.partition("\n")
+        if not head.startswith("def __init__("):
+            raise ValueError(f"not a template: {head!r}")
+        lines += ["", head.replace("def __init__(", f"def _t{i}(", 1) + sep + body, ""]
+    lines += ["", "SOURCES = {"]
+    lines += [f"    {source!r}: _t{i}," for i, source in enumerate(templates)]
+    lines.append("}")
+    return "\n".join(lines) + "\n"
+
+
+def main() -> int:
+    from .parse_tables import write_generated_module
+
+    write_generated_module("_init_code.py", init_code_source(lint_path_templates()))
+    return 0
 
 
 def _make_init(cls: type, names: tuple[str, ...], defaults: tuple, frozen: bool) -> FunctionType:
@@ -232,3 +306,9 @@ def replace(obj: Any, /, **changes: Any) -> Any:
     if unknown:
         raise TypeError(f"{type(obj).__name__} has no field {sorted(unknown)[0]!r}")
     return type(obj)(*(changes[n] if n in changes else getattr(obj, n) for n in obj._fields))
+
+
+if __name__ == "__main__":
+    import sys
+
+    sys.exit(main())

@@ -17,16 +17,61 @@ import errno
 import os
 import re
 import stat
+from .regexes import compiled
 from .records import record, field
-from pathlib import Path
 
 from .diagnostics import InputError, register_source
 
 SHADER_EXTENSIONS = (".glsl", ".frag", ".txt", "")
 # Canonical tab names in the order Shadertoy shows them.
 TAB_NAMES = ("Common", "Buffer A", "Buffer B", "Buffer C", "Buffer D", "Cube A", "Sound", "Image")
-_TAB_KEYS = {re.sub(r"[\s_\-]", "", t).lower(): t for t in TAB_NAMES}
+_SEPARATORS = compiled(r"[\s_\-]")  # spaces, `_` and `-` in a tab file's name
+_TAB_KEYS = {_SEPARATORS.sub("", t).lower(): t for t in TAB_NAMES}
 MAX_FILE_BYTES = 1_000_000
+
+
+# Paths as strings, without `pathlib` (issue 18: importing it, with the `urllib.parse` and
+# `ipaddress` it loads, is about 17 M instructions of every `glslcheck lint` start-up). Each
+# helper gives what the same `pathlib.Path` expression gives on POSIX, so every path a message
+# names is spelt as before.
+
+
+def posix_path(path: str | os.PathLike) -> str:
+    """`str(PurePosixPath(path))`: empty and `.` parts and a trailing `/` dropped, `..` kept,
+    a leading `//` kept as POSIX allows."""
+    text = os.fspath(path)
+    if text.startswith("/"):
+        lead = "//" if text.startswith("//") and not text.startswith("///") else "/"
+    else:
+        lead = ""
+    return lead + "/".join(part for part in text.split("/") if part and part != ".") or "."
+
+
+def path_name(path: str | os.PathLike) -> str:
+    """`PurePosixPath(path).name`."""
+    text = posix_path(path)
+    name = text[text.rfind("/") + 1 :]
+    return "" if name == "." else name
+
+
+def path_suffix(path: str | os.PathLike) -> str:
+    """`PurePosixPath(path).suffix`: from the name's last dot, unless the name starts or ends there."""
+    name = path_name(path)
+    i = name.rfind(".")
+    return name[i:] if 0 < i < len(name) - 1 else ""
+
+
+def path_stem(path: str | os.PathLike) -> str:
+    """`PurePosixPath(path).stem`."""
+    name = path_name(path)
+    suffix = path_suffix(name)
+    return name[: len(name) - len(suffix)] if suffix else name
+
+
+def folder_entries(folder: str) -> list[str]:
+    """`sorted(Path(folder).iterdir())` as strings, for a folder spelt as `posix_path` spells it."""
+    base = "" if folder == "." else folder if folder.endswith("/") else folder + "/"
+    return [base + name for name in sorted(os.listdir(folder))]
 
 
 @record
@@ -73,13 +118,12 @@ class Shader:
 
 def tab_name(path: str | os.PathLike) -> str | None:
     """The canonical tab a file name denotes, or None when it names no tab."""
-    p = Path(path)
-    stem = p.name
+    stem = path_name(path)
     for ext in SHADER_EXTENSIONS[:-1]:
         if stem.lower().endswith(ext):
             stem = stem[: -len(ext)]
             break
-    return _TAB_KEYS.get(re.sub(r"[\s_\-]", "", stem).lower())
+    return _TAB_KEYS.get(_SEPARATORS.sub("", stem).lower())
 
 
 def decode(data: bytes, path: str) -> str:
@@ -162,9 +206,9 @@ def _not_regular(mode: int) -> str:
     return "is a special file"
 
 
-_VERSION_RE = re.compile(r"^[ \t]*#[ \t]*version\b", re.M)
-_MAIN_RE = re.compile(r"\bvoid\s+main\s*\(\s*(void\s*)?\)")
-_COMMENT_RE = re.compile(r"/\*.*?(\*/|\Z)|//[^\n]*", re.S)
+_VERSION_RE = compiled(r"^[ \t]*#[ \t]*version\b", re.M)
+_MAIN_RE = compiled(r"\bvoid\s+main\s*\(\s*(void\s*)?\)")
+_COMMENT_RE = compiled(r"/\*.*?(\*/|\Z)|//[^\n]*", re.S)
 
 
 def _is_plain_glsl(text: str) -> bool:
@@ -174,28 +218,31 @@ def _is_plain_glsl(text: str) -> bool:
     return bool(_VERSION_RE.search(code)) and bool(_MAIN_RE.search(code))
 
 
-def _is_tab_file(p: Path) -> bool:
+def _is_tab_file(p: str) -> bool:
     return _is_shader_file(p) and tab_name(p) is not None
 
 
-def _is_shader_file(p: Path) -> bool:
-    return p.is_file() and not p.name.startswith(".") and p.suffix.lower() in SHADER_EXTENSIONS and (
-        p.suffix != "" or tab_name(p) is not None
+def _is_shader_file(p: str) -> bool:
+    suffix = path_suffix(p)
+    return os.path.isfile(p) and not path_name(p).startswith(".") and suffix.lower() in SHADER_EXTENSIONS and (
+        suffix != "" or tab_name(p) is not None
     )
 
 
 def load_shader(path: str | os.PathLike) -> Shader:
     """A file (one tab; a sibling Common tab is picked up for an Image tab) or a folder of tabs."""
-    p = Path(path)
+    p = posix_path(path)
     spath = str(path)
     check_path(spath)
-    if p.suffix.lower() == ".json" and p.is_file():  # Shadertoy's export of a whole shader
+    if path_suffix(p).lower() == ".json" and os.path.isfile(p):  # Shadertoy's export of a whole shader
+        from pathlib import Path
+
         from .channels import load_shadertoy_json
 
-        return load_shadertoy_json(p)
+        return load_shadertoy_json(Path(p))
     shader = Shader(root=spath)
-    if p.is_dir():
-        files = sorted(f for f in p.iterdir() if _is_tab_file(f))
+    if os.path.isdir(p):
+        files = [f for f in folder_entries(p) if _is_tab_file(f)]
         if not files:
             raise InputError(f"{spath}: error: the folder holds no Shadertoy tab files (Image.glsl, Common.glsl, ...)")
         for f in files:
@@ -208,7 +255,8 @@ def load_shader(path: str | os.PathLike) -> Shader:
     shader.tabs[src.tab] = src
     if src.tab not in ("Common", "GLSL"):
         # Shadertoy prepends the Common tab to every pass: pick up a sibling Common file.
-        for f in sorted(p.parent.iterdir()) if p.parent.exists() else []:
+        parent = _parent(p)
+        for f in folder_entries(parent) if os.path.exists(parent) else []:
             if f != p and _is_tab_file(f) and tab_name(f) == "Common":
                 shader.tabs["Common"] = read_source(f)
                 break
@@ -221,8 +269,8 @@ def find_shaders(paths: list[str]) -> list[Shader]:
     tab files is a shader, and each loose .glsl/.frag/.txt file is a shader of its own."""
     out: list[Shader] = []
     for path in paths:
-        p = Path(path)
-        if p.is_dir() and not any(_is_tab_file(f) for f in p.iterdir()):
+        p = posix_path(path)
+        if os.path.isdir(p) and not any(_is_tab_file(f) for f in folder_entries(p)):
             found = _walk(p)
             if not found:
                 raise InputError(f"{path}: error: no shader files found")
@@ -232,18 +280,27 @@ def find_shaders(paths: list[str]) -> list[Shader]:
     return out
 
 
-def _walk(folder: Path) -> list[Shader]:
+def _parent(p: str) -> str:
+    """`str(PurePosixPath(p).parent)` of a path spelt as `posix_path` spells it."""
+    i = p.rfind("/")
+    if i < 0:
+        return "."
+    return p[:i] if p[:i].strip("/") else p[: i + 1]  # the root `/` (or `//`) keeps its slashes
+
+
+def _walk(folder: str) -> list[Shader]:
     found: list[Shader] = []
-    for f in sorted(folder.iterdir()):
-        if f.name.startswith(".") or f.name == "__pycache__":
+    for f in folder_entries(folder):
+        name = path_name(f)
+        if name.startswith(".") or name == "__pycache__":
             continue
-        if f.is_dir():
-            if any(_is_tab_file(g) for g in f.iterdir()):
+        if os.path.isdir(f):
+            if any(_is_tab_file(g) for g in folder_entries(f)):
                 found.append(load_shader(f))
             else:
                 found.extend(_walk(f))
-        elif _is_shader_file(f) and f.suffix:
-            shader = Shader(root=str(f))
+        elif _is_shader_file(f) and path_suffix(f):
+            shader = Shader(root=f)
             src = read_source(f)
             shader.tabs[src.tab] = src
             found.append(shader)

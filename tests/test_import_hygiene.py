@@ -20,11 +20,12 @@ HEAVY = ("numpy", "moderngl", "PIL", "lark", "multiprocessing", "concurrent", "d
 
 _RUN = """
 import io, json, sys, contextlib
+preloaded = sorted(sys.modules)  # by the interpreter and site (an editable install's finder)
 from glslcheck.cli import main
 out = io.StringIO()
 with contextlib.redirect_stdout(out), contextlib.redirect_stderr(io.StringIO()):
     code = main(sys.argv[1:])
-print(json.dumps({"code": code, "modules": sorted(sys.modules)}))
+print(json.dumps({"code": code, "modules": sorted(sys.modules), "preloaded": preloaded}))
 """
 
 
@@ -55,6 +56,11 @@ def test_lint_does_not_import_typing(tmp_path):
     report = json.loads(done.stdout.strip().splitlines()[-1])
     assert "glslcheck.lint.rules.repeated_expression" in report["modules"]  # the rules ran
     assert "typing" not in report["modules"]
+    # pathlib (with urllib.parse and ipaddress): about 17 M instructions; the lint path spells
+    # its paths with glslcheck.sources' helpers (tests/test_sources.py holds them to pathlib's).
+    # (The dev venv's editable-install finder imports pathlib in `site`, before glslcheck.)
+    loaded = {m.split(".")[0] for m in set(report["modules"]) - set(report["preloaded"])}
+    assert not {"pathlib", "urllib", "difflib"} & loaded
 
 
 def test_check_expands_only_the_builtin_functions_it_looks_up():

@@ -132,3 +132,25 @@ def test_the_type_objects_keep_their_dataclass_semantics():
     assert s1 != T.StructType("S", (("a", T.FLOAT),)) and s1 == s1  # nominal: by identity
     with pytest.raises(AttributeError):
         T.VEC3.n = 4
+
+
+def test_the_precompiled_templates_are_the_lint_paths():
+    """glslcheck/_init_code.py holds exactly the `__init__` templates `glslcheck lint` and
+    `check` make (a new shape of record fails here until `python -m glslcheck.records` writes
+    the file again), each compiled from its own text: the same code `init_code` compiles."""
+    from glslcheck import _init_code, records
+
+    assert sorted(_init_code.SOURCES) == records.lint_path_templates()
+    for source, function in _init_code.SOURCES.items():
+        env: dict = {}
+        exec(source, {}, env)
+        fresh, stored = env["__init__"].__code__, records.init_code(source)
+        for part in ("co_code", "co_consts", "co_names", "co_varnames", "co_argcount", "co_kwonlyargcount", "co_name"):
+            assert getattr(stored, part) == getattr(fresh, part), (part, source)
+
+
+def test_a_template_not_precompiled_is_compiled():
+    from glslcheck import records
+
+    code = records.init_code("def __init__(self, _f0, _f1, _f2, _f3, _f4, _f5, _f6, _f7, _f8, _f9, _f10):\n    pass")
+    assert code.co_argcount == 12 and code.co_name == "__init__"

@@ -8,7 +8,10 @@ import pytest
 
 from glslcheck.cli import main
 from glslcheck.diagnostics import InputError
-from glslcheck.sources import find_shaders, load_shader, read_source, tab_name
+from glslcheck.sources import (
+    _parent, find_shaders, folder_entries, load_shader, path_name, path_stem, path_suffix, posix_path,
+    read_source, tab_name,
+)
 
 
 @pytest.mark.parametrize(
@@ -119,3 +122,28 @@ def test_parse_cli_exit_codes_and_output(tmp_path, capsys):
     assert "    c = vec4(1.0)\n" in err and "^" in err
     assert main(["parse"]) == 2
     assert main(["frobnicate"]) == 2
+
+
+@pytest.mark.parametrize("path", [
+    "", ".", "./", "/", "//", "///", "//a", "///a/b", "a/./b", "a//b/", "a/../b", "./x.glsl", "x.", ".x",
+    "..x", "a.b.glsl", "dir/.hidden", "Buffer A.txt", "a/b/", "..", "../", "x/..", "lab 4/Image",
+])
+def test_path_helpers_spell_paths_as_pathlib_does(path):
+    """The lint path spells paths without pathlib (issue 18: start-up); every message must name
+    a path as the pathlib code before it did."""
+    from pathlib import PurePosixPath
+
+    p = PurePosixPath(path)
+    assert posix_path(path) == str(p)
+    assert (path_name(path), path_suffix(path), path_stem(path)) == (p.name, p.suffix, p.stem)
+    assert _parent(posix_path(path)) == str(p.parent)
+
+
+def test_folder_entries_are_sorted_iterdir(tmp_path, monkeypatch):
+    from pathlib import Path
+
+    for name in ("b.glsl", "A.glsl", "a-b", "a", ".hidden", "Image.txt"):
+        (tmp_path / name).write_text("")
+    monkeypatch.chdir(tmp_path)
+    assert folder_entries(".") == [str(p) for p in sorted(Path(".").iterdir())]
+    assert folder_entries(str(tmp_path)) == [str(p) for p in sorted(tmp_path.iterdir())]

@@ -15,8 +15,6 @@ builds (see tests/check/test_glslang_agreement.py for the cases where it deliber
 
 from __future__ import annotations
 
-import difflib
-
 from .. import ast as A
 from .. import builtins as B
 from .. import types as T
@@ -834,6 +832,8 @@ class Checker(A.NodeVisitor):
             known = list(self.model.functions) + list(B.BUILTINS)
         else:
             known = [k for k in self.scope.visible_names() if not k.startswith("gl_Max")]
+        import difflib  # only for an error's suggestion: not at every start-up (issue 18)
+
         match = difflib.get_close_matches(name, known, n=1, cutoff=0.6)
         if match:
             return f"did you mean '{match[0]}'?"
@@ -1012,6 +1012,8 @@ class Checker(A.NodeVisitor):
         if bt.is_struct:
             ft = bt.field_type(n.name)
             if ft is None:
+                import difflib
+
                 names = [f for f, _ in bt.fields]
                 match = difflib.get_close_matches(n.name, names, n=1)
                 self.error(f"the struct '{bt}' has no member '{n.name}'", n.name_loc if n.name_loc.line else n,

@@ -9,7 +9,6 @@ from __future__ import annotations
 
 import argparse
 import sys
-from pathlib import Path
 
 from ..diagnostics import InputError
 
@@ -67,6 +66,8 @@ def run(args: argparse.Namespace) -> int:
         result = lint_paths(args.paths, overrides, skip_non_shaders=args.skip_non_shaders)
         text = render(result, args.format)
     if args.output:
+        from pathlib import Path  # only here: not on every lint's start-up (issue 18)
+
         out = Path(args.output)
         if out.exists() and any(out.resolve() == Path(p).resolve() for p in result.paths):
             raise InputError(f"{args.output}: error: --output names a file being linted; lint never overwrites a shader")

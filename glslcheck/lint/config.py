@@ -22,7 +22,6 @@ from __future__ import annotations
 
 import os
 from ..records import record, field, replace
-from pathlib import Path
 
 from ..diagnostics import InputError
 
@@ -61,22 +60,22 @@ class ConfigFinder:
 
     overrides: Mapping[str, Any] = field(default_factory=dict)
     known_rules: frozenset[str] = frozenset()
-    _by_dir: dict[Path, LintConfig | None] = field(default_factory=dict)  # None: none up from there
+    _by_dir: dict[str, LintConfig | None] = field(default_factory=dict)  # None: none up from there
     _cwd_config: LintConfig | None = None
 
     def for_file(self, path: str | os.PathLike) -> LintConfig:
-        folder = Path(path).resolve().parent
+        folder = os.path.dirname(os.path.realpath(path))  # `Path(path).resolve().parent`
         found = self._search(folder)
         if found is None:
             if self._cwd_config is None:
-                self._cwd_config = self._search(Path.cwd().resolve()) or LintConfig()
+                self._cwd_config = self._search(os.path.realpath(os.getcwd())) or LintConfig()
             found = self._cwd_config
         return apply_overrides(found, self.overrides, self.known_rules, COMMAND_LINE)
 
-    def _search(self, folder: Path) -> LintConfig | None:
-        visited: list[Path] = []
+    def _search(self, folder: str) -> LintConfig | None:
+        visited: list[str] = []
         result: LintConfig | None = None
-        for d in (folder, *folder.parents):
+        for d in _up_from(folder):
             if d in self._by_dir:
                 result = self._by_dir[d]
                 break
@@ -91,13 +90,25 @@ class ConfigFinder:
         return result
 
 
-def load_config_in(folder: Path, known_rules: frozenset[str]) -> LintConfig | None:
+def _up_from(folder: str) -> list[str]:
+    """A resolved folder and the folders above it, up to the root (`(folder, *folder.parents)`
+    of a `Path`: glslcheck's lint path does not import pathlib, issue 18)."""
+    found = [folder]
+    while True:
+        up = os.path.dirname(folder)
+        if up == folder:
+            return found
+        found.append(up)
+        folder = up
+
+
+def load_config_in(folder: str, known_rules: frozenset[str]) -> LintConfig | None:
     """The configuration a folder itself holds, or None."""
-    own = folder / "glslcheck.toml"
-    if own.is_file():
-        return parse_config(_read_toml(own), str(own), str(own), known_rules)
-    py = folder / "pyproject.toml"
-    if py.is_file():
+    own = os.path.join(folder, "glslcheck.toml")
+    if os.path.isfile(own):
+        return parse_config(_read_toml(own), own, own, known_rules)
+    py = os.path.join(folder, "pyproject.toml")
+    if os.path.isfile(py):
         data = _read_toml(py)
         table = data.get("tool", {}).get("glslcheck") if isinstance(data.get("tool"), dict) else None
         if table is not None:
@@ -107,7 +118,7 @@ def load_config_in(folder: Path, known_rules: frozenset[str]) -> LintConfig | No
     return None
 
 
-def _read_toml(path: Path) -> dict[str, Any]:
+def _read_toml(path: str) -> dict[str, Any]:
     import tomllib  # only where a folder has a configuration file (start-up, issue 18)
 
     try:

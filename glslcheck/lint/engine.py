@@ -23,11 +23,10 @@ from __future__ import annotations
 import os
 import re
 from ..records import record, field
-from pathlib import Path
 
 from ..diagnostics import Diagnostic, Location, register_source, source_line
 from ..shadertoy import BUFFER_TABS
-from ..sources import Shader, Source, check_path, find_shaders
+from ..sources import Shader, Source, check_path, find_shaders, path_name, path_suffix, posix_path
 from .config import COMMAND_LINE, ConfigFinder, LintConfig, apply_overrides
 from .rules import Rule, all_rules, rule_names
 from .suppress import Suppression, find_suppressions, is_suppressed
@@ -353,19 +352,19 @@ def lint_paths(
     for p in wanted:
         check_path(p)  # a symlink loop is named as one before any path is resolved
     if skip_non_shaders:
-        wanted = [p for p in wanted if Path(p).is_dir() or is_shader_name(p, finder.for_file(p))]
+        wanted = [p for p in wanted if os.path.isdir(p) or is_shader_name(p, finder.for_file(p))]
     if not wanted:
         return LintResult([], 0, [])
-    files = {Path(p).resolve() for p in wanted if not Path(p).is_dir()}
-    folders = [Path(p).resolve() for p in wanted if Path(p).is_dir()]
+    files = {os.path.realpath(p) for p in wanted if not os.path.isdir(p)}
+    folders = [os.path.realpath(p) for p in wanted if os.path.isdir(p)]
     linted: list[str] = []
-    seen: set[Path] = set()
+    seen: set[str] = set()
     work: list[list[tuple[Shader, Source, LintConfig]]] = []  # per shader: its files to lint
     for shader in find_shaders(wanted):
         todo = []
         for source in shader.sources():
-            real = Path(source.path).resolve()
-            if real in seen or not (real in files or any(real.is_relative_to(d) for d in folders)):
+            real = os.path.realpath(source.path)
+            if real in seen or not (real in files or any(_within(real, d) for d in folders)):
                 continue
             seen.add(real)
             linted.append(source.path)
@@ -373,6 +372,11 @@ def lint_paths(
         if todo:
             work.append(todo)
     return LintResult(lint_work(work), len(linted), linted)
+
+
+def _within(path: str, folder: str) -> bool:
+    """`Path(path).is_relative_to(folder)` for two resolved (absolute, normalised) paths."""
+    return path == folder or path.startswith(folder if folder.endswith("/") else folder + "/")
 
 
 def lint_work(work: list[list[tuple[Shader, Source, LintConfig]]]) -> list[Finding]:
@@ -413,13 +417,13 @@ def is_shader_name(path: str, config: LintConfig) -> bool:
 
     from ..sources import tab_name
 
-    p = Path(path)
-    if p.suffix.lower() in (".glsl", ".frag"):
+    suffix = path_suffix(path).lower()
+    if suffix in (".glsl", ".frag"):
         return True
-    if p.suffix.lower() in (".txt", "") and tab_name(p) is not None:
+    if suffix in (".txt", "") and tab_name(path) is not None:
         return True
-    posix = p.as_posix()
-    return any(fnmatch(posix, pat) or fnmatch(p.name, pat) for pat in config.tab_patterns)
+    posix = posix_path(path)
+    return any(fnmatch(posix, pat) or fnmatch(path_name(posix), pat) for pat in config.tab_patterns)
 
 
 def iter_rules(names: Iterable[str] | None = None) -> list[Rule]:

@@ -20,6 +20,7 @@ that is not one of the units gives up (None), and the linter reports the error a
 from __future__ import annotations
 
 import re
+from ..regexes import compiled
 from ..records import replace
 
 from ..diagnostics import Location
@@ -29,7 +30,7 @@ TYPE_CHECKING = False  # not typing's: importing typing costs every start-up (is
 if TYPE_CHECKING:
     from typing import Iterator
 
-_CALLED_NAME = re.compile(r"([A-Za-z_]\w*)\s*\(")  # the name a function header declares
+_CALLED_NAME = compiled(r"([A-Za-z_]\w*)\s*\(")  # the name a function header declares
 
 
 def _code_chars(text: str) -> Iterator[tuple[int, str]]:

@@ -17,10 +17,9 @@ from __future__ import annotations
 
 import json
 import os
-from pathlib import Path
-from urllib.parse import quote
 
 from ..diagnostics import format_text
+from ..sources import posix_path
 from .engine import Finding, LintResult
 from .rules import all_rules
 
@@ -133,6 +132,9 @@ def json_report(result: LintResult) -> str:
 def artifact_uri(path: str, root: str | None = None) -> str:
     """A SARIF artifact URI: relative to `root` (default: the current directory) with `/`
     separators and percent-escapes; an absolute `file://` URI for a file outside `root`."""
+    from pathlib import Path  # SARIF only: not on every lint's start-up (issue 18)
+    from urllib.parse import quote
+
     real = Path(path).resolve()
     base = Path(root or os.getcwd()).resolve()
     try:
@@ -230,7 +232,7 @@ def github_report(result: LintResult) -> str:
         props = ",".join(
             f"{k}={_escape_property(str(v))}"
             for k, v in (
-                ("file", Path(f.path).as_posix()),
+                ("file", posix_path(f.path)),
                 ("line", rec["line"]),
                 ("col", rec["column"]),
                 ("endLine", rec["end_line"]),

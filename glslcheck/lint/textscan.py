@@ -20,7 +20,7 @@ GLSL has no string literals, so `//` and `/*` always open a comment outside one.
 
 from __future__ import annotations
 
-import re
+from ..regexes import compiled
 from ..records import record
 from enum import Enum
 
@@ -46,11 +46,11 @@ class LineKind(str, Enum):
 # A glslcheck directive inside a comment: `glslcheck: ignore[a, b]` or `glslcheck: ignore-file[a]`.
 # Prose such as "checked with glslcheck: ..." is no directive: the verb starts with `ignore` or is
 # followed by brackets.
-DIRECTIVE_RE = re.compile(
+DIRECTIVE_RE = compiled(
     r"glslcheck\s*:\s*(?P<verb>ignore[A-Za-z-]*|[A-Za-z-]+(?=\s*\[))\s*(?:\[(?P<names>[^\]]*)\])?"
 )
-_ONLY_DIRECTIVES_RE = re.compile(r"^\s*(?:glslcheck\s*:\s*[A-Za-z-]*\s*(?:\[[^\]]*\])?[\s,;.]*)+$")
-_BRACE_ONLY_RE = re.compile(r"^\s*(?:[{}]\s*)+;?\s*$")
+_ONLY_DIRECTIVES_RE = compiled(r"^\s*(?:glslcheck\s*:\s*[A-Za-z-]*\s*(?:\[[^\]]*\])?[\s,;.]*)+$")
+_BRACE_ONLY_RE = compiled(r"^\s*(?:[{}]\s*)+;?\s*$")
 
 
 @record(frozen=True)
@@ -86,8 +86,8 @@ class TextScan:
         return [c for c in self.comments if c.line <= line <= c.end_line]
 
 
-_COMMENT_START_RE = re.compile(r"/[/*]")
-_NON_SPACE_RE = re.compile(r"\S")  # the characters str.isspace() rejects
+_COMMENT_START_RE = compiled(r"/[/*]")
+_NON_SPACE_RE = compiled(r"\S")  # the characters str.isspace() rejects
 
 
 def scan(text: str) -> TextScan:
@@ -192,8 +192,8 @@ def _classify(code: str, code_col: int | None, comment_col: int | None, directiv
     return LineKind.LEADING if comment_col < code_col else LineKind.TRAILING
 
 
-_IF_RE = re.compile(r"^\s*#\s*(ifdef|ifndef|if|elif|else|endif|define|undef)\b\s*(.*)$")
-_DEFINED_RE = re.compile(r"^!?\s*defined\s*\(?\s*(\w+)\s*\)?\s*$")
+_IF_RE = compiled(r"^\s*#\s*(ifdef|ifndef|if|elif|else|endif|define|undef)\b\s*(.*)$")
+_DEFINED_RE = compiled(r"^!?\s*defined\s*\(?\s*(\w+)\s*\)?\s*$")
 
 
 def inactive_lines(lines: list[str], defined: set[str] | None = None) -> set[int]:

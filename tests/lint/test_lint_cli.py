@@ -186,7 +186,7 @@ def test_folders_without_configuration_are_read_once(tmp_path, monkeypatch):
     finder = config.ConfigFinder({}, frozenset())
     found = [finder.for_file(lab / name / tab) for name in ("a", "b") for tab in ("Image.glsl", "Common.glsl")]
     assert found == [config.LintConfig()] * 4
-    assert reads == [tmp_path / "pyproject.toml"]
+    assert reads == [str(tmp_path / "pyproject.toml")]  # the folders are strings: no pathlib (issue 18)
 
 
 def test_cli_overrides_config(workdir, capsys):

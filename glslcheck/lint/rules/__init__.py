@@ -27,6 +27,7 @@ from __future__ import annotations
 
 import importlib
 import re
+from ...regexes import compiled
 from ...records import record
 from functools import cache
 from types import ModuleType
@@ -61,7 +62,7 @@ SECTIONS = ("What it does", "Why is this bad?", "Example", "Use instead")
 SEVERITIES = {"error": "compile error", "warning": "course rule", "note": "worth knowing"}
 NEEDS = ("text", "ast", "suppressions")
 READS = ("functions", "names", "program")
-_SECTION_RE = re.compile(r"^## (.+?)\s*$", re.M)
+_SECTION_RE = compiled(r"^## (.+?)\s*$", re.M)
 
 
 @record(frozen=True)
@@ -114,7 +115,8 @@ def _load(name: str, module_name: str) -> Rule:
         problems.append(f"READS must be one of {', '.join(READS)}")
     if not callable(getattr(mod, "check", None)):
         problems.append("no check(ctx) function")
-    missing = [s for s in SECTIONS if s not in doc_sections(body)]
+    sections = doc_sections(body)  # once: not once per section name (issue 18: start-up)
+    missing = [s for s in SECTIONS if s not in sections]
     if missing:
         problems.append(f"the docstring lacks the section(s) {', '.join(missing)}")
     if problems:

@@ -44,6 +44,7 @@ from __future__ import annotations
 
 import re
 
+from ...regexes import compiled
 from ...diagnostics import Diagnostic
 from ..textscan import LineKind, inactive_lines
 
@@ -92,7 +93,7 @@ def uncovered_runs(kinds: list[LineKind], span: int) -> list[tuple[int, int, int
 
 # A comment that only credits or marks ("code from class by ...", "// part 3", "// TEST"):
 # it says where the code came from or where a part starts, not why the code is there.
-ATTRIBUTION_RE = re.compile(
+ATTRIBUTION_RE = compiled(
     r"^[\s*/!-]*(?:"
     r"(?:code\s+|taken\s+|copied\s+|adapted\s+|borrowed\s+)?from\s+(?:class|the\s+starter|lecture)\b[^.;]*"
     r"|(?:\w+\s+){0,3}by\s+(?-i:[A-Z][\w.]*)(?:\s+(?-i:[A-Z][\w.]*)){0,3}"  # "Code by Dan Buckstein"

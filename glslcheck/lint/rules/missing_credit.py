@@ -34,6 +34,7 @@ from __future__ import annotations
 
 import re
 
+from ...regexes import compiled
 from ...diagnostics import Diagnostic
 
 TYPE_CHECKING = False  # not typing's: importing typing costs every start-up (issue 18)
@@ -46,7 +47,7 @@ PENALTY = 0
 SEVERITY = "note"
 NEEDS = "text"
 
-CREDIT_RE = re.compile(
+CREDIT_RE = compiled(
     r"\b(?:starter|framework|buckstein|credits?|credited|adapted|based\s+on|borrowed|courtesy"
     r"|inspired\s+by|derived\s+from|taken\s+from|thanks?\s+to|acknowledge?ments?"
     r"|(?:sources?|references?|refs?|citations?|cited?)\s*:)"

@@ -48,10 +48,10 @@ void mainImage(out vec4 fragColor, in vec2 fragCoord)
 from __future__ import annotations
 
 import re
-from pathlib import Path
 
+from ...regexes import compiled
 from ...diagnostics import Diagnostic
-from ...sources import tab_name
+from ...sources import path_name, path_stem, tab_name
 from ..textscan import LineKind
 from .missing_credit import CREDIT_RE
 
@@ -66,51 +66,54 @@ SEVERITY = "warning"
 NEEDS = "text"
 
 _SEP = r"[:=\-\u2013\u2014|(]"
-_PURPOSE_LABEL = re.compile(
+_PURPOSE_LABEL = compiled(
     r"^\W*(?:purpose|description|desc|brief|summary|about|overview|what it does)\b\s*[:\-\u2013\u2014]",
     re.I | re.M,
 )
-_DOXYGEN_BRIEF = re.compile(r"^\W*[@\\](?:brief|details)\s+\w", re.I | re.M)
-_PURPOSE_SENTENCE = re.compile(
+_DOXYGEN_BRIEF = compiled(r"^\W*[@\\](?:brief|details)\s+\w", re.I | re.M)
+_PURPOSE_SENTENCE = compiled(
     r"\bthis\s+(?:file|shader|tab|pass|buffer|program|code)\s+(?:is\s+|will\s+)?(?!except\b)[a-z]+", re.I
 )
-_CONTRIB_LABEL = re.compile(
+_CONTRIB_LABEL = compiled(
     r"^\W*(?:auth[oe]rs?|copyright(?:\s+(?:\(c\)|\u00a9))?(?:\s+\d{4}(?:\s*-\s*\d{4})?)?|contributors?|contributions|team(?:\s+members)?|programmers?|developers?"
     r"|(?:written|created|made|modified|edited|coded|programmed)\s+by|by)\b\s*:?\s*(?P<rest>.*)$",
     re.I,
 )
-_OTHER_LABEL = re.compile(
+_OTHER_LABEL = compiled(
     r"^\W*(?:file(?:name)?|tab|name|titt?le|purpose|description|brief|summary|about|license|copyright"
     r"|credits?|sources?|references?|date|version|course|instructor)\b\s*[:\-]",
     re.I,
 )
-_DID = re.compile(
+_DID = compiled(
     r"[:(\u2013\u2014]|\s-\s|\b(?:implement\w*|wrote|written|add(?:ed|s|ing)?|made|creat\w+|did|does"
     r"|work(?:ed|s|ing)?|design\w*|modif\w+|refactor\w*|optimi[sz]\w*|comment\w*|document\w*"
     r"|fix\w*|set\s+up|cod(?:ed|ing|e)|program\w*|buil[td]\w*|test\w*|debug\w*|help\w*|lead|led"
     r"|lighting|shading|render\w*|math|structs?)\b",
     re.I,
 )
+_WORD_BREAK = compiled(r"[\s_\-]+")
+_COPYRIGHT = compiled(r"^\W*copyright\b", re.I)
+_LIST_MARK = compiled(r"^[\s*/#>\-\u2022\d.)]*")  # a list item's bullet or number
+_NAME_LIST = compiled(r",|&|\band\b")  # more than one name in an entry
 _TAB_WORDS = r"(?:tab|pass|buffer|shader|file)"
 _EXT = r"(?:\.(?:glsl|frag|txt))?"
 
 
 def _flex(name: str) -> str:
     """A regex for a name whose words may be joined by spaces, `_` or `-` (any case)."""
-    return r"[\s_\-]*".join(re.escape(w) for w in re.split(r"[\s_\-]+", name.strip()) if w)
+    return r"[\s_\-]*".join(re.escape(w) for w in _WORD_BREAK.split(name.strip()) if w)
 
 
 def _names(path: str, tab: str) -> tuple[str, list[str]]:
     """The file's name with extension, and the other names that name it (stem, tab name)."""
-    p = Path(path)
-    others = [p.stem]
-    for t in (tab, tab_name(p)):
+    others = [path_stem(path)]
+    for t in (tab, tab_name(path)):
         if t and t != "GLSL" and t not in others:
             others.append(t)
-    return p.name, others
+    return path_name(path), others
 
 
-_TITLE = re.compile(r"^\W*(?:titt?le|name)\s*[:\-]\s*\w", re.I | re.M)  # `Title: Lab 2 effects`
+_TITLE = compiled(r"^\W*(?:titt?le|name)\s*[:\-]\s*\w", re.I | re.M)  # `Title: Lab 2 effects`
 
 
 def names_file(text: str, path: str, tab: str) -> bool:
@@ -152,12 +155,12 @@ def contributors(text: str) -> str:
         m = _CONTRIB_LABEL.match(line)
         if not m:
             continue
-        entries = lists[bool(re.match(r"^\W*copyright\b", line, re.I))]
+        entries = lists[bool(_COPYRIGHT.match(line))]
         rest = m.group("rest").strip()
         if rest:
             entries.extend(e for e in re.split(r";", rest) if e.strip() and not CREDIT_RE.search(e))
         for follow in lines[i + 1 :]:
-            body = re.sub(r"^[\s*/#>\-\u2022\d.)]*", "", follow).strip()
+            body = _LIST_MARK.sub("", follow).strip()
             if (
                 not body
                 or _CONTRIB_LABEL.match(follow)
@@ -169,7 +172,7 @@ def contributors(text: str) -> str:
     entries = lists[False] or lists[True]
     if not entries:
         return "none"
-    if len(entries) == 1 and not re.search(r",|&|\band\b", entries[0]):
+    if len(entries) == 1 and not _NAME_LIST.search(entries[0]):
         return "ok"  # one author did all of it: no list of who did what to give
     return "ok" if all(_DID.search(e) for e in entries) else "bare"
 
@@ -207,7 +210,7 @@ def missing_parts(ctx) -> list[str] | None:
     path, tab = ctx.source.path, ctx.source.tab
     missing = []
     if not names_file(text, path, tab):
-        missing.append(f"does not name the file (`{Path(path).name}`)")
+        missing.append(f"does not name the file (`{path_name(path)}`)")
     if not states_purpose(text, path, tab):
         missing.append("states no purpose")
     who = contributors(text)
@@ -228,7 +231,7 @@ def check(ctx: LintContext) -> Iterator[Diagnostic]:
     if not ctx.source.text.strip():
         return
     missing = missing_parts(ctx)
-    name = Path(ctx.source.path).name
+    name = path_name(ctx.source.path)
     if missing is None:
         message = (
             "the file opens with no header comment (it should name the file, state its purpose "

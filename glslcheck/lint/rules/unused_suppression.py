@@ -29,8 +29,6 @@ col += ambient;
 
 from __future__ import annotations
 
-import difflib
-
 from ...diagnostics import Diagnostic
 
 TYPE_CHECKING = False  # not typing's: importing typing costs every start-up (issue 18)
@@ -56,6 +54,8 @@ def check(ctx: LintContext) -> Iterator[Diagnostic]:
         where = "in this file" if s.file_wide else "on this line"
         for name in s.names:
             if name not in ctx.known_rules:
+                import difflib  # only for a misspelt name: not at every start-up (issue 18)
+
                 close = difflib.get_close_matches(name, sorted(ctx.known_rules), n=1)
                 hint = f"did you mean `{close[0]}`? " if close else ""
                 yield Diagnostic(
