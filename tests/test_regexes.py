@@ -4,6 +4,7 @@ patterns the lint path compiles, and a pattern made from them must be the same `
 
 from __future__ import annotations
 
+import os
 import re
 
 import pytest
@@ -20,10 +21,16 @@ def test_the_file_holds_every_pattern_the_lint_path_compiles():
 def test_the_stored_programs_are_this_interpreters():
     """On the interpreter that wrote the file (the fingerprint: version and `_sre.MAGIC`), each
     stored program is what `re` compiles the pattern to; on another, `compiled` uses `re.compile`
-    (tested below), so the file is only ever read where it was written."""
+    (tested below), so the file is only ever read where it was written. Another interpreter on a
+    developer's machine is a skip (lint stays correct there, only slower to start); on CI, whose
+    interpreter is the one the project is set up with (make setup), it is a failure: the file is
+    stale and start-up would lose its stored programs unnoticed."""
     if _regex_code.FINGERPRINT != regexes.fingerprint():
-        pytest.fail(f"glslcheck/_regex_code.py was written by {_regex_code.FINGERPRINT}, this is "
-                    f"{regexes.fingerprint()}: run `python -m glslcheck.regexes`")
+        why = (f"glslcheck/_regex_code.py was written by {_regex_code.FINGERPRINT}, this is "
+               f"{regexes.fingerprint()}: run `python -m glslcheck.regexes`")
+        if os.environ.get("CI"):
+            pytest.fail(why)
+        pytest.skip(why + " (this interpreter compiles with re; CI fails instead)")
     for (pattern, flags), stored in _regex_code.CODE.items():
         assert regexes.program(pattern, flags) == stored, pattern
 
