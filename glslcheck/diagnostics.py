@@ -10,10 +10,16 @@ from __future__ import annotations
 
 from .records import record, field
 
+TYPE_CHECKING = False  # not typing's: importing typing costs every start-up (issue 18)
+if TYPE_CHECKING:
+    from typing import Callable
+
 
 @record(frozen=True)
 class Location:
     """A span in a user's file: 1-based lines and columns, end exclusive-ish (points at the last char + 1)."""
+
+    __slots__ = ("_pending",)  # a `pending_location`'s span, until it is computed
 
     path: str
     line: int
@@ -36,6 +42,58 @@ class Location:
             other.end_line if other.end_line is not None else other.line,
             other.end_column if other.end_column is not None else other.column,
         )
+
+
+class _PendingLocation(Location):
+    """A `Location` not computed yet (see `pending_location`): its fields' slots are unset, so
+    the first read of one comes to `__getattr__`, which computes them, stores them and turns the
+    object into a plain `Location` (the same slots: `__class__` can be assigned). Equality,
+    hashing, `repr`, `str` and pickling compute it first, so a pending location is everywhere
+    what the `Location` it stands for is."""
+
+    __slots__ = ()
+
+    def __getattr__(self, name: str):
+        # Reached only when a slot is unset: before the location is computed.
+        if name not in _FIELDS:
+            raise AttributeError(f"'Location' object has no attribute {name!r}")
+        return getattr(self._compute(), name)
+
+    def _compute(self) -> Location:
+        locate, start, end = self._pending
+        loc = locate(start, end)
+        for name, set_slot in _FIELD_SETTERS:
+            set_slot(self, getattr(loc, name))
+        _del_pending(self)
+        object.__setattr__(self, "__class__", Location)
+        return self
+
+    def __eq__(self, other):
+        return self._compute() == other
+
+    def __hash__(self) -> int:
+        return hash(self._compute())
+
+    def __reduce__(self):
+        return self._compute().__reduce__()
+
+    def __repr__(self) -> str:
+        return repr(self._compute())
+
+
+_FIELDS = frozenset(Location._fields)
+_FIELD_SETTERS = tuple((name, Location.__dict__[name].__set__) for name in Location._fields)
+_new_pending = _PendingLocation.__new__
+_set_pending = Location.__dict__["_pending"].__set__
+_del_pending = Location.__dict__["_pending"].__delete__
+
+
+def pending_location(locate: Callable[[int, int], Location], start: int, end: int) -> Location:
+    """`locate(start, end)`, computed when one of its fields is first read (issue 18: the
+    parser locates every node's span, and a lint reads about a third of them)."""
+    loc = _new_pending(_PendingLocation)
+    _set_pending(loc, (locate, start, end))
+    return loc
 
 
 @record

@@ -21,7 +21,7 @@ import sys
 
 from . import ast as A
 from . import parse_tables
-from .diagnostics import Diagnostic, GlslError, Location, register_source
+from .diagnostics import Diagnostic, GlslError, Location, pending_location, register_source
 from .lalr import Driver, Tree, UnexpectedToken
 from .lexer import BadNameError, Lexer, Token, Tokens, UnexpectedCharacters, UnexpectedInput
 from .records import field, record
@@ -30,6 +30,8 @@ from .sources import Shader, Source
 # The keywords (3.6), to tell "a keyword used as a name" in error messages.
 from .builtins import KEYWORDS  # noqa: E402  (one table, shared with the checker)
 from .types import BY_NAME  # noqa: E402
+
+_NOLOC = A._NOLOC  # a node's location until the builder sets it
 
 TYPE_CHECKING = False  # not typing's: importing typing costs every start-up (issue 18)
 if TYPE_CHECKING:
@@ -322,11 +324,12 @@ class _Builder:
         if start is None:  # a tree without tokens
             return self.locate_span(0, 0)
         # Nested nodes often share both ends (a declaration and its type, a call and its
-        # callee): locate each span once.
+        # callee): one location for each span, computed when it is first read (a lint reads
+        # about a third of them).
         key = (start, end)
         loc = self._spans.get(key)
         if loc is None:
-            loc = self._spans[key] = self.locate_span(start, end)
+            loc = self._spans[key] = pending_location(self.locate_span, start, end)
         return loc
 
     def node(self, item):
@@ -340,7 +343,7 @@ class _Builder:
             # Punctuation and keywords matter only for the span; the rule says the rest.
             children = [c for c in children if type(c) is not Token or c.type in _VALUE_TOKENS]
         result = _BUILDERS[data](self, item, children)
-        if result is not None and result.loc.line == 0:
+        if result is not None and result.loc is _NOLOC:
             result.loc = self.loc(item)
         return result
 

@@ -110,6 +110,20 @@ def test_slots_unless_asked_otherwise():
     assert ident.other == 1
 
 
+def test_slots_the_class_declares_are_kept_and_are_not_fields():
+    @record(frozen=True)
+    class Spot:
+        __slots__ = ("_note",)
+        x: int
+        y: int = 0
+
+    spot = Spot(1)
+    assert Spot.__slots__ == ("x", "y", "_note") and Spot._fields == ("x", "y")
+    assert not hasattr(spot, "_note") and spot == Spot(1, 0) and repr(spot) == "Spot(x=1, y=0)"
+    Spot.__dict__["_note"].__set__(spot, "n")
+    assert spot._note == "n" and spot == Spot(1) and hash(spot) == hash(Spot(1))
+
+
 def test_records_pickle_by_value():
     for value in (Point(1, 2, "t"), Bag("a", [1, 2]), T.VEC3, T.MAT2, T.ArrayType(T.FLOAT, 3)):
         assert pickle.loads(pickle.dumps(value)) == value

@@ -105,3 +105,40 @@ def test_syntax_error_inside_macro_expansion_points_at_the_use():
         parse_units([Source("Image.glsl", text)])
     (d,) = info.value.diagnostics
     assert (d.loc.line, d.loc.column) == (4, 15)
+
+
+def _pending_spans(text):
+    """The program's nodes with each node's location as the parser left it (computed when first
+    read), and the same locations computed now."""
+    from glslcheck.diagnostics import Location
+
+    result = parse_units([Source("Image.glsl", text)])
+    nodes = list(result.ast.walk())
+    pending = [type(n.loc) is not Location for n in nodes]
+    return result, nodes, pending
+
+
+def test_a_pending_location_is_the_location_it_stands_for():
+    import copy
+    import pickle
+
+    from glslcheck.diagnostics import Location
+
+    text = "void mainImage(out vec4 c, in vec2 f)\n{\n    c = vec4(f.x * 2.0, f.y, 0.0, 1.0);\n}\n"
+    result, nodes, pending = _pending_spans(text)
+    assert sum(pending) > 5  # the parser left most of them to be computed when read
+    computed = [result.pp.locate_span(*n.loc._pending[1:]) for n, p in zip(nodes, pending) if p]
+    locs = [n.loc for n, p in zip(nodes, pending) if p]
+    # Each use computes it first: equal both ways, the same hash, repr, str, pickle and copy.
+    assert [loc == want for loc, want in zip(locs[0::5], computed[0::5])] == [True] * len(locs[0::5])
+    assert [want == loc for loc, want in zip(locs[1::5], computed[1::5])] == [True] * len(locs[1::5])
+    assert [hash(loc) for loc in locs[2::5]] == [hash(want) for want in computed[2::5]]
+    assert [repr(loc) for loc in locs[3::5]] == [repr(want) for want in computed[3::5]]
+    assert [str(loc) for loc in locs[4::5]] == [str(want) for want in computed[4::5]]
+    assert all(type(loc) is Location for loc in locs)  # and each is a plain Location after
+    _, nodes, pending = _pending_spans(text)
+    locs = [n.loc for n, p in zip(nodes, pending) if p]
+    again = [pickle.loads(pickle.dumps(loc)) for loc in locs[:3]] + [copy.copy(loc) for loc in locs[3:6]]
+    assert all(type(loc) is Location for loc in again)
+    assert again == locs[:6]
+    assert not hasattr(locs[-1], "other") and {locs[-1]: 1}[locs[-1]] == 1
