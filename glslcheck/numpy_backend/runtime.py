@@ -913,6 +913,13 @@ class Runtime(TextureFunctions):  # texture lookups: textures.py
     def vec(self, k: int, *args: Any) -> np.ndarray:
         """``vecK(...)``: one scalar splats; otherwise the components of all arguments
         (scalars, vectors, matrices column-major) in order, converted to float."""
+        if len(args) == k:  # k float scalars (`vec3(p.x + e, p.y, p.z)`): what _vec makes of
+            dt = self._dtype  # them, without converting each one
+            for a in args:
+                if not (isinstance(a, np.ndarray) and a.ndim == 1 and a.dtype == dt):
+                    break
+            else:
+                return self._stack(list(args))
         return self._vec(k, args, "float")
 
     def ivec(self, k: int, *args: Any) -> np.ndarray:
