@@ -88,12 +88,13 @@ class Expressions:
         return name
 
     def repeated_calls(self, e: Any) -> set[int]:
-        """The built-in calls that `e` makes more than once with the same arguments (the same
-        GLSL text), when e has no side effects and no operator that evaluates a part under a
-        mask of its own (`&&`, `||`, `?:`): `mat2(cos(a), -sin(a), sin(a), cos(a))`, a rotation
-        in most raymarchers, computes cos(a) and sin(a) once each, as Mesa's CSE does (the
-        llvmpipe emulation of one sin is about 40 NumPy calls). The first is kept in a
-        temporary emitted before the expression's line, which every later one reads; its
+        """The built-in calls that `e` (an expression without side effects: `expr` asks)
+        makes more than once with the same arguments (the same GLSL text), leaving out the
+        parts under a `&&`, `||` or `?:` inside it, which `expr` treats as expressions of their
+        own (they may run under masks of their own). `mat2(cos(a), -sin(a), sin(a), cos(a))`,
+        a rotation in most raymarchers, computes cos(a) and sin(a) once each, as Mesa's CSE
+        does (the llvmpipe emulation of one sin is about 40 NumPy calls). The first is kept in
+        a temporary emitted before the expression's line, which every later one reads; its
         value is the same bits, since nothing in e writes a variable in between."""
         groups: dict[str, list[Any]] = {}
         stack = [e]
