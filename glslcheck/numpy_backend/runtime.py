@@ -1005,16 +1005,16 @@ class Runtime(TextureFunctions):  # texture lookups: textures.py
 
     def assign(self, old: Any, new: Any, mask: Any = None) -> Any:
         """``old = new`` in lanes where ``mask`` is true (None: all lanes). Works for every
-        value kind including Structs; the result has the broadcast lane count and old's dtype
-        (or is old itself when new is old: a field that neither side wrote is not selected)."""
-        if new is old:
-            return old
+        value kind including Structs; the result has the broadcast lane count and old's dtype."""
         if isinstance(old, Struct):
             return Struct(old._name, {k: self.assign(v, new._fields[k], mask)
                                       for k, v in old._fields.items()})
         new = self._like(new, old)
         if mask is None:
             return new if new.dtype == old.dtype else new.astype(old.dtype)
+        if new is old and isinstance(mask, np.ndarray) and old.ndim and old.shape[-1] == mask.shape[-1]:
+            return old  # (a struct field neither side wrote: already per lane, nothing to select.
+            # A one-lane value still broadcasts: it would count as a constant in fmul)
         mask = self._mask_lanes(mask)
         out = np.where(mask, new, old)
         return out if out.dtype == old.dtype else out.astype(old.dtype)
