@@ -723,6 +723,19 @@ class Runtime(TextureFunctions):  # texture lookups: textures.py
         self._3 = F(3.0)
         self._half = F(0.5)
 
+    # NumPy's own ufuncs, which the transpiler calls where it knows every operand is an array
+    # of one float dtype (GLSL float operands always are): the built-in's exact operation,
+    # without a Python frame and the operand coercions of the methods below (`min_`, `abs`...)
+    # on every call. A ufunc is no descriptor, so `rt.np_fmin` is np.fmin itself.
+    np_where = staticmethod(np.where)  # `c ? a : b` of one array each (select: also structs)
+    np_fmin = np.fmin  # min: a NaN operand yields the other (IEEE minNum, as llvmpipe; min_)
+    np_fmax = np.fmax
+    np_abs = np.abs
+    np_sqrt = np.sqrt
+    np_floor = np.floor
+    np_ceil = np.ceil
+    np_trunc = np.trunc
+
     # ------------------------------------------------------------------ plumbing
     @staticmethod
     def errstate():
@@ -901,6 +914,13 @@ class Runtime(TextureFunctions):  # texture lookups: textures.py
     def vec(self, k: int, *args: Any) -> np.ndarray:
         """``vecK(...)``: one scalar splats; otherwise the components of all arguments
         (scalars, vectors, matrices column-major) in order, converted to float."""
+        if len(args) == k:  # k float scalars (`vec3(p.x + e, p.y, p.z)`): what _vec makes of
+            dt = self._dtype  # them, without converting each one
+            for a in args:
+                if not (isinstance(a, np.ndarray) and a.ndim == 1 and a.dtype == dt):
+                    break
+            else:
+                return self._stack(list(args))
         return self._vec(k, args, "float")
 
     def ivec(self, k: int, *args: Any) -> np.ndarray:
@@ -966,9 +986,15 @@ class Runtime(TextureFunctions):  # texture lookups: textures.py
             return v if len(idx) == 1 else np.stack([v] * len(idx))
         if len(idx) == 1:
             return v[idx[0]]
+        step = idx[1] - idx[0]
+        if step and v.flags.writeable and idx == tuple(range(idx[0], idx[0] + step * len(idx), step)):
+            # evenly spaced (.xy, .xz, .zyx, .yz): a view, as the prefixes always were, 20x cheaper
+            # than indexing with a list. A read-only value (a uniform) keeps the copy, which
+            # Runtime._const takes for a constant, as before
+            return v[idx[0]:(idx[-1] + step if idx[-1] + step >= 0 else None):step]
         if idx == tuple(range(len(idx))):
             return v[: len(idx)]
-        return v[list(idx)]
+        return v.take(idx, axis=0)  # (.xzy, .xxy: ndarray.take costs a third of indexing with a list)
 
     @staticmethod
     def _mask_lanes(mask: Any) -> Any:
@@ -987,6 +1013,9 @@ class Runtime(TextureFunctions):  # texture lookups: textures.py
         new = self._like(new, old)
         if mask is None:
             return new if new.dtype == old.dtype else new.astype(old.dtype)
+        if new is old and isinstance(mask, np.ndarray) and old.ndim and old.shape[-1] == mask.shape[-1]:
+            return old  # (a struct field neither side wrote: already per lane, nothing to select.
+            # A one-lane value still broadcasts: it would count as a constant in fmul)
         mask = self._mask_lanes(mask)
         out = np.where(mask, new, old)
         return out if out.dtype == old.dtype else out.astype(old.dtype)
@@ -1332,20 +1361,23 @@ class Runtime(TextureFunctions):  # texture lookups: textures.py
         if a.ndim == 1 and b.ndim == 1:
             return self.fmul(a, b)
         n = a.shape[0]
-        if self._const_zero(a, b) or self._const_zero(b, a):
+        ca, cb = self._const(a), self._const(b)  # (_const_zero of (a, b) and of (b, a), each test once)
+        if self.fold_constants and ca != cb and (a if ca else b).size <= 16 and (
+                np.count_nonzero(a if ca else b) != (a if ca else b).size):
             # a constant zero component drops its product (NIR folds x * 0.0 to 0.0), so a NaN
             # there does not reach the sum: dot(vec3(NaN, 1, 2), vec3(0, 1, 1)) = 3 on llvmpipe
             s = self.fmul(a[n - 1], b[n - 1])
             for i in range(n - 2, -1, -1):
                 s = self.fmul(a[i], b[i]) + s
             return s
-        s = np.multiply(a[n - 1], b[n - 1])
-        if n > 1:  # every product has the same shape: accumulate in place (t + s == s + t)
-            t = np.multiply(a[n - 2], b[n - 2])
-            s += t
-            for i in range(n - 3, -1, -1):
-                np.multiply(a[i], b[i], out=t)
-                s += t
+        # every product in one call (each rounded, as one at a time), then the sum from the
+        # right, in place (t + s == s + t): n ufunc calls instead of 2n - 1
+        p = np.multiply(a, b)
+        if n == 1:
+            return p[0]
+        s = np.add(p[n - 1], p[n - 2])
+        for i in range(n - 3, -1, -1):
+            s += p[i]
         return s
 
     def dot_add(self, a: Any, b: Any, k: Any) -> np.ndarray:

@@ -80,6 +80,8 @@ class TraceTranspiler(Transpiler):
     """`TraceTranspiler(model, path).module()` -> (source, meta) of the traced module; the
     sites its hooks name are `self.sites` afterwards."""
 
+    CSE_CALLS = False  # every call where it runs, each reported (not one shared by repeats)
+
     def __init__(self, model: Any, path: str = "<shader>") -> None:
         super().__init__(model, path)
         self.sites: list[Site] = []

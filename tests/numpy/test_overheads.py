@@ -143,8 +143,8 @@ def test_early_out_skips_the_rest_where_no_lane_goes_on(make_shader, knobs, monk
     knobs(TILE_LANES=32, TILE_WIDTH=16)         # 16x8 image: four tiles of two rows
     rt = prog.module()["rt"]
     sqrt_lanes = []
-    real = rt.sqrt
-    monkeypatch.setattr(rt, "sqrt", lambda x: sqrt_lanes.append(np.size(x)) or real(x))
+    real = rt.np_sqrt  # a float sqrt is NumPy's ufunc, called directly (transpile/expressions.py)
+    monkeypatch.setattr(rt, "np_sqrt", lambda x: sqrt_lanes.append(np.size(x)) or real(x))
     img = prog.render(size=(16, 8))
     assert sqrt_lanes == [32, 32]               # only the tiles of rows 4-7 compute the rest
     y = np.arange(8, dtype=np.float32)[::-1] + np.float32(0.5)  # top row first
@@ -172,7 +172,7 @@ def test_uniform_loops_run_as_plain_python_loops(make_shader):
     shader = make_shader(UNIFORM_LOOPS)
     code = transpile_shader(shader).source
     first, second = code.split("# line 8:")[0], code.split("# line 8:")[1]
-    assert "if not X.true(rt.lt(v_i, " in first and "_live" not in first  # no mask of its own
+    assert "if not X.true((v_i < " in first and "_live" not in first  # no mask of its own
     assert "_live" in second and "X.and_(_live" in second                # a lane may leave early
     prog = compile_numpy(shader)
     img = prog.render(size=(12, 10), stats=True)
@@ -253,8 +253,8 @@ def test_a_pure_right_operand_of_and_or_is_skipped_where_no_lane_needs_it(make_s
     knobs(TILE_LANES=32, TILE_WIDTH=16)            # 16x8: four tiles of two rows
     rt = prog.module()["rt"]
     sqrt_lanes = []
-    real = rt.sqrt
-    monkeypatch.setattr(rt, "sqrt", lambda x: sqrt_lanes.append(np.size(x)) or real(x))
+    real = rt.np_sqrt  # a float sqrt is NumPy's ufunc, called directly (transpile/expressions.py)
+    monkeypatch.setattr(rt, "np_sqrt", lambda x: sqrt_lanes.append(np.size(x)) or real(x))
     img = prog.render(size=(16, 8))
     # rows 0-3 (y < 4): `&&` is decided by its left side there, and `||` above
     assert sqrt_lanes == [32, 32, 32, 32]          # 2 tiles x `||`, 2 tiles x `&&`

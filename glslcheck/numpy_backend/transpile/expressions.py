@@ -19,6 +19,16 @@ from .inline import bound_code
 from ...analysis import param_directions
 from ...check.model import Constructor, Symbol
 from .facts import is_plain_read
+from ...printer import to_glsl
+
+# Built-ins whose runtime method, on float operands, is one NumPy ufunc (Runtime.np_*): called
+# directly, as `rt.np_fmin(a, b)`, without the method's Python frame (`Runtime.min_` ...)
+_FLOAT_UFUNCS = {"min": "np_fmin", "max": "np_fmax", "abs": "np_abs", "sqrt": "np_sqrt", "floor": "np_floor",
+                 "ceil": "np_ceil", "trunc": "np_trunc"}
+# Operators that are NumPy's operator on two int or two uint operands (int32 and uint32 arrays,
+# as constants and every runtime result are): rt.add is np.add, rt.bit_xor np.bitwise_xor ...
+# (`/` and `%` have GLSL's own rules for zero and signs; `<<` on int goes through unsigned bits)
+_INT_OPERATORS = ("+", "-", "*", "<", "<=", ">", ">=", "&", "|", "^")
 
 
 @dataclass
@@ -35,8 +45,25 @@ class LValue:
 class Expressions:
     """The expression pass of `Transpiler`."""
 
+    # Repeated built-in calls of the expression being printed (`repeated_calls`): (ids of the
+    # Call nodes, {printed call: the temporary holding its value}); None outside such an expression
+    cse: tuple[set[int], dict[str, str]] | None = None
+    CSE_CALLS = True  # off in the tracing transpiler (trace.py), which reports every operation
+
     # -- expressions ---------------------------------------------------------------------------
     def expr(self, e: Any, mask: str | None) -> str:
+        masked = isinstance(e, A.Ternary) or (isinstance(e, A.Binary) and e.op in ("&&", "||"))
+        if (self.cse is None or masked) and self.CSE_CALLS and self.fn is not None and not self.in_const:
+            # an expression without side effects (or a part evaluated under a mask of its own):
+            # the calls it repeats, shared by its parts (an empty set: none to share)
+            saved, self.cse = self.cse, None if self.has_effects(e) else (self.repeated_calls(e), {})
+            try:
+                return self.print_expr(e, mask)
+            finally:
+                self.cse = saved
+        return self.print_expr(e, mask)
+
+    def print_expr(self, e: Any, mask: str | None) -> str:
         method = getattr(self, "_print_" + type(e).__name__, None)
         if method is None:
             raise _error(f"{type(e).__name__} expressions are not supported by the NumPy backend", e)
@@ -59,6 +86,26 @@ class Expressions:
             name = self.const_exprs[text] = f"C_x{len(self.const_exprs) + 1}"
             self.consts[name] = text
         return name
+
+    def repeated_calls(self, e: Any) -> set[int]:
+        """The built-in calls that `e` (an expression without side effects: `expr` asks)
+        makes more than once with the same arguments (the same GLSL text), leaving out the
+        parts under a `&&`, `||` or `?:` inside it, which `expr` treats as expressions of their
+        own (they may run under masks of their own). `mat2(cos(a), -sin(a), sin(a), cos(a))`,
+        a rotation in most raymarchers, computes cos(a) and sin(a) once each, as Mesa's CSE
+        does (the llvmpipe emulation of one sin is about 40 NumPy calls). The first is kept in
+        a temporary emitted before the expression's line, which every later one reads; its
+        value is the same bits, since nothing in e writes a variable in between."""
+        groups: dict[str, list[Any]] = {}
+        stack = [e]
+        while stack:
+            n = stack.pop()
+            if n is not e and (isinstance(n, A.Ternary) or (isinstance(n, A.Binary) and n.op in ("&&", "||"))):
+                continue  # a part under a mask of its own: its calls are its own (`expr`)
+            if isinstance(n, A.Call) and not isinstance(self.model.call_target(n), (Constructor, Symbol)):
+                groups.setdefault(to_glsl(n), []).append(n)
+            stack.extend(n.children())
+        return {id(n) for g in groups.values() if len(g) > 1 for n in g if self.model.const_value(n) is None}
 
     def type_of(self, e: Any) -> Any:
         return self.model.type_of(e)
@@ -143,12 +190,22 @@ class Expressions:
         lt, rtp = self.type_of(e.left), self.type_of(e.right)
         if op in ("==", "!="):
             if lt.is_scalar and rtp.is_scalar:
+                if lt.base == rtp.base and lt.base in ("float", "int", "uint"):
+                    return f"({left} {op} {right})"  # np.equal / np.not_equal, as rt.eq and rt.ne
                 return f"rt.{'eq' if op == '==' else 'ne'}({left}, {right})"
             return f"rt.{'equal_all' if op == '==' else 'nequal_all'}({left}, {right})"
         if op == "%" and self.model.const_value(e.left) is not None and self.model.const_value(e.right) is not None:
             return f"rt.rem_const({left}, {right})"
         if op not in _BIN_METHODS and op != "%":
             raise _error(f"the operator '{op}' is not supported", e)
+        if op in ("<<", ">>") and (op == ">>" or lt.base == "uint"):
+            count = self.model.const_value(e.right)
+            if isinstance(count, int) and not isinstance(count, bool) and 0 <= count < 32:
+                # a constant count in range (xorshift's `state << 13`): NumPy's shift with the
+                # count in the left operand's type, which is what rt.shl / rt.shr compute
+                # (for uint; `>>` of an int is arithmetic in both). `int << n` keeps rt.shl,
+                # which shifts the unsigned bits (a signed overflow is undefined in C)
+                return f"({left} {op} {self.const_int(count, lt.base == 'uint')})"
         return self.binary_values(op, lt, rtp, left, right)
 
     def short_circuit(self, e: A.Binary, mask: str | None) -> str:
@@ -234,6 +291,8 @@ class Expressions:
             # float operands are always arrays of the render dtype: NumPy's operator is exactly
             # the runtime's ufunc (rt.add is np.add ...), without a Python call per operation
             return f"({left} {op} {right})"
+        if op in _INT_OPERATORS and lt.base == rtp.base and lt.base in ("int", "uint"):
+            return f"({left} {op} {right})"  # the same, for int32 or uint32 arrays
         return f"rt.{_BIN_METHODS[op]}({left}, {right})"
 
     def _print_Ternary(self, e: A.Ternary, mask: str | None) -> str:
@@ -248,7 +307,7 @@ class Expressions:
                 b = self.expr(e.else_, mask)
                 return f"({a} if X.true({c}) else {b})"
             c, a, b = self.exprs([e.cond, e.then, e.else_], mask)
-            return f"rt.select({c}, {a}, {b})"
+            return f"{self.select_fn(e)}({c}, {a}, {b})"
         c = self.tmp(self.expr(e.cond, mask))
         t = self.type_of(e)
         res_a, res_b = self.fresh("t"), self.fresh("t")
@@ -260,7 +319,15 @@ class Expressions:
             self.indent += 1
             self.emit(f"{res} = {self.expr(branch, m)}")
             self.indent -= 1
-        return f"rt.select({c}, {res_a}, {res_b})"
+        return f"{self.select_fn(e)}({c}, {res_a}, {res_b})"
+
+    def select_fn(self, e: A.Ternary) -> str:
+        """`rt.select`, or for a value that is one array (no struct in it) np.where itself, which
+        is all that rt.select does with one, without its Python frame."""
+        t = self.type_of(e)
+        while t.is_array:
+            t = t.element
+        return "rt.select" if t.is_struct else "rt.np_where"
 
     def _print_Sequence(self, e: A.Sequence, mask: str | None) -> str:
         for x in e.exprs[:-1]:
@@ -308,7 +375,13 @@ class Expressions:
             return self.user_call(e, tgt, mask)
         if tgt is None:
             raise _error(f"the call of '{e.callee}' was not resolved by the checker", e)
-        return self.builtin_call(e, tgt, mask)
+        if self.cse is None or id(e) not in self.cse[0]:
+            return self.builtin_call(e, tgt, mask)
+        text = self.builtin_call(e, tgt, mask)  # a repeated call (`repeated_calls`)
+        done = self.cse[1]
+        if text not in done:
+            done[text] = self.tmp(text)
+        return done[text]
 
     def constructor(self, e: A.Call, t: Any, mask: str | None) -> str:
         args = self.exprs(e.args, mask)
@@ -362,6 +435,10 @@ class Expressions:
             rewritten = self.pow_rewrite(e, args)
             if rewritten is not None:
                 return rewritten
+        if name in _FLOAT_UFUNCS and all(self.type_of(a).base == "float" for a in e.args):
+            return f"rt.{_FLOAT_UFUNCS[name]}({', '.join(args)})"
+        if name == "clamp" and all(self.type_of(a).base == "float" for a in e.args):
+            return f"rt.np_fmin(rt.np_fmax({args[0]}, {args[1]}), {args[2]})"  # as Runtime.clamp
         method = _RUNTIME_NAMES.get(name, name)
         from ..runtime import Runtime
 

@@ -60,15 +60,16 @@ class PythonLimits:
         function of the locals it reads; emit the call here and return the value's name."""
         fs = self.fn
         defined = set(fs.defined)
-        saved = self.lines, self.indent, fs.nest, fs.blocks
-        self.lines, self.indent, fs.nest, fs.blocks, self.last_line = [], 1, 0, 0, None
+        saved = self.lines, self.indent, fs.nest, fs.blocks, self.cse
+        # (no common subexpressions shared with the caller: temporaries here are the function's)
+        self.lines, self.indent, fs.nest, fs.blocks, self.last_line, self.cse = [], 1, 0, 0, None, None
         try:
             value = build()
             if value is not None:
                 value = self.tmp(value)
             body = self.lines
         finally:
-            self.lines, self.indent, fs.nest, fs.blocks = saved
+            self.lines, self.indent, fs.nest, fs.blocks, self.cse = saved
             self.last_line = None
         used = sorted(self.local_names(body) & defined)
         # the locals it may rebind: every name left of an `=` (more than needed is harmless)

@@ -71,7 +71,7 @@ def f_mainImage(S, _m, v_fragCoord):
             X.runaway(5)
         if X.tick(S, 5, _n7):
             break
-        _live6 = X.and_(_live6, rt.lt(v_i, C_i_64))
+        _live6 = X.and_(_live6, (v_i < C_i_64))
         if not X.live(_live6):
             break
         if X.loop_sparse(S, _live6) is not None:
@@ -104,7 +104,7 @@ def f_mainImage(S, _m, v_fragCoord):
     _m17 = X.andnot(_m, _t13)
     if X.live(_m17):
         _t15 = C_f_0p0
-    v_fragColor = rt.vec(4, rt.vec(3, rt.select(_t13, _t14, _t15)), C_f_1p0)
+    v_fragColor = rt.vec(4, rt.vec(3, rt.np_where(_t13, _t14, _t15)), C_f_1p0)
     return (None, v_fragColor)
 
 
