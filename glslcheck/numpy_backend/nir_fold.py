@@ -854,7 +854,8 @@ def _sink_sum(tr: Any, e: A.Binary, inner: Any, k: Any, mask: str | None) -> str
     if squared is not None:
         u, kk, written = tr.exprs([squared, k, inner], mask)
         signed = f"(-{kk})" if e.op == "-" else kk
-        if _shared_dot(tr, squared, inner):  # (dot(x, x) used twice after CSE: the constant stays outside)
+        if _shared_dot(tr, squared, inner) and not _merged_argument(tr, squared):
+            # (dot(x, x) used twice after CSE: the constant stays outside)
             return f"((rt.dot({u}, {u}) {e.op} {kk}) if rt.lp else ({written} {e.op} {kk}))"
         return f"(rt.dot_add({u}, {u}, {signed}) if rt.lp else ({written} {e.op} {kk}))"
     plan = _sum_plan(tr, inner, tr.type_of(e), 0)
@@ -920,6 +921,57 @@ def _shared_dot(tr: Any, x: Any, pow_call: Any) -> bool:
             if isinstance(a, A.Identifier) and tr.model.symbol_of(a) is sym:
                 return True
     return False
+
+
+def _merged_argument(tr: Any, x: Any) -> bool:
+    """Every call of the current function passes for the parameter x a variable whose value
+    there merges several writes (to NIR a phi: written in a loop around the call, or last
+    written in a branch before it). Then the constant joins the shared dot product's innermost
+    addition after all: nir_opt_algebraic's ``(a + b) + #c`` sink (``fadd(is_used_once)``)
+    runs before CSE has merged the two dot products when x is a phi, after it when x is an
+    ALU value (measured on a copy of gargantua's WarpSpace, 14,400 pixels each: called in a
+    loop that writes x, 0 pixels off sunk and 1-3 outside; after an ``if`` that writes x, 0
+    and 1; in a loop that does not write x, or after straight-line writes, 1 sunk and 0
+    outside). Which pass ordering makes a phi differ was not traced in Mesa's source."""
+    fn = tr.fn.sym
+    names = [name for name, _, _ in fn.params]
+    if x.name not in names:
+        return False
+    index = names.index(x.name)
+    found = False
+    for caller in tr.model.reachable_functions():
+        for call in caller.node.body.walk():
+            if not (isinstance(call, A.Call) and tr.model.call_target(call) is fn):
+                continue
+            arg = call.args[index] if index < len(call.args) else None
+            sym = tr.model.symbol_of(arg) if isinstance(arg, A.Identifier) else None
+            if sym is None or sym.kind not in ("local", "param"):
+                return False
+            saved = tr.fn
+            tr.fn = _Standin(caller)
+            try:
+                facts = _facts(tr)
+            finally:
+                tr.fn = saved
+            if not facts.ok or id(arg) not in facts.enter:
+                return False
+            # (the out write of a call of this function, which never writes x, changes nothing)
+            writes = [w for w in facts.writes_to(sym)
+                      if not (w.kind == "out" and isinstance(w.node, A.Call) and tr.model.call_target(w.node) is fn)]
+            at = facts.enter[id(arg)]
+            before = [w for w in writes if w.pos < at]
+            if not before:
+                return False
+            last = before[-1]
+            merged = not facts.dominates(last.node, arg)
+            if not merged:
+                outer = {id(loop) for loop in facts.enclosing_loops(last.node)}
+                merged = any(facts.enter[id(loop)] <= w.pos <= facts.exit[id(loop)]
+                             for loop in facts.enclosing_loops(arg) if id(loop) not in outer for w in writes)
+            if not merged:
+                return False
+            found = True
+    return found
 
 
 def _sum_plan(tr: Any, x: Any, t: Any, depth: int) -> tuple | None:
