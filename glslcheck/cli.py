@@ -112,7 +112,7 @@ def main(argv: list[str] | None = None) -> int:
     later. The process also collects its youngest generation every 20,000 new objects instead
     of every 700: importing the command, loading the parser tables and building the trees make
     objects by the ten thousand and almost no garbage, and each collection walks them (a `lint
-    FILE` 322.6 -> 314.4 M instructions, cachegrind, PYTHONHASHSEED=0; the lab's lint in one
+    FILE` 322.6 -> 314.9 M instructions, cachegrind, PYTHONHASHSEED=0; the lab's lint in one
     process 1,727 -> 1,718 M and 20.3 -> 21.8 MB peak; 10,000 saved only 3.4 M). Called with
     `argv` (tests, other programs), the collector is left as it is."""
     if argv is not None:

@@ -95,6 +95,7 @@ def lint_path_patterns() -> list[tuple[str, int]]:
     """Every (pattern, flags) the lint path compiles through `compiled` when it starts: its
     modules imported, the parser's tables loaded and every rule loaded, in a fresh interpreter
     (the patterns are module constants: compiled once, at import)."""
+    import json
     import subprocess
 
     script = (
@@ -105,7 +106,7 @@ def lint_path_patterns() -> list[tuple[str, int]]:
         "print(json.dumps(regexes._recorded))\n"
     )
     done = subprocess.run([sys.executable, "-c", script], capture_output=True, text=True, check=True)
-    return sorted({(p, f) for p, f in __import__("json").loads(done.stdout)})
+    return sorted({(p, f) for p, f in json.loads(done.stdout)})
 
 
 def source(patterns: list[tuple[str, int]]) -> str:

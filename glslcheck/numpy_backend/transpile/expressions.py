@@ -31,6 +31,12 @@ _FLOAT_UFUNCS = {"min": "np_fmin", "max": "np_fmax", "abs": "np_abs", "sqrt": "n
 _INT_OPERATORS = ("+", "-", "*", "<", "<=", ">", ">=", "&", "|", "^")
 
 
+def _own_mask(e: Any) -> bool:
+    """A `?:`, `&&` or `||`: its parts may run under masks of their own, so the calls they
+    repeat are shared within them only (`Expressions.expr`, `repeated_calls`)."""
+    return isinstance(e, A.Ternary) or (isinstance(e, A.Binary) and e.op in ("&&", "||"))
+
+
 @dataclass
 class LValue:
     """An l-value with its index expressions already evaluated: base name and an access path.
@@ -52,8 +58,7 @@ class Expressions:
 
     # -- expressions ---------------------------------------------------------------------------
     def expr(self, e: Any, mask: str | None) -> str:
-        masked = isinstance(e, A.Ternary) or (isinstance(e, A.Binary) and e.op in ("&&", "||"))
-        if (self.cse is None or masked) and self.CSE_CALLS and self.fn is not None and not self.in_const:
+        if (self.cse is None or _own_mask(e)) and self.CSE_CALLS and self.fn is not None and not self.in_const:
             # an expression without side effects (or a part evaluated under a mask of its own):
             # the calls it repeats, shared by its parts (an empty set: none to share)
             saved, self.cse = self.cse, None if self.has_effects(e) else (self.repeated_calls(e), {})
@@ -100,7 +105,7 @@ class Expressions:
         stack = [e]
         while stack:
             n = stack.pop()
-            if n is not e and (isinstance(n, A.Ternary) or (isinstance(n, A.Binary) and n.op in ("&&", "||"))):
+            if n is not e and _own_mask(n):
                 continue  # a part under a mask of its own: its calls are its own (`expr`)
             if isinstance(n, A.Call) and not isinstance(self.model.call_target(n), (Constructor, Symbol)):
                 groups.setdefault(to_glsl(n), []).append(n)
