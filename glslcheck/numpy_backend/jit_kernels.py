@@ -99,42 +99,56 @@ def _daz(x):
     return x
 
 
+@numba.njit(inline="always", **_OPTS)
+def _trig(a, fma, which):
+    """LlvmpipeMath._sin (``which`` 0), _cos (1) or _tan (2, sin over cos of one reduction) of
+    one float32 lane ``a``, |a| < 2**29 and finite (the caller's check)."""
+    ai = np.int64(_bits(a))
+    x_abs = _daz(_float(np.uint32(ai & _ABS)))
+    j_add = np.int64(np.int32(F32(x_abs * _FOPI))) + 1  # in range: cvttps2dq truncates so
+    j = j_add & ~np.int64(1)
+    y_2 = F32(j)
+    x_1 = _mad(y_2, _DP0, x_abs, fma)
+    x_2 = _mad(y_2, _DP1, x_1, fma)
+    x_3 = _mad(y_2, _DP2, x_2, fma)
+    z = F32(x_3 * x_3)
+    y_6 = F32(_mad(_mad(z, _C0, _C1, fma), z, _C2, fma) * z)
+    y2_6 = F32(_mad(_mad(z, _S0, _S1, fma), z, _S2, fma) * z)
+    y_10 = F32(F32(F32(y_6 * z) - F32(z * _HALF)) + _ONE)
+    y2_9 = _mad(y2_6, x_3, x_3, fma)
+    s = _ZERO
+    c = _ZERO
+    if which != 1:  # sin: bit 1 of j picks the polynomial; the sign bit is x's flipped by bit 2 of j_add
+        s = y2_9 if (j & 2) == 0 else y_10
+        if ((ai >> 31) ^ (j_add >> 2)) & 1:
+            s = -s
+        s = min(max(s, _MONE), _ONE)  # lp_build_clamp (no NaN here)
+    if which != 0:  # cos: the same of j - 2, the sign bit set where its bit 2 is clear
+        j2 = j - 2
+        c = y2_9 if (j2 & 2) == 0 else y_10
+        if (j2 >> 2) & 1 == 0:
+            c = -c
+        c = min(max(c, _MONE), _ONE)
+    return s if which == 0 else c if which == 1 else F32(s / c)
+
+
+@numba.njit(inline="always", **_OPTS)
+def trig_in_range(a):
+    """True where :func:`_trig` computes LlvmpipeMath's result for ``a``: |a| < 2**29 and
+    finite (a NaN or an Inf has larger bits)."""
+    return (np.int64(_bits(a)) & _ABS) < _SIN_MAX_BITS
+
+
 @numba.njit("boolean(float32[::1], float32[::1], boolean, int64)", **_OPTS)
 def trig(a, out, fma, which):
-    """LlvmpipeMath._sin (``which`` 0), _cos (1) or _tan (2, sin over cos of one reduction) of
-    ``a`` into ``out`` (same size); False (declined) where some |x| >= 2**29 or is not finite."""
+    """:func:`_trig` of every lane of ``a`` into ``out`` (same size); False (declined) where some
+    |x| >= 2**29 or is not finite."""
     n = a.size
     for k in range(n):
-        if (np.int64(_bits(a[k])) & _ABS) >= _SIN_MAX_BITS:
+        if not trig_in_range(a[k]):
             return False
     for k in range(n):
-        ai = np.int64(_bits(a[k]))
-        x_abs = _daz(_float(np.uint32(ai & _ABS)))
-        j_add = np.int64(np.int32(F32(x_abs * _FOPI))) + 1  # in range: cvttps2dq truncates so
-        j = j_add & ~np.int64(1)
-        y_2 = F32(j)
-        x_1 = _mad(y_2, _DP0, x_abs, fma)
-        x_2 = _mad(y_2, _DP1, x_1, fma)
-        x_3 = _mad(y_2, _DP2, x_2, fma)
-        z = F32(x_3 * x_3)
-        y_6 = F32(_mad(_mad(z, _C0, _C1, fma), z, _C2, fma) * z)
-        y2_6 = F32(_mad(_mad(z, _S0, _S1, fma), z, _S2, fma) * z)
-        y_10 = F32(F32(F32(y_6 * z) - F32(z * _HALF)) + _ONE)
-        y2_9 = _mad(y2_6, x_3, x_3, fma)
-        s = _ZERO
-        c = _ZERO
-        if which != 1:  # sin: bit 1 of j picks the polynomial; the sign bit is x's flipped by bit 2 of j_add
-            s = y2_9 if (j & 2) == 0 else y_10
-            if ((ai >> 31) ^ (j_add >> 2)) & 1:
-                s = -s
-            s = min(max(s, _MONE), _ONE)  # lp_build_clamp (no NaN here)
-        if which != 0:  # cos: the same of j - 2, the sign bit set where its bit 2 is clear
-            j2 = j - 2
-            c = y2_9 if (j2 & 2) == 0 else y_10
-            if (j2 >> 2) & 1 == 0:
-                c = -c
-            c = min(max(c, _MONE), _ONE)
-        out[k] = s if which == 0 else c if which == 1 else F32(s / c)
+        out[k] = _trig(a[k], fma, which)
     return True
 
 
