@@ -22,7 +22,9 @@ Lark loads it (grammar/glsl.lark); `lexer_tables` arranges them for speed ahead 
   looked up in a dict of the grammar's keyword strings, which is what Lark does too;
   likewise each run of operator strings is one alternative, the match looked up by its text;
 * ignored white space is skipped by the same match, before the token;
-* the tokens are built directly, with the same type, value, positions, lines and columns.
+* the tokens are built directly, with the same type, value, positions, lines and columns (a
+  token's line and columns are computed when first read: only tests and error messages read
+  them, and tracking lines cost a sixth of the lexer's time).
 
 The whole text is lexed before parsing. An error (an unexpected character, a reserved word
 used as a name) is not raised at once but kept in `Tokens.error`: the parser raises it when it
@@ -36,6 +38,7 @@ Tested against Lark's own lexer on the corpus, the lab shaders and mutations of 
 from __future__ import annotations
 
 import re
+from bisect import bisect_right
 
 from .regexes import compiled
 from .builtins import RESERVED_WORDS
@@ -51,9 +54,12 @@ ERROR_KIND = "_unexpected"  # the master regex's group for a character no termin
 
 
 class Token(str):
-    """A token: its text, with the same attributes as Lark's Token (the parse tree's leaves)."""
+    """A token: its text, with the same attributes as Lark's Token (the parse tree's leaves).
 
-    __slots__ = ("type", "value", "start_pos", "end_pos", "line", "column", "end_line", "end_column")
+    The lexer gives a token its text, type and offsets; its lines and columns (read only by
+    tests and a few error messages) are computed from the text's line starts when first read."""
+
+    __slots__ = ("type", "value", "start_pos", "end_pos", "_where", "_lines")
 
     def __new__(cls, type: str, value: str, start_pos: int | None = None, line: int | None = None,
                 column: int | None = None,
@@ -62,11 +68,8 @@ class Token(str):
         tok.type = type
         tok.value = value
         tok.start_pos = start_pos
-        tok.line = line
-        tok.column = column
-        tok.end_line = end_line
-        tok.end_column = end_column
         tok.end_pos = end_pos
+        tok._where = (line, column, end_line, end_column)
         return tok
 
     @classmethod
@@ -74,8 +77,44 @@ class Token(str):
         return cls(type, value, borrow.start_pos, borrow.line, borrow.column, borrow.end_line,
                    borrow.end_column, borrow.end_pos)
 
+    def _position(self) -> tuple:
+        """(line, column, end_line, end_column), computed once from the lexed text's lines."""
+        try:
+            return self._where
+        except AttributeError:
+            where = self._where = self._lines.where(self.start_pos, self.end_pos)
+            return where
+
+    line = property(lambda self: self._position()[0])
+    column = property(lambda self: self._position()[1])
+    end_line = property(lambda self: self._position()[2])
+    end_column = property(lambda self: self._position()[3])
+
     def __repr__(self) -> str:
         return f"Token({self.type!r}, {self.value!r})"
+
+
+class _Lines:
+    """The line starts of a lexed text, found when a token's line is first read."""
+
+    __slots__ = ("text", "starts")
+
+    def __init__(self, text: str) -> None:
+        self.text = text
+        self.starts: list[int] | None = None
+
+    def where(self, start: int, end: int) -> tuple[int, int, int, int]:
+        starts = self.starts
+        if starts is None:
+            starts = self.starts = [0]
+            find = self.text.find
+            at = find("\n")
+            while at >= 0:
+                starts.append(at + 1)
+                at = find("\n", at + 1)
+        line = bisect_right(starts, start)
+        end_line = bisect_right(starts, end)
+        return line, start - starts[line - 1] + 1, end_line, end - starts[end_line - 1] + 1
 
 
 class UnexpectedInput(Exception):
@@ -254,11 +293,9 @@ class Lexer:
         append = tokens.append
         keywords = self.keywords.get(IDENTIFIER, {})
         literals = self.literals
-        multiline_literals = self.multiline_literals
         error_kind = self.error_kind
         reserved = RESERVED_WORDS
-        count = text.count
-        rfind = text.rfind
+        lines = _Lines(text)
         struct_names: set[str] = set()
         after_struct = False
         # scopes: a struct name hidden by a variable or parameter of that name, and the brace
@@ -267,20 +304,12 @@ class Lexer:
         hidden: list[tuple[str, int, bool]] = []  # (name, depth it shows again at, parameter)
         prev_type = False  # the previous token is a type: a struct name now is a declared name
         error: Exception | None = None
-        line = 1
-        line_start = 0  # the position where `line` starts
-        prev_end = 0
         for m in self.master.finditer(text):
             kind = m.lastgroup
             if kind is None:  # only ignored text was left
                 break
             start, end = m.span(kind)
-            if start != prev_end and count("\n", prev_end, start):
-                line += count("\n", prev_end, start)
-                line_start = rfind("\n", prev_end, start) + 1
-            prev_end = end
             value = text[start:end]
-            names = None
             if kind == IDENTIFIER:
                 word_kind = keywords.get(value)
                 if word_kind is not None:
@@ -298,10 +327,10 @@ class Lexer:
                         else:
                             kind = TYPE_NAME
                     if value in reserved:
-                        error = ReservedWordError(self._token(kind, value, start, end, line, line_start))
+                        error = ReservedWordError(self._token(kind, value, start, end, text))
                         break
                     if len(value) > MAX_IDENTIFIER_LENGTH:
-                        error = LongIdentifierError(self._token(kind, value, start, end, line, line_start))
+                        error = LongIdentifierError(self._token(kind, value, start, end, text))
                         break
             else:
                 after_struct = False
@@ -311,7 +340,8 @@ class Lexer:
                     if hidden or value in "{}();":
                         depth, parens = self._scope(value, depth, parens, hidden, struct_names)
                 elif kind == error_kind:
-                    error = UnexpectedCharacters(text, start, line, start - line_start + 1, self.allowed)
+                    tok = self._token(kind, value, start, end, text)
+                    error = UnexpectedCharacters(text, start, tok.line, tok.column, self.allowed)
                     break
             prev_type = kind == TYPE_NAME or value in _TYPE_WORDS
             tok = _new_str(Token, value)
@@ -319,13 +349,7 @@ class Lexer:
             tok.value = value
             tok.start_pos = start
             tok.end_pos = end
-            tok.line = tok.end_line = line
-            tok.column = start - line_start + 1
-            if (names is None or multiline_literals) and "\n" in value:  # none in this grammar
-                line += value.count("\n")
-                line_start = start + value.rindex("\n") + 1
-                tok.end_line = line
-            tok.end_column = end - line_start + 1
+            tok._lines = lines
             append(tok)
         return Tokens(text, tokens, error)
 
@@ -351,5 +375,11 @@ class Lexer:
         return depth, parens
 
     @staticmethod
-    def _token(kind: str, value: str, start: int, end: int, line: int, line_start: int) -> Token:
-        return Token(kind, value, start, line, start - line_start + 1, line, end - line_start + 1, end)
+    def _token(kind: str, value: str, start: int, end: int, text: str) -> Token:
+        tok = _new_str(Token, value)
+        tok.type = kind
+        tok.value = value
+        tok.start_pos = start
+        tok.end_pos = end
+        tok._lines = _Lines(text)
+        return tok
