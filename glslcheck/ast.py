@@ -73,6 +73,7 @@ class Node(metaclass=_NodeMeta):
     loc: Location = _NOLOC
     _children: tuple[str, ...] = ()
     _children_reversed: Callable[["Node"], tuple] = staticmethod(lambda node: ())
+    _children_values: Callable[["Node"], tuple] = staticmethod(lambda node: ())
     _fields: tuple[str, ...] = ()
     _shown: tuple[str, ...] = ()  # the fields __repr__ shows: all but locations
 
@@ -80,18 +81,18 @@ class Node(metaclass=_NodeMeta):
         fields = ", ".join(f"{name}={getattr(self, name)!r}" for name in self._shown)
         return f"{type(self).__name__}({fields})"
 
-    def children(self) -> Iterator["Node"]:
-        """The child nodes, in source order of the fields."""
-        for name in self._children:
-            value = getattr(self, name)
+    def children(self) -> list["Node"]:
+        """The child nodes, in source order of the fields (a new list: a generator per call was
+        most of the cost of the dataflow walk and the rules' recursions, issue 18)."""
+        out: list[Node] = []
+        for value in self._children_values(self):
             if value is None:
                 continue
-            if isinstance(value, list):
-                for item in value:
-                    if item is not None:
-                        yield item
+            if type(value) is list:
+                out.extend([item for item in value if item is not None] if None in value else value)
             else:
-                yield value
+                out.append(value)
+        return out
 
     def walk(self) -> Iterator["Node"]:
         """This node and all its descendants, depth first, parents before children (iterative)."""
@@ -513,6 +514,7 @@ def _make_methods() -> None:
         cls._children = tuple(f for f in cls._fields
                               if not names.isdisjoint(annotations[f].translate(_NOT_NAME).split()))
         cls._children_reversed = staticmethod(tuple_getter(cls._children[::-1]))
+        cls._children_values = staticmethod(tuple_getter(cls._children))
         positional = tuple(f for f in cls._fields if f != "loc")
         defaults = tuple(cls._defaults[f] for f in positional)
         template = _init_template(len(positional))

@@ -174,6 +174,7 @@ def _any_between(positions: list[int], lo: int, hi: int) -> bool:
 
 
 _JUMPS = (A.Return, A.Break, A.Continue, A.Discard)
+_WRITERS = frozenset((A.Assignment, A.Unary, A.Postfix, A.Declarator, A.ConditionDeclaration, A.Call))  # _record_writes
 
 
 _SWIZZLE_SETS = ("xyzw", "rgba", "stpq")
@@ -286,15 +287,12 @@ class FunctionFacts(ValueRanges):
             self.calls = []
 
     # -- the walk ------------------------------------------------------------------------------
-    def _tick(self) -> int:
-        self._clock += 1
-        return self._clock
-
     def _visit(self, node: Any, region: tuple, parent: Any) -> None:
         if node is None:
             return
         i = id(node)
-        self.enter[i] = self._tick()
+        self._clock += 1
+        self.enter[i] = self._clock
         self.region[i] = region
         self.parent[i] = parent
         self.nodes.append(node)
@@ -341,8 +339,10 @@ class FunctionFacts(ValueRanges):
         else:
             for child in node.children():
                 self._visit(child, region, node)
-        self.exit[i] = self._tick()
-        self._record_writes(node)
+        self._clock += 1
+        self.exit[i] = self._clock
+        if t in _WRITERS:
+            self._record_writes(node)
 
     def _record_writes(self, node: Any) -> None:
         t = type(node)

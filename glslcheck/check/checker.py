@@ -75,9 +75,7 @@ class Checker(A.NodeVisitor):
         self.loop_depth = 0
         self.switch_depth = 0
         self.anon_structs = 0
-        names = {getattr(n, "name", None) for n in self.ast.walk()}
-        names.discard(None)
-        self.unique = UniqueNames({n for n in names if isinstance(n, str)})
+        self.unique = UniqueNames(self._names_in_program)
         # Default precisions in effect (spec 4.5.4: a fragment shader has none for float and for
         # most samplers); Shadertoy's prelude sets float, int and sampler3D.
         self.default_precision: dict[str, str] = {"int": "mediump", "sampler2D": "lowp", "samplerCube": "lowp"}
@@ -87,6 +85,11 @@ class Checker(A.NodeVisitor):
         self.scope = Scope(self.builtin_scope, "global")
         self.global_scope = self.scope
         self._declare_predefined()
+
+    def _names_in_program(self) -> set[str]:
+        """Every name written in the program (of a node with a `name`)."""
+        names = {getattr(n, "name", None) for n in self.ast.walk()}
+        return {n for n in names if isinstance(n, str)}
 
     # -- reporting -----------------------------------------------------------------------------
     def error(self, message: str, node: Any, help: str | None = None, severity: str = "error") -> None:

@@ -54,10 +54,17 @@ def hazard_warnings(model: Any) -> list[Diagnostic]:
 
 
 def index_warnings(model: Any, definition: A.FunctionDefinition) -> list[Diagnostic]:
-    loops = _loop_ranges(model, definition.body)
-    out = []
+    indexes, fors = [], []  # one walk of the body finds both
     for node in definition.body.walk():
-        if type(node) is not A.Index or model.const_value(node.index) is not None:
+        t = type(node)
+        if t is A.Index:
+            indexes.append(node)
+        elif t is A.For:
+            fors.append(node)
+    loops = _loop_ranges(model, fors)
+    out = []
+    for node in indexes:
+        if model.const_value(node.index) is not None:
             continue
         base_t = model.type_of(node.base)
         size = base_t.array_size if base_t.is_array else (base_t.cols if base_t.is_matrix else base_t.size)
@@ -91,11 +98,12 @@ def _writes(model: Any, body: A.Node, sym: Any) -> bool:
     return False
 
 
-def _loop_ranges(model: Any, body: A.Node) -> dict[int, tuple[float, float]]:
-    """id(loop variable symbol) -> the values it takes in the body of its counting for loop."""
+def _loop_ranges(model: Any, fors: list[A.For]) -> dict[int, tuple[float, float]]:
+    """id(loop variable symbol) -> the values it takes in the body of its counting for loop
+    (`fors`: the for statements of a function, in walk order)."""
     out: dict[int, tuple[float, float]] = {}
-    for loop in body.walk():
-        if type(loop) is not A.For or type(loop.init) is not A.DeclarationStatement or loop.body is None:
+    for loop in fors:
+        if type(loop.init) is not A.DeclarationStatement or loop.body is None:
             continue
         decl = loop.init.decl
         if type(decl) is not A.VariableDeclaration or len(decl.declarators) != 1:

@@ -11,6 +11,10 @@ from __future__ import annotations
 
 from .model import Symbol
 
+TYPE_CHECKING = False  # not typing's: importing typing costs every start-up (issue 18)
+if TYPE_CHECKING:
+    from typing import Callable
+
 
 class Scope:
     def __init__(self, parent: "Scope | None", kind: str) -> None:
@@ -40,17 +44,28 @@ class Scope:
 
 
 class UniqueNames:
-    def __init__(self, taken: set[str]) -> None:
-        self.taken = set(taken)
+    """Unique names: a name as written the first time, then `name_1`, `name_2`, ... skipping the
+    names `taken` (a set, or a function giving it: called at the first repeated name, as most
+    programs never repeat one and finding every name walks the whole tree)."""
+
+    def __init__(self, taken: set[str] | Callable[[], set[str]]) -> None:
+        self._taken = taken if callable(taken) else set(taken)
         self.given: set[str] = set()
         self.next: dict[str, int] = {}  # the next suffix to try per name: linear, not quadratic
+
+    @property
+    def taken(self) -> set[str]:
+        if callable(self._taken):
+            self._taken = set(self._taken())
+        return self._taken
 
     def make(self, name: str) -> str:
         if name not in self.given:
             self.given.add(name)
             return name
         i = self.next.get(name, 1)
-        while f"{name}_{i}" in self.taken or f"{name}_{i}" in self.given:
+        taken = self.taken
+        while f"{name}_{i}" in taken or f"{name}_{i}" in self.given:
             i += 1
         self.next[name] = i + 1
         unique = f"{name}_{i}"
