@@ -40,7 +40,7 @@ from __future__ import annotations
 import re
 from bisect import bisect_right
 from .regexes import compiled
-from .diagnostics import Diagnostic, GlslError, Location
+from .diagnostics import Diagnostic, GlslError, Location, pending_location
 from .records import field, record
 from .sources import Source
 
@@ -280,7 +280,8 @@ class _Unit:
                 rep = "\n" * k if k else " "
             rs, re_ = self.c2r(cstart), self.c2r(cend - 1) + 1
             self.comment_starts.append(olen)
-            self.comments.append(Comment(self._raw_loc(rs, re_), raw[rs:re_], kind))
+            # located when read (as the AST's spans): the linter reads its own scan's comments
+            self.comments.append(Comment(pending_location(self._raw_loc, rs, re_), raw[rs:re_], kind))
             if rep == " ":
                 self.bp_s.append(olen)
                 self.bp_r.append(rs)

@@ -54,6 +54,24 @@ def _float_hint(node: A.Node) -> str | None:
 _RENAMED_UNIFORMS = {"iGlobalTime": "iTime"}
 
 
+class _NameAt:
+    """Where an error about a declaration or a call points: its name (`name_loc`, a call's
+    `callee_loc`), else the whole node. Found only when an error is reported: reading the name's
+    location computes it (diagnostics.py's pending locations), and most nodes have no error
+    (issue 18)."""
+
+    __slots__ = ("node", "field")
+
+    def __init__(self, node: Any, field: str = "name_loc") -> None:
+        self.node = node
+        self.field = field
+
+    @property
+    def loc(self) -> Location:
+        name_loc = getattr(self.node, self.field)
+        return name_loc if name_loc.line else self.node.loc
+
+
 class Checker(A.NodeVisitor):
     def __init__(self, parse_result: Any, tab: str, channel_types: dict[str, T.Type] | None = None) -> None:
         self.pr = parse_result
@@ -404,7 +422,7 @@ class Checker(A.NodeVisitor):
         elif storage == "const":
             self.error(f"the const '{d.name}' needs an initial value", d,
                        help=f"write 'const {t} {d.name} = ...;'")
-        self.declare(sym, d, d.name_loc if d.name_loc.line else d)
+        self.declare(sym, d, _NameAt(d))
         if is_global:
             self.model.globals.append(sym)
 
@@ -485,7 +503,7 @@ class Checker(A.NodeVisitor):
                 self.error(f"a sampler parameter cannot be '{p.direction}'", p)
             params.append((p.name or "", pt, p.direction))
         name = proto.name
-        where = proto.name_loc if proto.name_loc.line else proto
+        where = _NameAt(proto)
         sym = self._declare_function(name, ret, params, proto, definition, where)
         if definition is None or sym is None:
             return
@@ -501,7 +519,7 @@ class Checker(A.NodeVisitor):
                 continue
             qual = "const" if "const" in p.qualifiers else direction
             psym = Symbol(p.name, "param", pt, node=p, qualifier=qual)
-            self.declare(psym, p, p.name_loc if p.name_loc.line else p)
+            self.declare(psym, p, _NameAt(p))
         self.block_statements(definition.body.stmts if definition.body else [])
         if ret is not ERROR and not ret.is_void and self.func_returns == 0:
             self.error(f"the function '{name}' must return a '{ret}' but has no return statement",
@@ -628,7 +646,7 @@ class Checker(A.NodeVisitor):
                 self.error(f"cannot initialise '{cond.name}' of type '{t}' with a value of type '{init_t}'", cond.init)
             storage = cond.qualifiers.storage if cond.qualifiers else None
             sym = Symbol(cond.name, "local", t, node=cond, qualifier=storage)
-            self.declare(sym, cond, cond.name_loc if cond.name_loc.line else cond)
+            self.declare(sym, cond, _NameAt(cond))
             return
         t = self.expr(cond)
         if t is not ERROR and t != T.BOOL:
@@ -1062,7 +1080,7 @@ class Checker(A.NodeVisitor):
         if sym is not None and sym.kind == "struct":
             return self.constructor(n)
         arg_types = [self.expr(a) for a in n.args]
-        where = n.callee_loc if n.callee_loc.line else n
+        where = _NameAt(n, "callee_loc")
         if sym is not None and sym.kind != "function":
             self.error(f"'{name}' is a variable, not a function", where,
                        help="a local variable with this name hides the function; rename the variable")
@@ -1134,7 +1152,7 @@ class Checker(A.NodeVisitor):
 
     def constructor(self, n: A.Call) -> T.Type:
         arg_types = [self.expr(a) for a in n.args]
-        where = n.callee_loc if n.callee_loc.line else n
+        where = _NameAt(n, "callee_loc")
         if n.struct_ is not None:
             target = self.struct(n.struct_)
         elif n.callee in T.BY_NAME:

@@ -13,6 +13,7 @@ from .. import types as T
 from ..builtins import Overload
 from ..diagnostics import Diagnostic, GlslError
 from ..records import field, record
+from .consteval import UNKNOWN  # the checker imports it anyway; a call-time import cost every call
 
 TYPE_CHECKING = False  # not typing's: importing typing costs every start-up (issue 18)
 if TYPE_CHECKING:
@@ -124,8 +125,6 @@ class Model:
     def const_value(self, node: Any) -> Any:
         """The folded value of a constant expression (int/float/bool, tuples for vectors,
         tuples of columns for matrices, tuples for arrays and structs), else None."""
-        from .consteval import UNKNOWN
-
         v = self._consts.get(id(node))
         return None if v is UNKNOWN else v
 
