@@ -377,6 +377,8 @@ class FunctionFacts(ValueRanges):
     # -- positions and paths -------------------------------------------------------------------
     def is_dead(self, node: Any) -> bool:
         """`node` is in a statement after a `return` (or break/continue/discard) of its block."""
+        if not self.dead:
+            return False
         pos = self.enter.get(id(node), -1)
         return any(lo <= pos <= hi for lo, hi in self.dead)
 
@@ -492,10 +494,12 @@ class FunctionFacts(ValueRanges):
         integer quotient rounds, so it is not)."""
         if e.op == "+":
             return True
-        types = (self.model._types.get(id(e.left)), self.model._types.get(id(e.right)))
-        if None in types or any(getattr(t, "is_matrix", False) for t in types):
+        types = self.model._types
+        left, right = types.get(id(e.left)), types.get(id(e.right))
+        # (`is None`, not `None in (left, right)`: that calls the types' Python __eq__)
+        if left is None or right is None or getattr(left, "is_matrix", False) or getattr(right, "is_matrix", False):
             return False
-        return e.op == "*" or all(getattr(t, "base", None) == "float" for t in types)
+        return e.op == "*" or (getattr(left, "base", None) == "float" and getattr(right, "base", None) == "float")
 
     def terms(self, e: Any) -> list[Any] | None:
         """The keys of the operands of a chain of `+`, or of `*` and `/` (a divisor as
@@ -505,16 +509,15 @@ class FunctionFacts(ValueRanges):
             return None
         ops = ("+",) if e.op == "+" else ("*", "/")
         out: list[Any] = []
-
-        def walk(x: Any, inverse: bool) -> None:
+        stack = [(e, False)]  # depth first, left before right
+        while stack:
+            x, inverse = stack.pop()
             if type(x) is A.Binary and x.op in ops and self._commutes(x):
-                walk(x.left, inverse)
-                walk(x.right, inverse != (x.op == "/"))
+                stack.append((x.right, inverse != (x.op == "/")))
+                stack.append((x.left, inverse))
             else:
                 k = self.key(x)
                 out.append(("inv", k) if inverse else k)
-
-        walk(e, False)
         return out
 
     def written_factors(self, e: Any) -> tuple[list[Any], list[Any]] | None:
@@ -597,7 +600,10 @@ class FunctionFacts(ValueRanges):
                 return False
             if isinstance(target, B.Overload) and target.out_params:
                 return False
-        return all(self.is_pure(c) for c in e.children())
+        for c in e.children():
+            if not self.is_pure(c):
+                return False
+        return True
 
     def op_count(self, e: Any) -> tuple[int, bool]:
         """(operations, whether a built-in costlier than an add is called) of a pure expression."""

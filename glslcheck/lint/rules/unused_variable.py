@@ -61,35 +61,28 @@ def read_symbols(model: Any) -> set[int]:
     pf = _program_reads.get("model")
     if pf is model:
         return _program_reads["reads"]
-    reads: set[int] = set()
-    stack: list[tuple[Any, bool]] = [(model.ast, False)]
-    while stack:
-        node, write_only = stack.pop()
+    # Every identifier is a read but the variable an `=` writes: the root of its target's
+    # fields and indexes (`v`, `v.x`, `a[i].f`; the index `i` is read). An out argument is a
+    # read too: the call needs a variable there.
+    idents: list[A.Identifier] = []
+    written: set[int] = set()  # ids of the identifiers `=` writes
+    for node in model.ast.walk():
         t = type(node)
         if t is A.Identifier:
-            if not write_only:
-                sym = model.symbol_of(node)
-                if sym is not None:
-                    reads.add(id(sym))
-            continue
-        if t is A.Assignment:
-            stack.append((node.value, False))
-            stack.append((node.target, node.op == "="))
-            continue
-        if t in (A.Field, A.Index) and write_only:
-            stack.append((node.base, True))
-            if t is A.Index:
-                stack.append((node.index, False))
-            continue
-        if t is A.Call:
-            for arg in node.args:
-                stack.append((arg, False))  # an out argument too: the call needs a variable there
-            for child in (node.struct_, node.array):
-                if child is not None:
-                    stack.append((child, False))
-            continue
-        for child in node.children():
-            stack.append((child, False))
+            idents.append(node)
+        elif t is A.Assignment and node.op == "=":
+            target = node.target
+            while type(target) in (A.Field, A.Index):
+                target = target.base
+            if type(target) is A.Identifier:
+                written.add(id(target))
+    symbol_of = model.symbol_of
+    reads: set[int] = set()
+    for node in idents:
+        if id(node) not in written:
+            sym = symbol_of(node)
+            if sym is not None:
+                reads.add(id(sym))
     _program_reads["model"] = model
     _program_reads["reads"] = reads
     return reads
