@@ -242,6 +242,9 @@ def lexer_tables(lexer_conf) -> dict:
     # property of this grammar, which tests/parse/test_fast_parser.py checks against Lark).
     skip = "|".join(t.pattern.to_regexp() for t in scanned if t.name in ignore)
     prefix = f"(?:{skip})*" if skip else ""
+    one_class = re.fullmatch(r"\(\?:(\[[^\]]*\])\)\+", skip)
+    if one_class:  # `(?:(?:[ \t\n])+)*` is `[ \t\n]*`, without the regex engine's nested repeat
+        prefix = one_class.group(1) + "*"
     # Each run of consecutive string terminals (the operators) is one alternative, its
     # strings in the same order, and the match is looked up: one named group per operator
     # would make the regex engine do group bookkeeping for each alternative it tries.
