@@ -66,17 +66,25 @@ def _check_function(fn) -> Iterator[Diagnostic]:
     reported_spans: list[tuple[int, int]] = []
     targets = {id(n.target) for n in fn.nodes if type(n) is A.Assignment}
     found = []
+    nodes = fn.nodes  # in execution order: a loop's nodes follow it
+    index = {id(n): i for i, n in enumerate(nodes)} if fn.loops else {}
     for loop in fn.loops:
         lo, hi = fn.enter[id(loop)], fn.exit[id(loop)]
         written = {id(w.symbol) for ws in fn.writes.values() for w in ws if lo < w.pos < hi}
         calls_user = any(lo < p < hi for p in fn.user_calls)
         parts = [p for p in (loop.cond, loop.body, getattr(loop, "step", None)) if p is not None]
+        spans = [(fn.enter[id(p)], fn.exit[id(p)]) for p in parts]
         skip_until = 0
-        for n in fn.nodes:
+        first = index.get(id(loop))  # None when the walk gave up (absurd nesting: no nodes)
+        for i in range(len(nodes) if first is None else first + 1, len(nodes)):
+            n = nodes[i]
             e = fn.enter[id(n)]
-            if not (lo < e < hi) or e < skip_until:
+            if e >= hi:
+                break  # past the loop
+            if e < skip_until:
                 continue
-            if not any(fn.contains(p, n) for p in parts):
+            x = fn.exit[id(n)]
+            if not any(a <= e and x <= b for a, b in spans):
                 continue  # the for-init runs once
             if any(a <= e <= b for a, b in reported_spans):
                 continue
