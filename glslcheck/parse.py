@@ -300,7 +300,12 @@ _VALUE_TOKENS = frozenset({"IDENTIFIER", "TYPE_NAME", "INTCONSTANT", "FLOATCONST
 
 
 class _Builder:
-    """Builds AST nodes: `_build_<rule>` for each grammar rule (or alias) of grammar/glsl.lark."""
+    """Builds AST nodes: `_build_<rule>` for each grammar rule (or alias) of grammar/glsl.lark.
+
+    The most frequent nodes are made with their fields in order, without keywords (a class
+    call with keyword arguments costs about 1,600 instructions more in CPython 3.11: a dict of
+    them, issue 18); each keeps the order the keywords had, so children are built in the same
+    order."""
 
     def __init__(self, locate_span: Callable[[int, int], Location], text: str) -> None:
         self.locate_span = locate_span
@@ -356,7 +361,7 @@ class _Builder:
 
     # -- external declarations -----------------------------------------------------------------
     def _build_function_definition(self, t, c):
-        return A.FunctionDefinition(proto=self.node(c[0]), body=self.node(c[1]))
+        return A.FunctionDefinition(self.node(c[0]), self.node(c[1]))
 
     def _build_function_prototype(self, t, c):
         fst, name, params = c
@@ -397,11 +402,11 @@ class _Builder:
     def _build_variable_declaration(self, t, c):
         qualifiers, tspec = self._fully_specified(c[0])
         decls = [self.node(d) for d in c[1:] if d is not None]
-        return A.VariableDeclaration(qualifiers=qualifiers, type=tspec, declarators=decls)
+        return A.VariableDeclaration(qualifiers, tspec, decls)
 
     def _build_declarator(self, t, c):
         name, *arrays, init = c
-        return A.Declarator(name=str(name), array=self._one_array(arrays), init=self.node(init), name_loc=self.loc(name))
+        return A.Declarator(str(name), self._one_array(arrays), self.node(init), self.loc(name))
 
     def _build_precision_declaration(self, t, c):
         return A.PrecisionDeclaration(precision=str(c[0].children[0]), type=self.node(c[1]))
@@ -455,7 +460,7 @@ class _Builder:
 
     def _nonarray(self, item: Tree) -> A.TypeSpec:
         if item.data == "basic_type":
-            spec = A.TypeSpec(name=str(item.children[0]))
+            spec = A.TypeSpec(str(item.children[0]))  # (name)
         elif item.data == "type_name":
             spec = A.TypeSpec(name=str(item.children[0]), is_struct_name=True)
         else:
@@ -491,13 +496,13 @@ class _Builder:
 
     # -- statements ----------------------------------------------------------------------------
     def _build_compound_statement(self, t, c):
-        return A.Compound(stmts=[self.node(s) for s in c])
+        return A.Compound([self.node(s) for s in c])
 
     def _build_declaration_statement(self, t, c):
-        return A.DeclarationStatement(decl=self.node(c[0]))
+        return A.DeclarationStatement(self.node(c[0]))
 
     def _build_expression_statement(self, t, c):
-        return A.ExpressionStatement(expr=self.node(c[0]))
+        return A.ExpressionStatement(self.node(c[0]))
 
     def _build_if_statement(self, t, c):
         return A.If(cond=self.node(c[0]), then=self.node(c[1]))
@@ -538,7 +543,7 @@ class _Builder:
         return A.Break()
 
     def _build_return_statement(self, t, c):
-        return A.Return(value=self.node(c[0]))
+        return A.Return(self.node(c[0]))
 
     def _build_discard_statement(self, t, c):
         return A.Discard()
@@ -550,16 +555,16 @@ class _Builder:
         return A.Sequence(exprs=[*exprs, self.node(c[1])])
 
     def _build_assignment(self, t, c):
-        return A.Assignment(op=str(c[1].children[0]), target=self.node(c[0]), value=self.node(c[2]))
+        return A.Assignment(str(c[1].children[0]), self.node(c[0]), self.node(c[2]))  # (op, target, value)
 
     def _build_ternary(self, t, c):
         return A.Ternary(cond=self.node(c[0]), then=self.node(c[1]), else_=self.node(c[2]))
 
     def _build_binary(self, t, c):
-        return A.Binary(op=str(c[1]), left=self.node(c[0]), right=self.node(c[2]))
+        return A.Binary(str(c[1]), self.node(c[0]), self.node(c[2]))  # (op, left, right)
 
     def _build_prefix(self, t, c):
-        return A.Unary(op=str(c[0]), operand=self.node(c[1]))
+        return A.Unary(str(c[0]), self.node(c[1]))  # (op, operand)
 
     _build_unary = _build_prefix
 
@@ -572,7 +577,7 @@ class _Builder:
 
     def _build_field(self, t, c):
         base, _dot, name = c
-        return A.Field(base=self.node(base), name=str(name), name_loc=self.loc(name))
+        return A.Field(self.node(base), str(name), self.loc(name))  # (base, name, name_loc)
 
     def _build_method_call(self, t, c):
         base, _dot, name = c[0], c[1], c[2]
@@ -584,7 +589,8 @@ class _Builder:
             arg_nodes = []
         else:
             arg_nodes = [self.node(a) for a in self.trees(args.children)]
-        call = A.Call(args=arg_nodes, callee_loc=self.loc(callee))
+        # (callee, struct_, array, args, constructor, callee_loc): set below
+        call = A.Call("", None, None, arg_nodes, False, self.loc(callee))
         kind = callee.data
         if kind == "callee_name":
             call.callee = str(callee.children[0])
@@ -607,7 +613,7 @@ class _Builder:
         return self.node(c[0])
 
     def _build_identifier(self, t, c):
-        return A.Identifier(name=str(c[0]))
+        return A.Identifier(str(c[0]))
 
     def _int_value(self, tok: Token) -> tuple[int, bool]:
         text = str(tok)
@@ -630,11 +636,11 @@ class _Builder:
 
     def _build_int_literal(self, t, c):
         value, unsigned = self._int_value(c[0])
-        return A.IntLiteral(value=value, unsigned=unsigned, text=str(c[0]))
+        return A.IntLiteral(value, unsigned, str(c[0]))
 
     def _build_float_literal(self, t, c):
         text = str(c[0])
-        return A.FloatLiteral(value=float(text.rstrip("fF")), text=text)
+        return A.FloatLiteral(float(text.rstrip("fF")), text)  # (value, text)
 
     def _build_bool_literal(self, t, c):
         return A.BoolLiteral(value=str(c[0]) == "true")
