@@ -39,10 +39,15 @@ from __future__ import annotations
 
 import re
 from bisect import bisect_right
+from heapq import heapify, heappop, heappush
 from .regexes import compiled
 from .diagnostics import Diagnostic, GlslError, Location, pending_location
 from .records import field, record
 from .sources import Source
+
+TYPE_CHECKING = False  # not typing's: importing typing costs every start-up (issue 18)
+if TYPE_CHECKING:
+    from typing import Iterator
 
 __all__ = ["preprocess", "PPResult", "Comment", "Macro", "MAX_EXPANSION_DEPTH", "MAX_EXPANSION_TOKENS"]
 
@@ -166,7 +171,6 @@ _TOKEN_RE = compiled(
     rf"[{_WS}]*(?:(?P<id>[A-Za-z_][A-Za-z0-9_]*)|(?P<num>{_NUMBER})|(?P<op>{_OPERATOR})|(?P<other>[^{_WS}]))",
     re.S,
 )
-_IDENT_RE = compiled(r"(?<![A-Za-z0-9_])[A-Za-z_][A-Za-z0-9_]*")
 _LEAD_WS_RE = compiled(rf"[{_WS}]*")
 _COMMENT_RE = compiled(r"//|/\*")
 _NEWLINE_RE = compiled("\n")
@@ -599,15 +603,13 @@ class _Preprocessor:
         text = u.stripped
         macros = self.macros
         pos = a
-        for m in _IDENT_RE.finditer(text, a, b):
-            s = m.start()
+        for s, name in _macro_names_at(text, macros, a, b):
             if s < pos:
                 continue
-            name = m.group()
-            macro = macros.get(name)
-            if macro is None or _inside_number(text, s):
+            macro = macros[name]
+            if _inside_number(text, s):
                 continue
-            e = m.end()
+            e = s + len(name)
             inp = _Input([], text, e, b)
             if macro.params is not None and not inp.peek_lparen():
                 continue
@@ -978,6 +980,41 @@ class _Preprocessor:
         self.line_delta = nums[0] - next_line
         if len(nums) == 2:
             self.file_number = nums[1]
+
+
+def _macro_names_at(text: str, macros: dict, a: int, b: int) -> Iterator[tuple[int, str]]:
+    """(offset, name) of each identifier in text[a:b] that names a macro, in order: what a
+    regular expression finding every identifier, `(?<![A-Za-z0-9_])[A-Za-z_][A-Za-z0-9_]*`,
+    and a look-up of each would find, with `str.find` per macro name instead of a match per
+    identifier (the lab's programs define one or two
+    macros and have thousands of identifiers). A name counts where it is a whole identifier:
+    no letter, digit or `_` on either side (an identifier reaching `b` ends there)."""
+    heap = []
+    for name in macros:
+        s = _find_identifier(text, name, a, b)
+        if s >= 0:
+            heap.append((s, name))
+    heapify(heap)
+    while heap:
+        s, name = heappop(heap)
+        yield s, name
+        s = _find_identifier(text, name, s + len(name), b)
+        if s >= 0:
+            heappush(heap, (s, name))
+
+
+def _find_identifier(text: str, name: str, start: int, end: int) -> int:
+    """The first offset in [start, end) where `name` stands as a whole identifier, or -1."""
+    n = len(name)
+    i = text.find(name, start, end)
+    while i >= 0:
+        if (i == 0 or text[i - 1] not in _WORD_CHARS) and (i + n == end or text[i + n] not in _WORD_CHARS):
+            return i
+        i = text.find(name, i + 1, end)
+    return -1
+
+
+_WORD_CHARS = frozenset("ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789_")
 
 
 def _inside_number(text: str, s: int) -> bool:
