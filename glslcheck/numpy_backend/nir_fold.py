@@ -79,6 +79,7 @@ from ..analysis import param_directions
 from ..check.model import Symbol
 from ..diagnostics import Location
 from ..printer import to_glsl
+from ..types import FLOAT
 from .transpile.common import _TEXTURE_FUNCTIONS
 from .transpile.call_fold import out_roots, product_sums
 from .transpile.constant_flow import constant_flow
@@ -246,6 +247,8 @@ def _lowp_kind_of(tr: Any, node: Any, memo: dict[int, Any]) -> str | None:
         return None
     if isinstance(node, A.Field):
         return "lookup" if _lowp_kind(tr, node.base, memo) == "lookup" else None
+    if isinstance(node, A.Call) and _square(tr, node):
+        return "low" if _lowp_kind(tr, node.args[0], memo) in ("low", "lookup") else None
     if isinstance(node, A.Call):
         sampler = node.args[0] if node.args else None
         sym = tr.model.symbol_of(sampler) if isinstance(sampler, A.Identifier) else None
@@ -261,12 +264,19 @@ def _lowp_kind_of(tr: Any, node: Any, memo: dict[int, Any]) -> str | None:
     return None
 
 
+def _square(tr: Any, node: A.Call) -> bool:
+    """``pow(x, 2.0)`` (a vector of 2.0 too) of the built-in: x * x to NIR (``fpow(a, 2.0) ->
+    a * a``), in float16 for a float16 x (gargantua's ``pow(texture(..).rgb, vec3(2.0)) * 4.0``)."""
+    return (node.callee == "pow" and len(node.args) == 2 and _builtin(tr, node)
+            and set(_constant_value(tr, node.args[1]) or [0.0]) == {2.0})
+
+
 def _lowp_parts(node: Any, memo: dict[int, Any], nodes: list[Any], samplers: list[Any]) -> None:
     """The operation nodes of a float16 tree and the samplers its lookups read."""
     kind = memo.get(id(node))
     if kind == "low":
         nodes.append(node)
-        for k in (node.operand,) if isinstance(node, A.Unary) else (node.left, node.right):
+        for k in (node.operand,) if isinstance(node, A.Unary) else node.args[:1] if isinstance(node, A.Call) else (node.left, node.right):
             _lowp_parts(k, memo, nodes, samplers)
     elif kind == "lookup":
         while isinstance(node, A.Field):
@@ -281,6 +291,15 @@ def _lowp_code(tr: Any, node: Any, mask: str | None, ops: set[int]) -> str:
         return f"rt.half({tr.expr(node, mask)})"
     if isinstance(node, A.Unary):
         return f"(-{_lowp_code(tr, node.operand, mask, ops)})"
+    if isinstance(node, A.Call):  # pow(x, 2.0): x * x, x computed once
+        x = tr.fresh("h")
+        return f"(({x} := {_lowp_code(tr, node.args[0], mask, ops)}) * {x})"
+    square, k = (node.left, node.right) if isinstance(node.left, A.Call) else (node.right, node.left)
+    if node.op == "*" and isinstance(square, A.Call) and id(square) in ops and tr.model.const_value(k) is not None:
+        # (x*x) * #k, the square used once: (x * #k) * x (``(a*b)*#c -> (a*#c)*b``)
+        x = tr.fresh("h")
+        xk = f"(({x} := {_lowp_code(tr, square.args[0], mask, ops)}) * {_lowp_code(tr, k, mask, ops)})"
+        return f"({xk} * {x})"
     return f"({_lowp_code(tr, node.left, mask, ops)} {node.op} {_lowp_code(tr, node.right, mask, ops)})"
 
 
@@ -305,6 +324,9 @@ def binary(tr: Any, e: A.Binary, mask: str | None) -> str | None:
         if folded is not None:
             return folded
     folded = _merge_constants(tr, e, mask)
+    if folded is not None:
+        return folded
+    folded = _merge_components(tr, e, mask)
     if folded is not None:
         return folded
     folded = _sink(tr, e, mask)
@@ -1274,6 +1296,282 @@ def _written(tr: Any) -> set[int]:
                         roots(a)
         cache[key] = out
     return cache[key]
+
+
+# -- products by constants merged per component, through component writes ---------------------
+def component_write(tr: Any, node: Any, mask: str | None, old: str | None = None) -> str | None:
+    """The code of the value a write gives a local, component by component as NIR sees it,
+    or None (the write as usual). ``node``: a declarator with an initializer, or an assignment
+    ``=`` / ``*=`` (``old``: the code of the target's value before a ``*=``).
+
+    NIR splits a vector into its components (SSA per component), so a component's last write
+    is what a later product by a constant reads, and ``#a * (b * #c) -> (a*c) * b`` merges the
+    two constants: gargantua's ``radialCoords.z = distFromDisc * 1.5; radialCoords *= 0.95;``
+    is ``distFromDisc * (1.5*0.95)`` on llvmpipe, and ``rc = radialCoords + 0.0; ... rc * 3.0``
+    (``x + 0.0`` is x) merges a third constant. For a local that is written in part (a
+    component, or a compound assignment) and read in such a product, directly or through a
+    copy, each write keeps, per component, the factor y and the constants c1, c2, ... of its
+    value ``y * c1 * c2 ...`` (y in a temporary: :func:`_chain`), and a later ``*`` by a
+    constant (:func:`_merge_components`) or ``*=`` reads them through the write that last gave
+    that component its value (:func:`_component_record`). The constants are folded in float32
+    left to right, as NIR merges the inner product first."""
+    if tr.fn is None or isinstance(tr.fn, _Standin):
+        return None
+    if isinstance(node, A.Declarator):
+        sym, comps, value = tr.model.symbol_of(node), None, node.init
+    elif node.op in ("=", "*="):
+        sym, comps = _target_components(tr, node.target)
+        value = node.value
+    else:
+        return None
+    if sym is None or id(sym) not in _component_locals(tr) or value is None or _writes_locals(tr, value):
+        return None
+    facts = _facts(tr)
+    if id(node) not in facts.enter:
+        return None  # (a node of an inlined body)
+    compound = isinstance(node, A.Assignment) and node.op == "*="
+    if compound and (not _const(tr, value) or _has_matrix(tr, value)):
+        return None
+    kept = compound and any(cs for _, cs in _chain(tr, node.target, mask, keep=False)[0])
+    if not kept and not _read_later(tr, facts, sym, node):
+        return None  # (no product by a constant reads what this write would keep)
+    if compound:
+        t = tr.type_of(node.target)
+        entries, old = _times(tr, _chain(tr, node.target, mask, keep=True)[0], old, value, _size(t), mask, True)
+        written = tr.binary_values("*", t, tr.type_of(value), old, tr.expr(value, mask))
+    else:
+        entries, written = _chain(tr, value, mask, keep=True)
+    n = len(entries)
+    comps = comps if comps is not None else tuple(range(n))
+    if len(comps) != n:
+        return None
+    records = tr.__dict__.setdefault("_nir_fold_components", {})
+    records[id(node)] = (tr.lines, {c: (y, cs) for c, (y, cs) in zip(comps, entries) if cs})
+    return _merged_code(tr, entries, written)
+
+
+def _merge_components(tr: Any, e: A.Binary, mask: str | None) -> str | None:
+    """``x * #k`` with x (or a swizzle of it) a local whose components :func:`component_write`
+    kept, when a component's constants merge: each component ``y * (c*...*k)`` (llvmpipe
+    mode), else as written."""
+    if e.op != "*" or _has_matrix(tr, e.left, e.right):
+        return None
+    k, x = (e.left, e.right) if _const(tr, e.left) else (e.right, e.left)
+    if not _const(tr, k) or _const(tr, x) or _local_root(tr, x) is None:
+        return None
+    if id(_local_root(tr, x)) not in _component_locals(tr):
+        return None
+    entries, written = _chain(tr, e, mask, keep=False)
+    if not any(len(cs) > 1 for _, cs in entries):
+        return None
+    return _merged_code(tr, entries, written)
+
+
+def _merged_code(tr: Any, entries: list[tuple[str, list[Any]]], written: str) -> str:
+    if not any(len(cs) > 1 for _, cs in entries):
+        return written
+    parts = []
+    for y, cs in entries:
+        cs = [c if isinstance(c, str) else tr.const_float(c) for c in cs]
+        c = cs[-1] if cs else None
+        for inner in reversed(cs[:-1]):
+            c = f"({inner} * {c})"  # (nir_opt_algebraic visits the last instruction first)
+        parts.append(y if c is None else tr.binary_values("*", FLOAT, FLOAT, y, c))
+    merged = parts[0] if len(parts) == 1 else f"rt.vec({len(parts)}, {', '.join(parts)})"
+    return f"({merged} if rt.lp else {written})"
+
+
+def _chain(tr: Any, node: Any, mask: str | None, keep: bool) -> tuple[list[tuple[str, list[Any]]], str]:
+    """([(y, [c1, c2, ...]) per component], the code of the value as written): the value of
+    each component is ``y * c1 * c2 ...`` to NIR, y's code and the constants' codes.
+    Followed: products by constants, swizzles, ``x + 0.0`` (x to NIR) and reads of a local
+    (the components its reaching writes kept); anything else is y itself, no constant. With
+    `keep`, a y that has constants is a temporary (it must outlive later writes)."""
+    n = _size(tr.type_of(node))
+    if isinstance(node, A.Binary) and node.op == "*" and not _has_matrix(tr, node.left, node.right):
+        k_left = _const(tr, node.left)
+        k, x = (node.left, node.right) if k_left else (node.right, node.left)
+        if _const(tr, k) and not _const(tr, x):
+            inner, wx = _chain(tr, x, mask, keep)
+            entries, wx = _times(tr, inner, wx, k, n, mask, keep)
+            tk = tr.expr(k, mask)
+            lt, rt_ = tr.type_of(node.left), tr.type_of(node.right)
+            written = tr.binary_values("*", lt, rt_, tk, wx) if k_left else tr.binary_values("*", lt, rt_, wx, tk)
+            return entries, written
+    if isinstance(node, A.Binary) and node.op == "+" and _zero(tr, node.right) and tr.type_of(node.left) == tr.type_of(node):
+        inner, wx = _chain(tr, node.left, mask, keep)
+        return inner, f"rt.fadd({wx}, {tr.expr(node.right, mask)})"
+    if isinstance(node, A.Field) and tr.model.is_swizzle(node) and not tr.type_of(node.base).is_scalar:
+        inner, wb = _chain(tr, node.base, mask, keep)
+        idx = tr.model.swizzle_indices(node)
+        sw = "".join("xyzw"[i] for i in idx)
+        return [inner[i] for i in idx], (f"{wb}[{idx[0]}]" if len(idx) == 1 else f'rt.swizzle({wb}, "{sw}")')
+    code = tr.expr(node, mask)
+    found = [None] * n
+    if isinstance(node, A.Identifier) and tr.type_of(node).base == "float":
+        found = [_component_record(tr, node, i) for i in range(n)]
+    return [f if f else (_component(code, i, n), []) for i, f in enumerate(found)], code
+
+
+def _times(tr: Any, entries: list[tuple[str, list[Any]]], code: str, k: Any, n: int, mask: str | None,
+           keep: bool) -> tuple[list[tuple[str, list[Any]]], str]:
+    """Each component's entry times the constant k (a scalar, or a vector: its component), and
+    the code of the factor (a temporary with `keep` when a component is the factor itself)."""
+    if keep and any(not cs for _, cs in entries):
+        code = tr.tmp(code)
+        entries = [(y, cs) if cs else (_component(code, i, len(entries)), []) for i, (y, cs) in enumerate(entries)]
+    if len(entries) == 1 and n > 1:
+        entries = entries * n  # (a scalar times a vector constant)
+    if tr.type_of(k).is_scalar:
+        ks: list[Any] = [tr.expr(k, mask)] * n
+    else:
+        ks = list(_constant_value(tr, k))  # (values: named by _merged_code only if it uses them)
+    return [(y, cs + [kc]) for (y, cs), kc in zip(entries, ks)], code
+
+
+def _component(code: str, i: int, n: int) -> str:
+    return code if n == 1 else f"{code}[{i}]"
+
+
+def _size(t: Any) -> int:
+    return t.size if t.is_vector else 1
+
+
+def _zero(tr: Any, node: Any) -> bool:
+    """A float constant +0.0 (``fadd(a, 0.0) -> a``)."""
+    import math
+
+    v = tr.model.const_value(node)
+    return isinstance(v, float) and v == 0.0 and math.copysign(1.0, v) > 0
+
+
+def _local_root(tr: Any, node: Any) -> Any:
+    """The local or parameter a read names, through swizzles and ``+ 0.0``; else None."""
+    while True:
+        if isinstance(node, A.Field) and tr.model.is_swizzle(node):
+            node = node.base
+        elif isinstance(node, A.Binary) and node.op == "+" and _zero(tr, node.right):
+            node = node.left
+        else:
+            break
+    if isinstance(node, A.Identifier):
+        s = tr.model.symbol_of(node)
+        if s is not None and s.kind in ("local", "param") and tr.type_of(node).base == "float":
+            return s
+    return None
+
+
+def _target_components(tr: Any, target: Any) -> tuple[Any, tuple[int, ...] | None]:
+    """(the local an assignment writes, the components it writes: None for all) for a target
+    that is a local or one swizzle of it; else (None, None)."""
+    if isinstance(target, A.Identifier):
+        return tr.model.symbol_of(target), None
+    if (isinstance(target, A.Field) and isinstance(target.base, A.Identifier) and tr.model.is_swizzle(target)
+            and not tr.type_of(target.base).is_scalar):
+        return tr.model.symbol_of(target.base), tuple(tr.model.swizzle_indices(target))
+    return None, None
+
+
+def _component_locals(tr: Any) -> set[int]:
+    """ids of the float locals of the current function :func:`component_write` follows: written
+    in part (a component, a compound assignment) and read in a product by a constant (or by
+    ``*=`` one), directly or through a copy into such a local."""
+    cache = tr.__dict__.setdefault("_nir_fold_component_locals", {})
+    key = id(tr.fn.sym)
+    if key in cache:
+        return cache[key]
+    facts = _facts(tr)
+    if not facts.ok:
+        cache[key] = set()
+        return cache[key]
+    partly = {key_ for key_, ws in facts.writes.items() if any(w.kind in ("part", "op") for w in ws)}
+    reads: dict[int, list[Any]] = {}  # id(symbol) -> the nodes that read it so
+    copies: list[tuple[Any, Any, Any]] = []
+    for n in tr.fn.sym.node.body.walk():
+        if isinstance(n, A.Binary) and n.op == "*":
+            for a, b in ((n.left, n.right), (n.right, n.left)):
+                s = _local_root(tr, b) if _const(tr, a) and not _const(tr, b) else None
+                if s is not None:
+                    reads.setdefault(id(s), []).append(n)
+        elif isinstance(n, A.Assignment) and n.op == "*=" and _const(tr, n.value):
+            s = _target_components(tr, n.target)[0]
+            if s is not None:
+                reads.setdefault(id(s), []).append(n)
+        elif isinstance(n, A.Assignment) and n.op == "=" and isinstance(n.target, A.Identifier):
+            copies.append((tr.model.symbol_of(n.target), _local_root(tr, n.value), n))
+        elif isinstance(n, A.Declarator) and n.init is not None:
+            copies.append((tr.model.symbol_of(n), _local_root(tr, n.init), n))
+    grew = True
+    while grew:
+        grew = False
+        for t, s, n in copies:
+            if t is not None and s is not None and id(t) in reads and n not in reads.get(id(s), ()):
+                reads.setdefault(id(s), []).append(n)
+                grew = True
+    tr.__dict__.setdefault("_nir_fold_component_reads", {})[key] = reads
+    cache[key] = set(reads) & partly
+    return cache[key]
+
+
+def _component_record(tr: Any, ident: A.Identifier, i: int) -> tuple[str, list[str]] | None:
+    """(y, constants) :func:`component_write` kept for component i of the local read here, from
+    the write that last gave that component its value: that write runs before this read on
+    every path, and nothing writes the component in between (loops around the read included)."""
+    sym = tr.model.symbol_of(ident)
+    if sym is None or sym.kind not in ("local", "param"):
+        return None
+    facts = _facts(tr)
+    if not facts.ok or id(ident) not in facts.enter:
+        return None
+    at = facts.enter[id(ident)]
+    writes = facts.writes_to(sym)
+    last = None
+    for w in writes:
+        if w.pos < at and _writes_component(tr, w, i):
+            last = w
+    if last is None or not facts.dominates(last.node, ident):
+        return None
+    loops_w = {id(l) for l in facts.enclosing_loops(last.node)}
+    for loop in facts.enclosing_loops(ident):
+        if id(loop) not in loops_w:
+            lo, hi = facts.enter[id(loop)], facts.exit[id(loop)]
+            if any(lo <= w.pos <= hi and _writes_component(tr, w, i) for w in writes):
+                return None
+    kept = tr.__dict__.get("_nir_fold_components", {}).get(id(last.node))
+    if kept is None or kept[0] is not tr.lines:
+        return None  # (not kept, or kept in another Python function: an outlined part)
+    return kept[1].get(i)
+
+
+def _writes_locals(tr: Any, value: Any) -> bool:
+    """The expression writes a variable (an assignment, ++/--, an out argument): a user call
+    that only reads its arguments is computed once, as written, so it may stay."""
+    for n in value.walk():
+        if isinstance(n, (A.Assignment, A.Sequence)) or isinstance(n, (A.Unary, A.Postfix)) and n.op in ("++", "--"):
+            return True
+        if isinstance(n, A.Call) and any(d != "in" for d in param_directions(tr.model.call_target(n))):
+            return True
+    return False
+
+
+def _read_later(tr: Any, facts: Any, sym: Any, node: Any) -> bool:
+    """A product by a constant (or a copy into a local read so) reads ``sym`` after ``node``
+    (one before it, in a loop, is not reached by this write: :func:`_component_record`)."""
+    end = facts.exit[id(node)]
+    return any(facts.enter.get(id(r), -1) > end for r in _component_reads(tr).get(id(sym), ()))
+
+
+def _component_reads(tr: Any) -> dict[int, list[Any]]:
+    _component_locals(tr)
+    return tr.__dict__["_nir_fold_component_reads"][id(tr.fn.sym)]
+
+
+def _writes_component(tr: Any, w: Any, i: int) -> bool:
+    if isinstance(w.node, A.Assignment):
+        comps = _target_components(tr, w.node.target)[1]
+        if comps is not None:
+            return i in comps
+    return True
 
 
 # -- a constant added to a function's result, sunk into the sum it returns ----------------------

@@ -394,11 +394,46 @@ def test_powers_of_constants_propagated_into_a_call_are_folded(llvmpipe, make_sh
     assert same.all(), (~same).reshape(-1, 4).sum(0).tolist()
 
 
+COMPONENT_WRITES = """void mainImage(out vec4 c, in vec2 p) {  // gargantua's GasDisc
+    float a = fract(p.x * 0.1371 + p.y * 0.0917), b = sin(p.y * 0.917 + p.x * 0.0311);
+    float d = fract(p.x * 0.01377 + p.y * 0.0311), e = sqrt(p.x);
+    vec3 r;
+    r.x = a * 1.7 + 0.55;
+    r.y = sin(b * 3.7) * 1.5;
+    r.z = d * 1.3;
+    r *= 0.95;
+    vec3 q = r + 0.0;
+    q.y += e;
+    vec3 s = q * 3.1;
+    r.y += e * 0.5;
+    float h = b * 1.37;
+    h *= 0.73;
+    c = vec4(h, s.z, (r.yx * vec2(0.15, 0.27)).y, 1.0);
+}"""
+
+
+def test_constants_merge_through_the_last_write_of_each_component(llvmpipe, make_shader):
+    """NIR sees each component's last write (SSA after splitting vectors into components), so a
+    product by a constant written to a component, or to a whole local, merges with a later
+    ``*=`` or ``*`` by a constant, also through a copy (``q = r + 0.0`` is r):
+    ``h = b * 1.37; h *= 0.73`` is ``b * (1.37*0.73)``; s.z is ``d * (1.3*(0.95*3.1))`` (the
+    constants folded right to left: nir_opt_algebraic visits the last instruction first);
+    ``(r.yx * vec2(0.15, 0.27)).y`` is ``(a*1.7 + 0.55) * (0.95*0.27)`` (nir_fold.component_write,
+    _merge_components). Measured without it: 4772, 6413 and 3607 of the 14,400 pixels
+    differed from llvmpipe (with the constants folded left to right, s.z: 11,111)."""
+    shader = make_shader(COMPONENT_WRITES)
+    got_gl = np.asarray(compile_backend(shader, "gl").render(size=(160, 90)), np.float32)
+    got_np = np.asarray(compile_backend(shader, "numpy").render(size=(160, 90)), np.float32)
+    same = got_np.view(np.int32) == got_gl.view(np.int32)
+    assert same.all(), (~same).reshape(-1, 4).sum(0).tolist()
+
+
 @pytest.mark.parametrize("text", [ZERO_ADDS, MERGED_DOTS, GLOBAL_CONSTANTS, SSA_VALUES, RETURNED_SUMS, CALL_CONSTANTS,
-                                  CALL_CONSTANTS_STEP, SQUARED_LENGTHS, NORMALIZED_STEPS, CONSTANT_POWERS],
+                                  CALL_CONSTANTS_STEP, SQUARED_LENGTHS, NORMALIZED_STEPS, CONSTANT_POWERS,
+                                  COMPONENT_WRITES],
                          ids=["zero_adds", "merged_dots", "globals", "ssa_values", "returned_sums", "call_constants",
                               "call_constants_step", "squared_lengths",
-                              "normalized_steps", "constant_powers"])
+                              "normalized_steps", "constant_powers", "component_writes"])
 def test_float64_reference_is_the_same_without_these_rewrites(make_shader, monkeypatch, text):
     """The rewrites and the inlining above are float32 (llvmpipe) only: the float64 render is
     bit for bit the one of the code generated without them."""
@@ -412,8 +447,9 @@ def test_float64_reference_is_the_same_without_these_rewrites(make_shader, monke
     monkeypatch.setattr(nir_fold, "merged_dot", lambda *a: None)
     monkeypatch.setattr(nir_fold, "zero_add", lambda *a: None)
     monkeypatch.setattr(nir_fold, "_constant_global", lambda *a: False)
+    monkeypatch.setattr(nir_fold, "component_write", lambda *a: None)
     for name in ("_sink_sum", "_keep_factor", "_merge_into_matrix", "sunk_return", "_fused_after_call",
-                 "_squared_length", "_sink"):
+                 "_squared_length", "_sink", "_merge_components"):
         monkeypatch.setattr(nir_fold, name, lambda *a: None)
     without = np.asarray(compile_backend(make_shader(text), "numpy").render(size=(32, 18), precision="float64"))
     assert with_them.view(np.int64).tolist() == without.view(np.int64).tolist()
