@@ -83,6 +83,7 @@ from ..types import FLOAT
 from .transpile.common import _TEXTURE_FUNCTIONS
 from .transpile.call_fold import out_roots, product_sums
 from .transpile.constant_flow import constant_flow
+from .transpile.facts import induction_variable
 from .transpile.inline import bound_argument, inline_owner
 
 _SUMS = ("+", "-")
@@ -1317,6 +1318,8 @@ def component_write(tr: Any, node: Any, mask: str | None, old: str | None = None
     left to right, as NIR merges the inner product first."""
     if tr.fn is None or isinstance(tr.fn, _Standin):
         return None
+    if isinstance(node, A.Assignment) and node.op in ("+=", "-="):
+        return _cancelled_sum(tr, node, mask, old)
     if isinstance(node, A.Declarator):
         sym, comps, value = tr.model.symbol_of(node), None, node.init
     elif node.op in ("=", "*="):
@@ -1513,10 +1516,64 @@ def _component_locals(tr: Any) -> set[int]:
     return cache[key]
 
 
+def _cancelled_sum(tr: Any, node: A.Assignment, mask: str | None, old: str) -> str | None:
+    """``x.y += e; ... x.y -= e`` (either order, e the same text, its variables not written in
+    between): x.y is its value before the ``+=`` to NIR (``('~fadd', ('fneg', a), ('fadd', a,
+    b)) -> b``), with the constants :func:`component_write` kept for it (gargantua's ``rc.y +=
+    iTime * speed; ... rc.y -= iTime * speed; ... rc * 6.0``). Each such write keeps the
+    component's value before it (a temporary) for a later write that cancels it."""
+    if tr.fn is None or isinstance(tr.fn, _Standin):
+        return None
+    sym, comps = _target_components(tr, node.target)
+    value = node.value
+    if sym is None or id(sym) not in _component_locals(tr) or _writes_locals(tr, value) or _has_matrix(tr, value):
+        return None
+    facts = _facts(tr)
+    if id(node) not in facts.enter or tr.type_of(node.target).base != "float":
+        return None
+    ident = node.target if isinstance(node.target, A.Identifier) else node.target.base
+    comps = comps if comps is not None else tuple(range(_size(tr.type_of(node.target))))
+    undo = tr.__dict__.setdefault("_nir_fold_undo", {})
+    records = tr.__dict__.setdefault("_nir_fold_components", {})
+    before = []  # per component: (code, record) of its value before the write this one cancels
+    for c in comps:
+        w = _component_source(tr, ident, c)
+        kept = undo.get(id(w.node)) if w is not None else None
+        if (kept is None or kept[0] is not tr.lines or c not in kept[1] or w.node.op == node.op
+                or to_glsl(w.node.value) != to_glsl(value) or tr.type_of(w.node.value) != tr.type_of(value)):
+            before = None
+            break
+        read = [tr.model.symbol_of(n) for n in value.walk() if isinstance(n, A.Identifier)]
+        if facts.written_between(w.node, node, [r for r in read if r is not None]):
+            before = None
+            break
+        before.append(kept[1][c])
+    n = len(comps)
+    t_old = tr.tmp(old)
+    undo[id(node)] = (tr.lines, {c: (_component(t_old, j, n), _component_record(tr, ident, c))
+                                 for j, c in enumerate(comps)})
+    written = tr.binary_values(node.op[0], tr.type_of(node.target), tr.type_of(value), t_old, tr.expr(value, mask))
+    if before is None:
+        return written
+    records[id(node)] = (tr.lines, {c: rec for c, (_, rec) in zip(comps, before) if rec})
+    lp = before[0][0] if n == 1 else f"rt.vec({n}, {', '.join(code for code, _ in before)})"
+    return f"({lp} if rt.lp else {written})"
+
+
 def _component_record(tr: Any, ident: A.Identifier, i: int) -> tuple[str, list[str]] | None:
-    """(y, constants) :func:`component_write` kept for component i of the local read here, from
-    the write that last gave that component its value: that write runs before this read on
-    every path, and nothing writes the component in between (loops around the read included)."""
+    """(y, constants) :func:`component_write` kept for component i of the local read here (from
+    :func:`_component_source`'s write)."""
+    last = _component_source(tr, ident, i)
+    kept = tr.__dict__.get("_nir_fold_components", {}).get(id(last.node)) if last is not None else None
+    if kept is None or kept[0] is not tr.lines:
+        return None  # (not kept, or kept in another Python function: an outlined part)
+    return kept[1].get(i)
+
+
+def _component_source(tr: Any, ident: A.Identifier, i: int) -> Any:
+    """The write (analysis.dataflow.Write) that last gave component i of the local read here its
+    value: it runs before this read on every path, and nothing writes the component in between
+    (loops around the read included); else None."""
     sym = tr.model.symbol_of(ident)
     if sym is None or sym.kind not in ("local", "param"):
         return None
@@ -1537,10 +1594,7 @@ def _component_record(tr: Any, ident: A.Identifier, i: int) -> tuple[str, list[s
             lo, hi = facts.enter[id(loop)], facts.exit[id(loop)]
             if any(lo <= w.pos <= hi and _writes_component(tr, w, i) for w in writes):
                 return None
-    kept = tr.__dict__.get("_nir_fold_components", {}).get(id(last.node))
-    if kept is None or kept[0] is not tr.lines:
-        return None  # (not kept, or kept in another Python function: an outlined part)
-    return kept[1].get(i)
+    return last
 
 
 def _writes_locals(tr: Any, value: Any) -> bool:
@@ -1572,6 +1626,76 @@ def _writes_component(tr: Any, w: Any, i: int) -> bool:
         if comps is not None:
             return i in comps
     return True
+
+
+# -- a call's result in the lanes a mask leaves out: llvmpipe's register ------------------------
+def register_call(tr: Any, call: A.Call, fn: Any) -> bool:
+    """The result of this call of ``fn``, made under a mask in a function that takes
+    derivatives, is llvmpipe's register in the lanes the mask leaves out: they keep the value
+    they had the last time this call ran for them (frame.Lanes.reg).
+
+    After inlining, NIR merges returns from inside a branch into one value (a phi); a branch
+    computed by a built-in call (atan, pow, ...) is too costly to flatten into selects, so the
+    phi becomes a register, stored under the exec mask, and a neighbour's derivative reads the
+    old value in a lane that left (gargantua's GasDisc: ``atan2`` called after
+    ``if (coverage < 0.01) return;`` in its 200-step loop, measured: the lane's value of the
+    iteration before). Only in a loop NIR keeps: a loop of at most 32 iterations
+    (max_unroll_iterations) is unrolled, each copy its own register, zero in such a lane
+    (measured on a 4-step loop: the register kept across iterations put 917 of 14,400 pixels
+    off, zero none)."""
+    if tr.fn is None or id(tr.fn.sym) not in tr.facts.uses_derivs or not _returns_in_branch(tr, fn):
+        return False
+    return _in_kept_loop(tr, tr.fn.sym, call, 0)
+
+
+def _returns_in_branch(tr: Any, fn: Any) -> bool:
+    """``fn`` returns a value from inside an ``if`` or a loop, computed there by a call."""
+    if fn.type is None or str(fn.type) == "void":
+        return False
+    for n in fn.node.body.walk():
+        if isinstance(n, (A.If, A.For, A.While, A.DoWhile)) and any(
+                isinstance(r, A.Return) and r.value is not None
+                and any(isinstance(c, A.Call) and not c.constructor for c in r.value.walk()) for r in n.walk()):
+            return True
+    return False
+
+
+def _in_kept_loop(tr: Any, sym: Any, node: Any, depth: int) -> bool:
+    """``node`` (in function ``sym``) runs again and again in one invocation: its innermost
+    loop, here or around every call of the function, is one NIR does not unroll."""
+    from ..analysis.dataflow import FunctionFacts
+
+    if depth > 8:
+        return False
+    cache = tr.__dict__.setdefault("_nir_fold_fn_facts", {})
+    if id(sym) not in cache:
+        cache[id(sym)] = FunctionFacts(sym.node, tr.model)
+    facts = cache[id(sym)]
+    if not facts.ok or id(node) not in facts.enter:
+        return False
+    loops = facts.enclosing_loops(node)
+    if loops:
+        return not _unrolled(tr, loops[-1])
+    sites = [(f, n) for f in tr.facts.functions for n in f.node.body.walk()
+             if isinstance(n, A.Call) and tr.model.call_target(n) is sym]
+    return bool(sites) and all(_in_kept_loop(tr, f, n, depth + 1) for f, n in sites)
+
+
+def _unrolled(tr: Any, loop: Any) -> bool:
+    """A ``for`` loop of a constant count of at most 32 iterations (NIR unrolls it)."""
+    if not isinstance(loop, A.For) or induction_variable(loop, tr.model) is None:
+        return False
+    decl = loop.init.decl.declarators[0]
+    start, cond, step = tr.model.const_value(decl.init), loop.cond, loop.step
+    if not (isinstance(start, int) and isinstance(cond, A.Binary) and cond.op in ("<", "<=")
+            and isinstance(cond.left, A.Identifier) and tr.model.symbol_of(cond.left) is tr.model.symbol_of(decl)):
+        return False
+    end = tr.model.const_value(cond.right)
+    inc = 1 if isinstance(step, (A.Unary, A.Postfix)) and step.op == "++" else (
+        tr.model.const_value(step.value) if isinstance(step, A.Assignment) and step.op == "+=" else None)
+    if not isinstance(end, int) or not isinstance(inc, int) or inc <= 0:
+        return False
+    return (end - start + (cond.op == "<=") + inc - 1) // inc <= 32
 
 
 # -- a constant added to a function's result, sunk into the sum it returns ----------------------
