@@ -165,6 +165,8 @@ class Lanes:
         lane field `name`: llvmpipe's register for a value merged across control flow (a
         function's return from inside a branch, after inlining), stored under the exec mask,
         so a neighbour's derivative reads the old value there (transpile/functions.py)."""
+        if not self.rt.lp:
+            return new  # (llvmpipe's, float32 renders only: the float64 reference keeps zero there)
         old = getattr(S, name, None)  # (a `g_` field: gathered and scattered as a global)
         if old is None or np.shape(old) != np.shape(new):
             old = np.zeros_like(new)

@@ -328,6 +328,8 @@ def binary(tr: Any, e: A.Binary, mask: str | None) -> str | None:
     if folded is not None:
         return folded
     folded = _merge_components(tr, e, mask)
+    if folded is None:
+        folded = _sunk_through_compound(tr, e, mask)
     if folded is not None:
         return folded
     folded = _sink(tr, e, mask)
@@ -1333,7 +1335,9 @@ def component_write(tr: Any, node: Any, mask: str | None, old: str | None = None
     if id(node) not in facts.enter:
         return None  # (a node of an inlined body)
     compound = isinstance(node, A.Assignment) and node.op == "*="
-    if compound and (not _const(tr, value) or _has_matrix(tr, value)):
+    if compound and not _const(tr, value):
+        return _kept_product(tr, node, mask, old)
+    if compound and _has_matrix(tr, value):
         return None
     kept = compound and any(cs for _, cs in _chain(tr, node.target, mask, keep=False)[0])
     if not kept and not _read_later(tr, facts, sym, node):
@@ -1548,6 +1552,8 @@ def _cancelled_sum(tr: Any, node: A.Assignment, mask: str | None, old: str) -> s
             before = None
             break
         before.append(kept[1][c])
+    if before is None and not _cancelled_later(tr, facts, sym, node):
+        return None
     n = len(comps)
     t_old = tr.tmp(old)
     undo[id(node)] = (tr.lines, {c: (_component(t_old, j, n), _component_record(tr, ident, c))
@@ -1558,6 +1564,103 @@ def _cancelled_sum(tr: Any, node: A.Assignment, mask: str | None, old: str) -> s
     records[id(node)] = (tr.lines, {c: rec for c, (_, rec) in zip(comps, before) if rec})
     lp = before[0][0] if n == 1 else f"rt.vec({n}, {', '.join(code for code, _ in before)})"
     return f"({lp} if rt.lp else {written})"
+
+
+def _kept_product(tr: Any, node: A.Assignment, mask: str | None, old: str) -> str | None:
+    """``x *= b`` read once, by a product by a constant: its factors kept for
+    :func:`_sunk_through_compound` (None: the write as usual)."""
+    if not isinstance(node.target, A.Identifier) or id(node) not in _sink_reads(tr).values():
+        return None
+    t = tr.type_of(node.target)
+    ta, tb = tr.tmp(old), tr.tmp(tr.expr(node.value, mask))
+    tr.__dict__.setdefault("_nir_fold_kept_products", {})[id(node)] = (tr.lines, ta, tb)
+    return tr.binary_values("*", t, tr.type_of(node.value), ta, tb)
+
+
+def _sunk_through_compound(tr: Any, e: A.Binary, mask: str | None) -> str | None:
+    """``x * #c`` where x's value is ``a * b`` from ``x *= b``, read only here: ``(a * #c) * b``
+    (``('~fmul', ('fmul(is_used_once)', a, b), '#c') -> (a * #c) * b``, the product used once
+    in SSA): gargantua's ``coverage *= saturate(..); coverage = saturate(coverage * 0.7)``.
+    Copied one level deep only: where a is itself a product NIR sees as used once the constant
+    sinks on (not copied, left as written), so a must not be one (a sum, a built-in, or a
+    call of a user function repeated with the same arguments in the function: CSE shares
+    its value, as gargantua's second ``pcurve(radialGradient, 4.0, 0.9)``)."""
+    w_id = _sink_reads(tr).get(id(e))
+    kept = tr.__dict__.get("_nir_fold_kept_products", {}).get(w_id) if w_id is not None else None
+    if kept is None or kept[0] is not tr.lines:
+        return None
+    k = e.right if _const(tr, e.right) else e.left
+    tk = tr.expr(k, mask)
+    written = tr.binary_values("*", tr.type_of(e.left), tr.type_of(e.right), *tr.exprs([e.left, e.right], mask))
+    t = tr.type_of(e)
+    sunk = tr.binary_values("*", t, t, tr.binary_values("*", t, tr.type_of(k), kept[1], tk), kept[2])
+    return f"({sunk} if rt.lp else {written})"
+
+
+def _returns_product(tr: Any, call: A.Call) -> bool:
+    """The user function called returns a product (its last statement ``return a * b``), or
+    its result is not known here."""
+    stmts = tr.model.call_target(call).node.body.stmts
+    last = stmts[-1] if stmts else None
+    return not isinstance(last, A.Return) or last.value is None or _is_product(tr, last.value) or any(
+        isinstance(n, A.Return) for st in stmts[:-1] for n in st.walk())
+
+
+def _sink_reads(tr: Any) -> dict[int, int]:
+    """id(``x * #c``) -> id(``x *= b``) for the products :func:`_sunk_through_compound`
+    rewrites: b not constant, x's value read only by that product, the value x had before
+    the ``*=`` not a product NIR would sink into (see there)."""
+    cache = tr.__dict__.setdefault("_nir_fold_sink_reads", {})
+    key = id(tr.fn.sym)
+    if key in cache:
+        return cache[key]
+    out: dict[int, int] = {}
+    facts = _facts(tr)
+    calls: dict[str, int] = {}
+    for n in tr.fn.sym.node.body.walk():
+        if isinstance(n, A.Call) and isinstance(tr.model.call_target(n), Symbol):
+            calls[to_glsl(n)] = calls.get(to_glsl(n), 0) + 1
+    reads: dict[int, list[Any]] = {}
+    targets = {id(n.target) for n in tr.fn.sym.node.body.walk() if isinstance(n, A.Assignment) and n.op == "="}
+    for n in tr.fn.sym.node.body.walk():
+        if isinstance(n, A.Identifier) and tr.model.symbol_of(n) is not None and id(n) not in targets:
+            reads.setdefault(id(tr.model.symbol_of(n)), []).append(n)
+    for n in tr.fn.sym.node.body.walk() if facts.ok else ():
+        if not (isinstance(n, A.Binary) and n.op == "*" and tr.type_of(n).base == "float"
+                and not _has_matrix(tr, n.left, n.right)):
+            continue
+        x = n.left if _const(tr, n.right) else n.right if _const(tr, n.left) else None
+        if not isinstance(x, A.Identifier) or _const(tr, x) or id(x) not in facts.enter:
+            continue
+        sym = tr.model.symbol_of(x)
+        before = [w for w in facts.writes_to(sym) if w.pos < facts.enter[id(x)]]
+        w = before[-1] if before else None
+        if (w is None or not isinstance(w.node, A.Assignment) or w.node.op != "*=" or _const(tr, w.node.value)
+                or not isinstance(w.node.target, A.Identifier) or tr.type_of(w.node.target) != tr.type_of(x)
+                or not facts.dominates(w.node, x) or facts.written_between(w.node, x, [sym])):
+            continue
+        later = [w2.pos for w2 in facts.writes_to(sym) if w2.pos > w.pos]
+        end = min(later) if later else None
+        users = [r for r in reads.get(id(sym), ()) if id(r) in facts.enter and facts.enter[id(r)] > w.pos
+                 and (end is None or facts.enter[id(r)] < end) and r is not w.node.target]
+        if users != [x] or facts.enclosing_loops(x) != facts.enclosing_loops(w.node):
+            continue
+        prev = [v for v in facts.writes_to(sym) if v.pos < facts.enter[id(w.node.target)]]
+        a = prev[-1].value if prev and prev[-1].kind in ("=", "init") else None
+        if a is None or _is_product(tr, a) or (isinstance(a, A.Call) and isinstance(tr.model.call_target(a), Symbol)
+                                               and calls.get(to_glsl(a), 0) < 2 and _returns_product(tr, a)):
+            continue
+        out[id(n)] = id(w.node)
+    cache[key] = out
+    return out
+
+
+def _cancelled_later(tr: Any, facts: Any, sym: Any, node: A.Assignment) -> bool:
+    """A later compound assignment of ``sym`` subtracts what ``node`` adds (or adds what it
+    subtracts), the same text: :func:`_cancelled_sum` may need the value before ``node``."""
+    text, end = to_glsl(node.value), facts.exit[id(node)]
+    return any(isinstance(w.node, A.Assignment) and w.node.op in ("+=", "-=") and w.node.op != node.op
+               and w.pos > end and to_glsl(w.node.value) == text for w in facts.writes_to(sym))
 
 
 def _component_record(tr: Any, ident: A.Identifier, i: int) -> tuple[str, list[str]] | None:
