@@ -44,6 +44,18 @@ The rules copied here, each measured bit for bit against llvmpipe on 50,000 rand
 - NIR sees SSA values: a variable assigned again still stands for its value, so ``p = m*p*2.02;
   p = m*p*2.03`` is ``(m*2.02) * (m*p)`` for a constant matrix m, and ``(y * #c) * #k`` is
   ``y * (c*k)`` through such a variable too (:func:`_keep_factor`, :func:`_merge_into_matrix`);
+- NIR splits vectors into components (SSA per component): a component written as ``y * #c``
+  (or a whole local so written) merges with a later ``*=`` or ``*`` by a constant, also through
+  a copy ``q = r + 0.0``, the constants folded right to left (nir_opt_algebraic visits the last
+  instruction first): gargantua's ``radialCoords.z = distFromDisc * 1.5; radialCoords *= 0.95;``
+  is ``distFromDisc * (1.5*0.95)`` (:func:`component_write`, :func:`_merge_components`); a
+  component's ``+= e`` undone by a later ``-= e`` is its value before (``('~fadd', ('fneg',
+  a), ('fadd', a, b)) -> b``, :func:`_cancelled_sum`); ``x *= b; ... x * #c`` with the new x
+  read once is ``(a * #c) * b``, one level deep (:func:`_sunk_through_compound`);
+- a call's result returned from inside a branch, made under a mask in a function that takes
+  derivatives, keeps in the lanes the mask leaves out the value of the last time it ran for
+  them, in a loop NIR does not unroll: llvmpipe's register for the merged returns, read by a
+  neighbour's derivative (:func:`register_call`, frame.Lanes.reg);
 - constants are what Mesa knows as constants: also a global variable initialised by a
   constant expression and never written (:func:`_constant_global`: GLSL IR propagates it);
 - an added constant zero dropped, ``fadd(a, 0.0) -> a`` (:func:`zero_add`, ``Runtime.fadd``),
@@ -52,7 +64,8 @@ The rules copied here, each measured bit for bit against llvmpipe on 50,000 rand
 
 Not a rewrite of the order but of the type: arithmetic on lowp lookups (Shadertoy's iChannels
 are lowp) is float16 on llvmpipe (Mesa's lower_precision.cpp), copied for trees of ``+ - * /``
-over lookups and constants (:func:`lowp_tree`).
+over lookups and constants, ``pow(x, 2.0)`` among them as ``x * x`` with a constant factor sunk
+into it, ``(x * #k) * x`` (:func:`lowp_tree`, :func:`_square`).
 
 Each rewrite is emitted as ``(<rewritten> if rt.lp else <written>)``: float32 renders take
 Mesa's order, float64 (the accuracy reference) and float16 keep the written one. Not copied
@@ -199,8 +212,9 @@ def lowp_tree(tr: Any, e: A.Binary, mask: str | None) -> str | None:
     here, measured) and lookups on an iChannel (swizzled or not), at least one lookup; measured
     bit for bit (tests/gl/test_llvmpipe_lowering.py). Emitted as ``(rt.lowp_full(<float16
     tree>) if rt.lowp_arith(<samplers>) else <written>)``: float64 and float16 renders, and
-    samplers that are not lowp (the WebGL comparison's), keep float32. Not copied: built-in
-    calls on such values (``smoothstep(0.3, 0.4, texture(..).x)`` is float16 on llvmpipe too,
+    samplers that are not lowp (the WebGL comparison's), keep float32. ``pow(x, 2.0)`` is
+    ``x * x`` there (:func:`_square`, measured). Not copied: other built-in calls on such
+    values (``smoothstep(0.3, 0.4, texture(..).x)`` is float16 on llvmpipe too,
     not measured), lookups through a sampler parameter, mediump/lowp variables (see
     glslcheck/mediump.py), and NIR's reassociations inside the float16 tree."""
     if tr.fn is None or getattr(tr, "lowp_written", None) is not None and id(e) in tr.lowp_written:
