@@ -1380,7 +1380,7 @@ def _merge_components(tr: Any, e: A.Binary, mask: str | None) -> str | None:
     k, x = (e.left, e.right) if _const(tr, e.left) else (e.right, e.left)
     if not _const(tr, k) or _const(tr, x) or _local_root(tr, x) is None:
         return None
-    if id(_local_root(tr, x)) not in _component_locals(tr):
+    if isinstance(tr.fn, _Standin) or id(_local_root(tr, x)) not in _component_locals(tr):
         return None
     entries, written = _chain(tr, e, mask, keep=False)
     if not any(len(cs) > 1 for _, cs in entries):
@@ -1599,6 +1599,8 @@ def _sunk_through_compound(tr: Any, e: A.Binary, mask: str | None) -> str | None
     sinks on (not copied, left as written), so a must not be one (a sum, a built-in, or a
     call of a user function repeated with the same arguments in the function: CSE shares
     its value, as gargantua's second ``pcurve(radialGradient, 4.0, 0.9)``)."""
+    if isinstance(tr.fn, _Standin) or getattr(tr.fn.sym, "node", None) is None:
+        return None  # (a global's initializer)
     w_id = _sink_reads(tr).get(id(e))
     kept = tr.__dict__.get("_nir_fold_kept_products", {}).get(w_id) if w_id is not None else None
     if kept is None or kept[0] is not tr.lines:

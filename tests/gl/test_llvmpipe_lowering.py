@@ -514,6 +514,15 @@ def test_a_constant_sinks_into_a_compound_product_read_once(llvmpipe, make_shade
     _assert_bit_for_bit(make_shader(SUNK_THROUGH_COMPOUNDS))
 
 
+def test_a_product_in_a_global_initializer_is_no_local_write(make_shader):
+    """The per-component rules read the current function's writes; a global's initializer has
+    none (it stopped transpiling with an AttributeError: a regression caught on the lab)."""
+    shader = make_shader("float TAU = 3.14159 * 2.0;\n"
+                         "void mainImage(out vec4 c, in vec2 p) { c = vec4(TAU * 0.1 * p.x, 0.0, 0.0, 1.0); }")
+    got = np.asarray(compile_backend(shader, "numpy").render(size=(4, 2)))
+    assert np.allclose(got[0, :, 0], np.float32(6.28318) * np.float32(0.1) * (np.arange(4) + 0.5), rtol=1e-6)
+
+
 @pytest.mark.parametrize("text", [ZERO_ADDS, MERGED_DOTS, GLOBAL_CONSTANTS, SSA_VALUES, RETURNED_SUMS, CALL_CONSTANTS,
                                   CALL_CONSTANTS_STEP, SQUARED_LENGTHS, NORMALIZED_STEPS, CONSTANT_POWERS,
                                   COMPONENT_WRITES, CANCELLED_SUMS, SUNK_THROUGH_COMPOUNDS, KEPT_RETURNS.replace("STEPS", "40")],
