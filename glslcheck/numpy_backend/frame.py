@@ -159,6 +159,21 @@ class Lanes:
             m = None
         return self.rt.assign(old, new, m)
 
+    def reg(self, S, name: str, new, m):
+        """``new`` (a call's result under the mask m) with the lanes m leaves out holding what
+        they held the last time this call site ran for them (zero before), kept on S as the
+        lane field `name`: llvmpipe's register for a value merged across control flow (a
+        function's return from inside a branch, after inlining), stored under the exec mask,
+        so a neighbour's derivative reads the old value there (transpile/functions.py)."""
+        if not self.rt.lp:
+            return new  # (llvmpipe's, float32 renders only: the float64 reference keeps zero there)
+        old = getattr(S, name, None)  # (a `g_` field: gathered and scattered as a global)
+        if old is None or np.shape(old) != np.shape(new):
+            old = np.zeros_like(new)
+        out = self.put(old, new, m)
+        setattr(S, name, out)
+        return out
+
     # masks ------------------------------------------------------------------------------------
     # A mask of shape (1,) is uniform: all of the current lanes or none. Combining it with
     # another mask returns one of the operands instead of computing a full-lane array.

@@ -44,6 +44,18 @@ The rules copied here, each measured bit for bit against llvmpipe on 50,000 rand
 - NIR sees SSA values: a variable assigned again still stands for its value, so ``p = m*p*2.02;
   p = m*p*2.03`` is ``(m*2.02) * (m*p)`` for a constant matrix m, and ``(y * #c) * #k`` is
   ``y * (c*k)`` through such a variable too (:func:`_keep_factor`, :func:`_merge_into_matrix`);
+- NIR splits vectors into components (SSA per component): a component written as ``y * #c``
+  (or a whole local so written) merges with a later ``*=`` or ``*`` by a constant, also through
+  a copy ``q = r + 0.0``, the constants folded right to left (nir_opt_algebraic visits the last
+  instruction first): gargantua's ``radialCoords.z = distFromDisc * 1.5; radialCoords *= 0.95;``
+  is ``distFromDisc * (1.5*0.95)`` (:func:`component_write`, :func:`_merge_components`); a
+  component's ``+= e`` undone by a later ``-= e`` is its value before (``('~fadd', ('fneg',
+  a), ('fadd', a, b)) -> b``, :func:`_cancelled_sum`); ``x *= b; ... x * #c`` with the new x
+  read once is ``(a * #c) * b``, one level deep (:func:`_sunk_through_compound`);
+- a call's result returned from inside a branch, made under a mask in a function that takes
+  derivatives, keeps in the lanes the mask leaves out the value of the last time it ran for
+  them, in a loop NIR does not unroll: llvmpipe's register for the merged returns, read by a
+  neighbour's derivative (:func:`register_call`, frame.Lanes.reg);
 - constants are what Mesa knows as constants: also a global variable initialised by a
   constant expression and never written (:func:`_constant_global`: GLSL IR propagates it);
 - an added constant zero dropped, ``fadd(a, 0.0) -> a`` (:func:`zero_add`, ``Runtime.fadd``),
@@ -52,7 +64,8 @@ The rules copied here, each measured bit for bit against llvmpipe on 50,000 rand
 
 Not a rewrite of the order but of the type: arithmetic on lowp lookups (Shadertoy's iChannels
 are lowp) is float16 on llvmpipe (Mesa's lower_precision.cpp), copied for trees of ``+ - * /``
-over lookups and constants (:func:`lowp_tree`).
+over lookups and constants, ``pow(x, 2.0)`` among them as ``x * x`` with a constant factor sunk
+into it, ``(x * #k) * x`` (:func:`lowp_tree`, :func:`_square`).
 
 Each rewrite is emitted as ``(<rewritten> if rt.lp else <written>)``: float32 renders take
 Mesa's order, float64 (the accuracy reference) and float16 keep the written one. Not copied
@@ -79,9 +92,11 @@ from ..analysis import param_directions
 from ..check.model import Symbol
 from ..diagnostics import Location
 from ..printer import to_glsl
+from ..types import FLOAT
 from .transpile.common import _TEXTURE_FUNCTIONS
 from .transpile.call_fold import out_roots, product_sums
 from .transpile.constant_flow import constant_flow
+from .transpile.facts import induction_variable
 from .transpile.inline import bound_argument, inline_owner
 
 _SUMS = ("+", "-")
@@ -197,8 +212,9 @@ def lowp_tree(tr: Any, e: A.Binary, mask: str | None) -> str | None:
     here, measured) and lookups on an iChannel (swizzled or not), at least one lookup; measured
     bit for bit (tests/gl/test_llvmpipe_lowering.py). Emitted as ``(rt.lowp_full(<float16
     tree>) if rt.lowp_arith(<samplers>) else <written>)``: float64 and float16 renders, and
-    samplers that are not lowp (the WebGL comparison's), keep float32. Not copied: built-in
-    calls on such values (``smoothstep(0.3, 0.4, texture(..).x)`` is float16 on llvmpipe too,
+    samplers that are not lowp (the WebGL comparison's), keep float32. ``pow(x, 2.0)`` is
+    ``x * x`` there (:func:`_square`, measured). Not copied: other built-in calls on such
+    values (``smoothstep(0.3, 0.4, texture(..).x)`` is float16 on llvmpipe too,
     not measured), lookups through a sampler parameter, mediump/lowp variables (see
     glslcheck/mediump.py), and NIR's reassociations inside the float16 tree."""
     if tr.fn is None or getattr(tr, "lowp_written", None) is not None and id(e) in tr.lowp_written:
@@ -246,6 +262,8 @@ def _lowp_kind_of(tr: Any, node: Any, memo: dict[int, Any]) -> str | None:
         return None
     if isinstance(node, A.Field):
         return "lookup" if _lowp_kind(tr, node.base, memo) == "lookup" else None
+    if isinstance(node, A.Call) and _square(tr, node):
+        return "low" if _lowp_kind(tr, node.args[0], memo) in ("low", "lookup") else None
     if isinstance(node, A.Call):
         sampler = node.args[0] if node.args else None
         sym = tr.model.symbol_of(sampler) if isinstance(sampler, A.Identifier) else None
@@ -261,12 +279,19 @@ def _lowp_kind_of(tr: Any, node: Any, memo: dict[int, Any]) -> str | None:
     return None
 
 
+def _square(tr: Any, node: A.Call) -> bool:
+    """``pow(x, 2.0)`` (a vector of 2.0 too) of the built-in: x * x to NIR (``fpow(a, 2.0) ->
+    a * a``), in float16 for a float16 x (gargantua's ``pow(texture(..).rgb, vec3(2.0)) * 4.0``)."""
+    return (node.callee == "pow" and len(node.args) == 2 and _builtin(tr, node)
+            and set(_constant_value(tr, node.args[1]) or [0.0]) == {2.0})
+
+
 def _lowp_parts(node: Any, memo: dict[int, Any], nodes: list[Any], samplers: list[Any]) -> None:
     """The operation nodes of a float16 tree and the samplers its lookups read."""
     kind = memo.get(id(node))
     if kind == "low":
         nodes.append(node)
-        for k in (node.operand,) if isinstance(node, A.Unary) else (node.left, node.right):
+        for k in (node.operand,) if isinstance(node, A.Unary) else node.args[:1] if isinstance(node, A.Call) else (node.left, node.right):
             _lowp_parts(k, memo, nodes, samplers)
     elif kind == "lookup":
         while isinstance(node, A.Field):
@@ -281,6 +306,15 @@ def _lowp_code(tr: Any, node: Any, mask: str | None, ops: set[int]) -> str:
         return f"rt.half({tr.expr(node, mask)})"
     if isinstance(node, A.Unary):
         return f"(-{_lowp_code(tr, node.operand, mask, ops)})"
+    if isinstance(node, A.Call):  # pow(x, 2.0): x * x, x computed once
+        x = tr.fresh("h")
+        return f"(({x} := {_lowp_code(tr, node.args[0], mask, ops)}) * {x})"
+    square, k = (node.left, node.right) if isinstance(node.left, A.Call) else (node.right, node.left)
+    if node.op == "*" and isinstance(square, A.Call) and id(square) in ops and tr.model.const_value(k) is not None:
+        # (x*x) * #k, the square used once: (x * #k) * x (``(a*b)*#c -> (a*#c)*b``)
+        x = tr.fresh("h")
+        xk = f"(({x} := {_lowp_code(tr, square.args[0], mask, ops)}) * {_lowp_code(tr, k, mask, ops)})"
+        return f"({xk} * {x})"
     return f"({_lowp_code(tr, node.left, mask, ops)} {node.op} {_lowp_code(tr, node.right, mask, ops)})"
 
 
@@ -305,6 +339,11 @@ def binary(tr: Any, e: A.Binary, mask: str | None) -> str | None:
         if folded is not None:
             return folded
     folded = _merge_constants(tr, e, mask)
+    if folded is not None:
+        return folded
+    folded = _merge_components(tr, e, mask)
+    if folded is None:
+        folded = _sunk_through_compound(tr, e, mask)
     if folded is not None:
         return folded
     folded = _sink(tr, e, mask)
@@ -1274,6 +1313,508 @@ def _written(tr: Any) -> set[int]:
                         roots(a)
         cache[key] = out
     return cache[key]
+
+
+# -- products by constants merged per component, through component writes ---------------------
+def component_write(tr: Any, node: Any, mask: str | None, old: str | None = None) -> str | None:
+    """The code of the value a write gives a local, component by component as NIR sees it,
+    or None (the write as usual). ``node``: a declarator with an initializer, or an assignment
+    ``=`` / ``*=`` (``old``: the code of the target's value before a ``*=``).
+
+    NIR splits a vector into its components (SSA per component), so a component's last write
+    is what a later product by a constant reads, and ``#a * (b * #c) -> (a*c) * b`` merges the
+    two constants: gargantua's ``radialCoords.z = distFromDisc * 1.5; radialCoords *= 0.95;``
+    is ``distFromDisc * (1.5*0.95)`` on llvmpipe, and ``rc = radialCoords + 0.0; ... rc * 3.0``
+    (``x + 0.0`` is x) merges a third constant. For a local that is written in part (a
+    component, or a compound assignment) and read in such a product, directly or through a
+    copy, each write keeps, per component, the factor y and the constants c1, c2, ... of its
+    value ``y * c1 * c2 ...`` (y in a temporary: :func:`_chain`), and a later ``*`` by a
+    constant (:func:`_merge_components`) or ``*=`` reads them through the write that last gave
+    that component its value (:func:`_component_record`). The constants are folded in float32
+    left to right, as NIR merges the inner product first."""
+    if tr.fn is None or isinstance(tr.fn, _Standin):
+        return None
+    if isinstance(node, A.Assignment) and node.op in ("+=", "-="):
+        return _cancelled_sum(tr, node, mask, old)
+    if isinstance(node, A.Declarator):
+        sym, comps, value = tr.model.symbol_of(node), None, node.init
+    elif node.op in ("=", "*="):
+        sym, comps = _target_components(tr, node.target)
+        value = node.value
+    else:
+        return None
+    if sym is None or id(sym) not in _component_locals(tr) or value is None or _writes_locals(tr, value):
+        return None
+    facts = _facts(tr)
+    if id(node) not in facts.enter:
+        return None  # (a node of an inlined body)
+    compound = isinstance(node, A.Assignment) and node.op == "*="
+    if compound and not _const(tr, value):
+        return _kept_product(tr, node, mask, old)
+    if compound and _has_matrix(tr, value):
+        return None
+    kept = compound and any(cs for _, cs in _chain(tr, node.target, mask, keep=False)[0])
+    if not kept and not _read_later(tr, facts, sym, node):
+        return None  # (no product by a constant reads what this write would keep)
+    if compound:
+        t = tr.type_of(node.target)
+        entries, old = _times(tr, _chain(tr, node.target, mask, keep=True)[0], old, value, _size(t), mask, True)
+        written = tr.binary_values("*", t, tr.type_of(value), old, tr.expr(value, mask))
+    else:
+        entries, written = _chain(tr, value, mask, keep=True)
+    n = len(entries)
+    comps = comps if comps is not None else tuple(range(n))
+    if len(comps) != n:
+        return None
+    records = tr.__dict__.setdefault("_nir_fold_components", {})
+    records[id(node)] = (tr.lines, {c: (y, cs) for c, (y, cs) in zip(comps, entries) if cs})
+    return _merged_code(tr, entries, written)
+
+
+def _merge_components(tr: Any, e: A.Binary, mask: str | None) -> str | None:
+    """``x * #k`` with x (or a swizzle of it) a local whose components :func:`component_write`
+    kept, when a component's constants merge: each component ``y * (c*...*k)`` (llvmpipe
+    mode), else as written."""
+    if e.op != "*" or _has_matrix(tr, e.left, e.right):
+        return None
+    k, x = (e.left, e.right) if _const(tr, e.left) else (e.right, e.left)
+    if not _const(tr, k) or _const(tr, x) or _local_root(tr, x) is None:
+        return None
+    if isinstance(tr.fn, _Standin) or id(_local_root(tr, x)) not in _component_locals(tr):
+        return None
+    entries, written = _chain(tr, e, mask, keep=False)
+    if not any(len(cs) > 1 for _, cs in entries):
+        return None
+    return _merged_code(tr, entries, written)
+
+
+def _merged_code(tr: Any, entries: list[tuple[str, list[Any]]], written: str) -> str:
+    if not any(len(cs) > 1 for _, cs in entries):
+        return written
+    parts = []
+    for y, cs in entries:
+        cs = [c if isinstance(c, str) else tr.const_float(c) for c in cs]
+        c = cs[-1] if cs else None
+        for inner in reversed(cs[:-1]):
+            c = f"({inner} * {c})"  # (nir_opt_algebraic visits the last instruction first)
+        parts.append(y if c is None else tr.binary_values("*", FLOAT, FLOAT, y, c))
+    merged = parts[0] if len(parts) == 1 else f"rt.vec({len(parts)}, {', '.join(parts)})"
+    return f"({merged} if rt.lp else {written})"
+
+
+def _chain(tr: Any, node: Any, mask: str | None, keep: bool) -> tuple[list[tuple[str, list[Any]]], str]:
+    """([(y, [c1, c2, ...]) per component], the code of the value as written): the value of
+    each component is ``y * c1 * c2 ...`` to NIR, y's code and the constants' codes.
+    Followed: products by constants, swizzles, ``x + 0.0`` (x to NIR) and reads of a local
+    (the components its reaching writes kept); anything else is y itself, no constant. With
+    `keep`, a y that has constants is a temporary (it must outlive later writes)."""
+    n = _size(tr.type_of(node))
+    if isinstance(node, A.Binary) and node.op == "*" and not _has_matrix(tr, node.left, node.right):
+        k_left = _const(tr, node.left)
+        k, x = (node.left, node.right) if k_left else (node.right, node.left)
+        if _const(tr, k) and not _const(tr, x):
+            inner, wx = _chain(tr, x, mask, keep)
+            entries, wx = _times(tr, inner, wx, k, n, mask, keep)
+            tk = tr.expr(k, mask)
+            lt, rt_ = tr.type_of(node.left), tr.type_of(node.right)
+            written = tr.binary_values("*", lt, rt_, tk, wx) if k_left else tr.binary_values("*", lt, rt_, wx, tk)
+            return entries, written
+    if isinstance(node, A.Binary) and node.op == "+" and _zero(tr, node.right) and tr.type_of(node.left) == tr.type_of(node):
+        inner, wx = _chain(tr, node.left, mask, keep)
+        return inner, f"rt.fadd({wx}, {tr.expr(node.right, mask)})"
+    if isinstance(node, A.Field) and tr.model.is_swizzle(node) and not tr.type_of(node.base).is_scalar:
+        inner, wb = _chain(tr, node.base, mask, keep)
+        idx = tr.model.swizzle_indices(node)
+        sw = "".join("xyzw"[i] for i in idx)
+        return [inner[i] for i in idx], (f"{wb}[{idx[0]}]" if len(idx) == 1 else f'rt.swizzle({wb}, "{sw}")')
+    code = tr.expr(node, mask)
+    found = [None] * n
+    if isinstance(node, A.Identifier) and tr.type_of(node).base == "float":
+        found = [_component_record(tr, node, i) for i in range(n)]
+    return [f if f else (_component(code, i, n), []) for i, f in enumerate(found)], code
+
+
+def _times(tr: Any, entries: list[tuple[str, list[Any]]], code: str, k: Any, n: int, mask: str | None,
+           keep: bool) -> tuple[list[tuple[str, list[Any]]], str]:
+    """Each component's entry times the constant k (a scalar, or a vector: its component), and
+    the code of the factor (a temporary with `keep` when a component is the factor itself)."""
+    if keep and any(not cs for _, cs in entries):
+        code = tr.tmp(code)
+        entries = [(y, cs) if cs else (_component(code, i, len(entries)), []) for i, (y, cs) in enumerate(entries)]
+    if len(entries) == 1 and n > 1:
+        entries = entries * n  # (a scalar times a vector constant)
+    if tr.type_of(k).is_scalar:
+        ks: list[Any] = [tr.expr(k, mask)] * n
+    else:
+        ks = list(_constant_value(tr, k))  # (values: named by _merged_code only if it uses them)
+    return [(y, cs + [kc]) for (y, cs), kc in zip(entries, ks)], code
+
+
+def _component(code: str, i: int, n: int) -> str:
+    return code if n == 1 else f"{code}[{i}]"
+
+
+def _size(t: Any) -> int:
+    return t.size if t.is_vector else 1
+
+
+def _zero(tr: Any, node: Any) -> bool:
+    """A float constant +0.0 (``fadd(a, 0.0) -> a``)."""
+    import math
+
+    v = tr.model.const_value(node)
+    return isinstance(v, float) and v == 0.0 and math.copysign(1.0, v) > 0
+
+
+def _local_root(tr: Any, node: Any) -> Any:
+    """The local or parameter a read names, through swizzles and ``+ 0.0``; else None."""
+    while True:
+        if isinstance(node, A.Field) and tr.model.is_swizzle(node):
+            node = node.base
+        elif isinstance(node, A.Binary) and node.op == "+" and _zero(tr, node.right):
+            node = node.left
+        else:
+            break
+    if isinstance(node, A.Identifier):
+        s = tr.model.symbol_of(node)
+        if s is not None and s.kind in ("local", "param") and tr.type_of(node).base == "float":
+            return s
+    return None
+
+
+def _target_components(tr: Any, target: Any) -> tuple[Any, tuple[int, ...] | None]:
+    """(the local an assignment writes, the components it writes: None for all) for a target
+    that is a local or one swizzle of it; else (None, None)."""
+    if isinstance(target, A.Identifier):
+        return tr.model.symbol_of(target), None
+    if (isinstance(target, A.Field) and isinstance(target.base, A.Identifier) and tr.model.is_swizzle(target)
+            and not tr.type_of(target.base).is_scalar):
+        return tr.model.symbol_of(target.base), tuple(tr.model.swizzle_indices(target))
+    return None, None
+
+
+def _component_locals(tr: Any) -> set[int]:
+    """ids of the float locals of the current function :func:`component_write` follows: written
+    in part (a component, a compound assignment) and read in a product by a constant (or by
+    ``*=`` one), directly or through a copy into such a local."""
+    cache = tr.__dict__.setdefault("_nir_fold_component_locals", {})
+    key = id(tr.fn.sym)
+    if key in cache:
+        return cache[key]
+    facts = _facts(tr)
+    if not facts.ok:
+        cache[key] = set()
+        return cache[key]
+    partly = {key_ for key_, ws in facts.writes.items() if any(w.kind in ("part", "op") for w in ws)}
+    reads: dict[int, list[Any]] = {}  # id(symbol) -> the nodes that read it so
+    copies: list[tuple[Any, Any, Any]] = []
+    for n in tr.fn.sym.node.body.walk():
+        if isinstance(n, A.Binary) and n.op == "*":
+            for a, b in ((n.left, n.right), (n.right, n.left)):
+                s = _local_root(tr, b) if _const(tr, a) and not _const(tr, b) else None
+                if s is not None:
+                    reads.setdefault(id(s), []).append(n)
+        elif isinstance(n, A.Assignment) and n.op == "*=" and _const(tr, n.value):
+            s = _target_components(tr, n.target)[0]
+            if s is not None:
+                reads.setdefault(id(s), []).append(n)
+        elif isinstance(n, A.Assignment) and n.op == "=" and isinstance(n.target, A.Identifier):
+            copies.append((tr.model.symbol_of(n.target), _local_root(tr, n.value), n))
+        elif isinstance(n, A.Declarator) and n.init is not None:
+            copies.append((tr.model.symbol_of(n), _local_root(tr, n.init), n))
+    grew = True
+    while grew:
+        grew = False
+        for t, s, n in copies:
+            if t is not None and s is not None and id(t) in reads and n not in reads.get(id(s), ()):
+                reads.setdefault(id(s), []).append(n)
+                grew = True
+    tr.__dict__.setdefault("_nir_fold_component_reads", {})[key] = reads
+    cache[key] = set(reads) & partly
+    return cache[key]
+
+
+def _cancelled_sum(tr: Any, node: A.Assignment, mask: str | None, old: str) -> str | None:
+    """``x.y += e; ... x.y -= e`` (either order, e the same text, its variables not written in
+    between): x.y is its value before the ``+=`` to NIR (``('~fadd', ('fneg', a), ('fadd', a,
+    b)) -> b``), with the constants :func:`component_write` kept for it (gargantua's ``rc.y +=
+    iTime * speed; ... rc.y -= iTime * speed; ... rc * 6.0``). Each such write keeps the
+    component's value before it (a temporary) for a later write that cancels it."""
+    if tr.fn is None or isinstance(tr.fn, _Standin):
+        return None
+    sym, comps = _target_components(tr, node.target)
+    value = node.value
+    if sym is None or id(sym) not in _component_locals(tr) or _writes_locals(tr, value) or _has_matrix(tr, value):
+        return None
+    facts = _facts(tr)
+    if id(node) not in facts.enter or tr.type_of(node.target).base != "float":
+        return None
+    ident = node.target if isinstance(node.target, A.Identifier) else node.target.base
+    comps = comps if comps is not None else tuple(range(_size(tr.type_of(node.target))))
+    undo = tr.__dict__.setdefault("_nir_fold_undo", {})
+    records = tr.__dict__.setdefault("_nir_fold_components", {})
+    before = []  # per component: (code, record) of its value before the write this one cancels
+    for c in comps:
+        w = _component_source(tr, ident, c)
+        kept = undo.get(id(w.node)) if w is not None else None
+        if (kept is None or kept[0] is not tr.lines or c not in kept[1] or w.node.op == node.op
+                or to_glsl(w.node.value) != to_glsl(value) or tr.type_of(w.node.value) != tr.type_of(value)):
+            before = None
+            break
+        read = [tr.model.symbol_of(n) for n in value.walk() if isinstance(n, A.Identifier)]
+        if facts.written_between(w.node, node, [r for r in read if r is not None]):
+            before = None
+            break
+        before.append(kept[1][c])
+    if before is None and not _cancelled_later(tr, facts, sym, node):
+        return None
+    n = len(comps)
+    t_old = tr.tmp(old)
+    undo[id(node)] = (tr.lines, {c: (_component(t_old, j, n), _component_record(tr, ident, c))
+                                 for j, c in enumerate(comps)})
+    written = tr.binary_values(node.op[0], tr.type_of(node.target), tr.type_of(value), t_old, tr.expr(value, mask))
+    if before is None:
+        return written
+    records[id(node)] = (tr.lines, {c: rec for c, (_, rec) in zip(comps, before) if rec})
+    lp = before[0][0] if n == 1 else f"rt.vec({n}, {', '.join(code for code, _ in before)})"
+    return f"({lp} if rt.lp else {written})"
+
+
+def _kept_product(tr: Any, node: A.Assignment, mask: str | None, old: str) -> str | None:
+    """``x *= b`` read once, by a product by a constant: its factors kept for
+    :func:`_sunk_through_compound` (None: the write as usual)."""
+    if not isinstance(node.target, A.Identifier) or id(node) not in _sink_reads(tr).values():
+        return None
+    t = tr.type_of(node.target)
+    ta, tb = tr.tmp(old), tr.tmp(tr.expr(node.value, mask))
+    tr.__dict__.setdefault("_nir_fold_kept_products", {})[id(node)] = (tr.lines, ta, tb)
+    return tr.binary_values("*", t, tr.type_of(node.value), ta, tb)
+
+
+def _sunk_through_compound(tr: Any, e: A.Binary, mask: str | None) -> str | None:
+    """``x * #c`` where x's value is ``a * b`` from ``x *= b``, read only here: ``(a * #c) * b``
+    (``('~fmul', ('fmul(is_used_once)', a, b), '#c') -> (a * #c) * b``, the product used once
+    in SSA): gargantua's ``coverage *= saturate(..); coverage = saturate(coverage * 0.7)``.
+    Copied one level deep only: where a is itself a product NIR sees as used once the constant
+    sinks on (not copied, left as written), so a must not be one (a sum, a built-in, or a
+    call of a user function repeated with the same arguments in the function: CSE shares
+    its value, as gargantua's second ``pcurve(radialGradient, 4.0, 0.9)``)."""
+    if isinstance(tr.fn, _Standin) or getattr(tr.fn.sym, "node", None) is None:
+        return None  # (a global's initializer)
+    w_id = _sink_reads(tr).get(id(e))
+    kept = tr.__dict__.get("_nir_fold_kept_products", {}).get(w_id) if w_id is not None else None
+    if kept is None or kept[0] is not tr.lines:
+        return None
+    k = e.right if _const(tr, e.right) else e.left
+    tk = tr.expr(k, mask)
+    written = tr.binary_values("*", tr.type_of(e.left), tr.type_of(e.right), *tr.exprs([e.left, e.right], mask))
+    t = tr.type_of(e)
+    sunk = tr.binary_values("*", t, t, tr.binary_values("*", t, tr.type_of(k), kept[1], tk), kept[2])
+    return f"({sunk} if rt.lp else {written})"
+
+
+def _returns_product(tr: Any, call: A.Call) -> bool:
+    """The user function called returns a product (its last statement ``return a * b``), or
+    its result is not known here."""
+    stmts = tr.model.call_target(call).node.body.stmts
+    last = stmts[-1] if stmts else None
+    return not isinstance(last, A.Return) or last.value is None or _is_product(tr, last.value) or any(
+        isinstance(n, A.Return) for st in stmts[:-1] for n in st.walk())
+
+
+def _sink_reads(tr: Any) -> dict[int, int]:
+    """id(``x * #c``) -> id(``x *= b``) for the products :func:`_sunk_through_compound`
+    rewrites: b not constant, x's value read only by that product, the value x had before
+    the ``*=`` not a product NIR would sink into (see there)."""
+    cache = tr.__dict__.setdefault("_nir_fold_sink_reads", {})
+    key = id(tr.fn.sym)
+    if key in cache:
+        return cache[key]
+    out: dict[int, int] = {}
+    facts = _facts(tr)
+    calls: dict[str, int] = {}
+    for n in tr.fn.sym.node.body.walk():
+        if isinstance(n, A.Call) and isinstance(tr.model.call_target(n), Symbol):
+            calls[to_glsl(n)] = calls.get(to_glsl(n), 0) + 1
+    reads: dict[int, list[Any]] = {}
+    targets = {id(n.target) for n in tr.fn.sym.node.body.walk() if isinstance(n, A.Assignment) and n.op == "="}
+    for n in tr.fn.sym.node.body.walk():
+        if isinstance(n, A.Identifier) and tr.model.symbol_of(n) is not None and id(n) not in targets:
+            reads.setdefault(id(tr.model.symbol_of(n)), []).append(n)
+    for n in tr.fn.sym.node.body.walk() if facts.ok else ():
+        if not (isinstance(n, A.Binary) and n.op == "*" and tr.type_of(n).base == "float"
+                and not _has_matrix(tr, n.left, n.right)):
+            continue
+        x = n.left if _const(tr, n.right) else n.right if _const(tr, n.left) else None
+        if not isinstance(x, A.Identifier) or _const(tr, x) or id(x) not in facts.enter:
+            continue
+        sym = tr.model.symbol_of(x)
+        before = [w for w in facts.writes_to(sym) if w.pos < facts.enter[id(x)]]
+        w = before[-1] if before else None
+        if (w is None or not isinstance(w.node, A.Assignment) or w.node.op != "*=" or _const(tr, w.node.value)
+                or not isinstance(w.node.target, A.Identifier) or tr.type_of(w.node.target) != tr.type_of(x)
+                or not facts.dominates(w.node, x) or facts.written_between(w.node, x, [sym])):
+            continue
+        later = [w2.pos for w2 in facts.writes_to(sym) if w2.pos > w.pos]
+        end = min(later) if later else None
+        users = [r for r in reads.get(id(sym), ()) if id(r) in facts.enter and facts.enter[id(r)] > w.pos
+                 and (end is None or facts.enter[id(r)] < end) and r is not w.node.target]
+        if users != [x] or facts.enclosing_loops(x) != facts.enclosing_loops(w.node):
+            continue
+        prev = [v for v in facts.writes_to(sym) if v.pos < facts.enter[id(w.node.target)]]
+        a = prev[-1].value if prev and prev[-1].kind in ("=", "init") else None
+        if a is None or _is_product(tr, a) or (isinstance(a, A.Call) and isinstance(tr.model.call_target(a), Symbol)
+                                               and calls.get(to_glsl(a), 0) < 2 and _returns_product(tr, a)):
+            continue
+        out[id(n)] = id(w.node)
+    cache[key] = out
+    return out
+
+
+def _cancelled_later(tr: Any, facts: Any, sym: Any, node: A.Assignment) -> bool:
+    """A later compound assignment of ``sym`` subtracts what ``node`` adds (or adds what it
+    subtracts), the same text: :func:`_cancelled_sum` may need the value before ``node``."""
+    text, end = to_glsl(node.value), facts.exit[id(node)]
+    return any(isinstance(w.node, A.Assignment) and w.node.op in ("+=", "-=") and w.node.op != node.op
+               and w.pos > end and to_glsl(w.node.value) == text for w in facts.writes_to(sym))
+
+
+def _component_record(tr: Any, ident: A.Identifier, i: int) -> tuple[str, list[str]] | None:
+    """(y, constants) :func:`component_write` kept for component i of the local read here (from
+    :func:`_component_source`'s write)."""
+    last = _component_source(tr, ident, i)
+    kept = tr.__dict__.get("_nir_fold_components", {}).get(id(last.node)) if last is not None else None
+    if kept is None or kept[0] is not tr.lines:
+        return None  # (not kept, or kept in another Python function: an outlined part)
+    return kept[1].get(i)
+
+
+def _component_source(tr: Any, ident: A.Identifier, i: int) -> Any:
+    """The write (analysis.dataflow.Write) that last gave component i of the local read here its
+    value: it runs before this read on every path, and nothing writes the component in between
+    (loops around the read included); else None."""
+    sym = tr.model.symbol_of(ident)
+    if sym is None or sym.kind not in ("local", "param"):
+        return None
+    facts = _facts(tr)
+    if not facts.ok or id(ident) not in facts.enter:
+        return None
+    at = facts.enter[id(ident)]
+    writes = facts.writes_to(sym)
+    last = None
+    for w in writes:
+        if w.pos < at and _writes_component(tr, w, i):
+            last = w
+    if last is None or not facts.dominates(last.node, ident):
+        return None
+    loops_w = {id(l) for l in facts.enclosing_loops(last.node)}
+    for loop in facts.enclosing_loops(ident):
+        if id(loop) not in loops_w:
+            lo, hi = facts.enter[id(loop)], facts.exit[id(loop)]
+            if any(lo <= w.pos <= hi and _writes_component(tr, w, i) for w in writes):
+                return None
+    return last
+
+
+def _writes_locals(tr: Any, value: Any) -> bool:
+    """The expression writes a variable (an assignment, ++/--, an out argument): a user call
+    that only reads its arguments is computed once, as written, so it may stay."""
+    for n in value.walk():
+        if isinstance(n, (A.Assignment, A.Sequence)) or isinstance(n, (A.Unary, A.Postfix)) and n.op in ("++", "--"):
+            return True
+        if isinstance(n, A.Call) and any(d != "in" for d in param_directions(tr.model.call_target(n))):
+            return True
+    return False
+
+
+def _read_later(tr: Any, facts: Any, sym: Any, node: Any) -> bool:
+    """A product by a constant (or a copy into a local read so) reads ``sym`` after ``node``
+    (one before it, in a loop, is not reached by this write: :func:`_component_record`)."""
+    end = facts.exit[id(node)]
+    return any(facts.enter.get(id(r), -1) > end for r in _component_reads(tr).get(id(sym), ()))
+
+
+def _component_reads(tr: Any) -> dict[int, list[Any]]:
+    _component_locals(tr)
+    return tr.__dict__["_nir_fold_component_reads"][id(tr.fn.sym)]
+
+
+def _writes_component(tr: Any, w: Any, i: int) -> bool:
+    if isinstance(w.node, A.Assignment):
+        comps = _target_components(tr, w.node.target)[1]
+        if comps is not None:
+            return i in comps
+    return True
+
+
+# -- a call's result in the lanes a mask leaves out: llvmpipe's register ------------------------
+def register_call(tr: Any, call: A.Call, fn: Any) -> bool:
+    """The result of this call of ``fn``, made under a mask in a function that takes
+    derivatives, is llvmpipe's register in the lanes the mask leaves out: they keep the value
+    they had the last time this call ran for them (frame.Lanes.reg).
+
+    After inlining, NIR merges returns from inside a branch into one value (a phi); a branch
+    computed by a built-in call (atan, pow, ...) is too costly to flatten into selects, so the
+    phi becomes a register, stored under the exec mask, and a neighbour's derivative reads the
+    old value in a lane that left (gargantua's GasDisc: ``atan2`` called after
+    ``if (coverage < 0.01) return;`` in its 200-step loop, measured: the lane's value of the
+    iteration before). Only in a loop NIR keeps: a loop of at most 32 iterations
+    (max_unroll_iterations) is unrolled, each copy its own register, zero in such a lane
+    (measured on a 4-step loop: the register kept across iterations put 917 of 14,400 pixels
+    off, zero none)."""
+    if tr.fn is None or id(tr.fn.sym) not in tr.facts.uses_derivs or not _returns_in_branch(tr, fn):
+        return False
+    return _in_kept_loop(tr, tr.fn.sym, call, 0)
+
+
+def _returns_in_branch(tr: Any, fn: Any) -> bool:
+    """``fn`` returns a value from inside an ``if`` or a loop, computed there by a call."""
+    if fn.type is None or str(fn.type) == "void":
+        return False
+    for n in fn.node.body.walk():
+        if isinstance(n, (A.If, A.For, A.While, A.DoWhile)) and any(
+                isinstance(r, A.Return) and r.value is not None
+                and any(isinstance(c, A.Call) and not c.constructor for c in r.value.walk()) for r in n.walk()):
+            return True
+    return False
+
+
+def _in_kept_loop(tr: Any, sym: Any, node: Any, depth: int) -> bool:
+    """``node`` (in function ``sym``) runs again and again in one invocation: its innermost
+    loop, here or around every call of the function, is one NIR does not unroll."""
+    from ..analysis.dataflow import FunctionFacts
+
+    if depth > 8:
+        return False
+    cache = tr.__dict__.setdefault("_nir_fold_fn_facts", {})
+    if id(sym) not in cache:
+        cache[id(sym)] = FunctionFacts(sym.node, tr.model)
+    facts = cache[id(sym)]
+    if not facts.ok or id(node) not in facts.enter:
+        return False
+    loops = facts.enclosing_loops(node)
+    if loops:
+        return not _unrolled(tr, loops[-1])
+    sites = [(f, n) for f in tr.facts.functions for n in f.node.body.walk()
+             if isinstance(n, A.Call) and tr.model.call_target(n) is sym]
+    return bool(sites) and all(_in_kept_loop(tr, f, n, depth + 1) for f, n in sites)
+
+
+def _unrolled(tr: Any, loop: Any) -> bool:
+    """A ``for`` loop of a constant count of at most 32 iterations (NIR unrolls it)."""
+    if not isinstance(loop, A.For) or induction_variable(loop, tr.model) is None:
+        return False
+    decl = loop.init.decl.declarators[0]
+    start, cond, step = tr.model.const_value(decl.init), loop.cond, loop.step
+    if not (isinstance(start, int) and isinstance(cond, A.Binary) and cond.op in ("<", "<=")
+            and isinstance(cond.left, A.Identifier) and tr.model.symbol_of(cond.left) is tr.model.symbol_of(decl)):
+        return False
+    end = tr.model.const_value(cond.right)
+    inc = 1 if isinstance(step, (A.Unary, A.Postfix)) and step.op == "++" else (
+        tr.model.const_value(step.value) if isinstance(step, A.Assignment) and step.op == "+=" else None)
+    if not isinstance(end, int) or not isinstance(inc, int) or inc <= 0:
+        return False
+    return (end - start + (cond.op == "<=") + inc - 1) // inc <= 32
 
 
 # -- a constant added to a function's result, sunk into the sum it returns ----------------------

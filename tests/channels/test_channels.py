@@ -600,3 +600,24 @@ void mainImage(out vec4 fragColor, in vec2 fragCoord) {
     ours = api.compile(folder, backend="numpy").render(size=(64, 32), time=0.7)
     theirs = api.compile(folder, backend="gl").render(size=(64, 32), time=0.7)
     assert np.array_equal(ours, theirs), f"{int((ours != theirs).sum())} of {ours.size} values differ"
+
+
+@pytest.mark.usefixtures("llvmpipe")  # bit for bit with Mesa 22.3's llvmpipe
+def test_the_square_of_a_lowp_lookup_is_float16(gl, tmp_path):
+    # `pow(x, 2.0)` is x * x to NIR (fpow(a, 2.0) -> a * a), so on a lowp lookup it is one more
+    # float16 operation of the tree (nir_fold._square), and a constant factor sinks into it,
+    # `(x * #k) * x` (the square is used once): gargantua's Buffer A, `dustColor *=
+    # pow(texture(iChannel1, ..).rgb, vec3(2.0)) * 4.0`, the first difference of its loop at
+    # iteration 27 (1 pixel). Measured without it: 502, 500 and 512 of the 512 pixels differed
+    # from llvmpipe (r, g, b); with x * x but the constant outside, 189 in b.
+    _png(tmp_path / "tex.png", 61, 37, seed=5)
+    body = """void mainImage(out vec4 fragColor, in vec2 fragCoord) {
+    vec2 uv = fragCoord / iResolution.xy * 0.37 + 0.01;
+    fragColor = vec4(pow(texture(iChannel0, uv).rgb, vec3(2.0)) * 4.0, 1.0);
+    fragColor.z = 0.5 - pow(texture(iChannel0, uv * 2.0).x, 2.0) * 3.7;
+}
+"""
+    folder = _folder(tmp_path, {"Image": body}, {"Image": {"iChannel0": {"texture": "tex.png"}}})
+    ours = api.compile(folder, backend="numpy").render(size=(32, 16))
+    theirs = api.compile(folder, backend="gl").render(size=(32, 16))
+    assert np.array_equal(ours, theirs), f"{int((ours != theirs).sum())} of {ours.size} values differ"

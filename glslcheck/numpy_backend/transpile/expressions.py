@@ -265,10 +265,12 @@ class Expressions:
 
     def assignment(self, e: A.Assignment, mask: str | None, want_value: bool) -> str:
         lv = self.lvalue(e.target, mask)
-        value = nir_fold.keep_term(self, e, self.expr(e.value, mask))
-        if e.op != "=":
-            value = self.binary_values(e.op[:-1], self.type_of(e.target), self.type_of(e.value),
-                                       self.read(lv), value)
+        value = nir_fold.component_write(self, e, mask, self.read(lv))  # NIR's view per component
+        if value is None:
+            value = nir_fold.keep_term(self, e, self.expr(e.value, mask))
+            if e.op != "=":
+                value = self.binary_values(e.op[:-1], self.type_of(e.target), self.type_of(e.value),
+                                           self.read(lv), value)
         if want_value:
             value = self.tmp(value)
         self.write(lv, value, mask)

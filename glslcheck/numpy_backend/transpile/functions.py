@@ -177,6 +177,9 @@ class Functions:
                     args.append(self.tmp(self.read(lv)))
         args += nir_fold.return_constant_args(self, e, fn)
         call = self.call_text(e, fn, call_mask, args, mask)
+        if call_mask is not None and nir_fold.register_call(self, e, fn):
+            self.n += 1  # (a name no GLSL global has: `__` is reserved)
+            call = f'X.reg(S, "g___r{self.n}", {call}, {call_mask})'  # (frame.Lanes.reg)
         if not outs:
             return call
         r = self.fresh("t")

@@ -219,7 +219,9 @@ class Statements:
             if sym is None:
                 continue
             name = self.var_name(sym, dec)
-            value = self.expr(dec.init, mask) if dec.init is not None else self.zero(sym.type, dec)
+            value = nir_fold.component_write(self, dec, mask) if dec.init is not None else None
+            if value is None:
+                value = self.expr(dec.init, mask) if dec.init is not None else self.zero(sym.type, dec)
             if dec.init is not None:
                 value = nir_fold.keep_term(self, dec, value)
                 self.after_discarding_call(dec.init)
