@@ -31,7 +31,9 @@ imported, so nothing is written into site-packages or the source tree.
 
 The hook: runtime.LlvmpipeMath._kernel passes each NumPy function it makes through
 :func:`dispatch`, which returns it unchanged (off, numba missing, a function without kernel) or
-wrapped. A call the kernel declines (edge arguments that give NaN, see jit_kernels) goes to the
+wrapped; LlvmpipeMath.builtin does the same for the Runtime's own float32 lowerings of atan,
+atan(y, x), asin and acos (Mesa's: 12-40 NumPy operations a call; the kernels take 8-30x less
+CPU a call, docs/performance.md), whose NumPy time counts towards auto's threshold too. A call the kernel declines (edge arguments that give NaN, see jit_kernels) goes to the
 NumPy function: the same bits either way.
 """
 
@@ -58,7 +60,9 @@ _F32 = np.dtype(np.float32)
 _ONE_LANE = np.zeros(1, np.float32)  # explog's y where it reads none
 # LlvmpipeMath's algorithm name -> (jit_kernels function, its `which`)
 _KERNELS = {"_sin": ("trig", 0), "_cos": ("trig", 1), "_tan": ("trig", 2),
-            "_exp2": ("explog", 0), "_log2": ("explog", 1), "_pow": ("explog", 2)}
+            "_exp2": ("explog", 0), "_log2": ("explog", 1), "_pow": ("explog", 2),
+            # Runtime's own lowerings (LlvmpipeMath.builtin): atan(y, x) is "_atan2"
+            "_atan": ("arc", 0), "_asin": ("arc", 1), "_acos": ("arc", 2), "_atan2": ("arc", 3)}
 
 
 def mode() -> str:
@@ -207,7 +211,7 @@ def compiled(name: str, run: Callable[..., np.ndarray], fma: bool, kernels: Any)
         def one(a: np.ndarray, out: np.ndarray) -> bool:
             return kernel(a, out, fma, which)
     else:
-        def one(a: np.ndarray, out: np.ndarray) -> bool:  # exp2, log2: explog reads no y
+        def one(a: np.ndarray, out: np.ndarray) -> bool:  # exp2, log2, atan, ...: no y read
             return kernel(a, _ONE_LANE, out, fma, which)
 
     def call(x: np.ndarray, y: np.ndarray | None = None) -> np.ndarray:
@@ -218,7 +222,7 @@ def compiled(name: str, run: Callable[..., np.ndarray], fma: bool, kernels: Any)
             if one(_flat(x), out):
                 return out if x.ndim == 1 else out.reshape(x.shape)
             return run(x)
-        shape, n = _shape(x, y)  # pow
+        shape, n = _shape(x, y)  # pow, atan2
         if x.dtype is not _F32 or y.dtype is not _F32:
             return run(x, y)
         out = np.empty(n, _F32)

@@ -505,6 +505,16 @@ class LlvmpipeMath:
             self._kernels[name] = run = jit.dispatch(name, run if fast else slow, fma)
         return run
 
+    def builtin(self, name: str, ref: Any) -> Any:
+        """Runtime's own float32 lowering ``ref`` of the built-in ``name`` (``"_atan"``,
+        ``"_atan2"``, ``"_asin"``, ``"_acos"``: Mesa's, a dozen to forty NumPy operations a call)
+        as jit.dispatch gives it: the compiled kernel where jit.py's rule says it pays, else
+        ``ref``. Made once per name."""
+        run = self._kernels.get(name)
+        if run is None:
+            self._kernels[name] = run = jit.dispatch(name, ref, self.fma)
+        return run
+
     def polynomial(self, x: np.ndarray, coeffs: tuple[float, ...]) -> np.ndarray:
         """``lp_build_polynomial``: even and odd coefficients in x*x separately (each by
         Horner with mad), then ``mad(odd, x, even)``."""
@@ -1508,9 +1518,19 @@ class Runtime(TextureFunctions):  # texture lookups: textures.py
 
     def asin(self, x: Any) -> np.ndarray:
         """Mesa's polynomial asin (|x| > 1 -> NaN through sqrt)."""
+        if self.lp is not None:  # compiled (jit.py) where that pays; the same bits
+            return self.lp.builtin("_asin", self._asin)(self._f(x))
+        return self._asin(x)
+
+    def _asin(self, x: Any) -> np.ndarray:
         return self._asin_expr(self._daz(x), 0.086566724, -0.03102955)
 
     def acos(self, x: Any) -> np.ndarray:
+        if self.lp is not None:
+            return self.lp.builtin("_acos", self._acos)(self._f(x))
+        return self._acos(x)
+
+    def _acos(self, x: Any) -> np.ndarray:
         return self.F(math.pi / 2) - self._asin_expr(self._daz(x), 0.08132463, -0.02363318)
 
     # nir_atan's odd polynomial x*c0 + x^3*c1 + ... + x^11*c5 (Mesa 22.3 nir_builtin_builder.c)
@@ -1549,6 +1569,13 @@ class Runtime(TextureFunctions):  # texture lookups: textures.py
     def atan(self, y: Any, x: Any = None) -> np.ndarray:
         """``atan(y_over_x)`` and ``atan(y, x)`` following Mesa's NIR lowering (atan(0, 0) is
         3*pi/4 on llvmpipe: the lowering pretends 0/0 = 1 on the left half-plane)."""
+        if self.lp is not None:  # compiled (jit.py) where that pays; the same bits
+            if x is None:
+                return self.lp.builtin("_atan", self._atan)(self._f(y))
+            return self.lp.builtin("_atan2", self._atan)(self._f(y), self._f(x))
+        return self._atan(y, x)
+
+    def _atan(self, y: Any, x: Any = None) -> np.ndarray:
         if x is None:
             return self._nir_atan(self._daz(y))
         F = self.F
