@@ -62,7 +62,8 @@ _ONE_LANE = np.zeros(1, np.float32)  # explog's y where it reads none
 _KERNELS = {"_sin": ("trig", 0), "_cos": ("trig", 1), "_tan": ("trig", 2),
             "_exp2": ("explog", 0), "_log2": ("explog", 1), "_pow": ("explog", 2),
             # Runtime's own lowerings (LlvmpipeMath.builtin): atan(y, x) is "_atan2"
-            "_atan": ("arc", 0), "_asin": ("arc", 1), "_acos": ("arc", 2), "_atan2": ("arc", 3)}
+            "_atan": ("arc", 0), "_asin": ("arc", 1), "_acos": ("arc", 2), "_atan2": ("arc", 3),
+            "_mix": ("mix", 0)}
 
 
 def mode() -> str:
@@ -208,28 +209,32 @@ def compiled(name: str, run: Callable[..., np.ndarray], fma: bool, kernels: Any)
     kernel = getattr(kernels, kind)
 
     if kind == "trig":
-        def one(a: np.ndarray, out: np.ndarray) -> bool:
+        def take(out: np.ndarray, a: np.ndarray) -> bool:
             return kernel(a, out, fma, which)
-    else:
-        def one(a: np.ndarray, out: np.ndarray) -> bool:  # exp2, log2, atan, ...: no y read
-            return kernel(a, _ONE_LANE, out, fma, which)
+    elif kind == "mix":
+        def take(out: np.ndarray, x: np.ndarray, y: np.ndarray, a: np.ndarray) -> bool:
+            return kernel(x, y, a, out)
+    else:  # explog, arc: exp2, log2, atan, asin and acos read no y
+        def take(out: np.ndarray, x: np.ndarray, y: np.ndarray = _ONE_LANE) -> bool:
+            return kernel(x, y, out, fma, which)
 
-    def call(x: np.ndarray, y: np.ndarray | None = None) -> np.ndarray:
-        if y is None:
+    def call(x: np.ndarray, *rest: np.ndarray) -> np.ndarray:
+        if not rest:
             if x.dtype is not _F32:
                 return run(x)
             out = np.empty(x.size, _F32)
-            if one(_flat(x), out):
+            if take(out, _flat(x)):
                 return out if x.ndim == 1 else out.reshape(x.shape)
             return run(x)
-        shape, n = _shape(x, y)  # pow, atan2
-        if x.dtype is not _F32 or y.dtype is not _F32:
-            return run(x, y)
+        args = (x, *rest)  # pow, atan2, mix: broadcast
+        for v in args:
+            if v.dtype is not _F32:
+                return run(*args)
+        shape, n = _shape(args)
         out = np.empty(n, _F32)
-        if kernel(_flat(x if x.size in (1, n) else np.broadcast_to(x, shape)),
-                  _flat(y if y.size in (1, n) else np.broadcast_to(y, shape)), out, fma, which):
+        if take(out, *(_flat(v if v.size in (1, n) else np.broadcast_to(v, shape)) for v in args)):
             return out if len(shape) == 1 else out.reshape(shape)
-        return run(x, y)
+        return run(*args)
     return call
 
 
@@ -242,13 +247,17 @@ def _flat(v: np.ndarray) -> np.ndarray:
     return np.array(v, _F32, order="C").reshape(-1)
 
 
-def _shape(x: np.ndarray, y: np.ndarray) -> tuple[tuple[int, ...], int]:
-    """The broadcast shape of ``x`` and ``y`` and its size (the usual cases without
-    np.broadcast_shapes)."""
-    xs, ys = x.shape, y.shape
-    if xs == ys or (y.size == 1 and y.ndim <= x.ndim):
-        return xs, x.size
-    if x.size == 1 and x.ndim <= y.ndim:
-        return ys, y.size
-    shape = np.broadcast_shapes(xs, ys)
+def _shape(args: tuple[np.ndarray, ...]) -> tuple[tuple[int, ...], int]:
+    """The broadcast shape of ``args`` and its size (the usual cases, equal shapes and one-element
+    operands, without np.broadcast_shapes)."""
+    shape = args[0].shape
+    for v in args[1:]:
+        vs = v.shape
+        if vs == shape or (v.size == 1 and v.ndim <= len(shape)):
+            continue
+        if math.prod(shape) == 1 and len(shape) <= v.ndim:
+            shape = vs
+            continue
+        shape = np.broadcast_shapes(*(a.shape for a in args))
+        break
     return shape, math.prod(shape)

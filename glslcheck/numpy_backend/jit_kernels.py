@@ -337,3 +337,30 @@ def arc(x, y, out, fma, which):
     for k in range(n):
         out[k] = _arc(x[k if nx > 1 else 0], y[k if ny > 1 else 0], which)
     return True
+
+
+# ---------------------------------------------------------------- mix
+@numba.njit("boolean(float32[::1], float32[::1], float32[::1], float32[::1])", **_OPTS)
+def mix(x, y, a, out):
+    """Runtime.mix's "fast" form (nir_lower_flrp's ``x + a*(y - x)``, a weight of exactly 1 or 0
+    a select of y or x) into ``out``; x, y and a have out's size or one element. False
+    (declined) where an arithmetic lane gives a NaN (its bits are NumPy's to choose; a NaN that
+    is selected is copied, the same bits)."""
+    n = out.size
+    nx = x.size
+    ny = y.size
+    na = a.size
+    nan = False
+    for k in range(n):
+        xk = x[k if nx > 1 else 0]
+        yk = y[k if ny > 1 else 0]
+        ak = a[k if na > 1 else 0]
+        if ak == _ONE:
+            r = yk
+        elif ak == _ZERO:
+            r = xk
+        else:
+            r = F32(xk + F32(ak * F32(yk - xk)))
+            nan |= r != r
+        out[k] = r
+    return not nan

@@ -1780,25 +1780,8 @@ class Runtime(TextureFunctions):  # texture lookups: textures.py
         if self.lp is not None:
             if form is None:
                 form = self._flrp_form(x, y, a)
-            if form == "fast":
-                # a lane whose weight is exactly 0 or 1 is taken for NIR's b2f(c) (step(),
-                # 1.0 - step(), float(bool), their products: the lab shaders' branchless
-                # selects): ``flrp(x, y, b2f(c))`` is ``bcsel(c, y, x)`` in nir_opt_algebraic,
-                # before the lowering. Per lane, so a one-pixel probe run agrees with the render.
-                # Where every lane is such a select (a branchless shader's whole tile), the
-                # arithmetic is skipped: the same values, a third of the passes.
-                one, zero = a == self._1, a == self._0
-                n_one, n_zero = np.count_nonzero(one), np.count_nonzero(zero)
-                if n_one + n_zero == a.size:
-                    return np.where(one, y, x)
-                r = np.subtract(y, x)
-                r = np.multiply(a, r, out=r if _keeps_shape(r, a) else None)
-                r = np.add(x, r, out=r if _keeps_shape(r, x) else None)
-                if n_one:  # r is a new array of the broadcast shape here
-                    np.copyto(r, y, where=one)
-                if n_zero:
-                    np.copyto(r, x, where=zero)
-                return r
+            if form == "fast":  # compiled (jit.py) where that pays; the same bits
+                return self.lp.builtin("_mix", self._mix_fast)(x, y, a)
             if form in ("one", "minus_one"):
                 r = (x - a) if form == "one" else (x + a)
                 return r + y * a
@@ -1807,6 +1790,26 @@ class Runtime(TextureFunctions):  # texture lookups: textures.py
         if r.shape == t.shape and r.ndim:  # the sum in r's buffer
             return np.add(r, t, out=r)
         return r + t
+
+    def _mix_fast(self, x: np.ndarray, y: np.ndarray, a: np.ndarray) -> np.ndarray:
+        """mix's "fast" form in float32: ``x + a*(y - x)``. A lane whose weight is exactly 0 or
+        1 is taken for NIR's b2f(c) (step(), 1.0 - step(), float(bool), their products: the lab
+        shaders' branchless selects): ``flrp(x, y, b2f(c))`` is ``bcsel(c, y, x)`` in
+        nir_opt_algebraic, before the lowering. Per lane, so a one-pixel probe run agrees with
+        the render. Where every lane is such a select (a branchless shader's whole tile), the
+        arithmetic is skipped: the same values, a third of the passes."""
+        one, zero = a == self._1, a == self._0
+        n_one, n_zero = np.count_nonzero(one), np.count_nonzero(zero)
+        if n_one + n_zero == a.size:
+            return np.where(one, y, x)
+        r = np.subtract(y, x)
+        r = np.multiply(a, r, out=r if _keeps_shape(r, a) else None)
+        r = np.add(x, r, out=r if _keeps_shape(r, x) else None)
+        if n_one:  # r is a new array of the broadcast shape here
+            np.copyto(r, y, where=one)
+        if n_zero:
+            np.copyto(r, x, where=zero)
+        return r
 
     def _flrp_form(self, x: np.ndarray, y: np.ndarray, a: np.ndarray) -> str:
         """The lowering ``convert_flrp_instruction`` (Mesa nir_lower_flrp.c; llvmpipe sets

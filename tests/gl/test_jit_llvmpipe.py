@@ -16,7 +16,7 @@ from __future__ import annotations
 import numpy as np
 import pytest
 from llvmpipe_eval import evaluate, ulp_distance
-from test_llvmpipe_math import EXACT, RT
+from test_llvmpipe_math import EXACT, NA, NB, NT, RT
 
 from glslcheck.numpy_backend import jit
 from glslcheck.numpy_backend.runtime import Runtime
@@ -49,3 +49,21 @@ def test_kernels_are_bit_exact_with_llvmpipe(llvmpipe, jit_kernels, monkeypatch,
     assert not (taken and declined), "the kernel declined arguments inside [-1, 1]"
     bad = np.flatnonzero(ulp_distance(ours, got))
     assert bad.size == 0, (expr, bad.size, a[bad[:5]], got[bad[:5]], ours[bad[:5]])
+
+
+def test_mix_kernel_is_bit_exact_with_llvmpipe(llvmpipe, jit_kernels, monkeypatch):
+    """mix(a, b, c) with its weight known only at run time (nir_lower_flrp's x + t*(y - x)),
+    weights in [-0.5, 1.5]: the compiled fast form, which must take the call, against the
+    driver. (A weight of exactly 0 or 1 is a select only where NIR sees a b2f: the runtime's
+    per-lane guess for transpiled code, which a texture read is not; the kernel's selects are
+    checked against the NumPy form in tests/numpy/test_jit_kernels.py.)"""
+    monkeypatch.setenv("GLSLCHECK_JIT", "on")
+    t = NT[(NT != 0) & (NT != 1)]
+    a, b = NA[:t.size], NB[:t.size]
+    got = evaluate(llvmpipe, "mix(a, b, c)", a, b, t)
+    rt = Runtime("float32")
+    with rt.errstate():
+        ours = rt.mix(a, b, t)
+    assert [f.__name__ for f in rt.lp._kernels.values()] == ["call"]  # jit.compiled's
+    bad = np.flatnonzero(ulp_distance(ours, got))
+    assert bad.size == 0, (bad.size, a[bad[:3]], b[bad[:3]], t[bad[:3]], got[bad[:3]], ours[bad[:3]])

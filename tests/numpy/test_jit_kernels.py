@@ -191,3 +191,74 @@ def test_arc_dispatch_in_runtime(jit_kernels, monkeypatch):
         assert bool(rt.lp._kernels) and all((f.__name__ == "call") == (mode == "on") for f in rt.lp._kernels.values())
     for on, off in zip(got["on"], got["off"]):
         assert on.shape == off.shape and np.array_equal(on.view(np.int32), off.view(np.int32))
+
+
+def _weights(n: int) -> np.ndarray:
+    """mix's weights: in [0, 1], some exactly 0 or 1 (NIR's selects), some outside, some special."""
+    a = RNG.uniform(-0.5, 1.5, n).astype(F32)
+    pick = RNG.random(n)
+    a[pick < 0.2] = F32(0.0)
+    a[(pick >= 0.2) & (pick < 0.4)] = F32(1.0)
+    if RNG.random() < 0.2:  # whole calls of selects only
+        a = (RNG.random(n) < 0.5).astype(F32)
+    if RNG.random() < 1 / 3:
+        a[RNG.integers(0, n, max(1, n // 50))] = RNG.choice(SPECIALS, max(1, n // 50))
+    return a
+
+
+@pytest.mark.parametrize("fma", [True, False])
+def test_mix_kernel_equals_reference(jit_kernels, fma):
+    """mix's fast form, x + a*(y - x) with 0/1 weights selecting: about 1,500,000 lanes per FMA
+    choice in calls of 1 to 49,152 lanes, same shapes and the broadcasts the transpiler makes
+    (vec3 x, y and a float a; a one-lane x or y), specials among x, y and a; a call with an
+    arithmetic NaN is declined (and only then)."""
+    rt = Runtime("float32", fma=fma)
+    declined: list = []
+
+    def run(*args):
+        declined.append(args[0].size)
+        return rt._mix_fast(*args)
+    fn = jit.compiled("_mix", run, fma, jit_kernels)
+    lanes = taken = 0
+    with np.errstate(all="ignore"):
+        while lanes < 1_500_000:
+            n = int(RNG.choice([1, 3, 7, 143, 900, 5000, 16000, 49152]))
+            specials = RNG.random() < 1 / 3
+            x, y = (_sample(n, -3, 5, False, specials) for _ in range(2))
+            a = _weights(n)
+            shape = RNG.integers(0, 4)
+            if shape == 1:  # vec3 x, y; float a
+                x, y = x.reshape(1, n).repeat(3, 0) * F32(0.5), np.stack([y, -y, y * F32(3)])
+            elif shape == 2:
+                x = x[:1]
+            elif shape == 3:
+                y = y[:1]
+            want = rt._mix_fast(x, y, a)
+            before = len(declined)
+            got = fn(x, y, a)
+            lanes += want.size
+            assert got.dtype == np.float32 and got.shape == want.shape
+            if len(declined) == before:
+                taken += want.size
+                bad = np.flatnonzero(got.view(np.int32) != want.view(np.int32))
+            else:
+                assert np.isnan(want).any()
+                bad = np.flatnonzero(_bits(got) != _bits(want))
+            assert bad.size == 0, (fma, n, x.reshape(-1)[bad[:5]], got.reshape(-1)[bad[:5]], want.reshape(-1)[bad[:5]])
+    assert taken > lanes // 2, (fma, taken, lanes)
+
+
+def test_mix_in_runtime(jit_kernels, monkeypatch):
+    """Runtime.mix's fast form with --jit on calls the kernel and gives the bits of --jit off;
+    the other forms (strict, one, a bool weight) do not reach it."""
+    x, y = RNG.uniform(-3, 3, (2, 3, 600)).astype(F32)
+    a = _weights(600)
+    got = {}
+    for mode in ("on", "off"):
+        monkeypatch.setenv("GLSLCHECK_JIT", mode)
+        rt = Runtime("float32")
+        got[mode] = [rt.mix(x, y, a, "fast"), rt.mix(x[0], y[0], a, "fast"), rt.mix(x, y, a[:1], "fast"),
+                     rt.mix(x, y, a, "strict"), rt.mix(x, y, a > 0.5)]
+        assert list(rt.lp._kernels) == ["_mix"]
+    for on, off in zip(got["on"], got["off"]):
+        assert on.shape == off.shape and np.array_equal(on.view(np.int32), off.view(np.int32))
