@@ -21,7 +21,15 @@ kernels are loaded the way a tiered JIT promotes a function:
   a second there); one that spends much more gains nearly all of the difference, and never
   loses more than the load (the rule of renting skis until their price is spent). The count is
   per process, over every render it makes (a `verify` of many shaders, the frames of a
-  `bench`); each worker process (--parallel processes) counts its own.
+  `bench`). A render worker process (--parallel processes) counts its own calls too and
+  loads on its own rule within a frame; it reports what it counted with each frame, the parent
+  adds the workers' counts up, and once they exceed the threshold times the number of workers
+  (each worker pays its own load, in parallel), or once the parent has loaded the kernels
+  itself, every worker loads them before its next frame's first tile (:func:`decided`,
+  :func:`add_counted`) instead of counting to its own threshold again.
+- A first load compiles the kernels (6-10 s) and records that it did: the next process's
+  threshold is then the time importing numba took plus :data:`WARM_KERNELS_SECONDS` (what a
+  load from the cache costs), not the compile; its load records the real figure.
 - ``--jit on``: load them when the first render makes its math functions (an error if numba
   is missing); ``--jit off``: never, numba is not imported.
 
@@ -54,6 +62,7 @@ from ..diagnostics import InputError
 
 MODES = ("auto", "on", "off")
 COLD_SECONDS = 10.0  # the load cost assumed before one was measured in this cache (a first compile: 6-10 s)
+WARM_KERNELS_SECONDS = 1.0  # loading the kernels' machine code from the cache, numba imported (0.5-0.9 s measured)
 _RECORD = "glslcheck-jit.json"  # in the cache directory: the last load's wall time
 
 _F32 = np.dtype(np.float32)
@@ -64,6 +73,7 @@ _KERNELS = {"_sin": ("trig", 0), "_cos": ("trig", 1), "_tan": ("trig", 2),
             # Runtime's own lowerings (LlvmpipeMath.builtin): atan(y, x) is "_atan2"
             "_atan": ("arc", 0), "_asin": ("arc", 1), "_acos": ("arc", 2), "_atan2": ("arc", 3),
             "_mix": ("mix", 0)}
+_KINDS = sorted({kind for kind, _ in _KERNELS.values()})  # jit_kernels' compiled functions
 
 
 def mode() -> str:
@@ -102,6 +112,9 @@ class _State:
         # lose an update now and then, which only delays the switch by a call
         self.threshold: float | None = None
         self.load_seconds: float | None = None
+        self.pays = False  # the render workers' counts (add_counted) passed their threshold
+        self.reported = 0.0  # in a worker: the part of `spent` already reported (counted())
+        self.workers_spent = 0.0  # in the parent: what the workers reported
 
 
 _STATE = _State()
@@ -125,6 +138,8 @@ def threshold() -> float:
                 record = json.load(f)
             if record.get("stamp") == _stamp():
                 seconds = float(record["seconds"])
+                if record.get("compiled"):  # that load compiled them; this one reads the cache
+                    seconds = min(seconds, float(record["numba"]) + WARM_KERNELS_SECONDS)
         except (OSError, ValueError, KeyError, TypeError):
             pass
         _STATE.threshold = seconds
@@ -153,7 +168,9 @@ def _import() -> None:
         from numba.core import config
 
         config.CACHE_DIR = path  # ... and here if it already was
+        t_numba = time.perf_counter() - t0
         from . import jit_kernels
+        compiled_now = any(getattr(jit_kernels, k).stats.cache_misses for k in _KINDS)  # not from the cache
     except Exception as e:  # an incompatible numba, a compile error: the NumPy path stays
         _STATE.failed = f"numba's kernels failed to load ({type(e).__name__}: {e})"
         print(f"glslcheck: warning: {_STATE.failed}; using NumPy", file=sys.stderr)
@@ -164,7 +181,8 @@ def _import() -> None:
         os.makedirs(path, exist_ok=True)
         tmp = os.path.join(path, f"{_RECORD}.{os.getpid()}")
         with open(tmp, "w") as f:
-            json.dump({"seconds": round(_STATE.load_seconds, 3), "stamp": _stamp()}, f)
+            json.dump({"seconds": round(_STATE.load_seconds, 3), "stamp": _stamp(), "compiled": compiled_now,
+                       "numba": round(t_numba, 3)}, f)
         os.replace(tmp, os.path.join(path, _RECORD))
     except OSError:
         pass
@@ -194,6 +212,9 @@ def dispatch(name: str, run: Callable[..., np.ndarray], fma: bool) -> Callable[.
             return fast(*args)
         if state.failed is not None:
             return run(*args)
+        if state.pays:  # the render workers' counts say so (in the parent, rendering itself now)
+            load()
+            return auto(*args)
         t0 = clock()
         r = run(*args)
         state.spent += clock() - t0
@@ -201,6 +222,31 @@ def dispatch(name: str, run: Callable[..., np.ndarray], fma: bool) -> Callable[.
             load()
         return r
     return auto
+
+
+def decided() -> bool:
+    """Whether this process's rule has chosen the kernels (loaded, or the workers' counts pay
+    for them): a render worker told so loads them before its frame (workers.py)."""
+    return _STATE.kernels is not None or _STATE.pays
+
+
+def counted() -> float:
+    """In a render worker: the seconds of NumPy math counted since the last call (reported to
+    the parent with each frame)."""
+    spent = _STATE.spent
+    new, _STATE.reported = spent - _STATE.reported, spent
+    return new
+
+
+def add_counted(seconds: float, workers: int) -> None:
+    """In the parent: ``seconds`` counted by its ``workers`` render workers during a frame.
+    Once their sum exceeds the threshold times the number of workers (the load each of them
+    pays, in parallel), the kernels pay for all of them (:func:`decided`)."""
+    state = _STATE
+    state.workers_spent += seconds
+    if (not state.pays and state.workers_spent > threshold() * max(workers, 1)
+            and mode() == "auto" and available()):
+        state.pays = True
 
 
 def compiled(name: str, run: Callable[..., np.ndarray], fma: bool, kernels: Any) -> Callable[..., np.ndarray]:
