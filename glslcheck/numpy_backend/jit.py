@@ -260,6 +260,7 @@ def compiled(name: str, run: Callable[..., np.ndarray], fma: bool, kernels: Any)
     elif kind == "mix":
         def take(out: np.ndarray, x: np.ndarray, y: np.ndarray, a: np.ndarray) -> bool:
             return kernel(x, y, a, out)
+        return _rows_call(run, take)
     else:  # explog, arc: exp2, log2, atan, asin and acos read no y
         def take(out: np.ndarray, x: np.ndarray, y: np.ndarray = _ONE_LANE) -> bool:
             return kernel(x, y, out, fma, which)
@@ -282,6 +283,42 @@ def compiled(name: str, run: Callable[..., np.ndarray], fma: bool, kernels: Any)
             return out if len(shape) == 1 else out.reshape(shape)
         return run(*args)
     return call
+
+
+def _rows_call(run: Callable[..., np.ndarray], take: Callable[..., bool]) -> Callable[..., np.ndarray]:
+    """``run`` made by ``take`` (mix's kernel) on (rows, lanes) matrices: each argument's rows
+    (its components) and lanes are the result's or one, so that a vec3 constant of shape
+    (3, 1) or a float against vec3 lanes is read in place, not copied to the broadcast shape
+    (which cost 10x the kernel)."""
+    def call(*args: np.ndarray) -> np.ndarray:
+        for v in args:
+            if v.dtype is not _F32:
+                return run(*args)
+        shape, n = _shape(args)
+        if n == 0:
+            return run(*args)
+        cols = shape[-1] if shape else 1
+        rows = n // cols
+        out = np.empty((rows, cols), _F32)
+        if take(out, *(_rows(v, shape, rows, cols) for v in args)):
+            return out.reshape(shape)
+        return run(*args)
+    return call
+
+
+def _rows(v: np.ndarray, shape: tuple[int, ...], rows: int, cols: int) -> np.ndarray:
+    """``v`` as a contiguous, writable (rows or 1, cols or 1) matrix reading as ``v`` broadcast
+    to ``shape`` read as (rows, cols); a copy at the broadcast shape where its leading axes
+    broadcast otherwise."""
+    vs = v.shape
+    c = vs[-1] if vs else 1
+    lead = v.size // c if c else 0
+    if not (c in (cols, 1) and (lead == 1 or (lead == rows and vs[:-1] == shape[:-1]))):
+        v, lead, c = np.broadcast_to(v, shape), rows, cols
+    flags = v.flags
+    if not (flags.c_contiguous and flags.writeable):
+        v = np.array(v, _F32, order="C")
+    return v.reshape(lead, c)
 
 
 def _flat(v: np.ndarray) -> np.ndarray:

@@ -340,27 +340,27 @@ def arc(x, y, out, fma, which):
 
 
 # ---------------------------------------------------------------- mix
-@numba.njit("boolean(float32[::1], float32[::1], float32[::1], float32[::1])", **_OPTS)
+@numba.njit("boolean(float32[:, ::1], float32[:, ::1], float32[:, ::1], float32[:, ::1])", **_OPTS)
 def mix(x, y, a, out):
     """Runtime.mix's "fast" form (nir_lower_flrp's ``x + a*(y - x)``, a weight of exactly 1 or 0
-    a select of y or x) into ``out``; x, y and a have out's size or one element. False
+    a select of y or x) into ``out``, of shape (components, lanes); x, y and a have out's
+    number of rows or one, and its number of columns or one (broadcast, as a vec3 constant of
+    shape (3, 1) or a float weight against vec3 lanes: nothing is copied to broadcast). False
     (declined) where an arithmetic lane gives a NaN (its bits are NumPy's to choose; a NaN that
     is selected is copied, the same bits)."""
-    n = out.size
-    nx = x.size
-    ny = y.size
-    na = a.size
+    rows, cols = out.shape
     nan = False
-    for k in range(n):
-        xk = x[k if nx > 1 else 0]
-        yk = y[k if ny > 1 else 0]
-        ak = a[k if na > 1 else 0]
-        if ak == _ONE:
-            r = yk
-        elif ak == _ZERO:
-            r = xk
-        else:
-            r = F32(xk + F32(ak * F32(yk - xk)))
-            nan |= r != r
-        out[k] = r
+    for i in range(rows):
+        xi = i if x.shape[0] > 1 else 0
+        yi = i if y.shape[0] > 1 else 0
+        ai = i if a.shape[0] > 1 else 0
+        for k in range(cols):
+            xk = x[xi, k if x.shape[1] > 1 else 0]
+            yk = y[yi, k if y.shape[1] > 1 else 0]
+            ak = a[ai, k if a.shape[1] > 1 else 0]
+            t = F32(xk + F32(ak * F32(yk - xk)))  # computed in every lane, then selected: no branch,
+            one = ak == _ONE  # so that LLVM vectorises the loop
+            zero = ak == _ZERO
+            nan |= (t != t) & ~one & ~zero
+            out[i, k] = yk if one else xk if zero else t
     return not nan

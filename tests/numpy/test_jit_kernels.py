@@ -210,8 +210,9 @@ def _weights(n: int) -> np.ndarray:
 def test_mix_kernel_equals_reference(jit_kernels, fma):
     """mix's fast form, x + a*(y - x) with 0/1 weights selecting: about 1,500,000 lanes per FMA
     choice in calls of 1 to 49,152 lanes, same shapes and the broadcasts the transpiler makes
-    (vec3 x, y and a float a; a one-lane x or y), specials among x, y and a; a call with an
-    arithmetic NaN is declined (and only then)."""
+    (vec3 x, y and a float a; a one-lane x or y; vec3 constants of shape (3, 1), read-only
+    ones, strided views), specials among x, y and a; a call with an arithmetic NaN is declined
+    (and only then)."""
     rt = Runtime("float32", fma=fma)
     declined: list = []
 
@@ -226,13 +227,22 @@ def test_mix_kernel_equals_reference(jit_kernels, fma):
             specials = RNG.random() < 1 / 3
             x, y = (_sample(n, -3, 5, False, specials) for _ in range(2))
             a = _weights(n)
-            shape = RNG.integers(0, 4)
+            shape = RNG.integers(0, 7)
             if shape == 1:  # vec3 x, y; float a
                 x, y = x.reshape(1, n).repeat(3, 0) * F32(0.5), np.stack([y, -y, y * F32(3)])
             elif shape == 2:
                 x = x[:1]
             elif shape == 3:
                 y = y[:1]
+            elif shape == 4:  # vec3 constants (3, 1), a float weight per lane
+                x, y = x[:3].reshape(-1, 1).copy(), y[:3].reshape(-1, 1).copy()
+            elif shape == 5:  # a vec3 constant against vec3 lanes; a strided weight
+                x, y = x[:3].reshape(-1, 1).copy(), np.stack([y, y * F32(0.25), -y])
+                a = np.stack([a, a])[1]
+            elif shape == 6:  # vec3 lanes, a read-only (uniform) constant, a one-lane weight
+                x, y = np.stack([x, -x, x]), y[:3].reshape(-1, 1).copy()
+                y.flags.writeable = False
+                a = a[:1]
             want = rt._mix_fast(x, y, a)
             before = len(declined)
             got = fn(x, y, a)
