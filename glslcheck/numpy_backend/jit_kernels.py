@@ -23,7 +23,11 @@ seconds); nothing else in glslcheck imports numba.
   overflow (sin/cos/tan: |x| >= 2**29); the caller then takes the NumPy path. Every other
   edge (+-0, subnormals, +-Inf where the result is finite or an infinity) is computed here.
 
-Bit for bit against LlvmpipeMath's reference, both FMA modes: tests/numpy/test_jit_kernels.py.
+:func:`arc` makes the Runtime's own lowerings of atan, atan(y, x), asin and acos (Mesa's, no
+fused step) the same way.
+
+Bit for bit against LlvmpipeMath's and the Runtime's reference, both FMA modes:
+tests/numpy/test_jit_kernels.py; against llvmpipe itself: tests/gl/test_jit_llvmpipe.py.
 """
 
 from __future__ import annotations
@@ -218,3 +222,145 @@ def explog(x, y, out, fma, which):
             out[k] = _ZERO if zero else r
         return not nan
     return True
+
+
+# ---------------------------------------------------------------- atan, atan2, asin, acos
+# Runtime._nir_atan, Runtime.atan's two-argument form and Runtime._asin_expr (Mesa's own
+# lowerings, not gallivm's: plain float32 operations, no fused step), step by step per lane
+_HALF_PI = F32(np.pi / 2)
+_A0, _A1, _A2, _A3, _A4, _A5 = (F32(v) for v in (0.9999793128310355, -0.3326756418091246, 0.1938924977115610,
+                                                  -0.1173503194786851, 0.0536813784310406, -0.0121323213173444))
+_MTWO, _QUARTER, _BIG = F32(-2.0), F32(0.25), F32(1e18)
+_ASIN_C1 = F32(F32(np.pi / 4) - _ONE)  # M_PI_4f - 1.0f, rounded twice as in C
+_ASIN_P = (F32(0.086566724), F32(-0.03102955))  # asin's p0, p1
+_ACOS_P = (F32(0.08132463), F32(-0.02363318))
+
+
+@numba.njit(inline="always", **_OPTS)
+def _fmin(a, b):
+    """np.fmin of float32 scalars: a NaN operand yields the other."""
+    if a != a:
+        return b
+    if b != b:
+        return a
+    return a if a < b else b
+
+
+@numba.njit(inline="always", **_OPTS)
+def _fmax(a, b):
+    """np.fmax of float32 scalars (the operands here are never zeros of both signs)."""
+    if a != a:
+        return b
+    if b != b:
+        return a
+    return a if a > b else b
+
+
+@numba.njit(inline="always", **_OPTS)
+def _sign(v):
+    """Runtime.sign of a float32: 1, -1, else +0 (zeros and NaN)."""
+    return _ONE if v > _ZERO else _MONE if v < _ZERO else _ZERO
+
+
+@numba.njit(inline="always", **_OPTS)
+def _atan(v):
+    """Runtime._nir_atan of one lane ``v`` (already read with DAZ): never a NaN."""
+    a = abs(v)
+    x = _daz(F32(_fmin(a, _ONE) / _fmax(a, _ONE)))
+    x2 = F32(x * x)
+    t = F32(x * _A0)
+    p = F32(x * x2)
+    t = F32(t + F32(p * _A1))
+    p = F32(p * x2)
+    t = F32(t + F32(p * _A2))
+    p = F32(p * x2)
+    t = F32(t + F32(p * _A3))
+    p = F32(p * x2)
+    t = F32(t + F32(p * _A4))
+    t = _daz(F32(t + F32(F32(p * _A5) * x2)))  # x^11's term reassociated, as in _nir_atan
+    if _ONE < a:
+        t = F32(F32(F32(t * _MTWO) + _HALF_PI) + t)
+    return F32(t * _sign(v))
+
+
+@numba.njit(inline="always", **_OPTS)
+def _atan2(y, x):
+    """Runtime.atan(y, x) of one lane: y over x scaled, the half-plane flipped, atan of the
+    quotient (atan(0, 0) = 3*pi/4, as llvmpipe's lowering)."""
+    y = _daz(y)
+    x = _daz(x)
+    flip = _ZERO >= x
+    ax = abs(x)
+    s = ax if flip else y
+    t = y if flip else ax
+    scale = _QUARTER if abs(t) >= _BIG else _ONE
+    rcp = F32(_ONE / F32(t * scale))
+    tan = _ONE if ax == abs(y) else _daz(F32(abs(F32(s * scale)) * abs(rcp)))
+    arc = F32(F32(F32(1.0 if flip else 0.0) * _HALF_PI) + _atan(tan))
+    return -arc if _fmin(y, rcp) < _ZERO else arc
+
+
+@numba.njit(inline="always", **_OPTS)
+def _asin_expr(x, p0, p1):
+    """Runtime._asin_expr of one lane, |x| <= 1 (else NaN: the caller's check)."""
+    a = abs(x)
+    poly = F32(_HALF_PI + F32(a * F32(_ASIN_C1 + F32(a * F32(p0 + F32(a * p1))))))
+    return F32(_sign(x) * F32(_HALF_PI - F32(np.sqrt(F32(_ONE - a)) * poly)))
+
+
+@numba.njit(inline="always", **_OPTS)
+def _arc(x, y, which):
+    """atan (``which`` 0), asin (1), acos (2) of ``x``, or atan2 (3) of ``y`` = ``x`` and ``x`` = ``y``."""
+    if which == 0:
+        return _atan(_daz(x))
+    if which == 1:
+        return _asin_expr(_daz(x), _ASIN_P[0], _ASIN_P[1])
+    if which == 2:
+        return F32(_HALF_PI - _asin_expr(_daz(x), _ACOS_P[0], _ACOS_P[1]))
+    return _atan2(x, y)
+
+
+@numba.njit("boolean(float32[::1], float32[::1], float32[::1], boolean, int64)", **_OPTS)
+def arc(x, y, out, fma, which):
+    """Runtime.atan (``which`` 0), asin (1), acos (2) of ``x``, or atan (3) of ``x`` over ``y``
+    (GLSL's atan(y, x) with its y first), into ``out``; x and y have out's size or one element,
+    as for :func:`explog`. ``fma`` is unused (the same signature as explog: none of these has a
+    fused step). False (declined) for asin or acos where some |x| > 1 or x is NaN (the result
+    would be a NaN); atan and atan2 never give one."""
+    n = out.size
+    nx = x.size
+    ny = y.size
+    if which == 1 or which == 2:
+        for k in range(nx):
+            if not abs(x[k]) <= _ONE:
+                return False
+    for k in range(n):
+        out[k] = _arc(x[k if nx > 1 else 0], y[k if ny > 1 else 0], which)
+    return True
+
+
+# ---------------------------------------------------------------- mix
+@numba.njit("boolean(float32[:, ::1], float32[:, ::1], float32[:, ::1], float32[:, ::1])", **_OPTS)
+def mix(x, y, a, out):
+    """Runtime.mix's "fast" form (nir_lower_flrp's ``x + a*(y - x)``, a weight of exactly 1 or 0
+    a select of y or x) into ``out``, of shape (components, lanes); x, y and a have out's
+    number of rows or one, and its number of columns or one (broadcast, as a vec3 constant of
+    shape (3, 1) or a float weight against vec3 lanes: nothing is copied to broadcast). False
+    (declined) where an arithmetic lane gives a NaN (its bits are NumPy's to choose; a NaN that
+    is selected is copied, the same bits)."""
+    rows, cols = out.shape
+    nan = False
+    for i in range(rows):
+        xi = i if x.shape[0] > 1 else 0
+        yi = i if y.shape[0] > 1 else 0
+        ai = i if a.shape[0] > 1 else 0
+        for k in range(cols):
+            xk = x[xi, k if x.shape[1] > 1 else 0]
+            yk = y[yi, k if y.shape[1] > 1 else 0]
+            ak = a[ai, k if a.shape[1] > 1 else 0]
+            t = F32(xk + F32(ak * F32(yk - xk)))  # computed in every lane, then selected: no branch,
+            one = ak == _ONE  # so that LLVM vectorises the loop
+            zero = ak == _ZERO
+            nan |= (t != t) & ~one & ~zero
+            out[i, k] = yk if one else xk if zero else t
+    return not nan

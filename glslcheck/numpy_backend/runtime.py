@@ -505,6 +505,16 @@ class LlvmpipeMath:
             self._kernels[name] = run = jit.dispatch(name, run if fast else slow, fma)
         return run
 
+    def builtin(self, name: str, ref: Any) -> Any:
+        """Runtime's own float32 lowering ``ref`` of the built-in ``name`` (``"_atan"``,
+        ``"_atan2"``, ``"_asin"``, ``"_acos"``: Mesa's, a dozen to forty NumPy operations a call)
+        as jit.dispatch gives it: the compiled kernel where jit.py's rule says it pays, else
+        ``ref``. Made once per name."""
+        run = self._kernels.get(name)
+        if run is None:
+            self._kernels[name] = run = jit.dispatch(name, ref, self.fma)
+        return run
+
     def polynomial(self, x: np.ndarray, coeffs: tuple[float, ...]) -> np.ndarray:
         """``lp_build_polynomial``: even and odd coefficients in x*x separately (each by
         Horner with mad), then ``mad(odd, x, even)``."""
@@ -1508,9 +1518,19 @@ class Runtime(TextureFunctions):  # texture lookups: textures.py
 
     def asin(self, x: Any) -> np.ndarray:
         """Mesa's polynomial asin (|x| > 1 -> NaN through sqrt)."""
+        if self.lp is not None:  # compiled (jit.py) where that pays; the same bits
+            return self.lp.builtin("_asin", self._asin)(self._f(x))
+        return self._asin(x)
+
+    def _asin(self, x: Any) -> np.ndarray:
         return self._asin_expr(self._daz(x), 0.086566724, -0.03102955)
 
     def acos(self, x: Any) -> np.ndarray:
+        if self.lp is not None:
+            return self.lp.builtin("_acos", self._acos)(self._f(x))
+        return self._acos(x)
+
+    def _acos(self, x: Any) -> np.ndarray:
         return self.F(math.pi / 2) - self._asin_expr(self._daz(x), 0.08132463, -0.02363318)
 
     # nir_atan's odd polynomial x*c0 + x^3*c1 + ... + x^11*c5 (Mesa 22.3 nir_builtin_builder.c)
@@ -1549,6 +1569,13 @@ class Runtime(TextureFunctions):  # texture lookups: textures.py
     def atan(self, y: Any, x: Any = None) -> np.ndarray:
         """``atan(y_over_x)`` and ``atan(y, x)`` following Mesa's NIR lowering (atan(0, 0) is
         3*pi/4 on llvmpipe: the lowering pretends 0/0 = 1 on the left half-plane)."""
+        if self.lp is not None:  # compiled (jit.py) where that pays; the same bits
+            if x is None:
+                return self.lp.builtin("_atan", self._atan)(self._f(y))
+            return self.lp.builtin("_atan2", self._atan)(self._f(y), self._f(x))
+        return self._atan(y, x)
+
+    def _atan(self, y: Any, x: Any = None) -> np.ndarray:
         if x is None:
             return self._nir_atan(self._daz(y))
         F = self.F
@@ -1753,25 +1780,8 @@ class Runtime(TextureFunctions):  # texture lookups: textures.py
         if self.lp is not None:
             if form is None:
                 form = self._flrp_form(x, y, a)
-            if form == "fast":
-                # a lane whose weight is exactly 0 or 1 is taken for NIR's b2f(c) (step(),
-                # 1.0 - step(), float(bool), their products: the lab shaders' branchless
-                # selects): ``flrp(x, y, b2f(c))`` is ``bcsel(c, y, x)`` in nir_opt_algebraic,
-                # before the lowering. Per lane, so a one-pixel probe run agrees with the render.
-                # Where every lane is such a select (a branchless shader's whole tile), the
-                # arithmetic is skipped: the same values, a third of the passes.
-                one, zero = a == self._1, a == self._0
-                n_one, n_zero = np.count_nonzero(one), np.count_nonzero(zero)
-                if n_one + n_zero == a.size:
-                    return np.where(one, y, x)
-                r = np.subtract(y, x)
-                r = np.multiply(a, r, out=r if _keeps_shape(r, a) else None)
-                r = np.add(x, r, out=r if _keeps_shape(r, x) else None)
-                if n_one:  # r is a new array of the broadcast shape here
-                    np.copyto(r, y, where=one)
-                if n_zero:
-                    np.copyto(r, x, where=zero)
-                return r
+            if form == "fast":  # compiled (jit.py) where that pays; the same bits
+                return self.lp.builtin("_mix", self._mix_fast)(x, y, a)
             if form in ("one", "minus_one"):
                 r = (x - a) if form == "one" else (x + a)
                 return r + y * a
@@ -1780,6 +1790,26 @@ class Runtime(TextureFunctions):  # texture lookups: textures.py
         if r.shape == t.shape and r.ndim:  # the sum in r's buffer
             return np.add(r, t, out=r)
         return r + t
+
+    def _mix_fast(self, x: np.ndarray, y: np.ndarray, a: np.ndarray) -> np.ndarray:
+        """mix's "fast" form in float32: ``x + a*(y - x)``. A lane whose weight is exactly 0 or
+        1 is taken for NIR's b2f(c) (step(), 1.0 - step(), float(bool), their products: the lab
+        shaders' branchless selects): ``flrp(x, y, b2f(c))`` is ``bcsel(c, y, x)`` in
+        nir_opt_algebraic, before the lowering. Per lane, so a one-pixel probe run agrees with
+        the render. Where every lane is such a select (a branchless shader's whole tile), the
+        arithmetic is skipped: the same values, a third of the passes."""
+        one, zero = a == self._1, a == self._0
+        n_one, n_zero = np.count_nonzero(one), np.count_nonzero(zero)
+        if n_one + n_zero == a.size:
+            return np.where(one, y, x)
+        r = np.subtract(y, x)
+        r = np.multiply(a, r, out=r if _keeps_shape(r, a) else None)
+        r = np.add(x, r, out=r if _keeps_shape(r, x) else None)
+        if n_one:  # r is a new array of the broadcast shape here
+            np.copyto(r, y, where=one)
+        if n_zero:
+            np.copyto(r, x, where=zero)
+        return r
 
     def _flrp_form(self, x: np.ndarray, y: np.ndarray, a: np.ndarray) -> str:
         """The lowering ``convert_flrp_instruction`` (Mesa nir_lower_flrp.c; llvmpipe sets

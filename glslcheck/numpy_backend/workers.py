@@ -52,6 +52,7 @@ from typing import Any
 
 import numpy as np
 
+from . import jit
 from .frame import execute_module, render_tile
 
 WORKER_MODULES = 8  # compiled programs a worker keeps
@@ -320,7 +321,7 @@ class _Pool:
             for w in self.workers:  # the source too (tens of kB): a worker may have dropped it
                 new_file = file.number not in w.files
                 w.conn.send((key, source, filename, meta, precision, spec, tiles, file.shape,
-                             file.number, new_file, retired, budget))
+                             file.number, new_file, retired, budget, jit.decided()))
                 w.files.difference_update(retired)
                 if new_file:
                     reduction.send_handle(w.conn, file.fd, w.proc.pid)
@@ -331,14 +332,17 @@ class _Pool:
         seconds: dict = {}
         errors: list[BaseException] = []
         try:
+            counted = 0.0
             for w in self.workers:
-                tile_stats, tile_seconds, error = w.conn.recv()
+                tile_stats, tile_seconds, error, math_seconds = w.conn.recv()
+                counted += math_seconds
                 stats.extend(tile_stats)
                 seconds.update(tile_seconds)
                 if error is not None:
                     errors.append(error)
         except (EOFError, OSError) as e:
             raise Unavailable(f"a render worker stopped: {e or type(e).__name__}") from None
+        jit.add_counted(counted, len(self.workers))  # the compiled math kernels' rule (jit.py)
         if errors:
             return None, None, stats, seconds, errors
         image, shared = file.hand_out(self.mappings)
@@ -370,7 +374,9 @@ def _serve(conn: Connection) -> None:
             return
         if msg is None:
             return
-        key, source, filename, meta, precision, spec, tiles, shape, number, new_file, retired, budget = msg
+        key, source, filename, meta, precision, spec, tiles, shape, number, new_file, retired, budget, kernels = msg
+        if kernels and jit.mode() != "off":  # the parent's rule chose the compiled math kernels
+            jit.load()
         for n in retired:  # files the caller has closed
             fd, mm = files.pop(n, (-1, None))
             if mm is not None:
@@ -390,7 +396,7 @@ def _serve(conn: Connection) -> None:
             _take_tile(fd, mm, stop=len(tiles))  # the other workers stop too
             e.__traceback__ = e.__context__ = e.__cause__ = None  # frames hold views of the file
             error = _picklable(e)
-        conn.send((stats, seconds, error))
+        conn.send((stats, seconds, error, jit.counted()))
 
 
 def _take_tile(fd: int, mm: mmap.mmap, stop: int | None = None) -> int:

@@ -137,3 +137,43 @@ def test_cli_rejects_a_bad_glslcheck_jit(tmp_path):
                           env=dict(os.environ, GLSLCHECK_JIT="fast"), timeout=120)
     assert done.returncode == 2 and not (tmp_path / "x.png").exists()
     assert done.stderr.strip() == "glslcheck: error: GLSLCHECK_JIT must be one of auto, on, off, not 'fast'"
+
+
+def test_after_a_compile_the_threshold_is_a_load_from_the_cache(state, monkeypatch, tmp_path):
+    """A load that compiled the kernels records so: the next process waits for numba's import
+    time plus WARM_KERNELS_SECONDS of math, not for the compile; a record of a load from the
+    cache is taken as it is."""
+    monkeypatch.setenv("NUMBA_CACHE_DIR", str(tmp_path))
+    monkeypatch.setattr(jit, "_stamp", lambda: ["0.68.1", 1, 2])
+    record = {"seconds": 9.5, "stamp": ["0.68.1", 1, 2], "compiled": True, "numba": 0.75}
+    (tmp_path / "glslcheck-jit.json").write_text(json.dumps(record))
+    assert jit.threshold() == 0.75 + jit.WARM_KERNELS_SECONDS
+    (tmp_path / "glslcheck-jit.json").write_text(json.dumps(dict(record, compiled=False)))
+    state.threshold = None
+    assert jit.threshold() == 9.5
+
+
+def test_workers_counts_decide_for_all_of_them(state, monkeypatch):
+    """A render worker reports what it counted since its last frame (counted); the parent adds
+    the reports up (add_counted) and decides once they exceed the threshold times the number of
+    workers; then the parent, if it renders itself, loads at its first call, without counting."""
+    monkeypatch.setenv("GLSLCHECK_JIT", "auto")
+    state.threshold = 1.0
+    state.spent = 0.25
+    assert jit.counted() == 0.25 and jit.counted() == 0.0
+    state.spent = 0.5
+    assert jit.counted() == 0.25
+    jit.add_counted(1.5, 2)
+    assert not jit.decided()
+    jit.add_counted(0.75, 2)  # 2.25 > 1.0 * 2
+    assert jit.decided() and not state.loads
+    lp = LlvmpipeMath(True)
+    small = np.linspace(0.1, 3, 143, dtype=F32)
+    assert np.array_equal(lp.exp2(small), _blocked(lp._exp2, small))
+    assert state.loads == [0.5] and state.fake.calls == 1  # loaded before the first call, which took them
+    monkeypatch.setenv("GLSLCHECK_JIT", "off")
+    fresh = jit._State()
+    monkeypatch.setattr(jit, "_STATE", fresh)
+    fresh.threshold = 1.0
+    jit.add_counted(5.0, 1)
+    assert not jit.decided()  # off never decides

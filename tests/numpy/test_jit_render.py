@@ -2,7 +2,8 @@
 
 Every lab shader, the corpus shaders and a raymarcher written for this test (a march loop whose
 lanes leave at different steps, calling sin, cos, tan, exp2, log2, pow and the built-ins made
-from them on the few lanes left, with edge arguments: zeros, negative bases, huge angles) are
+from them, atan, atan(y, x), asin, acos and mix on the few lanes left, with edge arguments:
+zeros, negative bases, huge angles, acos outside [-1, 1]) are
 rendered with `--jit off` and `--jit on`, with and without FMA (runtime.HOST_FMA, which llvmpipe
 follows), and the float32 frames compared bit for bit (NaN included). At 64x36 every call of
 the emulation goes to a kernel (or is declined by it) on at most 2,304 lanes; 07_final also at
@@ -39,7 +40,8 @@ void mainImage(out vec4 fragColor, in vec2 fragCoord) {
     float t = 0.0, glow = 0.0;
     for (int i = 0; i < 64; i++) {
         float d = map(ro + rd * t);
-        glow += exp2(-8.0 * abs(d)) * 0.02;
+        float a = atan(rd.y + d, rd.x - d) + atan(d * 4.0);
+        glow += exp2(-8.0 * abs(d)) * 0.02 + 1e-3 * mix(a, asin(clamp(d, -1.0, 1.0)), fract(t * 3.0));
         if (d < 0.001 || t > 12.0) break;
         t += d;
     }
@@ -47,7 +49,7 @@ void mainImage(out vec4 fragColor, in vec2 fragCoord) {
     float spec = pow(max(dot(normalize(p), normalize(vec3(1.0, 2.0, 1.5))), 0.0), 24.0 + uv.x * 8.0);
     float f = log2(1.0 + t) + tan(uv.x * 1.4) * 0.05;
     float edge = pow(uv.x, 0.5) + pow(0.0, uv.y + 1.0) + sin(uv.y * 3.0e9) + log(max(uv.x, 0.0));
-    fragColor = vec4(spec + glow, f, exp(-0.3 * t) + 1e-3 * edge, 1.0);
+    fragColor = vec4(spec + glow, f, exp(-0.3 * t) + 1e-3 * edge, acos(uv.y * 1.2));
 }
 """
 
@@ -97,4 +99,36 @@ def test_the_kernels_are_used(jit_kernels, make_shader, monkeypatch):
 
     monkeypatch.setattr(jit, "compiled", counting)
     _render(make_shader(MARCH), "on", (64, 36), monkeypatch)
-    assert len(calls) > 100 and {"_sin", "_cos", "_exp2", "_pow"} <= set(calls), sorted(set(calls))
+    assert len(calls) > 100 and {"_sin", "_cos", "_exp2", "_pow", "_atan", "_atan2", "_asin", "_acos",
+                                 "_mix"} <= set(calls), sorted(set(calls))
+
+
+def test_workers_load_the_kernels_once_the_parent_decided(jit_kernels, make_shader, monkeypatch):
+    """--parallel processes, auto: each worker reports the seconds of NumPy math it counted; the
+    parent adds them up (jit.add_counted). Once the parent has decided (here: told so), the
+    workers load the kernels before the next frame and count nothing more; the frames are the
+    bits of --jit off either way."""
+    from glslcheck.numpy_backend import frame, jit, workers
+
+    if not workers.available():
+        pytest.skip("worker processes need Linux with memfd_create")
+    off = _render(make_shader(MARCH), "off", (64, 36), monkeypatch)
+    monkeypatch.setenv("GLSLCHECK_JIT", "auto")
+    monkeypatch.setattr(jit, "_STATE", state := jit._State())
+    state.threshold = 1e9  # the parent decides only when told
+    monkeypatch.setattr(frame, "TILE_LANES", 600)  # four tiles
+    prog = compile_numpy(make_shader(MARCH))
+    prog.parallel, prog.threads = "processes", 2
+    try:
+        with np.errstate(all="ignore"):
+            first = prog.render(size=(64, 36), time=1.7)
+            counted = state.workers_spent
+            assert prog.last_parallel == "processes" and counted > 0 and not jit.decided()
+            state.pays = True
+            prog._cache.clear()
+            second = prog.render(size=(64, 36), time=1.7)
+        assert prog.last_parallel == "processes" and state.workers_spent == counted  # no NumPy math any more
+        assert state.kernels is None  # the parent itself rendered nothing: it loaded nothing
+    finally:
+        workers.shutdown()
+    assert _same(first, off) and _same(second, off)
