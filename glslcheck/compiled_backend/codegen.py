@@ -86,8 +86,10 @@ class Arr:
         return f"{self.name}[{idx}]" if not self.off else f"{self.name}[{self.off} + {idx}]"
 
     def whole(self) -> str:
-        return self.name if not self.off and self.name.startswith("a_") else \
-            f"{self.name}[{self.off}:{self.off + self.size}]"
+        """The array as a value: a local array itself, else a copy of its slots."""
+        if self.name.startswith(("a_", "_")):
+            return self.name
+        return f"aslice({self.name}, {self.off}, {self.size})"
 
 
 @dataclass
@@ -169,6 +171,7 @@ class Codegen:
         self.loop_lines: dict[int, tuple[str, int, int]] = {}
         self.fn: FnState | None = None
         self.frag4: list[str] | None = None
+        self.last_line: tuple[str, int] | None = None
 
     def numpy_transpiler(self) -> Any:
         """The NumPy backend's Transpiler at the current function, for the decisions this engine
@@ -207,6 +210,9 @@ class Codegen:
         from ..diagnostics import source_line
         from ..numpy_backend.transpile.common import _printable
 
+        if (loc.path, loc.line) == self.last_line:
+            return
+        self.last_line = (loc.path, loc.line)
         text = source_line(loc.path, loc.line) or ""
         self.emit(f"# line {loc.line}: {_printable(text)}".rstrip())
 
@@ -452,7 +458,7 @@ class Codegen:
         self.emit(f'"""{_printable(sym.signature(), 150)} (line {proto.loc.line if proto.loc else "?"})."""')
         self.emit("gf, gi, gu, gb, uf, ui, err = G")
         for part in [p for p in self.vars_of_params(sym) if isinstance(p, Arr)]:
-            self.emit(f"{part.name} = {part.name}.copy()  # arrays are passed by value")
+            self.emit(f"{part.name} = acopy({part.name})  # arrays are passed by value")
         for parts, ptype, p in prologue:
             self.write(parts, self.zero_parts(ptype, p), fresh_arrays=True)
         ended = self.block(node.body.stmts)
@@ -474,8 +480,7 @@ class Codegen:
         parts = list(value or []) + list(fs.outs)
         if not parts:
             return "return 0"
-        texts = [p.name if isinstance(p, Arr) and p.name.startswith("a_") else
-                 (f"{p.whole()}.copy()" if isinstance(p, Arr) else p) for p in parts]
+        texts = [(f"acopy({p.whole()})" if isinstance(p, Arr) else p) for p in parts]
         return f"return ({', '.join(texts)},)"
 
     # -- statements ----------------------------------------------------------------------------
@@ -628,17 +633,15 @@ class Codegen:
         """Assign value parts to target parts, in order. Values that read a target are copied
         first when several parts are written (`v.xy = v.yx`)."""
         if len(targets) > 1:
-            values = [self.tmp(v) if isinstance(v, str) and not v.startswith(("F_", "I_", "U_", "_t"))
+            values = [self.tmp_copy(v) if isinstance(v, str) and not v.startswith(("F_", "I_", "U_", "_t"))
                       and v not in ("True", "False") else v for v in values]
         for t, v in zip(targets, values):
             if isinstance(t, Arr):
                 src = v.whole() if isinstance(v, Arr) else v
                 if fresh_arrays and t.name.startswith("a_"):
-                    self.emit(f"{t.name} = {src}.copy()")
-                elif t.name.startswith("a_"):
-                    self.emit(f"{t.name}[:] = {src}")
+                    self.emit(f"{t.name} = acopy({src})")
                 else:
-                    self.emit(f"{t.whole()} = {src}")
+                    self.emit(f"aset({t.name}, {t.off}, {src})")
             elif isinstance(t, Dyn):
                 v = self.tmp(v)
                 for k, p in enumerate(t.parts):
@@ -839,7 +842,7 @@ class Codegen:
 
     def assign_fresh(self, names: list[str], parts: list) -> None:
         for r, p in zip(names, parts):
-            self.emit(f"{r} = {p.whole()}.copy()" if isinstance(p, Arr) else f"{r} = {p}")
+            self.emit(f"{r} = acopy({p.whole()})" if isinstance(p, Arr) else f"{r} = {p}")
 
     def _expr_Binary(self, e: A.Binary) -> Val:
         op = e.op
@@ -1134,10 +1137,10 @@ RENDER = '''
 def render_rows(out, y0, y1, width, height, offs, uf, ui, gtf, gti, gtu, gtb, err):
     """Rows y0..y1-1 (counted from the bottom) into out (height, width, 4), top row first;
     offs: the (dx, dy) sample offsets (one row of zeros for one sample)."""
-    gf = gtf.copy()
-    gi = gti.copy()
-    gu = gtu.copy()
-    gb = gtb.copy()
+    gf = acopy(gtf)
+    gi = acopy(gti)
+    gu = acopy(gtu)
+    gb = acopy(gtb)
     G = (gf, gi, gu, gb, uf, ui, err)
     samples = offs.shape[0]
     for y in range(y0, y1):
@@ -1146,10 +1149,10 @@ def render_rows(out, y0, y1, width, height, offs, uf, ui, gtf, gti, gtu, gtb, er
         for x in range(width):
             px = F32(x + 0.5)
             if samples == 1:
-                gf[:] = gtf
-                gi[:] = gti
-                gu[:] = gtu
-                gb[:] = gtb
+                aset(gf, 0, gtf)
+                aset(gi, 0, gti)
+                aset(gu, 0, gtu)
+                aset(gb, 0, gtb)
                 r, g, b, a = shade(G, px, py, px, py)
                 out[row, x, 0] = r
                 out[row, x, 1] = g
@@ -1161,10 +1164,10 @@ def render_rows(out, y0, y1, width, height, offs, uf, ui, gtf, gti, gtu, gtb, er
                 ab = 0.0
                 aa = 0.0
                 for s in range(samples):
-                    gf[:] = gtf
-                    gi[:] = gti
-                    gu[:] = gtu
-                    gb[:] = gtb
+                    aset(gf, 0, gtf)
+                    aset(gi, 0, gti)
+                    aset(gu, 0, gtu)
+                    aset(gb, 0, gtb)
                     r, g, b, a = shade(G, F32(px + F32(offs[s, 0])), F32(py + F32(offs[s, 1])), px, py)
                     ar += np.float64(r)
                     ag += np.float64(g)

@@ -493,3 +493,31 @@ def index(i, n):
 @njit
 def round_even(x):
     return np.rint(x)
+
+
+# -- arrays (loops, not slices: numba compiles a slice assignment's broadcasting machinery
+#    into every module that uses one, seconds each; these are compiled once and cached) --------
+@njit
+def acopy(a):
+    """A copy of array a (GLSL arrays are values)."""
+    out = np.empty(a.size, a.dtype)
+    for k in range(a.size):
+        out[k] = a[k]
+    return out
+
+
+@njit
+def aslice(a, off, n):
+    """A copy of a[off:off+n]."""
+    out = np.empty(n, a.dtype)
+    for k in range(n):
+        out[k] = a[off + k]
+    return out
+
+
+@njit
+def aset(dst, off, src):
+    """dst[off:off+len(src)] = src."""
+    for k in range(src.size):
+        dst[off + k] = src[k]
+    return 0
