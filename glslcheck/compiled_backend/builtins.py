@@ -162,6 +162,15 @@ def pow_call(cg: Any, e: A.Call, args: list[Val], rtype: Any, n: int) -> Val:
                 out.append(f"pow_zero({xs[i]})")
                 continue
         out.append(f"pow({xs[i]}, {ys[i]}, FMA)")
+    if c is None and y.constlike and len(y.parts) <= 4:
+        # Runtime.pow: an exponent the same in every lane (taken for a constant) whose
+        # components are all 0, 1, 2 or 4 (no -0.0) is rewritten as Mesa does (pow_const); all
+        # zeros give 1 everywhere
+        ys = [cg.atom(p) for p in y.parts]
+        special = cg.tmp(" and ".join(f"pow_special({p})" for p in ys))
+        zeros = cg.tmp(" and ".join(f"({p} == F32(0.0))" for p in ys))
+        yn = ys if len(ys) == n else ys * n
+        out = [f"pow_uniform({p}, {q}, {special}, {zeros}, FMA)" for p, q in zip(xs, yn)]
     return Val(rtype, out)
 
 
@@ -184,9 +193,9 @@ def mix_call(cg: Any, e: A.Call, args: list[Val], rtype: Any, n: int, comps) -> 
             out.append(f"(({p} {op} {t}) + ({q} * {t}))")
         return Val(rtype, out)
     # strict: fmul(x, 1 - a) + fmul(y, a), Mesa's constant-zero folding included
-    one = Val(T.FLOAT, [cg.cf(1.0)], [1.0])
-    at = Val(a.t, [cg.atom(p) for p in a.parts], a.const)
-    inv = cg.fadd("-", one, at, a.t)
+    one = cg.cf(1.0)
+    at = Val(a.t, [cg.atom(p) for p in a.parts], a.const, a.uni)
+    inv = Val(a.t, [f"({one} - {p})" for p in at.parts], None, a.constlike)  # Runtime.mix: self._1 - a
     if a.const is not None:
         inv.const = [float(_f32(1.0 - v)) for v in a.const]
     left = cg.fmul(x, inv, rtype)
@@ -207,7 +216,14 @@ def geometric(cg: Any, name: str, args: list[Val], rtype: Any) -> Val:
             return cg.fmul(a, b, rtype)
         pa = [cg.atom(p) for p in a.parts]
         pb = [cg.atom(p) for p in b.parts]
-        return Val(rtype, [cg.dot_text(pa, pb, a.const, b.const)])
+        if a.constlike == b.constlike:
+            return Val(rtype, [cg.dot_text(pa, pb)])
+        # Runtime.dot: a constant zero component of the constant operand drops its product
+        prods = cg.fmul(Val(a.t, pa, a.const, a.uni), Val(b.t, pb, b.const, b.uni), a.t).parts
+        text = prods[-1]
+        for i in range(len(prods) - 2, -1, -1):
+            text = f"({prods[i]} + {text})"
+        return Val(rtype, [text])
     if name in ("length", "distance"):
         if name == "distance":
             a, b = args

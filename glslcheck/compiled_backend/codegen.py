@@ -62,6 +62,7 @@ _KIND_ARRAY = {"float": "gf", "int": "gi", "uint": "gu", "bool": "gb"}
 _DTYPE = {"float": "np.float32", "int": "np.int32", "uint": "np.uint32", "bool": "np.bool_"}
 _CAST = {"float": "F32", "int": "I32", "uint": "U32", "bool": "bool"}
 _SWZ = "xyzw"
+SMALL_ARRAY = 64  # arrays of up to this many scalars are scalars too (no allocation per pixel)
 
 
 def _error(message: str, node: Any, help: str | None = None) -> GlslError:
@@ -108,6 +109,11 @@ class Val:
     t: Any
     parts: list
     const: list | None = None
+    uni: bool = False  # one value for a whole tile in the NumPy backend, taken there for a constant
+
+    @property
+    def constlike(self) -> bool:
+        return self.const is not None or self.uni
 
 
 def leaves(t: Any, node: Any) -> list[tuple[str, int | None]]:
@@ -126,6 +132,8 @@ def leaves(t: Any, node: Any) -> list[tuple[str, int | None]]:
             raise not_yet("an array of structs that hold arrays", node)
         if t.array_size is None:
             raise not_yet("an unsized array", node)
+        if t.array_size * len(inner) <= SMALL_ARRAY:  # scalars, leaf by leaf (see the docstring)
+            return [(b, None) for b, _ in inner for _ in range(t.array_size)]
         return [(b, t.array_size) for b, _ in inner]
     if t.contains_opaque:
         raise not_yet("textures and channels", node)
@@ -139,8 +147,9 @@ def _flat(v: Any) -> list:
 
 
 class FnState:
-    def __init__(self, sym: Any) -> None:
+    def __init__(self, sym: Any, uni: Any = None) -> None:
         self.sym = sym
+        self.uni = uni  # numpy_backend's Uniformity of the function (None: global initializers)
         self.outs: list = []  # the parts of out/inout parameters, returned after the value
         self.loops: list[tuple[str, Any]] = []  # (kind, continue emitter)
 
@@ -302,8 +311,8 @@ class Codegen:
             self.uslots[kind] += comps * (u.array_size or 1)
         _, off, _ = self.uniforms[name]
         del t
-        if u.array_size:
-            return [Arr(arr, off + c * u.array_size, u.array_size, kind) for c in range(comps)]
+        if u.array_size:  # component c of element k at off + c*n + k: the small arrays' layout
+            return [f"{arr}[{off + c * u.array_size + k}]" for c in range(comps) for k in range(u.array_size)]
         return [f"{arr}[{off + c}]" for c in range(comps)]
 
     def var_parts(self, sym: Any, node: Any) -> list:
@@ -434,8 +443,10 @@ class Codegen:
         return "f_" + _ident(sym.unique_name or sym.name, sym.node)
 
     def gen_function(self, sym: Any) -> None:
+        from ..numpy_backend.uniformity import Uniformity
+
         node = sym.node
-        self.fn = fs = FnState(sym)
+        self.fn = fs = FnState(sym, Uniformity(self.model, self.facts, sym, sym is self.entry))
         proto = node.proto
         params: list[str] = []
         prologue: list[tuple[list, Any, str]] = []
@@ -698,7 +709,12 @@ class Codegen:
                 i = str(min(max(cv, 0), n - 1))
             else:
                 i = self.tmp(f"index({self.expr(e.index).parts[0]}, {n})")
-            return [p.at(i) if isinstance(p, Arr) else self.bad_array(e) for p in parts]
+            if any(isinstance(p, Arr) for p in parts):
+                return [p.at(i) if isinstance(p, Arr) else self.bad_array(e) for p in parts]
+            m = len(parts) // n  # scalars, leaf by leaf: leaf j of element k is parts[j * n + k]
+            if const:
+                return [parts[j * n + int(i)] for j in range(m)]
+            return [Dyn(i, parts[j * n:(j + 1) * n]) for j in range(m)]
         if bt.is_vector:
             if const:
                 return [parts[min(max(cv, 0), bt.size - 1)]]
@@ -728,9 +744,37 @@ class Codegen:
         cv = self.model.const_value(e)
         if cv is not None and v.const is None and not self.type_of(e).is_array and not self.type_of(e).is_struct:
             v.const = _flat(cv)
+        v.uni = self.lane_uniform(e)
         # long expressions go to temporaries (Python's parser nests 200 brackets at most)
         v.parts = [self.tmp(p) if isinstance(p, str) and len(p) > 300 else p for p in v.parts]
         return v
+
+    def lane_uniform(self, e: Any) -> bool:
+        """Whether the NumPy backend holds e's value as one lane for the whole tile and takes it
+        for a compile-time constant (Runtime._const: a lane-uniform value that is not a uniform
+        input): Mesa's constant folding, approximated there (Runtime.fmul). By numpy_backend's
+        own analysis (Uniformity); global initializers run on one lane there."""
+        node = e
+        while isinstance(node, (A.Field, A.Index)) and not (isinstance(node, A.Field) and self.model.is_swizzle(node)
+                                                            and len(self.model.swizzle_indices(node)) > 1):
+            node = node.base
+        if isinstance(node, A.Field) and self.model.is_swizzle(node):
+            idx = tuple(self.model.swizzle_indices(node))
+            inner = node.base
+            if isinstance(inner, A.Identifier) and self._is_input(inner) and (
+                    idx == tuple(range(len(idx))) or (len(idx) > 1 and idx[1] - idx[0] > 0 and all(
+                        b - a == idx[1] - idx[0] for a, b in zip(idx, idx[1:])))):
+                return False  # a view of a read-only uniform (Runtime.swizzle)
+        elif isinstance(node, A.Identifier) and self._is_input(node):
+            return False
+        if self.fn is None or self.fn.uni is None:
+            return True
+        return self.fn.uni.is_uniform(e)
+
+    def _is_input(self, ident: Any) -> bool:
+        sym = self.model.symbol_of(ident)
+        return sym is not None and (sym.kind == "uniform" or (sym.kind == "global" and sym.qualifier == "uniform")
+                                    or (sym.kind == "builtin-var" and sym.name == "gl_FragCoord"))
 
     def _expr_IntLiteral(self, e: A.IntLiteral) -> Val:
         t = self.type_of(e)
@@ -890,7 +934,7 @@ class Codegen:
             if op == "*":
                 return self.fmul(left, right, rtype)
             if op in ("+", "-"):
-                return self.fadd(op, left, right, rtype)
+                return self.fadd(op, left, right, rtype, e)
             if op in ("/", "<", "<=", ">", ">="):
                 return self.componentwise(left, right, rtype, lambda a, b, i: f"({a} {op} {b})")
         elif base in ("int", "uint"):
@@ -918,32 +962,55 @@ class Codegen:
         """Float `*` as Runtime.fmul: a compile-time constant zero component times a value that
         is not a constant is 0 (NIR folds x * 0.0), also for NaN and Inf."""
         n = max(len(left.parts), len(right.parts))
-        lc = _bcast(left.const, n)
-        rc = _bcast(right.const, n)
-        fold = (lc is None) != (rc is None)
+        if left.constlike == right.constlike:
+            return self.componentwise(left, right, rtype, lambda a, b, i: f"({a} * {b})")
+        zv = left if left.constlike else right
+        zc = _bcast(zv.const, n)
         zero = self.cf(0.0)
+        zparts = zv.parts if len(zv.parts) == n else [self.atom(zv.parts[0])] * n
+        if zc is None:
+            zparts = [self.atom(p) for p in zparts]
+            if zv is left:
+                left = Val(left.t, zparts)
+            else:
+                right = Val(right.t, zparts)
 
         def one(a: str, b: str, i: int) -> str:
-            if fold and ((lc is not None and lc[i] == 0) or (rc is not None and rc[i] == 0)):
-                return zero
-            return f"({a} * {b})"
+            if zc is not None:
+                return zero if zc[i] == 0 else f"({a} * {b})"
+            return f"({zero} if {zparts[i]} == {zero} else ({a} * {b}))"
         return self.componentwise(left, right, rtype, one)
 
-    def fadd(self, op: str, left: Val, right: Val, rtype: Any) -> Val:
+    def fadd(self, op: str, left: Val, right: Val, rtype: Any, e: Any = None) -> Val:
         """Float `+`/`-` as Runtime.fadd/fsub: a compile-time constant zero added to (or
         subtracted from) a value that is not a constant leaves that value, its sign kept."""
         n = max(len(left.parts), len(right.parts))
-        lc = _bcast(left.const, n)
-        rc = _bcast(right.const, n)
-        fold = (lc is None) != (rc is None)
+        if left.constlike == right.constlike or not self.zero_add(e):
+            return self.componentwise(left, right, rtype, lambda a, b, i: f"({a} {op} {b})")
+        zv = left if left.constlike else right
+        zc = _bcast(zv.const, n)
+        zero = self.cf(0.0)
+        left = Val(left.t, [self.atom(p) for p in left.parts], left.const, left.uni)
+        right = Val(right.t, [self.atom(p) for p in right.parts], right.const, right.uni)
 
         def one(a: str, b: str, i: int) -> str:
-            if fold and rc is not None and rc[i] == 0:
-                return a
-            if fold and lc is not None and lc[i] == 0:
-                return b if op == "+" else f"(-{b})"
-            return f"({a} {op} {b})"
+            z = a if zv is left else b
+            kept = b if zv is left and op == "+" else f"(-{b})" if zv is left else a
+            if zc is not None:
+                return kept if zc[i] == 0 else f"({a} {op} {b})"
+            return f"({kept} if {z} == {zero} else ({a} {op} {b}))"
         return self.componentwise(left, right, rtype, one)
+
+    def zero_add(self, e: Any) -> bool:
+        """Whether the NumPy backend tests this `+`/`-` for a constant zero operand (nir_fold.
+        zero_add: Mesa drops an added constant zero, keeping the sign of a -0.0)."""
+        if e is None:
+            return True
+        if self.fn is None or self.fn.sym is None or not isinstance(e, A.Binary):
+            return self.fn is None or self.fn.sym is None
+        from ..numpy_backend import nir_fold
+
+        return nir_fold.zero_add(self.numpy_transpiler(), e, "l", "r") is not None
 
     def linear_product(self, left: Val, right: Val, rtype: Any) -> Val:
         lt, rt_ = left.t, right.t
@@ -1033,6 +1100,9 @@ class Codegen:
 
     def constructor(self, e: A.Call, t: Any) -> Val:
         args = [self.expr(a) for a in e.args]
+        if t.is_array and all(size is None for _, size in leaves(t, e)):
+            m = len(leaves(t.element, e))
+            return Val(t, [self.atom(v.parts[j]) for j in range(m) for v in args])
         if t.is_array:
             n = len(args)
             out = []

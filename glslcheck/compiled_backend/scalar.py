@@ -521,3 +521,27 @@ def aset(dst, off, src):
     for k in range(src.size):
         dst[off + k] = src[k]
     return 0
+
+
+@njit
+def pow_special(y):
+    """An exponent Mesa rewrites: 0, 1, 2 or 4, not -0.0 (Runtime.pow, _POW_REWRITTEN)."""
+    return (y == _ZERO and _bits(y) == 0) or y == _ONE or y == _TWO or y == F32(4.0)
+
+
+@njit
+def pow_uniform(x, y, special, zeros, fma):
+    """Runtime.pow with a lane-uniform exponent y: when every component is special
+    (`pow_special`), Runtime.pow_const's rewrite (all zeros: 1 everywhere); else the run-time pow."""
+    if special:
+        if zeros:
+            return _ONE
+        if y == _ONE:
+            return x
+        if y == _TWO:
+            return F32(x * x)
+        if y == F32(4.0):
+            sq = F32(x * x)
+            return F32(sq * sq)
+        return pow_zero(x)
+    return pow(x, y, fma)
