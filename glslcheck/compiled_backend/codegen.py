@@ -21,13 +21,15 @@ uint32 operation is cast back to its type (numba widens int32 arithmetic to int6
 wrap-around.
 
 Global variables and Shadertoy's uniforms live in per-pixel state arrays, one per scalar type
-(`gf` float32, `gi` int32, `gu` uint32, `gb` bool; uniforms `uf`, `ui`), which every function
-receives as the tuple `G`; the globals are reset to their initial values before each pixel.
+(`gf` float32, `gi` int32, `gu` uint32, `gb` bool; uniforms `uf`, `ui`); a function receives
+those it reads or writes, itself or through its callees, as its first parameters (passing an
+array costs numba two atomic reference-count updates a call, so a distance function that reads
+no global gets none); the globals are reset to their initial values before each pixel.
 
 Control flow is Python's own: `if`, `while` loops for GLSL's three loops (a `continue` in a
 `for` runs the step first; in a `do`-`while` it tests the condition), `return` anywhere,
 `&&`/`||`/`?:` evaluate only the side they need. Each loop counts its passes and stops after
-transpile.LOOP_CAP, recording its id in `err` (the engine raises the located error). A user
+transpile.LOOP_CAP by raising LoopCapError(its id) (the engine raises the located error). A user
 function returns a tuple: its value's leaves, then the leaves of its out/inout parameters,
 which the caller writes back left to right.
 
@@ -62,6 +64,8 @@ _KIND_ARRAY = {"float": "gf", "int": "gi", "uint": "gu", "bool": "gb"}
 _DTYPE = {"float": "np.float32", "int": "np.int32", "uint": "np.uint32", "bool": "np.bool_"}
 _CAST = {"float": "F32", "int": "I32", "uint": "U32", "bool": "bool"}
 _SWZ = "xyzw"
+STATE = ("gf", "gi", "gu", "gb", "uf", "ui")  # the per-pixel state arrays (see the docstring)
+_STATE_NAME = re.compile(r"(?<![\w.])(gf|gi|gu|gb|uf|ui)(?!\w)")
 SMALL_ARRAY = 64  # arrays of up to this many scalars are scalars too (no allocation per pixel)
 
 
@@ -181,6 +185,7 @@ class Codegen:
         self.fn: FnState | None = None
         self.frag4: list[str] | None = None
         self.last_line: tuple[str, int] | None = None
+        self.needs: dict[str, list[str]] = {}  # function -> the state arrays it takes
 
     def numpy_transpiler(self) -> Any:
         """The NumPy backend's Transpiler at the current function, for the decisions this engine
@@ -376,10 +381,9 @@ class Codegen:
         return "\n".join(out) + "\n"
 
     def gen_globals(self) -> None:
-        self.emit("def init_globals(G):")
+        self.emit(f"def init_globals({', '.join(STATE)}):")
         self.indent += 1
         self.emit('"""Global variables at the start of every invocation."""')
-        self.emit("gf, gi, gu, gb, uf, ui, err = G")
         self.fn = FnState(None)
         for sym in self.model.globals:
             if sym.kind != "global" or sym.type.contains_opaque or sym.qualifier in ("uniform", "in", "out"):
@@ -401,10 +405,9 @@ class Codegen:
     def gen_shade(self) -> None:
         entry = self.entry
         name = self.fn_name(entry)
-        self.emit("def shade(G, fx, fy, px, py):")
+        self.emit(f"def shade({', '.join(STATE)}, fx, fy, px, py):")
         self.indent += 1
         self.emit('"""One pixel: fragCoord (fx, fy), pixel centre (px, py) -> RGBA."""')
-        self.emit("gf, gi, gu, gb, uf, ui, err = G")
         if self.frag4 is not None:
             for part, v in zip(self.frag4, ("px", "py", "F32(0.5)", "F32(1.0)")):
                 self.emit(f"{part} = {v}")
@@ -413,7 +416,7 @@ class Codegen:
                     and str(g.type) == "vec4"]
             if not outs:
                 raise _error("a plain GLSL shader needs an 'out vec4' variable", entry.node)
-            self.emit(f"{name}(G)")
+            self.emit(f"{name}({', '.join(self.needs[name])})")
             parts = self.global_parts(outs[0], outs[0].node)
             self.emit(f"return {parts[0]}, {parts[1]}, {parts[2]}, {parts[3]}")
         else:
@@ -426,7 +429,7 @@ class Codegen:
                 args += ["fx", "fy"]
             outs = sum(1 for _, _, d in entry.params if d != "in")
             res = [self.fresh() for _ in range(4 * (d0 != "in") + 2 * (d1 != "in"))]
-            call = f"{name}(G{''.join(', ' + a for a in args)})"
+            call = f"{name}({', '.join(self.needs[name] + args)})"
             if res:
                 self.emit(f"{', '.join(res)}, = {call}")
             else:
@@ -462,12 +465,12 @@ class Codegen:
                     params.append(part.name if isinstance(part, Arr) else part)
             if direction != "in":
                 fs.outs += parts
-        self.emit(f"def {self.fn_name(sym)}({', '.join(['G'] + params)}):")
+        def_at = len(self.lines)
+        self.emit("")  # the def line, once the state arrays the body uses are known
         self.indent += 1
         from ..numpy_backend.transpile.common import _printable
 
         self.emit(f'"""{_printable(sym.signature(), 150)} (line {proto.loc.line if proto.loc else "?"})."""')
-        self.emit("gf, gi, gu, gb, uf, ui, err = G")
         for part in [p for p in self.vars_of_params(sym) if isinstance(p, Arr)]:
             self.emit(f"{part.name} = acopy({part.name})  # arrays are passed by value")
         for parts, ptype, p in prologue:
@@ -476,6 +479,10 @@ class Codegen:
         if not ended:
             self.emit(self.return_text(None))
         self.indent -= 1
+        used = set(_STATE_NAME.findall("\n".join(self.lines[def_at + 1:])))
+        name = self.fn_name(sym)
+        self.needs[name] = [a for a in STATE if a in used]
+        self.lines[def_at] = f"def {name}({', '.join(self.needs[name] + params)}):"
         self.fn = None
 
     def vars_of_params(self, sym: Any) -> list:
@@ -626,8 +633,7 @@ class Codegen:
             test()
         self.emit(f"{count} += 1")
         self.emit(f"if {count} > {LOOP_CAP}:  # a runaway loop: the engine reports its line")
-        self.emit(f"    err[0] = {lid}")
-        self.emit("    break")
+        self.emit(f"    raise LoopCapError({lid})")
         cont = step if not do_while else test
         self.fn.loops.append(("loop", cont))
         ended = self.stmt(body)
@@ -1082,7 +1088,7 @@ class Codegen:
         ret_leaves = [] if rtype.is_void else leaves(rtype, e)
         out_leaves = [leaf for (_, pt, d) in fn.params if d != "in" for leaf in leaves(pt, e)]
         res = [self.fresh() for _ in range(n_val + len(out_leaves))]
-        call = f"{self.fn_name(fn)}({', '.join(['G'] + args)})"
+        call = f"{self.fn_name(fn)}({', '.join(self.needs[self.fn_name(fn)] + args)})"
         if res:
             self.emit(f"{', '.join(res)}, = {call}")
         else:
@@ -1204,14 +1210,13 @@ jit = numba.njit(cache=True, nogil=True, error_model="numpy")'''
 
 RENDER = '''
 @numba.njit(cache=True, nogil=True, error_model="numpy")
-def render_rows(out, y0, y1, width, height, offs, uf, ui, gtf, gti, gtu, gtb, err):
+def render_rows(out, y0, y1, width, height, offs, uf, ui, gtf, gti, gtu, gtb):
     """Rows y0..y1-1 (counted from the bottom) into out (height, width, 4), top row first;
     offs: the (dx, dy) sample offsets (one row of zeros for one sample)."""
     gf = acopy(gtf)
     gi = acopy(gti)
     gu = acopy(gtu)
     gb = acopy(gtb)
-    G = (gf, gi, gu, gb, uf, ui, err)
     samples = offs.shape[0]
     for y in range(y0, y1):
         row = height - 1 - y
@@ -1223,7 +1228,7 @@ def render_rows(out, y0, y1, width, height, offs, uf, ui, gtf, gti, gtu, gtb, er
                 aset(gi, 0, gti)
                 aset(gu, 0, gtu)
                 aset(gb, 0, gtb)
-                r, g, b, a = shade(G, px, py, px, py)
+                r, g, b, a = shade(gf, gi, gu, gb, uf, ui, px, py, px, py)
                 out[row, x, 0] = r
                 out[row, x, 1] = g
                 out[row, x, 2] = b
@@ -1238,7 +1243,8 @@ def render_rows(out, y0, y1, width, height, offs, uf, ui, gtf, gti, gtu, gtb, er
                     aset(gi, 0, gti)
                     aset(gu, 0, gtu)
                     aset(gb, 0, gtb)
-                    r, g, b, a = shade(G, F32(px + F32(offs[s, 0])), F32(py + F32(offs[s, 1])), px, py)
+                    r, g, b, a = shade(gf, gi, gu, gb, uf, ui, F32(px + F32(offs[s, 0])), F32(py + F32(offs[s, 1])),
+                                       px, py)
                     ar += np.float64(r)
                     ag += np.float64(g)
                     ab += np.float64(b)
@@ -1247,12 +1253,10 @@ def render_rows(out, y0, y1, width, height, offs, uf, ui, gtf, gti, gtu, gtb, er
                 out[row, x, 1] = ag / samples
                 out[row, x, 2] = ab / samples
                 out[row, x, 3] = aa / samples
-            if err[0] != 0:
-                return
 
 
 @numba.njit(cache=True, nogil=True, error_model="numpy")
-def globals_template(uf, ui, gtf, gti, gtu, gtb, err):
+def globals_template(uf, ui, gtf, gti, gtu, gtb):
     """The globals' initial values, written into the template arrays (once per frame)."""
-    init_globals((gtf, gti, gtu, gtb, uf, ui, err))
+    init_globals(gtf, gti, gtu, gtb, uf, ui)
 '''

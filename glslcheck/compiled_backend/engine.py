@@ -30,6 +30,17 @@ from ..shadertoy import UNIFORMS_BY_NAME, FrameInputs, frame_inputs
 PIP = "pip install 'glslcheck[jit]'"
 _LOCK = threading.Lock()
 _MODULES: dict[str, Any] = {}  # hash -> loaded module (one per process)
+PARALLEL_PIXELS = 4096  # smaller frames on the calling thread (a thread hand-off costs more)
+_POOLS: dict[int, ThreadPoolExecutor] = {}
+
+
+def _pool(threads: int) -> ThreadPoolExecutor:
+    """The process's row-band threads (made once: starting threads costs a frame of a small shader)."""
+    with _LOCK:
+        pool = _POOLS.get(threads)
+        if pool is None:
+            pool = _POOLS[threads] = ThreadPoolExecutor(threads, thread_name_prefix="glslcheck-compiled")
+        return pool
 
 
 def available() -> bool:
@@ -162,25 +173,27 @@ class CompiledProgram:
         slots = mod.SLOTS
         gt = [np.zeros(max(1, slots[k]), dt) for k, dt in
               (("float", np.float32), ("int", np.int32), ("uint", np.uint32), ("bool", np.bool_))]
-        err = np.zeros(1, np.int64)
-        mod.globals_template(uf, ui, *gt, err)
+        from .scalar import LoopCapError
+
         out = np.empty((height, width, 4), np.float32)
-        bands = min(self.threads * 4, height)
-        edges = [height * k // bands for k in range(bands + 1)]
-        if bands <= 1 or self.threads <= 1:
-            mod.render_rows(out, 0, height, width, height, offs, uf, ui, *gt, err)
-        else:
-            with ThreadPoolExecutor(self.threads) as pool:
-                futures = [pool.submit(mod.render_rows, out, edges[k], edges[k + 1], width, height, offs,
-                                       uf, ui, *gt, err) for k in range(bands) if edges[k] < edges[k + 1]]
+        try:
+            mod.globals_template(uf, ui, *gt)
+            bands = min(self.threads * 4, height) if width * height >= PARALLEL_PIXELS else 1
+            edges = [height * k // bands for k in range(bands + 1)]
+            if bands <= 1 or self.threads <= 1:
+                mod.render_rows(out, 0, height, width, height, offs, uf, ui, *gt)
+            else:
+                futures = [_pool(self.threads).submit(mod.render_rows, out, edges[k], edges[k + 1], width, height,
+                                                      offs, uf, ui, *gt)
+                           for k in range(bands) if edges[k] < edges[k + 1]]
                 for f in futures:
                     f.result()
-        if err[0] != 0:
+        except LoopCapError as e:
             from ..numpy_backend.transpile.common import LOOP_CAP
 
-            path, line, col = mod.LOOPS.get(int(err[0]), (self.path, 0, 0))
+            path, line, col = mod.LOOPS.get(int(e.args[0]), (self.path, 0, 0))
             raise GlslError(Diagnostic(f"this loop ran more than {LOOP_CAP} times", Location(path, line, col),
-                                       rule="compiled-engine"))
+                                       rule="compiled-engine")) from None
         return out
 
     @frame_inputs

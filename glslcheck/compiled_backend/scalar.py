@@ -545,3 +545,8 @@ def pow_uniform(x, y, special, zeros, fma):
             return F32(sq * sq)
         return pow_zero(x)
     return pow(x, y, fma)
+
+
+class LoopCapError(Exception):
+    """A loop of the generated code ran more than transpile.LOOP_CAP passes; args[0] is its id
+    (the module's LOOPS gives its file, line and column)."""
