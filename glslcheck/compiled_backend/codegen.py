@@ -186,6 +186,8 @@ class Codegen:
         self.frag4: list[str] | None = None
         self.last_line: tuple[str, int] | None = None
         self.needs: dict[str, list[str]] = {}  # function -> the state arrays it takes
+        self.variants: set[tuple[int, frozenset]] = set()  # (function, uniform parameters) made or asked
+        self.pending: list[tuple[Any, frozenset]] = []
 
     def numpy_transpiler(self) -> Any:
         """The NumPy backend's Transpiler at the current function, for the decisions this engine
@@ -356,7 +358,12 @@ class Codegen:
         funcs = []
         for fn in self.functions:
             self.lines = []
-            self.gen_function(fn)
+            self.gen_function(fn, frozenset())
+            funcs.append("\n".join(self.lines))
+        while self.pending:  # variants with lane-uniform parameters, as the calls asked for them
+            fn, seed = self.pending.pop(0)
+            self.lines = []
+            self.gen_function(fn, seed)
             funcs.append("\n".join(self.lines))
         self.lines = []
         self.gen_globals()
@@ -445,11 +452,18 @@ class Codegen:
 
         return "f_" + _ident(sym.unique_name or sym.name, sym.node)
 
-    def gen_function(self, sym: Any) -> None:
-        from ..numpy_backend.uniformity import Uniformity
+    def variant_name(self, sym: Any, seed: frozenset) -> str:
+        """A function's name, with the indices of its lane-uniform parameters when it has any
+        (`f_map__u0_2`): the NumPy backend passes a value of one lane to the parameter there,
+        which its constant folding reads as a constant (see `lane_uniform`)."""
+        base = self.fn_name(sym)
+        return base if not seed else base + "__u" + "_".join(str(i) for i in sorted(seed))
 
+    def gen_function(self, sym: Any, seed: frozenset = frozenset()) -> None:
         node = sym.node
-        self.fn = fs = FnState(sym, Uniformity(self.model, self.facts, sym, sym is self.entry))
+        self.variants.add((id(sym), seed))
+        params_u = {id(self.model.symbol_of(p)) for i, p in enumerate(node.proto.params) if i in seed}
+        self.fn = fs = FnState(sym, SeededUniformity(self.model, self.facts, sym, sym is self.entry, params_u))
         proto = node.proto
         params: list[str] = []
         prologue: list[tuple[list, Any, str]] = []
@@ -481,8 +495,9 @@ class Codegen:
         self.indent -= 1
         used = set(_STATE_NAME.findall("\n".join(self.lines[def_at + 1:])))
         name = self.fn_name(sym)
-        self.needs[name] = [a for a in STATE if a in used]
-        self.lines[def_at] = f"def {name}({', '.join(self.needs[name] + params)}):"
+        if not seed:
+            self.needs[name] = [a for a in STATE if a in used]
+        self.lines[def_at] = f"def {self.variant_name(sym, seed)}({', '.join(self.needs[name] + params)}):"
         self.fn = None
 
     def vars_of_params(self, sym: Any) -> list:
@@ -1088,7 +1103,12 @@ class Codegen:
         ret_leaves = [] if rtype.is_void else leaves(rtype, e)
         out_leaves = [leaf for (_, pt, d) in fn.params if d != "in" for leaf in leaves(pt, e)]
         res = [self.fresh() for _ in range(n_val + len(out_leaves))]
-        call = f"{self.fn_name(fn)}({', '.join(self.needs[self.fn_name(fn)] + args)})"
+        seed = frozenset(i for i, (a, (_, _, d)) in enumerate(zip(e.args, fn.params))
+                         if d != "out" and self.lane_uniform(a))
+        if seed and (id(fn), seed) not in self.variants:
+            self.variants.add((id(fn), seed))
+            self.pending.append((fn, seed))
+        call = f"{self.variant_name(fn, seed)}({', '.join(self.needs[self.fn_name(fn)] + args)})"
         if res:
             self.emit(f"{', '.join(res)}, = {call}")
         else:
@@ -1157,27 +1177,63 @@ class Codegen:
         raise not_yet(f"constructing '{t}'", e)
 
     def convert(self, p: str, src: str, dst: str) -> str:
+        """A scalar converted as runtime.Runtime.to_<dst>: bool to 0/1, float to int through
+        cvttps2dq (to_int), float to uint by this CPU's model (driver_profile), the rest by
+        their bits or value (numba's casts)."""
         if src == dst:
             return p
-        if dst == "float":
-            if src == "bool":
-                return f"({self.cf(1.0)} if {p} else {self.cf(0.0)})"
-            return f"F32({p})"
-        if dst == "int":
-            if src == "float":
-                return f"to_int({p})"
-            if src == "bool":
-                return f"(I32(1) if {p} else I32(0))"
-            return f"I32({p})"
-        if dst == "uint":
-            if src == "float":
-                return f"to_uint_{self.float_to_uint}({p})"
-            if src == "bool":
-                return f"(U32(1) if {p} else U32(0))"
-            return f"U32({p})"
         if dst == "bool":
             return f"({p} != 0)"
-        raise ValueError(dst)
+        if src == "bool":
+            one, zero = (self.cf(1.0), self.cf(0.0)) if dst == "float" else (f"{_CAST[dst]}(1)", f"{_CAST[dst]}(0)")
+            return f"({one} if {p} else {zero})"
+        if src == "float":
+            return f"to_int({p})" if dst == "int" else f"to_uint_{self.float_to_uint}({p})"
+        return f"{_CAST[dst]}({p})"
+
+
+def _seeded_uniformity():
+    from ..numpy_backend.uniformity import Uniformity
+
+    class _SkipFirst(set):
+        """The analysis' varying symbols, but the first `add` of each seeded parameter (the
+        analysis starts by marking every parameter varying) is ignored."""
+
+        def __init__(self, skip: set) -> None:
+            super().__init__()
+            self.skip = set(skip)
+
+        def add(self, x: Any) -> None:
+            if x in self.skip:
+                self.skip.discard(x)
+                return
+            super().add(x)
+
+    class Seeded(Uniformity):
+        """numpy_backend's Uniformity of a function whose parameters `uniform_params` (symbol
+        ids) get a value of one lane from the call (NumPy evaluates a call with the arguments'
+        own lane counts): they start uniform; a varying write still makes them varying."""
+
+        def __init__(self, model: Any, facts: Any, fn: Any, is_entry: bool, uniform_params: set) -> None:
+            self.__dict__["_seed"] = set(uniform_params)
+            super().__init__(model, facts, fn, is_entry)
+
+        def __setattr__(self, name: str, value: Any) -> None:
+            if name == "varying" and "varying" not in self.__dict__:
+                value = _SkipFirst(self.__dict__["_seed"])
+            object.__setattr__(self, name, value)
+
+    return Seeded
+
+
+def SeededUniformity(model: Any, facts: Any, fn: Any, is_entry: bool, uniform_params: set) -> Any:
+    global _SEEDED
+    if _SEEDED is None:
+        _SEEDED = _seeded_uniformity()
+    return _SEEDED(model, facts, fn, is_entry, uniform_params)
+
+
+_SEEDED = None
 
 
 def _bcast(const: list | None, n: int) -> list | None:
@@ -1223,36 +1279,22 @@ def render_rows(out, y0, y1, width, height, offs, uf, ui, gtf, gti, gtu, gtb):
         py = F32(y + 0.5)
         for x in range(width):
             px = F32(x + 0.5)
-            if samples == 1:
+            ar = ag = ab = aa = 0.0
+            for s in range(samples):  # one sample: offset 0, the sum its value (a -0.0 kept)
                 aset(gf, 0, gtf)
                 aset(gi, 0, gti)
                 aset(gu, 0, gtu)
                 aset(gb, 0, gtb)
-                r, g, b, a = shade(gf, gi, gu, gb, uf, ui, px, py, px, py)
-                out[row, x, 0] = r
-                out[row, x, 1] = g
-                out[row, x, 2] = b
-                out[row, x, 3] = a
-            else:
-                ar = 0.0
-                ag = 0.0
-                ab = 0.0
-                aa = 0.0
-                for s in range(samples):
-                    aset(gf, 0, gtf)
-                    aset(gi, 0, gti)
-                    aset(gu, 0, gtu)
-                    aset(gb, 0, gtb)
-                    r, g, b, a = shade(gf, gi, gu, gb, uf, ui, F32(px + F32(offs[s, 0])), F32(py + F32(offs[s, 1])),
-                                       px, py)
-                    ar += np.float64(r)
-                    ag += np.float64(g)
-                    ab += np.float64(b)
-                    aa += np.float64(a)
-                out[row, x, 0] = ar / samples
-                out[row, x, 1] = ag / samples
-                out[row, x, 2] = ab / samples
-                out[row, x, 3] = aa / samples
+                r, g, b, a = shade(gf, gi, gu, gb, uf, ui, F32(px + F32(offs[s, 0])), F32(py + F32(offs[s, 1])),
+                                   px, py)
+                if s == 0:
+                    ar, ag, ab, aa = np.float64(r), np.float64(g), np.float64(b), np.float64(a)
+                else:
+                    ar, ag, ab, aa = ar + r, ag + g, ab + b, aa + a
+            out[row, x, 0] = ar / samples
+            out[row, x, 1] = ag / samples
+            out[row, x, 2] = ab / samples
+            out[row, x, 3] = aa / samples
 
 
 @numba.njit(cache=True, nogil=True, error_model="numpy")

@@ -296,12 +296,12 @@ def _trig_any(a, fma, which):
     emm2_add = _wrap(j0 + 1)
     emm2_and = emm2_add & ~np.int64(1)
     y_2 = F32(emm2_and)
-    x_1 = _mad(y_2, _DP0, x_abs, fma)
-    x_2 = _mad(y_2, _DP1, x_1, fma)
-    x_3 = _mad(y_2, _DP2, x_2, fma)
+    x_3 = x_abs
+    for dp in (_DP0, _DP1, _DP2):  # Cody-Waite: x - j*(DP1 + DP2 + DP3), each step fused
+        x_3 = _mad(y_2, dp, x_3, fma)
     z = F32(x_3 * x_3)
-    y_6 = F32(_mad(_mad(z, _C0, _C1, fma), z, _C2, fma) * z)
-    y2_6 = F32(_mad(_mad(z, _S0, _S1, fma), z, _S2, fma) * z)
+    y_6 = F32(_mad(_mad(z, _C0, _C1, fma), z, _C2, fma) * z)  # the cosine's polynomial
+    y2_6 = F32(_mad(_mad(z, _S0, _S1, fma), z, _S2, fma) * z)  # the sine's
     y_10 = F32(F32(F32(y_6 * z) - F32(z * _HALF)) + _ONE)
     y2_9 = _mad(y2_6, x_3, x_3, fma)
     s = _ZERO

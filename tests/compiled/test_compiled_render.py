@@ -9,7 +9,7 @@ wrong rule shows as differing pixels.
 Compiling is slow (numba: seconds per module, cold); every program is compiled once per
 session (`compiled`, module-scoped cache below) and numba's cache keeps the machine code for
 the next run. numba is the optional `jit` extra: without it these tests are skipped on a
-developer machine and FAIL on CI (the `numba` fixture, as tests/conftest.py's `jit_kernels`).
+developer machine and FAIL on CI (the `numba` fixture, tests/compiled/conftest.py).
 """
 
 from __future__ import annotations
@@ -28,16 +28,6 @@ LAB = os.path.join(os.path.dirname(__file__), "..", "..", "lab_shaders")
 # agreement of every lab and real shader): one of each structure
 LAB_SAMPLE = ("01_spheres_procedural", "03_lambert_attenuation", "05_blinn_phong", "07_final",
               "bonus_cel_shading", "bonus_spot_lights")
-
-
-@pytest.fixture(scope="module")
-def numba():
-    from glslcheck.compiled_backend.engine import available
-
-    if not available():
-        if os.environ.get("CI"):
-            pytest.fail("numba is required on CI: pip install -e '.[jit]' (make setup does)")
-        pytest.skip("no numba on this machine (developer machine without it); CI fails instead")
 
 
 def _compare(shader, time: float = 1.3) -> None:
