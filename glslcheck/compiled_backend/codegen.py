@@ -322,6 +322,23 @@ class Codegen:
             return [f"{arr}[{off + c * u.array_size + k}]" for c in range(comps) for k in range(u.array_size)]
         return [f"{arr}[{off + c}]" for c in range(comps)]
 
+    def literal_global(self, sym: Any) -> list | None:
+        """A `const` global of literals (`const float EPS = 0.001;`, `const vec3 K = vec3(1, 0,
+        -2);`) as module constants: the value init_globals would store (a literal, its negation
+        and a constructor of them are exact), read without a state array, folded by LLVM."""
+        d = sym.node
+        if sym.qualifier != "const" or not isinstance(d, A.Declarator) or d.init is None:
+            return None
+        t = sym.type
+        if not (t.is_scalar or t.is_vector) or not _literal_tree(self.model, d.init, t.base):
+            return None
+        cv = self.model.const_value(d.init)
+        if cv is None:
+            return None
+        values = _flat(cv)
+        values = values * t.size if t.is_vector and len(values) == 1 else values
+        return [self.const_part(t.base, v) for v in values]
+
     def var_parts(self, sym: Any, node: Any) -> list:
         if sym.kind in ("local", "param"):
             parts = self.vars.get(id(sym))
@@ -337,6 +354,9 @@ class Codegen:
         if sym.kind == "global":
             if sym.type.contains_opaque:
                 raise not_yet(f"'{sym.name}': textures and channels", node)
+            literal = self.literal_global(sym)
+            if literal is not None:
+                return literal
             return self.global_parts(sym, node)
         if sym.kind == "uniform":
             return self.uniform_parts(sym.name, node)
@@ -1234,6 +1254,18 @@ def SeededUniformity(model: Any, facts: Any, fn: Any, is_entry: bool, uniform_pa
 
 
 _SEEDED = None
+
+
+def _literal_tree(model: Any, e: Any, base: str) -> bool:
+    """Literals of type `base`, their negations and vector constructors of them only."""
+    if isinstance(e, (A.FloatLiteral, A.IntLiteral, A.BoolLiteral)):
+        return model.type_of(e).base == base
+    if isinstance(e, A.Unary) and e.op == "-":
+        return _literal_tree(model, e.operand, base)
+    if isinstance(e, A.Call) and isinstance(model.call_target(e), Constructor):
+        t = model.type_of(e)
+        return (t.is_scalar or t.is_vector) and t.base == base and all(_literal_tree(model, a, base) for a in e.args)
+    return False
 
 
 def _bcast(const: list | None, n: int) -> list | None:
