@@ -48,3 +48,19 @@ def test_without_numba_exit_2_with_the_pip_line(tmp_path, capsys, monkeypatch):
     assert main(["render", str(path), "-o", str(tmp_path / "c.png"), "--backend", "compiled"]) == 2
     err = capsys.readouterr().err
     assert "pip install 'glslcheck[jit]'" in err and "Traceback" not in err
+
+
+def test_bench_compiled_prints_its_figures(numba, gl):
+    """benchmarks/bench_compiled.py, one quick round (timings are not asserted: see its docstring)."""
+    import subprocess
+    import sys
+    from pathlib import Path
+
+    root = Path(__file__).resolve().parents[2]
+    done = subprocess.run([sys.executable, str(root / "benchmarks" / "bench_compiled.py"), "--lab-only", "--only",
+                           "07_final", "--size", "16x9", "--numpy-size", "16x9", "--repeat", "1"],
+                          cwd=root, capture_output=True, text=True, timeout=600)
+    assert done.returncode == 0 and "Traceback" not in done.stderr, done.stderr[-2000:]
+    for line in ("07_final", "geometric mean (CPU)", "geometric mean (wall)", "verify against GL: 1 of 1 match",
+                 "bit-identical to the NumPy render: 1 of 1", "load average at end"):
+        assert line in done.stdout, done.stdout
