@@ -151,6 +151,10 @@ def main() -> int:
             skipped.append((name, str(e).split(";")[0][:110]))
             print(f"  {name}: skipped: {skipped[-1][1]}", flush=True)
             continue
+        except Exception as e:  # an engine bug: reported with the others, the run goes on
+            skipped.append((name, f"FAILED {type(e).__name__}: {str(e).splitlines()[0][:100]}"))
+            print(f"  {name}: {skipped[-1][1]}", flush=True)
+            continue
         for r in got:
             extra = ""
             if "numpy" in r:

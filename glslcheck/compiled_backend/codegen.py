@@ -510,8 +510,8 @@ class Codegen:
         for parts, ptype, p in prologue:
             self.write(parts, self.zero_parts(ptype, p), fresh_arrays=True)
         ended = self.block(node.body.stmts)
-        if not ended:
-            self.emit(self.return_text(None))
+        if not ended:  # the end of the body (also after an if/else that returned in both branches)
+            self.emit(self.return_text(None if sym.type.is_void else self.zero_parts(sym.type, node)))
         self.indent -= 1
         used = set(_STATE_NAME.findall("\n".join(self.lines[def_at + 1:])))
         name = self.fn_name(sym)

@@ -70,6 +70,7 @@ void mainImage(out vec4 c, in vec2 f) {
     "control_flow": """
 int side = 0;
 bool bump() { side += 1; return side > 2; }
+vec2 pick(float x) { if (x > 0.5) { return vec2(1.0, x); } else if (x > 0.2) { return vec2(x, 2.0); } }  // x <= 0.2: 0
 float march(vec2 p) {
     float t = 0.0;
     for (int i = 0; i < 64; i++) {
@@ -90,7 +91,7 @@ void mainImage(out vec4 c, in vec2 f) {
     bool b = uv.x > 0.5 && bump();      // bump only where uv.x > 0.5
     bool o = uv.y > 0.5 || bump();
     float s = uv.x < 0.3 ? (uv.y < 0.5 ? 1.0 : 2.0) : float(side);
-    c = vec4(m, b ? 1.0 : 0.0, o ? s : -s, float(side));
+    c = vec4(m, b ? 1.0 : 0.0, o ? s : -s, float(side) + pick(uv.x).x - pick(uv.y).y);
 }""",
     "structs_arrays": """
 struct Light { vec3 pos; float power; bool on; };
