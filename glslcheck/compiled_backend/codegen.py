@@ -1028,15 +1028,15 @@ class Codegen:
         n = max(len(left.parts), len(right.parts))
         if left.constlike == right.constlike or not self.zero_add(e):
             return self.componentwise(left, right, rtype, lambda a, b, i: f"({a} {op} {b})")
-        zv = left if left.constlike else right
-        zc = _bcast(zv.const, n)
+        zleft = left.constlike  # the operand that may be a constant zero: the left one?
+        zc = _bcast((left if zleft else right).const, n)
         zero = self.cf(0.0)
         left = Val(left.t, [self.atom(p) for p in left.parts], left.const, left.uni)
         right = Val(right.t, [self.atom(p) for p in right.parts], right.const, right.uni)
 
         def one(a: str, b: str, i: int) -> str:
-            z = a if zv is left else b
-            kept = b if zv is left and op == "+" else f"(-{b})" if zv is left else a
+            z = a if zleft else b
+            kept = (b if op == "+" else f"(-{b})") if zleft else a
             if zc is not None:
                 return kept if zc[i] == 0 else f"({a} {op} {b})"
             return f"({kept} if {z} == {zero} else ({a} {op} {b}))"

@@ -27,7 +27,7 @@ LAB = os.path.join(os.path.dirname(__file__), "..", "..", "lab_shaders")
 # a sample of the lab shaders (all of them: benchmarks/bench_compiled.py, which reports the
 # agreement of every lab and real shader): one of each structure
 LAB_SAMPLE = ("01_spheres_procedural", "03_lambert_attenuation", "05_blinn_phong", "07_final",
-              "bonus_cel_shading", "bonus_spot_lights")
+              "bonus_gooch_shading", "bonus_spot_lights")
 
 
 def _compare(shader, time: float = 1.3) -> None:
@@ -195,6 +195,7 @@ float counter = 1.5;
 const vec3 K = vec3(0.0, 1.0, 2.0);
 vec2 last;
 void touch(float v) { counter += v; last = vec2(counter, v); }
+vec3 tone(vec3 albedo) { return K + 0.5 * albedo; }  // a constant zero on the left (Mesa drops it)
 void mainImage(out vec4 c, in vec2 f) {
     vec2 uv = f / iResolution.xy;
     touch(uv.x);
@@ -202,7 +203,9 @@ void mainImage(out vec4 c, in vec2 f) {
     vec3 nan3 = vec3(0.0) / vec3(uv.x - uv.x);
     vec3 folded = nan3 * K;                 // NaN times a constant zero is 0 (Mesa folds it)
     float negz = -0.0 * uv.x + 0.0;        // x + 0.0 keeps the sign of -0.0
-    c = vec4(counter, last.y + folded.x, folded.y + 1.0 / negz, iTime + iMouse.x + iDate.w * 0.0
+    vec3 left = tone(vec3(uv, -0.0 * uv.y));  // K.x = 0.0 + x: the right side, -0.0 kept
+    negz += 1.0 / left.z + (0.0 - uv.x);
+    c = vec4(counter + left.x * 3.0, last.y + folded.x, folded.y + 1.0 / negz, iTime + iMouse.x + iDate.w * 0.0
              + iResolution.x + float(iFrame));
 }""",
 }
