@@ -10,7 +10,7 @@ from typing import Any
 from .. import ast as A
 from .. import builtins as B
 from .. import types as T
-from .codegen import Arr, Val, _bcast, _error, not_yet
+from .codegen import Val, _bcast, _error, not_yet
 
 # one float32 component -> scalar.py function of the same rule (fma: llvmpipe's fused steps)
 _UNARY_FMA = ("sin", "cos", "tan", "exp", "log", "exp2", "log2", "sinh", "cosh", "tanh", "asinh", "acosh", "atanh")
@@ -294,5 +294,3 @@ def determinant(cg: Any, m: list[str], n: int) -> str:
     return (f"(((({at(0, 0)} * {c0}) + ({at(0, 1)} * {c1})) + ({at(0, 2)} * {c2}))"
             f" + ({at(0, 3)} * {c3}))")
 
-
-del Arr

@@ -309,7 +309,6 @@ class Codegen:
             raise _error(f"unknown uniform '{name}'", node)
         if u.glsl_type.startswith("sampler"):
             raise not_yet(f"'{name}': textures and channels", node)
-        t = T.parse_type(u.glsl_type) if hasattr(T, "parse_type") else None
         comps = 1 if u.glsl_type in ("float", "int") else int(u.glsl_type[-1])
         kind = "int" if u.glsl_type == "int" else "float"
         arr = "ui" if kind == "int" else "uf"
@@ -317,7 +316,6 @@ class Codegen:
             self.uniforms[name] = (kind, self.uslots[kind], u)
             self.uslots[kind] += comps * (u.array_size or 1)
         _, off, _ = self.uniforms[name]
-        del t
         if u.array_size:  # component c of element k at off + c*n + k: the small arrays' layout
             return [f"{arr}[{off + c * u.array_size + k}]" for c in range(comps) for k in range(u.array_size)]
         return [f"{arr}[{off + c}]" for c in range(comps)]
@@ -454,14 +452,12 @@ class Codegen:
                 args += [big] * 4
             if d1 != "out":
                 args += ["fx", "fy"]
-            outs = sum(1 for _, _, d in entry.params if d != "in")
             res = [self.fresh() for _ in range(4 * (d0 != "in") + 2 * (d1 != "in"))]
             call = f"{name}({', '.join(self.needs[name] + args)})"
             if res:
                 self.emit(f"{', '.join(res)}, = {call}")
             else:
                 self.emit(call)
-            del outs
             color = res[:4] if d0 != "in" else [big] * 4
             self.emit(f"return {color[0]}, {color[1]}, {color[2]}, F32(1.0)  # RGB: alpha is 1")
         self.indent -= 1
@@ -564,9 +560,7 @@ class Codegen:
         if s.expr is None:
             return
         self.comment(s)
-        v = self.expr(s.expr)
-        for p in v.parts:  # a value nobody reads: computed for its effects only (calls emitted)
-            del p
+        self.expr(s.expr)  # a value nobody reads: only its statements (calls, writes) are emitted
 
     def _stmt_DeclarationStatement(self, s: A.DeclarationStatement) -> None:
         d = s.decl
