@@ -1,12 +1,13 @@
 """glslcheck render SHADER [-o out.png|out.npy|anim.gif] [--size WxH] [--time T] [--frame N]
 [--mouse X,Y,Z,W] [--date Y,M,D,S] [--precision float16|float32|float64] [--samples N]
-[--backend numpy|gl|webgl] [--stats] [--frames N --fps F] [--pass TAB]: render a shader's Image
+[--backend numpy|gl|webgl|compiled] [--stats] [--frames N --fps F] [--pass TAB]: render a shader's Image
 tab (or, with --pass "Buffer A", a buffer). Buffers and channels.json: see glslcheck/channels.py;
 --frame N of a multipass shader runs frames 0..N.
 
 The NumPy backend (default) renders on the CPU; --backend gl uses the OpenGL driver (Mesa
 llvmpipe); --backend webgl renders as Shadertoy's page does, with WebGL 2 in headless Chromium
-(ANGLE on SwiftShader). Inputs: iResolution from --size (default 800x450), iTime --time (0), iFrame --frame
+(ANGLE on SwiftShader); --backend compiled compiles each pixel's program with numba (the extra
+glslcheck[jit]; an Image tab without channels, float32: glslcheck/compiled_backend). Inputs: iResolution from --size (default 800x450), iTime --time (0), iFrame --frame
 (0), iMouse --mouse, iDate --date (year, month 0-11, day, seconds; default 2026-01-01 00:00),
 iTimeDelta 1/60 and iFrameRate 60 (with --frames: 1/F and F). fragCoord is the pixel centre with
 the origin at the bottom left; the image's first row is its top. Alpha is 1, as on Shadertoy.
@@ -49,7 +50,8 @@ def add_arguments(p) -> None:
                    help="float type inside the shader (NumPy backend; default float32 = highp)")
     p.add_argument("--samples", type=A.arg(A.parse_samples), default=1, metavar="N",
                    help="samples per pixel, a square (default 1)")
-    p.add_argument("--backend", choices=("numpy", "gl", "webgl"), default="numpy", help="default numpy")
+    p.add_argument("--backend", choices=("numpy", "gl", "webgl", "compiled"), default="numpy",
+                   help="default numpy; compiled: per pixel, by numba (glslcheck/compiled_backend)")
     p.add_argument("--stats", action="store_true", help="print the lanes that ran each function and branch")
     p.add_argument("--frames", type=A.arg(A.parse_frames), default=None, metavar="N",
                    help="render an animation of N frames")
@@ -77,7 +79,12 @@ def run(args) -> int:
     if args.backend != "numpy" and args.precision != "float32":
         raise InputError(f"error: the {args.backend.upper()} backend renders in float32 only; "
                          "drop --precision or use --backend numpy")
-    prog = api.compile(args.path, backend=args.backend, output=args.pass_name)
+    if args.backend == "compiled":
+        from ..compiled_backend import compile_program
+
+        prog = compile_program(args.path, args.pass_name)
+    else:
+        prog = api.compile(args.path, backend=args.backend, output=args.pass_name)
     common = dict(size=args.size, mouse=args.mouse, date=args.date, precision=args.precision, samples=args.samples)
     if args.frames is None:
         img = prog.render(time=args.time, frame=args.frame, stats=args.stats, **common)

@@ -1,0 +1,66 @@
+"""`glslcheck render --backend compiled`: the image, the exit codes and the messages."""
+
+from __future__ import annotations
+
+import numpy as np
+
+from glslcheck.cli import main
+
+IMAGE = ("void mainImage(out vec4 fragColor, in vec2 fragCoord) {\n"
+         "    fragColor = vec4(fragCoord.x / iResolution.x, sin(iTime), -1.0, 0.2);\n}\n")
+
+
+def test_render_writes_the_numpy_backends_image(numba, tmp_path):
+    path = tmp_path / "Image.glsl"
+    path.write_text(IMAGE)
+    assert main(["render", str(path), "-o", str(tmp_path / "c.npy"), "--size", "6x3", "--time", "0.7",
+                 "--backend", "compiled"]) == 0
+    assert main(["render", str(path), "-o", str(tmp_path / "n.npy"), "--size", "6x3", "--time", "0.7"]) == 0
+    got, want = np.load(tmp_path / "c.npy"), np.load(tmp_path / "n.npy")
+    assert got.shape == (3, 6, 4) and got.tobytes() == want.tobytes()
+
+
+def test_unsupported_construct_exits_1_at_its_line(numba, tmp_path, capsys):
+    path = tmp_path / "Image.glsl"
+    path.write_text("void mainImage(out vec4 c, in vec2 f) {\n    c = vec4(1.0);\n    if (f.x > 2.0) discard;\n}\n")
+    assert main(["render", str(path), "-o", str(tmp_path / "c.png"), "--backend", "compiled"]) == 1
+    err = capsys.readouterr().err
+    assert f"{path}:3:" in err and "not supported by the compiled engine yet" in err
+    assert "Traceback" not in err and not (tmp_path / "c.png").exists()
+
+
+def test_multipass_and_buffer_passes_are_refused(numba, tmp_path, capsys):
+    (tmp_path / "Image.glsl").write_text("void mainImage(out vec4 c, in vec2 f) { c = texture(iChannel0, f); }\n")
+    (tmp_path / "Buffer A.glsl").write_text("void mainImage(out vec4 c, in vec2 f) { c = vec4(1.0); }\n")
+    assert main(["render", str(tmp_path), "-o", str(tmp_path / "c.png"), "--backend", "compiled"]) == 1
+    assert "not supported by the compiled engine yet" in capsys.readouterr().err
+    assert main(["render", str(tmp_path), "-o", str(tmp_path / "c.png"), "--backend", "compiled",
+                 "--pass", "Buffer A"]) == 2
+    assert "Image pass only" in capsys.readouterr().err
+
+
+def test_without_numba_exit_2_with_the_pip_line(tmp_path, capsys, monkeypatch):
+    from glslcheck.compiled_backend import engine
+
+    monkeypatch.setattr(engine, "available", lambda: False)
+    path = tmp_path / "Image.glsl"
+    path.write_text(IMAGE)
+    assert main(["render", str(path), "-o", str(tmp_path / "c.png"), "--backend", "compiled"]) == 2
+    err = capsys.readouterr().err
+    assert "pip install 'glslcheck[jit]'" in err and "Traceback" not in err
+
+
+def test_bench_compiled_prints_its_figures(numba, gl):
+    """benchmarks/bench_compiled.py, one quick round (timings are not asserted: see its docstring)."""
+    import subprocess
+    import sys
+    from pathlib import Path
+
+    root = Path(__file__).resolve().parents[2]
+    done = subprocess.run([sys.executable, str(root / "benchmarks" / "bench_compiled.py"), "--lab-only", "--only",
+                           "07_final", "--size", "16x9", "--numpy-size", "16x9", "--repeat", "1"],
+                          cwd=root, capture_output=True, text=True, timeout=600)
+    assert done.returncode == 0 and "Traceback" not in done.stderr, done.stderr[-2000:]
+    for line in ("07_final", "geometric mean (CPU)", "geometric mean (wall)", "verify against GL: 1 of 1 match",
+                 "bit-identical to the NumPy render: 1 of 1", "load average at end"):
+        assert line in done.stdout, done.stdout

@@ -1,0 +1,267 @@
+"""The compiled engine (glslcheck/compiled_backend) against the NumPy backend, bit for bit.
+
+Each shader is rendered by both engines at a small size and the images compared exactly (a NaN
+equals a NaN: the engines need not make the same NaN payload, and the image keeps it). The
+constructs each have their own small shader, pixels spread over hard inputs (zero-length
+normalize, pow of negatives, huge and tiny magnitudes, int overflow, NaN and Inf), so one
+wrong rule shows as differing pixels.
+
+Compiling is slow (numba: seconds per module, cold); every program is compiled once per
+session (`compiled`, module-scoped cache below) and numba's cache keeps the machine code for
+the next run. numba is the optional `jit` extra: without it these tests are skipped on a
+developer machine and FAIL on CI (the `numba` fixture, tests/compiled/conftest.py).
+"""
+
+from __future__ import annotations
+
+import os
+
+import numpy as np
+import pytest
+
+import glslcheck
+from glslcheck.diagnostics import GlslError
+
+SIZE = (40, 24)
+LAB = os.path.join(os.path.dirname(__file__), "..", "..", "lab_shaders")
+# a sample of the lab shaders (all of them: benchmarks/bench_compiled.py, which reports the
+# agreement of every lab and real shader): one of each structure
+LAB_SAMPLE = ("01_spheres_procedural", "03_lambert_attenuation", "05_blinn_phong", "07_final",
+              "bonus_gooch_shading", "bonus_spot_lights")
+
+
+def _compare(shader, time: float = 1.3) -> None:
+    from glslcheck.compiled_backend.engine import compile_compiled
+
+    got = compile_compiled(shader).render(size=SIZE, time=time, mouse=(10.0, 7.0, 3.0, -2.0))
+    want = glslcheck.compile(shader, backend="numpy").render(size=SIZE, time=time, mouse=(10.0, 7.0, 3.0, -2.0))
+    same = (got == want) | (np.isnan(got) & np.isnan(want))
+    if not same.all():
+        where = np.argwhere(~same.all(axis=2))
+        y, x = where[0]
+        raise AssertionError(f"{len(where)} of {SIZE[0] * SIZE[1]} pixels differ; first at row {y} col {x}: "
+                             f"compiled {got[y, x]}, numpy {want[y, x]}")
+
+
+@pytest.mark.parametrize("name", LAB_SAMPLE)
+def test_lab_shader_bit_for_bit(numba, name):
+    _compare(os.path.join(LAB, name))
+
+
+# -- constructs, each in its own shader -----------------------------------------------------------
+CONSTRUCTS = {
+    "functions_out_inout": """
+void split(in vec2 p, out float a, inout vec3 acc, out ivec2 cell) {
+    a = p.x * 0.5;
+    acc += vec3(p, a);
+    cell = ivec2(floor(p * 4.0));
+    p = vec2(0.0);  // a copy: the caller's value stays
+}
+float twice(float x) { return x + x; }
+void mainImage(out vec4 c, in vec2 f) {
+    vec2 uv = f / iResolution.xy;
+    float a;
+    vec3 acc = vec3(1.0);
+    ivec2 cell;
+    split(uv, a, acc, cell);
+    split(uv.yx, a, acc, cell);
+    c = vec4(acc * twice(a), float(cell.x * 7 + cell.y) / 50.0);
+}""",
+    "control_flow": """
+int side = 0;
+bool bump() { side += 1; return side > 2; }
+vec2 pick(float x) { if (x > 0.5) { return vec2(1.0, x); } else if (x > 0.2) { return vec2(x, 2.0); } }  // x <= 0.2: 0
+float march(vec2 p) {
+    float t = 0.0;
+    for (int i = 0; i < 64; i++) {
+        float d = length(p - vec2(0.5)) - 0.2 - t * 0.1;
+        if (i == 3) continue;
+        if (d < 0.01) return t;
+        t += d * 0.5;
+        if (t > 2.0) break;
+    }
+    int k = 0;
+    while (k < 5) { k++; if (k == 4) break; }
+    do { t += 0.01; k--; } while (k > 0);
+    return -t;
+}
+void mainImage(out vec4 c, in vec2 f) {
+    vec2 uv = f / iResolution.xy;
+    float m = march(uv);
+    bool b = uv.x > 0.5 && bump();      // bump only where uv.x > 0.5
+    bool o = uv.y > 0.5 || bump();
+    float s = uv.x < 0.3 ? (uv.y < 0.5 ? 1.0 : 2.0) : float(side);
+    c = vec4(m, b ? 1.0 : 0.0, o ? s : -s, float(side) + pick(uv.x).x - pick(uv.y).y);
+}""",
+    "structs_arrays": """
+struct Light { vec3 pos; float power; bool on; };
+struct Hit { float t; Light l; };
+Light lights[3];
+const float W[4] = float[4](0.1, 0.2, 0.3, 0.4);
+Hit best(vec2 p) {
+    Hit h = Hit(1e9, lights[0]);
+    for (int i = 0; i < 3; i++) {
+        float d = distance(vec3(p, 0.0), lights[i].pos);
+        if (lights[i].on && d < h.t) { h.t = d; h.l = lights[i]; }
+    }
+    return h;
+}
+void mainImage(out vec4 c, in vec2 f) {
+    vec2 uv = f / iResolution.xy;
+    lights[0] = Light(vec3(0.2, 0.3, 0.0), 1.0, true);
+    lights[1] = Light(vec3(0.8, 0.6, 0.1), 2.0, uv.x > 0.2);
+    lights[2].pos = vec3(0.5);
+    lights[2].power = 3.0;
+    lights[2].on = true;
+    Hit h = best(uv);
+    int k = int(uv.x * 9.0) - 2;  // -2..6: clamped indices at both ends
+    float arr[5];
+    arr[int(uv.y * 5.0)] = 1.0;
+    Light copy[3] = lights;
+    copy[0].power = 9.0;
+    c = vec4(h.t, h.l.power + W[k] + arr[2], copy[0].power + lights[0].power, float(h.l.on));
+}""",
+    "swizzles_matrices": """
+void mainImage(out vec4 c, in vec2 f) {
+    vec2 uv = f / iResolution.xy;
+    vec4 v = vec4(uv, uv.yx * 2.0);
+    v.xz = v.zx;
+    v.wy += vec2(0.25, -0.5);
+    vec3 w = v.zyx;
+    w.y = w[int(uv.x * 3.0)];
+    mat3 m = mat3(cos(uv.x), sin(uv.x), 0.0, -sin(uv.x), cos(uv.x), 0.0, 0.0, 0.0, 1.0);
+    mat2 r = mat2(uv.x, uv.y, -uv.y, uv.x * 3.0);
+    vec3 a = m * w;
+    vec3 b = w * m;
+    mat3 mm = m * transpose(m) * 2.0;
+    m[1] = vec3(1.0, 2.0, 3.0);
+    m[int(uv.y * 3.0)][1] = 5.0;
+    vec2 q = inverse(r) * uv + r[1];
+    c = vec4(a.x + b.y, mm[0][0] + mm[2].z + determinant(mat3(m)) * 0.01, q * 0.1 + determinant(r));
+}""",
+    "int_uint": """
+void mainImage(out vec4 c, in vec2 f) {
+    int x = int(f.x) - 20;
+    int y = int(f.y) - 12;
+    int big = 2147483647 + x;               // wraps
+    int d = y != 0 ? x / y : x / (y + 0);   // x / 0 is 0 on llvmpipe
+    int r = x % 7;                          // negatives: llvmpipe's unsigned remainder
+    int s = (x << (y + 30)) ^ (big >> 3);   // counts mod 32
+    uint u = uint(x) * 2654435761u;
+    u ^= u >> 15u;
+    uint ud = u / uint(max(y, 0)) + u % 5u;
+    int m = -2147483647 - 1;
+    int n = m / -1 + abs(m) + int(-3.99) + int(3.99);
+    float big_f = float(x) * 1e9;
+    ivec3 iv = ivec3(big_f, 1e20 * float(y), f.x) / ivec3(2, 3, max(y, 1));
+    c = vec4(float(d + r) * 0.1, float(s & 1023), float(ud % 1000u) / 1000.0,
+             float(n + iv.x + iv.y + iv.z + int(uint(big_f))) * 1e-9);
+}""",
+    "builtins_hard_cases": """
+// s(): a NaN or an Inf as a number, so one NaN term does not hide the others of its sum
+float s(float v) { return isnan(v) ? 1234.5 : (isinf(v) ? sign(v) * 4321.0 : v); }
+float s3(vec3 v) { return s(v.x) + s(v.y) * 3.0 + s(v.z) * 7.0; }
+void mainImage(out vec4 c, in vec2 f) {
+    vec2 uv = f / iResolution.xy - 0.5;
+    float x = uv.x * 40.0;
+    if (uv.y > 2.0) x = 0.0;  // x written again: Mesa's constant merging through it (nir_fold) stays out
+    vec3 z = vec3(uv.y > 0.3 ? 0.0 : uv.x, 0.0, 0.0);
+    vec3 n = normalize(z);                              // NaN for the zero vector
+    float p = pow(x, uv.y * 3.0);                        // negative base: NaN
+    float p2 = s(pow(x, 2.0)) + s(pow(-abs(x), 4.0)) + s(pow(x, 0.0)) + s(pow(1.0, x));  // Mesa's rewrites
+    float huge = s(sin(x * 1e8)) + s(cos(x * 1e12)) + s(tan(x * 3e9)) + s(sin(x)) + s(cos(x * 7.0));
+    float tiny = s(exp2(x * 10.0)) + s(log2(abs(x) * 1e-39)) + s(exp(-x * 5.0)) + s(log(x)) + s(log2(x));
+    float inf = 1.0 / uv.x;                              // +-Inf, NaN for 0/0
+    float q = inf * 0.0 + 0.0 * uv.x;                    // 0 * Inf: NaN, unless folded
+    vec3 mixes = mix(vec3(1.0), vec3(0.0, 2.0, x), uv.x) + mix(z, n, step(0.0, uv.y));
+    float a = s(atan(uv.y, uv.x)) + s(atan(x)) * 3.0 + s(asin(uv.y * 3.0)) * 5.0 + s(acos(uv.x)) * 7.0
+            + s(atan(0.0, uv.y)) * 11.0 + s(atan(x, 0.0)) * 13.0;
+    float h = s(sinh(x)) + s(cosh(uv.y)) * 3.0 + s(tanh(x * 10.0)) * 5.0 + s(asinh(x)) * 7.0
+            + s(acosh(x)) * 11.0 + s(atanh(uv.y * 3.0)) * 13.0;
+    float m = s(mod(x, uv.y)) + s(fract(-x)) + s(sign(uv.x)) + s(smoothstep(0.1, -0.1, uv.y))
+            + s(clamp(x, -1.0, inversesqrt(uv.y))) + s(min(inf, x)) + s(max(q, 1.0)) + s(round(x))
+            + s(roundEven(x)) + s(trunc(x)) + s(ceil(x)) + s(floor(x)) + s(degrees(x)) + s(radians(x));
+    vec3 g = reflect(n, vec3(0.0, 1.0, 0.0)) + refract(vec3(uv, -1.0), vec3(0.0, 0.0, 1.0), 1.5 + uv.x)
+           + cross(vec3(uv, 1.0), z) + faceforward(vec3(1.0), vec3(uv, 0.5), vec3(0.0, 1.0, 0.0));
+    float bits = s(intBitsToFloat(floatBitsToInt(x) ^ 1)) + s(uintBitsToFloat(floatBitsToUint(uv.y) + 7u));
+    bvec3 bv = lessThan(vec3(x), vec3(0.0, 1.0, 2.0));
+    float rel = float(any(bv)) + float(all(not(bv))) + float(isnan(p)) + float(isinf(inf));
+    c = vec4(s3(n) + s(p) + p2 + huge * 17.0, tiny + s(q) + a * 19.0 + h * 23.0,
+             m + s3(mixes) + s3(g) * 29.0 + s(dot(g, mixes)),
+             bits + rel + s(length(uv)) + s(distance(uv, vec2(0.1))));
+}""",
+    "globals_and_constants": """
+float counter = 1.5;
+const vec3 K = vec3(0.0, 1.0, 2.0);
+vec2 last;
+void touch(float v) { counter += v; last = vec2(counter, v); }
+vec3 tone(vec3 albedo) { return K + 0.5 * albedo; }  // a constant zero on the left (Mesa drops it)
+void mainImage(out vec4 c, in vec2 f) {
+    vec2 uv = f / iResolution.xy;
+    touch(uv.x);
+    if (uv.y > 0.5) touch(1.0);
+    vec3 nan3 = vec3(0.0) / vec3(uv.x - uv.x);
+    vec3 folded = nan3 * K;                 // NaN times a constant zero is 0 (Mesa folds it)
+    float negz = -0.0 * uv.x + 0.0;        // x + 0.0 keeps the sign of -0.0
+    vec3 left = tone(vec3(uv, -0.0 * uv.y));  // K.x = 0.0 + x: the right side, -0.0 kept
+    negz += 1.0 / left.z + (0.0 - uv.x);
+    c = vec4(counter + left.x * 3.0, last.y + folded.x, folded.y + 1.0 / negz, iTime + iMouse.x + iDate.w * 0.0
+             + iResolution.x + float(iFrame));
+}""",
+}
+
+
+@pytest.mark.parametrize("name", sorted(CONSTRUCTS))
+def test_construct_bit_for_bit(numba, make_shader, name):
+    shader = make_shader(CONSTRUCTS[name])
+    # none of Mesa's reassociations, which the NumPy backend copies and this engine does not
+    # (numpy_backend/nir_fold.py emits each as `(<Mesa's order> if rt.lp else <written>)`):
+    # these shaders test the engine's own rules (the reassociations: test_mesa_reassociation_...)
+    assert "if rt.lp else" not in glslcheck.compile(shader, backend="numpy").source
+    _compare(shader)
+
+
+def test_mesa_reassociation_is_not_copied_yet(numba, make_shader):
+    """`x * 10.0` with `float x = uv.x * 40.0` never written again is `uv.x * 400.0` on
+    llvmpipe (nir_opt_algebraic merges the constants through the SSA value; the NumPy backend
+    copies it, nir_fold.py); this engine computes the written order, two roundings instead of
+    one. The product's relative difference is at most 2**-23 (one float32 rounding), so
+    exp2's result differs by at most ln(2) * |t| * 2**-23 relative: 1.1e-5 for |t| <= 128
+    (past 128 exp2 is clamped: the same). The pixels must differ (else the case tests nothing)
+    and stay within rtol 2e-5."""
+    from glslcheck.compiled_backend.engine import compile_compiled
+
+    shader = make_shader("void mainImage(out vec4 c, in vec2 f) {\n float x = (f.x / iResolution.x - 0.5) * 40.0;"
+                         "\n c = vec4(exp2(x * 3.1), 1.0, 1.0, 1.0); }")
+    got = compile_compiled(shader).render(size=SIZE)
+    want = glslcheck.compile(shader, backend="numpy").render(size=SIZE)
+    assert (got != want).any()
+    np.testing.assert_allclose(got, want, rtol=2e-5, atol=0)
+
+
+@pytest.mark.parametrize("text, what", [
+    ("void mainImage(out vec4 c, in vec2 f) { c = texture(iChannel0, f); }", "iChannel inputs"),
+    ("void mainImage(out vec4 c, in vec2 f) { c = vec4(dFdx(f.x)); }", "derivatives"),
+    ("void mainImage(out vec4 c, in vec2 f) { if (f.x > 3.0) discard; c = vec4(1.0); }", "discard"),
+    ("void mainImage(out vec4 c, in vec2 f) { switch (int(f.x)) { case 1: c = vec4(1.0); break; "
+     "default: c = vec4(0.0); } }", "switch"),
+])
+def test_unsupported_is_a_located_error(numba, make_shader, text, what):
+    from glslcheck.compiled_backend.engine import compile_compiled
+
+    with pytest.raises(GlslError) as info:
+        compile_compiled(make_shader(text))
+    message = str(info.value)
+    assert what in message and "not supported by the compiled engine yet" in message
+    assert info.value.diagnostics[0].loc.line == 1
+
+
+def test_runaway_loop_is_a_located_error(numba, make_shader):
+    from glslcheck.compiled_backend.engine import compile_compiled
+
+    text = "void mainImage(out vec4 c, in vec2 f) {\n float t = 0.0;\n while (f.x > 0.0) { t += 1.0; }\n c = vec4(t); }"
+    prog = compile_compiled(make_shader(text))
+    with pytest.raises(GlslError, match="loop ran more than") as info:
+        prog.render(size=(2, 2))
+    loc = info.value.diagnostics[0].loc
+    assert (loc.path, loc.line, loc.column) == ("Image.glsl", 3, 2)
