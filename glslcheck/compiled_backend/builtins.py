@@ -9,7 +9,6 @@ from typing import Any
 
 from .. import ast as A
 from .. import builtins as B
-from .. import types as T
 from .codegen import Val, _bcast, _error, not_yet
 
 # one float32 component -> scalar.py function of the same rule (fma: llvmpipe's fused steps)
