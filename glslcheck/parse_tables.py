@@ -34,7 +34,7 @@ if TYPE_CHECKING:
 TABLES_MODULE = "glsl_tables"  # glslcheck/grammar/glsl_tables.py
 TABLES_FILE = TABLES_MODULE + ".py"
 GRAMMAR_FILE = "glsl.lark"
-FORMAT = 3  # bump when the layout of the module changes (2: the JSON file)
+FORMAT = 4  # bump when the layout of the module changes (2: the JSON file)
 
 # The Lark options the tables are built with (Lark is only used here, ahead of time).
 LARK_OPTIONS = dict(
@@ -112,28 +112,40 @@ def read_tables(module, grammar: str) -> dict[str, Any]:
 # How the module stores the LALR actions (`actions[state]`: terminal or rule name -> action, see
 # lalr.py): the 404 states' 15 459 entries have only 113 distinct tuples of names, and more than
 # half of the states do one thing whatever comes next (reduce by one rule). So the module lists
-# the distinct name tuples once (`KEYS`) and each state as `(index into KEYS, its actions)`, the
-# actions one number when they are all the same, and `dict.fromkeys` / `dict(zip(...))`
-# rebuild each state's dict.
+# the distinct name tuples once (`KEYS`, each as one string of space-separated names) and each
+# state as `(index into KEYS, its actions)`, the actions one number when they are all the same,
+# else the bytes of 16-bit little-endian numbers; `dict.fromkeys` / `dict(zip(...))` rebuild
+# each state's dict. Strings and bytes, not tuples of thousands of numbers and names: where no
+# .pyc can be written (PYTHONDONTWRITEBYTECODE, a read-only install), compiling a tuple per
+# state cost more than twice the rest of the module (the same choice as _regex_code.py).
+_ACTION = "<{}h"  # struct format of a state's actions
 
 
-def _pack_actions(actions: list[dict[str, int]]) -> tuple[list[tuple[str, ...]], list[tuple]]:
-    keys: list[tuple[str, ...]] = []
+def _pack_actions(actions: list[dict[str, int]]) -> tuple[list[str], list[tuple]]:
+    from struct import pack
+
+    keys: list[str] = []
     index: dict[tuple[str, ...], int] = {}
     rows: list[tuple] = []
     for row in actions:
         names = tuple(row)
+        if any(" " in name for name in names):
+            raise ValueError(f"a name with a space in the LALR table: {names}")
         k = index.get(names)
         if k is None:
             k = index[names] = len(keys)
-            keys.append(names)
+            keys.append(" ".join(names))
         values = tuple(row.values())
-        rows.append((k, values[0] if len(set(values)) == 1 else values))
+        rows.append((k, values[0] if len(set(values)) == 1 else pack(_ACTION.format(len(values)), *values)))
     return keys, rows
 
 
-def _unpack_actions(keys, rows) -> list[dict[str, int]]:
-    return [dict.fromkeys(keys[k], v) if type(v) is int else dict(zip(keys[k], v)) for k, v in rows]
+def _unpack_actions(keys: tuple[str, ...], rows: tuple[tuple, ...]) -> list[dict[str, int]]:
+    from struct import unpack
+
+    names = [tuple(map(sys.intern, k.split(" "))) for k in keys]
+    return [dict.fromkeys(names[k], v) if type(v) is int else dict(zip(names[k], unpack(_ACTION.format(len(v) >> 1), v)))
+            for k, v in rows]
 
 
 def load() -> dict[str, Any]:
