@@ -4,12 +4,12 @@ Owns the one step that needs Lark: turning the grammar into what lexer.py and la
 (the lexer's master regular expression and keyword tables, the LALR action table, and for each
 rule the shape of the tree it builds). Lark does that analysis in about a second, so it is done
 ahead of time and the result ships in the package as `glslcheck/grammar/glsl_tables.py`: a
-module of plain literals (tuples, strings, numbers; tests/robustness checks that it holds
-nothing else), never a pickle, and never written at run time, so no cache file exists that
+module of plain literals (tuples, strings, bytes, numbers; tests/robustness checks that it
+holds nothing else), never a pickle, and never written at run time, so no cache file exists that
 another user could plant (issue 16) and a CLI call does not import Lark (issue 18). As a module
-it is read from its `.pyc` like the rest of the package: its tuples are the code's constants,
-which the interpreter unmarshals in C, where JSON was parsed into lists and rebuilt (a `lint
-FILE` spent 18.5 M instructions on `json.load` and the rebuild, and imported `json`; issue 18).
+it is read from its `.pyc` like the rest of the package: its literals are the code's constants,
+which the interpreter unmarshals in C, where the JSON file it replaces was parsed into lists
+(`json.load` was 10.6 M instructions of every `lint FILE`; issue 18, docs/performance.md).
 
 The module records the SHA-256 of the grammar it was built from. `load()` compares it with the
 grammar that ships beside it; stale tables (the grammar was edited and the tables were not
