@@ -86,7 +86,7 @@ class Rule:
 
 def doc_sections(doc: str) -> dict[str, str]:
     """`## Title` sections of a rule docstring: title -> body (stripped). What splitting at
-    `^## (.+?)\s*$` (multi-line) gives, found line by line: the regex engine scanned every
+    `^## (.+?)\\s*$` (multi-line) gives, found line by line: the regex engine scanned every
     character of the 18 docstrings, 2.7 M instructions of every lint's start (issue 18)."""
     sections: dict[str, str] = {}
     title = None
