@@ -135,13 +135,13 @@ def _tree_shape(callback) -> list:
 def _callback(size: int, name: str, expand1: bool, keep: list | None, append_none: int):
     """The function that builds a rule's tree from its `size` children, as Lark's callback
     does; None when it would return its one child unchanged (nothing to call)."""
-    if size == 1 and expand1 and (keep is None or (keep == [[0, False, 0]] and not append_none)):
+    keep = None if keep is None else [tuple(k) for k in keep]  # lists built, tuples shipped
+    if size == 1 and expand1 and (keep is None or (keep == [(0, False, 0)] and not append_none)):
         return None
     if keep is None:
         if expand1:
             return lambda children: children[0] if len(children) == 1 else Tree(name, children)
         return lambda children: Tree(name, children)
-    keep = [tuple(k) for k in keep]
 
     def build(children):
         filtered = []

@@ -1,26 +1,29 @@
-"""The parser's tables: built from grammar/glsl.lark by Lark, shipped as data, loaded at start-up.
+"""The parser's tables: built from grammar/glsl.lark by Lark, shipped as a generated module, loaded at start-up.
 
 Owns the one step that needs Lark: turning the grammar into what lexer.py and lalr.py run on
 (the lexer's master regular expression and keyword tables, the LALR action table, and for each
 rule the shape of the tree it builds). Lark does that analysis in about a second, so it is done
-ahead of time and the result ships in the package as `glslcheck/grammar/glsl_tables.json`:
-plain JSON, never a pickle, and never written at run time, so no cache file exists that
-another user could plant (issue 16) and a CLI call does not import Lark (issue 18).
+ahead of time and the result ships in the package as `glslcheck/grammar/glsl_tables.py`: a
+module of plain literals (tuples, strings, bytes, numbers; tests/robustness checks that it
+holds nothing else), never a pickle, and never written at run time, so no cache file exists that
+another user could plant (issue 16) and a CLI call does not import Lark (issue 18). As a module
+it is read from its `.pyc` like the rest of the package: its literals are the code's constants,
+which the interpreter unmarshals in C, where the JSON file it replaces was parsed into lists
+(`json.load` was 10.6 M instructions of every `lint FILE`; issue 18, docs/performance.md).
 
-The file records the SHA-256 of the grammar it was built from. `load()` compares it with the
-grammar that ships beside it; a stale file (the grammar was edited and the tables were not
-rebuilt) is not used: the tables are built in memory from the grammar, with a warning, and
-nothing is written. Rebuild the file after editing the grammar with
+The module records the SHA-256 of the grammar it was built from. `load()` compares it with the
+grammar that ships beside it; stale tables (the grammar was edited and the tables were not
+rebuilt) are not used: the tables are built in memory from the grammar, with a warning, and
+nothing is written. Rebuild the module after editing the grammar with
 
     python -m glslcheck.parse_tables
 
-tests/parse/test_parse_tables.py checks that the shipped file is the one this module builds
-from the shipped grammar, and that a stale file is detected.
+tests/parse/test_parse_tables.py checks that the shipped module is the one this module builds
+from the shipped grammar, and that stale or damaged tables are detected.
 """
 
 from __future__ import annotations
 
-import json
 import os
 import sys
 
@@ -28,9 +31,10 @@ TYPE_CHECKING = False  # not typing's: importing typing costs every start-up (is
 if TYPE_CHECKING:
     from typing import Any
 
-TABLES_FILE = "glsl_tables.json"
+TABLES_MODULE = "glsl_tables"  # glslcheck/grammar/glsl_tables.py
+TABLES_FILE = TABLES_MODULE + ".py"
 GRAMMAR_FILE = "glsl.lark"
-FORMAT = 2  # bump when the layout of the JSON changes
+FORMAT = 4  # bump when the layout of the module changes (2: the JSON file)
 
 # The Lark options the tables are built with (Lark is only used here, ahead of time).
 LARK_OPTIONS = dict(
@@ -86,57 +90,79 @@ def grammar_hash(text: str) -> str:
     return sha256(text.encode("utf-8")).hexdigest()
 
 
-def read_tables(path: str, grammar: str) -> dict[str, Any]:
-    """The tables in `path`; StaleTablesError unless they were built from `grammar` in this format."""
-    with open(path, encoding="utf-8") as f:
-        tables = json.load(f)
-    if not isinstance(tables, dict) or tables.get("format") != FORMAT:
-        raise StaleTablesError(f"{path} has an old format")
-    if tables.get("grammar_sha256") != grammar_hash(grammar):
-        raise StaleTablesError(f"{path} was built from another version of {GRAMMAR_FILE}")
-    parser = tables["parser"]
-    parser["actions"] = _unpack_actions(parser.pop("keys"), parser["actions"])
-    return tables
+def tables_module():
+    """The shipped tables module (imported, so from its .pyc)."""
+    from .grammar import glsl_tables
+
+    return glsl_tables
 
 
-# How the file stores the LALR actions (`actions[state]`: terminal or rule name -> action, see
-# lalr.py): the 404 states' 15 459 entries have only 113 distinct lists of names, and more than
-# half of the states do one thing whatever comes next (reduce by one rule). So the file lists
-# the distinct name lists once (`keys`) and each state as `[index into keys, its actions]`, the
-# actions one number when they are all the same: JSON then reads a fifth of the strings and
-# half of the numbers, and `dict.fromkeys` / `dict(zip(...))` rebuild each state's dict.
+def read_tables(module, grammar: str) -> dict[str, Any]:
+    """The tables `module` holds; StaleTablesError unless they were built from `grammar` in this format."""
+    if getattr(module, "FORMAT", None) != FORMAT:
+        raise StaleTablesError(f"{module.__file__} has an old format")
+    if module.GRAMMAR_SHA256 != grammar_hash(grammar):
+        raise StaleTablesError(f"{module.__file__} was built from another version of {GRAMMAR_FILE}")
+    parser = {"start": module.START, "end": module.END, "rules": module.RULES,
+              "actions": _unpack_actions(module.KEYS, module.ACTIONS)}
+    return {"format": FORMAT, "grammar_sha256": module.GRAMMAR_SHA256, "built_by": module.BUILT_BY,
+            "lexer": module.LEXER, "words": module.WORDS, "parser": parser}
 
 
-def _pack_actions(actions: list[dict[str, int]]) -> tuple[list[list[str]], list[list]]:
-    keys: list[list[str]] = []
+# How the module stores the LALR actions (`actions[state]`: terminal or rule name -> action, see
+# lalr.py): the 404 states' 15 459 entries have only 113 distinct tuples of names, and more than
+# half of the states do one thing whatever comes next (reduce by one rule). So the module lists
+# the distinct name tuples once (`KEYS`, each as one string of space-separated names) and each
+# state as `(index into KEYS, its actions)`, the actions one number when they are all the same,
+# else the bytes of 16-bit little-endian numbers; `dict.fromkeys` / `dict(zip(...))` rebuild
+# each state's dict. Strings and bytes, not tuples of thousands of numbers and names: where no
+# .pyc can be written (PYTHONDONTWRITEBYTECODE, a read-only install), compiling a tuple per
+# state cost more than twice the rest of the module (the same choice as _regex_code.py).
+_ACTION = "<{}h"  # struct format of a state's actions
+
+
+def _pack_actions(actions: list[dict[str, int]]) -> tuple[list[str], list[tuple]]:
+    from struct import pack
+
+    keys: list[str] = []
     index: dict[tuple[str, ...], int] = {}
-    rows: list[list] = []
+    rows: list[tuple] = []
     for row in actions:
         names = tuple(row)
+        if any(" " in name for name in names):
+            raise ValueError(f"a name with a space in the LALR table: {names}")
         k = index.get(names)
         if k is None:
             k = index[names] = len(keys)
-            keys.append(list(names))
-        values = list(row.values())
-        rows.append([k, values[0] if len(set(values)) == 1 else values])
+            keys.append(" ".join(names))
+        values = tuple(row.values())
+        rows.append((k, values[0] if len(set(values)) == 1 else pack(_ACTION.format(len(values)), *values)))
     return keys, rows
 
 
-def _unpack_actions(keys: list[list[str]], rows: list[list]) -> list[dict[str, int]]:
-    return [dict.fromkeys(keys[k], v) if type(v) is int else dict(zip(keys[k], v)) for k, v in rows]
+def _unpack_actions(keys: tuple[str, ...], rows: tuple[tuple, ...]) -> list[dict[str, int]]:
+    from struct import unpack
+
+    names = [tuple(map(sys.intern, k.split(" "))) for k in keys]
+    return [dict.fromkeys(names[k], v) if type(v) is int else dict(zip(names[k], unpack(_ACTION.format(len(v) >> 1), v)))
+            for k, v in rows]
 
 
 def load() -> dict[str, Any]:
-    """The tables for the installed grammar: the shipped file, or built in memory when it is stale."""
-    folder = grammar_folder()
+    """The tables for the installed grammar: the shipped module, or built in memory when it is stale."""
     grammar = grammar_text()
-    path = os.path.join(folder, TABLES_FILE)
     try:
-        return read_tables(path, grammar)
-    except (OSError, ValueError, StaleTablesError) as e:
-        print(f"glslcheck: warning: {e}; building the parser tables in memory "
-              f"(run `python -m glslcheck.parse_tables` to update the file)", file=sys.stderr)
+        return read_tables(tables_module(), grammar)
+    except Exception as e:  # stale, or a damaged module (any error importing it): never fatal
+        print(f"glslcheck: warning: {_why(e)}; building the parser tables in memory "
+              f"(run `python -m glslcheck.parse_tables` to update the module)", file=sys.stderr)
         return build(grammar)
+
+
+def _why(error: Exception) -> str:
+    if isinstance(error, StaleTablesError):
+        return str(error)
+    return f"the parser tables module does not load ({type(error).__name__}: {error})"
 
 
 # ---------------------------------------------------------------------------------------------
@@ -174,28 +200,43 @@ def build(grammar: str) -> dict[str, Any]:
 
 
 def dumps(tables: dict[str, Any]) -> str:
-    """The file's text: one line per LALR state, so a grammar change gives a readable diff."""
+    """The module's text: one line per rule, name tuple and LALR state, so a grammar change
+    gives a readable diff. Dictionaries are written with their keys sorted."""
     keys, rows = _pack_actions(tables["parser"]["actions"])
-    parser = {**tables["parser"], "keys": keys, "actions": rows}
-    head = {k: v for k, v in tables.items() if k != "parser"}
-    lines = ["{"]
-    for key, value in head.items():
-        lines.append(f"  {json.dumps(key)}: {json.dumps(value, sort_keys=True)},")
-    lines.append('  "parser": {')
-    for key, value in parser.items():
-        if key in ("actions", "rules", "keys"):
-            rows = [f"    {json.dumps(row, sort_keys=True)}" for row in value]
-            lines.append(f"   {json.dumps(key)}: [\n" + ",\n".join(rows) + "\n   ],")
-        else:
-            lines.append(f"   {json.dumps(key)}: {json.dumps(value)},")
-    lines[-1] = lines[-1].rstrip(",")
-    lines.append("  }")
-    lines.append("}")
+    lines = [
+        f'"""The parser\'s tables for {GRAMMAR_FILE} (see glslcheck/parse_tables.py).',
+        "",
+        'Written by `python -m glslcheck.parse_tables`; do not edit."""',
+        "",
+        f"FORMAT = {tables['format']!r}",
+        f"GRAMMAR_SHA256 = {tables['grammar_sha256']!r}",
+        f"BUILT_BY = {tables['built_by']!r}",
+        f"LEXER = {_literal(tables['lexer'])}",
+        f"WORDS = {_literal(tables['words'])}",
+        f"START = {tables['parser']['start']!r}",
+        f"END = {tables['parser']['end']!r}",
+    ]
+    for name, items in (("RULES", tables["parser"]["rules"]), ("KEYS", keys), ("ACTIONS", rows)):
+        lines.append(f"{name} = (")
+        lines.extend(f"    {_literal(item)}," for item in items)
+        lines.append(")")
     return "\n".join(lines) + "\n"
 
 
+def _literal(value) -> str:
+    """`value` (JSON-like data) as a Python literal: lists as tuples, dictionaries sorted."""
+    if isinstance(value, dict):
+        return "{" + ", ".join(f"{k!r}: {_literal(value[k])}" for k in sorted(value)) + "}"
+    if isinstance(value, (list, tuple)):
+        items = [_literal(v) for v in value]
+        return f"({items[0]},)" if len(items) == 1 else "(" + ", ".join(items) + ")"
+    if isinstance(value, str):
+        return repr(str(value))  # a rule's origin is a Lark Token (a str subclass)
+    return repr(value)
+
+
 def main(argv: list[str] | None = None) -> int:
-    """Rebuild glslcheck/grammar/glsl_tables.json from glsl.lark (run after editing the grammar)."""
+    """Rebuild glslcheck/grammar/glsl_tables.py from glsl.lark (run after editing the grammar)."""
     write_generated(os.path.join(grammar_folder(), TABLES_FILE), dumps(build(grammar_text())))
     return 0
 

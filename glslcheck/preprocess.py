@@ -422,6 +422,7 @@ _BINARY_PREC = {
     "<": 7, ">": 7, "<=": 7, ">=": 7, "<<": 8, ">>": 8, "+": 9, "-": 9, "*": 10, "/": 10, "%": 10,
 }
 _INT_RE = compiled(r"0[xX][0-9A-Fa-f]+|0[0-7]*|[1-9][0-9]*")
+_NAME_RE = compiled(r"[A-Za-z_][A-Za-z0-9_]*")  # a predefined macro's name (stored: `re.fullmatch` compiled it at each start)
 _INVARIANT_ALL_RE = compiled(r"STDGL[ \t]+invariant[ \t]*\([ \t]*all[ \t]*\)[ \t]*")
 
 
@@ -447,7 +448,7 @@ class _Preprocessor:
             base["HW_PERFORMANCE"] = "1"
         base.update(predefined or {})
         for name, value in base.items():
-            if not re.fullmatch(r"[A-Za-z_][A-Za-z0-9_]*", name):
+            if not _NAME_RE.fullmatch(name):
                 raise ValueError(f"predefined macro name {name!r} is not an identifier")
             toks = _lex_all(value, 0, len(value))
             self.macros[name] = Macro(name, None, tuple(t.text for t in toks), None, True, toks)

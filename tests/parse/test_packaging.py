@@ -30,7 +30,7 @@ def test_wheel_contains_grammar_and_parses_from_it(tmp_path):
     with zipfile.ZipFile(wheel) as z:
         names = z.namelist()
         assert "glslcheck/grammar/glsl.lark" in names
-        assert "glslcheck/grammar/glsl_tables.json" in names  # the parser's tables (parse_tables.py)
+        assert "glslcheck/grammar/glsl_tables.py" in names  # the parser's tables (parse_tables.py)
         z.extractall(tmp_path / "site")
     # Run from an unrelated folder with only the unpacked wheel on the path: the source tree's
     # grammar/ folder is not reachable, so the grammar must come from the package data.

@@ -1,13 +1,14 @@
 """The parser tables shipped beside the grammar (glslcheck/parse_tables.py).
 
-The file must be what Lark builds from the shipped grammar today (a grammar edit without
-`python -m glslcheck.parse_tables` fails here), and a file built from another grammar must be
-detected at run time and not used.
+The module (grammar/glsl_tables.py) must be what Lark builds from the shipped grammar today (a
+grammar edit without `python -m glslcheck.parse_tables` fails here), and tables built from another
+grammar, or a damaged module, must be detected at run time and not used.
 """
 
 from __future__ import annotations
 
 import shutil
+import types
 
 import pytest
 
@@ -23,7 +24,32 @@ def test_shipped_tables_are_built_from_the_shipped_grammar():
     with open(path, encoding="utf-8") as f:
         shipped = f.read()
     fresh = parse_tables.dumps(parse_tables.build(parse_tables.grammar_text()))
-    assert shipped == fresh, "grammar/glsl_tables.json is stale: run `python -m glslcheck.parse_tables`"
+    assert shipped == fresh, "grammar/glsl_tables.py is stale: run `python -m glslcheck.parse_tables`"
+
+
+def test_loaded_tables_are_the_built_ones():
+    """What `load` gives from the module (tuples, from the .pyc) equals what `build` gives (lists)."""
+
+    def plain(value):
+        if isinstance(value, dict):
+            return {k: plain(v) for k, v in value.items()}
+        if isinstance(value, (list, tuple)):
+            return [plain(v) for v in value]
+        return value
+
+    loaded = parse_tables.load()
+    built = parse_tables.build(parse_tables.grammar_text())
+    assert plain(loaded) == plain(built)
+    # each state's actions in the same order
+    assert [list(row) for row in loaded["parser"]["actions"]] == [list(row) for row in built["parser"]["actions"]]
+
+
+def _module_from(path) -> types.ModuleType:
+    """The tables module made from the text at `path` (as importing it would)."""
+    module = types.ModuleType("glsl_tables_copy")
+    module.__file__ = str(path)
+    exec(compile(path.read_text(encoding="utf-8"), str(path), "exec"), module.__dict__)
+    return module
 
 
 @pytest.fixture
@@ -33,6 +59,7 @@ def grammar_copy(tmp_path, monkeypatch):
     for name in (parse_tables.GRAMMAR_FILE, parse_tables.TABLES_FILE):
         shutil.copy(f"{folder}/{name}", tmp_path / name)
     monkeypatch.setattr(parse_tables, "grammar_folder", lambda: str(tmp_path))
+    monkeypatch.setattr(parse_tables, "tables_module", lambda: _module_from(tmp_path / parse_tables.TABLES_FILE))
     return tmp_path
 
 
@@ -52,7 +79,7 @@ def test_stale_tables_are_detected_and_rebuilt_in_memory(grammar_copy, capsys):
     assert '"^=" | "|="' in text
     grammar.write_text(text.replace('"^=" | "|="', '"^=" | "|=" | "^^="'), encoding="utf-8")
     with pytest.raises(parse_tables.StaleTablesError):
-        parse_tables.read_tables(str(tables_file), grammar.read_text(encoding="utf-8"))
+        parse_tables.read_tables(_module_from(tables_file), grammar.read_text(encoding="utf-8"))
     tables = parse_tables.load()
     assert "building the parser tables in memory" in capsys.readouterr().err
     assert tables["grammar_sha256"] == parse_tables.grammar_hash(grammar.read_text(encoding="utf-8"))
@@ -71,9 +98,9 @@ def test_damaged_tables_are_not_used(grammar_copy, capsys, damage):
     if damage == "truncated":
         tables_file.write_text(text[: len(text) // 2], encoding="utf-8")
     else:
-        old = f'"format": {parse_tables.FORMAT},'
+        old = f"FORMAT = {parse_tables.FORMAT}\n"
         assert old in text
-        tables_file.write_text(text.replace(old, '"format": 0,'), encoding="utf-8")
+        tables_file.write_text(text.replace(old, "FORMAT = 2\n"), encoding="utf-8")
     tables = parse_tables.load()
     assert "building the parser tables in memory" in capsys.readouterr().err
     assert tables["format"] == parse_tables.FORMAT

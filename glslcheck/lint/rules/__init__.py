@@ -26,8 +26,6 @@ and has a row in `RULE_TABLE` below. Nothing else registers a rule.
 from __future__ import annotations
 
 import importlib
-import re
-from ...regexes import compiled
 from ...records import record
 from functools import cache
 from types import ModuleType
@@ -62,7 +60,6 @@ SECTIONS = ("What it does", "Why is this bad?", "Example", "Use instead")
 SEVERITIES = {"error": "compile error", "warning": "course rule", "note": "worth knowing"}
 NEEDS = ("text", "ast", "suppressions")
 READS = ("functions", "names", "program")
-_SECTION_RE = compiled(r"^## (.+?)\s*$", re.M)
 
 
 @record(frozen=True)
@@ -88,9 +85,24 @@ class Rule:
 
 
 def doc_sections(doc: str) -> dict[str, str]:
-    """`## Title` sections of a rule docstring: title -> body (stripped)."""
-    parts = _SECTION_RE.split(doc)
-    return {parts[i]: parts[i + 1].strip() for i in range(1, len(parts) - 1, 2)}
+    """`## Title` sections of a rule docstring: title -> body (stripped). What splitting at
+    `^## (.+?)\\s*$` (multi-line) gives, found line by line: the regex engine scanned every
+    character of the 18 docstrings, 2.7 M instructions of every lint's start (issue 18)."""
+    sections: dict[str, str] = {}
+    title = None
+    body: list[str] = []
+    for line in doc.split("\n"):
+        if line.startswith("## ") and len(line) > 3:
+            if title is not None:
+                sections[title] = "\n".join(body).strip()
+            rest = line[3:]
+            title = rest.rstrip() or rest[0]  # `.+?` takes at least one character
+            body = []
+        elif title is not None:
+            body.append(line)
+    if title is not None:
+        sections[title] = "\n".join(body).strip()
+    return sections
 
 
 def _load(name: str, module_name: str) -> Rule:
