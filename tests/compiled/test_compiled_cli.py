@@ -104,3 +104,35 @@ def test_bench_compiled_without_numba_exits_2_before_measuring(tmp_path, capsys,
     err = capsys.readouterr().err
     assert "pip install 'glslcheck[jit]'" in err and "Traceback" not in err
     assert not (tmp_path / "p.png").exists()
+
+
+def test_verify_backends_compiled_gl_matches(numba, gl, tmp_path, capsys):
+    """`verify --backends compiled,gl`: the compiled engine as the CPU side, against llvmpipe."""
+    import json
+
+    path = tmp_path / "Image.glsl"
+    path.write_text(IMAGE)
+    assert main(["verify", str(path), "--size", "16x9", "--time", "0.7", "--format", "json",
+                 "--backends", "compiled,gl"]) == 0
+    frame = json.loads(capsys.readouterr().out)  # one frame: one object
+    assert frame["match"] is True and frame["verdict"] == "match"
+
+
+def test_verify_compiled_errors(tmp_path, capsys, monkeypatch):
+    """Unsupported construct: exit 1 at its line; --precision other than float32: exit 2; no numba: exit 2."""
+    from glslcheck.compiled_backend import engine
+
+    path = tmp_path / "Image.glsl"
+    path.write_text(IMAGE)
+    assert main(["verify", str(path), "--size", "4x2", "--precision", "float64", "--backends", "compiled,gl"]) == 2
+    assert "float32 only" in capsys.readouterr().err
+    if engine.available():
+        bad = tmp_path / "Bad.glsl"
+        bad.write_text("void mainImage(out vec4 c, in vec2 f) {\n    c = vec4(1.0);\n    if (f.x > 2.0) discard;\n}\n")
+        assert main(["verify", str(bad), "--size", "4x2", "--backends", "compiled,gl"]) == 1
+        err = capsys.readouterr().err
+        assert f"{bad}:3:" in err and "not supported by the compiled engine yet" in err and "Traceback" not in err
+    monkeypatch.setattr(engine, "available", lambda: False)
+    assert main(["verify", str(path), "--size", "4x2", "--backends", "compiled,gl"]) == 2
+    err = capsys.readouterr().err
+    assert "pip install 'glslcheck[jit]'" in err and "Traceback" not in err
