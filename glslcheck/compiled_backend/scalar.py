@@ -6,10 +6,9 @@ for every lane (its docstring is the reference for every rule quoted here): IEEE
 arithmetic, llvmpipe's integer division and remainder, shift counts mod 32, float-to-int
 conversions through x86's cvttps2dq, IEEE minNum/maxNum for min/max, and gallivm's
 sin/cos/tan/exp2/log2/pow, for which numpy_backend/jit_kernels.py has the one-lane algorithms
-(`_trig`, `_exp2`, `_log2`): `_exp2` and `_log2` are called here for the arguments they take,
-and the rest (NaN, negative logarithms) is computed by the functions below, step by step as
-runtime.LlvmpipeMath does; sin/cos/tan by `_trig_any`, `_trig`'s steps without a branch on the
-quadrant (a mispredicted branch costs more than the polynomial), for every finite argument.
+(`_trig`, `_exp2`, `_log2`): they are called here for the arguments they take, and the rest
+(|x| >= 2**29 for the trigonometric functions, NaN, negative logarithms) is computed by the
+functions below, step by step as runtime.LlvmpipeMath does.
 
 Imported only by the generated modules (compiled_backend/engine.py loads them); importing it
 imports numba.
@@ -23,7 +22,7 @@ import numba
 import numpy as np
 
 from ..numpy_backend import llvmpipe_fast as lf
-from ..numpy_backend.jit_kernels import _bits, _daz, _exp2, _float, _log2, _mad
+from ..numpy_backend.jit_kernels import _bits, _daz, _exp2, _float, _log2, _mad, _trig, trig_in_range
 
 F32 = np.float32
 I32 = np.int32
@@ -287,25 +286,9 @@ def _wrap(v):
 
 
 @njit
-def _pick(flag, a, b):
-    """``a`` where bit 0 of the int ``flag`` is clear, else ``b``, through a bit mask: the
-    quadrant of a sine is as good as random from pixel to pixel, and a branch on it mispredicts
-    half the time (20 ns a sin against 7 on sorted arguments, benchmarks/bench_compiled.py)."""
-    m = -(np.int64(flag) & 1)
-    return _float(U32((np.int64(_bits(a)) & ~m) | (np.int64(_bits(b)) & m)))
-
-
-@njit
-def _negate_if(flag, x):
-    """``-x`` where bit 0 of the int ``flag`` is set (the sign bit flipped, no branch)."""
-    return _float(U32(np.int64(_bits(x)) ^ ((np.int64(flag) & 1) << 31)))
-
-
-@njit
 def _trig_any(a, fma, which):
-    """LlvmpipeMath._sin_cos_reduced/_sin_cos_result of a finite float32 ``a`` (``which`` 0 sin,
-    1 cos, 2 tan), without a data-dependent branch: jit_kernels._trig's steps for |a| < 2**29,
-    and for larger |a| its conversion that may give INT_MIN and integer steps that wrap."""
+    """LlvmpipeMath._sin_cos_reduced/_sin_cos_result for a finite |a| >= 2**29, where the
+    conversion may give INT_MIN and the integer steps wrap (jit_kernels._trig covers the rest)."""
     ai = np.int64(I32(_bits(a)))
     x_abs = _daz(_float(U32(ai & 0x7FFFFFFF)))
     p = np.float64(F32(x_abs * _FOPI))
@@ -323,18 +306,24 @@ def _trig_any(a, fma, which):
     y2_9 = _mad(y2_6, x_3, x_3, fma)
     s = _ZERO
     c = _ZERO
-    if which != 1:  # a constant: the sine's polynomial by bit 1 of j, sign of x flipped by bit 2 of j + 1
-        s = _negate_if((ai >> 31) ^ (emm2_add >> 2), _pick(emm2_and >> 1, y2_9, y_10))
-        s = fmax(fmin(s, _ONE), _MONE)  # lp_build_clamp: a NaN of a huge |a|'s reduction gives 1
-    if which != 0:  # cos: the same of j - 2, the sign bit set where its bit 2 is clear
+    if which != 1:
+        s = y2_9 if (emm2_and & 2) == 0 else y_10
+        if ((ai >> 31) ^ (emm2_add >> 2)) & 1:
+            s = -s
+        s = fmax(fmin(s, _ONE), _MONE)
+    if which != 0:
         j2 = _wrap(emm2_and - 2)
-        c = _negate_if(((j2 >> 2) & 1) ^ 1, _pick(j2 >> 1, y2_9, y_10))
+        c = y2_9 if (j2 & 2) == 0 else y_10
+        if (j2 >> 2) & 1 == 0:
+            c = -c
         c = fmax(fmin(c, _ONE), _MONE)
     return s if which == 0 else c if which == 1 else F32(s / c)
 
 
 @njit
 def _trig_call(a, fma, which):
+    if trig_in_range(a):
+        return _trig(a, fma, which)
     if (np.int64(_bits(a)) & 0x7FFFFFFF) >= 0x7F800000:
         return _NAN  # NaN or Inf
     return _trig_any(a, fma, which)
