@@ -13,7 +13,9 @@ Library API:
 
 Configurations (`configurations()`): the GL driver (highp = float32) and the NumPy backend at
 float16, float32 and float64, each at 1, 4 and 16 samples per pixel (a 1x1, 2x2, 4x4 sub-pixel
-grid, the same on both backends): 12 per shader.
+grid, the same on both backends): 12 per shader; with `compiled=True` also the compiled engine
+(glslcheck/compiled_backend, float32; its first render loads or compiles its module, so that
+time is in the warm-up, not in the timed rounds), and with `webgl=True` WebGL 2.
 
 Timing: one warm-up render per configuration (it compiles the GL supersampling variant and
 executes the NumPy module for that precision), then `runs` rounds in which every configuration
@@ -80,11 +82,12 @@ class Config:
         return (self.backend, self.precision, self.samples) == REFERENCE
 
 
-def configurations(samples: Sequence[int] = SAMPLES, webgl: bool = False) -> list[Config]:
+def configurations(samples: Sequence[int] = SAMPLES, webgl: bool = False, compiled: bool = False) -> list[Config]:
     """GL first (its one-sample time is the unit of `ratio_to_gl`), then WebGL (headless
-    Chromium, when asked for), then NumPy by precision."""
+    Chromium) and the compiled engine (when asked for), then NumPy by precision."""
     configs = [Config("gl", "float32", s) for s in samples]
     configs += [Config("webgl", "float32", s) for s in samples if webgl]
+    configs += [Config("compiled", "float32", s) for s in samples if compiled]
     configs += [Config("numpy", p, s) for p in PRECISIONS for s in samples]
     return configs
 
@@ -164,6 +167,7 @@ def bench_shader(
     step: Callable[[str], None] | None = None,
     clock: Callable[[], float] = _time.perf_counter,
     webgl: bool = False,
+    compiled: bool = False,
 ) -> list[Row]:
     """Time and measure every configuration of one shader (see the module docstring).
 
@@ -178,12 +182,16 @@ def bench_shader(
     name = shader.root or (shader.image.path if shader.image else "<shader>")
     gl, numpy_prog = programs if programs is not None else _compile_both(shader)
     _pin_parallel(numpy_prog)
-    configs = configurations(samples, webgl)
+    configs = configurations(samples, webgl, compiled)
     by_backend = {"gl": gl, "numpy": numpy_prog}
     if webgl:  # WebGL 2 in headless Chromium (glslcheck/webgl_backend)
         from .api import compile as compile_program
 
         by_backend["webgl"] = compile_program(shader, backend="webgl")
+    if compiled:  # per pixel, by numba (InputError without numba, GlslError for what it lacks)
+        from .compiled_backend import compile_program as compile_compiled
+
+        by_backend["compiled"] = compile_compiled(shader)
     kwargs = dict(size=tuple(size), time=float(time))
 
     def render(config: Config) -> tuple[np.ndarray, float]:
@@ -294,7 +302,7 @@ def format_table(rows: Sequence[Row], size: tuple[int, int] | None = None, runs:
 # ---------------------------------------------------------------------------------------------
 # The plot: time (x, log) against mean abs error (y, log), one panel per shader. Pillow only.
 
-COLOURS = {"gl": (40, 40, 40), "webgl": (148, 103, 189), "float16": (214, 39, 40), "float32": (31, 119, 180), "float64": (44, 160, 44)}
+COLOURS = {"gl": (40, 40, 40), "webgl": (148, 103, 189), "compiled": (140, 86, 75), "float16": (214, 39, 40), "float32": (31, 119, 180), "float64": (44, 160, 44)}
 FRONT_COLOUR = (255, 127, 14)
 GRID = (225, 225, 225)
 SCALE = 2  # drawn at twice the size, then downsampled: Pillow's shapes have no antialiasing
@@ -339,7 +347,8 @@ def _tick_text(e: int, unit: str = "") -> str:
     return text + unit
 
 
-LEGEND_COLOURS = {"gl": "GL (llvmpipe, float32)", "webgl": "WebGL (ANGLE, SwiftShader)", "float16": "NumPy float16",
+LEGEND_COLOURS = {"gl": "GL (llvmpipe, float32)", "webgl": "WebGL (ANGLE, SwiftShader)",
+                  "compiled": "compiled engine (numba, float32)", "float16": "NumPy float16",
                   "float32": "NumPy float32", "float64": "NumPy float64"}
 LEGEND_SHAPES = ("1 sample", "4 samples", "16 samples", "Pareto front (ringed)")
 
@@ -372,7 +381,8 @@ def write_plot(rows: Sequence[Row], path: str | os.PathLike, title: str | None =
     width = pw * len(shaders)
     f_title, f_axis, f_tick, f_label = _font(17 * S), _font(13 * S), _font(11 * S), _font(11 * S)
     measure = ImageDraw.Draw(Image.new("RGB", (1, 1)))
-    colour_keys = [k for k in LEGEND_COLOURS if k != "webgl" or any(r.config.backend == "webgl" for r in rows)]
+    colour_keys = [k for k in LEGEND_COLOURS
+                   if k not in ("webgl", "compiled") or any(r.config.backend == k for r in rows)]
     texts = [LEGEND_COLOURS[k] for k in colour_keys] + list(LEGEND_SHAPES)
     legend = _legend_layout([measure.textlength(t, font=f_axis) for t in texts], width)
     legend_h = (18 + 22 * (legend[-1][1] + 1)) * S

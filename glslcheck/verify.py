@@ -49,7 +49,8 @@ from .shadertoy import DEFAULT_SIZE
 from .sources import Shader, load_shader
 
 BACKENDS = ("numpy", "gl")
-ALL_BACKENDS = ("numpy", "gl", "webgl")  # webgl: headless Chromium (glslcheck/webgl_backend)
+ALL_BACKENDS = ("numpy", "gl", "webgl", "compiled")  # webgl: headless Chromium (glslcheck/webgl_backend);
+# compiled: per pixel by numba (glslcheck/compiled_backend), float32 only
 DEFAULT_FPS = 60.0
 
 
@@ -151,6 +152,10 @@ def compile_backend(shader: Shader, backend: str):
         except ImportError as e:
             raise InputError(f"error: the NumPy backend is not available in this build ({e})") from None
         return compile_numpy(shader)
+    if backend == "compiled":  # InputError (exit 2) without numba, with the pip line
+        from .compiled_backend import compile_program
+
+        return compile_program(shader)
     raise ValueError(f"unknown backend {backend!r}; expected one of {', '.join(ALL_BACKENDS)}")
 
 
@@ -197,6 +202,8 @@ class _Pair:
         """The float64 render of the program under test (None when it has no precision)."""
         accepted = self._accepted[0]
         if accepted is not None and "precision" not in accepted:
+            return None
+        if getattr(self.programs[0], "backend", "") == "compiled":  # float32 only
             return None
         return self.render(spec, size, mouse, date, "float64", samples, only_first=True)[0]
 

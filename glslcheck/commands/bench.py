@@ -1,12 +1,14 @@
 """glslcheck bench SHADER... [--size WxH] [--runs N] [--time T] [--format text|json]
-[--plot out.png] [--webgl]: render time against error for GL and the NumPy precision modes.
+[--plot out.png] [--webgl] [--backend compiled]: render time against error for GL and the NumPy
+precision modes.
 
 For each SHADER (a tab file or a folder of tabs) the Image tab is rendered 12 ways: by the
 OpenGL driver (Mesa llvmpipe, highp = float32) and by the NumPy backend at float16, float32 and
 float64, each at 1, 4 and 16 samples per pixel (--webgl adds WebGL 2 in headless Chromium at
-each, in the plot's purple without a legend entry). Each is timed (median of --runs rounds after a
-warm-up render; the rounds go round-robin over the configurations so machine load falls on all
-alike) and compared with the reference, NumPy float64 at 16 samples per pixel.
+each, in the plot's purple; --backend compiled adds the compiled engine, glslcheck/compiled_backend,
+at each, in brown: it needs numba, the extra glslcheck[jit], exit 2 with the pip line without
+it). Each is timed (median of --runs rounds after a warm-up render; the rounds go round-robin
+over the configurations so machine load falls on all alike) and compared with the reference, NumPy float64 at 16 samples per pixel.
 
 Error is over RGB as the screen shows it (NaN as 0, +Inf as 1, clamped to [0, 1]; NaN/Inf in
 one image only counts as 1): max and mean absolute error, PSNR, and the pixels where some
@@ -56,6 +58,8 @@ def add_arguments(p) -> None:
     p.add_argument("--plot", metavar="PNG", help="write the time-against-error plot")
     p.add_argument("--webgl", action="store_true",
                    help="also time WebGL 2 in headless Chromium (ANGLE on SwiftShader) at each sample count")
+    p.add_argument("--backend", choices=("compiled",), action="append", default=[],
+                   help="also time this engine at each sample count: compiled (per pixel, by numba)")
     p.add_argument("--progress", action=argparse.BooleanOptionalAction, default=None,
                    help="progress bar on stderr (default: when stderr is a terminal)")
 
@@ -63,8 +67,13 @@ def add_arguments(p) -> None:
 def run(args) -> int:
     if args.plot:
         check_output(args.plot, (".png",), "plot")  # before the minutes of measuring, not after
+    compiled = "compiled" in args.backend
+    if compiled:
+        from ..compiled_backend.engine import require_numba
+
+        require_numba()  # InputError (exit 2) with the pip line, before anything is measured
     shaders = find_shaders(args.paths)
-    per_shader = len(configurations(webgl=args.webgl)) * (args.runs + 1)
+    per_shader = len(configurations(webgl=args.webgl, compiled=compiled)) * (args.runs + 1)
     show = args.progress if args.progress is not None else sys.stderr.isatty()
     progress = _BenchProgress(len(shaders) * per_shader, sys.stderr, enabled=bool(show))
 
@@ -74,7 +83,7 @@ def run(args) -> int:
         for index, shader in enumerate(shaders):
             try:
                 rows += bench_shader(shader, size=args.size, runs=args.runs, time=args.time, step=progress.step,
-                                     webgl=args.webgl)
+                                     webgl=args.webgl, compiled=compiled)
             except GlslError as e:
                 progress.finish()
                 glsl_errors += 1

@@ -13,7 +13,8 @@ worst pixels, with fragCoord).
 page renders; glslcheck/webgl_backend). Each frame is also rendered with GL: a pixel where the two
 drivers differ depends on the driver, and there NumPy need only match the closer of the two
 ("driver-dependent" in the report; glslcheck/webgl_backend/drivers.py). `--backends gl,webgl`
-compares the two drivers with each other.
+compares the two drivers with each other; `--backends compiled,gl` verifies the compiled engine
+(glslcheck/compiled_backend: float32, numba needed, exit 2 with the pip line without it).
 
 Frames: one at iTime 0 by default; --time T; --times 0,0.5,1 (one frame each, iFrame = --frame);
 --frames N with --fps F (iFrame = --frame + i, iTime = iFrame / F, iTimeDelta = 1/F; Buffer A-D
@@ -109,6 +110,8 @@ def run(args) -> int:
     if args.against and args.backends:
         raise InputError("glslcheck verify: error: give --against or --backends, not both")
     args.backends = args.backends or (("numpy", args.against) if args.against else BACKENDS)
+    if "compiled" in args.backends and args.precision != "float32":
+        raise InputError("glslcheck verify: error: the compiled engine renders in float32 only; drop --precision")
     shaders = find_shaders(args.paths)
     total = len(shaders) * _frame_count(args)
     show = args.progress if args.progress is not None else (total > 1 and sys.stderr.isatty())

@@ -64,3 +64,75 @@ def test_bench_compiled_prints_its_figures(numba, gl):
     for line in ("07_final", "geometric mean (CPU)", "geometric mean (wall)", "verify against GL: 1 of 1 match",
                  "bit-identical to the NumPy render: 1 of 1", "load average at end"):
         assert line in done.stdout, done.stdout
+
+
+def test_bench_times_the_compiled_engine_beside_numpy(numba, gl, tmp_path, capsys):
+    """`bench --backend compiled`: three more rows (1, 4, 16 samples) whose images are the NumPy
+    float32 rows' bit for bit on this shader (test_render_writes_the_numpy_backends_image), so
+    their errors against the reference are the same numbers."""
+    import json
+
+    path = tmp_path / "Image.glsl"
+    path.write_text(IMAGE)
+    assert main(["bench", str(path), "--size", "6x3", "--runs", "1", "--time", "0.7", "--format", "json",
+                 "--backend", "compiled"]) == 0
+    rows = json.loads(capsys.readouterr().out)["rows"]
+    compiled = {r["samples"]: r for r in rows if r["backend"] == "compiled"}
+    numpy32 = {r["samples"]: r for r in rows if r["backend"] == "numpy" and r["precision"] == "float32"}
+    assert sorted(compiled) == [1, 4, 16] and len(rows) == 15
+    for n, r in compiled.items():
+        assert r["precision"] == "float32" and r["median_ms"] > 0
+        assert (r["max_abs_error"], r["mean_abs_error"]) == (numpy32[n]["max_abs_error"], numpy32[n]["mean_abs_error"])
+
+
+def test_bench_compiled_unsupported_construct_exits_1_at_its_line(numba, gl, tmp_path, capsys):
+    path = tmp_path / "Image.glsl"
+    path.write_text("void mainImage(out vec4 c, in vec2 f) {\n    c = vec4(1.0);\n    if (f.x > 2.0) discard;\n}\n")
+    assert main(["bench", str(path), "--size", "4x2", "--runs", "1", "--backend", "compiled"]) == 1
+    err = capsys.readouterr().err
+    assert f"{path}:3:" in err and "not supported by the compiled engine yet" in err and "Traceback" not in err
+
+
+def test_bench_compiled_without_numba_exits_2_before_measuring(tmp_path, capsys, monkeypatch):
+    from glslcheck.compiled_backend import engine
+
+    monkeypatch.setattr(engine, "available", lambda: False)
+    path = tmp_path / "Image.glsl"
+    path.write_text(IMAGE)
+    assert main(["bench", str(path), "--size", "4x2", "--runs", "1", "--plot", str(tmp_path / "p.png"),
+                 "--backend", "compiled"]) == 2
+    err = capsys.readouterr().err
+    assert "pip install 'glslcheck[jit]'" in err and "Traceback" not in err
+    assert not (tmp_path / "p.png").exists()
+
+
+def test_verify_backends_compiled_gl_matches(numba, gl, tmp_path, capsys):
+    """`verify --backends compiled,gl`: the compiled engine as the CPU side, against llvmpipe."""
+    import json
+
+    path = tmp_path / "Image.glsl"
+    path.write_text(IMAGE)
+    assert main(["verify", str(path), "--size", "16x9", "--time", "0.7", "--format", "json",
+                 "--backends", "compiled,gl"]) == 0
+    frame = json.loads(capsys.readouterr().out)  # one frame: one object
+    assert frame["match"] is True and frame["verdict"] == "match"
+
+
+def test_verify_compiled_errors(tmp_path, capsys, monkeypatch):
+    """Unsupported construct: exit 1 at its line; --precision other than float32: exit 2; no numba: exit 2."""
+    from glslcheck.compiled_backend import engine
+
+    path = tmp_path / "Image.glsl"
+    path.write_text(IMAGE)
+    assert main(["verify", str(path), "--size", "4x2", "--precision", "float64", "--backends", "compiled,gl"]) == 2
+    assert "float32 only" in capsys.readouterr().err
+    if engine.available():
+        bad = tmp_path / "Bad.glsl"
+        bad.write_text("void mainImage(out vec4 c, in vec2 f) {\n    c = vec4(1.0);\n    if (f.x > 2.0) discard;\n}\n")
+        assert main(["verify", str(bad), "--size", "4x2", "--backends", "compiled,gl"]) == 1
+        err = capsys.readouterr().err
+        assert f"{bad}:3:" in err and "not supported by the compiled engine yet" in err and "Traceback" not in err
+    monkeypatch.setattr(engine, "available", lambda: False)
+    assert main(["verify", str(path), "--size", "4x2", "--backends", "compiled,gl"]) == 2
+    err = capsys.readouterr().err
+    assert "pip install 'glslcheck[jit]'" in err and "Traceback" not in err
