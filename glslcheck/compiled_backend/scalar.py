@@ -22,7 +22,8 @@ import numba
 import numpy as np
 
 from ..numpy_backend import llvmpipe_fast as lf
-from ..numpy_backend.jit_kernels import _bits, _daz, _exp2, _float, _log2, _mad, _trig, trig_in_range
+from ..numpy_backend.jit_kernels import (_bits, _daz, _exp2, _float, _fmax, _fmin, _log2, _mad, _trig,
+                                          trig_in_range)
 
 F32 = np.float32
 I32 = np.int32
@@ -50,23 +51,10 @@ def njit(fn):
 
 
 # -- float basics ----------------------------------------------------------------------------
-@njit
-def fmin(a, b):
-    """``min`` of floats: IEEE minNum, a NaN operand gives the other (np.fmin)."""
-    if a != a:
-        return b
-    if b != b:
-        return a
-    return a if a < b else b
-
-
-@njit
-def fmax(a, b):
-    if a != a:
-        return b
-    if b != b:
-        return a
-    return a if a > b else b
+# ``min``/``max`` of floats: IEEE minNum/maxNum, a NaN operand gives the other (np.fmin/np.fmax;
+# for equal operands, +0 and -0 included, the second), jit_kernels' one-lane functions
+fmin = _fmin
+fmax = _fmax
 
 
 @njit

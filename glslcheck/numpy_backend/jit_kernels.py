@@ -238,7 +238,7 @@ _ACOS_P = (F32(0.08132463), F32(-0.02363318))
 
 @numba.njit(inline="always", **_OPTS)
 def _fmin(a, b):
-    """np.fmin of float32 scalars: a NaN operand yields the other."""
+    """np.fmin of float32 scalars: a NaN operand yields the other; of equal operands the second."""
     if a != a:
         return b
     if b != b:
@@ -248,7 +248,8 @@ def _fmin(a, b):
 
 @numba.njit(inline="always", **_OPTS)
 def _fmax(a, b):
-    """np.fmax of float32 scalars (the operands here are never zeros of both signs)."""
+    """np.fmax of float32 scalars: a NaN operand yields the other; of equal operands (+0 and -0
+    too) the second, as np.fmax."""
     if a != a:
         return b
     if b != b:
