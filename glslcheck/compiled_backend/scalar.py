@@ -16,14 +16,13 @@ imports numba.
 
 from __future__ import annotations
 
-import math
 
 import numba
 import numpy as np
 
 from ..numpy_backend import llvmpipe_fast as lf
-from ..numpy_backend.jit_kernels import (_bits, _daz, _exp2, _float, _fmax, _fmin, _log2, _mad, _trig,
-                                          trig_in_range)
+from ..numpy_backend.jit_kernels import (_arc, _bits, _daz, _exp2, _float, _fmax, _fmin, _log2, _mad,
+                                          _trig, trig_in_range)
 
 F32 = np.float32
 I32 = np.int32
@@ -39,10 +38,6 @@ _C0, _C1, _C2 = (F32(lf.SIN_COS[r, 0, 0]) for r in range(3))
 _S0, _S1, _S2 = (F32(lf.SIN_COS[r, 1, 0]) for r in range(3))
 _LOG2E = F32(1.4426950408889634)
 _LN2 = F32(0.6931471805599453)
-_PI_2 = F32(math.pi / 2)
-_ASIN_C1 = F32(F32(math.pi / 4) - F32(1.0))
-_ATAN = tuple(F32(c) for c in (0.9999793128310355, -0.3326756418091246, 0.1938924977115610,
-                               -0.1173503194786851, 0.0536813784310406, -0.0121323213173444))
 _FLT_MIN_BITS = 0x00800000
 
 
@@ -377,66 +372,27 @@ def log(x, fma):
     return F32(log2(x, fma) * _LN2)
 
 
-@njit
-def _asin_expr(x, p0, p1):
-    a = abs(x)
-    poly = F32(_PI_2 + F32(a * F32(_ASIN_C1 + F32(a * F32(p0 + F32(a * p1))))))
-    return F32(sign(x) * F32(_PI_2 - F32(np.sqrt(F32(_ONE - a)) * poly)))
-
-
+# asin, acos, atan and atan(y, x) as Runtime computes them (Mesa's lowerings): jit_kernels' one-lane
+# functions, which its `arc` kernel runs over lanes
 @njit
 def asin(x):
-    return _asin_expr(_daz(x), F32(0.086566724), F32(-0.03102955))
+    return _arc(x, x, 1)
 
 
 @njit
 def acos(x):
-    return F32(_PI_2 - _asin_expr(_daz(x), F32(0.08132463), F32(-0.02363318)))
-
-
-@njit
-def _nir_atan(v):
-    """Runtime._nir_atan of one lane (Mesa 22.3 nir_atan, the last term reassociated)."""
-    a = abs(v)
-    x = _daz(F32(fmin(a, _ONE) / fmax(a, _ONE)))
-    x2 = F32(x * x)
-    p = x
-    t = F32(x * _ATAN[0])
-    p = F32(p * x2)
-    t = F32(t + F32(p * _ATAN[1]))
-    p = F32(p * x2)
-    t = F32(t + F32(p * _ATAN[2]))
-    p = F32(p * x2)
-    t = F32(t + F32(p * _ATAN[3]))
-    p = F32(p * x2)
-    t = F32(t + F32(p * _ATAN[4]))
-    t = F32(t + F32(F32(p * _ATAN[5]) * x2))
-    t = _daz(t)
-    if _ONE < a:
-        t = F32(F32(F32(t * F32(-2.0)) + _PI_2) + t)
-    return F32(t * sign(v))
+    return _arc(x, x, 2)
 
 
 @njit
 def atan(y):
-    return _nir_atan(_daz(y))
+    return _arc(y, y, 0)
 
 
 @njit
 def atan2(y, x):
     """Runtime.atan(y, x): Mesa's nir_atan2 (atan(0, 0) = 3*pi/4)."""
-    y = _daz(y)
-    x = _daz(x)
-    flip = _ZERO >= x
-    ax = abs(x)
-    s = ax if flip else y
-    t = y if flip else ax
-    scale = F32(0.25) if abs(t) >= F32(1e18) else _ONE
-    rcp = F32(_ONE / F32(t * scale))
-    abs_s_over_t = _daz(F32(abs(F32(s * scale)) * abs(rcp)))
-    tn = _ONE if ax == abs(y) else abs_s_over_t
-    arc = F32(F32((_ONE if flip else _ZERO) * _PI_2) + _nir_atan(tn))
-    return -arc if fmin(y, rcp) < _ZERO else arc
+    return _arc(y, x, 3)
 
 
 @njit
