@@ -57,6 +57,16 @@ def jit_kernels():
     return jit.load(required=True)
 
 
+@pytest.fixture(scope="session")
+def numba():
+    """numba for the compiled engine's tests (tests/compiled): skipped without it on a developer
+    machine, a failure on CI, as :func:`jit_kernels`."""
+    from glslcheck.compiled_backend.engine import available
+
+    if not available():
+        _missing("numba", "pip install -e '.[jit]' (make setup does)")
+
+
 @pytest.fixture
 def llvmpipe(gl):
     """The GL context, for the tests that compare the NumPy backend with the driver bit for bit.

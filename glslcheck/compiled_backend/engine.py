@@ -44,7 +44,10 @@ def _pool(threads: int) -> ThreadPoolExecutor:
 
 
 def available() -> bool:
-    return importlib.util.find_spec("numba") is not None
+    """Whether numba is installed: numpy_backend/jit.py's answer (numba is not imported)."""
+    from ..numpy_backend import jit
+
+    return jit.available()
 
 
 def require_numba() -> None:

@@ -111,7 +111,9 @@ def test_workers_load_the_kernels_once_the_parent_decided(jit_kernels, make_shad
     from glslcheck.numpy_backend import frame, jit, workers
 
     if not workers.available():
-        pytest.skip("worker processes need Linux with memfd_create")
+        if os.environ.get("CI"):
+            pytest.fail("worker processes are unavailable on the CI machine (Linux): " + str(workers._DISABLED))
+        pytest.skip("worker processes need Linux with memfd_create (this machine: threads only)")
     off = _render(make_shader(MARCH), "off", (64, 36), monkeypatch)
     monkeypatch.setenv("GLSLCHECK_JIT", "auto")
     monkeypatch.setattr(jit, "_STATE", state := jit._State())
