@@ -46,7 +46,7 @@ import re
 
 from ...regexes import compiled
 from ...diagnostics import Diagnostic
-from ..textscan import LineKind, inactive_lines
+from ..textscan import BLANK, BRACE, BRACE_COMMENT, CODE, COMMENT, DIRECTIVE, LEADING, TRAILING, LineKind, inactive_lines
 
 TYPE_CHECKING = False  # not typing's: importing typing costs every start-up (issue 18)
 if TYPE_CHECKING:
@@ -66,24 +66,24 @@ def uncovered_runs(kinds: list[LineKind], span: int) -> list[tuple[int, int, int
     runs: list[tuple[int, int, int]] = []
     budget = 0  # code lines the last comment line still covers
     run: list[int] | None = None  # [first, last, count]
-    for number, kind in enumerate(kinds, start=1):
+    for number, kind in enumerate(kinds, start=1):  # the kinds as globals (textscan: issue 18)
         covered = True
-        if kind in (LineKind.COMMENT, LineKind.BRACE_COMMENT):
+        if kind is COMMENT or kind is BRACE_COMMENT:
             budget = span
-        elif kind is LineKind.BLANK:
+        elif kind is BLANK:
             budget = 0
-        elif kind is LineKind.LEADING:
+        elif kind is LEADING:
             budget = span - 1
-        elif kind in (LineKind.CODE, LineKind.TRAILING):
-            covered = kind is LineKind.TRAILING or budget > 0
+        elif kind is CODE or kind is TRAILING:
+            covered = kind is TRAILING or budget > 0
             budget = max(budget - 1, 0)
         # BRACE and DIRECTIVE lines neither need a comment nor use one up.
-        if kind.has_code and not covered:
+        if not covered:  # (only a CODE line is not: TRAILING and LEADING lines are covered)
             if run is None:
                 run = [number, number, 0]
             run[1] = number
             run[2] += 1
-        elif kind not in (LineKind.BRACE, LineKind.DIRECTIVE) and run is not None:
+        elif kind is not BRACE and kind is not DIRECTIVE and run is not None:
             runs.append((run[0], run[1], run[2]))
             run = None
     if run is not None:
@@ -107,14 +107,15 @@ def _attributions(ctx) -> set[int]:
     """Lines of whole-line comments that only attribute or mark."""
     return {
         c.line for c in ctx.comments
-        if c.line == c.end_line and ctx.line_kinds[c.line - 1] is LineKind.COMMENT and ATTRIBUTION_RE.match(c.text)
+        if c.line == c.end_line and ctx.line_kinds[c.line - 1] is COMMENT and ATTRIBUTION_RE.match(c.text)
     }
 
 
 def check(ctx: LintContext) -> Iterator[Diagnostic]:
     # code the preprocessor skips (an inactive #ifdef branch) is not compiled: not linted
     inactive = inactive_lines(ctx.lines)
-    kinds = [LineKind.DIRECTIVE if n in inactive else k for n, k in enumerate(ctx.line_kinds, start=1)]
+    kinds = [DIRECTIVE if n in inactive else k for n, k in enumerate(ctx.line_kinds, start=1)] if inactive \
+        else ctx.line_kinds
     span = ctx.config.comment_span
     runs = uncovered_runs(kinds, span)
     for first, last, count in runs:
@@ -122,7 +123,7 @@ def check(ctx: LintContext) -> Iterator[Diagnostic]:
     # lines that only an attribution or a marker "explains": advisory, not a deduction
     marks = _attributions(ctx)
     if marks:
-        plain = [LineKind.BLANK if n in marks else k for n, k in enumerate(kinds, start=1)]
+        plain = [BLANK if n in marks else k for n, k in enumerate(kinds, start=1)]
         seen = {line for first, last, _ in runs for line in range(first, last + 1)}
         for first, last, count in uncovered_runs(plain, span):
             if not any(line in seen for line in range(first, last + 1)):
