@@ -202,7 +202,7 @@ def pure_function(model: Model, sym: Symbol, _seen: frozenset = frozenset()) -> 
     ok = (isinstance(d, A.FunctionDefinition) and d.body is not None and id(sym) not in _seen
           and all(direction == "in" for _, _, direction in sym.params))
     if ok:
-        for n in d.body.walk():
+        for n in model.body_nodes(d):
             t = type(n)
             if t is A.Identifier:
                 s = model.symbol_of(n)
@@ -228,7 +228,7 @@ def function_cost(model: Model, sym: Symbol) -> bool:
         cache[id(sym)] = False  # a recursive call (an error anyway) costs nothing more
         ops, costly = 0, False
         d = sym.node
-        for n in (d.body.walk() if isinstance(d, A.FunctionDefinition) and d.body is not None else ()):
+        for n in (model.body_nodes(d) if isinstance(d, A.FunctionDefinition) and d.body is not None else ()):
             if type(n) in (A.Binary, A.Ternary) or (type(n) is A.Unary and n.op != "+"):
                 ops += 1
             elif type(n) is A.Call:

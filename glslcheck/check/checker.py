@@ -106,7 +106,7 @@ class Checker(A.NodeVisitor):
 
     def _names_in_program(self) -> set[str]:
         """Every name written in the program (of a node with a `name`)."""
-        names = {getattr(n, "name", None) for n in self.ast.walk()}
+        names = {getattr(n, "name", None) for n in self.model.nodes()}
         return {n for n in names if isinstance(n, str)}
 
     # -- reporting -----------------------------------------------------------------------------

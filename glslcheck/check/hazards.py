@@ -55,7 +55,7 @@ def hazard_warnings(model: Any) -> list[Diagnostic]:
 
 def index_warnings(model: Any, definition: A.FunctionDefinition) -> list[Diagnostic]:
     indexes, fors = [], []  # one walk of the body finds both
-    for node in definition.body.walk():
+    for node in model.body_nodes(definition):
         t = type(node)
         if t is A.Index:
             indexes.append(node)

@@ -147,3 +147,35 @@ def test_cli_exit_codes(tmp_path, capsys):
     err = capsys.readouterr().err
     assert f"{bad}:3:" in err and "write 2.0" in err and "^" in err and "help:" in err
     assert main(["check", str(tmp_path / "missing.glsl")]) == 2
+
+
+def test_listed_nodes_are_the_walks(model, make_shader):
+    """`Model.nodes()` and `body_nodes()` (the lists the checker, hazards and lint rules read
+    instead of walking again, issue 18) hold exactly what `walk()` yields, in its order: the
+    program's, and each function body's (a slice of the program's list), here and in a program
+    with prototypes, globals between functions, nested loops and a Common tab before it."""
+    def same(m):
+        assert m.nodes() == list(m.ast.walk())
+        assert all(a is b for a, b in zip(m.nodes(), m.ast.walk()))
+        definitions = [d for d in m.ast.decls if isinstance(d, A.FunctionDefinition)]
+        assert len(definitions) >= 3
+        for d in definitions:
+            listed = m.body_nodes(d)
+            assert [id(n) for n in listed] == [id(n) for n in d.body.walk()]
+            assert m.body_nodes(d) is listed  # sliced once
+
+    same(model)
+    src = """\
+float f(float a);
+const float K[2] = float[2](1.0, 2.0);
+float g(float a) { for (int i = 0; i < 2; i++) { for (int j = 0; j < i; j++) { a += K[j]; } } return a; }
+uniform float extra;
+float f(float a) { return g(a) * extra; }
+void mainImage(out vec4 c, in vec2 p) { c = vec4(f(p.x)); }
+"""
+    shader = make_shader(src, common="float h(float v) { return v * 2.0; }\n")
+    same(check(parse_shader(shader, "Image"), "Image"))
+    # a definition that is not one of the program's own: walked, not sliced
+    other = model.ast.decls[-1]
+    fresh = check(parse_shader(make_shader(SRC), "Image"), "Image")
+    assert [id(n) for n in fresh.body_nodes(other)] == [id(n) for n in other.body.walk()]

@@ -433,7 +433,7 @@ def _sphere_hit(fn, call: A.Call) -> dict | None:
             return params.index(e.name), field
         return None
 
-    nodes = list(d.body.walk())
+    nodes = model.body_nodes(d)
     diffs = {}  # the name holding origin - center (or None for the expression itself)
     for n in nodes:
         value, holder = None, None

@@ -66,7 +66,7 @@ def read_symbols(model: Any) -> set[int]:
     # read too: the call needs a variable there.
     idents: list[A.Identifier] = []
     written: set[int] = set()  # ids of the identifiers `=` writes
-    for node in model.ast.walk():
+    for node in model.nodes():
         t = type(node)
         if t is A.Identifier:
             idents.append(node)
