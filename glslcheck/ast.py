@@ -533,6 +533,9 @@ def _make_methods() -> None:
 
 _make_methods()
 
+# The node classes without child fields (names, literals, ...): walks can skip asking for them.
+LEAF_CLASSES = frozenset(cls for cls in _NODE_CLASSES.values() if not cls._children)
+
 
 # ---------------------------------------------------------------------------------------------
 # Visiting and comparing

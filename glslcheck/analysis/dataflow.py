@@ -175,9 +175,15 @@ def _any_between(positions: list[int], lo: int, hi: int) -> bool:
 
 _JUMPS = (A.Return, A.Break, A.Continue, A.Discard)
 _WRITERS = frozenset((A.Assignment, A.Unary, A.Postfix, A.Declarator, A.ConditionDeclaration, A.Call))  # _record_writes
+# the node types `_visit` walks in an order or regions of their own (the others: their children
+# in field order); tested first, as one set, instead of each in turn
+_ORDERED = frozenset((A.If, A.Ternary, A.Binary, A.For, A.While, A.DoWhile, A.Compound, A.Switch))
 
 
 _SWIZZLE_SETS = ("xyzw", "rgba", "stpq")
+
+
+_NO_OPS = (0, False)  # op_count of a leaf
 
 
 def _is_literal(e: Any) -> bool:
@@ -299,7 +305,11 @@ class FunctionFacts(ValueRanges):
         t = type(node)
         if t is A.Call:
             self.calls.append(node)
-        if t is A.If:
+        if t not in _ORDERED:  # most nodes: children in field order, or none (one set test each)
+            if t not in A.LEAF_CLASSES:
+                for child in node.children():
+                    self._visit(child, region, node)
+        elif t is A.If:
             self._visit(node.cond, region, node)
             self._visit(node.then, region + ((i, 0),), node)
             self._visit(node.else_, region + ((i, 1),), node)
@@ -600,8 +610,9 @@ class FunctionFacts(ValueRanges):
                 return False
             if isinstance(target, B.Overload) and target.out_params:
                 return False
+        leaves = A.LEAF_CLASSES  # a name or literal is pure: no call to ask
         for c in e.children():
-            if not self.is_pure(c):
+            if type(c) not in leaves and not self.is_pure(c):
                 return False
         return True
 
@@ -610,9 +621,11 @@ class FunctionFacts(ValueRanges):
         i = id(e)
         r = self._ops.get(i)
         if r is None:
-            n, costly = 0, False
             t = type(e)
-            if t in (A.Binary, A.Ternary) or (t is A.Unary and e.op != "+" and not _is_literal(e.operand)):
+            if t in A.LEAF_CLASSES:  # a name or literal: no operation (not worth a cache entry)
+                return _NO_OPS
+            n, costly = 0, False
+            if t is A.Binary or t is A.Ternary or (t is A.Unary and e.op != "+" and not _is_literal(e.operand)):
                 n = 1  # (a negative literal, `-1.0`, is a constant, not an operation)
             elif t is A.Call:
                 target = self.model.call_target(e)
