@@ -47,19 +47,31 @@ PENALTY = 0
 SEVERITY = "note"
 NEEDS = "text"
 
-CREDIT_RE = compiled(
+_CREDIT = (
     r"\b(?:starter|framework|buckstein|credits?|credited|adapted|based\s+on|borrowed|courtesy"
     r"|inspired\s+by|derived\s+from|taken\s+from|thanks?\s+to|acknowledge?ments?"
     r"|(?:sources?|references?|refs?|citations?|cited?)\s*:)"
-    r"|https?://|\bwww\.",
-    re.I,
+    r"|https?://|\bwww\."
 )
+CREDIT_RE = compiled(_CREDIT, re.I)
+_CREDIT_LOWER_RE = compiled(_CREDIT)  # the same, case-sensitive: for lowercased ASCII text
+
+
+def has_credit(text: str) -> bool:
+    """Whether `text` holds a credit (`CREDIT_RE`). ASCII text is searched lowercased with the
+    case-sensitive pattern: the same answer (the pattern's letters are lowercase ASCII, and in
+    ASCII text `re.I` folds only A-Z), about four times faster, since case-insensitive matching
+    folds each character once for every alternative it tries (issue 18: 13 M instructions of
+    the lab's lint)."""
+    if text.isascii():
+        return _CREDIT_LOWER_RE.search(text.lower()) is not None
+    return CREDIT_RE.search(text) is not None
 
 
 def check(ctx: LintContext) -> Iterator[Diagnostic]:
     if not ctx.source.text.strip():
         return
-    if any(CREDIT_RE.search(c.text) for c in ctx.comments if not c.is_directive):
+    if any(has_credit(c.text) for c in ctx.comments if not c.is_directive):
         return
     yield Diagnostic(
         "no comment credits the starter framework or the sources code was borrowed from",

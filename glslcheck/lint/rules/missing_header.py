@@ -52,8 +52,8 @@ import re
 from ...regexes import compiled
 from ...diagnostics import Diagnostic
 from ...sources import path_name, path_stem, tab_name
-from ..textscan import LineKind
-from .missing_credit import CREDIT_RE
+from ..textscan import BLANK, COMMENT, DIRECTIVE
+from .missing_credit import has_credit
 
 TYPE_CHECKING = False  # not typing's: importing typing costs every start-up (issue 18)
 if TYPE_CHECKING:
@@ -158,14 +158,14 @@ def contributors(text: str) -> str:
         entries = lists[bool(_COPYRIGHT.match(line))]
         rest = m.group("rest").strip()
         if rest:
-            entries.extend(e for e in re.split(r";", rest) if e.strip() and not CREDIT_RE.search(e))
+            entries.extend(e for e in re.split(r";", rest) if e.strip() and not has_credit(e))
         for follow in lines[i + 1 :]:
             body = _LIST_MARK.sub("", follow).strip()
             if (
                 not body
                 or _CONTRIB_LABEL.match(follow)
                 or _OTHER_LABEL.match(follow)
-                or CREDIT_RE.search(follow)  # a credit line is no contributor
+                or has_credit(follow)  # a credit line is no contributor
             ):
                 break
             entries.append(body)
@@ -179,10 +179,12 @@ def contributors(text: str) -> str:
 
 def header_text(ctx) -> str | None:
     """The text of the comments before the first code line (directives left out), or None."""
-    directives = _directive_lines(ctx)  # authors written after a `#define` are still header
+    # authors written after a `#define` are still header: a directive line is no code
+    lines = ctx.lines
     first_code = next(
         (i for i, k in enumerate(ctx.line_kinds, start=1)
-         if (k.has_code or k in (LineKind.BRACE, LineKind.BRACE_COMMENT)) and i not in directives),
+         if k is not BLANK and k is not COMMENT and k is not DIRECTIVE  # code, or a brace
+         and not lines[i - 1].lstrip().startswith("#")),
         len(ctx.line_kinds) + 1,
     )
     parts: list[str] = []
@@ -197,11 +199,6 @@ def header_text(ctx) -> str | None:
     return "\n".join(parts) if parts else None
 
 
-def _directive_lines(ctx) -> set[int]:
-    """Lines of preprocessor directives (`#define PI 3.14`): not the code that ends a header."""
-    return {i for i, line in enumerate(ctx.lines, start=1) if line.lstrip().startswith("#")}
-
-
 def missing_parts(ctx) -> list[str] | None:
     """What the header lacks, as phrases; None when there is no header comment at all."""
     text = header_text(ctx)
@@ -214,7 +211,7 @@ def missing_parts(ctx) -> list[str] | None:
     if not states_purpose(text, path, tab):
         missing.append("states no purpose")
     who = contributors(text)
-    if who == "none" and CREDIT_RE.search(text):
+    if who == "none" and has_credit(text):
         missing.append("lists no contributors with what each did (a starter-code credit names no author)")
     elif who == "none":
         missing.append("lists no contributors with what each did")
