@@ -68,6 +68,7 @@ def _check_function(fn) -> Iterator[Diagnostic]:
     found = []
     nodes = fn.nodes  # in execution order: a loop's nodes follow it
     index = {id(n): i for i, n in enumerate(nodes)} if fn.loops else {}
+    enter, leaves = fn.enter, A.LEAF_CLASSES
     for loop in fn.loops:
         lo, hi = fn.enter[id(loop)], fn.exit[id(loop)]
         written = {id(w.symbol) for ws in fn.writes.values() for w in ws if lo < w.pos < hi}
@@ -78,17 +79,16 @@ def _check_function(fn) -> Iterator[Diagnostic]:
         first = index.get(id(loop))  # None when the walk gave up (absurd nesting: no nodes)
         for i in range(len(nodes) if first is None else first + 1, len(nodes)):
             n = nodes[i]
-            e = fn.enter[id(n)]
+            e = enter[id(n)]
             if e >= hi:
                 break  # past the loop
-            if e < skip_until:
+            # the cheap tests first (a name or literal is never worth hoisting; issue 18)
+            if e < skip_until or type(n) in leaves or not isinstance(n, A.Expr) or id(n) in targets:
                 continue
             x = fn.exit[id(n)]
             if not any(a <= e and x <= b for a, b in spans):
                 continue  # the for-init runs once
             if any(a <= e <= b for a, b in reported_spans):
-                continue
-            if not isinstance(n, A.Expr) or id(n) in targets:
                 continue
             if not (fn.worth_reusing(n) and fn.is_pure(n)) or fn.is_dead(n):
                 continue
