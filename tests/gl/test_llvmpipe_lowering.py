@@ -331,6 +331,19 @@ def test_a_dot_product_whose_products_share_a_value_is_factored(llvmpipe, make_s
     _assert_bit_for_bit(make_shader(HASHES_WITHOUT_SINE))
 
 
+def test_a_scaled_local_whose_operand_changes_before_the_call_is_not_evaluated_again(llvmpipe, make_shader):
+    """q = s.m * 0.5 and then s.m = 2.0 before hash11(q): the product is not q's value at the
+    call, so it is not merged (it was read again there, and a struct member's write raised a
+    KeyError in the scan for writes: a real textured shader, tests/real_channels ice_primitives)."""
+    _assert_bit_for_bit(make_shader(SCALED_ARGUMENTS.split("float scaled")[0] + """struct S { float m; };
+void mainImage(out vec4 c, in vec2 p) {
+    S s = S(fract(p.x * 0.1371 + p.y * 0.0917));
+    float q = s.m * 0.5;
+    s.m = 2.0;
+    c = vec4(hash11(q), s.m, 0.0, 1.0);
+}"""))
+
+
 def test_a_sum_returned_through_a_folded_call_fuses_with_its_next_addition(llvmpipe, make_shader):
     """gargantua's first ray step, ``pos + dir * dither * far / 200.0`` with pos folded by the
     call (each component ``p1 + p2`` of two products) and read only there: llvmpipe fuses and

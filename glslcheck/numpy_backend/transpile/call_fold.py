@@ -462,8 +462,8 @@ def _written_components(tr: Any, n: Any, sym: Any, call: A.Call) -> Any:
         while isinstance(root, (A.Field, A.Index)):
             root = root.base
         if isinstance(root, A.Identifier) and tr.model.symbol_of(root) is sym:
-            if isinstance(x, A.Field) and x.base is root:
-                return tuple(tr.model.swizzle_indices(x))
+            if isinstance(x, A.Field) and x.base is root and tr.model.is_swizzle(x):
+                return tuple(tr.model.swizzle_indices(x))  # (a struct's member: "all" below)
             return "all"
     return ()
 
