@@ -3,6 +3,7 @@
     python tools/real_verify.py fetch [--mirror DIR]      # the texts, into tests/real_verify/texts
     python benchmarks/bench_real_render.py [--size 400x225] [--repeat 3] [--only ID,...]
                                            [--mode threads|processes|one] [--json out.json]
+                                           [--set main|holdout]
 
 Every shader that both backends render is timed in this one process, the two backends in turns,
 best of `--repeat` frames each, every frame at a new iTime (0.01 apart, as an animation: the
@@ -74,11 +75,15 @@ def main() -> int:
                     help="NumPy on threads of this process (what a one-frame render uses), worker processes, "
                          "or one thread")
     ap.add_argument("--json", help="write the per-shader figures here")
+    ap.add_argument("--set", choices=tuple(real_verify.SETS),
+                    help="tools/real_verify.py's corpus: main (tuned on; the default, or REAL_VERIFY_SET) or holdout")
     args = ap.parse_args()
+    if args.set:
+        real_verify.select(args.set)
     size = tuple(int(v) for v in args.size.split("x"))
     only = {s for s in args.only.split(",") if s}
     entries = [e for e in real_verify.load_manifest() if not only or e["id"] in only]
-    print(f"NumPy ({args.mode}) against GL at {size[0]}x{size[1]}, best of {args.repeat}; "
+    print(f"corpus {os.environ['REAL_VERIFY_SET']}: NumPy ({args.mode}) against GL at {size[0]}x{size[1]}, best of {args.repeat}; "
           f"load {_load()} (1/5/15-minute load average)", flush=True)
     results, skipped = {}, {}
     for e in entries:

@@ -9,6 +9,14 @@ tests/real_verify/texts/ (git-ignored), `score` verifies each one as `glslcheck 
     python tools/real_verify.py score [--size 160x90] [--times 0,1.7,5.3] [--timeout 300]
                                       [--only ID,...] [--json out.json]
 
+Two corpora, one mechanism: `--set main` (the default; manifest.json, texts/) is the corpus the
+NumPy backend and the compiled engine were tuned on; `--set holdout` (holdout.json,
+holdout_texts/) is a second one chosen after that tuning, to measure how glslcheck does on
+shaders it was not tuned on (as a hidden corpus would). `--set` goes before the command
+(`python tools/real_verify.py --set holdout score`); the environment variable REAL_VERIFY_SET
+selects the set for every script that reads this module's manifest (benchmarks/bench_real_render.py,
+benchmarks/bench_compiled.py).
+
 Each shader runs in its own process (a crash, a hang or a runaway loop costs one shader, not
 the run) and gets one verdict:
 
@@ -36,8 +44,19 @@ import urllib.request
 from pathlib import Path
 
 ROOT = Path(__file__).resolve().parents[1]
-MANIFEST = ROOT / "tests" / "real_verify" / "manifest.json"
-TEXTS = ROOT / "tests" / "real_verify" / "texts"
+SETS = {"main": ("manifest.json", "texts"), "holdout": ("holdout.json", "holdout_texts")}
+
+
+def select(name: str) -> None:
+    """Read the corpus `name` of SETS from now on (this process and, through REAL_VERIFY_SET, its children)."""
+    global MANIFEST, TEXTS
+    if name not in SETS:
+        raise SystemExit(f"unknown corpus set {name!r} (REAL_VERIFY_SET or --set): one of {', '.join(SETS)}")
+    os.environ["REAL_VERIFY_SET"] = name
+    MANIFEST, TEXTS = (ROOT / "tests" / "real_verify" / f for f in SETS[name])
+
+
+select(os.environ.get("REAL_VERIFY_SET") or "main")
 
 
 def load_manifest() -> list[dict]:
@@ -50,6 +69,8 @@ def text_path(entry: dict) -> Path:
 
 def _from_mirror(mirror: Path, entry: dict) -> bytes | None:
     gitdir = mirror / entry["repo"].replace("/", "+", 1) / "repo"
+    if (gitdir / ".git").is_dir():  # a snapshot with a work tree
+        gitdir = gitdir / ".git"
     if not gitdir.is_dir():
         return None
     out = subprocess.run(["git", "--git-dir", str(gitdir), "show", f"{entry['commit']}:{entry['path']}"],
@@ -137,7 +158,8 @@ def score(size: str, times: str, timeout: float, only: set[str] | None, out: Pat
     entries = [e for e in load_manifest() if not only or e["id"] in only]
     absent = [e["id"] for e in entries if not text_path(e).exists()]
     if absent:
-        print(f"{len(absent)} texts are missing ({', '.join(absent[:5])} ...): run `python tools/real_verify.py fetch`",
+        print(f"{len(absent)} texts are missing ({', '.join(absent[:5])} ...): run `python tools/real_verify.py "
+              f"--set {os.environ['REAL_VERIFY_SET']} fetch`",
               file=sys.stderr)
         return 2
     results = []
@@ -150,20 +172,26 @@ def score(size: str, times: str, timeout: float, only: set[str] | None, out: Pat
     counts = {v: sum(r["verdict"] == v for r in results) for v in ORDER}
     compiled = len(results) - counts["does not compile"]
     lab4 = [r for r in results if r["kind"] == "lab4"]
+    labs = [r for r in results if r["kind"].startswith("lab")]
     print()
     print("  ".join(f"{v}: {n}" for v, n in counts.items()))
     print(f"match among the {compiled} shaders that compile: {counts['match']}/{compiled} = "
           f"{100.0 * counts['match'] / max(compiled, 1):.1f}%; Lab 4 submissions: "
           f"{sum(r['verdict'] == 'match' for r in lab4)}/{len(lab4)} match, "
-          f"{sum(r['verdict'] == 'mismatch' for r in lab4)} mismatch")
+          f"{sum(r['verdict'] == 'mismatch' for r in lab4)} mismatch; all course labs: "
+          f"{sum(r['verdict'] == 'match' for r in labs)}/{len(labs)} match")
     if out:
         out.write_text(json.dumps(results, indent=1))
     return 0
 
 
-def arguments(doc: str, texts: str, size: str, schedule: str, schedule_options: dict) -> argparse.ArgumentParser:
-    """The fetch / score command line of this tool and of tools/real_channels.py."""
+def arguments(doc: str, texts: str, size: str, schedule: str, schedule_options: dict,
+              sets: bool = False) -> argparse.ArgumentParser:
+    """The fetch / score command line of this tool and of tools/real_channels.py (`sets`: this tool's --set)."""
     p = argparse.ArgumentParser(description=doc.split("\n\n")[0])
+    if sets:
+        p.add_argument("--set", choices=tuple(SETS), help="the corpus: main (the default, or REAL_VERIFY_SET) "
+                       "or holdout (chosen after the tuning)")
     sub = p.add_subparsers(dest="command", required=True)
     f = sub.add_parser("fetch", help=f"re-read the texts into {texts}")
     f.add_argument("--mirror", type=Path, default=Path(os.environ["REAL_VERIFY_MIRROR"])
@@ -186,8 +214,11 @@ def main(argv: list[str] | None = None) -> int:
 
         print(json.dumps(verify_one(path, parse_size(size), list(parse_times(times)))))
         return 0
-    p = arguments(__doc__, "tests/real_verify/texts/", "160x90", "--times", {"default": "0,1.7,5.3"})
+    p = arguments(__doc__, "tests/real_verify/<set's texts>/", "160x90", "--times", {"default": "0,1.7,5.3"},
+                  sets=True)
     args = p.parse_args(argv)
+    if args.set:
+        select(args.set)
     if args.command == "fetch":
         return fetch(args.mirror)
     return score(args.size, args.times, args.timeout, set(filter(None, args.only.split(","))) or None, args.json)

@@ -469,12 +469,26 @@ def _merge_constants(tr: Any, e: A.Binary, mask: str | None) -> str | None:
         kept = parts[2] if parts is not None else None  # (y's value kept: :func:`_keep_factor`)
         inner = _reaching_value(tr, inner) if kept is not None else _stable_init(tr, inner)
     ops = ("*",) if e.op == "*" else _SUMS
-    if not (isinstance(inner, A.Binary) and inner.op in ops) or tr.has_effects(inner):
+    factored = _broadcast_dot(tr, inner) if e.op == "*" and kept is None else None
+    if factored is not None and tr.type_of(k_node).is_scalar:  # s * sum(K) by broadcast_dot, then merged
+        tk, tx = tr.exprs([k_node, x_node], mask)
+        written = tr.binary_values("*", FLOAT, FLOAT, tx, tk) if x_node is e.left else tr.binary_values(
+            "*", FLOAT, FLOAT, tk, tx)
+        rewritten = tr.binary_values("*", FLOAT, FLOAT, tr.expr(factored[0], mask),
+                                     f"({tk} * {tr.const_float(factored[1])})")
+        return f"({rewritten} if rt.lp else {written})"
+    parts = _scalar_dot(tr, inner) if e.op == "*" else None
+    if parts is None:
+        if not isinstance(inner, A.Binary):
+            return None
+        parts = (inner.op, inner.left, inner.right)
+    op, left, right = parts
+    if op not in ops or tr.has_effects(inner):
         return None
-    if _const(tr, inner.right) and not _const(tr, inner.left):
-        b_node, c_node, c_sign, b_sign = inner.left, inner.right, inner.op, "+"
-    elif _const(tr, inner.left) and not _const(tr, inner.right):
-        b_node, c_node, c_sign, b_sign = inner.right, inner.left, "+", inner.op
+    if _const(tr, right) and not _const(tr, left):
+        b_node, c_node, c_sign, b_sign = left, right, op, "+"
+    elif _const(tr, left) and not _const(tr, right):
+        b_node, c_node, c_sign, b_sign = right, left, "+", op
     else:
         return None
     if tr.type_of(inner) != tr.type_of(x_node) or not _varying(tr, b_node):
@@ -500,6 +514,18 @@ def _merge_constants(tr: Any, e: A.Binary, mask: str | None) -> str | None:
         rewritten = f"(({k} + {c}) {b_sign} {tb})"
         written = f"({tx} {e.op} {tk})" if x_node is e.left else f"({tk} {e.op} {tx})"
     return f"({rewritten} if rt.lp else {written})"
+
+
+def _scalar_dot(tr: Any, node: Any) -> tuple[str, Any, Any] | None:
+    """``("*", a, b)`` for ``dot(a, b)`` of two floats: Mesa's built-in is a multiply there
+    (builtin_functions.cpp ``_dot``: ``ir_binop_mul`` for one component), so NIR merges a
+    constant into it as into ``a * b`` (a hash's ``dot(n, 123.456) * 789.123`` is ``n *
+    (123.456*789.123)``, measured); None for anything else."""
+    if not (isinstance(node, A.Call) and node.callee == "dot" and len(node.args) == 2 and _builtin(tr, node)):
+        return None
+    if not all(tr.type_of(a).is_scalar and tr.type_of(a).base == "float" for a in node.args):
+        return None
+    return "*", node.args[0], node.args[1]
 
 
 def merged_dot(tr: Any, call: A.Call, args: list[str], mask: str | None) -> str | None:
@@ -541,6 +567,63 @@ def merged_dot(tr: Any, call: A.Call, args: list[str], mask: str | None) -> str 
         merged = tr.binary_values("*", t, t, merged, folded)
     rewritten = f"rt.dot({tx}, {merged})" if v_first else f"rt.dot({merged}, {tx})"
     return f"({rewritten} if rt.lp else rt.dot({args[0]}, {args[1]}))"
+
+
+def broadcast_dot(tr: Any, call: A.Call, args: list[str], mask: str | None) -> str | None:
+    """``dot(vecN(s), #K)`` (s a float, also through a never-written local or an inlined
+    parameter, :func:`_stable_init`) is ``s * (K[0] + (K[1] + ...))`` on llvmpipe: the dot
+    product lowered to ``s*K[0] + (s*K[1] + ...)`` (summed right to left), NIR's factoring
+    ``('~fadd', ('fmul', a, b), ('fmul', a, c)) -> a * (b + c)`` leaves one product by the
+    constants' float32 sum (measured bit for bit for vec2, vec3, vec4: a hash's
+    ``dot(vec2(index), vec2(12.9898, 78.233))``; the sum left to right differs for vec4)."""
+    parts = _broadcast_dot(tr, call)
+    if parts is None:
+        return None
+    x, total = parts
+    rewritten = tr.binary_values("*", FLOAT, FLOAT, tr.expr(x, mask), tr.const_float(total))
+    return f"({rewritten} if rt.lp else rt.dot({args[0]}, {args[1]}))"
+
+
+def _broadcast_dot(tr: Any, call: Any) -> tuple[Any, float] | None:
+    """(s, the float32 sum of K right to left) for a call ``dot(vecN(s), #K)``, else None."""
+    if not (isinstance(call, A.Call) and call.callee == "dot" and len(call.args) == 2 and _builtin(tr, call)):
+        return None
+    if tr.fn is None or tr.type_of(call).base != "float" or tr.has_effects(call):
+        return None
+    for v, k in ((call.args[0], call.args[1]), (call.args[1], call.args[0])):
+        x = _broadcast(tr, v)
+        ks = _constant_value(tr, k) if x is not None else None
+        if ks is None or len(ks) != tr.type_of(v).size or not _varying(tr, x):
+            continue
+        import numpy as np
+
+        total = np.float32(ks[-1])
+        for c in reversed(ks[:-1]):
+            total = np.float32(np.float32(c) + total)
+        return (x, float(total)) if np.isfinite(total) else None
+    return None
+
+
+def dot_operand(tr: Any, node: Any) -> bool:
+    """``node`` is an operand the rules of a ``dot`` with a constant rewrite: a product by a
+    constant (:func:`constant_product`, for :func:`merged_dot`) or ``vecN(s)`` (for
+    :func:`broadcast_dot`); transpile/inline.py inlines a call that passes one to such a dot."""
+    return constant_product(tr, node) or tr.fn is not None and _broadcast(tr, node) is not None
+
+
+def _broadcast(tr: Any, v: Any) -> Any:
+    """The float s of a vector ``vecN(s)`` (also a never-written local or inlined parameter
+    so built, or a swizzle of one), else None."""
+    if isinstance(v, A.Field) and tr.model.is_swizzle(v):
+        v = v.base
+    built = _stable_init(tr, v) if isinstance(v, A.Identifier) else v
+    if not (isinstance(built, A.Call) and built.constructor and len(built.args) == 1):
+        return None
+    s = built.args[0]
+    t = tr.type_of(built)
+    if not (t.is_vector and t.base == "float" and tr.type_of(s).is_scalar and tr.type_of(s).base == "float"):
+        return None
+    return None if tr.has_effects(s) else s
 
 
 def _product_chain(tr: Any, v: Any) -> tuple[Any, list[list[Any]]]:

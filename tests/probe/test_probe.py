@@ -323,10 +323,12 @@ float lum(vec3 c) {
 #define HALF 0.5
 void mainImage(out vec4 fragColor, in vec2 fragCoord) {
     float k = SQUARE((fragCoord.x - 2.5) * HALF);
-    float l = lum(vec3(k));
+    float l = lum(vec3(k, k, k));
     fragColor = vec4(RATIO(l, k));
 }
 """
+    # (vec3(k, k, k), not vec3(k): a call handing vec3(k) to a dot with a constant is inlined as
+    # Mesa inlines it, transpile/inline.py, and shows no call and return steps)
     p = Probe(make_shader(image, common=common))
     report = p.pixel(3, 0, SMALL)  # fragCoord.x 3.5: k = 0.25
     where = [(s.file, s.line, s.kind, s.name) for s in report.steps]

@@ -436,6 +436,8 @@ class Expressions:
             args += nir_fold.mix_hint(self, e)  # Mesa's flrp lowering: see nir_fold
         if name == "dot":
             merged = nir_fold.merged_dot(self, e, args, mask)  # constants merged into a dot product
+            if merged is None:
+                merged = nir_fold.broadcast_dot(self, e, args, mask)  # dot(vec2(s), #K): s * (K.x + K.y)
             if merged is not None:
                 return merged
         if name == "pow":

@@ -154,7 +154,7 @@ class Functions:
         return f"return {ret}"
 
     def user_call(self, e: A.Call, fn: Any, mask: str | None) -> str:
-        if worth_inlining(self, e, fn, nir_fold.constant_product):
+        if worth_inlining(self, e, fn, nir_fold.dot_operand):
             return inline_call(self, e, fn, mask)  # Mesa's rewrites reach into an argument: inline.py
         folded = folded_call(self, e, fn, mask)  # constants propagated into the call: call_fold.py
         if folded is not None:

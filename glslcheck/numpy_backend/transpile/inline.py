@@ -81,10 +81,10 @@ def _body_expression(tr: Any, fn: Any) -> Any:
 
 
 def worth_inlining(tr: Any, call: A.Call, fn: Any, constant_product: Any) -> bool:
-    """Some argument is a product by a constant (`constant_product(tr, node)`:
-    nir_fold.constant_product, passed in so this module does not import nir_fold, which
-    imports it) that the callee hands to a ``dot`` with a constant (nir_fold.merged_dot then
-    merges the constants), and inlining is allowed."""
+    """Some argument is a product by a constant or a ``vecN(s)`` (`constant_product(tr, node)`:
+    nir_fold.dot_operand, passed in so this module does not import nir_fold, which imports it)
+    that the callee hands to a ``dot`` with a constant (nir_fold.merged_dot then merges the
+    constants, nir_fold.broadcast_dot factors s out), and inlining is allowed."""
     if tr.fn is None or tr.__dict__.get("_inline_frames") or any(tr.has_effects(a) for a in call.args):
         return False  # (one level: a call inside an inlined body stays a call)
     value = _body_expression(tr, fn)
@@ -100,6 +100,8 @@ def worth_inlining(tr: Any, call: A.Call, fn: Any, constant_product: Any) -> boo
         if (isinstance(n, A.Call) and n.callee == "dot" and len(n.args) == 2
                 and isinstance(tr.model.call_target(n), B.Overload)):
             for a, b in ((n.args[0], n.args[1]), (n.args[1], n.args[0])):
+                if isinstance(a, A.Field) and tr.model.is_swizzle(a):
+                    a = a.base  # (`co.xy` of a vec2(s) is vec2(s): nir_fold.broadcast_dot)
                 if (isinstance(a, A.Identifier) and id(tr.model.symbol_of(a)) in products
                         and tr.model.const_value(b) is not None):
                     return True
