@@ -11,8 +11,7 @@ modes: tests/compiled/test_lanes_math.py). What differs is only how it is comput
 - sin/cos/tan compute jit_kernels._trig's steps for every argument with scalar._trig_any's
   int32 wrap-around, which is the same bits where _trig applies (|x| < 2**29) and scalar's
   answer for larger |x|; a NaN or an infinity gives scalar's NaN by a last select. So no rare
-  path is left: ``trig_needs_slow`` is False for every argument (kept so that a caller can
-  test it without knowing that);
+  path is left for a caller to hoist;
 - int ``/`` and ``%`` are float64 divisions truncated (x86 has no packed integer divide): for
   32-bit operands the float64 quotient truncates to the integer quotient exactly (the rounding
   error, below |q| * 2**-53 < 2**-22 / |b|, is smaller than a quotient's distance to the next
@@ -31,12 +30,13 @@ modes: tests/compiled/test_lanes_math.py). What differs is only how it is comput
 - numba's SLP vectoriser is off by default: ``numba.core.config.SLP_VECTORIZE = 1`` (or
   ``NUMBA_SLP_VECTORIZE=1`` in the environment) before the module is compiled; without it the
   functions are still correct, one lane at a time.
-- These functions are numba ``inline="always"``: each call is inlined into the caller's
-  numba IR, so LLVM sees W straight-line copies side by side (LLVM's own inliner declines a
-  function of sin's size called W times, and a call is a barrier to the vectoriser).
-- Nothing here needs a hoisted rare-case test: every function is straight-line for every
-  input. ``trig_needs_slow(a)`` exists for a caller written against that contract and is
-  always False.
+- The public functions are numba ``inline="never"``, as scalar.py's, and LLVM's inliner inlines
+  each of the W calls (the test checks that no call is left): numba's own ``inline="always"``
+  would copy and re-type a function's IR at every call site, 27 s instead of 1.5 s to compile
+  one W = 8 tuple of sin (benchmarks/bench_lanes_math.py). Their helpers (``_trig_lane``,
+  ``_exp2_finite``, ...) are numba-inlined into them once.
+- Nothing here needs a hoisted rare-case test (an any-lane check before the W calls): every
+  function is straight-line for every input, |x| >= 2**29, NaN and infinities included.
 
 What LLVM still does one lane at a time (docs/performance.md, "Branch-free math for lanes"):
 float64 to int64 conversions (none used here), and the gathers of a lane's index.
@@ -57,7 +57,7 @@ F32 = np.float32
 F64 = np.float64
 I32 = np.int32
 U32 = np.uint32
-_J = dict(inline="always", cache=True, nogil=True, error_model="numpy")
+_J = dict(inline="never", cache=True, nogil=True, error_model="numpy")
 _ZERO, _ONE, _MONE, _TWO, _THREE, _HALF, _FOUR = (F32(v) for v in (0.0, 1.0, -1.0, 2.0, 3.0, 0.5, 4.0))
 _NAN = F32(np.nan)
 _INF = F32(np.inf)
@@ -88,7 +88,13 @@ _ACOS_P0, _ACOS_P1 = F32(0.08132463), F32(-0.02363318)
 
 
 def njit(fn):
+    """A public function: compiled once (numba's cache), inlined into its callers by LLVM."""
     return numba.njit(**_J)(fn)
+
+
+def _inline(fn):
+    """A helper: inlined into the public functions by numba (once, when they compile)."""
+    return numba.njit(**{**_J, "inline": "always"})(fn)
 
 
 @intrinsic
@@ -122,7 +128,7 @@ def clamp(x, lo, hi):
     return fmin(fmax(x, lo), hi)
 
 
-@njit
+@_inline
 def _daz(x):
     """A subnormal float32 as a zero of its sign (jit_kernels._daz by a select)."""
     b = _bits(x)
@@ -134,7 +140,7 @@ def daz(x):
     return _daz(x)
 
 
-@njit
+@_inline
 def _sign(v):
     """Runtime.sign: 1, -1, else +0 (zeros and NaN)."""
     return _select(v > _ZERO, _ONE, _select(v < _ZERO, _MONE, _ZERO))
@@ -153,7 +159,7 @@ def mix_fast(x, y, a):
 
 
 # -- ints ------------------------------------------------------------------------------------
-@njit
+@_inline
 def _u32_of(t):
     """The uint32 of a float64 integer t in [0, 2**32): through int32 (cvttpd2dq), top bit back."""
     return U32(U32(I32(t - _TWO31)) ^ _SIGN)
@@ -176,7 +182,7 @@ def udiv(a, b):
     return _select(zero, U32(0xFFFFFFFF), _u32_of(q))
 
 
-@njit
+@_inline
 def _urem64(au, bu):
     """The remainder of uint32 bit patterns as a float64 (bu not 0): exact."""
     ad = F64(au)
@@ -218,7 +224,7 @@ def to_int(x):
     return _select((x >= -_TWO31F) & (x < _TWO31F), I32(x), _INT_MIN)
 
 
-@njit
+@_inline
 def _cvtt_bits(t):
     return _select((t >= -_TWO31) & (t < _TWO31), U32(I32(t)), _SIGN)
 
@@ -247,7 +253,20 @@ def to_uint_arm64(x):
 
 
 # -- llvmpipe's transcendentals --------------------------------------------------------------
-@njit
+@_inline
+def _pick(flag, a, b):
+    """``a`` where bit 0 of the int ``flag`` is clear, else ``b``, by a bit mask."""
+    m = U32(-(I32(flag) & I32(1)))
+    return _float(U32(_bits(a) ^ U32(U32(_bits(a) ^ _bits(b)) & m)))
+
+
+@_inline
+def _negate_if(flag, x):
+    """``-x`` where bit 0 of the int ``flag`` is set: the sign bit flipped by a bit mask."""
+    return _float(U32(_bits(x) ^ U32(U32(I32(flag) & I32(1)) << U32(31))))
+
+
+@_inline
 def _trig_lane(a, fma, which):
     """scalar._trig_call without a branch: scalar._trig_any's steps (jit_kernels._trig's where
     |a| < 2**29) in int32 arithmetic, the polynomial and sign picked by selects, NaN for a NaN or
@@ -270,22 +289,18 @@ def _trig_lane(a, fma, which):
     s = _ZERO
     c = _ZERO
     if which != 1:  # a constant: folded
-        s = _select((emm2_and & I32(2)) == 0, y2_9, y_10)
-        s = _select(((I32(ai >> 31) ^ I32(emm2_add >> 2)) & I32(1)) != 0, -s, s)
+        s = _pick(emm2_and >> 1, y2_9, y_10)
+        s = _negate_if(I32(ai >> 31) ^ I32(emm2_add >> 2), s)
         s = fmax(fmin(s, _ONE), _MONE)
     if which != 0:
         j2 = I32(emm2_and - I32(2))
-        c = _select((j2 & I32(2)) == 0, y2_9, y_10)
-        c = _select((I32(j2 >> 2) & I32(1)) == 0, -c, c)
+        c = _pick(emm2_and >> 1, y_10, y2_9)  # bit 1 of j2 = j - 2 is bit 1 of the even j flipped
+        c = _negate_if(I32(j2 >> 2) ^ I32(1), c)
         c = fmax(fmin(c, _ONE), _MONE)
-    r = s if which == 0 else c if which == 1 else F32(s / c)
-    return _select((_bits(a) & U32(_ABS)) >= U32(_INF_BITS), _NAN, r)
-
-
-@njit
-def trig_needs_slow(a):
-    """Whether sin/cos/tan here need a caller's slow path for ``a``: never (see the module)."""
-    return False
+    bad = (_bits(a) & U32(_ABS)) >= U32(_INF_BITS)  # NaN or Inf: scalar's NaN
+    if which == 2:  # the NaN selected before the division: a select of a division's result
+        return F32(_select(bad, _NAN, s) / _select(bad, _ONE, c))  # becomes a branch (LLVM)
+    return _select(bad, _NAN, s if which == 0 else c)
 
 
 @njit
@@ -303,7 +318,7 @@ def tan(a, fma):
     return _trig_lane(a, fma, 2)
 
 
-@njit
+@_inline
 def _exp2_finite(x, fma):
     """jit_kernels._exp2 of a non-NaN x, its clamp and DAZ by selects."""
     x = _daz(x)
@@ -384,7 +399,7 @@ def pow_uniform(x, y, special, zeros, fma):
 
 
 # -- Mesa's atan, atan(y, x), asin, acos (jit_kernels._atan, _atan2, _asin_expr by selects) ----
-@njit
+@_inline
 def _atan(v):
     a = abs(v)
     x = _daz(F32(fmin(a, _ONE) / fmax(a, _ONE)))
@@ -424,7 +439,7 @@ def atan2(y, x):
     return _select(fmin(y, rcp) < _ZERO, -arc, arc)
 
 
-@njit
+@_inline
 def _asin_expr(x, p0, p1):
     a = abs(x)
     poly = F32(_HALF_PI + F32(a * F32(_ASIN_C1 + F32(a * F32(p0 + F32(a * p1))))))
@@ -454,7 +469,8 @@ def cosh(x, fma):
 
 @njit
 def tanh(x, fma):
-    x = clamp(x, F32(-10.0), F32(10.0))
+    x = _select(x > F32(-10.0), x, F32(-10.0))  # clamp(x, -10, 10), NaN gives -10: two compares
+    x = _select(x < F32(10.0), x, F32(10.0))  # (the NaN terms of fmin/fmax cannot apply)
     e1 = exp(x, fma)
     e2 = exp(-x, fma)
     return F32(F32(e1 - e2) / F32(e1 + e2))
@@ -483,4 +499,4 @@ REWRITTEN = ("fmin", "fmax", "clamp", "sign", "daz", "mix_fast", "idiv", "udiv",
              "tanh", "asinh", "acosh", "atanh")
 AS_IS = ("fract", "mod", "step", "smoothstep", "inversesqrt", "ishl", "ishr", "ushl", "ushr", "iabs", "isign",
          "float_bits_to_int", "float_bits_to_uint", "int_bits_to_float", "uint_bits_to_float", "round_even")
-__all__ = list(REWRITTEN) + ["trig_needs_slow", "REWRITTEN", "AS_IS"]
+__all__ = list(REWRITTEN)
