@@ -131,7 +131,7 @@ def main() -> None:
     for name in names:
         kinds, out_kind, takes_fma = SPECS[name]
         fma = bool(HOST_FMA) if takes_fma else None
-        mine = getattr(lanes_math, name)
+        mine = getattr(lanes_math, name) if name in lanes_math.REWRITTEN else getattr(scalar, name)
         for coherent in (True, False):
             args = arguments(name, opts.lanes, coherent, rng)
             out = np.empty(opts.lanes, DTYPES[out_kind])

@@ -87,9 +87,35 @@ _ASIN_P0, _ASIN_P1 = F32(0.086566724), F32(-0.03102955)
 _ACOS_P0, _ACOS_P1 = F32(0.08132463), F32(-0.02363318)
 
 
+_F, _I, _U = "float32", "int32", "uint32"
+_SIGS = {  # name: (result, arguments); the types the generated code passes (fma: its FMA global)
+    **{n: (_F, "float32, float32") for n in ("fmin", "fmax", "atan2")},
+    **{n: (_F, "float32, float32, float32") for n in ("clamp", "mix_fast")},
+    **{n: (_F, "float32") for n in ("daz", "sign", "pow_zero", "asin", "acos", "atan")},
+    **{n: (_F, "float32, boolean") for n in ("sin", "cos", "tan", "exp2", "log2", "exp", "log", "sinh", "cosh",
+                                              "tanh", "asinh", "acosh", "atanh")},
+    "pow": (_F, "float32, float32, boolean"), "pow_uniform": (_F, "float32, float32, boolean, boolean, boolean"),
+    **{n: (_I, "int32, int32") for n in ("idiv", "irem", "irem_const")},
+    **{n: (_U, "uint32, uint32") for n in ("udiv", "urem")},
+    "to_int": (_I, "float32"), **{n: (_U, "float32") for n in ("to_uint_sse", "to_uint_avx512", "to_uint_arm64")},
+}
+
+
 def njit(fn):
-    """A public function: compiled once (numba's cache), inlined into its callers by LLVM."""
-    return numba.njit(**_J)(fn)
+    """A public function, compiled now for its one signature (numba's cache keeps it) with the SLP
+    vectoriser OFF: LLVM inlines this one-lane code W times into a lockstep caller and packs the
+    W copies there. Compiled with SLP on, a function's own isomorphic pairs are packed first (sinh's
+    exp(x) and exp(-x), atan2's y and x, tan's sine and cosine picks: two-wide vectors), which the
+    caller cannot unpack: 1.0x-0.5x of one lane at a time instead of 4-16x."""
+    from numba.core import config
+
+    result, args = _SIGS[fn.__name__]
+    old = config.SLP_VECTORIZE
+    config.SLP_VECTORIZE = 0
+    try:
+        return numba.njit(f"{result}({args})", **_J)(fn)
+    finally:
+        config.SLP_VECTORIZE = old
 
 
 def _inline(fn):

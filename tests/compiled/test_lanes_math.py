@@ -268,15 +268,7 @@ def avx2(numba):
         pytest.skip(why)
 
 
-# LLVM 15-20's SLP vectoriser leaves these partly one lane at a time (branch-free, the same
-# bits, but not packed): tan's reduction (sin's and cos's picks of one polynomial pair, in one
-# function: sin and cos alone are packed) and tanh's clamp feeding exp(x) and exp(-x) (packed
-# as x, -x pairs, the clamp's select per lane). docs/performance.md, "Branch-free math for lanes".
-_NOT_PACKED = {"tan": "the reduction stays scalar", "tanh": "the clamp is selected lane by lane"}
-
-
-@pytest.mark.parametrize("name", [pytest.param(n, marks=pytest.mark.xfail(reason=_NOT_PACKED[n], strict=False))
-                                  if n in _NOT_PACKED else n for n in SPECS if n != "pow_uniform"])
+@pytest.mark.parametrize("name", [n for n in SPECS if n != "pow_uniform"])
 def test_w_lanes_vectorise(slp, avx2, modules, name):
     """The W-lane tuple of each lanes_math function (its rewritten ones and scalar's that it
     keeps) compiles to packed instructions, FMA a constant."""
