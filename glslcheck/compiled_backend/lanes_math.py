@@ -33,13 +33,24 @@ modes: tests/compiled/test_lanes_math.py). What differs is only how it is comput
 - The public functions are numba ``inline="never"``, as scalar.py's, and LLVM's inliner inlines
   each of the W calls (the test checks that no call is left): numba's own ``inline="always"``
   would copy and re-type a function's IR at every call site, 27 s instead of 1.5 s to compile
-  one W = 8 tuple of sin (benchmarks/bench_lanes_math.py). Their helpers (``_trig_lane``,
-  ``_exp2_finite``, ...) are numba-inlined into them once.
+  one W = 8 tuple of sin (load 5). Their helpers (``_trig_lane``, ``_exp2_finite``, ...) are
+  numba-inlined into them once.
+- Each public function has ONE signature (:data:`_SIGS`: float32 arguments, int32/uint32 for
+  the integer ones, a bool ``fma``) and is compiled when this module is imported, with the SLP
+  vectoriser off whatever the caller's setting (:func:`njit`): about 13 s the first time on a
+  machine, then numba's cache (importing numba included, ~1 s of CPU). A function compiled with
+  SLP on packs its own one-lane pairs first, which the caller cannot repack (:func:`njit`'s
+  docstring). scalar.py's functions (those in :data:`AS_IS` too) are compiled lazily, with
+  whatever setting the caller's compile has: the same applies to them (smoothstep's
+  ``x - e0`` and ``e1 - e0`` are such a pair), so the lockstep engine should compile scalar.py
+  with SLP off as well (the W-lane test here compiles them in a fresh process with it on, and
+  they pass, but that is the order of one test, not a guarantee).
 - Nothing here needs a hoisted rare-case test (an any-lane check before the W calls): every
   function is straight-line for every input, |x| >= 2**29, NaN and infinities included.
 
-What LLVM still does one lane at a time (docs/performance.md, "Branch-free math for lanes"):
-float64 to int64 conversions (none used here), and the gathers of a lane's index.
+What this does not change: integer division stays float64 (4 lanes a ymm register: vdivpd),
+and a caller's loads with a signed index keep numba's wrap-around select per lane, which stops
+the packing of the loads themselves (docs/performance.md, "Branch-free math for lanes").
 """
 
 from __future__ import annotations
