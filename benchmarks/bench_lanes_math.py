@@ -19,7 +19,10 @@ Arguments: ``coherent`` (sorted, as neighbouring pixels: a branch on a quadrant 
 predicted) and ``random`` (the same range shuffled: hashes, random ray directions). Figures are
 the best of ``--repeat`` runs, the thread's CPU time, with the load average printed before and
 after (the machine is shared); the ratios compare columns of one run. The compile time of each
-W8 loop (cold, seconds) is printed too: lanes_math's functions are numba inline="always".
+W8 loop (seconds; scalar.py's function and lanes_math's in the same W8 tuple) is printed too:
+what a lockstep module pays per call site (lanes_math's functions themselves are compiled, or
+loaded from numba's cache, when it is imported). For scalar.py's functions that lanes_math keeps
+(lanes_math.AS_IS) the ``one``/``W`` columns run scalar.py's function.
 """
 
 from __future__ import annotations
