@@ -64,15 +64,37 @@ def _versions() -> str:
     here = os.path.dirname(__file__)
     nb = os.path.join(os.path.dirname(here), "numpy_backend")
     h = hashlib.sha256()
-    for path in (os.path.join(here, "scalar.py"), os.path.join(nb, "jit_kernels.py"),
-                 os.path.join(nb, "llvmpipe_fast.py")):
+    for path in (os.path.join(here, "scalar.py"), os.path.join(here, "lanes_math.py"),
+                 os.path.join(nb, "jit_kernels.py"), os.path.join(nb, "llvmpipe_fast.py")):
+        if not os.path.exists(path):  # lanes_math.py: the lanes' math, when it exists
+            continue
         with open(path, "rb") as f:
             h.update(f.read())
     return f"{__version__} numba {version('numba')} {h.hexdigest()[:16]}"
 
 
-def generate(shader: Any, tab: str | None = None) -> tuple[str, str]:
-    """(generated source, path of the GLSL tab) of a shader's Image (or plain GLSL) tab."""
+LANES = 8  # pixels a call in lockstep (lanes.py), unless GLSLCHECK_COMPILED_LANES says otherwise
+
+
+def lanes_width(lanes: int | None = None) -> int:
+    """Pixels per call: `lanes` when given, else $GLSLCHECK_COMPILED_LANES (0: the per-pixel
+    module, for tests and benchmarks), else LANES."""
+    if lanes is not None:
+        return lanes
+    text = os.environ.get("GLSLCHECK_COMPILED_LANES", "").strip()
+    if not text:
+        return LANES
+    try:
+        return max(0, int(text))
+    except ValueError:
+        raise InputError(f"error: GLSLCHECK_COMPILED_LANES must be a number of pixels (0: one at a time), not {text!r}") from None
+
+
+def generate(shader: Any, tab: str | None = None, lanes: int | None = None) -> tuple[str, str]:
+    """(generated source, path of the GLSL tab) of a shader's Image (or plain GLSL) tab: blocks
+    of `lanes_width(lanes)` pixels in lockstep (lanes.py), or one pixel a call when that is 0 or
+    the rewrite does not handle the program (the per-pixel module then says why in
+    LANES_FALLBACK)."""
     from ..channels import needs_passes
     from ..driver_profile import host_model
     from ..numpy_backend.runtime import HOST_FMA
@@ -94,6 +116,14 @@ def generate(shader: Any, tab: str | None = None) -> tuple[str, str]:
     sys.setrecursionlimit(max(old, 20000))
     try:
         source = Codegen(model, path, HOST_FMA, host_model()).module()
+        width = lanes_width(lanes)
+        if width:
+            from .lanes import Unsupported, lanes_module
+
+            try:
+                source = lanes_module(source, width)
+            except Unsupported as e:
+                source += f"\nLANES_FALLBACK = {str(e)!r}  # why this shader runs one pixel a call\n"
     finally:
         sys.setrecursionlimit(old)
     return source, path
@@ -146,7 +176,13 @@ class CompiledProgram:
         sys.modules[name] = mod
         spec.loader.exec_module(mod)
         self.cold = not _cached(cache, self.key)
-        self._frame(mod, 1, 1, np.zeros((1, 2)), *self._inputs(mod, None))  # compiles, or loads the cache
+        slp = config.SLP_VECTORIZE
+        if getattr(mod, "LANES", 0):  # LLVM's SLP vectorizer packs the lanes (no reassociation: same bits)
+            config.SLP_VECTORIZE = 1
+        try:
+            self._frame(mod, 1, 1, np.zeros((1, 2)), *self._inputs(mod, None))  # compiles, or loads the cache
+        finally:
+            config.SLP_VECTORIZE = slp
         self.load_seconds = time.perf_counter() - t0
         return mod
 
