@@ -176,13 +176,15 @@ class CompiledProgram:
         sys.modules[name] = mod
         spec.loader.exec_module(mod)
         self.cold = not _cached(cache, self.key)
-        slp = config.SLP_VECTORIZE
+        slp, limit = config.SLP_VECTORIZE, sys.getrecursionlimit()
         if getattr(mod, "LANES", 0):  # LLVM's SLP vectorizer packs the lanes (no reassociation: same bits)
             config.SLP_VECTORIZE = 1
+            sys.setrecursionlimit(max(limit, 20000))  # numba's SSA pass recurses along long functions
         try:
             self._frame(mod, 1, 1, np.zeros((1, 2)), *self._inputs(mod, None))  # compiles, or loads the cache
         finally:
             config.SLP_VECTORIZE = slp
+            sys.setrecursionlimit(limit)
         self.load_seconds = time.perf_counter() - t0
         return mod
 

@@ -160,8 +160,17 @@ class _Fn:
         self.n += 1
         return f"_{prefix}{self.n}L"
 
+    def atom(self, text: str) -> str:
+        """text as a name or constant (a long call's arguments may not hold control flow:
+        Python passes them as one list, which numba reads only without branches)."""
+        if text.isidentifier() or text in ("True", "False"):
+            return text
+        name = self.fresh("a")
+        self.emit(f"{name} = {text}")
+        return name
+
     def any_of(self, mask: str) -> str:
-        return "(" + " or ".join(self.lane_names(mask)) + ")"
+        return "(" + " | ".join(self.lane_names(mask)) + ")"
 
     def new_mask(self, prefix: str, texts: list[str]) -> str:
         name = self.fresh(prefix)
@@ -192,6 +201,7 @@ class _Fn:
         self.mask = "m"  # the current region's mask (the function's in uniform control)
         self.loops: list[tuple[str, str, str] | None] = []  # None: a loop of Python's own
         self.live = False  # a divergent return happened: `live__k` lanes are still running
+        self.defined = set(self.params)  # names written so far in the text
         self.block(self.fn.body, top=True)
 
     def block(self, stmts: list, top: bool = False) -> None:
@@ -208,20 +218,20 @@ class _Fn:
             if not self.live:
                 return
             self.div = True
-            self.mask = self.new_mask("mr", [f"(m__{k} and live__{k})" for k in range(self.W)])
+            self.mask = self.new_mask("mr", [f"(m__{k} & live__{k})" for k in range(self.W)])
             return
         terms = []
         if loop is not None:
             act, cont, _ = loop
             terms.append(f"{act}__{{k}}")
             if cont:
-                terms.append(f"(not {cont}__{{k}})")
+                terms.append(f"(not {cont}__{{k}})")  # `not`: no branch (`and`/`or` are two blocks)
         if self.live:
             terms.append("live__{k}")
         if not terms:
             return
         for k in range(self.W):
-            self.emit(f"{self.mask}__{k} = {self.mask}__{k} and " + " and ".join(t.format(k=k) for t in terms))
+            self.emit(f"{self.mask}__{k} = {self.mask}__{k} & " + " & ".join(t.format(k=k) for t in terms))
 
     def stmt(self, s: Any, top: bool) -> None:
         method = getattr(self, "_" + type(s).__name__, None)
@@ -298,12 +308,15 @@ class _Fn:
         if name not in self.varying:
             self.emit(f"{name} = {texts[0]}")
             return
-        plain = not self.div or self.counts.get(name, 0) <= 1
+        # plain: in uniform control, a name written once, or its first write in the text (a
+        # declaration, a ternary's first side: the lanes it does not concern read it nowhere)
+        plain = not self.div or self.counts.get(name, 0) <= 1 or name not in self.defined
+        self.defined.add(name)
         for k, text in enumerate(texts):
             if plain:
                 self.emit(f"{name}__{k} = {text}")
             else:
-                self.emit(f"{name}__{k} = ({text} if {self.mask}__{k} else {name}__{k})")
+                self.emit(f"{name}__{k} = lsel({self.mask}__{k}, {text}, {name}__{k})")
 
     def _AugAssign(self, s: ast.AugAssign, top: bool) -> None:
         if not (isinstance(s.target, ast.Name) and _is_counter(s.target.id)):
@@ -322,7 +335,7 @@ class _Fn:
             if p in UNIFORM_STATE:
                 args.append(ast.unparse(a))
             else:
-                args += self.lanes_of(a)
+                args += [self.atom(t) for t in self.lanes_of(a)]
         text = f"{name}({', '.join(args)})"
         if not targets:
             self.emit(text)
@@ -346,10 +359,10 @@ class _Fn:
         else:
             base = self.mask if self.div else "m"
             cond = self.new_mask("c", self.lanes_of(s.test))
-            then = self.new_mask("mt", [f"({base}__{k} and {cond}__{k})" for k in range(self.W)])
+            then = self.new_mask("mt", [f"({base}__{k} & {cond}__{k})" for k in range(self.W)])
             other = None
             if s.orelse:
-                other = self.new_mask("me", [f"({base}__{k} and not {cond}__{k})" for k in range(self.W)])
+                other = self.new_mask("me", [f"({base}__{k} & (not {cond}__{k}))" for k in range(self.W)])
             self.emit(f"if {self.any_of(then)}:")
             self.nested(s.body, True, then)
             if other is not None:
@@ -435,7 +448,7 @@ class _Fn:
             return
         act = loop[0]
         for k in range(self.W):
-            self.emit(f"{act}__{k} = {act}__{k} and not {self.mask}__{k}")
+            self.emit(f"{act}__{k} = {act}__{k} & (not {self.mask}__{k})")
 
     def _Continue(self, s: Any, top: bool) -> None:
         loop = self.loops[-1] if self.loops else None
@@ -444,7 +457,7 @@ class _Fn:
             return
         cont = loop[1]
         for k in range(self.W):
-            self.emit(f"{cont}__{k} = {cont}__{k} or {self.mask}__{k}")
+            self.emit(f"{cont}__{k} = {cont}__{k} | {self.mask}__{k}")
 
     def _Return(self, s: ast.Return, top: bool) -> None:
         v = s.value
@@ -455,23 +468,26 @@ class _Fn:
             if elts is None:
                 self.emit("return 0")
             else:
-                flat = [t for e in elts for t in self.lanes_of(e)]
+                flat = [self.atom(t) for e in elts for t in self.lanes_of(e)]
                 self.emit(f"return ({', '.join(flat)},)")
             return
         if elts is not None:
-            for i, e in enumerate(elts):
+            for i, e in enumerate(elts):  # the first slot write in the text is plain (see write)
+                first = f"_r{i}" not in self.defined
+                self.defined.add(f"_r{i}")
                 for k, text in enumerate(self.lanes_of(e)):
-                    self.emit(f"_r{i}__{k} = ({text} if {self.mask}__{k} else _r{i}__{k})")
+                    self.emit(f"_r{i}__{k} = {text}" if first else
+                              f"_r{i}__{k} = lsel({self.mask}__{k}, {text}, _r{i}__{k})")
         if top and not self.loops:
             self.emit_slots_return(elts is not None)
             return
         self.live = True  # from here on, `live__k`: the lanes that have not returned
         for k in range(self.W):
-            self.emit(f"live__{k} = live__{k} and not {self.mask}__{k}")
+            self.emit(f"live__{k} = live__{k} & (not {self.mask}__{k})")
         for loop in self.loops:
             if loop is not None:
                 for k in range(self.W):
-                    self.emit(f"{loop[0]}__{k} = {loop[0]}__{k} and not {self.mask}__{k}")
+                    self.emit(f"{loop[0]}__{k} = {loop[0]}__{k} & (not {self.mask}__{k})")
 
     def emit_slots_return(self, value: bool) -> None:
         if not value:
@@ -512,6 +528,7 @@ class Lanes:
                 continue
             if isinstance(node, ast.ImportFrom) and node.module == "glslcheck.compiled_backend.scalar":
                 out += math_imports()
+                out.append(f"from glslcheck.compiled_backend.lanes_rt import lsel  # {_rt_hash()}")
                 continue
             out.append(ast.unparse(node))
         out.append(f"LANES = {self.W}  # pixels per call of shade")
@@ -520,6 +537,20 @@ class Lanes:
 
     def function(self, fn: ast.FunctionDef) -> str:
         return _Fn(self, fn).source()
+
+
+def _rt_hash() -> str:
+    """lanes_rt.py's and lanes.py's hash: numba's cache does not see a callee's change, the
+    engine's module key (a hash of the source) does."""
+    import hashlib
+    import os
+
+    h = hashlib.sha256()
+    here = os.path.dirname(__file__)
+    for name in ("lanes_rt.py", "lanes.py"):
+        with open(os.path.join(here, name), "rb") as f:
+            h.update(f.read())
+    return h.hexdigest()[:16]
 
 
 def lanes_module(source: str, width: int = 8) -> str:
