@@ -111,6 +111,47 @@ class _Rename(ast.NodeTransformer):
         return node
 
 
+class _SharedReads(ast.NodeTransformer):
+    """Reads of global state no function writes (a `const` array of structs, a global written
+    only by its initializer) read lane 0's copy, `gf__0[k]`: every lane's copy holds the same
+    template values, and the read is uniform (one scalar for the block, not W loads). Written:
+    the constant slots stored to outside init_globals; a write at a run-time index or by aset
+    makes the whole state array written."""
+
+    def __init__(self, functions: Any) -> None:
+        self.written: dict[str, set | None] = {k: set() for k in STATE_LANES}
+        for f in functions:
+            for n in ast.walk(f):
+                if isinstance(n, ast.Subscript) and isinstance(n.ctx, ast.Store) and isinstance(n.value, ast.Name):
+                    self.store(n.value.id, n.slice)
+                elif _call_name(n) == "aset" and n.args and isinstance(n.args[0], ast.Name):
+                    self.store(n.args[0].id, None)
+
+    def store(self, kind: str, index: Any) -> None:
+        if kind not in self.written or self.written[kind] is None:
+            return
+        if isinstance(index, ast.Constant) and isinstance(index.value, int):
+            self.written[kind].add(index.value)
+        else:
+            self.written[kind] = None
+
+    def visit_Subscript(self, node: ast.Subscript) -> Any:
+        self.generic_visit(node)
+        base = node.value
+        if not (isinstance(node.ctx, ast.Load) and isinstance(base, ast.Name) and base.id in STATE_LANES):
+            return node
+        written = self.written[base.id]
+        if written is None:
+            return node
+        index = node.slice
+        if isinstance(index, ast.Constant) and isinstance(index.value, int):
+            if index.value in written:
+                return node
+        elif written:
+            return node
+        return ast.copy_location(ast.Subscript(ast.Name(f"{base.id}__0", ast.Load()), index, node.ctx), node)
+
+
 class _Fn:
     """One function's rewrite (see the module docstring)."""
 
@@ -516,6 +557,9 @@ class Lanes:
         self.W = width
         self.functions = {f.name: f for f in self.tree.body if isinstance(f, ast.FunctionDef)
                           and f.name not in ("init_globals", "render_rows", "globals_template")}
+        shared = _SharedReads(self.functions.values())
+        for f in self.functions.values():
+            shared.visit(f)
 
     def module(self) -> str:
         out: list[str] = []
@@ -532,7 +576,9 @@ class Lanes:
                 continue
             out.append(ast.unparse(node))
         out.append(f"LANES = {self.W}  # pixels per call of shade")
-        out.append(render_source(self.W))
+        slots = next((ast.literal_eval(n.value) for n in self.tree.body if isinstance(n, ast.Assign)
+                      and isinstance(n.targets[0], ast.Name) and n.targets[0].id == "SLOTS"), None)
+        out.append(render_source(self.W, slots))
         return "\n\n".join(out) + "\n"
 
     def function(self, fn: ast.FunctionDef) -> str:
@@ -540,16 +586,18 @@ class Lanes:
 
 
 def _rt_hash() -> str:
-    """lanes_rt.py's and lanes.py's hash: numba's cache does not see a callee's change, the
-    engine's module key (a hash of the source) does."""
+    """The hash of lanes.py, lanes_rt.py and lanes_math.py (when it exists): numba's cache does
+    not see a callee's change, the engine's module key (a hash of the source) does."""
     import hashlib
     import os
 
     h = hashlib.sha256()
     here = os.path.dirname(__file__)
-    for name in ("lanes_rt.py", "lanes.py"):
-        with open(os.path.join(here, name), "rb") as f:
-            h.update(f.read())
+    for name in ("lanes_rt.py", "lanes.py", "lanes_math.py"):
+        path = os.path.join(here, name)
+        if os.path.exists(path):
+            with open(path, "rb") as f:
+                h.update(f.read())
     return h.hexdigest()[:16]
 
 
@@ -562,8 +610,9 @@ def lanes_module(source: str, width: int = 8) -> str:
         raise Unsupported("an expression nested too deep") from None
 
 
-def render_source(W: int) -> str:
-    """render_rows for blocks of W pixels of a row (the last block repeats the row's last pixel)."""
+def render_source(W: int, slots: dict | None = None) -> str:
+    """render_rows for blocks of W pixels of a row (the last block repeats the row's last pixel);
+    slots: the module's SLOTS (a state kind without globals is not reset per pixel)."""
     st = [f"{a}__{k}" for a in STATE_LANES for k in range(W)]
     lines = [
         "@numba.njit(cache=True, nogil=True, error_model='numpy')",
@@ -585,7 +634,10 @@ def render_source(W: int) -> str:
     for k in range(W):
         lines.append(f"            px__{k} = F32(min(x0 + {k}, width - 1) + 0.5)")
     lines += ["            for s in range(samples):"]
-    for a, t in zip(STATE_LANES, ("gtf", "gti", "gtu", "gtb")):
+    kinds = ("float", "int", "uint", "bool")
+    for a, t, kind in zip(STATE_LANES, ("gtf", "gti", "gtu", "gtb"), kinds):
+        if slots is not None and not slots.get(kind):
+            continue
         for k in range(W):
             lines.append(f"                aset({a}__{k}, 0, {t})")
     lines += [
@@ -595,14 +647,12 @@ def render_source(W: int) -> str:
     args = ["True"] * W + st + ["uf", "ui"]
     args += [f"F32(px__{k} + ox)" for k in range(W)] + ["oy"] * W
     args += [f"px__{k}" for k in range(W)] + ["py"] * W
+    lines.append(f"                res = shade({', '.join(args)})")
+    lines.append("                if s == 0:  # the sum of one sample is its value (a -0.0 kept)")
+    lines += [f"                    acc[{c}, {k}] = np.float64(res[{c * W + k}])" for c in range(4) for k in range(W)]
+    lines.append("                else:")
+    lines += [f"                    acc[{c}, {k}] = acc[{c}, {k}] + res[{c * W + k}]" for c in range(4) for k in range(W)]
     lines += [
-        f"                res = shade({', '.join(args)})",
-        f"                for k in range({W}):",
-        "                    for c in range(4):",
-        f"                        if s == 0:",
-        f"                            acc[c, k] = np.float64(res[c * {W} + k])",
-        "                        else:",
-        f"                            acc[c, k] = acc[c, k] + res[c * {W} + k]",
         f"            for k in range(min({W}, width - x0)):",
         "                for c in range(4):",
         "                    out[row, x0 + k, c] = acc[c, k] / samples",
