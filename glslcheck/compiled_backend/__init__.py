@@ -1,5 +1,7 @@
 """The compiled engine: a checked GLSL program as per-pixel scalar functions compiled by numba
-(codegen.py writes them, scalar.py is their runtime, engine.py loads and renders).
+(codegen.py writes them, scalar.py is their runtime, engine.py loads and renders); lanes.py
+rewrites them to run blocks of 8 pixels in lockstep (the default; GLSLCHECK_COMPILED_LANES=0:
+one pixel a call), lanes_rt.py is that rewrite's own runtime.
 
 Importing this package imports neither numba nor llvmlite: engine.py imports numba when a
 program is loaded (numba is the optional extra `glslcheck[jit]`).
