@@ -15,12 +15,14 @@ names renamed, so each lane computes exactly the per-pixel engine's operations (
   uniforms `uf`/`ui`, other uniform locals, calls of the scalar runtime on those) and happens
   in uniform control stays ONE scalar for the block (`sin(iTime * 0.12)` once per block). A
   fixpoint over the function: parameters (but `uf`/`ui`), the per-pixel state arrays
-  `gf`/`gi`/`gu`/`gb`, results of user functions and arrays are per lane.
+  `gf`/`gi`/`gu`/`gb`, results of user functions and arrays are per lane. Reads of state no
+  function writes (`const` arrays of structs) read lane 0's copy and are uniform
+  (`_SharedReads`).
 - Control flow as llvmpipe runs it. Each function takes the block's mask `m__0..` first. An
   `if` whose condition is uniform stays an `if`. A divergent one computes both sides' masks,
   runs each side only when one of its lanes is active, and writes under the mask by select
-  (`x__k = v if mask__k else x__k`; a name written once is written plainly: it is only read
-  where it was written). A loop whose exits are all uniform stays a loop; a divergent one runs
+  (`x__k = lsel(mask__k, v, x__k)`, lanes_rt.py; a name written once, or its first write in
+  the text, is written plainly: the lanes outside the mask never read it). A loop whose exits are all uniform stays a loop; a divergent one runs
   while any lane is active (`act`), with break (clears `act`), continue (`cont`, reset each
   pass) and return (`live`, return slots `_r<i>`, clears every enclosing loop's `act`) as
   masks. A loop's pass count is the block's (the slowest lane's): LOOP_CAP as per pixel.
@@ -83,7 +85,7 @@ def _makes_array(value: Any) -> bool:
     return any(_call_name(n) in _ARRAY_CALLS for n in ast.walk(value))
 
 
-def _exits(stmts: list, loop_level: bool = True) -> set[str]:
+def _exits(stmts: list) -> set[str]:
     """The exits in stmts: 'return' anywhere, 'break'/'continue' of the enclosing loop."""
     out: set[str] = set()
     for s in stmts:
@@ -301,13 +303,10 @@ class _Fn:
             dst = v.args[0]
             if not isinstance(dst, ast.Name):
                 raise Unsupported("aset of an expression")
-            self.mark_store(dst.id, v)
+            self.mark(dst.id)  # arrays are per lane
             self.masked_store(dst.id, v)
             return
         raise Unsupported(f"the call statement {name}")
-
-    def mark_store(self, name: str, value: Any) -> None:
-        self.mark(name)  # arrays are per lane
 
     def masked_store(self, base: str, stmt_or_expr: Any) -> None:
         """A write into an array (aset, a subscript): under the mask unless it is a local in
@@ -332,7 +331,7 @@ class _Fn:
         if isinstance(t, ast.Subscript):
             if not isinstance(t.value, ast.Name):
                 raise Unsupported("a nested subscript")
-            self.mark_store(t.value.id, s)
+            self.mark(t.value.id)  # arrays are per lane
             self.masked_store(t.value.id, s)
             return
         if not isinstance(t, ast.Name):
