@@ -76,12 +76,17 @@ LANES = 8  # pixels a call in lockstep (lanes.py), unless GLSLCHECK_COMPILED_LAN
 
 def lanes_width(lanes: int | None = None) -> int:
     """Pixels per call: `lanes` when given, else $GLSLCHECK_COMPILED_LANES (0: the per-pixel
-    module, for tests and benchmarks), else LANES."""
+    module; for tests and benchmarks), else LANES when the branch-free math lanes_math.py is
+    there and 0 without it: with scalar.py's one-lane calls, lockstep gains 2-2.5x on
+    arithmetic-bound shaders but loses up to 2.6x on divergent raytracers (docs/performance.md,
+    "Pixels in lockstep"); with it, every shader measured gained."""
     if lanes is not None:
         return lanes
     text = os.environ.get("GLSLCHECK_COMPILED_LANES", "").strip()
     if not text:
-        return LANES
+        import importlib.util
+
+        return LANES if importlib.util.find_spec("glslcheck.compiled_backend.lanes_math") is not None else 0
     try:
         return max(0, int(text))
     except ValueError:

@@ -12,6 +12,7 @@ per-pixel engine with itself.
 
 from __future__ import annotations
 
+import importlib.util
 import os
 
 import numpy as np
@@ -66,8 +67,8 @@ def test_unhandled_statement_is_unsupported():
 
 
 def test_fallback_and_mode_switch(make_shader, monkeypatch):
-    """GLSLCHECK_COMPILED_LANES=0 gives the per-pixel module, a width the lockstep one; a shader
-    the rewrite refuses falls back to the per-pixel module, which says why; a bad value is an
+    """GLSLCHECK_COMPILED_LANES=0 gives the per-pixel module, a width the lockstep one, nothing
+    the engine's choice; a shader the rewrite refuses falls back to the per-pixel module, which says why; a bad value is an
     input error (exit 2)."""
     from glslcheck.compiled_backend import lanes
     from glslcheck.compiled_backend.engine import generate
@@ -80,12 +81,14 @@ def test_fallback_and_mode_switch(make_shader, monkeypatch):
     monkeypatch.setenv("GLSLCHECK_COMPILED_LANES", "16")
     assert "LANES = 16" in generate(shader)[0]
     monkeypatch.delenv("GLSLCHECK_COMPILED_LANES")
-    assert "LANES = 8" in generate(shader)[0]
+    # the default: lockstep with the branch-free math (lanes_math.py), else per pixel
+    math = importlib.util.find_spec("glslcheck.compiled_backend.lanes_math") is not None
+    assert ("LANES = 8" in generate(shader)[0]) == math
 
     def refuse(self):
         raise lanes.Unsupported("a construct")
     monkeypatch.setattr(lanes.Lanes, "module", refuse)
-    source, _ = generate(shader)
+    source, _ = generate(shader, lanes=8)
     assert source.startswith(pixel) and "LANES_FALLBACK = 'a construct'" in source
     monkeypatch.setenv("GLSLCHECK_COMPILED_LANES", "eight")
     with pytest.raises(InputError, match="GLSLCHECK_COMPILED_LANES"):
