@@ -2,7 +2,7 @@
 
     python benchmarks/bench_compiled.py [--size 128x72,400x225] [--repeat 3] [--only ID,...]
                                         [--lab-only | --real-only] [--numpy-size 128x72]
-                                        [--fresh-cache] [--json out.json]
+                                        [--fresh-cache] [--json out.json] [--lanes 0,8]
 
 For every lab shader and every real public shader of tests/real_verify (texts fetched by
 tools/real_verify.py fetch), in this one process:
@@ -15,6 +15,10 @@ tools/real_verify.py fetch), in this one process:
   llvmpipe's threads and the engine's row threads are both counted), compiled vs GL (moderngl,
   llvmpipe) in turns, each frame at a new iTime; the NumPy backend's frame once at
   --numpy-size only (it takes minutes on the slowest shaders at larger sizes);
+- modes (--lanes, default the engine's choice): 0 is the per-pixel module (one pixel a call),
+  W > 0 pixels in lockstep blocks of W (compiled_backend/lanes.py; a shader the rewrite does not
+  handle falls back to per pixel, `fallback` says why); each mode is timed against the same GL
+  frames, and a lockstep frame is compared bit for bit with the per-pixel one when 0 is listed;
 - agreement: the compiled frame against the NumPy frame of the same inputs (pixels differing,
   max abs difference), and against GL by glslcheck's verify rule (compare.compare: `match`),
   beside the NumPy frame's own verdict.
@@ -73,54 +77,100 @@ def shaders(lab: bool, real: bool, only: set[str] | None) -> list[tuple[str, str
     return [(i, p) for i, p in out if not only or i in only]
 
 
-def measure(name: str, path: str, sizes: list, repeat: int, numpy_size) -> list[dict]:
+def measure(name: str, path: str, sizes: list, repeat: int, numpy_size, modes: list) -> list[dict]:
     import numpy as np
 
     import glslcheck
     from glslcheck.compare import compare
-    from glslcheck.compiled_backend.engine import CompiledProgram, generate
+    from glslcheck.compiled_backend.engine import CompiledProgram, generate, lanes_width
     from glslcheck.gl_backend import compile_gl
     from glslcheck.sources import load_shader
 
     shader = load_shader(path)
-    t0 = time.perf_counter()
-    source, tab = generate(shader)
-    gen = time.perf_counter() - t0
-    prog = CompiledProgram(source, tab)
-    prog.load()
+    progs = {}
+    for mode in modes:
+        t0 = time.perf_counter()
+        source, tab = generate(shader, lanes=mode)
+        gen = time.perf_counter() - t0
+        prog = CompiledProgram(source, tab)
+        prog.load()
+        width = lanes_width(mode)
+        label = "pixel" if not width or "LANES_FALLBACK" in source else f"lanes{width}"
+        fallback = source.rsplit("LANES_FALLBACK = ", 1)[1].split("  #")[0] if "LANES_FALLBACK" in source else ""
+        progs[mode] = (prog, gen, label, fallback)
     gl = compile_gl(shader)
     rows = []
     for size in sizes:
-        t = {k: math.inf for k in ("compiled", "gl", "compiled cpu", "gl cpu")}
-        prog.render(size=size, time=_time())  # warm-up (threads, GL buffers)
+        t = {k: math.inf for m in progs for k in (f"c{m}", f"c{m} cpu")}
+        t.update({"gl": math.inf, "gl cpu": math.inf})
+        for prog, *_ in progs.values():
+            prog.render(size=size, time=_time())  # warm-up (threads, GL buffers)
         gl.render(size=size, time=_time())
         for _ in range(repeat):
-            for key, fn in (("compiled", prog.render), ("gl", gl.render)):
+            for key, fn in [(f"c{m}", p[0].render) for m, p in progs.items()] + [("gl", gl.render)]:
                 tm = _time()
                 c0, w0 = time.process_time(), time.perf_counter()
                 fn(size=size, time=tm)
                 t[key] = min(t[key], time.perf_counter() - w0)
                 t[key + " cpu"] = min(t[key + " cpu"], time.process_time() - c0)
         tm = _time()
-        img = prog.render(size=size, time=tm)
         gimg = gl.render(size=size, time=tm)
-        row = dict(shader=name, size=f"{size[0]}x{size[1]}", gen=gen, load=prog.load_seconds, cold=prog.cold,
-                   **t, ratio=t["compiled"] / t["gl"], cpu_ratio=t["compiled cpu"] / t["gl cpu"],
-                   gl_match=compare(img, gimg).match)
-        if size == numpy_size:
-            nprog = glslcheck.compile(shader, backend="numpy")
-            c0, w0 = time.process_time(), time.perf_counter()
-            nimg = nprog.render(size=size, time=tm)
-            row["numpy"], row["numpy cpu"] = time.perf_counter() - w0, time.process_time() - c0
-            same = (img == nimg) | (np.isnan(img) & np.isnan(nimg))
-            diff = ~same.all(axis=2)
-            fin = np.isfinite(img) & np.isfinite(nimg)
-            row["numpy_differ"] = int(diff.sum())
-            row["numpy_max_abs"] = float(np.abs(img - nimg)[fin].max(initial=0.0))
-            row["numpy_nan_differ"] = int((np.isnan(img) != np.isnan(nimg)).any(axis=2).sum())
-            row["numpy_gl_match"] = compare(nimg, gimg).match
-        rows.append(row)
+        imgs = {m: p[0].render(size=size, time=tm) for m, p in progs.items()}
+        nimg = None
+        for m, (prog, gen, label, fallback) in progs.items():
+            img = imgs[m]
+            row = dict(shader=name, size=f"{size[0]}x{size[1]}", mode=m, label=label, fallback=fallback, gen=gen,
+                       load=prog.load_seconds, cold=prog.cold, compiled=t[f"c{m}"], gl=t["gl"],
+                       **{"compiled cpu": t[f"c{m} cpu"], "gl cpu": t["gl cpu"]},
+                       ratio=t[f"c{m}"] / t["gl"], cpu_ratio=t[f"c{m} cpu"] / t["gl cpu"],
+                       gl_match=compare(img, gimg).match)
+            if 0 in imgs and m != 0:
+                row["pixel_differ"] = int((img.view(np.uint32) != imgs[0].view(np.uint32)).any(axis=2).sum())
+            if size == numpy_size:
+                if nimg is None:
+                    nprog = glslcheck.compile(shader, backend="numpy")
+                    c0, w0 = time.process_time(), time.perf_counter()
+                    nimg = nprog.render(size=size, time=tm)
+                    ncost = time.perf_counter() - w0, time.process_time() - c0
+                row["numpy"], row["numpy cpu"] = ncost
+                same = (img == nimg) | (np.isnan(img) & np.isnan(nimg))
+                diff = ~same.all(axis=2)
+                fin = np.isfinite(img) & np.isfinite(nimg)
+                row["numpy_differ"] = int(diff.sum())
+                row["numpy_max_abs"] = float(np.abs(img - nimg)[fin].max(initial=0.0))
+                row["numpy_nan_differ"] = int((np.isnan(img) != np.isnan(nimg)).any(axis=2).sum())
+                row["numpy_gl_match"] = compare(nimg, gimg).match
+            rows.append(row)
     return rows
+
+
+def summary(rows: list, label: str, mode) -> None:
+    """Per size and mode: the worst CPU ratios, geometric means, over-6x, agreement."""
+    sel = sorted((r for r in rows if r["size"] == label and r["mode"] == mode), key=lambda r: -r["cpu_ratio"])
+    if not sel:
+        return
+    lanes = sum(r["label"] != "pixel" for r in sel)
+    print(f"\n{label}, mode {mode if mode is not None else 'auto'} ({lanes} of {len(sel)} in lockstep): "
+          f"{len(sel)} shaders, worst CPU ratios first")
+    for r in sel[:12]:
+        print(f"  {r['shader']:24s} {r['label']:>7s} cpu {r['cpu_ratio']:6.2f}x  wall {r['ratio']:6.2f}x")
+    for key, what in (("cpu_ratio", "CPU"), ("ratio", "wall")):
+        g = math.exp(sum(math.log(r[key]) for r in sel) / len(sel))
+        over = [r["shader"] for r in sel if r[key] > 6.0]
+        print(f"  geometric mean ({what}) {g:.2f}x llvmpipe; over 6x: {len(over)} {', '.join(over)}")
+    match = sum(r["gl_match"] for r in sel)
+    print(f"  verify against GL: {match} of {len(sel)} match")
+    withp = [r for r in sel if "pixel_differ" in r and r["label"] != "pixel"]
+    if withp:
+        print(f"  lockstep bit-identical to the per-pixel engine: {sum(r['pixel_differ'] == 0 for r in withp)} "
+              f"of {len(withp)}")
+    withn = [r for r in sel if "numpy_differ" in r]
+    if withn:
+        same = sum(r["numpy_differ"] == 0 for r in withn)
+        print(f"  bit-identical to the NumPy render: {same} of {len(withn)}; "
+              f"numpy's own verify: {sum(r['numpy_gl_match'] for r in withn)} match")
+        g = math.exp(sum(math.log(r["numpy cpu"] / r["compiled cpu"]) for r in withn) / len(withn))
+        print(f"  NumPy CPU / compiled CPU, geometric mean: {g:.1f}x")
 
 
 def main() -> int:
@@ -133,7 +183,9 @@ def main() -> int:
     ap.add_argument("--real-only", action="store_true")
     ap.add_argument("--fresh-cache", action="store_true")
     ap.add_argument("--json", default=None)
+    ap.add_argument("--lanes", default="", help="modes: pixels a call, 0 = per pixel (default: the engine's choice)")
     args = ap.parse_args()
+    modes = [int(x) for x in args.lanes.split(",")] if args.lanes else [None]
     if args.fresh_cache:
         os.environ["NUMBA_CACHE_DIR"] = tempfile.mkdtemp(prefix="glslcheck-bench-numba-")
     os.environ.setdefault("GLSLCHECK_JIT", "off")  # the NumPy side: its default NumPy math
@@ -146,7 +198,7 @@ def main() -> int:
     rows, skipped = [], []
     for name, path in shaders(not args.real_only, not args.lab_only, only):
         try:
-            got = measure(name, path, sizes, args.repeat, numpy_size)
+            got = measure(name, path, sizes, args.repeat, numpy_size, modes)
         except GlslError as e:
             skipped.append((name, str(e).split(";")[0][:110]))
             print(f"  {name}: skipped: {skipped[-1][1]}", flush=True)
@@ -163,39 +215,26 @@ def main() -> int:
                          f"verify {'match' if r['gl_match'] else 'MISMATCH'} (numpy {'match' if r['numpy_gl_match'] else 'MISMATCH'})")
             else:
                 extra = f"  verify {'match' if r['gl_match'] else 'MISMATCH'}"
-            print(f"  {name:24s} {r['size']:>8s} load {r['load']:6.2f}s{' cold' if r['cold'] else ' warm'}  "
+            if "pixel_differ" in r:
+                extra += f"  vs per pixel: {r['pixel_differ']} px differ"
+            if r["fallback"]:
+                extra += f"  (fallback: {r['fallback']})"
+            print(f"  {name:24s} {r['size']:>8s} {r['label']:>7s} load {r['load']:6.2f}s{' cold' if r['cold'] else ' warm'}  "
                   f"compiled {r['compiled cpu'] * 1000:8.1f} ms cpu {r['compiled'] * 1000:8.1f} ms wall  "
                   f"gl {r['gl cpu'] * 1000:7.1f} / {r['gl'] * 1000:7.1f} ms  cpu {r['cpu_ratio']:6.2f}x  "
                   f"wall {r['ratio']:6.2f}x{extra}", flush=True)
         rows += got
     for size in sizes:
-        label = f"{size[0]}x{size[1]}"
-        sel = sorted((r for r in rows if r["size"] == label), key=lambda r: -r["cpu_ratio"])
-        if not sel:
-            continue
-        print(f"\n{label}: {len(sel)} shaders, worst CPU ratios first")
-        for r in sel[:12]:
-            print(f"  {r['shader']:24s} cpu {r['cpu_ratio']:6.2f}x  wall {r['ratio']:6.2f}x")
-        for key, what in (("cpu_ratio", "CPU"), ("ratio", "wall")):
-            g = math.exp(sum(math.log(r[key]) for r in sel) / len(sel))
-            over = [r["shader"] for r in sel if r[key] > 6.0]
-            print(f"  geometric mean ({what}) {g:.2f}x llvmpipe; over 6x: {len(over)} {', '.join(over)}")
-        match = sum(r["gl_match"] for r in sel)
-        print(f"  verify against GL: {match} of {len(sel)} match")
-        withn = [r for r in sel if "numpy_differ" in r]
-        if withn:
-            same = sum(r["numpy_differ"] == 0 for r in withn)
-            print(f"  bit-identical to the NumPy render: {same} of {len(withn)}; "
-                  f"numpy's own verify: {sum(r['numpy_gl_match'] for r in withn)} match")
-            g = math.exp(sum(math.log(r["numpy cpu"] / r["compiled cpu"]) for r in withn) / len(withn))
-            print(f"  NumPy CPU / compiled CPU, geometric mean: {g:.1f}x")
-    loads = [r["load"] for r in rows]
-    if loads:
-        cold = [r["load"] for r in rows if r["cold"]]
-        warm = [r["load"] for r in rows if not r["cold"]]
-        for what, xs in (("cold", cold), ("warm", warm)):
+        for mode in modes:
+            summary(rows, f"{size[0]}x{size[1]}", mode)
+    first = f"{sizes[0][0]}x{sizes[0][1]}"
+    for mode in modes:  # one load per shader and mode
+        loaded = [r for r in rows if r["size"] == first and r["mode"] == mode]
+        for what, xs in (("cold", [r["load"] for r in loaded if r["cold"]]),
+                         ("warm", [r["load"] for r in loaded if not r["cold"]])):
             if xs:
-                print(f"load ({what}, wall): median {sorted(xs)[len(xs) // 2]:.2f} s, max {max(xs):.2f} s over {len(xs)}")
+                print(f"mode {mode if mode is not None else 'auto'}: load ({what}, wall): median "
+                      f"{sorted(xs)[len(xs) // 2]:.2f} s, max {max(xs):.2f} s over {len(xs)}")
     for name, why in skipped:
         print(f"skipped {name}: {why}")
     print(f"load average at end: {_load()}")

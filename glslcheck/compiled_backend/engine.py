@@ -71,8 +71,33 @@ def _versions() -> str:
     return f"{__version__} numba {version('numba')} {h.hexdigest()[:16]}"
 
 
-def generate(shader: Any, tab: str | None = None) -> tuple[str, str]:
-    """(generated source, path of the GLSL tab) of a shader's Image (or plain GLSL) tab."""
+LANES = 8  # pixels a call in lockstep (lanes.py), unless GLSLCHECK_COMPILED_LANES says otherwise
+
+
+def lanes_width(lanes: int | None = None) -> int:
+    """Pixels per call: `lanes` when given, else $GLSLCHECK_COMPILED_LANES (0: the per-pixel
+    module; for tests and benchmarks), else LANES when the branch-free math lanes_math.py is
+    there and 0 without it: with scalar.py's one-lane calls, lockstep gains 2-2.5x on
+    arithmetic-bound shaders but loses up to 2.6x on divergent raytracers (docs/performance.md,
+    "Pixels in lockstep"); with it, every shader measured gained."""
+    if lanes is not None:
+        return lanes
+    text = os.environ.get("GLSLCHECK_COMPILED_LANES", "").strip()
+    if not text:
+        import importlib.util
+
+        return LANES if importlib.util.find_spec("glslcheck.compiled_backend.lanes_math") is not None else 0
+    try:
+        return max(0, int(text))
+    except ValueError:
+        raise InputError(f"error: GLSLCHECK_COMPILED_LANES must be a number of pixels (0: one at a time), not {text!r}") from None
+
+
+def generate(shader: Any, tab: str | None = None, lanes: int | None = None) -> tuple[str, str]:
+    """(generated source, path of the GLSL tab) of a shader's Image (or plain GLSL) tab: blocks
+    of `lanes_width(lanes)` pixels in lockstep (lanes.py), or one pixel a call when that is 0 or
+    the rewrite does not handle the program (the per-pixel module then says why in
+    LANES_FALLBACK)."""
     from ..channels import needs_passes
     from ..driver_profile import host_model
     from ..numpy_backend.runtime import HOST_FMA
@@ -94,6 +119,14 @@ def generate(shader: Any, tab: str | None = None) -> tuple[str, str]:
     sys.setrecursionlimit(max(old, 20000))
     try:
         source = Codegen(model, path, HOST_FMA, host_model()).module()
+        width = lanes_width(lanes)
+        if width:
+            from .lanes import Unsupported, lanes_module
+
+            try:
+                source = lanes_module(source, width)
+            except Unsupported as e:
+                source += f"\nLANES_FALLBACK = {str(e)!r}  # why this shader runs one pixel a call\n"
     finally:
         sys.setrecursionlimit(old)
     return source, path
@@ -146,7 +179,15 @@ class CompiledProgram:
         sys.modules[name] = mod
         spec.loader.exec_module(mod)
         self.cold = not _cached(cache, self.key)
-        self._frame(mod, 1, 1, np.zeros((1, 2)), *self._inputs(mod, None))  # compiles, or loads the cache
+        slp, limit = config.SLP_VECTORIZE, sys.getrecursionlimit()
+        if getattr(mod, "LANES", 0):  # LLVM's SLP vectorizer packs the lanes (no reassociation: same bits)
+            config.SLP_VECTORIZE = 1
+            sys.setrecursionlimit(max(limit, 20000))  # numba's SSA pass recurses along long functions
+        try:
+            self._frame(mod, 1, 1, np.zeros((1, 2)), *self._inputs(mod, None))  # compiles, or loads the cache
+        finally:
+            config.SLP_VECTORIZE = slp
+            sys.setrecursionlimit(limit)
         self.load_seconds = time.perf_counter() - t0
         return mod
 

@@ -1,0 +1,35 @@
+"""The lockstep modules' own runtime (lanes.py): a branch-free select.
+
+`lsel(c, a, b)` is `a if c else b` as LLVM's `select` instruction. Written as Python's
+conditional expression, each of the lanes' masked writes would be two basic blocks in numba's
+IR: a function of a few thousand of them takes numba's SSA pass past Python's recursion limit
+(16 lanes) and its compile time grows with them; as one instruction it is neither, and LLVM's
+SLP vectorizer can make W of them one blend.
+"""
+
+from __future__ import annotations
+
+from numba.core import types
+from numba.core.imputils import impl_ret_borrowed
+from numba.extending import intrinsic
+
+
+@intrinsic
+def lsel(typingctx, c, a, b):
+    """a where the bool c holds, else b (both computed; their unified type: a literal True and
+    a bool are a bool)."""
+    if not isinstance(c, types.Boolean):
+        return None
+    t = a if a == b else typingctx.unify_types(a, b)
+    if t is None:
+        return None
+    t = types.unliteral(t)
+
+    def codegen(context, builder, signature, args):
+        sa, sb = signature.args[1], signature.args[2]
+        x = context.cast(builder, args[1], sa, t)
+        y = context.cast(builder, args[2], sb, t)
+        c_ = context.cast(builder, args[0], signature.args[0], types.boolean)
+        value = builder.select(c_, x, y)
+        return impl_ret_borrowed(context, builder, t, value)  # arrays: one more reference
+    return t(c, a, b), codegen

@@ -1,0 +1,95 @@
+"""Pixels in lockstep (compiled_backend/lanes.py) against the per-pixel compiled engine, bit for bit.
+
+The per-pixel module is the reference: every lane of the lockstep module must compute exactly
+its operations, so the two images are compared bit for bit (a NaN must be the same NaN: both
+engines run the same operations on it). The construct shaders of test_compiled_render.py
+(divergent loops with break/continue/return, `&&`/`||` with side effects on globals, ternaries,
+out/inout parameters, arrays, run-time indices, int/uint, hard math inputs) and a lab sample,
+at 40x24: 40 pixels a row is not a multiple of 16, so the last block of a row is partial.
+Each program must be a lockstep module (no fallback), else the test would compare the
+per-pixel engine with itself.
+"""
+
+from __future__ import annotations
+
+import importlib.util
+import os
+
+import numpy as np
+import pytest
+
+from test_compiled_render import CONSTRUCTS, LAB, SIZE
+
+MOUSE = (10.0, 7.0, 3.0, -2.0)
+
+
+def _render(shader, lanes: int, time: float = 1.3) -> np.ndarray:
+    from glslcheck.compiled_backend.engine import CompiledProgram, generate
+
+    source, path = generate(shader, lanes=lanes)
+    if lanes:
+        assert f"LANES = {lanes}" in source and "LANES_FALLBACK" not in source, source[-300:]
+    return CompiledProgram(source, path).render(size=SIZE, time=time, mouse=MOUSE)
+
+
+def _same_bits(shader, lanes: int) -> None:
+    want = _render(shader, 0)
+    got = _render(shader, lanes)
+    same = got.view(np.uint32) == want.view(np.uint32)
+    if not same.all():
+        where = np.argwhere(~same.all(axis=2))
+        y, x = where[0]
+        raise AssertionError(f"{len(where)} of {SIZE[0] * SIZE[1]} pixels differ; first at row {y} col {x}: "
+                             f"lanes {got[y, x]}, per pixel {want[y, x]}")
+
+
+@pytest.mark.parametrize("lanes", [8, 16])
+@pytest.mark.parametrize("name", sorted(CONSTRUCTS))
+def test_construct_lanes_bit_for_bit(numba, make_shader, name, lanes):
+    _same_bits(make_shader(CONSTRUCTS[name]), lanes)
+
+
+@pytest.mark.parametrize("name", ["01_spheres_procedural", "05_blinn_phong", "bonus_spot_lights"])
+def test_lab_lanes_bit_for_bit(numba, name):
+    from glslcheck.sources import load_shader
+
+    _same_bits(load_shader(os.path.join(LAB, name)), 8)
+
+
+def test_unhandled_statement_is_unsupported():
+    """A statement the rewrite does not know (the per-pixel generator writes no `for`) is
+    Unsupported, not rewritten wrongly."""
+    from glslcheck.compiled_backend.lanes import Unsupported, lanes_module
+
+    source = "@jit\ndef f_g(v_x_0):\n    for i in range(3):\n        pass\n    return (v_x_0,)\n"
+    with pytest.raises(Unsupported, match="For"):
+        lanes_module(source, 8)
+
+
+def test_fallback_and_mode_switch(make_shader, monkeypatch):
+    """GLSLCHECK_COMPILED_LANES=0 gives the per-pixel module, a width the lockstep one, nothing
+    the engine's choice; a shader the rewrite refuses falls back to the per-pixel module, which says why; a bad value is an
+    input error (exit 2)."""
+    from glslcheck.compiled_backend import lanes
+    from glslcheck.compiled_backend.engine import generate
+    from glslcheck.diagnostics import InputError
+
+    shader = make_shader(CONSTRUCTS["control_flow"])
+    monkeypatch.setenv("GLSLCHECK_COMPILED_LANES", "0")
+    pixel, _ = generate(shader)
+    assert "LANES =" not in pixel and "LANES_FALLBACK" not in pixel
+    monkeypatch.setenv("GLSLCHECK_COMPILED_LANES", "16")
+    assert "LANES = 16" in generate(shader)[0]
+    monkeypatch.delenv("GLSLCHECK_COMPILED_LANES")
+    # the default: lockstep with the branch-free math (lanes_math.py), else per pixel
+    math = importlib.util.find_spec("glslcheck.compiled_backend.lanes_math") is not None
+    assert ("LANES = 8" in generate(shader)[0]) == math
+
+    def refuse(self):
+        raise lanes.Unsupported("a construct")
+    monkeypatch.setattr(lanes.Lanes, "module", refuse)
+    source, _ = generate(shader, lanes=8)
+    assert source.startswith(pixel) and "LANES_FALLBACK = 'a construct'" in source
+    monkeypatch.setenv("GLSLCHECK_COMPILED_LANES", "eight")
+    with pytest.raises(InputError, match="GLSLCHECK_COMPILED_LANES"):
+        generate(shader)
