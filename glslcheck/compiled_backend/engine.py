@@ -71,22 +71,18 @@ def _versions() -> str:
     return f"{__version__} numba {version('numba')} {h.hexdigest()[:16]}"
 
 
-LANES = 8  # pixels a call in lockstep (lanes.py), unless GLSLCHECK_COMPILED_LANES says otherwise
-
-
 def lanes_width(lanes: int | None = None) -> int:
-    """Pixels per call: `lanes` when given, else $GLSLCHECK_COMPILED_LANES (0: the per-pixel
-    module; for tests and benchmarks), else LANES when the branch-free math lanes_math.py is
-    there and 0 without it: with scalar.py's one-lane calls, lockstep gains 2-2.5x on
-    arithmetic-bound shaders but loses up to 2.6x on divergent raytracers (docs/performance.md,
-    "Pixels in lockstep"); with it, every shader measured gained."""
+    """Pixels per call: `lanes` when given, else $GLSLCHECK_COMPILED_LANES, else 0 (the
+    per-pixel module). Lockstep (8 or 16 pixels, with the branch-free math of lanes_math.py) renders
+    every shader measured faster, bit for bit, but numba takes several times longer and much
+    more memory to compile it: 10-lab4 of the real corpus, cold, 341 s and 9.2 GB peak against
+    17 s and 0.4 GB per pixel (docs/performance.md, "Pixels in lockstep"). So it is a choice
+    (GLSLCHECK_COMPILED_LANES=8 or 16) for a shader rendered many times, not the default."""
     if lanes is not None:
         return lanes
     text = os.environ.get("GLSLCHECK_COMPILED_LANES", "").strip()
     if not text:
-        import importlib.util
-
-        return LANES if importlib.util.find_spec("glslcheck.compiled_backend.lanes_math") is not None else 0
+        return 0
     try:
         return max(0, int(text))
     except ValueError:

@@ -12,7 +12,6 @@ per-pixel engine with itself.
 
 from __future__ import annotations
 
-import importlib.util
 import os
 
 import numpy as np
@@ -81,9 +80,8 @@ def test_fallback_and_mode_switch(make_shader, monkeypatch):
     monkeypatch.setenv("GLSLCHECK_COMPILED_LANES", "16")
     assert "LANES = 16" in generate(shader)[0]
     monkeypatch.delenv("GLSLCHECK_COMPILED_LANES")
-    # the default: lockstep with the branch-free math (lanes_math.py), else per pixel
-    math = importlib.util.find_spec("glslcheck.compiled_backend.lanes_math") is not None
-    assert ("LANES = 8" in generate(shader)[0]) == math
+    # the default is per pixel (lockstep compiles several times longer: engine.lanes_width)
+    assert generate(shader)[0] == pixel
 
     def refuse(self):
         raise lanes.Unsupported("a construct")
