@@ -151,8 +151,27 @@ def modules(numba):
     return scalar, lanes_math
 
 
+def _open_nan_choice(args: list[np.ndarray], want: np.ndarray, got: np.ndarray) -> np.ndarray:
+    """Where two or more float arguments are NaN and both results are NaN with the quiet payload
+    of one of them: IEEE 754 (6.2.3) leaves open which input NaN's payload an operation keeps,
+    and x86 keeps its first operand's, so it is LLVM's operand order (it commutes fmul and fadd
+    as it packs lanes) that decides, not our code. mix_fast(x, NaN, sNaN) kept y's payload in
+    the W-lane tuple and a's in scalar.py on an AMD EPYC (AVX-512)."""
+    floats = [a for a in args if a.dtype == np.float32]
+    if want.dtype != np.float32 or len(floats) < 2:
+        return np.zeros(want.size, bool)
+    nans = sum(np.isnan(a).astype(int) for a in floats)
+    quiet = [a.view(np.uint32) | np.uint32(0x00400000) for a in floats]
+    g = got.view(np.uint32)
+    own = np.zeros(want.size, bool)
+    for q in quiet:
+        own |= g == q
+    return (nans >= 2) & np.isnan(want) & np.isnan(got) & own
+
+
 def _assert_same_bits(name: str, args: list[np.ndarray], want: np.ndarray, got: np.ndarray) -> None:
-    bad = np.flatnonzero(want.view(np.uint32) != got.view(np.uint32))
+    differ = want.view(np.uint32) != got.view(np.uint32)
+    bad = np.flatnonzero(differ & ~_open_nan_choice(args, want, got))
     if bad.size:
         k = bad[0]
         shown = ", ".join(f"{a[k]!r} (0x{a[k:k + 1].view(np.uint32)[0]:08x})" for a in args)
@@ -281,9 +300,14 @@ def test_w_lanes_vectorise(slp, avx2, modules, name):
     assert _vectorised(report), f"{name}: {report}"
 
 
-@pytest.mark.parametrize("name", ["sin", "fmin", "idiv", "exp2"])
+@pytest.mark.parametrize("name", ["sin", "idiv", "exp2"])
 def test_scalar_versions_do_not_vectorise(slp, avx2, modules, name):
-    """The check above can fail: scalar.py's branching versions in the same W-lane form."""
+    """The check above can fail: scalar.py's branching versions in the same W-lane form.
+
+    Functions whose branches LLVM cannot turn into selects (a loop-free reduction with calls, a
+    division guarded by a branch, a table clamp): scalar.fmin's two NaN tests are no control,
+    LLVM if-converts them on some CPUs (packed, one jump, on an AMD EPYC, znver4) and not on
+    others."""
     scalar, _ = modules
     kinds, out_kind, takes_fma = SPECS[name]
     kernel = lanes_kernel(scalar, name, True if takes_fma else None, loop=False)
