@@ -64,7 +64,7 @@ def _versions() -> str:
     here = os.path.dirname(__file__)
     nb = os.path.join(os.path.dirname(here), "numpy_backend")
     h = hashlib.sha256()
-    for path in (os.path.join(here, "scalar.py"), os.path.join(nb, "jit_kernels.py"),
+    for path in (os.path.join(here, "scalar.py"), os.path.join(here, "lanes_rt.py"), os.path.join(nb, "jit_kernels.py"),
                  os.path.join(nb, "llvmpipe_fast.py")):
         with open(path, "rb") as f:
             h.update(f.read())

@@ -574,6 +574,8 @@ class Lanes:
                 out += math_imports()
                 out.append(f"from glslcheck.compiled_backend.lanes_rt import lsel  # {_rt_hash()}")
                 continue
+            if isinstance(node, ast.ImportFrom) and node.module == "glslcheck.compiled_backend.lanes_rt":
+                continue  # the per-pixel module's lsel import: the line above, with the hash
             out.append(ast.unparse(node))
         out.append(f"LANES = {self.W}  # pixels per call of shade")
         slots = next((ast.literal_eval(n.value) for n in self.tree.body if isinstance(n, ast.Assign)
