@@ -15,10 +15,13 @@ tools/real_verify.py fetch), in this one process:
   llvmpipe's threads and the engine's row threads are both counted), compiled vs GL (moderngl,
   llvmpipe) in turns, each frame at a new iTime; the NumPy backend's frame once at
   --numpy-size only (it takes minutes on the slowest shaders at larger sizes);
-- modes (--lanes, default the engine's choice): 0 is the per-pixel module (one pixel a call),
-  W > 0 pixels in lockstep blocks of W (compiled_backend/lanes.py; a shader the rewrite does not
-  handle falls back to per pixel, `fallback` says why); each mode is timed against the same GL
-  frames, and a lockstep frame is compared bit for bit with the per-pixel one when 0 is listed;
+- modes (--lanes, default 0,8: the two tiers of the engine's default program, TieredProgram,
+  which renders per pixel first and moves to 8 lanes once the frames have cost what compiling
+  them is expected to cost, so a shader rendered many times runs in lockstep): 0 is the
+  per-pixel module (one pixel a call), W > 0 pixels in lockstep blocks of W
+  (compiled_backend/lanes.py; a shader the rewrite does not handle falls back to per pixel,
+  `fallback` says why); each mode is timed against the same GL frames, and a lockstep frame is
+  compared bit for bit with the per-pixel one when 0 is listed;
 - agreement: the compiled frame against the NumPy frame of the same inputs (pixels differing,
   max abs difference), and against GL by glslcheck's verify rule (compare.compare: `match`),
   beside the NumPy frame's own verdict.
@@ -183,9 +186,9 @@ def main() -> int:
     ap.add_argument("--real-only", action="store_true")
     ap.add_argument("--fresh-cache", action="store_true")
     ap.add_argument("--json", default=None)
-    ap.add_argument("--lanes", default="", help="modes: pixels a call, 0 = per pixel (default: the engine's choice)")
+    ap.add_argument("--lanes", default="0,8", help="modes: pixels a call, 0 = per pixel (default 0,8: both tiers)")
     args = ap.parse_args()
-    modes = [int(x) for x in args.lanes.split(",")] if args.lanes else [None]
+    modes = [int(x) for x in args.lanes.split(",")]
     if args.fresh_cache:
         os.environ["NUMBA_CACHE_DIR"] = tempfile.mkdtemp(prefix="glslcheck-bench-numba-")
     os.environ.setdefault("GLSLCHECK_JIT", "off")  # the NumPy side: its default NumPy math

@@ -51,7 +51,7 @@ def add_arguments(p) -> None:
     p.add_argument("--samples", type=A.arg(A.parse_samples), default=1, metavar="N",
                    help="samples per pixel, a square (default 1)")
     p.add_argument("--backend", choices=("numpy", "gl", "webgl", "compiled"), default="numpy",
-                   help="default numpy; compiled: per pixel, by numba (glslcheck/compiled_backend)")
+                   help="default numpy; compiled: by numba, per pixel, then 8 pixels in lockstep once that pays (glslcheck/compiled_backend)")
     p.add_argument("--stats", action="store_true", help="print the lanes that ran each function and branch")
     p.add_argument("--frames", type=A.arg(A.parse_frames), default=None, metavar="N",
                    help="render an animation of N frames")

@@ -72,21 +72,24 @@ def _versions() -> str:
 
 
 def lanes_width(lanes: int | None = None) -> int:
-    """Pixels per call: `lanes` when given, else $GLSLCHECK_COMPILED_LANES, else 0 (the
-    per-pixel module). Lockstep (8 or 16 pixels, with the branch-free math of lanes_math.py) renders
-    every shader measured faster, bit for bit, but numba takes several times longer and much
-    more memory to compile it: 10-lab4 of the real corpus, cold, 341 s and 9.2 GB peak against
-    17 s and 0.4 GB per pixel (docs/performance.md, "Pixels in lockstep"). So it is a choice
-    (GLSLCHECK_COMPILED_LANES=8 or 16) for a shader rendered many times, not the default."""
+    """Pixels per call of a module: `lanes` when given, else $GLSLCHECK_COMPILED_LANES, else 0
+    (the per-pixel module, the first tier of TieredProgram: tiered() says when)."""
     if lanes is not None:
         return lanes
     text = os.environ.get("GLSLCHECK_COMPILED_LANES", "").strip()
-    if not text:
+    if not text or text == "auto":
         return 0
     try:
         return max(0, int(text))
     except ValueError:
-        raise InputError(f"error: GLSLCHECK_COMPILED_LANES must be a number of pixels (0: one at a time), not {text!r}") from None
+        raise InputError(f"error: GLSLCHECK_COMPILED_LANES must be a number of pixels (0: one at a time) or auto, "
+                         f"not {text!r}") from None
+
+
+def tiered() -> bool:
+    """Whether programs start per pixel and move to lockstep when that pays (TieredProgram):
+    $GLSLCHECK_COMPILED_LANES unset or `auto`; a number fixes the mode."""
+    return os.environ.get("GLSLCHECK_COMPILED_LANES", "").strip() in ("", "auto")
 
 
 def generate(shader: Any, tab: str | None = None, lanes: int | None = None) -> tuple[str, str]:
@@ -185,7 +188,20 @@ class CompiledProgram:
             config.SLP_VECTORIZE = slp
             sys.setrecursionlimit(limit)
         self.load_seconds = time.perf_counter() - t0
+        if self.cold:  # what compiling this module took, for TieredProgram's estimate in later processes
+            _write(os.path.join(folder, f"m{self.key}.compile"), f"{self.load_seconds:.3f}\n")
         return mod
+
+    def compile_seconds(self) -> float | None:
+        """The wall time numba took to compile this module cold, in this process or an earlier
+        one (None when not recorded)."""
+        if self.cold:
+            return self.load_seconds
+        text = _read(os.path.join(_folder(), f"m{self.key}.compile"))
+        try:
+            return float(text) if text else None
+        except ValueError:
+            return None
 
     def _inputs(self, mod: Any, values: dict | None) -> tuple[np.ndarray, np.ndarray]:
         uf = np.zeros(max(1, mod.USLOTS["float"]), np.float32)
@@ -249,6 +265,32 @@ class CompiledProgram:
         return self._frame(mod, inputs.width, inputs.height, offs, uf, ui)
 
 
+def _folder() -> str:
+    from ..numpy_backend import jit
+
+    return os.path.join(jit.cache_dir(), "compiled")
+
+
+def _write(path: str, text: str) -> None:
+    """A small file of the cache, atomically; a read-only cache is no error (nothing recorded)."""
+    try:
+        tmp = f"{path}.{os.getpid()}"
+        with open(tmp, "w") as f:
+            f.write(text)
+        os.replace(tmp, path)
+    except OSError:
+        pass
+
+
+def _read(path: str, strip: bool = True) -> str | None:
+    try:
+        with open(path) as f:
+            text = f.read()
+    except OSError:
+        return None
+    return text.strip() if strip else text
+
+
 def _cached(folder: str, key: str) -> bool:
     """Whether numba had machine code for the module before this load (its index files)."""
     return any(n.startswith(f"m{key}.") and n.endswith(".nbi") for n in _listdir(folder))
@@ -261,11 +303,129 @@ def _listdir(folder: str) -> list[str]:
     return out
 
 
+TIER_LANES = 8  # the lockstep width TieredProgram moves to (8: AVX2's float32 lanes)
+# Lockstep's cold compile over the per-pixel module's, for TieredProgram's estimate of what
+# moving costs: the median over the 67 lab and tuned real shaders (quartiles 3.5 and 6.2),
+# benchmarks/bench_compiled.py --fresh-cache --lanes 0,8 (docs/performance.md, "Two tiers").
+LOCKSTEP_COMPILE_RATIO = 4.7
+# Seconds of lockstep compile per line of the per-pixel module, the estimate when the per-pixel
+# module's compile time is not known (a numba cache filled before compile times were recorded):
+# the median of the same run (quartiles 0.021 and 0.036; a machine's speed moves it).
+LOCKSTEP_SECONDS_PER_LINE = 0.026
+
+
+class TieredProgram:
+    """The compiled engine's default: per pixel first, lockstep once that pays.
+
+    Lockstep (lanes.py) renders the same bits several times faster on heavy shaders, but numba
+    compiles it several times longer than the per-pixel module (seconds to tens of seconds): a
+    student's one render of a lab shader would wait for it and gain milliseconds. So frames
+    are rendered per pixel until the time they have taken, counting the frame about to be
+    rendered (its pixels at the rate measured so far), reaches what compiling lockstep is
+    expected to cost; then the lockstep module is made and every later frame uses it. This is
+    the ski-rental rule: whatever the number of frames to come, the total is at most about twice
+    what the better of the two modes alone would have cost (moving too late costs at most
+    the compile once more, moving never costs nothing when the frames stop first). The expected
+    cost: the lockstep module's load when numba's cache already holds it (an earlier process
+    moved), else LOCKSTEP_COMPILE_RATIO x the per-pixel module's compile time. The frames are
+    the same either way: lockstep is bit-identical to per pixel (tests/compiled/test_lanes.py),
+    so the moment of the move changes no pixel. A lockstep module that cannot be made (the
+    rewrite falls back, numba fails) leaves the program per pixel, with a warning for a failure.
+    """
+
+    def __init__(self, shader: Any, first: CompiledProgram, threads: int | None = None) -> None:
+        self.shader = shader
+        self.first = first
+        self.threads = threads
+        self.fast: CompiledProgram | None = None  # the lockstep program once moved
+        self.stay = False  # the lockstep module cannot be made: per pixel for good
+        self.spent = 0.0  # wall seconds of per-pixel frames
+        self.pixels = 0  # pixels those frames rendered
+        self._lock = threading.Lock()
+
+    @property
+    def path(self) -> str:
+        return self.first.path
+
+    @property
+    def source(self) -> str:
+        return (self.fast or self.first).source
+
+    @property
+    def mode(self) -> str:
+        return f"lanes{TIER_LANES}" if self.fast is not None else "pixel"
+
+    def _marker(self) -> str:
+        return os.path.join(_folder(), f"m{self.first.key}.lanes{TIER_LANES}")
+
+    def _cached_fast(self) -> str | None:
+        """The lockstep module's source when an earlier process made it and numba cached it."""
+        key = _read(self._marker())
+        if not key or not _cached(os.path.dirname(_folder()), key):
+            return None
+        source = _read(os.path.join(_folder(), f"m{key}.py"), strip=False)  # as written: its hash is its key
+        return source if source is not None and CompiledProgram(source, "").key == key else None
+
+    def move_cost(self) -> float:
+        """Expected wall seconds of making the lockstep module now."""
+        if self._cached_fast() is not None:
+            return self.first.load_seconds or 0.0  # a cache load, as the per-pixel one was
+        known = self.first.compile_seconds()
+        if known is not None:
+            return LOCKSTEP_COMPILE_RATIO * known
+        return LOCKSTEP_SECONDS_PER_LINE * self.first.source.count("\n")
+
+    def _move(self) -> None:
+        source = self._cached_fast()
+        if source is None:
+            source, _ = generate(self.shader, lanes=TIER_LANES)
+        if "LANES_FALLBACK" in source:
+            self.stay = True
+            return
+        fast = CompiledProgram(source, self.first.path, self.threads)
+        try:
+            fast.load()
+        except GlslError:
+            raise
+        except Exception as e:  # an engine bug in the lockstep path: the per-pixel program still renders
+            import warnings
+
+            warnings.warn(f"glslcheck: the lockstep module failed to compile ({type(e).__name__}: {e}); "
+                          f"rendering per pixel", RuntimeWarning, stacklevel=3)
+            self.stay = True
+            return
+        _write(self._marker(), fast.key + "\n")
+        self.fast = fast
+
+    @frame_inputs
+    def render(self, inputs: FrameInputs, precision: str = "float32", stats: bool = False) -> np.ndarray:
+        """One frame (CompiledProgram.render), by whichever program is current."""
+        kw = dict(inputs.keywords(), precision=precision, stats=stats)
+        with self._lock:
+            if self.fast is None and not self.stay and self.pixels:
+                ahead = self.spent / self.pixels * inputs.width * inputs.height
+                if self.spent + ahead >= self.move_cost():
+                    self._move()
+        if self.fast is not None:
+            return self.fast.render(**kw)
+        self.first.load()  # its compile is not a frame's time
+        t0 = time.perf_counter()
+        out = self.first.render(**kw)
+        with self._lock:
+            self.spent += time.perf_counter() - t0
+            self.pixels += inputs.width * inputs.height
+        return out
+
+
 def compile_compiled(path_or_shader: Any, threads: int | None = None) -> Any:
-    """`glslcheck.compile(path, backend="compiled")`: an api.Program over a CompiledProgram."""
+    """`glslcheck.compile(path, backend="compiled")`: an api.Program over a CompiledProgram, or
+    over a TieredProgram when the mode is not fixed (tiered())."""
     from ..api import Program
     from ..sources import Shader, load_shader
 
     shader = path_or_shader if isinstance(path_or_shader, Shader) else load_shader(path_or_shader)
     source, path = generate(shader)
-    return Program(shader, "compiled", CompiledProgram(source, path, threads))
+    prog = CompiledProgram(source, path, threads)
+    if tiered() and "LANES_FALLBACK" not in source:
+        return Program(shader, "compiled", TieredProgram(shader, prog, threads))
+    return Program(shader, "compiled", prog)

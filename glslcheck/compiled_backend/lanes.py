@@ -1,6 +1,6 @@
 """Pixels in lockstep: the per-pixel module of codegen.py rewritten so that one call computes a
-block of W pixels of a row (`render --backend compiled` with GLSLCHECK_COMPILED_LANES=8 or 16;
-per pixel by default: engine.lanes_width says why).
+block of W pixels of a row (`render --backend compiled` moves to it once it pays,
+engine.TieredProgram; GLSLCHECK_COMPILED_LANES=8 or 16 starts with it).
 
 Why: the per-pixel functions run one pixel's chain of dependent float operations at a time,
 while llvmpipe runs 8 pixels an AVX2 instruction. Here every per-pixel scalar becomes W locals

@@ -80,7 +80,9 @@ def test_fallback_and_mode_switch(make_shader, monkeypatch):
     monkeypatch.setenv("GLSLCHECK_COMPILED_LANES", "16")
     assert "LANES = 16" in generate(shader)[0]
     monkeypatch.delenv("GLSLCHECK_COMPILED_LANES")
-    # the default is per pixel (lockstep compiles several times longer: engine.lanes_width)
+    # unset, a module is per pixel: TieredProgram's first tier (test_tiered_program_moves)
+    assert generate(shader)[0] == pixel
+    monkeypatch.setenv("GLSLCHECK_COMPILED_LANES", "auto")
     assert generate(shader)[0] == pixel
 
     def refuse(self):
@@ -91,3 +93,42 @@ def test_fallback_and_mode_switch(make_shader, monkeypatch):
     monkeypatch.setenv("GLSLCHECK_COMPILED_LANES", "eight")
     with pytest.raises(InputError, match="GLSLCHECK_COMPILED_LANES"):
         generate(shader)
+
+
+def test_tiered_program_moves(numba, make_shader, monkeypatch, tmp_path):
+    """The default program (GLSLCHECK_COMPILED_LANES unset): per pixel while the frames have cost
+    less than lockstep's expected compile, lockstep from the frame that reaches it, the same bits
+    throughout; a later program of the same shader finds the lockstep module in numba's cache
+    (the marker) and expects only its load."""
+    from glslcheck.compiled_backend import engine
+
+    monkeypatch.delenv("GLSLCHECK_COMPILED_LANES", raising=False)
+    monkeypatch.setenv("NUMBA_CACHE_DIR", str(tmp_path))  # no lockstep module cached by an earlier run
+    shader = make_shader(CONSTRUCTS["control_flow"])
+    want = _render(shader, 0, time=2.0)
+    prog = engine.compile_compiled(shader).impl
+    assert isinstance(prog, engine.TieredProgram) and prog.mode == "pixel"
+    monkeypatch.setattr(engine, "LOCKSTEP_COMPILE_RATIO", 1e9)  # never pays: stays per pixel
+    monkeypatch.setattr(engine, "LOCKSTEP_SECONDS_PER_LINE", 1e9)
+    for _ in range(3):
+        assert prog.render(size=SIZE, time=2.0, mouse=MOUSE).view(np.uint32).tolist() == want.view(np.uint32).tolist()
+    assert prog.mode == "pixel" and prog.pixels == 3 * SIZE[0] * SIZE[1]
+    monkeypatch.setattr(engine, "LOCKSTEP_COMPILE_RATIO", 0.0)  # pays at once: the next frame moves
+    monkeypatch.setattr(engine, "LOCKSTEP_SECONDS_PER_LINE", 0.0)
+    got = prog.render(size=SIZE, time=2.0, mouse=MOUSE)
+    assert prog.mode == "lanes8" and "LANES = 8" in prog.source
+    assert got.view(np.uint32).tolist() == want.view(np.uint32).tolist()
+    again = engine.compile_compiled(shader).impl
+    again.first.load()
+    assert again._cached_fast() == prog.fast.source
+    assert again.move_cost() == (again.first.load_seconds or 0.0)  # None: loaded already in this process
+
+
+def test_fixed_mode_is_not_tiered(numba, make_shader, monkeypatch):
+    """GLSLCHECK_COMPILED_LANES=0 or a width: that module only, no tiers."""
+    from glslcheck.compiled_backend import engine
+
+    shader = make_shader(CONSTRUCTS["control_flow"])
+    for value in ("0", "8"):
+        monkeypatch.setenv("GLSLCHECK_COMPILED_LANES", value)
+        assert isinstance(engine.compile_compiled(shader).impl, engine.CompiledProgram)
