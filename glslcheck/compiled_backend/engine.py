@@ -30,6 +30,7 @@ from ..shadertoy import UNIFORMS_BY_NAME, FrameInputs, frame_inputs
 PIP = "pip install 'glslcheck[jit]'"
 _LOCK = threading.Lock()
 _MODULES: dict[str, Any] = {}  # hash -> loaded module (one per process)
+_SOURCES: dict[str, str] = {}  # hash -> the loaded module's source
 PARALLEL_PIXELS = 4096  # smaller frames on the calling thread (a thread hand-off costs more)
 _POOLS: dict[int, ThreadPoolExecutor] = {}
 
@@ -152,6 +153,7 @@ class CompiledProgram:
             if mod is None:
                 mod = self._import()
                 _MODULES[self.key] = mod
+                _SOURCES[self.key] = self.source
             self.mod = mod
             return mod
 
@@ -274,6 +276,7 @@ def _folder() -> str:
 def _write(path: str, text: str) -> None:
     """A small file of the cache, atomically; a read-only cache is no error (nothing recorded)."""
     try:
+        os.makedirs(os.path.dirname(path), exist_ok=True)
         tmp = f"{path}.{os.getpid()}"
         with open(tmp, "w") as f:
             f.write(text)
@@ -361,6 +364,8 @@ class TieredProgram:
     def _cached_fast(self) -> str | None:
         """The lockstep module's source when an earlier process made it and numba cached it."""
         key = _read(self._marker())
+        if key in _SOURCES:  # loaded in this process already
+            return _SOURCES[key]
         if not key or not _cached(os.path.dirname(_folder()), key):
             return None
         source = _read(os.path.join(_folder(), f"m{key}.py"), strip=False)  # as written: its hash is its key
