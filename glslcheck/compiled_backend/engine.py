@@ -165,15 +165,11 @@ class CompiledProgram:
         from numba.core import config
 
         config.CACHE_DIR = cache
-        folder = os.path.join(cache, "compiled")
-        os.makedirs(folder, exist_ok=True)
+        folder = _folder()
         name = f"glslcheck_compiled_m{self.key}"
         file = os.path.join(folder, f"m{self.key}.py")
         if not os.path.exists(file):
-            tmp = f"{file}.{os.getpid()}"
-            with open(tmp, "w") as f:
-                f.write(self.source)
-            os.replace(tmp, file)
+            _write(file, self.source, quiet=False)
         t0 = time.perf_counter()
         spec = importlib.util.spec_from_file_location(name, file)
         mod = importlib.util.module_from_spec(spec)
@@ -273,8 +269,9 @@ def _folder() -> str:
     return os.path.join(jit.cache_dir(), "compiled")
 
 
-def _write(path: str, text: str) -> None:
-    """A small file of the cache, atomically; a read-only cache is no error (nothing recorded)."""
+def _write(path: str, text: str, quiet: bool = True) -> None:
+    """A file of the cache, atomically (a reader sees all of it or none); `quiet`: a read-only
+    cache is no error (a record not kept)."""
     try:
         os.makedirs(os.path.dirname(path), exist_ok=True)
         tmp = f"{path}.{os.getpid()}"
@@ -282,7 +279,8 @@ def _write(path: str, text: str) -> None:
             f.write(text)
         os.replace(tmp, path)
     except OSError:
-        pass
+        if not quiet:
+            raise
 
 
 def _read(path: str, strip: bool = True) -> str | None:
@@ -345,6 +343,7 @@ class TieredProgram:
         self.spent = 0.0  # wall seconds of per-pixel frames
         self.pixels = 0  # pixels those frames rendered
         self._lock = threading.Lock()
+        self._found: list[str | None] = []  # _cached_fast's answer, looked up once (it walks the cache)
 
     @property
     def path(self) -> str:
@@ -362,7 +361,13 @@ class TieredProgram:
         return os.path.join(_folder(), f"m{self.first.key}.lanes{TIER_LANES}")
 
     def _cached_fast(self) -> str | None:
-        """The lockstep module's source when an earlier process made it and numba cached it."""
+        """The lockstep module's source when an earlier process made it and numba cached it
+        (looked up on the first call: move_cost runs before every per-pixel frame)."""
+        if not self._found:
+            self._found.append(self._lookup_fast())
+        return self._found[0]
+
+    def _lookup_fast(self) -> str | None:
         key = _read(self._marker())
         if key in _SOURCES:  # loaded in this process already
             return _SOURCES[key]
