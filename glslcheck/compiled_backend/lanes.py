@@ -47,6 +47,7 @@ from typing import Any
 
 STATE_LANES = ("gf", "gi", "gu", "gb")  # per-pixel state: one array per lane
 UNIFORM_STATE = ("uf", "ui")
+ROW_UNIFORM = ("fy", "py")  # shade's fragCoord.y and pixel centre y: one value for a block (a row's)
 MATH = ("glslcheck.compiled_backend.scalar", "glslcheck.compiled_backend.lanes_math")  # later wins
 
 
@@ -158,12 +159,15 @@ class _SharedReads(ast.NodeTransformer):
 class _Fn:
     """One function's rewrite (see the module docstring)."""
 
-    def __init__(self, lanes: "Lanes", fn: ast.FunctionDef) -> None:
+    def __init__(self, lanes: "Lanes", fn: ast.FunctionDef, uniform: frozenset = frozenset()) -> None:
         self.L = lanes
         self.fn = fn
         self.W = lanes.W
         self.params = [a.arg for a in fn.args.args]
-        self.varying: set[str] = {p for p in self.params if p not in UNIFORM_STATE}
+        self.uniform = uniform  # the indices of the parameters the callers pass as one scalar
+        self.name = variant_name(fn.name, uniform)
+        self.scalar_params = {p for i, p in enumerate(self.params) if p in UNIFORM_STATE or i in uniform}
+        self.varying: set[str] = {p for p in self.params if p not in self.scalar_params}
         self.counts: dict[str, int] = {p: 1 for p in self.params}
         for n in ast.walk(fn):
             if isinstance(n, ast.Assign):
@@ -177,6 +181,10 @@ class _Fn:
         for n in ast.walk(fn):
             if isinstance(n, ast.Return) and isinstance(n.value, ast.Tuple):
                 self.nret = len(n.value.elts)
+        # which result slots are one scalar for the block: every return is in uniform control
+        # with a value free of lanes there (optimistic at first, settled by the fixpoint)
+        self.ret_uniform = [True] * self.nret
+        self.calls: set[tuple[str, frozenset]] = set()  # the callee variants of the last walk
 
     # -- lanes of expressions ----------------------------------------------------------------
     def is_varying(self, e: Any) -> bool:
@@ -232,7 +240,11 @@ class _Fn:
         """Fixpoint of the varying names, then the rewritten function's lines."""
         for _ in range(100):
             self.changed = False
+            self.ret_seen = list(self.ret_uniform)
             self.walk_function()
+            if self.ret_seen != self.ret_uniform:
+                self.ret_uniform = self.ret_seen
+                self.changed = True
             if not self.changed:
                 return self.lines
         raise Unsupported("the uniformity fixpoint did not settle")
@@ -246,6 +258,7 @@ class _Fn:
         self.loops: list[tuple[str, str, str] | None] = []  # None: a loop of Python's own
         self.live = False  # a divergent return happened: `live__k` lanes are still running
         self.defined = set(self.params)  # names written so far in the text
+        self.calls = set()
         self.block(self.fn.body, top=True)
 
     def block(self, stmts: list, top: bool = False) -> None:
@@ -371,23 +384,32 @@ class _Fn:
         if len(params) != len(call.args) or call.keywords:
             raise Unsupported("a call's arguments")
         mask = self.mask if self.div else "m"
+        # arguments free of lanes go as one scalar: the callee's variant for them
+        uniform = frozenset(i for i, (p, a) in enumerate(zip(params, call.args))
+                            if p not in UNIFORM_STATE and not self.is_varying(a))
+        fn = self.L.variant(name, uniform)
+        self.calls.add((name, uniform))
         args = self.lane_names(mask)
         for p, a in zip(params, call.args):
-            if p in UNIFORM_STATE:
-                args.append(ast.unparse(a))
+            if p in fn.scalar_params:
+                args.append(self.atom(ast.unparse(a)))
             else:
                 args += [self.atom(t) for t in self.lanes_of(a)]
-        text = f"{name}({', '.join(args)})"
+        text = f"{fn.name}({', '.join(args)})"
         if not targets:
             self.emit(text)
             return
-        for x in targets:
-            self.mark(x)  # a user function's result is per lane
+        if len(targets) != fn.nret:
+            raise Unsupported("a call's results")
         res = [self.fresh("c") for _ in targets]
-        flat = [f"{r}__{k}" for r in res for k in range(self.W)]
+        flat: list[str] = []
+        for x, r, uni in zip(targets, res, fn.ret_uniform):
+            flat += [r] if uni else self.lane_names(r)
+            if self.div or not uni:
+                self.mark(x)  # a result per lane (or written under a mask)
         self.emit(f"{', '.join(flat)}, = {text}")
-        for x, r in zip(targets, res):
-            self.write(x, self.lane_names(r))
+        for x, r, uni in zip(targets, res, fn.ret_uniform):
+            self.write(x, ([r] * self.W if x in self.varying else [r]) if uni else self.lane_names(r))
 
     def _If(self, s: ast.If, top: bool) -> None:
         exits = _exits([s])
@@ -509,10 +531,16 @@ class _Fn:
             if elts is None:
                 self.emit("return 0")
             else:
-                flat = [self.atom(t) for e in elts for t in self.lanes_of(e)]
+                flat = []
+                for i, e in enumerate(elts):
+                    if self.is_varying(e):
+                        self.ret_seen[i] = False
+                    flat += [self.atom(ast.unparse(e))] if self.ret_uniform[i] else [
+                        self.atom(t) for t in self.lanes_of(e)]
                 self.emit(f"return ({', '.join(flat)},)")
             return
         if elts is not None:
+            self.ret_seen[:] = [False] * len(self.ret_seen)  # the return slots are per lane
             for i, e in enumerate(elts):  # the first slot write in the text is plain (see write)
                 first = f"_r{i}" not in self.defined
                 self.defined.add(f"_r{i}")
@@ -539,14 +567,20 @@ class _Fn:
 
     # -- the function ------------------------------------------------------------------------
     def source(self) -> str:
-        lines = self.run()
+        lines = self.lines
         params = self.lane_names("m")
         for p in self.params:
-            params += [p] if p in UNIFORM_STATE else self.lane_names(p)
-        head = [f"def {self.fn.name}({', '.join(params)}):"]
+            params += [p] if p in self.scalar_params else self.lane_names(p)
+        head = [f"def {self.name}({', '.join(params)}):"]
         if any("live__0" in line for line in lines):
             head += [f"    live__{k} = True" for k in range(self.W)]
         return "\n".join(head + lines)
+
+
+def variant_name(name: str, uniform: frozenset) -> str:
+    """A function's name in the lockstep module, with the indices of the parameters passed as
+    one scalar for the block (`f_rad__u0__s0`)."""
+    return name if not uniform else name + "__s" + "_".join(str(i) for i in sorted(uniform))
 
 
 class Lanes:
@@ -560,13 +594,56 @@ class Lanes:
         shared = _SharedReads(self.functions.values())
         for f in self.functions.values():
             shared.visit(f)
+        self.variants: dict[tuple[str, frozenset], _Fn] = {}
+        self.pending: set[tuple[str, frozenset]] = set()
+
+    def variant(self, name: str, uniform: frozenset) -> _Fn:
+        """The rewrite of function `name` with the parameters at `uniform` one scalar for the
+        block (made once; GLSL has no recursion, so a callee settles before its caller)."""
+        key = (name, uniform)
+        fn = self.variants.get(key)
+        if fn is None:
+            if key in self.pending:
+                raise Unsupported("a recursive call")
+            self.pending.add(key)
+            fn = _Fn(self, self.functions[name], uniform)
+            fn.run()
+            self.pending.discard(key)
+            self.variants[key] = fn
+        return fn
+
+    def entry(self) -> tuple[str, frozenset]:
+        """shade, with the parameters that are the same for every pixel of a block (a block is
+        W pixels of one row: fragCoord's and the pixel centre's y) passed as one scalar."""
+        if "shade" not in self.functions:
+            raise Unsupported("a module without shade")
+        params = [a.arg for a in self.functions["shade"].args.args]
+        return "shade", frozenset(i for i, p in enumerate(params) if p in ROW_UNIFORM)
+
+    def reachable(self) -> list[_Fn]:
+        """The variants the entry's final code calls, callees first."""
+        order: list[_Fn] = []
+        seen: set = set()
+
+        def visit(key: tuple[str, frozenset]) -> None:
+            if key in seen:
+                return
+            seen.add(key)
+            fn = self.variant(*key)
+            for callee in sorted(fn.calls, key=lambda c: (c[0], sorted(c[1]))):
+                visit(callee)
+            order.append(fn)
+
+        visit(self.entry())
+        return order
 
     def module(self) -> str:
         out: list[str] = []
+        functions = ["@jit\n" + fn.source() for fn in self.reachable()]
         for node in self.tree.body:
             if isinstance(node, ast.FunctionDef):
-                if node.name in self.functions:
-                    out.append("@jit\n" + self.function(node))
+                if node.name == "shade":
+                    out += functions
                 elif node.name in ("init_globals", "globals_template"):
                     out.append(ast.unparse(node))
                 continue
@@ -580,11 +657,9 @@ class Lanes:
         out.append(f"LANES = {self.W}  # pixels per call of shade")
         slots = next((ast.literal_eval(n.value) for n in self.tree.body if isinstance(n, ast.Assign)
                       and isinstance(n.targets[0], ast.Name) and n.targets[0].id == "SLOTS"), None)
-        out.append(render_source(self.W, slots))
+        shade = self.variants[self.entry()]
+        out.append(render_source(self.W, slots, shade.name, shade.scalar_params, shade.ret_uniform))
         return "\n\n".join(out) + "\n"
-
-    def function(self, fn: ast.FunctionDef) -> str:
-        return _Fn(self, fn).source()
 
 
 def _rt_hash() -> str:
@@ -612,9 +687,12 @@ def lanes_module(source: str, width: int = 8) -> str:
         raise Unsupported("an expression nested too deep") from None
 
 
-def render_source(W: int, slots: dict | None = None) -> str:
+def render_source(W: int, slots: dict | None = None, shade: str = "shade", scalar: Any = (),
+                  ret_uniform: Any = ()) -> str:
     """render_rows for blocks of W pixels of a row (the last block repeats the row's last pixel);
-    slots: the module's SLOTS (a state kind without globals is not reset per pixel)."""
+    slots: the module's SLOTS (a state kind without globals is not reset per pixel); shade: the
+    entry's name, scalar: its parameters passed as one value for the block (ROW_UNIFORM),
+    ret_uniform: which of its four results are one value for the block."""
     st = [f"{a}__{k}" for a in STATE_LANES for k in range(W)]
     lines = [
         "@numba.njit(cache=True, nogil=True, error_model='numpy')",
@@ -647,13 +725,19 @@ def render_source(W: int, slots: dict | None = None) -> str:
         "                oy = F32(py + F32(offs[s, 1]))",
     ]
     args = ["True"] * W + st + ["uf", "ui"]
-    args += [f"F32(px__{k} + ox)" for k in range(W)] + ["oy"] * W
-    args += [f"px__{k}" for k in range(W)] + ["py"] * W
-    lines.append(f"                res = shade({', '.join(args)})")
+    args += [f"F32(px__{k} + ox)" for k in range(W)] + (["oy"] if "fy" in scalar else ["oy"] * W)
+    args += [f"px__{k}" for k in range(W)] + (["py"] if "py" in scalar else ["py"] * W)
+    lines.append(f"                res = {shade}({', '.join(args)})")
+    at, start = {}, 0  # (channel, lane) -> its index in shade's result (a uniform channel: one)
+    for c in range(4):
+        one = bool(ret_uniform and ret_uniform[c])
+        for k in range(W):
+            at[c, k] = start if one else start + k
+        start += 1 if one else W
     lines.append("                if s == 0:  # the sum of one sample is its value (a -0.0 kept)")
-    lines += [f"                    acc[{c}, {k}] = np.float64(res[{c * W + k}])" for c in range(4) for k in range(W)]
+    lines += [f"                    acc[{c}, {k}] = np.float64(res[{at[c, k]}])" for c in range(4) for k in range(W)]
     lines.append("                else:")
-    lines += [f"                    acc[{c}, {k}] = acc[{c}, {k}] + res[{c * W + k}]" for c in range(4) for k in range(W)]
+    lines += [f"                    acc[{c}, {k}] = acc[{c}, {k}] + res[{at[c, k]}]" for c in range(4) for k in range(W)]
     lines += [
         f"            for k in range(min({W}, width - x0)):",
         "                for c in range(4):",

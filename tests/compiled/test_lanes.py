@@ -55,12 +55,60 @@ def test_lab_lanes_bit_for_bit(numba, name):
     _same_bits(load_shader(os.path.join(LAB, name)), 8)
 
 
+UNIFORM_CALLS = """
+float wave(float t) { return sin(t * 1.7) * 0.5 + 0.5; }
+float early(float t) { if (t > 1.0) return cos(t); return t * t; }
+float diverge(float t, float x) { if (x > t) return x - t; return t; }
+void split(float t, out float a, out float b) { a = fract(t); b = t - a; }
+float row(float y) { if (y > 11.5) return 0.25; return 0.75; }
+void mainImage(out vec4 fragColor, in vec2 fragCoord) {
+    vec2 uv = fragCoord / iResolution.xy;
+    float a, b;
+    split(iTime * 3.1, a, b);
+    float w = wave(iTime) + wave(uv.x) + early(iTime) + early(uv.x * 2.0);
+    float d = diverge(iTime * 0.1, uv.x) + row(fragCoord.y) + row(fragCoord.x * 0.5);
+    fragColor = vec4(w * 0.25, d * 0.5 + a, b * 0.01, 1.0);
+}
+"""
+
+
+def test_uniform_arguments_stay_scalars(numba, make_shader):
+    """A call whose arguments are free of lanes (iTime, a row's fragCoord.y) runs the callee's
+    variant that takes them as one scalar for the block (`f_wave__s0`), and a result that is the
+    same for every lane (a return in uniform control of such a value) comes back as one scalar:
+    sin(iTime * 1.7) once a block. The same function called with a per-pixel value keeps its
+    per-lane variant; a return under a divergent condition (`diverge`) stays per lane. The bits
+    are the per-pixel engine's."""
+    from glslcheck.compiled_backend.engine import generate
+
+    shader = make_shader(UNIFORM_CALLS)
+    source, _ = generate(shader, lanes=8)
+    # per-pixel names may carry codegen's own suffix (`f_diverge__u0`), the lockstep ones `__s<i>`
+    defs = {line[4:].split("(")[0]: line for line in source.splitlines() if line.startswith("def f_")}
+
+    def body(fn: str, scalar: bool) -> str:
+        names = [d for d in defs if d.split("__")[0] == fn and d.endswith("__s0") == scalar]
+        assert len(names) == 1, (fn, scalar, sorted(defs))
+        text = source[source.index(f"def {names[0]}("):]
+        return text[:text.index("\n\n")]
+
+    for fn in ("f_wave", "f_early", "f_row"):
+        body(fn, False)  # the per-lane variant, for the per-pixel argument
+    wave = body("f_wave", True)
+    assert "m__7, v_t_0)" in wave  # t: one scalar
+    assert "sin(" in wave and "__1" not in wave.split("\n", 1)[1]  # one sin, no lane copies
+    assert wave.rstrip().endswith(",)") and "__" not in wave.splitlines()[-1]  # one result
+    assert "_r0__7" in body("f_diverge", True)  # a return under a divergent condition: per lane
+    _same_bits(shader, 8)
+
+
 def test_unhandled_statement_is_unsupported():
     """A statement the rewrite does not know (the per-pixel generator writes no `for`) is
     Unsupported, not rewritten wrongly."""
     from glslcheck.compiled_backend.lanes import Unsupported, lanes_module
 
-    source = "@jit\ndef f_g(v_x_0):\n    for i in range(3):\n        pass\n    return (v_x_0,)\n"
+    source = ("@jit\ndef f_g(v_x_0):\n    for i in range(3):\n        pass\n    return (v_x_0,)\n\n"
+              "@jit\ndef shade(fx, fy, px, py):\n    _t1, = f_g(fx)\n    return (_t1, _t1, _t1, F32(1.0))\n")
     with pytest.raises(Unsupported, match="For"):
         lanes_module(source, 8)
 
