@@ -323,7 +323,9 @@ class TieredProgram:
     student's one render of a lab shader would wait for it and gain milliseconds. So frames
     are rendered per pixel until the time they have taken, counting the frame about to be
     rendered (its pixels at the rate measured so far), reaches what compiling lockstep is
-    expected to cost; then the lockstep module is made and every later frame uses it. This is
+    expected to cost; then the lockstep module is made, in a thread of its own while the frames
+    go on per pixel (numba's compile beside the render's threads: no frame waits for it, a
+    one-off 1,000 s compile included), and every frame after it is ready uses it. This is
     the ski-rental rule: whatever the number of frames to come, the total is at most about twice
     what the better of the two modes alone would have cost (moving too late costs at most
     the compile once more, moving never costs nothing when the frames stop first). The expected
@@ -344,6 +346,7 @@ class TieredProgram:
         self.pixels = 0  # pixels those frames rendered
         self._lock = threading.Lock()
         self._found: list[str | None] = []  # _cached_fast's answer, looked up once (it walks the cache)
+        self._mover: threading.Thread | None = None  # the lockstep compile, once started
 
     @property
     def path(self) -> str:
@@ -386,38 +389,49 @@ class TieredProgram:
         return LOCKSTEP_SECONDS_PER_LINE * self.first.source.count("\n")
 
     def _move(self) -> None:
-        source = self._cached_fast()
-        if source is None:
-            source, _ = generate(self.shader, lanes=TIER_LANES)
-        if "LANES_FALLBACK" in source:
-            self.stay = True
-            return
-        fast = CompiledProgram(source, self.first.path, self.threads)
+        """Make the lockstep module (in the mover thread); self.fast once it can render."""
         try:
+            source = self._cached_fast()
+            if source is None:
+                source, _ = generate(self.shader, lanes=TIER_LANES)
+            if "LANES_FALLBACK" in source:
+                self.stay = True
+                return
+            fast = CompiledProgram(source, self.first.path, self.threads)
             fast.load()
-        except GlslError:
-            raise
         except Exception as e:  # an engine bug in the lockstep path: the per-pixel program still renders
             import warnings
 
             warnings.warn(f"glslcheck: the lockstep module failed to compile ({type(e).__name__}: {e}); "
-                          f"rendering per pixel", RuntimeWarning, stacklevel=3)
+                          f"rendering per pixel", RuntimeWarning, stacklevel=2)
             self.stay = True
             return
         _write(self._marker(), fast.key + "\n")
         self.fast = fast
+
+    def settle(self, timeout: float | None = None) -> bool:
+        """Wait for a lockstep compile under way (at most timeout seconds); whether none is left."""
+        mover = self._mover
+        if mover is not None:
+            mover.join(timeout)
+            return not mover.is_alive()
+        return True
 
     @frame_inputs
     def render(self, inputs: FrameInputs, precision: str = "float32", stats: bool = False) -> np.ndarray:
         """One frame (CompiledProgram.render), by whichever program is current."""
         kw = dict(inputs.keywords(), precision=precision, stats=stats)
         with self._lock:
-            if self.fast is None and not self.stay and self.pixels:
+            if self._mover is None and not self.stay and self.pixels:
                 ahead = self.spent / self.pixels * inputs.width * inputs.height
                 if self.spent + ahead >= self.move_cost():
-                    self._move()
-        if self.fast is not None:
-            return self.fast.render(**kw)
+                    # a daemon: a process that ends first drops the compile (numba writes its
+                    # cache files whole, by rename; the marker follows a finished load)
+                    self._mover = threading.Thread(target=self._move, name="glslcheck-lockstep", daemon=True)
+                    self._mover.start()
+        fast = self.fast
+        if fast is not None:
+            return fast.render(**kw)
         self.first.load()  # its compile is not a frame's time
         t0 = time.perf_counter()
         out = self.first.render(**kw)

@@ -161,10 +161,13 @@ def test_tiered_program_moves(numba, make_shader, monkeypatch, tmp_path):
     for _ in range(3):
         assert prog.render(size=SIZE, time=2.0, mouse=MOUSE).view(np.uint32).tolist() == want.view(np.uint32).tolist()
     assert prog.mode == "pixel" and prog.pixels == 3 * SIZE[0] * SIZE[1]
-    monkeypatch.setattr(engine, "LOCKSTEP_COMPILE_RATIO", 0.0)  # pays at once: the next frame moves
+    monkeypatch.setattr(engine, "LOCKSTEP_COMPILE_RATIO", 0.0)  # pays at once: the next frame starts the move
     monkeypatch.setattr(engine, "LOCKSTEP_SECONDS_PER_LINE", 0.0)
+    # the lockstep compile runs in its own thread; frames meanwhile are per pixel, the same bits
     got = prog.render(size=SIZE, time=2.0, mouse=MOUSE)
-    assert prog.mode == "lanes8" and "LANES = 8" in prog.source
+    assert got.view(np.uint32).tolist() == want.view(np.uint32).tolist()
+    assert prog._mover is not None and prog.settle(600) and prog.mode == "lanes8" and "LANES = 8" in prog.source
+    got = prog.render(size=SIZE, time=2.0, mouse=MOUSE)
     assert got.view(np.uint32).tolist() == want.view(np.uint32).tolist()
     again = engine.compile_compiled(shader).impl
     again.first.load()
