@@ -15,10 +15,17 @@ names renamed, so each lane computes exactly the per-pixel engine's operations (
 - Uniform names. A local whose every write has an operand-free-of-lanes value (constants,
   uniforms `uf`/`ui`, other uniform locals, calls of the scalar runtime on those) and happens
   in uniform control stays ONE scalar for the block (`sin(iTime * 0.12)` once per block). A
-  fixpoint over the function: parameters (but `uf`/`ui`), the per-pixel state arrays
-  `gf`/`gi`/`gu`/`gb`, results of user functions and arrays are per lane. Reads of state no
-  function writes (`const` arrays of structs) read lane 0's copy and are uniform
-  (`_SharedReads`).
+  fixpoint over the function: the per-pixel state arrays `gf`/`gi`/`gu`/`gb` and arrays are
+  per lane. Reads of state no function writes (`const` arrays of structs) read lane 0's copy
+  and are uniform (`_SharedReads`).
+- Uniform across calls. A call passes each argument free of lanes as one scalar, to the
+  callee's variant for those parameters (`f_rad__s0`: parameter 0 one scalar; Lanes.variant,
+  made once, callees first: GLSL has no recursion), and a result slot every return of that
+  variant writes in uniform control with a value free of lanes comes back as one scalar (a
+  second fixpoint, `ret_uniform`). The entry `shade` takes fragCoord.y and the pixel centre's
+  y as one scalar (ROW_UNIFORM: a block is W pixels of one row), so what a shader computes
+  from iTime, iResolution or a row's y, in loops and helper functions too, is computed once a
+  block. Only the variants shade reaches are written.
 - Control flow as llvmpipe runs it. Each function takes the block's mask `m__0..` first. An
   `if` whose condition is uniform stays an `if`. A divergent one computes both sides' masks,
   runs each side only when one of its lanes is active, and writes under the mask by select
