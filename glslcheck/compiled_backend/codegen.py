@@ -59,6 +59,14 @@ from ..diagnostics import Diagnostic, GlslError, Location
 
 RULE = "compiled-engine"
 NOT_YET = "not supported by the compiled engine yet"
+# Ternaries computed on both sides (Codegen._speculable): an expression of names, literals,
+# arithmetic and comparison operators and lsel, with no other call and no subscript, has no
+# effect and cannot fail; a side of more than _SPECULATE_LINES such temporaries keeps its
+# branch (its work would be paid where it is not taken).
+_PURE = re.compile(r"^(?!.*(?:\*\*|//|<<|>>))(?:lsel\(|[A-Za-z_][A-Za-z0-9_]*\b(?!\()"
+                   r"|(?:[0-9]+\.?[0-9]*|\.[0-9]+)(?:e[-+]?[0-9]+)?|[-+*/<>=!(), ])+$")
+_PURE_LINE = re.compile(r"^( *)_t[0-9]+ = (.*)$")
+_SPECULATE_LINES = 4
 _ATOM = re.compile(r"^(?:[A-Za-z_][A-Za-z0-9_]*(?:\[[A-Za-z0-9_ +]+\])?|True|False)$")
 _KIND_ARRAY = {"float": "gf", "int": "gi", "uint": "gu", "bool": "gb"}
 _DTYPE = {"float": "np.float32", "int": "np.int32", "uint": "np.uint32", "bool": "np.bool_"}
@@ -911,10 +919,27 @@ class Codegen:
         t = self.type_of(e)
         c = self.tmp(self.expr(e.cond).parts[0])
         n = len(leaves(t, e))
+        mark = len(self.lines)
+        a = self.expr(e.then).parts
+        if self._speculable(mark, a):
+            then_end = len(self.lines)
+            b = self.expr(e.else_).parts
+            if self._speculable(then_end, b):
+                # Both sides are a few selects, compares and arithmetic of names and
+                # constants: computed both, one select each (lanes_rt.lsel), no branch.
+                # Computing the side not taken does nothing and cannot fail (IEEE float
+                # math, error_model="numpy"); as if/else each leaf would be two basic blocks
+                # per pixel and a masked write per lane in lockstep (h38-2d-sprites: 524
+                # ternaries, `idx = y == 14.0 ? (x <= 7.0 ? 40960.0 : 42.0) : idx`).
+                return Val(t, [self.tmp(f"lsel({c}, {x}, {y})") for x, y in zip(a, b)])
+            del self.lines[then_end:]  # the else side's statements: written again in its branch
         res = [self.fresh() for _ in range(n)]
+        # the then side's statements (if any) run only where c holds
+        body = self.lines[mark:]
+        del self.lines[mark:]
         self.emit(f"if {c}:")
         self.indent += 1
-        a = self.expr(e.then).parts
+        self.lines += ["    " + line for line in body]
         self.assign_fresh(res, a)
         self.indent -= 1
         self.emit("else:")
@@ -924,6 +949,21 @@ class Codegen:
         self.indent -= 1
         out = [Arr(r, 0, p.size, p.base) if isinstance(p, Arr) else r for r, p in zip(res, a)]
         return Val(t, out)
+
+    def _speculable(self, mark: int, parts: list) -> bool:
+        """The lines written since mark and the value parts are pure and cheap: at most a few
+        assignments of temporaries, each of names, literals, operators and lsel."""
+        if any(not isinstance(p, str) or not _PURE.match(p) for p in parts):
+            return False
+        body = self.lines[mark:]
+        if len(body) > _SPECULATE_LINES:
+            return False
+        pad = "    " * self.indent
+        for line in body:
+            m = _PURE_LINE.match(line)
+            if m is None or m.group(1) != pad or not _PURE.match(m.group(2)):
+                return False
+        return True
 
     def assign_fresh(self, names: list[str], parts: list) -> None:
         for r, p in zip(names, parts):

@@ -93,6 +93,30 @@ void mainImage(out vec4 c, in vec2 f) {
     float s = uv.x < 0.3 ? (uv.y < 0.5 ? 1.0 : 2.0) : float(side);
     c = vec4(m, b ? 1.0 : 0.0, o ? s : -s, float(side) + pick(uv.x).x - pick(uv.y).y);
 }""",
+    # ternaries whose sides are pure become selects (codegen._speculable): the side not taken
+    # is computed too, so it must do nothing (x / 0 on it); sides with calls, side effects,
+    # int division or assignments keep their branch
+    "ternary_selects": """
+int side = 0;
+float bump(float v) { side += 1; return v + float(side); }
+void mainImage(out vec4 c, in vec2 f) {
+    vec2 uv = f / iResolution.xy;
+    float x = floor(uv.x * 8.0), y = floor(uv.y * 6.0);
+    float idx = 0.0;
+    idx = y == 2.0 ? (x <= 3.0 ? 40960.0 : 42.0) : idx;
+    idx = x < y ? 3.0 : idx;
+    idx = x > 1.0 && x < 6.0 && y > 1.0 ? idx + 0.5 : idx;
+    float q = uv.y - 0.5;
+    float r = q != 0.0 ? uv.x / q : -7.0;          // uv.x / 0.0 on the side not taken
+    vec3 col = uv.x > 0.5 ? vec3(uv, q) : vec3(q, r, idx);
+    bool flip = uv.y < 0.25 ? uv.x > 0.3 : !(uv.x > 0.6);
+    float b = uv.x > 0.7 ? bump(uv.y) : uv.y;      // bump only where taken
+    int i = int(x) - 3;
+    int d = i != 0 ? 100 / i : -1;
+    float a = 0.0;
+    float w = uv.y > 0.5 ? (a = 2.0) : (a = 3.0);
+    c = vec4(col * (flip ? 0.5 : 1.0) + idx * 0.001, b + float(side) * 0.01 + float(d) * 0.1 + a + w);
+}""",
     "structs_arrays": """
 struct Light { vec3 pos; float power; bool on; };
 struct Hit { float t; Light l; };
@@ -219,6 +243,30 @@ def test_construct_bit_for_bit(numba, make_shader, name):
     # these shaders test the engine's own rules (the reassociations: test_mesa_reassociation_...)
     assert "if rt.lp else" not in glslcheck.compile(shader, backend="numpy").source
     _compare(shader)
+
+
+def _statement_code(source: str, glsl: str) -> list[str]:
+    """The generated lines of the statement whose source comment holds glsl."""
+    lines = source.splitlines()
+    start = next(i for i, line in enumerate(lines) if line.strip().startswith("# line") and glsl in line)
+    end = next(i for i in range(start + 1, len(lines)) if lines[i].strip().startswith("# line"))
+    return [line.strip() for line in lines[start + 1:end]]
+
+
+def test_pure_ternaries_are_selects(make_shader):
+    """The ternary_selects construct's pure ternaries are written as selects, the others keep
+    their branch (the bits: test_construct_bit_for_bit)."""
+    from glslcheck.compiled_backend.engine import generate
+
+    source, _ = generate(make_shader(CONSTRUCTS["ternary_selects"]), lanes=0)
+    for glsl in ("(x <= 3.0 ? 40960.0 : 42.0)", "x < y ? 3.0", "idx + 0.5 : idx", "uv.x / q : -7.0",
+                 "vec3(uv, q) : vec3(q, r, idx)", "uv.x > 0.3 : !(uv.x > 0.6)"):
+        code = _statement_code(source, glsl)
+        assert not any(line.startswith("if ") for line in code), (glsl, code)
+        assert any("lsel(" in line for line in code), (glsl, code)
+    for glsl in ("bump(uv.y) : uv.y", "100 / i : -1", "(a = 2.0) : (a = 3.0)"):
+        code = _statement_code(source, glsl)
+        assert any(line.startswith("if ") for line in code), (glsl, code)
 
 
 def test_mesa_reassociation_is_not_copied_yet(numba, make_shader):
