@@ -24,9 +24,18 @@ def builtin_call(cg: Any, e: A.Call, ov: Any) -> Val:
     name = ov.name
     if getattr(ov, "category", None) == B.TEXTURE or name.startswith(("texture", "texel")):
         raise not_yet(f"{name}(): textures and channels", e)
-    if name in ("dFdx", "dFdy", "fwidth"):
-        raise not_yet(f"{name}(): derivatives", e)
     rtype = cg.type_of(e)
+    if name in ("dFdx", "dFdy", "fwidth"):
+        # Placeholders the lockstep rewrite replaces by differences between a quad's lanes
+        # (lanes.py `dfdx`); a per-pixel module holding them is never compiled (engine.generate).
+        if cg.derivative is None:
+            cg.derivative = e
+        x = []
+        for p in cg.expr(e.args[0]).parts:  # each leaf a name: the rewrite reads its lanes
+            x.append(p if p.isidentifier() else cg.tmp_fresh(p))
+        form = {"dFdx": "dfdx({})", "dFdy": "dfdy({})"}.get(name, "(np.abs(dfdx({0})) + np.abs(dfdy({0})))")
+        # into fresh temporaries: every lane reads its quad's lanes before any is written (`x = dFdx(x)`)
+        return Val(rtype, [cg.tmp_fresh(form.format(p)) for p in x])
     if name == "modf":
         x = cg.expr(e.args[0])
         targets = cg.lvalue(e.args[1])

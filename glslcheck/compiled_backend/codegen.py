@@ -196,6 +196,9 @@ class Codegen:
         self.needs: dict[str, list[str]] = {}  # function -> the state arrays it takes
         self.variants: set[tuple[int, frozenset]] = set()  # (function, uniform parameters) made or asked
         self.pending: list[tuple[Any, frozenset]] = []
+        # the first dFdx/dFdy/fwidth call: its leaves are written `dfdx(v)` / `dfdy(v)`, which
+        # only the lockstep rewrite computes (lanes.py: a block's lanes hold whole 2x2 quads)
+        self.derivative: Any = None
 
     def numpy_transpiler(self) -> Any:
         """The NumPy backend's Transpiler at the current function, for the decisions this engine
@@ -220,6 +223,12 @@ class Codegen:
     def tmp(self, value: str) -> str:
         if _ATOM.match(value) and not value.startswith(("gf[", "gi[", "gu[", "gb[")):
             return value
+        t = self.fresh()
+        self.emit(f"{t} = {value}")
+        return t
+
+    def tmp_fresh(self, value: str) -> str:
+        """value into a new temporary, whatever it is."""
         t = self.fresh()
         self.emit(f"{t} = {value}")
         return t
@@ -404,6 +413,8 @@ class Codegen:
         layout = {k: (v[0], v[1]) for k, v in self.uniforms.items()}
         out.append(f"UNIFORMS = {layout!r}  # uniform -> (kind, offset in uf/ui)")
         out.append(f"LOOPS = {self.loop_lines!r}  # loop id -> (file, line, column)")
+        if self.derivative is not None:
+            out.append("QUADS = True  # dFdx/dFdy: lockstep blocks of 2x2 quads only (lanes.py)")
         out.append("")
         for name, lit in self.consts.items():
             out.append(f"{name} = {lit}")

@@ -103,7 +103,7 @@ def generate(shader: Any, tab: str | None = None, lanes: int | None = None) -> t
     from ..numpy_backend.runtime import HOST_FMA
     from ..numpy_backend.transpile.common import check_program
     from ..parse import parse_shader
-    from .codegen import Codegen
+    from .codegen import Codegen, _error, not_yet
 
     if needs_passes(shader):
         loc = Location(shader.root, 1, 1)
@@ -118,14 +118,24 @@ def generate(shader: Any, tab: str | None = None, lanes: int | None = None) -> t
     old = sys.getrecursionlimit()
     sys.setrecursionlimit(max(old, 20000))
     try:
-        source = Codegen(model, path, HOST_FMA, host_model()).module()
+        cg = Codegen(model, path, HOST_FMA, host_model())
+        source = cg.module()
         width = lanes_width(lanes)
+        if cg.derivative is not None and not width:
+            if lanes is not None or not tiered():
+                raise _error("dFdx/dFdy/fwidth() one pixel a call: the compiled engine computes derivatives "
+                             "only with pixels in lockstep (2x2 quads)", cg.derivative,
+                             help=f"unset GLSLCHECK_COMPILED_LANES (or set it to {TIER_LANES}), "
+                                  "or render with --backend numpy or gl")
+            width = TIER_LANES  # the default program: lockstep from the first frame (no per-pixel tier)
         if width:
             from .lanes import Unsupported, lanes_module
 
             try:
                 source = lanes_module(source, width)
             except Unsupported as e:
+                if cg.derivative is not None:  # no per-pixel module to fall back to
+                    raise not_yet(f"dFdx/dFdy/fwidth(): derivatives in this program ({e})", cg.derivative) from None
                 source += f"\nLANES_FALLBACK = {str(e)!r}  # why this shader runs one pixel a call\n"
     finally:
         sys.setrecursionlimit(old)
@@ -234,6 +244,8 @@ class CompiledProgram:
             mod.globals_template(uf, ui, *gt)
             bands = min(self.threads * 4, height) if width * height >= PARALLEL_PIXELS else 1
             edges = [height * k // bands for k in range(bands + 1)]
+            if getattr(mod, "QUADS", False):  # a block is two rows (a 2x2 quad's): bands start at even rows
+                edges = [e - e % 2 for e in edges[:-1]] + [height]
             if bands <= 1 or self.threads <= 1:
                 mod.render_rows(out, 0, height, width, height, offs, uf, ui, *gt)
             else:
@@ -450,6 +462,6 @@ def compile_compiled(path_or_shader: Any, threads: int | None = None) -> Any:
     shader = path_or_shader if isinstance(path_or_shader, Shader) else load_shader(path_or_shader)
     source, path = generate(shader)
     prog = CompiledProgram(source, path, threads)
-    if tiered() and "LANES_FALLBACK" not in source:
+    if tiered() and "LANES_FALLBACK" not in source and "\nLANES = " not in source:  # lockstep from the start: derivatives
         return Program(shader, "compiled", TieredProgram(shader, prog, threads))
     return Program(shader, "compiled", prog)

@@ -41,8 +41,18 @@ names renamed, so each lane computes exactly the per-pixel engine's operations (
 
 What is not rewritten (`Unsupported`: the engine falls back to the per-pixel module for that
 shader, the result unchanged): statements the per-pixel generator does not write today (an
-augmented assignment other than a loop counter, a `for` statement, ...). Derivatives are not
-supported (as per pixel).
+augmented assignment other than a loop counter, a `for` statement, ...).
+
+Derivatives. codegen writes a dFdx/dFdy leaf as `dfdx(v)` (QUADS = True in the module), which
+one pixel a call cannot compute; here a block is then W/2 pixels of two rows, 2x2 quads from an
+even x and y (fragCoord.y per lane, no ROW_UNIFORM), and lane k's `dfdx(v)` is the difference
+of two lanes of its quad (quad_lanes: llvmpipe's fine derivatives, as the NumPy backend's).
+Every lane computes each statement its block runs, also the lanes a divergent branch leaves
+out (a masked name keeps their last value), so a derivative taken under a branch reads what its
+neighbours computed: bit for bit with the NumPy backend in tests/compiled/test_derivatives.py,
+branches, loops and early returns included. At an odd right or top edge the quad's other pixels are
+helper pixels past the image (render_source). Such a shader has no per-pixel module to fall
+back to: what this rewrite refuses there is an error at the derivative's line (engine.generate).
 """
 
 from __future__ import annotations
@@ -111,10 +121,35 @@ def _exits(stmts: list) -> set[str]:
     return out
 
 
+def quad_lanes(name: str, k: int, W: int) -> tuple[int, int]:
+    """The lanes whose difference is lane k's derivative (`dfdx`/`dfdy`) in a block of 2x2
+    quads: lanes 0..W/2-1 are the lower row (even y, counted from the bottom as gl_FragCoord),
+    W/2..W-1 the row above, each row from an even x. As llvmpipe (fine derivatives,
+    numpy_backend/runtime.py Runtime.dFdx): dFdx(x, y) = v(x|1, y) - v(x&~1, y), dFdy(x, y) =
+    v(x, y|1) - v(x, y&~1)."""
+    h = W // 2
+    c, r = k % h, k // h
+    if name == "dfdx":
+        return r * h + (c | 1), r * h + (c & ~1)
+    return h + c, c
+
+
 class _Rename(ast.NodeTransformer):
-    def __init__(self, varying: set[str], k: int) -> None:
+    def __init__(self, varying: set[str], k: int, quads: int = 0) -> None:
         self.varying = varying
         self.k = k
+        self.quads = quads  # W when the block is 2x2 quads (derivatives), else 0
+
+    def visit_Call(self, node: ast.Call) -> Any:
+        f = node.func
+        if (self.quads and isinstance(f, ast.Name) and f.id in ("dfdx", "dfdy") and len(node.args) == 1
+                and isinstance(node.args[0], ast.Name) and node.args[0].id in self.varying):
+            # a difference of two lanes of the quad; of a uniform value, lanes_rt.dfdx (0)
+            v = node.args[0].id
+            a, b = quad_lanes(f.id, self.k, self.quads)
+            return ast.copy_location(ast.BinOp(ast.Name(f"{v}__{a}", ast.Load()), ast.Sub(),
+                                               ast.Name(f"{v}__{b}", ast.Load())), node)
+        return self.generic_visit(node)
 
     def visit_Name(self, node: ast.Name) -> Any:
         if node.id in self.varying:
@@ -200,7 +235,7 @@ class _Fn:
     def lane(self, e: Any, k: int) -> str:
         if not self.is_varying(e):
             return ast.unparse(e)
-        return ast.unparse(_Rename(self.varying, k).visit(copy.deepcopy(e)))
+        return ast.unparse(_Rename(self.varying, k, self.W if self.L.quads else 0).visit(copy.deepcopy(e)))
 
     def lanes_of(self, e: Any) -> list[str]:
         if not self.is_varying(e):
@@ -596,6 +631,12 @@ class Lanes:
     def __init__(self, source: str, width: int) -> None:
         self.tree = ast.parse(source)
         self.W = width
+        # derivatives (codegen writes dFdx as `dfdx(v)`, QUADS = True): a block is 2x2 quads,
+        # W/2 pixels of two rows, and fragCoord.y is per lane
+        self.quads = any(isinstance(n, ast.Assign) and isinstance(n.targets[0], ast.Name)
+                         and n.targets[0].id == "QUADS" for n in self.tree.body)
+        if self.quads and width % 4:
+            raise Unsupported(f"derivatives in blocks of {width} lanes (2x2 quads need a multiple of 4)")
         self.functions = {f.name: f for f in self.tree.body if isinstance(f, ast.FunctionDef)
                           and f.name not in ("init_globals", "render_rows", "globals_template")}
         shared = _SharedReads(self.functions.values())
@@ -625,6 +666,8 @@ class Lanes:
         if "shade" not in self.functions:
             raise Unsupported("a module without shade")
         params = [a.arg for a in self.functions["shade"].args.args]
+        if self.quads:  # two rows a block
+            return "shade", frozenset()
         return "shade", frozenset(i for i, p in enumerate(params) if p in ROW_UNIFORM)
 
     def reachable(self) -> list[_Fn]:
@@ -656,7 +699,8 @@ class Lanes:
                 continue
             if isinstance(node, ast.ImportFrom) and node.module == "glslcheck.compiled_backend.scalar":
                 out += math_imports()
-                out.append(f"from glslcheck.compiled_backend.lanes_rt import lsel  # {_rt_hash()}")
+                names = "lsel, dfdx, dfdy" if self.quads else "lsel"
+                out.append(f"from glslcheck.compiled_backend.lanes_rt import {names}  # {_rt_hash()}")
                 continue
             if isinstance(node, ast.ImportFrom) and node.module == "glslcheck.compiled_backend.lanes_rt":
                 continue  # the per-pixel module's lsel import: the line above, with the hash
@@ -665,7 +709,7 @@ class Lanes:
         slots = next((ast.literal_eval(n.value) for n in self.tree.body if isinstance(n, ast.Assign)
                       and isinstance(n.targets[0], ast.Name) and n.targets[0].id == "SLOTS"), None)
         shade = self.variants[self.entry()]
-        out.append(render_source(self.W, slots, shade.name, shade.scalar_params, shade.ret_uniform))
+        out.append(render_source(self.W, slots, shade.name, shade.scalar_params, shade.ret_uniform, self.quads))
         return "\n\n".join(out) + "\n"
 
 
@@ -695,11 +739,18 @@ def lanes_module(source: str, width: int = 8) -> str:
 
 
 def render_source(W: int, slots: dict | None = None, shade: str = "shade", scalar: Any = (),
-                  ret_uniform: Any = ()) -> str:
+                  ret_uniform: Any = (), quads: bool = False) -> str:
     """render_rows for blocks of W pixels of a row (the last block repeats the row's last pixel);
     slots: the module's SLOTS (a state kind without globals is not reset per pixel); shade: the
     entry's name, scalar: its parameters passed as one value for the block (ROW_UNIFORM),
-    ret_uniform: which of its four results are one value for the block."""
+    ret_uniform: which of its four results are one value for the block.
+
+    quads: blocks of W/2 pixels of two rows (y even, y + 1; quad_lanes), y0 even. At an odd
+    right or top edge the quad's other pixels are llvmpipe's helper invocations outside the
+    image (x = width, y = height: computed, not written, as the NumPy backend's tiles); a quad
+    wholly past the right edge repeats the row's last whole quad."""
+    if quads:
+        return _render_quads(W, slots, shade, ret_uniform)
     st = [f"{a}__{k}" for a in STATE_LANES for k in range(W)]
     lines = [
         "@numba.njit(cache=True, nogil=True, error_model='numpy')",
@@ -721,12 +772,7 @@ def render_source(W: int, slots: dict | None = None, shade: str = "shade", scala
     for k in range(W):
         lines.append(f"            px__{k} = F32(min(x0 + {k}, width - 1) + 0.5)")
     lines += ["            for s in range(samples):"]
-    kinds = ("float", "int", "uint", "bool")
-    for a, t, kind in zip(STATE_LANES, ("gtf", "gti", "gtu", "gtb"), kinds):
-        if slots is not None and not slots.get(kind):
-            continue
-        for k in range(W):
-            lines.append(f"                aset({a}__{k}, 0, {t})")
+    lines += _state_resets(W, slots, " " * 16)
     lines += [
         "                ox = F32(offs[s, 0])",
         "                oy = F32(py + F32(offs[s, 1]))",
@@ -735,19 +781,82 @@ def render_source(W: int, slots: dict | None = None, shade: str = "shade", scala
     args += [f"F32(px__{k} + ox)" for k in range(W)] + (["oy"] if "fy" in scalar else ["oy"] * W)
     args += [f"px__{k}" for k in range(W)] + (["py"] if "py" in scalar else ["py"] * W)
     lines.append(f"                res = {shade}({', '.join(args)})")
+    lines += _accumulate(W, ret_uniform)
+    lines += [
+        f"            for k in range(min({W}, width - x0)):",
+        "                for c in range(4):",
+        "                    out[row, x0 + k, c] = acc[c, k] / samples",
+    ]
+    return "\n".join(lines)
+
+
+def _state_resets(W: int, slots: dict | None, pad: str) -> list[str]:
+    """The per-pixel state reset to its template before each sample's call of shade."""
+    lines = []
+    for a, t, kind in zip(STATE_LANES, ("gtf", "gti", "gtu", "gtb"), ("float", "int", "uint", "bool")):
+        if slots is not None and not slots.get(kind):
+            continue
+        lines += [f"{pad}aset({a}__{k}, 0, {t})" for k in range(W)]
+    return lines
+
+
+def _accumulate(W: int, ret_uniform: Any) -> list[str]:
+    """The samples' sum of shade's result `res` into acc (4, W)."""
     at, start = {}, 0  # (channel, lane) -> its index in shade's result (a uniform channel: one)
     for c in range(4):
         one = bool(ret_uniform and ret_uniform[c])
         for k in range(W):
             at[c, k] = start if one else start + k
         start += 1 if one else W
-    lines.append("                if s == 0:  # the sum of one sample is its value (a -0.0 kept)")
+    lines = ["                if s == 0:  # the sum of one sample is its value (a -0.0 kept)"]
     lines += [f"                    acc[{c}, {k}] = np.float64(res[{at[c, k]}])" for c in range(4) for k in range(W)]
     lines.append("                else:")
     lines += [f"                    acc[{c}, {k}] = acc[{c}, {k}] + res[{at[c, k]}]" for c in range(4) for k in range(W)]
+    return lines
+
+
+def _render_quads(W: int, slots: dict | None, shade: str, ret_uniform: Any) -> str:
+    """render_source for blocks of 2x2 quads (derivatives): see render_source."""
+    h = W // 2
+    st = [f"{a}__{k}" for a in STATE_LANES for k in range(W)]
+    lines = [
+        "@numba.njit(cache=True, nogil=True, error_model='numpy')",
+        "def render_rows(out, y0, y1, width, height, offs, uf, ui, gtf, gti, gtu, gtb):",
+        '    """Rows y0..y1-1 (counted from the bottom; y0 even) into out (height, width, 4), top row',
+        f'    first, 2x2 quads: {h} pixels of two rows a call of shade; offs: the sample offsets."""',
+    ]
+    for a, t in zip(STATE_LANES, ("gtf", "gti", "gtu", "gtb")):
+        lines += [f"    {a}__{k} = acopy({t})" for k in range(W)]
     lines += [
-        f"            for k in range(min({W}, width - x0)):",
-        "                for c in range(4):",
-        "                    out[row, x0 + k, c] = acc[c, k] / samples",
+        "    samples = offs.shape[0]",
+        f"    acc = np.zeros((4, {W}), np.float64)",
+        "    last = (width - 1) & ~1  # the last whole quad's left column",
+        "    for y in range(y0, y1, 2):",
+        "        py0 = F32(y + 0.5)",
+        "        py1 = F32(y + 1.5)  # y + 1 = height: a helper row",
+        f"        for x0 in range(0, width, {h}):",
+    ]
+    for c in range(h):
+        lines.append(f"            px__{c} = F32((x0 + {c} if x0 + {c & ~1} < width else last + {c & 1}) + 0.5)")
+    lines += ["            for s in range(samples):"]
+    lines += _state_resets(W, slots, " " * 16)
+    lines += [
+        "                ox = F32(offs[s, 0])",
+        "                oy0 = F32(py0 + F32(offs[s, 1]))",
+        "                oy1 = F32(py1 + F32(offs[s, 1]))",
+    ]
+    px = [f"px__{k % h}" for k in range(W)]
+    args = ["True"] * W + st + ["uf", "ui"]
+    args += [f"F32({p} + ox)" for p in px] + ["oy0"] * h + ["oy1"] * h
+    args += px + ["py0"] * h + ["py1"] * h
+    lines.append(f"                res = {shade}({', '.join(args)})")
+    lines += _accumulate(W, ret_uniform)
+    lines += [
+        "            for r in range(2):",
+        "                if y + r >= height:",
+        "                    break",
+        f"                for k in range(min({h}, width - x0)):",
+        "                    for c in range(4):",
+        f"                        out[height - 1 - y - r, x0 + k, c] = acc[c, r * {h} + k] / samples",
     ]
     return "\n".join(lines)

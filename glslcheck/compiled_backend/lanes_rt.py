@@ -1,4 +1,5 @@
-"""The lockstep modules' own runtime (lanes.py): a branch-free select.
+"""The lockstep modules' own runtime (lanes.py): a branch-free select, and the derivative of a
+value the same in every lane.
 
 `lsel(c, a, b)` is `a if c else b` as LLVM's `select` instruction. Written as Python's
 conditional expression, each of the lanes' masked writes would be two basic blocks in numba's
@@ -33,3 +34,20 @@ def lsel(typingctx, c, a, b):
         value = builder.select(c_, x, y)
         return impl_ret_borrowed(context, builder, t, value)  # arrays: one more reference
     return t(c, a, b), codegen
+
+
+@intrinsic
+def dfdx(typingctx, v):
+    """dFdx of a value that is the same in every lane of the block (the rewrite writes a
+    varying one as the difference of two lanes, lanes.quad_lanes): 0, as the NumPy backend's
+    derivative of a lane-uniform value (runtime.Runtime._quad_diff)."""
+    t = types.unliteral(v)
+    if not isinstance(t, types.Float):
+        return None
+
+    def codegen(context, builder, signature, args):
+        return context.get_constant(t, 0.0)
+    return t(v), codegen
+
+
+dfdy = dfdx  # the same 0 for a uniform value

@@ -1,0 +1,129 @@
+"""dFdx, dFdy and fwidth in the compiled engine: lockstep blocks of 2x2 quads (lanes.py
+quad_lanes) against the NumPy backend, bit for bit.
+
+The NumPy backend's derivatives are llvmpipe's (fine, quads from even x and y, helper pixels
+past an odd edge; verified against GL in tests/real_verify), so the compiled engine must give
+its bits. The per-pixel engine cannot compute a derivative (one pixel a call): a shader with one
+renders in lockstep from its first frame, and a fixed per-pixel mode is a located error.
+Sizes: even (40x24) and odd on both axes (41x23: a helper column and a helper row), at 8 and 16
+lanes (quads of 4 and 8 columns: 41 is a multiple of neither, so a block lies past the edge).
+"""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+import glslcheck
+from glslcheck.diagnostics import GlslError
+
+MOUSE = (10.0, 7.0, 3.0, -2.0)
+
+DERIVATIVES = {
+    # the plain cases: linear and non-linear values, vectors, a uniform (0), x = dFdx(x)
+    "plain": """
+void mainImage(out vec4 c, in vec2 f) {
+    vec2 uv = f / iResolution.xy;
+    vec2 d = dFdx(uv * uv) * 1000.0 + dFdy(sin(uv * 9.0)) * 100.0;
+    float t = dFdx(iTime) + dFdy(iTime * 3.0);            // uniform: 0
+    float s = uv.x * uv.y * 50.0;
+    s = dFdx(s) + fwidth(s);                              // the quad's lanes read before any is written
+    vec3 w = fwidth(vec3(uv, uv.x * uv.y * 7.0)) * 40.0;
+    c = vec4(d, s + t, 1.0) + vec4(w, 0.0);
+}""",
+    # Inigo Quilez's filtered checkers (h41-raymarch of the hold-out corpus), reached under
+    # divergent branches in a called function: the quad's other lanes compute it too
+    "branch_checkers": """
+float checkersGradBox(in vec2 p) {
+    vec2 w = fwidth(p) + 0.001;
+    vec2 i = 2.0 * (abs(fract((p - 0.5 * w) * 0.5) - 0.5) - abs(fract((p + 0.5 * w) * 0.5) - 0.5)) / w;
+    return 0.5 - 0.5 * i.x * i.y;
+}
+void mainImage(out vec4 c, in vec2 f) {
+    vec2 uv = (2.0 * f - iResolution.xy) / iResolution.y;
+    vec3 col = vec3(0.2);
+    float m = uv.y < 0.0 ? 1.0 : 2.0;
+    if (length(uv) < 1.2) {
+        vec2 pos = uv / max(abs(uv.y), 0.05) * 3.0;
+        col = vec3(0.6, 0.3, 0.1);
+        if (m < 1.5) {
+            float k = checkersGradBox(pos + iTime);
+            col = 0.3 + k * vec3(0.6);
+        }
+    }
+    c = vec4(col, 1.0);
+}""",
+    # derivatives of values a divergent loop and an early return computed (IQ's checkers2D of
+    # the tuned corpus: max of |dFdx| and |dFdy|)
+    "after_divergent_loop": """
+float march(vec2 p) {
+    float t = 0.0;
+    for (int i = 0; i < 40; i++) {
+        float d = length(p - vec2(0.3, 0.2)) - 0.25 - t * 0.05;
+        if (d < 0.001) break;
+        t += d * 0.7;
+        if (t > 3.0) return -1.0;
+    }
+    return t;
+}
+void mainImage(out vec4 c, in vec2 f) {
+    vec2 uv = f / iResolution.xy;
+    float t = march(uv);
+    vec2 p = uv * (3.0 + t);
+    vec2 w = max(abs(dFdx(p)), abs(dFdy(p))) + 0.01;
+    c = vec4(w * 10.0, t, 1.0);
+}""",
+}
+
+
+def _compiled(shader, lanes: int, size, time: float = 1.3) -> np.ndarray:
+    from glslcheck.compiled_backend.engine import CompiledProgram, generate
+
+    source, path = generate(shader, lanes=lanes)
+    assert "QUADS = True" in source and f"LANES = {lanes}" in source, source[-300:]
+    return CompiledProgram(source, path).render(size=size, time=time, mouse=MOUSE)
+
+
+@pytest.mark.parametrize("size", [(40, 24), (41, 23)])
+@pytest.mark.parametrize("lanes", [8, 16])
+@pytest.mark.parametrize("name", sorted(DERIVATIVES))
+def test_derivatives_bit_for_bit(numba, make_shader, name, lanes, size):
+    shader = make_shader(DERIVATIVES[name])
+    got = _compiled(shader, lanes, size)
+    want = glslcheck.compile(shader, backend="numpy").render(size=size, time=1.3, mouse=MOUSE)
+    same = (got.view(np.uint32) == want.view(np.uint32)) | (np.isnan(got) & np.isnan(want))
+    if not same.all():
+        where = np.argwhere(~same.all(axis=2))
+        y, x = where[0]
+        raise AssertionError(f"{len(where)} of {size[0] * size[1]} pixels differ; first at row {y} col {x}: "
+                             f"compiled {got[y, x]}, numpy {want[y, x]}")
+    # not trivially equal: the derivatives are not all zero
+    assert np.ptp(want[..., :3]) > 0.0
+
+
+def test_derivatives_start_in_lockstep(numba, make_shader, monkeypatch):
+    """The default program of a shader with derivatives is the lockstep module from the first
+    frame (no per-pixel tier); GLSLCHECK_COMPILED_LANES=0 is a located error, not a traceback."""
+    from glslcheck.compiled_backend.engine import CompiledProgram, compile_compiled, generate
+
+    shader = make_shader(DERIVATIVES["plain"])
+    monkeypatch.delenv("GLSLCHECK_COMPILED_LANES", raising=False)
+    prog = compile_compiled(shader)
+    assert isinstance(prog.impl, CompiledProgram) and "QUADS = True" in prog.impl.source
+    with pytest.raises(GlslError) as err:
+        generate(shader, lanes=0)
+    d = err.value.diagnostics[0]
+    assert "derivatives only with pixels in lockstep" in d.message and (d.loc.line, d.loc.column) == (4, 14), \
+        (d.message, d.loc)
+    monkeypatch.setenv("GLSLCHECK_COMPILED_LANES", "0")
+    with pytest.raises(GlslError, match="derivatives only with pixels in lockstep"):
+        generate(shader)
+
+
+def test_quad_lanes():
+    """Lane k's pair: lanes 0..3 the lower row, 4..7 the upper (8 lanes)."""
+    from glslcheck.compiled_backend.lanes import quad_lanes
+
+    assert [quad_lanes("dfdx", k, 8) for k in range(8)] == [(1, 0), (1, 0), (3, 2), (3, 2),
+                                                           (5, 4), (5, 4), (7, 6), (7, 6)]
+    assert [quad_lanes("dfdy", k, 8) for k in range(8)] == [(4, 0), (5, 1), (6, 2), (7, 3)] * 2
