@@ -2,10 +2,12 @@
 
     python benchmarks/bench_compiled.py [--size 128x72,400x225] [--repeat 3] [--only ID,...]
                                         [--lab-only | --real-only] [--numpy-size 128x72]
-                                        [--fresh-cache] [--json out.json] [--lanes 0,8]
+                                        [--fresh-cache] [--json out.json] [--lanes 0,8] [--scenes]
 
 For every lab shader and every real public shader of tests/real_verify (texts fetched by
-tools/real_verify.py fetch), in this one process:
+tools/real_verify.py fetch), and with --scenes the render benchmark's scenes (bench_render.py's
+800x450 scenes: `--scenes --lab-only --only scene-four_spheres,... --size 800x450`), in this one
+process:
 
 - compile: the wall time of generating the module and of loading it (numba compiling it, or
   loading its machine code from numba's cache: `cold` says which; --fresh-cache points numba at
@@ -65,8 +67,15 @@ def _time() -> float:
     return 1.0 + _T[0] * 0.01
 
 
-def shaders(lab: bool, real: bool, only: set[str] | None) -> list[tuple[str, str]]:
+# the render benchmark's scenes without channels (bench_render.SCENES: the four-sphere scene, its
+# lights built element by element in mainImage, a Lab 4 submission's shape), with --scenes
+SCENE_DIRS = ("four_spheres", "lights_array", "lab4_submission")
+
+
+def shaders(lab: bool, real: bool, only: set[str] | None, scenes: bool = False) -> list[tuple[str, str]]:
     out = []
+    if scenes:
+        out += [(f"scene-{d}", os.path.join(HERE, "scenes", d)) for d in SCENE_DIRS]
     if lab:
         root = os.path.join(ROOT, "lab_shaders")
         out += [(d, os.path.join(root, d)) for d in sorted(os.listdir(root)) if os.path.isdir(os.path.join(root, d))]
@@ -193,6 +202,8 @@ def main() -> int:
     ap.add_argument("--lab-only", action="store_true")
     ap.add_argument("--real-only", action="store_true")
     ap.add_argument("--fresh-cache", action="store_true")
+    ap.add_argument("--scenes", action="store_true",
+                    help="also the render benchmark's scenes (benchmarks/scenes: four_spheres, lights_array, lab4_submission)")
     ap.add_argument("--json", default=None)
     ap.add_argument("--lanes", default="0,8", help="modes: pixels a call, 0 = per pixel (default 0,8: both tiers)")
     args = ap.parse_args()
@@ -207,7 +218,7 @@ def main() -> int:
 
     print(f"load average at start: {_load()}", flush=True)
     rows, skipped = [], []
-    for name, path in shaders(not args.real_only, not args.lab_only, only):
+    for name, path in shaders(not args.real_only, not args.lab_only, only, args.scenes):
         try:
             got = measure(name, path, sizes, args.repeat, numpy_size, modes)
         except GlslError as e:
