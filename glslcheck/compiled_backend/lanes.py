@@ -614,6 +614,9 @@ class _Fn:
         for p in self.params:
             params += [p] if p in self.scalar_params else self.lane_names(p)
         head = [f"def {self.name}({', '.join(params)}):"]
+        for p in self.params:  # a parameter passed as one scalar and written with lane values
+            if p in self.scalar_params and p in self.varying:  # (`ro += rd * t`): its lanes start from it
+                head += [f"    {p}__{k} = {p}" for k in range(self.W)]
         if any("live__0" in line for line in lines):
             head += [f"    live__{k} = True" for k in range(self.W)]
         return "\n".join(head + lines)

@@ -61,12 +61,15 @@ float early(float t) { if (t > 1.0) return cos(t); return t * t; }
 float diverge(float t, float x) { if (x > t) return x - t; return t; }
 void split(float t, out float a, out float b) { a = fract(t); b = t - a; }
 float row(float y) { if (y > 11.5) return 0.25; return 0.75; }
+// ro one scalar (iTime's), then written with lane values: its lanes start from the scalar
+float walk(vec3 ro, vec3 rd) { ro = ro + rd * 2.0; if (rd.x > 0.4) ro.y += 1.0; return ro.x + ro.y; }
 void mainImage(out vec4 fragColor, in vec2 fragCoord) {
     vec2 uv = fragCoord / iResolution.xy;
     float a, b;
     split(iTime * 3.1, a, b);
     float w = wave(iTime) + wave(uv.x) + early(iTime) + early(uv.x * 2.0);
-    float d = diverge(iTime * 0.1, uv.x) + row(fragCoord.y) + row(fragCoord.x * 0.5);
+    float d = diverge(iTime * 0.1, uv.x) + row(fragCoord.y) + row(fragCoord.x * 0.5)
+              + walk(vec3(iTime), vec3(uv, 1.0)) * 0.1;
     fragColor = vec4(w * 0.25, d * 0.5 + a, b * 0.01, 1.0);
 }
 """
