@@ -134,11 +134,38 @@ def quad_lanes(name: str, k: int, W: int) -> tuple[int, int]:
     return h + c, c
 
 
+_PURE_NODES = (ast.Name, ast.Constant, ast.BinOp, ast.UnaryOp, ast.Compare, ast.IfExp, ast.Load,
+               ast.Add, ast.Sub, ast.Mult, ast.Div, ast.USub, ast.UAdd, ast.Not,
+               ast.Eq, ast.NotEq, ast.Lt, ast.LtE, ast.Gt, ast.GtE)
+
+
+def _pure(e: Any) -> bool:
+    """e reads names and constants with float arithmetic and compares only (and lsel): it has
+    no effect and cannot fail (error_model="numpy"; codegen wraps int arithmetic in casts, calls)."""
+    for n in ast.walk(e):
+        if isinstance(n, ast.Call):
+            if not (isinstance(n.func, ast.Name) and n.func.id == "lsel" and not n.keywords):
+                return False
+        elif not isinstance(n, _PURE_NODES) and not (isinstance(n, ast.Name) and n.id == "lsel"):
+            return False
+    return True
+
+
 class _Rename(ast.NodeTransformer):
     def __init__(self, varying: set[str], k: int, quads: int = 0) -> None:
         self.varying = varying
         self.k = k
         self.quads = quads  # W when the block is 2x2 quads (derivatives), else 0
+
+    def visit_IfExp(self, node: ast.IfExp) -> Any:
+        """`a if c else b` of pure sides (codegen's `0 if x == 0 else y * x` for a value the NumPy
+        backend takes for a constant) as lsel: two basic blocks per lane stop the SLP
+        vectorizer from packing the lanes; both sides computed, the same value picked."""
+        node = self.generic_visit(node)
+        if _pure(node):
+            return ast.copy_location(ast.Call(ast.Name("lsel", ast.Load()), [node.test, node.body, node.orelse], []),
+                                     node)
+        return node
 
     def visit_Call(self, node: ast.Call) -> Any:
         f = node.func

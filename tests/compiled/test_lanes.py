@@ -186,3 +186,20 @@ def test_fixed_mode_is_not_tiered(numba, make_shader, monkeypatch):
     for value in ("0", "8"):
         monkeypatch.setenv("GLSLCHECK_COMPILED_LANES", value)
         assert isinstance(engine.compile_compiled(shader).impl, engine.CompiledProgram)
+
+
+def test_pure_conditional_expressions_are_selects():
+    """codegen's `0 if x == 0 else y * x` (x a value the NumPy backend takes for a constant: a
+    light's colour in 07_final's light loop) is a select in each lane, not two basic blocks (they
+    stop the SLP vectorizer); a uniform one stays one conditional for the block. (The bits:
+    test_lab_lanes_bit_for_bit.)"""
+    import re
+
+    from glslcheck.compiled_backend.engine import generate
+    from glslcheck.sources import load_shader
+
+    source, _ = generate(load_shader(os.path.join(LAB, "07_final")), lanes=8)
+    lane_ifexp = [line for line in source.splitlines()
+                  if re.search(r"__\d+ = .* if .* else ", line) and not line.lstrip().startswith("#")]
+    assert not lane_ifexp, lane_ifexp[:3]
+    assert re.search(r"lsel\(v_light_\d+ == F_0p0, F_0p0, ", source)
