@@ -782,18 +782,9 @@ def render_source(W: int, slots: dict | None = None, shade: str = "shade", scala
     if quads:
         return _render_quads(W, slots, shade, ret_uniform)
     st = [f"{a}__{k}" for a in STATE_LANES for k in range(W)]
-    lines = [
-        "@numba.njit(cache=True, nogil=True, error_model='numpy')",
-        "def render_rows(out, y0, y1, width, height, offs, uf, ui, gtf, gti, gtu, gtb):",
-        '    """Rows y0..y1-1 (counted from the bottom) into out (height, width, 4), top row first,',
-        f'    {W} pixels of a row a call of shade; offs: the (dx, dy) sample offsets."""',
-    ]
-    for a, t in zip(STATE_LANES, ("gtf", "gti", "gtu", "gtb")):
-        for k in range(W):
-            lines.append(f"    {a}__{k} = acopy({t})")
+    lines = _prologue(W, ['    """Rows y0..y1-1 (counted from the bottom) into out (height, width, 4), top row first,',
+                          f'    {W} pixels of a row a call of shade; offs: the (dx, dy) sample offsets."""'])
     lines += [
-        "    samples = offs.shape[0]",
-        f"    acc = np.zeros((4, {W}), np.float64)",
         "    for y in range(y0, y1):",
         "        row = height - 1 - y",
         "        py = F32(y + 0.5)",
@@ -801,12 +792,8 @@ def render_source(W: int, slots: dict | None = None, shade: str = "shade", scala
     ]
     for k in range(W):
         lines.append(f"            px__{k} = F32(min(x0 + {k}, width - 1) + 0.5)")
-    lines += ["            for s in range(samples):"]
-    lines += _state_resets(W, slots, " " * 16)
-    lines += [
-        "                ox = F32(offs[s, 0])",
-        "                oy = F32(py + F32(offs[s, 1]))",
-    ]
+    lines += _sample_head(W, slots)
+    lines.append("                oy = F32(py + F32(offs[s, 1]))")
     args = ["True"] * W + st + ["uf", "ui"]
     args += [f"F32(px__{k} + ox)" for k in range(W)] + (["oy"] if "fy" in scalar else ["oy"] * W)
     args += [f"px__{k}" for k in range(W)] + (["py"] if "py" in scalar else ["py"] * W)
@@ -820,14 +807,24 @@ def render_source(W: int, slots: dict | None = None, shade: str = "shade", scala
     return "\n".join(lines)
 
 
-def _state_resets(W: int, slots: dict | None, pad: str) -> list[str]:
-    """The per-pixel state reset to its template before each sample's call of shade."""
-    lines = []
+def _prologue(W: int, doc: list[str]) -> list[str]:
+    """render_rows' signature, docstring, per-lane state copies and accumulator."""
+    lines = ["@numba.njit(cache=True, nogil=True, error_model='numpy')",
+             "def render_rows(out, y0, y1, width, height, offs, uf, ui, gtf, gti, gtu, gtb):"] + doc
+    for a, t in zip(STATE_LANES, ("gtf", "gti", "gtu", "gtb")):
+        lines += [f"    {a}__{k} = acopy({t})" for k in range(W)]
+    return lines + ["    samples = offs.shape[0]", f"    acc = np.zeros((4, {W}), np.float64)"]
+
+
+def _sample_head(W: int, slots: dict | None) -> list[str]:
+    """The loop over the samples: the per-pixel state reset to its template before each call of
+    shade, and the sample's x offset."""
+    lines = ["            for s in range(samples):"]
     for a, t, kind in zip(STATE_LANES, ("gtf", "gti", "gtu", "gtb"), ("float", "int", "uint", "bool")):
         if slots is not None and not slots.get(kind):
             continue
-        lines += [f"{pad}aset({a}__{k}, 0, {t})" for k in range(W)]
-    return lines
+        lines += [f"                aset({a}__{k}, 0, {t})" for k in range(W)]
+    return lines + ["                ox = F32(offs[s, 0])"]
 
 
 def _accumulate(W: int, ret_uniform: Any) -> list[str]:
@@ -849,17 +846,9 @@ def _render_quads(W: int, slots: dict | None, shade: str, ret_uniform: Any) -> s
     """render_source for blocks of 2x2 quads (derivatives): see render_source."""
     h = W // 2
     st = [f"{a}__{k}" for a in STATE_LANES for k in range(W)]
-    lines = [
-        "@numba.njit(cache=True, nogil=True, error_model='numpy')",
-        "def render_rows(out, y0, y1, width, height, offs, uf, ui, gtf, gti, gtu, gtb):",
-        '    """Rows y0..y1-1 (counted from the bottom; y0 even) into out (height, width, 4), top row',
-        f'    first, 2x2 quads: {h} pixels of two rows a call of shade; offs: the sample offsets."""',
-    ]
-    for a, t in zip(STATE_LANES, ("gtf", "gti", "gtu", "gtb")):
-        lines += [f"    {a}__{k} = acopy({t})" for k in range(W)]
+    lines = _prologue(W, ['    """Rows y0..y1-1 (counted from the bottom; y0 even) into out (height, width, 4), top row',
+                          f'    first, 2x2 quads: {h} pixels of two rows a call of shade; offs: the sample offsets."""'])
     lines += [
-        "    samples = offs.shape[0]",
-        f"    acc = np.zeros((4, {W}), np.float64)",
         "    last = (width - 1) & ~1  # the last whole quad's left column",
         "    for y in range(y0, y1, 2):",
         "        py0 = F32(y + 0.5)",
@@ -868,13 +857,8 @@ def _render_quads(W: int, slots: dict | None, shade: str, ret_uniform: Any) -> s
     ]
     for c in range(h):
         lines.append(f"            px__{c} = F32((x0 + {c} if x0 + {c & ~1} < width else last + {c & 1}) + 0.5)")
-    lines += ["            for s in range(samples):"]
-    lines += _state_resets(W, slots, " " * 16)
-    lines += [
-        "                ox = F32(offs[s, 0])",
-        "                oy0 = F32(py0 + F32(offs[s, 1]))",
-        "                oy1 = F32(py1 + F32(offs[s, 1]))",
-    ]
+    lines += _sample_head(W, slots)
+    lines += ["                oy0 = F32(py0 + F32(offs[s, 1]))", "                oy1 = F32(py1 + F32(offs[s, 1]))"]
     px = [f"px__{k % h}" for k in range(W)]
     args = ["True"] * W + st + ["uf", "ui"]
     args += [f"F32({p} + ox)" for p in px] + ["oy0"] * h + ["oy1"] * h
