@@ -323,6 +323,9 @@ class _Fn:
         self.indent = 1
         self.n = 0
         self.div = False  # divergent control: writes by select under self.mask
+        # locals too: False while the only lanes left out are lanes that have returned (they
+        # never read this call's locals again), True in a divergent branch or loop
+        self.ldiv = False
         self.mask = "m"  # the current region's mask (the function's in uniform control)
         self.loops: list[tuple[str, str, str] | None] = []  # None: a loop of Python's own
         self.live = False  # a divergent return happened: `live__k` lanes are still running
@@ -344,6 +347,7 @@ class _Fn:
             if not self.live:
                 return
             self.div = True
+            self.ldiv = self.L.quads  # derivatives read a returned neighbour's locals
             self.mask = self.new_mask("mr", [f"(m__{k} & live__{k})" for k in range(self.W)])
             return
         terms = []
@@ -396,7 +400,7 @@ class _Fn:
         uniform control."""
         node = stmt_or_expr if isinstance(stmt_or_expr, ast.stmt) else ast.Expr(stmt_or_expr)
         texts = self.lanes_of(node)
-        guard = self.div or base in STATE_LANES
+        guard = self.ldiv or base in STATE_LANES
         for k, t in enumerate(texts):
             self.emit(f"if {self.mask}__{k}: {t}" if guard else t)
 
@@ -423,7 +427,7 @@ class _Fn:
         if _is_counter(name):
             self.emit(ast.unparse(s))
             return
-        if self.div or self.is_varying(v) or _makes_array(v):
+        if self.ldiv or self.is_varying(v) or _makes_array(v):
             self.mark(name)
         self.write(name, self.lanes_of(v) if name in self.varying else [ast.unparse(v)])
 
@@ -433,7 +437,7 @@ class _Fn:
             return
         # plain: in uniform control, a name written once, or its first write in the text (a
         # declaration, a ternary's first side: the lanes it does not concern read it nowhere)
-        plain = not self.div or self.counts.get(name, 0) <= 1 or name not in self.defined
+        plain = not self.ldiv or self.counts.get(name, 0) <= 1 or name not in self.defined
         self.defined.add(name)
         for k, text in enumerate(texts):
             if plain:
@@ -474,7 +478,7 @@ class _Fn:
         flat: list[str] = []
         for x, r, uni in zip(targets, res, fn.ret_uniform):
             flat += [r] if uni else self.lane_names(r)
-            if self.div or not uni:
+            if self.ldiv or not uni:
                 self.mark(x)  # a result per lane (or written under a mask)
         self.emit(f"{', '.join(flat)}, = {text}")
         for x, r, uni in zip(targets, res, fn.ret_uniform):
@@ -484,10 +488,10 @@ class _Fn:
         exits = _exits([s])
         if not self.is_varying(s.test):
             self.emit(f"if {ast.unparse(s.test)}:")
-            self.nested(s.body, self.div, self.mask)
+            self.nested(s.body, self.div, self.mask, self.ldiv)
             if s.orelse:
                 self.emit("else:")
-                self.nested(s.orelse, self.div, self.mask)
+                self.nested(s.orelse, self.div, self.mask, self.ldiv)
         else:
             base = self.mask if self.div else "m"
             cond = self.new_mask("c", self.lanes_of(s.test))
@@ -496,20 +500,20 @@ class _Fn:
             if s.orelse:
                 other = self.new_mask("me", [f"({base}__{k} & (not {cond}__{k}))" for k in range(self.W)])
             self.emit(f"if {self.any_of(then)}:")
-            self.nested(s.body, True, then)
+            self.nested(s.body, True, then, True)
             if other is not None:
                 self.emit(f"if {self.any_of(other)}:")
-                self.nested(s.orelse, True, other)
+                self.nested(s.orelse, True, other, True)
         if exits:
             self.refresh()
 
-    def nested(self, stmts: list, div: bool, mask: str) -> None:
-        saved = (self.div, self.mask)
-        self.div, self.mask = div, mask
+    def nested(self, stmts: list, div: bool, mask: str, ldiv: bool) -> None:
+        saved = (self.div, self.mask, self.ldiv)
+        self.div, self.mask, self.ldiv = div, mask, ldiv
         self.indent += 1
         self.block(stmts)
         self.indent -= 1
-        self.div, self.mask = saved
+        self.div, self.mask, self.ldiv = saved
 
     def loop_divergent(self, body: list) -> bool:
         """Whether a loop in uniform control has an exit under a divergent condition."""
@@ -535,7 +539,9 @@ class _Fn:
         if not (isinstance(s.test, ast.Constant) and s.test.value is True) or s.orelse:
             raise Unsupported("a while loop with a condition")
         exits = _exits(s.body)
-        if not self.div and not self.loop_divergent(s.body):
+        # a plain loop also after returns (the returned lanes run it for nothing), unless it can
+        # return: under a mask a return does not leave the Python loop
+        if not self.ldiv and not self.loop_divergent(s.body) and not (self.div and "return" in exits):
             self.emit("while True:")
             self.loops.append(None)
             self.indent += 1
@@ -545,7 +551,7 @@ class _Fn:
             if "return" in exits:
                 self.refresh()
             return
-        saved = (self.div, self.mask)
+        saved = (self.div, self.mask, self.ldiv)
         base = self.mask if self.div else "m"
         act = self.new_mask("act", [f"{base}__{k}" for k in range(self.W)])
         cont = self.fresh("cont") if "continue" in exits else ""
@@ -556,7 +562,7 @@ class _Fn:
                 self.emit(f"{cont}__{k} = False")
         body = self.new_mask("mb", [f"{act}__{k}" for k in range(self.W)])
         self.loops.append((act, cont, body))
-        self.div, self.mask = True, body
+        self.div, self.mask, self.ldiv = True, body, True
         for st in s.body:
             self.stmt(st, False)
             ex = _exits([st])
@@ -569,7 +575,7 @@ class _Fn:
                     self.emit("    continue")
         self.loops.pop()
         self.indent -= 1
-        self.div, self.mask = saved
+        self.div, self.mask, self.ldiv = saved
         if "return" in exits:
             self.refresh()
 

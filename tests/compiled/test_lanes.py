@@ -13,6 +13,7 @@ per-pixel engine with itself.
 from __future__ import annotations
 
 import os
+import re
 
 import numpy as np
 import pytest
@@ -203,3 +204,42 @@ def test_pure_conditional_expressions_are_selects():
                   if re.search(r"__\d+ = .* if .* else ", line) and not line.lstrip().startswith("#")]
     assert not lane_ifexp, lane_ifexp[:3]
     assert re.search(r"lsel\(v_light_\d+ == F_0p0, F_0p0, ", source)
+
+
+AFTER_RETURN = """
+struct Light { vec3 pos; float power; };
+float shadeIt(vec2 uv) {
+    if (uv.x < 0.3) return 0.1;               // a divergent early return
+    Light L[2];                               // built after it: the returned lanes never read it
+    L[0] = Light(vec3(1.0, 2.0, 3.0), 0.5);
+    L[1] = Light(vec3(cos(iTime), 0.0, 1.0), 0.25);
+    float acc = 0.0;
+    for (int k = 0; k < 2; k++) acc += L[k].power * dot(L[k].pos, vec3(uv, 1.0));
+    float w = 0.0;
+    if (uv.x > 0.6) { w = 1.0; }              // a divergent branch: w's write stays masked
+    int n = 0;
+    for (;;) { n++; if (n > 3) return acc + w + float(n); }   // a loop that returns, after returns
+}
+void mainImage(out vec4 c, in vec2 f) {
+    vec2 uv = f / iResolution.xy;
+    c = vec4(shadeIt(uv), uv, 1.0);
+}
+"""
+
+
+def test_locals_after_a_return_stay_uniform(numba, make_shader):
+    """After a divergent return the lanes left out have returned and never read the call's
+    locals again: writes to locals need no mask there, and a local array of uniform values
+    built element by element (the lights array of benchmarks/scenes/lights_array, the common
+    Lab 4 pattern) stays one scalar per element for the block; a branch's write keeps its
+    mask, and a loop that can return stays a masked loop. The bits are the per-pixel engine's."""
+    from glslcheck.compiled_backend.engine import generate
+
+    shader = make_shader(AFTER_RETURN)
+    source, _ = generate(shader, lanes=8)
+    fn = source[source.index("def f_shadeIt"):]
+    fn = fn[:fn.index("\n\n")]
+    assert re.search(r"\bv_L_\d+ = ", fn) and not re.search(r"\bv_L_\d+__\d", fn), "L per lane"
+    assert re.search(r"v_w_\d+__0 = lsel\(", fn), "w's write in the branch unmasked"
+    _same_bits(shader, 8)
+    _same_bits(shader, 16)
