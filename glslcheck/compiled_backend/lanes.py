@@ -35,7 +35,11 @@ names renamed, so each lane computes exactly the per-pixel engine's operations (
   pass) and return (`live`, return slots `_r<i>`, clears every enclosing loop's `act`) as
   masks. A loop's pass count is the block's (the slowest lane's): LOOP_CAP as per pixel.
 - Writes to the per-pixel state arrays (globals) are always under the mask; writes to locals in
-  uniform control are plain (a lane outside the function's mask never reads them).
+  uniform control are plain (a lane outside the function's mask never reads them), also after
+  a divergent return (`ldiv`: the lanes left out have returned and never read this call's
+  locals again; not with derivatives, whose neighbours read them), so a lights array built
+  element by element after `if (miss) return ...;` stays uniform, as the NumPy backend's free
+  writes (numpy_backend/uniformity.py).
 - Math: the scalar runtime's one-lane functions, lane by lane; the names lanes_math.py defines
   (branch-free, same bits) replace them when that module exists (`MATH`, the one switch).
 
