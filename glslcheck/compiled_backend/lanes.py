@@ -352,6 +352,12 @@ class _Fn:
                 return
             self.div = True
             self.ldiv = self.L.quads  # derivatives read a returned neighbour's locals
+            # a block whose every lane has returned stops here (the rest, loops included,
+            # would run for nothing: the sky of a raymarcher after `if (miss) return`)
+            self.emit(f"if not {self.any_of('live')}:")
+            self.indent += 1
+            self.emit_slots_return(self.nret > 0)
+            self.indent -= 1
             self.mask = self.new_mask("mr", [f"(m__{k} & live__{k})" for k in range(self.W)])
             return
         terms = []

@@ -232,7 +232,8 @@ def test_locals_after_a_return_stay_uniform(numba, make_shader):
     locals again: writes to locals need no mask there, and a local array of uniform values
     built element by element (the lights array of benchmarks/scenes/lights_array, the common
     Lab 4 pattern) stays one scalar per element for the block; a branch's write keeps its
-    mask, and a loop that can return stays a masked loop. The bits are the per-pixel engine's."""
+    mask, and a loop that can return stays a masked loop; a block whose every lane has returned
+    stops at the return. The bits are the per-pixel engine's."""
     from glslcheck.compiled_backend.engine import generate
 
     shader = make_shader(AFTER_RETURN)
@@ -241,5 +242,7 @@ def test_locals_after_a_return_stay_uniform(numba, make_shader):
     fn = fn[:fn.index("\n\n")]
     assert re.search(r"\bv_L_\d+ = ", fn) and not re.search(r"\bv_L_\d+__\d", fn), "L per lane"
     assert re.search(r"v_w_\d+__0 = lsel\(", fn), "w's write in the branch unmasked"
+    # a block whose lanes have all returned stops there (the loops after it would run for nothing)
+    assert re.search(r"if not \(live__0 \| live__1 .*\):\n +return \(_r0__0, ", fn), "no early exit"
     _same_bits(shader, 8)
     _same_bits(shader, 16)
