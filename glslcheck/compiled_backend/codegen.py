@@ -47,6 +47,7 @@ changes.
 
 from __future__ import annotations
 
+import ast as pyast
 import math
 import re
 from dataclasses import dataclass
@@ -59,14 +60,35 @@ from ..diagnostics import Diagnostic, GlslError, Location
 
 RULE = "compiled-engine"
 NOT_YET = "not supported by the compiled engine yet"
-# Ternaries computed on both sides (Codegen._speculable): an expression of names, literals,
-# arithmetic and comparison operators and lsel, with no other call and no subscript, has no
-# effect and cannot fail; a side of more than _SPECULATE_LINES such temporaries keeps its
-# branch (its work would be paid where it is not taken).
-_PURE = re.compile(r"^(?!.*(?:\*\*|//|<<|>>))(?:lsel\(|[A-Za-z_][A-Za-z0-9_]*\b(?!\()"
-                   r"|(?:[0-9]+\.?[0-9]*|\.[0-9]+)(?:e[-+]?[0-9]+)?|[-+*/<>=!(), ])+$")
+# Ternaries computed on both sides (Codegen._speculable): a side of more than _SPECULATE_LINES
+# pure temporaries (pure_expr) keeps its branch (its work would be paid where it is not taken).
 _PURE_LINE = re.compile(r"^( *)_t[0-9]+ = (.*)$")
 _SPECULATE_LINES = 4
+_PURE_NODES = (pyast.Name, pyast.Constant, pyast.BinOp, pyast.UnaryOp, pyast.Compare, pyast.IfExp, pyast.BoolOp,
+               pyast.Load, pyast.Add, pyast.Sub, pyast.Mult, pyast.Div, pyast.USub, pyast.UAdd, pyast.Not,
+               pyast.And, pyast.Or, pyast.Eq, pyast.NotEq, pyast.Lt, pyast.LtE, pyast.Gt, pyast.GtE)
+
+
+def pure_expr(e: Any) -> bool:
+    """A generated expression (its text or its Python ast) that reads names and constants with
+    float arithmetic, compares, `and`/`or`/`not` and lsel only: it has no effect and cannot fail
+    (error_model="numpy"; this generator wraps int arithmetic in casts, which are calls), so
+    computing it where its value is not used changes nothing (codegen's ternaries, lanes.py's
+    conditional expressions)."""
+    if isinstance(e, str):
+        try:
+            e = pyast.parse(e, mode="eval").body
+        except SyntaxError:
+            return False
+    for n in pyast.walk(e):
+        if isinstance(n, pyast.Call):
+            if not (isinstance(n.func, pyast.Name) and n.func.id == "lsel" and not n.keywords):
+                return False
+        elif not isinstance(n, _PURE_NODES):
+            return False
+    return True
+
+
 _ATOM = re.compile(r"^(?:[A-Za-z_][A-Za-z0-9_]*(?:\[[A-Za-z0-9_ +]+\])?|True|False)$")
 _KIND_ARRAY = {"float": "gf", "int": "gi", "uint": "gu", "bool": "gb"}
 _DTYPE = {"float": "np.float32", "int": "np.int32", "uint": "np.uint32", "bool": "np.bool_"}
@@ -223,9 +245,7 @@ class Codegen:
     def tmp(self, value: str) -> str:
         if _ATOM.match(value) and not value.startswith(("gf[", "gi[", "gu[", "gb[")):
             return value
-        t = self.fresh()
-        self.emit(f"{t} = {value}")
-        return t
+        return self.tmp_fresh(value)
 
     def tmp_fresh(self, value: str) -> str:
         """value into a new temporary, whatever it is."""
@@ -964,7 +984,7 @@ class Codegen:
     def _speculable(self, mark: int, parts: list) -> bool:
         """The lines written since mark and the value parts are pure and cheap: at most a few
         assignments of temporaries, each of names, literals, operators and lsel."""
-        if any(not isinstance(p, str) or not _PURE.match(p) for p in parts):
+        if any(not isinstance(p, str) or not pure_expr(p) for p in parts):
             return False
         body = self.lines[mark:]
         if len(body) > _SPECULATE_LINES:
@@ -972,7 +992,7 @@ class Codegen:
         pad = "    " * self.indent
         for line in body:
             m = _PURE_LINE.match(line)
-            if m is None or m.group(1) != pad or not _PURE.match(m.group(2)):
+            if m is None or m.group(1) != pad or not pure_expr(m.group(2)):
                 return False
         return True
 

@@ -66,6 +66,8 @@ import copy
 import importlib.util
 from typing import Any
 
+from .codegen import pure_expr
+
 STATE_LANES = ("gf", "gi", "gu", "gb")  # per-pixel state: one array per lane
 UNIFORM_STATE = ("uf", "ui")
 ROW_UNIFORM = ("fy", "py")  # shade's fragCoord.y and pixel centre y: one value for a block (a row's)
@@ -138,23 +140,6 @@ def quad_lanes(name: str, k: int, W: int) -> tuple[int, int]:
     return h + c, c
 
 
-_PURE_NODES = (ast.Name, ast.Constant, ast.BinOp, ast.UnaryOp, ast.Compare, ast.IfExp, ast.Load,
-               ast.Add, ast.Sub, ast.Mult, ast.Div, ast.USub, ast.UAdd, ast.Not,
-               ast.Eq, ast.NotEq, ast.Lt, ast.LtE, ast.Gt, ast.GtE)
-
-
-def _pure(e: Any) -> bool:
-    """e reads names and constants with float arithmetic and compares only (and lsel): it has
-    no effect and cannot fail (error_model="numpy"; codegen wraps int arithmetic in casts, calls)."""
-    for n in ast.walk(e):
-        if isinstance(n, ast.Call):
-            if not (isinstance(n.func, ast.Name) and n.func.id == "lsel" and not n.keywords):
-                return False
-        elif not isinstance(n, _PURE_NODES) and not (isinstance(n, ast.Name) and n.id == "lsel"):
-            return False
-    return True
-
-
 class _Rename(ast.NodeTransformer):
     def __init__(self, varying: set[str], k: int, quads: int = 0) -> None:
         self.varying = varying
@@ -166,7 +151,7 @@ class _Rename(ast.NodeTransformer):
         backend takes for a constant) as lsel: two basic blocks per lane stop the SLP
         vectorizer from packing the lanes; both sides computed, the same value picked."""
         node = self.generic_visit(node)
-        if _pure(node):
+        if pure_expr(node):
             return ast.copy_location(ast.Call(ast.Name("lsel", ast.Load()), [node.test, node.body, node.orelse], []),
                                      node)
         return node
