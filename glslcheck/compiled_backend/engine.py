@@ -170,11 +170,9 @@ class CompiledProgram:
     def _import(self) -> Any:
         from ..numpy_backend import jit
 
-        cache = jit.cache_dir()
-        os.environ.setdefault("NUMBA_CACHE_DIR", cache)
+        cache = jit.use_cache_dir()  # before the SLP setting below, which a reload of numba's config would undo
         from numba.core import config
 
-        config.CACHE_DIR = cache
         folder = _folder()
         name = f"glslcheck_compiled_m{self.key}"
         file = os.path.join(folder, f"m{self.key}.py")

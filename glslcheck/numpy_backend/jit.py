@@ -100,6 +100,33 @@ def cache_dir() -> str:
     return os.path.join(base, "glslcheck", "numba")
 
 
+def use_cache_dir() -> str:
+    """Point numba's cache at :func:`cache_dir` (before any function is compiled) and return it.
+
+    ``$NUMBA_CACHE_DIR`` is set when missing, for numba's import; if numba was imported already,
+    its config is reloaded at once, every other setting kept as it is. numba re-reads its whole
+    config from the environment at the start of a compile whenever a ``NUMBA_`` variable changed
+    since it last looked (CompilerBase calls config.reload_config), which undoes what was
+    assigned to numba.core.config meanwhile: the lockstep engine's ``SLP_VECTORIZE = 1`` was
+    reset that way for the first module a process compiled (when numba came in before this
+    variable was set, as under pytest), and that module was compiled, and cached, without the
+    vectoriser (9 packed and 310 scalar float instructions in tests/compiled/test_lanes_math.py's
+    shininess loop, 60 and 21 with it)."""
+    path = cache_dir()
+    changed = os.environ.get("NUMBA_CACHE_DIR") != path
+    os.environ["NUMBA_CACHE_DIR"] = path
+    if "numba" in sys.modules:
+        from numba.core import config
+
+        if changed:
+            kept = {k: getattr(config, k) for k in dir(config) if k.isupper() and k != "CACHE_DIR"}
+            config.reload_config()  # takes the environment's snapshot now, so no compile reloads it
+            for k, v in kept.items():
+                setattr(config, k, v)
+        config.CACHE_DIR = path
+    return path
+
+
 class _State:
     """The process's view of the kernels: loaded or not, and the time counted towards loading."""
 
@@ -161,13 +188,11 @@ def load(required: bool = False) -> Any:
 
 
 def _import() -> None:
-    path = cache_dir()
     t0 = time.perf_counter()
     try:
-        os.environ.setdefault("NUMBA_CACHE_DIR", path)  # read when numba is imported ...
-        from numba.core import config
+        path = use_cache_dir()
+        from numba.core import config  # noqa: F401  (imports numba: its time is t_numba)
 
-        config.CACHE_DIR = path  # ... and here if it already was
         t_numba = time.perf_counter() - t0
         from . import jit_kernels
         compiled_now = any(getattr(jit_kernels, k).stats.cache_misses for k in _KINDS)  # not from the cache

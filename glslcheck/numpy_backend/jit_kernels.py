@@ -32,13 +32,17 @@ tests/numpy/test_jit_kernels.py; against llvmpipe itself: tests/gl/test_jit_llvm
 
 from __future__ import annotations
 
-import numba
-import numpy as np
-from llvmlite import ir
-from numba.core import types
-from numba.extending import intrinsic
+from .jit import use_cache_dir
 
-from . import llvmpipe_fast as lf
+use_cache_dir()  # numba's cache directory first (here and for scalar.py and lanes_math.py, which import this)
+
+import numba  # noqa: E402
+import numpy as np  # noqa: E402
+from llvmlite import ir  # noqa: E402
+from numba.core import types  # noqa: E402
+from numba.extending import intrinsic  # noqa: E402
+
+from . import llvmpipe_fast as lf  # noqa: E402
 
 F32 = np.float32
 _OPTS = dict(cache=True, nogil=True, error_model="numpy")  # error_model: x / 0 is IEEE, no exception

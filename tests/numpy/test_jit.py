@@ -131,6 +131,31 @@ def test_numba_cache_goes_to_the_user_cache(monkeypatch, tmp_path):
     assert jit.cache_dir() == "/elsewhere"
 
 
+KEEPS_CONFIG = """
+import numba
+from numba.core import config
+config.SLP_VECTORIZE = 1  # as the lockstep engine sets it before compiling a module
+from glslcheck.numpy_backend import jit
+print(jit.use_cache_dir())
+numba.njit(lambda x: x + 1)(1)  # a compile: numba reloads its config if the environment changed
+print(config.SLP_VECTORIZE, config.CACHE_DIR)
+"""
+
+
+def test_setting_the_cache_dir_keeps_numbas_other_settings(numba, tmp_path):
+    """numba imported first, a setting assigned, then the cache directory set: a compile after
+    that reloads nothing, so the setting holds (with ``os.environ.setdefault`` alone the compile
+    re-read numba's config from the environment and SLP_VECTORIZE was 0 again)."""
+    env = {k: v for k, v in os.environ.items() if not k.startswith("NUMBA_")}
+    env["XDG_CACHE_HOME"] = str(tmp_path)
+    done = subprocess.run([sys.executable, "-c", KEEPS_CONFIG], capture_output=True, text=True, env=env,
+                          timeout=120)
+    assert done.returncode == 0, done.stderr
+    path, after = done.stdout.splitlines()
+    assert path == os.path.join(str(tmp_path), "glslcheck", "numba")
+    assert after == f"1 {path}"
+
+
 def test_cli_rejects_a_bad_glslcheck_jit(tmp_path):
     done = subprocess.run([sys.executable, "-m", "glslcheck", "render", os.path.join(ROOT, "lab_shaders", "07_final"),
                            "-o", str(tmp_path / "x.png")], capture_output=True, text=True, cwd=ROOT,
