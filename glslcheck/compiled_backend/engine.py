@@ -65,8 +65,9 @@ def _versions() -> str:
     here = os.path.dirname(__file__)
     nb = os.path.join(os.path.dirname(here), "numpy_backend")
     h = hashlib.sha256()
-    for path in (os.path.join(here, "scalar.py"), os.path.join(here, "lanes_rt.py"), os.path.join(nb, "jit_kernels.py"),
-                 os.path.join(nb, "llvmpipe_fast.py")):
+    # the runtime numba inlines into a generated module's machine code, which its cache keeps
+    for path in (os.path.join(here, "scalar.py"), os.path.join(here, "lanes_rt.py"), os.path.join(here, "lanes_math.py"),
+                 os.path.join(nb, "jit_kernels.py"), os.path.join(nb, "llvmpipe_fast.py")):
         with open(path, "rb") as f:
             h.update(f.read())
     return f"{__version__} numba {version('numba')} {h.hexdigest()[:16]}"
