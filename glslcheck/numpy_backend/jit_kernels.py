@@ -32,7 +32,7 @@ tests/numpy/test_jit_kernels.py; against llvmpipe itself: tests/gl/test_jit_llvm
 
 from __future__ import annotations
 
-from .jit import use_cache_dir
+from .numba_cache import use_cache_dir
 
 use_cache_dir()  # numba's cache directory first (here and for scalar.py and lanes_math.py, which import this)
 
