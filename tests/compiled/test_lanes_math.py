@@ -259,12 +259,7 @@ def test_pow_of_a_uniform_parameter_is_packed(avx2, make_shader):
     assert "pow_uniform(" in source and "cache=True" in source
     mod = CompiledProgram(source.replace("cache=True", "cache=False"), path).load()
     name = next(n for n in dir(mod) if n.startswith("f_specular__"))
-    asm = next(iter(getattr(mod, name).inspect_asm().values()))
-    m = re.search(rf"^(_ZN(?!7cpython)\w*?{name}\w*):\n(.*?)\.Lfunc_end", asm, re.S | re.M)
-    assert m, f"{name}'s machine code was not found in numba's assembly"
-    body = m.group(2)
-    report = {"packed": len(_PACKED.findall(body)), "scalar": len(_SCALAR.findall(body)),
-              "jumps": len(re.findall(r"\tj(?!mp)\w+\t", body))}
+    report = vector_report(getattr(mod, name), name)
     assert report["packed"] > report["scalar"] and report["jumps"] < W, report
 
 
@@ -314,15 +309,16 @@ def _host_avx2() -> str | None:
     return None
 
 
-def _body(kernel) -> str:
+def _body(kernel, name: str = "k") -> str:
+    """The machine code of numba function ``name`` (its mangled name: length, then name)."""
     asm = next(iter(kernel.inspect_asm().values()))
-    m = re.search(r"^(_ZN(?!7cpython)\w*1k\w*):\n(.*?)\.Lfunc_end", asm, re.S | re.M)
-    assert m, "the kernel's machine code was not found in numba's assembly"
+    m = re.search(rf"^(_ZN(?!7cpython)\w*{len(name)}{name}\w*):\n(.*?)\.Lfunc_end", asm, re.S | re.M)
+    assert m, f"{name}'s machine code was not found in numba's assembly"
     return m.group(2)
 
 
-def vector_report(kernel) -> dict[str, int]:
-    body = _body(kernel)
+def vector_report(kernel, name: str = "k") -> dict[str, int]:
+    body = _body(kernel, name)
     return {"packed": len(_PACKED.findall(body)), "scalar": len(_SCALAR.findall(body)),
             "jumps": len(re.findall(r"\tj(?!mp)\w+\t", body)), "calls": len(re.findall(r"\tcall", body))}
 
