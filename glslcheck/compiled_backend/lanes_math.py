@@ -429,7 +429,7 @@ def pow_uniform(x, y, special, zeros, fma):
     ``zeros`` pick one. They are lane-uniform, but the generated code passes them as run-time
     values (``pow(x, shininess)`` with a uniform parameter): an ``if`` on them, in each of the W
     inlined copies, cut the W lanes into W pairs of blocks that the SLP vectoriser, which packs
-    within one block, left scalar (lab 07_final, four pows a pixel: 49 -> 28 ms of lockstep CPU
+    within one block, left scalar (lab 07_final, four pows a pixel: 49 -> 29 ms of lockstep CPU
     time at 800x450). Where they are constants, LLVM folds the selects and the unused side."""
     sq = F32(x * x)
     rewrite = _select(y == _ONE, x, _select(y == _TWO, sq, _select(y == _FOUR, F32(sq * sq), pow_zero(x))))
