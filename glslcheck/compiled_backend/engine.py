@@ -1,11 +1,12 @@
 """The compiled engine's program: generate the module (codegen.py), load it through numba's
 cache, and render frames by rows on threads.
 
-The generated source is written to ``<cache>/compiled/m<hash>.py`` (the cache directory of
-numpy_backend/jit.py: $NUMBA_CACHE_DIR, else $XDG_CACHE_HOME/glslcheck/numba), named by a hash
-of the source and of glslcheck's, numba's and the scalar runtime's versions, and imported from
-there; every function is ``cache=True``, so a second process loads machine code instead of
-compiling (`CompiledProgram.load_seconds`, `cold`).
+The generated source is written to ``<cache>/compiled/m<hash>.py`` (numba_cache.trusted_dir:
+$NUMBA_CACHE_DIR, else $XDG_CACHE_HOME/glslcheck/numba, when no other user can write it), named
+by a hash of the source and of glslcheck's, numba's and the scalar runtime's versions; the
+source generated in this process is what runs, under that file's name, and every function is
+``cache=True``, so a second process loads machine code instead of compiling
+(`CompiledProgram.load_seconds`, `cold`).
 
 Frames: the rows are split into bands, each rendered by ``render_rows`` (nogil) on its own
 thread; a band allocates its own copy of the global state.
@@ -14,11 +15,11 @@ thread; a band allocates its own copy of the global state.
 from __future__ import annotations
 
 import hashlib
-import importlib.util
 import os
 import sys
 import threading
 import time
+import types
 from concurrent.futures import ThreadPoolExecutor
 from typing import Any
 
@@ -177,13 +178,16 @@ class CompiledProgram:
         folder = _folder()
         name = f"glslcheck_compiled_m{self.key}"
         file = os.path.join(folder, f"m{self.key}.py")
-        if not os.path.exists(file):
+        # numba's cache needs the module as a file (it keys machine code to its path and stamp);
+        # what runs is the source generated here, never what the file holds, and a file that
+        # differs from it (cut short, edited) is written anew, which makes numba's entries stale.
+        if _read(file, strip=False) != self.source:
             _write(file, self.source, quiet=False)
         t0 = time.perf_counter()
-        spec = importlib.util.spec_from_file_location(name, file)
-        mod = importlib.util.module_from_spec(spec)
+        mod = types.ModuleType(name)
+        mod.__file__ = file
         sys.modules[name] = mod
-        spec.loader.exec_module(mod)
+        exec(compile(self.source, file, "exec"), mod.__dict__)
         self.cold = not _cached(cache, self.key)
         slp, limit = config.SLP_VECTORIZE, sys.getrecursionlimit()
         if getattr(mod, "LANES", 0):  # LLVM's SLP vectorizer packs the lanes (no reassociation: same bits)
@@ -275,16 +279,16 @@ class CompiledProgram:
 
 
 def _folder() -> str:
-    from ..numpy_backend import jit
+    from ..numpy_backend import numba_cache
 
-    return os.path.join(jit.cache_dir(), "compiled")
+    return os.path.join(numba_cache.trusted_dir(), "compiled")
 
 
 def _write(path: str, text: str, quiet: bool = True) -> None:
     """A file of the cache, atomically (a reader sees all of it or none); `quiet`: a read-only
     cache is no error (a record not kept)."""
     try:
-        os.makedirs(os.path.dirname(path), exist_ok=True)
+        os.makedirs(os.path.dirname(path), mode=0o700, exist_ok=True)
         tmp = f"{path}.{os.getpid()}"
         with open(tmp, "w") as f:
             f.write(text)
