@@ -69,8 +69,9 @@ def run(args: argparse.Namespace) -> int:
         from pathlib import Path  # only here: not on every lint's start-up (issue 18)
 
         out = Path(args.output)
-        if out.exists() and any(out.resolve() == Path(p).resolve() for p in result.paths):
-            raise InputError(f"{args.output}: error: --output names a file being linted; lint never overwrites a shader")
+        if out.exists() and _read_by_lint(out, result.paths):
+            raise InputError(f"{args.output}: error: --output names a shader file lint reads; lint never "
+                             f"overwrites a shader")
         from ..images import atomic_write
 
         with atomic_write(out, "report") as tmp:  # InputError (exit 2) when it cannot be written
@@ -78,3 +79,16 @@ def run(args: argparse.Namespace) -> int:
     else:
         sys.stdout.write(text)
     return 1 if result.findings else 0
+
+
+def _read_by_lint(out, linted: list[str]) -> bool:
+    """Whether `out` is a linted file or a shader tab beside one (an Image tab's Common is read)."""
+    from pathlib import Path
+
+    from ..sources import tab_name
+
+    target = out.resolve()
+    if any(target == Path(p).resolve() for p in linted):
+        return True
+    shader_like = tab_name(target) is not None or target.suffix.lower() in (".glsl", ".frag")
+    return shader_like and any(target.parent == Path(p).resolve().parent for p in linted)
