@@ -1,4 +1,4 @@
-"""A/B of the lockstep engine's branch-free math: compiled_backend/lanes_math.py as it was at a
+"""A/B of the lockstep engine's branch-free math: backends/compiled_engine/lanes_math.py as it was at a
 git revision against the working tree's, on the same lockstep modules, in one process.
 
     python benchmarks/ab_lanes_math.py --rev 287eb58 [--size 400x225] [--repeat 7] SHADER ...
@@ -8,7 +8,7 @@ git revision against the working tree's, on the same lockstep modules, in one pr
 SHADER: a shader folder (lab_shaders/07_final) or a one-file shader (a real corpus text,
 tests/real_verify/texts/57-2d.glsl). For each, the lockstep module (8 lanes) is generated once
 and compiled twice, without numba's cache: importing the revision's lanes_math (loaded from
-`git show`, as the module ``glslcheck.compiled_backend.lanes_math_ab``) and the working tree's. Both render the same frames in turns (each at a new iTime); printed: whether the two
+`git show`, as the module ``glslcheck.backends.compiled_engine.lanes_math_ab``) and the working tree's. Both render the same frames in turns (each at a new iTime); printed: whether the two
 images have the same bits, and the best CPU time (time.process_time) of --repeat frames of
 each, with their ratio. One process, so the machine's load moves both sides alike: the way a
 change to lanes_math.py is judged (docs/performance.md), a full bench_compiled.py run moving
@@ -28,8 +28,8 @@ HERE = os.path.dirname(os.path.abspath(__file__))
 ROOT = os.path.dirname(HERE)
 sys.path.insert(0, ROOT)
 
-IMPORT = "from glslcheck.compiled_backend.lanes_math import *"
-AB_NAME = "glslcheck.compiled_backend.lanes_math_ab"
+IMPORT = "from glslcheck.backends.compiled_engine.lanes_math import *"
+AB_NAME = "glslcheck.backends.compiled_engine.lanes_math_ab"
 
 
 def load_revision(rev: str) -> None:
@@ -39,12 +39,19 @@ def load_revision(rev: str) -> None:
         with open(rev) as f:
             text = f.read()
     else:
-        text = subprocess.run(["git", "show", f"{rev}:glslcheck/compiled_backend/lanes_math.py"], cwd=ROOT,
-                              capture_output=True, text=True, check=True).stdout
+        text = None
+        # the file's home, then where it lived before the package was laid out by stage
+        for path in ("glslcheck/backends/compiled_engine/lanes_math.py", "glslcheck/compiled_backend/lanes_math.py"):
+            done = subprocess.run(["git", "show", f"{rev}:{path}"], cwd=ROOT, capture_output=True, text=True)
+            if done.returncode == 0:
+                text = done.stdout.replace("from ..numpy_backend", "from ..numpy_engine")
+                break
+        if text is None:
+            raise SystemExit(f"{rev}: no lanes_math.py at that revision")
     assert "cache=True" in text, "lanes_math.py's numba options changed: update this script"
     mod = types.ModuleType(AB_NAME)
-    mod.__package__ = "glslcheck.compiled_backend"
-    mod.__file__ = os.path.join(ROOT, "glslcheck", "compiled_backend", "lanes_math_ab.py")  # not written
+    mod.__package__ = "glslcheck.backends.compiled_engine"
+    mod.__file__ = os.path.join(ROOT, "glslcheck", "backends", "compiled_engine", "lanes_math_ab.py")  # not written
     sys.modules[AB_NAME] = mod
     exec(compile(text.replace("cache=True", "cache=False"), f"lanes_math.py@{rev}", "exec"), mod.__dict__)
 
@@ -58,9 +65,9 @@ def main() -> int:
     args = ap.parse_args()
     import numpy as np
 
-    from glslcheck.compiled_backend.engine import CompiledProgram, generate
-    from glslcheck.numpy_backend import jit
-    from glslcheck.sources import load_shader
+    from glslcheck.backends.compiled_engine.engine import CompiledProgram, generate
+    from glslcheck.backends.numpy_engine import jit
+    from glslcheck.shadertoy.sources import load_shader
 
     jit.use_cache_dir()
     load_revision(args.rev)

@@ -5,7 +5,7 @@
 Scenes (benchmarks/scenes): `textured` (one pass sampling an image with mipmap and linear
 filtering; its tex.png, 256x256 noise, is written into a temporary copy of the folder) and
 `feedback` (Buffer A reads its own previous frame, Image reads Buffer A). Each backend renders
-N consecutive frames (buffers carried, see glslcheck/channels.py), the two backends in turns,
+N consecutive frames (buffers carried, see glslcheck/shadertoy/channels.py), the two backends in turns,
 R rounds; reported: the best time per frame of each and the ratio numpy / gl. NumPy runs on
 worker processes and on threads of this process (NumpyProgram.parallel). --webgl adds the WebGL
 backend (headless Chromium, SwiftShader; the channels go to the page each pass) and its ratio
@@ -26,7 +26,7 @@ import numpy as np
 HERE = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, os.path.dirname(HERE))
 
-from glslcheck import api  # noqa: E402
+from glslcheck.backends import registry as api  # noqa: E402
 
 SCENES = ("textured", "feedback")
 

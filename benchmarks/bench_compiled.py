@@ -21,7 +21,7 @@ process:
   which renders per pixel first and moves to 8 lanes once the frames have cost what compiling
   them is expected to cost, so a shader rendered many times runs in lockstep): 0 is the
   per-pixel module (one pixel a call), W > 0 pixels in lockstep blocks of W
-  (compiled_backend/lanes.py; a shader the rewrite does not handle falls back to per pixel,
+  (backends/compiled_engine/lanes.py; a shader the rewrite does not handle falls back to per pixel,
   `fallback` says why); each mode is timed against the same GL frames, and a lockstep frame is
   compared bit for bit with the per-pixel one when 0 is listed;
 - agreement: the compiled frame against the NumPy frame of the same inputs (pixels differing,
@@ -93,11 +93,11 @@ def measure(name: str, path: str, sizes: list, repeat: int, numpy_size, modes: l
     import numpy as np
 
     import glslcheck
-    from glslcheck.compare import compare
-    from glslcheck.compiled_backend.engine import CompiledProgram, generate, lanes_width
-    from glslcheck.diagnostics import GlslError
-    from glslcheck.gl_backend import compile_gl
-    from glslcheck.sources import load_shader
+    from glslcheck.verification.compare import compare
+    from glslcheck.backends.compiled_engine.engine import CompiledProgram, generate, lanes_width
+    from glslcheck.base.diagnostics import GlslError
+    from glslcheck.backends.gl import compile_gl
+    from glslcheck.shadertoy.sources import load_shader
 
     shader = load_shader(path)
     progs = {}
@@ -214,7 +214,7 @@ def main() -> int:
     sizes = [_size(s) for s in args.size.split(",")]
     numpy_size = _size(args.numpy_size) if args.numpy_size else None
     only = set(args.only.split(",")) if args.only else None
-    from glslcheck.diagnostics import GlslError
+    from glslcheck.base.diagnostics import GlslError
 
     print(f"load average at start: {_load()}", flush=True)
     rows, skipped = [], []

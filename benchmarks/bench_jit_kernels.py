@@ -1,4 +1,4 @@
-"""numba's compiled kernels of the llvmpipe math (numpy_backend/jit_kernels.py) against the NumPy
+"""numba's compiled kernels of the llvmpipe math (backends/numpy_engine/jit_kernels.py) against the NumPy
 emulation they replace: their cost, their bits, their speed per call.
 
     python benchmarks/bench_jit_kernels.py [--lanes 143,3600,16000,48000] [--check N] [--repeat N]
@@ -41,8 +41,8 @@ sys.path.insert(0, HERE)
 
 from bench_render import _best  # noqa: E402
 
-from glslcheck.numpy_backend import jit  # noqa: E402
-from glslcheck.numpy_backend.runtime import HOST_FMA, LlvmpipeMath, Runtime, _blocked  # noqa: E402
+from glslcheck.backends.numpy_engine import jit  # noqa: E402
+from glslcheck.backends.numpy_engine.runtime import HOST_FMA, LlvmpipeMath, Runtime, _blocked  # noqa: E402
 
 F32 = np.float32
 FUNCTIONS = ("_sin", "_cos", "_tan", "_exp2", "_log2", "_pow")
@@ -137,7 +137,7 @@ def costs() -> None:
     base = min(_seconds("import numpy", env) for _ in range(3))
     imp = min(_seconds("import numpy, numba", env) for _ in range(3))
     print(f"   import numpy {base * 1000:.0f} ms; import numpy, numba {imp * 1000:.0f} ms (+{(imp - base) * 1000:.0f} ms)")
-    load = ("import time; t = time.perf_counter(); from glslcheck.numpy_backend import jit; jit.load(True); "
+    load = ("import time; t = time.perf_counter(); from glslcheck.backends.numpy_engine import jit; jit.load(True); "
             "print(f'{(time.perf_counter() - t) * 1000:.0f} ms', end='')")
     with tempfile.TemporaryDirectory() as cache:
         env["NUMBA_CACHE_DIR"] = cache

@@ -42,8 +42,8 @@ def main() -> int:
     ap.add_argument("--jit", default="on", choices=("on", "off", "auto"))
     args = ap.parse_args()
     os.environ["GLSLCHECK_JIT"] = args.jit
-    from glslcheck.numpy_backend.program import compile_numpy
-    from glslcheck.sources import load_shader
+    from glslcheck.backends.numpy_engine.program import compile_numpy
+    from glslcheck.shadertoy.sources import load_shader
 
     size = tuple(int(v) for v in args.size.split("x"))
     manifest = {e["id"]: e for e in real_verify.load_manifest()}

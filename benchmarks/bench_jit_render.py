@@ -1,4 +1,4 @@
-"""Whole renders with and without numba's compiled math kernels (numpy_backend/jit.py).
+"""Whole renders with and without numba's compiled math kernels (backends/numpy_engine/jit.py).
 
     python benchmarks/bench_jit_render.py [--runs 3] [--modes off,on,auto] [--only NAME,...]
 
@@ -45,9 +45,9 @@ SHADERS = {
 
 _RUN = """
 import json, sys
-from glslcheck.cli import main
+from glslcheck.cli.main import main
 code = main(sys.argv[1:])
-from glslcheck.numpy_backend import jit
+from glslcheck.backends.numpy_engine import jit
 s = jit._STATE
 print(json.dumps({"code": code, "loaded": s.kernels is not None, "load": s.load_seconds, "spent": s.spent,
                   "numba": "numba" in sys.modules}))

@@ -26,9 +26,9 @@ os.environ["GLSLCHECK_JIT"] = "auto"
 
 import real_verify  # noqa: E402
 
-from glslcheck.numpy_backend import jit, workers  # noqa: E402
-from glslcheck.numpy_backend.program import compile_numpy  # noqa: E402
-from glslcheck.sources import load_shader  # noqa: E402
+from glslcheck.backends.numpy_engine import jit, workers  # noqa: E402
+from glslcheck.backends.numpy_engine.program import compile_numpy  # noqa: E402
+from glslcheck.shadertoy.sources import load_shader  # noqa: E402
 
 
 def _program(manifest: dict, sid: str, parallel: str):

@@ -1,4 +1,4 @@
-"""Branch-free lane math (compiled_backend/lanes_math.py) in W-lane tuples against scalar.py's
+"""Branch-free lane math (backends/compiled_engine/lanes_math.py) in W-lane tuples against scalar.py's
 functions one lane at a time: CPU nanoseconds per lane, in one process, the same arguments.
 
     python benchmarks/bench_lanes_math.py [--only sin,cos] [--lanes 65536] [--repeat 7]
@@ -121,8 +121,8 @@ def main() -> None:
     ap.add_argument("--repeat", type=int, default=7)
     opts = ap.parse_args()
 
-    from glslcheck.compiled_backend import lanes_math, scalar
-    from glslcheck.numpy_backend.runtime import HOST_FMA
+    from glslcheck.backends.compiled_engine import lanes_math, scalar
+    from glslcheck.backends.numpy_engine.runtime import HOST_FMA
 
     names = [n for n in opts.only.split(",") if n] or list(lanes_math.REWRITTEN + lanes_math.AS_IS)
     names = [n for n in names if n in SPECS]

@@ -33,11 +33,11 @@ HERE = os.path.dirname(os.path.abspath(__file__))
 ROOT = os.path.dirname(HERE)
 sys.path.insert(0, ROOT)
 
-from glslcheck.diagnostics import register_source  # noqa: E402
-from glslcheck.numpy_backend.frame import TILE_LANES  # noqa: E402
-from glslcheck.numpy_backend.program import compile_numpy  # noqa: E402
-from glslcheck.numpy_backend.runtime import HOST_FMA, Runtime  # noqa: E402
-from glslcheck.sources import Shader, Source, load_shader  # noqa: E402
+from glslcheck.base.diagnostics import register_source  # noqa: E402
+from glslcheck.backends.numpy_engine.tiles import TILE_LANES  # noqa: E402
+from glslcheck.backends.numpy_engine.program import compile_numpy  # noqa: E402
+from glslcheck.backends.numpy_engine.runtime import HOST_FMA, Runtime  # noqa: E402
+from glslcheck.shadertoy.sources import Shader, Source, load_shader  # noqa: E402
 
 NOISE = """
 float hash(vec2 p) { return fract(sin(dot(p, vec2(127.1, 311.7))) * 43758.5453); }
@@ -112,14 +112,14 @@ def frames(repeat: int) -> None:
 
 
 def runtime_at(rev: str):
-    """glslcheck/numpy_backend/runtime.py as of git revision ``rev``, imported as a sibling
+    """glslcheck/backends/numpy_engine/runtime.py as of git revision ``rev``, imported as a sibling
     module of the package (its relative imports resolve to this tree's modules)."""
-    text = subprocess.run(["git", "-C", ROOT, "show", f"{rev}:glslcheck/numpy_backend/runtime.py"],
+    text = subprocess.run(["git", "-C", ROOT, "show", f"{rev}:glslcheck/backends/numpy_engine/runtime.py"],
                           check=True, capture_output=True, text=True).stdout
-    name = "glslcheck.numpy_backend._runtime_at_rev"
+    name = "glslcheck.backends.numpy_engine._runtime_at_rev"
     spec = importlib.util.spec_from_loader(name, loader=None)
     mod = importlib.util.module_from_spec(spec)
-    mod.__package__ = "glslcheck.numpy_backend"
+    mod.__package__ = "glslcheck.backends.numpy_engine"
     sys.modules[name] = mod
     exec(compile(text, f"{rev}:runtime.py", "exec"), mod.__dict__)
     return mod

@@ -24,8 +24,8 @@ from pathlib import Path
 ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT))
 
-from glslcheck.parse import parse_units  # noqa: E402
-from glslcheck.sources import Source  # noqa: E402
+from glslcheck.frontend.parser import parse_units  # noqa: E402
+from glslcheck.shadertoy.sources import Source  # noqa: E402
 
 
 def make_shader(target_lines: int = 300) -> str:
@@ -67,7 +67,7 @@ def main() -> int:
     print(f"load average: {os.getloadavg()[0]:.1f} (other processes on {os.cpu_count()} cores inflate wall times)")
     print(f"warm preprocess+parse+AST, {lines} lines: {parse:.1f} ms wall, {cpu:.1f} ms CPU (target <= 30 ms)")
     try:
-        from glslcheck.check import check
+        from glslcheck.semantics import check
 
         parsed = parse_units(units)
         check_ms = median_ms(lambda: check(parsed), args.runs)
@@ -86,8 +86,8 @@ def main() -> int:
         print(f"one CLI call `glslcheck parse` on one file: {statistics.median(cli):.3f} s (target <= 0.3 s)")
         glslang = shutil.which("glslangValidator")
         if glslang:
-            from glslcheck.shadertoy import build_program
-            from glslcheck.sources import load_shader
+            from glslcheck.shadertoy.wrapper import build_program
+            from glslcheck.shadertoy.sources import load_shader
 
             prog = Path(tmp) / "prog.frag"
             prog.write_text(build_program(load_shader(path)).text)

@@ -36,11 +36,11 @@ sys.path.insert(0, str(HERE))
 
 from run_all import ms, paired  # noqa: E402
 
-from glslcheck.numpy_backend.program import NumpyProgram  # noqa: E402
-from glslcheck.numpy_backend.transpile import check_program, transpile  # noqa: E402
-from glslcheck.parse import parse_shader  # noqa: E402
-from glslcheck.probe import Inputs, Probe  # noqa: E402
-from glslcheck.sources import find_shaders, load_shader  # noqa: E402
+from glslcheck.backends.numpy_engine.program import NumpyProgram  # noqa: E402
+from glslcheck.backends.numpy_engine.transpile import check_program, transpile  # noqa: E402
+from glslcheck.frontend.parser import parse_shader  # noqa: E402
+from glslcheck.verification.probe import Inputs, Probe  # noqa: E402
+from glslcheck.shadertoy.sources import find_shaders, load_shader  # noqa: E402
 
 BASE = "6671b61"  # main before glslcheck probe
 FINAL = ROOT / "lab_shaders" / "07_final"
@@ -111,12 +111,12 @@ def nan_scan(runs: int, folder: Path) -> None:
 
 def base_transpiler():
     """transpile.py as it was at BASE, loaded as a module of the package (relative imports work)."""
-    text = subprocess.run(["git", "show", f"{BASE}:glslcheck/numpy_backend/transpile.py"], cwd=ROOT,
+    text = subprocess.run(["git", "show", f"{BASE}:glslcheck/backends/numpy_engine/transpile.py"], cwd=ROOT,
                           check=True, capture_output=True, text=True).stdout
     fd, name = tempfile.mkstemp(suffix=".py")
     with os.fdopen(fd, "w") as f:
         f.write(text)
-    spec = importlib.util.spec_from_file_location("glslcheck.numpy_backend._base_transpile", name)
+    spec = importlib.util.spec_from_file_location("glslcheck.backends.numpy_engine._base_transpile", name)
     mod = importlib.util.module_from_spec(spec)
     sys.modules[spec.name] = mod
     spec.loader.exec_module(mod)
@@ -136,7 +136,7 @@ def unchanged(runs: int) -> None:
     sh = load_shader(FINAL)
     model = check_program(parse_shader(sh, "Image"))
     progs = {}
-    for key, mod in (("now", sys.modules["glslcheck.numpy_backend.transpile"]), (BASE, base)):
+    for key, mod in (("now", sys.modules["glslcheck.backends.numpy_engine.transpile"]), (BASE, base)):
         t = mod.transpile(model, sh.tabs["Image"].path)
         progs[key] = NumpyProgram(t.source, t.meta, t.filename, parallel="threads")
 

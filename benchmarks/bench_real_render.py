@@ -33,12 +33,12 @@ sys.path.insert(0, os.path.join(ROOT, "tools"))
 import real_verify  # noqa: E402
 from bench_render import _best, _load, frame_time  # noqa: E402
 
-from glslcheck.diagnostics import GlslError  # noqa: E402
-from glslcheck.sources import load_shader  # noqa: E402
+from glslcheck.base.diagnostics import GlslError  # noqa: E402
+from glslcheck.shadertoy.sources import load_shader  # noqa: E402
 
 def measure(path: str, size: tuple[int, int], repeat: int, mode: str) -> dict:
-    from glslcheck.gl_backend import compile_gl
-    from glslcheck.numpy_backend.program import compile_numpy
+    from glslcheck.backends.gl import compile_gl
+    from glslcheck.backends.numpy_engine.program import compile_numpy
 
     shader = load_shader(path)
     prog = compile_numpy(shader)

@@ -9,7 +9,7 @@
    final scene, lab_shaders/07_final, if present), rendered by both backends in turns in the
    same run; best and median of N renders each (the NumPy frame cache is cleared before every
    render). Ratio = numpy / gl; the floor is 6x, the target 3x. NumPy is timed on worker
-   processes (what long renders use, see glslcheck/numpy_backend/workers.py) and on threads of
+   processes (what long renders use, see glslcheck/backends/numpy_engine/workers.py) and on threads of
    this process; and as CPU time, NumPy on one thread against llvmpipe's CPU time over all its
    threads (the work each does: the least moved by other load on a shared machine).
    `--speed-only` runs this part alone.
@@ -39,9 +39,9 @@ HERE = os.path.dirname(os.path.abspath(__file__))
 ROOT = os.path.dirname(HERE)
 sys.path.insert(0, ROOT)
 
-from glslcheck.sources import Shader, Source, load_shader  # noqa: E402
-from glslcheck.diagnostics import register_source  # noqa: E402
-from glslcheck.numpy_backend.program import compile_numpy  # noqa: E402
+from glslcheck.shadertoy.sources import Shader, Source, load_shader  # noqa: E402
+from glslcheck.base.diagnostics import register_source  # noqa: E402
+from glslcheck.backends.numpy_engine.program import compile_numpy  # noqa: E402
 
 SCENE = os.path.join(HERE, "scenes", "four_spheres", "Image.glsl")
 FINAL = os.path.join(ROOT, "lab_shaders", "07_final")
@@ -143,7 +143,7 @@ def sphere_coverage(prog) -> float:
 def speed(repeat: int) -> None:
     import statistics
 
-    from glslcheck.gl_backend import compile_gl, renderer_name
+    from glslcheck.backends.gl import compile_gl, renderer_name
 
     print(f"== speed at {SIZE[0]}x{SIZE[1]} (best and median of {repeat}, in turns); GL: {renderer_name()}; "
           f"NumPy on {os.cpu_count()} worker processes and on {os.cpu_count()} threads; "
@@ -183,7 +183,7 @@ def coverage(repeat: int) -> None:
     """Small and large spheres rendered in turns (so a slow spell of a shared machine hits both),
     best of `repeat` rounds each: wall time on worker processes and on threads, and one-thread
     CPU time. llvmpipe's own ratio on the same two scenes is printed for reference."""
-    from glslcheck.gl_backend import compile_gl
+    from glslcheck.backends.gl import compile_gl
 
     print("== coverage scaling (four-sphere scene)")
     progs, gls, cov = {}, {}, {}
@@ -215,9 +215,9 @@ def coverage(repeat: int) -> None:
 _MEMORY_CHILD = """
 import resource, sys, time, tracemalloc
 sys.path.insert(0, {root!r})
-from glslcheck.sources import load_shader
-from glslcheck.numpy_backend import workers
-from glslcheck.numpy_backend.program import compile_numpy
+from glslcheck.shadertoy.sources import load_shader
+from glslcheck.backends.numpy_engine import workers
+from glslcheck.backends.numpy_engine.program import compile_numpy
 prog = compile_numpy(load_shader({scene!r}))
 prog.parallel = {mode!r}
 if {mode!r} == "processes":

@@ -83,8 +83,8 @@ def paired(commands: dict[str, list[str]], runs: int, env: dict[str, str],
 def _programs(paths: list[Path], tmp: Path) -> list[str]:
     """Each Shadertoy program of the shaders under `paths`, wrapped as Shadertoy compiles it
     (Common alone, then Common + each other tab), written as .frag files for glslangValidator."""
-    from glslcheck.shadertoy import build_program
-    from glslcheck.sources import find_shaders
+    from glslcheck.shadertoy.wrapper import build_program
+    from glslcheck.shadertoy.sources import find_shaders
 
     files = []
     for shader in find_shaders([str(p) for p in paths]):
@@ -128,7 +128,7 @@ def _installed(tmp: Path) -> tuple[list[str], dict[str, str]]:
     env = dict(os.environ)
     env.pop("PYTHONDONTWRITEBYTECODE", None)
     # -P: not the current folder first on sys.path (it would be this checkout's glslcheck/).
-    return [str(python), "-P", "-c", "import sys; from glslcheck.cli import main; sys.exit(main())"], env
+    return [str(python), "-P", "-c", "import sys; from glslcheck.cli.main import main; sys.exit(main())"], env
 
 
 def _section(title: str, exe: list[str], python: list[str], env: dict[str, str], glslang: str,

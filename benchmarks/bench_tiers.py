@@ -32,7 +32,7 @@ DEFAULT = "05_blinn_phong,29-raymarch,30-raymarch"
 RUN = r"""
 import json, sys, time
 t0 = time.perf_counter()
-from glslcheck.compiled_backend.engine import compile_compiled
+from glslcheck.backends.compiled_engine.engine import compile_compiled
 prog = compile_compiled(sys.argv[1])
 w, h = (int(x) for x in sys.argv[2].split("x"))
 for k in range(int(sys.argv[3])):

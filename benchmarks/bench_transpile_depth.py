@@ -23,11 +23,11 @@ from pathlib import Path
 ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT))
 
-from glslcheck.check import check  # noqa: E402
-from glslcheck.numpy_backend.transpile import transpile  # noqa: E402
-from glslcheck.parse import parse_shader  # noqa: E402
-from glslcheck.diagnostics import register_source  # noqa: E402
-from glslcheck.sources import Shader, Source  # noqa: E402
+from glslcheck.semantics import check  # noqa: E402
+from glslcheck.backends.numpy_engine.transpile import transpile  # noqa: E402
+from glslcheck.frontend.parser import parse_shader  # noqa: E402
+from glslcheck.base.diagnostics import register_source  # noqa: E402
+from glslcheck.shadertoy.sources import Shader, Source  # noqa: E402
 
 MAIN = "void mainImage(out vec4 c, in vec2 p) {\n    float v = 0.0;\n    "
 END = "\n    c = vec4(v);\n}\n"

@@ -28,10 +28,10 @@ HERE = os.path.dirname(os.path.abspath(__file__))
 ROOT = os.path.dirname(HERE)
 sys.path.insert(0, ROOT)
 
-from glslcheck.diagnostics import register_source  # noqa: E402
-from glslcheck.gl_backend import compile_gl, renderer_name  # noqa: E402
-from glslcheck.sources import Shader, Source, load_shader  # noqa: E402
-from glslcheck.webgl_backend import Browser, close_browser, compile_webgl, get_browser  # noqa: E402
+from glslcheck.base.diagnostics import register_source  # noqa: E402
+from glslcheck.backends.gl import compile_gl, renderer_name  # noqa: E402
+from glslcheck.shadertoy.sources import Shader, Source, load_shader  # noqa: E402
+from glslcheck.backends.webgl import Browser, close_browser, compile_webgl, get_browser  # noqa: E402
 
 SHADERS = ("07_final", "01_spheres_procedural")
 SIZES = ((160, 90), (320, 180), (800, 450))

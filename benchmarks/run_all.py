@@ -42,7 +42,7 @@ import numpy as np  # noqa: E402
 
 import bench_parse  # noqa: E402
 import bench_render  # noqa: E402
-from glslcheck.sources import find_shaders, load_shader  # noqa: E402
+from glslcheck.shadertoy.sources import find_shaders, load_shader  # noqa: E402
 
 LAB = ROOT / "lab_shaders"
 SIZE = bench_render.SIZE  # 800x450
@@ -81,7 +81,7 @@ def machine() -> list[str]:
         pass
     usable = len(os.sched_getaffinity(0)) if hasattr(os, "sched_getaffinity") else os.cpu_count()
     try:
-        from glslcheck.gl_backend import renderer_name
+        from glslcheck.backends.gl import renderer_name
 
         gl = renderer_name()
     except Exception as e:  # noqa: BLE001 - reported, not fatal
@@ -116,7 +116,7 @@ def _load() -> str:
 
 def lab_programs():
     """(shader, tab, Program) for every lab shader: Common alone, then Common + Image."""
-    from glslcheck.shadertoy import build_program
+    from glslcheck.shadertoy.wrapper import build_program
 
     out = []
     for shader in find_shaders([str(LAB)]):
@@ -126,8 +126,8 @@ def lab_programs():
 
 
 def parse_and_check(shader, tab):
-    from glslcheck.check import check
-    from glslcheck.parse import parse_shader
+    from glslcheck.semantics import check
+    from glslcheck.frontend.parser import parse_shader
 
     return check(parse_shader(shader, tab), tab, collect=True)
 
@@ -152,7 +152,7 @@ def section_parse(runs: int) -> list[str]:
         synthetic.parent.mkdir()
         synthetic.write_text(bench_parse.make_shader())
         syn_shader = load_shader(synthetic)
-        from glslcheck.shadertoy import build_program
+        from glslcheck.shadertoy.wrapper import build_program
 
         syn_frag = tmp / "synthetic.frag"
         syn_frag.write_text(build_program(syn_shader, "Image").text)

@@ -4,7 +4,7 @@ __version__ = "0.1.0"
 
 
 def compile(*args, **kwargs):  # noqa: A001 - the public entry point, `glslcheck.compile(path)`
-    """Compile a shader for rendering; see glslcheck.api (imported lazily to keep startup cheap)."""
-    from .api import compile as _compile
+    """Compile a shader for rendering; see glslcheck.backends.registry (imported lazily to keep startup cheap)."""
+    from .backends.registry import compile as _compile
 
     return _compile(*args, **kwargs)

@@ -1,6 +1,6 @@
-"""The parser's tables for glsl.lark (see glslcheck/parse_tables.py).
+"""The parser's tables for glsl.lark (see glslcheck/frontend/parse_tables.py).
 
-Written by `python -m glslcheck.parse_tables`; do not edit."""
+Written by `python -m glslcheck.frontend.parse_tables`; do not edit."""
 
 FORMAT = 4
 GRAMMAR_SHA256 = '482d3c3e64b494cbbb9e02c62ed847f56634e4a33b19d12ccb5acb4f4ea577cb'

@@ -14,12 +14,12 @@ import os
 
 import pytest
 
-from glslcheck import driver_profile
-from glslcheck.diagnostics import register_source
-from glslcheck.sources import Shader, Source
+from glslcheck.backends import driver_profile
+from glslcheck.base.diagnostics import register_source
+from glslcheck.shadertoy.sources import Shader, Source
 
 
-# numba's kernels (numpy_backend/jit.py) are off unless a test turns them on: in auto mode the
+# numba's kernels (backends/numpy_engine/jit.py) are off unless a test turns them on: in auto mode the
 # process would switch to them once the tests before had spent a second in the llvmpipe math,
 # so what a test of the NumPy path exercised would depend on the tests run before it. The
 # kernels' own tests (tests/numpy/test_jit*.py) set the mode they test.
@@ -35,7 +35,7 @@ def _missing(what: str, reason: str) -> None:
 @pytest.fixture(scope="session")
 def gl():
     """The process-wide moderngl context (standalone EGL)."""
-    from glslcheck.gl_backend import GLUnavailable, get_context
+    from glslcheck.backends.gl import GLUnavailable, get_context
 
     try:
         return get_context()
@@ -47,10 +47,10 @@ def gl():
 
 @pytest.fixture(scope="session")
 def jit_kernels():
-    """numba's compiled kernels of the llvmpipe math (numpy_backend/jit.py), loaded once. numba
+    """numba's compiled kernels of the llvmpipe math (backends/numpy_engine/jit.py), loaded once. numba
     is the optional `jit` extra: skipped without it on a developer machine, a failure on CI
     (make setup, which .ci/run calls, installs the extra)."""
-    from glslcheck.numpy_backend import jit
+    from glslcheck.backends.numpy_engine import jit
 
     if not jit.available():
         _missing("numba", "pip install -e '.[jit]' (make setup does)")
@@ -61,7 +61,7 @@ def jit_kernels():
 def numba():
     """numba for the compiled engine's tests (tests/compiled): skipped without it on a developer
     machine, a failure on CI, as :func:`jit_kernels`."""
-    from glslcheck.compiled_backend.engine import available
+    from glslcheck.backends.compiled_engine.engine import available
 
     if not available():
         _missing("numba", "pip install -e '.[jit]' (make setup does)")
@@ -81,7 +81,7 @@ def llvmpipe(gl):
     if not driver_profile.is_emulated(renderer, mesa):
         pytest.fail(f"these bit-exact tests were written for llvmpipe of Mesa {driver_profile.EMULATED_MESA}; "
                     f"this GL driver is {renderer}, Mesa {mesa or 'unknown'}: the NumPy emulation "
-                    "(glslcheck/driver_profile.py, numpy_backend/runtime.py, nir_fold.py) must be re-measured "
+                    "(glslcheck/backends/driver_profile.py, backends/numpy_engine/runtime.py, nir_fold.py) must be re-measured "
                     "for it before these results mean anything")
     return gl
 
@@ -89,7 +89,7 @@ def llvmpipe(gl):
 @pytest.fixture(scope="session")
 def glslang():
     """The path of glslangValidator."""
-    from glslcheck.glslang import glslang_path
+    from glslcheck.semantics.glslang import glslang_path
 
     path = glslang_path()
     if path is None:

@@ -9,12 +9,12 @@ import inspect
 
 import pytest
 
-from glslcheck.api import Program
-from glslcheck.gl_backend.program import GLProgram
-from glslcheck.numpy_backend.program import NumpyProgram, compile_numpy
-from glslcheck.shadertoy import FrameInputs, frame_uniforms
-from glslcheck.verify import _accepted
-from glslcheck.webgl_backend.program import WebGLProgram
+from glslcheck.backends.registry import Program
+from glslcheck.backends.gl.program import GLProgram
+from glslcheck.backends.numpy_engine.program import NumpyProgram, compile_numpy
+from glslcheck.shadertoy.wrapper import FrameInputs, frame_uniforms
+from glslcheck.verification.verify import _accepted
+from glslcheck.backends.webgl.program import WebGLProgram
 
 FIELDS = [(f.name, f.default) for f in dataclasses.fields(FrameInputs)]
 SHADER = "void mainImage(out vec4 o, in vec2 f) { o = vec4(f / iResolution.xy, iTime, 1.0); }"

@@ -1,7 +1,7 @@
-"""glslangValidator as the reference compiler (glslcheck/glslang.py)."""
+"""glslangValidator as the reference compiler (glslcheck/semantics/glslang.py)."""
 
-from glslcheck.glslang import parse_output, validate, validate_shader
-from glslcheck.shadertoy import build_program
+from glslcheck.semantics.glslang import parse_output, validate, validate_shader
+from glslcheck.shadertoy.wrapper import build_program
 
 GOOD = "#version 300 es\nprecision highp float;\nout vec4 o;\nvoid main() {\n    o = vec4(1.0);\n}\n"
 

@@ -1,4 +1,4 @@
-"""One list of the NumPy backend's float precisions (glslcheck/precision.py): the CLI's
+"""One list of the NumPy backend's float precisions (glslcheck/base/precision.py): the CLI's
 `--precision` choices, bench's configurations, the API, verify and the runtime accept exactly
 those, and refuse the others with the same message."""
 
@@ -6,12 +6,12 @@ from __future__ import annotations
 
 import pytest
 
-from glslcheck import api
-from glslcheck.bench import configurations
-from glslcheck.cli import build_parser
-from glslcheck.numpy_backend.runtime import Runtime
-from glslcheck.precision import PRECISIONS
-from glslcheck.verify import verify_frames
+from glslcheck.backends import registry as api
+from glslcheck.verification.bench import configurations
+from glslcheck.cli.main import build_parser
+from glslcheck.backends.numpy_engine.runtime import Runtime
+from glslcheck.base.precision import PRECISIONS
+from glslcheck.verification.verify import verify_frames
 
 SHADER = "void mainImage(out vec4 o, in vec2 f) { o = vec4(f / iResolution.xy, 0.1, 1.0); }"
 REFUSED = ("float128", "mediump", "highp", "")

@@ -1,4 +1,4 @@
-"""glslcheck/records.py: `@record` must give what `@dataclass` gave the classes that use it
+"""glslcheck/base/records.py: `@record` must give what `@dataclass` gave the classes that use it
 (fields, defaults, factories, equality, hashing, frozenness, repr, pickling), since it replaced
 it on the start-up path (issue 18)."""
 
@@ -9,8 +9,8 @@ import pickle
 
 import pytest
 
-from glslcheck import types as T
-from glslcheck.records import FrozenInstanceError, field, record, replace
+from glslcheck.language import glsl_types as T
+from glslcheck.base.records import FrozenInstanceError, field, record, replace
 
 
 @record(frozen=True)
@@ -149,10 +149,10 @@ def test_the_type_objects_keep_their_dataclass_semantics():
 
 
 def test_the_precompiled_templates_are_the_lint_paths():
-    """glslcheck/_init_code.py holds exactly the `__init__` templates `glslcheck lint` and
-    `check` make (a new shape of record fails here until `python -m glslcheck.records` writes
+    """glslcheck/base/_init_code.py holds exactly the `__init__` templates `glslcheck lint` and
+    `check` make (a new shape of record fails here until `python -m glslcheck.base.records` writes
     the file again), each compiled from its own text: the same code `init_code` compiles."""
-    from glslcheck import _init_code, records
+    from glslcheck.base import _init_code, records
 
     assert sorted(_init_code.SOURCES) == records.lint_path_templates()
     for source, function in _init_code.SOURCES.items():
@@ -164,7 +164,7 @@ def test_the_precompiled_templates_are_the_lint_paths():
 
 
 def test_a_template_not_precompiled_is_compiled():
-    from glslcheck import records
+    from glslcheck.base import records
 
     code = records.init_code("def __init__(self, _f0, _f1, _f2, _f3, _f4, _f5, _f6, _f7, _f8, _f9, _f10):\n    pass")
     assert code.co_argcount == 12 and code.co_name == "__init__"

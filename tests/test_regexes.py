@@ -1,4 +1,4 @@
-"""glslcheck/regexes.py: the lint path's regular expressions compiled ahead of time (issue 18:
+"""glslcheck/base/regexes.py: the lint path's regular expressions compiled ahead of time (issue 18:
 start-up). The stored programs must be the ones this interpreter's `re` makes for exactly the
 patterns the lint path compiles, and a pattern made from them must be the same `re.Pattern`."""
 
@@ -9,12 +9,12 @@ import re
 
 import pytest
 
-from glslcheck import _regex_code, regexes
+from glslcheck.base import _regex_code, regexes
 
 
 def test_the_file_holds_every_pattern_the_lint_path_compiles():
     """A pattern added, changed or dropped on the lint path fails here until
-    `python -m glslcheck.regexes` writes glslcheck/_regex_code.py again."""
+    `python -m glslcheck.base.regexes` writes glslcheck/base/_regex_code.py again."""
     assert sorted(_regex_code.CODE) == regexes.lint_path_patterns()
 
 
@@ -26,8 +26,8 @@ def test_the_stored_programs_are_this_interpreters():
     interpreter is the one the project is set up with (make setup), it is a failure: the file is
     stale and start-up would lose its stored programs unnoticed."""
     if _regex_code.FINGERPRINT != regexes.fingerprint():
-        why = (f"glslcheck/_regex_code.py was written by {_regex_code.FINGERPRINT}, this is "
-               f"{regexes.fingerprint()}: run `python -m glslcheck.regexes`")
+        why = (f"glslcheck/base/_regex_code.py was written by {_regex_code.FINGERPRINT}, this is "
+               f"{regexes.fingerprint()}: run `python -m glslcheck.base.regexes`")
         if os.environ.get("CI"):
             pytest.fail(why)
         pytest.skip(why + " (this interpreter compiles with re; CI fails instead)")

@@ -6,12 +6,9 @@ import os
 
 import pytest
 
-from glslcheck.cli import main
-from glslcheck.diagnostics import InputError
-from glslcheck.sources import (
-    _parent, find_shaders, folder_entries, load_shader, path_name, path_stem, path_suffix, posix_path,
-    read_source, tab_name,
-)
+from glslcheck.cli.main import main
+from glslcheck.base.diagnostics import InputError
+from glslcheck.shadertoy.sources import _parent, find_shaders, folder_entries, load_shader, path_name, path_stem, path_suffix, posix_path, read_source, tab_name
 
 
 @pytest.mark.parametrize(

@@ -20,9 +20,9 @@ from pathlib import Path
 ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT))
 
-from glslcheck.check import check  # noqa: E402
-from glslcheck.parse import parse_shader  # noqa: E402
-from glslcheck.sources import Source, load_shader  # noqa: E402
+from glslcheck.semantics import check  # noqa: E402
+from glslcheck.frontend.parser import parse_shader  # noqa: E402
+from glslcheck.shadertoy.sources import Source, load_shader  # noqa: E402
 
 _HELPER = """
 // generated helper {i}

@@ -31,7 +31,7 @@ def main(argv: list[str] | None = None) -> int:
 
     t0 = time.perf_counter()
     from glslcheck.lint import engine, lint_paths
-    from glslcheck.analysis import dataflow
+    from glslcheck.semantics.analysis import dataflow
     from glslcheck.lint.rules import all_rules
 
     all_rules()

@@ -45,7 +45,7 @@ Inputs, each reproducible from (seed, index) alone:
 - soup:     random sequences of GLSL tokens;
 - bytes:    random bytes.
 
-Each input goes through every entry point in-process via `glslcheck.cli.main` with stdout
+Each input goes through every entry point in-process via `glslcheck.cli.main.main` with stdout
 and stderr captured: parse, check and lint always; transpile when check accepts the program (and
 on a sample of the rest); render and verify at 8x8 on samples. --jobs worker processes (spawned
 once per run, each with a 3 GB address-space limit) run the inputs; the parent kills and
@@ -629,7 +629,7 @@ def judge(command: str, rc, out: str, err: str, files: dict[str, Path], data: di
 
 def run_command(command: str, folder: Path, files: dict[str, Path], data: dict[str, bytes],
                 extra: tuple[str, ...] = ()) -> tuple[str, str]:
-    from glslcheck.cli import main
+    from glslcheck.cli.main import main
 
     target = str(files[next(iter(files))]) if len(files) == 1 else str(folder)
     argv = [command, target, *extra]
@@ -674,8 +674,8 @@ def _worker(conn, workdir: str) -> None:
         pass
     # a runaway frame stops (a located error) well inside the render budget below
     os.environ.setdefault("GLSLCHECK_FRAME_SECONDS", str(FRAME_SECONDS))
-    import glslcheck.cli  # noqa: F401 - loaded before the first job, whose budget it would spend
-    import glslcheck.numpy_backend.program  # noqa: F401
+    import glslcheck.cli.main  # noqa: F401 - loaded before the first job, whose budget it would spend
+    import glslcheck.backends.numpy_engine.program  # noqa: F401
 
     folder = Path(workdir)
     while True:

@@ -27,9 +27,9 @@ from pathlib import Path
 ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT))
 
-from glslcheck.check.agreement import glslang_errors, our_errors  # noqa: E402
-from glslcheck.diagnostics import register_source  # noqa: E402
-from glslcheck.sources import Shader, Source, find_shaders  # noqa: E402
+from glslcheck.semantics.agreement import glslang_errors, our_errors  # noqa: E402
+from glslcheck.base.diagnostics import register_source  # noqa: E402
+from glslcheck.shadertoy.sources import Shader, Source, find_shaders  # noqa: E402
 
 # Messages of glslcheck errors that glslangValidator (compile only, no -l) does not report, and why.
 EXPLAINED = {

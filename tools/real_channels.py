@@ -5,7 +5,7 @@ The repository keeps only tests/real_channels/manifest.json: each shader's Shade
 they sample, where a public repository keeps the file (`media`, keyed by the file name of
 Shadertoy's `/media/a/<hash>.<ext>` path). Shaders and textures are third-party: `fetch`
 re-reads them into tests/real_channels/texts/<id>/ (git-ignored) as glslcheck reads a Shadertoy
-export: `shader.json` and its textures in `media/` beside it (glslcheck/channels.py
+export: `shader.json` and its textures in `media/` beside it (glslcheck/shadertoy/channels.py
 `load_shadertoy_json`). `score` verifies each one over consecutive frames, buffers carried:
 
     python tools/real_channels.py fetch [--mirror DIR]     # as tools/real_verify.py fetch
@@ -14,7 +14,7 @@ export: `shader.json` and its textures in `media/` beside it (glslcheck/channels
 
 Verdicts, one per shader, each in its own process (as tools/real_verify.py):
 
-- match: every frame verifies (compare.py's tolerance model, as the CLI);
+- match: every frame verifies (verification/compare.py's tolerance model, as the CLI);
 - mismatch: some frame does not (the reason names the frame and the pixel counts);
 - does not compile: the GL driver rejects a pass;
 - unsupported: glslcheck refuses an input (a cube map, a missing texture: exit-2 errors) or the
@@ -103,9 +103,9 @@ def fetch(mirror: Path | None) -> int:
 
 def verify_one(path: str, size: tuple[int, int], frames: int) -> dict:
     """The verdict of one shader (run inside the child process)."""
-    from glslcheck.diagnostics import GlslError, InputError
-    from glslcheck.sources import load_shader
-    from glslcheck.verify import compile_backend, verify_frames
+    from glslcheck.base.diagnostics import GlslError, InputError
+    from glslcheck.shadertoy.sources import load_shader
+    from glslcheck.verification.verify import compile_backend, verify_frames
 
     def first(e) -> str:
         return "; ".join(d.message for d in e.diagnostics)[:200]
@@ -162,7 +162,7 @@ def main(argv: list[str] | None = None) -> int:
     argv = sys.argv[1:] if argv is None else argv
     if argv[:1] == ["_one"]:
         path, size, frames = argv[1:4]
-        from glslcheck.commands.args import parse_size
+        from glslcheck.cli.commands.args import parse_size
 
         print(json.dumps(verify_one(path, parse_size(size), int(frames))))
         return 0

@@ -20,7 +20,7 @@ benchmarks/bench_compiled.py).
 Each shader runs in its own process (a crash, a hang or a runaway loop costs one shader, not
 the run) and gets one verdict:
 
-- match: every frame verifies (the compare.py tolerance model, the same as the CLI);
+- match: every frame verifies (the verification/compare.py tolerance model, the same as the CLI);
 - mismatch: some frame does not; the reason names the frame, the over-tolerance and NaN/Inf
   pixel counts;
 - does not compile: the GL driver rejects the shader (a GLSL error on Shadertoy's side too);
@@ -108,9 +108,9 @@ def fetch(mirror: Path | None) -> int:
 
 def verify_one(path: str, size: tuple[int, int], times: list[float]) -> dict:
     """The verdict of one shader file (run inside the child process)."""
-    from glslcheck.diagnostics import GlslError
-    from glslcheck.sources import load_shader
-    from glslcheck.verify import compile_backend, verify_frames
+    from glslcheck.base.diagnostics import GlslError
+    from glslcheck.shadertoy.sources import load_shader
+    from glslcheck.verification.verify import compile_backend, verify_frames
 
     shader = load_shader(path)
     try:
@@ -210,7 +210,7 @@ def main(argv: list[str] | None = None) -> int:
     argv = sys.argv[1:] if argv is None else argv
     if argv[:1] == ["_one"]:
         path, size, times = argv[1:4]
-        from glslcheck.commands.args import parse_size, parse_times
+        from glslcheck.cli.commands.args import parse_size, parse_times
 
         print(json.dumps(verify_one(path, parse_size(size), list(parse_times(times)))))
         return 0

@@ -4,7 +4,7 @@
     python tools/report_screenshot.py [--out build/report.html] [--png docs/report.png]
                                       [--nan-png docs/report_nan.png]
 
-The pages are loaded in the WebGL backend's headless Chromium (glslcheck.report.load_in_browser):
+The pages are loaded in the WebGL backend's headless Chromium (glslcheck.verification.report.load_in_browser):
 any console error, page error or network request fails the run. The first screenshot is the top
 of the lab folder's page: the index and the first shader, down to its accuracy/time table and
 plot (bench at the report's default size, 64x36). No lab shader makes a NaN, so the second is the
@@ -22,7 +22,7 @@ from pathlib import Path
 ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT))
 
-from glslcheck.report import build_report, load_in_browser  # noqa: E402
+from glslcheck.verification.report import build_report, load_in_browser  # noqa: E402
 
 
 def main() -> int:

@@ -2,7 +2,7 @@
 """Four compilers' verdicts on the same Shadertoy programs: glslcheck, glslangValidator, Mesa, ANGLE.
 
 A shader is accepted by a judge when every program Shadertoy compiles from it (Common alone,
-then Common + each pass tab; glslcheck.check.agreement.passes) is accepted:
+then Common + each pass tab; glslcheck.semantics.agreement.passes) is accepted:
 - glslcheck: preprocess + parse + check without an error (`our_errors`);
 - glslangValidator: each wrapped program compiles (`glslang_errors`, no linking);
 - Mesa: the GL driver (llvmpipe, `#version 300 es`) compiles and links it with a vertex shader;
@@ -28,17 +28,17 @@ ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT))
 sys.path.insert(0, str(ROOT / "tools"))
 
-from glslcheck.check.agreement import glslang_errors, our_errors, passes  # noqa: E402
-from glslcheck.diagnostics import GlslError, register_source  # noqa: E402
-from glslcheck.shadertoy import build_program  # noqa: E402
-from glslcheck.sources import Shader, Source  # noqa: E402
+from glslcheck.semantics.agreement import glslang_errors, our_errors, passes  # noqa: E402
+from glslcheck.base.diagnostics import GlslError, register_source  # noqa: E402
+from glslcheck.shadertoy.wrapper import build_program  # noqa: E402
+from glslcheck.shadertoy.sources import Shader, Source  # noqa: E402
 
 JUDGES = ("glslcheck", "glslang", "mesa", "angle")
 
 
 def mesa_errors(shader: Shader) -> list[str]:
-    from glslcheck.gl_backend import get_context
-    from glslcheck.gl_backend.program import _compile
+    from glslcheck.backends.gl import get_context
+    from glslcheck.backends.gl.program import _compile
 
     out = []
     for tab in passes(shader):
@@ -50,7 +50,7 @@ def mesa_errors(shader: Shader) -> list[str]:
 
 
 def angle_errors(shader: Shader) -> list[str]:
-    from glslcheck.webgl_backend import webgl_diagnostics
+    from glslcheck.backends.webgl import webgl_diagnostics
 
     return [f"[{tab}] {d.message}" for tab in passes(shader) for d in webgl_diagnostics(shader, tab)]
 
@@ -105,7 +105,7 @@ def main(argv: list[str] | None = None) -> int:
     p.add_argument("--mutants", type=int, default=200, help="mutants of tools/mutation_agreement.py (default 200)")
     p.add_argument("--seed", type=int, default=1)
     args = p.parse_args(argv)
-    from glslcheck.webgl_backend import get_browser
+    from glslcheck.backends.webgl import get_browser
     from mutation_agreement import mutants, valid_shaders
 
     browser = get_browser()

@@ -21,9 +21,9 @@ key or rule name, a wrong type) raises `InputError` naming the configuration fil
 from __future__ import annotations
 
 import os
-from ..records import record, field, replace
+from ..base.records import record, field, replace
 
-from ..diagnostics import InputError
+from ..base.diagnostics import InputError
 
 TYPE_CHECKING = False  # not typing's: importing typing costs every start-up (issue 18)
 if TYPE_CHECKING:

@@ -7,7 +7,7 @@ For each file the engine scans the text once (`textscan`), builds a `LintContext
 enabled rules in phases by their `NEEDS` — "text", then "ast" (only when the file has a parse
 tree: `ctx.ast is not None`), then "suppressions" — turns each `Diagnostic` a rule yields into
 a `Finding` (the rule's name, severity and penalty), and drops the findings a
-`glslcheck: ignore[...]` comment silences. Reporting is `report.py`'s job; the engine never
+`glslcheck: ignore[...]` comment silences. Reporting is `verification/report.py`'s job; the engine never
 modifies a file.
 
 A file that does not compile still gets every finding the linter can make: its compile errors
@@ -22,11 +22,11 @@ from __future__ import annotations
 
 import os
 import re
-from ..records import record, field
+from ..base.records import record, field
 
-from ..diagnostics import Diagnostic, Location, register_source, source_line
-from ..shadertoy import BUFFER_TABS
-from ..sources import Shader, Source, check_path, find_shaders, path_name, path_suffix, posix_path
+from ..base.diagnostics import Diagnostic, Location, register_source, source_line
+from ..shadertoy.wrapper import BUFFER_TABS
+from ..shadertoy.sources import Shader, Source, check_path, find_shaders, path_name, path_suffix, posix_path
 from .config import COMMAND_LINE, ConfigFinder, LintConfig, apply_overrides
 from .rules import Rule, all_rules, rule_names
 from .suppress import Suppression, find_suppressions, is_suppressed
@@ -164,9 +164,9 @@ _MAX_RECOVERIES = 8
 
 
 def _build_tree(units: list[Source], tab: str) -> ProgramTree:
-    from ..check import check
-    from ..diagnostics import GlslError
-    from ..parse import parse_units
+    from ..semantics import check
+    from ..base.diagnostics import GlslError
+    from ..frontend.parser import parse_units
     from .recover import drop_declaration
 
     errors: list[Diagnostic] = []
@@ -287,7 +287,7 @@ def _not_run(rule: Rule, ctx: LintContext) -> list[Finding]:
         why = "the file does not parse" if ctx.ast is None else "it reads the whole program, which does not compile"
         where, loc = "on this file", first.loc
     else:
-        from ..analysis import program_facts
+        from ..semantics.analysis import program_facts
 
         broken = [] if rule.reads == "names" else program_facts(ctx.model).broken_in_file(ctx.path)
         places = [(d.proto.name, d.loc.line) for d in broken]
@@ -384,7 +384,7 @@ def lint_work(work: list[list[tuple[Shader, Source, LintConfig]]]) -> list[Findi
     large enough (lint/parallel.py: the same findings either way)."""
     if len(work) < 2:
         return _lint_files(work)
-    from ..diagnostics import _SOURCE_CACHE  # the texts reports quote: the child's come back
+    from ..base.diagnostics import _SOURCE_CACHE  # the texts reports quote: the child's come back
     from .parallel import run_split
 
     sizes = [sum(len(s.text) for s in todo[0][0].sources()) for todo in work]
@@ -393,8 +393,9 @@ def lint_work(work: list[list[tuple[Shader, Source, LintConfig]]]) -> list[Findi
 
 def _load_for_workers() -> None:
     """What every program's lint needs, loaded once before the work is split (fork shares it)."""
-    from .. import check, parse, preprocess  # noqa: F401
-    from ..analysis import program_facts  # noqa: F401
+    from .. import semantics as check
+    from ..frontend import parser as parse, preprocess  # noqa: F401
+    from ..semantics.analysis import program_facts  # noqa: F401
     from . import recover  # noqa: F401
 
     parse.get_parser()
@@ -415,7 +416,7 @@ def is_shader_name(path: str, config: LintConfig) -> bool:
     """Whether a file name is a shader file: .glsl/.frag, a Shadertoy tab name, or a tab-pattern."""
     from fnmatch import fnmatch
 
-    from ..sources import tab_name
+    from ..shadertoy.sources import tab_name
 
     suffix = path_suffix(path).lower()
     if suffix in (".glsl", ".frag"):

@@ -20,11 +20,11 @@ that is not one of the units gives up (None), and the linter reports the error a
 from __future__ import annotations
 
 import re
-from ..regexes import compiled
-from ..records import replace
+from ..base.regexes import compiled
+from ..base.records import replace
 
-from ..diagnostics import Location
-from ..sources import Source
+from ..base.diagnostics import Location
+from ..shadertoy.sources import Source
 
 TYPE_CHECKING = False  # not typing's: importing typing costs every start-up (issue 18)
 if TYPE_CHECKING:

@@ -17,8 +17,8 @@ from __future__ import annotations
 
 import os
 
-from ..diagnostics import format_text
-from ..sources import posix_path
+from ..base.diagnostics import format_text
+from ..shadertoy.sources import posix_path
 from .engine import Finding, LintResult
 from .rules import all_rules
 

@@ -12,9 +12,9 @@ directive it cannot read.
 
 from __future__ import annotations
 
-from ..records import record, field
+from ..base.records import record, field
 
-from ..diagnostics import Diagnostic, Location
+from ..base.diagnostics import Diagnostic, Location
 from .textscan import DIRECTIVE_RE, Comment
 
 TYPE_CHECKING = False  # not typing's: importing typing costs every start-up (issue 18)

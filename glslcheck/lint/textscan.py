@@ -20,8 +20,8 @@ GLSL has no string literals, so `//` and `/*` always open a comment outside one.
 
 from __future__ import annotations
 
-from ..regexes import compiled
-from ..records import record
+from ..base.regexes import compiled
+from ..base.records import record
 from enum import Enum
 
 

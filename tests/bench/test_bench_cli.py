@@ -8,8 +8,8 @@ from pathlib import Path
 
 import pytest
 
-from glslcheck.bench import JSON_KEYS
-from glslcheck.cli import main
+from glslcheck.verification.bench import JSON_KEYS
+from glslcheck.cli.main import main
 
 ROOT = Path(__file__).resolve().parents[2]
 PART = str(ROOT / "lab_shaders" / "02_point_light")
@@ -98,8 +98,8 @@ def test_missing_file_exit_2(capsys, tmp_path):
 
 
 def test_no_gl_context_exit_2(monkeypatch, capsys):
-    import glslcheck.gl_backend as gb
-    from glslcheck.gl_backend import GLUnavailable
+    import glslcheck.backends.gl as gb
+    from glslcheck.backends.gl import GLUnavailable
 
     def unavailable(*a, **k):
         raise GLUnavailable("error: cannot create an OpenGL context with EGL (test)")

@@ -1,4 +1,4 @@
-"""glslcheck.bench as a library, with fake programs and a fake clock: what is rendered and timed,
+"""glslcheck.verification.bench as a library, with fake programs and a fake clock: what is rendered and timed,
 the reference, the error metrics, the Pareto front and the plot. No real timing is asserted."""
 
 from __future__ import annotations
@@ -8,17 +8,7 @@ import math
 import numpy as np
 import pytest
 
-from glslcheck.bench import (
-    JSON_KEYS,
-    Config,
-    Row,
-    bench_shader,
-    configurations,
-    format_table,
-    mark_pareto,
-    measure_error,
-    write_plot,
-)
+from glslcheck.verification.bench import JSON_KEYS, Config, Row, bench_shader, configurations, format_table, mark_pareto, measure_error, write_plot
 
 W, H = 8, 6
 
@@ -153,9 +143,9 @@ def test_table_and_plot(rows_and_programs, tmp_path):
 def test_numpy_configurations_share_one_kind_of_worker(make_shader, monkeypatch):
     """"auto" would move to worker processes part-way through a bench and mix processes and
     threads in one table: the bench pins one (processes where available) unless told."""
-    from glslcheck.bench import _pin_parallel
-    from glslcheck.numpy_backend import workers
-    from glslcheck.numpy_backend.program import compile_numpy
+    from glslcheck.verification.bench import _pin_parallel
+    from glslcheck.backends.numpy_engine import workers
+    from glslcheck.backends.numpy_engine.program import compile_numpy
 
     monkeypatch.delenv("GLSLCHECK_PARALLEL", raising=False)
     prog = compile_numpy(make_shader("void mainImage(out vec4 o, in vec2 f) { o = vec4(f, 0.0, 1.0); }"))

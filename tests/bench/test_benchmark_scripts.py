@@ -58,7 +58,7 @@ def test_bench_startup_prints_its_figures(glslang):
 def test_ab_lanes_math_prints_its_figures(numba):
     """The working tree's lanes_math.py against itself (a file path as --rev, so no git history is
     needed): the same bits, and a line of times."""
-    lanes_math = ROOT / "glslcheck" / "compiled_backend" / "lanes_math.py"
+    lanes_math = ROOT / "glslcheck" / "backends" / "compiled_engine" / "lanes_math.py"
     out = _run("ab_lanes_math.py", "--rev", str(lanes_math), "--size", "16x8", "--repeat", "1",
                str(ROOT / "lab_shaders" / "05_blinn_phong"), timeout=600)
     assert "05_blinn_phong" in out and "same bits True" in out and "after/before" in out, out

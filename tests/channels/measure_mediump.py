@@ -4,7 +4,7 @@ Run `python tests/channels/measure_mediump.py`. For each expression it renders a
 `#version 300 es` shader with `precision mediump float;` and mediump variables x, y computed from
 gl_FragCoord, and prints how many of the 2048 results equal NumPy's float16 evaluation (inputs
 rounded to float16, every operation rounded to nearest) and how many equal the same shader with
-`precision highp float;`. What it found is in glslcheck/mediump.py's docstring.
+`precision highp float;`. What it found is in glslcheck/semantics/mediump.py's docstring.
 """
 
 from __future__ import annotations
@@ -16,8 +16,8 @@ import numpy as np
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[2]))
 
-from glslcheck.gl_backend import get_context, renderer_name  # noqa: E402
-from glslcheck.gl_backend.program import VERTEX_SHADER  # noqa: E402
+from glslcheck.backends.gl import get_context, renderer_name  # noqa: E402
+from glslcheck.backends.gl.program import VERTEX_SHADER  # noqa: E402
 
 W, H = 64, 32
 h, f32 = np.float16, np.float32

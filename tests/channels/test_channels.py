@@ -1,4 +1,4 @@
-"""Channels and passes (glslcheck/channels.py): channels.json, images, Buffer A-D with feedback,
+"""Channels and passes (glslcheck/shadertoy/channels.py): channels.json, images, Buffer A-D with feedback,
 on both backends, against the GL driver; and the errors of bad channels.json files."""
 
 from __future__ import annotations
@@ -11,9 +11,9 @@ import numpy as np
 import pytest
 from PIL import Image
 
-from glslcheck import api
-from glslcheck.driver_profile import host_fma
-from glslcheck.verify import verify_frames
+from glslcheck.backends import registry as api
+from glslcheck.backends.driver_profile import host_fma
+from glslcheck.verification.verify import verify_frames
 
 SIZE = (64, 36)
 
@@ -335,7 +335,7 @@ def test_shadertoy_json_export_older_buffer_names(tmp_path):
     data["Shader"]["renderpass"][0]["name"] = "Buf C"
     data["Shader"]["renderpass"].reverse()
     (tmp_path / "old.json").write_text(json.dumps(data))
-    from glslcheck.sources import load_shader
+    from glslcheck.shadertoy.sources import load_shader
 
     shader = load_shader(str(tmp_path / "old.json"))
     assert set(shader.tabs) == {"Buffer C", "Image"}
@@ -345,7 +345,7 @@ def test_shadertoy_json_export_older_buffer_names(tmp_path):
 
 def test_shadertoy_json_export_reads_an_unbound_channel_as_shadertoy_does(gl, tmp_path):
     # Shadertoy runs a pass that reads a channel with no input (a real public shader does, see
-    # channels.py): the unit has no texture, so lookups give (0, 0, 0, 1) (textureSize of such a
+    # shadertoy/channels.py): the unit has no texture, so lookups give (0, 0, 0, 1) (textureSize of such a
     # unit is left undefined by ES 3.00: llvmpipe says 1x1, not pinned here)
     _export(tmp_path)
     data = json.loads((tmp_path / "shader.json").read_text())
@@ -363,7 +363,7 @@ def test_shadertoy_json_export_reads_an_unbound_channel_as_shadertoy_does(gl, tm
 def test_odd_sizes_shade_helper_pixels_as_llvmpipe(gl, tmp_path, size):
     # An odd right or top edge: llvmpipe's 2x2 quads there take helper pixels outside the
     # viewport, which the derivatives and the implicit LOD read; the NumPy side renders the same
-    # helper column/row (numpy_backend/program.py render_tile). Without them these differed by up
+    # helper column/row (backends/numpy_engine/program.py render_tile). Without them these differed by up
     # to 0.56 (dFdy) and the implicit LOD picked other levels in the last row or column.
     _png(tmp_path / "tex.png", 70, 50, seed=5)
     body = f"""void mainImage(out vec4 fragColor, in vec2 fragCoord) {{

@@ -1,12 +1,12 @@
-"""verify's note on mediump/lowp float arithmetic (glslcheck/mediump.py): found where the shader
+"""verify's note on mediump/lowp float arithmetic (glslcheck/semantics/mediump.py): found where the shader
 asks for it, and said beside the comparison; llvmpipe's float16 itself is measured by
 tests/channels/measure_mediump.py (what it lowers depends on Mesa's passes, so no test pins it)."""
 
 from __future__ import annotations
 
-from glslcheck.mediump import mediump_declarations
-from glslcheck.sources import load_shader
-from glslcheck.verify import verify_frames
+from glslcheck.semantics.mediump import mediump_declarations
+from glslcheck.shadertoy.sources import load_shader
+from glslcheck.verification.verify import verify_frames
 
 MEDIUMP = """precision mediump float;
 // lowp float not_this = 1.0;

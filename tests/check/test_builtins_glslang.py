@@ -20,9 +20,9 @@ from pathlib import Path
 
 import pytest
 
-from glslcheck import types as T
-from glslcheck.builtins import BUILTINS, resolve
-from glslcheck.types import BY_NAME, Type
+from glslcheck.language import glsl_types as T
+from glslcheck.language.builtin_functions import BUILTINS, resolve
+from glslcheck.language.glsl_types import BY_NAME, Type
 
 GLSLANG = shutil.which("glslangValidator")
 
@@ -217,7 +217,7 @@ def _shader(decls: str, body: str) -> str:
 
 
 def test_reserved_words_and_keywords_are_not_identifiers():
-    from glslcheck.builtins import KEYWORDS, RESERVED_WORDS
+    from glslcheck.language.builtin_functions import KEYWORDS, RESERVED_WORDS
     words = sorted(RESERVED_WORDS | KEYWORDS)
     fine = ["buffer", "precise", "sampler", "texture2D", "main2", "iTime"]
     programs = [_shader("", f"    float {w} = 1.0;") for w in words + fine]
@@ -228,7 +228,7 @@ def test_reserved_words_and_keywords_are_not_identifiers():
 
 
 def test_builtin_variable_types_match_glslang():
-    from glslcheck.builtins import BUILTIN_VARIABLES
+    from glslcheck.language.builtin_functions import BUILTIN_VARIABLES
     body = []
     for name, var in BUILTIN_VARIABLES.items():
         if var.type.is_struct:
@@ -241,7 +241,7 @@ def test_builtin_variable_types_match_glslang():
 
 
 def test_shadertoy_uniform_declarations_compile():
-    from glslcheck.builtins import SHADERTOY_UNIFORMS
+    from glslcheck.language.builtin_functions import SHADERTOY_UNIFORMS
     decls = "\n".join(
         f"uniform {u.type} {name}{'' if u.array_size is None else f'[{u.array_size}]'};"
         for name, u in SHADERTOY_UNIFORMS.items())

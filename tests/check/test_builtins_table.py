@@ -1,11 +1,11 @@
-"""The built-in function table, overload resolution and the predefined names (glslcheck.builtins)."""
+"""The built-in function table, overload resolution and the predefined names (glslcheck.language.builtin_functions)."""
 
 import pytest
 
-from glslcheck import builtins as B
-from glslcheck import types as T
-from glslcheck.builtins import BUILTINS, resolve
-from glslcheck.types import BY_NAME, ArrayType
+from glslcheck.language import builtin_functions as B
+from glslcheck.language import glsl_types as T
+from glslcheck.language.builtin_functions import BUILTINS, resolve
+from glslcheck.language.glsl_types import BY_NAME, ArrayType
 
 t = BY_NAME.__getitem__
 

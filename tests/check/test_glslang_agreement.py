@@ -15,9 +15,9 @@ from pathlib import Path
 
 import pytest
 
-from glslcheck.check.agreement import glslang_errors, our_errors
-from glslcheck.diagnostics import register_source
-from glslcheck.sources import Shader, Source, find_shaders
+from glslcheck.semantics.agreement import glslang_errors, our_errors
+from glslcheck.base.diagnostics import register_source
+from glslcheck.shadertoy.sources import Shader, Source, find_shaders
 
 ROOT = Path(__file__).resolve().parents[2]
 VALID = sorted(p for p in (ROOT / "tests" / "corpus").glob("*") if not p.name.startswith(".")) + sorted(
@@ -41,7 +41,7 @@ def test_valid_shaders_accepted_by_both(path, glslang):
 
 MAIN = "\nvoid mainImage(out vec4 fragColor, in vec2 fragCoord)\n{\n    fragColor = vec4(g(1.0));\n}\n"
 
-# Programs where glslangValidator (as glslcheck.glslang runs it: compile only, no -l) accepts what
+# Programs where glslangValidator (as glslcheck.semantics.glslang runs it: compile only, no -l) accepts what
 # a GL driver rejects. Each: (name, Image tab text, why glslang is wrong here).
 KNOWN_DIFFERENCES = [
     ("call-without-definition", "float g(float x);\n" + MAIN,
@@ -64,7 +64,7 @@ def test_known_differences(name, text, why, glslang):
     assert glslang_errors(shader) == [], f"{name}: glslangValidator now rejects it; move it to tests/check/invalid/"
     if "-l" in why:
         # Demonstrate that the reference compiler itself rejects it once it links.
-        from glslcheck.shadertoy import build_program
+        from glslcheck.shadertoy.wrapper import build_program
         import tempfile, os
 
         fd, path = tempfile.mkstemp(suffix=".frag")

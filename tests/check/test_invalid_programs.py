@@ -13,9 +13,9 @@ from pathlib import Path
 
 import pytest
 
-from glslcheck.check.agreement import glslang_errors, our_errors
-from glslcheck.diagnostics import register_source
-from glslcheck.sources import Shader, Source
+from glslcheck.semantics.agreement import glslang_errors, our_errors
+from glslcheck.base.diagnostics import register_source
+from glslcheck.shadertoy.sources import Shader, Source
 
 HERE = Path(__file__).parent / "invalid"
 FIXTURES = sorted(HERE.glob("*.glsl"))

@@ -2,16 +2,16 @@
 
 Shadertoy compiles its `main()` wrapper after the user's code, so `#define mainImage(O, U) ...`
 turns the wrapper's `mainImage(color, gl_FragCoord.xy);` into the user's code. The preprocessor
-models that call as the entry function (preprocess.py `_wrapper_call`); the checker, the NumPy
+models that call as the entry function (frontend/preprocess.py `_wrapper_call`); the checker, the NumPy
 backend and the GL backend (which compiles the real wrapper) then run the same program."""
 
 from __future__ import annotations
 
 import pytest
 
-from glslcheck.check import CheckError, check
-from glslcheck.parse import parse_shader
-from glslcheck.verify import verify
+from glslcheck.semantics import CheckError, check
+from glslcheck.frontend.parser import parse_shader
+from glslcheck.verification.verify import verify
 
 GOLF = "#define mainImage(O, U) O = vec4(U / iResolution.xy, 0.5 + 0.5 * sin(iTime), 1.0)\n"
 GOLF_LOOP = (

@@ -1,15 +1,15 @@
-"""The Model API the linter and the NumPy transpiler consume (glslcheck.check)."""
+"""The Model API the linter and the NumPy transpiler consume (glslcheck.semantics)."""
 
 from __future__ import annotations
 
 import pytest
 
-from glslcheck import ast as A
-from glslcheck import builtins as B
-from glslcheck import types as T
-from glslcheck.check import CheckError, Constructor, Model, Symbol, check
-from glslcheck.cli import main
-from glslcheck.parse import parse_shader
+from glslcheck.frontend import syntax as A
+from glslcheck.language import builtin_functions as B
+from glslcheck.language import glsl_types as T
+from glslcheck.semantics import CheckError, Constructor, Model, Symbol, check
+from glslcheck.cli.main import main
+from glslcheck.frontend.parser import parse_shader
 
 SRC = """\
 struct Ray { vec3 origin; vec3 direction; };

@@ -1,14 +1,9 @@
-"""The GLSL ES 3.00 type objects and the typing rules in glslcheck.types (spec 4.1, 5.4-5.9)."""
+"""The GLSL ES 3.00 type objects and the typing rules in glslcheck.language.glsl_types (spec 4.1, 5.4-5.9)."""
 
 import pytest
 
-from glslcheck import types as T
-from glslcheck.types import (
-    BY_NAME, ArrayType, StructType, binary_result, assign_result, conditional_result,
-    constructor_check,
-    constructor_result, index_result, matrix, swizzle_is_lvalue, swizzle_result,
-    unary_result, vector,
-)
+from glslcheck.language import glsl_types as T
+from glslcheck.language.glsl_types import BY_NAME, ArrayType, StructType, binary_result, assign_result, conditional_result, constructor_check, constructor_result, index_result, matrix, swizzle_is_lvalue, swizzle_result, unary_result, vector
 
 t = BY_NAME.__getitem__  # t("vec3")
 

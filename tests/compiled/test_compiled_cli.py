@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from glslcheck.cli import main
+from glslcheck.cli.main import main
 
 IMAGE = ("void mainImage(out vec4 fragColor, in vec2 fragCoord) {\n"
          "    fragColor = vec4(fragCoord.x / iResolution.x, sin(iTime), -1.0, 0.2);\n}\n")
@@ -40,7 +40,7 @@ def test_multipass_and_buffer_passes_are_refused(numba, tmp_path, capsys):
 
 
 def test_without_numba_exit_2_with_the_pip_line(tmp_path, capsys, monkeypatch):
-    from glslcheck.compiled_backend import engine
+    from glslcheck.backends.compiled_engine import engine
 
     monkeypatch.setattr(engine, "available", lambda: False)
     path = tmp_path / "Image.glsl"
@@ -94,7 +94,7 @@ def test_bench_compiled_unsupported_construct_exits_1_at_its_line(numba, gl, tmp
 
 
 def test_bench_compiled_without_numba_exits_2_before_measuring(tmp_path, capsys, monkeypatch):
-    from glslcheck.compiled_backend import engine
+    from glslcheck.backends.compiled_engine import engine
 
     monkeypatch.setattr(engine, "available", lambda: False)
     path = tmp_path / "Image.glsl"
@@ -120,7 +120,7 @@ def test_verify_backends_compiled_gl_matches(numba, gl, tmp_path, capsys):
 
 def test_verify_compiled_errors(tmp_path, capsys, monkeypatch):
     """Unsupported construct: exit 1 at its line; --precision other than float32: exit 2; no numba: exit 2."""
-    from glslcheck.compiled_backend import engine
+    from glslcheck.backends.compiled_engine import engine
 
     path = tmp_path / "Image.glsl"
     path.write_text(IMAGE)

@@ -20,7 +20,7 @@ import numpy as np
 import pytest
 
 import glslcheck
-from glslcheck.diagnostics import GlslError
+from glslcheck.base.diagnostics import GlslError
 
 SIZE = (40, 24)
 LAB = os.path.join(os.path.dirname(__file__), "..", "..", "lab_shaders")
@@ -31,7 +31,7 @@ LAB_SAMPLE = ("01_spheres_procedural", "03_lambert_attenuation", "05_blinn_phong
 
 
 def _compare(shader, time: float = 1.3) -> None:
-    from glslcheck.compiled_backend.engine import compile_compiled
+    from glslcheck.backends.compiled_engine.engine import compile_compiled
 
     got = compile_compiled(shader).render(size=SIZE, time=time, mouse=(10.0, 7.0, 3.0, -2.0))
     want = glslcheck.compile(shader, backend="numpy").render(size=SIZE, time=time, mouse=(10.0, 7.0, 3.0, -2.0))
@@ -239,7 +239,7 @@ void mainImage(out vec4 c, in vec2 f) {
 def test_construct_bit_for_bit(numba, make_shader, name):
     shader = make_shader(CONSTRUCTS[name])
     # none of Mesa's reassociations, which the NumPy backend copies and this engine does not
-    # (numpy_backend/nir_fold.py emits each as `(<Mesa's order> if rt.lp else <written>)`):
+    # (backends/numpy_engine/nir_fold.py emits each as `(<Mesa's order> if rt.lp else <written>)`):
     # these shaders test the engine's own rules (the reassociations: test_mesa_reassociation_...)
     assert "if rt.lp else" not in glslcheck.compile(shader, backend="numpy").source
     _compare(shader)
@@ -256,7 +256,7 @@ def _statement_code(source: str, glsl: str) -> list[str]:
 def test_pure_ternaries_are_selects(make_shader):
     """The ternary_selects construct's pure ternaries are written as selects, the others keep
     their branch (the bits: test_construct_bit_for_bit)."""
-    from glslcheck.compiled_backend.engine import generate
+    from glslcheck.backends.compiled_engine.engine import generate
 
     source, _ = generate(make_shader(CONSTRUCTS["ternary_selects"]), lanes=0)
     for glsl in ("(x <= 3.0 ? 40960.0 : 42.0)", "x < y ? 3.0", "idx + 0.5 : idx", "uv.x / q : -7.0",
@@ -277,7 +277,7 @@ def test_mesa_reassociation_is_not_copied_yet(numba, make_shader):
     exp2's result differs by at most ln(2) * |t| * 2**-23 relative: 1.1e-5 for |t| <= 128
     (past 128 exp2 is clamped: the same). The pixels must differ (else the case tests nothing)
     and stay within rtol 2e-5."""
-    from glslcheck.compiled_backend.engine import compile_compiled
+    from glslcheck.backends.compiled_engine.engine import compile_compiled
 
     shader = make_shader("void mainImage(out vec4 c, in vec2 f) {\n float x = (f.x / iResolution.x - 0.5) * 40.0;"
                          "\n c = vec4(exp2(x * 3.1), 1.0, 1.0, 1.0); }")
@@ -294,7 +294,7 @@ def test_mesa_reassociation_is_not_copied_yet(numba, make_shader):
      "default: c = vec4(0.0); } }", "switch"),
 ])
 def test_unsupported_is_a_located_error(numba, make_shader, text, what):
-    from glslcheck.compiled_backend.engine import compile_compiled
+    from glslcheck.backends.compiled_engine.engine import compile_compiled
 
     with pytest.raises(GlslError) as info:
         compile_compiled(make_shader(text))
@@ -304,7 +304,7 @@ def test_unsupported_is_a_located_error(numba, make_shader, text, what):
 
 
 def test_runaway_loop_is_a_located_error(numba, make_shader):
-    from glslcheck.compiled_backend.engine import compile_compiled
+    from glslcheck.backends.compiled_engine.engine import compile_compiled
 
     text = "void mainImage(out vec4 c, in vec2 f) {\n float t = 0.0;\n while (f.x > 0.0) { t += 1.0; }\n c = vec4(t); }"
     prog = compile_compiled(make_shader(text))

@@ -15,7 +15,7 @@ import numpy as np
 import pytest
 
 import glslcheck
-from glslcheck.diagnostics import GlslError
+from glslcheck.base.diagnostics import GlslError
 
 MOUSE = (10.0, 7.0, 3.0, -2.0)
 
@@ -77,7 +77,7 @@ void mainImage(out vec4 c, in vec2 f) {
 
 
 def _compiled(shader, lanes: int, size, time: float = 1.3) -> np.ndarray:
-    from glslcheck.compiled_backend.engine import CompiledProgram, generate
+    from glslcheck.backends.compiled_engine.engine import CompiledProgram, generate
 
     source, path = generate(shader, lanes=lanes)
     assert "QUADS = True" in source and f"LANES = {lanes}" in source, source[-300:]
@@ -104,7 +104,7 @@ def test_derivatives_bit_for_bit(numba, make_shader, name, lanes, size):
 def test_derivatives_start_in_lockstep(numba, make_shader, monkeypatch):
     """The default program of a shader with derivatives is the lockstep module from the first
     frame (no per-pixel tier); GLSLCHECK_COMPILED_LANES=0 is a located error, not a traceback."""
-    from glslcheck.compiled_backend.engine import CompiledProgram, compile_compiled, generate
+    from glslcheck.backends.compiled_engine.engine import CompiledProgram, compile_compiled, generate
 
     shader = make_shader(DERIVATIVES["plain"])
     monkeypatch.delenv("GLSLCHECK_COMPILED_LANES", raising=False)
@@ -122,7 +122,7 @@ def test_derivatives_start_in_lockstep(numba, make_shader, monkeypatch):
 
 def test_quad_lanes():
     """Lane k's pair: lanes 0..3 the lower row, 4..7 the upper (8 lanes)."""
-    from glslcheck.compiled_backend.lanes import quad_lanes
+    from glslcheck.backends.compiled_engine.lanes import quad_lanes
 
     assert [quad_lanes("dfdx", k, 8) for k in range(8)] == [(1, 0), (1, 0), (3, 2), (3, 2),
                                                            (5, 4), (5, 4), (7, 6), (7, 6)]

@@ -1,4 +1,4 @@
-"""Pixels in lockstep (compiled_backend/lanes.py) against the per-pixel compiled engine, bit for bit.
+"""Pixels in lockstep (backends/compiled_engine/lanes.py) against the per-pixel compiled engine, bit for bit.
 
 The per-pixel module is the reference: every lane of the lockstep module must compute exactly
 its operations, so the two images are compared bit for bit (a NaN must be the same NaN: both
@@ -24,7 +24,7 @@ MOUSE = (10.0, 7.0, 3.0, -2.0)
 
 
 def _render(shader, lanes: int, time: float = 1.3) -> np.ndarray:
-    from glslcheck.compiled_backend.engine import CompiledProgram, generate
+    from glslcheck.backends.compiled_engine.engine import CompiledProgram, generate
 
     source, path = generate(shader, lanes=lanes)
     if lanes:
@@ -51,7 +51,7 @@ def test_construct_lanes_bit_for_bit(numba, make_shader, name, lanes):
 
 @pytest.mark.parametrize("name", ["01_spheres_procedural", "05_blinn_phong", "bonus_spot_lights"])
 def test_lab_lanes_bit_for_bit(numba, name):
-    from glslcheck.sources import load_shader
+    from glslcheck.shadertoy.sources import load_shader
 
     _same_bits(load_shader(os.path.join(LAB, name)), 8)
 
@@ -83,7 +83,7 @@ def test_uniform_arguments_stay_scalars(numba, make_shader):
     sin(iTime * 1.7) once a block. The same function called with a per-pixel value keeps its
     per-lane variant; a return under a divergent condition (`diverge`) stays per lane. The bits
     are the per-pixel engine's."""
-    from glslcheck.compiled_backend.engine import generate
+    from glslcheck.backends.compiled_engine.engine import generate
 
     shader = make_shader(UNIFORM_CALLS)
     source, _ = generate(shader, lanes=8)
@@ -109,7 +109,7 @@ def test_uniform_arguments_stay_scalars(numba, make_shader):
 def test_unhandled_statement_is_unsupported():
     """A statement the rewrite does not know (the per-pixel generator writes no `for`) is
     Unsupported, not rewritten wrongly."""
-    from glslcheck.compiled_backend.lanes import Unsupported, lanes_module
+    from glslcheck.backends.compiled_engine.lanes import Unsupported, lanes_module
 
     source = ("@jit\ndef f_g(v_x_0):\n    for i in range(3):\n        pass\n    return (v_x_0,)\n\n"
               "@jit\ndef shade(fx, fy, px, py):\n    _t1, = f_g(fx)\n    return (_t1, _t1, _t1, F32(1.0))\n")
@@ -121,9 +121,9 @@ def test_fallback_and_mode_switch(make_shader, monkeypatch):
     """GLSLCHECK_COMPILED_LANES=0 gives the per-pixel module, a width the lockstep one, nothing
     the engine's choice; a shader the rewrite refuses falls back to the per-pixel module, which says why; a bad value is an
     input error (exit 2)."""
-    from glslcheck.compiled_backend import lanes
-    from glslcheck.compiled_backend.engine import generate
-    from glslcheck.diagnostics import InputError
+    from glslcheck.backends.compiled_engine import lanes
+    from glslcheck.backends.compiled_engine.engine import generate
+    from glslcheck.base.diagnostics import InputError
 
     shader = make_shader(CONSTRUCTS["control_flow"])
     monkeypatch.setenv("GLSLCHECK_COMPILED_LANES", "0")
@@ -152,7 +152,7 @@ def test_tiered_program_moves(numba, make_shader, monkeypatch, tmp_path):
     less than lockstep's expected compile, lockstep from the frame that reaches it, the same bits
     throughout; a later program of the same shader finds the lockstep module in numba's cache
     (the marker) and expects only its load."""
-    from glslcheck.compiled_backend import engine
+    from glslcheck.backends.compiled_engine import engine
 
     monkeypatch.delenv("GLSLCHECK_COMPILED_LANES", raising=False)
     monkeypatch.setenv("NUMBA_CACHE_DIR", str(tmp_path))  # no lockstep module cached by an earlier run
@@ -181,7 +181,7 @@ def test_tiered_program_moves(numba, make_shader, monkeypatch, tmp_path):
 
 def test_fixed_mode_is_not_tiered(numba, make_shader, monkeypatch):
     """GLSLCHECK_COMPILED_LANES=0 or a width: that module only, no tiers."""
-    from glslcheck.compiled_backend import engine
+    from glslcheck.backends.compiled_engine import engine
 
     shader = make_shader(CONSTRUCTS["control_flow"])
     for value in ("0", "8"):
@@ -196,8 +196,8 @@ def test_pure_conditional_expressions_are_selects():
     test_lab_lanes_bit_for_bit.)"""
     import re
 
-    from glslcheck.compiled_backend.engine import generate
-    from glslcheck.sources import load_shader
+    from glslcheck.backends.compiled_engine.engine import generate
+    from glslcheck.shadertoy.sources import load_shader
 
     source, _ = generate(load_shader(os.path.join(LAB, "07_final")), lanes=8)
     lane_ifexp = [line for line in source.splitlines()
@@ -234,7 +234,7 @@ def test_locals_after_a_return_stay_uniform(numba, make_shader):
     Lab 4 pattern) stays one scalar per element for the block; a branch's write keeps its
     mask, and a loop that can return stays a masked loop; a block whose every lane has returned
     stops at the return. The bits are the per-pixel engine's."""
-    from glslcheck.compiled_backend.engine import generate
+    from glslcheck.backends.compiled_engine.engine import generate
 
     shader = make_shader(AFTER_RETURN)
     source, _ = generate(shader, lanes=8)

@@ -1,4 +1,4 @@
-"""compiled_backend/lanes_math.py against scalar.py: the same bits for every input, and straight-line
+"""backends/compiled_engine/lanes_math.py against scalar.py: the same bits for every input, and straight-line
 code that LLVM's SLP vectoriser turns into packed (W-wide) instructions.
 
 Each function of lanes_math runs here as the lockstep engine calls it: W = 8 pixels' values in a
@@ -147,7 +147,7 @@ def slp(numba):
 
 @pytest.fixture(scope="module")
 def modules(numba):
-    from glslcheck.compiled_backend import lanes_math, scalar
+    from glslcheck.backends.compiled_engine import lanes_math, scalar
 
     return scalar, lanes_math
 
@@ -181,7 +181,7 @@ def _assert_same_bits(name: str, args: list[np.ndarray], want: np.ndarray, got: 
 
 
 def _rewritten_cases():
-    from glslcheck.compiled_backend.lanes_math import REWRITTEN
+    from glslcheck.backends.compiled_engine.lanes_math import REWRITTEN
 
     for name in REWRITTEN:
         if name == "pow_uniform":
@@ -253,7 +253,7 @@ def test_pow_of_a_uniform_parameter_is_packed(avx2, make_shader):
     alone in a small kernel was packed either way (LLVM merged the W branches there), so this
     test reads a generated module. It is compiled without numba's cache (numba shows no machine
     code for a function it loaded from there)."""
-    from glslcheck.compiled_backend.engine import CompiledProgram, generate
+    from glslcheck.backends.compiled_engine.engine import CompiledProgram, generate
 
     source, path = generate(make_shader(SHININESS), lanes=W)
     assert "pow_uniform(" in source and "cache=True" in source

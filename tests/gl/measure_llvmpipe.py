@@ -17,9 +17,9 @@ import numpy as np
 sys.path.insert(0, str(Path(__file__).resolve().parents[2]))
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 
-from glslcheck.gl_backend import compile_gl, get_context, renderer_name  # noqa: E402
-from glslcheck.gl_backend.program import VERTEX_SHADER  # noqa: E402
-from glslcheck.sources import Shader, Source  # noqa: E402
+from glslcheck.backends.gl import compile_gl, get_context, renderer_name  # noqa: E402
+from glslcheck.backends.gl.program import VERTEX_SHADER  # noqa: E402
+from glslcheck.shadertoy.sources import Shader, Source  # noqa: E402
 
 # (case, literal expression, run-time expression, uniform values, what GLSL ES 3.00 says)
 CASES = [
@@ -99,7 +99,7 @@ def render_time() -> float:
 # Whole-range measurements: llvmpipe against the NumPy runtime on many inputs at once
 # (tests/gl/llvmpipe_eval.py). (GLSL expression, runtime function, inputs a, inputs b)
 def _bulk_cases():
-    from glslcheck.numpy_backend.runtime import Runtime
+    from glslcheck.backends.numpy_engine.runtime import Runtime
 
     rt = Runtime("float32")
     rng = np.random.default_rng(1)

@@ -1,4 +1,4 @@
-"""The tolerance model of glslcheck/compare.py on synthetic images (no GL needed)."""
+"""The tolerance model of glslcheck/verification/compare.py on synthetic images (no GL needed)."""
 
 import json
 
@@ -6,7 +6,7 @@ import numpy as np
 import pytest
 from PIL import Image
 
-from glslcheck.compare import JSON_KEYS, compare, write_diff_png
+from glslcheck.verification.compare import JSON_KEYS, compare, write_diff_png
 
 H, W = 90, 160
 

@@ -2,8 +2,8 @@
 
 import pytest
 
-from glslcheck.diagnostics import GlslError
-from glslcheck.gl_backend import compile_gl, parse_driver_log
+from glslcheck.base.diagnostics import GlslError
+from glslcheck.backends.gl import compile_gl, parse_driver_log
 
 COMMON = "float twice(float x) {\n    return 2.0 * x;\n}\n\nfloat broken() {\n    return undefined_name;\n}\n"
 IMAGE = "void mainImage(out vec4 c, in vec2 p) {\n    c = vec4(twice(p.x));\n}\n"

@@ -5,7 +5,7 @@ import datetime
 import numpy as np
 import pytest
 
-from glslcheck.gl_backend import compile_gl, render_shader, sample_offsets
+from glslcheck.backends.gl import compile_gl, render_shader, sample_offsets
 
 
 def _render(make_shader, body, **kw):

@@ -1,4 +1,4 @@
-"""numba's compiled math kernels (numpy_backend/jit.py) against llvmpipe itself, bit for bit.
+"""numba's compiled math kernels (backends/numpy_engine/jit.py) against llvmpipe itself, bit for bit.
 
 tests/numpy/test_jit_kernels.py compares the kernels with LlvmpipeMath's NumPy reference, which
 tests/gl/test_llvmpipe_math.py compares with the driver; this closes the loop directly: the
@@ -18,8 +18,8 @@ import pytest
 from llvmpipe_eval import evaluate, ulp_distance
 from test_llvmpipe_math import EXACT, NA, NB, NT, RT
 
-from glslcheck.numpy_backend import jit
-from glslcheck.numpy_backend.runtime import Runtime
+from glslcheck.backends.numpy_engine import jit
+from glslcheck.backends.numpy_engine.runtime import Runtime
 
 KERNEL_BUILTINS = ("sin", "cos", "tan", "exp2", "exp", "log2", "log", "pow", "atan", "asin", "acos")
 CASES = [c for c in EXACT if getattr(c[1], "__self__", None) is RT and c[1].__name__ in KERNEL_BUILTINS]

@@ -11,8 +11,8 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from glslcheck.diagnostics import GlslError
-from glslcheck.verify import compile_backend, llvmpipe_loop_limit, verify_frames
+from glslcheck.base.diagnostics import GlslError
+from glslcheck.verification.verify import compile_backend, llvmpipe_loop_limit, verify_frames
 
 SUM_70000 = """
 void mainImage(out vec4 c, in vec2 p) {

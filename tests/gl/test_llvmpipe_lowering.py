@@ -3,7 +3,7 @@
 GLSL ES 3.00 has no `precise`, so Mesa reassociates: `mix` becomes one of four formulas
 (nir_lower_flrp: which one depends on the operands the compiler knows and on the other `mix`
 calls), and nir_opt_algebraic factors `a*b + a*c` and sinks constants into sums, products and
-dot products. `glslcheck/numpy_backend/nir_fold.py` and `Runtime.mix` repeat the rewrites in
+dot products. `glslcheck/backends/numpy_engine/nir_fold.py` and `Runtime.mix` repeat the rewrites in
 float32 mode. Each shader below computes its operands with opaque built-ins (fract, sin, sqrt,
 floor: values NIR does not look into) over 160x90 pixels. Without the rewrites (written order,
 strict mix everywhere) these channels differ from llvmpipe (measured): constants_sunk 680, 4718
@@ -21,7 +21,7 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from glslcheck.verify import compile_backend
+from glslcheck.verification.verify import compile_backend
 
 OPERANDS = """
     float a = fract(p.x * 0.1371 + p.y * 0.0917), b = sin(p.y * 0.917 + p.x * 0.0311);
@@ -605,8 +605,8 @@ def test_a_product_in_a_global_initializer_is_no_local_write(make_shader):
 def test_float64_reference_is_the_same_without_these_rewrites(make_shader, monkeypatch, text):
     """The rewrites and the inlining above are float32 (llvmpipe) only: the float64 render is
     bit for bit the one of the code generated without them."""
-    from glslcheck.numpy_backend import nir_fold
-    from glslcheck.numpy_backend.transpile import functions
+    from glslcheck.backends.numpy_engine import nir_fold
+    from glslcheck.backends.numpy_engine.transpile import functions
 
     shader = make_shader(text)
     with_them = np.asarray(compile_backend(shader, "numpy").render(size=(32, 18), precision="float64"))

@@ -3,7 +3,7 @@
 llvmpipe evaluates sin, cos, exp2, log2 (and tan, pow, exp, log, the hyperbolic functions built
 on them) with its own polynomials (gallivm lp_bld_arit.c), asin/acos with Mesa's GLSL formula
 and atan with NIR's polynomial (after nir_opt_algebraic's reassociation of its last term); `Runtime("float32")` repeats them step by step (see
-`LlvmpipeMath` in glslcheck/numpy_backend/runtime.py). Each case renders a few hundred thousand
+`LlvmpipeMath` in glslcheck/backends/numpy_engine/runtime.py). Each case renders a few hundred thousand
 inputs at once (uniform grid, random, subnormal, huge, +-0, +-Inf, NaN) and compares every bit.
 
 CPU dependence: the steps llvmpipe builds with `llvm.fmuladd` are fused on a CPU with FMA and
@@ -19,7 +19,7 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from glslcheck.numpy_backend.runtime import HOST_FMA, Runtime
+from glslcheck.backends.numpy_engine.runtime import HOST_FMA, Runtime
 from llvmpipe_eval import evaluate, ulp_distance
 
 RT = Runtime("float32")

@@ -8,7 +8,7 @@ mechanism its comment names:
   (`Runtime.fmul`, `dot`, `mix`), and rewrites pow with a constant exponent 0, 1, 2 or 4;
   constants multiplied together are computed (0 * inf = NaN).
 - Mesa's glsl_zero_init leaves struct locals and out parameters undefined; the GL backend
-  zero-initialises them as WebGL does (gl_backend/zero_init.py).
+  zero-initialises them as WebGL does (backends/gl/zero_init.py).
 - Operands are read after the side effects of later operands (GLSL IR hoists calls).
 - Subnormal results of built-ins are flushed to zero (DAZ/FTZ).
 """
@@ -18,7 +18,7 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from glslcheck.verify import compile_backend
+from glslcheck.verification.verify import compile_backend
 
 CASES = {
     # NaN times constant-zero components: (NaN, 0, 0), not NaN everywhere

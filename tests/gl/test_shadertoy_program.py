@@ -1,10 +1,10 @@
-"""The Shadertoy wrapper text and its line map (glslcheck/shadertoy.py); no GL needed."""
+"""The Shadertoy wrapper text and its line map (glslcheck/shadertoy/wrapper.py); no GL needed."""
 
 import pytest
 
-from glslcheck.diagnostics import InputError
-from glslcheck.shadertoy import UNIFORMS, build_common_only, build_program
-from glslcheck.sources import Shader, Source
+from glslcheck.base.diagnostics import InputError
+from glslcheck.shadertoy.wrapper import UNIFORMS, build_common_only, build_program
+from glslcheck.shadertoy.sources import Shader, Source
 
 COMMON = "float twice(float x) {\n    return 2.0 * x;\n}\n"
 IMAGE = "void mainImage(out vec4 c, in vec2 p) {\n    c = vec4(twice(p.x));\n}\n"

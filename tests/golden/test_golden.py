@@ -8,7 +8,7 @@ image, not only as a verify mismatch. Regenerate with `UPDATE_GOLDEN=1 pytest te
 Tolerance. The goldens are 8-bit: golden = Q(gl) with Q(x) = round(255 * clamp(x, 0, 1)) / 255,
 and a render r is compared after the same quantisation. Q moves a value by at most 0.5/255, so
 |Q(r) - Q(gl)| <= |r - gl| + 1/255: a render within verify's float tolerance (2/255, see
-glslcheck/compare.py step 4) of the render the golden came from is within 3/255 of the golden,
+glslcheck/verification/compare.py step 4) of the render the golden came from is within 3/255 of the golden,
 and 3/255 is what we allow per channel. The rest of the model (edge pixels, pixel budgets,
 NaN/Inf: a PNG holds none, Q maps NaN to 0 as the display does) is verify's own, unchanged.
 """
@@ -19,10 +19,10 @@ from pathlib import Path
 
 import pytest
 
-from glslcheck.compare import compare
-from glslcheck.images import load_image, quantise, save_image
-from glslcheck.sources import load_shader
-from glslcheck.verify import compile_backend
+from glslcheck.verification.compare import compare
+from glslcheck.base.images import load_image, quantise, save_image
+from glslcheck.shadertoy.sources import load_shader
+from glslcheck.verification.verify import compile_backend
 
 ROOT = Path(__file__).resolve().parents[2]
 GOLDEN = Path(__file__).resolve().parent

@@ -17,8 +17,8 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from glslcheck.sources import load_shader
-from glslcheck.verify import compile_backend, verify
+from glslcheck.shadertoy.sources import load_shader
+from glslcheck.verification.verify import compile_backend, verify
 
 HERE = Path(__file__).resolve().parent
 SIZE = (160, 90)

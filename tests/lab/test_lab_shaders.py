@@ -13,7 +13,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from glslcheck.sources import load_shader
+from glslcheck.shadertoy.sources import load_shader
 
 ROOT = Path(__file__).resolve().parents[2]
 PARTS = sorted(p for p in (ROOT / "lab_shaders").iterdir() if p.is_dir())
@@ -35,8 +35,8 @@ def test_every_part_of_the_assignment_is_there():
 
 @pytest.mark.parametrize("part", PARTS, ids=lambda p: p.name)
 def test_reference_compiler_accepts_part_and_its_common_alone(part, glslang):
-    from glslcheck.glslang import validate
-    from glslcheck.shadertoy import build_common_only, build_program
+    from glslcheck.semantics.glslang import validate
+    from glslcheck.shadertoy.wrapper import build_common_only, build_program
 
     shader = load_shader(part)
     assert validate(build_program(shader).text).ok
@@ -45,7 +45,7 @@ def test_reference_compiler_accepts_part_and_its_common_alone(part, glslang):
 
 
 def test_lab_checks_and_lints_clean():
-    from glslcheck.cli import main
+    from glslcheck.cli.main import main
 
     assert main(["check", str(ROOT / "lab_shaders")]) == 0
     from glslcheck.lint import lint_paths

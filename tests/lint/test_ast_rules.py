@@ -7,13 +7,13 @@ from pathlib import Path
 
 import pytest
 
-from glslcheck import ast as A
-from glslcheck.check import check
+from glslcheck.frontend import syntax as A
+from glslcheck.semantics import check
 from glslcheck.lint import engine, lint_paths, lint_source
 from glslcheck.lint.rules import all_rules
-from glslcheck.analysis import FunctionFacts
-from glslcheck.parse import parse_units
-from glslcheck.sources import Shader, Source, find_shaders
+from glslcheck.semantics.analysis import FunctionFacts
+from glslcheck.frontend.parser import parse_units
+from glslcheck.shadertoy.sources import Shader, Source, find_shaders
 
 from .conftest import REPO_ROOT
 
@@ -195,9 +195,9 @@ def test_sign_analysis_follows_the_last_assignment_on_every_path():
 
 
 def test_one_answer_for_lvalues_and_call_targets():
-    from glslcheck.analysis import param_directions, written_variable
-    from glslcheck.builtins import Overload
-    from glslcheck.check.model import Constructor, Symbol
+    from glslcheck.semantics.analysis import param_directions, written_variable
+    from glslcheck.language.builtin_functions import Overload
+    from glslcheck.semantics.model import Constructor, Symbol
 
     fn = _function("struct S { vec3 p[2]; };\n"
                    "void g(in float a, out vec3 b, inout int c) { b = vec3(a); c += 1; }\n"

@@ -1,4 +1,4 @@
-"""iChannel sampler types inferred from their uses (glslcheck/check/channel_types.py): real
+"""iChannel sampler types inferred from their uses (glslcheck/semantics/channel_types.py): real
 submissions (tests/real_lint f23, f24) sample a cube map with `texture(iChannelN, vec3)`, which
 Shadertoy compiles because its wrapper declares a bound cube map's channel samplerCube."""
 
@@ -8,10 +8,10 @@ from pathlib import Path
 
 import pytest
 
-from glslcheck.check import check
+from glslcheck.semantics import check
 from glslcheck.lint import lint_paths
-from glslcheck.parse import parse_shader
-from glslcheck.sources import load_shader
+from glslcheck.frontend.parser import parse_shader
+from glslcheck.shadertoy.sources import load_shader
 
 CUBE = """
 // the sky: a cube map on iChannel1, read directly and through a helper

@@ -10,7 +10,7 @@ from pathlib import Path
 
 import pytest
 
-from glslcheck.cli import main
+from glslcheck.cli.main import main
 from glslcheck.lint import lint_paths
 from glslcheck.lint.rules import RULE_TABLE
 

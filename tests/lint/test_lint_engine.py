@@ -7,12 +7,12 @@ import types
 import pytest
 from hypothesis import given, strategies as st
 
-from glslcheck.diagnostics import Diagnostic
+from glslcheck.base.diagnostics import Diagnostic
 from glslcheck.lint import engine, lint_source
 from glslcheck.lint.rules import Rule, all_rules
 from glslcheck.lint.rules.missing_header import contributors, names_file, states_purpose
 from glslcheck.lint.textscan import scan
-from glslcheck.sources import Source
+from glslcheck.shadertoy.sources import Source
 
 
 def kinds(text: str) -> list[str]:

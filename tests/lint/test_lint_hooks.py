@@ -12,7 +12,7 @@ from pathlib import Path
 
 import yaml
 
-from glslcheck.commands.install_hook import MARKER
+from glslcheck.cli.commands.install_hook import MARKER
 
 from .conftest import BAD_SHADER, CLEAN_SHADER, REPO_ROOT, GitRepo, snapshot
 

@@ -3,9 +3,9 @@ line stays where it was."""
 
 from __future__ import annotations
 
-from glslcheck.diagnostics import Location
+from glslcheck.base.diagnostics import Location
 from glslcheck.lint.recover import declarations, drop_declaration
-from glslcheck.sources import Source
+from glslcheck.shadertoy.sources import Source
 
 TEXT = """// a comment { with a brace
 #define BODY { return 1.0; }
@@ -53,7 +53,7 @@ def test_a_dropped_declaration_whose_text_is_no_regular_expression(tmp_path, cap
     """Found by the fuzzer (seed 16, inputs 28811 and 29258): a dropped declaration that names no
     function is remembered by its first line, `float g = (1.0 +;`, and that text went into a
     regular expression unescaped: `re.error` and a traceback instead of the compile errors."""
-    from glslcheck.cli import main
+    from glslcheck.cli.main import main
     path = tmp_path / "Image.glsl"
     path.write_text("// Image.glsl\nfloat g = (1.0 +;\nfloat f(float x);\n"
                     "void mainImage(out vec4 c, in vec2 p) {\n    c = vec4(f(p.x));\n}\n")

@@ -1,4 +1,4 @@
-"""The float->uint models of glslcheck/driver_profile.py against what each kind of CPU measured.
+"""The float->uint models of glslcheck/backends/driver_profile.py against what each kind of CPU measured.
 
 llvmpipe computes ``uint(x)`` of negative, NaN or huge ``x`` (undefined in GLSL ES 3.00) with
 whatever instructions the CPU has, so one machine's answer cannot be pinned. These tables were
@@ -13,9 +13,9 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from glslcheck import driver_profile
-from glslcheck.driver_profile import FLOAT_TO_UINT, PROBE_INPUTS, float_to_uint, identify
-from glslcheck.numpy_backend.runtime import Runtime
+from glslcheck.backends import driver_profile
+from glslcheck.backends.driver_profile import FLOAT_TO_UINT, PROBE_INPUTS, float_to_uint, identify
+from glslcheck.backends.numpy_engine.runtime import Runtime
 
 NAN = float("nan")
 INF = float("inf")

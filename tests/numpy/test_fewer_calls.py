@@ -14,10 +14,10 @@ import itertools
 
 import numpy as np
 
-from glslcheck.numpy_backend.program import compile_numpy
-from glslcheck.numpy_backend.runtime import Runtime
-from glslcheck.numpy_backend.transpile import transpile_shader
-from glslcheck.numpy_backend.transpile.expressions import Expressions
+from glslcheck.backends.numpy_engine.program import compile_numpy
+from glslcheck.backends.numpy_engine.runtime import Runtime
+from glslcheck.backends.numpy_engine.transpile import transpile_shader
+from glslcheck.backends.numpy_engine.transpile.expressions import Expressions
 
 # A rotation by a per-pixel angle (the pattern of most raymarchers), the same call inside a
 # `&&` and both sides of a `?:` (parts under masks of their own), and repeats separated by a
@@ -75,7 +75,7 @@ def test_repeated_calls_are_not_shared_across_a_side_effect(make_shader):
 
 
 def test_the_tracing_transpiler_keeps_every_call(make_shader):
-    from glslcheck.numpy_backend.trace import TraceTranspiler
+    from glslcheck.backends.numpy_engine.trace import TraceTranspiler
 
     assert TraceTranspiler.CSE_CALLS is False  # each call is traced where it runs
 

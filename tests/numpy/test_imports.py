@@ -4,7 +4,7 @@ at the top of the file, never inside a function.
 
 The import graph is read from the source (the AST), not from `sys.modules`: an import inside a
 function counts as much as one at the top, since it closes a circle just the same when it runs.
-Edges to the package itself (`glslcheck/numpy_backend/__init__.py`, which re-exports the API)
+Edges to the package itself (`glslcheck/backends/numpy_engine/__init__.py`, which re-exports the API)
 are left out: every submodule's import passes through it first, so it is in no circle of
 submodules. Subpackages (a `transpile/` folder, say) are walked too.
 """
@@ -14,9 +14,9 @@ from __future__ import annotations
 import ast
 import os
 
-import glslcheck.numpy_backend as backend
+import glslcheck.backends.numpy_engine as backend
 
-PACKAGE = "glslcheck.numpy_backend"
+PACKAGE = "glslcheck.backends.numpy_engine"
 ROOT = os.path.dirname(backend.__file__)
 FRAME_LAYER = {f"{PACKAGE}.{m}" for m in ("program", "workers", "frame")}
 

@@ -1,4 +1,4 @@
-"""When the compiled math kernels are used (numpy_backend/jit.py): the modes, the tiered rule of
+"""When the compiled math kernels are used (backends/numpy_engine/jit.py): the modes, the tiered rule of
 auto, numba's cache directory. Runs without numba: the kernels are replaced by a stand-in that
 computes the reference and counts its calls (the real kernels are tests/numpy/test_jit_kernels.py
 and test_jit_render.py)."""
@@ -13,9 +13,9 @@ import sys
 import numpy as np
 import pytest
 
-from glslcheck.diagnostics import InputError
-from glslcheck.numpy_backend import jit
-from glslcheck.numpy_backend.runtime import LlvmpipeMath, _blocked
+from glslcheck.base.diagnostics import InputError
+from glslcheck.backends.numpy_engine import jit
+from glslcheck.backends.numpy_engine.runtime import LlvmpipeMath, _blocked
 
 ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 F32 = np.float32
@@ -135,7 +135,7 @@ KEEPS_CONFIG = """
 import numba
 from numba.core import config
 config.SLP_VECTORIZE = 1  # as the lockstep engine sets it before compiling a module
-from glslcheck.numpy_backend import jit
+from glslcheck.backends.numpy_engine import jit
 print(jit.use_cache_dir())
 numba.njit(lambda x: x + 1)(1)  # a compile: numba reloads its config if the environment changed
 print(config.SLP_VECTORIZE, config.CACHE_DIR)

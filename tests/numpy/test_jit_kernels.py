@@ -1,4 +1,4 @@
-"""numba's compiled kernels (numpy_backend/jit_kernels.py) against LlvmpipeMath's step-by-step
+"""numba's compiled kernels (backends/numpy_engine/jit_kernels.py) against LlvmpipeMath's step-by-step
 algorithms, bit for bit, with and without FMA.
 
 Through `jit.compiled`, the function runtime.LlvmpipeMath calls once the kernels are on: on about
@@ -18,8 +18,8 @@ import pytest
 from test_llvmpipe_fast_kernels import KERNELS as FAST_KERNELS
 from test_llvmpipe_fast_kernels import RNG, SPECIALS, _bits, _sample
 
-from glslcheck.numpy_backend import jit
-from glslcheck.numpy_backend.runtime import LlvmpipeMath, Runtime, _blocked
+from glslcheck.backends.numpy_engine import jit
+from glslcheck.backends.numpy_engine.runtime import LlvmpipeMath, Runtime, _blocked
 
 F32 = np.float32
 KERNELS = dict(FAST_KERNELS, _tan=(-3, 9.5, False))  # (scale exponents, positive only)

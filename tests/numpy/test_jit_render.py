@@ -19,9 +19,9 @@ import os
 import numpy as np
 import pytest
 
-from glslcheck.numpy_backend import runtime
-from glslcheck.numpy_backend.program import compile_numpy
-from glslcheck.sources import load_shader
+from glslcheck.backends.numpy_engine import runtime
+from glslcheck.backends.numpy_engine.program import compile_numpy
+from glslcheck.shadertoy.sources import load_shader
 
 ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 SHADERS = sorted(p for p in glob.glob(os.path.join(ROOT, "lab_shaders", "*")) if os.path.isdir(p))
@@ -84,7 +84,7 @@ def test_frames_equal_with_and_without_kernels(jit_kernels, make_shader, monkeyp
 def test_the_kernels_are_used(jit_kernels, make_shader, monkeypatch):
     """--jit on really takes the kernels (else the test above compares NumPy with itself): the
     raymarcher's frame makes hundreds of kernel calls."""
-    from glslcheck.numpy_backend import jit
+    from glslcheck.backends.numpy_engine import jit
 
     calls = []
     real = jit.compiled
@@ -108,7 +108,7 @@ def test_workers_load_the_kernels_once_the_parent_decided(jit_kernels, make_shad
     parent adds them up (jit.add_counted). Once the parent has decided (here: told so), the
     workers load the kernels before the next frame and count nothing more; the frames are the
     bits of --jit off either way."""
-    from glslcheck.numpy_backend import frame, jit, workers
+    from glslcheck.backends.numpy_engine import tiles as frame, jit, workers
 
     if not workers.available():
         if os.environ.get("CI"):

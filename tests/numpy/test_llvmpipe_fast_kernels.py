@@ -1,6 +1,6 @@
 """llvmpipe_fast's kernels against LlvmpipeMath's step-by-step algorithms, bit for bit.
 
-The kernels (glslcheck/numpy_backend/llvmpipe_fast.py) are the same float32 steps in fewer NumPy
+The kernels (glslcheck/backends/numpy_engine/llvmpipe_fast.py) are the same float32 steps in fewer NumPy
 calls, for arguments in the common range; elsewhere they decline (return None) and the
 reference path runs. Compared here on about two million lanes per kernel and FMA choice:
 arguments at every scale the kernels accept (uniform, log-spread down to FLT_MIN, exact
@@ -15,8 +15,8 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from glslcheck.numpy_backend import llvmpipe_fast
-from glslcheck.numpy_backend.runtime import LlvmpipeMath, _blocked
+from glslcheck.backends.numpy_engine import llvmpipe_fast
+from glslcheck.backends.numpy_engine.runtime import LlvmpipeMath, _blocked
 
 RNG = np.random.default_rng(1818)
 F32 = np.float32

@@ -9,8 +9,8 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from glslcheck.numpy_backend import runtime
-from glslcheck.numpy_backend.runtime import LlvmpipeMath, _blocked, _DeferredFma
+from glslcheck.backends.numpy_engine import runtime
+from glslcheck.backends.numpy_engine.runtime import LlvmpipeMath, _blocked, _DeferredFma
 
 RNG = np.random.default_rng(18)
 SPECIALS = np.array([0.0, -0.0, 1e-45, -1e-45, 1e-40, -1e-40, 1.1754942e-38, 1.17549435e-38,

@@ -14,10 +14,10 @@ import math
 import numpy as np
 import pytest
 
-from glslcheck import ast as A
-from glslcheck.numpy_backend.program import compile_numpy
-from glslcheck.numpy_backend.runtime import Runtime
-from glslcheck.numpy_backend.transpile import transpile_shader
+from glslcheck.frontend import syntax as A
+from glslcheck.backends.numpy_engine.program import compile_numpy
+from glslcheck.backends.numpy_engine.runtime import Runtime
+from glslcheck.backends.numpy_engine.transpile import transpile_shader
 
 NAN = float("nan")
 INF = float("inf")
@@ -125,7 +125,7 @@ void mainImage(out vec4 o, in vec2 f) {
 
 
 def test_rewrites_match_llvmpipe(gl, make_shader):
-    from glslcheck.gl_backend import compile_gl
+    from glslcheck.backends.gl import compile_gl
 
     shader = make_shader(_REWRITE_SHADER.replace("uniform float a_unused;\n", ""))
     size = (20, 4)
@@ -145,10 +145,10 @@ def test_nir_fold_shapes_are_equal_exactly_where_the_glsl_text_is():
     # printing every subtree (quadratic in a long chain): both must mean the same thing.
     from pathlib import Path
 
-    from glslcheck.numpy_backend.nir_fold import _shapes
-    from glslcheck.parse import parse_shader
-    from glslcheck.printer import to_glsl
-    from glslcheck.sources import find_shaders
+    from glslcheck.backends.numpy_engine.nir_fold import _shapes
+    from glslcheck.frontend.parser import parse_shader
+    from glslcheck.frontend.printer import to_glsl
+    from glslcheck.shadertoy.sources import find_shaders
 
     root = Path(__file__).resolve().parents[2]
     checked = 0
@@ -174,7 +174,7 @@ def test_nir_fold_shapes_are_equal_exactly_where_the_glsl_text_is():
 def test_nir_fold_on_a_chain_of_thousands_of_terms_is_linear(make_shader, monkeypatch):
     # 3,000 terms: printing every partial sum was 4.5 million node prints (142 s). Counted, not
     # timed: the GLSL text nir_fold prints stays within a small multiple of the source's size.
-    from glslcheck.numpy_backend import nir_fold
+    from glslcheck.backends.numpy_engine import nir_fold
 
     printed = [0]
     real = nir_fold.to_glsl

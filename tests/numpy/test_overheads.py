@@ -12,11 +12,11 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from glslcheck.numpy_backend import frame as F
-from glslcheck.numpy_backend import program as P
-from glslcheck.numpy_backend.frame import Compaction, Lanes
-from glslcheck.numpy_backend.program import compile_numpy
-from glslcheck.numpy_backend.transpile import transpile_shader
+from glslcheck.backends.numpy_engine import tiles as F
+from glslcheck.backends.numpy_engine import program as P
+from glslcheck.backends.numpy_engine.tiles import Compaction, Lanes
+from glslcheck.backends.numpy_engine.program import compile_numpy
+from glslcheck.backends.numpy_engine.transpile import transpile_shader
 
 # Globals read and written inside sparse (compacted) branches and loops, nested; gl_FragCoord
 # read only inside the sparse branch; an early-out function; constant arrays and structs.
@@ -91,7 +91,7 @@ def test_compaction_and_tiles_change_no_pixel(make_shader, knobs):
 
 
 def test_compacted_rendering_matches_gl(gl, make_shader, knobs):
-    from glslcheck.gl_backend import compile_gl
+    from glslcheck.backends.gl import compile_gl
 
     shader = make_shader(SHADER)
     knobs(TILE_LANES=600)

@@ -1,8 +1,8 @@
 """NumPy renders against the GL driver (Mesa llvmpipe): the corpus, masks, calls, indexing,
 precision and supersampling.
 
-Tolerance: `glslcheck.compare.compare`, the project's one tolerance model (2/255 per channel
-after clamping, scattered/edge budgets; argued in compare.py). Our float32 arithmetic follows
+Tolerance: `glslcheck.verification.compare.compare`, the project's one tolerance model (2/255 per channel
+after clamping, scattered/edge budgets; argued in verification/compare.py). Our float32 arithmetic follows
 llvmpipe operation by operation (no FMA, the same formulas for the built-ins, see runtime.py),
 so smooth shading agrees to ~1e-3 at worst (exp2/log2/pow ULPs through a lighting chain); the
 budget for edge pixels covers silhouettes where one float32 rounding flips a comparison. Tests
@@ -17,10 +17,10 @@ import os
 import numpy as np
 import pytest
 
-from glslcheck.compare import compare
-from glslcheck.numpy_backend import frame as F
-from glslcheck.numpy_backend import program as P
-from glslcheck.sources import load_shader
+from glslcheck.verification.compare import compare
+from glslcheck.backends.numpy_engine import tiles as F
+from glslcheck.backends.numpy_engine import program as P
+from glslcheck.shadertoy.sources import load_shader
 
 ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 CORPUS = sorted(glob.glob(os.path.join(ROOT, "tests", "corpus", "*.glsl"))
@@ -33,7 +33,7 @@ def _image(body: str, helpers: str = "") -> str:
 
 
 def _both(gl, shader, **kw):
-    from glslcheck.gl_backend import compile_gl
+    from glslcheck.backends.gl import compile_gl
 
     a = P.compile_numpy(shader).render(**kw)
     b = compile_gl(shader, gl).render(**kw)
@@ -64,7 +64,7 @@ def _load(path):
 
 @pytest.mark.parametrize("path", CORPUS + LABS, ids=lambda p: os.path.relpath(p, ROOT))
 def test_corpus_matches_gl(gl, path):
-    from glslcheck.gl_backend import compile_gl
+    from glslcheck.backends.gl import compile_gl
 
     shader, prog = _load(path)
     # A corpus program the driver rejects is a failure: check accepted it, so the two disagree.

@@ -12,9 +12,9 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from glslcheck import driver_profile
-from glslcheck.driver_profile import driver_model
-from glslcheck.numpy_backend.runtime import Runtime
+from glslcheck.backends import driver_profile
+from glslcheck.backends.driver_profile import driver_model
+from glslcheck.backends.numpy_engine.runtime import Runtime
 
 NAN = float("nan")
 INF = float("inf")
@@ -165,7 +165,7 @@ INT_CASES = [
 ]
 
 # uint(x) of negative, NaN or huge x is undefined and llvmpipe's answer depends on the CPU
-# (glslcheck/driver_profile.py): the runtime is given the model measured on this driver, so these
+# (glslcheck/backends/driver_profile.py): the runtime is given the model measured on this driver, so these
 # cases hold on every machine; tests/numpy/test_driver_profile.py checks each model on any machine.
 UINT_INPUTS = (-0.5, -1.0, -3.5, 5e9, NAN, 3e9, 4294967040.0, INF, 2.7, 2147483648.0)
 

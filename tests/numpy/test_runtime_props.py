@@ -8,7 +8,7 @@ import numpy as np
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from glslcheck.numpy_backend.runtime import Runtime
+from glslcheck.backends.numpy_engine.runtime import Runtime
 
 RT = Runtime("float32")
 f32 = np.float32

@@ -15,10 +15,10 @@ import traceback
 import numpy as np
 import pytest
 
-from glslcheck.diagnostics import GlslError
-from glslcheck.numpy_backend import frame as F
-from glslcheck.numpy_backend import program as P
-from glslcheck.numpy_backend.transpile import LOOP_CAP, transpile_shader
+from glslcheck.base.diagnostics import GlslError
+from glslcheck.backends.numpy_engine import tiles as F
+from glslcheck.backends.numpy_engine import program as P
+from glslcheck.backends.numpy_engine.transpile import LOOP_CAP, transpile_shader
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 SNAPSHOTS = os.path.join(HERE, "snapshots")
@@ -131,7 +131,7 @@ def _hostile_shader() -> str:
     body.append("    float lambda_ = o.__dict__.y + o.__class__ + o.mro;")
     body.append("    fragColor = vec4(fract(acc), fract(lambda_ * 0.1), 0.5, 1.0);")
     # A plain GLSL ES file: the `__` names are an error in a Shadertoy tab (no browser compiles
-    # them: glslcheck/check/webgl_rules.py), a warning here, so they still reach the transpiler.
+    # them: glslcheck/semantics/webgl_rules.py), a warning here, so they still reach the transpiler.
     return ("#version 300 es\nprecision highp float;\nout vec4 fragColor;\n" + structs + funcs
             + "\nvoid main() {\n    vec2 fragCoord = gl_FragCoord.xy;\n" + "\n".join(body) + "\n}\n")
 
@@ -153,8 +153,8 @@ def test_hostile_identifiers_are_mangled(make_shader):
 
 
 def test_hostile_identifiers_render_like_gl(gl, make_shader):
-    from glslcheck.compare import compare
-    from glslcheck.gl_backend import compile_gl
+    from glslcheck.verification.compare import compare
+    from glslcheck.backends.gl import compile_gl
 
     shader = make_shader(GLSL=_hostile_shader())
     a = P.compile_numpy(shader).render(size=(40, 20))
@@ -175,7 +175,7 @@ def test_module_runs_without_builtins(make_shader):
 
 
 def test_texture_lookup_is_a_located_error(make_shader):
-    # iChannel0-3 are sampled (numpy_backend/textures.py); a sampler uniform of the user's own is not
+    # iChannel0-3 are sampled (backends/numpy_engine/textures.py); a sampler uniform of the user's own is not
     shader = make_shader(_image("vec2 uv = fragCoord;\n    fragColor = texture(myTex, uv);", "uniform sampler2D myTex;"))
     with pytest.raises(GlslError) as e:
         transpile_shader(shader)
@@ -328,7 +328,7 @@ def test_public_api(tmp_path):
 def test_cli_render_and_transpile(tmp_path):
     from PIL import Image
 
-    from glslcheck.cli import main
+    from glslcheck.cli.main import main
 
     path = tmp_path / "Image.glsl"
     path.write_text(_image("fragColor = vec4(fragCoord.x / iResolution.x, 2.0, -1.0, 0.2);"))

@@ -1,4 +1,4 @@
-"""The uniformity (divergence) analysis, glslcheck/numpy_backend/uniformity.py: its verdicts on
+"""The uniformity (divergence) analysis, glslcheck/backends/numpy_engine/uniformity.py: its verdicts on
 small functions, and what it changes in the rendered frames (nothing) and in the lane shapes of
 the values (uniform ones stay one value per tile).
 
@@ -13,12 +13,12 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from glslcheck.numpy_backend import program as P
-from glslcheck.analysis import written_variable
-from glslcheck.numpy_backend.transpile import Facts, check_program, written_lvalues
-from glslcheck.numpy_backend.uniformity import Uniformity
-from glslcheck.parse import parse_shader
-from glslcheck import ast as A
+from glslcheck.backends.numpy_engine import program as P
+from glslcheck.semantics.analysis import written_variable
+from glslcheck.backends.numpy_engine.transpile import Facts, check_program, written_lvalues
+from glslcheck.backends.numpy_engine.uniformity import Uniformity
+from glslcheck.frontend.parser import parse_shader
+from glslcheck.frontend import syntax as A
 
 
 def _image(body: str, helpers: str = "") -> str:
@@ -277,7 +277,7 @@ def test_lab_shaders_render_the_same_without_free_writes(monkeypatch):
     import glob
     import os
 
-    from glslcheck.sources import load_shader
+    from glslcheck.shadertoy.sources import load_shader
 
     root = os.path.join(os.path.dirname(__file__), "..", "..", "lab_shaders")
     shaders = {p: load_shader(p) for p in sorted(glob.glob(os.path.join(root, "*", "")))}
@@ -291,7 +291,7 @@ def test_uniform_transcendentals_round_as_llvmpipe(gl, make_shader):
     """A uniform sin/exp2/pow is the runtime's call on a one-lane array: the LlvmpipeMath
     emulation applies to it as to a per-lane one, so a frame of them after an early return (the
     values computed once, under no mask) equals llvmpipe's bit for bit."""
-    from glslcheck.gl_backend import compile_gl
+    from glslcheck.backends.gl import compile_gl
 
     shader = make_shader(_image("""
     if (fragCoord.x < 4.0) { fragColor = vec4(0.25); return; }
@@ -309,8 +309,8 @@ def test_memo_math_gives_the_emulations_bits_and_computes_each_input_once():
     """lane_memo.MemoMath in front of LlvmpipeMath: one-lane inputs (uniform values) answered
     from the table are the emulation's own results bit for bit (-0.0, NaN and inf included);
     lane arrays go straight through."""
-    from glslcheck.numpy_backend.lane_memo import MemoMath
-    from glslcheck.numpy_backend.runtime import LlvmpipeMath
+    from glslcheck.backends.numpy_engine.lane_memo import MemoMath
+    from glslcheck.backends.numpy_engine.runtime import LlvmpipeMath
 
     lp = LlvmpipeMath()
     memo = MemoMath(lp)
@@ -343,7 +343,7 @@ def test_frames_are_the_same_with_and_without_the_memo(make_shader, monkeypatch)
     }
     fragColor = vec4(acc, pow(abs(sin(iTime)), 2.5), exp2(-fragCoord.y * 0.1), 1.0);"""))
     frames = [P.compile_numpy(shader).render(size=(24, 12), time=t) for t in (0.5, 0.5, 1.25)]
-    from glslcheck.numpy_backend import frame
+    from glslcheck.backends.numpy_engine import tiles as frame
 
     monkeypatch.setattr(frame, "MemoMath", lambda lp: lp)
     plain = [P.compile_numpy(shader).render(size=(24, 12), time=t) for t in (0.5, 0.5, 1.25)]
@@ -384,9 +384,9 @@ float split(float y, out vec3 o) {
 
 
 def test_code_after_early_exits_is_compacted_and_changes_no_pixel(gl, make_shader, monkeypatch):
-    from glslcheck.compare import compare
-    from glslcheck.gl_backend import compile_gl
-    from glslcheck.numpy_backend.transpile import Transpiler
+    from glslcheck.verification.compare import compare
+    from glslcheck.backends.gl import compile_gl
+    from glslcheck.backends.numpy_engine.transpile import Transpiler
 
     shader = make_shader(AFTER_EARLY_EXITS)
     assert "rest" in {k for k, *_ in P.compile_numpy(shader).meta["regions"].values()}

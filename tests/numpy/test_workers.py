@@ -1,4 +1,4 @@
-"""Rendering tiles in worker processes (glslcheck/numpy_backend/workers.py) changes no pixel,
+"""Rendering tiles in worker processes (glslcheck/backends/numpy_engine/workers.py) changes no pixel,
 no statistic and no error: every frame here is rendered with processes and with threads and
 must be bit-identical. A worker that dies makes the frame fall back to threads.
 
@@ -14,10 +14,10 @@ import signal
 import numpy as np
 import pytest
 
-from glslcheck.diagnostics import GlslError
-from glslcheck.numpy_backend import frame as F
-from glslcheck.numpy_backend import program as P
-from glslcheck.numpy_backend import workers
+from glslcheck.base.diagnostics import GlslError
+from glslcheck.backends.numpy_engine import tiles as F
+from glslcheck.backends.numpy_engine import program as P
+from glslcheck.backends.numpy_engine import workers
 
 from test_overheads import SHADER as SPARSE_SHADER  # compaction, globals, discard, gl_FragCoord
 from test_overheads import knobs  # noqa: F401 - the fixture
@@ -286,7 +286,7 @@ def test_workers_that_cannot_start_leave_threads(make_shader, knobs, monkeypatch
 
 
 def test_cli_parallel_option_and_environment(tmp_path, monkeypatch, capsys):
-    from glslcheck.cli import main
+    from glslcheck.cli.main import main
 
     shader = tmp_path / "Image.glsl"
     shader.write_text(DERIVATIVES)

@@ -1,4 +1,4 @@
-"""The AST's declarations (glslcheck/ast.py): children derived from the declared fields, the
+"""The AST's declarations (glslcheck/frontend/syntax.py): children derived from the declared fields, the
 generated constructors, and NodeVisitor's dispatch."""
 
 from __future__ import annotations
@@ -8,9 +8,9 @@ from pathlib import Path
 
 import pytest
 
-from glslcheck import ast as A
-from glslcheck.parse import parse_shader, parse_string
-from glslcheck.sources import find_shaders
+from glslcheck.frontend import syntax as A
+from glslcheck.frontend.parser import parse_shader, parse_string
+from glslcheck.shadertoy.sources import find_shaders
 
 ROOT = Path(__file__).resolve().parents[2]
 PROGRAMS = sorted(p for p in (ROOT / "tests" / "corpus").iterdir() if p.is_file()) + sorted(

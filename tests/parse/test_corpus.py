@@ -6,12 +6,12 @@ from __future__ import annotations
 from pathlib import Path
 
 import pytest
-from glslcheck import ast as A
-from glslcheck.lalr import Tree
-from glslcheck.parse import parse_shader, parse_tree, parse_units
-from glslcheck.parse_tables import build_lark
-from glslcheck.printer import to_glsl
-from glslcheck.sources import Source, find_shaders
+from glslcheck.frontend import syntax as A
+from glslcheck.frontend.lalr import Tree
+from glslcheck.frontend.parser import parse_shader, parse_tree, parse_units
+from glslcheck.frontend.parse_tables import build_lark
+from glslcheck.frontend.printer import to_glsl
+from glslcheck.shadertoy.sources import Source, find_shaders
 
 ROOT = Path(__file__).resolve().parents[2]
 CORPUS = sorted(p for p in (ROOT / "tests" / "corpus").iterdir() if p.is_file())
@@ -47,7 +47,7 @@ def test_lab_shaders_parse_and_round_trip(folder):
 
 def _parse_tree(path: Path) -> Tree:
     """The raw parse tree of a corpus file (for grammar coverage)."""
-    from glslcheck.preprocess import preprocess
+    from glslcheck.frontend.preprocess import preprocess
 
     (shader,) = find_shaders([str(path)])
     units = shader.units_for(shader.image.tab)

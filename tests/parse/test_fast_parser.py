@@ -1,8 +1,8 @@
-"""The fast lexer (glslcheck/lexer.py) and LALR driver (glslcheck/lalr.py) against Lark itself.
+"""The fast lexer (glslcheck/frontend/lexer.py) and LALR driver (glslcheck/frontend/lalr.py) against Lark itself.
 
 The reference is Lark's own basic lexer and LALR parser on the same grammar and tables, with
 `_Reference` as its post-lexer: the struct-name and reserved-word rule written the plain way
-(a generator over Lark's lazy token stream, as parse.py had it before lexer.py took over).
+(a generator over Lark's lazy token stream, as frontend/parser.py had it before frontend/lexer.py took over).
 On every corpus shader, every lab program and seeded mutations of each (tokens deleted,
 duplicated, swapped, replaced, glued together or split, stray characters inserted), both
 sides must give the same tokens (type, text, positions, lines, columns), the same tree, or
@@ -21,14 +21,14 @@ from lark import Tree as LarkTree
 from lark import exceptions as lark_exceptions
 from lark.lark import PostLex
 
-from glslcheck.builtins import RESERVED_WORDS
-from glslcheck.lalr import Tree, UnexpectedToken
-from glslcheck.lexer import ReservedWordError, UnexpectedCharacters
-from glslcheck.parse import get_parser, grammar_text
-from glslcheck.parse_tables import LARK_OPTIONS
-from glslcheck.preprocess import preprocess
-from glslcheck.sources import find_shaders
-from glslcheck.types import BY_NAME
+from glslcheck.language.builtin_functions import RESERVED_WORDS
+from glslcheck.frontend.lalr import Tree, UnexpectedToken
+from glslcheck.frontend.lexer import ReservedWordError, UnexpectedCharacters
+from glslcheck.frontend.parser import get_parser, grammar_text
+from glslcheck.frontend.parse_tables import LARK_OPTIONS
+from glslcheck.frontend.preprocess import preprocess
+from glslcheck.shadertoy.sources import find_shaders
+from glslcheck.language.glsl_types import BY_NAME
 
 ROOT = Path(__file__).resolve().parents[2]
 SOURCES = sorted(p for p in (ROOT / "tests" / "corpus").iterdir() if p.is_file()) + sorted(
@@ -156,7 +156,7 @@ def _tok(t: Token) -> tuple:
 
 
 def _tree(item):
-    """A tree as nested tuples: Lark's (the reference) and lalr.py's alike."""
+    """A tree as nested tuples: Lark's (the reference) and frontend/lalr.py's alike."""
     if isinstance(item, (Tree, LarkTree)):
         return (item.data, tuple(_tree(c) for c in item.children))
     return _tok(item) if isinstance(item, str) else item

@@ -4,10 +4,10 @@ from __future__ import annotations
 
 import pytest
 
-from glslcheck import ast as A
-from glslcheck.diagnostics import GlslError
-from glslcheck.parse import parse_shader, parse_units
-from glslcheck.sources import Shader, Source
+from glslcheck.frontend import syntax as A
+from glslcheck.base.diagnostics import GlslError
+from glslcheck.frontend.parser import parse_shader, parse_units
+from glslcheck.shadertoy.sources import Shader, Source
 
 
 def _find(tree, cls, pred=lambda n: True):
@@ -42,7 +42,7 @@ def test_tabs_keep_columns_and_crlf_and_bom(tmp_path):
         b"\xef\xbb\xbf// caf\xc3\xa9 \xe2\x80\x94 a non-ASCII comment\r\n"
         b"void mainImage(out vec4 c, in vec2 f)\r\n{\r\n\tc = vec4(1.0);\r\n}\r\n"
     )
-    from glslcheck.sources import load_shader
+    from glslcheck.shadertoy.sources import load_shader
 
     tree = parse_shader(load_shader(tmp_path / "Image.glsl")).ast
     (assign,) = _find(tree, A.Assignment)
@@ -53,7 +53,7 @@ def test_tabs_keep_columns_and_crlf_and_bom(tmp_path):
 def test_common_then_image_locations(tmp_path):
     (tmp_path / "Common.glsl").write_text("// shared\nfloat sq(float x) { return x * x; }\n")
     (tmp_path / "Image.glsl").write_text("void mainImage(out vec4 c, in vec2 f)\n{\n    c = vec4(sq(f.x));\n}\n")
-    from glslcheck.sources import load_shader
+    from glslcheck.shadertoy.sources import load_shader
 
     shader = load_shader(tmp_path)
     tree = parse_shader(shader).ast
@@ -66,7 +66,7 @@ def test_common_then_image_locations(tmp_path):
 def test_error_in_image_after_common_points_into_image(tmp_path):
     (tmp_path / "Common.glsl").write_text("float sq(float x) { return x * x; }\n")
     (tmp_path / "Image.glsl").write_text("void mainImage(out vec4 c, in vec2 f)\n{\n    c = vec4(sq(f.x))\n}\n")
-    from glslcheck.sources import load_shader
+    from glslcheck.shadertoy.sources import load_shader
 
     with pytest.raises(GlslError) as info:
         parse_shader(load_shader(tmp_path))
@@ -110,7 +110,7 @@ def test_syntax_error_inside_macro_expansion_points_at_the_use():
 def _pending_spans(text):
     """The program's nodes with each node's location as the parser left it (computed when first
     read), and the same locations computed now."""
-    from glslcheck.diagnostics import Location
+    from glslcheck.base.diagnostics import Location
 
     result = parse_units([Source("Image.glsl", text)])
     nodes = list(result.ast.walk())
@@ -122,7 +122,7 @@ def test_a_pending_location_is_the_location_it_stands_for():
     import copy
     import pickle
 
-    from glslcheck.diagnostics import Location
+    from glslcheck.base.diagnostics import Location
 
     text = "void mainImage(out vec4 c, in vec2 f)\n{\n    c = vec4(f.x * 2.0, f.y, 0.0, 1.0);\n}\n"
     result, nodes, pending = _pending_spans(text)

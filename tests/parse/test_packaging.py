@@ -30,12 +30,12 @@ def test_wheel_contains_grammar_and_parses_from_it(tmp_path):
     with zipfile.ZipFile(wheel) as z:
         names = z.namelist()
         assert "glslcheck/grammar/glsl.lark" in names
-        assert "glslcheck/grammar/glsl_tables.py" in names  # the parser's tables (parse_tables.py)
+        assert "glslcheck/grammar/glsl_tables.py" in names  # the parser's tables (frontend/parse_tables.py)
         z.extractall(tmp_path / "site")
     # Run from an unrelated folder with only the unpacked wheel on the path: the source tree's
     # grammar/ folder is not reachable, so the grammar must come from the package data.
     code = (
-        "import glslcheck.parse as p, sys; "
+        "import glslcheck.frontend.parser as p, sys; "
         "assert 'site' in p.__file__, p.__file__; "
         "t = p.parse_string('void mainImage(out vec4 c, in vec2 f) { c = vec4(1.0); }'); "
         "print(type(t).__name__)"
@@ -45,13 +45,13 @@ def test_wheel_contains_grammar_and_parses_from_it(tmp_path):
     assert out.returncode == 0, out.stderr
     assert out.stdout.strip() == "TranslationUnit"
     assert out.stderr == ""  # the shipped tables match the shipped grammar: nothing rebuilt
-    # Every package of the source tree ships (a missing one, glslcheck.analysis, made the
+    # Every package of the source tree ships (a missing one, glslcheck.semantics.analysis, made the
     # installed `glslcheck lint` fail at its first AST rule), and the installed command lints.
     packages = {str(p.parent.relative_to(ROOT)) for p in (ROOT / "glslcheck").rglob("__init__.py")}
     missing = sorted(p for p in packages if f"{p}/__init__.py" not in names)
     assert not missing, f"packages left out of the wheel (pyproject.toml [tool.setuptools] packages): {missing}"
     lab_file = ROOT / "lab_shaders" / "07_final" / "Image.glsl"
-    lint = subprocess.run([sys.executable, "-c", "import sys; from glslcheck.cli import main; sys.exit(main())",
+    lint = subprocess.run([sys.executable, "-c", "import sys; from glslcheck.cli.main import main; sys.exit(main())",
                            "lint", str(lab_file)], cwd=tmp_path, env=env, capture_output=True, text=True)
     assert lint.returncode in (0, 1) and "Traceback" not in lint.stderr, lint.stderr
     assert "file" in lint.stdout

@@ -1,7 +1,7 @@
-"""The parser tables shipped beside the grammar (glslcheck/parse_tables.py).
+"""The parser tables shipped beside the grammar (glslcheck/frontend/parse_tables.py).
 
 The module (grammar/glsl_tables.py) must be what Lark builds from the shipped grammar today (a
-grammar edit without `python -m glslcheck.parse_tables` fails here), and tables built from another
+grammar edit without `python -m glslcheck.frontend.parse_tables` fails here), and tables built from another
 grammar, or a damaged module, must be detected at run time and not used.
 """
 
@@ -12,9 +12,9 @@ import types
 
 import pytest
 
-from glslcheck import parse_tables
-from glslcheck.lalr import Driver
-from glslcheck.lexer import Lexer
+from glslcheck.frontend import parse_tables
+from glslcheck.frontend.lalr import Driver
+from glslcheck.frontend.lexer import Lexer
 
 
 def test_shipped_tables_are_built_from_the_shipped_grammar():
@@ -24,7 +24,7 @@ def test_shipped_tables_are_built_from_the_shipped_grammar():
     with open(path, encoding="utf-8") as f:
         shipped = f.read()
     fresh = parse_tables.dumps(parse_tables.build(parse_tables.grammar_text()))
-    assert shipped == fresh, "grammar/glsl_tables.py is stale: run `python -m glslcheck.parse_tables`"
+    assert shipped == fresh, "grammar/glsl_tables.py is stale: run `python -m glslcheck.frontend.parse_tables`"
 
 
 def test_loaded_tables_are_the_built_ones():

@@ -7,9 +7,9 @@ import itertools
 
 import pytest
 
-from glslcheck import ast as A
-from glslcheck.parse import parse_string
-from glslcheck.printer import PRECEDENCE, to_glsl
+from glslcheck.frontend import syntax as A
+from glslcheck.frontend.parser import parse_string
+from glslcheck.frontend.printer import PRECEDENCE, to_glsl
 
 BINARY = ["||", "^^", "&&", "|", "^", "&", "==", "!=", "<", ">", "<=", ">=", "<<", ">>", "+", "-", "*", "/", "%"]
 

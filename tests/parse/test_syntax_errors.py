@@ -6,9 +6,9 @@ from __future__ import annotations
 
 import pytest
 
-from glslcheck.diagnostics import GlslError
-from glslcheck.parse import parse_units
-from glslcheck.sources import Shader, Source
+from glslcheck.base.diagnostics import GlslError
+from glslcheck.frontend.parser import parse_units
+from glslcheck.shadertoy.sources import Shader, Source
 
 # (name, source, line, column, message substring). Lines and columns are 1-based in the
 # user's text; each case says why the position is the right one.
@@ -97,8 +97,8 @@ def test_syntax_error_position_and_message(name, text, line, col, message):
 
 @pytest.mark.parametrize("name,text,line,col,message", CASES, ids=[c[0] for c in CASES])
 def test_glslang_rejects_too(name, text, line, col, message, glslang):
-    from glslcheck.glslang import validate
-    from glslcheck.shadertoy import build_program
+    from glslcheck.semantics.glslang import validate
+    from glslcheck.shadertoy.wrapper import build_program
 
     shader = Shader(tabs={"Image": Source("Image.glsl", text)}, root="Image.glsl")
     result = validate(build_program(shader).text)

@@ -1,4 +1,4 @@
-"""Tests for glslcheck.preprocess: directives, macro expansion, limits and the location map."""
+"""Tests for glslcheck.frontend.preprocess: directives, macro expansion, limits and the location map."""
 
 from __future__ import annotations
 
@@ -12,9 +12,9 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from glslcheck.diagnostics import GlslError, Location
-from glslcheck.preprocess import MAX_EXPANSION_TOKENS, Comment, PPResult, _lex_all, preprocess
-from glslcheck.sources import Source, decode
+from glslcheck.base.diagnostics import GlslError, Location
+from glslcheck.frontend.preprocess import MAX_EXPANSION_TOKENS, Comment, PPResult, _lex_all, preprocess
+from glslcheck.shadertoy.sources import Source, decode
 
 
 def pp(text: str, path: str = "Image.glsl", **kw) -> PPResult:

@@ -13,8 +13,8 @@ import os
 import numpy as np
 import pytest
 
-from glslcheck.cli import main
-from glslcheck.probe import Inputs, Probe, bits_kept, first_unstable, format_nan, format_pixel
+from glslcheck.cli.main import main
+from glslcheck.verification.probe import Inputs, Probe, bits_kept, first_unstable, format_nan, format_pixel
 
 SMALL = Inputs(size=(8, 8))
 
@@ -430,7 +430,7 @@ def test_render_mentions_probe_nan_when_the_image_has_nan(tmp_path, capsys):
 
 
 def test_the_normal_module_has_no_tracing(make_shader):
-    from glslcheck.numpy_backend.transpile import transpile_shader
+    from glslcheck.backends.numpy_engine.transpile import transpile_shader
 
     source = transpile_shader(make_shader(CONTROL)).source
     assert "T." not in source
@@ -448,7 +448,7 @@ EVERY_SHADER = sorted(glob.glob(os.path.join(ROOT, "tests", "corpus", "*.glsl"))
 def test_traced_module_computes_what_the_render_computes(shader):
     # the traced module is the normal one plus hooks: the probed pixels' colours are the
     # render's, bit for bit, and --nan counts the render's NaN/Inf pixels
-    from glslcheck import api
+    from glslcheck.backends import registry as api
 
     inputs = Inputs(size=(32, 18), time=1.5)
     img = api.compile(shader).render(size=inputs.size, time=inputs.time)

@@ -6,7 +6,7 @@ definition, and then reports the wrapper's call of mainImage; that error had no 
 
 from __future__ import annotations
 
-from glslcheck.cli import main
+from glslcheck.cli.main import main
 
 
 def test_wrapper_error_points_at_the_users_mainimage(tmp_path, gl, capsys):
@@ -50,7 +50,7 @@ def test_a_line_directive_with_a_source_number_in_hex(tmp_path, gl, capsys):
 
 
 def test_driver_line_map():
-    from glslcheck.gl_backend.program import driver_line_map
+    from glslcheck.backends.gl.program import driver_line_map
 
     text = "a\n#line 10\nb\nc\n#line 0x20 2\nd\n#line 010\ne\n#line FOO\nf\n"
     m = driver_line_map(text)

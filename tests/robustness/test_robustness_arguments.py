@@ -1,5 +1,5 @@
 """Every command accepts and refuses the same values of the options they share (issue 21: one
-module of argument types and limits, glslcheck/commands/args.py), and the hostile values of
+module of argument types and limits, glslcheck/cli/commands/args.py), and the hostile values of
 issue 16 are usage errors (exit 2 with a message), not warnings, tracebacks or hours of work."""
 
 from __future__ import annotations
@@ -10,8 +10,8 @@ import sys
 
 import pytest
 
-from glslcheck.cli import build_parser, main
-from glslcheck.commands import args as A
+from glslcheck.cli.main import build_parser, main
+from glslcheck.cli.commands import args as A
 
 RENDERING = ("render", "verify", "bench", "report", "probe")  # every command that renders on the CPU
 
@@ -152,7 +152,7 @@ def test_time_1e39_is_a_usage_error_not_a_runtime_warning(tmp_path):
 
 def test_a_long_schedule_is_not_built_first():
     """`verify --frames 100000000` built its whole frame list before the first frame."""
-    from glslcheck.verify import frame_specs
+    from glslcheck.verification.verify import frame_specs
 
     specs = frame_specs(frames=10**8, fps=30.0, frame=5)
     assert len(specs) == 10**8 and sys.getsizeof(specs) < 1000

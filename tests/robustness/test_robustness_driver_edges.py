@@ -9,11 +9,11 @@ from __future__ import annotations
 
 import pytest
 
-from glslcheck.check import check
-from glslcheck.cli import main
-from glslcheck.diagnostics import GlslError
-from glslcheck.parse import parse_shader
-from glslcheck.sources import load_shader
+from glslcheck.semantics import check
+from glslcheck.cli.main import main
+from glslcheck.base.diagnostics import GlslError
+from glslcheck.frontend.parser import parse_shader
+from glslcheck.shadertoy.sources import load_shader
 
 HEADER = "// a shader\n"
 
@@ -38,7 +38,7 @@ def _warnings(tmp_path, text: str, name: str = "Image.glsl"):
 
 
 def _driver_rejects(tmp_path, text: str) -> bool:
-    from glslcheck.gl_backend import compile_gl
+    from glslcheck.backends.gl import compile_gl
 
     path = tmp_path / "driver" / "Image.glsl"
     path.parent.mkdir(exist_ok=True)

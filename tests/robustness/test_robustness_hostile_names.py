@@ -17,9 +17,9 @@ import re
 import numpy as np
 import pytest
 
-from glslcheck.builtins import KEYWORDS, RESERVED_WORDS
-from glslcheck.numpy_backend import program as P
-from glslcheck.numpy_backend.transpile import transpile_shader
+from glslcheck.language.builtin_functions import KEYWORDS, RESERVED_WORDS
+from glslcheck.backends.numpy_engine import program as P
+from glslcheck.backends.numpy_engine.transpile import transpile_shader
 
 NAMES = ["__import__", "__builtins__", "__class__", "__subclasses__", "__globals__", "__code__",
          "__getattribute__", "__dict__", "__name__", "eval", "exec", "compile", "os", "sys",
@@ -42,7 +42,7 @@ POSITIONS = {
 
 def _shader(position: str, name: str, plain: bool | None = None) -> dict[str, str]:
     """make_shader's arguments: a Shadertoy Image tab, or for a name with `__` (an error in a
-    tab: no browser compiles it; glslcheck/check/webgl_rules.py) a plain GLSL ES file."""
+    tab: no browser compiles it; glslcheck/semantics/webgl_rules.py) a plain GLSL ES file."""
     decl, use = POSITIONS[position](name)
     body = f"    float acc = 0.0;\n    {use}\n    fragColor = vec4(acc, fragCoord.x * 0.1, 0.0, 1.0);\n}}\n"
     if plain if plain is not None else "__" in name:

@@ -12,9 +12,9 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from glslcheck import images
-from glslcheck.cli import main
-from glslcheck.images import GifWriter, save_image
+from glslcheck.base import images
+from glslcheck.cli.main import main
+from glslcheck.base.images import GifWriter, save_image
 
 SHADER = "void mainImage(out vec4 c, in vec2 p) { c = vec4(p / iResolution.xy, 0.5, 1.0); }\n"
 
@@ -47,7 +47,7 @@ def test_dev_zero_is_refused_not_read():
 
 
 def test_reading_stops_at_the_cap_whatever_the_size_says(tmp_path: Path, monkeypatch):
-    from glslcheck import sources
+    from glslcheck.shadertoy import sources
 
     big = tmp_path / "Image.glsl"
     big.write_bytes(b"// x\n" * 100)

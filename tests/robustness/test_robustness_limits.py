@@ -28,11 +28,11 @@ import numpy as np
 import pytest
 from test_robustness_resources import PEAK_MB, RATIO, measure, write
 
-from glslcheck.diagnostics import GlslError
-from glslcheck.numpy_backend import frame as F
-from glslcheck.numpy_backend import program as P
-from glslcheck.numpy_backend.transpile import compile_generated, transpile
-from glslcheck.sources import load_shader
+from glslcheck.base.diagnostics import GlslError
+from glslcheck.backends.numpy_engine import tiles as F
+from glslcheck.backends.numpy_engine import program as P
+from glslcheck.backends.numpy_engine.transpile import compile_generated, transpile
+from glslcheck.shadertoy.sources import load_shader
 
 MAIN = "void mainImage(out vec4 c, in vec2 p) {\n"
 
@@ -187,8 +187,8 @@ def test_1200_deep_call_chain_is_a_located_error(tmp_path):
 def test_transpile_time_is_near_linear_in_the_depth(tmp_path, make_shader, shape):
     """Transpiling 10x deeper takes under RATIO (35) times as long (linear: ~10; the ternaries
     were cubic: 6 s at 150, 44 s at 300). A ratio on the same machine, not a time."""
-    from glslcheck.check import check
-    from glslcheck.parse import parse_shader
+    from glslcheck.semantics import check
+    from glslcheck.frontend.parser import parse_shader
 
     def seconds(n: int) -> float:
         if shape == "ternaries":
@@ -244,8 +244,8 @@ def test_frame_budget_from_the_environment(tmp_path):
 def test_frame_budget_from_the_environment_takes_the_option_range(monkeypatch, text):
     """GLSLCHECK_FRAME_SECONDS is held to --frame-budget's range (0.01 to 86400 s): a budget of
     31 years is no budget, and 1 ms is below the timer's resolution."""
-    from glslcheck.diagnostics import InputError
-    from glslcheck.numpy_backend.program import frame_seconds
+    from glslcheck.base.diagnostics import InputError
+    from glslcheck.backends.numpy_engine.program import frame_seconds
     monkeypatch.setenv("GLSLCHECK_FRAME_SECONDS", text)
     with pytest.raises(InputError, match="from 0.01 to 86400"):
         frame_seconds()

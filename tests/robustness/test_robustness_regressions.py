@@ -2,7 +2,7 @@
 hand-made limit case found, each with the minimal input, plus the inputs students really produce
 (BOM, CRLF, tabs, non-ASCII, NUL, empty files, comment-only files, binary files).
 
-Every case runs the command in-process through `glslcheck.cli.main` and asserts the contract
+Every case runs the command in-process through `glslcheck.cli.main.main` and asserts the contract
 of issue 9: no traceback, an exit code in {0, 1, 2}, every error line naming the user's file
 with a line and column inside it, and the file left unchanged.
 """
@@ -16,7 +16,7 @@ from pathlib import Path
 
 import pytest
 
-from glslcheck.cli import main
+from glslcheck.cli.main import main
 
 MAIN = "void mainImage(out vec4 fragColor, in vec2 fragCoord) {"
 
@@ -55,8 +55,8 @@ def error_lines(err: str) -> list[str]:
 @pytest.mark.parametrize("command", ["parse", "check", "lint"])
 def test_500_nested_blocks(tmp_path, command):
     """Crash: the checker's statement walk recursed once per `{` and raised RecursionError at
-    about 330 levels (fixed in glslcheck/check/__init__.py: the recursion limit is raised while
-    checking, as parse.py does while building). 500 levels is a documented limit."""
+    about 330 levels (fixed in glslcheck/semantics/__init__.py: the recursion limit is raised while
+    checking, as frontend/parser.py does while building). 500 levels is a documented limit."""
     text = "void mainImage(out vec4 c, in vec2 f) { " + "{" * 500 + "}" * 500 + " }\n"
     rc, _, err = run_cli(command, text, tmp_path)
     if command != "lint":
@@ -158,7 +158,7 @@ def test_huge_size_is_a_usage_error(tmp_path, command):
 def test_safety_net_turns_recursion_and_memory_errors_into_messages(tmp_path, monkeypatch, error, code):
     """The last resort in cli.main (a4fb23f): a stage that still runs out of stack or memory
     prints one line naming the shader instead of a traceback."""
-    import glslcheck.check as check_module
+    import glslcheck.semantics as check_module
 
     def boom(*args, **kwargs):
         raise error()

@@ -32,7 +32,7 @@ from pathlib import Path
 
 import pytest
 
-from glslcheck.sources import MAX_FILE_BYTES
+from glslcheck.shadertoy.sources import MAX_FILE_BYTES
 
 PEAK_MB = 700
 RATIO = 35

@@ -3,7 +3,7 @@
 The parser used to keep Lark's grammar cache, a pickle, in ~/.cache/glslcheck, and when that
 folder could not be created, at a fixed name in the shared temp folder: another user who wrote
 that file ran code as whoever ran glslcheck. The tables now ship in the package as JSON
-(glslcheck/parse_tables.py) and nothing is cached at run time.
+(glslcheck/frontend/parse_tables.py) and nothing is cached at run time.
 
 Each test runs glslcheck in a fresh process whose temp folder and cache folder are planted
 with pickles that, when unpickled, create a marker file, at the old names and at names a
@@ -38,7 +38,7 @@ def hook(event, args):
         unpickled.append(f"{args[0]}.{args[1]}")
 
 sys.addaudithook(hook)
-from glslcheck.cli import main
+from glslcheck.cli.main import main
 code = main(sys.argv[3:])
 print(json.dumps({"code": code, "opened": opened, "unpickled": unpickled,
                   "pickle_imported": "pickle" in sys.modules}))
@@ -96,7 +96,7 @@ def test_security_parse_tables_are_not_a_pickle():
     assigns one literal (ast.literal_eval accepts it: no call, no name, no import)."""
     import ast
 
-    from glslcheck import parse_tables
+    from glslcheck.frontend import parse_tables
 
     path = Path(parse_tables.grammar_folder()) / parse_tables.TABLES_FILE
     tree = ast.parse(path.read_text(encoding="utf-8"))

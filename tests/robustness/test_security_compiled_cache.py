@@ -16,9 +16,9 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from glslcheck.compiled_backend.engine import CompiledProgram, generate
-from glslcheck.numpy_backend import numba_cache
-from glslcheck.sources import load_shader
+from glslcheck.backends.compiled_engine.engine import CompiledProgram, generate
+from glslcheck.backends.numpy_engine import numba_cache
+from glslcheck.shadertoy.sources import load_shader
 
 SHADER = "void mainImage(out vec4 fragColor, in vec2 fragCoord) { fragColor = vec4(fragCoord.x / 8.0, 0.25, 0.5, 1.0); }\n"
 

@@ -79,7 +79,7 @@ def test_security_hook_never_imports_a_glslcheck_folder_of_the_repository(repo: 
     payload = f"open({str(marker)!r}, 'w').write('ran')\n"
     repo.write("glslcheck/__init__.py", payload)
     repo.write("glslcheck/__main__.py", payload)
-    repo.write("glslcheck/cli.py", payload + "def main():\n    return 0\n")
+    repo.write("glslcheck/cli/main.py", payload + "def main():\n    return 0\n")
     repo.git("add", "glslcheck")
     assert repo.commit("a package named like the tool").returncode == 0
     repo.write("lab4/Image.glsl", BAD)
@@ -188,7 +188,7 @@ def test_hook_leaves_large_non_shader_files_alone(repo: Repo, monkeypatch):
     monkeypatch.chdir(repo.root)
     for key, value in repo.env.items():
         monkeypatch.setenv(key, value)
-    from glslcheck.hook import staged_checkout
+    from glslcheck.lint.staged import staged_checkout
 
     with staged_checkout() as names:
         assert names == ["lab4/Image.glsl"]
@@ -218,7 +218,7 @@ def test_hook_checks_out_the_index_common_tab_next_to_a_staged_image(repo: Repo,
     monkeypatch.chdir(repo.root)
     for key, value in repo.env.items():
         monkeypatch.setenv(key, value)
-    from glslcheck.hook import staged_checkout
+    from glslcheck.lint.staged import staged_checkout
 
     with staged_checkout() as names:
         assert names == ["lab4/Image.glsl"]  # Common is context, not a target

@@ -1,13 +1,13 @@
 """verify names the GL driver, and says so when the NumPy backend's bit-exact emulation was copied
-from another one (glslcheck/driver_profile.py: llvmpipe of Mesa EMULATED_MESA)."""
+from another one (glslcheck/backends/driver_profile.py: llvmpipe of Mesa EMULATED_MESA)."""
 
 from __future__ import annotations
 
 import dataclasses
 from types import SimpleNamespace
 
-from glslcheck import driver_profile
-from glslcheck.verify import compile_backend, verify_frames
+from glslcheck.backends import driver_profile
+from glslcheck.verification.verify import compile_backend, verify_frames
 
 
 def _ctx(renderer: str, version: str) -> SimpleNamespace:

@@ -7,8 +7,8 @@ import json
 
 import numpy as np
 
-from glslcheck.compare import compare
-from glslcheck.verify import compile_backend, verify_frames
+from glslcheck.verification.compare import compare
+from glslcheck.verification.verify import compile_backend, verify_frames
 
 H, W = 30, 40
 
@@ -80,8 +80,8 @@ def test_unstable_lines_name_the_statement_that_loses_precision(gl, make_shader,
     (`float h = ...`; its operands keep all their bits). Made to disagree with each
     other there, the two renders give unstable pixels, and verify's attribution (probe's float64
     shadow on a sample of them) names that line with the bits it keeps."""
-    from glslcheck import verify
-    from glslcheck.verify import FrameSpec, unstable_lines
+    from glslcheck.verification import verify
+    from glslcheck.verification.verify import FrameSpec, unstable_lines
 
     shader = make_shader(FAR_CAMERA)
     size = (64, 36)

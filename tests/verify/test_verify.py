@@ -11,8 +11,8 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from glslcheck.sources import load_shader
-from glslcheck.verify import compile_backend, frame_specs, verify, verify_frames
+from glslcheck.shadertoy.sources import load_shader
+from glslcheck.verification.verify import compile_backend, frame_specs, verify, verify_frames
 
 ROOT = Path(__file__).resolve().parents[2]
 SIZE = (160, 90)
@@ -117,7 +117,7 @@ def test_supersampling_and_precision_reach_the_numpy_side(gl):
     assert c16.max_abs_error >= c64.max_abs_error
 
 
-# uint(x) of a negative or huge x: the CPU decides what llvmpipe returns (driver_profile.py).
+# uint(x) of a negative or huge x: the CPU decides what llvmpipe returns (backends/driver_profile.py).
 UINT_HASH = """
 void mainImage(out vec4 fragColor, in vec2 fragCoord)
 {
@@ -132,8 +132,8 @@ void mainImage(out vec4 fragColor, in vec2 fragCoord)
 def test_verify_emulates_the_drivers_float_to_uint(gl, tmp_path):
     """verify measures the driver's model and the NumPy side follows it; forced to any other
     model, the same frame mismatches (so the emulation is what makes it match)."""
-    from glslcheck.driver_profile import FLOAT_TO_UINT, driver_model
-    from glslcheck.verify import compile_backend
+    from glslcheck.backends.driver_profile import FLOAT_TO_UINT, driver_model
+    from glslcheck.verification.verify import compile_backend
 
     path = tmp_path / "uint_hash.glsl"
     path.write_text(UINT_HASH)

@@ -7,8 +7,8 @@ from pathlib import Path
 
 import pytest
 
-from glslcheck.cli import main
-from glslcheck.compare import JSON_KEYS
+from glslcheck.cli.main import main
+from glslcheck.verification.compare import JSON_KEYS
 
 ROOT = Path(__file__).resolve().parents[2]
 PART = str(ROOT / "lab_shaders" / "02_point_light")
@@ -39,7 +39,7 @@ def test_text_table_and_verdict(gl, capsys):
 
 
 def test_mismatch_exit_1_text_and_diff(gl, capsys, tmp_path, monkeypatch):
-    import glslcheck.verify as v
+    import glslcheck.verification.verify as v
 
     real = v.compile_backend
 
@@ -95,8 +95,8 @@ def test_usage_and_io_errors_exit_2(argv, capsys):
 
 
 def test_no_gl_context_exit_2_with_advice(monkeypatch, capsys):
-    import glslcheck.gl_backend.program as program
-    from glslcheck.gl_backend.context import ADVICE, GLUnavailable
+    import glslcheck.backends.gl.program as program
+    from glslcheck.backends.gl.context import ADVICE, GLUnavailable
 
     def unavailable():
         raise GLUnavailable(f"error: cannot create an OpenGL context with EGL (test); {ADVICE}")

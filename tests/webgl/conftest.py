@@ -1,6 +1,6 @@
 """Fixtures of the WebGL tests: one headless Chromium for the whole session.
 
-`webgl` is the process-wide browser (glslcheck.webgl_backend.get_browser), started once and
+`webgl` is the process-wide browser (glslcheck.backends.webgl.get_browser), started once and
 closed when the session ends. Without Chromium or Playwright the tests that need it are skipped
 on a developer machine (and say so) but FAIL on CI (any non-empty `CI`), as tests/conftest.py
 does for OpenGL.
@@ -16,7 +16,7 @@ import pytest
 
 @pytest.fixture(scope="session")
 def webgl():
-    from glslcheck.webgl_backend import WebGLUnavailable, close_browser, get_browser
+    from glslcheck.backends.webgl import WebGLUnavailable, close_browser, get_browser
 
     try:
         browser = get_browser()

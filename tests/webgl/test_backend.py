@@ -9,8 +9,8 @@ import sys
 import numpy as np
 import pytest
 
-from glslcheck.diagnostics import GlslError
-from glslcheck.webgl_backend import compile_webgl, get_browser
+from glslcheck.base.diagnostics import GlslError
+from glslcheck.backends.webgl import compile_webgl, get_browser
 
 SIZE = (160, 90)  # small: the machine is shared
 
@@ -106,9 +106,9 @@ def test_angle_error_in_common_points_into_common(webgl, make_shader):
 
 ENDLESS = """
 import sys
-from glslcheck.diagnostics import GlslError, register_source
-from glslcheck.sources import Shader, Source
-from glslcheck.webgl_backend import compile_webgl, get_browser
+from glslcheck.base.diagnostics import GlslError, register_source
+from glslcheck.shadertoy.sources import Shader, Source
+from glslcheck.backends.webgl import compile_webgl, get_browser
 
 text = ("void mainImage(out vec4 c, in vec2 f)\\n{\\n    float s = 0.0;\\n"
         "    for (int i = 0; i < 2000000000; i++) { s += sin(float(i) + f.x); }\\n    c = vec4(s);\\n}\\n")
@@ -138,8 +138,8 @@ def test_an_endless_loop_times_out_and_the_next_render_gets_a_new_browser(webgl)
 
 
 def test_a_missing_browser_is_an_input_error_with_advice(webgl, monkeypatch, capsys):
-    from glslcheck.cli import main
-    from glslcheck.webgl_backend import Browser, WebGLUnavailable
+    from glslcheck.cli.main import main
+    from glslcheck.backends.webgl import Browser, WebGLUnavailable
 
     monkeypatch.setenv("GLSLCHECK_CHROMIUM", "/nonexistent/chromium")
     with pytest.raises(WebGLUnavailable) as e:

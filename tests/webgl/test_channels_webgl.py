@@ -1,4 +1,4 @@
-"""Channels on the WebGL backend (glslcheck/webgl_backend/harness.js `bindChannels`): textures
+"""Channels on the WebGL backend (glslcheck/backends/webgl/harness.js `bindChannels`): textures
 with their filter, wrap, vflip and mipmaps, Buffer A-D with feedback, against the NumPy backend.
 
 What SwiftShader's WebGL does, measured here: it ignores lowp (a lookup returns the exact float32
@@ -6,7 +6,7 @@ filtered value), so the NumPy side is compared with its lowp truncation off
 (`MultipassProgram.lowp_samplers = False`); nearest and linear lookups and explicit-LOD mipmap
 lookups then agree to float32 rounding. Its projective lookups (textureProj*) divide otherwise
 than p.xy / p.z (neither that nor p.xy * (1 / p.z) reproduces them): up to 4.7e-4 apart, below
-compare.py's 1/255 steps, so not pinned here. A textureLodOffset whose LOD varies per pixel
+verification/compare.py's 1/255 steps, so not pinned here. A textureLodOffset whose LOD varies per pixel
 reads other texels than llvmpipe and NumPy (which agree) at some pixels (up to 0.5 apart,
 measured); with a constant LOD the three agree. Its implicit LOD (texture() on a mipmap, textureGrad)
 is computed otherwise than llvmpipe's: those pixels are driver-dependent, which `verify
@@ -22,11 +22,11 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from glslcheck import api
-from glslcheck.cli import main
-from glslcheck.sources import load_shader
-from glslcheck.verify import compile_backend
-from glslcheck.webgl_backend.drivers import verify_against_webgl
+from glslcheck.backends import registry as api
+from glslcheck.cli.main import main
+from glslcheck.shadertoy.sources import load_shader
+from glslcheck.verification.verify import compile_backend
+from glslcheck.backends.webgl.drivers import verify_against_webgl
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "channels"))
 from test_channels import MIPMAP_UV, SIZE, _folder, _png, _sampling_case, feedback  # noqa: E402,F401 (a fixture)
@@ -47,7 +47,7 @@ def test_feedback_with_a_texture_over_30_frames(webgl, gl, feedback):
     results = list(verify_against_webgl(shader, size=SIZE, frames=30, programs=programs))
     assert len(results) == 30 and all(r.match for r in results)
     # NumPy truncates lookups to lowp as llvmpipe does, SwiftShader does not; through 30 frames of
-    # feedback the truncations add up to 0.0033 (measured), inside the 1/255 steps of compare.py
+    # feedback the truncations add up to 0.0033 (measured), inside the 1/255 steps of verification/compare.py
     assert max(r.comparison.max_abs_error for r in results) < 2.0 / 255
     # without the truncation only float32 rounding remains (sin, mix): 2.0e-6 measured, about 8
     # ulps of values in [1, 2) (ulp 2^-22) after 30 frames; bounded at 16 such ulps

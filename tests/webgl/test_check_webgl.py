@@ -1,4 +1,4 @@
-"""`check --webgl` and the WebGL rules of our checker (glslcheck/check/webgl_rules.py).
+"""`check --webgl` and the WebGL rules of our checker (glslcheck/semantics/webgl_rules.py).
 
 Each fixture in tests/webgl/invalid is something ANGLE (Shadertoy's browser) rejects although
 glslangValidator accepts it (tools/webgl_agreement.py found them; Mesa accepts most of them and
@@ -15,11 +15,11 @@ from pathlib import Path
 
 import pytest
 
-from glslcheck.check.agreement import glslang_errors, our_errors
-from glslcheck.cli import main
-from glslcheck.diagnostics import register_source
-from glslcheck.sources import Shader, Source
-from glslcheck.webgl_backend import webgl_diagnostics
+from glslcheck.semantics.agreement import glslang_errors, our_errors
+from glslcheck.cli.main import main
+from glslcheck.base.diagnostics import register_source
+from glslcheck.shadertoy.sources import Shader, Source
+from glslcheck.backends.webgl import webgl_diagnostics
 
 HERE = Path(__file__).parent / "invalid"
 FIXTURES = sorted(HERE.glob("*.glsl"))
@@ -57,8 +57,8 @@ def test_glslang_accepts_them(path, glslang):
 
 
 def test_double_underscore_is_an_error_in_a_tab_and_a_warning_in_a_plain_file(tmp_path, capsys, make_shader):
-    from glslcheck.check import check
-    from glslcheck.parse import parse_shader
+    from glslcheck.semantics import check
+    from glslcheck.frontend.parser import parse_shader
 
     shader = make_shader("const float light__power = 2.0;\n"
                          "void mainImage(out vec4 c, in vec2 f) { c = vec4(light__power); }\n")

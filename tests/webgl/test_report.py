@@ -8,8 +8,8 @@ from pathlib import Path
 
 import numpy as np
 
-from glslcheck.cli import main
-from glslcheck.report import build_report, load_in_browser
+from glslcheck.cli.main import main
+from glslcheck.verification.report import build_report, load_in_browser
 
 SIZE = (64, 36)
 
@@ -90,7 +90,7 @@ def test_accuracy_time_table_and_plot(tmp_path, gl):
     assert "glslcheck bench --size 32x18 --runs 1 --time 0</code>" in page.html
     assert 'alt="render time against error" src="data:image/png;base64,' in page.html
     # Without GL there is no unit for the times: the page says so instead of a table.
-    from glslcheck.report import ShaderReport, _bench
+    from glslcheck.verification.report import ShaderReport, _bench
 
     r2 = ShaderReport("x", r.shader, unavailable={"gl": "no OpenGL context"})
     _bench(r2, (32, 18), 1, 0.0)

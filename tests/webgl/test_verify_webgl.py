@@ -10,10 +10,10 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from glslcheck.cli import main
-from glslcheck.sources import load_shader
-from glslcheck.verify import compile_backend
-from glslcheck.webgl_backend.drivers import closest_driver, driver_verdict, verify_against_webgl
+from glslcheck.cli.main import main
+from glslcheck.shadertoy.sources import load_shader
+from glslcheck.verification.verify import compile_backend
+from glslcheck.backends.webgl.drivers import closest_driver, driver_verdict, verify_against_webgl
 
 ROOT = Path(__file__).resolve().parents[2]
 LAB = sorted(p for p in (ROOT / "lab_shaders").iterdir() if p.is_dir())
@@ -99,7 +99,7 @@ def test_no_browser_outlives_its_process(webgl):
     # processes) and exits normally: atexit must end every one of them.
     code = ("import os, sys; sys.path.insert(0, %r)\n"
             "from tests.webgl.test_verify_webgl import _descendants\n"
-            "from glslcheck.webgl_backend import get_browser\n"
+            "from glslcheck.backends.webgl import get_browser\n"
             "get_browser(); print(' '.join(map(str, _descendants(os.getpid()))))\n") % str(ROOT)
     proc = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, timeout=300, cwd=ROOT)
     assert proc.returncode == 0, proc.stderr

@@ -26,7 +26,7 @@ and has a row in `RULE_TABLE` below. Nothing else registers a rule.
 from __future__ import annotations
 
 import importlib
-from ...records import record
+from ...base.records import record
 from functools import cache
 from types import ModuleType
 

@@ -4,10 +4,10 @@ not in the table). The analysis they report on lives in glslcheck/analysis."""
 from __future__ import annotations
 
 
-from ... import ast as A
-from ...analysis import builtin_call, numbers, program_facts
-from ...check.model import Model
-from ...printer import to_glsl
+from ...frontend import syntax as A
+from ...semantics.analysis import builtin_call, numbers, program_facts
+from ...semantics.model import Model
+from ...frontend.printer import to_glsl
 
 TYPE_CHECKING = False  # not typing's: importing typing costs every start-up (issue 18)
 if TYPE_CHECKING:

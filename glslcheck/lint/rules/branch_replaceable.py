@@ -39,9 +39,9 @@ vec3 color = mix(background, surface, step(0.0, t)); // t == 0.0 counts as a hit
 from __future__ import annotations
 
 
-from ... import ast as A
-from ...analysis import numbers, program_facts
-from ...diagnostics import Diagnostic
+from ...frontend import syntax as A
+from ...semantics.analysis import numbers, program_facts
+from ...base.diagnostics import Diagnostic
 from ._text import text
 
 TYPE_CHECKING = False  # not typing's: importing typing costs every start-up (issue 18)

@@ -39,9 +39,9 @@ for (int i = 0; i < kLightCount; ++i)
 from __future__ import annotations
 
 
-from ... import ast as A
-from ...analysis import program_facts
-from ...diagnostics import Diagnostic
+from ...frontend import syntax as A
+from ...semantics.analysis import program_facts
+from ...base.diagnostics import Diagnostic
 from ._text import text
 
 TYPE_CHECKING = False  # not typing's: importing typing costs every start-up (issue 18)

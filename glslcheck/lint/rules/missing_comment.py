@@ -44,8 +44,8 @@ from __future__ import annotations
 
 import re
 
-from ...regexes import compiled
-from ...diagnostics import Diagnostic
+from ...base.regexes import compiled
+from ...base.diagnostics import Diagnostic
 from ..textscan import BLANK, BRACE, BRACE_COMMENT, CODE, COMMENT, DIRECTIVE, LEADING, TRAILING, LineKind, inactive_lines
 
 TYPE_CHECKING = False  # not typing's: importing typing costs every start-up (issue 18)

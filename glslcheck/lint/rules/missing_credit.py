@@ -34,8 +34,8 @@ from __future__ import annotations
 
 import re
 
-from ...regexes import compiled
-from ...diagnostics import Diagnostic
+from ...base.regexes import compiled
+from ...base.diagnostics import Diagnostic
 
 TYPE_CHECKING = False  # not typing's: importing typing costs every start-up (issue 18)
 if TYPE_CHECKING:

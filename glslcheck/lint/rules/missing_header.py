@@ -49,9 +49,9 @@ from __future__ import annotations
 
 import re
 
-from ...regexes import compiled
-from ...diagnostics import Diagnostic
-from ...sources import path_name, path_stem, tab_name
+from ...base.regexes import compiled
+from ...base.diagnostics import Diagnostic
+from ...shadertoy.sources import path_name, path_stem, tab_name
 from ..textscan import BLANK, COMMENT, DIRECTIVE
 from .missing_credit import has_credit
 

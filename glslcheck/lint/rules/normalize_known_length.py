@@ -52,11 +52,11 @@ vec3 normal = (position - sphere.center) / sphere.radius; // |p - c| is the radi
 from __future__ import annotations
 
 
-from ... import ast as A
-from ... import types as T
-from ...analysis import builtin_call, calls_in, program_facts
-from ...check.model import Constructor, Symbol
-from ...diagnostics import Diagnostic
+from ...frontend import syntax as A
+from ...language import glsl_types as T
+from ...semantics.analysis import builtin_call, calls_in, program_facts
+from ...semantics.model import Constructor, Symbol
+from ...base.diagnostics import Diagnostic
 from ._text import text, wrap
 
 TYPE_CHECKING = False  # not typing's: importing typing costs every start-up (issue 18)

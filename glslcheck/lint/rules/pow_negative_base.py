@@ -31,8 +31,8 @@ float specular = pow(max(dot(viewDir, reflected), 0.0), alpha);
 from __future__ import annotations
 
 
-from ...analysis import builtin_calls
-from ...diagnostics import Diagnostic
+from ...semantics.analysis import builtin_calls
+from ...base.diagnostics import Diagnostic
 from ._text import negative_reason, text
 
 TYPE_CHECKING = False  # not typing's: importing typing costs every start-up (issue 18)

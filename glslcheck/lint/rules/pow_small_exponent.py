@@ -28,8 +28,8 @@ float fresnel = k2 * k2;
 from __future__ import annotations
 
 
-from ...analysis import builtin_calls, numbers
-from ...diagnostics import Diagnostic
+from ...semantics.analysis import builtin_calls, numbers
+from ...base.diagnostics import Diagnostic
 from ._text import is_atom, text, wrap
 
 TYPE_CHECKING = False  # not typing's: importing typing costs every start-up (issue 18)

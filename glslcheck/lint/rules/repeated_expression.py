@@ -55,9 +55,9 @@ vec3 toLight = light.center - position;
 
 from __future__ import annotations
 
-from ... import ast as A
-from ...analysis import program_facts, written_variable
-from ...diagnostics import Diagnostic
+from ...frontend import syntax as A
+from ...semantics.analysis import program_facts, written_variable
+from ...base.diagnostics import Diagnostic
 from ._text import text
 
 TYPE_CHECKING = False  # not typing's: importing typing costs every start-up (issue 18)

@@ -23,7 +23,7 @@ if (distSq < radius * radius) hit = 1.0;
 from __future__ import annotations
 
 
-from ...diagnostics import Diagnostic
+from ...base.diagnostics import Diagnostic
 from ._text import compared_calls, squared, text
 
 TYPE_CHECKING = False  # not typing's: importing typing costs every start-up (issue 18)

@@ -31,8 +31,8 @@ float t = -halfB - sqrt(max(disc, 0.0)); // the miss is masked with step(0.0, di
 from __future__ import annotations
 
 
-from ...analysis import builtin_calls
-from ...diagnostics import Diagnostic
+from ...semantics.analysis import builtin_calls
+from ...base.diagnostics import Diagnostic
 from ._text import negative_reason, text
 
 TYPE_CHECKING = False  # not typing's: importing typing costs every start-up (issue 18)

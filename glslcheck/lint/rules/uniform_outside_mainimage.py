@@ -36,9 +36,9 @@ vec3 lightPosition(in float time)
 from __future__ import annotations
 
 
-from ... import ast as A
-from ...analysis import program_facts
-from ...diagnostics import Diagnostic
+from ...frontend import syntax as A
+from ...semantics.analysis import program_facts
+from ...base.diagnostics import Diagnostic
 
 TYPE_CHECKING = False  # not typing's: importing typing costs every start-up (issue 18)
 if TYPE_CHECKING:

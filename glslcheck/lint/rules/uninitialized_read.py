@@ -34,9 +34,9 @@ color += kS * specularColor;
 from __future__ import annotations
 
 
-from ... import ast as A
-from ...analysis import param_directions, program_facts, written_variable
-from ...diagnostics import Diagnostic
+from ...frontend import syntax as A
+from ...semantics.analysis import param_directions, program_facts, written_variable
+from ...base.diagnostics import Diagnostic
 
 TYPE_CHECKING = False  # not typing's: importing typing costs every start-up (issue 18)
 if TYPE_CHECKING:

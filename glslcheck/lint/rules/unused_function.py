@@ -29,8 +29,8 @@ vec3 blinnPhong(in vec3 n, in vec3 l, in vec3 v) { /* ... */ }
 from __future__ import annotations
 
 
-from ...analysis import program_facts
-from ...diagnostics import Diagnostic
+from ...semantics.analysis import program_facts
+from ...base.diagnostics import Diagnostic
 from .unused_variable import common_shared
 
 TYPE_CHECKING = False  # not typing's: importing typing costs every start-up (issue 18)

@@ -29,7 +29,7 @@ col += ambient;
 
 from __future__ import annotations
 
-from ...diagnostics import Diagnostic
+from ...base.diagnostics import Diagnostic
 
 TYPE_CHECKING = False  # not typing's: importing typing costs every start-up (issue 18)
 if TYPE_CHECKING:

@@ -32,10 +32,10 @@ vec3 color = kD * attenuation * albedo * light.color;
 from __future__ import annotations
 
 
-from ... import ast as A
-from ...diagnostics import Diagnostic
-from ...shadertoy import PASS_TABS
-from ...analysis import program_facts
+from ...frontend import syntax as A
+from ...base.diagnostics import Diagnostic
+from ...shadertoy.wrapper import PASS_TABS
+from ...semantics.analysis import program_facts
 
 TYPE_CHECKING = False  # not typing's: importing typing costs every start-up (issue 18)
 if TYPE_CHECKING:

@@ -1,0 +1,470 @@
+"""The compiled engine's program: generate the module (codegen.py), load it through numba's
+cache, and render frames by rows on threads.
+
+The generated source is written to ``<cache>/compiled/m<hash>.py`` (numba_cache.trusted_dir:
+$NUMBA_CACHE_DIR, else $XDG_CACHE_HOME/glslcheck/numba, when no other user can write it), named
+by a hash of the source and of glslcheck's, numba's and the scalar runtime's versions; the
+source generated in this process is what runs, under that file's name, and every function is
+``cache=True``, so a second process loads machine code instead of compiling
+(`CompiledProgram.load_seconds`, `cold`).
+
+Frames: the rows are split into bands, each rendered by ``render_rows`` (nogil) on its own
+thread; a band allocates its own copy of the global state.
+"""
+
+from __future__ import annotations
+
+import hashlib
+import os
+import sys
+import threading
+import time
+import types
+from concurrent.futures import ThreadPoolExecutor
+from typing import Any
+
+import numpy as np
+
+from ...base.diagnostics import Diagnostic, GlslError, InputError, Location
+from ...shadertoy.wrapper import UNIFORMS_BY_NAME, FrameInputs, frame_inputs
+
+PIP = "pip install 'glslcheck[jit]'"
+_LOCK = threading.Lock()
+_MODULES: dict[str, Any] = {}  # hash -> loaded module (one per process)
+_SOURCES: dict[str, str] = {}  # hash -> the loaded module's source
+PARALLEL_PIXELS = 4096  # smaller frames on the calling thread (a thread hand-off costs more)
+_POOLS: dict[int, ThreadPoolExecutor] = {}
+
+
+def _pool(threads: int) -> ThreadPoolExecutor:
+    """The process's row-band threads (made once: starting threads costs a frame of a small shader)."""
+    with _LOCK:
+        pool = _POOLS.get(threads)
+        if pool is None:
+            pool = _POOLS[threads] = ThreadPoolExecutor(threads, thread_name_prefix="glslcheck-compiled")
+        return pool
+
+
+def available() -> bool:
+    """Whether numba is installed: backends/numpy_engine/jit.py's answer (numba is not imported)."""
+    from ..numpy_engine import jit
+
+    return jit.available()
+
+
+def require_numba() -> None:
+    """InputError (exit 2) without numba, with the pip line."""
+    if not available():
+        raise InputError(f"error: --backend compiled needs numba, which is not installed ({PIP})")
+
+
+def _versions() -> str:
+    from importlib.metadata import version
+
+    from ... import __version__
+
+    here = os.path.dirname(__file__)
+    nb = os.path.join(os.path.dirname(here), "numpy_engine")
+    h = hashlib.sha256()
+    # the runtime numba inlines into a generated module's machine code, which its cache keeps
+    for path in (os.path.join(here, "scalar.py"), os.path.join(here, "lanes_rt.py"), os.path.join(here, "lanes_math.py"),
+                 os.path.join(nb, "jit_kernels.py"), os.path.join(nb, "llvmpipe_fast.py")):
+        with open(path, "rb") as f:
+            h.update(f.read())
+    return f"{__version__} numba {version('numba')} {h.hexdigest()[:16]}"
+
+
+def lanes_width(lanes: int | None = None) -> int:
+    """Pixels per call of a module: `lanes` when given, else $GLSLCHECK_COMPILED_LANES, else 0
+    (the per-pixel module, the first tier of TieredProgram: tiered() says when)."""
+    if lanes is not None:
+        return lanes
+    text = os.environ.get("GLSLCHECK_COMPILED_LANES", "").strip()
+    if not text or text == "auto":
+        return 0
+    try:
+        return max(0, int(text))
+    except ValueError:
+        raise InputError(f"error: GLSLCHECK_COMPILED_LANES must be a number of pixels (0: one at a time) or auto, "
+                         f"not {text!r}") from None
+
+
+def tiered() -> bool:
+    """Whether programs start per pixel and move to lockstep when that pays (TieredProgram):
+    $GLSLCHECK_COMPILED_LANES unset or `auto`; a number fixes the mode."""
+    return os.environ.get("GLSLCHECK_COMPILED_LANES", "").strip() in ("", "auto")
+
+
+def generate(shader: Any, tab: str | None = None, lanes: int | None = None) -> tuple[str, str]:
+    """(generated source, path of the GLSL tab) of a shader's Image (or plain GLSL) tab: blocks
+    of `lanes_width(lanes)` pixels in lockstep (lanes.py), or one pixel a call when that is 0 or
+    the rewrite does not handle the program (the per-pixel module then says why in
+    LANES_FALLBACK)."""
+    from ...shadertoy.channels import needs_passes
+    from ..driver_profile import host_model
+    from ..numpy_engine.runtime import HOST_FMA
+    from ..numpy_engine.transpile.common import check_program
+    from ...frontend.parser import parse_shader
+    from .codegen import Codegen, _error, not_yet
+
+    if needs_passes(shader):
+        loc = Location(shader.root, 1, 1)
+        raise GlslError(Diagnostic("Buffer tabs and iChannel inputs: not supported by the compiled engine yet",
+                                   loc, rule="compiled-engine", help="render with --backend numpy or gl"))
+    if tab is None:
+        tab = "Image" if "Image" in shader.tabs else ("GLSL" if "GLSL" in shader.tabs else "Image")
+    pr = parse_shader(shader, tab)
+    model = check_program(pr)
+    src = shader.tabs.get(tab)
+    path = src.path if src is not None else shader.root
+    old = sys.getrecursionlimit()
+    sys.setrecursionlimit(max(old, 20000))
+    try:
+        cg = Codegen(model, path, HOST_FMA, host_model())
+        source = cg.module()
+        width = lanes_width(lanes)
+        if cg.derivative is not None and not width:
+            if lanes is not None or not tiered():
+                raise _error("dFdx/dFdy/fwidth() one pixel a call: the compiled engine computes derivatives "
+                             "only with pixels in lockstep (2x2 quads)", cg.derivative,
+                             help=f"unset GLSLCHECK_COMPILED_LANES (or set it to {TIER_LANES}), "
+                                  "or render with --backend numpy or gl")
+            width = TIER_LANES  # the default program: lockstep from the first frame (no per-pixel tier)
+        if width:
+            from .lanes import Unsupported, lanes_module
+
+            try:
+                source = lanes_module(source, width)
+            except Unsupported as e:
+                if cg.derivative is not None:  # no per-pixel module to fall back to
+                    raise not_yet(f"dFdx/dFdy/fwidth(): derivatives in this program ({e})", cg.derivative) from None
+                source += f"\nLANES_FALLBACK = {str(e)!r}  # why this shader runs one pixel a call\n"
+    finally:
+        sys.setrecursionlimit(old)
+    return source, path
+
+
+class CompiledProgram:
+    """A shader compiled per pixel; `render` as NumpyProgram.render (float32 only)."""
+
+    def __init__(self, source: str, path: str, threads: int | None = None) -> None:
+        self.source = source
+        self.path = path
+        self.threads = threads or os.cpu_count() or 1
+        self.mod: Any = None
+        self.load_seconds: float | None = None  # wall time of import + numba compile or cache load
+        self.cold: bool | None = None  # True when numba compiled (no cache), False when it loaded
+        self.key = hashlib.sha256((_versions() + "\n" + source).encode()).hexdigest()[:24]
+
+    def load(self) -> Any:
+        require_numba()
+        with _LOCK:
+            if self.mod is not None:
+                return self.mod
+            mod = _MODULES.get(self.key)
+            if mod is None:
+                mod = self._import()
+                _MODULES[self.key] = mod
+                _SOURCES[self.key] = self.source
+            self.mod = mod
+            return mod
+
+    def _import(self) -> Any:
+        from ..numpy_engine import jit
+
+        cache = jit.use_cache_dir()  # before the SLP setting below, which a reload of numba's config would undo
+        from numba.core import config
+
+        folder = _folder()
+        name = f"glslcheck_compiled_m{self.key}"
+        file = os.path.join(folder, f"m{self.key}.py")
+        # numba's cache needs the module as a file (it keys machine code to its path and stamp);
+        # what runs is the source generated here, never what the file holds, and a file that
+        # differs from it (cut short, edited) is written anew, which makes numba's entries stale.
+        if _read(file, strip=False) != self.source:
+            _write(file, self.source, quiet=False)
+        t0 = time.perf_counter()
+        mod = types.ModuleType(name)
+        mod.__file__ = file
+        sys.modules[name] = mod
+        exec(compile(self.source, file, "exec"), mod.__dict__)
+        self.cold = not _cached(cache, self.key)
+        slp, limit = config.SLP_VECTORIZE, sys.getrecursionlimit()
+        if getattr(mod, "LANES", 0):  # LLVM's SLP vectorizer packs the lanes (no reassociation: same bits)
+            config.SLP_VECTORIZE = 1
+            sys.setrecursionlimit(max(limit, 20000))  # numba's SSA pass recurses along long functions
+        try:
+            self._frame(mod, 1, 1, np.zeros((1, 2)), *self._inputs(mod, None))  # compiles, or loads the cache
+        finally:
+            config.SLP_VECTORIZE = slp
+            sys.setrecursionlimit(limit)
+        self.load_seconds = time.perf_counter() - t0
+        if self.cold:  # what compiling this module took, for TieredProgram's estimate in later processes
+            _write(os.path.join(folder, f"m{self.key}.compile"), f"{self.load_seconds:.3f}\n")
+        return mod
+
+    def compile_seconds(self) -> float | None:
+        """The wall time numba took to compile this module cold, in this process or an earlier
+        one (None when not recorded)."""
+        if self.cold:
+            return self.load_seconds
+        text = _read(os.path.join(_folder(), f"m{self.key}.compile"))
+        try:
+            return float(text) if text else None
+        except ValueError:
+            return None
+
+    def _inputs(self, mod: Any, values: dict | None) -> tuple[np.ndarray, np.ndarray]:
+        uf = np.zeros(max(1, mod.USLOTS["float"]), np.float32)
+        ui = np.zeros(max(1, mod.USLOTS["int"]), np.int32)
+        values = values or {}
+        for name, (kind, off) in mod.UNIFORMS.items():
+            u = UNIFORMS_BY_NAME[name]
+            v = values.get(name, u.default)
+            if u.array_size:  # one array per component: component c of element k at off + c*n + k
+                comps = [list(x) if isinstance(x, (tuple, list)) else [x] for x in v]
+                for k, elem in enumerate(comps):
+                    for c, x in enumerate(elem):
+                        uf[off + c * u.array_size + k] = np.float32(float(x))
+                continue
+            flat = list(v) if isinstance(v, (tuple, list)) else [v]
+            for c, x in enumerate(flat):
+                if kind == "int":
+                    ui[off + c] = np.int32(int(x))
+                else:
+                    uf[off + c] = np.float32(float(x))
+        return uf, ui
+
+    def _frame(self, mod: Any, width: int, height: int, offs: np.ndarray, uf: np.ndarray,
+               ui: np.ndarray) -> np.ndarray:
+        slots = mod.SLOTS
+        gt = [np.zeros(max(1, slots[k]), dt) for k, dt in
+              (("float", np.float32), ("int", np.int32), ("uint", np.uint32), ("bool", np.bool_))]
+        from .scalar import LoopCapError
+
+        out = np.empty((height, width, 4), np.float32)
+        try:
+            mod.globals_template(uf, ui, *gt)
+            bands = min(self.threads * 4, height) if width * height >= PARALLEL_PIXELS else 1
+            edges = [height * k // bands for k in range(bands + 1)]
+            if getattr(mod, "QUADS", False):  # a block is two rows (a 2x2 quad's): bands start at even rows
+                edges = [e - e % 2 for e in edges[:-1]] + [height]
+            if bands <= 1 or self.threads <= 1:
+                mod.render_rows(out, 0, height, width, height, offs, uf, ui, *gt)
+            else:
+                futures = [_pool(self.threads).submit(mod.render_rows, out, edges[k], edges[k + 1], width, height,
+                                                      offs, uf, ui, *gt)
+                           for k in range(bands) if edges[k] < edges[k + 1]]
+                for f in futures:
+                    f.result()
+        except LoopCapError as e:
+            from ..numpy_engine.transpile.common import LOOP_CAP
+
+            path, line, col = mod.LOOPS.get(int(e.args[0]), (self.path, 0, 0))
+            raise GlslError(Diagnostic(f"this loop ran more than {LOOP_CAP} times", Location(path, line, col),
+                                       rule="compiled-engine")) from None
+        return out
+
+    @frame_inputs
+    def render(self, inputs: FrameInputs, precision: str = "float32", stats: bool = False) -> np.ndarray:
+        """One frame: float32 (height, width, 4), top row first (the NumPy backend's layout)."""
+        if precision != "float32":
+            raise ValueError("the compiled engine renders in float32 only")
+        if stats:
+            raise ValueError("stats=True needs backend='numpy'")
+        mod = self.load()
+        uf, ui = self._inputs(mod, inputs.uniforms())
+        offs = np.array(inputs.offsets if len(inputs.offsets) > 1 else [(0.0, 0.0)], np.float64)
+        return self._frame(mod, inputs.width, inputs.height, offs, uf, ui)
+
+
+def _folder() -> str:
+    from ..numpy_engine import numba_cache
+
+    return os.path.join(numba_cache.trusted_dir(), "compiled")
+
+
+def _write(path: str, text: str, quiet: bool = True) -> None:
+    """A file of the cache, atomically (a reader sees all of it or none); `quiet`: a read-only
+    cache is no error (a record not kept)."""
+    try:
+        os.makedirs(os.path.dirname(path), mode=0o700, exist_ok=True)
+        tmp = f"{path}.{os.getpid()}"
+        with open(tmp, "w") as f:
+            f.write(text)
+        os.replace(tmp, path)
+    except OSError:
+        if not quiet:
+            raise
+
+
+def _read(path: str, strip: bool = True) -> str | None:
+    try:
+        with open(path) as f:
+            text = f.read()
+    except OSError:
+        return None
+    return text.strip() if strip else text
+
+
+def _cached(folder: str, key: str) -> bool:
+    """Whether numba had machine code for the module before this load (its index files)."""
+    return any(n.startswith(f"m{key}.") and n.endswith(".nbi") for n in _listdir(folder))
+
+
+def _listdir(folder: str) -> list[str]:
+    out = []
+    for root, _, files in os.walk(folder):
+        out += files
+    return out
+
+
+TIER_LANES = 8  # the lockstep width TieredProgram moves to (8: AVX2's float32 lanes)
+# Lockstep's cold compile over the per-pixel module's, for TieredProgram's estimate of what
+# moving costs: the median over the 67 lab and tuned real shaders (quartiles 3.5 and 6.2),
+# benchmarks/bench_compiled.py --fresh-cache --lanes 0,8 (docs/performance.md, "Two tiers").
+LOCKSTEP_COMPILE_RATIO = 4.7
+# Seconds of lockstep compile per line of the per-pixel module, the estimate when the per-pixel
+# module's compile time is not known (a numba cache filled before compile times were recorded):
+# the median of the same run (quartiles 0.021 and 0.036; a machine's speed moves it).
+LOCKSTEP_SECONDS_PER_LINE = 0.026
+
+
+class TieredProgram:
+    """The compiled engine's default: per pixel first, lockstep once that pays.
+
+    Lockstep (lanes.py) renders the same bits several times faster on heavy shaders, but numba
+    compiles it several times longer than the per-pixel module (seconds to tens of seconds): a
+    student's one render of a lab shader would wait for it and gain milliseconds. So frames
+    are rendered per pixel until the time they have taken, counting the frame about to be
+    rendered (its pixels at the rate measured so far), reaches what compiling lockstep is
+    expected to cost; then the lockstep module is made, in a thread of its own while the frames
+    go on per pixel (numba's compile beside the render's threads: no frame waits for it, a
+    one-off 1,000 s compile included), and every frame after it is ready uses it. This is
+    the ski-rental rule: whatever the number of frames to come, the total is at most about twice
+    what the better of the two modes alone would have cost (moving too late costs at most
+    the compile once more, moving never costs nothing when the frames stop first). The expected
+    cost: the lockstep module's load when numba's cache already holds it (an earlier process
+    moved), else LOCKSTEP_COMPILE_RATIO x the per-pixel module's compile time. The frames are
+    the same either way: lockstep is bit-identical to per pixel (tests/compiled/test_lanes.py),
+    so the moment of the move changes no pixel. A lockstep module that cannot be made (the
+    rewrite falls back, numba fails) leaves the program per pixel, with a warning for a failure.
+    """
+
+    def __init__(self, shader: Any, first: CompiledProgram, threads: int | None = None) -> None:
+        self.shader = shader
+        self.first = first
+        self.threads = threads
+        self.fast: CompiledProgram | None = None  # the lockstep program once moved
+        self.stay = False  # the lockstep module cannot be made: per pixel for good
+        self.spent = 0.0  # wall seconds of per-pixel frames
+        self.pixels = 0  # pixels those frames rendered
+        self._lock = threading.Lock()
+        self._found: list[str | None] = []  # _cached_fast's answer, looked up once (it walks the cache)
+        self._mover: threading.Thread | None = None  # the lockstep compile, once started
+
+    @property
+    def path(self) -> str:
+        return self.first.path
+
+    @property
+    def source(self) -> str:
+        return (self.fast or self.first).source
+
+    @property
+    def mode(self) -> str:
+        return f"lanes{TIER_LANES}" if self.fast is not None else "pixel"
+
+    def _marker(self) -> str:
+        return os.path.join(_folder(), f"m{self.first.key}.lanes{TIER_LANES}")
+
+    def _cached_fast(self) -> str | None:
+        """The lockstep module's source when an earlier process made it and numba cached it
+        (looked up on the first call: move_cost runs before every per-pixel frame)."""
+        if not self._found:
+            self._found.append(self._lookup_fast())
+        return self._found[0]
+
+    def _lookup_fast(self) -> str | None:
+        key = _read(self._marker())
+        if key in _SOURCES:  # loaded in this process already
+            return _SOURCES[key]
+        if not key or not _cached(os.path.dirname(_folder()), key):
+            return None
+        source = _read(os.path.join(_folder(), f"m{key}.py"), strip=False)  # as written: its hash is its key
+        return source if source is not None and CompiledProgram(source, "").key == key else None
+
+    def move_cost(self) -> float:
+        """Expected wall seconds of making the lockstep module now."""
+        if self._cached_fast() is not None:
+            return self.first.load_seconds or 0.0  # a cache load, as the per-pixel one was
+        known = self.first.compile_seconds()
+        if known is not None:
+            return LOCKSTEP_COMPILE_RATIO * known
+        return LOCKSTEP_SECONDS_PER_LINE * self.first.source.count("\n")
+
+    def _move(self) -> None:
+        """Make the lockstep module (in the mover thread); self.fast once it can render."""
+        try:
+            source = self._cached_fast()
+            if source is None:
+                source, _ = generate(self.shader, lanes=TIER_LANES)
+            if "LANES_FALLBACK" in source:
+                self.stay = True
+                return
+            fast = CompiledProgram(source, self.first.path, self.threads)
+            fast.load()
+        except Exception as e:  # an engine bug in the lockstep path: the per-pixel program still renders
+            import warnings
+
+            warnings.warn(f"glslcheck: the lockstep module failed to compile ({type(e).__name__}: {e}); "
+                          f"rendering per pixel", RuntimeWarning, stacklevel=2)
+            self.stay = True
+            return
+        _write(self._marker(), fast.key + "\n")
+        self.fast = fast
+
+    def settle(self, timeout: float | None = None) -> bool:
+        """Wait for a lockstep compile under way (at most timeout seconds); whether none is left."""
+        mover = self._mover
+        if mover is not None:
+            mover.join(timeout)
+            return not mover.is_alive()
+        return True
+
+    @frame_inputs
+    def render(self, inputs: FrameInputs, precision: str = "float32", stats: bool = False) -> np.ndarray:
+        """One frame (CompiledProgram.render), by whichever program is current."""
+        kw = dict(inputs.keywords(), precision=precision, stats=stats)
+        with self._lock:
+            if self._mover is None and not self.stay and self.pixels:
+                ahead = self.spent / self.pixels * inputs.width * inputs.height
+                if self.spent + ahead >= self.move_cost():
+                    # a daemon: a process that ends first drops the compile (numba writes its
+                    # cache files whole, by rename; the marker follows a finished load)
+                    self._mover = threading.Thread(target=self._move, name="glslcheck-lockstep", daemon=True)
+                    self._mover.start()
+        fast = self.fast
+        if fast is not None:
+            return fast.render(**kw)
+        self.first.load()  # its compile is not a frame's time
+        t0 = time.perf_counter()
+        out = self.first.render(**kw)
+        with self._lock:
+            self.spent += time.perf_counter() - t0
+            self.pixels += inputs.width * inputs.height
+        return out
+
+
+def compile_compiled(path_or_shader: Any, threads: int | None = None) -> Any:
+    """`glslcheck.compile(path, backend="compiled")`: an api.Program over a CompiledProgram, or
+    over a TieredProgram when the mode is not fixed (tiered())."""
+    from ..registry import Program
+    from ...shadertoy.sources import Shader, load_shader
+
+    shader = path_or_shader if isinstance(path_or_shader, Shader) else load_shader(path_or_shader)
+    source, path = generate(shader)
+    prog = CompiledProgram(source, path, threads)
+    if tiered() and "LANES_FALLBACK" not in source and "\nLANES = " not in source:  # lockstep from the start: derivatives
+        return Program(shader, "compiled", TieredProgram(shader, prog, threads))
+    return Program(shader, "compiled", prog)

@@ -1,0 +1,877 @@
+"""Pixels in lockstep: the per-pixel module of codegen.py rewritten so that one call computes a
+block of W pixels of a row (`render --backend compiled` moves to it once it pays,
+engine.TieredProgram; GLSLCHECK_COMPILED_LANES=8 or 16 starts with it).
+
+Why: the per-pixel functions run one pixel's chain of dependent float operations at a time,
+while llvmpipe runs 8 pixels an AVX2 instruction. Here every per-pixel scalar becomes W locals
+(`x` -> `x__0 .. x__{W-1}`), each statement is written once per lane, one after the other, so
+the W independent chains overlap in the CPU's pipelines and LLVM's SLP vectorizer (switched on
+for these modules, engine.py) can pack them into vector instructions.
+
+How: this is a rewrite of the generated Python (its `ast`), not a second code generator: the
+per-pixel module is the reference, and every lane of a statement is that statement with its
+names renamed, so each lane computes exactly the per-pixel engine's operations (the bits).
+
+- Uniform names. A local whose every write has an operand-free-of-lanes value (constants,
+  uniforms `uf`/`ui`, other uniform locals, calls of the scalar runtime on those) and happens
+  in uniform control stays ONE scalar for the block (`sin(iTime * 0.12)` once per block). A
+  fixpoint over the function: the per-pixel state arrays `gf`/`gi`/`gu`/`gb` and arrays are
+  per lane. Reads of state no function writes (`const` arrays of structs) read lane 0's copy
+  and are uniform (`_SharedReads`).
+- Uniform across calls. A call passes each argument free of lanes as one scalar, to the
+  callee's variant for those parameters (`f_rad__s0`: parameter 0 one scalar; Lanes.variant,
+  made once, callees first: GLSL has no recursion), and a result slot every return of that
+  variant writes in uniform control with a value free of lanes comes back as one scalar (a
+  second fixpoint, `ret_uniform`). The entry `shade` takes fragCoord.y and the pixel centre's
+  y as one scalar (ROW_UNIFORM: a block is W pixels of one row), so what a shader computes
+  from iTime, iResolution or a row's y, in loops and helper functions too, is computed once a
+  block. Only the variants shade reaches are written.
+- Control flow as llvmpipe runs it. Each function takes the block's mask `m__0..` first. An
+  `if` whose condition is uniform stays an `if`. A divergent one computes both sides' masks,
+  runs each side only when one of its lanes is active, and writes under the mask by select
+  (`x__k = lsel(mask__k, v, x__k)`, lanes_rt.py; a name written once, or its first write in
+  the text, is written plainly: the lanes outside the mask never read it). A loop whose exits are all uniform stays a loop; a divergent one runs
+  while any lane is active (`act`), with break (clears `act`), continue (`cont`, reset each
+  pass) and return (`live`, return slots `_r<i>`, clears every enclosing loop's `act`) as
+  masks. A loop's pass count is the block's (the slowest lane's): LOOP_CAP as per pixel.
+- Writes to the per-pixel state arrays (globals) are always under the mask; writes to locals in
+  uniform control are plain (a lane outside the function's mask never reads them), also after
+  a divergent return (`ldiv`: the lanes left out have returned and never read this call's
+  locals again; not with derivatives, whose neighbours read them), so a lights array built
+  element by element after `if (miss) return ...;` stays uniform, as the NumPy backend's free
+  writes (backends/numpy_engine/uniformity.py).
+- Math: the scalar runtime's one-lane functions, lane by lane; the names lanes_math.py defines
+  (branch-free, same bits) replace them when that module exists (`MATH`, the one switch).
+
+What is not rewritten (`Unsupported`: the engine falls back to the per-pixel module for that
+shader, the result unchanged): statements the per-pixel generator does not write today (an
+augmented assignment other than a loop counter, a `for` statement, ...).
+
+Derivatives. codegen writes a dFdx/dFdy leaf as `dfdx(v)` (QUADS = True in the module), which
+one pixel a call cannot compute; here a block is then W/2 pixels of two rows, 2x2 quads from an
+even x and y (fragCoord.y per lane, no ROW_UNIFORM), and lane k's `dfdx(v)` is the difference
+of two lanes of its quad (quad_lanes: llvmpipe's fine derivatives, as the NumPy backend's).
+Every lane computes each statement its block runs, also the lanes a divergent branch leaves
+out (a masked name keeps their last value), so a derivative taken under a branch reads what its
+neighbours computed: bit for bit with the NumPy backend in tests/compiled/test_derivatives.py,
+branches, loops and early returns included. At an odd right or top edge the quad's other pixels are
+helper pixels past the image (render_source). Such a shader has no per-pixel module to fall
+back to: what this rewrite refuses there is an error at the derivative's line (engine.generate).
+"""
+
+from __future__ import annotations
+
+import ast
+import copy
+import importlib.util
+from typing import Any
+
+from .codegen import pure_expr
+
+STATE_LANES = ("gf", "gi", "gu", "gb")  # per-pixel state: one array per lane
+UNIFORM_STATE = ("uf", "ui")
+ROW_UNIFORM = ("fy", "py")  # shade's fragCoord.y and pixel centre y: one value for a block (a row's)
+MATH = ("glslcheck.backends.compiled_engine.scalar", "glslcheck.backends.compiled_engine.lanes_math")  # later wins
+
+
+class Unsupported(Exception):
+    """A construct of the per-pixel module this rewrite does not handle (the engine renders the
+    shader per pixel)."""
+
+
+def math_imports() -> list[str]:
+    """The generated module's math imports: scalar.py's names, then lanes_math.py's (when that
+    module exists) over them."""
+    out = []
+    for name in MATH:
+        if importlib.util.find_spec(name) is not None:
+            out.append(f"from {name} import *  # noqa: F401,F403")
+    return out
+
+
+def _names(node: Any) -> set[str]:
+    return {n.id for n in ast.walk(node) if isinstance(n, ast.Name)}
+
+
+def _is_counter(name: str) -> bool:
+    return name.startswith("_n") and name[2:].isdigit()
+
+
+_ARRAY_CALLS = {"acopy", "aslice", "np.zeros", "np.empty"}
+
+
+def _call_name(node: Any) -> str | None:
+    if isinstance(node, ast.Call):
+        return ast.unparse(node.func)
+    return None
+
+
+def _makes_array(value: Any) -> bool:
+    return any(_call_name(n) in _ARRAY_CALLS for n in ast.walk(value))
+
+
+def _exits(stmts: list) -> set[str]:
+    """The exits in stmts: 'return' anywhere, 'break'/'continue' of the enclosing loop."""
+    out: set[str] = set()
+    for s in stmts:
+        if isinstance(s, ast.Return):
+            out.add("return")
+        elif isinstance(s, ast.Break):
+            out.add("break")
+        elif isinstance(s, ast.Continue):
+            out.add("continue")
+        elif isinstance(s, ast.If):
+            out |= _exits(s.body) | _exits(s.orelse)
+        elif isinstance(s, ast.While):
+            out |= _exits(s.body) & {"return"}
+    return out
+
+
+def quad_lanes(name: str, k: int, W: int) -> tuple[int, int]:
+    """The lanes whose difference is lane k's derivative (`dfdx`/`dfdy`) in a block of 2x2
+    quads: lanes 0..W/2-1 are the lower row (even y, counted from the bottom as gl_FragCoord),
+    W/2..W-1 the row above, each row from an even x. As llvmpipe (fine derivatives,
+    backends/numpy_engine/runtime.py Runtime.dFdx): dFdx(x, y) = v(x|1, y) - v(x&~1, y), dFdy(x, y) =
+    v(x, y|1) - v(x, y&~1)."""
+    h = W // 2
+    c, r = k % h, k // h
+    if name == "dfdx":
+        return r * h + (c | 1), r * h + (c & ~1)
+    return h + c, c
+
+
+class _Rename(ast.NodeTransformer):
+    def __init__(self, varying: set[str], k: int, quads: int = 0) -> None:
+        self.varying = varying
+        self.k = k
+        self.quads = quads  # W when the block is 2x2 quads (derivatives), else 0
+
+    def visit_IfExp(self, node: ast.IfExp) -> Any:
+        """`a if c else b` of pure sides (codegen's `0 if x == 0 else y * x` for a value the NumPy
+        backend takes for a constant) as lsel: two basic blocks per lane stop the SLP
+        vectorizer from packing the lanes; both sides computed, the same value picked."""
+        node = self.generic_visit(node)
+        if pure_expr(node):
+            return ast.copy_location(ast.Call(ast.Name("lsel", ast.Load()), [node.test, node.body, node.orelse], []),
+                                     node)
+        return node
+
+    def visit_Call(self, node: ast.Call) -> Any:
+        f = node.func
+        if (self.quads and isinstance(f, ast.Name) and f.id in ("dfdx", "dfdy") and len(node.args) == 1
+                and isinstance(node.args[0], ast.Name) and node.args[0].id in self.varying):
+            # a difference of two lanes of the quad; of a uniform value, lanes_rt.dfdx (0)
+            v = node.args[0].id
+            a, b = quad_lanes(f.id, self.k, self.quads)
+            return ast.copy_location(ast.BinOp(ast.Name(f"{v}__{a}", ast.Load()), ast.Sub(),
+                                               ast.Name(f"{v}__{b}", ast.Load())), node)
+        return self.generic_visit(node)
+
+    def visit_Name(self, node: ast.Name) -> Any:
+        if node.id in self.varying:
+            return ast.copy_location(ast.Name(f"{node.id}__{self.k}", node.ctx), node)
+        return node
+
+
+class _SharedReads(ast.NodeTransformer):
+    """Reads of global state no function writes (a `const` array of structs, a global written
+    only by its initializer) read lane 0's copy, `gf__0[k]`: every lane's copy holds the same
+    template values, and the read is uniform (one scalar for the block, not W loads). Written:
+    the constant slots stored to outside init_globals; a write at a run-time index or by aset
+    makes the whole state array written."""
+
+    def __init__(self, functions: Any) -> None:
+        self.written: dict[str, set | None] = {k: set() for k in STATE_LANES}
+        for f in functions:
+            for n in ast.walk(f):
+                if isinstance(n, ast.Subscript) and isinstance(n.ctx, ast.Store) and isinstance(n.value, ast.Name):
+                    self.store(n.value.id, n.slice)
+                elif _call_name(n) == "aset" and n.args and isinstance(n.args[0], ast.Name):
+                    self.store(n.args[0].id, None)
+
+    def store(self, kind: str, index: Any) -> None:
+        if kind not in self.written or self.written[kind] is None:
+            return
+        if isinstance(index, ast.Constant) and isinstance(index.value, int):
+            self.written[kind].add(index.value)
+        else:
+            self.written[kind] = None
+
+    def visit_Subscript(self, node: ast.Subscript) -> Any:
+        self.generic_visit(node)
+        base = node.value
+        if not (isinstance(node.ctx, ast.Load) and isinstance(base, ast.Name) and base.id in STATE_LANES):
+            return node
+        written = self.written[base.id]
+        if written is None:
+            return node
+        index = node.slice
+        if isinstance(index, ast.Constant) and isinstance(index.value, int):
+            if index.value in written:
+                return node
+        elif written:
+            return node
+        return ast.copy_location(ast.Subscript(ast.Name(f"{base.id}__0", ast.Load()), index, node.ctx), node)
+
+
+class _Fn:
+    """One function's rewrite (see the module docstring)."""
+
+    def __init__(self, lanes: "Lanes", fn: ast.FunctionDef, uniform: frozenset = frozenset()) -> None:
+        self.L = lanes
+        self.fn = fn
+        self.W = lanes.W
+        self.params = [a.arg for a in fn.args.args]
+        self.uniform = uniform  # the indices of the parameters the callers pass as one scalar
+        self.name = variant_name(fn.name, uniform)
+        self.scalar_params = {p for i, p in enumerate(self.params) if p in UNIFORM_STATE or i in uniform}
+        self.varying: set[str] = {p for p in self.params if p not in self.scalar_params}
+        self.counts: dict[str, int] = {p: 1 for p in self.params}
+        for n in ast.walk(fn):
+            if isinstance(n, ast.Assign):
+                for t in n.targets:
+                    for x in ([t] if not isinstance(t, ast.Tuple) else t.elts):
+                        if isinstance(x, ast.Name):
+                            self.counts[x.id] = self.counts.get(x.id, 0) + 1
+            elif isinstance(n, ast.AugAssign) and isinstance(n.target, ast.Name):
+                self.counts[n.target.id] = self.counts.get(n.target.id, 0) + 2
+        self.nret = 0
+        for n in ast.walk(fn):
+            if isinstance(n, ast.Return) and isinstance(n.value, ast.Tuple):
+                self.nret = len(n.value.elts)
+        # which result slots are one scalar for the block: every return is in uniform control
+        # with a value free of lanes there (optimistic at first, settled by the fixpoint)
+        self.ret_uniform = [True] * self.nret
+        self.calls: set[tuple[str, frozenset]] = set()  # the callee variants of the last walk
+
+    # -- lanes of expressions ----------------------------------------------------------------
+    def is_varying(self, e: Any) -> bool:
+        return bool(_names(e) & self.varying)
+
+    def lane(self, e: Any, k: int) -> str:
+        if not self.is_varying(e):
+            return ast.unparse(e)
+        return ast.unparse(_Rename(self.varying, k, self.W if self.L.quads else 0).visit(copy.deepcopy(e)))
+
+    def lanes_of(self, e: Any) -> list[str]:
+        if not self.is_varying(e):
+            text = ast.unparse(e)
+            return [text] * self.W
+        return [self.lane(e, k) for k in range(self.W)]
+
+    def lane_names(self, name: str) -> list[str]:
+        return [f"{name}__{k}" for k in range(self.W)]
+
+    # -- emission ----------------------------------------------------------------------------
+    def emit(self, text: str) -> None:
+        self.lines.append("    " * self.indent + text)
+
+    def fresh(self, prefix: str) -> str:
+        self.n += 1
+        return f"_{prefix}{self.n}L"
+
+    def atom(self, text: str) -> str:
+        """text as a name or constant (a long call's arguments may not hold control flow:
+        Python passes them as one list, which numba reads only without branches)."""
+        if text.isidentifier() or text in ("True", "False"):
+            return text
+        name = self.fresh("a")
+        self.emit(f"{name} = {text}")
+        return name
+
+    def any_of(self, mask: str) -> str:
+        return "(" + " | ".join(self.lane_names(mask)) + ")"
+
+    def new_mask(self, prefix: str, texts: list[str]) -> str:
+        name = self.fresh(prefix)
+        for k, t in enumerate(texts):
+            self.emit(f"{name}__{k} = {t}")
+        return name
+
+    def mark(self, name: str) -> None:
+        if not _is_counter(name) and name not in self.varying:
+            self.varying.add(name)
+            self.changed = True
+
+    # -- the walk ----------------------------------------------------------------------------
+    def run(self) -> list[str]:
+        """Fixpoint of the varying names, then the rewritten function's lines."""
+        for _ in range(100):
+            self.changed = False
+            self.ret_seen = list(self.ret_uniform)
+            self.walk_function()
+            if self.ret_seen != self.ret_uniform:
+                self.ret_uniform = self.ret_seen
+                self.changed = True
+            if not self.changed:
+                return self.lines
+        raise Unsupported("the uniformity fixpoint did not settle")
+
+    def walk_function(self) -> None:
+        self.lines: list[str] = []
+        self.indent = 1
+        self.n = 0
+        self.div = False  # divergent control: writes by select under self.mask
+        # locals too: False while the only lanes left out are lanes that have returned (they
+        # never read this call's locals again), True in a divergent branch or loop
+        self.ldiv = False
+        self.mask = "m"  # the current region's mask (the function's in uniform control)
+        self.loops: list[tuple[str, str, str] | None] = []  # None: a loop of Python's own
+        self.live = False  # a divergent return happened: `live__k` lanes are still running
+        self.defined = set(self.params)  # names written so far in the text
+        self.calls = set()
+        self.block(self.fn.body, top=True)
+
+    def block(self, stmts: list, top: bool = False) -> None:
+        n0 = len(self.lines)
+        for s in stmts:
+            self.stmt(s, top)
+        if len(self.lines) == n0:
+            self.emit("pass")
+
+    def refresh(self) -> None:
+        """After a statement with exits, the current region loses the lanes that left."""
+        loop = next((x for x in reversed(self.loops) if x is not None), None) if self.loops else None
+        if not self.div:
+            if not self.live:
+                return
+            self.div = True
+            self.ldiv = self.L.quads  # derivatives read a returned neighbour's locals
+            # a block whose every lane has returned stops here (the rest, loops included,
+            # would run for nothing: the sky of a raymarcher after `if (miss) return`)
+            self.emit(f"if not {self.any_of('live')}:")
+            self.indent += 1
+            self.emit_slots_return(self.nret > 0)
+            self.indent -= 1
+            self.mask = self.new_mask("mr", [f"(m__{k} & live__{k})" for k in range(self.W)])
+            return
+        terms = []
+        if loop is not None:
+            act, cont, _ = loop
+            terms.append(f"{act}__{{k}}")
+            if cont:
+                terms.append(f"(not {cont}__{{k}})")  # `not`: no branch (`and`/`or` are two blocks)
+        if self.live:
+            terms.append("live__{k}")
+        if not terms:
+            return
+        for k in range(self.W):
+            self.emit(f"{self.mask}__{k} = {self.mask}__{k} & " + " & ".join(t.format(k=k) for t in terms))
+
+    def stmt(self, s: Any, top: bool) -> None:
+        method = getattr(self, "_" + type(s).__name__, None)
+        if method is None:
+            raise Unsupported(f"the statement {type(s).__name__}")
+        method(s, top)
+
+    def _Pass(self, s: Any, top: bool) -> None:
+        self.emit("pass")
+
+    def _Raise(self, s: Any, top: bool) -> None:
+        if self.is_varying(s):
+            raise Unsupported("a raise of lane values")
+        self.emit(ast.unparse(s))
+
+    def _Expr(self, s: ast.Expr, top: bool) -> None:
+        v = s.value
+        if isinstance(v, ast.Constant):
+            self.emit(ast.unparse(s))
+            return
+        name = _call_name(v)
+        if name in self.L.functions:
+            self.user_call(v, [])
+            return
+        if name == "aset":
+            dst = v.args[0]
+            if not isinstance(dst, ast.Name):
+                raise Unsupported("aset of an expression")
+            self.mark(dst.id)  # arrays are per lane
+            self.masked_store(dst.id, v)
+            return
+        raise Unsupported(f"the call statement {name}")
+
+    def masked_store(self, base: str, stmt_or_expr: Any) -> None:
+        """A write into an array (aset, a subscript): under the mask unless it is a local in
+        uniform control."""
+        node = stmt_or_expr if isinstance(stmt_or_expr, ast.stmt) else ast.Expr(stmt_or_expr)
+        texts = self.lanes_of(node)
+        guard = self.ldiv or base in STATE_LANES
+        for k, t in enumerate(texts):
+            self.emit(f"if {self.mask}__{k}: {t}" if guard else t)
+
+    def _Assign(self, s: ast.Assign, top: bool) -> None:
+        if len(s.targets) != 1:
+            raise Unsupported("chained assignments")
+        t = s.targets[0]
+        v = s.value
+        if isinstance(t, ast.Tuple) or (_call_name(v) in self.L.functions):
+            targets = t.elts if isinstance(t, ast.Tuple) else [t]
+            if _call_name(v) not in self.L.functions or not all(isinstance(x, ast.Name) for x in targets):
+                raise Unsupported("a tuple assignment")
+            self.user_call(v, [x.id for x in targets])
+            return
+        if isinstance(t, ast.Subscript):
+            if not isinstance(t.value, ast.Name):
+                raise Unsupported("a nested subscript")
+            self.mark(t.value.id)  # arrays are per lane
+            self.masked_store(t.value.id, s)
+            return
+        if not isinstance(t, ast.Name):
+            raise Unsupported("an assignment target")
+        name = t.id
+        if _is_counter(name):
+            self.emit(ast.unparse(s))
+            return
+        if self.ldiv or self.is_varying(v) or _makes_array(v):
+            self.mark(name)
+        self.write(name, self.lanes_of(v) if name in self.varying else [ast.unparse(v)])
+
+    def write(self, name: str, texts: list[str]) -> None:
+        if name not in self.varying:
+            self.emit(f"{name} = {texts[0]}")
+            return
+        # plain: in uniform control, a name written once, or its first write in the text (a
+        # declaration, a ternary's first side: the lanes it does not concern read it nowhere)
+        plain = not self.ldiv or self.counts.get(name, 0) <= 1 or name not in self.defined
+        self.defined.add(name)
+        for k, text in enumerate(texts):
+            if plain:
+                self.emit(f"{name}__{k} = {text}")
+            else:
+                self.emit(f"{name}__{k} = lsel({self.mask}__{k}, {text}, {name}__{k})")
+
+    def _AugAssign(self, s: ast.AugAssign, top: bool) -> None:
+        if not (isinstance(s.target, ast.Name) and _is_counter(s.target.id)):
+            raise Unsupported("an augmented assignment")
+        self.emit(ast.unparse(s))
+
+    def user_call(self, call: ast.Call, targets: list[str]) -> None:
+        name = _call_name(call)
+        callee = self.L.functions[name]
+        params = [a.arg for a in callee.args.args]
+        if len(params) != len(call.args) or call.keywords:
+            raise Unsupported("a call's arguments")
+        mask = self.mask if self.div else "m"
+        # arguments free of lanes go as one scalar: the callee's variant for them
+        uniform = frozenset(i for i, (p, a) in enumerate(zip(params, call.args))
+                            if p not in UNIFORM_STATE and not self.is_varying(a))
+        fn = self.L.variant(name, uniform)
+        self.calls.add((name, uniform))
+        args = self.lane_names(mask)
+        for p, a in zip(params, call.args):
+            if p in fn.scalar_params:
+                args.append(self.atom(ast.unparse(a)))
+            else:
+                args += [self.atom(t) for t in self.lanes_of(a)]
+        text = f"{fn.name}({', '.join(args)})"
+        if not targets:
+            self.emit(text)
+            return
+        if len(targets) != fn.nret:
+            raise Unsupported("a call's results")
+        res = [self.fresh("c") for _ in targets]
+        flat: list[str] = []
+        for x, r, uni in zip(targets, res, fn.ret_uniform):
+            flat += [r] if uni else self.lane_names(r)
+            if self.ldiv or not uni:
+                self.mark(x)  # a result per lane (or written under a mask)
+        self.emit(f"{', '.join(flat)}, = {text}")
+        for x, r, uni in zip(targets, res, fn.ret_uniform):
+            self.write(x, ([r] * self.W if x in self.varying else [r]) if uni else self.lane_names(r))
+
+    def _If(self, s: ast.If, top: bool) -> None:
+        exits = _exits([s])
+        if not self.is_varying(s.test):
+            self.emit(f"if {ast.unparse(s.test)}:")
+            self.nested(s.body, self.div, self.mask, self.ldiv)
+            if s.orelse:
+                self.emit("else:")
+                self.nested(s.orelse, self.div, self.mask, self.ldiv)
+        else:
+            base = self.mask if self.div else "m"
+            cond = self.new_mask("c", self.lanes_of(s.test))
+            then = self.new_mask("mt", [f"({base}__{k} & {cond}__{k})" for k in range(self.W)])
+            other = None
+            if s.orelse:
+                other = self.new_mask("me", [f"({base}__{k} & (not {cond}__{k}))" for k in range(self.W)])
+            self.emit(f"if {self.any_of(then)}:")
+            self.nested(s.body, True, then, True)
+            if other is not None:
+                self.emit(f"if {self.any_of(other)}:")
+                self.nested(s.orelse, True, other, True)
+        if exits:
+            self.refresh()
+
+    def nested(self, stmts: list, div: bool, mask: str, ldiv: bool) -> None:
+        saved = (self.div, self.mask, self.ldiv)
+        self.div, self.mask, self.ldiv = div, mask, ldiv
+        self.indent += 1
+        self.block(stmts)
+        self.indent -= 1
+        self.div, self.mask, self.ldiv = saved
+
+    def loop_divergent(self, body: list) -> bool:
+        """Whether a loop in uniform control has an exit under a divergent condition."""
+        def scan(stmts: list, inner: bool) -> bool:
+            for s in stmts:
+                if isinstance(s, ast.If):
+                    ex = _exits(s.body) | _exits(s.orelse)
+                    if inner:
+                        ex &= {"return"}
+                    if self.is_varying(s.test) and ex:
+                        return True
+                    if scan(s.body, inner) or scan(s.orelse, inner):
+                        return True
+                elif isinstance(s, ast.While):
+                    if "return" in _exits(s.body) and self.loop_divergent(s.body):
+                        return True
+                    if scan(s.body, True):
+                        return True
+            return False
+        return scan(body, False)
+
+    def _While(self, s: ast.While, top: bool) -> None:
+        if not (isinstance(s.test, ast.Constant) and s.test.value is True) or s.orelse:
+            raise Unsupported("a while loop with a condition")
+        exits = _exits(s.body)
+        # a plain loop also after returns (the returned lanes run it for nothing), unless it can
+        # return: under a mask a return does not leave the Python loop
+        if not self.ldiv and not self.loop_divergent(s.body) and not (self.div and "return" in exits):
+            self.emit("while True:")
+            self.loops.append(None)
+            self.indent += 1
+            self.block(s.body)
+            self.indent -= 1
+            self.loops.pop()
+            if "return" in exits:
+                self.refresh()
+            return
+        saved = (self.div, self.mask, self.ldiv)
+        base = self.mask if self.div else "m"
+        act = self.new_mask("act", [f"{base}__{k}" for k in range(self.W)])
+        cont = self.fresh("cont") if "continue" in exits else ""
+        self.emit("while True:")
+        self.indent += 1
+        if cont:
+            for k in range(self.W):
+                self.emit(f"{cont}__{k} = False")
+        body = self.new_mask("mb", [f"{act}__{k}" for k in range(self.W)])
+        self.loops.append((act, cont, body))
+        self.div, self.mask, self.ldiv = True, body, True
+        for st in s.body:
+            self.stmt(st, False)
+            ex = _exits([st])
+            if ex:
+                self.refresh()
+                self.emit(f"if not {self.any_of(act)}:")
+                self.emit("    break")
+                if "continue" in ex:
+                    self.emit(f"if not {self.any_of(self.mask)}:")
+                    self.emit("    continue")
+        self.loops.pop()
+        self.indent -= 1
+        self.div, self.mask, self.ldiv = saved
+        if "return" in exits:
+            self.refresh()
+
+    def _Break(self, s: Any, top: bool) -> None:
+        loop = self.loops[-1] if self.loops else None
+        if loop is None:
+            self.emit("break")
+            return
+        act = loop[0]
+        for k in range(self.W):
+            self.emit(f"{act}__{k} = {act}__{k} & (not {self.mask}__{k})")
+
+    def _Continue(self, s: Any, top: bool) -> None:
+        loop = self.loops[-1] if self.loops else None
+        if loop is None:
+            self.emit("continue")
+            return
+        cont = loop[1]
+        for k in range(self.W):
+            self.emit(f"{cont}__{k} = {cont}__{k} | {self.mask}__{k}")
+
+    def _Return(self, s: ast.Return, top: bool) -> None:
+        v = s.value
+        elts = v.elts if isinstance(v, ast.Tuple) else None
+        if elts is None and not (isinstance(v, ast.Constant) and v.value == 0):
+            raise Unsupported("a return value")
+        if not self.div and not self.live:
+            if elts is None:
+                self.emit("return 0")
+            else:
+                flat = []
+                for i, e in enumerate(elts):
+                    if self.is_varying(e):
+                        self.ret_seen[i] = False
+                    flat += [self.atom(ast.unparse(e))] if self.ret_uniform[i] else [
+                        self.atom(t) for t in self.lanes_of(e)]
+                self.emit(f"return ({', '.join(flat)},)")
+            return
+        if elts is not None:
+            self.ret_seen[:] = [False] * len(self.ret_seen)  # the return slots are per lane
+            for i, e in enumerate(elts):  # the first slot write in the text is plain (see write)
+                first = f"_r{i}" not in self.defined
+                self.defined.add(f"_r{i}")
+                for k, text in enumerate(self.lanes_of(e)):
+                    self.emit(f"_r{i}__{k} = {text}" if first else
+                              f"_r{i}__{k} = lsel({self.mask}__{k}, {text}, _r{i}__{k})")
+        if top and not self.loops:
+            self.emit_slots_return(elts is not None)
+            return
+        self.live = True  # from here on, `live__k`: the lanes that have not returned
+        for k in range(self.W):
+            self.emit(f"live__{k} = live__{k} & (not {self.mask}__{k})")
+        for loop in self.loops:
+            if loop is not None:
+                for k in range(self.W):
+                    self.emit(f"{loop[0]}__{k} = {loop[0]}__{k} & (not {self.mask}__{k})")
+
+    def emit_slots_return(self, value: bool) -> None:
+        if not value:
+            self.emit("return 0")
+            return
+        flat = [f"_r{i}__{k}" for i in range(self.nret) for k in range(self.W)]
+        self.emit(f"return ({', '.join(flat)},)")
+
+    # -- the function ------------------------------------------------------------------------
+    def source(self) -> str:
+        lines = self.lines
+        params = self.lane_names("m")
+        for p in self.params:
+            params += [p] if p in self.scalar_params else self.lane_names(p)
+        head = [f"def {self.name}({', '.join(params)}):"]
+        for p in self.params:  # a parameter passed as one scalar and written with lane values
+            if p in self.scalar_params and p in self.varying:  # (`ro += rd * t`): its lanes start from it
+                head += [f"    {p}__{k} = {p}" for k in range(self.W)]
+        if any("live__0" in line for line in lines):
+            head += [f"    live__{k} = True" for k in range(self.W)]
+        return "\n".join(head + lines)
+
+
+def variant_name(name: str, uniform: frozenset) -> str:
+    """A function's name in the lockstep module, with the indices of the parameters passed as
+    one scalar for the block (`f_rad__u0__s0`)."""
+    return name if not uniform else name + "__s" + "_".join(str(i) for i in sorted(uniform))
+
+
+class Lanes:
+    """`Lanes(source, W).module()`: the per-pixel module's source rewritten for blocks of W."""
+
+    def __init__(self, source: str, width: int) -> None:
+        self.tree = ast.parse(source)
+        self.W = width
+        # derivatives (codegen writes dFdx as `dfdx(v)`, QUADS = True): a block is 2x2 quads,
+        # W/2 pixels of two rows, and fragCoord.y is per lane
+        self.quads = any(isinstance(n, ast.Assign) and isinstance(n.targets[0], ast.Name)
+                         and n.targets[0].id == "QUADS" for n in self.tree.body)
+        if self.quads and width % 4:
+            raise Unsupported(f"derivatives in blocks of {width} lanes (2x2 quads need a multiple of 4)")
+        self.functions = {f.name: f for f in self.tree.body if isinstance(f, ast.FunctionDef)
+                          and f.name not in ("init_globals", "render_rows", "globals_template")}
+        shared = _SharedReads(self.functions.values())
+        for f in self.functions.values():
+            shared.visit(f)
+        self.variants: dict[tuple[str, frozenset], _Fn] = {}
+        self.pending: set[tuple[str, frozenset]] = set()
+
+    def variant(self, name: str, uniform: frozenset) -> _Fn:
+        """The rewrite of function `name` with the parameters at `uniform` one scalar for the
+        block (made once; GLSL has no recursion, so a callee settles before its caller)."""
+        key = (name, uniform)
+        fn = self.variants.get(key)
+        if fn is None:
+            if key in self.pending:
+                raise Unsupported("a recursive call")
+            self.pending.add(key)
+            fn = _Fn(self, self.functions[name], uniform)
+            fn.run()
+            self.pending.discard(key)
+            self.variants[key] = fn
+        return fn
+
+    def entry(self) -> tuple[str, frozenset]:
+        """shade, with the parameters that are the same for every pixel of a block (a block is
+        W pixels of one row: fragCoord's and the pixel centre's y) passed as one scalar."""
+        if "shade" not in self.functions:
+            raise Unsupported("a module without shade")
+        params = [a.arg for a in self.functions["shade"].args.args]
+        if self.quads:  # two rows a block
+            return "shade", frozenset()
+        return "shade", frozenset(i for i, p in enumerate(params) if p in ROW_UNIFORM)
+
+    def reachable(self) -> list[_Fn]:
+        """The variants the entry's final code calls, callees first."""
+        order: list[_Fn] = []
+        seen: set = set()
+
+        def visit(key: tuple[str, frozenset]) -> None:
+            if key in seen:
+                return
+            seen.add(key)
+            fn = self.variant(*key)
+            for callee in sorted(fn.calls, key=lambda c: (c[0], sorted(c[1]))):
+                visit(callee)
+            order.append(fn)
+
+        visit(self.entry())
+        return order
+
+    def module(self) -> str:
+        out: list[str] = []
+        functions = ["@jit\n" + fn.source() for fn in self.reachable()]
+        for node in self.tree.body:
+            if isinstance(node, ast.FunctionDef):
+                if node.name == "shade":
+                    out += functions
+                elif node.name in ("init_globals", "globals_template"):
+                    out.append(ast.unparse(node))
+                continue
+            if isinstance(node, ast.ImportFrom) and node.module == "glslcheck.backends.compiled_engine.scalar":
+                out += math_imports()
+                names = "lsel, dfdx, dfdy" if self.quads else "lsel"
+                out.append(f"from glslcheck.backends.compiled_engine.lanes_rt import {names}  # {_rt_hash()}")
+                continue
+            if isinstance(node, ast.ImportFrom) and node.module == "glslcheck.backends.compiled_engine.lanes_rt":
+                continue  # the per-pixel module's lsel import: the line above, with the hash
+            out.append(ast.unparse(node))
+        out.append(f"LANES = {self.W}  # pixels per call of shade")
+        slots = next((ast.literal_eval(n.value) for n in self.tree.body if isinstance(n, ast.Assign)
+                      and isinstance(n.targets[0], ast.Name) and n.targets[0].id == "SLOTS"), None)
+        shade = self.variants[self.entry()]
+        out.append(render_source(self.W, slots, shade.name, shade.scalar_params, shade.ret_uniform, self.quads))
+        return "\n\n".join(out) + "\n"
+
+
+def _rt_hash() -> str:
+    """The hash of lanes.py, lanes_rt.py and lanes_math.py (when it exists): numba's cache does
+    not see a callee's change, the engine's module key (a hash of the source) does."""
+    import hashlib
+    import os
+
+    h = hashlib.sha256()
+    here = os.path.dirname(__file__)
+    for name in ("lanes_rt.py", "lanes.py", "lanes_math.py"):
+        path = os.path.join(here, name)
+        if os.path.exists(path):
+            with open(path, "rb") as f:
+                h.update(f.read())
+    return h.hexdigest()[:16]
+
+
+def lanes_module(source: str, width: int = 8) -> str:
+    """The per-pixel module `source` (codegen.Codegen.module) for blocks of `width` pixels;
+    Unsupported when it has a construct this rewrite does not handle."""
+    try:
+        return Lanes(source, width).module()
+    except RecursionError:
+        raise Unsupported("an expression nested too deep") from None
+
+
+def render_source(W: int, slots: dict | None = None, shade: str = "shade", scalar: Any = (),
+                  ret_uniform: Any = (), quads: bool = False) -> str:
+    """render_rows for blocks of W pixels of a row (the last block repeats the row's last pixel);
+    slots: the module's SLOTS (a state kind without globals is not reset per pixel); shade: the
+    entry's name, scalar: its parameters passed as one value for the block (ROW_UNIFORM),
+    ret_uniform: which of its four results are one value for the block.
+
+    quads: blocks of W/2 pixels of two rows (y even, y + 1; quad_lanes), y0 even. At an odd
+    right or top edge the quad's other pixels are llvmpipe's helper invocations outside the
+    image (x = width, y = height: computed, not written, as the NumPy backend's tiles); a quad
+    wholly past the right edge repeats the row's last whole quad."""
+    if quads:
+        return _render_quads(W, slots, shade, ret_uniform)
+    st = [f"{a}__{k}" for a in STATE_LANES for k in range(W)]
+    lines = _prologue(W, ['    """Rows y0..y1-1 (counted from the bottom) into out (height, width, 4), top row first,',
+                          f'    {W} pixels of a row a call of shade; offs: the (dx, dy) sample offsets."""'])
+    lines += [
+        "    for y in range(y0, y1):",
+        "        row = height - 1 - y",
+        "        py = F32(y + 0.5)",
+        f"        for x0 in range(0, width, {W}):",
+    ]
+    for k in range(W):
+        lines.append(f"            px__{k} = F32(min(x0 + {k}, width - 1) + 0.5)")
+    lines += _sample_head(W, slots)
+    lines.append("                oy = F32(py + F32(offs[s, 1]))")
+    args = ["True"] * W + st + ["uf", "ui"]
+    args += [f"F32(px__{k} + ox)" for k in range(W)] + (["oy"] if "fy" in scalar else ["oy"] * W)
+    args += [f"px__{k}" for k in range(W)] + (["py"] if "py" in scalar else ["py"] * W)
+    lines.append(f"                res = {shade}({', '.join(args)})")
+    lines += _accumulate(W, ret_uniform)
+    lines += [
+        f"            for k in range(min({W}, width - x0)):",
+        "                for c in range(4):",
+        "                    out[row, x0 + k, c] = acc[c, k] / samples",
+    ]
+    return "\n".join(lines)
+
+
+def _prologue(W: int, doc: list[str]) -> list[str]:
+    """render_rows' signature, docstring, per-lane state copies and accumulator."""
+    lines = ["@numba.njit(cache=True, nogil=True, error_model='numpy')",
+             "def render_rows(out, y0, y1, width, height, offs, uf, ui, gtf, gti, gtu, gtb):"] + doc
+    for a, t in zip(STATE_LANES, ("gtf", "gti", "gtu", "gtb")):
+        lines += [f"    {a}__{k} = acopy({t})" for k in range(W)]
+    return lines + ["    samples = offs.shape[0]", f"    acc = np.zeros((4, {W}), np.float64)"]
+
+
+def _sample_head(W: int, slots: dict | None) -> list[str]:
+    """The loop over the samples: the per-pixel state reset to its template before each call of
+    shade, and the sample's x offset."""
+    lines = ["            for s in range(samples):"]
+    for a, t, kind in zip(STATE_LANES, ("gtf", "gti", "gtu", "gtb"), ("float", "int", "uint", "bool")):
+        if slots is not None and not slots.get(kind):
+            continue
+        lines += [f"                aset({a}__{k}, 0, {t})" for k in range(W)]
+    return lines + ["                ox = F32(offs[s, 0])"]
+
+
+def _accumulate(W: int, ret_uniform: Any) -> list[str]:
+    """The samples' sum of shade's result `res` into acc (4, W)."""
+    at, start = {}, 0  # (channel, lane) -> its index in shade's result (a uniform channel: one)
+    for c in range(4):
+        one = bool(ret_uniform and ret_uniform[c])
+        for k in range(W):
+            at[c, k] = start if one else start + k
+        start += 1 if one else W
+    lines = ["                if s == 0:  # the sum of one sample is its value (a -0.0 kept)"]
+    lines += [f"                    acc[{c}, {k}] = np.float64(res[{at[c, k]}])" for c in range(4) for k in range(W)]
+    lines.append("                else:")
+    lines += [f"                    acc[{c}, {k}] = acc[{c}, {k}] + res[{at[c, k]}]" for c in range(4) for k in range(W)]
+    return lines
+
+
+def _render_quads(W: int, slots: dict | None, shade: str, ret_uniform: Any) -> str:
+    """render_source for blocks of 2x2 quads (derivatives): see render_source."""
+    h = W // 2
+    st = [f"{a}__{k}" for a in STATE_LANES for k in range(W)]
+    lines = _prologue(W, ['    """Rows y0..y1-1 (counted from the bottom; y0 even) into out (height, width, 4), top row',
+                          f'    first, 2x2 quads: {h} pixels of two rows a call of shade; offs: the sample offsets."""'])
+    lines += [
+        "    last = (width - 1) & ~1  # the last whole quad's left column",
+        "    for y in range(y0, y1, 2):",
+        "        py0 = F32(y + 0.5)",
+        "        py1 = F32(y + 1.5)  # y + 1 = height: a helper row",
+        f"        for x0 in range(0, width, {h}):",
+    ]
+    for c in range(h):
+        lines.append(f"            px__{c} = F32((x0 + {c} if x0 + {c & ~1} < width else last + {c & 1}) + 0.5)")
+    lines += _sample_head(W, slots)
+    lines += ["                oy0 = F32(py0 + F32(offs[s, 1]))", "                oy1 = F32(py1 + F32(offs[s, 1]))"]
+    px = [f"px__{k % h}" for k in range(W)]
+    args = ["True"] * W + st + ["uf", "ui"]
+    args += [f"F32({p} + ox)" for p in px] + ["oy0"] * h + ["oy1"] * h
+    args += px + ["py0"] * h + ["py1"] * h
+    lines.append(f"                res = {shade}({', '.join(args)})")
+    lines += _accumulate(W, ret_uniform)
+    lines += [
+        "            for r in range(2):",
+        "                if y + r >= height:",
+        "                    break",
+        f"                for k in range(min({h}, width - x0)):",
+        "                    for c in range(4):",
+        f"                        out[height - 1 - y - r, x0 + k, c] = acc[c, r * {h} + k] / samples",
+    ]
+    return "\n".join(lines)

@@ -1,0 +1,350 @@
+"""Compiling a Shadertoy shader for the GL driver and rendering it into a float framebuffer.
+
+`compile_gl(shader)` wraps the Image tab (or a plain GLSL file) as Shadertoy does
+(`glslcheck.shadertoy.wrapper.build_program`), compiles it with the driver and turns a driver error log
+into `GlslError` diagnostics located in the user's own files. `GLProgram.render(...)` draws a
+full-screen triangle into an RGBA32F framebuffer and returns the pixels as float32
+(height, width, 4), top row first, neither clamped nor quantised.
+
+Inputs, and what glslcheck feeds them (see `glslcheck.shadertoy.wrapper.UNIFORMS`):
+
+- iResolution = (width, height, 1); iTime, iFrame, iMouse, iTimeDelta, iFrameRate from `render`.
+- iDate = `date`, by default the fixed `DEFAULT_DATE` (2026, 0, 1, 0.0) = 2026-01-01 00:00:00,
+  so renders are reproducible. Give a tuple (year, month 0-11, day, seconds) or a `datetime`.
+- iChannelTime all 0 (Shadertoy's value for images and buffers, shadertoy/channels.py), iSampleRate 44100;
+  without `channels` iChannelResolution all 0 and iChannel0..3 unbound (texture() then returns
+  (0, 0, 0, 1), GL's value for an incomplete texture).
+- Uniforms the shader does not use are skipped (the driver drops inactive uniforms, and trims
+  arrays to the highest index used).
+
+Supersampling: `samples = k*k` renders k*k times with fragCoord moved by the sub-pixel offset
+((i + 0.5)/k - 0.5, (j + 0.5)/k - 0.5), i, j = 0..k-1, and averages. The offset is a uniform
+`glslcheck_offset` that the footer adds (`mainImage(color, gl_FragCoord.xy + glslcheck_offset)`);
+it exists only in the program compiled for samples > 1, so a one-sample render runs exactly the
+program Shadertoy runs. The average is taken in float64 and rounded to float32 once.
+"""
+
+from __future__ import annotations
+
+import re
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from ...base.diagnostics import Diagnostic, GlslError, Location, source_line
+from ...shadertoy.wrapper import OFFSET_UNIFORM, UNIFORMS, UNIFORMS_BY_NAME, FrameInputs, Program, build_program, frame_inputs, sample_offsets  # sample_offsets: re-exported by gl_backend
+from ...shadertoy.sources import Shader
+from ..driver_profile import driver_model
+from .context import get_context
+from .zero_init import zero_initialized
+
+RULE = "gl-compile"
+
+# A triangle that covers the viewport, from gl_VertexID alone (no vertex buffer):
+# ids 0, 1, 2 -> (-1, -1), (3, -1), (-1, 3).
+VERTEX_SHADER = """#version 300 es
+void main() {
+    vec2 p = vec2(float((gl_VertexID & 1) << 2) - 1.0, float((gl_VertexID & 2) << 1) - 1.0);
+    gl_Position = vec4(p, 0.0, 1.0);
+}
+"""
+
+# Mesa: "0:42(5): error: `y' undeclared", "0:3(1): preprocessor error: #error boom";
+# other drivers: "ERROR: 0:42: ..." or "0(42) : error ...".
+_MESA_RE = re.compile(r"^\s*(\d+):(\d+)\((\d+)\):\s*(?:preprocessor\s+)?(error|warning):\s*(.*)$", re.I)
+_GLSLANG_STYLE_RE = re.compile(r"^\s*(ERROR|WARNING):\s*(\d+):(\d+):\s*(.*)$", re.I)
+_NVIDIA_RE = re.compile(r"^\s*(\d+)\((\d+)\)\s*:\s*(error|warning)\s*\w*:\s*(.*)$", re.I)
+
+
+def parse_driver_log(log: str) -> list[tuple[int | None, int | None, str, str]]:
+    """(program line, column, severity, message) for each message in a driver's compile/link log.
+
+    Lines that carry no position but say "error" (linker messages) come back with line None.
+    The line is the driver's, which a `#line` directive renumbers (see `_driver_entries`).
+    """
+    return [entry[1:] for entry in _driver_entries(log)]
+
+
+def _driver_entries(log: str) -> list[tuple[int, int | None, int | None, str, str]]:
+    """(source string number, line, column, severity, message), as parse_driver_log."""
+    out: list[tuple[int, int | None, int | None, str, str]] = []
+    for raw in log.splitlines():
+        if m := _MESA_RE.match(raw):
+            out.append((int(m[1]), int(m[2]), int(m[3]), m[4].lower(), m[5].strip()))
+        elif m := _GLSLANG_STYLE_RE.match(raw):
+            out.append((int(m[2]), int(m[3]), None, m[1].lower(), m[4].strip()))
+        elif m := _NVIDIA_RE.match(raw):
+            out.append((int(m[1]), int(m[2]), None, m[3].lower(), m[4].strip()))
+        elif re.search(r"\berror\b", raw, re.I) and "Compiler failed" not in raw and "Linker failed" not in raw:
+            out.append((0, None, None, "error", raw.strip()))
+    return out
+
+
+_LINE_DIRECTIVE_RE = re.compile(r"^[ \t]*#[ \t]*line[ \t]+(\w+)(?:[ \t]+(\w+))?[ \t]*(?://.*)?$")
+
+
+def _c_integer(text: str | None) -> int | None:
+    """A C integer literal (decimal, 0x hex, 0 octal) or None."""
+    if text is None or not re.fullmatch(r"0[xX][0-9a-fA-F]+|0[0-7]*|[1-9][0-9]*", text):
+        return None
+    return int(text, 16) if text[:2].lower() == "0x" else int(text, 8) if text.startswith("0") else int(text)
+
+
+def driver_line_map(text: str) -> dict[tuple[int | None, int], list[int]]:
+    """The program line the driver means by (source string number, line) after `#line`s.
+
+    `#line N [S]` makes the next line line N (of source string S); GLSL ES 3.00 section 3.4.
+    Mesa (22) prints source string 0 whatever S says, so each line is also keyed (None, line),
+    for a lookup that ignores the source number. Where `#line` makes lines share a number, all
+    are listed in program order (the caller prefers one in the user's text over the wrapper's). A `#line` whose
+    arguments are not integer literals (macros, expressions) stops the map: the lines after it
+    are left out, and their errors fall back to the location of mainImage.
+    """
+    mapping: dict[tuple[int | None, int], list[int]] = {}
+    source, number = 0, 1
+    for program_line, line in enumerate(text.split("\n"), start=1):
+        mapping.setdefault((source, number), []).append(program_line)
+        if source:
+            mapping.setdefault((None, number), []).append(program_line)
+        number += 1
+        if "line" in line and (m := _LINE_DIRECTIVE_RE.match(line)):
+            new_line, new_source = _c_integer(m[1]), _c_integer(m[2]) if m[2] else source
+            if new_line is None or new_source is None:
+                break
+            source, number = new_source, new_line
+    return mapping
+
+
+def mesa_column(line_text: str, column: int) -> int:
+    """The real 1-based column for Mesa's `column`: its lexer counts a run of blanks as one column."""
+    counter, pos = 1, 0
+    while pos < len(line_text) and counter < column:
+        if line_text[pos] in " \t":
+            while pos < len(line_text) and line_text[pos] in " \t":
+                pos += 1
+        else:
+            pos += 1
+        counter += 1
+    return pos + 1
+
+
+def driver_diagnostics(program: Program, log: str) -> list[Diagnostic]:
+    """The errors in a driver log as diagnostics in the user's files (warnings are dropped).
+
+    A position inside Shadertoy's prelude or footer (e.g. a missing `mainImage`) has no user
+    location; the message then says which line of the wrapper it was.
+    """
+    diags: list[Diagnostic] = []
+    lines = program.text.split("\n")
+    renumbered = driver_line_map(program.text)
+    for source, reported, column, severity, message in _driver_entries(log):
+        if severity != "error":
+            continue
+        line, where = _program_line(program, renumbered, source, reported)
+        if where is None:
+            if line is not None:
+                message += f" (line {line} of the Shadertoy wrapper around the {program.tab} tab)"
+            help_ = ("the Image tab must define `void mainImage(out vec4 fragColor, in vec2 fragCoord)`, "
+                     "with both parameters named" if "mainImage" in message else None)
+            # The wrapper's only link to the user's text is its call of mainImage: point there.
+            diags.append(Diagnostic(message, _entry_location(program), rule=RULE, help=help_))
+        else:
+            path, user_line = where
+            column = mesa_column(lines[line - 1], column) if column and line <= len(lines) else 1
+            diags.append(Diagnostic(message, Location(path, user_line, column), rule=RULE))
+    if not diags:  # a failure we could not parse: keep the log visible rather than lose it
+        diags.append(Diagnostic(f"the OpenGL driver rejected the {program.tab} program:\n{log.strip()}",
+                                None, rule=RULE))
+    return diags
+
+
+def _program_line(program: Program, renumbered: dict, source: int, reported: int | None):
+    """(program line, user location or None) of a driver's (source, line): the first candidate
+    in the user's text, else the first one at all (see driver_line_map)."""
+    if reported is None:
+        return None, None
+    candidates = renumbered.get((source, reported), []) + renumbered.get((None, reported), [])
+    for line in candidates:
+        if (where := program.locate(line)) is not None:
+            return line, where
+    return (candidates[0] if candidates else None), None
+
+
+def _entry_location(program: Program) -> Location | None:
+    """Where the user's tab defines mainImage (or, failing that, the tab file's first line)."""
+    tab_paths = [seg.path for seg in program.segments]
+    if not tab_paths:
+        return None
+    for path in reversed(tab_paths):  # the pass's own tab comes after Common
+        for number in range(1, 100_000):
+            text = source_line(path, number)
+            if text is None:
+                break
+            m = re.search(r"\bmainImage\s*\(", text)
+            if m:
+                return Location(path, number, m.start() + 1, number, m.start() + len("mainImage") + 1)
+    return Location(tab_paths[-1], 1, 1)
+
+
+@dataclass(eq=False)
+class _Compiled:
+    """One driver program and the vertex array that draws it."""
+
+    program: Program
+    gl_program: object
+    vao: object
+
+
+@dataclass(eq=False)
+class GLProgram:
+    """A shader compiled for the GL driver; render it as often as needed."""
+
+    shader: Shader
+    program: Program  # the one-sample program (exactly what Shadertoy compiles)
+    ctx: object
+    _variants: dict[bool, _Compiled] = field(default_factory=dict, repr=False)
+
+    @property
+    def float_to_uint_model(self) -> str | None:
+        """How this driver computes uint(x) where the CPU decides (glslcheck/backends/driver_profile.py),
+        measured once per context; None when it follows no known model."""
+        return driver_model(self.ctx)
+
+    @property
+    def active_uniforms(self) -> list[str]:
+        """The uniforms the driver kept (those the shader actually uses)."""
+        prog = self._variants[False].gl_program
+        return [name for name in prog if not name.startswith("gl_")]
+
+    def _variant(self, samples_offset: bool) -> _Compiled:
+        if samples_offset not in self._variants:
+            program = build_program(self.shader, self.program.tab, samples_offset=samples_offset)
+            self._variants[samples_offset] = _compile(self.ctx, program)
+        return self._variants[samples_offset]
+
+    @frame_inputs
+    def render(self, inputs: FrameInputs, channels=None) -> np.ndarray:
+        """Render one frame: float32 array (height, width, 4), row 0 = top of the image.
+
+        Arguments: `shadertoy.FrameInputs` (size=(width, height), time, frame, mouse, date,
+        time_delta, frame_rate, samples), then `channels`. `date`: see the module docstring
+        (default 2026-01-01 00:00). `samples` must be a perfect square; see the module docstring
+        for the sub-pixel grid. Values are what the shader wrote (RGBA32F): not clamped to
+        [0, 1], not quantised; the Image pass has alpha 1.
+        """
+        width, height, samples, offsets = inputs.width, inputs.height, inputs.samples, inputs.offsets
+        compiled = self._variant(samples > 1)
+        values = inputs.uniforms()
+        channel_textures = []
+        if channels is not None:  # `channels`: iChannel0..3 as channels.ChannelInput or None
+            from ...shadertoy.channels import channel_uniforms
+
+            values.update(channel_uniforms(channels))
+            values.update({f"iChannel{i}": i for i in range(4)})
+        prog = compiled.gl_program
+        for u in UNIFORMS:
+            _set_uniform(prog, u.name, values.get(u.name, u.default), u.array_size)
+
+        ctx = self.ctx
+        texture = ctx.texture((width, height), 4, dtype="f4")
+        fbo = ctx.framebuffer(color_attachments=[texture])
+        try:
+            channel_textures = [_bind_channel(ctx, unit, c) for unit, c in enumerate(channels or ()) if c is not None]
+            fbo.use()
+            total = None
+            for dx, dy in offsets:
+                if samples > 1:
+                    _set_uniform(prog, OFFSET_UNIFORM, (dx, dy))
+                fbo.clear(0.0, 0.0, 0.0, 0.0)
+                compiled.vao.render(vertices=3)
+                data = np.frombuffer(fbo.read(components=4, dtype="f4"), dtype=np.float32)
+                img = data.reshape(height, width, 4)
+                total = img.astype(np.float64) if total is None else total + img
+        finally:
+            fbo.release()
+            texture.release()
+            for t in channel_textures:
+                t.release()
+        image = (total / len(offsets)).astype(np.float32)
+        return np.ascontiguousarray(image[::-1])  # GL rows go bottom-up; images top-down
+
+
+def _bind_channel(ctx, unit: int, channel):
+    """Upload a channels.ChannelInput as an RGBA32F texture on `unit` with its filter and wrap.
+    Its texels' row 0 is texture coordinate t near 0, which is OpenGL's first row."""
+    import moderngl
+
+    h, w = channel.texels.shape[:2]
+    tex = ctx.texture((w, h), 4, np.ascontiguousarray(channel.texels, dtype=np.float32).tobytes(), dtype="f4")
+    if channel.filter == "mipmap":  # glslcheck's own pyramid (channels.mip_levels), as the NumPy side
+        tex.build_mipmaps()  # allocates the levels
+        for level, texels in enumerate(channel.levels()[1:], 1):
+            tex.write(np.ascontiguousarray(texels).tobytes(), level=level)
+        tex.filter = (moderngl.LINEAR_MIPMAP_LINEAR, moderngl.LINEAR)
+    else:
+        mode = moderngl.NEAREST if channel.filter == "nearest" else moderngl.LINEAR
+        tex.filter = (mode, mode)
+    tex.repeat_x = tex.repeat_y = channel.wrap == "repeat"
+    tex.use(unit)
+    return tex
+
+
+# GL's type enums of the GLSL types Shadertoy's uniforms have.
+_GL_TYPES = {"float": 0x1406, "int": 0x1404, "vec2": 0x8B50, "vec3": 0x8B51, "vec4": 0x8B52,
+             "sampler2D": 0x8B5E, "sampler3D": 0x8B5F, "samplerCube": 0x8B60}
+
+
+def _set_uniform(gl_program, name: str, value, array_size: int | None = None) -> None:
+    """Set a uniform if the driver kept it. The driver trims an array to the highest index the
+    shader uses (and reports a one-element array as a plain uniform), so arrays are cut to fit."""
+    if name not in gl_program:
+        return
+    uniform = gl_program[name]
+    expected = _GL_TYPES.get(UNIFORMS_BY_NAME[name].glsl_type) if name in UNIFORMS_BY_NAME else None
+    if expected is not None and getattr(uniform, "gl_type", expected) != expected:
+        return  # a plain file's uniform of another type: not fed, 0 as on NumPy (shadertoy.fed_uniform)
+    if array_size:
+        items = list(value)[: max(uniform.array_length, 1)]
+        value = items[0] if len(items) == 1 else (items if isinstance(items[0], tuple) else tuple(items))
+    uniform.value = value
+
+
+def _compile(ctx, program: Program) -> _Compiled:
+    import moderngl
+
+    try:
+        gl_program = ctx.program(vertex_shader=VERTEX_SHADER, fragment_shader=program.text)
+    except moderngl.Error as e:
+        raise GlslError(driver_diagnostics(program, str(e))) from None
+    vao = ctx.vertex_array(gl_program, [])
+    return _Compiled(program, gl_program, vao)
+
+
+def compile_gl(shader: Shader, ctx=None, *, tab: str = "Image") -> GLProgram:
+    """Compile the Image tab (or plain GLSL file) of `shader` with the GL driver.
+
+    Raises GlslError with diagnostics in the user's files when the driver rejects it, and
+    GLUnavailable (an InputError) when no context can be created. `ctx` defaults to the
+    process-wide context. `tab` may name a buffer ("Buffer A"): it renders as a single pass
+    with alpha kept; its iChannels are unbound unless `render(channels=...)` binds them
+    (glslcheck.shadertoy.channels.MultipassProgram chains the passes frame after frame).
+    """
+    ctx = ctx if ctx is not None else get_context()
+    zeroed = zero_initialized(shader, tab)  # WebGL zeroes struct locals; Mesa does not
+    if zeroed is not shader:
+        try:
+            program = build_program(zeroed, tab)
+            gl = GLProgram(zeroed, program, ctx)
+            gl._variants[False] = _compile(ctx, program)
+            return gl
+        except GlslError:
+            pass  # the driver's own errors come from the user's text, compiled below
+    program = build_program(shader, tab)
+    gl = GLProgram(shader, program, ctx)
+    gl._variants[False] = _compile(ctx, program)
+    return gl
+
+
+def render_shader(shader: Shader, **render_args) -> np.ndarray:
+    """Compile and render in one call; `render_args` are those of `GLProgram.render`."""
+    return compile_gl(shader).render(**render_args)

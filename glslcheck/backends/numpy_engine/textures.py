@@ -1,0 +1,433 @@
+"""Texture sampling on the CPU: the GLSL ES 3.00 lookup built-ins over lanes, as llvmpipe does them.
+
+This module owns the ES 3.00 lookups on a sampler2D for the NumPy backend: `texture`,
+`textureLod`, `textureGrad`, `textureOffset`, their `Proj` and `Offset` combinations,
+`texelFetch`, `texelFetchOffset` and `textureSize`. `Runtime` inherits
+them (`TextureFunctions`), so generated code calls `rt.texture(S.u_iChannel0, uv, S.width)`.
+A sampler value is a `glslcheck.shadertoy.channels.ChannelInput` (texels float32 (height, width, 4), row
+0 = texture coordinate t near 0, i.e. the bottom as OpenGL uploads it) or None (unbound: GL's
+incomplete texture, which reads (0, 0, 0, 1) and has size 0).
+
+What llvmpipe does, measured with tests/channels/measure_sampling.py (Mesa 22.3.6, LLVM 15):
+
+- nearest: texel floor(u * width) (float32 product), then the wrap; bit for bit equal.
+- linear on float textures: float32 weights (not 8-bit fixed point: a 2x1 texture 0..1 gave
+  4096 distinct, exact weights over 4096 pixels; RGBA32F is not an 8-bit AoS format, so llvmpipe
+  takes its SoA path). The weight x = u * width - 0.5 (a product and a sum, not fused), x0 =
+  floor(x), w = x - x0, and Mesa's lp_build_lerp (gallivm/lp_bld_arit.c) along x then y:
+  lp_build_mad(w, b - a, a), an llvm.fmuladd that LLVM fuses into one FMA on a host with FMA
+  (`_lerp` emulates the FMA through float64). Bit for bit equal on a 50x70 texture over a ramp
+  of scales, anisotropies and rotations, both wraps (16384 of 16384 values; the unfused
+  a + w * (b - a) matched 8575 and 15401; tests/channels/test_channels.py
+  test_filtering_bit_for_bit_on_a_ramp_of_scales). On a host without FMA llvmpipe does not
+  fuse: a last-bit difference, which after the lowp truncation below can cross one truncation
+  step (2^-10 relative), the bound the tests use there.
+- clamp with linear filtering (lp_build_sample_wrap_linear, CLAMP_TO_EDGE): the coordinate is
+  clamped as a float before its integer conversion, min(u * size + offset, size) - 0.5, then
+  max(0), so 1e30 and +inf read the last texel and -1e30, -inf the first (converting first
+  overflowed: 1e30 read the first texel, inf gave NaN). A NaN coordinate through a whole
+  Shadertoy render still differs (not emulated).
+- the wrap per axis (lp_build_sample_wrap_nearest / lp_build_sample_wrap_linear), chosen by
+  whether level 0's size on that axis is a power of two (llvmpipe's static pot_width/height, for
+  every level): repeat on a power of two is u * n (- 0.5 for linear), then floor, the int32 index
+  masked with n - 1; on other sizes the fraction u - floor(u) comes first (nearest: kept below 1,
+  NaN -> 1 - 2^-24, then truncated), and a texel offset is added to u in normalised units
+  (offset / n) before the repeat; nearest clamp is int32 truncation of u * n + offset, clamped.
+  The float-to-int conversions are x86's (INT_MIN for NaN and past 2^31), so huge and infinite
+  coordinates read what llvmpipe reads: equal bit for bit on 16x16, 12x10 and 16x10 textures at
+  +-1e30, +-inf, 3e9, 1.2e7, -7.8e5, with and without offsets (test_channels.py
+  test_wrap_of_huge_and_infinite_coordinates_on_pot_and_npot_sizes; 11 of its 18 cases differed
+  when the fraction came first everywhere).
+- precision: Shadertoy's prelude declares `precision mediump sampler3D` only, so the iChannel
+  uniforms it declares are lowp sampler2D (the ES 3.00 fragment default), and llvmpipe honours
+  it: every lookup result (after filtering) is converted to float16 rounding towards zero and
+  back: its float32 mantissa truncated to 10 bits (the low 13 bits cleared; pi reads 3.140625),
+  finite values past 65504 give 65504 (elevated's Image pass unpacks a velocity stored as
+  about 5e5 in Buffer A's alpha: it reads 65504 on llvmpipe), values below 2^-14 are float16
+  subnormals (multiples of 2^-24, truncated). A `precision highp sampler2D;` in the user's tab comes
+  after the uniforms' declarations and changes nothing (measured). The lookups here truncate the
+  same way (`ChannelInput.lowp`).
+- precision of the arithmetic on those results (measured, measure_sampling.py part 4): llvmpipe
+  lowers GLSL's precision rules to float16. An operation whose operands are all lowp or mediump
+  (a lookup's result, a lowp/mediump variable; a constant takes its partner's precision) runs in
+  float16 with round to nearest, `texture(...) * 3.14159265` included (1024 of 1024 products equal
+  to the float16 ones), and past 65504 it is inf; one highp operand (iTime, a highp variable, a
+  uniform) makes it float32. The NumPy backend copies this for trees of `+ - * /` and negation
+  over lookups on an iChannel and constants (backends/numpy_engine/nir_fold.py `lowp_tree`, bit for bit:
+  test_channels.py test_arithmetic_on_lowp_lookups_is_float16; elephant's terrain height
+  `2.1 + 0.1*textureLod(..).x` is 2.130859375 on llvmpipe, 2.1319335 in float32). It does not
+  propagate precision further: built-in calls on such values (`smoothstep(.., texture(..).x)`),
+  lookups through a sampler parameter and mediump/lowp variables stay float32, within about
+  2^-11 relative per operation of llvmpipe's, and verify reports a mismatch only where a
+  lowp/mediump-only expression overflows float16 or accumulates such errors. Storing the lookup
+  in a highp variable first (`vec4 t = texture(...);`, the default float precision is highp)
+  makes the rest float32 and equal on every backend.
+  SwiftShader's WebGL computes lowp and mediump in float32 (measured: exact lookups, and a
+  mediump x * 1e5 past 65504 stays finite).
+- mipmap: the levels are glslcheck's own 2x2 box pyramid (channels.mip_levels), uploaded level
+  by level to GL too, so both sample the same texels. The LOD is Mesa 22.3's
+  lp_build_lod_selector (gallivm/lp_bld_sample.c) with llvmpipe's default GALLIVM_PERF flags
+  (lp_bld_sample_soa.c: no_rho_approx and no_brilinear are set unless GALLIVM_PERF names
+  rho_approx / brilinear, so neither approximation is on; no_quad_lod is off, so the implicit
+  LOD is one per 2x2 quad):
+  lp_build_rho takes the coordinates' differences between the quad's bottom-left pixel and its
+  right and upper neighbours, *then* multiplies them by the level-0 size (differencing the
+  scaled coordinates rounds differently on a size that is not a power of two), rho^2 =
+  max(ds^2 + dt^2 along x, along y) with max as x86 maxps (the second operand where either is
+  NaN), no sqrt; lod = 0.5 * lp_build_fast_log2(rho^2), which reads the float's exponent field
+  and its mantissa in [1, 2) with no special case (0 -> -127, inf -> 128, NaN -> about 128.5);
+  plus the shader's bias per pixel (a per-pixel bias makes the LOD per pixel, the rho staying
+  the quad's); lp_build_linear_mip_levels clamps it to the levels; the fraction lod - floor(lod)
+  blends the two levels' bilinear results with the same fused lerp, and only when some lane's
+  fraction is above 0 (lp_build_sample_mipmap's need_lerp): an integer LOD reads one level, so
+  an infinite texel one level up does not make 0 * inf = NaN (test_an_integer_lod_reads_one_level). Brilinear filtering
+  (lp_build_brilinear_rho / lp_build_brilinear_lod, BRILINEAR_FACTOR), which snaps the fraction
+  near integers, is only used with GALLIVM_PERF=brilinear. textureGrad uses the given
+  derivatives per pixel and zeroes an inf/NaN rho, as lp_build_rho does for explicit ones.
+  Measured (as measure_sampling.py part 3: levels filled with their index): the LOD
+  equal bit for bit on 4096 of 4096 pixels of a ramp of scales 2^-2..2^8, anisotropies 1..16 and
+  rotations, with and without a per-pixel bias, and at coordinates near 1000; whole lookups on
+  random RGBA32F texels equal on 16384 of 16384 values (texture, with a bias, textureLod), were
+  12012, 12318 and 8935 before (unfused lerps, scaled differences).
+"""
+
+from __future__ import annotations
+
+from typing import Any
+
+import numpy as np
+
+_LOWP_MASK = np.uint32(0xFFFFE000)  # keep sign, exponent and the top 10 mantissa bits
+
+
+def _truncate_lowp(v: np.ndarray) -> np.ndarray:
+    """llvmpipe's lowp/mediump sampler result: the float32 converted to float16 rounding towards
+    zero (gallivm's float-to-half conversion) and back: the mantissa cut to 10 bits, a finite
+    magnitude past 65504 gives 65504 (not inf), below 2^-14 a multiple of 2^-24 (subnormal,
+    truncated); inf and NaN stay (measured with texelFetch: 1e5 -> 65504, 5e37 -> 65504,
+    1e-5 -> 9.954e-6, 3e-8 -> 0)."""
+    v = np.ascontiguousarray(v, dtype=np.float32)
+    out = (v.view(np.uint32) & _LOWP_MASK).view(np.float32)
+    a = np.abs(v)
+    if (a < np.float32(2.0**-14)).any() or (np.isfinite(a) & (a > np.float32(65504))).any():
+        sub = np.copysign(np.floor(a * np.float32(2.0**24)) * np.float32(2.0**-24), v)
+        out = np.where(a < np.float32(2.0**-14), sub, out)
+        out = np.where(np.isfinite(a) & (a > np.float32(65504)), np.copysign(np.float32(65504), v), out)
+    return out.astype(np.float32, copy=False)
+
+
+def _lerp(a: np.ndarray, b: np.ndarray, w: np.ndarray) -> np.ndarray:
+    """llvmpipe's lp_build_lerp on floats: fmuladd(w, b - a, a), which LLVM fuses into one FMA
+    on x86-64 (measured: bit for bit equal). NumPy has no fma: the product of two float32 values
+    is exact in float64, the float64 sum is then rounded to float32 (a second rounding that can
+    differ from a single one only when the exact sum needs more than 53 bits and lies within
+    2^-29 ulp of a float32 tie: not seen in the measurements)."""
+    d = (b - a).astype(np.float64)
+    return (np.asarray(w, np.float64) * d + a.astype(np.float64)).astype(np.float32)
+
+
+_INT_MIN = -(2**31)
+
+
+def _to_int32(x: np.ndarray) -> np.ndarray:
+    """x86's cvttps2dq (LLVM's fptosi there): truncation towards zero; a NaN or a value outside
+    int32 gives INT_MIN (0x80000000). Kept in int64 (the wraps below only read low bits or clamp)."""
+    ok = (x >= np.float32(-2.0**31)) & (x < np.float32(2.0**31))
+    if ok.all():  # the usual case: one conversion (astype truncates towards zero)
+        return x.astype(np.int64)
+    return np.where(ok, np.trunc(np.where(ok, x, 0)), _INT_MIN).astype(np.int64)
+
+
+def _ifloor_fract(x: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """lp_build_ifloor_fract with SSE4.1: floor as a float, the weight x - floor(x), the integer
+    by _to_int32 (so a huge or infinite x has weight 0 or NaN and integer INT_MIN)."""
+    fl = np.floor(x)
+    return _to_int32(fl), x - fl
+
+
+def _fract_safe(u: np.ndarray) -> np.ndarray:
+    """lp_build_fract_safe: u - floor(u), kept below 1 (min with 1 - 2^-24; a NaN, from an
+    infinite u, gives the second operand too)."""
+    return np.where(u - np.floor(u) < np.float32(1 - 2.0**-24), u - np.floor(u), np.float32(1 - 2.0**-24))
+
+
+def _axis_nearest(u: np.ndarray, n: int, pot: bool, wrap: str, off) -> np.ndarray:
+    """lp_build_sample_wrap_nearest along one axis: the texel index for coordinate u, size n
+    (`pot`: level 0's size on this axis is a power of two, llvmpipe's static pot_width/height)."""
+    nf = np.float32(n)
+    if wrap != "repeat":  # CLAMP_TO_EDGE: itrunc(u * n + offset), clamped as an integer
+        return np.clip(_to_int32(u * nf + np.asarray(off).astype(np.float32)), 0, n - 1)
+    if pot:  # ifloor(u * n) + offset, & (n - 1)
+        return (_to_int32(np.floor(u * nf)) + off) & (n - 1)
+    if np.any(off):  # the offset in normalised units, before the repeat
+        u = u + np.asarray(off).astype(np.float32) / nf
+    return _to_int32(_fract_safe(u) * nf)
+
+
+def _axis_linear(u: np.ndarray, n: int, pot: bool, wrap: str, off):
+    """lp_build_sample_wrap_linear along one axis: the two texel indices and the weight."""
+    nf, half = np.float32(n), np.float32(0.5)
+    if wrap != "repeat":  # CLAMP_TO_EDGE: min(u * n + offset, n) (NaN: n), - 0.5, max(0): no
+        # integer overflow for huge or infinite coordinates
+        x = np.maximum(np.fmin(u * nf + np.asarray(off).astype(np.float32), nf) - half, 0)
+        i0, w = _ifloor_fract(x)
+        return i0, np.minimum(i0 + 1, n - 1), w
+    if pot:  # u * n - 0.5 (+ offset), ifloor_fract, & (n - 1): huge coordinates read texels 0, 1
+        i0, w = _ifloor_fract(u * nf - half + np.asarray(off).astype(np.float32))
+        return i0 & (n - 1), (i0 + 1) & (n - 1), w
+    if np.any(off):  # lp_build_coord_repeat_npot_linear, the offset in normalised units first
+        u = u + np.asarray(off).astype(np.float32) / nf
+    x = (u - np.floor(u)) * nf - half
+    i0, w = _ifloor_fract(x)
+    i0 = np.where(~(x >= 0), n - 1, i0)  # an unordered compare: NaN too
+    return i0, np.where(i0 != n - 1, i0 + 1, 0), w
+
+
+def _pot(t: np.ndarray) -> tuple[bool, bool]:
+    """Whether the texture's width and height (level 0) are powers of two."""
+    h, w = t.shape[:2]
+    return (w & (w - 1)) == 0, (h & (h - 1)) == 0
+
+
+def _nearest(t: np.ndarray, u, v, offset, wrap: str, pot=None) -> np.ndarray:
+    h, w = t.shape[:2]
+    pot = _pot(t) if pot is None else pot
+    return t[_axis_nearest(v, h, pot[1], wrap, offset[1]), _axis_nearest(u, w, pot[0], wrap, offset[0])]
+
+
+def _bilinear(t: np.ndarray, u, v, offset, wrap: str, pot=None) -> np.ndarray:
+    """One level's bilinear filter (see the module docstring for the measured agreement).
+    `pot`: level 0's (width, height) power-of-two flags (default: this level's)."""
+    h, w = t.shape[:2]
+    pot = _pot(t) if pot is None else pot
+    xa, xb, fx = _axis_linear(u, w, pot[0], wrap, offset[0])
+    ya, yb, fy = _axis_linear(v, h, pot[1], wrap, offset[1])
+    fx, fy = fx[..., None], fy[..., None]
+    a, b, c, d = t[ya, xa], t[ya, xb], t[yb, xa], t[yb, xb]
+    return _lerp(_lerp(a, b, fx), _lerp(c, d, fx), fy)
+
+
+def _offset(offset) -> tuple:
+    off = np.asarray(offset).astype(np.int64)
+    return off[0], off[1]
+
+
+def _project(p) -> np.ndarray:
+    p = np.asarray(p, dtype=np.float32)
+    return p[:2] / p[-1]
+
+
+def _fast_log2(x: np.ndarray) -> np.ndarray:
+    """Mesa's lp_build_fast_log2 on the float32 bits: (exponent field - 127 - 1) + the mantissa
+    with the exponent of 1.0 (in [1, 2)). No special cases: 0 gives -127, +inf 128 and a NaN
+    about 128.5, which the LOD clamp turns into the first and the last level."""
+    bits = np.ascontiguousarray(x, dtype=np.float32).view(np.uint32)
+    exponent = ((bits >> np.uint32(23)) & np.uint32(0xFF)).astype(np.int32) - 128
+    mantissa = ((bits & np.uint32(0x007FFFFF)) | np.uint32(0x3F800000)).view(np.float32)
+    return exponent.astype(np.float32) + mantissa
+
+
+def _max_x86(a: np.ndarray, b: np.ndarray) -> np.ndarray:
+    """lp_build_max as llvmpipe emits it on x86 (maxps): a > b ? a : b, so b where either is NaN."""
+    return np.where(a > b, a, b)
+
+
+def _quad_corner_diff(v: np.ndarray, width: int, axis: int) -> np.ndarray:
+    """Per 2x2 quad of a `width`-wide tile (lanes row by row from the bottom): the difference
+    between the quad's bottom-left pixel and its right (axis 1) or upper (axis 0) neighbour,
+    repeated over the quad. An odd last column or row pairs with its left or lower neighbour."""
+    n = v.shape[-1]
+    img = v.reshape(v.shape[:-1] + (n // width, width))
+    other = 1 - axis
+    size = img.shape[-2 + axis]
+    if size < 2:
+        return np.zeros_like(v)
+    take = lambda a, sl, ax: a[(Ellipsis, sl, slice(None)) if ax == 0 else (Ellipsis, sl)]  # noqa: E731
+    base = take(take(img, slice(0, None, 2), axis), slice(0, None, 2), other)
+    step = take(take(img, slice(1, None, 2), axis), slice(0, None, 2), other)
+    if step.shape != base.shape:  # odd size: the last pixel pairs with the one before it
+        last = take(take(img, slice(size - 1, size), axis), slice(0, None, 2), other) - \
+            take(take(img, slice(size - 2, size - 1), axis), slice(0, None, 2), other)
+        d = np.concatenate([step - take(base, slice(0, step.shape[-2 + axis]), axis), last], axis=img.ndim - 2 + axis)
+    else:
+        d = step - base
+    d = np.repeat(np.repeat(d, 2, axis=img.ndim - 2), 2, axis=img.ndim - 1)
+    d = d[..., : img.shape[-2], : img.shape[-1]]
+    return np.ascontiguousarray(d).reshape(v.shape)
+
+
+class TextureFunctions:
+    """The texture lookup built-ins; mixed into `Runtime` (which provides `F` and `_f`)."""
+
+    F: Any
+    lp: Any
+
+    def _tex_result(self, s, texels: np.ndarray) -> np.ndarray:
+        """(4, lanes) in the runtime's float type, truncated as a lowp sampler returns it."""
+        out = np.moveaxis(texels, -1, 0)
+        if s.lowp:
+            out = _truncate_lowp(out)
+        return np.ascontiguousarray(out, dtype=self.F)
+
+    def lowp_arith(self, *samplers) -> bool:
+        """Whether arithmetic on these samplers' lookups is float16, as on llvmpipe: float32 mode
+        (llvmpipe's) and lowp samplers (an unbound channel is lowp too). nir_fold.lowp_tree."""
+        return self.lp is not None and all(s is None or s.lowp for s in samplers)
+
+    @staticmethod
+    def half(x) -> np.ndarray:
+        """A float16 operand of nir_fold.lowp_tree's code (rounded to nearest; a lookup's lowp
+        result is already a float16 value)."""
+        return np.asarray(x, dtype=np.float16)
+
+    def lowp_full(self, x: np.ndarray) -> np.ndarray:
+        """The float16 result of such a tree as the render's float type (exact)."""
+        return np.asarray(x, dtype=self.F)
+
+    def _unbound(self, lanes: int) -> np.ndarray:
+        out = np.zeros((4, lanes), dtype=self.F)
+        out[3] = 1.0
+        return out
+
+    def _sample(self, s, p: np.ndarray, offset=(0, 0), lod=None) -> np.ndarray:
+        """Filter `s` at texture coordinates p (2, lanes) float32, `offset` texels added to the
+        texel coordinates (textureOffset) before the wrap. `lod` (lanes,) selects the mipmap
+        levels of a "mipmap" channel (None: level 0); other filters read level 0 only."""
+        p = np.asarray(p, dtype=np.float32)
+        if s is None:
+            return self._unbound(p.shape[-1])
+        u, v = p[0], p[1]
+        if s.filter == "nearest":
+            return self._tex_result(s, _nearest(s.texels, u, v, offset, s.wrap))
+        if s.filter == "linear" or lod is None:
+            return self._tex_result(s, _bilinear(s.texels, u, v, offset, s.wrap))
+        levels = s.levels()
+        pot = _pot(levels[0])
+        lod = np.clip(np.broadcast_to(np.asarray(lod, dtype=np.float32), u.shape), 0.0, len(levels) - 1)
+        lo = np.floor(lod)
+        frac = (lod - lo)[..., None]
+        lo = lo.astype(np.int64)
+        ks = np.unique(lo)
+        if len(ks) == 1:  # one level for every lane (textureLod(s, p, 0.0)): no selection
+            return self._tex_result(s, self._two_levels(levels, ks[0], u, v, offset, s.wrap, pot, frac))
+        out = np.empty(np.broadcast_shapes(u.shape, v.shape) + (4,), dtype=np.float32)
+        for k in ks:  # lanes by their lower level: bilinear there and one level up
+            sel = lo == k
+            us, vs = np.broadcast_to(u, sel.shape)[sel], np.broadcast_to(v, sel.shape)[sel]
+            out[sel] = self._two_levels(levels, k, us, vs, offset, s.wrap, pot, frac[sel])
+        return self._tex_result(s, out)
+
+    @staticmethod
+    def _two_levels(levels, k, u, v, offset, wrap, pot, frac) -> np.ndarray:
+        """Level k's bilinear result, blended with level k + 1's by `frac`: lp_build_sample_mipmap
+        samples the upper level only when some lane's fraction is above 0 (a NaN is not), so
+        an integer LOD reads one level."""
+        a = _bilinear(levels[k], u, v, offset, wrap, pot)
+        if k + 1 < len(levels) and (frac > 0).any():
+            a = _lerp(a, _bilinear(levels[k + 1], u, v, offset, wrap, pot), frac)
+        return a
+
+    def _implicit_lod(self, s, p: np.ndarray, width: int | None, bias=None):
+        """llvmpipe's LOD of a 2x2 quad (measured, tests/channels/measure_sampling.py): the
+        derivatives of the scaled coordinates between the quad's bottom-left pixel and its right
+        and upper neighbours, lod = 0.5 * fast_log2(max(dx.dx, dy.dy)) with fast_log2 the
+        piecewise-linear exponent + (mantissa - 1), the same for the four pixels."""
+        if s is None or s.filter != "mipmap" or width is None:
+            return None
+        h, w = s.texels.shape[:2]
+        p = np.asarray(p, dtype=np.float32)
+        if p.shape[-1] == 1:
+            rho2 = np.zeros(1, np.float32)
+        else:  # the coordinates' differences, then scaled by the size (not the scaled coordinates')
+            size = np.array([w, h], dtype=np.float32)[:, None]
+            dx = _quad_corner_diff(p, width, 1) * size
+            dy = _quad_corner_diff(p, width, 0) * size
+            rho2 = _max_x86(dx[0] * dx[0] + dx[1] * dx[1], dy[0] * dy[0] + dy[1] * dy[1])
+        lod = np.float32(0.5) * _fast_log2(rho2)
+        if bias is not None:
+            lod = lod + np.asarray(bias, dtype=np.float32)
+        return lod
+
+    @staticmethod
+    def _coords(p: Any) -> np.ndarray:
+        return np.asarray(p, dtype=np.float32)
+
+    # -- the built-ins (spec 8.8); `width` (the tile width) is for the implicit LOD of mipmaps
+    def texture(self, s, p, bias=None, width=None) -> np.ndarray:
+        """texture(sampler2D, vec2[, float bias]) with the channel's filter and wrap. Without
+        mipmaps the LOD (and so the bias) only chooses between the magnification and
+        minification filters, which glslcheck always sets alike."""
+        p = self._coords(p)
+        return self._sample(s, p, lod=self._implicit_lod(s, p, width, bias))
+
+    def textureLod(self, s, p, lod) -> np.ndarray:
+        return self.textureLodOffset(s, p, lod, (0, 0))
+
+    def textureLodOffset(self, s, p, lod, offset) -> np.ndarray:
+        mip = s is not None and s.filter == "mipmap"
+        return self._sample(s, self._coords(p), _offset(offset), lod if mip else None)
+
+    def textureGrad(self, s, p, dpdx, dpdy) -> np.ndarray:
+        return self.textureGradOffset(s, p, dpdx, dpdy, (0, 0))
+
+    def textureGradOffset(self, s, p, dpdx, dpdy, offset) -> np.ndarray:
+        """The LOD from the given gradients, by the implicit LOD's formula (`_implicit_lod`)."""
+        p = self._coords(p)
+        if s is None or s.filter != "mipmap":
+            return self._sample(s, p, _offset(offset))
+        h, w = s.texels.shape[:2]
+        size = np.array([w, h], dtype=np.float32).reshape(2, *([1] * (np.ndim(dpdx) - 1)))
+        dx, dy = np.asarray(dpdx, np.float32) * size, np.asarray(dpdy, np.float32) * size
+        rho2 = _max_x86(dx[0] * dx[0] + dx[1] * dx[1], dy[0] * dy[0] + dy[1] * dy[1])
+        rho2 = np.where(np.isfinite(rho2), rho2, np.float32(0))  # lp_build_rho: explicit derivatives only
+        return self._sample(s, p, _offset(offset), np.float32(0.5) * _fast_log2(rho2))
+
+    # the projective forms: coordinates p.xy / p.z (vec3) or p.xy / p.w (vec4), then as above
+    def textureProjOffset(self, s, p, offset, bias=None, width=None) -> np.ndarray:
+        return self.textureOffset(s, _project(p), offset, bias, width)
+
+    def textureProjLod(self, s, p, lod) -> np.ndarray:
+        return self.textureLod(s, _project(p), lod)
+
+    def textureProjLodOffset(self, s, p, lod, offset) -> np.ndarray:
+        return self.textureLodOffset(s, _project(p), lod, offset)
+
+    def textureProjGrad(self, s, p, dpdx, dpdy) -> np.ndarray:
+        return self.textureGrad(s, _project(p), dpdx, dpdy)
+
+    def textureProjGradOffset(self, s, p, dpdx, dpdy, offset) -> np.ndarray:
+        return self.textureGradOffset(s, _project(p), dpdx, dpdy, offset)
+
+    def textureProj(self, s, p, bias=None, width=None) -> np.ndarray:
+        """textureProj(sampler2D, vec3 | vec4): coordinates p.xy / p.z (vec3) or / p.w (vec4)."""
+        return self.texture(s, _project(p), bias, width)
+
+    def textureOffset(self, s, p, offset, bias=None, width=None) -> np.ndarray:
+        """The (constant) texel offset is added to the integer texel coordinates, before the wrap."""
+        p = self._coords(p)
+        return self._sample(s, p, _offset(offset), self._implicit_lod(s, p, width, bias))
+
+    def texelFetch(self, s, p, lod, *rest) -> np.ndarray:
+        """The texel at integer coordinates; out of range (undefined in ES 3.00) reads 0."""
+        p = np.asarray(p)
+        lanes = p.shape[-1]
+        if s is None:
+            return self._unbound(lanes)
+        h, w = s.texels.shape[:2]
+        x, y = p[0].astype(np.int64), p[1].astype(np.int64)
+        level = np.broadcast_to(np.asarray(lod), x.shape)
+        inside = (x >= 0) & (x < w) & (y >= 0) & (y < h) & (level == 0)
+        texels = s.texels[np.clip(y, 0, h - 1), np.clip(x, 0, w - 1)] * inside[..., None]
+        return self._tex_result(s, texels)
+
+    def texelFetchOffset(self, s, p, lod, offset) -> np.ndarray:
+        return self.texelFetch(s, np.asarray(p) + np.asarray(offset), lod)
+
+    @staticmethod
+    def textureSize(s, lod) -> np.ndarray:
+        """ivec2 of level `lod`: max(1, size >> lod); (0, 0) when unbound."""
+        lod = np.asarray(lod, dtype=np.int32)
+        if s is None:
+            return np.zeros((2,) + lod.shape, dtype=np.int32)
+        h, w = s.texels.shape[:2]
+        return np.stack([np.maximum(np.int32(w) >> lod, 1), np.maximum(np.int32(h) >> lod, 1)]).astype(np.int32)

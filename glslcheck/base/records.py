@@ -1,0 +1,320 @@
+"""Record classes for the start-up path: `@record`, what `@dataclass` gives, made cheaply.
+
+A record class is declared as for `@dataclass`: annotated fields in order, a default after the
+annotation (`field(default_factory=list)` for a fresh value per instance, `field(repr=False,
+compare=False)` to leave a field out of `__repr__` or `__eq__`). `@record` gives it
+`__slots__`, an `__init__` taking the fields in order, `__repr__` (`Name(a=1, b='x')`),
+`__eq__` between instances of the same class comparing the fields as one tuple, `__hash__` of
+that tuple when frozen (a mutable record with `eq` is unhashable, an `eq=False` one compares
+and hashes by identity) and `__match_args__`; a method the class defines itself is kept.
+`frozen=True` makes assigning a field an error (a frozen record pickles by its fields).
+Options: `frozen`, `eq`, `slots` (default True; False keeps a `__dict__`). A `__slots__` the
+class declares holds extra slots that are not fields, kept after the fields'.
+
+Why not `@dataclass`: it compiles the source text of six to nine methods for every class it
+makes, about 3.5 M instructions (a millisecond) per frozen class, and a one-file `glslcheck lint`
+makes 36 record classes before it reads the file (issue 18). Here the methods are shared by every
+record class, and each `__init__` is a copy of one compiled template per field count renamed to
+the class's fields (as frontend/syntax.py does for the AST's nodes): no code is compiled per class.
+
+Measured again when the review asked whether plain (lazily imported) dataclasses would do
+(issue 18, session 6; cachegrind `I refs` of the whole process, dev venv, .pyc written, every
+`@record` made a `@dataclass` with the same options, lint output unchanged on
+tests/real_lint): `glslcheck lint FILE` (203 lines) 455 M -> 562 M (+23%, about 35 ms at the
+3.07 M instructions per ms of a quiet machine, against a 150 ms target that is 460 M);
+`lint lab_shaders` 2103 M -> 2207 M. Of the 106 M, `import dataclasses` (and `inspect`, `ast`,
+`dis`, `tokenize` with it) is 22 M; the rest, about 2.3 M a class, is the methods compiled for
+the 36 classes. Importing dataclasses lazily saves nothing: every one of those classes is on the
+lint path.
+"""
+
+from __future__ import annotations
+
+from functools import partial
+from operator import attrgetter
+from types import FunctionType, MemberDescriptorType
+
+TYPE_CHECKING = False  # not typing's: importing typing costs every start-up (issue 18)
+if TYPE_CHECKING:
+    from typing import Any, Callable
+
+__all__ = ["record", "field", "replace", "FrozenInstanceError", "tuple_getter"]
+
+_MISSING = object()
+
+
+class FrozenInstanceError(AttributeError):
+    """A field of a frozen record was assigned or deleted (as dataclasses.FrozenInstanceError)."""
+
+
+class _Field:
+    __slots__ = ("default", "factory", "repr", "compare")
+
+    def __init__(self, default: Any, factory: Callable[[], Any] | None, repr: bool, compare: bool) -> None:
+        self.default = default
+        self.factory = factory
+        self.repr = repr
+        self.compare = compare
+
+
+def field(*, default: Any = _MISSING, default_factory: Callable[[], Any] | None = None,
+          repr: bool = True, compare: bool = True) -> Any:
+    """A field's options, as `dataclasses.field` takes them (the subset glslcheck uses)."""
+    if default is not _MISSING and default_factory is not None:
+        raise ValueError("a field cannot have both a default and a default_factory")
+    return _Field(default, default_factory, repr, compare)
+
+
+class _Factory:
+    """The default of a `default_factory` field: `__init__` calls `make` for each instance."""
+
+    __slots__ = ("make",)
+
+    def __init__(self, make: Callable[[], Any]) -> None:
+        self.make = make
+
+    def __repr__(self) -> str:
+        return f"<factory {getattr(self.make, '__name__', self.make)}>"
+
+
+_TEMPLATES: dict[tuple[int, bool, tuple[bool, ...]], Any] = {}
+
+
+def _init_template(count: int, frozen: bool, factories: tuple[bool, ...]):
+    """The code of an `__init__(self, _f0, ..., _f{count-1})` storing each argument (a
+    `_Factory` default replaced by what it makes, for the fields that have one), compiled once
+    per shape. A frozen record's fields are stored through `_set0`, `_set1`, ... (each the
+    `__set__` of the field's slot: a third of the cost of `object.__setattr__`, which a frozen
+    record's `__setattr__` leaves as the only other way; `glslcheck lint lab_shaders` makes
+    13,000 `Location`s)."""
+    key = (count, frozen, factories)
+    code = _TEMPLATES.get(key)
+    if code is None:
+        params = "".join(f", _f{i}" for i in range(count))
+        body = []
+        for i, factory in enumerate(factories):
+            value = f"_f{i}.make() if type(_f{i}) is _Factory else _f{i}" if factory else f"_f{i}"
+            body.append(f"    _set{i}(self, {value})" if frozen else f"    self._f{i} = {value}")
+        code = _TEMPLATES[key] = init_code("\n".join([f"def __init__(self{params}):", *(body or ["    pass"])]))
+    return code
+
+
+# The `__init__` templates of the lint path, compiled ahead of time (issue 18): compiling the 27
+# templates a `glslcheck lint FILE` makes (this module's and frontend/syntax.py's) cost 23 M of its 320 M
+# instructions. `base/_init_code.py` holds them as functions, compiled into its .pyc like any module,
+# keyed by the exact text `init_code` would compile; `python -m glslcheck.base.records` writes it,
+# and tests/test_records.py checks that it holds exactly the lint path's templates.
+_precompiled: dict | None = None
+_recorded: list[str] | None = None  # the texts asked for, while the generator records them
+
+
+def init_code(source: str):
+    """The code of `def __init__(...)` in `source` (a template: no user input), from
+    `base/_init_code.py` when it holds that text, else compiled here."""
+    global _precompiled
+    if _recorded is not None:
+        _recorded.append(source)
+    if _precompiled is None:
+        try:
+            from ._init_code import SOURCES as _precompiled
+        except ImportError:  # the generator's first run
+            _precompiled = {}
+    function = _precompiled.get(source)
+    if function is not None:
+        return function.__code__.replace(co_name="__init__", co_qualname="__init__")
+    env: dict[str, Any] = {}
+    exec(source, {}, env)  # noqa: S102 - a fixed template
+    return env["__init__"].__code__
+
+
+def lint_path_templates() -> list[str]:
+    """Every template `init_code` is asked for by `glslcheck lint` and `check` of the lab's
+    shaders, in a fresh interpreter (the templates are made as the modules are imported)."""
+    import json
+    import os
+    import subprocess
+    import sys
+
+    lab = os.path.join(os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__)))), "lab_shaders")
+    script = (
+        "import io, json, sys, contextlib; from glslcheck.base import records; records._recorded = []; "
+        "records._precompiled = {}\n"
+        "from glslcheck.cli.main import main\n"
+        "with contextlib.redirect_stdout(io.StringIO()):\n"
+        f"    main(['lint', {lab!r}]); main(['check', {lab!r}])\n"
+        "print(json.dumps(records._recorded))\n"
+    )
+    done = subprocess.run([sys.executable, "-c", script], capture_output=True, text=True, check=True,
+                          env={**os.environ, "GLSLCHECK_JOBS": "1"})
+    return sorted(set(json.loads(done.stdout)))
+
+
+def init_code_source(templates: list[str]) -> str:
+    """The text of `base/_init_code.py` for `templates`."""
+    lines = [
+        '"""The `__init__` templates of the lint path, compiled ahead of time (see `init_code` in',
+        "glslcheck/base/records.py). Written by `python -m glslcheck.base.records`; do not edit.",
+        '"""',
+        "",
+    ]
+    for i, source in enumerate(templates):
+        head, sep, body = source.partition("\n")
+        if not head.startswith("def __init__("):
+            raise ValueError(f"not a template: {head!r}")
+        lines += ["", head.replace("def __init__(", f"def _t{i}(", 1) + sep + body, ""]
+    lines += ["", "SOURCES = {"]
+    lines += [f"    {source!r}: _t{i}," for i, source in enumerate(templates)]
+    lines.append("}")
+    return "\n".join(lines) + "\n"
+
+
+def main() -> int:
+    from .generated import write_base_module
+
+    write_base_module("_init_code.py", init_code_source(lint_path_templates()))
+    return 0
+
+
+def _make_init(cls: type, names: tuple[str, ...], defaults: tuple, frozen: bool) -> FunctionType:
+    factories = tuple(cls._field_specs[name].factory is not None for name in names)
+    template = _init_template(len(names), frozen, factories)
+    rename = {f"_f{i}": name for i, name in enumerate(names)}
+    code = template.replace(
+        co_varnames=tuple(rename.get(n, n) for n in template.co_varnames),
+        co_names=tuple(rename.get(n, n) for n in template.co_names),
+        co_consts=tuple(rename.get(c, c) if type(c) is str else c for c in template.co_consts),
+        co_qualname=f"{cls.__qualname__}.__init__",
+    )
+    scope = {"_Factory": _Factory, "__builtins__": __builtins__}
+    if frozen:
+        for i, name in enumerate(names):
+            slot = next((k.__dict__[name] for k in cls.__mro__ if name in k.__dict__), None)
+            if type(slot) is MemberDescriptorType:
+                scope[f"_set{i}"] = slot.__set__
+            else:  # no slot (slots=False): through object.__setattr__
+                scope[f"_set{i}"] = partial(_object_setattr_to, name)
+    return FunctionType(code, scope, "__init__", defaults or None)
+
+
+def _object_setattr_to(name: str, obj: Any, value: Any) -> None:
+    object.__setattr__(obj, name, value)
+
+
+def tuple_getter(names: tuple[str, ...]) -> Callable[[Any], tuple]:
+    """`obj -> (obj.a, obj.b, ...)`, a tuple for any number of names (one C call for two or more)."""
+    if len(names) >= 2:
+        return attrgetter(*names)
+    if names:
+        get = attrgetter(names[0])
+        return lambda obj: (get(obj),)
+    return lambda obj: ()
+
+
+# The methods every record class shares: they read the class's `_key` (the compared fields as a
+# tuple), `_shown` (the fields __repr__ shows) and `_fields`.
+
+
+def _repr(self) -> str:
+    shown = ", ".join(f"{name}={getattr(self, name)!r}" for name in self._shown)
+    return f"{type(self).__qualname__}({shown})"
+
+
+def _eq(self, other):
+    if other.__class__ is not self.__class__:
+        return NotImplemented
+    return self._key(self) == self._key(other)
+
+
+def _hash(self) -> int:
+    return hash(self._key(self))
+
+
+def _frozen_setattr(self, name: str, value: Any) -> None:
+    if name in self._fields:
+        raise FrozenInstanceError(f"cannot assign to field {name!r}")
+    object.__setattr__(self, name, value)
+
+
+def _frozen_delattr(self, name: str) -> None:
+    if name in self._fields:
+        raise FrozenInstanceError(f"cannot delete field {name!r}")
+    object.__delattr__(self, name)
+
+
+def _reduce(self):
+    return type(self), tuple(getattr(self, name) for name in self._fields)
+
+
+def record(cls: type | None = None, /, *, frozen: bool = False, eq: bool = True, slots: bool = True):
+    """Make `cls` a record class (see the module's docstring); `@record` or `@record(...)`."""
+    if cls is None:
+        return lambda c: _process(c, frozen, eq, slots)
+    return _process(cls, frozen, eq, slots)
+
+
+def _process(cls: type, frozen: bool, eq: bool, slots: bool) -> type:
+    ns = dict(cls.__dict__)
+    own = [n for n in ns.get("__annotations__", {}) if not n.startswith("__")]
+    specs: dict[str, _Field] = {}
+    for base in reversed(cls.__mro__[1:]):
+        specs.update(getattr(base, "_field_specs", {}))
+    for name in own:
+        value = ns.pop(name, _MISSING)
+        specs[name] = value if isinstance(value, _Field) else _Field(value, None, True, True)
+    names = tuple(specs)
+    defaults = []
+    for name, spec in specs.items():
+        if spec.factory is not None:
+            defaults.append(_Factory(spec.factory))
+        elif spec.default is not _MISSING:
+            defaults.append(spec.default)
+        elif defaults:
+            raise TypeError(f"{cls.__name__}: field {name!r} without a default follows one with a default")
+    if slots:
+        # Slots the class declares itself (not fields: no __init__ parameter, not compared,
+        # not shown) are kept after the fields' (diagnostics.Location's `_pending`).
+        extra = tuple(n for n in ns.get("__slots__", ()) if n not in own)
+        for name in extra:
+            ns.pop(name, None)  # the member descriptor the class body's own __slots__ made
+        ns["__slots__"] = tuple(own) + extra
+        ns.pop("__dict__", None)
+        ns.pop("__weakref__", None)
+        cls = type(cls)(cls.__name__, cls.__bases__, ns)
+    else:
+        for name in own:
+            if name in cls.__dict__:
+                delattr(cls, name)
+    cls._field_specs = specs
+    cls._fields = names
+    cls._shown = tuple(n for n in names if specs[n].repr)
+    cls._key = staticmethod(tuple_getter(tuple(n for n in names if specs[n].compare)))
+    cls.__match_args__ = names
+    # As @dataclass: a method the class defines itself is kept.
+    own_methods = {
+        "__init__": _make_init(cls, names, tuple(defaults), frozen),
+        "__repr__": _repr,
+        **({"__eq__": _eq} if eq else {}),
+        # A frozen record cannot be unpickled field by field (its __setattr__ refuses): by value.
+        **({"__setattr__": _frozen_setattr, "__delattr__": _frozen_delattr, "__reduce__": _reduce} if frozen else {}),
+    }
+    for name, method in own_methods.items():
+        if name not in ns:
+            setattr(cls, name, method)
+    explicit_hash = ns.get("__hash__", None) is not None or ("__hash__" in ns and "__eq__" not in ns)
+    if eq and not explicit_hash:
+        cls.__hash__ = _hash if frozen else None
+    return cls
+
+
+def replace(obj: Any, /, **changes: Any) -> Any:
+    """A copy of the record `obj` with the fields in `changes` set (as `dataclasses.replace`)."""
+    unknown = set(changes) - set(obj._fields)
+    if unknown:
+        raise TypeError(f"{type(obj).__name__} has no field {sorted(unknown)[0]!r}")
+    return type(obj)(*(changes[n] if n in changes else getattr(obj, n) for n in obj._fields))
+
+
+if __name__ == "__main__":
+    import sys
+
+    sys.exit(main())

@@ -1,0 +1,479 @@
+"""Channels and passes: `channels.json`, image textures, and Buffer A-D rendered frame after frame.
+
+This module owns the channel bindings of a shader folder and the multipass schedule; the
+backends only sample the `ChannelInput`s they are handed (GL: backends/gl/program.py, NumPy:
+backends/numpy_engine/textures.py).
+
+channels.json, in the shader's folder (one object per tab that has inputs):
+
+    {"Buffer A": {"iChannel0": {"buffer": "Buffer A"}},
+     "Image": {"iChannel0": {"buffer": "Buffer A", "filter": "linear"},
+               "iChannel1": {"texture": "tex.png", "filter": "mipmap", "wrap": "repeat", "vflip": true}}}
+
+Each binding has `buffer` (a Buffer tab) or `texture` (an image path relative to the folder, read
+with Pillow), and optional `filter` (nearest | linear | mipmap; default mipmap for textures,
+linear for buffers), `wrap` (clamp | repeat; default repeat for textures, clamp for buffers) and
+`vflip` (default true for textures, false for buffers: Shadertoy flips images so that their top
+row is at t = 1).
+
+Passes, as Shadertoy runs them: every frame renders Buffer A, B, C, D (those the shader has),
+then Image. Buffers are RGBA float32 (Shadertoy allocates its buffers as 32-bit float RGBA
+textures where the browser can render to them, which WebGL 2 can), sized like the Image,
+cleared to zero before frame 0, and double-buffered: a pass reads what earlier passes of this
+frame wrote, and its own and later buffers' previous frame. Hence every cycle between buffers is a
+feedback and valid; the one cycle that is not (reading the Image tab, which nothing can read
+on Shadertoy) is an error. Image files are sampled as RGBA float32 texels (value / 255) on both
+backends (see backends/numpy_engine/textures.py for why, and for what llvmpipe's filtering does).
+
+iChannelResolution[N] is (width, height, 1) of the image or the buffer (the Image's size);
+iChannelTime[N] stays 0 for both: Shadertoy's page (effect.js, `EffectPass.Paint_Image`, as kept
+in public copies such as DustinBrett/daedalOS public/System/ShaderToy/CoastalLandscape/effect.js)
+starts it at 0 and sets it only for video and music inputs (their currentTime) and microphone or
+muted music (10 + iTime), none of which glslcheck supports. Tested on all three backends.
+
+Sampler precision: Shadertoy's prelude declares `precision mediump sampler3D;` and nothing for
+sampler2D, so iChannel0-3 are declared lowp (the ES 3.00 fragment default) before any user code;
+a `precision highp sampler2D;` in the user's tab comes after their declaration and does not
+change them (measured: llvmpipe still truncates). glslcheck compiles the same prelude on GL, and
+the NumPy backend truncates every lookup as llvmpipe does (backends/numpy_engine/textures.py).
+
+Shadertoy's own JSON export of a shader (`glslcheck render shader.json`, see
+`load_shadertoy_json`): the passes' code becomes the tabs and the inputs the bindings, with
+`/media/...` files taken from a `media/` folder beside the JSON.
+
+Errors (InputError, exit 2, naming channels.json and the key): bad JSON, an unknown tab or
+key, a missing or unreadable image, an unsupported input kind, bad values. A pass reading an
+iChannel its tab does not bind is a GlslError (exit 1) at the read, unless the shader is
+Shadertoy's own export: Shadertoy runs such a read (the unit has no texture, it reads (0, 0, 0, 1)
+and its size is 0; e.g. the public shader fsXcR8 reads iChannel1 with no input there), and so do
+glslcheck's backends.
+"""
+
+from __future__ import annotations
+
+import itertools
+import json
+import re
+from dataclasses import dataclass, field
+from pathlib import Path
+
+import numpy as np
+
+from ..base.diagnostics import Diagnostic, GlslError, InputError, Location
+from .wrapper import BUFFER_TABS, PASS_TABS
+from .sources import Shader
+
+CHANNELS_FILE = "channels.json"
+FILTERS = ("nearest", "linear", "mipmap")
+WRAPS = ("clamp", "repeat")
+_DEFAULTS = {"texture": ("mipmap", "repeat", True), "buffer": ("linear", "clamp", False)}
+_UNSUPPORTED = ("cubemap", "video", "webcam", "microphone", "music", "sound", "keyboard", "volume")
+_SERIAL = itertools.count()
+_COMMENT_RE = re.compile(r"/\*.*?(\*/|\Z)|//[^\n]*", re.S)
+
+
+@dataclass(frozen=True, slots=True)
+class Binding:
+    """One entry of channels.json: iChannel`channel` of `tab` reads `buffer` or `texture`."""
+
+    tab: str
+    channel: int
+    buffer: str | None
+    texture: str | None  # the path as written, relative to the folder
+    filter: str
+    wrap: str
+    vflip: bool
+
+
+@dataclass(eq=False)
+class ChannelInput:
+    """What a backend samples: `texels` float32 (height, width, 4), row 0 at t near 0 (OpenGL's
+    first row); `lowp`: lookups return lowp results (always, for Shadertoy's iChannels)."""
+
+    texels: np.ndarray
+    filter: str = "linear"
+    wrap: str = "clamp"
+    lowp: bool = True
+    serial: int = field(default_factory=lambda: next(_SERIAL))
+    _levels: list | None = field(default=None, repr=False)
+
+    def __repr__(self) -> str:  # unique: the NumPy backend's frame cache keys on it
+        return f"ChannelInput#{self.serial}"
+
+    def levels(self) -> list[np.ndarray]:
+        """The mipmap levels (level 0 = texels), made once: see `mip_levels`."""
+        if self._levels is None:
+            self._levels = mip_levels(self.texels)
+        return self._levels
+
+
+def mip_levels(texels: np.ndarray) -> list[np.ndarray]:
+    """glslcheck's mipmap pyramid, uploaded as it is to GL too (a driver's glGenerateMipmap is
+    implementation-defined): level k+1 is max(1, size >> 1) on each side, each texel the float32
+    mean ((a + b) + (c + d)) * 0.25 of its 2x2 block of level k (an odd last row or column is
+    left out, as the halved size is rounded down)."""
+    levels = [np.ascontiguousarray(texels, dtype=np.float32)]
+    while max(levels[-1].shape[:2]) > 1:
+        t = levels[-1]
+        h, w = t.shape[:2]
+        h2, w2 = max(1, h // 2), max(1, w // 2)
+        ys = np.minimum(np.arange(h2) * 2, h - 1)
+        xs = np.minimum(np.arange(w2) * 2, w - 1)
+        ys1, xs1 = np.minimum(ys + 1, h - 1), np.minimum(xs + 1, w - 1)
+        a, b = t[ys][:, xs], t[ys][:, xs1]
+        c, d = t[ys1][:, xs], t[ys1][:, xs1]
+        levels.append(((a + b) + (c + d)) * np.float32(0.25))
+    return levels
+
+
+def channel_uniforms(channels) -> dict:
+    """The sampler values and iChannelResolution of iChannel0..3 (None: unbound, size 0)."""
+    chans = list(channels) + [None] * (4 - len(channels))
+    values = {f"iChannel{i}": c for i, c in enumerate(chans)}
+    values["iChannelResolution"] = tuple(
+        (0.0, 0.0, 0.0) if c is None else (float(c.texels.shape[1]), float(c.texels.shape[0]), 1.0) for c in chans)
+    return values
+
+
+def folder_of(shader: Shader) -> Path:
+    root = Path(shader.root)
+    return root if root.is_dir() else root.parent
+
+
+def load_bindings(shader: Shader) -> tuple[str | None, list[Binding]]:
+    """(path of channels.json or None, its bindings), validated against the shader's tabs; a
+    shader read from Shadertoy's JSON export brings its own (`load_shadertoy_json`)."""
+    if shader.channels is not None:
+        return shader.root, list(shader.channels)
+    path = folder_of(shader) / CHANNELS_FILE
+    if not path.is_file():
+        return None, []
+    spath = str(path)
+    try:
+        text = path.read_text(encoding="utf-8")
+    except (OSError, UnicodeDecodeError) as e:
+        raise InputError(f"{spath}: error: cannot read the file ({e})") from None
+    try:
+        data = json.loads(text)
+    except json.JSONDecodeError as e:
+        raise InputError(f"{spath}:{e.lineno}:{e.colno}: error: not valid JSON: {e.msg}") from None
+
+    def fail(key: str, message: str):
+        raise InputError(f"{spath}: error: {key}: {message}")
+
+    if not isinstance(data, dict):
+        fail("the top level", "must be an object of tabs, e.g. {\"Image\": {\"iChannel0\": {\"buffer\": \"Buffer A\"}}}")
+    out: list[Binding] = []
+    for tab, chans in data.items():
+        if tab not in PASS_TABS:
+            fail(json.dumps(tab), f"unknown tab (tabs with inputs: {', '.join(PASS_TABS)})")
+        if tab not in shader.tabs:
+            fail(json.dumps(tab), f"the shader has no {tab} tab (no '{tab}.glsl' in the folder)")
+        if not isinstance(chans, dict):
+            fail(json.dumps(tab), "must be an object of channels (iChannel0 .. iChannel3)")
+        for key, spec in chans.items():
+            where = f"{json.dumps(tab)}.{json.dumps(key)}"
+            m = re.fullmatch(r"iChannel([0-3])", key)
+            if m is None:
+                fail(where, "unknown key (expected iChannel0 .. iChannel3)")
+            out.append(_binding(shader, tab, int(m.group(1)), spec, where, fail))
+    return spath, out
+
+
+def _binding(shader: Shader, tab: str, channel: int, spec, where: str, fail) -> Binding:
+    if not isinstance(spec, dict):
+        fail(where, "must be an object with \"buffer\" or \"texture\"")
+    kinds = [k for k in ("buffer", "texture") if k in spec]
+    other = [k for k in spec if k not in ("buffer", "texture", "filter", "wrap", "vflip")]
+    for k in other:
+        if k in _UNSUPPORTED:
+            fail(f"{where}.{json.dumps(k)}", f"{k} inputs are not supported yet (tab {tab}, iChannel{channel})")
+        fail(f"{where}.{json.dumps(k)}", "unknown key (expected buffer or texture, filter, wrap, vflip)")
+    if len(kinds) != 1:
+        fail(where, "needs exactly one of \"buffer\" (a tab) and \"texture\" (an image file)")
+    kind = kinds[0]
+    value = spec[kind]
+    if not isinstance(value, str):
+        fail(f"{where}.{json.dumps(kind)}", "must be a string")
+    if kind == "buffer":
+        if value == "Image":
+            fail(f"{where}.\"buffer\"", "the Image tab cannot be an input (a cycle that is no feedback: "
+                 "Shadertoy offers only Buffer A .. Buffer D)")
+        if value not in BUFFER_TABS:
+            fail(f"{where}.\"buffer\"", f"unknown tab {value!r} (expected one of {', '.join(BUFFER_TABS)})")
+        if value not in shader.tabs:
+            fail(f"{where}.\"buffer\"", f"the shader has no {value} tab (no '{value}.glsl' in the folder)")
+    filt, wrap, vflip = _DEFAULTS[kind]
+    filt = spec.get("filter", filt)
+    wrap = spec.get("wrap", wrap)
+    vflip = spec.get("vflip", vflip)
+    if filt not in FILTERS:
+        fail(f"{where}.\"filter\"", f"must be one of {', '.join(FILTERS)}, not {json.dumps(filt)}")
+    if wrap not in WRAPS:
+        fail(f"{where}.\"wrap\"", f"must be one of {', '.join(WRAPS)}, not {json.dumps(wrap)}")
+    if not isinstance(vflip, bool):
+        fail(f"{where}.\"vflip\"", f"must be true or false, not {json.dumps(vflip)}")
+    if kind == "texture":
+        _read_image(folder_of(shader) / value, f"{where}.\"texture\"", fail)  # fail early
+    return Binding(tab, channel, value if kind == "buffer" else None, value if kind == "texture" else None,
+                   filt, wrap, vflip)
+
+
+def _read_image(path: Path, where: str, fail) -> np.ndarray:
+    """RGBA float32 (height, width, 4), first row = the image's top, values v / 255."""
+    from PIL import Image, UnidentifiedImageError
+
+    try:
+        with Image.open(path) as im:
+            rgba = np.asarray(im.convert("RGBA"), dtype=np.float32)
+    except FileNotFoundError:
+        fail(where, f"no such file {str(path)!r}")
+    except (OSError, UnidentifiedImageError, ValueError) as e:
+        fail(where, f"cannot read the image {str(path)!r} ({e})")
+    return rgba / np.float32(255.0)
+
+
+def channel_reads(shader: Shader, tab: str) -> dict[int, Location]:
+    """The iChannels the pass's code names, each with where it first does (comments skipped)."""
+    found: dict[int, Location] = {}
+    for src in shader.units_for(tab):
+        code = _COMMENT_RE.sub(lambda m: re.sub(r"[^\n]", " ", m.group(0)), src.text)
+        for m in re.finditer(r"\biChannel([0-3])\b", code):
+            n = int(m.group(1))
+            if n not in found:
+                line = code.count("\n", 0, m.start()) + 1
+                col = m.start() - (code.rfind("\n", 0, m.start()) + 1) + 1
+                found[n] = Location(src.path, line, col, line, col + len(m.group(0)))
+    return found
+
+
+def needs_passes(shader: Shader) -> bool:
+    """Whether the shader has buffers, a channels.json, or reads an iChannel."""
+    if "GLSL" in shader.tabs:
+        return False
+    if shader.channels is not None:
+        return True
+    return (any(t in shader.tabs for t in BUFFER_TABS) or (folder_of(shader) / CHANNELS_FILE).is_file()
+            or ("Image" in shader.tabs and bool(channel_reads(shader, "Image"))))
+
+
+class MultipassProgram:
+    """Buffer A-D and Image of one shader on one backend, carried from frame to frame.
+
+    `render(size=..., time=..., frame=N, ...)` returns the `output` pass of frame N (default the
+    Image). Frames continue the previous render when `frame` is the next one at the same size;
+    otherwise the buffers are cleared and frames 0 .. N-1 run first (iTime = time - (N - i) *
+    time_delta), so the buffers hold what Shadertoy's would after N frames.
+    """
+
+    def __init__(self, shader: Shader, backend: str, output: str = "Image") -> None:
+        if backend not in ("numpy", "gl", "webgl"):
+            raise InputError(f"{shader.root}: error: buffers, channels and --pass are not supported on the "
+                             f"{backend} backend; use --backend numpy, gl or webgl")
+        self.shader = shader
+        self.backend = backend
+        self.channels_path, bindings = load_bindings(shader)
+        self.passes = [t for t in PASS_TABS if t in shader.tabs]
+        if output not in self.passes:
+            raise InputError(f"{shader.root}: error: --pass {output!r}: the shader has no such tab "
+                             f"(it has {', '.join(self.passes)})")
+        self.output = output
+        self.bindings = {t: {b.channel: b for b in bindings if b.tab == t} for t in self.passes}
+        self._check_reads()
+        self.textures = {}
+        for b in bindings:
+            if b.texture is not None:
+                def fail(key, message, b=b):
+                    raise InputError(f"{self.channels_path}: error: {key}: {message}")
+                self.textures[b.texture] = _read_image(folder_of(shader) / b.texture,
+                                                       f'"{b.tab}"."iChannel{b.channel}"."texture"', fail)
+        self.programs = {t: self._compile(t) for t in self.passes}
+        # Lookups return lowp results as llvmpipe's do (backends/numpy_engine/textures.py); False gives
+        # the exact float32 results SwiftShader's WebGL returns (it ignores lowp, measured).
+        self.lowp_samplers = True
+        self._state: dict[str, np.ndarray] = {}
+        self._key = None
+        self._next = 0
+
+    def _check_reads(self) -> None:
+        if self.shader.channels is not None:
+            # Shadertoy's own export: Shadertoy runs a read of a channel without an input (the
+            # unit has no texture: (0, 0, 0, 1), size 0), so glslcheck does too
+            return
+        diags = []
+        for tab in self.passes:
+            for n, loc in sorted(channel_reads(self.shader, tab).items()):
+                if n not in self.bindings[tab]:
+                    where = self.channels_path or f"{folder_of(self.shader) / CHANNELS_FILE} (missing)"
+                    diags.append(Diagnostic(f"iChannel{n} is read but not bound: {where} has no "
+                                            f"\"{tab}\": {{\"iChannel{n}\": ...}}", loc, rule="unbound-channel"))
+        if diags:
+            raise GlslError(diags)
+
+    def _compile(self, tab: str):
+        if self.backend == "gl":
+            from ..backends.gl import compile_gl
+
+            return compile_gl(self.shader, tab=tab)
+        if self.backend == "webgl":
+            from ..backends.webgl import compile_webgl
+
+            return compile_webgl(self.shader, tab=tab)
+        from ..backends.numpy_engine.program import compile_numpy
+
+        return compile_numpy(self.shader, tab if tab != "Image" else None)
+
+    # -- what verify and the api look for on a backend program
+    @property
+    def program(self):  # GL: the output pass's Program (its text)
+        return self.programs[self.output].program
+
+    @property
+    def source(self) -> str:
+        return self.programs[self.output].source
+
+    @property
+    def float_to_uint_model(self):
+        return self.programs[self.output].float_to_uint_model
+
+    def emulate_float_to_uint(self, model: str) -> None:
+        for p in self.programs.values():
+            if hasattr(p, "emulate_float_to_uint"):  # the NumPy side only
+                p.emulate_float_to_uint(model)
+
+    def format_stats(self) -> str:
+        return self.programs[self.output].format_stats()
+
+    def _inputs(self, tab: str) -> list:
+        chans = []
+        for n in range(4):
+            b = self.bindings[tab].get(n)
+            if b is None:
+                chans.append(None)
+                continue
+            # buffers are stored bottom row first, images top row first (unflipped, as uploaded)
+            texels = self._state[b.buffer] if b.buffer is not None else self.textures[b.texture]
+            if b.vflip:
+                texels = texels[::-1]
+            chans.append(ChannelInput(np.ascontiguousarray(texels), b.filter, b.wrap, self.lowp_samplers))
+        return chans
+
+    def render(self, size=(800, 450), time: float = 0.0, frame: int = 0, time_delta: float = 1.0 / 60.0,
+               samples: int = 1, **rest) -> np.ndarray:
+        """One frame of the output pass; arguments as the backend's render (see the class)."""
+        if self.backend in ("gl", "webgl"):
+            if rest.pop("precision", "float32") != "float32":
+                raise ValueError(f"the {self.backend} backend renders in float32 only (the driver's highp)")
+            rest.pop("stats", None)
+        width, height = int(size[0]), int(size[1])
+        key = (width, height, rest.get("precision"))
+        if key != self._key or frame != self._next:
+            self._state = {t: np.zeros((height, width, 4), np.float32) for t in self.passes if t != "Image"}
+            self._key, self._next = key, 0
+        out = None
+        while self._next <= frame:
+            i = self._next
+            t = time - (frame - i) * time_delta
+            for tab in self.passes:
+                img = self.programs[tab].render(size=(width, height), time=t, frame=i, time_delta=time_delta,
+                                                samples=samples if tab == "Image" else 1,
+                                                channels=self._inputs(tab), **rest)
+                if tab != "Image":
+                    self._state[tab] = np.ascontiguousarray(img[::-1])  # row 0 = bottom, as GL stores it
+                if tab == self.output:
+                    out = img
+            self._next = i + 1
+        return out
+
+
+# Shadertoy's export: pass types and input kinds (ctype) -> glslcheck's tabs and binding kinds.
+_ST_TABS = {"image": "Image", "common": "Common", "sound": "Sound", "cubemap": "Cube A"}
+_ST_INPUTS = {"texture": "texture", "buffer": "buffer"}
+
+
+def load_shadertoy_json(path) -> Shader:
+    """A shader from Shadertoy's JSON export (`{"Shader": {"renderpass": [...]}}`, or a list of
+    such shaders holding one): each pass's `code` becomes its tab (diagnostics name
+    `<file> [<tab>]`), each input a Binding: a `/media/...` path is the file of the same name in
+    the `media/` folder beside the JSON, a buffer input the Buffer tab whose output id it names.
+    InputError (exit 2) naming the file and the pass and channel for anything else."""
+    from ..base.diagnostics import register_source
+    from .sources import Source
+
+    spath = str(path)
+    try:
+        data = json.loads(Path(path).read_text(encoding="utf-8"))
+    except (OSError, UnicodeDecodeError) as e:
+        raise InputError(f"{spath}: error: cannot read the file ({e})") from None
+    except json.JSONDecodeError as e:
+        raise InputError(f"{spath}:{e.lineno}:{e.colno}: error: not valid JSON: {e.msg}") from None
+
+    def fail(where: str, message: str):
+        raise InputError(f"{spath}: error: {where}: {message}")
+
+    if isinstance(data, list) and len(data) == 1:
+        data = data[0]
+    if isinstance(data, dict) and "Shader" in data:
+        data = data["Shader"]
+    passes = data.get("renderpass") if isinstance(data, dict) else None
+    if not isinstance(passes, list):
+        fail("the top level", "not a Shadertoy export: expected {\"Shader\": {\"renderpass\": [...]}}")
+    shader = Shader(root=spath, channels=[])
+    outputs: dict[str, str] = {}  # output id -> Buffer tab
+    buffers = iter(BUFFER_TABS)
+    placed: list[str] = []  # the tab of each pass
+    for i, rp in enumerate(passes):
+        if not isinstance(rp, dict) or not isinstance(rp.get("code"), str):
+            fail(f"renderpass[{i}]", "needs a \"code\" string")
+        kind = rp.get("type", "image")
+        tab = _ST_TABS.get(kind)
+        if kind == "buffer":  # named "Buffer A" or, in older exports, "Buf A"
+            m = re.fullmatch(r"Buf(?:fer)? ?([A-D])", str(rp.get("name", "")).strip())
+            name = f"Buffer {m.group(1)}" if m else ""
+            tab = name if name in BUFFER_TABS and name not in shader.tabs else next(buffers, None)
+        if tab is None or tab in shader.tabs:
+            fail(f"renderpass[{i}] ({rp.get('name', kind)})", f"a pass of type {kind!r} glslcheck cannot place")
+        src = Source(f"{spath} [{tab}]", rp["code"].replace("\r\n", "\n"), tab)
+        register_source(src.path, src.text)
+        shader.tabs[tab] = src
+        placed.append(tab)
+        for out in rp.get("outputs") or ():
+            if isinstance(out, dict) and "id" in out:
+                outputs[str(out["id"])] = tab
+    for tab, rp in zip(placed, passes):
+        for inp in rp.get("inputs") or ():
+            shader.channels.append(_export_binding(shader, tab, inp, outputs, Path(path).parent, fail))
+    return shader
+
+
+def _export_binding(shader: Shader, tab: str, inp, outputs: dict, folder: Path, fail) -> Binding:
+    channel = inp.get("channel") if isinstance(inp, dict) else None
+    where = f"the {tab} pass, iChannel{channel}"
+    if channel not in (0, 1, 2, 3):
+        fail(f"the {tab} pass", f"an input without a channel 0-3: {json.dumps(inp)[:80]}")
+    ctype = inp.get("ctype", inp.get("type"))
+    kind = _ST_INPUTS.get(ctype)
+    if kind is None:
+        fail(where, f"{ctype} inputs are not supported yet")
+    sampler = inp.get("sampler") or {}
+    filt, wrap, vflip = _DEFAULTS[kind]
+    filt = sampler.get("filter", filt)
+    wrap = sampler.get("wrap", wrap)
+    vflip = str(sampler.get("vflip", vflip)).lower() == "true"
+    if filt not in FILTERS or wrap not in WRAPS:
+        fail(where, f"filter {filt!r} / wrap {wrap!r} (expected {', '.join(FILTERS)} / {', '.join(WRAPS)})")
+    src = str(inp.get("src", inp.get("filepath", "")))
+    if kind == "buffer":
+        buffer = outputs.get(str(inp.get("id")))
+        m = re.search(r"buffer0([0-3])", src)
+        if buffer is None and m is not None:
+            buffer = BUFFER_TABS[int(m.group(1))]
+        if buffer is None or buffer not in shader.tabs:
+            fail(where, f"the buffer it reads ({src or inp.get('id')}) is not a pass of this export")
+        # vflip is Shadertoy's UNPACK_FLIP_Y at an image's upload: it never applies to a buffer
+        return Binding(tab, channel, buffer, None, filt, wrap, False)
+    local = f"media/{Path(src).name}"
+    if not (folder / local).is_file():
+        fail(where, f"no such file {str(folder / local)!r} (Shadertoy's {src}: download it into the media/ "
+                    "folder beside the JSON)")
+    return Binding(tab, channel, None, local, filt, wrap, vflip)

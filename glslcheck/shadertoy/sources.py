@@ -1,0 +1,307 @@
+"""Reading shaders from disk: Shadertoy tab files, folders of them, and plain GLSL files.
+
+A shader is given as one file per Shadertoy tab (`Image`, `Common`, `Buffer A`..`Buffer D`,
+`Sound`, `Cube A`; extension `.glsl`, `.frag`, `.txt` or none; names matched case-insensitively
+with spaces, `_` and `-` ignored, so `Buffer A.glsl` and `buffer_a.glsl` are the same tab) or a
+folder of such files. A file whose name is not a tab name is taken as an Image tab. A file with
+its own `#version` line and a `main()` is a plain GLSL ES fragment shader, taken as it is.
+
+Text is decoded as UTF-8 (a BOM is dropped) and line endings are normalised to `\n` (CRLF and
+lone CR), which keeps every line and column of the user's file. Anything that cannot be read
+raises `InputError` (exit 2) with the path and, for bad bytes, the line and column.
+"""
+
+from __future__ import annotations
+
+import errno
+import os
+import re
+import stat
+from ..base.regexes import compiled
+from ..base.records import record, field
+
+from ..base.diagnostics import InputError, register_source
+
+SHADER_EXTENSIONS = (".glsl", ".frag", ".txt", "")
+# Canonical tab names in the order Shadertoy shows them.
+TAB_NAMES = ("Common", "Buffer A", "Buffer B", "Buffer C", "Buffer D", "Cube A", "Sound", "Image")
+_SEPARATORS = compiled(r"[\s_\-]")  # spaces, `_` and `-` in a tab file's name
+_TAB_KEYS = {_SEPARATORS.sub("", t).lower(): t for t in TAB_NAMES}
+MAX_FILE_BYTES = 1_000_000
+
+
+# Paths as strings, without `pathlib` (issue 18: importing it, with the `urllib.parse` and
+# `ipaddress` it loads, is about 17 M instructions of every `glslcheck lint` start-up). Each
+# helper gives what the same `pathlib.Path` expression gives on POSIX, so every path a message
+# names is spelt as before.
+
+
+def posix_path(path: str | os.PathLike) -> str:
+    """`str(PurePosixPath(path))`: empty and `.` parts and a trailing `/` dropped, `..` kept,
+    a leading `//` kept as POSIX allows."""
+    text = os.fspath(path)
+    if text.startswith("/"):
+        lead = "//" if text.startswith("//") and not text.startswith("///") else "/"
+    else:
+        lead = ""
+    return lead + "/".join(part for part in text.split("/") if part and part != ".") or "."
+
+
+def path_name(path: str | os.PathLike) -> str:
+    """`PurePosixPath(path).name`."""
+    text = posix_path(path)
+    name = text[text.rfind("/") + 1 :]
+    return "" if name == "." else name
+
+
+def path_suffix(path: str | os.PathLike) -> str:
+    """`PurePosixPath(path).suffix`: from the name's last dot, unless the name starts or ends there."""
+    name = path_name(path)
+    i = name.rfind(".")
+    return name[i:] if 0 < i < len(name) - 1 else ""
+
+
+def path_stem(path: str | os.PathLike) -> str:
+    """`PurePosixPath(path).stem`."""
+    name = path_name(path)
+    suffix = path_suffix(name)
+    return name[: len(name) - len(suffix)] if suffix else name
+
+
+def folder_entries(folder: str) -> list[str]:
+    """`sorted(Path(folder).iterdir())` as strings, for a folder spelt as `posix_path` spells it."""
+    base = "" if folder == "." else folder if folder.endswith("/") else folder + "/"
+    return [base + name for name in sorted(os.listdir(folder))]
+
+
+@record
+class Source:
+    """One file's text: `path` is how the user named it (used in every message)."""
+
+    path: str
+    text: str
+    tab: str = "Image"  # one of TAB_NAMES, or "GLSL" for a plain GLSL file
+
+    @property
+    def is_plain_glsl(self) -> bool:
+        return self.tab == "GLSL"
+
+
+@record
+class Shader:
+    """A Shadertoy shader: its tabs by canonical name (or one plain GLSL file)."""
+
+    tabs: dict[str, Source] = field(default_factory=dict)
+    root: str = ""
+    channels: list | None = None  # channels.Binding list of a Shadertoy JSON export (else channels.json)
+
+    @property
+    def image(self) -> Source | None:
+        return self.tabs.get("Image") or self.tabs.get("GLSL")
+
+    @property
+    def common(self) -> Source | None:
+        return self.tabs.get("Common")
+
+    def units_for(self, tab: str = "Image") -> list[Source]:
+        """The texts compiled for a pass, in order: Common first (as Shadertoy does), then the tab."""
+        src = self.tabs.get(tab)
+        if src is None:
+            raise InputError(f"{self.root}: no {tab} tab")
+        if src.is_plain_glsl or tab == "Common" or self.common is None:
+            return [src]
+        return [self.common, src]
+
+    def sources(self) -> list[Source]:
+        return [self.tabs[t] for t in (*TAB_NAMES, "GLSL") if t in self.tabs]
+
+
+def tab_name(path: str | os.PathLike) -> str | None:
+    """The canonical tab a file name denotes, or None when it names no tab."""
+    stem = path_name(path)
+    for ext in SHADER_EXTENSIONS[:-1]:
+        if stem.lower().endswith(ext):
+            stem = stem[: -len(ext)]
+            break
+    return _TAB_KEYS.get(_SEPARATORS.sub("", stem).lower())
+
+
+def decode(data: bytes, path: str) -> str:
+    """UTF-8 text with the BOM dropped and line endings normalised; InputError on bad bytes."""
+    if data.startswith(b"\xef\xbb\xbf"):
+        data = data[3:]
+    try:
+        text = data.decode("utf-8")
+    except UnicodeDecodeError as e:
+        before = data[: e.start].decode("utf-8", "replace").replace("\r\n", "\n").replace("\r", "\n")
+        line = before.count("\n") + 1
+        col = len(before) - (before.rfind("\n") + 1) + 1
+        raise InputError(
+            f"{path}:{line}:{col}: error: the file is not UTF-8 text (byte 0x{data[e.start]:02x}); "
+            "save it as UTF-8"
+        ) from None
+    return text.replace("\r\n", "\n").replace("\r", "\n")
+
+
+def read_source(path: str | os.PathLike, tab: str | None = None) -> Source:
+    """Read one file as a Source; InputError when it is missing, unreadable, not a regular file,
+    too big or not UTF-8."""
+    spath = str(path)
+    try:
+        # O_NONBLOCK: opening a FIFO must not wait for a writer; it is refused just below.
+        fd = os.open(spath, os.O_RDONLY | os.O_NONBLOCK | getattr(os, "O_CLOEXEC", 0))
+        with os.fdopen(fd, "rb") as f:
+            mode = os.fstat(f.fileno()).st_mode
+            if not stat.S_ISREG(mode):
+                raise InputError(f"{spath}: error: {_not_regular(mode)}, not a regular file; glslcheck reads shader files")
+            data = f.read(MAX_FILE_BYTES + 1)  # never more, whatever the file's size claims
+        if len(data) > MAX_FILE_BYTES:
+            size = max(os.path.getsize(spath), len(data))
+            raise InputError(f"{spath}: error: the file is {size} bytes; glslcheck reads shader files up to {MAX_FILE_BYTES} bytes")
+    except InputError:
+        raise
+    except OSError as e:
+        raise InputError(f"{spath}: error: {os_error_text(e)}") from None
+    text = decode(data, spath)
+    register_source(spath, text)
+    if tab is None:
+        tab = tab_name(spath) or "Image"
+    if _is_plain_glsl(text):
+        tab = "GLSL"
+    return Source(spath, text, tab)
+
+
+def os_error_text(e: OSError) -> str:
+    """What an OSError on opening a path means, in words ("no such file", "a symlink loop", ...)."""
+    if e.errno == errno.ENOENT:
+        return "no such file"
+    if e.errno == errno.ELOOP:
+        return "a loop of symbolic links (or too many of them in a row); it names no file"
+    if e.errno == errno.EISDIR:
+        return "is a directory"
+    if e.errno in (errno.EACCES, errno.EPERM):
+        return "permission denied"
+    if e.errno == errno.ENOTDIR:
+        return "a part of the path is not a folder"
+    if e.errno == errno.ENAMETOOLONG:
+        return "the file name is too long"
+    return f"cannot read the file ({e.strerror or e})"
+
+
+def check_path(path: str | os.PathLike) -> None:
+    """InputError unless `path` names something (a file or folder): missing, a symlink loop, ..."""
+    try:
+        os.stat(path)
+    except OSError as e:
+        text = os_error_text(e)
+        raise InputError(f"{path}: error: {'no such file or directory' if text == 'no such file' else text}") from None
+
+
+def _not_regular(mode: int) -> str:
+    for test, what in ((stat.S_ISFIFO, "is a FIFO (named pipe)"), (stat.S_ISCHR, "is a character device"),
+                       (stat.S_ISBLK, "is a block device"), (stat.S_ISSOCK, "is a socket"),
+                       (stat.S_ISDIR, "is a directory")):
+        if test(mode):
+            return what
+    return "is a special file"
+
+
+_VERSION_RE = compiled(r"^[ \t]*#[ \t]*version\b", re.M)
+_MAIN_RE = compiled(r"\bvoid\s+main\s*\(\s*(void\s*)?\)")
+_COMMENT_RE = compiled(r"/\*.*?(\*/|\Z)|//[^\n]*", re.S)
+
+
+def _is_plain_glsl(text: str) -> bool:
+    """Own `#version` and `main()` in the code: a `main()` or `#version` kept in a comment (the
+    wrapper a student pasted as a note) does not make a Shadertoy tab a plain GLSL file."""
+    code = _COMMENT_RE.sub(" ", text)
+    return bool(_VERSION_RE.search(code)) and bool(_MAIN_RE.search(code))
+
+
+def _is_tab_file(p: str) -> bool:
+    return _is_shader_file(p) and tab_name(p) is not None
+
+
+def _is_shader_file(p: str) -> bool:
+    suffix = path_suffix(p)
+    return os.path.isfile(p) and not path_name(p).startswith(".") and suffix.lower() in SHADER_EXTENSIONS and (
+        suffix != "" or tab_name(p) is not None
+    )
+
+
+def load_shader(path: str | os.PathLike) -> Shader:
+    """A file (one tab; a sibling Common tab is picked up for an Image tab) or a folder of tabs."""
+    p = posix_path(path)
+    spath = str(path)
+    check_path(spath)
+    if path_suffix(p).lower() == ".json" and os.path.isfile(p):  # Shadertoy's export of a whole shader
+        from pathlib import Path
+
+        from .channels import load_shadertoy_json
+
+        return load_shadertoy_json(Path(p))
+    shader = Shader(root=spath)
+    if os.path.isdir(p):
+        files = [f for f in folder_entries(p) if _is_tab_file(f)]
+        if not files:
+            raise InputError(f"{spath}: error: the folder holds no Shadertoy tab files (Image.glsl, Common.glsl, ...)")
+        for f in files:
+            src = read_source(f)
+            if src.tab in shader.tabs:
+                raise InputError(f"{f}: error: a second file for the {src.tab} tab (first: {shader.tabs[src.tab].path})")
+            shader.tabs[src.tab] = src
+        return shader
+    src = read_source(p)
+    shader.tabs[src.tab] = src
+    if src.tab not in ("Common", "GLSL"):
+        # Shadertoy prepends the Common tab to every pass: pick up a sibling Common file.
+        parent = _parent(p)
+        for f in folder_entries(parent) if os.path.exists(parent) else []:
+            if f != p and _is_tab_file(f) and tab_name(f) == "Common":
+                shader.tabs["Common"] = read_source(f)
+                break
+    return shader
+
+
+def find_shaders(paths: list[str]) -> list[Shader]:
+    """Expand command-line paths. A file is one shader; a folder holding tab files (Image.glsl,
+    Common.glsl, ...) is one shader; any other folder is walked: each of its sub-folders with
+    tab files is a shader, and each loose .glsl/.frag/.txt file is a shader of its own."""
+    out: list[Shader] = []
+    for path in paths:
+        p = posix_path(path)
+        if os.path.isdir(p) and not any(_is_tab_file(f) for f in folder_entries(p)):
+            found = _walk(p)
+            if not found:
+                raise InputError(f"{path}: error: no shader files found")
+            out.extend(found)
+        else:
+            out.append(load_shader(p))
+    return out
+
+
+def _parent(p: str) -> str:
+    """`str(PurePosixPath(p).parent)` of a path spelt as `posix_path` spells it."""
+    i = p.rfind("/")
+    if i < 0:
+        return "."
+    return p[:i] if p[:i].strip("/") else p[: i + 1]  # the root `/` (or `//`) keeps its slashes
+
+
+def _walk(folder: str) -> list[Shader]:
+    found: list[Shader] = []
+    for f in folder_entries(folder):
+        name = path_name(f)
+        if name.startswith(".") or name == "__pycache__":
+            continue
+        if os.path.isdir(f):
+            if any(_is_tab_file(g) for g in folder_entries(f)):
+                found.append(load_shader(f))
+            else:
+                found.extend(_walk(f))
+        elif _is_shader_file(f) and path_suffix(f):
+            shader = Shader(root=f)
+            src = read_source(f)
+            shader.tabs[src.tab] = src
+            found.append(shader)
+    return found

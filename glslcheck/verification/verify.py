@@ -1,0 +1,477 @@
+"""Verifying the CPU renderer: render one shader with the NumPy backend and with OpenGL
+(Mesa llvmpipe) at the same inputs, frame by frame, and compare the two images.
+
+This module owns the frame schedule (which times, frame numbers and rates a run covers) and the
+pairing of the two backends; the command-line values and their limits are in
+`glslcheck.cli.commands.args`, shared by every command. The verdict itself (metrics, tolerance model, diff image) belongs to
+`glslcheck.verification.compare`; each frame's outcome is a `compare.Comparison`.
+
+Library API:
+
+    comparisons = verify("lab_shaders/07_final", size=(320, 180), times=[0.0, 1.7])
+    all(c.match for c in comparisons)
+    for r in verify_frames(shader, frames=10, fps=30): r.spec.time, r.comparison.psnr_db
+
+Inputs fed to both backends (identical on both sides): iResolution from `size`, iTime and
+iFrame from the schedule, iMouse, iDate (`date`, default the fixed 2026-01-01 00:00), and
+iTimeDelta = 1/fps, iFrameRate = fps when both backends accept them. `precision` selects the
+NumPy backend's float mode (float32 = highp, float16 = mediump emulation, float64 = reference);
+the GL side is always what the driver runs (highp = float32), so float16/float64 measure the
+error of that mode against the real GPU. `samples` (a perfect square) supersamples both sides
+on the same sub-pixel grid.
+
+The schedule (`frame_specs`):
+
+- nothing given: one frame at iTime = 0, iFrame = `frame` (0).
+- `time=T` or `times=[...]`: one frame per time, each with iFrame = `frame`.
+- `frames=N`: N consecutive frames from iFrame = `frame`: iFrame = frame + i and
+  iTime = iFrame / fps (the clock of a player running at `fps`, default 60).
+"""
+
+from __future__ import annotations
+
+import inspect
+import logging
+from collections import abc
+import os
+import sys
+from dataclasses import dataclass
+from pathlib import Path
+from typing import Iterator, Sequence
+
+import numpy as np
+
+from .compare import Comparison, compare
+from ..semantics.mediump import mediump_notes
+from ..base.diagnostics import GlslError, InputError
+from ..base.precision import check_precision
+from ..shadertoy.wrapper import DEFAULT_SIZE
+from ..shadertoy.sources import Shader, load_shader
+
+BACKENDS = ("numpy", "gl")
+ALL_BACKENDS = ("numpy", "gl", "webgl", "compiled")  # webgl: headless Chromium (glslcheck/webgl_backend);
+# compiled: per pixel by numba (glslcheck/compiled_backend), float32 only
+DEFAULT_FPS = 60.0
+
+
+# ---------------------------------------------------------------------------------------------
+# The frame schedule.
+
+
+@dataclass(frozen=True, slots=True)
+class FrameSpec:
+    """The per-frame inputs: iTime, iFrame, iTimeDelta, iFrameRate."""
+
+    time: float = 0.0
+    frame: int = 0
+    time_delta: float = 1.0 / DEFAULT_FPS
+    frame_rate: float = DEFAULT_FPS
+
+
+@dataclass(frozen=True, slots=True)
+class Frames(abc.Sequence):
+    """`length` consecutive frames from iFrame `start` at `rate`, made one at a time when asked
+    for (`--frames 100000000` holds no list of 10^8 frames)."""
+
+    start: int
+    length: int
+    rate: float
+
+    def __len__(self) -> int:
+        return self.length
+
+    def __getitem__(self, i):
+        if isinstance(i, slice):
+            return [self[j] for j in range(*i.indices(self.length))]
+        if i < 0:
+            i += self.length
+        if not 0 <= i < self.length:
+            raise IndexError(i)
+        n = self.start + i
+        return FrameSpec(n / self.rate, n, 1.0 / self.rate, self.rate)
+
+
+def frame_specs(
+    time: float | None = None,
+    times: Sequence[float] | None = None,
+    frames: int | None = None,
+    fps: float | None = None,
+    frame: int | None = None,
+) -> Sequence[FrameSpec]:
+    """The frames one run renders (see the module docstring); ValueError on conflicting options.
+    `frames=N` gives a lazy sequence (`Frames`), the others a list."""
+    given = [name for name, v in (("time", time), ("times", times), ("frames", frames)) if v is not None]
+    if len(given) > 1:
+        raise ValueError(f"give only one of --{', --'.join(given)}")
+    rate = DEFAULT_FPS if fps is None else float(fps)
+    if not rate > 0:
+        raise ValueError(f"fps must be positive, not {fps}")
+    start = 0 if frame is None else int(frame)
+    delta = 1.0 / rate
+    if frames is not None:
+        if frames < 1:
+            raise ValueError("frames must be at least 1")
+        return Frames(start, int(frames), rate)
+    if times is not None:
+        if not len(times):
+            raise ValueError("times is empty")
+        return [FrameSpec(float(t), start, delta, rate) for t in times]
+    return [FrameSpec(0.0 if time is None else float(time), start, delta, rate)]
+
+
+# ---------------------------------------------------------------------------------------------
+# Backends.
+
+
+def compile_backend(shader: Shader, backend: str):
+    """A compiled program of `backend` ("numpy", "gl" or "webgl") with a `render(size=..., ...)` method.
+
+    GlslError (exit 1) when the shader does not compile, GLUnavailable (exit 2) without a GL
+    context, WebGLUnavailable (exit 2) without headless Chromium, InputError (exit 2) when the
+    NumPy backend is not installed in this build.
+    """
+    if backend == "gl":
+        from ..shadertoy.channels import MultipassProgram, needs_passes
+        from ..backends.gl import compile_gl
+
+        return MultipassProgram(shader, "gl") if needs_passes(shader) else compile_gl(shader)
+    if backend == "webgl":
+        from ..shadertoy.channels import MultipassProgram, needs_passes
+        from ..backends.webgl import compile_webgl
+
+        return MultipassProgram(shader, "webgl") if needs_passes(shader) else compile_webgl(shader)
+    if backend == "numpy":
+        try:
+            from ..backends import registry as api
+        except ImportError:
+            api = None
+        if api is not None and hasattr(api, "compile"):
+            return api.compile(shader, backend="numpy")
+        try:
+            from ..backends.numpy_engine.program import compile_numpy
+        except ImportError as e:
+            raise InputError(f"error: the NumPy backend is not available in this build ({e})") from None
+        return compile_numpy(shader)
+    if backend == "compiled":  # InputError (exit 2) without numba, with the pip line
+        from ..backends.compiled_engine import compile_program
+
+        return compile_program(shader)
+    raise ValueError(f"unknown backend {backend!r}; expected one of {', '.join(ALL_BACKENDS)}")
+
+
+def _accepted(program) -> set[str] | None:
+    """The keyword arguments `program.render` takes (None: it takes **kwargs)."""
+    params = inspect.signature(program.render).parameters.values()
+    if any(p.kind is p.VAR_KEYWORD for p in params):
+        return None
+    return {p.name for p in params}
+
+
+class _Pair:
+    """Two compiled programs rendered with the same inputs.
+
+    Inputs that only one backend understands are not fed to either side (iTimeDelta and
+    iFrameRate then keep their defaults on both), so the two always see the same uniforms;
+    `precision` is the exception: it goes to each backend that takes it (the GL side has none:
+    the driver is float32).
+    """
+
+    def __init__(self, programs: Sequence):
+        self.programs = list(programs)
+        accepted = [_accepted(p) for p in self.programs]
+        common = None
+        for a in accepted:
+            if a is not None:
+                common = a if common is None else common & a
+        self._common = common
+        self._accepted = accepted
+
+    def render(self, spec: FrameSpec, size, mouse, date, precision, samples,
+               only_first: bool = False) -> list[np.ndarray]:
+        shared = {"size": size, "time": spec.time, "frame": spec.frame, "mouse": mouse, "date": date,
+                  "samples": samples, "time_delta": spec.time_delta, "frame_rate": spec.frame_rate}
+        images = []
+        for program, accepted in zip(self.programs[:1] if only_first else self.programs, self._accepted):
+            kwargs = {k: v for k, v in shared.items() if self._common is None or k in self._common}
+            if accepted is None or "precision" in accepted:
+                kwargs["precision"] = precision
+            images.append(program.render(**kwargs))
+        return images
+
+    def reference(self, spec: FrameSpec, size, mouse, date, samples) -> np.ndarray | None:
+        """The float64 render of the program under test (None when it has no precision)."""
+        accepted = self._accepted[0]
+        if accepted is not None and "precision" not in accepted:
+            return None
+        if getattr(self.programs[0], "backend", "") == "compiled":  # float32 only
+            return None
+        return self.render(spec, size, mouse, date, "float64", samples, only_first=True)[0]
+
+
+# ---------------------------------------------------------------------------------------------
+# Verification.
+
+
+@dataclass(eq=False)
+class FrameResult:
+    """One verified frame: which shader, which inputs, the comparison, and (if kept) both images."""
+
+    shader: str
+    spec: FrameSpec
+    size: tuple[int, int]
+    comparison: Comparison
+    numpy_image: np.ndarray | None = None
+    gl_image: np.ndarray | None = None
+    notes: tuple[str, ...] = ()  # what the report should say besides the metrics
+
+    @property
+    def match(self) -> bool:
+        return self.comparison.match
+
+
+def _as_shader(shader) -> Shader:
+    if isinstance(shader, Shader):
+        return shader
+    if isinstance(shader, (str, os.PathLike)):
+        return load_shader(shader)
+    raise TypeError(f"expected a Shader or a path, not {type(shader).__name__}")
+
+
+def verify_frames(
+    shader,
+    *,
+    size: tuple[int, int] = DEFAULT_SIZE,
+    sizes: Sequence[tuple[int, int]] | None = None,
+    time: float | None = None,
+    times: Sequence[float] | None = None,
+    frames: int | None = None,
+    fps: float | None = None,
+    frame: int | None = None,
+    mouse: tuple[float, float, float, float] = (0.0, 0.0, 0.0, 0.0),
+    date=None,
+    precision: str = "float32",
+    samples: int = 1,
+    backends: tuple[str, str] = BACKENDS,
+    programs: Sequence | None = None,
+    keep_images: bool = False,
+    compare_options: dict | None = None,
+    progress: "Progress | None" = None,
+) -> Iterator[FrameResult]:
+    """Render and compare frame by frame, every size times every frame of the schedule.
+
+    `shader` is a `Shader` or a path. `backends` names the two sides (first = the one under
+    test, reported as "numpy"); `programs` gives already compiled programs instead. Both are
+    compiled before the first frame, so a GLSL error or a missing GL context surfaces at once.
+    """
+    check_precision(precision)
+    specs = frame_specs(time, times, frames, fps, frame)
+    size_list = [tuple(s) for s in (sizes or [size])]
+    shader = _as_shader(shader)
+    if programs is None:
+        # GL/WebGL first: a missing context or browser is reported before a slower NumPy transpile.
+        by_name = {}
+        for b in sorted(backends, key=lambda b: b == "numpy"):
+            try:
+                by_name[b] = compile_backend(shader, b)
+            except GlslError as driver:
+                if b == "numpy" or "numpy" not in backends:
+                    raise
+                # our own front end's diagnostics are clearer than the driver's cascade (and
+                # carry fix-its, e.g. iGlobalTime -> iTime): report them when it also fails
+                try:
+                    compile_backend(shader, "numpy")
+                except GlslError as ours:
+                    raise ours from None
+                raise driver
+        programs = [by_name[b] for b in backends]
+    emulate_driver(programs)
+    driver, driver_note = gl_driver(programs)
+    for p in programs:
+        llvmpipe_loop_limit(p)
+    pair = _Pair(programs)
+    name = shader.root or (shader.image.path if shader.image else "<shader>")
+    mediump = mediump_notes(shader) if "numpy" in backends else ()  # float16 arithmetic (semantics/mediump.py)
+    for w_h in size_list:
+        for spec in specs:
+            numpy_img, gl_img = pair.render(spec, w_h, tuple(mouse), date, precision, samples)
+            comparison = compare(numpy_img, gl_img, **(compare_options or {}))
+            if not comparison.match and precision == "float32":
+                # unstable pixels: only worth a float64 render when the frame fails (verification/compare.py)
+                ref = pair.reference(spec, w_h, tuple(mouse), date, samples)
+                if ref is not None:
+                    comparison = compare(numpy_img, gl_img, reference=ref, **(compare_options or {}))
+                    if comparison.unstable_pixels:
+                        comparison.unstable_lines = unstable_lines(
+                            shader, comparison, w_h, spec, tuple(mouse), date)
+            if progress is not None:
+                progress.step(f"{name} t={spec.time:g}")
+            comparison.driver = driver
+            notes = tuple(f"{path}:{line}: this loop reached llvmpipe's limit of {LLVMPIPE_LOOP_LIMIT:,} "
+                          "loop passes per pixel and was stopped on both sides (a GPU runs it to the end)"
+                          for path, line in limited_loops(programs[0])) + mediump
+            if driver_note is not None and not comparison.match:
+                notes += (driver_note,)
+            yield FrameResult(name, spec, (int(w_h[0]), int(w_h[1])), comparison,
+                              numpy_img if keep_images else None, gl_img if keep_images else None, notes)
+
+
+UNSTABLE_PROBES = 24  # unstable pixels traced per frame to name the lines that lose precision
+# ... and the steps (float64 runs, and float32 runs up to their first departure) they may trace
+# per frame: about 0.1 ms of CPU each, so ~20 s; a path tracer's pixel runs ~9,000 steps
+UNSTABLE_STEPS = 200_000
+
+
+def unstable_lines(shader: Shader, comparison: Comparison, size, spec: FrameSpec, mouse, date) -> list[dict]:
+    """Where the unstable pixels lose their precision: up to UNSTABLE_PROBES of them, spread over
+    the image, are traced by `glslcheck probe` (float32 beside its float64 shadow) and each is
+    attributed to its first statement that keeps fewer than probe.UNSTABLE_BITS bits. Pixels are
+    traced in an order that keeps the traced ones spread over the image, until UNSTABLE_STEPS
+    steps have run (at least one pixel). Entries {"file", "line", "code", "bits", "pixels",
+    "sampled"}, most pixels first; "pixels" extrapolates the traced share to all unstable pixels,
+    "bits" is the fewest kept at that line and "sampled" the number of pixels traced."""
+    from .probe import UNSTABLE_BITS, Inputs, Probe, first_unstable_traced
+
+    mask = comparison.unstable_mask
+    if mask is None or not mask.any():
+        return []
+    ys, xs = np.nonzero(mask)
+    picks = np.unique(np.linspace(0, len(xs) - 1, min(UNSTABLE_PROBES, len(xs))).astype(int))
+    try:
+        probe = Probe(shader)
+    except Exception:  # noqa: BLE001 - attribution is a hint: a shader probe cannot trace keeps its count
+        return []
+    inputs = Inputs(size=(int(size[0]), int(size[1])), time=spec.time, frame=spec.frame, mouse=mouse, date=date)
+    found: dict[tuple, list] = {}
+    sampled = steps = 0
+    for i in picks[_spread(len(picks))]:
+        if steps >= UNSTABLE_STEPS:
+            break
+        t32, t64 = probe.traces(int(xs[i]), int(ys[i]), inputs, stop_bits=UNSTABLE_BITS)[3:]
+        steps += len(t32.records) + t32.truncated + len(t64.records) + t64.truncated
+        sampled += 1
+        step = first_unstable_traced(probe, t32, t64)
+        if step is not None:
+            entry = found.setdefault((step.file, step.line, step.code.strip()), [0, step.bits])
+            entry[0] += 1
+            entry[1] = min(entry[1], step.bits)
+    scale = len(xs) / sampled
+    lines = [{"file": f, "line": ln, "code": code, "bits": int(bits), "pixels": int(round(n * scale)),
+              "sampled": sampled} for (f, ln, code), (n, bits) in found.items()]
+    return sorted(lines, key=lambda d: (-d["pixels"], d["file"], d["line"]))
+
+
+def _spread(n: int) -> list[int]:
+    """0..n-1 in bit-reversed order (0, n/2, n/4, 3n/4, ...): every prefix is spread over the range."""
+    bits = max(1, (n - 1).bit_length())
+    order = [int(f"{k:0{bits}b}"[::-1], 2) for k in range(1 << bits)]
+    return [k for k in order if k < n]
+
+
+# llvmpipe stops every loop once an invocation has made 65,535 loop passes in all
+# (gallivm's LP_MAX_TGSI_LOOP_ITERATIONS, one budget shared by all loops); a 70,000-pass loop
+# that adds 1/70000 gives 0.9367 there. The NumPy side emulates it when verifying.
+LLVMPIPE_LOOP_LIMIT = 65535
+
+
+def llvmpipe_loop_limit(program) -> None:
+    """Make a NumPy program stop loops as llvmpipe does (see NumpyProgram.loop_limit)."""
+    impl = getattr(program, "impl", program)
+    if hasattr(impl, "loop_limit"):
+        impl.loop_limit = LLVMPIPE_LOOP_LIMIT
+
+
+def limited_loops(program) -> list[tuple[str, int]]:
+    """(file, line) of loops the emulated limit stopped, for the verify report."""
+    impl = getattr(program, "impl", program)
+    return impl.limited_loops() if hasattr(impl, "limited_loops") else []
+
+
+def emulate_driver(programs: Sequence) -> None:
+    """Have every program that emulates a driver (the NumPy side) compute what the measured
+    driver (the GL side) does where GLSL leaves a value undefined and the CPU decides
+    (glslcheck/backends/driver_profile.py). A driver that follows no known model is reported on stderr,
+    and the NumPy side keeps its prediction for this machine."""
+    programs = [getattr(p, "impl", p) for p in programs]  # api.Program wraps a backend's program
+    models = {p.float_to_uint_model for p in programs if hasattr(p, "float_to_uint_model")}
+    if not models:
+        return
+    model = models.pop() if len(models) == 1 else None
+    if model is None:
+        logging.getLogger("glslcheck").warning(
+            "note: the GL driver's uint(x) of negative, NaN or huge x follows no model glslcheck "
+            "knows (glslcheck/backends/driver_profile.py); pixels that depend on such conversions may differ")
+        return
+    for p in programs:
+        if hasattr(p, "emulate_float_to_uint"):
+            p.emulate_float_to_uint(model)
+
+
+def gl_driver(programs: Sequence) -> tuple[dict | None, str | None]:
+    """The GL side's {"renderer", "mesa", "emulated"} (None when no side is a GL driver), and
+    the note verify prints with a mismatch when the NumPy backend's bit-exact emulation was
+    copied from another driver (driver_profile.emulation_note), else None."""
+    from ..backends.driver_profile import driver_name, emulation_note, is_emulated
+
+    for p in programs[1:]:
+        ctx = getattr(getattr(p, "impl", p), "ctx", None)
+        if ctx is not None and hasattr(ctx, "info"):
+            renderer, mesa = driver_name(ctx)
+            return {"renderer": renderer, "mesa": mesa, "emulated": is_emulated(renderer, mesa)}, emulation_note(ctx)
+    return None, None
+
+
+def verify(shader, **options) -> list[Comparison]:
+    """The comparisons of every frame `verify_frames(shader, **options)` renders, in order."""
+    return [r.comparison for r in verify_frames(shader, **options)]
+
+
+def diff_paths(path: str | os.PathLike, count: int) -> Iterator[Path]:
+    """`diff.png` for one frame; `diff-0.png`, `diff-1.png`, ... for several (made as needed)."""
+    p = Path(path)
+    if count == 1:
+        yield p
+        return
+    suffix = p.suffix or ".png"
+    stem = p.name[: -len(p.suffix)] if p.suffix else p.name
+    for i in range(count):
+        yield p.with_name(f"{stem}-{i}{suffix}")
+
+
+# ---------------------------------------------------------------------------------------------
+# Progress bar (stderr; no dependency).
+
+
+class Progress:
+    """A one-line progress bar redrawn with '\\r': `verify [#####.....] 5/10 label`.
+
+    Disabled (a no-op) when `enabled` is False. `finish()` ends the line. `NAME` starts the line
+    (bench's bar is a subclass with its own).
+    """
+
+    WIDTH = 24
+    NAME = "verify"
+
+    def __init__(self, total: int, stream=None, enabled: bool = True):
+        self.total = max(int(total), 1)
+        self.done = 0
+        self.stream = stream if stream is not None else sys.stderr
+        self.enabled = enabled
+        self._drawn = False
+
+    def step(self, label: str = "") -> None:
+        self.done += 1
+        if not self.enabled:
+            return
+        filled = self.WIDTH * min(self.done, self.total) // self.total
+        bar = "#" * filled + "." * (self.WIDTH - filled)
+        line = f"\r{self.NAME} [{bar}] {self.done}/{self.total} {label}"
+        self.stream.write(line[:120].ljust(80))
+        self.stream.flush()
+        self._drawn = True
+
+    def finish(self) -> None:
+        if self.enabled and self._drawn:
+            self.stream.write("\n")
+            self.stream.flush()
+            self._drawn = False
+
