@@ -125,16 +125,16 @@ class InputError(Exception):
     """A missing, unreadable or undecodable input, or bad usage (exit 2)."""
 
 
-_SOURCE_CACHE: dict[str, list[str]] = {}
+SOURCE_LINES: dict[str, list[str]] = {}  # path -> its lines, for quoting them in messages
 
 
 def register_source(path: str, text: str) -> None:
     """Remember a file's text so diagnostics can quote its lines."""
-    _SOURCE_CACHE[path] = text.splitlines()
+    SOURCE_LINES[path] = text.splitlines()
 
 
 def source_line(path: str, line: int) -> str | None:
-    lines = _SOURCE_CACHE.get(path)
+    lines = SOURCE_LINES.get(path)
     if lines is None or not (1 <= line <= len(lines)):
         return None
     return lines[line - 1]

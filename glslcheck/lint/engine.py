@@ -384,11 +384,11 @@ def lint_work(work: list[list[tuple[Shader, Source, LintConfig]]]) -> list[Findi
     large enough (lint/parallel.py: the same findings either way)."""
     if len(work) < 2:
         return _lint_files(work)
-    from ..base.diagnostics import _SOURCE_CACHE  # the texts reports quote: the child's come back
+    from ..base.diagnostics import SOURCE_LINES  # the texts reports quote: the child's come back
     from .parallel import run_split
 
     sizes = [sum(len(s.text) for s in todo[0][0].sources()) for todo in work]
-    return run_split(work, sizes, _lint_files, _load_for_workers, _SOURCE_CACHE)
+    return run_split(work, sizes, _lint_files, _load_for_workers, SOURCE_LINES)
 
 
 def _load_for_workers() -> None:
