@@ -17,7 +17,7 @@ from bisect import bisect_right
 
 from ..base.diagnostics import InputError
 from ..base.records import record
-from .sources import TAB_NAMES, Shader, Source
+from .sources import BUFFER_TABS, Shader, Source
 
 TYPE_CHECKING = False  # not typing's: importing typing costs every start-up (issue 18)
 if TYPE_CHECKING:
@@ -100,8 +100,8 @@ precision mediump sampler3D;
 
 # Passes we can wrap: the Image tab and the buffers (all call mainImage), in the order Shadertoy
 # renders them (the buffers first). Sound (mainSound) and Cube A (mainCubemap) have other entry
-# points and are not rendered by glslcheck. The tab names themselves: sources.TAB_NAMES.
-BUFFER_TABS = tuple(t for t in TAB_NAMES if t.startswith("Buffer "))
+# points and are not rendered by glslcheck. The tab names themselves: sources.TAB_NAMES and
+# sources.BUFFER_TABS.
 PASS_TABS = (*BUFFER_TABS, "Image")
 
 
