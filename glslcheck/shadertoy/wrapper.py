@@ -19,10 +19,6 @@ from ..base.diagnostics import InputError
 from ..base.records import record
 from .sources import BUFFER_TABS, Shader, Source
 
-TYPE_CHECKING = False  # not typing's: importing typing costs every start-up (issue 18)
-if TYPE_CHECKING:
-    from typing import Any
-
 # A fixed iDate so renders are reproducible: 2026-01-01 00:00:00 (Shadertoy's month is 0-based).
 DEFAULT_DATE: tuple[float, float, float, float] = (2026.0, 0.0, 1.0, 0.0)
 DEFAULT_SIZE: tuple[int, int] = (800, 450)
@@ -295,12 +291,3 @@ def build_common_only(shader: Shader) -> Program:
     b.add("void main() {}\n")
     return b.program("Common")
 
-
-def __getattr__(name: str) -> Any:
-    """`FrameInputs` and `frame_inputs` live in shadertoy/frame_inputs.py (a dataclass: importing `dataclasses`
-    costs the start-up of a lint, which never renders a frame); they are still importable from here."""
-    if name in ("FrameInputs", "frame_inputs"):
-        from . import frame_inputs as frames
-
-        return getattr(frames, name)
-    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")

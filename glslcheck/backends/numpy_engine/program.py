@@ -47,7 +47,8 @@ import numpy as np
 
 from ...base.diagnostics import Diagnostic, GlslError, InputError, Location
 from ..driver_profile import host_model
-from ...shadertoy.wrapper import DEFAULT_SIZE, UNIFORMS_BY_NAME, FrameInputs, frame_inputs
+from ...shadertoy.frame_inputs import FrameInputs, frame_inputs
+from ...shadertoy.wrapper import DEFAULT_SIZE, UNIFORMS_BY_NAME
 from . import workers
 from .tiles import MIN_TILE_LANES, Budget, Cancelled, Compaction, FrameSpec, Lanes, State, execute_module, frame_tiles, render_tile
 from .runtime import Runtime
