@@ -12,7 +12,8 @@ import pytest
 from glslcheck.backends.registry import Program
 from glslcheck.backends.gl.program import GLProgram
 from glslcheck.backends.numpy_engine.program import NumpyProgram, compile_numpy
-from glslcheck.shadertoy.wrapper import FrameInputs, frame_uniforms
+from glslcheck.shadertoy.frame_inputs import FrameInputs
+from glslcheck.shadertoy.wrapper import frame_uniforms
 from glslcheck.verification.verify import _accepted
 from glslcheck.backends.webgl.program import WebGLProgram
 

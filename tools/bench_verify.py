@@ -17,7 +17,7 @@ ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT))
 
 from glslcheck.shadertoy.sources import load_shader  # noqa: E402
-from glslcheck.cli.commands.args import parse_size  # noqa: E402
+from glslcheck.base.limits import parse_size  # noqa: E402
 from glslcheck.verification.verify import compile_backend, verify  # noqa: E402
 
 

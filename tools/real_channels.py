@@ -162,7 +162,7 @@ def main(argv: list[str] | None = None) -> int:
     argv = sys.argv[1:] if argv is None else argv
     if argv[:1] == ["_one"]:
         path, size, frames = argv[1:4]
-        from glslcheck.cli.commands.args import parse_size
+        from glslcheck.base.limits import parse_size
 
         print(json.dumps(verify_one(path, parse_size(size), int(frames))))
         return 0

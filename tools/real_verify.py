@@ -210,7 +210,7 @@ def main(argv: list[str] | None = None) -> int:
     argv = sys.argv[1:] if argv is None else argv
     if argv[:1] == ["_one"]:
         path, size, times = argv[1:4]
-        from glslcheck.cli.commands.args import parse_size, parse_times
+        from glslcheck.base.limits import parse_size, parse_times
 
         print(json.dumps(verify_one(path, parse_size(size), list(parse_times(times)))))
         return 0

@@ -30,7 +30,7 @@ from typing import Any
 import numpy as np
 
 from ..base.precision import check_precision
-from ..shadertoy.wrapper import FrameInputs, frame_inputs
+from ..shadertoy.frame_inputs import FrameInputs, frame_inputs
 from ..shadertoy.sources import Shader, load_shader
 
 BACKENDS = ("numpy", "gl", "webgl")

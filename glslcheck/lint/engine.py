@@ -25,8 +25,8 @@ import re
 from ..base.records import record, field
 
 from ..base.diagnostics import Diagnostic, Location, register_source, source_line
-from ..shadertoy.wrapper import BUFFER_TABS
-from ..shadertoy.sources import Shader, Source, check_path, find_shaders, path_name, path_suffix, posix_path
+from ..shadertoy.sources import (BUFFER_TABS, Shader, Source, check_path, find_shaders, path_name, path_suffix,
+                                 posix_path)
 from .config import COMMAND_LINE, ConfigFinder, LintConfig, apply_overrides
 from .rules import Rule, all_rules, rule_names
 from .suppress import Suppression, find_suppressions, is_suppressed

@@ -819,7 +819,7 @@ class Checker(A.NodeVisitor):
         return sym.type
 
     def _in_macro_entry(self) -> bool:
-        """In the entry function modelled for a `#define mainImage(O, U)` (frontend/preprocess.py): the
+        """In the entry function modelled for a `#define mainImage(O, U)` (frontend/preprocess/driver.py): the
         macro expands in the pass's wrapper, where every uniform is declared, even when the
         macro is defined in Common (Common compiled alone never expands it)."""
         f = self.func

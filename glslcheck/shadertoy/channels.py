@@ -38,8 +38,8 @@ change them (measured: llvmpipe still truncates). glslcheck compiles the same pr
 the NumPy backend truncates every lookup as llvmpipe does (backends/numpy_engine/textures.py).
 
 Shadertoy's own JSON export of a shader (`glslcheck render shader.json`, see
-`load_shadertoy_json`): the passes' code becomes the tabs and the inputs the bindings, with
-`/media/...` files taken from a `media/` folder beside the JSON.
+`sources.load_shadertoy_json`): the passes' code becomes the tabs and the inputs the bindings,
+with `/media/...` files taken from a `media/` folder beside the JSON.
 
 Errors (InputError, exit 2, naming channels.json and the key): bad JSON, an unknown tab or
 key, a missing or unreadable image, an unsupported input kind, bad values. A pass reading an
@@ -60,29 +60,14 @@ from pathlib import Path
 import numpy as np
 
 from ..base.diagnostics import Diagnostic, GlslError, InputError, Location
-from .wrapper import BUFFER_TABS, PASS_TABS
-from .sources import Shader
+from .bindings import FILTERS, KIND_DEFAULTS, WRAPS, Binding
+from .sources import BUFFER_TABS, Shader
+from .wrapper import PASS_TABS
 
 CHANNELS_FILE = "channels.json"
-FILTERS = ("nearest", "linear", "mipmap")
-WRAPS = ("clamp", "repeat")
-_DEFAULTS = {"texture": ("mipmap", "repeat", True), "buffer": ("linear", "clamp", False)}
 _UNSUPPORTED = ("cubemap", "video", "webcam", "microphone", "music", "sound", "keyboard", "volume")
 _SERIAL = itertools.count()
 _COMMENT_RE = re.compile(r"/\*.*?(\*/|\Z)|//[^\n]*", re.S)
-
-
-@dataclass(frozen=True, slots=True)
-class Binding:
-    """One entry of channels.json: iChannel`channel` of `tab` reads `buffer` or `texture`."""
-
-    tab: str
-    channel: int
-    buffer: str | None
-    texture: str | None  # the path as written, relative to the folder
-    filter: str
-    wrap: str
-    vflip: bool
 
 
 @dataclass(eq=False)
@@ -142,7 +127,7 @@ def folder_of(shader: Shader) -> Path:
 
 def load_bindings(shader: Shader) -> tuple[str | None, list[Binding]]:
     """(path of channels.json or None, its bindings), validated against the shader's tabs; a
-    shader read from Shadertoy's JSON export brings its own (`load_shadertoy_json`)."""
+    shader read from Shadertoy's JSON export brings its own (`sources.load_shadertoy_json`)."""
     if shader.channels is not None:
         return shader.root, list(shader.channels)
     path = folder_of(shader) / CHANNELS_FILE
@@ -203,7 +188,7 @@ def _binding(shader: Shader, tab: str, channel: int, spec, where: str, fail) -> 
             fail(f"{where}.\"buffer\"", f"unknown tab {value!r} (expected one of {', '.join(BUFFER_TABS)})")
         if value not in shader.tabs:
             fail(f"{where}.\"buffer\"", f"the shader has no {value} tab (no '{value}.glsl' in the folder)")
-    filt, wrap, vflip = _DEFAULTS[kind]
+    filt, wrap, vflip = KIND_DEFAULTS[kind]
     filt = spec.get("filter", filt)
     wrap = spec.get("wrap", wrap)
     vflip = spec.get("vflip", vflip)
@@ -384,96 +369,3 @@ class MultipassProgram:
                     out = img
             self._next = i + 1
         return out
-
-
-# Shadertoy's export: pass types and input kinds (ctype) -> glslcheck's tabs and binding kinds.
-_ST_TABS = {"image": "Image", "common": "Common", "sound": "Sound", "cubemap": "Cube A"}
-_ST_INPUTS = {"texture": "texture", "buffer": "buffer"}
-
-
-def load_shadertoy_json(path) -> Shader:
-    """A shader from Shadertoy's JSON export (`{"Shader": {"renderpass": [...]}}`, or a list of
-    such shaders holding one): each pass's `code` becomes its tab (diagnostics name
-    `<file> [<tab>]`), each input a Binding: a `/media/...` path is the file of the same name in
-    the `media/` folder beside the JSON, a buffer input the Buffer tab whose output id it names.
-    InputError (exit 2) naming the file and the pass and channel for anything else."""
-    from ..base.diagnostics import register_source
-    from .sources import Source
-
-    spath = str(path)
-    try:
-        data = json.loads(Path(path).read_text(encoding="utf-8"))
-    except (OSError, UnicodeDecodeError) as e:
-        raise InputError(f"{spath}: error: cannot read the file ({e})") from None
-    except json.JSONDecodeError as e:
-        raise InputError(f"{spath}:{e.lineno}:{e.colno}: error: not valid JSON: {e.msg}") from None
-
-    def fail(where: str, message: str):
-        raise InputError(f"{spath}: error: {where}: {message}")
-
-    if isinstance(data, list) and len(data) == 1:
-        data = data[0]
-    if isinstance(data, dict) and "Shader" in data:
-        data = data["Shader"]
-    passes = data.get("renderpass") if isinstance(data, dict) else None
-    if not isinstance(passes, list):
-        fail("the top level", "not a Shadertoy export: expected {\"Shader\": {\"renderpass\": [...]}}")
-    shader = Shader(root=spath, channels=[])
-    outputs: dict[str, str] = {}  # output id -> Buffer tab
-    buffers = iter(BUFFER_TABS)
-    placed: list[str] = []  # the tab of each pass
-    for i, rp in enumerate(passes):
-        if not isinstance(rp, dict) or not isinstance(rp.get("code"), str):
-            fail(f"renderpass[{i}]", "needs a \"code\" string")
-        kind = rp.get("type", "image")
-        tab = _ST_TABS.get(kind)
-        if kind == "buffer":  # named "Buffer A" or, in older exports, "Buf A"
-            m = re.fullmatch(r"Buf(?:fer)? ?([A-D])", str(rp.get("name", "")).strip())
-            name = f"Buffer {m.group(1)}" if m else ""
-            tab = name if name in BUFFER_TABS and name not in shader.tabs else next(buffers, None)
-        if tab is None or tab in shader.tabs:
-            fail(f"renderpass[{i}] ({rp.get('name', kind)})", f"a pass of type {kind!r} glslcheck cannot place")
-        src = Source(f"{spath} [{tab}]", rp["code"].replace("\r\n", "\n"), tab)
-        register_source(src.path, src.text)
-        shader.tabs[tab] = src
-        placed.append(tab)
-        for out in rp.get("outputs") or ():
-            if isinstance(out, dict) and "id" in out:
-                outputs[str(out["id"])] = tab
-    for tab, rp in zip(placed, passes):
-        for inp in rp.get("inputs") or ():
-            shader.channels.append(_export_binding(shader, tab, inp, outputs, Path(path).parent, fail))
-    return shader
-
-
-def _export_binding(shader: Shader, tab: str, inp, outputs: dict, folder: Path, fail) -> Binding:
-    channel = inp.get("channel") if isinstance(inp, dict) else None
-    where = f"the {tab} pass, iChannel{channel}"
-    if channel not in (0, 1, 2, 3):
-        fail(f"the {tab} pass", f"an input without a channel 0-3: {json.dumps(inp)[:80]}")
-    ctype = inp.get("ctype", inp.get("type"))
-    kind = _ST_INPUTS.get(ctype)
-    if kind is None:
-        fail(where, f"{ctype} inputs are not supported yet")
-    sampler = inp.get("sampler") or {}
-    filt, wrap, vflip = _DEFAULTS[kind]
-    filt = sampler.get("filter", filt)
-    wrap = sampler.get("wrap", wrap)
-    vflip = str(sampler.get("vflip", vflip)).lower() == "true"
-    if filt not in FILTERS or wrap not in WRAPS:
-        fail(where, f"filter {filt!r} / wrap {wrap!r} (expected {', '.join(FILTERS)} / {', '.join(WRAPS)})")
-    src = str(inp.get("src", inp.get("filepath", "")))
-    if kind == "buffer":
-        buffer = outputs.get(str(inp.get("id")))
-        m = re.search(r"buffer0([0-3])", src)
-        if buffer is None and m is not None:
-            buffer = BUFFER_TABS[int(m.group(1))]
-        if buffer is None or buffer not in shader.tabs:
-            fail(where, f"the buffer it reads ({src or inp.get('id')}) is not a pass of this export")
-        # vflip is Shadertoy's UNPACK_FLIP_Y at an image's upload: it never applies to a buffer
-        return Binding(tab, channel, buffer, None, filt, wrap, False)
-    local = f"media/{Path(src).name}"
-    if not (folder / local).is_file():
-        fail(where, f"no such file {str(folder / local)!r} (Shadertoy's {src}: download it into the media/ "
-                    "folder beside the JSON)")
-    return Binding(tab, channel, None, local, filt, wrap, vflip)

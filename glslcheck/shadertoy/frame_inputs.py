@@ -1,7 +1,7 @@
 """One frame's inputs (`FrameInputs`) and the `@frame_inputs` decorator every backend's `render`
-takes them through. Apart from shadertoy/wrapper.py (which re-exports both) because `FrameInputs` is a
-dataclass (it needs `__post_init__` and `dataclasses.fields`): importing `dataclasses` would cost
-every `glslcheck lint`, which never renders (issue 18).
+takes them through. Apart from shadertoy/wrapper.py because `FrameInputs` is a dataclass (it needs
+`__post_init__` and `dataclasses.fields`): importing `dataclasses` would cost every `glslcheck
+lint`, which never renders.
 """
 
 from __future__ import annotations

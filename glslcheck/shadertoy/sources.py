@@ -4,7 +4,9 @@ A shader is given as one file per Shadertoy tab (`Image`, `Common`, `Buffer A`..
 `Sound`, `Cube A`; extension `.glsl`, `.frag`, `.txt` or none; names matched case-insensitively
 with spaces, `_` and `-` ignored, so `Buffer A.glsl` and `buffer_a.glsl` are the same tab) or a
 folder of such files. A file whose name is not a tab name is taken as an Image tab. A file with
-its own `#version` line and a `main()` is a plain GLSL ES fragment shader, taken as it is.
+its own `#version` line and a `main()` is a plain GLSL ES fragment shader, taken as it is. A
+`.json` file is Shadertoy's own export of a whole shader (`load_shadertoy_json`): its passes
+become the tabs and its inputs the channel bindings.
 
 Text is decoded as UTF-8 (a BOM is dropped) and line endings are normalised to `\n` (CRLF and
 lone CR), which keeps every line and column of the user's file. Anything that cannot be read
@@ -22,9 +24,16 @@ from ..base.records import record, field
 
 from ..base.diagnostics import InputError, register_source
 
+TYPE_CHECKING = False  # not typing's: importing typing costs every start-up
+if TYPE_CHECKING:
+    from pathlib import Path
+
+    from .bindings import Binding
+
 SHADER_EXTENSIONS = (".glsl", ".frag", ".txt", "")
 # Canonical tab names in the order Shadertoy shows them.
 TAB_NAMES = ("Common", "Buffer A", "Buffer B", "Buffer C", "Buffer D", "Cube A", "Sound", "Image")
+BUFFER_TABS = tuple(t for t in TAB_NAMES if t.startswith("Buffer "))
 _SEPARATORS = compiled(r"[\s_\-]")  # spaces, `_` and `-` in a tab file's name
 _TAB_KEYS = {_SEPARATORS.sub("", t).lower(): t for t in TAB_NAMES}
 MAX_FILE_BYTES = 1_000_000
@@ -93,7 +102,7 @@ class Shader:
 
     tabs: dict[str, Source] = field(default_factory=dict)
     root: str = ""
-    channels: list | None = None  # channels.Binding list of a Shadertoy JSON export (else channels.json)
+    channels: list | None = None  # bindings.Binding list of a Shadertoy JSON export (else channels.json)
 
     @property
     def image(self) -> Source | None:
@@ -237,8 +246,6 @@ def load_shader(path: str | os.PathLike) -> Shader:
     if path_suffix(p).lower() == ".json" and os.path.isfile(p):  # Shadertoy's export of a whole shader
         from pathlib import Path
 
-        from .channels import load_shadertoy_json
-
         return load_shadertoy_json(Path(p))
     shader = Shader(root=spath)
     if os.path.isdir(p):
@@ -305,3 +312,101 @@ def _walk(folder: str) -> list[Shader]:
             shader.tabs[src.tab] = src
             found.append(shader)
     return found
+
+
+# Shadertoy's export: pass types and input kinds (ctype) -> glslcheck's tabs and binding kinds.
+_ST_TABS = {"image": "Image", "common": "Common", "sound": "Sound", "cubemap": "Cube A"}
+_ST_INPUTS = {"texture": "texture", "buffer": "buffer"}
+
+
+def load_shadertoy_json(path) -> Shader:
+    """A shader from Shadertoy's JSON export (`{"Shader": {"renderpass": [...]}}`, or a list of
+    such shaders holding one): each pass's `code` becomes its tab (diagnostics name
+    `<file> [<tab>]`), each input a Binding: a `/media/...` path is the file of the same name in
+    the `media/` folder beside the JSON, a buffer input the Buffer tab whose output id it names.
+    InputError (exit 2) naming the file and the pass and channel for anything else."""
+    import json
+    from pathlib import Path
+
+    spath = str(path)
+    try:
+        data = json.loads(Path(path).read_text(encoding="utf-8"))
+    except (OSError, UnicodeDecodeError) as e:
+        raise InputError(f"{spath}: error: cannot read the file ({e})") from None
+    except json.JSONDecodeError as e:
+        raise InputError(f"{spath}:{e.lineno}:{e.colno}: error: not valid JSON: {e.msg}") from None
+
+    def fail(where: str, message: str):
+        raise InputError(f"{spath}: error: {where}: {message}")
+
+    if isinstance(data, list) and len(data) == 1:
+        data = data[0]
+    if isinstance(data, dict) and "Shader" in data:
+        data = data["Shader"]
+    passes = data.get("renderpass") if isinstance(data, dict) else None
+    if not isinstance(passes, list):
+        fail("the top level", "not a Shadertoy export: expected {\"Shader\": {\"renderpass\": [...]}}")
+    shader = Shader(root=spath, channels=[])
+    outputs: dict[str, str] = {}  # output id -> Buffer tab
+    buffers = iter(BUFFER_TABS)
+    placed: list[str] = []  # the tab of each pass
+    for i, rp in enumerate(passes):
+        if not isinstance(rp, dict) or not isinstance(rp.get("code"), str):
+            fail(f"renderpass[{i}]", "needs a \"code\" string")
+        kind = rp.get("type", "image")
+        tab = _ST_TABS.get(kind)
+        if kind == "buffer":  # named "Buffer A" or, in older exports, "Buf A"
+            m = re.fullmatch(r"Buf(?:fer)? ?([A-D])", str(rp.get("name", "")).strip())
+            name = f"Buffer {m.group(1)}" if m else ""
+            tab = name if name in BUFFER_TABS and name not in shader.tabs else next(buffers, None)
+        if tab is None or tab in shader.tabs:
+            fail(f"renderpass[{i}] ({rp.get('name', kind)})", f"a pass of type {kind!r} glslcheck cannot place")
+        src = Source(f"{spath} [{tab}]", rp["code"].replace("\r\n", "\n"), tab)
+        register_source(src.path, src.text)
+        shader.tabs[tab] = src
+        placed.append(tab)
+        for out in rp.get("outputs") or ():
+            if isinstance(out, dict) and "id" in out:
+                outputs[str(out["id"])] = tab
+    for tab, rp in zip(placed, passes):
+        for inp in rp.get("inputs") or ():
+            shader.channels.append(_export_binding(shader, tab, inp, outputs, Path(path).parent, fail))
+    return shader
+
+
+def _export_binding(shader: Shader, tab: str, inp, outputs: dict, folder: Path, fail) -> Binding:
+    import json
+    from pathlib import Path
+
+    from .bindings import FILTERS, KIND_DEFAULTS, WRAPS, Binding
+
+    channel = inp.get("channel") if isinstance(inp, dict) else None
+    where = f"the {tab} pass, iChannel{channel}"
+    if channel not in (0, 1, 2, 3):
+        fail(f"the {tab} pass", f"an input without a channel 0-3: {json.dumps(inp)[:80]}")
+    ctype = inp.get("ctype", inp.get("type"))
+    kind = _ST_INPUTS.get(ctype)
+    if kind is None:
+        fail(where, f"{ctype} inputs are not supported yet")
+    sampler = inp.get("sampler") or {}
+    filt, wrap, vflip = KIND_DEFAULTS[kind]
+    filt = sampler.get("filter", filt)
+    wrap = sampler.get("wrap", wrap)
+    vflip = str(sampler.get("vflip", vflip)).lower() == "true"
+    if filt not in FILTERS or wrap not in WRAPS:
+        fail(where, f"filter {filt!r} / wrap {wrap!r} (expected {', '.join(FILTERS)} / {', '.join(WRAPS)})")
+    src = str(inp.get("src", inp.get("filepath", "")))
+    if kind == "buffer":
+        buffer = outputs.get(str(inp.get("id")))
+        m = re.search(r"buffer0([0-3])", src)
+        if buffer is None and m is not None:
+            buffer = BUFFER_TABS[int(m.group(1))]
+        if buffer is None or buffer not in shader.tabs:
+            fail(where, f"the buffer it reads ({src or inp.get('id')}) is not a pass of this export")
+        # vflip is Shadertoy's UNPACK_FLIP_Y at an image's upload: it never applies to a buffer
+        return Binding(tab, channel, buffer, None, filt, wrap, False)
+    local = f"media/{Path(src).name}"
+    if not (folder / local).is_file():
+        fail(where, f"no such file {str(folder / local)!r} (Shadertoy's {src}: download it into the media/ "
+                    "folder beside the JSON)")
+    return Binding(tab, channel, None, local, filt, wrap, vflip)

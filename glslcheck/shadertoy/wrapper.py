@@ -17,11 +17,7 @@ from bisect import bisect_right
 
 from ..base.diagnostics import InputError
 from ..base.records import record
-from .sources import TAB_NAMES, Shader, Source
-
-TYPE_CHECKING = False  # not typing's: importing typing costs every start-up (issue 18)
-if TYPE_CHECKING:
-    from typing import Any
+from .sources import BUFFER_TABS, Shader, Source
 
 # A fixed iDate so renders are reproducible: 2026-01-01 00:00:00 (Shadertoy's month is 0-based).
 DEFAULT_DATE: tuple[float, float, float, float] = (2026.0, 0.0, 1.0, 0.0)
@@ -100,8 +96,8 @@ precision mediump sampler3D;
 
 # Passes we can wrap: the Image tab and the buffers (all call mainImage), in the order Shadertoy
 # renders them (the buffers first). Sound (mainSound) and Cube A (mainCubemap) have other entry
-# points and are not rendered by glslcheck. The tab names themselves: sources.TAB_NAMES.
-BUFFER_TABS = tuple(t for t in TAB_NAMES if t.startswith("Buffer "))
+# points and are not rendered by glslcheck. The tab names themselves: sources.TAB_NAMES and
+# sources.BUFFER_TABS.
 PASS_TABS = (*BUFFER_TABS, "Image")
 
 
@@ -295,12 +291,3 @@ def build_common_only(shader: Shader) -> Program:
     b.add("void main() {}\n")
     return b.program("Common")
 
-
-def __getattr__(name: str) -> Any:
-    """`FrameInputs` and `frame_inputs` live in shadertoy/frame_inputs.py (a dataclass: importing `dataclasses`
-    costs the start-up of a lint, which never renders a frame); they are still importable from here."""
-    if name in ("FrameInputs", "frame_inputs"):
-        from . import frame_inputs as frames
-
-        return getattr(frames, name)
-    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")

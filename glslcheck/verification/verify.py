@@ -2,8 +2,8 @@
 (Mesa llvmpipe) at the same inputs, frame by frame, and compare the two images.
 
 This module owns the frame schedule (which times, frame numbers and rates a run covers) and the
-pairing of the two backends; the command-line values and their limits are in
-`glslcheck.cli.commands.args`, shared by every command. The verdict itself (metrics, tolerance model, diff image) belongs to
+pairing of the two backends; the values a user gives and their limits are in
+`glslcheck.base.limits`, shared by every command. The verdict itself (metrics, tolerance model, diff image) belongs to
 `glslcheck.verification.compare`; each frame's outcome is a `compare.Comparison`.
 
 Library API:

@@ -2,7 +2,7 @@
 
 Shadertoy compiles its `main()` wrapper after the user's code, so `#define mainImage(O, U) ...`
 turns the wrapper's `mainImage(color, gl_FragCoord.xy);` into the user's code. The preprocessor
-models that call as the entry function (frontend/preprocess.py `_wrapper_call`); the checker, the NumPy
+models that call as the entry function (frontend/preprocess/driver.py `_wrapper_call`); the checker, the NumPy
 backend and the GL backend (which compiles the real wrapper) then run the same program."""
 
 from __future__ import annotations

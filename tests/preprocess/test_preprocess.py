@@ -13,7 +13,8 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from glslcheck.base.diagnostics import GlslError, Location
-from glslcheck.frontend.preprocess import MAX_EXPANSION_TOKENS, Comment, PPResult, _lex_all, preprocess
+from glslcheck.frontend.preprocess import MAX_EXPANSION_TOKENS, Comment, PPResult, preprocess
+from glslcheck.frontend.preprocess.tokens import lex_all
 from glslcheck.shadertoy.sources import Source, decode
 
 
@@ -23,7 +24,7 @@ def pp(text: str, path: str = "Image.glsl", **kw) -> PPResult:
 
 def tokens(text: str) -> list[str]:
     """The pp-tokens of a text (the preprocessor's own tokenizer)."""
-    return [t.text for t in _lex_all(text, 0, len(text))]
+    return [t.text for t in lex_all(text, 0, len(text))]
 
 
 def words(text: str) -> list[str]:

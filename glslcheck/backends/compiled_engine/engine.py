@@ -26,7 +26,8 @@ from typing import Any
 import numpy as np
 
 from ...base.diagnostics import Diagnostic, GlslError, InputError, Location
-from ...shadertoy.wrapper import UNIFORMS_BY_NAME, FrameInputs, frame_inputs
+from ...shadertoy.frame_inputs import FrameInputs, frame_inputs
+from ...shadertoy.wrapper import UNIFORMS_BY_NAME
 
 PIP = "pip install 'glslcheck[jit]'"
 _LOCK = threading.Lock()

@@ -47,7 +47,8 @@ import numpy as np
 
 from ...base.diagnostics import Diagnostic, GlslError, InputError, Location
 from ..driver_profile import host_model
-from ...shadertoy.wrapper import DEFAULT_SIZE, UNIFORMS_BY_NAME, FrameInputs, frame_inputs
+from ...shadertoy.frame_inputs import FrameInputs, frame_inputs
+from ...shadertoy.wrapper import DEFAULT_SIZE, UNIFORMS_BY_NAME
 from . import workers
 from .tiles import MIN_TILE_LANES, Budget, Cancelled, Compaction, FrameSpec, Lanes, State, execute_module, frame_tiles, render_tile
 from .runtime import Runtime
@@ -119,8 +120,8 @@ def _megabytes(n: int) -> str:
 
 def frame_seconds() -> float:
     """The frame budget in seconds: GLSLCHECK_FRAME_SECONDS, else FRAME_SECONDS. The variable
-    takes the range `--frame-budget` takes (cli/commands/args.py, the one home of both limits)."""
-    from ...cli.commands.args import MAX_FRAME_SECONDS, MIN_FRAME_SECONDS
+    takes the range `--frame-budget` takes (base/limits.py, the one home of both limits)."""
+    from ...base.limits import MAX_FRAME_SECONDS, MIN_FRAME_SECONDS
     text = os.environ.get("GLSLCHECK_FRAME_SECONDS", "").strip()
     try:
         value = float(text) if text else FRAME_SECONDS

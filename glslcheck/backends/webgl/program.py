@@ -40,7 +40,8 @@ import numpy as np
 from ...base.diagnostics import Diagnostic, GlslError, Location, source_line
 from ..gl.program import _entry_location, driver_diagnostics, parse_driver_log
 from ...base.records import replace
-from ...shadertoy.wrapper import OFFSET_UNIFORM, UNIFORMS, FrameInputs, Program, build_program, frame_inputs, frame_uniforms
+from ...shadertoy.frame_inputs import FrameInputs, frame_inputs
+from ...shadertoy.wrapper import OFFSET_UNIFORM, UNIFORMS, Program, build_program, frame_uniforms
 from ...shadertoy.sources import Shader
 from .browser import Browser, WebGLTimeout, get_browser
 

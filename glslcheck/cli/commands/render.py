@@ -17,7 +17,7 @@ unclamped) or, with --frames N, a .gif animation of N frames at --fps F (iTime =
 iFrame = --frame + i) with a progress bar on stderr; its frames are written as they are rendered.
 Every output is written to a temporary file and renamed into place, so a failure or Ctrl-C
 leaves an existing file as it was. --stats prints how many lanes (pixels) ran each function,
-branch and loop body (NumPy backend). The limits of every value: glslcheck/cli/commands/args.py.
+branch and loop body (NumPy backend). The limits of every value: glslcheck/base/limits.py.
 
 Exit 0 when rendered, 1 on a shader error (file:line:col on stderr), 2 on usage or I/O errors.
 """
@@ -27,35 +27,26 @@ from __future__ import annotations
 import sys
 
 from ...base.diagnostics import InputError
+from ...base import limits
+from ...base.precision import PRECISIONS
 from . import args as A
-
-
-def add_uniform_arguments(p) -> None:
-    """The uniform options (--size --time --frame --mouse --date), shared with `glslcheck probe`."""
-    p.add_argument("--size", type=A.arg(A.parse_size), default=(800, 450), metavar="WxH", help="default 800x450")
-    p.add_argument("--time", type=A.arg(A.parse_time), default=0.0, metavar="T", help="iTime in seconds (default 0)")
-    p.add_argument("--frame", type=A.arg(A.parse_frame), default=0, metavar="N", help="iFrame (default 0)")
-    p.add_argument("--mouse", type=A.arg(A.parse_mouse), default=(0.0, 0.0, 0.0, 0.0),
-                   metavar="X,Y,Z,W", help="iMouse (default 0,0,0,0)")
-    p.add_argument("--date", type=A.arg(A.parse_date), default=None, metavar="Y,M,D,S",
-                   help="iDate: year, month 0-11, day, seconds since midnight (default 2026,0,1,0)")
 
 
 def add_arguments(p) -> None:
     p.add_argument("path", metavar="SHADER", help="a tab file or a folder of tab files")
     p.add_argument("-o", "--output", default="out.png", metavar="FILE",
                    help="out.png, out.npy, or anim.gif with --frames (default out.png)")
-    add_uniform_arguments(p)
-    p.add_argument("--precision", choices=A.PRECISIONS, default="float32",
+    A.add_uniform_arguments(p)
+    p.add_argument("--precision", choices=PRECISIONS, default="float32",
                    help="float type inside the shader (NumPy backend; default float32 = highp)")
-    p.add_argument("--samples", type=A.arg(A.parse_samples), default=1, metavar="N",
+    p.add_argument("--samples", type=A.arg(limits.parse_samples), default=1, metavar="N",
                    help="samples per pixel, a square (default 1)")
     p.add_argument("--backend", choices=("numpy", "gl", "webgl", "compiled"), default="numpy",
                    help="default numpy; compiled: by numba, per pixel, then 8 pixels in lockstep once that pays (glslcheck/compiled_backend)")
     p.add_argument("--stats", action="store_true", help="print the lanes that ran each function and branch")
-    p.add_argument("--frames", type=A.arg(A.parse_frames), default=None, metavar="N",
+    p.add_argument("--frames", type=A.arg(limits.parse_frames), default=None, metavar="N",
                    help="render an animation of N frames")
-    p.add_argument("--fps", type=A.arg(A.parse_fps), default=60.0, metavar="F",
+    p.add_argument("--fps", type=A.arg(limits.parse_fps), default=60.0, metavar="F",
                    help="frames per second of --frames (default 60)")
     p.add_argument("--pass", dest="pass_name", default="Image", metavar="TAB",
                    help='the pass to write, e.g. "Buffer A" (default Image; buffers run frames 0..N, shadertoy/channels.py)')
@@ -71,7 +62,7 @@ def run(args) -> int:
     else:
         check_output(out, (".gif",), "output of --frames (an animation)")
     try:
-        A.check_schedule(args.frame, args.frames, args.fps, args.time)
+        limits.check_schedule(args.frame, args.frames, args.fps, args.time)
     except ValueError as e:
         raise InputError(f"glslcheck render: error: {e}") from None
     if args.stats and args.backend != "numpy":

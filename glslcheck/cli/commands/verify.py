@@ -12,7 +12,7 @@ worst pixels, with fragCoord).
 --against webgl compares with WebGL 2 in headless Chromium (ANGLE on SwiftShader, as Shadertoy's
 page renders; glslcheck/webgl_backend). Each frame is also rendered with GL: a pixel where the two
 drivers differ depends on the driver, and there NumPy need only match the closer of the two
-("driver-dependent" in the report; glslcheck/backends/webgl/drivers.py). `--backends gl,webgl`
+("driver-dependent" in the report; glslcheck/verification/webgl_drivers.py). `--backends gl,webgl`
 compares the two drivers with each other; `--backends compiled,gl` verifies the compiled engine
 (glslcheck/compiled_backend: float32, numba needed, exit 2 with the pip line without it).
 
@@ -48,6 +48,8 @@ from ...base.diagnostics import GlslError, InputError, format_text
 from ...base.images import check_output
 from ...shadertoy.sources import find_shaders
 from ...verification.verify import ALL_BACKENDS, BACKENDS, DEFAULT_FPS, Progress, diff_paths, frame_specs, verify_frames
+from ...base import limits
+from ...base.precision import PRECISIONS
 from . import args as A
 
 
@@ -60,25 +62,25 @@ def _backends(text: str) -> tuple[str, str]:
 
 def add_arguments(p) -> None:
     p.add_argument("paths", nargs="+", metavar="SHADER", help="tab files or folders of tab files")
-    p.add_argument("--size", type=A.arg(A.parse_size), default=(800, 450), metavar="WxH",
+    p.add_argument("--size", type=A.arg(limits.parse_size), default=(800, 450), metavar="WxH",
                    help="render size in pixels (default 800x450)")
     when = p.add_mutually_exclusive_group()
-    when.add_argument("--time", type=A.arg(A.parse_time), metavar="T", help="iTime in seconds (default 0)")
-    when.add_argument("--times", type=A.arg(A.parse_times), metavar="T,T,...",
+    when.add_argument("--time", type=A.arg(limits.parse_time), metavar="T", help="iTime in seconds (default 0)")
+    when.add_argument("--times", type=A.arg(limits.parse_times), metavar="T,T,...",
                       help="verify one frame per time")
-    when.add_argument("--frames", type=A.arg(A.parse_frames), metavar="N",
+    when.add_argument("--frames", type=A.arg(limits.parse_frames), metavar="N",
                       help="verify N consecutive frames at --fps")
-    p.add_argument("--fps", type=A.arg(A.parse_fps), default=None, metavar="F",
+    p.add_argument("--fps", type=A.arg(limits.parse_fps), default=None, metavar="F",
                    help=f"frames per second: iFrameRate, iTimeDelta = 1/F and the --frames clock (default {DEFAULT_FPS:g})")
-    p.add_argument("--frame", type=A.arg(A.parse_frame), default=0, metavar="N",
+    p.add_argument("--frame", type=A.arg(limits.parse_frame), default=0, metavar="N",
                    help="iFrame (with --frames: the first frame) (default 0)")
-    p.add_argument("--mouse", type=A.arg(A.parse_mouse), default=(0.0, 0.0, 0.0, 0.0), metavar="X,Y,Z,W",
+    p.add_argument("--mouse", type=A.arg(limits.parse_mouse), default=(0.0, 0.0, 0.0, 0.0), metavar="X,Y,Z,W",
                    help="iMouse in pixels (default 0,0,0,0)")
-    p.add_argument("--date", type=A.arg(A.parse_date), default=None, metavar="Y,M,D,S",
+    p.add_argument("--date", type=A.arg(limits.parse_date), default=None, metavar="Y,M,D,S",
                    help="iDate: year, month 0-11, day, seconds since midnight (default 2026,0,1,0)")
-    p.add_argument("--precision", choices=A.PRECISIONS, default="float32",
+    p.add_argument("--precision", choices=PRECISIONS, default="float32",
                    help="float mode of the NumPy backend; OpenGL is always highp float32 (default float32)")
-    p.add_argument("--samples", type=A.arg(A.parse_samples), default=1, metavar="N",
+    p.add_argument("--samples", type=A.arg(limits.parse_samples), default=1, metavar="N",
                    help="samples per pixel on both sides, a perfect square (default 1)")
     p.add_argument("--diff", metavar="PNG", help="write the difference heat map (diff-<i>.png for several frames)")
     p.add_argument("--format", choices=("text", "json"), default="text", help="output format (default text)")
@@ -103,7 +105,7 @@ def run(args) -> int:
     if args.diff:
         check_output(args.diff, (".png",), "diff image")
     try:
-        A.check_schedule(args.frame, args.frames, args.fps or DEFAULT_FPS)
+        limits.check_schedule(args.frame, args.frames, args.fps or DEFAULT_FPS)
         frame_specs(args.time, args.times, args.frames, args.fps, args.frame)  # conflicting options
     except ValueError as e:
         raise InputError(f"glslcheck verify: error: {e}") from None
@@ -127,7 +129,7 @@ def run(args) -> int:
                                fps=args.fps, frame=args.frame, mouse=args.mouse, date=args.date,
                                precision=args.precision, samples=args.samples, progress=progress)
                 if args.against == "webgl":  # NumPy vs WebGL, driver-dependent pixels apart
-                    from ...backends.webgl.drivers import verify_against_webgl
+                    from ...verification.webgl_drivers import verify_against_webgl
 
                     frames = verify_against_webgl(shader, **options)
                 else:
@@ -216,7 +218,7 @@ def format_frame(result, precision: str = "float32", samples: int = 1, worst: in
 
         lines.append(f"  note: {nan_hint(result.shader, c.nan_numpy, result.size, s.time)}")
     drivers = getattr(result, "drivers", None)
-    if drivers is not None:  # verify --against webgl (glslcheck/backends/webgl/drivers.py)
+    if drivers is not None:  # verify --against webgl (glslcheck/verification/webgl_drivers.py)
         plain = result.plain
         lines.append(f"  driver-dependent {result.driver_pixels:<10}  pixels where gl and webgl differ; "
                      f"there {a} need match only the closer driver")
