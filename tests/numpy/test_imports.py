@@ -1,5 +1,5 @@
 """The NumPy backend's modules import each other one way: no cycle, and the modules that render
-frames (program.py, workers.py and frame.py, which both of the others use) name what they use
+frames (program.py, workers.py and tiles.py, which both of the others use) name what they use
 at the top of the file, never inside a function.
 
 The import graph is read from the source (the AST), not from `sys.modules`: an import inside a
@@ -18,7 +18,7 @@ import glslcheck.backends.numpy_engine as backend
 
 PACKAGE = "glslcheck.backends.numpy_engine"
 ROOT = os.path.dirname(backend.__file__)
-FRAME_LAYER = {f"{PACKAGE}.{m}" for m in ("program", "workers", "frame")}
+FRAME_LAYER = {f"{PACKAGE}.{m}" for m in ("program", "workers", "tiles")}
 
 
 def _modules() -> dict[str, str]:
@@ -53,7 +53,7 @@ def _imports(name: str, path: str, modules: dict[str, str]) -> list[tuple[str, i
             for _ in range(node.level - 1):
                 base = base.rpartition(".")[0]
             base = (f"{base}.{node.module}" if node.module else base) if node.level else node.module
-            # `from . import workers` imports a submodule; `from .frame import State` a name of one
+            # `from . import workers` imports a submodule; `from .tiles import State` a name of one
             targets = [f"{base}.{a.name}" if f"{base}.{a.name}" in modules else base for a in node.names]
         for t in targets:
             while t not in modules and "." in t:  # `import a.b.c` of a module a.b: the module
@@ -98,8 +98,8 @@ def _cycle(graph: dict[str, list[tuple[str, int, bool]]]) -> list[str] | None:
 def test_the_graph_sees_the_imports_it_is_about():
     # the reader must find the backend's known imports, or the tests below would pass on nothing
     edges = {(m, t) for m, imports in _graph().items() for t, _, _ in imports}
-    assert {(f"{PACKAGE}.program", f"{PACKAGE}.workers"), (f"{PACKAGE}.program", f"{PACKAGE}.frame"),
-            (f"{PACKAGE}.workers", f"{PACKAGE}.frame")} <= edges
+    assert {(f"{PACKAGE}.program", f"{PACKAGE}.workers"), (f"{PACKAGE}.program", f"{PACKAGE}.tiles"),
+            (f"{PACKAGE}.workers", f"{PACKAGE}.tiles")} <= edges
     assert _cycle({"a": [("b", 1, True)], "b": [("c", 1, False)], "c": [("a", 1, True)]}) == ["a", "b", "c", "a"]
 
 
