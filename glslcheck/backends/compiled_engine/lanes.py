@@ -66,7 +66,7 @@ import copy
 import importlib.util
 from typing import Any
 
-from .codegen import pure_expr
+from .values import pure_expr
 
 STATE_LANES = ("gf", "gi", "gu", "gb")  # per-pixel state: one array per lane
 UNIFORM_STATE = ("uf", "ui")
