@@ -10,6 +10,7 @@ from typing import Any
 
 from ....frontend import syntax as A
 from ....base.diagnostics import Location
+from ..fold_state import FoldState
 from .common import LOOP_CAP, SMALL_STATE, _error, _printable, check_program
 from .expressions import Expressions
 from .facts import Facts
@@ -33,6 +34,7 @@ class Transpiler(Names, Functions, Statements, Expressions, PythonLimits):
             raise _error("the program has no mainImage (or main) to render", Location(path, 1, 1))
         self.functions = [f for f in model.reachable_functions()]
         self.facts = Facts(model, self.functions)
+        self.fold_state = FoldState()  # the Mesa rewrites' memo of this program (fold_state.py)
         self.lines: list[str] = []
         self.consts: dict[str, str] = {}  # name -> defining expression
         self.float_consts: dict[str, float] = {}  # a float literal's name -> its value (const_float)
