@@ -54,6 +54,9 @@ from typing import Any
 from ...frontend import syntax as A
 from ...semantics.model import Constructor, Symbol
 from ...base.diagnostics import Location
+from ..cpu_core.common import printable
+from ..cpu_core.facts import Facts
+from ..cpu_core.uniformity import Uniformity
 from .expressions import ExpressionEmitter
 from .module_text import HEADER, RENDER
 from .values import (ATOM, DTYPE, KIND_ARRAY, STATE, STATE_NAME, Arr, engine_error, flatten, leaves, not_yet)
@@ -72,8 +75,6 @@ class Codegen(ExpressionEmitter):
     """`Codegen(model, path).module()` -> the generated Python source."""
 
     def __init__(self, model: Any, path: str, fma: bool, float_to_uint: str) -> None:
-        from ..numpy_engine.transpile.facts import Facts
-
         self.model = model
         self.path = path
         self.fma = fma
@@ -141,13 +142,11 @@ class Codegen(ExpressionEmitter):
         if loc is None or not loc.line:
             return
         from ...base.diagnostics import source_line
-        from ..numpy_engine.transpile.common import _printable
-
         if (loc.path, loc.line) == self.last_line:
             return
         self.last_line = (loc.path, loc.line)
         text = source_line(loc.path, loc.line) or ""
-        self.emit(f"# line {loc.line}: {_printable(text)}".rstrip())
+        self.emit(f"# line {loc.line}: {printable(text)}".rstrip())
 
     # -- constants -----------------------------------------------------------------------------
     def cf(self, v: float) -> str:
@@ -194,9 +193,9 @@ class Codegen(ExpressionEmitter):
 
     # -- variables -----------------------------------------------------------------------------
     def declare_local(self, sym: Any, node: Any) -> list:
-        from ..numpy_engine.transpile.common import _ident
+        from ..numpy_engine.transpile.common import python_ident
 
-        name = _ident(sym.unique_name or sym.name, node)
+        name = python_ident(sym.unique_name or sym.name, node)
         parts: list = []
         for k, (base, n) in enumerate(leaves(sym.type, node)):
             if n is None:
@@ -383,9 +382,9 @@ class Codegen(ExpressionEmitter):
 
     # -- functions -----------------------------------------------------------------------------
     def fn_name(self, sym: Any) -> str:
-        from ..numpy_engine.transpile.common import _ident
+        from ..numpy_engine.transpile.common import python_ident
 
-        return "f_" + _ident(sym.unique_name or sym.name, sym.node)
+        return "f_" + python_ident(sym.unique_name or sym.name, sym.node)
 
     def variant_name(self, sym: Any, seed: frozenset) -> str:
         """A function's name, with the indices of its lane-uniform parameters when it has any
@@ -398,7 +397,7 @@ class Codegen(ExpressionEmitter):
         node = sym.node
         self.variants.add((id(sym), seed))
         params_u = {id(self.model.symbol_of(p)) for i, p in enumerate(node.proto.params) if i in seed}
-        self.fn = fs = FnState(sym, SeededUniformity(self.model, self.facts, sym, sym is self.entry, params_u))
+        self.fn = fs = FnState(sym, Uniformity(self.model, self.facts, sym, sym is self.entry, params_u))
         proto = node.proto
         params: list[str] = []
         prologue: list[tuple[list, Any, str]] = []
@@ -417,9 +416,7 @@ class Codegen(ExpressionEmitter):
         def_at = len(self.lines)
         self.emit("")  # the def line, once the state arrays the body uses are known
         self.indent += 1
-        from ..numpy_engine.transpile.common import _printable
-
-        self.emit(f'"""{_printable(sym.signature(), 150)} (line {proto.loc.line if proto.loc else "?"})."""')
+        self.emit(f'"""{printable(sym.signature(), 150)} (line {proto.loc.line if proto.loc else "?"})."""')
         for part in [p for p in self.vars_of_params(sym) if isinstance(p, Arr)]:
             self.emit(f"{part.name} = acopy({part.name})  # arrays are passed by value")
         for parts, ptype, p in prologue:
@@ -595,50 +592,6 @@ class Codegen(ExpressionEmitter):
 
 
 
-def _seeded_uniformity():
-    from ..numpy_engine.uniformity import Uniformity
-
-    class _SkipFirst(set):
-        """The analysis' varying symbols, but the first `add` of each seeded parameter (the
-        analysis starts by marking every parameter varying) is ignored."""
-
-        def __init__(self, skip: set) -> None:
-            super().__init__()
-            self.skip = set(skip)
-
-        def add(self, x: Any) -> None:
-            if x in self.skip:
-                self.skip.discard(x)
-                return
-            super().add(x)
-
-    class Seeded(Uniformity):
-        """numpy_backend's Uniformity of a function whose parameters `uniform_params` (symbol
-        ids) get a value of one lane from the call (NumPy evaluates a call with the arguments'
-        own lane counts): they start uniform; a varying write still makes them varying."""
-
-        def __init__(self, model: Any, facts: Any, fn: Any, is_entry: bool, uniform_params: set) -> None:
-            self.__dict__["_seed"] = set(uniform_params)
-            super().__init__(model, facts, fn, is_entry)
-
-        def __setattr__(self, name: str, value: Any) -> None:
-            if name == "varying" and "varying" not in self.__dict__:
-                value = _SkipFirst(self.__dict__["_seed"])
-            object.__setattr__(self, name, value)
-
-    return Seeded
-
-
-def SeededUniformity(model: Any, facts: Any, fn: Any, is_entry: bool, uniform_params: set) -> Any:
-    global _SEEDED
-    if _SEEDED is None:
-        _SEEDED = _seeded_uniformity()
-    return _SEEDED(model, facts, fn, is_entry, uniform_params)
-
-
-_SEEDED = None
-
-
 def _literal_tree(model: Any, e: Any, base: str) -> bool:
     """Literals of type `base`, their negations and vector constructors of them only."""
     if isinstance(e, (A.FloatLiteral, A.IntLiteral, A.BoolLiteral)):
@@ -653,6 +606,4 @@ def _literal_tree(model: Any, e: Any, base: str) -> bool:
 
 
 def _safe(text: str) -> str:
-    from ..numpy_engine.transpile.common import _printable
-
-    return _printable(text, 200)
+    return printable(text, 200)

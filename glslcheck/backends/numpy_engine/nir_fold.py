@@ -93,10 +93,10 @@ from ...semantics.model import Symbol
 from ...base.diagnostics import Location
 from ...frontend.printer import to_glsl
 from ...language.glsl_types import FLOAT
-from .transpile.common import _TEXTURE_FUNCTIONS
+from ..cpu_core.common import TEXTURE_FUNCTIONS
+from ..cpu_core.facts import induction_variable
 from .transpile.call_fold import out_roots, product_sums
 from .transpile.constant_flow import constant_flow
-from .transpile.facts import induction_variable
 from .transpile.inline import bound_argument, inline_owner
 
 _SUMS = ("+", "-")
@@ -267,7 +267,7 @@ def _lowp_kind_of(tr: Any, node: Any, memo: dict[int, Any]) -> str | None:
     if isinstance(node, A.Call):
         sampler = node.args[0] if node.args else None
         sym = tr.model.symbol_of(sampler) if isinstance(sampler, A.Identifier) else None
-        if (getattr(tr.model.call_target(node), "name", None) not in _TEXTURE_FUNCTIONS or sym is None
+        if (getattr(tr.model.call_target(node), "name", None) not in TEXTURE_FUNCTIONS or sym is None
                 or sym.kind != "uniform" or str(tr.type_of(sampler)) != "sampler2D"):
             return None
         return "lookup"

@@ -95,7 +95,7 @@ def _k(v: float) -> _T:
     return _T("k", const=True, value=float(np.float32(v)))
 
 
-def _fold(op: str, a: float, b: float) -> float:
+def fold_tree(op: str, a: float, b: float) -> float:
     with np.errstate(all="ignore"):
         x, y = np.float32(a), np.float32(b)
         return float(x * y if op == "*" else x + y if op == "+" else x / y)
@@ -120,7 +120,7 @@ class _Eval:
             return self.neg(self.mul(a.args[0] if a.op == "neg" else a, b.args[0] if b.op == "neg" else b)) \
                 if (a.op == "neg") != (b.op == "neg") else self.mul(a.args[0], b.args[0])
         if a.value is not None and b.value is not None:
-            return _k(_fold("*", a.value, b.value))
+            return _k(fold_tree("*", a.value, b.value))
         for c, x in ((a, b), (b, a)):
             if c.value is not None and not x.const:
                 if c.value == 1.0:
@@ -142,7 +142,7 @@ class _Eval:
 
     def add(self, a: _T, b: _T) -> _T:
         if a.value is not None and b.value is not None:
-            return _k(_fold("+", a.value, b.value))
+            return _k(fold_tree("+", a.value, b.value))
         for c, x in ((a, b), (b, a)):
             if c.value == 0.0 and not x.const:
                 return x
@@ -187,7 +187,7 @@ class _Eval:
 
     def div(self, a: _T, b: _T) -> _T:
         if a.value is not None and b.value is not None:
-            return _k(_fold("/", a.value, b.value))
+            return _k(fold_tree("/", a.value, b.value))
         return _T("/", (a, b), const=a.const and b.const)
 
     def binary(self, op: str, lt: Any, lv: list[_T], rt: Any, rv: list[_T]) -> list[_T]:

@@ -111,7 +111,7 @@ def worth_inlining(tr: Any, call: A.Call, fn: Any, constant_product: Any) -> boo
 def inline_call(tr: Any, call: A.Call, fn: Any, mask: str | None) -> str:
     """The callee's return expression at the call site, its parameters read as the arguments'
     values (each argument evaluated once, left to right, before the body as a call does)."""
-    from .facts import is_plain_read
+    from ...cpu_core.facts import is_plain_read
 
     params: dict[int, tuple[str, Any]] = {}
     for p, arg in zip(fn.node.proto.params, call.args):
