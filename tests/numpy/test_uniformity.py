@@ -1,4 +1,4 @@
-"""The uniformity (divergence) analysis, glslcheck/backends/numpy_engine/uniformity.py: its verdicts on
+"""The uniformity (divergence) analysis, glslcheck/backends/cpu_core/uniformity.py: its verdicts on
 small functions, and what it changes in the rendered frames (nothing) and in the lane shapes of
 the values (uniform ones stay one value per tile).
 

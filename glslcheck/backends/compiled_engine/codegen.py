@@ -65,7 +65,7 @@ from .values import (ATOM, DTYPE, KIND_ARRAY, STATE, STATE_NAME, Arr, engine_err
 class FnState:
     def __init__(self, sym: Any, uni: Any = None) -> None:
         self.sym = sym
-        self.uni = uni  # numpy_backend's Uniformity of the function (None: global initializers)
+        self.uni = uni  # cpu_core's Uniformity of the function (None: global initializers)
         self.outs: list = []  # the parts of out/inout parameters, returned after the value
         self.loops: list[tuple[str, Any]] = []  # (kind, continue emitter)
 

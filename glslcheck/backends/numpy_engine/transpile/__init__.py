@@ -28,7 +28,7 @@ All pixels of a tile are lanes. A mask (`_m..`) is `None` ("every lane of the cu
 set") or a bool array; writes under a mask keep the old value elsewhere (`rt.assign`).
 
 * uniform values (the same in every lane: they depend only on constants, uniforms and uniform
-  variables; backends/numpy_engine/uniformity.py) are arrays of one lane, computed once per tile.
+  variables; backends/cpu_core/uniformity.py) are arrays of one lane, computed once per tile.
   A write needs no mask where no lane the mask leaves out reads the variable again (declared
   in the same branch, or the others returned: `Uniformity.is_free`), so
   `Light L[4]; L[0] = Light(...);` after an early return stays one value per tile.
