@@ -1,4 +1,4 @@
-"""The uniformity (divergence) analysis, glslcheck/backends/numpy_engine/uniformity.py: its verdicts on
+"""The uniformity (divergence) analysis, glslcheck/backends/cpu_core/uniformity.py: its verdicts on
 small functions, and what it changes in the rendered frames (nothing) and in the lane shapes of
 the values (uniform ones stay one value per tile).
 
@@ -15,8 +15,9 @@ import pytest
 
 from glslcheck.backends.numpy_engine import program as P
 from glslcheck.semantics.analysis import written_variable
-from glslcheck.backends.numpy_engine.transpile import Facts, check_program, written_lvalues
-from glslcheck.backends.numpy_engine.uniformity import Uniformity
+from glslcheck.backends.cpu_core.facts import Facts, written_lvalues
+from glslcheck.backends.numpy_engine.transpile import check_program
+from glslcheck.backends.cpu_core.uniformity import Uniformity
 from glslcheck.frontend.parser import parse_shader
 from glslcheck.frontend import syntax as A
 

@@ -9,7 +9,7 @@ from typing import Any
 
 from ...frontend import syntax as A
 from ...language import builtin_functions as B
-from .codegen import Val, _bcast, _error, not_yet
+from .values import Val, broadcast_const, engine_error, not_yet
 
 # one float32 component -> scalar.py function of the same rule (fma: llvmpipe's fused steps)
 _UNARY_FMA = ("sin", "cos", "tan", "exp", "log", "exp2", "log2", "sinh", "cosh", "tanh", "asinh", "acosh", "atanh")
@@ -148,7 +148,7 @@ def pow_call(cg: Any, e: A.Call, args: list[Val], rtype: Any, n: int) -> Val:
         return Val(rtype, [cg.cf(1.0)] * n)
     if x.const is not None and all(v == 2.0 for v in x.const):
         return Val(rtype, [f"exp2({p}, FMA)" for p in ys])
-    c = _bcast(y.const, n)
+    c = broadcast_const(y.const, n)
     special = c is not None and any(v in (1.0, 2.0, 4.0) or (v == 0.0 and math.copysign(1.0, v) > 0) for v in c)
     out = []
     for i in range(n):
@@ -275,7 +275,7 @@ def geometric(cg: Any, name: str, args: list[Val], rtype: Any) -> Val:
         b = [cg.atom(p) for p in i.parts]
         c = cg.tmp(f"({cg.dot_text(a, b) if len(a) > 1 else f'({a[0]} * {b[0]})'} < {cg.cf(0.0)})")
         return Val(rtype, [f"({p} if {c} else (-{p}))" for p in [cg.atom(q) for q in nn.parts]])
-    raise _error(f"{name}()", None)
+    raise engine_error(f"{name}()", None)
 
 
 def determinant(cg: Any, m: list[str], n: int) -> str:

@@ -45,162 +45,43 @@ NaN x, as there, but `float k = 0.0; x * k` multiplies. docs/performance.md meas
 changes.
 """
 
+
 from __future__ import annotations
 
-import ast as pyast
 import math
-import re
-from dataclasses import dataclass
 from typing import Any
 
 from ...frontend import syntax as A
-from ...language import glsl_types as T
 from ...semantics.model import Constructor, Symbol
-from ...base.diagnostics import Diagnostic, GlslError, Location
-
-RULE = "compiled-engine"
-NOT_YET = "not supported by the compiled engine yet"
-# Ternaries computed on both sides (Codegen._speculable): a side of more than _SPECULATE_LINES
-# pure temporaries (pure_expr) keeps its branch (its work would be paid where it is not taken).
-_PURE_LINE = re.compile(r"^( *)_t[0-9]+ = (.*)$")
-_SPECULATE_LINES = 4
-_PURE_NODES = (pyast.Name, pyast.Constant, pyast.BinOp, pyast.UnaryOp, pyast.Compare, pyast.IfExp, pyast.BoolOp,
-               pyast.Load, pyast.Add, pyast.Sub, pyast.Mult, pyast.Div, pyast.USub, pyast.UAdd, pyast.Not,
-               pyast.And, pyast.Or, pyast.Eq, pyast.NotEq, pyast.Lt, pyast.LtE, pyast.Gt, pyast.GtE)
-
-
-def pure_expr(e: Any) -> bool:
-    """A generated expression (its text or its Python ast) that reads names and constants with
-    float arithmetic, compares, `and`/`or`/`not` and lsel only: it has no effect and cannot fail
-    (error_model="numpy"; this generator wraps int arithmetic in casts, which are calls), so
-    computing it where its value is not used changes nothing (codegen's ternaries, lanes.py's
-    conditional expressions)."""
-    if isinstance(e, str):
-        try:
-            e = pyast.parse(e, mode="eval").body
-        except SyntaxError:
-            return False
-    for n in pyast.walk(e):
-        if isinstance(n, pyast.Call):
-            if not (isinstance(n.func, pyast.Name) and n.func.id == "lsel" and not n.keywords):
-                return False
-        elif not isinstance(n, _PURE_NODES):
-            return False
-    return True
-
-
-_ATOM = re.compile(r"^(?:[A-Za-z_][A-Za-z0-9_]*(?:\[[A-Za-z0-9_ +]+\])?|True|False)$")
-_KIND_ARRAY = {"float": "gf", "int": "gi", "uint": "gu", "bool": "gb"}
-_DTYPE = {"float": "np.float32", "int": "np.int32", "uint": "np.uint32", "bool": "np.bool_"}
-_CAST = {"float": "F32", "int": "I32", "uint": "U32", "bool": "bool"}
-_SWZ = "xyzw"
-STATE = ("gf", "gi", "gu", "gb", "uf", "ui")  # the per-pixel state arrays (see the docstring)
-_STATE_NAME = re.compile(r"(?<![\w.])(gf|gi|gu|gb|uf|ui)(?!\w)")
-SMALL_ARRAY = 64  # arrays of up to this many scalars are scalars too (no allocation per pixel)
-
-
-def _error(message: str, node: Any, help: str | None = None) -> GlslError:
-    loc = node if isinstance(node, Location) else getattr(node, "loc", None)
-    return GlslError(Diagnostic(message, loc, rule=RULE, help=help))
-
-
-def not_yet(what: str, node: Any) -> GlslError:
-    return _error(f"{what}: {NOT_YET}", node, help="render with --backend numpy or gl")
-
-
-@dataclass
-class Arr:
-    """An array leaf: elements off .. off+size-1 of the numba array `name`."""
-
-    name: str
-    off: int
-    size: int
-    base: str
-
-    def at(self, idx: str) -> str:
-        return f"{self.name}[{idx}]" if not self.off else f"{self.name}[{self.off} + {idx}]"
-
-    def whole(self) -> str:
-        """The array as a value: a local array itself, else a copy of its slots."""
-        if self.name.startswith(("a_", "_")):
-            return self.name
-        return f"aslice({self.name}, {self.off}, {self.size})"
-
-
-@dataclass
-class Dyn:
-    """A vector component (or matrix column entry) chosen by a run-time index: parts[idx]."""
-
-    idx: str
-    parts: list
-
-
-@dataclass
-class Val:
-    """A GLSL value in generated code: its type, its leaves, and its compile-time constant
-    leaves (None when it is not a constant)."""
-
-    t: Any
-    parts: list
-    const: list | None = None
-    uni: bool = False  # one value for a whole tile in the NumPy backend, taken there for a constant
-
-    @property
-    def constlike(self) -> bool:
-        return self.const is not None or self.uni
-
-
-def leaves(t: Any, node: Any) -> list[tuple[str, int | None]]:
-    """The scalar leaves of type t: (base type, array size or None)."""
-    if t.is_scalar:
-        return [(t.base, None)]
-    if t.is_vector:
-        return [(t.base, None)] * t.size
-    if t.is_matrix:
-        return [("float", None)] * (t.cols * t.rows)
-    if t.is_struct:
-        return [leaf for _, ft in t.fields for leaf in leaves(ft, node)]
-    if t.is_array:
-        inner = leaves(t.element, node)
-        if any(n is not None for _, n in inner):
-            raise not_yet("an array of structs that hold arrays", node)
-        if t.array_size is None:
-            raise not_yet("an unsized array", node)
-        if t.array_size * len(inner) <= SMALL_ARRAY:  # scalars, leaf by leaf (see the docstring)
-            return [(b, None) for b, _ in inner for _ in range(t.array_size)]
-        return [(b, t.array_size) for b, _ in inner]
-    if t.contains_opaque:
-        raise not_yet("textures and channels", node)
-    raise not_yet(f"values of type '{t}'", node)
-
-
-def _flat(v: Any) -> list:
-    if isinstance(v, (tuple, list)):
-        return [x for item in v for x in _flat(item)]
-    return [v]
+from ...base.diagnostics import Location
+from ..cpu_core.common import printable
+from ..cpu_core.facts import Facts
+from ..cpu_core.uniformity import Uniformity
+from .expressions import ExpressionEmitter
+from .module_text import HEADER, RENDER
+from .values import (ATOM, DTYPE, KIND_ARRAY, STATE, STATE_NAME, Arr, engine_error, flatten, leaves, not_yet)
 
 
 class FnState:
     def __init__(self, sym: Any, uni: Any = None) -> None:
         self.sym = sym
-        self.uni = uni  # numpy_backend's Uniformity of the function (None: global initializers)
+        self.uni = uni  # cpu_core's Uniformity of the function (None: global initializers)
         self.outs: list = []  # the parts of out/inout parameters, returned after the value
         self.loops: list[tuple[str, Any]] = []  # (kind, continue emitter)
 
 
-class Codegen:
+
+class Codegen(ExpressionEmitter):
     """`Codegen(model, path).module()` -> the generated Python source."""
 
     def __init__(self, model: Any, path: str, fma: bool, float_to_uint: str) -> None:
-        from ..numpy_engine.transpile.facts import Facts
-
         self.model = model
         self.path = path
         self.fma = fma
         self.float_to_uint = float_to_uint
         self.entry = model.entry
         if self.entry is None:
-            raise _error("the program has no mainImage (or main) to render", Location(path, 1, 1))
+            raise engine_error("the program has no mainImage (or main) to render", Location(path, 1, 1))
         self.functions = list(model.reachable_functions())
         self.facts = Facts(model, self.functions)  # (nir_fold.mix_hint reads it)
         self.lines: list[str] = []
@@ -243,7 +124,7 @@ class Codegen:
         return f"_{prefix}{self.n}"
 
     def tmp(self, value: str) -> str:
-        if _ATOM.match(value) and not value.startswith(("gf[", "gi[", "gu[", "gb[")):
+        if ATOM.match(value) and not value.startswith(("gf[", "gi[", "gu[", "gb[")):
             return value
         return self.tmp_fresh(value)
 
@@ -261,13 +142,11 @@ class Codegen:
         if loc is None or not loc.line:
             return
         from ...base.diagnostics import source_line
-        from ..numpy_engine.transpile.common import _printable
-
         if (loc.path, loc.line) == self.last_line:
             return
         self.last_line = (loc.path, loc.line)
         text = source_line(loc.path, loc.line) or ""
-        self.emit(f"# line {loc.line}: {_printable(text)}".rstrip())
+        self.emit(f"# line {loc.line}: {printable(text)}".rstrip())
 
     # -- constants -----------------------------------------------------------------------------
     def cf(self, v: float) -> str:
@@ -308,15 +187,15 @@ class Codegen:
                 out.append(self.const_part(base, 0))
             else:
                 a = self.fresh("z")
-                self.emit(f"{a} = np.zeros({n}, {_DTYPE[base]})")
+                self.emit(f"{a} = np.zeros({n}, {DTYPE[base]})")
                 out.append(Arr(a, 0, n, base))
         return out
 
     # -- variables -----------------------------------------------------------------------------
     def declare_local(self, sym: Any, node: Any) -> list:
-        from ..numpy_engine.transpile.common import _ident
+        from ..numpy_engine.transpile.common import python_ident
 
-        name = _ident(sym.unique_name or sym.name, node)
+        name = python_ident(sym.unique_name or sym.name, node)
         parts: list = []
         for k, (base, n) in enumerate(leaves(sym.type, node)):
             if n is None:
@@ -333,7 +212,7 @@ class Codegen:
             for base, n in leaves(sym.type, node):
                 off = self.slots[base]
                 self.slots[base] += n or 1
-                arr = _KIND_ARRAY[base]
+                arr = KIND_ARRAY[base]
                 parts.append(f"{arr}[{off}]" if n is None else Arr(arr, off, n, base))
             self.vars[id(sym)] = parts
         return parts
@@ -343,7 +222,7 @@ class Codegen:
 
         u = UNIFORMS_BY_NAME.get(name)
         if u is None:
-            raise _error(f"unknown uniform '{name}'", node)
+            raise engine_error(f"unknown uniform '{name}'", node)
         if u.glsl_type.startswith("sampler"):
             raise not_yet(f"'{name}': textures and channels", node)
         comps = 1 if u.glsl_type in ("float", "int") else int(u.glsl_type[-1])
@@ -370,7 +249,7 @@ class Codegen:
         cv = self.model.const_value(d.init)
         if cv is None:
             return None
-        values = _flat(cv)
+        values = flatten(cv)
         values = values * t.size if t.is_vector and len(values) == 1 else values
         return [self.const_part(t.base, v) for v in values]
 
@@ -378,7 +257,7 @@ class Codegen:
         if sym.kind in ("local", "param"):
             parts = self.vars.get(id(sym))
             if parts is None:
-                raise _error(f"'{sym.name}' is used before its declaration", node)
+                raise engine_error(f"'{sym.name}' is used before its declaration", node)
             return parts
         if sym.kind == "global" and sym.qualifier == "uniform":
             from ...shadertoy.wrapper import fed_uniform
@@ -479,7 +358,7 @@ class Codegen:
             outs = [g for g in self.model.globals if g.qualifier == "out" and g.kind == "global"
                     and str(g.type) == "vec4"]
             if not outs:
-                raise _error("a plain GLSL shader needs an 'out vec4' variable", entry.node)
+                raise engine_error("a plain GLSL shader needs an 'out vec4' variable", entry.node)
             self.emit(f"{name}({', '.join(self.needs[name])})")
             parts = self.global_parts(outs[0], outs[0].node)
             self.emit(f"return {parts[0]}, {parts[1]}, {parts[2]}, {parts[3]}")
@@ -503,9 +382,9 @@ class Codegen:
 
     # -- functions -----------------------------------------------------------------------------
     def fn_name(self, sym: Any) -> str:
-        from ..numpy_engine.transpile.common import _ident
+        from ..numpy_engine.transpile.common import python_ident
 
-        return "f_" + _ident(sym.unique_name or sym.name, sym.node)
+        return "f_" + python_ident(sym.unique_name or sym.name, sym.node)
 
     def variant_name(self, sym: Any, seed: frozenset) -> str:
         """A function's name, with the indices of its lane-uniform parameters when it has any
@@ -518,7 +397,7 @@ class Codegen:
         node = sym.node
         self.variants.add((id(sym), seed))
         params_u = {id(self.model.symbol_of(p)) for i, p in enumerate(node.proto.params) if i in seed}
-        self.fn = fs = FnState(sym, SeededUniformity(self.model, self.facts, sym, sym is self.entry, params_u))
+        self.fn = fs = FnState(sym, Uniformity(self.model, self.facts, sym, sym is self.entry, params_u))
         proto = node.proto
         params: list[str] = []
         prologue: list[tuple[list, Any, str]] = []
@@ -537,9 +416,7 @@ class Codegen:
         def_at = len(self.lines)
         self.emit("")  # the def line, once the state arrays the body uses are known
         self.indent += 1
-        from ..numpy_engine.transpile.common import _printable
-
-        self.emit(f'"""{_printable(sym.signature(), 150)} (line {proto.loc.line if proto.loc else "?"})."""')
+        self.emit(f'"""{printable(sym.signature(), 150)} (line {proto.loc.line if proto.loc else "?"})."""')
         for part in [p for p in self.vars_of_params(sym) if isinstance(p, Arr)]:
             self.emit(f"{part.name} = acopy({part.name})  # arrays are passed by value")
         for parts, ptype, p in prologue:
@@ -548,7 +425,7 @@ class Codegen:
         if not ended:  # the end of the body (also after an if/else that returned in both branches)
             self.emit(self.return_text(None if sym.type.is_void else self.zero_parts(sym.type, node)))
         self.indent -= 1
-        used = set(_STATE_NAME.findall("\n".join(self.lines[def_at + 1:])))
+        used = set(STATE_NAME.findall("\n".join(self.lines[def_at + 1:])))
         name = self.fn_name(sym)
         if not seed:
             self.needs[name] = [a for a in STATE if a in used]
@@ -713,618 +590,6 @@ class Codegen:
                 step()
         self.indent -= 1
 
-    # -- writes --------------------------------------------------------------------------------
-    def write(self, targets: list, values: list, fresh_arrays: bool = False) -> None:
-        """Assign value parts to target parts, in order. Values that read a target are copied
-        first when several parts are written (`v.xy = v.yx`)."""
-        if len(targets) > 1:
-            values = [self.tmp_copy(v) if isinstance(v, str) and not v.startswith(("F_", "I_", "U_", "_t"))
-                      and v not in ("True", "False") else v for v in values]
-        for t, v in zip(targets, values):
-            if isinstance(t, Arr):
-                src = v.whole() if isinstance(v, Arr) else v
-                if fresh_arrays and t.name.startswith("a_"):
-                    self.emit(f"{t.name} = acopy({src})")
-                else:
-                    self.emit(f"aset({t.name}, {t.off}, {src})")
-            elif isinstance(t, Dyn):
-                # Every element takes the value where the index is its own, itself elsewhere:
-                # one select each (lanes_rt.lsel), no branch (see read()).
-                v = self.tmp(v)
-                for k, p in enumerate(t.parts):
-                    self.write([p], [f"lsel({t.idx} == {k}, {v}, {self.read(p)})"])
-            else:
-                self.emit(f"{t} = {v}")
-
-    def read(self, p: Any) -> Any:
-        """A target part as a value part (a run-time index becomes a chain of selects).
-
-        lanes_rt.lsel, not Python's `a if c else b`: the parts are names and constants, so
-        computing all of them costs nothing, and a conditional expression is two basic blocks
-        in numba's IR. `lights[i].pos` in a lights loop read 4 x 3 leaves that way, 600 of
-        the 711 blocks of a Lab 4 submission's shading function (10-lab4 of the real corpus);
-        numba's liveness and SSA passes grow with blocks x variables, and its lockstep module
-        (8 lanes, 5,627 blocks) took 341 s and 9.2 GB to compile."""
-        if isinstance(p, Dyn):
-            parts = [self.read(q) for q in p.parts]
-            text = parts[-1]
-            for k in range(len(parts) - 2, -1, -1):
-                text = f"lsel({p.idx} == {k}, {parts[k]}, {text})"
-            return self.tmp(text)
-        return p
-
-    def lvalue(self, e: Any) -> list:
-        """The target parts of an l-value, its index expressions evaluated (once, in order)."""
-        if isinstance(e, A.Identifier):
-            sym = self.model.symbol_of(e)
-            return list(self.var_parts(sym, e))
-        if isinstance(e, A.Field):
-            base = self.lvalue(e.base)
-            return self.select_field(self.type_of(e.base), base, e)
-        if isinstance(e, A.Index):
-            base = self.lvalue(e.base)
-            return self.select_index(self.type_of(e.base), base, e)
-        raise _error("this expression cannot be assigned to", e)
-
-    def select_field(self, bt: Any, parts: list, e: A.Field) -> list:
-        if bt.is_struct:
-            k = 0
-            for fname, ft in bt.fields:
-                n = len(leaves(ft, e))
-                if fname == e.name:
-                    return parts[k:k + n]
-                k += n
-            raise _error(f"no field '{e.name}'", e)
-        idx = self.model.swizzle_indices(e)
-        if bt.is_scalar:
-            return [parts[0]] * len(idx)
-        return [parts[i] for i in idx]
-
-    def select_index(self, bt: Any, parts: list, e: A.Index) -> list:
-        cv = self.model.const_value(e.index)
-        const = isinstance(cv, int) and not isinstance(cv, bool)
-        if bt.is_array:
-            n = bt.array_size
-            if const:
-                i = str(min(max(cv, 0), n - 1))
-            else:
-                i = self.tmp(f"index({self.expr(e.index).parts[0]}, {n})")
-            if any(isinstance(p, Arr) for p in parts):
-                return [p.at(i) if isinstance(p, Arr) else self.bad_array(e) for p in parts]
-            m = len(parts) // n  # scalars, leaf by leaf: leaf j of element k is parts[j * n + k]
-            if const:
-                return [parts[j * n + int(i)] for j in range(m)]
-            return [Dyn(i, parts[j * n:(j + 1) * n]) for j in range(m)]
-        if bt.is_vector:
-            if const:
-                return [parts[min(max(cv, 0), bt.size - 1)]]
-            i = self.tmp(f"index({self.expr(e.index).parts[0]}, {bt.size})")
-            return [Dyn(i, list(parts))]
-        if bt.is_matrix:
-            r = bt.rows
-            if const:
-                c = min(max(cv, 0), bt.cols - 1)
-                return parts[c * r:(c + 1) * r]
-            i = self.tmp(f"index({self.expr(e.index).parts[0]}, {bt.cols})")
-            return [Dyn(i, [parts[c * r + row] for c in range(bt.cols)]) for row in range(r)]
-        raise _error("this value cannot be indexed", e)
-
-    def bad_array(self, e: Any) -> str:
-        raise not_yet("this array access", e)
-
-    # -- expressions ---------------------------------------------------------------------------
-    def type_of(self, e: Any) -> Any:
-        return self.model.type_of(e)
-
-    def expr(self, e: Any) -> Val:
-        method = getattr(self, "_expr_" + type(e).__name__, None)
-        if method is None:
-            raise not_yet(f"{type(e).__name__} expressions", e)
-        v = method(e)
-        cv = self.model.const_value(e)
-        if cv is not None and v.const is None and not self.type_of(e).is_array and not self.type_of(e).is_struct:
-            v.const = _flat(cv)
-        v.uni = self.lane_uniform(e)
-        # long expressions go to temporaries (Python's parser nests 200 brackets at most)
-        v.parts = [self.tmp(p) if isinstance(p, str) and len(p) > 300 else p for p in v.parts]
-        return v
-
-    def lane_uniform(self, e: Any) -> bool:
-        """Whether the NumPy backend holds e's value as one lane for the whole tile and takes it
-        for a compile-time constant (Runtime._const: a lane-uniform value that is not a uniform
-        input): Mesa's constant folding, approximated there (Runtime.fmul). By numpy_backend's
-        own analysis (Uniformity); global initializers run on one lane there."""
-        node = e
-        while isinstance(node, (A.Field, A.Index)) and not (isinstance(node, A.Field) and self.model.is_swizzle(node)
-                                                            and len(self.model.swizzle_indices(node)) > 1):
-            node = node.base
-        if isinstance(node, A.Field) and self.model.is_swizzle(node):
-            idx = tuple(self.model.swizzle_indices(node))
-            inner = node.base
-            if isinstance(inner, A.Identifier) and self._is_input(inner) and (
-                    idx == tuple(range(len(idx))) or (len(idx) > 1 and idx[1] - idx[0] > 0 and all(
-                        b - a == idx[1] - idx[0] for a, b in zip(idx, idx[1:])))):
-                return False  # a view of a read-only uniform (Runtime.swizzle)
-        elif isinstance(node, A.Identifier) and self._is_input(node):
-            return False
-        if self.fn is None or self.fn.uni is None:
-            return True
-        return self.fn.uni.is_uniform(e)
-
-    def _is_input(self, ident: Any) -> bool:
-        sym = self.model.symbol_of(ident)
-        return sym is not None and (sym.kind == "uniform" or (sym.kind == "global" and sym.qualifier == "uniform")
-                                    or (sym.kind == "builtin-var" and sym.name == "gl_FragCoord"))
-
-    def _expr_IntLiteral(self, e: A.IntLiteral) -> Val:
-        t = self.type_of(e)
-        return Val(t, [self.ci(e.value, e.unsigned or t == T.UINT)], [e.value])
-
-    def _expr_FloatLiteral(self, e: A.FloatLiteral) -> Val:
-        return Val(T.FLOAT, [self.cf(e.value)], [e.value])
-
-    def _expr_BoolLiteral(self, e: A.BoolLiteral) -> Val:
-        return Val(T.BOOL, ["True" if e.value else "False"], [e.value])
-
-    def _expr_Identifier(self, e: A.Identifier) -> Val:
-        sym = self.model.symbol_of(e)
-        if sym is None:
-            raise _error(f"'{e.name}' has no symbol", e)
-        return Val(sym.type, [self.read(p) for p in self.var_parts(sym, e)])
-
-    def _expr_Field(self, e: A.Field) -> Val:
-        base = self.expr(e.base)
-        return Val(self.type_of(e), self.select_field(base.t, base.parts, e))
-
-    def _expr_Index(self, e: A.Index) -> Val:
-        bt = self.type_of(e.base)
-        base = self.expr(e.base)
-        parts = self.select_index(bt, [p if isinstance(p, Arr) else self.atom(p) for p in base.parts], e)
-        return Val(self.type_of(e), [self.read(p) for p in parts])
-
-    def _expr_MethodCall(self, e: A.MethodCall) -> Val:
-        bt = self.type_of(e.base)
-        if e.name == "length":
-            n = bt.array_size if bt.is_array else bt.size if bt.is_vector else bt.cols if bt.is_matrix else None
-            if n is not None:
-                return Val(T.INT, [self.ci(n)], [n])
-        raise not_yet(f"the method '.{e.name}()'", e)
-
-    def _expr_Sequence(self, e: A.Sequence) -> Val:
-        for x in e.exprs[:-1]:
-            self.expr(x)
-        return self.expr(e.exprs[-1])
-
-    def _expr_Assignment(self, e: A.Assignment) -> Val:
-        targets = self.lvalue(e.target)
-        value = self.expr(e.value)
-        tt = self.type_of(e.target)
-        if e.op != "=":
-            old = Val(tt, [self.read(p) for p in targets])
-            value = self.binary_values(e.op[:-1], old, value, e)
-        parts = [self.tmp(p) if isinstance(p, str) else p for p in value.parts]
-        self.write(targets, parts)
-        return Val(tt, parts)
-
-    def _expr_Unary(self, e: A.Unary) -> Val:
-        if e.op in ("++", "--"):
-            return self.incdec(e, post=False)
-        v = self.expr(e.operand)
-        t = v.t
-        if e.op == "+":
-            return v
-        if e.op == "-":
-            if t.base == "float":
-                return Val(t, [f"(-{p})" for p in v.parts])
-            return Val(t, [f"{_CAST[t.base]}(-np.int64({p}))" for p in v.parts])
-        if e.op == "!":
-            return Val(t, [f"(not {v.parts[0]})"])
-        if e.op == "~":
-            return Val(t, [f"{_CAST[t.base]}(~{p})" for p in v.parts])
-        raise not_yet(f"the operator '{e.op}'", e)
-
-    def _expr_Postfix(self, e: A.Postfix) -> Val:
-        return self.incdec(e, post=True)
-
-    def incdec(self, e: Any, post: bool) -> Val:
-        targets = self.lvalue(e.operand)
-        t = self.type_of(e.operand)
-        old = [self.tmp(self.read(p)) if post else self.read(p) for p in targets]
-        if post:
-            old = [self.tmp_copy(p) for p in old]
-        one = self.cf(1.0) if t.base == "float" else self.ci(1, t.base == "uint")
-        op = "+" if e.op == "++" else "-"
-        if t.base == "float":
-            new = [self.tmp(f"({p} {op} {one})") for p in old]
-        else:
-            new = [self.tmp(f"{_CAST[t.base]}({p} {op} {one})") for p in old]
-        self.write(targets, new)
-        return Val(t, old if post else new)
-
-    def tmp_copy(self, p: str) -> str:
-        t = self.fresh()
-        self.emit(f"{t} = {p}")
-        return t
-
-    def _expr_Ternary(self, e: A.Ternary) -> Val:
-        t = self.type_of(e)
-        c = self.tmp(self.expr(e.cond).parts[0])
-        n = len(leaves(t, e))
-        mark = len(self.lines)
-        a = self.expr(e.then).parts
-        if self._speculable(mark, a):
-            then_end = len(self.lines)
-            b = self.expr(e.else_).parts
-            if self._speculable(then_end, b):
-                # Both sides are a few selects, compares and arithmetic of names and
-                # constants: computed both, one select each (lanes_rt.lsel), no branch.
-                # Computing the side not taken does nothing and cannot fail (IEEE float
-                # math, error_model="numpy"); as if/else each leaf would be two basic blocks
-                # per pixel and a masked write per lane in lockstep (h38-2d-sprites: 524
-                # ternaries, `idx = y == 14.0 ? (x <= 7.0 ? 40960.0 : 42.0) : idx`).
-                return Val(t, [self.tmp(f"lsel({c}, {x}, {y})") for x, y in zip(a, b)])
-            del self.lines[then_end:]  # the else side's statements: written again in its branch
-        res = [self.fresh() for _ in range(n)]
-        # the then side's statements (if any) run only where c holds
-        body = self.lines[mark:]
-        del self.lines[mark:]
-        self.emit(f"if {c}:")
-        self.indent += 1
-        self.lines += ["    " + line for line in body]
-        self.assign_fresh(res, a)
-        self.indent -= 1
-        self.emit("else:")
-        self.indent += 1
-        b = self.expr(e.else_).parts
-        self.assign_fresh(res, b)
-        self.indent -= 1
-        out = [Arr(r, 0, p.size, p.base) if isinstance(p, Arr) else r for r, p in zip(res, a)]
-        return Val(t, out)
-
-    def _speculable(self, mark: int, parts: list) -> bool:
-        """The lines written since mark and the value parts are pure and cheap: at most a few
-        assignments of temporaries, each of names, literals, operators and lsel."""
-        if any(not isinstance(p, str) or not pure_expr(p) for p in parts):
-            return False
-        body = self.lines[mark:]
-        if len(body) > _SPECULATE_LINES:
-            return False
-        pad = "    " * self.indent
-        for line in body:
-            m = _PURE_LINE.match(line)
-            if m is None or m.group(1) != pad or not pure_expr(m.group(2)):
-                return False
-        return True
-
-    def assign_fresh(self, names: list[str], parts: list) -> None:
-        for r, p in zip(names, parts):
-            self.emit(f"{r} = acopy({p.whole()})" if isinstance(p, Arr) else f"{r} = {p}")
-
-    def _expr_Binary(self, e: A.Binary) -> Val:
-        op = e.op
-        if op in ("&&", "||"):
-            left = self.tmp(self.expr(e.left).parts[0])
-            mark = len(self.lines)
-            self.indent += 1
-            right = self.expr(e.right).parts[0]
-            self.indent -= 1
-            if len(self.lines) == mark:  # nothing to run first: Python's own short circuit
-                return Val(T.BOOL, [f"({left} {'and' if op == '&&' else 'or'} {right})"])
-            res = self.fresh()
-            body = self.lines[mark:]
-            del self.lines[mark:]
-            self.emit(f"{res} = {left}")
-            self.emit(f"if {'' if op == '&&' else 'not '}{res}:")
-            self.lines += body
-            self.emit(f"    {res} = {right}")
-            return Val(T.BOOL, [res])
-        left = self.expr(e.left)
-        right = self.expr(e.right)
-        if op == "%" and left.const is not None and right.const is not None and left.t.base == "int":
-            return self.componentwise(left, right, self.type_of(e), lambda a, b, i: f"irem_const({a}, {b})")
-        return self.binary_values(op, left, right, e)
-
-    def binary_values(self, op: str, left: Val, right: Val, e: Any) -> Val:
-        lt, rt_ = left.t, right.t
-        rtype = self.type_of(e) if not isinstance(e, A.Assignment) else lt
-        if op == "*" and (lt.is_matrix or rt_.is_matrix) and not (lt.is_scalar or rt_.is_scalar):
-            return self.linear_product(left, right, rtype)
-        if op in ("==", "!="):
-            pairs = []
-            for a, b, base in zip(left.parts, right.parts, [x for x, _ in leaves(lt, e)]):
-                if isinstance(a, Arr):
-                    pairs.append(f"np.array_equal({a.whole()}, {b.whole()})")
-                else:
-                    pairs.append(f"({a} == {b})")
-            text = " and ".join(pairs) if len(pairs) > 1 else pairs[0]
-            text = f"({text})"
-            return Val(T.BOOL, [text if op == "==" else f"(not {text})"])
-        if op == "^^":
-            return Val(T.BOOL, [f"({left.parts[0]} != {right.parts[0]})"])
-        base = lt.base
-        if base == "float":
-            if op == "*":
-                return self.fmul(left, right, rtype)
-            if op in ("+", "-"):
-                return self.fadd(op, left, right, rtype, e)
-            if op in ("/", "<", "<=", ">", ">="):
-                return self.componentwise(left, right, rtype, lambda a, b, i: f"({a} {op} {b})")
-        elif base in ("int", "uint"):
-            cast = _CAST[base]
-            u = base == "uint"
-            if op in ("+", "-", "*"):
-                return self.componentwise(left, right, rtype, lambda a, b, i: f"{cast}({a} {op} {b})")
-            if op in ("<", "<=", ">", ">="):
-                return self.componentwise(left, right, rtype, lambda a, b, i: f"({a} {op} {b})")
-            if op in ("&", "|", "^"):
-                return self.componentwise(left, right, rtype, lambda a, b, i: f"{cast}({a} {op} {b})")
-            fn = {"/": "udiv" if u else "idiv", "%": "urem" if u else "irem",
-                  "<<": "ushl" if u else "ishl", ">>": "ushr" if u else "ishr"}.get(op)
-            if fn is not None:
-                return self.componentwise(left, right, rtype, lambda a, b, i: f"{fn}({a}, {b})")
-        raise not_yet(f"the operator '{op}' on '{lt}'", e)
-
-    def componentwise(self, left: Val, right: Val, rtype: Any, fn) -> Val:
-        n = max(len(left.parts), len(right.parts))
-        a = left.parts if len(left.parts) == n else [self.atom(left.parts[0])] * n
-        b = right.parts if len(right.parts) == n else [self.atom(right.parts[0])] * n
-        return Val(rtype, [fn(x, y, i) for i, (x, y) in enumerate(zip(a, b))])
-
-    def fmul(self, left: Val, right: Val, rtype: Any) -> Val:
-        """Float `*` as Runtime.fmul: a compile-time constant zero component times a value that
-        is not a constant is 0 (NIR folds x * 0.0), also for NaN and Inf."""
-        n = max(len(left.parts), len(right.parts))
-        if left.constlike == right.constlike:
-            return self.componentwise(left, right, rtype, lambda a, b, i: f"({a} * {b})")
-        zv = left if left.constlike else right
-        zc = _bcast(zv.const, n)
-        zero = self.cf(0.0)
-        zparts = zv.parts if len(zv.parts) == n else [self.atom(zv.parts[0])] * n
-        if zc is None:
-            zparts = [self.atom(p) for p in zparts]
-            if zv is left:
-                left = Val(left.t, zparts)
-            else:
-                right = Val(right.t, zparts)
-
-        def one(a: str, b: str, i: int) -> str:
-            if zc is not None:
-                return zero if zc[i] == 0 else f"({a} * {b})"
-            return f"({zero} if {zparts[i]} == {zero} else ({a} * {b}))"
-        return self.componentwise(left, right, rtype, one)
-
-    def fadd(self, op: str, left: Val, right: Val, rtype: Any, e: Any = None) -> Val:
-        """Float `+`/`-` as Runtime.fadd/fsub: a compile-time constant zero added to (or
-        subtracted from) a value that is not a constant leaves that value, its sign kept."""
-        n = max(len(left.parts), len(right.parts))
-        if left.constlike == right.constlike or not self.zero_add(e):
-            return self.componentwise(left, right, rtype, lambda a, b, i: f"({a} {op} {b})")
-        zleft = left.constlike  # the operand that may be a constant zero: the left one?
-        zc = _bcast((left if zleft else right).const, n)
-        zero = self.cf(0.0)
-        left = Val(left.t, [self.atom(p) for p in left.parts], left.const, left.uni)
-        right = Val(right.t, [self.atom(p) for p in right.parts], right.const, right.uni)
-
-        def one(a: str, b: str, i: int) -> str:
-            z = a if zleft else b
-            kept = (b if op == "+" else f"(-{b})") if zleft else a
-            if zc is not None:
-                return kept if zc[i] == 0 else f"({a} {op} {b})"
-            return f"({kept} if {z} == {zero} else ({a} {op} {b}))"
-        return self.componentwise(left, right, rtype, one)
-
-    def zero_add(self, e: Any) -> bool:
-        """Whether the NumPy backend tests this `+`/`-` for a constant zero operand (nir_fold.
-        zero_add: Mesa drops an added constant zero, keeping the sign of a -0.0)."""
-        if e is None:
-            return True
-        if self.fn is None or self.fn.sym is None or not isinstance(e, A.Binary):
-            return self.fn is None or self.fn.sym is None
-        from ..numpy_engine import nir_fold
-
-        return nir_fold.zero_add(self.numpy_transpiler(), e, "l", "r") is not None
-
-    def linear_product(self, left: Val, right: Val, rtype: Any) -> Val:
-        lt, rt_ = left.t, right.t
-        a = [self.atom(p) for p in left.parts]
-        b = [self.atom(p) for p in right.parts]
-        if lt.is_matrix and rt_.is_vector:  # sum of m[c] * v[c] in c order
-            return Val(rtype, self.mat_vec(a, lt.cols, lt.rows, b))
-        if lt.is_vector and rt_.is_matrix:  # component c: dot(v, m[c])
-            r = rt_.rows
-            return Val(rtype, [self.dot_text(a, b[c * r:(c + 1) * r]) for c in range(rt_.cols)])
-        out = []
-        k = lt.cols
-        for c in range(rt_.cols):
-            out += [self.atom(p) for p in self.mat_vec(a, k, lt.rows, b[c * k:(c + 1) * k])]
-        return Val(rtype, out)
-
-    def mat_vec(self, m: list, cols: int, rows: int, v: list) -> list:
-        out = []
-        for r in range(rows):
-            s = f"({m[r]} * {v[0]})"
-            for c in range(1, cols):
-                s = f"({s} + ({m[c * rows + r]} * {v[c]}))"
-            out.append(s)
-        return out
-
-    def dot_text(self, a: list, b: list, ca: list | None = None, cb: list | None = None) -> str:
-        """Sum of products right to left (Runtime.dot); with exactly one constant operand, a
-        product with a constant zero is 0."""
-        n = len(a)
-        fold = (ca is None) != (cb is None)
-        prods = []
-        for i in range(n):
-            if fold and ((ca is not None and ca[i] == 0) or (cb is not None and cb[i] == 0)):
-                prods.append(self.cf(0.0))
-            else:
-                prods.append(f"({a[i]} * {b[i]})")
-        s = prods[-1]
-        for i in range(n - 2, -1, -1):
-            s = f"({prods[i]} + {s})"
-        return s
-
-    # -- calls ---------------------------------------------------------------------------------
-    def _expr_Call(self, e: A.Call) -> Val:
-        tgt = self.model.call_target(e)
-        if isinstance(tgt, Constructor):
-            return self.constructor(e, tgt.type)
-        if isinstance(tgt, Symbol):
-            return self.user_call(e, tgt)
-        if tgt is None:
-            raise _error(f"the call of '{e.callee}' was not resolved by the checker", e)
-        from .builtin_calls import builtin_call
-
-        return builtin_call(self, e, tgt)
-
-    def user_call(self, e: A.Call, fn: Any) -> Val:
-        args: list[str] = []
-        outs: list[list] = []
-        for a, (_, ptype, d) in zip(e.args, fn.params):
-            if d == "in":
-                parts = self.expr(a).parts
-            else:
-                targets = self.lvalue(a)
-                outs.append(targets)
-                parts = [self.read(p) for p in targets] if d == "inout" else []
-            for p in parts:
-                args.append(p.whole() if isinstance(p, Arr) else p)
-        rtype = fn.type
-        n_val = 0 if rtype.is_void else len(leaves(rtype, e))
-        ret_leaves = [] if rtype.is_void else leaves(rtype, e)
-        out_leaves = [leaf for (_, pt, d) in fn.params if d != "in" for leaf in leaves(pt, e)]
-        res = [self.fresh() for _ in range(n_val + len(out_leaves))]
-        seed = frozenset(i for i, (a, (_, _, d)) in enumerate(zip(e.args, fn.params))
-                         if d != "out" and self.lane_uniform(a))
-        if seed and (id(fn), seed) not in self.variants:
-            self.variants.add((id(fn), seed))
-            self.pending.append((fn, seed))
-        call = f"{self.variant_name(fn, seed)}({', '.join(self.needs[self.fn_name(fn)] + args)})"
-        if res:
-            self.emit(f"{', '.join(res)}, = {call}")
-        else:
-            self.emit(call)
-        k = n_val
-        for targets in outs:
-            vals = []
-            for _ in targets:
-                base, size = out_leaves[k - n_val]
-                vals.append(Arr(res[k], 0, size, base) if size is not None else res[k])
-                k += 1
-            self.write(targets, vals)
-        value = [Arr(r, 0, n, b) if n is not None else r for r, (b, n) in zip(res[:n_val], ret_leaves)]
-        return Val(rtype, value)
-
-    def constructor(self, e: A.Call, t: Any) -> Val:
-        args = [self.expr(a) for a in e.args]
-        if t.is_array and all(size is None for _, size in leaves(t, e)):
-            m = len(leaves(t.element, e))
-            return Val(t, [self.atom(v.parts[j]) for j in range(m) for v in args])
-        if t.is_array:
-            n = len(args)
-            out = []
-            for k, (base, _) in enumerate(leaves(t.element, e)):
-                a = self.fresh("a")
-                self.emit(f"{a} = np.empty({n}, {_DTYPE[base]})")
-                for i, v in enumerate(args):
-                    self.emit(f"{a}[{i}] = {v.parts[k]}")
-                out.append(Arr(a, 0, n, base))
-            return Val(t, out)
-        if t.is_struct:
-            return Val(t, [p for v in args for p in v.parts])
-        comps: list[str] = []
-        for v in args:
-            comps += [self.convert(p, v.t.base if not v.t.is_matrix else "float", t.base or "float")
-                      for p in v.parts]
-        const = None
-        if all(v.const is not None for v in args):
-            const = [c for v in args for c in v.const]
-        if t.is_scalar:
-            return Val(t, comps[:1], const[:1] if const else None)
-        if t.is_vector:
-            if len(comps) == 1:
-                c = self.atom(comps[0])
-                return Val(t, [c] * t.size, const * t.size if const else None)
-            return Val(t, comps[:t.size], const[:t.size] if const else None)
-        if t.is_matrix:
-            c, r = t.cols, t.rows
-            if len(args) == 1 and args[0].t.is_scalar:
-                s = self.atom(comps[0])
-                zero = self.cf(0.0)
-                return Val(t, [s if i == j else zero for i in range(c) for j in range(r)])
-            if len(args) == 1 and args[0].t.is_matrix:
-                m = args[0]
-                mc, mr = m.t.cols, m.t.rows
-                one, zero = self.cf(1.0), self.cf(0.0)
-                out = []
-                for i in range(c):
-                    for j in range(r):
-                        if i < mc and j < mr:
-                            out.append(m.parts[i * mr + j])
-                        else:
-                            out.append(one if i == j else zero)
-                return Val(t, out)
-            return Val(t, comps[:c * r])
-        raise not_yet(f"constructing '{t}'", e)
-
-    def convert(self, p: str, src: str, dst: str) -> str:
-        """A scalar converted as runtime.Runtime.to_<dst>: bool to 0/1, float to int through
-        cvttps2dq (to_int), float to uint by this CPU's model (driver_profile), the rest by
-        their bits or value (numba's casts)."""
-        if src == dst:
-            return p
-        if dst == "bool":
-            return f"({p} != 0)"
-        if src == "bool":
-            one, zero = (self.cf(1.0), self.cf(0.0)) if dst == "float" else (f"{_CAST[dst]}(1)", f"{_CAST[dst]}(0)")
-            return f"({one} if {p} else {zero})"
-        if src == "float":
-            return f"to_int({p})" if dst == "int" else f"to_uint_{self.float_to_uint}({p})"
-        return f"{_CAST[dst]}({p})"
-
-
-def _seeded_uniformity():
-    from ..numpy_engine.uniformity import Uniformity
-
-    class _SkipFirst(set):
-        """The analysis' varying symbols, but the first `add` of each seeded parameter (the
-        analysis starts by marking every parameter varying) is ignored."""
-
-        def __init__(self, skip: set) -> None:
-            super().__init__()
-            self.skip = set(skip)
-
-        def add(self, x: Any) -> None:
-            if x in self.skip:
-                self.skip.discard(x)
-                return
-            super().add(x)
-
-    class Seeded(Uniformity):
-        """numpy_backend's Uniformity of a function whose parameters `uniform_params` (symbol
-        ids) get a value of one lane from the call (NumPy evaluates a call with the arguments'
-        own lane counts): they start uniform; a varying write still makes them varying."""
-
-        def __init__(self, model: Any, facts: Any, fn: Any, is_entry: bool, uniform_params: set) -> None:
-            self.__dict__["_seed"] = set(uniform_params)
-            super().__init__(model, facts, fn, is_entry)
-
-        def __setattr__(self, name: str, value: Any) -> None:
-            if name == "varying" and "varying" not in self.__dict__:
-                value = _SkipFirst(self.__dict__["_seed"])
-            object.__setattr__(self, name, value)
-
-    return Seeded
-
-
-def SeededUniformity(model: Any, facts: Any, fn: Any, is_entry: bool, uniform_params: set) -> Any:
-    global _SEEDED
-    if _SEEDED is None:
-        _SEEDED = _seeded_uniformity()
-    return _SEEDED(model, facts, fn, is_entry, uniform_params)
-
-
-_SEEDED = None
 
 
 def _literal_tree(model: Any, e: Any, base: str) -> bool:
@@ -1339,70 +604,6 @@ def _literal_tree(model: Any, e: Any, base: str) -> bool:
     return False
 
 
-def _bcast(const: list | None, n: int) -> list | None:
-    if const is None:
-        return None
-    return const * n if len(const) == 1 and n > 1 else const
-
 
 def _safe(text: str) -> str:
-    from ..numpy_engine.transpile.common import _printable
-
-    return _printable(text, 200)
-
-
-HEADER = '''"""Generated by glslcheck's compiled engine from {path} (GLSL ES 3.00) -- do not edit.
-
-One call of `shade` computes one pixel; numba compiles every function (see the docstring of
-glslcheck/backends/compiled_engine/codegen.py for the value representation).
-"""
-
-import numba
-import numpy as np
-
-from glslcheck.backends.compiled_engine.scalar import *  # noqa: F401,F403 (the scalar runtime)
-from glslcheck.backends.compiled_engine.lanes_rt import lsel  # a branch-free select
-
-F32 = np.float32
-I32 = np.int32
-U32 = np.uint32
-jit = numba.njit(cache=True, nogil=True, error_model="numpy")'''
-
-RENDER = '''
-@numba.njit(cache=True, nogil=True, error_model="numpy")
-def render_rows(out, y0, y1, width, height, offs, uf, ui, gtf, gti, gtu, gtb):
-    """Rows y0..y1-1 (counted from the bottom) into out (height, width, 4), top row first;
-    offs: the (dx, dy) sample offsets (one row of zeros for one sample)."""
-    gf = acopy(gtf)
-    gi = acopy(gti)
-    gu = acopy(gtu)
-    gb = acopy(gtb)
-    samples = offs.shape[0]
-    for y in range(y0, y1):
-        row = height - 1 - y
-        py = F32(y + 0.5)
-        for x in range(width):
-            px = F32(x + 0.5)
-            ar = ag = ab = aa = 0.0
-            for s in range(samples):  # one sample: offset 0, the sum its value (a -0.0 kept)
-                aset(gf, 0, gtf)
-                aset(gi, 0, gti)
-                aset(gu, 0, gtu)
-                aset(gb, 0, gtb)
-                r, g, b, a = shade(gf, gi, gu, gb, uf, ui, F32(px + F32(offs[s, 0])), F32(py + F32(offs[s, 1])),
-                                   px, py)
-                if s == 0:
-                    ar, ag, ab, aa = np.float64(r), np.float64(g), np.float64(b), np.float64(a)
-                else:
-                    ar, ag, ab, aa = ar + r, ag + g, ab + b, aa + a
-            out[row, x, 0] = ar / samples
-            out[row, x, 1] = ag / samples
-            out[row, x, 2] = ab / samples
-            out[row, x, 3] = aa / samples
-
-
-@numba.njit(cache=True, nogil=True, error_model="numpy")
-def globals_template(uf, ui, gtf, gti, gtu, gtb):
-    """The globals' initial values, written into the template arrays (once per frame)."""
-    init_globals(gtf, gti, gtu, gtb, uf, ui)
-'''
+    return printable(text, 200)

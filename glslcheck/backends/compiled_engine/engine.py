@@ -106,7 +106,8 @@ def generate(shader: Any, tab: str | None = None, lanes: int | None = None) -> t
     from ..numpy_engine.runtime import HOST_FMA
     from ..numpy_engine.transpile.common import check_program
     from ...frontend.parser import parse_shader
-    from .codegen import Codegen, _error, not_yet
+    from .codegen import Codegen
+    from .values import engine_error, not_yet
 
     if needs_passes(shader):
         loc = Location(shader.root, 1, 1)
@@ -126,10 +127,10 @@ def generate(shader: Any, tab: str | None = None, lanes: int | None = None) -> t
         width = lanes_width(lanes)
         if cg.derivative is not None and not width:
             if lanes is not None or not tiered():
-                raise _error("dFdx/dFdy/fwidth() one pixel a call: the compiled engine computes derivatives "
-                             "only with pixels in lockstep (2x2 quads)", cg.derivative,
-                             help=f"unset GLSLCHECK_COMPILED_LANES (or set it to {TIER_LANES}), "
-                                  "or render with --backend numpy or gl")
+                raise engine_error("dFdx/dFdy/fwidth() one pixel a call: the compiled engine computes derivatives "
+                                   "only with pixels in lockstep (2x2 quads)", cg.derivative,
+                                   help=f"unset GLSLCHECK_COMPILED_LANES (or set it to {TIER_LANES}), "
+                                        "or render with --backend numpy or gl")
             width = TIER_LANES  # the default program: lockstep from the first frame (no per-pixel tier)
         if width:
             from .lanes import Unsupported, lanes_module

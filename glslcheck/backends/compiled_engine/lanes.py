@@ -39,7 +39,7 @@ names renamed, so each lane computes exactly the per-pixel engine's operations (
   a divergent return (`ldiv`: the lanes left out have returned and never read this call's
   locals again; not with derivatives, whose neighbours read them), so a lights array built
   element by element after `if (miss) return ...;` stays uniform, as the NumPy backend's free
-  writes (backends/numpy_engine/uniformity.py).
+  writes (backends/cpu_core/uniformity.py).
 - Math: the scalar runtime's one-lane functions, lane by lane; the names lanes_math.py defines
   (branch-free, same bits) replace them when that module exists (`MATH`, the one switch).
 
@@ -66,7 +66,7 @@ import copy
 import importlib.util
 from typing import Any
 
-from .codegen import pure_expr
+from .values import pure_expr
 
 STATE_LANES = ("gf", "gi", "gu", "gb")  # per-pixel state: one array per lane
 UNIFORM_STATE = ("uf", "ui")

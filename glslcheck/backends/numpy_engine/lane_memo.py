@@ -1,6 +1,6 @@
 """One computation per distinct uniform input: a memo in front of the llvmpipe math emulation.
 
-A uniform value (the same in every lane, backends/numpy_engine/uniformity.py) is an array of one lane,
+A uniform value (the same in every lane, backends/cpu_core/uniformity.py) is an array of one lane,
 so `sin(iTime * 0.5)` or a rotation `sin(float(i) * 0.7)` in a uniform loop costs one call per
 tile, per loop iteration, per march step. For one lane the call is all overhead: the bit-exact
 llvmpipe emulation (runtime.LlvmpipeMath: range reduction, polynomials, fused multiply-adds) is

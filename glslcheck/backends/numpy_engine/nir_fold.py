@@ -93,10 +93,10 @@ from ...semantics.model import Symbol
 from ...base.diagnostics import Location
 from ...frontend.printer import to_glsl
 from ...language.glsl_types import FLOAT
-from .transpile.common import _TEXTURE_FUNCTIONS
+from ..cpu_core.common import TEXTURE_FUNCTIONS
+from ..cpu_core.facts import induction_variable
 from .transpile.call_fold import out_roots, product_sums
 from .transpile.constant_flow import constant_flow
-from .transpile.facts import induction_variable
 from .transpile.inline import bound_argument, inline_owner
 
 _SUMS = ("+", "-")
@@ -161,7 +161,7 @@ def _similar(a: list[float], b: list[float]) -> bool:
 def _shared_mixes(tr: Any) -> set[int]:
     """Float-weighted mix calls of the current function that share t and x (or t and y) with
     another one (get_similar_flrp_stats)."""
-    cache = tr.__dict__.setdefault("_nir_fold_mix", {})
+    cache = tr.fold_state.mix
     key = id(tr.fn.sym)
     if key not in cache:
         calls = [n for n in tr.fn.sym.node.body.walk() if isinstance(n, A.Call) and n.callee == "mix"
@@ -219,7 +219,7 @@ def lowp_tree(tr: Any, e: A.Binary, mask: str | None) -> str | None:
     glslcheck/semantics/mediump.py), and NIR's reassociations inside the float16 tree."""
     if tr.fn is None or getattr(tr, "lowp_written", None) is not None and id(e) in tr.lowp_written:
         return None
-    memo = tr.__dict__.setdefault("_nir_fold_lowp", {})  # id(node) -> kind: linear in a chain
+    memo = tr.fold_state.lowp  # id(node) -> kind: linear in a chain
     if _lowp_kind(tr, e, memo) != "low" or tr.has_effects(e):
         return None
     nodes: list[Any] = []
@@ -267,7 +267,7 @@ def _lowp_kind_of(tr: Any, node: Any, memo: dict[int, Any]) -> str | None:
     if isinstance(node, A.Call):
         sampler = node.args[0] if node.args else None
         sym = tr.model.symbol_of(sampler) if isinstance(sampler, A.Identifier) else None
-        if (getattr(tr.model.call_target(node), "name", None) not in _TEXTURE_FUNCTIONS or sym is None
+        if (getattr(tr.model.call_target(node), "name", None) not in TEXTURE_FUNCTIONS or sym is None
                 or sym.kind != "uniform" or str(tr.type_of(sampler)) != "sampler2D"):
             return None
         return "lookup"
@@ -374,7 +374,7 @@ def _keep_factor(tr: Any, e: A.Binary, mask: str | None) -> str | None:
         return None  # (no product by a constant reads this value)
     ty = tr.tmp(tr.expr(y, mask))
     tk = tr.expr(k, mask)
-    tr.__dict__.setdefault("_nir_fold_kept", {})[id(e)] = (ty, tr.lines)
+    tr.fold_state.kept[id(e)] = (ty, tr.lines)
     t = tr.type_of(e)
     return tr.binary_values("*", t, t, tk, ty) if k_left else tr.binary_values("*", t, t, ty, tk)
 
@@ -384,7 +384,7 @@ def _write_of(tr: Any, value: Any) -> Any:
     facts = _facts(tr)
     if not facts.ok:
         return None
-    index = tr.__dict__.setdefault("_nir_fold_writes", {})
+    index = tr.fold_state.writes
     key = id(tr.fn.sym)
     if key not in index:
         index[key] = {id(w.value): w for ws in facts.writes.values() for w in ws
@@ -395,7 +395,7 @@ def _write_of(tr: Any, value: Any) -> Any:
 def _merge_reads(tr: Any) -> dict[int, list[A.Identifier]]:
     """id(symbol) -> the reads of it as a factor of a product by a constant, in the current
     function."""
-    cache = tr.__dict__.setdefault("_nir_fold_merge_reads", {})
+    cache = tr.fold_state.merge_reads
     key = id(tr.fn.sym)
     if key not in cache:
         out: dict[int, list[A.Identifier]] = {}
@@ -417,7 +417,7 @@ def _product_parts(tr: Any, node: Any) -> tuple[Any, Any, str | None] | None:
     init, code = _stable_init(tr, node), None
     if init is None:
         init = _reaching_value(tr, node)
-        kept = tr.__dict__.get("_nir_fold_kept", {}).get(id(init))
+        kept = tr.fold_state.kept.get(id(init))
         if kept is None or kept[1] is not tr.lines:
             return None  # (not kept, or kept in another Python function: an outlined part)
         code = kept[0]
@@ -671,7 +671,7 @@ def _read_once(tr: Any, ident: A.Identifier) -> bool:
     sym = tr.model.symbol_of(ident)
     owner = inline_owner(tr, sym)
     body = owner.node.body if owner is not None else tr.fn.sym.node.body
-    reads = tr.__dict__.setdefault("_nir_fold_reads", {})
+    reads = tr.fold_state.reads
     if id(body) not in reads:
         counts: dict[int, int] = {}
         for n in body.walk():
@@ -760,7 +760,7 @@ def _one_copy(tr: Any, e: Any) -> bool:
 def _uses(tr: Any) -> tuple[dict[int, int], dict[int, int], set[int]]:
     """(shape of each node, copies of each shape among the binary expressions, ids of the
     operands of binary expressions and built-in calls) of the current function."""
-    parents = tr.__dict__.setdefault("_nir_fold_parents", {})
+    parents = tr.fold_state.parents
     key = id(tr.fn.sym)
     if key not in parents:
         shapes = _shapes(tr.fn.sym.node.body)
@@ -1197,7 +1197,7 @@ def _facts(tr: Any) -> Any:
     """analysis.dataflow's execution-order facts of the current function, made once."""
     from ...semantics.analysis.dataflow import FunctionFacts
 
-    cache = tr.__dict__.setdefault("_nir_fold_facts", {})
+    cache = tr.fold_state.facts
     key = id(tr.fn.sym)
     if key not in cache:
         cache[key] = FunctionFacts(tr.fn.sym.node, tr.model)
@@ -1372,7 +1372,7 @@ def _stable_init(tr: Any, ident: A.Identifier) -> Any:
 def _written(tr: Any) -> set[int]:
     """Symbols of the current function that are assigned, incremented or passed to an out or
     inout parameter of a user function."""
-    cache = tr.__dict__.setdefault("_nir_fold_written", {})
+    cache = tr.fold_state.written
     key = id(tr.fn.sym)
     if key not in cache:
         out: set[int] = set()
@@ -1449,7 +1449,7 @@ def component_write(tr: Any, node: Any, mask: str | None, old: str | None = None
     comps = comps if comps is not None else tuple(range(n))
     if len(comps) != n:
         return None
-    records = tr.__dict__.setdefault("_nir_fold_components", {})
+    records = tr.fold_state.components
     records[id(node)] = (tr.lines, {c: (y, cs) for c, (y, cs) in zip(comps, entries) if cs})
     return _merged_code(tr, entries, written)
 
@@ -1580,7 +1580,7 @@ def _component_locals(tr: Any) -> set[int]:
     """ids of the float locals of the current function :func:`component_write` follows: written
     in part (a component, a compound assignment) and read in a product by a constant (or by
     ``*=`` one), directly or through a copy into such a local."""
-    cache = tr.__dict__.setdefault("_nir_fold_component_locals", {})
+    cache = tr.fold_state.component_locals
     key = id(tr.fn.sym)
     if key in cache:
         return cache[key]
@@ -1612,7 +1612,7 @@ def _component_locals(tr: Any) -> set[int]:
             if t is not None and s is not None and id(t) in reads and n not in reads.get(id(s), ()):
                 reads.setdefault(id(s), []).append(n)
                 grew = True
-    tr.__dict__.setdefault("_nir_fold_component_reads", {})[key] = reads
+    tr.fold_state.component_reads[key] = reads
     cache[key] = set(reads) & partly
     return cache[key]
 
@@ -1634,8 +1634,8 @@ def _cancelled_sum(tr: Any, node: A.Assignment, mask: str | None, old: str) -> s
         return None
     ident = node.target if isinstance(node.target, A.Identifier) else node.target.base
     comps = comps if comps is not None else tuple(range(_size(tr.type_of(node.target))))
-    undo = tr.__dict__.setdefault("_nir_fold_undo", {})
-    records = tr.__dict__.setdefault("_nir_fold_components", {})
+    undo = tr.fold_state.undo
+    records = tr.fold_state.components
     before = []  # per component: (code, record) of its value before the write this one cancels
     for c in comps:
         w = _component_source(tr, ident, c)
@@ -1670,7 +1670,7 @@ def _kept_product(tr: Any, node: A.Assignment, mask: str | None, old: str) -> st
         return None
     t = tr.type_of(node.target)
     ta, tb = tr.tmp(old), tr.tmp(tr.expr(node.value, mask))
-    tr.__dict__.setdefault("_nir_fold_kept_products", {})[id(node)] = (tr.lines, ta, tb)
+    tr.fold_state.kept_products[id(node)] = (tr.lines, ta, tb)
     return tr.binary_values("*", t, tr.type_of(node.value), ta, tb)
 
 
@@ -1685,7 +1685,7 @@ def _sunk_through_compound(tr: Any, e: A.Binary, mask: str | None) -> str | None
     if isinstance(tr.fn, _Standin) or getattr(tr.fn.sym, "node", None) is None:
         return None  # (a global's initializer)
     w_id = _sink_reads(tr).get(id(e))
-    kept = tr.__dict__.get("_nir_fold_kept_products", {}).get(w_id) if w_id is not None else None
+    kept = tr.fold_state.kept_products.get(w_id) if w_id is not None else None
     if kept is None or kept[0] is not tr.lines:
         return None
     k = e.right if _const(tr, e.right) else e.left
@@ -1709,7 +1709,7 @@ def _sink_reads(tr: Any) -> dict[int, int]:
     """id(``x * #c``) -> id(``x *= b``) for the products :func:`_sunk_through_compound`
     rewrites: b not constant, x's value read only by that product, the value x had before
     the ``*=`` not a product NIR would sink into (see there)."""
-    cache = tr.__dict__.setdefault("_nir_fold_sink_reads", {})
+    cache = tr.fold_state.sink_reads
     key = id(tr.fn.sym)
     if key in cache:
         return cache[key]
@@ -1766,7 +1766,7 @@ def _component_record(tr: Any, ident: A.Identifier, i: int) -> tuple[str, list[s
     """(y, constants) :func:`component_write` kept for component i of the local read here (from
     :func:`_component_source`'s write)."""
     last = _component_source(tr, ident, i)
-    kept = tr.__dict__.get("_nir_fold_components", {}).get(id(last.node)) if last is not None else None
+    kept = tr.fold_state.components.get(id(last.node)) if last is not None else None
     if kept is None or kept[0] is not tr.lines:
         return None  # (not kept, or kept in another Python function: an outlined part)
     return kept[1].get(i)
@@ -1819,7 +1819,7 @@ def _read_later(tr: Any, facts: Any, sym: Any, node: Any) -> bool:
 
 def _component_reads(tr: Any) -> dict[int, list[Any]]:
     _component_locals(tr)
-    return tr.__dict__["_nir_fold_component_reads"][id(tr.fn.sym)]
+    return tr.fold_state.component_reads[id(tr.fn.sym)]
 
 
 def _writes_component(tr: Any, w: Any, i: int) -> bool:
@@ -1869,7 +1869,7 @@ def _in_kept_loop(tr: Any, sym: Any, node: Any, depth: int) -> bool:
 
     if depth > 8:
         return False
-    cache = tr.__dict__.setdefault("_nir_fold_fn_facts", {})
+    cache = tr.fold_state.fn_facts
     if id(sym) not in cache:
         cache[id(sym)] = FunctionFacts(sym.node, tr.model)
     facts = cache[id(sym)]
@@ -1912,7 +1912,7 @@ def sunk_return(tr: Any, fn: Any) -> list[tuple[Any, Any, str]] | None:
     return. The terms [(write, value, operator)], else None. Such a function takes one more
     argument, the constant (None: add nothing; :func:`return_constant_args`), its terms are
     kept in temporaries (:func:`keep_term`) and its return reads them (:func:`sunk_return_value`)."""
-    cache = tr.__dict__.setdefault("_nir_fold_sunk_returns", {})
+    cache = tr.fold_state.sunk_returns
     if id(fn) not in cache:
         cache[id(fn)] = None
         if id(fn) in _sink_calls(tr) and all(d == "in" for _, _, d in fn.params):
@@ -1934,9 +1934,9 @@ class _Standin:
 
 def _sink_calls(tr: Any) -> set[int]:
     """ids of the user functions some call of which has a constant added to its result."""
-    found = tr.__dict__.get("_nir_fold_sink_calls")
+    found = tr.fold_state.sink_calls
     if found is None:
-        found = tr.__dict__["_nir_fold_sink_calls"] = set()
+        found = tr.fold_state.sink_calls = set()
         for sym in tr.model.reachable_functions():
             for n in sym.node.body.walk():
                 if isinstance(n, A.Binary) and n.op in _SUMS:
@@ -2009,7 +2009,7 @@ def _sink_into_call(tr: Any, e: A.Binary, mask: str | None) -> str | None:
         return None  # NIR's CSE merges the inlined copies (per component for a vector): used twice
     tk = tr.expr(k, mask)
     signed = f"(-{tk})" if e.op == "-" else tk
-    tr.__dict__.setdefault("_nir_fold_call_k", {})[id(call)] = f"({signed} if rt.lp else None)"
+    tr.fold_state.call_k[id(call)] = f"({signed} if rt.lp else None)"
     result = tr.tmp(tr.expr(call, mask))
     return f"({result} if rt.lp else ({result} {e.op} {tk}))"
 
@@ -2019,7 +2019,7 @@ def return_constant_args(tr: Any, call: A.Call, fn: Any) -> list[str]:
     caller adds (:func:`_sink_sum`, llvmpipe mode) or None; [] for other functions."""
     if sunk_return(tr, fn) is None:
         return []
-    return [tr.__dict__.get("_nir_fold_call_k", {}).get(id(call), "None")]
+    return [tr.fold_state.call_k.get(id(call), "None")]
 
 
 def keep_term(tr: Any, node: Any, code: str) -> str:
@@ -2031,7 +2031,7 @@ def keep_term(tr: Any, node: Any, code: str) -> str:
     if chain is None or not any(w is node for w, _, _ in chain):
         return code
     t = tr.tmp(code)
-    tr.__dict__.setdefault("_nir_fold_terms", {})[id(node)] = t
+    tr.fold_state.terms[id(node)] = t
     return t
 
 
@@ -2039,7 +2039,7 @@ def sunk_return_value(tr: Any, ret: A.Return, code: str) -> str:
     """The returned value of a function with a :func:`sunk_return`: ``code`` when the caller
     adds nothing (``_k`` None), else the sum with the constant sunk as NIR sinks it."""
     chain = sunk_return(tr, tr.fn.sym) if tr.fn is not None else None
-    terms = tr.__dict__.get("_nir_fold_terms", {})
+    terms = tr.fold_state.terms
     if chain is None or ret.value is None or not all(id(w) in terms for w, _, _ in chain):
         return code
     codes = [terms[id(w)] for w, _, _ in chain]

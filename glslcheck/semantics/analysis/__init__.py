@@ -13,7 +13,7 @@
 * `values.py`: the sign analysis (`value_range`: bounds and why a value can be negative).
 
 It reads the semantic model (`glslcheck.semantics.Model`) and the AST only; its users are the lint
-rules (glslcheck/lint/rules) and the NumPy transpiler (backends/numpy_engine/transpile/facts.py and
+rules (glslcheck/lint/rules) and both CPU engines (backends/cpu_core/facts.py and
 uniformity.py ask `written_variable` and `param_directions`).
 """
 

@@ -28,7 +28,7 @@ All pixels of a tile are lanes. A mask (`_m..`) is `None` ("every lane of the cu
 set") or a bool array; writes under a mask keep the old value elsewhere (`rt.assign`).
 
 * uniform values (the same in every lane: they depend only on constants, uniforms and uniform
-  variables; backends/numpy_engine/uniformity.py) are arrays of one lane, computed once per tile.
+  variables; backends/cpu_core/uniformity.py) are arrays of one lane, computed once per tile.
   A write needs no mask where no lane the mask leaves out reads the variable again (declared
   in the same branch, or the others returned: `Uniformity.is_free`), so
   `Light L[4]; L[0] = Light(...);` after an early return stays one value per tile.
@@ -67,8 +67,7 @@ set") or a bool array; writes under a mask keep the old value elsewhere (`rt.ass
 
 # The passes, one module each (a newcomer reads them in this order):
 #   common.py       limits, names and helpers every pass shares
-#   facts.py        static facts: discarding functions, written globals, escaping events
-#   ../uniformity.py  which values are the same in every lane
+#   (../../cpu_core: facts.py, the static facts; uniformity.py, which values are the same in every lane)
 #   names.py        mangled names, module constants and zero values
 #   expressions.py  expressions and l-values
 #   statements.py   statements, control flow, loops and compaction
@@ -78,14 +77,11 @@ set") or a bool array; writes under a mask keep the old value elsewhere (`rt.ass
 
 from .common import LOOP_CAP, OUTLINE_EXPR_INDENT, OUTLINE_INDENT, OUTLINE_LOOPS, RULE, SMALL_STATE, SPILL_HEIGHT, check_program
 from .expressions import LValue
-from .facts import Events, Facts, events_of, induction_variable, written_lvalues, written_variables
 from .functions import FnState
 from .limits import PythonLimits, _glsl_location, compile_generated, lane_state, too_complex
 from .module import Transpiled, Transpiler, transpile, transpile_shader
 from .statements import LoopCtx
-from ..uniformity import Uniformity
 
 __all__ = ["LOOP_CAP", "OUTLINE_EXPR_INDENT", "OUTLINE_INDENT", "OUTLINE_LOOPS", "RULE", "SMALL_STATE", "SPILL_HEIGHT",
-           "check_program", "LValue", "Events", "Facts", "events_of", "induction_variable", "written_lvalues",
-           "written_variables", "FnState", "PythonLimits", "_glsl_location", "compile_generated", "lane_state",
-           "too_complex", "Transpiled", "Transpiler", "transpile", "transpile_shader", "LoopCtx", "Uniformity"]
+           "check_program", "LValue", "FnState", "PythonLimits", "_glsl_location", "compile_generated", "lane_state",
+           "too_complex", "Transpiled", "Transpiler", "transpile", "transpile_shader", "LoopCtx"]

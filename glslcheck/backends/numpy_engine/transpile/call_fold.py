@@ -95,7 +95,7 @@ def _k(v: float) -> _T:
     return _T("k", const=True, value=float(np.float32(v)))
 
 
-def _fold(op: str, a: float, b: float) -> float:
+def fold_tree(op: str, a: float, b: float) -> float:
     with np.errstate(all="ignore"):
         x, y = np.float32(a), np.float32(b)
         return float(x * y if op == "*" else x + y if op == "+" else x / y)
@@ -120,7 +120,7 @@ class _Eval:
             return self.neg(self.mul(a.args[0] if a.op == "neg" else a, b.args[0] if b.op == "neg" else b)) \
                 if (a.op == "neg") != (b.op == "neg") else self.mul(a.args[0], b.args[0])
         if a.value is not None and b.value is not None:
-            return _k(_fold("*", a.value, b.value))
+            return _k(fold_tree("*", a.value, b.value))
         for c, x in ((a, b), (b, a)):
             if c.value is not None and not x.const:
                 if c.value == 1.0:
@@ -142,7 +142,7 @@ class _Eval:
 
     def add(self, a: _T, b: _T) -> _T:
         if a.value is not None and b.value is not None:
-            return _k(_fold("+", a.value, b.value))
+            return _k(fold_tree("+", a.value, b.value))
         for c, x in ((a, b), (b, a)):
             if c.value == 0.0 and not x.const:
                 return x
@@ -187,7 +187,7 @@ class _Eval:
 
     def div(self, a: _T, b: _T) -> _T:
         if a.value is not None and b.value is not None:
-            return _k(_fold("/", a.value, b.value))
+            return _k(fold_tree("/", a.value, b.value))
         return _T("/", (a, b), const=a.const and b.const)
 
     def binary(self, op: str, lt: Any, lv: list[_T], rt: Any, rv: list[_T]) -> list[_T]:
@@ -475,8 +475,7 @@ def folded_call(tr: Any, call: A.Call, fn: Any, mask: str | None) -> str | None:
     the constants merge no more than they do with every argument a run-time value (merges
     inside the callee alone are nir_fold's, in the function's own code), and no dot product
     of the callee factors (``vec3(p.xyx)`` of Dave Hoskins' hash12: two products share p.x)."""
-    d = tr.__dict__
-    if (tr.fn is None or d.get("_call_fold_off") or d.get("_inline_frames") or "_watch" in d
+    if (tr.fn is None or tr.fold_state.call_fold_off or tr.fold_state.inline_frames or "_watch" in tr.__dict__
             or any(tr.has_effects(a) for a in call.args)):
         return None
     try:
@@ -496,7 +495,7 @@ def folded_call(tr: Any, call: A.Call, fn: Any, mask: str | None) -> str | None:
 
 def _calls_dot(tr: Any, fn: Any) -> bool:
     """`fn`'s body calls the built-in dot (where :meth:`_Eval.factored_add` may apply)."""
-    memo = tr.__dict__.setdefault("_call_fold_dots", {})
+    memo = tr.fold_state.call_fold_dots
     if id(fn) not in memo:
         memo[id(fn)] = any(isinstance(n, A.Call) and n.callee == "dot" and isinstance(tr.model.call_target(n), B.Overload)
                            for n in fn.node.body.walk())
@@ -605,7 +604,7 @@ def _emit_call(tr: Any, call: A.Call, fn: Any, mask: str | None, env: dict[int, 
             return f"rt.vec({t.size}, {', '.join(cs)})"
         return f"rt.mat({t.cols}, {t.rows}, {', '.join(cs)})"
 
-    sums = tr.__dict__.setdefault("_call_fold_sums", {})
+    sums = tr.fold_state.call_fold_sums
     for a, p, (_, _, dr) in zip(call.args, params, fn.params):
         if dr != "in":
             tr.write(tr.lvalue(a, mask), value(env[id(p)], tr.type_of(a)), mask)
@@ -616,11 +615,11 @@ def _emit_call(tr: Any, call: A.Call, fn: Any, mask: str | None, env: dict[int, 
     tr.indent -= 1
     tr.emit("else:")
     tr.indent += 1
-    tr.__dict__["_call_fold_off"] = True
+    tr.fold_state.call_fold_off = True
     try:
         written = tr.user_call(call, fn, mask)
     finally:
-        tr.__dict__["_call_fold_off"] = False
+        tr.fold_state.call_fold_off = False
     tr.emit(f"{r} = {written}")
     tr.indent -= 1
     return r
@@ -635,7 +634,7 @@ def out_roots(tr: Any, call: A.Call, sym: Any) -> set[str] | None:
     fn = tr.model.call_target(call)
     if not isinstance(fn, Symbol):
         return None
-    memo = tr.__dict__.setdefault("_call_fold_roots", {})
+    memo = tr.fold_state.call_fold_roots
     key = (id(call), id(sym))
     if key not in memo:
         memo[key] = None
@@ -661,7 +660,7 @@ def product_sums(tr: Any, call: A.Call, sym: Any) -> list[tuple[str, str] | None
     it is ``p1 + p2`` to NIR, else None; None when the call was not folded here. For
     nir_fold's ``(p1 + p2) + e -> (p1 + e) + p2``, read in llvmpipe mode only: the codes are
     temporaries of the ``if rt.lp:`` branch."""
-    found = tr.__dict__.get("_call_fold_sums", {}).get((id(call), id(sym)))
+    found = tr.fold_state.call_fold_sums.get((id(call), id(sym)))
     if found is None or found[1] is not tr.lines:
         return None  # (not folded, or folded in another Python function: an outlined part)
     return found[0]

@@ -1,5 +1,5 @@
 """What every pass of the transpiler shares: its limits and names, located errors, the
-checker adapter and `_fold`, the memoized bottom-up walk the passes use to ask a question of
+checker adapter and `fold_tree`, the memoized bottom-up walk the passes use to ask a question of
 every node of a tree in linear time."""
 
 from __future__ import annotations
@@ -27,14 +27,6 @@ _LOCAL_REF = re.compile(r"(?<![.\w\"'])(v_\w+|_[a-z]+\d*)\b")
 _ASSIGNED = re.compile(r"^(?!(?:if|elif|while|return) )([^=]*?)\s*[-+*/]?=(?!=)")  # a stripped statement's targets
 _RUNTIME_NAMES = {"min": "min_", "max": "max_", "not": "not_vec"}
 _FLOAT_OPERATORS = ("+", "-", "*", "/", "<", "<=", ">", ">=")  # printed as Python operators on floats
-_DERIVATIVES = ("dFdx", "dFdy", "fwidth")
-# The lookups on a sampler2D that textures.TextureFunctions evaluates.
-_TEXTURE_FUNCTIONS = ("texture", "textureLod", "textureGrad", "textureProj", "textureOffset", "texelFetch",
-                      "texelFetchOffset", "textureSize", "textureLodOffset", "textureGradOffset",
-                      "textureProjOffset", "textureProjLod", "textureProjLodOffset", "textureProjGrad",
-                      "textureProjGradOffset")
-# Lookups whose mipmap level comes from derivatives (2x2 quads): their regions are never compacted.
-_IMPLICIT_LOD = ("texture", "textureProj", "textureOffset", "textureProjOffset")
 _BIN_METHODS = {
     "+": "add", "-": "sub", "*": "mul", "/": "div", "<": "lt", "<=": "le", ">": "gt", ">=": "ge",
     "<<": "shl", ">>": "shr", "&": "bit_and", "|": "bit_or", "^": "bit_xor",
@@ -66,13 +58,7 @@ def _error(message: str, node: Any, help: str | None = None) -> GlslError:
     return GlslError(Diagnostic(message, loc, rule=RULE, help=help))
 
 
-def _printable(text: str, limit: int = 100) -> str:
-    """Text safe inside a Python comment or docstring: printable ASCII, no quotes or backslashes."""
-    out = "".join(c if (" " <= c <= "~" and c not in "\"\\") else "?" for c in text.strip())
-    return out if len(out) <= limit else out[: limit - 3] + "..."
-
-
-def _ident(name: str, node: Any) -> str:
+def python_ident(name: str, node: Any) -> str:
     if not _IDENT.match(name or ""):
         raise _error(f"the name {name!r} cannot be transpiled", node)
     return name
@@ -102,23 +88,3 @@ def check_program(parse_result: Any) -> Any:
     if model.errors:
         raise GlslError(model.errors)
     return model
-
-
-def _fold(root: Any, memo: dict[int, Any], own) -> Any:
-    """`own(node, [values of its children])` computed bottom-up over root's subtree and memoized
-    by node id, so that asking it of every node of a tree stays linear (iterative: expressions
-    nest thousands deep)."""
-    if id(root) in memo:
-        return memo[id(root)]
-    stack: list[tuple[Any, bool]] = [(root, False)]
-    while stack:
-        node, done = stack.pop()
-        if id(node) in memo:
-            continue
-        kids = list(node.children())
-        if done:
-            memo[id(node)] = own(node, [memo[id(k)] for k in kids])
-        else:
-            stack.append((node, True))
-            stack.extend((k, False) for k in kids if id(k) not in memo)
-    return memo[id(root)]

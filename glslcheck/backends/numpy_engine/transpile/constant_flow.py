@@ -100,7 +100,7 @@ def _has_zero(value: Any) -> bool:
 
 def constant_flow(tr: Any) -> ConstantFlow:
     """The analysis of the transpiler's program, made once."""
-    flow = tr.__dict__.get("_constant_flow")
+    flow = tr.fold_state.constant_flow
     if flow is None:
-        flow = tr.__dict__["_constant_flow"] = ConstantFlow(tr.model)
+        flow = tr.fold_state.constant_flow = ConstantFlow(tr.model)
     return flow

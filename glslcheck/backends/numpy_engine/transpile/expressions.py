@@ -11,12 +11,14 @@ from typing import Any
 from ....frontend import syntax as A
 from ....language import builtin_functions as B
 from ....language import glsl_types as T
-from .common import _BIN_METHODS, _DERIVATIVES, _FLOAT_OPERATORS, _IDENT, _IMPLICIT_LOD, _RUNTIME_NAMES, _TEXTURE_FUNCTIONS, OUTLINE_EXPR_INDENT, SPILL_HEIGHT, _components, _error, _fold, _is_constant_text
+from ...cpu_core.common import DERIVATIVES, IMPLICIT_LOD, TEXTURE_FUNCTIONS, fold_tree
+from ...cpu_core.facts import is_plain_read
+from .common import (_BIN_METHODS, _FLOAT_OPERATORS, _IDENT, _RUNTIME_NAMES, OUTLINE_EXPR_INDENT, SPILL_HEIGHT,
+                     _components, _error, _is_constant_text)
 from .. import nir_fold
 from .inline import bound_code
 from ....semantics.analysis import param_directions
 from ....semantics.model import Constructor, Symbol
-from .facts import is_plain_read
 from ....frontend.printer import to_glsl
 
 # Built-ins whose runtime method, on float operands, is one NumPy ufunc (Runtime.np_*): called
@@ -116,7 +118,7 @@ class Expressions:
     def needs_hoist(self, e: Any) -> bool:
         """True when evaluating e emits statements (so earlier operands go to temporaries
         first): effects, or a part high enough to be spilled (`PythonLimits.spill`)."""
-        return self._height(e) >= SPILL_HEIGHT or _fold(e, self._hoists, self._hoists_here)
+        return self._height(e) >= SPILL_HEIGHT or fold_tree(e, self._hoists, self._hoists_here)
 
     def _hoists_here(self, n: Any, kids: list[bool]) -> bool:
         if any(kids) or isinstance(n, (A.Assignment, A.Sequence)):
@@ -136,7 +138,7 @@ class Expressions:
         return False
 
     def has_effects(self, e: Any) -> bool:
-        return _fold(e, self._effects, self._effects_here)
+        return fold_tree(e, self._effects, self._effects_here)
 
     def _effects_here(self, n: Any, kids: list[bool]) -> bool:
         if any(kids) or isinstance(n, (A.Assignment, A.Sequence)):
@@ -415,10 +417,10 @@ class Expressions:
     def builtin_call(self, e: A.Call, ov: Any, mask: str | None) -> str:
         name = ov.name
         if getattr(ov, "category", None) == B.TEXTURE or name.startswith("texture") or name.startswith("texel"):
-            if name not in _TEXTURE_FUNCTIONS or str(self.type_of(e.args[0])) != "sampler2D":
+            if name not in TEXTURE_FUNCTIONS or str(self.type_of(e.args[0])) != "sampler2D":
                 raise _error(f"{name}(): this texture lookup is not supported by the NumPy backend yet", e,
                              help="render this shader with --backend gl")
-            width = ", width=S.width" if name in _IMPLICIT_LOD else ""
+            width = ", width=S.width" if name in IMPLICIT_LOD else ""
             return f"rt.{name}({', '.join(self.exprs(e.args, mask))}{width})"  # textures.py
         quals = list(getattr(ov, "qualifiers", ()) or ())
         if name == "modf":
@@ -451,7 +453,7 @@ class Expressions:
 
         if not _IDENT.match(method) or not hasattr(Runtime, method):
             raise _error(f"the built-in {name}() is not supported by the NumPy backend", e)
-        if name in _DERIVATIVES:
+        if name in DERIVATIVES:
             args.append("S.width")
         return f"rt.{method}({', '.join(args)})"
 

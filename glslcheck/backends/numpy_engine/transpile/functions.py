@@ -7,12 +7,12 @@ from __future__ import annotations
 from typing import Any
 
 from ....frontend import syntax as A
-from ..uniformity import Uniformity
+from ...cpu_core.uniformity import Uniformity
 from .expressions import LValue
 from .statements import LoopCtx
-from .facts import events_of
+from ...cpu_core.facts import events_of
 from ....semantics.model import Symbol
-from .common import _printable
+from ...cpu_core.common import printable
 from .inline import inline_call, worth_inlining
 from .call_fold import folded_call
 from .. import nir_fold
@@ -67,7 +67,7 @@ class Functions:
         sig = ", ".join(["S", "_m"] + params)
         self.emit(f"def {self.fn_name(sym)}({sig}):")
         self.indent += 1
-        doc = _printable(sym.signature(), 150) if hasattr(sym, "signature") else sym.name
+        doc = printable(sym.signature(), 150) if hasattr(sym, "signature") else sym.name
         loc = getattr(proto, "loc", None)
         self.emit(f'"""{doc} (line {loc.line if loc else "?"})."""')
         rid = self.region("function", proto)

@@ -34,7 +34,7 @@ from ....semantics.model import Symbol
 
 def bound_argument(tr: Any, sym: Any) -> Any:
     """The argument node of an inlined call a parameter symbol stands for, else None."""
-    for frame in reversed(tr.__dict__.get("_inline_frames", ())):
+    for frame in reversed(tr.fold_state.inline_frames):
         if id(sym) in frame["params"]:
             return frame["params"][id(sym)][1]
     return None
@@ -42,7 +42,7 @@ def bound_argument(tr: Any, sym: Any) -> Any:
 
 def bound_code(tr: Any, sym: Any) -> str | None:
     """The Python expression of the argument value an inlined parameter reads, else None."""
-    for frame in reversed(tr.__dict__.get("_inline_frames", ())):
+    for frame in reversed(tr.fold_state.inline_frames):
         if id(sym) in frame["params"]:
             return frame["params"][id(sym)][0]
     return None
@@ -50,7 +50,7 @@ def bound_code(tr: Any, sym: Any) -> str | None:
 
 def inline_owner(tr: Any, sym: Any) -> Any:
     """The inlined function a parameter symbol belongs to, else None."""
-    for frame in reversed(tr.__dict__.get("_inline_frames", ())):
+    for frame in reversed(tr.fold_state.inline_frames):
         if id(sym) in frame["params"]:
             return frame["fn"]
     return None
@@ -58,7 +58,7 @@ def inline_owner(tr: Any, sym: Any) -> Any:
 
 def _body_expression(tr: Any, fn: Any) -> Any:
     """The expression of `fn`'s body when it may be inlined (see the module doc), else None."""
-    memo = tr.__dict__.setdefault("_inline_bodies", {})
+    memo = tr.fold_state.inline_bodies
     if id(fn) in memo:
         return memo[id(fn)]
     value = None
@@ -85,7 +85,7 @@ def worth_inlining(tr: Any, call: A.Call, fn: Any, constant_product: Any) -> boo
     nir_fold.dot_operand, passed in so this module does not import nir_fold, which imports it)
     that the callee hands to a ``dot`` with a constant (nir_fold.merged_dot then merges the
     constants, nir_fold.broadcast_dot factors s out), and inlining is allowed."""
-    if tr.fn is None or tr.__dict__.get("_inline_frames") or any(tr.has_effects(a) for a in call.args):
+    if tr.fn is None or tr.fold_state.inline_frames or any(tr.has_effects(a) for a in call.args):
         return False  # (one level: a call inside an inlined body stays a call)
     value = _body_expression(tr, fn)
     if value is None:
@@ -111,7 +111,7 @@ def worth_inlining(tr: Any, call: A.Call, fn: Any, constant_product: Any) -> boo
 def inline_call(tr: Any, call: A.Call, fn: Any, mask: str | None) -> str:
     """The callee's return expression at the call site, its parameters read as the arguments'
     values (each argument evaluated once, left to right, before the body as a call does)."""
-    from .facts import is_plain_read
+    from ...cpu_core.facts import is_plain_read
 
     params: dict[int, tuple[str, Any]] = {}
     for p, arg in zip(fn.node.proto.params, call.args):
@@ -119,7 +119,7 @@ def inline_call(tr: Any, call: A.Call, fn: Any, mask: str | None) -> str:
         if not is_plain_read(arg):
             code = tr.tmp(code)
         params[id(tr.model.symbol_of(p))] = (code, arg)
-    frames = tr.__dict__.setdefault("_inline_frames", [])
+    frames = tr.fold_state.inline_frames
     frames.append({"fn": fn, "params": params})
     value = _body_expression(tr, fn)
     # the tracing transpiler (backends/numpy_engine/trace.py, glslcheck probe) records a function's

@@ -7,7 +7,8 @@ from __future__ import annotations
 from typing import Any
 
 from ....base.diagnostics import Location
-from .common import _IDENT, _error, _ident, _printable
+from ...cpu_core.common import printable
+from .common import _IDENT, _error, python_ident
 
 
 class Names:
@@ -35,8 +36,8 @@ class Names:
         from ....base.diagnostics import source_line
 
         text = source_line(loc.path, loc.line) or ""
-        where = f"line {loc.line}" if loc.path == self.path else f"{_printable(loc.path, 60)} line {loc.line}"
-        self.emit(f"# {where}: {_printable(text)}".rstrip())
+        where = f"line {loc.line}" if loc.path == self.path else f"{printable(loc.path, 60)} line {loc.line}"
+        self.emit(f"# {where}: {printable(text)}".rstrip())
 
     def region(self, kind: str, node: Any) -> int:
         self.n += 1
@@ -48,7 +49,7 @@ class Names:
     # -- names ---------------------------------------------------------------------------------
     def var_name(self, sym: Any, node: Any) -> str:
         if sym.kind in ("local", "param"):
-            return "v_" + _ident(sym.unique_name or sym.name, node)
+            return "v_" + python_ident(sym.unique_name or sym.name, node)
         if sym.kind == "global" and sym.qualifier == "uniform" and self._fed(sym):
             self.uniforms.add(sym.name)  # a plain file's own `uniform vec3 iResolution;`
             return "S.u_" + sym.name
@@ -56,7 +57,7 @@ class Names:
             if sym.type.contains_opaque:
                 raise _error(f"'{sym.name}': textures are not supported by the NumPy backend yet", node,
                              help="render with --backend gl")
-            return "S.g_" + _ident(sym.unique_name or sym.name, node)
+            return "S.g_" + python_ident(sym.unique_name or sym.name, node)
         if sym.kind == "uniform":
             from ....shadertoy.wrapper import UNIFORMS_BY_NAME
 
@@ -81,7 +82,7 @@ class Names:
     def fn_name(self, sym: Any) -> str:
         key = id(sym)
         if key not in self.fn_names:
-            self.fn_names[key] = "f_" + _ident(sym.unique_name or sym.name, sym.node)
+            self.fn_names[key] = "f_" + python_ident(sym.unique_name or sym.name, sym.node)
         return self.fn_names[key]
 
     def struct_name(self, st: Any) -> str:
@@ -99,7 +100,7 @@ class Names:
 
     @staticmethod
     def member(name: str, node: Any) -> str:
-        return "m_" + _ident(name, node)
+        return "m_" + python_ident(name, node)
 
     # -- constants and zero values -------------------------------------------------------------
     def const_float(self, v: float) -> str:

@@ -11,9 +11,10 @@ from ....frontend import syntax as A
 from ....language import builtin_functions as B
 from ....language import glsl_types as T
 from ....base.diagnostics import Location
-from .common import _DERIVATIVES, _IMPLICIT_LOD, LOOP_CAP, OUTLINE_INDENT, _error, _fold
+from ...cpu_core.common import DERIVATIVES, IMPLICIT_LOD, fold_tree
+from ...cpu_core.facts import Events, events_of, induction_variable
+from .common import LOOP_CAP, OUTLINE_INDENT, _error
 from ....semantics.model import Symbol
-from .facts import Events, events_of, induction_variable
 from .. import nir_fold
 
 @dataclass
@@ -144,14 +145,14 @@ class Statements:
         return False
 
     def _region_uses_derivs(self, node: Any) -> bool:
-        return _fold(node, self._derivs, self._derivs_here)
+        return fold_tree(node, self._derivs, self._derivs_here)
 
     def _derivs_here(self, n: Any, kids: list[bool]) -> bool:
         if any(kids):
             return True
         if isinstance(n, A.Call):
             tgt = self.model.call_target(n)
-            if getattr(tgt, "name", None) in _DERIVATIVES + _IMPLICIT_LOD and not isinstance(tgt, Symbol):
+            if getattr(tgt, "name", None) in DERIVATIVES + IMPLICIT_LOD and not isinstance(tgt, Symbol):
                 return True
             if isinstance(tgt, Symbol) and id(tgt) in self.facts.uses_derivs:
                 return True

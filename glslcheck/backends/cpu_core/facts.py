@@ -7,10 +7,10 @@ from __future__ import annotations
 from dataclasses import dataclass
 from typing import Any
 
-from ....frontend import syntax as A
-from ....semantics.analysis import param_directions, written_variable
-from ....semantics.model import Symbol
-from .common import _DERIVATIVES, _IMPLICIT_LOD, _fold
+from ...frontend import syntax as A
+from ...semantics.analysis import param_directions, written_variable
+from ...semantics.model import Symbol
+from .common import DERIVATIVES, IMPLICIT_LOD, fold_tree
 
 @dataclass(frozen=True)
 class Events:
@@ -56,7 +56,7 @@ class Facts:
                             self.may_discard.add(id(fn))
                         if id(tgt) in self.uses_derivs:
                             self.uses_derivs.add(id(fn))
-                    elif getattr(tgt, "name", None) in _DERIVATIVES + _IMPLICIT_LOD:
+                    elif getattr(tgt, "name", None) in DERIVATIVES + IMPLICIT_LOD:
                         self.uses_derivs.add(id(fn))
                 for sym in self.written_variables(node):
                     if sym.kind == "global":
@@ -95,7 +95,7 @@ class Facts:
         return isinstance(tgt, Symbol) and id(tgt) in self.may_discard
 
     def has_discarding_call(self, node: Any) -> bool:
-        return _fold(node, self._discarding, lambda n, kids: any(kids) or self.discarding_call(n))
+        return fold_tree(node, self._discarding, lambda n, kids: any(kids) or self.discarding_call(n))
 
     def written_variables(self, node: Any) -> list[Symbol]:
         """The variables a node itself writes (assignment, ++/--, out and inout arguments)."""
@@ -165,7 +165,7 @@ def events_of(stmt: Any, facts: Facts, model: Any, in_loop_or_switch: bool = Fal
             return Events(cont=ev.cont, ret=ev.ret)
         return ev
 
-    return _fold(stmt, facts.events, own)
+    return fold_tree(stmt, facts.events, own)
 
 
 def induction_variable(s: Any, model: Any, facts: Facts | None = None) -> Any:

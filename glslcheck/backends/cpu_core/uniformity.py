@@ -60,14 +60,18 @@ from typing import Any
 from ...frontend import syntax as A
 from ...semantics.analysis import param_directions, written_variable
 from ...semantics.model import Symbol
-from .transpile.facts import NO_EVENTS, Facts, events_of, induction_variable
+from .facts import NO_EVENTS, Facts, events_of, induction_variable
 
 
 class Uniformity:
     """The analysis of one function `fn` (a function symbol of the checker's model); see the
     module docstring. `facts` are the program-wide facts of `transpile.facts.Facts`."""
 
-    def __init__(self, model: Any, facts: Facts, fn: Any, is_entry: bool) -> None:
+    def __init__(self, model: Any, facts: Facts, fn: Any, is_entry: bool,
+                 uniform_params: frozenset | set = frozenset()) -> None:
+        """uniform_params: ids of parameter symbols that start uniform (the compiled engine's
+        variants of a function called with values of one lane); a varying write still makes them
+        varying. Every other parameter but an `out` one starts varying."""
         self.model = model
         self.facts = facts
         self.fn = fn
@@ -91,7 +95,7 @@ class Uniformity:
             sym = self.model.symbol_of(p)
             if sym is None:
                 continue
-            if p.direction != "out":
+            if p.direction != "out" and id(sym) not in uniform_params:
                 self.varying.add(id(sym))
             self.decl_level[id(sym)] = 0 if p.direction == "in" or not leaves_early else None
             self.decl_seq[id(sym)] = 0

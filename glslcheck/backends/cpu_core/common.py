@@ -1,0 +1,42 @@
+"""What both CPU engines share below their code writers: the groups of built-in names their
+analyses decide by (derivatives, texture lookups), `fold_tree`, the memoized bottom-up walk
+that asks a question of every node of a tree in linear time, and `printable`, GLSL text made
+safe for a comment or docstring of generated Python."""
+
+from __future__ import annotations
+
+from typing import Any
+
+DERIVATIVES = ("dFdx", "dFdy", "fwidth")
+# The lookups on a sampler2D that textures.TextureFunctions evaluates.
+TEXTURE_FUNCTIONS = ("texture", "textureLod", "textureGrad", "textureProj", "textureOffset", "texelFetch",
+                      "texelFetchOffset", "textureSize", "textureLodOffset", "textureGradOffset",
+                      "textureProjOffset", "textureProjLod", "textureProjLodOffset", "textureProjGrad",
+                      "textureProjGradOffset")
+# Lookups whose mipmap level comes from derivatives (2x2 quads): their regions are never compacted.
+IMPLICIT_LOD = ("texture", "textureProj", "textureOffset", "textureProjOffset")
+
+def printable(text: str, limit: int = 100) -> str:
+    """Text safe inside a Python comment or docstring: printable ASCII, no quotes or backslashes."""
+    out = "".join(c if (" " <= c <= "~" and c not in "\"\\") else "?" for c in text.strip())
+    return out if len(out) <= limit else out[: limit - 3] + "..."
+
+
+def fold_tree(root: Any, memo: dict[int, Any], own) -> Any:
+    """`own(node, [values of its children])` computed bottom-up over root's subtree and memoized
+    by node id, so that asking it of every node of a tree stays linear (iterative: expressions
+    nest thousands deep)."""
+    if id(root) in memo:
+        return memo[id(root)]
+    stack: list[tuple[Any, bool]] = [(root, False)]
+    while stack:
+        node, done = stack.pop()
+        if id(node) in memo:
+            continue
+        kids = list(node.children())
+        if done:
+            memo[id(node)] = own(node, [memo[id(k)] for k in kids])
+        else:
+            stack.append((node, True))
+            stack.extend((k, False) for k in kids if id(k) not in memo)
+    return memo[id(root)]

@@ -1,0 +1,46 @@
+"""The memo of the NumPy transpiler's Mesa rewrites (nir_fold, transpile/call_fold.py,
+transpile/inline.py, transpile/constant_flow.py): what they computed once about the program
+being transpiled, owned by its Transpiler (`Transpiler.fold_state`, one per transpile) and
+keyed by the ids of syntax nodes and symbols of that program."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from typing import Any
+
+
+@dataclass
+class FoldState:
+    """Per-transpile caches of the rewrites; each field names the question it memoizes."""
+
+    # nir_fold: per function (id of its symbol) or per node
+    mix: dict = field(default_factory=dict)  # function -> ids of mix calls sharing t and x (or y)
+    lowp: dict = field(default_factory=dict)  # node -> kind of a lowp lookup tree
+    kept: dict = field(default_factory=dict)  # product kept whole -> (its type, the lines list)
+    writes: dict = field(default_factory=dict)  # value node -> the write that stored it
+    merge_reads: dict = field(default_factory=dict)  # function -> reads of merged locals
+    reads: dict = field(default_factory=dict)  # function body -> symbol -> number of reads
+    parents: dict = field(default_factory=dict)  # root -> node -> use counts
+    facts: dict = field(default_factory=dict)  # function -> analysis.dataflow FunctionFacts
+    written: dict = field(default_factory=dict)  # function -> ids of the symbols it writes
+    components: dict = field(default_factory=dict)  # component write -> its record
+    component_locals: dict = field(default_factory=dict)  # function -> locals written per component
+    component_reads: dict = field(default_factory=dict)  # function -> component reads
+    undo: dict = field(default_factory=dict)  # `+= e` -> the later `-= e` that cancels it
+    kept_products: dict = field(default_factory=dict)  # `x *= b` -> (lines, its operands)
+    sink_reads: dict = field(default_factory=dict)  # function -> reads a sunk constant goes through
+    fn_facts: dict = field(default_factory=dict)  # function -> FunctionFacts (register_call)
+    sunk_returns: dict = field(default_factory=dict)  # function -> its returned `+=` chain
+    sink_calls: set | None = None  # functions some call of which has a constant added to its result
+    call_k: dict = field(default_factory=dict)  # call -> the constant sunk into its result
+    terms: dict = field(default_factory=dict)  # returned term -> its kept code
+    # transpile/constant_flow.py
+    constant_flow: Any = None  # the program's ConstantFlow, made on first use
+    # transpile/call_fold.py
+    call_fold_off: bool = False  # emitting the written call inside a folded one
+    call_fold_dots: dict = field(default_factory=dict)  # function -> whether its body calls dot
+    call_fold_sums: dict = field(default_factory=dict)  # (call, symbol) -> products summed per component
+    call_fold_roots: dict = field(default_factory=dict)  # (call, symbol) -> root operations per component
+    # transpile/inline.py
+    inline_frames: list = field(default_factory=list)  # the calls being inlined, innermost last
+    inline_bodies: dict = field(default_factory=dict)  # function -> its inlinable body
