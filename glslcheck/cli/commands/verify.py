@@ -47,14 +47,15 @@ import sys
 from ...base.diagnostics import GlslError, InputError, format_text
 from ...base.images import check_output
 from ...shadertoy.sources import find_shaders
-from ...verification.verify import ALL_BACKENDS, BACKENDS, DEFAULT_FPS, Progress, diff_paths, frame_specs, verify_frames
+from ...backends import registry
+from ...verification.verify import BACKENDS, DEFAULT_FPS, Progress, diff_paths, frame_specs, verify_frames
 from . import args as A
 
 
 def _backends(text: str) -> tuple[str, str]:
     names = tuple(t.strip() for t in text.split(","))
-    if len(names) != 2 or not all(n in ALL_BACKENDS for n in names):
-        raise ValueError(f"--backends takes two of {', '.join(ALL_BACKENDS)} separated by a comma, not {text!r}")
+    if len(names) != 2 or not all(n in registry.names() for n in names):
+        raise ValueError(f"--backends takes two of {', '.join(registry.names())} separated by a comma, not {text!r}")
     return names  # type: ignore[return-value]
 
 
@@ -110,8 +111,11 @@ def run(args) -> int:
     if args.against and args.backends:
         raise InputError("glslcheck verify: error: give --against or --backends, not both")
     args.backends = args.backends or (("numpy", args.against) if args.against else BACKENDS)
-    if "compiled" in args.backends and args.precision != "float32":
-        raise InputError("glslcheck verify: error: the compiled engine renders in float32 only; drop --precision")
+    for name in args.backends:  # a driver's side is always its highp; an engine of ours renders as told
+        backend = registry.get(name)
+        if not backend.driver and args.precision not in backend.precisions:
+            raise InputError(f"glslcheck verify: error: {backend.called} renders in "
+                             f"{' and '.join(backend.precisions)} only; drop --precision")
     shaders = find_shaders(args.paths)
     total = len(shaders) * _frame_count(args)
     show = args.progress if args.progress is not None else (total > 1 and sys.stderr.isatty())
