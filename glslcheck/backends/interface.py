@@ -64,7 +64,8 @@ class Program:
         common = inputs.keywords()
         if self.backend.driver:
             if precision != "float32":
-                raise ValueError(f"the {self.backend.name.upper()} backend renders in float32 only (the driver's highp)")
+                raise ValueError(f"the {self.backend.name.upper()} backend renders in float32 only "
+                                 "(the driver's highp)")
             if stats:
                 raise ValueError("stats=True needs backend='numpy'")
             return self.impl.render(**common)

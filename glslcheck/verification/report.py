@@ -10,7 +10,7 @@ shaders get an index at the top) the page shows
 - for each pair of backends the heat map of their differences (glslcheck.verification.compare's colours:
   black equal, red to white larger, cyan a discontinuity, magenta NaN in one image only) with
   verify's numbers and verdict; NumPy against WebGL is the driver-aware verdict of
-  `verify --against webgl` (glslcheck/backends/webgl/drivers.py);
+  `verify --against webgl` (glslcheck/verification/drivers.py);
 - where a render has NaN or Inf pixels, where they came from: `probe --nan`'s origins
   (glslcheck/verification/probe.py), each also under its source line, and a map of those pixels;
 - the accuracy/time table and plot of `glslcheck bench` (glslcheck/verification/bench.py: each backend,
@@ -215,7 +215,7 @@ def gather(shader: Shader, *, size=DEFAULT_SIZE, time: float = 0.0, backends=DEF
     NaN origins (when a render has NaN/Inf pixels) and, unless `bench` is None, the bench at
     that size."""
     from .verify import _Pair, FrameSpec, compile_backend, emulate_driver
-    from ..backends.webgl.drivers import driver_verdict
+    from .drivers import driver_verdict
 
     ready = ready if ready is not None else {b: _backend_ready(b) for b in backends}
     name = shader.root or (shader.image.path if shader.image else "<shader>")

@@ -43,7 +43,7 @@ import numpy as np
 
 from .compare import Comparison, compare
 from ..semantics.mediump import mediump_notes
-from ..base.diagnostics import GlslError, InputError
+from ..base.diagnostics import GlslError
 from ..base.precision import check_precision
 from ..shadertoy.wrapper import DEFAULT_SIZE
 from ..shadertoy.sources import Shader, load_shader

@@ -12,7 +12,7 @@ worst pixels, with fragCoord).
 --against webgl compares with WebGL 2 in headless Chromium (ANGLE on SwiftShader, as Shadertoy's
 page renders; glslcheck/webgl_backend). Each frame is also rendered with GL: a pixel where the two
 drivers differ depends on the driver, and there NumPy need only match the closer of the two
-("driver-dependent" in the report; glslcheck/backends/webgl/drivers.py). `--backends gl,webgl`
+("driver-dependent" in the report; glslcheck/verification/drivers.py). `--backends gl,webgl`
 compares the two drivers with each other; `--backends compiled,gl` verifies the compiled engine
 (glslcheck/compiled_backend: float32, numba needed, exit 2 with the pip line without it).
 
@@ -131,7 +131,7 @@ def run(args) -> int:
                                fps=args.fps, frame=args.frame, mouse=args.mouse, date=args.date,
                                precision=args.precision, samples=args.samples, progress=progress)
                 if args.against == "webgl":  # NumPy vs WebGL, driver-dependent pixels apart
-                    from ...backends.webgl.drivers import verify_against_webgl
+                    from ...verification.drivers import verify_against_webgl
 
                     frames = verify_against_webgl(shader, **options)
                 else:
@@ -220,7 +220,7 @@ def format_frame(result, precision: str = "float32", samples: int = 1, worst: in
 
         lines.append(f"  note: {nan_hint(result.shader, c.nan_numpy, result.size, s.time)}")
     drivers = getattr(result, "drivers", None)
-    if drivers is not None:  # verify --against webgl (glslcheck/backends/webgl/drivers.py)
+    if drivers is not None:  # verify --against webgl (glslcheck/verification/drivers.py)
         plain = result.plain
         lines.append(f"  driver-dependent {result.driver_pixels:<10}  pixels where gl and webgl differ; "
                      f"there {a} need match only the closer driver")

@@ -23,8 +23,8 @@ from typing import Iterator
 
 import numpy as np
 
-from ...verification.compare import Comparison, compare
-from ...verification.verify import FrameResult, _as_shader, _Pair, compile_backend, emulate_driver, frame_specs
+from .compare import Comparison, compare
+from .verify import FrameResult, _as_shader, _Pair, compile_backend, emulate_driver, frame_specs
 
 
 @dataclass(eq=False)
