@@ -370,7 +370,7 @@ def emulate_driver(programs: Sequence) -> None:
     driver (the GL side) does where GLSL leaves a value undefined and the CPU decides
     (glslcheck/backends/driver_profile.py). A driver that follows no known model is reported on stderr,
     and the NumPy side keeps its prediction for this machine."""
-    programs = [getattr(p, "impl", p) for p in programs]  # api.Program wraps a backend's program
+    programs = [getattr(p, "impl", p) for p in programs]  # a Program wraps a backend's program
     models = {p.float_to_uint_model for p in programs if hasattr(p, "float_to_uint_model")}
     if not models:
         return
