@@ -50,7 +50,7 @@ def _per_frame(prog, frames: int, size, start: int) -> float:
 
 
 def _set_mode(prog, mode: str) -> None:
-    """NumpyProgram.parallel of every pass (api.Program -> MultipassProgram -> one per tab)."""
+    """NumpyProgram.parallel of every pass (Program -> MultipassProgram -> one per tab)."""
     for p in prog.impl.programs.values():
         p.parallel = mode
 

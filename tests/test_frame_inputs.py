@@ -9,7 +9,7 @@ import inspect
 
 import pytest
 
-from glslcheck.backends.registry import Program
+from glslcheck.backends.interface import Program
 from glslcheck.backends.gl.program import GLProgram
 from glslcheck.backends.numpy_engine.program import NumpyProgram, compile_numpy
 from glslcheck.shadertoy.frame_inputs import FrameInputs

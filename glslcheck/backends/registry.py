@@ -1,7 +1,8 @@
-"""The public Python API: compile a Shadertoy shader for a backend and render frames.
+"""The backends by name, and the public Python API: compile a Shadertoy shader for a backend and
+render frames.
 
     import glslcheck
-    prog = glslcheck.compile("lab_shaders/07_final", backend="numpy")   # or "gl", "webgl"
+    prog = glslcheck.compile("lab_shaders/07_final", backend="numpy")   # or "gl", "webgl", "compiled"
     img = prog.render(size=(800, 450), time=0.0, frame=0, mouse=(0, 0, 0, 0), date=None,
                       precision="float32", samples=1)
     # img: float32 numpy array (height, width, 4), top row first, values as the shader wrote them
@@ -11,86 +12,71 @@
 `Shader`. `compile` raises GlslError (with file:line:col diagnostics) when the shader does not
 parse, check or compile, InputError when the path cannot be read, and GLUnavailable (an
 InputError) for backend="gl" without an OpenGL context (WebGLUnavailable for backend="webgl"
-without headless Chromium: glslcheck/webgl_backend).
+without headless Chromium: glslcheck/backends/webgl; InputError for backend="compiled" without numba).
 
 `render` also takes `time_delta` (iTimeDelta, default 1/60) and `frame_rate` (iFrameRate,
 default 60), as the GL backend does. `precision` is the float type inside the shader:
 "float32" (GLSL highp, the default), "float16" (mediump emulation) or "float64" (a reference);
-the GL backend only has "float32". `samples` = k*k renders a k x k grid of sub-pixel positions
-per pixel and averages them (the same grid on both backends). With backend="numpy",
-`render(..., stats=True)` counts the lanes that ran each function, branch and loop body;
-`prog.format_stats()` prints them.
+a backend renders in its record's `precisions` only (GL, WebGL and the compiled engine: "float32").
+`samples` = k*k renders a k x k grid of sub-pixel positions per pixel and averages them (the same
+grid on every backend). With backend="numpy", `render(..., stats=True)` counts the lanes that ran
+each function, branch and loop body; `prog.format_stats()` prints them.
+
+`names()` lists the backends without importing any of them; `get(name)` imports the one asked for
+and returns its Backend record (glslcheck/backends/interface.py).
 """
 
 from __future__ import annotations
 
+import importlib
 import os
-from typing import Any
 
-import numpy as np
-
-from ..base.precision import check_precision
-from ..shadertoy.frame_inputs import FrameInputs, frame_inputs
 from ..shadertoy.sources import Shader, load_shader
+from .interface import Backend, Program
 
-BACKENDS = ("numpy", "gl", "webgl")
+# name -> the module that declares its Backend record (as BACKEND), in the order choices list them
+BACKENDS = {
+    "numpy": "glslcheck.backends.numpy_engine.backend",
+    "gl": "glslcheck.backends.gl.backend",
+    "webgl": "glslcheck.backends.webgl.backend",
+    "compiled": "glslcheck.backends.compiled_engine.backend",
+}
 
 
-class Program:
-    """A compiled shader: `render(...)` gives float32 (height, width, 4) images."""
+def names() -> tuple[str, ...]:
+    """Every backend's name, the default ("numpy") first."""
+    return tuple(BACKENDS)
 
-    def __init__(self, shader: Shader, backend: str, impl: Any) -> None:
-        self.shader = shader
-        self.backend = backend
-        self.impl = impl
 
-    @frame_inputs
-    def render(self, inputs: FrameInputs, precision: str = "float32", stats: bool = False) -> np.ndarray:
-        """One frame; see the module docstring (the arguments: `shadertoy.FrameInputs`, then
-        `precision` and `stats`)."""
-        check_precision(precision)
-        common = inputs.keywords()
-        if self.backend in ("gl", "webgl"):
-            if precision != "float32":
-                raise ValueError(f"the {self.backend.upper()} backend renders in float32 only (the driver's highp)")
-            if stats:
-                raise ValueError("stats=True needs backend='numpy'")
-            return self.impl.render(**common)
-        return self.impl.render(**common, precision=precision, stats=stats)
+def get(name: str) -> Backend:
+    """The Backend record of `name`; ValueError naming the backends there are."""
+    if name not in BACKENDS:
+        raise ValueError(f"backend must be one of {', '.join(BACKENDS)}, not {name!r}")
+    return importlib.import_module(BACKENDS[name]).BACKEND
 
-    def format_stats(self) -> str:
-        if self.backend != "numpy":
-            raise ValueError("lane statistics exist for backend='numpy' only")
-        return self.impl.format_stats()
 
-    @property
-    def source(self) -> str:
-        """The generated Python module (backend='numpy') or the GLSL program (backend='gl')."""
-        return self.impl.source if self.backend == "numpy" else self.impl.program.text
+def backend_program(shader: Shader, backend: Backend, output: str = "Image"):
+    """The backend's own program for the `output` pass of a loaded shader: one pass compiled by
+    the backend, or the passes of a shader with buffers or channels run frame after frame
+    (backends/multipass.py)."""
+    from ..shadertoy.channels import needs_passes
 
-    def __repr__(self) -> str:
-        return f"<glslcheck.Program {self.shader.root!r} backend={self.backend}>"
+    if backend.multipass and (output != "Image" or needs_passes(shader)):
+        from .multipass import MultipassProgram
+
+        return MultipassProgram(shader, backend, output)
+    return backend.compile_pass(shader, "Image")
 
 
 def compile(path: str | os.PathLike | Shader, backend: str = "numpy", output: str = "Image") -> Program:  # noqa: A001
-    """Load, check and compile a shader for `backend` ("numpy" or "gl"). A shader with Buffer
-    tabs, a channels.json or iChannel reads runs its passes frame after frame (shadertoy/channels.py);
+    """Load, check and compile a shader for `backend` (one of `names()`). A shader with Buffer
+    tabs, a channels.json or iChannel reads runs its passes frame after frame (backends/multipass.py);
     `output` chooses the pass `render` returns ("Buffer A", ...)."""
-    if backend not in BACKENDS:
-        raise ValueError(f"backend must be one of {', '.join(BACKENDS)}, not {backend!r}")
+    record = get(backend)
+    record.require()
+    if output != "Image" and not record.multipass:
+        from ..base.diagnostics import InputError
+
+        raise InputError(f"error: --backend {record.name} renders the Image pass only, not {output!r}")
     shader = path if isinstance(path, Shader) else load_shader(path)
-    from ..shadertoy.channels import MultipassProgram, needs_passes
-
-    if output != "Image" or needs_passes(shader):
-        return Program(shader, backend, MultipassProgram(shader, backend, output))
-    if backend == "gl":
-        from .gl import compile_gl
-
-        return Program(shader, "gl", compile_gl(shader))
-    if backend == "webgl":
-        from .webgl import compile_webgl
-
-        return Program(shader, "webgl", compile_webgl(shader))
-    from .numpy_engine.program import compile_numpy
-
-    return Program(shader, "numpy", compile_numpy(shader))
+    return Program(shader, record, backend_program(shader, record, output))

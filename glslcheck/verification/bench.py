@@ -50,6 +50,7 @@ from typing import Callable, Sequence
 import numpy as np
 
 from .compare import compare
+from ..backends import registry
 from ..base.precision import PRECISIONS
 from ..shadertoy.sources import Shader, load_shader
 
@@ -65,7 +66,7 @@ JSON_KEYS = ("shader", "backend", "precision", "samples", "median_ms", "ratio_to
 
 @dataclass(frozen=True, slots=True)
 class Config:
-    """One way of rendering: backend ("gl" | "numpy"), float precision, samples per pixel."""
+    """One way of rendering: backend (a name of `registry.names()`), float precision, samples per pixel."""
 
     backend: str
     precision: str
@@ -74,7 +75,8 @@ class Config:
     @property
     def label(self) -> str:
         """Short name for tables and plots: 'gl x4', 'f16 x16'."""
-        name = self.backend if self.backend != "numpy" else "f" + self.precision.removeprefix("float")
+        several = len(registry.get(self.backend).precisions) > 1  # the NumPy engine: named by its precision
+        name = "f" + self.precision.removeprefix("float") if several else self.backend
         return f"{name} x{self.samples}"
 
     @property
@@ -150,10 +152,8 @@ def _pin_parallel(program) -> None:
 
 def _compile_both(shader: Shader):
     """(gl, numpy) programs; GL first so a missing context is reported before a slow transpile."""
-    from ..backends.registry import compile as compile_program
-
-    gl = compile_program(shader, backend="gl")
-    return gl, compile_program(shader, backend="numpy")
+    gl = registry.compile(shader, backend="gl")
+    return gl, registry.compile(shader, backend="numpy")
 
 
 def bench_shader(
@@ -184,19 +184,16 @@ def bench_shader(
     _pin_parallel(numpy_prog)
     configs = configurations(samples, webgl, compiled)
     by_backend = {"gl": gl, "numpy": numpy_prog}
-    if webgl:  # WebGL 2 in headless Chromium (glslcheck/webgl_backend)
-        from ..backends.registry import compile as compile_program
-
-        by_backend["webgl"] = compile_program(shader, backend="webgl")
-    if compiled:  # per pixel, by numba (InputError without numba, GlslError for what it lacks)
-        from ..backends.compiled_engine import compile_program as compile_compiled
-
-        by_backend["compiled"] = compile_compiled(shader)
+    # WebGL 2 in headless Chromium; the compiled engine per pixel, by numba (InputError without
+    # numba, GlslError for what it lacks)
+    for backend in dict.fromkeys(c.backend for c in configs):
+        if backend not in by_backend:
+            by_backend[backend] = registry.compile(shader, backend=backend)
     kwargs = dict(size=tuple(size), time=float(time))
 
     def render(config: Config) -> tuple[np.ndarray, float]:
         program = by_backend[config.backend]
-        if config.backend == "numpy":
+        if len(registry.get(config.backend).precisions) > 1:  # the precision is the configuration's
             _forget_frames(program)
             extra = {"precision": config.precision}
         else:
@@ -317,8 +314,13 @@ def _font(size: int):
         return ImageFont.load_default()
 
 
+def _colour_key(config: Config) -> str:
+    """The key of COLOURS: the backend, or the precision for a backend that renders in several."""
+    return config.precision if len(registry.get(config.backend).precisions) > 1 else config.backend
+
+
 def _colour(config: Config) -> tuple[int, int, int]:
-    return COLOURS[config.precision if config.backend == "numpy" else config.backend]
+    return COLOURS[_colour_key(config)]
 
 
 def _marker(draw, x: float, y: float, samples: int, colour, r: float) -> None:
@@ -381,8 +383,9 @@ def write_plot(rows: Sequence[Row], path: str | os.PathLike, title: str | None =
     width = pw * len(shaders)
     f_title, f_axis, f_tick, f_label = _font(17 * S), _font(13 * S), _font(11 * S), _font(11 * S)
     measure = ImageDraw.Draw(Image.new("RGB", (1, 1)))
-    colour_keys = [k for k in LEGEND_COLOURS
-                   if k not in ("webgl", "compiled") or any(r.config.backend == k for r in rows)]
+    # every bench's colours, and those of the extra backends these rows have
+    shown = {_colour_key(c) for c in configurations()} | {_colour_key(r.config) for r in rows}
+    colour_keys = [k for k in LEGEND_COLOURS if k in shown]
     texts = [LEGEND_COLOURS[k] for k in colour_keys] + list(LEGEND_SHAPES)
     legend = _legend_layout([measure.textlength(t, font=f_axis) for t in texts], width)
     legend_h = (18 + 22 * (legend[-1][1] + 1)) * S

@@ -10,7 +10,7 @@ shaders get an index at the top) the page shows
 - for each pair of backends the heat map of their differences (glslcheck.verification.compare's colours:
   black equal, red to white larger, cyan a discontinuity, magenta NaN in one image only) with
   verify's numbers and verdict; NumPy against WebGL is the driver-aware verdict of
-  `verify --against webgl` (glslcheck/verification/webgl_drivers.py);
+  `verify --against webgl` (glslcheck/verification/drivers.py);
 - where a render has NaN or Inf pixels, where they came from: `probe --nan`'s origins
   (glslcheck/verification/probe.py), each also under its source line, and a map of those pixels;
 - the accuracy/time table and plot of `glslcheck bench` (glslcheck/verification/bench.py: each backend,
@@ -49,13 +49,14 @@ import numpy as np
 from .bench import HEADER as BENCH_HEADER
 from .bench import TABLE_NOTE, Row, row_cells
 from .compare import EDGE_COLOUR, NAN_COLOUR, Comparison, compare, heat_colours
+from ..backends import registry
 from ..base.diagnostics import Diagnostic, GlslError, InputError, Location
 from ..shadertoy.sources import Shader, find_shaders
 
 if TYPE_CHECKING:
     from .probe import NanReport
 
-BACKEND_NAMES = {"numpy": "NumPy (CPU)", "gl": "GL (Mesa llvmpipe)", "webgl": "WebGL (ANGLE, SwiftShader)"}
+DEFAULT_BACKENDS = ("numpy", "gl", "webgl")  # the side under test first; GL and WebGL are the drivers
 DEFAULT_SIZE = (320, 180)
 BENCH_SIZE = (64, 36)  # the bench renders 12-15 configurations x (runs + 1) at this size: keep it small
 BENCH_RUNS = 3  # bench's own default: the median of three rounds
@@ -171,14 +172,7 @@ def _lint(shader: Shader) -> list[Diagnostic]:
 def _backend_ready(backend: str) -> str | None:
     """None when `backend` can run here, else why not (the environment, not the shader)."""
     try:
-        if backend == "gl":
-            from ..backends.gl import get_context
-
-            get_context()
-        elif backend == "webgl":
-            from ..backends.webgl import get_browser
-
-            get_browser()
+        registry.get(backend).check_ready()
     except InputError as e:
         return str(e).removeprefix("error: ")
     return None
@@ -215,13 +209,13 @@ def _bench(report: ShaderReport, size, runs: int, time: float) -> None:
         report.bench_note = "not measured: " + (said or str(e).removeprefix("error: "))
 
 
-def gather(shader: Shader, *, size=DEFAULT_SIZE, time: float = 0.0, backends=("numpy", "gl", "webgl"),
+def gather(shader: Shader, *, size=DEFAULT_SIZE, time: float = 0.0, backends=DEFAULT_BACKENDS,
            ready: dict[str, str | None] | None = None, bench=BENCH_SIZE, bench_runs: int = BENCH_RUNS) -> ShaderReport:
     """Check, lint, render with each backend and compare every pair, for one shader; then the
     NaN origins (when a render has NaN/Inf pixels) and, unless `bench` is None, the bench at
     that size."""
     from .verify import _Pair, FrameSpec, compile_backend, emulate_driver
-    from .webgl_drivers import driver_verdict
+    from .drivers import driver_verdict
 
     ready = ready if ready is not None else {b: _backend_ready(b) for b in backends}
     name = shader.root or (shader.image.path if shader.image else "<shader>")
@@ -378,7 +372,7 @@ def _nan_html(r: ShaderReport) -> str:
     """NaN/Inf pixels per render and, from `probe --nan`, where NumPy's came from."""
     if not any(r.nonfinite.values()):
         return ""
-    counts = ", ".join(f"{BACKEND_NAMES[b]} {n}" for b, n in r.nonfinite.items())
+    counts = ", ".join(f"{registry.get(b).title} {n}" for b, n in r.nonfinite.items())
     out = ["<h3>NaN and Inf pixels: where they came from</h3>",
            f'<p class="meta">Pixels with a NaN or Inf channel per render: {_e(counts)}. The origins are '
            "<code>glslcheck probe --nan</code>'s (glslcheck/verification/probe.py): it runs the NumPy backend's traced module "
@@ -462,7 +456,8 @@ def _section(r: ShaderReport, size, time: float, bench_size=BENCH_SIZE, bench_ru
     out.append(f'<p class="meta">{w}x{h}, iTime {time:g}, iFrame 0, one sample per pixel; '
                "RGB as the screen shows it (clamped, 8-bit)</p>")
     figs = []
-    for b, name in BACKEND_NAMES.items():
+    for b in (b for b in registry.names() if b in r.renders or b in r.unavailable):
+        name = registry.get(b).title
         if b in r.renders:
             figs.append(f'<figure><img class="render" alt="{_e(name)} render" src="{render_png(r.renders[b])}">'
                         f"<figcaption><b>{_e(name)}</b> {r.times_ms[b]:.0f} ms</figcaption></figure>")
@@ -515,7 +510,7 @@ def page_html(reports: list[ShaderReport], size, time: float, title: str, bench_
     return head + "\n".join(body) + "\n</body></html>\n"
 
 
-def build_report(paths, *, size=DEFAULT_SIZE, time: float = 0.0, backends=("numpy", "gl", "webgl"),
+def build_report(paths, *, size=DEFAULT_SIZE, time: float = 0.0, backends=DEFAULT_BACKENDS,
                  title: str | None = None, bench=BENCH_SIZE, bench_runs: int = BENCH_RUNS) -> Page:
     """The page for every shader under `paths` (see the module docstring); `bench` is the
     bench's render size, None to leave the table out."""

@@ -43,14 +43,13 @@ import numpy as np
 
 from .compare import Comparison, compare
 from ..semantics.mediump import mediump_notes
-from ..base.diagnostics import GlslError, InputError
+from ..base.diagnostics import GlslError
 from ..base.precision import check_precision
 from ..shadertoy.wrapper import DEFAULT_SIZE
 from ..shadertoy.sources import Shader, load_shader
+from ..backends import registry
 
-BACKENDS = ("numpy", "gl")
-ALL_BACKENDS = ("numpy", "gl", "webgl", "compiled")  # webgl: headless Chromium (glslcheck/webgl_backend);
-# compiled: per pixel by numba (glslcheck/compiled_backend), float32 only
+BACKENDS = ("numpy", "gl")  # the default pair: the side under test, then its reference
 DEFAULT_FPS = 60.0
 
 
@@ -124,39 +123,15 @@ def frame_specs(
 
 
 def compile_backend(shader: Shader, backend: str):
-    """A compiled program of `backend` ("numpy", "gl" or "webgl") with a `render(size=..., ...)` method.
+    """A compiled program of `backend` (one of `registry.names()`) with a `render(size=..., ...)` method.
 
-    GlslError (exit 1) when the shader does not compile, GLUnavailable (exit 2) without a GL
-    context, WebGLUnavailable (exit 2) without headless Chromium, InputError (exit 2) when the
-    NumPy backend is not installed in this build.
+    A driver's side is the backend's own program, whose render takes no precision: verify feeds
+    `precision` to each side that takes it (`_Pair`). GlslError (exit 1) when the shader does not
+    compile, GLUnavailable (exit 2) without a GL context, WebGLUnavailable (exit 2) without
+    headless Chromium, InputError (exit 2) without numba for the compiled engine.
     """
-    if backend == "gl":
-        from ..shadertoy.channels import MultipassProgram, needs_passes
-        from ..backends.gl import compile_gl
-
-        return MultipassProgram(shader, "gl") if needs_passes(shader) else compile_gl(shader)
-    if backend == "webgl":
-        from ..shadertoy.channels import MultipassProgram, needs_passes
-        from ..backends.webgl import compile_webgl
-
-        return MultipassProgram(shader, "webgl") if needs_passes(shader) else compile_webgl(shader)
-    if backend == "numpy":
-        try:
-            from ..backends import registry as api
-        except ImportError:
-            api = None
-        if api is not None and hasattr(api, "compile"):
-            return api.compile(shader, backend="numpy")
-        try:
-            from ..backends.numpy_engine.program import compile_numpy
-        except ImportError as e:
-            raise InputError(f"error: the NumPy backend is not available in this build ({e})") from None
-        return compile_numpy(shader)
-    if backend == "compiled":  # InputError (exit 2) without numba, with the pip line
-        from ..backends.compiled_engine import compile_program
-
-        return compile_program(shader)
-    raise ValueError(f"unknown backend {backend!r}; expected one of {', '.join(ALL_BACKENDS)}")
+    program = registry.compile(shader, backend=backend)
+    return program.impl if program.backend.driver else program
 
 
 def _accepted(program) -> set[str] | None:
@@ -203,7 +178,8 @@ class _Pair:
         accepted = self._accepted[0]
         if accepted is not None and "precision" not in accepted:
             return None
-        if getattr(self.programs[0], "backend", "") == "compiled":  # float32 only
+        backend = getattr(self.programs[0], "backend", None)
+        if backend is not None and "float64" not in backend.precisions:
             return None
         return self.render(spec, size, mouse, date, "float64", samples, only_first=True)[0]
 
@@ -267,21 +243,23 @@ def verify_frames(
     specs = frame_specs(time, times, frames, fps, frame)
     size_list = [tuple(s) for s in (sizes or [size])]
     shader = _as_shader(shader)
+    records = {b: registry.get(b) for b in backends}
     if programs is None:
-        # GL/WebGL first: a missing context or browser is reported before a slower NumPy transpile.
+        # drivers first: a missing context or browser is reported before a slower transpile
+        ours = next((b for b in backends if not records[b].driver), None)
         by_name = {}
-        for b in sorted(backends, key=lambda b: b == "numpy"):
+        for b in sorted(backends, key=lambda b: not records[b].driver):
             try:
                 by_name[b] = compile_backend(shader, b)
             except GlslError as driver:
-                if b == "numpy" or "numpy" not in backends:
+                if not records[b].driver or ours is None:
                     raise
                 # our own front end's diagnostics are clearer than the driver's cascade (and
                 # carry fix-its, e.g. iGlobalTime -> iTime): report them when it also fails
                 try:
-                    compile_backend(shader, "numpy")
-                except GlslError as ours:
-                    raise ours from None
+                    compile_backend(shader, ours)
+                except GlslError as own:
+                    raise own from None
                 raise driver
         programs = [by_name[b] for b in backends]
     emulate_driver(programs)
@@ -290,7 +268,8 @@ def verify_frames(
         llvmpipe_loop_limit(p)
     pair = _Pair(programs)
     name = shader.root or (shader.image.path if shader.image else "<shader>")
-    mediump = mediump_notes(shader) if "numpy" in backends else ()  # float16 arithmetic (semantics/mediump.py)
+    # a side that can emulate float16 computes mediump in float32 here (semantics/mediump.py)
+    mediump = mediump_notes(shader) if any("float16" in r.precisions for r in records.values()) else ()
     for w_h in size_list:
         for spec in specs:
             numpy_img, gl_img = pair.render(spec, w_h, tuple(mouse), date, precision, samples)
@@ -391,7 +370,7 @@ def emulate_driver(programs: Sequence) -> None:
     driver (the GL side) does where GLSL leaves a value undefined and the CPU decides
     (glslcheck/backends/driver_profile.py). A driver that follows no known model is reported on stderr,
     and the NumPy side keeps its prediction for this machine."""
-    programs = [getattr(p, "impl", p) for p in programs]  # api.Program wraps a backend's program
+    programs = [getattr(p, "impl", p) for p in programs]  # a Program wraps a backend's program
     models = {p.float_to_uint_model for p in programs if hasattr(p, "float_to_uint_model")}
     if not models:
         return

@@ -98,7 +98,7 @@ def test_missing_file_exit_2(capsys, tmp_path):
 
 
 def test_no_gl_context_exit_2(monkeypatch, capsys):
-    import glslcheck.backends.gl as gb
+    import glslcheck.backends.gl.program as gb
     from glslcheck.backends.gl import GLUnavailable
 
     def unavailable(*a, **k):

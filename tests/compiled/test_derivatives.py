@@ -109,7 +109,7 @@ def test_derivatives_start_in_lockstep(numba, make_shader, monkeypatch):
     shader = make_shader(DERIVATIVES["plain"])
     monkeypatch.delenv("GLSLCHECK_COMPILED_LANES", raising=False)
     prog = compile_compiled(shader)
-    assert isinstance(prog.impl, CompiledProgram) and "QUADS = True" in prog.impl.source
+    assert isinstance(prog, CompiledProgram) and "QUADS = True" in prog.source
     with pytest.raises(GlslError) as err:
         generate(shader, lanes=0)
     d = err.value.diagnostics[0]

@@ -158,7 +158,7 @@ def test_tiered_program_moves(numba, make_shader, monkeypatch, tmp_path):
     monkeypatch.setenv("NUMBA_CACHE_DIR", str(tmp_path))  # no lockstep module cached by an earlier run
     shader = make_shader(CONSTRUCTS["control_flow"])
     want = _render(shader, 0, time=2.0)
-    prog = engine.compile_compiled(shader).impl
+    prog = engine.compile_compiled(shader)
     assert isinstance(prog, engine.TieredProgram) and prog.mode == "pixel"
     monkeypatch.setattr(engine, "LOCKSTEP_COMPILE_RATIO", 1e9)  # never pays: stays per pixel
     monkeypatch.setattr(engine, "LOCKSTEP_SECONDS_PER_LINE", 1e9)
@@ -173,7 +173,7 @@ def test_tiered_program_moves(numba, make_shader, monkeypatch, tmp_path):
     assert prog._mover is not None and prog.settle(600) and prog.mode == "lanes8" and "LANES = 8" in prog.source
     got = prog.render(size=SIZE, time=2.0, mouse=MOUSE)
     assert got.view(np.uint32).tolist() == want.view(np.uint32).tolist()
-    again = engine.compile_compiled(shader).impl
+    again = engine.compile_compiled(shader)
     again.first.load()
     assert again._cached_fast() == prog.fast.source
     assert again.move_cost() == (again.first.load_seconds or 0.0)  # None: loaded already in this process
@@ -186,7 +186,7 @@ def test_fixed_mode_is_not_tiered(numba, make_shader, monkeypatch):
     shader = make_shader(CONSTRUCTS["control_flow"])
     for value in ("0", "8"):
         monkeypatch.setenv("GLSLCHECK_COMPILED_LANES", value)
-        assert isinstance(engine.compile_compiled(shader).impl, engine.CompiledProgram)
+        assert isinstance(engine.compile_compiled(shader), engine.CompiledProgram)
 
 
 def test_pure_conditional_expressions_are_selects():

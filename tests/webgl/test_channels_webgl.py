@@ -26,7 +26,7 @@ from glslcheck.backends import registry as api
 from glslcheck.cli.main import main
 from glslcheck.shadertoy.sources import load_shader
 from glslcheck.verification.verify import compile_backend
-from glslcheck.verification.webgl_drivers import verify_against_webgl
+from glslcheck.verification.drivers import verify_against_webgl
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "channels"))
 from test_channels import MIPMAP_UV, SIZE, _folder, _png, _sampling_case, feedback  # noqa: E402,F401 (a fixture)

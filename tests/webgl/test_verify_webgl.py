@@ -13,7 +13,7 @@ import pytest
 from glslcheck.cli.main import main
 from glslcheck.shadertoy.sources import load_shader
 from glslcheck.verification.verify import compile_backend
-from glslcheck.verification.webgl_drivers import closest_driver, driver_verdict, verify_against_webgl
+from glslcheck.verification.drivers import closest_driver, driver_verdict, verify_against_webgl
 
 ROOT = Path(__file__).resolve().parents[2]
 LAB = sorted(p for p in (ROOT / "lab_shaders").iterdir() if p.is_dir())

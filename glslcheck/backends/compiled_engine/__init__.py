@@ -7,21 +7,3 @@ GLSLCHECK_COMPILED_LANES=0, 8 or 16 fixes the mode), lanes_rt.py is that rewrite
 Importing this package imports neither numba nor llvmlite: engine.py imports numba when a
 program is loaded (numba is the optional extra `glslcheck[jit]`).
 """
-
-from __future__ import annotations
-
-from typing import Any
-
-
-def compile_program(path: Any, pass_name: str = "Image", threads: int | None = None) -> Any:
-    """`render --backend compiled`: an api.Program rendering `path`'s Image tab per pixel.
-    InputError (exit 2) without numba, with the pip line; GlslError (exit 1) for a construct
-    or a multipass shader the engine does not support yet."""
-    from .engine import compile_compiled, require_numba
-
-    require_numba()
-    if pass_name != "Image":
-        from ...base.diagnostics import InputError
-
-        raise InputError(f"error: --backend compiled renders the Image pass only, not {pass_name!r}")
-    return compile_compiled(path, threads)

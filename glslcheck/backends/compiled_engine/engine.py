@@ -458,15 +458,15 @@ class TieredProgram:
         return out
 
 
-def compile_compiled(path_or_shader: Any, threads: int | None = None) -> Any:
-    """`glslcheck.compile(path, backend="compiled")`: an api.Program over a CompiledProgram, or
-    over a TieredProgram when the mode is not fixed (tiered())."""
-    from ..registry import Program
+def compile_compiled(path_or_shader: Any, threads: int | None = None) -> CompiledProgram | TieredProgram:
+    """The compiled engine's program for a shader's Image tab: a TieredProgram when the mode is
+    not fixed (tiered()), else a CompiledProgram (`glslcheck.compile(path, backend="compiled")`
+    wraps it in a Program)."""
     from ...shadertoy.sources import Shader, load_shader
 
     shader = path_or_shader if isinstance(path_or_shader, Shader) else load_shader(path_or_shader)
     source, path = generate(shader)
     prog = CompiledProgram(source, path, threads)
     if tiered() and "LANES_FALLBACK" not in source and "\nLANES = " not in source:  # lockstep from the start: derivatives
-        return Program(shader, "compiled", TieredProgram(shader, prog, threads))
-    return Program(shader, "compiled", prog)
+        return TieredProgram(shader, prog, threads)
+    return prog

@@ -328,7 +328,7 @@ def compile_gl(shader: Shader, ctx=None, *, tab: str = "Image") -> GLProgram:
     GLUnavailable (an InputError) when no context can be created. `ctx` defaults to the
     process-wide context. `tab` may name a buffer ("Buffer A"): it renders as a single pass
     with alpha kept; its iChannels are unbound unless `render(channels=...)` binds them
-    (glslcheck.shadertoy.channels.MultipassProgram chains the passes frame after frame).
+    (glslcheck.backends.multipass.MultipassProgram chains the passes frame after frame).
     """
     ctx = ctx if ctx is not None else get_context()
     zeroed = zero_initialized(shader, tab)  # WebGL zeroes struct locals; Mesa does not

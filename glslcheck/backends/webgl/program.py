@@ -178,7 +178,7 @@ class WebGLProgram:
 
         `channels`: iChannel0..3 as `channels.ChannelInput` or None (unbound), uploaded as
         RGBA32F textures with their filter, wrap and glslcheck's mipmap levels, as on GL
-        (glslcheck.shadertoy.channels.MultipassProgram chains the passes frame after frame)."""
+        (glslcheck.backends.multipass.MultipassProgram chains the passes frame after frame)."""
         width, height, samples = inputs.width, inputs.height, inputs.samples
         program_id = self._variant(samples > 1)
         uniforms = uniform_values(width, height, inputs.time, inputs.frame, inputs.mouse, inputs.date,

@@ -33,6 +33,7 @@ import json
 import sys
 
 from ...verification.bench import DEFAULT_RUNS, DEFAULT_SIZE, bench_shader, configurations, format_table, write_plot
+from ...backends import registry
 from ...base.diagnostics import GlslError, format_text
 from ...base.images import check_output
 from ...shadertoy.sources import find_shaders
@@ -70,10 +71,8 @@ def run(args) -> int:
     if args.plot:
         check_output(args.plot, (".png",), "plot")  # before the minutes of measuring, not after
     compiled = "compiled" in args.backend
-    if compiled:
-        from ...backends.compiled_engine.engine import require_numba
-
-        require_numba()  # InputError (exit 2) with the pip line, before anything is measured
+    for name in args.backend:
+        registry.get(name).require()  # InputError (exit 2) with the install line, before anything is measured
     shaders = find_shaders(args.paths)
     per_shader = len(configurations(webgl=args.webgl, compiled=compiled)) * (args.runs + 1)
     show = args.progress if args.progress is not None else sys.stderr.isatty()

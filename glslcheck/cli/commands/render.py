@@ -26,6 +26,7 @@ from __future__ import annotations
 
 import sys
 
+from ...backends import registry
 from ...base.diagnostics import InputError
 from ...base import limits
 from ...base.precision import PRECISIONS
@@ -41,7 +42,7 @@ def add_arguments(p) -> None:
                    help="float type inside the shader (NumPy backend; default float32 = highp)")
     p.add_argument("--samples", type=A.arg(limits.parse_samples), default=1, metavar="N",
                    help="samples per pixel, a square (default 1)")
-    p.add_argument("--backend", choices=("numpy", "gl", "webgl", "compiled"), default="numpy",
+    p.add_argument("--backend", choices=registry.names(), default="numpy",
                    help="default numpy; compiled: by numba, per pixel, then 8 pixels in lockstep once that pays (glslcheck/compiled_backend)")
     p.add_argument("--stats", action="store_true", help="print the lanes that ran each function and branch")
     p.add_argument("--frames", type=A.arg(limits.parse_frames), default=None, metavar="N",
@@ -53,7 +54,6 @@ def add_arguments(p) -> None:
 
 
 def run(args) -> int:
-    from ...backends import registry as api
     from ...base.images import IMAGE_SUFFIXES, check_output, save_image
 
     out = args.output
@@ -65,17 +65,13 @@ def run(args) -> int:
         limits.check_schedule(args.frame, args.frames, args.fps, args.time)
     except ValueError as e:
         raise InputError(f"glslcheck render: error: {e}") from None
-    if args.stats and args.backend != "numpy":
+    backend = registry.get(args.backend)
+    if args.stats and not backend.lane_stats:
         raise InputError("error: --stats needs --backend numpy")
-    if args.backend != "numpy" and args.precision != "float32":
+    if args.precision not in backend.precisions:
         raise InputError(f"error: the {args.backend.upper()} backend renders in float32 only; "
                          "drop --precision or use --backend numpy")
-    if args.backend == "compiled":
-        from ...backends.compiled_engine import compile_program
-
-        prog = compile_program(args.path, args.pass_name)
-    else:
-        prog = api.compile(args.path, backend=args.backend, output=args.pass_name)
+    prog = registry.compile(args.path, backend=args.backend, output=args.pass_name)
     common = dict(size=args.size, mouse=args.mouse, date=args.date, precision=args.precision, samples=args.samples)
     if args.frames is None:
         img = prog.render(time=args.time, frame=args.frame, stats=args.stats, **common)

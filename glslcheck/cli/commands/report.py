@@ -41,12 +41,12 @@ def add_arguments(p) -> None:
 
 
 def run(args) -> int:
-    from ...verification.report import build_report
+    from ...verification.report import DEFAULT_BACKENDS, build_report
 
     from ...base.images import atomic_write, check_output
 
     check_output(args.output, (".html", ".htm"), "report (an HTML page)")
-    backends = ("numpy", "gl") if args.no_webgl else ("numpy", "gl", "webgl")
+    backends = tuple(b for b in DEFAULT_BACKENDS if not (args.no_webgl and b == "webgl"))
     page = build_report(args.paths, size=args.size, time=args.time, backends=backends,
                         bench=None if args.no_bench else args.bench_size, bench_runs=args.bench_runs)
     with atomic_write(args.output, "report") as tmp, open(tmp, "w", encoding="utf-8") as f:

@@ -12,7 +12,7 @@ worst pixels, with fragCoord).
 --against webgl compares with WebGL 2 in headless Chromium (ANGLE on SwiftShader, as Shadertoy's
 page renders; glslcheck/webgl_backend). Each frame is also rendered with GL: a pixel where the two
 drivers differ depends on the driver, and there NumPy need only match the closer of the two
-("driver-dependent" in the report; glslcheck/verification/webgl_drivers.py). `--backends gl,webgl`
+("driver-dependent" in the report; glslcheck/verification/drivers.py). `--backends gl,webgl`
 compares the two drivers with each other; `--backends compiled,gl` verifies the compiled engine
 (glslcheck/compiled_backend: float32, numba needed, exit 2 with the pip line without it).
 
@@ -47,16 +47,17 @@ import sys
 from ...base.diagnostics import GlslError, InputError, format_text
 from ...base.images import check_output
 from ...shadertoy.sources import find_shaders
-from ...verification.verify import ALL_BACKENDS, BACKENDS, DEFAULT_FPS, Progress, diff_paths, frame_specs, verify_frames
+from ...backends import registry
 from ...base import limits
 from ...base.precision import PRECISIONS
+from ...verification.verify import BACKENDS, DEFAULT_FPS, Progress, diff_paths, frame_specs, verify_frames
 from . import args as A
 
 
 def _backends(text: str) -> tuple[str, str]:
     names = tuple(t.strip() for t in text.split(","))
-    if len(names) != 2 or not all(n in ALL_BACKENDS for n in names):
-        raise ValueError(f"--backends takes two of {', '.join(ALL_BACKENDS)} separated by a comma, not {text!r}")
+    if len(names) != 2 or not all(n in registry.names() for n in names):
+        raise ValueError(f"--backends takes two of {', '.join(registry.names())} separated by a comma, not {text!r}")
     return names  # type: ignore[return-value]
 
 
@@ -112,8 +113,11 @@ def run(args) -> int:
     if args.against and args.backends:
         raise InputError("glslcheck verify: error: give --against or --backends, not both")
     args.backends = args.backends or (("numpy", args.against) if args.against else BACKENDS)
-    if "compiled" in args.backends and args.precision != "float32":
-        raise InputError("glslcheck verify: error: the compiled engine renders in float32 only; drop --precision")
+    for name in args.backends:  # a driver's side is always its highp; an engine of ours renders as told
+        backend = registry.get(name)
+        if not backend.driver and args.precision not in backend.precisions:
+            raise InputError(f"glslcheck verify: error: {backend.called} renders in "
+                             f"{' and '.join(backend.precisions)} only; drop --precision")
     shaders = find_shaders(args.paths)
     total = len(shaders) * _frame_count(args)
     show = args.progress if args.progress is not None else (total > 1 and sys.stderr.isatty())
@@ -129,7 +133,7 @@ def run(args) -> int:
                                fps=args.fps, frame=args.frame, mouse=args.mouse, date=args.date,
                                precision=args.precision, samples=args.samples, progress=progress)
                 if args.against == "webgl":  # NumPy vs WebGL, driver-dependent pixels apart
-                    from ...verification.webgl_drivers import verify_against_webgl
+                    from ...verification.drivers import verify_against_webgl
 
                     frames = verify_against_webgl(shader, **options)
                 else:
@@ -218,7 +222,7 @@ def format_frame(result, precision: str = "float32", samples: int = 1, worst: in
 
         lines.append(f"  note: {nan_hint(result.shader, c.nan_numpy, result.size, s.time)}")
     drivers = getattr(result, "drivers", None)
-    if drivers is not None:  # verify --against webgl (glslcheck/verification/webgl_drivers.py)
+    if drivers is not None:  # verify --against webgl (glslcheck/verification/drivers.py)
         plain = result.plain
         lines.append(f"  driver-dependent {result.driver_pixels:<10}  pixels where gl and webgl differ; "
                      f"there {a} need match only the closer driver")
