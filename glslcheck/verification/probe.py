@@ -183,7 +183,7 @@ class Probe:
         """RGBA (4, lanes) of the traced module on fragment coordinates `frags` (2, lanes),
         lanes in rows of `width` (for derivatives), with `tracer` as T."""
         from ..backends.numpy_engine.tiles import Budget, Lanes, State
-        from ..backends.numpy_engine.program import _uniform_value, frame_seconds
+        from ..backends.numpy_engine.program import uniform_value, frame_seconds
         from ..shadertoy.wrapper import UNIFORMS_BY_NAME
 
         ns = self.module(precision)
@@ -191,7 +191,7 @@ class Probe:
         ns["T"] = self._tracers
         self._tracers.local.tracer = tracer
         values = inputs.values()
-        uniforms = {f"u_{u}": _uniform_value(rt, u, values.get(u, UNIFORMS_BY_NAME[u].default))
+        uniforms = {f"u_{u}": uniform_value(rt, u, values.get(u, UNIFORMS_BY_NAME[u].default))
                     for u in self.meta["uniforms"]}
         lanes = frags.shape[-1]
         with rt.errstate():
@@ -286,7 +286,7 @@ class Probe:
         """Render the frame, then run the traced module on its NaN/Inf pixels and group them by
         where their first NaN or Inf appeared."""
         from ..backends.numpy_engine.tiles import TILE_LANES
-        from ..backends.numpy_engine.program import _pool
+        from ..backends.numpy_engine.program import tile_pool
 
         w, h = inputs.size
         img = self.program().render(size=inputs.size, time=inputs.time, frame=inputs.frame, mouse=inputs.mouse,
@@ -320,7 +320,7 @@ class Probe:
         starts = range(0, len(lx), chunk)
         threads = os.cpu_count() or 1
         if threads > 1 and len(starts) > 1:
-            for f in [_pool(threads).submit(scan, s) for s in starts]:
+            for f in [tile_pool(threads).submit(scan, s) for s in starts]:
                 f.result()
         else:
             for s in starts:

@@ -148,7 +148,7 @@ def driver_diagnostics(program: Program, log: str) -> list[Diagnostic]:
             help_ = ("the Image tab must define `void mainImage(out vec4 fragColor, in vec2 fragCoord)`, "
                      "with both parameters named" if "mainImage" in message else None)
             # The wrapper's only link to the user's text is its call of mainImage: point there.
-            diags.append(Diagnostic(message, _entry_location(program), rule=RULE, help=help_))
+            diags.append(Diagnostic(message, entry_location(program), rule=RULE, help=help_))
         else:
             path, user_line = where
             column = mesa_column(lines[line - 1], column) if column and line <= len(lines) else 1
@@ -171,7 +171,7 @@ def _program_line(program: Program, renumbered: dict, source: int, reported: int
     return (candidates[0] if candidates else None), None
 
 
-def _entry_location(program: Program) -> Location | None:
+def entry_location(program: Program) -> Location | None:
     """Where the user's tab defines mainImage (or, failing that, the tab file's first line)."""
     tab_paths = [seg.path for seg in program.segments]
     if not tab_paths:

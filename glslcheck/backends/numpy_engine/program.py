@@ -134,7 +134,8 @@ def frame_seconds() -> float:
 
 
 
-def _uniform_value(rt: Runtime, name: str, value: Any) -> Any:
+def uniform_value(rt: Runtime, name: str, value: Any) -> Any:
+    """`value` of the Shadertoy uniform `name` as the runtime holds it (a sampler: its ChannelInput)."""
     u = UNIFORMS_BY_NAME[name]
     t = u.glsl_type
     if t.startswith("sampler"):
@@ -188,7 +189,7 @@ _POOLS: dict[int, ThreadPoolExecutor] = {}
 _POOLS_LOCK = threading.Lock()
 
 
-def _pool(threads: int) -> ThreadPoolExecutor:
+def tile_pool(threads: int) -> ThreadPoolExecutor:
     """A process-wide pool of `threads` tile workers (made once, not per render)."""
     with _POOLS_LOCK:
         pool = _POOLS.get(threads)
@@ -325,7 +326,7 @@ class NumpyProgram:
         if spec is not None:
             return spec
         rt = ns["rt"]
-        base = {f"u_{u}": _uniform_value(rt, u, values.get(u, UNIFORMS_BY_NAME[u].default)) for u in self.uniforms}
+        base = {f"u_{u}": uniform_value(rt, u, values.get(u, UNIFORMS_BY_NAME[u].default)) for u in self.uniforms}
         base["loop_limit"] = self.loop_limit
         proto = State(**base, lanes=1, width=1, stats=None, discard=Lanes.NO, parent=None, budget=None)
         with rt.errstate():
@@ -419,7 +420,7 @@ class NumpyProgram:
                 all_stats.append(st)
 
         if threads > 1 and len(tiles) > 1:
-            futures = [_pool(threads).submit(run, t) for t in tiles]
+            futures = [tile_pool(threads).submit(run, t) for t in tiles]
             pending = set(futures)
             try:
                 while pending:  # waits of 0.1 s: Ctrl-C is seen between them on every platform

@@ -36,7 +36,7 @@ import numpy as np
 from ...base.diagnostics import Diagnostic, GlslError, Location
 from .lane_memo import MemoMath
 from .runtime import Runtime, Struct
-from .transpile import _glsl_location, too_complex
+from .transpile import glsl_location, too_complex
 
 TILE_LANES = 49152  # lanes per tile: fewer calls in compacted regions; full-lane work measured flat 24k-49k
 TILE_WIDTH = 1024  # widest tile; wide bands keep rows contiguous in the output image
@@ -565,6 +565,6 @@ def _too_deep(ns: dict, e: RecursionError) -> GlslError:
     while tb is not None:
         code = tb.tb_frame.f_code
         if tb.tb_frame.f_globals is ns and code.co_filename in linecache.cache:
-            loc = _glsl_location("".join(linecache.cache[code.co_filename][2]), tb.tb_lineno, path)
+            loc = glsl_location("".join(linecache.cache[code.co_filename][2]), tb.tb_lineno, path)
         tb = tb.tb_next
     return too_complex("its function calls are nested too deeply for Python", loc)

@@ -38,7 +38,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from ...base.diagnostics import Diagnostic, GlslError, Location, source_line
-from ..gl.program import _entry_location, driver_diagnostics, parse_driver_log
+from ..gl.program import entry_location, driver_diagnostics, parse_driver_log
 from ...base.records import replace
 from ...shadertoy.frame_inputs import FrameInputs, frame_inputs
 from ...shadertoy.wrapper import OFFSET_UNIFORM, UNIFORMS, Program, build_program, frame_uniforms
@@ -126,7 +126,7 @@ def _compile(browser: Browser, program: Program) -> tuple[int, list[str]]:
         result = browser.call("compile", VERTEX_SHADER, program.text)
     except WebGLTimeout as e:
         raise GlslError(Diagnostic(f"WebGL: compiling the {program.tab} program took more than {e.seconds:g} s "
-                                   "in the browser, which was ended", _entry_location(program), rule=RULE)) from None
+                                   "in the browser, which was ended", entry_location(program), rule=RULE)) from None
     if "id" in result:
         return result["id"], result["active"]
     if "vertexLog" in result:  # our own vertex stage: a broken browser, not the user's shader
@@ -193,7 +193,7 @@ class WebGLProgram:
         except WebGLTimeout as e:
             raise GlslError(Diagnostic(
                 f"WebGL: the {self.program.tab} program ran for more than {e.seconds:g} s in the browser (an "
-                f"endless or very long loop?); the browser was ended", _entry_location(self.program), rule=RULE,
+                f"endless or very long loop?); the browser was ended", entry_location(self.program), rule=RULE,
                 help="a loop whose count depends on a uniform or a pixel may never end; bound it with a "
                      "constant, or raise $GLSLCHECK_WEBGL_TIMEOUT for a slow shader")) from None
         except self.browser.Error as e:

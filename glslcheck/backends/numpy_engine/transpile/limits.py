@@ -131,7 +131,7 @@ def too_complex(message: str, loc: Any) -> GlslError:
         help="simplify the nesting here, or render with --backend gl"))
 
 
-def _glsl_location(source: str, lineno: int, path: str) -> Location:
+def glsl_location(source: str, lineno: int, path: str) -> Location:
     """The GLSL line of generated line `lineno`: the nearest `# line N` comment above it."""
     lines = source.splitlines()
     for text in reversed(lines[: max(lineno, 1)]):
@@ -149,4 +149,4 @@ def compile_generated(source: str, filename: str, path: str) -> Any:
         lineno = getattr(e, "lineno", None) or 1
         msg = getattr(e, "msg", None) or str(e) or type(e).__name__
         raise too_complex(f"Python cannot compile the generated code: {msg}",
-                          _glsl_location(source, lineno, path)) from None
+                          glsl_location(source, lineno, path)) from None
