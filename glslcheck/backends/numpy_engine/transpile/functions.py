@@ -189,5 +189,5 @@ class Functions:
         return f"{r}[0]"
 
     def call_text(self, e: A.Call, fn: Any, call_mask: str | None, args: list[str], mask: str | None) -> str:
-        """The Python call of user function `fn` (the tracing transpiler, trace.py, wraps it)."""
+        """The Python call of user function `fn` (the tracing transpiler, tracer.py, wraps it)."""
         return f"{self.fn_name(fn)}(S, {call_mask}{''.join(', ' + x for x in args)})"
