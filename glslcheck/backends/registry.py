@@ -41,6 +41,8 @@ BACKENDS = {
     "webgl": "glslcheck.backends.webgl.backend",
     "compiled": "glslcheck.backends.compiled_engine.backend",
 }
+DEFAULT = "numpy"  # what render, verify and report run unless told: the CPU engine they check
+REFERENCE_DRIVER = "gl"  # the real driver verify compares with by default and bench times against
 
 
 def names() -> tuple[str, ...]:

@@ -224,7 +224,7 @@ def bench_shader(
             reference = numpy_prog.render(**kwargs, samples=n, precision=precision)
 
     medians = {c: statistics.median(times[c]) for c in configs}
-    gl_one = next((medians[c] for c in configs if c.backend == "gl" and c.samples == 1), None)
+    gl_one = next((medians[c] for c in configs if c.backend == registry.REFERENCE_DRIVER and c.samples == 1), None)
     rows = []
     for config in configs:
         max_err, mean_err, psnr, over = measure_error(images[config], reference)

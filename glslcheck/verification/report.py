@@ -118,7 +118,7 @@ class ShaderReport:
     @property
     def ok(self) -> bool:
         # GL against WebGL compares two real drivers: their differences inform, they do not fail.
-        return not self.errors and bool(self.renders) and all(c.match for a, _, c, _ in self.pairs if a == "numpy")
+        return not self.errors and bool(self.renders) and all(c.match for a, _, c, _ in self.pairs if a == registry.DEFAULT)
 
 
 @dataclass(eq=False)
@@ -471,7 +471,7 @@ def _section(r: ShaderReport, size, time: float, bench_size=BENCH_SIZE, bench_ru
         out.append("<h3>Differences</h3>")
         figs = []
         for a, b, c, note in r.pairs:
-            badge = _badge(c.match) if a == "numpy" else (
+            badge = _badge(c.match) if a == registry.DEFAULT else (
                 '<span class="badge ok">drivers agree</span>' if c.match else '<span class="badge warn">drivers differ</span>')
             caption = f"<b>{_e(a)} vs {_e(b)}</b> {badge}"
             figs.append(f'<figure><img class="render" alt="difference {_e(a)} vs {_e(b)}" src="{diff_png(c)}">'
@@ -500,7 +500,7 @@ def page_html(reports: list[ShaderReport], size, time: float, title: str, bench_
     if len(reports) > 1:
         rows = []
         for r in reports:
-            verdicts = " ".join(f"{a}/{b} {_badge(c.match)}" for a, b, c, _ in r.pairs if a == "numpy") or "-"
+            verdicts = " ".join(f"{a}/{b} {_badge(c.match)}" for a, b, c, _ in r.pairs if a == registry.DEFAULT) or "-"
             rows.append(f'<tr><td><a href="#{_anchor(r.name)}">{_e(Path(r.name).name or r.name)}</a></td>'
                         f"<td>{_badge(not r.errors, 'clean', f'{r.errors} errors')}</td>"
                         f'<td class="num">{len(r.lint)}</td><td>{verdicts}</td></tr>')
