@@ -11,7 +11,7 @@ import sys
 import pytest
 
 from glslcheck.cli.main import build_parser, main
-from glslcheck.cli.commands import args as A
+from glslcheck.cli.commands import args as cli_args
 
 RENDERING = ("render", "verify", "bench", "report", "probe")  # every command that renders on the CPU
 
@@ -90,17 +90,17 @@ def test_every_command_refuses_the_same_values(command, option, capsys):
 
 
 def test_the_parsers_agree_with_their_documented_limits():
-    assert A.parse_size("4096x4096") == (4096, 4096)
-    assert A.parse_samples(str(A.MAX_SAMPLES)) == A.MAX_SAMPLES
-    assert A.parse_time(str(A.MAX_MAGNITUDE)) == A.MAX_MAGNITUDE
-    assert A.parse_frame(str(A.MAX_FRAME)) == A.MAX_FRAME
-    assert A.parse_frames(str(A.MAX_FRAMES)) == A.MAX_FRAMES
+    assert cli_args.parse_size("4096x4096") == (4096, 4096)
+    assert cli_args.parse_samples(str(cli_args.MAX_SAMPLES)) == cli_args.MAX_SAMPLES
+    assert cli_args.parse_time(str(cli_args.MAX_MAGNITUDE)) == cli_args.MAX_MAGNITUDE
+    assert cli_args.parse_frame(str(cli_args.MAX_FRAME)) == cli_args.MAX_FRAME
+    assert cli_args.parse_frames(str(cli_args.MAX_FRAMES)) == cli_args.MAX_FRAMES
     with pytest.raises(ValueError, match="--frames"):
-        A.parse_frames(str(A.MAX_FRAMES + 1))
-    assert A.parse_frame_budget(str(A.MIN_FRAME_SECONDS)) == A.MIN_FRAME_SECONDS
-    assert A.parse_frame_budget(str(A.MAX_FRAME_SECONDS)) == A.MAX_FRAME_SECONDS
+        cli_args.parse_frames(str(cli_args.MAX_FRAMES + 1))
+    assert cli_args.parse_frame_budget(str(cli_args.MIN_FRAME_SECONDS)) == cli_args.MIN_FRAME_SECONDS
+    assert cli_args.parse_frame_budget(str(cli_args.MAX_FRAME_SECONDS)) == cli_args.MAX_FRAME_SECONDS
     with pytest.raises(ValueError, match="--frame-budget must be from 0.01 to 86400"):
-        A.parse_frame_budget("0")
+        cli_args.parse_frame_budget("0")
 
 
 RUNAWAY = ("void mainImage(out vec4 c, in vec2 p) {\n    float x = 0.0;\n"
@@ -135,7 +135,7 @@ def test_a_schedule_past_the_last_iframe_is_a_usage_error(command, tmp_path, cap
     shader = tmp_path / "Image.glsl"
     shader.write_text("void mainImage(out vec4 c, in vec2 p) { c = vec4(1.0); }\n")
     out = ["-o", str(tmp_path / "a.gif")] if command == "render" else []
-    code = main([command, str(shader), *out, "--frame", str(A.MAX_FRAME - 5), "--frames", "10"])
+    code = main([command, str(shader), *out, "--frame", str(cli_args.MAX_FRAME - 5), "--frames", "10"])
     assert code == 2
     assert "runs past iFrame" in capsys.readouterr().err
 

@@ -27,17 +27,20 @@ from __future__ import annotations
 import sys
 
 from ...base.diagnostics import InputError
-from . import args as A
+from . import args as cli_args
 
 
 def add_uniform_arguments(p) -> None:
     """The uniform options (--size --time --frame --mouse --date), shared with `glslcheck probe`."""
-    p.add_argument("--size", type=A.arg(A.parse_size), default=(800, 450), metavar="WxH", help="default 800x450")
-    p.add_argument("--time", type=A.arg(A.parse_time), default=0.0, metavar="T", help="iTime in seconds (default 0)")
-    p.add_argument("--frame", type=A.arg(A.parse_frame), default=0, metavar="N", help="iFrame (default 0)")
-    p.add_argument("--mouse", type=A.arg(A.parse_mouse), default=(0.0, 0.0, 0.0, 0.0),
+    p.add_argument("--size", type=cli_args.arg(cli_args.parse_size), default=(800, 450), metavar="WxH",
+                   help="default 800x450")
+    p.add_argument("--time", type=cli_args.arg(cli_args.parse_time), default=0.0, metavar="T",
+                   help="iTime in seconds (default 0)")
+    p.add_argument("--frame", type=cli_args.arg(cli_args.parse_frame), default=0, metavar="N",
+                   help="iFrame (default 0)")
+    p.add_argument("--mouse", type=cli_args.arg(cli_args.parse_mouse), default=(0.0, 0.0, 0.0, 0.0),
                    metavar="X,Y,Z,W", help="iMouse (default 0,0,0,0)")
-    p.add_argument("--date", type=A.arg(A.parse_date), default=None, metavar="Y,M,D,S",
+    p.add_argument("--date", type=cli_args.arg(cli_args.parse_date), default=None, metavar="Y,M,D,S",
                    help="iDate: year, month 0-11, day, seconds since midnight (default 2026,0,1,0)")
 
 
@@ -46,16 +49,16 @@ def add_arguments(p) -> None:
     p.add_argument("-o", "--output", default="out.png", metavar="FILE",
                    help="out.png, out.npy, or anim.gif with --frames (default out.png)")
     add_uniform_arguments(p)
-    p.add_argument("--precision", choices=A.PRECISIONS, default="float32",
+    p.add_argument("--precision", choices=cli_args.PRECISIONS, default="float32",
                    help="float type inside the shader (NumPy backend; default float32 = highp)")
-    p.add_argument("--samples", type=A.arg(A.parse_samples), default=1, metavar="N",
+    p.add_argument("--samples", type=cli_args.arg(cli_args.parse_samples), default=1, metavar="N",
                    help="samples per pixel, a square (default 1)")
     p.add_argument("--backend", choices=("numpy", "gl", "webgl", "compiled"), default="numpy",
                    help="default numpy; compiled: by numba, per pixel, then 8 pixels in lockstep once that pays (glslcheck/compiled_backend)")
     p.add_argument("--stats", action="store_true", help="print the lanes that ran each function and branch")
-    p.add_argument("--frames", type=A.arg(A.parse_frames), default=None, metavar="N",
+    p.add_argument("--frames", type=cli_args.arg(cli_args.parse_frames), default=None, metavar="N",
                    help="render an animation of N frames")
-    p.add_argument("--fps", type=A.arg(A.parse_fps), default=60.0, metavar="F",
+    p.add_argument("--fps", type=cli_args.arg(cli_args.parse_fps), default=60.0, metavar="F",
                    help="frames per second of --frames (default 60)")
     p.add_argument("--pass", dest="pass_name", default="Image", metavar="TAB",
                    help='the pass to write, e.g. "Buffer A" (default Image; buffers run frames 0..N, shadertoy/channels.py)')
@@ -71,7 +74,7 @@ def run(args) -> int:
     else:
         check_output(out, (".gif",), "output of --frames (an animation)")
     try:
-        A.check_schedule(args.frame, args.frames, args.fps, args.time)
+        cli_args.check_schedule(args.frame, args.frames, args.fps, args.time)
     except ValueError as e:
         raise InputError(f"glslcheck render: error: {e}") from None
     if args.stats and args.backend != "numpy":
