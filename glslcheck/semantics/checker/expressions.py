@@ -80,7 +80,7 @@ class ExpressionChecks:
             known = list(self.model.functions) + list(B.BUILTINS)
         else:
             known = [k for k in self.scope.visible_names() if not k.startswith("gl_Max")]
-        import difflib  # only for an error's suggestion: not at every start-up (issue 18)
+        import difflib  # only for an error's suggestion: not at every start-up
 
         match = difflib.get_close_matches(name, known, n=1, cutoff=0.6)
         if match:
