@@ -11,7 +11,7 @@ Library API (the `glslcheck probe` command and verify's unstable pixels call it)
     step = first_unstable(p, 400, 225, inputs)       # first Step whose float32 value keeps
                                                      # fewer than 16 bits of its float64 shadow
 
-The steps come from the traced module (backends/numpy_engine/tracer.py) run on the probed pixel's lane
+The steps come from the traced module (backends/numpy_engine/tracing.py) run on the probed pixel's lane
 (its 2x2 quad when the shader takes derivatives) twice: in float32, the render's precision, and
 in float64, the shadow. The two runs are paired step by step (`pairs`: where they part, `difflib`
 realigns the rest, the float64 run having taken another branch or run another number of
@@ -33,7 +33,7 @@ import numpy as np
 
 from ..base.diagnostics import InputError, source_line
 from ..backends.numpy_engine.runtime import Struct
-from ..backends.numpy_engine.tracer import HELP, OPERATIONS, LaneTracer, PixelTracer, Site, TraceTranspiler
+from ..backends.numpy_engine.tracing import HELP, OPERATIONS, LaneTracer, PixelTracer, Site, TraceTranspiler
 
 UNSTABLE_BITS = 16  # first_unstable: a value keeping fewer bits than this has lost more than a third of float32's 24
 BITS_KINDS = ("assign", "return", "call")  # the steps whose values are compared with their shadow
@@ -182,8 +182,8 @@ class Probe:
     def run(self, precision: str, inputs: Inputs, frags: np.ndarray, width: int, tracer: LaneTracer) -> np.ndarray:
         """RGBA (4, lanes) of the traced module on fragment coordinates `frags` (2, lanes),
         lanes in rows of `width` (for derivatives), with `tracer` as T."""
-        from ..backends.numpy_engine.tiles import Budget, Lanes, State
-        from ..backends.numpy_engine.program import uniform_value, frame_seconds
+        from ..backends.numpy_engine.tiles import Budget, LaneHelpers, State
+        from ..backends.numpy_engine.program import frame_seconds, uniform_value
         from ..shadertoy.wrapper import UNIFORMS_BY_NAME
 
         ns = self.module(precision)
@@ -195,7 +195,7 @@ class Probe:
                     for u in self.meta["uniforms"]}
         lanes = frags.shape[-1]
         with rt.errstate():
-            proto = State(**uniforms, lanes=1, width=1, stats=None, discard=Lanes.NO, parent=None)
+            proto = State(**uniforms, lanes=1, width=1, stats=None, discard=LaneHelpers.NO, parent=None)
             ns["init_globals"](proto)
             frag = frags.astype(rt.F)
             S = State(**proto.__dict__)

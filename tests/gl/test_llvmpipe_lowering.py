@@ -555,7 +555,7 @@ def test_a_result_returned_from_a_branch_keeps_its_old_value_in_lanes_left_out(l
     """A neighbour that returned early still has atan2's result in a derivative: llvmpipe's
     register for the merged returns, stored under the exec mask, so its value of the last
     iteration that lane called it in a loop NIR keeps (40 steps), zero in a loop it unrolls
-    (4 steps: each copy its own register) (nir_fold.register_call, frame.Lanes.reg).
+    (4 steps: each copy its own register) (nir_fold.register_call, tiles.LaneHelpers.reg).
     Measured: 40 steps, zero in those lanes: 10,218 of the 14,400 pixels differed from
     llvmpipe; 4 steps, the register kept across iterations: 917."""
     _assert_bit_for_bit(make_shader(KEPT_RETURNS.replace("STEPS", steps)))

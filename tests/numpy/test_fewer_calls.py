@@ -75,7 +75,7 @@ def test_repeated_calls_are_not_shared_across_a_side_effect(make_shader):
 
 
 def test_the_tracing_transpiler_keeps_every_call(make_shader):
-    from glslcheck.backends.numpy_engine.tracer import TraceTranspiler
+    from glslcheck.backends.numpy_engine.tracing import TraceTranspiler
 
     assert TraceTranspiler.CSE_CALLS is False  # each call is traced where it runs
 

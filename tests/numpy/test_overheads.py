@@ -14,7 +14,7 @@ import pytest
 
 from glslcheck.backends.numpy_engine import tiles as F
 from glslcheck.backends.numpy_engine import program as P
-from glslcheck.backends.numpy_engine.tiles import Compaction, Lanes
+from glslcheck.backends.numpy_engine.tiles import Compaction, LaneHelpers
 from glslcheck.backends.numpy_engine.program import compile_numpy
 from glslcheck.backends.numpy_engine.transpile import transpile_shader
 
@@ -277,7 +277,7 @@ def test_image_rows_run_top_to_bottom(make_shader, knobs):
 
 
 def test_uniform_masks_combine_without_lane_arrays():
-    X = Lanes({})
+    X = LaneHelpers({})
     T, F = np.ones(1, bool), np.zeros(1, bool)
     m = np.array([True, False, True])
     assert X.and_(T, m) is m and X.and_(m, T) is m and X.and_(F, m) is F and X.and_(m, F) is F

@@ -274,13 +274,13 @@ def test_sparse_branches_are_compacted_and_counted(make_shader, monkeypatch):
     fragColor = vec4(c, 1.0);"""
     shader = make_shader(_image(body))
     gathered = []
-    real = F.Lanes.gather
+    real = F.LaneHelpers.gather
 
     def counting(self, S, idx, values):
         gathered.append(len(idx))
         return real(self, S, idx, values)
 
-    monkeypatch.setattr(F.Lanes, "gather", counting)
+    monkeypatch.setattr(F.LaneHelpers, "gather", counting)
     prog = P.compile_numpy(shader)
     img = prog.render(size=(64, 64), stats=True)
     assert gathered and max(gathered) == 8 * 64

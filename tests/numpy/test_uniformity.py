@@ -170,7 +170,7 @@ def test_fragment_coordinates_are_varying(make_shader):
 
 
 def test_a_free_write_in_a_masked_loop_of_a_function_is_varying(make_shader):
-    """A loop run with a live mask may be compacted (Lanes.push): variables from outside it come
+    """A loop run with a live mask may be compacted (LaneHelpers.push): variables from outside it come
     back from the scatter one value per lane, so they cannot be judged uniform."""
     helpers = """
 float f(float x) {
@@ -394,11 +394,11 @@ def test_code_after_early_exits_is_compacted_and_changes_no_pixel(gl, make_shade
     prog = P.compile_numpy(shader)
     prog.parallel, prog.threads = "threads", 1
     seen = []
-    real = P.Lanes.gather
-    monkeypatch.setattr(P.Lanes, "gather", lambda self, S, idx, values: seen.append(len(idx)) or real(self, S, idx, values))
+    real = P.LaneHelpers.gather
+    monkeypatch.setattr(P.LaneHelpers, "gather", lambda self, S, idx, values: seen.append(len(idx)) or real(self, S, idx, values))
     fast = prog.render(size=(128, 64), time=0.8)
     assert sorted(seen)[-1] == 48 * 64 and len(seen) >= 3  # mainImage's rest, then shade's and split's
-    monkeypatch.setattr(P.Lanes, "gather", real)
+    monkeypatch.setattr(P.LaneHelpers, "gather", real)
     monkeypatch.setattr(Transpiler, "rest_compacted", lambda self, rest, mask: False)
     masked = P.compile_numpy(shader).render(size=(128, 64), time=0.8)
     np.testing.assert_array_equal(fast, masked)

@@ -207,7 +207,7 @@ class Uniformity:
             self.free.add(id(target))
         if free and not self.mu:
             # a loop that runs with a live mask (any loop but a plain Python one) may be compacted
-            # (program.Lanes.push): a variable from outside it comes back from the scatter with
+            # (tiles.LaneHelpers.push): a variable from outside it comes back from the scatter with
             # the lanes of the loop replaced, one value per lane
             uniform = uniform and (self.compacted_from is None or self.decl_seq.get(id(sym), -1) >= self.compacted_from)
         if not (uniform and (free or self.mu)):

@@ -3,10 +3,10 @@
 This module owns what happens around one frame: the frame cache for shaders that do not
 animate, the uniform values and globals every tile shares (`FrameSpec`), the order and the
 workers of the tiles (worker processes, workers.py, or a thread pool), the frame's budgets,
-time (FRAME_SECONDS, `frame.Budget`) and memory (MEMORY_FRACTION, tiles sized to the shader's
+time (FRAME_SECONDS, `tiles.Budget`) and memory (MEMORY_FRACTION, tiles sized to the shader's
 per-lane state, `NumpyProgram._fit_memory`), and the lane statistics. What runs inside a tile
-(the namespace of the generated code, `State`, `Lanes`, `render_tile`) is frame.py's, shared
-with the worker processes; the imports go one way: program -> workers -> frame.
+(the namespace of the generated code, `State`, `LaneHelpers`, `render_tile`) is tiles.py's, shared
+with the worker processes; the imports go one way: program -> workers -> tiles.
 
 Library API:
 
@@ -50,7 +50,8 @@ from ..driver_profile import host_model
 from ...shadertoy.frame_inputs import FrameInputs, frame_inputs
 from ...shadertoy.wrapper import DEFAULT_SIZE, UNIFORMS_BY_NAME
 from . import workers
-from .tiles import MIN_TILE_LANES, Budget, Cancelled, Compaction, FrameSpec, Lanes, State, execute_module, frame_tiles, render_tile
+from .tiles import (MIN_TILE_LANES, Budget, Cancelled, Compaction, FrameSpec, LaneHelpers, State, execute_module,
+                    frame_tiles, render_tile)
 from .runtime import Runtime
 from .transpile import SMALL_STATE, transpile_shader
 
@@ -61,7 +62,7 @@ PROCESSES_AFTER = 1.0  # seconds a program renders in this process before "auto"
 # The whole-frame budget: a frame that is still rendering after this many seconds stops with an
 # error at the loop (or function) it was in, whatever each loop's own cap (LOOP_CAP iterations
 # per loop execution: loops nested two deep may still run 10**10 times). Checked at every region
-# entry and loop iteration (`Lanes.count`); environment variable GLSLCHECK_FRAME_SECONDS, or
+# entry and loop iteration (`LaneHelpers.count`); environment variable GLSLCHECK_FRAME_SECONDS, or
 # `NumpyProgram.frame_seconds`.
 FRAME_SECONDS = 300.0
 # The memory budget: the tiles rendering at once (one per thread or worker) hold at most this
@@ -233,7 +234,7 @@ class NumpyProgram:
     # program has rendered for PROCESSES_AFTER seconds in this process
     parallel: str = field(default_factory=lambda: os.environ.get("GLSLCHECK_PARALLEL", "auto"))
     last_parallel: str = ""  # how the last frame was rendered: "processes", "threads", "one thread"
-    # llvmpipe's loop limiter (Lanes.tick): None = loops run until they end (a runaway loop is an
+    # llvmpipe's loop limiter (LaneHelpers.tick): None = loops run until they end (a runaway loop is an
     # error after LOOP_CAP passes); 65535 = stop as llvmpipe does (verify sets it)
     loop_limit: int | None = None
     frame_seconds: float | None = None  # the frame budget; None: GLSLCHECK_FRAME_SECONDS or FRAME_SECONDS
@@ -328,7 +329,7 @@ class NumpyProgram:
         rt = ns["rt"]
         base = {f"u_{u}": uniform_value(rt, u, values.get(u, UNIFORMS_BY_NAME[u].default)) for u in self.uniforms}
         base["loop_limit"] = self.loop_limit
-        proto = State(**base, lanes=1, width=1, stats=None, discard=Lanes.NO, parent=None, budget=None)
+        proto = State(**base, lanes=1, width=1, stats=None, discard=LaneHelpers.NO, parent=None, budget=None)
         with rt.errstate():
             ns["init_globals"](proto)
         base.update({k: v for k, v in proto.__dict__.items() if k.startswith("g_")})
@@ -529,7 +530,7 @@ def standalone_globals(meta: dict) -> dict:
         precision = argv[argv.index("--precision") + 1]
     rt = Runtime(precision, meta.get("float_to_uint"))
     rt.fold_constants = True
-    return {"rt": rt, "X": Lanes(meta, rt)}
+    return {"rt": rt, "X": LaneHelpers(meta, rt)}
 
 
 def run_standalone(ns: dict) -> None:

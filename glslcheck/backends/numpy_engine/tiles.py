@@ -5,11 +5,12 @@ This module owns everything a tile needs, whether it renders on one of the calle
 other's internals:
 
 - `execute_module`: a generated module run in a restricted namespace (`__builtins__` empty;
-  only `rt`, the runtime, and `X`, the lane helpers `Lanes`, are visible);
+  only `rt`, the runtime, and `X`, its `LaneHelpers`, are visible);
 - `State`: what one tile's invocation carries (uniforms, globals, discard mask, statistics,
   the frame's `Budget`);
-- `Lanes`: the masks, the compaction of sparse regions (`Lanes.gather` / `scatter`), the lane
-  statistics, llvmpipe's loop limiter and the errors for a runaway loop or an exhausted budget;
+- `LaneHelpers`: the masks, the compaction of sparse regions (`LaneHelpers.gather` /
+  `scatter`), the lane statistics, llvmpipe's loop limiter and the errors for a runaway loop or
+  an exhausted budget;
 - `FrameSpec`: what every tile of one frame needs (uniform values and globals, sample offsets,
   the `Compaction` settings), picklable to travel to the workers;
 - `frame_tiles` and `render_tile`: the image cut into tiles, and one tile rendered into its rows.
@@ -18,7 +19,7 @@ Tiles: bands of about TILE_LANES pixels (up to TILE_WIDTH wide) keep a shader's 
 small (a few hundred kB each); tiles start at even x and y, so derivative quads (2x2, see the
 runtime) never straddle two tiles. A tile's fragment coordinates are made once and kept
 read-only for later frames (gl_FragCoord only when the code reads it; `_fragments`), uniform
-(1,) masks combine without full-lane arrays, and a compacted view (`Lanes.gather`) gathers
+(1,) masks combine without full-lane arrays, and a compacted view (`LaneHelpers.gather`) gathers
 globals and fragment coordinates only when the region first reads them.
 """
 
@@ -46,7 +47,7 @@ MIN_TILE_LANES = 4  # one 2x2 derivative quad
 
 @dataclass(frozen=True)
 class Compaction:
-    """When a varying region runs on a gathered copy of the lanes that take it (`Lanes.sparse`)
+    """When a varying region runs on a gathered copy of the lanes that take it (`LaneHelpers.sparse`)
     instead of masked on all of them: a frame's setting (`FrameSpec.compaction`, from
     `NumpyProgram.compaction`), carried by each tile's `State`."""
 
@@ -115,7 +116,7 @@ class State:
     budget: Budget | None = None
     compaction = Compaction()
 
-    passes = None  # [passes left] of llvmpipe's loop limiter when emulated (Lanes.tick), else None
+    passes = None  # [passes left] of llvmpipe's loop limiter when emulated (LaneHelpers.tick), else None
 
     def __init__(self, **values: Any) -> None:
         self.__dict__.update(values)
@@ -127,7 +128,7 @@ class State:
             raise AttributeError(name)
         lazy.discard(name)
         parent = self.parent
-        g = Lanes._take(getattr(parent, name), self.idx, parent.lanes)
+        g = LaneHelpers._take(getattr(parent, name), self.idx, parent.lanes)
         self.__dict__[name] = g
         self.gathered[name] = g
         return g
@@ -139,7 +140,7 @@ class _Gathered:
     originals: tuple
 
 
-class Lanes:
+class LaneHelpers:
     """Mask and compaction helpers. A mask is None (all lanes of the current lane set) or a bool
     array of shape (1,) or (lanes,)."""
 
@@ -307,7 +308,7 @@ class Lanes:
     @staticmethod
     def loop_sparse(S, m):
         """`sparse` for a loop's live lanes, at the top of each pass (`Compaction.loop_fraction`)."""
-        return Lanes.sparse(S, m, S.compaction.loop_fraction)
+        return LaneHelpers.sparse(S, m, S.compaction.loop_fraction)
 
     @staticmethod
     def _take(v, idx, lanes):
@@ -316,7 +317,7 @@ class Lanes:
                 return np.take(v, idx, axis=-1)  # several times faster than v[..., idx]
             return v
         if isinstance(v, Struct):
-            return v.map(lambda x: Lanes._take(x, idx, lanes))
+            return v.map(lambda x: LaneHelpers._take(x, idx, lanes))
         return v
 
     @staticmethod
@@ -324,7 +325,7 @@ class Lanes:
         if new is old:
             return old
         if isinstance(new, Struct):
-            return Struct(new.type_name, {k: Lanes._put(old[k], new[k], idx, lanes) for k in new.fields})
+            return Struct(new.type_name, {k: LaneHelpers._put(old[k], new[k], idx, lanes) for k in new.fields})
         if new is None:  # a mask meaning "every lane of the compacted set"
             new = np.ones(len(idx), dtype=np.bool_)
         if not isinstance(new, np.ndarray):
@@ -415,7 +416,7 @@ def execute_module(source: str, filename: str, meta: dict, precision: str = "flo
     ns["rt"] = rt = Runtime(precision, meta.get("float_to_uint"))
     rt.fold_constants = True  # Mesa's folding of constants (Runtime.fmul); uniforms are read-only
     rt.lp = MemoMath(rt.lp) if rt.lp is not None else None  # uniform inputs: computed once (lane_memo.py)
-    ns["X"] = Lanes(meta, rt)
+    ns["X"] = LaneHelpers(meta, rt)
     with np.errstate(all="ignore"):  # constants may overflow in float16, as on a mediump GPU
         exec(code, ns)  # noqa: S102 - generated from a checked AST; every GLSL name is mangled
     return ns
@@ -517,7 +518,7 @@ def render_tile(ns: dict, spec: FrameSpec, tile: tuple[int, int, int, int], imag
         frag, frag4 = _fragments(rt, tile if (ew, eh) == (tw, th) else (x0, y0, ew, eh),
                                  dx if samples > 1 else 0.0, dy if samples > 1 else 0.0, spec.need4)
         limit = spec.base.get("loop_limit")
-        S = State(**spec.base, lanes=lanes, width=ew, frag_coord=frag, discard=Lanes.NO, stats=st,
+        S = State(**spec.base, lanes=lanes, width=ew, frag_coord=frag, discard=LaneHelpers.NO, stats=st,
                   parent=None, budget=budget, passes=None if limit is None else [limit], compaction=spec.compaction)
         if spec.need4:
             S.frag_coord4 = frag4
@@ -526,11 +527,11 @@ def render_tile(ns: dict, spec: FrameSpec, tile: tuple[int, int, int, int], imag
                 color = ns["shade"](S)  # RGB (a Shadertoy shader: alpha is 1) or RGBA (plain GLSL)
             except RecursionError as e:  # a chain of calls nested about a thousand deep
                 raise _too_deep(ns, e) from None
-            if S.discard is not Lanes.NO or samples > 1:
+            if S.discard is not LaneHelpers.NO or samples > 1:
                 if len(color) == 3:
                     color = np.concatenate([np.broadcast_to(color, (3, lanes)), np.ones((1, lanes), color.dtype)])
                 color = np.broadcast_to(color, (4, lanes))
-                if S.discard is not Lanes.NO:
+                if S.discard is not LaneHelpers.NO:
                     color = np.where(np.broadcast_to(S.discard, (lanes,)), 0.0, color)
                 if samples > 1:
                     color = color.astype(np.float64)

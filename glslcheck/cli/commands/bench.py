@@ -39,7 +39,7 @@ from ...base.images import check_output
 from ...shadertoy.sources import find_shaders
 from ...verification.verify import Progress
 from ...base import limits
-from . import args as A
+from . import args as cli_args
 
 
 class _BenchProgress(Progress):
@@ -51,11 +51,11 @@ class _BenchProgress(Progress):
 def add_arguments(p) -> None:
     p.add_argument("paths", nargs="+", metavar="SHADER", help="tab files or folders of tab files")
     w, h = DEFAULT_SIZE
-    p.add_argument("--size", type=A.arg(limits.parse_size), default=DEFAULT_SIZE, metavar="WxH",
+    p.add_argument("--size", type=cli_args.arg(limits.parse_size), default=DEFAULT_SIZE, metavar="WxH",
                    help=f"render size in pixels (default {w}x{h})")
-    p.add_argument("--runs", type=A.arg(limits.parse_runs), default=DEFAULT_RUNS, metavar="N",
+    p.add_argument("--runs", type=cli_args.arg(limits.parse_runs), default=DEFAULT_RUNS, metavar="N",
                    help=f"timed renders per configuration after one warm-up; the median is reported (default {DEFAULT_RUNS})")
-    p.add_argument("--time", type=A.arg(limits.parse_time), default=0.0, metavar="T",
+    p.add_argument("--time", type=cli_args.arg(limits.parse_time), default=0.0, metavar="T",
                    help="iTime in seconds (default 0)")
     p.add_argument("--format", choices=("text", "json"), default="text", help="output format (default text)")
     p.add_argument("--plot", metavar="PNG", help="write the time-against-error plot")

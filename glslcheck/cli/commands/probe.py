@@ -36,7 +36,7 @@ import math
 
 from ...base.diagnostics import InputError
 from ...base import limits
-from . import args as A
+from . import args as cli_args
 
 
 def _pixel(text: str) -> tuple[int, int]:
@@ -51,10 +51,10 @@ def add_arguments(p) -> None:
     p.add_argument("path", metavar="SHADER", help="a tab file or a folder of tab files")
     what = p.add_mutually_exclusive_group(required=True)
     what.add_argument("--pixel", type=_pixel, metavar="X,Y", help="the pixel to trace, from the top left")
-    what.add_argument("--frag-coord", type=A.arg(lambda t: limits.parse_floats(t, 2, "--frag-coord")), metavar="FX,FY",
+    what.add_argument("--frag-coord", type=cli_args.arg(lambda t: limits.parse_floats(t, 2, "--frag-coord")), metavar="FX,FY",
                       help="the fragCoord to trace (origin at the bottom left, pixel centres at .5)")
     what.add_argument("--nan", action="store_true", help="find where the frame's NaN and Inf pixels came from")
-    A.add_uniform_arguments(p)
+    cli_args.add_uniform_arguments(p)
     p.add_argument("--format", choices=("text", "json"), default="text", help="default text")
 
 

@@ -30,24 +30,24 @@ from ...backends import registry
 from ...base.diagnostics import InputError
 from ...base import limits
 from ...base.precision import PRECISIONS
-from . import args as A
+from . import args as cli_args
 
 
 def add_arguments(p) -> None:
     p.add_argument("path", metavar="SHADER", help="a tab file or a folder of tab files")
     p.add_argument("-o", "--output", default="out.png", metavar="FILE",
                    help="out.png, out.npy, or anim.gif with --frames (default out.png)")
-    A.add_uniform_arguments(p)
+    cli_args.add_uniform_arguments(p)
     p.add_argument("--precision", choices=PRECISIONS, default="float32",
                    help="float type inside the shader (NumPy backend; default float32 = highp)")
-    p.add_argument("--samples", type=A.arg(limits.parse_samples), default=1, metavar="N",
+    p.add_argument("--samples", type=cli_args.arg(limits.parse_samples), default=1, metavar="N",
                    help="samples per pixel, a square (default 1)")
     p.add_argument("--backend", choices=registry.names(), default="numpy",
                    help="default numpy; compiled: by numba, per pixel, then 8 pixels in lockstep once that pays (glslcheck/compiled_backend)")
     p.add_argument("--stats", action="store_true", help="print the lanes that ran each function and branch")
-    p.add_argument("--frames", type=A.arg(limits.parse_frames), default=None, metavar="N",
+    p.add_argument("--frames", type=cli_args.arg(limits.parse_frames), default=None, metavar="N",
                    help="render an animation of N frames")
-    p.add_argument("--fps", type=A.arg(limits.parse_fps), default=60.0, metavar="F",
+    p.add_argument("--fps", type=cli_args.arg(limits.parse_fps), default=60.0, metavar="F",
                    help="frames per second of --frames (default 60)")
     p.add_argument("--pass", dest="pass_name", default="Image", metavar="TAB",
                    help='the pass to write, e.g. "Buffer A" (default Image; buffers run frames 0..N, shadertoy/channels.py)')

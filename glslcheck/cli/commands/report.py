@@ -18,7 +18,7 @@ from __future__ import annotations
 import sys
 
 from ...base import limits
-from . import args as A
+from . import args as cli_args
 
 
 def _parse_bench_runs(text: str) -> int:
@@ -28,14 +28,14 @@ def _parse_bench_runs(text: str) -> int:
 def add_arguments(p) -> None:
     p.add_argument("paths", nargs="+", metavar="SHADER", help="tab files or folders of tab files")
     p.add_argument("-o", "--output", default="report.html", metavar="HTML", help="default report.html")
-    p.add_argument("--size", type=A.arg(limits.parse_size), default=(320, 180), metavar="WxH",
+    p.add_argument("--size", type=cli_args.arg(limits.parse_size), default=(320, 180), metavar="WxH",
                    help="render size in pixels (default 320x180)")
-    p.add_argument("--time", type=A.arg(limits.parse_time), default=0.0, metavar="T",
+    p.add_argument("--time", type=cli_args.arg(limits.parse_time), default=0.0, metavar="T",
                    help="iTime in seconds (default 0)")
     p.add_argument("--no-webgl", action="store_true", help="leave out the WebGL backend (headless Chromium)")
-    p.add_argument("--bench-size", type=A.arg(limits.parse_size), default=(64, 36), metavar="WxH",
+    p.add_argument("--bench-size", type=cli_args.arg(limits.parse_size), default=(64, 36), metavar="WxH",
                    help="render size of the accuracy/time table (glslcheck bench; default 64x36)")
-    p.add_argument("--bench-runs", type=A.arg(_parse_bench_runs), default=3, metavar="N",
+    p.add_argument("--bench-runs", type=cli_args.arg(_parse_bench_runs), default=3, metavar="N",
                    help="timed rounds of the table, median taken (default 3)")
     p.add_argument("--no-bench", action="store_true", help="leave out the accuracy/time table and plot")
 

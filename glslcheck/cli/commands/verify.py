@@ -51,7 +51,7 @@ from ...backends import registry
 from ...base import limits
 from ...base.precision import PRECISIONS
 from ...verification.verify import BACKENDS, DEFAULT_FPS, Progress, diff_paths, frame_specs, verify_frames
-from . import args as A
+from . import args as cli_args
 
 
 def _backends(text: str) -> tuple[str, str]:
@@ -63,25 +63,25 @@ def _backends(text: str) -> tuple[str, str]:
 
 def add_arguments(p) -> None:
     p.add_argument("paths", nargs="+", metavar="SHADER", help="tab files or folders of tab files")
-    p.add_argument("--size", type=A.arg(limits.parse_size), default=(800, 450), metavar="WxH",
+    p.add_argument("--size", type=cli_args.arg(limits.parse_size), default=(800, 450), metavar="WxH",
                    help="render size in pixels (default 800x450)")
     when = p.add_mutually_exclusive_group()
-    when.add_argument("--time", type=A.arg(limits.parse_time), metavar="T", help="iTime in seconds (default 0)")
-    when.add_argument("--times", type=A.arg(limits.parse_times), metavar="T,T,...",
+    when.add_argument("--time", type=cli_args.arg(limits.parse_time), metavar="T", help="iTime in seconds (default 0)")
+    when.add_argument("--times", type=cli_args.arg(limits.parse_times), metavar="T,T,...",
                       help="verify one frame per time")
-    when.add_argument("--frames", type=A.arg(limits.parse_frames), metavar="N",
+    when.add_argument("--frames", type=cli_args.arg(limits.parse_frames), metavar="N",
                       help="verify N consecutive frames at --fps")
-    p.add_argument("--fps", type=A.arg(limits.parse_fps), default=None, metavar="F",
+    p.add_argument("--fps", type=cli_args.arg(limits.parse_fps), default=None, metavar="F",
                    help=f"frames per second: iFrameRate, iTimeDelta = 1/F and the --frames clock (default {DEFAULT_FPS:g})")
-    p.add_argument("--frame", type=A.arg(limits.parse_frame), default=0, metavar="N",
+    p.add_argument("--frame", type=cli_args.arg(limits.parse_frame), default=0, metavar="N",
                    help="iFrame (with --frames: the first frame) (default 0)")
-    p.add_argument("--mouse", type=A.arg(limits.parse_mouse), default=(0.0, 0.0, 0.0, 0.0), metavar="X,Y,Z,W",
+    p.add_argument("--mouse", type=cli_args.arg(limits.parse_mouse), default=(0.0, 0.0, 0.0, 0.0), metavar="X,Y,Z,W",
                    help="iMouse in pixels (default 0,0,0,0)")
-    p.add_argument("--date", type=A.arg(limits.parse_date), default=None, metavar="Y,M,D,S",
+    p.add_argument("--date", type=cli_args.arg(limits.parse_date), default=None, metavar="Y,M,D,S",
                    help="iDate: year, month 0-11, day, seconds since midnight (default 2026,0,1,0)")
     p.add_argument("--precision", choices=PRECISIONS, default="float32",
                    help="float mode of the NumPy backend; OpenGL is always highp float32 (default float32)")
-    p.add_argument("--samples", type=A.arg(limits.parse_samples), default=1, metavar="N",
+    p.add_argument("--samples", type=cli_args.arg(limits.parse_samples), default=1, metavar="N",
                    help="samples per pixel on both sides, a perfect square (default 1)")
     p.add_argument("--diff", metavar="PNG", help="write the difference heat map (diff-<i>.png for several frames)")
     p.add_argument("--format", choices=("text", "json"), default="text", help="output format (default text)")
@@ -90,7 +90,7 @@ def add_arguments(p) -> None:
     p.add_argument("--against", choices=("gl", "webgl"), default=None,
                    help="the reference NumPy is compared with: gl (Mesa llvmpipe, default) or webgl "
                         "(headless Chromium, ANGLE on SwiftShader)")
-    p.add_argument("--backends", type=A.arg(_backends), default=None, metavar="A,B",
+    p.add_argument("--backends", type=cli_args.arg(_backends), default=None, metavar="A,B",
                    help="compare two other backends, e.g. gl,webgl (the drivers with each other)")
 
 

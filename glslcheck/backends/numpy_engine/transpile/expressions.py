@@ -54,7 +54,7 @@ class Expressions:
     # Repeated built-in calls of the expression being printed (`repeated_calls`): (ids of the
     # Call nodes, {printed call: the temporary holding its value}); None outside such an expression
     cse: tuple[set[int], dict[str, str]] | None = None
-    CSE_CALLS = True  # off in the tracing transpiler (tracer.py), which reports every operation
+    CSE_CALLS = True  # off in the tracing transpiler (tracing.py), which reports every operation
 
     # -- expressions ---------------------------------------------------------------------------
     def expr(self, e: Any, mask: str | None) -> str:

@@ -179,7 +179,7 @@ class Functions:
         call = self.call_text(e, fn, call_mask, args, mask)
         if call_mask is not None and nir_fold.register_call(self, e, fn):
             self.n += 1  # (a name no GLSL global has: `__` is reserved)
-            call = f'X.reg(S, "g___r{self.n}", {call}, {call_mask})'  # (frame.Lanes.reg)
+            call = f'X.reg(S, "g___r{self.n}", {call}, {call_mask})'  # (tiles.LaneHelpers.reg)
         if not outs:
             return call
         r = self.fresh("t")
@@ -189,5 +189,5 @@ class Functions:
         return f"{r}[0]"
 
     def call_text(self, e: A.Call, fn: Any, call_mask: str | None, args: list[str], mask: str | None) -> str:
-        """The Python call of user function `fn` (the tracing transpiler, tracer.py, wraps it)."""
+        """The Python call of user function `fn` (the tracing transpiler, tracing.py, wraps it)."""
         return f"{self.fn_name(fn)}(S, {call_mask}{''.join(', ' + x for x in args)})"

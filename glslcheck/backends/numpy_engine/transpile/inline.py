@@ -122,7 +122,7 @@ def inline_call(tr: Any, call: A.Call, fn: Any, mask: str | None) -> str:
     frames = tr.fold_state.inline_frames
     frames.append({"fn": fn, "params": params})
     value = _body_expression(tr, fn)
-    # the tracing transpiler (backends/numpy_engine/tracer.py, glslcheck probe) records a function's
+    # the tracing transpiler (backends/numpy_engine/tracing.py, glslcheck probe) records a function's
     # return value: inlined, the expression is part of the caller's statement, not a return
     watch = tr.__dict__.get("_watch", {}).pop(id(value), None)
     try:
