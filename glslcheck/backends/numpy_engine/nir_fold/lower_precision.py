@@ -38,7 +38,7 @@ def lowp_tree(tr: Any, e: A.Binary, mask: str | None) -> str | None:
     values (``smoothstep(0.3, 0.4, texture(..).x)`` is float16 on llvmpipe too,
     not measured), lookups through a sampler parameter, mediump/lowp variables (see
     glslcheck/semantics/mediump.py), and NIR's reassociations inside the float16 tree."""
-    if tr.fn is None or getattr(tr, "lowp_written", None) is not None and id(e) in tr.lowp_written:
+    if tr.fn is None or tr.fold_state.lowp_written is not None and id(e) in tr.fold_state.lowp_written:
         return None
     memo = tr.fold_state.lowp  # id(node) -> kind: linear in a chain
     if _lowp_kind(tr, e, memo) != "low" or tr.has_effects(e):
@@ -47,11 +47,11 @@ def lowp_tree(tr: Any, e: A.Binary, mask: str | None) -> str | None:
     samplers: list[Any] = []
     _lowp_parts(e, memo, nodes, samplers)
     low = _lowp_code(tr, e, mask, {id(n) for n in nodes})
-    tr.lowp_written = {id(n) for n in nodes}  # the written form: this tree without the rule
+    tr.fold_state.lowp_written = {id(n) for n in nodes}  # the written form: this tree without the rule
     try:
         written = tr.expr(e, mask)
     finally:
-        tr.lowp_written = None
+        tr.fold_state.lowp_written = None
     used = ", ".join(dict.fromkeys(tr.expr(s, mask) for s in samplers))
     return f"(rt.lowp_full({low}) if rt.lowp_arith({used}) else {written})"
 
