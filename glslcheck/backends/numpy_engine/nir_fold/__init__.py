@@ -42,16 +42,18 @@ and a squared length that is not followed by a constant sum (``sqrt(a)*sqrt(a)``
 
 Every function takes the transpiler (`tr`, typed Any: the Transpiler class imports this
 package through transpile/expressions.py) and reads its model, facts, current function and
-`fold_state` (numpy_engine/fold_state.py, the rules' memo of the program).
+`fold_state` (numpy_engine/fold_state.py, the rules' memo of the program); the compiled engine
+asks the two decisions it shares of a context.FoldContext instead.
 """
 
 from .added_zero import zero_add
 from .components import component_write
+from .context import FoldContext
 from .dispatch import binary
 from .dot_constants import broadcast_dot, dot_operand, merged_dot
 from .flrp import mix_hint
 from .return_register import register_call
 from .returned_sums import keep_term, return_constant_args, sunk_return, sunk_return_value
 
-__all__ = ["binary", "broadcast_dot", "component_write", "dot_operand", "keep_term", "merged_dot", "mix_hint",
-           "register_call", "return_constant_args", "sunk_return", "sunk_return_value", "zero_add"]
+__all__ = ["FoldContext", "binary", "broadcast_dot", "component_write", "dot_operand", "keep_term", "merged_dot",
+           "mix_hint", "register_call", "return_constant_args", "sunk_return", "sunk_return_value", "zero_add"]
