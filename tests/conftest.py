@@ -81,7 +81,7 @@ def llvmpipe(gl):
     if not driver_profile.is_emulated(renderer, mesa):
         pytest.fail(f"these bit-exact tests were written for llvmpipe of Mesa {driver_profile.EMULATED_MESA}; "
                     f"this GL driver is {renderer}, Mesa {mesa or 'unknown'}: the NumPy emulation "
-                    "(glslcheck/backends/driver_profile.py, backends/numpy_engine/runtime.py, nir_fold.py) must be re-measured "
+                    "(glslcheck/backends/driver_profile.py, backends/numpy_engine/runtime.py, nir_fold/) must be re-measured "
                     "for it before these results mean anything")
     return gl
 

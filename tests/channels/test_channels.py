@@ -573,7 +573,7 @@ def test_an_integer_lod_reads_one_level(gl, tmp_path, lod):
 def test_arithmetic_on_lowp_lookups_is_float16(gl, tmp_path):
     # Mesa lowers GLSL's precision rules to float16 (glsl/lower_precision.cpp): an operation
     # whose operands are lowp lookups and constants runs in float16, each constant rounded to
-    # float16 (nir_fold.lowp_tree). elephant's terrain, `2.1 + 0.1*textureLod(..).x`, reads
+    # float16 (nir_fold.lower_precision.lowp_tree). elephant's terrain, `2.1 + 0.1*textureLod(..).x`, reads
     # 2.130859375 where float32 gives 2.1319335: its raymarch stopped elsewhere in 93 of 144
     # pixels of Buffer A at 16x9. Measured: float32 arithmetic equals llvmpipe in 0-797 of the
     # 2048 pixels of these expressions, float16 in all. A highp operand (the variable `h`,
@@ -605,7 +605,7 @@ void mainImage(out vec4 fragColor, in vec2 fragCoord) {
 @pytest.mark.usefixtures("llvmpipe")  # bit for bit with Mesa 22.3's llvmpipe
 def test_the_square_of_a_lowp_lookup_is_float16(gl, tmp_path):
     # `pow(x, 2.0)` is x * x to NIR (fpow(a, 2.0) -> a * a), so on a lowp lookup it is one more
-    # float16 operation of the tree (nir_fold._square), and a constant factor sinks into it,
+    # float16 operation of the tree (nir_fold.lower_precision._square), and a constant factor sinks into it,
     # `(x * #k) * x` (the square is used once): gargantua's Buffer A, `dustColor *=
     # pow(texture(iChannel1, ..).rgb, vec3(2.0)) * 4.0`, the first difference of its loop at
     # iteration 27 (1 pixel). Measured without it: 502, 500 and 512 of the 512 pixels differed

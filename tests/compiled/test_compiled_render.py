@@ -239,7 +239,7 @@ void mainImage(out vec4 c, in vec2 f) {
 def test_construct_bit_for_bit(numba, make_shader, name):
     shader = make_shader(CONSTRUCTS[name])
     # none of Mesa's reassociations, which the NumPy backend copies and this engine does not
-    # (backends/numpy_engine/nir_fold.py emits each as `(<Mesa's order> if rt.lp else <written>)`):
+    # (backends/numpy_engine/nir_fold/ emits each as `(<Mesa's order> if rt.lp else <written>)`):
     # these shaders test the engine's own rules (the reassociations: test_mesa_reassociation_...)
     assert "if rt.lp else" not in glslcheck.compile(shader, backend="numpy").source
     _compare(shader)
@@ -272,7 +272,7 @@ def test_pure_ternaries_are_selects(make_shader):
 def test_mesa_reassociation_is_not_copied_yet(numba, make_shader):
     """`x * 10.0` with `float x = uv.x * 40.0` never written again is `uv.x * 400.0` on
     llvmpipe (nir_opt_algebraic merges the constants through the SSA value; the NumPy backend
-    copies it, nir_fold.py); this engine computes the written order, two roundings instead of
+    copies it, nir_fold/); this engine computes the written order, two roundings instead of
     one. The product's relative difference is at most 2**-23 (one float32 rounding), so
     exp2's result differs by at most ln(2) * |t| * 2**-23 relative: 1.1e-5 for |t| <= 128
     (past 128 exp2 is clamped: the same). The pixels must differ (else the case tests nothing)

@@ -3,7 +3,7 @@
 GLSL ES 3.00 has no `precise`, so Mesa reassociates: `mix` becomes one of four formulas
 (nir_lower_flrp: which one depends on the operands the compiler knows and on the other `mix`
 calls), and nir_opt_algebraic factors `a*b + a*c` and sinks constants into sums, products and
-dot products. `glslcheck/backends/numpy_engine/nir_fold.py` and `Runtime.mix` repeat the rewrites in
+dot products. `glslcheck/backends/numpy_engine/nir_fold/` and `Runtime.mix` repeat the rewrites in
 float32 mode. Each shader below computes its operands with opaque built-ins (fract, sin, sqrt,
 floor: values NIR does not look into) over 160x90 pixels. Without the rewrites (written order,
 strict mix everywhere) these channels differ from llvmpipe (measured): constants_sunk 680, 4718
@@ -347,7 +347,7 @@ void mainImage(out vec4 c, in vec2 p) {
 def test_a_sum_returned_through_a_folded_call_fuses_with_its_next_addition(llvmpipe, make_shader):
     """gargantua's first ray step, ``pos + dir * dither * far / 200.0`` with pos folded by the
     call (each component ``p1 + p2`` of two products) and read only there: llvmpipe fuses and
-    splits again, ``(p1 + step) + p2`` (nir_fold._fused_after_call), and ``(dir * dither) *
+    splits again, ``(p1 + step) + p2`` (nir_fold.ffma_split.fused_after_call), and ``(dir * dither) *
     15.0`` is ``(dir * 15.0) * dither`` (the product sink past a broadcast operand: dir is what
     the call wrote, dither a product by a constant). Measured: 3832, 4665 and 3901 pixels
     differed from llvmpipe with the call folded alone, 4127, 8716 and 4021 without any of it."""
@@ -380,7 +380,7 @@ def test_a_squared_length_plus_a_constant_is_a_dot_product(llvmpipe, make_shader
     """``pow(distance(r, vec3(0.0)), 2.0) + K`` (gargantua's WarpSpace) is ``dot(r, r) + K`` on
     llvmpipe: fpow(a, 2.0) -> a*a, sqrt(a)*sqrt(a) -> a, and K joins the dot product's
     innermost addition, unless another length/normalize/dot of r shares that dot product
-    (steer(): K stays outside; nir_fold._squared_length). Measured without the rule: 6048,
+    (steer(): K stays outside; nir_fold.squared_lengths.squared_length). Measured without the rule: 6048,
     6791 and 6168 of the 14,400 pixels differed from llvmpipe; with K always sunk, 477 of
     steer()'s."""
     shader = make_shader(SQUARED_LENGTHS)
@@ -409,7 +409,7 @@ void mainImage(out vec4 c, in vec2 q) {
 def test_a_constant_sinks_into_a_normalize_used_once(llvmpipe, make_shader):
     """``(sv * wf) * wa`` with sv = normalize(x) read once, wf = 1.0 / (...) and the local
     constant wa = 5.0: NIR sees sv as ``x * frsq(dot(x, x))``, and the constant sinks twice,
-    ``((x * 5.0) * inversesqrt(dot(x, x))) * wf`` (nir_fold._normalized_once). Measured
+    ``((x * 5.0) * inversesqrt(dot(x, x))) * wf`` (nir_fold.sink._normalized_once). Measured
     without it: 5, 0 and 3 of the 14,400 pixels differed from llvmpipe (1 ulp; gargantua's
     second ray step)."""
     shader = make_shader(NORMALIZED_STEPS)
@@ -433,7 +433,7 @@ def _warp_after(steps: str) -> str:
 def test_a_constant_joins_a_shared_dot_product_of_a_merged_value(llvmpipe, make_shader, steps):
     """The same warp, its r written in the loop around the call (gargantua's ray steps) or in a
     branch before it: the constant joins the dot product's innermost addition although
-    normalize() shares it (nir_fold._merged_argument). Measured with it kept outside: 3 and 1
+    normalize() shares it (nir_fold.squared_lengths.merged_argument). Measured with it kept outside: 3 and 1
     of the 14,400 pixels differed from llvmpipe (x); NORMALIZED_STEPS itself: 0 outside, 1
     sunk."""
     shader = make_shader(_warp_after(steps))
@@ -519,7 +519,7 @@ CANCELLED_SUMS = _RADIAL + """    q.y += e;
 def test_a_sum_cancelled_by_its_difference_is_the_value_before_it(llvmpipe, make_shader):
     """``q.y += e; ... q.y -= e`` is q.y as it was to NIR (``('~fadd', ('fneg', a), ('fadd', a,
     b)) -> b``), so a later product by a constant merges with the constants q.y had:
-    u.y is ``sin(..) * (1.5*(0.95*6.1))`` (nir_fold._cancelled_sum). Measured without it:
+    u.y is ``sin(..) * (1.5*(0.95*6.1))`` (nir_fold.components._cancelled_sum). Measured without it:
     13,446 and 13,377 of the 14,400 pixels differed from llvmpipe (u.y and the last, after
     a second cancelled pair); s.y (no cancellation) pins the sum read between."""
     _assert_bit_for_bit(make_shader(CANCELLED_SUMS), time=0.7)
@@ -580,7 +580,7 @@ void mainImage(out vec4 c, in vec2 p) {  // gargantua's GasDisc
 
 def test_a_constant_sinks_into_a_compound_product_read_once(llvmpipe, make_shader):
     """``x *= b; ... x * #c`` with x's new value read only there is ``(a * #c) * b`` (a: x
-    before), the product used once in SSA (nir_fold._sunk_through_compound); copied one level:
+    before), the product used once in SSA (nir_fold.compound_products.sunk_through_compound); copied one level:
     a is a sin() here, and the pcurve() value that CSE shares with the second identical call.
     Measured without it: 4537 and 5121 of the 14,400 pixels differed from llvmpipe."""
     _assert_bit_for_bit(make_shader(SUNK_THROUGH_COMPOUNDS))
@@ -595,6 +595,23 @@ def test_a_product_in_a_global_initializer_is_no_local_write(make_shader):
     assert np.allclose(got[0, :, 0], np.float32(6.28318) * np.float32(0.1) * (np.arange(4) + 0.5), rtol=1e-6)
 
 
+def without_rule(monkeypatch, name, value):
+    """Patch `name` in every module of the nir_fold package that binds it: the module that
+    defines it, each module that imports it (`from .queries import ...` binds a name of its
+    own there) and the package, whose names the transpiler reads."""
+    import importlib
+    import pkgutil
+
+    from glslcheck.backends.numpy_engine import nir_fold
+
+    modules = [nir_fold] + [importlib.import_module(f"{nir_fold.__name__}.{m.name}")
+                            for m in pkgutil.iter_modules(nir_fold.__path__)]
+    bound = [m for m in modules if hasattr(m, name)]
+    assert bound, name
+    for module in bound:
+        monkeypatch.setattr(module, name, value)
+
+
 @pytest.mark.parametrize("text", [ZERO_ADDS, MERGED_DOTS, ONE_VALUE_DOTS, SCALED_ARGUMENTS, HASHES_WITHOUT_SINE, GLOBAL_CONSTANTS, SSA_VALUES, RETURNED_SUMS, CALL_CONSTANTS,
                                   CALL_CONSTANTS_STEP, SQUARED_LENGTHS, NORMALIZED_STEPS, CONSTANT_POWERS,
                                   COMPONENT_WRITES, CANCELLED_SUMS, SUNK_THROUGH_COMPOUNDS, KEPT_RETURNS.replace("STEPS", "40")],
@@ -605,24 +622,24 @@ def test_a_product_in_a_global_initializer_is_no_local_write(make_shader):
 def test_float64_reference_is_the_same_without_these_rewrites(make_shader, monkeypatch, text):
     """The rewrites and the inlining above are float32 (llvmpipe) only: the float64 render is
     bit for bit the one of the code generated without them."""
-    from glslcheck.backends.numpy_engine import nir_fold
+    from glslcheck.backends.numpy_engine.nir_fold import dot_constants
     from glslcheck.backends.numpy_engine.transpile import functions
 
     shader = make_shader(text)
     with_them = np.asarray(compile_backend(shader, "numpy").render(size=(32, 18), precision="float64"))
     monkeypatch.setattr(functions, "worth_inlining", lambda *a: False)
     monkeypatch.setattr(functions, "folded_call", lambda *a: None)
-    monkeypatch.setattr(nir_fold, "merged_dot", lambda *a: None)
-    monkeypatch.setattr(nir_fold, "broadcast_dot", lambda *a: None)
-    monkeypatch.setattr(nir_fold, "dot_operand", nir_fold.constant_product)
-    monkeypatch.setattr(nir_fold, "zero_add", lambda *a: None)
-    monkeypatch.setattr(nir_fold, "_constant_global", lambda *a: False)
-    monkeypatch.setattr(nir_fold, "component_write", lambda *a: None)
-    monkeypatch.setattr(nir_fold, "_cancelled_sum", lambda *a: None)
-    monkeypatch.setattr(nir_fold, "_sunk_through_compound", lambda *a: None)
-    monkeypatch.setattr(nir_fold, "register_call", lambda *a: False)
-    for name in ("_broadcast_dot", "_scalar_dot", "_sink_sum", "_keep_factor", "_merge_into_matrix", "sunk_return", "_fused_after_call",
-                 "_squared_length", "_sink", "_merge_components"):
-        monkeypatch.setattr(nir_fold, name, lambda *a: None)
+    without_rule(monkeypatch, "merged_dot", lambda *a: None)
+    without_rule(monkeypatch, "broadcast_dot", lambda *a: None)
+    without_rule(monkeypatch, "dot_operand", dot_constants.constant_product)
+    without_rule(monkeypatch, "zero_add", lambda *a: None)
+    without_rule(monkeypatch, "constant_global", lambda *a: False)
+    without_rule(monkeypatch, "component_write", lambda *a: None)
+    without_rule(monkeypatch, "_cancelled_sum", lambda *a: None)
+    without_rule(monkeypatch, "sunk_through_compound", lambda *a: None)
+    without_rule(monkeypatch, "register_call", lambda *a: False)
+    for name in ("broadcast_dot_parts", "_scalar_dot", "_sink_sum", "keep_factor", "merge_into_matrix", "sunk_return",
+                 "fused_after_call", "squared_length", "sink_constant", "merge_components"):
+        without_rule(monkeypatch, name, lambda *a: None)
     without = np.asarray(compile_backend(make_shader(text), "numpy").render(size=(32, 18), precision="float64"))
     assert with_them.view(np.int64).tolist() == without.view(np.int64).tolist()

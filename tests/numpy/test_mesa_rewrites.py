@@ -141,11 +141,11 @@ def test_rewrites_match_llvmpipe(gl, make_shader):
 
 
 def test_nir_fold_shapes_are_equal_exactly_where_the_glsl_text_is():
-    # nir_fold._used_once counts copies of a value by shape (hash-consing, linear) instead of
+    # nir_fold.queries.used_once counts copies of a value by shape (hash-consing, linear) instead of
     # printing every subtree (quadratic in a long chain): both must mean the same thing.
     from pathlib import Path
 
-    from glslcheck.backends.numpy_engine.nir_fold import _shapes
+    from glslcheck.backends.numpy_engine.nir_fold.queries import node_shapes
     from glslcheck.frontend.parser import parse_shader
     from glslcheck.frontend.printer import to_glsl
     from glslcheck.shadertoy.sources import find_shaders
@@ -157,7 +157,7 @@ def test_nir_fold_shapes_are_equal_exactly_where_the_glsl_text_is():
             if tab == "Common":
                 continue
             ast = parse_shader(shader, tab).ast
-            shapes = _shapes(ast)
+            shapes = node_shapes(ast)
             by_text: dict[str, set[int]] = {}
             for node in ast.walk():
                 if isinstance(node, (A.Expr,)):
@@ -174,17 +174,23 @@ def test_nir_fold_shapes_are_equal_exactly_where_the_glsl_text_is():
 def test_nir_fold_on_a_chain_of_thousands_of_terms_is_linear(make_shader, monkeypatch):
     # 3,000 terms: printing every partial sum was 4.5 million node prints (142 s). Counted, not
     # timed: the GLSL text nir_fold prints stays within a small multiple of the source's size.
+    import importlib
+    import pkgutil
+
     from glslcheck.backends.numpy_engine import nir_fold
+    from glslcheck.frontend.printer import to_glsl as real
 
     printed = [0]
-    real = nir_fold.to_glsl
 
     def counting(node):
         text = real(node)
         printed[0] += len(text)
         return text
 
-    monkeypatch.setattr(nir_fold, "to_glsl", counting)
+    for found in pkgutil.iter_modules(nir_fold.__path__):  # each module that prints binds to_glsl
+        module = importlib.import_module(f"{nir_fold.__name__}.{found.name}")
+        if hasattr(module, "to_glsl"):
+            monkeypatch.setattr(module, "to_glsl", counting)
     body = " + ".join(f"sin(x * {k % 13}.0)" for k in range(3000))
     source = ("void mainImage(out vec4 o, in vec2 f) {\n    float x = f.x;\n"
               f"    x = {body};\n    o = vec4(x);\n}}\n")

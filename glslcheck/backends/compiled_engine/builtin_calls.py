@@ -188,7 +188,7 @@ def mix_call(cg: Any, e: A.Call, args: list[Val], rtype: Any, n: int, comps) -> 
         return Val(rtype, [f"({yy} if {aa} else {xx})" for xx, yy, aa in zip(comps(x), comps(y), comps(a))])
     from ..numpy_engine import nir_fold
 
-    hint = nir_fold.mix_hint(cg.numpy_transpiler(), e) if cg.fn is not None and cg.fn.sym is not None else []
+    hint = nir_fold.mix_hint(cg.fold_context(), e) if cg.fn is not None and cg.fn.sym is not None else []
     form = hint[0].strip("'") if hint else ("strict" if a.const is not None else "fast")
     xs, ys, as_ = comps(x), comps(y), comps(a)
     if form == "fast":

@@ -38,7 +38,7 @@ textures and channels, derivatives, discard, switch, arrays of structs holding a
 inverse() of 3x3 and 4x4 matrices, and the packing built-ins.
 
 What the NumPy backend does that this generator does not copy: Mesa's reassociations
-(backends/numpy_engine/nir_fold.py, transpile/call_fold.py, inline.py) and its run-time test of
+(backends/numpy_engine/nir_fold/, transpile/call_fold.py, inline.py) and its run-time test of
 "a value the same in every lane counts as a constant" (Runtime.fmul/fadd/pow on values of one
 lane): here only compile-time constants (`model.const_value`) fold, so `x * 0.0` is 0 for a
 NaN x, as there, but `float k = 0.0; x * k` multiplies. docs/performance.md measures what that
@@ -83,7 +83,7 @@ class Codegen(ExpressionEmitter):
         if self.entry is None:
             raise engine_error("the program has no mainImage (or main) to render", Location(path, 1, 1))
         self.functions = list(model.reachable_functions())
-        self.facts = Facts(model, self.functions)  # (nir_fold.mix_hint reads it)
+        self.facts = Facts(model, self.functions)  # (nir_fold.mix_hint reads it: fold_context)
         self.lines: list[str] = []
         self.indent = 0
         self.n = 0
@@ -102,18 +102,17 @@ class Codegen(ExpressionEmitter):
         # the first dFdx/dFdy/fwidth call: its leaves are written `dfdx(v)` / `dfdy(v)`, which
         # only the lockstep rewrite computes (lanes.py: a block's lanes hold whole 2x2 quads)
         self.derivative: Any = None
+        self._fold_context: Any = None  # fold_context(): made on first use
 
-    def numpy_transpiler(self) -> Any:
-        """The NumPy backend's Transpiler at the current function, for the decisions this engine
-        shares with it (nir_fold.mix_hint: nir_lower_flrp's formula for a `mix`)."""
-        from ..numpy_engine.transpile import FnState as NumpyFnState, Transpiler
+    def fold_context(self) -> Any:
+        """The NumPy backend's Mesa rewrites' context at the current function, for the decisions
+        this engine shares with it (nir_fold.mix_hint: nir_lower_flrp's formula for a `mix`;
+        nir_fold.zero_add: an added constant zero)."""
+        from ..numpy_engine.nir_fold import FoldContext
 
-        if getattr(self, "_tr", None) is None:
-            self._tr = Transpiler(self.model, self.path)
-        sym = self.fn.sym
-        if self._tr.fn is None or self._tr.fn.sym is not sym:
-            self._tr.fn = NumpyFnState(sym, None, sym is self.entry)
-        return self._tr
+        if self._fold_context is None:
+            self._fold_context = FoldContext(self.model, self.facts)
+        return self._fold_context.at(self.fn.sym, self.fn.sym is self.entry)
 
     # -- emission ------------------------------------------------------------------------------
     def emit(self, text: str) -> None:

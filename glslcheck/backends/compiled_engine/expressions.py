@@ -429,7 +429,7 @@ class ExpressionEmitter:
             return self.fn is None or self.fn.sym is None
         from ..numpy_engine import nir_fold
 
-        return nir_fold.zero_add(self.numpy_transpiler(), e, "l", "r") is not None
+        return nir_fold.zero_add(self.fold_context(), e, "l", "r") is not None
 
     def linear_product(self, left: Val, right: Val, rtype: Any) -> Val:
         lt, rt_ = left.t, right.t

@@ -139,6 +139,27 @@ def written_variables(model: Any, node: Any) -> list[Symbol]:
     return [sym for t in written_lvalues(model, node) if (sym := written_variable(model, t)[0]) is not None]
 
 
+class SideEffects:
+    """``effects(e)``: whether evaluating e writes a variable (an assignment, ++/--, an out or
+    inout argument) or calls a user function, asked of many nodes of one program (memoized per
+    node: linear over a tree)."""
+
+    def __init__(self, model: Any) -> None:
+        self.model = model
+        self.memo: dict[int, bool] = {}
+
+    def __call__(self, e: Any) -> bool:
+        return fold_tree(e, self.memo, self._here)
+
+    def _here(self, n: Any, kids: list[bool]) -> bool:
+        if any(kids) or isinstance(n, (A.Assignment, A.Sequence)):
+            return True
+        if isinstance(n, (A.Unary, A.Postfix)) and n.op in ("++", "--"):
+            return True
+        return isinstance(n, A.Call) and (isinstance(self.model.call_target(n), Symbol)
+                                          or any(d != "in" for d in param_directions(self.model.call_target(n))))
+
+
 def is_plain_read(e: Any) -> bool:
     """A value read without computing anything per lane: a literal, a variable, or a field or
     component of one (`!` of one too)."""

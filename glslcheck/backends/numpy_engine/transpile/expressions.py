@@ -138,15 +138,7 @@ class Expressions:
         return False
 
     def has_effects(self, e: Any) -> bool:
-        return fold_tree(e, self._effects, self._effects_here)
-
-    def _effects_here(self, n: Any, kids: list[bool]) -> bool:
-        if any(kids) or isinstance(n, (A.Assignment, A.Sequence)):
-            return True
-        if isinstance(n, (A.Unary, A.Postfix)) and n.op in ("++", "--"):
-            return True
-        return isinstance(n, A.Call) and (isinstance(self.model.call_target(n), Symbol)
-                                          or any(d != "in" for d in param_directions(self.model.call_target(n))))
+        return self.side_effects(e)
 
     def tmp(self, value: str) -> str:
         if value.startswith(("C_", "Z_")) and value.replace("_", "").isalnum():

@@ -13,7 +13,7 @@ float32 (nir_fold.merged_dot); the written order differs in the last bits of the
 argument, and a hash amplifies them (a star where llvmpipe has none). The NumPy backend writes a
 function once for every call, so its body cannot see ``uv * 0.2``. Here such a call is
 inlined: the callee's return expression is generated at the call site, each parameter read as
-its argument's value, and nir_fold's look-through (`nir_fold._stable_init`) sees the argument.
+its argument's value, and nir_fold's look-through (`nir_fold.queries.stable_init`) sees the argument.
 
 Only where it pays: the callee is a single ``return <expression>;`` with ``in`` parameters it
 never writes, no calls of user functions and no ``mix`` (whose lowering depends on the other

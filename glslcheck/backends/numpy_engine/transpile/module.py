@@ -12,7 +12,7 @@ from ....frontend import syntax as A
 from ....base.diagnostics import Location
 from ..fold_state import FoldState
 from ...cpu_core.common import printable
-from ...cpu_core.facts import Facts
+from ...cpu_core.facts import Facts, SideEffects
 from .common import LOOP_CAP, SMALL_STATE, _error, check_program
 from .expressions import Expressions
 from .functions import FnState, Functions
@@ -54,7 +54,7 @@ class Transpiler(Names, Functions, Statements, Expressions, PythonLimits):
         self.uniforms: set[str] = set()
         self.helpers: list[str] = []  # functions split off the current one (PythonLimits.outline)
         self._heights: dict[int, int] = {}  # node id -> memoized facts about its subtree
-        self._effects: dict[int, bool] = {}
+        self.side_effects = SideEffects(model)  # has_effects, memoized per node
         self._hoists: dict[int, bool] = {}
         self._derivs: dict[int, bool] = {}
         self._line_names: dict[str, frozenset] = {}

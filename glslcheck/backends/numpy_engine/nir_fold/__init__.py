@@ -1,0 +1,59 @@
+"""Mesa's NIR rewrites that change float32 bits, emitted by the transpiler for llvmpipe mode.
+
+Mesa 22.3's compiler reassociates float arithmetic that GLSL ES 3.00 leaves unordered (no
+`precise`): nir_opt_algebraic's inexact (`~`) rules rewrite the written expression, so llvmpipe
+computes other float32 roundings than the source spells. A hash (`fract(x * 43758.5453)`)
+amplifies the last bit, so verify mismatches unless the NumPy backend rewrites the same way.
+The rules copied here, each measured bit for bit against llvmpipe on 50,000 random operands
+(tests/gl/test_llvmpipe_lowering.py), one family per module:
+
+- factoring.py: ``a*b + a*c -> a * (b + c)``, also through never-written locals;
+- sink.py: constants sunk into a sum or a product used once, ``(a + b) + #c -> (a + #c) + b``;
+- squared_lengths.py: ``pow(length(x), 2.0) + #c`` is ``dot(x, x) + #c``, the constant inside;
+- constant_merge.py: ``#a * (b * #c) -> (a*c) * b`` and ``#a + (b + #c) -> (a + c) + b``;
+- dot_constants.py: constants merged into a ``dot`` with a constant, ``dot(vecN(s), #K)`` factored;
+- ffma_split.py: ``(p1 + p2) + e`` returned through a folded call is ``(p1 + e) + p2`` (ffma);
+- returned_sums.py: a constant added to a call's result sinks into the ``+=`` chain it returns;
+- ssa_values.py: a variable assigned again still stands for its value (``p = m*p*2.02``);
+- components.py: NIR's SSA per vector component, constants merged through component writes,
+  a ``+= e`` undone by a later ``-= e``;
+- compound_products.py: ``x *= b; ... x * #c`` with the new x read once is ``(a * #c) * b``;
+- return_register.py: a call's result in the lanes a mask leaves out, llvmpipe's register;
+- added_zero.py: ``fadd(a, 0.0) -> a``, which keeps the sign of a -0.0;
+- flrp.py: nir_lower_flrp's formula for a `mix`, chosen from the other `mix` calls;
+- lower_precision.py: not a rewrite of the order but of the type, float16 arithmetic on lowp
+  lookups (Mesa's lower_precision.cpp).
+
+Constants are what Mesa knows as constants: also a global variable initialised by a constant
+expression and never written (queries.py :func:`constant_global`: GLSL IR propagates it).
+queries.py holds the questions several families ask (is this a constant, a product, the value
+a local holds here, ...); dispatch.py tries the rules on a binary expression in Mesa's order.
+
+Each rewrite is emitted as ``(<rewritten> if rt.lp else <written>)``: float32 renders take
+Mesa's order, float64 (the accuracy reference) and float16 keep the written one. Not copied
+(measured, left as written): chains GLSL IR rebalances before NIR sees them, such as
+``(a + b + c) + K`` of variables (llvmpipe gives ``(a + b) + (c + K)``: do_rebalance_tree),
+other rewrites that reach across a call (NIR inlines every function: followed are a constant
+added to a returned ``+=`` chain, :func:`sunk_return`, products by constants merged into a
+``dot`` through an argument, transpile/inline.py, and constants a call site passes in, folded
+and merged through the callee's arithmetic, matrix products included, for straight-line
+callees: transpile/call_fold.py, gargantua's camera rotation ``(cos(-0.45)*10) * sin(x)``),
+and a squared length that is not followed by a constant sum (``sqrt(a)*sqrt(a)`` stays).
+
+Every function takes the transpiler (`tr`, typed Any: the Transpiler class imports this
+package through transpile/expressions.py) and reads its model, facts, current function and
+`fold_state` (numpy_engine/fold_state.py, the rules' memo of the program); the compiled engine
+asks the two decisions it shares of a context.FoldContext instead.
+"""
+
+from .added_zero import zero_add
+from .components import component_write
+from .context import FoldContext
+from .dispatch import binary
+from .dot_constants import broadcast_dot, dot_operand, merged_dot
+from .flrp import mix_hint
+from .return_register import register_call
+from .returned_sums import keep_term, return_constant_args, sunk_return, sunk_return_value
+
+__all__ = ["FoldContext", "binary", "broadcast_dot", "component_write", "dot_operand", "keep_term", "merged_dot",
+           "mix_hint", "register_call", "return_constant_args", "sunk_return", "sunk_return_value", "zero_add"]

@@ -1,0 +1,54 @@
+"""Which of nir_fold's rules rewrites a binary expression: the first one that applies gives the code.
+
+Tried in this order: the float16 tree of lowp lookups (lower_precision.py: its type decides
+every operation in it); for an expression with side effects, only a constant added to a call's
+result (returned_sums.py); for a matrix operand, only constants merged into the matrix
+(ssa_values.py); for a sum, factoring (factoring.py) then the ffma split (ffma_split.py); then
+constants merged (constant_merge.py, components.py, compound_products.py) or sunk (sink.py);
+last, a product by a constant kept through a variable assigned again (ssa_values.py)."""
+
+from __future__ import annotations
+
+from typing import Any
+
+from ....frontend import syntax as A
+from .lower_precision import LOWP_OPS, lowp_tree
+from .ssa_values import keep_factor, merge_into_matrix
+from .constant_merge import merge_constants
+from .factoring import factor
+from .ffma_split import fused_after_call
+from .sink import sink_constant
+from .compound_products import sunk_through_compound
+from .components import merge_components
+from .returned_sums import sink_into_call
+
+
+def binary(tr: Any, e: A.Binary, mask: str | None) -> str | None:
+    """The generated code of ``e`` when one of the package's rules rewrites it, else None."""
+    low = lowp_tree(tr, e, mask) if e.op in LOWP_OPS else None
+    if low is not None:
+        return low
+    if e.op not in ("+", "-", "*") or tr.fn is None:
+        return None
+    if tr.type_of(e).base != "float":
+        return None
+    if tr.has_effects(e):
+        return sink_into_call(tr, e, mask)
+    if tr.type_of(e.left).is_matrix or tr.type_of(e.right).is_matrix:
+        return merge_into_matrix(tr, e, mask)
+    if e.op == "+":
+        folded = factor(tr, e, mask)
+        if folded is None:
+            folded = fused_after_call(tr, e, mask)
+        if folded is not None:
+            return folded
+    folded = merge_constants(tr, e, mask)
+    if folded is not None:
+        return folded
+    folded = merge_components(tr, e, mask)
+    if folded is None:
+        folded = sunk_through_compound(tr, e, mask)
+    if folded is not None:
+        return folded
+    folded = sink_constant(tr, e, mask)
+    return folded if folded is not None else keep_factor(tr, e, mask)

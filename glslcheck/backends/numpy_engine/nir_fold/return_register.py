@@ -1,0 +1,83 @@
+"""A call's result in the lanes a mask leaves out: llvmpipe's register for merged returns.
+
+After inlining, NIR merges returns from inside a branch into one value (a phi); a branch
+computed by a built-in call is too costly to flatten into selects, so the phi becomes a
+register, stored under the exec mask, and a neighbour's derivative reads in a lane that left
+the value of the last time the call ran for it (gargantua's GasDisc, measured), in a loop NIR
+does not unroll (:func:`register_call`; the runtime keeps the value: frame.Lanes.reg)."""
+
+from __future__ import annotations
+
+from typing import Any
+
+from ....frontend import syntax as A
+from ...cpu_core.facts import induction_variable
+
+
+def register_call(tr: Any, call: A.Call, fn: Any) -> bool:
+    """The result of this call of ``fn``, made under a mask in a function that takes
+    derivatives, is llvmpipe's register in the lanes the mask leaves out: they keep the value
+    they had the last time this call ran for them (frame.Lanes.reg).
+
+    After inlining, NIR merges returns from inside a branch into one value (a phi); a branch
+    computed by a built-in call (atan, pow, ...) is too costly to flatten into selects, so the
+    phi becomes a register, stored under the exec mask, and a neighbour's derivative reads the
+    old value in a lane that left (gargantua's GasDisc: ``atan2`` called after
+    ``if (coverage < 0.01) return;`` in its 200-step loop, measured: the lane's value of the
+    iteration before). Only in a loop NIR keeps: a loop of at most 32 iterations
+    (max_unroll_iterations) is unrolled, each copy its own register, zero in such a lane
+    (measured on a 4-step loop: the register kept across iterations put 917 of 14,400 pixels
+    off, zero none)."""
+    if tr.fn is None or id(tr.fn.sym) not in tr.facts.uses_derivs or not _returns_in_branch(tr, fn):
+        return False
+    return _in_kept_loop(tr, tr.fn.sym, call, 0)
+
+
+def _returns_in_branch(tr: Any, fn: Any) -> bool:
+    """``fn`` returns a value from inside an ``if`` or a loop, computed there by a call."""
+    if fn.type is None or str(fn.type) == "void":
+        return False
+    for n in fn.node.body.walk():
+        if isinstance(n, (A.If, A.For, A.While, A.DoWhile)) and any(
+                isinstance(r, A.Return) and r.value is not None
+                and any(isinstance(c, A.Call) and not c.constructor for c in r.value.walk()) for r in n.walk()):
+            return True
+    return False
+
+
+def _in_kept_loop(tr: Any, sym: Any, node: Any, depth: int) -> bool:
+    """``node`` (in function ``sym``) runs again and again in one invocation: its innermost
+    loop, here or around every call of the function, is one NIR does not unroll."""
+    from ....semantics.analysis.dataflow import FunctionFacts
+
+    if depth > 8:
+        return False
+    cache = tr.fold_state.fn_facts
+    if id(sym) not in cache:
+        cache[id(sym)] = FunctionFacts(sym.node, tr.model)
+    facts = cache[id(sym)]
+    if not facts.ok or id(node) not in facts.enter:
+        return False
+    loops = facts.enclosing_loops(node)
+    if loops:
+        return not _unrolled(tr, loops[-1])
+    sites = [(f, n) for f in tr.facts.functions for n in f.node.body.walk()
+             if isinstance(n, A.Call) and tr.model.call_target(n) is sym]
+    return bool(sites) and all(_in_kept_loop(tr, f, n, depth + 1) for f, n in sites)
+
+
+def _unrolled(tr: Any, loop: Any) -> bool:
+    """A ``for`` loop of a constant count of at most 32 iterations (NIR unrolls it)."""
+    if not isinstance(loop, A.For) or induction_variable(loop, tr.model) is None:
+        return False
+    decl = loop.init.decl.declarators[0]
+    start, cond, step = tr.model.const_value(decl.init), loop.cond, loop.step
+    if not (isinstance(start, int) and isinstance(cond, A.Binary) and cond.op in ("<", "<=")
+            and isinstance(cond.left, A.Identifier) and tr.model.symbol_of(cond.left) is tr.model.symbol_of(decl)):
+        return False
+    end = tr.model.const_value(cond.right)
+    inc = 1 if isinstance(step, (A.Unary, A.Postfix)) and step.op == "++" else (
+        tr.model.const_value(step.value) if isinstance(step, A.Assignment) and step.op == "+=" else None)
+    if not isinstance(end, int) or not isinstance(inc, int) or inc <= 0:
+        return False
+    return (end - start + (cond.op == "<=") + inc - 1) // inc <= 32
