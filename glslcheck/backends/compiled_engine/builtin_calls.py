@@ -1,6 +1,6 @@
 """Built-in function calls of the compiled engine: each component as the NumPy runtime
 computes it (runtime.Runtime's method of the same name), with Mesa's compile-time rewrites of
-`pow` and nir_lower_flrp's choice of formula for `mix` (backends/numpy_engine/nir_fold.mix_hint)."""
+`pow` and nir_lower_flrp's choice of formula for `mix` (backends/numpy_engine/transpile/nir_fold.mix_hint)."""
 
 from __future__ import annotations
 
@@ -186,7 +186,7 @@ def mix_call(cg: Any, e: A.Call, args: list[Val], rtype: Any, n: int, comps) -> 
     x, y, a = args
     if a.t.base == "bool":
         return Val(rtype, [f"({yy} if {aa} else {xx})" for xx, yy, aa in zip(comps(x), comps(y), comps(a))])
-    from ..numpy_engine import nir_fold
+    from ..numpy_engine.transpile import nir_fold
 
     hint = nir_fold.mix_hint(cg.fold_context(), e) if cg.fn is not None and cg.fn.sym is not None else []
     form = hint[0].strip("'") if hint else ("strict" if a.const is not None else "fast")

@@ -38,7 +38,7 @@ textures and channels, derivatives, discard, switch, arrays of structs holding a
 inverse() of 3x3 and 4x4 matrices, and the packing built-ins.
 
 What the NumPy backend does that this generator does not copy: Mesa's reassociations
-(backends/numpy_engine/nir_fold/, transpile/call_fold.py, inline.py) and its run-time test of
+(backends/numpy_engine/transpile/nir_fold/, transpile/call_fold.py, inline.py) and its run-time test of
 "a value the same in every lane counts as a constant" (Runtime.fmul/fadd/pow on values of one
 lane): here only compile-time constants (`model.const_value`) fold, so `x * 0.0` is 0 for a
 NaN x, as there, but `float k = 0.0; x * k` multiplies. docs/performance.md measures what that
@@ -108,7 +108,7 @@ class Codegen(ExpressionEmitter):
         """The NumPy backend's Mesa rewrites' context at the current function, for the decisions
         this engine shares with it (nir_fold.mix_hint: nir_lower_flrp's formula for a `mix`;
         nir_fold.zero_add: an added constant zero)."""
-        from ..numpy_engine.nir_fold import FoldContext
+        from ..numpy_engine.transpile.nir_fold import FoldContext
 
         if self._fold_context is None:
             self._fold_context = FoldContext(self.model, self.facts)

@@ -427,7 +427,7 @@ class ExpressionEmitter:
             return True
         if self.fn is None or self.fn.sym is None or not isinstance(e, A.Binary):
             return self.fn is None or self.fn.sym is None
-        from ..numpy_engine import nir_fold
+        from ..numpy_engine.transpile import nir_fold
 
         return nir_fold.zero_add(self.fold_context(), e, "l", "r") is not None
 

@@ -53,7 +53,7 @@ What llvmpipe does, measured with tests/channels/measure_sampling.py (Mesa 22.3.
   float16 with round to nearest, `texture(...) * 3.14159265` included (1024 of 1024 products equal
   to the float16 ones), and past 65504 it is inf; one highp operand (iTime, a highp variable, a
   uniform) makes it float32. The NumPy backend copies this for trees of `+ - * /` and negation
-  over lookups on an iChannel and constants (backends/numpy_engine/nir_fold/lower_precision.py `lowp_tree`, bit for bit:
+  over lookups on an iChannel and constants (backends/numpy_engine/transpile/nir_fold/lower_precision.py `lowp_tree`, bit for bit:
   test_channels.py test_arithmetic_on_lowp_lookups_is_float16; elephant's terrain height
   `2.1 + 0.1*textureLod(..).x` is 2.130859375 on llvmpipe, 2.1319335 in float32). It does not
   propagate precision further: built-in calls on such values (`smoothstep(.., texture(..).x)`),

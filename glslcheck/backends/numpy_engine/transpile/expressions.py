@@ -15,7 +15,7 @@ from ...cpu_core.common import DERIVATIVES, IMPLICIT_LOD, TEXTURE_FUNCTIONS, fol
 from ...cpu_core.facts import is_plain_read
 from .common import (_BIN_METHODS, _FLOAT_OPERATORS, _IDENT, _RUNTIME_NAMES, OUTLINE_EXPR_INDENT, SPILL_HEIGHT,
                      _components, _error, _is_constant_text)
-from .. import nir_fold
+from . import nir_fold
 from .inline import bound_code
 from ....semantics.analysis import param_directions
 from ....semantics.model import Constructor, Symbol

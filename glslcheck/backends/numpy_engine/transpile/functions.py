@@ -15,7 +15,7 @@ from ....semantics.model import Symbol
 from ...cpu_core.common import printable
 from .inline import inline_call, worth_inlining
 from .call_fold import folded_call
-from .. import nir_fold
+from . import nir_fold
 
 class FnState:
     def __init__(self, sym: Any, uni: Uniformity, is_entry: bool) -> None:

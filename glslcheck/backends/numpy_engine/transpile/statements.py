@@ -15,7 +15,7 @@ from ...cpu_core.common import DERIVATIVES, IMPLICIT_LOD, fold_tree
 from ...cpu_core.facts import Events, events_of, induction_variable
 from .common import LOOP_CAP, OUTLINE_INDENT, _error
 from ....semantics.model import Symbol
-from .. import nir_fold
+from . import nir_fold
 
 @dataclass
 class LoopCtx:

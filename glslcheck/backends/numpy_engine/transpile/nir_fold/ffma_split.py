@@ -11,8 +11,8 @@ from __future__ import annotations
 
 from typing import Any
 
-from ....frontend import syntax as A
-from ..transpile.call_fold import product_sums
+from .....frontend import syntax as A
+from ..call_fold import product_sums
 from .queries import call_write, function_facts
 
 

@@ -12,7 +12,7 @@ from __future__ import annotations
 
 from typing import Any
 
-from ....frontend import syntax as A
+from .....frontend import syntax as A
 from .queries import FunctionStandin, constant_value, function_facts, is_builtin, stable_init, written_symbols
 
 

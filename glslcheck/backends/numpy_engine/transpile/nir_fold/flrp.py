@@ -12,8 +12,8 @@ from __future__ import annotations
 
 from typing import Any
 
-from ....frontend import syntax as A
-from ....frontend.printer import to_glsl
+from .....frontend import syntax as A
+from .....frontend.printer import to_glsl
 from .queries import constant_value, is_builtin
 
 

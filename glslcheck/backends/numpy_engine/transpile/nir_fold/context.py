@@ -11,8 +11,8 @@ from __future__ import annotations
 
 from typing import Any
 
-from ...cpu_core.facts import Facts, SideEffects
-from ..fold_state import FoldState
+from ....cpu_core.facts import Facts, SideEffects
+from ...fold_state import FoldState
 
 
 class EmittedFunction:

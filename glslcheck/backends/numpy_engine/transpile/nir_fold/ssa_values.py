@@ -11,7 +11,7 @@ from __future__ import annotations
 
 from typing import Any
 
-from ....frontend import syntax as A
+from .....frontend import syntax as A
 from .queries import (function_facts, has_matrix, is_constant, is_fmul, is_varying, reaching_value, stable_init,
                       written_symbols)
 

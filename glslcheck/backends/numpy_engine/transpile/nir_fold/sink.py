@@ -18,8 +18,8 @@ from __future__ import annotations
 
 from typing import Any
 
-from ....frontend import syntax as A
-from ..transpile.call_fold import out_roots
+from .....frontend import syntax as A
+from ..call_fold import out_roots
 from .queries import (SUMS, call_write, has_matrix, is_builtin, is_constant, is_fmul, is_opaque, one_copy,
                       reaching_value, read_once, stable_init, used_once, written_symbols)
 from .factoring import factor_parts

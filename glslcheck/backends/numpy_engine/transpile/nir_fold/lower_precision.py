@@ -11,8 +11,8 @@ from __future__ import annotations
 
 from typing import Any
 
-from ....frontend import syntax as A
-from ...cpu_core.common import TEXTURE_FUNCTIONS
+from .....frontend import syntax as A
+from ....cpu_core.common import TEXTURE_FUNCTIONS
 from .queries import constant_value, is_builtin
 
 

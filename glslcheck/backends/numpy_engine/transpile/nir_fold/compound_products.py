@@ -10,9 +10,9 @@ from __future__ import annotations
 
 from typing import Any
 
-from ....frontend import syntax as A
-from ....semantics.model import Symbol
-from ....frontend.printer import to_glsl
+from .....frontend import syntax as A
+from .....semantics.model import Symbol
+from .....frontend.printer import to_glsl
 from .queries import FunctionStandin, function_facts, has_matrix, is_constant, is_product
 
 

@@ -12,8 +12,8 @@ from __future__ import annotations
 
 from typing import Any
 
-from ....frontend import syntax as A
-from ....language.glsl_types import FLOAT
+from .....frontend import syntax as A
+from .....language.glsl_types import FLOAT
 from .queries import constant_value, has_matrix, is_builtin, is_constant, is_varying, read_once, stable_init
 
 

@@ -9,8 +9,8 @@ from __future__ import annotations
 
 from typing import Any
 
-from ....frontend import syntax as A
-from ....frontend.printer import to_glsl
+from .....frontend import syntax as A
+from .....frontend.printer import to_glsl
 from .queries import is_constant, is_opaque, is_product, stable_init
 
 

@@ -10,8 +10,8 @@ from __future__ import annotations
 
 from typing import Any
 
-from ....frontend import syntax as A
-from ...cpu_core.facts import induction_variable
+from .....frontend import syntax as A
+from ....cpu_core.facts import induction_variable
 
 
 def register_call(tr: Any, call: A.Call, fn: Any) -> bool:
@@ -48,7 +48,7 @@ def _returns_in_branch(tr: Any, fn: Any) -> bool:
 def _in_kept_loop(tr: Any, sym: Any, node: Any, depth: int) -> bool:
     """``node`` (in function ``sym``) runs again and again in one invocation: its innermost
     loop, here or around every call of the function, is one NIR does not unroll."""
-    from ....semantics.analysis.dataflow import FunctionFacts
+    from .....semantics.analysis.dataflow import FunctionFacts
 
     if depth > 8:
         return False

@@ -10,8 +10,8 @@ from __future__ import annotations
 
 from typing import Any
 
-from ....frontend import syntax as A
-from ..transpile.constant_flow import constant_flow
+from .....frontend import syntax as A
+from ..constant_flow import constant_flow
 from .queries import SUMS
 
 

@@ -11,7 +11,7 @@ from __future__ import annotations
 
 from typing import Any
 
-from ....frontend import syntax as A
+from .....frontend import syntax as A
 from .lower_precision import LOWP_OPS, lowp_tree
 from .ssa_values import keep_factor, merge_into_matrix
 from .constant_merge import merge_constants

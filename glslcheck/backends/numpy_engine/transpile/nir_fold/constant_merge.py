@@ -10,8 +10,8 @@ from __future__ import annotations
 
 from typing import Any
 
-from ....frontend import syntax as A
-from ....language.glsl_types import FLOAT
+from .....frontend import syntax as A
+from .....language.glsl_types import FLOAT
 from .queries import SUMS, has_matrix, is_builtin, is_constant, is_varying, reaching_value, stable_init
 from .ssa_values import product_parts
 from .dot_constants import broadcast_dot_parts

@@ -14,12 +14,12 @@ from __future__ import annotations
 
 from typing import Any
 
-from ....frontend import syntax as A
-from ....language import builtin_functions as B
-from ....semantics.analysis import param_directions
-from ....semantics.model import Symbol
-from ....base.diagnostics import Location
-from ..transpile.inline import bound_argument, inline_owner
+from .....frontend import syntax as A
+from .....language import builtin_functions as B
+from .....semantics.analysis import param_directions
+from .....semantics.model import Symbol
+from .....base.diagnostics import Location
+from ..inline import bound_argument, inline_owner
 
 
 SUMS = ("+", "-")
@@ -218,7 +218,7 @@ def is_fmul(tr: Any, node: Any) -> bool:
 
 def function_facts(tr: Any) -> Any:
     """analysis.dataflow's execution-order facts of the current function, made once."""
-    from ....semantics.analysis.dataflow import FunctionFacts
+    from .....semantics.analysis.dataflow import FunctionFacts
 
     cache = tr.fold_state.facts
     key = id(tr.fn.sym)

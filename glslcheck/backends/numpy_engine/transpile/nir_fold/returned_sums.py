@@ -12,8 +12,8 @@ from __future__ import annotations
 
 from typing import Any
 
-from ....frontend import syntax as A
-from ....semantics.model import Symbol
+from .....frontend import syntax as A
+from .....semantics.model import Symbol
 from .queries import FunctionStandin, SUMS, function_facts, is_fmul, is_opaque, use_counts, used_once
 from .sink import known_term
 

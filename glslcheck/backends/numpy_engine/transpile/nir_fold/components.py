@@ -12,10 +12,10 @@ from __future__ import annotations
 
 from typing import Any
 
-from ....frontend import syntax as A
-from ....semantics.analysis import param_directions
-from ....frontend.printer import to_glsl
-from ....language.glsl_types import FLOAT
+from .....frontend import syntax as A
+from .....semantics.analysis import param_directions
+from .....frontend.printer import to_glsl
+from .....language.glsl_types import FLOAT
 from .queries import FunctionStandin, constant_value, function_facts, has_matrix, is_constant
 from .compound_products import kept_product
 
