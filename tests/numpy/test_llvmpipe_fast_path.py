@@ -9,7 +9,7 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from glslcheck.backends.numpy_engine import runtime
+from glslcheck.backends.numpy_engine import llvmpipe_reference
 from glslcheck.backends.numpy_engine.llvmpipe_reference import DeferredFma, LlvmpipeMath, blocked
 
 RNG = np.random.default_rng(18)
@@ -41,7 +41,7 @@ def _bits(a: np.ndarray) -> np.ndarray:
 
 
 @pytest.mark.parametrize("fma", [True, False])
-@pytest.mark.parametrize("shape", [(40,), (300,), (runtime._DEFER_LANES,), (20_000,), (3, 1), (4, 50)])
+@pytest.mark.parametrize("shape", [(40,), (300,), (llvmpipe_reference.DEFER_LANES,), (20_000,), (3, 1), (4, 50)])
 def test_fast_path_equals_reference(fma, shape):
     """Lane arrays of each size, and vectors (components first: (3, 1) is a vec3 of one lane)."""
     lp = LlvmpipeMath(fma)

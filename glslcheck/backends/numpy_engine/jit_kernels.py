@@ -1,6 +1,6 @@
 """The llvmpipe math emulation as compiled loops (numba): one pass over the lanes per call.
 
-runtime.LlvmpipeMath makes gallivm's sin/cos/exp2/log2/pow (lp_bld_arit.c) as 30-70 NumPy
+llvmpipe_reference.LlvmpipeMath makes gallivm's sin/cos/exp2/log2/pow (lp_bld_arit.c) as 30-70 NumPy
 operations; on the few hundred lanes of a compacted march loop each costs more than its
 arithmetic. These kernels make the same float32 operations, in the same order with the same
 roundings, lane by lane in one compiled loop without a branch out of it, which LLVM

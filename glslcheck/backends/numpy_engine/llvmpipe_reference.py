@@ -49,7 +49,7 @@ FLT_MIN = F32(1.17549435e-38)
 _BLOCK = 65536  # lanes per pass inside LlvmpipeMath (a render tile, 49152 lanes, is one block)
 # up to this many lanes a call checks its fused multiply-adds for midpoints once at the end
 # (LlvmpipeMath._fast); above, keeping every float64 sum alive costs more than the checks it saves
-_DEFER_LANES = 4096
+DEFER_LANES = 4096
 
 
 def daz(x: np.ndarray) -> np.ndarray:
@@ -184,7 +184,7 @@ class LlvmpipeMath:
             return ref
 
         def run(*args: np.ndarray) -> np.ndarray:
-            if args[0].size > _DEFER_LANES:
+            if args[0].size > DEFER_LANES:
                 return ref(*args)
             d = DeferredFma()
             r = getattr(d, name)(*args)
@@ -195,7 +195,7 @@ class LlvmpipeMath:
         """The algorithm ``name`` as llvmpipe_fast's kernel (the same steps in fewer NumPy
         calls, for arguments in the common range), else, where the kernel declines (edge
         arguments), :meth:`_fast`, which also recomputes the lanes of a float32 midpoint in
-        the kernel: the same bits either way. Up to :data:`_DEFER_LANES` lanes: on larger
+        the kernel: the same bits either way. Up to :data:`DEFER_LANES` lanes: on larger
         arrays (whole tiles) the kernel's float64 rows cost as much as the calls they save
         (measured alternately in one process: 1.5-1.8x faster at 143 lanes, 1.2-1.5x at
         3600, even at 16000-48000 for sin and exp2, pow slower there). Made once
@@ -205,7 +205,7 @@ class LlvmpipeMath:
             fast, slow, fma = _FAST_KERNELS.get(name), self._fast(name), self.fma
 
             def run(*args: np.ndarray) -> np.ndarray:
-                if max(a.size for a in args) > _DEFER_LANES:
+                if max(a.size for a in args) > DEFER_LANES:
                     return slow(*args)
                 r = fast(*args, fma, slow)  # slow: also for the lanes of a float32 midpoint
                 return slow(*args) if r is None else r
@@ -283,7 +283,7 @@ class LlvmpipeMath:
         # (elementwise, so the same bits as two calls, in half the NumPy calls); on a tile two
         # arrays of one row each are faster (measured: 1.2x the time with the stacked form)
         p = self.SIN_COS
-        if z.size <= _DEFER_LANES:  # (flat: the argument may be a vector, e.g. of shape (3, 1))
+        if z.size <= DEFER_LANES:  # (flat: the argument may be a vector, e.g. of shape (3, 1))
             zf = z.reshape(-1)
             both = self.mad(self.mad(zf, p[0], p[1]), zf, p[2])
             both *= zf
