@@ -42,7 +42,8 @@ sys.path.insert(0, HERE)
 from bench_render import _best  # noqa: E402
 
 from glslcheck.backends.numpy_engine import jit  # noqa: E402
-from glslcheck.backends.numpy_engine.runtime import HOST_FMA, LlvmpipeMath, Runtime, _blocked  # noqa: E402
+from glslcheck.backends.numpy_engine.llvmpipe_reference import HOST_FMA, LlvmpipeMath, blocked  # noqa: E402
+from glslcheck.backends.numpy_engine.runtime import Runtime  # noqa: E402
 
 F32 = np.float32
 FUNCTIONS = ("_sin", "_cos", "_tan", "_exp2", "_log2", "_pow")
@@ -109,7 +110,7 @@ def check(n: int) -> None:
     for fma in (True, False):
         lp = LlvmpipeMath(fma)
         for name in FUNCTIONS:
-            ref = (lambda *a, _f=getattr(lp, name): _blocked(_f, *a))
+            ref = (lambda *a, _f=getattr(lp, name): blocked(_f, *a))
             print("   " + _compare(name, ref, _arguments(n, rng, name), fma, kernels))
         rt = Runtime("float32", fma=fma)
         for name, (_, ref, _) in RUNTIME.items():

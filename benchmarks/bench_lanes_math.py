@@ -122,7 +122,7 @@ def main() -> None:
     opts = ap.parse_args()
 
     from glslcheck.backends.compiled_engine import lanes_math, scalar
-    from glslcheck.backends.numpy_engine.runtime import HOST_FMA
+    from glslcheck.backends.numpy_engine.llvmpipe_reference import HOST_FMA
 
     names = [n for n in opts.only.split(",") if n] or list(lanes_math.REWRITTEN + lanes_math.AS_IS)
     names = [n for n in names if n in SPECS]

@@ -36,7 +36,8 @@ sys.path.insert(0, ROOT)
 from glslcheck.base.diagnostics import register_source  # noqa: E402
 from glslcheck.backends.numpy_engine.tiles import TILE_LANES  # noqa: E402
 from glslcheck.backends.numpy_engine.program import compile_numpy  # noqa: E402
-from glslcheck.backends.numpy_engine.runtime import HOST_FMA, Runtime  # noqa: E402
+from glslcheck.backends.numpy_engine.llvmpipe_reference import HOST_FMA  # noqa: E402
+from glslcheck.backends.numpy_engine.runtime import Runtime  # noqa: E402
 from glslcheck.shadertoy.sources import Shader, Source, load_shader  # noqa: E402
 
 NOISE = """

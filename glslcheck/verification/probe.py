@@ -32,7 +32,7 @@ from typing import Any, Iterator
 import numpy as np
 
 from ..base.diagnostics import InputError, source_line
-from ..backends.numpy_engine.runtime import Struct
+from ..backends.numpy_engine.runtime_values import Struct
 from ..backends.numpy_engine.tracing import HELP, OPERATIONS, LaneTracer, PixelTracer, Site, TraceTranspiler
 
 UNSTABLE_BITS = 16  # first_unstable: a value keeping fewer bits than this has lost more than a third of float32's 24

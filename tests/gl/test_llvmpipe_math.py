@@ -19,7 +19,8 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from glslcheck.backends.numpy_engine.runtime import HOST_FMA, Runtime
+from glslcheck.backends.numpy_engine.llvmpipe_reference import HOST_FMA
+from glslcheck.backends.numpy_engine.runtime import Runtime
 from llvmpipe_eval import evaluate, ulp_distance
 
 RT = Runtime("float32")

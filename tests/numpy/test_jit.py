@@ -15,7 +15,7 @@ import pytest
 
 from glslcheck.base.diagnostics import InputError
 from glslcheck.backends.numpy_engine import jit
-from glslcheck.backends.numpy_engine.runtime import LlvmpipeMath, _blocked
+from glslcheck.backends.numpy_engine.llvmpipe_reference import LlvmpipeMath, blocked
 
 ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 F32 = np.float32
@@ -86,7 +86,7 @@ def test_on_uses_the_kernels_from_the_first_call(state, monkeypatch):
     monkeypatch.setenv("GLSLCHECK_JIT", "on")
     lp = LlvmpipeMath(True)
     x = np.linspace(-3, 3, 100, dtype=F32)
-    assert np.array_equal(lp.sin_or_cos(x, cos=False), _blocked(lp._sin, x))
+    assert np.array_equal(lp.sin_or_cos(x, cos=False), blocked(lp._sin, x))
     assert state.fake.calls == 1 and state.loads == [0.0]
 
 
@@ -99,7 +99,7 @@ def test_auto_loads_once_small_calls_have_cost_the_load(state, monkeypatch):
     lp = LlvmpipeMath(True)
     small = np.linspace(0.1, 3, 143, dtype=F32)
     while not state.loads:
-        assert np.array_equal(lp.exp2(small), _blocked(lp._exp2, small))
+        assert np.array_equal(lp.exp2(small), blocked(lp._exp2, small))
     assert state.loads[0] > 0.05 and state.fake.calls == 0  # the call that crossed ran on NumPy
     lp.exp2(small)
     LlvmpipeMath(False).pow(small, small)
@@ -194,7 +194,7 @@ def test_workers_counts_decide_for_all_of_them(state, monkeypatch):
     assert jit.decided() and not state.loads
     lp = LlvmpipeMath(True)
     small = np.linspace(0.1, 3, 143, dtype=F32)
-    assert np.array_equal(lp.exp2(small), _blocked(lp._exp2, small))
+    assert np.array_equal(lp.exp2(small), blocked(lp._exp2, small))
     assert state.loads == [0.5] and state.fake.calls == 1  # loaded before the first call, which took them
     monkeypatch.setenv("GLSLCHECK_JIT", "off")
     fresh = jit._State()

@@ -19,7 +19,8 @@ from test_llvmpipe_fast_kernels import KERNELS as FAST_KERNELS
 from test_llvmpipe_fast_kernels import RNG, SPECIALS, _bits, _sample
 
 from glslcheck.backends.numpy_engine import jit
-from glslcheck.backends.numpy_engine.runtime import LlvmpipeMath, Runtime, _blocked
+from glslcheck.backends.numpy_engine.llvmpipe_reference import LlvmpipeMath, blocked
+from glslcheck.backends.numpy_engine.runtime import Runtime
 
 F32 = np.float32
 KERNELS = dict(FAST_KERNELS, _tan=(-3, 9.5, False))  # (scale exponents, positive only)
@@ -29,7 +30,7 @@ def _compiled(name: str, lp: LlvmpipeMath, kernels, declined: list):
     """The kernel as LlvmpipeMath calls it, its NumPy path the reference (counting declines)."""
     def run(*args):
         declined.append(args[0].size)
-        return _blocked(getattr(lp, name), *args)
+        return blocked(getattr(lp, name), *args)
     return jit.compiled(name, run, lp.fma, kernels)
 
 
@@ -52,7 +53,7 @@ def test_kernel_equals_reference(jit_kernels, name, fma):
         while lanes < 1_500_000:
             n = int(RNG.choice([1, 3, 7, 143, 900, 5000, 16000, 49152]))
             args = _args(name, n, RNG.random() < 1 / 3)
-            want = _blocked(getattr(lp, name), *args)
+            want = blocked(getattr(lp, name), *args)
             before = len(declined)
             got = fn(*args)
             lanes += n
@@ -80,7 +81,7 @@ def test_specials_one_by_one(jit_kernels, name):
                     cases = [(x,)] if name != "_pow" else [(np.abs(x), np.full_like(x, 2.5)),
                                                           (np.full_like(x, 2.5), x), (x, np.full_like(x, -1.5))]
                     for a in cases:
-                        want = _blocked(getattr(lp, name), *a)
+                        want = blocked(getattr(lp, name), *a)
                         assert np.array_equal(_bits(fn(*a)), _bits(want)), (name, fma, a)
 
 
@@ -96,7 +97,7 @@ def test_shapes_and_layouts(jit_kernels):
     for name, calls in cases.items():
         fn = _compiled(name, lp, jit_kernels, declined := [])
         for args in calls:
-            want = _blocked(getattr(lp, name), *args)
+            want = blocked(getattr(lp, name), *args)
             got = fn(*args)
             assert got.shape == want.shape and np.array_equal(got.view(np.int32), want.view(np.int32))
         assert not declined

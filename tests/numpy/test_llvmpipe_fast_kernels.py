@@ -16,7 +16,7 @@ import numpy as np
 import pytest
 
 from glslcheck.backends.numpy_engine import llvmpipe_fast
-from glslcheck.backends.numpy_engine.runtime import LlvmpipeMath, _blocked
+from glslcheck.backends.numpy_engine.llvmpipe_reference import LlvmpipeMath, blocked
 
 RNG = np.random.default_rng(1818)
 F32 = np.float32
@@ -86,7 +86,7 @@ def test_kernel_equals_reference(name, fma):
             args = (_sample(n, lo, hi, positive, specials),)
             if name == "_pow":
                 args += (_sample(n, -2, 1.5, False, specials),)
-            want = _blocked(getattr(lp, name), *args)
+            want = blocked(getattr(lp, name), *args)
             got = kernel(*args)
             if got is None:  # declined: the public method takes the reference path
                 got = public(*args)
@@ -114,7 +114,7 @@ def test_specials_one_by_one(name):
                     else:
                         args = [args]
                     for a in args:
-                        want = _blocked(getattr(lp, name), *a)
+                        want = blocked(getattr(lp, name), *a)
                         got = _public(lp, name)(*a)
                         assert np.array_equal(_bits(got), _bits(want)), (name, fma, a, got, want)
 
@@ -151,7 +151,7 @@ def test_midpoint_lanes_get_the_reference(monkeypatch):
     with np.errstate(all="ignore"):
         for name in sorted(KERNELS):
             args = (x,) if name != "_pow" else (x, x[:1] * F32(0.01))  # pow: y broadcast
-            want = _blocked(getattr(lp, name), *args)
+            want = blocked(getattr(lp, name), *args)
             assert _kernel(name, True)(*args) is None
             calls = []
 

@@ -1,5 +1,5 @@
 """LlvmpipeMath's fast path (fused multiply-adds checked for float32 midpoints once per call,
-`LlvmpipeMath._fast`) against its reference path (each one checked and corrected, `_fma32`),
+`LlvmpipeMath._fast`) against its reference path (each one checked and corrected, `fma32`),
 bit for bit, on random arguments with every kind of special: +-0, subnormals, +-Inf, NaN, huge
 magnitudes, exact integers and halves. Both FMA choices, and lane counts on both sides of
 `_DEFER_LANES` (the fast path only defers up to there)."""
@@ -9,8 +9,8 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from glslcheck.backends.numpy_engine import runtime
-from glslcheck.backends.numpy_engine.runtime import LlvmpipeMath, _blocked, _DeferredFma
+from glslcheck.backends.numpy_engine import llvmpipe_reference
+from glslcheck.backends.numpy_engine.llvmpipe_reference import DeferredFma, LlvmpipeMath, blocked
 
 RNG = np.random.default_rng(18)
 SPECIALS = np.array([0.0, -0.0, 1e-45, -1e-45, 1e-40, -1e-40, 1.1754942e-38, 1.17549435e-38,
@@ -41,7 +41,7 @@ def _bits(a: np.ndarray) -> np.ndarray:
 
 
 @pytest.mark.parametrize("fma", [True, False])
-@pytest.mark.parametrize("shape", [(40,), (300,), (runtime._DEFER_LANES,), (20_000,), (3, 1), (4, 50)])
+@pytest.mark.parametrize("shape", [(40,), (300,), (llvmpipe_reference.DEFER_LANES,), (20_000,), (3, 1), (4, 50)])
 def test_fast_path_equals_reference(fma, shape):
     """Lane arrays of each size, and vectors (components first: (3, 1) is a vec3 of one lane)."""
     lp = LlvmpipeMath(fma)
@@ -55,7 +55,7 @@ def test_fast_path_equals_reference(fma, shape):
             public = {"_sin": lambda a: lp.sin_or_cos(a, cos=False),
                       "_cos": lambda a: lp.sin_or_cos(a, cos=True), "_tan": lp.tan,
                       "_exp2": lp.exp2, "_log2": lp.log2, "_pow": lp.pow}[name]
-            want = _blocked(getattr(lp, name), *args)
+            want = blocked(getattr(lp, name), *args)
             got = public(*args)
             assert got.dtype == np.float32
             bad = np.flatnonzero(_bits(got) != _bits(want))
@@ -65,11 +65,11 @@ def test_fast_path_equals_reference(fma, shape):
 def test_deferred_check_finds_a_midpoint_and_the_call_falls_back():
     """1 * (1 + 2**-23) + 2**-24 is a float32 midpoint: the deferred check must see it (and
     the fused rounding, ties-to-even here, is the reference's)."""
-    d = _DeferredFma()
+    d = DeferredFma()
     one = np.ones(3, np.float32)
     d.mad(one, np.float32(1 + 2**-23), np.float32(2**-24))
     assert d.midpoint()
-    d = _DeferredFma()
+    d = DeferredFma()
     d.mad(one, np.float32(1.5), np.float32(0.25))
     assert not d.midpoint()
     # a fast-path call whose check fires returns the reference result
@@ -80,14 +80,14 @@ def test_deferred_check_finds_a_midpoint_and_the_call_falls_back():
             calls.append(type(self).__name__)
             return super()._exp2(x)
 
-    orig = _DeferredFma.midpoint
+    orig = DeferredFma.midpoint
     try:
-        _DeferredFma.midpoint = lambda self: True
+        DeferredFma.midpoint = lambda self: True
         x = _sample(50)
         with np.errstate(all="ignore"):
             got = Spy(True).exp2(x)
-            want = _blocked(LlvmpipeMath(True)._exp2, x)
+            want = blocked(LlvmpipeMath(True)._exp2, x)
     finally:
-        _DeferredFma.midpoint = orig
-    assert calls == ["Spy"]  # the deferred run is _DeferredFma's own; the fallback is Spy's
+        DeferredFma.midpoint = orig
+    assert calls == ["Spy"]  # the deferred run is DeferredFma's own; the fallback is Spy's
     assert np.array_equal(_bits(got), _bits(want))

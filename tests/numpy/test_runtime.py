@@ -7,7 +7,8 @@ import math
 import numpy as np
 import pytest
 
-from glslcheck.backends.numpy_engine.runtime import GLSLRuntimeError, Runtime, Struct
+from glslcheck.backends.numpy_engine.runtime import Runtime
+from glslcheck.backends.numpy_engine.runtime_values import GLSLRuntimeError, Struct
 
 RT = Runtime()
 F, I, U, B = RT.const_float, RT.const_int, RT.const_uint, RT.const_bool

@@ -311,7 +311,7 @@ def test_memo_math_gives_the_emulations_bits_and_computes_each_input_once():
     from the table are the emulation's own results bit for bit (-0.0, NaN and inf included);
     lane arrays go straight through."""
     from glslcheck.backends.numpy_engine.lane_memo import MemoMath
-    from glslcheck.backends.numpy_engine.runtime import LlvmpipeMath
+    from glslcheck.backends.numpy_engine.llvmpipe_reference import LlvmpipeMath
 
     lp = LlvmpipeMath()
     memo = MemoMath(lp)

@@ -65,11 +65,11 @@ def _versions() -> str:
     from ... import __version__
 
     here = os.path.dirname(__file__)
-    nb = os.path.join(os.path.dirname(here), "numpy_engine")
+    math = os.path.join(os.path.dirname(here), "llvmpipe_math")
     h = hashlib.sha256()
     # the runtime numba inlines into a generated module's machine code, which its cache keeps
     for path in (os.path.join(here, "scalar.py"), os.path.join(here, "lanes_rt.py"), os.path.join(here, "lanes_math.py"),
-                 os.path.join(nb, "jit_kernels.py"), os.path.join(nb, "llvmpipe_fast.py")):
+                 os.path.join(math, "lane.py"), os.path.join(math, "coefficients.py")):
         with open(path, "rb") as f:
             h.update(f.read())
     return f"{__version__} numba {version('numba')} {h.hexdigest()[:16]}"

@@ -6,9 +6,9 @@ Every function here has the name, the signature and, for every input, the result
 scalar.py's function of that name (NaN, +-0, +-Inf, subnormals, |x| >= 2**29, both ``fma``
 modes: tests/compiled/test_lanes_math.py). What differs is only how it is computed:
 
-- every ``if`` and ``x if c else y`` of scalar.py is a :func:`_select` (LLVM's ``select``): both
+- every ``if`` and ``x if c else y`` of scalar.py is a ``select`` (LLVM's, llvmpipe_math.lane): both
   sides are computed, then one is picked, lane by lane (a blend of two registers);
-- sin/cos/tan compute jit_kernels._trig's steps for every argument with scalar._trig_any's
+- sin/cos/tan compute lane.trig's steps for every argument with scalar._trig_any's
   int32 wrap-around, which is the same bits where _trig applies (|x| < 2**29) and scalar's
   answer for larger |x|; a NaN or an infinity gives scalar's NaN by a last select. So no rare
   path is left for a caller to hoist;
@@ -55,13 +55,15 @@ the packing of the loads themselves (docs/performance.md, "Branch-free math for 
 
 from __future__ import annotations
 
-import numba
-import numpy as np
-from numba.core import types
-from numba.extending import intrinsic
+from ..numpy_engine.numba_cache import use_cache_dir
 
-from ..numpy_engine import llvmpipe_fast as lf
-from ..numpy_engine.jit_kernels import _bits, _float, _mad
+use_cache_dir()  # numba's cache directory first
+
+import numba  # noqa: E402
+import numpy as np  # noqa: E402
+
+from ..llvmpipe_math import lane  # noqa: E402
+from ..llvmpipe_math.lane import ACOS_P0, ACOS_P1, ASIN_P0, ASIN_P1, bits, from_bits, select  # noqa: E402
 
 F32 = np.float32
 F64 = np.float64
@@ -78,23 +80,8 @@ _MIN_NORMAL_BITS = 0x00800000
 _INF_BITS = 0x7F800000
 _TWO31 = F64(2.0**31)
 _TWO31F = F32(2.0**31)
-_FOPI = F32(lf.FOUR_OVER_PI)
-_DP0, _DP1, _DP2 = (F32(v) for v in lf.DP)
-_C0, _C1, _C2 = (F32(lf.SIN_COS[r, 0, 0]) for r in range(3))
-_S0, _S1, _S2 = (F32(lf.SIN_COS[r, 1, 0]) for r in range(3))
-_E0, _E1, _E2, _E3, _E4, _E5 = (F32(v) for v in lf.EXP2)
-_L0, _L1, _L2, _L3, _L4 = (F32(v) for v in lf.LOG2)
-_EXP2_HI, _EXP2_LO = F32(128.0), F32(-126.99999)
 _LOG2E = F32(1.4426950408889634)
 _LN2 = F32(0.6931471805599453)
-# Mesa's atan/asin/acos (jit_kernels' constants, the same roundings)
-_HALF_PI = F32(np.pi / 2)
-_A0, _A1, _A2, _A3, _A4, _A5 = (F32(v) for v in (0.9999793128310355, -0.3326756418091246, 0.1938924977115610,
-                                                  -0.1173503194786851, 0.0536813784310406, -0.0121323213173444))
-_MTWO, _QUARTER, _BIG = F32(-2.0), F32(0.25), F32(1e18)
-_ASIN_C1 = F32(F32(np.pi / 4) - _ONE)
-_ASIN_P0, _ASIN_P1 = F32(0.086566724), F32(-0.03102955)
-_ACOS_P0, _ACOS_P1 = F32(0.08132463), F32(-0.02363318)
 
 
 _F, _I, _U = "float32", "int32", "uint32"
@@ -133,30 +120,17 @@ def _inline(fn):
     return numba.njit(**{**_J, "inline": "always"})(fn)
 
 
-@intrinsic
-def _select(typingctx, c, a, b):
-    """``a`` where the bool ``c`` holds, else ``b``: LLVM's ``select`` (both computed; a blend of
-    two registers once vectorised). ``a`` and ``b`` have one type."""
-    if not isinstance(c, types.Boolean) or a != b:
-        return None
-
-    def codegen(context, builder, signature, args):
-        return builder.select(args[0], args[1], args[2])
-    return a(c, a, b), codegen
-
-
 # -- float basics ----------------------------------------------------------------------------
 @njit
 def fmin(a, b):
-    """IEEE minNum as np.fmin: a NaN operand gives the other (a NaN a gives b), equal operands
-    the second. ``a < b`` picked by select is one vminps; the NaN terms are two compares."""
-    return _select((a < b) | ((b != b) & (a == a)), a, b)
+    """IEEE minNum as np.fmin (lane.fmin: a select, one vminps and two compares)."""
+    return lane.fmin(a, b)
 
 
 @njit
 def fmax(a, b):
-    """IEEE maxNum as np.fmax (see :func:`fmin`)."""
-    return _select((a > b) | ((b != b) & (a == a)), a, b)
+    """IEEE maxNum as np.fmax (lane.fmax)."""
+    return lane.fmax(a, b)
 
 
 @njit
@@ -164,34 +138,21 @@ def clamp(x, lo, hi):
     return fmin(fmax(x, lo), hi)
 
 
-@_inline
-def _daz(x):
-    """A subnormal float32 as a zero of its sign (jit_kernels._daz by a select)."""
-    b = _bits(x)
-    return _float(_select((b & U32(_ABS)) < U32(_MIN_NORMAL_BITS), U32(b & _SIGN), b))
-
-
 @njit
 def daz(x):
-    return _daz(x)
-
-
-@_inline
-def _sign(v):
-    """Runtime.sign: 1, -1, else +0 (zeros and NaN)."""
-    return _select(v > _ZERO, _ONE, _select(v < _ZERO, _MONE, _ZERO))
+    return lane.daz(x)
 
 
 @njit
 def sign(x):
-    return _sign(x)
+    return lane.sign(x)
 
 
 @njit
 def mix_fast(x, y, a):
     """``x + a*(y-x)``, y where a is exactly 1, x where 0 (scalar.mix_fast)."""
     t = F32(x + F32(a * F32(y - x)))
-    return _select(a == _ONE, y, _select(a == _ZERO, x, t))
+    return select(a == _ONE, y, select(a == _ZERO, x, t))
 
 
 # -- ints ------------------------------------------------------------------------------------
@@ -205,17 +166,17 @@ def _u32_of(t):
 def idiv(a, b):
     """int ``/``: truncation; x / 0 = 0; INT_MIN / -1 = INT_MIN (scalar.idiv)."""
     zero = b == 0
-    q = np.trunc(F64(a) / _select(zero, F64(1.0), F64(b)))  # exact (module docstring)
-    q = _select(q >= _TWO31, F64(-_TWO31), q)  # INT_MIN / -1 wraps
-    return _select(zero, I32(0), I32(q))
+    q = np.trunc(F64(a) / select(zero, F64(1.0), F64(b)))  # exact (module docstring)
+    q = select(q >= _TWO31, F64(-_TWO31), q)  # INT_MIN / -1 wraps
+    return select(zero, I32(0), I32(q))
 
 
 @njit
 def udiv(a, b):
     """uint ``/``: x / 0 = 0xFFFFFFFF."""
     zero = b == 0
-    q = np.trunc(F64(a) / _select(zero, F64(1.0), F64(b)))
-    return _select(zero, U32(0xFFFFFFFF), _u32_of(q))
+    q = np.trunc(F64(a) / select(zero, F64(1.0), F64(b)))
+    return select(zero, U32(0xFFFFFFFF), _u32_of(q))
 
 
 @_inline
@@ -231,15 +192,15 @@ def irem(a, b):
     """int ``%`` at run time: the unsigned remainder of the bit patterns; x % 0 = -1."""
     bu = U32(b)
     zero = bu == 0
-    r = _urem64(U32(a), _select(zero, U32(1), bu))
-    return _select(zero, I32(-1), I32(_u32_of(r)))
+    r = _urem64(U32(a), select(zero, U32(1), bu))
+    return select(zero, I32(-1), I32(_u32_of(r)))
 
 
 @njit
 def urem(a, b):
     zero = b == 0
-    r = _urem64(a, _select(zero, U32(1), U32(b)))
-    return _select(zero, U32(0xFFFFFFFF), _u32_of(r))
+    r = _urem64(a, select(zero, U32(1), U32(b)))
+    return select(zero, U32(0xFFFFFFFF), _u32_of(r))
 
 
 @njit
@@ -247,9 +208,9 @@ def irem_const(a, b):
     """int ``%`` folded by Mesa: the C remainder (the sign of a); x % 0 = -1."""
     zero = b == 0
     ad = F64(a)
-    bd = _select(zero, F64(1.0), F64(b))
+    bd = select(zero, F64(1.0), F64(b))
     r = ad - np.trunc(ad / bd) * bd  # exact; INT_MIN % -1 is 0
-    return _select(zero, I32(-1), I32(r))
+    return select(zero, I32(-1), I32(r))
 
 
 # -- conversions -----------------------------------------------------------------------------
@@ -257,12 +218,12 @@ def irem_const(a, b):
 def to_int(x):
     """``int(float)``: truncation; NaN, +-Inf and out of range give INT_MIN (cvttps2dq). A
     float32 truncates into [-2**31, 2**31) exactly when it lies in that range."""
-    return _select((x >= -_TWO31F) & (x < _TWO31F), I32(x), _INT_MIN)
+    return select((x >= -_TWO31F) & (x < _TWO31F), I32(x), _INT_MIN)
 
 
 @_inline
 def _cvtt_bits(t):
-    return _select((t >= -_TWO31) & (t < _TWO31), U32(I32(t)), _SIGN)
+    return select((t >= -_TWO31) & (t < _TWO31), U32(I32(t)), _SIGN)
 
 
 @njit
@@ -270,22 +231,22 @@ def to_uint_sse(x):
     """``uint(float)`` as llvmpipe on an x86 CPU without AVX-512 (scalar.to_uint_sse)."""
     xd = F64(x)
     big = xd >= _TWO31
-    bits = _cvtt_bits(np.trunc(_select(big, xd - _TWO31, xd)))
-    return _select(big, U32(bits | _SIGN), bits)
+    bits = _cvtt_bits(np.trunc(select(big, xd - _TWO31, xd)))
+    return select(big, U32(bits | _SIGN), bits)
 
 
 @njit
 def to_uint_avx512(x):
     t = np.trunc(F64(x))
-    return _select((t >= 0.0) & (t < 4294967296.0), _u32_of(_select(t >= 0.0, t, F64(0.0))), U32(0xFFFFFFFF))
+    return select((t >= 0.0) & (t < 4294967296.0), _u32_of(select(t >= 0.0, t, F64(0.0))), U32(0xFFFFFFFF))
 
 
 @njit
 def to_uint_arm64(x):
     t = np.trunc(F64(x))
-    inner = _u32_of(_select((t > 0.0) & (t < 4294967295.0), t, F64(0.0)))
-    r = _select(t >= 4294967295.0, U32(0xFFFFFFFF), inner)
-    return _select((t <= 0.0) | (t != t), U32(0), r)
+    inner = _u32_of(select((t > 0.0) & (t < 4294967295.0), t, F64(0.0)))
+    r = select(t >= 4294967295.0, U32(0xFFFFFFFF), inner)
+    return select((t <= 0.0) | (t != t), U32(0), r)
 
 
 # -- llvmpipe's transcendentals --------------------------------------------------------------
@@ -293,35 +254,27 @@ def to_uint_arm64(x):
 def _pick(flag, a, b):
     """``a`` where bit 0 of the int ``flag`` is clear, else ``b``, by a bit mask."""
     m = U32(-(I32(flag) & I32(1)))
-    return _float(U32(_bits(a) ^ U32(U32(_bits(a) ^ _bits(b)) & m)))
+    return from_bits(U32(bits(a) ^ U32(U32(bits(a) ^ bits(b)) & m)))
 
 
 @_inline
 def _negate_if(flag, x):
     """``-x`` where bit 0 of the int ``flag`` is set: the sign bit flipped by a bit mask."""
-    return _float(U32(_bits(x) ^ U32(U32(I32(flag) & I32(1)) << U32(31))))
+    return from_bits(U32(bits(x) ^ U32(U32(I32(flag) & I32(1)) << U32(31))))
 
 
 @_inline
 def _trig_lane(a, fma, which):
-    """scalar._trig_call without a branch: scalar._trig_any's steps (jit_kernels._trig's where
+    """scalar._trig_call without a branch: scalar._trig_any's steps (lane.trig's where
     |a| < 2**29) in int32 arithmetic, the polynomial and sign picked by selects, NaN for a NaN or
     an infinite ``a``."""
-    ai = I32(_bits(a))
-    x_abs = _daz(_float(U32(_bits(a) & U32(_ABS))))
-    p = F32(x_abs * _FOPI)  # >= 0, or NaN
-    j0 = _select(p < _TWO31F, I32(p), _INT_MIN)  # cvttps2dq
+    ai = I32(bits(a))
+    x_abs = lane.daz(from_bits(U32(bits(a) & U32(_ABS))))
+    p = F32(x_abs * lane.FOUR_OVER_PI)  # >= 0, or NaN
+    j0 = select(p < _TWO31F, I32(p), _INT_MIN)  # cvttps2dq
     emm2_add = I32(j0 + I32(1))
     emm2_and = I32(emm2_add & I32(-2))
-    y_2 = F32(emm2_and)
-    x_3 = _mad(y_2, _DP0, x_abs, fma)
-    x_3 = _mad(y_2, _DP1, x_3, fma)
-    x_3 = _mad(y_2, _DP2, x_3, fma)
-    z = F32(x_3 * x_3)
-    y_6 = F32(_mad(_mad(z, _C0, _C1, fma), z, _C2, fma) * z)
-    y2_6 = F32(_mad(_mad(z, _S0, _S1, fma), z, _S2, fma) * z)
-    y_10 = F32(F32(F32(y_6 * z) - F32(z * _HALF)) + _ONE)
-    y2_9 = _mad(y2_6, x_3, x_3, fma)
+    y_10, y2_9 = lane.sin_cos_polynomials(F32(emm2_and), x_abs, fma)
     s = _ZERO
     c = _ZERO
     if which != 1:  # a constant: folded
@@ -333,10 +286,10 @@ def _trig_lane(a, fma, which):
         c = _pick(emm2_and >> 1, y_10, y2_9)  # bit 1 of j2 = j - 2 is bit 1 of the even j flipped
         c = _negate_if(I32(j2 >> 2) ^ I32(1), c)
         c = fmax(fmin(c, _ONE), _MONE)
-    bad = (_bits(a) & U32(_ABS)) >= U32(_INF_BITS)  # NaN or Inf: scalar's NaN
+    bad = (bits(a) & U32(_ABS)) >= U32(_INF_BITS)  # NaN or Inf: scalar's NaN
     if which == 2:  # the NaN selected before the division: a select of a division's result
-        return F32(_select(bad, _NAN, s) / _select(bad, _ONE, c))  # becomes a branch (LLVM)
-    return _select(bad, _NAN, s if which == 0 else c)
+        return F32(select(bad, _NAN, s) / select(bad, _ONE, c))  # becomes a branch (LLVM)
+    return select(bad, _NAN, s if which == 0 else c)
 
 
 @njit
@@ -356,65 +309,56 @@ def tan(a, fma):
 
 @_inline
 def _exp2_finite(x, fma):
-    """jit_kernels._exp2 of a non-NaN x, its clamp and DAZ by selects."""
-    x = _daz(x)
-    x = _select(x < _EXP2_LO, _EXP2_LO, x)
-    x = _select(x > _EXP2_HI, _EXP2_HI, x)
+    """lane.exp2 of a non-NaN x, its clamp and DAZ by selects."""
+    x = lane.daz(x)
+    x = select(x < lane.EXP2_LO, lane.EXP2_LO, x)
+    x = select(x > lane.EXP2_HI, lane.EXP2_HI, x)
     ipart = F32(np.floor(x))
-    fpart = F32(x - ipart)
-    x2 = F32(fpart * fpart)
-    odd = _mad(x2, _mad(x2, _E5, _E3, fma), _E1, fma)
-    even = _mad(x2, _mad(x2, _E4, _E2, fma), _E0, fma)
-    p = _mad(odd, fpart, even, fma)
-    return F32(_float(U32(I32(I32(I32(ipart) + I32(127)) << I32(23)))) * p)
+    p = lane.exp2_polynomial(F32(x - ipart), fma)
+    return F32(from_bits(U32(I32(I32(I32(ipart) + I32(127)) << I32(23)))) * p)
 
 
 @njit
 def exp2(x, fma):
     nan = x != x
-    return _select(nan, _NAN, _exp2_finite(_select(nan, _ZERO, x), fma))
+    return select(nan, _NAN, _exp2_finite(select(nan, _ZERO, x), fma))
 
 
 @njit
 def log2(x, fma):
     """lp_build_log2_safe (scalar.log2): NaN for NaN and x < 0 after DAZ, -Inf for a zero after
-    DAZ, +Inf for +Inf, else jit_kernels._log2's exponent plus y * P(y*y)."""
-    b = _bits(x)
+    DAZ, +Inf for +Inf, else lane.log2's exponent plus y * P(y*y)."""
+    b = bits(x)
     mag = b & U32(_ABS)
     tiny = mag < U32(_MIN_NORMAL_BITS)
     nan = (x != x) | ((b >= _SIGN) & (mag >= U32(_MIN_NORMAL_BITS)))
     inf = b == U32(_INF_BITS)
-    b = _select(tiny | nan | inf, U32(0x3F800000), b)  # 1.0: the formula on a harmless value
+    b = select(tiny | nan | inf, U32(0x3F800000), b)  # 1.0: the formula on a harmless value
     logexp = F32(I32(I32(b >> U32(23)) - I32(127)))  # b's sign bit is clear
-    mant = _float(U32((b & U32(0x007FFFFF)) | U32(0x3F800000)))
-    y = F32(F32(mant - _ONE) / F32(mant + _ONE))
-    w = F32(y * y)
-    x2 = F32(w * w)
-    even = _mad(x2, _mad(x2, _L4, _L2, fma), _L0, fma)
-    odd = _mad(x2, _L3, _L1, fma)
-    r = _mad(y, _mad(odd, w, even, fma), logexp, fma)
-    r = _select(inf, _INF, _select(tiny, -_INF, r))
-    return _select(nan, _NAN, r)
+    mant = from_bits(U32((b & U32(0x007FFFFF)) | U32(0x3F800000)))
+    r = lane.log2_of_parts(mant, logexp, fma)
+    r = select(inf, _INF, select(tiny, -_INF, r))
+    return select(nan, _NAN, r)
 
 
 @njit
 def pow(x, y, fma):
     """lp_build_pow (scalar.pow): exp2(log2(x) * y), 0 where x is 0 after DAZ or NaN."""
-    zero = (x != x) | ((_bits(x) & U32(_ABS)) < U32(_MIN_NORMAL_BITS))
-    t = F32(log2(x, fma) * _daz(y))
+    zero = (x != x) | ((bits(x) & U32(_ABS)) < U32(_MIN_NORMAL_BITS))
+    t = F32(log2(x, fma) * lane.daz(y))
     nan = t != t
-    r = _select(nan, _NAN, _exp2_finite(_select(nan, _ZERO, t), fma))
-    return _select(zero, _ZERO, r)
+    r = select(nan, _NAN, _exp2_finite(select(nan, _ZERO, t), fma))
+    return select(zero, _ZERO, r)
 
 
 @njit
 def pow_zero(x):
-    return _select((x == _ZERO) | (x != x), _ZERO, _ONE)
+    return select((x == _ZERO) | (x != x), _ZERO, _ONE)
 
 
 @njit
 def exp(x, fma):
-    return exp2(F32(_daz(x) * _LOG2E), fma)
+    return exp2(F32(lane.daz(x) * _LOG2E), fma)
 
 
 @njit
@@ -432,66 +376,30 @@ def pow_uniform(x, y, special, zeros, fma):
     within one block, left scalar (lab 07_final, four pows a pixel: 49 -> 29 ms of lockstep CPU
     time at 800x450). Where they are constants, LLVM folds the selects and the unused side."""
     sq = F32(x * x)
-    rewrite = _select(y == _ONE, x, _select(y == _TWO, sq, _select(y == _FOUR, F32(sq * sq), pow_zero(x))))
-    return _select(special, _select(zeros, _ONE, rewrite), pow(x, y, fma))
+    rewrite = select(y == _ONE, x, select(y == _TWO, sq, select(y == _FOUR, F32(sq * sq), pow_zero(x))))
+    return select(special, select(zeros, _ONE, rewrite), pow(x, y, fma))
 
 
-# -- Mesa's atan, atan(y, x), asin, acos (jit_kernels._atan, _atan2, _asin_expr by selects) ----
-@_inline
-def _atan(v):
-    a = abs(v)
-    x = _daz(F32(fmin(a, _ONE) / fmax(a, _ONE)))
-    x2 = F32(x * x)
-    t = F32(x * _A0)
-    p = F32(x * x2)
-    t = F32(t + F32(p * _A1))
-    p = F32(p * x2)
-    t = F32(t + F32(p * _A2))
-    p = F32(p * x2)
-    t = F32(t + F32(p * _A3))
-    p = F32(p * x2)
-    t = F32(t + F32(p * _A4))
-    t = _daz(F32(t + F32(F32(p * _A5) * x2)))
-    t = _select(_ONE < a, F32(F32(F32(t * _MTWO) + _HALF_PI) + t), t)
-    return F32(t * _sign(v))
-
-
+# -- Mesa's atan, atan(y, x), asin, acos: llvmpipe_math.lane's (selects already) ---------------
 @njit
 def atan(y):
-    return _atan(_daz(y))
+    return lane.atan(lane.daz(y))
 
 
 @njit
 def atan2(y, x):
     """Runtime.atan(y, x): Mesa's nir_atan2 (atan(0, 0) = 3*pi/4)."""
-    y = _daz(y)
-    x = _daz(x)
-    flip = _ZERO >= x
-    ax = abs(x)
-    s = _select(flip, ax, y)
-    t = _select(flip, y, ax)
-    scale = _select(abs(t) >= _BIG, _QUARTER, _ONE)
-    rcp = F32(_ONE / F32(t * scale))
-    tan_ = _select(ax == abs(y), _ONE, _daz(F32(abs(F32(s * scale)) * abs(rcp))))
-    arc = F32(F32(_select(flip, _ONE, _ZERO) * _HALF_PI) + _atan(tan_))
-    return _select(fmin(y, rcp) < _ZERO, -arc, arc)
-
-
-@_inline
-def _asin_expr(x, p0, p1):
-    a = abs(x)
-    poly = F32(_HALF_PI + F32(a * F32(_ASIN_C1 + F32(a * F32(p0 + F32(a * p1))))))
-    return F32(_sign(x) * F32(_HALF_PI - F32(np.sqrt(F32(_ONE - a)) * poly)))
+    return lane.atan2(y, x)
 
 
 @njit
 def asin(x):
-    return _asin_expr(_daz(x), _ASIN_P0, _ASIN_P1)
+    return lane.asin_expr(lane.daz(x), ASIN_P0, ASIN_P1)
 
 
 @njit
 def acos(x):
-    return F32(_HALF_PI - _asin_expr(_daz(x), _ACOS_P0, _ACOS_P1))
+    return F32(lane.HALF_PI - lane.asin_expr(lane.daz(x), ACOS_P0, ACOS_P1))
 
 
 # -- hyperbolic: scalar.py's formulas over the branch-free exp and log -----------------------
@@ -507,8 +415,8 @@ def cosh(x, fma):
 
 @njit
 def tanh(x, fma):
-    x = _select(x > F32(-10.0), x, F32(-10.0))  # clamp(x, -10, 10), NaN gives -10: two compares
-    x = _select(x < F32(10.0), x, F32(10.0))  # (the NaN terms of fmin/fmax cannot apply)
+    x = select(x > F32(-10.0), x, F32(-10.0))  # clamp(x, -10, 10), NaN gives -10: two compares
+    x = select(x < F32(10.0), x, F32(10.0))  # (the NaN terms of fmin/fmax cannot apply)
     e1 = exp(x, fma)
     e2 = exp(-x, fma)
     return F32(F32(e1 - e2) / F32(e1 + e2))
@@ -516,7 +424,7 @@ def tanh(x, fma):
 
 @njit
 def asinh(x, fma):
-    return F32(_sign(x) * log(F32(abs(x) + np.sqrt(F32(F32(x * x) + _ONE))), fma))
+    return F32(lane.sign(x) * log(F32(abs(x) + np.sqrt(F32(F32(x * x) + _ONE))), fma))
 
 
 @njit

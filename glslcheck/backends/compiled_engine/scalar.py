@@ -5,23 +5,27 @@ Each function computes, for one lane, exactly what glslcheck/backends/numpy_engi
 for every lane (its docstring is the reference for every rule quoted here): IEEE float32
 arithmetic, llvmpipe's integer division and remainder, shift counts mod 32, float-to-int
 conversions through x86's cvttps2dq, IEEE minNum/maxNum for min/max, and gallivm's
-sin/cos/tan/exp2/log2/pow, for which backends/numpy_engine/jit_kernels.py has the one-lane algorithms
-(`_trig`, `_exp2`, `_log2`): they are called here for the arguments they take, and the rest
+sin/cos/tan/exp2/log2/pow, for which backends/llvmpipe_math/lane.py has the one-lane algorithms
+(`trig`, `exp2`, `log2`): they are called here for the arguments they take, and the rest
 (|x| >= 2**29 for the trigonometric functions, NaN, negative logarithms) is computed by the
-functions below, step by step as runtime.LlvmpipeMath does.
+functions below, step by step as LlvmpipeMath does.
 
 Imported only by the generated modules (backends/compiled_engine/engine.py loads them); importing it
-imports numba.
+points numba's cache directory, then imports numba.
 """
 
 from __future__ import annotations
 
 
-import numba
-import numpy as np
+from ..numpy_engine.numba_cache import use_cache_dir
 
-from ..numpy_engine import llvmpipe_fast as lf
-from ..numpy_engine.jit_kernels import _arc, _bits, _daz, _exp2, _float, _fmax, _fmin, _log2, _mad, _trig, trig_in_range
+use_cache_dir()  # numba's cache directory first
+
+import numba  # noqa: E402
+import numpy as np  # noqa: E402
+
+from ..llvmpipe_math import lane  # noqa: E402
+from ..llvmpipe_math.lane import bits, from_bits, sin_cos_polynomials  # noqa: E402
 
 F32 = np.float32
 I32 = np.int32
@@ -31,10 +35,6 @@ _ZERO, _ONE, _MONE, _TWO, _THREE, _HALF = F32(0.0), F32(1.0), F32(-1.0), F32(2.0
 _NAN = F32(np.nan)
 _INF = F32(np.inf)
 _INT_MIN = I32(-2**31)
-_FOPI = F32(lf.FOUR_OVER_PI)
-_DP0, _DP1, _DP2 = (F32(v) for v in lf.DP)
-_C0, _C1, _C2 = (F32(lf.SIN_COS[r, 0, 0]) for r in range(3))
-_S0, _S1, _S2 = (F32(lf.SIN_COS[r, 1, 0]) for r in range(3))
 _LOG2E = F32(1.4426950408889634)
 _LN2 = F32(0.6931471805599453)
 _FLT_MIN_BITS = 0x00800000
@@ -45,10 +45,26 @@ def njit(fn):
 
 
 # -- float basics ----------------------------------------------------------------------------
-# ``min``/``max`` of floats: IEEE minNum/maxNum, a NaN operand gives the other (np.fmin/np.fmax;
-# for equal operands, +0 and -0 included, the second), jit_kernels' one-lane functions
-fmin = _fmin
-fmax = _fmax
+@numba.njit(inline="always", **lane.OPTIONS)
+def fmin(a, b):
+    """``min`` of floats: IEEE minNum, a NaN operand gives the other (np.fmin; for equal operands,
+    +0 and -0 included, the second). Branches here, which one pixel at a time runs faster than
+    lane.fmin's select (lanes_math.py uses that)."""
+    if a != a:
+        return b
+    if b != b:
+        return a
+    return a if a < b else b
+
+
+@numba.njit(inline="always", **lane.OPTIONS)
+def fmax(a, b):
+    """``max`` of floats: IEEE maxNum as np.fmax (see :func:`fmin`)."""
+    if a != a:
+        return b
+    if b != b:
+        return a
+    return a if a > b else b
 
 
 @njit
@@ -96,8 +112,8 @@ def inversesqrt(x):
 
 @njit
 def daz(x):
-    """A subnormal float32 as a zero of its sign (llvmpipe's DAZ, runtime._daz)."""
-    return _daz(x)
+    """A subnormal float32 as a zero of its sign (llvmpipe's DAZ, lane.daz)."""
+    return lane.daz(x)
 
 
 @njit
@@ -242,22 +258,22 @@ def to_uint_arm64(x):
 
 @njit
 def float_bits_to_int(x):
-    return I32(_bits(x))
+    return I32(bits(x))
 
 
 @njit
 def float_bits_to_uint(x):
-    return _bits(x)
+    return bits(x)
 
 
 @njit
 def int_bits_to_float(i):
-    return _float(U32(i))
+    return from_bits(U32(i))
 
 
 @njit
 def uint_bits_to_float(u):
-    return _float(u)
+    return from_bits(u)
 
 
 # -- llvmpipe's transcendentals --------------------------------------------------------------
@@ -270,22 +286,14 @@ def _wrap(v):
 @njit
 def _trig_any(a, fma, which):
     """LlvmpipeMath._sin_cos_reduced/_sin_cos_result for a finite |a| >= 2**29, where the
-    conversion may give INT_MIN and the integer steps wrap (jit_kernels._trig covers the rest)."""
-    ai = np.int64(I32(_bits(a)))
-    x_abs = _daz(_float(U32(ai & 0x7FFFFFFF)))
-    p = np.float64(F32(x_abs * _FOPI))
+    conversion may give INT_MIN and the integer steps wrap (lane.trig covers the rest)."""
+    ai = np.int64(I32(bits(a)))
+    x_abs = lane.daz(from_bits(U32(ai & 0x7FFFFFFF)))
+    p = np.float64(F32(x_abs * lane.FOUR_OVER_PI))
     j0 = np.int64(I32(np.int64(p))) if (p >= -2147483648.0 and p < 2147483648.0) else np.int64(-2**31)
     emm2_add = _wrap(j0 + 1)
     emm2_and = emm2_add & ~np.int64(1)
-    y_2 = F32(emm2_and)
-    x_3 = x_abs
-    for dp in (_DP0, _DP1, _DP2):  # Cody-Waite: x - j*(DP1 + DP2 + DP3), each step fused
-        x_3 = _mad(y_2, dp, x_3, fma)
-    z = F32(x_3 * x_3)
-    y_6 = F32(_mad(_mad(z, _C0, _C1, fma), z, _C2, fma) * z)  # the cosine's polynomial
-    y2_6 = F32(_mad(_mad(z, _S0, _S1, fma), z, _S2, fma) * z)  # the sine's
-    y_10 = F32(F32(F32(y_6 * z) - F32(z * _HALF)) + _ONE)
-    y2_9 = _mad(y2_6, x_3, x_3, fma)
+    y_10, y2_9 = sin_cos_polynomials(F32(emm2_and), x_abs, fma)
     s = _ZERO
     c = _ZERO
     if which != 1:
@@ -304,9 +312,9 @@ def _trig_any(a, fma, which):
 
 @njit
 def _trig_call(a, fma, which):
-    if trig_in_range(a):
-        return _trig(a, fma, which)
-    if (np.int64(_bits(a)) & 0x7FFFFFFF) >= 0x7F800000:
+    if lane.trig_in_range(a):
+        return lane.trig(a, fma, which)
+    if (np.int64(bits(a)) & 0x7FFFFFFF) >= 0x7F800000:
         return _NAN  # NaN or Inf
     return _trig_any(a, fma, which)
 
@@ -330,7 +338,7 @@ def tan(a, fma):
 def exp2(x, fma):
     if x != x:
         return _NAN
-    return _exp2(x, fma)
+    return lane.exp2(x, fma)
 
 
 @njit
@@ -338,21 +346,21 @@ def log2(x, fma):
     """lp_build_log2_safe: NaN for x < 0 (after DAZ) and NaN, -Inf for 0, +Inf for +Inf."""
     if x != x:
         return _NAN
-    b = np.int64(_bits(x))
+    b = np.int64(bits(x))
     if b >= 0x80000000 and (b & 0x7FFFFFFF) >= _FLT_MIN_BITS:
         return _NAN
-    return _log2(x, fma)
+    return lane.log2(x, fma)
 
 
 @njit
 def pow(x, y, fma):
     """lp_build_pow: exp2(log2(x) * y), 0 where x is 0 after DAZ or NaN (y read with DAZ)."""
-    if x != x or (np.int64(_bits(x)) & 0x7FFFFFFF) < _FLT_MIN_BITS:
+    if x != x or (np.int64(bits(x)) & 0x7FFFFFFF) < _FLT_MIN_BITS:
         return _ZERO
-    t = F32(log2(x, fma) * _daz(y))
+    t = F32(log2(x, fma) * lane.daz(y))
     if t != t:
         return _NAN
-    return _exp2(t, fma)
+    return lane.exp2(t, fma)
 
 
 @njit
@@ -363,7 +371,7 @@ def pow_zero(x):
 
 @njit
 def exp(x, fma):
-    return exp2(F32(_daz(x) * _LOG2E), fma)
+    return exp2(F32(lane.daz(x) * _LOG2E), fma)
 
 
 @njit
@@ -371,27 +379,27 @@ def log(x, fma):
     return F32(log2(x, fma) * _LN2)
 
 
-# asin, acos, atan and atan(y, x) as Runtime computes them (Mesa's lowerings): jit_kernels' one-lane
-# functions, which its `arc` kernel runs over lanes
+# asin, acos, atan and atan(y, x) as Runtime computes them (Mesa's lowerings): llvmpipe_math.lane's
+# one-lane functions, which numpy_engine/jit_kernels' `arc` kernel runs over lanes
 @njit
 def asin(x):
-    return _arc(x, x, 1)
+    return lane.arc(x, x, 1)
 
 
 @njit
 def acos(x):
-    return _arc(x, x, 2)
+    return lane.arc(x, x, 2)
 
 
 @njit
 def atan(y):
-    return _arc(y, y, 0)
+    return lane.arc(y, y, 0)
 
 
 @njit
 def atan2(y, x):
     """Runtime.atan(y, x): Mesa's nir_atan2 (atan(0, 0) = 3*pi/4)."""
-    return _arc(y, x, 3)
+    return lane.arc(y, x, 3)
 
 
 @njit
@@ -469,7 +477,7 @@ def aset(dst, off, src):
 @njit
 def pow_special(y):
     """An exponent Mesa rewrites: 0, 1, 2 or 4, not -0.0 (Runtime.pow, _POW_REWRITTEN)."""
-    return (y == _ZERO and _bits(y) == 0) or y == _ONE or y == _TWO or y == F32(4.0)
+    return (y == _ZERO and bits(y) == 0) or y == _ONE or y == _TWO or y == F32(4.0)
 
 
 @njit

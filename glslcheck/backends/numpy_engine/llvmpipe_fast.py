@@ -1,6 +1,6 @@
 """The llvmpipe math emulation's fast path: the same float32 steps in fewer NumPy calls.
 
-runtime.LlvmpipeMath repeats gallivm's sin/cos/exp2/log2/pow (lp_bld_arit.c) step by step and
+llvmpipe_reference.LlvmpipeMath repeats gallivm's sin/cos/exp2/log2/pow (lp_bld_arit.c) step by step and
 handles every input: subnormals flushed (DAZ), +-Inf, NaN, out-of-range conversions, the edges
 of log2. A raymarcher calls it tens of thousands of times a frame on a few hundred lanes (a
 march loop compacted to the lanes still marching), where each of its 40-70 NumPy calls costs
@@ -14,7 +14,7 @@ with the same roundings, for the common case only, and say so first:
 - the fused multiply-adds (``llvm.fmuladd``, fused on an FMA CPU) are made in float64 rows of
   one buffer (the product of two float32 values is exact there, the sum rounded once) and
   rounded to float32; a float64 sum that is exactly a float32 midpoint is the only case where
-  that double rounding can differ from the fused one (see runtime._fma32), and one test over
+  that double rounding can differ from the fused one (see llvmpipe_reference.fma32), and one test over
   the whole buffer at the end finds it: the lanes where one is are then computed again by the
   reference (rare on random arguments, a few lanes of a frame where values are short
   fractions: colours of 0.5, exact powers of two);
@@ -22,7 +22,7 @@ with the same roundings, for the common case only, and say so first:
   polynomials, are evaluated as the two rows of one array: elementwise, so the same bits in
   half the calls.
 
-LlvmpipeMath uses the kernels up to 4096 lanes a call (runtime._DEFER_LANES): on whole tiles
+LlvmpipeMath uses the kernels up to 4096 lanes a call (llvmpipe_reference.DEFER_LANES): on whole tiles
 their float64 rows cost as much as the calls they save.
 
 Every kernel is checked bit for bit against the reference on millions of inputs, specials
@@ -35,6 +35,8 @@ from __future__ import annotations
 from typing import Any
 
 import numpy as np
+
+from ..llvmpipe_math import coefficients as co
 
 F32, F64, I32, U32, I64 = np.float32, np.float64, np.int32, np.uint32, np.int64
 _SIG64 = (F64, F64, F64)  # a ufunc's float64 loop for float32 operands (cheaper than dtype=)
@@ -49,49 +51,34 @@ def _c(v: Any, dtype: Any) -> np.ndarray:
 _LOW29 = _c(0x1FFFFFFF, I64)  # the float64 bits rounding to float32 drops
 _MID29 = _c(0x10000000, I64)  # ... when they are exactly half a float32 step
 _ABS = _c(0x7FFFFFFF, I32)
-_MIN_NORMAL_BITS = 0x00800000  # FLT_MIN's bits: below, a nonzero |x| is subnormal
+_MIN_NORMAL_BITS = co.MIN_NORMAL_BITS
 _INT_MIN = _c(-(2**31), I32)
 _I1, _I2, _I4, _NOT1 = (_c(v, I32) for v in (1, 2, 4, ~1))
 _U29 = _c(29, U32)
 
-# sin/cos: |x| below 2**29 (bits 0x4E000000) keeps j = int(|x| * 4/pi) + 1 far from int32
-# overflow (cvttps2dq's INT_MIN case) and excludes Inf and NaN
-_SIN_MAX_BITS = 0x4E000000
-# gallivm's constants (lp_bld_arit.c, Mesa 22.3): the one home of them, which
-# runtime.LlvmpipeMath's reference path reads too. lp_build_sin_or_cos: 4/pi, the three parts
-# of pi/4 (DP1..DP3) and the cosine's polynomial (column 0) beside the sine's (column 1)
-FOUR_OVER_PI = 1.27323954473516
-DP = (-0.78515625, -2.4187564849853515625e-4, -3.77489497744594108e-8)
-SIN_COS = np.array([[2.443315711809948e-005, -1.9515295891e-4],
-                    [-1.388731625493765e-003, 8.3321608736e-3],
-                    [4.166664568298827e-002, -1.6666654611e-1]], dtype=F32)[:, :, None]
-_FOPI = _c(FOUR_OVER_PI, F32)
-_DP = tuple(_c(v, F32) for v in DP)
-_SC = SIN_COS
+# gallivm's constants: llvmpipe_math.coefficients
+_SIN_MAX_BITS = co.SIN_MAX_BITS
+_FOPI = _c(co.FOUR_OVER_PI, F32)
+_DP = tuple(_c(v, F32) for v in co.DP)
+_SC = co.SIN_COS
 _ZERO, _HALF, _ONE, _MINUS_ONE = (_c(v, F32) for v in (0.0, 0.5, 1.0, -1.0))
 
 # exp2: |x| <= 126 (bits 0x42FC0000): neither clamp (128, -126.99999) applies
 _EXP2_MAX_BITS = 0x42FC0000
-_EXP2_HI, _EXP2_LO = _c(128.0, F32), _c(-126.99999, F32)
-# lp_build_exp2_polynomial, EXP_POLY_DEGREE 5 (the first coefficient is 1.0 exactly)
-EXP2 = (1.0, 0.693153073200168932794, 0.240153617044375388211, 0.0558263180532956664775,
-        0.00898934009049466391101, 0.00187757667519147912699)
-_EXP2 = EXP2
+_EXP2_HI, _EXP2_LO = _c(co.EXP2_HI, F32), _c(co.EXP2_LO, F32)
+_EXP2 = co.EXP2
 _EXP2_C1 = np.array([[_EXP2[5]], [_EXP2[4]]], F32)  # odd and even chain: first coefficients
 _EXP2_C2 = np.array([[_EXP2[3]], [_EXP2[2]]], F32)
 _EXP2_C3 = np.array([[_EXP2[1]], [_EXP2[0]]], F32)
 _B127, _I23 = _c(127, I32), _c(23, I32)
 
-# lp_build_log2_polynomial, LOG_POLY_DEGREE 4
-LOG2 = (2.88539009343309178325, 0.961791550404184197881, 0.577440339438736392009,
-        0.403343858251329912514, 0.406718052498846252698)
-_LOG2 = LOG2
+_LOG2 = co.LOG2
 _LOG2_C1 = np.array([[_LOG2[4]], [_LOG2[3]]], F32)  # even and odd chain
 _LOG2_C2 = np.array([[_LOG2[2]], [_LOG2[1]]], F32)
 _LOG2_C0 = _c(_LOG2[0], F32)
 _MANT = _c(0x007FFFFF, I32)
 _ONE_BITS = _c(0x3F800000, I32)
-_INF_BITS = 0x7F800000
+_INF_BITS = co.INF_BITS
 
 
 class _Fused:

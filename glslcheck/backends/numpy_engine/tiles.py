@@ -36,7 +36,8 @@ import numpy as np
 
 from ...base.diagnostics import Diagnostic, GlslError, Location
 from .lane_memo import MemoMath
-from .runtime import Runtime, Struct
+from .runtime import Runtime
+from .runtime_values import Struct
 from .transpile import glsl_location, too_complex
 
 TILE_LANES = 49152  # lanes per tile: fewer calls in compacted regions; full-lane work measured flat 24k-49k

@@ -44,7 +44,7 @@ import numpy as np
 from ...frontend import syntax as A
 from ...base.diagnostics import source_line
 from ...frontend.printer import to_glsl
-from .runtime import Struct
+from .runtime_values import Struct
 from .transpile import Transpiler
 
 MAX_STEPS = 200_000  # steps PixelTracer records; later steps only count (a runaway shader stays bounded)
