@@ -103,7 +103,7 @@ def generate(shader: Any, tab: str | None = None, lanes: int | None = None) -> t
     LANES_FALLBACK)."""
     from ...shadertoy.channels import needs_passes
     from ..driver_profile import host_model
-    from ..numpy_engine.runtime import HOST_FMA
+    from ..numpy_engine.llvmpipe_reference import HOST_FMA
     from ..numpy_engine.transpile.common import check_program
     from ...frontend.parser import parse_shader
     from .codegen import Codegen

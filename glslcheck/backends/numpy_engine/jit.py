@@ -1,6 +1,6 @@
 """Compiled kernels for the llvmpipe math emulation, used when they pay (issue 18).
 
-runtime.LlvmpipeMath's sin, cos, tan, exp2, log2 and pow are 30-70 NumPy operations a call. A
+llvmpipe_reference.LlvmpipeMath's sin, cos, tan, exp2, log2 and pow are 30-70 NumPy operations a call. A
 raymarcher makes tens of thousands of such calls a frame on the few hundred lanes a march loop
 keeps after compaction, and there the calls are all overhead; on a whole tile each operation
 is a pass over memory. backends/numpy_engine/jit_kernels.py makes the same float32 steps in one
@@ -37,7 +37,7 @@ numba's cache goes to ``$NUMBA_CACHE_DIR`` when the user set it, else to
 ``$XDG_CACHE_HOME/glslcheck/numba`` (``~/.cache/glslcheck/numba``): set before numba is
 imported, so nothing is written into site-packages or the source tree.
 
-The hook: runtime.LlvmpipeMath._kernel passes each NumPy function it makes through
+The hook: llvmpipe_reference.LlvmpipeMath._kernel passes each NumPy function it makes through
 :func:`dispatch`, which returns it unchanged (off, numba missing, a function without kernel) or
 wrapped; LlvmpipeMath.builtin does the same for the Runtime's own float32 lowerings of atan,
 atan(y, x), asin and acos (Mesa's: 12-40 NumPy operations a call; the kernels take 8-30x less
