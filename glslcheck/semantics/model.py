@@ -99,6 +99,8 @@ class Model:
         self._consts: dict[int, Any] = {}
         self._calls_from: dict[Symbol | None, list[tuple[Any, Any]]] = {}
         self._uniforms_from: dict[Symbol | None, set[str]] = {}
+        # memo tables the analyses keep per program (semantics/analysis/dataflow.py), by name
+        self.analysis_caches: dict[str, dict] = {}
 
     # -- per-node facts ------------------------------------------------------------------------
     def type_of(self, node: Any) -> T.Type:

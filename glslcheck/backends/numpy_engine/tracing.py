@@ -86,7 +86,7 @@ class TraceTranspiler(Transpiler):
         super().__init__(model, path)
         self.sites: list[Site] = []
         self._site_ids: dict[tuple, int] = {}
-        self._watch: dict[int, tuple[str, Any, str]] = {}  # id(expr) -> (hook, statement, name)
+        self.watched: dict[int, tuple[str, Any, str]] = {}  # id(expr) -> (hook, statement, name)
         self._stmt: Any = None  # the statement being emitted (for writes)
         self._ops: list[tuple[Any, str | None]] = []  # (expression, mask) of the operators being printed
         self._loop_bodies: dict[int, int] = {}  # id(loop body) -> loop site
@@ -123,11 +123,11 @@ class TraceTranspiler(Transpiler):
     def gen_function(self, sym: Any) -> None:
         for n in sym.node.body.walk():
             if isinstance(n, A.If):
-                self._watch[id(n.cond)] = ("b", n, "if" if n.else_ is None else "if/else")
+                self.watched[id(n.cond)] = ("b", n, "if" if n.else_ is None else "if/else")
             elif isinstance(n, A.Switch):
-                self._watch[id(n.expr)] = ("b", n, "switch")
+                self.watched[id(n.expr)] = ("b", n, "switch")
             elif isinstance(n, A.Return) and n.value is not None:
-                self._watch[id(n.value)] = ("r", n, sym.name)
+                self.watched[id(n.value)] = ("r", n, sym.name)
         super().gen_function(sym)
 
     def comment_line(self, node: Any) -> None:
@@ -136,7 +136,7 @@ class TraceTranspiler(Transpiler):
 
     def expr(self, e: Any, mask: str | None) -> str:
         text = super().expr(e, mask)
-        watch = self._watch.get(id(e))
+        watch = self.watched.get(id(e))
         if watch is None or not self._traced():
             return text
         hook, stmt, name = watch

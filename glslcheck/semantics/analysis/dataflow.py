@@ -191,17 +191,14 @@ def _is_literal(e: Any) -> bool:
 
 
 def _model_cache(model: Model, name: str) -> dict:
-    cache = model.__dict__.get(name)
-    if cache is None:
-        cache = model.__dict__[name] = {}
-    return cache
+    return model.analysis_caches.setdefault(name, {})
 
 
 def pure_function(model: Model, sym: Symbol, _seen: frozenset = frozenset()) -> bool:
     """A user function whose result depends only on its arguments: `in` parameters only, no
     write to a global, no read of a global variable that is not const (uniforms are constant in
     a frame), and only pure functions called (`float lenSq(vec2 v) { return dot(v, v); }`)."""
-    cache = _model_cache(model, "_lint_pure")
+    cache = _model_cache(model, "pure_function")
     if id(sym) in cache:
         return cache[id(sym)]
     d = sym.node
@@ -229,7 +226,7 @@ def pure_function(model: Model, sym: Symbol, _seen: frozenset = frozenset()) -> 
 def function_cost(model: Model, sym: Symbol) -> bool:
     """Whether calling the user function costs more than an add: two operations or a costly
     built-in in its body (a wrapper like `asPoint(v)`, `vec4(v, 1.0)`, does not)."""
-    cache = _model_cache(model, "_lint_cost")
+    cache = _model_cache(model, "op_cost")
     if id(sym) not in cache:
         cache[id(sym)] = False  # a recursive call (an error anyway) costs nothing more
         ops, costly = 0, False

@@ -475,7 +475,7 @@ def folded_call(tr: Any, call: A.Call, fn: Any, mask: str | None) -> str | None:
     the constants merge no more than they do with every argument a run-time value (merges
     inside the callee alone are nir_fold's, in the function's own code), and no dot product
     of the callee factors (``vec3(p.xyx)`` of Dave Hoskins' hash12: two products share p.x)."""
-    if (tr.fn is None or tr.fold_state.call_fold_off or tr.fold_state.inline_frames or "_watch" in tr.__dict__
+    if (tr.fn is None or tr.fold_state.call_fold_off or tr.fold_state.inline_frames or tr.watched is not None
             or any(tr.has_effects(a) for a in call.args)):
         return None
     try:

@@ -124,10 +124,10 @@ def inline_call(tr: Any, call: A.Call, fn: Any, mask: str | None) -> str:
     value = _body_expression(tr, fn)
     # the tracing transpiler (backends/numpy_engine/tracing.py, glslcheck probe) records a function's
     # return value: inlined, the expression is part of the caller's statement, not a return
-    watch = tr.__dict__.get("_watch", {}).pop(id(value), None)
+    watch = tr.watched.pop(id(value), None) if tr.watched is not None else None
     try:
         return tr.expr(value, mask)
     finally:
         frames.pop()
         if watch is not None:
-            tr._watch[id(value)] = watch
+            tr.watched[id(value)] = watch

@@ -24,6 +24,9 @@ class Transpiler(Names, Functions, Statements, Expressions, PythonLimits):
     """`Transpiler(model, tab_path).module()` -> (Python source, meta dict)."""
 
     COMPACT_MIN_NODES = 24  # syntax nodes: smaller regions without calls or loops run masked
+    # The tracing transpiler's expressions to report, id(expr) -> (hook, statement, name)
+    # (tracing.py); None when not tracing.
+    watched: dict[int, tuple[str, Any, str]] | None = None
 
     def __init__(self, model: Any, path: str = "<shader>", source_text: str | None = None,
                  keep_alpha: bool = False) -> None:
