@@ -140,29 +140,62 @@ def source_line(path: str, line: int) -> str | None:
     return lines[line - 1]
 
 
-def _caret_line(text: str, loc: Location) -> str:
-    """Spaces (tabs kept, so the caret aligns) then ^~~~ under the span on the first line."""
+# A quoted source line longer than this is cut to a window around the span: a finding on a
+# minified one-line shader must not print the whole file once per finding.
+MAX_QUOTE = 400
+
+
+def printable(text: str) -> str:
+    """`text` with every control character but tab written as an escape (`\\x1b`, `\\u202e`): a
+    shader's comment or a file name must not move the cursor, recolour the terminal, reorder
+    what is shown (bidi controls) or start a new line that reads as another finding."""
+    if text.isprintable():
+        return text
+    out = []
+    for ch in text:
+        if ch == "\t" or ch.isprintable():
+            out.append(ch)
+        else:
+            code = ord(ch)
+            out.append(f"\\x{code:02x}" if code < 0x100 else f"\\u{code:04x}" if code < 0x10000 else f"\\U{code:08x}")
+    return "".join(out)
+
+
+def _quote(text: str, loc: Location) -> tuple[str, str]:
+    """The source line as shown (printable, cut to MAX_QUOTE characters around the span with
+    `...` at a cut) and the caret line under it: spaces (tabs kept, so the caret aligns), then
+    ^~~~ under the span on the first line."""
     col = max(loc.column, 1)
-    prefix = "".join(ch if ch == "\t" else " " for ch in text[: col - 1])
     if loc.end_line == loc.line and loc.end_column and loc.end_column > col:
         width = loc.end_column - col
     else:
         width = 1
-    return prefix + "^" + "~" * (width - 1)
+    start, end, before, after = 0, len(text), "", ""
+    if len(text) > MAX_QUOTE:
+        start = max(0, min(col - 1 - MAX_QUOTE // 4, len(text) - MAX_QUOTE))
+        end = start + MAX_QUOTE
+        before, after = ("..." if start else ""), ("..." if end < len(text) else "")
+    head = [printable(ch) for ch in text[start: col - 1]]
+    prefix = " " * len(before) + "".join(ch if ch == "\t" else " " * len(ch) for ch in head)
+    span = text[col - 1: min(col - 1 + width, end)]
+    past_end = 0 if after else width - len(text[col - 1: col - 1 + width])  # a span beyond the line
+    shown = before + printable(text[start:end]) + after
+    return shown, prefix + "^" + "~" * max(len(printable(span)) + past_end - 1, 0)
 
 
 def format_text(d: Diagnostic, show_rule: bool = False) -> str:
     """`path:line:col: severity: message`, the source line, a caret, and `help:`."""
-    head = f"{d.loc}: " if d.loc else ""
+    head = f"{printable(str(d.loc))}: " if d.loc else ""
     kind = f"{d.rule}" if show_rule else d.severity
-    out = [f"{head}{kind}: {d.message}"]
+    out = [f"{head}{kind}: {printable(d.message)}"]
     if d.loc is not None:
         text = source_line(d.loc.path, d.loc.line)
         if text is not None:
-            out.append("    " + text.rstrip("\r\n"))
-            out.append("    " + _caret_line(text, d.loc))
+            shown, caret = _quote(text.rstrip("\r\n"), d.loc)
+            out.append("    " + shown)
+            out.append("    " + caret)
     for n in d.notes:
         out.append(format_text(n))
     if d.help:
-        out.append(f"  help: {d.help}")
+        out.append(f"  help: {printable(d.help)}")
     return "\n".join(out)

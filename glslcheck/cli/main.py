@@ -12,7 +12,7 @@ import importlib
 import os
 import sys
 
-from ..base.diagnostics import GlslError, InputError, format_text
+from ..base.diagnostics import GlslError, InputError, format_text, printable
 
 # (name, module, one-line help), in the order `--help` lists them.
 COMMANDS = [
@@ -167,7 +167,7 @@ def _run(args) -> int:
         sys.stdout.flush()  # a full disk or a closed pipe shows here, not at interpreter exit
         return code
     except InputError as e:
-        print(str(e), file=sys.stderr)
+        print(printable(str(e)), file=sys.stderr)
         return 2
     except GlslError as e:
         for d in e.diagnostics:

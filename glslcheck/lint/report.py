@@ -17,7 +17,7 @@ from __future__ import annotations
 
 import os
 
-from ..base.diagnostics import format_text
+from ..base.diagnostics import format_text, printable
 from ..shadertoy.sources import posix_path
 from .engine import Finding, LintResult
 from .rules import all_rules
@@ -54,7 +54,7 @@ def format_finding(f: Finding) -> str:
     """One finding as text: the compiler-style block of `diagnostics.format_text`, with the rule
     name in place of the severity and no colon after it."""
     block = format_text(f, show_rule=True)
-    head = f"{f.loc}: {f.rule}: " if f.loc else f"{f.rule}: "
+    head = f"{printable(str(f.loc))}: {f.rule}: " if f.loc else f"{f.rule}: "
     if block.startswith(head):
         block = head[:-2] + " " + block[len(head) :]
     return block
@@ -87,7 +87,7 @@ def _not_run_block(notes: list[Finding]) -> str:
     groups: dict[tuple[str, str], list[str]] = {}
     for f in notes:
         rule, sep, rest = f.message.partition(" could not run ")
-        key = (str(f.loc), rest if sep else f.message)
+        key = (printable(str(f.loc)), printable(rest if sep else f.message))
         groups.setdefault(key, []).append(rule if sep else "")
     lines = []
     for (loc, rest), rules in groups.items():
