@@ -148,4 +148,4 @@ def test_a_missing_browser_is_an_input_error_with_advice(webgl, monkeypatch, cap
     monkeypatch.delenv("GLSLCHECK_CHROMIUM")
     monkeypatch.setenv("GLSLCHECK_WEBGL_TIMEOUT", "-1")
     assert main(["check", "lab_shaders/07_final", "--webgl"]) == 2
-    assert "GLSLCHECK_WEBGL_TIMEOUT must be positive" in capsys.readouterr().err
+    assert "GLSLCHECK_WEBGL_TIMEOUT must be a number of seconds from 0 to 86400" in capsys.readouterr().err

@@ -75,6 +75,11 @@ def _versions() -> str:
     return f"{__version__} numba {version('numba')} {h.hexdigest()[:16]}"
 
 
+# The widths a module may have: one pixel a call, or AVX2's and AVX-512's float32 lanes (wider
+# blocks only grow the compile, and a width of 1,000,000 took minutes and 5 GB).
+LANE_WIDTHS = ("0", "8", "16")
+
+
 def lanes_width(lanes: int | None = None) -> int:
     """Pixels per call of a module: `lanes` when given, else $GLSLCHECK_COMPILED_LANES, else 0
     (the per-pixel module, the first tier of TieredProgram: tiered() says when)."""
@@ -83,11 +88,10 @@ def lanes_width(lanes: int | None = None) -> int:
     text = os.environ.get("GLSLCHECK_COMPILED_LANES", "").strip()
     if not text or text == "auto":
         return 0
-    try:
-        return max(0, int(text))
-    except ValueError:
-        raise InputError(f"error: GLSLCHECK_COMPILED_LANES must be a number of pixels (0: one at a time) or auto, "
-                         f"not {text!r}") from None
+    if text not in LANE_WIDTHS:
+        raise InputError(f"error: GLSLCHECK_COMPILED_LANES must be auto, 0 (one pixel a call) or "
+                         f"{' or '.join(LANE_WIDTHS[1:])} (pixels in lockstep), not {text!r}")
+    return int(text)
 
 
 def tiered() -> bool:

@@ -50,6 +50,7 @@ FLAGS = (
     "--no-first-run",
 )
 ENV_TIMEOUT = "GLSLCHECK_WEBGL_TIMEOUT"
+MAX_TIMEOUT = 86400.0  # a day, as --frame-budget: longer is a hang (and inf overflows the browser's timer)
 DEFAULT_TIMEOUT = 60.0
 # Launching takes 1-4 s on an idle machine; a loaded shared one may need far more.
 LAUNCH_TIMEOUT_MS = 120_000
@@ -77,8 +78,9 @@ def call_timeout() -> float:
     except ValueError:
         raise InputError(f"error: ${ENV_TIMEOUT} must be a number of seconds, not "
                          f"{os.environ[ENV_TIMEOUT]!r}") from None
-    if not value > 0:
-        raise InputError(f"error: ${ENV_TIMEOUT} must be positive, not {os.environ[ENV_TIMEOUT]!r}")
+    if not 0 < value <= MAX_TIMEOUT:
+        raise InputError(f"error: ${ENV_TIMEOUT} must be a number of seconds from 0 to {MAX_TIMEOUT:g}, "
+                         f"not {os.environ[ENV_TIMEOUT]!r}")
     return value
 
 
