@@ -10,7 +10,8 @@ from __future__ import annotations
 import numpy as np
 
 from ..base.diagnostics import Diagnostic, GlslError, InputError
-from ..shadertoy.channels import CHANNELS_FILE, ChannelInput, channel_reads, folder_of, load_bindings, read_image
+from ..shadertoy.channels import (CHANNELS_FILE, ChannelInput, channel_reads, folder_of, load_bindings, read_image,
+                                  texture_path)
 from ..shadertoy.sources import Shader
 from ..shadertoy.wrapper import PASS_TABS
 from .interface import Backend
@@ -44,8 +45,8 @@ class MultipassProgram:
             if b.texture is not None:
                 def fail(key, message, b=b):
                     raise InputError(f"{self.channels_path}: error: {key}: {message}")
-                self.textures[b.texture] = read_image(folder_of(shader) / b.texture,
-                                                      f'"{b.tab}"."iChannel{b.channel}"."texture"', fail)
+                where = f'"{b.tab}"."iChannel{b.channel}"."texture"'
+                self.textures[b.texture] = read_image(texture_path(shader, b.texture, where, fail), where, fail)
         self.programs = {t: self._compile(t) for t in self.passes}
         # Lookups return lowp results as llvmpipe's do (backends/numpy_engine/textures.py); False gives
         # the exact float32 results SwiftShader's WebGL returns (it ignores lowp, measured).

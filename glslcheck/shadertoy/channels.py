@@ -53,6 +53,7 @@ from __future__ import annotations
 
 import itertools
 import json
+import os
 import re
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -199,22 +200,45 @@ def _binding(shader: Shader, tab: str, channel: int, spec, where: str, fail) -> 
     if not isinstance(vflip, bool):
         fail(f"{where}.\"vflip\"", f"must be true or false, not {json.dumps(vflip)}")
     if kind == "texture":
+        texture_path(shader, value, f"{where}.\"texture\"", fail)
         read_image(folder_of(shader) / value, f"{where}.\"texture\"", fail)  # fail early
     return Binding(tab, channel, value if kind == "buffer" else None, value if kind == "texture" else None,
                    filt, wrap, vflip)
 
 
-def read_image(path: Path, where: str, fail) -> np.ndarray:
-    """RGBA float32 (height, width, 4), first row = the image's top, values v / 255."""
-    from PIL import Image, UnidentifiedImageError
+def texture_path(shader: Shader, name: str, where: str, fail) -> Path:
+    """The file a texture binding names: inside the shader's folder (no absolute path, no `..`
+    or symlink out of it), so a shared channels.json reads no other file of the user's."""
+    folder = folder_of(shader).resolve()
+    path = folder / name
+    if Path(name).is_absolute() or not path.resolve().is_relative_to(folder):
+        fail(where, f"{name!r} is outside the shader's folder; textures are read from the folder "
+                    f"of the shader (copy the image there)")
+    return path
 
+
+def read_image(path: Path, where: str, fail) -> np.ndarray:
+    """RGBA float32 (height, width, 4), first row = the image's top, values v / 255. Only a
+    regular file is opened (a FIFO would block the read)."""
+    import stat
+
+    from PIL import Image
+
+    try:
+        mode = os.stat(path).st_mode
+    except FileNotFoundError:
+        fail(where, f"no such file {str(path)!r}")
+    except OSError as e:
+        fail(where, f"cannot read the image {str(path)!r} ({e.strerror or e})")
+    if not stat.S_ISREG(mode):
+        fail(where, f"{str(path)!r} is not a regular file")
     try:
         with Image.open(path) as im:
             rgba = np.asarray(im.convert("RGBA"), dtype=np.float32)
-    except FileNotFoundError:
-        fail(where, f"no such file {str(path)!r}")
-    except (OSError, UnidentifiedImageError, ValueError) as e:
+    except (OSError, ValueError) as e:
         fail(where, f"cannot read the image {str(path)!r} ({e})")
+    except Exception as e:  # Pillow's decoders raise other types on a damaged or hostile file (bombs too)
+        fail(where, f"cannot read the image {str(path)!r} ({type(e).__name__}: {e})")
     return rgba / np.float32(255.0)
 
 
