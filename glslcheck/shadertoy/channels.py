@@ -266,3 +266,17 @@ def needs_passes(shader: Shader) -> bool:
             or ("Image" in shader.tabs and bool(channel_reads(shader, "Image"))))
 
 
+
+
+def input_files(shader: Shader) -> list[Path]:
+    """Every file rendering the shader reads: its tabs, its channels.json and the textures it
+    binds (a command's output must be none of them)."""
+    files = [Path(src.path) for src in shader.sources()]
+    try:
+        path, bindings = load_bindings(shader)
+    except InputError:
+        return files  # the render reports it
+    if path is not None:
+        files.append(Path(path))
+    files += [folder_of(shader) / b.texture for b in bindings if b.texture is not None]
+    return files

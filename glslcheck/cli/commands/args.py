@@ -12,6 +12,7 @@ import contextlib
 import os
 from typing import Callable
 
+from ...base.diagnostics import InputError
 from ...base.limits import (MAX_FRAME_SECONDS, MIN_FRAME_SECONDS, parse_date, parse_frame, parse_frame_budget,
                             parse_mouse, parse_size, parse_time)
 
@@ -63,3 +64,15 @@ def environment(**values: str | None):
                 os.environ.pop(name, None)
             else:
                 os.environ[name] = value
+
+
+def refuse_to_overwrite_inputs(output, shader, what: str) -> None:
+    """InputError when `output` is a file the shader is read from (a tab, channels.json, a
+    texture): a command never writes over what it reads."""
+    from ...shadertoy.channels import input_files
+
+    target = os.path.realpath(output)
+    for path in input_files(shader):
+        if os.path.realpath(path) == target:
+            raise InputError(f"{output}: error: the {what} would overwrite {path}, which the shader is read "
+                             f"from; name another file")

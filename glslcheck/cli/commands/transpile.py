@@ -21,12 +21,15 @@ def run(args) -> int:
     from ...backends.numpy_engine.transpile import transpile_shader
     from ...shadertoy.sources import load_shader
 
-    result = transpile_shader(load_shader(args.path))
+    shader = load_shader(args.path)
+    result = transpile_shader(shader)
     if args.output is None:
         sys.stdout.write(result.source)
         return 0
     from ...base.images import atomic_write
+    from .args import refuse_to_overwrite_inputs
 
+    refuse_to_overwrite_inputs(args.output, shader, "module")
     with atomic_write(args.output, "module") as tmp:  # InputError (exit 2) when it cannot be written
         with open(tmp, "w", encoding="utf-8") as f:
             f.write(result.source)
