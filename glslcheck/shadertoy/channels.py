@@ -62,7 +62,7 @@ import numpy as np
 
 from ..base.diagnostics import InputError, Location
 from .bindings import FILTERS, KIND_DEFAULTS, WRAPS, Binding
-from .sources import BUFFER_TABS, Shader
+from .sources import BUFFER_TABS, Shader, read_json
 from .wrapper import PASS_TABS
 
 CHANNELS_FILE = "channels.json"
@@ -135,14 +135,7 @@ def load_bindings(shader: Shader) -> tuple[str | None, list[Binding]]:
     if not path.is_file():
         return None, []
     spath = str(path)
-    try:
-        text = path.read_text(encoding="utf-8")
-    except (OSError, UnicodeDecodeError) as e:
-        raise InputError(f"{spath}: error: cannot read the file ({e})") from None
-    try:
-        data = json.loads(text)
-    except json.JSONDecodeError as e:
-        raise InputError(f"{spath}:{e.lineno}:{e.colno}: error: not valid JSON: {e.msg}") from None
+    data = read_json(path)
 
     def fail(key: str, message: str):
         raise InputError(f"{spath}: error: {key}: {message}")

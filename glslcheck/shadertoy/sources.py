@@ -319,83 +319,127 @@ _ST_TABS = {"image": "Image", "common": "Common", "sound": "Sound", "cubemap": "
 _ST_INPUTS = {"texture": "texture", "buffer": "buffer"}
 
 
+def read_json(path: str | os.PathLike) -> object:
+    """The JSON value in the file at `path` (channels.json, a Shadertoy export); InputError (exit 2)
+    naming the file when it cannot be read, is not JSON, or nests deeper than the parser recurses."""
+    import json
+
+    spath = str(path)
+    try:
+        with open(path, encoding="utf-8") as f:
+            text = f.read()
+    except (OSError, UnicodeDecodeError) as e:
+        raise InputError(f"{spath}: error: cannot read the file ({e})") from None
+    try:
+        return json.loads(text)
+    except json.JSONDecodeError as e:
+        raise InputError(f"{spath}:{e.lineno}:{e.colno}: error: not valid JSON: {e.msg}") from None
+    except RecursionError:
+        raise InputError(f"{spath}: error: too deeply nested JSON (arrays or objects inside each other "
+                         "deeper than the JSON reader goes)") from None
+
+
+def json_kind(value) -> str:
+    """What a JSON value is, as a message names it: `an object`, `a list`, `a string`, ..."""
+    if isinstance(value, bool):
+        return "true" if value else "false"
+    if value is None:
+        return "null"
+    return {dict: "an object", list: "a list", str: "a string"}.get(type(value), "a number")
+
+
 def load_shadertoy_json(path) -> Shader:
     """A shader from Shadertoy's JSON export (`{"Shader": {"renderpass": [...]}}`, or a list of
     such shaders holding one): each pass's `code` becomes its tab (diagnostics name
     `<file> [<tab>]`), each input a Binding: a `/media/...` path is the file of the same name in
     the `media/` folder beside the JSON, a buffer input the Buffer tab whose output id it names.
-    InputError (exit 2) naming the file and the pass and channel for anything else."""
-    import json
+    InputError (exit 2) naming the file and the JSON field path (or the pass and channel) for
+    anything else, a field of the wrong type included."""
     from pathlib import Path
 
     spath = str(path)
-    try:
-        data = json.loads(Path(path).read_text(encoding="utf-8"))
-    except (OSError, UnicodeDecodeError) as e:
-        raise InputError(f"{spath}: error: cannot read the file ({e})") from None
-    except json.JSONDecodeError as e:
-        raise InputError(f"{spath}:{e.lineno}:{e.colno}: error: not valid JSON: {e.msg}") from None
+    data = read_json(path)
 
     def fail(where: str, message: str):
         raise InputError(f"{spath}: error: {where}: {message}")
 
+    def typed(value, types: tuple, where: str, expected: str):
+        """`value` when it is one of `types` (null counting as absent: None); else the error."""
+        if value is None or (isinstance(value, types) and not isinstance(value, bool)):
+            return value
+        fail(where, f"must be {expected}, not {json_kind(value)}")
+
+    base = ""
     if isinstance(data, list) and len(data) == 1:
-        data = data[0]
+        data, base = data[0], "[0]"
     if isinstance(data, dict) and "Shader" in data:
-        data = data["Shader"]
+        data, base = data["Shader"], f"{base}.Shader".lstrip(".")
     passes = data.get("renderpass") if isinstance(data, dict) else None
     if not isinstance(passes, list):
         fail("the top level", "not a Shadertoy export: expected {\"Shader\": {\"renderpass\": [...]}}")
+    base = f"{base}.renderpass".lstrip(".")
     shader = Shader(root=spath, channels=[])
     outputs: dict[str, str] = {}  # output id -> Buffer tab
     buffers = iter(BUFFER_TABS)
-    placed: list[str] = []  # the tab of each pass
+    placed: list[tuple[str, str, list]] = []  # each pass's tab, field path and inputs
     for i, rp in enumerate(passes):
-        if not isinstance(rp, dict) or not isinstance(rp.get("code"), str):
-            fail(f"renderpass[{i}]", "needs a \"code\" string")
-        kind = rp.get("type", "image")
+        at = f"{base}[{i}]"
+        if not isinstance(rp, dict):
+            fail(at, f"must be an object with a \"code\" string, not {json_kind(rp)}")
+        if rp.get("code") is None:
+            fail(at, "needs a \"code\" string")
+        code = typed(rp["code"], (str,), f"{at}.code", "a string")
+        kind = typed(rp.get("type"), (str,), f"{at}.type", "a string") or "image"
+        name = typed(rp.get("name"), (str,), f"{at}.name", "a string") or ""
         tab = _ST_TABS.get(kind)
         if kind == "buffer":  # named "Buffer A" or, in older exports, "Buf A"
-            m = re.fullmatch(r"Buf(?:fer)? ?([A-D])", str(rp.get("name", "")).strip())
+            m = re.fullmatch(r"Buf(?:fer)? ?([A-D])", name.strip())
             name = f"Buffer {m.group(1)}" if m else ""
             tab = name if name in BUFFER_TABS and name not in shader.tabs else next(buffers, None)
         if tab is None or tab in shader.tabs:
-            fail(f"renderpass[{i}] ({rp.get('name', kind)})", f"a pass of type {kind!r} glslcheck cannot place")
-        src = Source(f"{spath} [{tab}]", rp["code"].replace("\r\n", "\n"), tab)
+            fail(f"{at} ({rp.get('name') or kind})", f"a pass of type {kind!r} glslcheck cannot place")
+        src = Source(f"{spath} [{tab}]", code.replace("\r\n", "\n"), tab)
         register_source(src.path, src.text)
         shader.tabs[tab] = src
-        placed.append(tab)
-        for out in rp.get("outputs") or ():
-            if isinstance(out, dict) and "id" in out:
+        for j, out in enumerate(typed(rp.get("outputs"), (list,), f"{at}.outputs", "a list") or ()):
+            typed(out, (dict,), f"{at}.outputs[{j}]", "an object")
+            if out and "id" in out:
                 outputs[str(out["id"])] = tab
-    for tab, rp in zip(placed, passes):
-        for inp in rp.get("inputs") or ():
-            shader.channels.append(_export_binding(shader, tab, inp, outputs, Path(path).parent, fail))
+        placed.append((tab, at, typed(rp.get("inputs"), (list,), f"{at}.inputs", "a list") or []))
+    for tab, at, inputs in placed:
+        for j, inp in enumerate(inputs):
+            where = f"{at}.inputs[{j}]"
+            typed(inp, (dict,), where, "an object")
+            shader.channels.append(_export_binding(shader, tab, inp or {}, outputs, Path(path).parent,
+                                                   fail, typed, where))
     return shader
 
 
-def _export_binding(shader: Shader, tab: str, inp, outputs: dict, folder: Path, fail) -> Binding:
+def _export_binding(shader: Shader, tab: str, inp: dict, outputs: dict, folder: Path, fail, typed,
+                    at: str) -> Binding:
     import json
     from pathlib import Path
 
     from .bindings import FILTERS, KIND_DEFAULTS, WRAPS, Binding
 
-    channel = inp.get("channel") if isinstance(inp, dict) else None
+    channel = inp.get("channel")
+    if type(channel) is not int or channel not in (0, 1, 2, 3):
+        fail(f"{at}.channel (the {tab} pass)",
+             f"an input without a channel 0-3: {json.dumps(inp, default=str)[:80]}")
     where = f"the {tab} pass, iChannel{channel}"
-    if channel not in (0, 1, 2, 3):
-        fail(f"the {tab} pass", f"an input without a channel 0-3: {json.dumps(inp)[:80]}")
-    ctype = inp.get("ctype", inp.get("type"))
+    ctype = typed(inp.get("ctype", inp.get("type")), (str,), f"{at}.ctype", "a string")
     kind = _ST_INPUTS.get(ctype)
     if kind is None:
         fail(where, f"{ctype} inputs are not supported yet")
-    sampler = inp.get("sampler") or {}
+    sampler = typed(inp.get("sampler"), (dict,), f"{at}.sampler", "an object") or {}
     filt, wrap, vflip = KIND_DEFAULTS[kind]
     filt = sampler.get("filter", filt)
     wrap = sampler.get("wrap", wrap)
     vflip = str(sampler.get("vflip", vflip)).lower() == "true"
     if filt not in FILTERS or wrap not in WRAPS:
         fail(where, f"filter {filt!r} / wrap {wrap!r} (expected {', '.join(FILTERS)} / {', '.join(WRAPS)})")
-    src = str(inp.get("src", inp.get("filepath", "")))
+    src = inp.get("src", inp.get("filepath"))
+    src = typed(src, (str,), f"{at}.{'src' if 'src' in inp else 'filepath'}", "a string") or ""
     if kind == "buffer":
         buffer = outputs.get(str(inp.get("id")))
         m = re.search(r"buffer0([0-3])", src)
@@ -405,6 +449,8 @@ def _export_binding(shader: Shader, tab: str, inp, outputs: dict, folder: Path, 
             fail(where, f"the buffer it reads ({src or inp.get('id')}) is not a pass of this export")
         # vflip is Shadertoy's UNPACK_FLIP_Y at an image's upload: it never applies to a buffer
         return Binding(tab, channel, buffer, None, filt, wrap, False)
+    if not src:
+        fail(f"{at}.src ({where})", "an input of type texture needs a \"src\" path (/media/...)")
     local = f"media/{Path(src).name}"
     if not (folder / local).is_file():
         fail(where, f"no such file {str(folder / local)!r} (Shadertoy's {src}: download it into the media/ "
