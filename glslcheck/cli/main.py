@@ -123,6 +123,10 @@ def main(argv: list[str] | None = None) -> int:
         return _main(argv)
     import gc
 
+    # what stdout's encoding cannot write (an undecodable byte of a file name under a strict
+    # UTF-8 PYTHONIOENCODING, any non-ASCII under an ASCII one) is written as a backslash escape
+    if hasattr(sys.stdout, "reconfigure"):
+        sys.stdout.reconfigure(errors="backslashreplace")
     gc.set_threshold(100_000, *gc.get_threshold()[1:])
     code = _main(sys.argv[1:])
     gc.freeze()

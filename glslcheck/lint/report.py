@@ -10,7 +10,9 @@ Detection is the engine's job; this module only formats. Formats (`FORMATS`):
     github  GitHub Actions workflow commands (`::warning file=...::message`)
 
 Lines and columns are 1-based and point into the user's file; an end column is the column just
-past the span's last character.
+past the span's last character. A file name's bytes that are not UTF-8 (kept by Python as lone
+surrogates) are written as `\\udcXX` text in every format, as the text format shows them, and as
+percent-escapes of the original bytes in a SARIF URI: every report is valid UTF-8.
 """
 
 from __future__ import annotations
@@ -28,6 +30,25 @@ if TYPE_CHECKING:
 
 SARIF_SCHEMA = "https://json.schemastore.org/sarif-2.1.0.json"
 SARIF_VERSION = "2.1.0"
+
+
+def _no_surrogates(text: str, backslash: str = "\\") -> str:
+    """`text` with each lone surrogate (an undecodable byte of a file name) written as `\\udcXX`,
+    its backslash spelt `backslash` (two of them inside a JSON string)."""
+    try:
+        text.encode("utf-8")  # lone surrogates are all UTF-8 cannot encode
+        return text
+    except UnicodeEncodeError:
+        pass
+    return "".join(f"{backslash}u{ord(ch):04x}" if "\ud800" <= ch <= "\udfff" else ch for ch in text)
+
+
+def _json_text(doc) -> str:
+    """`doc` as indented JSON that is valid UTF-8: a lone surrogate can only sit inside a JSON
+    string, where `\\\\udcXX` reads back as the text `\\udcXX`."""
+    import json  # only for --format json and sarif: importing it costs a text lint 4.9 M instructions (issue 18)
+
+    return _no_surrogates(json.dumps(doc, indent=2, ensure_ascii=False), "\\\\") + "\n"
 
 
 def _plural(n: int, word: str) -> str:
@@ -125,9 +146,7 @@ def json_report(result: LintResult) -> str:
         "findings": [finding_record(f) for f in result.findings],
         "summary": {"files": result.files, "findings": len(result.findings), "penalty": result.penalty},
     }
-    import json  # only for --format json and sarif: importing it costs a text lint 4.9 M instructions (issue 18)
-
-    return json.dumps(doc, indent=2, ensure_ascii=False) + "\n"
+    return _json_text(doc)
 
 
 def artifact_uri(path: str, root: str | None = None) -> str:
@@ -141,8 +160,8 @@ def artifact_uri(path: str, root: str | None = None) -> str:
     try:
         rel = real.relative_to(base)
     except ValueError:
-        return real.as_uri()
-    return quote(rel.as_posix())
+        return real.as_uri()  # percent-escapes the file name's bytes, undecodable ones too
+    return quote(os.fsencode(rel.as_posix()))
 
 
 def sarif_level(severity: str) -> str:
@@ -214,9 +233,7 @@ def sarif_document(result: LintResult, root: str | None = None) -> dict:
 
 
 def sarif_report(result: LintResult) -> str:
-    import json
-
-    return json.dumps(sarif_document(result), indent=2, ensure_ascii=False) + "\n"
+    return _json_text(sarif_document(result))
 
 
 def _escape_data(s: str) -> str:
@@ -244,7 +261,7 @@ def github_report(result: LintResult) -> str:
             )
         )
         message = f.message + (f"\nhelp: {f.help}" if f.help else "")
-        out.append(f"::{command} {props}::{_escape_data(message)}")
+        out.append(_no_surrogates(f"::{command} {props}::{_escape_data(message)}"))
     return "".join(line + "\n" for line in out)
 
 

@@ -106,3 +106,50 @@ def test_a_deeply_nested_export_is_named(tmp_path):
     err = done.stderr.decode()
     assert done.returncode == 2 and "Traceback" not in err, err
     assert f"{path}: error: too deeply nested JSON" in err
+
+
+STRICT = {"PYTHONIOENCODING": "utf-8:strict"}
+
+
+@pytest.fixture
+def undecodable(tmp_path):
+    """A shader folder whose name holds the byte 0xff (not UTF-8), with lint findings in it."""
+    folder = tmp_path / os.fsdecode(b"sh\xff")
+    folder.mkdir()
+    (folder / "Image.glsl").write_text(IMAGE)
+    return folder
+
+
+@pytest.mark.parametrize("fmt", ["text", "json", "sarif", "github"])
+def test_lint_reports_a_name_that_is_not_utf8_on_a_strict_stdout(undecodable, fmt):
+    done = _cli("lint", "--format", fmt, undecodable.name, cwd=undecodable.parent, env=STRICT)
+    err = done.stderr.decode(errors="replace")
+    assert done.returncode == 1 and "Traceback" not in err, err
+    out = done.stdout.decode("utf-8")  # strict: the report is valid UTF-8
+    if fmt in ("json", "sarif"):
+        out = json.loads(out)
+    if fmt == "json":
+        assert out["findings"][0]["path"] == "sh\\udcff/Image.glsl"
+    elif fmt == "sarif":
+        uri = out["runs"][0]["results"][0]["locations"][0]["physicalLocation"]["artifactLocation"]["uri"]
+        assert uri == "sh%FF/Image.glsl"
+    else:
+        assert "sh\\udcff/Image.glsl" in out
+
+
+@pytest.mark.parametrize("fmt", ["json", "sarif", "github"])
+def test_lint_writes_a_name_that_is_not_utf8_to_its_output_file(undecodable, fmt):
+    out = undecodable.parent / f"report.{fmt}"
+    done = _cli("lint", "--format", fmt, undecodable.name, "-o", out.name, cwd=undecodable.parent)
+    err = done.stderr.decode(errors="replace")
+    assert done.returncode == 1 and "Traceback" not in err, err
+    text = out.read_text(encoding="utf-8")  # strict: the report is valid UTF-8
+    expected = {"json": '"sh\\\\udcff/Image.glsl"', "sarif": '"sh%FF/Image.glsl"', "github": "sh\\udcff/Image.glsl"}
+    assert expected[fmt] in text
+
+
+def test_verify_prints_a_name_that_is_not_utf8_on_a_strict_stdout(undecodable, gl):
+    done = _cli("verify", undecodable.name, "--size", "4x4", cwd=undecodable.parent, env=STRICT)
+    err = done.stderr.decode(errors="replace")
+    assert done.returncode == 0 and "Traceback" not in err, err
+    assert "sh\\udcff" in done.stdout.decode("utf-8")

@@ -49,7 +49,9 @@ def run(args) -> int:
     backends = tuple(b for b in DEFAULT_BACKENDS if not (args.no_webgl and b == "webgl"))
     page = build_report(args.paths, size=args.size, time=args.time, backends=backends,
                         bench=None if args.no_bench else args.bench_size, bench_runs=args.bench_runs)
-    with atomic_write(args.output, "report") as tmp, open(tmp, "w", encoding="utf-8") as f:
+    # a file name's undecodable bytes show as `\\udcXX` in the page
+    with atomic_write(args.output, "report") as tmp, \
+            open(tmp, "w", encoding="utf-8", errors="backslashreplace") as f:
         f.write(page.html)
     bad = [r.name for r in page.shaders if not r.ok]
     print(f"{args.output}: {len(page.shaders)} shader{'s' * (len(page.shaders) != 1)}"
