@@ -20,13 +20,15 @@ removes its own `--user-data-dir`.
 
 `get_browser()` starts the browser on first use and keeps it; `close_browser()` (registered with
 atexit) ends it. WebGLUnavailable (an InputError: exit 2, never a traceback) says what to
-install when Playwright, Chromium, WebGL 2 or float render targets are missing.
+install when Playwright, Chromium, WebGL 2 or float render targets are missing, and why an
+installed Chromium failed to start (`launch_failure`).
 """
 
 from __future__ import annotations
 
 import atexit
 import os
+import re
 import shutil
 import signal
 import time
@@ -96,6 +98,32 @@ def chromium_path() -> str | None:
     return None
 
 
+def launch_failure(executable: str, error: str) -> str:
+    """The message for a Chromium at `executable` that failed to start with Playwright's `error`:
+    its first line, how the browser process ended (from Playwright's call log) and, under an
+    address-space limit (`ulimit -v`), that limit: Chromium reserves far more address space than
+    it uses, and no limit a machine can give is enough. The executable is there: no advice to
+    install it."""
+    lines = error.strip().splitlines()
+    first = lines[0] if lines else "no reason given"
+    message = f"error: headless Chromium ({executable}) failed to start: {first}"
+    ended = re.search(r"<process did exit: exitCode=(\w+), signal=(\w+)>", error)
+    if ended and ended.group(2) != "null":
+        message += f"; the browser process was ended by {ended.group(2)}"
+    elif ended and ended.group(1) != "null":
+        message += f"; the browser process exited with code {ended.group(1)}"
+    try:
+        import resource
+
+        soft, _ = resource.getrlimit(resource.RLIMIT_AS)
+    except (ImportError, OSError, ValueError):  # not POSIX
+        soft = -1
+    if soft >= 0 and soft != getattr(resource, "RLIM_INFINITY", -1):
+        message += (f"; this process runs under an address-space limit (ulimit -v {soft // 1024}), which "
+                    "Chromium cannot start under: it reserves far more address space than it uses")
+    return message
+
+
 class Browser:
     """A headless Chromium, its page and the harness's WebGL2 context in that page."""
 
@@ -128,8 +156,7 @@ class Browser:
             error = self.page.evaluate("() => window.glslcheck.error")
         except PlaywrightError as e:
             self.close()
-            first = str(e).strip().splitlines()[0] if str(e).strip() else type(e).__name__
-            raise WebGLUnavailable(f"error: cannot start headless Chromium ({executable}): {first}; {ADVICE}") from None
+            raise WebGLUnavailable(launch_failure(executable, str(e))) from None
         if error:
             self.close()
             raise WebGLUnavailable(f"error: headless Chromium ({executable}): {error}; {ADVICE}")
