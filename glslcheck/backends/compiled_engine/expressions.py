@@ -9,8 +9,10 @@ from __future__ import annotations
 
 from typing import Any
 
+from ...base.precision import float32_literal
 from ...frontend import syntax as A
 from ...language import glsl_types as T
+from ...semantics.consteval import f32
 from ...semantics.model import Constructor, Symbol
 from .builtin_calls import builtin_call
 from .values import (CAST, DTYPE, PURE_LINE, SPECULATE_LINES, Arr, Dyn, Val, broadcast_const, engine_error, flatten,
@@ -168,7 +170,10 @@ class ExpressionEmitter:
         return Val(t, [self.ci(e.value, e.unsigned or t == T.UINT)], [e.value])
 
     def _expr_FloatLiteral(self, e: A.FloatLiteral) -> Val:
-        return Val(T.FLOAT, [self.cf(e.value)], [e.value])
+        v = e.value
+        if e.text and float32_literal(e.text) != f32(v):  # a decimal just off a float32 halfway point
+            v = float32_literal(e.text)  # rounded to float32 once, not through float64
+        return Val(T.FLOAT, [self.cf(v)], [v])
 
     def _expr_BoolLiteral(self, e: A.BoolLiteral) -> Val:
         return Val(T.BOOL, ["True" if e.value else "False"], [e.value])

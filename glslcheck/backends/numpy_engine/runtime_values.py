@@ -159,9 +159,10 @@ class ValueOps:
         return np.asarray(x, dtype=self.F)
 
     # ------------------------------------------------------------------ constants
-    def const_float(self, x: float) -> np.ndarray:
-        """A float literal, uniform over lanes: shape (1,), active float dtype."""
-        return np.array([x], dtype=self.F)
+    def const_float(self, x: float, x32: float | None = None) -> np.ndarray:
+        """A float literal, uniform over lanes: shape (1,), active float dtype; in float32 `x32`
+        when given (the literal's decimal rounded to float32 once, where rounding `x` is off)."""
+        return np.array([x32 if x32 is not None and self.F is np.float32 else x], dtype=self.F)
 
     f = const_float
 

@@ -9,6 +9,7 @@ are in calls.py.
 
 from __future__ import annotations
 
+from ...base.precision import float32_literal
 from ...frontend import syntax as A
 from ...language import builtin_functions as B
 from ...language import glsl_types as T
@@ -28,7 +29,7 @@ class ExpressionChecks:
         return T.UINT if n.unsigned else T.INT
 
     def expr_FloatLiteral(self, n: A.FloatLiteral) -> T.Type:
-        self.consts[id(n)] = C.f32(n.value)
+        self.consts[id(n)] = float32_literal(n.text) if n.text else C.f32(n.value)  # the decimal rounded once
         return T.FLOAT
 
     def expr_BoolLiteral(self, n: A.BoolLiteral) -> T.Type:

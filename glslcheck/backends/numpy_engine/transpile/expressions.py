@@ -8,6 +8,7 @@ from __future__ import annotations
 from dataclasses import dataclass, field
 from typing import Any
 
+from ....base.precision import float32_literal
 from ....frontend import syntax as A
 from ....language import builtin_functions as B
 from ....language import glsl_types as T
@@ -159,7 +160,7 @@ class Expressions:
         return self.const_int(e.value, e.unsigned or self.type_of(e) == T.UINT)
 
     def _print_FloatLiteral(self, e: A.FloatLiteral, mask: str | None) -> str:
-        return self.const_float(e.value)
+        return self.const_float(e.value, float32_literal(e.text) if e.text else None)
 
     def _print_BoolLiteral(self, e: A.BoolLiteral, mask: str | None) -> str:
         return self.const_bool(e.value)

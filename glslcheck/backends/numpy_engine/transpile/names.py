@@ -103,8 +103,12 @@ class Names:
         return "m_" + python_ident(name, node)
 
     # -- constants and zero values -------------------------------------------------------------
-    def const_float(self, v: float) -> str:
+    def const_float(self, v: float, v32: float | None = None) -> str:
+        """The module constant of the float `v`; `v32`, a literal's float32 when rounding `v`
+        (its float64) to float32 does not give it (a decimal just off a float32 halfway point),
+        is what the constant holds in float32."""
         import math
+        import struct
 
         if math.isnan(v):
             text, lit = "nan", "1e999 - 1e999"  # never produced by a literal; kept for folds
@@ -114,6 +118,9 @@ class Names:
             lit = repr(float(v))
             text = lit.replace("-", "m").replace("+", "").replace(".", "p")
         name = "C_f_" + text
+        if v32 is not None and not math.isinf(v) and v32 != struct.unpack("f", struct.pack("f", v))[0]:
+            name += "_f32_" + repr(v32).replace("-", "m").replace("+", "").replace(".", "p")
+            lit += f", {v32!r}" if not math.isinf(v32) else (", 1e999" if v32 > 0 else ", -1e999")
         self.consts.setdefault(name, f"rt.const_float({lit})")
         self.float_consts[name] = float(v)
         return name
