@@ -108,7 +108,8 @@ class Names:
         (its float64) to float32 does not give it (a decimal just off a float32 halfway point),
         is what the constant holds in float32."""
         import math
-        import struct
+
+        from ....semantics.consteval import f32
 
         if math.isnan(v):
             text, lit = "nan", "1e999 - 1e999"  # never produced by a literal; kept for folds
@@ -118,7 +119,7 @@ class Names:
             lit = repr(float(v))
             text = lit.replace("-", "m").replace("+", "").replace(".", "p")
         name = "C_f_" + text
-        if v32 is not None and not math.isinf(v) and v32 != struct.unpack("f", struct.pack("f", v))[0]:
+        if v32 is not None and not math.isinf(v) and v32 != f32(v):
             name += "_f32_" + repr(v32).replace("-", "m").replace("+", "").replace(".", "p")
             lit += f", {v32!r}" if not math.isinf(v32) else (", 1e999" if v32 > 0 else ", -1e999")
         self.consts.setdefault(name, f"rt.const_float({lit})")
