@@ -4,8 +4,9 @@ What the hook runs (`glslcheck lint --staged`, from this checkout: the installed
 installed glslcheck, which may be another checkout) in a temporary git repository
 (test_security_hook's Repo): a submodule or a symbolic link named like a shader tab is no shader
 text and must neither block the commit nor be linted through its target; a commit of more folders
-than a command line holds must go through. The walk of check, lint, parse and report must enter
-each real folder once, whatever symbolic links point back up the tree.
+than a command line holds must go through; a second `install-hook --force` must keep the first
+backup. The walk of check, lint, parse and report must enter each real folder once, whatever
+symbolic links point back up the tree.
 """
 
 from __future__ import annotations
@@ -18,6 +19,7 @@ from pathlib import Path
 import pytest
 from test_security_hook import BAD, CLEAN, Repo
 
+HOOK_MARKER = "glslcheck-managed-hook"
 CHECKOUT = str(Path(__file__).resolve().parents[2])  # the glslcheck these tests run
 
 
@@ -173,6 +175,25 @@ def test_index_lookups_in_small_runs_find_what_one_run_finds(repo: Repo, monkeyp
     monkeypatch.setattr(staged, "ARGS_BUDGET", 1)  # one pathspec per git command
     assert written() == whole
     assert len(whole[1]) == 4 * 3 + 1
+
+
+# install-hook --force, twice -------------------------------------------------------------------
+
+
+def test_install_hook_force_twice_keeps_every_hook_it_replaced(repo: Repo):
+    hooks = repo.root / ".git" / "hooks"
+    assert _glslcheck("install-hook", cwd=repo.root, env=repo.env).returncode == 0
+    theirs = ["#!/bin/sh\necho 'the first hook of my own'\n", "#!/bin/sh\necho 'a tool wrote this one later'\n"]
+    for text in theirs:
+        (hooks / "pre-commit").write_text(text, encoding="utf-8")
+        proc = _glslcheck("install-hook", "--force", cwd=repo.root, env=repo.env)
+        assert proc.returncode == 0 and "replaced" in proc.stdout, proc.stderr
+        assert HOOK_MARKER in (hooks / "pre-commit").read_text(encoding="utf-8")
+    proc = _glslcheck("install-hook", "--force", cwd=repo.root, env=repo.env)  # its own hook: updated, no backup
+    assert proc.returncode == 0 and "updated" in proc.stdout, proc.stderr
+    kept = sorted(hooks.glob("pre-commit.glslcheck-backup*"))
+    assert [p.read_text(encoding="utf-8") for p in kept] == theirs
+    assert [p.name for p in kept] == ["pre-commit.glslcheck-backup", "pre-commit.glslcheck-backup.1"]
 
 
 # Folders holding symbolic links to themselves or above ------------------------------------------
