@@ -5,15 +5,21 @@ version of each staged shader file that the commit will hold. A clean working co
 staged version must not let the bad version through, and a bad working copy over a clean staged
 one must not stop the commit.
 
-How: the staged files that were added, copied, modified or renamed (`--diff-filter=ACMR`, so a
-renamed-and-edited file, `R088`, is linted under its new name) are listed NUL-separated (`-z`,
-so names with quotes, tabs or newlines arrive as they are), and their index versions are written
+How: the staged files that were added, copied, modified, renamed or changed type
+(`--diff-filter=ACMRT`, so a renamed-and-edited file, `R088`, is linted under its new name) are
+listed NUL-separated (`-z`, so names with quotes, tabs or newlines arrive as they are) with their
+index modes: only regular files are shader files. A symbolic link (mode 120000) holds a path, not
+a shader's text, and a submodule (160000) is another repository's commit, whatever their names
+say; both are left out (and named in `skipped`). Their index versions are written
 with `git checkout-index` into a private temporary folder, with what linting them needs from the
 index: the configuration files (glslcheck.toml, pyproject.toml) of their folders and the folders
 above (written first: their tab-patterns say which names are shaders, and only shader files are
 written), and the Shadertoy tab files next to them (an Image tab is compiled after its sibling
 Common tab). The linter then runs in that folder on the repository-relative names, so every
 message names the user's own path (relative to the top of the work tree) and line.
+
+Paths go to git on stdin (checkout-index) or in runs of bounded size (ls-files reads no pathspecs
+from stdin), so a commit of any number of folders stays under the system's command-line limit.
 
 Git's environment is kept: during `git commit -a` or `git commit PATH` git points
 GIT_INDEX_FILE at a temporary index, and that is the one to lint.
@@ -35,6 +41,8 @@ if TYPE_CHECKING:
     from typing import Iterator
 
 CONFIG_FILES = ("glslcheck.toml", "pyproject.toml")
+# Bytes of pathspecs per git command: far under the command-line limit (Linux: at least 128 kB).
+ARGS_BUDGET = 64_000
 
 
 def _git(*args: str, cwd: str | None = None, stdin: bytes | None = None) -> bytes:
@@ -44,7 +52,8 @@ def _git(*args: str, cwd: str | None = None, stdin: bytes | None = None) -> byte
         raise InputError("glslcheck lint --staged: error: git is not installed") from None
     if proc.returncode != 0:
         message = proc.stderr.decode("utf-8", "replace").strip().splitlines()
-        raise InputError(f"glslcheck lint --staged: error: git {args[0]} failed"
+        command = next(a for a in args if not a.startswith("-"))
+        raise InputError(f"glslcheck lint --staged: error: git {command} failed"
                          + (f" ({message[-1]})" if message else ""))
     return proc.stdout
 
@@ -54,17 +63,54 @@ def _names(out: bytes) -> list[str]:
     return [os.fsdecode(n) for n in out.split(b"\0") if n]
 
 
-def staged_names(top: str) -> list[str]:
-    """The repository-relative names of the staged files that were added, copied, modified or
-    renamed (the new name), in git's order."""
-    return _names(_git("diff", "--cached", "--name-only", "-z", "--diff-filter=ACMR", cwd=top))
+# Index modes that are not a file's text: what a staged entry of that mode is.
+NOT_FILES = {"120000": "a symbolic link", "160000": "a submodule"}
+
+
+def _is_regular(mode: str) -> bool:
+    return mode.startswith("100")  # 100644 or 100755 (git writes no other file mode)
+
+
+def staged_entries(top: str) -> list[tuple[str, str]]:
+    """(index mode, repository-relative name) of each staged entry that was added, copied,
+    modified, renamed (the new name) or changed type, in git's order."""
+    fields = _names(_git("diff", "--cached", "--raw", "-z", "--diff-filter=ACMRT", cwd=top))
+    # `-z --raw`: ":old-mode new-mode old-id new-id status" then the path (two paths for R and C).
+    entries = []
+    i = 0
+    while i < len(fields):
+        meta = fields[i].split()
+        paths = 2 if meta[-1][:1] in ("R", "C") else 1
+        entries.append((meta[1], fields[i + paths]))
+        i += 1 + paths
+    return entries
 
 
 def _index_names(top: str, pathspecs: list[str]) -> list[str]:
-    """The index entries matching literal pathspecs."""
-    if not pathspecs:
-        return []
-    return _names(_git("--literal-pathspecs", "ls-files", "-z", "--cached", "--", *pathspecs, cwd=top))
+    """The regular files in the index matching literal pathspecs."""
+    names: list[str] = []
+    for chunk in _chunks(pathspecs):
+        out = _git("--literal-pathspecs", "ls-files", "-z", "--stage", "--", *chunk, cwd=top)
+        # `--stage -z`: "mode object stage\tpath" per entry.
+        entries = [line.split("\t", 1) for line in _names(out)]
+        names.extend(name for meta, name in entries if _is_regular(meta.split(" ", 1)[0]))
+    return list(dict.fromkeys(names))
+
+
+def _chunks(args: list[str], budget: int = ARGS_BUDGET) -> Iterator[list[str]]:
+    """`args` in runs of at most `budget` bytes (each at least one argument): `git ls-files` takes
+    its pathspecs only as arguments, and a command line over the system's limit fails."""
+    chunk: list[str] = []
+    size = 0
+    for arg in args:
+        cost = len(os.fsencode(arg)) + 1 + 8  # the string, its NUL and its pointer
+        if chunk and size + cost > budget:
+            yield chunk
+            chunk, size = [], 0
+        chunk.append(arg)
+        size += cost
+    if chunk:
+        yield chunk
 
 
 def _config_names(top: str, staged: list[str]) -> list[str]:
@@ -99,15 +145,18 @@ def _checkout(top: str, folder: str, names: list[str]) -> None:
 
 
 @contextlib.contextmanager
-def staged_checkout() -> Iterator[list[str]]:
+def staged_checkout(skipped: list[tuple[str, str]] | None = None) -> Iterator[list[str]]:
     """Write the staged shader files (and their context) into a temporary folder, enter it, and
     yield their names (relative to it and to the top of the work tree); cwd and the folder are
-    restored and removed afterwards. InputError outside a git work tree."""
+    restored and removed afterwards. InputError outside a git work tree. `skipped` (when given)
+    receives (name, what it is) for each staged symbolic link or submodule named as a shader."""
     try:
         top = os.fsdecode(_git("rev-parse", "--show-toplevel").rstrip(b"\n"))
     except InputError:
         raise InputError("glslcheck lint --staged: error: not inside a git work tree") from None
-    staged = staged_names(top)
+    entries = staged_entries(top)
+    staged = [name for mode, name in entries if _is_regular(mode)]
+    others = [(name, NOT_FILES.get(mode, f"mode {mode}")) for mode, name in entries if not _is_regular(mode)]
     # Mode 0700, so no other user writes in it; inside the git folder, so the configuration
     # search above it meets the repository's folders (as it would for the work tree's files),
     # not the shared temporary folder.
@@ -123,6 +172,9 @@ def staged_checkout() -> Iterator[list[str]]:
         _checkout(top, folder, _config_names(top, staged))
         os.chdir(folder)
         shaders = _shader_names(staged)
+        if skipped is not None:
+            named = set(_shader_names([name for name, _ in others]))
+            skipped.extend((name, what) for name, what in others if name in named)
         _checkout(top, folder, list(dict.fromkeys(shaders + _sibling_tabs(top, shaders))))
         yield shaders
     except InputError as e:  # e.g. a bad staged configuration file: name it as the user does

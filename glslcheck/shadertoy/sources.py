@@ -273,12 +273,14 @@ def load_shader(path: str | os.PathLike) -> Shader:
 def find_shaders(paths: list[str]) -> list[Shader]:
     """Expand command-line paths. A file is one shader; a folder holding tab files (Image.glsl,
     Common.glsl, ...) is one shader; any other folder is walked: each of its sub-folders with
-    tab files is a shader, and each loose .glsl/.frag/.txt file is a shader of its own."""
+    tab files is a shader, and each loose .glsl/.frag/.txt file is a shader of its own. A symbolic
+    link to a folder is followed only when the walk has not been in that real folder yet, so links
+    back to the folder itself or above it (or many links to one folder) cost one visit."""
     out: list[Shader] = []
     for path in paths:
         p = posix_path(path)
         if os.path.isdir(p) and not any(_is_tab_file(f) for f in folder_entries(p)):
-            found = _walk(p)
+            found = _walk(p, {os.path.realpath(p)})
             if not found:
                 raise InputError(f"{path}: error: no shader files found")
             out.extend(found)
@@ -295,17 +297,23 @@ def _parent(p: str) -> str:
     return p[:i] if p[:i].strip("/") else p[: i + 1]  # the root `/` (or `//`) keeps its slashes
 
 
-def _walk(folder: str) -> list[Shader]:
+def _walk(folder: str, visited: set[str]) -> list[Shader]:
+    """The shaders under `folder`; `visited` holds the real folders this walk has entered (a
+    real sub-folder is always entered, a symbolic link only to a real folder not in it)."""
     found: list[Shader] = []
     for f in folder_entries(folder):
         name = path_name(f)
         if name.startswith(".") or name == "__pycache__":
             continue
         if os.path.isdir(f):
+            real = os.path.realpath(f)
+            if os.path.islink(f) and real in visited:
+                continue
+            visited.add(real)
             if any(_is_tab_file(g) for g in folder_entries(f)):
                 found.append(load_shader(f))
             else:
-                found.extend(_walk(f))
+                found.extend(_walk(f, visited))
         elif _is_shader_file(f) and path_suffix(f):
             shader = Shader(root=f)
             src = read_source(f)

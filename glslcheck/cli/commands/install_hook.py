@@ -2,11 +2,12 @@
 
 The hook is a plain POSIX sh script in the repository's hooks folder (`core.hooksPath` is
 honoured). It runs `glslcheck lint --staged` (see glslcheck/lint/staged.py): the staged version of the
-files that were added, copied, modified or renamed and are shader files (.glsl, .frag, a
+files that were added, copied, modified, renamed or changed type and are shader files (.glsl, .frag, a
 Shadertoy tab name, or a `tab-patterns` glob of the configuration), and stops the commit when
 there is a finding; `git commit --no-verify` skips it once. It runs the Python that installed it
 in isolated mode, so a `glslcheck/` folder in the repository is never imported. A hook that glslcheck did not write is left alone unless --force is
-given (it is then kept as pre-commit.glslcheck-backup). Exit 2 outside a git repository.
+given (it is then kept as pre-commit.glslcheck-backup, or the first free
+pre-commit.glslcheck-backup.N: an earlier backup is never overwritten). Exit 2 outside a git repository.
 """
 
 from __future__ import annotations
@@ -82,10 +83,23 @@ def hook_path(cwd: str | os.PathLike | None = None) -> Path:
     return Path(proc.stdout.strip())
 
 
-def install(cwd: str | os.PathLike | None = None, force: bool = False) -> tuple[Path, str]:
-    """Write the hook; returns its path and what happened ("installed", "updated", "replaced")."""
+def backup_path(path: Path) -> Path:
+    """Where a foreign hook at `path` is kept: the first name of pre-commit.glslcheck-backup,
+    pre-commit.glslcheck-backup.1, ... that names nothing yet (not even a dangling link)."""
+    backup = path.with_name("pre-commit.glslcheck-backup")
+    n = 0
+    while os.path.lexists(backup):
+        n += 1
+        backup = path.with_name(f"pre-commit.glslcheck-backup.{n}")
+    return backup
+
+
+def install(cwd: str | os.PathLike | None = None, force: bool = False) -> tuple[Path, str, Path | None]:
+    """Write the hook; returns its path, what happened ("installed", "updated", "replaced") and
+    where a replaced hook was kept."""
     path = hook_path(cwd)
     status = "installed"
+    backup = None
     if path.exists():
         old = path.read_text(encoding="utf-8", errors="replace")
         if MARKER in old:
@@ -93,18 +107,20 @@ def install(cwd: str | os.PathLike | None = None, force: bool = False) -> tuple[
         elif not force:
             raise InputError(
                 f"{path}: error: a pre-commit hook that glslcheck did not write is already there; "
-                "run `glslcheck install-hook --force` to replace it (it is kept as pre-commit.glslcheck-backup)"
+                f"run `glslcheck install-hook --force` to replace it (it is kept as {backup_path(path).name})"
             )
         else:
-            path.replace(path.with_name("pre-commit.glslcheck-backup"))
+            backup = backup_path(path)
+            path.replace(backup)
             status = "replaced"
     path.parent.mkdir(parents=True, exist_ok=True)
     path.write_text(hook_text(), encoding="utf-8")
     path.chmod(0o755)
-    return path, status
+    return path, status, backup
 
 
 def run(args: argparse.Namespace) -> int:
-    path, status = install(force=args.force)
-    print(f"glslcheck: {status} the pre-commit hook {path}")
+    path, status, backup = install(force=args.force)
+    kept = f" (the one it replaced is kept as {backup})" if backup else ""
+    print(f"glslcheck: {status} the pre-commit hook {path}{kept}")
     return 0

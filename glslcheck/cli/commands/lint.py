@@ -10,7 +10,7 @@ from __future__ import annotations
 import argparse
 import sys
 
-from ...base.diagnostics import InputError
+from ...base.diagnostics import InputError, printable
 
 
 def _names(value: str) -> list[str]:
@@ -57,9 +57,12 @@ def run(args: argparse.Namespace) -> int:
             raise InputError("glslcheck lint: error: --staged lints the staged files; give no PATH with it")
         from ...lint.staged import staged_checkout
 
-        with staged_checkout() as names:  # messages name the repository-relative paths
+        skipped: list[tuple[str, str]] = []
+        with staged_checkout(skipped) as names:  # messages name the repository-relative paths
             result = lint_paths(names, overrides, skip_non_shaders=True)
             text = render(result, args.format)
+        for name, what in skipped:  # named as a shader, but no shader text in the commit
+            print(printable(f"{name}: note: {what}, not a shader file; not linted"), file=sys.stderr)
     elif not args.paths:
         raise InputError("glslcheck lint: error: give at least one PATH (or --staged)")
     else:
