@@ -17,7 +17,7 @@ import sys
 from pathlib import Path
 
 import pytest
-from test_security_hook import BAD, CLEAN, Repo
+from test_security_hook import BAD, CLEAN, Repo, new_repo
 
 HOOK_MARKER = "glslcheck-managed-hook"
 CHECKOUT = str(Path(__file__).resolve().parents[2])  # the glslcheck these tests run
@@ -25,14 +25,7 @@ CHECKOUT = str(Path(__file__).resolve().parents[2])  # the glslcheck these tests
 
 @pytest.fixture
 def repo(tmp_path: Path) -> Repo:
-    root = tmp_path / "repo"
-    root.mkdir()
-    r = Repo(root)
-    r.git("init", "-q", "-b", "main")
-    r.write("README.md", "a course repository\n")
-    r.git("add", "README.md")
-    r.git("commit", "-q", "-m", "start")
-    return r
+    return new_repo(tmp_path)
 
 
 def _hook(repo: Repo) -> subprocess.CompletedProcess:

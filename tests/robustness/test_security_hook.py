@@ -59,8 +59,8 @@ class Repo:
         return self.git("ls-tree", "-r", "-z", "--name-only", "HEAD").stdout.split("\0")
 
 
-@pytest.fixture
-def repo(tmp_path: Path) -> Repo:
+def new_repo(tmp_path: Path) -> Repo:
+    """A course repository with one commit, in tmp_path/repo."""
     root = tmp_path / "repo"
     root.mkdir()
     r = Repo(root)
@@ -68,6 +68,13 @@ def repo(tmp_path: Path) -> Repo:
     r.write("README.md", "a course repository\n")
     r.git("add", "README.md")
     r.git("commit", "-q", "-m", "start")
+    return r
+
+
+@pytest.fixture
+def repo(tmp_path: Path) -> Repo:
+    r = new_repo(tmp_path)
+    root = r.root
     proc = subprocess.run([sys.executable, "-m", "glslcheck", "install-hook"], cwd=root, env=r.env,
                           capture_output=True, text=True)
     assert proc.returncode == 0, proc.stderr
