@@ -130,7 +130,25 @@ def main(argv: list[str] | None = None) -> int:
     gc.set_threshold(100_000, *gc.get_threshold()[1:])
     code = _main(sys.argv[1:])
     gc.freeze()
+    _exit_if_abandoned(code)
     return code
+
+
+def _exit_if_abandoned(code: int) -> None:
+    """End the process now when the compiled engine left a frame or numba's compile running (over
+    budget or interrupted): those threads cannot be stopped, and the interpreter's shutdown
+    would wait for them or pull the runtime from under them (an LLVM abort mid-compile)."""
+    if "glslcheck.backends.compiled_engine.engine" not in sys.modules:
+        return
+    from ..backends.compiled_engine.engine import abandoned
+
+    if abandoned():
+        for stream in (sys.stdout, sys.stderr):
+            try:
+                stream.flush()
+            except (OSError, ValueError):
+                pass
+        os._exit(code)
 
 
 def _main(argv: list[str]) -> int:

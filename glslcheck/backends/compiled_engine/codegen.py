@@ -311,6 +311,9 @@ class Codegen(ExpressionEmitter):
         layout = {k: (v[0], v[1]) for k, v in self.uniforms.items()}
         out.append(f"UNIFORMS = {layout!r}  # uniform -> (kind, offset in uf/ui)")
         out.append(f"LOOPS = {self.loop_lines!r}  # loop id -> (file, line, column)")
+        loc = getattr(self.entry.node, "loc", None) or Location(self.path, 1, 1)
+        entry = (loc.path, loc.line, loc.column, self.entry.name)
+        out.append(f"ENTRY = {entry!r}  # mainImage (file, line, column, name): where a frame over budget stops")
         if self.derivative is not None:
             out.append("QUADS = True  # dFdx/dFdy: lockstep blocks of 2x2 quads only (lanes.py)")
         out.append("")

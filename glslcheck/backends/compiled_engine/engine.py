@@ -8,19 +8,33 @@ source generated in this process is what runs, under that file's name, and every
 ``cache=True``, so a second process loads machine code instead of compiling
 (`CompiledProgram.load_seconds`, `cold`).
 
-Frames: the rows are split into bands, each rendered by ``render_rows`` (nogil) on its own
-thread; a band allocates its own copy of the global state.
+Frames: the rows are split into bands, each rendered by ``render_rows`` (nogil) on the
+engine's worker threads; a band allocates its own copy of the global state. The calling thread
+only waits, in short slices, so a frame honours the frame budget (`frame_seconds`) and Ctrl-C
+however long the machine code runs; numba's first call (the compile, or the cache load) is
+waited on the same way.
+
+The contract when a frame or a compile is abandoned (a GlslError with rule
+"compiled-frame-budget", or KeyboardInterrupt): numba's machine code cannot be stopped, so its
+threads go on to the end of their band (for ever, for a shader that never ends) as daemon
+threads; later frames run on fresh threads. A library user who must have the CPU back ends the
+process, and a process that did abandon one should end with os._exit after flushing its
+output (as the command line does): the interpreter's own shutdown does not wait for daemon
+threads, but it may pull the runtime from under them (LLVM aborts a compile cut off that way).
+`abandoned()` says whether that happened.
 """
 
 from __future__ import annotations
 
 import hashlib
 import os
+import queue
 import sys
 import threading
 import time
 import types
-from concurrent.futures import ThreadPoolExecutor
+from collections.abc import Callable
+from concurrent.futures import FIRST_EXCEPTION, Future, wait
 from typing import Any
 
 import numpy as np
@@ -33,17 +47,102 @@ PIP = "pip install 'glslcheck[jit]'"
 _LOCK = threading.Lock()
 _MODULES: dict[str, Any] = {}  # hash -> loaded module (one per process)
 _SOURCES: dict[str, str] = {}  # hash -> the loaded module's source
-PARALLEL_PIXELS = 4096  # smaller frames on the calling thread (a thread hand-off costs more)
-_POOLS: dict[int, ThreadPoolExecutor] = {}
+PARALLEL_PIXELS = 4096  # smaller frames in one band (a hand-off between threads costs more)
+WAIT_SLICE = 0.1  # seconds the calling thread waits at a time: how soon Ctrl-C and the budget are seen
+# numba's compile (or cache load) has the frame budget, but at least this many seconds: a small
+# program takes seconds to compile cold, whatever budget its frames have.
+COMPILE_SECONDS = 60.0
 
 
-def _pool(threads: int) -> ThreadPoolExecutor:
-    """The process's row-band threads (made once: starting threads costs a frame of a small shader)."""
-    with _LOCK:
-        pool = _POOLS.get(threads)
-        if pool is None:
-            pool = _POOLS[threads] = ThreadPoolExecutor(threads, thread_name_prefix="glslcheck-compiled")
-        return pool
+class Workers:
+    """Daemon threads that run the bands of frames (made once per thread count: starting
+    threads costs a frame of a small shader). A daemon, unlike ThreadPoolExecutor's threads, is
+    not joined at the interpreter's exit: a band that never ends cannot hold the process."""
+
+    def __init__(self, threads: int) -> None:
+        self.jobs: queue.SimpleQueue = queue.SimpleQueue()
+        for k in range(threads):
+            threading.Thread(target=self._serve, name=f"glslcheck-compiled-{k}", daemon=True).start()
+        self.threads = threads
+
+    def _serve(self) -> None:
+        while True:
+            job = self.jobs.get()
+            if job is None:  # retired
+                return
+            fn, args, future = job
+            if not future.set_running_or_notify_cancel():
+                continue
+            try:
+                future.set_result(fn(*args))
+            except BaseException as e:  # noqa: BLE001 - handed to the waiting thread
+                future.set_exception(e)
+
+    def submit(self, fn: Callable, *args: Any) -> Future:
+        future: Future = Future()
+        self.jobs.put((fn, args, future))
+        return future
+
+    def retire(self) -> None:
+        """No more jobs: each thread ends once its current band does."""
+        for _ in range(self.threads):
+            self.jobs.put(None)
+
+
+_WORKERS: dict[int, Workers] = {}
+_WORKERS_LOCK = threading.Lock()  # apart from _LOCK, which a compile holds while it waits for its thread
+_ABANDONED: list[float] = []  # when frames or compiles were left running (abandoned())
+
+
+def _workers(threads: int) -> Workers:
+    with _WORKERS_LOCK:
+        workers = _WORKERS.get(threads)
+        if workers is None:
+            workers = _WORKERS[threads] = Workers(threads)
+        return workers
+
+
+def abandoned() -> bool:
+    """Whether this process left a frame or a compile running (over budget or interrupted):
+    its threads go on until the process ends (the module docstring)."""
+    return bool(_ABANDONED)
+
+
+def run_bounded(threads: int, calls: list[tuple], deadline: float | None) -> None:
+    """Run `calls` ((function, *args) each) on the worker threads; the calling thread waits in
+    slices of WAIT_SLICE, so Ctrl-C (KeyboardInterrupt) reaches it. Raises TimeoutError when
+    they have not all returned by `deadline` (time.monotonic(); None: none), KeyboardInterrupt as it came,
+    or the first call's exception; on a timeout or an interrupt the calls not yet started are
+    dropped and the threads of the others are retired (`abandoned()`)."""
+    workers = _workers(threads)
+    futures = [workers.submit(*c) for c in calls]
+    try:
+        while True:
+            left = None if deadline is None else deadline - time.monotonic()
+            if left is not None and left <= 0:
+                raise TimeoutError
+            done, pending = wait(futures, WAIT_SLICE if left is None else min(WAIT_SLICE, left), FIRST_EXCEPTION)
+            for f in done:
+                if f.exception() is not None:
+                    _drop(workers, futures)
+                    raise f.exception()
+            if not pending:
+                return
+    except (TimeoutError, KeyboardInterrupt):
+        _drop(workers, futures)
+        raise
+
+
+def _drop(workers: Workers, futures: list[Future]) -> None:
+    """Cancel the calls not started; retire the threads when some are still running."""
+    for f in futures:
+        f.cancel()
+    if any(not f.done() for f in futures):
+        with _WORKERS_LOCK:
+            if _WORKERS.get(workers.threads) is workers:
+                del _WORKERS[workers.threads]
+        workers.retire()
+        _ABANDONED.append(time.monotonic())
 
 
 def available() -> bool:
@@ -151,31 +250,37 @@ def generate(shader: Any, tab: str | None = None, lanes: int | None = None) -> t
 
 
 class CompiledProgram:
-    """A shader compiled per pixel; `render` as NumpyProgram.render (float32 only)."""
+    """A shader compiled per pixel; `render` as NumpyProgram.render (float32 only). Each frame,
+    has `frame_seconds` (None: GLSLCHECK_FRAME_SECONDS or the NumPy engine's FRAME_SECONDS), and
+    numba's compile or cache load as much but at least COMPILE_SECONDS, before it stops with a
+    GlslError, rule "compiled-frame-budget" (the module docstring: what runs on after it)."""
 
     def __init__(self, source: str, path: str, threads: int | None = None) -> None:
         self.source = source
         self.path = path
         self.threads = threads or os.cpu_count() or 1
+        self.frame_seconds: float | None = None
         self.mod: Any = None
         self.load_seconds: float | None = None  # wall time of import + numba compile or cache load
         self.cold: bool | None = None  # True when numba compiled (no cache), False when it loaded
         self.key = hashlib.sha256((_versions() + "\n" + source).encode()).hexdigest()[:24]
 
-    def load(self) -> Any:
+    def load(self, bounded: bool = True) -> Any:
+        """The module, compiled or loaded from numba's cache; `bounded`: the compile has the
+        frame budget (a compile in the background, which no frame waits for, has none)."""
         require_numba()
         with _LOCK:
             if self.mod is not None:
                 return self.mod
             mod = _MODULES.get(self.key)
             if mod is None:
-                mod = self._import()
+                mod = self._import(bounded)
                 _MODULES[self.key] = mod
                 _SOURCES[self.key] = self.source
             self.mod = mod
             return mod
 
-    def _import(self) -> Any:
+    def _import(self, bounded: bool) -> Any:
         from ..numpy_engine import jit
 
         cache = jit.use_cache_dir()  # before the SLP setting below, which a reload of numba's config would undo
@@ -200,7 +305,7 @@ class CompiledProgram:
             config.SLP_VECTORIZE = 1
             sys.setrecursionlimit(max(limit, 20000))  # numba's SSA pass recurses along long functions
         try:
-            self._frame(mod, 1, 1, np.zeros((1, 2)), *self._inputs(mod, None))  # compiles, or loads the cache
+            self._compile(mod, bounded)
         finally:
             config.SLP_VECTORIZE = slp
             sys.setrecursionlimit(limit)
@@ -241,28 +346,42 @@ class CompiledProgram:
                     uf[off + c] = np.float32(float(x))
         return uf, ui
 
+    def budget(self) -> float:
+        from ..numpy_engine.program import frame_seconds
+
+        return self.frame_seconds if self.frame_seconds is not None else frame_seconds()
+
+    def _compile(self, mod: Any, bounded: bool) -> None:
+        """numba's compile (or cache load) of the module: a frame of no rows, which runs none of
+        the shader's code but its global initializers."""
+        seconds = max(self.budget(), COMPILE_SECONDS) if bounded else None
+        self._frame(mod, 1, 0, np.zeros((1, 2)), *self._inputs(mod, None), seconds=seconds, first=True)
+
     def _frame(self, mod: Any, width: int, height: int, offs: np.ndarray, uf: np.ndarray,
-               ui: np.ndarray) -> np.ndarray:
+               ui: np.ndarray, seconds: float | None = None, first: bool = False) -> np.ndarray:
+        """One frame on the worker threads, within `seconds` (None: the frame budget); `first`:
+        the call that compiles."""
         slots = mod.SLOTS
         gt = [np.zeros(max(1, slots[k]), dt) for k, dt in
               (("float", np.float32), ("int", np.int32), ("uint", np.uint32), ("bool", np.bool_))]
         from .scalar import LoopCapError
 
         out = np.empty((height, width, 4), np.float32)
+        if seconds is None and not first:
+            seconds = self.budget()
         try:
-            mod.globals_template(uf, ui, *gt)
-            bands = min(self.threads * 4, height) if width * height >= PARALLEL_PIXELS else 1
+            bands = min(self.threads * 4, height) if width * height >= PARALLEL_PIXELS and self.threads > 1 else 1
             edges = [height * k // bands for k in range(bands + 1)]
             if getattr(mod, "QUADS", False):  # a block is two rows (a 2x2 quad's): bands start at even rows
                 edges = [e - e % 2 for e in edges[:-1]] + [height]
-            if bands <= 1 or self.threads <= 1:
-                mod.render_rows(out, 0, height, width, height, offs, uf, ui, *gt)
-            else:
-                futures = [_pool(self.threads).submit(mod.render_rows, out, edges[k], edges[k + 1], width, height,
-                                                      offs, uf, ui, *gt)
-                           for k in range(bands) if edges[k] < edges[k + 1]]
-                for f in futures:
-                    f.result()
+            calls = [(mod.render_rows, out, edges[k], edges[k + 1], width, height, offs, uf, ui, *gt)
+                     for k in range(bands) if edges[k] < edges[k + 1] or first]
+            deadline = None if seconds is None else time.monotonic() + seconds
+            # the globals' initializers run the shader's code too (and numba compiles them first)
+            run_bounded(self.threads, [(mod.globals_template, uf, ui, *gt)], deadline)
+            run_bounded(self.threads, calls, deadline)
+        except TimeoutError:
+            raise self._over_budget(mod, seconds, first) from None
         except LoopCapError as e:
             from ..numpy_engine.transpile.common import LOOP_CAP
 
@@ -270,6 +389,21 @@ class CompiledProgram:
             raise GlslError(Diagnostic(f"this loop ran more than {LOOP_CAP} times", Location(path, line, col),
                                        rule="compiled-engine")) from None
         return out
+
+    def _over_budget(self, mod: Any, seconds: float, first: bool) -> GlslError:
+        path, line, col, name = getattr(mod, "ENTRY", (self.path, 1, 1, "mainImage"))
+        how = "--frame-budget SECONDS (or GLSLCHECK_FRAME_SECONDS) sets the budget"
+        if first:
+            return GlslError(Diagnostic(
+                f"numba was still compiling this shader after {seconds:g} s (the frame budget, at least "
+                f"{COMPILE_SECONDS:g} s); the compiled engine stopped waiting for it", Location(path, line, col),
+                rule="compiled-frame-budget",
+                help=f"render with --backend numpy, or make the program shorter (numba's work grows with it); {how}"))
+        return GlslError(Diagnostic(
+            f"the frame was still rendering after {seconds:g} s on the CPU, in '{name}' or a function it calls; "
+            "the compiled engine stopped waiting for it (a GPU would hang or reset)", Location(path, line, col),
+            rule="compiled-frame-budget",
+            help=f"bound the loops' iteration counts (nested loops multiply); {how}"))
 
     @frame_inputs
     def render(self, inputs: FrameInputs, precision: str = "float32", stats: bool = False) -> np.ndarray:
@@ -419,7 +553,8 @@ class TieredProgram:
                 self.stay = True
                 return
             fast = CompiledProgram(source, self.first.path, self.threads)
-            fast.load()
+            fast.frame_seconds = self.first.frame_seconds
+            fast.load(bounded=False)  # no frame waits for it
         except Exception as e:  # an engine bug in the lockstep path: the per-pixel program still renders
             import warnings
 
