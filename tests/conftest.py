@@ -11,6 +11,7 @@ variable), so a CI image without them cannot pass silently.
 from __future__ import annotations
 
 import os
+from pathlib import Path
 
 import pytest
 
@@ -24,6 +25,22 @@ from glslcheck.shadertoy.sources import Shader, Source
 # so what a test of the NumPy path exercised would depend on the tests run before it. The
 # kernels' own tests (tests/numpy/test_jit*.py) set the mode they test.
 os.environ.setdefault("GLSLCHECK_JIT", "off")
+
+
+# What a test needs, as markers (pyproject.toml registers them): from the fixtures it asks for,
+# and from the folders whose every test needs the tool (their tests also start it in subprocesses).
+FIXTURE_MARKERS = {"gl": ("gl",), "llvmpipe": ("gl", "mesa"), "webgl": ("webgl",), "glslang": ("glslang",),
+                   "numba": ("numba",), "jit_kernels": ("numba",)}
+FOLDER_MARKERS = {"gl": ("gl",), "webgl": ("webgl", "gl"), "compiled": ("numba", "slow"), "fuzz": ("slow",)}
+
+
+def pytest_collection_modifyitems(config, items):
+    for item in items:
+        needs = set(FOLDER_MARKERS.get(Path(str(item.fspath)).parent.name, ()))
+        for fixture in getattr(item, "fixturenames", ()):
+            needs.update(FIXTURE_MARKERS.get(fixture, ()))
+        for marker in sorted(needs):
+            item.add_marker(marker)
 
 
 def _missing(what: str, reason: str) -> None:

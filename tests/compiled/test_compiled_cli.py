@@ -118,7 +118,7 @@ def test_verify_backends_compiled_gl_matches(numba, gl, tmp_path, capsys):
     assert frame["match"] is True and frame["verdict"] == "match"
 
 
-def test_verify_compiled_errors(tmp_path, capsys, monkeypatch):
+def test_verify_compiled_errors(gl, tmp_path, capsys, monkeypatch):
     """Unsupported construct: exit 1 at its line; --precision other than float32: exit 2; no numba: exit 2."""
     from glslcheck.backends.compiled_engine import engine
 

@@ -36,7 +36,7 @@ def _fuzz_module():
     return importlib.import_module("fuzz")
 
 
-def test_short_fuzz_run_has_no_flagged_inputs(tmp_path):
+def test_short_fuzz_run_has_no_flagged_inputs(gl, tmp_path):
     fuzz = _fuzz_module()
 
     def chunk(k: int):
