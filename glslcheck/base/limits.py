@@ -26,7 +26,7 @@ The limits, and why:
   frame may render before it stops with an error at the loop it was in, MIN_FRAME_SECONDS..
   MAX_FRAME_SECONDS = 0.01..86400 (a day: a longer frame is a hang, not a render; below 10 ms
   the timer's own resolution decides). The default stays GLSLCHECK_FRAME_SECONDS, else
-  backends/numpy_engine/program.py FRAME_SECONDS (300 s); the option overrides both for one command.
+  base/config.py FRAME_SECONDS (300 s); the option overrides both for one command.
 """
 
 from __future__ import annotations

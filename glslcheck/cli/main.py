@@ -12,6 +12,7 @@ import importlib
 import os
 import sys
 
+from ..base import config
 from ..base.diagnostics import GlslError, InputError, format_text, printable
 
 # (name, module, one-line help), in the order `--help` lists them.
@@ -99,8 +100,8 @@ def build_parser(only: str | None = None) -> argparse.ArgumentParser:
 
 _RENDERING = ("render", "verify", "bench", "report")  # the commands that run the NumPy renderer
 _BUDGETED = _RENDERING + ("probe",)  # and those that take --frame-budget (probe's --nan renders a frame)
-PARALLEL_MODES = ("auto", "threads", "processes")  # NumpyProgram.parallel
-JIT_MODES = ("auto", "on", "off")  # backends/numpy_engine/jit.py (not imported here: it imports NumPy)
+PARALLEL_MODES = config.PARALLEL_MODES
+JIT_MODES = config.JIT_MODES
 
 
 def main(argv: list[str] | None = None) -> int:
@@ -165,12 +166,13 @@ def _main(argv: list[str]) -> int:
     if args.command in _RENDERING:
         from ..backends.numpy_engine.workers import tune_malloc
 
-        for given, name, modes in ((args.parallel, "GLSLCHECK_PARALLEL", PARALLEL_MODES),
-                                   (args.jit, "GLSLCHECK_JIT", JIT_MODES)):
-            if not given and os.environ.get(name, "auto") not in modes:
-                print(f"glslcheck: error: {name} must be one of {', '.join(modes)}, "
-                      f"not {os.environ[name]!r}", file=sys.stderr)
-                return 2
+        try:  # a bad variable the option would override is no error
+            for given, read in ((args.parallel, config.parallel), (args.jit, config.jit)):
+                if not given:
+                    read()
+        except InputError as e:
+            print(f"glslcheck: {e}", file=sys.stderr)
+            return 2
         tune_malloc()  # tile temporaries reuse freed memory instead of page-faulting (workers.py)
     if args.command not in _BUDGETED:
         return _run(args)

@@ -25,6 +25,8 @@ from __future__ import annotations
 
 import os
 
+from ..base import config
+
 TYPE_CHECKING = False
 if TYPE_CHECKING:
     from typing import Callable, TypeVar
@@ -44,9 +46,9 @@ def jobs() -> int:
     take turns with the first (the same wall time, the fork's CPU time more)."""
     if not hasattr(os, "fork") or _threads():
         return 1
-    env = os.environ.get("GLSLCHECK_JOBS", "").strip()
-    if env.isdigit() and int(env) >= 1:
-        return 2 if int(env) >= 2 else 1
+    given = config.jobs()
+    if given is not None:
+        return given
     try:
         cores = len(os.sched_getaffinity(0))
     except (AttributeError, OSError):

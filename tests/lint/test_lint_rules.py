@@ -4,18 +4,18 @@ folder's expected.json (GLSLCHECK_UPDATE_SNAPSHOTS=1 rewrites them); the registr
 from __future__ import annotations
 
 import json
-import os
 import re
 from pathlib import Path
 
 import pytest
 
+from glslcheck.base import config
 from glslcheck.lint import lint_paths
 from glslcheck.lint.rules import RULE_TABLE, SECTIONS, all_rules, doc_sections
 
 from .conftest import FIXTURES
 
-UPDATE = os.environ.get("GLSLCHECK_UPDATE_SNAPSHOTS") == "1"
+UPDATE = config.update_snapshots()
 FIXTURE_DIRS = sorted(p for p in FIXTURES.iterdir() if (p / "expected.json").is_file())
 
 

@@ -39,6 +39,7 @@ from typing import Any
 
 import numpy as np
 
+from ...base import config
 from ...base.diagnostics import Diagnostic, GlslError, InputError, Location
 from ...shadertoy.frame_inputs import FrameInputs, frame_inputs
 from ...shadertoy.wrapper import UNIFORMS_BY_NAME
@@ -174,9 +175,7 @@ def _versions() -> str:
     return f"{__version__} numba {version('numba')} {h.hexdigest()[:16]}"
 
 
-# The widths a module may have: one pixel a call, or AVX2's and AVX-512's float32 lanes (wider
-# blocks only grow the compile, and a width of 1,000,000 took minutes and 5 GB).
-LANE_WIDTHS = ("0", "8", "16")
+LANE_WIDTHS = config.LANE_WIDTHS  # the widths a module may have
 
 
 def lanes_width(lanes: int | None = None) -> int:
@@ -184,19 +183,14 @@ def lanes_width(lanes: int | None = None) -> int:
     (the per-pixel module, the first tier of TieredProgram: tiered() says when)."""
     if lanes is not None:
         return lanes
-    text = os.environ.get("GLSLCHECK_COMPILED_LANES", "").strip()
-    if not text or text == "auto":
-        return 0
-    if text not in LANE_WIDTHS:
-        raise InputError(f"error: GLSLCHECK_COMPILED_LANES must be auto, 0 (one pixel a call) or "
-                         f"{' or '.join(LANE_WIDTHS[1:])} (pixels in lockstep), not {text!r}")
-    return int(text)
+    given = config.compiled_lanes()
+    return 0 if given is None else given
 
 
 def tiered() -> bool:
     """Whether programs start per pixel and move to lockstep when that pays (TieredProgram):
     $GLSLCHECK_COMPILED_LANES unset or `auto`; a number fixes the mode."""
-    return os.environ.get("GLSLCHECK_COMPILED_LANES", "").strip() in ("", "auto")
+    return config.compiled_lanes() is None
 
 
 def generate(shader: Any, tab: str | None = None, lanes: int | None = None) -> tuple[str, str]:

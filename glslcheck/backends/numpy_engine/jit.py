@@ -58,10 +58,11 @@ from typing import Any, Callable
 
 import numpy as np
 
+from ...base import config
 from ...base.diagnostics import InputError
 from .numba_cache import cache_dir, use_cache_dir  # noqa: F401  (jit.cache_dir, jit.use_cache_dir)
 
-MODES = ("auto", "on", "off")
+MODES = config.JIT_MODES
 COLD_SECONDS = 10.0  # the load cost assumed before one was measured in this cache (a first compile: 6-10 s)
 WARM_KERNELS_SECONDS = 1.0  # loading the kernels' machine code from the cache, numba imported (0.5-0.9 s measured)
 _RECORD = "glslcheck-jit.json"  # in the cache directory: the last load's wall time
@@ -79,10 +80,7 @@ _KINDS = sorted({kind for kind, _ in _KERNELS.values()})  # jit_kernels' compile
 
 def mode() -> str:
     """``$GLSLCHECK_JIT`` (set by --jit), else ``"auto"``."""
-    value = os.environ.get("GLSLCHECK_JIT", "").strip() or "auto"
-    if value not in MODES:
-        raise InputError(f"error: GLSLCHECK_JIT must be one of {', '.join(MODES)}, not {value!r}")
-    return value
+    return config.jit()
 
 
 def available() -> bool:

@@ -33,7 +33,6 @@ memory is a few tiles' temporaries per worker plus the output image and its cach
 
 from __future__ import annotations
 
-import math
 import os
 import sys
 import threading
@@ -45,7 +44,8 @@ from typing import Any, NamedTuple
 
 import numpy as np
 
-from ...base.diagnostics import Diagnostic, GlslError, InputError, Location
+from ...base import config
+from ...base.diagnostics import Diagnostic, GlslError, Location
 from ..driver_profile import host_model
 from ...shadertoy.frame_inputs import FrameInputs, frame_inputs
 from ...shadertoy.wrapper import DEFAULT_SIZE, UNIFORMS_BY_NAME
@@ -64,7 +64,7 @@ PROCESSES_AFTER = 1.0  # seconds a program renders in this process before "auto"
 # per loop execution: loops nested two deep may still run 10**10 times). Checked at every region
 # entry and loop iteration (`LaneHelpers.count`); environment variable GLSLCHECK_FRAME_SECONDS, or
 # `NumpyProgram.frame_seconds`.
-FRAME_SECONDS = 300.0
+FRAME_SECONDS = config.FRAME_SECONDS
 # The memory budget: the tiles rendering at once (one per thread or worker) hold at most this
 # fraction of the machine's memory, or of the address space `ulimit -v` leaves this process;
 # environment variable GLSLCHECK_MEMORY_MB. A tile's lanes times the shader's per-lane state
@@ -80,15 +80,9 @@ ANIMATED_UNIFORMS = ("iTime", "iFrame", "iTimeDelta", "iDate", "iMouse", "iFrame
 def memory_budget() -> int:
     """Bytes the tiles rendering at once may hold: GLSLCHECK_MEMORY_MB, else MEMORY_FRACTION of
     the machine's memory or of the address space left under `ulimit -v`, whichever is less."""
-    text = os.environ.get("GLSLCHECK_MEMORY_MB", "").strip()
-    if text:
-        try:
-            value = float(text)
-        except ValueError:
-            value = math.nan
-        if not 0 < value < math.inf:
-            raise InputError(f"error: GLSLCHECK_MEMORY_MB must be a positive number of megabytes, not {text!r}")
-        return int(value * 2**20)
+    given = config.memory_mb()
+    if given is not None:
+        return int(given * 2**20)
     avail = 2**40  # unknown: no limit from the machine
     try:
         avail = os.sysconf("SC_PAGE_SIZE") * os.sysconf("SC_PHYS_PAGES")
@@ -122,16 +116,7 @@ def _megabytes(n: int) -> str:
 def frame_seconds() -> float:
     """The frame budget in seconds: GLSLCHECK_FRAME_SECONDS, else FRAME_SECONDS. The variable
     takes the range `--frame-budget` takes (base/limits.py, the one home of both limits)."""
-    from ...base.limits import MAX_FRAME_SECONDS, MIN_FRAME_SECONDS
-    text = os.environ.get("GLSLCHECK_FRAME_SECONDS", "").strip()
-    try:
-        value = float(text) if text else FRAME_SECONDS
-    except ValueError:
-        value = math.nan
-    if not MIN_FRAME_SECONDS <= value <= MAX_FRAME_SECONDS:
-        raise InputError(f"error: GLSLCHECK_FRAME_SECONDS must be a number of seconds from {MIN_FRAME_SECONDS:g} "
-                         f"to {MAX_FRAME_SECONDS:g} (like --frame-budget), not {text!r}")
-    return value
+    return config.frame_seconds()
 
 
 
@@ -232,7 +217,7 @@ class NumpyProgram:
     last_stats: list[RegionStat] = field(default_factory=list)
     # "threads", "processes" (worker processes, see workers.py) or "auto": processes once the
     # program has rendered for PROCESSES_AFTER seconds in this process
-    parallel: str = field(default_factory=lambda: os.environ.get("GLSLCHECK_PARALLEL", "auto"))
+    parallel: str = field(default_factory=config.parallel)
     last_parallel: str = ""  # how the last frame was rendered: "processes", "threads", "one thread"
     # llvmpipe's loop limiter (LaneHelpers.tick): None = loops run until they end (a runaway loop is an
     # error after LOOP_CAP passes); 65535 = stop as llvmpipe does (verify sets it)

@@ -35,6 +35,7 @@ import time
 from importlib import resources
 from pathlib import Path
 
+from ...base import config
 from ...base.diagnostics import InputError
 
 ADVICE = ("install Chromium and Playwright's Python package (sudo apt-get install chromium; "
@@ -52,8 +53,8 @@ FLAGS = (
     "--no-first-run",
 )
 ENV_TIMEOUT = "GLSLCHECK_WEBGL_TIMEOUT"
-MAX_TIMEOUT = 86400.0  # a day, as --frame-budget: longer is a hang (and inf overflows the browser's timer)
-DEFAULT_TIMEOUT = 60.0
+MAX_TIMEOUT = config.MAX_WEBGL_TIMEOUT
+DEFAULT_TIMEOUT = config.WEBGL_TIMEOUT
 # Launching takes 1-4 s on an idle machine; a loaded shared one may need far more.
 LAUNCH_TIMEOUT_MS = 120_000
 
@@ -75,22 +76,17 @@ class WebGLTimeout(Exception):
 def call_timeout() -> float:
     """Seconds one compile or render may take in the browser: $GLSLCHECK_WEBGL_TIMEOUT, else 60
     (a 800x450 frame of lab 07_final takes 2.7 s on a 2-core machine at load 11)."""
-    try:
-        value = float(os.environ.get(ENV_TIMEOUT, DEFAULT_TIMEOUT))
-    except ValueError:
-        raise InputError(f"error: ${ENV_TIMEOUT} must be a number of seconds, not "
-                         f"{os.environ[ENV_TIMEOUT]!r}") from None
-    if not 0 < value <= MAX_TIMEOUT:
-        raise InputError(f"error: ${ENV_TIMEOUT} must be a number of seconds from 0 to {MAX_TIMEOUT:g}, "
-                         f"not {os.environ[ENV_TIMEOUT]!r}")
-    return value
+    return config.webgl_timeout()
 
 
 def chromium_path() -> str | None:
     """The Chromium executable: $GLSLCHECK_CHROMIUM, else `chromium` on PATH."""
-    given = os.environ.get(ENV_EXECUTABLE)
+    try:
+        given = config.chromium()
+    except InputError:
+        return None  # named but not runnable: Browser's error names the variable
     if given:
-        return given if os.access(given, os.X_OK) else None
+        return given
     for name in CHROMIUM_NAMES:
         path = shutil.which(name)
         if path:
