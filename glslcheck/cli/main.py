@@ -83,10 +83,10 @@ def build_parser(only: str | None = None) -> argparse.ArgumentParser:
         p = sub.add_parser(name, help=help_, description=(mod.__doc__ or help_).strip())
         mod.add_arguments(p)
         if name in _RENDERING:
-            p.add_argument("--parallel", choices=PARALLEL_MODES, default=None,
+            p.add_argument("--parallel", choices=config.PARALLEL_MODES, default=None,
                            help="NumPy tiles on worker processes, on threads, or auto: threads until a program "
                                 "has rendered for a second, then processes (default: $GLSLCHECK_PARALLEL or auto)")
-            p.add_argument("--jit", choices=JIT_MODES, default=None,
+            p.add_argument("--jit", choices=config.JIT_MODES, default=None,
                            help="llvmpipe's sin, cos, exp2, log2, pow... by compiled kernels (the optional numba extra): "
                                 "on, off, or auto: once a process has spent in that math what loading them "
                                 "costs (default: $GLSLCHECK_JIT or auto)")
@@ -100,8 +100,6 @@ def build_parser(only: str | None = None) -> argparse.ArgumentParser:
 
 _RENDERING = ("render", "verify", "bench", "report")  # the commands that run the NumPy renderer
 _BUDGETED = _RENDERING + ("probe",)  # and those that take --frame-budget (probe's --nan renders a frame)
-PARALLEL_MODES = config.PARALLEL_MODES
-JIT_MODES = config.JIT_MODES
 
 
 def main(argv: list[str] | None = None) -> int:

@@ -175,7 +175,6 @@ def _versions() -> str:
     return f"{__version__} numba {version('numba')} {h.hexdigest()[:16]}"
 
 
-LANE_WIDTHS = config.LANE_WIDTHS  # the widths a module may have
 
 
 def lanes_width(lanes: int | None = None) -> int:
@@ -245,7 +244,7 @@ def generate(shader: Any, tab: str | None = None, lanes: int | None = None) -> t
 
 class CompiledProgram:
     """A shader compiled per pixel; `render` as NumpyProgram.render (float32 only). Each frame,
-    has `frame_seconds` (None: GLSLCHECK_FRAME_SECONDS or the NumPy engine's FRAME_SECONDS), and
+    has `frame_seconds` (None: GLSLCHECK_FRAME_SECONDS or config.FRAME_SECONDS), and
     numba's compile or cache load as much but at least COMPILE_SECONDS, before it stops with a
     GlslError, rule "compiled-frame-budget" (the module docstring: what runs on after it)."""
 

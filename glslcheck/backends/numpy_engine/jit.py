@@ -62,7 +62,6 @@ from ...base import config
 from ...base.diagnostics import InputError
 from .numba_cache import cache_dir, use_cache_dir  # noqa: F401  (jit.cache_dir, jit.use_cache_dir)
 
-MODES = config.JIT_MODES
 COLD_SECONDS = 10.0  # the load cost assumed before one was measured in this cache (a first compile: 6-10 s)
 WARM_KERNELS_SECONDS = 1.0  # loading the kernels' machine code from the cache, numba imported (0.5-0.9 s measured)
 _RECORD = "glslcheck-jit.json"  # in the cache directory: the last load's wall time

@@ -3,7 +3,7 @@
 This module owns what happens around one frame: the frame cache for shaders that do not
 animate, the uniform values and globals every tile shares (`FrameSpec`), the order and the
 workers of the tiles (worker processes, workers.py, or a thread pool), the frame's budgets,
-time (FRAME_SECONDS, `tiles.Budget`) and memory (MEMORY_FRACTION, tiles sized to the shader's
+time (config.FRAME_SECONDS, `tiles.Budget`) and memory (MEMORY_FRACTION, tiles sized to the shader's
 per-lane state, `NumpyProgram._fit_memory`), and the lane statistics. What runs inside a tile
 (the namespace of the generated code, `State`, `LaneHelpers`, `render_tile`) is tiles.py's, shared
 with the worker processes; the imports go one way: program -> workers -> tiles.
@@ -64,7 +64,6 @@ PROCESSES_AFTER = 1.0  # seconds a program renders in this process before "auto"
 # per loop execution: loops nested two deep may still run 10**10 times). Checked at every region
 # entry and loop iteration (`LaneHelpers.count`); environment variable GLSLCHECK_FRAME_SECONDS, or
 # `NumpyProgram.frame_seconds`.
-FRAME_SECONDS = config.FRAME_SECONDS
 # The memory budget: the tiles rendering at once (one per thread or worker) hold at most this
 # fraction of the machine's memory, or of the address space `ulimit -v` leaves this process;
 # environment variable GLSLCHECK_MEMORY_MB. A tile's lanes times the shader's per-lane state
@@ -114,7 +113,7 @@ def _megabytes(n: int) -> str:
 
 
 def frame_seconds() -> float:
-    """The frame budget in seconds: GLSLCHECK_FRAME_SECONDS, else FRAME_SECONDS. The variable
+    """The frame budget in seconds: GLSLCHECK_FRAME_SECONDS, else config.FRAME_SECONDS. The variable
     takes the range `--frame-budget` takes (base/limits.py, the one home of both limits)."""
     return config.frame_seconds()
 

@@ -53,8 +53,6 @@ FLAGS = (
     "--no-first-run",
 )
 ENV_TIMEOUT = "GLSLCHECK_WEBGL_TIMEOUT"
-MAX_TIMEOUT = config.MAX_WEBGL_TIMEOUT
-DEFAULT_TIMEOUT = config.WEBGL_TIMEOUT
 # Launching takes 1-4 s on an idle machine; a loaded shared one may need far more.
 LAUNCH_TIMEOUT_MS = 120_000
 
