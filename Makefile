@@ -6,7 +6,7 @@ VENV ?= .venv
 PY := $(VENV)/bin/python
 STAMP := $(VENV)/.installed
 
-.PHONY: run test setup system-deps clean
+.PHONY: run test check setup system-deps clean
 
 # Debian packages: glslang-tools is the reference compiler the tests compare
 # against; the EGL/Mesa packages give moderngl a headless llvmpipe context; chromium is the
@@ -42,6 +42,10 @@ run: setup
 
 test: setup
 	$(PY) -m pytest -q
+
+# The project's own checks (ruff over the package; configuration in pyproject.toml).
+check: setup
+	$(VENV)/bin/ruff check glslcheck
 
 clean:
 	rm -rf $(VENV) build dist *.egg-info

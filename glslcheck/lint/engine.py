@@ -7,7 +7,7 @@ For each file the engine scans the text once (`textscan`), builds a `LintContext
 enabled rules in phases by their `NEEDS` — "text", then "ast" (only when the file has a parse
 tree: `ctx.ast is not None`), then "suppressions" — turns each `Diagnostic` a rule yields into
 a `Finding` (the rule's name, severity and penalty), and drops the findings a
-`glslcheck: ignore[...]` comment silences. Reporting is `verification/report.py`'s job; the engine never
+`glslcheck: ignore[...]` comment silences. Reporting is `report.py`'s job; the engine never
 modifies a file.
 
 A file that does not compile still gets every finding the linter can make: its compile errors
@@ -393,7 +393,7 @@ def lint_work(work: list[list[tuple[Shader, Source, LintConfig]]]) -> list[Findi
 
 def _load_for_workers() -> None:
     """What every program's lint needs, loaded once before the work is split (fork shares it)."""
-    from .. import semantics as check
+    from .. import semantics  # noqa: F401
     from ..frontend import parser as parse, preprocess  # noqa: F401
     from ..semantics.analysis import program_facts  # noqa: F401
     from . import recover  # noqa: F401

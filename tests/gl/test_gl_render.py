@@ -5,7 +5,8 @@ import datetime
 import numpy as np
 import pytest
 
-from glslcheck.backends.gl import compile_gl, render_shader, sample_offsets
+from glslcheck.backends.gl import compile_gl, render_shader
+from glslcheck.shadertoy.wrapper import sample_offsets
 
 
 def _render(make_shader, body, **kw):

@@ -71,7 +71,7 @@ def test_supersampling_uses_the_gl_backends_grid(webgl, make_shader):
     img = compile_webgl(shader).render(size=(16, 2), samples=4)
     x = np.arange(16, dtype=np.float64) + 0.5
     assert np.allclose(img[0, :, 0], x, atol=1e-6)
-    # mean of (x -+ 0.25)^2 = x^2 + 0.0625: the offsets are +-1/4 pixel, as gl_backend.sample_offsets
+    # mean of (x -+ 0.25)^2 = x^2 + 0.0625: the offsets are +-1/4 pixel, as shadertoy.wrapper.sample_offsets
     assert np.allclose(img[0, :, 1], x * x + 0.0625, rtol=1e-6)
 
 

@@ -15,7 +15,7 @@ Library API (the `render` / `verify` commands call only this):
 """
 
 from .context import GLUnavailable, create_context, get_context, renderer_name
-from .program import GLProgram, compile_gl, driver_diagnostics, parse_driver_log, render_shader, sample_offsets
+from .program import GLProgram, compile_gl, driver_diagnostics, parse_driver_log, render_shader
 
 __all__ = [
     "GLProgram",
@@ -27,5 +27,4 @@ __all__ = [
     "parse_driver_log",
     "render_shader",
     "renderer_name",
-    "sample_offsets",
 ]

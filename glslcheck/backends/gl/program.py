@@ -33,7 +33,7 @@ import numpy as np
 
 from ...base.diagnostics import Diagnostic, GlslError, Location, source_line
 from ...shadertoy.frame_inputs import FrameInputs, frame_inputs
-from ...shadertoy.wrapper import OFFSET_UNIFORM, UNIFORMS, UNIFORMS_BY_NAME, Program, build_program, sample_offsets  # sample_offsets: re-exported by gl_backend
+from ...shadertoy.wrapper import OFFSET_UNIFORM, UNIFORMS, UNIFORMS_BY_NAME, Program, build_program
 from ...shadertoy.sources import Shader
 from ..driver_profile import driver_model
 from .context import get_context

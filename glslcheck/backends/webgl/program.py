@@ -21,7 +21,7 @@ backend) truncate to 10 mantissa bits; nearest and linear lookups and explicit-L
 lookups are otherwise equal to NumPy's to float32 rounding. Its implicit LOD, projective lookups
 and per-pixel-LOD textureLodOffset differ from llvmpipe's: driver-dependent pixels.
 Supersampling uses the `glslcheck_offset` program variant and the sub-pixel grid of the GL
-backend (`gl_backend.sample_offsets`), summed in float64 and rounded to float32 once.
+backend (`shadertoy.wrapper.sample_offsets`), summed in float64 and rounded to float32 once.
 
 `webgl_diagnostics(shader, tab)` is ANGLE's verdict for `check --webgl`: the errors of compiling
 and linking the program Shadertoy compiles for `tab` ("Common" = Common alone), in the user's

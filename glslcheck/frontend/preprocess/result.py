@@ -10,6 +10,10 @@ from ...base.diagnostics import Diagnostic, Location
 from ...base.records import field, record
 from .units import Unit
 
+TYPE_CHECKING = False  # not typing's: importing typing costs every start-up
+if TYPE_CHECKING:
+    from .units import Comment
+
 
 @record
 class Macro:
