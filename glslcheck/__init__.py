@@ -1,6 +1,6 @@
 """glslcheck: parse, check, lint, render on the CPU and verify Shadertoy GLSL ES 3.00."""
 
-__version__ = "0.1.0"
+from .base.version import __version__  # noqa: F401
 
 
 def compile(*args, **kwargs):  # noqa: A001 - the public entry point, `glslcheck.compile(path)`

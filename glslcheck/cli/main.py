@@ -63,7 +63,7 @@ class _Parser(argparse.ArgumentParser):
 
 def build_parser(only: str | None = None) -> argparse.ArgumentParser:
     parser = _Parser(prog="glslcheck", description=__doc__.split("\n\n")[0])
-    from .. import __version__
+    from ..base.version import __version__
 
     parser.add_argument("--version", action="version", version=f"glslcheck {__version__}")
     sub = parser.add_subparsers(dest="command", metavar="COMMAND", parser_class=_Parser)

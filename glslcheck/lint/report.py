@@ -169,7 +169,7 @@ def sarif_level(severity: str) -> str:
 
 
 def sarif_document(result: LintResult, root: str | None = None) -> dict:
-    from .. import __version__
+    from ..base.version import __version__
 
     rules = list(all_rules().values())
     index = {r.name: i for i, r in enumerate(rules)}

@@ -489,7 +489,7 @@ def _section(r: ShaderReport, size, time: float, bench_size=BENCH_SIZE, bench_ru
 
 def page_html(reports: list[ShaderReport], size, time: float, title: str, bench_size=BENCH_SIZE,
               bench_runs: int = BENCH_RUNS) -> str:
-    from .. import __version__
+    from ..base.version import __version__
 
     head = (f"<!DOCTYPE html>\n<html lang=\"en\"><head><meta charset=\"utf-8\">"
             f"<meta name=\"viewport\" content=\"width=device-width, initial-scale=1\">"

@@ -162,7 +162,7 @@ def require_numba() -> None:
 def _versions() -> str:
     from importlib.metadata import version
 
-    from ... import __version__
+    from ...base.version import __version__
 
     here = os.path.dirname(__file__)
     math = os.path.join(os.path.dirname(here), "llvmpipe_math")

@@ -56,15 +56,14 @@ def isolation_flags(python: str) -> str:
     """`-I` (isolated: no current folder or script folder on sys.path, no PYTHON* variables, no
     user site-packages) when `python -I` imports this very glslcheck; `-E -P` (the first two
     only) when glslcheck is installed in the user's site-packages, which -I leaves out."""
-    import glslcheck
-
+    package_init = sys.modules["glslcheck"].__file__  # this glslcheck (loaded: it runs this command)
     with tempfile.TemporaryDirectory() as neutral:
         try:
             proc = subprocess.run([python, "-I", "-c", "import glslcheck; print(glslcheck.__file__)"],
                                   cwd=neutral, capture_output=True, text=True, timeout=60)
         except (OSError, subprocess.TimeoutExpired):
             return "-I"
-    return "-I" if proc.stdout.strip() == glslcheck.__file__ else "-E -P"
+    return "-I" if proc.stdout.strip() == package_init else "-E -P"
 
 
 def hook_path(cwd: str | os.PathLike | None = None) -> Path:

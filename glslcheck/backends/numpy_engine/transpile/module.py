@@ -126,7 +126,7 @@ class Transpiler(Names, Functions, Statements, Expressions, PythonLimits):
             return set()
 
     def header(self) -> str:
-        from .... import __version__
+        from ....base.version import __version__
 
         src = printable(self.path, 200)
         return (
