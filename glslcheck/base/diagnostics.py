@@ -10,7 +10,7 @@ from __future__ import annotations
 
 from .records import record, field
 
-TYPE_CHECKING = False  # not typing's: importing typing costs every start-up (issue 18)
+TYPE_CHECKING = False  # not typing's: importing typing costs every start-up
 if TYPE_CHECKING:
     from typing import Callable
 
@@ -89,8 +89,8 @@ _del_pending = Location.__dict__["_pending"].__delete__
 
 
 def pending_location(locate: Callable[[int, int], Location], start: int, end: int) -> Location:
-    """`locate(start, end)`, computed when one of its fields is first read (issue 18: the
-    parser locates every node's span, and a lint reads about a third of them)."""
+    """`locate(start, end)`, computed when one of its fields is first read (the parser
+    locates every node's span, and a lint reads only some of them)."""
     loc = _new_pending(_PendingLocation)
     _set_pending(loc, (locate, start, end))
     return loc

@@ -12,20 +12,12 @@ Options: `frozen`, `eq`, `slots` (default True; False keeps a `__dict__`). A `__
 class declares holds extra slots that are not fields, kept after the fields'.
 
 Why not `@dataclass`: it compiles the source text of six to nine methods for every class it
-makes, about 3.5 M instructions (a millisecond) per frozen class, and a one-file `glslcheck lint`
-makes 36 record classes before it reads the file (issue 18). Here the methods are shared by every
-record class, and each `__init__` is a copy of one compiled template per field count renamed to
-the class's fields (as frontend/syntax.py does for the AST's nodes): no code is compiled per class.
-
-Measured again when the review asked whether plain (lazily imported) dataclasses would do
-(issue 18, session 6; cachegrind `I refs` of the whole process, dev venv, .pyc written, every
-`@record` made a `@dataclass` with the same options, lint output unchanged on
-tests/real_lint): `glslcheck lint FILE` (203 lines) 455 M -> 562 M (+23%, about 35 ms at the
-3.07 M instructions per ms of a quiet machine, against a 150 ms target that is 460 M);
-`lint lab_shaders` 2103 M -> 2207 M. Of the 106 M, `import dataclasses` (and `inspect`, `ast`,
-`dis`, `tokenize` with it) is 22 M; the rest, about 2.3 M a class, is the methods compiled for
-the 36 classes. Importing dataclasses lazily saves nothing: every one of those classes is on the
-lint path.
+makes, and a one-file `glslcheck lint` makes dozens of record classes before it reads the file.
+Here the methods are shared by every record class, and each `__init__` is a copy of one compiled
+template per field count renamed to the class's fields (as frontend/syntax.py does for the AST's
+nodes): no code is compiled per class. Importing dataclasses lazily would save nothing: every one
+of those classes is on the lint path, and `import dataclasses` brings `inspect`, `ast`, `dis`
+and `tokenize` with it.
 """
 
 from __future__ import annotations
@@ -34,7 +26,7 @@ from functools import partial
 from operator import attrgetter
 from types import FunctionType, MemberDescriptorType
 
-TYPE_CHECKING = False  # not typing's: importing typing costs every start-up (issue 18)
+TYPE_CHECKING = False  # not typing's: importing typing costs every start-up
 if TYPE_CHECKING:
     from typing import Any, Callable
 
@@ -99,9 +91,9 @@ def _init_template(count: int, frozen: bool, factories: tuple[bool, ...]):
     return code
 
 
-# The `__init__` templates of the lint path, compiled ahead of time (issue 18): compiling the 27
-# templates a `glslcheck lint FILE` makes (this module's and frontend/syntax.py's) cost 23 M of its 320 M
-# instructions. `base/_init_code.py` holds them as functions, compiled into its .pyc like any module,
+# The `__init__` templates of the lint path, compiled ahead of time: compiling the templates a
+# `glslcheck lint FILE` makes (this module's and frontend/syntax.py's) would cost every start-up.
+# `base/_init_code.py` holds them as functions, compiled into its .pyc like any module,
 # keyed by the exact text `init_code` would compile; `python -m glslcheck.base.records` writes it,
 # and tests/test_records.py checks that it holds exactly the lint path's templates.
 _precompiled: dict | None = None

@@ -1,9 +1,9 @@
 """The lint path's regular expressions, compiled ahead of time as the interpreter compiles
-modules ahead of time into .pyc files (issue 18: start-up).
+modules ahead of time into .pyc files, for start-up time.
 
-Python's `re` parses and compiles every pattern in Python at each start: the 34 patterns a
+Python's `re` parses and compiles every pattern in Python at each start, and the patterns a
 `glslcheck lint FILE` compiles (the lexer's, the preprocessor's, the text scan's, the header and
-comment rules' word lists) cost about 37 M of its 365 M instructions (cachegrind). `re.compile`
+comment rules' word lists) are a noticeable share of its start-up. `re.compile`
 ends by handing the compiled program (a list of integers) to `_sre.compile`, CPython's
 internal constructor of a `re.Pattern`; `base/_regex_code.py` holds those programs, written by
 

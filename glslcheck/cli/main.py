@@ -106,18 +106,14 @@ def main(argv: list[str] | None = None) -> int:
     """Run the command line `argv`. Without `argv` this is the `glslcheck` command itself, the
     whole process: after the command, everything it made is moved out of the garbage
     collector's reach (`gc.freeze`), so the interpreter's last collection at exit does not walk
-    the parser tables, trees and rules once more (16 M of the 530 M instructions of a
-    `glslcheck lint FILE`, issue 18); the memory is the operating system's to free a moment
-    later. The process also collects its youngest generation every 100,000 new objects instead
-    of every 700: importing the command, loading the parser tables and building the trees make
-    objects by the ten thousand and almost no garbage, and each collection walks them (a `lint
-    FILE` 322.6 -> 314.9 M instructions at 20,000, cachegrind, PYTHONHASHSEED=0; the lab's lint
-    in one process 1,727 -> 1,718 M and 20.3 -> 21.8 MB peak; 10,000 saved only 3.4 M). At
-    100,000 (issue 18, session 9) the cyclic garbage of the programs linted before (their
-    trees, models and facts) waits for a later collection, or for the exit: the lab's lint in
-    one process 1,478.9 -> 1,452.1 M, peak memory 20.0 -> 22.5 MB (tests/real_lint's 37 texts
-    25.7 -> 30.6 MB); a threshold of 50,000 saved nothing. Called with `argv` (tests, other
-    programs), the collector is left as it is."""
+    the parser tables, trees and rules once more; the memory is the operating system's to free
+    a moment later. The process also collects its youngest generation every 100,000 new objects
+    instead of every 700: importing the command, loading the parser tables and building the
+    trees make objects by the ten thousand and almost no garbage, and each collection walks
+    them. At 100,000 the cyclic garbage of the programs linted before (their trees, models and
+    facts) waits for a later collection, or for the exit: on the lab's lint in one process that
+    saves about 2% of the instructions for about 2.5 MB more peak memory (cachegrind); 50,000
+    saved nothing. Called with `argv` (tests, other programs), the collector is left as it is."""
     if argv is not None:
         return _main(argv)
     import gc
@@ -198,7 +194,7 @@ def _run(args) -> int:
     except KeyboardInterrupt:
         print("glslcheck: interrupted", file=sys.stderr)
         return 2
-    # A safety net, not the fix: each stage bounds its own recursion and memory (issue 9).
+    # A safety net, not the fix: each stage bounds its own recursion and memory.
     except RecursionError:
         print(f"{_first_path(args)}:1:1: error: the program is nested too deeply to analyse", file=sys.stderr)
         return 1

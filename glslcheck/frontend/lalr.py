@@ -172,8 +172,8 @@ class Driver:
         self.end_state: int = tables["end"]
         self.actions: list[dict[str, int]] = tables["actions"]
         # (size, origin, callback, plain): `plain` is the tree's name when the callback would
-        # only make `Tree(name, children)`, which the parse loop then makes itself (13,775 of the
-        # lab's 17,845 reductions: a Python class call each was a tenth of the parse, issue 18)
+        # only make `Tree(name, children)`, which the parse loop then makes itself (most
+        # reductions are of this kind, and a Python class call for each is dear)
         self.rules: list[tuple[int, str, object, str | None]] = [
             (size, origin, _callback(size, *shape), shape[0] if shape[2] is None and not shape[1] else None)
             for size, origin, *shape in tables["rules"]

@@ -6,10 +6,10 @@ rule the shape of the tree it builds). Lark does that analysis in about a second
 ahead of time and the result ships in the package as `glslcheck/grammar/glsl_tables.py`: a
 module of plain literals (tuples, strings, bytes, numbers; tests/robustness checks that it
 holds nothing else), never a pickle, and never written at run time, so no cache file exists that
-another user could plant (issue 16) and a CLI call does not import Lark (issue 18). As a module
-it is read from its `.pyc` like the rest of the package: its literals are the code's constants,
-which the interpreter unmarshals in C, where the JSON file it replaces was parsed into lists
-(`json.load` was 10.6 M instructions of every `lint FILE`; issue 18, docs/performance.md).
+another user could plant and a CLI call does not import Lark. As a module it is read from its
+`.pyc` like the rest of the package: its literals are the code's constants, which the
+interpreter unmarshals in C, far cheaper at start-up than parsing a JSON file into lists
+(docs/performance.md).
 
 The module records the SHA-256 of the grammar it was built from. `load()` compares it with the
 grammar that ships beside it; stale tables (the grammar was edited and the tables were not
@@ -29,7 +29,7 @@ import sys
 
 from ..base.generated import write_generated
 
-TYPE_CHECKING = False  # not typing's: importing typing costs every start-up (issue 18)
+TYPE_CHECKING = False  # not typing's: importing typing costs every start-up
 if TYPE_CHECKING:
     from typing import Any
 

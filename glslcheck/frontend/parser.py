@@ -33,7 +33,7 @@ from ..language.glsl_types import BY_NAME  # noqa: E402
 
 _NOLOC = A._NOLOC  # a node's location until the builder sets it
 
-TYPE_CHECKING = False  # not typing's: importing typing costs every start-up (issue 18)
+TYPE_CHECKING = False  # not typing's: importing typing costs every start-up
 if TYPE_CHECKING:
     from typing import Callable
 
@@ -303,9 +303,8 @@ class _Builder:
     """Builds AST nodes: `_build_<rule>` for each grammar rule (or alias) of grammar/glsl.lark.
 
     The most frequent nodes are made with their fields in order, without keywords (a class
-    call with keyword arguments costs about 1,600 instructions more in CPython 3.11: a dict of
-    them, issue 18); each keeps the order the keywords had, so children are built in the same
-    order."""
+    call with keyword arguments builds a dict of them); each keeps the order the keywords had,
+    so children are built in the same order."""
 
     def __init__(self, locate_span: Callable[[int, int], Location], text: str) -> None:
         self.locate_span = locate_span

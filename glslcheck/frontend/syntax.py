@@ -7,7 +7,7 @@ Every node class declares its fields once, as annotated class attributes with th
 None) are its children, in field order; every other field is a plain attribute. This is
 pycparser's `_c_ast.cfg` idea without a generated file: the `__init__`s are copies of a few
 compiled templates renamed to each class's fields, which costs a small fraction of what
-`@dataclass` did at import (start-up time matters for the pre-commit hook, issue 18).
+`@dataclass` did at import (start-up time matters for the pre-commit hook).
 
 Every node carries `loc`, the span of its text in the user's own file (after preprocessing
 and the Shadertoy wrapper, a location still points into the tab file the user wrote).
@@ -27,7 +27,7 @@ from types import FunctionType
 from ..base.diagnostics import Location
 from ..base.records import init_code, tuple_getter
 
-TYPE_CHECKING = False  # not typing's: importing typing costs every start-up (issue 18)
+TYPE_CHECKING = False  # not typing's: importing typing costs every start-up
 if TYPE_CHECKING:
     from typing import Any, Callable, Iterator, Optional
 
@@ -83,7 +83,7 @@ class Node(metaclass=_NodeMeta):
 
     def children(self) -> list["Node"]:
         """The child nodes, in source order of the fields (a new list: a generator per call was
-        most of the cost of the dataflow walk and the rules' recursions, issue 18)."""
+        most of the cost of the dataflow walk and the rules' recursions)."""
         out: list[Node] = []
         for value in self._children_values(self):
             if value is None:
@@ -97,7 +97,7 @@ class Node(metaclass=_NodeMeta):
     def walk(self) -> Iterator["Node"]:
         """This node and all its descendants, depth first, parents before children (iterative)."""
         # `children()` inlined: a generator per node was most of a walk's cost, and the checker,
-        # hazards and rules walk whole programs (issue 18: start-up of `glslcheck lint`). The
+        # hazards and rules walk whole programs on every `glslcheck lint`. The
         # child fields are read in one call, last first (`_children_reversed`), and pushed so
         # that the first child is popped first.
         stack = [self]

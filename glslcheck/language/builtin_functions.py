@@ -28,7 +28,7 @@ from glslcheck.language.glsl_types import BY_NAME, ArrayType, StructType, Type
 from glslcheck.shadertoy.wrapper import COMMON_ONLY_UNIFORMS as _COMMON_ONLY
 from glslcheck.shadertoy.wrapper import UNIFORMS as _SHADERTOY_TABLE
 
-TYPE_CHECKING = False  # not typing's: importing typing costs every start-up (issue 18)
+TYPE_CHECKING = False  # not typing's: importing typing costs every start-up
 if TYPE_CHECKING:
     from typing import Any
 
@@ -147,8 +147,8 @@ class _Table(Mapping):
     """:data:`BUILTINS`: function name -> :class:`Builtin`, built from the definitions below,
     which keep the spec's generic signatures; a function's concrete overloads are expanded
     when it is first looked up. A lint or check run looks up a few dozen of the 90-odd
-    functions: expanding all of their 900-odd overloads at import was a sixth of the
-    instructions of a one-file `glslcheck lint` (issue 18). Iterating over the names or testing
+    functions: expanding all of their 900-odd overloads at import would cost every start-up
+    far more than it serves. Iterating over the names or testing
     `name in BUILTINS` expands nothing."""
 
     def __init__(self) -> None:
@@ -416,7 +416,7 @@ class BuiltinVariable(namedtuple("BuiltinVariable", "name type storage value", d
     """A built-in variable: `name`, its `type` (Type), `storage`: "in" (read-only input),
     "out" (write-only output), "const" or "uniform"; `value`: a constant's value (the spec's
     minimum maximum), else None. (collections.namedtuple: typing's NamedTuple would import
-    typing at every start-up, issue 18.)"""
+    typing at every start-up.)"""
 
     __slots__ = ()
 

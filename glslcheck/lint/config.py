@@ -25,7 +25,7 @@ from ..base.records import record, field, replace
 
 from ..base.diagnostics import InputError
 
-TYPE_CHECKING = False  # not typing's: importing typing costs every start-up (issue 18)
+TYPE_CHECKING = False  # not typing's: importing typing costs every start-up
 if TYPE_CHECKING:
     from typing import Any, Mapping
 
@@ -92,7 +92,7 @@ class ConfigFinder:
 
 def _up_from(folder: str) -> list[str]:
     """A resolved folder and the folders above it, up to the root (`(folder, *folder.parents)`
-    of a `Path`: glslcheck's lint path does not import pathlib, issue 18)."""
+    of a `Path`: glslcheck's lint path does not import pathlib, for its start-up time)."""
     found = [folder]
     while True:
         up = os.path.dirname(folder)
@@ -119,7 +119,7 @@ def load_config_in(folder: str, known_rules: frozenset[str]) -> LintConfig | Non
 
 
 def _read_toml(path: str) -> dict[str, Any]:
-    import tomllib  # only where a folder has a configuration file (start-up, issue 18)
+    import tomllib  # only where a folder has a configuration file: not on every start-up
 
     try:
         with open(path, "rb") as f:

@@ -32,7 +32,7 @@ from .rules import Rule, all_rules, rule_names
 from .suppress import Suppression, find_suppressions, is_suppressed
 from .textscan import Comment, LineKind, TextScan, scan
 
-TYPE_CHECKING = False  # not typing's: importing typing costs every start-up (issue 18)
+TYPE_CHECKING = False  # not typing's: importing typing costs every start-up
 if TYPE_CHECKING:
     from typing import Any, Iterable, Mapping, Sequence
 

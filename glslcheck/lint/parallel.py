@@ -17,7 +17,7 @@ lints the child's half itself, so an error is reported exactly as one process re
 
 `GLSLCHECK_JOBS=1` (or no `os.fork`, one usable core, or a machine whose cores are all busy, by
 the load average) lints in this process only; `GLSLCHECK_JOBS=2` splits whatever the load. Start-up
-is what a pre-commit hook pays (issue 18, docs/performance.md): a fork costs about a
+is what a pre-commit hook pays (docs/performance.md): a fork costs about a
 millisecond, so one small program is not worth it and runs here.
 """
 

@@ -26,7 +26,7 @@ from ..base.records import replace
 from ..base.diagnostics import Location
 from ..shadertoy.sources import Source
 
-TYPE_CHECKING = False  # not typing's: importing typing costs every start-up (issue 18)
+TYPE_CHECKING = False  # not typing's: importing typing costs every start-up
 if TYPE_CHECKING:
     from typing import Iterator
 

@@ -24,7 +24,7 @@ from ..shadertoy.sources import posix_path
 from .engine import Finding, LintResult
 from .rules import all_rules
 
-TYPE_CHECKING = False  # not typing's: importing typing costs every start-up (issue 18)
+TYPE_CHECKING = False  # not typing's: importing typing costs every start-up
 if TYPE_CHECKING:
     from typing import Callable
 
@@ -46,7 +46,7 @@ def _no_surrogates(text: str, backslash: str = "\\") -> str:
 def _json_text(doc) -> str:
     """`doc` as indented JSON that is valid UTF-8: a lone surrogate can only sit inside a JSON
     string, where `\\\\udcXX` reads back as the text `\\udcXX`."""
-    import json  # only for --format json and sarif: importing it costs a text lint 4.9 M instructions (issue 18)
+    import json  # only for --format json and sarif: a text lint need not pay for importing it
 
     return _no_surrogates(json.dumps(doc, indent=2, ensure_ascii=False), "\\\\") + "\n"
 
@@ -152,7 +152,7 @@ def json_report(result: LintResult) -> str:
 def artifact_uri(path: str, root: str | None = None) -> str:
     """A SARIF artifact URI: relative to `root` (default: the current directory) with `/`
     separators and percent-escapes; an absolute `file://` URI for a file outside `root`."""
-    from pathlib import Path  # SARIF only: not on every lint's start-up (issue 18)
+    from pathlib import Path  # SARIF only: not on every lint's start-up
     from urllib.parse import quote
 
     real = Path(path).resolve()

@@ -36,7 +36,7 @@ from pathlib import PurePosixPath
 
 from ..base.diagnostics import InputError
 
-TYPE_CHECKING = False  # not typing's: importing typing costs every start-up (issue 18)
+TYPE_CHECKING = False  # not typing's: importing typing costs every start-up
 if TYPE_CHECKING:
     from typing import Iterator
 

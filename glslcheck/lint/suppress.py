@@ -17,7 +17,7 @@ from ..base.records import record, field
 from ..base.diagnostics import Diagnostic, Location
 from .textscan import DIRECTIVE_RE, Comment
 
-TYPE_CHECKING = False  # not typing's: importing typing costs every start-up (issue 18)
+TYPE_CHECKING = False  # not typing's: importing typing costs every start-up
 if TYPE_CHECKING:
     from typing import Iterable
 

@@ -23,7 +23,7 @@ from .channel_types import SAMPLER_CUBE, cube_channels
 from .checker import Checker
 from .model import ERROR, CallTarget, CheckError, Constructor, ErrorType, Model, Symbol
 
-TYPE_CHECKING = False  # not typing's: importing typing costs every start-up (issue 18)
+TYPE_CHECKING = False  # not typing's: importing typing costs every start-up
 if TYPE_CHECKING:
     from typing import Any
 

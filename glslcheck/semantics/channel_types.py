@@ -29,7 +29,7 @@ from ..language import builtin_functions as B
 from ..language import glsl_types as T
 from .model import ErrorType
 
-TYPE_CHECKING = False  # not typing's: importing typing costs every start-up (issue 18)
+TYPE_CHECKING = False  # not typing's: importing typing costs every start-up
 if TYPE_CHECKING:
     from typing import Any
 

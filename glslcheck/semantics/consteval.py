@@ -15,7 +15,7 @@ import struct
 
 from ..language import glsl_types as T
 
-TYPE_CHECKING = False  # not typing's: importing typing costs every start-up (issue 18)
+TYPE_CHECKING = False  # not typing's: importing typing costs every start-up
 if TYPE_CHECKING:
     from typing import Any, Callable
 

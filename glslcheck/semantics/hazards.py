@@ -29,7 +29,7 @@ from ..frontend import syntax as A
 from ..base.diagnostics import Diagnostic
 from .model import Symbol
 
-TYPE_CHECKING = False  # not typing's: importing typing costs every start-up (issue 18)
+TYPE_CHECKING = False  # not typing's: importing typing costs every start-up
 if TYPE_CHECKING:
     from typing import Any, Iterator
 

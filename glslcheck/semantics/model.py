@@ -16,7 +16,7 @@ from ..base.diagnostics import Diagnostic, GlslError
 from ..base.records import field, record
 from .consteval import UNKNOWN  # the checker imports it anyway; a call-time import cost every call
 
-TYPE_CHECKING = False  # not typing's: importing typing costs every start-up (issue 18)
+TYPE_CHECKING = False  # not typing's: importing typing costs every start-up
 if TYPE_CHECKING:
     from typing import Any
 
@@ -139,9 +139,8 @@ class Model:
     def nodes(self) -> list[Any]:
         """Every node of the program in `walk()` order (the unit first), listed at the first
         call. The checker, its hazard warnings and the lint rules each read the whole program or
-        its function bodies, and a walk costs about 2,500 instructions a node in CPython 3.11,
-        against a few hundred to read a list (issue 18: 25 M instructions a walk of the lab's
-        17 programs). The tree is not changed once parsed: callers must not change the list."""
+        its function bodies, and a walk costs several times what reading a list does. The tree
+        is not changed once parsed: callers must not change the list."""
         nodes = self.__dict__.get("_nodes")
         if nodes is None:
             nodes = self._nodes = list(self.ast.walk())

@@ -11,7 +11,7 @@ from __future__ import annotations
 
 from .model import Symbol
 
-TYPE_CHECKING = False  # not typing's: importing typing costs every start-up (issue 18)
+TYPE_CHECKING = False  # not typing's: importing typing costs every start-up
 if TYPE_CHECKING:
     from typing import Callable
 

@@ -39,10 +39,9 @@ _TAB_KEYS = {_SEPARATORS.sub("", t).lower(): t for t in TAB_NAMES}
 MAX_FILE_BYTES = 1_000_000
 
 
-# Paths as strings, without `pathlib` (issue 18: importing it, with the `urllib.parse` and
-# `ipaddress` it loads, is about 17 M instructions of every `glslcheck lint` start-up). Each
-# helper gives what the same `pathlib.Path` expression gives on POSIX, so every path a message
-# names is spelt as before.
+# Paths as strings, without `pathlib`: importing it, with the `urllib.parse` and `ipaddress` it
+# loads, would cost every `glslcheck lint` start-up. Each helper gives what the same
+# `pathlib.Path` expression gives on POSIX, so every path a message names is spelt the same.
 
 
 def posix_path(path: str | os.PathLike) -> str:

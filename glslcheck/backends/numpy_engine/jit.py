@@ -1,4 +1,4 @@
-"""Compiled kernels for the llvmpipe math emulation, used when they pay (issue 18).
+"""Compiled kernels for the llvmpipe math emulation, used when they pay.
 
 llvmpipe_reference.LlvmpipeMath's sin, cos, tan, exp2, log2 and pow are 30-70 NumPy operations a call. A
 raymarcher makes tens of thousands of such calls a frame on the few hundred lanes a march loop

@@ -56,7 +56,7 @@ class Compaction:
     min_lanes: int = 1024  # below this many lanes gathering costs more than it saves
     # the same for a loop's live lanes, checked at every pass. Gathered once, the short arrays
     # serve every later pass, so compacting earlier could pay off; measured at 0.75 and 0.9
-    # (docs/performance.md, session 7) it moved no real shader beyond the noise of a shared
+    # (docs/performance.md) it moved no real shader beyond the noise of a shared
     # machine and added gathers to a Mandelbrot loop whose lanes leave a few at a time
     loop_fraction: float = 0.5
 

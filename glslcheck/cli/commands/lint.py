@@ -69,7 +69,7 @@ def run(args: argparse.Namespace) -> int:
         result = lint_paths(args.paths, overrides, skip_non_shaders=args.skip_non_shaders)
         text = render(result, args.format)
     if args.output:
-        from pathlib import Path  # only here: not on every lint's start-up (issue 18)
+        from pathlib import Path  # only here: not on every lint's start-up
 
         out = Path(args.output)
         if out.exists() and _read_by_lint(out, result.paths):

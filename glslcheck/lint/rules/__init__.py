@@ -30,7 +30,7 @@ from ...base.records import record
 from functools import cache
 from types import ModuleType
 
-TYPE_CHECKING = False  # not typing's: importing typing costs every start-up (issue 18)
+TYPE_CHECKING = False  # not typing's: importing typing costs every start-up
 if TYPE_CHECKING:
     from typing import Callable, Iterable
 
@@ -86,8 +86,8 @@ class Rule:
 
 def doc_sections(doc: str) -> dict[str, str]:
     """`## Title` sections of a rule docstring: title -> body (stripped). What splitting at
-    `^## (.+?)\\s*$` (multi-line) gives, found line by line: the regex engine scanned every
-    character of the 18 docstrings, 2.7 M instructions of every lint's start (issue 18)."""
+    `^## (.+?)\\s*$` (multi-line) gives, found line by line: the regex engine would scan every
+    character of every rule's docstring at each lint's start."""
     sections: dict[str, str] = {}
     title = None
     body: list[str] = []
@@ -127,7 +127,7 @@ def _load(name: str, module_name: str) -> Rule:
         problems.append(f"READS must be one of {', '.join(READS)}")
     if not callable(getattr(mod, "check", None)):
         problems.append("no check(ctx) function")
-    sections = doc_sections(body)  # once: not once per section name (issue 18: start-up)
+    sections = doc_sections(body)  # once, not once per section name: this runs at every start-up
     missing = [s for s in SECTIONS if s not in sections]
     if missing:
         problems.append(f"the docstring lacks the section(s) {', '.join(missing)}")

@@ -9,7 +9,7 @@ from ...semantics.analysis import builtin_call, numbers, program_facts
 from ...semantics.model import Model
 from ...frontend.printer import to_glsl
 
-TYPE_CHECKING = False  # not typing's: importing typing costs every start-up (issue 18)
+TYPE_CHECKING = False  # not typing's: importing typing costs every start-up
 if TYPE_CHECKING:
     from typing import Any, Iterator
 

@@ -44,7 +44,7 @@ from ...semantics.analysis import numbers, program_facts
 from ...base.diagnostics import Diagnostic
 from ._text import text
 
-TYPE_CHECKING = False  # not typing's: importing typing costs every start-up (issue 18)
+TYPE_CHECKING = False  # not typing's: importing typing costs every start-up
 if TYPE_CHECKING:
     from typing import Any, Iterator
     from ..engine import LintContext

@@ -42,7 +42,7 @@ from __future__ import annotations
 
 from ...base.diagnostics import Diagnostic
 
-TYPE_CHECKING = False  # not typing's: importing typing costs every start-up (issue 18)
+TYPE_CHECKING = False  # not typing's: importing typing costs every start-up
 if TYPE_CHECKING:
     from typing import Iterator
     from ..engine import LintContext

@@ -44,7 +44,7 @@ from ...semantics.analysis import program_facts
 from ...base.diagnostics import Diagnostic
 from ._text import text
 
-TYPE_CHECKING = False  # not typing's: importing typing costs every start-up (issue 18)
+TYPE_CHECKING = False  # not typing's: importing typing costs every start-up
 if TYPE_CHECKING:
     from typing import Iterator
     from ..engine import LintContext
@@ -82,7 +82,7 @@ def _check_function(fn) -> Iterator[Diagnostic]:
             e = enter[id(n)]
             if e >= hi:
                 break  # past the loop
-            # the cheap tests first (a name or literal is never worth hoisting; issue 18)
+            # the cheap tests first (a name or literal is never worth hoisting)
             if e < skip_until or type(n) in leaves or not isinstance(n, A.Expr) or id(n) in targets:
                 continue
             x = fn.exit[id(n)]

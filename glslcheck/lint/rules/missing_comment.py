@@ -48,7 +48,7 @@ from ...base.regexes import compiled
 from ...base.diagnostics import Diagnostic
 from ..textscan import BLANK, BRACE, BRACE_COMMENT, CODE, COMMENT, DIRECTIVE, LEADING, TRAILING, LineKind, inactive_lines
 
-TYPE_CHECKING = False  # not typing's: importing typing costs every start-up (issue 18)
+TYPE_CHECKING = False  # not typing's: importing typing costs every start-up
 if TYPE_CHECKING:
     from typing import Iterator
     from ..engine import LintContext
@@ -66,7 +66,7 @@ def uncovered_runs(kinds: list[LineKind], span: int) -> list[tuple[int, int, int
     runs: list[tuple[int, int, int]] = []
     budget = 0  # code lines the last comment line still covers
     run: list[int] | None = None  # [first, last, count]
-    for number, kind in enumerate(kinds, start=1):  # the kinds as globals (textscan: issue 18)
+    for number, kind in enumerate(kinds, start=1):  # the kinds as globals (see textscan)
         covered = True
         if kind is COMMENT or kind is BRACE_COMMENT:
             budget = span

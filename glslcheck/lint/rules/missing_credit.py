@@ -37,7 +37,7 @@ import re
 from ...base.regexes import compiled
 from ...base.diagnostics import Diagnostic
 
-TYPE_CHECKING = False  # not typing's: importing typing costs every start-up (issue 18)
+TYPE_CHECKING = False  # not typing's: importing typing costs every start-up
 if TYPE_CHECKING:
     from typing import Iterator
     from ..engine import LintContext
@@ -61,8 +61,7 @@ def has_credit(text: str) -> bool:
     """Whether `text` holds a credit (`CREDIT_RE`). ASCII text is searched lowercased with the
     case-sensitive pattern: the same answer (the pattern's letters are lowercase ASCII, and in
     ASCII text `re.I` folds only A-Z), about four times faster, since case-insensitive matching
-    folds each character once for every alternative it tries (issue 18: 13 M instructions of
-    the lab's lint)."""
+    folds each character once for every alternative it tries."""
     if text.isascii():
         return _CREDIT_LOWER_RE.search(text.lower()) is not None
     return CREDIT_RE.search(text) is not None

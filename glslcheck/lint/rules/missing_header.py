@@ -55,7 +55,7 @@ from ...shadertoy.sources import path_name, path_stem, tab_name
 from ..textscan import BLANK, COMMENT, DIRECTIVE
 from .missing_credit import has_credit
 
-TYPE_CHECKING = False  # not typing's: importing typing costs every start-up (issue 18)
+TYPE_CHECKING = False  # not typing's: importing typing costs every start-up
 if TYPE_CHECKING:
     from typing import Iterator
     from ..engine import LintContext

@@ -59,7 +59,7 @@ from ...semantics.model import Constructor, Symbol
 from ...base.diagnostics import Diagnostic
 from ._text import text, wrap
 
-TYPE_CHECKING = False  # not typing's: importing typing costs every start-up (issue 18)
+TYPE_CHECKING = False  # not typing's: importing typing costs every start-up
 if TYPE_CHECKING:
     from typing import Any, Iterator
     from ..engine import LintContext

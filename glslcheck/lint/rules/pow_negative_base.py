@@ -35,7 +35,7 @@ from ...semantics.analysis import builtin_calls
 from ...base.diagnostics import Diagnostic
 from ._text import negative_reason, text
 
-TYPE_CHECKING = False  # not typing's: importing typing costs every start-up (issue 18)
+TYPE_CHECKING = False  # not typing's: importing typing costs every start-up
 if TYPE_CHECKING:
     from typing import Iterator
     from ..engine import LintContext

@@ -32,7 +32,7 @@ from ...semantics.analysis import builtin_calls, numbers
 from ...base.diagnostics import Diagnostic
 from ._text import is_atom, text, wrap
 
-TYPE_CHECKING = False  # not typing's: importing typing costs every start-up (issue 18)
+TYPE_CHECKING = False  # not typing's: importing typing costs every start-up
 if TYPE_CHECKING:
     from typing import Iterator
     from ..engine import LintContext

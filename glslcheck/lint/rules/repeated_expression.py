@@ -60,7 +60,7 @@ from ...semantics.analysis import program_facts, written_variable
 from ...base.diagnostics import Diagnostic
 from ._text import text
 
-TYPE_CHECKING = False  # not typing's: importing typing costs every start-up (issue 18)
+TYPE_CHECKING = False  # not typing's: importing typing costs every start-up
 if TYPE_CHECKING:
     from typing import Iterator
     from ..engine import LintContext

@@ -26,7 +26,7 @@ from __future__ import annotations
 from ...base.diagnostics import Diagnostic
 from ._text import compared_calls, squared, text
 
-TYPE_CHECKING = False  # not typing's: importing typing costs every start-up (issue 18)
+TYPE_CHECKING = False  # not typing's: importing typing costs every start-up
 if TYPE_CHECKING:
     from typing import Iterator
     from ..engine import LintContext

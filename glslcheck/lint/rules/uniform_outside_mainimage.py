@@ -40,7 +40,7 @@ from ...frontend import syntax as A
 from ...semantics.analysis import program_facts
 from ...base.diagnostics import Diagnostic
 
-TYPE_CHECKING = False  # not typing's: importing typing costs every start-up (issue 18)
+TYPE_CHECKING = False  # not typing's: importing typing costs every start-up
 if TYPE_CHECKING:
     from typing import Iterator
     from ..engine import LintContext

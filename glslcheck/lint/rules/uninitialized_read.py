@@ -38,7 +38,7 @@ from ...frontend import syntax as A
 from ...semantics.analysis import param_directions, program_facts, written_variable
 from ...base.diagnostics import Diagnostic
 
-TYPE_CHECKING = False  # not typing's: importing typing costs every start-up (issue 18)
+TYPE_CHECKING = False  # not typing's: importing typing costs every start-up
 if TYPE_CHECKING:
     from typing import Any, Iterator
     from ..engine import LintContext

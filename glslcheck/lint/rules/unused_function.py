@@ -33,7 +33,7 @@ from ...semantics.analysis import program_facts
 from ...base.diagnostics import Diagnostic
 from .unused_variable import common_shared
 
-TYPE_CHECKING = False  # not typing's: importing typing costs every start-up (issue 18)
+TYPE_CHECKING = False  # not typing's: importing typing costs every start-up
 if TYPE_CHECKING:
     from typing import Iterator
     from ..engine import LintContext

@@ -31,7 +31,7 @@ from __future__ import annotations
 
 from ...base.diagnostics import Diagnostic
 
-TYPE_CHECKING = False  # not typing's: importing typing costs every start-up (issue 18)
+TYPE_CHECKING = False  # not typing's: importing typing costs every start-up
 if TYPE_CHECKING:
     from typing import Iterator
     from ..engine import LintContext
@@ -54,7 +54,7 @@ def check(ctx: LintContext) -> Iterator[Diagnostic]:
         where = "in this file" if s.file_wide else "on this line"
         for name in s.names:
             if name not in ctx.known_rules:
-                import difflib  # only for a misspelt name: not at every start-up (issue 18)
+                import difflib  # only for a misspelt name: not at every start-up
 
                 close = difflib.get_close_matches(name, sorted(ctx.known_rules), n=1)
                 hint = f"did you mean `{close[0]}`? " if close else ""

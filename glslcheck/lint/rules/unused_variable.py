@@ -37,7 +37,7 @@ from ...base.diagnostics import Diagnostic
 from ...shadertoy.wrapper import PASS_TABS
 from ...semantics.analysis import program_facts
 
-TYPE_CHECKING = False  # not typing's: importing typing costs every start-up (issue 18)
+TYPE_CHECKING = False  # not typing's: importing typing costs every start-up
 if TYPE_CHECKING:
     from typing import Any, Iterator
     from ..engine import LintContext

@@ -27,7 +27,7 @@ from ...language import builtin_functions as B
 from ..model import CallTarget, Model, Symbol
 from .values import ValueRanges, numbers
 
-TYPE_CHECKING = False  # not typing's: importing typing costs every start-up (issue 18)
+TYPE_CHECKING = False  # not typing's: importing typing costs every start-up
 if TYPE_CHECKING:
     from typing import Any, Iterable, Iterator
 

@@ -21,7 +21,7 @@ from ...frontend import syntax as A
 from ...language import builtin_functions as B
 from ..model import Constructor
 
-TYPE_CHECKING = False  # not typing's: importing typing costs every start-up (issue 18)
+TYPE_CHECKING = False  # not typing's: importing typing costs every start-up
 if TYPE_CHECKING:
     from typing import Any
     from ..model import Model

@@ -160,7 +160,7 @@ def node_shapes(root: Any) -> dict[int, int]:
     """id(node) -> a number shared by exactly the nodes of the same shape (same class, same
     fields, same shapes of children; locations left out): what equal GLSL text means, found in
     one pass (hash-consing) instead of printing every subtree, which is quadratic in a chain
-    `a + b + c + ...` of thousands of terms (issue 16's hostile sums)."""
+    `a + b + c + ...` of thousands of terms (as a hostile input may hold)."""
     ids: dict[int, int] = {}
     table: dict[tuple, int] = {}
     stack: list[tuple[Any, bool]] = [(root, False)]
