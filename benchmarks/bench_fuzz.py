@@ -9,8 +9,8 @@ in this process as the reference run in the same process.
    `fuzz.InProcess` (each command called in this process, nothing else): CPU seconds.
 
 Printed: both runs' inputs per CPU second, their ratio (the harness's overhead; 1.0 = none),
-and what the issue's 100,000-input run costs in CPU hours at the fuzzer's rate. Rates as in the
-long run of issue 16 (--parse-rate 0.34, --heavy-rate 0.03, --verify-rate 0.03,
+and what a 100,000-input run costs in CPU hours at the fuzzer's rate. Rates as in the
+long run in tools/fuzz.py's docstring (--parse-rate 0.34, --heavy-rate 0.03, --verify-rate 0.03,
 --hostile-rate 0.05). Printed, not asserted: timings are facts about a machine (and on a shared
 one, CPU seconds mean more than wall seconds: both are shown, with the load average).
 

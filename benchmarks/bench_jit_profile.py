@@ -1,4 +1,4 @@
-"""Where one frame of the slowest real shaders spends its time, per runtime function (issue 18).
+"""Where one frame of the slowest real shaders spends its time, per runtime function.
 
     python benchmarks/bench_jit_profile.py [--only ID,...] [--size 128x72] [--top 14] [--jit on|off|auto]
 

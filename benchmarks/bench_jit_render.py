@@ -12,7 +12,7 @@ is 1. numba's cache is the user's (see jit.cache_dir); run once beforehand so th
 it rather than compiling (benchmarks/bench_jit_kernels.py times the compile).
 
 The default shaders are the raymarchers and ray tracers where the emulation's calls on few
-lanes dominate (issue 18), at sizes that take seconds, and the lab's 07_final (whole-tile calls:
+lanes dominate, at sizes that take seconds, and the lab's 07_final (whole-tile calls:
 auto must not load numba there): the real shaders' texts come from `python tools/real_verify.py
 fetch` and `python tools/real_channels.py fetch` (git-ignored folders); missing ones are listed.
 """

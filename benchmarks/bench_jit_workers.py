@@ -1,4 +1,4 @@
-"""The compiled math kernels in render worker processes once the parent has chosen them (issue 18).
+"""The compiled math kernels in render worker processes once the parent has chosen them.
 
     python benchmarks/bench_jit_workers.py SHADER_ID SIZE FRAMES     # e.g. 35-raymarch 400x225 6
 
@@ -6,9 +6,9 @@
 so this process loads the kernels), then FRAMES frames of the real shader SHADER_ID
 (tools/real_verify.py's texts) on two worker processes, each at a new iTime. Prints the wall
 time of each frame (and how it was rendered: p = processes), the total wall time and the CPU
-time of this process after the first shader plus the workers'. Since session 9 the workers load
-the kernels before their first frame when the parent has (jit.decided); before, each counted
-to its own threshold. Run it from the checkout to measure (PYTHONPATH for another one).
+time of this process after the first shader plus the workers'. The workers load the kernels
+before their first frame when the parent has (jit.decided), rather than each counting to its
+own threshold. Run it from the checkout to measure (PYTHONPATH for another one).
 """
 
 from __future__ import annotations

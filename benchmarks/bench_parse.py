@@ -2,7 +2,7 @@
 whole `glslcheck parse` CLI call on one file, with glslangValidator on the same program as the
 reference run in the same process.
 
-Targets (issue 2): <= 30 ms warm parse; <= 0.3 s for the whole CLI call. Printed, not asserted:
+Targets: <= 30 ms warm parse; <= 0.3 s for the whole CLI call. Printed, not asserted:
 timings are facts about a machine, not unit tests.
 
     python benchmarks/bench_parse.py [--runs N]

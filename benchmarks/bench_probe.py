@@ -1,4 +1,4 @@
-"""`glslcheck probe` against its targets (issue 17), each side measured in the same run:
+"""`glslcheck probe` against its targets, each side measured in the same run:
 
 1. `glslcheck probe lab_shaders/07_final --pixel 400,225`, the whole process (target: <= 1 s),
    against `glslcheck check lab_shaders/07_final`, the floor of any glslcheck process (start,

@@ -8,7 +8,7 @@
 Every shader that both backends render is timed in this one process, the two backends in turns,
 best of `--repeat` frames each, every frame at a new iTime (0.01 apart, as an animation: the
 NumPy frame cache is emptied and nothing computed from iTime is reused). Ratio = numpy / gl. It prints one line
-per shader, slowest ratio first, then the geometric mean (the issue's targets: <= 1.5x, and no
+per shader, slowest ratio first, then the geometric mean (the targets: <= 1.5x, and no
 shader over 6x) and the load average at the start and the end (a shared machine moves both sides
 of a ratio alike, single timings much more). Each frame's CPU time is measured too (this
 process's: llvmpipe's threads are in it) and its ratio printed beside: the least disturbed by

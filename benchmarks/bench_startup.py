@@ -7,7 +7,7 @@ beside it the median CPU time (user + system) of the process, which waiting for 
 machine's cores does not inflate. The interpreter's own start-up (`python -c pass` in the same
 environment) is printed as the floor no Python tool can go under.
 
-Targets (issue 18): `glslcheck lint FILE` on one 200-line file <= 150 ms; `glslcheck lint
+Targets: `glslcheck lint FILE` on one 200-line file <= 150 ms; `glslcheck lint
 lab_shaders` <= 0.5 s. Printed, not asserted: timings are facts about a machine.
 
 Two set-ups are measured: (1) the dev venv's `glslcheck` (`make setup`: an editable install,

@@ -1,4 +1,4 @@
-"""Benchmark: transpile time against nesting depth (issue 16), for the shapes that used to reach
+"""Benchmark: transpile time against nesting depth, for the shapes that used to reach
 Python's limits or grow faster than linearly: nested ternaries (cubic before: 6 s at 150, 44 s
 at 300), nested ifs (over 120 s at 500), else-if chains, nested parentheses and nested loops.
 

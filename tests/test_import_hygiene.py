@@ -1,4 +1,4 @@
-"""Start-up (issue 18): `glslcheck lint`, `check` and `parse` run in every pre-commit hook, so
+"""Start-up: `glslcheck lint`, `check` and `parse` run in every pre-commit hook, so
 they must not import what only rendering needs (NumPy, moderngl, Pillow) nor Lark (the parser's
 tables ship as data, glslcheck/frontend/parse_tables.py). Deterministic: a fresh interpreter runs the
 command and reports which modules it loaded; no timing is asserted (see

@@ -1,6 +1,6 @@
 """glslcheck/base/records.py: `@record` must give what `@dataclass` gave the classes that use it
 (fields, defaults, factories, equality, hashing, frozenness, repr, pickling), since it replaced
-it on the start-up path (issue 18)."""
+it on the start-up path (importing dataclasses costs start-up time)."""
 
 from __future__ import annotations
 

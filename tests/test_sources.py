@@ -126,7 +126,7 @@ def test_parse_cli_exit_codes_and_output(tmp_path, capsys):
     "..x", "a.b.glsl", "dir/.hidden", "Buffer A.txt", "a/b/", "..", "../", "x/..", "lab 4/Image",
 ])
 def test_path_helpers_spell_paths_as_pathlib_does(path):
-    """The lint path spells paths without pathlib (issue 18: start-up); every message must name
+    """The lint path spells paths without pathlib (importing it costs start-up time); every message must name
     a path as the pathlib code before it did."""
     from pathlib import PurePosixPath
 

@@ -1,24 +1,24 @@
-"""Fuzz glslcheck's command line (issue 9: bad input never breaks glslcheck).
+"""Fuzz glslcheck's command line (bad input never breaks glslcheck).
 
     python tools/fuzz.py --count 100000 --seed 1 [--jobs 2] [--heavy-rate 0.05] [--verify-rate 0.05]
     python tools/fuzz.py --seed 9 --show 18849          # print one input
     python tools/fuzz.py --merge a.json b.json          # combine the counts of split runs
 
-The 100,000-input run of issue 9 was split in two processes (2 cores) and merged:
+A 100,000-input run split in two processes (2 cores) and merged:
 
     python tools/fuzz.py --count 50000 --start 0     --seed 9 --parse-rate 0.34 --heavy-rate 0.03 \
         --verify-rate 0.03 --json c0.json     (and --start 50000 --json c50000.json)
     python tools/fuzz.py --merge c0.json c50000.json
 
-The run of issue 16 (mixed and hostile inputs, under a memory limit, in the background on a
-shared machine; it checkpoints to --json after every chunk of CHUNK inputs, stops cleanly at
+A long run of mixed and hostile inputs under a memory limit, in the background on a
+shared machine (it checkpoints to --json after every chunk of CHUNK inputs, stops cleanly at
 --max-seconds or on SIGTERM with the counts so far, and --resume continues it):
 
     ulimit -v 8000000; GLSLCHECK_FUZZ_NICE=0 nohup nice -n 10 python tools/fuzz.py --count 100000 \
         --seed 16 --jobs 2 --parse-rate 0.34 --heavy-rate 0.03 --verify-rate 0.03 --hostile-rate 0.05 \
         --max-seconds 5000 --json run.json [--resume run.json] > fuzz.log 2>&1 &
 
-Run on 2026-12-01 at commit aa8ab17 (2 cores shared by 8 agents, load average 8 to 25, 92
+Run on 2026-12-01 (2 cores shared by 8 agents, load average 8 to 25, 92
 minutes, stopped by --max-seconds): 21,163 of the 100,000 inputs (mutate 11,029, generate 5,075,
 soup 2,456, bytes 1,579, hostile 1,024; transpile 6,910, render 2,105, verify 177), 0 flagged.
 Its throughput is benchmarks/bench_fuzz.py's: the harness adds nothing measurable to the cost
@@ -35,7 +35,7 @@ Inputs, each reproducible from (seed, index) alone:
             (functions with in/out/inout parameters, structs, arrays, loops, branches on
             uniform values, built-ins); `parse` and `check` must accept them and, on a sample,
             `verify` must find the NumPy and OpenGL images equal;
-- hostile:  valid programs at the limits (issue 16; --hostile-rate of the inputs, drawn from a
+- hostile:  valid programs at the limits (--hostile-rate of the inputs, drawn from a
             separate random stream so the other inputs of a seed stay the same): statements
             nested up to 250 deep (if/else/loops/switch/blocks), 40 nested loops, else-if
             chains, 900 nested parentheses, 300 nested ternaries and &&/||, sums of 3000
@@ -447,7 +447,7 @@ def random_program(rng: random.Random) -> str:
 
 
 # ---------------------------------------------------------------------------------------------
-# Valid but hostile programs (issue 16): deep nesting, long chains, huge arrays, runaway loops
+# Valid but hostile programs: deep nesting, long chains, huge arrays, runaway loops
 
 MAIN = "void mainImage(out vec4 fragColor, in vec2 fragCoord) {\n"
 

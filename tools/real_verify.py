@@ -28,7 +28,7 @@ the run) and gets one verdict:
   transpile) or stops it (a loop bound);
 - timeout / error: the process took longer than --timeout or failed otherwise.
 
-The summary line is the figure the issue asks for: matches among the shaders that compile.
+The summary line is the headline figure: matches among the shaders that compile.
 """
 
 from __future__ import annotations

@@ -151,7 +151,7 @@ def test_cli_exit_codes(tmp_path, capsys):
 
 def test_listed_nodes_are_the_walks(model, make_shader):
     """`Model.nodes()` and `body_nodes()` (the lists the checker, hazards and lint rules read
-    instead of walking again, issue 18) hold exactly what `walk()` yields, in its order: the
+    instead of walking again, to save time) hold exactly what `walk()` yields, in its order: the
     program's, and each function body's (a slice of the program's list), here and in a program
     with prototypes, globals between functions, nested loops and a Common tab before it."""
     def same(m):

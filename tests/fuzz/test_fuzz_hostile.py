@@ -1,4 +1,4 @@
-"""Each shape of the fuzzer's hostile programs (issue 16: deep nesting, long chains, huge arrays,
+"""Each shape of the fuzzer's hostile programs (deep nesting, long chains, huge arrays,
 runaway loops) at its largest, through check, transpile and render in-process: check accepts it,
 transpile and render end ok or with an error located in the file (the frame budget,
 fuzz.FRAME_SECONDS, stops the runaway loops), never a traceback. The long run is

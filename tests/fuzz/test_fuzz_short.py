@@ -1,4 +1,4 @@
-"""The short CI fuzz run (issue 9): a fixed set of inputs from tools/fuzz.py -- inputs 0..399 of
+"""The short CI fuzz run (bad input never breaks glslcheck): a fixed set of inputs from tools/fuzz.py -- inputs 0..399 of
 seed 2026 -- through parse, check, lint, transpile, render and verify, in-process, each in a
 worker process with a time budget. Zero flagged outcomes allowed: no traceback, no escaped
 exception, no exit code outside {0, 1, 2}, no hang, no error without file:line:col in the user's

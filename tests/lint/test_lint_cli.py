@@ -173,7 +173,7 @@ def test_config_from_cwd_when_none_above_the_file(tmp_path, monkeypatch):
 
 def test_folders_without_configuration_are_read_once(tmp_path, monkeypatch):
     """The files of a folder with no configuration above it do not each read every parent's
-    pyproject.toml again (a lab of 34 files read this repository's 34 times: issue 18)."""
+    pyproject.toml again (a lab of 34 files read this repository's 34 times)."""
     from glslcheck.lint import config
 
     lab = tmp_path / "lab"
@@ -186,7 +186,7 @@ def test_folders_without_configuration_are_read_once(tmp_path, monkeypatch):
     finder = config.ConfigFinder({}, frozenset())
     found = [finder.for_file(lab / name / tab) for name in ("a", "b") for tab in ("Image.glsl", "Common.glsl")]
     assert found == [config.LintConfig()] * 4
-    assert reads == [str(tmp_path / "pyproject.toml")]  # the folders are strings: no pathlib (issue 18)
+    assert reads == [str(tmp_path / "pyproject.toml")]  # the folders are strings: no pathlib (start-up time)
 
 
 def test_cli_overrides_config(workdir, capsys):

@@ -1,4 +1,4 @@
-"""Regression tests for the classes of mistakes the linter made on real student code (issue 15):
+"""Regression tests for the classes of mistakes the linter made on real student code:
 compile errors that silenced the linter, valid code it rejected, the sphere-normal rule decided
 by names, repeats counted per repetition, and headers and comments graded unlike a TA. Each
 snippet is written in the style of the Fall 2020 GPR-200 submissions (tests/real_lint), not

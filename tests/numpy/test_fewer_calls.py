@@ -1,4 +1,4 @@
-"""The per-call cuts for the slowest real shaders (issue 18, session 8) change no pixel and do
+"""The per-call cuts for the slowest real shaders (fewer NumPy calls per frame) change no pixel and do
 cut the calls: a built-in call repeated in one expression is computed once (`Expressions.
 repeated_calls`), int and uint operators are NumPy's, swizzles are views or `take`, `dot` makes
 its products in one call.

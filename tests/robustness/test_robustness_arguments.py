@@ -1,6 +1,6 @@
-"""Every command accepts and refuses the same values of the options they share (issue 21: one
-module of limits, glslcheck/base/limits.py), and the hostile values of
-issue 16 are usage errors (exit 2 with a message), not warnings, tracebacks or hours of work."""
+"""Every command accepts and refuses the same values of the options they share (one
+module of limits, glslcheck/base/limits.py), and hostile values (huge counts, sizes and
+times) are usage errors (exit 2 with a message), not warnings, tracebacks or hours of work."""
 
 from __future__ import annotations
 

@@ -1,4 +1,4 @@
-"""`check` agrees with the drivers on the edges (issue 16), and warns about the undefined
+"""`check` agrees with the drivers on the edges, and warns about the undefined
 behaviour on which the NumPy backend and a GPU may disagree.
 
 Each rejected case was accepted by `check` and rejected by Mesa; the test compiles it with the

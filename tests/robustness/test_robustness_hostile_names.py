@@ -1,4 +1,4 @@
-"""The generated Python can do nothing but arithmetic (issue 9), with hostile names in every
+"""The generated Python can do nothing but arithmetic (bad input must never run code), with hostile names in every
 place a GLSL name can be declared.
 
 tests/numpy/test_transpile.py has the transpiler owner's catalogue (function names, locals,

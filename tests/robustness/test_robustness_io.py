@@ -1,4 +1,4 @@
-"""Hostile and unlucky input and output files (issue 16): special files as input, symlink loops,
+"""Hostile and unlucky input and output files: special files as input, symlink loops,
 output names no writer knows, a full disk, Ctrl-C while an output is written. Each ends in exit 2
 with a message naming the path, never a hang, a traceback or a damaged file."""
 

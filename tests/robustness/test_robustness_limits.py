@@ -1,4 +1,4 @@
-"""Hostile but valid programs against the NumPy backend (issue 16): Python's own limits reached
+"""Hostile but valid programs against the NumPy backend: Python's own limits reached
 through the generated code, runaway work, memory, and signals.
 
 - Python's limits: CPython refuses 20+ nested loops in one function ("too many statically

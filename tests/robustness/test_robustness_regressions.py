@@ -1,9 +1,9 @@
-"""Regression tests for bad input (issue 9): one case per crash the fuzzer (tools/fuzz.py) or a
+"""Regression tests for bad input: one case per crash the fuzzer (tools/fuzz.py) or a
 hand-made limit case found, each with the minimal input, plus the inputs students really produce
 (BOM, CRLF, tabs, non-ASCII, NUL, empty files, comment-only files, binary files).
 
 Every case runs the command in-process through `glslcheck.cli.main.main` and asserts the contract
-of issue 9: no traceback, an exit code in {0, 1, 2}, every error line naming the user's file
+for bad input: no traceback, an exit code in {0, 1, 2}, every error line naming the user's file
 with a line and column inside it, and the file left unchanged.
 """
 
@@ -23,7 +23,7 @@ MAIN = "void mainImage(out vec4 fragColor, in vec2 fragCoord) {"
 
 def run_cli(command: str, data: bytes | str, tmp_path: Path, name: str = "shader.glsl",
             extra: tuple[str, ...] = ()) -> tuple[int, str, str]:
-    """Run `glslcheck COMMAND FILE` in-process; assert the issue-9 contract; return (rc, out, err)."""
+    """Run `glslcheck COMMAND FILE` in-process; assert the bad-input contract; return (rc, out, err)."""
     path = tmp_path / name
     raw = data.encode("utf-8") if isinstance(data, str) else data
     path.write_bytes(raw)
@@ -139,8 +139,7 @@ def test_unterminated_comment_and_half_written_function(tmp_path, command):
 
 def test_not_utf8_after_a_lone_cr_names_the_right_line(tmp_path):
     """Found by tools/fuzz.py: the not-UTF-8 message counted a lone CR (old Mac line end) as no
-    line break, though every other message does, so it named line 1 for a byte on line 3
-    (fixed in 305e32f)."""
+    line break, though every other message does, so it named line 1 for a byte on line 3."""
     rc, _, err = run_cli("parse", b"a\rb\rc\xb1\n", tmp_path)
     assert rc == 2 and ":3:2: error: the file is not UTF-8" in err
 
@@ -148,7 +147,7 @@ def test_not_utf8_after_a_lone_cr_names_the_right_line(tmp_path):
 @pytest.mark.parametrize("command", ["render", "verify"])
 def test_huge_size_is_a_usage_error(tmp_path, command):
     """--size 16384x16384 allocated a 4 GiB image and died with a MemoryError traceback
-    (fixed in c249fb7: at most 4096*4096 pixels)."""
+    (now a usage error: at most 4096*4096 pixels)."""
     extra = ("--size", "16384x16384") + (("-o", str(tmp_path / "o.npy")) if command == "render" else ())
     rc, _, err = run_cli(command, f"{MAIN} fragColor = vec4(1.0); }}\n", tmp_path, extra=extra)
     assert rc == 2 and "16,777,216 pixels" in err
@@ -156,7 +155,7 @@ def test_huge_size_is_a_usage_error(tmp_path, command):
 
 @pytest.mark.parametrize("error, code", [(RecursionError, 1), (MemoryError, 2)])
 def test_safety_net_turns_recursion_and_memory_errors_into_messages(tmp_path, monkeypatch, error, code):
-    """The last resort in cli.main (a4fb23f): a stage that still runs out of stack or memory
+    """The last resort in cli.main: a stage that still runs out of stack or memory
     prints one line naming the shader instead of a traceback."""
     import glslcheck.semantics as check_module
 
@@ -171,7 +170,7 @@ def test_safety_net_turns_recursion_and_memory_errors_into_messages(tmp_path, mo
 
 @pytest.mark.parametrize("command", ["parse", "check", "lint", "transpile"])
 def test_lint_and_other_commands_never_modify_the_file(tmp_path, command):
-    """Issue 9: the pre-commit hook and lint never modify a file (run_cli compares the bytes),
+    """The pre-commit hook and lint never modify a file (run_cli compares the bytes),
     also for a file with findings in every rule family."""
     text = "\xef\xbb\xbfvoid mainImage(out vec4 c, in vec2 p)\r\n{\tfloat x = pow(p.x, 2.0);  \r\n c = vec4(x); }"
     extra = ("-o", str(tmp_path / "out.py")) if command == "transpile" else ()
@@ -186,8 +185,8 @@ def test_lint_and_other_commands_never_modify_the_file(tmp_path, command):
 def test_unnamed_parameters_render(tmp_path, text):
     """Found by tools/fuzz.py (seed 9, inputs 18849 and 66533, mutants of the lint fixtures):
     the transpiler dropped unnamed parameters, so `shade` unpacked None (TypeError traceback).
-    glslangValidator accepts unnamed parameters in a definition (fixed in 4f423c0), but Mesa
-    rejects them ("formal parameter lacks a name"), so since issue 16 `check` does as the driver:
+    glslangValidator accepts unnamed parameters in a definition (the transpiler now passes them), but Mesa
+    rejects them ("formal parameter lacks a name"), so `check` does as the driver:
     a located error, exit 1, and no traceback from any command."""
     rc, _, err = run_cli("check", text, tmp_path)
     assert rc == 1 and "a parameter of a function definition needs a name" in err

@@ -1,4 +1,4 @@
-"""Resource limits (issue 9): on each limit case glslcheck ends with a clear result, and its
+"""Resource limits: on each limit case glslcheck ends with a clear result, and its
 peak memory and time stay bounded.
 
 Each case runs `python -m glslcheck ...` in a child process and reads the child's own peak
@@ -132,7 +132,7 @@ def test_file_over_the_limit_is_refused_without_reading_it(tmp_path):
 def test_10000_functions_are_linear_and_bounded(tmp_path):
     small = write(tmp_path / "small", "shader.glsl", many_functions(1000))
     big = write(tmp_path / "big", "shader.glsl", many_functions(10000))
-    # Before 4257aa7 (unique names) and 08dc41b (GC during the parse) the ratio was ~100.
+    # Without unique names and without GC during the parse the ratio was ~100.
     check_is_linear_and_bounded(tmp_path, small, big, "10,000 functions")
 
 

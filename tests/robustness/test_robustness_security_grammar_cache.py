@@ -1,4 +1,4 @@
-"""Security (issue 16): no pickle is ever loaded from a place another local user can write.
+"""Security: no pickle is ever loaded from a place another local user can write.
 
 The parser used to keep Lark's grammar cache, a pickle, in ~/.cache/glslcheck, and when that
 folder could not be created, at a fixed name in the shared temp folder: another user who wrote

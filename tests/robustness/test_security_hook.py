@@ -1,4 +1,4 @@
-"""Security and correctness of the pre-commit hook `glslcheck install-hook` writes (issue 16).
+"""Security and correctness of the pre-commit hook `glslcheck install-hook` writes.
 
 Run for real: a temporary git repository, the hook installed, `git commit` run. The hook must
 run the installed glslcheck, never a `glslcheck/` folder of the repository (that would run the
