@@ -90,8 +90,7 @@ def test_cpu_engines_read_the_literal_as_gl_does(shader, gl):
     assert np.array_equal(ours, theirs)
 
 
-def test_the_compiled_engine_reads_the_literal_as_gl_does(shader, gl):
-    pytest.importorskip("numba")
+def test_the_compiled_engine_reads_the_literal_as_gl_does(shader, gl, numba):
     theirs = glslcheck.compile(shader, backend="gl").render(size=(2, 2))
     ours = glslcheck.compile(shader, backend="compiled").render(size=(2, 2))
     assert np.array_equal(ours, theirs)

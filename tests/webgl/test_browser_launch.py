@@ -19,13 +19,10 @@ def _limited():
     resource.setrlimit(resource.RLIMIT_AS, (LIMIT, LIMIT))
 
 
-def test_chromium_under_an_address_space_limit_is_a_failed_start_not_a_missing_browser():
-    pytest.importorskip("playwright")
+def test_chromium_under_an_address_space_limit_is_a_failed_start_not_a_missing_browser(webgl):
     from glslcheck.backends.webgl import chromium_path
 
     executable = chromium_path()
-    if executable is None:
-        pytest.skip("no Chromium on this machine")
     done = subprocess.run([sys.executable, "-m", "glslcheck", "check", "lab_shaders/07_final", "--webgl"],
                           cwd=ROOT, env={**os.environ, "PYTHONPATH": str(ROOT)}, capture_output=True, text=True,
                           timeout=300, preexec_fn=_limited)
