@@ -66,13 +66,14 @@ def environment(**values: str | None):
                 os.environ[name] = value
 
 
-def refuse_to_overwrite_inputs(output, shader, what: str) -> None:
-    """InputError when `output` is a file the shader is read from (a tab, channels.json, a
-    texture): a command never writes over what it reads."""
+def refuse_to_overwrite_inputs(outputs, shaders, what: str) -> None:
+    """InputError when one of `outputs` is a file one of `shaders` is read from (a tab,
+    channels.json, a texture): a command never writes over what it reads."""
     from ...shadertoy.channels import input_files
 
-    target = os.path.realpath(output)
-    for path in input_files(shader):
-        if os.path.realpath(path) == target:
+    inputs = {os.path.realpath(path): path for shader in shaders for path in input_files(shader)}
+    for output in outputs:
+        path = inputs.get(os.path.realpath(output))
+        if path is not None:
             raise InputError(f"{output}: error: the {what} would overwrite {path}, which the shader is read "
                              f"from; name another file")

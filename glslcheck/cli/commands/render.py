@@ -72,7 +72,7 @@ def run(args) -> int:
         raise InputError(f"error: the {args.backend.upper()} backend renders in float32 only; "
                          "drop --precision or use --backend numpy")
     prog = registry.compile(args.path, backend=args.backend, output=args.pass_name)
-    cli_args.refuse_to_overwrite_inputs(out, prog.shader, "output")
+    cli_args.refuse_to_overwrite_inputs([out], [prog.shader], "output")
     common = dict(size=args.size, mouse=args.mouse, date=args.date, precision=args.precision, samples=args.samples)
     if args.frames is None:
         img = prog.render(time=args.time, frame=args.frame, stats=args.stats, **common)

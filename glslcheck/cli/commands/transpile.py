@@ -29,7 +29,7 @@ def run(args) -> int:
     from ...base.images import atomic_write
     from .args import refuse_to_overwrite_inputs
 
-    refuse_to_overwrite_inputs(args.output, shader, "module")
+    refuse_to_overwrite_inputs([args.output], [shader], "module")
     with atomic_write(args.output, "module") as tmp:  # InputError (exit 2) when it cannot be written
         with open(tmp, "w", encoding="utf-8") as f:
             f.write(result.source)

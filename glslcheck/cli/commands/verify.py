@@ -121,9 +121,7 @@ def run(args) -> int:
     shaders = find_shaders(args.paths)
     total = len(shaders) * _frame_count(args)
     if args.diff:
-        for shader in shaders:
-            for path in diff_paths(args.diff, total):
-                cli_args.refuse_to_overwrite_inputs(path, shader, "diff image")
+        cli_args.refuse_to_overwrite_inputs(diff_paths(args.diff, total), shaders, "diff image")
     show = args.progress if args.progress is not None else (total > 1 and sys.stderr.isatty())
     progress = Progress(total, sys.stderr, enabled=bool(show) and total > 1)
 
