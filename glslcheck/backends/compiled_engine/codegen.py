@@ -54,7 +54,7 @@ from typing import Any
 from ...frontend import syntax as A
 from ...semantics.model import Constructor, Symbol
 from ...base.diagnostics import Location
-from ..cpu_core.common import printable
+from ..cpu_core.common import comment_safe
 from ..cpu_core.facts import Facts
 from ..cpu_core.uniformity import Uniformity
 from .expressions import ExpressionEmitter
@@ -145,7 +145,7 @@ class Codegen(ExpressionEmitter):
             return
         self.last_line = (loc.path, loc.line)
         text = source_line(loc.path, loc.line) or ""
-        self.emit(f"# line {loc.line}: {printable(text)}".rstrip())
+        self.emit(f"# line {loc.line}: {comment_safe(text)}".rstrip())
 
     # -- constants -----------------------------------------------------------------------------
     def cf(self, v: float) -> str:
@@ -418,7 +418,7 @@ class Codegen(ExpressionEmitter):
         def_at = len(self.lines)
         self.emit("")  # the def line, once the state arrays the body uses are known
         self.indent += 1
-        self.emit(f'"""{printable(sym.signature(), 150)} (line {proto.loc.line if proto.loc else "?"})."""')
+        self.emit(f'"""{comment_safe(sym.signature(), 150)} (line {proto.loc.line if proto.loc else "?"})."""')
         for part in [p for p in self.vars_of_params(sym) if isinstance(p, Arr)]:
             self.emit(f"{part.name} = acopy({part.name})  # arrays are passed by value")
         for parts, ptype, p in prologue:
@@ -608,4 +608,4 @@ def _literal_tree(model: Any, e: Any, base: str) -> bool:
 
 
 def _safe(text: str) -> str:
-    return printable(text, 200)
+    return comment_safe(text, 200)

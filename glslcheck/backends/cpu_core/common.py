@@ -1,6 +1,6 @@
 """What both CPU engines share below their code writers: the groups of built-in names their
 analyses decide by (derivatives, texture lookups), `fold_tree`, the memoized bottom-up walk
-that asks a question of every node of a tree in linear time, and `printable`, GLSL text made
+that asks a question of every node of a tree in linear time, and `comment_safe`, GLSL text made
 safe for a comment or docstring of generated Python."""
 
 from __future__ import annotations
@@ -16,7 +16,7 @@ TEXTURE_FUNCTIONS = ("texture", "textureLod", "textureGrad", "textureProj", "tex
 # Lookups whose mipmap level comes from derivatives (2x2 quads): their regions are never compacted.
 IMPLICIT_LOD = ("texture", "textureProj", "textureOffset", "textureProjOffset")
 
-def printable(text: str, limit: int = 100) -> str:
+def comment_safe(text: str, limit: int = 100) -> str:
     """Text safe inside a Python comment or docstring: printable ASCII, no quotes or backslashes."""
     out = "".join(c if (" " <= c <= "~" and c not in "\"\\") else "?" for c in text.strip())
     return out if len(out) <= limit else out[: limit - 3] + "..."

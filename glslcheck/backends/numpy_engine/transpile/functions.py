@@ -12,7 +12,7 @@ from .expressions import LValue
 from .statements import LoopCtx
 from ...cpu_core.facts import events_of
 from ....semantics.model import Symbol
-from ...cpu_core.common import printable
+from ...cpu_core.common import comment_safe
 from .inline import inline_call, worth_inlining
 from .call_fold import folded_call
 from . import nir_fold
@@ -67,7 +67,7 @@ class Functions:
         sig = ", ".join(["S", "_m"] + params)
         self.emit(f"def {self.fn_name(sym)}({sig}):")
         self.indent += 1
-        doc = printable(sym.signature(), 150) if hasattr(sym, "signature") else sym.name
+        doc = comment_safe(sym.signature(), 150) if hasattr(sym, "signature") else sym.name
         loc = getattr(proto, "loc", None)
         self.emit(f'"""{doc} (line {loc.line if loc else "?"})."""')
         rid = self.region("function", proto)

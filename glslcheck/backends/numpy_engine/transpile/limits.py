@@ -9,7 +9,7 @@ from typing import Any
 from ....frontend import syntax as A
 from ....base.diagnostics import Diagnostic, GlslError, Location
 from .common import _ASSIGNED, _LOCAL_REF, OUTLINE_LOOPS, RULE, SPILL_HEIGHT
-from ...cpu_core.common import fold_tree, printable
+from ...cpu_core.common import comment_safe, fold_tree
 
 class PythonLimits:
     """What keeps the generated code inside CPython's limits, whatever the GLSL's nesting:
@@ -85,7 +85,7 @@ class PythonLimits:
         where = f" line {loc.line}" if loc is not None and loc.line else ""
         self.helpers.append("\n".join(
             [f"def {name}({', '.join(['S'] + used)}):",
-             f'    """Part of {printable(sym.name, 60)}{where}, a function of its own to stay within'
+             f'    """Part of {comment_safe(sym.name, 60)}{where}, a function of its own to stay within'
              ' Python\'s nesting limits."""']
             + body + [f"    return ({''.join(o + ', ' for o in out)})", ""]))
         call = f"{name}({', '.join(['S'] + used)})"
@@ -136,7 +136,7 @@ def glsl_location(source: str, lineno: int, path: str) -> Location:
     lines = source.splitlines()
     for text in reversed(lines[: max(lineno, 1)]):
         m = re.match(r"\s*# (?:(.*) )?line (\d+): ", text)
-        if m and (m.group(1) is None or m.group(1) == printable(path, 60)):
+        if m and (m.group(1) is None or m.group(1) == comment_safe(path, 60)):
             return Location(path, int(m.group(2)), 1)
     return Location(path, 1, 1)
 

@@ -7,7 +7,7 @@ from __future__ import annotations
 from typing import Any
 
 from ....base.diagnostics import Location
-from ...cpu_core.common import printable
+from ...cpu_core.common import comment_safe
 from .common import _IDENT, _error, python_ident
 
 
@@ -36,8 +36,8 @@ class Names:
         from ....base.diagnostics import source_line
 
         text = source_line(loc.path, loc.line) or ""
-        where = f"line {loc.line}" if loc.path == self.path else f"{printable(loc.path, 60)} line {loc.line}"
-        self.emit(f"# {where}: {printable(text)}".rstrip())
+        where = f"line {loc.line}" if loc.path == self.path else f"{comment_safe(loc.path, 60)} line {loc.line}"
+        self.emit(f"# {where}: {comment_safe(text)}".rstrip())
 
     def region(self, kind: str, node: Any) -> int:
         self.n += 1
