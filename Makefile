@@ -43,9 +43,11 @@ run: setup
 test: setup
 	$(PY) -m pytest -q
 
-# The project's own checks (ruff over the package; configuration in pyproject.toml).
+# The project's own checks: ruff's linter and formatter (configuration in pyproject.toml).
+LINTED := glslcheck tests tools benchmarks
 check: setup
-	$(VENV)/bin/ruff check glslcheck
+	$(VENV)/bin/ruff check $(LINTED)
+	$(VENV)/bin/ruff format --check $(LINTED)
 
 clean:
 	rm -rf $(VENV) build dist *.egg-info

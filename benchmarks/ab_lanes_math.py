@@ -41,8 +41,13 @@ def load_revision(rev: str) -> None:
     else:
         text = None
         # the file's home, then where it lived before the package was laid out by stage
-        for path in ("glslcheck/backends/compiled_engine/lanes_math.py", "glslcheck/compiled_backend/lanes_math.py"):
-            done = subprocess.run(["git", "show", f"{rev}:{path}"], cwd=ROOT, capture_output=True, text=True)
+        for path in (
+            "glslcheck/backends/compiled_engine/lanes_math.py",
+            "glslcheck/compiled_backend/lanes_math.py",
+        ):
+            done = subprocess.run(
+                ["git", "show", f"{rev}:{path}"], cwd=ROOT, capture_output=True, text=True
+            )
             if done.returncode == 0:
                 text = done.stdout.replace("from ..numpy_backend", "from ..numpy_engine")
                 break
@@ -51,14 +56,23 @@ def load_revision(rev: str) -> None:
     assert "cache=True" in text, "lanes_math.py's numba options changed: update this script"
     mod = types.ModuleType(AB_NAME)
     mod.__package__ = "glslcheck.backends.compiled_engine"
-    mod.__file__ = os.path.join(ROOT, "glslcheck", "backends", "compiled_engine", "lanes_math_ab.py")  # not written
+    mod.__file__ = os.path.join(
+        ROOT, "glslcheck", "backends", "compiled_engine", "lanes_math_ab.py"
+    )  # not written
     sys.modules[AB_NAME] = mod
-    exec(compile(text.replace("cache=True", "cache=False"), f"lanes_math.py@{rev}", "exec"), mod.__dict__)
+    exec(
+        compile(text.replace("cache=True", "cache=False"), f"lanes_math.py@{rev}", "exec"),
+        mod.__dict__,
+    )
 
 
 def main() -> int:
     ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
-    ap.add_argument("--rev", required=True, help="the git revision whose lanes_math.py is 'before' (or a file's path)")
+    ap.add_argument(
+        "--rev",
+        required=True,
+        help="the git revision whose lanes_math.py is 'before' (or a file's path)",
+    )
     ap.add_argument("--size", default="400x225")
     ap.add_argument("--repeat", type=int, default=7)
     ap.add_argument("shaders", nargs="+")
@@ -72,8 +86,10 @@ def main() -> int:
     jit.use_cache_dir()
     load_revision(args.rev)
     size = tuple(int(v) for v in args.size.split("x"))
-    print(f"lanes_math.py at {args.rev} (before) against the working tree (after), lockstep 8, {args.size}, "
-          f"best of {args.repeat} frames, CPU")
+    print(
+        f"lanes_math.py at {args.rev} (before) against the working tree (after), lockstep 8, {args.size}, "
+        f"best of {args.repeat} frames, CPU"
+    )
     for path in args.shaders:
         source, tab = generate(load_shader(path), lanes=8)
         if IMPORT not in source:
@@ -82,8 +98,12 @@ def main() -> int:
         # both compiled now: numba's cache keys a module by its text and the working tree's
         # runtime, so a cached 'before' could hold another revision's inlined math
         source = source.replace("cache=True", "cache=False")
-        progs = {"before": CompiledProgram(source.replace(IMPORT, IMPORT.replace("lanes_math", "lanes_math_ab")), tab),
-                 "after": CompiledProgram(source, tab)}
+        progs = {
+            "before": CompiledProgram(
+                source.replace(IMPORT, IMPORT.replace("lanes_math", "lanes_math_ab")), tab
+            ),
+            "after": CompiledProgram(source, tab),
+        }
         for p in progs.values():
             p.load()
         images = {k: p.render(size=size, time=1.3) for k, p in progs.items()}
@@ -95,8 +115,11 @@ def main() -> int:
                 p.render(size=size, time=1.0 + r * 0.01)
                 best[k] = min(best[k], time.process_time() - c0)
         name = os.path.basename(path.rstrip("/"))
-        print(f"  {name:32s} same bits {str(same):5s}  before {best['before'] * 1e3:8.1f} ms  "
-              f"after {best['after'] * 1e3:8.1f} ms  after/before {best['after'] / best['before']:.3f}", flush=True)
+        print(
+            f"  {name:32s} same bits {str(same):5s}  before {best['before'] * 1e3:8.1f} ms  "
+            f"after {best['after'] * 1e3:8.1f} ms  after/before {best['after'] / best['before']:.3f}",
+            flush=True,
+        )
     return 0
 
 

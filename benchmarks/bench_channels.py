@@ -38,7 +38,9 @@ def _copy_scene(name: str, into: str) -> str:
         from PIL import Image
 
         rng = np.random.default_rng(7)
-        Image.fromarray(rng.integers(0, 256, (256, 256, 4), dtype=np.uint8), "RGBA").save(os.path.join(dst, "tex.png"))
+        Image.fromarray(rng.integers(0, 256, (256, 256, 4), dtype=np.uint8), "RGBA").save(
+            os.path.join(dst, "tex.png")
+        )
     return dst
 
 
@@ -64,9 +66,14 @@ def main() -> None:
     args = ap.parse_args()
     size = tuple(int(v) for v in args.size.lower().split("x"))
     started = time.perf_counter()
-    print(f"textured and multipass shaders, {size[0]}x{size[1]}, {args.frames} consecutive frames, "
-          f"best of {args.repeat} rounds (ms per frame; ratio = numpy / gl)")
-    print(f"{'':<38}{'processes':>10}{'threads':>10}{'gl':>10}   ratios" + ("   webgl     ratio" if args.webgl else ""))
+    print(
+        f"textured and multipass shaders, {size[0]}x{size[1]}, {args.frames} consecutive frames, "
+        f"best of {args.repeat} rounds (ms per frame; ratio = numpy / gl)"
+    )
+    print(
+        f"{'':<38}{'processes':>10}{'threads':>10}{'gl':>10}   ratios"
+        + ("   webgl     ratio" if args.webgl else "")
+    )
     with tempfile.TemporaryDirectory() as tmp:
         for name in SCENES:
             folder = _copy_scene(name, tmp)
@@ -87,7 +94,9 @@ def main() -> None:
                 w = best["webgl"] * 1000
                 line += f"  {w:>7.1f} ms  {w / g:.2f}x"
             print(line)
-    print(f"total {time.perf_counter() - started:.0f} s; load at the end {' '.join(f'{v:.1f}' for v in os.getloadavg())}")
+    print(
+        f"total {time.perf_counter() - started:.0f} s; load at the end {' '.join(f'{v:.1f}' for v in os.getloadavg())}"
+    )
 
 
 if __name__ == "__main__":

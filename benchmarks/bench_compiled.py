@@ -72,13 +72,19 @@ def _time() -> float:
 SCENE_DIRS = ("four_spheres", "lights_array", "lab4_submission")
 
 
-def shaders(lab: bool, real: bool, only: set[str] | None, scenes: bool = False) -> list[tuple[str, str]]:
+def shaders(
+    lab: bool, real: bool, only: set[str] | None, scenes: bool = False
+) -> list[tuple[str, str]]:
     out = []
     if scenes:
         out += [(f"scene-{d}", os.path.join(HERE, "scenes", d)) for d in SCENE_DIRS]
     if lab:
         root = os.path.join(ROOT, "lab_shaders")
-        out += [(d, os.path.join(root, d)) for d in sorted(os.listdir(root)) if os.path.isdir(os.path.join(root, d))]
+        out += [
+            (d, os.path.join(root, d))
+            for d in sorted(os.listdir(root))
+            if os.path.isdir(os.path.join(root, d))
+        ]
     if real:
         import real_verify
 
@@ -93,11 +99,11 @@ def measure(name: str, path: str, sizes: list, repeat: int, numpy_size, modes: l
     import numpy as np
 
     import glslcheck
-    from glslcheck.verification.compare import compare
     from glslcheck.backends.compiled_engine.engine import CompiledProgram, generate, lanes_width
-    from glslcheck.base.diagnostics import GlslError
     from glslcheck.backends.gl import compile_gl
+    from glslcheck.base.diagnostics import GlslError
     from glslcheck.shadertoy.sources import load_shader
+    from glslcheck.verification.compare import compare
 
     shader = load_shader(path)
     progs = {}
@@ -116,7 +122,11 @@ def measure(name: str, path: str, sizes: list, repeat: int, numpy_size, modes: l
         prog.load()
         width = lanes_width(mode)
         label = "pixel" if not width or "LANES_FALLBACK" in source else f"lanes{width}"
-        fallback = source.rsplit("LANES_FALLBACK = ", 1)[1].split("  #")[0] if "LANES_FALLBACK" in source else ""
+        fallback = (
+            source.rsplit("LANES_FALLBACK = ", 1)[1].split("  #")[0]
+            if "LANES_FALLBACK" in source
+            else ""
+        )
         progs[mode] = (prog, gen, label, fallback)
     gl = compile_gl(shader)
     rows = []
@@ -139,13 +149,26 @@ def measure(name: str, path: str, sizes: list, repeat: int, numpy_size, modes: l
         nimg = None
         for m, (prog, gen, label, fallback) in progs.items():
             img = imgs[m]
-            row = dict(shader=name, size=f"{size[0]}x{size[1]}", mode=m, label=label, fallback=fallback, gen=gen,
-                       load=prog.load_seconds, cold=prog.cold, compiled=t[f"c{m}"], gl=t["gl"],
-                       **{"compiled cpu": t[f"c{m} cpu"], "gl cpu": t["gl cpu"]},
-                       ratio=t[f"c{m}"] / t["gl"], cpu_ratio=t[f"c{m} cpu"] / t["gl cpu"],
-                       gl_match=compare(img, gimg).match)
+            row = dict(
+                shader=name,
+                size=f"{size[0]}x{size[1]}",
+                mode=m,
+                label=label,
+                fallback=fallback,
+                gen=gen,
+                load=prog.load_seconds,
+                cold=prog.cold,
+                compiled=t[f"c{m}"],
+                gl=t["gl"],
+                **{"compiled cpu": t[f"c{m} cpu"], "gl cpu": t["gl cpu"]},
+                ratio=t[f"c{m}"] / t["gl"],
+                cpu_ratio=t[f"c{m} cpu"] / t["gl cpu"],
+                gl_match=compare(img, gimg).match,
+            )
             if 0 in imgs and m != 0:
-                row["pixel_differ"] = int((img.view(np.uint32) != imgs[0].view(np.uint32)).any(axis=2).sum())
+                row["pixel_differ"] = int(
+                    (img.view(np.uint32) != imgs[0].view(np.uint32)).any(axis=2).sum()
+                )
             if size == numpy_size:
                 if nimg is None:
                     nprog = glslcheck.compile(shader, backend="numpy")
@@ -166,35 +189,49 @@ def measure(name: str, path: str, sizes: list, repeat: int, numpy_size, modes: l
 
 def summary(rows: list, label: str, mode) -> None:
     """Per size and mode: the worst CPU ratios, geometric means, over-6x, agreement."""
-    sel = sorted((r for r in rows if r["size"] == label and r["mode"] == mode), key=lambda r: -r["cpu_ratio"])
+    sel = sorted(
+        (r for r in rows if r["size"] == label and r["mode"] == mode), key=lambda r: -r["cpu_ratio"]
+    )
     if not sel:
         return
     lanes = sum(r["label"] != "pixel" for r in sel)
-    print(f"\n{label}, mode {mode if mode is not None else 'auto'} ({lanes} of {len(sel)} in lockstep): "
-          f"{len(sel)} shaders, worst CPU ratios first")
+    print(
+        f"\n{label}, mode {mode if mode is not None else 'auto'} ({lanes} of {len(sel)} in lockstep): "
+        f"{len(sel)} shaders, worst CPU ratios first"
+    )
     for r in sel[:12]:
-        print(f"  {r['shader']:24s} {r['label']:>7s} cpu {r['cpu_ratio']:6.2f}x  wall {r['ratio']:6.2f}x")
+        print(
+            f"  {r['shader']:24s} {r['label']:>7s} cpu {r['cpu_ratio']:6.2f}x  wall {r['ratio']:6.2f}x"
+        )
     for key, what in (("cpu_ratio", "CPU"), ("ratio", "wall")):
         g = math.exp(sum(math.log(r[key]) for r in sel) / len(sel))
         over = [r["shader"] for r in sel if r[key] > 6.0]
-        print(f"  geometric mean ({what}) {g:.2f}x llvmpipe; over 6x: {len(over)} {', '.join(over)}")
+        print(
+            f"  geometric mean ({what}) {g:.2f}x llvmpipe; over 6x: {len(over)} {', '.join(over)}"
+        )
     match = sum(r["gl_match"] for r in sel)
     print(f"  verify against GL: {match} of {len(sel)} match")
     withp = [r for r in sel if "pixel_differ" in r and r["label"] != "pixel"]
     if withp:
-        print(f"  lockstep bit-identical to the per-pixel engine: {sum(r['pixel_differ'] == 0 for r in withp)} "
-              f"of {len(withp)}")
+        print(
+            f"  lockstep bit-identical to the per-pixel engine: {sum(r['pixel_differ'] == 0 for r in withp)} "
+            f"of {len(withp)}"
+        )
     withn = [r for r in sel if "numpy_differ" in r]
     if withn:
         same = sum(r["numpy_differ"] == 0 for r in withn)
-        print(f"  bit-identical to the NumPy render: {same} of {len(withn)}; "
-              f"numpy's own verify: {sum(r['numpy_gl_match'] for r in withn)} match")
+        print(
+            f"  bit-identical to the NumPy render: {same} of {len(withn)}; "
+            f"numpy's own verify: {sum(r['numpy_gl_match'] for r in withn)} match"
+        )
         g = math.exp(sum(math.log(r["numpy cpu"] / r["compiled cpu"]) for r in withn) / len(withn))
         print(f"  NumPy CPU / compiled CPU, geometric mean: {g:.1f}x")
 
 
 def main() -> int:
-    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap = argparse.ArgumentParser(
+        description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter
+    )
     ap.add_argument("--size", default="128x72,400x225")
     ap.add_argument("--numpy-size", default="128x72")
     ap.add_argument("--repeat", type=int, default=3)
@@ -202,10 +239,17 @@ def main() -> int:
     ap.add_argument("--lab-only", action="store_true")
     ap.add_argument("--real-only", action="store_true")
     ap.add_argument("--fresh-cache", action="store_true")
-    ap.add_argument("--scenes", action="store_true",
-                    help="also the render benchmark's scenes (benchmarks/scenes: four_spheres, lights_array, lab4_submission)")
+    ap.add_argument(
+        "--scenes",
+        action="store_true",
+        help="also the render benchmark's scenes (benchmarks/scenes: four_spheres, lights_array, lab4_submission)",
+    )
     ap.add_argument("--json", default=None)
-    ap.add_argument("--lanes", default="0,8", help="modes: pixels a call, 0 = per pixel (default 0,8: both tiers)")
+    ap.add_argument(
+        "--lanes",
+        default="0,8",
+        help="modes: pixels a call, 0 = per pixel (default 0,8: both tiers)",
+    )
     args = ap.parse_args()
     modes = [int(x) for x in args.lanes.split(",")]
     if args.fresh_cache:
@@ -232,19 +276,24 @@ def main() -> int:
         for r in got:
             extra = ""
             if "numpy" in r:
-                extra = (f"  numpy {r['numpy cpu'] / r['gl cpu']:6.2f}x cpu, differ {r['numpy_differ']:5d} px "
-                         f"(max {r['numpy_max_abs']:.2g}, nan {r['numpy_nan_differ']}), "
-                         f"verify {'match' if r['gl_match'] else 'MISMATCH'} (numpy {'match' if r['numpy_gl_match'] else 'MISMATCH'})")
+                extra = (
+                    f"  numpy {r['numpy cpu'] / r['gl cpu']:6.2f}x cpu, differ {r['numpy_differ']:5d} px "
+                    f"(max {r['numpy_max_abs']:.2g}, nan {r['numpy_nan_differ']}), "
+                    f"verify {'match' if r['gl_match'] else 'MISMATCH'} (numpy {'match' if r['numpy_gl_match'] else 'MISMATCH'})"
+                )
             else:
                 extra = f"  verify {'match' if r['gl_match'] else 'MISMATCH'}"
             if "pixel_differ" in r:
                 extra += f"  vs per pixel: {r['pixel_differ']} px differ"
             if r["fallback"]:
                 extra += f"  (fallback: {r['fallback']})"
-            print(f"  {name:24s} {r['size']:>8s} {r['label']:>7s} load {r['load']:6.2f}s{' cold' if r['cold'] else ' warm'}  "
-                  f"compiled {r['compiled cpu'] * 1000:8.1f} ms cpu {r['compiled'] * 1000:8.1f} ms wall  "
-                  f"gl {r['gl cpu'] * 1000:7.1f} / {r['gl'] * 1000:7.1f} ms  cpu {r['cpu_ratio']:6.2f}x  "
-                  f"wall {r['ratio']:6.2f}x{extra}", flush=True)
+            print(
+                f"  {name:24s} {r['size']:>8s} {r['label']:>7s} load {r['load']:6.2f}s{' cold' if r['cold'] else ' warm'}  "
+                f"compiled {r['compiled cpu'] * 1000:8.1f} ms cpu {r['compiled'] * 1000:8.1f} ms wall  "
+                f"gl {r['gl cpu'] * 1000:7.1f} / {r['gl'] * 1000:7.1f} ms  cpu {r['cpu_ratio']:6.2f}x  "
+                f"wall {r['ratio']:6.2f}x{extra}",
+                flush=True,
+            )
         rows += got
     for size in sizes:
         for mode in modes:
@@ -252,11 +301,15 @@ def main() -> int:
     first = f"{sizes[0][0]}x{sizes[0][1]}"
     for mode in modes:  # one load per shader and mode
         loaded = [r for r in rows if r["size"] == first and r["mode"] == mode]
-        for what, xs in (("cold", [r["load"] for r in loaded if r["cold"]]),
-                         ("warm", [r["load"] for r in loaded if not r["cold"]])):
+        for what, xs in (
+            ("cold", [r["load"] for r in loaded if r["cold"]]),
+            ("warm", [r["load"] for r in loaded if not r["cold"]]),
+        ):
             if xs:
-                print(f"mode {mode if mode is not None else 'auto'}: load ({what}, wall): median "
-                      f"{sorted(xs)[len(xs) // 2]:.2f} s, max {max(xs):.2f} s over {len(xs)}")
+                print(
+                    f"mode {mode if mode is not None else 'auto'}: load ({what}, wall): median "
+                    f"{sorted(xs)[len(xs) // 2]:.2f} s, max {max(xs):.2f} s over {len(xs)}"
+                )
     for name, why in skipped:
         print(f"skipped {name}: {why}")
     print(f"load average at end: {_load()}")

@@ -53,8 +53,10 @@ def main() -> int:
     span = (args.start, args.start + args.count)
     out = Path(tempfile.mkdtemp(prefix="bench-fuzz-"))
     opts = dict(RATES, hostile_rate=args.hostile_rate, out_dir=out)
-    print(f"python {platform.python_version()}, {os.cpu_count()} CPUs, load average before: "
-          f"{' '.join(f'{x:.1f}' for x in os.getloadavg())}")
+    print(
+        f"python {platform.python_version()}, {os.cpu_count()} CPUs, load average before: "
+        f"{' '.join(f'{x:.1f}' for x in os.getloadavg())}"
+    )
 
     fuzz.seeds_and_pool()  # read once, outside both runs
     worker = fuzz.Worker(mp.get_context("spawn"))
@@ -70,7 +72,11 @@ def main() -> int:
     direct = fuzz.InProcess()
     try:
         # warm like the worker: the commands' modules imported before the clock starts
-        direct.run("render", {"shader.glsl": b"void mainImage(out vec4 c, in vec2 p) { c = vec4(1.0); }"}, 60)
+        direct.run(
+            "render",
+            {"shader.glsl": b"void mainImage(out vec4 c, in vec2 p) { c = vec4(1.0); }"},
+            60,
+        )
         own0, wall0 = time.process_time(), time.perf_counter()
         ref_counts, _ = fuzz.fuzz_range(args.seed, *span, worker=direct, **opts)
         ref_wall = time.perf_counter() - wall0
@@ -80,12 +86,18 @@ def main() -> int:
 
     n, ref_n = _inputs(counts), _inputs(ref_counts)
     commands = sum(n for (c, _), n in counts.items() if c not in ("input", "seconds"))
-    print(f"inputs {span[0]}..{span[1] - 1} of seed {args.seed}, hostile rate {args.hostile_rate:g}; "
-          f"{commands} commands; {len(flagged)} flagged")
-    print(f"fuzzer (worker process): {n} inputs, {cpu:7.1f} CPU s, {wall:7.1f} wall s: "
-          f"{n / cpu:6.1f} inputs per CPU s, {n / wall:6.1f} per wall s")
-    print(f"reference (in process):  {ref_n} inputs, {ref_cpu:7.1f} CPU s, {ref_wall:7.1f} wall s: "
-          f"{ref_n / ref_cpu:6.1f} inputs per CPU s")
+    print(
+        f"inputs {span[0]}..{span[1] - 1} of seed {args.seed}, hostile rate {args.hostile_rate:g}; "
+        f"{commands} commands; {len(flagged)} flagged"
+    )
+    print(
+        f"fuzzer (worker process): {n} inputs, {cpu:7.1f} CPU s, {wall:7.1f} wall s: "
+        f"{n / cpu:6.1f} inputs per CPU s, {n / wall:6.1f} per wall s"
+    )
+    print(
+        f"reference (in process):  {ref_n} inputs, {ref_cpu:7.1f} CPU s, {ref_wall:7.1f} wall s: "
+        f"{ref_n / ref_cpu:6.1f} inputs per CPU s"
+    )
     print(f"ratio fuzzer/reference CPU per input: {(cpu / n) / (ref_cpu / ref_n):.2f}")
     print(f"100,000 inputs at the fuzzer's rate: {100_000 / (n / cpu) / 3600:.2f} CPU hours")
     print(f"load average after: {' '.join(f'{x:.1f}' for x in os.getloadavg())}")

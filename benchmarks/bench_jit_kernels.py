@@ -49,11 +49,13 @@ F32 = np.float32
 FUNCTIONS = ("_sin", "_cos", "_tan", "_exp2", "_log2", "_pow")
 # the Runtime's own lowerings: kernel name -> (the Runtime method as a render calls it, its NumPy
 # lowering, the number of arguments)
-RUNTIME = {"_atan": (lambda rt: rt.atan, lambda rt: rt._atan, 1),
-           "_atan2": (lambda rt: rt.atan, lambda rt: rt._atan, 2),
-           "_asin": (lambda rt: rt.asin, lambda rt: rt._asin, 1),
-           "_acos": (lambda rt: rt.acos, lambda rt: rt._acos, 1),
-           "_mix": (lambda rt: lambda x, y, a: rt.mix(x, y, a, "fast"), lambda rt: rt._mix_fast, 3)}
+RUNTIME = {
+    "_atan": (lambda rt: rt.atan, lambda rt: rt._atan, 1),
+    "_atan2": (lambda rt: rt.atan, lambda rt: rt._atan, 2),
+    "_asin": (lambda rt: rt.asin, lambda rt: rt._asin, 1),
+    "_acos": (lambda rt: rt.acos, lambda rt: rt._acos, 1),
+    "_mix": (lambda rt: lambda x, y, a: rt.mix(x, y, a, "fast"), lambda rt: rt._mix_fast, 3),
+}
 
 
 def _runtime_arguments(n: int, rng: np.random.Generator, name: str) -> tuple[np.ndarray, ...]:
@@ -65,14 +67,22 @@ def _runtime_arguments(n: int, rng: np.random.Generator, name: str) -> tuple[np.
         a = rng.uniform(-0.5, 1.5, n).astype(F32)
         a[rng.random(n) < 0.2] = rng.choice(np.array([0, 1], F32))
         return rng.uniform(-50, 50, n).astype(F32), rng.uniform(-50, 50, n).astype(F32), a
-    return tuple((rng.uniform(-1, 1, n) * 10.0 ** rng.uniform(-6, 6, n)).astype(F32)
-                 for _ in range(RUNTIME[name][2]))
+    return tuple(
+        (rng.uniform(-1, 1, n) * 10.0 ** rng.uniform(-6, 6, n)).astype(F32)
+        for _ in range(RUNTIME[name][2])
+    )
 
 
 def _public(lp: LlvmpipeMath, name: str):
     """The method a render calls (through the runtime's dispatch to the kernels or NumPy)."""
-    return {"_sin": lambda a: lp.sin_or_cos(a, cos=False), "_cos": lambda a: lp.sin_or_cos(a, cos=True),
-            "_tan": lp.tan, "_exp2": lp.exp2, "_log2": lp.log2, "_pow": lp.pow}[name]
+    return {
+        "_sin": lambda a: lp.sin_or_cos(a, cos=False),
+        "_cos": lambda a: lp.sin_or_cos(a, cos=True),
+        "_tan": lp.tan,
+        "_exp2": lp.exp2,
+        "_log2": lp.log2,
+        "_pow": lp.pow,
+    }[name]
 
 
 def _arguments(n: int, rng: np.random.Generator, name: str) -> tuple[np.ndarray, ...]:
@@ -96,7 +106,7 @@ def _compare(name: str, ref, args: tuple[np.ndarray, ...], fma: bool, kernels) -
     differ = taken = 0
     with np.errstate(all="ignore"):
         for i in range(0, n, 4096):
-            part = tuple(a[i:i + 4096] for a in args)
+            part = tuple(a[i : i + 4096] for a in args)
             before = len(declined)
             got, want = fn(*part), ref(*part)
             taken += part[0].size if len(declined) == before else 0
@@ -110,7 +120,10 @@ def check(n: int) -> None:
     for fma in (True, False):
         lp = LlvmpipeMath(fma)
         for name in FUNCTIONS:
-            ref = (lambda *a, _f=getattr(lp, name): blocked(_f, *a))
+
+            def ref(*a, _f=getattr(lp, name)):
+                return blocked(_f, *a)
+
             print("   " + _compare(name, ref, _arguments(n, rng, name), fma, kernels))
         rt = Runtime("float32", fma=fma)
         for name, (_, ref, _) in RUNTIME.items():
@@ -123,8 +136,10 @@ def _per_call(name: str, n: int, fns: dict, call: tuple[np.ndarray, ...], repeat
     for _ in range(3):
         for m, fn in fns.items():
             t[m] = min(t[m], _best(lambda: fn(*call), repeat, time.process_time))
-    return (f"{name[1:]:5s} {n:6d} lanes: off {t['off'] * 1e6:8.1f} us   on {t['on'] * 1e6:8.1f} us"
-            f"   {t['off'] / t['on']:6.1f}x")
+    return (
+        f"{name[1:]:5s} {n:6d} lanes: off {t['off'] * 1e6:8.1f} us   on {t['on'] * 1e6:8.1f} us"
+        f"   {t['off'] / t['on']:6.1f}x"
+    )
 
 
 def _seconds(code: str, env: dict) -> float:
@@ -137,9 +152,13 @@ def costs() -> None:
     env = dict(os.environ, PYTHONPATH=ROOT)
     base = min(_seconds("import numpy", env) for _ in range(3))
     imp = min(_seconds("import numpy, numba", env) for _ in range(3))
-    print(f"   import numpy {base * 1000:.0f} ms; import numpy, numba {imp * 1000:.0f} ms (+{(imp - base) * 1000:.0f} ms)")
-    load = ("import time; t = time.perf_counter(); from glslcheck.backends.numpy_engine import jit; jit.load(True); "
-            "print(f'{(time.perf_counter() - t) * 1000:.0f} ms', end='')")
+    print(
+        f"   import numpy {base * 1000:.0f} ms; import numpy, numba {imp * 1000:.0f} ms (+{(imp - base) * 1000:.0f} ms)"
+    )
+    load = (
+        "import time; t = time.perf_counter(); from glslcheck.backends.numpy_engine import jit; jit.load(True); "
+        "print(f'{(time.perf_counter() - t) * 1000:.0f} ms', end='')"
+    )
     with tempfile.TemporaryDirectory() as cache:
         env["NUMBA_CACHE_DIR"] = cache
         for what in ("empty cache (compiles)", "from numba's cache"):
@@ -156,13 +175,17 @@ def main() -> int:
     args = ap.parse_args()
     import numba
 
-    print(f"numba {numba.__version__}, NumPy {np.__version__}, FMA {HOST_FMA}; load "
-          f"{' '.join(f'{v:.1f}' for v in os.getloadavg())}")
+    print(
+        f"numba {numba.__version__}, NumPy {np.__version__}, FMA {HOST_FMA}; load "
+        f"{' '.join(f'{v:.1f}' for v in os.getloadavg())}"
+    )
     print("1. cost of the kernels (fresh processes, wall time)")
     costs()
     print("2. bit for bit against LlvmpipeMath's reference")
     check(args.check)
-    print(f"3. CPU time per call, best of {args.repeat} in turns (the public method; ratio = off / on)")
+    print(
+        f"3. CPU time per call, best of {args.repeat} in turns (the public method; ratio = off / on)"
+    )
     rng = np.random.default_rng(7)
     math, runtimes = {}, {}
     for mode in ("off", "on"):
@@ -177,12 +200,27 @@ def main() -> int:
     for n in (int(v) for v in args.lanes.split(",")):
         for name in FUNCTIONS:
             a = rng.uniform(-50, 50, n).astype(F32)
-            call = (a,) if name in ("_sin", "_cos", "_tan") else (np.abs(a) * F32(0.02),) if name != "_pow" \
+            call = (
+                (a,)
+                if name in ("_sin", "_cos", "_tan")
+                else (np.abs(a) * F32(0.02),)
+                if name != "_pow"
                 else (rng.uniform(0, 1, n).astype(F32), np.array([F32(32.0)]))
-            print("   " + _per_call(name, n, {m: _public(lp, name) for m, lp in math.items()}, call, args.repeat))
+            )
+            print(
+                "   "
+                + _per_call(
+                    name, n, {m: _public(lp, name) for m, lp in math.items()}, call, args.repeat
+                )
+            )
         for name, (public, _, _) in RUNTIME.items():
             call = _runtime_arguments(n, rng, name)
-            print("   " + _per_call(name, n, {m: public(rt) for m, rt in runtimes.items()}, call, args.repeat))
+            print(
+                "   "
+                + _per_call(
+                    name, n, {m: public(rt) for m, rt in runtimes.items()}, call, args.repeat
+                )
+            )
     print(f"load at the end {' '.join(f'{v:.1f}' for v in os.getloadavg())}")
     return 0
 

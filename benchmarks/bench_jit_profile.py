@@ -68,8 +68,12 @@ def main() -> int:
         stats = pstats.Stats(prof).stats
         total = sum(v[2] for v in stats.values()) or 1.0
         print(f"== {sid}: CPU {cpu:.2f} s under the profiler, self time {total:.2f} s")
-        for (f, line, name), (_, n, tt, _, _) in sorted(stats.items(), key=lambda kv: -kv[1][2])[:args.top]:
-            print(f"   {tt:6.2f} s {100 * tt / total:5.1f}%  {n:8d} calls  {os.path.basename(f)}:{line} {name}")
+        for (f, line, name), (_, n, tt, _, _) in sorted(stats.items(), key=lambda kv: -kv[1][2])[
+            : args.top
+        ]:
+            print(
+                f"   {tt:6.2f} s {100 * tt / total:5.1f}%  {n:8d} calls  {os.path.basename(f)}:{line} {name}"
+            )
         for (f, _, name), (_, n, tt, _, _) in stats.items():
             key = f"{os.path.basename(f)}:{name}"
             share[key] += tt / total

@@ -39,7 +39,11 @@ SHADERS = {
     "30-raymarch": ("tests/real_verify/texts/30-raymarch.glsl", "100x56", []),
     "36-raymarch": ("tests/real_verify/texts/36-raymarch.glsl", "100x56", []),
     "32-raytrace": ("tests/real_verify/texts/32-raytrace.glsl", "16x9", []),
-    "elephant Buffer A": ("tests/real_channels/texts/elephant/shader.json", "100x56", ["--pass", "Buffer A"]),
+    "elephant Buffer A": (
+        "tests/real_channels/texts/elephant/shader.json",
+        "100x56",
+        ["--pass", "Buffer A"],
+    ),
     "lab 07_final": ("lab_shaders/07_final", "800x450", []),
 }
 
@@ -55,8 +59,26 @@ print(json.dumps({"code": code, "loaded": s.kernels is not None, "load": s.load_
 
 
 def run_once(path: str, size: str, extra: list[str], mode: str, out: str) -> dict:
-    args = [sys.executable, "-c", _RUN, "render", os.path.join(ROOT, path), "--size", size, "--time", "1.7",
-            "--parallel", "threads", "--jit", mode, "--frame-budget", "900", "-o", out, *extra]
+    args = [
+        sys.executable,
+        "-c",
+        _RUN,
+        "render",
+        os.path.join(ROOT, path),
+        "--size",
+        size,
+        "--time",
+        "1.7",
+        "--parallel",
+        "threads",
+        "--jit",
+        mode,
+        "--frame-budget",
+        "900",
+        "-o",
+        out,
+        *extra,
+    ]
     before = resource.getrusage(resource.RUSAGE_CHILDREN)
     t0 = time.perf_counter()
     done = subprocess.run(args, capture_output=True, text=True, cwd=ROOT)
@@ -65,20 +87,27 @@ def run_once(path: str, size: str, extra: list[str], mode: str, out: str) -> dic
     if done.returncode != 0:
         raise SystemExit(f"{path} --jit {mode}: exit {done.returncode}\n{done.stderr}")
     report = json.loads(done.stdout.strip().splitlines()[-1])
-    report.update(wall=wall, cpu=(after.ru_utime - before.ru_utime) + (after.ru_stime - before.ru_stime))
+    report.update(
+        wall=wall, cpu=(after.ru_utime - before.ru_utime) + (after.ru_stime - before.ru_stime)
+    )
     return report
 
 
 def main() -> int:
     ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
-    for flag, kw in (("--runs", dict(type=int, default=3)), ("--modes", dict(default="off,on,auto")),
-                     ("--only", dict(default="", help="comma-separated names of SHADERS"))):
+    for flag, kw in (
+        ("--runs", dict(type=int, default=3)),
+        ("--modes", dict(default="off,on,auto")),
+        ("--only", dict(default="", help="comma-separated names of SHADERS")),
+    ):
         ap.add_argument(flag, **kw)
     args = ap.parse_args()
     modes = args.modes.split(",")
     names = [n for n in SHADERS if not args.only or n in args.only.split(",")]
-    print(f"load {' '.join(f'{v:.1f}' for v in os.getloadavg())}; {args.runs} runs per mode, in turns; "
-          "wall and CPU seconds of the whole process")
+    print(
+        f"load {' '.join(f'{v:.1f}' for v in os.getloadavg())}; {args.runs} runs per mode, in turns; "
+        "wall and CPU seconds of the whole process"
+    )
     failed = 0
     with tempfile.TemporaryDirectory() as tmp:
         for name in names:
@@ -92,20 +121,29 @@ def main() -> int:
                     res[m].append(run_once(path, size, extra, m, os.path.join(tmp, f"{m}.npy")))
             frames = {m: np.load(os.path.join(tmp, f"{m}.npy")) for m in modes}
             ref = frames[modes[0]]
-            differ = {m: int((f.view(np.int32) != ref.view(np.int32)).sum()) for m, f in frames.items()}
+            differ = {
+                m: int((f.view(np.int32) != ref.view(np.int32)).sum()) for m, f in frames.items()
+            }
             print(f"{name} ({size}):")
             base = {k: min(r[k] for r in res[modes[0]]) for k in ("wall", "cpu")}
             for m in modes:
                 best = {k: min(r[k] for r in res[m]) for k in ("wall", "cpu")}
                 med = {k: statistics.median(r[k] for r in res[m]) for k in ("wall", "cpu")}
                 last = res[m][-1]
-                jit = ("kernels loaded in %.2f s after %.2f s of math on NumPy" % (last["load"], last["spent"])
-                       if last["loaded"] else f"no kernels ({last['spent']:.2f} s of math on NumPy counted)")
-                print(f"  {m:4s} wall {best['wall']:7.2f} s (median {med['wall']:7.2f}, x{base['wall'] / best['wall']:.2f})"
-                      f"  cpu {best['cpu']:7.2f} s (median {med['cpu']:7.2f}, x{base['cpu'] / best['cpu']:.2f})"
-                      f"  {jit}; {differ[m]} values differ")
+                jit = (
+                    f"kernels loaded in {last['load']:.2f} s after {last['spent']:.2f} s of math on NumPy"
+                    if last["loaded"]
+                    else f"no kernels ({last['spent']:.2f} s of math on NumPy counted)"
+                )
+                print(
+                    f"  {m:4s} wall {best['wall']:7.2f} s (median {med['wall']:7.2f}, x{base['wall'] / best['wall']:.2f})"
+                    f"  cpu {best['cpu']:7.2f} s (median {med['cpu']:7.2f}, x{base['cpu'] / best['cpu']:.2f})"
+                    f"  {jit}; {differ[m]} values differ"
+                )
                 failed += differ[m] != 0
-    print(f"load at the end {' '.join(f'{v:.1f}' for v in os.getloadavg())}; (xN: {modes[0]}'s best / this mode's best)")
+    print(
+        f"load at the end {' '.join(f'{v:.1f}' for v in os.getloadavg())}; (xN: {modes[0]}'s best / this mode's best)"
+    )
     return 1 if failed else 0
 
 

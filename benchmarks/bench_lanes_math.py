@@ -41,10 +41,27 @@ sys.path.insert(0, os.path.join(os.path.dirname(HERE), "tests", "compiled"))
 from test_lanes_math import DTYPES, SPECS  # noqa: E402 (the functions' argument kinds)
 
 # the range of each function's arguments (as shaders pass them), by name; floats not listed: +-100
-RANGES = {"exp2": (-20, 20), "exp": (-15, 15), "log2": (1e-3, 1e3), "log": (1e-3, 1e3), "pow": (1e-3, 100),
-          "asin": (-1, 1), "acos": (-1, 1), "atanh": (-0.99, 0.99), "acosh": (1, 100), "sinh": (-10, 10),
-          "cosh": (-10, 10), "tanh": (-10, 10), "smoothstep": (-1, 2), "mix_fast": (-1, 2), "inversesqrt": (1e-3, 100),
-          "to_uint_sse": (0, 4e9), "to_uint_avx512": (0, 4e9), "to_uint_arm64": (-10, 4e9), "to_int": (-3e9, 3e9)}
+RANGES = {
+    "exp2": (-20, 20),
+    "exp": (-15, 15),
+    "log2": (1e-3, 1e3),
+    "log": (1e-3, 1e3),
+    "pow": (1e-3, 100),
+    "asin": (-1, 1),
+    "acos": (-1, 1),
+    "atanh": (-0.99, 0.99),
+    "acosh": (1, 100),
+    "sinh": (-10, 10),
+    "cosh": (-10, 10),
+    "tanh": (-10, 10),
+    "smoothstep": (-1, 2),
+    "mix_fast": (-1, 2),
+    "inversesqrt": (1e-3, 100),
+    "to_uint_sse": (0, 4e9),
+    "to_uint_avx512": (0, 4e9),
+    "to_uint_arm64": (-10, 4e9),
+    "to_int": (-3e9, 3e9),
+}
 
 
 def _load() -> str:
@@ -63,10 +80,12 @@ def arguments(name: str, n: int, coherent: bool, rng) -> list[np.ndarray]:
         elif name.endswith(("shl", "shr")) and k == 1:
             v = np.arange(n) % 32 if coherent else rng.integers(0, 32, n)
         else:
-            v = np.arange(n) - n // 2 if coherent else rng.integers(-2**31, 2**31, n)
+            v = np.arange(n) - n // 2 if coherent else rng.integers(-(2**31), 2**31, n)
             if k == 1:
                 v = np.where(v == 0, 7, v if coherent else v % 1000 + 1)
-        cols.append(np.asarray(v).astype(np.int64 if kind != "f" else np.float64).astype(DTYPES[kind]))
+        cols.append(
+            np.asarray(v).astype(np.int64 if kind != "f" else np.float64).astype(DTYPES[kind])
+        )
     return cols
 
 
@@ -81,8 +100,16 @@ def _lanes_loop(f, nargs: int, width: int, fma: bool | None):
     else:
         body = f"    for b in range(out.size // {width}):\n        i = np.uint64(b * {width})\n"
         for x in xs:
-            body += f"        {x}_ = (" + ", ".join(f"{x}[i + np.uint64({j})]" for j in range(width)) + ",)\n"
-        body += "        r = (" + ", ".join(f"f({', '.join(f'{x}_[{j}]' for x in xs)}{tail})" for j in range(width)) + ",)\n"
+            body += (
+                f"        {x}_ = ("
+                + ", ".join(f"{x}[i + np.uint64({j})]" for j in range(width))
+                + ",)\n"
+            )
+        body += (
+            "        r = ("
+            + ", ".join(f"f({', '.join(f'{x}_[{j}]' for x in xs)}{tail})" for j in range(width))
+            + ",)\n"
+        )
         body += "".join(f"        out[i + np.uint64({j})] = r[{j}]\n" for j in range(width))
     g = {"f": f, "np": np, "FMA": fma}
     exec(f"def k({', '.join(xs)}, out):\n{body}", g)
@@ -115,7 +142,9 @@ def _best(kernel, args, out, repeat: int) -> float:
 
 
 def main() -> None:
-    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap = argparse.ArgumentParser(
+        description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter
+    )
     ap.add_argument("--only", default="", help="comma-separated function names (default: all)")
     ap.add_argument("--lanes", type=int, default=1 << 16)
     ap.add_argument("--repeat", type=int, default=7)
@@ -126,9 +155,13 @@ def main() -> None:
 
     names = [n for n in opts.only.split(",") if n] or list(lanes_math.REWRITTEN + lanes_math.AS_IS)
     names = [n for n in names if n in SPECS]
-    print(f"load average at the start: {_load()}; {opts.lanes} lanes, best of {opts.repeat}, FMA {HOST_FMA}")
-    print(f"{'function':18s} {'args':8s} {'scalar':>8s} {'one':>8s} {'W8':>8s} {'W16':>8s}   "
-          f"{'scalar/W8':>9s} {'scalar/W16':>10s} {'scalar/one':>10s}   compile W8 s (scalar, lanes)")
+    print(
+        f"load average at the start: {_load()}; {opts.lanes} lanes, best of {opts.repeat}, FMA {HOST_FMA}"
+    )
+    print(
+        f"{'function':18s} {'args':8s} {'scalar':>8s} {'one':>8s} {'W8':>8s} {'W16':>8s}   "
+        f"{'scalar/W8':>9s} {'scalar/W16':>10s} {'scalar/one':>10s}   compile W8 s (scalar, lanes)"
+    )
     rng = np.random.default_rng(18)
     ratios = []
     for name in names:
@@ -148,14 +181,19 @@ def main() -> None:
             ratios.append((name, coherent, t[0] / t[2], t[0] / t[3]))
             label = "coherent" if coherent else "random"
             comp = f"{ts8:5.1f} {tl8:5.1f}" if coherent else ""
-            print(f"{name:18s} {label:8s} {t[0]:8.2f} {t[1]:8.2f} {t[2]:8.2f} {t[3]:8.2f}   "
-                  f"{t[0] / t[2]:9.2f} {t[0] / t[3]:10.2f} {t[0] / t[1]:10.2f}   {comp}", flush=True)
+            print(
+                f"{name:18s} {label:8s} {t[0]:8.2f} {t[1]:8.2f} {t[2]:8.2f} {t[3]:8.2f}   "
+                f"{t[0] / t[2]:9.2f} {t[0] / t[3]:10.2f} {t[0] / t[1]:10.2f}   {comp}",
+                flush=True,
+            )
     for coherent in (True, False):
         r8 = [r[2] for r in ratios if r[1] == coherent]
         r16 = [r[3] for r in ratios if r[1] == coherent]
         if r8:
-            print(f"geometric mean scalar/W8 {np.exp(np.mean(np.log(r8))):.2f}, scalar/W16 "
-                  f"{np.exp(np.mean(np.log(r16))):.2f} ({'coherent' if coherent else 'random'} arguments)")
+            print(
+                f"geometric mean scalar/W8 {np.exp(np.mean(np.log(r8))):.2f}, scalar/W16 "
+                f"{np.exp(np.mean(np.log(r16))):.2f} ({'coherent' if coherent else 'random'} arguments)"
+            )
     print(f"load average at the end: {_load()}")
 
 

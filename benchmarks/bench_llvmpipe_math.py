@@ -33,11 +33,11 @@ HERE = os.path.dirname(os.path.abspath(__file__))
 ROOT = os.path.dirname(HERE)
 sys.path.insert(0, ROOT)
 
-from glslcheck.base.diagnostics import register_source  # noqa: E402
-from glslcheck.backends.numpy_engine.tiles import TILE_LANES  # noqa: E402
-from glslcheck.backends.numpy_engine.program import compile_numpy  # noqa: E402
 from glslcheck.backends.numpy_engine.llvmpipe_reference import HOST_FMA  # noqa: E402
+from glslcheck.backends.numpy_engine.program import compile_numpy  # noqa: E402
 from glslcheck.backends.numpy_engine.runtime import Runtime  # noqa: E402
+from glslcheck.backends.numpy_engine.tiles import TILE_LANES  # noqa: E402
+from glslcheck.base.diagnostics import register_source  # noqa: E402
 from glslcheck.shadertoy.sources import Shader, Source, load_shader  # noqa: E402
 
 NOISE = """
@@ -73,25 +73,33 @@ def builtins(repeat: int) -> None:
         x = rng.uniform(-100, 100, lanes).astype(np.float32)
         pos = np.abs(x) + np.float32(1e-3)
         y = rng.uniform(-4, 4, x.size).astype(np.float32)
-        cases = [("sin", lambda: rt.sin(x), lambda: np.sin(x)),
-                 ("cos", lambda: rt.cos(x), lambda: np.cos(x)),
-                 ("tan", lambda: rt.tan(x), lambda: np.tan(x)),
-                 ("exp2", lambda: rt.exp2(y), lambda: np.exp2(y)),
-                 ("log2", lambda: rt.log2(pos), lambda: np.log2(pos)),
-                 ("pow", lambda: rt.pow(pos, y), lambda: np.exp2(y * np.log2(pos)))]
-        print(f"1. built-ins on {lanes:,} float32 arguments (FMA CPU: {HOST_FMA}), {calls} call(s), "
-              f"best of {repeat}")
+        cases = [
+            ("sin", lambda: rt.sin(x), lambda: np.sin(x)),
+            ("cos", lambda: rt.cos(x), lambda: np.cos(x)),
+            ("tan", lambda: rt.tan(x), lambda: np.tan(x)),
+            ("exp2", lambda: rt.exp2(y), lambda: np.exp2(y)),
+            ("log2", lambda: rt.log2(pos), lambda: np.log2(pos)),
+            ("pow", lambda: rt.pow(pos, y), lambda: np.exp2(y * np.log2(pos))),
+        ]
+        print(
+            f"1. built-ins on {lanes:,} float32 arguments (FMA CPU: {HOST_FMA}), {calls} call(s), "
+            f"best of {repeat}"
+        )
         with rt.errstate():
             for name, ours, numpy in cases:
                 a = best(lambda: [ours() for _ in range(calls)], repeat) / calls
                 b = best(lambda: [numpy() for _ in range(calls)], repeat) / calls
-                print(f"   {name:<5} emulated {a * 1e3:7.2f} ms   numpy {b * 1e3:6.2f} ms   ratio {a / b:5.1f}x")
+                print(
+                    f"   {name:<5} emulated {a * 1e3:7.2f} ms   numpy {b * 1e3:6.2f} ms   ratio {a / b:5.1f}x"
+                )
 
 
 def frames(repeat: int) -> None:
     register_source("noise/Image.glsl", NOISE)
-    scenes = [("four spheres", load_shader(os.path.join(HERE, "scenes", "four_spheres", "Image.glsl"))),
-              ("value noise", Shader({"Image": Source("noise/Image.glsl", NOISE)}, "noise"))]
+    scenes = [
+        ("four spheres", load_shader(os.path.join(HERE, "scenes", "four_spheres", "Image.glsl"))),
+        ("value noise", Shader({"Image": Source("noise/Image.glsl", NOISE)}, "noise")),
+    ]
     print(f"2. frames at 800x450, best of {repeat} (emulated vs NumPy math, folding off)")
     for name, shader in scenes:
         prog = compile_numpy(shader)
@@ -108,15 +116,21 @@ def frames(repeat: int) -> None:
             rt.lp, rt.fold_constants = (lp, fold) if mode == "emulated" else (None, False)
             timings[mode] = best(render, repeat)
         rt.lp, rt.fold_constants = lp, fold
-        print(f"   {name:<13} emulated {timings['emulated']:6.3f} s   plain {timings['plain']:6.3f} s   "
-              f"ratio {timings['emulated'] / timings['plain']:4.2f}x")
+        print(
+            f"   {name:<13} emulated {timings['emulated']:6.3f} s   plain {timings['plain']:6.3f} s   "
+            f"ratio {timings['emulated'] / timings['plain']:4.2f}x"
+        )
 
 
 def runtime_at(rev: str):
     """glslcheck/backends/numpy_engine/runtime.py as of git revision ``rev``, imported as a sibling
     module of the package (its relative imports resolve to this tree's modules)."""
-    text = subprocess.run(["git", "-C", ROOT, "show", f"{rev}:glslcheck/backends/numpy_engine/runtime.py"],
-                          check=True, capture_output=True, text=True).stdout
+    text = subprocess.run(
+        ["git", "-C", ROOT, "show", f"{rev}:glslcheck/backends/numpy_engine/runtime.py"],
+        check=True,
+        capture_output=True,
+        text=True,
+    ).stdout
     name = "glslcheck.backends.numpy_engine._runtime_at_rev"
     spec = importlib.util.spec_from_loader(name, loader=None)
     mod = importlib.util.module_from_spec(spec)
@@ -129,15 +143,21 @@ def runtime_at(rev: str):
 def against(rev: str, repeat: int) -> None:
     old_lp, new_lp = runtime_at(rev).LlvmpipeMath(), Runtime("float32").lp
     rng = np.random.default_rng(1)
-    print(f"3. LlvmpipeMath of this tree vs {rev}, CPU time per call, best of {repeat} rounds "
-          f"(FMA CPU: {HOST_FMA}; load average {' '.join(f'{v:.1f}' for v in os.getloadavg())})")
+    print(
+        f"3. LlvmpipeMath of this tree vs {rev}, CPU time per call, best of {repeat} rounds "
+        f"(FMA CPU: {HOST_FMA}; load average {' '.join(f'{v:.1f}' for v in os.getloadavg())})"
+    )
     for lanes, calls in ((300, 400), (TILE_LANES, 4)):
         x = rng.uniform(-100, 100, lanes).astype(np.float32)
         pos = np.abs(x) + np.float32(1e-3)
         y = rng.uniform(-4, 4, lanes).astype(np.float32)
-        cases = [("sin", lambda lp: lp.sin_or_cos(x, cos=False)), ("cos", lambda lp: lp.sin_or_cos(x, cos=True)),
-                 ("exp2", lambda lp: lp.exp2(y)), ("log2", lambda lp: lp.log2(pos)),
-                 ("pow", lambda lp: lp.pow(pos, y))]
+        cases = [
+            ("sin", lambda lp: lp.sin_or_cos(x, cos=False)),
+            ("cos", lambda lp: lp.sin_or_cos(x, cos=True)),
+            ("exp2", lambda lp: lp.exp2(y)),
+            ("log2", lambda lp: lp.log2(pos)),
+            ("pow", lambda lp: lp.pow(pos, y)),
+        ]
         with np.errstate(all="ignore"):
             for name, fn in cases:
                 assert np.array_equal(fn(new_lp).view(np.int32), fn(old_lp).view(np.int32)), name
@@ -149,14 +169,18 @@ def against(rev: str, repeat: int) -> None:
                             fn(lp)
                         t[key].append((time.process_time() - c) / calls)
                 a, b = min(t["new"]), min(t["old"])
-                print(f"   {lanes:>6,} lanes {name:<5} this {a * 1e6:8.1f} us   {rev} {b * 1e6:8.1f} us   "
-                      f"ratio {a / b:4.2f}")
+                print(
+                    f"   {lanes:>6,} lanes {name:<5} this {a * 1e6:8.1f} us   {rev} {b * 1e6:8.1f} us   "
+                    f"ratio {a / b:4.2f}"
+                )
 
 
 def main() -> None:
     p = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     p.add_argument("--repeat", type=int, default=5)
-    p.add_argument("--against", metavar="REV", help="compare LlvmpipeMath with git revision REV only")
+    p.add_argument(
+        "--against", metavar="REV", help="compare LlvmpipeMath with git revision REV only"
+    )
     args = p.parse_args()
     if args.against:
         against(args.against, args.repeat)

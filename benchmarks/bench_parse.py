@@ -62,16 +62,24 @@ def main() -> int:
     lines = text.count("\n") + 1
     units = [Source("bench.glsl", text)]
     parse = median_ms(lambda: parse_units(units), args.runs)
-    print(f"machine: {platform.machine()} {os.cpu_count()} cores, Python {platform.python_version()}")
+    print(
+        f"machine: {platform.machine()} {os.cpu_count()} cores, Python {platform.python_version()}"
+    )
     cpu = median_ms(lambda: parse_units(units), args.runs, clock=time.process_time)
-    print(f"load average: {os.getloadavg()[0]:.1f} (other processes on {os.cpu_count()} cores inflate wall times)")
-    print(f"warm preprocess+parse+AST, {lines} lines: {parse:.1f} ms wall, {cpu:.1f} ms CPU (target <= 30 ms)")
+    print(
+        f"load average: {os.getloadavg()[0]:.1f} (other processes on {os.cpu_count()} cores inflate wall times)"
+    )
+    print(
+        f"warm preprocess+parse+AST, {lines} lines: {parse:.1f} ms wall, {cpu:.1f} ms CPU (target <= 30 ms)"
+    )
     try:
         from glslcheck.semantics import check
 
         parsed = parse_units(units)
         check_ms = median_ms(lambda: check(parsed), args.runs)
-        print(f"check on top of parse: {check_ms:.1f} ms = {check_ms / parse:.0%} of parse (target <= 50%)")
+        print(
+            f"check on top of parse: {check_ms:.1f} ms = {check_ms / parse:.0%} of parse (target <= 50%)"
+        )
     except Exception as e:  # the checker may not accept the synthetic program yet
         print(f"check: not measured ({type(e).__name__}: {e})")
     with tempfile.TemporaryDirectory() as tmp:
@@ -83,11 +91,13 @@ def main() -> int:
             t = time.perf_counter()
             subprocess.run([exe, "parse", "-q", str(path)], check=True)
             cli.append(time.perf_counter() - t)
-        print(f"one CLI call `glslcheck parse` on one file: {statistics.median(cli):.3f} s (target <= 0.3 s)")
+        print(
+            f"one CLI call `glslcheck parse` on one file: {statistics.median(cli):.3f} s (target <= 0.3 s)"
+        )
         glslang = shutil.which("glslangValidator")
         if glslang:
-            from glslcheck.shadertoy.wrapper import build_program
             from glslcheck.shadertoy.sources import load_shader
+            from glslcheck.shadertoy.wrapper import build_program
 
             prog = Path(tmp) / "prog.frag"
             prog.write_text(build_program(load_shader(path)).text)
@@ -97,8 +107,10 @@ def main() -> int:
                 subprocess.run([glslang, str(prog)], check=True, capture_output=True)
                 ref.append(time.perf_counter() - t)
             g = statistics.median(ref)
-            print(f"glslangValidator on the same program: {g:.3f} s; glslcheck parse CLI / glslang = "
-                  f"{statistics.median(cli) / g:.1f}x")
+            print(
+                f"glslangValidator on the same program: {g:.3f} s; glslcheck parse CLI / glslang = "
+                f"{statistics.median(cli) / g:.1f}x"
+            )
     return 0
 
 

@@ -39,8 +39,8 @@ from run_all import ms, paired  # noqa: E402
 from glslcheck.backends.numpy_engine.program import NumpyProgram  # noqa: E402
 from glslcheck.backends.numpy_engine.transpile import check_program, transpile  # noqa: E402
 from glslcheck.frontend.parser import parse_shader  # noqa: E402
-from glslcheck.verification.probe import Inputs, Probe  # noqa: E402
 from glslcheck.shadertoy.sources import find_shaders, load_shader  # noqa: E402
+from glslcheck.verification.probe import Inputs, Probe  # noqa: E402
 
 BASE = "6671b61"  # main before glslcheck probe
 FINAL = ROOT / "lab_shaders" / "07_final"
@@ -51,20 +51,25 @@ def child(args: list[str]) -> tuple[float, float]:
     """(wall, CPU) seconds of one glslcheck process."""
     before = resource.getrusage(resource.RUSAGE_CHILDREN)
     t = time.perf_counter()
-    subprocess.run(GLSLCHECK + args, check=True, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL, cwd=ROOT)
+    subprocess.run(
+        GLSLCHECK + args, check=True, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL, cwd=ROOT
+    )
     wall = time.perf_counter() - t
     after = resource.getrusage(resource.RUSAGE_CHILDREN)
     return wall, (after.ru_utime - before.ru_utime) + (after.ru_stime - before.ru_stime)
 
 
 def processes(runs: int) -> None:
-    cmds = {"probe --pixel": ["probe", "lab_shaders/07_final", "--pixel", "400,225"],
-            "check": ["check", "lab_shaders/07_final"]}
+    cmds = {
+        "probe --pixel": ["probe", "lab_shaders/07_final", "--pixel", "400,225"],
+        "check": ["check", "lab_shaders/07_final"],
+    }
     cpu: dict[str, list[float]] = {k: [] for k in cmds}
 
     def one(key):
         def run():
             cpu[key].append(child(cmds[key])[1])
+
         return run
 
     wall = paired({k: one(k) for k in cmds}, runs)
@@ -72,8 +77,10 @@ def processes(runs: int) -> None:
     print("1. whole process, lab_shaders/07_final (target: probe --pixel <= 1 s)")
     for k in cmds:
         print(f"   glslcheck {k:<14} wall {ms(wall[k])}   CPU {ms(cpu_med[k])}")
-    print(f"   probe --pixel / check: wall {wall['probe --pixel'] / wall['check']:.2f}x, "
-          f"CPU {cpu_med['probe --pixel'] / cpu_med['check']:.2f}x")
+    print(
+        f"   probe --pixel / check: wall {wall['probe --pixel'] / wall['check']:.2f}x, "
+        f"CPU {cpu_med['probe --pixel'] / cpu_med['check']:.2f}x"
+    )
 
 
 def nan_scene(folder: Path) -> Path:
@@ -81,13 +88,17 @@ def nan_scene(folder: Path) -> Path:
     (folder / "Common.glsl").write_text((FINAL / "Common.glsl").read_text())
     image = (FINAL / "Image.glsl").read_text().rstrip()
     assert image.endswith("}")
-    (folder / "Image.glsl").write_text(image[:-1] + "    fragColor.rgb *= sqrt(viewport.x + 0.0);\n}\n")
+    (folder / "Image.glsl").write_text(
+        image[:-1] + "    fragColor.rgb *= sqrt(viewport.x + 0.0);\n}\n"
+    )
     return folder
 
 
 def nan_scan(runs: int, folder: Path) -> None:
     inputs = Inputs(size=(800, 450))
-    print("2. probe --nan against one render, 800x450, in process, tiles on threads (target: <= 3x)")
+    print(
+        "2. probe --nan against one render, 800x450, in process, tiles on threads (target: <= 3x)"
+    )
     for name, path in (("07_final", FINAL), ("07_final + NaN left half", nan_scene(folder))):
         probe = Probe(str(path))
         ref = probe.program()
@@ -105,18 +116,27 @@ def nan_scan(runs: int, folder: Path) -> None:
 
         t = paired({"scan": scan, "render": render}, runs)
         r = result[-1]
-        print(f"   {name:<26} --nan {ms(t['scan'])}  render {ms(t['render'])}  ratio {t['scan'] / t['render']:.2f}x"
-              f"   ({r.nan_pixels} NaN pixels, {len(r.origins)} origin(s))")
+        print(
+            f"   {name:<26} --nan {ms(t['scan'])}  render {ms(t['render'])}  ratio {t['scan'] / t['render']:.2f}x"
+            f"   ({r.nan_pixels} NaN pixels, {len(r.origins)} origin(s))"
+        )
 
 
 def base_transpiler():
     """transpile.py as it was at BASE, loaded as a module of the package (relative imports work)."""
-    text = subprocess.run(["git", "show", f"{BASE}:glslcheck/backends/numpy_engine/transpile.py"], cwd=ROOT,
-                          check=True, capture_output=True, text=True).stdout
+    text = subprocess.run(
+        ["git", "show", f"{BASE}:glslcheck/backends/numpy_engine/transpile.py"],
+        cwd=ROOT,
+        check=True,
+        capture_output=True,
+        text=True,
+    ).stdout
     fd, name = tempfile.mkstemp(suffix=".py")
     with os.fdopen(fd, "w") as f:
         f.write(text)
-    spec = importlib.util.spec_from_file_location("glslcheck.backends.numpy_engine._base_transpile", name)
+    spec = importlib.util.spec_from_file_location(
+        "glslcheck.backends.numpy_engine._base_transpile", name
+    )
     mod = importlib.util.module_from_spec(spec)
     sys.modules[spec.name] = mod
     spec.loader.exec_module(mod)
@@ -132,11 +152,16 @@ def unchanged(runs: int) -> None:
         model = check_program(parse_shader(sh, "Image"))
         path = sh.tabs["Image"].path
         same += transpile(model, path).source == base.transpile(model, path).source
-    print(f"3. normal generated module: identical to the transpiler at {BASE} for {same} of {len(shaders)} lab shaders")
+    print(
+        f"3. normal generated module: identical to the transpiler at {BASE} for {same} of {len(shaders)} lab shaders"
+    )
     sh = load_shader(FINAL)
     model = check_program(parse_shader(sh, "Image"))
     progs = {}
-    for key, mod in (("now", sys.modules["glslcheck.backends.numpy_engine.transpile"]), (BASE, base)):
+    for key, mod in (
+        ("now", sys.modules["glslcheck.backends.numpy_engine.transpile"]),
+        (BASE, base),
+    ):
         t = mod.transpile(model, sh.tabs["Image"].path)
         progs[key] = NumpyProgram(t.source, t.meta, t.filename, parallel="threads")
 
@@ -144,18 +169,23 @@ def unchanged(runs: int) -> None:
         def run():
             progs[key]._cache.clear()
             progs[key].render(size=(800, 450))
+
         return run
 
     t = paired({k: render(k) for k in progs}, runs)
-    print(f"   07_final 800x450 render: now {ms(t['now'])}, {BASE} {ms(t[BASE])}, ratio {t['now'] / t[BASE]:.3f}")
+    print(
+        f"   07_final 800x450 render: now {ms(t['now'])}, {BASE} {ms(t[BASE])}, ratio {t['now'] / t[BASE]:.3f}"
+    )
 
 
 def main() -> int:
     ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     ap.add_argument("--runs", type=int, default=5)
     args = ap.parse_args()
-    print(f"python {sys.version.split()[0]}, {os.cpu_count()} CPUs, load average "
-          f"{', '.join(f'{x:.2f}' for x in os.getloadavg())}")
+    print(
+        f"python {sys.version.split()[0]}, {os.cpu_count()} CPUs, load average "
+        f"{', '.join(f'{x:.2f}' for x in os.getloadavg())}"
+    )
     processes(args.runs)
     with tempfile.TemporaryDirectory() as tmp:
         nan_scan(args.runs, Path(tmp))

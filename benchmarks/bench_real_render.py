@@ -36,6 +36,7 @@ from bench_render import _best, _load, frame_time  # noqa: E402
 from glslcheck.base.diagnostics import GlslError  # noqa: E402
 from glslcheck.shadertoy.sources import load_shader  # noqa: E402
 
+
 def measure(path: str, size: tuple[int, int], repeat: int, mode: str) -> dict:
     from glslcheck.backends.gl import compile_gl
     from glslcheck.backends.numpy_engine.program import compile_numpy
@@ -57,7 +58,12 @@ def measure(path: str, size: tuple[int, int], repeat: int, mode: str) -> dict:
 
     numpy_frame()  # warm-up: module execution, thread pool or workers
     gl_frame()
-    t = {"numpy": float("inf"), "gl": float("inf"), "numpy cpu": float("inf"), "gl cpu": float("inf")}
+    t = {
+        "numpy": float("inf"),
+        "gl": float("inf"),
+        "numpy cpu": float("inf"),
+        "gl cpu": float("inf"),
+    }
     for _ in range(repeat):  # in turns
         for name, fn in (("numpy", numpy_frame), ("gl", gl_frame)):
             c0 = time.process_time()  # this process's CPU time: llvmpipe's threads included
@@ -71,20 +77,30 @@ def main() -> int:
     ap.add_argument("--size", default="400x225")
     ap.add_argument("--repeat", type=int, default=3)
     ap.add_argument("--only", default="", help="comma-separated manifest ids")
-    ap.add_argument("--mode", default="threads", choices=("threads", "processes", "one"),
-                    help="NumPy on threads of this process (what a one-frame render uses), worker processes, "
-                         "or one thread")
+    ap.add_argument(
+        "--mode",
+        default="threads",
+        choices=("threads", "processes", "one"),
+        help="NumPy on threads of this process (what a one-frame render uses), worker processes, "
+        "or one thread",
+    )
     ap.add_argument("--json", help="write the per-shader figures here")
-    ap.add_argument("--set", choices=tuple(real_verify.SETS),
-                    help="tools/real_verify.py's corpus: main (tuned on; the default, or REAL_VERIFY_SET) or holdout")
+    ap.add_argument(
+        "--set",
+        choices=tuple(real_verify.SETS),
+        help="tools/real_verify.py's corpus: main (tuned on; the default, or REAL_VERIFY_SET) or holdout",
+    )
     args = ap.parse_args()
     if args.set:
         real_verify.select(args.set)
     size = tuple(int(v) for v in args.size.split("x"))
     only = {s for s in args.only.split(",") if s}
     entries = [e for e in real_verify.load_manifest() if not only or e["id"] in only]
-    print(f"corpus {os.environ['REAL_VERIFY_SET']}: NumPy ({args.mode}) against GL at {size[0]}x{size[1]}, best of {args.repeat}; "
-          f"load {_load()} (1/5/15-minute load average)", flush=True)
+    print(
+        f"corpus {os.environ['REAL_VERIFY_SET']}: NumPy ({args.mode}) against GL at {size[0]}x{size[1]}, best of {args.repeat}; "
+        f"load {_load()} (1/5/15-minute load average)",
+        flush=True,
+    )
     results, skipped = {}, {}
     for e in entries:
         path = real_verify.text_path(e)
@@ -92,16 +108,26 @@ def main() -> int:
             skipped[e["id"]] = "not fetched"
             continue
         try:
-            results[e["id"]] = r = dict(measure(str(path), size, args.repeat, args.mode), kind=e.get("kind", ""))
-            print(f"  ({e['id']}: {r['ratio']:.2f}x, CPU {r['cpu_ratio']:.2f}x, load {_load()})", flush=True)
+            results[e["id"]] = r = dict(
+                measure(str(path), size, args.repeat, args.mode), kind=e.get("kind", "")
+            )
+            print(
+                f"  ({e['id']}: {r['ratio']:.2f}x, CPU {r['cpu_ratio']:.2f}x, load {_load()})",
+                flush=True,
+            )
         except GlslError as err:
             skipped[e["id"]] = str(err).splitlines()[0][:100]
         except Exception as err:  # a shader the GL driver rejects, ...
-            skipped[e["id"]] = f"{type(err).__name__}: {str(err).splitlines()[0][:100] if str(err) else ''}"
+            skipped[e["id"]] = (
+                f"{type(err).__name__}: {str(err).splitlines()[0][:100] if str(err) else ''}"
+            )
     for sid, r in sorted(results.items(), key=lambda kv: -kv[1]["ratio"]):
-        print(f"  {sid:22s} {r['kind']:16s} numpy {r['numpy'] * 1000:8.1f} ms  gl {r['gl'] * 1000:7.1f} ms  "
-              f"{r['ratio']:6.2f}x   CPU numpy {r['numpy cpu'] * 1000:8.1f} ms  gl {r['gl cpu'] * 1000:7.1f} ms  "
-              f"{r['cpu_ratio']:6.2f}x", flush=True)
+        print(
+            f"  {sid:22s} {r['kind']:16s} numpy {r['numpy'] * 1000:8.1f} ms  gl {r['gl'] * 1000:7.1f} ms  "
+            f"{r['ratio']:6.2f}x   CPU numpy {r['numpy cpu'] * 1000:8.1f} ms  gl {r['gl cpu'] * 1000:7.1f} ms  "
+            f"{r['cpu_ratio']:6.2f}x",
+            flush=True,
+        )
     for sid, why in skipped.items():
         print(f"  {sid:22s} not timed: {why}")
     for key, what in (("ratio", "wall time"), ("cpu_ratio", "CPU time")):
@@ -109,8 +135,10 @@ def main() -> int:
             break
         geo = math.exp(sum(math.log(r[key]) for r in results.values()) / len(results))
         worst = max(results.items(), key=lambda kv: kv[1][key])
-        print(f"{what}: {len(results)} shaders, geometric mean {geo:.2f}x (target 1.5x); worst {worst[0]} "
-              f"{worst[1][key]:.1f}x (target 6x); over 6x: {sum(r[key] > 6 for r in results.values())}")
+        print(
+            f"{what}: {len(results)} shaders, geometric mean {geo:.2f}x (target 1.5x); worst {worst[0]} "
+            f"{worst[1][key]:.1f}x (target 6x); over 6x: {sum(r[key] > 6 for r in results.values())}"
+        )
     print(f"load at the end {_load()}")
     if args.json:
         with open(args.json, "w") as f:

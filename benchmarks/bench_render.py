@@ -33,15 +33,13 @@ import subprocess
 import sys
 import time
 
-import numpy as np
-
 HERE = os.path.dirname(os.path.abspath(__file__))
 ROOT = os.path.dirname(HERE)
 sys.path.insert(0, ROOT)
 
-from glslcheck.shadertoy.sources import Shader, Source, load_shader  # noqa: E402
-from glslcheck.base.diagnostics import register_source  # noqa: E402
 from glslcheck.backends.numpy_engine.program import compile_numpy  # noqa: E402
+from glslcheck.base.diagnostics import register_source  # noqa: E402
+from glslcheck.shadertoy.sources import Shader, Source, load_shader  # noqa: E402
 
 SCENE = os.path.join(HERE, "scenes", "four_spheres", "Image.glsl")
 FINAL = os.path.join(ROOT, "lab_shaders", "07_final")
@@ -66,7 +64,10 @@ def _best(fn, repeat: int, clock=time.perf_counter) -> float:
     return best
 
 
-MODES = ("processes", "threads")  # NumpyProgram.parallel: worker processes, or threads of this process
+MODES = (
+    "processes",
+    "threads",
+)  # NumpyProgram.parallel: worker processes, or threads of this process
 
 
 _FRAMES = itertools.count()
@@ -145,9 +146,11 @@ def speed(repeat: int) -> None:
 
     from glslcheck.backends.gl import compile_gl, renderer_name
 
-    print(f"== speed at {SIZE[0]}x{SIZE[1]} (best and median of {repeat}, in turns); GL: {renderer_name()}; "
-          f"NumPy on {os.cpu_count()} worker processes and on {os.cpu_count()} threads; "
-          f"load {_load()} (1/5/15-minute load average)")
+    print(
+        f"== speed at {SIZE[0]}x{SIZE[1]} (best and median of {repeat}, in turns); GL: {renderer_name()}; "
+        f"NumPy on {os.cpu_count()} worker processes and on {os.cpu_count()} threads; "
+        f"load {_load()} (1/5/15-minute load average)"
+    )
     for name, folder in SCENES:
         if not os.path.isdir(folder):
             continue
@@ -168,10 +171,12 @@ def speed(repeat: int) -> None:
             t["gl cpu"].append(time.process_time() - c0)
         for how, pick in (("best", min), ("median", statistics.median)):
             v = {k: pick(x) for k, x in t.items()}
-            print(f"{name:40s} {how:6s} gl {v['gl'] * 1000:6.1f} ms   numpy processes {v['processes'] * 1000:6.1f} ms "
-                  f"= {v['processes'] / v['gl']:5.2f}x   threads {v['threads'] * 1000:6.1f} ms "
-                  f"= {v['threads'] / v['gl']:5.2f}x   CPU: numpy one thread {v['cpu'] * 1000:6.1f} ms, "
-                  f"gl {v['gl cpu'] * 1000:6.1f} ms = {v['cpu'] / v['gl cpu']:5.2f}x")
+            print(
+                f"{name:40s} {how:6s} gl {v['gl'] * 1000:6.1f} ms   numpy processes {v['processes'] * 1000:6.1f} ms "
+                f"= {v['processes'] / v['gl']:5.2f}x   threads {v['threads'] * 1000:6.1f} ms "
+                f"= {v['threads'] / v['gl']:5.2f}x   CPU: numpy one thread {v['cpu'] * 1000:6.1f} ms, "
+                f"gl {v['gl cpu'] * 1000:6.1f} ms = {v['cpu'] / v['gl cpu']:5.2f}x"
+            )
     print(f"(floor 6x, target 3x); load at the end {_load()}")
 
 
@@ -204,12 +209,16 @@ def coverage(repeat: int) -> None:
             t[label, "cpu"] = min(t[label, "cpu"], _numpy_cpu_time(prog, 1, warm=False))
             t[label, "gl"] = min(t[label, "gl"], _best(lambda: gls[label].render(size=SIZE), 1))
     for label in progs:
-        print(f"{label:6s} spheres cover {cov[label] * 100:5.1f}% of the pixels: processes "
-              f"{t[label, 'processes'] * 1000:5.1f} ms, threads {t[label, 'threads'] * 1000:5.1f} ms, "
-              f"one thread {t[label, 'cpu'] * 1000:5.1f} ms CPU; gl {t[label, 'gl'] * 1000:5.1f} ms")
+        print(
+            f"{label:6s} spheres cover {cov[label] * 100:5.1f}% of the pixels: processes "
+            f"{t[label, 'processes'] * 1000:5.1f} ms, threads {t[label, 'threads'] * 1000:5.1f} ms, "
+            f"one thread {t[label, 'cpu'] * 1000:5.1f} ms CPU; gl {t[label, 'gl'] * 1000:5.1f} ms"
+        )
     r = {k: t["small", k] / t["large", k] for k in keys}
-    print(f"time(small) / time(large) on processes = {r['processes']:.1%} (target <= 35%); "
-          f"threads {r['threads']:.0%}; one-thread CPU {r['cpu']:.0%}; llvmpipe for reference {r['gl']:.0%}")
+    print(
+        f"time(small) / time(large) on processes = {r['processes']:.1%} (target <= 35%); "
+        f"threads {r['threads']:.0%}; one-thread CPU {r['cpu']:.0%}; llvmpipe for reference {r['gl']:.0%}"
+    )
 
 
 _MEMORY_CHILD = """
@@ -239,13 +248,21 @@ def memory() -> None:
     the largest worker times their number on top (an upper bound on their sum)."""
     print("== memory of a 3840x2160 render (fresh process)")
     for mode in ("threads", "processes"):
-        out = subprocess.run([sys.executable, "-c", _MEMORY_CHILD.format(root=ROOT, scene=SCENE, mode=mode)],
-                             capture_output=True, text=True, check=True).stdout.split()
+        out = subprocess.run(
+            [sys.executable, "-c", _MEMORY_CHILD.format(root=ROOT, scene=SCENE, mode=mode)],
+            capture_output=True,
+            text=True,
+            check=True,
+        ).stdout.split()
         seconds, traced, rss, kids = float(out[-4]), int(out[-3]), int(out[-2]), int(out[-1])
         total = rss + (kids * (os.cpu_count() or 1) if mode == "processes" else 0)
-        extra = f" + workers {os.cpu_count()} x {kids / 2**20:.0f} MiB" if mode == "processes" else ""
-        print(f"{mode:9s}: render {seconds:.2f} s; tracemalloc peak {traced / 2**20:.0f} MiB; peak resident "
-              f"{rss / 2**20:.0f} MiB{extra} = {total / 2**20:.0f} MiB (limit 2048 MiB)")
+        extra = (
+            f" + workers {os.cpu_count()} x {kids / 2**20:.0f} MiB" if mode == "processes" else ""
+        )
+        print(
+            f"{mode:9s}: render {seconds:.2f} s; tracemalloc peak {traced / 2**20:.0f} MiB; peak resident "
+            f"{rss / 2**20:.0f} MiB{extra} = {total / 2**20:.0f} MiB (limit 2048 MiB)"
+        )
 
 
 def main() -> int:

@@ -51,8 +51,13 @@ LAB = ROOT / "lab_shaders"
 FILE = LAB / "bonus_animated_lights" / "Common.glsl"
 
 
-def paired(commands: dict[str, list[str]], runs: int, env: dict[str, str],
-           extra: dict[str, dict[str, str]] | None = None, cwd: Path | None = None) -> dict[str, tuple[float, float]]:
+def paired(
+    commands: dict[str, list[str]],
+    runs: int,
+    env: dict[str, str],
+    extra: dict[str, dict[str, str]] | None = None,
+    cwd: Path | None = None,
+) -> dict[str, tuple[float, float]]:
     """Median (wall, CPU) seconds of each command: one warm-up each, then `runs` rounds running
     each once. CPU is the child's user + system time (and its own children's): on a machine
     shared with other jobs the wall time also counts waiting for a core, the CPU time does not
@@ -62,12 +67,21 @@ def paired(commands: dict[str, list[str]], runs: int, env: dict[str, str],
     def once(name: str, cmd: list[str]) -> tuple[float, float]:
         before = resource.getrusage(resource.RUSAGE_CHILDREN)
         t = time.perf_counter()
-        done = subprocess.run(cmd, env={**env, **(extra or {}).get(name, {})}, cwd=cwd,
-                              stdout=subprocess.DEVNULL, stderr=subprocess.PIPE)
+        done = subprocess.run(
+            cmd,
+            env={**env, **(extra or {}).get(name, {})},
+            cwd=cwd,
+            stdout=subprocess.DEVNULL,
+            stderr=subprocess.PIPE,
+        )
         elapsed = time.perf_counter() - t
         after = resource.getrusage(resource.RUSAGE_CHILDREN)
-        if done.returncode not in (0, 1) or b"Traceback" in done.stderr:  # 1: findings, a normal outcome
-            raise SystemExit(f"{' '.join(cmd)} failed ({done.returncode}):\n{done.stderr.decode()[-2000:]}")
+        if (
+            done.returncode not in (0, 1) or b"Traceback" in done.stderr
+        ):  # 1: findings, a normal outcome
+            raise SystemExit(
+                f"{' '.join(cmd)} failed ({done.returncode}):\n{done.stderr.decode()[-2000:]}"
+            )
         cpu = (after.ru_utime - before.ru_utime) + (after.ru_stime - before.ru_stime)
         return elapsed, cpu
 
@@ -77,18 +91,23 @@ def paired(commands: dict[str, list[str]], runs: int, env: dict[str, str],
     for _ in range(runs):
         for k, cmd in commands.items():
             times[k].append(once(k, cmd))
-    return {k: (statistics.median(w for w, _ in v), statistics.median(c for _, c in v)) for k, v in times.items()}
+    return {
+        k: (statistics.median(w for w, _ in v), statistics.median(c for _, c in v))
+        for k, v in times.items()
+    }
 
 
 def _programs(paths: list[Path], tmp: Path) -> list[str]:
     """Each Shadertoy program of the shaders under `paths`, wrapped as Shadertoy compiles it
     (Common alone, then Common + each other tab), written as .frag files for glslangValidator."""
-    from glslcheck.shadertoy.wrapper import build_program
     from glslcheck.shadertoy.sources import find_shaders
+    from glslcheck.shadertoy.wrapper import build_program
 
     files = []
     for shader in find_shaders([str(p) for p in paths]):
-        tabs = (["Common"] if shader.common is not None else []) + [t for t in shader.tabs if t != "Common"]
+        tabs = (["Common"] if shader.common is not None else []) + [
+            t for t in shader.tabs if t != "Common"
+        ]
         for tab in tabs:
             f = tmp / f"{len(files):02d}_{Path(shader.root).name}_{tab.replace(' ', '_')}.frag"
             f.write_text(build_program(shader, tab).text)
@@ -113,44 +132,101 @@ def _installed(tmp: Path) -> tuple[list[str], dict[str, str]]:
     dev venv's editable-install import hook (tens of milliseconds of `site` at every start).
     Lint and check need none of the dependencies (test_import_hygiene.py), so none is installed."""
     wheels = tmp / "wheel"
-    subprocess.run([sys.executable, "-m", "pip", "wheel", "--no-deps", "--no-build-isolation", "-q",
-                    "-w", str(wheels), str(ROOT)], check=True, capture_output=True)
+    subprocess.run(
+        [
+            sys.executable,
+            "-m",
+            "pip",
+            "wheel",
+            "--no-deps",
+            "--no-build-isolation",
+            "-q",
+            "-w",
+            str(wheels),
+            str(ROOT),
+        ],
+        check=True,
+        capture_output=True,
+    )
     (wheel,) = wheels.glob("glslcheck-*.whl")
     venv = tmp / "hook-venv"
     base = getattr(sys, "_base_executable", sys.executable)
     subprocess.run([base, "-m", "venv", "--without-pip", str(venv)], check=True)
     python = venv / "bin" / "python"
-    site = subprocess.run([str(python), "-c", "import sysconfig; print(sysconfig.get_paths()['purelib'])"],
-                          check=True, capture_output=True, text=True).stdout.strip()
+    site = subprocess.run(
+        [str(python), "-c", "import sysconfig; print(sysconfig.get_paths()['purelib'])"],
+        check=True,
+        capture_output=True,
+        text=True,
+    ).stdout.strip()
     with zipfile.ZipFile(wheel) as z:
         z.extractall(site)
     subprocess.run([str(python), "-m", "compileall", "-q", site], check=True)
     env = dict(os.environ)
     env.pop("PYTHONDONTWRITEBYTECODE", None)
     # -P: not the current folder first on sys.path (it would be this checkout's glslcheck/).
-    return [str(python), "-P", "-c", "import sys; from glslcheck.cli.main import main; sys.exit(main())"], env
+    return [
+        str(python),
+        "-P",
+        "-c",
+        "import sys; from glslcheck.cli.main import main; sys.exit(main())",
+    ], env
 
 
-def _section(title: str, exe: list[str], python: list[str], env: dict[str, str], glslang: str,
-             one: list[str], lab: list[str], runs: int, where: Path = ROOT) -> None:
+def _section(
+    title: str,
+    exe: list[str],
+    python: list[str],
+    env: dict[str, str],
+    glslang: str,
+    one: list[str],
+    lab: list[str],
+    runs: int,
+    where: Path = ROOT,
+) -> None:
     file, folder = where / FILE.relative_to(ROOT), where / LAB.relative_to(ROOT)
     lines = file.read_text().count("\n")
     rows = [
         (f"lint FILE ({lines} lines)", [*exe, "lint", str(file)], [glslang, *one], 0.150, {}),
         (f"check FILE ({lines} lines)", [*exe, "check", str(file)], [glslang, *one], None, {}),
-        (f"lint lab_shaders ({len(lab)} programs)", [*exe, "lint", str(folder)], [glslang, *lab], 0.5, {}),
-        ("  ... GLSLCHECK_JOBS=1 (one process)", [*exe, "lint", str(folder)], [glslang, *lab], 0.5,
-         {"ours": {"GLSLCHECK_JOBS": "1"}}),
-        (f"check lab_shaders ({len(lab)} programs)", [*exe, "check", str(folder)], [glslang, *lab], None, {}),
+        (
+            f"lint lab_shaders ({len(lab)} programs)",
+            [*exe, "lint", str(folder)],
+            [glslang, *lab],
+            0.5,
+            {},
+        ),
+        (
+            "  ... GLSLCHECK_JOBS=1 (one process)",
+            [*exe, "lint", str(folder)],
+            [glslang, *lab],
+            0.5,
+            {"ours": {"GLSLCHECK_JOBS": "1"}},
+        ),
+        (
+            f"check lab_shaders ({len(lab)} programs)",
+            [*exe, "check", str(folder)],
+            [glslang, *lab],
+            None,
+            {},
+        ),
     ]
     print(f"{title} (load {_load()})")
-    print(f"   {'whole process: wall time (CPU time)':40s} {'glslcheck':>19s} {'glslang':>19s}   ratio (CPU)   target")
+    print(
+        f"   {'whole process: wall time (CPU time)':40s} {'glslcheck':>19s} {'glslang':>19s}   ratio (CPU)   target"
+    )
     for label, ours, theirs, target, extra in rows:
         t = paired({"ours": ours, "glslang": theirs}, runs, env, extra, cwd=where)
         (wall, cpu), (ref_wall, ref_cpu) = t["ours"], t["glslang"]
-        verdict = "" if target is None else f"{target * 1000:4.0f} ms {'met' if wall <= target else 'missed'}"
-        print(f"   {label:40s} {_ms(wall, cpu)} {_ms(ref_wall, ref_cpu)}  {wall / ref_wall:5.2f}x ({cpu / ref_cpu:5.2f}x)"
-              f"   {verdict}")
+        verdict = (
+            ""
+            if target is None
+            else f"{target * 1000:4.0f} ms {'met' if wall <= target else 'missed'}"
+        )
+        print(
+            f"   {label:40s} {_ms(wall, cpu)} {_ms(ref_wall, ref_cpu)}  {wall / ref_wall:5.2f}x ({cpu / ref_cpu:5.2f}x)"
+            f"   {verdict}"
+        )
     floor = paired({"python -c pass": [*python, "-c", "pass"]}, runs, env, cwd=where)
     for label, (wall, cpu) in floor.items():
         print(f"   {label:40s} {_ms(wall, cpu)}   (the interpreter alone)")
@@ -159,10 +235,15 @@ def _section(title: str, exe: list[str], python: list[str], env: dict[str, str],
 def main() -> int:
     ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     ap.add_argument("--runs", type=int, default=21)
-    ap.add_argument("--no-pyc", action="store_true", help="compile every module from source at each start")
+    ap.add_argument(
+        "--no-pyc", action="store_true", help="compile every module from source at each start"
+    )
     ap.add_argument("--only", choices=("venv", "installed"), help="measure one of the two set-ups")
-    ap.add_argument("--outside", action="store_true",
-                    help="copy the lab into a temporary folder and run there (no pyproject.toml above it)")
+    ap.add_argument(
+        "--outside",
+        action="store_true",
+        help="copy the lab into a temporary folder and run there (no pyproject.toml above it)",
+    )
     args = ap.parse_args()
     glslang = shutil.which("glslangValidator")
     if not glslang:
@@ -170,9 +251,11 @@ def main() -> int:
         return 2
     exe = shutil.which("glslcheck") or str(Path(sys.executable).with_name("glslcheck"))
     python = str(Path(exe).with_name("python"))
-    print(f"glslcheck start-up (benchmarks/bench_startup.py, median of {args.runs} runs, "
-          f"{'no .pyc: compiled from source' if args.no_pyc else 'with .pyc'}; {os.cpu_count()} cores; "
-          f"load = 1/5/15-minute load average)")
+    print(
+        f"glslcheck start-up (benchmarks/bench_startup.py, median of {args.runs} runs, "
+        f"{'no .pyc: compiled from source' if args.no_pyc else 'with .pyc'}; {os.cpu_count()} cores; "
+        f"load = 1/5/15-minute load average)"
+    )
     with tempfile.TemporaryDirectory() as tmp:
         tmp = Path(tmp)
         one = _programs([FILE], tmp)
@@ -184,19 +267,41 @@ def main() -> int:
         if args.outside:
             where = tmp / "student-repo"
             shutil.copytree(LAB, where / LAB.relative_to(ROOT))
-            print(f"shaders copied to {where} (no pyproject.toml above it), commands run from there")
+            print(
+                f"shaders copied to {where} (no pyproject.toml above it), commands run from there"
+            )
         if args.no_pyc:
             env.update(PYTHONDONTWRITEBYTECODE="1", PYTHONPYCACHEPREFIX=str(tmp / "no-pyc"))
         if args.only in (None, "venv"):
-            _section(f"1. the dev venv's `glslcheck` (editable install: `make setup`)", [exe], [python], env,
-                     glslang, one, lab, args.runs, where)
+            _section(
+                "1. the dev venv's `glslcheck` (editable install: `make setup`)",
+                [exe],
+                [python],
+                env,
+                glslang,
+                one,
+                lab,
+                args.runs,
+                where,
+            )
         if args.only in (None, "installed"):
             command, installed_env = _installed(tmp)
             if args.no_pyc:
-                installed_env.update(PYTHONDONTWRITEBYTECODE="1", PYTHONPYCACHEPREFIX=str(tmp / "no-pyc"))
+                installed_env.update(
+                    PYTHONDONTWRITEBYTECODE="1", PYTHONPYCACHEPREFIX=str(tmp / "no-pyc")
+                )
             installed_env.pop("GLSLCHECK_JOBS", None)
-            _section("2. installed from the wheel (what a pre-commit hook's environment runs)", command,
-                     command[:2], installed_env, glslang, one, lab, args.runs, where)
+            _section(
+                "2. installed from the wheel (what a pre-commit hook's environment runs)",
+                command,
+                command[:2],
+                installed_env,
+                glslang,
+                one,
+                lab,
+                args.runs,
+                where,
+            )
     print(f"load at the end {_load()}")
     return 0
 

@@ -58,13 +58,21 @@ def _run(path: str, size: str, frames: int, lanes: str | None, cache: str) -> di
     env.pop("GLSLCHECK_COMPILED_LANES", None)
     if lanes is not None:
         env["GLSLCHECK_COMPILED_LANES"] = lanes
-    out = subprocess.run([sys.executable, "-c", RUN, path, size, str(frames)], env=env, cwd=ROOT,
-                         capture_output=True, text=True, check=True)
+    out = subprocess.run(
+        [sys.executable, "-c", RUN, path, size, str(frames)],
+        env=env,
+        cwd=ROOT,
+        capture_output=True,
+        text=True,
+        check=True,
+    )
     return json.loads(out.stdout.strip().splitlines()[-1])
 
 
 def main() -> int:
-    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap = argparse.ArgumentParser(
+        description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter
+    )
     ap.add_argument("--size", default="400x225")
     ap.add_argument("--frames", default="1,30")
     ap.add_argument("--only", default=DEFAULT)
@@ -88,9 +96,12 @@ def main() -> int:
             best = min(got["pixel"]["seconds"], got["lanes8"]["seconds"])
             over = got["tiers"]["seconds"] / best
             worst = max(worst, over)
-            print(f"  {name:24s} {frames:4d} frames  per pixel {got['pixel']['seconds']:7.1f} s  "
-                  f"lockstep {got['lanes8']['seconds']:7.1f} s  tiers {got['tiers']['seconds']:7.1f} s "
-                  f"(ended {got['tiers']['mode']})  tiers / better {over:.2f}", flush=True)
+            print(
+                f"  {name:24s} {frames:4d} frames  per pixel {got['pixel']['seconds']:7.1f} s  "
+                f"lockstep {got['lanes8']['seconds']:7.1f} s  tiers {got['tiers']['seconds']:7.1f} s "
+                f"(ended {got['tiers']['mode']})  tiers / better {over:.2f}",
+                flush=True,
+            )
     print(f"worst tiers / better mode alone: {worst:.2f}")
     print(f"load average at end: {' '.join(f'{x:.1f}' for x in os.getloadavg())}")
     shutil.rmtree(base, ignore_errors=True)

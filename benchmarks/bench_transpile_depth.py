@@ -23,10 +23,10 @@ from pathlib import Path
 ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT))
 
-from glslcheck.semantics import check  # noqa: E402
 from glslcheck.backends.numpy_engine.transpile import transpile  # noqa: E402
-from glslcheck.frontend.parser import parse_shader  # noqa: E402
 from glslcheck.base.diagnostics import register_source  # noqa: E402
+from glslcheck.frontend.parser import parse_shader  # noqa: E402
+from glslcheck.semantics import check  # noqa: E402
 from glslcheck.shadertoy.sources import Shader, Source  # noqa: E402
 
 MAIN = "void mainImage(out vec4 c, in vec2 p) {\n    float v = 0.0;\n    "
@@ -45,7 +45,12 @@ def ifs(n: int) -> str:
 
 
 def else_ifs(n: int) -> str:
-    return MAIN + "if (p.x < 0.0) v = 0.0;" + "".join(f" else if (p.x < {k}.0) v = {k}.0;" for k in range(1, n)) + END
+    return (
+        MAIN
+        + "if (p.x < 0.0) v = 0.0;"
+        + "".join(f" else if (p.x < {k}.0) v = {k}.0;" for k in range(1, n))
+        + END
+    )
 
 
 def parens(n: int) -> str:
@@ -53,7 +58,12 @@ def parens(n: int) -> str:
 
 
 def loops(n: int) -> str:
-    return MAIN + "".join(f"for (int i{k} = 0; i{k} < 1; i{k}++) {{ v += 1.0; " for k in range(n)) + "}" * n + END
+    return (
+        MAIN
+        + "".join(f"for (int i{k} = 0; i{k} < 1; i{k}++) {{ v += 1.0; " for k in range(n))
+        + "}" * n
+        + END
+    )
 
 
 def flat(n: int) -> str:
@@ -61,7 +71,13 @@ def flat(n: int) -> str:
     return MAIN + "".join(f"if (p.x > {k % 7}.0) {{ v += 1.0; }}\n    " for k in range(n)) + END
 
 
-SHAPES = {"ternaries": ternaries, "ifs": ifs, "else-ifs": else_ifs, "parens": parens, "loops": loops}
+SHAPES = {
+    "ternaries": ternaries,
+    "ifs": ifs,
+    "else-ifs": else_ifs,
+    "parens": parens,
+    "loops": loops,
+}
 
 
 def transpile_seconds(text: str, runs: int) -> float:
@@ -82,7 +98,9 @@ def main() -> int:
     p.add_argument("--depths", default="25,50,100,200,400")
     args = p.parse_args()
     depths = [int(d) for d in args.depths.split(",")]
-    print(f"# {platform.processor() or platform.machine()}, Python {platform.python_version()}; best of {args.runs}")
+    print(
+        f"# {platform.processor() or platform.machine()}, Python {platform.python_version()}; best of {args.runs}"
+    )
     print(f"{'shape':<10} {'depth':>6} {'seconds':>9} {'ms/level':>9} {'vs flat':>8}")
     ref = {n: transpile_seconds(flat(n), args.runs) for n in depths}
     for n in depths:

@@ -28,10 +28,10 @@ HERE = os.path.dirname(os.path.abspath(__file__))
 ROOT = os.path.dirname(HERE)
 sys.path.insert(0, ROOT)
 
-from glslcheck.base.diagnostics import register_source  # noqa: E402
 from glslcheck.backends.gl import compile_gl, renderer_name  # noqa: E402
-from glslcheck.shadertoy.sources import Shader, Source, load_shader  # noqa: E402
 from glslcheck.backends.webgl import Browser, close_browser, compile_webgl, get_browser  # noqa: E402
+from glslcheck.base.diagnostics import register_source  # noqa: E402
+from glslcheck.shadertoy.sources import Shader, Source, load_shader  # noqa: E402
 
 SHADERS = ("07_final", "01_spheres_procedural")
 SIZES = ((160, 90), (320, 180), (800, 450))
@@ -83,9 +83,11 @@ def main() -> int:
         b.close()
     start = statistics.median(starts)
     print(f"WebGL: {info['renderer']}")
-    print("\n1. browser start-up (Playwright driver + Chromium + page + WebGL2 context), "
-          f"median of {args.starts}: {start * 1000:.0f} ms = {start / one_gl:.0f} GL frames of 07_final at 800x450 "
-          f"({one_gl * 1000:.1f} ms each, same run); starts: {', '.join(f'{s * 1000:.0f}' for s in starts)} ms")
+    print(
+        "\n1. browser start-up (Playwright driver + Chromium + page + WebGL2 context), "
+        f"median of {args.starts}: {start * 1000:.0f} ms = {start / one_gl:.0f} GL frames of 07_final at 800x450 "
+        f"({one_gl * 1000:.1f} ms each, same run); starts: {', '.join(f'{s * 1000:.0f}' for s in starts)} ms"
+    )
 
     get_browser()
     print(f"\n2. render time per frame, median of {args.runs} in turns (ms); ratio = webgl / gl")
@@ -95,18 +97,30 @@ def main() -> int:
         shader = load_shader(os.path.join(ROOT, "lab_shaders", name))
         gl, webgl = compile_gl(shader), compile_webgl(shader)
         for size in SIZES:
-            t = _in_turns({"gl": lambda: gl.render(size=size), "webgl": lambda: webgl.render(size=size)}, args.runs)
+            t = _in_turns(
+                {"gl": lambda: gl.render(size=size), "webgl": lambda: webgl.render(size=size)},
+                args.runs,
+            )
             rows.append((name, size, t["gl"], t["webgl"]))
-            print(f"   {name:<24}{size[0]:>5}x{size[1]:<3}{t['gl'] * 1000:>9.1f}{t['webgl'] * 1000:>9.1f}"
-                  f"{t['webgl'] / t['gl']:>8.1f}")
+            print(
+                f"   {name:<24}{size[0]:>5}x{size[1]:<3}{t['gl'] * 1000:>9.1f}{t['webgl'] * 1000:>9.1f}"
+                f"{t['webgl'] / t['gl']:>8.1f}"
+            )
 
     webgl_final, empty = compile_webgl(final), compile_webgl(_empty_shader())
-    t = _in_turns({"frame": lambda: webgl_final.render(size=(800, 450)),
-                   "tiny": lambda: webgl_final.render(size=(1, 1)),
-                   "empty": lambda: empty.render(size=(800, 450))}, args.runs)
-    print(f"\n3. a WebGL frame of 07_final at 800x450: {t['frame'] * 1000:.1f} ms; of it, the round trip "
-          f"(1x1 render) {t['tiny'] * 1000:.1f} ms = {t['tiny'] / t['frame']:.0%}, an empty shader's "
-          f"800x450 frame (clear, draw, read back, transfer) {t['empty'] * 1000:.1f} ms = {t['empty'] / t['frame']:.0%}")
+    t = _in_turns(
+        {
+            "frame": lambda: webgl_final.render(size=(800, 450)),
+            "tiny": lambda: webgl_final.render(size=(1, 1)),
+            "empty": lambda: empty.render(size=(800, 450)),
+        },
+        args.runs,
+    )
+    print(
+        f"\n3. a WebGL frame of 07_final at 800x450: {t['frame'] * 1000:.1f} ms; of it, the round trip "
+        f"(1x1 render) {t['tiny'] * 1000:.1f} ms = {t['tiny'] / t['frame']:.0%}, an empty shader's "
+        f"800x450 frame (clear, draw, read back, transfer) {t['empty'] * 1000:.1f} ms = {t['empty'] / t['frame']:.0%}"
+    )
     print(f"\nload average {os.getloadavg()[0]:.2f} at the end")
     close_browser()
     return 0

@@ -38,10 +38,10 @@ ROOT = HERE.parent
 sys.path.insert(0, str(ROOT))
 sys.path.insert(0, str(HERE))
 
-import numpy as np  # noqa: E402
-
 import bench_parse  # noqa: E402
 import bench_render  # noqa: E402
+import numpy as np  # noqa: E402
+
 from glslcheck.shadertoy.sources import find_shaders, load_shader  # noqa: E402
 
 LAB = ROOT / "lab_shaders"
@@ -89,7 +89,9 @@ def machine() -> list[str]:
     glslang = shutil.which("glslangValidator")
     version = "not installed"
     if glslang:
-        out = subprocess.run([glslang, "--version"], capture_output=True, text=True).stdout.splitlines()
+        out = subprocess.run(
+            [glslang, "--version"], capture_output=True, text=True
+        ).stdout.splitlines()
         version = out[0].split(":", 1)[-1].strip() if out else "unknown"
     import moderngl
 
@@ -126,8 +128,8 @@ def lab_programs():
 
 
 def parse_and_check(shader, tab):
-    from glslcheck.semantics import check
     from glslcheck.frontend.parser import parse_shader
+    from glslcheck.semantics import check
 
     return check(parse_shader(shader, tab), tab, collect=True)
 
@@ -135,7 +137,9 @@ def parse_and_check(shader, tab):
 def section_parse(runs: int) -> list[str]:
     glslang = shutil.which("glslangValidator")
     exe = shutil.which("glslcheck") or str(Path(sys.executable).with_name("glslcheck"))
-    lines = ["1. parse + check against glslangValidator (same programs; ratio = glslcheck / glslang)"]
+    lines = [
+        "1. parse + check against glslangValidator (same programs; ratio = glslcheck / glslang)"
+    ]
     if not glslang:
         return lines + ["   glslangValidator not installed: skipped"]
     programs = lab_programs()
@@ -162,21 +166,38 @@ def section_parse(runs: int) -> list[str]:
             return lambda: subprocess.run(cmd, check=True, capture_output=True)
 
         rows = [
-            (f"whole process, lab ({len(programs)} programs)",
-             run([exe, "check", "-q", str(LAB)]), run([glslang, *files])),
-            (f"whole process, 07_final ({len(final)} programs)",
-             run([exe, "check", "-q", str(LAB / "07_final")]), run([glslang, *final_files])),
-            (f"whole process, synthetic {syn_lines} lines",
-             run([exe, "check", "-q", str(synthetic)]), run([glslang, str(syn_frag)])),
-            (f"warm in-process, lab ({len(programs)} programs)",
-             lambda: [parse_and_check(s, t) for s, t, _ in programs], run([glslang, *files])),
-            (f"warm in-process, synthetic {syn_lines} lines",
-             lambda: parse_and_check(syn_shader, "Image"), run([glslang, str(syn_frag)])),
+            (
+                f"whole process, lab ({len(programs)} programs)",
+                run([exe, "check", "-q", str(LAB)]),
+                run([glslang, *files]),
+            ),
+            (
+                f"whole process, 07_final ({len(final)} programs)",
+                run([exe, "check", "-q", str(LAB / "07_final")]),
+                run([glslang, *final_files]),
+            ),
+            (
+                f"whole process, synthetic {syn_lines} lines",
+                run([exe, "check", "-q", str(synthetic)]),
+                run([glslang, str(syn_frag)]),
+            ),
+            (
+                f"warm in-process, lab ({len(programs)} programs)",
+                lambda: [parse_and_check(s, t) for s, t, _ in programs],
+                run([glslang, *files]),
+            ),
+            (
+                f"warm in-process, synthetic {syn_lines} lines",
+                lambda: parse_and_check(syn_shader, "Image"),
+                run([glslang, str(syn_frag)]),
+            ),
         ]
         lines.append(f"   {'':44s} {'glslcheck':>11s} {'glslang':>11s}   ratio")
         for label, ours, theirs in rows:
             t = paired({"ours": ours, "glslang": theirs}, runs)
-            lines.append(f"   {label:44s} {ms(t['ours'])} {ms(t['glslang'])}   {t['ours'] / t['glslang']:5.2f}x")
+            lines.append(
+                f"   {label:44s} {ms(t['ours'])} {ms(t['glslang'])}   {t['ours'] / t['glslang']:5.2f}x"
+            )
     return lines
 
 
@@ -200,20 +221,28 @@ def _render_fns(shader, size=SIZE) -> dict:
             numpy_prog.impl._cache.clear()  # the frame cache would answer a still shader at once
             numpy_prog.render(size=size)
             assert numpy_prog.impl.last_parallel == mode
+
         return render
 
-    return {"processes": numpy_render("processes"), "threads": numpy_render("threads"),
-            "gl": lambda: gl_prog.render(size=size)}
+    return {
+        "processes": numpy_render("processes"),
+        "threads": numpy_render("threads"),
+        "gl": lambda: gl_prog.render(size=size),
+    }
 
 
 def section_render(runs: int) -> list[str]:
-    lines = [f"2. NumPy (float32, 1 sample) against GL on llvmpipe at {SIZE[0]}x{SIZE[1]} (ratio = numpy / gl;",
-             f"   NumPy on {os.cpu_count()} worker processes and on {os.cpu_count()} threads)"]
+    lines = [
+        f"2. NumPy (float32, 1 sample) against GL on llvmpipe at {SIZE[0]}x{SIZE[1]} (ratio = numpy / gl;",
+        f"   NumPy on {os.cpu_count()} worker processes and on {os.cpu_count()} threads)",
+    ]
     lines.append(f"   {'':40s} {'processes':>11s} {'threads':>11s} {'gl':>11s}   ratios")
     for label, folder in bench_render.SCENES:
         t = paired(_render_fns(load_shader(folder)), runs)
-        lines.append(f"   {label:40s} {ms(t['processes'])} {ms(t['threads'])} {ms(t['gl'])}   "
-                     f"{t['processes'] / t['gl']:5.2f}x {t['threads'] / t['gl']:5.2f}x")
+        lines.append(
+            f"   {label:40s} {ms(t['processes'])} {ms(t['threads'])} {ms(t['gl'])}   "
+            f"{t['processes'] / t['gl']:5.2f}x {t['threads'] / t['gl']:5.2f}x"
+        )
     return lines
 
 
@@ -223,15 +252,22 @@ def section_coverage(runs: int) -> list[str]:
     lines = ["3. coverage scaling: the sphere scene, small against large spheres (same run)"]
     results = {}
     lines.append(f"   {'':40s} {'processes':>11s} {'threads':>11s} {'gl':>11s}")
-    for label, radius in (("small", bench_render.SMALL_RADIUS), ("large", bench_render.LARGE_RADIUS)):
+    for label, radius in (
+        ("small", bench_render.SMALL_RADIUS),
+        ("large", bench_render.LARGE_RADIUS),
+    ):
         shader = bench_render._scene(radius)
         coverage = bench_render.sphere_coverage(glslcheck.compile(shader, backend="numpy"))
         t = paired(_render_fns(shader), runs)
         results[label] = t
-        lines.append(f"   {label + f' spheres, {coverage:.0%} of the pixels':40s} {ms(t['processes'])} "
-                     f"{ms(t['threads'])} {ms(t['gl'])}")
+        lines.append(
+            f"   {label + f' spheres, {coverage:.0%} of the pixels':40s} {ms(t['processes'])} "
+            f"{ms(t['threads'])} {ms(t['gl'])}"
+        )
     for side in ("processes", "threads", "gl"):
-        lines.append(f"   {side}: time(small) / time(large) = {results['small'][side] / results['large'][side]:.0%}")
+        lines.append(
+            f"   {side}: time(small) / time(large) = {results['small'][side] / results['large'][side]:.0%}"
+        )
     return lines
 
 
@@ -244,7 +280,9 @@ def _child(size, mode: str = "threads") -> tuple[float, int, int, int]:
     bench_render's child at `size`."""
     code = bench_render._MEMORY_CHILD.format(root=str(ROOT), scene=bench_render.FINAL, mode=mode)
     code = code.replace("(3840, 2160)", repr(tuple(size)))
-    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True).stdout.split()
+    out = subprocess.run(
+        [sys.executable, "-c", code], capture_output=True, text=True, check=True
+    ).stdout.split()
     return float(out[-4]), int(out[-3]), int(out[-2]), int(out[-1])
 
 
@@ -254,7 +292,7 @@ def section_memory() -> list[str]:
     p_seconds, _, p_rss, worker = _child(UHD, "processes")
     workers = os.cpu_count() or 1
     image = UHD[0] * UHD[1] * 4 * 4
-    mib = 2 ** 20
+    mib = 2**20
     return [
         f"4. memory of a {UHD[0]}x{UHD[1]} NumPy render of lab 07_final (fresh subprocess each)",
         f"   threads: peak resident {rss / mib:.0f} MiB; baseline (8x8 render) {base / mib:.0f} MiB; "
@@ -268,11 +306,17 @@ def section_memory() -> list[str]:
 
 def main() -> int:
     ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
-    ap.add_argument("--runs", type=int, default=5, help="measurements per timing after a warm-up (default 5)")
+    ap.add_argument(
+        "--runs", type=int, default=5, help="measurements per timing after a warm-up (default 5)"
+    )
     ap.add_argument("--skip-memory", action="store_true", help="skip the 4K memory measurement")
     args = ap.parse_args()
     started = time.perf_counter()
-    out = ["glslcheck benchmarks (benchmarks/run_all.py, median of %d runs)" % args.runs, *machine(), ""]
+    out = [
+        f"glslcheck benchmarks (benchmarks/run_all.py, median of {args.runs} runs)",
+        *machine(),
+        "",
+    ]
     print("\n".join(out), flush=True)
     sections = [section_parse, section_render, section_coverage]
     for section in sections:

@@ -19,7 +19,6 @@ from glslcheck.backends import driver_profile
 from glslcheck.base.diagnostics import register_source
 from glslcheck.shadertoy.sources import Shader, Source
 
-
 # numba's kernels (backends/numpy_engine/jit.py) are off unless a test turns them on: in auto mode the
 # process would switch to them once the tests before had spent a second in the llvmpipe math,
 # so what a test of the NumPy path exercised would depend on the tests run before it. The
@@ -29,9 +28,20 @@ os.environ.setdefault("GLSLCHECK_JIT", "off")
 
 # What a test needs, as markers (pyproject.toml registers them): from the fixtures it asks for,
 # and from the folders whose every test needs the tool (their tests also start it in subprocesses).
-FIXTURE_MARKERS = {"gl": ("gl",), "llvmpipe": ("gl", "mesa"), "webgl": ("webgl",), "glslang": ("glslang",),
-                   "numba": ("numba",), "jit_kernels": ("numba",)}
-FOLDER_MARKERS = {"gl": ("gl",), "webgl": ("webgl", "gl"), "compiled": ("numba", "slow"), "fuzz": ("slow",)}
+FIXTURE_MARKERS = {
+    "gl": ("gl",),
+    "llvmpipe": ("gl", "mesa"),
+    "webgl": ("webgl",),
+    "glslang": ("glslang",),
+    "numba": ("numba",),
+    "jit_kernels": ("numba",),
+}
+FOLDER_MARKERS = {
+    "gl": ("gl",),
+    "webgl": ("webgl", "gl"),
+    "compiled": ("numba", "slow"),
+    "fuzz": ("slow",),
+}
 
 
 def pytest_collection_modifyitems(config, items):
@@ -59,7 +69,9 @@ def gl():
     except GLUnavailable as e:
         if os.environ.get("CI"):
             pytest.fail(f"an OpenGL context is required on CI: {e}")
-        pytest.skip("no OpenGL context on this machine (developer machine without EGL/Mesa); CI fails instead")
+        pytest.skip(
+            "no OpenGL context on this machine (developer machine without EGL/Mesa); CI fails instead"
+        )
 
 
 @pytest.fixture(scope="session")
@@ -96,10 +108,12 @@ def llvmpipe(gl):
     measured and copied again for it (and EMULATED_MESA moved), not that the tests stop checking."""
     renderer, mesa = driver_profile.driver_name(gl)
     if not driver_profile.is_emulated(renderer, mesa):
-        pytest.fail(f"these bit-exact tests were written for llvmpipe of Mesa {driver_profile.EMULATED_MESA}; "
-                    f"this GL driver is {renderer}, Mesa {mesa or 'unknown'}: the NumPy emulation "
-                    "(glslcheck/backends/driver_profile.py, backends/numpy_engine/runtime.py, nir_fold/) must be re-measured "
-                    "for it before these results mean anything")
+        pytest.fail(
+            f"these bit-exact tests were written for llvmpipe of Mesa {driver_profile.EMULATED_MESA}; "
+            f"this GL driver is {renderer}, Mesa {mesa or 'unknown'}: the NumPy emulation "
+            "(glslcheck/backends/driver_profile.py, backends/numpy_engine/runtime.py, nir_fold/) must be re-measured "
+            "for it before these results mean anything"
+        )
     return gl
 
 

@@ -33,8 +33,11 @@ def test_only_config_reads_them():
     """Other modules call config's readers; writing a variable (for a child process, or the
     options the CLI hands on) is not reading it."""
     read = re.compile(r"environ(?:\.get\(|\[)\s*[\"']GLSLCHECK_|getenv\(\s*[\"']GLSLCHECK_")
-    readers = [str(p.relative_to(ROOT)) for p, text in _sources().items()
-               if p.name != "config.py" and read.search(text)]
+    readers = [
+        str(p.relative_to(ROOT))
+        for p, text in _sources().items()
+        if p.name != "config.py" and read.search(text)
+    ]
     assert readers == []
 
 
@@ -87,15 +90,26 @@ def test_reader_reads_at_call_time(monkeypatch, name):
     assert read() == default
 
 
-@pytest.mark.parametrize("name,text,value", [
-    ("GLSLCHECK_FRAME_SECONDS", " 2.5 ", 2.5), ("GLSLCHECK_FRAME_SECONDS", "", config.FRAME_SECONDS),
-    ("GLSLCHECK_MEMORY_MB", "64", 64.0), ("GLSLCHECK_MEMORY_MB", "", None),
-    ("GLSLCHECK_PARALLEL", "threads", "threads"), ("GLSLCHECK_JIT", "", "auto"),
-    ("GLSLCHECK_COMPILED_LANES", "auto", None), ("GLSLCHECK_COMPILED_LANES", "16", 16),
-    ("GLSLCHECK_WEBGL_TIMEOUT", "3", 3.0), ("GLSLCHECK_CHROMIUM", "", None),
-    ("GLSLCHECK_JOBS", "auto", None), ("GLSLCHECK_JOBS", "1", 1), ("GLSLCHECK_JOBS", "8", 2),
-    ("GLSLCHECK_UPDATE_SNAPSHOTS", "1", True), ("GLSLCHECK_UPDATE_SNAPSHOTS", "", False),
-])
+@pytest.mark.parametrize(
+    "name,text,value",
+    [
+        ("GLSLCHECK_FRAME_SECONDS", " 2.5 ", 2.5),
+        ("GLSLCHECK_FRAME_SECONDS", "", config.FRAME_SECONDS),
+        ("GLSLCHECK_MEMORY_MB", "64", 64.0),
+        ("GLSLCHECK_MEMORY_MB", "", None),
+        ("GLSLCHECK_PARALLEL", "threads", "threads"),
+        ("GLSLCHECK_JIT", "", "auto"),
+        ("GLSLCHECK_COMPILED_LANES", "auto", None),
+        ("GLSLCHECK_COMPILED_LANES", "16", 16),
+        ("GLSLCHECK_WEBGL_TIMEOUT", "3", 3.0),
+        ("GLSLCHECK_CHROMIUM", "", None),
+        ("GLSLCHECK_JOBS", "auto", None),
+        ("GLSLCHECK_JOBS", "1", 1),
+        ("GLSLCHECK_JOBS", "8", 2),
+        ("GLSLCHECK_UPDATE_SNAPSHOTS", "1", True),
+        ("GLSLCHECK_UPDATE_SNAPSHOTS", "", False),
+    ],
+)
 def test_reader_accepts(monkeypatch, name, text, value):
     monkeypatch.setenv(name, text)
     assert READERS[name][0]() == value

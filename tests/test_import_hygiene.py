@@ -16,7 +16,17 @@ import pytest
 ROOT = Path(__file__).resolve().parents[1]
 # dataclasses: its per-class code generation cost a one-file lint about 40 M instructions; the
 # start-up path uses glslcheck.base.records.
-HEAVY = ("numpy", "moderngl", "PIL", "lark", "multiprocessing", "concurrent", "dataclasses", "numba", "llvmlite")
+HEAVY = (
+    "numpy",
+    "moderngl",
+    "PIL",
+    "lark",
+    "multiprocessing",
+    "concurrent",
+    "dataclasses",
+    "numba",
+    "llvmlite",
+)
 
 _RUN = """
 import io, json, sys, contextlib
@@ -32,8 +42,13 @@ print(json.dumps({"code": code, "modules": sorted(sys.modules), "preloaded": pre
 @pytest.mark.parametrize("command", [["lint"], ["check"], ["parse"], ["lint", "--format", "json"]])
 def test_lint_check_and_parse_load_no_renderer_and_no_lark(command):
     shader = ROOT / "lab_shaders" / "07_final"
-    done = subprocess.run([sys.executable, "-c", _RUN, command[0], str(shader), *command[1:]],
-                          capture_output=True, text=True, cwd=ROOT, timeout=120)
+    done = subprocess.run(
+        [sys.executable, "-c", _RUN, command[0], str(shader), *command[1:]],
+        capture_output=True,
+        text=True,
+        cwd=ROOT,
+        timeout=120,
+    )
     assert done.returncode == 0, done.stderr
     report = json.loads(done.stdout.strip().splitlines()[-1])
     assert report["code"] in (0, 1)
@@ -50,8 +65,13 @@ def test_lint_does_not_import_typing(tmp_path):
 
     shader = tmp_path / "shader"
     shutil.copytree(ROOT / "lab_shaders" / "07_final", shader)
-    done = subprocess.run([sys.executable, "-c", _RUN, "lint", str(shader)],
-                          capture_output=True, text=True, cwd=tmp_path, timeout=120)
+    done = subprocess.run(
+        [sys.executable, "-c", _RUN, "lint", str(shader)],
+        capture_output=True,
+        text=True,
+        cwd=tmp_path,
+        timeout=120,
+    )
     assert done.returncode == 0, done.stderr
     report = json.loads(done.stdout.strip().splitlines()[-1])
     assert "glslcheck.lint.rules.repeated_expression" in report["modules"]  # the rules ran
@@ -66,11 +86,18 @@ def test_lint_does_not_import_typing(tmp_path):
 def test_check_expands_only_the_builtin_functions_it_looks_up():
     """builtins.BUILTINS keeps the spec's generic signatures and expands a function's overloads
     on its first look-up (expanding all of them at import was a sixth of a one-file lint)."""
-    code = ("import io, contextlib, sys; from glslcheck.cli.main import main; from glslcheck.language import builtin_functions as B\n"
-            "with contextlib.redirect_stdout(io.StringIO()): main(sys.argv[1:])\n"
-            "print(len(B.BUILTINS._built), len(B.BUILTINS), 'texture' in B.BUILTINS._built)")
-    done = subprocess.run([sys.executable, "-c", code, "check", str(ROOT / "lab_shaders" / "07_final")],
-                          capture_output=True, text=True, cwd=ROOT, timeout=120)
+    code = (
+        "import io, contextlib, sys; from glslcheck.cli.main import main; from glslcheck.language import builtin_functions as B\n"
+        "with contextlib.redirect_stdout(io.StringIO()): main(sys.argv[1:])\n"
+        "print(len(B.BUILTINS._built), len(B.BUILTINS), 'texture' in B.BUILTINS._built)"
+    )
+    done = subprocess.run(
+        [sys.executable, "-c", code, "check", str(ROOT / "lab_shaders" / "07_final")],
+        capture_output=True,
+        text=True,
+        cwd=ROOT,
+        timeout=120,
+    )
     assert done.returncode == 0, done.stderr
     built, total, texture = done.stdout.split()
     assert 0 < int(built) < int(total) == 89 and texture == "False"
@@ -82,11 +109,31 @@ def test_a_cheap_render_never_loads_numba(tmp_path, jit):
     that spends less than that in the llvmpipe math on few lanes (a lab scene) must not load it
     in auto mode, and --jit off never does. (Installed or not, this holds; on a machine without
     numba it holds trivially.)"""
-    done = subprocess.run([sys.executable, "-c", _RUN, "render", str(ROOT / "lab_shaders" / "07_final"), "--size",
-                           "200x112", "--parallel", "threads", "--jit", jit, "-o", str(tmp_path / "out.png")],
-                          capture_output=True, text=True, cwd=ROOT, timeout=300)
+    done = subprocess.run(
+        [
+            sys.executable,
+            "-c",
+            _RUN,
+            "render",
+            str(ROOT / "lab_shaders" / "07_final"),
+            "--size",
+            "200x112",
+            "--parallel",
+            "threads",
+            "--jit",
+            jit,
+            "-o",
+            str(tmp_path / "out.png"),
+        ],
+        capture_output=True,
+        text=True,
+        cwd=ROOT,
+        timeout=300,
+    )
     assert done.returncode == 0, done.stderr
     report = json.loads(done.stdout.strip().splitlines()[-1])
     assert report["code"] == 0 and (tmp_path / "out.png").exists()
-    assert "glslcheck.backends.numpy_engine.runtime" in report["modules"]  # the NumPy backend rendered
+    assert (
+        "glslcheck.backends.numpy_engine.runtime" in report["modules"]
+    )  # the NumPy backend rendered
     assert not {m.split(".")[0] for m in report["modules"]} & {"numba", "llvmlite"}

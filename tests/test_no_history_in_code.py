@@ -15,8 +15,10 @@ ROOT = os.path.dirname(os.path.dirname(glslcheck.__file__))
 FOLDERS = ("glslcheck", "tests", "tools", "benchmarks")
 # Built from pieces so that this file's own source does not match it.
 # A hyphen counts after the issue word too; "stop-1" is arithmetic (start..stop-1), so not there.
-HISTORY = re.compile(r"\b(?:" + "issu" + r"es?[\s-]+|(?:" + "sess" + "ion|" + "st" + r"op)\s+)#?[0-9]+",
-                     re.IGNORECASE)
+HISTORY = re.compile(
+    r"\b(?:" + "issu" + r"es?[\s-]+|(?:" + "sess" + "ion|" + "st" + r"op)\s+)#?[0-9]+",
+    re.IGNORECASE,
+)
 
 
 def _python_files() -> list[str]:

@@ -75,8 +75,10 @@ def _imports(name: str, top_level_only: bool = False) -> list[tuple[str, int, li
             for _ in range(node.level - 1):
                 base = base.rpartition(".")[0]
             base = (f"{base}.{node.module}" if node.module else base) if node.level else node.module
-            pairs = [(f"{base}.{a.name}", []) if f"{base}.{a.name}" in MODULES else (base, [a.name])
-                     for a in node.names]
+            pairs = [
+                (f"{base}.{a.name}", []) if f"{base}.{a.name}" in MODULES else (base, [a.name])
+                for a in node.names
+            ]
         else:
             continue
         for target, names in pairs:
@@ -122,7 +124,9 @@ def test_no_import_runs_up_or_sideways():
                 continue  # its own package
             t_floor, t_home = _layer(target)
             if t_floor > floor or (t_floor == floor and t_home != home):
-                bad.append(f"{MODULES[name]}:{line}: {name} imports {target} ({t_home} is not below {home})")
+                bad.append(
+                    f"{MODULES[name]}:{line}: {name} imports {target} ({t_home} is not below {home})"
+                )
     assert bad == []
 
 
@@ -175,7 +179,9 @@ def test_no_private_name_is_imported_from_another_package():
     for name in sorted(MODULES):
         package = name if MODULES[name].endswith("__init__.py") else name.rpartition(".")[0]
         for target, line, names in _imports(name):
-            t_package = target if MODULES[target].endswith("__init__.py") else target.rpartition(".")[0]
+            t_package = (
+                target if MODULES[target].endswith("__init__.py") else target.rpartition(".")[0]
+            )
             private = [n for n in names if n.startswith("_") and not n.startswith("__")]
             if private and t_package != package:
                 bad.append(f"{MODULES[name]}:{line}: {', '.join(private)} from {target}")
@@ -183,8 +189,12 @@ def test_no_private_name_is_imported_from_another_package():
 
 
 def test_no_hand_written_module_is_over_a_thousand_lines():
-    long = {m: n for m in MODULES if m not in GENERATED
-            and (n := sum(1 for _ in open(MODULES[m], encoding="utf-8"))) > MAX_LINES}
+    long = {
+        m: n
+        for m in MODULES
+        if m not in GENERATED
+        and (n := sum(1 for _ in open(MODULES[m], encoding="utf-8"))) > MAX_LINES
+    }
     assert long == {}
 
 
@@ -200,9 +210,12 @@ def test_the_frame_modules_import_each_other_at_the_top():
     """The NumPy engine's modules that render frames (program and workers, and tiles, which both
     use) name what they use of each other at the top of the file, never inside a function."""
     frame = {f"glslcheck.backends.numpy_engine.{m}" for m in ("program", "workers", "tiles")}
-    late = [f"{MODULES[m]}:{line} imports {t} inside a function" for m in sorted(frame)
-            for t, line, _ in _imports(m) if t in frame and (t, line) not in
-            {(u, n) for u, n, _ in _imports(m, top_level_only=True)}]
+    late = [
+        f"{MODULES[m]}:{line} imports {t} inside a function"
+        for m in sorted(frame)
+        for t, line, _ in _imports(m)
+        if t in frame and (t, line) not in {(u, n) for u, n, _ in _imports(m, top_level_only=True)}
+    ]
     assert late == []
 
 

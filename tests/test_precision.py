@@ -7,10 +7,10 @@ from __future__ import annotations
 import pytest
 
 from glslcheck.backends import registry as api
-from glslcheck.verification.bench import configurations
-from glslcheck.cli.main import build_parser
 from glslcheck.backends.numpy_engine.runtime import Runtime
 from glslcheck.base.precision import PRECISIONS
+from glslcheck.cli.main import build_parser
+from glslcheck.verification.bench import configurations
 from glslcheck.verification.verify import verify_frames
 
 SHADER = "void mainImage(out vec4 o, in vec2 f) { o = vec4(f / iResolution.xy, 0.1, 1.0); }"
@@ -26,7 +26,10 @@ def test_the_cli_offers_the_list(command):
 
 
 def test_bench_measures_the_list():
-    assert tuple(dict.fromkeys(c.precision for c in configurations() if c.backend == "numpy")) == PRECISIONS
+    assert (
+        tuple(dict.fromkeys(c.precision for c in configurations() if c.backend == "numpy"))
+        == PRECISIONS
+    )
 
 
 def test_the_runtime_and_the_api_take_the_list_and_refuse_the_rest(make_shader):
@@ -43,4 +46,6 @@ def test_the_runtime_and_the_api_take_the_list_and_refuse_the_rest(make_shader):
             prog.render(size=(4, 2), precision=p)
         with pytest.raises(ValueError) as verify_error:  # refused before anything is compiled
             next(iter(verify_frames(make_shader(SHADER), precision=p)))
-        assert str(runtime_error.value) == str(api_error.value) == str(verify_error.value) == message
+        assert (
+            str(runtime_error.value) == str(api_error.value) == str(verify_error.value) == message
+        )

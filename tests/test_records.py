@@ -9,8 +9,8 @@ import pickle
 
 import pytest
 
-from glslcheck.language import glsl_types as T
 from glslcheck.base.records import FrozenInstanceError, field, record, replace
+from glslcheck.language import glsl_types as T
 
 
 @record(frozen=True)
@@ -132,6 +132,7 @@ def test_records_pickle_by_value():
 
 def test_a_field_without_default_after_one_with_a_default_is_an_error():
     with pytest.raises(TypeError, match="follows one with a default"):
+
         @record
         class Bad:
             a: int = 0
@@ -159,12 +160,22 @@ def test_the_precompiled_templates_are_the_lint_paths():
         env: dict = {}
         exec(source, {}, env)
         fresh, stored = env["__init__"].__code__, records.init_code(source)
-        for part in ("co_code", "co_consts", "co_names", "co_varnames", "co_argcount", "co_kwonlyargcount", "co_name"):
+        for part in (
+            "co_code",
+            "co_consts",
+            "co_names",
+            "co_varnames",
+            "co_argcount",
+            "co_kwonlyargcount",
+            "co_name",
+        ):
             assert getattr(stored, part) == getattr(fresh, part), (part, source)
 
 
 def test_a_template_not_precompiled_is_compiled():
     from glslcheck.base import records
 
-    code = records.init_code("def __init__(self, _f0, _f1, _f2, _f3, _f4, _f5, _f6, _f7, _f8, _f9, _f10):\n    pass")
+    code = records.init_code(
+        "def __init__(self, _f0, _f1, _f2, _f3, _f4, _f5, _f6, _f7, _f8, _f9, _f10):\n    pass"
+    )
     assert code.co_argcount == 12 and code.co_name == "__init__"

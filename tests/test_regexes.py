@@ -26,8 +26,10 @@ def test_the_stored_programs_are_this_interpreters():
     interpreter is the one the project is set up with (make setup), it is a failure: the file is
     stale and start-up would lose its stored programs unnoticed."""
     if _regex_code.FINGERPRINT != regexes.fingerprint():
-        why = (f"glslcheck/base/_regex_code.py was written by {_regex_code.FINGERPRINT}, this is "
-               f"{regexes.fingerprint()}: run `python -m glslcheck.base.regexes`")
+        why = (
+            f"glslcheck/base/_regex_code.py was written by {_regex_code.FINGERPRINT}, this is "
+            f"{regexes.fingerprint()}: run `python -m glslcheck.base.regexes`"
+        )
         if os.environ.get("CI"):
             pytest.fail(why)
         pytest.skip(why + " (this interpreter compiles with re; CI fails instead)")
@@ -40,8 +42,14 @@ SAMPLES = [
     "// Image.glsl - draws the lit spheres\n// Authors: Ada Lovelace (lighting), Alan Turing\n",
     "  /* glslcheck: ignore[missing-header] */ code();",
     "#ifdef FOO\n#if defined(BAR)\nfloat x = 1.5e3f + 0x1Fu;",
-    "Code by Dan Buckstein", "// part 3", "// TEST", "-----", "ſ KELVIN K \u212a ß ǅ",
-    "void main(void) { }", "#version 300 es", "based on the starter framework",
+    "Code by Dan Buckstein",
+    "// part 3",
+    "// TEST",
+    "-----",
+    "ſ KELVIN K \u212a ß ǅ",
+    "void main(void) { }",
+    "#version 300 es",
+    "based on the starter framework",
 ]
 
 
@@ -50,10 +58,15 @@ def test_a_stored_pattern_is_the_pattern_re_compiles(key):
     pattern, flags = key
     ours, theirs = regexes.compiled(pattern, flags), re.compile(pattern, flags)
     assert (ours.pattern, ours.flags, ours.groups, ours.groupindex) == (
-        theirs.pattern, theirs.flags, theirs.groups, theirs.groupindex)
+        theirs.pattern,
+        theirs.flags,
+        theirs.groups,
+        theirs.groupindex,
+    )
     for text in SAMPLES:
         assert [m.span() + m.groups() for m in ours.finditer(text)] == [
-            m.span() + m.groups() for m in theirs.finditer(text)]
+            m.span() + m.groups() for m in theirs.finditer(text)
+        ]
         assert ours.sub("#", text) == theirs.sub("#", text)
 
 

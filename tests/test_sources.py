@@ -6,23 +6,46 @@ import os
 
 import pytest
 
-from glslcheck.cli.main import main
 from glslcheck.base.diagnostics import InputError
-from glslcheck.shadertoy.sources import _parent, find_shaders, folder_entries, load_shader, path_name, path_stem, path_suffix, posix_path, read_source, tab_name
+from glslcheck.cli.main import main
+from glslcheck.shadertoy.sources import (
+    _parent,
+    find_shaders,
+    folder_entries,
+    load_shader,
+    path_name,
+    path_stem,
+    path_suffix,
+    posix_path,
+    read_source,
+    tab_name,
+)
 
 
 @pytest.mark.parametrize(
     "name,tab",
-    [("Image.glsl", "Image"), ("image", "Image"), ("IMAGE.FRAG", "Image"), ("Common.txt", "Common"),
-     ("Buffer A.glsl", "Buffer A"), ("buffer_a.glsl", "Buffer A"), ("buffer-b.frag", "Buffer B"),
-     ("BufferD", "Buffer D"), ("Cube A.glsl", "Cube A"), ("sound.glsl", "Sound"), ("spheres.glsl", None)],
+    [
+        ("Image.glsl", "Image"),
+        ("image", "Image"),
+        ("IMAGE.FRAG", "Image"),
+        ("Common.txt", "Common"),
+        ("Buffer A.glsl", "Buffer A"),
+        ("buffer_a.glsl", "Buffer A"),
+        ("buffer-b.frag", "Buffer B"),
+        ("BufferD", "Buffer D"),
+        ("Cube A.glsl", "Cube A"),
+        ("sound.glsl", "Sound"),
+        ("spheres.glsl", None),
+    ],
 )
 def test_tab_names(name, tab):
     assert tab_name(name) == tab
 
 
 def test_folder_of_tabs_and_common_first(tmp_path):
-    (tmp_path / "Image.glsl").write_text("void mainImage(out vec4 c, in vec2 f) { c = vec4(g()); }\n")
+    (tmp_path / "Image.glsl").write_text(
+        "void mainImage(out vec4 c, in vec2 f) { c = vec4(g()); }\n"
+    )
     (tmp_path / "common.glsl").write_text("float g() { return 1.0; }\n")
     (tmp_path / "notes.md").write_text("not a shader")
     shader = load_shader(tmp_path)
@@ -31,7 +54,9 @@ def test_folder_of_tabs_and_common_first(tmp_path):
 
 
 def test_image_file_picks_up_sibling_common(tmp_path):
-    (tmp_path / "Image.glsl").write_text("void mainImage(out vec4 c, in vec2 f) { c = vec4(g()); }\n")
+    (tmp_path / "Image.glsl").write_text(
+        "void mainImage(out vec4 c, in vec2 f) { c = vec4(g()); }\n"
+    )
     (tmp_path / "Common.glsl").write_text("float g() { return 1.0; }\n")
     shader = load_shader(tmp_path / "Image.glsl")
     assert [s.tab for s in shader.units_for("Image")] == ["Common", "Image"]
@@ -46,7 +71,9 @@ def test_two_files_for_one_tab_is_an_error(tmp_path):
 
 def test_plain_glsl_file_is_taken_as_is(tmp_path):
     p = tmp_path / "Image.glsl"
-    p.write_text("#version 300 es\nprecision highp float;\nout vec4 o;\nvoid main() { o = vec4(1.0); }\n")
+    p.write_text(
+        "#version 300 es\nprecision highp float;\nout vec4 o;\nvoid main() { o = vec4(1.0); }\n"
+    )
     assert read_source(p).is_plain_glsl
 
 
@@ -121,10 +148,34 @@ def test_parse_cli_exit_codes_and_output(tmp_path, capsys):
     assert main(["frobnicate"]) == 2
 
 
-@pytest.mark.parametrize("path", [
-    "", ".", "./", "/", "//", "///", "//a", "///a/b", "a/./b", "a//b/", "a/../b", "./x.glsl", "x.", ".x",
-    "..x", "a.b.glsl", "dir/.hidden", "Buffer A.txt", "a/b/", "..", "../", "x/..", "lab 4/Image",
-])
+@pytest.mark.parametrize(
+    "path",
+    [
+        "",
+        ".",
+        "./",
+        "/",
+        "//",
+        "///",
+        "//a",
+        "///a/b",
+        "a/./b",
+        "a//b/",
+        "a/../b",
+        "./x.glsl",
+        "x.",
+        ".x",
+        "..x",
+        "a.b.glsl",
+        "dir/.hidden",
+        "Buffer A.txt",
+        "a/b/",
+        "..",
+        "../",
+        "x/..",
+        "lab 4/Image",
+    ],
+)
 def test_path_helpers_spell_paths_as_pathlib_does(path):
     """The lint path spells paths without pathlib (importing it costs start-up time); every message must name
     a path as the pathlib code before it did."""

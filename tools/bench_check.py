@@ -20,8 +20,8 @@ from pathlib import Path
 ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT))
 
-from glslcheck.semantics import check  # noqa: E402
 from glslcheck.frontend.parser import parse_shader  # noqa: E402
+from glslcheck.semantics import check  # noqa: E402
 from glslcheck.shadertoy.sources import Source, load_shader  # noqa: E402
 
 _HELPER = """
@@ -84,8 +84,10 @@ def main(argv: list[str] | None = None) -> int:
     t_check, model = timed(lambda: check(result, "Image"), args.repeat)
     print(f"shader: {total} lines (Common + Image), {sum(1 for _ in result.ast.walk())} AST nodes")
     print(f"parse: {t_parse * 1000:.2f} ms (median of {args.repeat})")
-    print(f"check: {t_check * 1000:.2f} ms (median of {args.repeat}) = {100 * t_check / t_parse:.0f}% of parse time"
-          f" (target <= 50%)")
+    print(
+        f"check: {t_check * 1000:.2f} ms (median of {args.repeat}) = {100 * t_check / t_parse:.0f}% of parse time"
+        f" (target <= 50%)"
+    )
     return 0 if t_check <= 0.5 * t_parse else 1
 
 

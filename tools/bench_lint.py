@@ -31,8 +31,8 @@ def main(argv: list[str] | None = None) -> int:
 
     t0 = time.perf_counter()
     from glslcheck.lint import engine, lint_paths
-    from glslcheck.semantics.analysis import dataflow
     from glslcheck.lint.rules import all_rules
+    from glslcheck.semantics.analysis import dataflow
 
     all_rules()
     t_import = time.perf_counter() - t0
@@ -50,10 +50,14 @@ def main(argv: list[str] | None = None) -> int:
     first, files, findings = run()
     rest = [run()[0] for _ in range(args.repeat)]
     print(f"import + rule loading: {t_import:.3f} s")
-    print(f"lint {files} files, {findings} findings: first run {first:.3f} s wall"
-          + (f", median of {len(rest)} more {statistics.median(rest):.3f} s" if rest else ""))
-    print(f"cpu time (less sensitive to a busy machine): first {cpu[0]:.3f} s, median "
-          f"{statistics.median(cpu[1:] or cpu):.3f} s")
+    print(
+        f"lint {files} files, {findings} findings: first run {first:.3f} s wall"
+        + (f", median of {len(rest)} more {statistics.median(rest):.3f} s" if rest else "")
+    )
+    print(
+        f"cpu time (less sensitive to a busy machine): first {cpu[0]:.3f} s, median "
+        f"{statistics.median(cpu[1:] or cpu):.3f} s"
+    )
     ok = first <= BUDGET
     print(f"budget {BUDGET:.1f} s: {'ok' if ok else 'EXCEEDED'}")
     return 0 if ok else 1

@@ -16,8 +16,8 @@ from pathlib import Path
 ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT))
 
-from glslcheck.shadertoy.sources import load_shader  # noqa: E402
 from glslcheck.base.limits import parse_size  # noqa: E402
+from glslcheck.shadertoy.sources import load_shader  # noqa: E402
 from glslcheck.verification.verify import compile_backend, verify  # noqa: E402
 
 
@@ -43,9 +43,11 @@ def main() -> int:
         verify(shader, size=args.size, time=1.0, programs=programs)
         warm.append(time.perf_counter() - t0)
     w, h = args.size
-    print(f"verify {args.shader} {w}x{h}: {min(cold):.3f} s wall (compile + render + compare), "
-          f"{min(warm):.3f} s warm (render + compare); {'match' if c.match else 'MISMATCH'}; "
-          f"target <= 2 s: {'ok' if min(cold) <= 2.0 else 'OVER'}")
+    print(
+        f"verify {args.shader} {w}x{h}: {min(cold):.3f} s wall (compile + render + compare), "
+        f"{min(warm):.3f} s warm (render + compare); {'match' if c.match else 'MISMATCH'}; "
+        f"target <= 2 s: {'ok' if min(cold) <= 2.0 else 'OVER'}"
+    )
     return 0 if min(cold) <= 2.0 else 1
 
 

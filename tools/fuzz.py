@@ -67,7 +67,6 @@ import argparse
 import collections
 import contextlib
 import functools
-import hashlib
 import io
 import json
 import multiprocessing as mp
@@ -119,14 +118,47 @@ POOL = (
     "007 08 1.0f x y z w xyzw rgba stpq xx xyzwxyzw a b S s i j k __LINE__ __FILE__ __VERSION__ "
     "GL_ES #define #undef #if #ifdef #ifndef #else #elif #endif #error #pragma #extension #version "
     "#line defined M(x) x## /* */ // \\"
-).split() + ["\n", "\n", " ", "\t", "\r\n", "\r", "\"", "'", "@", "$", "`"]
+).split() + ["\n", "\n", " ", "\t", "\r\n", "\r", '"', "'", "@", "$", "`"]
 
-ODD_BYTES = [b"\x00", b"\xef\xbb\xbf", b"\r", b"\r\n", b"\t", b"\xff", b"\xc3", b"\xe2\x80\x8b",
-             "é".encode(), "日本".encode(), "😀".encode(), b"\x0b", b"\x0c", b"\\\n", b"\x7f"]
+ODD_BYTES = [
+    b"\x00",
+    b"\xef\xbb\xbf",
+    b"\r",
+    b"\r\n",
+    b"\t",
+    b"\xff",
+    b"\xc3",
+    b"\xe2\x80\x8b",
+    "é".encode(),
+    "日本".encode(),
+    "😀".encode(),
+    b"\x0b",
+    b"\x0c",
+    b"\\\n",
+    b"\x7f",
+]
 
-EXTREME_NUMBERS = ["0", "0.0", "-0.0", "1e38", "3.5e38", "1e-45", "1e-50", "2147483647", "2147483648",
-                   "4294967295u", "4294967296u", "0xffffffff", "0x100000000", "99999999999999999999",
-                   "1e999", "100000", "65536", "-2147483648", "1000000000"]
+EXTREME_NUMBERS = [
+    "0",
+    "0.0",
+    "-0.0",
+    "1e38",
+    "3.5e38",
+    "1e-45",
+    "1e-50",
+    "2147483647",
+    "2147483648",
+    "4294967295u",
+    "4294967296u",
+    "0xffffffff",
+    "0x100000000",
+    "99999999999999999999",
+    "1e999",
+    "100000",
+    "65536",
+    "-2147483648",
+    "1000000000",
+]
 
 
 @functools.lru_cache(maxsize=1)
@@ -134,8 +166,18 @@ def seeds_and_pool() -> tuple[list[dict[str, str]], list[str]]:
     """The seed programs and the token pool of insertions, read once per process (every chunk
     of a run used to read and tokenise the whole corpus again)."""
     seeds = seed_files()
-    pool = POOL + sorted({t for s in seeds for text in s.values() for t in tokens(text)
-                          if re.fullmatch(r"[A-Za-z_]\w*", t)})[:400]
+    pool = (
+        POOL
+        + sorted(
+            {
+                t
+                for s in seeds
+                for text in s.values()
+                for t in tokens(text)
+                if re.fullmatch(r"[A-Za-z_]\w*", t)
+            }
+        )[:400]
+    )
     return seeds, pool
 
 
@@ -147,8 +189,12 @@ def seed_files() -> list[dict[str, str]]:
             files = {f.name: f.read_text(encoding="utf-8") for f in sorted(folder.glob("*.glsl"))}
             if files:
                 seeds.append(files)
-    patterns = ["tests/corpus/*", "tests/hard_cases/*.glsl", "tests/check/invalid/*.glsl",
-                "tests/lint/fixtures/**/*.glsl"]
+    patterns = [
+        "tests/corpus/*",
+        "tests/hard_cases/*.glsl",
+        "tests/check/invalid/*.glsl",
+        "tests/lint/fixtures/**/*.glsl",
+    ]
     for pattern in patterns:
         for f in sorted(ROOT.glob(pattern)):
             if f.is_file() and f.suffix in (".glsl", ".frag"):
@@ -189,7 +235,7 @@ def mutate_text(rng: random.Random, text: str, pool: list[str]) -> bytes:
         if len(spans) > 3:
             a = rng.randrange(len(spans))
             b = min(len(spans), a + rng.randint(1, 3))
-            toks = toks[spans[a][0]:spans[b - 1][1]]
+            toks = toks[spans[a][0] : spans[b - 1][1]]
     parts: list[str | bytes] = list(toks)
     for _ in range(rng.choice((1, 1, 1, 2, 2, 3, 5))):
         n = len(parts)
@@ -198,7 +244,7 @@ def mutate_text(rng: random.Random, text: str, pool: list[str]) -> bytes:
         if n == 0:
             parts.append(rng.choice(pool))
         elif op < 0.20:  # delete a token or a short span
-            del parts[i:i + rng.choice((1, 1, 1, 2, 5))]
+            del parts[i : i + rng.choice((1, 1, 1, 2, 5))]
         elif op < 0.35:  # duplicate
             j = min(n, i + rng.choice((1, 1, 3, 10)))
             parts[i:i] = parts[i:j]
@@ -208,8 +254,12 @@ def mutate_text(rng: random.Random, text: str, pool: list[str]) -> bytes:
         elif op < 0.70:  # insert a token
             parts.insert(i, rng.choice(pool) if rng.random() < 0.8 else rng.choice(toks or ["x"]))
         elif op < 0.80:  # insert bytes
-            parts.insert(i, rng.choice(ODD_BYTES) if rng.random() < 0.7 else bytes(
-                rng.randrange(256) for _ in range(rng.randint(1, 4))))
+            parts.insert(
+                i,
+                rng.choice(ODD_BYTES)
+                if rng.random() < 0.7
+                else bytes(rng.randrange(256) for _ in range(rng.randint(1, 4))),
+            )
         elif op < 0.87:  # replace a number by an extreme one
             nums = [k for k, t in enumerate(parts) if isinstance(t, str) and t[:1].isdigit()]
             if nums:
@@ -260,11 +310,15 @@ class ProgramGenerator:
             choices = []
             if vars_t:
                 choices += [lambda: r.choice(vars_t)] * 3
-            bigger = [(v, vt) for v, vt in scope if vt in FLOATS and SIZE[vt] >= SIZE[t] and vt != "float"]
+            bigger = [
+                (v, vt) for v, vt in scope if vt in FLOATS and SIZE[vt] >= SIZE[t] and vt != "float"
+            ]
             if bigger and t != "vec4":
+
                 def swz():
                     v, vt = r.choice(bigger)
-                    return v + "." + "".join(r.choice("xyzw"[:SIZE[vt]]) for _ in range(SIZE[t]))
+                    return v + "." + "".join(r.choice("xyzw"[: SIZE[vt]]) for _ in range(SIZE[t]))
+
                 choices.append(swz)
             if t == "float":
                 choices += [self.lit, lambda: "(0.1 * iTime)"]
@@ -305,9 +359,11 @@ class ProgramGenerator:
             lambda: f"(-{e()})",
         ]
         if t == "float":
+
             def dot_():
                 vt = r.choice(FLOATS[1:])
                 return f"dot({self.expr(vt, scope, ints, d)}, {self.expr(vt, scope, ints, d)})"
+
             opts += [dot_, lambda: f"length({self.expr(r.choice(FLOATS[1:]), scope, ints, d)})"]
         else:
             opts.append(lambda: f"({e()} * clamp({e('float')}, -1.0, 1.0))")
@@ -318,28 +374,36 @@ class ProgramGenerator:
             opts.append(lambda: f"({c} ? {e()} : {e()})")
         calls = [f for f in self.funcs if f[1] == t and all(q == "in" for q, _ in f[2])]
         if calls:
+
             def call():
                 name, _, params = r.choice(calls)
                 return f"{name}({', '.join(self.expr(pt, scope, ints, d) for _, pt in params)})"
+
             opts.append(call)
         return r.choice(opts)()
 
     def cond(self, ints) -> str:
         r = self.rng
-        return r.choice([
-            lambda: f"({r.choice(ints)} > {r.randint(0, 3)})",
-            lambda: f"({r.choice(ints)} % 2 == 0)",
-            lambda: f"(iTime < {r.uniform(0, 2):.2f})",
-            lambda: f"(iFrame >= {r.randint(0, 2)})",
-            lambda: f"({r.choice(ints)} != {r.randint(0, 3)} && iTime >= 0.0)",
-        ])()
+        return r.choice(
+            [
+                lambda: f"({r.choice(ints)} > {r.randint(0, 3)})",
+                lambda: f"({r.choice(ints)} % 2 == 0)",
+                lambda: f"(iTime < {r.uniform(0, 2):.2f})",
+                lambda: f"(iFrame >= {r.randint(0, 2)})",
+                lambda: f"({r.choice(ints)} != {r.randint(0, 3)} && iTime >= 0.0)",
+            ]
+        )()
 
-    def block(self, scope, ints, depth: int, indent: str, out: list[str], ret: str | None = None) -> None:
+    def block(
+        self, scope, ints, depth: int, indent: str, out: list[str], ret: str | None = None
+    ) -> None:
         r = self.rng
         scope = list(scope)
         for _ in range(r.randint(1, 4)):
             k = r.random()
-            writable = [(v, vt) for v, vt in scope if not v.startswith(("uv", "K")) and vt in FLOATS]
+            writable = [
+                (v, vt) for v, vt in scope if not v.startswith(("uv", "K")) and vt in FLOATS
+            ]
             if k < 0.35 or not writable:
                 t = r.choice(FLOATS)
                 v = self.name("v")
@@ -380,12 +444,18 @@ class ProgramGenerator:
                             cands = [v]
                         args.append(r.choice(cands) if q != "in" else self.expr(pt, scope, ints, 2))
                     call = f"{name}({', '.join(args)})"
-                    out.append(f"{indent}{call};" if rt == "void" else f"{indent}{rt} {self.name('r')} = {call};")
+                    out.append(
+                        f"{indent}{call};"
+                        if rt == "void"
+                        else f"{indent}{rt} {self.name('r')} = {call};"
+                    )
             else:
                 a = self.name("a")
                 t = r.choice(("float", "vec3"))
                 n = r.randint(2, 4)
-                out.append(f"{indent}{t} {a}[{n}] = {t}[{n}]({', '.join(self.expr(t, scope, ints, 2) for _ in range(n))});")
+                out.append(
+                    f"{indent}{t} {a}[{n}] = {t}[{n}]({', '.join(self.expr(t, scope, ints, 2) for _ in range(n))});"
+                )
                 idx = f"{r.choice(ints)} % {n}" if ints else str(r.randrange(n))
                 v = self.name("v")
                 out.append(f"{indent}{t} {v} = {a}[{idx}];")
@@ -400,7 +470,11 @@ class ProgramGenerator:
         for _ in range(r.randint(0, 2)):
             k = self.name("K")
             t = r.choice(FLOATS)
-            init = self.lit() if t == "float" else f"{t}({', '.join(self.lit() for _ in range(SIZE[t]))})"
+            init = (
+                self.lit()
+                if t == "float"
+                else f"{t}({', '.join(self.lit() for _ in range(SIZE[t]))})"
+            )
             out.append(f"const {t} {k} = {init};")
             scope.append((k, t))
         if r.random() < 0.5:
@@ -411,12 +485,18 @@ class ProgramGenerator:
         for _ in range(r.randint(0, 3)):
             name = self.name("fn")
             rt = r.choice(FLOATS + ("void",))
-            params = [(r.choice(("in", "in", "out", "inout")), r.choice(FLOATS)) for _ in range(r.randint(1, 3))]
+            params = [
+                (r.choice(("in", "in", "out", "inout")), r.choice(FLOATS))
+                for _ in range(r.randint(1, 3))
+            ]
             if rt == "void" and all(q == "in" for q, _ in params):
                 params[0] = ("out", params[0][1])
             pnames = [(f"p{j}", pt) for j, (_, pt) in enumerate(params)]
-            out.append(f"{rt if rt != 'void' else 'void'} {name}("
-                       + ", ".join(f"{q} {pt} p{j}" for j, (q, pt) in enumerate(params)) + ") {")
+            out.append(
+                f"{rt if rt != 'void' else 'void'} {name}("
+                + ", ".join(f"{q} {pt} p{j}" for j, (q, pt) in enumerate(params))
+                + ") {"
+            )
             body: list[str] = []
             # out parameters are written first so they are never read uninitialised.
             for j, (q, pt) in enumerate(params):
@@ -432,7 +512,11 @@ class ProgramGenerator:
         local = scope + [("uv", "vec2")]
         for s, fields in self.structs:
             v = self.name("s")
-            body.append(f"    {s} {v} = {s}(" + ", ".join(self.expr(ft, local, [], 2) for _, ft in fields) + ");")
+            body.append(
+                f"    {s} {v} = {s}("
+                + ", ".join(self.expr(ft, local, [], 2) for _, ft in fields)
+                + ");"
+            )
             local.append((v, s))
         self.block(local, [], 3, "    ", body)
         out += body
@@ -454,8 +538,14 @@ MAIN = "void mainImage(out vec4 fragColor, in vec2 fragCoord) {\n"
 
 def _cond(rng: random.Random, k: int) -> str:
     """A condition that varies across pixels (fragCoord) or is the same for all (iTime)."""
-    return rng.choice((f"fragCoord.x > {k % 9}.5", f"fragCoord.y < {k % 7}.0", f"iTime > {k % 5}.0",
-                       f"x < {k % 11}.0"))
+    return rng.choice(
+        (
+            f"fragCoord.x > {k % 9}.5",
+            f"fragCoord.y < {k % 7}.0",
+            f"iTime > {k % 5}.0",
+            f"x < {k % 11}.0",
+        )
+    )
 
 
 def _nest_statements(rng: random.Random, depth: int) -> str:
@@ -477,22 +567,39 @@ def _nest_statements(rng: random.Random, depth: int) -> str:
             tail.append("}")
         elif kind == "for":
             loops += 1
-            head.append(f"for (int i{k} = 0; i{k} < {rng.choice((1, 2))}; i{k}++) {{ x += 1.0; "
-                        + (f"if ({_cond(rng, k)}) continue; " if rng.random() < 0.3 else ""))
+            head.append(
+                f"for (int i{k} = 0; i{k} < {rng.choice((1, 2))}; i{k}++) {{ x += 1.0; "
+                + (f"if ({_cond(rng, k)}) continue; " if rng.random() < 0.3 else "")
+            )
             tail.append(f"{'if (fragCoord.x < 3.0) break; ' if rng.random() < 0.3 else ''}}}")
         elif kind == "while":
             loops += 1
             head.append(f"int w{k} = 0; while (w{k} < {rng.choice((1, 2))}) {{ w{k}++; ")
             tail.append("}")
         else:
-            head.append(f"switch (int(fragCoord.x) % 3) {{ case 0: x += 1.0; case 1: {{ ")
+            head.append("switch (int(fragCoord.x) % 3) { case 0: x += 1.0; case 1: { ")
             tail.append("} break; default: x -= 1.0; }")
-    body = "".join(head) + "x += 1.0; " + ("if (fragCoord.y > 5.0) return; " if rng.random() < 0.2 else "")
+    body = (
+        "".join(head)
+        + "x += 1.0; "
+        + ("if (fragCoord.y > 5.0) return; " if rng.random() < 0.2 else "")
+    )
     return body + " ".join(reversed(tail))
 
 
-HOSTILE_SHAPES = ("nest", "loops", "elseif", "parens", "ternary", "andand", "sum", "array", "runaway",
-                  "calls", "switch")
+HOSTILE_SHAPES = (
+    "nest",
+    "loops",
+    "elseif",
+    "parens",
+    "ternary",
+    "andand",
+    "sum",
+    "array",
+    "runaway",
+    "calls",
+    "switch",
+)
 
 
 def hostile_program(rng: random.Random, shape: str | None = None) -> str:
@@ -507,11 +614,19 @@ def hostile_program(rng: random.Random, shape: str | None = None) -> str:
         body += _nest_statements(rng, min(n, 250))
     elif shape == "loops":  # the first loops run once: 2**10 iterations at most
         m = min(n, 40)
-        body += "".join(f"for (int i{k} = 0; i{k} < {2 if k >= m - 10 else 1}; i{k}++) {{ " for k in range(m))
-        body += "x += 1.0; " + ("if (fragCoord.x < 4.0) break; " if rng.random() < 0.5 else "") + "}" * m
+        body += "".join(
+            f"for (int i{k} = 0; i{k} < {2 if k >= m - 10 else 1}; i{k}++) {{ " for k in range(m)
+        )
+        body += (
+            "x += 1.0; "
+            + ("if (fragCoord.x < 4.0) break; " if rng.random() < 0.5 else "")
+            + "}" * m
+        )
     elif shape == "elseif":
         body += "if (x < 0.0) x = 0.0;" + "".join(
-            f" else if ({rng.choice(('x', 'iTime', 'fragCoord.y'))} < {k}.0) x += {k}.0;" for k in range(1, n))
+            f" else if ({rng.choice(('x', 'iTime', 'fragCoord.y'))} < {k}.0) x += {k}.0;"
+            for k in range(1, n)
+        )
         body += " else x = 1.0;"
     elif shape == "parens":
         op = rng.choice(("+", "*", "-"))
@@ -520,24 +635,41 @@ def hostile_program(rng: random.Random, shape: str | None = None) -> str:
         e = "x"
         for k in range(n):
             side = f"(x += {k % 3}.0)" if rng.random() < 0.2 else f"{k}.0"
-            e = f"({_cond(rng, k)} ? {e} : {side})" if rng.random() < 0.5 else f"({_cond(rng, k)} ? {side} : {e})"
+            e = (
+                f"({_cond(rng, k)} ? {e} : {side})"
+                if rng.random() < 0.5
+                else f"({_cond(rng, k)} ? {side} : {e})"
+            )
         body += f"x = {e};"
     elif shape == "andand":
         ops = [rng.choice(("&&", "||")) for _ in range(n)]
-        body += "bool b = " + "".join(f"({_cond(rng, k)} {ops[k]} " for k in range(n)) + "true" + ")" * n + ";"
+        body += (
+            "bool b = "
+            + "".join(f"({_cond(rng, k)} {ops[k]} " for k in range(n))
+            + "true"
+            + ")" * n
+            + ";"
+        )
         body += " x += b ? 1.0 : 0.0;"
     elif shape == "sum":
         body += "x = " + " + ".join(f"sin(x * {k % 13}.0)" for k in range(n * 10)) + ";"
     elif shape == "array":
         size = rng.choice((1000, 65536, 100000, 1000000, 4000000))
-        body += (f"float a[{size}];\na[int(fragCoord.x) % {size}] = 1.0;\n"
-                 f"x += a[int(fragCoord.y) % {size}] + a[{size - 1}];")
+        body += (
+            f"float a[{size}];\na[int(fragCoord.x) % {size}] = 1.0;\n"
+            f"x += a[int(fragCoord.y) % {size}] + a[{size - 1}];"
+        )
     elif shape == "runaway":
         m = rng.choice((2, 3))
-        body += "".join(f"for (int r{k} = 0; r{k} < 99999; r{k}++) {{ " for k in range(m)) + "x += 1.0; " + "}" * m
+        body += (
+            "".join(f"for (int r{k} = 0; r{k} < 99999; r{k}++) {{ " for k in range(m))
+            + "x += 1.0; "
+            + "}" * m
+        )
     elif shape == "calls":
         pre = "float f0(float v) { return v * 0.5; }\n" + "".join(
-            f"float f{k}(float v) {{ return f{k - 1}(v) + {k % 3}.0; }}\n" for k in range(1, n))
+            f"float f{k}(float v) {{ return f{k - 1}(v) + {k % 3}.0; }}\n" for k in range(1, n)
+        )
         body += f"x = f{n - 1}(x);"
     else:  # switch
         m = min(n, 100)
@@ -553,8 +685,13 @@ def hostile_program(rng: random.Random, shape: str | None = None) -> str:
 HOSTILE_RATE = 0.05  # share of inputs replaced by hostile programs (the others stay as they were)
 
 
-def make_input(seed: int, index: int, seeds: list[dict[str, str]], pool: list[str],
-               hostile_rate: float = HOSTILE_RATE) -> tuple[str, dict[str, bytes]]:
+def make_input(
+    seed: int,
+    index: int,
+    seeds: list[dict[str, str]],
+    pool: list[str],
+    hostile_rate: float = HOSTILE_RATE,
+) -> tuple[str, dict[str, bytes]]:
     """(kind, {file name: bytes}) for input `index` of run `seed`."""
     pick = random.Random(f"{seed}:{index}:hostile")
     if pick.random() < hostile_rate:
@@ -565,9 +702,14 @@ def make_input(seed: int, index: int, seeds: list[dict[str, str]], pool: list[st
         files = rng.choice(seeds)
         if len(files) > 1 and rng.random() < 0.3:  # a folder with Common + Image, one mutated
             target = rng.choice(sorted(files))
-            return "mutate", {n: (mutate_text(rng, t, pool) if n == target else t.encode()) for n, t in files.items()}
+            return "mutate", {
+                n: (mutate_text(rng, t, pool) if n == target else t.encode())
+                for n, t in files.items()
+            }
         name = "Image.glsl" if "Image.glsl" in files else next(iter(files))
-        return "mutate", {"shader.glsl" if name != "shader.frag" else name: mutate_text(rng, files[name], pool)}
+        return "mutate", {
+            "shader.glsl" if name != "shader.frag" else name: mutate_text(rng, files[name], pool)
+        }
     if x < 0.80:
         return "generate", {"shader.glsl": random_program(rng).encode()}
     if x < 0.92:
@@ -594,7 +736,9 @@ def _line_lengths(data: bytes) -> list[int]:
     return [len(line) for line in text.split("\n")]
 
 
-def judge(command: str, rc, out: str, err: str, files: dict[str, Path], data: dict[str, bytes]) -> tuple[str, str]:
+def judge(
+    command: str, rc, out: str, err: str, files: dict[str, Path], data: dict[str, bytes]
+) -> tuple[str, str]:
     """(outcome, detail) for one command's result."""
     if "Traceback" in out or "Traceback" in err:
         return "traceback", (err or out)[-2000:]
@@ -627,8 +771,13 @@ def judge(command: str, rc, out: str, err: str, files: dict[str, Path], data: di
     return {0: "ok", 1: "findings", 2: "usage"}[rc], ""
 
 
-def run_command(command: str, folder: Path, files: dict[str, Path], data: dict[str, bytes],
-                extra: tuple[str, ...] = ()) -> tuple[str, str]:
+def run_command(
+    command: str,
+    folder: Path,
+    files: dict[str, Path],
+    data: dict[str, bytes],
+    extra: tuple[str, ...] = (),
+) -> tuple[str, str]:
     from glslcheck.cli.main import main
 
     target = str(files[next(iter(files))]) if len(files) == 1 else str(folder)
@@ -660,7 +809,9 @@ def _worker(conn, workdir: str) -> None:
 
     signal.signal(signal.SIGINT, signal.SIG_IGN)  # Ctrl-C stops the parent, which stops the workers
     try:
-        os.nice(int(os.environ.get("GLSLCHECK_FUZZ_NICE", "10")))  # the machine is shared: yield to others
+        os.nice(
+            int(os.environ.get("GLSLCHECK_FUZZ_NICE", "10"))
+        )  # the machine is shared: yield to others
     except (OSError, ValueError):
         pass
     try:
@@ -674,8 +825,8 @@ def _worker(conn, workdir: str) -> None:
         pass
     # a runaway frame stops (a located error) well inside the render budget below
     os.environ.setdefault("GLSLCHECK_FRAME_SECONDS", str(FRAME_SECONDS))
-    import glslcheck.cli.main  # noqa: F401 - loaded before the first job, whose budget it would spend
     import glslcheck.backends.numpy_engine.program  # noqa: F401
+    import glslcheck.cli.main  # noqa: F401 - loaded before the first job, whose budget it would spend
 
     folder = Path(workdir)
     while True:
@@ -712,7 +863,9 @@ class InProcess:
     def __init__(self) -> None:
         self.dir = tempfile.mkdtemp(prefix="glslcheck-fuzz-")
 
-    def run(self, command: str, data: dict[str, bytes], budget: float, extra: tuple[str, ...] = ()) -> tuple[str, str]:
+    def run(
+        self, command: str, data: dict[str, bytes], budget: float, extra: tuple[str, ...] = ()
+    ) -> tuple[str, str]:
         folder = Path(self.dir)
         return run_command(command, folder, _write_input(folder, data), data, extra)
 
@@ -731,8 +884,9 @@ class Worker:
         self.proc = self.ctx.Process(target=_worker, args=(child, self.dir), daemon=True)
         self.proc.start()
 
-    def run(self, command: str, data: dict[str, bytes], budget: float,
-            extra: tuple[str, ...] = ()) -> tuple[str, str]:
+    def run(
+        self, command: str, data: dict[str, bytes], budget: float, extra: tuple[str, ...] = ()
+    ) -> tuple[str, str]:
         """The command's (outcome, detail); "timeout" when the worker spends `budget` seconds of
         CPU on it (a loop), or WALL_FACTOR times that of wall-clock time (blocked). CPU time, not
         wall time: on a shared machine a niced worker may wait minutes for a core. `extra`:
@@ -744,7 +898,10 @@ class Worker:
             wall = time.monotonic() - start
             if cpu > budget or wall > budget * WALL_FACTOR:
                 self.restart()
-                return "timeout", f"{command} ran longer than {budget:g} s (CPU {cpu:.0f} s, wall {wall:.0f} s)"
+                return (
+                    "timeout",
+                    f"{command} ran longer than {budget:g} s (CPU {cpu:.0f} s, wall {wall:.0f} s)",
+                )
         try:
             return self.conn.recv()
         except EOFError:
@@ -777,9 +934,13 @@ class Worker:
             shutil.rmtree(self.dir, ignore_errors=True)
 
 
-def commands_for(kind: str, rng: random.Random, results: dict[str, str], heavy_rate: float, verify_rate: float) -> list[str]:
+def commands_for(
+    kind: str, rng: random.Random, results: dict[str, str], heavy_rate: float, verify_rate: float
+) -> list[str]:
     """Which heavy commands an input gets, once its light results are known."""
-    if kind == "hostile":  # the NumPy path only: Mesa's compile time on such nesting is the driver's
+    if (
+        kind == "hostile"
+    ):  # the NumPy path only: Mesa's compile time on such nesting is the driver's
         return ["transpile", "render"]
     cmds = []
     checked = results.get("check") == "ok"
@@ -787,16 +948,30 @@ def commands_for(kind: str, rng: random.Random, results: dict[str, str], heavy_r
         cmds.append("transpile")
     if rng.random() < heavy_rate * (4 if checked else 1):
         cmds.append("render")
-    if (kind == "generate" and rng.random() < verify_rate) or (checked and rng.random() < heavy_rate / 4):
+    if (kind == "generate" and rng.random() < verify_rate) or (
+        checked and rng.random() < heavy_rate / 4
+    ):
         cmds.append("verify")
     return cmds
 
 
-def fuzz_range(seed: int, start: int, stop: int, *, heavy_rate: float, verify_rate: float,
-               timeout_scale: float = 1.0, out_dir: Path | None = None, commands=LIGHT + HEAVY,
-               parse_rate: float = 1.0, progress=None, worker: Worker | None = None,
-               deadline: float | None = None, hostile_rate: float = HOSTILE_RATE,
-               halt=None) -> tuple[collections.Counter, list[dict]]:
+def fuzz_range(
+    seed: int,
+    start: int,
+    stop: int,
+    *,
+    heavy_rate: float,
+    verify_rate: float,
+    timeout_scale: float = 1.0,
+    out_dir: Path | None = None,
+    commands=LIGHT + HEAVY,
+    parse_rate: float = 1.0,
+    progress=None,
+    worker: Worker | None = None,
+    deadline: float | None = None,
+    hostile_rate: float = HOSTILE_RATE,
+    halt=None,
+) -> tuple[collections.Counter, list[dict]]:
     """Fuzz inputs start..stop-1 of run `seed` in one worker; (counts, flagged). With
     `deadline` (a time.monotonic() value), stop after the input running at that time; with
     `halt` (a threading.Event), once it is set."""
@@ -809,22 +984,37 @@ def fuzz_range(seed: int, start: int, stop: int, *, heavy_rate: float, verify_ra
     flagged: list[dict] = []
     try:
         for index in range(start, stop):
-            if deadline is not None and time.monotonic() > deadline or halt is not None and halt.is_set():
+            if (
+                deadline is not None
+                and time.monotonic() > deadline
+                or halt is not None
+                and halt.is_set()
+            ):
                 break
             kind, data = make_input(seed, index, seeds, pool, hostile_rate)
             counts[("input", kind)] += 1
             rng = random.Random(f"{seed}:{index}:heavy")
             results: dict[str, str] = {}
             # `check` runs the whole parse path too; `parse` itself runs on a share of inputs.
-            todo = [c for c in LIGHT if c in commands and (c != "parse" or rng.random() < parse_rate)]
+            todo = [
+                c for c in LIGHT if c in commands and (c != "parse" or rng.random() < parse_rate)
+            ]
             while todo:
                 command = todo.pop(0)
                 t0 = time.perf_counter()
-                extra = ("--frame-budget", f"{HOSTILE_FRAME_SECONDS:g}") if kind == "hostile" and command == "render" else ()
+                extra = (
+                    ("--frame-budget", f"{HOSTILE_FRAME_SECONDS:g}")
+                    if kind == "hostile" and command == "render"
+                    else ()
+                )
                 outcome, detail = worker.run(command, data, BUDGET[command] * timeout_scale, extra)
                 counts[("seconds", command)] += time.perf_counter() - t0
-                if (kind == "generate" and command in ("parse", "check", "transpile", "render")
-                        or kind == "hostile" and command in ("parse", "check")) and outcome != "ok":
+                if (
+                    kind == "generate"
+                    and command in ("parse", "check", "transpile", "render")
+                    or kind == "hostile"
+                    and command in ("parse", "check")
+                ) and outcome != "ok":
                     if outcome in NORMAL:
                         outcome = "gen-rejected"
                 if outcome == "mismatch" and kind != "generate":
@@ -834,12 +1024,24 @@ def fuzz_range(seed: int, start: int, stop: int, *, heavy_rate: float, verify_ra
                 results[command] = outcome
                 counts[(command, outcome)] += 1
                 if outcome not in NORMAL:
-                    flagged.append({"seed": seed, "index": index, "kind": kind, "command": command,
-                                    "outcome": outcome, "detail": detail})
+                    flagged.append(
+                        {
+                            "seed": seed,
+                            "index": index,
+                            "kind": kind,
+                            "command": command,
+                            "outcome": outcome,
+                            "detail": detail,
+                        }
+                    )
                     if out_dir is not None:
                         _save(out_dir, seed, index, command, outcome, detail, data)
                 if command == "lint":
-                    todo += [c for c in commands_for(kind, rng, results, heavy_rate, verify_rate) if c in commands]
+                    todo += [
+                        c
+                        for c in commands_for(kind, rng, results, heavy_rate, verify_rate)
+                        if c in commands
+                    ]
             if progress:
                 progress(index)
     finally:
@@ -853,47 +1055,108 @@ def _save(out_dir: Path, seed, index, command, outcome, detail, data) -> None:
     folder.mkdir(parents=True, exist_ok=True)
     for name, raw in data.items():
         (folder / name).write_bytes(raw)
-    (folder / "NOTE.txt").write_text(f"glslcheck {command}: {outcome}\n\n{detail}\n", encoding="utf-8")
+    (folder / "NOTE.txt").write_text(
+        f"glslcheck {command}: {outcome}\n\n{detail}\n", encoding="utf-8"
+    )
 
 
-def print_counts(counts: collections.Counter, flagged: list[dict], elapsed: float, file=sys.stdout) -> None:
+def print_counts(
+    counts: collections.Counter, flagged: list[dict], elapsed: float, file=sys.stdout
+) -> None:
     kinds = {k: n for (c, k), n in counts.items() if c == "input"}
     secs = {k: n for (c, k), n in counts.items() if c == "seconds"}
     total = sum(kinds.values())
-    print(f"inputs: {total} ({', '.join(f'{k} {n}' for k, n in sorted(kinds.items()))}) in {elapsed:.0f} s", file=file)
-    outcomes = sorted({o for (c, o) in counts if c not in ("input", "seconds", "elapsed")}, key=lambda o: (o not in NORMAL, o))
+    print(
+        f"inputs: {total} ({', '.join(f'{k} {n}' for k, n in sorted(kinds.items()))}) in {elapsed:.0f} s",
+        file=file,
+    )
+    outcomes = sorted(
+        {o for (c, o) in counts if c not in ("input", "seconds", "elapsed")},
+        key=lambda o: (o not in NORMAL, o),
+    )
     cmds = [c for c in LIGHT + HEAVY if any((c, o) in counts for o in outcomes)]
-    print(f"{'command':<10}" + "".join(f"{o:>13}" for o in outcomes) + f"{'seconds':>10}", file=file)
+    print(
+        f"{'command':<10}" + "".join(f"{o:>13}" for o in outcomes) + f"{'seconds':>10}", file=file
+    )
     for c in cmds:
-        print(f"{c:<10}" + "".join(f"{counts.get((c, o), 0):>13}" for o in outcomes)
-              + f"{secs.get(c, 0):>10.0f}", file=file)
+        print(
+            f"{c:<10}"
+            + "".join(f"{counts.get((c, o), 0):>13}" for o in outcomes)
+            + f"{secs.get(c, 0):>10.0f}",
+            file=file,
+        )
     bad = len(flagged)
-    print(f"flagged: {bad}" + (" (crashes, hangs, unlocated errors or rejected generated programs)" if bad else
-                               " - zero crashes"), file=file)
+    print(
+        f"flagged: {bad}"
+        + (
+            " (crashes, hangs, unlocated errors or rejected generated programs)"
+            if bad
+            else " - zero crashes"
+        ),
+        file=file,
+    )
 
 
 def main(argv: list[str] | None = None) -> int:
     p = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     p.add_argument("--count", type=int, default=1000, help="number of inputs (default 1000)")
-    p.add_argument("--seed", type=int, default=0, help="run seed: input i is a function of (seed, i)")
-    p.add_argument("--start", type=int, default=0, help="first input index (to resume or split a run)")
+    p.add_argument(
+        "--seed", type=int, default=0, help="run seed: input i is a function of (seed, i)"
+    )
+    p.add_argument(
+        "--start", type=int, default=0, help="first input index (to resume or split a run)"
+    )
     p.add_argument("--jobs", type=int, default=1, help="worker processes (default 1)")
-    p.add_argument("--heavy-rate", type=float, default=0.05,
-                   help="share of inputs that get render (x4 when check passes) and transpile though check failed")
-    p.add_argument("--verify-rate", type=float, default=0.05, help="share of generated programs that get verify")
-    p.add_argument("--hostile-rate", type=float, default=HOSTILE_RATE,
-                   help=f"share of inputs that are hostile valid programs (default {HOSTILE_RATE})")
-    p.add_argument("--parse-rate", type=float, default=1.0,
-                   help="share of inputs that also get `parse` (check runs the parser on all; default 1)")
+    p.add_argument(
+        "--heavy-rate",
+        type=float,
+        default=0.05,
+        help="share of inputs that get render (x4 when check passes) and transpile though check failed",
+    )
+    p.add_argument(
+        "--verify-rate",
+        type=float,
+        default=0.05,
+        help="share of generated programs that get verify",
+    )
+    p.add_argument(
+        "--hostile-rate",
+        type=float,
+        default=HOSTILE_RATE,
+        help=f"share of inputs that are hostile valid programs (default {HOSTILE_RATE})",
+    )
+    p.add_argument(
+        "--parse-rate",
+        type=float,
+        default=1.0,
+        help="share of inputs that also get `parse` (check runs the parser on all; default 1)",
+    )
     p.add_argument("--commands", default=",".join(LIGHT + HEAVY), help="entry points to run")
-    p.add_argument("--timeout-scale", type=float, default=1.0, help="multiply the per-command time budgets")
-    p.add_argument("--out", default="fuzz-findings", help="folder for flagged inputs (default fuzz-findings)")
-    p.add_argument("--json", metavar="FILE", help="also write the counts and flagged inputs as JSON")
-    p.add_argument("--merge", nargs="+", metavar="JSON", help="print the combined counts of --json files and exit")
+    p.add_argument(
+        "--timeout-scale", type=float, default=1.0, help="multiply the per-command time budgets"
+    )
+    p.add_argument(
+        "--out", default="fuzz-findings", help="folder for flagged inputs (default fuzz-findings)"
+    )
+    p.add_argument(
+        "--json", metavar="FILE", help="also write the counts and flagged inputs as JSON"
+    )
+    p.add_argument(
+        "--merge",
+        nargs="+",
+        metavar="JSON",
+        help="print the combined counts of --json files and exit",
+    )
     p.add_argument("--show", type=int, metavar="INDEX", help="print input INDEX of --seed and exit")
-    p.add_argument("--max-seconds", type=float, metavar="S",
-                   help="stop after S seconds (the inputs in flight finish; the counts so far are printed)")
-    p.add_argument("--resume", metavar="JSON", help="continue the run a --json file recorded (same --seed)")
+    p.add_argument(
+        "--max-seconds",
+        type=float,
+        metavar="S",
+        help="stop after S seconds (the inputs in flight finish; the counts so far are printed)",
+    )
+    p.add_argument(
+        "--resume", metavar="JSON", help="continue the run a --json file recorded (same --seed)"
+    )
     args = p.parse_args(argv)
 
     if args.merge:
@@ -905,8 +1168,10 @@ def main(argv: list[str] | None = None) -> int:
             counts.update({tuple(k.split("/", 1)): v for k, v in doc["counts"].items()})
             flagged += doc["flagged"]
             spans = doc.get("chunks") or [[doc["start"], doc["start"] + doc["count"]]]
-            ranges.append(f"seed {doc['seed']}: {doc['count']} inputs in {min(b for b, _ in spans)}.."
-                          f"{max(e for _, e in spans) - 1}")
+            ranges.append(
+                f"seed {doc['seed']}: {doc['count']} inputs in {min(b for b, _ in spans)}.."
+                f"{max(e for _, e in spans) - 1}"
+            )
         print("merged: " + "; ".join(ranges))
         print_counts(counts, flagged, counts.get(("elapsed", "total"), 0))
         return 1 if flagged else 0
@@ -920,9 +1185,15 @@ def main(argv: list[str] | None = None) -> int:
         return 0
 
     commands = tuple(c.strip() for c in args.commands.split(",") if c.strip())
-    opts = dict(heavy_rate=args.heavy_rate, verify_rate=args.verify_rate, timeout_scale=args.timeout_scale,
-                parse_rate=args.parse_rate, out_dir=Path(args.out), commands=commands,
-                hostile_rate=args.hostile_rate)
+    opts = dict(
+        heavy_rate=args.heavy_rate,
+        verify_rate=args.verify_rate,
+        timeout_scale=args.timeout_scale,
+        parse_rate=args.parse_rate,
+        out_dir=Path(args.out),
+        commands=commands,
+        hostile_rate=args.hostile_rate,
+    )
     return run(args, opts)
 
 
@@ -944,13 +1215,22 @@ def run(args, opts: dict) -> int:
     if args.resume:
         doc = json.loads(Path(args.resume).read_text(encoding="utf-8"))
         if doc.get("seed") != args.seed:
-            print(f"fuzz: --resume {args.resume} is a run of seed {doc.get('seed')}, not {args.seed}", file=sys.stderr)
+            print(
+                f"fuzz: --resume {args.resume} is a run of seed {doc.get('seed')}, not {args.seed}",
+                file=sys.stderr,
+            )
             return 2
-        counts.update({tuple(k.split("/", 1)): v for k, v in doc["counts"].items() if k != "elapsed/total"})
+        counts.update(
+            {tuple(k.split("/", 1)): v for k, v in doc["counts"].items() if k != "elapsed/total"}
+        )
         flagged += doc["flagged"]
         done_chunks += doc.get("chunks", [])
         t0 -= doc["counts"].get("elapsed/total", 0)
-    chunks = [(s, min(s + CHUNK, e)) for b, e in _todo(args.start, stop, done_chunks) for s in range(b, e, CHUNK)]
+    chunks = [
+        (s, min(s + CHUNK, e))
+        for b, e in _todo(args.start, stop, done_chunks)
+        for s in range(b, e, CHUNK)
+    ]
     halt = threading.Event()
     deadline = None if args.max_seconds is None else time.monotonic() + args.max_seconds
 
@@ -967,15 +1247,17 @@ def run(args, opts: dict) -> int:
     def chunk(span):
         w = workers.get()
         try:
-            return span, fuzz_range(args.seed, *span, worker=w, deadline=deadline, halt=halt, **opts)
+            return span, fuzz_range(
+                args.seed, *span, worker=w, deadline=deadline, halt=halt, **opts
+            )
         finally:
             workers.put(w)
 
     status = 0
     try:
         with ThreadPoolExecutor(len(started)) as pool:
-            pending = {pool.submit(chunk, span) for span in chunks[:len(started)]}
-            rest = iter(chunks[len(started):])
+            pending = {pool.submit(chunk, span) for span in chunks[: len(started)]}
+            rest = iter(chunks[len(started) :])
             while pending:
                 try:
                     finished, pending = wait(pending, timeout=5, return_when=FIRST_COMPLETED)
@@ -994,21 +1276,30 @@ def run(args, opts: dict) -> int:
                         if nxt is not None:
                             pending.add(pool.submit(chunk, nxt))
                     total = sum(v for (k, _), v in counts.items() if k == "input")
-                    print(f"[{time.time() - t0:6.0f} s] {total} inputs ({total / max(time.time() - t0, 1e-9):.1f}/s), "
-                          f"{len(flagged)} flagged", file=sys.stderr, flush=True)
+                    print(
+                        f"[{time.time() - t0:6.0f} s] {total} inputs ({total / max(time.time() - t0, 1e-9):.1f}/s), "
+                        f"{len(flagged)} flagged",
+                        file=sys.stderr,
+                        flush=True,
+                    )
                     if args.json:  # after every chunk, so a stopped run keeps what it did
                         _write_json(args, counts, flagged, done_chunks, t0)
     finally:
         for w in started:
             w.close()
     total = sum(v for (k, _), v in counts.items() if k == "input")
-    print(f"python tools/fuzz.py --count {args.count} --seed {args.seed}"
-          + (f" --start {args.start}" if args.start else "") + (f" --jobs {args.jobs}" if args.jobs > 1 else "")
-          + (f" ({total} inputs done: stopped early)" if total < args.count else ""))
+    print(
+        f"python tools/fuzz.py --count {args.count} --seed {args.seed}"
+        + (f" --start {args.start}" if args.start else "")
+        + (f" --jobs {args.jobs}" if args.jobs > 1 else "")
+        + (f" ({total} inputs done: stopped early)" if total < args.count else "")
+    )
     print_counts(counts, flagged, time.time() - t0)
     for f in flagged[:20]:
-        print(f"  {f['outcome']} {f['command']} seed {f['seed']} input {f['index']} ({f['kind']}): "
-              f"{f['detail'].strip().splitlines()[-1][:200] if f['detail'].strip() else ''}")
+        print(
+            f"  {f['outcome']} {f['command']} seed {f['seed']} input {f['index']} ({f['kind']}): "
+            f"{f['detail'].strip().splitlines()[-1][:200] if f['detail'].strip() else ''}"
+        )
     if args.json:
         _write_json(args, counts, flagged, done_chunks, t0)
     return 1 if flagged else status
@@ -1031,12 +1322,24 @@ def _write_json(args, counts, flagged, chunks: list[list[int]], t0: float) -> No
     done = sum(n for (k, _), n in counts.items() if k == "input")
     path = Path(args.json)
     tmp = path.with_name(path.name + ".tmp")
-    tmp.write_text(json.dumps({
-        "seed": args.seed, "start": args.start, "count": done, "requested": args.count,
-        "chunks": sorted(chunks),
-        "counts": {**{f"{c}/{o}": n for (c, o), n in sorted(counts.items())},
-                   "elapsed/total": time.time() - t0},
-        "flagged": flagged}, indent=1), encoding="utf-8")
+    tmp.write_text(
+        json.dumps(
+            {
+                "seed": args.seed,
+                "start": args.start,
+                "count": done,
+                "requested": args.count,
+                "chunks": sorted(chunks),
+                "counts": {
+                    **{f"{c}/{o}": n for (c, o), n in sorted(counts.items())},
+                    "elapsed/total": time.time() - t0,
+                },
+                "flagged": flagged,
+            },
+            indent=1,
+        ),
+        encoding="utf-8",
+    )
     os.replace(tmp, path)
 
 

@@ -1,7 +1,7 @@
 """Generate docs/rules.md from the lint rule registry (each rule's docstring).
 
-    python tools/gen_rules_doc.py           write docs/rules.md
-    python tools/gen_rules_doc.py --check   exit 1 when docs/rules.md is out of date
+python tools/gen_rules_doc.py           write docs/rules.md
+python tools/gen_rules_doc.py --check   exit 1 when docs/rules.md is out of date
 """
 
 from __future__ import annotations
@@ -37,7 +37,13 @@ def render() -> str:
         penalty = f"-{r.penalty}" if r.penalty else "0"
         out.append(f"| [`{r.name}`](#{r.name}) | {r.kind} | {penalty} | {r.needs} | {r.summary} |")
     for r in rules:
-        out += ["", f"## {r.name}", "", f"*{r.summary}* ({r.kind}, severity `{r.severity}`, penalty {r.penalty})", ""]
+        out += [
+            "",
+            f"## {r.name}",
+            "",
+            f"*{r.summary}* ({r.kind}, severity `{r.severity}`, penalty {r.penalty})",
+            "",
+        ]
         # The docstring's own `## Section` headings become level-3 headings under the rule.
         out += ["#" + line if line.startswith("## ") else line for line in r.doc.splitlines()]
     return "\n".join(out).rstrip() + "\n"
@@ -45,13 +51,18 @@ def render() -> str:
 
 def main(argv: list[str] | None = None) -> int:
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
-    parser.add_argument("--check", action="store_true", help="exit 1 when docs/rules.md is out of date")
+    parser.add_argument(
+        "--check", action="store_true", help="exit 1 when docs/rules.md is out of date"
+    )
     args = parser.parse_args(argv)
     text = render()
     if args.check:
         current = OUT.read_text(encoding="utf-8") if OUT.exists() else ""
         if current != text:
-            print(f"{OUT.relative_to(ROOT)} is out of date: run python tools/gen_rules_doc.py", file=sys.stderr)
+            print(
+                f"{OUT.relative_to(ROOT)} is out of date: run python tools/gen_rules_doc.py",
+                file=sys.stderr,
+            )
             return 1
         return 0
     OUT.write_text(text, encoding="utf-8")

@@ -27,8 +27,8 @@ from pathlib import Path
 ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT))
 
-from glslcheck.semantics.agreement import glslang_errors, our_errors  # noqa: E402
 from glslcheck.base.diagnostics import register_source  # noqa: E402
+from glslcheck.semantics.agreement import glslang_errors, our_errors  # noqa: E402
 from glslcheck.shadertoy.sources import Shader, Source, find_shaders  # noqa: E402
 
 # Messages of glslcheck errors that glslangValidator (compile only, no -l) does not report, and why.
@@ -46,9 +46,37 @@ _TOKEN = re.compile(
     r"|(?P<op><<=|>>=|\+\+|--|<<|>>|<=|>=|==|!=|&&|\|\||\^\^|[-+*/%]=|[&|^]=|.)",
     re.S | re.M,
 )
-KEYWORDS = {"const", "uniform", "in", "out", "inout", "if", "else", "for", "while", "do", "return", "break",
-            "continue", "switch", "case", "default", "struct", "discard", "true", "false", "highp", "mediump",
-            "lowp", "precision", "void", "float", "int", "uint", "bool"}
+KEYWORDS = {
+    "const",
+    "uniform",
+    "in",
+    "out",
+    "inout",
+    "if",
+    "else",
+    "for",
+    "while",
+    "do",
+    "return",
+    "break",
+    "continue",
+    "switch",
+    "case",
+    "default",
+    "struct",
+    "discard",
+    "true",
+    "false",
+    "highp",
+    "mediump",
+    "lowp",
+    "precision",
+    "void",
+    "float",
+    "int",
+    "uint",
+    "bool",
+}
 
 
 @dataclass
@@ -70,7 +98,7 @@ def tokens(text: str) -> list[Token]:
 
 
 def _replace(text: str, tok: Token, new: str) -> str:
-    return text[: tok.start] + new + text[tok.end:]
+    return text[: tok.start] + new + text[tok.end :]
 
 
 def mutations(text: str, rng: random.Random, rounds: int = 3) -> list[tuple[str, str]]:
@@ -85,7 +113,9 @@ def mutations(text: str, rng: random.Random, rounds: int = 3) -> list[tuple[str,
         t = rng.choice(toks)
         out.append((f"drop '{t.text}' at line {line(t)}", _replace(text, t, "")))
         t = rng.choice(toks)
-        out.append((f"duplicate '{t.text}' at line {line(t)}", _replace(text, t, t.text + " " + t.text)))
+        out.append(
+            (f"duplicate '{t.text}' at line {line(t)}", _replace(text, t, t.text + " " + t.text))
+        )
     idents = [t for t in toks if t.kind == "ident" and t.text not in KEYWORDS]
     if len(idents) >= 2:
         for _ in range(rounds):
@@ -93,25 +123,54 @@ def mutations(text: str, rng: random.Random, rounds: int = 3) -> list[tuple[str,
             if a.text == b.text:
                 continue
             first, second = sorted((a, b), key=lambda t: t.start)
-            new = text[: first.start] + second.text + text[first.end: second.start] + first.text + text[second.end:]
-            out.append((f"swap '{first.text}' (line {line(first)}) and '{second.text}' (line {line(second)})", new))
+            new = (
+                text[: first.start]
+                + second.text
+                + text[first.end : second.start]
+                + first.text
+                + text[second.end :]
+            )
+            out.append(
+                (
+                    f"swap '{first.text}' (line {line(first)}) and '{second.text}' (line {line(second)})",
+                    new,
+                )
+            )
     floats = [t for t in toks if t.kind == "float" and re.fullmatch(r"\d+\.0*", t.text)]
     ints = [t for t in toks if t.kind == "int" and t.text.isdigit()]
     for _ in range(rounds):
         if floats:
             t = rng.choice(floats)
-            out.append((f"float literal {t.text} -> int at line {line(t)}", _replace(text, t, t.text.split(".")[0])))
+            out.append(
+                (
+                    f"float literal {t.text} -> int at line {line(t)}",
+                    _replace(text, t, t.text.split(".")[0]),
+                )
+            )
         if ints:
             t = rng.choice(ints)
-            out.append((f"int literal {t.text} -> float at line {line(t)}", _replace(text, t, t.text + ".0")))
-    calls = [t for i, t in enumerate(toks[:-1]) if t.kind == "ident" and toks[i + 1].text == "("
-             and t.text not in KEYWORDS]
+            out.append(
+                (
+                    f"int literal {t.text} -> float at line {line(t)}",
+                    _replace(text, t, t.text + ".0"),
+                )
+            )
+    calls = [
+        t
+        for i, t in enumerate(toks[:-1])
+        if t.kind == "ident" and toks[i + 1].text == "(" and t.text not in KEYWORDS
+    ]
     names = sorted({t.text for t in calls})
     if len(names) >= 2:
         for _ in range(rounds):
             t = rng.choice(calls)
             other = rng.choice([n for n in names if n != t.text])
-            out.append((f"call {other}() instead of {t.text}() at line {line(t)}", _replace(text, t, other)))
+            out.append(
+                (
+                    f"call {other}() instead of {t.text}() at line {line(t)}",
+                    _replace(text, t, other),
+                )
+            )
     return out
 
 
@@ -125,10 +184,16 @@ class Disagreement:
     explained: str | None = None
 
     def describe(self) -> str:
-        side = "glslcheck rejects, glslang accepts" if self.ours else "glslcheck accepts, glslang rejects"
+        side = (
+            "glslcheck rejects, glslang accepts"
+            if self.ours
+            else "glslcheck accepts, glslang rejects"
+        )
         why = f"\n    explained: {self.explained}" if self.explained else ""
-        return (f"{self.shader} [{self.tab}] {self.mutation}: {side}\n    glslcheck: {self.ours[:2]}\n"
-                f"    glslang: {self.glslang[:2]}{why}")
+        return (
+            f"{self.shader} [{self.tab}] {self.mutation}: {side}\n    glslcheck: {self.ours[:2]}\n"
+            f"    glslang: {self.glslang[:2]}{why}"
+        )
 
 
 @dataclass
@@ -214,9 +279,11 @@ def main(argv: list[str] | None = None) -> int:
     for d in report.disagreements:
         print(d.describe())
     print(f"mutants: {report.total} ({report.rejected} rejected by glslangValidator)")
-    print(f"agreement: {report.agree}/{report.total} = {100 * report.rate:.1f}%"
-          f" (with {len([d for d in report.disagreements if d.explained])} explained differences: "
-          f"{100 * report.explained_rate:.1f}%)")
+    print(
+        f"agreement: {report.agree}/{report.total} = {100 * report.rate:.1f}%"
+        f" (with {len([d for d in report.disagreements if d.explained])} explained differences: "
+        f"{100 * report.explained_rate:.1f}%)"
+    )
     return 0 if report.explained_rate >= 0.98 else 1
 
 

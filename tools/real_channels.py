@@ -53,7 +53,10 @@ def _read(entry: dict, mirror: Path | None) -> bytes | None:
         try:
             data = _from_github(entry)
         except OSError as e:
-            print(f"cannot read {entry['repo']}:{entry['path']}@{entry['commit'][:10]} ({e})", file=sys.stderr)
+            print(
+                f"cannot read {entry['repo']}:{entry['path']}@{entry['commit'][:10]} ({e})",
+                file=sys.stderr,
+            )
             return None
     return data
 
@@ -89,7 +92,10 @@ def fetch(mirror: Path | None) -> int:
             if media.exists():
                 continue
             if source is None:  # the shader then fails with glslcheck's own error naming the file
-                print(f"{entry['id']}: no source for Shadertoy's /media/a/{name} in the manifest", file=sys.stderr)
+                print(
+                    f"{entry['id']}: no source for Shadertoy's /media/a/{name} in the manifest",
+                    file=sys.stderr,
+                )
                 continue
             data = _read(source, mirror)
             if data is None:
@@ -97,7 +103,9 @@ def fetch(mirror: Path | None) -> int:
                 continue
             media.parent.mkdir(exist_ok=True)
             media.write_bytes(data)
-    print(f"{len(manifest['shaders'])} shaders in {TEXTS.relative_to(ROOT)}, {missing} files missing")
+    print(
+        f"{len(manifest['shaders'])} shaders in {TEXTS.relative_to(ROOT)}, {missing} files missing"
+    )
     return 1 if missing else 0
 
 
@@ -127,27 +135,41 @@ def verify_one(path: str, size: tuple[int, int], frames: int) -> dict:
     if not bad:
         return {"verdict": "match", "reason": f"{len(results)} frames, max abs error {worst:.3g}"}
     j = bad[0].comparison.to_json()
-    return {"verdict": "mismatch",
-            "reason": (f"{len(bad)}/{len(results)} frames; frame {bad[0].spec.frame}: {j['mismatched_pixels']} over "
-                       f"tolerance, {j['edge_pixels']} edge, NaN/Inf numpy {j['nan_numpy']} gl {j['nan_gl']}, "
-                       f"max err {j['max_abs_error']:.3g}")}
+    return {
+        "verdict": "mismatch",
+        "reason": (
+            f"{len(bad)}/{len(results)} frames; frame {bad[0].spec.frame}: {j['mismatched_pixels']} over "
+            f"tolerance, {j['edge_pixels']} edge, NaN/Inf numpy {j['nan_numpy']} gl {j['nan_gl']}, "
+            f"max err {j['max_abs_error']:.3g}"
+        ),
+    }
 
 
 def score(size: str, frames: int, timeout: float, only: set[str] | None, out: Path | None) -> int:
     entries = [e for e in load_manifest()["shaders"] if not only or e["id"] in only]
     absent = [e["id"] for e in entries if not shader_path(e).exists()]
     if absent:
-        print(f"{len(absent)} shaders are missing ({', '.join(absent[:5])} ...): run "
-              "`python tools/real_channels.py fetch`", file=sys.stderr)
+        print(
+            f"{len(absent)} shaders are missing ({', '.join(absent[:5])} ...): run "
+            "`python tools/real_channels.py fetch`",
+            file=sys.stderr,
+        )
         return 2
     results = []
     for entry in entries:
         started = time.perf_counter()
-        result = run_child([sys.executable, __file__, "_one", str(shader_path(entry)), size, str(frames)], timeout)
-        result.update(id=entry["id"], kind=entry["kind"], seconds=round(time.perf_counter() - started, 1))
+        result = run_child(
+            [sys.executable, __file__, "_one", str(shader_path(entry)), size, str(frames)], timeout
+        )
+        result.update(
+            id=entry["id"], kind=entry["kind"], seconds=round(time.perf_counter() - started, 1)
+        )
         results.append(result)
-        print(f"{entry['id']:<32} {entry['kind']:<17} {result['verdict']:<17} {result['seconds']:6.1f}s  "
-              f"{result['reason']}", flush=True)
+        print(
+            f"{entry['id']:<32} {entry['kind']:<17} {result['verdict']:<17} {result['seconds']:6.1f}s  "
+            f"{result['reason']}",
+            flush=True,
+        )
     counts = {v: sum(r["verdict"] == v for r in results) for v in ORDER}
     ran = counts["match"] + counts["mismatch"]
     print()
@@ -166,11 +188,19 @@ def main(argv: list[str] | None = None) -> int:
 
         print(json.dumps(verify_one(path, parse_size(size), int(frames))))
         return 0
-    p = arguments(__doc__, "tests/real_channels/texts/", "64x36", "--frames", {"type": int, "default": 3})
+    p = arguments(
+        __doc__, "tests/real_channels/texts/", "64x36", "--frames", {"type": int, "default": 3}
+    )
     args = p.parse_args(argv)
     if args.command == "fetch":
         return fetch(args.mirror)
-    return score(args.size, args.frames, args.timeout, set(filter(None, args.only.split(","))) or None, args.json)
+    return score(
+        args.size,
+        args.frames,
+        args.timeout,
+        set(filter(None, args.only.split(","))) or None,
+        args.json,
+    )
 
 
 if __name__ == "__main__":

@@ -48,7 +48,11 @@ def load(corrected: bool = True) -> tuple[list[dict], dict]:
             if c["action"] == "add":
                 files.append(c["label"])
             else:
-                gone = next(lab for lab in files if lab["rule"] == c["label"]["rule"] and lab["lines"] == c["label"]["lines"])
+                gone = next(
+                    lab
+                    for lab in files
+                    if lab["rule"] == c["label"]["rule"] and lab["lines"] == c["label"]["lines"]
+                )
                 files.remove(gone)
     return manifest, labels
 
@@ -111,8 +115,14 @@ def finding_lines(f: dict) -> set[int]:
 def match(labels: list[dict], findings: list[dict]) -> dict[int, int]:
     """A maximum matching of labels to findings (label index -> finding index): same rule and a
     shared line; augmenting paths, so the order of labels and findings does not matter."""
-    can = [[i for i, f in enumerate(findings) if f["rule"] == lab["rule"] and finding_lines(f) & set(lab["lines"])]
-           for lab in labels]
+    can = [
+        [
+            i
+            for i, f in enumerate(findings)
+            if f["rule"] == lab["rule"] and finding_lines(f) & set(lab["lines"])
+        ]
+        for lab in labels
+    ]
     owner: dict[int, int] = {}  # finding -> label
 
     def augment(j: int, seen: set[int]) -> bool:
@@ -173,11 +183,21 @@ def score(verbose: bool, corrected: bool = True, root: Path = ROOT, only: str | 
         findings, stderr, rc = lint_json([local_path(e).resolve()], root)
         if "Traceback" in stderr or rc not in (0, 1):
             not_full.append(f"{e['id']}: exit {rc}: {stderr.strip().splitlines()[-1:]}")
-        errors = [f"line {f['line']}" for f in findings if f["rule"] == "compile-error" and f["severity"] == "error"]
-        not_run = [f["message"].split(" could not run")[0] for f in findings if " could not run " in f["message"]]
+        errors = [
+            f"line {f['line']}"
+            for f in findings
+            if f["rule"] == "compile-error" and f["severity"] == "error"
+        ]
+        not_run = [
+            f["message"].split(" could not run")[0]
+            for f in findings
+            if " could not run " in f["message"]
+        ]
         if errors or not_run:
-            not_full.append(f"{e['id']}: compile errors at {', '.join(errors) or '-'}; rules that could not run "
-                            f"everywhere: {', '.join(not_run) or 'none'}")
+            not_full.append(
+                f"{e['id']}: compile errors at {', '.join(errors) or '-'}; rules that could not run "
+                f"everywhere: {', '.join(not_run) or 'none'}"
+            )
         want = [lab for lab in labels["files"].get(e["id"], []) if lab["rule"] in rules]
         # a "could not run" note (compile-error, severity note) is not a finding to score
         got = [f for f in findings if f["rule"] in rules and f["severity"] != "note"]
@@ -195,8 +215,14 @@ def score(verbose: bool, corrected: bool = True, root: Path = ROOT, only: str | 
                 fp[f["rule"]] += 1
                 if verbose:
                     print(f"  extra   {e['id']}:{f['line']} {f['rule']}: {f['message']}")
-    which = "with the documented corrections" if corrected else "as first labelled, before any linter run"
-    print(f"{len(present)} of {len(manifest)} files, {sum(len(v) for v in labels['files'].values())} labels ({which})")
+    which = (
+        "with the documented corrections"
+        if corrected
+        else "as first labelled, before any linter run"
+    )
+    print(
+        f"{len(present)} of {len(manifest)} files, {sum(len(v) for v in labels['files'].values())} labels ({which})"
+    )
     print(f"{'rule':28} {'labels':>6} {'found':>6} {'tp':>4} {'recall':>7} {'precision':>9}")
     for rule in [*rules, "overall"]:
         if rule == "overall":
@@ -206,7 +232,11 @@ def score(verbose: bool, corrected: bool = True, root: Path = ROOT, only: str | 
         rec = f"{t / (t + n):.2f}" if t + n else "-"
         pre = f"{t / (t + p):.2f}" if t + p else "-"
         print(f"{rule:28} {t + n:6d} {t + p:6d} {t:4d} {rec:>7} {pre:>9}")
-    print("files that did not lint fully (as the linter reports it):" if not_full else "every file linted fully")
+    print(
+        "files that did not lint fully (as the linter reports it):"
+        if not_full
+        else "every file linted fully"
+    )
     for line in not_full:
         print("  " + line)
     return 0
@@ -220,9 +250,17 @@ def main() -> int:
     p.add_argument("--clone", action="store_true", help="clone repositories without a mirror")
     s = sub.add_parser("score", help="lint the local texts and score against the labels")
     s.add_argument("--verbose", "-v", action="store_true", help="list every miss and extra finding")
-    s.add_argument("--as-labelled", action="store_true", help="the labels as first made, without the corrections")
-    s.add_argument("--glslcheck-root", type=Path, default=ROOT,
-                   help="score the glslcheck of another checkout (e.g. `git archive <commit>` unpacked)")
+    s.add_argument(
+        "--as-labelled",
+        action="store_true",
+        help="the labels as first made, without the corrections",
+    )
+    s.add_argument(
+        "--glslcheck-root",
+        type=Path,
+        default=ROOT,
+        help="score the glslcheck of another checkout (e.g. `git archive <commit>` unpacked)",
+    )
     s.add_argument("--only", metavar="IDS", help="score these files only, e.g. f27-f37 or f01,f04")
     args = ap.parse_args()
     if args.cmd == "populate":

@@ -51,7 +51,9 @@ def select(name: str) -> None:
     """Read the corpus `name` of SETS from now on (this process and, through REAL_VERIFY_SET, its children)."""
     global MANIFEST, TEXTS
     if name not in SETS:
-        raise SystemExit(f"unknown corpus set {name!r} (REAL_VERIFY_SET or --set): one of {', '.join(SETS)}")
+        raise SystemExit(
+            f"unknown corpus set {name!r} (REAL_VERIFY_SET or --set): one of {', '.join(SETS)}"
+        )
     os.environ["REAL_VERIFY_SET"] = name
     MANIFEST, TEXTS = (ROOT / "tests" / "real_verify" / f for f in SETS[name])
 
@@ -73,14 +75,18 @@ def _from_mirror(mirror: Path, entry: dict) -> bytes | None:
         gitdir = gitdir / ".git"
     if not gitdir.is_dir():
         return None
-    out = subprocess.run(["git", "--git-dir", str(gitdir), "show", f"{entry['commit']}:{entry['path']}"],
-                         capture_output=True)
+    out = subprocess.run(
+        ["git", "--git-dir", str(gitdir), "show", f"{entry['commit']}:{entry['path']}"],
+        capture_output=True,
+    )
     return out.stdout if out.returncode == 0 else None
 
 
 def _from_github(entry: dict) -> bytes:
-    url = (f"https://raw.githubusercontent.com/{entry['repo']}/{entry['commit']}/"
-           f"{urllib.parse.quote(entry['path'])}")
+    url = (
+        f"https://raw.githubusercontent.com/{entry['repo']}/{entry['commit']}/"
+        f"{urllib.parse.quote(entry['path'])}"
+    )
     with urllib.request.urlopen(url, timeout=30) as response:
         return response.read()
 
@@ -97,8 +103,10 @@ def fetch(mirror: Path | None) -> int:
             try:
                 data = _from_github(entry)
             except OSError as e:
-                print(f"{entry['id']}: cannot read {entry['repo']}:{entry['path']}@{entry['commit'][:10]} ({e})",
-                      file=sys.stderr)
+                print(
+                    f"{entry['id']}: cannot read {entry['repo']}:{entry['path']}@{entry['commit'][:10]} ({e})",
+                    file=sys.stderr,
+                )
                 missing += 1
                 continue
         target.write_bytes(data)
@@ -116,26 +124,39 @@ def verify_one(path: str, size: tuple[int, int], times: list[float]) -> dict:
     try:
         gl = compile_backend(shader, "gl")
     except GlslError as e:
-        return {"verdict": "does not compile", "reason": "; ".join(d.message for d in e.diagnostics)[:200]}
+        return {
+            "verdict": "does not compile",
+            "reason": "; ".join(d.message for d in e.diagnostics)[:200],
+        }
     try:
         numpy = compile_backend(shader, "numpy")
     except GlslError as e:
-        return {"verdict": "unsupported", "reason": "; ".join(d.message for d in e.diagnostics)[:200]}
+        return {
+            "verdict": "unsupported",
+            "reason": "; ".join(d.message for d in e.diagnostics)[:200],
+        }
     frames = []
     try:
         for r in verify_frames(shader, size=size, times=times, programs=[numpy, gl]):
             frames.append((r.spec.time, r.comparison))
     except GlslError as e:
-        return {"verdict": "unsupported", "reason": "; ".join(d.message for d in e.diagnostics)[:200]}
+        return {
+            "verdict": "unsupported",
+            "reason": "; ".join(d.message for d in e.diagnostics)[:200],
+        }
     bad = [(t, c) for t, c in frames if not c.match]
     if not bad:
         return {"verdict": "match", "reason": ""}
     t, c = bad[0]
     j = c.to_json()
-    return {"verdict": "mismatch",
-            "reason": (f"{len(bad)}/{len(frames)} frames; t={t:g}: {j['mismatched_pixels']} over tolerance, "
-                       f"{j['edge_pixels']} edge, NaN/Inf numpy {j['nan_numpy']} gl {j['nan_gl']}, "
-                       f"max err {j['max_abs_error']:.3g}")}
+    return {
+        "verdict": "mismatch",
+        "reason": (
+            f"{len(bad)}/{len(frames)} frames; t={t:g}: {j['mismatched_pixels']} over tolerance, "
+            f"{j['edge_pixels']} edge, NaN/Inf numpy {j['nan_numpy']} gl {j['nan_gl']}, "
+            f"max err {j['max_abs_error']:.3g}"
+        ),
+    }
 
 
 ORDER = ("match", "mismatch", "does not compile", "unsupported", "timeout", "error")
@@ -158,45 +179,66 @@ def score(size: str, times: str, timeout: float, only: set[str] | None, out: Pat
     entries = [e for e in load_manifest() if not only or e["id"] in only]
     absent = [e["id"] for e in entries if not text_path(e).exists()]
     if absent:
-        print(f"{len(absent)} texts are missing ({', '.join(absent[:5])} ...): run `python tools/real_verify.py "
-              f"--set {os.environ['REAL_VERIFY_SET']} fetch`",
-              file=sys.stderr)
+        print(
+            f"{len(absent)} texts are missing ({', '.join(absent[:5])} ...): run `python tools/real_verify.py "
+            f"--set {os.environ['REAL_VERIFY_SET']} fetch`",
+            file=sys.stderr,
+        )
         return 2
     results = []
     for entry in entries:
         started = time.perf_counter()
-        result = run_child([sys.executable, __file__, "_one", str(text_path(entry)), size, times], timeout)
-        result.update(id=entry["id"], kind=entry["kind"], seconds=round(time.perf_counter() - started, 1))
+        result = run_child(
+            [sys.executable, __file__, "_one", str(text_path(entry)), size, times], timeout
+        )
+        result.update(
+            id=entry["id"], kind=entry["kind"], seconds=round(time.perf_counter() - started, 1)
+        )
         results.append(result)
-        print(f"{entry['id']:<24} {result['verdict']:<17} {result['seconds']:6.1f}s  {result['reason']}", flush=True)
+        print(
+            f"{entry['id']:<24} {result['verdict']:<17} {result['seconds']:6.1f}s  {result['reason']}",
+            flush=True,
+        )
     counts = {v: sum(r["verdict"] == v for r in results) for v in ORDER}
     compiled = len(results) - counts["does not compile"]
     lab4 = [r for r in results if r["kind"] == "lab4"]
     labs = [r for r in results if r["kind"].startswith("lab")]
     print()
     print("  ".join(f"{v}: {n}" for v, n in counts.items()))
-    print(f"match among the {compiled} shaders that compile: {counts['match']}/{compiled} = "
-          f"{100.0 * counts['match'] / max(compiled, 1):.1f}%; Lab 4 submissions: "
-          f"{sum(r['verdict'] == 'match' for r in lab4)}/{len(lab4)} match, "
-          f"{sum(r['verdict'] == 'mismatch' for r in lab4)} mismatch; all course labs: "
-          f"{sum(r['verdict'] == 'match' for r in labs)}/{len(labs)} match")
+    print(
+        f"match among the {compiled} shaders that compile: {counts['match']}/{compiled} = "
+        f"{100.0 * counts['match'] / max(compiled, 1):.1f}%; Lab 4 submissions: "
+        f"{sum(r['verdict'] == 'match' for r in lab4)}/{len(lab4)} match, "
+        f"{sum(r['verdict'] == 'mismatch' for r in lab4)} mismatch; all course labs: "
+        f"{sum(r['verdict'] == 'match' for r in labs)}/{len(labs)} match"
+    )
     if out:
         out.write_text(json.dumps(results, indent=1))
     return 0
 
 
-def arguments(doc: str, texts: str, size: str, schedule: str, schedule_options: dict,
-              sets: bool = False) -> argparse.ArgumentParser:
+def arguments(
+    doc: str, texts: str, size: str, schedule: str, schedule_options: dict, sets: bool = False
+) -> argparse.ArgumentParser:
     """The fetch / score command line of this tool and of tools/real_channels.py (`sets`: this tool's --set)."""
     p = argparse.ArgumentParser(description=doc.split("\n\n")[0])
     if sets:
-        p.add_argument("--set", choices=tuple(SETS), help="the corpus: main (the default, or REAL_VERIFY_SET) "
-                       "or holdout (chosen after the tuning)")
+        p.add_argument(
+            "--set",
+            choices=tuple(SETS),
+            help="the corpus: main (the default, or REAL_VERIFY_SET) "
+            "or holdout (chosen after the tuning)",
+        )
     sub = p.add_subparsers(dest="command", required=True)
     f = sub.add_parser("fetch", help=f"re-read the texts into {texts}")
-    f.add_argument("--mirror", type=Path, default=Path(os.environ["REAL_VERIFY_MIRROR"])
-                   if os.environ.get("REAL_VERIFY_MIRROR") else None,
-                   help="a folder of <owner>+<name>/repo git directories to read before GitHub")
+    f.add_argument(
+        "--mirror",
+        type=Path,
+        default=Path(os.environ["REAL_VERIFY_MIRROR"])
+        if os.environ.get("REAL_VERIFY_MIRROR")
+        else None,
+        help="a folder of <owner>+<name>/repo git directories to read before GitHub",
+    )
     s = sub.add_parser("score", help="verify every shader and print the counts")
     s.add_argument("--size", default=size)
     s.add_argument(schedule, **schedule_options)
@@ -214,14 +256,26 @@ def main(argv: list[str] | None = None) -> int:
 
         print(json.dumps(verify_one(path, parse_size(size), list(parse_times(times)))))
         return 0
-    p = arguments(__doc__, "tests/real_verify/<set's texts>/", "160x90", "--times", {"default": "0,1.7,5.3"},
-                  sets=True)
+    p = arguments(
+        __doc__,
+        "tests/real_verify/<set's texts>/",
+        "160x90",
+        "--times",
+        {"default": "0,1.7,5.3"},
+        sets=True,
+    )
     args = p.parse_args(argv)
     if args.set:
         select(args.set)
     if args.command == "fetch":
         return fetch(args.mirror)
-    return score(args.size, args.times, args.timeout, set(filter(None, args.only.split(","))) or None, args.json)
+    return score(
+        args.size,
+        args.times,
+        args.timeout,
+        set(filter(None, args.only.split(","))) or None,
+        args.json,
+    )
 
 
 if __name__ == "__main__":

@@ -69,7 +69,9 @@ DEFAULT_SECTIONS = SECTIONS[:-1]
 CORPORA = ("lab", "corpus", "fixtures", "real_lint", "real_verify", "holdout")
 # JSON fields of `verify --format json` that would hold wall-clock figures; removed before
 # hashing if present (verify's documented fields hold none: see the _meta record)
-TIMING_FIELDS = re.compile(r"(^|_)(seconds|secs|elapsed|duration|timing|timings|wall|ms|time_s)($|_)")
+TIMING_FIELDS = re.compile(
+    r"(^|_)(seconds|secs|elapsed|duration|timing|timings|wall|ms|time_s)($|_)"
+)
 FRAME_BUDGET = "numpy-frame-budget"  # the rule of a NumPy frame stopped by its wall-clock budget
 FRAME_BUDGET_TEXT = "the frame was still rendering after"
 
@@ -86,7 +88,11 @@ class Case:
 
     def __post_init__(self) -> None:
         if not self.keys:
-            self.keys = (f"{self.key}/frame", f"{self.key}/source") if self.kind == "compiled" else (self.key,)
+            self.keys = (
+                (f"{self.key}/frame", f"{self.key}/source")
+                if self.kind == "compiled"
+                else (self.key,)
+            )
 
 
 @dataclass
@@ -105,7 +111,9 @@ def sha(*parts: bytes) -> str:
 
 
 def out_hash(rc: int, stdout: bytes, stderr: bytes) -> str:
-    return sha(b"rc=%d\n" % rc, b"stdout %d\n" % len(stdout), stdout, b"stderr %d\n" % len(stderr), stderr)
+    return sha(
+        b"rc=%d\n" % rc, b"stdout %d\n" % len(stdout), stdout, b"stderr %d\n" % len(stderr), stderr
+    )
 
 
 def safe_name(key: str) -> str:
@@ -122,25 +130,30 @@ class Runner:
         self._lock = threading.Lock()
 
     def env(self, tmp: Path, case_dir: Path, lanes: str | None) -> dict[str, str]:
-        env = {k: v for k, v in os.environ.items()
-               if not k.startswith(("GLSLCHECK_", "NUMBA_", "REAL_VERIFY_", "PYTHON"))
-               and k not in ("CI", "GITHUB_ACTIONS", "XDG_CACHE_HOME", "MESA_SHADER_CACHE_DIR")}
-        env.update({
-            "PYTHONPATH": str(self.root),
-            "PYTHONHASHSEED": "0",
-            "PYTHONDONTWRITEBYTECODE": "1",
-            "PYTHONUNBUFFERED": "1",
-            "PYTHONIOENCODING": "utf-8",
-            "LANG": "C.UTF-8",
-            "LC_ALL": "C.UTF-8",
-            "GLSLCHECK_JOBS": "1",
-            "GLSLCHECK_JIT": "off",
-            "GLSLCHECK_PARALLEL": "threads",
-            "GLSLCHECK_FRAME_SECONDS": str(self.args.frame_budget),
-            "NUMBA_CACHE_DIR": str(case_dir / "numba"),
-            "XDG_CACHE_HOME": str(tmp / "xdg"),
-            "TMPDIR": str(case_dir / "tmp"),
-        })
+        env = {
+            k: v
+            for k, v in os.environ.items()
+            if not k.startswith(("GLSLCHECK_", "NUMBA_", "REAL_VERIFY_", "PYTHON"))
+            and k not in ("CI", "GITHUB_ACTIONS", "XDG_CACHE_HOME", "MESA_SHADER_CACHE_DIR")
+        }
+        env.update(
+            {
+                "PYTHONPATH": str(self.root),
+                "PYTHONHASHSEED": "0",
+                "PYTHONDONTWRITEBYTECODE": "1",
+                "PYTHONUNBUFFERED": "1",
+                "PYTHONIOENCODING": "utf-8",
+                "LANG": "C.UTF-8",
+                "LC_ALL": "C.UTF-8",
+                "GLSLCHECK_JOBS": "1",
+                "GLSLCHECK_JIT": "off",
+                "GLSLCHECK_PARALLEL": "threads",
+                "GLSLCHECK_FRAME_SECONDS": str(self.args.frame_budget),
+                "NUMBA_CACHE_DIR": str(case_dir / "numba"),
+                "XDG_CACHE_HOME": str(tmp / "xdg"),
+                "TMPDIR": str(case_dir / "tmp"),
+            }
+        )
         if lanes is not None:
             env["GLSLCHECK_COMPILED_LANES"] = lanes
         return env
@@ -169,16 +182,28 @@ class Runner:
         cmd = [self.python, "-m", "glslcheck", *argv]
         t0 = time.perf_counter()
         try:
-            proc = subprocess.run(cmd, cwd=self.root, env=self.env(tmp, case_dir, case.lanes),
-                                  stdin=subprocess.DEVNULL, capture_output=True, timeout=self.args.timeout)
+            proc = subprocess.run(
+                cmd,
+                cwd=self.root,
+                env=self.env(tmp, case_dir, case.lanes),
+                stdin=subprocess.DEVNULL,
+                capture_output=True,
+                timeout=self.args.timeout,
+            )
         except subprocess.TimeoutExpired:
             secs = time.perf_counter() - t0
-            return Result({}, secs, {k: f"timed out after {self.args.timeout:g} s" for k in case.keys})
+            return Result(
+                {}, secs, {k: f"timed out after {self.args.timeout:g} s" for k in case.keys}
+            )
         secs = time.perf_counter() - t0
         stdout = self.normalize(proc.stdout, tmp, case.key)
         stderr = self.normalize(proc.stderr, tmp, case.key)
         if FRAME_BUDGET.encode() in stderr or FRAME_BUDGET_TEXT.encode() in stderr:
-            return Result({}, secs, {k: "stopped by the NumPy frame budget (a wall-clock limit)" for k in case.keys})
+            return Result(
+                {},
+                secs,
+                {k: "stopped by the NumPy frame budget (a wall-clock limit)" for k in case.keys},
+            )
         rc = proc.returncode
         if case.kind == "out":
             if case.strip_timing:
@@ -258,7 +283,10 @@ def lab_shaders(root: Path) -> list[Path]:
 
 
 def real_verify(root: Path, name: str, missing: dict[str, list[str]]) -> list[tuple[str, Path]]:
-    manifest, folder = {"real_verify": ("manifest.json", "texts"), "holdout": ("holdout.json", "holdout_texts")}[name]
+    manifest, folder = {
+        "real_verify": ("manifest.json", "texts"),
+        "holdout": ("holdout.json", "holdout_texts"),
+    }[name]
     base = root / "tests" / "real_verify"
     entries = json.loads((base / manifest).read_text())["shaders"]
     out = []
@@ -288,14 +316,20 @@ def lint_fixtures(root: Path) -> Path:
     return root / "tests" / "lint" / "fixtures"
 
 
-def build_cases(root: Path, args: argparse.Namespace, missing: dict[str, list[str]]) -> dict[str, list[Case]]:
+def build_cases(
+    root: Path, args: argparse.Namespace, missing: dict[str, list[str]]
+) -> dict[str, list[Case]]:
     rel = lambda p: str(Path(p).relative_to(root))  # noqa: E731 (paths relative to the checkout: the same in every checkout)
     want = set(args.corpora)
     size, t = args.size, args.time
     lab = [(p.name, p) for p in lab_shaders(root)] if "lab" in want else []
     rv = real_verify(root, "real_verify", missing) if "real_verify" in want else []
     ho = real_verify(root, "holdout", missing) if "holdout" in want else []
-    shaders = [("lab", n, p) for n, p in lab] + [("real_verify", n, p) for n, p in rv] + [("holdout", n, p) for n, p in ho]
+    shaders = (
+        [("lab", n, p) for n, p in lab]
+        + [("real_verify", n, p) for n, p in rv]
+        + [("holdout", n, p) for n, p in ho]
+    )
     cases: dict[str, list[Case]] = {s: [] for s in SECTIONS}
 
     # lint
@@ -312,7 +346,13 @@ def build_cases(root: Path, args: argparse.Namespace, missing: dict[str, list[st
             if exp.is_file():
                 sel = json.loads(exp.read_text()).get("select")
                 if sel:
-                    L.append(Case(f"lint/fixtures/{d.name}/select", "lint", lint + ["--select", ",".join(sel), rel(d)]))
+                    L.append(
+                        Case(
+                            f"lint/fixtures/{d.name}/select",
+                            "lint",
+                            lint + ["--select", ",".join(sel), rel(d)],
+                        )
+                    )
         L.append(Case("lint/fixtures/_all", "lint", lint + [rel(fx)]))
     if "real_lint" in want:
         rl = real_lint(root, missing)
@@ -337,20 +377,44 @@ def build_cases(root: Path, args: argparse.Namespace, missing: dict[str, list[st
     # transpile, render, compiled, lockstep
     frame = ["--size", size, "--time", t]
     for corpus, n, p in shaders:
-        cases["transpile"].append(Case(f"transpile/{corpus}/{n}", "transpile", ["transpile", rel(p)]))
-        cases["render"].append(Case(f"render/{corpus}/{n}", "render",
-                                    ["render", "--backend", "numpy", *frame, rel(p)], kind="npy"))
-        cases["compiled"].append(Case(f"compiled/{corpus}/{n}", "compiled",
-                                      ["render", "--backend", "compiled", *frame, rel(p)], kind="compiled", lanes="0"))
-        cases["lockstep"].append(Case(f"lockstep/{corpus}/{n}", "lockstep",
-                                      ["render", "--backend", "compiled", *frame, rel(p)], kind="compiled", lanes="8"))
+        cases["transpile"].append(
+            Case(f"transpile/{corpus}/{n}", "transpile", ["transpile", rel(p)])
+        )
+        cases["render"].append(
+            Case(
+                f"render/{corpus}/{n}",
+                "render",
+                ["render", "--backend", "numpy", *frame, rel(p)],
+                kind="npy",
+            )
+        )
+        cases["compiled"].append(
+            Case(
+                f"compiled/{corpus}/{n}",
+                "compiled",
+                ["render", "--backend", "compiled", *frame, rel(p)],
+                kind="compiled",
+                lanes="0",
+            )
+        )
+        cases["lockstep"].append(
+            Case(
+                f"lockstep/{corpus}/{n}",
+                "lockstep",
+                ["render", "--backend", "compiled", *frame, rel(p)],
+                kind="compiled",
+                lanes="8",
+            )
+        )
 
     # verify (lab shaders)
     V = cases["verify"]
     verify = ["verify", "--format", "json", "--size", args.verify_size, "--time", t]
     V += [Case(f"verify/lab/{n}", "verify", verify + [rel(p)], strip_timing=True) for n, p in lab]
     if lab:
-        V.append(Case("verify/lab/_all", "verify", verify + [rel(p) for _, p in lab], strip_timing=True))
+        V.append(
+            Case("verify/lab/_all", "verify", verify + [rel(p) for _, p in lab], strip_timing=True)
+        )
     return cases
 
 
@@ -367,25 +431,47 @@ def samples(items: list[Case], k: int) -> list[Case]:
 def record(args: argparse.Namespace) -> int:
     started = time.perf_counter()
     root = Path(args.root).resolve()
-    sections = [s for s in SECTIONS if s in args.only] if args.only else \
-        list(DEFAULT_SECTIONS) + (["lockstep"] if args.lockstep else [])
+    sections = (
+        [s for s in SECTIONS if s in args.only]
+        if args.only
+        else list(DEFAULT_SECTIONS) + (["lockstep"] if args.lockstep else [])
+    )
     runner = Runner(args, root)
     tmp = Path(tempfile.mkdtemp(prefix="record-outputs-"))
     try:
         # the glslcheck the subprocesses import must be this checkout's
         (tmp / "probe" / "tmp").mkdir(parents=True)
-        probe = subprocess.run([args.python, "-c", "import glslcheck, sys; print(glslcheck.__file__)"],
-                               cwd=root, env=runner.env(tmp, tmp / "probe", None), capture_output=True, text=True)
+        probe = subprocess.run(
+            [args.python, "-c", "import glslcheck, sys; print(glslcheck.__file__)"],
+            cwd=root,
+            env=runner.env(tmp, tmp / "probe", None),
+            capture_output=True,
+            text=True,
+        )
         where = Path(probe.stdout.strip() or "?").resolve()
         if probe.returncode or root not in where.parents:
-            print(f"error: `python -m glslcheck` in {root} imports {where}, not this checkout's package "
-                  f"({probe.stderr.strip()[-300:]})", file=sys.stderr)
+            print(
+                f"error: `python -m glslcheck` in {root} imports {where}, not this checkout's package "
+                f"({probe.stderr.strip()[-300:]})",
+                file=sys.stderr,
+            )
             return 2
-        version = subprocess.run([args.python, "-m", "glslcheck", "--version"], cwd=root,
-                                 env=runner.env(tmp, tmp / "probe", None), capture_output=True, text=True)
-        head = subprocess.run(["git", "-C", str(root), "rev-parse", "HEAD"], capture_output=True, text=True)
-        print(f"glslcheck: {where} ({version.stdout.strip()}), {root} at {head.stdout.strip()[:12] or '?'}")
-        print(f"sections: {', '.join(sections)}; jobs {args.jobs}; temporary folder {tmp}", flush=True)
+        version = subprocess.run(
+            [args.python, "-m", "glslcheck", "--version"],
+            cwd=root,
+            env=runner.env(tmp, tmp / "probe", None),
+            capture_output=True,
+            text=True,
+        )
+        head = subprocess.run(
+            ["git", "-C", str(root), "rev-parse", "HEAD"], capture_output=True, text=True
+        )
+        print(
+            f"glslcheck: {where} ({version.stdout.strip()}), {root} at {head.stdout.strip()[:12] or '?'}"
+        )
+        print(
+            f"sections: {', '.join(sections)}; jobs {args.jobs}; temporary folder {tmp}", flush=True
+        )
 
         missing: dict[str, list[str]] = {}
         cases = build_cases(root, args, missing)
@@ -408,8 +494,14 @@ def record(args: argparse.Namespace) -> int:
                 r = results[c.key] = fut.result()
                 done += 1
                 if args.verbose or r.excluded or (done % 25 == 0):
-                    state = "; ".join(f"{k}: {v}" for k, v in r.excluded.items()) or ", ".join(r.values.values())[:60]
-                    print(f"  [{section} {done}/{len(todo)}] {c.key} {r.seconds:.1f}s {state}", flush=True)
+                    state = (
+                        "; ".join(f"{k}: {v}" for k, v in r.excluded.items())
+                        or ", ".join(r.values.values())[:60]
+                    )
+                    print(
+                        f"  [{section} {done}/{len(todo)}] {c.key} {r.seconds:.1f}s {state}",
+                        flush=True,
+                    )
             # determinism: the samples once more, in another temporary folder
             again = samples(todo, args.samples)
             tmp2 = Path(tempfile.mkdtemp(prefix="record-outputs-again-"))
@@ -426,7 +518,10 @@ def record(args: argparse.Namespace) -> int:
                     elif v1 != v2:
                         r1.excluded[k] = f"not deterministic: two runs gave {v1} and {v2}"
                         r1.values.pop(k, None)
-                        print(f"  [{section}] {k}: NOT DETERMINISTIC ({v1} / {v2}): left out", flush=True)
+                        print(
+                            f"  [{section}] {k}: NOT DETERMINISTIC ({v1} / {v2}): left out",
+                            flush=True,
+                        )
             shutil.rmtree(tmp2, ignore_errors=True)
             n_keys = 0
             for c in todo:
@@ -437,11 +532,19 @@ def record(args: argparse.Namespace) -> int:
                 notes += r.notes
             secs = time.perf_counter() - t0
             n_excl = sum(len(results[c.key].excluded) for c in todo)
-            per_section[section] = {"commands": len(todo), "keys": n_keys, "excluded": n_excl,
-                                    "corpora": list(args.corpora),
-                                    "determinism_checked": [c.key for c in again], "seconds": round(secs, 1)}
-            print(f"[{section}] {n_keys} keys, {n_excl} excluded, {checked} commands run twice: same; "
-                  f"{secs:.0f} s", flush=True)
+            per_section[section] = {
+                "commands": len(todo),
+                "keys": n_keys,
+                "excluded": n_excl,
+                "corpora": list(args.corpora),
+                "determinism_checked": [c.key for c in again],
+                "seconds": round(secs, 1),
+            }
+            print(
+                f"[{section}] {n_keys} keys, {n_excl} excluded, {checked} commands run twice: same; "
+                f"{secs:.0f} s",
+                flush=True,
+            )
         pool.shutdown()
         for k, why in sorted(excluded.items()):
             print(f"excluded {k}: {why}")
@@ -449,12 +552,22 @@ def record(args: argparse.Namespace) -> int:
             print(f"note: {n}")
         total = time.perf_counter() - started
         meta = {
-            "root": str(root), "glslcheck": str(where), "version": version.stdout.strip(),
-            "commit": head.stdout.strip(), "python": args.python,
-            "sections": per_section, "size": args.size, "time": args.time, "verify_size": args.verify_size,
-            "corpora": list(args.corpora), "missing": missing, "excluded": excluded, "notes": notes,
+            "root": str(root),
+            "glslcheck": str(where),
+            "version": version.stdout.strip(),
+            "commit": head.stdout.strip(),
+            "python": args.python,
+            "sections": per_section,
+            "size": args.size,
+            "time": args.time,
+            "verify_size": args.verify_size,
+            "corpora": list(args.corpora),
+            "missing": missing,
+            "excluded": excluded,
+            "notes": notes,
             "timing_fields_removed": sorted(runner.timing_removed),
-            "keys_with_paths_replaced": sorted(runner.substituted), "seconds": round(total, 1),
+            "keys_with_paths_replaced": sorted(runner.substituted),
+            "seconds": round(total, 1),
         }
         out = Path(args.out)
         if args.merge and out.exists():  # keep the sections not run this time, and their _meta
@@ -462,21 +575,38 @@ def record(args: argparse.Namespace) -> int:
             om = old.pop("_meta", {})
             ours = lambda k: k.split("/", 1)[0] in sections  # noqa: E731
             values = {**{k: v for k, v in old.items() if not ours(k)}, **values}
-            meta["sections"] = {**{k: v for k, v in om.get("sections", {}).items() if k not in sections},
-                                **per_section}
-            meta["excluded"] = {**{k: v for k, v in om.get("excluded", {}).items() if not ours(k)}, **excluded}
+            meta["sections"] = {
+                **{k: v for k, v in om.get("sections", {}).items() if k not in sections},
+                **per_section,
+            }
+            meta["excluded"] = {
+                **{k: v for k, v in om.get("excluded", {}).items() if not ours(k)},
+                **excluded,
+            }
             meta["notes"] = [n for n in om.get("notes", []) if not ours(n)] + notes
             meta["keys_with_paths_replaced"] = sorted(
-                {k for k in om.get("keys_with_paths_replaced", []) if not ours(k)} | runner.substituted)
-            meta["timing_fields_removed"] = sorted(set(om.get("timing_fields_removed", [])) | runner.timing_removed)
-            meta["corpora"] = sorted(set(om.get("corpora", [])) | set(args.corpora), key=CORPORA.index)
+                {k for k in om.get("keys_with_paths_replaced", []) if not ours(k)}
+                | runner.substituted
+            )
+            meta["timing_fields_removed"] = sorted(
+                set(om.get("timing_fields_removed", [])) | runner.timing_removed
+            )
+            meta["corpora"] = sorted(
+                set(om.get("corpora", [])) | set(args.corpora), key=CORPORA.index
+            )
             meta["seconds_before_merge"] = om.get("seconds_before_merge", []) + [om.get("seconds")]
         doc = {"_meta": meta, **values}
         tmp_out = out.with_name(out.name + ".tmp")
         tmp_out.write_text(json.dumps(doc, indent=1, sort_keys=True) + "\n")
         tmp_out.replace(out)
-        print(f"wrote {len(values)} keys to {out} in {total:.0f} s"
-              + (f"; timing fields removed: {', '.join(sorted(runner.timing_removed))}" if runner.timing_removed else ""))
+        print(
+            f"wrote {len(values)} keys to {out} in {total:.0f} s"
+            + (
+                f"; timing fields removed: {', '.join(sorted(runner.timing_removed))}"
+                if runner.timing_removed
+                else ""
+            )
+        )
         return 0
     finally:
         if args.keep_tmp:
@@ -511,36 +641,60 @@ def compare(a_path: str, b_path: str) -> int:
     for k in skipped:
         print(f"excluded in one of them (not compared): {k}")
     same = len(a.keys() & b.keys()) - len(differ)
-    print(f"{same} keys identical, {len(differ)} differ, {len(only_a)} only in {a_path}, "
-          f"{len(only_b)} only in {b_path}")
+    print(
+        f"{same} keys identical, {len(differ)} differ, {len(only_a)} only in {a_path}, "
+        f"{len(only_b)} only in {b_path}"
+    )
     return 1 if differ or only_a or only_b else 0
 
 
 def main(argv: list[str] | None = None) -> int:
     argv = sys.argv[1:] if argv is None else argv
     if argv[:1] == ["compare"]:
-        p = argparse.ArgumentParser(prog="record_outputs.py compare",
-                                    description="print the keys that differ or are missing between two records")
+        p = argparse.ArgumentParser(
+            prog="record_outputs.py compare",
+            description="print the keys that differ or are missing between two records",
+        )
         p.add_argument("a")
         p.add_argument("b")
         a = p.parse_args(argv[1:])
         return compare(a.a, a.b)
-    p = argparse.ArgumentParser(description=__doc__.split("\n\n")[0],
-                                epilog="compare mode: record_outputs.py compare A.json B.json")
-    p.add_argument("--out", default="outputs.json", help="the JSON file to write (default outputs.json)")
+    p = argparse.ArgumentParser(
+        description=__doc__.split("\n\n")[0],
+        epilog="compare mode: record_outputs.py compare A.json B.json",
+    )
+    p.add_argument(
+        "--out", default="outputs.json", help="the JSON file to write (default outputs.json)"
+    )
     p.add_argument("--only", default="", help=f"comma-separated sections: {','.join(SECTIONS)}")
     p.add_argument("--jobs", type=int, default=2, help="commands at once (default 2)")
-    p.add_argument("--lockstep", action="store_true", help="also the lockstep compiled renders (slow)")
-    p.add_argument("--corpora", default=",".join(CORPORA), help=f"comma-separated: {','.join(CORPORA)}")
-    p.add_argument("--root", default=".", help="the checkout under test (default: the working directory)")
-    p.add_argument("--python", default=sys.executable, help="the Python that runs `-m glslcheck` (default: this one)")
+    p.add_argument(
+        "--lockstep", action="store_true", help="also the lockstep compiled renders (slow)"
+    )
+    p.add_argument(
+        "--corpora", default=",".join(CORPORA), help=f"comma-separated: {','.join(CORPORA)}"
+    )
+    p.add_argument(
+        "--root", default=".", help="the checkout under test (default: the working directory)"
+    )
+    p.add_argument(
+        "--python",
+        default=sys.executable,
+        help="the Python that runs `-m glslcheck` (default: this one)",
+    )
     p.add_argument("--size", default="64x36", help="render size (default 64x36)")
     p.add_argument("--verify-size", default="64x36", help="verify size (default 64x36)")
     p.add_argument("--time", default="1.3", help="iTime of renders and verify (default 1.3)")
-    p.add_argument("--samples", type=int, default=3, help="commands of each section run twice (default 3)")
+    p.add_argument(
+        "--samples", type=int, default=3, help="commands of each section run twice (default 3)"
+    )
     p.add_argument("--timeout", type=float, default=900.0, help="seconds per command (default 900)")
-    p.add_argument("--frame-budget", type=float, default=300.0, help="GLSLCHECK_FRAME_SECONDS (default 300)")
-    p.add_argument("--merge", action="store_true", help="keep the other sections' keys of an existing --out")
+    p.add_argument(
+        "--frame-budget", type=float, default=300.0, help="GLSLCHECK_FRAME_SECONDS (default 300)"
+    )
+    p.add_argument(
+        "--merge", action="store_true", help="keep the other sections' keys of an existing --out"
+    )
     p.add_argument("--keep-tmp", action="store_true", help="keep the temporary folder")
     p.add_argument("-v", "--verbose", action="store_true")
     args = p.parse_args(argv)

@@ -29,14 +29,25 @@ def main() -> int:
     p = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     p.add_argument("--out", default=str(ROOT / "build" / "report.html"))
     p.add_argument("--png", default=str(ROOT / "docs" / "report.png"))
-    p.add_argument("--height", type=int, default=2800, help="pixels of the lab page's top kept (default 2800)")
+    p.add_argument(
+        "--height", type=int, default=2800, help="pixels of the lab page's top kept (default 2800)"
+    )
     p.add_argument("--nan-png", default=str(ROOT / "docs" / "report_nan.png"))
-    p.add_argument("--nan-height", type=int, default=1560, help="pixels of the NaN page's top kept (default 1560)")
+    p.add_argument(
+        "--nan-height",
+        type=int,
+        default=1560,
+        help="pixels of the NaN page's top kept (default 1560)",
+    )
     args = p.parse_args()
     os.chdir(ROOT)  # the page names the shaders as given: relative to the repository
-    problems = shoot(["lab_shaders"], args.out, args.png, args.height, title="glslcheck report: lab_shaders")
+    problems = shoot(
+        ["lab_shaders"], args.out, args.png, args.height, title="glslcheck report: lab_shaders"
+    )
     nan_out = str(Path(args.out).with_name("report_nan.html"))
-    problems += shoot(["tests/hard_cases/pow_edge.glsl"], nan_out, args.nan_png, args.nan_height, bench=None)
+    problems += shoot(
+        ["tests/hard_cases/pow_edge.glsl"], nan_out, args.nan_png, args.nan_height, bench=None
+    )
     return 1 if problems else 0
 
 
@@ -54,8 +65,10 @@ def shoot(paths, out: str, png: str, height: int, **options) -> list[str]:
     with Image.open(full) as im:
         im.convert("RGB").save(png, optimize=True)
     bad = [r.name for r in page.shaders if not r.ok]
-    print(f"{out}: {len(page.shaders)} shaders, {len(bad)} with problems {bad}; {png} written;"
-          f" {len(problems)} browser problems")
+    print(
+        f"{out}: {len(page.shaders)} shaders, {len(bad)} with problems {bad}; {png} written;"
+        f" {len(problems)} browser problems"
+    )
     return problems
 
 

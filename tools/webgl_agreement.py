@@ -28,10 +28,10 @@ ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT))
 sys.path.insert(0, str(ROOT / "tools"))
 
-from glslcheck.semantics.agreement import glslang_errors, our_errors, passes  # noqa: E402
 from glslcheck.base.diagnostics import GlslError, register_source  # noqa: E402
-from glslcheck.shadertoy.wrapper import build_program  # noqa: E402
+from glslcheck.semantics.agreement import glslang_errors, our_errors, passes  # noqa: E402
 from glslcheck.shadertoy.sources import Shader, Source  # noqa: E402
+from glslcheck.shadertoy.wrapper import build_program  # noqa: E402
 
 JUDGES = ("glslcheck", "glslang", "mesa", "angle")
 
@@ -52,7 +52,9 @@ def mesa_errors(shader: Shader) -> list[str]:
 def angle_errors(shader: Shader) -> list[str]:
     from glslcheck.backends.webgl import webgl_diagnostics
 
-    return [f"[{tab}] {d.message}" for tab in passes(shader) for d in webgl_diagnostics(shader, tab)]
+    return [
+        f"[{tab}] {d.message}" for tab in passes(shader) for d in webgl_diagnostics(shader, tab)
+    ]
 
 
 def verdicts(shader: Shader) -> dict[str, list[str]]:
@@ -63,8 +65,12 @@ def verdicts(shader: Shader) -> dict[str, list[str]]:
         ours = [d.message for d in our_errors(shader)]
     except Exception as e:  # a crash is a finding, not a verdict to hide
         ours = [f"CRASH {type(e).__name__}: {e}"]
-    return {"glslcheck": ours, "glslang": glslang_errors(shader), "mesa": mesa_errors(shader),
-            "angle": angle_errors(shader)}
+    return {
+        "glslcheck": ours,
+        "glslang": glslang_errors(shader),
+        "mesa": mesa_errors(shader),
+        "angle": angle_errors(shader),
+    }
 
 
 def invalid_fixtures(folder: Path) -> list[tuple[str, Shader]]:
@@ -85,14 +91,20 @@ def summarise(name: str, results: list[tuple[str, dict[str, list[str]]]]) -> lis
     lines.append("| judge | rejects |")
     lines.append("|---|---|")
     for j in JUDGES:
-        lines.append(f"| {j} | {sum(bool(v[j]) for _, v in results)} ({100 * sum(bool(v[j]) for _, v in results) / max(n, 1):.1f}%) |")
+        lines.append(
+            f"| {j} | {sum(bool(v[j]) for _, v in results)} ({100 * sum(bool(v[j]) for _, v in results) / max(n, 1):.1f}%) |"
+        )
     lines += ["", "| pair | agree |", "|---|---|"]
     for a, b in itertools.combinations(JUDGES, 2):
         agree = sum(bool(v[a]) == bool(v[b]) for _, v in results)
         lines.append(f"| {a} / {b} | {agree}/{n} ({100 * agree / max(n, 1):.1f}%) |")
     odd = [(k, v) for k, v in results if len({bool(v[j]) for j in JUDGES}) > 1]
     if odd:
-        lines += ["", "Shaders the judges disagree on (first message of each judge that rejects):", ""]
+        lines += [
+            "",
+            "Shaders the judges disagree on (first message of each judge that rejects):",
+            "",
+        ]
         for k, v in odd:
             said = "; ".join(f"{j}: {v[j][0][:110]!r}" for j in JUDGES if v[j])
             accept = ", ".join(j for j in JUDGES if not v[j])
@@ -102,23 +114,33 @@ def summarise(name: str, results: list[tuple[str, dict[str, list[str]]]]) -> lis
 
 def main(argv: list[str] | None = None) -> int:
     p = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
-    p.add_argument("--mutants", type=int, default=200, help="mutants of tools/mutation_agreement.py (default 200)")
+    p.add_argument(
+        "--mutants",
+        type=int,
+        default=200,
+        help="mutants of tools/mutation_agreement.py (default 200)",
+    )
     p.add_argument("--seed", type=int, default=1)
     args = p.parse_args(argv)
-    from glslcheck.backends.webgl import get_browser
     from mutation_agreement import mutants, valid_shaders
+
+    from glslcheck.backends.webgl import get_browser
 
     browser = get_browser()
     print(f"ANGLE: {browser.info['renderer']}, Chromium {browser.version}\n")
     out: list[str] = []
     for folder in ("tests/check/invalid", "tests/webgl/invalid"):
         out += summarise(folder, [(k, verdicts(s)) for k, s in invalid_fixtures(ROOT / folder)])
-    out += summarise("valid shaders (tests/corpus, lab_shaders)",
-                     [(Path(s.root).name, verdicts(s)) for s in valid_shaders()])
+    out += summarise(
+        "valid shaders (tests/corpus, lab_shaders)",
+        [(Path(s.root).name, verdicts(s)) for s in valid_shaders()],
+    )
     if args.mutants:
         chosen = mutants(args.mutants, args.seed)
-        out += summarise(f"mutants (seed {args.seed})",
-                         [(f"{Path(root).name} [{tab}] {desc}", verdicts(s)) for root, tab, desc, s in chosen])
+        out += summarise(
+            f"mutants (seed {args.seed})",
+            [(f"{Path(root).name} [{tab}] {desc}", verdicts(s)) for root, tab, desc, s in chosen],
+        )
     print("\n".join(out))
     return 0
 

@@ -45,8 +45,25 @@ import numpy as np
 
 # float inputs whose uint conversion tells the models apart (and the in-range ones they share)
 PROBE_INPUTS: tuple[float, ...] = (
-    3.7, -0.5, -0.99, -1.0, -3.5, -1e9, -2147483648.0, -3e9, -5e9, 5e9, 3e9, 4294967040.0,
-    4294967296.0, 2147483648.0, 2147483520.0, float("nan"), float("inf"), float("-inf"), 1e20,
+    3.7,
+    -0.5,
+    -0.99,
+    -1.0,
+    -3.5,
+    -1e9,
+    -2147483648.0,
+    -3e9,
+    -5e9,
+    5e9,
+    3e9,
+    4294967040.0,
+    4294967296.0,
+    2147483648.0,
+    2147483520.0,
+    float("nan"),
+    float("inf"),
+    float("-inf"),
+    1e20,
     -1e20,
 )
 
@@ -195,8 +212,11 @@ def driver_name(ctx) -> tuple[str, str | None]:
 
 def is_emulated(renderer: str, mesa: str | None) -> bool:
     """True when the driver is the llvmpipe of `EMULATED_MESA` (any patch release)."""
-    return renderer.startswith("llvmpipe") and mesa is not None and (
-        mesa == EMULATED_MESA or mesa.startswith(EMULATED_MESA + "."))
+    return (
+        renderer.startswith("llvmpipe")
+        and mesa is not None
+        and (mesa == EMULATED_MESA or mesa.startswith(EMULATED_MESA + "."))
+    )
 
 
 def emulation_note(ctx) -> str | None:
@@ -206,8 +226,10 @@ def emulation_note(ctx) -> str | None:
     if is_emulated(renderer, mesa):
         return None
     driver = f"{renderer}, Mesa {mesa}" if mesa else renderer
-    return (f"the GL driver is {driver}; the NumPy backend copies llvmpipe of Mesa {EMULATED_MESA} bit for "
-            "bit, so differences in hash-like or sign-of-zero pixels may be this driver's, not a bug")
+    return (
+        f"the GL driver is {driver}; the NumPy backend copies llvmpipe of Mesa {EMULATED_MESA} bit for "
+        "bit, so differences in hash-like or sign-of-zero pixels may be this driver's, not a bug"
+    )
 
 
 _MEASURED: dict[int, str | None] = {}

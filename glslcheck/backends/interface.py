@@ -7,8 +7,9 @@ webgl); glslcheck/backends/registry.py names them and imports a record only when
 
 from __future__ import annotations
 
+from collections.abc import Callable
 from dataclasses import dataclass
-from typing import TYPE_CHECKING, Any, Callable
+from typing import TYPE_CHECKING, Any
 
 from ..base.precision import check_precision
 from ..shadertoy.frame_inputs import FrameInputs, frame_inputs
@@ -37,7 +38,9 @@ class Backend:
     precisions: tuple[str, ...]  # the float types inside the shader it renders in
     multipass: bool  # Buffer A-D and channels.json (backends/multipass.py)
     lane_stats: bool  # render(stats=True) counts the lanes of each branch
-    driver: bool  # a real driver renders: its float is the driver's highp and render takes no precision
+    driver: (
+        bool  # a real driver renders: its float is the driver's highp and render takes no precision
+    )
     needs: str  # what it needs beyond glslcheck's own requirements ("" for nothing)
     compile_pass: Callable[[Shader, str], Any]
     program_text: Callable[[Any], str]
@@ -57,15 +60,19 @@ class Program:
         self.impl = impl
 
     @frame_inputs
-    def render(self, inputs: FrameInputs, precision: str = "float32", stats: bool = False) -> np.ndarray:
+    def render(
+        self, inputs: FrameInputs, precision: str = "float32", stats: bool = False
+    ) -> np.ndarray:
         """One frame; see glslcheck/backends/registry.py (the arguments: `shadertoy.FrameInputs`,
         then `precision` and `stats`)."""
         check_precision(precision)
         common = inputs.keywords()
         if self.backend.driver:
             if precision != "float32":
-                raise ValueError(f"the {self.backend.name.upper()} backend renders in float32 only "
-                                 "(the driver's highp)")
+                raise ValueError(
+                    f"the {self.backend.name.upper()} backend renders in float32 only "
+                    "(the driver's highp)"
+                )
             if stats:
                 raise ValueError("stats=True needs backend='numpy'")
             return self.impl.render(**common)

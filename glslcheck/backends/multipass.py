@@ -10,8 +10,15 @@ from __future__ import annotations
 import numpy as np
 
 from ..base.diagnostics import Diagnostic, GlslError, InputError
-from ..shadertoy.channels import (CHANNELS_FILE, ChannelInput, channel_reads, folder_of, load_bindings, read_image,
-                                  texture_path)
+from ..shadertoy.channels import (
+    CHANNELS_FILE,
+    ChannelInput,
+    channel_reads,
+    folder_of,
+    load_bindings,
+    read_image,
+    texture_path,
+)
 from ..shadertoy.sources import Shader
 from ..shadertoy.wrapper import PASS_TABS
 from .interface import Backend
@@ -28,25 +35,33 @@ class MultipassProgram:
 
     def __init__(self, shader: Shader, backend: Backend, output: str = "Image") -> None:
         if not backend.multipass:
-            raise InputError(f"{shader.root}: error: buffers, channels and --pass are not supported on the "
-                             f"{backend.name} backend; use --backend numpy, gl or webgl")
+            raise InputError(
+                f"{shader.root}: error: buffers, channels and --pass are not supported on the "
+                f"{backend.name} backend; use --backend numpy, gl or webgl"
+            )
         self.shader = shader
         self.backend = backend
         self.channels_path, bindings = load_bindings(shader)
         self.passes = [t for t in PASS_TABS if t in shader.tabs]
         if output not in self.passes:
-            raise InputError(f"{shader.root}: error: --pass {output!r}: the shader has no such tab "
-                             f"(it has {', '.join(self.passes)})")
+            raise InputError(
+                f"{shader.root}: error: --pass {output!r}: the shader has no such tab "
+                f"(it has {', '.join(self.passes)})"
+            )
         self.output = output
         self.bindings = {t: {b.channel: b for b in bindings if b.tab == t} for t in self.passes}
         self._check_reads()
         self.textures = {}
         for b in bindings:
             if b.texture is not None:
+
                 def fail(key, message, b=b):
                     raise InputError(f"{self.channels_path}: error: {key}: {message}")
+
                 where = f'"{b.tab}"."iChannel{b.channel}"."texture"'
-                self.textures[b.texture] = read_image(texture_path(shader, b.texture, where, fail), where, fail)
+                self.textures[b.texture] = read_image(
+                    texture_path(shader, b.texture, where, fail), where, fail
+                )
         self.programs = {t: self._compile(t) for t in self.passes}
         # Lookups return lowp results as llvmpipe's do (backends/numpy_engine/textures.py); False gives
         # the exact float32 results SwiftShader's WebGL returns (it ignores lowp, measured).
@@ -64,9 +79,17 @@ class MultipassProgram:
         for tab in self.passes:
             for n, loc in sorted(channel_reads(self.shader, tab).items()):
                 if n not in self.bindings[tab]:
-                    where = self.channels_path or f"{folder_of(self.shader) / CHANNELS_FILE} (missing)"
-                    diags.append(Diagnostic(f"iChannel{n} is read but not bound: {where} has no "
-                                            f"\"{tab}\": {{\"iChannel{n}\": ...}}", loc, rule="unbound-channel"))
+                    where = (
+                        self.channels_path or f"{folder_of(self.shader) / CHANNELS_FILE} (missing)"
+                    )
+                    diags.append(
+                        Diagnostic(
+                            f"iChannel{n} is read but not bound: {where} has no "
+                            f'"{tab}": {{"iChannel{n}": ...}}',
+                            loc,
+                            rule="unbound-channel",
+                        )
+                    )
         if diags:
             raise GlslError(diags)
 
@@ -105,31 +128,52 @@ class MultipassProgram:
             texels = self._state[b.buffer] if b.buffer is not None else self.textures[b.texture]
             if b.vflip:
                 texels = texels[::-1]
-            chans.append(ChannelInput(np.ascontiguousarray(texels), b.filter, b.wrap, self.lowp_samplers))
+            chans.append(
+                ChannelInput(np.ascontiguousarray(texels), b.filter, b.wrap, self.lowp_samplers)
+            )
         return chans
 
-    def render(self, size=(800, 450), time: float = 0.0, frame: int = 0, time_delta: float = 1.0 / 60.0,
-               samples: int = 1, **rest) -> np.ndarray:
+    def render(
+        self,
+        size=(800, 450),
+        time: float = 0.0,
+        frame: int = 0,
+        time_delta: float = 1.0 / 60.0,
+        samples: int = 1,
+        **rest,
+    ) -> np.ndarray:
         """One frame of the output pass; arguments as the backend's render (see the class)."""
         if self.backend.driver:
             if rest.pop("precision", "float32") != "float32":
-                raise ValueError(f"the {self.backend.name} backend renders in float32 only (the driver's highp)")
+                raise ValueError(
+                    f"the {self.backend.name} backend renders in float32 only (the driver's highp)"
+                )
             rest.pop("stats", None)
         width, height = int(size[0]), int(size[1])
         key = (width, height, rest.get("precision"))
         if key != self._key or frame != self._next:
-            self._state = {t: np.zeros((height, width, 4), np.float32) for t in self.passes if t != "Image"}
+            self._state = {
+                t: np.zeros((height, width, 4), np.float32) for t in self.passes if t != "Image"
+            }
             self._key, self._next = key, 0
         out = None
         while self._next <= frame:
             i = self._next
             t = time - (frame - i) * time_delta
             for tab in self.passes:
-                img = self.programs[tab].render(size=(width, height), time=t, frame=i, time_delta=time_delta,
-                                                samples=samples if tab == "Image" else 1,
-                                                channels=self._inputs(tab), **rest)
+                img = self.programs[tab].render(
+                    size=(width, height),
+                    time=t,
+                    frame=i,
+                    time_delta=time_delta,
+                    samples=samples if tab == "Image" else 1,
+                    channels=self._inputs(tab),
+                    **rest,
+                )
                 if tab != "Image":
-                    self._state[tab] = np.ascontiguousarray(img[::-1])  # row 0 = bottom, as GL stores it
+                    self._state[tab] = np.ascontiguousarray(
+                        img[::-1]
+                    )  # row 0 = bottom, as GL stores it
                 if tab == self.output:
                     out = img
             self._next = i + 1

@@ -70,7 +70,9 @@ def backend_program(shader: Shader, backend: Backend, output: str = "Image"):
     return backend.compile_pass(shader, "Image")
 
 
-def compile(path: str | os.PathLike | Shader, backend: str = "numpy", output: str = "Image") -> Program:  # noqa: A001
+def compile(
+    path: str | os.PathLike | Shader, backend: str = "numpy", output: str = "Image"
+) -> Program:  # noqa: A001
     """Load, check and compile a shader for `backend` (one of `names()`). A shader with Buffer
     tabs, a channels.json or iChannel reads runs its passes frame after frame (backends/multipass.py);
     `output` chooses the pass `render` returns ("Buffer A", ...)."""
@@ -79,6 +81,8 @@ def compile(path: str | os.PathLike | Shader, backend: str = "numpy", output: st
     if output != "Image" and not record.multipass:
         from ..base.diagnostics import InputError
 
-        raise InputError(f"error: --backend {record.name} renders the Image pass only, not {output!r}")
+        raise InputError(
+            f"error: --backend {record.name} renders the Image pass only, not {output!r}"
+        )
     shader = path if isinstance(path, Shader) else load_shader(path)
     return Program(shader, record, backend_program(shader, record, output))

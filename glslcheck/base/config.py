@@ -20,45 +20,106 @@ import os
 from .diagnostics import InputError
 
 # Defaults and allowed values that the readers below and their callers share.
-FRAME_SECONDS = 300.0  # the NumPy and compiled engines' frame budget (base/limits.py holds its range)
+FRAME_SECONDS = (
+    300.0  # the NumPy and compiled engines' frame budget (base/limits.py holds its range)
+)
 JIT_MODES = ("auto", "on", "off")  # backends/numpy_engine/jit.py
 PARALLEL_MODES = ("auto", "threads", "processes")  # NumpyProgram.parallel
 # The compiled engine's widths: one pixel a call, or AVX2's and AVX-512's float32 lanes (wider
 # blocks only grow the compile, and a width of 1,000,000 took minutes and 5 GB).
 LANE_WIDTHS = ("0", "8", "16")
 WEBGL_TIMEOUT = 60.0  # seconds one compile or render may take in the browser
-MAX_WEBGL_TIMEOUT = 86400.0  # a day, as --frame-budget: longer is a hang (and inf overflows the browser's timer)
+MAX_WEBGL_TIMEOUT = (
+    86400.0  # a day, as --frame-budget: longer is a hang (and inf overflows the browser's timer)
+)
 
 # (name, what it sets, allowed values, default, who reads it)
 VARIABLES = (
-    ("GLSLCHECK_FRAME_SECONDS", "seconds a NumPy or compiled frame may render before it stops with an error "
-     "(set by `--frame-budget`)", "0.01 to 86400", "300", "backends/numpy_engine/program.py, compiled_engine"),
-    ("GLSLCHECK_MEMORY_MB", "megabytes the NumPy engine's tiles rendering at once may hold",
-     "a positive number", "half the memory (or of `ulimit -v`)", "backends/numpy_engine/program.py"),
-    ("GLSLCHECK_PARALLEL", "how the NumPy engine spreads a frame's tiles (set by `--parallel`)",
-     "auto, threads, processes", "auto", "backends/numpy_engine/program.py, cli/main.py"),
-    ("GLSLCHECK_JIT", "whether the NumPy engine's llvmpipe math runs in numba kernels (set by `--jit`)",
-     "auto, on, off", "auto", "backends/numpy_engine/jit.py, cli/main.py"),
-    ("GLSLCHECK_COMPILED_LANES", "pixels per call of the compiled engine; a number fixes the mode",
-     "auto, 0, 8, 16", "auto (per pixel, then lockstep when it pays)", "backends/compiled_engine/engine.py"),
-    ("GLSLCHECK_WEBGL_TIMEOUT", "seconds one compile or render may take in the browser",
-     "more than 0, at most 86400", "60", "backends/webgl/browser.py"),
-    ("GLSLCHECK_CHROMIUM", "the Chromium executable of the WebGL backend", "an executable file",
-     "`chromium` or `chromium-browser` on PATH", "backends/webgl/browser.py"),
-    ("GLSLCHECK_JOBS", "processes `lint` may use", "auto, or a whole number from 1 (2 and more: 2)",
-     "auto (2 when a core is idle)", "lint/parallel.py"),
-    ("GLSLCHECK_UPDATE_SNAPSHOTS", "whether the lint rule tests rewrite their expected.json",
-     "0, 1", "0", "tests/lint/test_lint_rules.py"),
+    (
+        "GLSLCHECK_FRAME_SECONDS",
+        "seconds a NumPy or compiled frame may render before it stops with an error "
+        "(set by `--frame-budget`)",
+        "0.01 to 86400",
+        "300",
+        "backends/numpy_engine/program.py, compiled_engine",
+    ),
+    (
+        "GLSLCHECK_MEMORY_MB",
+        "megabytes the NumPy engine's tiles rendering at once may hold",
+        "a positive number",
+        "half the memory (or of `ulimit -v`)",
+        "backends/numpy_engine/program.py",
+    ),
+    (
+        "GLSLCHECK_PARALLEL",
+        "how the NumPy engine spreads a frame's tiles (set by `--parallel`)",
+        "auto, threads, processes",
+        "auto",
+        "backends/numpy_engine/program.py, cli/main.py",
+    ),
+    (
+        "GLSLCHECK_JIT",
+        "whether the NumPy engine's llvmpipe math runs in numba kernels (set by `--jit`)",
+        "auto, on, off",
+        "auto",
+        "backends/numpy_engine/jit.py, cli/main.py",
+    ),
+    (
+        "GLSLCHECK_COMPILED_LANES",
+        "pixels per call of the compiled engine; a number fixes the mode",
+        "auto, 0, 8, 16",
+        "auto (per pixel, then lockstep when it pays)",
+        "backends/compiled_engine/engine.py",
+    ),
+    (
+        "GLSLCHECK_WEBGL_TIMEOUT",
+        "seconds one compile or render may take in the browser",
+        "more than 0, at most 86400",
+        "60",
+        "backends/webgl/browser.py",
+    ),
+    (
+        "GLSLCHECK_CHROMIUM",
+        "the Chromium executable of the WebGL backend",
+        "an executable file",
+        "`chromium` or `chromium-browser` on PATH",
+        "backends/webgl/browser.py",
+    ),
+    (
+        "GLSLCHECK_JOBS",
+        "processes `lint` may use",
+        "auto, or a whole number from 1 (2 and more: 2)",
+        "auto (2 when a core is idle)",
+        "lint/parallel.py",
+    ),
+    (
+        "GLSLCHECK_UPDATE_SNAPSHOTS",
+        "whether the lint rule tests rewrite their expected.json",
+        "0, 1",
+        "0",
+        "tests/lint/test_lint_rules.py",
+    ),
 )
 
 # Read, not owned: (name, whose it is, who reads it)
 FOREIGN = (
-    ("NUMBA_CACHE_DIR", "numba's cache folder (glslcheck then sets it to the folder it trusts)",
-     "backends/numpy_engine/numba_cache.py"),
+    (
+        "NUMBA_CACHE_DIR",
+        "numba's cache folder (glslcheck then sets it to the folder it trusts)",
+        "backends/numpy_engine/numba_cache.py",
+    ),
     ("XDG_CACHE_HOME", "the user's cache folder", "backends/numpy_engine/numba_cache.py"),
     ("COLUMNS", "the terminal's width, for `--help`", "cli/main.py"),
-    ("glsl_zero_init", "Mesa's zero-initialisation of GLSL variables (set when unset)", "backends/gl/context.py"),
-    ("CI", "a CI run: tests that need an optional tool fail instead of skipping", "tests/conftest.py"),
+    (
+        "glsl_zero_init",
+        "Mesa's zero-initialisation of GLSL variables (set when unset)",
+        "backends/gl/context.py",
+    ),
+    (
+        "CI",
+        "a CI run: tests that need an optional tool fail instead of skipping",
+        "tests/conftest.py",
+    ),
 )
 
 
@@ -76,8 +137,10 @@ def frame_seconds() -> float:
     except ValueError:
         value = math.nan
     if not MIN_FRAME_SECONDS <= value <= MAX_FRAME_SECONDS:
-        raise InputError(f"error: GLSLCHECK_FRAME_SECONDS must be a number of seconds from {MIN_FRAME_SECONDS:g} "
-                         f"to {MAX_FRAME_SECONDS:g} (like --frame-budget), not {text!r}")
+        raise InputError(
+            f"error: GLSLCHECK_FRAME_SECONDS must be a number of seconds from {MIN_FRAME_SECONDS:g} "
+            f"to {MAX_FRAME_SECONDS:g} (like --frame-budget), not {text!r}"
+        )
     return value
 
 
@@ -91,7 +154,9 @@ def memory_mb() -> float | None:
     except ValueError:
         value = math.nan
     if not 0 < value < math.inf:
-        raise InputError(f"error: GLSLCHECK_MEMORY_MB must be a positive number of megabytes, not {text!r}")
+        raise InputError(
+            f"error: GLSLCHECK_MEMORY_MB must be a positive number of megabytes, not {text!r}"
+        )
     return value
 
 
@@ -118,8 +183,10 @@ def compiled_lanes() -> int | None:
     if not text or text == "auto":
         return None
     if text not in LANE_WIDTHS:
-        raise InputError(f"error: GLSLCHECK_COMPILED_LANES must be auto, 0 (one pixel a call) or "
-                         f"{' or '.join(LANE_WIDTHS[1:])} (pixels in lockstep), not {text!r}")
+        raise InputError(
+            f"error: GLSLCHECK_COMPILED_LANES must be auto, 0 (one pixel a call) or "
+            f"{' or '.join(LANE_WIDTHS[1:])} (pixels in lockstep), not {text!r}"
+        )
     return int(text)
 
 
@@ -132,8 +199,10 @@ def webgl_timeout() -> float:
     except ValueError:
         raise InputError(f"error: ${name} must be a number of seconds, not {text!r}") from None
     if not 0 < value <= MAX_WEBGL_TIMEOUT:
-        raise InputError(f"error: ${name} must be a number of seconds from 0 to {MAX_WEBGL_TIMEOUT:g}, "
-                         f"not {text!r}")
+        raise InputError(
+            f"error: ${name} must be a number of seconds from 0 to {MAX_WEBGL_TIMEOUT:g}, "
+            f"not {text!r}"
+        )
     return value
 
 
@@ -153,7 +222,9 @@ def jobs() -> int | None:
     if not text or text == "auto":
         return None
     if not (text.isdigit() and int(text) >= 1):
-        raise InputError(f"error: GLSLCHECK_JOBS must be auto or a whole number of processes from 1, not {text!r}")
+        raise InputError(
+            f"error: GLSLCHECK_JOBS must be auto or a whole number of processes from 1, not {text!r}"
+        )
     return min(int(text), 2)
 
 
@@ -168,9 +239,16 @@ def update_snapshots() -> bool:
 def table() -> str:
     """VARIABLES and FOREIGN as the Markdown tables of README.md's "Environment variables"."""
     rows = ["| Variable | Sets | Allowed | Default | Read by |", "|---|---|---|---|---|"]
-    rows += [f"| `{name}` | {sets} | {allowed} | {default} | {readers} |"
-             for name, sets, allowed, default, readers in VARIABLES]
-    rows += ["", "Read, not owned (other programs' variables):", "",
-             "| Variable | What it is | Read by |", "|---|---|---|"]
+    rows += [
+        f"| `{name}` | {sets} | {allowed} | {default} | {readers} |"
+        for name, sets, allowed, default, readers in VARIABLES
+    ]
+    rows += [
+        "",
+        "Read, not owned (other programs' variables):",
+        "",
+        "| Variable | What it is | Read by |",
+        "|---|---|---|",
+    ]
     rows += [f"| `{name}` | {what} | {readers} |" for name, what, readers in FOREIGN]
     return "\n".join(rows) + "\n"

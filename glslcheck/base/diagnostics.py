@@ -8,11 +8,11 @@ preprocessing and the Shadertoy wrapper.
 
 from __future__ import annotations
 
-from .records import record, field
+from .records import field, record
 
 TYPE_CHECKING = False  # not typing's: importing typing costs every start-up
 if TYPE_CHECKING:
-    from typing import Callable
+    from collections.abc import Callable
 
 
 @record(frozen=True)
@@ -30,10 +30,10 @@ class Location:
     def __str__(self) -> str:
         return f"{self.path}:{self.line}:{self.column}"
 
-    def start(self) -> "Location":
+    def start(self) -> Location:
         return Location(self.path, self.line, self.column)
 
-    def span_to(self, other: "Location") -> "Location":
+    def span_to(self, other: Location) -> Location:
         """The span from this location's start to `other`'s end."""
         return Location(
             self.path,
@@ -105,7 +105,7 @@ class Diagnostic:
     severity: str = "error"  # "error" | "warning" | "note"
     rule: str = "syntax"
     help: str | None = None
-    notes: list["Diagnostic"] = field(default_factory=list)
+    notes: list[Diagnostic] = field(default_factory=list)
 
 
 class GlslError(Exception):
@@ -157,7 +157,13 @@ def printable(text: str) -> str:
             out.append(ch)
         else:
             code = ord(ch)
-            out.append(f"\\x{code:02x}" if code < 0x100 else f"\\u{code:04x}" if code < 0x10000 else f"\\U{code:08x}")
+            out.append(
+                f"\\x{code:02x}"
+                if code < 0x100
+                else f"\\u{code:04x}"
+                if code < 0x10000
+                else f"\\U{code:08x}"
+            )
     return "".join(out)
 
 
@@ -175,10 +181,12 @@ def _quote(text: str, loc: Location) -> tuple[str, str]:
         start = max(0, min(col - 1 - MAX_QUOTE // 4, len(text) - MAX_QUOTE))
         end = start + MAX_QUOTE
         before, after = ("..." if start else ""), ("..." if end < len(text) else "")
-    head = [printable(ch) for ch in text[start: col - 1]]
+    head = [printable(ch) for ch in text[start : col - 1]]
     prefix = " " * len(before) + "".join(ch if ch == "\t" else " " * len(ch) for ch in head)
-    span = text[col - 1: min(col - 1 + width, end)]
-    past_end = 0 if after else width - len(text[col - 1: col - 1 + width])  # a span beyond the line
+    span = text[col - 1 : min(col - 1 + width, end)]
+    past_end = (
+        0 if after else width - len(text[col - 1 : col - 1 + width])
+    )  # a span beyond the line
     shown = before + printable(text[start:end]) + after
     return shown, prefix + "^" + "~" * max(len(printable(span)) + past_end - 1, 0)
 

@@ -24,8 +24,8 @@ import io
 import os
 import stat
 import tempfile
+from collections.abc import Iterator
 from pathlib import Path
-from typing import Iterator
 
 import numpy as np
 
@@ -37,14 +37,18 @@ IMAGE_SUFFIXES = (".png", ".npy")
 def quantise(img: np.ndarray) -> np.ndarray:
     """8-bit values of a float image (any channel count): NaN as 0, clamped, *255 + 0.5 floored."""
     with np.errstate(invalid="ignore"):
-        return np.floor(np.clip(np.nan_to_num(img, nan=0.0), 0.0, 1.0) * 255.0 + 0.5).astype(np.uint8)
+        return np.floor(np.clip(np.nan_to_num(img, nan=0.0), 0.0, 1.0) * 255.0 + 0.5).astype(
+            np.uint8
+        )
 
 
 def check_output(path: str | os.PathLike, suffixes: tuple[str, ...], what: str) -> None:
     """InputError unless `path` ends in one of `suffixes` (compared case-insensitively)."""
     if not str(path).lower().endswith(suffixes):
         names = " or ".join(suffixes)
-        raise InputError(f"{path}: error: the {what} must be a {names} file (name it e.g. out{suffixes[0]})")
+        raise InputError(
+            f"{path}: error: the {what} must be a {names} file (name it e.g. out{suffixes[0]})"
+        )
 
 
 def _mode_for_new_files() -> int:
@@ -71,7 +75,9 @@ def atomic_write(path: str | os.PathLike, what: str = "file") -> Iterator[str]:
         try:
             yield str(path)
         except OSError as e:
-            raise InputError(f"{path}: error: cannot write the {what} ({e.strerror or e})") from None
+            raise InputError(
+                f"{path}: error: cannot write the {what} ({e.strerror or e})"
+            ) from None
         return
     try:
         fd, tmp = tempfile.mkstemp(prefix=f".{target.name}.", suffix=".tmp", dir=target.parent)
@@ -125,7 +131,9 @@ def _pil_format(path: str | os.PathLike) -> str:
     Image.init()
     fmt = Image.EXTENSION.get(Path(path).suffix.lower())
     if fmt is None:
-        raise InputError(f"{path}: error: no image format has the extension {Path(path).suffix or '(none)'!r}")
+        raise InputError(
+            f"{path}: error: no image format has the extension {Path(path).suffix or '(none)'!r}"
+        )
     return fmt
 
 
@@ -151,12 +159,14 @@ class GifWriter:
 
     def __init__(self, path: str | os.PathLike, fps: float):
         self.path = path
-        self.duration = max(int(round(1000 / fps)), 10)  # ms; GIF counts in 1/100 s, browsers floor to 10 ms
+        self.duration = max(
+            int(round(1000 / fps)), 10
+        )  # ms; GIF counts in 1/100 s, browsers floor to 10 ms
         self.frames = 0
         self._atomic = None
         self._file = None
 
-    def __enter__(self) -> "GifWriter":
+    def __enter__(self) -> GifWriter:
         check_output(self.path, (".gif",), "animation")
         self._atomic = atomic_write(self.path, "animation")
         tmp = self._atomic.__enter__()
@@ -164,16 +174,22 @@ class GifWriter:
             self._file = open(tmp, "wb")
         except OSError as e:
             self._atomic.__exit__(type(e), e, e.__traceback__)
-            raise InputError(f"{self.path}: error: cannot write the animation ({e.strerror or e})") from None
+            raise InputError(
+                f"{self.path}: error: cannot write the animation ({e.strerror or e})"
+            ) from None
         return self
 
     def add(self, img: np.ndarray) -> None:
         from PIL import GifImagePlugin, Image
 
-        frame = Image.fromarray(quantise(img[..., :3]), "RGB").convert("P", palette=Image.Palette.ADAPTIVE)
+        frame = Image.fromarray(quantise(img[..., :3]), "RGB").convert(
+            "P", palette=Image.Palette.ADAPTIVE
+        )
         try:
             if self.frames == 0:
-                header, _ = GifImagePlugin.getheader(frame, None, {"loop": 0, "duration": self.duration})
+                header, _ = GifImagePlugin.getheader(
+                    frame, None, {"loop": 0, "duration": self.duration}
+                )
             else:
                 GifImagePlugin.getheader(frame, None, {})  # puts the frame's palette in GIF form
                 header = []
@@ -181,7 +197,9 @@ class GifWriter:
             data = GifImagePlugin.getdata(frame, duration=self.duration, include_color_table=True)
             self._file.write(b"".join(bytes(b) for b in (*header, *data)))
         except OSError as e:
-            raise InputError(f"{self.path}: error: cannot write the animation ({e.strerror or e})") from None
+            raise InputError(
+                f"{self.path}: error: cannot write the animation ({e.strerror or e})"
+            ) from None
         self.frames += 1
 
     def __exit__(self, kind, error, tb) -> None:

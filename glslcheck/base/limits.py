@@ -35,7 +35,7 @@ import math
 
 TYPE_CHECKING = False  # not typing's: importing typing costs every start-up
 if TYPE_CHECKING:
-    from typing import Sequence
+    from collections.abc import Sequence
 
 MAX_SIDE = 16384
 MAX_PIXELS = 4096 * 4096
@@ -51,8 +51,10 @@ MIN_FRAME_SECONDS, MAX_FRAME_SECONDS = 0.01, 86400.0
 def check_pixels(w: int, h: int, text: str) -> None:
     """ValueError when w*h is above MAX_PIXELS."""
     if w * h > MAX_PIXELS:
-        raise ValueError(f"a size of at most {MAX_PIXELS:,} pixels (e.g. 4096x4096), not {text!r} "
-                         f"({w * h:,} pixels, {w * h * 16 / 2**30:.1f} GiB per float image)")
+        raise ValueError(
+            f"a size of at most {MAX_PIXELS:,} pixels (e.g. 4096x4096), not {text!r} "
+            f"({w * h:,} pixels, {w * h * 16 / 2**30:.1f} GiB per float image)"
+        )
 
 
 def parse_size(text: str) -> tuple[int, int]:
@@ -92,13 +94,16 @@ def parse_samples(text: str) -> int:
     n = whole_number(text, "--samples")
     k = math.isqrt(n) if n >= 1 else 0
     if k < 1 or k * k != n or n > MAX_SAMPLES:
-        raise ValueError(f"--samples must be a perfect square from 1 to {MAX_SAMPLES} (1, 4, 9, 16, ...), "
-                         f"not {text!r}")
+        raise ValueError(
+            f"--samples must be a perfect square from 1 to {MAX_SAMPLES} (1, 4, 9, 16, ...), "
+            f"not {text!r}"
+        )
     return n
 
 
-def parse_floats(text: str, count: int | None = None, what: str = "value",
-                 limit: float = MAX_MAGNITUDE) -> tuple[float, ...]:
+def parse_floats(
+    text: str, count: int | None = None, what: str = "value", limit: float = MAX_MAGNITUDE
+) -> tuple[float, ...]:
     """'0,0.5,1' -> (0.0, 0.5, 1.0): finite numbers of size at most `limit`; exactly `count` if given."""
     items = [t.strip() for t in text.split(",")]
     try:
@@ -106,7 +111,9 @@ def parse_floats(text: str, count: int | None = None, what: str = "value",
     except ValueError:
         raise ValueError(f"{what} must be comma-separated numbers, not {text!r}") from None
     if count is not None and len(values) != count:
-        raise ValueError(f"{what} needs {count} comma-separated number{'s' if count != 1 else ''}, not {text!r}")
+        raise ValueError(
+            f"{what} needs {count} comma-separated number{'s' if count != 1 else ''}, not {text!r}"
+        )
     if not all(math.isfinite(v) and abs(v) <= limit for v in values):
         kind = "a finite number" if count == 1 else "finite numbers"
         raise ValueError(f"{what} must be {kind} from -{limit:.10g} to {limit:.10g}, not {text!r}")
@@ -155,17 +162,29 @@ def parse_frame_budget(text: str) -> float:
 def parse_date(text: str) -> tuple[float, float, float, float]:
     """'Y,M,D,S' -> iDate: year 0..9999, month 0..11, day 1..31, seconds since midnight."""
     year, month, day, seconds = parse_floats(text, 4, "--date")
-    for value, low, high, what in ((year, 0, 9999, "year"), (month, 0, 11, "month (0 = January)"),
-                                   (day, 1, 31, "day")):
+    for value, low, high, what in (
+        (year, 0, 9999, "year"),
+        (month, 0, 11, "month (0 = January)"),
+        (day, 1, 31, "day"),
+    ):
         if value != int(value) or not low <= value <= high:
-            raise ValueError(f"--date: the {what} must be a whole number from {low} to {high}, not {text!r}")
+            raise ValueError(
+                f"--date: the {what} must be a whole number from {low} to {high}, not {text!r}"
+            )
     if not 0 <= seconds < 86400:
-        raise ValueError(f"--date: the seconds since midnight must be from 0 to below 86400, not {text!r}")
+        raise ValueError(
+            f"--date: the seconds since midnight must be from 0 to below 86400, not {text!r}"
+        )
     return year, month, day, seconds
 
 
-def check_schedule(frame: int = 0, frames: int | None = None, fps: float = 60.0,
-                   time: float | None = None, times: Sequence[float] | None = None) -> None:
+def check_schedule(
+    frame: int = 0,
+    frames: int | None = None,
+    fps: float = 60.0,
+    time: float | None = None,
+    times: Sequence[float] | None = None,
+) -> None:
     """ValueError when the last frame of a run is not a valid iFrame or iTime."""
     if frames is None:
         return
@@ -174,4 +193,6 @@ def check_schedule(frame: int = 0, frames: int | None = None, fps: float = 60.0,
         raise ValueError(f"--frame {frame} with --frames {frames} runs past iFrame {MAX_FRAME}")
     end = (time or 0.0) + (frames - 1) / fps
     if abs(end) > MAX_MAGNITUDE or abs(last / fps) > MAX_MAGNITUDE:
-        raise ValueError(f"--frames {frames} at --fps {fps:g} runs iTime past {MAX_MAGNITUDE:.10g} seconds")
+        raise ValueError(
+            f"--frames {frames} at --fps {fps:g} runs iTime past {MAX_MAGNITUDE:.10g} seconds"
+        )

@@ -28,7 +28,8 @@ from types import FunctionType, MemberDescriptorType
 
 TYPE_CHECKING = False  # not typing's: importing typing costs every start-up
 if TYPE_CHECKING:
-    from typing import Any, Callable
+    from collections.abc import Callable
+    from typing import Any
 
 __all__ = ["record", "field", "replace", "FrozenInstanceError", "tuple_getter"]
 
@@ -42,15 +43,22 @@ class FrozenInstanceError(AttributeError):
 class _Field:
     __slots__ = ("default", "factory", "repr", "compare")
 
-    def __init__(self, default: Any, factory: Callable[[], Any] | None, repr: bool, compare: bool) -> None:
+    def __init__(
+        self, default: Any, factory: Callable[[], Any] | None, repr: bool, compare: bool
+    ) -> None:
         self.default = default
         self.factory = factory
         self.repr = repr
         self.compare = compare
 
 
-def field(*, default: Any = _MISSING, default_factory: Callable[[], Any] | None = None,
-          repr: bool = True, compare: bool = True) -> Any:
+def field(
+    *,
+    default: Any = _MISSING,
+    default_factory: Callable[[], Any] | None = None,
+    repr: bool = True,
+    compare: bool = True,
+) -> Any:
     """A field's options, as `dataclasses.field` takes them (the subset glslcheck uses)."""
     if default is not _MISSING and default_factory is not None:
         raise ValueError("a field cannot have both a default and a default_factory")
@@ -87,7 +95,9 @@ def _init_template(count: int, frozen: bool, factories: tuple[bool, ...]):
         for i, factory in enumerate(factories):
             value = f"_f{i}.make() if type(_f{i}) is _Factory else _f{i}" if factory else f"_f{i}"
             body.append(f"    _set{i}(self, {value})" if frozen else f"    self._f{i} = {value}")
-        code = _TEMPLATES[key] = init_code("\n".join([f"def __init__(self{params}):", *(body or ["    pass"])]))
+        code = _TEMPLATES[key] = init_code(
+            "\n".join([f"def __init__(self{params}):", *(body or ["    pass"])])
+        )
     return code
 
 
@@ -127,7 +137,9 @@ def lint_path_templates() -> list[str]:
     import subprocess
     import sys
 
-    lab = os.path.join(os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__)))), "lab_shaders")
+    lab = os.path.join(
+        os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__)))), "lab_shaders"
+    )
     script = (
         "import io, json, sys, contextlib; from glslcheck.base import records; records._recorded = []; "
         "records._precompiled = {}\n"
@@ -136,8 +148,13 @@ def lint_path_templates() -> list[str]:
         f"    main(['lint', {lab!r}]); main(['check', {lab!r}])\n"
         "print(json.dumps(records._recorded))\n"
     )
-    done = subprocess.run([sys.executable, "-c", script], capture_output=True, text=True, check=True,
-                          env={**os.environ, "GLSLCHECK_JOBS": "1"})
+    done = subprocess.run(
+        [sys.executable, "-c", script],
+        capture_output=True,
+        text=True,
+        check=True,
+        env={**os.environ, "GLSLCHECK_JOBS": "1"},
+    )
     return sorted(set(json.loads(done.stdout)))
 
 
@@ -237,7 +254,9 @@ def _reduce(self):
     return type(self), tuple(getattr(self, name) for name in self._fields)
 
 
-def record(cls: type | None = None, /, *, frozen: bool = False, eq: bool = True, slots: bool = True):
+def record(
+    cls: type | None = None, /, *, frozen: bool = False, eq: bool = True, slots: bool = True
+):
     """Make `cls` a record class (see the module's docstring); `@record` or `@record(...)`."""
     if cls is None:
         return lambda c: _process(c, frozen, eq, slots)
@@ -261,7 +280,9 @@ def _process(cls: type, frozen: bool, eq: bool, slots: bool) -> type:
         elif spec.default is not _MISSING:
             defaults.append(spec.default)
         elif defaults:
-            raise TypeError(f"{cls.__name__}: field {name!r} without a default follows one with a default")
+            raise TypeError(
+                f"{cls.__name__}: field {name!r} without a default follows one with a default"
+            )
     if slots:
         # Slots the class declares itself (not fields: no __init__ parameter, not compared,
         # not shown) are kept after the fields' (diagnostics.Location's `_pending`).
@@ -287,12 +308,18 @@ def _process(cls: type, frozen: bool, eq: bool, slots: bool) -> type:
         "__repr__": _repr,
         **({"__eq__": _eq} if eq else {}),
         # A frozen record cannot be unpickled field by field (its __setattr__ refuses): by value.
-        **({"__setattr__": _frozen_setattr, "__delattr__": _frozen_delattr, "__reduce__": _reduce} if frozen else {}),
+        **(
+            {"__setattr__": _frozen_setattr, "__delattr__": _frozen_delattr, "__reduce__": _reduce}
+            if frozen
+            else {}
+        ),
     }
     for name, method in own_methods.items():
         if name not in ns:
             setattr(cls, name, method)
-    explicit_hash = ns.get("__hash__", None) is not None or ("__hash__" in ns and "__eq__" not in ns)
+    explicit_hash = ns.get("__hash__", None) is not None or (
+        "__hash__" in ns and "__eq__" not in ns
+    )
     if eq and not explicit_hash:
         cls.__hash__ = _hash if frozen else None
     return cls

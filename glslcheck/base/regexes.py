@@ -39,8 +39,17 @@ def fingerprint() -> tuple:
     """What the stored programs depend on: the interpreter and its regular-expression engine."""
     if _sre is None:
         return (sys.implementation.name,)
-    return (sys.implementation.name, sys.version_info[:2], _sre.MAGIC, _sre.CODESIZE, _sre.MAXREPEAT,
-            _sre.MAXGROUPS, sys.maxunicode, sys.byteorder, memoryview(b"").cast("I").itemsize)
+    return (
+        sys.implementation.name,
+        sys.version_info[:2],
+        _sre.MAGIC,
+        _sre.CODESIZE,
+        _sre.MAXREPEAT,
+        _sre.MAXGROUPS,
+        sys.maxunicode,
+        sys.byteorder,
+        memoryview(b"").cast("I").itemsize,
+    )
 
 
 def _stored() -> dict:
@@ -69,8 +78,14 @@ def compiled(pattern: str, flags: int = 0) -> re.Pattern:
     indexgroup = [None] * (groups + 1)
     for name, index in names:
         indexgroup[index] = name
-    return _sre.compile(pattern, final_flags, memoryview(code).cast("I").tolist(), groups, dict(names),
-                        tuple(indexgroup))
+    return _sre.compile(
+        pattern,
+        final_flags,
+        memoryview(code).cast("I").tolist(),
+        groups,
+        dict(names),
+        tuple(indexgroup),
+    )
 
 
 def program(pattern: str, flags: int) -> tuple:
@@ -106,7 +121,9 @@ def lint_path_patterns() -> list[tuple[str, int]]:
         "parse.get_parser(); all_rules()\n"
         "print(json.dumps(regexes._recorded))\n"
     )
-    done = subprocess.run([sys.executable, "-c", script], capture_output=True, text=True, check=True)
+    done = subprocess.run(
+        [sys.executable, "-c", script], capture_output=True, text=True, check=True
+    )
     return sorted({(p, f) for p, f in json.loads(done.stdout)})
 
 

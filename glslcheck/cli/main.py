@@ -26,8 +26,16 @@ COMMANDS = [
     ("render", "render", "render a shader on the CPU (NumPy) or with OpenGL"),
     ("verify", "verify", "render with NumPy and OpenGL and compare"),
     ("bench", "bench", "time against error for precision modes and samples per pixel"),
-    ("probe", "probe", "trace one pixel statement by statement, or find where NaN pixels came from"),
-    ("report", "report", "one HTML page: source and findings, every backend's render, differences, verdicts"),
+    (
+        "probe",
+        "probe",
+        "trace one pixel statement by statement, or find where NaN pixels came from",
+    ),
+    (
+        "report",
+        "report",
+        "one HTML page: source and findings, every backend's render, differences, verdicts",
+    ),
 ]
 
 
@@ -47,8 +55,19 @@ def _terminal_columns() -> int:
 
 
 class _Formatter(argparse.HelpFormatter):
-    def __init__(self, prog: str, indent_increment: int = 2, max_help_position: int = 24, width: int | None = None):
-        super().__init__(prog, indent_increment, max_help_position, _terminal_columns() - 2 if width is None else width)
+    def __init__(
+        self,
+        prog: str,
+        indent_increment: int = 2,
+        max_help_position: int = 24,
+        width: int | None = None,
+    ):
+        super().__init__(
+            prog,
+            indent_increment,
+            max_help_position,
+            _terminal_columns() - 2 if width is None else width,
+        )
 
 
 class _Parser(argparse.ArgumentParser):
@@ -83,13 +102,21 @@ def build_parser(only: str | None = None) -> argparse.ArgumentParser:
         p = sub.add_parser(name, help=help_, description=(mod.__doc__ or help_).strip())
         mod.add_arguments(p)
         if name in _RENDERING:
-            p.add_argument("--parallel", choices=config.PARALLEL_MODES, default=None,
-                           help="NumPy tiles on worker processes, on threads, or auto: threads until a program "
-                                "has rendered for a second, then processes (default: $GLSLCHECK_PARALLEL or auto)")
-            p.add_argument("--jit", choices=config.JIT_MODES, default=None,
-                           help="llvmpipe's sin, cos, exp2, log2, pow... by compiled kernels (the optional numba extra): "
-                                "on, off, or auto: once a process has spent in that math what loading them "
-                                "costs (default: $GLSLCHECK_JIT or auto)")
+            p.add_argument(
+                "--parallel",
+                choices=config.PARALLEL_MODES,
+                default=None,
+                help="NumPy tiles on worker processes, on threads, or auto: threads until a program "
+                "has rendered for a second, then processes (default: $GLSLCHECK_PARALLEL or auto)",
+            )
+            p.add_argument(
+                "--jit",
+                choices=config.JIT_MODES,
+                default=None,
+                help="llvmpipe's sin, cos, exp2, log2, pow... by compiled kernels (the optional numba extra): "
+                "on, off, or auto: once a process has spent in that math what loading them "
+                "costs (default: $GLSLCHECK_JIT or auto)",
+            )
         if name in _BUDGETED:
             from .commands.args import add_frame_budget
 
@@ -99,7 +126,9 @@ def build_parser(only: str | None = None) -> argparse.ArgumentParser:
 
 
 _RENDERING = ("render", "verify", "bench", "report")  # the commands that run the NumPy renderer
-_BUDGETED = _RENDERING + ("probe",)  # and those that take --frame-budget (probe's --nan renders a frame)
+_BUDGETED = _RENDERING + (
+    "probe",
+)  # and those that take --frame-budget (probe's --nan renders a frame)
 
 
 def main(argv: list[str] | None = None) -> int:
@@ -174,8 +203,11 @@ def _main(argv: list[str]) -> int:
 
     budget = getattr(args, "frame_budget", None)
     # read by every NumPy program made below; as they were after: main() may run again in-process
-    with environment(GLSLCHECK_PARALLEL=getattr(args, "parallel", None), GLSLCHECK_JIT=getattr(args, "jit", None),
-                     GLSLCHECK_FRAME_SECONDS=None if budget is None else repr(budget)):
+    with environment(
+        GLSLCHECK_PARALLEL=getattr(args, "parallel", None),
+        GLSLCHECK_JIT=getattr(args, "jit", None),
+        GLSLCHECK_FRAME_SECONDS=None if budget is None else repr(budget),
+    ):
         return _run(args)
 
 
@@ -196,21 +228,32 @@ def _run(args) -> int:
         return 2
     # A safety net, not the fix: each stage bounds its own recursion and memory.
     except RecursionError:
-        print(f"{_first_path(args)}:1:1: error: the program is nested too deeply to analyse", file=sys.stderr)
+        print(
+            f"{_first_path(args)}:1:1: error: the program is nested too deeply to analyse",
+            file=sys.stderr,
+        )
         return 1
     except MemoryError:
-        print(f"{_first_path(args)}: error: glslcheck ran out of memory on this shader"
-              " (a smaller --size or a smaller file helps)", file=sys.stderr)
+        print(
+            f"{_first_path(args)}: error: glslcheck ran out of memory on this shader"
+            " (a smaller --size or a smaller file helps)",
+            file=sys.stderr,
+        )
         return 2
     except BrokenPipeError:
         _discard_stdout()
         return 1
-    except OSError as e:  # writing the report to stdout (`lint > /dev/full`); files raise InputError
+    except (
+        OSError
+    ) as e:  # writing the report to stdout (`lint > /dev/full`); files raise InputError
         if e.filename:
             print(f"{e.filename}: error: {e.strerror or e}", file=sys.stderr)
         else:
             _discard_stdout()
-            print(f"glslcheck: error: cannot write to standard output ({e.strerror or e})", file=sys.stderr)
+            print(
+                f"glslcheck: error: cannot write to standard output ({e.strerror or e})",
+                file=sys.stderr,
+            )
         return 2
 
 
@@ -227,7 +270,9 @@ def _discard_stdout() -> None:
 
 def _first_path(args) -> str:
     """The first shader path of a command's arguments, for the safety net's messages."""
-    paths = getattr(args, "paths", None) or [getattr(args, "shader", None) or getattr(args, "path", None)]
+    paths = getattr(args, "paths", None) or [
+        getattr(args, "shader", None) or getattr(args, "path", None)
+    ]
     return str(paths[0]) if paths and paths[0] else "glslcheck"
 
 

@@ -39,7 +39,9 @@ class Tree:
 
     __slots__ = ("data", "children", "start_pos", "end_pos")
 
-    def __init__(self, data: str, children: list, start_pos: int | None = None, end_pos: int | None = None) -> None:
+    def __init__(
+        self, data: str, children: list, start_pos: int | None = None, end_pos: int | None = None
+    ) -> None:
         self.data = data
         self.children = children
         self.start_pos = start_pos
@@ -61,7 +63,9 @@ class UnexpectedToken(UnexpectedInput):
     """No action for `token` in the parser's state; `expected` are the terminals it accepts there."""
 
     def __init__(self, token: Token, expected: set[str]) -> None:
-        super().__init__(f"unexpected {token.type} {token.value!r}, expected one of {sorted(expected)}")
+        super().__init__(
+            f"unexpected {token.type} {token.value!r}, expected one of {sorted(expected)}"
+        )
         self.token = token
         self.expected = expected
 
@@ -101,10 +105,17 @@ def tables_from_lark(lalr) -> dict:
             i = index.get(id(arg))
             if i is None:
                 i = index[id(arg)] = len(rules)
-                rules.append([len(arg.expansion), arg.origin.name, *_tree_shape(lalr.callbacks[arg])])
+                rules.append(
+                    [len(arg.expansion), arg.origin.name, *_tree_shape(lalr.callbacks[arg])]
+                )
             out[name] = ~i
         actions.append(out)
-    return {"start": 0, "end": number[parse_table.end_states["start"]], "actions": actions, "rules": rules}
+    return {
+        "start": 0,
+        "end": number[parse_table.end_states["start"]],
+        "actions": actions,
+        "rules": rules,
+    }
 
 
 def _tree_shape(callback) -> list:
@@ -113,7 +124,11 @@ def _tree_shape(callback) -> list:
     around `partial(Tree, name)`); kept children are [index, inline its children, Nones before]."""
     from functools import partial
 
-    from lark.parse_tree_builder import ChildFilterLALR, ChildFilterLALR_NoPlaceholders, ExpandSingleChild
+    from lark.parse_tree_builder import (
+        ChildFilterLALR,
+        ChildFilterLALR_NoPlaceholders,
+        ExpandSingleChild,
+    )
 
     keep = None
     append_none = 0
@@ -175,7 +190,12 @@ class Driver:
         # only make `Tree(name, children)`, which the parse loop then makes itself (most
         # reductions are of this kind, and a Python class call for each is dear)
         self.rules: list[tuple[int, str, object, str | None]] = [
-            (size, origin, _callback(size, *shape), shape[0] if shape[2] is None and not shape[1] else None)
+            (
+                size,
+                origin,
+                _callback(size, *shape),
+                shape[0] if shape[2] is None and not shape[1] else None,
+            )
             for size, origin, *shape in tables["rules"]
         ]
         # (state below, state, lookahead) -> the state after the run of one-child reductions
@@ -247,10 +267,19 @@ class Driver:
                             # (children without tokens, empty trees, have None).
                             start = children[0].start_pos
                             if start is None:
-                                start = next((c.start_pos for c in children if c.start_pos is not None), None)
+                                start = next(
+                                    (c.start_pos for c in children if c.start_pos is not None), None
+                                )
                             end = children[-1].end_pos
                             if end is None:
-                                end = next((c.end_pos for c in reversed(children) if c.end_pos is not None), None)
+                                end = next(
+                                    (
+                                        c.end_pos
+                                        for c in reversed(children)
+                                        if c.end_pos is not None
+                                    ),
+                                    None,
+                                )
                             value.start_pos = start
                             value.end_pos = end
                         values.append(value)

@@ -40,9 +40,9 @@ from __future__ import annotations
 import re
 from bisect import bisect_right
 
+from ..base.records import record
 from ..base.regexes import compiled
 from ..language.builtin_functions import RESERVED_WORDS
-from ..base.records import record
 from ..language.glsl_types import BY_NAME
 
 _TYPE_WORDS = frozenset(BY_NAME)  # a word after one of these (or a TYPE_NAME) is a declared name
@@ -61,9 +61,17 @@ class Token(str):
 
     __slots__ = ("type", "value", "start_pos", "end_pos", "_where", "_lines")
 
-    def __new__(cls, type: str, value: str, start_pos: int | None = None, line: int | None = None,
-                column: int | None = None,
-                end_line: int | None = None, end_column: int | None = None, end_pos: int | None = None):
+    def __new__(
+        cls,
+        type: str,
+        value: str,
+        start_pos: int | None = None,
+        line: int | None = None,
+        column: int | None = None,
+        end_line: int | None = None,
+        end_column: int | None = None,
+        end_pos: int | None = None,
+    ):
         tok = str.__new__(cls, value)
         tok.type = type
         tok.value = value
@@ -74,8 +82,16 @@ class Token(str):
 
     @classmethod
     def new_borrow_pos(cls, type: str, value: str, borrow: Token) -> Token:
-        return cls(type, value, borrow.start_pos, borrow.line, borrow.column, borrow.end_line,
-                   borrow.end_column, borrow.end_pos)
+        return cls(
+            type,
+            value,
+            borrow.start_pos,
+            borrow.line,
+            borrow.column,
+            borrow.end_line,
+            borrow.end_column,
+            borrow.end_pos,
+        )
 
     def _position(self) -> tuple:
         """(line, column, end_line, end_column), computed once from the lexed text's lines."""
@@ -124,12 +140,17 @@ class UnexpectedInput(Exception):
 class UnexpectedCharacters(UnexpectedInput):
     """A character no terminal matches, at `pos_in_stream` (line and column from 1)."""
 
-    def __init__(self, text: str, pos_in_stream: int, line: int, column: int, allowed: frozenset[str]) -> None:
-        super().__init__(f"unexpected character {text[pos_in_stream:pos_in_stream + 1]!r} at line {line}, column {column}")
+    def __init__(
+        self, text: str, pos_in_stream: int, line: int, column: int, allowed: frozenset[str]
+    ) -> None:
+        super().__init__(
+            f"unexpected character {text[pos_in_stream : pos_in_stream + 1]!r} at line {line}, column {column}"
+        )
         self.pos_in_stream = pos_in_stream
         self.line = line
         self.column = column
         self.allowed = allowed
+
 
 # The syntax error messages look back at the last tokens the parser saw (to name the
 # statement, to find the previous token). They have always seen a window of 33 to 64 tokens:
@@ -159,16 +180,23 @@ class ReservedWordError(BadNameError):
 
     def __init__(self, token: Token) -> None:
         value = token.value
-        super().__init__(token, f"'{value}' is a reserved word in GLSL ES 3.00 and cannot be used as a name",
-                         f"rename it, for example to '{value}_'")
+        super().__init__(
+            token,
+            f"'{value}' is a reserved word in GLSL ES 3.00 and cannot be used as a name",
+            f"rename it, for example to '{value}_'",
+        )
 
 
 class LongIdentifierError(BadNameError):
     """An identifier longer than MAX_IDENTIFIER_LENGTH characters."""
 
     def __init__(self, token: Token) -> None:
-        super().__init__(token, f"an identifier of {len(token.value)} characters; GLSL ES 3.00 allows at most "
-                                f"{MAX_IDENTIFIER_LENGTH} (section 3.8)", "use a shorter name")
+        super().__init__(
+            token,
+            f"an identifier of {len(token.value)} characters; GLSL ES 3.00 allows at most "
+            f"{MAX_IDENTIFIER_LENGTH} (section 3.8)",
+            "use a shorter name",
+        )
 
 
 @record(slots=False)
@@ -186,7 +214,7 @@ class Tokens:
             kept = _HISTORY_MAX - _HISTORY_DROP + 1 + (count - _HISTORY_MAX - 1) % _HISTORY_DROP
         else:
             kept = count
-        return self.tokens[count - kept:count]
+        return self.tokens[count - kept : count]
 
     def open_brackets(self, count: int) -> list[Token]:
         """The brackets still open after the first `count` tokens, outermost first."""
@@ -235,7 +263,9 @@ def lexer_tables(lexer_conf) -> dict:
         if words:
             keywords[retok.name] = words
     if set(keywords) - {IDENTIFIER}:
-        raise ValueError(f"only IDENTIFIER may contain keywords, not {sorted(set(keywords) - {IDENTIFIER})}")
+        raise ValueError(
+            f"only IDENTIFIER may contain keywords, not {sorted(set(keywords) - {IDENTIFIER})}"
+        )
     scanned = [t for t in terminals if t.name not in embedded]
     # The ignored terminals (white space) are skipped before each token. They start with
     # characters no other terminal starts with, so trying them first changes nothing (a
@@ -357,7 +387,9 @@ class Lexer:
         return Tokens(text, tokens, error)
 
     @staticmethod
-    def _scope(value: str, depth: int, parens: int, hidden: list, struct_names: set[str]) -> tuple[int, int]:
+    def _scope(
+        value: str, depth: int, parens: int, hidden: list, struct_names: set[str]
+    ) -> tuple[int, int]:
         """Brace and parenthesis depth after the punctuation `value`; a struct name hidden in a
         scope that closes here is a type name again."""
         if value == "{":
@@ -371,7 +403,10 @@ class Lexer:
         if value in "};" and parens == 0:
             while hidden:
                 name, show, parameter = hidden[-1]
-                if not ((value == "}" and depth <= show) or (value == ";" and parameter and depth == show)):
+                if not (
+                    (value == "}" and depth <= show)
+                    or (value == ";" and parameter and depth == show)
+                ):
                     break
                 struct_names.add(name)
                 hidden.pop()

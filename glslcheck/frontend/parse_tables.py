@@ -104,11 +104,23 @@ def read_tables(module, grammar: str) -> dict[str, Any]:
     if getattr(module, "FORMAT", None) != FORMAT:
         raise StaleTablesError(f"{module.__file__} has an old format")
     if module.GRAMMAR_SHA256 != grammar_hash(grammar):
-        raise StaleTablesError(f"{module.__file__} was built from another version of {GRAMMAR_FILE}")
-    parser = {"start": module.START, "end": module.END, "rules": module.RULES,
-              "actions": _unpack_actions(module.KEYS, module.ACTIONS)}
-    return {"format": FORMAT, "grammar_sha256": module.GRAMMAR_SHA256, "built_by": module.BUILT_BY,
-            "lexer": module.LEXER, "words": module.WORDS, "parser": parser}
+        raise StaleTablesError(
+            f"{module.__file__} was built from another version of {GRAMMAR_FILE}"
+        )
+    parser = {
+        "start": module.START,
+        "end": module.END,
+        "rules": module.RULES,
+        "actions": _unpack_actions(module.KEYS, module.ACTIONS),
+    }
+    return {
+        "format": FORMAT,
+        "grammar_sha256": module.GRAMMAR_SHA256,
+        "built_by": module.BUILT_BY,
+        "lexer": module.LEXER,
+        "words": module.WORDS,
+        "parser": parser,
+    }
 
 
 # How the module stores the LALR actions (`actions[state]`: terminal or rule name -> action, see
@@ -138,7 +150,9 @@ def _pack_actions(actions: list[dict[str, int]]) -> tuple[list[str], list[tuple]
             k = index[names] = len(keys)
             keys.append(" ".join(names))
         values = tuple(row.values())
-        rows.append((k, values[0] if len(set(values)) == 1 else pack(_ACTION.format(len(values)), *values)))
+        rows.append(
+            (k, values[0] if len(set(values)) == 1 else pack(_ACTION.format(len(values)), *values))
+        )
     return keys, rows
 
 
@@ -146,8 +160,12 @@ def _unpack_actions(keys: tuple[str, ...], rows: tuple[tuple, ...]) -> list[dict
     from struct import unpack
 
     names = [tuple(map(sys.intern, k.split(" "))) for k in keys]
-    return [dict.fromkeys(names[k], v) if type(v) is int else dict(zip(names[k], unpack(_ACTION.format(len(v) >> 1), v)))
-            for k, v in rows]
+    return [
+        dict.fromkeys(names[k], v)
+        if type(v) is int
+        else dict(zip(names[k], unpack(_ACTION.format(len(v) >> 1), v)))
+        for k, v in rows
+    ]
 
 
 def load() -> dict[str, Any]:
@@ -156,8 +174,11 @@ def load() -> dict[str, Any]:
     try:
         return read_tables(tables_module(), grammar)
     except Exception as e:  # stale, or a damaged module (any error importing it): never fatal
-        print(f"glslcheck: warning: {_why(e)}; building the parser tables in memory "
-              f"(run `python -m glslcheck.frontend.parse_tables` to update the module)", file=sys.stderr)
+        print(
+            f"glslcheck: warning: {_why(e)}; building the parser tables in memory "
+            f"(run `python -m glslcheck.frontend.parse_tables` to update the module)",
+            file=sys.stderr,
+        )
         return build(grammar)
 
 

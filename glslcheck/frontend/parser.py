@@ -19,23 +19,23 @@ from __future__ import annotations
 import gc
 import sys
 
-from . import syntax as A
-from . import parse_tables
 from ..base.diagnostics import Diagnostic, GlslError, Location, pending_location, register_source
-from .lalr import Driver, Tree, UnexpectedToken
-from .lexer import BadNameError, Lexer, Token, Tokens, UnexpectedCharacters, UnexpectedInput
 from ..base.records import field, record
-from ..shadertoy.sources import Shader, Source
 
 # The keywords (3.6), to tell "a keyword used as a name" in error messages.
 from ..language.builtin_functions import KEYWORDS  # noqa: E402  (one table, shared with the checker)
 from ..language.glsl_types import BY_NAME  # noqa: E402
+from ..shadertoy.sources import Shader, Source
+from . import parse_tables
+from . import syntax as A
+from .lalr import Driver, Tree, UnexpectedToken
+from .lexer import BadNameError, Lexer, Token, Tokens, UnexpectedCharacters, UnexpectedInput
 
 _NOLOC = A._NOLOC  # a node's location until the builder sets it
 
 TYPE_CHECKING = False  # not typing's: importing typing costs every start-up
 if TYPE_CHECKING:
-    from typing import Callable
+    from collections.abc import Callable
 
 _GRAMMAR_CACHE: dict[str, Parser] = {}
 
@@ -124,7 +124,9 @@ def _parse_text_no_gc(text: str, locate_span: Callable[[int, int], Location]) ->
     try:
         tree = parser.driver.parse(lexed)
     except BadNameError as e:  # a reserved word or an over-long identifier
-        raise GlslError(Diagnostic(e.message, locate_span(e.token.start_pos, e.token.end_pos), help=e.help)) from None
+        raise GlslError(
+            Diagnostic(e.message, locate_span(e.token.start_pos, e.token.end_pos), help=e.help)
+        ) from None
     except UnexpectedInput as e:
         raise GlslError(_syntax_error(e, lexed, locate_span)) from None
     builder = _Builder(locate_span, text)
@@ -134,7 +136,9 @@ def _parse_text_no_gc(text: str, locate_span: Callable[[int, int], Location]) ->
     try:
         return builder.build(tree)
     except RecursionError:
-        raise GlslError(Diagnostic("the program is nested too deeply to analyse", locate_span(0, 0))) from None
+        raise GlslError(
+            Diagnostic("the program is nested too deeply to analyse", locate_span(0, 0))
+        ) from None
     finally:
         sys.setrecursionlimit(old)
 
@@ -144,9 +148,32 @@ def _parse_text_no_gc(text: str, locate_span: Callable[[int, int], Location]) ->
 # ---------------------------------------------------------------------------------------------
 
 
-_EXPRESSION_START = {"IDENTIFIER", "INTCONSTANT", "FLOATCONSTANT", "LPAR", "MINUS", "BANG", "TILDE", "TRUE", "FALSE"}
-_DECL_WORDS = {"const", "uniform", "in", "out", "inout", *A.PRECISION_QUALIFIERS, "flat", "smooth",
-               "invariant", "layout", "centroid", "struct", "precision"}
+_EXPRESSION_START = {
+    "IDENTIFIER",
+    "INTCONSTANT",
+    "FLOATCONSTANT",
+    "LPAR",
+    "MINUS",
+    "BANG",
+    "TILDE",
+    "TRUE",
+    "FALSE",
+}
+_DECL_WORDS = {
+    "const",
+    "uniform",
+    "in",
+    "out",
+    "inout",
+    *A.PRECISION_QUALIFIERS,
+    "flat",
+    "smooth",
+    "invariant",
+    "layout",
+    "centroid",
+    "struct",
+    "precision",
+}
 
 
 def _what_statement(history: list[Token]) -> str:
@@ -239,21 +266,30 @@ def _syntax_error(e: UnexpectedInput, lexed: Tokens, locate_span) -> Diagnostic:
         if "SEMICOLON" in expected and prev is not None:
             return Diagnostic(
                 f"expected ';' after this {_what_statement(history)}",
-                locate_span(prev.end_pos, prev.end_pos + 1) if prev.end_pos < len(text) else end_loc,
+                locate_span(prev.end_pos, prev.end_pos + 1)
+                if prev.end_pos < len(text)
+                else end_loc,
             )
         return Diagnostic("unexpected end of file", end_loc)
     loc = locate_span(tok.start_pos, tok.end_pos)
     if tok.value == "else":
-        return Diagnostic("'else' without a matching 'if'", loc,
-                          help="an 'else' must follow the statement of an 'if'; check for a stray ';' or a missing '{'")
+        return Diagnostic(
+            "'else' without a matching 'if'",
+            loc,
+            help="an 'else' must follow the statement of an 'if'; check for a stray ';' or a missing '{'",
+        )
     if tok.type == "IDENTIFIER" and prev is not None and prev.type == "IDENTIFIER":
         return Diagnostic(
             f"unexpected name '{tok.value}' after '{prev.value}'",
             loc,
             help=f"'{prev.value}' is not a type here; declare a struct named '{prev.value}' before using it, or add an operator",
         )
-    if (tok.type == "TYPE_NAME" or tok.value in _BASIC_TYPES or tok.value in KEYWORDS) and "IDENTIFIER" in expected \
-            and prev is not None and (prev.value in _BASIC_TYPES or prev.type == "TYPE_NAME" or prev.value == "struct"):
+    if (
+        (tok.type == "TYPE_NAME" or tok.value in _BASIC_TYPES or tok.value in KEYWORDS)
+        and "IDENTIFIER" in expected
+        and prev is not None
+        and (prev.value in _BASIC_TYPES or prev.type == "TYPE_NAME" or prev.value == "struct")
+    ):
         return Diagnostic(f"'{tok.value}' is a keyword and cannot be used as a name", loc)
     opener = _innermost_open(open_brackets, tok)
     if opener is not None and opener.value in "([":
@@ -261,15 +297,23 @@ def _syntax_error(e: UnexpectedInput, lexed: Tokens, locate_span) -> Diagnostic:
         if ("RPAR" if closer == ")" else "RSQB") in expected and tok.value in ("{", ";", "}"):
             oloc = locate_span(opener.start_pos, opener.end_pos)
             return Diagnostic(
-                f"expected '{closer}' before {_describe(tok)}", loc,
+                f"expected '{closer}' before {_describe(tok)}",
+                loc,
                 notes=[Diagnostic(f"to match this '{opener.value}'", oloc, severity="note")],
             )
-    if "SEMICOLON" in expected and prev is not None and tok.value not in (",",) and prev.value not in (";", "{"):
+    if (
+        "SEMICOLON" in expected
+        and prev is not None
+        and tok.value not in (",",)
+        and prev.value not in (";", "{")
+    ):
         # As compilers do: point just past the previous token, where the ';' belongs.
         what = _what_statement(history[:-1] if history and history[-1] is tok else history)
         ploc = locate_span(prev.end_pos - 1, prev.end_pos)
         ploc = Location(ploc.path, ploc.end_line or ploc.line, ploc.end_column or ploc.column + 1)
-        return Diagnostic(f"expected ';' after this {what}", ploc, help=f"found {_describe(tok)} instead")
+        return Diagnostic(
+            f"expected ';' after this {what}", ploc, help=f"found {_describe(tok)} instead"
+        )
     if tok.value == "}" and prev is not None and prev.value in ("(", ",", "=", "+", "-", "*", "/"):
         return Diagnostic("expected an expression before '}'", loc)
     if expected and len(expected & _EXPRESSION_START) >= 3:
@@ -277,7 +321,9 @@ def _syntax_error(e: UnexpectedInput, lexed: Tokens, locate_span) -> Diagnostic:
     names = sorted({words.get(x, x.lower()) for x in expected})
     if tok.type in ("TYPE_NAME",) or tok.value in _BASIC_TYPES:
         if "IDENTIFIER" in expected:
-            return Diagnostic(f"'{tok.value}' is a type name and cannot be used as a name here", loc)
+            return Diagnostic(
+                f"'{tok.value}' is a type name and cannot be used as a name here", loc
+            )
     if 0 < len(names) <= 4:
         listed = names[0] if len(names) == 1 else ", ".join(names[:-1]) + " or " + names[-1]
         return Diagnostic(f"expected {listed}, found {_describe(tok)}", loc)
@@ -370,7 +416,9 @@ class _Builder:
             qualifiers=qualifiers,
             return_type=rtype,
             name=str(name),
-            params=[self.node(p) for p in self.trees(params.children)] if params is not None else [],
+            params=[self.node(p) for p in self.trees(params.children)]
+            if params is not None
+            else [],
             name_loc=self.loc(name),
         )
 
@@ -417,12 +465,17 @@ class _Builder:
         tail = [x for x in c[2:] if not (isinstance(x, Tree) and x.data == "struct_member")]
         inst, array = tail if len(tail) == 2 else (None, None)
         return A.BlockDeclaration(
-            qualifiers=quals, block_name=str(name), members=members,
-            instance=str(inst) if inst is not None else None, array=self.node(array),
+            qualifiers=quals,
+            block_name=str(name),
+            members=members,
+            instance=str(inst) if inst is not None else None,
+            array=self.node(array),
         )
 
     def _build_invariant_declaration(self, t, c):
-        return A.InvariantDeclaration(qualifiers=self._qualifiers(c[0]), names=[str(x) for x in c[1:]])
+        return A.InvariantDeclaration(
+            qualifiers=self._qualifiers(c[0]), names=[str(x) for x in c[1:]]
+        )
 
     def _build_qualifier_declaration(self, t, c):
         return A.QualifierDeclaration(qualifiers=self._qualifiers(c[0]))
@@ -445,7 +498,9 @@ class _Builder:
 
     def _build_layout_id(self, t, c):
         name, value = c[0], c[-1]
-        return A.LayoutId(name=str(name), value=self._int_value(value)[0] if value is not None else None)
+        return A.LayoutId(
+            name=str(name), value=self._int_value(value)[0] if value is not None else None
+        )
 
     def _build_layout_shared(self, t, c):
         return A.LayoutId(name="shared")
@@ -471,8 +526,11 @@ class _Builder:
         """GLSL ES 3.00 arrays have one dimension (4.1.9): a second `[]` is an error."""
         arrays = [a for a in arrays if a is not None]
         if len(arrays) > 1:
-            self.error("arrays of arrays are not allowed in GLSL ES 3.00: an array has one dimension", arrays[1],
-                       help="use a one-dimensional array and index it as [i * columns + j]")
+            self.error(
+                "arrays of arrays are not allowed in GLSL ES 3.00: an array has one dimension",
+                arrays[1],
+                help="use a one-dimensional array and index it as [i * columns + j]",
+            )
         return self.node(arrays[0]) if arrays else None
 
     def _build_array_specifier(self, t, c):
@@ -480,7 +538,9 @@ class _Builder:
 
     def _build_struct_specifier(self, t, c):
         name = c[0]
-        return A.StructSpec(name=str(name) if name is not None else None, members=[self.node(m) for m in c[1:]])
+        return A.StructSpec(
+            name=str(name) if name is not None else None, members=[self.node(m) for m in c[1:]]
+        )
 
     def _build_struct_member(self, t, c):
         tq, tspec, *decls = c
@@ -526,13 +586,19 @@ class _Builder:
 
     def _build_for_statement(self, t, c):
         init, cond, step, body = c
-        return A.For(init=self.node(init), cond=self.node(cond), step=self.node(step), body=self.node(body))
+        return A.For(
+            init=self.node(init), cond=self.node(cond), step=self.node(step), body=self.node(body)
+        )
 
     def _build_condition_declaration(self, t, c):
         fst, name, init = c
         qualifiers, tspec = self._fully_specified(fst)
         return A.ConditionDeclaration(
-            qualifiers=qualifiers, type=tspec, name=str(name), init=self.node(init), name_loc=self.loc(name)
+            qualifiers=qualifiers,
+            type=tspec,
+            name=str(name),
+            init=self.node(init),
+            name_loc=self.loc(name),
         )
 
     def _build_continue_statement(self, t, c):
@@ -554,7 +620,9 @@ class _Builder:
         return A.Sequence(exprs=[*exprs, self.node(c[1])])
 
     def _build_assignment(self, t, c):
-        return A.Assignment(str(c[1].children[0]), self.node(c[0]), self.node(c[2]))  # (op, target, value)
+        return A.Assignment(
+            str(c[1].children[0]), self.node(c[0]), self.node(c[2])
+        )  # (op, target, value)
 
     def _build_ternary(self, t, c):
         return A.Ternary(cond=self.node(c[0]), then=self.node(c[1]), else_=self.node(c[2]))
@@ -622,8 +690,11 @@ class _Builder:
             value = int(digits[2:], 16)
         elif len(digits) > 1 and digits[0] == "0":
             if any(ch in "89" for ch in digits):
-                self.error(f"'{text}' is not a valid octal number (a leading 0 means octal)", tok,
-                           help=f"write {int(digits)} without the leading zero")
+                self.error(
+                    f"'{text}' is not a valid octal number (a leading 0 means octal)",
+                    tok,
+                    help=f"write {int(digits)} without the leading zero",
+                )
             value = int(digits, 8)
         else:
             value = int(digits)
@@ -646,4 +717,6 @@ class _Builder:
 
 
 # `_build_<rule>` by rule name, for the builder's dispatch.
-_BUILDERS = {name[len("_build_"):]: f for name, f in vars(_Builder).items() if name.startswith("_build_")}
+_BUILDERS = {
+    name[len("_build_") :]: f for name, f in vars(_Builder).items() if name.startswith("_build_")
+}

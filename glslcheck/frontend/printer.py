@@ -14,7 +14,17 @@ from . import syntax as A
 # Higher binds tighter (GLSL ES 3.00 5.1, numbered from the comma operator up).
 PRECEDENCE = {
     ",": 1,
-    "=": 2, "+=": 2, "-=": 2, "*=": 2, "/=": 2, "%=": 2, "<<=": 2, ">>=": 2, "&=": 2, "^=": 2, "|=": 2,
+    "=": 2,
+    "+=": 2,
+    "-=": 2,
+    "*=": 2,
+    "/=": 2,
+    "%=": 2,
+    "<<=": 2,
+    ">>=": 2,
+    "&=": 2,
+    "^=": 2,
+    "|=": 2,
     "?:": 3,
     "||": 4,
     "^^": 5,
@@ -22,11 +32,19 @@ PRECEDENCE = {
     "|": 7,
     "^": 8,
     "&": 9,
-    "==": 10, "!=": 10,
-    "<": 11, ">": 11, "<=": 11, ">=": 11,
-    "<<": 12, ">>": 12,
-    "+": 13, "-": 13,
-    "*": 14, "/": 14, "%": 14,
+    "==": 10,
+    "!=": 10,
+    "<": 11,
+    ">": 11,
+    "<=": 11,
+    ">=": 11,
+    "<<": 12,
+    ">>": 12,
+    "+": 13,
+    "-": 13,
+    "*": 14,
+    "/": 14,
+    "%": 14,
 }
 UNARY = 15
 POSTFIX = 16
@@ -90,7 +108,9 @@ class _Printer(A.NodeVisitor):
         for w in q.words:
             if w == "layout":
                 lay = next(layouts)
-                ids = ", ".join(i.name if i.value is None else f"{i.name} = {i.value}" for i in lay.ids)
+                ids = ", ".join(
+                    i.name if i.value is None else f"{i.name} = {i.value}" for i in lay.ids
+                )
                 words.append(f"layout({ids})")
             else:
                 words.append(w)
@@ -205,7 +225,9 @@ class _Printer(A.NodeVisitor):
         init = self.stmt(s.init, 0)[0] if s.init is not None else ";"
         cond = self.condition(s.cond) if s.cond is not None else ""
         step = self.expr(s.step) if s.step is not None else ""
-        head = f"{self.unit * level}for ({init} {cond}; {step})".replace("( ", "(").replace(" ;", ";")
+        head = f"{self.unit * level}for ({init} {cond}; {step})".replace("( ", "(").replace(
+            " ;", ";"
+        )
         return [head, *self.body(s.body, level)]
 
     def _stmt_Break(self, s: A.Break, level: int) -> list[str]:
@@ -218,7 +240,11 @@ class _Printer(A.NodeVisitor):
         return [self.unit * level + "discard;"]
 
     def _stmt_Return(self, s: A.Return, level: int) -> list[str]:
-        return [self.unit * level + ("return " + self.expr(s.value) if s.value is not None else "return") + ";"]
+        return [
+            self.unit * level
+            + ("return " + self.expr(s.value) if s.value is not None else "return")
+            + ";"
+        ]
 
     def body(self, s: A.Node, level: int, dangling: bool = False) -> list[str]:
         # An `if` without `else` as the then-branch of an if/else needs braces, or the else

@@ -29,7 +29,8 @@ from ..base.records import init_code, tuple_getter
 
 TYPE_CHECKING = False  # not typing's: importing typing costs every start-up
 if TYPE_CHECKING:
-    from typing import Any, Callable, Iterator, Optional
+    from collections.abc import Callable, Iterator
+    from typing import Any
 
 _NOLOC = Location("<builtin>", 0, 0)
 
@@ -64,7 +65,10 @@ class _NodeMeta(type):
         ns["__slots__"] = tuple(own)
         cls = super().__new__(mcls, name, bases, ns)
         cls._fields = tuple(inherited + own)
-        cls._defaults = {**{k: v for b in bases for k, v in getattr(b, "_defaults", {}).items()}, **defaults}
+        cls._defaults = {
+            **{k: v for b in bases for k, v in getattr(b, "_defaults", {}).items()},
+            **defaults,
+        }
         _NODE_CLASSES[name] = cls
         return cls
 
@@ -72,8 +76,8 @@ class _NodeMeta(type):
 class Node(metaclass=_NodeMeta):
     loc: Location = _NOLOC
     _children: tuple[str, ...] = ()
-    _children_reversed: Callable[["Node"], tuple] = staticmethod(lambda node: ())
-    _children_values: Callable[["Node"], tuple] = staticmethod(lambda node: ())
+    _children_reversed: Callable[[Node], tuple] = staticmethod(lambda node: ())
+    _children_values: Callable[[Node], tuple] = staticmethod(lambda node: ())
     _fields: tuple[str, ...] = ()
     _shown: tuple[str, ...] = ()  # the fields __repr__ shows: all but locations
 
@@ -81,7 +85,7 @@ class Node(metaclass=_NodeMeta):
         fields = ", ".join(f"{name}={getattr(self, name)!r}" for name in self._shown)
         return f"{type(self).__name__}({fields})"
 
-    def children(self) -> list["Node"]:
+    def children(self) -> list[Node]:
         """The child nodes, in source order of the fields (a new list: a generator per call was
         most of the cost of the dataflow walk and the rules' recursions)."""
         out: list[Node] = []
@@ -94,7 +98,7 @@ class Node(metaclass=_NodeMeta):
                 out.append(value)
         return out
 
-    def walk(self) -> Iterator["Node"]:
+    def walk(self) -> Iterator[Node]:
         """This node and all its descendants, depth first, parents before children (iterative)."""
         # `children()` inlined: a generator per node was most of a walk's cost, and the checker,
         # hazards and rules walk whole programs on every `glslcheck lint`. The
@@ -126,7 +130,7 @@ class Node(metaclass=_NodeMeta):
 class ArraySpec(Node):
     """`[size]` or `[]` (size None)."""
 
-    size: Optional["Expr"] = None
+    size: Expr | None = None
 
 
 class LayoutId(Node):
@@ -166,14 +170,14 @@ class Qualifiers(Node):
 
 
 class StructMember(Node):
-    qualifiers: Optional[Qualifiers] = None
-    type: Optional["TypeSpec"] = None
-    declarators: list["StructDeclarator"] = LIST
+    qualifiers: Qualifiers | None = None
+    type: TypeSpec | None = None
+    declarators: list[StructDeclarator] = LIST
 
 
 class StructDeclarator(Node):
     name: str = ""
-    array: Optional[ArraySpec] = None
+    array: ArraySpec | None = None
 
 
 class StructSpec(Node):
@@ -188,8 +192,8 @@ class TypeSpec(Node):
     optionally with an array size (`float[3]`)."""
 
     name: str | None = None  # "vec3", "S"; None when `struct_` defines the type here
-    struct_: Optional[StructSpec] = None
-    array: Optional[ArraySpec] = None
+    struct_: StructSpec | None = None
+    array: ArraySpec | None = None
     is_struct_name: bool = False  # `name` refers to a user struct
 
     @property
@@ -231,36 +235,36 @@ class Binary(Expr):
     """`left op right` for every binary operator but assignment and the comma."""
 
     op: str = "+"
-    left: Optional[Expr] = None
-    right: Optional[Expr] = None
+    left: Expr | None = None
+    right: Expr | None = None
 
 
 class Unary(Expr):
     """Prefix `+ - ! ~ ++ --` (op) applied to operand."""
 
     op: str = "-"
-    operand: Optional[Expr] = None
+    operand: Expr | None = None
 
 
 class Postfix(Expr):
     """Postfix `++` / `--`."""
 
     op: str = "++"
-    operand: Optional[Expr] = None
+    operand: Expr | None = None
 
 
 class Assignment(Expr):
     """`target op value` with op one of `= += -= *= /= %= <<= >>= &= ^= |=`."""
 
     op: str = "="
-    target: Optional[Expr] = None
-    value: Optional[Expr] = None
+    target: Expr | None = None
+    value: Expr | None = None
 
 
 class Ternary(Expr):
-    cond: Optional[Expr] = None
-    then: Optional[Expr] = None
-    else_: Optional[Expr] = None
+    cond: Expr | None = None
+    then: Expr | None = None
+    else_: Expr | None = None
 
 
 class Sequence(Expr):
@@ -275,22 +279,22 @@ class Call(Expr):
     type, a struct, or an array type with `array` set)."""
 
     callee: str = ""
-    struct_: Optional[StructSpec] = None  # `struct {...}[2](...)`, legal but rare
-    array: Optional[ArraySpec] = None
+    struct_: StructSpec | None = None  # `struct {...}[2](...)`, legal but rare
+    array: ArraySpec | None = None
     args: list[Expr] = LIST
     constructor: bool = False
     callee_loc: Location = _NOLOC
 
 
 class Index(Expr):
-    base: Optional[Expr] = None
-    index: Optional[Expr] = None
+    base: Expr | None = None
+    index: Expr | None = None
 
 
 class Field(Expr):
     """`base.name`: a struct member or a vector swizzle (the checker tells which)."""
 
-    base: Optional[Expr] = None
+    base: Expr | None = None
     name: str = ""
     name_loc: Location = _NOLOC
 
@@ -298,7 +302,7 @@ class Field(Expr):
 class MethodCall(Expr):
     """`base.name()`: GLSL ES 3.00 has one method, `.length()` of arrays."""
 
-    base: Optional[Expr] = None
+    base: Expr | None = None
     name: str = ""
 
 
@@ -311,24 +315,24 @@ class Declarator(Node):
     """One name of a variable declaration: `name[array] = init`."""
 
     name: str = ""
-    array: Optional[ArraySpec] = None
-    init: Optional[Expr] = None
+    array: ArraySpec | None = None
+    init: Expr | None = None
     name_loc: Location = _NOLOC
 
 
 class VariableDeclaration(Node):
     """`qualifiers type a = 1.0, b[2];` (no declarators: `struct S {...};` or `float;`)."""
 
-    qualifiers: Optional[Qualifiers] = None
-    type: Optional[TypeSpec] = None
+    qualifiers: Qualifiers | None = None
+    type: TypeSpec | None = None
     declarators: list[Declarator] = LIST
 
 
 class Param(Node):
     qualifiers: list[str] = LIST  # "const", "in", "out", "inout", precision
-    type: Optional[TypeSpec] = None
+    type: TypeSpec | None = None
     name: str | None = None
-    array: Optional[ArraySpec] = None
+    array: ArraySpec | None = None
     name_loc: Location = _NOLOC
 
     @property
@@ -340,8 +344,8 @@ class Param(Node):
 
 
 class FunctionPrototype(Node):
-    qualifiers: Optional[Qualifiers] = None
-    return_type: Optional[TypeSpec] = None
+    qualifiers: Qualifiers | None = None
+    return_type: TypeSpec | None = None
     name: str = ""
     params: list[Param] = LIST
     name_loc: Location = _NOLOC
@@ -350,42 +354,42 @@ class FunctionPrototype(Node):
 class FunctionDeclaration(Node):
     """A prototype alone: `float f(float x);`."""
 
-    proto: Optional[FunctionPrototype] = None
+    proto: FunctionPrototype | None = None
 
 
 class FunctionDefinition(Node):
-    proto: Optional[FunctionPrototype] = None
-    body: Optional["Compound"] = None
+    proto: FunctionPrototype | None = None
+    body: Compound | None = None
 
 
 class PrecisionDeclaration(Node):
     """`precision highp float;`."""
 
     precision: str = "highp"
-    type: Optional[TypeSpec] = None
+    type: TypeSpec | None = None
 
 
 class BlockDeclaration(Node):
     """An interface block: `uniform Block { vec4 a; } name[2];`."""
 
-    qualifiers: Optional[Qualifiers] = None
+    qualifiers: Qualifiers | None = None
     block_name: str = ""
     members: list[StructMember] = LIST
     instance: str | None = None
-    array: Optional[ArraySpec] = None
+    array: ArraySpec | None = None
 
 
 class InvariantDeclaration(Node):
     """`invariant a, b;` (redeclaring outputs as invariant)."""
 
-    qualifiers: Optional[Qualifiers] = None
+    qualifiers: Qualifiers | None = None
     names: list[str] = LIST
 
 
 class QualifierDeclaration(Node):
     """A qualifier alone: `layout(std140) uniform;`."""
 
-    qualifiers: Optional[Qualifiers] = None
+    qualifiers: Qualifiers | None = None
 
 
 # ---------------------------------------------------------------------------------------------
@@ -402,57 +406,57 @@ class Compound(Stmt):
 
 
 class DeclarationStatement(Stmt):
-    decl: Optional[Node] = None
+    decl: Node | None = None
 
 
 class ExpressionStatement(Stmt):
     """`expr;` or the empty statement `;` (expr None)."""
 
-    expr: Optional[Expr] = None
+    expr: Expr | None = None
 
 
 class If(Stmt):
-    cond: Optional[Expr] = None
-    then: Optional[Stmt] = None
-    else_: Optional[Stmt] = None
+    cond: Expr | None = None
+    then: Stmt | None = None
+    else_: Stmt | None = None
 
 
 class Switch(Stmt):
-    expr: Optional[Expr] = None
+    expr: Expr | None = None
     body: list[Stmt] = LIST
 
 
 class Case(Stmt):
     """`case expr:` (expr None for `default:`)."""
 
-    expr: Optional[Expr] = None
+    expr: Expr | None = None
 
 
 class ConditionDeclaration(Node):
     """The `bool b = f()` of `while (bool b = f())`."""
 
-    qualifiers: Optional[Qualifiers] = None
-    type: Optional[TypeSpec] = None
+    qualifiers: Qualifiers | None = None
+    type: TypeSpec | None = None
     name: str = ""
-    init: Optional[Expr] = None
+    init: Expr | None = None
     name_loc: Location = _NOLOC
 
 
 class While(Stmt):
-    cond: Optional[Node] = None  # Expr or ConditionDeclaration
-    body: Optional[Stmt] = None
+    cond: Node | None = None  # Expr or ConditionDeclaration
+    body: Stmt | None = None
 
 
 class DoWhile(Stmt):
-    body: Optional[Stmt] = None
-    cond: Optional[Expr] = None
+    body: Stmt | None = None
+    cond: Expr | None = None
 
 
 class For(Stmt):
-    init: Optional[Stmt] = None  # DeclarationStatement or ExpressionStatement
-    cond: Optional[Node] = None  # Expr, ConditionDeclaration or None
-    step: Optional[Expr] = None
-    body: Optional[Stmt] = None
+    init: Stmt | None = None  # DeclarationStatement or ExpressionStatement
+    cond: Node | None = None  # Expr, ConditionDeclaration or None
+    step: Expr | None = None
+    body: Stmt | None = None
 
 
 class Break(Stmt):
@@ -464,7 +468,7 @@ class Continue(Stmt):
 
 
 class Return(Stmt):
-    value: Optional[Expr] = None
+    value: Expr | None = None
 
 
 class Discard(Stmt):
@@ -492,7 +496,10 @@ def _init_template(count: int):
     code = _INIT_TEMPLATES.get(count)
     if code is None:
         params = "".join(f"_f{i}, " for i in range(count))
-        body = [f"    self._f{i} = _f{i}.make() if type(_f{i}) is _Factory else _f{i}" for i in range(count)]
+        body = [
+            f"    self._f{i} = _f{i}.make() if type(_f{i}) is _Factory else _f{i}"
+            for i in range(count)
+        ]
         source = "\n".join([f"def __init__(self, {params}*, loc):", *body, "    self.loc = loc"])
         code = _INIT_TEMPLATES[count] = init_code(source)  # a fixed template, no user input
     return code
@@ -511,8 +518,11 @@ def _make_methods() -> None:
         annotations = {}
         for klass in reversed(cls.__mro__):
             annotations.update(getattr(klass, "__annotations__", {}))
-        cls._children = tuple(f for f in cls._fields
-                              if not names.isdisjoint(annotations[f].translate(_NOT_NAME).split()))
+        cls._children = tuple(
+            f
+            for f in cls._fields
+            if not names.isdisjoint(annotations[f].translate(_NOT_NAME).split())
+        )
         cls._children_reversed = staticmethod(tuple_getter(cls._children[::-1]))
         cls._children_values = staticmethod(tuple_getter(cls._children))
         positional = tuple(f for f in cls._fields if f != "loc")

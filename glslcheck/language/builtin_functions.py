@@ -22,8 +22,8 @@ from __future__ import annotations
 from collections import namedtuple
 from collections.abc import Callable, Iterator, Mapping
 
-from glslcheck.language import glsl_types as T
 from glslcheck.base.records import record
+from glslcheck.language import glsl_types as T
 from glslcheck.language.glsl_types import BY_NAME, ArrayType, StructType, Type
 from glslcheck.shadertoy.wrapper import COMMON_ONLY_UNIFORMS as _COMMON_ONLY
 from glslcheck.shadertoy.wrapper import UNIFORMS as _SHADERTOY_TABLE
@@ -42,8 +42,17 @@ MATRIX = "matrix"  # 8.6
 VECTOR_RELATIONAL = "vector-relational"  # 8.7
 TEXTURE = "texture"  # 8.8
 DERIVATIVE = "fragment-derivative"  # 8.9
-CATEGORIES = (ANGLE_TRIG, EXPONENTIAL, COMMON, PACKING, GEOMETRIC, MATRIX,
-              VECTOR_RELATIONAL, TEXTURE, DERIVATIVE)
+CATEGORIES = (
+    ANGLE_TRIG,
+    EXPONENTIAL,
+    COMMON,
+    PACKING,
+    GEOMETRIC,
+    MATRIX,
+    VECTOR_RELATIONAL,
+    TEXTURE,
+    DERIVATIVE,
+)
 
 # Relative cost per component, for the linter ("a built-in costlier than an add") and the
 # benchmarks. cheap: about an add or a compare; medium: a few multiply-adds or a divide;
@@ -74,8 +83,9 @@ class Overload:
 
     def signature(self) -> str:
         """``modf(float, out float)``; the return type is left out, as in an error message."""
-        args = ", ".join(("out " if q == "out" else "") + str(p)
-                         for p, q in zip(self.params, self.qualifiers))
+        args = ", ".join(
+            ("out " if q == "out" else "") + str(p) for p, q in zip(self.params, self.qualifiers)
+        )
         return f"{self.name}({args})"
 
     def __str__(self) -> str:
@@ -97,10 +107,14 @@ class Builtin:
 
 # Generic names that vary with the component count n; all of them in one signature share n.
 _GEN_N = {
-    "genType": ("float", (1, 2, 3, 4)), "genIType": ("int", (1, 2, 3, 4)),
-    "genUType": ("uint", (1, 2, 3, 4)), "genBType": ("bool", (1, 2, 3, 4)),
-    "vec": ("float", (2, 3, 4)), "ivec": ("int", (2, 3, 4)),
-    "uvec": ("uint", (2, 3, 4)), "bvec": ("bool", (2, 3, 4)),
+    "genType": ("float", (1, 2, 3, 4)),
+    "genIType": ("int", (1, 2, 3, 4)),
+    "genUType": ("uint", (1, 2, 3, 4)),
+    "genBType": ("bool", (1, 2, 3, 4)),
+    "vec": ("float", (2, 3, 4)),
+    "ivec": ("int", (2, 3, 4)),
+    "uvec": ("uint", (2, 3, 4)),
+    "bvec": ("bool", (2, 3, 4)),
 }
 _MATS = [T.matrix(c, r) for c in (2, 3, 4) for r in (2, 3, 4)]
 _SQUARE_MATS = [T.MAT2, T.MAT3, T.MAT4]
@@ -130,8 +144,11 @@ def _expand(sig: str) -> list[tuple[Type, tuple[Type, ...], tuple[str, ...]]]:
         quals.append(q or "in")
     every = [ret, *words]
     ns = next((_GEN_N[w][1] for w in every if w in _GEN_N), (None,))
-    gs = ("", "i", "u") if any(w.startswith("g") and not w.startswith("gen")
-                               for w in every) else ("",)
+    gs = (
+        ("", "i", "u")
+        if any(w.startswith("g") and not w.startswith("gen") for w in every)
+        else ("",)
+    )
     mats = _SQUARE_MATS if "sqmat" in sig else _MATS if "mat" in every else [None]
     every = ["mat" if w == "sqmat" else w for w in every]
     out = []
@@ -161,7 +178,9 @@ class _Table(Mapping):
         fn = self._built.get(name)
         if fn is None:
             category, cost, forms = self._defs[name]  # KeyError: not a built-in
-            fn = self._built[name] = Builtin(name, category, cost, tuple(_overloads(name, category, cost, forms)))
+            fn = self._built[name] = Builtin(
+                name, category, cost, tuple(_overloads(name, category, cost, forms))
+            )
         return fn
 
     def __contains__(self, name: object) -> bool:
@@ -176,7 +195,10 @@ class _Table(Mapping):
 
 def _overloads(name: str, category: str, cost: str, forms) -> list[Overload]:
     if callable(forms):  # _define_explicit's rows
-        return [Overload(name, ret, params, ("in",) * len(params), category, cost) for ret, params in forms()]
+        return [
+            Overload(name, ret, params, ("in",) * len(params), category, cost)
+            for ret, params in forms()
+        ]
     overloads: list[Overload] = []
     for text, frag in forms:
         for ret, params, quals in _expand(text):
@@ -189,8 +211,7 @@ def _overloads(name: str, category: str, cost: str, forms) -> list[Overload]:
 BUILTINS: Mapping[str, Builtin] = _Table()
 
 
-def _define(name: str, category: str, cost: str, *sigs: str,
-            fragment_only: bool = False) -> None:
+def _define(name: str, category: str, cost: str, *sigs: str, fragment_only: bool = False) -> None:
     """Add overloads of ``name``; signatures ending in ``[, float bias]`` come in both forms."""
     forms = BUILTINS._defs.setdefault(name, (category, cost, []))[2]
     for sig in sigs:
@@ -201,8 +222,9 @@ def _define(name: str, category: str, cost: str, *sigs: str,
             forms.append((sig, fragment_only))
 
 
-def _define_explicit(name: str, category: str, cost: str,
-                     rows: Callable[[], list[tuple[Type, tuple[Type, ...]]]]) -> None:
+def _define_explicit(
+    name: str, category: str, cost: str, rows: Callable[[], list[tuple[Type, tuple[Type, ...]]]]
+) -> None:
     """Add overloads that the generic names cannot express (transpose, outerProduct): `rows()`
     gives their (return, params)."""
     BUILTINS._defs[name] = (category, cost, rows)
@@ -210,8 +232,21 @@ def _define_explicit(name: str, category: str, cost: str,
 
 # 8.1 Angle and trigonometry functions.
 for _n, _cost in [("radians", CHEAP), ("degrees", CHEAP)] + [
-        (f, EXPENSIVE) for f in ("sin", "cos", "tan", "asin", "acos", "sinh", "cosh", "tanh",
-                                 "asinh", "acosh", "atanh")]:
+    (f, EXPENSIVE)
+    for f in (
+        "sin",
+        "cos",
+        "tan",
+        "asin",
+        "acos",
+        "sinh",
+        "cosh",
+        "tanh",
+        "asinh",
+        "acosh",
+        "atanh",
+    )
+]:
     _define(_n, ANGLE_TRIG, _cost, f"genType {_n}(genType)")
 _define("atan", ANGLE_TRIG, EXPENSIVE, "genType atan(genType, genType)", "genType atan(genType)")
 
@@ -228,20 +263,44 @@ for _n in ("floor", "trunc", "round", "roundEven", "ceil", "fract"):
 _define("mod", COMMON, MEDIUM, "genType mod(genType, float)", "genType mod(genType, genType)")
 _define("modf", COMMON, CHEAP, "genType modf(genType, out genType)")
 for _n in ("min", "max"):
-    _define(_n, COMMON, CHEAP,
-            f"genType {_n}(genType, genType)", f"genType {_n}(genType, float)",
-            f"genIType {_n}(genIType, genIType)", f"genIType {_n}(genIType, int)",
-            f"genUType {_n}(genUType, genUType)", f"genUType {_n}(genUType, uint)")
-_define("clamp", COMMON, MEDIUM,
-        "genType clamp(genType, genType, genType)", "genType clamp(genType, float, float)",
-        "genIType clamp(genIType, genIType, genIType)", "genIType clamp(genIType, int, int)",
-        "genUType clamp(genUType, genUType, genUType)", "genUType clamp(genUType, uint, uint)")
-_define("mix", COMMON, MEDIUM,
-        "genType mix(genType, genType, genType)", "genType mix(genType, genType, float)",
-        "genType mix(genType, genType, genBType)")
+    _define(
+        _n,
+        COMMON,
+        CHEAP,
+        f"genType {_n}(genType, genType)",
+        f"genType {_n}(genType, float)",
+        f"genIType {_n}(genIType, genIType)",
+        f"genIType {_n}(genIType, int)",
+        f"genUType {_n}(genUType, genUType)",
+        f"genUType {_n}(genUType, uint)",
+    )
+_define(
+    "clamp",
+    COMMON,
+    MEDIUM,
+    "genType clamp(genType, genType, genType)",
+    "genType clamp(genType, float, float)",
+    "genIType clamp(genIType, genIType, genIType)",
+    "genIType clamp(genIType, int, int)",
+    "genUType clamp(genUType, genUType, genUType)",
+    "genUType clamp(genUType, uint, uint)",
+)
+_define(
+    "mix",
+    COMMON,
+    MEDIUM,
+    "genType mix(genType, genType, genType)",
+    "genType mix(genType, genType, float)",
+    "genType mix(genType, genType, genBType)",
+)
 _define("step", COMMON, CHEAP, "genType step(genType, genType)", "genType step(float, genType)")
-_define("smoothstep", COMMON, MEDIUM, "genType smoothstep(genType, genType, genType)",
-        "genType smoothstep(float, float, genType)")
+_define(
+    "smoothstep",
+    COMMON,
+    MEDIUM,
+    "genType smoothstep(genType, genType, genType)",
+    "genType smoothstep(float, float, genType)",
+)
 _define("isnan", COMMON, CHEAP, "genBType isnan(genType)")
 _define("isinf", COMMON, CHEAP, "genBType isinf(genType)")
 _define("floatBitsToInt", COMMON, CHEAP, "genIType floatBitsToInt(genType)")
@@ -266,104 +325,187 @@ _define("refract", GEOMETRIC, EXPENSIVE, "genType refract(genType, genType, floa
 
 # 8.6 Matrix functions.
 _define("matrixCompMult", MATRIX, MEDIUM, "mat matrixCompMult(mat, mat)")
-_define_explicit("outerProduct", MATRIX, MEDIUM,  # matCxR outerProduct(vecR c, vecC r)
-                 lambda: [(m, (T.vector("float", m.rows), T.vector("float", m.cols))) for m in _MATS])
-_define_explicit("transpose", MATRIX, CHEAP,
-                 lambda: [(T.matrix(m.rows, m.cols), (m,)) for m in _MATS])
+_define_explicit(
+    "outerProduct",
+    MATRIX,
+    MEDIUM,  # matCxR outerProduct(vecR c, vecC r)
+    lambda: [(m, (T.vector("float", m.rows), T.vector("float", m.cols))) for m in _MATS],
+)
+_define_explicit(
+    "transpose", MATRIX, CHEAP, lambda: [(T.matrix(m.rows, m.cols), (m,)) for m in _MATS]
+)
 _define("determinant", MATRIX, MEDIUM, "float determinant(sqmat)")
 _define("inverse", MATRIX, EXPENSIVE, "sqmat inverse(sqmat)")
 
 # 8.7 Vector relational functions.
 for _n in ("lessThan", "lessThanEqual", "greaterThan", "greaterThanEqual"):
-    _define(_n, VECTOR_RELATIONAL, CHEAP,
-            f"bvec {_n}(vec, vec)", f"bvec {_n}(ivec, ivec)", f"bvec {_n}(uvec, uvec)")
+    _define(
+        _n,
+        VECTOR_RELATIONAL,
+        CHEAP,
+        f"bvec {_n}(vec, vec)",
+        f"bvec {_n}(ivec, ivec)",
+        f"bvec {_n}(uvec, uvec)",
+    )
 for _n in ("equal", "notEqual"):
-    _define(_n, VECTOR_RELATIONAL, CHEAP, f"bvec {_n}(vec, vec)", f"bvec {_n}(ivec, ivec)",
-            f"bvec {_n}(uvec, uvec)", f"bvec {_n}(bvec, bvec)")
+    _define(
+        _n,
+        VECTOR_RELATIONAL,
+        CHEAP,
+        f"bvec {_n}(vec, vec)",
+        f"bvec {_n}(ivec, ivec)",
+        f"bvec {_n}(uvec, uvec)",
+        f"bvec {_n}(bvec, bvec)",
+    )
 _define("any", VECTOR_RELATIONAL, CHEAP, "bool any(bvec)")
 _define("all", VECTOR_RELATIONAL, CHEAP, "bool all(bvec)")
 _define("not", VECTOR_RELATIONAL, CHEAP, "bvec not(bvec)")
 
 # 8.8 Texture lookup functions. "g" ranges over float/int/uint samplers and results.
-_define("textureSize", TEXTURE, CHEAP,
-        "ivec2 textureSize(gsampler2D, int)", "ivec3 textureSize(gsampler3D, int)",
-        "ivec2 textureSize(gsamplerCube, int)", "ivec2 textureSize(sampler2DShadow, int)",
-        "ivec2 textureSize(samplerCubeShadow, int)", "ivec3 textureSize(gsampler2DArray, int)",
-        "ivec3 textureSize(sampler2DArrayShadow, int)")
-_define("texture", TEXTURE, EXPENSIVE,
-        "gvec4 texture(gsampler2D, vec2[, float bias])",
-        "gvec4 texture(gsampler3D, vec3[, float bias])",
-        "gvec4 texture(gsamplerCube, vec3[, float bias])",
-        "float texture(sampler2DShadow, vec3[, float bias])",
-        "float texture(samplerCubeShadow, vec4[, float bias])",
-        "gvec4 texture(gsampler2DArray, vec3[, float bias])",
-        "float texture(sampler2DArrayShadow, vec4)")
-_define("textureProj", TEXTURE, EXPENSIVE,
-        "gvec4 textureProj(gsampler2D, vec3[, float bias])",
-        "gvec4 textureProj(gsampler2D, vec4[, float bias])",
-        "gvec4 textureProj(gsampler3D, vec4[, float bias])",
-        "float textureProj(sampler2DShadow, vec4[, float bias])")
-_define("textureLod", TEXTURE, EXPENSIVE,
-        "gvec4 textureLod(gsampler2D, vec2, float)", "gvec4 textureLod(gsampler3D, vec3, float)",
-        "gvec4 textureLod(gsamplerCube, vec3, float)",
-        "float textureLod(sampler2DShadow, vec3, float)",
-        "gvec4 textureLod(gsampler2DArray, vec3, float)")
-_define("textureOffset", TEXTURE, EXPENSIVE,
-        "gvec4 textureOffset(gsampler2D, vec2, ivec2[, float bias])",
-        "gvec4 textureOffset(gsampler3D, vec3, ivec3[, float bias])",
-        "float textureOffset(sampler2DShadow, vec3, ivec2[, float bias])",
-        "gvec4 textureOffset(gsampler2DArray, vec3, ivec2[, float bias])")
-_define("texelFetch", TEXTURE, EXPENSIVE,
-        "gvec4 texelFetch(gsampler2D, ivec2, int)", "gvec4 texelFetch(gsampler3D, ivec3, int)",
-        "gvec4 texelFetch(gsampler2DArray, ivec3, int)")
-_define("texelFetchOffset", TEXTURE, EXPENSIVE,
-        "gvec4 texelFetchOffset(gsampler2D, ivec2, int, ivec2)",
-        "gvec4 texelFetchOffset(gsampler3D, ivec3, int, ivec3)",
-        "gvec4 texelFetchOffset(gsampler2DArray, ivec3, int, ivec2)")
-_define("textureProjOffset", TEXTURE, EXPENSIVE,
-        "gvec4 textureProjOffset(gsampler2D, vec3, ivec2[, float bias])",
-        "gvec4 textureProjOffset(gsampler2D, vec4, ivec2[, float bias])",
-        "gvec4 textureProjOffset(gsampler3D, vec4, ivec3[, float bias])",
-        "float textureProjOffset(sampler2DShadow, vec4, ivec2[, float bias])")
-_define("textureLodOffset", TEXTURE, EXPENSIVE,
-        "gvec4 textureLodOffset(gsampler2D, vec2, float, ivec2)",
-        "gvec4 textureLodOffset(gsampler3D, vec3, float, ivec3)",
-        "float textureLodOffset(sampler2DShadow, vec3, float, ivec2)",
-        "gvec4 textureLodOffset(gsampler2DArray, vec3, float, ivec2)")
-_define("textureProjLod", TEXTURE, EXPENSIVE,
-        "gvec4 textureProjLod(gsampler2D, vec3, float)",
-        "gvec4 textureProjLod(gsampler2D, vec4, float)",
-        "gvec4 textureProjLod(gsampler3D, vec4, float)",
-        "float textureProjLod(sampler2DShadow, vec4, float)")
-_define("textureProjLodOffset", TEXTURE, EXPENSIVE,
-        "gvec4 textureProjLodOffset(gsampler2D, vec3, float, ivec2)",
-        "gvec4 textureProjLodOffset(gsampler2D, vec4, float, ivec2)",
-        "gvec4 textureProjLodOffset(gsampler3D, vec4, float, ivec3)",
-        "float textureProjLodOffset(sampler2DShadow, vec4, float, ivec2)")
-_define("textureGrad", TEXTURE, EXPENSIVE,
-        "gvec4 textureGrad(gsampler2D, vec2, vec2, vec2)",
-        "gvec4 textureGrad(gsampler3D, vec3, vec3, vec3)",
-        "gvec4 textureGrad(gsamplerCube, vec3, vec3, vec3)",
-        "float textureGrad(sampler2DShadow, vec3, vec2, vec2)",
-        "float textureGrad(samplerCubeShadow, vec4, vec3, vec3)",
-        "gvec4 textureGrad(gsampler2DArray, vec3, vec2, vec2)",
-        "float textureGrad(sampler2DArrayShadow, vec4, vec2, vec2)")
-_define("textureGradOffset", TEXTURE, EXPENSIVE,
-        "gvec4 textureGradOffset(gsampler2D, vec2, vec2, vec2, ivec2)",
-        "gvec4 textureGradOffset(gsampler3D, vec3, vec3, vec3, ivec3)",
-        "float textureGradOffset(sampler2DShadow, vec3, vec2, vec2, ivec2)",
-        "gvec4 textureGradOffset(gsampler2DArray, vec3, vec2, vec2, ivec2)",
-        "float textureGradOffset(sampler2DArrayShadow, vec4, vec2, vec2, ivec2)")
-_define("textureProjGrad", TEXTURE, EXPENSIVE,
-        "gvec4 textureProjGrad(gsampler2D, vec3, vec2, vec2)",
-        "gvec4 textureProjGrad(gsampler2D, vec4, vec2, vec2)",
-        "gvec4 textureProjGrad(gsampler3D, vec4, vec3, vec3)",
-        "float textureProjGrad(sampler2DShadow, vec4, vec2, vec2)")
-_define("textureProjGradOffset", TEXTURE, EXPENSIVE,
-        "gvec4 textureProjGradOffset(gsampler2D, vec3, vec2, vec2, ivec2)",
-        "gvec4 textureProjGradOffset(gsampler2D, vec4, vec2, vec2, ivec2)",
-        "gvec4 textureProjGradOffset(gsampler3D, vec4, vec3, vec3, ivec3)",
-        "float textureProjGradOffset(sampler2DShadow, vec4, vec2, vec2, ivec2)")
+_define(
+    "textureSize",
+    TEXTURE,
+    CHEAP,
+    "ivec2 textureSize(gsampler2D, int)",
+    "ivec3 textureSize(gsampler3D, int)",
+    "ivec2 textureSize(gsamplerCube, int)",
+    "ivec2 textureSize(sampler2DShadow, int)",
+    "ivec2 textureSize(samplerCubeShadow, int)",
+    "ivec3 textureSize(gsampler2DArray, int)",
+    "ivec3 textureSize(sampler2DArrayShadow, int)",
+)
+_define(
+    "texture",
+    TEXTURE,
+    EXPENSIVE,
+    "gvec4 texture(gsampler2D, vec2[, float bias])",
+    "gvec4 texture(gsampler3D, vec3[, float bias])",
+    "gvec4 texture(gsamplerCube, vec3[, float bias])",
+    "float texture(sampler2DShadow, vec3[, float bias])",
+    "float texture(samplerCubeShadow, vec4[, float bias])",
+    "gvec4 texture(gsampler2DArray, vec3[, float bias])",
+    "float texture(sampler2DArrayShadow, vec4)",
+)
+_define(
+    "textureProj",
+    TEXTURE,
+    EXPENSIVE,
+    "gvec4 textureProj(gsampler2D, vec3[, float bias])",
+    "gvec4 textureProj(gsampler2D, vec4[, float bias])",
+    "gvec4 textureProj(gsampler3D, vec4[, float bias])",
+    "float textureProj(sampler2DShadow, vec4[, float bias])",
+)
+_define(
+    "textureLod",
+    TEXTURE,
+    EXPENSIVE,
+    "gvec4 textureLod(gsampler2D, vec2, float)",
+    "gvec4 textureLod(gsampler3D, vec3, float)",
+    "gvec4 textureLod(gsamplerCube, vec3, float)",
+    "float textureLod(sampler2DShadow, vec3, float)",
+    "gvec4 textureLod(gsampler2DArray, vec3, float)",
+)
+_define(
+    "textureOffset",
+    TEXTURE,
+    EXPENSIVE,
+    "gvec4 textureOffset(gsampler2D, vec2, ivec2[, float bias])",
+    "gvec4 textureOffset(gsampler3D, vec3, ivec3[, float bias])",
+    "float textureOffset(sampler2DShadow, vec3, ivec2[, float bias])",
+    "gvec4 textureOffset(gsampler2DArray, vec3, ivec2[, float bias])",
+)
+_define(
+    "texelFetch",
+    TEXTURE,
+    EXPENSIVE,
+    "gvec4 texelFetch(gsampler2D, ivec2, int)",
+    "gvec4 texelFetch(gsampler3D, ivec3, int)",
+    "gvec4 texelFetch(gsampler2DArray, ivec3, int)",
+)
+_define(
+    "texelFetchOffset",
+    TEXTURE,
+    EXPENSIVE,
+    "gvec4 texelFetchOffset(gsampler2D, ivec2, int, ivec2)",
+    "gvec4 texelFetchOffset(gsampler3D, ivec3, int, ivec3)",
+    "gvec4 texelFetchOffset(gsampler2DArray, ivec3, int, ivec2)",
+)
+_define(
+    "textureProjOffset",
+    TEXTURE,
+    EXPENSIVE,
+    "gvec4 textureProjOffset(gsampler2D, vec3, ivec2[, float bias])",
+    "gvec4 textureProjOffset(gsampler2D, vec4, ivec2[, float bias])",
+    "gvec4 textureProjOffset(gsampler3D, vec4, ivec3[, float bias])",
+    "float textureProjOffset(sampler2DShadow, vec4, ivec2[, float bias])",
+)
+_define(
+    "textureLodOffset",
+    TEXTURE,
+    EXPENSIVE,
+    "gvec4 textureLodOffset(gsampler2D, vec2, float, ivec2)",
+    "gvec4 textureLodOffset(gsampler3D, vec3, float, ivec3)",
+    "float textureLodOffset(sampler2DShadow, vec3, float, ivec2)",
+    "gvec4 textureLodOffset(gsampler2DArray, vec3, float, ivec2)",
+)
+_define(
+    "textureProjLod",
+    TEXTURE,
+    EXPENSIVE,
+    "gvec4 textureProjLod(gsampler2D, vec3, float)",
+    "gvec4 textureProjLod(gsampler2D, vec4, float)",
+    "gvec4 textureProjLod(gsampler3D, vec4, float)",
+    "float textureProjLod(sampler2DShadow, vec4, float)",
+)
+_define(
+    "textureProjLodOffset",
+    TEXTURE,
+    EXPENSIVE,
+    "gvec4 textureProjLodOffset(gsampler2D, vec3, float, ivec2)",
+    "gvec4 textureProjLodOffset(gsampler2D, vec4, float, ivec2)",
+    "gvec4 textureProjLodOffset(gsampler3D, vec4, float, ivec3)",
+    "float textureProjLodOffset(sampler2DShadow, vec4, float, ivec2)",
+)
+_define(
+    "textureGrad",
+    TEXTURE,
+    EXPENSIVE,
+    "gvec4 textureGrad(gsampler2D, vec2, vec2, vec2)",
+    "gvec4 textureGrad(gsampler3D, vec3, vec3, vec3)",
+    "gvec4 textureGrad(gsamplerCube, vec3, vec3, vec3)",
+    "float textureGrad(sampler2DShadow, vec3, vec2, vec2)",
+    "float textureGrad(samplerCubeShadow, vec4, vec3, vec3)",
+    "gvec4 textureGrad(gsampler2DArray, vec3, vec2, vec2)",
+    "float textureGrad(sampler2DArrayShadow, vec4, vec2, vec2)",
+)
+_define(
+    "textureGradOffset",
+    TEXTURE,
+    EXPENSIVE,
+    "gvec4 textureGradOffset(gsampler2D, vec2, vec2, vec2, ivec2)",
+    "gvec4 textureGradOffset(gsampler3D, vec3, vec3, vec3, ivec3)",
+    "float textureGradOffset(sampler2DShadow, vec3, vec2, vec2, ivec2)",
+    "gvec4 textureGradOffset(gsampler2DArray, vec3, vec2, vec2, ivec2)",
+    "float textureGradOffset(sampler2DArrayShadow, vec4, vec2, vec2, ivec2)",
+)
+_define(
+    "textureProjGrad",
+    TEXTURE,
+    EXPENSIVE,
+    "gvec4 textureProjGrad(gsampler2D, vec3, vec2, vec2)",
+    "gvec4 textureProjGrad(gsampler2D, vec4, vec2, vec2)",
+    "gvec4 textureProjGrad(gsampler3D, vec4, vec3, vec3)",
+    "float textureProjGrad(sampler2DShadow, vec4, vec2, vec2)",
+)
+_define(
+    "textureProjGradOffset",
+    TEXTURE,
+    EXPENSIVE,
+    "gvec4 textureProjGradOffset(gsampler2D, vec3, vec2, vec2, ivec2)",
+    "gvec4 textureProjGradOffset(gsampler2D, vec4, vec2, vec2, ivec2)",
+    "gvec4 textureProjGradOffset(gsampler3D, vec4, vec3, vec3, ivec3)",
+    "float textureProjGradOffset(sampler2DShadow, vec4, vec2, vec2, ivec2)",
+)
 
 # 8.9 Fragment processing (derivative) functions.
 for _n in ("dFdx", "dFdy", "fwidth"):
@@ -389,8 +531,10 @@ def resolve(name: str, arg_types: list[Type]) -> Overload | str:
     shown = list(fn.overloads)
     if len(shown) > _MAX_CANDIDATES:
         # Long lists (texture, min, ...): keep those that agree on what was given right.
-        for keep in (lambda ov: ov.params[:1] == args[:1] != (),
-                     lambda ov: len(ov.params) == len(args)):
+        for keep in (
+            lambda ov: ov.params[:1] == args[:1] != (),
+            lambda ov: len(ov.params) == len(args),
+        ):
             narrowed = [ov for ov in fn.overloads if keep(ov)]
             if narrowed:
                 shown = narrowed
@@ -422,24 +566,34 @@ class BuiltinVariable(namedtuple("BuiltinVariable", "name type storage value", d
 
 
 GL_DEPTH_RANGE_PARAMETERS = StructType(
-    "gl_DepthRangeParameters", (("near", T.FLOAT), ("far", T.FLOAT), ("diff", T.FLOAT)))
+    "gl_DepthRangeParameters", (("near", T.FLOAT), ("far", T.FLOAT), ("diff", T.FLOAT))
+)
 
 _CONSTANTS = {
-    "gl_MaxVertexAttribs": 16, "gl_MaxVertexUniformVectors": 256,
-    "gl_MaxVertexOutputVectors": 16, "gl_MaxFragmentInputVectors": 15,
-    "gl_MaxVertexTextureImageUnits": 16, "gl_MaxCombinedTextureImageUnits": 32,
-    "gl_MaxTextureImageUnits": 16, "gl_MaxFragmentUniformVectors": 224,
-    "gl_MaxDrawBuffers": 4, "gl_MinProgramTexelOffset": -8, "gl_MaxProgramTexelOffset": 7,
+    "gl_MaxVertexAttribs": 16,
+    "gl_MaxVertexUniformVectors": 256,
+    "gl_MaxVertexOutputVectors": 16,
+    "gl_MaxFragmentInputVectors": 15,
+    "gl_MaxVertexTextureImageUnits": 16,
+    "gl_MaxCombinedTextureImageUnits": 32,
+    "gl_MaxTextureImageUnits": 16,
+    "gl_MaxFragmentUniformVectors": 224,
+    "gl_MaxDrawBuffers": 4,
+    "gl_MinProgramTexelOffset": -8,
+    "gl_MaxProgramTexelOffset": 7,
 }
 
-BUILTIN_VARIABLES: dict[str, BuiltinVariable] = {v.name: v for v in [
-    BuiltinVariable("gl_FragCoord", T.VEC4, "in"),
-    BuiltinVariable("gl_FrontFacing", T.BOOL, "in"),
-    BuiltinVariable("gl_PointCoord", T.VEC2, "in"),
-    BuiltinVariable("gl_FragDepth", T.FLOAT, "out"),
-    BuiltinVariable("gl_DepthRange", GL_DEPTH_RANGE_PARAMETERS, "uniform"),
-    *(BuiltinVariable(n, T.INT, "const", v) for n, v in _CONSTANTS.items()),
-]}
+BUILTIN_VARIABLES: dict[str, BuiltinVariable] = {
+    v.name: v
+    for v in [
+        BuiltinVariable("gl_FragCoord", T.VEC4, "in"),
+        BuiltinVariable("gl_FrontFacing", T.BOOL, "in"),
+        BuiltinVariable("gl_PointCoord", T.VEC2, "in"),
+        BuiltinVariable("gl_FragDepth", T.FLOAT, "out"),
+        BuiltinVariable("gl_DepthRange", GL_DEPTH_RANGE_PARAMETERS, "uniform"),
+        *(BuiltinVariable(n, T.INT, "const", v) for n, v in _CONSTANTS.items()),
+    ]
+}
 
 
 # ---------------------------------------------------------------------------------------
@@ -471,7 +625,8 @@ COMMON_TAB_UNIFORMS = frozenset(_COMMON_ONLY)
 # ---------------------------------------------------------------------------------------
 # Keywords and reserved words (spec 3.8).
 
-KEYWORDS = frozenset("""
+KEYWORDS = frozenset(
+    """
     const uniform layout centroid flat smooth break continue do for while switch case default
     if else in out inout float int void bool true false invariant discard return
     mat2 mat3 mat4 mat2x2 mat2x3 mat2x4 mat3x2 mat3x3 mat3x4 mat4x2 mat4x3 mat4x4
@@ -480,10 +635,12 @@ KEYWORDS = frozenset("""
     sampler2D sampler3D samplerCube sampler2DShadow samplerCubeShadow sampler2DArray
     sampler2DArrayShadow isampler2D isampler3D isamplerCube isampler2DArray
     usampler2D usampler3D usamplerCube usampler2DArray struct
-""".split())
+""".split()
+)
 
 #: Reserved for future use: using one as an identifier is an error.
-RESERVED_WORDS = frozenset("""
+RESERVED_WORDS = frozenset(
+    """
     attribute varying coherent volatile restrict readonly writeonly resource atomic_uint
     noperspective patch sample subroutine common partition active asm class union enum
     typedef template this goto inline noinline public static extern external interface
@@ -497,4 +654,5 @@ RESERVED_WORDS = frozenset("""
     isampler2DRect usampler2DRect samplerBuffer isamplerBuffer usamplerBuffer
     sampler2DMS isampler2DMS usampler2DMS sampler2DMSArray isampler2DMSArray
     usampler2DMSArray sizeof cast namespace using
-""".split())
+""".split()
+)

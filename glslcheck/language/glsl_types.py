@@ -279,16 +279,27 @@ def matrix(cols: int, rows: int) -> MatrixType:
 
 def _sampler(name: str) -> SamplerType:
     result = {"i": "int", "u": "uint"}.get(name[0], "float")
-    core = name.lstrip("iu")[len("sampler"):]
+    core = name.lstrip("iu")[len("sampler") :]
     shadow = core.endswith("Shadow")
     return SamplerType(name, result, core.removesuffix("Shadow"), shadow)
 
 
 SAMPLER_NAMES = (
-    "sampler2D", "sampler3D", "samplerCube", "sampler2DShadow", "samplerCubeShadow",
-    "sampler2DArray", "sampler2DArrayShadow",
-    "isampler2D", "isampler3D", "isamplerCube", "isampler2DArray",
-    "usampler2D", "usampler3D", "usamplerCube", "usampler2DArray",
+    "sampler2D",
+    "sampler3D",
+    "samplerCube",
+    "sampler2DShadow",
+    "samplerCubeShadow",
+    "sampler2DArray",
+    "sampler2DArrayShadow",
+    "isampler2D",
+    "isampler3D",
+    "isamplerCube",
+    "isampler2DArray",
+    "usampler2D",
+    "usampler3D",
+    "usamplerCube",
+    "usampler2DArray",
 )
 SAMPLERS: dict[str, SamplerType] = {n: _sampler(n) for n in SAMPLER_NAMES}
 
@@ -322,8 +333,9 @@ EQUALITY_OPS = frozenset({"==", "!="})
 LOGICAL_OPS = frozenset({"&&", "||", "^^"})
 BITWISE_OPS = frozenset({"&", "|", "^"})
 SHIFT_OPS = frozenset({"<<", ">>"})
-BINARY_OPS = (ARITHMETIC_OPS | RELATIONAL_OPS | EQUALITY_OPS | LOGICAL_OPS | BITWISE_OPS
-              | SHIFT_OPS | {"%"})
+BINARY_OPS = (
+    ARITHMETIC_OPS | RELATIONAL_OPS | EQUALITY_OPS | LOGICAL_OPS | BITWISE_OPS | SHIFT_OPS | {"%"}
+)
 ASSIGN_OPS = frozenset({"+=", "-=", "*=", "/=", "%=", "<<=", ">>=", "&=", "|=", "^="})
 UNARY_OPS = frozenset({"-", "+", "!", "~", "++", "--"})
 
@@ -335,8 +347,10 @@ def _fail(op: str, left: Type, right: Type, why: str = "") -> str:
 
 
 def _no_conversion(left: Type, right: Type) -> str:
-    return (f"GLSL ES has no implicit conversion between {left.base} and {right.base}; "
-            f"convert one side explicitly, e.g. {right.base}(x) or {left.base}(x)")
+    return (
+        f"GLSL ES has no implicit conversion between {left.base} and {right.base}; "
+        f"convert one side explicitly, e.g. {right.base}(x) or {left.base}(x)"
+    )
 
 
 def _componentwise(op: str, left: Type, right: Type, bases: tuple[str, ...]) -> Type | str:
@@ -362,8 +376,7 @@ def _describe(bases: tuple[str, ...]) -> str:
 def _arithmetic(op: str, left: Type, right: Type) -> Type | str:
     for t in (left, right):
         if not t.is_numeric:
-            why = ("arithmetic needs numeric operands" if t.base == "bool" or t.base is None
-                   else "")
+            why = "arithmetic needs numeric operands" if t.base == "bool" or t.base is None else ""
             return _fail(op, left, right, f"'{t}' is not numeric; {why}".rstrip("; "))
     if left.base != right.base:
         return _fail(op, left, right, _no_conversion(left, right))
@@ -381,18 +394,27 @@ def _arithmetic(op: str, left: Type, right: Type) -> Type | str:
     # Linear-algebra multiply.
     if left.is_matrix and right.is_vector:  # matCxR * vecC -> vecR
         if left.cols != right.size:
-            return _fail(op, left, right, f"'{left}' has {left.cols} columns but '{right}' has "
-                                          f"{right.size} components")
+            return _fail(
+                op,
+                left,
+                right,
+                f"'{left}' has {left.cols} columns but '{right}' has {right.size} components",
+            )
         return vector("float", left.rows)
     if left.is_vector and right.is_matrix:  # vecR * matCxR -> vecC
         if left.size != right.rows:
-            return _fail(op, left, right, f"'{left}' has {left.size} components but '{right}' "
-                                          f"has {right.rows} rows")
+            return _fail(
+                op,
+                left,
+                right,
+                f"'{left}' has {left.size} components but '{right}' has {right.rows} rows",
+            )
         return vector("float", right.cols)
     # matCxR * matKxC -> matKxR
     if left.cols != right.rows:
-        return _fail(op, left, right, f"'{left}' has {left.cols} columns but '{right}' has "
-                                      f"{right.rows} rows")
+        return _fail(
+            op, left, right, f"'{left}' has {left.cols} columns but '{right}' has {right.rows} rows"
+        )
     return matrix(right.cols, left.rows)
 
 
@@ -424,8 +446,12 @@ def binary_result(op: str, left: Type, right: Type) -> Type | str:
         if not (left.is_scalar and right.is_scalar and left.is_numeric and right.is_numeric):
             hint = ""
             if left.is_vector or right.is_vector:
-                name = {"<": "lessThan", ">": "greaterThan", "<=": "lessThanEqual",
-                        ">=": "greaterThanEqual"}[op]
+                name = {
+                    "<": "lessThan",
+                    ">": "greaterThan",
+                    "<=": "lessThanEqual",
+                    ">=": "greaterThanEqual",
+                }[op]
                 hint = f"; compare vectors component-wise with {name}()"
             return _fail(op, left, right, "relational operators need numeric scalars" + hint)
         if left.base != right.base:
@@ -443,8 +469,12 @@ def binary_result(op: str, left: Type, right: Type) -> Type | str:
         return BOOL
     if op in LOGICAL_OPS:
         if left != BOOL or right != BOOL:
-            return _fail(op, left, right, "logical operators need bool scalars; "
-                                          "for bvec use any(), all() or not()")
+            return _fail(
+                op,
+                left,
+                right,
+                "logical operators need bool scalars; for bvec use any(), all() or not()",
+            )
         return BOOL
     raise ValueError(f"unknown binary operator {op!r}")
 
@@ -479,9 +509,11 @@ def conditional_result(cond: Type, if_true: Type, if_false: Type) -> Type | str:
     if if_true.is_void or if_true.contains_opaque:
         return f"'?:' cannot choose between values of type '{if_true}'"
     if if_true != if_false:
-        why = (f": {_no_conversion(if_true, if_false)}"
-               if if_true.is_basic and if_false.is_basic and if_true.base != if_false.base
-               else "")
+        why = (
+            f": {_no_conversion(if_true, if_false)}"
+            if if_true.is_basic and if_false.is_basic and if_true.base != if_false.base
+            else ""
+        )
         return f"the two branches of '?:' have different types '{if_true}' and '{if_false}'{why}"
     return if_true
 
@@ -499,8 +531,10 @@ def unary_result(op: str, operand: Type) -> Type | str:
         return BOOL
     if op == "~":
         if not ((operand.is_scalar or operand.is_vector) and operand.base in ("int", "uint")):
-            return (f"operator '~' cannot be applied to '{operand}': it needs an int or uint "
-                    f"scalar or vector")
+            return (
+                f"operator '~' cannot be applied to '{operand}': it needs an int or uint "
+                f"scalar or vector"
+            )
         return operand
     raise ValueError(f"unknown unary operator {op!r}")
 
@@ -569,16 +603,20 @@ def constructor_check(target: Type, args: list[Type]) -> str | None:
             return f"'{target}' constructor got a 'void' argument"
     if target.is_struct:
         if len(args) != len(target.fields):
-            return (f"'{target}' constructor takes {_plural(len(target.fields), 'argument')}, "
-                    f"one per field, but got {len(args)}")
+            return (
+                f"'{target}' constructor takes {_plural(len(target.fields), 'argument')}, "
+                f"one per field, but got {len(args)}"
+            )
         for (fname, ftype), a in zip(target.fields, args):
             if a != ftype:
                 return f"'{target}' field '{fname}' is '{ftype}' but the argument is '{a}'"
         return None
     if target.is_array:
         if target.array_size is not None and len(args) != target.array_size:
-            return (f"'{target}' constructor takes {_plural(target.array_size, 'argument')} "
-                    f"but got {len(args)}")
+            return (
+                f"'{target}' constructor takes {_plural(target.array_size, 'argument')} "
+                f"but got {len(args)}"
+            )
         for i, a in enumerate(args):
             if a != target.element:
                 return f"'{target}' element {i} must be '{target.element}' but is '{a}'"
@@ -597,11 +635,15 @@ def constructor_check(target: Type, args: list[Type]) -> str | None:
         if target.is_matrix and a.is_matrix:
             return None  # any matrix size: copy the overlap, identity elsewhere
         if a.size < target.size:
-            return (f"'{target}' needs {target.size} components but '{a}' provides only "
-                    f"{a.size}: not enough data")
+            return (
+                f"'{target}' needs {target.size} components but '{a}' provides only "
+                f"{a.size}: not enough data"
+            )
         if target.is_matrix and a.size > target.size:
-            return (f"'{target}' needs {target.size} components but '{a}' provides {a.size}: "
-                    f"too many arguments")
+            return (
+                f"'{target}' needs {target.size} components but '{a}' provides {a.size}: "
+                f"too many arguments"
+            )
         return None
     if target.is_matrix:
         for a in args:
@@ -610,12 +652,16 @@ def constructor_check(target: Type, args: list[Type]) -> str | None:
     total = 0
     for i, a in enumerate(args):
         if total >= target.size:
-            return (f"'{target}' needs {target.size} components; argument {i + 1} ('{a}') and "
-                    f"later are unused: too many arguments")
+            return (
+                f"'{target}' needs {target.size} components; argument {i + 1} ('{a}') and "
+                f"later are unused: too many arguments"
+            )
         total += a.size
     if total < target.size:
-        return (f"'{target}' needs {target.size} components but the arguments provide only "
-                f"{total}: not enough data")
+        return (
+            f"'{target}' needs {target.size} components but the arguments provide only "
+            f"{total}: not enough data"
+        )
     return None
 
 

@@ -21,13 +21,14 @@ key or rule name, a wrong type) raises `InputError` naming the configuration fil
 from __future__ import annotations
 
 import os
-from ..base.records import record, field, replace
 
 from ..base.diagnostics import InputError
+from ..base.records import field, record, replace
 
 TYPE_CHECKING = False  # not typing's: importing typing costs every start-up
 if TYPE_CHECKING:
-    from typing import Any, Mapping
+    from collections.abc import Mapping
+    from typing import Any
 
 DEFAULT_COMMENT_SPAN = 3
 # key -> (python type of the value, description used in error messages)
@@ -110,7 +111,9 @@ def load_config_in(folder: str, known_rules: frozenset[str]) -> LintConfig | Non
     py = os.path.join(folder, "pyproject.toml")
     if os.path.isfile(py):
         data = _read_toml(py)
-        table = data.get("tool", {}).get("glslcheck") if isinstance(data.get("tool"), dict) else None
+        table = (
+            data.get("tool", {}).get("glslcheck") if isinstance(data.get("tool"), dict) else None
+        )
         if table is not None:
             if not isinstance(table, dict):
                 raise InputError(f"{py}: error: [tool.glslcheck] must be a table")
@@ -127,7 +130,9 @@ def _read_toml(path: str) -> dict[str, Any]:
     except tomllib.TOMLDecodeError as e:
         raise InputError(f"{path}: error: not valid TOML: {e}") from None
     except OSError as e:
-        raise InputError(f"{path}: error: cannot read the configuration ({e.strerror or e})") from None
+        raise InputError(
+            f"{path}: error: cannot read the configuration ({e.strerror or e})"
+        ) from None
 
 
 def parse_config(

@@ -22,11 +22,19 @@ from __future__ import annotations
 
 import os
 import re
-from ..base.records import record, field
 
 from ..base.diagnostics import Diagnostic, Location, register_source, source_line
-from ..shadertoy.sources import (BUFFER_TABS, Shader, Source, check_path, find_shaders, path_name, path_suffix,
-                                 posix_path)
+from ..base.records import field, record
+from ..shadertoy.sources import (
+    BUFFER_TABS,
+    Shader,
+    Source,
+    check_path,
+    find_shaders,
+    path_name,
+    path_suffix,
+    posix_path,
+)
 from .config import COMMAND_LINE, ConfigFinder, LintConfig, apply_overrides
 from .rules import Rule, all_rules, rule_names
 from .suppress import Suppression, find_suppressions, is_suppressed
@@ -34,7 +42,8 @@ from .textscan import Comment, LineKind, TextScan, scan
 
 TYPE_CHECKING = False  # not typing's: importing typing costs every start-up
 if TYPE_CHECKING:
-    from typing import Any, Iterable, Mapping, Sequence
+    from collections.abc import Iterable, Mapping, Sequence
+    from typing import Any
 
 PHASES = ("text", "ast", "suppressions")
 
@@ -164,9 +173,9 @@ _MAX_RECOVERIES = 8
 
 
 def _build_tree(units: list[Source], tab: str) -> ProgramTree:
-    from ..semantics import check
     from ..base.diagnostics import GlslError
     from ..frontend.parser import parse_units
+    from ..semantics import check
     from .recover import drop_declaration
 
     errors: list[Diagnostic] = []
@@ -178,7 +187,9 @@ def _build_tree(units: list[Source], tab: str) -> ProgramTree:
         except GlslError as e:
             errors.extend(d for d in e.diagnostics if d.severity == "error")
             loc = next((d.loc for d in e.diagnostics if d.loc is not None), None)
-            units, region = drop_declaration(units, loc, dropped) if loc is not None else (units, None)
+            units, region = (
+                drop_declaration(units, loc, dropped) if loc is not None else (units, None)
+            )
             if region is None:
                 return ProgramTree(errors=errors, dropped=dropped)
             dropped.append(region)
@@ -197,7 +208,9 @@ def _build_tree(units: list[Source], tab: str) -> ProgramTree:
     return ProgramTree(model.ast, model, model.errors, dropped)
 
 
-def _in_dropped(d: Diagnostic, dropped: list[tuple[str, int, int, str]], texts: dict[str, list[str]]) -> bool:
+def _in_dropped(
+    d: Diagnostic, dropped: list[tuple[str, int, int, str]], texts: dict[str, list[str]]
+) -> bool:
     """Whether a check error comes from recovery: inside a dropped declaration, or a call of a
     function whose body was dropped (its kept prototype has no definition)."""
     if d.loc is None:
@@ -206,7 +219,9 @@ def _in_dropped(d: Diagnostic, dropped: list[tuple[str, int, int, str]], texts: 
         return True
     lines = texts.get(d.loc.path, [])
     at = lines[d.loc.line - 1][d.loc.column - 1 :] if 0 < d.loc.line <= len(lines) else ""
-    return "definition" in d.message and any(re.match(rf"{re.escape(name)}\s*\(", at) for *_, name in dropped)
+    return "definition" in d.message and any(
+        re.match(rf"{re.escape(name)}\s*\(", at) for *_, name in dropped
+    )
 
 
 _PASS_TABS = ("Image", *BUFFER_TABS, "GLSL")  # Common is linted inside the first one present
@@ -253,9 +268,15 @@ def lint_source(
         for rule in rules.values():
             if rule.needs != phase or not config.enabled(rule.name):
                 continue
-            if phase == "ast" and config.enabled(COMPILE_ERROR) and (ctx.compile_errors or ctx.dropped):
+            if (
+                phase == "ast"
+                and config.enabled(COMPILE_ERROR)
+                and (ctx.compile_errors or ctx.dropped)
+            ):
                 findings.extend(_not_run(rule, ctx))
-            if phase == "ast" and (ctx.ast is None or (rule.reads == "program" and _has_errors(ctx))):
+            if phase == "ast" and (
+                ctx.ast is None or (rule.reads == "program" and _has_errors(ctx))
+            ):
                 continue
             ran.add(rule.name)
             for d in rule.check(ctx):
@@ -265,7 +286,9 @@ def lint_source(
     order = {name: i for i, name in enumerate(rules)}  # ties in registry-table order
     # compile errors first, then which rules could not run, then the findings in line order
     first = {(COMPILE_ERROR, "error"): 0, (COMPILE_ERROR, "note"): 1}
-    findings.sort(key=lambda f: (first.get((f.rule, f.severity), 2), f.loc.line, f.loc.column, order[f.rule]))
+    findings.sort(
+        key=lambda f: (first.get((f.rule, f.severity), 2), f.loc.line, f.loc.column, order[f.rule])
+    )
     return findings
 
 
@@ -284,7 +307,11 @@ def _not_run(rule: Rule, ctx: LintContext) -> list[Finding]:
     if ctx.ast is None or (rule.reads == "program" and _has_errors(ctx)):
         if first is None:
             return []
-        why = "the file does not parse" if ctx.ast is None else "it reads the whole program, which does not compile"
+        why = (
+            "the file does not parse"
+            if ctx.ast is None
+            else "it reads the whole program, which does not compile"
+        )
         where, loc = "on this file", first.loc
     else:
         from ..semantics.analysis import program_facts
@@ -368,7 +395,9 @@ def lint_paths(
                 continue
             seen.add(real)
             linted.append(source.path)
-            todo.append((shader, source, finder.for_file(source.path)))  # InputError: bad configuration
+            todo.append(
+                (shader, source, finder.for_file(source.path))
+            )  # InputError: bad configuration
         if todo:
             work.append(todo)
     return LintResult(lint_work(work), len(linted), linted)
@@ -394,7 +423,7 @@ def lint_work(work: list[list[tuple[Shader, Source, LintConfig]]]) -> list[Findi
 def _load_for_workers() -> None:
     """What every program's lint needs, loaded once before the work is split (fork shares it)."""
     from .. import semantics  # noqa: F401
-    from ..frontend import parser as parse, preprocess  # noqa: F401
+    from ..frontend import parser as parse  # noqa: F401
     from ..semantics.analysis import program_facts  # noqa: F401
     from . import recover  # noqa: F401
 
@@ -407,7 +436,15 @@ def _lint_files(work: list[list[tuple[Shader, Source, LintConfig]]]) -> list[Fin
         for shader, source, config in todo:
             tree = program_tree(source, shader)
             findings.extend(
-                lint_source(source, config, shader, tree.ast, tree.model, errors=tree.errors, dropped=tree.dropped)
+                lint_source(
+                    source,
+                    config,
+                    shader,
+                    tree.ast,
+                    tree.model,
+                    errors=tree.errors,
+                    dropped=tree.dropped,
+                )
             )
     return findings
 

@@ -29,7 +29,8 @@ from ..base import config
 
 TYPE_CHECKING = False
 if TYPE_CHECKING:
-    from typing import Callable, TypeVar
+    from collections.abc import Callable
+    from typing import TypeVar
 
     Work = TypeVar("Work")
     Result = TypeVar("Result")
@@ -81,8 +82,13 @@ def split_point(sizes: list[int]) -> int:
     return best
 
 
-def run_split(items: list, sizes: list[int], lint: Callable[[list], list], prepare: Callable[[], None],
-              registry: dict) -> list:
+def run_split(
+    items: list,
+    sizes: list[int],
+    lint: Callable[[list], list],
+    prepare: Callable[[], None],
+    registry: dict,
+) -> list:
     """`lint(items)`, computed as `lint(items[:k]) + lint(items[k:])` with the second half in a
     forked child when that pays (see the module docstring). `prepare()` loads what the child
     should inherit; `registry` is the report's table of source texts (path -> lines), whose

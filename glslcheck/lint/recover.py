@@ -20,15 +20,15 @@ that is not one of the units gives up (None), and the linter reports the error a
 from __future__ import annotations
 
 import re
-from ..base.regexes import compiled
-from ..base.records import replace
 
 from ..base.diagnostics import Location
+from ..base.records import replace
+from ..base.regexes import compiled
 from ..shadertoy.sources import Source
 
 TYPE_CHECKING = False  # not typing's: importing typing costs every start-up
 if TYPE_CHECKING:
-    from typing import Iterator
+    from collections.abc import Iterator
 
 _CALLED_NAME = compiled(r"([A-Za-z_]\w*)\s*\(")  # the name a function header declares
 

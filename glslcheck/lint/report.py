@@ -26,7 +26,7 @@ from .rules import all_rules
 
 TYPE_CHECKING = False  # not typing's: importing typing costs every start-up
 if TYPE_CHECKING:
-    from typing import Callable
+    from collections.abc import Callable
 
 SARIF_SCHEMA = "https://json.schemastore.org/sarif-2.1.0.json"
 SARIF_VERSION = "2.1.0"
@@ -40,7 +40,9 @@ def _no_surrogates(text: str, backslash: str = "\\") -> str:
         return text
     except UnicodeEncodeError:
         pass
-    return "".join(f"{backslash}u{ord(ch):04x}" if "\ud800" <= ch <= "\udfff" else ch for ch in text)
+    return "".join(
+        f"{backslash}u{ord(ch):04x}" if "\ud800" <= ch <= "\udfff" else ch for ch in text
+    )
 
 
 def _json_text(doc) -> str:
@@ -61,7 +63,9 @@ def summary_line(result: LintResult) -> str:
         return f"no findings in {files}"
     points = result.penalty
     deduction = f"-{_plural(points, 'point')}" if points else "0 points"
-    line = f"{_plural(len(result.findings), 'finding')} in {files}, estimated deduction: {deduction}"
+    line = (
+        f"{_plural(len(result.findings), 'finding')} in {files}, estimated deduction: {deduction}"
+    )
     errors = sum(1 for f in result.findings if f.severity == "error")
     if errors:
         line += (
@@ -115,7 +119,9 @@ def _not_run_block(notes: list[Finding]) -> str:
         if len(rules) == 1 and rules[0]:
             lines.append(f"{loc}: compile-error {rules[0]} could not run {rest}")
         elif all(rules):
-            lines.append(f"{loc}: compile-error {len(rules)} rules could not run {rest} ({', '.join(rules)})")
+            lines.append(
+                f"{loc}: compile-error {len(rules)} rules could not run {rest} ({', '.join(rules)})"
+            )
         else:
             lines.extend(f"{loc}: compile-error {rest}" for _ in rules)
     return "\n".join(lines)
@@ -136,7 +142,9 @@ def finding_record(f: Finding) -> dict:
         "help": f.help,
         # the other places a finding is about (every evaluation of a repeated value)
         "notes": [
-            {"line": n.loc.line, "column": n.loc.column, "message": n.message} for n in f.notes if n.loc is not None
+            {"line": n.loc.line, "column": n.loc.column, "message": n.message}
+            for n in f.notes
+            if n.loc is not None
         ],
     }
 
@@ -144,7 +152,11 @@ def finding_record(f: Finding) -> dict:
 def json_report(result: LintResult) -> str:
     doc = {
         "findings": [finding_record(f) for f in result.findings],
-        "summary": {"files": result.files, "findings": len(result.findings), "penalty": result.penalty},
+        "summary": {
+            "files": result.files,
+            "findings": len(result.findings),
+            "penalty": result.penalty,
+        },
     }
     return _json_text(doc)
 

@@ -38,7 +38,7 @@ from ..base.diagnostics import InputError
 
 TYPE_CHECKING = False  # not typing's: importing typing costs every start-up
 if TYPE_CHECKING:
-    from typing import Iterator
+    from collections.abc import Iterator
 
 CONFIG_FILES = ("glslcheck.toml", "pyproject.toml")
 # Bytes of pathspecs per git command: far under the command-line limit (Linux: at least 128 kB).
@@ -53,8 +53,10 @@ def _git(*args: str, cwd: str | None = None, stdin: bytes | None = None) -> byte
     if proc.returncode != 0:
         message = proc.stderr.decode("utf-8", "replace").strip().splitlines()
         command = next(a for a in args if not a.startswith("-"))
-        raise InputError(f"glslcheck lint --staged: error: git {command} failed"
-                         + (f" ({message[-1]})" if message else ""))
+        raise InputError(
+            f"glslcheck lint --staged: error: git {command} failed"
+            + (f" ({message[-1]})" if message else "")
+        )
     return proc.stdout
 
 
@@ -116,7 +118,9 @@ def _chunks(args: list[str], budget: int = ARGS_BUDGET) -> Iterator[list[str]]:
 def _config_names(top: str, staged: list[str]) -> list[str]:
     """The configuration files in the index in the staged files' folders and above them."""
     above = {d for n in staged for d in PurePosixPath(n).parents}
-    return _index_names(top, [str(d / c) if str(d) != "." else c for d in sorted(above) for c in CONFIG_FILES])
+    return _index_names(
+        top, [str(d / c) if str(d) != "." else c for d in sorted(above) for c in CONFIG_FILES]
+    )
 
 
 def _sibling_tabs(top: str, names: list[str]) -> list[str]:
@@ -156,7 +160,11 @@ def staged_checkout(skipped: list[tuple[str, str]] | None = None) -> Iterator[li
         raise InputError("glslcheck lint --staged: error: not inside a git work tree") from None
     entries = staged_entries(top)
     staged = [name for mode, name in entries if _is_regular(mode)]
-    others = [(name, NOT_FILES.get(mode, f"mode {mode}")) for mode, name in entries if not _is_regular(mode)]
+    others = [
+        (name, NOT_FILES.get(mode, f"mode {mode}"))
+        for mode, name in entries
+        if not _is_regular(mode)
+    ]
     # Mode 0700, so no other user writes in it; inside the git folder, so the configuration
     # search above it meets the repository's folders (as it would for the work tree's files),
     # not the shared temporary folder.

@@ -12,14 +12,13 @@ directive it cannot read.
 
 from __future__ import annotations
 
-from ..base.records import record, field
-
 from ..base.diagnostics import Diagnostic, Location
+from ..base.records import field, record
 from .textscan import DIRECTIVE_RE, Comment
 
 TYPE_CHECKING = False  # not typing's: importing typing costs every start-up
 if TYPE_CHECKING:
-    from typing import Iterable
+    from collections.abc import Iterable
 
 VERBS = {"ignore": False, "ignore-file": True}  # verb -> applies to the whole file
 
@@ -59,7 +58,9 @@ def find_suppressions(path: str, comments: Iterable[Comment]) -> list[Suppressio
             loc = Location(path, line, col, end_line, end_col)
             verb, names = m.group("verb"), m.group("names")
             if verb not in VERBS:
-                out.append(Suppression((), False, loc, m.group(0), problem=f"unknown directive `{verb}`"))
+                out.append(
+                    Suppression((), False, loc, m.group(0), problem=f"unknown directive `{verb}`")
+                )
                 continue
             parsed = tuple(n.strip() for n in (names or "").split(",") if n.strip())
             if not parsed:

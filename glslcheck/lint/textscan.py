@@ -20,12 +20,13 @@ GLSL has no string literals, so `//` and `/*` always open a comment outside one.
 
 from __future__ import annotations
 
-from ..base.regexes import compiled
-from ..base.records import record
 from enum import Enum
 
+from ..base.records import record
+from ..base.regexes import compiled
 
-class LineKind(str, Enum):
+
+class LineKind(str, Enum):  # noqa: UP042 (StrEnum formats differently in f-strings)
     BLANK = "blank"
     COMMENT = "comment"
     CODE = "code"
@@ -185,7 +186,9 @@ def scan(text: str) -> TextScan:
     return TextScan(lines, comments, kinds, code_lines)
 
 
-def _classify(code: str, code_col: int | None, comment_col: int | None, directive: bool) -> LineKind:
+def _classify(
+    code: str, code_col: int | None, comment_col: int | None, directive: bool
+) -> LineKind:
     if code_col is None:
         if comment_col is not None:
             return COMMENT
@@ -236,7 +239,13 @@ def inactive_lines(lines: list[str], defined: set[str] | None = None) -> set[int
                 stack[-1] = (not taken and value, taken or value, True)
         elif word == "endif" and stack:
             stack.pop()
-        if not all(a for a, _, _ in stack) and word not in ("if", "ifdef", "ifndef", "elif", "else"):
+        if not all(a for a, _, _ in stack) and word not in (
+            "if",
+            "ifdef",
+            "ifndef",
+            "elif",
+            "else",
+        ):
             out.add(number)
     return out
 

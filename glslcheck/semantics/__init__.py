@@ -27,7 +27,16 @@ TYPE_CHECKING = False  # not typing's: importing typing costs every start-up
 if TYPE_CHECKING:
     from typing import Any
 
-__all__ = ["check", "Model", "Symbol", "Constructor", "CallTarget", "CheckError", "ERROR", "ErrorType"]
+__all__ = [
+    "check",
+    "Model",
+    "Symbol",
+    "Constructor",
+    "CallTarget",
+    "CheckError",
+    "ERROR",
+    "ErrorType",
+]
 
 
 def check(parse_result: Any, tab: str = "Image", *, collect: bool = False) -> Model:
@@ -52,8 +61,11 @@ def check(parse_result: Any, tab: str = "Image", *, collect: bool = False) -> Mo
     finally:
         sys.setrecursionlimit(old)
     order = {s.path: i for i, s in enumerate(getattr(parse_result, "sources", []) or [])}
-    model.diagnostics.sort(key=lambda d: (order.get(d.loc.path, len(order)), d.loc.line, d.loc.column)
-                           if d.loc else (-1, 0, 0))
+    model.diagnostics.sort(
+        key=lambda d: (
+            (order.get(d.loc.path, len(order)), d.loc.line, d.loc.column) if d.loc else (-1, 0, 0)
+        )
+    )
     if not collect and model.errors:
         raise CheckError(model.errors)
     return model

@@ -10,8 +10,8 @@ an error; for glslangValidator: every wrapped program (glslcheck.shadertoy.wrapp
 from __future__ import annotations
 
 from ..base.diagnostics import Diagnostic, GlslError
-from ..shadertoy.wrapper import PASS_TABS, build_common_only, build_program
 from ..shadertoy.sources import Shader
+from ..shadertoy.wrapper import PASS_TABS, build_common_only, build_program
 
 _TABS = (*PASS_TABS, "GLSL")
 

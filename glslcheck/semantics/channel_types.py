@@ -23,7 +23,6 @@ uses of one channel keeps the errors of one of them: no binding could make both 
 
 from __future__ import annotations
 
-
 from ..frontend import syntax as A
 from ..language import builtin_functions as B
 from ..language import glsl_types as T
@@ -62,7 +61,9 @@ def _cube_like(model: Any, call: A.Call, i: int) -> bool:
             return False
 
         def fits(sampler: T.Type) -> bool:
-            return isinstance(B.resolve(call.callee, types[:i] + [sampler] + types[i + 1:]), B.Overload)
+            return isinstance(
+                B.resolve(call.callee, types[:i] + [sampler] + types[i + 1 :]), B.Overload
+            )
 
         return fits(SAMPLER_CUBE) and not fits(SAMPLER_2D)
     overloads = [f for f in model.functions.get(call.callee, []) if len(f.params) == len(call.args)]

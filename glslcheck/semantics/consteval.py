@@ -17,7 +17,8 @@ from ..language import glsl_types as T
 
 TYPE_CHECKING = False  # not typing's: importing typing costs every start-up
 if TYPE_CHECKING:
-    from typing import Any, Callable
+    from collections.abc import Callable
+    from typing import Any
 
 
 class _Unknown:
@@ -71,7 +72,7 @@ def build(t: T.Type, comps: list[Any]) -> Any:
     if t.is_vector:
         return tuple(comps)
     r = t.rows
-    return tuple(tuple(comps[c * r:(c + 1) * r]) for c in range(t.cols))
+    return tuple(tuple(comps[c * r : (c + 1) * r]) for c in range(t.cols))
 
 
 def known(*values: Any) -> bool:
@@ -299,17 +300,39 @@ def _smoothstep(e0: float, e1: float, x: float) -> float:
 _COMPONENTWISE: dict[str, Callable[..., Any]] = {
     "radians": lambda x: x * math.pi / 180.0,
     "degrees": lambda x: x * 180.0 / math.pi,
-    "sin": math.sin, "cos": math.cos, "tan": math.tan, "asin": math.asin, "acos": math.acos,
-    "sinh": math.sinh, "cosh": math.cosh, "tanh": math.tanh, "asinh": math.asinh,
-    "acosh": math.acosh, "atanh": math.atanh,
-    "pow": math.pow, "exp": math.exp, "log": math.log, "exp2": lambda x: 2.0 ** x,
-    "log2": math.log2, "sqrt": math.sqrt, "inversesqrt": lambda x: 1.0 / math.sqrt(x),
-    "abs": abs, "sign": _sign, "floor": math.floor, "ceil": math.ceil, "trunc": math.trunc,
-    "fract": _fract, "round": lambda x: math.floor(x + 0.5), "roundEven": round,
+    "sin": math.sin,
+    "cos": math.cos,
+    "tan": math.tan,
+    "asin": math.asin,
+    "acos": math.acos,
+    "sinh": math.sinh,
+    "cosh": math.cosh,
+    "tanh": math.tanh,
+    "asinh": math.asinh,
+    "acosh": math.acosh,
+    "atanh": math.atanh,
+    "pow": math.pow,
+    "exp": math.exp,
+    "log": math.log,
+    "exp2": lambda x: 2.0**x,
+    "log2": math.log2,
+    "sqrt": math.sqrt,
+    "inversesqrt": lambda x: 1.0 / math.sqrt(x),
+    "abs": abs,
+    "sign": _sign,
+    "floor": math.floor,
+    "ceil": math.ceil,
+    "trunc": math.trunc,
+    "fract": _fract,
+    "round": lambda x: math.floor(x + 0.5),
+    "roundEven": round,
     "mod": lambda x, y: x - y * math.floor(x / y),
-    "min": min, "max": max, "clamp": lambda x, lo, hi: min(max(x, lo), hi),
+    "min": min,
+    "max": max,
+    "clamp": lambda x, lo, hi: min(max(x, lo), hi),
     "mix": lambda x, y, a: x * (1.0 - a) + y * a if not isinstance(a, bool) else (y if a else x),
-    "step": lambda e, x: 0.0 if x < e else 1.0, "smoothstep": _smoothstep,
+    "step": lambda e, x: 0.0 if x < e else 1.0,
+    "smoothstep": _smoothstep,
 }
 
 

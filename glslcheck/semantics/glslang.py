@@ -20,8 +20,8 @@ import tempfile
 from dataclasses import dataclass, field
 
 from ..base.diagnostics import Diagnostic, InputError, Location
-from ..shadertoy.wrapper import PASS_TABS, Program, build_common_only, build_program
 from ..shadertoy.sources import Shader
+from ..shadertoy.wrapper import PASS_TABS, Program, build_common_only, build_program
 
 EXECUTABLE = "glslangValidator"
 TIMEOUT_SECONDS = 30
@@ -86,7 +86,9 @@ def validate(text: str, stage: str = "frag") -> Result:
     try:
         with os.fdopen(fd, "w", encoding="utf-8") as f:
             f.write(text)
-        proc = subprocess.run([exe, path], capture_output=True, text=True, errors="replace", timeout=TIMEOUT_SECONDS)
+        proc = subprocess.run(
+            [exe, path], capture_output=True, text=True, errors="replace", timeout=TIMEOUT_SECONDS
+        )
     except subprocess.TimeoutExpired:
         raise InputError(f"error: {EXECUTABLE} took more than {TIMEOUT_SECONDS} s") from None
     finally:
@@ -105,7 +107,9 @@ def diagnostics_for(program: Program, result: Result, rule: str = "glslang") -> 
     for line, message in result.messages:
         where = program.locate(line) if line is not None else None
         if where is None:
-            note = f" (line {line} of the Shadertoy wrapper for the {program.tab} tab)" if line else ""
+            note = (
+                f" (line {line} of the Shadertoy wrapper for the {program.tab} tab)" if line else ""
+            )
             out.append(Diagnostic(message + note, None, rule=rule))
         else:
             path, user_line = where

@@ -25,13 +25,14 @@ from __future__ import annotations
 
 import math
 
-from ..frontend import syntax as A
 from ..base.diagnostics import Diagnostic
+from ..frontend import syntax as A
 from .model import Symbol
 
 TYPE_CHECKING = False  # not typing's: importing typing costs every start-up
 if TYPE_CHECKING:
-    from typing import Any, Iterator
+    from collections.abc import Iterator
+    from typing import Any
 
 RULE = "undefined-behaviour"
 
@@ -44,7 +45,11 @@ def hazard_warnings(model: Any) -> list[Diagnostic]:
         if isinstance(definition, A.FunctionDefinition) and definition.body is not None:
             out += index_warnings(model, definition)
     entry = model.entry
-    if entry is not None and entry.name == "mainImage" and isinstance(entry.node, A.FunctionDefinition):
+    if (
+        entry is not None
+        and entry.name == "mainImage"
+        and isinstance(entry.node, A.FunctionDefinition)
+    ):
         out += output_warnings(model, entry.node)
     return out
 
@@ -67,7 +72,11 @@ def index_warnings(model: Any, definition: A.FunctionDefinition) -> list[Diagnos
         if model.const_value(node.index) is not None:
             continue
         base_t = model.type_of(node.base)
-        size = base_t.array_size if base_t.is_array else (base_t.cols if base_t.is_matrix else base_t.size)
+        size = (
+            base_t.array_size
+            if base_t.is_array
+            else (base_t.cols if base_t.is_matrix else base_t.size)
+        )
         if not size:
             continue
         bounds = _interval(model, node.index, loops, 0)
@@ -75,11 +84,16 @@ def index_warnings(model: Any, definition: A.FunctionDefinition) -> list[Diagnos
             continue
         what = "array" if base_t.is_array else ("matrix" if base_t.is_matrix else "vector")
         known = f" (it can be {_show(bounds)})" if all(map(math.isfinite, bounds)) else ""
-        out.append(Diagnostic(
-            f"this index may be outside 0..{size - 1} of the {what}{known}; an index out of range is "
-            "undefined behaviour, so the NumPy backend and the GPU may disagree",
-            node.index.loc, severity="warning", rule=RULE,
-            help=f"keep it in range, e.g. clamp(index, 0, {size - 1})"))
+        out.append(
+            Diagnostic(
+                f"this index may be outside 0..{size - 1} of the {what}{known}; an index out of range is "
+                "undefined behaviour, so the NumPy backend and the GPU may disagree",
+                node.index.loc,
+                severity="warning",
+                rule=RULE,
+                help=f"keep it in range, e.g. clamp(index, 0, {size - 1})",
+            )
+        )
     return out
 
 
@@ -91,8 +105,13 @@ def _show(bounds: tuple[float, float]) -> str:
 def _writes(model: Any, body: A.Node, sym: Any) -> bool:
     """Whether `body` assigns `sym` (=, op=, ++, --)."""
     for n in body.walk():
-        target = n.target if type(n) is A.Assignment else n.operand if type(n) in (A.Unary, A.Postfix) and \
-            n.op in ("++", "--") else None
+        target = (
+            n.target
+            if type(n) is A.Assignment
+            else n.operand
+            if type(n) in (A.Unary, A.Postfix) and n.op in ("++", "--")
+            else None
+        )
         if type(target) is A.Identifier and model.symbol_of(target) is sym:
             return True
     return False
@@ -143,7 +162,12 @@ def _step(model: Any, e: Any, sym: Any) -> int | None:
             c = model.const_value(e.value)
             if isinstance(c, int) and not isinstance(c, bool) and c > 0:
                 return c if e.op == "+=" else -c
-        if e.op == "=" and type(e.value) is A.Binary and e.value.op in ("+", "-") and _is(model, e.value.left, sym):
+        if (
+            e.op == "="
+            and type(e.value) is A.Binary
+            and e.value.op in ("+", "-")
+            and _is(model, e.value.left, sym)
+        ):
             c = model.const_value(e.value.right)
             if isinstance(c, int) and not isinstance(c, bool) and c > 0:
                 return c if e.value.op == "+" else -c
@@ -231,8 +255,10 @@ def _call(e: A.Call, rec) -> tuple[float, float]:
     name = e.callee
     if e.constructor and name in ("int", "uint") and len(args) == 1:
         # int(i) of an int keeps its interval; of a float: truncation keeps the bounds' floor/ceil
-        return (math.floor(args[0][0]) if math.isfinite(args[0][0]) else -INF,
-                math.ceil(args[0][1]) if math.isfinite(args[0][1]) else INF)
+        return (
+            math.floor(args[0][0]) if math.isfinite(args[0][0]) else -INF,
+            math.ceil(args[0][1]) if math.isfinite(args[0][1]) else INF,
+        )
     if name == "clamp" and len(args) == 3:
         (xlo, xhi), (lo, _), (_, hi) = args
         return (max(min(xlo, hi), lo), min(max(xhi, lo), hi))
@@ -255,24 +281,39 @@ def output_warnings(model: Any, definition: A.FunctionDefinition) -> list[Diagno
     if not params or definition.body is None:
         return []
     sym = model.symbol_of(params[0])
-    if sym is None or params[0].name is None or "out" not in params[0].qualifiers and \
-            "inout" not in params[0].qualifiers:
+    if (
+        sym is None
+        or params[0].name is None
+        or "out" not in params[0].qualifiers
+        and "inout" not in params[0].qualifiers
+    ):
         return []
     need = 0b0111 if model.tab in ("Image", "GLSL") else 0b1111
     flow = _Flow(model, sym, need)
     end = flow.block(definition.body.stmts, 0)
-    out = [Diagnostic(
-        f"'{sym.name}' is not written on this path to the return; its colour is then undefined, so the "
-        "NumPy backend and the GPU may disagree", loc, severity="warning", rule=RULE,
-        help=f"give '{sym.name}' a value before every return (or at the top of mainImage)")
-        for loc in flow.unwritten_returns]
+    out = [
+        Diagnostic(
+            f"'{sym.name}' is not written on this path to the return; its colour is then undefined, so the "
+            "NumPy backend and the GPU may disagree",
+            loc,
+            severity="warning",
+            rule=RULE,
+            help=f"give '{sym.name}' a value before every return (or at the top of mainImage)",
+        )
+        for loc in flow.unwritten_returns
+    ]
     if end is not None and end & need != need:
         where = definition.proto.name_loc if definition.proto.name_loc.line else definition.loc
-        out.append(Diagnostic(
-            f"'{sym.name}' is not written on every path through mainImage; where it is not, the pixel's "
-            "colour is undefined, so the NumPy backend and the GPU may disagree", where,
-            severity="warning", rule=RULE,
-            help=f"give '{sym.name}' a value on every path (or at the top of mainImage)"))
+        out.append(
+            Diagnostic(
+                f"'{sym.name}' is not written on every path through mainImage; where it is not, the pixel's "
+                "colour is undefined, so the NumPy backend and the GPU may disagree",
+                where,
+                severity="warning",
+                rule=RULE,
+                help=f"give '{sym.name}' a value on every path (or at the top of mainImage)",
+            )
+        )
     return out
 
 
@@ -351,11 +392,18 @@ class _Flow:
     def target_mask(self, target: Any) -> int:
         if type(target) is A.Identifier:
             return 0b1111 if self.model.symbol_of(target) is self.sym else 0
-        if type(target) is A.Field and self.model.is_swizzle(target) and type(target.base) is A.Identifier \
-                and self.model.symbol_of(target.base) is self.sym:
+        if (
+            type(target) is A.Field
+            and self.model.is_swizzle(target)
+            and type(target.base) is A.Identifier
+            and self.model.symbol_of(target.base) is self.sym
+        ):
             return sum(1 << i for i in self.model.swizzle_indices(target))
-        if type(target) is A.Index and type(target.base) is A.Identifier and \
-                self.model.symbol_of(target.base) is self.sym:
+        if (
+            type(target) is A.Index
+            and type(target.base) is A.Identifier
+            and self.model.symbol_of(target.base) is self.sym
+        ):
             i = self.model.const_value(target.index)
             return 1 << i if isinstance(i, int) and 0 <= i < 4 else 0
         return 0

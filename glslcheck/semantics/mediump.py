@@ -35,8 +35,9 @@ import re
 
 _COMMENTS = re.compile(r"//[^\n]*|/\*.*?\*/", re.S)
 _FLOAT_TYPES = r"(?:float|vec[234]|mat[234](?:x[234])?)"
-_MEDIUMP = re.compile(r"\bprecision\s+(mediump|lowp)\s+float\b|\b(mediump|lowp)\s+"
-                      + _FLOAT_TYPES + r"\b")
+_MEDIUMP = re.compile(
+    r"\bprecision\s+(mediump|lowp)\s+float\b|\b(mediump|lowp)\s+" + _FLOAT_TYPES + r"\b"
+)
 
 
 def mediump_declarations(shader) -> list[tuple[str, int, str]]:
@@ -46,7 +47,9 @@ def mediump_declarations(shader) -> list[tuple[str, int, str]]:
     for src in shader.sources():
         text = _COMMENTS.sub(lambda m: "\n" * m.group(0).count("\n"), src.text)
         for m in _MEDIUMP.finditer(text):
-            found.append((src.path, text.count("\n", 0, m.start()) + 1, " ".join(m.group(0).split())))
+            found.append(
+                (src.path, text.count("\n", 0, m.start()) + 1, " ".join(m.group(0).split()))
+            )
     return found
 
 
@@ -57,8 +60,10 @@ def mediump_notes(shader) -> tuple[str, ...]:
         return ()
     path, line, words = found[0]
     more = f" (and {len(found) - 1} more)" if len(found) > 1 else ""
-    return (f"{path}:{line}: `{words}`{more}: llvmpipe computes mediump/lowp float arithmetic in "
-            "float16, glslcheck's NumPy backend in float32; pixels are compared with the usual "
-            "tolerance (2/255), which float16's rounding (2^-11 relative per operation) stays "
-            "inside, but a float16 overflow past 65504 or a hash such as fract(sin(x) * 43758.5453) "
-            "differs; declare `precision highp float;` to compare like with like (glslcheck/semantics/mediump.py)",)
+    return (
+        f"{path}:{line}: `{words}`{more}: llvmpipe computes mediump/lowp float arithmetic in "
+        "float16, glslcheck's NumPy backend in float32; pixels are compared with the usual "
+        "tolerance (2/255), which float16's rounding (2^-11 relative per operation) stays "
+        "inside, but a float16 overflow past 65504 or a hash such as fract(sin(x) * 43758.5453) "
+        "differs; declare `precision highp float;` to compare like with like (glslcheck/semantics/mediump.py)",
+    )

@@ -9,11 +9,11 @@ in dictionaries keyed by `id(node)`; the model holds the AST so those ids stay v
 
 from __future__ import annotations
 
+from ..base.diagnostics import Diagnostic, GlslError
+from ..base.records import field, record
 from ..frontend import syntax as A
 from ..language import glsl_types as T
 from ..language.builtin_functions import Overload
-from ..base.diagnostics import Diagnostic, GlslError
-from ..base.records import field, record
 from .consteval import UNKNOWN  # the checker imports it anyway; a call-time import cost every call
 
 TYPE_CHECKING = False  # not typing's: importing typing costs every start-up
@@ -64,7 +64,7 @@ class Symbol:
     type: T.Type
     node: Any = None
     qualifier: str | None = None
-    function: "Symbol | None" = None
+    function: Symbol | None = None
     unique_name: str = ""
     const_value: Any = None
     params: list[tuple[str, T.Type, str]] = field(default_factory=list)
@@ -114,7 +114,7 @@ class Model:
         """The symbol an Identifier refers to, or the symbol a declaring node declares."""
         return self._symbols.get(id(node))
 
-    def call_target(self, call: Any) -> "CallTarget | None":
+    def call_target(self, call: Any) -> CallTarget | None:
         """What a call calls: a user function's Symbol, a built-in's Overload, or a Constructor
         (None for a call that did not check). Tell them apart with isinstance."""
         return self._calls.get(id(call))
@@ -157,7 +157,7 @@ class Model:
         if got is None:
             return list(definition.body.walk())
         if type(got) is tuple:  # sliced when first asked for
-            got = bodies[id(definition)] = self.nodes()[got[0]:got[1]]
+            got = bodies[id(definition)] = self.nodes()[got[0] : got[1]]
         return got
 
     def _body_spans(self) -> dict[int, Any]:

@@ -13,11 +13,11 @@ from .model import Symbol
 
 TYPE_CHECKING = False  # not typing's: importing typing costs every start-up
 if TYPE_CHECKING:
-    from typing import Callable
+    from collections.abc import Callable
 
 
 class Scope:
-    def __init__(self, parent: "Scope | None", kind: str) -> None:
+    def __init__(self, parent: Scope | None, kind: str) -> None:
         self.parent = parent
         self.kind = kind  # "builtin", "global", "function", "block", "for", "while", "switch"
         self.names: dict[str, Symbol] = {}

@@ -34,30 +34,46 @@ BLOCK_LAYOUTS = ("shared", "packed")
 def name_problem(name: str) -> tuple[str, str] | None:
     if name.startswith(RESERVED_PREFIXES):
         prefix = next(p for p in RESERVED_PREFIXES if name.startswith(p))
-        return (f"'{name}': names starting with '{prefix}' are reserved by WebGL (Shadertoy's browser rejects it)",
-                f"rename it, for example to '{name[len(prefix):] or 'value'}'")
+        return (
+            f"'{name}': names starting with '{prefix}' are reserved by WebGL (Shadertoy's browser rejects it)",
+            f"rename it, for example to '{name[len(prefix) :] or 'value'}'",
+        )
     if "__" in name:
-        return (f"'{name}': names containing '__' are reserved in GLSL ES (Shadertoy's browser rejects it)",
-                f"rename it, for example to '{name.replace('__', '_').strip('_') or 'value'}'")
+        return (
+            f"'{name}': names containing '__' are reserved in GLSL ES (Shadertoy's browser rejects it)",
+            f"rename it, for example to '{name.replace('__', '_').strip('_') or 'value'}'",
+        )
     if len(name) > MAX_NAME_LENGTH:
-        return (f"'{name[:20]}...': a name of {len(name)} characters; WebGL allows at most {MAX_NAME_LENGTH}",
-                "use a shorter name")
+        return (
+            f"'{name[:20]}...': a name of {len(name)} characters; WebGL allows at most {MAX_NAME_LENGTH}",
+            "use a shorter name",
+        )
     return None
 
 
 def ternary_problem(branch_type) -> tuple[str, str] | None:
     from ..language.glsl_types import StructType
 
-    kind = "arrays" if branch_type.is_array else "structs" if isinstance(branch_type, StructType) else None
+    kind = (
+        "arrays"
+        if branch_type.is_array
+        else "structs"
+        if isinstance(branch_type, StructType)
+        else None
+    )
     if kind is None:
         return None
-    return (f"WebGL does not allow '?:' on {kind} ('{branch_type}')",
-            "use if/else and assign the variable in each branch")
+    return (
+        f"WebGL does not allow '?:' on {kind} ('{branch_type}')",
+        "use if/else and assign the variable in each branch",
+    )
 
 
 def block_layout_problem(layout_ids) -> tuple[str, str] | None:
     bad = [i for i in layout_ids if i in BLOCK_LAYOUTS]
     if not bad:
         return None
-    return (f"WebGL allows only the std140 layout for uniform blocks, not '{bad[0]}'",
-            "write layout(std140) or leave the layout out")
+    return (
+        f"WebGL allows only the std140 layout for uniform blocks, not '{bad[0]}'",
+        "write layout(std140) or leave the layout out",
+    )

@@ -117,7 +117,9 @@ def channel_uniforms(channels) -> dict:
     chans = list(channels) + [None] * (4 - len(channels))
     values = {f"iChannel{i}": c for i, c in enumerate(chans)}
     values["iChannelResolution"] = tuple(
-        (0.0, 0.0, 0.0) if c is None else (float(c.texels.shape[1]), float(c.texels.shape[0]), 1.0) for c in chans)
+        (0.0, 0.0, 0.0) if c is None else (float(c.texels.shape[1]), float(c.texels.shape[0]), 1.0)
+        for c in chans
+    )
     return values
 
 
@@ -141,7 +143,10 @@ def load_bindings(shader: Shader) -> tuple[str | None, list[Binding]]:
         raise InputError(f"{spath}: error: {key}: {message}")
 
     if not isinstance(data, dict):
-        fail("the top level", "must be an object of tabs, e.g. {\"Image\": {\"iChannel0\": {\"buffer\": \"Buffer A\"}}}")
+        fail(
+            "the top level",
+            'must be an object of tabs, e.g. {"Image": {"iChannel0": {"buffer": "Buffer A"}}}',
+        )
     out: list[Binding] = []
     for tab, chans in data.items():
         if tab not in PASS_TABS:
@@ -161,42 +166,64 @@ def load_bindings(shader: Shader) -> tuple[str | None, list[Binding]]:
 
 def _binding(shader: Shader, tab: str, channel: int, spec, where: str, fail) -> Binding:
     if not isinstance(spec, dict):
-        fail(where, "must be an object with \"buffer\" or \"texture\"")
+        fail(where, 'must be an object with "buffer" or "texture"')
     kinds = [k for k in ("buffer", "texture") if k in spec]
     other = [k for k in spec if k not in ("buffer", "texture", "filter", "wrap", "vflip")]
     for k in other:
         if k in _UNSUPPORTED:
-            fail(f"{where}.{json.dumps(k)}", f"{k} inputs are not supported yet (tab {tab}, iChannel{channel})")
-        fail(f"{where}.{json.dumps(k)}", "unknown key (expected buffer or texture, filter, wrap, vflip)")
+            fail(
+                f"{where}.{json.dumps(k)}",
+                f"{k} inputs are not supported yet (tab {tab}, iChannel{channel})",
+            )
+        fail(
+            f"{where}.{json.dumps(k)}",
+            "unknown key (expected buffer or texture, filter, wrap, vflip)",
+        )
     if len(kinds) != 1:
-        fail(where, "needs exactly one of \"buffer\" (a tab) and \"texture\" (an image file)")
+        fail(where, 'needs exactly one of "buffer" (a tab) and "texture" (an image file)')
     kind = kinds[0]
     value = spec[kind]
     if not isinstance(value, str):
         fail(f"{where}.{json.dumps(kind)}", "must be a string")
     if kind == "buffer":
         if value == "Image":
-            fail(f"{where}.\"buffer\"", "the Image tab cannot be an input (a cycle that is no feedback: "
-                 "Shadertoy offers only Buffer A .. Buffer D)")
+            fail(
+                f'{where}."buffer"',
+                "the Image tab cannot be an input (a cycle that is no feedback: "
+                "Shadertoy offers only Buffer A .. Buffer D)",
+            )
         if value not in BUFFER_TABS:
-            fail(f"{where}.\"buffer\"", f"unknown tab {value!r} (expected one of {', '.join(BUFFER_TABS)})")
+            fail(
+                f'{where}."buffer"',
+                f"unknown tab {value!r} (expected one of {', '.join(BUFFER_TABS)})",
+            )
         if value not in shader.tabs:
-            fail(f"{where}.\"buffer\"", f"the shader has no {value} tab (no '{value}.glsl' in the folder)")
+            fail(
+                f'{where}."buffer"',
+                f"the shader has no {value} tab (no '{value}.glsl' in the folder)",
+            )
     filt, wrap, vflip = KIND_DEFAULTS[kind]
     filt = spec.get("filter", filt)
     wrap = spec.get("wrap", wrap)
     vflip = spec.get("vflip", vflip)
     if filt not in FILTERS:
-        fail(f"{where}.\"filter\"", f"must be one of {', '.join(FILTERS)}, not {json.dumps(filt)}")
+        fail(f'{where}."filter"', f"must be one of {', '.join(FILTERS)}, not {json.dumps(filt)}")
     if wrap not in WRAPS:
-        fail(f"{where}.\"wrap\"", f"must be one of {', '.join(WRAPS)}, not {json.dumps(wrap)}")
+        fail(f'{where}."wrap"', f"must be one of {', '.join(WRAPS)}, not {json.dumps(wrap)}")
     if not isinstance(vflip, bool):
-        fail(f"{where}.\"vflip\"", f"must be true or false, not {json.dumps(vflip)}")
+        fail(f'{where}."vflip"', f"must be true or false, not {json.dumps(vflip)}")
     if kind == "texture":
-        texture_path(shader, value, f"{where}.\"texture\"", fail)
-        read_image(folder_of(shader) / value, f"{where}.\"texture\"", fail)  # fail early
-    return Binding(tab, channel, value if kind == "buffer" else None, value if kind == "texture" else None,
-                   filt, wrap, vflip)
+        texture_path(shader, value, f'{where}."texture"', fail)
+        read_image(folder_of(shader) / value, f'{where}."texture"', fail)  # fail early
+    return Binding(
+        tab,
+        channel,
+        value if kind == "buffer" else None,
+        value if kind == "texture" else None,
+        filt,
+        wrap,
+        vflip,
+    )
 
 
 def texture_path(shader: Shader, name: str, where: str, fail) -> Path:
@@ -205,8 +232,11 @@ def texture_path(shader: Shader, name: str, where: str, fail) -> Path:
     folder = folder_of(shader).resolve()
     path = folder / name
     if Path(name).is_absolute() or not path.resolve().is_relative_to(folder):
-        fail(where, f"{name!r} is outside the shader's folder; textures are read from the folder "
-                    f"of the shader (copy the image there)")
+        fail(
+            where,
+            f"{name!r} is outside the shader's folder; textures are read from the folder "
+            f"of the shader (copy the image there)",
+        )
     return path
 
 
@@ -230,7 +260,9 @@ def read_image(path: Path, where: str, fail) -> np.ndarray:
             rgba = np.asarray(im.convert("RGBA"), dtype=np.float32)
     except (OSError, ValueError) as e:
         fail(where, f"cannot read the image {str(path)!r} ({e})")
-    except Exception as e:  # Pillow's decoders raise other types on a damaged or hostile file (bombs too)
+    except (
+        Exception
+    ) as e:  # Pillow's decoders raise other types on a damaged or hostile file (bombs too)
         fail(where, f"cannot read the image {str(path)!r} ({type(e).__name__}: {e})")
     return rgba / np.float32(255.0)
 
@@ -255,10 +287,11 @@ def needs_passes(shader: Shader) -> bool:
         return False
     if shader.channels is not None:
         return True
-    return (any(t in shader.tabs for t in BUFFER_TABS) or (folder_of(shader) / CHANNELS_FILE).is_file()
-            or ("Image" in shader.tabs and bool(channel_reads(shader, "Image"))))
-
-
+    return (
+        any(t in shader.tabs for t in BUFFER_TABS)
+        or (folder_of(shader) / CHANNELS_FILE).is_file()
+        or ("Image" in shader.tabs and bool(channel_reads(shader, "Image")))
+    )
 
 
 def input_files(shader: Shader) -> list[Path]:

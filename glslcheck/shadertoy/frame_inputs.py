@@ -6,8 +6,9 @@ lint`, which never renders.
 
 from __future__ import annotations
 
+from collections.abc import Callable
 from dataclasses import dataclass, fields
-from typing import Any, Callable
+from typing import Any
 
 from .wrapper import DEFAULT_SIZE, frame_uniforms, sample_offsets
 
@@ -47,8 +48,16 @@ class FrameInputs:
 
     def uniforms(self) -> dict:
         """`frame_uniforms` of this frame."""
-        return frame_uniforms(self.width, self.height, self.time, self.frame, self.mouse, self.date,
-                              self.time_delta, self.frame_rate)
+        return frame_uniforms(
+            self.width,
+            self.height,
+            self.time,
+            self.frame,
+            self.mouse,
+            self.date,
+            self.time_delta,
+            self.frame_rate,
+        )
 
     def keywords(self) -> dict:
         """The inputs as keyword arguments of a render."""
@@ -64,9 +73,15 @@ def frame_inputs(render: Callable) -> Callable:
     import inspect
 
     own = list(inspect.signature(render).parameters.values())
-    fed = [inspect.Parameter(f.name, inspect.Parameter.POSITIONAL_OR_KEYWORD, default=f.default, annotation=f.type)
-           for f in fields(FrameInputs)]
-    signature = inspect.Signature([own[0], *fed, *own[2:]], return_annotation=inspect.signature(render).return_annotation)
+    fed = [
+        inspect.Parameter(
+            f.name, inspect.Parameter.POSITIONAL_OR_KEYWORD, default=f.default, annotation=f.type
+        )
+        for f in fields(FrameInputs)
+    ]
+    signature = inspect.Signature(
+        [own[0], *fed, *own[2:]], return_annotation=inspect.signature(render).return_annotation
+    )
     names = [p.name for p in fed]
 
     @functools.wraps(render)

@@ -19,10 +19,10 @@ import errno
 import os
 import re
 import stat
-from ..base.regexes import compiled
-from ..base.records import record, field
 
 from ..base.diagnostics import InputError, register_source
+from ..base.records import field, record
+from ..base.regexes import compiled
 
 TYPE_CHECKING = False  # not typing's: importing typing costs every start-up
 if TYPE_CHECKING:
@@ -101,7 +101,9 @@ class Shader:
 
     tabs: dict[str, Source] = field(default_factory=dict)
     root: str = ""
-    channels: list | None = None  # bindings.Binding list of a Shadertoy JSON export (else channels.json)
+    channels: list | None = (
+        None  # bindings.Binding list of a Shadertoy JSON export (else channels.json)
+    )
 
     @property
     def image(self) -> Source | None:
@@ -141,7 +143,9 @@ def decode(data: bytes, path: str) -> str:
     try:
         text = data.decode("utf-8")
     except UnicodeDecodeError as e:
-        before = data[: e.start].decode("utf-8", "replace").replace("\r\n", "\n").replace("\r", "\n")
+        before = (
+            data[: e.start].decode("utf-8", "replace").replace("\r\n", "\n").replace("\r", "\n")
+        )
         line = before.count("\n") + 1
         col = len(before) - (before.rfind("\n") + 1) + 1
         raise InputError(
@@ -161,11 +165,15 @@ def read_source(path: str | os.PathLike, tab: str | None = None) -> Source:
         with os.fdopen(fd, "rb") as f:
             mode = os.fstat(f.fileno()).st_mode
             if not stat.S_ISREG(mode):
-                raise InputError(f"{spath}: error: {_not_regular(mode)}, not a regular file; glslcheck reads shader files")
+                raise InputError(
+                    f"{spath}: error: {_not_regular(mode)}, not a regular file; glslcheck reads shader files"
+                )
             data = f.read(MAX_FILE_BYTES + 1)  # never more, whatever the file's size claims
         if len(data) > MAX_FILE_BYTES:
             size = max(os.path.getsize(spath), len(data))
-            raise InputError(f"{spath}: error: the file is {size} bytes; glslcheck reads shader files up to {MAX_FILE_BYTES} bytes")
+            raise InputError(
+                f"{spath}: error: the file is {size} bytes; glslcheck reads shader files up to {MAX_FILE_BYTES} bytes"
+            )
     except InputError:
         raise
     except OSError as e:
@@ -202,13 +210,19 @@ def check_path(path: str | os.PathLike) -> None:
         os.stat(path)
     except OSError as e:
         text = os_error_text(e)
-        raise InputError(f"{path}: error: {'no such file or directory' if text == 'no such file' else text}") from None
+        raise InputError(
+            f"{path}: error: {'no such file or directory' if text == 'no such file' else text}"
+        ) from None
 
 
 def _not_regular(mode: int) -> str:
-    for test, what in ((stat.S_ISFIFO, "is a FIFO (named pipe)"), (stat.S_ISCHR, "is a character device"),
-                       (stat.S_ISBLK, "is a block device"), (stat.S_ISSOCK, "is a socket"),
-                       (stat.S_ISDIR, "is a directory")):
+    for test, what in (
+        (stat.S_ISFIFO, "is a FIFO (named pipe)"),
+        (stat.S_ISCHR, "is a character device"),
+        (stat.S_ISBLK, "is a block device"),
+        (stat.S_ISSOCK, "is a socket"),
+        (stat.S_ISDIR, "is a directory"),
+    ):
         if test(mode):
             return what
     return "is a special file"
@@ -232,8 +246,11 @@ def _is_tab_file(p: str) -> bool:
 
 def _is_shader_file(p: str) -> bool:
     suffix = path_suffix(p)
-    return os.path.isfile(p) and not path_name(p).startswith(".") and suffix.lower() in SHADER_EXTENSIONS and (
-        suffix != "" or tab_name(p) is not None
+    return (
+        os.path.isfile(p)
+        and not path_name(p).startswith(".")
+        and suffix.lower() in SHADER_EXTENSIONS
+        and (suffix != "" or tab_name(p) is not None)
     )
 
 
@@ -242,7 +259,9 @@ def load_shader(path: str | os.PathLike) -> Shader:
     p = posix_path(path)
     spath = str(path)
     check_path(spath)
-    if path_suffix(p).lower() == ".json" and os.path.isfile(p):  # Shadertoy's export of a whole shader
+    if path_suffix(p).lower() == ".json" and os.path.isfile(
+        p
+    ):  # Shadertoy's export of a whole shader
         from pathlib import Path
 
         return load_shadertoy_json(Path(p))
@@ -250,11 +269,15 @@ def load_shader(path: str | os.PathLike) -> Shader:
     if os.path.isdir(p):
         files = [f for f in folder_entries(p) if _is_tab_file(f)]
         if not files:
-            raise InputError(f"{spath}: error: the folder holds no Shadertoy tab files (Image.glsl, Common.glsl, ...)")
+            raise InputError(
+                f"{spath}: error: the folder holds no Shadertoy tab files (Image.glsl, Common.glsl, ...)"
+            )
         for f in files:
             src = read_source(f)
             if src.tab in shader.tabs:
-                raise InputError(f"{f}: error: a second file for the {src.tab} tab (first: {shader.tabs[src.tab].path})")
+                raise InputError(
+                    f"{f}: error: a second file for the {src.tab} tab (first: {shader.tabs[src.tab].path})"
+                )
             shader.tabs[src.tab] = src
         return shader
     src = read_source(p)
@@ -342,8 +365,10 @@ def read_json(path: str | os.PathLike) -> object:
     except json.JSONDecodeError as e:
         raise InputError(f"{spath}:{e.lineno}:{e.colno}: error: not valid JSON: {e.msg}") from None
     except RecursionError:
-        raise InputError(f"{spath}: error: too deeply nested JSON (arrays or objects inside each other "
-                         "deeper than the JSON reader goes)") from None
+        raise InputError(
+            f"{spath}: error: too deeply nested JSON (arrays or objects inside each other "
+            "deeper than the JSON reader goes)"
+        ) from None
 
 
 def json_kind(value) -> str:
@@ -383,7 +408,7 @@ def load_shadertoy_json(path) -> Shader:
         data, base = data["Shader"], f"{base}.Shader".lstrip(".")
     passes = data.get("renderpass") if isinstance(data, dict) else None
     if not isinstance(passes, list):
-        fail("the top level", "not a Shadertoy export: expected {\"Shader\": {\"renderpass\": [...]}}")
+        fail("the top level", 'not a Shadertoy export: expected {"Shader": {"renderpass": [...]}}')
     base = f"{base}.renderpass".lstrip(".")
     shader = Shader(root=spath, channels=[])
     outputs: dict[str, str] = {}  # output id -> Buffer tab
@@ -392,9 +417,9 @@ def load_shadertoy_json(path) -> Shader:
     for i, rp in enumerate(passes):
         at = f"{base}[{i}]"
         if not isinstance(rp, dict):
-            fail(at, f"must be an object with a \"code\" string, not {json_kind(rp)}")
+            fail(at, f'must be an object with a "code" string, not {json_kind(rp)}')
         if rp.get("code") is None:
-            fail(at, "needs a \"code\" string")
+            fail(at, 'needs a "code" string')
         code = typed(rp["code"], (str,), f"{at}.code", "a string")
         kind = typed(rp.get("type"), (str,), f"{at}.type", "a string") or "image"
         name = typed(rp.get("name"), (str,), f"{at}.name", "a string") or ""
@@ -404,7 +429,10 @@ def load_shadertoy_json(path) -> Shader:
             name = f"Buffer {m.group(1)}" if m else ""
             tab = name if name in BUFFER_TABS and name not in shader.tabs else next(buffers, None)
         if tab is None or tab in shader.tabs:
-            fail(f"{at} ({rp.get('name') or kind})", f"a pass of type {kind!r} glslcheck cannot place")
+            fail(
+                f"{at} ({rp.get('name') or kind})",
+                f"a pass of type {kind!r} glslcheck cannot place",
+            )
         src = Source(f"{spath} [{tab}]", code.replace("\r\n", "\n"), tab)
         register_source(src.path, src.text)
         shader.tabs[tab] = src
@@ -417,13 +445,17 @@ def load_shadertoy_json(path) -> Shader:
         for j, inp in enumerate(inputs):
             where = f"{at}.inputs[{j}]"
             typed(inp, (dict,), where, "an object")
-            shader.channels.append(_export_binding(shader, tab, inp or {}, outputs, Path(path).parent,
-                                                   fail, typed, where))
+            shader.channels.append(
+                _export_binding(
+                    shader, tab, inp or {}, outputs, Path(path).parent, fail, typed, where
+                )
+            )
     return shader
 
 
-def _export_binding(shader: Shader, tab: str, inp: dict, outputs: dict, folder: Path, fail, typed,
-                    at: str) -> Binding:
+def _export_binding(
+    shader: Shader, tab: str, inp: dict, outputs: dict, folder: Path, fail, typed, at: str
+) -> Binding:
     import json
     from pathlib import Path
 
@@ -431,8 +463,10 @@ def _export_binding(shader: Shader, tab: str, inp: dict, outputs: dict, folder: 
 
     channel = inp.get("channel")
     if type(channel) is not int or channel not in (0, 1, 2, 3):
-        fail(f"{at}.channel (the {tab} pass)",
-             f"an input without a channel 0-3: {json.dumps(inp, default=str)[:80]}")
+        fail(
+            f"{at}.channel (the {tab} pass)",
+            f"an input without a channel 0-3: {json.dumps(inp, default=str)[:80]}",
+        )
     where = f"the {tab} pass, iChannel{channel}"
     ctype = typed(inp.get("ctype", inp.get("type")), (str,), f"{at}.ctype", "a string")
     kind = _ST_INPUTS.get(ctype)
@@ -444,7 +478,10 @@ def _export_binding(shader: Shader, tab: str, inp: dict, outputs: dict, folder: 
     wrap = sampler.get("wrap", wrap)
     vflip = str(sampler.get("vflip", vflip)).lower() == "true"
     if filt not in FILTERS or wrap not in WRAPS:
-        fail(where, f"filter {filt!r} / wrap {wrap!r} (expected {', '.join(FILTERS)} / {', '.join(WRAPS)})")
+        fail(
+            where,
+            f"filter {filt!r} / wrap {wrap!r} (expected {', '.join(FILTERS)} / {', '.join(WRAPS)})",
+        )
     src = inp.get("src", inp.get("filepath"))
     src = typed(src, (str,), f"{at}.{'src' if 'src' in inp else 'filepath'}", "a string") or ""
     if kind == "buffer":
@@ -453,13 +490,18 @@ def _export_binding(shader: Shader, tab: str, inp: dict, outputs: dict, folder: 
         if buffer is None and m is not None:
             buffer = BUFFER_TABS[int(m.group(1))]
         if buffer is None or buffer not in shader.tabs:
-            fail(where, f"the buffer it reads ({src or inp.get('id')}) is not a pass of this export")
+            fail(
+                where, f"the buffer it reads ({src or inp.get('id')}) is not a pass of this export"
+            )
         # vflip is Shadertoy's UNPACK_FLIP_Y at an image's upload: it never applies to a buffer
         return Binding(tab, channel, buffer, None, filt, wrap, False)
     if not src:
-        fail(f"{at}.src ({where})", "an input of type texture needs a \"src\" path (/media/...)")
+        fail(f"{at}.src ({where})", 'an input of type texture needs a "src" path (/media/...)')
     local = f"media/{Path(src).name}"
     if not (folder / local).is_file():
-        fail(where, f"no such file {str(folder / local)!r} (Shadertoy's {src}: download it into the media/ "
-                    "folder beside the JSON)")
+        fail(
+            where,
+            f"no such file {str(folder / local)!r} (Shadertoy's {src}: download it into the media/ "
+            "folder beside the JSON)",
+        )
     return Binding(tab, channel, None, local, filt, wrap, vflip)

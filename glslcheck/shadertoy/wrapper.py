@@ -52,15 +52,39 @@ class Uniform:
 
 # In the order Shadertoy declares them (one line each; the line count of the prelude depends on it).
 UNIFORMS: tuple[Uniform, ...] = (
-    Uniform("iResolution", "vec3", (float(DEFAULT_SIZE[0]), float(DEFAULT_SIZE[1]), 1.0), None,
-            "viewport size in pixels: (width, height, 1.0)"),
+    Uniform(
+        "iResolution",
+        "vec3",
+        (float(DEFAULT_SIZE[0]), float(DEFAULT_SIZE[1]), 1.0),
+        None,
+        "viewport size in pixels: (width, height, 1.0)",
+    ),
     Uniform("iTime", "float", 0.0, None, "seconds since the start"),
-    Uniform("iChannelTime", "float", (0.0, 0.0, 0.0, 0.0), 4, "playback time of each input: 0 for images and buffers, as Shadertoy (shadertoy/channels.py)"),
-    Uniform("iMouse", "vec4", (0.0, 0.0, 0.0, 0.0), None,
-            "xy: position while the button is down, zw: where the click started (signs: SHADERTOY.md)"),
-    Uniform("iDate", "vec4", DEFAULT_DATE, None, "(year, month 0-11, day 1-31, seconds since midnight)"),
+    Uniform(
+        "iChannelTime",
+        "float",
+        (0.0, 0.0, 0.0, 0.0),
+        4,
+        "playback time of each input: 0 for images and buffers, as Shadertoy (shadertoy/channels.py)",
+    ),
+    Uniform(
+        "iMouse",
+        "vec4",
+        (0.0, 0.0, 0.0, 0.0),
+        None,
+        "xy: position while the button is down, zw: where the click started (signs: SHADERTOY.md)",
+    ),
+    Uniform(
+        "iDate", "vec4", DEFAULT_DATE, None, "(year, month 0-11, day 1-31, seconds since midnight)"
+    ),
     Uniform("iSampleRate", "float", 44100.0, None, "sound sample rate"),
-    Uniform("iChannelResolution", "vec3", ((0.0, 0.0, 0.0),) * 4, 4, "(w, h, 1) of each input, 0 when unbound"),
+    Uniform(
+        "iChannelResolution",
+        "vec3",
+        ((0.0, 0.0, 0.0),) * 4,
+        4,
+        "(w, h, 1) of each input, 0 when unbound",
+    ),
     Uniform("iFrame", "int", 0, None, "frame number, from 0"),
     Uniform("iTimeDelta", "float", 1.0 / 60.0, None, "seconds per frame"),
     Uniform("iFrameRate", "float", 60.0, None, "frames per second"),
@@ -78,6 +102,8 @@ def fed_uniform(name: str, type_name: str) -> Uniform | None:
     on both backends). A plain file that declares `uniform vec3 iResolution;` gets the size."""
     u = UNIFORMS_BY_NAME.get(name)
     return u if u is not None and u.type_name == type_name else None
+
+
 # Shadertoy compiles the Common tab on its own with only these declared.
 COMMON_ONLY_UNIFORMS: tuple[str, ...] = ("iDate", "iSampleRate")
 
@@ -121,14 +147,26 @@ def as_date(date) -> tuple[float, float, float, float]:
 
     if isinstance(date, datetime.datetime):
         midnight = date.replace(hour=0, minute=0, second=0, microsecond=0)
-        return (float(date.year), float(date.month - 1), float(date.day), (date - midnight).total_seconds())
+        return (
+            float(date.year),
+            float(date.month - 1),
+            float(date.day),
+            (date - midnight).total_seconds(),
+        )
     year, month, day, seconds = date
     return (float(year), float(month), float(day), float(seconds))
 
 
-def frame_uniforms(width: int, height: int, time: float = 0.0, frame: int = 0,
-                   mouse=(0.0, 0.0, 0.0, 0.0), date=None, time_delta: float = 1.0 / 60.0,
-                   frame_rate: float = 60.0) -> dict:
+def frame_uniforms(
+    width: int,
+    height: int,
+    time: float = 0.0,
+    frame: int = 0,
+    mouse=(0.0, 0.0, 0.0, 0.0),
+    date=None,
+    time_delta: float = 1.0 / 60.0,
+    frame_rate: float = 60.0,
+) -> dict:
     """The values of one frame's Shadertoy uniforms, as every backend sets them (the others keep
     their table defaults): iResolution (width, height, 1), iTime, iFrame, iMouse, iDate
     (`as_date`), iTimeDelta, iFrameRate."""
@@ -236,8 +274,7 @@ def footer(tab: str = "Image", *, samples_offset: bool = False) -> str:
         coord = f"gl_FragCoord.xy + {OFFSET_UNIFORM}"
     out = "vec4(color.xyz, 1.0)" if tab == "Image" else "color"
     return (
-        decl
-        + "void main() {\n"
+        decl + "void main() {\n"
         f"    {OUTPUT_NAME} = vec4(1.0, 1.0, 1.0, 1.0);\n"
         "    vec4 color = vec4(1e20);\n"
         f"    mainImage(color, {coord});\n"
@@ -262,14 +299,18 @@ def build_program(shader: Shader, tab: str = "Image", *, samples_offset: bool = 
         raise InputError(f"{shader.root}: error: no {tab} tab")
     if src.is_plain_glsl:
         if samples_offset:
-            raise InputError(f"{src.path}: error: supersampling needs a Shadertoy tab (mainImage), "
-                             "not a plain GLSL file with its own main()")
+            raise InputError(
+                f"{src.path}: error: supersampling needs a Shadertoy tab (mainImage), "
+                "not a plain GLSL file with its own main()"
+            )
         b = _Builder()
         b.add_source(src)
         return b.program("GLSL")
     if tab not in PASS_TABS:
-        raise InputError(f"{src.path}: error: the {tab} tab is not rendered by glslcheck "
-                         f"(supported: {', '.join(PASS_TABS)})")
+        raise InputError(
+            f"{src.path}: error: the {tab} tab is not rendered by glslcheck "
+            f"(supported: {', '.join(PASS_TABS)})"
+        )
     b = _Builder()
     b.add(prelude())
     if shader.common is not None:
@@ -290,4 +331,3 @@ def build_common_only(shader: Shader) -> Program:
     b.add_source(common)
     b.add("void main() {}\n")
     return b.program("Common")
-

@@ -44,15 +44,15 @@ import os
 import statistics
 import time as _time
 import warnings
+from collections.abc import Callable, Sequence
 from dataclasses import dataclass, field
-from typing import Callable, Sequence
 
 import numpy as np
 
-from .compare import compare
 from ..backends import registry
 from ..base.precision import PRECISIONS
 from ..shadertoy.sources import Shader, load_shader
+from .compare import compare
 
 SAMPLES = (1, 4, 16)
 REFERENCE = ("numpy", "float64", 16)  # backend, precision, samples
@@ -60,8 +60,18 @@ DEFAULT_SIZE = (400, 225)
 DEFAULT_RUNS = 3
 ONE_STEP = 1.0 / 255.0
 
-JSON_KEYS = ("shader", "backend", "precision", "samples", "median_ms", "ratio_to_gl",
-             "max_abs_error", "mean_abs_error", "psnr_db", "pixels_over_1_255")
+JSON_KEYS = (
+    "shader",
+    "backend",
+    "precision",
+    "samples",
+    "median_ms",
+    "ratio_to_gl",
+    "max_abs_error",
+    "mean_abs_error",
+    "psnr_db",
+    "pixels_over_1_255",
+)
 
 
 @dataclass(frozen=True, slots=True)
@@ -75,7 +85,9 @@ class Config:
     @property
     def label(self) -> str:
         """Short name for tables and plots: 'gl x4', 'f16 x16'."""
-        several = len(registry.get(self.backend).precisions) > 1  # the NumPy engine: named by its precision
+        several = (
+            len(registry.get(self.backend).precisions) > 1
+        )  # the NumPy engine: named by its precision
         name = "f" + self.precision.removeprefix("float") if several else self.backend
         return f"{name} x{self.samples}"
 
@@ -84,7 +96,9 @@ class Config:
         return (self.backend, self.precision, self.samples) == REFERENCE
 
 
-def configurations(samples: Sequence[int] = SAMPLES, webgl: bool = False, compiled: bool = False) -> list[Config]:
+def configurations(
+    samples: Sequence[int] = SAMPLES, webgl: bool = False, compiled: bool = False
+) -> list[Config]:
     """GL first (its one-sample time is the unit of `ratio_to_gl`), then WebGL (headless
     Chromium) and the compiled engine (when asked for), then NumPy by precision."""
     configs = [Config("gl", "float32", s) for s in samples]
@@ -207,7 +221,9 @@ def bench_shader(
     with warnings.catch_warnings():
         # float16 overflows on purpose (that is what is being measured): no warning per render.
         warnings.simplefilter("ignore", RuntimeWarning)
-        for config in configs:  # warm-up; renders are deterministic, so its image is the one measured
+        for (
+            config
+        ) in configs:  # warm-up; renders are deterministic, so its image is the one measured
             images[config], _ = render(config)
             if step:
                 step(f"{name} {config.label} warm-up")
@@ -224,12 +240,17 @@ def bench_shader(
             reference = numpy_prog.render(**kwargs, samples=n, precision=precision)
 
     medians = {c: statistics.median(times[c]) for c in configs}
-    gl_one = next((medians[c] for c in configs if c.backend == registry.REFERENCE_DRIVER and c.samples == 1), None)
+    gl_one = next(
+        (medians[c] for c in configs if c.backend == registry.REFERENCE_DRIVER and c.samples == 1),
+        None,
+    )
     rows = []
     for config in configs:
         max_err, mean_err, psnr, over = measure_error(images[config], reference)
         ratio = medians[config] / gl_one if gl_one else math.nan
-        rows.append(Row(name, config, medians[config], ratio, max_err, mean_err, psnr, over, times[config]))
+        rows.append(
+            Row(name, config, medians[config], ratio, max_err, mean_err, psnr, over, times[config])
+        )
     mark_pareto(rows)
     return rows
 
@@ -241,7 +262,9 @@ def mark_pareto(rows: Sequence[Row]) -> list[Row]:
     """
     front: list[Row] = []
     for shader in dict.fromkeys(r.shader for r in rows):
-        mine = sorted((r for r in rows if r.shader == shader), key=lambda r: (r.median_ms, r.mean_abs_error))
+        mine = sorted(
+            (r for r in rows if r.shader == shader), key=lambda r: (r.median_ms, r.mean_abs_error)
+        )
         best = math.inf
         for r in mine:
             r.pareto = r.mean_abs_error < best
@@ -254,10 +277,23 @@ def mark_pareto(rows: Sequence[Row]) -> list[Row]:
 # ---------------------------------------------------------------------------------------------
 # Text table.
 
-TABLE_NOTE = ("error: RGB as displayed (clamped to [0, 1]) against NumPy float64 at 16 samples per pixel;"
-               " x GL@1: time over GL at 1 sample, same run; * = Pareto front (time, mean abs error)")
-HEADER = ("config", "backend", "precision", "samples", "median ms", "x GL@1",
-          "max abs err", "mean abs err", "PSNR dB", "px > 1/255", "front")
+TABLE_NOTE = (
+    "error: RGB as displayed (clamped to [0, 1]) against NumPy float64 at 16 samples per pixel;"
+    " x GL@1: time over GL at 1 sample, same run; * = Pareto front (time, mean abs error)"
+)
+HEADER = (
+    "config",
+    "backend",
+    "precision",
+    "samples",
+    "median ms",
+    "x GL@1",
+    "max abs err",
+    "mean abs err",
+    "PSNR dB",
+    "px > 1/255",
+    "front",
+)
 
 
 def _g(v: float) -> str:
@@ -266,14 +302,27 @@ def _g(v: float) -> str:
 
 def row_cells(r: Row) -> tuple[str, ...]:
     """A row's cells under HEADER, as the text table (and glslcheck report's table) shows them."""
-    return (r.config.label, r.config.backend, r.config.precision, str(r.config.samples),
-            f"{r.median_ms:.1f}", f"{r.ratio_to_gl:.2f}", _g(r.max_abs_error), _g(r.mean_abs_error),
-            "inf" if math.isinf(r.psnr_db) else f"{r.psnr_db:.1f}", str(r.pixels_over_1_255),
-            "*" if r.pareto else "")
+    return (
+        r.config.label,
+        r.config.backend,
+        r.config.precision,
+        str(r.config.samples),
+        f"{r.median_ms:.1f}",
+        f"{r.ratio_to_gl:.2f}",
+        _g(r.max_abs_error),
+        _g(r.mean_abs_error),
+        "inf" if math.isinf(r.psnr_db) else f"{r.psnr_db:.1f}",
+        str(r.pixels_over_1_255),
+        "*" if r.pareto else "",
+    )
 
 
-def format_table(rows: Sequence[Row], size: tuple[int, int] | None = None, runs: int | None = None,
-                 time: float | None = None) -> str:
+def format_table(
+    rows: Sequence[Row],
+    size: tuple[int, int] | None = None,
+    runs: int | None = None,
+    time: float | None = None,
+) -> str:
     """A table per shader; '*' in the last column marks the Pareto front (time against mean error)."""
     out = []
     for shader in dict.fromkeys(r.shader for r in rows):
@@ -289,7 +338,10 @@ def format_table(rows: Sequence[Row], size: tuple[int, int] | None = None, runs:
         cells = [HEADER] + [row_cells(r) for r in mine]
         widths = [max(len(row[i]) for row in cells) for i in range(len(HEADER))]
         for row in cells:
-            parts = [c.ljust(w) if i in (0, 1, 2) else c.rjust(w) for i, (c, w) in enumerate(zip(row, widths))]
+            parts = [
+                c.ljust(w) if i in (0, 1, 2) else c.rjust(w)
+                for i, (c, w) in enumerate(zip(row, widths))
+            ]
             out.append("  " + "  ".join(parts).rstrip())
         out.append("")
     out.append(TABLE_NOTE)
@@ -299,7 +351,14 @@ def format_table(rows: Sequence[Row], size: tuple[int, int] | None = None, runs:
 # ---------------------------------------------------------------------------------------------
 # The plot: time (x, log) against mean abs error (y, log), one panel per shader. Pillow only.
 
-COLOURS = {"gl": (40, 40, 40), "webgl": (148, 103, 189), "compiled": (140, 86, 75), "float16": (214, 39, 40), "float32": (31, 119, 180), "float64": (44, 160, 44)}
+COLOURS = {
+    "gl": (40, 40, 40),
+    "webgl": (148, 103, 189),
+    "compiled": (140, 86, 75),
+    "float16": (214, 39, 40),
+    "float32": (31, 119, 180),
+    "float64": (44, 160, 44),
+}
 FRONT_COLOUR = (255, 127, 14)
 GRID = (225, 225, 225)
 SCALE = 2  # drawn at twice the size, then downsampled: Pillow's shapes have no antialiasing
@@ -326,13 +385,19 @@ def _colour(config: Config) -> tuple[int, int, int]:
 def _marker(draw, x: float, y: float, samples: int, colour, r: float) -> None:
     """1 sample: circle; 4: square; 16 (and more): diamond."""
     if samples <= 1:
-        draw.ellipse([x - r, y - r, x + r, y + r], fill=colour, outline=(255, 255, 255), width=SCALE)
+        draw.ellipse(
+            [x - r, y - r, x + r, y + r], fill=colour, outline=(255, 255, 255), width=SCALE
+        )
     elif samples <= 4:
         q = r * 0.9
-        draw.rectangle([x - q, y - q, x + q, y + q], fill=colour, outline=(255, 255, 255), width=SCALE)
+        draw.rectangle(
+            [x - q, y - q, x + q, y + q], fill=colour, outline=(255, 255, 255), width=SCALE
+        )
     else:
         q = r * 1.25
-        draw.polygon([(x, y - q), (x + q, y), (x, y + q), (x - q, y)], fill=colour, outline=(255, 255, 255))
+        draw.polygon(
+            [(x, y - q), (x + q, y), (x, y + q), (x - q, y)], fill=colour, outline=(255, 255, 255)
+        )
 
 
 def _decades(lo: float, hi: float) -> tuple[int, int]:
@@ -341,7 +406,7 @@ def _decades(lo: float, hi: float) -> tuple[int, int]:
 
 
 def _tick_text(e: int, unit: str = "") -> str:
-    v = 10.0 ** e
+    v = 10.0**e
     if -3 <= e <= 4:
         text = f"{v:g}"
     else:
@@ -349,9 +414,14 @@ def _tick_text(e: int, unit: str = "") -> str:
     return text + unit
 
 
-LEGEND_COLOURS = {"gl": "GL (llvmpipe, float32)", "webgl": "WebGL (ANGLE, SwiftShader)",
-                  "compiled": "compiled engine (numba, float32)", "float16": "NumPy float16",
-                  "float32": "NumPy float32", "float64": "NumPy float64"}
+LEGEND_COLOURS = {
+    "gl": "GL (llvmpipe, float32)",
+    "webgl": "WebGL (ANGLE, SwiftShader)",
+    "compiled": "compiled engine (numba, float32)",
+    "float16": "NumPy float16",
+    "float32": "NumPy float32",
+    "float64": "NumPy float64",
+}
 LEGEND_SHAPES = ("1 sample", "4 samples", "16 samples", "Pareto front (ringed)")
 
 
@@ -397,7 +467,9 @@ def write_plot(rows: Sequence[Row], path: str | os.PathLike, title: str | None =
     if draw.textlength(title, font=f_title) > width - 20 * S and " (" in title:
         head, tail = title.split(" (", 1)
         title = head + "\n(" + tail
-    draw.multiline_text((width // 2, title_h // 2), title, font=f_title, fill=(0, 0, 0), anchor="mm", align="center")
+    draw.multiline_text(
+        (width // 2, title_h // 2), title, font=f_title, fill=(0, 0, 0), anchor="mm", align="center"
+    )
 
     # Shared axes: the same ranges in every panel, so panels compare at a glance.
     times = [r.median_ms for r in rows if r.median_ms > 0]
@@ -420,39 +492,62 @@ def write_plot(rows: Sequence[Row], path: str | os.PathLike, title: str | None =
                 return yz
             return y1 - (math.log10(err) - ey0) / (ey1 - ey0) * (y1 - y0)
 
-        draw.text(((x0 + x1) // 2, oy + top // 2), os.path.basename(shader.rstrip("/")) or shader,
-                  font=f_axis, fill=(0, 0, 0), anchor="mm")
+        draw.text(
+            ((x0 + x1) // 2, oy + top // 2),
+            os.path.basename(shader.rstrip("/")) or shader,
+            font=f_axis,
+            fill=(0, 0, 0),
+            anchor="mm",
+        )
         # Grid, minor ticks and labels.
         for e in range(tx0, tx1 + 1):
             for m in range(1, 10):
                 v = math.log10(m) + e
                 if v > tx1:
                     break
-                x = X(10 ** v)
+                x = X(10**v)
                 draw.line([(x, y0), (x, yz)], fill=GRID if m == 1 else (243, 243, 243), width=S)
-            draw.text((X(10 ** e), yz + 8 * S), _tick_text(e), font=f_tick, fill=(60, 60, 60), anchor="mt")
+            draw.text(
+                (X(10**e), yz + 8 * S), _tick_text(e), font=f_tick, fill=(60, 60, 60), anchor="mt"
+            )
         for e in range(ey0, ey1 + 1):
             for m in range(1, 10):
                 v = math.log10(m) + e
                 if v > ey1:
                     break
-                y = Y(10 ** v)
+                y = Y(10**v)
                 draw.line([(x0, y), (x1, y)], fill=GRID if m == 1 else (243, 243, 243), width=S)
-            draw.text((x0 - 6 * S, Y(10 ** e)), _tick_text(e), font=f_tick, fill=(60, 60, 60), anchor="rm")
+            draw.text(
+                (x0 - 6 * S, Y(10**e)), _tick_text(e), font=f_tick, fill=(60, 60, 60), anchor="rm"
+            )
         draw.text((x0 - 6 * S, yz), "0", font=f_tick, fill=(60, 60, 60), anchor="rm")
         draw.line([(x0, yz), (x1, yz)], fill=GRID, width=S)
         # The axis break between the log range and the zero row.
         yb = (y1 + yz) / 2
         draw.rectangle([x0 - 3 * S, yb - 4 * S, x0 + 3 * S, yb + 4 * S], fill=(255, 255, 255))
         for d in (-3 * S, 3 * S):
-            draw.line([(x0 - 6 * S, yb + d + 2 * S), (x0 + 6 * S, yb + d - 2 * S)], fill=(0, 0, 0), width=S)
+            draw.line(
+                [(x0 - 6 * S, yb + d + 2 * S), (x0 + 6 * S, yb + d - 2 * S)],
+                fill=(0, 0, 0),
+                width=S,
+            )
         draw.line([(x0, y0), (x0, yz)], fill=(0, 0, 0), width=S)
         draw.line([(x0, yz), (x1, yz)], fill=(0, 0, 0), width=S)
-        draw.text(((x0 + x1) // 2, oy + ph - 18 * S), "median render time (ms, log scale)",
-                  font=f_axis, fill=(0, 0, 0), anchor="mm")
+        draw.text(
+            ((x0 + x1) // 2, oy + ph - 18 * S),
+            "median render time (ms, log scale)",
+            font=f_axis,
+            fill=(0, 0, 0),
+            anchor="mm",
+        )
         ylabel = Image.new("RGB", (int(y1 - y0 + zero_gap), 18 * S), (255, 255, 255))
-        ImageDraw.Draw(ylabel).text((ylabel.width // 2, ylabel.height // 2),
-                                    "mean abs error vs reference (log)", font=f_axis, fill=(0, 0, 0), anchor="mm")
+        ImageDraw.Draw(ylabel).text(
+            (ylabel.width // 2, ylabel.height // 2),
+            "mean abs error vs reference (log)",
+            font=f_axis,
+            fill=(0, 0, 0),
+            anchor="mm",
+        )
         ylabel = ylabel.rotate(90, expand=True)
         img.paste(ylabel, (int(ox + 8 * S), int(y0)))
 
@@ -469,9 +564,23 @@ def write_plot(rows: Sequence[Row], path: str | os.PathLike, title: str | None =
             tag = (pts[0][0] + 5 * S, y0 + 4 * S)
             draw.text(tag, "Pareto front", font=f_label, fill=FRONT_COLOUR, anchor="lt")
             # Labels keep off the front line and its own label.
-            taken = [(min(a[0], b[0]) - 3 * S, min(a[1], b[1]) - 3 * S, max(a[0], b[0]) + 3 * S, max(a[1], b[1]) + 3 * S)
-                     for a, b in zip(line, line[1:])]
-            taken.append((tag[0], tag[1], tag[0] + draw.textlength("Pareto front", font=f_label), tag[1] + 14 * S))
+            taken = [
+                (
+                    min(a[0], b[0]) - 3 * S,
+                    min(a[1], b[1]) - 3 * S,
+                    max(a[0], b[0]) + 3 * S,
+                    max(a[1], b[1]) + 3 * S,
+                )
+                for a, b in zip(line, line[1:])
+            ]
+            taken.append(
+                (
+                    tag[0],
+                    tag[1],
+                    tag[0] + draw.textlength("Pareto front", font=f_label),
+                    tag[1] + 14 * S,
+                )
+            )
         else:
             taken = []
         taken.append((x0, yz - 2 * S, x1, yz + 2 * S))  # the zero row's axis line
@@ -482,8 +591,16 @@ def write_plot(rows: Sequence[Row], path: str | os.PathLike, title: str | None =
         for r in mine:
             x, y = X(r.median_ms), Y(r.mean_abs_error)
             if r.pareto:
-                draw.ellipse([x - r_mark - 4 * S, y - r_mark - 4 * S, x + r_mark + 4 * S, y + r_mark + 4 * S],
-                             outline=FRONT_COLOUR, width=2 * S)
+                draw.ellipse(
+                    [
+                        x - r_mark - 4 * S,
+                        y - r_mark - 4 * S,
+                        x + r_mark + 4 * S,
+                        y + r_mark + 4 * S,
+                    ],
+                    outline=FRONT_COLOUR,
+                    width=2 * S,
+                )
             _marker(draw, x, y, r.config.samples, _colour(r.config), r_mark)
             taken.append((x - r_mark, y - r_mark, x + r_mark, y + r_mark))
             placed.append((r, x, y))
@@ -491,28 +608,49 @@ def write_plot(rows: Sequence[Row], path: str | os.PathLike, title: str | None =
             text = r.config.label + (" (ref)" if r.config.is_reference else "")
             tw, th = draw.textbbox((0, 0), text, font=f_label)[2:]
             d = r_mark + (8 if r.pareto else 3) * S
-            options = [(x + d, y - th / 2), (x - d - tw, y - th / 2), (x - tw / 2, y - d - th),
-                       (x - tw / 2, y + d), (x + d, y - th - 2 * S), (x + d, y + 2 * S),
-                       (x - d - tw, y - th - 2 * S), (x - d - tw, y + 2 * S)]
+            options = [
+                (x + d, y - th / 2),
+                (x - d - tw, y - th / 2),
+                (x - tw / 2, y - d - th),
+                (x - tw / 2, y + d),
+                (x + d, y - th - 2 * S),
+                (x + d, y + 2 * S),
+                (x - d - tw, y - th - 2 * S),
+                (x - d - tw, y + 2 * S),
+            ]
 
             def overlap(box):
-                return sum(max(0, min(box[2], b[2]) - max(box[0], b[0])) * max(0, min(box[3], b[3]) - max(box[1], b[1]))
-                           for b in taken)
+                return sum(
+                    max(0, min(box[2], b[2]) - max(box[0], b[0]))
+                    * max(0, min(box[3], b[3]) - max(box[1], b[1]))
+                    for b in taken
+                )
 
             def outside(box):
                 return box[0] < x0 or box[2] > x1 or box[1] < y0 - 4 * S or box[3] > yz + 10 * S
 
-            best = min(options, key=lambda o: (outside((o[0], o[1], o[0] + tw, o[1] + th)),
-                                               overlap((o[0], o[1], o[0] + tw, o[1] + th))))
+            best = min(
+                options,
+                key=lambda o: (
+                    outside((o[0], o[1], o[0] + tw, o[1] + th)),
+                    overlap((o[0], o[1], o[0] + tw, o[1] + th)),
+                ),
+            )
             box = (best[0], best[1], best[0] + tw, best[1] + th)
             taken.append(box)
             draw.text(best[:2], text, font=f_label, fill=_colour(r.config))
 
     # Legend: colours are backends and precisions, shapes are samples per pixel.
-    symbols = [lambda x, y, c=COLOURS[k]: draw.rectangle([x, y - 6 * S, x + 12 * S, y + 6 * S], fill=c)
-               for k in colour_keys]
-    symbols += [lambda x, y, n=n: _marker(draw, x + 6 * S, y, n, (110, 110, 110), 6 * S) for n in (1, 4, 16)]
-    symbols.append(lambda x, y: draw.line([(x - 4 * S, y), (x + 14 * S, y)], fill=FRONT_COLOUR, width=3 * S))
+    symbols = [
+        lambda x, y, c=COLOURS[k]: draw.rectangle([x, y - 6 * S, x + 12 * S, y + 6 * S], fill=c)
+        for k in colour_keys
+    ]
+    symbols += [
+        lambda x, y, n=n: _marker(draw, x + 6 * S, y, n, (110, 110, 110), 6 * S) for n in (1, 4, 16)
+    ]
+    symbols.append(
+        lambda x, y: draw.line([(x - 4 * S, y), (x + 14 * S, y)], fill=FRONT_COLOUR, width=3 * S)
+    )
     for symbol, text, (x, row) in zip(symbols, texts, legend):
         y = title_h + ph + (11 + 22 * row) * S
         symbol(x, y)

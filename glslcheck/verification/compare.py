@@ -77,9 +77,21 @@ DEFAULT_EDGE_THRESHOLD = 0.1
 DEFAULT_EDGE_FRACTION = 0.005
 WORST_PIXELS = 10
 
-JSON_KEYS = ("match", "verdict", "size", "max_abs_error", "mean_abs_error", "psnr_db",
-             "mismatched_pixels", "edge_pixels", "nan_numpy", "nan_gl", "unstable_pixels",
-             "unstable_lines", "driver")
+JSON_KEYS = (
+    "match",
+    "verdict",
+    "size",
+    "max_abs_error",
+    "mean_abs_error",
+    "psnr_db",
+    "mismatched_pixels",
+    "edge_pixels",
+    "nan_numpy",
+    "nan_gl",
+    "unstable_pixels",
+    "unstable_lines",
+    "driver",
+)
 
 # Diff image colours (RGB 0-255).
 EDGE_COLOUR = (0, 200, 255)  # cyan-blue: an over-tolerance pixel explained by a discontinuity
@@ -114,7 +126,9 @@ class Comparison:
     nan_gl: int
     nan_mismatched_pixels: int = 0
     max_abs_error_unclamped: float = 0.0  # over channels finite in both images
-    bbox: tuple[int, int, int, int] | None = None  # x0, y0, x1, y1 (exclusive) of over-tolerance pixels
+    bbox: tuple[int, int, int, int] | None = (
+        None  # x0, y0, x1, y1 (exclusive) of over-tolerance pixels
+    )
     worst: list[PixelDiff] = field(default_factory=list)
     abs_tol: float = DEFAULT_ABS_TOL
     mismatch_budget: float = 0.0
@@ -137,7 +151,7 @@ class Comparison:
 
     @property
     def verdict(self) -> str:
-        """"match", "match-unstable" (a match only once unstable pixels are set apart) or
+        """ "match", "match-unstable" (a match only once unstable pixels are set apart) or
         "mismatch"."""
         if not self.match:
             return "mismatch"
@@ -168,14 +182,18 @@ class Comparison:
         """One human line: verdict, counts against budgets, and where the worst pixel is."""
         verdict = "match" if self.match else "MISMATCH"
         psnr = "inf" if math.isinf(self.psnr_db) else f"{self.psnr_db:.1f}"
-        text = (f"{verdict}: max abs error {self.max_abs_error:.4g}, PSNR {psnr} dB, "
-                f"{self.mismatched_pixels} mismatched (budget {int(self.mismatch_budget)}), "
-                f"{self.edge_pixels} edge (budget {int(self.edge_budget)}), "
-                f"NaN/Inf numpy {self.nan_numpy} gl {self.nan_gl}")
+        text = (
+            f"{verdict}: max abs error {self.max_abs_error:.4g}, PSNR {psnr} dB, "
+            f"{self.mismatched_pixels} mismatched (budget {int(self.mismatch_budget)}), "
+            f"{self.edge_pixels} edge (budget {int(self.edge_budget)}), "
+            f"NaN/Inf numpy {self.nan_numpy} gl {self.nan_gl}"
+        )
         if self.worst:
             w = self.worst[0]
-            text += (f"; worst at pixel ({w.x}, {w.y}) = fragCoord ({w.frag_coord[0]}, "
-                     f"{w.frag_coord[1]}): numpy {_fmt(w.numpy)} gl {_fmt(w.gl)}")
+            text += (
+                f"; worst at pixel ({w.x}, {w.y}) = fragCoord ({w.frag_coord[0]}, "
+                f"{w.frag_coord[1]}): numpy {_fmt(w.numpy)} gl {_fmt(w.gl)}"
+            )
         return text
 
 
@@ -225,8 +243,10 @@ def compare(
     `reference` (the float64 render of the same frame) enables step 7: unstable pixels."""
     a, b = _as_float(numpy_img), _as_float(gl_img)
     if a.shape[:2] != b.shape[:2]:
-        raise ValueError(f"the images differ in size: numpy {a.shape[1]}x{a.shape[0]}, "
-                         f"gl {b.shape[1]}x{b.shape[0]}")
+        raise ValueError(
+            f"the images differ in size: numpy {a.shape[1]}x{a.shape[0]}, "
+            f"gl {b.shape[1]}x{b.shape[0]}"
+        )
     channels = min(a.shape[2], b.shape[2], 4 if include_alpha else 3)
     a, b = a[..., :channels], b[..., :channels]
     height, width = a.shape[:2]
@@ -296,7 +316,7 @@ def compare(
     edge_budget = edge_fraction * pixels
     match = mismatched <= mismatch_budget and edges <= edge_budget and nan_mismatched == 0
 
-    mse = float(np.mean(diff ** 2)) if diff.size else 0.0
+    mse = float(np.mean(diff**2)) if diff.size else 0.0
     psnr = math.inf if mse == 0.0 else 10.0 * math.log10(1.0 / mse)
     both_finite = fin_a & fin_b
     with np.errstate(invalid="ignore", over="ignore"):
@@ -332,7 +352,9 @@ def compare(
     )
 
 
-def _worst_pixels(a, b, error_map, over, edge_mask, nan_mask, count: int = WORST_PIXELS) -> list[PixelDiff]:
+def _worst_pixels(
+    a, b, error_map, over, edge_mask, nan_mask, count: int = WORST_PIXELS
+) -> list[PixelDiff]:
     """The over-tolerance pixels with the largest error, worst first (NaN mismatches first of all)."""
     ys, xs = np.nonzero(over)
     if len(ys) == 0:
@@ -344,11 +366,17 @@ def _worst_pixels(a, b, error_map, over, edge_mask, nan_mask, count: int = WORST
     for i in order:
         y, x = int(ys[i]), int(xs[i])
         kind = "nan" if nan_mask[y, x] else "edge" if edge_mask[y, x] else "mismatch"
-        out.append(PixelDiff(
-            x=x, y=y, frag_coord=(x + 0.5, height - y - 0.5),
-            numpy=tuple(float(v) for v in a[y, x]), gl=tuple(float(v) for v in b[y, x]),
-            error=float(error_map[y, x]), kind=kind,
-        ))
+        out.append(
+            PixelDiff(
+                x=x,
+                y=y,
+                frag_coord=(x + 0.5, height - y - 0.5),
+                numpy=tuple(float(v) for v in a[y, x]),
+                gl=tuple(float(v) for v in b[y, x]),
+                error=float(error_map[y, x]),
+                kind=kind,
+            )
+        )
     return out
 
 

@@ -18,8 +18,8 @@ times with the same inputs (NumPy, WebGL, GL):
 
 from __future__ import annotations
 
+from collections.abc import Iterator
 from dataclasses import dataclass
-from typing import Iterator
 
 import numpy as np
 
@@ -42,8 +42,9 @@ class DriverFrameResult(FrameResult):
         return 0 if d is None else int(d.mismatched_pixels + d.edge_pixels)
 
 
-def closest_driver(numpy_img: np.ndarray, webgl_img: np.ndarray, gl_img: np.ndarray,
-                   driver_mask: np.ndarray) -> np.ndarray:
+def closest_driver(
+    numpy_img: np.ndarray, webgl_img: np.ndarray, gl_img: np.ndarray, driver_mask: np.ndarray
+) -> np.ndarray:
     """WebGL's image with each driver-dependent pixel taken from whichever driver is closer to
     NumPy (max abs difference over RGB; a NaN in both, or the same infinity in both, is no
     difference, as `compare` counts them; a NaN in one only is as far as possible)."""
@@ -60,14 +61,18 @@ def closest_driver(numpy_img: np.ndarray, webgl_img: np.ndarray, gl_img: np.ndar
     return np.where(take_gl[..., None], gl_img, webgl_img)
 
 
-def driver_verdict(numpy_img, webgl_img, gl_img, **compare_options) -> tuple[Comparison, Comparison, Comparison]:
+def driver_verdict(
+    numpy_img, webgl_img, gl_img, **compare_options
+) -> tuple[Comparison, Comparison, Comparison]:
     """(verdict, plain, drivers) for one frame; see the module docstring."""
     drivers = compare(gl_img, webgl_img, **compare_options)
     plain = compare(numpy_img, webgl_img, **compare_options)
     mask = drivers.error_map > drivers.abs_tol
     if not mask.any() or plain.match:
         return plain, plain, drivers
-    verdict = compare(numpy_img, closest_driver(numpy_img, webgl_img, gl_img, mask), **compare_options)
+    verdict = compare(
+        numpy_img, closest_driver(numpy_img, webgl_img, gl_img, mask), **compare_options
+    )
     return verdict, plain, drivers
 
 
@@ -107,10 +112,21 @@ def verify_against_webgl(
     options = compare_options or {}
     for w_h in [tuple(s) for s in (sizes or [size])]:
         for spec in specs:
-            numpy_img, webgl_img, gl_img = pair.render(spec, w_h, tuple(mouse), date, precision, samples)
+            numpy_img, webgl_img, gl_img = pair.render(
+                spec, w_h, tuple(mouse), date, precision, samples
+            )
             verdict, plain, drivers = driver_verdict(numpy_img, webgl_img, gl_img, **options)
             if progress is not None:
                 progress.step(f"{name} t={spec.time:g}")
             kept = (numpy_img, webgl_img, gl_img) if keep_images else (None, None, None)
-            yield DriverFrameResult(name, spec, (int(w_h[0]), int(w_h[1])), verdict, kept[0], kept[1],
-                                    plain=plain, drivers=drivers, driver_image=kept[2])
+            yield DriverFrameResult(
+                name,
+                spec,
+                (int(w_h[0]), int(w_h[1])),
+                verdict,
+                kept[0],
+                kept[1],
+                plain=plain,
+                drivers=drivers,
+                driver_image=kept[2],
+            )

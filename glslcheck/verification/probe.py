@@ -26,18 +26,29 @@ import difflib
 import math
 import os
 import threading
+from collections.abc import Iterator
 from dataclasses import dataclass, field
-from typing import Any, Iterator
+from typing import Any
 
 import numpy as np
 
-from ..base.diagnostics import InputError, source_line
 from ..backends.numpy_engine.runtime_values import Struct
-from ..backends.numpy_engine.tracing import HELP, OPERATIONS, LaneTracer, PixelTracer, Site, TraceTranspiler
+from ..backends.numpy_engine.tracing import (
+    HELP,
+    OPERATIONS,
+    LaneTracer,
+    PixelTracer,
+    Site,
+    TraceTranspiler,
+)
+from ..base.diagnostics import InputError, source_line
 
 UNSTABLE_BITS = 16  # first_unstable: a value keeping fewer bits than this has lost more than a third of float32's 24
 BITS_KINDS = ("assign", "return", "call")  # the steps whose values are compared with their shadow
-FIRST_ITERATIONS, LAST_ITERATIONS = 3, 2  # a longer loop prints these iterations and folds the others
+FIRST_ITERATIONS, LAST_ITERATIONS = (
+    3,
+    2,
+)  # a longer loop prints these iterations and folds the others
 
 
 @dataclass
@@ -76,8 +87,16 @@ class Step:
     count: int = 0
 
     def to_json(self) -> dict:
-        return {"file": self.file, "line": self.line, "code": self.code, "kind": self.kind, "name": self.name,
-                "value": to_py(self.value, True), "value64": to_py(self.value64, False), "bits": self.bits}
+        return {
+            "file": self.file,
+            "line": self.line,
+            "code": self.code,
+            "kind": self.kind,
+            "name": self.name,
+            "value": to_py(self.value, True),
+            "value64": to_py(self.value64, False),
+            "bits": self.bits,
+        }
 
 
 @dataclass
@@ -99,8 +118,13 @@ class Origin:
         return HELP.get(self.operation, "")
 
     def to_json(self, with_pixels: bool = True) -> dict:
-        out = {"file": self.file, "line": self.line, "column": self.column, "code": self.code,
-               "operation": self.operation}
+        out = {
+            "file": self.file,
+            "line": self.line,
+            "column": self.column,
+            "code": self.code,
+            "operation": self.operation,
+        }
         if with_pixels:
             out.update(pixels=self.pixels, box=list(self.box))
         return out
@@ -116,9 +140,13 @@ class PixelReport:
     truncated: int = 0  # steps past the recording limit
 
     def to_json(self) -> dict:
-        return {"pixel": list(self.pixel), "frag_coord": list(self.frag_coord),
-                "color": [_float(c, True) for c in self.color], "steps": [s.to_json() for s in self.steps],
-                "first_nan": self.first_nan.to_json(False) if self.first_nan else None}
+        return {
+            "pixel": list(self.pixel),
+            "frag_coord": list(self.frag_coord),
+            "color": [_float(c, True) for c in self.color],
+            "steps": [s.to_json() for s in self.steps],
+            "first_nan": self.first_nan.to_json(False) if self.first_nan else None,
+        }
 
 
 @dataclass
@@ -128,8 +156,11 @@ class NanReport:
     origins: list[Origin] = field(default_factory=list)
 
     def to_json(self) -> dict:
-        return {"nan_pixels": self.nan_pixels, "inf_pixels": self.inf_pixels,
-                "origins": [o.to_json() for o in self.origins]}
+        return {
+            "nan_pixels": self.nan_pixels,
+            "inf_pixels": self.inf_pixels,
+            "origins": [o.to_json() for o in self.origins],
+        }
 
 
 class Probe:
@@ -147,9 +178,15 @@ class Probe:
         if needs_passes(self.shader):  # its iChannels would read unbound textures: say so instead
             from ..base.diagnostics import InputError
 
-            raise InputError(f"{self.shader.root}: error: probe does not support buffers and channels yet "
-                             "(glslcheck/shadertoy/channels.py); render or verify it instead")
-        tab = "Image" if "Image" in self.shader.tabs else ("GLSL" if "GLSL" in self.shader.tabs else "Image")
+            raise InputError(
+                f"{self.shader.root}: error: probe does not support buffers and channels yet "
+                "(glslcheck/shadertoy/channels.py); render or verify it instead"
+            )
+        tab = (
+            "Image"
+            if "Image" in self.shader.tabs
+            else ("GLSL" if "GLSL" in self.shader.tabs else "Image")
+        )
         self.model = check_program(parse_shader(self.shader, tab))
         src = self.shader.tabs.get(tab)
         self.path = src.path if src is not None else self.shader.root
@@ -165,7 +202,9 @@ class Probe:
         from ..backends.numpy_engine.tiles import execute_module
 
         if precision not in self._modules:
-            self._modules[precision] = execute_module(self.source, self.filename, self.meta, precision)
+            self._modules[precision] = execute_module(
+                self.source, self.filename, self.meta, precision
+            )
         return self._modules[precision]
 
     def program(self):
@@ -179,11 +218,13 @@ class Probe:
         return self._program
 
     # -- running lanes ---------------------------------------------------------------------------
-    def run(self, precision: str, inputs: Inputs, frags: np.ndarray, width: int, tracer: LaneTracer) -> np.ndarray:
+    def run(
+        self, precision: str, inputs: Inputs, frags: np.ndarray, width: int, tracer: LaneTracer
+    ) -> np.ndarray:
         """RGBA (4, lanes) of the traced module on fragment coordinates `frags` (2, lanes),
         lanes in rows of `width` (for derivatives), with `tracer` as T."""
-        from ..backends.numpy_engine.tiles import Budget, LaneHelpers, State
         from ..backends.numpy_engine.program import frame_seconds, uniform_value
+        from ..backends.numpy_engine.tiles import Budget, LaneHelpers, State
         from ..shadertoy.wrapper import UNIFORMS_BY_NAME
 
         ns = self.module(precision)
@@ -191,17 +232,23 @@ class Probe:
         ns["T"] = self._tracers
         self._tracers.local.tracer = tracer
         values = inputs.values()
-        uniforms = {f"u_{u}": uniform_value(rt, u, values.get(u, UNIFORMS_BY_NAME[u].default))
-                    for u in self.meta["uniforms"]}
+        uniforms = {
+            f"u_{u}": uniform_value(rt, u, values.get(u, UNIFORMS_BY_NAME[u].default))
+            for u in self.meta["uniforms"]
+        }
         lanes = frags.shape[-1]
         with rt.errstate():
-            proto = State(**uniforms, lanes=1, width=1, stats=None, discard=LaneHelpers.NO, parent=None)
+            proto = State(
+                **uniforms, lanes=1, width=1, stats=None, discard=LaneHelpers.NO, parent=None
+            )
             ns["init_globals"](proto)
             frag = frags.astype(rt.F)
             S = State(**proto.__dict__)
             S.lanes, S.width, S.frag_coord = lanes, width, frag
             if "S.frag_coord4" in self.source:
-                S.frag_coord4 = np.concatenate([frag, np.full((1, lanes), 0.5, rt.F), np.ones((1, lanes), rt.F)])
+                S.frag_coord4 = np.concatenate(
+                    [frag, np.full((1, lanes), 0.5, rt.F), np.ones((1, lanes), rt.F)]
+                )
             S.budget = Budget(frame_seconds()).start()  # a runaway trace stops as a frame does
             try:
                 color = ns["shade"](S)
@@ -213,18 +260,39 @@ class Probe:
             return np.where(np.broadcast_to(S.discard, (lanes,)), 0.0, color)
 
     # -- one pixel -------------------------------------------------------------------------------
-    def pixel(self, x: int | None, y: int | None, inputs: Inputs,
-              frag_coord: tuple[float, float] | None = None) -> PixelReport:
+    def pixel(
+        self,
+        x: int | None,
+        y: int | None,
+        inputs: Inputs,
+        frag_coord: tuple[float, float] | None = None,
+    ) -> PixelReport:
         """Every step pixel (x, y) (from the top left) executed, or the pixel at `frag_coord`."""
         (x, y), (fx, fy), color, t32, t64 = self.traces(x, y, inputs, frag_coord)
         lane = t32.lane
         steps = self._steps(t32, t64)
-        first = self.origin(int(t32.origin[lane]), int(t32.operation[lane])) if t32.origin[lane] >= 0 else None
-        return PixelReport((x, y), (fx, fy), tuple(float(np.float32(c)) for c in color), steps, first,
-                           t32.truncated)
+        first = (
+            self.origin(int(t32.origin[lane]), int(t32.operation[lane]))
+            if t32.origin[lane] >= 0
+            else None
+        )
+        return PixelReport(
+            (x, y),
+            (fx, fy),
+            tuple(float(np.float32(c)) for c in color),
+            steps,
+            first,
+            t32.truncated,
+        )
 
-    def traces(self, x: int | None, y: int | None, inputs: Inputs, frag_coord: tuple[float, float] | None = None,
-               stop_bits: int | None = None):
+    def traces(
+        self,
+        x: int | None,
+        y: int | None,
+        inputs: Inputs,
+        frag_coord: tuple[float, float] | None = None,
+        stop_bits: int | None = None,
+    ):
         """The float32 and float64 runs of pixel (x, y) (or `frag_coord`): ((x, y), (fx, fy),
         RGBA of the float32 run, its PixelTracer, the float64 one's). With `stop_bits` the
         float64 run goes first and the float32 run stops at its first step that keeps fewer
@@ -232,14 +300,18 @@ class Probe:
         w, h = inputs.size
         if frag_coord is None:
             if not (0 <= x < w and 0 <= y < h):
-                raise InputError(f"error: the pixel {x},{y} is outside the {w}x{h} image "
-                                 f"(x 0..{w - 1}, y 0..{h - 1} from the top left)")
+                raise InputError(
+                    f"error: the pixel {x},{y} is outside the {w}x{h} image "
+                    f"(x 0..{w - 1}, y 0..{h - 1} from the top left)"
+                )
             frag_coord = (x + 0.5, h - 1 - y + 0.5)
         fx, fy = (float(v) for v in frag_coord)
         x, y = int(math.floor(fx)), h - 1 - int(math.floor(fy))
         if self.meta.get("uses_derivatives"):  # the pixel's 2x2 quad, as llvmpipe shades it
             qx, qy = int(math.floor(fx)) & ~1, int(math.floor(fy)) & ~1
-            frags = np.array([[qx + 0.5, qx + 1.5, qx + 0.5, qx + 1.5], [qy + 0.5, qy + 0.5, qy + 1.5, qy + 1.5]])
+            frags = np.array(
+                [[qx + 0.5, qx + 1.5, qx + 0.5, qx + 1.5], [qy + 0.5, qy + 0.5, qy + 1.5, qy + 1.5]]
+            )
             lane = (int(math.floor(fy)) - qy) * 2 + (int(math.floor(fx)) - qx)
             frags[:, lane] = (fx, fy)
             width = 2
@@ -277,20 +349,39 @@ class Probe:
             elif s.kind == "loop":
                 value = v64 = r.count if r.what != "start" else None
             bits = bits_kept(value, v64) if s.kind in BITS_KINDS and v64 is not None else None
-            steps.append(Step(s.path, s.line, s.column, s.code, s.kind, _step_name(s, r.what), value, v64, bits,
-                              r.depth, r.what, r.count))
+            steps.append(
+                Step(
+                    s.path,
+                    s.line,
+                    s.column,
+                    s.code,
+                    s.kind,
+                    _step_name(s, r.what),
+                    value,
+                    v64,
+                    bits,
+                    r.depth,
+                    r.what,
+                    r.count,
+                )
+            )
         return steps
 
     # -- NaN origins over a frame ------------------------------------------------------------------
     def nan_origins(self, inputs: Inputs) -> NanReport:
         """Render the frame, then run the traced module on its NaN/Inf pixels and group them by
         where their first NaN or Inf appeared."""
-        from ..backends.numpy_engine.tiles import TILE_LANES
         from ..backends.numpy_engine.program import tile_pool
+        from ..backends.numpy_engine.tiles import TILE_LANES
 
         w, h = inputs.size
-        img = self.program().render(size=inputs.size, time=inputs.time, frame=inputs.frame, mouse=inputs.mouse,
-                                    date=inputs.date)
+        img = self.program().render(
+            size=inputs.size,
+            time=inputs.time,
+            frame=inputs.frame,
+            mouse=inputs.mouse,
+            date=inputs.date,
+        )
         nan = np.isnan(img).any(axis=-1)
         inf = np.isinf(img).any(axis=-1) & ~nan
         report = NanReport(int(nan.sum()), int(inf.sum()))
@@ -325,8 +416,12 @@ class Probe:
         else:
             for s in starts:
                 scan(s)
-        if width == 2:  # from quad lanes back to the NaN/Inf pixels (a quad's other pixels may be fine)
-            q = np.searchsorted(quads[:, 0] * (w + 2) + quads[:, 1], (fy & ~1) * (w + 2) + (fx & ~1))
+        if (
+            width == 2
+        ):  # from quad lanes back to the NaN/Inf pixels (a quad's other pixels may be fine)
+            q = np.searchsorted(
+                quads[:, 0] * (w + 2) + quads[:, 1], (fy & ~1) * (w + 2) + (fx & ~1)
+            )
             idx = 4 * q + 2 * (fy & 1) + (fx & 1)
             origin, operation = origin[idx], operation[idx]
         keys = (origin + 1) * len(OPERATIONS) + operation
@@ -374,7 +469,9 @@ def pairs(r32: list, r64: list, realign: int | None = None) -> Iterator[tuple[in
         i += 1
     if i == n or (realign is not None and max(len(r32), len(r64)) - i > realign):
         return
-    sm = difflib.SequenceMatcher(None, [_key(r) for r in r32[i:]], [_key(r) for r in r64[i:]], autojunk=False)
+    sm = difflib.SequenceMatcher(
+        None, [_key(r) for r in r32[i:]], [_key(r) for r in r64[i:]], autojunk=False
+    )
     for a, b, size in sm.get_matching_blocks():
         for k in range(size):
             yield i + a + k, i + b + k
@@ -386,17 +483,30 @@ def pairs(r32: list, r64: list, realign: int | None = None) -> Iterator[tuple[in
 REALIGN_STEPS = 2_000
 
 
-def first_unstable(probe: Probe, x: int, y: int, inputs: Inputs, min_bits: int = UNSTABLE_BITS,
-                   realign: int | None = REALIGN_STEPS) -> Step | None:
+def first_unstable(
+    probe: Probe,
+    x: int,
+    y: int,
+    inputs: Inputs,
+    min_bits: int = UNSTABLE_BITS,
+    realign: int | None = REALIGN_STEPS,
+) -> Step | None:
     """The first statement of pixel (x, y) (from the top left) whose float32 value keeps fewer
     than `min_bits` bits of its float64 shadow (Step: file, line, code, bits), or None: the steps
     `probe.pixel` reports, compared in order and only up to the first that departs. Where the
     two runs part before any value departs, at most `realign` steps are realigned (None: all)."""
-    return first_unstable_traced(probe, *probe.traces(x, y, inputs, stop_bits=min_bits)[3:], min_bits, realign)
+    return first_unstable_traced(
+        probe, *probe.traces(x, y, inputs, stop_bits=min_bits)[3:], min_bits, realign
+    )
 
 
-def first_unstable_traced(probe: Probe, t32: PixelTracer, t64: PixelTracer, min_bits: int = UNSTABLE_BITS,
-                          realign: int | None = REALIGN_STEPS) -> Step | None:
+def first_unstable_traced(
+    probe: Probe,
+    t32: PixelTracer,
+    t64: PixelTracer,
+    min_bits: int = UNSTABLE_BITS,
+    realign: int | None = REALIGN_STEPS,
+) -> Step | None:
     """first_unstable on the two runs of a pixel (Probe.traces; a _ShadowedTracer has compared
     the steps up to where the runs part already)."""
     r32, r64 = t32.records, t64.records
@@ -408,8 +518,20 @@ def first_unstable_traced(probe: Probe, t32: PixelTracer, t64: PixelTracer, min_
         value, v64, bits = _compared(site, r32[i], r64[j])
         if bits is not None and bits < min_bits:
             r = r32[i]
-            return Step(site.path, site.line, site.column, site.code, site.kind, _step_name(site, r.what), value,
-                        v64, bits, r.depth, r.what, r.count)
+            return Step(
+                site.path,
+                site.line,
+                site.column,
+                site.code,
+                site.kind,
+                _step_name(site, r.what),
+                value,
+                v64,
+                bits,
+                r.depth,
+                r.what,
+                r.count,
+            )
     return None
 
 
@@ -434,7 +556,9 @@ class _ShadowedTracer(PixelTracer):
     recorded (`checked` counts them) and the run stops at the first that keeps fewer than
     `min_bits` bits; the rest of a pixel's run costs nothing then."""
 
-    def __init__(self, lanes: int, sites: list[Site], lane: int, shadow: list, min_bits: int) -> None:
+    def __init__(
+        self, lanes: int, sites: list[Site], lane: int, shadow: list, min_bits: int
+    ) -> None:
         super().__init__(lanes, sites, lane)
         self.shadow, self.min_bits = shadow, min_bits
         self.checked = 0
@@ -539,7 +663,9 @@ def to_py(v: Any, f32: bool) -> Any:
         return [to_py(x, f32) for x in v]
     if isinstance(v, str):
         return v
-    a = np.asarray(v)  # also Python and NumPy scalars (np.float64 is a float: NaN must become "nan")
+    a = np.asarray(
+        v
+    )  # also Python and NumPy scalars (np.float64 is a float: NaN must become "nan")
     if a.ndim:
         return [to_py(x, f32) for x in a]
     if a.dtype.kind == "f":
@@ -576,9 +702,12 @@ def format_pixel(report: PixelReport, shader: str, inputs: Inputs) -> str:
     x, y = report.pixel
     fx, fy = report.frag_coord
     w, h = inputs.size
-    out = [f"{shader}: pixel {x},{y} from the top left (fragCoord {fx:g}, {fy:g}) of {w}x{h}, iTime {inputs.time:g}",
-           "each step: file:line, the source line, then what it did; float values in float32, then "
-           "[the float64 shadow (when it differs), bits of it kept]", ""]
+    out = [
+        f"{shader}: pixel {x},{y} from the top left (fragCoord {fx:g}, {fy:g}) of {w}x{h}, iTime {inputs.time:g}",
+        "each step: file:line, the source line, then what it did; float values in float32, then "
+        "[the float64 shadow (when it differs), bits of it kept]",
+        "",
+    ]
     _format_steps(report.steps, 0, len(report.steps), out, [None], 0)
     if report.truncated:
         out.append(f"... {report.truncated:,} more steps not recorded")
@@ -595,7 +724,11 @@ def format_pixel(report: PixelReport, shader: str, inputs: Inputs) -> str:
 def _describe(s: Step) -> str:
     shadow = ""
     if s.bits is not None:  # the shadow only where it tells something the float32 value does not
-        shadow = f"   [{s.bits} bits]" if s.bits == 24 else f"   [f64 {fmt(s.value64, False)}, {s.bits} bits]"
+        shadow = (
+            f"   [{s.bits} bits]"
+            if s.bits == 24
+            else f"   [f64 {fmt(s.value64, False)}, {s.bits} bits]"
+        )
     if s.kind == "assign":
         return f"{s.name} = {fmt(s.value)}{shadow}"
     if s.kind == "return":
@@ -607,7 +740,11 @@ def _describe(s: Step) -> str:
         if s.name in ("if", "if/else"):
             if s.value:
                 return "if: true, the then branch runs"
-            return "if: false, the else branch runs" if s.name == "if/else" else "if: false, the then branch is skipped"
+            return (
+                "if: false, the else branch runs"
+                if s.name == "if/else"
+                else "if: false, the then branch is skipped"
+            )
         if s.name == "switch":
             return f"switch on {fmt(s.value)}"
         return s.name
@@ -621,21 +758,40 @@ def _format_steps(steps: list[Step], i: int, j: int, out: list[str], last: list,
     while k < j:
         s = steps[k]
         if s.kind == "loop" and s.what == "start":
-            end = next((m for m in range(k + 1, j) if steps[m].kind == "loop" and steps[m].what == "end"
-                        and steps[m].file == s.file and steps[m].line == s.line and steps[m].depth == s.depth), j)
-            starts = [m for m in range(k + 1, end) if steps[m].kind == "loop" and steps[m].what == "iteration"
-                      and steps[m].line == s.line and steps[m].file == s.file and steps[m].depth == s.depth]
+            end = next(
+                (
+                    m
+                    for m in range(k + 1, j)
+                    if steps[m].kind == "loop"
+                    and steps[m].what == "end"
+                    and steps[m].file == s.file
+                    and steps[m].line == s.line
+                    and steps[m].depth == s.depth
+                ),
+                j,
+            )
+            starts = [
+                m
+                for m in range(k + 1, end)
+                if steps[m].kind == "loop"
+                and steps[m].what == "iteration"
+                and steps[m].line == s.line
+                and steps[m].file == s.file
+                and steps[m].depth == s.depth
+            ]
             _line(s, out, last, nest, f"{s.name.split()[0]} loop starts")
             bounds = list(zip(starts, starts[1:] + [end]))
             shown = bounds if len(bounds) <= FIRST_ITERATIONS + LAST_ITERATIONS + 1 else None
             for n, (a, b) in enumerate(bounds):
                 if shown is None and FIRST_ITERATIONS <= n < len(bounds) - LAST_ITERATIONS:
                     if n == FIRST_ITERATIONS:
-                        hidden = bounds[FIRST_ITERATIONS:len(bounds) - LAST_ITERATIONS]
+                        hidden = bounds[FIRST_ITERATIONS : len(bounds) - LAST_ITERATIONS]
                         nsteps = hidden[-1][1] - hidden[0][0]
-                        out.append("    " * (s.depth + nest + 1) + f"... iterations {n + 1} to "
-                                   f"{len(bounds) - LAST_ITERATIONS} folded ({len(hidden)} iterations, "
-                                   f"{nsteps} steps) ...")
+                        out.append(
+                            "    " * (s.depth + nest + 1) + f"... iterations {n + 1} to "
+                            f"{len(bounds) - LAST_ITERATIONS} folded ({len(hidden)} iterations, "
+                            f"{nsteps} steps) ..."
+                        )
                         last[0] = None
                     continue
                 out.append("    " * (s.depth + nest + 1) + f"iteration {n + 1}")
@@ -668,18 +824,26 @@ def _short(path: str) -> str:
 def format_nan(report: NanReport, shader: str, inputs: Inputs) -> str:
     """The text `glslcheck probe --nan` prints."""
     w, h = inputs.size
-    out = [f"{shader}: {w}x{h}, iTime {inputs.time:g}: {_count(report.nan_pixels, 'NaN pixel')}, "
-           f"{_count(report.inf_pixels, 'Inf pixel')}"]
+    out = [
+        f"{shader}: {w}x{h}, iTime {inputs.time:g}: {_count(report.nan_pixels, 'NaN pixel')}, "
+        f"{_count(report.inf_pixels, 'Inf pixel')}"
+    ]
     for o in report.origins:
         x0, y0, x1, y1 = o.box
         where = f"{_short(o.file)}:{o.line}:{o.column}: " if o.file else ""
         out.append("")
-        out.append(f"{where}{o.operation} in `{o.code}`: the first NaN/Inf of {_count(o.pixels, 'pixel')}, "
-                   f"in {x0},{y0} .. {x1},{y1} (from the top left)")
+        out.append(
+            f"{where}{o.operation} in `{o.code}`: the first NaN/Inf of {_count(o.pixels, 'pixel')}, "
+            f"in {x0},{y0} .. {x1},{y1} (from the top left)"
+        )
         if o.file:
             text = source_line(o.file, o.line) or ""
             out.append(f"    {text.rstrip()}")
-            out.append("    " + "".join(c if c == "\t" else " " for c in text[:max(o.column - 1, 0)]) + "^")
+            out.append(
+                "    "
+                + "".join(c if c == "\t" else " " for c in text[: max(o.column - 1, 0)])
+                + "^"
+            )
         if o.help:
             out.append(f"  help: {o.help}")
     if not report.origins:

@@ -46,19 +46,26 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
-from .bench import HEADER as BENCH_HEADER
-from .bench import TABLE_NOTE, Row, row_cells
-from .compare import EDGE_COLOUR, NAN_COLOUR, Comparison, compare, heat_colours
 from ..backends import registry
 from ..base.diagnostics import Diagnostic, GlslError, InputError, Location
 from ..shadertoy.sources import Shader, find_shaders
+from .bench import HEADER as BENCH_HEADER
+from .bench import TABLE_NOTE, Row, row_cells
+from .compare import EDGE_COLOUR, NAN_COLOUR, Comparison, compare, heat_colours
 
 if TYPE_CHECKING:
     from .probe import NanReport
 
-DEFAULT_BACKENDS = ("numpy", "gl", "webgl")  # the side under test first; GL and WebGL are the drivers
+DEFAULT_BACKENDS = (
+    "numpy",
+    "gl",
+    "webgl",
+)  # the side under test first; GL and WebGL are the drivers
 DEFAULT_SIZE = (320, 180)
-BENCH_SIZE = (64, 36)  # the bench renders 12-15 configurations x (runs + 1) at this size: keep it small
+BENCH_SIZE = (
+    64,
+    36,
+)  # the bench renders 12-15 configurations x (runs + 1) at this size: keep it small
 BENCH_RUNS = 3  # bench's own default: the median of three rounds
 
 CSS = """
@@ -102,10 +109,16 @@ class ShaderReport:
     renders: dict[str, np.ndarray] = field(default_factory=dict)
     times_ms: dict[str, float] = field(default_factory=dict)
     unavailable: dict[str, str] = field(default_factory=dict)  # backend -> why
-    pairs: list[tuple[str, str, Comparison, str]] = field(default_factory=list)  # a, b, comparison, note
+    pairs: list[tuple[str, str, Comparison, str]] = field(
+        default_factory=list
+    )  # a, b, comparison, note
     angle: bool = False  # ANGLE's verdict is part of `check`
-    nonfinite: dict[str, int] = field(default_factory=dict)  # backend -> NaN/Inf pixels of its render
-    nan: NanReport | None = None  # probe --nan on the NumPy render, when a render has NaN/Inf pixels
+    nonfinite: dict[str, int] = field(
+        default_factory=dict
+    )  # backend -> NaN/Inf pixels of its render
+    nan: NanReport | None = (
+        None  # probe --nan on the NumPy render, when a render has NaN/Inf pixels
+    )
     nan_note: str = ""  # why there are no origins to show
     bench: list[Row] = field(default_factory=list)  # glslcheck bench's rows
     bench_note: str = ""  # why there is no table
@@ -118,7 +131,11 @@ class ShaderReport:
     @property
     def ok(self) -> bool:
         # GL against WebGL compares two real drivers: their differences inform, they do not fail.
-        return not self.errors and bool(self.renders) and all(c.match for a, _, c, _ in self.pairs if a == registry.DEFAULT)
+        return (
+            not self.errors
+            and bool(self.renders)
+            and all(c.match for a, _, c, _ in self.pairs if a == registry.DEFAULT)
+        )
 
 
 @dataclass(eq=False)
@@ -137,9 +154,9 @@ class Page:
 
 def _check(shader: Shader, webgl: bool) -> list[Diagnostic]:
     """Our checker over every program Shadertoy builds, then ANGLE's verdict (duplicates once)."""
+    from ..frontend.parser import parse_shader
     from ..semantics import check
     from ..semantics.agreement import passes
-    from ..frontend.parser import parse_shader
 
     out: list[Diagnostic] = []
     for tab in passes(shader):
@@ -189,7 +206,10 @@ def _nan_origins(report: ShaderReport, size, time: float) -> None:
 
     try:
         report.nan = Probe(report.shader).nan_origins(Inputs(size=tuple(size), time=float(time)))
-    except (GlslError, InputError) as e:  # e.g. buffers and channels, which the probe does not trace
+    except (
+        GlslError,
+        InputError,
+    ) as e:  # e.g. buffers and channels, which the probe does not trace
         report.nan_note = str(e).removeprefix("error: ")
 
 
@@ -202,20 +222,38 @@ def _bench(report: ShaderReport, size, runs: int, time: float) -> None:
         return
     report.bench_load = os.getloadavg() if hasattr(os, "getloadavg") else None
     try:
-        report.bench = bench_shader(report.shader, size=tuple(size), runs=runs, time=float(time),
-                                    webgl="webgl" in report.renders)
-    except (GlslError, InputError) as e:  # a render only the bench makes fails (float16, 16 samples)
-        said = "; ".join(f"{d.loc}: {d.message}" if d.loc else d.message for d in getattr(e, "diagnostics", []))
+        report.bench = bench_shader(
+            report.shader,
+            size=tuple(size),
+            runs=runs,
+            time=float(time),
+            webgl="webgl" in report.renders,
+        )
+    except (
+        GlslError,
+        InputError,
+    ) as e:  # a render only the bench makes fails (float16, 16 samples)
+        said = "; ".join(
+            f"{d.loc}: {d.message}" if d.loc else d.message for d in getattr(e, "diagnostics", [])
+        )
         report.bench_note = "not measured: " + (said or str(e).removeprefix("error: "))
 
 
-def gather(shader: Shader, *, size=DEFAULT_SIZE, time: float = 0.0, backends=DEFAULT_BACKENDS,
-           ready: dict[str, str | None] | None = None, bench=BENCH_SIZE, bench_runs: int = BENCH_RUNS) -> ShaderReport:
+def gather(
+    shader: Shader,
+    *,
+    size=DEFAULT_SIZE,
+    time: float = 0.0,
+    backends=DEFAULT_BACKENDS,
+    ready: dict[str, str | None] | None = None,
+    bench=BENCH_SIZE,
+    bench_runs: int = BENCH_RUNS,
+) -> ShaderReport:
     """Check, lint, render with each backend and compare every pair, for one shader; then the
     NaN origins (when a render has NaN/Inf pixels) and, unless `bench` is None, the bench at
     that size."""
-    from .verify import _Pair, FrameSpec, compile_backend, emulate_driver
     from .drivers import driver_verdict
+    from .verify import FrameSpec, _Pair, compile_backend, emulate_driver
 
     ready = ready if ready is not None else {b: _backend_ready(b) for b in backends}
     name = shader.root or (shader.image.path if shader.image else "<shader>")
@@ -238,7 +276,9 @@ def gather(shader: Shader, *, size=DEFAULT_SIZE, time: float = 0.0, backends=DEF
     for b, program in programs.items():
         start = _time.perf_counter()
         try:
-            (image,) = _Pair([program]).render(spec, tuple(size), (0.0, 0.0, 0.0, 0.0), None, "float32", 1)
+            (image,) = _Pair([program]).render(
+                spec, tuple(size), (0.0, 0.0, 0.0, 0.0), None, "float32", 1
+            )
         except GlslError as e:  # a runaway loop, a lost context: shown, the rest goes on
             report.check += e.diagnostics
             continue
@@ -249,9 +289,15 @@ def gather(shader: Shader, *, size=DEFAULT_SIZE, time: float = 0.0, backends=DEF
         if (a, b) == ("numpy", "webgl") and "gl" in r:
             verdict, plain, drivers = driver_verdict(r[a], r[b], r["gl"])
             n = int(drivers.mismatched_pixels + drivers.edge_pixels)
-            note = (f"{n} driver-dependent pixels (GL and WebGL differ): there NumPy need match only the closer "
+            note = (
+                (
+                    f"{n} driver-dependent pixels (GL and WebGL differ): there NumPy need match only the closer "
                     f"driver; NumPy against WebGL alone: {plain.mismatched_pixels} mismatched, "
-                    f"{plain.edge_pixels} edge") if n else ""
+                    f"{plain.edge_pixels} edge"
+                )
+                if n
+                else ""
+            )
             report.pairs.append((a, b, verdict, note))
         else:
             report.pairs.append((a, b, compare(r[a], r[b]), ""))
@@ -345,15 +391,25 @@ def _source_html(shader: Shader, diags: list[Diagnostic]) -> str:
             # a note is a block of its own: no newline after it, or the listing gets blank lines
             rows.append(f'<span class="hit">{text}</span>' if hits else text + "\n")
             for d in hits:
-                kind = ("nan" if d.rule == NAN_RULE else
-                        "lint" if d.rule not in ("type", "syntax", "webgl-compile", "gl-compile") else "check")
-                rows.append(f'<span class="note {kind}">{"^".rjust(d.loc.column)} {_e(d.severity)} '
-                            f'[{_e(d.rule)}] {_e(d.message)}</span>')
-        parts.append(f"<h3>{_e(src.path)}</h3><pre class=\"src\">" + "".join(rows) + "</pre>")
+                kind = (
+                    "nan"
+                    if d.rule == NAN_RULE
+                    else "lint"
+                    if d.rule not in ("type", "syntax", "webgl-compile", "gl-compile")
+                    else "check"
+                )
+                rows.append(
+                    f'<span class="note {kind}">{"^".rjust(d.loc.column)} {_e(d.severity)} '
+                    f"[{_e(d.rule)}] {_e(d.message)}</span>"
+                )
+        parts.append(f'<h3>{_e(src.path)}</h3><pre class="src">' + "".join(rows) + "</pre>")
     rest = [d for i, d in enumerate(diags) if i not in placed]
     if rest:
-        parts.append('<ul class="diags">' + "".join(
-            f"<li>{_e(d.severity)} [{_e(d.rule)}] {_e(d.message)}</li>" for d in rest) + "</ul>")
+        parts.append(
+            '<ul class="diags">'
+            + "".join(f"<li>{_e(d.severity)} [{_e(d.rule)}] {_e(d.message)}</li>" for d in rest)
+            + "</ul>"
+        )
     return "\n".join(parts)
 
 
@@ -363,9 +419,16 @@ NAN_RULE = "nan-origin"  # the probe's origins, shown under their source lines l
 def _origin_notes(r: ShaderReport) -> list[Diagnostic]:
     if r.nan is None:
         return []
-    return [Diagnostic(f"{o.operation} in `{o.code}`: the first NaN/Inf of {o.pixels} pixel{'s' * (o.pixels != 1)}",
-                       Location(o.file, o.line, o.column), severity="note", rule=NAN_RULE)
-            for o in r.nan.origins if o.file]
+    return [
+        Diagnostic(
+            f"{o.operation} in `{o.code}`: the first NaN/Inf of {o.pixels} pixel{'s' * (o.pixels != 1)}",
+            Location(o.file, o.line, o.column),
+            severity="note",
+            rule=NAN_RULE,
+        )
+        for o in r.nan.origins
+        if o.file
+    ]
 
 
 def _nan_html(r: ShaderReport) -> str:
@@ -373,11 +436,13 @@ def _nan_html(r: ShaderReport) -> str:
     if not any(r.nonfinite.values()):
         return ""
     counts = ", ".join(f"{registry.get(b).title} {n}" for b, n in r.nonfinite.items())
-    out = ["<h3>NaN and Inf pixels: where they came from</h3>",
-           f'<p class="meta">Pixels with a NaN or Inf channel per render: {_e(counts)}. The origins are '
-           "<code>glslcheck probe --nan</code>'s (glslcheck/verification/probe.py): it runs the NumPy backend's traced module "
-           "on each such pixel of the NumPy render and groups the pixels by the first operation that made a "
-           "NaN or Inf. Each origin is also noted under its source line below.</p>"]
+    out = [
+        "<h3>NaN and Inf pixels: where they came from</h3>",
+        f'<p class="meta">Pixels with a NaN or Inf channel per render: {_e(counts)}. The origins are '
+        "<code>glslcheck probe --nan</code>'s (glslcheck/verification/probe.py): it runs the NumPy backend's traced module "
+        "on each such pixel of the NumPy render and groups the pixels by the first operation that made a "
+        "NaN or Inf. Each origin is also noted under its source line below.</p>",
+    ]
     if r.nan is None:
         out.append(f'<p><span class="badge off">no origins</span> {_e(r.nan_note)}</p>')
         return "\n".join(out)
@@ -385,18 +450,26 @@ def _nan_html(r: ShaderReport) -> str:
     for o in r.nan.origins:
         where = f"{o.file}:{o.line}:{o.column}" if o.file else "-"
         x0, y0, x1, y1 = o.box
-        rows.append(f"<tr><td><code>{_e(where)}</code></td><td>{_e(o.operation)}</td><td><code>{_e(o.code)}</code></td>"
-                    f'<td class="num">{o.pixels}</td><td class="num">{x0},{y0} .. {x1},{y1}</td>'
-                    f"<td>{_e(o.help)}</td></tr>")
+        rows.append(
+            f"<tr><td><code>{_e(where)}</code></td><td>{_e(o.operation)}</td><td><code>{_e(o.code)}</code></td>"
+            f'<td class="num">{o.pixels}</td><td class="num">{x0},{y0} .. {x1},{y1}</td>'
+            f"<td>{_e(o.help)}</td></tr>"
+        )
     if not rows:
-        rows.append('<tr><td colspan="6">the NumPy render has no NaN or Inf pixel: only the drivers made them</td></tr>')
+        rows.append(
+            '<tr><td colspan="6">the NumPy render has no NaN or Inf pixel: only the drivers made them</td></tr>'
+        )
     figure = ""
     if "numpy" in r.renders and r.nonfinite.get("numpy"):
-        figure = (f'<figure><img class="render" alt="NaN/Inf pixels of the NumPy render" '
-                  f'src="{nan_map_png(r.renders["numpy"])}"><figcaption>NumPy render, NaN/Inf pixels in magenta'
-                  "</figcaption></figure>")
-    out.append(f'<div class="images">{figure}<table class="nan"><tr><th>where</th><th>operation</th><th>code</th>'
-               f"<th>pixels</th><th>box (x, y from the top left)</th><th>help</th></tr>{''.join(rows)}</table></div>")
+        figure = (
+            f'<figure><img class="render" alt="NaN/Inf pixels of the NumPy render" '
+            f'src="{nan_map_png(r.renders["numpy"])}"><figcaption>NumPy render, NaN/Inf pixels in magenta'
+            "</figcaption></figure>"
+        )
+    out.append(
+        f'<div class="images">{figure}<table class="nan"><tr><th>where</th><th>operation</th><th>code</th>'
+        f"<th>pixels</th><th>box (x, y from the top left)</th><th>help</th></tr>{''.join(rows)}</table></div>"
+    )
     return "\n".join(out)
 
 
@@ -408,78 +481,126 @@ def _bench_html(r: ShaderReport, runs: int, size, time: float) -> str:
             out.append(f'<p><span class="badge off">no table</span> {_e(r.bench_note)}</p>')
         return "\n".join(out) if r.bench_note else ""
     w, h = size
-    load = (f" Load average when measured: {r.bench_load[0]:.2f}, {r.bench_load[1]:.2f}, {r.bench_load[2]:.2f} "
+    load = (
+        (
+            f" Load average when measured: {r.bench_load[0]:.2f}, {r.bench_load[1]:.2f}, {r.bench_load[2]:.2f} "
             f"on {os.cpu_count()} CPUs: times on a busy machine are slower and noisier; compare rows, "
-            "which share the load (round-robin), rather than absolute times.") if r.bench_load else ""
-    out.append(f'<p class="meta">Measured as <code>glslcheck bench --size {w}x{h} --runs {runs} --time {time:g}'
-               f'{" --webgl" if any(x.config.backend == "webgl" for x in r.bench) else ""}</code> does '
-               "(glslcheck/verification/bench.py), at this small size to keep the report quick. Each configuration (backend, "
-               "precision, samples per pixel on a 1x1, 2x2 or 4x4 sub-pixel grid) renders once to warm up, then "
-               f"{runs} round{'s' * (runs != 1)} in turn; its time is the median of its rounds of the whole render call (uniforms, "
-               "every sample, the averaging, the image back in memory). Error: RGB as the screen shows it "
-               "(clamped to [0, 1]) against NumPy float64 at 16 samples per pixel, with verification/compare.py's metrics; "
-               f"px &gt; 1/255: pixels off by more than one 8-bit step.{_e(load)}</p>")
+            "which share the load (round-robin), rather than absolute times."
+        )
+        if r.bench_load
+        else ""
+    )
+    out.append(
+        f'<p class="meta">Measured as <code>glslcheck bench --size {w}x{h} --runs {runs} --time {time:g}'
+        f"{' --webgl' if any(x.config.backend == 'webgl' for x in r.bench) else ''}</code> does "
+        "(glslcheck/verification/bench.py), at this small size to keep the report quick. Each configuration (backend, "
+        "precision, samples per pixel on a 1x1, 2x2 or 4x4 sub-pixel grid) renders once to warm up, then "
+        f"{runs} round{'s' * (runs != 1)} in turn; its time is the median of its rounds of the whole render call (uniforms, "
+        "every sample, the averaging, the image back in memory). Error: RGB as the screen shows it "
+        "(clamped to [0, 1]) against NumPy float64 at 16 samples per pixel, with verification/compare.py's metrics; "
+        f"px &gt; 1/255: pixels off by more than one 8-bit step.{_e(load)}</p>"
+    )
     head = "".join(f"<th>{_e(c)}</th>" for c in BENCH_HEADER)
     rows = []
     for x in r.bench:
         cells = row_cells(x)
-        tds = "".join(f"<td>{_e(c)}</td>" if i < 3 else f'<td class="num">{_e(c)}</td>' for i, c in enumerate(cells))
+        tds = "".join(
+            f"<td>{_e(c)}</td>" if i < 3 else f'<td class="num">{_e(c)}</td>'
+            for i, c in enumerate(cells)
+        )
         rows.append(('<tr class="front">' if x.pareto else "<tr>") + tds + "</tr>")
     title = f"render time against error at {w}x{h} (reference: NumPy float64 at 16 samples)"
-    out.append(f'<div class="images"><table class="bench"><tr>{head}</tr>{"".join(rows)}</table>'
-               f'<img class="plot" alt="render time against error" src="{plot_png(r.bench, title)}"></div>')
+    out.append(
+        f'<div class="images"><table class="bench"><tr>{head}</tr>{"".join(rows)}</table>'
+        f'<img class="plot" alt="render time against error" src="{plot_png(r.bench, title)}"></div>'
+    )
     out.append(f'<p class="meta">{_e(TABLE_NOTE)} (shaded rows).</p>')
     return "\n".join(out)
 
 
 def _pair_table(a: str, b: str, c: Comparison) -> str:
-    rows = [("max abs error", _num(c.max_abs_error)), ("mean abs error", f"{c.mean_abs_error:.3g}"),
-            ("PSNR", "inf" if math.isinf(c.psnr_db) else f"{c.psnr_db:.1f} dB"),
-            ("mismatched pixels", f"{c.mismatched_pixels} (budget {int(c.mismatch_budget)})"),
-            ("edge pixels", f"{c.edge_pixels} (budget {int(c.edge_budget)})"),
-            ("NaN/Inf pixels", f"{a} {c.nan_numpy}, {b} {c.nan_gl}")]
-    return "<table>" + "".join(f"<tr><td>{k}</td><td class=\"num\">{_e(v)}</td></tr>" for k, v in rows) + "</table>"
+    rows = [
+        ("max abs error", _num(c.max_abs_error)),
+        ("mean abs error", f"{c.mean_abs_error:.3g}"),
+        ("PSNR", "inf" if math.isinf(c.psnr_db) else f"{c.psnr_db:.1f} dB"),
+        ("mismatched pixels", f"{c.mismatched_pixels} (budget {int(c.mismatch_budget)})"),
+        ("edge pixels", f"{c.edge_pixels} (budget {int(c.edge_budget)})"),
+        ("NaN/Inf pixels", f"{a} {c.nan_numpy}, {b} {c.nan_gl}"),
+    ]
+    return (
+        "<table>"
+        + "".join(f'<tr><td>{k}</td><td class="num">{_e(v)}</td></tr>' for k, v in rows)
+        + "</table>"
+    )
 
 
-def _section(r: ShaderReport, size, time: float, bench_size=BENCH_SIZE, bench_runs: int = BENCH_RUNS) -> str:
+def _section(
+    r: ShaderReport, size, time: float, bench_size=BENCH_SIZE, bench_runs: int = BENCH_RUNS
+) -> str:
     out = [f'<h2 id="{_anchor(r.name)}">{_e(r.name)} {_badge(r.ok, "ok", "problems")}</h2>']
     errors = r.errors
     warnings = sum(d.severity == "warning" for d in r.check)
-    check_state = ("" if not errors else f'<span class="badge bad">{errors} error{"s" * (errors != 1)}</span> ')
-    lint_state = (f'<span class="badge warn">{len(r.lint)} lint finding{"s" * (len(r.lint) != 1)}</span>'
-                  if r.lint else '<span class="badge ok">no lint findings</span>')
-    out.append(f'<p>{check_state or _badge(True, "checks clean")} {lint_state} '
-               f'<span class="meta">check: glslcheck{" + ANGLE" if r.angle else ""}; '
-               f"{warnings} warning{'s' * (warnings != 1)}</span></p>")
+    check_state = (
+        "" if not errors else f'<span class="badge bad">{errors} error{"s" * (errors != 1)}</span> '
+    )
+    lint_state = (
+        f'<span class="badge warn">{len(r.lint)} lint finding{"s" * (len(r.lint) != 1)}</span>'
+        if r.lint
+        else '<span class="badge ok">no lint findings</span>'
+    )
+    out.append(
+        f"<p>{check_state or _badge(True, 'checks clean')} {lint_state} "
+        f'<span class="meta">check: glslcheck{" + ANGLE" if r.angle else ""}; '
+        f"{warnings} warning{'s' * (warnings != 1)}</span></p>"
+    )
     out.append("<h3>Renders</h3>")
     w, h = size
-    out.append(f'<p class="meta">{w}x{h}, iTime {time:g}, iFrame 0, one sample per pixel; '
-               "RGB as the screen shows it (clamped, 8-bit)</p>")
+    out.append(
+        f'<p class="meta">{w}x{h}, iTime {time:g}, iFrame 0, one sample per pixel; '
+        "RGB as the screen shows it (clamped, 8-bit)</p>"
+    )
     figs = []
     for b in (b for b in registry.names() if b in r.renders or b in r.unavailable):
         name = registry.get(b).title
         if b in r.renders:
-            figs.append(f'<figure><img class="render" alt="{_e(name)} render" src="{render_png(r.renders[b])}">'
-                        f"<figcaption><b>{_e(name)}</b> {r.times_ms[b]:.0f} ms</figcaption></figure>")
+            figs.append(
+                f'<figure><img class="render" alt="{_e(name)} render" src="{render_png(r.renders[b])}">'
+                f"<figcaption><b>{_e(name)}</b> {r.times_ms[b]:.0f} ms</figcaption></figure>"
+            )
         elif b in r.unavailable:
-            figs.append(f'<figure><span class="badge off">{_e(name)}: not available</span>'
-                        f"<figcaption>{_e(r.unavailable[b])}</figcaption></figure>")
+            figs.append(
+                f'<figure><span class="badge off">{_e(name)}: not available</span>'
+                f"<figcaption>{_e(r.unavailable[b])}</figcaption></figure>"
+            )
     if errors:
-        figs.append('<p><span class="badge bad">not rendered</span> the shader has errors (see below)</p>')
+        figs.append(
+            '<p><span class="badge bad">not rendered</span> the shader has errors (see below)</p>'
+        )
     out.append('<div class="images">' + "".join(figs) + "</div>")
     if r.pairs:
         out.append("<h3>Differences</h3>")
         figs = []
         for a, b, c, note in r.pairs:
-            badge = _badge(c.match) if a == registry.DEFAULT else (
-                '<span class="badge ok">drivers agree</span>' if c.match else '<span class="badge warn">drivers differ</span>')
+            badge = (
+                _badge(c.match)
+                if a == registry.DEFAULT
+                else (
+                    '<span class="badge ok">drivers agree</span>'
+                    if c.match
+                    else '<span class="badge warn">drivers differ</span>'
+                )
+            )
             caption = f"<b>{_e(a)} vs {_e(b)}</b> {badge}"
-            figs.append(f'<figure><img class="render" alt="difference {_e(a)} vs {_e(b)}" src="{diff_png(c)}">'
-                        f"<figcaption>{caption}{_pair_table(a, b, c)}{_e(note)}</figcaption></figure>")
+            figs.append(
+                f'<figure><img class="render" alt="difference {_e(a)} vs {_e(b)}" src="{diff_png(c)}">'
+                f"<figcaption>{caption}{_pair_table(a, b, c)}{_e(note)}</figcaption></figure>"
+            )
         out.append('<div class="images">' + "".join(figs) + "</div>")
-        out.append('<p class="meta">Heat map: black = equal, red to yellow to white = larger differences, '
-                   "cyan = a difference a sub-pixel shift explains (an edge), magenta = NaN/Inf in one image "
-                   "only. Tolerance and budgets: glslcheck/verification/compare.py.</p>")
+        out.append(
+            '<p class="meta">Heat map: black = equal, red to yellow to white = larger differences, '
+            "cyan = a difference a sub-pixel shift explains (an edge), magenta = NaN/Inf in one image "
+            "only. Tolerance and budgets: glslcheck/verification/compare.py.</p>"
+        )
     out.append(_nan_html(r))
     out.append(_bench_html(r, bench_runs, bench_size, time))
     out.append("<h3>Source, check and lint findings</h3>")
@@ -487,42 +608,81 @@ def _section(r: ShaderReport, size, time: float, bench_size=BENCH_SIZE, bench_ru
     return "\n".join(out)
 
 
-def page_html(reports: list[ShaderReport], size, time: float, title: str, bench_size=BENCH_SIZE,
-              bench_runs: int = BENCH_RUNS) -> str:
+def page_html(
+    reports: list[ShaderReport],
+    size,
+    time: float,
+    title: str,
+    bench_size=BENCH_SIZE,
+    bench_runs: int = BENCH_RUNS,
+) -> str:
     from ..base.version import __version__
 
-    head = (f"<!DOCTYPE html>\n<html lang=\"en\"><head><meta charset=\"utf-8\">"
-            f"<meta name=\"viewport\" content=\"width=device-width, initial-scale=1\">"
-            f"<title>{_e(title)}</title><style>{CSS}</style></head><body>")
-    body = [f"<h1>{_e(title)}</h1>",
-            f'<p class="meta">glslcheck {__version__} report: {len(reports)} shader{"s" * (len(reports) != 1)}, '
-            f"renders at {size[0]}x{size[1]}, iTime {time:g}</p>"]
+    head = (
+        f'<!DOCTYPE html>\n<html lang="en"><head><meta charset="utf-8">'
+        f'<meta name="viewport" content="width=device-width, initial-scale=1">'
+        f"<title>{_e(title)}</title><style>{CSS}</style></head><body>"
+    )
+    body = [
+        f"<h1>{_e(title)}</h1>",
+        f'<p class="meta">glslcheck {__version__} report: {len(reports)} shader{"s" * (len(reports) != 1)}, '
+        f"renders at {size[0]}x{size[1]}, iTime {time:g}</p>",
+    ]
     if len(reports) > 1:
         rows = []
         for r in reports:
-            verdicts = " ".join(f"{a}/{b} {_badge(c.match)}" for a, b, c, _ in r.pairs if a == registry.DEFAULT) or "-"
-            rows.append(f'<tr><td><a href="#{_anchor(r.name)}">{_e(Path(r.name).name or r.name)}</a></td>'
-                        f"<td>{_badge(not r.errors, 'clean', f'{r.errors} errors')}</td>"
-                        f'<td class="num">{len(r.lint)}</td><td>{verdicts}</td></tr>')
-        body.append('<table class="index"><tr><th>shader</th><th>check</th><th>lint findings</th>'
-                    "<th>verify</th></tr>" + "".join(rows) + "</table>")
+            verdicts = (
+                " ".join(
+                    f"{a}/{b} {_badge(c.match)}" for a, b, c, _ in r.pairs if a == registry.DEFAULT
+                )
+                or "-"
+            )
+            rows.append(
+                f'<tr><td><a href="#{_anchor(r.name)}">{_e(Path(r.name).name or r.name)}</a></td>'
+                f"<td>{_badge(not r.errors, 'clean', f'{r.errors} errors')}</td>"
+                f'<td class="num">{len(r.lint)}</td><td>{verdicts}</td></tr>'
+            )
+        body.append(
+            '<table class="index"><tr><th>shader</th><th>check</th><th>lint findings</th>'
+            "<th>verify</th></tr>" + "".join(rows) + "</table>"
+        )
     body += [_section(r, size, time, bench_size, bench_runs) for r in reports]
     return head + "\n".join(body) + "\n</body></html>\n"
 
 
-def build_report(paths, *, size=DEFAULT_SIZE, time: float = 0.0, backends=DEFAULT_BACKENDS,
-                 title: str | None = None, bench=BENCH_SIZE, bench_runs: int = BENCH_RUNS) -> Page:
+def build_report(
+    paths,
+    *,
+    size=DEFAULT_SIZE,
+    time: float = 0.0,
+    backends=DEFAULT_BACKENDS,
+    title: str | None = None,
+    bench=BENCH_SIZE,
+    bench_runs: int = BENCH_RUNS,
+) -> Page:
     """The page for every shader under `paths` (see the module docstring); `bench` is the
     bench's render size, None to leave the table out."""
     shaders = find_shaders([str(p) for p in paths])
     ready = {b: _backend_ready(b) for b in backends}
-    reports = [gather(s, size=size, time=time, backends=backends, ready=ready, bench=bench, bench_runs=bench_runs)
-               for s in shaders]
+    reports = [
+        gather(
+            s,
+            size=size,
+            time=time,
+            backends=backends,
+            ready=ready,
+            bench=bench,
+            bench_runs=bench_runs,
+        )
+        for s in shaders
+    ]
     title = title or ("glslcheck report: " + ", ".join(str(p) for p in paths))
     return Page(page_html(reports, size, time, title, bench, bench_runs), reports)
 
 
-def load_in_browser(path, screenshot=None, width: int = 1280, height: int | None = None) -> list[str]:
+def load_in_browser(
+    path, screenshot=None, width: int = 1280, height: int | None = None
+) -> list[str]:
     """Open a written page in the WebGL backend's headless Chromium; its console errors, page
     errors and requests that left the page (there must be none: everything is inline).
     With `screenshot` a PNG of the page is written there: the whole page, or its top `height`
@@ -532,9 +692,17 @@ def load_in_browser(path, screenshot=None, width: int = 1280, height: int | None
     browser = get_browser()
     page = browser.new_page(viewport={"width": width, "height": 800})
     problems: list[str] = []
-    page.on("console", lambda m: problems.append(f"console {m.type}: {m.text}") if m.type == "error" else None)
+    page.on(
+        "console",
+        lambda m: problems.append(f"console {m.type}: {m.text}") if m.type == "error" else None,
+    )
     page.on("pageerror", lambda e: problems.append(f"page error: {e}"))
-    page.on("request", lambda q: None if q.url.startswith(("data:", "file:")) else problems.append(f"request: {q.url}"))
+    page.on(
+        "request",
+        lambda q: (
+            None if q.url.startswith(("data:", "file:")) else problems.append(f"request: {q.url}")
+        ),
+    )
     try:
         page.goto(Path(path).resolve().as_uri())
         if screenshot is not None:

@@ -32,22 +32,22 @@ from __future__ import annotations
 
 import inspect
 import logging
-from collections import abc
 import os
 import sys
+from collections import abc
+from collections.abc import Iterator, Sequence
 from dataclasses import dataclass
 from pathlib import Path
-from typing import Iterator, Sequence
 
 import numpy as np
 
-from .compare import Comparison, compare
-from ..semantics.mediump import mediump_notes
+from ..backends import registry
 from ..base.diagnostics import GlslError
 from ..base.precision import check_precision
-from ..shadertoy.wrapper import DEFAULT_SIZE
+from ..semantics.mediump import mediump_notes
 from ..shadertoy.sources import Shader, load_shader
-from ..backends import registry
+from ..shadertoy.wrapper import DEFAULT_SIZE
+from .compare import Comparison, compare
 
 BACKENDS = ("numpy", "gl")  # the default pair: the side under test, then its reference
 DEFAULT_FPS = 60.0
@@ -99,7 +99,9 @@ def frame_specs(
 ) -> Sequence[FrameSpec]:
     """The frames one run renders (see the module docstring); ValueError on conflicting options.
     `frames=N` gives a lazy sequence (`Frames`), the others a list."""
-    given = [name for name, v in (("time", time), ("times", times), ("frames", frames)) if v is not None]
+    given = [
+        name for name, v in (("time", time), ("times", times), ("frames", frames)) if v is not None
+    ]
     if len(given) > 1:
         raise ValueError(f"give only one of --{', --'.join(given)}")
     rate = DEFAULT_FPS if fps is None else float(fps)
@@ -161,12 +163,23 @@ class _Pair:
         self._common = common
         self._accepted = accepted
 
-    def render(self, spec: FrameSpec, size, mouse, date, precision, samples,
-               only_first: bool = False) -> list[np.ndarray]:
-        shared = {"size": size, "time": spec.time, "frame": spec.frame, "mouse": mouse, "date": date,
-                  "samples": samples, "time_delta": spec.time_delta, "frame_rate": spec.frame_rate}
+    def render(
+        self, spec: FrameSpec, size, mouse, date, precision, samples, only_first: bool = False
+    ) -> list[np.ndarray]:
+        shared = {
+            "size": size,
+            "time": spec.time,
+            "frame": spec.frame,
+            "mouse": mouse,
+            "date": date,
+            "samples": samples,
+            "time_delta": spec.time_delta,
+            "frame_rate": spec.frame_rate,
+        }
         images = []
-        for program, accepted in zip(self.programs[:1] if only_first else self.programs, self._accepted):
+        for program, accepted in zip(
+            self.programs[:1] if only_first else self.programs, self._accepted
+        ):
             kwargs = {k: v for k, v in shared.items() if self._common is None or k in self._common}
             if accepted is None or "precision" in accepted:
                 kwargs["precision"] = precision
@@ -231,7 +244,7 @@ def verify_frames(
     programs: Sequence | None = None,
     keep_images: bool = False,
     compare_options: dict | None = None,
-    progress: "Progress | None" = None,
+    progress: Progress | None = None,
 ) -> Iterator[FrameResult]:
     """Render and compare frame by frame, every size times every frame of the schedule.
 
@@ -269,7 +282,9 @@ def verify_frames(
     pair = _Pair(programs)
     name = shader.root or (shader.image.path if shader.image else "<shader>")
     # a side that can emulate float16 computes mediump in float32 here (semantics/mediump.py)
-    mediump = mediump_notes(shader) if any("float16" in r.precisions for r in records.values()) else ()
+    mediump = (
+        mediump_notes(shader) if any("float16" in r.precisions for r in records.values()) else ()
+    )
     for w_h in size_list:
         for spec in specs:
             numpy_img, gl_img = pair.render(spec, w_h, tuple(mouse), date, precision, samples)
@@ -278,20 +293,35 @@ def verify_frames(
                 # unstable pixels: only worth a float64 render when the frame fails (verification/compare.py)
                 ref = pair.reference(spec, w_h, tuple(mouse), date, samples)
                 if ref is not None:
-                    comparison = compare(numpy_img, gl_img, reference=ref, **(compare_options or {}))
+                    comparison = compare(
+                        numpy_img, gl_img, reference=ref, **(compare_options or {})
+                    )
                     if comparison.unstable_pixels:
                         comparison.unstable_lines = unstable_lines(
-                            shader, comparison, w_h, spec, tuple(mouse), date)
+                            shader, comparison, w_h, spec, tuple(mouse), date
+                        )
             if progress is not None:
                 progress.step(f"{name} t={spec.time:g}")
             comparison.driver = driver
-            notes = tuple(f"{path}:{line}: this loop reached llvmpipe's limit of {LLVMPIPE_LOOP_LIMIT:,} "
-                          "loop passes per pixel and was stopped on both sides (a GPU runs it to the end)"
-                          for path, line in limited_loops(programs[0])) + mediump
+            notes = (
+                tuple(
+                    f"{path}:{line}: this loop reached llvmpipe's limit of {LLVMPIPE_LOOP_LIMIT:,} "
+                    "loop passes per pixel and was stopped on both sides (a GPU runs it to the end)"
+                    for path, line in limited_loops(programs[0])
+                )
+                + mediump
+            )
             if driver_note is not None and not comparison.match:
                 notes += (driver_note,)
-            yield FrameResult(name, spec, (int(w_h[0]), int(w_h[1])), comparison,
-                              numpy_img if keep_images else None, gl_img if keep_images else None, notes)
+            yield FrameResult(
+                name,
+                spec,
+                (int(w_h[0]), int(w_h[1])),
+                comparison,
+                numpy_img if keep_images else None,
+                gl_img if keep_images else None,
+                notes,
+            )
 
 
 UNSTABLE_PROBES = 24  # unstable pixels traced per frame to name the lines that lose precision
@@ -300,7 +330,9 @@ UNSTABLE_PROBES = 24  # unstable pixels traced per frame to name the lines that 
 UNSTABLE_STEPS = 200_000
 
 
-def unstable_lines(shader: Shader, comparison: Comparison, size, spec: FrameSpec, mouse, date) -> list[dict]:
+def unstable_lines(
+    shader: Shader, comparison: Comparison, size, spec: FrameSpec, mouse, date
+) -> list[dict]:
     """Where the unstable pixels lose their precision: up to UNSTABLE_PROBES of them, spread over
     the image, are traced by `glslcheck probe` (float32 beside its float64 shadow) and each is
     attributed to its first statement that keeps fewer than probe.UNSTABLE_BITS bits. Pixels are
@@ -319,7 +351,9 @@ def unstable_lines(shader: Shader, comparison: Comparison, size, spec: FrameSpec
         probe = Probe(shader)
     except Exception:  # noqa: BLE001 - attribution is a hint: a shader probe cannot trace keeps its count
         return []
-    inputs = Inputs(size=(int(size[0]), int(size[1])), time=spec.time, frame=spec.frame, mouse=mouse, date=date)
+    inputs = Inputs(
+        size=(int(size[0]), int(size[1])), time=spec.time, frame=spec.frame, mouse=mouse, date=date
+    )
     found: dict[tuple, list] = {}
     sampled = steps = 0
     for i in picks[_spread(len(picks))]:
@@ -334,8 +368,17 @@ def unstable_lines(shader: Shader, comparison: Comparison, size, spec: FrameSpec
             entry[0] += 1
             entry[1] = min(entry[1], step.bits)
     scale = len(xs) / sampled
-    lines = [{"file": f, "line": ln, "code": code, "bits": int(bits), "pixels": int(round(n * scale)),
-              "sampled": sampled} for (f, ln, code), (n, bits) in found.items()]
+    lines = [
+        {
+            "file": f,
+            "line": ln,
+            "code": code,
+            "bits": int(bits),
+            "pixels": int(round(n * scale)),
+            "sampled": sampled,
+        }
+        for (f, ln, code), (n, bits) in found.items()
+    ]
     return sorted(lines, key=lambda d: (-d["pixels"], d["file"], d["line"]))
 
 
@@ -378,7 +421,8 @@ def emulate_driver(programs: Sequence) -> None:
     if model is None:
         logging.getLogger("glslcheck").warning(
             "note: the GL driver's uint(x) of negative, NaN or huge x follows no model glslcheck "
-            "knows (glslcheck/backends/driver_profile.py); pixels that depend on such conversions may differ")
+            "knows (glslcheck/backends/driver_profile.py); pixels that depend on such conversions may differ"
+        )
         return
     for p in programs:
         if hasattr(p, "emulate_float_to_uint"):
@@ -395,7 +439,11 @@ def gl_driver(programs: Sequence) -> tuple[dict | None, str | None]:
         ctx = getattr(getattr(p, "impl", p), "ctx", None)
         if ctx is not None and hasattr(ctx, "info"):
             renderer, mesa = driver_name(ctx)
-            return {"renderer": renderer, "mesa": mesa, "emulated": is_emulated(renderer, mesa)}, emulation_note(ctx)
+            return {
+                "renderer": renderer,
+                "mesa": mesa,
+                "emulated": is_emulated(renderer, mesa),
+            }, emulation_note(ctx)
     return None, None
 
 
@@ -453,4 +501,3 @@ class Progress:
             self.stream.write("\n")
             self.stream.flush()
             self._drawn = False
-

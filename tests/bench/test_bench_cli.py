@@ -8,8 +8,8 @@ from pathlib import Path
 
 import pytest
 
-from glslcheck.verification.bench import JSON_KEYS
 from glslcheck.cli.main import main
+from glslcheck.verification.bench import JSON_KEYS
 
 ROOT = Path(__file__).resolve().parents[2]
 PART = str(ROOT / "lab_shaders" / "02_point_light")
@@ -38,14 +38,22 @@ def test_json_exact_keys_and_twelve_rows(json_run):
     assert len(rows) == 12
     assert all(tuple(r) == JSON_KEYS for r in rows)
     assert {(r["backend"], r["precision"]) for r in rows} == {
-        ("gl", "float32"), ("numpy", "float16"), ("numpy", "float32"), ("numpy", "float64")}
+        ("gl", "float32"),
+        ("numpy", "float16"),
+        ("numpy", "float32"),
+        ("numpy", "float64"),
+    }
     assert sorted({r["samples"] for r in rows}) == [1, 4, 16]
 
 
 def test_reference_row_error_zero_and_ratio_column(json_run):
     rows = json_run[1]["rows"]
-    (ref,) = [r for r in rows if (r["backend"], r["precision"], r["samples"]) == ("numpy", "float64", 16)]
-    assert ref["max_abs_error"] == 0 and ref["mean_abs_error"] == 0 and ref["pixels_over_1_255"] == 0
+    (ref,) = [
+        r for r in rows if (r["backend"], r["precision"], r["samples"]) == ("numpy", "float64", 16)
+    ]
+    assert (
+        ref["max_abs_error"] == 0 and ref["mean_abs_error"] == 0 and ref["pixels_over_1_255"] == 0
+    )
     assert ref["psnr_db"] is None
     (gl1,) = [r for r in rows if r["backend"] == "gl" and r["samples"] == 1]
     assert gl1["ratio_to_gl"] == 1.0
@@ -63,13 +71,19 @@ def test_text_table(gl, capsys):
     assert main(["bench", PART, *TINY]) == 0
     out = capsys.readouterr().out
     assert "x GL@1" in out and "16x10" in out and "PSNR dB" in out
-    lines = [line for line in out.splitlines() if line.startswith(("  gl x", "  f16", "  f32", "  f64"))]
+    lines = [
+        line for line in out.splitlines() if line.startswith(("  gl x", "  f16", "  f32", "  f64"))
+    ]
     assert len(lines) == 12
-    assert any(line.startswith("  f64 x16") and " inf " in line and line.endswith("*") for line in lines)
+    assert any(
+        line.startswith("  f64 x16") and " inf " in line and line.endswith("*") for line in lines
+    )
 
 
 def test_progress_bar_on_stderr(gl, capsys):
-    assert main(["bench", PART, "--size", "8x6", "--runs", "1", "--progress", "--format", "json"]) == 0
+    assert (
+        main(["bench", PART, "--size", "8x6", "--runs", "1", "--progress", "--format", "json"]) == 0
+    )
     err = capsys.readouterr().err
     assert "bench [" in err and "24/24" in err
 
@@ -83,12 +97,15 @@ def test_shader_error_exit_1_others_still_measured(gl, capsys, tmp_path):
     assert len(json.loads(captured.out)["rows"]) == 12
 
 
-@pytest.mark.parametrize("argv", [
-    ["--runs", "0"],
-    ["--size", "16"],
-    ["--format", "csv"],
-    ["--time", "soon"],
-])
+@pytest.mark.parametrize(
+    "argv",
+    [
+        ["--runs", "0"],
+        ["--size", "16"],
+        ["--format", "csv"],
+        ["--time", "soon"],
+    ],
+)
 def test_usage_errors_exit_2(argv, capsys):
     assert main(["bench", PART, *argv]) == 2
 
@@ -110,5 +127,19 @@ def test_no_gl_context_exit_2(monkeypatch, capsys):
 
 
 def test_unwritable_plot_exit_2(gl, capsys, tmp_path):
-    assert main(["bench", PART, "--size", "8x6", "--runs", "1", "--no-progress",
-                 "--plot", str(tmp_path / "no" / "such" / "dir.png")]) == 2
+    assert (
+        main(
+            [
+                "bench",
+                PART,
+                "--size",
+                "8x6",
+                "--runs",
+                "1",
+                "--no-progress",
+                "--plot",
+                str(tmp_path / "no" / "such" / "dir.png"),
+            ]
+        )
+        == 2
+    )

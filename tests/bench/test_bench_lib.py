@@ -8,7 +8,17 @@ import math
 import numpy as np
 import pytest
 
-from glslcheck.verification.bench import JSON_KEYS, Config, Row, bench_shader, configurations, format_table, mark_pareto, measure_error, write_plot
+from glslcheck.verification.bench import (
+    JSON_KEYS,
+    Config,
+    Row,
+    bench_shader,
+    configurations,
+    format_table,
+    mark_pareto,
+    measure_error,
+    write_plot,
+)
 
 W, H = 8, 6
 
@@ -57,7 +67,9 @@ def rows_and_programs(make_shader):
     shader = make_shader("void mainImage(out vec4 c, in vec2 f) { c = vec4(1.0); }")
     gl, npy = FakeProgram("gl", _value), FakeProgram("numpy", _value)
     steps = []
-    rows = bench_shader(shader, size=(W, H), runs=3, programs=(gl, npy), step=steps.append, clock=FakeClock())
+    rows = bench_shader(
+        shader, size=(W, H), runs=3, programs=(gl, npy), step=steps.append, clock=FakeClock()
+    )
     return rows, gl, npy, steps
 
 
@@ -65,7 +77,11 @@ def test_twelve_configurations_gl_first():
     configs = configurations()
     assert len(configs) == 12
     assert [c.label for c in configs[:3]] == ["gl x1", "gl x4", "gl x16"]
-    assert {c.precision for c in configs if c.backend == "numpy"} == {"float16", "float32", "float64"}
+    assert {c.precision for c in configs if c.backend == "numpy"} == {
+        "float16",
+        "float32",
+        "float64",
+    }
     assert [c for c in configs if c.is_reference] == [Config("numpy", "float64", 16)]
 
 
@@ -82,7 +98,9 @@ def test_reference_row_has_no_error_and_ratio_is_to_gl_at_one_sample(rows_and_pr
     rows = rows_and_programs[0]
     ref = [r for r in rows if r.config.is_reference]
     assert len(ref) == 1
-    assert ref[0].max_abs_error == 0 and ref[0].mean_abs_error == 0 and ref[0].pixels_over_1_255 == 0
+    assert (
+        ref[0].max_abs_error == 0 and ref[0].mean_abs_error == 0 and ref[0].pixels_over_1_255 == 0
+    )
     assert math.isinf(ref[0].psnr_db) and ref[0].to_json()["psnr_db"] is None
     gl1 = rows[0]
     assert gl1.config == Config("gl", "float32", 1) and gl1.ratio_to_gl == 1.0
@@ -130,25 +148,46 @@ def test_table_and_plot(rows_and_programs, tmp_path):
     rows = rows_and_programs[0]
     text = format_table(rows, (W, H), 3, 0.0)
     assert "x GL@1" in text and "median of 3 runs" in text
-    assert sum(line.startswith(("  gl x", "  f16", "  f32", "  f64")) for line in text.splitlines()) == 12
+    assert (
+        sum(line.startswith(("  gl x", "  f16", "  f32", "  f64")) for line in text.splitlines())
+        == 12
+    )
     from PIL import Image
 
     path = tmp_path / "plot.png"
-    write_plot(rows + [Row("other", r.config, r.median_ms * 2, r.ratio_to_gl, r.max_abs_error,
-                           r.mean_abs_error, r.psnr_db, r.pixels_over_1_255, pareto=r.pareto) for r in rows], path)
+    write_plot(
+        rows
+        + [
+            Row(
+                "other",
+                r.config,
+                r.median_ms * 2,
+                r.ratio_to_gl,
+                r.max_abs_error,
+                r.mean_abs_error,
+                r.psnr_db,
+                r.pixels_over_1_255,
+                pareto=r.pareto,
+            )
+            for r in rows
+        ],
+        path,
+    )
     with Image.open(path) as im:
         assert im.format == "PNG" and im.width > im.height > 200
 
 
 def test_numpy_configurations_share_one_kind_of_worker(make_shader, monkeypatch):
-    """"auto" would move to worker processes part-way through a bench and mix processes and
+    """ "auto" would move to worker processes part-way through a bench and mix processes and
     threads in one table: the bench pins one (processes where available) unless told."""
-    from glslcheck.verification.bench import _pin_parallel
     from glslcheck.backends.numpy_engine import workers
     from glslcheck.backends.numpy_engine.program import compile_numpy
+    from glslcheck.verification.bench import _pin_parallel
 
     monkeypatch.delenv("GLSLCHECK_PARALLEL", raising=False)
-    prog = compile_numpy(make_shader("void mainImage(out vec4 o, in vec2 f) { o = vec4(f, 0.0, 1.0); }"))
+    prog = compile_numpy(
+        make_shader("void mainImage(out vec4 o, in vec2 f) { o = vec4(f, 0.0, 1.0); }")
+    )
     assert prog.parallel == "auto"
     _pin_parallel(prog)
     assert prog.parallel == ("processes" if workers.available() else "threads")

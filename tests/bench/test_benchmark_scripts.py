@@ -17,8 +17,13 @@ ROOT = Path(__file__).resolve().parents[2]
 
 
 def _run(script: str, *args: str, timeout: int = 240) -> str:
-    done = subprocess.run([sys.executable, str(ROOT / "benchmarks" / script), *args], cwd=ROOT,
-                          capture_output=True, text=True, timeout=timeout)
+    done = subprocess.run(
+        [sys.executable, str(ROOT / "benchmarks" / script), *args],
+        cwd=ROOT,
+        capture_output=True,
+        text=True,
+        timeout=timeout,
+    )
     assert done.returncode == 0, done.stderr[-2000:]
     assert "Traceback" not in done.stderr
     return done.stdout
@@ -26,32 +31,56 @@ def _run(script: str, *args: str, timeout: int = 240) -> str:
 
 def test_bench_parse_prints_its_figures(glslang):
     out = _run("bench_parse.py", "--runs", "1")
-    for line in ("warm preprocess+parse+AST", "check on top of parse", "one CLI call `glslcheck parse`",
-                 "glslangValidator on the same program"):
+    for line in (
+        "warm preprocess+parse+AST",
+        "check on top of parse",
+        "one CLI call `glslcheck parse`",
+        "glslangValidator on the same program",
+    ):
         assert line in out, out
 
 
 @pytest.mark.parametrize("args", [("--repeat", "1")])
 def test_bench_render_prints_its_figures(gl, args):
     out = _run("bench_render.py", *args)
-    for line in ("four spheres, four lights", "lab 07_final", "numpy processes", "threads",
-                 "time(small) / time(large) on processes", "one-thread CPU", "llvmpipe for reference",
-                 "threads  : render", "processes: render", "(limit 2048 MiB)"):
+    for line in (
+        "four spheres, four lights",
+        "lab 07_final",
+        "numpy processes",
+        "threads",
+        "time(small) / time(large) on processes",
+        "one-thread CPU",
+        "llvmpipe for reference",
+        "threads  : render",
+        "processes: render",
+        "(limit 2048 MiB)",
+    ):
         assert line in out, out
 
 
 def test_run_all_prints_every_section(gl, glslang):
     out = _run("run_all.py", "--runs", "1", "--skip-memory")
-    for line in ("1. parse + check against glslangValidator", "2. NumPy (float32, 1 sample) against GL",
-                 "3. coverage scaling", "processes: time(small) / time(large)",
-                 "threads: time(small) / time(large)", "gl: time(small) / time(large)"):
+    for line in (
+        "1. parse + check against glslangValidator",
+        "2. NumPy (float32, 1 sample) against GL",
+        "3. coverage scaling",
+        "processes: time(small) / time(large)",
+        "threads: time(small) / time(large)",
+        "gl: time(small) / time(large)",
+    ):
         assert line in out, out
 
 
 def test_bench_startup_prints_its_figures(glslang):
     out = _run("bench_startup.py", "--runs", "1", "--only", "venv")
-    for line in ("lint FILE (", "check FILE (", "lint lab_shaders (34 programs)", "check lab_shaders (34 programs)",
-                 "python -c pass", "ratio (CPU)"):
+    for line in (
+        "lint FILE (",
+        "check FILE (",
+        "lint lab_shaders (34 programs)",
+        "check lab_shaders (34 programs)",
+        "python -c pass",
+        "ratio (CPU)",
+    ):
         assert line in out, out
 
 
@@ -59,6 +88,15 @@ def test_ab_lanes_math_prints_its_figures(numba):
     """The working tree's lanes_math.py against itself (a file path as --rev, so no git history is
     needed): the same bits, and a line of times."""
     lanes_math = ROOT / "glslcheck" / "backends" / "compiled_engine" / "lanes_math.py"
-    out = _run("ab_lanes_math.py", "--rev", str(lanes_math), "--size", "16x8", "--repeat", "1",
-               str(ROOT / "lab_shaders" / "05_blinn_phong"), timeout=600)
+    out = _run(
+        "ab_lanes_math.py",
+        "--rev",
+        str(lanes_math),
+        "--size",
+        "16x8",
+        "--repeat",
+        "1",
+        str(ROOT / "lab_shaders" / "05_blinn_phong"),
+        timeout=600,
+    )
     assert "05_blinn_phong" in out and "same bits True" in out and "after/before" in out, out

@@ -38,16 +38,20 @@ EXPRESSIONS = {
     "dot(vec2(x, y), vec2(y, x))": lambda x, y: x * y + y * x,
     "length(vec2(x, y))": lambda x, y: np.sqrt(x * x + y * y),
     "x * 1000.0 * 100.0": lambda x, y: x * h(1000) * h(100),
-    "fract(sin(x) * 43758.5453)": lambda x, y: (lambda s: s - np.floor(s))(np.sin(x.astype(f32)).astype(h) * h(43758.5453)),
+    "fract(sin(x) * 43758.5453)": lambda x, y: (lambda s: s - np.floor(s))(
+        np.sin(x.astype(f32)).astype(h) * h(43758.5453)
+    ),
 }
 
 
 def render(ctx, expr: str, precision: str) -> np.ndarray:
-    fs = (f"#version 300 es\nprecision {precision} float;\nout highp vec4 o;\nvoid main() {{\n"
-          "    highp vec2 f = gl_FragCoord.xy;\n"
-          f"    {precision} float x = f.x / 7.0 + f.y / 3.0;\n"
-          f"    {precision} float y = f.x * 0.37 - f.y / 11.0 + 0.3;\n"
-          f"    o = vec4({expr}, 0.0, 0.0, 1.0);\n}}\n")
+    fs = (
+        f"#version 300 es\nprecision {precision} float;\nout highp vec4 o;\nvoid main() {{\n"
+        "    highp vec2 f = gl_FragCoord.xy;\n"
+        f"    {precision} float x = f.x / 7.0 + f.y / 3.0;\n"
+        f"    {precision} float y = f.x * 0.37 - f.y / 11.0 + 0.3;\n"
+        f"    o = vec4({expr}, 0.0, 0.0, 1.0);\n}}\n"
+    )
     prog = ctx.program(vertex_shader=VERTEX_SHADER, fragment_shader=fs)
     out = ctx.texture((W, H), 4, dtype="f4")
     fbo = ctx.framebuffer([out])
@@ -71,9 +75,11 @@ def main() -> None:
         with np.errstate(all="ignore"):
             ours = model(x, y).astype(f32)
             rel = np.nanmax(np.abs(got - high) / np.maximum(np.abs(high), 1e-30))
-        print(f"{expr:30s} equal to float16: {int((ours == got).sum()):4d}/{got.size}, to highp: "
-              f"{int((got == high).sum()):4d}/{got.size}, max relative difference from highp {rel:.3g}, "
-              f"inf {int(np.isinf(got).sum())}")
+        print(
+            f"{expr:30s} equal to float16: {int((ours == got).sum()):4d}/{got.size}, to highp: "
+            f"{int((got == high).sum()):4d}/{got.size}, max relative difference from highp {rel:.3g}, "
+            f"inf {int(np.isinf(got).sum())}"
+        )
 
 
 if __name__ == "__main__":

@@ -41,17 +41,29 @@ def _folder(tmp_path, tabs: dict, channels) -> str:
     for name, text in tabs.items():
         (tmp_path / f"{name}.glsl").write_text(text)
     if channels is not None:
-        (tmp_path / "channels.json").write_text(channels if isinstance(channels, str) else json.dumps(channels))
+        (tmp_path / "channels.json").write_text(
+            channels if isinstance(channels, str) else json.dumps(channels)
+        )
     return str(tmp_path)
 
 
 @pytest.fixture
 def feedback(tmp_path):
     _png(tmp_path / "tex.png")
-    return _folder(tmp_path, {"Buffer A": FEEDBACK, "Image": IMAGE}, {
-        "Buffer A": {"iChannel0": {"buffer": "Buffer A"}, "iChannel1": {"texture": "tex.png", "filter": "linear"}},
-        "Image": {"iChannel0": {"buffer": "Buffer A", "filter": "nearest"},
-                  "iChannel1": {"texture": "tex.png", "filter": "nearest"}}})
+    return _folder(
+        tmp_path,
+        {"Buffer A": FEEDBACK, "Image": IMAGE},
+        {
+            "Buffer A": {
+                "iChannel0": {"buffer": "Buffer A"},
+                "iChannel1": {"texture": "tex.png", "filter": "linear"},
+            },
+            "Image": {
+                "iChannel0": {"buffer": "Buffer A", "filter": "nearest"},
+                "iChannel1": {"texture": "tex.png", "filter": "nearest"},
+            },
+        },
+    )
 
 
 def test_feedback_with_a_texture_verifies_over_30_frames(gl, feedback):
@@ -65,7 +77,9 @@ def test_feedback_with_a_texture_verifies_over_30_frames(gl, feedback):
 def test_buffers_carry_state_and_render_frame_n_replays(gl, feedback):
     prog = api.compile(feedback, backend="gl", output="Buffer A")
     frames = [prog.render(size=SIZE, frame=i, time=i / 60) for i in range(4)]
-    fresh = api.compile(feedback, backend="gl", output="Buffer A").render(size=SIZE, frame=3, time=3 / 60)
+    fresh = api.compile(feedback, backend="gl", output="Buffer A").render(
+        size=SIZE, frame=3, time=3 / 60
+    )
     assert np.array_equal(frames[3], fresh)  # frame 3 alone runs frames 0..3
     assert not np.array_equal(frames[2], frames[3])
     # cleared to zero before frame 0 and alpha kept (not forced to 1): alpha = mix(0, texel.a, 0.1)
@@ -75,13 +89,23 @@ def test_buffers_carry_state_and_render_frame_n_replays(gl, feedback):
 def _sampling_case(tmp_path, filt, wrap, vflip, highp):
     _png(tmp_path / "tex.png", 7, 5, seed=3)
     head = "precision highp sampler2D;\n" if highp else ""
-    body = head + """void mainImage(out vec4 c, in vec2 p) {
+    body = (
+        head
+        + """void mainImage(out vec4 c, in vec2 p) {
     vec2 uv = (p + 0.123) / iResolution.xy * 2.6 - 0.8;
     c = texture(iChannel0, uv);
 }
 """
-    return _folder(tmp_path, {"Image": body},
-                   {"Image": {"iChannel0": {"texture": "tex.png", "filter": filt, "wrap": wrap, "vflip": vflip}}})
+    )
+    return _folder(
+        tmp_path,
+        {"Image": body},
+        {
+            "Image": {
+                "iChannel0": {"texture": "tex.png", "filter": filt, "wrap": wrap, "vflip": vflip}
+            }
+        },
+    )
 
 
 @pytest.mark.parametrize("highp", [False, True])
@@ -110,27 +134,49 @@ def test_lowp_sampler_truncates_like_llvmpipe(gl, tmp_path):
     # the lookup's result stored in a highp variable first: an expression of lowp operands only
     # (texelFetch(...) * 3.14) is itself lowp and llvmpipe truncates its result too (not emulated)
     body = "void mainImage(out vec4 c, in vec2 p) { vec4 t = texelFetch(iChannel0, ivec2(p) % 5, 0); c = t * 3.14159265; }\n"
-    folder = _folder(tmp_path, {"Image": body}, {"Image": {"iChannel0": {"texture": "tex.png", "filter": "nearest"}}})
+    folder = _folder(
+        tmp_path,
+        {"Image": body},
+        {"Image": {"iChannel0": {"texture": "tex.png", "filter": "nearest"}}},
+    )
     ours = api.compile(folder, backend="numpy").render(size=SIZE)
     theirs = api.compile(folder, backend="gl").render(size=SIZE)
     assert np.array_equal(ours, theirs)
 
 
 def _cli(*args):
-    return subprocess.run([sys.executable, "-m", "glslcheck", *args], capture_output=True, text=True, timeout=120)
+    return subprocess.run(
+        [sys.executable, "-m", "glslcheck", *args], capture_output=True, text=True, timeout=120
+    )
 
 
 BAD = [
-    ({"Image": {"iChannel0": {"texture": "missing.png"}}}, 2, '"Image"."iChannel0"."texture": no such file'),
+    (
+        {"Image": {"iChannel0": {"texture": "missing.png"}}},
+        2,
+        '"Image"."iChannel0"."texture": no such file',
+    ),
     ({"Image": {"iChannel0": {"texture": "bad.png"}}}, 2, "cannot read the image"),
     ({"Buffer Z": {"iChannel0": {"buffer": "Buffer A"}}}, 2, '"Buffer Z": unknown tab'),
     ({"Image": {"iChannel0": {"buffer": "Buffer B"}}}, 2, "the shader has no Buffer B tab"),
     ({"Image": {"iChannel0": {"buffer": "Image"}}}, 2, "cannot be an input"),
     ({"Image": {"iChannel7": {"buffer": "Buffer A"}}}, 2, '"Image"."iChannel7": unknown key'),
-    ({"Image": {"iChannel0": {"buffer": "Buffer A", "filter": "cubic"}}}, 2, '"filter": must be one of'),
-    ({"Image": {"iChannel0": {"keyboard": True}}}, 2, "keyboard inputs are not supported yet (tab Image, iChannel0)"),
-    ("{\"Image\": ", 2, "channels.json:1:11: error: not valid JSON"),
-    ({"Image": {"iChannel1": {"buffer": "Buffer A"}}}, 1, "Image.glsl:2:29: error: iChannel0 is read but not bound"),
+    (
+        {"Image": {"iChannel0": {"buffer": "Buffer A", "filter": "cubic"}}},
+        2,
+        '"filter": must be one of',
+    ),
+    (
+        {"Image": {"iChannel0": {"keyboard": True}}},
+        2,
+        "keyboard inputs are not supported yet (tab Image, iChannel0)",
+    ),
+    ('{"Image": ', 2, "channels.json:1:11: error: not valid JSON"),
+    (
+        {"Image": {"iChannel1": {"buffer": "Buffer A"}}},
+        1,
+        "Image.glsl:2:29: error: iChannel0 is read but not bound",
+    ),
 ]
 
 
@@ -138,9 +184,14 @@ BAD = [
 @pytest.mark.parametrize("command", ["render", "verify"])
 def test_bad_channels_json(tmp_path, channels, code, message, command):
     (tmp_path / "bad.png").write_bytes(b"not a png")
-    image = "void mainImage(out vec4 c, in vec2 p) {\n    c = vec4(1.0) * texture(iChannel0, p);\n}\n"
-    folder = _folder(tmp_path, {"Buffer A": "void mainImage(out vec4 c, in vec2 p) { c = vec4(1.0); }\n",
-                                "Image": image}, channels)
+    image = (
+        "void mainImage(out vec4 c, in vec2 p) {\n    c = vec4(1.0) * texture(iChannel0, p);\n}\n"
+    )
+    folder = _folder(
+        tmp_path,
+        {"Buffer A": "void mainImage(out vec4 c, in vec2 p) { c = vec4(1.0); }\n", "Image": image},
+        channels,
+    )
     args = ["-o", str(tmp_path / "out.png")] if command == "render" else ["--size", "8x8"]
     r = _cli(command, folder, *args)
     assert r.returncode == code, r.stderr
@@ -153,19 +204,25 @@ MIPMAP_UV = """float s = exp2(fragCoord.x / 10.0 - 1.0) * (1.0 + 0.3 * fragCoord
 
 
 @pytest.mark.parametrize("wrap", ["clamp", "repeat"])
-@pytest.mark.parametrize("lookup", [
-    "texture(iChannel0, uv)",  # the implicit LOD of each 2x2 quad, from 0 to past the last level
-    "texture(iChannel0, uv, 0.7)",  # with a bias
-    "textureLod(iChannel0, uv, fragCoord.x / 9.0 - 0.5)",
-    "textureGrad(iChannel0, uv, vec2(fragCoord.x / 900.0, 0.0), vec2(0.0, fragCoord.y / 300.0))",
-    "textureProjOffset(iChannel0, vec3(uv, 1.5), ivec2(1, 0))",
-    "textureProjLod(iChannel0, vec3(uv, 1.5), fragCoord.y / 6.0)",
-])
+@pytest.mark.parametrize(
+    "lookup",
+    [
+        "texture(iChannel0, uv)",  # the implicit LOD of each 2x2 quad, from 0 to past the last level
+        "texture(iChannel0, uv, 0.7)",  # with a bias
+        "textureLod(iChannel0, uv, fragCoord.x / 9.0 - 0.5)",
+        "textureGrad(iChannel0, uv, vec2(fragCoord.x / 900.0, 0.0), vec2(0.0, fragCoord.y / 300.0))",
+        "textureProjOffset(iChannel0, vec3(uv, 1.5), ivec2(1, 0))",
+        "textureProjLod(iChannel0, vec3(uv, 1.5), fragCoord.y / 6.0)",
+    ],
+)
 def test_mipmap_against_gl(gl, tmp_path, lookup, wrap):
-    _png(tmp_path / "tex.png", 70, 50, seed=5)  # odd level sizes on the way down: 70x50, 35x25, 17x12, ...
+    _png(
+        tmp_path / "tex.png", 70, 50, seed=5
+    )  # odd level sizes on the way down: 70x50, 35x25, 17x12, ...
     body = f"void mainImage(out vec4 fragColor, in vec2 fragCoord) {{\n    {MIPMAP_UV}\n    fragColor = {lookup};\n}}\n"
-    folder = _folder(tmp_path, {"Image": body},
-                     {"Image": {"iChannel0": {"texture": "tex.png", "wrap": wrap}}})  # textures default to mipmap
+    folder = _folder(
+        tmp_path, {"Image": body}, {"Image": {"iChannel0": {"texture": "tex.png", "wrap": wrap}}}
+    )  # textures default to mipmap
     ours = api.compile(folder, backend="numpy").render(size=SIZE)
     theirs = api.compile(folder, backend="gl").render(size=SIZE)
     # llvmpipe's LOD agrees with ours to 4.3e-6 of a level (measured), the bilinear lookups to a
@@ -205,8 +262,11 @@ void mainImage(out vec4 fragColor, in vec2 fragCoord) {{
     fragColor = {lookup};
 }}
 """
-    folder = _folder(tmp_path, {"Image": body},
-                     {"Image": {"iChannel0": {"texture": "tex.png", "filter": filt, "wrap": "repeat"}}})
+    folder = _folder(
+        tmp_path,
+        {"Image": body},
+        {"Image": {"iChannel0": {"texture": "tex.png", "filter": filt, "wrap": "repeat"}}},
+    )
     ours = api.compile(folder, backend="numpy").render(size=SIZE)
     theirs = api.compile(folder, backend="gl").render(size=SIZE)
     if filt == "nearest":
@@ -219,16 +279,54 @@ def _export(tmp_path, image_inputs_extra=(), media="abc123.png"):
     """A Shadertoy JSON export of the feedback shader, its image in media/ beside it."""
     (tmp_path / "media").mkdir(exist_ok=True)
     _png(tmp_path / "media" / "abc123.png")
-    sampler = {"filter": "linear", "wrap": "repeat", "vflip": "true", "srgb": "false", "internal": "byte"}
-    buffer_in = {"id": 257, "src": "/media/previz/buffer00.png", "ctype": "buffer", "channel": 0,
-                 "sampler": {**sampler, "wrap": "clamp"}, "published": 1}
-    tex_in = {"id": 30, "src": f"/media/a/{media}", "ctype": "texture", "channel": 1, "sampler": sampler}
-    data = {"Shader": {"ver": "0.1", "info": {"name": "feedback"}, "renderpass": [
-        {"inputs": [buffer_in, tex_in], "outputs": [{"id": 257, "channel": 0}], "code": FEEDBACK,
-         "name": "Buffer A", "type": "buffer"},
-        {"inputs": [{**buffer_in, "sampler": {**sampler, "filter": "nearest"}},
-                    {**tex_in, "sampler": {**sampler, "filter": "nearest"}}, *image_inputs_extra],
-         "outputs": [{"id": 37, "channel": 0}], "code": IMAGE, "name": "Image", "type": "image"}]}}
+    sampler = {
+        "filter": "linear",
+        "wrap": "repeat",
+        "vflip": "true",
+        "srgb": "false",
+        "internal": "byte",
+    }
+    buffer_in = {
+        "id": 257,
+        "src": "/media/previz/buffer00.png",
+        "ctype": "buffer",
+        "channel": 0,
+        "sampler": {**sampler, "wrap": "clamp"},
+        "published": 1,
+    }
+    tex_in = {
+        "id": 30,
+        "src": f"/media/a/{media}",
+        "ctype": "texture",
+        "channel": 1,
+        "sampler": sampler,
+    }
+    data = {
+        "Shader": {
+            "ver": "0.1",
+            "info": {"name": "feedback"},
+            "renderpass": [
+                {
+                    "inputs": [buffer_in, tex_in],
+                    "outputs": [{"id": 257, "channel": 0}],
+                    "code": FEEDBACK,
+                    "name": "Buffer A",
+                    "type": "buffer",
+                },
+                {
+                    "inputs": [
+                        {**buffer_in, "sampler": {**sampler, "filter": "nearest"}},
+                        {**tex_in, "sampler": {**sampler, "filter": "nearest"}},
+                        *image_inputs_extra,
+                    ],
+                    "outputs": [{"id": 37, "channel": 0}],
+                    "code": IMAGE,
+                    "name": "Image",
+                    "type": "image",
+                },
+            ],
+        }
+    }
     path = tmp_path / "shader.json"
     path.write_text(json.dumps(data))
     return str(path)
@@ -242,20 +340,36 @@ def test_shadertoy_json_export_verifies_over_frames(gl, tmp_path):
     folder = tmp_path / "folder"
     folder.mkdir()
     _png(folder / "tex.png")
-    _folder(folder, {"Buffer A": FEEDBACK, "Image": IMAGE}, {
-        "Buffer A": {"iChannel0": {"buffer": "Buffer A"}, "iChannel1": {"texture": "tex.png", "filter": "linear"}},
-        "Image": {"iChannel0": {"buffer": "Buffer A", "filter": "nearest"},
-                  "iChannel1": {"texture": "tex.png", "filter": "nearest", "wrap": "repeat"}}})
+    _folder(
+        folder,
+        {"Buffer A": FEEDBACK, "Image": IMAGE},
+        {
+            "Buffer A": {
+                "iChannel0": {"buffer": "Buffer A"},
+                "iChannel1": {"texture": "tex.png", "filter": "linear"},
+            },
+            "Image": {
+                "iChannel0": {"buffer": "Buffer A", "filter": "nearest"},
+                "iChannel1": {"texture": "tex.png", "filter": "nearest", "wrap": "repeat"},
+            },
+        },
+    )
     a = api.compile(path, backend="numpy").render(size=SIZE, frame=4, time=4 / 60)
     b = api.compile(str(folder), backend="numpy").render(size=SIZE, frame=4, time=4 / 60)
     assert np.array_equal(a, b)
 
 
-@pytest.mark.parametrize("extra, media, message", [
-    ([{"id": 9, "src": "/presets/tex00.jpg", "ctype": "keyboard", "channel": 2}], "abc123.png",
-     "the Image pass, iChannel2: keyboard inputs are not supported yet"),
-    ([], "nothere.png", "the Buffer A pass, iChannel1: no such file"),
-])
+@pytest.mark.parametrize(
+    "extra, media, message",
+    [
+        (
+            [{"id": 9, "src": "/presets/tex00.jpg", "ctype": "keyboard", "channel": 2}],
+            "abc123.png",
+            "the Image pass, iChannel2: keyboard inputs are not supported yet",
+        ),
+        ([], "nothere.png", "the Buffer A pass, iChannel1: no such file"),
+    ],
+)
 def test_shadertoy_json_export_errors(tmp_path, extra, media, message):
     path = _export(tmp_path, extra, media)
     r = _cli("render", path, "-o", str(tmp_path / "o.png"))
@@ -265,10 +379,15 @@ def test_shadertoy_json_export_errors(tmp_path, extra, media, message):
 def test_shadertoy_json_export_errors_point_into_the_pass(tmp_path):
     path = _export(tmp_path)
     data = json.loads(open(path).read())
-    data["Shader"]["renderpass"][1]["code"] = "void mainImage(out vec4 c, in vec2 p) {\n  c = vec4(undefined_x);\n}\n"
+    data["Shader"]["renderpass"][1]["code"] = (
+        "void mainImage(out vec4 c, in vec2 p) {\n  c = vec4(undefined_x);\n}\n"
+    )
     open(path, "w").write(json.dumps(data))
     r = _cli("render", path, "-o", str(tmp_path / "o.png"))
-    assert r.returncode == 1 and f"{path} [Image]:2:12: error: 'undefined_x' is not declared" in r.stderr
+    assert (
+        r.returncode == 1
+        and f"{path} [Image]:2:12: error: 'undefined_x' is not declared" in r.stderr
+    )
 
 
 def test_probe_refuses_channels_with_a_clear_error(feedback, tmp_path):
@@ -297,8 +416,11 @@ void mainImage(out vec4 fragColor, in vec2 fragCoord)
 }
 """
     (tmp_path / "Image.glsl").write_text(text)
-    found = [(f.loc.line, f.message) for f in lint_paths([tmp_path / "Image.glsl"]).findings
-             if f.rule == "uniform-outside-mainimage"]
+    found = [
+        (f.loc.line, f.message)
+        for f in lint_paths([tmp_path / "Image.glsl"]).findings
+        if f.rule == "uniform-outside-mainimage"
+    ]
     # the sampler passed in as a parameter is fine; iChannel1 read in the helper is flagged
     assert found == [(8, "the uniform 'iChannel1' is read in 'direct', not in mainImage")]
 
@@ -313,9 +435,14 @@ CHANNEL_TIME = """void mainImage(out vec4 fragColor, in vec2 fragCoord) {
 def channel_time_case(tmp_path):
     """A buffer on iChannel0 and an image on iChannel1, both read, each iChannelTime written out."""
     _png(tmp_path / "tex.png")
-    return _folder(tmp_path, {"Buffer A": "void mainImage(out vec4 c, in vec2 p) { c = vec4(iTime); }\n",
-                              "Image": CHANNEL_TIME},
-                   {"Image": {"iChannel0": {"buffer": "Buffer A"}, "iChannel1": {"texture": "tex.png"}}})
+    return _folder(
+        tmp_path,
+        {
+            "Buffer A": "void mainImage(out vec4 c, in vec2 p) { c = vec4(iTime); }\n",
+            "Image": CHANNEL_TIME,
+        },
+        {"Image": {"iChannel0": {"buffer": "Buffer A"}, "iChannel1": {"texture": "tex.png"}}},
+    )
 
 
 @pytest.mark.parametrize("backend", ["numpy", "gl"])
@@ -323,7 +450,9 @@ def test_channel_time_is_zero_for_images_and_buffers(gl, tmp_path, backend):
     # Shadertoy's page (its effect.js, Paint_Image) starts iChannelTime at 0 and sets it only for
     # video (currentTime), music (currentTime, or 10 + iTime when muted) and microphone inputs:
     # for images and buffers it stays 0 at every iTime. Rendered at iTime 3.0, frame 2.
-    img = api.compile(channel_time_case(tmp_path), backend=backend).render(size=(8, 4), time=3.0, frame=2)
+    img = api.compile(channel_time_case(tmp_path), backend=backend).render(
+        size=(8, 4), time=3.0, frame=2
+    )
     assert np.array_equal(img, np.broadcast_to(np.float32([0.0, 0.0, 0.0, 1.0]), img.shape))
 
 
@@ -339,8 +468,10 @@ def test_shadertoy_json_export_older_buffer_names(tmp_path):
 
     shader = load_shader(str(tmp_path / "old.json"))
     assert set(shader.tabs) == {"Buffer C", "Image"}
-    assert sorted((b.tab, b.channel, b.buffer) for b in shader.channels if b.buffer) == \
-        [("Buffer C", 0, "Buffer C"), ("Image", 0, "Buffer C")]
+    assert sorted((b.tab, b.channel, b.buffer) for b in shader.channels if b.buffer) == [
+        ("Buffer C", 0, "Buffer C"),
+        ("Image", 0, "Buffer C"),
+    ]
 
 
 def test_shadertoy_json_export_reads_an_unbound_channel_as_shadertoy_does(gl, tmp_path):
@@ -350,12 +481,16 @@ def test_shadertoy_json_export_reads_an_unbound_channel_as_shadertoy_does(gl, tm
     _export(tmp_path)
     data = json.loads((tmp_path / "shader.json").read_text())
     image = data["Shader"]["renderpass"][1]
-    image["code"] = ("void mainImage(out vec4 c, in vec2 p) { c = textureLod(iChannel2, p / iResolution.xy, 0.0)"
-                     " + texelFetch(iChannel3, ivec2(0), 0) * 0.5 + 0.0 * texture(iChannel0, vec2(0.5)); }\n")
+    image["code"] = (
+        "void mainImage(out vec4 c, in vec2 p) { c = textureLod(iChannel2, p / iResolution.xy, 0.0)"
+        " + texelFetch(iChannel3, ivec2(0), 0) * 0.5 + 0.0 * texture(iChannel0, vec2(0.5)); }\n"
+    )
     (tmp_path / "unbound.json").write_text(json.dumps(data))
     for backend in ("numpy", "gl"):
         img = api.compile(str(tmp_path / "unbound.json"), backend=backend).render(size=(8, 4))
-        assert np.array_equal(img, np.broadcast_to(np.float32([0.0, 0.0, 0.0, 1.0]), img.shape)), backend
+        assert np.array_equal(img, np.broadcast_to(np.float32([0.0, 0.0, 0.0, 1.0]), img.shape)), (
+            backend
+        )
 
 
 @pytest.mark.usefixtures("llvmpipe")  # bit for bit with Mesa 22.3's llvmpipe
@@ -381,11 +516,14 @@ def test_odd_sizes_shade_helper_pixels_as_llvmpipe(gl, tmp_path, size):
 @pytest.mark.usefixtures("llvmpipe")  # bit for bit with Mesa 22.3's llvmpipe
 @pytest.mark.parametrize("filt", ["linear", "mipmap"])
 @pytest.mark.parametrize("wrap", ["clamp", "repeat"])
-@pytest.mark.parametrize("lookup", [
-    "texture(iChannel0, uv)",
-    "texture(iChannel0, uv, fragCoord.x / 20.0 - 1.0)",  # a bias that differs within a quad
-    "textureLod(iChannel0, uv, fragCoord.y / 9.0 - 0.5)",
-])
+@pytest.mark.parametrize(
+    "lookup",
+    [
+        "texture(iChannel0, uv)",
+        "texture(iChannel0, uv, fragCoord.x / 20.0 - 1.0)",  # a bias that differs within a quad
+        "textureLod(iChannel0, uv, fragCoord.y / 9.0 - 0.5)",
+    ],
+)
 def test_filtering_bit_for_bit_on_a_ramp_of_scales(gl, tmp_path, lookup, wrap, filt):
     # A ramp of scales (0 to about 12 texels per pixel along x, LOD 0 to about 3.6) and
     # anisotropies on a texture whose sides are neither powers of two nor equal (the LOD's size
@@ -400,13 +538,18 @@ def test_filtering_bit_for_bit_on_a_ramp_of_scales(gl, tmp_path, lookup, wrap, f
     fragColor = {lookup};
 }}
 """
-    folder = _folder(tmp_path, {"Image": body},
-                     {"Image": {"iChannel0": {"texture": "tex.png", "filter": filt, "wrap": wrap}}})
+    folder = _folder(
+        tmp_path,
+        {"Image": body},
+        {"Image": {"iChannel0": {"texture": "tex.png", "filter": filt, "wrap": wrap}}},
+    )
     ours = api.compile(folder, backend="numpy").render(size=SIZE)
     theirs = api.compile(folder, backend="gl").render(size=SIZE)
     assert ours[..., :3].std() > 0.01
     if host_fma():  # llvmpipe fuses the lerps only where the CPU has FMA (driver_profile)
-        assert np.array_equal(ours, theirs), f"{int((ours != theirs).sum())} of {ours.size} values differ"
+        assert np.array_equal(ours, theirs), (
+            f"{int((ours != theirs).sum())} of {ours.size} values differ"
+        )
     else:
         assert np.abs(ours - theirs).max() <= 2.0**-10
 
@@ -432,7 +575,9 @@ def test_implicit_lod_of_a_quad_with_a_nan_derivative(gl, tmp_path):
     keep[-1, 30:32] = False  # images are top-down: GL's row 0 is the last
     assert np.abs(ours - theirs)[keep].max() <= 2.0**-10  # as test_mipmap_against_gl
     last = ours[-2, 30]  # the quad's upper pixels read the 1x1 last level, as llvmpipe
-    assert np.abs(last - ours[-2, 31]).max() <= 2.0**-10 and np.abs(last - ours[-2, 29]).max() > 0.01
+    assert (
+        np.abs(last - ours[-2, 31]).max() <= 2.0**-10 and np.abs(last - ours[-2, 29]).max() > 0.01
+    )
 
 
 @pytest.mark.usefixtures("llvmpipe")  # bit for bit with Mesa 22.3's llvmpipe
@@ -451,8 +596,11 @@ def test_clamp_of_huge_infinite_and_nan_coordinates(gl, tmp_path, filt):
     fragColor = texture(iChannel0, vec2(u[int(fragCoord.x) % 6], u[int(fragCoord.y) % 6]));
 }
 """
-    folder = _folder(tmp_path, {"Image": body},
-                     {"Image": {"iChannel0": {"texture": "tex.png", "filter": filt, "wrap": "clamp"}}})
+    folder = _folder(
+        tmp_path,
+        {"Image": body},
+        {"Image": {"iChannel0": {"texture": "tex.png", "filter": filt, "wrap": "clamp"}}},
+    )
     ours = api.compile(folder, backend="numpy").render(size=(12, 12))
     theirs = api.compile(folder, backend="gl").render(size=(12, 12))
     assert np.isfinite(theirs).all() and np.array_equal(ours, theirs)
@@ -462,7 +610,9 @@ def test_clamp_of_huge_infinite_and_nan_coordinates(gl, tmp_path, filt):
 @pytest.mark.parametrize("filt", ["nearest", "linear", "mipmap"])
 @pytest.mark.parametrize("wrap", ["repeat", "clamp"])
 @pytest.mark.parametrize("w, h", [(16, 16), (12, 10), (16, 10)])
-def test_wrap_of_huge_and_infinite_coordinates_on_pot_and_npot_sizes(gl, tmp_path, w, h, wrap, filt):
+def test_wrap_of_huge_and_infinite_coordinates_on_pot_and_npot_sizes(
+    gl, tmp_path, w, h, wrap, filt
+):
     # llvmpipe wraps each axis by its own formula (lp_build_sample_wrap_nearest / _linear),
     # chosen by whether level 0's size on that axis is a power of two (textures.py
     # _axis_nearest, _axis_linear): repeat on a power of two scales first (u * n - 0.5) and
@@ -474,7 +624,11 @@ def test_wrap_of_huge_and_infinite_coordinates_on_pot_and_npot_sizes(gl, tmp_pat
     # normalised units on a size that is not a power of two. An infinite coordinate gives NaN
     # weights under linear repeat on both sides (NaN compares equal here).
     _png(tmp_path / "tex.png", w, h, seed=9)
-    lookup = "textureLodOffset(iChannel0, uv, 0.0, off)" if filt == "mipmap" else "textureOffset(iChannel0, uv, off)"
+    lookup = (
+        "textureLodOffset(iChannel0, uv, 0.0, off)"
+        if filt == "mipmap"
+        else "textureOffset(iChannel0, uv, off)"
+    )
     body = f"""void mainImage(out vec4 fragColor, in vec2 fragCoord) {{
     float inf = iResolution.x * 1e37 * 1e37;
     float u[8] = float[8](1e30, -1e30, inf, -inf, 3e9 + 0.7, 1.2e7 + 0.3, -7.77e5 - 0.1, 0.37);
@@ -484,11 +638,16 @@ def test_wrap_of_huge_and_infinite_coordinates_on_pot_and_npot_sizes(gl, tmp_pat
     else fragColor = {lookup};
 }}
 """
-    folder = _folder(tmp_path, {"Image": body},
-                     {"Image": {"iChannel0": {"texture": "tex.png", "filter": filt, "wrap": wrap}}})
+    folder = _folder(
+        tmp_path,
+        {"Image": body},
+        {"Image": {"iChannel0": {"texture": "tex.png", "filter": filt, "wrap": wrap}}},
+    )
     ours = api.compile(folder, backend="numpy").render(size=(16, 16))
     theirs = api.compile(folder, backend="gl").render(size=(16, 16))
-    assert np.array_equal(ours, theirs, equal_nan=True), f"{int((ours != theirs).sum())} of {ours.size} values differ"
+    assert np.array_equal(ours, theirs, equal_nan=True), (
+        f"{int((ours != theirs).sum())} of {ours.size} values differ"
+    )
 
 
 @pytest.mark.usefixtures("llvmpipe")  # bit for bit with Mesa 22.3's llvmpipe
@@ -509,15 +668,23 @@ def test_lowp_lookups_are_float16_rounded_towards_zero(gl, tmp_path):
     fragColor = texelFetch(iChannel0, ivec2(fragCoord), 0);
 }
 """
-    folder = _folder(tmp_path, {"Buffer A": buf, "Image": image}, {"Image": {"iChannel0": {"buffer": "Buffer A"}}})
+    folder = _folder(
+        tmp_path,
+        {"Buffer A": buf, "Image": image},
+        {"Image": {"iChannel0": {"buffer": "Buffer A"}}},
+    )
     ours = api.compile(folder, backend="numpy").render(size=(12, 4))
     theirs = api.compile(folder, backend="gl").render(size=(12, 4))
-    assert np.array_equal(ours, theirs, equal_nan=True), f"{int((ours != theirs).sum())} of {ours.size} values differ"
+    assert np.array_equal(ours, theirs, equal_nan=True), (
+        f"{int((ours != theirs).sum())} of {ours.size} values differ"
+    )
     assert (np.abs(theirs[np.isfinite(theirs)]) <= 65504).all() and (theirs == 65504).any()
 
 
 @pytest.mark.usefixtures("llvmpipe")  # bit for bit with Mesa 22.3's llvmpipe
-@pytest.mark.parametrize("lookup", ["texture(iChannel0, p)", "vec4(dFdx(p.x), dFdy(p.y), fwidth(p))"])
+@pytest.mark.parametrize(
+    "lookup", ["texture(iChannel0, p)", "vec4(dFdx(p.x), dFdy(p.y), fwidth(p))"]
+)
 def test_derivatives_of_values_computed_under_a_branch(gl, tmp_path, lookup):
     # A function called under a varying `if` (elevated's cloud fbm in its sky branch): llvmpipe
     # computes its SSA values (`p = m * p` at the parameter's declaration level) in every lane
@@ -544,7 +711,9 @@ void mainImage(out vec4 fragColor, in vec2 fragCoord) {{
     folder = _folder(tmp_path, {"Image": body}, {"Image": {"iChannel0": {"texture": "tex.png"}}})
     ours = api.compile(folder, backend="numpy").render(size=(24, 16))
     theirs = api.compile(folder, backend="gl").render(size=(24, 16))
-    assert np.abs(ours - theirs).max() <= 2.0**-10  # as test_mipmap_against_gl (exact on an FMA host)
+    assert (
+        np.abs(ours - theirs).max() <= 2.0**-10
+    )  # as test_mipmap_against_gl (exact on an FMA host)
 
 
 @pytest.mark.usefixtures("llvmpipe")  # bit for bit with Mesa 22.3's llvmpipe
@@ -562,11 +731,16 @@ def test_an_integer_lod_reads_one_level(gl, tmp_path, lod):
     fragColor = textureLod(iChannel0, fragCoord / iResolution.xy, {lod});
 }}
 """
-    folder = _folder(tmp_path, {"Buffer A": buf, "Image": image},
-                     {"Image": {"iChannel0": {"buffer": "Buffer A", "filter": "mipmap"}}})
+    folder = _folder(
+        tmp_path,
+        {"Buffer A": buf, "Image": image},
+        {"Image": {"iChannel0": {"buffer": "Buffer A", "filter": "mipmap"}}},
+    )
     ours = api.compile(folder, backend="numpy", output="Image").render(size=(16, 8))
     theirs = api.compile(folder, backend="gl", output="Image").render(size=(16, 8))
-    assert np.array_equal(ours, theirs, equal_nan=True), f"{int((ours != theirs).sum())} of {ours.size} values differ"
+    assert np.array_equal(ours, theirs, equal_nan=True), (
+        f"{int((ours != theirs).sum())} of {ours.size} values differ"
+    )
 
 
 @pytest.mark.usefixtures("llvmpipe")  # bit for bit with Mesa 22.3's llvmpipe
@@ -599,7 +773,9 @@ void mainImage(out vec4 fragColor, in vec2 fragCoord) {
     folder = _folder(tmp_path, {"Image": body}, {"Image": {"iChannel0": {"texture": "tex.png"}}})
     ours = api.compile(folder, backend="numpy").render(size=(64, 32), time=0.7)
     theirs = api.compile(folder, backend="gl").render(size=(64, 32), time=0.7)
-    assert np.array_equal(ours, theirs), f"{int((ours != theirs).sum())} of {ours.size} values differ"
+    assert np.array_equal(ours, theirs), (
+        f"{int((ours != theirs).sum())} of {ours.size} values differ"
+    )
 
 
 @pytest.mark.usefixtures("llvmpipe")  # bit for bit with Mesa 22.3's llvmpipe
@@ -620,4 +796,6 @@ def test_the_square_of_a_lowp_lookup_is_float16(gl, tmp_path):
     folder = _folder(tmp_path, {"Image": body}, {"Image": {"iChannel0": {"texture": "tex.png"}}})
     ours = api.compile(folder, backend="numpy").render(size=(32, 16))
     theirs = api.compile(folder, backend="gl").render(size=(32, 16))
-    assert np.array_equal(ours, theirs), f"{int((ours != theirs).sum())} of {ours.size} values differ"
+    assert np.array_equal(ours, theirs), (
+        f"{int((ours != theirs).sum())} of {ours.size} values differ"
+    )

@@ -30,8 +30,11 @@ def _shader(tmp_path, text):
 def test_mediump_declarations_with_their_lines(tmp_path):
     shader, path = _shader(tmp_path, MEDIUMP)
     assert mediump_declarations(shader) == [
-        (path, 1, "precision mediump float"), (path, 5, "lowp vec3"), (path, 5, "mediump float"),
-        (path, 8, "mediump mat2")]
+        (path, 1, "precision mediump float"),
+        (path, 5, "lowp vec3"),
+        (path, 5, "mediump float"),
+        (path, 8, "mediump mat2"),
+    ]
     plain, _ = _shader(tmp_path, MEDIUMP.replace("mediump", "highp").replace("lowp", "highp"))
     assert mediump_declarations(plain) == []
 
@@ -39,8 +42,11 @@ def test_mediump_declarations_with_their_lines(tmp_path):
 def test_verify_notes_a_mediump_shader_and_not_a_highp_one(gl, tmp_path):
     shader, path = _shader(tmp_path, MEDIUMP)
     (result,) = verify_frames(shader, size=(16, 8))
-    assert any(n.startswith(f"{path}:1: `precision mediump float` (and 3 more): llvmpipe computes") and "float16" in n
-               for n in result.notes), result.notes
+    assert any(
+        n.startswith(f"{path}:1: `precision mediump float` (and 3 more): llvmpipe computes")
+        and "float16" in n
+        for n in result.notes
+    ), result.notes
     plain, _ = _shader(tmp_path, MEDIUMP.replace("mediump", "highp").replace("lowp", "highp"))
     (result,) = verify_frames(plain, size=(16, 8))
     assert not any("float16" in n for n in result.notes)

@@ -28,10 +28,12 @@ GLSLANG = shutil.which("glslangValidator")
 
 pytestmark = pytest.mark.skipif(
     GLSLANG is None and not os.environ.get("CI"),
-    reason="glslangValidator is not installed (set CI=1 to make this a failure)")
+    reason="glslangValidator is not installed (set CI=1 to make this a failure)",
+)
 
-BASIC = [ty for name, ty in BY_NAME.items()
-         if ty.is_basic and name not in ("mat2x2", "mat3x3", "mat4x4")]
+BASIC = [
+    ty for name, ty in BY_NAME.items() if ty.is_basic and name not in ("mat2x2", "mat3x3", "mat4x4")
+]
 SAMPLERS = list(T.SAMPLERS.values())
 SEED = 300
 
@@ -50,9 +52,20 @@ def _program(args: list[Type], expr_of, result: Type | None, const_args: bool) -
             names.append(f"a{i}")
     expr = expr_of(names)
     body.append(f"    {result} r = {expr};" if result is not None else f"    {expr};")
-    return "\n".join([
-        "#version 300 es", "precision highp float;", "precision highp int;", *head,
-        "out vec4 o;", "void main() {", *body, "    o = vec4(0.0);", "}", ""])
+    return "\n".join(
+        [
+            "#version 300 es",
+            "precision highp float;",
+            "precision highp int;",
+            *head,
+            "out vec4 o;",
+            "void main() {",
+            *body,
+            "    o = vec4(0.0);",
+            "}",
+            "",
+        ]
+    )
 
 
 def _compile_all(programs: list[str]) -> list[bool]:
@@ -75,13 +88,17 @@ def _compile_all(programs: list[str]) -> list[bool]:
 def _agreement(cases: list[tuple[str, bool, str]]) -> tuple[int, list[str]]:
     """cases: (label, we_accept, program). Returns (agreeing count, disagreement reports)."""
     verdicts = _compile_all([src for _, _, src in cases])
-    bad = [f"{label}: ours={'accept' if mine else 'reject'} glslang="
-           f"{'accept' if theirs else 'reject'}\n{src}"
-           for (label, mine, src), theirs in zip(cases, verdicts) if mine != theirs]
+    bad = [
+        f"{label}: ours={'accept' if mine else 'reject'} glslang="
+        f"{'accept' if theirs else 'reject'}\n{src}"
+        for (label, mine, src), theirs in zip(cases, verdicts)
+        if mine != theirs
+    ]
     return len(cases) - len(bad), bad
 
 
 # --- built-in functions ----------------------------------------------------------------
+
 
 def _mutate(rng: random.Random, params: tuple[Type, ...]) -> list[Type]:
     """A plausible mistake: one argument of the wrong type, or one argument too many/few."""
@@ -118,8 +135,12 @@ def _call_cases() -> list[tuple[str, bool, str]]:
         r = resolve(name, args)
         mine = not isinstance(r, str)
         has_out = mine and bool(r.out_params) or name == "modf"
-        src = _program(args, lambda ns, name=name: f"{name}({', '.join(ns)})",
-                       r.returns if mine else None, const_args=not has_out)
+        src = _program(
+            args,
+            lambda ns, name=name: f"{name}({', '.join(ns)})",
+            r.returns if mine else None,
+            const_args=not has_out,
+        )
         cases.append((f"{name}({', '.join(map(str, args))})", mine, src))
     return cases
 
@@ -130,17 +151,31 @@ def test_builtin_calls_agree_with_glslang(capsys):
     assert 80 <= accepted <= 120, accepted  # about half valid, half wrong
     agree, bad = _agreement(cases)
     with capsys.disabled():
-        print(f"\nbuilt-in calls: glslang agreement {agree}/{len(cases)} "
-              f"({accepted} accepted by us)")
+        print(
+            f"\nbuilt-in calls: glslang agreement {agree}/{len(cases)} ({accepted} accepted by us)"
+        )
     assert not bad, "\n\n".join(bad[:10])
 
 
 # --- operators, swizzles and constructors ----------------------------------------------
 
-BINARY_OPS = ["+", "-", "*", "/", "%", "<", ">=", "==", "!=", "&&", "^^", "&", "|", "^",
-              "<<", ">>"]
-INTERESTING = [T.FLOAT, T.INT, T.UINT, T.BOOL, T.VEC2, T.VEC3, T.IVEC2, T.IVEC3, T.UVEC2,
-               T.BVEC2, T.MAT2, T.MAT3, T.matrix(2, 3), T.matrix(3, 2)]
+BINARY_OPS = ["+", "-", "*", "/", "%", "<", ">=", "==", "!=", "&&", "^^", "&", "|", "^", "<<", ">>"]
+INTERESTING = [
+    T.FLOAT,
+    T.INT,
+    T.UINT,
+    T.BOOL,
+    T.VEC2,
+    T.VEC3,
+    T.IVEC2,
+    T.IVEC3,
+    T.UVEC2,
+    T.BVEC2,
+    T.MAT2,
+    T.MAT3,
+    T.matrix(2, 3),
+    T.matrix(3, 2),
+]
 
 
 # glslang accepts unary + on bool and bvec; the spec (5.9) lists the arithmetic unary
@@ -163,8 +198,12 @@ def _operator_cases() -> list[tuple[str, bool, str]]:
         right = left if rng.random() < 0.3 else rng.choice(INTERESTING)
         r = T.binary_result(op, left, right)
         mine = not isinstance(r, str)
-        src = _program([left, right], lambda ns, op=op: f"{ns[0]} {op} {ns[1]}",
-                       r if mine else None, const_args=False)
+        src = _program(
+            [left, right],
+            lambda ns, op=op: f"{ns[0]} {op} {ns[1]}",
+            r if mine else None,
+            const_args=False,
+        )
         cases.append((f"{left} {op} {right}", mine, src))
     for op in ["-", "+", "!", "~", "++"]:
         for ty in INTERESTING:
@@ -172,31 +211,50 @@ def _operator_cases() -> list[tuple[str, bool, str]]:
                 continue  # see KNOWN_GLSLANG_LENIENCY
             r = T.unary_result(op, ty)
             mine = not isinstance(r, str)
-            src = _program([ty], lambda ns, op=op: f"{op}{ns[0]}", r if mine else None,
-                           const_args=False)
+            src = _program(
+                [ty], lambda ns, op=op: f"{op}{ns[0]}", r if mine else None, const_args=False
+            )
             cases.append((f"{op}{ty}", mine, src))
     for ty in [T.VEC2, T.VEC4, T.IVEC3, T.BVEC2, T.FLOAT]:
         for fields in ["x", "xy", "zyx", "rgba", "xg", "stp", "xxxxx", "w", "q"]:
             r = T.swizzle_result(ty, fields)
             mine = not isinstance(r, str)
-            src = _program([ty], lambda ns, f=fields: f"{ns[0]}.{f}", r if mine else None,
-                           const_args=False)
+            src = _program(
+                [ty], lambda ns, f=fields: f"{ns[0]}.{f}", r if mine else None, const_args=False
+            )
             cases.append((f"{ty}.{fields}", mine, src))
     return cases
 
 
 def _constructor_cases() -> list[tuple[str, bool, str]]:
     rng = random.Random(SEED + 2)
-    targets = [T.FLOAT, T.INT, T.UINT, T.BOOL, T.VEC2, T.VEC3, T.VEC4, T.IVEC3, T.BVEC4,
-               T.MAT2, T.MAT3, T.matrix(2, 3), T.matrix(4, 2)]
+    targets = [
+        T.FLOAT,
+        T.INT,
+        T.UINT,
+        T.BOOL,
+        T.VEC2,
+        T.VEC3,
+        T.VEC4,
+        T.IVEC3,
+        T.BVEC4,
+        T.MAT2,
+        T.MAT3,
+        T.matrix(2, 3),
+        T.matrix(4, 2),
+    ]
     pieces = [T.FLOAT, T.INT, T.BOOL, T.VEC2, T.VEC3, T.VEC4, T.IVEC2, T.MAT2, T.MAT3]
     cases = []
     for _ in range(120):
         target = rng.choice(targets)
         args = [rng.choice(pieces) for _ in range(rng.randint(1, 4))]
         mine = T.constructor_check(target, args) is None
-        src = _program(args, lambda ns, tg=target: f"{tg}({', '.join(ns)})",
-                       target if mine else None, const_args=False)
+        src = _program(
+            args,
+            lambda ns, tg=target: f"{tg}({', '.join(ns)})",
+            target if mine else None,
+            const_args=False,
+        )
         cases.append((f"{target}({', '.join(map(str, args))})", mine, src))
     return cases
 
@@ -211,24 +269,29 @@ def test_operators_and_constructors_agree_with_glslang(capsys):
 
 # --- reserved words, built-in variables, Shadertoy uniforms ----------------------------
 
+
 def _shader(decls: str, body: str) -> str:
-    return ("#version 300 es\nprecision highp float;\nprecision highp int;\n"
-            f"{decls}\nout vec4 o;\nvoid main() {{\n{body}\n    o = vec4(0.0);\n}}\n")
+    return (
+        "#version 300 es\nprecision highp float;\nprecision highp int;\n"
+        f"{decls}\nout vec4 o;\nvoid main() {{\n{body}\n    o = vec4(0.0);\n}}\n"
+    )
 
 
 def test_reserved_words_and_keywords_are_not_identifiers():
     from glslcheck.language.builtin_functions import KEYWORDS, RESERVED_WORDS
+
     words = sorted(RESERVED_WORDS | KEYWORDS)
     fine = ["buffer", "precise", "sampler", "texture2D", "main2", "iTime"]
     programs = [_shader("", f"    float {w} = 1.0;") for w in words + fine]
     verdicts = _compile_all(programs)
     wrongly_accepted = [w for w, ok in zip(words, verdicts) if ok]
-    wrongly_rejected = [w for w, ok in zip(fine, verdicts[len(words):]) if not ok]
+    wrongly_rejected = [w for w, ok in zip(fine, verdicts[len(words) :]) if not ok]
     assert not wrongly_accepted and not wrongly_rejected
 
 
 def test_builtin_variable_types_match_glslang():
     from glslcheck.language.builtin_functions import BUILTIN_VARIABLES
+
     body = []
     for name, var in BUILTIN_VARIABLES.items():
         if var.type.is_struct:
@@ -242,10 +305,15 @@ def test_builtin_variable_types_match_glslang():
 
 def test_shadertoy_uniform_declarations_compile():
     from glslcheck.language.builtin_functions import SHADERTOY_UNIFORMS
+
     decls = "\n".join(
         f"uniform {u.type} {name}{'' if u.array_size is None else f'[{u.array_size}]'};"
-        for name, u in SHADERTOY_UNIFORMS.items())
-    body = "\n".join(f"    {u.declared_type.element if u.array_size else u.declared_type} "
-                     f"x_{name} = {name}{'[0]' if u.array_size else ''};"
-                     for name, u in SHADERTOY_UNIFORMS.items() if not u.type.is_opaque)
+        for name, u in SHADERTOY_UNIFORMS.items()
+    )
+    body = "\n".join(
+        f"    {u.declared_type.element if u.array_size else u.declared_type} "
+        f"x_{name} = {name}{'[0]' if u.array_size else ''};"
+        for name, u in SHADERTOY_UNIFORMS.items()
+        if not u.type.is_opaque
+    )
     assert _compile_all([_shader(decls, body)]) == [True]

@@ -27,8 +27,16 @@ textureGradOffset textureProjGrad textureProjGradOffset dFdx dFdy fwidth
 
 def test_table_has_exactly_the_spec_functions():
     assert set(BUILTINS) == set(SPEC_NAMES)
-    for later in ("fma", "frexp", "ldexp", "bitfieldExtract", "packUnorm4x8", "textureGather",
-                  "texture2D", "imageLoad"):
+    for later in (
+        "fma",
+        "frexp",
+        "ldexp",
+        "bitfieldExtract",
+        "packUnorm4x8",
+        "textureGather",
+        "texture2D",
+        "imageLoad",
+    ):
         assert later not in BUILTINS
 
 
@@ -52,34 +60,67 @@ def test_each_builtin_resolves_each_of_its_overloads(name):
         assert resolve(name, list(ov.params)) is ov
 
 
-@pytest.mark.parametrize("call, result", [
-    ("sin float", "float"), ("atan vec2 vec2", "vec2"), ("atan vec3", "vec3"),
-    ("pow vec4 vec4", "vec4"), ("abs int", "int"), ("abs ivec3", "ivec3"), ("sign ivec2", "ivec2"),
-    ("mod vec3 float", "vec3"), ("mod vec3 vec3", "vec3"), ("modf vec2 vec2", "vec2"),
-    ("min vec3 float", "vec3"), ("max uvec2 uint", "uvec2"), ("clamp ivec4 int int", "ivec4"),
-    ("clamp vec2 vec2 vec2", "vec2"), ("clamp float float float", "float"),
-    ("mix vec3 vec3 float", "vec3"), ("mix vec3 vec3 bvec3", "vec3"), ("mix float float bool", "float"),
-    ("step float vec4", "vec4"), ("smoothstep float float vec2", "vec2"),
-    ("isnan vec3", "bvec3"), ("floatBitsToInt vec2", "ivec2"), ("uintBitsToFloat uint", "float"),
-    ("packHalf2x16 vec2", "uint"), ("unpackSnorm2x16 uint", "vec2"),
-    ("length vec3", "float"), ("distance vec2 vec2", "float"), ("dot vec4 vec4", "float"),
-    ("cross vec3 vec3", "vec3"), ("refract vec3 vec3 float", "vec3"),
-    ("matrixCompMult mat2x3 mat2x3", "mat2x3"), ("outerProduct vec3 vec2", "mat2x3"),
-    ("outerProduct vec2 vec4", "mat4x2"), ("transpose mat2x4", "mat4x2"),
-    ("determinant mat3", "float"), ("inverse mat4", "mat4"),
-    ("lessThan uvec3 uvec3", "bvec3"), ("equal bvec2 bvec2", "bvec2"), ("any bvec4", "bool"),
-    ("not bvec2", "bvec2"),
-    ("textureSize sampler2D int", "ivec2"), ("textureSize isampler3D int", "ivec3"),
-    ("textureSize sampler2DArrayShadow int", "ivec3"),
-    ("texture sampler2D vec2", "vec4"), ("texture usampler2D vec2 float", "uvec4"),
-    ("texture samplerCubeShadow vec4", "float"), ("texture isampler2DArray vec3", "ivec4"),
-    ("textureProj sampler2D vec3", "vec4"), ("textureProj sampler3D vec4 float", "vec4"),
-    ("textureLod samplerCube vec3 float", "vec4"), ("texelFetch sampler2D ivec2 int", "vec4"),
-    ("texelFetchOffset usampler3D ivec3 int ivec3", "uvec4"),
-    ("textureGrad sampler2DArrayShadow vec4 vec2 vec2", "float"),
-    ("textureProjGradOffset sampler2DShadow vec4 vec2 vec2 ivec2", "float"),
-    ("dFdx vec2", "vec2"), ("fwidth float", "float"),
-])
+@pytest.mark.parametrize(
+    "call, result",
+    [
+        ("sin float", "float"),
+        ("atan vec2 vec2", "vec2"),
+        ("atan vec3", "vec3"),
+        ("pow vec4 vec4", "vec4"),
+        ("abs int", "int"),
+        ("abs ivec3", "ivec3"),
+        ("sign ivec2", "ivec2"),
+        ("mod vec3 float", "vec3"),
+        ("mod vec3 vec3", "vec3"),
+        ("modf vec2 vec2", "vec2"),
+        ("min vec3 float", "vec3"),
+        ("max uvec2 uint", "uvec2"),
+        ("clamp ivec4 int int", "ivec4"),
+        ("clamp vec2 vec2 vec2", "vec2"),
+        ("clamp float float float", "float"),
+        ("mix vec3 vec3 float", "vec3"),
+        ("mix vec3 vec3 bvec3", "vec3"),
+        ("mix float float bool", "float"),
+        ("step float vec4", "vec4"),
+        ("smoothstep float float vec2", "vec2"),
+        ("isnan vec3", "bvec3"),
+        ("floatBitsToInt vec2", "ivec2"),
+        ("uintBitsToFloat uint", "float"),
+        ("packHalf2x16 vec2", "uint"),
+        ("unpackSnorm2x16 uint", "vec2"),
+        ("length vec3", "float"),
+        ("distance vec2 vec2", "float"),
+        ("dot vec4 vec4", "float"),
+        ("cross vec3 vec3", "vec3"),
+        ("refract vec3 vec3 float", "vec3"),
+        ("matrixCompMult mat2x3 mat2x3", "mat2x3"),
+        ("outerProduct vec3 vec2", "mat2x3"),
+        ("outerProduct vec2 vec4", "mat4x2"),
+        ("transpose mat2x4", "mat4x2"),
+        ("determinant mat3", "float"),
+        ("inverse mat4", "mat4"),
+        ("lessThan uvec3 uvec3", "bvec3"),
+        ("equal bvec2 bvec2", "bvec2"),
+        ("any bvec4", "bool"),
+        ("not bvec2", "bvec2"),
+        ("textureSize sampler2D int", "ivec2"),
+        ("textureSize isampler3D int", "ivec3"),
+        ("textureSize sampler2DArrayShadow int", "ivec3"),
+        ("texture sampler2D vec2", "vec4"),
+        ("texture usampler2D vec2 float", "uvec4"),
+        ("texture samplerCubeShadow vec4", "float"),
+        ("texture isampler2DArray vec3", "ivec4"),
+        ("textureProj sampler2D vec3", "vec4"),
+        ("textureProj sampler3D vec4 float", "vec4"),
+        ("textureLod samplerCube vec3 float", "vec4"),
+        ("texelFetch sampler2D ivec2 int", "vec4"),
+        ("texelFetchOffset usampler3D ivec3 int ivec3", "uvec4"),
+        ("textureGrad sampler2DArrayShadow vec4 vec2 vec2", "float"),
+        ("textureProjGradOffset sampler2DShadow vec4 vec2 vec2 ivec2", "float"),
+        ("dFdx vec2", "vec2"),
+        ("fwidth float", "float"),
+    ],
+)
 def test_resolve_picks_the_right_overload(call, result):
     name, *args = call.split()
     ov = resolve(name, [t(a) for a in args])
@@ -87,17 +128,42 @@ def test_resolve_picks_the_right_overload(call, result):
     assert ov.returns is t(result)
 
 
-@pytest.mark.parametrize("call", [
-    "pow float int", "sin int", "abs uint", "sign uvec2", "mod int int", "mix vec3 vec3 vec2",
-    "mix ivec2 ivec2 bvec2", "min float int", "clamp vec3 float vec3", "step vec2 float",
-    "smoothstep vec2 vec2 float", "length int", "dot vec3 vec2", "cross vec2 vec2",
-    "lessThan float float", "lessThan bvec2 bvec2", "any bool", "not bool",
-    "determinant mat2x3", "inverse mat3x2", "matrixCompMult mat2 mat3",
-    "texture sampler2D vec3", "texture sampler2DArrayShadow vec4 float",
-    "textureLod samplerCubeShadow vec4 float", "textureOffset samplerCube vec3 ivec3",
-    "texelFetch samplerCube ivec3 int", "texelFetch sampler2DShadow ivec2 int",
-    "textureSize sampler2D", "atan", "modf float", "outerProduct vec2",
-])
+@pytest.mark.parametrize(
+    "call",
+    [
+        "pow float int",
+        "sin int",
+        "abs uint",
+        "sign uvec2",
+        "mod int int",
+        "mix vec3 vec3 vec2",
+        "mix ivec2 ivec2 bvec2",
+        "min float int",
+        "clamp vec3 float vec3",
+        "step vec2 float",
+        "smoothstep vec2 vec2 float",
+        "length int",
+        "dot vec3 vec2",
+        "cross vec2 vec2",
+        "lessThan float float",
+        "lessThan bvec2 bvec2",
+        "any bool",
+        "not bool",
+        "determinant mat2x3",
+        "inverse mat3x2",
+        "matrixCompMult mat2 mat3",
+        "texture sampler2D vec3",
+        "texture sampler2DArrayShadow vec4 float",
+        "textureLod samplerCubeShadow vec4 float",
+        "textureOffset samplerCube vec3 ivec3",
+        "texelFetch samplerCube ivec3 int",
+        "texelFetch sampler2DShadow ivec2 int",
+        "textureSize sampler2D",
+        "atan",
+        "modf float",
+        "outerProduct vec2",
+    ],
+)
 def test_resolve_rejects(call):
     name, *args = call.split()
     msg = resolve(name, [t(a) for a in args])
@@ -108,8 +174,10 @@ def test_resolve_rejects(call):
 
 def test_resolve_message_lists_candidates():
     msg = resolve("pow", [T.FLOAT, T.INT])
-    assert msg == ("no matching overload for 'pow(float, int)'; candidates: pow(float, float), "
-                   "pow(vec2, vec2), pow(vec3, vec3), pow(vec4, vec4)")
+    assert msg == (
+        "no matching overload for 'pow(float, int)'; candidates: pow(float, float), "
+        "pow(vec2, vec2), pow(vec3, vec3), pow(vec4, vec4)"
+    )
     assert "modf(float, out float)" in resolve("modf", [T.FLOAT])
     long = resolve("texture", [t("sampler2D"), t("vec3")])
     assert "texture(sampler2D, vec2)" in long and "texture(sampler2D, vec2, float)" in long
@@ -147,8 +215,19 @@ def test_categories_and_costs():
         assert BUILTINS[cheap].cost == B.CHEAP
     for medium in ("dot", "mix", "clamp"):
         assert BUILTINS[medium].cost == B.MEDIUM
-    for expensive in ("sqrt", "pow", "exp", "log", "sin", "cos", "inversesqrt", "normalize",
-                      "length", "distance", "texture"):
+    for expensive in (
+        "sqrt",
+        "pow",
+        "exp",
+        "log",
+        "sin",
+        "cos",
+        "inversesqrt",
+        "normalize",
+        "length",
+        "distance",
+        "texture",
+    ):
         assert BUILTINS[expensive].cost == B.EXPENSIVE
     assert {fn.category for fn in BUILTINS.values()} == set(B.CATEGORIES)
 
@@ -183,9 +262,22 @@ def test_shadertoy_uniforms():
     assert u["iMouse"].type is t("vec4") and u["iDate"].type is t("vec4")
     for i in range(4):
         assert u[f"iChannel{i}"].type is t("sampler2D")
-    assert set(u) == {"iResolution", "iTime", "iTimeDelta", "iFrameRate", "iFrame",
-                      "iChannelTime", "iChannelResolution", "iMouse", "iDate", "iSampleRate",
-                      "iChannel0", "iChannel1", "iChannel2", "iChannel3"}
+    assert set(u) == {
+        "iResolution",
+        "iTime",
+        "iTimeDelta",
+        "iFrameRate",
+        "iFrame",
+        "iChannelTime",
+        "iChannelResolution",
+        "iMouse",
+        "iDate",
+        "iSampleRate",
+        "iChannel0",
+        "iChannel1",
+        "iChannel2",
+        "iChannel3",
+    }
     assert B.COMMON_TAB_UNIFORMS == {"iDate", "iSampleRate"} and B.COMMON_TAB_UNIFORMS <= set(u)
     assert all(isinstance(x.comment, str) and x.comment for x in u.values())
 
@@ -193,8 +285,19 @@ def test_shadertoy_uniforms():
 def test_keywords_and_reserved_words():
     assert {"const", "uniform", "struct", "precision", "highp", "invariant", "true"} <= B.KEYWORDS
     assert set(BY_NAME) <= B.KEYWORDS  # every built-in type name is a keyword
-    assert {"attribute", "varying", "double", "sizeof", "using", "image2D", "sampler1D",
-            "samplerBuffer", "dvec3", "goto", "union"} <= B.RESERVED_WORDS
+    assert {
+        "attribute",
+        "varying",
+        "double",
+        "sizeof",
+        "using",
+        "image2D",
+        "sampler1D",
+        "samplerBuffer",
+        "dvec3",
+        "goto",
+        "union",
+    } <= B.RESERVED_WORDS
     assert not B.KEYWORDS & B.RESERVED_WORDS
     assert "buffer" not in B.RESERVED_WORDS and "shared" not in B.RESERVED_WORDS  # ES 3.10
     assert not (B.KEYWORDS | B.RESERVED_WORDS) & set(BUILTINS)

@@ -15,17 +15,20 @@ from pathlib import Path
 
 import pytest
 
-from glslcheck.semantics.agreement import glslang_errors, our_errors
 from glslcheck.base.diagnostics import register_source
+from glslcheck.semantics.agreement import glslang_errors, our_errors
 from glslcheck.shadertoy.sources import Shader, Source, find_shaders
 
 ROOT = Path(__file__).resolve().parents[2]
-VALID = sorted(p for p in (ROOT / "tests" / "corpus").glob("*") if not p.name.startswith(".")) + sorted(
-    p for p in (ROOT / "lab_shaders").glob("*/") if p.is_dir())
+VALID = sorted(
+    p for p in (ROOT / "tests" / "corpus").glob("*") if not p.name.startswith(".")
+) + sorted(p for p in (ROOT / "lab_shaders").glob("*/") if p.is_dir())
 
 
 def _load_tool():
-    spec = importlib.util.spec_from_file_location("mutation_agreement", ROOT / "tools" / "mutation_agreement.py")
+    spec = importlib.util.spec_from_file_location(
+        "mutation_agreement", ROOT / "tools" / "mutation_agreement.py"
+    )
     mod = importlib.util.module_from_spec(spec)
     sys.modules["mutation_agreement"] = mod  # dataclasses look their module up
     spec.loader.exec_module(mod)
@@ -39,19 +42,30 @@ def test_valid_shaders_accepted_by_both(path, glslang):
         assert glslang_errors(shader) == []
 
 
-MAIN = "\nvoid mainImage(out vec4 fragColor, in vec2 fragCoord)\n{\n    fragColor = vec4(g(1.0));\n}\n"
+MAIN = (
+    "\nvoid mainImage(out vec4 fragColor, in vec2 fragCoord)\n{\n    fragColor = vec4(g(1.0));\n}\n"
+)
 
 # Programs where glslangValidator (as glslcheck.semantics.glslang runs it: compile only, no -l) accepts what
 # a GL driver rejects. Each: (name, Image tab text, why glslang is wrong here).
 KNOWN_DIFFERENCES = [
-    ("call-without-definition", "float g(float x);\n" + MAIN,
-     "glslangValidator without -l does not link; the driver (and glslangValidator -l) rejects a call "
-     "to a function that has no body at link time"),
-    ("static-recursion", "float g(float x) { return x > 0.0 ? g(x - 1.0) : 0.0; }\n" + MAIN,
-     "GLSL ES 3.00 section 6.1 forbids recursion; glslang detects it only when linking (-l)"),
-    ("case-label-type", "float g(float x)\n{\n    switch (int(x))\n    {\n    case 1u:\n        return 1.0;\n    }\n"
-     "    return 0.0;\n}\n" + MAIN,
-     "GLSL ES 3.00 section 6.2: the case labels' type must match the switch value's; glslang does not check"),
+    (
+        "call-without-definition",
+        "float g(float x);\n" + MAIN,
+        "glslangValidator without -l does not link; the driver (and glslangValidator -l) rejects a call "
+        "to a function that has no body at link time",
+    ),
+    (
+        "static-recursion",
+        "float g(float x) { return x > 0.0 ? g(x - 1.0) : 0.0; }\n" + MAIN,
+        "GLSL ES 3.00 section 6.1 forbids recursion; glslang detects it only when linking (-l)",
+    ),
+    (
+        "case-label-type",
+        "float g(float x)\n{\n    switch (int(x))\n    {\n    case 1u:\n        return 1.0;\n    }\n"
+        "    return 0.0;\n}\n" + MAIN,
+        "GLSL ES 3.00 section 6.2: the case labels' type must match the switch value's; glslang does not check",
+    ),
 ]
 
 
@@ -61,11 +75,15 @@ def test_known_differences(name, text, why, glslang):
     register_source("Image.glsl", text)
     shader.tabs["Image"] = Source("Image.glsl", text, "Image")
     assert our_errors(shader), f"{name}: glslcheck should reject ({why})"
-    assert glslang_errors(shader) == [], f"{name}: glslangValidator now rejects it; move it to tests/check/invalid/"
+    assert glslang_errors(shader) == [], (
+        f"{name}: glslangValidator now rejects it; move it to tests/check/invalid/"
+    )
     if "-l" in why:
         # Demonstrate that the reference compiler itself rejects it once it links.
+        import os
+        import tempfile
+
         from glslcheck.shadertoy.wrapper import build_program
-        import tempfile, os
 
         fd, path = tempfile.mkstemp(suffix=".frag")
         with os.fdopen(fd, "w") as f:

@@ -13,8 +13,8 @@ from pathlib import Path
 
 import pytest
 
-from glslcheck.semantics.agreement import glslang_errors, our_errors
 from glslcheck.base.diagnostics import register_source
+from glslcheck.semantics.agreement import glslang_errors, our_errors
 from glslcheck.shadertoy.sources import Shader, Source
 
 HERE = Path(__file__).parent / "invalid"
@@ -25,7 +25,7 @@ def load(path: Path) -> tuple[Shader, str, int]:
     text = path.read_text(encoding="utf-8")
     lines = text.splitlines()
     assert lines[0].startswith("// expect: "), f"{path.name}: first line must be '// expect: ...'"
-    expect = lines[0][len("// expect: "):].strip()
+    expect = lines[0][len("// expect: ") :].strip()
     tab = "Common" if len(lines) > 1 and lines[1].strip() == "// tab: Common" else "Image"
     marked = [i + 1 for i, line in enumerate(lines) if line.rstrip().endswith("// ERROR")]
     line = marked[0] if marked else 1
@@ -48,8 +48,9 @@ def test_we_reject_with_message_at_line(path):
     assert errors, f"{path.name}: glslcheck accepted it"
     hits = [d for d in errors if expect in d.message]
     assert hits, f"{path.name}: no error says {expect!r}; got {[d.message for d in errors]}"
-    assert any(d.loc is not None and d.loc.path == str(path) and d.loc.line == line for d in hits), (
-        f"{path.name}: expected at line {line}, got {[str(d.loc) for d in hits]}")
+    assert any(
+        d.loc is not None and d.loc.path == str(path) and d.loc.line == line for d in hits
+    ), f"{path.name}: expected at line {line}, got {[str(d.loc) for d in hits]}"
     assert all(d.help is None or d.help.strip() for d in errors)
 
 

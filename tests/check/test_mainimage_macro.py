@@ -9,8 +9,8 @@ from __future__ import annotations
 
 import pytest
 
-from glslcheck.semantics import CheckError, check
 from glslcheck.frontend.parser import parse_shader
+from glslcheck.semantics import CheckError, check
 from glslcheck.verification.verify import verify
 
 GOLF = "#define mainImage(O, U) O = vec4(U / iResolution.xy, 0.5 + 0.5 * sin(iTime), 1.0)\n"
@@ -39,7 +39,10 @@ def test_a_mainimage_macro_in_common(make_shader):
     # the Image pass (Common, then Image, then the wrapper) expands it; Common compiled alone
     # has no wrapper call, so there it is only a macro
     # (a macro body in Common reading iTime would be taken for Common code: not modelled)
-    shader = make_shader("// the image is Common's macro\n", common="#define mainImage(O, U) O = vec4(U * 0.01, 0.5, 1.0)\n")
+    shader = make_shader(
+        "// the image is Common's macro\n",
+        common="#define mainImage(O, U) O = vec4(U * 0.01, 0.5, 1.0)\n",
+    )
     assert check(parse_shader(shader, "Image"), "Image").entry.name == "mainImage"
     common = check(parse_shader(shader, "Common"), "Common", collect=True)
     assert common.entry is None and not common.errors

@@ -4,12 +4,12 @@ from __future__ import annotations
 
 import pytest
 
+from glslcheck.cli.main import main
 from glslcheck.frontend import syntax as A
+from glslcheck.frontend.parser import parse_shader
 from glslcheck.language import builtin_functions as B
 from glslcheck.language import glsl_types as T
 from glslcheck.semantics import CheckError, Constructor, Model, Symbol, check
-from glslcheck.cli.main import main
-from glslcheck.frontend.parser import parse_shader
 
 SRC = """\
 struct Ray { vec3 origin; vec3 direction; };
@@ -44,7 +44,11 @@ def model(make_shader) -> Model:
 
 
 def nodes(model: Model, cls, **attrs):
-    return [n for n in model.ast.walk() if isinstance(n, cls) and all(getattr(n, k) == v for k, v in attrs.items())]
+    return [
+        n
+        for n in model.ast.walk()
+        if isinstance(n, cls) and all(getattr(n, k) == v for k, v in attrs.items())
+    ]
 
 
 def test_every_expression_has_a_type(model):
@@ -110,7 +114,9 @@ def test_program_facts(model):
 
 
 def test_errors_raise_or_collect(make_shader):
-    shader = make_shader("void mainImage(out vec4 c, in vec2 f)\n{\n    float x = 1;\n    c = vec4(x);\n}\n")
+    shader = make_shader(
+        "void mainImage(out vec4 c, in vec2 f)\n{\n    float x = 1;\n    c = vec4(x);\n}\n"
+    )
     result = parse_shader(shader, "Image")
     with pytest.raises(CheckError) as e:
         check(result, "Image")
@@ -121,8 +127,10 @@ def test_errors_raise_or_collect(make_shader):
 
 
 def test_common_tab_uniform(make_shader):
-    shader = make_shader("void mainImage(out vec4 c, in vec2 f) { c = vec4(t()); }\n",
-                         common="float t() { return iTime + iDate.x; }\n")
+    shader = make_shader(
+        "void mainImage(out vec4 c, in vec2 f) { c = vec4(t()); }\n",
+        common="float t() { return iTime + iDate.x; }\n",
+    )
     image = check(parse_shader(shader, "Image"), "Image", collect=True)
     assert [d.loc.path for d in image.errors] == ["Common.glsl"]
     assert "without iTime; pass it as a parameter from mainImage" in image.errors[0].message
@@ -154,6 +162,7 @@ def test_listed_nodes_are_the_walks(model, make_shader):
     instead of walking again, to save time) hold exactly what `walk()` yields, in its order: the
     program's, and each function body's (a slice of the program's list), here and in a program
     with prototypes, globals between functions, nested loops and a Common tab before it."""
+
     def same(m):
         assert m.nodes() == list(m.ast.walk())
         assert all(a is b for a, b in zip(m.nodes(), m.ast.walk()))

@@ -3,12 +3,28 @@
 import pytest
 
 from glslcheck.language import glsl_types as T
-from glslcheck.language.glsl_types import BY_NAME, ArrayType, StructType, binary_result, assign_result, conditional_result, constructor_check, constructor_result, index_result, matrix, swizzle_is_lvalue, swizzle_result, unary_result, vector
+from glslcheck.language.glsl_types import (
+    BY_NAME,
+    ArrayType,
+    StructType,
+    assign_result,
+    binary_result,
+    conditional_result,
+    constructor_check,
+    constructor_result,
+    index_result,
+    matrix,
+    swizzle_is_lvalue,
+    swizzle_result,
+    unary_result,
+    vector,
+)
 
 t = BY_NAME.__getitem__  # t("vec3")
 
 
 # --- type objects --------------------------------------------------------------------
+
 
 def test_every_builtin_type_name_round_trips():
     for name, ty in BY_NAME.items():
@@ -27,20 +43,26 @@ def test_interning_and_aliases():
     assert {t("vec3"), vector("float", 3)} == {t("vec3")}
 
 
-@pytest.mark.parametrize("name, base, size, cols, rows, kind", [
-    ("float", "float", 1, 1, 1, "scalar"),
-    ("uint", "uint", 1, 1, 1, "scalar"),
-    ("bvec2", "bool", 2, 1, 2, "vector"),
-    ("ivec4", "int", 4, 1, 4, "vector"),
-    ("mat2x3", "float", 6, 2, 3, "matrix"),
-    ("mat4x2", "float", 8, 4, 2, "matrix"),
-    ("mat3", "float", 9, 3, 3, "matrix"),
-])
+@pytest.mark.parametrize(
+    "name, base, size, cols, rows, kind",
+    [
+        ("float", "float", 1, 1, 1, "scalar"),
+        ("uint", "uint", 1, 1, 1, "scalar"),
+        ("bvec2", "bool", 2, 1, 2, "vector"),
+        ("ivec4", "int", 4, 1, 4, "vector"),
+        ("mat2x3", "float", 6, 2, 3, "matrix"),
+        ("mat4x2", "float", 8, 4, 2, "matrix"),
+        ("mat3", "float", 9, 3, 3, "matrix"),
+    ],
+)
 def test_basic_type_properties(name, base, size, cols, rows, kind):
     ty = t(name)
     assert (ty.base, ty.size, ty.cols, ty.rows) == (base, size, cols, rows)
     assert (ty.is_scalar, ty.is_vector, ty.is_matrix) == (
-        kind == "scalar", kind == "vector", kind == "matrix")
+        kind == "scalar",
+        kind == "vector",
+        kind == "matrix",
+    )
     assert ty.is_numeric == (base != "bool")
     assert not ty.is_opaque
     assert ty.component_type is T.SCALARS[base]
@@ -93,23 +115,47 @@ def test_types_are_immutable():
 
 OK = [
     # op, left, right, result
-    ("+", "float", "float", "float"), ("-", "int", "int", "int"), ("*", "uint", "uint", "uint"),
-    ("/", "vec3", "vec3", "vec3"), ("+", "float", "vec3", "vec3"), ("*", "vec3", "float", "vec3"),
-    ("-", "ivec2", "int", "ivec2"), ("/", "uint", "uvec4", "uvec4"),
-    ("+", "mat3", "mat3", "mat3"), ("-", "mat2x3", "mat2x3", "mat2x3"),
-    ("/", "mat4", "mat4", "mat4"), ("*", "float", "mat2", "mat2"), ("/", "mat3x2", "float", "mat3x2"),
+    ("+", "float", "float", "float"),
+    ("-", "int", "int", "int"),
+    ("*", "uint", "uint", "uint"),
+    ("/", "vec3", "vec3", "vec3"),
+    ("+", "float", "vec3", "vec3"),
+    ("*", "vec3", "float", "vec3"),
+    ("-", "ivec2", "int", "ivec2"),
+    ("/", "uint", "uvec4", "uvec4"),
+    ("+", "mat3", "mat3", "mat3"),
+    ("-", "mat2x3", "mat2x3", "mat2x3"),
+    ("/", "mat4", "mat4", "mat4"),
+    ("*", "float", "mat2", "mat2"),
+    ("/", "mat3x2", "float", "mat3x2"),
     ("+", "mat2", "float", "mat2"),
-    ("*", "mat3", "vec3", "vec3"), ("*", "vec3", "mat3", "vec3"),
-    ("*", "mat2x3", "vec2", "vec3"), ("*", "vec3", "mat2x3", "vec2"),
-    ("*", "mat2x3", "mat4x2", "mat4x3"), ("*", "mat3x2", "mat2x3", "mat2"), ("*", "mat2x3", "mat3x2", "mat3"),
+    ("*", "mat3", "vec3", "vec3"),
+    ("*", "vec3", "mat3", "vec3"),
+    ("*", "mat2x3", "vec2", "vec3"),
+    ("*", "vec3", "mat2x3", "vec2"),
+    ("*", "mat2x3", "mat4x2", "mat4x3"),
+    ("*", "mat3x2", "mat2x3", "mat2"),
+    ("*", "mat2x3", "mat3x2", "mat3"),
     ("*", "mat4", "mat4", "mat4"),
-    ("%", "int", "int", "int"), ("%", "uvec3", "uint", "uvec3"), ("%", "int", "ivec2", "ivec2"),
-    ("<", "float", "float", "bool"), (">=", "int", "int", "bool"), ("<=", "uint", "uint", "bool"),
-    ("==", "vec3", "vec3", "bool"), ("!=", "mat2", "mat2", "bool"), ("==", "bvec2", "bvec2", "bool"),
-    ("&&", "bool", "bool", "bool"), ("^^", "bool", "bool", "bool"), ("||", "bool", "bool", "bool"),
-    ("&", "int", "int", "int"), ("|", "uvec2", "uvec2", "uvec2"), ("^", "ivec3", "int", "ivec3"),
+    ("%", "int", "int", "int"),
+    ("%", "uvec3", "uint", "uvec3"),
+    ("%", "int", "ivec2", "ivec2"),
+    ("<", "float", "float", "bool"),
+    (">=", "int", "int", "bool"),
+    ("<=", "uint", "uint", "bool"),
+    ("==", "vec3", "vec3", "bool"),
+    ("!=", "mat2", "mat2", "bool"),
+    ("==", "bvec2", "bvec2", "bool"),
+    ("&&", "bool", "bool", "bool"),
+    ("^^", "bool", "bool", "bool"),
+    ("||", "bool", "bool", "bool"),
+    ("&", "int", "int", "int"),
+    ("|", "uvec2", "uvec2", "uvec2"),
+    ("^", "ivec3", "int", "ivec3"),
     ("&", "uint", "uvec4", "uvec4"),
-    ("<<", "int", "uint", "int"), (">>", "uvec2", "ivec2", "uvec2"), ("<<", "ivec3", "int", "ivec3"),
+    ("<<", "int", "uint", "int"),
+    (">>", "uvec2", "ivec2", "uvec2"),
+    ("<<", "ivec3", "int", "ivec3"),
     (">>", "uint", "int", "uint"),
 ]
 
@@ -120,23 +166,36 @@ def test_binary_ok(op, left, right, result):
 
 
 BAD = [
-    ("+", "int", "float", "no implicit conversion"), ("*", "vec3", "ivec3", "no implicit"),
-    ("+", "vec3", "vec2", "vector sizes differ"), ("-", "uint", "int", "no implicit"),
-    ("+", "bool", "bool", "not numeric"), ("*", "bvec2", "bvec2", "not numeric"),
-    ("*", "mat3", "vec2", "3 columns"), ("*", "vec2", "mat3", "3 rows"),
-    ("*", "mat2x3", "mat2x3", "columns"), ("+", "mat2", "mat3", "same type"),
-    ("+", "mat3", "vec3", "same type"), ("/", "vec3", "mat3", "same type"),
-    ("*", "mat2", "int", "no implicit"), ("*", "mat2", "ivec2", "no implicit"),
-    ("%", "float", "float", "int or uint"), ("%", "ivec2", "ivec3", "sizes differ"),
+    ("+", "int", "float", "no implicit conversion"),
+    ("*", "vec3", "ivec3", "no implicit"),
+    ("+", "vec3", "vec2", "vector sizes differ"),
+    ("-", "uint", "int", "no implicit"),
+    ("+", "bool", "bool", "not numeric"),
+    ("*", "bvec2", "bvec2", "not numeric"),
+    ("*", "mat3", "vec2", "3 columns"),
+    ("*", "vec2", "mat3", "3 rows"),
+    ("*", "mat2x3", "mat2x3", "columns"),
+    ("+", "mat2", "mat3", "same type"),
+    ("+", "mat3", "vec3", "same type"),
+    ("/", "vec3", "mat3", "same type"),
+    ("*", "mat2", "int", "no implicit"),
+    ("*", "mat2", "ivec2", "no implicit"),
+    ("%", "float", "float", "int or uint"),
+    ("%", "ivec2", "ivec3", "sizes differ"),
     ("%", "int", "uint", "no implicit"),
-    ("<", "vec2", "vec2", "lessThan()"), (">", "int", "float", "no implicit"),
+    ("<", "vec2", "vec2", "lessThan()"),
+    (">", "int", "float", "no implicit"),
     ("<", "bool", "bool", "numeric scalars"),
-    ("==", "vec3", "vec2", "same type"), ("==", "int", "float", "no implicit"),
+    ("==", "vec3", "vec2", "same type"),
+    ("==", "int", "float", "no implicit"),
     ("==", "sampler2D", "sampler2D", "samplers"),
-    ("&&", "bvec2", "bvec2", "bool scalars"), ("||", "int", "int", "bool scalars"),
-    ("&", "float", "float", "int or uint"), ("|", "int", "uint", "no implicit"),
+    ("&&", "bvec2", "bvec2", "bool scalars"),
+    ("||", "int", "int", "bool scalars"),
+    ("&", "float", "float", "int or uint"),
+    ("|", "int", "uint", "no implicit"),
     ("^", "ivec2", "ivec3", "sizes differ"),
-    ("<<", "int", "ivec2", "scalar cannot be shifted by a vector"), (">>", "float", "int", "int or uint"),
+    ("<<", "int", "ivec2", "scalar cannot be shifted by a vector"),
+    (">>", "float", "int", "int or uint"),
     ("<<", "ivec2", "ivec3", "sizes differ"),
 ]
 
@@ -173,13 +232,26 @@ def test_unknown_operator_raises():
         unary_result("*", T.FLOAT)
 
 
-@pytest.mark.parametrize("op, target, value, ok", [
-    ("=", "vec3", "vec3", True), ("=", "vec3", "ivec3", False), ("=", "float", "int", False),
-    ("+=", "vec3", "float", True), ("+=", "float", "vec3", False), ("*=", "vec3", "mat3", True),
-    ("*=", "mat3", "vec3", False), ("*=", "mat3", "mat3", True), ("*=", "mat2x3", "mat2", True),
-    ("*=", "mat2x3", "mat3x2", False), ("%=", "ivec2", "int", True), ("<<=", "int", "uint", True),
-    ("&=", "uvec2", "uint", True), ("-=", "int", "float", False), ("=", "sampler2D", "sampler2D", False),
-])
+@pytest.mark.parametrize(
+    "op, target, value, ok",
+    [
+        ("=", "vec3", "vec3", True),
+        ("=", "vec3", "ivec3", False),
+        ("=", "float", "int", False),
+        ("+=", "vec3", "float", True),
+        ("+=", "float", "vec3", False),
+        ("*=", "vec3", "mat3", True),
+        ("*=", "mat3", "vec3", False),
+        ("*=", "mat3", "mat3", True),
+        ("*=", "mat2x3", "mat2", True),
+        ("*=", "mat2x3", "mat3x2", False),
+        ("%=", "ivec2", "int", True),
+        ("<<=", "int", "uint", True),
+        ("&=", "uvec2", "uint", True),
+        ("-=", "int", "float", False),
+        ("=", "sampler2D", "sampler2D", False),
+    ],
+)
 def test_assign(op, target, value, ok):
     r = assign_result(op, t(target), t(value))
     assert (r is t(target)) if ok else isinstance(r, str), r
@@ -187,7 +259,9 @@ def test_assign(op, target, value, ok):
 
 def test_conditional():
     assert conditional_result(T.BOOL, t("vec3"), t("vec3")) is t("vec3")
-    assert conditional_result(T.BOOL, ArrayType(T.FLOAT, 2), ArrayType(T.FLOAT, 2)) == ArrayType(T.FLOAT, 2)
+    assert conditional_result(T.BOOL, ArrayType(T.FLOAT, 2), ArrayType(T.FLOAT, 2)) == ArrayType(
+        T.FLOAT, 2
+    )
     s = StructType("S", (("a", T.FLOAT),))
     assert conditional_result(T.BOOL, s, s) is s
     assert "mix()" in conditional_result(t("bvec2"), T.FLOAT, T.FLOAT)
@@ -199,13 +273,30 @@ def test_conditional():
 
 # --- unary operators -----------------------------------------------------------------
 
-@pytest.mark.parametrize("op, operand, result", [
-    ("-", "float", "float"), ("-", "mat3", "mat3"), ("+", "ivec2", "ivec2"), ("-", "uvec3", "uvec3"),
-    ("!", "bool", "bool"), ("~", "int", "int"), ("~", "uvec4", "uvec4"),
-    ("++", "float", "float"), ("--", "ivec3", "ivec3"), ("++", "mat2", "mat2"),
-    ("-", "bool", None), ("!", "bvec2", None), ("!", "int", None), ("~", "float", None),
-    ("~", "mat2", None), ("++", "bool", None), ("-", "sampler2D", None), ("+", "bvec3", None),
-])
+
+@pytest.mark.parametrize(
+    "op, operand, result",
+    [
+        ("-", "float", "float"),
+        ("-", "mat3", "mat3"),
+        ("+", "ivec2", "ivec2"),
+        ("-", "uvec3", "uvec3"),
+        ("!", "bool", "bool"),
+        ("~", "int", "int"),
+        ("~", "uvec4", "uvec4"),
+        ("++", "float", "float"),
+        ("--", "ivec3", "ivec3"),
+        ("++", "mat2", "mat2"),
+        ("-", "bool", None),
+        ("!", "bvec2", None),
+        ("!", "int", None),
+        ("~", "float", None),
+        ("~", "mat2", None),
+        ("++", "bool", None),
+        ("-", "sampler2D", None),
+        ("+", "bvec3", None),
+    ],
+)
 def test_unary(op, operand, result):
     r = unary_result(op, t(operand))
     if result is None:
@@ -220,20 +311,38 @@ def test_unary_bvec_hint():
 
 # --- swizzles --------------------------------------------------------------------------
 
-@pytest.mark.parametrize("ty, fields, result", [
-    ("vec4", "x", "float"), ("vec4", "xyz", "vec3"), ("vec2", "yx", "vec2"),
-    ("vec3", "rgba"[:3], "vec3"), ("ivec4", "stpq", "ivec4"), ("bvec2", "xxxx", "bvec4"),
-    ("uvec3", "bgr", "uvec3"), ("vec2", "ts", "vec2"),
-])
+
+@pytest.mark.parametrize(
+    "ty, fields, result",
+    [
+        ("vec4", "x", "float"),
+        ("vec4", "xyz", "vec3"),
+        ("vec2", "yx", "vec2"),
+        ("vec3", "rgba"[:3], "vec3"),
+        ("ivec4", "stpq", "ivec4"),
+        ("bvec2", "xxxx", "bvec4"),
+        ("uvec3", "bgr", "uvec3"),
+        ("vec2", "ts", "vec2"),
+    ],
+)
 def test_swizzle_ok(ty, fields, result):
     assert swizzle_result(t(ty), fields) is t(result)
 
 
-@pytest.mark.parametrize("ty, fields, fragment", [
-    ("vec2", "z", "beyond"), ("vec3", "w", "beyond"), ("vec2", "xb", "mixes"),
-    ("vec4", "xyzwx", "more than 4"), ("float", "x", "scalar"), ("mat2", "x", "no components"),
-    ("vec4", "q2", "no field"), ("vec4", "", "no field"), ("vec4", "rgq", "mixes"),
-])
+@pytest.mark.parametrize(
+    "ty, fields, fragment",
+    [
+        ("vec2", "z", "beyond"),
+        ("vec3", "w", "beyond"),
+        ("vec2", "xb", "mixes"),
+        ("vec4", "xyzwx", "more than 4"),
+        ("float", "x", "scalar"),
+        ("mat2", "x", "no components"),
+        ("vec4", "q2", "no field"),
+        ("vec4", "", "no field"),
+        ("vec4", "rgq", "mixes"),
+    ],
+)
 def test_swizzle_errors(ty, fields, fragment):
     r = swizzle_result(t(ty), fields)
     assert isinstance(r, str) and fragment in r, r
@@ -246,38 +355,76 @@ def test_swizzle_lvalue():
 
 # --- constructors ----------------------------------------------------------------------
 
+
 def _args(spec):
     return [t(a) for a in spec.split()]
 
 
-@pytest.mark.parametrize("target, args", [
-    ("float", "int"), ("int", "float"), ("uint", "bool"), ("bool", "uint"), ("float", "vec3"),
-    ("int", "mat2"), ("float", "float"),
-    ("vec3", "float"), ("vec3", "int"), ("vec4", "vec2 vec2"), ("vec4", "vec3 float"),
-    ("vec2", "vec4"), ("ivec3", "vec3"), ("bvec2", "float int"), ("vec3", "vec2 vec2"),
-    ("vec4", "mat2"), ("vec4", "mat3"), ("vec4", "vec3 mat2"), ("bvec2", "mat2"),
-    ("vec4", "float float float float"),
-    ("mat2", "float"), ("mat3", "int"), ("mat2", "bool"), ("mat3", "mat4"), ("mat4", "mat2"),
-    ("mat2x3", "mat4x2"), ("mat2", "vec4"), ("mat2", "ivec4"), ("mat2", "vec2 vec2"),
-    ("mat2", "vec3 float"), ("mat2", "vec3 vec2"), ("mat2x3", "vec3 vec3"),
-    ("mat3", "float float float float float float float float vec2"),
-])
+@pytest.mark.parametrize(
+    "target, args",
+    [
+        ("float", "int"),
+        ("int", "float"),
+        ("uint", "bool"),
+        ("bool", "uint"),
+        ("float", "vec3"),
+        ("int", "mat2"),
+        ("float", "float"),
+        ("vec3", "float"),
+        ("vec3", "int"),
+        ("vec4", "vec2 vec2"),
+        ("vec4", "vec3 float"),
+        ("vec2", "vec4"),
+        ("ivec3", "vec3"),
+        ("bvec2", "float int"),
+        ("vec3", "vec2 vec2"),
+        ("vec4", "mat2"),
+        ("vec4", "mat3"),
+        ("vec4", "vec3 mat2"),
+        ("bvec2", "mat2"),
+        ("vec4", "float float float float"),
+        ("mat2", "float"),
+        ("mat3", "int"),
+        ("mat2", "bool"),
+        ("mat3", "mat4"),
+        ("mat4", "mat2"),
+        ("mat2x3", "mat4x2"),
+        ("mat2", "vec4"),
+        ("mat2", "ivec4"),
+        ("mat2", "vec2 vec2"),
+        ("mat2", "vec3 float"),
+        ("mat2", "vec3 vec2"),
+        ("mat2x3", "vec3 vec3"),
+        ("mat3", "float float float float float float float float vec2"),
+    ],
+)
 def test_constructor_ok(target, args):
     assert constructor_check(t(target), _args(args)) is None
 
 
-@pytest.mark.parametrize("target, args, fragment", [
-    ("float", "", "needs arguments"), ("vec3", "", "needs arguments"),
-    ("float", "vec3 float", "too many"), ("float", "mat2 float", "too many"),
-    ("vec3", "vec2", "not enough"), ("vec4", "vec2 float", "not enough"),
-    ("vec2", "vec2 float", "too many"), ("vec3", "vec3 vec3", "too many"),
-    ("vec2", "float float float", "too many"),
-    ("mat2", "vec4 float", "too many"), ("mat2", "mat2 float", "only argument"),
-    ("mat2", "vec2 vec2 float", "too many"), ("mat3", "vec3 vec3", "not enough"),
-    ("mat2", "vec3", "not enough"), ("mat2", "mat2 mat2", "only argument"),
-    ("sampler2D", "int", "cannot be constructed"), ("void", "float", "cannot be constructed"),
-    ("vec3", "sampler2D", "cannot be constructed from"),
-])
+@pytest.mark.parametrize(
+    "target, args, fragment",
+    [
+        ("float", "", "needs arguments"),
+        ("vec3", "", "needs arguments"),
+        ("float", "vec3 float", "too many"),
+        ("float", "mat2 float", "too many"),
+        ("vec3", "vec2", "not enough"),
+        ("vec4", "vec2 float", "not enough"),
+        ("vec2", "vec2 float", "too many"),
+        ("vec3", "vec3 vec3", "too many"),
+        ("vec2", "float float float", "too many"),
+        ("mat2", "vec4 float", "too many"),
+        ("mat2", "mat2 float", "only argument"),
+        ("mat2", "vec2 vec2 float", "too many"),
+        ("mat3", "vec3 vec3", "not enough"),
+        ("mat2", "vec3", "not enough"),
+        ("mat2", "mat2 mat2", "only argument"),
+        ("sampler2D", "int", "cannot be constructed"),
+        ("void", "float", "cannot be constructed"),
+        ("vec3", "sampler2D", "cannot be constructed from"),
+    ],
+)
 def test_constructor_errors(target, args, fragment):
     r = constructor_check(t(target), _args(args))
     assert isinstance(r, str) and fragment in r, r

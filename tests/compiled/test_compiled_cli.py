@@ -6,23 +6,45 @@ import numpy as np
 
 from glslcheck.cli.main import main
 
-IMAGE = ("void mainImage(out vec4 fragColor, in vec2 fragCoord) {\n"
-         "    fragColor = vec4(fragCoord.x / iResolution.x, sin(iTime), -1.0, 0.2);\n}\n")
+IMAGE = (
+    "void mainImage(out vec4 fragColor, in vec2 fragCoord) {\n"
+    "    fragColor = vec4(fragCoord.x / iResolution.x, sin(iTime), -1.0, 0.2);\n}\n"
+)
 
 
 def test_render_writes_the_numpy_backends_image(numba, tmp_path):
     path = tmp_path / "Image.glsl"
     path.write_text(IMAGE)
-    assert main(["render", str(path), "-o", str(tmp_path / "c.npy"), "--size", "6x3", "--time", "0.7",
-                 "--backend", "compiled"]) == 0
-    assert main(["render", str(path), "-o", str(tmp_path / "n.npy"), "--size", "6x3", "--time", "0.7"]) == 0
+    assert (
+        main(
+            [
+                "render",
+                str(path),
+                "-o",
+                str(tmp_path / "c.npy"),
+                "--size",
+                "6x3",
+                "--time",
+                "0.7",
+                "--backend",
+                "compiled",
+            ]
+        )
+        == 0
+    )
+    assert (
+        main(["render", str(path), "-o", str(tmp_path / "n.npy"), "--size", "6x3", "--time", "0.7"])
+        == 0
+    )
     got, want = np.load(tmp_path / "c.npy"), np.load(tmp_path / "n.npy")
     assert got.shape == (3, 6, 4) and got.tobytes() == want.tobytes()
 
 
 def test_unsupported_construct_exits_1_at_its_line(numba, tmp_path, capsys):
     path = tmp_path / "Image.glsl"
-    path.write_text("void mainImage(out vec4 c, in vec2 f) {\n    c = vec4(1.0);\n    if (f.x > 2.0) discard;\n}\n")
+    path.write_text(
+        "void mainImage(out vec4 c, in vec2 f) {\n    c = vec4(1.0);\n    if (f.x > 2.0) discard;\n}\n"
+    )
     assert main(["render", str(path), "-o", str(tmp_path / "c.png"), "--backend", "compiled"]) == 1
     err = capsys.readouterr().err
     assert f"{path}:3:" in err and "not supported by the compiled engine yet" in err
@@ -30,12 +52,31 @@ def test_unsupported_construct_exits_1_at_its_line(numba, tmp_path, capsys):
 
 
 def test_multipass_and_buffer_passes_are_refused(numba, tmp_path, capsys):
-    (tmp_path / "Image.glsl").write_text("void mainImage(out vec4 c, in vec2 f) { c = texture(iChannel0, f); }\n")
-    (tmp_path / "Buffer A.glsl").write_text("void mainImage(out vec4 c, in vec2 f) { c = vec4(1.0); }\n")
-    assert main(["render", str(tmp_path), "-o", str(tmp_path / "c.png"), "--backend", "compiled"]) == 1
+    (tmp_path / "Image.glsl").write_text(
+        "void mainImage(out vec4 c, in vec2 f) { c = texture(iChannel0, f); }\n"
+    )
+    (tmp_path / "Buffer A.glsl").write_text(
+        "void mainImage(out vec4 c, in vec2 f) { c = vec4(1.0); }\n"
+    )
+    assert (
+        main(["render", str(tmp_path), "-o", str(tmp_path / "c.png"), "--backend", "compiled"]) == 1
+    )
     assert "not supported by the compiled engine yet" in capsys.readouterr().err
-    assert main(["render", str(tmp_path), "-o", str(tmp_path / "c.png"), "--backend", "compiled",
-                 "--pass", "Buffer A"]) == 2
+    assert (
+        main(
+            [
+                "render",
+                str(tmp_path),
+                "-o",
+                str(tmp_path / "c.png"),
+                "--backend",
+                "compiled",
+                "--pass",
+                "Buffer A",
+            ]
+        )
+        == 2
+    )
     assert "Image pass only" in capsys.readouterr().err
 
 
@@ -57,12 +98,34 @@ def test_bench_compiled_prints_its_figures(numba, gl):
     from pathlib import Path
 
     root = Path(__file__).resolve().parents[2]
-    done = subprocess.run([sys.executable, str(root / "benchmarks" / "bench_compiled.py"), "--lab-only", "--only",
-                           "07_final", "--size", "16x9", "--numpy-size", "16x9", "--repeat", "1"],
-                          cwd=root, capture_output=True, text=True, timeout=600)
+    done = subprocess.run(
+        [
+            sys.executable,
+            str(root / "benchmarks" / "bench_compiled.py"),
+            "--lab-only",
+            "--only",
+            "07_final",
+            "--size",
+            "16x9",
+            "--numpy-size",
+            "16x9",
+            "--repeat",
+            "1",
+        ],
+        cwd=root,
+        capture_output=True,
+        text=True,
+        timeout=600,
+    )
     assert done.returncode == 0 and "Traceback" not in done.stderr, done.stderr[-2000:]
-    for line in ("07_final", "geometric mean (CPU)", "geometric mean (wall)", "verify against GL: 1 of 1 match",
-                 "bit-identical to the NumPy render: 1 of 1", "load average at end"):
+    for line in (
+        "07_final",
+        "geometric mean (CPU)",
+        "geometric mean (wall)",
+        "verify against GL: 1 of 1 match",
+        "bit-identical to the NumPy render: 1 of 1",
+        "load average at end",
+    ):
         assert line in done.stdout, done.stdout
 
 
@@ -74,23 +137,51 @@ def test_bench_times_the_compiled_engine_beside_numpy(numba, gl, tmp_path, capsy
 
     path = tmp_path / "Image.glsl"
     path.write_text(IMAGE)
-    assert main(["bench", str(path), "--size", "6x3", "--runs", "1", "--time", "0.7", "--format", "json",
-                 "--backend", "compiled"]) == 0
+    assert (
+        main(
+            [
+                "bench",
+                str(path),
+                "--size",
+                "6x3",
+                "--runs",
+                "1",
+                "--time",
+                "0.7",
+                "--format",
+                "json",
+                "--backend",
+                "compiled",
+            ]
+        )
+        == 0
+    )
     rows = json.loads(capsys.readouterr().out)["rows"]
     compiled = {r["samples"]: r for r in rows if r["backend"] == "compiled"}
-    numpy32 = {r["samples"]: r for r in rows if r["backend"] == "numpy" and r["precision"] == "float32"}
+    numpy32 = {
+        r["samples"]: r for r in rows if r["backend"] == "numpy" and r["precision"] == "float32"
+    }
     assert sorted(compiled) == [1, 4, 16] and len(rows) == 15
     for n, r in compiled.items():
         assert r["precision"] == "float32" and r["median_ms"] > 0
-        assert (r["max_abs_error"], r["mean_abs_error"]) == (numpy32[n]["max_abs_error"], numpy32[n]["mean_abs_error"])
+        assert (r["max_abs_error"], r["mean_abs_error"]) == (
+            numpy32[n]["max_abs_error"],
+            numpy32[n]["mean_abs_error"],
+        )
 
 
 def test_bench_compiled_unsupported_construct_exits_1_at_its_line(numba, gl, tmp_path, capsys):
     path = tmp_path / "Image.glsl"
-    path.write_text("void mainImage(out vec4 c, in vec2 f) {\n    c = vec4(1.0);\n    if (f.x > 2.0) discard;\n}\n")
+    path.write_text(
+        "void mainImage(out vec4 c, in vec2 f) {\n    c = vec4(1.0);\n    if (f.x > 2.0) discard;\n}\n"
+    )
     assert main(["bench", str(path), "--size", "4x2", "--runs", "1", "--backend", "compiled"]) == 1
     err = capsys.readouterr().err
-    assert f"{path}:3:" in err and "not supported by the compiled engine yet" in err and "Traceback" not in err
+    assert (
+        f"{path}:3:" in err
+        and "not supported by the compiled engine yet" in err
+        and "Traceback" not in err
+    )
 
 
 def test_bench_compiled_without_numba_exits_2_before_measuring(tmp_path, capsys, monkeypatch):
@@ -99,8 +190,23 @@ def test_bench_compiled_without_numba_exits_2_before_measuring(tmp_path, capsys,
     monkeypatch.setattr(engine, "available", lambda: False)
     path = tmp_path / "Image.glsl"
     path.write_text(IMAGE)
-    assert main(["bench", str(path), "--size", "4x2", "--runs", "1", "--plot", str(tmp_path / "p.png"),
-                 "--backend", "compiled"]) == 2
+    assert (
+        main(
+            [
+                "bench",
+                str(path),
+                "--size",
+                "4x2",
+                "--runs",
+                "1",
+                "--plot",
+                str(tmp_path / "p.png"),
+                "--backend",
+                "compiled",
+            ]
+        )
+        == 2
+    )
     err = capsys.readouterr().err
     assert "pip install 'glslcheck[jit]'" in err and "Traceback" not in err
     assert not (tmp_path / "p.png").exists()
@@ -112,8 +218,23 @@ def test_verify_backends_compiled_gl_matches(numba, gl, tmp_path, capsys):
 
     path = tmp_path / "Image.glsl"
     path.write_text(IMAGE)
-    assert main(["verify", str(path), "--size", "16x9", "--time", "0.7", "--format", "json",
-                 "--backends", "compiled,gl"]) == 0
+    assert (
+        main(
+            [
+                "verify",
+                str(path),
+                "--size",
+                "16x9",
+                "--time",
+                "0.7",
+                "--format",
+                "json",
+                "--backends",
+                "compiled,gl",
+            ]
+        )
+        == 0
+    )
     frame = json.loads(capsys.readouterr().out)  # one frame: one object
     assert frame["match"] is True and frame["verdict"] == "match"
 
@@ -124,14 +245,34 @@ def test_verify_compiled_errors(gl, tmp_path, capsys, monkeypatch):
 
     path = tmp_path / "Image.glsl"
     path.write_text(IMAGE)
-    assert main(["verify", str(path), "--size", "4x2", "--precision", "float64", "--backends", "compiled,gl"]) == 2
+    assert (
+        main(
+            [
+                "verify",
+                str(path),
+                "--size",
+                "4x2",
+                "--precision",
+                "float64",
+                "--backends",
+                "compiled,gl",
+            ]
+        )
+        == 2
+    )
     assert "float32 only" in capsys.readouterr().err
     if engine.available():
         bad = tmp_path / "Bad.glsl"
-        bad.write_text("void mainImage(out vec4 c, in vec2 f) {\n    c = vec4(1.0);\n    if (f.x > 2.0) discard;\n}\n")
+        bad.write_text(
+            "void mainImage(out vec4 c, in vec2 f) {\n    c = vec4(1.0);\n    if (f.x > 2.0) discard;\n}\n"
+        )
         assert main(["verify", str(bad), "--size", "4x2", "--backends", "compiled,gl"]) == 1
         err = capsys.readouterr().err
-        assert f"{bad}:3:" in err and "not supported by the compiled engine yet" in err and "Traceback" not in err
+        assert (
+            f"{bad}:3:" in err
+            and "not supported by the compiled engine yet" in err
+            and "Traceback" not in err
+        )
     monkeypatch.setattr(engine, "available", lambda: False)
     assert main(["verify", str(path), "--size", "4x2", "--backends", "compiled,gl"]) == 2
     err = capsys.readouterr().err

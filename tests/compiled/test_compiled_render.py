@@ -26,21 +26,31 @@ SIZE = (40, 24)
 LAB = os.path.join(os.path.dirname(__file__), "..", "..", "lab_shaders")
 # a sample of the lab shaders (all of them: benchmarks/bench_compiled.py, which reports the
 # agreement of every lab and real shader): one of each structure
-LAB_SAMPLE = ("01_spheres_procedural", "03_lambert_attenuation", "05_blinn_phong", "07_final",
-              "bonus_gooch_shading", "bonus_spot_lights")
+LAB_SAMPLE = (
+    "01_spheres_procedural",
+    "03_lambert_attenuation",
+    "05_blinn_phong",
+    "07_final",
+    "bonus_gooch_shading",
+    "bonus_spot_lights",
+)
 
 
 def _compare(shader, time: float = 1.3) -> None:
     from glslcheck.backends.compiled_engine.engine import compile_compiled
 
     got = compile_compiled(shader).render(size=SIZE, time=time, mouse=(10.0, 7.0, 3.0, -2.0))
-    want = glslcheck.compile(shader, backend="numpy").render(size=SIZE, time=time, mouse=(10.0, 7.0, 3.0, -2.0))
+    want = glslcheck.compile(shader, backend="numpy").render(
+        size=SIZE, time=time, mouse=(10.0, 7.0, 3.0, -2.0)
+    )
     same = (got == want) | (np.isnan(got) & np.isnan(want))
     if not same.all():
         where = np.argwhere(~same.all(axis=2))
         y, x = where[0]
-        raise AssertionError(f"{len(where)} of {SIZE[0] * SIZE[1]} pixels differ; first at row {y} col {x}: "
-                             f"compiled {got[y, x]}, numpy {want[y, x]}")
+        raise AssertionError(
+            f"{len(where)} of {SIZE[0] * SIZE[1]} pixels differ; first at row {y} col {x}: "
+            f"compiled {got[y, x]}, numpy {want[y, x]}"
+        )
 
 
 @pytest.mark.parametrize("name", LAB_SAMPLE)
@@ -248,9 +258,11 @@ def test_construct_bit_for_bit(numba, make_shader, name):
 def _statement_code(source: str, glsl: str) -> list[str]:
     """The generated lines of the statement whose source comment holds glsl."""
     lines = source.splitlines()
-    start = next(i for i, line in enumerate(lines) if line.strip().startswith("# line") and glsl in line)
+    start = next(
+        i for i, line in enumerate(lines) if line.strip().startswith("# line") and glsl in line
+    )
     end = next(i for i in range(start + 1, len(lines)) if lines[i].strip().startswith("# line"))
-    return [line.strip() for line in lines[start + 1:end]]
+    return [line.strip() for line in lines[start + 1 : end]]
 
 
 def test_pure_ternaries_are_selects(make_shader):
@@ -259,8 +271,14 @@ def test_pure_ternaries_are_selects(make_shader):
     from glslcheck.backends.compiled_engine.engine import generate
 
     source, _ = generate(make_shader(CONSTRUCTS["ternary_selects"]), lanes=0)
-    for glsl in ("(x <= 3.0 ? 40960.0 : 42.0)", "x < y ? 3.0", "idx + 0.5 : idx", "uv.x / q : -7.0",
-                 "vec3(uv, q) : vec3(q, r, idx)", "uv.x > 0.3 : !(uv.x > 0.6)"):
+    for glsl in (
+        "(x <= 3.0 ? 40960.0 : 42.0)",
+        "x < y ? 3.0",
+        "idx + 0.5 : idx",
+        "uv.x / q : -7.0",
+        "vec3(uv, q) : vec3(q, r, idx)",
+        "uv.x > 0.3 : !(uv.x > 0.6)",
+    ):
         code = _statement_code(source, glsl)
         assert not any(line.startswith("if ") for line in code), (glsl, code)
         assert any("lsel(" in line for line in code), (glsl, code)
@@ -279,20 +297,31 @@ def test_mesa_reassociation_is_not_copied_yet(numba, make_shader):
     and stay within rtol 2e-5."""
     from glslcheck.backends.compiled_engine.engine import compile_compiled
 
-    shader = make_shader("void mainImage(out vec4 c, in vec2 f) {\n float x = (f.x / iResolution.x - 0.5) * 40.0;"
-                         "\n c = vec4(exp2(x * 3.1), 1.0, 1.0, 1.0); }")
+    shader = make_shader(
+        "void mainImage(out vec4 c, in vec2 f) {\n float x = (f.x / iResolution.x - 0.5) * 40.0;"
+        "\n c = vec4(exp2(x * 3.1), 1.0, 1.0, 1.0); }"
+    )
     got = compile_compiled(shader).render(size=SIZE)
     want = glslcheck.compile(shader, backend="numpy").render(size=SIZE)
     assert (got != want).any()
     np.testing.assert_allclose(got, want, rtol=2e-5, atol=0)
 
 
-@pytest.mark.parametrize("text, what", [
-    ("void mainImage(out vec4 c, in vec2 f) { c = texture(iChannel0, f); }", "iChannel inputs"),
-    ("void mainImage(out vec4 c, in vec2 f) { if (f.x > 3.0) discard; c = vec4(1.0); }", "discard"),
-    ("void mainImage(out vec4 c, in vec2 f) { switch (int(f.x)) { case 1: c = vec4(1.0); break; "
-     "default: c = vec4(0.0); } }", "switch"),
-])
+@pytest.mark.parametrize(
+    "text, what",
+    [
+        ("void mainImage(out vec4 c, in vec2 f) { c = texture(iChannel0, f); }", "iChannel inputs"),
+        (
+            "void mainImage(out vec4 c, in vec2 f) { if (f.x > 3.0) discard; c = vec4(1.0); }",
+            "discard",
+        ),
+        (
+            "void mainImage(out vec4 c, in vec2 f) { switch (int(f.x)) { case 1: c = vec4(1.0); break; "
+            "default: c = vec4(0.0); } }",
+            "switch",
+        ),
+    ],
+)
 def test_unsupported_is_a_located_error(numba, make_shader, text, what):
     from glslcheck.backends.compiled_engine.engine import compile_compiled
 

@@ -95,8 +95,10 @@ def test_derivatives_bit_for_bit(numba, make_shader, name, lanes, size):
     if not same.all():
         where = np.argwhere(~same.all(axis=2))
         y, x = where[0]
-        raise AssertionError(f"{len(where)} of {size[0] * size[1]} pixels differ; first at row {y} col {x}: "
-                             f"compiled {got[y, x]}, numpy {want[y, x]}")
+        raise AssertionError(
+            f"{len(where)} of {size[0] * size[1]} pixels differ; first at row {y} col {x}: "
+            f"compiled {got[y, x]}, numpy {want[y, x]}"
+        )
     # not trivially equal: the derivatives are not all zero
     assert np.ptp(want[..., :3]) > 0.0
 
@@ -104,7 +106,11 @@ def test_derivatives_bit_for_bit(numba, make_shader, name, lanes, size):
 def test_derivatives_start_in_lockstep(numba, make_shader, monkeypatch):
     """The default program of a shader with derivatives is the lockstep module from the first
     frame (no per-pixel tier); GLSLCHECK_COMPILED_LANES=0 is a located error, not a traceback."""
-    from glslcheck.backends.compiled_engine.engine import CompiledProgram, compile_compiled, generate
+    from glslcheck.backends.compiled_engine.engine import (
+        CompiledProgram,
+        compile_compiled,
+        generate,
+    )
 
     shader = make_shader(DERIVATIVES["plain"])
     monkeypatch.delenv("GLSLCHECK_COMPILED_LANES", raising=False)
@@ -113,8 +119,10 @@ def test_derivatives_start_in_lockstep(numba, make_shader, monkeypatch):
     with pytest.raises(GlslError) as err:
         generate(shader, lanes=0)
     d = err.value.diagnostics[0]
-    assert "derivatives only with pixels in lockstep" in d.message and (d.loc.line, d.loc.column) == (4, 14), \
-        (d.message, d.loc)
+    assert "derivatives only with pixels in lockstep" in d.message and (
+        d.loc.line,
+        d.loc.column,
+    ) == (4, 14), (d.message, d.loc)
     monkeypatch.setenv("GLSLCHECK_COMPILED_LANES", "0")
     with pytest.raises(GlslError, match="derivatives only with pixels in lockstep"):
         generate(shader)
@@ -124,6 +132,14 @@ def test_quad_lanes():
     """Lane k's pair: lanes 0..3 the lower row, 4..7 the upper (8 lanes)."""
     from glslcheck.backends.compiled_engine.lanes import quad_lanes
 
-    assert [quad_lanes("dfdx", k, 8) for k in range(8)] == [(1, 0), (1, 0), (3, 2), (3, 2),
-                                                           (5, 4), (5, 4), (7, 6), (7, 6)]
+    assert [quad_lanes("dfdx", k, 8) for k in range(8)] == [
+        (1, 0),
+        (1, 0),
+        (3, 2),
+        (3, 2),
+        (5, 4),
+        (5, 4),
+        (7, 6),
+        (7, 6),
+    ]
     assert [quad_lanes("dfdy", k, 8) for k in range(8)] == [(4, 0), (5, 1), (6, 2), (7, 3)] * 2

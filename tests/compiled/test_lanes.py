@@ -17,7 +17,6 @@ import re
 
 import numpy as np
 import pytest
-
 from test_compiled_render import CONSTRUCTS, LAB, SIZE
 
 MOUSE = (10.0, 7.0, 3.0, -2.0)
@@ -39,8 +38,10 @@ def _same_bits(shader, lanes: int) -> None:
     if not same.all():
         where = np.argwhere(~same.all(axis=2))
         y, x = where[0]
-        raise AssertionError(f"{len(where)} of {SIZE[0] * SIZE[1]} pixels differ; first at row {y} col {x}: "
-                             f"lanes {got[y, x]}, per pixel {want[y, x]}")
+        raise AssertionError(
+            f"{len(where)} of {SIZE[0] * SIZE[1]} pixels differ; first at row {y} col {x}: "
+            f"lanes {got[y, x]}, per pixel {want[y, x]}"
+        )
 
 
 @pytest.mark.parametrize("lanes", [8, 16])
@@ -88,13 +89,15 @@ def test_uniform_arguments_stay_scalars(numba, make_shader):
     shader = make_shader(UNIFORM_CALLS)
     source, _ = generate(shader, lanes=8)
     # per-pixel names may carry codegen's own suffix (`f_diverge__u0`), the lockstep ones `__s<i>`
-    defs = {line[4:].split("(")[0]: line for line in source.splitlines() if line.startswith("def f_")}
+    defs = {
+        line[4:].split("(")[0]: line for line in source.splitlines() if line.startswith("def f_")
+    }
 
     def body(fn: str, scalar: bool) -> str:
         names = [d for d in defs if d.split("__")[0] == fn and d.endswith("__s0") == scalar]
         assert len(names) == 1, (fn, scalar, sorted(defs))
-        text = source[source.index(f"def {names[0]}("):]
-        return text[:text.index("\n\n")]
+        text = source[source.index(f"def {names[0]}(") :]
+        return text[: text.index("\n\n")]
 
     for fn in ("f_wave", "f_early", "f_row"):
         body(fn, False)  # the per-lane variant, for the per-pixel argument
@@ -111,8 +114,10 @@ def test_unhandled_statement_is_unsupported():
     Unsupported, not rewritten wrongly."""
     from glslcheck.backends.compiled_engine.lanes import Unsupported, lanes_module
 
-    source = ("@jit\ndef f_g(v_x_0):\n    for i in range(3):\n        pass\n    return (v_x_0,)\n\n"
-              "@jit\ndef shade(fx, fy, px, py):\n    _t1, = f_g(fx)\n    return (_t1, _t1, _t1, F32(1.0))\n")
+    source = (
+        "@jit\ndef f_g(v_x_0):\n    for i in range(3):\n        pass\n    return (v_x_0,)\n\n"
+        "@jit\ndef shade(fx, fy, px, py):\n    _t1, = f_g(fx)\n    return (_t1, _t1, _t1, F32(1.0))\n"
+    )
     with pytest.raises(Unsupported, match="For"):
         lanes_module(source, 8)
 
@@ -139,6 +144,7 @@ def test_fallback_and_mode_switch(make_shader, monkeypatch):
 
     def refuse(self):
         raise lanes.Unsupported("a construct")
+
     monkeypatch.setattr(lanes.Lanes, "module", refuse)
     source, _ = generate(shader, lanes=8)
     assert source.startswith(pixel) and "LANES_FALLBACK = 'a construct'" in source
@@ -155,7 +161,9 @@ def test_tiered_program_moves(numba, make_shader, monkeypatch, tmp_path):
     from glslcheck.backends.compiled_engine import engine
 
     monkeypatch.delenv("GLSLCHECK_COMPILED_LANES", raising=False)
-    monkeypatch.setenv("NUMBA_CACHE_DIR", str(tmp_path))  # no lockstep module cached by an earlier run
+    monkeypatch.setenv(
+        "NUMBA_CACHE_DIR", str(tmp_path)
+    )  # no lockstep module cached by an earlier run
     shader = make_shader(CONSTRUCTS["control_flow"])
     want = _render(shader, 0, time=2.0)
     prog = engine.compile_compiled(shader)
@@ -163,20 +171,32 @@ def test_tiered_program_moves(numba, make_shader, monkeypatch, tmp_path):
     monkeypatch.setattr(engine, "LOCKSTEP_COMPILE_RATIO", 1e9)  # never pays: stays per pixel
     monkeypatch.setattr(engine, "LOCKSTEP_SECONDS_PER_LINE", 1e9)
     for _ in range(3):
-        assert prog.render(size=SIZE, time=2.0, mouse=MOUSE).view(np.uint32).tolist() == want.view(np.uint32).tolist()
+        assert (
+            prog.render(size=SIZE, time=2.0, mouse=MOUSE).view(np.uint32).tolist()
+            == want.view(np.uint32).tolist()
+        )
     assert prog.mode == "pixel" and prog.pixels == 3 * SIZE[0] * SIZE[1]
-    monkeypatch.setattr(engine, "LOCKSTEP_COMPILE_RATIO", 0.0)  # pays at once: the next frame starts the move
+    monkeypatch.setattr(
+        engine, "LOCKSTEP_COMPILE_RATIO", 0.0
+    )  # pays at once: the next frame starts the move
     monkeypatch.setattr(engine, "LOCKSTEP_SECONDS_PER_LINE", 0.0)
     # the lockstep compile runs in its own thread; frames meanwhile are per pixel, the same bits
     got = prog.render(size=SIZE, time=2.0, mouse=MOUSE)
     assert got.view(np.uint32).tolist() == want.view(np.uint32).tolist()
-    assert prog._mover is not None and prog.settle(600) and prog.mode == "lanes8" and "LANES = 8" in prog.source
+    assert (
+        prog._mover is not None
+        and prog.settle(600)
+        and prog.mode == "lanes8"
+        and "LANES = 8" in prog.source
+    )
     got = prog.render(size=SIZE, time=2.0, mouse=MOUSE)
     assert got.view(np.uint32).tolist() == want.view(np.uint32).tolist()
     again = engine.compile_compiled(shader)
     again.first.load()
     assert again._cached_fast() == prog.fast.source
-    assert again.move_cost() == (again.first.load_seconds or 0.0)  # None: loaded already in this process
+    assert again.move_cost() == (
+        again.first.load_seconds or 0.0
+    )  # None: loaded already in this process
 
 
 def test_fixed_mode_is_not_tiered(numba, make_shader, monkeypatch):
@@ -200,8 +220,11 @@ def test_pure_conditional_expressions_are_selects():
     from glslcheck.shadertoy.sources import load_shader
 
     source, _ = generate(load_shader(os.path.join(LAB, "07_final")), lanes=8)
-    lane_ifexp = [line for line in source.splitlines()
-                  if re.search(r"__\d+ = .* if .* else ", line) and not line.lstrip().startswith("#")]
+    lane_ifexp = [
+        line
+        for line in source.splitlines()
+        if re.search(r"__\d+ = .* if .* else ", line) and not line.lstrip().startswith("#")
+    ]
     assert not lane_ifexp, lane_ifexp[:3]
     assert re.search(r"lsel\(v_light_\d+ == F_0p0, F_0p0, ", source)
 
@@ -238,8 +261,8 @@ def test_locals_after_a_return_stay_uniform(numba, make_shader):
 
     shader = make_shader(AFTER_RETURN)
     source, _ = generate(shader, lanes=8)
-    fn = source[source.index("def f_shadeIt"):]
-    fn = fn[:fn.index("\n\n")]
+    fn = source[source.index("def f_shadeIt") :]
+    fn = fn[: fn.index("\n\n")]
     assert re.search(r"\bv_L_\d+ = ", fn) and not re.search(r"\bv_L_\d+__\d", fn), "L per lane"
     assert re.search(r"v_w_\d+__0 = lsel\(", fn), "w's write in the branch unmasked"
     # a block whose lanes have all returned stops there (the loops after it would run for nothing)

@@ -20,47 +20,144 @@ import numpy as np
 import pytest
 
 W = 8
-N_RANDOM = 600_000  # per kind of argument; with the ranges and the special pairs ~2.5M lanes a function
+N_RANDOM = (
+    600_000  # per kind of argument; with the ranges and the special pairs ~2.5M lanes a function
+)
 
 # name: (argument kinds, result kind, takes fma); f float32, i int32, u uint32
 SPECS = {
-    "fmin": ("ff", "f", False), "fmax": ("ff", "f", False), "clamp": ("fff", "f", False),
-    "sign": ("f", "f", False), "daz": ("f", "f", False), "mix_fast": ("fff", "f", False),
-    "idiv": ("ii", "i", False), "udiv": ("uu", "u", False), "irem": ("ii", "i", False),
-    "urem": ("uu", "u", False), "irem_const": ("ii", "i", False), "to_int": ("f", "i", False),
-    "to_uint_sse": ("f", "u", False), "to_uint_avx512": ("f", "u", False), "to_uint_arm64": ("f", "u", False),
-    "sin": ("f", "f", True), "cos": ("f", "f", True), "tan": ("f", "f", True), "exp2": ("f", "f", True),
-    "log2": ("f", "f", True), "pow": ("ff", "f", True), "pow_zero": ("f", "f", False), "exp": ("f", "f", True),
-    "log": ("f", "f", True), "asin": ("f", "f", False), "acos": ("f", "f", False), "atan": ("f", "f", False),
-    "atan2": ("ff", "f", False), "sinh": ("f", "f", True), "cosh": ("f", "f", True), "tanh": ("f", "f", True),
-    "asinh": ("f", "f", True), "acosh": ("f", "f", True), "atanh": ("f", "f", True),
+    "fmin": ("ff", "f", False),
+    "fmax": ("ff", "f", False),
+    "clamp": ("fff", "f", False),
+    "sign": ("f", "f", False),
+    "daz": ("f", "f", False),
+    "mix_fast": ("fff", "f", False),
+    "idiv": ("ii", "i", False),
+    "udiv": ("uu", "u", False),
+    "irem": ("ii", "i", False),
+    "urem": ("uu", "u", False),
+    "irem_const": ("ii", "i", False),
+    "to_int": ("f", "i", False),
+    "to_uint_sse": ("f", "u", False),
+    "to_uint_avx512": ("f", "u", False),
+    "to_uint_arm64": ("f", "u", False),
+    "sin": ("f", "f", True),
+    "cos": ("f", "f", True),
+    "tan": ("f", "f", True),
+    "exp2": ("f", "f", True),
+    "log2": ("f", "f", True),
+    "pow": ("ff", "f", True),
+    "pow_zero": ("f", "f", False),
+    "exp": ("f", "f", True),
+    "log": ("f", "f", True),
+    "asin": ("f", "f", False),
+    "acos": ("f", "f", False),
+    "atan": ("f", "f", False),
+    "atan2": ("ff", "f", False),
+    "sinh": ("f", "f", True),
+    "cosh": ("f", "f", True),
+    "tanh": ("f", "f", True),
+    "asinh": ("f", "f", True),
+    "acosh": ("f", "f", True),
+    "atanh": ("f", "f", True),
     # scalar.py's own, which vectorise as they are (lanes_math.AS_IS)
-    "fract": ("f", "f", False), "mod": ("ff", "f", False), "step": ("ff", "f", False),
-    "smoothstep": ("fff", "f", False), "inversesqrt": ("f", "f", False), "ishl": ("ii", "i", False),
-    "ishr": ("ii", "i", False), "ushl": ("uu", "u", False), "ushr": ("uu", "u", False), "iabs": ("i", "i", False),
-    "isign": ("i", "i", False), "float_bits_to_int": ("f", "i", False), "float_bits_to_uint": ("f", "u", False),
-    "int_bits_to_float": ("i", "f", False), "uint_bits_to_float": ("u", "f", False),
+    "fract": ("f", "f", False),
+    "mod": ("ff", "f", False),
+    "step": ("ff", "f", False),
+    "smoothstep": ("fff", "f", False),
+    "inversesqrt": ("f", "f", False),
+    "ishl": ("ii", "i", False),
+    "ishr": ("ii", "i", False),
+    "ushl": ("uu", "u", False),
+    "ushr": ("uu", "u", False),
+    "iabs": ("i", "i", False),
+    "isign": ("i", "i", False),
+    "float_bits_to_int": ("f", "i", False),
+    "float_bits_to_uint": ("f", "u", False),
+    "int_bits_to_float": ("i", "f", False),
+    "uint_bits_to_float": ("u", "f", False),
     "round_even": ("f", "f", False),
 }
 DTYPES = {"f": np.float32, "i": np.int32, "u": np.uint32}
 
-_SPECIAL_BITS = [0x00000000, 0x7FC00000, 0xFFC00000, 0x7FC12345, 0xFF812345, 0x7F800001,  # 0, NaNs (quiet, signalling)
-                 0x7F800000, 0x00000001, 0x007FFFFF, 0x00800000, 0x7F7FFFFF, 0x3F800000, 0x3F000000,  # Inf, subnormals, FLT_MIN, MAX, 1, .5
-                 0x4E000000, 0x4DFFFFFF, 0x4F000000, 0x4EFFFFFF, 0x4F800000, 0x4F7FFFFF, 0x5F800000,  # 2**29, 2**31, 2**32, 2**64
-                 0x42FE0000, 0x42FDFFFF, 0x43000000, 0x43010000, 0x41200000, 0x5D5E0B6B, 0x7F000000]  # 127, 126.99999, 128, 129, 10, 1e18, 2**127
-_SPECIAL_FLOATS = [np.pi / 4, np.pi / 2, np.pi, 3 * np.pi / 2, 2 * np.pi, 100.0, 3e38, 1e-3, 0.7853982, 2.356194]
+_SPECIAL_BITS = [
+    0x00000000,
+    0x7FC00000,
+    0xFFC00000,
+    0x7FC12345,
+    0xFF812345,
+    0x7F800001,  # 0, NaNs (quiet, signalling)
+    0x7F800000,
+    0x00000001,
+    0x007FFFFF,
+    0x00800000,
+    0x7F7FFFFF,
+    0x3F800000,
+    0x3F000000,  # Inf, subnormals, FLT_MIN, MAX, 1, .5
+    0x4E000000,
+    0x4DFFFFFF,
+    0x4F000000,
+    0x4EFFFFFF,
+    0x4F800000,
+    0x4F7FFFFF,
+    0x5F800000,  # 2**29, 2**31, 2**32, 2**64
+    0x42FE0000,
+    0x42FDFFFF,
+    0x43000000,
+    0x43010000,
+    0x41200000,
+    0x5D5E0B6B,
+    0x7F000000,
+]  # 127, 126.99999, 128, 129, 10, 1e18, 2**127
+_SPECIAL_FLOATS = [
+    np.pi / 4,
+    np.pi / 2,
+    np.pi,
+    3 * np.pi / 2,
+    2 * np.pi,
+    100.0,
+    3e38,
+    1e-3,
+    0.7853982,
+    2.356194,
+]
 
 
 def _special_floats() -> np.ndarray:
-    pos = np.concatenate([np.array(_SPECIAL_BITS, np.uint32).view(np.float32), np.array(_SPECIAL_FLOATS, np.float32)])
+    pos = np.concatenate(
+        [np.array(_SPECIAL_BITS, np.uint32).view(np.float32), np.array(_SPECIAL_FLOATS, np.float32)]
+    )
     with np.errstate(over="ignore", invalid="ignore"):
-        pos = np.concatenate([pos, np.nextafter(pos, np.float32(np.inf)), np.nextafter(pos, np.float32(0))])
+        pos = np.concatenate(
+            [pos, np.nextafter(pos, np.float32(np.inf)), np.nextafter(pos, np.float32(0))]
+        )
     return np.concatenate([pos, -pos])  # -NaN of each NaN: the sign bit flipped
 
 
 def _special_ints(dtype) -> np.ndarray:
-    v = [0, 1, 2, 3, 7, 31, 32, 33, 100, 2**31 - 1, 2**31, 2**31 + 1, 2**32 - 1, 2**32 - 2, 2**16, 2**30]
-    return np.array([x % 2**32 for x in v] + [(-x) % 2**32 for x in v], np.uint64).astype(np.uint32).view(dtype)
+    v = [
+        0,
+        1,
+        2,
+        3,
+        7,
+        31,
+        32,
+        33,
+        100,
+        2**31 - 1,
+        2**31,
+        2**31 + 1,
+        2**32 - 1,
+        2**32 - 2,
+        2**16,
+        2**30,
+    ]
+    return (
+        np.array([x % 2**32 for x in v] + [(-x) % 2**32 for x in v], np.uint64)
+        .astype(np.uint32)
+        .view(dtype)
+    )
 
 
 def _column(rng, kind: str, n: int) -> np.ndarray:
@@ -69,8 +166,13 @@ def _column(rng, kind: str, n: int) -> np.ndarray:
     if kind != "f":
         small = rng.integers(-100, 101, n).astype(np.int64) % 2**32
         return np.concatenate([bits, small.astype(np.uint32)]).view(DTYPES[kind])
-    ranges = [rng.uniform(-1, 1, n), rng.uniform(-100, 100, n), rng.uniform(-2e4, 2e4, n // 4),
-              rng.uniform(-130, 130, n // 4), np.exp(rng.uniform(-80, 80, n // 4)) * rng.choice([-1, 1], n // 4)]
+    ranges = [
+        rng.uniform(-1, 1, n),
+        rng.uniform(-100, 100, n),
+        rng.uniform(-2e4, 2e4, n // 4),
+        rng.uniform(-130, 130, n // 4),
+        np.exp(rng.uniform(-80, 80, n // 4)) * rng.choice([-1, 1], n // 4),
+    ]
     return np.concatenate([bits.view(np.float32)] + [r.astype(np.float32) for r in ranges])
 
 
@@ -94,15 +196,23 @@ def arguments(kinds: str, seed: int = 18) -> list[np.ndarray]:
     return [np.ascontiguousarray(np.concatenate([c, c[:pad]])) for c in cols]
 
 
-def _source(nargs: int, fma: bool | None, extra: str = "", loop: bool = True, params: str = "") -> str:
+def _source(
+    nargs: int, fma: bool | None, extra: str = "", loop: bool = True, params: str = ""
+) -> str:
     """A numba function ``k(x0, ..., out)``: the W-lane tuple form of ``f`` over blocks, or on
     the first block only (straight-line code: what the vectorisation tests read). ``params``
     (``", s, z"``) are more arguments of k, the same for every lane (``extra`` can pass them)."""
     xs = [f"x{k}" for k in range(nargs)]
     head = [f"    for b in range(out.size // {W}):"] if loop else ["    if out.size >= W:"]
-    lines = [f"def k({', '.join(xs)}{params}, out):"] + head + [f"    \ti = np.uint64(b * {W})" if loop else "    \ti = 0"]
+    lines = (
+        [f"def k({', '.join(xs)}{params}, out):"]
+        + head
+        + [f"    \ti = np.uint64(b * {W})" if loop else "    \ti = 0"]
+    )
     for x in xs:
-        lines.append(f"    \t{x}_ = (" + ", ".join(f"{x}[i + np.uint64({j})]" for j in range(W)) + ",)")
+        lines.append(
+            f"    \t{x}_ = (" + ", ".join(f"{x}[i + np.uint64({j})]" for j in range(W)) + ",)"
+        )
     tail = extra + (", FMA" if fma is not None else "")
     calls = [f"f({', '.join(f'{x}_[{j}]' for x in xs)}{tail})" for j in range(W)]
     lines.append("    \tr = (" + ", ".join(calls) + ",)")
@@ -112,7 +222,9 @@ def _source(nargs: int, fma: bool | None, extra: str = "", loop: bool = True, pa
     return "\n".join(lines).replace("    \t", "        ")
 
 
-def lanes_kernel(module, name: str, fma: bool | None, extra: str = "", loop: bool = True, params: str = ""):
+def lanes_kernel(
+    module, name: str, fma: bool | None, extra: str = "", loop: bool = True, params: str = ""
+):
     import numba
 
     kinds, _, _ = SPECS.get(name, ("ff", "f", True))
@@ -175,9 +287,11 @@ def _assert_same_bits(name: str, args: list[np.ndarray], want: np.ndarray, got: 
     bad = np.flatnonzero(differ & ~_open_nan_choice(args, want, got))
     if bad.size:
         k = bad[0]
-        shown = ", ".join(f"{a[k]!r} (0x{a[k:k + 1].view(np.uint32)[0]:08x})" for a in args)
-        pytest.fail(f"{name}: {bad.size} of {want.size} results differ; first: {name}({shown}) = "
-                    f"0x{got[k:k + 1].view(np.uint32)[0]:08x}, scalar.py 0x{want[k:k + 1].view(np.uint32)[0]:08x}")
+        shown = ", ".join(f"{a[k]!r} (0x{a[k : k + 1].view(np.uint32)[0]:08x})" for a in args)
+        pytest.fail(
+            f"{name}: {bad.size} of {want.size} results differ; first: {name}({shown}) = "
+            f"0x{got[k : k + 1].view(np.uint32)[0]:08x}, scalar.py 0x{want[k : k + 1].view(np.uint32)[0]:08x}"
+        )
 
 
 def _rewritten_cases():
@@ -186,8 +300,12 @@ def _rewritten_cases():
     for name in REWRITTEN:
         if name == "pow_uniform":
             continue
-        for fma in ((True, False) if SPECS[name][2] else (None,)):
-            yield pytest.param(name, fma, id=f"{name}-{'fma' if fma else 'nofma' if fma is False else ''}".rstrip("-"))
+        for fma in (True, False) if SPECS[name][2] else (None,):
+            yield pytest.param(
+                name,
+                fma,
+                id=f"{name}-{'fma' if fma else 'nofma' if fma is False else ''}".rstrip("-"),
+            )
 
 
 @pytest.mark.parametrize("name,fma", list(_rewritten_cases()))
@@ -203,8 +321,10 @@ def test_same_bits_as_scalar(slp, modules, name, fma):
 
 
 @pytest.mark.parametrize("flags", ["constant", "run-time"])
-@pytest.mark.parametrize("special,zeros,fma", [(True, True, True), (True, False, True), (False, False, True),
-                                               (False, False, False)])
+@pytest.mark.parametrize(
+    "special,zeros,fma",
+    [(True, True, True), (True, False, True), (False, False, True), (False, False, False)],
+)
 def test_pow_uniform_same_bits(slp, modules, special, zeros, fma, flags):
     """pow_uniform's exponent: +0 where ``zeros``, one of 0, 1, 2, 4 where ``special``, else any.
     The flags as constants (folded) and as the kernel's arguments, as the generated code passes
@@ -212,7 +332,11 @@ def test_pow_uniform_same_bits(slp, modules, special, zeros, fma, flags):
     scalar, lanes = modules
     x, y = arguments("ff")
     if special:
-        y = np.zeros_like(y) if zeros else np.random.default_rng(5).choice(np.float32([0, 1, 2, 4]), y.size)
+        y = (
+            np.zeros_like(y)
+            if zeros
+            else np.random.default_rng(5).choice(np.float32([0, 1, 2, 4]), y.size)
+        )
     want = np.empty_like(x)
     got = np.empty_like(x)
     extra = f", {special}, {zeros}"
@@ -220,7 +344,9 @@ def test_pow_uniform_same_bits(slp, modules, special, zeros, fma, flags):
     if flags == "constant":
         lanes_kernel(lanes, "pow_uniform", fma, extra)(x, y, got)
     else:
-        lanes_kernel(lanes, "pow_uniform", fma, ", s, z", params=", s, z")(x, y, special, zeros, got)
+        lanes_kernel(lanes, "pow_uniform", fma, ", s, z", params=", s, z")(
+            x, y, special, zeros, got
+        )
     _assert_same_bits("pow_uniform", [x, y], want, got)
 
 
@@ -269,8 +395,13 @@ def test_lists_cover_scalar(modules):
     scalar, lanes = modules
     import numba
 
-    public = {n for n, v in vars(scalar).items() if isinstance(v, numba.core.registry.CPUDispatcher)
-              and not n.startswith("_") and v.py_func.__module__ == scalar.__name__} | {"fmin", "fmax"}
+    public = {
+        n
+        for n, v in vars(scalar).items()
+        if isinstance(v, numba.core.registry.CPUDispatcher)
+        and not n.startswith("_")
+        and v.py_func.__module__ == scalar.__name__
+    } | {"fmin", "fmax"}
     listed = set(lanes.REWRITTEN) | set(lanes.AS_IS)
     left = public - listed - {"acopy", "aslice", "aset", "index", "pow_special"}
     assert not left, f"scalar.py functions in neither list: {sorted(left)}"
@@ -288,7 +419,9 @@ def test_lists_cover_scalar(modules):
 # conditional jumps and no call. No exact count is pinned:
 # the instructions LLVM chooses depend on the CPU and LLVM's release.
 _ARITH = r"(?:add|sub|mul|div|sqrt|min|max|round|fn?m(?:add|sub)\w*|cmp\w*|and|andn|or|xor|blendv|cvt\w*)"
-_PACKED = re.compile(rf"\tv{_ARITH}p[sd]\t[^\n]*%[xy]mm|\tvp\w+\t[^\n]*%[xy]mm|\tvmov(?:up[sd]|dq[au])\t[^\n]*%ymm")
+_PACKED = re.compile(
+    rf"\tv{_ARITH}p[sd]\t[^\n]*%[xy]mm|\tvp\w+\t[^\n]*%[xy]mm|\tvmov(?:up[sd]|dq[au])\t[^\n]*%ymm"
+)
 _SCALAR = re.compile(rf"\tv{_ARITH}s[sd]\t|\tv?cvt\w*2si\w*\t")
 
 
@@ -312,19 +445,30 @@ def _host_avx2() -> str | None:
 def _body(kernel, name: str = "k") -> str:
     """The machine code of numba function ``name`` (its mangled name: length, then name)."""
     asm = next(iter(kernel.inspect_asm().values()))
-    m = re.search(rf"^(_ZN(?!7cpython)\w*{len(name)}{name}\w*):\n(.*?)\.Lfunc_end", asm, re.S | re.M)
+    m = re.search(
+        rf"^(_ZN(?!7cpython)\w*{len(name)}{name}\w*):\n(.*?)\.Lfunc_end", asm, re.S | re.M
+    )
     assert m, f"{name}'s machine code was not found in numba's assembly"
     return m.group(2)
 
 
 def vector_report(kernel, name: str = "k") -> dict[str, int]:
     body = _body(kernel, name)
-    return {"packed": len(_PACKED.findall(body)), "scalar": len(_SCALAR.findall(body)),
-            "jumps": len(re.findall(r"\tj(?!mp)\w+\t", body)), "calls": len(re.findall(r"\tcall", body))}
+    return {
+        "packed": len(_PACKED.findall(body)),
+        "scalar": len(_SCALAR.findall(body)),
+        "jumps": len(re.findall(r"\tj(?!mp)\w+\t", body)),
+        "calls": len(re.findall(r"\tcall", body)),
+    }
 
 
 def _vectorised(report: dict[str, int]) -> bool:
-    return report["packed"] > 0 and report["scalar"] < W and report["jumps"] < W and report["calls"] == 0
+    return (
+        report["packed"] > 0
+        and report["scalar"] < W
+        and report["jumps"] < W
+        and report["calls"] == 0
+    )
 
 
 @pytest.fixture(scope="module")
@@ -340,7 +484,9 @@ def test_w_lanes_vectorise(slp, avx2, modules, name):
     keeps) compiles to packed instructions, FMA a constant."""
     scalar, lanes = modules
     kinds, out_kind, takes_fma = SPECS[name]
-    kernel = lanes_kernel(lanes if name in lanes.REWRITTEN else scalar, name, True if takes_fma else None, loop=False)
+    kernel = lanes_kernel(
+        lanes if name in lanes.REWRITTEN else scalar, name, True if takes_fma else None, loop=False
+    )
     args = arguments(kinds)
     kernel(*[a[:64] for a in args], np.empty(64, DTYPES[out_kind]))
     report = vector_report(kernel)

@@ -41,8 +41,16 @@ def test_short_fuzz_run_has_no_flagged_inputs(gl, tmp_path):
 
     def chunk(k: int):
         # hostile programs take seconds each: test_fuzz_hostile.py runs each shape once
-        return fuzz.fuzz_range(SEED, k * PER_WORKER, (k + 1) * PER_WORKER, heavy_rate=0.01,
-                               verify_rate=0.02, parse_rate=0.2, out_dir=tmp_path, hostile_rate=0.0)
+        return fuzz.fuzz_range(
+            SEED,
+            k * PER_WORKER,
+            (k + 1) * PER_WORKER,
+            heavy_rate=0.01,
+            verify_rate=0.02,
+            parse_rate=0.2,
+            out_dir=tmp_path,
+            hostile_rate=0.0,
+        )
 
     counts: collections.Counter = collections.Counter()
     flagged: list[dict] = []
@@ -50,9 +58,13 @@ def test_short_fuzz_run_has_no_flagged_inputs(gl, tmp_path):
         for c, f in pool.map(chunk, range(WORKERS)):
             counts.update(c)
             flagged += f
-    report = "\n".join(f"{f['outcome']} {f['command']} input {f['index']} ({f['kind']}): {f['detail'][-600:]}"
-                       for f in flagged[:10])
-    assert not flagged, f"{len(flagged)} flagged (reproduce: tools/fuzz.py --seed {SEED} --show INDEX):\n{report}"
+    report = "\n".join(
+        f"{f['outcome']} {f['command']} input {f['index']} ({f['kind']}): {f['detail'][-600:]}"
+        for f in flagged[:10]
+    )
+    assert not flagged, (
+        f"{len(flagged)} flagged (reproduce: tools/fuzz.py --seed {SEED} --show INDEX):\n{report}"
+    )
     kinds = {k: n for (c, k), n in counts.items() if c == "input"}
     assert sum(kinds.values()) == WORKERS * PER_WORKER, kinds
     assert {"mutate", "generate", "soup", "bytes"} <= set(kinds), kinds

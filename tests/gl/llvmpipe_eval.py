@@ -31,7 +31,9 @@ void main() {
 WIDTH = 1024
 
 
-def evaluate(ctx, expr: str, a, b=None, c=None, decl: str = "", stmt: str | None = None) -> np.ndarray:
+def evaluate(
+    ctx, expr: str, a, b=None, c=None, decl: str = "", stmt: str | None = None
+) -> np.ndarray:
     """float32 results of `expr` (over float operands a, b, c) per input, in input order.
 
     `stmt` replaces the default `o.x = floatBitsToInt(<expr>);` (it may set o.x..o.w);
@@ -42,7 +44,11 @@ def evaluate(ctx, expr: str, a, b=None, c=None, decl: str = "", stmt: str | None
     h = -(-n // w)
 
     def pad(x) -> bytes:
-        x = np.zeros(n, np.float32) if x is None else np.broadcast_to(np.asarray(x, np.float32).ravel(), (n,))
+        x = (
+            np.zeros(n, np.float32)
+            if x is None
+            else np.broadcast_to(np.asarray(x, np.float32).ravel(), (n,))
+        )
         return np.concatenate([x, np.zeros(w * h - n, np.float32)]).tobytes()
 
     textures = [ctx.texture((w, h), 1, pad(x), dtype="f4") for x in (a, b, c)]

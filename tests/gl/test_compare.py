@@ -70,7 +70,12 @@ def test_nan_in_both_is_equal_nan_in_one_is_a_mismatch():
     assert both.match and both.nan_numpy == 2 and both.nan_gl == 2 and both.max_abs_error == 0
     one = compare(a, _gradient())
     assert not one.match
-    assert (one.nan_numpy, one.nan_gl, one.mismatched_pixels, one.nan_mismatched_pixels) == (2, 0, 2, 2)
+    assert (one.nan_numpy, one.nan_gl, one.mismatched_pixels, one.nan_mismatched_pixels) == (
+        2,
+        0,
+        2,
+        2,
+    )
     assert one.worst[0].kind == "nan"
     b = a.copy()
     b[7, 8, 2] = -np.inf  # +Inf against -Inf: different
@@ -105,9 +110,25 @@ def test_wrong_colour_on_an_edge_is_not_an_edge():
 
 def test_json_keys_are_exact():
     data = compare(_gradient(), _disc(10)).to_json()
-    assert tuple(data) == JSON_KEYS == ("match", "verdict", "size", "max_abs_error", "mean_abs_error",
-                                        "psnr_db", "mismatched_pixels", "edge_pixels", "nan_numpy",
-                                        "nan_gl", "unstable_pixels", "unstable_lines", "driver")
+    assert (
+        tuple(data)
+        == JSON_KEYS
+        == (
+            "match",
+            "verdict",
+            "size",
+            "max_abs_error",
+            "mean_abs_error",
+            "psnr_db",
+            "mismatched_pixels",
+            "edge_pixels",
+            "nan_numpy",
+            "nan_gl",
+            "unstable_pixels",
+            "unstable_lines",
+            "driver",
+        )
+    )
     assert data["size"] == [W, H]
     json.dumps(data, allow_nan=False)
 

@@ -58,12 +58,18 @@ def test_unused_uniforms_are_skipped(gl, make_shader):
 
 
 def test_unbound_channel_reads_opaque_black(gl, make_shader):
-    img = _render(make_shader, "c = texture(iChannel0, p / iResolution.xy) + vec4(0.0, 0.0, 0.0, 0.0);", size=(2, 2))
+    img = _render(
+        make_shader,
+        "c = texture(iChannel0, p / iResolution.xy) + vec4(0.0, 0.0, 0.0, 0.0);",
+        size=(2, 2),
+    )
     assert np.all(img[..., :3] == 0.0)
 
 
 def test_uninitialised_variables_read_zero_as_in_webgl(gl, make_shader):
-    img = _render(make_shader, "float u; vec4 z;\n c = vec4(u, z.x, z.w, 1.0) + vec4(0.25);", size=(2, 2))
+    img = _render(
+        make_shader, "float u; vec4 z;\n c = vec4(u, z.x, z.w, 1.0) + vec4(0.25);", size=(2, 2)
+    )
     assert np.all(img[..., :3] == 0.25)
 
 
@@ -84,11 +90,15 @@ def test_samples_must_be_a_perfect_square(gl, make_shader):
 
 
 def test_render_shader_in_one_call(gl, make_shader):
-    img = render_shader(make_shader("void mainImage(out vec4 c, in vec2 p) { c = vec4(1.0); }\n"), size=(3, 3))
+    img = render_shader(
+        make_shader("void mainImage(out vec4 c, in vec2 p) { c = vec4(1.0); }\n"), size=(3, 3)
+    )
     assert img.shape == (3, 3, 4)
 
 
 def test_buffer_pass_keeps_alpha(gl, make_shader):
-    shader = make_shader(Buffer_A="void mainImage(out vec4 c, in vec2 p) { c = vec4(0.5, 0.5, 0.5, 0.25); }\n")
+    shader = make_shader(
+        Buffer_A="void mainImage(out vec4 c, in vec2 p) { c = vec4(0.5, 0.5, 0.5, 0.25); }\n"
+    )
     img = compile_gl(shader, tab="Buffer A").render(size=(2, 2))
     assert np.all(img[..., 3] == 0.25)

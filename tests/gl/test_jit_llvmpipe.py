@@ -22,14 +22,19 @@ from glslcheck.backends.numpy_engine import jit
 from glslcheck.backends.numpy_engine.runtime import Runtime
 
 KERNEL_BUILTINS = ("sin", "cos", "tan", "exp2", "exp", "log2", "log", "pow", "atan", "asin", "acos")
-CASES = [c for c in EXACT if getattr(c[1], "__self__", None) is RT and c[1].__name__ in KERNEL_BUILTINS]
+CASES = [
+    c for c in EXACT if getattr(c[1], "__self__", None) is RT and c[1].__name__ in KERNEL_BUILTINS
+]
 # asin and acos are one call, which the kernel declines when a lane is outside [-1, 1] or NaN (the
 # cases' spread and edges): their arguments inside [-1, 1] again, which the kernel must take
 TAKEN = [(e, f, a[np.abs(a) <= 1], b) for e, f, a, b in CASES if f.__name__ in ("asin", "acos")]
 
 
-@pytest.mark.parametrize("case,taken", [(c, False) for c in CASES] + [(c, True) for c in TAKEN],
-                         ids=[f"{c[0]}-{i}" for i, c in enumerate(CASES + TAKEN)])
+@pytest.mark.parametrize(
+    "case,taken",
+    [(c, False) for c in CASES] + [(c, True) for c in TAKEN],
+    ids=[f"{c[0]}-{i}" for i, c in enumerate(CASES + TAKEN)],
+)
 def test_kernels_are_bit_exact_with_llvmpipe(llvmpipe, jit_kernels, monkeypatch, case, taken):
     expr, fn, a, b = case
     monkeypatch.setenv("GLSLCHECK_JIT", "on")
@@ -39,6 +44,7 @@ def test_kernels_are_bit_exact_with_llvmpipe(llvmpipe, jit_kernels, monkeypatch,
     def counting(name, run, fma, kernels):
         fn = real(name, lambda *args: declined.append(name) or run(*args), fma, kernels)
         return lambda *args: calls.append(name) or fn(*args)
+
     monkeypatch.setattr(jit, "compiled", counting)
     rt = Runtime("float32")
     ours_fn = getattr(rt, fn.__name__)
@@ -59,11 +65,18 @@ def test_mix_kernel_is_bit_exact_with_llvmpipe(llvmpipe, jit_kernels, monkeypatc
     checked against the NumPy form in tests/numpy/test_jit_kernels.py.)"""
     monkeypatch.setenv("GLSLCHECK_JIT", "on")
     t = NT[(NT != 0) & (NT != 1)]
-    a, b = NA[:t.size], NB[:t.size]
+    a, b = NA[: t.size], NB[: t.size]
     got = evaluate(llvmpipe, "mix(a, b, c)", a, b, t)
     rt = Runtime("float32")
     with rt.errstate():
         ours = rt.mix(a, b, t)
     assert [f.__name__ for f in rt.lp._kernels.values()] == ["call"]  # jit.compiled's
     bad = np.flatnonzero(ulp_distance(ours, got))
-    assert bad.size == 0, (bad.size, a[bad[:3]], b[bad[:3]], t[bad[:3]], got[bad[:3]], ours[bad[:3]])
+    assert bad.size == 0, (
+        bad.size,
+        a[bad[:3]],
+        b[bad[:3]],
+        t[bad[:3]],
+        got[bad[:3]],
+        ours[bad[:3]],
+    )

@@ -42,7 +42,9 @@ def test_a_70000_pass_loop_stops_where_llvmpipe_stops_it(gl, make_shader):
     assert result.match
     np.testing.assert_array_equal(result.numpy_image, result.gl_image)  # 0.93665314 on both
     assert result.numpy_image[0, 0, 0] == pytest.approx(65535 / 70000, abs=1e-3)  # float32 sum
-    assert len(result.notes) == 1 and "Image.glsl:5" in result.notes[0] and "65,535" in result.notes[0]
+    assert (
+        len(result.notes) == 1 and "Image.glsl:5" in result.notes[0] and "65,535" in result.notes[0]
+    )
 
 
 def test_the_budget_is_shared_by_sequential_and_nested_loops(gl, make_shader):

@@ -74,14 +74,18 @@ def test_numpy_rewrites_as_mesa(llvmpipe, make_shader, name):
     shader = make_shader("void mainImage(out vec4 c, in vec2 p) {" + OPERANDS + CASES[name] + "}")
     got_gl = compile_backend(shader, "gl").render(size=(160, 90))
     got_np = compile_backend(shader, "numpy").render(size=(160, 90))
-    same = (np.asarray(got_np, np.float32).view(np.int32) == np.asarray(got_gl, np.float32).view(np.int32))
+    same = np.asarray(got_np, np.float32).view(np.int32) == np.asarray(got_gl, np.float32).view(
+        np.int32
+    )
     assert same.all(), (name, (~same).reshape(-1, 4).sum(0).tolist())
 
 
 def test_float64_reference_keeps_the_written_order(make_shader):
     """The rewrites are float32 (llvmpipe) only: the float64 render computes the source's order,
     so it differs from the float32 render by float32 rounding only."""
-    shader = make_shader("void mainImage(out vec4 c, in vec2 p) {" + OPERANDS + CASES["constants_sunk"] + "}")
+    shader = make_shader(
+        "void mainImage(out vec4 c, in vec2 p) {" + OPERANDS + CASES["constants_sunk"] + "}"
+    )
     prog = compile_backend(shader, "numpy")
     f32 = np.asarray(prog.render(size=(32, 16)), np.float64)
     f64 = np.asarray(prog.render(size=(32, 16), precision="float64"), np.float64)
@@ -204,8 +208,13 @@ def test_a_global_initialised_by_a_constant_and_never_written_is_a_constant(llvm
     assert same.all(), (~same).reshape(-1, 4).sum(0).tolist()
 
 
-SSA_VALUES = ("void mainImage(out vec4 c, in vec2 p) {" + OPERANDS + CASES["constants_sunk_further"]
-              + CASES["constants_merged_through_assignments"].replace("c = vec4(", "c += vec4(") + "}")
+SSA_VALUES = (
+    "void mainImage(out vec4 c, in vec2 p) {"
+    + OPERANDS
+    + CASES["constants_sunk_further"]
+    + CASES["constants_merged_through_assignments"].replace("c = vec4(", "c += vec4(")
+    + "}"
+)
 
 
 RETURNED_SUMS = """float h(vec3 x) { return fract(sin(x.x * 1.7 + x.y * 3.1) * 43.7 + x.z); }
@@ -217,7 +226,9 @@ void mainImage(out vec4 c, in vec2 q) {
 }"""
 
 
-def test_a_constant_added_to_a_result_sinks_into_the_sum_the_function_returns(llvmpipe, make_shader):
+def test_a_constant_added_to_a_result_sinks_into_the_sum_the_function_returns(
+    llvmpipe, make_shader
+):
     """NIR inlines every function, so ``fbm(p) - 0.4`` with fbm returning ``f`` built as
     ``f = 0.5*h(p); f += ...`` is ``((0.5*h(p) - 0.4) + 0.25*h(..)) + ...`` on llvmpipe (iq's
     terrain ``displacement(x) - 0.4``, the real shader volcanic). Measured: 299, 4398 and 1293
@@ -233,7 +244,9 @@ def test_a_constant_added_to_a_result_sinks_into_the_sum_the_function_returns(ll
 # the same sum computed for another call (same argument; for a vector function, any other call:
 # equal components) is merged by CSE after inlining, used twice: the constant stays outside.
 # Sunk anyway (measured): 80, 1 and 246 pixels of the three channels differed.
-RETURNED_SUMS_SHARED = RETURNED_SUMS.split("void mainImage")[0] + """
+RETURNED_SUMS_SHARED = (
+    RETURNED_SUMS.split("void mainImage")[0]
+    + """
 vec3 fbm3(vec3 p) { vec3 f = 0.5*fract(p*7.0); f += 0.25*fract(p*3.0); return f; }
 void mainImage(out vec4 c, in vec2 q) {
     vec3 p = vec3(fract(q.x * 0.1371 + q.y * 0.0917), sin(q.y * 0.917 + q.x * 0.0311), fract(q.x * 0.01377 + q.y * 0.0311));
@@ -241,6 +254,7 @@ void mainImage(out vec4 c, in vec2 q) {
     vec3 a = (fbm3(p) - vec3(0.3, 0.2, 0.1)) * 1.5, b = fbm3(p.zxy) * 2.0;
     c = vec4(fbm(p) - 0.4 + d * 2.0, a.x + b.y, a.z + b.x, 1.0);
 }"""
+)
 
 
 # gargantua's camera (tests/real_channels, Buffer A): a position with constant components and a
@@ -271,10 +285,13 @@ void mainImage(out vec4 c, in vec2 q) {
     c = vec4(pos, lift(ro, fract(q.x * 0.01377 + q.y * 0.0311), dir));
 }"""
 # gargantua's first ray step, pos read once after the call: eyepos + eyevec * dither * far / 200
-CALL_CONSTANTS_STEP = CALL_CONSTANTS.split("    vec3 ro =")[0] + """    float dither = fract(q.x * 0.01377 + q.y * 0.0311) * 2.0;
+CALL_CONSTANTS_STEP = (
+    CALL_CONSTANTS.split("    vec3 ro =")[0]
+    + """    float dither = fract(q.x * 0.01377 + q.y * 0.0311) * 2.0;
     const float far = 15.0;
     c = vec4(pos + dir * dither * far / 200.0, 1.0);
 }"""
+)
 
 
 def test_constants_propagated_into_a_call_per_component(llvmpipe, make_shader):
@@ -300,7 +317,9 @@ void mainImage(out vec4 c, in vec2 p) {
 }"""
 
 
-def test_a_product_by_a_constant_passed_into_a_call_merges_with_its_constants(llvmpipe, make_shader):
+def test_a_product_by_a_constant_passed_into_a_call_merges_with_its_constants(
+    llvmpipe, make_shader
+):
     """An argument ``y * #c`` is that product in each component of the parameter after inlining,
     so the callee's constants merge into it (``fract(vec3(p) * 443.8975)`` of ``p = fi * 0.017``
     is ``fract(fi * (0.017*443.8975))``), and a dot product whose products share a value is
@@ -331,17 +350,24 @@ def test_a_dot_product_whose_products_share_a_value_is_factored(llvmpipe, make_s
     _assert_bit_for_bit(make_shader(HASHES_WITHOUT_SINE))
 
 
-def test_a_scaled_local_whose_operand_changes_before_the_call_is_not_evaluated_again(llvmpipe, make_shader):
+def test_a_scaled_local_whose_operand_changes_before_the_call_is_not_evaluated_again(
+    llvmpipe, make_shader
+):
     """q = s.m * 0.5 and then s.m = 2.0 before hash11(q): the product is not q's value at the
     call, so it is not merged (it was read again there, and a struct member's write raised a
     KeyError in the scan for writes: a real textured shader, tests/real_channels ice_primitives)."""
-    _assert_bit_for_bit(make_shader(SCALED_ARGUMENTS.split("float scaled")[0] + """struct S { float m; };
+    _assert_bit_for_bit(
+        make_shader(
+            SCALED_ARGUMENTS.split("float scaled")[0]
+            + """struct S { float m; };
 void mainImage(out vec4 c, in vec2 p) {
     S s = S(fract(p.x * 0.1371 + p.y * 0.0917));
     float q = s.m * 0.5;
     s.m = 2.0;
     c = vec4(hash11(q), s.m, 0.0, 1.0);
-}"""))
+}"""
+        )
+    )
 
 
 def test_a_sum_returned_through_a_folded_call_fuses_with_its_next_addition(llvmpipe, make_shader):
@@ -425,11 +451,15 @@ def _warp_after(steps: str) -> str:
     return head + steps + "\n    c = vec4(e, 1.0);\n}"
 
 
-@pytest.mark.parametrize("steps", [
-    "    for (int i = 0; i < int(iTime * 0.0) + 4; i++) { warp(e, r); r += e * 0.075; }",
-    "    if (q.y > 40.0) { r = r * 1.5 + sin(r.zxy) * cos(r) + exp(r.yzx) * 0.1 + log(abs(r) + 1.0); }\n"
-    "    warp(e, r);",
-], ids=["loop", "branch"])
+@pytest.mark.parametrize(
+    "steps",
+    [
+        "    for (int i = 0; i < int(iTime * 0.0) + 4; i++) { warp(e, r); r += e * 0.075; }",
+        "    if (q.y > 40.0) { r = r * 1.5 + sin(r.zxy) * cos(r) + exp(r.yzx) * 0.1 + log(abs(r) + 1.0); }\n"
+        "    warp(e, r);",
+    ],
+    ids=["loop", "branch"],
+)
 def test_a_constant_joins_a_shared_dot_product_of_a_merged_value(llvmpipe, make_shader, steps):
     """The same warp, its r written in the loop around the call (gargantua's ray steps) or in a
     branch before it: the constant joins the dot product's innermost addition although
@@ -469,8 +499,12 @@ def test_powers_of_constants_propagated_into_a_call_are_folded(llvmpipe, make_sh
 def _assert_bit_for_bit(shader, **uniforms) -> None:
     """The NumPy render of ``shader`` is llvmpipe's bit for bit (160x90); the message counts
     the pixels that differ per channel."""
-    got_gl = np.asarray(compile_backend(shader, "gl").render(size=(160, 90), **uniforms), np.float32)
-    got_np = np.asarray(compile_backend(shader, "numpy").render(size=(160, 90), **uniforms), np.float32)
+    got_gl = np.asarray(
+        compile_backend(shader, "gl").render(size=(160, 90), **uniforms), np.float32
+    )
+    got_np = np.asarray(
+        compile_backend(shader, "numpy").render(size=(160, 90), **uniforms), np.float32
+    )
     same = got_np.view(np.int32) == got_gl.view(np.int32)
     assert same.all(), (~same).reshape(-1, 4).sum(0).tolist()
 
@@ -485,13 +519,16 @@ _RADIAL = """void mainImage(out vec4 c, in vec2 p) {  // gargantua's GasDisc
     r *= 0.95;
     vec3 q = r + 0.0;
 """
-COMPONENT_WRITES = _RADIAL + """    q.y += e;
+COMPONENT_WRITES = (
+    _RADIAL
+    + """    q.y += e;
     vec3 s = q * 3.1;
     r.y += e * 0.5;
     float h = b * 1.37;
     h *= 0.73;
     c = vec4(h, s.z, (r.yx * vec2(0.15, 0.27)).y, 1.0);
 }"""
+)
 
 
 def test_constants_merge_through_the_last_write_of_each_component(llvmpipe, make_shader):
@@ -506,7 +543,9 @@ def test_constants_merge_through_the_last_write_of_each_component(llvmpipe, make
     _assert_bit_for_bit(make_shader(COMPONENT_WRITES))
 
 
-CANCELLED_SUMS = _RADIAL + """    q.y += e;
+CANCELLED_SUMS = (
+    _RADIAL
+    + """    q.y += e;
     vec3 s = q * 3.1;
     q.y -= e;
     vec3 u = q * 6.1;
@@ -514,6 +553,7 @@ CANCELLED_SUMS = _RADIAL + """    q.y += e;
     q.y -= e;
     c = vec4(s.y, u.y, (q * 12.7).y, 1.0);
 }"""
+)
 
 
 def test_a_sum_cancelled_by_its_difference_is_the_value_before_it(llvmpipe, make_shader):
@@ -551,7 +591,9 @@ void mainImage(out vec4 c, in vec2 p) {
 
 
 @pytest.mark.parametrize("steps", ["40", "4"])
-def test_a_result_returned_from_a_branch_keeps_its_old_value_in_lanes_left_out(llvmpipe, make_shader, steps):
+def test_a_result_returned_from_a_branch_keeps_its_old_value_in_lanes_left_out(
+    llvmpipe, make_shader, steps
+):
     """A neighbour that returned early still has atan2's result in a derivative: llvmpipe's
     register for the merged returns, stored under the exec mask, so its value of the last
     iteration that lane called it in a loop NIR keeps (40 steps), zero in a loop it unrolls
@@ -589,10 +631,14 @@ def test_a_constant_sinks_into_a_compound_product_read_once(llvmpipe, make_shade
 def test_a_product_in_a_global_initializer_is_no_local_write(make_shader):
     """The per-component rules read the current function's writes; a global's initializer has
     none (it stopped transpiling with an AttributeError: a regression caught on the lab)."""
-    shader = make_shader("float TAU = 3.14159 * 2.0;\n"
-                         "void mainImage(out vec4 c, in vec2 p) { c = vec4(TAU * 0.1 * p.x, 0.0, 0.0, 1.0); }")
+    shader = make_shader(
+        "float TAU = 3.14159 * 2.0;\n"
+        "void mainImage(out vec4 c, in vec2 p) { c = vec4(TAU * 0.1 * p.x, 0.0, 0.0, 1.0); }"
+    )
     got = np.asarray(compile_backend(shader, "numpy").render(size=(4, 2)))
-    assert np.allclose(got[0, :, 0], np.float32(6.28318) * np.float32(0.1) * (np.arange(4) + 0.5), rtol=1e-6)
+    assert np.allclose(
+        got[0, :, 0], np.float32(6.28318) * np.float32(0.1) * (np.arange(4) + 0.5), rtol=1e-6
+    )
 
 
 def without_rule(monkeypatch, name, value):
@@ -604,29 +650,67 @@ def without_rule(monkeypatch, name, value):
 
     from glslcheck.backends.numpy_engine.transpile import nir_fold
 
-    modules = [nir_fold] + [importlib.import_module(f"{nir_fold.__name__}.{m.name}")
-                            for m in pkgutil.iter_modules(nir_fold.__path__)]
+    modules = [nir_fold] + [
+        importlib.import_module(f"{nir_fold.__name__}.{m.name}")
+        for m in pkgutil.iter_modules(nir_fold.__path__)
+    ]
     bound = [m for m in modules if hasattr(m, name)]
     assert bound, name
     for module in bound:
         monkeypatch.setattr(module, name, value)
 
 
-@pytest.mark.parametrize("text", [ZERO_ADDS, MERGED_DOTS, ONE_VALUE_DOTS, SCALED_ARGUMENTS, HASHES_WITHOUT_SINE, GLOBAL_CONSTANTS, SSA_VALUES, RETURNED_SUMS, CALL_CONSTANTS,
-                                  CALL_CONSTANTS_STEP, SQUARED_LENGTHS, NORMALIZED_STEPS, CONSTANT_POWERS,
-                                  COMPONENT_WRITES, CANCELLED_SUMS, SUNK_THROUGH_COMPOUNDS, KEPT_RETURNS.replace("STEPS", "40")],
-                         ids=["zero_adds", "merged_dots", "one_value_dots", "scaled_arguments", "hashes_without_sine", "globals", "ssa_values", "returned_sums", "call_constants",
-                              "call_constants_step", "squared_lengths",
-                              "normalized_steps", "constant_powers", "component_writes",
-                              "cancelled_sums", "sunk_through_compounds", "kept_returns"])
+@pytest.mark.parametrize(
+    "text",
+    [
+        ZERO_ADDS,
+        MERGED_DOTS,
+        ONE_VALUE_DOTS,
+        SCALED_ARGUMENTS,
+        HASHES_WITHOUT_SINE,
+        GLOBAL_CONSTANTS,
+        SSA_VALUES,
+        RETURNED_SUMS,
+        CALL_CONSTANTS,
+        CALL_CONSTANTS_STEP,
+        SQUARED_LENGTHS,
+        NORMALIZED_STEPS,
+        CONSTANT_POWERS,
+        COMPONENT_WRITES,
+        CANCELLED_SUMS,
+        SUNK_THROUGH_COMPOUNDS,
+        KEPT_RETURNS.replace("STEPS", "40"),
+    ],
+    ids=[
+        "zero_adds",
+        "merged_dots",
+        "one_value_dots",
+        "scaled_arguments",
+        "hashes_without_sine",
+        "globals",
+        "ssa_values",
+        "returned_sums",
+        "call_constants",
+        "call_constants_step",
+        "squared_lengths",
+        "normalized_steps",
+        "constant_powers",
+        "component_writes",
+        "cancelled_sums",
+        "sunk_through_compounds",
+        "kept_returns",
+    ],
+)
 def test_float64_reference_is_the_same_without_these_rewrites(make_shader, monkeypatch, text):
     """The rewrites and the inlining above are float32 (llvmpipe) only: the float64 render is
     bit for bit the one of the code generated without them."""
-    from glslcheck.backends.numpy_engine.transpile.nir_fold import dot_constants
     from glslcheck.backends.numpy_engine.transpile import functions
+    from glslcheck.backends.numpy_engine.transpile.nir_fold import dot_constants
 
     shader = make_shader(text)
-    with_them = np.asarray(compile_backend(shader, "numpy").render(size=(32, 18), precision="float64"))
+    with_them = np.asarray(
+        compile_backend(shader, "numpy").render(size=(32, 18), precision="float64")
+    )
     monkeypatch.setattr(functions, "worth_inlining", lambda *a: False)
     monkeypatch.setattr(functions, "folded_call", lambda *a: None)
     without_rule(monkeypatch, "merged_dot", lambda *a: None)
@@ -638,8 +722,20 @@ def test_float64_reference_is_the_same_without_these_rewrites(make_shader, monke
     without_rule(monkeypatch, "_cancelled_sum", lambda *a: None)
     without_rule(monkeypatch, "sunk_through_compound", lambda *a: None)
     without_rule(monkeypatch, "register_call", lambda *a: False)
-    for name in ("broadcast_dot_parts", "_scalar_dot", "_sink_sum", "keep_factor", "merge_into_matrix", "sunk_return",
-                 "fused_after_call", "squared_length", "sink_constant", "merge_components"):
+    for name in (
+        "broadcast_dot_parts",
+        "_scalar_dot",
+        "_sink_sum",
+        "keep_factor",
+        "merge_into_matrix",
+        "sunk_return",
+        "fused_after_call",
+        "squared_length",
+        "sink_constant",
+        "merge_components",
+    ):
         without_rule(monkeypatch, name, lambda *a: None)
-    without = np.asarray(compile_backend(make_shader(text), "numpy").render(size=(32, 18), precision="float64"))
+    without = np.asarray(
+        compile_backend(make_shader(text), "numpy").render(size=(32, 18), precision="float64")
+    )
     assert with_them.view(np.int64).tolist() == without.view(np.int64).tolist()

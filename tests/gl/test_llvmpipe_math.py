@@ -18,17 +18,46 @@ from __future__ import annotations
 
 import numpy as np
 import pytest
+from llvmpipe_eval import evaluate, ulp_distance
 
 from glslcheck.backends.numpy_engine.llvmpipe_reference import HOST_FMA
 from glslcheck.backends.numpy_engine.runtime import Runtime
-from llvmpipe_eval import evaluate, ulp_distance
 
 RT = Runtime("float32")
 RNG = np.random.default_rng(20261201)
-EDGES = np.array([0.0, -0.0, 1.0, -1.0, 0.5, 2.0, np.inf, -np.inf, np.nan, 1e-40, -1e-40, 1e-45,
-                  1.17549435e-38, 3e38, -3e38, 1e10, -1e10, 2.0**31, 1e30, 128.0, 129.0, -127.0,
-                  -126.99999, 127.99999, 0.7853982, 1.5707964, 3.1415927, 6.2831855],
-                 dtype=np.float32)
+EDGES = np.array(
+    [
+        0.0,
+        -0.0,
+        1.0,
+        -1.0,
+        0.5,
+        2.0,
+        np.inf,
+        -np.inf,
+        np.nan,
+        1e-40,
+        -1e-40,
+        1e-45,
+        1.17549435e-38,
+        3e38,
+        -3e38,
+        1e10,
+        -1e10,
+        2.0**31,
+        1e30,
+        128.0,
+        129.0,
+        -127.0,
+        -126.99999,
+        127.99999,
+        0.7853982,
+        1.5707964,
+        3.1415927,
+        6.2831855,
+    ],
+    dtype=np.float32,
+)
 
 
 def _inputs(lo: float, hi: float, n: int = 100_000) -> np.ndarray:
@@ -78,9 +107,18 @@ EXACT = [
     ("atan(a)", RT.atan, X, None),
     ("atan(a, b)", RT.atan, X, Y),
     ("atan(a, b)", RT.atan, UNIT, RNG.permutation(UNIT)),
-    ("atan(a)", RT.atan, np.linspace(0.75, 1.4, 100_000, dtype=np.float32), None),  # x^11 reassociated
-    ("fract(sin(a) * 43758.5453)", lambda a: RT.fract(RT.mul(RT.sin(a), RT.const_float(43758.5453))),
-     X, None),
+    (
+        "atan(a)",
+        RT.atan,
+        np.linspace(0.75, 1.4, 100_000, dtype=np.float32),
+        None,
+    ),  # x^11 reassociated
+    (
+        "fract(sin(a) * 43758.5453)",
+        lambda a: RT.fract(RT.mul(RT.sin(a), RT.const_float(43758.5453))),
+        X,
+        None,
+    ),
 ]
 
 
@@ -104,7 +142,10 @@ NORMAL = [
     ("sqrt(abs(a))", lambda a, b, c: RT.sqrt(np.abs(a))),
     ("inversesqrt(abs(a))", lambda a, b, c: RT.inversesqrt(np.abs(a))),
     ("length(vec3(a, b, c))", lambda a, b, c: RT.length(np.stack([a, b, c]))),
-    ("distance(vec2(a, b), vec2(c, a))", lambda a, b, c: RT.distance(np.stack([a, b]), np.stack([c, a]))),
+    (
+        "distance(vec2(a, b), vec2(c, a))",
+        lambda a, b, c: RT.distance(np.stack([a, b]), np.stack([c, a])),
+    ),
     ("normalize(vec3(a, b, c)).y", lambda a, b, c: RT.normalize(np.stack([a, b, c]))[1]),
     ("mod(a, b)", lambda a, b, c: RT.mod(a, b)),
     ("fract(a)", lambda a, b, c: RT.fract(a)),
@@ -122,7 +163,15 @@ def test_builtin_on_normal_operands_is_bit_exact_with_llvmpipe(llvmpipe, case):
     with RT.errstate():
         ours = np.asarray(fn(NA, NB, c), np.float32)
     bad = np.flatnonzero(ulp_distance(ours, got))
-    assert bad.size == 0, (expr, bad.size, NA[bad[:3]], NB[bad[:3]], c[bad[:3]], got[bad[:3]], ours[bad[:3]])
+    assert bad.size == 0, (
+        expr,
+        bad.size,
+        NA[bad[:3]],
+        NB[bad[:3]],
+        c[bad[:3]],
+        got[bad[:3]],
+        ours[bad[:3]],
+    )
 
 
 def test_fma_choice_follows_this_cpu(llvmpipe):
@@ -150,10 +199,23 @@ def test_pack_snorm_of_nan_is_minus_one(gl):
     a = np.array([0.0, 0.0, 0.0], np.float32)
     b = np.array([0.0, 1.0, 0.0], np.float32)
     c = np.array([0.5, -2.0, 0.25], np.float32)
-    got = evaluate(gl, "", a, b, c, stmt="float n = a / b; o = ivec4(int(packSnorm2x16(vec2(n, c))),"
-                   " int(packSnorm2x16(vec2(c, n))), int(packUnorm2x16(vec2(n, c))), 0);")
+    got = evaluate(
+        gl,
+        "",
+        a,
+        b,
+        c,
+        stmt="float n = a / b; o = ivec4(int(packSnorm2x16(vec2(n, c))),"
+        " int(packSnorm2x16(vec2(c, n))), int(packUnorm2x16(vec2(n, c))), 0);",
+    )
     with RT.errstate():
         n = a / b
-        ours = np.stack([RT.packSnorm2x16(np.stack([n, c])), RT.packSnorm2x16(np.stack([c, n])),
-                         RT.packUnorm2x16(np.stack([n, c]))], 1).view(np.int32)
+        ours = np.stack(
+            [
+                RT.packSnorm2x16(np.stack([n, c])),
+                RT.packSnorm2x16(np.stack([c, n])),
+                RT.packUnorm2x16(np.stack([n, c])),
+            ],
+            1,
+        ).view(np.int32)
     np.testing.assert_array_equal(ours, got[:, :3])

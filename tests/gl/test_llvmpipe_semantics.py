@@ -108,5 +108,6 @@ def test_numpy_renders_what_llvmpipe_renders(gl, make_shader, name):
     # (6e-6 relative measured): 1e-4 relative there, far below a display level
     rtol = 1e-4 if name == "unset_lights" else 0.0
     same = np.isclose(got_np, got_gl, rtol=rtol, atol=0.0, equal_nan=True) & (
-        np.isfinite(got_np) == np.isfinite(got_gl))
+        np.isfinite(got_np) == np.isfinite(got_gl)
+    )
     assert same.all(), (name, got_np[~same.all(-1)][:3], got_gl[~same.all(-1)][:3])

@@ -3,8 +3,8 @@
 import pytest
 
 from glslcheck.base.diagnostics import InputError
-from glslcheck.shadertoy.wrapper import UNIFORMS, build_common_only, build_program
 from glslcheck.shadertoy.sources import Shader, Source
+from glslcheck.shadertoy.wrapper import UNIFORMS, build_common_only, build_program
 
 COMMON = "float twice(float x) {\n    return 2.0 * x;\n}\n"
 IMAGE = "void mainImage(out vec4 c, in vec2 p) {\n    c = vec4(twice(p.x));\n}\n"
@@ -14,8 +14,13 @@ def test_prelude_is_shadertoys(make_shader):
     text = build_program(make_shader(IMAGE)).text
     lines = text.splitlines()
     assert lines[:7] == [
-        "#version 300 es", "#ifdef GL_ES", "precision highp float;", "precision highp int;",
-        "precision mediump sampler3D;", "#endif", "#define HW_PERFORMANCE 1",
+        "#version 300 es",
+        "#ifdef GL_ES",
+        "precision highp float;",
+        "precision highp int;",
+        "precision mediump sampler3D;",
+        "#endif",
+        "#define HW_PERFORMANCE 1",
     ]
     for u in UNIFORMS:
         assert u.declaration in lines
@@ -80,4 +85,6 @@ def test_plain_glsl_is_taken_as_it_is():
 
 def test_sound_tab_is_refused(make_shader):
     with pytest.raises(InputError):
-        build_program(make_shader(IMAGE, Sound="vec2 mainSound(int s, float t) { return vec2(0); }"), "Sound")
+        build_program(
+            make_shader(IMAGE, Sound="vec2 mainSound(int s, float t) { return vec2(0); }"), "Sound"
+        )

@@ -13,8 +13,12 @@ import pytest
 
 
 def pytest_addoption(parser):
-    parser.addoption("--update-golden", action="store_true", default=False,
-                     help="re-render the golden images of tests/golden with the GL backend")
+    parser.addoption(
+        "--update-golden",
+        action="store_true",
+        default=False,
+        help="re-render the golden images of tests/golden with the GL backend",
+    )
 
 
 @pytest.fixture(scope="session")

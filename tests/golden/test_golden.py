@@ -19,9 +19,9 @@ from pathlib import Path
 
 import pytest
 
-from glslcheck.verification.compare import compare
 from glslcheck.base.images import load_image, quantise, save_image
 from glslcheck.shadertoy.sources import load_shader
+from glslcheck.verification.compare import compare
 from glslcheck.verification.verify import compile_backend
 
 ROOT = Path(__file__).resolve().parents[2]
@@ -46,7 +46,9 @@ def test_render_matches_golden(gl, update_golden, part, backend):
     shader = load_shader(ROOT / "lab_shaders" / part)
     path = GOLDEN / f"{part}.png"
     if update_golden and backend == "gl":
-        save_image(compile_backend(shader, "gl").render(size=SIZE, time=TIME), path)  # 8-bit, as quantise
+        save_image(
+            compile_backend(shader, "gl").render(size=SIZE, time=TIME), path
+        )  # 8-bit, as quantise
     img = compile_backend(shader, backend).render(size=SIZE, time=TIME)
     assert img.shape == (SIZE[1], SIZE[0], 4)
     golden = load_image(path)  # float RGBA in [0, 1]: the 8-bit values / 255

@@ -26,9 +26,19 @@ W, H = SIZE
 TIMES = [0.0, 1.7, 5.3]
 
 VERIFIED = [
-    "tangent_sphere", "silhouette_exact", "light_at_surface", "pow_edge", "far_camera",
-    "intensities", "int_overflow", "mod_negative", "atan_zero", "int_mod_negative", "div_zero",
-    "pow_literal_exponent", "atan_nan",
+    "tangent_sphere",
+    "silhouette_exact",
+    "light_at_surface",
+    "pow_edge",
+    "far_camera",
+    "intensities",
+    "int_overflow",
+    "mod_negative",
+    "atan_zero",
+    "int_mod_negative",
+    "div_zero",
+    "pow_literal_exponent",
+    "atan_nan",
 ]
 PINNED = ["constant_folding", "reassociation", "smoothstep_equal"]
 
@@ -63,37 +73,43 @@ def test_verify_passes(gl, name):
 
 def test_llvmpipe_pinned_run_time_answers(gl):
     img = _render("pow_edge", "gl")
-    assert _at(img, 80, 45)[0] == 0.0            # pow(0, 0) = 0 at run time
-    assert _at(img, 80, 30)[0] == 0.0            # pow(0, y < 0) = 0
-    assert np.isnan(_at(img, 40, 45)[0])         # pow(x < 0, 0) = NaN
+    assert _at(img, 80, 45)[0] == 0.0  # pow(0, 0) = 0 at run time
+    assert _at(img, 80, 30)[0] == 0.0  # pow(0, y < 0) = 0
+    assert np.isnan(_at(img, 40, 45)[0])  # pow(x < 0, 0) = NaN
     img = _render("light_at_surface", "gl")
     centre = _at(img, 80, 45)
-    assert centre[0] == 1.0                      # max(dot(N, NaN), 0) = 0, plus light 2 overhead
+    assert centre[0] == 1.0  # max(dot(N, NaN), 0) = 0, plus light 2 overhead
     assert np.isnan(centre[1]) and centre[2] == math.inf  # length(normalize(0)) = NaN, 100/0 = +Inf
     img = _render("atan_zero", "gl")
     assert _at(img, 80, 45)[0] * 6.2831853 - 3.14159265 == pytest.approx(3 * math.pi / 4, abs=1e-5)
     img = _render("div_zero", "gl")
-    assert np.isnan(_at(img, 80, 45)[0]) and _at(img, 80, 60)[0] == math.inf and _at(img, 80, 30)[0] == -math.inf
-    assert _at(img, 40, 45)[1] == pytest.approx(0.25)   # int / 0 = 0 and int % 0 = -1
+    assert (
+        np.isnan(_at(img, 80, 45)[0])
+        and _at(img, 80, 60)[0] == math.inf
+        and _at(img, 80, 30)[0] == -math.inf
+    )
+    assert _at(img, 40, 45)[1] == pytest.approx(0.25)  # int / 0 = 0 and int % 0 = -1
     img = _render("int_mod_negative", "gl")
-    assert _at(img, 40, 45)[0] == pytest.approx(6 / 15)  # -40 % 7 = unsigned remainder 6 (C: -5, Python: 2)
+    assert _at(img, 40, 45)[0] == pytest.approx(
+        6 / 15
+    )  # -40 % 7 = unsigned remainder 6 (C: -5, Python: 2)
     img = _render("silhouette_exact", "gl")
-    assert int((img[..., 1] == 1.0).sum()) == 20   # h == 0 exactly at the 20 lattice points
+    assert int((img[..., 1] == 1.0).sum()) == 20  # h == 0 exactly at the 20 lattice points
     img = _render("atan_nan", "gl")
-    assert _at(img, 80, 45)[0] == pytest.approx(0.5)     # atan(NaN) = 0
+    assert _at(img, 80, 45)[0] == pytest.approx(0.5)  # atan(NaN) = 0
 
 
 def test_llvmpipe_pinned_folding_and_reassociation(gl):
     img = _render("constant_folding", "gl")
     bands = [_at(img, x, 45)[0] for x in (20, 60, 100, 140)]
-    assert bands == [1.0, 1.0, 0.5, 0.25]        # pow(-2,2)=4, pow(0,0)=1, -7%2=-1, atan(0,0)=0 folded
+    assert bands == [1.0, 1.0, 0.5, 0.25]  # pow(-2,2)=4, pow(0,0)=1, -7%2=-1, atan(0,0)=0 folded
     img = _render("reassociation", "gl")
-    assert np.all(img[..., 0] == math.inf)       # k * 1e30 * 1e9: 1e30 * 1e9 folded to +Inf
-    assert np.all(np.isfinite(img[..., 1]))      # (k * 1e30) * g * 1e-30: 1e30 * 1e-30 folded to 1
+    assert np.all(img[..., 0] == math.inf)  # k * 1e30 * 1e9: 1e30 * 1e9 folded to +Inf
+    assert np.all(np.isfinite(img[..., 1]))  # (k * 1e30) * g * 1e-30: 1e30 * 1e-30 folded to 1
     img = _render("pow_literal_exponent", "gl")
     x = -80.5 / W
     assert _at(img, 80, 45)[0] == pytest.approx(x * x) and _at(img, 80, 45)[1] == pytest.approx(-x)
-    assert _at(img, 80, 80)[2] == pytest.approx(4 * x ** 4) and np.isnan(_at(img, 80, 10)[2])
+    assert _at(img, 80, 80)[2] == pytest.approx(4 * x**4) and np.isnan(_at(img, 80, 10)[2])
 
 
 # --- the NumPy backend's documented choices (the README's last column) ------------------------
@@ -109,10 +125,14 @@ def test_numpy_pinned_choices():
     assert band[0] == 1.0 and band[1] == 0.0 and band[2] == 0.5
     assert band[3] == pytest.approx(2.3561912 + 0.25, abs=1e-6)  # llvmpipe's run-time 3*pi/4
     img = _render("reassociation", "numpy")
-    assert np.all(img[..., 0] == math.inf)       # k * 1e30 * 1e9: 1e30 * 1e9 merged first, as Mesa (nir_fold)
-    assert _at(img, 150, 45)[1] == math.inf       # right: (k * 1e30) * g overflows before * 1e-30 (not copied)
+    assert np.all(
+        img[..., 0] == math.inf
+    )  # k * 1e30 * 1e9: 1e30 * 1e9 merged first, as Mesa (nir_fold)
+    assert (
+        _at(img, 150, 45)[1] == math.inf
+    )  # right: (k * 1e30) * g overflows before * 1e-30 (not copied)
     img = _render("smoothstep_equal", "numpy")
-    equal = img[H // 2, :, 0]                     # the formula: 0 left of and on the edge, 1 right of it
+    equal = img[H // 2, :, 0]  # the formula: 0 left of and on the edge, 1 right of it
     assert np.all(equal[:81] == 0.0) and np.all(equal[81:] == 1.0)
 
 

@@ -26,10 +26,25 @@ SIZE = (48, 27)
 
 def test_every_part_of_the_assignment_is_there():
     names = {p.name for p in PARTS}
-    for needed in ["01_spheres_raytraced", "01_spheres_procedural", "02_point_light", "03_lambert_coefficient",
-                   "03_lambert_attenuation", "03_lambert_color", "04_phong_coefficient", "04_phong_exponents",
-                   "04_phong_color", "04_phong_summation", "05_blinn_phong", "06_multiple_lights", "07_final",
-                   "bonus_animated_lights", "bonus_spot_lights", "bonus_cel_shading", "bonus_gooch_shading"]:
+    for needed in [
+        "01_spheres_raytraced",
+        "01_spheres_procedural",
+        "02_point_light",
+        "03_lambert_coefficient",
+        "03_lambert_attenuation",
+        "03_lambert_color",
+        "04_phong_coefficient",
+        "04_phong_exponents",
+        "04_phong_color",
+        "04_phong_summation",
+        "05_blinn_phong",
+        "06_multiple_lights",
+        "07_final",
+        "bonus_animated_lights",
+        "bonus_spot_lights",
+        "bonus_cel_shading",
+        "bonus_gooch_shading",
+    ]:
         assert needed in names
 
 

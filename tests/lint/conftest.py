@@ -58,7 +58,9 @@ class GitRepo:
         self.root, self.env = root, env
 
     def run(self, *args: str, check: bool = True) -> subprocess.CompletedProcess:
-        return subprocess.run(args, cwd=self.root, env=self.env, capture_output=True, text=True, check=check)
+        return subprocess.run(
+            args, cwd=self.root, env=self.env, capture_output=True, text=True, check=check
+        )
 
     def git(self, *args: str, check: bool = True) -> subprocess.CompletedProcess:
         return self.run("git", *args, check=check)

@@ -8,11 +8,11 @@ from pathlib import Path
 import pytest
 
 from glslcheck.frontend import syntax as A
-from glslcheck.semantics import check
+from glslcheck.frontend.parser import parse_units
 from glslcheck.lint import engine, lint_paths, lint_source
 from glslcheck.lint.rules import all_rules
+from glslcheck.semantics import check
 from glslcheck.semantics.analysis import FunctionFacts
-from glslcheck.frontend.parser import parse_units
 from glslcheck.shadertoy.sources import Shader, Source, find_shaders
 
 from .conftest import REPO_ROOT
@@ -34,7 +34,9 @@ def _findings(text: str, select: list[str] | None = None):
 
 def _function(text: str, name: str = "f") -> FunctionFacts:
     model = check(parse_units([Source("Image.glsl", text)]), "Image")
-    d = next(d for d in model.ast.decls if isinstance(d, A.FunctionDefinition) and d.proto.name == name)
+    d = next(
+        d for d in model.ast.decls if isinstance(d, A.FunctionDefinition) and d.proto.name == name
+    )
     return FunctionFacts(d, model)
 
 
@@ -71,7 +73,10 @@ def test_ast_rules_run_on_the_corpus(path: Path):
 
 
 def test_corpus_phong_scene_findings():
-    found = {(f.rule, f.loc.line) for f in lint_paths([CORPUS / "spheres_phong.glsl"], {"select": AST_RULES}).findings}
+    found = {
+        (f.rule, f.loc.line)
+        for f in lint_paths([CORPUS / "spheres_phong.glsl"], {"select": AST_RULES}).findings
+    }
     # lights[2] is animated with iTime in mainImage (allowed); hitSphere returns early: no select
     assert not any(rule == "uniform-outside-mainimage" for rule, _ in found)
     assert ("unguarded-sqrt", 26) in found  # sqrt(h) after `if (h < 0.0) return`: a note only
@@ -82,17 +87,24 @@ def test_corpus_phong_scene_findings():
 
 def test_common_is_linted_inside_the_image_pass(tmp_path: Path):
     # iDate is declared in the Common tab too (iTime there is a compile error, check's to report)
-    (tmp_path / "Common.glsl").write_text(HEADER + "float helper(in float x) { return x * iDate.w; }\n")
+    (tmp_path / "Common.glsl").write_text(
+        HEADER + "float helper(in float x) { return x * iDate.w; }\n"
+    )
     (tmp_path / "Image.glsl").write_text(
-        HEADER + "void mainImage(out vec4 fragColor, in vec2 fragCoord) { fragColor = vec4(helper(1.0)); }\n")
+        HEADER
+        + "void mainImage(out vec4 fragColor, in vec2 fragCoord) { fragColor = vec4(helper(1.0)); }\n"
+    )
     result = lint_paths([tmp_path], {"select": ["uniform-outside-mainimage", "unused-function"]})
     assert [(Path(f.path).name, f.loc.line, f.rule) for f in result.findings] == [
-        ("Common.glsl", 4, "uniform-outside-mainimage")]
+        ("Common.glsl", 4, "uniform-outside-mainimage")
+    ]
 
 
 def test_a_file_that_does_not_check_gets_text_rules_only(tmp_path: Path):
     p = tmp_path / "Image.glsl"
-    p.write_text("void mainImage(out vec4 fragColor, in vec2 fragCoord) { fragColor = pow(x, 2.0); }\n")
+    p.write_text(
+        "void mainImage(out vec4 fragColor, in vec2 fragCoord) { fragColor = pow(x, 2.0); }\n"
+    )
     src = Source(str(p), p.read_text())
     shader = find_shaders([str(p)])[0]
     assert engine.syntax_tree(src, shader) == (None, None)
@@ -101,7 +113,11 @@ def test_a_file_that_does_not_check_gets_text_rules_only(tmp_path: Path):
 
 
 def test_ast_findings_are_suppressed_like_any_other():
-    text = HEADER + "float f(in float x)\n{\n    return pow(x, 2.0); // glslcheck: ignore[pow-small-exponent]\n}\n" + MAIN
+    text = (
+        HEADER
+        + "float f(in float x)\n{\n    return pow(x, 2.0); // glslcheck: ignore[pow-small-exponent]\n}\n"
+        + MAIN
+    )
     assert _findings(text, ["pow-small-exponent", "unused-suppression"]) == []
 
 
@@ -114,17 +130,23 @@ def test_shadowing_local_is_not_a_uniform():
 
 
 def test_branch_replaceable_help_is_valid_glsl():
-    text = ("float f(in float a, in float b, in float x)\n{\n"
-            "    float m = a > b ? a : b;\n"
-            "    float c = x < 0.0 ? 0.0 : (x > 1.0 ? 1.0 : x);\n"
-            "    float s = x < 0.5 ? 2.0 : a;\n"
-            "    return m + c + s;\n}\n" + MAIN)
+    text = (
+        "float f(in float a, in float b, in float x)\n{\n"
+        "    float m = a > b ? a : b;\n"
+        "    float c = x < 0.0 ? 0.0 : (x > 1.0 ? 1.0 : x);\n"
+        "    float s = x < 0.5 ? 2.0 : a;\n"
+        "    return m + c + s;\n}\n" + MAIN
+    )
     found = _findings(text, ["branch-replaceable"])
     helps = [f.help.removeprefix("write ") for f in found]
     assert helps == ["max(a, b)", "clamp(x, 0.0, 1.0)", "mix(2.0, a, step(0.5, x))"]
     # each replacement checks as a float expression with the same variables
     for h in helps:
-        check(parse_units([Source("t.glsl", f"float g(float a, float b, float x) {{ return {h}; }}" + MAIN)]))
+        check(
+            parse_units(
+                [Source("t.glsl", f"float g(float a, float b, float x) {{ return {h}; }}" + MAIN)]
+            )
+        )
 
 
 def test_length_comparison_flips_the_operator_for_a_right_hand_length():
@@ -134,86 +156,119 @@ def test_length_comparison_flips_the_operator_for_a_right_hand_length():
 
 
 def test_repeated_expression_message_names_the_first_line():
-    text = ("vec3 f(in vec3 ro, in vec3 rd, in float t)\n{\n    vec3 a = ro + t * rd;\n"
-            "    vec3 b = (ro + t * rd) * 2.0;\n    return a + b;\n}\n" + MAIN)
+    text = (
+        "vec3 f(in vec3 ro, in vec3 rd, in float t)\n{\n    vec3 a = ro + t * rd;\n"
+        "    vec3 b = (ro + t * rd) * 2.0;\n    return a + b;\n}\n" + MAIN
+    )
     (finding,) = _findings(text, ["repeated-expression"])
-    assert finding.loc.line == 4 and "lines 3 and 4" in finding.message and "reuse 'a'" in finding.help
+    assert (
+        finding.loc.line == 4 and "lines 3 and 4" in finding.message and "reuse 'a'" in finding.help
+    )
 
 
 # --- analysis: keys, dominance, sign analysis ----------------------------------------------
 
 
 def test_keys_compare_variables_by_declaration():
-    fn = _function("float f(in float x)\n{\n    float a = x * 2.0 + 1.0;\n    {\n        float x = 3.0;\n"
-                   "        a += x * 2.0 + 1.0;\n    }\n    return a + (x * 2.0 + 1.0);\n}\n" + MAIN)
-    sums = [n for n in fn.nodes if type(n) is A.Binary and n.op == "+" and type(n.right) is A.FloatLiteral]
+    fn = _function(
+        "float f(in float x)\n{\n    float a = x * 2.0 + 1.0;\n    {\n        float x = 3.0;\n"
+        "        a += x * 2.0 + 1.0;\n    }\n    return a + (x * 2.0 + 1.0);\n}\n" + MAIN
+    )
+    sums = [
+        n
+        for n in fn.nodes
+        if type(n) is A.Binary and n.op == "+" and type(n.right) is A.FloatLiteral
+    ]
     assert len(sums) == 3
     assert fn.key(sums[0]) == fn.key(sums[2]) != fn.key(sums[1])
 
 
 def test_dominance_of_branches_and_loops():
-    fn = _function("float f(in float x, in bool c)\n{\n    float s = sin(x);\n"
-                   "    if (c) { s += sin(x); } else { s -= sin(x); }\n"
-                   "    for (int i = 0; i < 2; ++i) { s += sin(x); }\n    return s + sin(x);\n}\n" + MAIN)
+    fn = _function(
+        "float f(in float x, in bool c)\n{\n    float s = sin(x);\n"
+        "    if (c) { s += sin(x); } else { s -= sin(x); }\n"
+        "    for (int i = 0; i < 2; ++i) { s += sin(x); }\n    return s + sin(x);\n}\n" + MAIN
+    )
     first, then_, else_, loop, last = _calls(fn, "sin")
     assert fn.dominates(first, then_) and fn.dominates(first, loop) and fn.dominates(first, last)
     assert not fn.dominates(then_, else_) and not fn.dominates(then_, last)
     assert not fn.dominates(loop, last)
 
 
-@pytest.mark.parametrize("expr, negative", [
-    ("dot(n, l)", True),
-    ("max(dot(n, l), 0.0)", False),
-    ("clamp(dot(n, l), 0.0, 1.0)", False),
-    ("1.0 - max(dot(n, l), 0.0)", False),
-    ("1.0 - x", True),
-    ("x", False),  # a parameter of unknown sign: no witness
-    ("-x", True),
-    ("x * x", False),
-    ("abs(x) + length(n)", False),
-    ("sin(x) * 0.5 + 0.5", False),
-    ("sin(x)", True),
-    ("dot(n, n)", False),
-    ("reflect(-l, n).x", True),
-    ("-2.0", True),
-    ("iTime * 0.5", False),
-    ("smoothstep(0.0, 1.0, x) - 0.5", True),
-    ("mix(0.2, 0.8, fract(x))", False),
-])
+@pytest.mark.parametrize(
+    "expr, negative",
+    [
+        ("dot(n, l)", True),
+        ("max(dot(n, l), 0.0)", False),
+        ("clamp(dot(n, l), 0.0, 1.0)", False),
+        ("1.0 - max(dot(n, l), 0.0)", False),
+        ("1.0 - x", True),
+        ("x", False),  # a parameter of unknown sign: no witness
+        ("-x", True),
+        ("x * x", False),
+        ("abs(x) + length(n)", False),
+        ("sin(x) * 0.5 + 0.5", False),
+        ("sin(x)", True),
+        ("dot(n, n)", False),
+        ("reflect(-l, n).x", True),
+        ("-2.0", True),
+        ("iTime * 0.5", False),
+        ("smoothstep(0.0, 1.0, x) - 0.5", True),
+        ("mix(0.2, 0.8, fract(x))", False),
+    ],
+)
 def test_sign_analysis(expr: str, negative: bool):
-    fn = _function(f"float f(in vec3 n, in vec3 l, in float x)\n{{\n    return {expr};\n}}\n" + MAIN)
+    fn = _function(
+        f"float f(in vec3 n, in vec3 l, in float x)\n{{\n    return {expr};\n}}\n" + MAIN
+    )
     ret = next(n for n in fn.nodes if type(n) is A.Return)
     assert (fn.negative_witness(ret.value) is not None) == negative
 
 
 def test_sign_analysis_follows_the_last_assignment_on_every_path():
-    fn = _function("float f(in vec3 n, in vec3 l, in bool c)\n{\n    float k = dot(n, l);\n"
-                   "    float a = pow(k, 2.5);\n    k = max(k, 0.0);\n    float b = pow(k, 2.5);\n"
-                   "    float m = dot(n, l);\n    if (c) { m = 1.0; }\n    return a + b + pow(m, 2.5);\n}\n" + MAIN)
+    fn = _function(
+        "float f(in vec3 n, in vec3 l, in bool c)\n{\n    float k = dot(n, l);\n"
+        "    float a = pow(k, 2.5);\n    k = max(k, 0.0);\n    float b = pow(k, 2.5);\n"
+        "    float m = dot(n, l);\n    if (c) { m = 1.0; }\n    return a + b + pow(m, 2.5);\n}\n"
+        + MAIN
+    )
     bases = [c.args[0] for c in _calls(fn, "pow")]
     assert [fn.negative_witness(b) is not None for b in bases] == [True, False, False]
 
 
 def test_one_answer_for_lvalues_and_call_targets():
-    from glslcheck.semantics.analysis import param_directions, written_variable
     from glslcheck.language.builtin_functions import Overload
+    from glslcheck.semantics.analysis import param_directions, written_variable
     from glslcheck.semantics.model import Constructor, Symbol
 
-    fn = _function("struct S { vec3 p[2]; };\n"
-                   "void g(in float a, out vec3 b, inout int c) { b = vec3(a); c += 1; }\n"
-                   "void f() { S s; vec3 v; int k = 0; v.x = 1.0; s.p[k].y = 2.0; g(1.0, v, k);"
-                   " float m = modf(1.5, v.z); v = vec3(m); }" + MAIN)
+    fn = _function(
+        "struct S { vec3 p[2]; };\n"
+        "void g(in float a, out vec3 b, inout int c) { b = vec3(a); c += 1; }\n"
+        "void f() { S s; vec3 v; int k = 0; v.x = 1.0; s.p[k].y = 2.0; g(1.0, v, k);"
+        " float m = modf(1.5, v.z); v = vec3(m); }" + MAIN
+    )
     model = fn.model
     targets = [n.target for n in fn.nodes if type(n) is A.Assignment]
-    assert [(written_variable(model, t)[0].name, written_variable(model, t)[1]) for t in targets] == [
-        ("v", False), ("s", False), ("v", True)]
+    assert [
+        (written_variable(model, t)[0].name, written_variable(model, t)[1]) for t in targets
+    ] == [("v", False), ("s", False), ("v", True)]
     (g,) = _calls(fn, "g")
     (modf,) = _calls(fn, "modf")
     (vec3,) = [n for n in _calls(fn, "vec3")]
-    assert isinstance(model.call_target(g), Symbol) and param_directions(model.call_target(g)) == ["in", "out", "inout"]
-    assert isinstance(model.call_target(modf), Overload) and param_directions(model.call_target(modf)) == ["in", "out"]
+    assert isinstance(model.call_target(g), Symbol) and param_directions(model.call_target(g)) == [
+        "in",
+        "out",
+        "inout",
+    ]
+    assert isinstance(model.call_target(modf), Overload) and param_directions(
+        model.call_target(modf)
+    ) == ["in", "out"]
     target = model.call_target(vec3)
-    assert isinstance(target, Constructor) and str(target.type) == "vec3" and param_directions(target) == []
+    assert (
+        isinstance(target, Constructor)
+        and str(target.type) == "vec3"
+        and param_directions(target) == []
+    )
     # the writes the analysis records come from the same two answers: v by g's out and modf's out
     v = written_variable(model, targets[0])[0]
     assert [w.kind for w in fn.writes_to(v)] == ["decl", "part", "out", "out", "="]

@@ -8,9 +8,9 @@ from pathlib import Path
 
 import pytest
 
-from glslcheck.semantics import check
-from glslcheck.lint import lint_paths
 from glslcheck.frontend.parser import parse_shader
+from glslcheck.lint import lint_paths
+from glslcheck.semantics import check
 from glslcheck.shadertoy.sources import load_shader
 
 CUBE = """
@@ -34,15 +34,21 @@ def _model(tmp_path: Path, text: str):
 def test_a_channel_sampled_only_as_a_cube_map_is_a_samplercube(tmp_path: Path):
     model = _model(tmp_path, CUBE)
     assert model.errors == []
-    uses = {n.name: str(model.type_of(n)) for n in model.ast.walk()
-            if type(n).__name__ == "Identifier" and n.name in ("iChannel0", "iChannel1")}
+    uses = {
+        n.name: str(model.type_of(n))
+        for n in model.ast.walk()
+        if type(n).__name__ == "Identifier" and n.name in ("iChannel0", "iChannel1")
+    }
     assert uses == {"iChannel0": "sampler2D", "iChannel1": "samplerCube"}
 
 
-@pytest.mark.parametrize("use", [
-    "texture(iChannel1, fragCoord / iResolution.xy)",  # a 2D use too: no binding compiles both
-    "vec4(textureSize(iChannel1, 0), 0.0, 0.0)",  # fits both: unclear, so 2D
-])
+@pytest.mark.parametrize(
+    "use",
+    [
+        "texture(iChannel1, fragCoord / iResolution.xy)",  # a 2D use too: no binding compiles both
+        "vec4(textureSize(iChannel1, 0), 0.0, 0.0)",  # fits both: unclear, so 2D
+    ],
+)
 def test_a_channel_with_any_other_use_stays_2d_and_its_errors_stand(tmp_path: Path, use: str):
     text = CUBE.replace("+ texture(iChannel0, fragCoord / iResolution.xy)", f"+ {use}")
     model = _model(tmp_path, text)
@@ -51,9 +57,13 @@ def test_a_channel_with_any_other_use_stays_2d_and_its_errors_stand(tmp_path: Pa
 
 
 def test_a_2d_program_is_checked_once_as_before(tmp_path: Path):
-    model = _model(tmp_path, "void mainImage(out vec4 c, in vec2 p) { c = texture(iChannel0, p); }\n")
+    model = _model(
+        tmp_path, "void mainImage(out vec4 c, in vec2 p) { c = texture(iChannel0, p); }\n"
+    )
     assert model.errors == []
-    (use,) = [n for n in model.ast.walk() if type(n).__name__ == "Identifier" and n.name == "iChannel0"]
+    (use,) = [
+        n for n in model.ast.walk() if type(n).__name__ == "Identifier" and n.name == "iChannel0"
+    ]
     assert str(model.type_of(use)) == "sampler2D"
 
 
@@ -61,4 +71,6 @@ def test_lint_runs_every_rule_on_a_cube_map_shader(tmp_path: Path):
     (tmp_path / "Image.glsl").write_text(CUBE)
     result = lint_paths([tmp_path / "Image.glsl"])
     # no compile error, and no "<rule> could not run" line: every rule ran
-    assert [f.rule for f in result.findings if f.severity == "error" or "could not run" in f.message] == []
+    assert [
+        f.rule for f in result.findings if f.severity == "error" or "could not run" in f.message
+    ] == []

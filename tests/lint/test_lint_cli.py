@@ -53,7 +53,9 @@ def test_missing_file_exit_2_without_traceback(workdir):
 
 def test_unknown_rule_in_select_exit_2(workdir):
     (workdir / "Image.glsl").write_text(CLEAN_SHADER)
-    proc = glslcheck("lint", "Image.glsl", "--select", "missing-comment,length-comparisn", cwd=workdir)
+    proc = glslcheck(
+        "lint", "Image.glsl", "--select", "missing-comment,length-comparisn", cwd=workdir
+    )
     assert proc.returncode == 2
     assert "--select names unknown rule(s) length-comparisn" in proc.stderr
     assert "Traceback" not in proc.stderr
@@ -93,9 +95,12 @@ def test_folder_and_duplicate_paths(workdir):
     assert result.files == 2
     # Common's mainImage comes first in the Image pass: Image's own is a redefinition, which
     # Shadertoy rejects too; that compile error is Image's only finding
-    assert {Path(f.path).name for f in result.findings if f.rule != "compile-error"} == {"Common.glsl"}
-    assert [(Path(f.path).name, f.severity) for f in result.findings if f.rule == "compile-error"][:1] == [
-        ("Image.glsl", "error")]
+    assert {Path(f.path).name for f in result.findings if f.rule != "compile-error"} == {
+        "Common.glsl"
+    }
+    assert [(Path(f.path).name, f.severity) for f in result.findings if f.rule == "compile-error"][
+        :1
+    ] == [("Image.glsl", "error")]
 
 
 def test_named_image_file_lints_only_that_file(workdir):
@@ -149,7 +154,9 @@ def test_pyproject_without_table_is_skipped(workdir):
 
 def test_glslcheck_toml(workdir):
     (workdir / "glslcheck.toml").write_text('select = ["missing-comment"]\ncomment-span = 1\n')
-    (workdir / "Image.glsl").write_text("// two lines, one covered\nfloat a = 1.0;\nfloat b = 2.0;\n")
+    (workdir / "Image.glsl").write_text(
+        "// two lines, one covered\nfloat a = 1.0;\nfloat b = 2.0;\n"
+    )
     findings = lint_paths(["Image.glsl"]).findings
     assert [(f.rule, f.loc.line) for f in findings] == [("missing-comment", 3)]
 
@@ -181,21 +188,41 @@ def test_folders_without_configuration_are_read_once(tmp_path, monkeypatch):
         (lab / name).mkdir(parents=True)
     (tmp_path / "pyproject.toml").write_text('[project]\nname = "not-glslcheck-settings"\n')
     reads = []
-    monkeypatch.setattr(config, "_read_toml", lambda path, read=config._read_toml: reads.append(path) or read(path))
+    monkeypatch.setattr(
+        config, "_read_toml", lambda path, read=config._read_toml: reads.append(path) or read(path)
+    )
     monkeypatch.chdir(tmp_path)
     finder = config.ConfigFinder({}, frozenset())
-    found = [finder.for_file(lab / name / tab) for name in ("a", "b") for tab in ("Image.glsl", "Common.glsl")]
+    found = [
+        finder.for_file(lab / name / tab)
+        for name in ("a", "b")
+        for tab in ("Image.glsl", "Common.glsl")
+    ]
     assert found == [config.LintConfig()] * 4
-    assert reads == [str(tmp_path / "pyproject.toml")]  # the folders are strings: no pathlib (start-up time)
+    assert reads == [
+        str(tmp_path / "pyproject.toml")
+    ]  # the folders are strings: no pathlib (start-up time)
 
 
 def test_cli_overrides_config(workdir, capsys):
-    (workdir / "glslcheck.toml").write_text('select = ["missing-credit"]\nignore = ["missing-header"]\n')
+    (workdir / "glslcheck.toml").write_text(
+        'select = ["missing-credit"]\nignore = ["missing-header"]\n'
+    )
     (workdir / "Image.glsl").write_text(BAD_SHADER)
-    assert main(["lint", "Image.glsl", "--select", "missing-header,missing-comment", "--format", "json"]) == 1
+    assert (
+        main(
+            ["lint", "Image.glsl", "--select", "missing-header,missing-comment", "--format", "json"]
+        )
+        == 1
+    )
     found = {f["rule"] for f in json.loads(capsys.readouterr().out)["findings"]}
     assert found == {"missing-comment"}  # --select replaced select; the file's ignore still holds
-    assert main(["lint", "Image.glsl", "--select", "missing-header", "--ignore", "", "--format", "json"]) == 1
+    assert (
+        main(
+            ["lint", "Image.glsl", "--select", "missing-header", "--ignore", "", "--format", "json"]
+        )
+        == 1
+    )
     found = {f["rule"] for f in json.loads(capsys.readouterr().out)["findings"]}
     assert found == {"missing-header"}
 
@@ -252,7 +279,9 @@ def test_rule_unknown_exit_2():
 
 def test_rules_doc_is_up_to_date():
     proc = subprocess.run(
-        [sys.executable, str(REPO_ROOT / "tools" / "gen_rules_doc.py"), "--check"], capture_output=True, text=True
+        [sys.executable, str(REPO_ROOT / "tools" / "gen_rules_doc.py"), "--check"],
+        capture_output=True,
+        text=True,
     )
     assert proc.returncode == 0, proc.stderr
 
@@ -262,7 +291,9 @@ def test_tab_patterns_make_more_files_shaders(workdir, capsys):
     (workdir / "lab4").mkdir()
     (workdir / "lab4" / "part1.txt").write_text(BAD_SHADER)
     (workdir / "notes.txt").write_text("plain notes\n")
-    assert main(["lint", "--skip-non-shaders", "--format", "json", "lab4/part1.txt", "notes.txt"]) == 1
+    assert (
+        main(["lint", "--skip-non-shaders", "--format", "json", "lab4/part1.txt", "notes.txt"]) == 1
+    )
     report = json.loads(capsys.readouterr().out)
     assert report["summary"]["files"] == 1
     assert {f["path"] for f in report["findings"]} == {"lab4/part1.txt"}

@@ -5,7 +5,8 @@ from __future__ import annotations
 import types
 
 import pytest
-from hypothesis import given, strategies as st
+from hypothesis import given
+from hypothesis import strategies as st
 
 from glslcheck.base.diagnostics import Diagnostic
 from glslcheck.lint import engine, lint_source
@@ -35,8 +36,18 @@ def test_line_kinds():
         "   \n"
     )
     assert kinds(text) == [
-        "comment", "blank", "trailing", "leading", "comment", "leading", "brace",
-        "brace-comment", "code", "code", "directive", "blank",
+        "comment",
+        "blank",
+        "trailing",
+        "leading",
+        "comment",
+        "leading",
+        "brace",
+        "brace-comment",
+        "code",
+        "code",
+        "directive",
+        "blank",
     ]
 
 
@@ -87,7 +98,10 @@ def test_header_wordings_accepted(header):
         ("Authors: Ana Ruiz, Ben Li", "bare"),
         ("By Ana and Ben", "bare"),
         ("Written by Madeline Cody", "ok"),  # one author did all of it: no role list to give
-        ("Copyright 2020 Ana Ruiz and Ben Li\nAuthors:\n  Ana Ruiz (lighting)\n  Ben Li (comments)", "ok"),
+        (
+            "Copyright 2020 Ana Ruiz and Ben Li\nAuthors:\n  Ana Ruiz (lighting)\n  Ben Li (comments)",
+            "ok",
+        ),
         ("Copyright 2020 Dan Buckstein\nCopyright 2020 Ana Ruiz", "ok"),  # the license names her
         ("Lab 4 lighting", "none"),
         ("Authors:\n\nAna: lighting", "none"),
@@ -124,7 +138,9 @@ def test_ast_rule_runs_only_with_a_tree(monkeypatch):
     src = Source("Image.glsl", text)
     assert [f.rule for f in lint_source(src)] == []
     found = lint_source(src, ast={"pow_lines": [4]})
-    assert [(f.rule, f.loc.line, f.penalty, f.severity) for f in found] == [("pow-two", 4, 1, "warning")]
+    assert [(f.rule, f.loc.line, f.penalty, f.severity) for f in found] == [
+        ("pow-two", 4, 1, "warning")
+    ]
     # and its findings are suppressed like any other
     src2 = Source("Image.glsl", text.replace("// square", "// square glslcheck: ignore[pow-two]"))
     assert lint_source(src2, ast={"pow_lines": [4]}) == []

@@ -10,8 +10,8 @@ from pathlib import Path
 import pytest
 
 from glslcheck.lint import lint_paths
-from glslcheck.lint.report import artifact_uri, render, summary_line
 from glslcheck.lint.engine import LintResult
+from glslcheck.lint.report import artifact_uri, render, summary_line
 
 from .conftest import BAD_SHADER, CLEAN_SHADER
 
@@ -49,8 +49,19 @@ def test_json_format_exact_shape(linted):
     doc = json.loads(render(linted, "json"))
     assert set(doc) == {"findings", "summary"}
     assert doc["summary"] == {"files": 2, "findings": 3, "penalty": 2}
-    keys = ["path", "line", "column", "end_line", "end_column", "rule", "severity", "penalty", "message", "help",
-            "notes"]
+    keys = [
+        "path",
+        "line",
+        "column",
+        "end_line",
+        "end_column",
+        "rule",
+        "severity",
+        "penalty",
+        "message",
+        "help",
+        "notes",
+    ]
     for f in doc["findings"]:
         assert list(f) == keys
     comment = next(f for f in doc["findings"] if f["rule"] == "missing-comment")
@@ -107,7 +118,10 @@ def _check_sarif(doc: dict) -> None:
                 region = phys["region"]
                 for key in ("startLine", "startColumn", "endLine", "endColumn"):
                     assert isinstance(region[key], int) and region[key] >= 1
-                assert (region["endLine"], region["endColumn"]) >= (region["startLine"], region["startColumn"])
+                assert (region["endLine"], region["endColumn"]) >= (
+                    region["startLine"],
+                    region["startColumn"],
+                )
 
 
 def test_sarif_format(linted):
@@ -115,8 +129,14 @@ def test_sarif_format(linted):
     _check_sarif(doc)
     run = doc["runs"][0]
     assert run["tool"]["driver"]["name"] == "glslcheck"
-    assert {r["ruleId"] for r in run["results"]} == {"missing-header", "missing-comment", "missing-credit"}
-    uris = {r["locations"][0]["physicalLocation"]["artifactLocation"]["uri"] for r in run["results"]}
+    assert {r["ruleId"] for r in run["results"]} == {
+        "missing-header",
+        "missing-comment",
+        "missing-credit",
+    }
+    uris = {
+        r["locations"][0]["physicalLocation"]["artifactLocation"]["uri"] for r in run["results"]
+    }
     assert uris == {"Buffer%20A.glsl"}
     levels = {r["ruleId"]: r["level"] for r in run["results"]}
     assert levels["missing-comment"] == "warning" and levels["missing-credit"] == "note"
@@ -132,7 +152,9 @@ def test_sarif_without_findings(tmp_path, monkeypatch):
 
 def test_artifact_uri(tmp_path):
     (tmp_path / "lab 4").mkdir()
-    assert artifact_uri(str(tmp_path / "lab 4" / "Image.glsl"), str(tmp_path)) == "lab%204/Image.glsl"
+    assert (
+        artifact_uri(str(tmp_path / "lab 4" / "Image.glsl"), str(tmp_path)) == "lab%204/Image.glsl"
+    )
     assert artifact_uri("/elsewhere/x.glsl", str(tmp_path)) == "file:///elsewhere/x.glsl"
 
 

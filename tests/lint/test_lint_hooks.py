@@ -31,7 +31,14 @@ def test_hook_definition():
     assert hook["language"] == "python"
     assert hook["pass_filenames"] is True
     files = re.compile(hook["files"])
-    for name in ("Image.glsl", "lab4/shade.frag", "lab4/Buffer A.txt", "lab4/buffer_b", "Common", "x/IMAGE.TXT"):
+    for name in (
+        "Image.glsl",
+        "lab4/shade.frag",
+        "lab4/Buffer A.txt",
+        "lab4/buffer_b",
+        "Common",
+        "x/IMAGE.TXT",
+    ):
         assert files.search(name), name
     for name in ("README.md", "notes.txt", "lab4/image.png", "imagery.txt"):
         assert not files.search(name), name

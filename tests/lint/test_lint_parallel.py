@@ -19,8 +19,13 @@ LAB = REPO_ROOT / "lab_shaders"
 
 def _cli(*args: str, jobs: str) -> subprocess.CompletedProcess:
     env = {**os.environ, "GLSLCHECK_JOBS": jobs}
-    return subprocess.run([sys.executable, "-m", "glslcheck", *args], capture_output=True, text=True, env=env,
-                          cwd=REPO_ROOT)
+    return subprocess.run(
+        [sys.executable, "-m", "glslcheck", *args],
+        capture_output=True,
+        text=True,
+        env=env,
+        cwd=REPO_ROOT,
+    )
 
 
 @pytest.mark.parametrize("fmt", ["text", "json"])
@@ -53,8 +58,12 @@ def test_the_child_lints_the_second_half(monkeypatch, no_other_threads):
 
     out = parallel.run_split(list(range(6)), [5000] * 6, lint, lambda: None, registry)
     assert [i for i, _ in out] == list(range(6))
-    assert [here for _, here in out] == [True] * 3 + [False] * 3  # the second half came from the child
-    assert registry == {f"file{i}": [f"line of {i}"] for i in range(6)}  # the child's texts came back
+    assert [here for _, here in out] == [True] * 3 + [
+        False
+    ] * 3  # the second half came from the child
+    assert registry == {
+        f"file{i}": [f"line of {i}"] for i in range(6)
+    }  # the child's texts came back
 
 
 def test_a_failing_child_is_redone_here(monkeypatch, no_other_threads):
@@ -102,7 +111,10 @@ def test_small_runs_and_one_job_stay_in_this_process(monkeypatch):
         return list(items)
 
     monkeypatch.setenv("GLSLCHECK_JOBS", "2")
-    assert parallel.run_split([1, 2], [100, 100], lint, lambda: None, {}) == [1, 2]  # too little text
+    assert parallel.run_split([1, 2], [100, 100], lint, lambda: None, {}) == [
+        1,
+        2,
+    ]  # too little text
     monkeypatch.setenv("GLSLCHECK_JOBS", "1")
     assert parallel.run_split(list(range(4)), [5000] * 4, lint, lambda: None, {}) == [0, 1, 2, 3]
 
@@ -141,7 +153,9 @@ def test_no_fork_beside_other_threads():
         assert parallel.jobs() == 2, "the thread has ended"
     """
     env = {**os.environ, "GLSLCHECK_JOBS": "2"}
-    done = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, env=env, cwd=REPO_ROOT)
+    done = subprocess.run(
+        [sys.executable, "-c", code], capture_output=True, text=True, env=env, cwd=REPO_ROOT
+    )
     assert done.returncode == 0, done.stderr
 
 

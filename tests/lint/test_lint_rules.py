@@ -58,7 +58,11 @@ def test_rule_module_contract(name: str):
     assert re.fullmatch(r"[a-z]+(-[a-z]+)*", name)
     assert list(doc_sections(rule.doc)) == list(SECTIONS)
     assert all(doc_sections(rule.doc).values())
-    assert (rule.severity, rule.penalty > 0) in (("warning", True), ("note", False), ("error", False))
+    assert (rule.severity, rule.penalty > 0) in (
+        ("warning", True),
+        ("note", False),
+        ("error", False),
+    )
     assert rule.needs in ("text", "ast", "suppressions")
     assert rule.summary.endswith(".")
 
@@ -67,14 +71,42 @@ def test_has_credit_agrees_with_the_case_insensitive_pattern():
     """missing-credit's fast search (ASCII text lowercased, a case-sensitive pattern, faster than re.I)
     gives CREDIT_RE's answer: upper and mixed case, word boundaries, every alternative, and
     non-ASCII text (searched with CREDIT_RE itself: re.I folds the long s and the Kelvin sign)."""
-    from glslcheck.lint.rules.missing_credit import CREDIT_RE, _CREDIT, has_credit
+    from glslcheck.lint.rules.missing_credit import _CREDIT, CREDIT_RE, has_credit
 
-    words = [w for w in re.findall(r"[a-z]+", _CREDIT) if len(w) > 2] + ["https://x", "www.x", "Sources :"]
-    texts = ["", "nothing here", "STARTER code", "Based   On the lab", "basedon", "restarter", "starters",
-             "Thanks to Dan", "thank  you", "Refs: none", "cite:", "cited :", "HTTP://A", "xwww.y", "WWW.Y",
-             "\u017ftarter framework", "\u212aelvin", "credit\u00e9", "caf\u00e9 STARTER", "a\tsource:\tb",
-             *words, *(w.upper() for w in words), *(w.title() for w in words), *(f"_{w}_" for w in words)]
+    words = [w for w in re.findall(r"[a-z]+", _CREDIT) if len(w) > 2] + [
+        "https://x",
+        "www.x",
+        "Sources :",
+    ]
+    texts = [
+        "",
+        "nothing here",
+        "STARTER code",
+        "Based   On the lab",
+        "basedon",
+        "restarter",
+        "starters",
+        "Thanks to Dan",
+        "thank  you",
+        "Refs: none",
+        "cite:",
+        "cited :",
+        "HTTP://A",
+        "xwww.y",
+        "WWW.Y",
+        "\u017ftarter framework",
+        "\u212aelvin",
+        "credit\u00e9",
+        "caf\u00e9 STARTER",
+        "a\tsource:\tb",
+        *words,
+        *(w.upper() for w in words),
+        *(w.title() for w in words),
+        *(f"_{w}_" for w in words),
+    ]
     assert any(has_credit(t) for t in texts) and not all(has_credit(t) for t in texts)
     for t in texts:
         assert has_credit(t) == bool(CREDIT_RE.search(t)), t
-    assert has_credit("\u017ftarter") and not has_credit("\u017ftarter".encode("ascii", "replace").decode())
+    assert has_credit("\u017ftarter") and not has_credit(
+        "\u017ftarter".encode("ascii", "replace").decode()
+    )

@@ -27,7 +27,9 @@ def _lint(tmp_path: Path, text: str, select: list[str] | None = None, name: str 
 # --- 1. a compile error no longer silences the linter ---------------------------------------
 
 
-BROKEN = HEADER + """
+BROKEN = (
+    HEADER
+    + """
 // light position, animated (reads iTime: a course deduction even in a broken function)
 vec3 lightAt(in float r)
 {
@@ -46,6 +48,7 @@ void mainImage(out vec4 fragColor, in vec2 fragCoord)
     fragColor = vec4(lightAt(twice(vec3(fragCoord, 1.0), vec3(1.0))), 1.0);
 }
 """
+)
 
 
 def test_compile_errors_come_first_and_the_rest_is_still_linted(tmp_path: Path):
@@ -54,7 +57,9 @@ def test_compile_errors_come_first_and_the_rest_is_still_linted(tmp_path: Path):
     assert rules[0] == ("compile-error", "error", 8)  # 'undefinedName' is not declared
     assert ("uniform-outside-mainimage", "warning", 8) in rules  # read in the broken function
     assert ("repeated-expression", "warning", 14) in rules  # the function that checks
-    not_run = [f.message for f in result.findings if f.rule == "compile-error" and f.severity == "note"]
+    not_run = [
+        f.message for f in result.findings if f.rule == "compile-error" and f.severity == "note"
+    ]
     assert "repeated-expression could not run in 'lightAt' (line 6): it does not compile" in not_run
     assert any(m.startswith("unused-function could not run on this file") for m in not_run)
     # one line per rule that could not run, and none for the rule that reads names only
@@ -88,7 +93,9 @@ def test_compile_errors_cost_no_points_and_the_summary_says_so(tmp_path: Path):
 
 
 def test_a_syntax_error_drops_only_its_declaration(tmp_path: Path):
-    text = HEADER + """
+    text = (
+        HEADER
+        + """
 // missing semicolon pasted from Shadertoy
 float broken(in float x)
 {
@@ -107,6 +114,7 @@ void mainImage(out vec4 fragColor, in vec2 fragCoord)
     fragColor = vec4(broken(fine(fragCoord.x)));
 }
 """
+    )
     found = [(f.rule, f.severity, f.loc.line) for f in _lint(tmp_path, text).findings]
     assert found[0] == ("compile-error", "error", 8)
     assert ("uniform-outside-mainimage", "warning", 14) in found
@@ -117,8 +125,11 @@ void mainImage(out vec4 fragColor, in vec2 fragCoord)
 def test_lint_exit_status_with_a_compile_error(tmp_path: Path):
     p = tmp_path / "Image.glsl"
     p.write_text(BROKEN)
-    run = subprocess.run([sys.executable, "-m", "glslcheck", "lint", "--format", "json", str(p)],
-                         capture_output=True, text=True)
+    run = subprocess.run(
+        [sys.executable, "-m", "glslcheck", "lint", "--format", "json", str(p)],
+        capture_output=True,
+        text=True,
+    )
     assert run.returncode == 1 and "Traceback" not in run.stderr
     doc = json.loads(run.stdout)
     assert doc["findings"][0]["rule"] == "compile-error"
@@ -128,7 +139,9 @@ def test_lint_exit_status_with_a_compile_error(tmp_path: Path):
 
 
 def test_a_struct_name_reused_as_a_parameter_and_a_local(tmp_path: Path):
-    text = HEADER + """
+    text = (
+        HEADER
+        + """
 // a sphere
 struct sphere { vec3 center; float radius; };
 
@@ -146,6 +159,7 @@ void mainImage(out vec4 fragColor, in vec2 fragCoord)
     { vec3 sphere = vec3(fragCoord, 0.0); fragColor = vec4(float(inside(s, sphere))); }
 }
 """
+    )
     result = _lint(tmp_path, text)
     assert not [f for f in result.findings if f.rule == "compile-error"]
 
@@ -154,7 +168,9 @@ void mainImage(out vec4 fragColor, in vec2 fragCoord)
 
 
 def test_light_minus_sphere_center_is_not_a_sphere_normal(tmp_path: Path):
-    text = HEADER + """
+    text = (
+        HEADER
+        + """
 // a sphere and a light
 struct sSphere { vec4 center; float radius; };
 struct sLight { vec4 center; float intensity; };
@@ -174,11 +190,14 @@ void mainImage(out vec4 fragColor, in vec2 fragCoord)
     fragColor = vec4(directions(s, l, vec4(fragCoord, 0.0, 1.0)), 1.0);
 }
 """
+    )
     assert _lint(tmp_path, text, ["normalize-known-length"]).findings == []
 
 
 def test_the_hit_point_of_a_literal_sphere_is_a_sphere_normal(tmp_path: Path):
-    text = HEADER + """
+    text = (
+        HEADER
+        + """
 // the ray parameter where the ray meets the sphere
 float hit_sphere(in vec3 center, in float radius, in vec4 rd, in vec4 ro)
 {
@@ -201,6 +220,7 @@ void mainImage(out vec4 fragColor, in vec2 fragCoord)
     fragColor = vec4(n * 0.5 + 0.5, 1.0);
 }
 """
+    )
     (f,) = _lint(tmp_path, text, ["normalize-known-length"]).findings
     assert f.loc.line == 23 and "0.5" in f.message and "/ 0.5" in f.help
 
@@ -208,7 +228,9 @@ void mainImage(out vec4 fragColor, in vec2 fragCoord)
 def test_a_normalize_written_out_is_a_normalize(tmp_path: Path):
     # the same sphere, its normal normalized by hand (`v / sqrt(dot(v, v))`, `v / length(v)`)
     # of a hit point written `vec3(ro + t * rd)`: the radius is known; a light vector is not
-    text = HEADER + """
+    text = (
+        HEADER
+        + """
 // the ray parameter where the ray meets the sphere
 float hit_sphere(in vec3 center, in float radius, in vec4 rd, in vec4 ro)
 {
@@ -232,11 +254,18 @@ void mainImage(out vec4 fragColor, in vec2 fragCoord)
     fragColor = vec4(n * 0.5 + 0.5 + l, 1.0);
 }
 """
+    )
     (f,) = _lint(tmp_path, text, ["normalize-known-length"]).findings
-    assert f.loc.line == 23 and "written out" in f.message and f.help == "divide by the radius: d / 0.5"
+    assert (
+        f.loc.line == 23
+        and "written out" in f.message
+        and f.help == "divide by the radius: d / 0.5"
+    )
 
 
-PROCEDURAL = HEADER + """
+PROCEDURAL = (
+    HEADER
+    + """
 // the squared length
 float lenSq(in vec2 v) { return dot(v, v); }
 
@@ -256,18 +285,25 @@ void mainImage(out vec4 fragColor, in vec2 fragCoord)
     fragColor = vec4(shade(c, d, lSq, 0.5 * 0.5), 1.0);
 }
 """
+)
 
 
 def test_a_procedural_sphere_normal_followed_across_the_call(tmp_path: Path):
     (f,) = _lint(tmp_path, PROCEDURAL, ["normalize-known-length"]).findings
-    assert f.loc.line == 12 and "built on the sphere" in f.message and f.help == "divide by the radius: (pos - c) / 0.5"
+    assert (
+        f.loc.line == 12
+        and "built on the sphere" in f.message
+        and f.help == "divide by the radius: (pos - c) / 0.5"
+    )
 
 
 def test_unsure_values_across_calls_are_silent(tmp_path: Path):
     # a second caller may pass anything; a squared length taken before d changes (f04's
     # `lSq = lengthSq(dp.xy)` before `dp.xy = ...`) is not the squared length of the new d
-    second = PROCEDURAL.replace("fragColor = vec4(shade(c, d, lSq, 0.5 * 0.5), 1.0);",
-                                "fragColor = vec4(shade(c, d, lSq, 0.25) + shade(c, d, 1.0, 0.25), 1.0);")
+    second = PROCEDURAL.replace(
+        "fragColor = vec4(shade(c, d, lSq, 0.5 * 0.5), 1.0);",
+        "fragColor = vec4(shade(c, d, lSq, 0.25) + shade(c, d, 1.0, 0.25), 1.0);",
+    )
     stale = PROCEDURAL.replace("float lSq = lenSq(d);", "float lSq = lenSq(d);\n    d *= 2.0;")
     for text in (second, stale):
         assert _lint(tmp_path, text, ["normalize-known-length"]).findings == []
@@ -277,7 +313,9 @@ def test_unsure_values_across_calls_are_silent(tmp_path: Path):
 
 
 def test_one_finding_per_repeated_value_with_every_place(tmp_path: Path):
-    text = HEADER + """
+    text = (
+        HEADER
+        + """
 // three lights on a circle
 vec3 lights(in float time)
 {
@@ -291,6 +329,7 @@ void mainImage(out vec4 fragColor, in vec2 fragCoord)
     fragColor = vec4(lights(iTime), 1.0);
 }
 """
+    )
     result = _lint(tmp_path, text, ["repeated-expression"])
     assert [f.message for f in result.findings] == [
         "'sin(time)' is computed 3 times, with the same value, at lines 8 and 9",
@@ -301,7 +340,9 @@ void mainImage(out vec4 fragColor, in vec2 fragCoord)
 
 
 def test_an_array_length_is_not_a_geometric_length(tmp_path: Path):
-    text = HEADER + """
+    text = (
+        HEADER
+        + """
 // sum of the lights' intensities
 float total(in float intensities[4])
 {
@@ -316,17 +357,40 @@ void mainImage(out vec4 fragColor, in vec2 fragCoord)
     fragColor = vec4(total(float[4](1.0, 2.0, 3.0, 4.0)));
 }
 """
-    assert _lint(tmp_path, text, ["length-comparison", "sqrt-comparison", "loop-invariant"]).findings == []
+    )
+    assert (
+        _lint(tmp_path, text, ["length-comparison", "sqrt-comparison", "loop-invariant"]).findings
+        == []
+    )
 
 
 def test_inactive_ifdef_branches():
-    lines = ["#define A", "#ifdef A", "x", "#else", "y", "#endif", "#ifndef A", "z", "#endif",
-             "#if defined(B)", "w", "#elif 1", "v", "#endif", "#if FOO > 1", "u", "#endif"]
+    lines = [
+        "#define A",
+        "#ifdef A",
+        "x",
+        "#else",
+        "y",
+        "#endif",
+        "#ifndef A",
+        "z",
+        "#endif",
+        "#if defined(B)",
+        "w",
+        "#elif 1",
+        "v",
+        "#endif",
+        "#if FOO > 1",
+        "u",
+        "#endif",
+    ]
     assert inactive_lines(lines) == {5, 8, 11}
 
 
 def test_attribution_comments_are_advice_not_deductions(tmp_path: Path):
-    text = HEADER + """
+    text = (
+        HEADER
+        + """
 // Code from class by Daniel Buckstein
 float lenSq(in vec2 x)
 {
@@ -339,12 +403,15 @@ void mainImage(out vec4 fragColor, in vec2 fragCoord)
     fragColor = vec4(lenSq(fragCoord));
 }
 """
+    )
     (f,) = _lint(tmp_path, text, ["missing-comment"]).findings
     assert (f.severity, f.penalty, f.loc.line) == ("note", 0, 6)
 
 
 def test_the_same_value_written_differently(tmp_path: Path):
-    text = HEADER + """
+    text = (
+        HEADER
+        + """
 // squared length
 float lenSq(in vec2 x)
 {
@@ -365,7 +432,10 @@ void mainImage(out vec4 fragColor, in vec2 fragCoord)
     fragColor = vec4(height(vec3(fragCoord, 0.0), 1.0, vec4(1.0)));
 }
 """
-    found = [(f.loc.line, f.message) for f in _lint(tmp_path, text, ["repeated-expression"]).findings]
+    )
+    found = [
+        (f.loc.line, f.message) for f in _lint(tmp_path, text, ["repeated-expression"]).findings
+    ]
     assert found == [
         (15, "'length(rd)' is computed twice, with the same value, at line 15"),
         (16, "'lenSq(dp.xy)' is computed twice, with the same value, at lines 14 and 16"),
@@ -373,8 +443,11 @@ void mainImage(out vec4 fragColor, in vec2 fragCoord)
 
 
 def test_a_broken_directive_drops_only_its_line(tmp_path: Path):
-    text = HEADER + "#define SCALE(x (x * 2.0)\n// a uniform in a helper\nfloat t() { return iTime; }\n" \
+    text = (
+        HEADER
+        + "#define SCALE(x (x * 2.0)\n// a uniform in a helper\nfloat t() { return iTime; }\n"
         "// the image\nvoid mainImage(out vec4 fragColor, in vec2 fragCoord) { fragColor = vec4(t()); }\n"
+    )
     found = [(f.rule, f.severity, f.loc.line) for f in _lint(tmp_path, text).findings]
     assert found[0] == ("compile-error", "error", 4)
     assert ("uniform-outside-mainimage", "warning", 6) in found
@@ -384,7 +457,9 @@ def test_a_value_written_again_inside_a_product_chain(tmp_path: Path):
     # `d / k * d / k` is ((d / k) * d) / k: `d / k` twice, though only one is a subtree;
     # `c * d / k` writes it once more; `(d * d) / (k * c)` does not write `d / k` (as in the
     # course's attenuation formula, `(d * d) / (k * k)`): not a place of it
-    text = HEADER + """
+    text = (
+        HEADER
+        + """
 // attenuation, written three ways
 float atten(in float d, in float k, in float c)
 {
@@ -405,7 +480,10 @@ void mainImage(out vec4 fragColor, in vec2 fragCoord)
     fragColor = vec4(atten(fragCoord.x, 2.0, 3.0) + float(steps(int(fragCoord.x), 3)));
 }
 """
-    found = [(f.loc.line, f.message) for f in _lint(tmp_path, text, ["repeated-expression"]).findings]
+    )
+    found = [
+        (f.loc.line, f.message) for f in _lint(tmp_path, text, ["repeated-expression"]).findings
+    ]
     assert found == [(8, "'d / k' is computed 3 times, with the same value, at lines 8 and 10")]
 
 
@@ -413,20 +491,29 @@ def test_a_mainimage_macro_in_common_reads_the_pass_uniforms(tmp_path: Path):
     # the macro expands in the Image pass's wrapper, where iTime is declared; Common compiled
     # alone never expands it. A Common *function* reading iTime is still an error.
     (tmp_path / "Common.glsl").write_text(
-        HEADER + "// the whole image, golfed\n#define mainImage(O, U) O = vec4(sin(iTime), U / iResolution.xy, 1.0)\n")
+        HEADER
+        + "// the whole image, golfed\n#define mainImage(O, U) O = vec4(sin(iTime), U / iResolution.xy, 1.0)\n"
+    )
     (tmp_path / "Image.glsl").write_text(HEADER + "// the image is the Common tab's macro\n")
-    result = lint_paths([tmp_path / "Common.glsl", tmp_path / "Image.glsl"], {"select": ["compile-error"]})
+    result = lint_paths(
+        [tmp_path / "Common.glsl", tmp_path / "Image.glsl"], {"select": ["compile-error"]}
+    )
     assert result.findings == []
     (tmp_path / "Common.glsl").write_text(
         HEADER + "// the time\nfloat t() { return iTime; }\n"
-        "#define mainImage(O, U) O = vec4(t(), U / iResolution.xy, 1.0)\n")
-    found = [(f.rule, f.loc.line, "'iTime' is not available in the Common tab" in f.message)
-             for f in lint_paths([tmp_path / "Common.glsl"], {"select": ["compile-error"]}).findings]
+        "#define mainImage(O, U) O = vec4(t(), U / iResolution.xy, 1.0)\n"
+    )
+    found = [
+        (f.rule, f.loc.line, "'iTime' is not available in the Common tab" in f.message)
+        for f in lint_paths([tmp_path / "Common.glsl"], {"select": ["compile-error"]}).findings
+    ]
     assert (("compile-error", 5, True)) in found
 
 
 def test_a_uniform_the_shader_declares_is_a_uniform_too(tmp_path: Path):
-    text = HEADER + """
+    text = (
+        HEADER
+        + """
 // the diffuse map (a uniform of the shader's own)
 uniform sampler2D diffuseMap;
 
@@ -442,6 +529,12 @@ void mainImage(out vec4 fragColor, in vec2 fragCoord)
     fragColor = diffuse(fragCoord) + texture(diffuseMap, fragCoord);
 }
 """
-    found = [(f.loc.line, f.message) for f in _lint(tmp_path, text, ["uniform-outside-mainimage"]).findings]
-    assert found == [(11, "the uniform 'diffuseMap' is read in 'diffuse', not in mainImage"),
-                     (11, "the uniform 'iChannel0' is read in 'diffuse', not in mainImage")]
+    )
+    found = [
+        (f.loc.line, f.message)
+        for f in _lint(tmp_path, text, ["uniform-outside-mainimage"]).findings
+    ]
+    assert found == [
+        (11, "the uniform 'diffuseMap' is read in 'diffuse', not in mainImage"),
+        (11, "the uniform 'iChannel0' is read in 'diffuse', not in mainImage"),
+    ]

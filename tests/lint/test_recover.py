@@ -21,8 +21,12 @@ void mainImage(out vec4 c, in vec2 p) { c = vec4(f(p.x)); }
 
 def test_declarations_skip_comments_and_directives():
     found = [TEXT[a:b].split("\n")[0] for a, b, _ in declarations(TEXT)]
-    assert found == ["float f(in float x)", "struct S { float a; };", "float g = 1.0;",
-                     "void mainImage(out vec4 c, in vec2 p) { c = vec4(f(p.x)); }"]
+    assert found == [
+        "float f(in float x)",
+        "struct S { float a; };",
+        "float g = 1.0;",
+        "void mainImage(out vec4 c, in vec2 p) { c = vec4(f(p.x)); }",
+    ]
 
 
 def test_a_body_error_keeps_the_prototype_and_every_line():
@@ -45,7 +49,9 @@ def test_a_second_error_in_the_same_declaration_blanks_it_whole():
 def test_an_unclosed_function_is_blanked_to_the_end_and_other_files_are_not_touched():
     units = [Source("Image.glsl", "float g = 1.0;\nvoid f() { if (x) { }\n")]
     new, region = drop_declaration(units, Location("Image.glsl", 2, 12), [])
-    assert region == ("Image.glsl", 2, 3, "f") and new[0].text == "float g = 1.0;\n" + " " * 21 + "\n"
+    assert (
+        region == ("Image.glsl", 2, 3, "f") and new[0].text == "float g = 1.0;\n" + " " * 21 + "\n"
+    )
     assert drop_declaration(units, Location("Other.glsl", 1, 1), [])[1] is None
 
 
@@ -54,10 +60,15 @@ def test_a_dropped_declaration_whose_text_is_no_regular_expression(tmp_path, cap
     function is remembered by its first line, `float g = (1.0 +;`, and that text went into a
     regular expression unescaped: `re.error` and a traceback instead of the compile errors."""
     from glslcheck.cli.main import main
+
     path = tmp_path / "Image.glsl"
-    path.write_text("// Image.glsl\nfloat g = (1.0 +;\nfloat f(float x);\n"
-                    "void mainImage(out vec4 c, in vec2 p) {\n    c = vec4(f(p.x));\n}\n")
+    path.write_text(
+        "// Image.glsl\nfloat g = (1.0 +;\nfloat f(float x);\n"
+        "void mainImage(out vec4 c, in vec2 p) {\n    c = vec4(f(p.x));\n}\n"
+    )
     assert main(["lint", str(path)]) == 1
     out = capsys.readouterr().out
     assert "Image.glsl:2:17: compile-error expected an expression" in out
-    assert "Image.glsl:5:14: compile-error 'float f(float)' is declared but has no definition" in out
+    assert (
+        "Image.glsl:5:14: compile-error 'float f(float)' is declared but has no definition" in out
+    )

@@ -107,8 +107,12 @@ def test_int_and_uint_operators_compute_what_glsl_defines(make_shader):
         s ^= (s << 5) & m
         i = x - 3
         j = (i >> 1) + (i & 6) - (i | 1) * (i ^ 5)
-        want = [np.float32(s & 0xFFFF) / np.float32(65535.0), np.float32(s >> 16) / np.float32(65535.0),
-                j + 100.0 * ((i < 0) == (s > 7)), 1.0]  # (a Shadertoy shader's alpha is 1)
+        want = [
+            np.float32(s & 0xFFFF) / np.float32(65535.0),
+            np.float32(s >> 16) / np.float32(65535.0),
+            j + 100.0 * ((i < 0) == (s > 7)),
+            1.0,
+        ]  # (a Shadertoy shader's alpha is 1)
         assert img[h - 1 - y, x].tolist() == [float(v) for v in want], (x, y)
 
 
@@ -133,8 +137,12 @@ def test_dot_is_the_sum_from_the_right_of_rounded_products():
     rt = Runtime("float32")
     rng = np.random.default_rng(7)
     for n in (2, 3, 4):
-        a = (rng.standard_normal((n, 1000)) * 10.0 ** rng.integers(-3, 4, (n, 1000))).astype(np.float32)
-        b = (rng.standard_normal((n, 1000)) * 10.0 ** rng.integers(-3, 4, (n, 1000))).astype(np.float32)
+        a = (rng.standard_normal((n, 1000)) * 10.0 ** rng.integers(-3, 4, (n, 1000))).astype(
+            np.float32
+        )
+        b = (rng.standard_normal((n, 1000)) * 10.0 ** rng.integers(-3, 4, (n, 1000))).astype(
+            np.float32
+        )
         want = a[n - 1] * b[n - 1]
         for i in range(n - 2, -1, -1):
             want = a[i] * b[i] + want

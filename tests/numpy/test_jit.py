@@ -13,9 +13,9 @@ import sys
 import numpy as np
 import pytest
 
-from glslcheck.base.diagnostics import InputError
 from glslcheck.backends.numpy_engine import jit
 from glslcheck.backends.numpy_engine.llvmpipe_reference import LlvmpipeMath, blocked
+from glslcheck.base.diagnostics import InputError
 
 ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 F32 = np.float32
@@ -35,7 +35,9 @@ class FakeKernels:
 
     def explog(self, x, y, out, fma, which):
         self.calls += 1
-        out[:] = self.lp._pow(x, y) if which == 2 else getattr(self.lp, ("_exp2", "_log2")[which])(x)
+        out[:] = (
+            self.lp._pow(x, y) if which == 2 else getattr(self.lp, ("_exp2", "_log2")[which])(x)
+        )
         return True
 
 
@@ -52,6 +54,7 @@ def state(monkeypatch):
         loads.append(fresh.spent)
         fresh.kernels = fake
         return fake
+
     monkeypatch.setattr(jit, "load", load)
     fresh.fake, fresh.loads = fake, loads
     return fresh
@@ -78,7 +81,9 @@ def test_on_without_numba_says_how_to_install_it(monkeypatch):
     fresh.available = False
     monkeypatch.setattr(jit, "_STATE", fresh)
     monkeypatch.setenv("GLSLCHECK_JIT", "on")
-    with pytest.raises(InputError, match=r"--jit on: numba is not installed \(pip install 'glslcheck\[jit\]'\)"):
+    with pytest.raises(
+        InputError, match=r"--jit on: numba is not installed \(pip install 'glslcheck\[jit\]'\)"
+    ):
         jit.dispatch("_sin", LlvmpipeMath(True)._sin, True)
 
 
@@ -112,10 +117,14 @@ def test_threshold_is_the_recorded_load_time_of_this_cache(state, monkeypatch, t
     monkeypatch.setenv("NUMBA_CACHE_DIR", str(tmp_path))
     monkeypatch.setattr(jit, "_stamp", lambda: ["0.68.1", 1, 2])
     assert jit.threshold() == jit.COLD_SECONDS  # no record yet
-    (tmp_path / "glslcheck-jit.json").write_text(json.dumps({"seconds": 1.25, "stamp": ["0.68.1", 1, 2]}))
+    (tmp_path / "glslcheck-jit.json").write_text(
+        json.dumps({"seconds": 1.25, "stamp": ["0.68.1", 1, 2]})
+    )
     state.threshold = None
     assert jit.threshold() == 1.25
-    (tmp_path / "glslcheck-jit.json").write_text(json.dumps({"seconds": 1.25, "stamp": ["0.69.0", 1, 2]}))
+    (tmp_path / "glslcheck-jit.json").write_text(
+        json.dumps({"seconds": 1.25, "stamp": ["0.69.0", 1, 2]})
+    )
     state.threshold = None
     assert jit.threshold() == jit.COLD_SECONDS  # another numba or kernels source: compiles anew
 
@@ -148,8 +157,9 @@ def test_setting_the_cache_dir_keeps_numbas_other_settings(numba, tmp_path):
     re-read numba's config from the environment and SLP_VECTORIZE was 0 again)."""
     env = {k: v for k, v in os.environ.items() if not k.startswith("NUMBA_")}
     env["XDG_CACHE_HOME"] = str(tmp_path)
-    done = subprocess.run([sys.executable, "-c", KEEPS_CONFIG], capture_output=True, text=True, env=env,
-                          timeout=120)
+    done = subprocess.run(
+        [sys.executable, "-c", KEEPS_CONFIG], capture_output=True, text=True, env=env, timeout=120
+    )
     assert done.returncode == 0, done.stderr
     path, after = done.stdout.splitlines()
     assert path == os.path.join(str(tmp_path), "glslcheck", "numba")
@@ -157,11 +167,27 @@ def test_setting_the_cache_dir_keeps_numbas_other_settings(numba, tmp_path):
 
 
 def test_cli_rejects_a_bad_glslcheck_jit(tmp_path):
-    done = subprocess.run([sys.executable, "-m", "glslcheck", "render", os.path.join(ROOT, "lab_shaders", "07_final"),
-                           "-o", str(tmp_path / "x.png")], capture_output=True, text=True, cwd=ROOT,
-                          env=dict(os.environ, GLSLCHECK_JIT="fast"), timeout=120)
+    done = subprocess.run(
+        [
+            sys.executable,
+            "-m",
+            "glslcheck",
+            "render",
+            os.path.join(ROOT, "lab_shaders", "07_final"),
+            "-o",
+            str(tmp_path / "x.png"),
+        ],
+        capture_output=True,
+        text=True,
+        cwd=ROOT,
+        env=dict(os.environ, GLSLCHECK_JIT="fast"),
+        timeout=120,
+    )
     assert done.returncode == 2 and not (tmp_path / "x.png").exists()
-    assert done.stderr.strip() == "glslcheck: error: GLSLCHECK_JIT must be one of auto, on, off, not 'fast'"
+    assert (
+        done.stderr.strip()
+        == "glslcheck: error: GLSLCHECK_JIT must be one of auto, on, off, not 'fast'"
+    )
 
 
 def test_after_a_compile_the_threshold_is_a_load_from_the_cache(state, monkeypatch, tmp_path):
@@ -195,7 +221,9 @@ def test_workers_counts_decide_for_all_of_them(state, monkeypatch):
     lp = LlvmpipeMath(True)
     small = np.linspace(0.1, 3, 143, dtype=F32)
     assert np.array_equal(lp.exp2(small), blocked(lp._exp2, small))
-    assert state.loads == [0.5] and state.fake.calls == 1  # loaded before the first call, which took them
+    assert (
+        state.loads == [0.5] and state.fake.calls == 1
+    )  # loaded before the first call, which took them
     monkeypatch.setenv("GLSLCHECK_JIT", "off")
     fresh = jit._State()
     monkeypatch.setattr(jit, "_STATE", fresh)

@@ -28,9 +28,11 @@ KERNELS = dict(FAST_KERNELS, _tan=(-3, 9.5, False))  # (scale exponents, positiv
 
 def _compiled(name: str, lp: LlvmpipeMath, kernels, declined: list):
     """The kernel as LlvmpipeMath calls it, its NumPy path the reference (counting declines)."""
+
     def run(*args):
         declined.append(args[0].size)
         return blocked(getattr(lp, name), *args)
+
     return jit.compiled(name, run, lp.fma, kernels)
 
 
@@ -63,7 +65,14 @@ def test_kernel_equals_reference(jit_kernels, name, fma):
                 bad = np.flatnonzero(got.view(np.int32) != want.view(np.int32))
             else:
                 bad = np.flatnonzero(_bits(got) != _bits(want))
-            assert bad.size == 0, (name, fma, n, [a[bad[:5]] for a in args], got[bad[:5]], want[bad[:5]])
+            assert bad.size == 0, (
+                name,
+                fma,
+                n,
+                [a[bad[:5]] for a in args],
+                got[bad[:5]],
+                want[bad[:5]],
+            )
     assert taken > lanes // 2, (name, fma, taken, lanes)
 
 
@@ -78,8 +87,15 @@ def test_specials_one_by_one(jit_kernels, name):
         with np.errstate(all="ignore"):
             for s in SPECIALS:
                 for x in (np.array([s], F32), np.array([0.25, s, 3.0], F32)):
-                    cases = [(x,)] if name != "_pow" else [(np.abs(x), np.full_like(x, 2.5)),
-                                                          (np.full_like(x, 2.5), x), (x, np.full_like(x, -1.5))]
+                    cases = (
+                        [(x,)]
+                        if name != "_pow"
+                        else [
+                            (np.abs(x), np.full_like(x, 2.5)),
+                            (np.full_like(x, 2.5), x),
+                            (x, np.full_like(x, -1.5)),
+                        ]
+                    )
                     for a in cases:
                         want = blocked(getattr(lp, name), *a)
                         assert np.array_equal(_bits(fn(*a)), _bits(want)), (name, fma, a)
@@ -91,15 +107,24 @@ def test_shapes_and_layouts(jit_kernels):
     the broadcast shape and the reference's bits."""
     lp = LlvmpipeMath(True)
     x = RNG.uniform(0.01, 40.0, (3, 500)).astype(F32)
-    cases = {"_sin": [(x,), (x[:, ::2],), (x[:, :1],)],
-             "_pow": [(x, x[:, :1]), (x, F32(2.5) * np.ones((1,), F32)), (x[:1, :1], x), (x[0], x[1]),
-                      (x[:, ::3], x[:, ::3])]}
+    cases = {
+        "_sin": [(x,), (x[:, ::2],), (x[:, :1],)],
+        "_pow": [
+            (x, x[:, :1]),
+            (x, F32(2.5) * np.ones((1,), F32)),
+            (x[:1, :1], x),
+            (x[0], x[1]),
+            (x[:, ::3], x[:, ::3]),
+        ],
+    }
     for name, calls in cases.items():
         fn = _compiled(name, lp, jit_kernels, declined := [])
         for args in calls:
             want = blocked(getattr(lp, name), *args)
             got = fn(*args)
-            assert got.shape == want.shape and np.array_equal(got.view(np.int32), want.view(np.int32))
+            assert got.shape == want.shape and np.array_equal(
+                got.view(np.int32), want.view(np.int32)
+            )
         assert not declined
 
 
@@ -113,8 +138,12 @@ def test_other_dtypes_stay_on_numpy(jit_kernels):
 
 # Runtime's own lowerings (LlvmpipeMath.builtin): name -> (Runtime method, its reference, arguments
 # (scale exponents, positive only) per argument). asin/acos: mostly inside [-1, 1], some outside
-ARC = {"_atan": ("atan", "_atan", [(-38, 38, False)]), "_atan2": ("atan", "_atan", [(-38, 38, False)] * 2),
-       "_asin": ("asin", "_asin", [(-1, 0.05, False)]), "_acos": ("acos", "_acos", [(-1, 0.05, False)])}
+ARC = {
+    "_atan": ("atan", "_atan", [(-38, 38, False)]),
+    "_atan2": ("atan", "_atan", [(-38, 38, False)] * 2),
+    "_asin": ("asin", "_asin", [(-1, 0.05, False)]),
+    "_acos": ("acos", "_acos", [(-1, 0.05, False)]),
+}
 
 
 def _arc_args(name: str, n: int, specials: bool) -> tuple[np.ndarray, ...]:
@@ -138,6 +167,7 @@ def test_arc_kernels_equal_reference(jit_kernels, name, fma):
     def run(*args):
         declined.append(args[0].size)
         return getattr(rt, ref)(*args)
+
     fn = jit.compiled(name, run, fma, jit_kernels)
     lanes = taken = 0
     with np.errstate(all="ignore"):
@@ -155,7 +185,14 @@ def test_arc_kernels_equal_reference(jit_kernels, name, fma):
             else:
                 assert name in ("_asin", "_acos"), name
                 bad = np.flatnonzero(_bits(got) != _bits(want))
-            assert bad.size == 0, (name, fma, n, [a[bad[:5]] for a in args], got[bad[:5]], want[bad[:5]])
+            assert bad.size == 0, (
+                name,
+                fma,
+                n,
+                [a[bad[:5]] for a in args],
+                got[bad[:5]],
+                want[bad[:5]],
+            )
     assert taken > lanes // 2, (name, fma, taken, lanes)
 
 
@@ -172,7 +209,9 @@ def test_arc_specials(jit_kernels, name):
             y, x = (v.reshape(-1).copy() for v in np.meshgrid(SPECIALS, SPECIALS))
             cases = [(y, x), (y[:1], x), (y, x[:1])]
         else:
-            cases = [(np.array([s], F32),) for s in SPECIALS] + [(np.array([0.25, s, -0.75], F32),) for s in SPECIALS]
+            cases = [(np.array([s], F32),) for s in SPECIALS] + [
+                (np.array([0.25, s, -0.75], F32),) for s in SPECIALS
+            ]
         for args in cases:
             want = getattr(rt, ref)(*args)
             assert np.array_equal(_bits(fn(*args)), _bits(want)), (name, args)
@@ -189,7 +228,9 @@ def test_arc_dispatch_in_runtime(jit_kernels, monkeypatch):
         monkeypatch.setenv("GLSLCHECK_JIT", mode)
         rt = Runtime("float32")
         got[mode] = [getattr(rt, m)(*a) for m, args in calls.items() for a in args]
-        assert bool(rt.lp._kernels) and all((f.__name__ == "call") == (mode == "on") for f in rt.lp._kernels.values())
+        assert bool(rt.lp._kernels) and all(
+            (f.__name__ == "call") == (mode == "on") for f in rt.lp._kernels.values()
+        )
     for on, off in zip(got["on"], got["off"]):
         assert on.shape == off.shape and np.array_equal(on.view(np.int32), off.view(np.int32))
 
@@ -220,6 +261,7 @@ def test_mix_kernel_equals_reference(jit_kernels, fma):
     def run(*args):
         declined.append(args[0].size)
         return rt._mix_fast(*args)
+
     fn = jit.compiled("_mix", run, fma, jit_kernels)
     lanes = taken = 0
     with np.errstate(all="ignore"):
@@ -255,7 +297,13 @@ def test_mix_kernel_equals_reference(jit_kernels, fma):
             else:
                 assert np.isnan(want).any()
                 bad = np.flatnonzero(_bits(got) != _bits(want))
-            assert bad.size == 0, (fma, n, x.reshape(-1)[bad[:5]], got.reshape(-1)[bad[:5]], want.reshape(-1)[bad[:5]])
+            assert bad.size == 0, (
+                fma,
+                n,
+                x.reshape(-1)[bad[:5]],
+                got.reshape(-1)[bad[:5]],
+                want.reshape(-1)[bad[:5]],
+            )
     assert taken > lanes // 2, (fma, taken, lanes)
 
 
@@ -268,8 +316,13 @@ def test_mix_in_runtime(jit_kernels, monkeypatch):
     for mode in ("on", "off"):
         monkeypatch.setenv("GLSLCHECK_JIT", mode)
         rt = Runtime("float32")
-        got[mode] = [rt.mix(x, y, a, "fast"), rt.mix(x[0], y[0], a, "fast"), rt.mix(x, y, a[:1], "fast"),
-                     rt.mix(x, y, a, "strict"), rt.mix(x, y, a > 0.5)]
+        got[mode] = [
+            rt.mix(x, y, a, "fast"),
+            rt.mix(x[0], y[0], a, "fast"),
+            rt.mix(x, y, a[:1], "fast"),
+            rt.mix(x, y, a, "strict"),
+            rt.mix(x, y, a > 0.5),
+        ]
         assert list(rt.lp._kernels) == ["_mix"]
     for on, off in zip(got["on"], got["off"]):
         assert on.shape == off.shape and np.array_equal(on.view(np.int32), off.view(np.int32))

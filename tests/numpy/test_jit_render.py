@@ -78,7 +78,12 @@ def test_frames_equal_with_and_without_kernels(jit_kernels, make_shader, monkeyp
     for size in sizes:
         off = _render(shader, "off", size, monkeypatch)
         on = _render(shader, "on", size, monkeypatch)
-        assert _same(off, on), (path, fma, size, int((off.view(np.int32) != on.view(np.int32)).sum()))
+        assert _same(off, on), (
+            path,
+            fma,
+            size,
+            int((off.view(np.int32) != on.view(np.int32)).sum()),
+        )
 
 
 def test_the_kernels_are_used(jit_kernels, make_shader, monkeypatch):
@@ -95,12 +100,22 @@ def test_the_kernels_are_used(jit_kernels, make_shader, monkeypatch):
         def call(*args):
             calls.append(name)
             return fn(*args)
+
         return call
 
     monkeypatch.setattr(jit, "compiled", counting)
     _render(make_shader(MARCH), "on", (64, 36), monkeypatch)
-    assert len(calls) > 100 and {"_sin", "_cos", "_exp2", "_pow", "_atan", "_atan2", "_asin", "_acos",
-                                 "_mix"} <= set(calls), sorted(set(calls))
+    assert len(calls) > 100 and {
+        "_sin",
+        "_cos",
+        "_exp2",
+        "_pow",
+        "_atan",
+        "_atan2",
+        "_asin",
+        "_acos",
+        "_mix",
+    } <= set(calls), sorted(set(calls))
 
 
 def test_workers_load_the_kernels_once_the_parent_decided(jit_kernels, make_shader, monkeypatch):
@@ -108,11 +123,15 @@ def test_workers_load_the_kernels_once_the_parent_decided(jit_kernels, make_shad
     parent adds them up (jit.add_counted). Once the parent has decided (here: told so), the
     workers load the kernels before the next frame and count nothing more; the frames are the
     bits of --jit off either way."""
-    from glslcheck.backends.numpy_engine import tiles as frame, jit, workers
+    from glslcheck.backends.numpy_engine import jit, workers
+    from glslcheck.backends.numpy_engine import tiles as frame
 
     if not workers.available():
         if os.environ.get("CI"):
-            pytest.fail("worker processes are unavailable on the CI machine (Linux): " + str(workers._DISABLED))
+            pytest.fail(
+                "worker processes are unavailable on the CI machine (Linux): "
+                + str(workers._DISABLED)
+            )
         pytest.skip("worker processes need Linux with memfd_create (this machine: threads only)")
     off = _render(make_shader(MARCH), "off", (64, 36), monkeypatch)
     monkeypatch.setenv("GLSLCHECK_JIT", "auto")
@@ -129,7 +148,9 @@ def test_workers_load_the_kernels_once_the_parent_decided(jit_kernels, make_shad
             state.pays = True
             prog._cache.clear()
             second = prog.render(size=(64, 36), time=1.7)
-        assert prog.last_parallel == "processes" and state.workers_spent == counted  # no NumPy math any more
+        assert (
+            prog.last_parallel == "processes" and state.workers_spent == counted
+        )  # no NumPy math any more
         assert state.kernels is None  # the parent itself rendered nothing: it loaded nothing
     finally:
         workers.shutdown()

@@ -20,13 +20,48 @@ from glslcheck.backends.numpy_engine.llvmpipe_reference import LlvmpipeMath, blo
 
 RNG = np.random.default_rng(1818)
 F32 = np.float32
-SPECIALS = np.array([0.0, -0.0, 1e-45, -1e-45, 1e-40, -1e-40, 1.1754942e-38, 1.17549435e-38,
-                     -1.17549435e-38, np.inf, -np.inf, np.nan, 3.4028235e38, -3.4028235e38,
-                     2.0**29, -(2.0**29), 5.3687085e8, 1.6e9, 2.0**31, 126.0, -126.0, 126.00001,
-                     127.99999, 128.0, 129.0, -126.99999, -127.0, 1.0, -1.0], F32)
+SPECIALS = np.array(
+    [
+        0.0,
+        -0.0,
+        1e-45,
+        -1e-45,
+        1e-40,
+        -1e-40,
+        1.1754942e-38,
+        1.17549435e-38,
+        -1.17549435e-38,
+        np.inf,
+        -np.inf,
+        np.nan,
+        3.4028235e38,
+        -3.4028235e38,
+        2.0**29,
+        -(2.0**29),
+        5.3687085e8,
+        1.6e9,
+        2.0**31,
+        126.0,
+        -126.0,
+        126.00001,
+        127.99999,
+        128.0,
+        129.0,
+        -126.99999,
+        -127.0,
+        1.0,
+        -1.0,
+    ],
+    F32,
+)
 # (kernel name, exponent range of the arguments' scale, positive only)
-KERNELS = {"_sin": (-3, 9.5, False), "_cos": (-3, 9.5, False), "_exp2": (-3, 2.5, False),
-           "_log2": (-38, 38, True), "_pow": (-3, 5, True)}
+KERNELS = {
+    "_sin": (-3, 9.5, False),
+    "_cos": (-3, 9.5, False),
+    "_exp2": (-3, 2.5, False),
+    "_log2": (-38, 38, True),
+    "_pow": (-3, 5, True),
+}
 
 
 def _sample(n: int, lo: float, hi: float, positive: bool, specials: bool) -> np.ndarray:
@@ -58,15 +93,23 @@ def _bits(a: np.ndarray) -> np.ndarray:
 def _kernel(name: str, fma: bool, ref=None):
     """The kernel; ``ref`` recomputes the lanes of a float32 midpoint (without it the kernel
     declines there)."""
-    return {"_sin": lambda a: llvmpipe_fast.sin_cos(a, fma, False, ref),
-            "_cos": lambda a: llvmpipe_fast.sin_cos(a, fma, True, ref),
-            "_exp2": lambda a: llvmpipe_fast.exp2(a, fma, ref), "_log2": lambda a: llvmpipe_fast.log2(a, fma, ref),
-            "_pow": lambda a, b: llvmpipe_fast.pow(a, b, fma, ref)}[name]
+    return {
+        "_sin": lambda a: llvmpipe_fast.sin_cos(a, fma, False, ref),
+        "_cos": lambda a: llvmpipe_fast.sin_cos(a, fma, True, ref),
+        "_exp2": lambda a: llvmpipe_fast.exp2(a, fma, ref),
+        "_log2": lambda a: llvmpipe_fast.log2(a, fma, ref),
+        "_pow": lambda a, b: llvmpipe_fast.pow(a, b, fma, ref),
+    }[name]
 
 
 def _public(lp: LlvmpipeMath, name: str):
-    return {"_sin": lambda a: lp.sin_or_cos(a, cos=False), "_cos": lambda a: lp.sin_or_cos(a, cos=True),
-            "_exp2": lp.exp2, "_log2": lp.log2, "_pow": lp.pow}[name]
+    return {
+        "_sin": lambda a: lp.sin_or_cos(a, cos=False),
+        "_cos": lambda a: lp.sin_or_cos(a, cos=True),
+        "_exp2": lp.exp2,
+        "_log2": lp.log2,
+        "_pow": lp.pow,
+    }[name]
 
 
 @pytest.mark.parametrize("fma", [True, False])
@@ -95,7 +138,14 @@ def test_kernel_equals_reference(name, fma):
             lanes += n
             assert got.dtype == np.float32 and got.shape == want.shape
             bad = np.flatnonzero(_bits(got) != _bits(want))
-            assert bad.size == 0, (name, fma, n, [a[bad[:5]] for a in args], got[bad[:5]], want[bad[:5]])
+            assert bad.size == 0, (
+                name,
+                fma,
+                n,
+                [a[bad[:5]] for a in args],
+                got[bad[:5]],
+                want[bad[:5]],
+            )
     assert taken > lanes // 3, (name, fma, taken, lanes)
 
 
@@ -158,6 +208,7 @@ def test_midpoint_lanes_get_the_reference(monkeypatch):
             def negated_ref(*a, _name=name):
                 calls.append(a[0].size)
                 return -getattr(lp, _name)(*a)
+
             got = _kernel(name, True, negated_ref)(*args)
             assert calls == [100]
             assert np.array_equal(_bits(got), _bits(np.where(flagged, -want, want)))

@@ -13,10 +13,43 @@ from glslcheck.backends.numpy_engine import llvmpipe_reference
 from glslcheck.backends.numpy_engine.llvmpipe_reference import DeferredFma, LlvmpipeMath, blocked
 
 RNG = np.random.default_rng(18)
-SPECIALS = np.array([0.0, -0.0, 1e-45, -1e-45, 1e-40, -1e-40, 1.1754942e-38, 1.17549435e-38,
-                     np.inf, -np.inf, np.nan, -np.nan, 3.4028235e38, -3.4028235e38, 1e10, -1e10,
-                     2.0**31, -(2.0**31), 1.0, -1.0, 0.5, 2.0, 128.0, -127.0, -126.99999, 129.0,
-                     0.7853982, 1.5707964, 3.1415927, 6.2831855, 51471.0, 6433.0], np.float32)
+SPECIALS = np.array(
+    [
+        0.0,
+        -0.0,
+        1e-45,
+        -1e-45,
+        1e-40,
+        -1e-40,
+        1.1754942e-38,
+        1.17549435e-38,
+        np.inf,
+        -np.inf,
+        np.nan,
+        -np.nan,
+        3.4028235e38,
+        -3.4028235e38,
+        1e10,
+        -1e10,
+        2.0**31,
+        -(2.0**31),
+        1.0,
+        -1.0,
+        0.5,
+        2.0,
+        128.0,
+        -127.0,
+        -126.99999,
+        129.0,
+        0.7853982,
+        1.5707964,
+        3.1415927,
+        6.2831855,
+        51471.0,
+        6433.0,
+    ],
+    np.float32,
+)
 
 
 def _sample(n: int) -> np.ndarray:
@@ -25,7 +58,9 @@ def _sample(n: int) -> np.ndarray:
     the specials placed at random positions."""
     k = n // 3
     spread = RNG.standard_normal(k) * 10.0 ** RNG.uniform(-45, 38.5, k)
-    bits = RNG.integers(-2**31, 2**31, n - 2 * k, dtype=np.int64).astype(np.int32).view(np.float32)
+    bits = (
+        RNG.integers(-(2**31), 2**31, n - 2 * k, dtype=np.int64).astype(np.int32).view(np.float32)
+    )
     bits[::2] = RNG.integers(-800, 800, bits[::2].size) / 8.0
     with np.errstate(all="ignore"):
         x = np.concatenate([RNG.uniform(-100, 100, k), spread, bits]).astype(np.float32)
@@ -41,25 +76,46 @@ def _bits(a: np.ndarray) -> np.ndarray:
 
 
 @pytest.mark.parametrize("fma", [True, False])
-@pytest.mark.parametrize("shape", [(40,), (300,), (llvmpipe_reference.DEFER_LANES,), (20_000,), (3, 1), (4, 50)])
+@pytest.mark.parametrize(
+    "shape", [(40,), (300,), (llvmpipe_reference.DEFER_LANES,), (20_000,), (3, 1), (4, 50)]
+)
 def test_fast_path_equals_reference(fma, shape):
     """Lane arrays of each size, and vectors (components first: (3, 1) is a vec3 of one lane)."""
     lp = LlvmpipeMath(fma)
     n = int(np.prod(shape))
     x, y = _sample(max(n, 40))[:n].reshape(shape), _sample(max(n, 40))[:n].reshape(shape)
     with np.errstate(all="ignore"):
-        for name, args in (("_sin", (x,)), ("_cos", (x,)), ("_tan", (x,)), ("_exp2", (x,)),
-                           ("_exp2", (x * np.float32(1e-2),)), ("_log2", (x,)),
-                           ("_log2", (np.abs(x),)), ("_pow", (np.abs(x), y * np.float32(1e-2))),
-                           ("_pow", (x, y))):
-            public = {"_sin": lambda a: lp.sin_or_cos(a, cos=False),
-                      "_cos": lambda a: lp.sin_or_cos(a, cos=True), "_tan": lp.tan,
-                      "_exp2": lp.exp2, "_log2": lp.log2, "_pow": lp.pow}[name]
+        for name, args in (
+            ("_sin", (x,)),
+            ("_cos", (x,)),
+            ("_tan", (x,)),
+            ("_exp2", (x,)),
+            ("_exp2", (x * np.float32(1e-2),)),
+            ("_log2", (x,)),
+            ("_log2", (np.abs(x),)),
+            ("_pow", (np.abs(x), y * np.float32(1e-2))),
+            ("_pow", (x, y)),
+        ):
+            public = {
+                "_sin": lambda a: lp.sin_or_cos(a, cos=False),
+                "_cos": lambda a: lp.sin_or_cos(a, cos=True),
+                "_tan": lp.tan,
+                "_exp2": lp.exp2,
+                "_log2": lp.log2,
+                "_pow": lp.pow,
+            }[name]
             want = blocked(getattr(lp, name), *args)
             got = public(*args)
             assert got.dtype == np.float32
             bad = np.flatnonzero(_bits(got) != _bits(want))
-            assert bad.size == 0, (name, fma, n, [a[bad[:5]] for a in args], got[bad[:5]], want[bad[:5]])
+            assert bad.size == 0, (
+                name,
+                fma,
+                n,
+                [a[bad[:5]] for a in args],
+                got[bad[:5]],
+                want[bad[:5]],
+            )
 
 
 def test_deferred_check_finds_a_midpoint_and_the_call_falls_back():

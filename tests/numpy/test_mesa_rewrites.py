@@ -12,12 +12,11 @@ from __future__ import annotations
 import math
 
 import numpy as np
-import pytest
 
-from glslcheck.frontend import syntax as A
 from glslcheck.backends.numpy_engine.program import compile_numpy
 from glslcheck.backends.numpy_engine.runtime import Runtime
 from glslcheck.backends.numpy_engine.transpile import transpile_shader
+from glslcheck.frontend import syntax as A
 
 NAN = float("nan")
 INF = float("inf")
@@ -61,12 +60,14 @@ def test_pow_in_one_buffer_equals_the_formula():
             yv = rt.const_float(y)
             with np.errstate(all="ignore"):
                 want = np.where((x == 0) | np.isnan(x), rt.F(0), np.exp2(yv * np.log2(x)))
-                assert _same(rt.pow(x, yv), want), (prec, y)          # lanes ** uniform
+                assert _same(rt.pow(x, yv), want), (prec, y)  # lanes ** uniform
                 assert _same(rt.pow(x[:, None].repeat(2, 1), yv), np.stack([want, want], 1))  # vec2
                 ys = np.full(x.shape, yv)
-                assert _same(rt.pow(x, ys), want), (prec, y)          # lanes ** lanes
-                assert _same(rt.pow(x[4:5], ys), np.where(np.isnan(x[4]) | (x[4] == 0), rt.F(0),
-                                                            np.exp2(ys * np.log2(x[4])))), (prec, y)
+                assert _same(rt.pow(x, ys), want), (prec, y)  # lanes ** lanes
+                assert _same(
+                    rt.pow(x[4:5], ys),
+                    np.where(np.isnan(x[4]) | (x[4] == 0), rt.F(0), np.exp2(ys * np.log2(x[4]))),
+                ), (prec, y)
             assert rt.pow(x, yv).dtype == rt.F
 
 
@@ -74,7 +75,9 @@ def test_pow_const_vector_exponent_is_per_component():
     x = np.full((3, 2), -0.5, dtype=np.float32)
     got = RT.pow_const(x, (2.0, 3.0, 0.0))
     assert got.shape == (3, 2)
-    assert _same(got[0], _f(0.25, 0.25)) and np.all(np.isnan(got[1])) and _same(got[2], _f(1.0, 1.0))
+    assert (
+        _same(got[0], _f(0.25, 0.25)) and np.all(np.isnan(got[1])) and _same(got[2], _f(1.0, 1.0))
+    )
     assert _same(RT.pow_const(x, (4.0, 4.0, 4.0)), np.full((3, 2), 0.0625, np.float32))
     assert _same(RT.pow_one(_f(INF, NAN, 2.0)), _f(1.0, 1.0, 1.0))
 
@@ -92,17 +95,20 @@ def test_atan_of_nan_is_zero():
 
 
 def test_transpiler_emits_the_rewrites(make_shader):
-    code = transpile_shader(make_shader(
-        "const float E = 4.0;\n"
-        "void mainImage(out vec4 o, in vec2 f) {\n"
-        "    float x = -f.x;\n"
-        "    o = vec4(pow(x, 2.0), pow(x, E), pow(x, 3.0), pow(1.0, x))\n"
-        "      + pow(vec4(x), vec4(1.0, 0.0, 0.5, 2.0)) + pow(2.0, x) + pow(vec2(2.0), vec2(x)).x;\n"
-        "}\n"))
+    code = transpile_shader(
+        make_shader(
+            "const float E = 4.0;\n"
+            "void mainImage(out vec4 o, in vec2 f) {\n"
+            "    float x = -f.x;\n"
+            "    o = vec4(pow(x, 2.0), pow(x, E), pow(x, 3.0), pow(1.0, x))\n"
+            "      + pow(vec4(x), vec4(1.0, 0.0, 0.5, 2.0)) + pow(2.0, x) + pow(vec2(2.0), vec2(x)).x;\n"
+            "}\n"
+        )
+    )
     code = code if isinstance(code, str) else str(code)
     assert "rt.pow_const(v_x, 2.0)" in code
     assert "rt.pow_const(v_x, 4.0)" in code
-    assert "rt.pow(v_x, " in code                       # 3.0: not rewritten
+    assert "rt.pow(v_x, " in code  # 3.0: not rewritten
     assert "rt.pow_one(v_x)" in code
     assert "rt.exp2(v_x)" in code and "rt.exp2(rt.vec(2, v_x))" in code  # fpow(2.0, a) -> fexp2(a)
     assert "(1.0, 0.0, 0.5, 2.0))" in code
@@ -192,7 +198,9 @@ def test_nir_fold_on_a_chain_of_thousands_of_terms_is_linear(make_shader, monkey
         if hasattr(module, "to_glsl"):
             monkeypatch.setattr(module, "to_glsl", counting)
     body = " + ".join(f"sin(x * {k % 13}.0)" for k in range(3000))
-    source = ("void mainImage(out vec4 o, in vec2 f) {\n    float x = f.x;\n"
-              f"    x = {body};\n    o = vec4(x);\n}}\n")
+    source = (
+        "void mainImage(out vec4 o, in vec2 f) {\n    float x = f.x;\n"
+        f"    x = {body};\n    o = vec4(x);\n}}\n"
+    )
     transpile_shader(make_shader(source), "Image")
     assert printed[0] < 10 * len(source), printed[0]

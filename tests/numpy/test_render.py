@@ -17,14 +17,16 @@ import os
 import numpy as np
 import pytest
 
-from glslcheck.verification.compare import compare
-from glslcheck.backends.numpy_engine import tiles as F
 from glslcheck.backends.numpy_engine import program as P
+from glslcheck.backends.numpy_engine import tiles as F
 from glslcheck.shadertoy.sources import load_shader
+from glslcheck.verification.compare import compare
 
 ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
-CORPUS = sorted(glob.glob(os.path.join(ROOT, "tests", "corpus", "*.glsl"))
-                + glob.glob(os.path.join(ROOT, "tests", "corpus", "*.frag")))
+CORPUS = sorted(
+    glob.glob(os.path.join(ROOT, "tests", "corpus", "*.glsl"))
+    + glob.glob(os.path.join(ROOT, "tests", "corpus", "*.frag"))
+)
 LABS = sorted(p for p in glob.glob(os.path.join(ROOT, "lab_shaders", "*")) if os.path.isdir(p))
 
 
@@ -90,7 +92,9 @@ def test_corpus_same_with_and_without_compaction(path):
 
 
 def test_shape_orientation_alpha(make_shader):
-    img = P.compile_numpy(make_shader(_image("fragColor = vec4(fragCoord, fragCoord.y / iResolution.y, 0.25);"))).render(size=(5, 3))
+    img = P.compile_numpy(
+        make_shader(_image("fragColor = vec4(fragCoord, fragCoord.y / iResolution.y, 0.25);"))
+    ).render(size=(5, 3))
     assert img.shape == (3, 5, 4) and img.dtype == np.float32
     assert np.array_equal(img[0, :, 0], np.arange(5) + 0.5)
     assert np.array_equal(img[:, 0, 1], [2.5, 1.5, 0.5])
@@ -98,8 +102,10 @@ def test_shape_orientation_alpha(make_shader):
 
 
 def test_inputs_match_gl(gl, make_shader):
-    body = ("fragColor = vec4(iTime + float(iFrame), iMouse.x + iMouse.w + iTimeDelta, "
-            "iDate.x + iDate.y + iDate.z + iDate.w + iFrameRate, iChannelTime[1]);")
+    body = (
+        "fragColor = vec4(iTime + float(iFrame), iMouse.x + iMouse.w + iTimeDelta, "
+        "iDate.x + iDate.y + iDate.z + iDate.w + iFrameRate, iChannelTime[1]);"
+    )
     _exact(gl, make_shader(_image(body)), size=(3, 2), time=1.25, frame=7, mouse=(10, 20, 30, -4))
 
 
@@ -162,7 +168,9 @@ def test_switch_fall_through(gl, make_shader):
 
 def test_discard_keeps_the_clear_colour(gl, make_shader):
     helpers = "void kill(float x) { if (x > 5.0) discard; }"
-    body = "if (fragCoord.y < 2.0) discard; kill(fragCoord.x); fragColor = vec4(0.5, 0.25, 1.0, 1.0);"
+    body = (
+        "if (fragCoord.y < 2.0) discard; kill(fragCoord.x); fragColor = vec4(0.5, 0.25, 1.0, 1.0);"
+    )
     img = _exact(gl, make_shader(_image(body, helpers)), size=(8, 4))
     assert np.all(img[-2:] == 0.0) and np.all(img[:2, 5:] == 0.0) and np.all(img[:2, :5, 3] == 1.0)
 
@@ -245,10 +253,15 @@ def test_out_of_range_dynamic_index_is_clamped(make_shader):
 
 
 def test_precision_modes_use_their_dtypes(make_shader):
-    prog = P.compile_numpy(make_shader(_image(
-        # u is 1 at run time but no constant: Mesa would reassociate (1.0 + t) - 1.0 into t
-        "float e = 1.0 / 1024.0; float t = iTime * 1e-8; float u = iResolution.x / iResolution.x;"
-        "fragColor = vec4((1.0 + e * 0.4 - 1.0) * 1024.0, (1.0 + t - u) * 1e8, 0.0, 1.0);")))
+    prog = P.compile_numpy(
+        make_shader(
+            _image(
+                # u is 1 at run time but no constant: Mesa would reassociate (1.0 + t) - 1.0 into t
+                "float e = 1.0 / 1024.0; float t = iTime * 1e-8; float u = iResolution.x / iResolution.x;"
+                "fragColor = vec4((1.0 + e * 0.4 - 1.0) * 1024.0, (1.0 + t - u) * 1e8, 0.0, 1.0);"
+            )
+        )
+    )
     seen = {}
     for precision in ("float16", "float32", "float64"):
         ns = prog.module(precision)
@@ -256,7 +269,11 @@ def test_precision_modes_use_their_dtypes(make_shader):
         img = prog.render(size=(1, 1), time=1.0, precision=precision)
         assert img.dtype == np.float32
         seen[precision + "-img"] = img[0, 0, :2]
-    assert seen["float16"] is np.float16 and seen["float32"] is np.float32 and seen["float64"] is np.float64
+    assert (
+        seen["float16"] is np.float16
+        and seen["float32"] is np.float32
+        and seen["float64"] is np.float64
+    )
     assert seen["float16-img"][0] == 0.0  # 1 + 0.0004 rounds to 1 in half precision
     assert seen["float32-img"][0] == pytest.approx(0.4, abs=1e-3) and seen["float32-img"][1] == 0.0
     assert seen["float64-img"][1] == pytest.approx(1.0, abs=1e-6)

@@ -94,7 +94,9 @@ def test_matrix_products():
     assert RT.mat_mul_vec(m, v)[:, 0].tolist() == [4.0, 6.0]
     assert RT.vec_mul_mat(v, m)[:, 0].tolist() == [3.0, 7.0]
     mm = RT.mat_mul_mat(m, m)
-    np.testing.assert_array_equal(mm[..., 0].T, np.array([[1, 3], [2, 4]]) @ np.array([[1, 3], [2, 4]]))
+    np.testing.assert_array_equal(
+        mm[..., 0].T, np.array([[1, 3], [2, 4]]) @ np.array([[1, 3], [2, 4]])
+    )
     # non-square: mat3x2 (3 columns of vec2) * vec3 -> vec2
     m32 = RT.mat(3, 2, 1.0, 2.0, 3.0, 4.0, 5.0, 6.0)
     assert RT.mat_mul_vec(m32, RT.vec(3, 1.0, 1.0, 1.0))[:, 0].tolist() == [9.0, 12.0]
@@ -116,14 +118,14 @@ def test_determinant_and_inverse_against_numpy():
 
 
 def test_int_division_truncates_and_wraps():
-    a = np.array([-7, 7, -7, 7, 0, -2**31], dtype=np.int32)
+    a = np.array([-7, 7, -7, 7, 0, -(2**31)], dtype=np.int32)
     b = np.array([2, 2, -2, -2, 0, -1], dtype=np.int32)
-    assert RT.div(a, b).tolist() == [-3, 3, 3, -3, 0, -2**31]
+    assert RT.div(a, b).tolist() == [-3, 3, 3, -3, 0, -(2**31)]
     assert RT.div(I(5), I(0)).tolist() == [0]
-    assert RT.add(I(2**31 - 1), I(1)).tolist() == [-2**31]
+    assert RT.add(I(2**31 - 1), I(1)).tolist() == [-(2**31)]
     assert RT.mul(I(65536), I(65536)).tolist() == [0]
-    assert RT.sub(I(-2**31), I(1)).tolist() == [2**31 - 1]
-    assert RT.neg(I(-2**31)).tolist() == [-2**31]
+    assert RT.sub(I(-(2**31)), I(1)).tolist() == [2**31 - 1]
+    assert RT.neg(I(-(2**31))).tolist() == [-(2**31)]
     assert RT.sub(U(0), U(1)).tolist() == [0xFFFFFFFF]
     assert RT.div(U(7), U(0)).tolist() == [0xFFFFFFFF]
     assert RT.div(U(7), U(2)).tolist() == [3]
@@ -139,7 +141,7 @@ def test_remainder_runtime_and_constant_forms():
 
 
 def test_shifts_and_bits():
-    assert RT.shl(I(1), I(31)).tolist() == [-2**31]
+    assert RT.shl(I(1), I(31)).tolist() == [-(2**31)]
     assert RT.shl(I(1), I(32)).tolist() == [1]
     assert RT.shr(I(-8), I(1)).tolist() == [-4]
     assert RT.shr(U(0x80000000), U(31)).tolist() == [1]
@@ -174,7 +176,7 @@ def test_comparisons_and_logic():
 # ---------------------------------------------------------------- conversions
 def test_float_to_int_and_uint_edges():
     x = np.array([3.99, -3.99, NAN, np.inf, -np.inf, 3e9, -3e9, -0.99], dtype=np.float32)
-    assert RT.to_int(x).tolist() == [3, -3, -2**31, -2**31, -2**31, -2**31, -2**31, 0]
+    assert RT.to_int(x).tolist() == [3, -3, -(2**31), -(2**31), -(2**31), -(2**31), -(2**31), 0]
     # uint(x) of negative, NaN and huge x: the CPU decides (test_driver_profile.py has the models)
     y = np.array([-0.5, -1.0, 3e9, 5e9, NAN, 2.7], dtype=np.float32)
     avx512 = Runtime("float32", float_to_uint="avx512")
@@ -217,7 +219,14 @@ def test_dynamic_index_clamps_per_lane(size):
     assert RT.index(arr, 1).tolist() == [10.0]
     vecs = np.stack([RT.vec(2, float(k), -float(k)) for k in range(size)])  # vec2[size]
     got = RT.index(vecs, idx)
-    assert got.shape == (2, 6) and got[1].tolist() == [0, 0, -1, -(size - 1), -(size - 1), -(size - 1)]
+    assert got.shape == (2, 6) and got[1].tolist() == [
+        0,
+        0,
+        -1,
+        -(size - 1),
+        -(size - 1),
+        -(size - 1),
+    ]
 
 
 def test_assign_index_per_lane_with_mask():
@@ -394,16 +403,59 @@ def test_texture_unsupported_raises():
 
 
 # ---------------------------------------------------------------- precision modes keep dtype
-ALL_FLOAT_FUNCS_1 = ["radians", "degrees", "sin", "cos", "tan", "asin", "acos", "atan", "sinh",
-                     "cosh", "tanh", "asinh", "acosh", "atanh", "exp", "log", "exp2", "log2",
-                     "sqrt", "inversesqrt", "abs", "sign", "floor", "ceil", "trunc", "round",
-                     "roundEven", "fract", "length", "normalize", "neg"]
-ALL_FLOAT_FUNCS_2 = ["add", "sub", "mul", "div", "pow", "mod", "min_", "max_", "step", "atan",
-                     "distance", "dot", "matrixCompMult"]
+ALL_FLOAT_FUNCS_1 = [
+    "radians",
+    "degrees",
+    "sin",
+    "cos",
+    "tan",
+    "asin",
+    "acos",
+    "atan",
+    "sinh",
+    "cosh",
+    "tanh",
+    "asinh",
+    "acosh",
+    "atanh",
+    "exp",
+    "log",
+    "exp2",
+    "log2",
+    "sqrt",
+    "inversesqrt",
+    "abs",
+    "sign",
+    "floor",
+    "ceil",
+    "trunc",
+    "round",
+    "roundEven",
+    "fract",
+    "length",
+    "normalize",
+    "neg",
+]
+ALL_FLOAT_FUNCS_2 = [
+    "add",
+    "sub",
+    "mul",
+    "div",
+    "pow",
+    "mod",
+    "min_",
+    "max_",
+    "step",
+    "atan",
+    "distance",
+    "dot",
+    "matrixCompMult",
+]
 
 
-@pytest.mark.parametrize("precision,dtype", [("float16", np.float16), ("float32", np.float32),
-                                             ("float64", np.float64)])
+@pytest.mark.parametrize(
+    "precision,dtype", [("float16", np.float16), ("float32", np.float32), ("float64", np.float64)]
+)
 def test_precision_modes_keep_dtype(precision, dtype):
     rt = Runtime(precision)
     with rt.errstate():
@@ -423,8 +475,15 @@ def test_precision_modes_keep_dtype(precision, dtype):
         assert rt.reflect(v, v).dtype == dtype and rt.refract(v, v, rt.f(0.5)).dtype == dtype
         assert rt.faceforward(v, v, v).dtype == dtype
         m = rt.mat(3, 3, rt.f(2.0))
-        for out in (rt.mat_mul_vec(m, v), rt.vec_mul_mat(v, m), rt.mat_mul_mat(m, m),
-                    rt.inverse(m), rt.determinant(m), rt.transpose(m), rt.outerProduct(v, v)):
+        for out in (
+            rt.mat_mul_vec(m, v),
+            rt.vec_mul_mat(v, m),
+            rt.mat_mul_mat(m, m),
+            rt.inverse(m),
+            rt.determinant(m),
+            rt.transpose(m),
+            rt.outerProduct(v, v),
+        ):
             assert out.dtype == dtype
         assert rt.modf(x)[0].dtype == dtype and rt.modf(x)[1].dtype == dtype
         assert rt.to_float(I(3)).dtype == dtype

@@ -8,7 +8,6 @@ context can be created, unless the CI environment variable is set, in which case
 
 from __future__ import annotations
 
-
 import numpy as np
 import pytest
 
@@ -30,8 +29,10 @@ def gl(gl):
     vbo = ctx.buffer(np.array([-1, -1, 3, -1, -1, 3], dtype="f4").tobytes())
 
     def render(decl: str, body: str, uniforms: dict, size=(1, 1), textures=()):
-        fs = ("#version 300 es\nprecision highp float;\nprecision highp int;\n"
-              f"{decl}\nout ivec4 o;\nvoid main() {{ o = ivec4(0); {body} }}\n")
+        fs = (
+            "#version 300 es\nprecision highp float;\nprecision highp int;\n"
+            f"{decl}\nout ivec4 o;\nvoid main() {{ o = ivec4(0); {body} }}\n"
+        )
         prog = ctx.program(vertex_shader=vs, fragment_shader=fs)
         for k, v in uniforms.items():
             if k in prog:
@@ -60,8 +61,10 @@ RT = Runtime("float32")
 F = RT.const_float
 I = RT.const_int
 U = RT.const_uint
-UNIF = ("uniform float a; uniform float b; uniform float c; uniform int i; uniform int j;"
-        " uniform uint u; uniform uint v;")
+UNIF = (
+    "uniform float a; uniform float b; uniform float c; uniform int i; uniform int j;"
+    " uniform uint u; uniform uint v;"
+)
 
 # (id, GLSL float expression, uniforms, runtime function of the same uniforms)
 FLOAT_CASES = [
@@ -71,28 +74,56 @@ FLOAT_CASES = [
     ("pow(nan,1)", "pow(a, b)", dict(a=NAN, b=1.0), lambda a, b: RT.pow(a, b)),
     ("pow(inf,0)", "pow(a, b)", dict(a=INF, b=0.0), lambda a, b: RT.pow(a, b)),
     ("pow(1,inf)", "pow(a, b)", dict(a=1.0, b=INF), lambda a, b: RT.pow(a, b)),
-    ("normalize(vec3(0))", "normalize(vec3(a)).x", dict(a=0.0),
-     lambda a: RT.normalize(RT.vec(3, a))[0]),
+    (
+        "normalize(vec3(0))",
+        "normalize(vec3(a)).x",
+        dict(a=0.0),
+        lambda a: RT.normalize(RT.vec(3, a))[0],
+    ),
     ("normalize(0.0)", "normalize(a)", dict(a=0.0), lambda a: RT.normalize(a)),
     ("sqrt(-1)", "sqrt(a)", dict(a=-1.0), lambda a: RT.sqrt(a)),
     ("log(0)", "log(a)", dict(a=0.0), lambda a: RT.log(a)),
     ("log(-1)", "log(a)", dict(a=-1.0), lambda a: RT.log(a)),
     ("log2(0)", "log2(a)", dict(a=0.0), lambda a: RT.log2(a)),
     ("inversesqrt(0)", "inversesqrt(a)", dict(a=0.0), lambda a: RT.inversesqrt(a)),
-    ("smoothstep(1,1,0.5)", "smoothstep(a, b, c)", dict(a=1.0, b=1.0, c=0.5),
-     lambda a, b, c: RT.smoothstep(a, b, c)),
-    ("smoothstep(1,1,1)", "smoothstep(a, b, c)", dict(a=1.0, b=1.0, c=1.0),
-     lambda a, b, c: RT.smoothstep(a, b, c)),
-    ("smoothstep(1,1,2)", "smoothstep(a, b, c)", dict(a=1.0, b=1.0, c=2.0),
-     lambda a, b, c: RT.smoothstep(a, b, c)),
-    ("smoothstep(2,1,1.5)", "smoothstep(a, b, c)", dict(a=2.0, b=1.0, c=1.5),
-     lambda a, b, c: RT.smoothstep(a, b, c)),
+    (
+        "smoothstep(1,1,0.5)",
+        "smoothstep(a, b, c)",
+        dict(a=1.0, b=1.0, c=0.5),
+        lambda a, b, c: RT.smoothstep(a, b, c),
+    ),
+    (
+        "smoothstep(1,1,1)",
+        "smoothstep(a, b, c)",
+        dict(a=1.0, b=1.0, c=1.0),
+        lambda a, b, c: RT.smoothstep(a, b, c),
+    ),
+    (
+        "smoothstep(1,1,2)",
+        "smoothstep(a, b, c)",
+        dict(a=1.0, b=1.0, c=2.0),
+        lambda a, b, c: RT.smoothstep(a, b, c),
+    ),
+    (
+        "smoothstep(2,1,1.5)",
+        "smoothstep(a, b, c)",
+        dict(a=2.0, b=1.0, c=1.5),
+        lambda a, b, c: RT.smoothstep(a, b, c),
+    ),
     ("mod(-7.5,2)", "mod(a, b)", dict(a=-7.5, b=2.0), lambda a, b: RT.mod(a, b)),
     ("mod(1,0)", "mod(a, b)", dict(a=1.0, b=0.0), lambda a, b: RT.mod(a, b)),
-    ("clamp(0.5,1,0)", "clamp(a, b, c)", dict(a=0.5, b=1.0, c=0.0),
-     lambda a, b, c: RT.clamp(a, b, c)),
-    ("clamp(nan,0,1)", "clamp(a, b, c)", dict(a=NAN, b=0.0, c=1.0),
-     lambda a, b, c: RT.clamp(a, b, c)),
+    (
+        "clamp(0.5,1,0)",
+        "clamp(a, b, c)",
+        dict(a=0.5, b=1.0, c=0.0),
+        lambda a, b, c: RT.clamp(a, b, c),
+    ),
+    (
+        "clamp(nan,0,1)",
+        "clamp(a, b, c)",
+        dict(a=NAN, b=0.0, c=1.0),
+        lambda a, b, c: RT.clamp(a, b, c),
+    ),
     ("min(nan,1)", "min(a, b)", dict(a=NAN, b=1.0), lambda a, b: RT.min_(a, b)),
     ("max(1,nan)", "max(a, b)", dict(a=1.0, b=NAN), lambda a, b: RT.max_(a, b)),
     ("round(2.5)", "round(a)", dict(a=2.5), lambda a: RT.round(a)),
@@ -129,11 +160,19 @@ FLOAT_CASES = [
     ("abs(-0.0)", "abs(a)", dict(a=-0.0), lambda a: RT.abs(a)),
     ("mix(inf,1,1)", "mix(a, b, c)", dict(a=INF, b=1.0, c=1.0), lambda a, b, c: RT.mix(a, b, c)),
     ("modf(-2.5)", "modf(a, c)", dict(a=-2.5), lambda a: RT.modf(a)[0]),
-    ("unpackSnorm(0x8000)", "unpackSnorm2x16(u).x", dict(u=0x8000),
-     lambda u: RT.unpackSnorm2x16(u)[0]),
+    (
+        "unpackSnorm(0x8000)",
+        "unpackSnorm2x16(u).x",
+        dict(u=0x8000),
+        lambda u: RT.unpackSnorm2x16(u)[0],
+    ),
     ("unpackHalf(nan)", "unpackHalf2x16(u).x", dict(u=0x7E00), lambda u: RT.unpackHalf2x16(u)[0]),
-    ("intBitsToFloat(nan payload)", "intBitsToFloat(i)", dict(i=0x7FC00001),
-     lambda i: RT.intBitsToFloat(i)),
+    (
+        "intBitsToFloat(nan payload)",
+        "intBitsToFloat(i)",
+        dict(i=0x7FC00001),
+        lambda i: RT.intBitsToFloat(i),
+    ),
 ]
 
 INT_CASES = [
@@ -145,7 +184,7 @@ INT_CASES = [
     ("7%0", "i % j", dict(i=7, j=0), lambda i, j: RT.rem(i, j)),
     ("7/0", "i / j", dict(i=7, j=0), lambda i, j: RT.div(i, j)),
     ("-7/0", "i / j", dict(i=-7, j=0), lambda i, j: RT.div(i, j)),
-    ("INT_MIN/-1", "i / j", dict(i=-2**31, j=-1), lambda i, j: RT.div(i, j)),
+    ("INT_MIN/-1", "i / j", dict(i=-(2**31), j=-1), lambda i, j: RT.div(i, j)),
     ("2147483647+1", "i + j", dict(i=2**31 - 1, j=1), lambda i, j: RT.add(i, j)),
     ("65536*65536", "i * j", dict(i=65536, j=65536), lambda i, j: RT.mul(i, j)),
     ("1<<32", "i << j", dict(i=1, j=32), lambda i, j: RT.shl(i, j)),
@@ -153,12 +192,22 @@ INT_CASES = [
     ("1<<-1", "i << j", dict(i=1, j=-1), lambda i, j: RT.shl(i, j)),
     ("-8>>1", "i >> j", dict(i=-8, j=1), lambda i, j: RT.shr(i, j)),
     ("-8>>33", "i >> j", dict(i=-8, j=33), lambda i, j: RT.shr(i, j)),
-    ("abs(INT_MIN)", "abs(i)", dict(i=-2**31), lambda i: RT.abs(i)),
+    ("abs(INT_MIN)", "abs(i)", dict(i=-(2**31)), lambda i: RT.abs(i)),
     ("uint 7/0", "int(u / v)", dict(u=7, v=0), lambda u, v: RT.to_int(RT.div(u, v))),
     ("uint 7%0", "int(u % v)", dict(u=7, v=0), lambda u, v: RT.to_int(RT.rem(u, v))),
     ("0u-1u", "int(u - v)", dict(u=0, v=1), lambda u, v: RT.to_int(RT.sub(u, v))),
-    ("0x80000000u>>31", "int(u >> v)", dict(u=0x80000000, v=31), lambda u, v: RT.to_int(RT.shr(u, v))),
-    ("0x80000000u>>32", "int(u >> v)", dict(u=0x80000000, v=32), lambda u, v: RT.to_int(RT.shr(u, v))),
+    (
+        "0x80000000u>>31",
+        "int(u >> v)",
+        dict(u=0x80000000, v=31),
+        lambda u, v: RT.to_int(RT.shr(u, v)),
+    ),
+    (
+        "0x80000000u>>32",
+        "int(u >> v)",
+        dict(u=0x80000000, v=32),
+        lambda u, v: RT.to_int(RT.shr(u, v)),
+    ),
 ] + [
     (f"int({x})", "int(a)", dict(a=x), lambda a: RT.to_int(a))
     for x in (3.99, -3.99, NAN, INF, -INF, 3e9, -3e9, 2147483520.0, -2147483648.0, -0.99)
@@ -261,11 +310,20 @@ BULK = [
     ("normalize(vec2(a, b)).y", lambda a, b: RT.normalize(RT.vec(2, a, b))[1], 0, (-10, 10)),
     # With a literal component Mesa/LLVM reassociate the dot product (x*x + (y*y + 1.0)), so
     # ~1% of results differ by 1-2 ULP from our left-to-right sum.
-    ("normalize(vec3(a, b, 1.0)).y", lambda a, b: RT.normalize(RT.vec(3, a, b, 1.0))[1], 2, (-10, 10)),
+    (
+        "normalize(vec3(a, b, 1.0)).y",
+        lambda a, b: RT.normalize(RT.vec(3, a, b, 1.0))[1],
+        2,
+        (-10, 10),
+    ),
     ("mix(a, b, 0.3)", lambda a, b: RT.mix(a, b, F(0.3)), 0, (-10, 10)),
     ("smoothstep(0.0, 1.0, a)", lambda a, b: RT.smoothstep(F(0.0), F(1.0), a), 0, (-1, 2)),
-    ("cross(vec3(a, b, 1.0), vec3(b, 1.5, a)).x",
-     lambda a, b: RT.cross(RT.vec(3, a, b, 1.0), RT.vec(3, b, 1.5, a))[0], 0, (-10, 10)),
+    (
+        "cross(vec3(a, b, 1.0), vec3(b, 1.5, a)).x",
+        lambda a, b: RT.cross(RT.vec(3, a, b, 1.0), RT.vec(3, b, 1.5, a))[0],
+        0,
+        (-10, 10),
+    ),
     ("round(a)", lambda a, b: RT.round(RT.mul(RT.round(RT.mul(a, 2.0)), 0.5)), None, (-10, 10)),
     ("radians(a)", lambda a, b: RT.radians(a), 0, (-10, 10)),
     ("sin(a)", lambda a, b: RT.sin(a), 2, (-10, 10)),
@@ -292,8 +350,10 @@ def test_bulk_random_inputs_against_llvmpipe(gl, case):
     ta = ctx.texture((w, h), 1, a.tobytes(), dtype="f4")
     tb = ctx.texture((w, h), 1, b.tobytes(), dtype="f4")
     decl = "uniform highp sampler2D A; uniform highp sampler2D B;"
-    body = ("ivec2 q = ivec2(gl_FragCoord.xy); float a = texelFetch(A, q, 0).x;"
-            f" float b = texelFetch(B, q, 0).x; o.x = floatBitsToInt({expr});")
+    body = (
+        "ivec2 q = ivec2(gl_FragCoord.xy); float a = texelFetch(A, q, 0).x;"
+        f" float b = texelFetch(B, q, 0).x; o.x = floatBitsToInt({expr});"
+    )
     got = gl(decl, body, {}, size=(w, h), textures=(("A", ta), ("B", tb)))[:, 0].view(np.float32)
     ta.release()
     tb.release()
@@ -309,9 +369,14 @@ def test_derivatives_match_llvmpipe_fine_quads(gl):
     w = h = 6
     decl = ""
     v = "float v = p.x * p.x * p.x + 100.0 * p.y * p.y * p.y + 10.0 * p.x * p.y;"
-    res = gl(decl, f"vec2 p = gl_FragCoord.xy; {v} o.x = floatBitsToInt(v);"
-             " o.y = floatBitsToInt(dFdx(v)); o.z = floatBitsToInt(dFdy(v));"
-             " o.w = floatBitsToInt(fwidth(v));", {}, size=(w, h))
+    res = gl(
+        decl,
+        f"vec2 p = gl_FragCoord.xy; {v} o.x = floatBitsToInt(v);"
+        " o.y = floatBitsToInt(dFdx(v)); o.z = floatBitsToInt(dFdy(v));"
+        " o.w = floatBitsToInt(fwidth(v));",
+        {},
+        size=(w, h),
+    )
     vals = res.view(np.float32)
     ours_v = vals[:, 0]  # lane = y * w + x, y from the bottom: what the GL readback gives
     np.testing.assert_array_equal(RT.dFdx(ours_v, w), vals[:, 1])

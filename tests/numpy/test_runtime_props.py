@@ -106,7 +106,10 @@ def test_mod_is_the_spec_formula_in_float32(x, y):
 
 
 @SET
-@given(st.floats(min_value=0.0, max_value=1.0000000150474662e+30, width=32, allow_subnormal=False), finite)
+@given(
+    st.floats(min_value=0.0, max_value=1.0000000150474662e30, width=32, allow_subnormal=False),
+    finite,
+)
 def test_sqrt_and_division_correctly_rounded(x, y):
     # IEEE sqrt and division are correctly rounded: float32(float64 result) is the exact answer
     # (float64 has > 2*24+2 bits, so the double rounding is innocuous).
@@ -136,8 +139,10 @@ def test_exp2_relative_error(x):
 
 
 @SET
-@given(st.floats(min_value=-1e4, max_value=1e4, width=32, allow_subnormal=False),
-       st.floats(min_value=-1e4, max_value=1e4, width=32, allow_subnormal=False))
+@given(
+    st.floats(min_value=-1e4, max_value=1e4, width=32, allow_subnormal=False),
+    st.floats(min_value=-1e4, max_value=1e4, width=32, allow_subnormal=False),
+)
 def test_atan2_absolute_error(y, x):
     # Mesa's degree-11 odd polynomial for atan on [0, 1] has max error ~1e-5 rad (its
     # coefficients are a minimax fit to ~6e-6); range reduction adds a few float32 ULPs of
@@ -186,10 +191,27 @@ def test_mix_clamp_smoothstep_formulas(x, y, a):
 
 
 @SET
-@given(st.sampled_from(["float16", "float32", "float64"]),
-       st.lists(st.floats(min_value=-10, max_value=10, width=16), min_size=1, max_size=5),
-       st.sampled_from(["sin", "exp", "sqrt", "fract", "floor", "sign", "normalize", "tanh",
-                        "atan", "asin", "round", "inversesqrt", "log2"]))
+@given(
+    st.sampled_from(["float16", "float32", "float64"]),
+    st.lists(st.floats(min_value=-10, max_value=10, width=16), min_size=1, max_size=5),
+    st.sampled_from(
+        [
+            "sin",
+            "exp",
+            "sqrt",
+            "fract",
+            "floor",
+            "sign",
+            "normalize",
+            "tanh",
+            "atan",
+            "asin",
+            "round",
+            "inversesqrt",
+            "log2",
+        ]
+    ),
+)
 def test_dtype_is_preserved(precision, values, name):
     rt = Runtime(precision)
     x = np.array(values, dtype=rt.F)

@@ -15,10 +15,10 @@ import traceback
 import numpy as np
 import pytest
 
-from glslcheck.base.diagnostics import GlslError
-from glslcheck.backends.numpy_engine import tiles as F
 from glslcheck.backends.numpy_engine import program as P
+from glslcheck.backends.numpy_engine import tiles as F
 from glslcheck.backends.numpy_engine.transpile import LOOP_CAP, transpile_shader
+from glslcheck.base.diagnostics import GlslError
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 SNAPSHOTS = os.path.join(HERE, "snapshots")
@@ -29,8 +29,10 @@ def _image(body: str, helpers: str = "") -> str:
 
 
 SNAPSHOT_SHADERS = {
-    "gradient": _image("    vec2 uv = fragCoord / iResolution.xy;\n"
-                       "    fragColor = vec4(uv, 0.5 + 0.5 * sin(iTime), 1.0);"),
+    "gradient": _image(
+        "    vec2 uv = fragCoord / iResolution.xy;\n"
+        "    fragColor = vec4(uv, 0.5 + 0.5 * sin(iTime), 1.0);"
+    ),
     "raymarch": """float map(vec3 p) {
     return length(p - vec3(0.0, 0.0, 4.0)) - 1.0;
 }
@@ -84,7 +86,9 @@ def test_generated_code_snapshot(make_shader, name):
         with open(path, "w", encoding="utf-8") as f:
             f.write(source)
     with open(path, encoding="utf-8") as f:
-        assert source == f.read(), f"generated code changed; rerun with UPDATE_SNAPSHOTS=1 and review {path}"
+        assert source == f.read(), (
+            f"generated code changed; rerun with UPDATE_SNAPSHOTS=1 and review {path}"
+        )
 
 
 @pytest.mark.parametrize("name", sorted(SNAPSHOT_SHADERS))
@@ -92,25 +96,78 @@ def test_snapshots_are_readable_python(make_shader, name):
     source = transpile_shader(make_shader(SNAPSHOT_SHADERS[name])).source
     compile(source, name, "exec")
     lines = source.splitlines()
-    assert all(not line.startswith("\t") and (len(line) - len(line.lstrip())) % 4 == 0 for line in lines)
+    assert all(
+        not line.startswith("\t") and (len(line) - len(line.lstrip())) % 4 == 0 for line in lines
+    )
     assert any(line.strip().startswith("# line ") for line in lines)
     assert "def f_mainImage(S, _m, v_fragCoord):" in source
 
 
 def test_only_reachable_functions_are_generated(make_shader):
-    src = transpile_shader(make_shader(_image("fragColor = vec4(used());", "float used() { return 1.0; }\n"
-                                              "float unused() { return 2.0; }"))).source
+    src = transpile_shader(
+        make_shader(
+            _image(
+                "fragColor = vec4(used());",
+                "float used() { return 1.0; }\nfloat unused() { return 2.0; }",
+            )
+        )
+    ).source
     assert "def f_used(" in src and "unused" not in src
 
 
 # -- names ---------------------------------------------------------------------------------
 
 
-HOSTILE = ["lambda", "print", "np", "self", "rt", "X", "S", "exec", "eval", "os", "sys", "None",
-           "True", "def", "import", "open", "globals", "compile", "shade", "init_globals",
-           "SHADER_META", "v_x", "f_main", "g_x", "m_x", "C_f_1p0", "Z_float", "_m", "_ret", "_rv",
-           "builtins", "type", "getattr", "breakpoint", "yield", "await", "async", "pass",
-           "del", "is", "not_", "nonlocal", "with", "except", "raise", "finally", "from", "assert"]
+HOSTILE = [
+    "lambda",
+    "print",
+    "np",
+    "self",
+    "rt",
+    "X",
+    "S",
+    "exec",
+    "eval",
+    "os",
+    "sys",
+    "None",
+    "True",
+    "def",
+    "import",
+    "open",
+    "globals",
+    "compile",
+    "shade",
+    "init_globals",
+    "SHADER_META",
+    "v_x",
+    "f_main",
+    "g_x",
+    "m_x",
+    "C_f_1p0",
+    "Z_float",
+    "_m",
+    "_ret",
+    "_rv",
+    "builtins",
+    "type",
+    "getattr",
+    "breakpoint",
+    "yield",
+    "await",
+    "async",
+    "pass",
+    "del",
+    "is",
+    "not_",
+    "nonlocal",
+    "with",
+    "except",
+    "raise",
+    "finally",
+    "from",
+    "assert",
+]
 
 
 def _hostile_shader() -> str:
@@ -132,8 +189,14 @@ def _hostile_shader() -> str:
     body.append("    fragColor = vec4(fract(acc), fract(lambda_ * 0.1), 0.5, 1.0);")
     # A plain GLSL ES file: the `__` names are an error in a Shadertoy tab (no browser compiles
     # them: glslcheck/semantics/webgl_rules.py), a warning here, so they still reach the transpiler.
-    return ("#version 300 es\nprecision highp float;\nout vec4 fragColor;\n" + structs + funcs
-            + "\nvoid main() {\n    vec2 fragCoord = gl_FragCoord.xy;\n" + "\n".join(body) + "\n}\n")
+    return (
+        "#version 300 es\nprecision highp float;\nout vec4 fragColor;\n"
+        + structs
+        + funcs
+        + "\nvoid main() {\n    vec2 fragCoord = gl_FragCoord.xy;\n"
+        + "\n".join(body)
+        + "\n}\n"
+    )
 
 
 def test_hostile_identifiers_are_mangled(make_shader):
@@ -145,16 +208,33 @@ def test_hostile_identifiers_are_mangled(make_shader):
 
     names = {m.group(0) for line in code for m in re.finditer(r"(?<![.\w\"'])[A-Za-z_]\w*", line)}
     for n in HOSTILE:
-        if n in ("rt", "X", "S", "None", "True", "def", "import", "from", "pass", "is", "not_", "_m",
-                 "_ret", "_rv", "SHADER_META", "shade", "init_globals", "globals") or re.match(
-                r"^(C_|Z_|f_|v_|g_|m_|s_|u_)", n):
+        if n in (
+            "rt",
+            "X",
+            "S",
+            "None",
+            "True",
+            "def",
+            "import",
+            "from",
+            "pass",
+            "is",
+            "not_",
+            "_m",
+            "_ret",
+            "_rv",
+            "SHADER_META",
+            "shade",
+            "init_globals",
+            "globals",
+        ) or re.match(r"^(C_|Z_|f_|v_|g_|m_|s_|u_)", n):
             continue  # the generator's own names: the GL comparison below shows they do not clash
         assert n not in names, n
 
 
 def test_hostile_identifiers_render_like_gl(gl, make_shader):
-    from glslcheck.verification.compare import compare
     from glslcheck.backends.gl import compile_gl
+    from glslcheck.verification.compare import compare
 
     shader = make_shader(GLSL=_hostile_shader())
     a = P.compile_numpy(shader).render(size=(40, 20))
@@ -168,7 +248,15 @@ def test_module_runs_without_builtins(make_shader):
     ns = prog.module()
     assert ns["__builtins__"] == {}
     assert set(k for k in ns if not k.startswith(("C_", "Z_", "f_"))) <= {
-        "__builtins__", "__name__", "__doc__", "rt", "X", "SHADER_META", "init_globals", "shade"}
+        "__builtins__",
+        "__name__",
+        "__doc__",
+        "rt",
+        "X",
+        "SHADER_META",
+        "init_globals",
+        "shade",
+    }
 
 
 # -- errors --------------------------------------------------------------------------------
@@ -176,18 +264,25 @@ def test_module_runs_without_builtins(make_shader):
 
 def test_texture_lookup_is_a_located_error(make_shader):
     # iChannel0-3 are sampled (backends/numpy_engine/textures.py); a sampler uniform of the user's own is not
-    shader = make_shader(_image("vec2 uv = fragCoord;\n    fragColor = texture(myTex, uv);", "uniform sampler2D myTex;"))
+    shader = make_shader(
+        _image(
+            "vec2 uv = fragCoord;\n    fragColor = texture(myTex, uv);", "uniform sampler2D myTex;"
+        )
+    )
     with pytest.raises(GlslError) as e:
         transpile_shader(shader)
     d = e.value.diagnostics[0]
     assert "not supported" in d.message and d.loc.line == 4 and d.loc.path == "Image.glsl"
 
 
-@pytest.mark.parametrize("loop", [
-    "for (;;) { acc += 1.0; }",
-    "while (acc >= 0.0) { acc += 1.0; }",
-    "for (int i = 0; i >= 0; i += 0) { acc += fragCoord.x; }",
-])
+@pytest.mark.parametrize(
+    "loop",
+    [
+        "for (;;) { acc += 1.0; }",
+        "while (acc >= 0.0) { acc += 1.0; }",
+        "for (int i = 0; i >= 0; i += 0) { acc += fragCoord.x; }",
+    ],
+)
 def test_endless_loop_is_an_error_naming_its_line(make_shader, loop):
     shader = make_shader(_image(f"    float acc = 0.0;\n    {loop}\n    fragColor = vec4(acc);"))
     prog = P.compile_numpy(shader)
@@ -251,7 +346,9 @@ def test_uniform_values_are_computed_once_per_tile(make_shader):
 
 
 def test_unread_uniforms_are_not_computed_and_static_frames_are_cached(make_shader, monkeypatch):
-    prog = P.compile_numpy(make_shader(_image("fragColor = vec4(fragCoord / iResolution.xy, 0.0, 1.0);")))
+    prog = P.compile_numpy(
+        make_shader(_image("fragColor = vec4(fragCoord / iResolution.xy, 0.0, 1.0);"))
+    )
     assert prog.uniforms == ["iResolution"] and not prog.animated
     calls = []
     ns = prog.module()
@@ -264,7 +361,9 @@ def test_unread_uniforms_are_not_computed_and_static_frames_are_cached(make_shad
     assert len(calls) == 2
     anim = P.compile_numpy(make_shader(_image("fragColor = vec4(sin(iTime));")))
     assert anim.uniforms == ["iTime"] and anim.animated
-    assert anim.render(size=(1, 1), time=0.0)[0, 0, 0] != anim.render(size=(1, 1), time=1.0)[0, 0, 0]
+    assert (
+        anim.render(size=(1, 1), time=0.0)[0, 0, 0] != anim.render(size=(1, 1), time=1.0)[0, 0, 0]
+    )
 
 
 def test_sparse_branches_are_compacted_and_counted(make_shader, monkeypatch):
@@ -302,12 +401,20 @@ def test_generated_module_runs_on_its_own(tmp_path, make_shader):
     module.write_text(src)
     out = tmp_path / "out.npy"
     env = dict(os.environ, PYTHONPATH=os.path.dirname(os.path.dirname(HERE)))
-    subprocess.run([sys.executable, str(module), "-o", str(out), "--size", "6x4", "--time", "1.5"],
-                   check=True, env=env, cwd=tmp_path)
+    subprocess.run(
+        [sys.executable, str(module), "-o", str(out), "--size", "6x4", "--time", "1.5"],
+        check=True,
+        env=env,
+        cwd=tmp_path,
+    )
     img = np.load(out)
-    expected = P.compile_numpy(make_shader(SNAPSHOT_SHADERS["gradient"])).render(size=(6, 4), time=1.5)
+    expected = P.compile_numpy(make_shader(SNAPSHOT_SHADERS["gradient"])).render(
+        size=(6, 4), time=1.5
+    )
     np.testing.assert_array_equal(img, expected)
-    np.testing.assert_array_equal(P.load_module(str(module)).render(size=(6, 4), time=1.5), expected)
+    np.testing.assert_array_equal(
+        P.load_module(str(module)).render(size=(6, 4), time=1.5), expected
+    )
 
 
 def test_public_api(tmp_path):
@@ -335,9 +442,27 @@ def test_cli_render_and_transpile(tmp_path):
     assert main(["render", str(path), "-o", str(tmp_path / "a.png"), "--size", "4x2"]) == 0
     px = np.asarray(Image.open(tmp_path / "a.png"))
     assert px.shape == (2, 4, 4) and px[0, 0].tolist() == [32, 255, 0, 255]
-    assert main(["render", str(path), "-o", str(tmp_path / "a.npy"), "--size", "4x2", "--stats"]) == 0
+    assert (
+        main(["render", str(path), "-o", str(tmp_path / "a.npy"), "--size", "4x2", "--stats"]) == 0
+    )
     assert np.load(tmp_path / "a.npy")[0, 0, 1] == 2.0
-    assert main(["render", str(path), "-o", str(tmp_path / "a.gif"), "--size", "4x2", "--frames", "3", "--fps", "10"]) == 0
+    assert (
+        main(
+            [
+                "render",
+                str(path),
+                "-o",
+                str(tmp_path / "a.gif"),
+                "--size",
+                "4x2",
+                "--frames",
+                "3",
+                "--fps",
+                "10",
+            ]
+        )
+        == 0
+    )
     assert Image.open(tmp_path / "a.gif").n_frames >= 1
     assert main(["render", str(path), "-o", str(tmp_path / "a.bmp")]) == 2
     assert main(["render", str(tmp_path / "missing.glsl")]) == 2
@@ -354,9 +479,12 @@ def test_products_with_nonzero_literals_are_plain_and_fold_as_before(make_shader
     fold there); a zero literal, and one that is zero in float16 (1e-10), keep rt.fmul, whose
     constant zero turns NaN into 0 (Mesa folds x * 0.0). The pixels in every precision are what
     rt.fmul gives: NaN times 0.0 (and times 1e-10 in float16) is 0, times 0.5 stays NaN."""
-    shader = make_shader(_image(
-        "    float n = sqrt(fragCoord.x - 1e9);   // NaN in every pixel\n"
-        "    fragColor = vec4(n * 0.5, n * 0.0, 1e-10 * n, 1.0);"))
+    shader = make_shader(
+        _image(
+            "    float n = sqrt(fragCoord.x - 1e9);   // NaN in every pixel\n"
+            "    fragColor = vec4(n * 0.5, n * 0.0, 1e-10 * n, 1.0);"
+        )
+    )
     source = transpile_shader(shader).source
     assert "(v_n * C_f_0p5)" in source
     assert "rt.fmul(v_n, C_f_0p0)" in source and "rt.fmul(C_f_1em10, v_n)" in source

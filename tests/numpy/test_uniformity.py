@@ -13,13 +13,13 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from glslcheck.backends.numpy_engine import program as P
-from glslcheck.semantics.analysis import written_variable
 from glslcheck.backends.cpu_core.facts import Facts, written_lvalues
-from glslcheck.backends.numpy_engine.transpile import check_program
 from glslcheck.backends.cpu_core.uniformity import Uniformity
-from glslcheck.frontend.parser import parse_shader
+from glslcheck.backends.numpy_engine import program as P
+from glslcheck.backends.numpy_engine.transpile import check_program
 from glslcheck.frontend import syntax as A
+from glslcheck.frontend.parser import parse_shader
+from glslcheck.semantics.analysis import written_variable
 
 
 def _image(body: str, helpers: str = "") -> str:
@@ -48,7 +48,8 @@ def varying(uni, model, name: str) -> bool:
     raise KeyError(name)
 
 
-LIGHTS_AFTER_RETURN = _image("""
+LIGHTS_AFTER_RETURN = _image(
+    """
     if (fragCoord.x < 8.0) { fragColor = vec4(0.0); return; }
     Light L[2];
     L[0] = Light(vec3(1.0, 2.0, 3.0), 0.5 + 0.5 * sin(iTime));
@@ -57,7 +58,9 @@ LIGHTS_AFTER_RETURN = _image("""
     for (int k = 0; k < 2; k++) {
         c += L[k].color * L[k].pos * fragCoord.y;
     }
-    fragColor = vec4(c, 1.0);""", "struct Light { vec3 pos; float color; };\n")
+    fragColor = vec4(c, 1.0);""",
+    "struct Light { vec3 pos; float color; };\n",
+)
 
 
 def test_a_lights_array_built_after_an_early_return_stays_uniform(make_shader):
@@ -70,7 +73,9 @@ def test_a_lights_array_built_after_an_early_return_stays_uniform(make_shader):
 
 
 def test_writes_under_a_varying_condition_keep_their_mask(make_shader):
-    uni, model, writes = analyse(make_shader, _image("""
+    uni, model, writes = analyse(
+        make_shader,
+        _image("""
     float a = 1.0;
     float b = 2.0;
     if (fragCoord.x > 4.0) {
@@ -80,14 +85,17 @@ def test_writes_under_a_varying_condition_keep_their_mask(make_shader):
         b = inner;
     }
     if (iTime > 1.0) { b = 7.0; }
-    fragColor = vec4(a, b, 0.0, 1.0);"""))
+    fragColor = vec4(a, b, 0.0, 1.0);"""),
+    )
     assert writes["a"] == [False] and varying(uni, model, "a")  # other lanes read a after the if
     assert writes["inner"] == [True] and not varying(uni, model, "inner")  # declared in the branch
     assert writes["b"] == [False, True]  # under fragCoord: masked; under iTime: a uniform branch
 
 
 def test_loops_whose_lanes_diverge(make_shader):
-    uni, model, writes = analyse(make_shader, _image("""
+    uni, model, writes = analyse(
+        make_shader,
+        _image("""
     float outer = 0.0;
     float total = 0.0;
     for (int i = 0; i < 8; i++) {
@@ -99,7 +107,8 @@ def test_loops_whose_lanes_diverge(make_shader):
     for (int j = 0; j < 8; j++) {
         total += 1.0;
     }
-    fragColor = vec4(outer, total, 0.0, 1.0);"""))
+    fragColor = vec4(outer, total, 0.0, 1.0);"""),
+    )
     # the lanes that continue come back: outer, from before the loop, is written under the mask;
     # step is declared afresh in every iteration
     assert writes["outer"] == [False] and varying(uni, model, "outer")
@@ -109,13 +118,16 @@ def test_loops_whose_lanes_diverge(make_shader):
 
 
 def test_a_varying_break_makes_the_loop_divergent(make_shader):
-    uni, model, writes = analyse(make_shader, _image("""
+    uni, model, writes = analyse(
+        make_shader,
+        _image("""
     float t = 0.0;
     for (int i = 0; i < 8; i++) {
         if (t > fragCoord.x) break;
         t += 1.0;
     }
-    fragColor = vec4(t);"""))
+    fragColor = vec4(t);"""),
+    )
     assert writes["t"] == [False] and varying(uni, model, "t")
 
 
@@ -139,32 +151,41 @@ def test_where_derivatives_read_neighbours_only_ssa_values_are_free(make_shader)
     # values merged across control flow under the mask: a write at the declaration's level and
     # loop depth is free (w, fragColor), one inside a branch or loop around it keeps its mask (v,
     # u); tests/channels test_derivatives_of_values_computed_under_a_branch against the driver
-    uni, _, writes = analyse(make_shader, _image("""
+    uni, _, writes = analyse(
+        make_shader,
+        _image("""
     float v = fragCoord.x;
     float u = 0.0;
     if (fragCoord.y > 2.0) { float w = 0.0; w = v * v; v = dFdx(w); }
     for (int i = 0; i < 2; i++) u = u + dFdy(v);
-    fragColor = vec4(v + u);"""))
+    fragColor = vec4(v + u);"""),
+    )
     assert writes == {"w": [True], "v": [False], "u": [False], "i": [False], "fragColor": [True]}
 
 
 def test_switch_bodies_keep_their_masks(make_shader):
-    uni, model, writes = analyse(make_shader, _image("""
+    uni, model, writes = analyse(
+        make_shader,
+        _image("""
     float c = 0.0;
     switch (int(iTime)) {
         case 0: float d = 1.0; d = 2.0; c = d; break;
         default: c = 3.0;
     }
-    fragColor = vec4(c);"""))
+    fragColor = vec4(c);"""),
+    )
     assert writes["d"] == [False] and writes["c"] == [False, False]
 
 
 def test_fragment_coordinates_are_varying(make_shader):
-    uni, model, _ = analyse(make_shader, _image("""
+    uni, model, _ = analyse(
+        make_shader,
+        _image("""
     float a = gl_FragCoord.x;
     float b = iResolution.x * 2.0;
     float c = fragCoord.y;
-    fragColor = vec4(a, b, c, 1.0);"""))
+    fragColor = vec4(a, b, c, 1.0);"""),
+    )
     assert varying(uni, model, "a") and varying(uni, model, "c")
     assert not varying(uni, model, "b")
 
@@ -182,7 +203,9 @@ float f(float x) {
     return acc * x;
 }
 """
-    uni, model, writes = analyse(make_shader, _image("fragColor = vec4(f(fragCoord.x));", helpers), "f")
+    uni, model, writes = analyse(
+        make_shader, _image("fragColor = vec4(f(fragCoord.x));", helpers), "f"
+    )
     assert writes["acc"] == [True] and varying(uni, model, "acc")
 
 
@@ -234,12 +257,14 @@ SAME_WITH_MASKS = {
     int n = 0;
     while (t < fragCoord.x) { t += 1.5; n++; }
     fragColor = vec4(acc, t * 0.05, float(n) * 0.1, 1.0);"""),
-    "functions": _image("""
+    "functions": _image(
+        """
     vec3 a; fill(a, fragCoord.x * 0.1);
     float o = 0.0;
     float r = pick(o, fragCoord.y);
     vec3 s = shade(vec3(fragCoord, 1.0));
-    fragColor = vec4(a.x * 0.1 + s.x, o + r, s.z + a.y * 0.1, 1.0);  // (alpha is not kept)""", """
+    fragColor = vec4(a.x * 0.1 + s.x, o + r, s.z + a.y * 0.1, 1.0);  // (alpha is not kept)""",
+        """
 void fill(out vec3 v, float k) { v = vec3(k); v.y = 2.0; }
 float pick(inout float o, float x) { o = 0.5; if (x > 4.0) return 0.25; o = 0.75; return 1.0; }
 struct L { vec3 p; float i; };
@@ -252,7 +277,8 @@ vec3 shade(vec3 p) {
     vec3 c = vec3(0.0);
     for (int k = 0; k < 2; k++) { c += ls[k].i * normalize(ls[k].p - p); }
     return c;
-}"""),
+}""",
+    ),
     "switch": _image("""
     float c = 0.1;
     switch (int(fragCoord.x) % 3) {
@@ -285,7 +311,9 @@ def test_lab_shaders_render_the_same_without_free_writes(monkeypatch):
     fast = {p: P.compile_numpy(s).render(size=(96, 54), time=2.0) for p, s in shaders.items()}
     monkeypatch.setattr(Uniformity, "is_free", lambda self, target: False)
     for p, s in shaders.items():
-        np.testing.assert_array_equal(fast[p], P.compile_numpy(s).render(size=(96, 54), time=2.0), err_msg=p)
+        np.testing.assert_array_equal(
+            fast[p], P.compile_numpy(s).render(size=(96, 54), time=2.0), err_msg=p
+        )
 
 
 def test_uniform_transcendentals_round_as_llvmpipe(gl, make_shader):
@@ -294,12 +322,14 @@ def test_uniform_transcendentals_round_as_llvmpipe(gl, make_shader):
     values computed once, under no mask) equals llvmpipe's bit for bit."""
     from glslcheck.backends.gl import compile_gl
 
-    shader = make_shader(_image("""
+    shader = make_shader(
+        _image("""
     if (fragCoord.x < 4.0) { fragColor = vec4(0.25); return; }
     float s = sin(iTime * 3.7);
     float e = exp2(iTime * 0.37);
     float p = pow(iTime + 0.5, 1.7);
-    fragColor = vec4(s, e * 0.1, p * 0.1, 1.0);"""))
+    fragColor = vec4(s, e * 0.1, p * 0.1, 1.0);""")
+    )
     for t in (0.3, 1.7, 12.9):
         a = P.compile_numpy(shader).render(size=(8, 2), time=t)
         b = compile_gl(shader, gl).render(size=(8, 2), time=t)
@@ -321,10 +351,13 @@ def test_memo_math_gives_the_emulations_bits_and_computes_each_input_once():
         for v in values:
             x = np.array([v], dtype=np.float32)
             for _ in range(2):  # the second time from the table
-                for got, want in ((memo.sin_or_cos(x, cos=False), lp.sin_or_cos(x, cos=False)),
-                                  (memo.sin_or_cos(x, cos=True), lp.sin_or_cos(x, cos=True)),
-                                  (memo.exp2(x), lp.exp2(x)), (memo.log2(x), lp.log2(x)),
-                                  (memo.pow(x, y), lp.pow(x, y))):
+                for got, want in (
+                    (memo.sin_or_cos(x, cos=False), lp.sin_or_cos(x, cos=False)),
+                    (memo.sin_or_cos(x, cos=True), lp.sin_or_cos(x, cos=True)),
+                    (memo.exp2(x), lp.exp2(x)),
+                    (memo.log2(x), lp.log2(x)),
+                    (memo.pow(x, y), lp.pow(x, y)),
+                ):
                     assert got.tobytes() == want.tobytes()
     assert memo.misses == 5 * len(values) and memo.hits == 5 * len(values)
     lanes = np.linspace(-10, 10, 1000, dtype=np.float32)
@@ -336,13 +369,15 @@ def test_memo_math_gives_the_emulations_bits_and_computes_each_input_once():
 
 
 def test_frames_are_the_same_with_and_without_the_memo(make_shader, monkeypatch):
-    shader = make_shader(_image("""
+    shader = make_shader(
+        _image("""
     float acc = 0.0;
     for (int i = 0; i < 5; i++) {
         float a = sin(float(i) * 0.7 + iTime);
         acc += a * cos(fragCoord.x * 0.3 + float(i));
     }
-    fragColor = vec4(acc, pow(abs(sin(iTime)), 2.5), exp2(-fragCoord.y * 0.1), 1.0);"""))
+    fragColor = vec4(acc, pow(abs(sin(iTime)), 2.5), exp2(-fragCoord.y * 0.1), 1.0);""")
+    )
     frames = [P.compile_numpy(shader).render(size=(24, 12), time=t) for t in (0.5, 0.5, 1.25)]
     from glslcheck.backends.numpy_engine import tiles as frame
 
@@ -355,7 +390,8 @@ def test_frames_are_the_same_with_and_without_the_memo(make_shader, monkeypatch)
 # Code after early exits is compacted (Statements.rest_compacted): most lanes leave mainImage
 # (x < 80 of 128), the rest runs on the gathered lanes (3072 of a 128x64 tile), where most
 # leave shade() and split() early again (y < 40 of 64): their rest is gathered once more.
-AFTER_EARLY_EXITS = _image("""
+AFTER_EARLY_EXITS = _image(
+    """
     vec3 base = vec3(0.1);
     if (fragCoord.x < 80.0) { fragColor = vec4(base, 1.0); return; }
     float acc = shade(fragCoord);
@@ -367,7 +403,8 @@ AFTER_EARLY_EXITS = _image("""
         acc += 0.05 * length(p);
     }
     vec3 o; float k = split(fragCoord.y, o);
-    fragColor = vec4(acc, k * 0.1, o.z * 0.01 + base.x, 1.0);""", """
+    fragColor = vec4(acc, k * 0.1, o.z * 0.01 + base.x, 1.0);""",
+    """
 float shade(vec2 f) {
     if (f.y < 40.0) return 0.5;
     float s = 0.0;
@@ -381,13 +418,14 @@ float split(float y, out vec3 o) {
     o = vec3(y, y * 2.0, y * 3.0);
     float t = y * 0.5 + sqrt(y) * 0.25 + exp2(-y * 0.1);
     return t * t;
-}""")
+}""",
+)
 
 
 def test_code_after_early_exits_is_compacted_and_changes_no_pixel(gl, make_shader, monkeypatch):
-    from glslcheck.verification.compare import compare
     from glslcheck.backends.gl import compile_gl
     from glslcheck.backends.numpy_engine.transpile import Transpiler
+    from glslcheck.verification.compare import compare
 
     shader = make_shader(AFTER_EARLY_EXITS)
     assert "rest" in {k for k, *_ in P.compile_numpy(shader).meta["regions"].values()}
@@ -395,9 +433,15 @@ def test_code_after_early_exits_is_compacted_and_changes_no_pixel(gl, make_shade
     prog.parallel, prog.threads = "threads", 1
     seen = []
     real = P.LaneHelpers.gather
-    monkeypatch.setattr(P.LaneHelpers, "gather", lambda self, S, idx, values: seen.append(len(idx)) or real(self, S, idx, values))
+    monkeypatch.setattr(
+        P.LaneHelpers,
+        "gather",
+        lambda self, S, idx, values: seen.append(len(idx)) or real(self, S, idx, values),
+    )
     fast = prog.render(size=(128, 64), time=0.8)
-    assert sorted(seen)[-1] == 48 * 64 and len(seen) >= 3  # mainImage's rest, then shade's and split's
+    assert (
+        sorted(seen)[-1] == 48 * 64 and len(seen) >= 3
+    )  # mainImage's rest, then shade's and split's
     monkeypatch.setattr(P.LaneHelpers, "gather", real)
     monkeypatch.setattr(Transpiler, "rest_compacted", lambda self, rest, mask: False)
     masked = P.compile_numpy(shader).render(size=(128, 64), time=0.8)

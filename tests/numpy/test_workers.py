@@ -13,14 +13,13 @@ import signal
 
 import numpy as np
 import pytest
-
-from glslcheck.base.diagnostics import GlslError
-from glslcheck.backends.numpy_engine import tiles as F
-from glslcheck.backends.numpy_engine import program as P
-from glslcheck.backends.numpy_engine import workers
-
 from test_overheads import SHADER as SPARSE_SHADER  # compaction, globals, discard, gl_FragCoord
 from test_overheads import knobs  # noqa: F401 - the fixture
+
+from glslcheck.backends.numpy_engine import program as P
+from glslcheck.backends.numpy_engine import tiles as F
+from glslcheck.backends.numpy_engine import workers
+from glslcheck.base.diagnostics import GlslError
 
 DERIVATIVES = """
 void mainImage(out vec4 o, in vec2 f) {
@@ -42,7 +41,10 @@ void mainImage(out vec4 o, in vec2 f) {
 def fresh_pool():
     if not workers.available():
         if os.environ.get("CI"):
-            pytest.fail("worker processes are unavailable on the CI machine (Linux): " + str(workers._DISABLED))
+            pytest.fail(
+                "worker processes are unavailable on the CI machine (Linux): "
+                + str(workers._DISABLED)
+            )
         pytest.skip("worker processes need Linux with memfd_create (this machine: threads only)")
     yield
     workers.shutdown()
@@ -71,13 +73,16 @@ def _both(prog, **kw):
     return a, b, stats_a, list(prog.last_stats)
 
 
-@pytest.mark.parametrize("kw", [
-    dict(size=(96, 54)),
-    dict(size=(96, 54), stats=True),
-    dict(size=(60, 40), samples=4),
-    dict(size=(61, 37), precision="float16"),
-    dict(size=(61, 37), precision="float64", time=1.5),
-])
+@pytest.mark.parametrize(
+    "kw",
+    [
+        dict(size=(96, 54)),
+        dict(size=(96, 54), stats=True),
+        dict(size=(60, 40), samples=4),
+        dict(size=(61, 37), precision="float16"),
+        dict(size=(61, 37), precision="float64", time=1.5),
+    ],
+)
 def test_processes_render_what_threads_render(make_shader, knobs, kw):
     knobs(TILE_LANES=600)  # many tiles, compacted regions in most
     prog = P.compile_numpy(make_shader(SPARSE_SHADER))
@@ -124,7 +129,9 @@ def test_returned_images_are_the_callers(make_shader, knobs):
     assert np.array_equal(again, keep, equal_nan=True)
     prog._cache.clear()
     third = prog.render(size=(48, 32), time=0.0)  # a new shared file: `again` is untouched
-    assert np.array_equal(again, keep, equal_nan=True) and np.array_equal(third, keep, equal_nan=True)
+    assert np.array_equal(again, keep, equal_nan=True) and np.array_equal(
+        third, keep, equal_nan=True
+    )
 
 
 def test_frame_files_are_reused_only_when_nothing_holds_them(make_shader, knobs):
@@ -138,32 +145,34 @@ def test_frame_files_are_reused_only_when_nothing_holds_them(make_shader, knobs)
         prog._cache.clear()
         prog.render(size=(48, 32), time=t)  # dropped at once: the one file serves every frame
     assert len(files()) == 1
-    prog._cache.clear()                     # (a cache hit would be a copy, not the file)
+    prog._cache.clear()  # (a cache hit would be a copy, not the file)
     first = prog.render(size=(48, 32), time=3.0)
-    rows = first[5:9, ::2]                  # a view keeps the file as well as the image does
+    rows = first[5:9, ::2]  # a view keeps the file as well as the image does
     keep = rows.copy()
     del first
     prog._cache.clear()
     second = prog.render(size=(48, 32), time=4.0)
     assert len(files()) == 2 and np.array_equal(rows, keep, equal_nan=True)
-    rows[:] = -1.0                          # a private copy-on-write mapping: the file is untouched
+    rows[:] = -1.0  # a private copy-on-write mapping: the file is untouched
     prog._cache.clear()
     assert np.array_equal(prog.render(size=(48, 32), time=3.0)[5:9, ::2], keep, equal_nan=True)
     del rows, second
-    for t in range(6):                      # frames of new sizes, nothing held: free files are
-        prog._cache.clear()                 # closed beyond the spares
+    for t in range(6):  # frames of new sizes, nothing held: free files are
+        prog._cache.clear()  # closed beyond the spares
         prog.render(size=(48 + 2 * t, 32), time=0.0)
     assert len(files()) == 1 + workers._Pool.SPARE_FILES
 
 
-def test_frames_held_by_the_caller_hold_no_descriptors_beyond_a_few(make_shader, knobs, monkeypatch):
+def test_frames_held_by_the_caller_hold_no_descriptors_beyond_a_few(
+    make_shader, knobs, monkeypatch
+):
     knobs(TILE_LANES=600)
     prog = _on_processes(make_shader, SPARSE_SHADER)
     fds = lambda: len(os.listdir("/proc/self/fd"))  # noqa: E731
     prog.render(size=(48, 32), time=0.0)
     before = fds()
     frames = []
-    for t in range(40):                     # an animation kept in memory (a GIF's frames)
+    for t in range(40):  # an animation kept in memory (a GIF's frames)
         prog._cache.clear()
         frames.append(prog.render(size=(48, 32), time=float(t)))
     assert len(workers._POOL.files) <= workers._Pool.KEPT_FILES + 1
@@ -171,18 +180,22 @@ def test_frames_held_by_the_caller_hold_no_descriptors_beyond_a_few(make_shader,
     # keeps one) and one per image that is a mapping; past MAX_MAPPINGS images are copies
     held = fds()
     assert held <= before + 2 * (workers._Pool.KEPT_FILES + 1) + len(frames)
-    monkeypatch.setattr(workers, "MAX_MAPPINGS", 8)   # 40 are alive: the next ones are copies
-    more = [prog.render(size=(48, 32), time=float(t)) for t in range(100, 140) if not prog._cache.clear()]
+    monkeypatch.setattr(workers, "MAX_MAPPINGS", 8)  # 40 are alive: the next ones are copies
+    more = [
+        prog.render(size=(48, 32), time=float(t))
+        for t in range(100, 140)
+        if not prog._cache.clear()
+    ]
     assert all(img.base is None for img in more) and fds() <= held + 2
     prog._cache.clear()
-    for t, img in enumerate(frames):        # every frame is intact, the oldest included
+    for t, img in enumerate(frames):  # every frame is intact, the oldest included
         assert np.array_equal(img, prog.render(size=(48, 32), time=float(t)), equal_nan=True)
 
 
 def test_workers_report_tile_times_for_the_next_frames_order(make_shader, knobs):
     from test_overheads import UNEVEN  # rows above y = 24 loop 400 times, the others never
 
-    knobs(TILE_LANES=16 * 8, TILE_WIDTH=16)              # 16x32: four tiles of eight rows
+    knobs(TILE_LANES=16 * 8, TILE_WIDTH=16)  # 16x32: four tiles of eight rows
     prog = _on_processes(make_shader, UNEVEN)
     first = prog.render(size=(16, 32))
     assert prog.last_parallel == "processes"
@@ -192,8 +205,9 @@ def test_workers_report_tile_times_for_the_next_frames_order(make_shader, knobs)
     assert np.array_equal(prog.render(size=(16, 32)), first, equal_nan=True)
 
 
-def test_another_glslcheck_in_the_working_directory_does_not_shadow_the_workers(make_shader, knobs,
-                                                                              tmp_path, monkeypatch):
+def test_another_glslcheck_in_the_working_directory_does_not_shadow_the_workers(
+    make_shader, knobs, tmp_path, monkeypatch
+):
     # `python -m` puts the working directory first on sys.path: workers start in the package root
     (tmp_path / "glslcheck").mkdir()
     (tmp_path / "glslcheck" / "__init__.py").write_text("raise ImportError('not this glslcheck')\n")
@@ -300,12 +314,17 @@ def test_cli_parallel_option_and_environment(tmp_path, monkeypatch, capsys):
     monkeypatch.setattr(P.NumpyProgram, "render", spy)
     monkeypatch.delenv("GLSLCHECK_PARALLEL", raising=False)
     out = str(tmp_path / "o.npy")
-    assert main(["render", str(shader), "--size", "64x40", "-o", out, "--parallel", "processes"]) == 0
+    assert (
+        main(["render", str(shader), "--size", "64x40", "-o", out, "--parallel", "processes"]) == 0
+    )
     assert seen[-1] == "processes" and "GLSLCHECK_PARALLEL" not in os.environ  # restored
     monkeypatch.setenv("GLSLCHECK_PARALLEL", "threads")
     assert main(["render", str(shader), "--size", "64x40", "-o", out]) == 0
     assert seen[-1] == "threads"
     monkeypatch.setenv("GLSLCHECK_PARALLEL", "fibres")
     assert main(["render", str(shader), "--size", "64x40", "-o", out]) == 2
-    assert "GLSLCHECK_PARALLEL must be one of auto, threads, processes, not 'fibres'" in capsys.readouterr().err
+    assert (
+        "GLSLCHECK_PARALLEL must be one of auto, threads, processes, not 'fibres'"
+        in capsys.readouterr().err
+    )
     assert main(["render", str(shader), "--parallel", "fibres"]) == 2  # argparse: a usage error

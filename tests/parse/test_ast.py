@@ -48,7 +48,9 @@ def test_children_are_exactly_the_fields_that_hold_nodes():
                     assert name in node._children, f"{type(node).__name__}.{name} holds nodes"
                     assert all(v is None or isinstance(v, A.Node) for v in items)
                 elif name in node._children:
-                    assert all(v is None for v in items), f"{type(node).__name__}.{name} is a child field"
+                    assert all(v is None for v in items), (
+                        f"{type(node).__name__}.{name} is a child field"
+                    )
     # The corpus reaches every node class that has children, and each of its child fields.
     for cls in A._NODE_CLASSES.values():
         if cls._children and cls in seen:
@@ -56,7 +58,12 @@ def test_children_are_exactly_the_fields_that_hold_nodes():
 
 
 def test_children_follow_source_order():
-    call = A.Call(callee="", struct_=A.StructSpec(name="S"), array=A.ArraySpec(), args=[A.Identifier(name="a")])
+    call = A.Call(
+        callee="",
+        struct_=A.StructSpec(name="S"),
+        array=A.ArraySpec(),
+        args=[A.Identifier(name="a")],
+    )
     assert [type(c).__name__ for c in call.children()] == ["StructSpec", "ArraySpec", "Identifier"]
 
 
@@ -65,7 +72,10 @@ def test_constructors_repr_and_pickling():
     assert a.stmts == [] and a.stmts is not b.stmts  # a fresh list per node
     ident = A.Identifier("x")  # positional, in field order
     assert ident.name == "x" and ident.loc.line == 0
-    assert repr(A.Binary(op="+", left=ident, right=None)) == "Binary(op='+', left=Identifier(name='x'), right=None)"
+    assert (
+        repr(A.Binary(op="+", left=ident, right=None))
+        == "Binary(op='+', left=Identifier(name='x'), right=None)"
+    )
     with pytest.raises(TypeError):
         A.Identifier("x", loc=None, colour=1)
     with pytest.raises(AttributeError):
@@ -91,7 +101,9 @@ class _Counter(A.NodeVisitor):
 
 
 def test_node_visitor_dispatches_by_class_then_bases_and_returns():
-    tree = A.Binary(op="+", left=A.Identifier(name="a"), right=A.Unary(op="-", operand=A.Identifier(name="b")))
+    tree = A.Binary(
+        op="+", left=A.Identifier(name="a"), right=A.Unary(op="-", operand=A.Identifier(name="b"))
+    )
     v = _Counter()
     assert v.visit(tree.left) == "a"
     assert v.visit(tree) == "expr"  # no visit_Binary: the base class's method

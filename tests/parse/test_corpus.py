@@ -6,10 +6,11 @@ from __future__ import annotations
 from pathlib import Path
 
 import pytest
+
 from glslcheck.frontend import syntax as A
 from glslcheck.frontend.lalr import Tree
-from glslcheck.frontend.parser import parse_shader, parse_tree, parse_units
 from glslcheck.frontend.parse_tables import build_lark
+from glslcheck.frontend.parser import parse_shader, parse_tree, parse_units
 from glslcheck.frontend.printer import to_glsl
 from glslcheck.shadertoy.sources import Source, find_shaders
 
@@ -80,13 +81,40 @@ def test_corpus_hits_every_grammar_rule_and_terminal():
                     seen_terminals.add(child.type)
     # Punctuation is filtered from the tree; keywords and operators kept by `!` rules are not.
     kept_terminals = {t.name for t in lark.terminals if t.pattern.type == "str"}
-    filtered = {"LPAR", "RPAR", "LBRACE", "RBRACE", "LSQB", "RSQB", "SEMICOLON", "COMMA", "COLON",
-                "QMARK", "DOT"}
+    filtered = {
+        "LPAR",
+        "RPAR",
+        "LBRACE",
+        "RBRACE",
+        "LSQB",
+        "RSQB",
+        "SEMICOLON",
+        "COMMA",
+        "COLON",
+        "QMARK",
+        "DOT",
+    }
     keywords_in_rules = {t for t in kept_terminals if t not in filtered}
     # Keywords consumed without being kept (if, while, struct, ...) are checked via the rules
     # that contain them, which the tree check covers.
-    consumed = {"IF", "ELSE", "WHILE", "DO", "FOR", "SWITCH", "CASE", "DEFAULT", "BREAK", "CONTINUE",
-                "RETURN", "DISCARD", "STRUCT", "PRECISION", "LAYOUT", "SHARED"}
+    consumed = {
+        "IF",
+        "ELSE",
+        "WHILE",
+        "DO",
+        "FOR",
+        "SWITCH",
+        "CASE",
+        "DEFAULT",
+        "BREAK",
+        "CONTINUE",
+        "RETURN",
+        "DISCARD",
+        "STRUCT",
+        "PRECISION",
+        "LAYOUT",
+        "SHARED",
+    }
     missing_trees = expected_trees - seen_trees
     missing_terminals = {t for t in keywords_in_rules - consumed if t not in seen_terminals}
     assert not missing_trees, f"grammar rules no corpus shader uses: {sorted(missing_trees)}"

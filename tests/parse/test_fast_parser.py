@@ -21,14 +21,14 @@ from lark import Tree as LarkTree
 from lark import exceptions as lark_exceptions
 from lark.lark import PostLex
 
-from glslcheck.language.builtin_functions import RESERVED_WORDS
 from glslcheck.frontend.lalr import Tree, UnexpectedToken
 from glslcheck.frontend.lexer import ReservedWordError, UnexpectedCharacters
-from glslcheck.frontend.parser import get_parser, grammar_text
 from glslcheck.frontend.parse_tables import LARK_OPTIONS
+from glslcheck.frontend.parser import get_parser, grammar_text
 from glslcheck.frontend.preprocess import preprocess
-from glslcheck.shadertoy.sources import find_shaders
+from glslcheck.language.builtin_functions import RESERVED_WORDS
 from glslcheck.language.glsl_types import BY_NAME
+from glslcheck.shadertoy.sources import find_shaders
 
 ROOT = Path(__file__).resolve().parents[2]
 SOURCES = sorted(p for p in (ROOT / "tests" / "corpus").iterdir() if p.is_file()) + sorted(
@@ -75,8 +75,10 @@ class _Reference(PostLex):
             braces += {"{": 1, "}": -1}.get(tok.value, 0)
             parens = max(parens + {"(": 1, ")": -1}.get(tok.value, 0), 0)
             for name, shows, parameter in reversed(list(hiding)):
-                if parens or not ((tok.value == "}" and braces <= shows)
-                                  or (tok.value == ";" and parameter and braces == shows)):
+                if parens or not (
+                    (tok.value == "}" and braces <= shows)
+                    or (tok.value == ";" and parameter and braces == shows)
+                ):
                     break
                 self.struct_names.add(name)
                 hiding.pop()
@@ -105,9 +107,41 @@ def _texts(source: Path) -> list[str]:
     return out
 
 
-_REPLACEMENTS = ["input", "struct", "S", "float", "vec3", "(", ")", "{", "}", "[", "]", ";", ",", ".", "=",
-                 "<<=", ">>", "++", "?", ":", "1.", ".5e3", "0x1Fu", "09", "1e5", "1.0f", "3u", "true",
-                 "else", "if", "return", "void", "TYPE"]
+_REPLACEMENTS = [
+    "input",
+    "struct",
+    "S",
+    "float",
+    "vec3",
+    "(",
+    ")",
+    "{",
+    "}",
+    "[",
+    "]",
+    ";",
+    ",",
+    ".",
+    "=",
+    "<<=",
+    ">>",
+    "++",
+    "?",
+    ":",
+    "1.",
+    ".5e3",
+    "0x1Fu",
+    "09",
+    "1e5",
+    "1.0f",
+    "3u",
+    "true",
+    "else",
+    "if",
+    "return",
+    "void",
+    "TYPE",
+]
 _STRAYS = ["@", "$", '"', "'", "#", "\\", "\x00", "\u00e9", "\x0b", "`"]
 
 
@@ -192,10 +226,20 @@ def _reference_parse(reference, text: str):
     try:
         return ("tree", _tree(lark.parse(text)))
     except lark_exceptions.UnexpectedToken as e:
-        return ("token", _tok(e.token), sorted(e.expected), [_tok(t) for t in post.history],
-                [_tok(t) for t in post.open_brackets])
+        return (
+            "token",
+            _tok(e.token),
+            sorted(e.expected),
+            [_tok(t) for t in post.history],
+            [_tok(t) for t in post.open_brackets],
+        )
     except lark_exceptions.UnexpectedCharacters as e:
-        return ("character", e.pos_in_stream, [_tok(t) for t in post.history], [_tok(t) for t in post.open_brackets])
+        return (
+            "character",
+            e.pos_in_stream,
+            [_tok(t) for t in post.history],
+            [_tok(t) for t in post.open_brackets],
+        )
     except _Reserved as e:
         return ("reserved", _tok(e.tok))
 
@@ -207,12 +251,21 @@ def _our_parse(text: str):
         return ("tree", _tree(parser.driver.parse(lexed)))
     except UnexpectedToken as e:
         seen = lexed.count_through(e.token)
-        return ("token", _tok(e.token), sorted(e.expected), [_tok(t) for t in lexed.history(seen)],
-                [_tok(t) for t in lexed.open_brackets(seen)])
+        return (
+            "token",
+            _tok(e.token),
+            sorted(e.expected),
+            [_tok(t) for t in lexed.history(seen)],
+            [_tok(t) for t in lexed.open_brackets(seen)],
+        )
     except UnexpectedCharacters as e:
         seen = len(lexed.tokens)
-        return ("character", e.pos_in_stream, [_tok(t) for t in lexed.history(seen)],
-                [_tok(t) for t in lexed.open_brackets(seen)])
+        return (
+            "character",
+            e.pos_in_stream,
+            [_tok(t) for t in lexed.history(seen)],
+            [_tok(t) for t in lexed.open_brackets(seen)],
+        )
     except ReservedWordError as e:
         return ("reserved", _tok(e.token))
 
@@ -237,23 +290,26 @@ def test_mutations_reach_every_outcome(reference):
     assert outcomes == {"tree", "token", "character", "reserved"}
 
 
-@pytest.mark.parametrize("text", [
-    "",
-    "   \n\t ",
-    "float x;",
-    "float x;\n\n   ",
-    "float x = 1.;\nfloat y = .5e-3; uint z = 0xFFu; int w = 077;",
-    "struct S { float a; }; S s; S[2] t; float f() { return S(1.0).a; }",
-    "float a = b<<=c>>=d<=e>=f==g!=h&&i||j^^k++--l;",
-    "int x = 1\x0b;",
-    "float\x00 x;",
-    "float x; @",
-    "float input;",
-    "float x = 1.0e;",
-    "float x = (1.0;",
-    "void main() {",
-    "void main() { if (x) }",
-])
+@pytest.mark.parametrize(
+    "text",
+    [
+        "",
+        "   \n\t ",
+        "float x;",
+        "float x;\n\n   ",
+        "float x = 1.;\nfloat y = .5e-3; uint z = 0xFFu; int w = 077;",
+        "struct S { float a; }; S s; S[2] t; float f() { return S(1.0).a; }",
+        "float a = b<<=c>>=d<=e>=f==g!=h&&i||j^^k++--l;",
+        "int x = 1\x0b;",
+        "float\x00 x;",
+        "float x; @",
+        "float input;",
+        "float x = 1.0e;",
+        "float x = (1.0;",
+        "void main() {",
+        "void main() { if (x) }",
+    ],
+)
 def test_small_texts_match_lark(reference, text):
     assert _our_tokens(text) == _reference_tokens(reference, text)
     assert _our_parse(text) == _reference_parse(reference, text)

@@ -4,10 +4,10 @@ from __future__ import annotations
 
 import pytest
 
-from glslcheck.frontend import syntax as A
 from glslcheck.base.diagnostics import GlslError
+from glslcheck.frontend import syntax as A
 from glslcheck.frontend.parser import parse_shader, parse_units
-from glslcheck.shadertoy.sources import Shader, Source
+from glslcheck.shadertoy.sources import Source
 
 
 def _find(tree, cls, pred=lambda n: True):
@@ -52,7 +52,9 @@ def test_tabs_keep_columns_and_crlf_and_bom(tmp_path):
 
 def test_common_then_image_locations(tmp_path):
     (tmp_path / "Common.glsl").write_text("// shared\nfloat sq(float x) { return x * x; }\n")
-    (tmp_path / "Image.glsl").write_text("void mainImage(out vec4 c, in vec2 f)\n{\n    c = vec4(sq(f.x));\n}\n")
+    (tmp_path / "Image.glsl").write_text(
+        "void mainImage(out vec4 c, in vec2 f)\n{\n    c = vec4(sq(f.x));\n}\n"
+    )
     from glslcheck.shadertoy.sources import load_shader
 
     shader = load_shader(tmp_path)
@@ -65,7 +67,9 @@ def test_common_then_image_locations(tmp_path):
 
 def test_error_in_image_after_common_points_into_image(tmp_path):
     (tmp_path / "Common.glsl").write_text("float sq(float x) { return x * x; }\n")
-    (tmp_path / "Image.glsl").write_text("void mainImage(out vec4 c, in vec2 f)\n{\n    c = vec4(sq(f.x))\n}\n")
+    (tmp_path / "Image.glsl").write_text(
+        "void mainImage(out vec4 c, in vec2 f)\n{\n    c = vec4(sq(f.x))\n}\n"
+    )
     from glslcheck.shadertoy.sources import load_shader
 
     with pytest.raises(GlslError) as info:
@@ -130,15 +134,21 @@ def test_a_pending_location_is_the_location_it_stands_for():
     computed = [result.pp.locate_span(*n.loc._pending[1:]) for n, p in zip(nodes, pending) if p]
     locs = [n.loc for n, p in zip(nodes, pending) if p]
     # Each use computes it first: equal both ways, the same hash, repr, str, pickle and copy.
-    assert [loc == want for loc, want in zip(locs[0::5], computed[0::5])] == [True] * len(locs[0::5])
-    assert [want == loc for loc, want in zip(locs[1::5], computed[1::5])] == [True] * len(locs[1::5])
+    assert [loc == want for loc, want in zip(locs[0::5], computed[0::5])] == [True] * len(
+        locs[0::5]
+    )
+    assert [want == loc for loc, want in zip(locs[1::5], computed[1::5])] == [True] * len(
+        locs[1::5]
+    )
     assert [hash(loc) for loc in locs[2::5]] == [hash(want) for want in computed[2::5]]
     assert [repr(loc) for loc in locs[3::5]] == [repr(want) for want in computed[3::5]]
     assert [str(loc) for loc in locs[4::5]] == [str(want) for want in computed[4::5]]
     assert all(type(loc) is Location for loc in locs)  # and each is a plain Location after
     _, nodes, pending = _pending_spans(text)
     locs = [n.loc for n, p in zip(nodes, pending) if p]
-    again = [pickle.loads(pickle.dumps(loc)) for loc in locs[:3]] + [copy.copy(loc) for loc in locs[3:6]]
+    again = [pickle.loads(pickle.dumps(loc)) for loc in locs[:3]] + [
+        copy.copy(loc) for loc in locs[3:6]
+    ]
     assert all(type(loc) is Location for loc in again)
     assert again == locs[:6]
     assert not hasattr(locs[-1], "other") and {locs[-1]: 1}[locs[-1]] == 1

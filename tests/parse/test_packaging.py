@@ -22,7 +22,18 @@ def test_wheel_contains_grammar_and_parses_from_it(tmp_path):
     for name in ("pyproject.toml", "README.md"):
         shutil.copy(ROOT / name, src / name)
     subprocess.run(
-        [sys.executable, "-m", "pip", "wheel", "--no-deps", "--no-build-isolation", "-q", "-w", str(tmp_path), str(src)],
+        [
+            sys.executable,
+            "-m",
+            "pip",
+            "wheel",
+            "--no-deps",
+            "--no-build-isolation",
+            "-q",
+            "-w",
+            str(tmp_path),
+            str(src),
+        ],
         check=True,
         capture_output=True,
     )
@@ -30,7 +41,9 @@ def test_wheel_contains_grammar_and_parses_from_it(tmp_path):
     with zipfile.ZipFile(wheel) as z:
         names = z.namelist()
         assert "glslcheck/grammar/glsl.lark" in names
-        assert "glslcheck/grammar/glsl_tables.py" in names  # the parser's tables (frontend/parse_tables.py)
+        assert (
+            "glslcheck/grammar/glsl_tables.py" in names
+        )  # the parser's tables (frontend/parse_tables.py)
         z.extractall(tmp_path / "site")
     # Run from an unrelated folder with only the unpacked wheel on the path: the source tree's
     # grammar/ folder is not reachable, so the grammar must come from the package data.
@@ -40,8 +53,12 @@ def test_wheel_contains_grammar_and_parses_from_it(tmp_path):
         "t = p.parse_string('void mainImage(out vec4 c, in vec2 f) { c = vec4(1.0); }'); "
         "print(type(t).__name__)"
     )
-    env = dict(os.environ, PYTHONPATH=str(tmp_path / "site"), XDG_CACHE_HOME=str(tmp_path / "cache"))
-    out = subprocess.run([sys.executable, "-c", code], cwd=tmp_path, env=env, capture_output=True, text=True)
+    env = dict(
+        os.environ, PYTHONPATH=str(tmp_path / "site"), XDG_CACHE_HOME=str(tmp_path / "cache")
+    )
+    out = subprocess.run(
+        [sys.executable, "-c", code], cwd=tmp_path, env=env, capture_output=True, text=True
+    )
     assert out.returncode == 0, out.stderr
     assert out.stdout.strip() == "TranslationUnit"
     assert out.stderr == ""  # the shipped tables match the shipped grammar: nothing rebuilt
@@ -49,9 +66,22 @@ def test_wheel_contains_grammar_and_parses_from_it(tmp_path):
     # installed `glslcheck lint` fail at its first AST rule), and the installed command lints.
     packages = {str(p.parent.relative_to(ROOT)) for p in (ROOT / "glslcheck").rglob("__init__.py")}
     missing = sorted(p for p in packages if f"{p}/__init__.py" not in names)
-    assert not missing, f"packages left out of the wheel (pyproject.toml [tool.setuptools] packages): {missing}"
+    assert not missing, (
+        f"packages left out of the wheel (pyproject.toml [tool.setuptools] packages): {missing}"
+    )
     lab_file = ROOT / "lab_shaders" / "07_final" / "Image.glsl"
-    lint = subprocess.run([sys.executable, "-c", "import sys; from glslcheck.cli.main import main; sys.exit(main())",
-                           "lint", str(lab_file)], cwd=tmp_path, env=env, capture_output=True, text=True)
+    lint = subprocess.run(
+        [
+            sys.executable,
+            "-c",
+            "import sys; from glslcheck.cli.main import main; sys.exit(main())",
+            "lint",
+            str(lab_file),
+        ],
+        cwd=tmp_path,
+        env=env,
+        capture_output=True,
+        text=True,
+    )
     assert lint.returncode in (0, 1) and "Traceback" not in lint.stderr, lint.stderr
     assert "file" in lint.stdout

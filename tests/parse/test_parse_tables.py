@@ -24,7 +24,9 @@ def test_shipped_tables_are_built_from_the_shipped_grammar():
     with open(path, encoding="utf-8") as f:
         shipped = f.read()
     fresh = parse_tables.dumps(parse_tables.build(parse_tables.grammar_text()))
-    assert shipped == fresh, "grammar/glsl_tables.py is stale: run `python -m glslcheck.frontend.parse_tables`"
+    assert shipped == fresh, (
+        "grammar/glsl_tables.py is stale: run `python -m glslcheck.frontend.parse_tables`"
+    )
 
 
 def test_loaded_tables_are_the_built_ones():
@@ -41,7 +43,9 @@ def test_loaded_tables_are_the_built_ones():
     built = parse_tables.build(parse_tables.grammar_text())
     assert plain(loaded) == plain(built)
     # each state's actions in the same order
-    assert [list(row) for row in loaded["parser"]["actions"]] == [list(row) for row in built["parser"]["actions"]]
+    assert [list(row) for row in loaded["parser"]["actions"]] == [
+        list(row) for row in built["parser"]["actions"]
+    ]
 
 
 def _module_from(path) -> types.ModuleType:
@@ -59,12 +63,16 @@ def grammar_copy(tmp_path, monkeypatch):
     for name in (parse_tables.GRAMMAR_FILE, parse_tables.TABLES_FILE):
         shutil.copy(f"{folder}/{name}", tmp_path / name)
     monkeypatch.setattr(parse_tables, "grammar_folder", lambda: str(tmp_path))
-    monkeypatch.setattr(parse_tables, "tables_module", lambda: _module_from(tmp_path / parse_tables.TABLES_FILE))
+    monkeypatch.setattr(
+        parse_tables, "tables_module", lambda: _module_from(tmp_path / parse_tables.TABLES_FILE)
+    )
     return tmp_path
 
 
 def test_unchanged_copy_loads_without_building(grammar_copy, monkeypatch, capsys):
-    monkeypatch.setattr(parse_tables, "build", lambda grammar: pytest.fail("the tables were rebuilt"))
+    monkeypatch.setattr(
+        parse_tables, "build", lambda grammar: pytest.fail("the tables were rebuilt")
+    )
     tables = parse_tables.load()
     assert tables["grammar_sha256"] == parse_tables.grammar_hash(parse_tables.grammar_text())
     assert capsys.readouterr().err == ""
@@ -82,11 +90,15 @@ def test_stale_tables_are_detected_and_rebuilt_in_memory(grammar_copy, capsys):
         parse_tables.read_tables(_module_from(tables_file), grammar.read_text(encoding="utf-8"))
     tables = parse_tables.load()
     assert "building the parser tables in memory" in capsys.readouterr().err
-    assert tables["grammar_sha256"] == parse_tables.grammar_hash(grammar.read_text(encoding="utf-8"))
+    assert tables["grammar_sha256"] == parse_tables.grammar_hash(
+        grammar.read_text(encoding="utf-8")
+    )
     # The rebuilt tables are the edited grammar's: the new operator lexes and parses.
     lexer, driver = Lexer(tables["lexer"]), Driver(tables["parser"])
     tree = driver.parse(lexer.tokenize("void f() { a ^^= b; }"))
-    tokens = [child for sub in tree.iter_subtrees() for child in sub.children if isinstance(child, str)]
+    tokens = [
+        child for sub in tree.iter_subtrees() for child in sub.children if isinstance(child, str)
+    ]
     assert "^^=" in tokens
     assert tables_file.read_bytes() == before  # nothing written at run time
 

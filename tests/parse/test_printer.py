@@ -11,7 +11,27 @@ from glslcheck.frontend import syntax as A
 from glslcheck.frontend.parser import parse_string
 from glslcheck.frontend.printer import PRECEDENCE, to_glsl
 
-BINARY = ["||", "^^", "&&", "|", "^", "&", "==", "!=", "<", ">", "<=", ">=", "<<", ">>", "+", "-", "*", "/", "%"]
+BINARY = [
+    "||",
+    "^^",
+    "&&",
+    "|",
+    "^",
+    "&",
+    "==",
+    "!=",
+    "<",
+    ">",
+    "<=",
+    ">=",
+    "<<",
+    ">>",
+    "+",
+    "-",
+    "*",
+    "/",
+    "%",
+]
 
 
 def _expr(text: str) -> A.Expr:
@@ -33,10 +53,29 @@ def test_grammar_and_table_agree(op1, op2):
 @pytest.mark.parametrize(
     "text",
     [
-        "(a + b) * c", "a - (b - c)", "a / (b * c)", "-(-a)", "- -a", "+(+a)", "!(a && b)",
-        "(a, b)", "a ? b : c ? d : e", "(a ? b : c) ? d : e", "a = b = c", "(a = b) + c",
-        "(a + b).x", "(1.0).x", "a[i + 1].yz", "vec3(a, b)[2]", "float[3](a, b, c)[1]",
-        "a++ + ++b", "-a++", "(-a)++", "~(a | b) & c", "a << (b >> c)", "a < b == c > d",
+        "(a + b) * c",
+        "a - (b - c)",
+        "a / (b * c)",
+        "-(-a)",
+        "- -a",
+        "+(+a)",
+        "!(a && b)",
+        "(a, b)",
+        "a ? b : c ? d : e",
+        "(a ? b : c) ? d : e",
+        "a = b = c",
+        "(a = b) + c",
+        "(a + b).x",
+        "(1.0).x",
+        "a[i + 1].yz",
+        "vec3(a, b)[2]",
+        "float[3](a, b, c)[1]",
+        "a++ + ++b",
+        "-a++",
+        "(-a)++",
+        "~(a | b) & c",
+        "a << (b >> c)",
+        "a < b == c > d",
     ],
 )
 def test_round_trip_keeps_meaning(text):

@@ -101,7 +101,9 @@ def test_stray_character_in_a_directive_is_an_error():
     assert "'@'" in d.message and d.loc.column == 13
 
 
-@pytest.mark.parametrize("number", ["1.5e-3", ".5", "1e3", "0x1F", "3u", "1.0f", "1.e5", "2.", "0x1e+1"])
+@pytest.mark.parametrize(
+    "number", ["1.5e-3", ".5", "1e3", "0x1F", "3u", "1.0f", "1.e5", "2.", "0x1e+1"]
+)
 def test_numbers_are_not_split_into_macros(number):
     defs = "#define e 9\n#define f 9\n#define u 9\n#define x 9\n#define F 9\n"
     out = words(defs + f"float v = {number};\n")
@@ -113,7 +115,15 @@ def test_numbers_are_not_split_into_macros(number):
 
 
 def test_object_like_macro():
-    assert words("#define PI 3.14159\nfloat a = PI * 2.0;\n") == ["float", "a", "=", "3.14159", "*", "2.0", ";"]
+    assert words("#define PI 3.14159\nfloat a = PI * 2.0;\n") == [
+        "float",
+        "a",
+        "=",
+        "3.14159",
+        "*",
+        "2.0",
+        ";",
+    ]
 
 
 def test_function_like_macro_with_nested_and_rescanned_expansion():
@@ -182,28 +192,35 @@ def test_expansion_does_not_paste_with_neighbours():
     assert "--" not in r.text and "E" not in r.text.split("\n")[2]
 
 
-@pytest.mark.parametrize("src, op", [
-    ("#define S(x) #x\n", "#"),
-    ("#define P(a, b) a ## b\n", "##"),
-    ("#define P(a, b) a##b\n", "##"),
-    ("#define H #\n", "#"),
-])
+@pytest.mark.parametrize(
+    "src, op",
+    [
+        ("#define S(x) #x\n", "#"),
+        ("#define P(a, b) a ## b\n", "##"),
+        ("#define P(a, b) a##b\n", "##"),
+        ("#define H #\n", "#"),
+    ],
+)
 def test_stringify_and_paste_operators_rejected(src, op):
     d = error(src)
     assert d.message == f"the '{op}' operator is not allowed in GLSL ES"
-    assert src[d.loc.column - 1:].startswith(op)
+    assert src[d.loc.column - 1 :].startswith(op)
 
 
 def test_redefinition():
     assert words("#define X 1\n#define X 1\n#define X  1\nX\n") == ["1"]
     d = error("#define X 1\n#define X 2\n")
-    assert "already defined at Image.glsl:1:9 with a different body" in d.message and d.loc.line == 2
+    assert (
+        "already defined at Image.glsl:1:9 with a different body" in d.message and d.loc.line == 2
+    )
     assert "different body" in error("#define X 1+2\n#define X 1 + 2\n").message
     assert "different body" in error("#define F(a) a\n#define F(b) b\n").message
     assert words("#define X 1\n#undef X\n#define X 2\nX\n") == ["2"]
 
 
-@pytest.mark.parametrize("name", ["GL_FOO", "GL_ES", "defined", "__LINE__", "__FILE__", "__VERSION__"])
+@pytest.mark.parametrize(
+    "name", ["GL_FOO", "GL_ES", "defined", "__LINE__", "__FILE__", "__VERSION__"]
+)
 def test_reserved_names_cannot_be_defined(name):
     assert name in error(f"#define {name} 1\n").message
     assert name in error(f"#undef {name}\n").message
@@ -216,17 +233,30 @@ def test_double_underscore_is_a_warning_in_es_300():
 
 
 def test_predefined_macros():
-    assert words("GL_ES __VERSION__ HW_PERFORMANCE GL_FRAGMENT_PRECISION_HIGH __FILE__\n") == ["1", "300", "1", "1", "0"]
+    assert words("GL_ES __VERSION__ HW_PERFORMANCE GL_FRAGMENT_PRECISION_HIGH __FILE__\n") == [
+        "1",
+        "300",
+        "1",
+        "1",
+        "0",
+    ]
     assert words("__LINE__\n\n__LINE__\n") == ["1", "3"]
     assert pp("HW_PERFORMANCE\n", shadertoy=False).text.split() == ["HW_PERFORMANCE"]
-    assert pp("HW_PERFORMANCE X\n", predefined={"HW_PERFORMANCE": "0", "X": "a b"}).text.split() == ["0", "a", "b"]
+    assert pp(
+        "HW_PERFORMANCE X\n", predefined={"HW_PERFORMANCE": "0", "X": "a b"}
+    ).text.split() == ["0", "a", "b"]
     assert "different body" in error("#define HW_PERFORMANCE 0\n").message
 
 
 def test_macros_in_result():
     r = pp("#define F(a, b) a + b\n")
     m = r.macros["F"]
-    assert (m.name, m.params, m.body, m.loc) == ("F", ("a", "b"), ("a", "+", "b"), Location("Image.glsl", 1, 9, 1, 10))
+    assert (m.name, m.params, m.body, m.loc) == (
+        "F",
+        ("a", "b"),
+        ("a", "+", "b"),
+        Location("Image.glsl", 1, 9, 1, 10),
+    )
     assert r.macros["GL_ES"].predefined
 
 
@@ -244,13 +274,17 @@ def test_elif_chain_takes_the_first_true_group_only():
 
 
 def test_nested_conditionals():
-    src = ("#if 1\n#if 0\nA\n#elif 1\nB\n#if 0\nC\n#else\nD\n#endif\n#endif\n#else\n"
-           "#if 1\nE\n#endif\n#endif\nF\n")
+    src = (
+        "#if 1\n#if 0\nA\n#elif 1\nB\n#if 0\nC\n#else\nD\n#endif\n#endif\n#else\n"
+        "#if 1\nE\n#endif\n#endif\nF\n"
+    )
     assert words(src) == ["B", "D", "F"]
 
 
 def test_inactive_groups_ignore_bad_directives_and_expressions():
-    assert words("#if 0\n#foo\n#version 1\n#define GL_X\n#if UNDEFINED\n#endif\n#elif 1\nok\n#endif\n") == ["ok"]
+    assert words(
+        "#if 0\n#foo\n#version 1\n#define GL_X\n#if UNDEFINED\n#endif\n#elif 1\nok\n#endif\n"
+    ) == ["ok"]
 
 
 def test_defined_forms():
@@ -259,31 +293,50 @@ def test_defined_forms():
     assert "defined" in error("#if defined\n#endif\n").message
 
 
-@pytest.mark.parametrize("expr, value", [
-    ("1 + 2 * 3 == 7", 1), ("(1 + 2) * 3", 9), ("-7 / 2 == -3", 1), ("-7 % 3 == -1", 1),
-    ("1 << 4 | 1", 17), ("256 >> 4", 16), ("~0 == -1", 1), ("!5", 0), ("- - 3 == 3", 1),
-    ("3 > 2 && 2 >= 2 && 1 < 2 && 2 <= 2 && 1 != 2", 1), ("5 & 3 ^ 1", 0), ("0 || 2", 1),
-    ("0x10 == 16 && 010 == 8", 1), ("0xFFFFFFFF == -1", 1), ("1 << 31 < 0", 1), ("+1", 1),
-    ("0 && UNDEFINED", 0), ("1 || UNDEFINED", 1),
-])
+@pytest.mark.parametrize(
+    "expr, value",
+    [
+        ("1 + 2 * 3 == 7", 1),
+        ("(1 + 2) * 3", 9),
+        ("-7 / 2 == -3", 1),
+        ("-7 % 3 == -1", 1),
+        ("1 << 4 | 1", 17),
+        ("256 >> 4", 16),
+        ("~0 == -1", 1),
+        ("!5", 0),
+        ("- - 3 == 3", 1),
+        ("3 > 2 && 2 >= 2 && 1 < 2 && 2 <= 2 && 1 != 2", 1),
+        ("5 & 3 ^ 1", 0),
+        ("0 || 2", 1),
+        ("0x10 == 16 && 010 == 8", 1),
+        ("0xFFFFFFFF == -1", 1),
+        ("1 << 31 < 0", 1),
+        ("+1", 1),
+        ("0 && UNDEFINED", 0),
+        ("1 || UNDEFINED", 1),
+    ],
+)
 def test_if_expressions(expr, value):
     assert words(f"#if {expr}\nyes\n#else\nno\n#endif\n") == (["yes"] if value else ["no"])
 
 
-@pytest.mark.parametrize("expr, message", [
-    ("UNDEF", "undefined macro 'UNDEF' in #if"),
-    ("1 / 0", "division by zero"),
-    ("1 % (2 - 2)", "division by zero"),
-    ("1 ? 2 : 3", "unexpected '?'"),
-    ("1.0", "integers only"),
-    ("1u", "integers only"),
-    ("4294967296", "too large"),
-    ("(1", "')' is missing"),
-    ("1 +", "ends too early"),
-    ("", "needs an expression"),
-    ("E", "expand to nothing"),
-    ("true", "undefined macro 'true'"),
-])
+@pytest.mark.parametrize(
+    "expr, message",
+    [
+        ("UNDEF", "undefined macro 'UNDEF' in #if"),
+        ("1 / 0", "division by zero"),
+        ("1 % (2 - 2)", "division by zero"),
+        ("1 ? 2 : 3", "unexpected '?'"),
+        ("1.0", "integers only"),
+        ("1u", "integers only"),
+        ("4294967296", "too large"),
+        ("(1", "')' is missing"),
+        ("1 +", "ends too early"),
+        ("", "needs an expression"),
+        ("E", "expand to nothing"),
+        ("true", "undefined macro 'true'"),
+    ],
+)
 def test_if_expression_errors(expr, message):
     d = error(f"#define E\n#if {expr}\n#endif\n")
     assert message in d.message and d.loc.line == 2
@@ -299,17 +352,20 @@ def test_if_expression_with_macros():
     assert words(src) == ["yes"]
 
 
-@pytest.mark.parametrize("src, message, line", [
-    ("#endif\n", "#endif without a matching #if", 1),
-    ("#else\n", "#else without a matching #if", 1),
-    ("#elif 1\n", "#elif without a matching #if", 1),
-    ("#if 1\n#else\n#else\n#endif\n", "#else after #else", 3),
-    ("#if 1\n#else\n#elif 1\n#endif\n", "#elif after #else", 3),
-    ("#if 1\n#if 0\n#endif\n", "never closed", 1),
-    ("#ifdef A B\n#endif\n", "unexpected 'B'", 1),
-    ("#if 1\n#endif junk\n", "unexpected 'junk'", 2),
-    ("#ifdef\n#endif\n", "needs a macro name", 1),
-])
+@pytest.mark.parametrize(
+    "src, message, line",
+    [
+        ("#endif\n", "#endif without a matching #if", 1),
+        ("#else\n", "#else without a matching #if", 1),
+        ("#elif 1\n", "#elif without a matching #if", 1),
+        ("#if 1\n#else\n#else\n#endif\n", "#else after #else", 3),
+        ("#if 1\n#else\n#elif 1\n#endif\n", "#elif after #else", 3),
+        ("#if 1\n#if 0\n#endif\n", "never closed", 1),
+        ("#ifdef A B\n#endif\n", "unexpected 'B'", 1),
+        ("#if 1\n#endif junk\n", "unexpected 'junk'", 2),
+        ("#ifdef\n#endif\n", "needs a macro name", 1),
+    ],
+)
 def test_unbalanced_conditionals(src, message, line):
     d = error(src)
     assert message in d.message and d.loc.line == line
@@ -335,8 +391,12 @@ def test_pragmas():
     assert [p for p, _ in r.pragmas] == ["STDGL foo", "optimize(on)", "debug(off)"]
     assert r.pragmas[1][1].line == 2
     # GLSL ES 3.00 4.6.1: invariant(all) is for vertex shaders; Mesa rejects it in a fragment shader.
-    assert "cannot be used in a fragment shader" in error("#pragma STDGL invariant( all )\n").message
-    plain_100 = pp("#version 100\n#pragma STDGL invariant(all)\n", shadertoy=False)  # ES 1.00 allows it
+    assert (
+        "cannot be used in a fragment shader" in error("#pragma STDGL invariant( all )\n").message
+    )
+    plain_100 = pp(
+        "#version 100\n#pragma STDGL invariant(all)\n", shadertoy=False
+    )  # ES 1.00 allows it
     assert [p for p, _ in plain_100.pragmas] == ["STDGL invariant(all)"]
 
 
@@ -344,9 +404,14 @@ def test_extension_directive():
     # #extension is checked in plain GLSL files, where it can come before any code.
     plain = dict(shadertoy=False)
     r = pp("#extension GL_OES_standard_derivatives : enable\n#extension all : warn\n", **plain)
-    assert [(n, b) for n, b, _ in r.extensions] == [("GL_OES_standard_derivatives", "enable"), ("all", "warn")]
+    assert [(n, b) for n, b, _ in r.extensions] == [
+        ("GL_OES_standard_derivatives", "enable"),
+        ("all", "warn"),
+    ]
     assert r.extensions[0][2].line == 1
-    assert "unknown #extension behavior 'bogus'" in error("#extension GL_X : bogus\n", **plain).message
+    assert (
+        "unknown #extension behavior 'bogus'" in error("#extension GL_X : bogus\n", **plain).message
+    )
     assert "'#extension all'" in error("#extension all : enable\n", **plain).message
     assert "name : behavior" in error("#extension GL_X enable\n", **plain).message
     d = error("#extension GL_X : enable now\n", **plain)
@@ -380,7 +445,9 @@ def test_version_in_plain_glsl():
 
 
 def test_line_directive_changes_line_macro_not_locations():
-    r = pp("#line 100\nint a = __LINE__;\nint b = __LINE__; __FILE__\n#line 7 3\n__LINE__ __FILE__\n")
+    r = pp(
+        "#line 100\nint a = __LINE__;\nint b = __LINE__; __FILE__\n#line 7 3\n__LINE__ __FILE__\n"
+    )
     assert tokens(r.text) == "int a = 100 ; int b = 101 ; 0 7 3".split()
     assert r.locate(find(r, "101")).line == 3
 
@@ -388,7 +455,10 @@ def test_line_directive_changes_line_macro_not_locations():
 def test_null_and_unknown_directives():
     assert words("#\n  #  \nok\n") == ["ok"]
     d = error("\n  #include <x>\n")
-    assert "unknown preprocessor directive '#include'" in d.message and (d.loc.line, d.loc.column) == (2, 4)
+    assert "unknown preprocessor directive '#include'" in d.message and (
+        d.loc.line,
+        d.loc.column,
+    ) == (2, 4)
 
 
 def test_hash_after_a_token_is_not_a_directive():
@@ -498,14 +568,17 @@ def test_comment_with_continuation_and_unterminated_comment():
 # -- limits ------------------------------------------------------------------------------------
 
 
-@pytest.mark.parametrize("src, what", [
-    ("".join(f"#define A{i} A{i + 1} A{i + 1}\n" for i in range(40)) + "A0\n", "too large"),
-    ("#define D(x) x x\n" + "D(" * 40 + "1" + ")" * 40 + "\n", "too large"),
-    ("".join(f"#define A{i} A{i + 1}\n" for i in range(200)) + "A0\n", "too deep"),
-    ("#define F(x) x\n" + "F(" * 2000 + "1" + ")" * 2000 + "\n", "too deep"),
-    ("#if " + "(" * 5000 + "1" + ")" * 5000 + "\n#endif\n", "nested too deeply"),
-    ("#if " + "- " * 5000 + "1\n#endif\n", "nested too deeply"),
-])
+@pytest.mark.parametrize(
+    "src, what",
+    [
+        ("".join(f"#define A{i} A{i + 1} A{i + 1}\n" for i in range(40)) + "A0\n", "too large"),
+        ("#define D(x) x x\n" + "D(" * 40 + "1" + ")" * 40 + "\n", "too large"),
+        ("".join(f"#define A{i} A{i + 1}\n" for i in range(200)) + "A0\n", "too deep"),
+        ("#define F(x) x\n" + "F(" * 2000 + "1" + ")" * 2000 + "\n", "too deep"),
+        ("#if " + "(" * 5000 + "1" + ")" * 5000 + "\n#endif\n", "nested too deeply"),
+        ("#if " + "- " * 5000 + "1\n#endif\n", "nested too deeply"),
+    ],
+)
 def test_limits_give_a_clear_error(src, what):
     # The budgets (MAX_EXPANSION_TOKENS, MAX_EXPANSION_DEPTH, the #if nesting limit) are what
     # stops these inputs: the message names the one that bit. Without them the first two would
@@ -538,41 +611,47 @@ def _glslang_accepts(tmp_path, program: str) -> bool:
     return subprocess.run([GLSLANG, str(f)], capture_output=True).returncode == 0
 
 
-@pytest.mark.parametrize("program", [
-    "#define S(x) #x\nfloat S(a);",
-    "#define P(a, b) a##b\nfloat P(x, y);",
-    "#if UNDEFINED_THING\n#endif",
-    "#define GL_MINE 1",
-    "#define X 1\n#define X 2",
-    "#if 1/0\n#endif",
-    "#extension all : enable",
-    "#ifdef A B\n#endif",
-    "#if 1\n#else\n#else\n#endif",
-    "#define F(a, b) a\nfloat x = F(1);",
-    "#foo",
-    "#if 1u\n#endif",
-    "#define F(x) x\nfloat y = F(1.0;",
-])
+@pytest.mark.parametrize(
+    "program",
+    [
+        "#define S(x) #x\nfloat S(a);",
+        "#define P(a, b) a##b\nfloat P(x, y);",
+        "#if UNDEFINED_THING\n#endif",
+        "#define GL_MINE 1",
+        "#define X 1\n#define X 2",
+        "#if 1/0\n#endif",
+        "#extension all : enable",
+        "#ifdef A B\n#endif",
+        "#if 1\n#else\n#else\n#endif",
+        "#define F(a, b) a\nfloat x = F(1);",
+        "#foo",
+        "#if 1u\n#endif",
+        "#define F(x) x\nfloat y = F(1.0;",
+    ],
+)
 def test_rejected_like_glslang(tmp_path, program):
     assert not _glslang_accepts(tmp_path, program)
     with pytest.raises(GlslError):
         pp(program)
 
 
-@pytest.mark.parametrize("program", [
-    "#define X 1\n#define X  1\nfloat a = float(X);",
-    "#define a__b 1",
-    "#if 0 && UNDEFINED_THING\n#endif",
-    "#define F(x) x\n#define G F\n#if G(3) == 3\n#else\n#error bad\n#endif",
-    "#if -1 >> 1 == -1 && (5 % -3) == 2 && (-5/2) == -2 && 0xFFFFFFFF == -1\n#else\n#error bad\n#endif",
-    "#line 10\n#if __LINE__ == 10\n#else\n#error bad\n#endif",
-    "#define X 1 /* a\n b */ + 2\nint k = X;",
-    "float x = 1.e5 + .5 + 1.5e-3 + 1e3;",
-    "#if 0\n#foo\n#endif",
-    "#pragma optimize(on)\n#pragma debug(off)",
-    "#define E\n#define F(a, b) a b\nfloat y = F(, 1.0) E;",
-    "float c = 1.0 + \\\n 2.0;",
-])
+@pytest.mark.parametrize(
+    "program",
+    [
+        "#define X 1\n#define X  1\nfloat a = float(X);",
+        "#define a__b 1",
+        "#if 0 && UNDEFINED_THING\n#endif",
+        "#define F(x) x\n#define G F\n#if G(3) == 3\n#else\n#error bad\n#endif",
+        "#if -1 >> 1 == -1 && (5 % -3) == 2 && (-5/2) == -2 && 0xFFFFFFFF == -1\n#else\n#error bad\n#endif",
+        "#line 10\n#if __LINE__ == 10\n#else\n#error bad\n#endif",
+        "#define X 1 /* a\n b */ + 2\nint k = X;",
+        "float x = 1.e5 + .5 + 1.5e-3 + 1e3;",
+        "#if 0\n#foo\n#endif",
+        "#pragma optimize(on)\n#pragma debug(off)",
+        "#define E\n#define F(a, b) a b\nfloat y = F(, 1.0) E;",
+        "float c = 1.0 + \\\n 2.0;",
+    ],
+)
 def test_accepted_like_glslang(tmp_path, program):
     assert _glslang_accepts(tmp_path, program)
     pp(program)

@@ -14,7 +14,14 @@ import numpy as np
 import pytest
 
 from glslcheck.cli.main import main
-from glslcheck.verification.probe import Inputs, Probe, bits_kept, first_unstable, format_nan, format_pixel
+from glslcheck.verification.probe import (
+    Inputs,
+    Probe,
+    bits_kept,
+    first_unstable,
+    format_nan,
+    format_pixel,
+)
 
 SMALL = Inputs(size=(8, 8))
 
@@ -54,7 +61,9 @@ def test_normalize_of_zero_vector_found_at_its_line_and_operation(make_shader):
     assert np.isnan(probed.color[0])
     assert p.pixel(3, 4, SMALL).first_nan is None
     # with a derivative the lanes run as 2x2 quads: the quad's three finite pixels are not counted
-    quads = Probe(make_shader(NORMALIZE_ZERO.replace("1.0);\n}", "dFdx(fragCoord.x));\n}"))).nan_origins(SMALL)
+    quads = Probe(
+        make_shader(NORMALIZE_ZERO.replace("1.0);\n}", "dFdx(fragCoord.x));\n}"))
+    ).nan_origins(SMALL)
     assert [(o.line, o.pixels, o.box) for o in quads.origins] == [(3, 1, (4, 4, 4, 4))]
 
 
@@ -124,7 +133,10 @@ void mainImage(out vec4 fragColor, in vec2 fragCoord) {
     report = p.nan_origins(inputs)
     assert report.nan_pixels == 64 * 64
     got = {(o.line, o.operation): (o.pixels, o.box) for o in report.origins}
-    assert got == {(6, "0/0"): (64 * 16, (0, 48, 63, 63)), (8, "pow of a negative base"): (64 * 48, (0, 0, 63, 47))}
+    assert got == {
+        (6, "0/0"): (64 * 16, (0, 48, 63, 63)),
+        (8, "pow of a negative base"): (64 * 48, (0, 0, 63, 47)),
+    }
 
 
 # -- one pixel, step by step --------------------------------------------------------------------
@@ -157,7 +169,7 @@ def test_cancellation_of_a_far_camera_shows_in_the_bits_column_at_its_line(make_
     assert (first.file, first.line, first.code) == ("Image.glsl", 7, "vec3 local = hit - center;")
     assert first.bits == local.bits
     text = format_pixel(report, "Image.glsl", SMALL)
-    assert f"local = " in text and f"{local.bits} bits]" in text
+    assert "local = " in text and f"{local.bits} bits]" in text
 
 
 # The float32 run skips the `if` (1 + 1.5e-8 rounds to 1) where the float64 shadow takes it: the
@@ -174,7 +186,9 @@ void mainImage(out vec4 fragColor, in vec2 fragCoord) {
 """
 
 
-def test_first_unstable_compares_up_to_the_first_departure_and_realigns_where_the_runs_part(make_shader):
+def test_first_unstable_compares_up_to_the_first_departure_and_realigns_where_the_runs_part(
+    make_shader,
+):
     p = Probe(make_shader(PARTING))
     report = p.pixel(1, 2, SMALL)
     [d] = steps_at(report, 5)
@@ -186,7 +200,12 @@ def test_first_unstable_compares_up_to_the_first_departure_and_realigns_where_th
         scan = next(s for s in p.pixel(x, 2, SMALL).steps if s.bits is not None and s.bits < 16)
         got = first_unstable(p, x, 2, SMALL, realign=None)
         assert (got.line, got.code, got.bits, got.value, got.value64) == (
-            scan.line, scan.code, scan.bits, scan.value, scan.value64)
+            scan.line,
+            scan.code,
+            scan.bits,
+            scan.value,
+            scan.value64,
+        )
     # with no realignment allowed the pixel gives no answer past the parting
     assert first_unstable(p, 1, 2, SMALL, realign=0) is None
     # the far camera's runs never part: the same answer as the report's first unstable step
@@ -236,7 +255,10 @@ def test_loops_early_return_out_parameters_structs_and_arrays(make_shader):
     call, w, f = steps_at(report, 20)
     assert (call.kind, call.name) == ("call", "split") and call.to_json()["value"] == {"v": 2.75}
     assert (w.name, w.value, f.name, f.value) == ("w", 2.0, "f", 0.75)
-    assert [(s.name, float(s.value)) for s in steps_at(report, 10)] == [("whole", 2.0), ("part", 0.75)]
+    assert [(s.name, float(s.value)) for s in steps_at(report, 10)] == [
+        ("whole", 2.0),
+        ("part", 0.75),
+    ]
     # the loop of sumTo: 51 iterations (the 51st breaks), s = 0 + 1 + ... + 49
     loop = [s for s in steps_at(report, 4, "loop")]
     assert loop[0].name == "for start" and loop[-1].name == "for end" and loop[-1].value == 51
@@ -295,7 +317,9 @@ def test_switch_while_do_continue_inout_and_matrices(make_shader):
     assert [s.name for s in loop][:2] == ["while start", "while iteration"]
     assert (loop[-1].name, loop[-1].value) == ("while end", 10)
     assert [s.name for s in steps_at(report, 18, "branch")].count("continue") == 5
-    assert [(s.name, float(s.value)) for s in steps_at(report, 19)] == [("acc", float(a)) for a in range(1, 6)]
+    assert [(s.name, float(s.value)) for s in steps_at(report, 19)] == [
+        ("acc", float(a)) for a in range(1, 6)
+    ]
     do = steps_at(report, 21, "loop")
     assert (do[0].name, do[-1].name, do[-1].value) == ("do start", "do end", 2)
     [rot] = [s.to_json() for s in steps_at(report, 1, "return")]
@@ -351,7 +375,7 @@ void mainImage(out vec4 fragColor, in vec2 fragCoord) {
 def test_bits_kept():
     f32 = np.float32
     assert bits_kept(np.array(f32(1 / 3)), np.array(1 / 3)) == 24
-    assert bits_kept(np.array(f32(1.0)), np.array(1.0 + 2.0 ** -10)) == 10
+    assert bits_kept(np.array(f32(1.0)), np.array(1.0 + 2.0**-10)) == 10
     # a vector is judged as a whole: the small component's own relative error does not count
     assert bits_kept(np.array([f32(1.0), f32(1e-7)]), np.array([1.0, 1.1e-7])) == 24
     assert bits_kept(np.array(f32(1e-7)), np.array(1.1e-7)) == 3
@@ -362,10 +386,18 @@ def test_bits_kept():
     assert bits_kept(np.array(True), np.array(True)) is None
     # several leaves (a call's arguments, a struct): the fewest bits of the leaves with bits
     args = {"a": np.array([f32(1.0), f32(2.0)]), "n": np.array(3), "b": np.array(f32(1.0))}
-    shadow = {"a": np.array([1.0, 2.0]), "n": np.array(3), "b": np.array(1.0 + 2.0 ** -10)}
+    shadow = {"a": np.array([1.0, 2.0]), "n": np.array(3), "b": np.array(1.0 + 2.0**-10)}
     assert bits_kept(args, shadow) == 10
-    assert bits_kept([np.array(f32("nan")), np.array(f32(1.0))], [np.array(float("nan")), np.array(1.0)]) == 24
-    assert bits_kept([np.zeros(0, f32), np.array(f32("nan"))], [np.zeros(0), np.array(float("nan"))]) == 24
+    assert (
+        bits_kept(
+            [np.array(f32("nan")), np.array(f32(1.0))], [np.array(float("nan")), np.array(1.0)]
+        )
+        == 24
+    )
+    assert (
+        bits_kept([np.zeros(0, f32), np.array(f32("nan"))], [np.zeros(0), np.array(float("nan"))])
+        == 24
+    )
 
 
 # -- the command ---------------------------------------------------------------------------------
@@ -390,10 +422,20 @@ def test_cli_pixel_json_has_exactly_the_issue_fields(tmp_path, capsys):
     assert out["color"][:3] == ["nan", "nan", "nan"] and out["color"][3] == 1.0
     [d] = [s for s in out["steps"] if s["name"] == "d"]
     assert d["value"] == d["value64"] == ["nan", "nan", "nan"] and d["bits"] is None
-    assert all(list(s) == ["file", "line", "code", "kind", "name", "value", "value64", "bits"] for s in out["steps"])
-    assert out["first_nan"] == {"file": path, "line": 3, "column": 14, "code": "normalize(vec3(p, 0.0))",
-                                "operation": "normalize of a zero vector"}
-    assert main(["probe", path, "--frag-coord", "4.5,3.5", "--size", "8x8", "--format", "json"]) == 0
+    assert all(
+        list(s) == ["file", "line", "code", "kind", "name", "value", "value64", "bits"]
+        for s in out["steps"]
+    )
+    assert out["first_nan"] == {
+        "file": path,
+        "line": 3,
+        "column": 14,
+        "code": "normalize(vec3(p, 0.0))",
+        "operation": "normalize of a zero vector",
+    }
+    assert (
+        main(["probe", path, "--frag-coord", "4.5,3.5", "--size", "8x8", "--format", "json"]) == 0
+    )
     assert json.loads(capsys.readouterr().out)["pixel"] == [4, 4]
 
 
@@ -401,10 +443,24 @@ def test_cli_nan_json_and_exit_codes(tmp_path, capsys):
     path = write_shader(tmp_path, NORMALIZE_ZERO)
     assert main(["probe", path, "--nan", "--size", "8x8", "--format", "json"]) == 1
     out = json.loads(capsys.readouterr().out)
-    assert out == {"nan_pixels": 1, "inf_pixels": 0, "origins": [
-        {"file": path, "line": 3, "column": 14, "code": "normalize(vec3(p, 0.0))",
-         "operation": "normalize of a zero vector", "pixels": 1, "box": [4, 4, 4, 4]}]}
-    fixed = write_shader(tmp_path, NORMALIZE_ZERO.replace("vec3(p, 0.0)", "vec3(p, 1.0)"), "Fixed.glsl")
+    assert out == {
+        "nan_pixels": 1,
+        "inf_pixels": 0,
+        "origins": [
+            {
+                "file": path,
+                "line": 3,
+                "column": 14,
+                "code": "normalize(vec3(p, 0.0))",
+                "operation": "normalize of a zero vector",
+                "pixels": 1,
+                "box": [4, 4, 4, 4],
+            }
+        ],
+    }
+    fixed = write_shader(
+        tmp_path, NORMALIZE_ZERO.replace("vec3(p, 0.0)", "vec3(p, 1.0)"), "Fixed.glsl"
+    )
     assert main(["probe", fixed, "--nan", "--size", "8x8"]) == 0
     assert "no pixel is NaN or Inf" in capsys.readouterr().out
 
@@ -415,7 +471,9 @@ def test_cli_errors(tmp_path, capsys):
     assert "outside the 8x8 image" in capsys.readouterr().err
     assert main(["probe", path, "--pixel", "a,b"]) == 2
     assert main(["probe", path]) == 2  # one of --pixel, --frag-coord, --nan
-    bad = write_shader(tmp_path, "void mainImage(out vec4 c, in vec2 f) { c = vec4(x); }\n", "Bad.glsl")
+    bad = write_shader(
+        tmp_path, "void mainImage(out vec4 c, in vec2 f) { c = vec4(x); }\n", "Bad.glsl"
+    )
     assert main(["probe", bad, "--pixel", "0,0"]) == 1
     assert f"{bad}:1:" in capsys.readouterr().err
 
@@ -424,7 +482,9 @@ def test_render_mentions_probe_nan_when_the_image_has_nan(tmp_path, capsys):
     path = write_shader(tmp_path, NORMALIZE_ZERO)
     assert main(["render", path, "--size", "8x8", "-o", str(tmp_path / "o.png")]) == 0
     assert f"glslcheck probe {path} --nan" in capsys.readouterr().err
-    fixed = write_shader(tmp_path, NORMALIZE_ZERO.replace("vec3(p, 0.0)", "vec3(p, 1.0)"), "Fixed.glsl")
+    fixed = write_shader(
+        tmp_path, NORMALIZE_ZERO.replace("vec3(p, 0.0)", "vec3(p, 1.0)"), "Fixed.glsl"
+    )
     assert main(["render", fixed, "--size", "8x8", "-o", str(tmp_path / "o.png")]) == 0
     assert "probe" not in capsys.readouterr().err
 
@@ -439,9 +499,11 @@ def test_the_normal_module_has_no_tracing(make_shader):
 
 
 ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
-EVERY_SHADER = sorted(glob.glob(os.path.join(ROOT, "tests", "corpus", "*.glsl"))
-                      + glob.glob(os.path.join(ROOT, "tests", "corpus", "*.frag"))
-                      + glob.glob(os.path.join(ROOT, "lab_shaders", "*", "")))
+EVERY_SHADER = sorted(
+    glob.glob(os.path.join(ROOT, "tests", "corpus", "*.glsl"))
+    + glob.glob(os.path.join(ROOT, "tests", "corpus", "*.frag"))
+    + glob.glob(os.path.join(ROOT, "lab_shaders", "*", ""))
+)
 
 
 @pytest.mark.parametrize("shader", EVERY_SHADER, ids=lambda p: os.path.relpath(p, ROOT))

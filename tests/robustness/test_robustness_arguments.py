@@ -10,10 +10,16 @@ import sys
 
 import pytest
 
-from glslcheck.cli.main import build_parser, main
 from glslcheck.base import limits
+from glslcheck.cli.main import build_parser, main
 
-RENDERING = ("render", "verify", "bench", "report", "probe")  # every command that renders on the CPU
+RENDERING = (
+    "render",
+    "verify",
+    "bench",
+    "report",
+    "probe",
+)  # every command that renders on the CPU
 
 GOOD = {
     "--size": ["320x180", "320X180", "320*180", "1x1", "16384x1", "4096x4096"],
@@ -38,7 +44,14 @@ BAD = {
     "--frames": ["0", "-3", "100000000", "1e3", "x"],
     "--fps": ["0", "-60", "inf", "nan", "1e-9", "1e6"],
     "--mouse": ["1,2,3", "1,2,3,4,5", "nan,0,0,0", "1e39,0,0,0"],
-    "--date": ["2026,12,1,0", "2026,0,0,0", "2026,0,1,86400", "2026.5,0,1,0", "2026,0,1", "1e39,0,1,0"],
+    "--date": [
+        "2026,12,1,0",
+        "2026,0,0,0",
+        "2026,0,1,86400",
+        "2026.5,0,1,0",
+        "2026,0,1",
+        "1e39,0,1,0",
+    ],
     "--precision": ["float128", "mediump"],
     "--runs": ["0", "1001", "2.5"],
     "--frame-budget": ["0", "-1", "0.001", "86401", "1e39", "inf", "nan", "1,2", "x", ""],
@@ -54,7 +67,9 @@ def _options(command: str) -> set[str]:
 def _parse(command: str, option: str, value: str) -> int:
     """0 when the parser takes the value, else the usage error's exit code."""
     extra = ["--frames", "2", "-o", "a.gif"] if command == "render" and option == "--fps" else []
-    extra += ["--nan"] if command == "probe" else []  # probe needs one of --pixel, --frag-coord, --nan
+    extra += (
+        ["--nan"] if command == "probe" else []
+    )  # probe needs one of --pixel, --frag-coord, --nan
     argv = [command, "shader.glsl", *extra, f"{option}={value}"]
     try:
         build_parser(command).parse_args(argv)
@@ -67,8 +82,17 @@ CASES = [(c, o) for c in RENDERING for o in GOOD if o in _options(c)]
 
 
 def test_the_shared_options_are_on_every_rendering_command():
-    for option in ("--size", "--samples", "--time", "--frame", "--frames", "--fps", "--mouse", "--date",
-                   "--precision"):
+    for option in (
+        "--size",
+        "--samples",
+        "--time",
+        "--frame",
+        "--frames",
+        "--fps",
+        "--mouse",
+        "--date",
+        "--precision",
+    ):
         assert option in _options("render") and option in _options("verify"), option
     assert {"--size", "--time", "--runs"} <= _options("bench")
     for command in RENDERING:
@@ -103,14 +127,17 @@ def test_the_parsers_agree_with_their_documented_limits():
         limits.parse_frame_budget("0")
 
 
-RUNAWAY = ("void mainImage(out vec4 c, in vec2 p) {\n    float x = 0.0;\n"
-           "    for (int i = 0; i < 99999; i++) { for (int j = 0; j < 99999; j++) { x += 1.0; } }\n"
-           "    c = vec4(x);\n}\n")
+RUNAWAY = (
+    "void mainImage(out vec4 c, in vec2 p) {\n    float x = 0.0;\n"
+    "    for (int i = 0; i < 99999; i++) { for (int j = 0; j < 99999; j++) { x += 1.0; } }\n"
+    "    c = vec4(x);\n}\n"
+)
 
 
 @pytest.mark.parametrize("command,options", [("render", ["-o", "a.npy"]), ("probe", ["--nan"])])
-def test_frame_budget_stops_the_frame_and_leaves_the_environment_as_it_was(command, options, tmp_path, capsys,
-                                                                           monkeypatch):
+def test_frame_budget_stops_the_frame_and_leaves_the_environment_as_it_was(
+    command, options, tmp_path, capsys, monkeypatch
+):
     """--frame-budget overrides GLSLCHECK_FRAME_SECONDS (here 30 s, so that without the option
     the test fails rather than hangs) for one command: the runaway loops stop at 0.2 s with the
     error at the inner loop, and the variable is as it was after main() returns (main may run
@@ -135,7 +162,9 @@ def test_a_schedule_past_the_last_iframe_is_a_usage_error(command, tmp_path, cap
     shader = tmp_path / "Image.glsl"
     shader.write_text("void mainImage(out vec4 c, in vec2 p) { c = vec4(1.0); }\n")
     out = ["-o", str(tmp_path / "a.gif")] if command == "render" else []
-    code = main([command, str(shader), *out, "--frame", str(limits.MAX_FRAME - 5), "--frames", "10"])
+    code = main(
+        [command, str(shader), *out, "--frame", str(limits.MAX_FRAME - 5), "--frames", "10"]
+    )
     assert code == 2
     assert "runs past iFrame" in capsys.readouterr().err
 
@@ -143,10 +172,29 @@ def test_a_schedule_past_the_last_iframe_is_a_usage_error(command, tmp_path, cap
 def test_time_1e39_is_a_usage_error_not_a_runtime_warning(tmp_path):
     shader = tmp_path / "Image.glsl"
     shader.write_text("void mainImage(out vec4 c, in vec2 p) { c = vec4(iTime); }\n")
-    proc = subprocess.run([sys.executable, "-W", "error", "-m", "glslcheck", "render", str(shader),
-                           "-o", str(tmp_path / "a.png"), "--time", "1e39"], capture_output=True, text=True)
+    proc = subprocess.run(
+        [
+            sys.executable,
+            "-W",
+            "error",
+            "-m",
+            "glslcheck",
+            "render",
+            str(shader),
+            "-o",
+            str(tmp_path / "a.png"),
+            "--time",
+            "1e39",
+        ],
+        capture_output=True,
+        text=True,
+    )
     assert proc.returncode == 2
-    assert "--time" in proc.stderr and "RuntimeWarning" not in proc.stderr and "Traceback" not in proc.stderr
+    assert (
+        "--time" in proc.stderr
+        and "RuntimeWarning" not in proc.stderr
+        and "Traceback" not in proc.stderr
+    )
     assert not (tmp_path / "a.png").exists()
 
 
@@ -167,7 +215,25 @@ def test_frame_budget_stops_a_probe_trace(tmp_path):
     the test instead of hanging it."""
     shader = tmp_path / "Image.glsl"
     shader.write_text(RUNAWAY)
-    proc = subprocess.run([sys.executable, "-m", "glslcheck", "probe", str(shader), "--pixel", "0,0", "--size", "8x8",
-                           "--frame-budget", "0.5"], capture_output=True, text=True, timeout=120)
+    proc = subprocess.run(
+        [
+            sys.executable,
+            "-m",
+            "glslcheck",
+            "probe",
+            str(shader),
+            "--pixel",
+            "0,0",
+            "--size",
+            "8x8",
+            "--frame-budget",
+            "0.5",
+        ],
+        capture_output=True,
+        text=True,
+        timeout=120,
+    )
     assert proc.returncode == 1, proc.stderr
-    assert f"{shader}:3:39: error: the frame was still rendering after 0.5 s" in proc.stderr, proc.stderr
+    assert f"{shader}:3:39: error: the frame was still rendering after 0.5 s" in proc.stderr, (
+        proc.stderr
+    )

@@ -54,16 +54,34 @@ def _glslcheck(*args: str) -> list[str]:
 
 # glslcheck with Python's Ctrl-C handler even when this test runs where SIGINT is ignored (a
 # shell's background job), which a child would inherit
-INTERRUPTIBLE = ("import runpy, signal; signal.signal(signal.SIGINT, signal.default_int_handler); "
-                 "runpy.run_module('glslcheck', run_name='__main__')")
+INTERRUPTIBLE = (
+    "import runpy, signal; signal.signal(signal.SIGINT, signal.default_int_handler); "
+    "runpy.run_module('glslcheck', run_name='__main__')"
+)
 
 
 def test_the_frame_budget_ends_a_compiled_frame(setup, tmp_path):
     shader, env = setup
     t0 = time.monotonic()
-    done = subprocess.run(_glslcheck("render", str(shader), "--backend", "compiled", "--size", "16x8",
-                                     "--frame-budget", str(BUDGET), "-o", str(tmp_path / "out.png")),
-                          env=env, capture_output=True, text=True, timeout=TIMEOUT, check=False)
+    done = subprocess.run(
+        _glslcheck(
+            "render",
+            str(shader),
+            "--backend",
+            "compiled",
+            "--size",
+            "16x8",
+            "--frame-budget",
+            str(BUDGET),
+            "-o",
+            str(tmp_path / "out.png"),
+        ),
+        env=env,
+        capture_output=True,
+        text=True,
+        timeout=TIMEOUT,
+        check=False,
+    )
     elapsed = time.monotonic() - t0
     assert done.returncode == 1, done.stderr
     assert f"{shader}:1:1: error: the frame was still rendering after {BUDGET:g} s" in done.stderr
@@ -74,12 +92,37 @@ def test_the_frame_budget_ends_a_compiled_frame(setup, tmp_path):
 
 def test_ctrl_c_ends_a_compiled_frame(setup, tmp_path):
     shader, env = setup
-    warm = _glslcheck("render", str(shader), "--backend", "compiled", "--size", "1x1", "--frame-budget", "1",
-                      "-o", str(tmp_path / "warm.png"))
+    warm = _glslcheck(
+        "render",
+        str(shader),
+        "--backend",
+        "compiled",
+        "--size",
+        "1x1",
+        "--frame-budget",
+        "1",
+        "-o",
+        str(tmp_path / "warm.png"),
+    )
     subprocess.run(warm, env=env, capture_output=True, timeout=TIMEOUT, check=False)
-    proc = subprocess.Popen([sys.executable, "-c", INTERRUPTIBLE, "render", str(shader), "--backend", "compiled",
-                             "--size", "16x8", "-o", str(tmp_path / "out.png")],
-                            env=env, stderr=subprocess.PIPE, text=True)
+    proc = subprocess.Popen(
+        [
+            sys.executable,
+            "-c",
+            INTERRUPTIBLE,
+            "render",
+            str(shader),
+            "--backend",
+            "compiled",
+            "--size",
+            "16x8",
+            "-o",
+            str(tmp_path / "out.png"),
+        ],
+        env=env,
+        stderr=subprocess.PIPE,
+        text=True,
+    )
     try:
         time.sleep(5)  # the module loads from the cache warmed above: the frame is running by now
         assert proc.poll() is None, proc.communicate()[1]
@@ -99,9 +142,23 @@ def test_ctrl_c_ends_a_compiled_frame(setup, tmp_path):
 def test_verify_compiled_against_gl_ends(setup, gl):
     shader, env = setup
     t0 = time.monotonic()
-    done = subprocess.run(_glslcheck("verify", str(shader), "--backends", "compiled,gl", "--size", "16x8",
-                                     "--frame-budget", str(BUDGET)),
-                          env=env, capture_output=True, text=True, timeout=TIMEOUT, check=False)
+    done = subprocess.run(
+        _glslcheck(
+            "verify",
+            str(shader),
+            "--backends",
+            "compiled,gl",
+            "--size",
+            "16x8",
+            "--frame-budget",
+            str(BUDGET),
+        ),
+        env=env,
+        capture_output=True,
+        text=True,
+        timeout=TIMEOUT,
+        check=False,
+    )
     elapsed = time.monotonic() - t0
     assert done.returncode == 1, done.stdout + done.stderr
     assert f"error: the frame was still rendering after {BUDGET:g} s" in done.stderr

@@ -14,7 +14,9 @@ import pytest
 import glslcheck
 from glslcheck.base.precision import float32_literal
 
-ABOVE_HALF = "1.00000005960464477539062500000000001"  # 1 + 2**-24 (halfway to the next float32) + 1e-35
+ABOVE_HALF = (
+    "1.00000005960464477539062500000000001"  # 1 + 2**-24 (halfway to the next float32) + 1e-35
+)
 
 
 def _nearest_float32(exact: Fraction) -> float:
@@ -39,7 +41,9 @@ def _decimals(count: int = 300) -> list[str]:
         x = np.float32(rng.uniform(-1e6, 1e6) * 2.0 ** rng.randint(-60, 60))
         nxt = np.nextafter(x, np.float32(np.inf))
         half = (Fraction(float(x)) + Fraction(float(nxt))) / 2
-        digits = len(str(half.denominator)) + 40  # enough decimals for the halfway point, and 40 more
+        digits = (
+            len(str(half.denominator)) + 40
+        )  # enough decimals for the halfway point, and 40 more
         for offset in (0, Fraction(1, 10**digits), -Fraction(1, 10**digits)):
             value = half + offset
             sign = "-" if value < 0 else ""
@@ -99,16 +103,22 @@ def test_the_compiled_engine_reads_the_literal_as_gl_does(shader, gl, numba):
 def test_float64_keeps_the_float64_nearest_the_decimal(shader):
     ours = glslcheck.compile(shader, backend="numpy").render(size=(2, 2), precision="float64")
     assert ours[0, 0, 0] == np.float32((float(ABOVE_HALF) - 1.0) * 2**23)
-    assert struct.unpack("<f", struct.pack("<f", float(ABOVE_HALF)))[0] == 1.0  # float64 is the halfway point
+    assert (
+        struct.unpack("<f", struct.pack("<f", float(ABOVE_HALF)))[0] == 1.0
+    )  # float64 is the halfway point
 
 
 def test_literals_at_the_top_of_float32s_range_read_as_gl_reads_them(tmp_path, gl):
     # just below the halfway point between float32's largest and 2**128 (its float64 is that point)
     below_overflow = "3.402823567797336616375393954581425684479e38"
     path = tmp_path / "Image.glsl"
-    path.write_text("void mainImage(out vec4 fragColor, in vec2 fragCoord)\n{\n"
-                    f"    float a = 1e39;\n    float b = {below_overflow};\n"
-                    "    fragColor = vec4(a > 1.0 ? 1.0 : 0.0, b / 3.4e38, isinf(b) ? 1.0 : 0.0, 1.0);\n}\n")
+    path.write_text(
+        "void mainImage(out vec4 fragColor, in vec2 fragCoord)\n{\n"
+        f"    float a = 1e39;\n    float b = {below_overflow};\n"
+        "    fragColor = vec4(a > 1.0 ? 1.0 : 0.0, b / 3.4e38, isinf(b) ? 1.0 : 0.0, 1.0);\n}\n"
+    )
     theirs = glslcheck.compile(str(path), backend="gl").render(size=(2, 2))
-    assert theirs[0, 0, 2] == 0.0 and float32_literal(below_overflow) == float(np.finfo(np.float32).max)
+    assert theirs[0, 0, 2] == 0.0 and float32_literal(below_overflow) == float(
+        np.finfo(np.float32).max
+    )
     assert np.array_equal(glslcheck.compile(str(path), backend="numpy").render(size=(2, 2)), theirs)

@@ -35,8 +35,14 @@ def _hook(repo: Repo) -> subprocess.CompletedProcess:
 
 def _glslcheck(*args: str, cwd: Path, env: dict | None = None) -> subprocess.CompletedProcess:
     env = {**(os.environ if env is None else env), "PYTHONPATH": CHECKOUT}
-    return subprocess.run([sys.executable, "-m", "glslcheck", *args], cwd=cwd, env=env, capture_output=True,
-                          text=True, timeout=60)
+    return subprocess.run(
+        [sys.executable, "-m", "glslcheck", *args],
+        cwd=cwd,
+        env=env,
+        capture_output=True,
+        text=True,
+        timeout=60,
+    )
 
 
 def _head(repo: Repo) -> str:
@@ -134,8 +140,14 @@ def test_hook_commits_more_folders_than_a_command_line_holds(repo: Repo):
     # pathspecs of one git command before the fix: enough folders to pass the limit twice.
     count = 2 * arg_max // (2 * (len(folder) + len("/glslcheck.toml"))) + 1
     listing = "".join(f"100644 {blob}\t{folder}{i:07d}/notes.md\n" for i in range(count))
-    subprocess.run(["git", "update-index", "--add", "--index-info"], cwd=repo.root, env=repo.env,
-                   input=listing, text=True, check=True)
+    subprocess.run(
+        ["git", "update-index", "--add", "--index-info"],
+        cwd=repo.root,
+        env=repo.env,
+        input=listing,
+        text=True,
+        check=True,
+    )
     repo.write("lab4/Image.glsl", BAD)
     repo.git("add", "lab4")
     proc = _hook(repo)
@@ -176,17 +188,25 @@ def test_index_lookups_in_small_runs_find_what_one_run_finds(repo: Repo, monkeyp
 def test_install_hook_force_twice_keeps_every_hook_it_replaced(repo: Repo):
     hooks = repo.root / ".git" / "hooks"
     assert _glslcheck("install-hook", cwd=repo.root, env=repo.env).returncode == 0
-    theirs = ["#!/bin/sh\necho 'the first hook of my own'\n", "#!/bin/sh\necho 'a tool wrote this one later'\n"]
+    theirs = [
+        "#!/bin/sh\necho 'the first hook of my own'\n",
+        "#!/bin/sh\necho 'a tool wrote this one later'\n",
+    ]
     for text in theirs:
         (hooks / "pre-commit").write_text(text, encoding="utf-8")
         proc = _glslcheck("install-hook", "--force", cwd=repo.root, env=repo.env)
         assert proc.returncode == 0 and "replaced" in proc.stdout, proc.stderr
         assert HOOK_MARKER in (hooks / "pre-commit").read_text(encoding="utf-8")
-    proc = _glslcheck("install-hook", "--force", cwd=repo.root, env=repo.env)  # its own hook: updated, no backup
+    proc = _glslcheck(
+        "install-hook", "--force", cwd=repo.root, env=repo.env
+    )  # its own hook: updated, no backup
     assert proc.returncode == 0 and "updated" in proc.stdout, proc.stderr
     kept = sorted(hooks.glob("pre-commit.glslcheck-backup*"))
     assert [p.read_text(encoding="utf-8") for p in kept] == theirs
-    assert [p.name for p in kept] == ["pre-commit.glslcheck-backup", "pre-commit.glslcheck-backup.1"]
+    assert [p.name for p in kept] == [
+        "pre-commit.glslcheck-backup",
+        "pre-commit.glslcheck-backup.1",
+    ]
 
 
 # Folders holding symbolic links to themselves or above ------------------------------------------
@@ -197,8 +217,15 @@ def _looping_tree(root: Path, outside: Path) -> None:
     (root / "lab1" / "Image.glsl").write_text(CLEAN, encoding="utf-8")
     (root / "notes" / "deeper").mkdir(parents=True)
     (root / "notes" / "loose.glsl").write_text(CLEAN, encoding="utf-8")
-    for link, target in (("again", "."), ("self", "."), ("notes/up", ".."), ("notes/deeper/top", "../.."),
-                         ("notes/deeper/here", "."), ("notes/absolute", str(root)), ("shared", str(outside))):
+    for link, target in (
+        ("again", "."),
+        ("self", "."),
+        ("notes/up", ".."),
+        ("notes/deeper/top", "../.."),
+        ("notes/deeper/here", "."),
+        ("notes/absolute", str(root)),
+        ("shared", str(outside)),
+    ):
         os.symlink(target, root / link)
     (outside / "lab9").mkdir(parents=True)
     (outside / "lab9" / "Image.glsl").write_text(CLEAN, encoding="utf-8")
@@ -213,20 +240,33 @@ SHADERS = ["course/lab1", "course/notes/loose.glsl", "course/shared/lab9"]
 def test_walk_enters_each_real_folder_once(tmp_path: Path):
     _looping_tree(tmp_path / "course", tmp_path / "outside")
     code = "from glslcheck.shadertoy.sources import find_shaders\nfor s in find_shaders(['course']): print(s.root)\n"
-    proc = subprocess.run([sys.executable, "-c", code], cwd=tmp_path, capture_output=True, text=True, timeout=60,
-                          env={**os.environ, "PYTHONPATH": CHECKOUT})
+    proc = subprocess.run(
+        [sys.executable, "-c", code],
+        cwd=tmp_path,
+        capture_output=True,
+        text=True,
+        timeout=60,
+        env={**os.environ, "PYTHONPATH": CHECKOUT},
+    )
     assert proc.returncode == 0, proc.stderr
     assert proc.stdout.splitlines() == SHADERS
 
 
-@pytest.mark.parametrize("command, summary", [
-    (["lint"], f"no findings in {len(SHADERS) - 1} files"),
-    (["check"], f"checked {len(SHADERS)} programs: {len(SHADERS)} clean"),
-    (["parse"], f"parsed {len(SHADERS)} of {len(SHADERS)} programs"),
-    (["report", "--no-webgl", "--no-bench", "--size", "8x8", "-o", "report.html"],
-     f"{len(SHADERS)} shaders, all clean"),
-])
-def test_commands_walk_a_folder_that_links_to_itself(tmp_path: Path, command: list[str], summary: str):
+@pytest.mark.parametrize(
+    "command, summary",
+    [
+        (["lint"], f"no findings in {len(SHADERS) - 1} files"),
+        (["check"], f"checked {len(SHADERS)} programs: {len(SHADERS)} clean"),
+        (["parse"], f"parsed {len(SHADERS)} of {len(SHADERS)} programs"),
+        (
+            ["report", "--no-webgl", "--no-bench", "--size", "8x8", "-o", "report.html"],
+            f"{len(SHADERS)} shaders, all clean",
+        ),
+    ],
+)
+def test_commands_walk_a_folder_that_links_to_itself(
+    tmp_path: Path, command: list[str], summary: str
+):
     _looping_tree(tmp_path / "course", tmp_path / "outside")
     proc = _glslcheck(command[0], "course", *command[1:], cwd=tmp_path)
     assert proc.returncode == 0, proc.stdout + proc.stderr

@@ -17,15 +17,55 @@ import re
 import numpy as np
 import pytest
 
-from glslcheck.language.builtin_functions import KEYWORDS, RESERVED_WORDS
 from glslcheck.backends.numpy_engine import program as P
 from glslcheck.backends.numpy_engine.transpile import transpile_shader
+from glslcheck.language.builtin_functions import KEYWORDS, RESERVED_WORDS
 
-NAMES = ["__import__", "__builtins__", "__class__", "__subclasses__", "__globals__", "__code__",
-         "__getattribute__", "__dict__", "__name__", "eval", "exec", "compile", "os", "sys",
-         "subprocess", "print", "open", "input", "exit", "quit", "vars", "locals", "self", "cls",
-         "np", "numpy", "math", "lambda_", "None_", "rt", "X", "S", "tile", "lanes", "mask",
-         "v_x", "f_f", "g_g", "C_1", "Z_float", "__", "_", "___x"]
+NAMES = [
+    "__import__",
+    "__builtins__",
+    "__class__",
+    "__subclasses__",
+    "__globals__",
+    "__code__",
+    "__getattribute__",
+    "__dict__",
+    "__name__",
+    "eval",
+    "exec",
+    "compile",
+    "os",
+    "sys",
+    "subprocess",
+    "print",
+    "open",
+    "input",
+    "exit",
+    "quit",
+    "vars",
+    "locals",
+    "self",
+    "cls",
+    "np",
+    "numpy",
+    "math",
+    "lambda_",
+    "None_",
+    "rt",
+    "X",
+    "S",
+    "tile",
+    "lanes",
+    "mask",
+    "v_x",
+    "f_f",
+    "g_g",
+    "C_1",
+    "Z_float",
+    "__",
+    "_",
+    "___x",
+]
 
 # Python keywords are GLSL-legal names too.
 NAMES += ["lambda", "def", "class", "import", "global", "nonlocal", "yield", "None", "True", "pass"]
@@ -46,13 +86,19 @@ def _shader(position: str, name: str, plain: bool | None = None) -> dict[str, st
     decl, use = POSITIONS[position](name)
     body = f"    float acc = 0.0;\n    {use}\n    fragColor = vec4(acc, fragCoord.x * 0.1, 0.0, 1.0);\n}}\n"
     if plain if plain is not None else "__" in name:
-        return {"GLSL": "#version 300 es\nprecision highp float;\nout vec4 fragColor;\n" + decl
-                + "void main() {\n    vec2 fragCoord = gl_FragCoord.xy;\n" + body}
+        return {
+            "GLSL": "#version 300 es\nprecision highp float;\nout vec4 fragColor;\n"
+            + decl
+            + "void main() {\n    vec2 fragCoord = gl_FragCoord.xy;\n"
+            + body
+        }
     return {"image": decl + "void mainImage(out vec4 fragColor, in vec2 fragCoord) {\n" + body}
 
 
 def _code_identifiers(source: str) -> set[str]:
-    code = [re.sub(r"'[^']*'|\"[^\"]*\"", '""', line.split("#", 1)[0]) for line in source.splitlines()]
+    code = [
+        re.sub(r"'[^']*'|\"[^\"]*\"", '""', line.split("#", 1)[0]) for line in source.splitlines()
+    ]
     return {m.group(0) for line in code for m in re.finditer(r"(?<![.\w])[A-Za-z_]\w*", line)}
 
 
@@ -61,18 +107,38 @@ def test_hostile_names_are_mangled_and_inert(make_shader, position):
     for name in NAMES:
         if name in RESERVED_WORDS or name in KEYWORDS:  # `input`, `class`: GLSL refuses them
             continue
-        if name in {"lambda", "def", "class", "import", "global", "nonlocal", "yield", "None", "True", "pass"} \
-                and position == "struct type":
+        if (
+            name
+            in {
+                "lambda",
+                "def",
+                "class",
+                "import",
+                "global",
+                "nonlocal",
+                "yield",
+                "None",
+                "True",
+                "pass",
+            }
+            and position == "struct type"
+        ):
             continue  # covered by the other positions; keeps the struct case simple
         shader = make_shader(**_shader(position, name))
         src = transpile_shader(shader).source
         # Names the generator itself writes for any shader (rt, X, numpy in the standalone
         # footer, ...) are its own: the user's name must not add a bare use of any of them.
-        own = _code_identifiers(transpile_shader(make_shader(**_shader(position, "q", "__" in name))).source)
-        assert name not in _code_identifiers(src) - own, f"{position} {name!r} reached the generated code unmangled"
+        own = _code_identifiers(
+            transpile_shader(make_shader(**_shader(position, "q", "__" in name))).source
+        )
+        assert name not in _code_identifiers(src) - own, (
+            f"{position} {name!r} reached the generated code unmangled"
+        )
         code = "\n".join(line.split("#", 1)[0] for line in src.splitlines())
         assert not re.search(r"\.\s*__\w+", code), f"{position} {name!r}: dunder attribute access"
-        assert not re.search(r"\b(eval|exec|__import__|getattr|setattr|open|compile)\s*\(", code), name
+        assert not re.search(r"\b(eval|exec|__import__|getattr|setattr|open|compile)\s*\(", code), (
+            name
+        )
         prog = P.compile_numpy(shader)
         assert prog.module()["__builtins__"] == {}
         img = prog.render(size=(4, 2))

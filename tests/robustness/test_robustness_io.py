@@ -13,15 +13,20 @@ import numpy as np
 import pytest
 
 from glslcheck.base import images
-from glslcheck.cli.main import main
 from glslcheck.base.images import GifWriter, save_image
+from glslcheck.cli.main import main
 
 SHADER = "void mainImage(out vec4 c, in vec2 p) { c = vec4(p / iResolution.xy, 0.5, 1.0); }\n"
 
 
 def _glslcheck(*args: str, timeout: float = 60, **kwargs) -> subprocess.CompletedProcess:
-    return subprocess.run([sys.executable, "-m", "glslcheck", *args], capture_output=True, text=True,
-                          timeout=timeout, **kwargs)
+    return subprocess.run(
+        [sys.executable, "-m", "glslcheck", *args],
+        capture_output=True,
+        text=True,
+        timeout=timeout,
+        **kwargs,
+    )
 
 
 @pytest.fixture
@@ -35,7 +40,9 @@ def test_a_fifo_is_refused_at_once(tmp_path: Path):
     fifo = tmp_path / "Image.glsl"
     os.mkfifo(fifo)
     for command in ("check", "lint", "render"):
-        proc = _glslcheck(command, str(fifo), timeout=60)  # it blocked forever: the timeout fails it
+        proc = _glslcheck(
+            command, str(fifo), timeout=60
+        )  # it blocked forever: the timeout fails it
         assert proc.returncode == 2, proc.stderr
         assert f"{fifo}: error: is a FIFO (named pipe), not a regular file" in proc.stderr
 
@@ -65,21 +72,30 @@ def test_a_symlink_loop_says_what_it_is(tmp_path: Path):
         assert "loop of symbolic links" in proc.stderr and "no such file" not in proc.stderr
 
 
-def test_verify_diff_without_an_extension_is_refused_before_rendering(shader: Path, tmp_path: Path, capsys):
+def test_verify_diff_without_an_extension_is_refused_before_rendering(
+    shader: Path, tmp_path: Path, capsys
+):
     assert main(["verify", str(shader), "--diff", str(tmp_path / "bad")]) == 2
     err = capsys.readouterr().err
     assert f"{tmp_path / 'bad'}: error: the diff image must be a .png file" in err
 
 
-def test_bench_plot_with_an_unknown_extension_is_refused_before_measuring(shader: Path, tmp_path: Path, capsys):
+def test_bench_plot_with_an_unknown_extension_is_refused_before_measuring(
+    shader: Path, tmp_path: Path, capsys
+):
     assert main(["bench", str(shader), "--plot", str(tmp_path / "x.xyz")]) == 2
     assert "x.xyz: error: the plot must be a .png file" in capsys.readouterr().err
 
 
 def test_lint_to_a_full_disk(shader: Path):
     with open("/dev/full", "w") as full:
-        proc = subprocess.run([sys.executable, "-m", "glslcheck", "lint", str(shader)], stdout=full,
-                              stderr=subprocess.PIPE, text=True, timeout=60)
+        proc = subprocess.run(
+            [sys.executable, "-m", "glslcheck", "lint", str(shader)],
+            stdout=full,
+            stderr=subprocess.PIPE,
+            text=True,
+            timeout=60,
+        )
     assert proc.returncode == 2
     assert "cannot write to standard output (No space left on device)" in proc.stderr
     assert "Traceback" not in proc.stderr and "Exception ignored" not in proc.stderr
@@ -89,7 +105,9 @@ def _leftovers(folder: Path) -> list[str]:
     return [p.name for p in folder.iterdir() if p.name.startswith(".")]
 
 
-def test_ctrl_c_while_a_gif_is_written_leaves_the_old_file(shader: Path, tmp_path: Path, monkeypatch, capsys):
+def test_ctrl_c_while_a_gif_is_written_leaves_the_old_file(
+    shader: Path, tmp_path: Path, monkeypatch, capsys
+):
     gif = tmp_path / "anim.gif"
     gif.write_bytes(b"the old animation")
     real_add = GifWriter.add
@@ -129,7 +147,9 @@ def test_render_writes_an_image_atomically(shader: Path, tmp_path: Path):
     assert main(["render", str(shader), "-o", str(png), "--size", "8x4"]) == 0
     assert png.read_bytes().startswith(b"\x89PNG")
     assert _leftovers(tmp_path) == []
-    assert oct(png.stat().st_mode & 0o777) == oct(0o666 & ~_umask())  # as any new file, not mkstemp's 0600
+    assert oct(png.stat().st_mode & 0o777) == oct(
+        0o666 & ~_umask()
+    )  # as any new file, not mkstemp's 0600
 
 
 def _umask() -> int:

@@ -18,21 +18,49 @@ from glslcheck.base.diagnostics import InputError
 from glslcheck.shadertoy.sources import load_shadertoy_json
 
 ROOT = Path(__file__).resolve().parents[2]
-IMAGE = ("void mainImage(out vec4 fragColor, in vec2 fragCoord)\n"
-         "{\n    float unused_x = 1.0;\n    fragColor = vec4(1.0);\n}\n")
-EXPORT = {"Shader": {"renderpass": [
-    {"code": IMAGE.replace("unused_x", "a"), "name": "Buffer A", "type": "buffer",
-     "inputs": [], "outputs": [{"id": 257, "channel": 0}]},
-    {"code": IMAGE, "name": "Image", "type": "image",
-     "inputs": [{"id": 257, "ctype": "buffer", "channel": 0, "src": "/media/previz/buffer00.png",
-                 "sampler": {"filter": "linear", "wrap": "clamp", "vflip": "true"}}],
-     "outputs": [{"id": 37, "channel": 0}]}]}}
+IMAGE = (
+    "void mainImage(out vec4 fragColor, in vec2 fragCoord)\n"
+    "{\n    float unused_x = 1.0;\n    fragColor = vec4(1.0);\n}\n"
+)
+EXPORT = {
+    "Shader": {
+        "renderpass": [
+            {
+                "code": IMAGE.replace("unused_x", "a"),
+                "name": "Buffer A",
+                "type": "buffer",
+                "inputs": [],
+                "outputs": [{"id": 257, "channel": 0}],
+            },
+            {
+                "code": IMAGE,
+                "name": "Image",
+                "type": "image",
+                "inputs": [
+                    {
+                        "id": 257,
+                        "ctype": "buffer",
+                        "channel": 0,
+                        "src": "/media/previz/buffer00.png",
+                        "sampler": {"filter": "linear", "wrap": "clamp", "vflip": "true"},
+                    }
+                ],
+                "outputs": [{"id": 37, "channel": 0}],
+            },
+        ]
+    }
+}
 
 
 def _cli(*args, cwd=None, env=None, timeout=120):
     env = {**os.environ, "PYTHONPATH": str(ROOT), **(env or {})}
-    return subprocess.run([sys.executable, "-m", "glslcheck", *args], cwd=cwd, env=env, capture_output=True,
-                          timeout=timeout)
+    return subprocess.run(
+        [sys.executable, "-m", "glslcheck", *args],
+        cwd=cwd,
+        env=env,
+        capture_output=True,
+        timeout=timeout,
+    )
 
 
 def _set(data, path, value):
@@ -52,22 +80,33 @@ def test_the_export_used_below_loads(tmp_path):
     assert sorted(shader.tabs) == ["Buffer A", "Image"] and len(shader.channels) == 1
 
 
-@pytest.mark.parametrize("field, value, where", [
-    (("renderpass", 1), "void mainImage", "Shader.renderpass[1]"),
-    (("renderpass", 1, "code"), 5, "Shader.renderpass[1].code"),
-    (("renderpass", 1, "type"), ["image"], "Shader.renderpass[1].type"),
-    (("renderpass", 0, "name"), {"a": 1}, "Shader.renderpass[0].name"),
-    (("renderpass", 0, "outputs"), 257, "Shader.renderpass[0].outputs"),
-    (("renderpass", 0, "outputs", 0), "257", "Shader.renderpass[0].outputs[0]"),
-    (("renderpass", 1, "inputs"), {"channel": 0}, "Shader.renderpass[1].inputs"),
-    (("renderpass", 1, "inputs", 0), 5, "Shader.renderpass[1].inputs[0]"),
-    (("renderpass", 1, "inputs", 0, "channel"), "0", "Shader.renderpass[1].inputs[0].channel"),
-    (("renderpass", 1, "inputs", 0, "channel"), True, "Shader.renderpass[1].inputs[0].channel"),
-    (("renderpass", 1, "inputs", 0, "channel"), 0.0, "Shader.renderpass[1].inputs[0].channel"),
-    (("renderpass", 1, "inputs", 0, "ctype"), ["buffer"], "Shader.renderpass[1].inputs[0].ctype"),
-    (("renderpass", 1, "inputs", 0, "sampler"), "linear", "Shader.renderpass[1].inputs[0].sampler"),
-    (("renderpass", 1, "inputs", 0, "src"), 3, "Shader.renderpass[1].inputs[0].src"),
-])
+@pytest.mark.parametrize(
+    "field, value, where",
+    [
+        (("renderpass", 1), "void mainImage", "Shader.renderpass[1]"),
+        (("renderpass", 1, "code"), 5, "Shader.renderpass[1].code"),
+        (("renderpass", 1, "type"), ["image"], "Shader.renderpass[1].type"),
+        (("renderpass", 0, "name"), {"a": 1}, "Shader.renderpass[0].name"),
+        (("renderpass", 0, "outputs"), 257, "Shader.renderpass[0].outputs"),
+        (("renderpass", 0, "outputs", 0), "257", "Shader.renderpass[0].outputs[0]"),
+        (("renderpass", 1, "inputs"), {"channel": 0}, "Shader.renderpass[1].inputs"),
+        (("renderpass", 1, "inputs", 0), 5, "Shader.renderpass[1].inputs[0]"),
+        (("renderpass", 1, "inputs", 0, "channel"), "0", "Shader.renderpass[1].inputs[0].channel"),
+        (("renderpass", 1, "inputs", 0, "channel"), True, "Shader.renderpass[1].inputs[0].channel"),
+        (("renderpass", 1, "inputs", 0, "channel"), 0.0, "Shader.renderpass[1].inputs[0].channel"),
+        (
+            ("renderpass", 1, "inputs", 0, "ctype"),
+            ["buffer"],
+            "Shader.renderpass[1].inputs[0].ctype",
+        ),
+        (
+            ("renderpass", 1, "inputs", 0, "sampler"),
+            "linear",
+            "Shader.renderpass[1].inputs[0].sampler",
+        ),
+        (("renderpass", 1, "inputs", 0, "src"), 3, "Shader.renderpass[1].inputs[0].src"),
+    ],
+)
 def test_an_export_field_of_the_wrong_type_is_named(tmp_path, field, value, where):
     path = tmp_path / "shader.json"
     path.write_text(json.dumps(_set(EXPORT, field, value)))
@@ -82,7 +121,10 @@ def test_an_export_field_of_the_wrong_type_exits_2(tmp_path):
     done = _cli("check", str(path))
     err = done.stderr.decode()
     assert done.returncode == 2 and "Traceback" not in err, err
-    assert f"{path}: error: Shader.renderpass[1].inputs[0].sampler: must be an object, not a string" in err
+    assert (
+        f"{path}: error: Shader.renderpass[1].inputs[0].sampler: must be an object, not a string"
+        in err
+    )
 
 
 def _deep(depth: int = 100_000) -> str:
@@ -131,7 +173,9 @@ def test_lint_reports_a_name_that_is_not_utf8_on_a_strict_stdout(undecodable, fm
     if fmt == "json":
         assert out["findings"][0]["path"] == "sh\\udcff/Image.glsl"
     elif fmt == "sarif":
-        uri = out["runs"][0]["results"][0]["locations"][0]["physicalLocation"]["artifactLocation"]["uri"]
+        uri = out["runs"][0]["results"][0]["locations"][0]["physicalLocation"]["artifactLocation"][
+            "uri"
+        ]
         assert uri == "sh%FF/Image.glsl"
     else:
         assert "sh\\udcff/Image.glsl" in out
@@ -144,7 +188,11 @@ def test_lint_writes_a_name_that_is_not_utf8_to_its_output_file(undecodable, fmt
     err = done.stderr.decode(errors="replace")
     assert done.returncode == 1 and "Traceback" not in err, err
     text = out.read_text(encoding="utf-8")  # strict: the report is valid UTF-8
-    expected = {"json": '"sh\\\\udcff/Image.glsl"', "sarif": '"sh%FF/Image.glsl"', "github": "sh\\udcff/Image.glsl"}
+    expected = {
+        "json": '"sh\\\\udcff/Image.glsl"',
+        "sarif": '"sh%FF/Image.glsl"',
+        "github": "sh\\udcff/Image.glsl",
+    }
     assert expected[fmt] in text
 
 

@@ -28,17 +28,19 @@ import numpy as np
 import pytest
 from test_robustness_resources import PEAK_MB, RATIO, measure, write
 
-from glslcheck.base.diagnostics import GlslError
-from glslcheck.backends.numpy_engine import tiles as F
 from glslcheck.backends.numpy_engine import program as P
+from glslcheck.backends.numpy_engine import tiles as F
 from glslcheck.backends.numpy_engine.transpile import compile_generated, transpile
+from glslcheck.base.diagnostics import GlslError
 from glslcheck.shadertoy.sources import load_shader
 
 MAIN = "void mainImage(out vec4 c, in vec2 p) {\n"
 
 # 99,999**2 iterations per pixel: hours at any size without a frame budget
-RUNAWAY = MAIN + ("    float x = 0.0;\n    for (int i = 0; i < 99999; i++) {\n"
-                  "        for (int j = 0; j < 99999; j++) { x += 1.0; }\n    }\n    c = vec4(x);\n}\n")
+RUNAWAY = MAIN + (
+    "    float x = 0.0;\n    for (int i = 0; i < 99999; i++) {\n"
+    "        for (int j = 0; j < 99999; j++) { x += 1.0; }\n    }\n    c = vec4(x);\n}\n"
+)
 
 
 def render(tmp_path: Path, text: str, size: tuple[int, int], **kw) -> np.ndarray:
@@ -61,7 +63,10 @@ def test_21_nested_loops(tmp_path):
     n = 21
     counts = [1] * (n - 2) + [2, 3]
     loops = "".join(f"for (int i{k} = 0; i{k} < {m}; i{k}++) {{ " for k, m in enumerate(counts))
-    text = MAIN + f"    float x = 0.0;\n    {loops}x += 1.0; if (p.x < 4.0) break; {'}' * n}\n    c = vec4(x);\n}}\n"
+    text = (
+        MAIN
+        + f"    float x = 0.0;\n    {loops}x += 1.0; if (p.x < 4.0) break; {'}' * n}\n    c = vec4(x);\n}}\n"
+    )
     size = (8, 2)
     # the innermost loop (3 iterations) breaks after one where p.x < 4; the one around it runs twice
     assert np.array_equal(render(tmp_path, text, size), np.where(pixel_x(size) < 4, 2.0, 6.0))
@@ -99,7 +104,9 @@ def test_else_if_chain_of_100_branches(tmp_path, on):
     """'too many levels of indentation': each else nests one level deeper; branches on a
     varying value (masks) and on a uniform one (plain Python if/else)."""
     n = 100
-    chain = f"if ({on} < 1.0) v = 1.0;" + "".join(f" else if ({on} < {k + 1}.0) v = {k + 1}.0;" for k in range(1, n))
+    chain = f"if ({on} < 1.0) v = 1.0;" + "".join(
+        f" else if ({on} < {k + 1}.0) v = {k + 1}.0;" for k in range(1, n)
+    )
     text = MAIN + f"    float v = 0.0;\n    {chain} else v = -1.0;\n    c = vec4(v);\n}}\n"
     size = (128, 2)
     if on == "p.x":
@@ -117,7 +124,9 @@ def test_500_nested_ifs_with_statements(tmp_path):
     text = MAIN + f"    float v = 0.0;\n    {body}\n    c = vec4(v);\n}}\n"
     size = (8, 2)
     x = pixel_x(size)
-    levels = np.array([next((k for k in range(n) if not xv > k % 7), n) for xv in x[0]], dtype=np.float32)
+    levels = np.array(
+        [next((k for k in range(n) if not xv > k % 7), n) for xv in x[0]], dtype=np.float32
+    )
     assert np.array_equal(render(tmp_path, text, size), np.broadcast_to(levels, x.shape))
 
 
@@ -134,19 +143,25 @@ def test_300_nested_short_circuits(tmp_path):
 def test_declaration_in_a_block_inside_a_case(tmp_path):
     """Found by the hostile fuzzer: a declaration in a block inside a switch case was written
     as a masked update of a variable that had never been bound (UnboundLocalError)."""
-    text = MAIN + ("    float x = 0.0;\n    switch (int(p.x) % 2) {\n"
-                   "    case 0: { int w = 3; x += float(w); } break;\n    default: x = 2.0;\n    }\n"
-                   "    c = vec4(x);\n}\n")
+    text = MAIN + (
+        "    float x = 0.0;\n    switch (int(p.x) % 2) {\n"
+        "    case 0: { int w = 3; x += float(w); } break;\n    default: x = 2.0;\n    }\n"
+        "    c = vec4(x);\n}\n"
+    )
     size = (8, 2)
-    assert np.array_equal(render(tmp_path, text, size), np.where(np.floor(pixel_x(size)) % 2 == 0, 3.0, 2.0))
+    assert np.array_equal(
+        render(tmp_path, text, size), np.where(np.floor(pixel_x(size)) % 2 == 0, 3.0, 2.0)
+    )
 
 
 def test_masked_writes_to_arrays_at_varying_indices(tmp_path):
     """Arrays of more than 4 elements are written with one scatter (it was one pass per
     element: a[4000000] took 50 s in one call). Reference: the same writes in NumPy."""
-    text = MAIN + ("    float a[9];\n    for (int i = 0; i < 9; i++) a[i] = float(i);\n"
-                   "    if (p.x > 3.0) a[int(p.x) % 9] = 20.0;\n    a[int(p.x + 2.0) % 9] += 100.0;\n"
-                   "    c = vec4(a[int(p.x) % 9] + 1000.0 * a[int(p.x + 2.0) % 9]);\n}\n")
+    text = MAIN + (
+        "    float a[9];\n    for (int i = 0; i < 9; i++) a[i] = float(i);\n"
+        "    if (p.x > 3.0) a[int(p.x) % 9] = 20.0;\n    a[int(p.x + 2.0) % 9] += 100.0;\n"
+        "    c = vec4(a[int(p.x) % 9] + 1000.0 * a[int(p.x + 2.0) % 9]);\n}\n"
+    )
     size = (16, 2)
     got = render(tmp_path, text, size)
     for col, xv in enumerate(pixel_x(size)[0]):
@@ -160,7 +175,9 @@ def test_masked_writes_to_arrays_at_varying_indices(tmp_path):
 def test_what_python_still_refuses_is_a_located_error():
     """The safety net: code Python cannot compile is an error at the GLSL line of the nearest
     `# line N` comment, not a SyntaxError traceback."""
-    source = "def f(S):\n    # line 7: x = (((...)));\n    x = " + "(" * 300 + "1" + ")" * 300 + "\n"
+    source = (
+        "def f(S):\n    # line 7: x = (((...)));\n    x = " + "(" * 300 + "1" + ")" * 300 + "\n"
+    )
     with pytest.raises(GlslError) as e:
         compile_generated(source, "<test>", "shader.glsl")
     d = e.value.diagnostics[0]
@@ -173,7 +190,8 @@ def test_1200_deep_call_chain_is_a_located_error(tmp_path):
     reaches Python's recursion limit while rendering: an error at a function of the chain."""
     n = 1200
     text = "float f0(float v) { return v * 0.5; }\n" + "".join(
-        f"float f{k}(float v) {{ return f{k - 1}(v) + 1.0; }}\n" for k in range(1, n))
+        f"float f{k}(float v) {{ return f{k - 1}(v) + 1.0; }}\n" for k in range(1, n)
+    )
     text += MAIN + f"    c = vec4(f{n - 1}(p.x));\n}}\n"
     prog = P.compile_numpy(load_shader(str(write(tmp_path, "shader.glsl", text))))
     with pytest.raises(GlslError) as e:
@@ -187,8 +205,8 @@ def test_1200_deep_call_chain_is_a_located_error(tmp_path):
 def test_transpile_time_is_near_linear_in_the_depth(tmp_path, make_shader, shape):
     """Transpiling 10x deeper takes under RATIO (35) times as long (linear: ~10; the ternaries
     were cubic: 6 s at 150, 44 s at 300). A ratio on the same machine, not a time."""
-    from glslcheck.semantics import check
     from glslcheck.frontend.parser import parse_shader
+    from glslcheck.semantics import check
 
     def seconds(n: int) -> float:
         if shape == "ternaries":
@@ -197,8 +215,13 @@ def test_transpile_time_is_near_linear_in_the_depth(tmp_path, make_shader, shape
                 e = f"(p.y > {k}.0 ? {e} : {k}.0)"
             text = MAIN + f"    c = vec4({e});\n}}\n"
         else:
-            text = MAIN + "    float v = 0.0;\n    " + "".join(
-                f"if (p.x > {k % 7}.0) {{ v += 1.0; " for k in range(n)) + "}" * n + "\n    c = vec4(v);\n}\n"
+            text = (
+                MAIN
+                + "    float v = 0.0;\n    "
+                + "".join(f"if (p.x > {k % 7}.0) {{ v += 1.0; " for k in range(n))
+                + "}" * n
+                + "\n    c = vec4(v);\n}\n"
+            )
         model = check(parse_shader(make_shader(text), "Image"))
         best = float("inf")
         for _ in range(3):
@@ -208,7 +231,9 @@ def test_transpile_time_is_near_linear_in_the_depth(tmp_path, make_shader, shape
         return best
 
     small, big = seconds(40), seconds(400)
-    assert big / small < RATIO, f"10x deeper took {big / small:.1f}x as long ({small:.3f} s -> {big:.3f} s)"
+    assert big / small < RATIO, (
+        f"10x deeper took {big / small:.1f}x as long ({small:.3f} s -> {big:.3f} s)"
+    )
 
 
 # --- runaway work ------------------------------------------------------------------------------
@@ -230,13 +255,27 @@ def test_frame_budget_from_the_environment(tmp_path):
     path = write(tmp_path, "shader.glsl", RUNAWAY)
     out = ["-o", str(tmp_path / "o.npy")]
     env = {**os.environ, "GLSLCHECK_FRAME_SECONDS": "1"}
-    r = subprocess.run([sys.executable, "-m", "glslcheck", "render", str(path), "--size", "32x32", *out],
-                       env=env, capture_output=True, text=True, timeout=600)
-    assert r.returncode == 1 and re.search(r"shader\.glsl:[45]:\d+: error: the frame was still rendering", r.stderr), r.stderr
+    r = subprocess.run(
+        [sys.executable, "-m", "glslcheck", "render", str(path), "--size", "32x32", *out],
+        env=env,
+        capture_output=True,
+        text=True,
+        timeout=600,
+    )
+    assert r.returncode == 1 and re.search(
+        r"shader\.glsl:[45]:\d+: error: the frame was still rendering", r.stderr
+    ), r.stderr
     env["GLSLCHECK_FRAME_SECONDS"] = "soon"
-    r = subprocess.run([sys.executable, "-m", "glslcheck", "render", str(path), *out],
-                       env=env, capture_output=True, text=True, timeout=600)
-    assert r.returncode == 2 and "GLSLCHECK_FRAME_SECONDS must be a number of seconds" in r.stderr, r.stderr
+    r = subprocess.run(
+        [sys.executable, "-m", "glslcheck", "render", str(path), *out],
+        env=env,
+        capture_output=True,
+        text=True,
+        timeout=600,
+    )
+    assert (
+        r.returncode == 2 and "GLSLCHECK_FRAME_SECONDS must be a number of seconds" in r.stderr
+    ), r.stderr
     assert "Traceback" not in r.stderr
 
 
@@ -244,8 +283,9 @@ def test_frame_budget_from_the_environment(tmp_path):
 def test_frame_budget_from_the_environment_takes_the_option_range(monkeypatch, text):
     """GLSLCHECK_FRAME_SECONDS is held to --frame-budget's range (0.01 to 86400 s): a budget of
     31 years is no budget, and 1 ms is below the timer's resolution."""
-    from glslcheck.base.diagnostics import InputError
     from glslcheck.backends.numpy_engine.program import frame_seconds
+    from glslcheck.base.diagnostics import InputError
+
     monkeypatch.setenv("GLSLCHECK_FRAME_SECONDS", text)
     with pytest.raises(InputError, match="from 0.01 to 86400"):
         frame_seconds()
@@ -255,17 +295,25 @@ def test_frame_budget_from_the_environment_takes_the_option_range(monkeypatch, t
 
 # --- memory ------------------------------------------------------------------------------------
 
-BIG_ARRAY = MAIN + ("    float a[1000000];\n    a[int(p.x)] = 1.0;\n"
-                    "    c = vec4(a[int(p.y)], a[int(p.x)], 0.0, 1.0);\n}\n")
+BIG_ARRAY = MAIN + (
+    "    float a[1000000];\n    a[int(p.x)] = 1.0;\n"
+    "    c = vec4(a[int(p.y)], a[int(p.x)], 0.0, 1.0);\n}\n"
+)
 
 
 def test_huge_array_is_refused_when_a_2x2_tile_does_not_fit(tmp_path, monkeypatch):
     path = write(tmp_path, "shader.glsl", BIG_ARRAY)
     monkeypatch.setenv("GLSLCHECK_MEMORY_MB", "20")
-    r = subprocess.run([sys.executable, "-m", "glslcheck", "render", str(path), "-o", str(tmp_path / "o.npy")],
-                       capture_output=True, text=True, timeout=600)
+    r = subprocess.run(
+        [sys.executable, "-m", "glslcheck", "render", str(path), "-o", str(tmp_path / "o.npy")],
+        capture_output=True,
+        text=True,
+        timeout=600,
+    )
     assert r.returncode == 1, r.stderr
-    assert re.search(r"shader\.glsl:2:11: error: this shader needs about 11 MB per pixel", r.stderr), r.stderr
+    assert re.search(
+        r"shader\.glsl:2:11: error: this shader needs about 11 MB per pixel", r.stderr
+    ), r.stderr
 
 
 def test_huge_array_renders_in_small_tiles_within_the_budget(tmp_path, monkeypatch):
@@ -273,13 +321,16 @@ def test_huge_array_renders_in_small_tiles_within_the_budget(tmp_path, monkeypat
     was: peak over 2 GB); with a 100 MB budget the tiles hold 4 pixels."""
     path = write(tmp_path, "shader.glsl", BIG_ARRAY)
     monkeypatch.setenv("GLSLCHECK_MEMORY_MB", "100")
-    rc, _, peak, err = measure(["render", str(path), "--size", "16x16", "-o", str(tmp_path / "o.npy")], tmp_path)
+    rc, _, peak, err = measure(
+        ["render", str(path), "--size", "16x16", "-o", str(tmp_path / "o.npy")], tmp_path
+    )
     assert rc == 0, err
     assert peak < PEAK_MB, f"peak {peak:.0f} MB"
     img = np.load(tmp_path / "o.npy")[::-1]
     x = pixel_x((16, 16))
-    assert np.array_equal(img[..., 1], np.ones_like(x)) and np.array_equal(img[..., 0], np.where(
-        np.floor(x.T) == np.floor(x), 1.0, 0.0))
+    assert np.array_equal(img[..., 1], np.ones_like(x)) and np.array_equal(
+        img[..., 0], np.where(np.floor(x.T) == np.floor(x), 1.0, 0.0)
+    )
 
 
 def test_tiles_respect_a_lane_limit():
@@ -288,7 +339,7 @@ def test_tiles_respect_a_lane_limit():
         cover = np.zeros((h, w), dtype=int)
         for x0, y0, tw, th in tiles:
             assert tw * th <= max(lanes, F.MIN_TILE_LANES) and x0 % 2 == 0 and y0 % 2 == 0
-            cover[y0:y0 + th, x0:x0 + tw] += 1
+            cover[y0 : y0 + th, x0 : x0 + tw] += 1
         assert np.all(cover == 1), (w, h, lanes)
 
 
@@ -298,8 +349,22 @@ def test_tiles_respect_a_lane_limit():
 def _start_render(tmp_path: Path, parallel: str) -> subprocess.Popen:
     path = write(tmp_path, "shader.glsl", RUNAWAY)
     env = {**os.environ, "GLSLCHECK_PARALLEL": parallel}
-    return subprocess.Popen([sys.executable, "-m", "glslcheck", "render", str(path), "--size", "400x300",
-                             "-o", str(tmp_path / "o.npy")], env=env, stderr=subprocess.PIPE, text=True)
+    return subprocess.Popen(
+        [
+            sys.executable,
+            "-m",
+            "glslcheck",
+            "render",
+            str(path),
+            "--size",
+            "400x300",
+            "-o",
+            str(tmp_path / "o.npy"),
+        ],
+        env=env,
+        stderr=subprocess.PIPE,
+        text=True,
+    )
 
 
 def _children(pid: int) -> list[int]:

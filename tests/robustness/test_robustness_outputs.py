@@ -15,8 +15,13 @@ IMAGE = "void mainImage(out vec4 c, in vec2 p) {\n    c = texture(iChannel0, p /
 
 
 def _glslcheck(*args: str, cwd: Path) -> subprocess.CompletedProcess:
-    return subprocess.run([sys.executable, "-m", "glslcheck", *args], cwd=cwd, capture_output=True,
-                          text=True, timeout=300)
+    return subprocess.run(
+        [sys.executable, "-m", "glslcheck", *args],
+        cwd=cwd,
+        capture_output=True,
+        text=True,
+        timeout=300,
+    )
 
 
 def _shader(tmp_path: Path) -> Path:
@@ -24,7 +29,9 @@ def _shader(tmp_path: Path) -> Path:
     folder.mkdir()
     (folder / "Image.glsl").write_text(IMAGE)
     Image.fromarray(np.full((2, 2, 4), 200, np.uint8)).save(folder / "tex.png")
-    (folder / "channels.json").write_text(json.dumps({"Image": {"iChannel0": {"texture": "tex.png"}}}))
+    (folder / "channels.json").write_text(
+        json.dumps({"Image": {"iChannel0": {"texture": "tex.png"}}})
+    )
     return folder
 
 
@@ -35,14 +42,19 @@ def _contents(folder: Path) -> dict[str, bytes]:
 def test_render_transpile_and_verify_never_overwrite_what_they_read(tmp_path):
     folder = _shader(tmp_path)
     before = _contents(folder)
-    cases = [("render", "shader", "-o", "shader/tex.png", "--size", "8x8"),
-             ("transpile", "shader/Image.glsl", "-o", "shader/Image.glsl"),
-             ("transpile", "shader", "-o", "shader/channels.json"),
-             ("verify", "shader", "--size", "8x8", "--diff", "shader/tex.png")]
+    cases = [
+        ("render", "shader", "-o", "shader/tex.png", "--size", "8x8"),
+        ("transpile", "shader/Image.glsl", "-o", "shader/Image.glsl"),
+        ("transpile", "shader", "-o", "shader/channels.json"),
+        ("verify", "shader", "--size", "8x8", "--diff", "shader/tex.png"),
+    ]
     for case in cases:
         done = _glslcheck(*case, cwd=tmp_path)
         assert done.returncode == 2, (case, done.stderr)
-        assert "which the shader is read from; name another file" in done.stderr, (case, done.stderr)
+        assert "which the shader is read from; name another file" in done.stderr, (
+            case,
+            done.stderr,
+        )
         assert _contents(folder) == before, case
 
 

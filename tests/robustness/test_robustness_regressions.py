@@ -21,8 +21,13 @@ from glslcheck.cli.main import main
 MAIN = "void mainImage(out vec4 fragColor, in vec2 fragCoord) {"
 
 
-def run_cli(command: str, data: bytes | str, tmp_path: Path, name: str = "shader.glsl",
-            extra: tuple[str, ...] = ()) -> tuple[int, str, str]:
+def run_cli(
+    command: str,
+    data: bytes | str,
+    tmp_path: Path,
+    name: str = "shader.glsl",
+    extra: tuple[str, ...] = (),
+) -> tuple[int, str, str]:
     """Run `glslcheck COMMAND FILE` in-process; assert the bad-input contract; return (rc, out, err)."""
     path = tmp_path / name
     raw = data.encode("utf-8") if isinstance(data, str) else data
@@ -65,7 +70,13 @@ def test_500_nested_blocks(tmp_path, command):
 
 def test_nesting_beyond_any_limit_is_an_error_at_1_1(tmp_path):
     """5000 nested `1.0+(...)`: deeper than the recursion budget, so a clear error at 1:1."""
-    text = "void mainImage(out vec4 c, in vec2 f) { c = vec4(" + "1.0+(" * 5000 + "1.0" + ")" * 5000 + "); }\n"
+    text = (
+        "void mainImage(out vec4 c, in vec2 f) { c = vec4("
+        + "1.0+(" * 5000
+        + "1.0"
+        + ")" * 5000
+        + "); }\n"
+    )
     rc, _, err = run_cli("check", text, tmp_path)
     assert rc == 1
     assert "nested too deeply" in err and ":1:1: error:" in err
@@ -148,13 +159,17 @@ def test_not_utf8_after_a_lone_cr_names_the_right_line(tmp_path):
 def test_huge_size_is_a_usage_error(tmp_path, command):
     """--size 16384x16384 allocated a 4 GiB image and died with a MemoryError traceback
     (now a usage error: at most 4096*4096 pixels)."""
-    extra = ("--size", "16384x16384") + (("-o", str(tmp_path / "o.npy")) if command == "render" else ())
+    extra = ("--size", "16384x16384") + (
+        ("-o", str(tmp_path / "o.npy")) if command == "render" else ()
+    )
     rc, _, err = run_cli(command, f"{MAIN} fragColor = vec4(1.0); }}\n", tmp_path, extra=extra)
     assert rc == 2 and "16,777,216 pixels" in err
 
 
 @pytest.mark.parametrize("error, code", [(RecursionError, 1), (MemoryError, 2)])
-def test_safety_net_turns_recursion_and_memory_errors_into_messages(tmp_path, monkeypatch, error, code):
+def test_safety_net_turns_recursion_and_memory_errors_into_messages(
+    tmp_path, monkeypatch, error, code
+):
     """The last resort in cli.main: a stage that still runs out of stack or memory
     prints one line naming the shader instead of a traceback."""
     import glslcheck.semantics as check_module
@@ -177,11 +192,14 @@ def test_lint_and_other_commands_never_modify_the_file(tmp_path, command):
     run_cli(command, text.encode("latin-1"), tmp_path, extra=extra)
 
 
-@pytest.mark.parametrize("text", [
-    "void mainImage(out vec4 , in vec2 fragCoord) {}\n",
-    "float f(float) { return 0.5; }\nvoid g(out float, inout vec2 q) { q += 1.0; }\n"
-    f"{MAIN}\n    vec2 q = fragCoord; float z; g(z, q);\n    fragColor = vec4(f(2.0), q * 0.01, 1.0);\n}}\n",
-])
+@pytest.mark.parametrize(
+    "text",
+    [
+        "void mainImage(out vec4 , in vec2 fragCoord) {}\n",
+        "float f(float) { return 0.5; }\nvoid g(out float, inout vec2 q) { q += 1.0; }\n"
+        f"{MAIN}\n    vec2 q = fragCoord; float z; g(z, q);\n    fragColor = vec4(f(2.0), q * 0.01, 1.0);\n}}\n",
+    ],
+)
 def test_unnamed_parameters_render(tmp_path, text):
     """Found by tools/fuzz.py (seed 9, inputs 18849 and 66533, mutants of the lint fixtures):
     the transpiler dropped unnamed parameters, so `shade` unpacked None (TypeError traceback).
@@ -190,5 +208,7 @@ def test_unnamed_parameters_render(tmp_path, text):
     a located error, exit 1, and no traceback from any command."""
     rc, _, err = run_cli("check", text, tmp_path)
     assert rc == 1 and "a parameter of a function definition needs a name" in err
-    rc, _, err = run_cli("render", text, tmp_path, extra=("--size", "4x2", "-o", str(tmp_path / "o.npy")))
+    rc, _, err = run_cli(
+        "render", text, tmp_path, extra=("--size", "4x2", "-o", str(tmp_path / "o.npy"))
+    )
     assert rc == 1 and "Traceback" not in err, err

@@ -64,8 +64,13 @@ def measure(argv: list[str], cwd: Path) -> tuple[int, float, float, str]:
     with tempfile.TemporaryFile() as errf, tempfile.TemporaryDirectory() as tmp:
         peak_file = Path(tmp) / "peak"
         start = time.perf_counter()
-        proc = subprocess.Popen([sys.executable, "-c", _LAUNCHER, str(peak_file), *argv], cwd=cwd,
-                                stdout=subprocess.DEVNULL, stderr=errf, start_new_session=True)
+        proc = subprocess.Popen(
+            [sys.executable, "-c", _LAUNCHER, str(peak_file), *argv],
+            cwd=cwd,
+            stdout=subprocess.DEVNULL,
+            stderr=errf,
+            start_new_session=True,
+        )
         timer = threading.Timer(HANG, os.killpg, (proc.pid, signal.SIGKILL))
         timer.start()
         try:
@@ -77,8 +82,10 @@ def measure(argv: list[str], cwd: Path) -> tuple[int, float, float, str]:
         text = errf.read().decode("utf-8", "replace")
         assert rc != -9, f"glslcheck {' '.join(argv)} ran longer than {HANG} s"
         peak_mb = int(peak_file.read_text()) / 1024
-    print(f"glslcheck {argv[0]} {Path(argv[1]).parent.name}/{Path(argv[1]).name}: exit {rc}, "
-          f"{seconds:.1f} s, peak {peak_mb:.0f} MB")  # shown with pytest -s
+    print(
+        f"glslcheck {argv[0]} {Path(argv[1]).parent.name}/{Path(argv[1]).name}: exit {rc}, "
+        f"{seconds:.1f} s, peak {peak_mb:.0f} MB"
+    )  # shown with pytest -s
     assert "Traceback" not in text, text[-3000:]
     assert rc in (0, 1, 2), (rc, text[-2000:])
     return rc, seconds, peak_mb, text
@@ -93,12 +100,19 @@ def write(folder: Path, name: str, text: str) -> Path:
 
 def long_program(statements: int) -> str:
     body = "".join(f"    x = x * 0.5 + sin(p.x + {i % 1000}.0);\n" for i in range(statements))
-    return "void mainImage(out vec4 c, in vec2 p) {\n    float x = 0.0;\n" + body + "    c = vec4(x);\n}\n"
+    return (
+        "void mainImage(out vec4 c, in vec2 p) {\n    float x = 0.0;\n"
+        + body
+        + "    c = vec4(x);\n}\n"
+    )
 
 
 def many_functions(n: int) -> str:
     fs = "".join(f"float f{i}(float x) {{ return x * {i % 7}.0 + 1.0; }}\n" for i in range(n))
-    return fs + f"void mainImage(out vec4 c, in vec2 p) {{ c = vec4(f{n - 1}(p.x), f0(1.0), 0.0, 1.0); }}\n"
+    return (
+        fs
+        + f"void mainImage(out vec4 c, in vec2 p) {{ c = vec4(f{n - 1}(p.x), f0(1.0), 0.0, 1.0); }}\n"
+    )
 
 
 def check_is_linear_and_bounded(tmp_path: Path, small: Path, big: Path, what: str) -> None:
@@ -109,7 +123,9 @@ def check_is_linear_and_bounded(tmp_path: Path, small: Path, big: Path, what: st
     rc, big_s, peak, err = measure(["check", str(big)], tmp_path)
     assert rc == 0, err
     assert peak < PEAK_MB, f"check of {what} peaked at {peak:.0f} MB"
-    assert big_s / small_s < RATIO, f"10x took {big_s / small_s:.1f}x the time ({small_s:.1f} s -> {big_s:.1f} s)"
+    assert big_s / small_s < RATIO, (
+        f"10x took {big_s / small_s:.1f}x the time ({small_s:.1f} s -> {big_s:.1f} s)"
+    )
 
 
 def test_one_megabyte_file_is_linear_and_bounded(tmp_path):
@@ -153,34 +169,51 @@ def test_500_deep_nesting(tmp_path, shape):
 
 def test_macro_bomb_stops_at_the_expansion_cap(tmp_path):
     # 2**40 tokens if expanded: the preprocessor's cap stops it with an error at the use.
-    bomb = ("#define A0 x\n" + "".join(f"#define A{i + 1} A{i} A{i}\n" for i in range(40))
-            + "void mainImage(out vec4 c, in vec2 p) { float x = 1.0; c = vec4(A40); }\n")
+    bomb = (
+        "#define A0 x\n"
+        + "".join(f"#define A{i + 1} A{i} A{i}\n" for i in range(40))
+        + "void mainImage(out vec4 c, in vec2 p) { float x = 1.0; c = vec4(A40); }\n"
+    )
     path = write(tmp_path, "shader.glsl", bomb)
     rc, _, peak, err = measure(["check", str(path)], tmp_path)
-    assert rc == 1 and re.search(r"shader\.glsl:42:\d+: error: macro expansion is too large", err), err
+    assert rc == 1 and re.search(
+        r"shader\.glsl:42:\d+: error: macro expansion is too large", err
+    ), err
     assert peak < PEAK_MB
 
 
 def test_self_referencing_macros_do_not_recurse(tmp_path):
-    text = ("#define F(x) F(x) + G(x)\n#define G(x) F(x)\n"
-            "void mainImage(out vec4 c, in vec2 p) { float x = 1.0; c = vec4(F(x)); }\n")
+    text = (
+        "#define F(x) F(x) + G(x)\n#define G(x) F(x)\n"
+        "void mainImage(out vec4 c, in vec2 p) { float x = 1.0; c = vec4(F(x)); }\n"
+    )
     rc, _, _, err = measure(["check", str(write(tmp_path, "shader.glsl", text))], tmp_path)
     assert rc == 1 and "shader.glsl:3:" in err, err
 
 
-@pytest.mark.parametrize("loop", ["for (;;) { x += 1.0; }", "while (x >= 0.0) { x += 1.0; }",
-                                  "for (int i = 0; i < 2000000000; i++) { x += 1.0; }"])
+@pytest.mark.parametrize(
+    "loop",
+    [
+        "for (;;) { x += 1.0; }",
+        "while (x >= 0.0) { x += 1.0; }",
+        "for (int i = 0; i < 2000000000; i++) { x += 1.0; }",
+    ],
+)
 def test_endless_loop_stops_at_the_documented_cap(tmp_path, loop):
     text = f"void mainImage(out vec4 c, in vec2 p) {{ float x = 0.0; {loop} c = vec4(x); }}\n"
     path = write(tmp_path, "shader.glsl", text)
-    rc, _, peak, err = measure(["render", str(path), "--size", "8x8", "-o", str(tmp_path / "o.npy")], tmp_path)
+    rc, _, peak, err = measure(
+        ["render", str(path), "--size", "8x8", "-o", str(tmp_path / "o.npy")], tmp_path
+    )
     assert rc == 1 and re.search(r"shader\.glsl:1:\d+: error: this loop did not end", err), err
     assert peak < PEAK_MB
 
 
 @pytest.mark.parametrize("command", ["render", "verify"])
 def test_huge_size_is_refused(tmp_path, command):
-    path = write(tmp_path, "shader.glsl", "void mainImage(out vec4 c, in vec2 p) { c = vec4(1.0); }\n")
+    path = write(
+        tmp_path, "shader.glsl", "void mainImage(out vec4 c, in vec2 p) { c = vec4(1.0); }\n"
+    )
     extra = ["-o", str(tmp_path / "o.npy")] if command == "render" else []
     rc, _, _, err = measure([command, str(path), "--size", "16384x16384", *extra], tmp_path)
     assert rc == 2 and "at most 16,777,216 pixels" in err, err

@@ -63,12 +63,23 @@ def _planted(tmp_path: Path) -> tuple[Path, Path, Path, dict]:
     version = f"{sys.version_info[0]}{sys.version_info[1]}"
     for folder in (tmpdir, home / ".cache" / "glslcheck"):
         folder.mkdir(parents=True)
-        for name in (f"glsl-lalr-0.1.0-{version}.cache", "glsl-lalr.cache", "glslcheck.cache", "grammar.pickle"):
+        for name in (
+            f"glsl-lalr-0.1.0-{version}.cache",
+            "glsl-lalr.cache",
+            "glslcheck.cache",
+            "grammar.pickle",
+        ):
             (folder / name).write_bytes(payload)
     blocked = tmp_path / "not-a-folder"
     blocked.write_text("XDG_CACHE_HOME is a file: no cache folder can be made under it\n")
-    env = dict(os.environ, TMPDIR=str(tmpdir), TEMP=str(tmpdir), TMP=str(tmpdir), HOME=str(home),
-               XDG_CACHE_HOME=str(blocked))
+    env = dict(
+        os.environ,
+        TMPDIR=str(tmpdir),
+        TEMP=str(tmpdir),
+        TMP=str(tmpdir),
+        HOME=str(home),
+        XDG_CACHE_HOME=str(blocked),
+    )
     return tmpdir, home, marker, env
 
 
@@ -79,11 +90,19 @@ def test_security_no_pickle_is_loaded_from_a_writable_temp_location(tmp_path, co
     shader.write_text(SHADER)
     args = [a.format(out=tmp_path / "out.py") for a in command]
     args = [args[0], str(shader), *args[1:]]
-    out = subprocess.run([sys.executable, "-c", _RUN, str(tmpdir), str(home), *args],
-                         env=env, cwd=tmp_path, capture_output=True, text=True, timeout=120)
+    out = subprocess.run(
+        [sys.executable, "-c", _RUN, str(tmpdir), str(home), *args],
+        env=env,
+        cwd=tmp_path,
+        capture_output=True,
+        text=True,
+        timeout=120,
+    )
     assert out.returncode == 0, out.stderr
     report = json.loads(out.stdout.strip().splitlines()[-1])
-    assert report["code"] == (1 if command[0] == "lint" else 0), out.stderr  # lint: findings, no error
+    assert report["code"] == (1 if command[0] == "lint" else 0), (
+        out.stderr
+    )  # lint: findings, no error
     assert not marker.exists(), "a planted pickle was loaded and ran code"
     assert report["unpickled"] == []
     assert report["opened"] == [], f"opened files another user can write: {report['opened']}"
@@ -100,8 +119,12 @@ def test_security_parse_tables_are_not_a_pickle():
 
     path = Path(parse_tables.grammar_folder()) / parse_tables.TABLES_FILE
     tree = ast.parse(path.read_text(encoding="utf-8"))
-    assert isinstance(tree.body[0], ast.Expr) and isinstance(tree.body[0].value.value, str)  # the docstring
+    assert isinstance(tree.body[0], ast.Expr) and isinstance(
+        tree.body[0].value.value, str
+    )  # the docstring
     for statement in tree.body[1:]:
-        assert isinstance(statement, ast.Assign) and len(statement.targets) == 1, ast.dump(statement)
+        assert isinstance(statement, ast.Assign) and len(statement.targets) == 1, ast.dump(
+            statement
+        )
         assert isinstance(statement.targets[0], ast.Name)
         ast.literal_eval(statement.value)

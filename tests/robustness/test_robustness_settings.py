@@ -13,7 +13,9 @@ from glslcheck.base.diagnostics import InputError
 @pytest.mark.parametrize("value", ["3", "-7", "1000000", "8.0", "eight"])
 def test_compiled_lanes_outside_the_supported_widths(monkeypatch, value):
     monkeypatch.setenv("GLSLCHECK_COMPILED_LANES", value)
-    with pytest.raises(InputError, match=f"GLSLCHECK_COMPILED_LANES must be auto, 0 .* not {value!r}"):
+    with pytest.raises(
+        InputError, match=f"GLSLCHECK_COMPILED_LANES must be auto, 0 .* not {value!r}"
+    ):
         lanes_width()
 
 

@@ -25,8 +25,25 @@ SHADER = "void mainImage(out vec4 fragColor, in vec2 fragCoord) { fragColor = ve
 
 def _render(shader: Path, cache: Path, out: Path) -> subprocess.CompletedProcess:
     env = dict(os.environ, NUMBA_CACHE_DIR=str(cache), GLSLCHECK_COMPILED_LANES="0")
-    return subprocess.run([sys.executable, "-m", "glslcheck", "render", str(shader), "--backend", "compiled",
-                           "--size", "8x4", "-o", str(out)], env=env, capture_output=True, text=True, timeout=300)
+    return subprocess.run(
+        [
+            sys.executable,
+            "-m",
+            "glslcheck",
+            "render",
+            str(shader),
+            "--backend",
+            "compiled",
+            "--size",
+            "8x4",
+            "-o",
+            str(out),
+        ],
+        env=env,
+        capture_output=True,
+        text=True,
+        timeout=300,
+    )
 
 
 def _module_file(shader: Path, cache: Path) -> Path:
@@ -82,7 +99,9 @@ def test_a_cache_other_users_can_write_is_not_used(numba, shader, tmp_path):
     assert done.returncode == 0, done.stderr
     assert not marker.exists()
     assert f"the numba cache folder {cache} can be written by other users" in done.stderr
-    assert file.read_text() == planted and sorted(p.name for p in file.parent.iterdir()) == [file.name]
+    assert file.read_text() == planted and sorted(p.name for p in file.parent.iterdir()) == [
+        file.name
+    ]
 
 
 @pytest.mark.skipif(not hasattr(os, "getuid"), reason="file ownership is a POSIX notion")
@@ -95,6 +114,9 @@ def test_unsafe_reason(tmp_path):
     outer = tmp_path / "outer"
     (outer / "inner").mkdir(parents=True, mode=0o700)
     outer.chmod(0o777)  # anyone could rename inner away and put their own folder there
-    assert numba_cache.unsafe_reason(str(outer / "inner")) == f"is inside {outer}, which other users can write"
+    assert (
+        numba_cache.unsafe_reason(str(outer / "inner"))
+        == f"is inside {outer}, which other users can write"
+    )
     outer.chmod(0o777 | 0o1000)  # sticky, as /tmp: only the owner renames what is inside
     assert numba_cache.unsafe_reason(str(outer / "inner")) is None

@@ -43,11 +43,23 @@ def test_lint_refuses_to_write_its_report_over_a_tab_it_reads(tmp_path):
     (tmp_path / "Image.glsl").write_text(IMAGE)
     (tmp_path / "Common.glsl").write_text(COMMON)
     for output in ("Common.glsl", "Image.glsl"):
-        done = subprocess.run([sys.executable, "-m", "glslcheck", "lint", "Image.glsl", "-o", output],
-                              cwd=tmp_path, capture_output=True, text=True, timeout=120)
+        done = subprocess.run(
+            [sys.executable, "-m", "glslcheck", "lint", "Image.glsl", "-o", output],
+            cwd=tmp_path,
+            capture_output=True,
+            text=True,
+            timeout=120,
+        )
         assert done.returncode == 2
         assert done.stderr.startswith(f"{output}: error: --output names a shader file lint reads")
-    assert (tmp_path / "Common.glsl").read_text() == COMMON and (tmp_path / "Image.glsl").read_text() == IMAGE
-    done = subprocess.run([sys.executable, "-m", "glslcheck", "lint", "Image.glsl", "-o", "report.txt"],
-                          cwd=tmp_path, capture_output=True, text=True, timeout=120)
+    assert (tmp_path / "Common.glsl").read_text() == COMMON and (
+        tmp_path / "Image.glsl"
+    ).read_text() == IMAGE
+    done = subprocess.run(
+        [sys.executable, "-m", "glslcheck", "lint", "Image.glsl", "-o", "report.txt"],
+        cwd=tmp_path,
+        capture_output=True,
+        text=True,
+        timeout=120,
+    )
     assert done.returncode == 1 and "Image.glsl:1:1" in (tmp_path / "report.txt").read_text()

@@ -36,15 +36,22 @@ class Repo:
         home = root.parent / "home"
         home.mkdir(exist_ok=True)
         env = {k: v for k, v in os.environ.items() if not k.startswith("GIT_")}
-        env.update({"HOME": str(home), "GIT_CONFIG_GLOBAL": os.devnull, "GIT_CONFIG_NOSYSTEM": "1",
-                    "GIT_CEILING_DIRECTORIES": str(root.parent)})
+        env.update(
+            {
+                "HOME": str(home),
+                "GIT_CONFIG_GLOBAL": os.devnull,
+                "GIT_CONFIG_NOSYSTEM": "1",
+                "GIT_CEILING_DIRECTORIES": str(root.parent),
+            }
+        )
         for role in ("AUTHOR", "COMMITTER"):
             env[f"GIT_{role}_NAME"], env[f"GIT_{role}_EMAIL"] = "Test", "test@example.com"
         self.env = env
 
     def git(self, *args: str, check: bool = True) -> subprocess.CompletedProcess:
-        return subprocess.run(["git", *args], cwd=self.root, env=self.env, capture_output=True, text=True,
-                              check=check)
+        return subprocess.run(
+            ["git", *args], cwd=self.root, env=self.env, capture_output=True, text=True, check=check
+        )
 
     def write(self, name: str, text: str) -> Path:
         path = self.root / name
@@ -75,13 +82,20 @@ def new_repo(tmp_path: Path) -> Repo:
 def repo(tmp_path: Path) -> Repo:
     r = new_repo(tmp_path)
     root = r.root
-    proc = subprocess.run([sys.executable, "-m", "glslcheck", "install-hook"], cwd=root, env=r.env,
-                          capture_output=True, text=True)
+    proc = subprocess.run(
+        [sys.executable, "-m", "glslcheck", "install-hook"],
+        cwd=root,
+        env=r.env,
+        capture_output=True,
+        text=True,
+    )
     assert proc.returncode == 0, proc.stderr
     return r
 
 
-def test_security_hook_never_imports_a_glslcheck_folder_of_the_repository(repo: Repo, tmp_path: Path):
+def test_security_hook_never_imports_a_glslcheck_folder_of_the_repository(
+    repo: Repo, tmp_path: Path
+):
     marker = tmp_path / "repository-code-ran"
     payload = f"open({str(marker)!r}, 'w').write('ran')\n"
     repo.write("glslcheck/__init__.py", payload)
@@ -108,7 +122,10 @@ def test_security_hook_with_a_shader_folder_named_glslcheck(repo: Repo):
 def test_security_hook_runs_python_isolated(repo: Repo):
     text = (repo.root / ".git" / "hooks" / "pre-commit").read_text()
     assert " -I -m glslcheck lint --staged" in text or " -E -P -m glslcheck lint --staged" in text
-    assert subprocess.run(["sh", "-n", str(repo.root / ".git" / "hooks" / "pre-commit")]).returncode == 0
+    assert (
+        subprocess.run(["sh", "-n", str(repo.root / ".git" / "hooks" / "pre-commit")]).returncode
+        == 0
+    )
 
 
 def test_hook_lints_the_staged_version_not_the_work_tree(repo: Repo):
@@ -131,7 +148,9 @@ def test_hook_lints_the_staged_version_not_the_work_tree(repo: Repo):
 
 
 def test_hook_lints_a_renamed_and_edited_file(repo: Repo):
-    long_clean = CLEAN + "".join(f"// line {i} of padding so the rename is detected\n" for i in range(20))
+    long_clean = CLEAN + "".join(
+        f"// line {i} of padding so the rename is detected\n" for i in range(20)
+    )
     repo.write("lab4/Image.glsl", long_clean)
     repo.git("add", "lab4/Image.glsl")
     assert repo.commit().returncode == 0
@@ -146,7 +165,9 @@ def test_hook_lints_a_renamed_and_edited_file(repo: Repo):
     assert "lab4/Final.glsl:1:1: missing-header" in proc.stdout + proc.stderr
 
 
-@pytest.mark.parametrize("name", ['lab4/it\'s "Image".glsl', "lab4/tab\there.glsl", "lab4/ünïcode Image.glsl"])
+@pytest.mark.parametrize(
+    "name", ['lab4/it\'s "Image".glsl', "lab4/tab\there.glsl", "lab4/ünïcode Image.glsl"]
+)
 def test_hook_lints_names_git_quotes(repo: Repo, name: str):
     repo.write(name, BAD)
     repo.git("add", "--", name)
@@ -163,7 +184,9 @@ def test_hook_lints_names_git_quotes(repo: Repo, name: str):
 def test_hook_uses_the_staged_configuration(repo: Repo):
     # The staged configuration turns missing-header off; the work tree's copy does not.
     repo.write("lab4/glslcheck.toml", 'ignore = ["missing-header"]\n')
-    repo.write("lab4/Image.glsl", BAD.replace("void mainImage", "// paint every pixel\nvoid mainImage"))
+    repo.write(
+        "lab4/Image.glsl", BAD.replace("void mainImage", "// paint every pixel\nvoid mainImage")
+    )
     repo.git("add", "lab4")
     (repo.root / "lab4/glslcheck.toml").write_text("", encoding="utf-8")
     proc = repo.commit()
@@ -172,9 +195,13 @@ def test_hook_uses_the_staged_configuration(repo: Repo):
 
 
 def test_lint_staged_outside_a_repository(tmp_path: Path):
-    proc = subprocess.run([sys.executable, "-m", "glslcheck", "lint", "--staged"], cwd=tmp_path,
-                          env={**os.environ, "GIT_CEILING_DIRECTORIES": str(tmp_path.parent)},
-                          capture_output=True, text=True)
+    proc = subprocess.run(
+        [sys.executable, "-m", "glslcheck", "lint", "--staged"],
+        cwd=tmp_path,
+        env={**os.environ, "GIT_CEILING_DIRECTORIES": str(tmp_path.parent)},
+        capture_output=True,
+        text=True,
+    )
     assert proc.returncode == 2 and "not inside a git work tree" in proc.stderr
     assert "Traceback" not in proc.stderr
 
@@ -185,7 +212,9 @@ def test_hook_names_a_bad_staged_configuration_by_its_own_path(repo: Repo):
     repo.git("add", "lab4")
     proc = repo.commit()
     assert proc.returncode != 0
-    assert "lab4/glslcheck.toml" in proc.stderr and "glslcheck-staged" not in proc.stderr, proc.stderr
+    assert "lab4/glslcheck.toml" in proc.stderr and "glslcheck-staged" not in proc.stderr, (
+        proc.stderr
+    )
 
 
 def test_hook_leaves_large_non_shader_files_alone(repo: Repo, monkeypatch):
@@ -207,8 +236,15 @@ def test_hook_on_the_first_commit(tmp_path: Path):
     root.mkdir()
     r = Repo(root)
     r.git("init", "-q", "-b", "main")
-    assert subprocess.run([sys.executable, "-m", "glslcheck", "install-hook"], cwd=root, env=r.env,
-                          capture_output=True).returncode == 0
+    assert (
+        subprocess.run(
+            [sys.executable, "-m", "glslcheck", "install-hook"],
+            cwd=root,
+            env=r.env,
+            capture_output=True,
+        ).returncode
+        == 0
+    )
     r.write("Image.glsl", BAD)
     r.git("add", "Image.glsl")
     proc = r.commit()
@@ -229,4 +265,7 @@ def test_hook_checks_out_the_index_common_tab_next_to_a_staged_image(repo: Repo,
 
     with staged_checkout() as names:
         assert names == ["lab4/Image.glsl"]  # Common is context, not a target
-        assert Path("lab4/Common.glsl").read_text() == "// committed helpers\nvec3 tint() { return vec3(0.5); }\n"
+        assert (
+            Path("lab4/Common.glsl").read_text()
+            == "// committed helpers\nvec3 tint() { return vec3(0.5); }\n"
+        )

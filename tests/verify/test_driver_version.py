@@ -20,11 +20,17 @@ def test_the_mesa_version_is_read_from_gl_version():
     assert not driver_profile.is_emulated(*driver_profile.driver_name(newer))
     note = driver_profile.emulation_note(newer)
     assert "Mesa 24.0.5" in note and f"Mesa {driver_profile.EMULATED_MESA}" in note
-    same = _ctx("llvmpipe (LLVM 15.0.6, 256 bits)", f"4.5 (Core Profile) Mesa {driver_profile.EMULATED_MESA}.0")
+    same = _ctx(
+        "llvmpipe (LLVM 15.0.6, 256 bits)",
+        f"4.5 (Core Profile) Mesa {driver_profile.EMULATED_MESA}.0",
+    )
     assert driver_profile.is_emulated(*driver_profile.driver_name(same))
     assert driver_profile.emulation_note(same) is None
     other = _ctx("NVIDIA GeForce RTX 3060/PCIe/SSE2", "4.6.0 NVIDIA 535.54.03")
-    assert driver_profile.driver_name(other)[1] is None and driver_profile.emulation_note(other) is not None
+    assert (
+        driver_profile.driver_name(other)[1] is None
+        and driver_profile.emulation_note(other) is not None
+    )
     # the same Mesa version on another driver (a GPU's) is not the emulated llvmpipe either
     assert not driver_profile.is_emulated("AMD Radeon RX 6600 (radeonsi, navi23)", "22.3.6")
 
@@ -52,6 +58,11 @@ def test_a_mismatch_on_another_mesa_says_the_emulation_was_copied_from_another(g
     impl = getattr(live, "impl", live)
     moved = dataclasses.replace(impl, ctx=_OtherMesa(impl.ctx))
     (other,) = verify_frames(red, size=(8, 4), programs=[numpy, moved])
-    assert other.comparison.to_json()["driver"] == {"renderer": impl.ctx.info["GL_RENDERER"],
-                                                     "mesa": "99.1.0", "emulated": False}
-    assert any("Mesa 99.1.0" in n and f"Mesa {driver_profile.EMULATED_MESA}" in n for n in other.notes)
+    assert other.comparison.to_json()["driver"] == {
+        "renderer": impl.ctx.info["GL_RENDERER"],
+        "mesa": "99.1.0",
+        "emulated": False,
+    }
+    assert any(
+        "Mesa 99.1.0" in n and f"Mesa {driver_profile.EMULATED_MESA}" in n for n in other.notes
+    )

@@ -20,7 +20,7 @@ def _images():
     ref[..., 0] = np.linspace(0, 1, W)[None, :]
     ref[..., 3] = 1.0
     gl, numpy = ref.astype(np.float32), ref.astype(np.float32)
-    gl[5:17, 5:17, 1] = 0.30   # the reference says 0 there; the two float32 renders disagree
+    gl[5:17, 5:17, 1] = 0.30  # the reference says 0 there; the two float32 renders disagree
     numpy[5:17, 5:17, 1] = 0.60  # with it and with each other
     return ref, numpy, gl
 
@@ -32,7 +32,11 @@ def test_pixels_both_float32_renders_get_wrong_are_unstable_not_mismatched():
     assert c.match and c.verdict == "match-unstable"
     assert c.unstable_pixels == 144 and c.mismatched_pixels == 0
     data = c.to_json()
-    assert data["match"] is True and data["verdict"] == "match-unstable" and data["unstable_pixels"] == 144
+    assert (
+        data["match"] is True
+        and data["verdict"] == "match-unstable"
+        and data["unstable_pixels"] == 144
+    )
     assert data["unstable_lines"] == []  # line attribution needs probe's tracing mode (TODO)
     json.dumps(data, allow_nan=False)
 
@@ -50,7 +54,9 @@ def test_nan_in_both_float32_renders_only_is_unstable():
     numpy[0, 0, 0] = np.nan
     gl[0, 0, 0] = np.inf
     c = compare(numpy, gl, reference=ref)
-    assert c.nan_mismatched_pixels == 0 and c.unstable_pixels == 145 and c.verdict == "match-unstable"
+    assert (
+        c.nan_mismatched_pixels == 0 and c.unstable_pixels == 145 and c.verdict == "match-unstable"
+    )
 
 
 FAR_CAMERA = """
@@ -94,7 +100,9 @@ def test_unstable_lines_name_the_statement_that_loses_precision(gl, make_shader,
     numpy_img[..., 0] = np.where(far, 1.0 - numpy_img[..., 0], numpy_img[..., 0])
     c = compare(numpy_img, gl_img, reference=ref)
     assert 10 < c.unstable_pixels <= int(far.sum())  # (flipping a value near 0.5 changes little)
-    lines = unstable_lines(shader, c, size, FrameSpec(time=0.0, frame=0), (0.0, 0.0, 0.0, 0.0), None)
+    lines = unstable_lines(
+        shader, c, size, FrameSpec(time=0.0, frame=0), (0.0, 0.0, 0.0, 0.0), None
+    )
     assert lines, "no line named"
     top = lines[0]
     line = next(i for i, t in enumerate(FAR_CAMERA.split("\n"), 1) if "float h = b * b - cc;" in t)
@@ -104,5 +112,7 @@ def test_unstable_lines_name_the_statement_that_loses_precision(gl, make_shader,
     assert top["sampled"] == min(verify.UNSTABLE_PROBES, c.unstable_pixels)
     # a step budget one pixel exhausts: one pixel is traced and stands for all of them
     monkeypatch.setattr(verify, "UNSTABLE_STEPS", 1)
-    [one] = unstable_lines(shader, c, size, FrameSpec(time=0.0, frame=0), (0.0, 0.0, 0.0, 0.0), None)
+    [one] = unstable_lines(
+        shader, c, size, FrameSpec(time=0.0, frame=0), (0.0, 0.0, 0.0, 0.0), None
+    )
     assert one["sampled"] == 1 and one["pixels"] == c.unstable_pixels and one["line"] == line

@@ -17,7 +17,9 @@ from glslcheck.verification.verify import compile_backend, frame_specs, verify, 
 ROOT = Path(__file__).resolve().parents[2]
 SIZE = (160, 90)
 TIMES = [0.0, 1.7, 5.3]
-CORPUS = sorted(p.name for p in (ROOT / "tests" / "corpus").iterdir() if p.suffix in (".glsl", ".frag"))
+CORPUS = sorted(
+    p.name for p in (ROOT / "tests" / "corpus").iterdir() if p.suffix in (".glsl", ".frag")
+)
 LAB_PARTS = sorted(p.name for p in (ROOT / "lab_shaders").iterdir() if (p / "Image.glsl").is_file())
 
 
@@ -69,7 +71,9 @@ def test_a_deliberate_difference_is_caught(gl):
 
 def test_a_numpy_only_nan_is_caught(gl, make_shader):
     # Same program on both sides except for one pixel made NaN on the NumPy side.
-    shader = make_shader("void mainImage(out vec4 c, in vec2 p) { c = vec4(p / iResolution.xy, 0.5, 1.0); }")
+    shader = make_shader(
+        "void mainImage(out vec4 c, in vec2 p) { c = vec4(p / iResolution.xy, 0.5, 1.0); }"
+    )
     gl_prog = compile_backend(shader, "gl")
 
     class OneNaN:
@@ -85,11 +89,22 @@ def test_a_numpy_only_nan_is_caught(gl, make_shader):
 
 
 def test_same_uniforms_on_both_sides(gl, make_shader):
-    body = ("c = vec4(fract(iTime * 0.37), float(iFrame) / 100.0, iMouse.x / 64.0 + iTimeDelta,"
-            " iFrameRate / 100.0);")
+    body = (
+        "c = vec4(fract(iTime * 0.37), float(iFrame) / 100.0, iMouse.x / 64.0 + iTimeDelta,"
+        " iFrameRate / 100.0);"
+    )
     shader = make_shader("void mainImage(out vec4 c, in vec2 p) { " + body + " }")
-    results = list(verify_frames(shader, size=(8, 4), frames=3, fps=30.0, frame=5,
-                                 mouse=(16.0, 8.0, 0.0, 0.0), keep_images=True))
+    results = list(
+        verify_frames(
+            shader,
+            size=(8, 4),
+            frames=3,
+            fps=30.0,
+            frame=5,
+            mouse=(16.0, 8.0, 0.0, 0.0),
+            keep_images=True,
+        )
+    )
     assert [r.spec.frame for r in results] == [5, 6, 7]
     for r in results:
         assert r.match
@@ -143,7 +158,9 @@ def test_verify_emulates_the_drivers_float_to_uint(gl, tmp_path):
     numpy_side = compile_backend(shader, "numpy")
     getattr(numpy_side, "impl", numpy_side).emulate_float_to_uint(other)
     # verify's own programs, the NumPy side first set to a model that is not the driver's
-    [comparison] = verify(path, size=(160, 90), programs=[numpy_side, compile_backend(shader, "gl")])
+    [comparison] = verify(
+        path, size=(160, 90), programs=[numpy_side, compile_backend(shader, "gl")]
+    )
     assert comparison.match, comparison.summary()
     gl_side = compile_backend(shader, "gl")
     for model in FLOAT_TO_UINT:

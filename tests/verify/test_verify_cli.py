@@ -27,7 +27,10 @@ def test_several_frames_give_a_list_of_exact_objects(gl, capsys):
     objs = json.loads(capsys.readouterr().out)
     assert isinstance(objs, list) and len(objs) == 2
     assert all(tuple(o) == JSON_KEYS for o in objs)
-    assert main(["verify", PART, PART, *SMALL, "--frames", "2", "--fps", "30", "--format", "json"]) == 0
+    assert (
+        main(["verify", PART, PART, *SMALL, "--frames", "2", "--fps", "30", "--format", "json"])
+        == 0
+    )
     assert len(json.loads(capsys.readouterr().out)) == 4
 
 
@@ -52,7 +55,9 @@ def test_mismatch_exit_1_text_and_diff(gl, capsys, tmp_path, monkeypatch):
             img[10:20, 10:30, 0] = 5.0 - img[10:20, 10:30, 0]
             return img
 
-    monkeypatch.setattr(v, "compile_backend", lambda s, b: Tampered(real(s, b)) if b == "numpy" else real(s, b))
+    monkeypatch.setattr(
+        v, "compile_backend", lambda s, b: Tampered(real(s, b)) if b == "numpy" else real(s, b)
+    )
     diff = tmp_path / "diff.png"
     assert main(["verify", PART, *SMALL, "--diff", str(diff)]) == 1
     out = capsys.readouterr().out
@@ -61,7 +66,10 @@ def test_mismatch_exit_1_text_and_diff(gl, capsys, tmp_path, monkeypatch):
 
     with Image.open(diff) as im:
         assert im.size == (64, 36)
-    assert main(["verify", PART, *SMALL, "--times", "0,1", "--diff", str(diff), "--format", "json"]) == 1
+    assert (
+        main(["verify", PART, *SMALL, "--times", "0,1", "--diff", str(diff), "--format", "json"])
+        == 1
+    )
     assert (tmp_path / "diff-0.png").is_file() and (tmp_path / "diff-1.png").is_file()
     assert [o["match"] for o in json.loads(capsys.readouterr().out)] == [False, False]
 
@@ -80,14 +88,17 @@ def test_glsl_error_exit_1_with_location(gl, tmp_path, capsys):
     assert f"{bad}:3:" in err
 
 
-@pytest.mark.parametrize("argv", [
-    ["verify", "no/such/shader.glsl"],
-    ["verify", PART, "--size", "64by36"],
-    ["verify", PART, "--time", "1", "--times", "0,1"],
-    ["verify", PART, "--mouse", "1,2,3"],
-    ["verify", PART, "--samples", "3"],
-    ["verify", PART, "--precision", "float8"],
-])
+@pytest.mark.parametrize(
+    "argv",
+    [
+        ["verify", "no/such/shader.glsl"],
+        ["verify", PART, "--size", "64by36"],
+        ["verify", PART, "--time", "1", "--times", "0,1"],
+        ["verify", PART, "--mouse", "1,2,3"],
+        ["verify", PART, "--samples", "3"],
+        ["verify", PART, "--precision", "float8"],
+    ],
+)
 def test_usage_and_io_errors_exit_2(argv, capsys):
     with pytest.raises(SystemExit) as e:
         raise SystemExit(main(argv))

@@ -13,7 +13,6 @@ import os
 import pytest
 
 
-
 @pytest.fixture(scope="session")
 def webgl():
     from glslcheck.backends.webgl import WebGLUnavailable, close_browser, get_browser

@@ -9,8 +9,8 @@ import sys
 import numpy as np
 import pytest
 
-from glslcheck.base.diagnostics import GlslError
 from glslcheck.backends.webgl import compile_webgl, get_browser
+from glslcheck.base.diagnostics import GlslError
 
 SIZE = (160, 90)  # small: the machine is shared
 
@@ -33,8 +33,15 @@ void mainImage(out vec4 fragColor, in vec2 fragCoord)
     fragColor = v;
 }
 """)
-    img = compile_webgl(shader).render(size=SIZE, time=1.5, frame=7, mouse=(10.0, 20.0, -3.0, 4.0),
-                                       date=(2024.0, 5.0, 17.0, 3600.5), time_delta=0.25, frame_rate=4.0)
+    img = compile_webgl(shader).render(
+        size=SIZE,
+        time=1.5,
+        frame=7,
+        mouse=(10.0, 20.0, -3.0, 4.0),
+        date=(2024.0, 5.0, 17.0, 3600.5),
+        time_delta=0.25,
+        frame_rate=4.0,
+    )
     assert img.shape == (H, W, 4) and img.dtype == np.float32
     row = img[H // 2]
     # The Image pass forces alpha to 1 (Shadertoy's footer), so only xyz carries the values.
@@ -59,15 +66,19 @@ def test_float_target_is_read_back_unclamped_and_unquantised(webgl, make_shader)
 
 
 def test_buffer_tab_keeps_alpha(webgl, make_shader):
-    shader = make_shader("void mainImage(out vec4 c, in vec2 f) { c = vec4(0.0); }",
-                         Buffer_A="void mainImage(out vec4 c, in vec2 f) { c = vec4(0.25, 0.5, 0.75, 0.125); }")
+    shader = make_shader(
+        "void mainImage(out vec4 c, in vec2 f) { c = vec4(0.0); }",
+        Buffer_A="void mainImage(out vec4 c, in vec2 f) { c = vec4(0.25, 0.5, 0.75, 0.125); }",
+    )
     img = compile_webgl(shader, tab="Buffer A").render(size=(8, 4))
     assert (img == np.float32([0.25, 0.5, 0.75, 0.125])).all()
 
 
 def test_supersampling_uses_the_gl_backends_grid(webgl, make_shader):
     # The average of fragCoord over the 2x2 grid is the pixel centre again; its x*x is not.
-    shader = make_shader("void mainImage(out vec4 c, in vec2 f) { c = vec4(f.x, f.x * f.x, 0.0, 1.0); }")
+    shader = make_shader(
+        "void mainImage(out vec4 c, in vec2 f) { c = vec4(f.x, f.x * f.x, 0.0, 1.0); }"
+    )
     img = compile_webgl(shader).render(size=(16, 2), samples=4)
     x = np.arange(16, dtype=np.float64) + 0.5
     assert np.allclose(img[0, :, 0], x, atol=1e-6)
@@ -83,8 +94,10 @@ def test_one_browser_serves_every_shader(webgl, make_shader):
 
 
 def test_angle_errors_point_into_the_users_tab_and_line(webgl, make_shader):
-    shader = make_shader("void mainImage(out vec4 c, in vec2 f)\n{\n    float k = 1;\n    c = vec4(k);\n}\n",
-                         common="float helper(float x)\n{\n    return x;\n}\n")
+    shader = make_shader(
+        "void mainImage(out vec4 c, in vec2 f)\n{\n    float k = 1;\n    c = vec4(k);\n}\n",
+        common="float helper(float x)\n{\n    return x;\n}\n",
+    )
     with pytest.raises(GlslError) as e:
         compile_webgl(shader)
     d = e.value.diagnostics[0]
@@ -95,13 +108,14 @@ def test_angle_errors_point_into_the_users_tab_and_line(webgl, make_shader):
 
 
 def test_angle_error_in_common_points_into_common(webgl, make_shader):
-    shader = make_shader("void mainImage(out vec4 c, in vec2 f) { c = vec4(helper(1.0)); }\n",
-                         common="float helper(float x)\n{\n    return x + undefinedThing;\n}\n")
+    shader = make_shader(
+        "void mainImage(out vec4 c, in vec2 f) { c = vec4(helper(1.0)); }\n",
+        common="float helper(float x)\n{\n    return x + undefinedThing;\n}\n",
+    )
     with pytest.raises(GlslError) as e:
         compile_webgl(shader)
     locs = {(d.loc.path, d.loc.line) for d in e.value.diagnostics if d.loc}
     assert ("Common.glsl", 3) in locs
-
 
 
 ENDLESS = """
@@ -130,16 +144,20 @@ def test_an_endless_loop_times_out_and_the_next_render_gets_a_new_browser(webgl)
     # In a child process: a timeout ends the browser it happens in (here not the session's), and
     # Playwright's sync API allows one browser driver per thread.
     env = dict(os.environ, GLSLCHECK_WEBGL_TIMEOUT="3")
-    proc = subprocess.run([sys.executable, "-c", ENDLESS], capture_output=True, text=True, timeout=300, env=env)
+    proc = subprocess.run(
+        [sys.executable, "-c", ENDLESS], capture_output=True, text=True, timeout=300, env=env
+    )
     assert proc.returncode == 0, proc.stderr
     first, second = proc.stdout.splitlines()
-    assert first.startswith("Image.glsl:1:6 WebGL: the Image program ran for more than 3 s in the browser")
+    assert first.startswith(
+        "Image.glsl:1:6 WebGL: the Image program ran for more than 3 s in the browser"
+    )
     assert second == "True True ANGLE"
 
 
 def test_a_missing_browser_is_an_input_error_with_advice(webgl, monkeypatch, capsys):
-    from glslcheck.cli.main import main
     from glslcheck.backends.webgl import Browser, WebGLUnavailable
+    from glslcheck.cli.main import main
 
     monkeypatch.setenv("GLSLCHECK_CHROMIUM", "/nonexistent/chromium")
     with pytest.raises(WebGLUnavailable) as e:
@@ -148,4 +166,7 @@ def test_a_missing_browser_is_an_input_error_with_advice(webgl, monkeypatch, cap
     monkeypatch.delenv("GLSLCHECK_CHROMIUM")
     monkeypatch.setenv("GLSLCHECK_WEBGL_TIMEOUT", "-1")
     assert main(["check", "lab_shaders/07_final", "--webgl"]) == 2
-    assert "GLSLCHECK_WEBGL_TIMEOUT must be a number of seconds from 0 to 86400" in capsys.readouterr().err
+    assert (
+        "GLSLCHECK_WEBGL_TIMEOUT must be a number of seconds from 0 to 86400"
+        in capsys.readouterr().err
+    )

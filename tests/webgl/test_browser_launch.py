@@ -23,9 +23,15 @@ def test_chromium_under_an_address_space_limit_is_a_failed_start_not_a_missing_b
     from glslcheck.backends.webgl import chromium_path
 
     executable = chromium_path()
-    done = subprocess.run([sys.executable, "-m", "glslcheck", "check", "lab_shaders/07_final", "--webgl"],
-                          cwd=ROOT, env={**os.environ, "PYTHONPATH": str(ROOT)}, capture_output=True, text=True,
-                          timeout=300, preexec_fn=_limited)
+    done = subprocess.run(
+        [sys.executable, "-m", "glslcheck", "check", "lab_shaders/07_final", "--webgl"],
+        cwd=ROOT,
+        env={**os.environ, "PYTHONPATH": str(ROOT)},
+        capture_output=True,
+        text=True,
+        timeout=300,
+        preexec_fn=_limited,
+    )
     if done.returncode == 0:
         pytest.skip("this Chromium starts under the limit")
     assert done.returncode == 2 and "Traceback" not in done.stderr, done.stderr

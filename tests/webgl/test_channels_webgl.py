@@ -25,8 +25,8 @@ import pytest
 from glslcheck.backends import registry as api
 from glslcheck.cli.main import main
 from glslcheck.shadertoy.sources import load_shader
-from glslcheck.verification.verify import compile_backend
 from glslcheck.verification.drivers import verify_against_webgl
+from glslcheck.verification.verify import compile_backend
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "channels"))
 from test_channels import MIPMAP_UV, SIZE, _folder, _png, _sampling_case, feedback  # noqa: E402,F401 (a fixture)
@@ -63,12 +63,16 @@ def test_feedback_really_feeds_back(webgl, feedback):
     assert not np.array_equal(frames[1], frames[2])
     # cleared to zero before frame 0, alpha kept: alpha = mix(0, texel.a, 0.1) + 0.01 * iFrame
     assert 0.0 < frames[0][..., 3].max() <= 0.1
-    again = api.compile(feedback, backend="webgl", output="Buffer A").render(size=SIZE, frame=2, time=2 / 60)
+    again = api.compile(feedback, backend="webgl", output="Buffer A").render(
+        size=SIZE, frame=2, time=2 / 60
+    )
     assert np.array_equal(again, frames[2])  # frame 2 alone replays frames 0..2
 
 
-@pytest.mark.parametrize("filt, wrap, vflip", list(itertools.product(["nearest", "linear"], ["clamp", "repeat"],
-                                                                      [False, True])))
+@pytest.mark.parametrize(
+    "filt, wrap, vflip",
+    list(itertools.product(["nearest", "linear"], ["clamp", "repeat"], [False, True])),
+)
 def test_each_filter_and_wrap_against_webgl(webgl, tmp_path, filt, wrap, vflip):
     folder = _sampling_case(tmp_path, filt, wrap, vflip, False)
     ours = _exact_numpy(folder).render(size=SIZE)
@@ -90,7 +94,9 @@ def test_mipmap_explicit_lod_against_webgl(webgl, tmp_path, wrap):
     _png(tmp_path / "tex.png", 70, 50, seed=5)
     lookup = "textureLod(iChannel0, uv, fragCoord.x / 9.0 - 0.5)"
     body = f"void mainImage(out vec4 fragColor, in vec2 fragCoord) {{\n    {MIPMAP_UV}\n    fragColor = {lookup};\n}}\n"
-    folder = _folder(tmp_path, {"Image": body}, {"Image": {"iChannel0": {"texture": "tex.png", "wrap": wrap}}})
+    folder = _folder(
+        tmp_path, {"Image": body}, {"Image": {"iChannel0": {"texture": "tex.png", "wrap": wrap}}}
+    )
     ours = _exact_numpy(folder).render(size=SIZE)
     theirs = api.compile(folder, backend="webgl").render(size=SIZE)
     # the same levels (glslcheck's pyramid, uploaded) blended by frac(lod): 2.0e-6 measured, a
@@ -111,22 +117,55 @@ def test_mipmap_implicit_lod_is_driver_dependent(webgl, gl, tmp_path):
 
 
 def test_cli_verify_against_webgl_on_the_channels_examples(webgl, gl, capsys):
-    code = main(["verify", str(ROOT / "benchmarks" / "scenes" / "feedback"), "--against", "webgl",
-                 "--frames", "3", "--size", "64x36"])
+    code = main(
+        [
+            "verify",
+            str(ROOT / "benchmarks" / "scenes" / "feedback"),
+            "--against",
+            "webgl",
+            "--frames",
+            "3",
+            "--size",
+            "64x36",
+        ]
+    )
     out = capsys.readouterr().out
     assert code == 0 and "verify: match (3 frames)" in out, out
 
 
 def test_render_pass_on_webgl(webgl, feedback, tmp_path):
     out = tmp_path / "a.npy"
-    assert main(["render", feedback, "--backend", "webgl", "--pass", "Buffer A", "--frame", "2", "--time", "0.05",
-                 "--size", "64x36", "-o", str(out)]) == 0
-    ref = api.compile(feedback, backend="webgl", output="Buffer A").render(size=SIZE, frame=2, time=0.05)
+    assert (
+        main(
+            [
+                "render",
+                feedback,
+                "--backend",
+                "webgl",
+                "--pass",
+                "Buffer A",
+                "--frame",
+                "2",
+                "--time",
+                "0.05",
+                "--size",
+                "64x36",
+                "-o",
+                str(out),
+            ]
+        )
+        == 0
+    )
+    ref = api.compile(feedback, backend="webgl", output="Buffer A").render(
+        size=SIZE, frame=2, time=0.05
+    )
     assert np.array_equal(np.load(out), ref)
 
 
 def test_channel_time_is_zero_for_images_and_buffers_on_webgl(webgl, tmp_path):
     from test_channels import channel_time_case  # the case and its source: tests/channels
 
-    img = api.compile(channel_time_case(tmp_path), backend="webgl").render(size=(8, 4), time=3.0, frame=2)
+    img = api.compile(channel_time_case(tmp_path), backend="webgl").render(
+        size=(8, 4), time=3.0, frame=2
+    )
     assert np.array_equal(img, np.broadcast_to(np.float32([0.0, 0.0, 0.0, 1.0]), img.shape))

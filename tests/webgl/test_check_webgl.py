@@ -15,11 +15,11 @@ from pathlib import Path
 
 import pytest
 
-from glslcheck.semantics.agreement import glslang_errors, our_errors
-from glslcheck.cli.main import main
-from glslcheck.base.diagnostics import register_source
-from glslcheck.shadertoy.sources import Shader, Source
 from glslcheck.backends.webgl import webgl_diagnostics
+from glslcheck.base.diagnostics import register_source
+from glslcheck.cli.main import main
+from glslcheck.semantics.agreement import glslang_errors, our_errors
+from glslcheck.shadertoy.sources import Shader, Source
 
 HERE = Path(__file__).parent / "invalid"
 FIXTURES = sorted(HERE.glob("*.glsl"))
@@ -44,40 +44,64 @@ def test_fixtures_exist():
 def test_we_reject_what_angle_rejects(path, webgl):
     shader, expect, line = load(path)
     ours = [d for d in our_errors(shader) if expect in d.message]
-    assert ours and ours[0].loc.line == line, f"{path.name}: {[(str(d.loc), d.message) for d in our_errors(shader)]}"
+    assert ours and ours[0].loc.line == line, (
+        f"{path.name}: {[(str(d.loc), d.message) for d in our_errors(shader)]}"
+    )
     angle = webgl_diagnostics(shader, "Image")
-    assert any(d.loc is not None and d.loc.path == str(path) and d.loc.line == line for d in angle), (
-        f"{path.name}: ANGLE said {[(str(d.loc), d.message) for d in angle]}")
+    assert any(
+        d.loc is not None and d.loc.path == str(path) and d.loc.line == line for d in angle
+    ), f"{path.name}: ANGLE said {[(str(d.loc), d.message) for d in angle]}"
 
 
 @pytest.mark.parametrize("path", FIXTURES, ids=lambda p: p.stem)
 def test_glslang_accepts_them(path, glslang):
     shader, _expect, _line = load(path)
-    assert not glslang_errors(shader), f"{path.name}: glslangValidator rejects it: move it to tests/check/invalid"
+    assert not glslang_errors(shader), (
+        f"{path.name}: glslangValidator rejects it: move it to tests/check/invalid"
+    )
 
 
-def test_double_underscore_is_an_error_in_a_tab_and_a_warning_in_a_plain_file(tmp_path, capsys, make_shader):
-    from glslcheck.semantics import check
+def test_double_underscore_is_an_error_in_a_tab_and_a_warning_in_a_plain_file(
+    tmp_path, capsys, make_shader
+):
     from glslcheck.frontend.parser import parse_shader
+    from glslcheck.semantics import check
 
-    shader = make_shader("const float light__power = 2.0;\n"
-                         "void mainImage(out vec4 c, in vec2 f) { c = vec4(light__power); }\n")
+    shader = make_shader(
+        "const float light__power = 2.0;\n"
+        "void mainImage(out vec4 c, in vec2 f) { c = vec4(light__power); }\n"
+    )
     ours = check(parse_shader(shader, "Image"), "Image", collect=True).diagnostics
     assert [(d.severity, d.loc.line) for d in ours] == [("error", 1)]
-    assert "Shadertoy's browser rejects it" in ours[0].message and ours[0].help == "rename it, for example to 'light_power'"
-    path = tmp_path / "plain.frag"  # a plain GLSL ES file need not run in WebGL: the spec allows the name
-    path.write_text("#version 300 es\nprecision highp float;\nout vec4 o;\nfloat a__b = 1.0;\n"
-                    "void main() { o = vec4(a__b); }\n")
+    assert (
+        "Shadertoy's browser rejects it" in ours[0].message
+        and ours[0].help == "rename it, for example to 'light_power'"
+    )
+    path = (
+        tmp_path / "plain.frag"
+    )  # a plain GLSL ES file need not run in WebGL: the spec allows the name
+    path.write_text(
+        "#version 300 es\nprecision highp float;\nout vec4 o;\nfloat a__b = 1.0;\n"
+        "void main() { o = vec4(a__b); }\n"
+    )
     assert main(["check", str(path)]) == 0
-    assert f"{path}:4:7: warning: 'a__b': names containing '__' are reserved" in capsys.readouterr().err
+    assert (
+        f"{path}:4:7: warning: 'a__b': names containing '__' are reserved"
+        in capsys.readouterr().err
+    )
 
 
 def test_plain_glsl_gets_warnings_not_errors(tmp_path, capsys):
     path = tmp_path / "plain.frag"
-    path.write_text("#version 300 es\nprecision highp float;\nout vec4 o;\nfloat webgl_k = 1.0;\n"
-                    "void main() { o = vec4(webgl_k); }\n")
+    path.write_text(
+        "#version 300 es\nprecision highp float;\nout vec4 o;\nfloat webgl_k = 1.0;\n"
+        "void main() { o = vec4(webgl_k); }\n"
+    )
     assert main(["check", str(path)]) == 0
-    assert "warning: 'webgl_k': names starting with 'webgl_' are reserved by WebGL" in capsys.readouterr().err
+    assert (
+        "warning: 'webgl_k': names starting with 'webgl_' are reserved by WebGL"
+        in capsys.readouterr().err
+    )
 
 
 def test_check_webgl_reports_angle_in_the_users_line(tmp_path, capsys, webgl):
@@ -85,9 +109,13 @@ def test_check_webgl_reports_angle_in_the_users_line(tmp_path, capsys, webgl):
     folder.mkdir()
     (folder / "Common.glsl").write_text("float helper(float x)\n{\n    return x;\n}\n")
     # An int assigned to a float: ANGLE's message must come out at Image.glsl line 3, at the '='.
-    (folder / "Image.glsl").write_text("void mainImage(out vec4 c, in vec2 f)\n{\n    float k = 1;\n"
-                                       "    c = vec4(helper(k));\n}\n")
+    (folder / "Image.glsl").write_text(
+        "void mainImage(out vec4 c, in vec2 f)\n{\n    float k = 1;\n    c = vec4(helper(k));\n}\n"
+    )
     assert main(["check", str(folder), "--webgl"]) == 1
     err = capsys.readouterr().err
-    assert f"{folder / 'Image.glsl'}:3:13: error: WebGL: '=' : cannot convert from 'const int' to 'highp float'" in err
+    assert (
+        f"{folder / 'Image.glsl'}:3:13: error: WebGL: '=' : cannot convert from 'const int' to 'highp float'"
+        in err
+    )
     assert main(["check", "lab_shaders/07_final", "--webgl"]) == 0

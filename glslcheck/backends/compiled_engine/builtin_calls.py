@@ -12,12 +12,43 @@ from ...language import builtin_functions as B
 from .values import Val, broadcast_const, engine_error, not_yet
 
 # one float32 component -> scalar.py function of the same rule (fma: llvmpipe's fused steps)
-_UNARY_FMA = ("sin", "cos", "tan", "exp", "log", "exp2", "log2", "sinh", "cosh", "tanh", "asinh", "acosh", "atanh")
-_UNARY = {"asin": "asin", "acos": "acos", "sign": "sign", "fract": "fract", "inversesqrt": "inversesqrt",
-          "sqrt": "np.sqrt", "floor": "np.floor", "ceil": "np.ceil", "trunc": "np.trunc", "round": "np.rint",
-          "roundEven": "np.rint", "abs": "np.abs"}
-_RELATIONAL = {"lessThan": "<", "lessThanEqual": "<=", "greaterThan": ">", "greaterThanEqual": ">=",
-               "equal": "==", "notEqual": "!="}
+_UNARY_FMA = (
+    "sin",
+    "cos",
+    "tan",
+    "exp",
+    "log",
+    "exp2",
+    "log2",
+    "sinh",
+    "cosh",
+    "tanh",
+    "asinh",
+    "acosh",
+    "atanh",
+)
+_UNARY = {
+    "asin": "asin",
+    "acos": "acos",
+    "sign": "sign",
+    "fract": "fract",
+    "inversesqrt": "inversesqrt",
+    "sqrt": "np.sqrt",
+    "floor": "np.floor",
+    "ceil": "np.ceil",
+    "trunc": "np.trunc",
+    "round": "np.rint",
+    "roundEven": "np.rint",
+    "abs": "np.abs",
+}
+_RELATIONAL = {
+    "lessThan": "<",
+    "lessThanEqual": "<=",
+    "greaterThan": ">",
+    "greaterThanEqual": ">=",
+    "equal": "==",
+    "notEqual": "!=",
+}
 
 
 def builtin_call(cg: Any, e: A.Call, ov: Any) -> Val:
@@ -33,7 +64,9 @@ def builtin_call(cg: Any, e: A.Call, ov: Any) -> Val:
         x = []
         for p in cg.expr(e.args[0]).parts:  # each leaf a name: the rewrite reads its lanes
             x.append(p if p.isidentifier() else cg.tmp_fresh(p))
-        form = {"dFdx": "dfdx({})", "dFdy": "dfdy({})"}.get(name, "(np.abs(dfdx({0})) + np.abs(dfdy({0})))")
+        form = {"dFdx": "dfdx({})", "dFdy": "dfdy({})"}.get(
+            name, "(np.abs(dfdx({0})) + np.abs(dfdy({0})))"
+        )
         # into fresh temporaries: every lane reads its quad's lanes before any is written (`x = dFdx(x)`)
         return Val(rtype, [cg.tmp_fresh(form.format(p)) for p in x])
     if name == "modf":
@@ -102,8 +135,12 @@ def builtin_call(cg: Any, e: A.Call, ov: Any) -> Val:
     if name == "isinf":
         return each(lambda x: f"np.isinf({x})")
     if name in ("floatBitsToInt", "floatBitsToUint", "intBitsToFloat", "uintBitsToFloat"):
-        fn = {"floatBitsToInt": "float_bits_to_int", "floatBitsToUint": "float_bits_to_uint",
-              "intBitsToFloat": "int_bits_to_float", "uintBitsToFloat": "uint_bits_to_float"}[name]
+        fn = {
+            "floatBitsToInt": "float_bits_to_int",
+            "floatBitsToUint": "float_bits_to_uint",
+            "intBitsToFloat": "int_bits_to_float",
+            "uintBitsToFloat": "uint_bits_to_float",
+        }[name]
         return each(lambda x: f"{fn}({x})")
     if name in _RELATIONAL:
         op = _RELATIONAL[name]
@@ -114,7 +151,16 @@ def builtin_call(cg: Any, e: A.Call, ov: Any) -> Val:
         return Val(rtype, ["(" + " and ".join(args[0].parts) + ")"])
     if name == "not":
         return each(lambda x: f"(not {x})")
-    if name in ("dot", "length", "distance", "normalize", "cross", "reflect", "refract", "faceforward"):
+    if name in (
+        "dot",
+        "length",
+        "distance",
+        "normalize",
+        "cross",
+        "reflect",
+        "refract",
+        "faceforward",
+    ):
         return geometric(cg, name, args, rtype)
     if name == "matrixCompMult":
         return each(lambda a, b: f"({a} * {b})")
@@ -149,7 +195,9 @@ def pow_call(cg: Any, e: A.Call, args: list[Val], rtype: Any, n: int) -> Val:
     if x.const is not None and all(v == 2.0 for v in x.const):
         return Val(rtype, [f"exp2({p}, FMA)" for p in ys])
     c = broadcast_const(y.const, n)
-    special = c is not None and any(v in (1.0, 2.0, 4.0) or (v == 0.0 and math.copysign(1.0, v) > 0) for v in c)
+    special = c is not None and any(
+        v in (1.0, 2.0, 4.0) or (v == 0.0 and math.copysign(1.0, v) > 0) for v in c
+    )
     out = []
     for i in range(n):
         if special:
@@ -185,10 +233,16 @@ def pow_call(cg: Any, e: A.Call, args: list[Val], rtype: Any, n: int) -> Val:
 def mix_call(cg: Any, e: A.Call, args: list[Val], rtype: Any, n: int, comps) -> Val:
     x, y, a = args
     if a.t.base == "bool":
-        return Val(rtype, [f"({yy} if {aa} else {xx})" for xx, yy, aa in zip(comps(x), comps(y), comps(a))])
+        return Val(
+            rtype, [f"({yy} if {aa} else {xx})" for xx, yy, aa in zip(comps(x), comps(y), comps(a))]
+        )
     from ..numpy_engine.transpile import nir_fold
 
-    hint = nir_fold.mix_hint(cg.fold_context(), e) if cg.fn is not None and cg.fn.sym is not None else []
+    hint = (
+        nir_fold.mix_hint(cg.fold_context(), e)
+        if cg.fn is not None and cg.fn.sym is not None
+        else []
+    )
     form = hint[0].strip("'") if hint else ("strict" if a.const is not None else "fast")
     xs, ys, as_ = comps(x), comps(y), comps(a)
     if form == "fast":
@@ -203,7 +257,9 @@ def mix_call(cg: Any, e: A.Call, args: list[Val], rtype: Any, n: int, comps) -> 
     # strict: fmul(x, 1 - a) + fmul(y, a), Mesa's constant-zero folding included
     one = cg.cf(1.0)
     at = Val(a.t, [cg.atom(p) for p in a.parts], a.const, a.uni)
-    inv = Val(a.t, [f"({one} - {p})" for p in at.parts], None, a.constlike)  # Runtime.mix: self._1 - a
+    inv = Val(
+        a.t, [f"({one} - {p})" for p in at.parts], None, a.constlike
+    )  # Runtime.mix: self._1 - a
     if a.const is not None:
         inv.const = [float(_f32(1.0 - v)) for v in a.const]
     left = cg.fmul(x, inv, rtype)
@@ -250,9 +306,14 @@ def geometric(cg: Any, name: str, args: list[Val], rtype: Any) -> Val:
     if name == "cross":
         a = [cg.atom(p) for p in args[0].parts]
         b = [cg.atom(p) for p in args[1].parts]
-        return Val(rtype, [f"(({a[1]} * {b[2]}) - ({a[2]} * {b[1]}))",
-                           f"(({a[2]} * {b[0]}) - ({a[0]} * {b[2]}))",
-                           f"(({a[0]} * {b[1]}) - ({a[1]} * {b[0]}))"])
+        return Val(
+            rtype,
+            [
+                f"(({a[1]} * {b[2]}) - ({a[2]} * {b[1]}))",
+                f"(({a[2]} * {b[0]}) - ({a[0]} * {b[2]}))",
+                f"(({a[0]} * {b[1]}) - ({a[1]} * {b[0]}))",
+            ],
+        )
     if name == "reflect":  # i - 2 * (dot(n, i) * n)
         i = [cg.atom(p) for p in args[0].parts]
         nn = [cg.atom(p) for p in args[1].parts]
@@ -268,7 +329,10 @@ def geometric(cg: Any, name: str, args: list[Val], rtype: Any) -> Val:
         k = cg.tmp(f"({one} - (({eta} * {eta}) * ({one} - ({d} * {d}))))")
         f = cg.tmp(f"(({eta} * {d}) + np.sqrt({k}))")
         zero = cg.cf(0.0)
-        return Val(rtype, [f"({zero} if {k} < {zero} else (({eta} * {p}) - ({f} * {q})))" for p, q in zip(i, nn)])
+        return Val(
+            rtype,
+            [f"({zero} if {k} < {zero} else (({eta} * {p}) - ({f} * {q})))" for p, q in zip(i, nn)],
+        )
     if name == "faceforward":
         nn, i, nref = args
         a = [cg.atom(p) for p in nref.parts]
@@ -280,25 +344,34 @@ def geometric(cg: Any, name: str, args: list[Val], rtype: Any) -> Val:
 
 def determinant(cg: Any, m: list[str], n: int) -> str:
     """Runtime.determinant: cofactor expansion along the first column (Mesa's built-in)."""
+
     def at(c: int, r: int) -> str:
         return m[c * n + r]
+
     if n == 2:
         return f"(({at(0, 0)} * {at(1, 1)}) - ({at(1, 0)} * {at(0, 1)}))"
     if n == 3:
-        return (f"((({at(0, 0)} * (({at(1, 1)} * {at(2, 2)}) - ({at(2, 1)} * {at(1, 2)})))"
-                f" - ({at(1, 0)} * (({at(0, 1)} * {at(2, 2)}) - ({at(2, 1)} * {at(0, 2)}))))"
-                f" + ({at(2, 0)} * (({at(0, 1)} * {at(1, 2)}) - ({at(1, 1)} * {at(0, 2)}))))")
-    sf = [cg.tmp(t) for t in (
-        f"(({at(2, 2)} * {at(3, 3)}) - ({at(3, 2)} * {at(2, 3)}))",
-        f"(({at(2, 1)} * {at(3, 3)}) - ({at(3, 1)} * {at(2, 3)}))",
-        f"(({at(2, 1)} * {at(3, 2)}) - ({at(3, 1)} * {at(2, 2)}))",
-        f"(({at(2, 0)} * {at(3, 3)}) - ({at(3, 0)} * {at(2, 3)}))",
-        f"(({at(2, 0)} * {at(3, 2)}) - ({at(3, 0)} * {at(2, 2)}))",
-        f"(({at(2, 0)} * {at(3, 1)}) - ({at(3, 0)} * {at(2, 1)}))")]
+        return (
+            f"((({at(0, 0)} * (({at(1, 1)} * {at(2, 2)}) - ({at(2, 1)} * {at(1, 2)})))"
+            f" - ({at(1, 0)} * (({at(0, 1)} * {at(2, 2)}) - ({at(2, 1)} * {at(0, 2)}))))"
+            f" + ({at(2, 0)} * (({at(0, 1)} * {at(1, 2)}) - ({at(1, 1)} * {at(0, 2)}))))"
+        )
+    sf = [
+        cg.tmp(t)
+        for t in (
+            f"(({at(2, 2)} * {at(3, 3)}) - ({at(3, 2)} * {at(2, 3)}))",
+            f"(({at(2, 1)} * {at(3, 3)}) - ({at(3, 1)} * {at(2, 3)}))",
+            f"(({at(2, 1)} * {at(3, 2)}) - ({at(3, 1)} * {at(2, 2)}))",
+            f"(({at(2, 0)} * {at(3, 3)}) - ({at(3, 0)} * {at(2, 3)}))",
+            f"(({at(2, 0)} * {at(3, 2)}) - ({at(3, 0)} * {at(2, 2)}))",
+            f"(({at(2, 0)} * {at(3, 1)}) - ({at(3, 0)} * {at(2, 1)}))",
+        )
+    ]
     c0 = f"((({at(1, 1)} * {sf[0]}) - ({at(1, 2)} * {sf[1]})) + ({at(1, 3)} * {sf[2]}))"
     c1 = f"(-((({at(1, 0)} * {sf[0]}) - ({at(1, 2)} * {sf[3]})) + ({at(1, 3)} * {sf[4]})))"
     c2 = f"((({at(1, 0)} * {sf[1]}) - ({at(1, 1)} * {sf[3]})) + ({at(1, 3)} * {sf[5]}))"
     c3 = f"(-((({at(1, 0)} * {sf[2]}) - ({at(1, 1)} * {sf[4]})) + ({at(1, 2)} * {sf[5]})))"
-    return (f"(((({at(0, 0)} * {c0}) + ({at(0, 1)} * {c1})) + ({at(0, 2)} * {c2}))"
-            f" + ({at(0, 3)} * {c3}))")
-
+    return (
+        f"(((({at(0, 0)} * {c0}) + ({at(0, 1)} * {c1})) + ({at(0, 2)} * {c2}))"
+        f" + ({at(0, 3)} * {c3}))"
+    )

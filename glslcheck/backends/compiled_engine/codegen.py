@@ -45,21 +45,31 @@ NaN x, as there, but `float k = 0.0; x * k` multiplies. docs/performance.md meas
 changes.
 """
 
-
 from __future__ import annotations
 
 import math
 from typing import Any
 
+from ...base.diagnostics import Location
 from ...frontend import syntax as A
 from ...semantics.model import Constructor, Symbol
-from ...base.diagnostics import Location
 from ..cpu_core.common import comment_safe
 from ..cpu_core.facts import Facts
 from ..cpu_core.uniformity import Uniformity
 from .expressions import ExpressionEmitter
 from .module_text import HEADER, RENDER
-from .values import (ATOM, DTYPE, KIND_ARRAY, STATE, STATE_NAME, Arr, engine_error, flatten, leaves, not_yet)
+from .values import (
+    ATOM,
+    DTYPE,
+    KIND_ARRAY,
+    STATE,
+    STATE_NAME,
+    Arr,
+    engine_error,
+    flatten,
+    leaves,
+    not_yet,
+)
 
 
 class FnState:
@@ -68,7 +78,6 @@ class FnState:
         self.uni = uni  # cpu_core's Uniformity of the function (None: global initializers)
         self.outs: list = []  # the parts of out/inout parameters, returned after the value
         self.loops: list[tuple[str, Any]] = []  # (kind, continue emitter)
-
 
 
 class Codegen(ExpressionEmitter):
@@ -81,7 +90,9 @@ class Codegen(ExpressionEmitter):
         self.float_to_uint = float_to_uint
         self.entry = model.entry
         if self.entry is None:
-            raise engine_error("the program has no mainImage (or main) to render", Location(path, 1, 1))
+            raise engine_error(
+                "the program has no mainImage (or main) to render", Location(path, 1, 1)
+            )
         self.functions = list(model.reachable_functions())
         self.facts = Facts(model, self.functions)  # (nir_fold.mix_hint reads it: fold_context)
         self.lines: list[str] = []
@@ -97,7 +108,9 @@ class Codegen(ExpressionEmitter):
         self.frag4: list[str] | None = None
         self.last_line: tuple[str, int] | None = None
         self.needs: dict[str, list[str]] = {}  # function -> the state arrays it takes
-        self.variants: set[tuple[int, frozenset]] = set()  # (function, uniform parameters) made or asked
+        self.variants: set[tuple[int, frozenset]] = (
+            set()
+        )  # (function, uniform parameters) made or asked
         self.pending: list[tuple[Any, frozenset]] = []
         # the first dFdx/dFdy/fwidth call: its leaves are written `dfdx(v)` / `dfdy(v)`, which
         # only the lockstep rewrite computes (lanes.py: a block's lanes hold whole 2x2 quads)
@@ -141,6 +154,7 @@ class Codegen(ExpressionEmitter):
         if loc is None or not loc.line:
             return
         from ...base.diagnostics import source_line
+
         if (loc.path, loc.line) == self.last_line:
             return
         self.last_line = (loc.path, loc.line)
@@ -152,7 +166,9 @@ class Codegen(ExpressionEmitter):
         if math.isnan(v):
             name, lit = "F_nan", "np.float32(np.nan)"
         elif math.isinf(v):
-            name, lit = ("F_inf", "np.float32(np.inf)") if v > 0 else ("F_minf", "np.float32(-np.inf)")
+            name, lit = (
+                ("F_inf", "np.float32(np.inf)") if v > 0 else ("F_minf", "np.float32(-np.inf)")
+            )
         else:
             text = repr(float(v))
             name = "F_" + text.replace("-", "m").replace("+", "").replace(".", "p")
@@ -232,7 +248,11 @@ class Codegen(ExpressionEmitter):
             self.uslots[kind] += comps * (u.array_size or 1)
         _, off, _ = self.uniforms[name]
         if u.array_size:  # component c of element k at off + c*n + k: the small arrays' layout
-            return [f"{arr}[{off + c * u.array_size + k}]" for c in range(comps) for k in range(u.array_size)]
+            return [
+                f"{arr}[{off + c * u.array_size + k}]"
+                for c in range(comps)
+                for k in range(u.array_size)
+            ]
         return [f"{arr}[{off + c}]" for c in range(comps)]
 
     def literal_global(self, sym: Any) -> list | None:
@@ -313,7 +333,9 @@ class Codegen(ExpressionEmitter):
         out.append(f"LOOPS = {self.loop_lines!r}  # loop id -> (file, line, column)")
         loc = getattr(self.entry.node, "loc", None) or Location(self.path, 1, 1)
         entry = (loc.path, loc.line, loc.column, self.entry.name)
-        out.append(f"ENTRY = {entry!r}  # mainImage (file, line, column, name): where a frame over budget stops")
+        out.append(
+            f"ENTRY = {entry!r}  # mainImage (file, line, column, name): where a frame over budget stops"
+        )
         if self.derivative is not None:
             out.append("QUADS = True  # dFdx/dFdy: lockstep blocks of 2x2 quads only (lanes.py)")
         out.append("")
@@ -331,7 +353,11 @@ class Codegen(ExpressionEmitter):
         self.emit('"""Global variables at the start of every invocation."""')
         self.fn = FnState(None)
         for sym in self.model.globals:
-            if sym.kind != "global" or sym.type.contains_opaque or sym.qualifier in ("uniform", "in", "out"):
+            if (
+                sym.kind != "global"
+                or sym.type.contains_opaque
+                or sym.qualifier in ("uniform", "in", "out")
+            ):
                 if sym.kind == "global" and sym.qualifier == "out":
                     self.global_parts(sym, sym.node)
                 continue
@@ -357,8 +383,11 @@ class Codegen(ExpressionEmitter):
             for part, v in zip(self.frag4, ("px", "py", "F32(0.5)", "F32(1.0)")):
                 self.emit(f"{part} = {v}")
         if entry.name == "main":
-            outs = [g for g in self.model.globals if g.qualifier == "out" and g.kind == "global"
-                    and str(g.type) == "vec4"]
+            outs = [
+                g
+                for g in self.model.globals
+                if g.qualifier == "out" and g.kind == "global" and str(g.type) == "vec4"
+            ]
             if not outs:
                 raise engine_error("a plain GLSL shader needs an 'out vec4' variable", entry.node)
             self.emit(f"{name}({', '.join(self.needs[name])})")
@@ -398,14 +427,20 @@ class Codegen(ExpressionEmitter):
     def gen_function(self, sym: Any, seed: frozenset = frozenset()) -> None:
         node = sym.node
         self.variants.add((id(sym), seed))
-        params_u = {id(self.model.symbol_of(p)) for i, p in enumerate(node.proto.params) if i in seed}
-        self.fn = fs = FnState(sym, Uniformity(self.model, self.facts, sym, sym is self.entry, params_u))
+        params_u = {
+            id(self.model.symbol_of(p)) for i, p in enumerate(node.proto.params) if i in seed
+        }
+        self.fn = fs = FnState(
+            sym, Uniformity(self.model, self.facts, sym, sym is self.entry, params_u)
+        )
         proto = node.proto
         params: list[str] = []
         prologue: list[tuple[list, Any, str]] = []
         for k, (p, (pname, ptype, direction)) in enumerate(zip(proto.params, sym.params)):
             psym = self.model.symbol_of(p)
-            if psym is None:  # an unnamed parameter still takes its argument and returns its out value
+            if (
+                psym is None
+            ):  # an unnamed parameter still takes its argument and returns its out value
                 psym = Symbol(f"_unnamed{k}", "param", ptype, node=p, unique_name=f"_unnamed{k}")
             parts = self.declare_local(psym, p)
             if direction == "out":
@@ -418,20 +453,26 @@ class Codegen(ExpressionEmitter):
         def_at = len(self.lines)
         self.emit("")  # the def line, once the state arrays the body uses are known
         self.indent += 1
-        self.emit(f'"""{comment_safe(sym.signature(), 150)} (line {proto.loc.line if proto.loc else "?"})."""')
+        self.emit(
+            f'"""{comment_safe(sym.signature(), 150)} (line {proto.loc.line if proto.loc else "?"})."""'
+        )
         for part in [p for p in self.vars_of_params(sym) if isinstance(p, Arr)]:
             self.emit(f"{part.name} = acopy({part.name})  # arrays are passed by value")
         for parts, ptype, p in prologue:
             self.write(parts, self.zero_parts(ptype, p), fresh_arrays=True)
         ended = self.block(node.body.stmts)
         if not ended:  # the end of the body (also after an if/else that returned in both branches)
-            self.emit(self.return_text(None if sym.type.is_void else self.zero_parts(sym.type, node)))
+            self.emit(
+                self.return_text(None if sym.type.is_void else self.zero_parts(sym.type, node))
+            )
         self.indent -= 1
-        used = set(STATE_NAME.findall("\n".join(self.lines[def_at + 1:])))
+        used = set(STATE_NAME.findall("\n".join(self.lines[def_at + 1 :])))
         name = self.fn_name(sym)
         if not seed:
             self.needs[name] = [a for a in STATE if a in used]
-        self.lines[def_at] = f"def {self.variant_name(sym, seed)}({', '.join(self.needs[name] + params)}):"
+        self.lines[def_at] = (
+            f"def {self.variant_name(sym, seed)}({', '.join(self.needs[name] + params)}):"
+        )
         self.fn = None
 
     def vars_of_params(self, sym: Any) -> list:
@@ -482,7 +523,9 @@ class Codegen(ExpressionEmitter):
 
     def _stmt_DeclarationStatement(self, s: A.DeclarationStatement) -> None:
         d = s.decl
-        if isinstance(d, A.PrecisionDeclaration) or (isinstance(d, A.VariableDeclaration) and not d.declarators):
+        if isinstance(d, A.PrecisionDeclaration) or (
+            isinstance(d, A.VariableDeclaration) and not d.declarators
+        ):
             return
         if not isinstance(d, A.VariableDeclaration):
             raise not_yet("this declaration inside a function", s)
@@ -593,7 +636,6 @@ class Codegen(ExpressionEmitter):
         self.indent -= 1
 
 
-
 def _literal_tree(model: Any, e: Any, base: str) -> bool:
     """Literals of type `base`, their negations and vector constructors of them only."""
     if isinstance(e, (A.FloatLiteral, A.IntLiteral, A.BoolLiteral)):
@@ -602,9 +644,12 @@ def _literal_tree(model: Any, e: Any, base: str) -> bool:
         return _literal_tree(model, e.operand, base)
     if isinstance(e, A.Call) and isinstance(model.call_target(e), Constructor):
         t = model.type_of(e)
-        return (t.is_scalar or t.is_vector) and t.base == base and all(_literal_tree(model, a, base) for a in e.args)
+        return (
+            (t.is_scalar or t.is_vector)
+            and t.base == base
+            and all(_literal_tree(model, a, base) for a in e.args)
+        )
     return False
-
 
 
 def _safe(text: str) -> str:

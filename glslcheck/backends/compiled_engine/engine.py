@@ -49,7 +49,9 @@ _LOCK = threading.Lock()
 _MODULES: dict[str, Any] = {}  # hash -> loaded module (one per process)
 _SOURCES: dict[str, str] = {}  # hash -> the loaded module's source
 PARALLEL_PIXELS = 4096  # smaller frames in one band (a hand-off between threads costs more)
-WAIT_SLICE = 0.1  # seconds the calling thread waits at a time: how soon Ctrl-C and the budget are seen
+WAIT_SLICE = (
+    0.1  # seconds the calling thread waits at a time: how soon Ctrl-C and the budget are seen
+)
 # numba's compile (or cache load) has the frame budget, but at least this many seconds: a small
 # program takes seconds to compile cold, whatever budget its frames have.
 COMPILE_SECONDS = 60.0
@@ -63,7 +65,9 @@ class Workers:
     def __init__(self, threads: int) -> None:
         self.jobs: queue.SimpleQueue = queue.SimpleQueue()
         for k in range(threads):
-            threading.Thread(target=self._serve, name=f"glslcheck-compiled-{k}", daemon=True).start()
+            threading.Thread(
+                target=self._serve, name=f"glslcheck-compiled-{k}", daemon=True
+            ).start()
         self.threads = threads
 
     def _serve(self) -> None:
@@ -91,7 +95,9 @@ class Workers:
 
 
 _WORKERS: dict[int, Workers] = {}
-_WORKERS_LOCK = threading.Lock()  # apart from _LOCK, which a compile holds while it waits for its thread
+_WORKERS_LOCK = (
+    threading.Lock()
+)  # apart from _LOCK, which a compile holds while it waits for its thread
 _ABANDONED: list[float] = []  # when frames or compiles were left running (abandoned())
 
 
@@ -122,7 +128,9 @@ def run_bounded(threads: int, calls: list[tuple], deadline: float | None) -> Non
             left = None if deadline is None else deadline - time.monotonic()
             if left is not None and left <= 0:
                 raise TimeoutError
-            done, pending = wait(futures, WAIT_SLICE if left is None else min(WAIT_SLICE, left), FIRST_EXCEPTION)
+            done, pending = wait(
+                futures, WAIT_SLICE if left is None else min(WAIT_SLICE, left), FIRST_EXCEPTION
+            )
             for f in done:
                 if f.exception() is not None:
                     _drop(workers, futures)
@@ -168,13 +176,16 @@ def _versions() -> str:
     math = os.path.join(os.path.dirname(here), "llvmpipe_math")
     h = hashlib.sha256()
     # the runtime numba inlines into a generated module's machine code, which its cache keeps
-    for path in (os.path.join(here, "scalar.py"), os.path.join(here, "lanes_rt.py"), os.path.join(here, "lanes_math.py"),
-                 os.path.join(math, "lane.py"), os.path.join(math, "coefficients.py")):
+    for path in (
+        os.path.join(here, "scalar.py"),
+        os.path.join(here, "lanes_rt.py"),
+        os.path.join(here, "lanes_math.py"),
+        os.path.join(math, "lane.py"),
+        os.path.join(math, "coefficients.py"),
+    ):
         with open(path, "rb") as f:
             h.update(f.read())
     return f"{__version__} numba {version('numba')} {h.hexdigest()[:16]}"
-
-
 
 
 def lanes_width(lanes: int | None = None) -> int:
@@ -197,18 +208,24 @@ def generate(shader: Any, tab: str | None = None, lanes: int | None = None) -> t
     of `lanes_width(lanes)` pixels in lockstep (lanes.py), or one pixel a call when that is 0 or
     the rewrite does not handle the program (the per-pixel module then says why in
     LANES_FALLBACK)."""
+    from ...frontend.parser import parse_shader
     from ...shadertoy.channels import needs_passes
     from ..driver_profile import host_model
     from ..numpy_engine.llvmpipe_reference import HOST_FMA
     from ..numpy_engine.transpile.common import check_program
-    from ...frontend.parser import parse_shader
     from .codegen import Codegen
     from .values import engine_error, not_yet
 
     if needs_passes(shader):
         loc = Location(shader.root, 1, 1)
-        raise GlslError(Diagnostic("Buffer tabs and iChannel inputs: not supported by the compiled engine yet",
-                                   loc, rule="compiled-engine", help="render with --backend numpy or gl"))
+        raise GlslError(
+            Diagnostic(
+                "Buffer tabs and iChannel inputs: not supported by the compiled engine yet",
+                loc,
+                rule="compiled-engine",
+                help="render with --backend numpy or gl",
+            )
+        )
     if tab is None:
         tab = "Image" if "Image" in shader.tabs else ("GLSL" if "GLSL" in shader.tabs else "Image")
     pr = parse_shader(shader, tab)
@@ -223,11 +240,16 @@ def generate(shader: Any, tab: str | None = None, lanes: int | None = None) -> t
         width = lanes_width(lanes)
         if cg.derivative is not None and not width:
             if lanes is not None or not tiered():
-                raise engine_error("dFdx/dFdy/fwidth() one pixel a call: the compiled engine computes derivatives "
-                                   "only with pixels in lockstep (2x2 quads)", cg.derivative,
-                                   help=f"unset GLSLCHECK_COMPILED_LANES (or set it to {TIER_LANES}), "
-                                        "or render with --backend numpy or gl")
-            width = TIER_LANES  # the default program: lockstep from the first frame (no per-pixel tier)
+                raise engine_error(
+                    "dFdx/dFdy/fwidth() one pixel a call: the compiled engine computes derivatives "
+                    "only with pixels in lockstep (2x2 quads)",
+                    cg.derivative,
+                    help=f"unset GLSLCHECK_COMPILED_LANES (or set it to {TIER_LANES}), "
+                    "or render with --backend numpy or gl",
+                )
+            width = (
+                TIER_LANES  # the default program: lockstep from the first frame (no per-pixel tier)
+            )
         if width:
             from .lanes import Unsupported, lanes_module
 
@@ -235,8 +257,12 @@ def generate(shader: Any, tab: str | None = None, lanes: int | None = None) -> t
                 source = lanes_module(source, width)
             except Unsupported as e:
                 if cg.derivative is not None:  # no per-pixel module to fall back to
-                    raise not_yet(f"dFdx/dFdy/fwidth(): derivatives in this program ({e})", cg.derivative) from None
-                source += f"\nLANES_FALLBACK = {str(e)!r}  # why this shader runs one pixel a call\n"
+                    raise not_yet(
+                        f"dFdx/dFdy/fwidth(): derivatives in this program ({e})", cg.derivative
+                    ) from None
+                source += (
+                    f"\nLANES_FALLBACK = {str(e)!r}  # why this shader runs one pixel a call\n"
+                )
     finally:
         sys.setrecursionlimit(old)
     return source, path
@@ -276,7 +302,9 @@ class CompiledProgram:
     def _import(self, bounded: bool) -> Any:
         from ..numpy_engine import jit
 
-        cache = jit.use_cache_dir()  # before the SLP setting below, which a reload of numba's config would undo
+        cache = (
+            jit.use_cache_dir()
+        )  # before the SLP setting below, which a reload of numba's config would undo
         from numba.core import config
 
         folder = _folder()
@@ -294,16 +322,22 @@ class CompiledProgram:
         exec(compile(self.source, file, "exec"), mod.__dict__)
         self.cold = not _cached(cache, self.key)
         slp, limit = config.SLP_VECTORIZE, sys.getrecursionlimit()
-        if getattr(mod, "LANES", 0):  # LLVM's SLP vectorizer packs the lanes (no reassociation: same bits)
+        if getattr(
+            mod, "LANES", 0
+        ):  # LLVM's SLP vectorizer packs the lanes (no reassociation: same bits)
             config.SLP_VECTORIZE = 1
-            sys.setrecursionlimit(max(limit, 20000))  # numba's SSA pass recurses along long functions
+            sys.setrecursionlimit(
+                max(limit, 20000)
+            )  # numba's SSA pass recurses along long functions
         try:
             self._compile(mod, bounded)
         finally:
             config.SLP_VECTORIZE = slp
             sys.setrecursionlimit(limit)
         self.load_seconds = time.perf_counter() - t0
-        if self.cold:  # what compiling this module took, for TieredProgram's estimate in later processes
+        if (
+            self.cold
+        ):  # what compiling this module took, for TieredProgram's estimate in later processes
             _write(os.path.join(folder, f"m{self.key}.compile"), f"{self.load_seconds:.3f}\n")
         return mod
 
@@ -348,27 +382,54 @@ class CompiledProgram:
         """numba's compile (or cache load) of the module: a frame of no rows, which runs none of
         the shader's code but its global initializers."""
         seconds = max(self.budget(), COMPILE_SECONDS) if bounded else None
-        self._frame(mod, 1, 0, np.zeros((1, 2)), *self._inputs(mod, None), seconds=seconds, first=True)
+        self._frame(
+            mod, 1, 0, np.zeros((1, 2)), *self._inputs(mod, None), seconds=seconds, first=True
+        )
 
-    def _frame(self, mod: Any, width: int, height: int, offs: np.ndarray, uf: np.ndarray,
-               ui: np.ndarray, seconds: float | None = None, first: bool = False) -> np.ndarray:
+    def _frame(
+        self,
+        mod: Any,
+        width: int,
+        height: int,
+        offs: np.ndarray,
+        uf: np.ndarray,
+        ui: np.ndarray,
+        seconds: float | None = None,
+        first: bool = False,
+    ) -> np.ndarray:
         """One frame on the worker threads, within `seconds` (None: the frame budget); `first`:
         the call that compiles."""
         slots = mod.SLOTS
-        gt = [np.zeros(max(1, slots[k]), dt) for k, dt in
-              (("float", np.float32), ("int", np.int32), ("uint", np.uint32), ("bool", np.bool_))]
+        gt = [
+            np.zeros(max(1, slots[k]), dt)
+            for k, dt in (
+                ("float", np.float32),
+                ("int", np.int32),
+                ("uint", np.uint32),
+                ("bool", np.bool_),
+            )
+        ]
         from .scalar import LoopCapError
 
         out = np.empty((height, width, 4), np.float32)
         if seconds is None and not first:
             seconds = self.budget()
         try:
-            bands = min(self.threads * 4, height) if width * height >= PARALLEL_PIXELS and self.threads > 1 else 1
+            bands = (
+                min(self.threads * 4, height)
+                if width * height >= PARALLEL_PIXELS and self.threads > 1
+                else 1
+            )
             edges = [height * k // bands for k in range(bands + 1)]
-            if getattr(mod, "QUADS", False):  # a block is two rows (a 2x2 quad's): bands start at even rows
+            if getattr(
+                mod, "QUADS", False
+            ):  # a block is two rows (a 2x2 quad's): bands start at even rows
                 edges = [e - e % 2 for e in edges[:-1]] + [height]
-            calls = [(mod.render_rows, out, edges[k], edges[k + 1], width, height, offs, uf, ui, *gt)
-                     for k in range(bands) if edges[k] < edges[k + 1] or first]
+            calls = [
+                (mod.render_rows, out, edges[k], edges[k + 1], width, height, offs, uf, ui, *gt)
+                for k in range(bands)
+                if edges[k] < edges[k + 1] or first
+            ]
             deadline = None if seconds is None else time.monotonic() + seconds
             # the globals' initializers run the shader's code too (and numba compiles them first)
             run_bounded(self.threads, [(mod.globals_template, uf, ui, *gt)], deadline)
@@ -379,27 +440,42 @@ class CompiledProgram:
             from ..numpy_engine.transpile.common import LOOP_CAP
 
             path, line, col = mod.LOOPS.get(int(e.args[0]), (self.path, 0, 0))
-            raise GlslError(Diagnostic(f"this loop ran more than {LOOP_CAP} times", Location(path, line, col),
-                                       rule="compiled-engine")) from None
+            raise GlslError(
+                Diagnostic(
+                    f"this loop ran more than {LOOP_CAP} times",
+                    Location(path, line, col),
+                    rule="compiled-engine",
+                )
+            ) from None
         return out
 
     def _over_budget(self, mod: Any, seconds: float, first: bool) -> GlslError:
         path, line, col, name = getattr(mod, "ENTRY", (self.path, 1, 1, "mainImage"))
         how = "--frame-budget SECONDS (or GLSLCHECK_FRAME_SECONDS) sets the budget"
         if first:
-            return GlslError(Diagnostic(
-                f"numba was still compiling this shader after {seconds:g} s (the frame budget, at least "
-                f"{COMPILE_SECONDS:g} s); the compiled engine stopped waiting for it", Location(path, line, col),
+            return GlslError(
+                Diagnostic(
+                    f"numba was still compiling this shader after {seconds:g} s (the frame budget, at least "
+                    f"{COMPILE_SECONDS:g} s); the compiled engine stopped waiting for it",
+                    Location(path, line, col),
+                    rule="compiled-frame-budget",
+                    help=f"render with --backend numpy, or make the program shorter (numba's work grows with it); {how}",
+                )
+            )
+        return GlslError(
+            Diagnostic(
+                f"the frame was still rendering after {seconds:g} s on the CPU, in '{name}' or a function it calls; "
+                "the compiled engine stopped waiting for it (a GPU would hang or reset)",
+                Location(path, line, col),
                 rule="compiled-frame-budget",
-                help=f"render with --backend numpy, or make the program shorter (numba's work grows with it); {how}"))
-        return GlslError(Diagnostic(
-            f"the frame was still rendering after {seconds:g} s on the CPU, in '{name}' or a function it calls; "
-            "the compiled engine stopped waiting for it (a GPU would hang or reset)", Location(path, line, col),
-            rule="compiled-frame-budget",
-            help=f"bound the loops' iteration counts (nested loops multiply); {how}"))
+                help=f"bound the loops' iteration counts (nested loops multiply); {how}",
+            )
+        )
 
     @frame_inputs
-    def render(self, inputs: FrameInputs, precision: str = "float32", stats: bool = False) -> np.ndarray:
+    def render(
+        self, inputs: FrameInputs, precision: str = "float32", stats: bool = False
+    ) -> np.ndarray:
         """One frame: float32 (height, width, 4), top row first (the NumPy backend's layout)."""
         if precision != "float32":
             raise ValueError("the compiled engine renders in float32 only")
@@ -493,7 +569,9 @@ class TieredProgram:
         self.spent = 0.0  # wall seconds of per-pixel frames
         self.pixels = 0  # pixels those frames rendered
         self._lock = threading.Lock()
-        self._found: list[str | None] = []  # _cached_fast's answer, looked up once (it walks the cache)
+        self._found: list[
+            str | None
+        ] = []  # _cached_fast's answer, looked up once (it walks the cache)
         self._mover: threading.Thread | None = None  # the lockstep compile, once started
 
     @property
@@ -524,7 +602,9 @@ class TieredProgram:
             return _SOURCES[key]
         if not key or not _cached(os.path.dirname(_folder()), key):
             return None
-        source = _read(os.path.join(_folder(), f"m{key}.py"), strip=False)  # as written: its hash is its key
+        source = _read(
+            os.path.join(_folder(), f"m{key}.py"), strip=False
+        )  # as written: its hash is its key
         return source if source is not None and CompiledProgram(source, "").key == key else None
 
     def move_cost(self) -> float:
@@ -548,11 +628,17 @@ class TieredProgram:
             fast = CompiledProgram(source, self.first.path, self.threads)
             fast.frame_seconds = self.first.frame_seconds
             fast.load(bounded=False)  # no frame waits for it
-        except Exception as e:  # an engine bug in the lockstep path: the per-pixel program still renders
+        except (
+            Exception
+        ) as e:  # an engine bug in the lockstep path: the per-pixel program still renders
             import warnings
 
-            warnings.warn(f"glslcheck: the lockstep module failed to compile ({type(e).__name__}: {e}); "
-                          f"rendering per pixel", RuntimeWarning, stacklevel=2)
+            warnings.warn(
+                f"glslcheck: the lockstep module failed to compile ({type(e).__name__}: {e}); "
+                f"rendering per pixel",
+                RuntimeWarning,
+                stacklevel=2,
+            )
             self.stay = True
             return
         _write(self._marker(), fast.key + "\n")
@@ -567,7 +653,9 @@ class TieredProgram:
         return True
 
     @frame_inputs
-    def render(self, inputs: FrameInputs, precision: str = "float32", stats: bool = False) -> np.ndarray:
+    def render(
+        self, inputs: FrameInputs, precision: str = "float32", stats: bool = False
+    ) -> np.ndarray:
         """One frame (CompiledProgram.render), by whichever program is current."""
         kw = dict(inputs.keywords(), precision=precision, stats=stats)
         with self._lock:
@@ -576,7 +664,9 @@ class TieredProgram:
                 if self.spent + ahead >= self.move_cost():
                     # a daemon: a process that ends first drops the compile (numba writes its
                     # cache files whole, by rename; the marker follows a finished load)
-                    self._mover = threading.Thread(target=self._move, name="glslcheck-lockstep", daemon=True)
+                    self._mover = threading.Thread(
+                        target=self._move, name="glslcheck-lockstep", daemon=True
+                    )
                     self._mover.start()
         fast = self.fast
         if fast is not None:
@@ -590,7 +680,9 @@ class TieredProgram:
         return out
 
 
-def compile_compiled(path_or_shader: Any, threads: int | None = None) -> CompiledProgram | TieredProgram:
+def compile_compiled(
+    path_or_shader: Any, threads: int | None = None
+) -> CompiledProgram | TieredProgram:
     """The compiled engine's program for a shader's Image tab: a TieredProgram when the mode is
     not fixed (tiered()), else a CompiledProgram (`glslcheck.compile(path, backend="compiled")`
     wraps it in a Program)."""
@@ -599,6 +691,8 @@ def compile_compiled(path_or_shader: Any, threads: int | None = None) -> Compile
     shader = path_or_shader if isinstance(path_or_shader, Shader) else load_shader(path_or_shader)
     source, path = generate(shader)
     prog = CompiledProgram(source, path, threads)
-    if tiered() and "LANES_FALLBACK" not in source and "\nLANES = " not in source:  # lockstep from the start: derivatives
+    if (
+        tiered() and "LANES_FALLBACK" not in source and "\nLANES = " not in source
+    ):  # lockstep from the start: derivatives
         return TieredProgram(shader, prog, threads)
     return prog

@@ -15,8 +15,21 @@ from ...language import glsl_types as T
 from ...semantics.consteval import f32
 from ...semantics.model import Constructor, Symbol
 from .builtin_calls import builtin_call
-from .values import (CAST, DTYPE, PURE_LINE, SPECULATE_LINES, Arr, Dyn, Val, broadcast_const, engine_error, flatten,
-                     leaves, not_yet, pure_expr)
+from .values import (
+    CAST,
+    DTYPE,
+    PURE_LINE,
+    SPECULATE_LINES,
+    Arr,
+    Dyn,
+    Val,
+    broadcast_const,
+    engine_error,
+    flatten,
+    leaves,
+    not_yet,
+    pure_expr,
+)
 
 
 class ExpressionEmitter:
@@ -27,8 +40,14 @@ class ExpressionEmitter:
         """Assign value parts to target parts, in order. Values that read a target are copied
         first when several parts are written (`v.xy = v.yx`)."""
         if len(targets) > 1:
-            values = [self.tmp_copy(v) if isinstance(v, str) and not v.startswith(("F_", "I_", "U_", "_t"))
-                      and v not in ("True", "False") else v for v in values]
+            values = [
+                self.tmp_copy(v)
+                if isinstance(v, str)
+                and not v.startswith(("F_", "I_", "U_", "_t"))
+                and v not in ("True", "False")
+                else v
+                for v in values
+            ]
         for t, v in zip(targets, values):
             if isinstance(t, Arr):
                 src = v.whole() if isinstance(v, Arr) else v
@@ -81,7 +100,7 @@ class ExpressionEmitter:
             for fname, ft in bt.fields:
                 n = len(leaves(ft, e))
                 if fname == e.name:
-                    return parts[k:k + n]
+                    return parts[k : k + n]
                 k += n
             raise engine_error(f"no field '{e.name}'", e)
         idx = self.model.swizzle_indices(e)
@@ -103,7 +122,7 @@ class ExpressionEmitter:
             m = len(parts) // n  # scalars, leaf by leaf: leaf j of element k is parts[j * n + k]
             if const:
                 return [parts[j * n + int(i)] for j in range(m)]
-            return [Dyn(i, parts[j * n:(j + 1) * n]) for j in range(m)]
+            return [Dyn(i, parts[j * n : (j + 1) * n]) for j in range(m)]
         if bt.is_vector:
             if const:
                 return [parts[min(max(cv, 0), bt.size - 1)]]
@@ -113,7 +132,7 @@ class ExpressionEmitter:
             r = bt.rows
             if const:
                 c = min(max(cv, 0), bt.cols - 1)
-                return parts[c * r:(c + 1) * r]
+                return parts[c * r : (c + 1) * r]
             i = self.tmp(f"index({self.expr(e.index).parts[0]}, {bt.cols})")
             return [Dyn(i, [parts[c * r + row] for c in range(bt.cols)]) for row in range(r)]
         raise engine_error("this value cannot be indexed", e)
@@ -131,7 +150,12 @@ class ExpressionEmitter:
             raise not_yet(f"{type(e).__name__} expressions", e)
         v = method(e)
         cv = self.model.const_value(e)
-        if cv is not None and v.const is None and not self.type_of(e).is_array and not self.type_of(e).is_struct:
+        if (
+            cv is not None
+            and v.const is None
+            and not self.type_of(e).is_array
+            and not self.type_of(e).is_struct
+        ):
             v.const = flatten(cv)
         v.uni = self.lane_uniform(e)
         # long expressions go to temporaries (Python's parser nests 200 brackets at most)
@@ -144,15 +168,27 @@ class ExpressionEmitter:
         input): Mesa's constant folding, approximated there (Runtime.fmul). By numpy_backend's
         own analysis (Uniformity); global initializers run on one lane there."""
         node = e
-        while isinstance(node, (A.Field, A.Index)) and not (isinstance(node, A.Field) and self.model.is_swizzle(node)
-                                                            and len(self.model.swizzle_indices(node)) > 1):
+        while isinstance(node, (A.Field, A.Index)) and not (
+            isinstance(node, A.Field)
+            and self.model.is_swizzle(node)
+            and len(self.model.swizzle_indices(node)) > 1
+        ):
             node = node.base
         if isinstance(node, A.Field) and self.model.is_swizzle(node):
             idx = tuple(self.model.swizzle_indices(node))
             inner = node.base
-            if isinstance(inner, A.Identifier) and self._is_input(inner) and (
-                    idx == tuple(range(len(idx))) or (len(idx) > 1 and idx[1] - idx[0] > 0 and all(
-                        b - a == idx[1] - idx[0] for a, b in zip(idx, idx[1:])))):
+            if (
+                isinstance(inner, A.Identifier)
+                and self._is_input(inner)
+                and (
+                    idx == tuple(range(len(idx)))
+                    or (
+                        len(idx) > 1
+                        and idx[1] - idx[0] > 0
+                        and all(b - a == idx[1] - idx[0] for a, b in zip(idx, idx[1:]))
+                    )
+                )
+            ):
                 return False  # a view of a read-only uniform (Runtime.swizzle)
         elif isinstance(node, A.Identifier) and self._is_input(node):
             return False
@@ -162,8 +198,11 @@ class ExpressionEmitter:
 
     def _is_input(self, ident: Any) -> bool:
         sym = self.model.symbol_of(ident)
-        return sym is not None and (sym.kind == "uniform" or (sym.kind == "global" and sym.qualifier == "uniform")
-                                    or (sym.kind == "builtin-var" and sym.name == "gl_FragCoord"))
+        return sym is not None and (
+            sym.kind == "uniform"
+            or (sym.kind == "global" and sym.qualifier == "uniform")
+            or (sym.kind == "builtin-var" and sym.name == "gl_FragCoord")
+        )
 
     def _expr_IntLiteral(self, e: A.IntLiteral) -> Val:
         t = self.type_of(e)
@@ -171,7 +210,9 @@ class ExpressionEmitter:
 
     def _expr_FloatLiteral(self, e: A.FloatLiteral) -> Val:
         v = e.value
-        if e.text and float32_literal(e.text) != f32(v):  # a decimal just off a float32 halfway point
+        if e.text and float32_literal(e.text) != f32(
+            v
+        ):  # a decimal just off a float32 halfway point
             v = float32_literal(e.text)  # rounded to float32 once, not through float64
         return Val(T.FLOAT, [self.cf(v)], [v])
 
@@ -191,13 +232,23 @@ class ExpressionEmitter:
     def _expr_Index(self, e: A.Index) -> Val:
         bt = self.type_of(e.base)
         base = self.expr(e.base)
-        parts = self.select_index(bt, [p if isinstance(p, Arr) else self.atom(p) for p in base.parts], e)
+        parts = self.select_index(
+            bt, [p if isinstance(p, Arr) else self.atom(p) for p in base.parts], e
+        )
         return Val(self.type_of(e), [self.read(p) for p in parts])
 
     def _expr_MethodCall(self, e: A.MethodCall) -> Val:
         bt = self.type_of(e.base)
         if e.name == "length":
-            n = bt.array_size if bt.is_array else bt.size if bt.is_vector else bt.cols if bt.is_matrix else None
+            n = (
+                bt.array_size
+                if bt.is_array
+                else bt.size
+                if bt.is_vector
+                else bt.cols
+                if bt.is_matrix
+                else None
+            )
             if n is not None:
                 return Val(T.INT, [self.ci(n)], [n])
         raise not_yet(f"the method '.{e.name}()'", e)
@@ -332,8 +383,15 @@ class ExpressionEmitter:
             return Val(T.BOOL, [res])
         left = self.expr(e.left)
         right = self.expr(e.right)
-        if op == "%" and left.const is not None and right.const is not None and left.t.base == "int":
-            return self.componentwise(left, right, self.type_of(e), lambda a, b, i: f"irem_const({a}, {b})")
+        if (
+            op == "%"
+            and left.const is not None
+            and right.const is not None
+            and left.t.base == "int"
+        ):
+            return self.componentwise(
+                left, right, self.type_of(e), lambda a, b, i: f"irem_const({a}, {b})"
+            )
         return self.binary_values(op, left, right, e)
 
     def binary_values(self, op: str, left: Val, right: Val, e: Any) -> Val:
@@ -365,13 +423,21 @@ class ExpressionEmitter:
             cast = CAST[base]
             u = base == "uint"
             if op in ("+", "-", "*"):
-                return self.componentwise(left, right, rtype, lambda a, b, i: f"{cast}({a} {op} {b})")
+                return self.componentwise(
+                    left, right, rtype, lambda a, b, i: f"{cast}({a} {op} {b})"
+                )
             if op in ("<", "<=", ">", ">="):
                 return self.componentwise(left, right, rtype, lambda a, b, i: f"({a} {op} {b})")
             if op in ("&", "|", "^"):
-                return self.componentwise(left, right, rtype, lambda a, b, i: f"{cast}({a} {op} {b})")
-            fn = {"/": "udiv" if u else "idiv", "%": "urem" if u else "irem",
-                  "<<": "ushl" if u else "ishl", ">>": "ushr" if u else "ishr"}.get(op)
+                return self.componentwise(
+                    left, right, rtype, lambda a, b, i: f"{cast}({a} {op} {b})"
+                )
+            fn = {
+                "/": "udiv" if u else "idiv",
+                "%": "urem" if u else "irem",
+                "<<": "ushl" if u else "ishl",
+                ">>": "ushr" if u else "ishr",
+            }.get(op)
             if fn is not None:
                 return self.componentwise(left, right, rtype, lambda a, b, i: f"{fn}({a}, {b})")
         raise not_yet(f"the operator '{op}' on '{lt}'", e)
@@ -403,6 +469,7 @@ class ExpressionEmitter:
             if zc is not None:
                 return zero if zc[i] == 0 else f"({a} * {b})"
             return f"({zero} if {zparts[i]} == {zero} else ({a} * {b}))"
+
         return self.componentwise(left, right, rtype, one)
 
     def fadd(self, op: str, left: Val, right: Val, rtype: Any, e: Any = None) -> Val:
@@ -423,6 +490,7 @@ class ExpressionEmitter:
             if zc is not None:
                 return kept if zc[i] == 0 else f"({a} {op} {b})"
             return f"({kept} if {z} == {zero} else ({a} {op} {b}))"
+
         return self.componentwise(left, right, rtype, one)
 
     def zero_add(self, e: Any) -> bool:
@@ -444,11 +512,11 @@ class ExpressionEmitter:
             return Val(rtype, self.mat_vec(a, lt.cols, lt.rows, b))
         if lt.is_vector and rt_.is_matrix:  # component c: dot(v, m[c])
             r = rt_.rows
-            return Val(rtype, [self.dot_text(a, b[c * r:(c + 1) * r]) for c in range(rt_.cols)])
+            return Val(rtype, [self.dot_text(a, b[c * r : (c + 1) * r]) for c in range(rt_.cols)])
         out = []
         k = lt.cols
         for c in range(rt_.cols):
-            out += [self.atom(p) for p in self.mat_vec(a, k, lt.rows, b[c * k:(c + 1) * k])]
+            out += [self.atom(p) for p in self.mat_vec(a, k, lt.rows, b[c * k : (c + 1) * k])]
         return Val(rtype, out)
 
     def mat_vec(self, m: list, cols: int, rows: int, v: list) -> list:
@@ -504,8 +572,11 @@ class ExpressionEmitter:
         ret_leaves = [] if rtype.is_void else leaves(rtype, e)
         out_leaves = [leaf for (_, pt, d) in fn.params if d != "in" for leaf in leaves(pt, e)]
         res = [self.fresh() for _ in range(n_val + len(out_leaves))]
-        seed = frozenset(i for i, (a, (_, _, d)) in enumerate(zip(e.args, fn.params))
-                         if d != "out" and self.lane_uniform(a))
+        seed = frozenset(
+            i
+            for i, (a, (_, _, d)) in enumerate(zip(e.args, fn.params))
+            if d != "out" and self.lane_uniform(a)
+        )
         if seed and (id(fn), seed) not in self.variants:
             self.variants.add((id(fn), seed))
             self.pending.append((fn, seed))
@@ -522,7 +593,9 @@ class ExpressionEmitter:
                 vals.append(Arr(res[k], 0, size, base) if size is not None else res[k])
                 k += 1
             self.write(targets, vals)
-        value = [Arr(r, 0, n, b) if n is not None else r for r, (b, n) in zip(res[:n_val], ret_leaves)]
+        value = [
+            Arr(r, 0, n, b) if n is not None else r for r, (b, n) in zip(res[:n_val], ret_leaves)
+        ]
         return Val(rtype, value)
 
     def constructor(self, e: A.Call, t: Any) -> Val:
@@ -544,8 +617,10 @@ class ExpressionEmitter:
             return Val(t, [p for v in args for p in v.parts])
         comps: list[str] = []
         for v in args:
-            comps += [self.convert(p, v.t.base if not v.t.is_matrix else "float", t.base or "float")
-                      for p in v.parts]
+            comps += [
+                self.convert(p, v.t.base if not v.t.is_matrix else "float", t.base or "float")
+                for p in v.parts
+            ]
         const = None
         if all(v.const is not None for v in args):
             const = [c for v in args for c in v.const]
@@ -555,7 +630,7 @@ class ExpressionEmitter:
             if len(comps) == 1:
                 c = self.atom(comps[0])
                 return Val(t, [c] * t.size, const * t.size if const else None)
-            return Val(t, comps[:t.size], const[:t.size] if const else None)
+            return Val(t, comps[: t.size], const[: t.size] if const else None)
         if t.is_matrix:
             c, r = t.cols, t.rows
             if len(args) == 1 and args[0].t.is_scalar:
@@ -574,7 +649,7 @@ class ExpressionEmitter:
                         else:
                             out.append(one if i == j else zero)
                 return Val(t, out)
-            return Val(t, comps[:c * r])
+            return Val(t, comps[: c * r])
         raise not_yet(f"constructing '{t}'", e)
 
     def convert(self, p: str, src: str, dst: str) -> str:
@@ -586,9 +661,12 @@ class ExpressionEmitter:
         if dst == "bool":
             return f"({p} != 0)"
         if src == "bool":
-            one, zero = (self.cf(1.0), self.cf(0.0)) if dst == "float" else (f"{CAST[dst]}(1)", f"{CAST[dst]}(0)")
+            one, zero = (
+                (self.cf(1.0), self.cf(0.0))
+                if dst == "float"
+                else (f"{CAST[dst]}(1)", f"{CAST[dst]}(0)")
+            )
             return f"({one} if {p} else {zero})"
         if src == "float":
             return f"to_int({p})" if dst == "int" else f"to_uint_{self.float_to_uint}({p})"
         return f"{CAST[dst]}({p})"
-

@@ -70,8 +70,14 @@ from .values import pure_expr
 
 STATE_LANES = ("gf", "gi", "gu", "gb")  # per-pixel state: one array per lane
 UNIFORM_STATE = ("uf", "ui")
-ROW_UNIFORM = ("fy", "py")  # shade's fragCoord.y and pixel centre y: one value for a block (a row's)
-MATH = ("glslcheck.backends.compiled_engine.scalar", "glslcheck.backends.compiled_engine.lanes_math")  # later wins
+ROW_UNIFORM = (
+    "fy",
+    "py",
+)  # shade's fragCoord.y and pixel centre y: one value for a block (a row's)
+MATH = (
+    "glslcheck.backends.compiled_engine.scalar",
+    "glslcheck.backends.compiled_engine.lanes_math",
+)  # later wins
 
 
 class Unsupported(Exception):
@@ -152,19 +158,31 @@ class _Rename(ast.NodeTransformer):
         vectorizer from packing the lanes; both sides computed, the same value picked."""
         node = self.generic_visit(node)
         if pure_expr(node):
-            return ast.copy_location(ast.Call(ast.Name("lsel", ast.Load()), [node.test, node.body, node.orelse], []),
-                                     node)
+            return ast.copy_location(
+                ast.Call(ast.Name("lsel", ast.Load()), [node.test, node.body, node.orelse], []),
+                node,
+            )
         return node
 
     def visit_Call(self, node: ast.Call) -> Any:
         f = node.func
-        if (self.quads and isinstance(f, ast.Name) and f.id in ("dfdx", "dfdy") and len(node.args) == 1
-                and isinstance(node.args[0], ast.Name) and node.args[0].id in self.varying):
+        if (
+            self.quads
+            and isinstance(f, ast.Name)
+            and f.id in ("dfdx", "dfdy")
+            and len(node.args) == 1
+            and isinstance(node.args[0], ast.Name)
+            and node.args[0].id in self.varying
+        ):
             # a difference of two lanes of the quad; of a uniform value, lanes_rt.dfdx (0)
             v = node.args[0].id
             a, b = quad_lanes(f.id, self.k, self.quads)
-            return ast.copy_location(ast.BinOp(ast.Name(f"{v}__{a}", ast.Load()), ast.Sub(),
-                                               ast.Name(f"{v}__{b}", ast.Load())), node)
+            return ast.copy_location(
+                ast.BinOp(
+                    ast.Name(f"{v}__{a}", ast.Load()), ast.Sub(), ast.Name(f"{v}__{b}", ast.Load())
+                ),
+                node,
+            )
         return self.generic_visit(node)
 
     def visit_Name(self, node: ast.Name) -> Any:
@@ -184,7 +202,11 @@ class _SharedReads(ast.NodeTransformer):
         self.written: dict[str, set | None] = {k: set() for k in STATE_LANES}
         for f in functions:
             for n in ast.walk(f):
-                if isinstance(n, ast.Subscript) and isinstance(n.ctx, ast.Store) and isinstance(n.value, ast.Name):
+                if (
+                    isinstance(n, ast.Subscript)
+                    and isinstance(n.ctx, ast.Store)
+                    and isinstance(n.value, ast.Name)
+                ):
                     self.store(n.value.id, n.slice)
                 elif _call_name(n) == "aset" and n.args and isinstance(n.args[0], ast.Name):
                     self.store(n.args[0].id, None)
@@ -200,7 +222,9 @@ class _SharedReads(ast.NodeTransformer):
     def visit_Subscript(self, node: ast.Subscript) -> Any:
         self.generic_visit(node)
         base = node.value
-        if not (isinstance(node.ctx, ast.Load) and isinstance(base, ast.Name) and base.id in STATE_LANES):
+        if not (
+            isinstance(node.ctx, ast.Load) and isinstance(base, ast.Name) and base.id in STATE_LANES
+        ):
             return node
         written = self.written[base.id]
         if written is None:
@@ -211,26 +235,30 @@ class _SharedReads(ast.NodeTransformer):
                 return node
         elif written:
             return node
-        return ast.copy_location(ast.Subscript(ast.Name(f"{base.id}__0", ast.Load()), index, node.ctx), node)
+        return ast.copy_location(
+            ast.Subscript(ast.Name(f"{base.id}__0", ast.Load()), index, node.ctx), node
+        )
 
 
 class _Fn:
     """One function's rewrite (see the module docstring)."""
 
-    def __init__(self, lanes: "Lanes", fn: ast.FunctionDef, uniform: frozenset = frozenset()) -> None:
+    def __init__(self, lanes: Lanes, fn: ast.FunctionDef, uniform: frozenset = frozenset()) -> None:
         self.L = lanes
         self.fn = fn
         self.W = lanes.W
         self.params = [a.arg for a in fn.args.args]
         self.uniform = uniform  # the indices of the parameters the callers pass as one scalar
         self.name = variant_name(fn.name, uniform)
-        self.scalar_params = {p for i, p in enumerate(self.params) if p in UNIFORM_STATE or i in uniform}
+        self.scalar_params = {
+            p for i, p in enumerate(self.params) if p in UNIFORM_STATE or i in uniform
+        }
         self.varying: set[str] = {p for p in self.params if p not in self.scalar_params}
         self.counts: dict[str, int] = {p: 1 for p in self.params}
         for n in ast.walk(fn):
             if isinstance(n, ast.Assign):
                 for t in n.targets:
-                    for x in ([t] if not isinstance(t, ast.Tuple) else t.elts):
+                    for x in [t] if not isinstance(t, ast.Tuple) else t.elts:
                         if isinstance(x, ast.Name):
                             self.counts[x.id] = self.counts.get(x.id, 0) + 1
             elif isinstance(n, ast.AugAssign) and isinstance(n.target, ast.Name):
@@ -251,7 +279,9 @@ class _Fn:
     def lane(self, e: Any, k: int) -> str:
         if not self.is_varying(e):
             return ast.unparse(e)
-        return ast.unparse(_Rename(self.varying, k, self.W if self.L.quads else 0).visit(copy.deepcopy(e)))
+        return ast.unparse(
+            _Rename(self.varying, k, self.W if self.L.quads else 0).visit(copy.deepcopy(e))
+        )
 
     def lanes_of(self, e: Any) -> list[str]:
         if not self.is_varying(e):
@@ -331,7 +361,9 @@ class _Fn:
 
     def refresh(self) -> None:
         """After a statement with exits, the current region loses the lanes that left."""
-        loop = next((x for x in reversed(self.loops) if x is not None), None) if self.loops else None
+        loop = (
+            next((x for x in reversed(self.loops) if x is not None), None) if self.loops else None
+        )
         if not self.div:
             if not self.live:
                 return
@@ -356,7 +388,9 @@ class _Fn:
         if not terms:
             return
         for k in range(self.W):
-            self.emit(f"{self.mask}__{k} = {self.mask}__{k} & " + " & ".join(t.format(k=k) for t in terms))
+            self.emit(
+                f"{self.mask}__{k} = {self.mask}__{k} & " + " & ".join(t.format(k=k) for t in terms)
+            )
 
     def stmt(self, s: Any, top: bool) -> None:
         method = getattr(self, "_" + type(s).__name__, None)
@@ -406,7 +440,9 @@ class _Fn:
         v = s.value
         if isinstance(t, ast.Tuple) or (_call_name(v) in self.L.functions):
             targets = t.elts if isinstance(t, ast.Tuple) else [t]
-            if _call_name(v) not in self.L.functions or not all(isinstance(x, ast.Name) for x in targets):
+            if _call_name(v) not in self.L.functions or not all(
+                isinstance(x, ast.Name) for x in targets
+            ):
                 raise Unsupported("a tuple assignment")
             self.user_call(v, [x.id for x in targets])
             return
@@ -453,8 +489,11 @@ class _Fn:
             raise Unsupported("a call's arguments")
         mask = self.mask if self.div else "m"
         # arguments free of lanes go as one scalar: the callee's variant for them
-        uniform = frozenset(i for i, (p, a) in enumerate(zip(params, call.args))
-                            if p not in UNIFORM_STATE and not self.is_varying(a))
+        uniform = frozenset(
+            i
+            for i, (p, a) in enumerate(zip(params, call.args))
+            if p not in UNIFORM_STATE and not self.is_varying(a)
+        )
         fn = self.L.variant(name, uniform)
         self.calls.add((name, uniform))
         args = self.lane_names(mask)
@@ -477,7 +516,9 @@ class _Fn:
                 self.mark(x)  # a result per lane (or written under a mask)
         self.emit(f"{', '.join(flat)}, = {text}")
         for x, r, uni in zip(targets, res, fn.ret_uniform):
-            self.write(x, ([r] * self.W if x in self.varying else [r]) if uni else self.lane_names(r))
+            self.write(
+                x, ([r] * self.W if x in self.varying else [r]) if uni else self.lane_names(r)
+            )
 
     def _If(self, s: ast.If, top: bool) -> None:
         exits = _exits([s])
@@ -493,7 +534,9 @@ class _Fn:
             then = self.new_mask("mt", [f"({base}__{k} & {cond}__{k})" for k in range(self.W)])
             other = None
             if s.orelse:
-                other = self.new_mask("me", [f"({base}__{k} & (not {cond}__{k}))" for k in range(self.W)])
+                other = self.new_mask(
+                    "me", [f"({base}__{k} & (not {cond}__{k}))" for k in range(self.W)]
+                )
             self.emit(f"if {self.any_of(then)}:")
             self.nested(s.body, True, then, True)
             if other is not None:
@@ -512,6 +555,7 @@ class _Fn:
 
     def loop_divergent(self, body: list) -> bool:
         """Whether a loop in uniform control has an exit under a divergent condition."""
+
         def scan(stmts: list, inner: bool) -> bool:
             for s in stmts:
                 if isinstance(s, ast.If):
@@ -528,6 +572,7 @@ class _Fn:
                     if scan(s.body, True):
                         return True
             return False
+
         return scan(body, False)
 
     def _While(self, s: ast.While, top: bool) -> None:
@@ -536,7 +581,11 @@ class _Fn:
         exits = _exits(s.body)
         # a plain loop also after returns (the returned lanes run it for nothing), unless it can
         # return: under a mask a return does not leave the Python loop
-        if not self.ldiv and not self.loop_divergent(s.body) and not (self.div and "return" in exits):
+        if (
+            not self.ldiv
+            and not self.loop_divergent(s.body)
+            and not (self.div and "return" in exits)
+        ):
             self.emit("while True:")
             self.loops.append(None)
             self.indent += 1
@@ -605,8 +654,11 @@ class _Fn:
                 for i, e in enumerate(elts):
                     if self.is_varying(e):
                         self.ret_seen[i] = False
-                    flat += [self.atom(ast.unparse(e))] if self.ret_uniform[i] else [
-                        self.atom(t) for t in self.lanes_of(e)]
+                    flat += (
+                        [self.atom(ast.unparse(e))]
+                        if self.ret_uniform[i]
+                        else [self.atom(t) for t in self.lanes_of(e)]
+                    )
                 self.emit(f"return ({', '.join(flat)},)")
             return
         if elts is not None:
@@ -615,8 +667,11 @@ class _Fn:
                 first = f"_r{i}" not in self.defined
                 self.defined.add(f"_r{i}")
                 for k, text in enumerate(self.lanes_of(e)):
-                    self.emit(f"_r{i}__{k} = {text}" if first else
-                              f"_r{i}__{k} = lsel({self.mask}__{k}, {text}, _r{i}__{k})")
+                    self.emit(
+                        f"_r{i}__{k} = {text}"
+                        if first
+                        else f"_r{i}__{k} = lsel({self.mask}__{k}, {text}, _r{i}__{k})"
+                    )
         if top and not self.loops:
             self.emit_slots_return(elts is not None)
             return
@@ -643,7 +698,9 @@ class _Fn:
             params += [p] if p in self.scalar_params else self.lane_names(p)
         head = [f"def {self.name}({', '.join(params)}):"]
         for p in self.params:  # a parameter passed as one scalar and written with lane values
-            if p in self.scalar_params and p in self.varying:  # (`ro += rd * t`): its lanes start from it
+            if (
+                p in self.scalar_params and p in self.varying
+            ):  # (`ro += rd * t`): its lanes start from it
                 head += [f"    {p}__{k} = {p}" for k in range(self.W)]
         if any("live__0" in line for line in lines):
             head += [f"    live__{k} = True" for k in range(self.W)]
@@ -664,12 +721,22 @@ class Lanes:
         self.W = width
         # derivatives (codegen writes dFdx as `dfdx(v)`, QUADS = True): a block is 2x2 quads,
         # W/2 pixels of two rows, and fragCoord.y is per lane
-        self.quads = any(isinstance(n, ast.Assign) and isinstance(n.targets[0], ast.Name)
-                         and n.targets[0].id == "QUADS" for n in self.tree.body)
+        self.quads = any(
+            isinstance(n, ast.Assign)
+            and isinstance(n.targets[0], ast.Name)
+            and n.targets[0].id == "QUADS"
+            for n in self.tree.body
+        )
         if self.quads and width % 4:
-            raise Unsupported(f"derivatives in blocks of {width} lanes (2x2 quads need a multiple of 4)")
-        self.functions = {f.name: f for f in self.tree.body if isinstance(f, ast.FunctionDef)
-                          and f.name not in ("init_globals", "render_rows", "globals_template")}
+            raise Unsupported(
+                f"derivatives in blocks of {width} lanes (2x2 quads need a multiple of 4)"
+            )
+        self.functions = {
+            f.name: f
+            for f in self.tree.body
+            if isinstance(f, ast.FunctionDef)
+            and f.name not in ("init_globals", "render_rows", "globals_template")
+        }
         shared = _SharedReads(self.functions.values())
         for f in self.functions.values():
             shared.visit(f)
@@ -728,19 +795,39 @@ class Lanes:
                 elif node.name in ("init_globals", "globals_template"):
                     out.append(ast.unparse(node))
                 continue
-            if isinstance(node, ast.ImportFrom) and node.module == "glslcheck.backends.compiled_engine.scalar":
+            if (
+                isinstance(node, ast.ImportFrom)
+                and node.module == "glslcheck.backends.compiled_engine.scalar"
+            ):
                 out += math_imports()
                 names = "lsel, dfdx, dfdy" if self.quads else "lsel"
-                out.append(f"from glslcheck.backends.compiled_engine.lanes_rt import {names}  # {_rt_hash()}")
+                out.append(
+                    f"from glslcheck.backends.compiled_engine.lanes_rt import {names}  # {_rt_hash()}"
+                )
                 continue
-            if isinstance(node, ast.ImportFrom) and node.module == "glslcheck.backends.compiled_engine.lanes_rt":
+            if (
+                isinstance(node, ast.ImportFrom)
+                and node.module == "glslcheck.backends.compiled_engine.lanes_rt"
+            ):
                 continue  # the per-pixel module's lsel import: the line above, with the hash
             out.append(ast.unparse(node))
         out.append(f"LANES = {self.W}  # pixels per call of shade")
-        slots = next((ast.literal_eval(n.value) for n in self.tree.body if isinstance(n, ast.Assign)
-                      and isinstance(n.targets[0], ast.Name) and n.targets[0].id == "SLOTS"), None)
+        slots = next(
+            (
+                ast.literal_eval(n.value)
+                for n in self.tree.body
+                if isinstance(n, ast.Assign)
+                and isinstance(n.targets[0], ast.Name)
+                and n.targets[0].id == "SLOTS"
+            ),
+            None,
+        )
         shade = self.variants[self.entry()]
-        out.append(render_source(self.W, slots, shade.name, shade.scalar_params, shade.ret_uniform, self.quads))
+        out.append(
+            render_source(
+                self.W, slots, shade.name, shade.scalar_params, shade.ret_uniform, self.quads
+            )
+        )
         return "\n\n".join(out) + "\n"
 
 
@@ -769,8 +856,14 @@ def lanes_module(source: str, width: int = 8) -> str:
         raise Unsupported("an expression nested too deep") from None
 
 
-def render_source(W: int, slots: dict | None = None, shade: str = "shade", scalar: Any = (),
-                  ret_uniform: Any = (), quads: bool = False) -> str:
+def render_source(
+    W: int,
+    slots: dict | None = None,
+    shade: str = "shade",
+    scalar: Any = (),
+    ret_uniform: Any = (),
+    quads: bool = False,
+) -> str:
     """render_rows for blocks of W pixels of a row (the last block repeats the row's last pixel);
     slots: the module's SLOTS (a state kind without globals is not reset per pixel); shade: the
     entry's name, scalar: its parameters passed as one value for the block (ROW_UNIFORM),
@@ -783,8 +876,13 @@ def render_source(W: int, slots: dict | None = None, shade: str = "shade", scala
     if quads:
         return _render_quads(W, slots, shade, ret_uniform)
     st = [f"{a}__{k}" for a in STATE_LANES for k in range(W)]
-    lines = _prologue(W, ['    """Rows y0..y1-1 (counted from the bottom) into out (height, width, 4), top row first,',
-                          f'    {W} pixels of a row a call of shade; offs: the (dx, dy) sample offsets."""'])
+    lines = _prologue(
+        W,
+        [
+            '    """Rows y0..y1-1 (counted from the bottom) into out (height, width, 4), top row first,',
+            f'    {W} pixels of a row a call of shade; offs: the (dx, dy) sample offsets."""',
+        ],
+    )
     lines += [
         "    for y in range(y0, y1):",
         "        row = height - 1 - y",
@@ -810,8 +908,10 @@ def render_source(W: int, slots: dict | None = None, shade: str = "shade", scala
 
 def _prologue(W: int, doc: list[str]) -> list[str]:
     """render_rows' signature, docstring, per-lane state copies and accumulator."""
-    lines = ["@numba.njit(cache=True, nogil=True, error_model='numpy')",
-             "def render_rows(out, y0, y1, width, height, offs, uf, ui, gtf, gti, gtu, gtb):"] + doc
+    lines = [
+        "@numba.njit(cache=True, nogil=True, error_model='numpy')",
+        "def render_rows(out, y0, y1, width, height, offs, uf, ui, gtf, gti, gtu, gtb):",
+    ] + doc
     for a, t in zip(STATE_LANES, ("gtf", "gti", "gtu", "gtb")):
         lines += [f"    {a}__{k} = acopy({t})" for k in range(W)]
     return lines + ["    samples = offs.shape[0]", f"    acc = np.zeros((4, {W}), np.float64)"]
@@ -821,7 +921,9 @@ def _sample_head(W: int, slots: dict | None) -> list[str]:
     """The loop over the samples: the per-pixel state reset to its template before each call of
     shade, and the sample's x offset."""
     lines = ["            for s in range(samples):"]
-    for a, t, kind in zip(STATE_LANES, ("gtf", "gti", "gtu", "gtb"), ("float", "int", "uint", "bool")):
+    for a, t, kind in zip(
+        STATE_LANES, ("gtf", "gti", "gtu", "gtb"), ("float", "int", "uint", "bool")
+    ):
         if slots is not None and not slots.get(kind):
             continue
         lines += [f"                aset({a}__{k}, 0, {t})" for k in range(W)]
@@ -837,9 +939,17 @@ def _accumulate(W: int, ret_uniform: Any) -> list[str]:
             at[c, k] = start if one else start + k
         start += 1 if one else W
     lines = ["                if s == 0:  # the sum of one sample is its value (a -0.0 kept)"]
-    lines += [f"                    acc[{c}, {k}] = np.float64(res[{at[c, k]}])" for c in range(4) for k in range(W)]
+    lines += [
+        f"                    acc[{c}, {k}] = np.float64(res[{at[c, k]}])"
+        for c in range(4)
+        for k in range(W)
+    ]
     lines.append("                else:")
-    lines += [f"                    acc[{c}, {k}] = acc[{c}, {k}] + res[{at[c, k]}]" for c in range(4) for k in range(W)]
+    lines += [
+        f"                    acc[{c}, {k}] = acc[{c}, {k}] + res[{at[c, k]}]"
+        for c in range(4)
+        for k in range(W)
+    ]
     return lines
 
 
@@ -847,8 +957,13 @@ def _render_quads(W: int, slots: dict | None, shade: str, ret_uniform: Any) -> s
     """render_source for blocks of 2x2 quads (derivatives): see render_source."""
     h = W // 2
     st = [f"{a}__{k}" for a in STATE_LANES for k in range(W)]
-    lines = _prologue(W, ['    """Rows y0..y1-1 (counted from the bottom; y0 even) into out (height, width, 4), top row',
-                          f'    first, 2x2 quads: {h} pixels of two rows a call of shade; offs: the sample offsets."""'])
+    lines = _prologue(
+        W,
+        [
+            '    """Rows y0..y1-1 (counted from the bottom; y0 even) into out (height, width, 4), top row',
+            f'    first, 2x2 quads: {h} pixels of two rows a call of shade; offs: the sample offsets."""',
+        ],
+    )
     lines += [
         "    last = (width - 1) & ~1  # the last whole quad's left column",
         "    for y in range(y0, y1, 2):",
@@ -857,9 +972,14 @@ def _render_quads(W: int, slots: dict | None, shade: str, ret_uniform: Any) -> s
         f"        for x0 in range(0, width, {h}):",
     ]
     for c in range(h):
-        lines.append(f"            px__{c} = F32((x0 + {c} if x0 + {c & ~1} < width else last + {c & 1}) + 0.5)")
+        lines.append(
+            f"            px__{c} = F32((x0 + {c} if x0 + {c & ~1} < width else last + {c & 1}) + 0.5)"
+        )
     lines += _sample_head(W, slots)
-    lines += ["                oy0 = F32(py0 + F32(offs[s, 1]))", "                oy1 = F32(py1 + F32(offs[s, 1]))"]
+    lines += [
+        "                oy0 = F32(py0 + F32(offs[s, 1]))",
+        "                oy1 = F32(py1 + F32(offs[s, 1]))",
+    ]
     px = [f"px__{k % h}" for k in range(W)]
     args = ["True"] * W + st + ["uf", "ui"]
     args += [f"F32({p} + ox)" for p in px] + ["oy0"] * h + ["oy1"] * h

@@ -70,10 +70,12 @@ F64 = np.float64
 I32 = np.int32
 U32 = np.uint32
 _J = dict(inline="never", cache=True, nogil=True, error_model="numpy")
-_ZERO, _ONE, _MONE, _TWO, _THREE, _HALF, _FOUR = (F32(v) for v in (0.0, 1.0, -1.0, 2.0, 3.0, 0.5, 4.0))
+_ZERO, _ONE, _MONE, _TWO, _THREE, _HALF, _FOUR = (
+    F32(v) for v in (0.0, 1.0, -1.0, 2.0, 3.0, 0.5, 4.0)
+)
 _NAN = F32(np.nan)
 _INF = F32(np.inf)
-_INT_MIN = I32(-2**31)
+_INT_MIN = I32(-(2**31))
 _ABS = 0x7FFFFFFF
 _SIGN = U32(0x80000000)
 _MIN_NORMAL_BITS = 0x00800000
@@ -89,12 +91,30 @@ _SIGS = {  # name: (result, arguments); the types the generated code passes (fma
     **{n: (_F, "float32, float32") for n in ("fmin", "fmax", "atan2")},
     **{n: (_F, "float32, float32, float32") for n in ("clamp", "mix_fast")},
     **{n: (_F, "float32") for n in ("daz", "sign", "pow_zero", "asin", "acos", "atan")},
-    **{n: (_F, "float32, boolean") for n in ("sin", "cos", "tan", "exp2", "log2", "exp", "log", "sinh", "cosh",
-                                              "tanh", "asinh", "acosh", "atanh")},
-    "pow": (_F, "float32, float32, boolean"), "pow_uniform": (_F, "float32, float32, boolean, boolean, boolean"),
+    **{
+        n: (_F, "float32, boolean")
+        for n in (
+            "sin",
+            "cos",
+            "tan",
+            "exp2",
+            "log2",
+            "exp",
+            "log",
+            "sinh",
+            "cosh",
+            "tanh",
+            "asinh",
+            "acosh",
+            "atanh",
+        )
+    },
+    "pow": (_F, "float32, float32, boolean"),
+    "pow_uniform": (_F, "float32, float32, boolean, boolean, boolean"),
     **{n: (_I, "int32, int32") for n in ("idiv", "irem", "irem_const")},
     **{n: (_U, "uint32, uint32") for n in ("udiv", "urem")},
-    "to_int": (_I, "float32"), **{n: (_U, "float32") for n in ("to_uint_sse", "to_uint_avx512", "to_uint_arm64")},
+    "to_int": (_I, "float32"),
+    **{n: (_U, "float32") for n in ("to_uint_sse", "to_uint_avx512", "to_uint_arm64")},
 }
 
 
@@ -238,7 +258,9 @@ def to_uint_sse(x):
 @njit
 def to_uint_avx512(x):
     t = np.trunc(F64(x))
-    return select((t >= 0.0) & (t < 4294967296.0), _u32_of(select(t >= 0.0, t, F64(0.0))), U32(0xFFFFFFFF))
+    return select(
+        (t >= 0.0) & (t < 4294967296.0), _u32_of(select(t >= 0.0, t, F64(0.0))), U32(0xFFFFFFFF)
+    )
 
 
 @njit
@@ -376,7 +398,9 @@ def pow_uniform(x, y, special, zeros, fma):
     within one block, left scalar: a large share of the CPU time of a shader that calls pow on
     every pixel. Where they are constants, LLVM folds the selects and the unused side."""
     sq = F32(x * x)
-    rewrite = select(y == _ONE, x, select(y == _TWO, sq, select(y == _FOUR, F32(sq * sq), pow_zero(x))))
+    rewrite = select(
+        y == _ONE, x, select(y == _TWO, sq, select(y == _FOUR, F32(sq * sq), pow_zero(x)))
+    )
     return select(special, select(zeros, _ONE, rewrite), pow(x, y, fma))
 
 
@@ -439,10 +463,59 @@ def atanh(x, fma):
 
 # scalar.py's functions this module replaces, and those that vectorise as they are (no branch
 # left after LLVM's simplification; tests/compiled/test_lanes_math.py checks both lists)
-REWRITTEN = ("fmin", "fmax", "clamp", "sign", "daz", "mix_fast", "idiv", "udiv", "irem", "urem", "irem_const",
-             "to_int", "to_uint_sse", "to_uint_avx512", "to_uint_arm64", "sin", "cos", "tan", "exp2", "log2",
-             "pow", "pow_zero", "exp", "log", "pow_uniform", "asin", "acos", "atan", "atan2", "sinh", "cosh",
-             "tanh", "asinh", "acosh", "atanh")
-AS_IS = ("fract", "mod", "step", "smoothstep", "inversesqrt", "ishl", "ishr", "ushl", "ushr", "iabs", "isign",
-         "float_bits_to_int", "float_bits_to_uint", "int_bits_to_float", "uint_bits_to_float", "round_even")
+REWRITTEN = (
+    "fmin",
+    "fmax",
+    "clamp",
+    "sign",
+    "daz",
+    "mix_fast",
+    "idiv",
+    "udiv",
+    "irem",
+    "urem",
+    "irem_const",
+    "to_int",
+    "to_uint_sse",
+    "to_uint_avx512",
+    "to_uint_arm64",
+    "sin",
+    "cos",
+    "tan",
+    "exp2",
+    "log2",
+    "pow",
+    "pow_zero",
+    "exp",
+    "log",
+    "pow_uniform",
+    "asin",
+    "acos",
+    "atan",
+    "atan2",
+    "sinh",
+    "cosh",
+    "tanh",
+    "asinh",
+    "acosh",
+    "atanh",
+)
+AS_IS = (
+    "fract",
+    "mod",
+    "step",
+    "smoothstep",
+    "inversesqrt",
+    "ishl",
+    "ishr",
+    "ushl",
+    "ushr",
+    "iabs",
+    "isign",
+    "float_bits_to_int",
+    "float_bits_to_uint",
+    "int_bits_to_float",
+    "uint_bits_to_float",
+    "round_even",
+)
 __all__ = list(REWRITTEN)

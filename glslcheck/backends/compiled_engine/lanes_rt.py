@@ -33,6 +33,7 @@ def lsel(typingctx, c, a, b):
         c_ = context.cast(builder, args[0], signature.args[0], types.boolean)
         value = builder.select(c_, x, y)
         return impl_ret_borrowed(context, builder, t, value)  # arrays: one more reference
+
     return t(c, a, b), codegen
 
 
@@ -47,6 +48,7 @@ def dfdx(typingctx, v):
 
     def codegen(context, builder, signature, args):
         return context.get_constant(t, 0.0)
+
     return t(v), codegen
 
 

@@ -16,7 +16,6 @@ points numba's cache directory, then imports numba.
 
 from __future__ import annotations
 
-
 from ..numpy_engine.numba_cache import use_cache_dir
 
 use_cache_dir()  # numba's cache directory first
@@ -31,10 +30,17 @@ F32 = np.float32
 I32 = np.int32
 U32 = np.uint32
 _J = dict(inline="never", cache=True, nogil=True, error_model="numpy")
-_ZERO, _ONE, _MONE, _TWO, _THREE, _HALF = F32(0.0), F32(1.0), F32(-1.0), F32(2.0), F32(3.0), F32(0.5)
+_ZERO, _ONE, _MONE, _TWO, _THREE, _HALF = (
+    F32(0.0),
+    F32(1.0),
+    F32(-1.0),
+    F32(2.0),
+    F32(3.0),
+    F32(0.5),
+)
 _NAN = F32(np.nan)
 _INF = F32(np.inf)
-_INT_MIN = I32(-2**31)
+_INT_MIN = I32(-(2**31))
 _LOG2E = F32(1.4426950408889634)
 _LN2 = F32(0.6931471805599453)
 _FLT_MIN_BITS = 0x00800000
@@ -290,7 +296,11 @@ def _trig_any(a, fma, which):
     ai = np.int64(I32(bits(a)))
     x_abs = lane.daz(from_bits(U32(ai & 0x7FFFFFFF)))
     p = np.float64(F32(x_abs * lane.FOUR_OVER_PI))
-    j0 = np.int64(I32(np.int64(p))) if (p >= -2147483648.0 and p < 2147483648.0) else np.int64(-2**31)
+    j0 = (
+        np.int64(I32(np.int64(p)))
+        if (p >= -2147483648.0 and p < 2147483648.0)
+        else np.int64(-(2**31))
+    )
     emm2_add = _wrap(j0 + 1)
     emm2_and = emm2_add & ~np.int64(1)
     y_10, y2_9 = sin_cos_polynomials(F32(emm2_and), x_abs, fma)

@@ -18,9 +18,31 @@ NOT_YET = "not supported by the compiled engine yet"
 # pure temporaries (pure_expr) keeps its branch (its work would be paid where it is not taken).
 PURE_LINE = re.compile(r"^( *)_t[0-9]+ = (.*)$")
 SPECULATE_LINES = 4
-PURE_NODES = (pyast.Name, pyast.Constant, pyast.BinOp, pyast.UnaryOp, pyast.Compare, pyast.IfExp, pyast.BoolOp,
-               pyast.Load, pyast.Add, pyast.Sub, pyast.Mult, pyast.Div, pyast.USub, pyast.UAdd, pyast.Not,
-               pyast.And, pyast.Or, pyast.Eq, pyast.NotEq, pyast.Lt, pyast.LtE, pyast.Gt, pyast.GtE)
+PURE_NODES = (
+    pyast.Name,
+    pyast.Constant,
+    pyast.BinOp,
+    pyast.UnaryOp,
+    pyast.Compare,
+    pyast.IfExp,
+    pyast.BoolOp,
+    pyast.Load,
+    pyast.Add,
+    pyast.Sub,
+    pyast.Mult,
+    pyast.Div,
+    pyast.USub,
+    pyast.UAdd,
+    pyast.Not,
+    pyast.And,
+    pyast.Or,
+    pyast.Eq,
+    pyast.NotEq,
+    pyast.Lt,
+    pyast.LtE,
+    pyast.Gt,
+    pyast.GtE,
+)
 
 
 def pure_expr(e: Any) -> bool:
@@ -62,8 +84,6 @@ def engine_error(message: str, node: Any, help: str | None = None) -> GlslError:
 def not_yet(what: str, node: Any) -> GlslError:
     """The error for a construct the compiled engine does not handle yet."""
     return engine_error(f"{what}: {NOT_YET}", node, help="render with --backend numpy or gl")
-
-
 
 
 @dataclass
@@ -139,10 +159,8 @@ def flatten(v: Any) -> list:
     return [v]
 
 
-
 def broadcast_const(const: list | None, n: int) -> list | None:
     """Constant leaves for n components: a scalar constant repeated, None kept."""
     if const is None:
         return None
     return const * n if len(const) == 1 and n > 1 else const
-

@@ -9,16 +9,30 @@ from typing import Any
 
 DERIVATIVES = ("dFdx", "dFdy", "fwidth")
 # The lookups on a sampler2D that textures.TextureFunctions evaluates.
-TEXTURE_FUNCTIONS = ("texture", "textureLod", "textureGrad", "textureProj", "textureOffset", "texelFetch",
-                      "texelFetchOffset", "textureSize", "textureLodOffset", "textureGradOffset",
-                      "textureProjOffset", "textureProjLod", "textureProjLodOffset", "textureProjGrad",
-                      "textureProjGradOffset")
+TEXTURE_FUNCTIONS = (
+    "texture",
+    "textureLod",
+    "textureGrad",
+    "textureProj",
+    "textureOffset",
+    "texelFetch",
+    "texelFetchOffset",
+    "textureSize",
+    "textureLodOffset",
+    "textureGradOffset",
+    "textureProjOffset",
+    "textureProjLod",
+    "textureProjLodOffset",
+    "textureProjGrad",
+    "textureProjGradOffset",
+)
 # Lookups whose mipmap level comes from derivatives (2x2 quads): their regions are never compacted.
 IMPLICIT_LOD = ("texture", "textureProj", "textureOffset", "textureProjOffset")
 
+
 def comment_safe(text: str, limit: int = 100) -> str:
     """Text safe inside a Python comment or docstring: printable ASCII, no quotes or backslashes."""
-    out = "".join(c if (" " <= c <= "~" and c not in "\"\\") else "?" for c in text.strip())
+    out = "".join(c if (" " <= c <= "~" and c not in '"\\') else "?" for c in text.strip())
     return out if len(out) <= limit else out[: limit - 3] + "..."
 
 

@@ -12,13 +12,14 @@ from ...semantics.analysis import param_directions, written_variable
 from ...semantics.model import Symbol
 from .common import DERIVATIVES, IMPLICIT_LOD, fold_tree
 
+
 @dataclass(frozen=True)
 class Events:
     brk: bool = False  # a break of the enclosing loop/switch
     cont: bool = False  # a continue of the enclosing loop
     ret: bool = False  # a return, a discard, or a call that may discard
 
-    def __or__(self, o: "Events") -> "Events":
+    def __or__(self, o: Events) -> Events:
         return Events(self.brk or o.brk, self.cont or o.cont, self.ret or o.ret)
 
     @property
@@ -95,7 +96,9 @@ class Facts:
         return isinstance(tgt, Symbol) and id(tgt) in self.may_discard
 
     def has_discarding_call(self, node: Any) -> bool:
-        return fold_tree(node, self._discarding, lambda n, kids: any(kids) or self.discarding_call(n))
+        return fold_tree(
+            node, self._discarding, lambda n, kids: any(kids) or self.discarding_call(n)
+        )
 
     def written_variables(self, node: Any) -> list[Symbol]:
         """The variables a node itself writes (assignment, ++/--, out and inout arguments)."""
@@ -104,7 +107,11 @@ class Facts:
     def closed(self, fn: Any) -> bool:
         """A call of `fn` with uniform arguments gives a uniform result (no lane state read or
         written, no discard)."""
-        return id(fn) not in self.reads_lane_state and id(fn) not in self.may_discard and not self.writes_globals(fn)
+        return (
+            id(fn) not in self.reads_lane_state
+            and id(fn) not in self.may_discard
+            and not self.writes_globals(fn)
+        )
 
     def writes_globals(self, fn: Any) -> bool:
         key = id(fn)
@@ -136,7 +143,11 @@ def written_lvalues(model: Any, node: Any) -> list[Any]:
 
 def written_variables(model: Any, node: Any) -> list[Symbol]:
     """The variables a node itself writes (`written_variable` of each of its `written_lvalues`)."""
-    return [sym for t in written_lvalues(model, node) if (sym := written_variable(model, t)[0]) is not None]
+    return [
+        sym
+        for t in written_lvalues(model, node)
+        if (sym := written_variable(model, t)[0]) is not None
+    ]
 
 
 class SideEffects:
@@ -156,8 +167,10 @@ class SideEffects:
             return True
         if isinstance(n, (A.Unary, A.Postfix)) and n.op in ("++", "--"):
             return True
-        return isinstance(n, A.Call) and (isinstance(self.model.call_target(n), Symbol)
-                                          or any(d != "in" for d in param_directions(self.model.call_target(n))))
+        return isinstance(n, A.Call) and (
+            isinstance(self.model.call_target(n), Symbol)
+            or any(d != "in" for d in param_directions(self.model.call_target(n)))
+        )
 
 
 def is_plain_read(e: Any) -> bool:
@@ -177,7 +190,11 @@ def events_of(stmt: Any, facts: Facts, model: Any, in_loop_or_switch: bool = Fal
             return Events(brk=True)
         if isinstance(n, A.Continue):
             return Events(cont=True)
-        ev = Events(ret=True) if isinstance(n, (A.Return, A.Discard)) or facts.discarding_call(n) else NO_EVENTS
+        ev = (
+            Events(ret=True)
+            if isinstance(n, (A.Return, A.Discard)) or facts.discarding_call(n)
+            else NO_EVENTS
+        )
         for k in kids:
             ev = ev | k
         if isinstance(n, (A.For, A.While, A.DoWhile)):
@@ -216,7 +233,9 @@ def induction_variable(s: Any, model: Any, facts: Facts | None = None) -> Any:
     for n in writers:
         if n is step:
             continue
-        if isinstance(n, A.Assignment) or (isinstance(n, (A.Unary, A.Postfix)) and n.op in ("++", "--")):
+        if isinstance(n, A.Assignment) or (
+            isinstance(n, (A.Unary, A.Postfix)) and n.op in ("++", "--")
+        ):
             return None
         if isinstance(n, A.Call) and written_lvalues(model, n):
             return None

@@ -67,8 +67,14 @@ class Uniformity:
     """The analysis of one function `fn` (a function symbol of the checker's model); see the
     module docstring. `facts` are the program-wide facts of `transpile.facts.Facts`."""
 
-    def __init__(self, model: Any, facts: Facts, fn: Any, is_entry: bool,
-                 uniform_params: frozenset | set = frozenset()) -> None:
+    def __init__(
+        self,
+        model: Any,
+        facts: Facts,
+        fn: Any,
+        is_entry: bool,
+        uniform_params: frozenset | set = frozenset(),
+    ) -> None:
         """uniform_params: ids of parameter symbols that start uniform (the compiled engine's
         variants of a function called with values of one lane); a varying write still makes them
         varying. Every other parameter but an `out` one starts varying."""
@@ -79,7 +85,9 @@ class Uniformity:
         self.allow_free = id(fn) not in facts.uses_derivs
         self.varying: set[int] = set()  # symbol ids
         self.divergent_loops: set[int] = set()  # loop node ids whose live mask may diverge
-        self.decl_level: dict[int, int | None] = {}  # symbol id -> level of its declaration (None: never free)
+        self.decl_level: dict[
+            int, int | None
+        ] = {}  # symbol id -> level of its declaration (None: never free)
         self.decl_loops: dict[int, int] = {}  # symbol id -> loops/switches around its declaration
         self.decl_seq: dict[int, int] = {}  # symbol id -> declarations seen before it in this pass
         self.free: set[int] = set()  # ids of the l-values (whole targets) of free writes
@@ -89,8 +97,10 @@ class Uniformity:
         # the last statement, no discard)
         body = fn.node.body.stmts
         tail = body[-1] if body and isinstance(body[-1], A.Return) else None
-        leaves_early = any((isinstance(n, (A.Return, A.Discard)) and n is not tail) or facts.discarding_call(n)
-                           for n in fn.node.body.walk())
+        leaves_early = any(
+            (isinstance(n, (A.Return, A.Discard)) and n is not tail) or facts.discarding_call(n)
+            for n in fn.node.body.walk()
+        )
         for p in fn.node.proto.params:
             sym = self.model.symbol_of(p)
             if sym is None:
@@ -104,11 +114,15 @@ class Uniformity:
             self.mu = is_entry  # the mask is None or one value for all lanes (mainImage's lanes start all active)
             self.level = 0  # divergent constructs around the current point
             self.switch_depth = 0
-            self.loop_flags: list[list[Any]] = []  # per enclosing loop/switch: [varying exit (mu), body level]
+            self.loop_flags: list[
+                list[Any]
+            ] = []  # per enclosing loop/switch: [varying exit (mu), body level]
             self.fn_varying_return = False
             self.free = set()
             self.seq = 0
-            self.compacted_from: int | None = None  # the first declaration inside the outermost masked loop around
+            self.compacted_from: int | None = (
+                None  # the first declaration inside the outermost masked loop around
+            )
             self.block(fn.node.body.stmts, is_entry)
             if (self.varying, self.divergent_loops) == before:
                 break
@@ -161,7 +175,10 @@ class Uniformity:
         if isinstance(e, A.Call):
             tgt = m.call_target(e)
             dirs = param_directions(tgt)
-            args_u = [self.uniform(a) or (i < len(dirs) and dirs[i] == "out") for i, a in enumerate(e.args)]
+            args_u = [
+                self.uniform(a) or (i < len(dirs) and dirs[i] == "out")
+                for i, a in enumerate(e.args)
+            ]
             if isinstance(tgt, Symbol):
                 res = all(args_u) and self.facts.closed(tgt)
                 if id(tgt) in self.facts.may_discard and not self.mu:
@@ -202,14 +219,17 @@ class Uniformity:
         if sym is None or sym.kind not in ("local", "param"):
             return
         free = self.decl_level.get(id(sym)) == self.level and (
-            self.allow_free or self.decl_loops.get(id(sym), 0) == len(self.loop_flags))
+            self.allow_free or self.decl_loops.get(id(sym), 0) == len(self.loop_flags)
+        )
         if free:
             self.free.add(id(target))
         if free and not self.mu:
             # a loop that runs with a live mask (any loop but a plain Python one) may be compacted
             # (tiles.LaneHelpers.push): a variable from outside it comes back from the scatter with
             # the lanes of the loop replaced, one value per lane
-            uniform = uniform and (self.compacted_from is None or self.decl_seq.get(id(sym), -1) >= self.compacted_from)
+            uniform = uniform and (
+                self.compacted_from is None or self.decl_seq.get(id(sym), -1) >= self.compacted_from
+            )
         if not (uniform and (free or self.mu)):
             self.varying.add(id(sym))
 
@@ -218,8 +238,11 @@ class Uniformity:
             return
         self.seq += 1
         self.decl_seq[id(sym)] = self.seq
-        self.decl_level[id(sym)] = None if self.switch_depth and level is None else (
-            self.level if level is None else level)
+        self.decl_level[id(sym)] = (
+            None
+            if self.switch_depth and level is None
+            else (self.level if level is None else level)
+        )
         self.decl_loops[id(sym)] = len(self.loop_flags)
         if not uniform:
             self.varying.add(id(sym))
@@ -228,7 +251,7 @@ class Uniformity:
         """`with self.branch(uniform_condition):` the code of a branch: a varying condition
         makes the mask inside non-uniform and adds a level of divergence."""
 
-        def __init__(self, an: "Uniformity", uniform: bool) -> None:
+        def __init__(self, an: Uniformity, uniform: bool) -> None:
             self.an, self.uniform = an, uniform
 
         def __enter__(self) -> None:
@@ -240,7 +263,7 @@ class Uniformity:
         def __exit__(self, *exc: Any) -> None:
             self.an.mu, self.an.level = self.saved
 
-    def branch(self, uniform: bool) -> "Uniformity._Branch":
+    def branch(self, uniform: bool) -> Uniformity._Branch:
         return Uniformity._Branch(self, uniform)
 
     # -- statements ----------------------------------------------------------------------------
@@ -307,8 +330,11 @@ class Uniformity:
             return mu and (not ev.ret or not self.fn_varying_return)
         if isinstance(s, (A.Break, A.Continue)):
             if self.loop_flags:
-                flags = self.loop_flags[-1] if isinstance(s, A.Break) else next(
-                    (f for f in reversed(self.loop_flags) if f[1] is not None), None)
+                flags = (
+                    self.loop_flags[-1]
+                    if isinstance(s, A.Break)
+                    else next((f for f in reversed(self.loop_flags) if f[1] is not None), None)
+                )
                 if flags is not None:
                     if isinstance(s, A.Break) and not mu:
                         flags[0] = True
@@ -329,8 +355,13 @@ class Uniformity:
         ind = induction_variable(s, self.model, self.facts)
         cond = s.cond
         saved_from = self.compacted_from
-        plain = (not isinstance(s, A.DoWhile) and cond is not None and not isinstance(cond, A.ConditionDeclaration)
-                 and not events_of(s.body, self.facts, self.model).any and self.uniform(cond))
+        plain = (
+            not isinstance(s, A.DoWhile)
+            and cond is not None
+            and not isinstance(cond, A.ConditionDeclaration)
+            and not events_of(s.body, self.facts, self.model).any
+            and self.uniform(cond)
+        )
         if not plain:  # the transpiler's general loop, with a live mask (Statements.loop)
             if self.compacted_from is None:  # (a for's init is inside)
                 self.compacted_from = self.seq + 1
@@ -348,7 +379,9 @@ class Uniformity:
             self.mu = body_mu
             c = True
             if cond is not None and not isinstance(s, A.DoWhile):
-                c = self.uniform(cond if not isinstance(cond, A.ConditionDeclaration) else cond.init)
+                c = self.uniform(
+                    cond if not isinstance(cond, A.ConditionDeclaration) else cond.init
+                )
             if not c:
                 self.divergent_loops.add(id(s))
             inner = body_mu and c

@@ -52,17 +52,23 @@ def create_context():
     try:
         import moderngl
     except ImportError as e:  # pragma: no cover - moderngl is a dependency
-        raise GLUnavailable(f"error: moderngl is not installed ({e}); pip install moderngl") from None
+        raise GLUnavailable(
+            f"error: moderngl is not installed ({e}); pip install moderngl"
+        ) from None
     os.environ.setdefault("glsl_zero_init", "true")
     try:
         ctx = _quietly(lambda: moderngl.create_context(standalone=True, backend="egl"))
     except Exception as e:  # moderngl/glcontext raise plain Exception subclasses
-        raise GLUnavailable(f"error: cannot create an OpenGL context with EGL ({e}); {ADVICE}") from None
+        raise GLUnavailable(
+            f"error: cannot create an OpenGL context with EGL ({e}); {ADVICE}"
+        ) from None
     if ctx.version_code < REQUIRED_GL_VERSION:
         version = ctx.version_code
         ctx.release()
-        raise GLUnavailable(f"error: the OpenGL context is version {version}, glslcheck needs "
-                            f"{REQUIRED_GL_VERSION} or later; {ADVICE}")
+        raise GLUnavailable(
+            f"error: the OpenGL context is version {version}, glslcheck needs "
+            f"{REQUIRED_GL_VERSION} or later; {ADVICE}"
+        )
     return ctx
 
 

@@ -33,8 +33,8 @@ import numpy as np
 
 from ...base.diagnostics import Diagnostic, GlslError, Location, source_line
 from ...shadertoy.frame_inputs import FrameInputs, frame_inputs
-from ...shadertoy.wrapper import OFFSET_UNIFORM, UNIFORMS, UNIFORMS_BY_NAME, Program, build_program
 from ...shadertoy.sources import Shader
+from ...shadertoy.wrapper import OFFSET_UNIFORM, UNIFORMS, UNIFORMS_BY_NAME, Program, build_program
 from ..driver_profile import driver_model
 from .context import get_context
 from .zero_init import zero_initialized
@@ -52,7 +52,9 @@ void main() {
 
 # Mesa: "0:42(5): error: `y' undeclared", "0:3(1): preprocessor error: #error boom";
 # other drivers: "ERROR: 0:42: ..." or "0(42) : error ...".
-_MESA_RE = re.compile(r"^\s*(\d+):(\d+)\((\d+)\):\s*(?:preprocessor\s+)?(error|warning):\s*(.*)$", re.I)
+_MESA_RE = re.compile(
+    r"^\s*(\d+):(\d+)\((\d+)\):\s*(?:preprocessor\s+)?(error|warning):\s*(.*)$", re.I
+)
 _GLSLANG_STYLE_RE = re.compile(r"^\s*(ERROR|WARNING):\s*(\d+):(\d+):\s*(.*)$", re.I)
 _NVIDIA_RE = re.compile(r"^\s*(\d+)\((\d+)\)\s*:\s*(error|warning)\s*\w*:\s*(.*)$", re.I)
 
@@ -76,7 +78,11 @@ def _driver_entries(log: str) -> list[tuple[int, int | None, int | None, str, st
             out.append((int(m[2]), int(m[3]), None, m[1].lower(), m[4].strip()))
         elif m := _NVIDIA_RE.match(raw):
             out.append((int(m[1]), int(m[2]), None, m[3].lower(), m[4].strip()))
-        elif re.search(r"\berror\b", raw, re.I) and "Compiler failed" not in raw and "Linker failed" not in raw:
+        elif (
+            re.search(r"\berror\b", raw, re.I)
+            and "Compiler failed" not in raw
+            and "Linker failed" not in raw
+        ):
             out.append((0, None, None, "error", raw.strip()))
     return out
 
@@ -88,7 +94,13 @@ def _c_integer(text: str | None) -> int | None:
     """A C integer literal (decimal, 0x hex, 0 octal) or None."""
     if text is None or not re.fullmatch(r"0[xX][0-9a-fA-F]+|0[0-7]*|[1-9][0-9]*", text):
         return None
-    return int(text, 16) if text[:2].lower() == "0x" else int(text, 8) if text.startswith("0") else int(text)
+    return (
+        int(text, 16)
+        if text[:2].lower() == "0x"
+        else int(text, 8)
+        if text.startswith("0")
+        else int(text)
+    )
 
 
 def driver_line_map(text: str) -> dict[tuple[int | None, int], list[int]]:
@@ -145,8 +157,12 @@ def driver_diagnostics(program: Program, log: str) -> list[Diagnostic]:
         if where is None:
             if line is not None:
                 message += f" (line {line} of the Shadertoy wrapper around the {program.tab} tab)"
-            help_ = ("the Image tab must define `void mainImage(out vec4 fragColor, in vec2 fragCoord)`, "
-                     "with both parameters named" if "mainImage" in message else None)
+            help_ = (
+                "the Image tab must define `void mainImage(out vec4 fragColor, in vec2 fragCoord)`, "
+                "with both parameters named"
+                if "mainImage" in message
+                else None
+            )
             # The wrapper's only link to the user's text is its call of mainImage: point there.
             diags.append(Diagnostic(message, entry_location(program), rule=RULE, help=help_))
         else:
@@ -154,8 +170,13 @@ def driver_diagnostics(program: Program, log: str) -> list[Diagnostic]:
             column = mesa_column(lines[line - 1], column) if column and line <= len(lines) else 1
             diags.append(Diagnostic(message, Location(path, user_line, column), rule=RULE))
     if not diags:  # a failure we could not parse: keep the log visible rather than lose it
-        diags.append(Diagnostic(f"the OpenGL driver rejected the {program.tab} program:\n{log.strip()}",
-                                None, rule=RULE))
+        diags.append(
+            Diagnostic(
+                f"the OpenGL driver rejected the {program.tab} program:\n{log.strip()}",
+                None,
+                rule=RULE,
+            )
+        )
     return diags
 
 
@@ -183,7 +204,9 @@ def entry_location(program: Program) -> Location | None:
                 break
             m = re.search(r"\bmainImage\s*\(", text)
             if m:
-                return Location(path, number, m.start() + 1, number, m.start() + len("mainImage") + 1)
+                return Location(
+                    path, number, m.start() + 1, number, m.start() + len("mainImage") + 1
+                )
     return Location(tab_paths[-1], 1, 1)
 
 
@@ -233,7 +256,12 @@ class GLProgram:
         for the sub-pixel grid. Values are what the shader wrote (RGBA32F): not clamped to
         [0, 1], not quantised; the Image pass has alpha 1.
         """
-        width, height, samples, offsets = inputs.width, inputs.height, inputs.samples, inputs.offsets
+        width, height, samples, offsets = (
+            inputs.width,
+            inputs.height,
+            inputs.samples,
+            inputs.offsets,
+        )
         compiled = self._variant(samples > 1)
         values = inputs.uniforms()
         channel_textures = []
@@ -250,7 +278,11 @@ class GLProgram:
         texture = ctx.texture((width, height), 4, dtype="f4")
         fbo = ctx.framebuffer(color_attachments=[texture])
         try:
-            channel_textures = [_bind_channel(ctx, unit, c) for unit, c in enumerate(channels or ()) if c is not None]
+            channel_textures = [
+                _bind_channel(ctx, unit, c)
+                for unit, c in enumerate(channels or ())
+                if c is not None
+            ]
             fbo.use()
             total = None
             for dx, dy in offsets:
@@ -276,8 +308,12 @@ def _bind_channel(ctx, unit: int, channel):
     import moderngl
 
     h, w = channel.texels.shape[:2]
-    tex = ctx.texture((w, h), 4, np.ascontiguousarray(channel.texels, dtype=np.float32).tobytes(), dtype="f4")
-    if channel.filter == "mipmap":  # glslcheck's own pyramid (channels.mip_levels), as the NumPy side
+    tex = ctx.texture(
+        (w, h), 4, np.ascontiguousarray(channel.texels, dtype=np.float32).tobytes(), dtype="f4"
+    )
+    if (
+        channel.filter == "mipmap"
+    ):  # glslcheck's own pyramid (channels.mip_levels), as the NumPy side
         tex.build_mipmaps()  # allocates the levels
         for level, texels in enumerate(channel.levels()[1:], 1):
             tex.write(np.ascontiguousarray(texels).tobytes(), level=level)
@@ -291,8 +327,16 @@ def _bind_channel(ctx, unit: int, channel):
 
 
 # GL's type enums of the GLSL types Shadertoy's uniforms have.
-_GL_TYPES = {"float": 0x1406, "int": 0x1404, "vec2": 0x8B50, "vec3": 0x8B51, "vec4": 0x8B52,
-             "sampler2D": 0x8B5E, "sampler3D": 0x8B5F, "samplerCube": 0x8B60}
+_GL_TYPES = {
+    "float": 0x1406,
+    "int": 0x1404,
+    "vec2": 0x8B50,
+    "vec3": 0x8B51,
+    "vec4": 0x8B52,
+    "sampler2D": 0x8B5E,
+    "sampler3D": 0x8B5F,
+    "samplerCube": 0x8B60,
+}
 
 
 def _set_uniform(gl_program, name: str, value, array_size: int | None = None) -> None:
@@ -306,7 +350,11 @@ def _set_uniform(gl_program, name: str, value, array_size: int | None = None) ->
         return  # a plain file's uniform of another type: not fed, 0 as on NumPy (shadertoy.fed_uniform)
     if array_size:
         items = list(value)[: max(uniform.array_length, 1)]
-        value = items[0] if len(items) == 1 else (items if isinstance(items[0], tuple) else tuple(items))
+        value = (
+            items[0]
+            if len(items) == 1
+            else (items if isinstance(items[0], tuple) else tuple(items))
+        )
     uniform.value = value
 
 

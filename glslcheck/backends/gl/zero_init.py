@@ -83,8 +83,8 @@ def _out_params(model, tree) -> list[tuple[A.Compound, str]]:
 def zero_initialized(shader: Shader, tab: str = "Image") -> Shader:
     """The shader with its uninitialised struct locals given zero initialisers (see module)."""
     try:
-        from ...semantics import check
         from ...frontend.parser import parse_units
+        from ...semantics import check
 
         units = shader.units_for(tab)
         if any(u.is_plain_glsl for u in units):
@@ -99,13 +99,13 @@ def zero_initialized(shader: Shader, tab: str = "Image") -> Shader:
         if loc is None or loc.end_line != loc.line or loc.end_column is None:
             continue
         row = _line(shader, loc.path, loc.line)
-        if row is None or not row[loc.column - 1:].startswith(decl.name):
+        if row is None or not row[loc.column - 1 :].startswith(decl.name):
             continue  # not the user's own text here (a macro expansion)
         edits.setdefault(loc.path, []).append((loc.line, loc.end_column, f" = {text}"))
     for body, text in _out_params(model, parsed.ast):
         loc = body.loc
         row = _line(shader, loc.path, loc.line) if loc is not None else None
-        if row is None or not row[loc.column - 1:].startswith("{"):
+        if row is None or not row[loc.column - 1 :].startswith("{"):
             continue
         edits.setdefault(loc.path, []).append((loc.line, loc.column + 1, text))
     if not edits:
@@ -119,7 +119,7 @@ def zero_initialized(shader: Shader, tab: str = "Image") -> Shader:
         lines = src.text.split("\n")
         for line, col, text in sorted(changes, reverse=True):
             row = lines[line - 1]
-            lines[line - 1] = row[: col - 1] + text + row[col - 1:]
+            lines[line - 1] = row[: col - 1] + text + row[col - 1 :]
         tabs[name] = Source(src.path, "\n".join(lines), src.tab)
     return Shader(tabs, shader.root)
 

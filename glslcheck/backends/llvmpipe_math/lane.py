@@ -33,14 +33,21 @@ from . import coefficients as co
 
 F32 = np.float32
 U32 = np.uint32
-OPTIONS = dict(cache=True, nogil=True, error_model="numpy")  # error_model: x / 0 is IEEE, no exception
+OPTIONS = dict(
+    cache=True, nogil=True, error_model="numpy"
+)  # error_model: x / 0 is IEEE, no exception
 INLINE = dict(inline="always", **OPTIONS)
 ONE, MINUS_ONE, HALF, ZERO = F32(1.0), F32(-1.0), F32(0.5), F32(0.0)
 INF = F32(np.inf)
 HALF_PI = F32(np.pi / 2)
 FOUR_OVER_PI = F32(co.FOUR_OVER_PI)
 EXP2_HI, EXP2_LO = F32(co.EXP2_HI), F32(co.EXP2_LO)
-ABS_BITS, MIN_NORMAL_BITS, INF_BITS, SIN_MAX_BITS = co.ABS_BITS, co.MIN_NORMAL_BITS, co.INF_BITS, co.SIN_MAX_BITS
+ABS_BITS, MIN_NORMAL_BITS, INF_BITS, SIN_MAX_BITS = (
+    co.ABS_BITS,
+    co.MIN_NORMAL_BITS,
+    co.INF_BITS,
+    co.SIN_MAX_BITS,
+)
 SIGN_BIT = U32(0x80000000)
 ASIN_P0, ASIN_P1 = (F32(v) for v in co.ASIN_P)
 ACOS_P0, ACOS_P1 = (F32(v) for v in co.ACOS_P)
@@ -66,22 +73,27 @@ def fmaf(typingctx, a, b, c):
         f = ir.FloatType()
         fn = builder.module.declare_intrinsic("llvm.fma", [f], fnty=ir.FunctionType(f, [f, f, f]))
         return builder.call(fn, args)
+
     return sig, codegen
 
 
 @intrinsic
 def bits(typingctx, x):
     """The bits of float32 ``x`` as uint32."""
+
     def codegen(context, builder, signature, args):
         return builder.bitcast(args[0], ir.IntType(32))
+
     return types.uint32(types.float32), codegen
 
 
 @intrinsic
 def from_bits(typingctx, u):
     """The float32 whose bits are uint32 ``u``."""
+
     def codegen(context, builder, signature, args):
         return builder.bitcast(args[0], ir.FloatType())
+
     return types.float32(types.uint32), codegen
 
 
@@ -94,6 +106,7 @@ def select(typingctx, c, a, b):
 
     def codegen(context, builder, signature, args):
         return builder.select(args[0], args[1], args[2])
+
     return a(c, a, b), codegen
 
 
@@ -159,7 +172,9 @@ def trig(a, fma, which):
     y_10, y2_9 = sin_cos_polynomials(F32(j), x_abs, fma)
     s = ZERO
     c = ZERO
-    if which != 1:  # sin: bit 1 of j picks the polynomial; the sign bit is x's flipped by bit 2 of j_add
+    if (
+        which != 1
+    ):  # sin: bit 1 of j picks the polynomial; the sign bit is x's flipped by bit 2 of j_add
         s = y2_9 if (j & 2) == 0 else y_10
         if ((ai >> 31) ^ (j_add >> 2)) & 1:
             s = -s

@@ -40,8 +40,12 @@ class FoldState:
     # transpile/call_fold.py
     call_fold_off: bool = False  # emitting the written call inside a folded one
     call_fold_dots: dict = field(default_factory=dict)  # function -> whether its body calls dot
-    call_fold_sums: dict = field(default_factory=dict)  # (call, symbol) -> products summed per component
-    call_fold_roots: dict = field(default_factory=dict)  # (call, symbol) -> root operations per component
+    call_fold_sums: dict = field(
+        default_factory=dict
+    )  # (call, symbol) -> products summed per component
+    call_fold_roots: dict = field(
+        default_factory=dict
+    )  # (call, symbol) -> root operations per component
     # transpile/inline.py
     inline_frames: list = field(default_factory=list)  # the calls being inlined, innermost last
     inline_bodies: dict = field(default_factory=dict)  # function -> its inlinable body

@@ -54,7 +54,8 @@ import os
 import sys
 import threading
 import time
-from typing import Any, Callable
+from collections.abc import Callable
+from typing import Any
 
 import numpy as np
 
@@ -62,18 +63,31 @@ from ...base import config
 from ...base.diagnostics import InputError
 from .numba_cache import cache_dir, use_cache_dir  # noqa: F401  (jit.cache_dir, jit.use_cache_dir)
 
-COLD_SECONDS = 10.0  # the load cost assumed before one was measured in this cache (a first compile: 6-10 s)
-WARM_KERNELS_SECONDS = 1.0  # loading the kernels' machine code from the cache, numba imported (0.5-0.9 s measured)
+COLD_SECONDS = (
+    10.0  # the load cost assumed before one was measured in this cache (a first compile: 6-10 s)
+)
+WARM_KERNELS_SECONDS = (
+    1.0  # loading the kernels' machine code from the cache, numba imported (0.5-0.9 s measured)
+)
 _RECORD = "glslcheck-jit.json"  # in the cache directory: the last load's wall time
 
 _F32 = np.dtype(np.float32)
 _ONE_LANE = np.zeros(1, np.float32)  # explog's y where it reads none
 # LlvmpipeMath's algorithm name -> (jit_kernels function, its `which`)
-_KERNELS = {"_sin": ("trig", 0), "_cos": ("trig", 1), "_tan": ("trig", 2),
-            "_exp2": ("explog", 0), "_log2": ("explog", 1), "_pow": ("explog", 2),
-            # Runtime's own lowerings (LlvmpipeMath.builtin): atan(y, x) is "_atan2"
-            "_atan": ("arc", 0), "_asin": ("arc", 1), "_acos": ("arc", 2), "_atan2": ("arc", 3),
-            "_mix": ("mix", 0)}
+_KERNELS = {
+    "_sin": ("trig", 0),
+    "_cos": ("trig", 1),
+    "_tan": ("trig", 2),
+    "_exp2": ("explog", 0),
+    "_log2": ("explog", 1),
+    "_pow": ("explog", 2),
+    # Runtime's own lowerings (LlvmpipeMath.builtin): atan(y, x) is "_atan2"
+    "_atan": ("arc", 0),
+    "_asin": ("arc", 1),
+    "_acos": ("arc", 2),
+    "_atan2": ("arc", 3),
+    "_mix": ("mix", 0),
+}
 _KINDS = sorted({kind for kind, _ in _KERNELS.values()})  # jit_kernels' compiled functions
 
 
@@ -97,7 +111,9 @@ class _State:
         self.available: bool | None = None
         self.kernels: Any = None  # the jit_kernels module once loaded
         self.failed: str | None = None  # why loading failed (then never tried again)
-        self.spent = 0.0  # seconds of the emulation's NumPy calls (auto); `+=` from tile threads may
+        self.spent = (
+            0.0  # seconds of the emulation's NumPy calls (auto); `+=` from tile threads may
+        )
         # lose an update now and then, which only delays the switch by a call
         self.threshold: float | None = None
         self.load_seconds: float | None = None
@@ -157,7 +173,10 @@ def _import() -> None:
 
         t_numba = time.perf_counter() - t0
         from . import jit_kernels
-        compiled_now = any(getattr(jit_kernels, k).stats.cache_misses for k in _KINDS)  # not from the cache
+
+        compiled_now = any(
+            getattr(jit_kernels, k).stats.cache_misses for k in _KINDS
+        )  # not from the cache
     except Exception as e:  # an incompatible numba, a compile error: the NumPy path stays
         _STATE.failed = f"numba's kernels failed to load ({type(e).__name__}: {e})"
         print(f"glslcheck: warning: {_STATE.failed}; using NumPy", file=sys.stderr)
@@ -168,8 +187,15 @@ def _import() -> None:
         os.makedirs(path, exist_ok=True)
         tmp = os.path.join(path, f"{_RECORD}.{os.getpid()}")
         with open(tmp, "w") as f:
-            json.dump({"seconds": round(_STATE.load_seconds, 3), "stamp": _stamp(), "compiled": compiled_now,
-                       "numba": round(t_numba, 3)}, f)
+            json.dump(
+                {
+                    "seconds": round(_STATE.load_seconds, 3),
+                    "stamp": _stamp(),
+                    "compiled": compiled_now,
+                    "numba": round(t_numba, 3),
+                },
+                f,
+            )
         os.replace(tmp, os.path.join(path, _RECORD))
     except OSError:
         pass
@@ -208,6 +234,7 @@ def dispatch(name: str, run: Callable[..., np.ndarray], fma: bool) -> Callable[.
         if state.spent > (state.threshold or threshold()):
             load()
         return r
+
     return auto
 
 
@@ -231,24 +258,34 @@ def add_counted(seconds: float, workers: int) -> None:
     pays, in parallel), the kernels pay for all of them (:func:`decided`)."""
     state = _STATE
     state.workers_spent += seconds
-    if (not state.pays and state.workers_spent > threshold() * max(workers, 1)
-            and mode() == "auto" and available()):
+    if (
+        not state.pays
+        and state.workers_spent > threshold() * max(workers, 1)
+        and mode() == "auto"
+        and available()
+    ):
         state.pays = True
 
 
-def compiled(name: str, run: Callable[..., np.ndarray], fma: bool, kernels: Any) -> Callable[..., np.ndarray]:
+def compiled(
+    name: str, run: Callable[..., np.ndarray], fma: bool, kernels: Any
+) -> Callable[..., np.ndarray]:
     """``run`` with its calls on float32 arrays made by the kernel (``run`` where it declines)."""
     kind, which = _KERNELS[name]
     kernel = getattr(kernels, kind)
 
     if kind == "trig":
+
         def take(out: np.ndarray, a: np.ndarray) -> bool:
             return kernel(a, out, fma, which)
     elif kind == "mix":
+
         def take(out: np.ndarray, x: np.ndarray, y: np.ndarray, a: np.ndarray) -> bool:
             return kernel(x, y, a, out)
+
         return _rows_call(run, take)
     else:  # explog, arc: exp2, log2, atan, asin and acos read no y
+
         def take(out: np.ndarray, x: np.ndarray, y: np.ndarray = _ONE_LANE) -> bool:
             return kernel(x, y, out, fma, which)
 
@@ -269,14 +306,18 @@ def compiled(name: str, run: Callable[..., np.ndarray], fma: bool, kernels: Any)
         if take(out, *(_flat(v if v.size in (1, n) else np.broadcast_to(v, shape)) for v in args)):
             return out if len(shape) == 1 else out.reshape(shape)
         return run(*args)
+
     return call
 
 
-def _rows_call(run: Callable[..., np.ndarray], take: Callable[..., bool]) -> Callable[..., np.ndarray]:
+def _rows_call(
+    run: Callable[..., np.ndarray], take: Callable[..., bool]
+) -> Callable[..., np.ndarray]:
     """``run`` made by ``take`` (mix's kernel) on (rows, lanes) matrices: each argument's rows
     (its components) and lanes are the result's or one, so that a vec3 constant of shape
     (3, 1) or a float against vec3 lanes is read in place, not copied to the broadcast shape
     (which cost 10x the kernel)."""
+
     def call(*args: np.ndarray) -> np.ndarray:
         for v in args:
             if v.dtype is not _F32:
@@ -290,6 +331,7 @@ def _rows_call(run: Callable[..., np.ndarray], take: Callable[..., bool]) -> Cal
         if take(out, *(_rows(v, shape, rows, cols) for v in args)):
             return out.reshape(shape)
         return run(*args)
+
     return call
 
 

@@ -133,7 +133,9 @@ def mix(x, y, a, out):
             xk = x[xi, k if x.shape[1] > 1 else 0]
             yk = y[yi, k if y.shape[1] > 1 else 0]
             ak = a[ai, k if a.shape[1] > 1 else 0]
-            t = F32(xk + F32(ak * F32(yk - xk)))  # computed in every lane, then selected: no branch,
+            t = F32(
+                xk + F32(ak * F32(yk - xk))
+            )  # computed in every lane, then selected: no branch,
             one = ak == _ONE  # so that LLVM vectorises the loop
             zero = ak == _ZERO
             nan |= (t != t) & ~one & ~zero

@@ -98,7 +98,7 @@ class _Fused:
         if not self.fma:
             return np.add(np.multiply(a, b, dtype=F32), c, dtype=F32)
         k = self.used
-        s = self.buf[k] if rows == 1 else self.buf[k:k + rows]
+        s = self.buf[k] if rows == 1 else self.buf[k : k + rows]
         self.used = k + rows
         np.multiply(a, b, out=s, signature=_SIG64)
         np.add(s, c, out=s)
@@ -109,7 +109,7 @@ class _Fused:
         one), else the lanes where one is (the rows are overwritten by the test)."""
         if not self.used:
             return None
-        low = self.buf[:self.used].view(I64)
+        low = self.buf[: self.used].view(I64)
         np.bitwise_and(low, _LOW29, out=low)
         mid = low == _MID29
         if not mid.any():

@@ -61,7 +61,9 @@ def daz(x: np.ndarray) -> np.ndarray:
     return np.where(tiny, np.copysign(F32(0.0), x), x)
 
 
-_LOW29 = np.int64(0x1FFFFFFF)  # NumPy scalars: a Python int operand costs a type resolution per call
+_LOW29 = np.int64(
+    0x1FFFFFFF
+)  # NumPy scalars: a Python int operand costs a type resolution per call
 _MID29 = np.int64(0x10000000)
 
 
@@ -97,7 +99,9 @@ def fma32(a: Any, b: Any, c: Any) -> np.ndarray:
     mid = low == _MID29
     if mid.any():
         at = np.nonzero(mid)
-        ps = np.multiply(np.broadcast_to(a, r.shape)[at], np.broadcast_to(b, r.shape)[at], dtype=np.float64)
+        ps = np.multiply(
+            np.broadcast_to(a, r.shape)[at], np.broadcast_to(b, r.shape)[at], dtype=np.float64
+        )
         cs = np.broadcast_to(c, r.shape)[at].astype(np.float64)
         ss = ps + cs
         bb = ss - ps
@@ -134,11 +138,17 @@ def blocked(fn: Any, *args: np.ndarray) -> np.ndarray:
     n = math.prod(shape)
     if n <= _BLOCK:
         return fn(*(v if v.ndim else v.reshape(1) for v in args))
-    flat = [v.reshape(-1) if v.shape == shape else v.reshape(()) if v.size == 1
-            else np.broadcast_to(v, shape).reshape(-1) for v in args]
+    flat = [
+        v.reshape(-1)
+        if v.shape == shape
+        else v.reshape(())
+        if v.size == 1
+        else np.broadcast_to(v, shape).reshape(-1)
+        for v in args
+    ]
     out = np.empty(n, F32)
     for i in range(0, n, _BLOCK):
-        out[i:i + _BLOCK] = fn(*(v[i:i + _BLOCK] if v.ndim else v for v in flat))
+        out[i : i + _BLOCK] = fn(*(v[i : i + _BLOCK] if v.ndim else v for v in flat))
     return out.reshape(shape)
 
 
@@ -147,7 +157,7 @@ def keeps_shape(r: np.ndarray, v: np.ndarray) -> bool:
     result in place): the usual cases by their shapes, the rest by np.broadcast_shapes (which
     costs a few microseconds a call)."""
     rs, vs = r.shape, v.shape
-    if rs == vs or (v.ndim <= r.ndim and (v.size == 1 or rs[r.ndim - v.ndim:] == vs)):
+    if rs == vs or (v.ndim <= r.ndim and (v.size == 1 or rs[r.ndim - v.ndim :] == vs)):
         return True
     return rs == np.broadcast_shapes(rs, vs)
 
@@ -189,6 +199,7 @@ class LlvmpipeMath:
             d = DeferredFma()
             r = getattr(d, name)(*args)
             return ref(*args) if d.midpoint() else r
+
         return run
 
     def _kernel(self, name: str) -> Any:
@@ -209,6 +220,7 @@ class LlvmpipeMath:
                     return slow(*args)
                 r = fast(*args, fma, slow)  # slow: also for the lanes of a float32 midpoint
                 return slow(*args) if r is None else r
+
             # compiled kernels (numba) where jit.py's rule says they pay; else run itself
             self._kernels[name] = run = jit.dispatch(name, run if fast else slow, fma)
         return run
@@ -259,7 +271,9 @@ class LlvmpipeMath:
 
     def _tan(self, a: np.ndarray) -> np.ndarray:
         reduced = self._sin_cos_reduced(a)
-        return self._sin_cos_result(a, reduced, cos=False) / self._sin_cos_result(a, reduced, cos=True)
+        return self._sin_cos_result(a, reduced, cos=False) / self._sin_cos_result(
+            a, reduced, cos=True
+        )
 
     def _sin_cos_reduced(self, a: np.ndarray) -> tuple[np.ndarray, ...]:
         """The part sin and cos share: |x| (DAZ), j = emm2_add & ~1, the reduced argument
@@ -289,7 +303,9 @@ class LlvmpipeMath:
             both *= zf
             both = [row.reshape(z.shape) for row in both]
         else:
-            both = [self.mad(self.mad(z, p[0, i, 0], p[1, i, 0]), z, p[2, i, 0]) * z for i in (0, 1)]
+            both = [
+                self.mad(self.mad(z, p[0, i, 0], p[1, i, 0]), z, p[2, i, 0]) * z for i in (0, 1)
+            ]
         y_10 = both[0]  # y_6 * z
         y_10 *= z
         y_10 -= z * F32(0.5)
@@ -362,9 +378,11 @@ class LlvmpipeMath:
             return res  # every x normal, positive and finite: no edge applies
         xd = daz(x)
         nan = np.isnan(x)
-        res = np.where((xd < F32(0.0)) | nan, F32(np.nan),
-                       np.where(xd == F32(0.0), F32(-np.inf),
-                                np.where(x == F32(np.inf), F32(np.inf), res)))
+        res = np.where(
+            (xd < F32(0.0)) | nan,
+            F32(np.nan),
+            np.where(xd == F32(0.0), F32(-np.inf), np.where(x == F32(np.inf), F32(np.inf), res)),
+        )
         return res
 
     def _pow(self, x: np.ndarray, y: np.ndarray) -> np.ndarray:
@@ -409,4 +427,3 @@ class DeferredFma(LlvmpipeMath):
         flat = np.concatenate([s.reshape(-1) for s in self.sums])
         low = np.bitwise_and(flat.view(np.int64), _LOW29, out=flat.view(np.int64))
         return bool((low == _MID29).any())
-

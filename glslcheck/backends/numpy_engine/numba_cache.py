@@ -73,9 +73,12 @@ def trusted_dir() -> str:
 
             used = tempfile.mkdtemp(prefix="glslcheck-numba-")
             atexit.register(shutil.rmtree, used, True)
-            print(f"glslcheck: warning: the numba cache folder {wanted} {reason}; compiling into a "
-                  f"private folder for this run instead (set NUMBA_CACHE_DIR to a folder only you "
-                  f"can write)", file=sys.stderr)
+            print(
+                f"glslcheck: warning: the numba cache folder {wanted} {reason}; compiling into a "
+                f"private folder for this run instead (set NUMBA_CACHE_DIR to a folder only you "
+                f"can write)",
+                file=sys.stderr,
+            )
         _TRUSTED[wanted] = _TRUSTED[used] = used
     return used
 

@@ -46,19 +46,33 @@ import numpy as np
 
 from ...base import config
 from ...base.diagnostics import Diagnostic, GlslError, Location
-from ..driver_profile import host_model
 from ...shadertoy.frame_inputs import FrameInputs, frame_inputs
 from ...shadertoy.wrapper import DEFAULT_SIZE, UNIFORMS_BY_NAME
+from ..driver_profile import host_model
 from . import workers
-from .tiles import (MIN_TILE_LANES, Budget, Cancelled, Compaction, FrameSpec, LaneHelpers, State, execute_module,
-                    frame_tiles, render_tile)
 from .runtime import Runtime
+from .tiles import (
+    MIN_TILE_LANES,
+    Budget,
+    Cancelled,
+    Compaction,
+    FrameSpec,
+    LaneHelpers,
+    State,
+    execute_module,
+    frame_tiles,
+    render_tile,
+)
 from .transpile import SMALL_STATE, transpile_shader
 
 CACHE_FRAMES = 8
 _CPUS = os.cpu_count()
-CACHE_BYTES = 256 * 2**20  # and at most this much of them (a 3840x2160 frame is 127 MiB), the newest always kept
-PROCESSES_AFTER = 1.0  # seconds a program renders in this process before "auto" starts worker processes
+CACHE_BYTES = (
+    256 * 2**20
+)  # and at most this much of them (a 3840x2160 frame is 127 MiB), the newest always kept
+PROCESSES_AFTER = (
+    1.0  # seconds a program renders in this process before "auto" starts worker processes
+)
 # The whole-frame budget: a frame that is still rendering after this many seconds stops with an
 # error at the loop (or function) it was in, whatever each loop's own cap (LOOP_CAP iterations
 # per loop execution: loops nested two deep may still run 10**10 times). Checked at every region
@@ -73,7 +87,6 @@ MEMORY_FRACTION = 0.5
 # Uniforms that change from frame to frame; a shader that reads none of them renders one image
 # for a whole animation.
 ANIMATED_UNIFORMS = ("iTime", "iFrame", "iTimeDelta", "iDate", "iMouse", "iFrameRate")
-
 
 
 def memory_budget() -> int:
@@ -118,13 +131,14 @@ def frame_seconds() -> float:
     return config.frame_seconds()
 
 
-
 def uniform_value(rt: Runtime, name: str, value: Any) -> Any:
     """`value` of the Shadertoy uniform `name` as the runtime holds it (a sampler: its ChannelInput)."""
     u = UNIFORMS_BY_NAME[name]
     t = u.glsl_type
     if t.startswith("sampler"):
-        return value if not isinstance(value, int) else None  # a channels.ChannelInput; None: unbound
+        return (
+            value if not isinstance(value, int) else None
+        )  # a channels.ChannelInput; None: unbound
 
     def one(v):
         if t == "float":
@@ -161,13 +175,12 @@ class _FrameCache(OrderedDict):
     def recycle(self, image: np.ndarray) -> None:
         if image.base is None:  # not a worker frame file's view: dropping that frees the file
             self.spare.append(image)
-            del self.spare[:-self.SPARE_FRAMES]
+            del self.spare[: -self.SPARE_FRAMES]
 
     def clear(self) -> None:
-        for image in list(self.values())[-self.SPARE_FRAMES:]:
+        for image in list(self.values())[-self.SPARE_FRAMES :]:
             self.recycle(image)
         super().clear()
-
 
 
 _POOLS: dict[int, ThreadPoolExecutor] = {}
@@ -179,7 +192,9 @@ def tile_pool(threads: int) -> ThreadPoolExecutor:
     with _POOLS_LOCK:
         pool = _POOLS.get(threads)
         if pool is None:
-            pool = _POOLS[threads] = ThreadPoolExecutor(max_workers=threads, thread_name_prefix="glslcheck-tile")
+            pool = _POOLS[threads] = ThreadPoolExecutor(
+                max_workers=threads, thread_name_prefix="glslcheck-tile"
+            )
         return pool
 
 
@@ -221,14 +236,20 @@ class NumpyProgram:
     # llvmpipe's loop limiter (LaneHelpers.tick): None = loops run until they end (a runaway loop is an
     # error after LOOP_CAP passes); 65535 = stop as llvmpipe does (verify sets it)
     loop_limit: int | None = None
-    frame_seconds: float | None = None  # the frame budget; None: GLSLCHECK_FRAME_SECONDS or FRAME_SECONDS
-    compaction: Compaction = Compaction()  # when a sparse region runs on a gathered copy of its lanes
+    frame_seconds: float | None = (
+        None  # the frame budget; None: GLSLCHECK_FRAME_SECONDS or FRAME_SECONDS
+    )
+    compaction: Compaction = (
+        Compaction()
+    )  # when a sparse region runs on a gathered copy of its lanes
     _render_seconds: float = field(default=0.0, repr=False)
     _keys: dict = field(default_factory=dict, repr=False)
     _modules: dict = field(default_factory=dict, repr=False)
     _cache: OrderedDict = field(default_factory=lambda: _FrameCache(), repr=False)
     _specs: OrderedDict = field(default_factory=OrderedDict, repr=False)  # frame key -> FrameSpec
-    _tile_order: OrderedDict = field(default_factory=OrderedDict, repr=False)  # tiles -> indices, slowest first
+    _tile_order: OrderedDict = field(
+        default_factory=OrderedDict, repr=False
+    )  # tiles -> indices, slowest first
     _lock: Any = field(default_factory=threading.Lock, repr=False)
     _code: Any = field(default=None, repr=False)  # the compiled module, when the transpiler made it
 
@@ -258,19 +279,24 @@ class NumpyProgram:
         found = set()
         for ns in self._modules.values():
             x = ns.get("X")
-            found |= {tuple(x.loops.get(lid, ("<shader>", 0, 0))[:2]) for lid in getattr(x, "limited", ())}
+            found |= {
+                tuple(x.loops.get(lid, ("<shader>", 0, 0))[:2]) for lid in getattr(x, "limited", ())
+            }
             getattr(x, "limited", set()).clear()
         return sorted(found)
 
     def module(self, precision: str = "float32") -> dict:
         with self._lock:
             if precision not in self._modules:
-                self._modules[precision] = execute_module(self.source, self.filename, self.meta, precision, self._code)
+                self._modules[precision] = execute_module(
+                    self.source, self.filename, self.meta, precision, self._code
+                )
             return self._modules[precision]
 
     @frame_inputs
-    def render(self, inputs: FrameInputs, precision: str = "float32", stats: bool = False,
-               channels=None) -> np.ndarray:
+    def render(
+        self, inputs: FrameInputs, precision: str = "float32", stats: bool = False, channels=None
+    ) -> np.ndarray:
         """Render one frame: float32 (height, width, 4), row 0 = top of the image, unclamped.
 
         Arguments as `GLProgram.render` (`shadertoy.FrameInputs`, then `channels`: the inputs of
@@ -278,12 +304,21 @@ class NumpyProgram:
         inside the shader. Discarded pixels are (0, 0, 0, 0), the GL backend's clear colour."""
         ns = self.module(precision)
         values = inputs.uniforms()
-        if channels is not None:  # each ChannelInput's repr is unique: a new input is a new frame key
+        if (
+            channels is not None
+        ):  # each ChannelInput's repr is unique: a new input is a new frame key
             from ...shadertoy.channels import channel_uniforms
 
             values.update(channel_uniforms(channels))
-        key = _FrameKey(inputs.width, inputs.height, inputs.samples, precision, stats, self.loop_limit,
-                        tuple((u, repr(values.get(u, UNIFORMS_BY_NAME[u].default))) for u in self.uniforms))
+        key = _FrameKey(
+            inputs.width,
+            inputs.height,
+            inputs.samples,
+            precision,
+            stats,
+            self.loop_limit,
+            tuple((u, repr(values.get(u, UNIFORMS_BY_NAME[u].default))) for u in self.uniforms),
+        )
         if not stats:
             hit = self._cached(key)
             if hit is not None:
@@ -311,21 +346,35 @@ class NumpyProgram:
         if spec is not None:
             return spec
         rt = ns["rt"]
-        base = {f"u_{u}": uniform_value(rt, u, values.get(u, UNIFORMS_BY_NAME[u].default)) for u in self.uniforms}
+        base = {
+            f"u_{u}": uniform_value(rt, u, values.get(u, UNIFORMS_BY_NAME[u].default))
+            for u in self.uniforms
+        }
         base["loop_limit"] = self.loop_limit
-        proto = State(**base, lanes=1, width=1, stats=None, discard=LaneHelpers.NO, parent=None, budget=None)
+        proto = State(
+            **base, lanes=1, width=1, stats=None, discard=LaneHelpers.NO, parent=None, budget=None
+        )
         with rt.errstate():
             ns["init_globals"](proto)
         base.update({k: v for k, v in proto.__dict__.items() if k.startswith("g_")})
-        spec = FrameSpec(key.width, key.height, base, offsets, "S.frag_coord4" in self.source, key.stats,
-                         self.compaction)
+        spec = FrameSpec(
+            key.width,
+            key.height,
+            base,
+            offsets,
+            "S.frag_coord4" in self.source,
+            key.stats,
+            self.compaction,
+        )
         with self._lock:
             self._specs[spec_key] = spec
             while len(self._specs) > CACHE_FRAMES:
                 self._specs.popitem(last=False)
         return spec
 
-    def _schedule(self, ns: dict, spec: FrameSpec, precision: str) -> tuple[np.ndarray, np.ndarray | None, list[dict]]:
+    def _schedule(
+        self, ns: dict, spec: FrameSpec, precision: str
+    ) -> tuple[np.ndarray, np.ndarray | None, list[dict]]:
         """Render the frame's tiles within its time and memory budgets, on worker processes or
         threads: (the caller's image, the frame cache's copy (None with stats), per-tile stats).
         The tiles that took longest in the last frame of this size go first, so that the workers
@@ -344,8 +393,16 @@ class NumpyProgram:
             try:
                 # the image and the cache's read-only view share the pixels (copy-on-write)
                 image, cached, all_stats, seconds = workers.render(
-                    self._key(precision), self.source, self.filename, self.meta, precision, spec,
-                    run_tiles, threads, budget)
+                    self._key(precision),
+                    self.source,
+                    self.filename,
+                    self.meta,
+                    precision,
+                    spec,
+                    run_tiles,
+                    threads,
+                    budget,
+                )
                 self.last_parallel = "processes"
             except workers.Unavailable:
                 image, all_stats = None, []  # the pool is gone for this process: threads below
@@ -357,7 +414,9 @@ class NumpyProgram:
                     cached = self._cache.buffer(image.shape)
             budget.start()
             try:
-                seconds = self._render_threads(ns, spec, run_tiles, image, cached, threads, all_stats, budget)
+                seconds = self._render_threads(
+                    ns, spec, run_tiles, image, cached, threads, all_stats, budget
+                )
             finally:
                 budget.finish()
         if len(seconds) == len(tiles):
@@ -383,10 +442,13 @@ class NumpyProgram:
         with self._lock:
             self._cache[key] = cached
             while len(self._cache) > CACHE_FRAMES or (
-                    len(self._cache) > 1 and sum(v.nbytes for v in self._cache.values()) > CACHE_BYTES):
+                len(self._cache) > 1 and sum(v.nbytes for v in self._cache.values()) > CACHE_BYTES
+            ):
                 self._cache.recycle(self._cache.popitem(last=False)[1])
 
-    def _render_threads(self, ns, spec, tiles, image, cached, threads, all_stats, budget=None) -> dict:
+    def _render_threads(
+        self, ns, spec, tiles, image, cached, threads, all_stats, budget=None
+    ) -> dict:
         """Render `tiles` on this process's threads: {tile: seconds it took}. On an error or
         Ctrl-C the budget is cancelled, so the tiles still running stop at their next region."""
         self.last_parallel = "threads" if threads > 1 and len(tiles) > 1 else "one thread"
@@ -422,7 +484,9 @@ class NumpyProgram:
                 for f in futures:  # ... and let the running ones finish before returning
                     if not f.cancelled():
                         f.exception()
-            errors = [f.exception() for f in futures if not f.cancelled() and f.exception() is not None]
+            errors = [
+                f.exception() for f in futures if not f.cancelled() and f.exception() is not None
+            ]
             if errors:  # the tile's own error, not the Cancelled of the tiles it stopped
                 raise next((e for e in errors if not isinstance(e, Cancelled)), errors[0])
         else:
@@ -441,13 +505,17 @@ class NumpyProgram:
             threads = 1
             lanes = limit // per_lane
         if lanes < MIN_TILE_LANES:
-            raise GlslError(Diagnostic(
-                f"this shader needs about {_megabytes(per_lane)} per pixel on the CPU (its largest variable is "
-                f"declared here): even a 2x2 tile would take {_megabytes(MIN_TILE_LANES * per_lane)}, more than "
-                f"the memory budget of {_megabytes(limit)}", loc or Location(self.meta.get("source", "<shader>"), 1, 1),
-                rule="numpy-memory-budget",
-                help="use smaller arrays, or render with --backend gl; GLSLCHECK_MEMORY_MB sets the budget "
-                     f"(default {MEMORY_FRACTION:.0%} of the machine's memory)"))
+            raise GlslError(
+                Diagnostic(
+                    f"this shader needs about {_megabytes(per_lane)} per pixel on the CPU (its largest variable is "
+                    f"declared here): even a 2x2 tile would take {_megabytes(MIN_TILE_LANES * per_lane)}, more than "
+                    f"the memory budget of {_megabytes(limit)}",
+                    loc or Location(self.meta.get("source", "<shader>"), 1, 1),
+                    rule="numpy-memory-budget",
+                    help="use smaller arrays, or render with --backend gl; GLSLCHECK_MEMORY_MB sets the budget "
+                    f"(default {MEMORY_FRACTION:.0%} of the machine's memory)",
+                )
+            )
         return lanes, threads  # frame_tiles makes tiles of at most TILE_LANES
 
     def _use_processes(self, threads: int, tiles: list) -> bool:
@@ -493,10 +561,14 @@ def program_from_source(source: str, filename: str = "<glslcheck-numpy module>")
     tree = pyast.parse(source)
     meta = None
     for node in tree.body:
-        if isinstance(node, pyast.Assign) and any(getattr(t, "id", None) == "SHADER_META" for t in node.targets):
+        if isinstance(node, pyast.Assign) and any(
+            getattr(t, "id", None) == "SHADER_META" for t in node.targets
+        ):
             meta = pyast.literal_eval(node.value)
     if meta is None:
-        raise ValueError(f"{filename}: not a module generated by glslcheck transpile (no SHADER_META)")
+        raise ValueError(
+            f"{filename}: not a module generated by glslcheck transpile (no SHADER_META)"
+        )
     return NumpyProgram(source, meta, filename)
 
 

@@ -206,8 +206,8 @@ from __future__ import annotations
 
 import numpy as np
 
-from ..driver_profile import FLOAT_TO_UINT, host_model
 from ...base.precision import check_precision
+from ..driver_profile import FLOAT_TO_UINT, host_model
 from .llvmpipe_reference import HOST_FMA, LlvmpipeMath
 from .runtime_common import CommonFunctions
 from .runtime_operators import ArithmeticOps
@@ -223,8 +223,9 @@ class Runtime(ValueOps, ArithmeticOps, TranscendentalFunctions, CommonFunctions,
     (mediump emulation) or ``"float64"`` (reference). Instantiate once per render.
     """
 
-    def __init__(self, precision: str = "float32", float_to_uint: str | None = None,
-                 fma: bool | None = None) -> None:
+    def __init__(
+        self, precision: str = "float32", float_to_uint: str | None = None, fma: bool | None = None
+    ) -> None:
         self.F = np.dtype(check_precision(precision)).type  # "float32" is np.float32's name
         self.precision = precision
         # how uint(x) treats negatives, NaN and x >= 2**32 (undefined; the CPU decides on
@@ -258,4 +259,3 @@ class Runtime(ValueOps, ArithmeticOps, TranscendentalFunctions, CommonFunctions,
     np_floor = np.floor
     np_ceil = np.ceil
     np_trunc = np.trunc
-

@@ -1,5 +1,4 @@
-"""The Runtime's common, packing, geometric, vector-relational and derivative built-ins.
-"""
+"""The Runtime's common, packing, geometric, vector-relational and derivative built-ins."""
 
 from __future__ import annotations
 
@@ -136,7 +135,10 @@ class CommonFunctions:
             return "strict" if a.ndim == 0 or a.shape[-1] == 1 else "fast"
         cx, cy = self._const(x) and x.size <= 16, self._const(y) and y.size <= 16
         if cx and cy:
-            ex, ey = np.frexp(np.broadcast_arrays(x, y)[0])[1], np.frexp(np.broadcast_arrays(y, x)[0])[1]
+            ex, ey = (
+                np.frexp(np.broadcast_arrays(x, y)[0])[1],
+                np.frexp(np.broadcast_arrays(y, x)[0])[1],
+            )
             if (np.abs(ex - ey) <= 11).all():
                 return "fast"
         if cx and (x == self._1).all():
@@ -237,9 +239,9 @@ class CommonFunctions:
 
     def cross(self, a: Any, b: Any) -> np.ndarray:
         a, b = self._f(a), self._f(b)
-        return self._stack([a[1] * b[2] - a[2] * b[1],
-                            a[2] * b[0] - a[0] * b[2],
-                            a[0] * b[1] - a[1] * b[0]])
+        return self._stack(
+            [a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]]
+        )
 
     def normalize(self, x: Any) -> np.ndarray:
         """``x * inversesqrt(dot(x, x))`` (zero vector -> NaN); a float normalizes to sign(x)."""
@@ -349,5 +351,6 @@ class CommonFunctions:
     def texture_unsupported(name: str, line: int | None = None) -> None:
         """Raise for texture lookups, which the NumPy backend does not evaluate."""
         where = f" (line {line})" if line is not None else ""
-        raise GLSLRuntimeError(f"{name}{where}: texture lookups are not supported by the NumPy backend")
-
+        raise GLSLRuntimeError(
+            f"{name}{where}: texture lookups are not supported by the NumPy backend"
+        )

@@ -87,8 +87,13 @@ class ArithmeticOps:
     def _const_zero(self, z: np.ndarray, other: np.ndarray) -> bool:
         """Mesa folds z * other to 0 where z is a constant zero and other is not a constant
         (two constants are multiplied out at compile time, IEEE: 0 * inf = NaN)."""
-        return (self.fold_constants and self._const(z) and z.size <= 16 and not self._const(other)
-                and np.count_nonzero(z) != z.size)
+        return (
+            self.fold_constants
+            and self._const(z)
+            and z.size <= 16
+            and not self._const(other)
+            and np.count_nonzero(z) != z.size
+        )
 
     def div(self, a: Any, b: Any) -> np.ndarray:
         """``/``: float IEEE division; int truncates toward zero (x/0 = 0, INT_MIN/-1 =
@@ -253,9 +258,16 @@ class ArithmeticOps:
         if a.ndim == 1 and b.ndim == 1:
             return self.fmul(a, b)
         n = a.shape[0]
-        ca, cb = self._const(a), self._const(b)  # (_const_zero of (a, b) and of (b, a), each test once)
-        if self.fold_constants and ca != cb and (a if ca else b).size <= 16 and (
-                np.count_nonzero(a if ca else b) != (a if ca else b).size):
+        ca, cb = (
+            self._const(a),
+            self._const(b),
+        )  # (_const_zero of (a, b) and of (b, a), each test once)
+        if (
+            self.fold_constants
+            and ca != cb
+            and (a if ca else b).size <= 16
+            and (np.count_nonzero(a if ca else b) != (a if ca else b).size)
+        ):
             # a constant zero component drops its product (NIR folds x * 0.0 to 0.0), so a NaN
             # there does not reach the sum: dot(vec3(NaN, 1, 2), vec3(0, 1, 1)) = 3 on llvmpipe
             s = self.fmul(a[n - 1], b[n - 1])
@@ -327,9 +339,11 @@ class ArithmeticOps:
         if n == 2:
             return m[0][0] * m[1][1] - m[1][0] * m[0][1]
         if n == 3:
-            return (m[0][0] * (m[1][1] * m[2][2] - m[2][1] * m[1][2])
-                    - m[1][0] * (m[0][1] * m[2][2] - m[2][1] * m[0][2])
-                    + m[2][0] * (m[0][1] * m[1][2] - m[1][1] * m[0][2]))
+            return (
+                m[0][0] * (m[1][1] * m[2][2] - m[2][1] * m[1][2])
+                - m[1][0] * (m[0][1] * m[2][2] - m[2][1] * m[0][2])
+                + m[2][0] * (m[0][1] * m[1][2] - m[1][1] * m[0][2])
+            )
         # 4x4: Mesa's _determinant_mat4 (2x2 sub-determinants of the lower rows)
         SubFactor00 = m[2][2] * m[3][3] - m[3][2] * m[2][3]
         SubFactor01 = m[2][1] * m[3][3] - m[3][1] * m[2][3]
@@ -366,4 +380,3 @@ class ArithmeticOps:
                 adj[c][r] = minor if (r + c) % 2 == 0 else -minor
         det = self.determinant(m)
         return adj / det
-

@@ -64,8 +64,14 @@ class TranscendentalFunctions:
         return self.F(math.pi / 2) - self._asin_expr(self._daz(x), 0.08132463, -0.02363318)
 
     # nir_atan's odd polynomial x*c0 + x^3*c1 + ... + x^11*c5 (Mesa 22.3 nir_builtin_builder.c)
-    _ATAN_COEFFS = (0.9999793128310355, -0.3326756418091246, 0.1938924977115610,
-                    -0.1173503194786851, 0.0536813784310406, -0.0121323213173444)
+    _ATAN_COEFFS = (
+        0.9999793128310355,
+        -0.3326756418091246,
+        0.1938924977115610,
+        -0.1173503194786851,
+        0.0536813784310406,
+        -0.0121323213173444,
+    )
 
     def _daz(self, x: Any) -> np.ndarray:
         """Subnormal operands read as zero in float32 (llvmpipe's DAZ); other modes unchanged."""
@@ -153,9 +159,15 @@ class TranscendentalFunctions:
         """``exp2(y * log2(x))`` with llvmpipe's edges: x < 0 -> NaN; x == 0 or x NaN -> 0
         (for every y, including 0, negative and NaN)."""
         x, y = self._f(x), self._f(y)
-        if (self.fold_constants and y.ndim and y.shape[-1] == 1 and y.size <= 4 and y.flags.writeable
-                and all(float(v) in POW_REWRITTEN for v in y.reshape(-1))  # (np.isin: 0.2 ms a call)
-                and not np.signbit(y).any()):
+        if (
+            self.fold_constants
+            and y.ndim
+            and y.shape[-1] == 1
+            and y.size <= 4
+            and y.flags.writeable
+            and all(float(v) in POW_REWRITTEN for v in y.reshape(-1))  # (np.isin: 0.2 ms a call)
+            and not np.signbit(y).any()
+        ):
             # an exponent the same in every lane (a constant after Mesa's propagation) of 0, 1,
             # 2 or 4: Mesa rewrites pow there (pow_const); as fmul, a uniform input equal to
             # one of these is taken for a constant too
@@ -233,4 +245,3 @@ class TranscendentalFunctions:
 
     def inversesqrt(self, x: Any) -> np.ndarray:
         return self._1 / np.sqrt(self._f(x))
-

@@ -4,7 +4,8 @@ masked assignment of lane arrays (the representation: runtime.py's docstring).
 
 from __future__ import annotations
 
-from typing import Any, Iterable
+from collections.abc import Iterable
+from typing import Any
 
 import numpy as np
 
@@ -69,12 +70,12 @@ class Struct:
     def __reduce__(self):  # pickled by value (globals travel to render worker processes)
         return (Struct, (self._name, self._fields))
 
-    def replace(self, **changes: Any) -> "Struct":
+    def replace(self, **changes: Any) -> Struct:
         d = dict(self._fields)
         d.update(changes)
         return Struct(self._name, d)
 
-    def map(self, fn) -> "Struct":
+    def map(self, fn) -> Struct:
         return Struct(self._name, {k: fn(v) for k, v in self._fields.items()})
 
     @property
@@ -337,8 +338,9 @@ class ValueOps:
         """``T[](e0, e1, ...)``: stack elements on a new leading axis (Structs field-wise)."""
         if isinstance(elements[0], Struct):
             s0 = elements[0]
-            return Struct(s0._name, {k: self.array(*(e._fields[k] for e in elements))
-                                     for k in s0._fields})
+            return Struct(
+                s0._name, {k: self.array(*(e._fields[k] for e in elements)) for k in s0._fields}
+            )
         els = [self._num(e) if not isinstance(e, np.ndarray) else e for e in elements]
         lanes = lanes_of(*els)
         shape = els[0].shape[:-1] + (lanes,) if els[0].ndim else (lanes,)
@@ -363,14 +365,20 @@ class ValueOps:
         if len(idx) == 1:
             return v[idx[0]]
         step = idx[1] - idx[0]
-        if step and v.flags.writeable and idx == tuple(range(idx[0], idx[0] + step * len(idx), step)):
+        if (
+            step
+            and v.flags.writeable
+            and idx == tuple(range(idx[0], idx[0] + step * len(idx), step))
+        ):
             # evenly spaced (.xy, .xz, .zyx, .yz): a view, as the prefixes always were, 20x cheaper
             # than indexing with a list. A read-only value (a uniform) keeps the copy, which
             # Runtime._const takes for a constant, as before
-            return v[idx[0]:(idx[-1] + step if idx[-1] + step >= 0 else None):step]
+            return v[idx[0] : (idx[-1] + step if idx[-1] + step >= 0 else None) : step]
         if idx == tuple(range(len(idx))):
             return v[: len(idx)]
-        return v.take(idx, axis=0)  # (.xzy, .xxy: ndarray.take costs a third of indexing with a list)
+        return v.take(
+            idx, axis=0
+        )  # (.xzy, .xxy: ndarray.take costs a third of indexing with a list)
 
     @staticmethod
     def _mask_lanes(mask: Any) -> Any:
@@ -384,12 +392,18 @@ class ValueOps:
         """``old = new`` in lanes where ``mask`` is true (None: all lanes). Works for every
         value kind including Structs; the result has the broadcast lane count and old's dtype."""
         if isinstance(old, Struct):
-            return Struct(old._name, {k: self.assign(v, new._fields[k], mask)
-                                      for k, v in old._fields.items()})
+            return Struct(
+                old._name, {k: self.assign(v, new._fields[k], mask) for k, v in old._fields.items()}
+            )
         new = self._like(new, old)
         if mask is None:
             return new if new.dtype == old.dtype else new.astype(old.dtype)
-        if new is old and isinstance(mask, np.ndarray) and old.ndim and old.shape[-1] == mask.shape[-1]:
+        if (
+            new is old
+            and isinstance(mask, np.ndarray)
+            and old.ndim
+            and old.shape[-1] == mask.shape[-1]
+        ):
             return old  # (a struct field neither side wrote: already per lane, nothing to select.
             # A one-lane value still broadcasts: it would count as a constant in fmul)
         mask = self._mask_lanes(mask)
@@ -427,8 +441,13 @@ class ValueOps:
         if isinstance(arr, Struct):
             return arr.map(lambda v: self.index(v, idx))
         size = arr.shape[0]
-        if (arr.shape[-1] == 1 and isinstance(idx, np.ndarray) and idx.ndim == 1 and idx.shape[0] > 1
-                and arr.ndim > 1):
+        if (
+            arr.shape[-1] == 1
+            and isinstance(idx, np.ndarray)
+            and idx.ndim == 1
+            and idx.shape[0] > 1
+            and arr.ndim > 1
+        ):
             # a uniform array (a constant table) read at lane-varying indices: one gather that
             # clamps as it reads (mode="clip"), contiguous with the lane axis last
             table = arr[..., 0]
@@ -442,7 +461,9 @@ class ValueOps:
             out = arr[0]
             for k in range(1, size):
                 out = np.where(i == k, arr[k], out)
-            return np.broadcast_to(out, out.shape[:-1] + (lanes,)) if out.shape[-1] != lanes else out
+            return (
+                np.broadcast_to(out, out.shape[:-1] + (lanes,)) if out.shape[-1] != lanes else out
+            )
         a = np.broadcast_to(arr, arr.shape[:-1] + (lanes,))
         i = np.broadcast_to(i, (lanes,))
         picked = a[(i, Ellipsis, np.arange(lanes))]  # shape (lanes, ...)
@@ -451,8 +472,13 @@ class ValueOps:
     def assign_index(self, old: Any, idx: Any, new: Any, mask: Any = None) -> Any:
         """``old[idx] = new`` under ``mask`` with per-lane clamped ``idx``; returns the new value."""
         if isinstance(old, Struct):
-            return Struct(old._name, {k: self.assign_index(v, idx, new._fields[k], mask)
-                                      for k, v in old._fields.items()})
+            return Struct(
+                old._name,
+                {
+                    k: self.assign_index(v, idx, new._fields[k], mask)
+                    for k, v in old._fields.items()
+                },
+            )
         new = self._like(new, old)
         size = old.shape[0]
         i = self._clamp_index(idx, size)
@@ -490,11 +516,11 @@ class ValueOps:
     def select(cond: Any, a: Any, b: Any) -> Any:
         """``cond ? a : b`` evaluated for all lanes (Structs field-wise)."""
         if isinstance(a, Struct):
-            return Struct(a._name, {k: ValueOps.select(cond, v, b._fields[k])
-                                    for k, v in a._fields.items()})
+            return Struct(
+                a._name, {k: ValueOps.select(cond, v, b._fields[k]) for k, v in a._fields.items()}
+            )
         return np.where(cond, a, b)
 
     def any_lane(self, mask: Any) -> bool:
         """True when some lane of a bool value is true (for skipping dead branches/loops)."""
         return bool(np.any(mask))
-

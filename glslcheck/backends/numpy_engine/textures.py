@@ -112,7 +112,9 @@ def _truncate_lowp(v: np.ndarray) -> np.ndarray:
     if (a < np.float32(2.0**-14)).any() or (np.isfinite(a) & (a > np.float32(65504))).any():
         sub = np.copysign(np.floor(a * np.float32(2.0**24)) * np.float32(2.0**-24), v)
         out = np.where(a < np.float32(2.0**-14), sub, out)
-        out = np.where(np.isfinite(a) & (a > np.float32(65504)), np.copysign(np.float32(65504), v), out)
+        out = np.where(
+            np.isfinite(a) & (a > np.float32(65504)), np.copysign(np.float32(65504), v), out
+        )
     return out.astype(np.float32, copy=False)
 
 
@@ -132,7 +134,7 @@ _INT_MIN = -(2**31)
 def _to_int32(x: np.ndarray) -> np.ndarray:
     """x86's cvttps2dq (LLVM's fptosi there): truncation towards zero; a NaN or a value outside
     int32 gives INT_MIN (0x80000000). Kept in int64 (the wraps below only read low bits or clamp)."""
-    ok = (x >= np.float32(-2.0**31)) & (x < np.float32(2.0**31))
+    ok = (x >= np.float32(-(2.0**31))) & (x < np.float32(2.0**31))
     if ok.all():  # the usual case: one conversion (astype truncates towards zero)
         return x.astype(np.int64)
     return np.where(ok, np.trunc(np.where(ok, x, 0)), _INT_MIN).astype(np.int64)
@@ -148,7 +150,9 @@ def _ifloor_fract(x: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
 def _fract_safe(u: np.ndarray) -> np.ndarray:
     """lp_build_fract_safe: u - floor(u), kept below 1 (min with 1 - 2^-24; a NaN, from an
     infinite u, gives the second operand too)."""
-    return np.where(u - np.floor(u) < np.float32(1 - 2.0**-24), u - np.floor(u), np.float32(1 - 2.0**-24))
+    return np.where(
+        u - np.floor(u) < np.float32(1 - 2.0**-24), u - np.floor(u), np.float32(1 - 2.0**-24)
+    )
 
 
 def _axis_nearest(u: np.ndarray, n: int, pot: bool, wrap: str, off) -> np.ndarray:
@@ -192,7 +196,9 @@ def _pot(t: np.ndarray) -> tuple[bool, bool]:
 def _nearest(t: np.ndarray, u, v, offset, wrap: str, pot=None) -> np.ndarray:
     h, w = t.shape[:2]
     pot = _pot(t) if pot is None else pot
-    return t[_axis_nearest(v, h, pot[1], wrap, offset[1]), _axis_nearest(u, w, pot[0], wrap, offset[0])]
+    return t[
+        _axis_nearest(v, h, pot[1], wrap, offset[1]), _axis_nearest(u, w, pot[0], wrap, offset[0])
+    ]
 
 
 def _bilinear(t: np.ndarray, u, v, offset, wrap: str, pot=None) -> np.ndarray:
@@ -246,9 +252,13 @@ def _quad_corner_diff(v: np.ndarray, width: int, axis: int) -> np.ndarray:
     base = take(take(img, slice(0, None, 2), axis), slice(0, None, 2), other)
     step = take(take(img, slice(1, None, 2), axis), slice(0, None, 2), other)
     if step.shape != base.shape:  # odd size: the last pixel pairs with the one before it
-        last = take(take(img, slice(size - 1, size), axis), slice(0, None, 2), other) - \
-            take(take(img, slice(size - 2, size - 1), axis), slice(0, None, 2), other)
-        d = np.concatenate([step - take(base, slice(0, step.shape[-2 + axis]), axis), last], axis=img.ndim - 2 + axis)
+        last = take(take(img, slice(size - 1, size), axis), slice(0, None, 2), other) - take(
+            take(img, slice(size - 2, size - 1), axis), slice(0, None, 2), other
+        )
+        d = np.concatenate(
+            [step - take(base, slice(0, step.shape[-2 + axis]), axis), last],
+            axis=img.ndim - 2 + axis,
+        )
     else:
         d = step - base
     d = np.repeat(np.repeat(d, 2, axis=img.ndim - 2), 2, axis=img.ndim - 1)
@@ -303,13 +313,17 @@ class TextureFunctions:
             return self._tex_result(s, _bilinear(s.texels, u, v, offset, s.wrap))
         levels = s.levels()
         pot = _pot(levels[0])
-        lod = np.clip(np.broadcast_to(np.asarray(lod, dtype=np.float32), u.shape), 0.0, len(levels) - 1)
+        lod = np.clip(
+            np.broadcast_to(np.asarray(lod, dtype=np.float32), u.shape), 0.0, len(levels) - 1
+        )
         lo = np.floor(lod)
         frac = (lod - lo)[..., None]
         lo = lo.astype(np.int64)
         ks = np.unique(lo)
         if len(ks) == 1:  # one level for every lane (textureLod(s, p, 0.0)): no selection
-            return self._tex_result(s, self._two_levels(levels, ks[0], u, v, offset, s.wrap, pot, frac))
+            return self._tex_result(
+                s, self._two_levels(levels, ks[0], u, v, offset, s.wrap, pot, frac)
+            )
         out = np.empty(np.broadcast_shapes(u.shape, v.shape) + (4,), dtype=np.float32)
         for k in ks:  # lanes by their lower level: bilinear there and one level up
             sel = lo == k
@@ -379,7 +393,9 @@ class TextureFunctions:
         size = np.array([w, h], dtype=np.float32).reshape(2, *([1] * (np.ndim(dpdx) - 1)))
         dx, dy = np.asarray(dpdx, np.float32) * size, np.asarray(dpdy, np.float32) * size
         rho2 = _max_x86(dx[0] * dx[0] + dx[1] * dx[1], dy[0] * dy[0] + dy[1] * dy[1])
-        rho2 = np.where(np.isfinite(rho2), rho2, np.float32(0))  # lp_build_rho: explicit derivatives only
+        rho2 = np.where(
+            np.isfinite(rho2), rho2, np.float32(0)
+        )  # lp_build_rho: explicit derivatives only
         return self._sample(s, p, _offset(offset), np.float32(0.5) * _fast_log2(rho2))
 
     # the projective forms: coordinates p.xy / p.z (vec3) or p.xy / p.w (vec4), then as above
@@ -430,4 +446,6 @@ class TextureFunctions:
         if s is None:
             return np.zeros((2,) + lod.shape, dtype=np.int32)
         h, w = s.texels.shape[:2]
-        return np.stack([np.maximum(np.int32(w) >> lod, 1), np.maximum(np.int32(h) >> lod, 1)]).astype(np.int32)
+        return np.stack(
+            [np.maximum(np.int32(w) >> lod, 1), np.maximum(np.int32(h) >> lod, 1)]
+        ).astype(np.int32)

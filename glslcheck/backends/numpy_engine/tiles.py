@@ -40,9 +40,13 @@ from .runtime import Runtime
 from .runtime_values import Struct
 from .transpile import glsl_location, too_complex
 
-TILE_LANES = 49152  # lanes per tile: fewer calls in compacted regions; full-lane work measured flat 24k-49k
+TILE_LANES = (
+    49152  # lanes per tile: fewer calls in compacted regions; full-lane work measured flat 24k-49k
+)
 TILE_WIDTH = 1024  # widest tile; wide bands keep rows contiguous in the output image
-TILE_HEIGHT = None  # None: TILE_LANES // tile width (rounded to even); set both to force a tile size
+TILE_HEIGHT = (
+    None  # None: TILE_LANES // tile width (rounded to even); set both to force a tile size
+)
 MIN_TILE_LANES = 4  # one 2x2 derivative quad
 
 
@@ -86,7 +90,7 @@ class Budget:
     def cancel(self) -> None:
         self.cancelled = self.stop = True
 
-    def start(self) -> "Budget":
+    def start(self) -> Budget:
         """Arm the deadline in this process (until `finish`)."""
         self._timer = threading.Timer(max(0.0, self.deadline - _time.monotonic()), self._expire)
         self._timer.daemon = True
@@ -106,7 +110,6 @@ class Cancelled(Exception):
     """A tile stopped because its frame was cancelled (the frame's own error is raised)."""
 
 
-
 class State:
     """What one tile's invocation carries: `lanes`, `width` (tile width, for derivatives),
     `frag_coord` (vec2 lanes), `frag_coord4` (gl_FragCoord), `discard` (mask), uniforms
@@ -117,7 +120,9 @@ class State:
     budget: Budget | None = None
     compaction = Compaction()
 
-    passes = None  # [passes left] of llvmpipe's loop limiter when emulated (LaneHelpers.tick), else None
+    passes = (
+        None  # [passes left] of llvmpipe's loop limiter when emulated (LaneHelpers.tick), else None
+    )
 
     def __init__(self, **values: Any) -> None:
         self.__dict__.update(values)
@@ -250,7 +255,11 @@ class LaneHelpers:
         st = S.stats
         if st is None:
             return
-        n = S.lanes if m is None else (int(np.count_nonzero(m)) if m.shape[-1] != 1 else (S.lanes if m[0] else 0))
+        n = (
+            S.lanes
+            if m is None
+            else (int(np.count_nonzero(m)) if m.shape[-1] != 1 else (S.lanes if m[0] else 0))
+        )
         st[rid] = st.get(rid, 0) + n
 
     def tick(self, S, lid: int, n: int) -> bool:
@@ -279,20 +288,36 @@ class LaneHelpers:
             raise Cancelled()
         kind, function, path, line = self.meta.get("regions", {}).get(rid, ("", "", "<shader>", 0))
         _, _, col = self.loops.get(rid, (path, line, 1))
-        where = "this loop" if kind == "loop" else f"this {kind}" if kind in ("if", "else", "case") else f"'{function}'"
-        raise GlslError(Diagnostic(
-            f"the frame was still rendering after {budget.seconds:g} s on the CPU, in {where}; the NumPy "
-            "renderer stops it (a GPU would hang or reset)", Location(path, line, col), rule="numpy-frame-budget",
-            help="bound the loops' iteration counts (nested loops multiply) and the arrays' sizes; "
-                 "--frame-budget SECONDS (or GLSLCHECK_FRAME_SECONDS) sets the budget"))
+        where = (
+            "this loop"
+            if kind == "loop"
+            else f"this {kind}"
+            if kind in ("if", "else", "case")
+            else f"'{function}'"
+        )
+        raise GlslError(
+            Diagnostic(
+                f"the frame was still rendering after {budget.seconds:g} s on the CPU, in {where}; the NumPy "
+                "renderer stops it (a GPU would hang or reset)",
+                Location(path, line, col),
+                rule="numpy-frame-budget",
+                help="bound the loops' iteration counts (nested loops multiply) and the arrays' sizes; "
+                "--frame-budget SECONDS (or GLSLCHECK_FRAME_SECONDS) sets the budget",
+            )
+        )
 
     def runaway(self, lid: int) -> None:
         path, line, col = self.loops.get(lid, ("<shader>", 0, 0))
         cap = self.meta.get("loop_cap", 0)
-        raise GlslError(Diagnostic(
-            f"this loop did not end after {cap:,} iterations; the NumPy renderer stops it (a GPU would "
-            "hang or reset)", Location(path, line, col), rule="numpy-runaway-loop",
-            help="check the loop's condition and step; give it a constant upper bound"))
+        raise GlslError(
+            Diagnostic(
+                f"this loop did not end after {cap:,} iterations; the NumPy renderer stops it (a GPU would "
+                "hang or reset)",
+                Location(path, line, col),
+                rule="numpy-runaway-loop",
+                help="check the loop's condition and step; give it a constant upper bound",
+            )
+        )
 
     # compaction -------------------------------------------------------------------------------
     @staticmethod
@@ -326,7 +351,9 @@ class LaneHelpers:
         if new is old:
             return old
         if isinstance(new, Struct):
-            return Struct(new.type_name, {k: LaneHelpers._put(old[k], new[k], idx, lanes) for k in new.fields})
+            return Struct(
+                new.type_name, {k: LaneHelpers._put(old[k], new[k], idx, lanes) for k in new.fields}
+            )
         if new is None:  # a mask meaning "every lane of the compacted set"
             new = np.ones(len(idx), dtype=np.bool_)
         if not isinstance(new, np.ndarray):
@@ -366,7 +393,9 @@ class LaneHelpers:
         child.lanes = len(idx)
         child.idx = idx
         child.lazy = lazy
-        child.gathered = {k: fields[k] for k in fields if k.startswith("g_") or k in self._LANE_FIELDS}
+        child.gathered = {
+            k: fields[k] for k in fields if k.startswith("g_") or k in self._LANE_FIELDS
+        }
         gathered = tuple(self._take(v, idx, lanes) for v in values)
         return child, _Gathered(gathered, values)
 
@@ -383,8 +412,10 @@ class LaneHelpers:
                     setattr(parent, k, self._put(getattr(parent, k), v, idx, lanes))
                 else:
                     setattr(parent, k, v)
-        out = tuple(self._put(o, v, idx, lanes) if v is not g else o
-                    for o, g, v in zip(rec.originals, rec.values, values))
+        out = tuple(
+            self._put(o, v, idx, lanes) if v is not g else o
+            for o, g, v in zip(rec.originals, rec.values, values)
+        )
         return parent, out
 
     def push(self, stack: list, S, m, values: tuple):
@@ -405,7 +436,9 @@ class LaneHelpers:
 # ---------------------------------------------------------------------------------------------
 
 
-def execute_module(source: str, filename: str, meta: dict, precision: str = "float32", code: Any = None) -> dict:
+def execute_module(
+    source: str, filename: str, meta: dict, precision: str = "float32", code: Any = None
+) -> dict:
     """Run generated code in a namespace that holds nothing but the runtime and the helpers.
 
     The source is registered in `linecache` under `filename`, so tracebacks and debuggers show
@@ -416,7 +449,9 @@ def execute_module(source: str, filename: str, meta: dict, precision: str = "flo
     ns: dict[str, Any] = {"__builtins__": {}, "__name__": "glslcheck_shader", "rt": None, "X": None}
     ns["rt"] = rt = Runtime(precision, meta.get("float_to_uint"))
     rt.fold_constants = True  # Mesa's folding of constants (Runtime.fmul); uniforms are read-only
-    rt.lp = MemoMath(rt.lp) if rt.lp is not None else None  # uniform inputs: computed once (lane_memo.py)
+    rt.lp = (
+        MemoMath(rt.lp) if rt.lp is not None else None
+    )  # uniform inputs: computed once (lane_memo.py)
     ns["X"] = LaneHelpers(meta, rt)
     with np.errstate(all="ignore"):  # constants may overflow in float16, as on a mediump GPU
         exec(code, ns)  # noqa: S102 - generated from a checked AST; every GLSL name is mangled
@@ -441,7 +476,9 @@ class FrameSpec:
     compaction: Compaction = Compaction()  # the program's setting, the same in every worker
 
 
-def frame_tiles(width: int, height: int, lanes: int | None = None) -> tuple[tuple[int, int, int, int], ...]:
+def frame_tiles(
+    width: int, height: int, lanes: int | None = None
+) -> tuple[tuple[int, int, int, int], ...]:
     """(x0, y0, w, h) of each tile, y0 from the bottom; tiles start at even x and y, so 2x2
     derivative quads never straddle two tiles. `lanes`: at most this many per tile (memory)."""
     tile_lanes = TILE_LANES if lanes is None else max(MIN_TILE_LANES, min(TILE_LANES, lanes))
@@ -449,13 +486,17 @@ def frame_tiles(width: int, height: int, lanes: int | None = None) -> tuple[tupl
 
 
 @functools.lru_cache(maxsize=64)
-def _frame_tiles(width: int, height: int, tile_width: int, tile_height: int | None,
-                 tile_lanes: int) -> tuple[tuple[int, int, int, int], ...]:
+def _frame_tiles(
+    width: int, height: int, tile_width: int, tile_height: int | None, tile_lanes: int
+) -> tuple[tuple[int, int, int, int], ...]:
     tw = min(tile_width, width, max(2, tile_lanes // 4 * 2))  # narrower than a 2-row band of lanes
     tw += tw % 2 if tw < width else 0
     th = tile_height or max(2, (tile_lanes // tw) // 2 * 2)
-    return tuple((x0, y0, min(tw, width - x0), min(th, height - y0))  # a tuple: the cache shares it
-                 for y0 in range(0, height, th) for x0 in range(0, width, tw))
+    return tuple(
+        (x0, y0, min(tw, width - x0), min(th, height - y0))  # a tuple: the cache shares it
+        for y0 in range(0, height, th)
+        for x0 in range(0, width, tw)
+    )
 
 
 # Fragment coordinates of tiles already rendered, read-only, by (tile, dtype, sample offset,
@@ -477,7 +518,10 @@ def _fragments(rt, tile, dx: float, dy: float, need4: bool):
     lanes = tw * th
     grid = _GRIDS.get((tw, th))
     if grid is None:
-        grid = _GRIDS[(tw, th)] = (np.tile(np.arange(tw) + 0.5, th), np.repeat(np.arange(th) + 0.5, tw))
+        grid = _GRIDS[(tw, th)] = (
+            np.tile(np.arange(tw) + 0.5, th),
+            np.repeat(np.arange(th) + 0.5, tw),
+        )
     gx, gy = grid
     frag = np.empty((2, lanes), dtype=rt.F)
     np.add(gx, x0, out=frag[0], casting="unsafe")  # one rounding of x + 0.5 to F
@@ -500,8 +544,14 @@ def _fragments(rt, tile, dx: float, dy: float, need4: bool):
     return got
 
 
-def render_tile(ns: dict, spec: FrameSpec, tile: tuple[int, int, int, int], image: np.ndarray,
-                cached: np.ndarray | None = None, budget: Budget | None = None) -> dict | None:
+def render_tile(
+    ns: dict,
+    spec: FrameSpec,
+    tile: tuple[int, int, int, int],
+    image: np.ndarray,
+    cached: np.ndarray | None = None,
+    budget: Budget | None = None,
+) -> dict | None:
     """Run the shader on one tile and write its rows into `image` (and `cached`); returns the
     tile's lane counts per region when `spec.stats`, else None. `budget`: the frame's."""
     rt = ns["rt"]
@@ -516,11 +566,26 @@ def render_tile(ns: dict, spec: FrameSpec, tile: tuple[int, int, int, int], imag
     acc = None
     st: dict | None = {} if spec.stats else None
     for dx, dy in spec.offsets:
-        frag, frag4 = _fragments(rt, tile if (ew, eh) == (tw, th) else (x0, y0, ew, eh),
-                                 dx if samples > 1 else 0.0, dy if samples > 1 else 0.0, spec.need4)
+        frag, frag4 = _fragments(
+            rt,
+            tile if (ew, eh) == (tw, th) else (x0, y0, ew, eh),
+            dx if samples > 1 else 0.0,
+            dy if samples > 1 else 0.0,
+            spec.need4,
+        )
         limit = spec.base.get("loop_limit")
-        S = State(**spec.base, lanes=lanes, width=ew, frag_coord=frag, discard=LaneHelpers.NO, stats=st,
-                  parent=None, budget=budget, passes=None if limit is None else [limit], compaction=spec.compaction)
+        S = State(
+            **spec.base,
+            lanes=lanes,
+            width=ew,
+            frag_coord=frag,
+            discard=LaneHelpers.NO,
+            stats=st,
+            parent=None,
+            budget=budget,
+            passes=None if limit is None else [limit],
+            compaction=spec.compaction,
+        )
         if spec.need4:
             S.frag_coord4 = frag4
         with rt.errstate():
@@ -530,7 +595,9 @@ def render_tile(ns: dict, spec: FrameSpec, tile: tuple[int, int, int, int], imag
                 raise _too_deep(ns, e) from None
             if S.discard is not LaneHelpers.NO or samples > 1:
                 if len(color) == 3:
-                    color = np.concatenate([np.broadcast_to(color, (3, lanes)), np.ones((1, lanes), color.dtype)])
+                    color = np.concatenate(
+                        [np.broadcast_to(color, (3, lanes)), np.ones((1, lanes), color.dtype)]
+                    )
                 color = np.broadcast_to(color, (4, lanes))
                 if S.discard is not LaneHelpers.NO:
                     color = np.where(np.broadcast_to(S.discard, (lanes,)), 0.0, color)
@@ -546,15 +613,15 @@ def render_tile(ns: dict, spec: FrameSpec, tile: tuple[int, int, int, int], imag
         # the same colour in every pixel (a background tile): whole rows of it, one pass; the
         # reshape is a view, since the 4 channels of a row's pixels are contiguous
         pixel = np.append(acc[:, 0], [1.0]) if len(acc) == 3 else acc[:, 0]
-        image[rows, x0:x0 + tw].reshape(th, tw * 4)[...] = np.tile(pixel.astype(np.float32), tw)
+        image[rows, x0 : x0 + tw].reshape(th, tw * 4)[...] = np.tile(pixel.astype(np.float32), tw)
     else:
-        dst = image[rows, x0:x0 + tw][::-1]
+        dst = image[rows, x0 : x0 + tw][::-1]
         for c in range(len(acc)):  # one channel at a time: 2.5x faster than one transposed copy
             dst[..., c] = acc[c].reshape(eh, ew)[:th, :tw]
         if len(acc) == 3:
             dst[..., 3] = 1.0
     if cached is not None:
-        cached[rows, x0:x0 + tw] = image[rows, x0:x0 + tw]
+        cached[rows, x0 : x0 + tw] = image[rows, x0 : x0 + tw]
     return st
 
 

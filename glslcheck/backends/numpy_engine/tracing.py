@@ -41,19 +41,50 @@ from typing import Any
 
 import numpy as np
 
-from ...frontend import syntax as A
 from ...base.diagnostics import source_line
+from ...frontend import syntax as A
 from ...frontend.printer import to_glsl
 from .runtime_values import Struct
 from .transpile import Transpiler
 
-MAX_STEPS = 200_000  # steps PixelTracer records; later steps only count (a runaway shader stays bounded)
+MAX_STEPS = (
+    200_000  # steps PixelTracer records; later steps only count (a runaway shader stays bounded)
+)
 
 # built-ins that never turn finite arguments into NaN or Inf: not wrapped
-_SAFE_BUILTINS = {"abs", "sign", "floor", "ceil", "trunc", "round", "roundEven", "min", "max", "clamp",
-                  "step", "radians", "degrees", "lessThan", "lessThanEqual", "greaterThan",
-                  "greaterThanEqual", "equal", "notEqual", "any", "all", "not", "transpose",
-                  "floatBitsToInt", "floatBitsToUint", "isnan", "isinf", "sin", "cos", "tanh", "atan"}
+_SAFE_BUILTINS = {
+    "abs",
+    "sign",
+    "floor",
+    "ceil",
+    "trunc",
+    "round",
+    "roundEven",
+    "min",
+    "max",
+    "clamp",
+    "step",
+    "radians",
+    "degrees",
+    "lessThan",
+    "lessThanEqual",
+    "greaterThan",
+    "greaterThanEqual",
+    "equal",
+    "notEqual",
+    "any",
+    "all",
+    "not",
+    "transpose",
+    "floatBitsToInt",
+    "floatBitsToUint",
+    "isnan",
+    "isinf",
+    "sin",
+    "cos",
+    "tanh",
+    "atan",
+}
 _PY_OPERATORS = {"+": "add", "-": "sub", "*": "mul", "/": "truediv"}
 _CALL_PREFIX = re.compile(r"^rt\.(\w+)\(")
 
@@ -88,13 +119,17 @@ class TraceTranspiler(Transpiler):
         self._site_ids: dict[tuple, int] = {}
         self.watched: dict[int, tuple[str, Any, str]] = {}  # id(expr) -> (hook, statement, name)
         self._stmt: Any = None  # the statement being emitted (for writes)
-        self._ops: list[tuple[Any, str | None]] = []  # (expression, mask) of the operators being printed
+        self._ops: list[
+            tuple[Any, str | None]
+        ] = []  # (expression, mask) of the operators being printed
         self._loop_bodies: dict[int, int] = {}  # id(loop body) -> loop site
         self._glsl: dict[str, str] = {}  # Python name -> GLSL name
         self._loop_steps: set[int] = set()  # id() of for-loop steps
 
     # -- sites -------------------------------------------------------------------------------------
-    def site(self, kind: str, node: Any, name: str = "", expr: Any = None, params: tuple = ()) -> int:
+    def site(
+        self, kind: str, node: Any, name: str = "", expr: Any = None, params: tuple = ()
+    ) -> int:
         key = (kind, id(node), name)
         sid = self._site_ids.get(key)
         if sid is None:
@@ -102,8 +137,20 @@ class TraceTranspiler(Transpiler):
             code = (source_line(loc.path, loc.line) or "").strip()
             text = to_glsl(expr) if expr is not None else ""
             fname = self.fn.sym.name if self.fn is not None else ""
-            self.sites.append(Site(kind, loc.path, loc.line, loc.column, code, name, text, fname, params,
-                                   id(node) in self._loop_steps))
+            self.sites.append(
+                Site(
+                    kind,
+                    loc.path,
+                    loc.line,
+                    loc.column,
+                    code,
+                    name,
+                    text,
+                    fname,
+                    params,
+                    id(node) in self._loop_steps,
+                )
+            )
             sid = self._site_ids[key] = len(self.sites) - 1
         return sid
 
@@ -151,7 +198,9 @@ class TraceTranspiler(Transpiler):
         for dec in d.declarators:
             sym = self.model.symbol_of(dec)
             if sym is not None and dec.init is not None:
-                self.emit(f"T.a(S, {self.site('assign', dec, sym.name)}, {mask}, {self.var_name(sym, dec)})")
+                self.emit(
+                    f"T.a(S, {self.site('assign', dec, sym.name)}, {mask}, {self.var_name(sym, dec)})"
+                )
 
     def write(self, lv: Any, value: str, mask: str | None) -> None:
         super().write(lv, value, mask)
@@ -164,7 +213,9 @@ class TraceTranspiler(Transpiler):
 
     def _stmt_Break(self, s: A.Break, mask: str | None) -> None:
         super()._stmt_Break(s, mask)
-        self._event(s, "branch", "break" if self.fn.loops[-1].kind == "loop" else "break (switch)", mask)
+        self._event(
+            s, "branch", "break" if self.fn.loops[-1].kind == "loop" else "break (switch)", mask
+        )
 
     def _stmt_Continue(self, s: A.Continue, mask: str | None) -> None:
         super()._stmt_Continue(s, mask)
@@ -174,7 +225,9 @@ class TraceTranspiler(Transpiler):
         self._event(s, "discard", "discard", mask)
         super()._stmt_Discard(s, mask)
 
-    def loop(self, s: Any, mask: str | None, cond: Any, body: Any, step: Any, do_while: bool) -> None:
+    def loop(
+        self, s: Any, mask: str | None, cond: Any, body: Any, step: Any, do_while: bool
+    ) -> None:
         name = {"For": "for", "While": "while", "DoWhile": "do"}.get(type(s).__name__, "loop")
         sid = self.site("loop", s, name)
         self._loop_bodies[id(body)] = sid
@@ -190,7 +243,9 @@ class TraceTranspiler(Transpiler):
             self.emit(f"T.li(S, {sid}, {mask})")
         super().sub(s, mask)
 
-    def call_text(self, e: A.Call, fn: Any, call_mask: str | None, args: list[str], mask: str | None) -> str:
+    def call_text(
+        self, e: A.Call, fn: Any, call_mask: str | None, args: list[str], mask: str | None
+    ) -> str:
         text = super().call_text(e, fn, call_mask, args, mask)
         if not self._traced():
             return text
@@ -214,14 +269,19 @@ class TraceTranspiler(Transpiler):
 
     def binary_values(self, op: str, lt: Any, rtp: Any, left: str, right: str) -> str:
         text = super().binary_values(op, lt, rtp, left, right)
-        if op not in _PY_OPERATORS or "float" not in (lt.base, rtp.base) or not self._ops or not self._traced():
+        if (
+            op not in _PY_OPERATORS
+            or "float" not in (lt.base, rtp.base)
+            or not self._ops
+            or not self._traced()
+        ):
             return text
         node, mask = self._ops[-1]
         shape = super().binary_values(op, lt, rtp, "A", "B")
         if shape == f"(A {op} B)":
             fn = f"T.{_PY_OPERATORS[op]}"
         elif shape.startswith("rt.") and shape.endswith("(A, B)"):
-            fn = shape[:-len("(A, B)")]
+            fn = shape[: -len("(A, B)")]
         else:
             return text
         sid = self.site("op", node, op, node)
@@ -230,11 +290,16 @@ class TraceTranspiler(Transpiler):
     def builtin_call(self, e: A.Call, ov: Any, mask: str | None) -> str:
         text = super().builtin_call(e, ov, mask)
         m = _CALL_PREFIX.match(text)
-        if (m is None or not text.endswith(")") or ov.name in _SAFE_BUILTINS or not self._traced()
-                or self.type_of(e).base != "float"):
+        if (
+            m is None
+            or not text.endswith(")")
+            or ov.name in _SAFE_BUILTINS
+            or not self._traced()
+            or self.type_of(e).base != "float"
+        ):
             return text
         sid = self.site("op", e, ov.name, e)
-        return f"T.o(S, {sid}, {mask}, rt.{m.group(1)}, {text[m.end():]}"
+        return f"T.o(S, {sid}, {mask}, rt.{m.group(1)}, {text[m.end() :]}"
 
 
 # ---------------------------------------------------------------------------------------------
@@ -244,31 +309,35 @@ class TraceTranspiler(Transpiler):
 # Operations that make a first NaN or Inf, and what to do about each (the --nan help line).
 HELP = {
     "0/0": "both sides of the division are zero here: guard the denominator (max(d, 1e-6)) or "
-           "handle the degenerate case first",
+    "handle the degenerate case first",
     "division by zero": "the denominator is zero here: guard it (max(d, 1e-6)) or test it before dividing",
     "sqrt of a negative": "the argument is negative here (rounding can push a difference of squares "
-                          "below zero): use sqrt(max(x, 0.0))",
+    "below zero): use sqrt(max(x, 0.0))",
     "log of a negative": "the argument is negative here: clamp it above zero (max(x, 1e-6))",
     "log of zero": "the argument is zero here (the result is -inf): clamp it above zero (max(x, 1e-6))",
     "normalize of a zero vector": "the vector is zero here (the light sits on the surface point, or "
-                                  "two points coincide): guard the zero vector, e.g. test "
-                                  "dot(v, v) > 0.0 before normalizing",
+    "two points coincide): guard the zero vector, e.g. test "
+    "dot(v, v) > 0.0 before normalizing",
     "inversesqrt(0)": "the argument is zero here: add a small epsilon or test it first",
     "inversesqrt of a negative": "the argument is negative here: use inversesqrt(max(x, 1e-12))",
     "pow of a negative base": "pow(x, y) is undefined for x < 0 (GPUs give NaN): use pow(max(x, 0.0), y), "
-                              "or pow(abs(x), y) with the sign put back",
+    "or pow(abs(x), y) with the sign put back",
     "asin or acos outside [-1, 1]": "clamp the argument to [-1, 1] (rounding can push a dot product "
-                                    "of unit vectors past 1)",
+    "of unit vectors past 1)",
     "mod by zero": "the divisor is zero here: guard it",
     "overflow": "the value exceeds the float32 range (3.4e38): scale the computation down or clamp its inputs",
     "an Inf or NaN operand": "an operand was already Inf or NaN (a constant or an input): check where it comes from",
     "a non-finite value": "the value was Inf or NaN without an operation that made it (a constant out of "
-                          "range?): check the constant",
+    "range?): check the constant",
 }
 OPERATIONS = list(HELP)
 _CODE = {name: i for i, name in enumerate(OPERATIONS)}
-_NAME_OPS = {"sqrt": "sqrt of a negative", "asin": "asin or acos outside [-1, 1]",
-             "acos": "asin or acos outside [-1, 1]", "normalize": "normalize of a zero vector"}
+_NAME_OPS = {
+    "sqrt": "sqrt of a negative",
+    "asin": "asin or acos outside [-1, 1]",
+    "acos": "asin or acos outside [-1, 1]",
+    "normalize": "normalize of a zero vector",
+}
 
 
 def _lanes_any(x: np.ndarray, lanes: int) -> np.ndarray:
@@ -295,7 +364,11 @@ def _bad(v: Any, lanes: int) -> np.ndarray | None:
             if b is not None:
                 out = b if out is None else out | b
         return out
-    if not isinstance(v, np.ndarray) or v.dtype.kind != "f" or math.isfinite(np.add.reduce(v, axis=None)):
+    if (
+        not isinstance(v, np.ndarray)
+        or v.dtype.kind != "f"
+        or math.isfinite(np.add.reduce(v, axis=None))
+    ):
         return None
     fin = np.isfinite(v)
     if fin.all():
@@ -510,7 +583,9 @@ class PixelTracer(LaneTracer):
     def on(self, S: Any, mask: Any) -> int | None:
         """The probed lane's index in S when it is active here, else None."""
         ids = self.ids(S)
-        pos = self.lane if S.__dict__.get("parent") is None else int(np.searchsorted(ids, self.lane))
+        pos = (
+            self.lane if S.__dict__.get("parent") is None else int(np.searchsorted(ids, self.lane))
+        )
         if pos >= len(ids) or ids[pos] != self.lane:
             return None
         if self.active is not None and not self.active[self.lane]:
@@ -528,7 +603,9 @@ class PixelTracer(LaneTracer):
     def _step(self, S: Any, site: int, mask: Any, value: Any) -> None:
         i = self.on(S, mask)
         if i is not None:
-            self._record(Record(site, self.depth, lane_value(value, i) if value is not None else None))
+            self._record(
+                Record(site, self.depth, lane_value(value, i) if value is not None else None)
+            )
 
     def _leave(self, site: int, depth: int) -> None:
         """The lane left its innermost loop (break), its call's loops (return) or every loop

@@ -61,7 +61,10 @@ WORKER_MODULES = 8  # compiled programs a worker keeps
 # in a new worker than in a process that had already grown its heap. The worker keeps up to
 # 128 MB of freed memory instead (glibc; other allocators ignore these variables).
 MMAP_THRESHOLD, TRIM_THRESHOLD = 32 * 2**20, 128 * 2**20
-MALLOC_ENV = {"MALLOC_MMAP_THRESHOLD_": str(MMAP_THRESHOLD), "MALLOC_TRIM_THRESHOLD_": str(TRIM_THRESHOLD)}
+MALLOC_ENV = {
+    "MALLOC_MMAP_THRESHOLD_": str(MMAP_THRESHOLD),
+    "MALLOC_TRIM_THRESHOLD_": str(TRIM_THRESHOLD),
+}
 M_TRIM_THRESHOLD, M_MMAP_THRESHOLD = -1, -3  # mallopt parameters (malloc.h)
 
 
@@ -74,7 +77,9 @@ def tune_malloc() -> bool:
         import ctypes
 
         libc = ctypes.CDLL("libc.so.6")
-        return bool(libc.mallopt(M_MMAP_THRESHOLD, MMAP_THRESHOLD)) and bool(libc.mallopt(M_TRIM_THRESHOLD, TRIM_THRESHOLD))
+        return bool(libc.mallopt(M_MMAP_THRESHOLD, MMAP_THRESHOLD)) and bool(
+            libc.mallopt(M_TRIM_THRESHOLD, TRIM_THRESHOLD)
+        )
     except (OSError, AttributeError):  # not glibc
         return False
 
@@ -92,17 +97,25 @@ def available() -> bool:
 
 
 _DISABLED: str | None = None  # why the pool was given up for this process, if it was
-_POOL: "_Pool | None" = None
+_POOL: _Pool | None = None
 _POOL_LOCK = threading.Lock()
 
 
 def program_key(source: str, meta: dict, precision: str) -> str:
-    return hashlib.sha1(f"{precision}\0{meta!r}\0{source}".encode("utf-8")).hexdigest()
+    return hashlib.sha1(f"{precision}\0{meta!r}\0{source}".encode()).hexdigest()
 
 
-def render(key: str, source: str, filename: str, meta: dict, precision: str, spec: Any,
-           tiles: list[tuple[int, int, int, int]], workers: int,
-           budget: Any = None) -> tuple[np.ndarray, np.ndarray, list[dict], dict]:
+def render(
+    key: str,
+    source: str,
+    filename: str,
+    meta: dict,
+    precision: str,
+    spec: Any,
+    tiles: list[tuple[int, int, int, int]],
+    workers: int,
+    budget: Any = None,
+) -> tuple[np.ndarray, np.ndarray, list[dict], dict]:
     """Render `tiles` of the frame `spec` with `workers` processes, in that order: (the caller's
     image, a read-only view of the same pixels for the frame cache (see `_FrameFile`), per-tile
     stats, {tile: seconds it took}). `budget`: the frame's `frame.Budget` (its deadline)."""
@@ -116,8 +129,9 @@ def render(key: str, source: str, filename: str, meta: dict, precision: str, spe
                     _POOL.close()
                     _POOL = None
                 _POOL = _Pool(workers)
-            image, shared, stats, seconds, errors = _POOL.render(key, source, filename, meta, precision, spec, tiles,
-                                                                 budget)
+            image, shared, stats, seconds, errors = _POOL.render(
+                key, source, filename, meta, precision, spec, tiles, budget
+            )
         except Unavailable as e:
             _give_up(str(e))
             raise
@@ -165,16 +179,28 @@ class _Worker:
         lifeline, self.lifeline = os.pipe()  # neither end is inherited by other children
         env = dict(os.environ)
         # the worker imports the same glslcheck as this process (a source tree, a worktree, ...)
-        root = os.path.dirname(os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__)))))
+        root = os.path.dirname(
+            os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+        )
         env["PYTHONPATH"] = root + (os.pathsep + env["PYTHONPATH"] if env.get("PYTHONPATH") else "")
         env.update(MALLOC_ENV)
         try:
             self.proc = subprocess.Popen(
-                [sys.executable, "-m", "glslcheck.backends.numpy_engine.workers", str(theirs.fileno()), str(lifeline)],
-                pass_fds=(theirs.fileno(), lifeline), env=env, stdin=subprocess.DEVNULL, close_fds=True,
+                [
+                    sys.executable,
+                    "-m",
+                    "glslcheck.backends.numpy_engine.workers",
+                    str(theirs.fileno()),
+                    str(lifeline),
+                ],
+                pass_fds=(theirs.fileno(), lifeline),
+                env=env,
+                stdin=subprocess.DEVNULL,
+                close_fds=True,
                 cwd=root,  # `-m` puts the working directory first on sys.path: another checkout there would win
                 stderr=subprocess.DEVNULL,  # a worker that fails is reported as Unavailable, no traceback
-                start_new_session=True)  # Ctrl-C reaches the caller, which ends the workers
+                start_new_session=True,
+            )  # Ctrl-C reaches the caller, which ends the workers
         except BaseException:
             os.close(self.lifeline)
             raise
@@ -307,7 +333,7 @@ class _Pool:
         else:
             free.remove(file)
         held = [f for f in self.files if f not in free and f is not file]
-        for f in free[self.SPARE_FILES:] + held[:-self.KEPT_FILES]:  # oldest first
+        for f in free[self.SPARE_FILES :] + held[: -self.KEPT_FILES]:  # oldest first
             f.close()
             self.files.remove(f)
             self.retired.append(f.number)
@@ -320,8 +346,23 @@ class _Pool:
         try:
             for w in self.workers:  # the source too (tens of kB): a worker may have dropped it
                 new_file = file.number not in w.files
-                w.conn.send((key, source, filename, meta, precision, spec, tiles, file.shape,
-                             file.number, new_file, retired, budget, jit.decided()))
+                w.conn.send(
+                    (
+                        key,
+                        source,
+                        filename,
+                        meta,
+                        precision,
+                        spec,
+                        tiles,
+                        file.shape,
+                        file.number,
+                        new_file,
+                        retired,
+                        budget,
+                        jit.decided(),
+                    )
+                )
                 w.files.difference_update(retired)
                 if new_file:
                     reduction.send_handle(w.conn, file.fd, w.proc.pid)
@@ -374,7 +415,21 @@ def _serve(conn: Connection) -> None:
             return
         if msg is None:
             return
-        key, source, filename, meta, precision, spec, tiles, shape, number, new_file, retired, budget, kernels = msg
+        (
+            key,
+            source,
+            filename,
+            meta,
+            precision,
+            spec,
+            tiles,
+            shape,
+            number,
+            new_file,
+            retired,
+            budget,
+            kernels,
+        ) = msg
         if kernels and jit.mode() != "off":  # the parent's rule chose the compiled math kernels
             jit.load()
         for n in retired:  # files the caller has closed
@@ -389,8 +444,22 @@ def _serve(conn: Connection) -> None:
         stats: list[dict] = []
         seconds: dict = {}  # tile -> seconds it took here (the caller orders the next frame's tiles)
         try:
-            _render_frame(fd, mm, modules, key, source, filename, meta, precision, spec, tiles,
-                          shape, stats, seconds, budget)
+            _render_frame(
+                fd,
+                mm,
+                modules,
+                key,
+                source,
+                filename,
+                meta,
+                precision,
+                spec,
+                tiles,
+                shape,
+                stats,
+                seconds,
+                budget,
+            )
             error = None
         except BaseException as e:  # noqa: BLE001 - reported to the caller, which raises it
             _take_tile(fd, mm, stop=len(tiles))  # the other workers stop too
@@ -412,8 +481,22 @@ def _take_tile(fd: int, mm: mmap.mmap, stop: int | None = None) -> int:
         fcntl.lockf(fd, fcntl.LOCK_UN, HEADER, 0)
 
 
-def _render_frame(fd, mm, modules, key, source, filename, meta, precision, spec, tiles, shape,
-                  stats, seconds, budget=None):
+def _render_frame(
+    fd,
+    mm,
+    modules,
+    key,
+    source,
+    filename,
+    meta,
+    precision,
+    spec,
+    tiles,
+    shape,
+    stats,
+    seconds,
+    budget=None,
+):
     ns = modules.get(key)
     if ns is None:
         ns = modules[key] = execute_module(source, filename, meta, precision)

@@ -15,8 +15,21 @@ Library API (`render --backend webgl`, `verify --against webgl`, `check --webgl`
     close_browser()                          # also at exit
 """
 
-from .browser import Browser, WebGLUnavailable, browser_started, chromium_path, close_browser, get_browser
-from .program import WebGLProgram, angle_diagnostics, compile_webgl, render_shader, webgl_diagnostics
+from .browser import (
+    Browser,
+    WebGLUnavailable,
+    browser_started,
+    chromium_path,
+    close_browser,
+    get_browser,
+)
+from .program import (
+    WebGLProgram,
+    angle_diagnostics,
+    compile_webgl,
+    render_shader,
+    webgl_diagnostics,
+)
 
 __all__ = [
     "Browser",

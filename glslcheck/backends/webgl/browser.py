@@ -38,8 +38,10 @@ from pathlib import Path
 from ...base import config
 from ...base.diagnostics import InputError
 
-ADVICE = ("install Chromium and Playwright's Python package (sudo apt-get install chromium; "
-          "pip install 'glslcheck[webgl]'; `playwright install` is not needed)")
+ADVICE = (
+    "install Chromium and Playwright's Python package (sudo apt-get install chromium; "
+    "pip install 'glslcheck[webgl]'; `playwright install` is not needed)"
+)
 CHROMIUM_NAMES = ("chromium", "chromium-browser")
 # Set GLSLCHECK_CHROMIUM to use another Chromium build.
 ENV_EXECUTABLE = "GLSLCHECK_CHROMIUM"
@@ -56,7 +58,7 @@ ENV_TIMEOUT = "GLSLCHECK_WEBGL_TIMEOUT"
 # Launching takes 1-4 s on an idle machine; a loaded shared one may need far more.
 LAUNCH_TIMEOUT_MS = 120_000
 
-_browser: "Browser | None" = None
+_browser: Browser | None = None
 
 
 class WebGLUnavailable(InputError):
@@ -113,8 +115,10 @@ def launch_failure(executable: str, error: str) -> str:
     except (ImportError, OSError, ValueError):  # not POSIX
         soft = -1
     if soft >= 0 and soft != getattr(resource, "RLIM_INFINITY", -1):
-        message += (f"; this process runs under an address-space limit (ulimit -v {soft // 1024}), which "
-                    "Chromium cannot start under: it reserves far more address space than it uses")
+        message += (
+            f"; this process runs under an address-space limit (ulimit -v {soft // 1024}), which "
+            "Chromium cannot start under: it reserves far more address space than it uses"
+        )
     return message
 
 
@@ -126,15 +130,19 @@ class Browser:
             from playwright.sync_api import Error as PlaywrightError
             from playwright.sync_api import sync_playwright
         except ImportError as e:
-            raise WebGLUnavailable(f"error: the WebGL backend needs Playwright ({e}); {ADVICE}") from None
+            raise WebGLUnavailable(
+                f"error: the WebGL backend needs Playwright ({e}); {ADVICE}"
+            ) from None
         from playwright.sync_api import TimeoutError as PlaywrightTimeout
 
         self.Error = PlaywrightError
         self.TimeoutError = PlaywrightTimeout
         executable = chromium_path()
         if executable is None:
-            raise WebGLUnavailable(f"error: no Chromium executable found (${ENV_EXECUTABLE} or "
-                                   f"{' / '.join(CHROMIUM_NAMES)} on PATH); {ADVICE}")
+            raise WebGLUnavailable(
+                f"error: no Chromium executable found (${ENV_EXECUTABLE} or "
+                f"{' / '.join(CHROMIUM_NAMES)} on PATH); {ADVICE}"
+            )
         self.executable = executable
         self.pending_release: list[int] = []  # page programs whose WebGLProgram is gone
         start = time.perf_counter()
@@ -144,9 +152,15 @@ class Browser:
         try:
             self._playwright = sync_playwright().start()
             self._browser = self._playwright.chromium.launch(
-                executable_path=executable, headless=True, args=list(FLAGS), timeout=LAUNCH_TIMEOUT_MS)
+                executable_path=executable,
+                headless=True,
+                args=list(FLAGS),
+                timeout=LAUNCH_TIMEOUT_MS,
+            )
             self.page = self._browser.new_page()
-            self.page.evaluate(resources.files(__package__).joinpath("harness.js").read_text("utf-8"))
+            self.page.evaluate(
+                resources.files(__package__).joinpath("harness.js").read_text("utf-8")
+            )
             error = self.page.evaluate("() => window.glslcheck.error")
         except PlaywrightError as e:
             self.close()
@@ -155,7 +169,9 @@ class Browser:
             self.close()
             raise WebGLUnavailable(f"error: headless Chromium ({executable}): {error}; {ADVICE}")
         self.info = self.page.evaluate("() => window.glslcheck.info()")
-        self._roots = _browser_roots() - before  # this browser's main process (for a timeout's kill)
+        self._roots = (
+            _browser_roots() - before
+        )  # this browser's main process (for a timeout's kill)
         self.startup_seconds = time.perf_counter() - start
 
     @property
@@ -182,14 +198,18 @@ class Browser:
         try:
             self.page.wait_for_function(
                 f"(args) => {{ window.glslcheck.out = window.glslcheck.{function}(...args); return true; }}",
-                arg=list(args), timeout=timeout * 1000.0)
+                arg=list(args),
+                timeout=timeout * 1000.0,
+            )
         except self.TimeoutError:
             # A page blocked in the GPU process makes Playwright's graceful close wait 30 s: end
             # this browser's processes first (by their ids), then close what is left.
             _kill_trees(self._roots)
             self.close()
             raise WebGLTimeout(timeout) from None
-        return self.page.evaluate("() => { const out = window.glslcheck.out; window.glslcheck.out = null; return out; }")
+        return self.page.evaluate(
+            "() => { const out = window.glslcheck.out; window.glslcheck.out = null; return out; }"
+        )
 
     def new_page(self, **options):
         """Another page of this browser (e.g. to load a report); the caller closes it."""

@@ -38,11 +38,11 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from ...base.diagnostics import Diagnostic, GlslError, Location, source_line
-from ..gl.program import entry_location, driver_diagnostics, parse_driver_log
 from ...base.records import replace
 from ...shadertoy.frame_inputs import FrameInputs, frame_inputs
-from ...shadertoy.wrapper import OFFSET_UNIFORM, UNIFORMS, Program, build_program, frame_uniforms
 from ...shadertoy.sources import Shader
+from ...shadertoy.wrapper import OFFSET_UNIFORM, UNIFORMS, Program, build_program, frame_uniforms
+from ..gl.program import driver_diagnostics, entry_location, parse_driver_log
 from .browser import Browser, WebGLTimeout, get_browser
 
 RULE = "webgl-compile"
@@ -67,8 +67,17 @@ def _flatten(value) -> list[float]:
     return [value]
 
 
-def uniform_values(width: int, height: int, time: float, frame: int, mouse, date, time_delta: float,
-                   frame_rate: float, channels=None) -> list[list]:
+def uniform_values(
+    width: int,
+    height: int,
+    time: float,
+    frame: int,
+    mouse,
+    date,
+    time_delta: float,
+    frame_rate: float,
+    channels=None,
+) -> list[list]:
     """[[name, kind, values], ...] for every Shadertoy uniform, in the table's order;
     `channels` (iChannel0..3, see `WebGLProgram.render`) set iChannelResolution."""
     given = frame_uniforms(width, height, time, frame, mouse, date, time_delta, frame_rate)
@@ -89,9 +98,16 @@ def _channel_json(channel) -> dict | None:
         return None
     levels = channel.levels() if channel.filter == "mipmap" else [channel.texels]
     h, w = channel.texels.shape[:2]
-    return {"width": w, "height": h, "filter": channel.filter, "wrap": channel.wrap,
-            "levels": [base64.b64encode(np.ascontiguousarray(t, dtype="<f4").tobytes()).decode("ascii")
-                       for t in levels]}
+    return {
+        "width": w,
+        "height": h,
+        "filter": channel.filter,
+        "wrap": channel.wrap,
+        "levels": [
+            base64.b64encode(np.ascontiguousarray(t, dtype="<f4").tobytes()).decode("ascii")
+            for t in levels
+        ],
+    }
 
 
 # ANGLE quotes the token it complains about first: "'=' : cannot convert from ...".
@@ -106,7 +122,13 @@ def angle_diagnostics(program: Program, log: str, stage: str = "compile") -> lis
     """
     if not any(severity == "error" for _, _, severity, _ in parse_driver_log(log)):
         what = "does not link" if stage == "link" else "does not compile"
-        return [Diagnostic(f"WebGL 2 (ANGLE): the {program.tab} program {what}:\n{log.strip()}", None, rule=RULE)]
+        return [
+            Diagnostic(
+                f"WebGL 2 (ANGLE): the {program.tab} program {what}:\n{log.strip()}",
+                None,
+                rule=RULE,
+            )
+        ]
     out = []
     for d in driver_diagnostics(program, log):
         d = replace(d, rule=RULE, message=f"WebGL: {d.message}")
@@ -115,7 +137,9 @@ def angle_diagnostics(program: Program, log: str, stage: str = "compile") -> lis
             text = source_line(d.loc.path, d.loc.line) or ""
             if text.count(m[1]) == 1:
                 col = text.index(m[1]) + 1
-                d = replace(d, loc=Location(d.loc.path, d.loc.line, col, d.loc.line, col + len(m[1])))
+                d = replace(
+                    d, loc=Location(d.loc.path, d.loc.line, col, d.loc.line, col + len(m[1]))
+                )
         out.append(d)
     return out
 
@@ -125,17 +149,33 @@ def _compile(browser: Browser, program: Program) -> tuple[int, list[str]]:
     try:
         result = browser.call("compile", VERTEX_SHADER, program.text)
     except WebGLTimeout as e:
-        raise GlslError(Diagnostic(f"WebGL: compiling the {program.tab} program took more than {e.seconds:g} s "
-                                   "in the browser, which was ended", entry_location(program), rule=RULE)) from None
+        raise GlslError(
+            Diagnostic(
+                f"WebGL: compiling the {program.tab} program took more than {e.seconds:g} s "
+                "in the browser, which was ended",
+                entry_location(program),
+                rule=RULE,
+            )
+        ) from None
     if "id" in result:
         return result["id"], result["active"]
     if "vertexLog" in result:  # our own vertex stage: a broken browser, not the user's shader
-        raise GlslError(Diagnostic(f"WebGL 2 rejected Shadertoy's vertex shader:\n{result['vertexLog']}", None, rule=RULE))
+        raise GlslError(
+            Diagnostic(
+                f"WebGL 2 rejected Shadertoy's vertex shader:\n{result['vertexLog']}",
+                None,
+                rule=RULE,
+            )
+        )
     stage = "link" if "linkLog" in result else "compile"
-    raise GlslError(angle_diagnostics(program, result.get("compileLog") or result.get("linkLog") or "", stage))
+    raise GlslError(
+        angle_diagnostics(program, result.get("compileLog") or result.get("linkLog") or "", stage)
+    )
 
 
-def webgl_diagnostics(shader: Shader, tab: str = "Image", browser: Browser | None = None) -> list[Diagnostic]:
+def webgl_diagnostics(
+    shader: Shader, tab: str = "Image", browser: Browser | None = None
+) -> list[Diagnostic]:
     """ANGLE's errors for the program Shadertoy compiles for `tab`; [] when it compiles and links."""
     browser = browser or get_browser()
     program = build_program(shader, tab)
@@ -181,25 +221,52 @@ class WebGLProgram:
         (glslcheck.backends.multipass.MultipassProgram chains the passes frame after frame)."""
         width, height, samples = inputs.width, inputs.height, inputs.samples
         program_id = self._variant(samples > 1)
-        uniforms = uniform_values(width, height, inputs.time, inputs.frame, inputs.mouse, inputs.date,
-                                  inputs.time_delta, inputs.frame_rate, channels)
+        uniforms = uniform_values(
+            width,
+            height,
+            inputs.time,
+            inputs.frame,
+            inputs.mouse,
+            inputs.date,
+            inputs.time_delta,
+            inputs.frame_rate,
+            channels,
+        )
         js_channels = None if channels is None else [_channel_json(c) for c in channels]
         js_offsets = [list(o) if samples > 1 else None for o in inputs.offsets]
         if self.browser.closed:
-            raise GlslError(Diagnostic("WebGL: the browser this program was compiled in has ended (after a "
-                                       "timeout); compile the shader again", None, rule=RULE))
+            raise GlslError(
+                Diagnostic(
+                    "WebGL: the browser this program was compiled in has ended (after a "
+                    "timeout); compile the shader again",
+                    None,
+                    rule=RULE,
+                )
+            )
         try:
-            data = self.browser.call("render", program_id, width, height, uniforms, js_offsets, js_channels)
+            data = self.browser.call(
+                "render", program_id, width, height, uniforms, js_offsets, js_channels
+            )
         except WebGLTimeout as e:
-            raise GlslError(Diagnostic(
-                f"WebGL: the {self.program.tab} program ran for more than {e.seconds:g} s in the browser (an "
-                f"endless or very long loop?); the browser was ended", entry_location(self.program), rule=RULE,
-                help="a loop whose count depends on a uniform or a pixel may never end; bound it with a "
-                     "constant, or raise $GLSLCHECK_WEBGL_TIMEOUT for a slow shader")) from None
+            raise GlslError(
+                Diagnostic(
+                    f"WebGL: the {self.program.tab} program ran for more than {e.seconds:g} s in the browser (an "
+                    f"endless or very long loop?); the browser was ended",
+                    entry_location(self.program),
+                    rule=RULE,
+                    help="a loop whose count depends on a uniform or a pixel may never end; bound it with a "
+                    "constant, or raise $GLSLCHECK_WEBGL_TIMEOUT for a slow shader",
+                )
+            ) from None
         except self.browser.Error as e:
             first = str(e).strip().splitlines()[0] if str(e).strip() else type(e).__name__
-            raise GlslError(Diagnostic(f"WebGL: rendering the {self.program.tab} program failed: {first}",
-                                       None, rule=RULE)) from None
+            raise GlslError(
+                Diagnostic(
+                    f"WebGL: rendering the {self.program.tab} program failed: {first}",
+                    None,
+                    rule=RULE,
+                )
+            ) from None
         image = np.frombuffer(base64.b64decode(data), dtype="<f4").reshape(height, width, 4)
         return np.ascontiguousarray(image[::-1])  # GL rows go bottom-up; images top-down
 
@@ -215,7 +282,9 @@ def _forget(browser: Browser, variants: dict[bool, int]) -> None:
     browser.pending_release.extend(variants.values())
 
 
-def compile_webgl(shader: Shader, browser: Browser | None = None, *, tab: str = "Image") -> WebGLProgram:
+def compile_webgl(
+    shader: Shader, browser: Browser | None = None, *, tab: str = "Image"
+) -> WebGLProgram:
     """Compile the Image tab (or plain GLSL file, or a buffer `tab`) of `shader` with WebGL 2.
 
     GlslError with diagnostics in the user's files when ANGLE rejects it; WebGLUnavailable (an
@@ -224,7 +293,9 @@ def compile_webgl(shader: Shader, browser: Browser | None = None, *, tab: str = 
     browser = browser or get_browser()
     program = build_program(shader, tab)
     program_id, active = _compile(browser, program)
-    webgl = WebGLProgram(shader, program, browser, active_uniforms=[n for n in active if not n.startswith("gl_")])
+    webgl = WebGLProgram(
+        shader, program, browser, active_uniforms=[n for n in active if not n.startswith("gl_")]
+    )
     webgl._variants[False] = program_id
     return webgl
 
@@ -238,5 +309,13 @@ def render_shader(shader: Shader, **render_args) -> np.ndarray:
         webgl.release()
 
 
-__all__ = ["OFFSET_UNIFORM", "RULE", "WebGLProgram", "angle_diagnostics", "compile_webgl", "render_shader",
-           "uniform_values", "webgl_diagnostics"]
+__all__ = [
+    "OFFSET_UNIFORM",
+    "RULE",
+    "WebGLProgram",
+    "angle_diagnostics",
+    "compile_webgl",
+    "render_shader",
+    "uniform_values",
+    "webgl_diagnostics",
+]

@@ -10,11 +10,19 @@ from __future__ import annotations
 import argparse
 import contextlib
 import os
-from typing import Callable
+from collections.abc import Callable
 
 from ...base.diagnostics import InputError
-from ...base.limits import (MAX_FRAME_SECONDS, MIN_FRAME_SECONDS, parse_date, parse_frame, parse_frame_budget,
-                            parse_mouse, parse_size, parse_time)
+from ...base.limits import (
+    MAX_FRAME_SECONDS,
+    MIN_FRAME_SECONDS,
+    parse_date,
+    parse_frame,
+    parse_frame_budget,
+    parse_mouse,
+    parse_size,
+    parse_time,
+)
 
 
 def arg(parse: Callable[[str], object]) -> Callable[[str], object]:
@@ -32,20 +40,45 @@ def arg(parse: Callable[[str], object]) -> Callable[[str], object]:
 
 def add_uniform_arguments(p: argparse.ArgumentParser) -> None:
     """The uniform options (--size --time --frame --mouse --date) of `glslcheck render` and `glslcheck probe`."""
-    p.add_argument("--size", type=arg(parse_size), default=(800, 450), metavar="WxH", help="default 800x450")
-    p.add_argument("--time", type=arg(parse_time), default=0.0, metavar="T", help="iTime in seconds (default 0)")
-    p.add_argument("--frame", type=arg(parse_frame), default=0, metavar="N", help="iFrame (default 0)")
-    p.add_argument("--mouse", type=arg(parse_mouse), default=(0.0, 0.0, 0.0, 0.0),
-                   metavar="X,Y,Z,W", help="iMouse (default 0,0,0,0)")
-    p.add_argument("--date", type=arg(parse_date), default=None, metavar="Y,M,D,S",
-                   help="iDate: year, month 0-11, day, seconds since midnight (default 2026,0,1,0)")
+    p.add_argument(
+        "--size", type=arg(parse_size), default=(800, 450), metavar="WxH", help="default 800x450"
+    )
+    p.add_argument(
+        "--time",
+        type=arg(parse_time),
+        default=0.0,
+        metavar="T",
+        help="iTime in seconds (default 0)",
+    )
+    p.add_argument(
+        "--frame", type=arg(parse_frame), default=0, metavar="N", help="iFrame (default 0)"
+    )
+    p.add_argument(
+        "--mouse",
+        type=arg(parse_mouse),
+        default=(0.0, 0.0, 0.0, 0.0),
+        metavar="X,Y,Z,W",
+        help="iMouse (default 0,0,0,0)",
+    )
+    p.add_argument(
+        "--date",
+        type=arg(parse_date),
+        default=None,
+        metavar="Y,M,D,S",
+        help="iDate: year, month 0-11, day, seconds since midnight (default 2026,0,1,0)",
+    )
 
 
 def add_frame_budget(p: argparse.ArgumentParser) -> None:
     """`--frame-budget SECONDS` on a command that renders with the NumPy backend."""
-    p.add_argument("--frame-budget", type=arg(parse_frame_budget), default=None, metavar="SECONDS",
-                   help="stop a NumPy frame still rendering after SECONDS with an error at the loop it was in "
-                        f"({MIN_FRAME_SECONDS:g} to {MAX_FRAME_SECONDS:g}; default: $GLSLCHECK_FRAME_SECONDS or 300)")
+    p.add_argument(
+        "--frame-budget",
+        type=arg(parse_frame_budget),
+        default=None,
+        metavar="SECONDS",
+        help="stop a NumPy frame still rendering after SECONDS with an error at the loop it was in "
+        f"({MIN_FRAME_SECONDS:g} to {MAX_FRAME_SECONDS:g}; default: $GLSLCHECK_FRAME_SECONDS or 300)",
+    )
 
 
 @contextlib.contextmanager
@@ -75,5 +108,7 @@ def refuse_to_overwrite_inputs(outputs, shaders, what: str) -> None:
     for output in outputs:
         path = inputs.get(os.path.realpath(output))
         if path is not None:
-            raise InputError(f"{output}: error: the {what} would overwrite {path}, which the shader is read "
-                             f"from; name another file")
+            raise InputError(
+                f"{output}: error: the {what} would overwrite {path}, which the shader is read "
+                f"from; name another file"
+            )

@@ -32,13 +32,20 @@ import argparse
 import json
 import sys
 
-from ...verification.bench import DEFAULT_RUNS, DEFAULT_SIZE, bench_shader, configurations, format_table, write_plot
 from ...backends import registry
+from ...base import limits
 from ...base.diagnostics import GlslError, format_text
 from ...base.images import check_output
 from ...shadertoy.sources import find_shaders
+from ...verification.bench import (
+    DEFAULT_RUNS,
+    DEFAULT_SIZE,
+    bench_shader,
+    configurations,
+    format_table,
+    write_plot,
+)
 from ...verification.verify import Progress
-from ...base import limits
 from . import args as cli_args
 
 
@@ -51,20 +58,49 @@ class _BenchProgress(Progress):
 def add_arguments(p) -> None:
     p.add_argument("paths", nargs="+", metavar="SHADER", help="tab files or folders of tab files")
     w, h = DEFAULT_SIZE
-    p.add_argument("--size", type=cli_args.arg(limits.parse_size), default=DEFAULT_SIZE, metavar="WxH",
-                   help=f"render size in pixels (default {w}x{h})")
-    p.add_argument("--runs", type=cli_args.arg(limits.parse_runs), default=DEFAULT_RUNS, metavar="N",
-                   help=f"timed renders per configuration after one warm-up; the median is reported (default {DEFAULT_RUNS})")
-    p.add_argument("--time", type=cli_args.arg(limits.parse_time), default=0.0, metavar="T",
-                   help="iTime in seconds (default 0)")
-    p.add_argument("--format", choices=("text", "json"), default="text", help="output format (default text)")
+    p.add_argument(
+        "--size",
+        type=cli_args.arg(limits.parse_size),
+        default=DEFAULT_SIZE,
+        metavar="WxH",
+        help=f"render size in pixels (default {w}x{h})",
+    )
+    p.add_argument(
+        "--runs",
+        type=cli_args.arg(limits.parse_runs),
+        default=DEFAULT_RUNS,
+        metavar="N",
+        help=f"timed renders per configuration after one warm-up; the median is reported (default {DEFAULT_RUNS})",
+    )
+    p.add_argument(
+        "--time",
+        type=cli_args.arg(limits.parse_time),
+        default=0.0,
+        metavar="T",
+        help="iTime in seconds (default 0)",
+    )
+    p.add_argument(
+        "--format", choices=("text", "json"), default="text", help="output format (default text)"
+    )
     p.add_argument("--plot", metavar="PNG", help="write the time-against-error plot")
-    p.add_argument("--webgl", action="store_true",
-                   help="also time WebGL 2 in headless Chromium (ANGLE on SwiftShader) at each sample count")
-    p.add_argument("--backend", choices=("compiled",), action="append", default=[],
-                   help="also time this engine at each sample count: compiled (per pixel, by numba)")
-    p.add_argument("--progress", action=argparse.BooleanOptionalAction, default=None,
-                   help="progress bar on stderr (default: when stderr is a terminal)")
+    p.add_argument(
+        "--webgl",
+        action="store_true",
+        help="also time WebGL 2 in headless Chromium (ANGLE on SwiftShader) at each sample count",
+    )
+    p.add_argument(
+        "--backend",
+        choices=("compiled",),
+        action="append",
+        default=[],
+        help="also time this engine at each sample count: compiled (per pixel, by numba)",
+    )
+    p.add_argument(
+        "--progress",
+        action=argparse.BooleanOptionalAction,
+        default=None,
+        help="progress bar on stderr (default: when stderr is a terminal)",
+    )
 
 
 def run(args) -> int:
@@ -72,7 +108,9 @@ def run(args) -> int:
         check_output(args.plot, (".png",), "plot")  # before the minutes of measuring, not after
     compiled = "compiled" in args.backend
     for name in args.backend:
-        registry.get(name).require()  # InputError (exit 2) with the install line, before anything is measured
+        registry.get(
+            name
+        ).require()  # InputError (exit 2) with the install line, before anything is measured
     shaders = find_shaders(args.paths)
     per_shader = len(configurations(webgl=args.webgl, compiled=compiled)) * (args.runs + 1)
     show = args.progress if args.progress is not None else sys.stderr.isatty()
@@ -83,8 +121,15 @@ def run(args) -> int:
     try:
         for index, shader in enumerate(shaders):
             try:
-                rows += bench_shader(shader, size=args.size, runs=args.runs, time=args.time, step=progress.step,
-                                     webgl=args.webgl, compiled=compiled)
+                rows += bench_shader(
+                    shader,
+                    size=args.size,
+                    runs=args.runs,
+                    time=args.time,
+                    step=progress.step,
+                    webgl=args.webgl,
+                    compiled=compiled,
+                )
             except GlslError as e:
                 progress.finish()
                 glsl_errors += 1
@@ -95,7 +140,9 @@ def run(args) -> int:
         progress.finish()
 
     if args.plot and rows:
-        write_plot(rows, args.plot, title=_plot_title(args))  # atomic; InputError (exit 2) on failure
+        write_plot(
+            rows, args.plot, title=_plot_title(args)
+        )  # atomic; InputError (exit 2) on failure
 
     if args.format == "json":
         print(json.dumps({"rows": [r.to_json() for r in rows]}))
@@ -106,5 +153,7 @@ def run(args) -> int:
 
 def _plot_title(args) -> str:
     w, h = args.size
-    return (f"render time against error at {w}x{h}, iTime {args.time:g} "
-            f"(reference: NumPy float64, 16 samples; median of {args.runs})")
+    return (
+        f"render time against error at {w}x{h}, iTime {args.time:g} "
+        f"(reference: NumPy float64, 16 samples; median of {args.runs})"
+    )

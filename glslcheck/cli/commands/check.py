@@ -14,8 +14,8 @@ from __future__ import annotations
 import sys
 
 from ...base.diagnostics import GlslError, format_text
-from ...shadertoy.wrapper import PASS_TABS
 from ...shadertoy.sources import find_shaders
+from ...shadertoy.wrapper import PASS_TABS
 
 _CHECKED_TABS = (*PASS_TABS, "GLSL")
 
@@ -24,8 +24,11 @@ def add_arguments(p) -> None:
     p.add_argument("paths", nargs="+", metavar="PATH", help="tab files or folders of tab files")
     p.add_argument("-q", "--quiet", action="store_true", help="print only errors and warnings")
     p.add_argument("--no-warnings", action="store_true", help="do not print warnings")
-    p.add_argument("--webgl", action="store_true",
-                   help="also compile each program with WebGL 2 in headless Chromium (ANGLE) and report its errors")
+    p.add_argument(
+        "--webgl",
+        action="store_true",
+        help="also compile each program with WebGL 2 in headless Chromium (ANGLE) and report its errors",
+    )
 
 
 def passes(shader) -> list[str]:
@@ -35,8 +38,8 @@ def passes(shader) -> list[str]:
 
 
 def run(args) -> int:
-    from ...semantics import check
     from ...frontend.parser import parse_shader
+    from ...semantics import check
 
     shaders = find_shaders(args.paths)
     failed = 0
@@ -69,6 +72,9 @@ def run(args) -> int:
             failed += bool(errors)
     if not args.quiet:
         ok = count - failed
-        print(f"checked {count} program{'s' if count != 1 else ''}: {ok} clean"
-              + (f", {failed} with errors" if failed else ""), file=sys.stderr)
+        print(
+            f"checked {count} program{'s' if count != 1 else ''}: {ok} clean"
+            + (f", {failed} with errors" if failed else ""),
+            file=sys.stderr,
+        )
     return 1 if failed else 0

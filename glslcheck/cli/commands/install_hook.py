@@ -44,23 +44,34 @@ fi
 
 
 def add_arguments(parser: argparse.ArgumentParser) -> None:
-    parser.add_argument("--force", action="store_true", help="replace a pre-commit hook glslcheck did not write")
+    parser.add_argument(
+        "--force", action="store_true", help="replace a pre-commit hook glslcheck did not write"
+    )
 
 
 def hook_text(python: str | None = None) -> str:
     python = python or sys.executable
-    return HOOK_TEMPLATE.format(marker=MARKER, python=shlex.quote(python), flags=isolation_flags(python))
+    return HOOK_TEMPLATE.format(
+        marker=MARKER, python=shlex.quote(python), flags=isolation_flags(python)
+    )
 
 
 def isolation_flags(python: str) -> str:
     """`-I` (isolated: no current folder or script folder on sys.path, no PYTHON* variables, no
     user site-packages) when `python -I` imports this very glslcheck; `-E -P` (the first two
     only) when glslcheck is installed in the user's site-packages, which -I leaves out."""
-    package_init = sys.modules["glslcheck"].__file__  # this glslcheck (loaded: it runs this command)
+    package_init = sys.modules[
+        "glslcheck"
+    ].__file__  # this glslcheck (loaded: it runs this command)
     with tempfile.TemporaryDirectory() as neutral:
         try:
-            proc = subprocess.run([python, "-I", "-c", "import glslcheck; print(glslcheck.__file__)"],
-                                  cwd=neutral, capture_output=True, text=True, timeout=60)
+            proc = subprocess.run(
+                [python, "-I", "-c", "import glslcheck; print(glslcheck.__file__)"],
+                cwd=neutral,
+                capture_output=True,
+                text=True,
+                timeout=60,
+            )
         except (OSError, subprocess.TimeoutExpired):
             return "-I"
     return "-I" if proc.stdout.strip() == package_init else "-E -P"
@@ -93,7 +104,9 @@ def backup_path(path: Path) -> Path:
     return backup
 
 
-def install(cwd: str | os.PathLike | None = None, force: bool = False) -> tuple[Path, str, Path | None]:
+def install(
+    cwd: str | os.PathLike | None = None, force: bool = False
+) -> tuple[Path, str, Path | None]:
     """Write the hook; returns its path, what happened ("installed", "updated", "replaced") and
     where a replaced hook was kept."""
     path = hook_path(cwd)

@@ -20,15 +20,28 @@ def _names(value: str) -> list[str]:
 def add_arguments(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("paths", nargs="*", metavar="PATH", help="shader files or folders")
     parser.add_argument(
-        "--format", choices=("text", "json", "sarif", "github"), default="text", help="output format (default: text)"
+        "--format",
+        choices=("text", "json", "sarif", "github"),
+        default="text",
+        help="output format (default: text)",
     )
     parser.add_argument(
-        "--select", type=_names, action="extend", metavar="RULE,...", help="only these rules (replaces the configuration's)"
+        "--select",
+        type=_names,
+        action="extend",
+        metavar="RULE,...",
+        help="only these rules (replaces the configuration's)",
     )
     parser.add_argument(
-        "--ignore", type=_names, action="extend", metavar="RULE,...", help="not these rules (replaces the configuration's)"
+        "--ignore",
+        type=_names,
+        action="extend",
+        metavar="RULE,...",
+        help="not these rules (replaces the configuration's)",
     )
-    parser.add_argument("--output", "-o", metavar="FILE", help="write the report to FILE instead of standard output")
+    parser.add_argument(
+        "--output", "-o", metavar="FILE", help="write the report to FILE instead of standard output"
+    )
     parser.add_argument(
         "--skip-non-shaders",
         action="store_true",
@@ -54,7 +67,9 @@ def run(args: argparse.Namespace) -> int:
         overrides["ignore"] = args.ignore
     if args.staged:
         if args.paths:
-            raise InputError("glslcheck lint: error: --staged lints the staged files; give no PATH with it")
+            raise InputError(
+                "glslcheck lint: error: --staged lints the staged files; give no PATH with it"
+            )
         from ...lint.staged import staged_checkout
 
         skipped: list[tuple[str, str]] = []
@@ -62,7 +77,9 @@ def run(args: argparse.Namespace) -> int:
             result = lint_paths(names, overrides, skip_non_shaders=True)
             text = render(result, args.format)
         for name, what in skipped:  # named as a shader, but no shader text in the commit
-            print(printable(f"{name}: note: {what}, not a shader file; not linted"), file=sys.stderr)
+            print(
+                printable(f"{name}: note: {what}, not a shader file; not linted"), file=sys.stderr
+            )
     elif not args.paths:
         raise InputError("glslcheck lint: error: give at least one PATH (or --staged)")
     else:
@@ -73,8 +90,10 @@ def run(args: argparse.Namespace) -> int:
 
         out = Path(args.output)
         if out.exists() and _read_by_lint(out, result.paths):
-            raise InputError(f"{args.output}: error: --output names a shader file lint reads; lint never "
-                             f"overwrites a shader")
+            raise InputError(
+                f"{args.output}: error: --output names a shader file lint reads; lint never "
+                f"overwrites a shader"
+            )
         from ...base.images import atomic_write
 
         with atomic_write(out, "report") as tmp:  # InputError (exit 2) when it cannot be written

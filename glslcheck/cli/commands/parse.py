@@ -15,8 +15,12 @@ from ...shadertoy.sources import find_shaders
 
 def add_arguments(p) -> None:
     p.add_argument("paths", nargs="+", metavar="PATH", help="tab files or folders of tab files")
-    p.add_argument("--print", dest="print_", action="store_true", help="print each program back as GLSL")
-    p.add_argument("--ast", action="store_true", help="print each program's syntax tree with locations")
+    p.add_argument(
+        "--print", dest="print_", action="store_true", help="print each program back as GLSL"
+    )
+    p.add_argument(
+        "--ast", action="store_true", help="print each program's syntax tree with locations"
+    )
     p.add_argument("-q", "--quiet", action="store_true", help="print only errors")
 
 
@@ -50,6 +54,9 @@ def run(args) -> int:
                 print(format_tree(result.ast))
     if not args.quiet:
         ok = count - failed
-        print(f"parsed {ok} of {count} program{'s' if count != 1 else ''}" + (f", {failed} with errors" if failed else ""),
-              file=sys.stderr)
+        print(
+            f"parsed {ok} of {count} program{'s' if count != 1 else ''}"
+            + (f", {failed} with errors" if failed else ""),
+            file=sys.stderr,
+        )
     return 1 if failed else 0

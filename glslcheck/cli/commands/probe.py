@@ -34,8 +34,8 @@ import argparse
 import json
 import math
 
-from ...base.diagnostics import InputError
 from ...base import limits
+from ...base.diagnostics import InputError
 from . import args as cli_args
 
 
@@ -43,17 +43,27 @@ def _pixel(text: str) -> tuple[int, int]:
     try:
         x, y = (int(v) for v in text.split(","))
     except ValueError:
-        raise argparse.ArgumentTypeError(f"--pixel takes X,Y (whole numbers from the top left), not {text!r}") from None
+        raise argparse.ArgumentTypeError(
+            f"--pixel takes X,Y (whole numbers from the top left), not {text!r}"
+        ) from None
     return x, y
 
 
 def add_arguments(p) -> None:
     p.add_argument("path", metavar="SHADER", help="a tab file or a folder of tab files")
     what = p.add_mutually_exclusive_group(required=True)
-    what.add_argument("--pixel", type=_pixel, metavar="X,Y", help="the pixel to trace, from the top left")
-    what.add_argument("--frag-coord", type=cli_args.arg(lambda t: limits.parse_floats(t, 2, "--frag-coord")), metavar="FX,FY",
-                      help="the fragCoord to trace (origin at the bottom left, pixel centres at .5)")
-    what.add_argument("--nan", action="store_true", help="find where the frame's NaN and Inf pixels came from")
+    what.add_argument(
+        "--pixel", type=_pixel, metavar="X,Y", help="the pixel to trace, from the top left"
+    )
+    what.add_argument(
+        "--frag-coord",
+        type=cli_args.arg(lambda t: limits.parse_floats(t, 2, "--frag-coord")),
+        metavar="FX,FY",
+        help="the fragCoord to trace (origin at the bottom left, pixel centres at .5)",
+    )
+    what.add_argument(
+        "--nan", action="store_true", help="find where the frame's NaN and Inf pixels came from"
+    )
     cli_args.add_uniform_arguments(p)
     p.add_argument("--format", choices=("text", "json"), default="text", help="default text")
 
@@ -61,12 +71,17 @@ def add_arguments(p) -> None:
 def run(args) -> int:
     from ...verification.probe import Inputs, Probe, format_nan, format_pixel
 
-    inputs = Inputs(size=args.size, time=args.time, frame=args.frame, mouse=args.mouse, date=args.date)
+    inputs = Inputs(
+        size=args.size, time=args.time, frame=args.frame, mouse=args.mouse, date=args.date
+    )
     probe = Probe(args.path)
     if args.nan:
         report = probe.nan_origins(inputs)
-        print(json.dumps(report.to_json()) if args.format == "json"
-              else format_nan(report, args.path, inputs))
+        print(
+            json.dumps(report.to_json())
+            if args.format == "json"
+            else format_nan(report, args.path, inputs)
+        )
         return 1 if report.nan_pixels or report.inf_pixels else 0
     if args.frag_coord is not None:
         fx, fy = args.frag_coord
@@ -76,13 +91,20 @@ def run(args) -> int:
         report = probe.pixel(None, None, inputs, frag_coord=(fx, fy))
     else:
         report = probe.pixel(*args.pixel, inputs)
-    print(json.dumps(report.to_json()) if args.format == "json"
-          else format_pixel(report, args.path, inputs))
+    print(
+        json.dumps(report.to_json())
+        if args.format == "json"
+        else format_pixel(report, args.path, inputs)
+    )
     return 0
 
 
 def nan_hint(path: str, nan_pixels: int, size: tuple[int, int], time: float) -> str:
     """The line `render` and `verify` print for an image with NaN pixels."""
-    opts = (f" --size {size[0]}x{size[1]}" if tuple(size) != (800, 450) else "") + (f" --time {time:g}" if time else "")
-    return (f"{nan_pixels} pixel{'s are' if nan_pixels != 1 else ' is'} NaN: `glslcheck probe {path} --nan{opts}` "
-            "shows where they came from")
+    opts = (f" --size {size[0]}x{size[1]}" if tuple(size) != (800, 450) else "") + (
+        f" --time {time:g}" if time else ""
+    )
+    return (
+        f"{nan_pixels} pixel{'s are' if nan_pixels != 1 else ' is'} NaN: `glslcheck probe {path} --nan{opts}` "
+        "shows where they came from"
+    )

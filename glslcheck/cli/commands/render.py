@@ -27,30 +27,65 @@ from __future__ import annotations
 import sys
 
 from ...backends import registry
-from ...base.diagnostics import InputError
 from ...base import limits
+from ...base.diagnostics import InputError
 from ...base.precision import PRECISIONS
 from . import args as cli_args
 
 
 def add_arguments(p) -> None:
     p.add_argument("path", metavar="SHADER", help="a tab file or a folder of tab files")
-    p.add_argument("-o", "--output", default="out.png", metavar="FILE",
-                   help="out.png, out.npy, or anim.gif with --frames (default out.png)")
+    p.add_argument(
+        "-o",
+        "--output",
+        default="out.png",
+        metavar="FILE",
+        help="out.png, out.npy, or anim.gif with --frames (default out.png)",
+    )
     cli_args.add_uniform_arguments(p)
-    p.add_argument("--precision", choices=PRECISIONS, default="float32",
-                   help="float type inside the shader (NumPy backend; default float32 = highp)")
-    p.add_argument("--samples", type=cli_args.arg(limits.parse_samples), default=1, metavar="N",
-                   help="samples per pixel, a square (default 1)")
-    p.add_argument("--backend", choices=registry.names(), default="numpy",
-                   help="default numpy; compiled: by numba, per pixel, then 8 pixels in lockstep once that pays (glslcheck/compiled_backend)")
-    p.add_argument("--stats", action="store_true", help="print the lanes that ran each function and branch")
-    p.add_argument("--frames", type=cli_args.arg(limits.parse_frames), default=None, metavar="N",
-                   help="render an animation of N frames")
-    p.add_argument("--fps", type=cli_args.arg(limits.parse_fps), default=60.0, metavar="F",
-                   help="frames per second of --frames (default 60)")
-    p.add_argument("--pass", dest="pass_name", default="Image", metavar="TAB",
-                   help='the pass to write, e.g. "Buffer A" (default Image; buffers run frames 0..N, shadertoy/channels.py)')
+    p.add_argument(
+        "--precision",
+        choices=PRECISIONS,
+        default="float32",
+        help="float type inside the shader (NumPy backend; default float32 = highp)",
+    )
+    p.add_argument(
+        "--samples",
+        type=cli_args.arg(limits.parse_samples),
+        default=1,
+        metavar="N",
+        help="samples per pixel, a square (default 1)",
+    )
+    p.add_argument(
+        "--backend",
+        choices=registry.names(),
+        default="numpy",
+        help="default numpy; compiled: by numba, per pixel, then 8 pixels in lockstep once that pays (glslcheck/compiled_backend)",
+    )
+    p.add_argument(
+        "--stats", action="store_true", help="print the lanes that ran each function and branch"
+    )
+    p.add_argument(
+        "--frames",
+        type=cli_args.arg(limits.parse_frames),
+        default=None,
+        metavar="N",
+        help="render an animation of N frames",
+    )
+    p.add_argument(
+        "--fps",
+        type=cli_args.arg(limits.parse_fps),
+        default=60.0,
+        metavar="F",
+        help="frames per second of --frames (default 60)",
+    )
+    p.add_argument(
+        "--pass",
+        dest="pass_name",
+        default="Image",
+        metavar="TAB",
+        help='the pass to write, e.g. "Buffer A" (default Image; buffers run frames 0..N, shadertoy/channels.py)',
+    )
 
 
 def run(args) -> int:
@@ -69,11 +104,19 @@ def run(args) -> int:
     if args.stats and not backend.lane_stats:
         raise InputError("error: --stats needs --backend numpy")
     if args.precision not in backend.precisions:
-        raise InputError(f"error: the {args.backend.upper()} backend renders in float32 only; "
-                         "drop --precision or use --backend numpy")
+        raise InputError(
+            f"error: the {args.backend.upper()} backend renders in float32 only; "
+            "drop --precision or use --backend numpy"
+        )
     prog = registry.compile(args.path, backend=args.backend, output=args.pass_name)
     cli_args.refuse_to_overwrite_inputs([out], [prog.shader], "output")
-    common = dict(size=args.size, mouse=args.mouse, date=args.date, precision=args.precision, samples=args.samples)
+    common = dict(
+        size=args.size,
+        mouse=args.mouse,
+        date=args.date,
+        precision=args.precision,
+        samples=args.samples,
+    )
     if args.frames is None:
         img = prog.render(time=args.time, frame=args.frame, stats=args.stats, **common)
         save_image(img, out)  # atomic: an error or Ctrl-C leaves an existing file as it was
@@ -91,7 +134,9 @@ def _nan_note(img, args) -> None:
     if nan:
         from .probe import nan_hint
 
-        print(f"{args.path}: note: {nan_hint(args.path, nan, args.size, args.time)}", file=sys.stderr)
+        print(
+            f"{args.path}: note: {nan_hint(args.path, nan, args.size, args.time)}", file=sys.stderr
+        )
 
 
 def _animation(prog, args, common) -> int:
@@ -103,12 +148,20 @@ def _animation(prog, args, common) -> int:
     with GifWriter(args.output, args.fps) as gif:
         for i in range(n):
             t = args.time + i / args.fps
-            img = prog.render(time=t, frame=args.frame + i, time_delta=1.0 / args.fps, frame_rate=args.fps,
-                              stats=args.stats, **common)
+            img = prog.render(
+                time=t,
+                frame=args.frame + i,
+                time_delta=1.0 / args.fps,
+                frame_rate=args.fps,
+                stats=args.stats,
+                **common,
+            )
             gif.add(img)
             if show:
                 filled = 24 * (i + 1) // n
-                sys.stderr.write(f"\rrender [{'#' * filled}{'.' * (24 - filled)}] {i + 1}/{n} t={t:.3f}s")
+                sys.stderr.write(
+                    f"\rrender [{'#' * filled}{'.' * (24 - filled)}] {i + 1}/{n} t={t:.3f}s"
+                )
                 sys.stderr.flush()
         if show:
             sys.stderr.write("\n")

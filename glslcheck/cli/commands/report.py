@@ -22,38 +22,76 @@ from . import args as cli_args
 
 
 def _parse_bench_runs(text: str) -> int:
-    return limits.in_range(limits.whole_number(text, "--bench-runs"), 1, limits.MAX_RUNS, "--bench-runs", text)
+    return limits.in_range(
+        limits.whole_number(text, "--bench-runs"), 1, limits.MAX_RUNS, "--bench-runs", text
+    )
 
 
 def add_arguments(p) -> None:
     p.add_argument("paths", nargs="+", metavar="SHADER", help="tab files or folders of tab files")
-    p.add_argument("-o", "--output", default="report.html", metavar="HTML", help="default report.html")
-    p.add_argument("--size", type=cli_args.arg(limits.parse_size), default=(320, 180), metavar="WxH",
-                   help="render size in pixels (default 320x180)")
-    p.add_argument("--time", type=cli_args.arg(limits.parse_time), default=0.0, metavar="T",
-                   help="iTime in seconds (default 0)")
-    p.add_argument("--no-webgl", action="store_true", help="leave out the WebGL backend (headless Chromium)")
-    p.add_argument("--bench-size", type=cli_args.arg(limits.parse_size), default=(64, 36), metavar="WxH",
-                   help="render size of the accuracy/time table (glslcheck bench; default 64x36)")
-    p.add_argument("--bench-runs", type=cli_args.arg(_parse_bench_runs), default=3, metavar="N",
-                   help="timed rounds of the table, median taken (default 3)")
-    p.add_argument("--no-bench", action="store_true", help="leave out the accuracy/time table and plot")
+    p.add_argument(
+        "-o", "--output", default="report.html", metavar="HTML", help="default report.html"
+    )
+    p.add_argument(
+        "--size",
+        type=cli_args.arg(limits.parse_size),
+        default=(320, 180),
+        metavar="WxH",
+        help="render size in pixels (default 320x180)",
+    )
+    p.add_argument(
+        "--time",
+        type=cli_args.arg(limits.parse_time),
+        default=0.0,
+        metavar="T",
+        help="iTime in seconds (default 0)",
+    )
+    p.add_argument(
+        "--no-webgl", action="store_true", help="leave out the WebGL backend (headless Chromium)"
+    )
+    p.add_argument(
+        "--bench-size",
+        type=cli_args.arg(limits.parse_size),
+        default=(64, 36),
+        metavar="WxH",
+        help="render size of the accuracy/time table (glslcheck bench; default 64x36)",
+    )
+    p.add_argument(
+        "--bench-runs",
+        type=cli_args.arg(_parse_bench_runs),
+        default=3,
+        metavar="N",
+        help="timed rounds of the table, median taken (default 3)",
+    )
+    p.add_argument(
+        "--no-bench", action="store_true", help="leave out the accuracy/time table and plot"
+    )
 
 
 def run(args) -> int:
-    from ...verification.report import DEFAULT_BACKENDS, build_report
-
     from ...base.images import atomic_write, check_output
+    from ...verification.report import DEFAULT_BACKENDS, build_report
 
     check_output(args.output, (".html", ".htm"), "report (an HTML page)")
     backends = tuple(b for b in DEFAULT_BACKENDS if not (args.no_webgl and b == "webgl"))
-    page = build_report(args.paths, size=args.size, time=args.time, backends=backends,
-                        bench=None if args.no_bench else args.bench_size, bench_runs=args.bench_runs)
+    page = build_report(
+        args.paths,
+        size=args.size,
+        time=args.time,
+        backends=backends,
+        bench=None if args.no_bench else args.bench_size,
+        bench_runs=args.bench_runs,
+    )
     # a file name's undecodable bytes show as `\\udcXX` in the page
-    with atomic_write(args.output, "report") as tmp, \
-            open(tmp, "w", encoding="utf-8", errors="backslashreplace") as f:
+    with (
+        atomic_write(args.output, "report") as tmp,
+        open(tmp, "w", encoding="utf-8", errors="backslashreplace") as f,
+    ):
         f.write(page.html)
     bad = [r.name for r in page.shaders if not r.ok]
-    print(f"{args.output}: {len(page.shaders)} shader{'s' * (len(page.shaders) != 1)}"
-          + (f", {len(bad)} with problems: {', '.join(bad)}" if bad else ", all clean and matching"), file=sys.stderr)
+    print(
+        f"{args.output}: {len(page.shaders)} shader{'s' * (len(page.shaders) != 1)}"
+        + (f", {len(bad)} with problems: {', '.join(bad)}" if bad else ", all clean and matching"),
+        file=sys.stderr,
+    )
     return 1 if bad else 0

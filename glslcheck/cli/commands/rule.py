@@ -15,7 +15,11 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
 
 def describe(rule) -> str:
     """A rule's full documentation as `glslcheck rule NAME` prints it."""
-    penalty = f"-{rule.penalty} point{'s' if rule.penalty != 1 else ''} per finding" if rule.penalty else "no deduction"
+    penalty = (
+        f"-{rule.penalty} point{'s' if rule.penalty != 1 else ''} per finding"
+        if rule.penalty
+        else "no deduction"
+    )
     head = f"{rule.name}: {rule.summary}"
     return f"{head}\n{'=' * len(head)}\n{rule.kind} ({rule.severity}, {penalty}; reads the {rule.needs})\n\n{rule.doc}\n"
 
@@ -24,7 +28,9 @@ def listing(rules) -> str:
     width = max(len(r.name) for r in rules)
     rows = [f"{'rule'.ljust(width)}  penalty  kind           summary"]
     for r in rules:
-        rows.append(f"{r.name.ljust(width)}  {('-' + str(r.penalty)) if r.penalty else '0':>7}  {r.kind:<13}  {r.summary}")
+        rows.append(
+            f"{r.name.ljust(width)}  {('-' + str(r.penalty)) if r.penalty else '0':>7}  {r.kind:<13}  {r.summary}"
+        )
     return "\n".join(rows) + "\n"
 
 
@@ -41,6 +47,8 @@ def run(args: argparse.Namespace) -> int:
     if rule is None:
         close = difflib.get_close_matches(args.name, list(rules), n=1)
         hint = f" (did you mean `{close[0]}`?)" if close else ""
-        raise InputError(f"glslcheck rule: error: no rule named `{args.name}`{hint}; `glslcheck rule --all` lists them")
+        raise InputError(
+            f"glslcheck rule: error: no rule named `{args.name}`{hint}; `glslcheck rule --all` lists them"
+        )
     print(describe(rule), end="")
     return 0

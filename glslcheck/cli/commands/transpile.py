@@ -14,7 +14,13 @@ import sys
 
 def add_arguments(p) -> None:
     p.add_argument("path", metavar="SHADER", help="a tab file or a folder of tab files")
-    p.add_argument("-o", "--output", default=None, metavar="FILE", help="write the module here (default: stdout)")
+    p.add_argument(
+        "-o",
+        "--output",
+        default=None,
+        metavar="FILE",
+        help="write the module here (default: stdout)",
+    )
 
 
 def run(args) -> int:
@@ -30,7 +36,9 @@ def run(args) -> int:
     from .args import refuse_to_overwrite_inputs
 
     refuse_to_overwrite_inputs([args.output], [shader], "module")
-    with atomic_write(args.output, "module") as tmp:  # InputError (exit 2) when it cannot be written
+    with atomic_write(
+        args.output, "module"
+    ) as tmp:  # InputError (exit 2) when it cannot be written
         with open(tmp, "w", encoding="utf-8") as f:
             f.write(result.source)
     return 0

@@ -44,54 +44,129 @@ import json
 import math
 import sys
 
-from ...base.diagnostics import GlslError, InputError, format_text
-from ...base.images import check_output
-from ...shadertoy.sources import find_shaders
 from ...backends import registry
 from ...base import limits
+from ...base.diagnostics import GlslError, InputError, format_text
+from ...base.images import check_output
 from ...base.precision import PRECISIONS
-from ...verification.verify import BACKENDS, DEFAULT_FPS, Progress, diff_paths, frame_specs, verify_frames
+from ...shadertoy.sources import find_shaders
+from ...verification.verify import (
+    BACKENDS,
+    DEFAULT_FPS,
+    Progress,
+    diff_paths,
+    frame_specs,
+    verify_frames,
+)
 from . import args as cli_args
 
 
 def _backends(text: str) -> tuple[str, str]:
     names = tuple(t.strip() for t in text.split(","))
     if len(names) != 2 or not all(n in registry.names() for n in names):
-        raise ValueError(f"--backends takes two of {', '.join(registry.names())} separated by a comma, not {text!r}")
+        raise ValueError(
+            f"--backends takes two of {', '.join(registry.names())} separated by a comma, not {text!r}"
+        )
     return names  # type: ignore[return-value]
 
 
 def add_arguments(p) -> None:
     p.add_argument("paths", nargs="+", metavar="SHADER", help="tab files or folders of tab files")
-    p.add_argument("--size", type=cli_args.arg(limits.parse_size), default=(800, 450), metavar="WxH",
-                   help="render size in pixels (default 800x450)")
+    p.add_argument(
+        "--size",
+        type=cli_args.arg(limits.parse_size),
+        default=(800, 450),
+        metavar="WxH",
+        help="render size in pixels (default 800x450)",
+    )
     when = p.add_mutually_exclusive_group()
-    when.add_argument("--time", type=cli_args.arg(limits.parse_time), metavar="T", help="iTime in seconds (default 0)")
-    when.add_argument("--times", type=cli_args.arg(limits.parse_times), metavar="T,T,...",
-                      help="verify one frame per time")
-    when.add_argument("--frames", type=cli_args.arg(limits.parse_frames), metavar="N",
-                      help="verify N consecutive frames at --fps")
-    p.add_argument("--fps", type=cli_args.arg(limits.parse_fps), default=None, metavar="F",
-                   help=f"frames per second: iFrameRate, iTimeDelta = 1/F and the --frames clock (default {DEFAULT_FPS:g})")
-    p.add_argument("--frame", type=cli_args.arg(limits.parse_frame), default=0, metavar="N",
-                   help="iFrame (with --frames: the first frame) (default 0)")
-    p.add_argument("--mouse", type=cli_args.arg(limits.parse_mouse), default=(0.0, 0.0, 0.0, 0.0), metavar="X,Y,Z,W",
-                   help="iMouse in pixels (default 0,0,0,0)")
-    p.add_argument("--date", type=cli_args.arg(limits.parse_date), default=None, metavar="Y,M,D,S",
-                   help="iDate: year, month 0-11, day, seconds since midnight (default 2026,0,1,0)")
-    p.add_argument("--precision", choices=PRECISIONS, default="float32",
-                   help="float mode of the NumPy backend; OpenGL is always highp float32 (default float32)")
-    p.add_argument("--samples", type=cli_args.arg(limits.parse_samples), default=1, metavar="N",
-                   help="samples per pixel on both sides, a perfect square (default 1)")
-    p.add_argument("--diff", metavar="PNG", help="write the difference heat map (diff-<i>.png for several frames)")
-    p.add_argument("--format", choices=("text", "json"), default="text", help="output format (default text)")
-    p.add_argument("--progress", action=argparse.BooleanOptionalAction, default=None,
-                   help="progress bar on stderr for several frames (default: when stderr is a terminal)")
-    p.add_argument("--against", choices=("gl", "webgl"), default=None,
-                   help="the reference NumPy is compared with: gl (Mesa llvmpipe, default) or webgl "
-                        "(headless Chromium, ANGLE on SwiftShader)")
-    p.add_argument("--backends", type=cli_args.arg(_backends), default=None, metavar="A,B",
-                   help="compare two other backends, e.g. gl,webgl (the drivers with each other)")
+    when.add_argument(
+        "--time",
+        type=cli_args.arg(limits.parse_time),
+        metavar="T",
+        help="iTime in seconds (default 0)",
+    )
+    when.add_argument(
+        "--times",
+        type=cli_args.arg(limits.parse_times),
+        metavar="T,T,...",
+        help="verify one frame per time",
+    )
+    when.add_argument(
+        "--frames",
+        type=cli_args.arg(limits.parse_frames),
+        metavar="N",
+        help="verify N consecutive frames at --fps",
+    )
+    p.add_argument(
+        "--fps",
+        type=cli_args.arg(limits.parse_fps),
+        default=None,
+        metavar="F",
+        help=f"frames per second: iFrameRate, iTimeDelta = 1/F and the --frames clock (default {DEFAULT_FPS:g})",
+    )
+    p.add_argument(
+        "--frame",
+        type=cli_args.arg(limits.parse_frame),
+        default=0,
+        metavar="N",
+        help="iFrame (with --frames: the first frame) (default 0)",
+    )
+    p.add_argument(
+        "--mouse",
+        type=cli_args.arg(limits.parse_mouse),
+        default=(0.0, 0.0, 0.0, 0.0),
+        metavar="X,Y,Z,W",
+        help="iMouse in pixels (default 0,0,0,0)",
+    )
+    p.add_argument(
+        "--date",
+        type=cli_args.arg(limits.parse_date),
+        default=None,
+        metavar="Y,M,D,S",
+        help="iDate: year, month 0-11, day, seconds since midnight (default 2026,0,1,0)",
+    )
+    p.add_argument(
+        "--precision",
+        choices=PRECISIONS,
+        default="float32",
+        help="float mode of the NumPy backend; OpenGL is always highp float32 (default float32)",
+    )
+    p.add_argument(
+        "--samples",
+        type=cli_args.arg(limits.parse_samples),
+        default=1,
+        metavar="N",
+        help="samples per pixel on both sides, a perfect square (default 1)",
+    )
+    p.add_argument(
+        "--diff",
+        metavar="PNG",
+        help="write the difference heat map (diff-<i>.png for several frames)",
+    )
+    p.add_argument(
+        "--format", choices=("text", "json"), default="text", help="output format (default text)"
+    )
+    p.add_argument(
+        "--progress",
+        action=argparse.BooleanOptionalAction,
+        default=None,
+        help="progress bar on stderr for several frames (default: when stderr is a terminal)",
+    )
+    p.add_argument(
+        "--against",
+        choices=("gl", "webgl"),
+        default=None,
+        help="the reference NumPy is compared with: gl (Mesa llvmpipe, default) or webgl "
+        "(headless Chromium, ANGLE on SwiftShader)",
+    )
+    p.add_argument(
+        "--backends",
+        type=cli_args.arg(_backends),
+        default=None,
+        metavar="A,B",
+        help="compare two other backends, e.g. gl,webgl (the drivers with each other)",
+    )
 
 
 def _frame_count(args) -> int:
@@ -113,11 +188,15 @@ def run(args) -> int:
     if args.against and args.backends:
         raise InputError("glslcheck verify: error: give --against or --backends, not both")
     args.backends = args.backends or (("numpy", args.against) if args.against else BACKENDS)
-    for name in args.backends:  # a driver's side is always its highp; an engine of ours renders as told
+    for (
+        name
+    ) in args.backends:  # a driver's side is always its highp; an engine of ours renders as told
         backend = registry.get(name)
         if not backend.driver and args.precision not in backend.precisions:
-            raise InputError(f"glslcheck verify: error: {backend.called} renders in "
-                             f"{' and '.join(backend.precisions)} only; drop --precision")
+            raise InputError(
+                f"glslcheck verify: error: {backend.called} renders in "
+                f"{' and '.join(backend.precisions)} only; drop --precision"
+            )
     shaders = find_shaders(args.paths)
     total = len(shaders) * _frame_count(args)
     if args.diff:
@@ -131,9 +210,19 @@ def run(args) -> int:
     try:
         for index, shader in enumerate(shaders):
             try:
-                options = dict(size=args.size, time=args.time, times=args.times, frames=args.frames,
-                               fps=args.fps, frame=args.frame, mouse=args.mouse, date=args.date,
-                               precision=args.precision, samples=args.samples, progress=progress)
+                options = dict(
+                    size=args.size,
+                    time=args.time,
+                    times=args.times,
+                    frames=args.frames,
+                    fps=args.fps,
+                    frame=args.frame,
+                    mouse=args.mouse,
+                    date=args.date,
+                    precision=args.precision,
+                    samples=args.samples,
+                    progress=progress,
+                )
                 if args.against == "webgl":  # NumPy vs WebGL, driver-dependent pixels apart
                     from ...verification.drivers import verify_against_webgl
 
@@ -151,7 +240,6 @@ def run(args) -> int:
                 progress.done = (index + 1) * _frame_count(args)
     finally:
         progress.finish()
-
 
     if args.format == "json":
         objects = [r.comparison.to_json() for r in results]
@@ -172,7 +260,9 @@ def _keep(result, diff_paths) -> None:
     if diff_paths is not None:
         from ...verification.compare import write_diff_png
 
-        write_diff_png(result.comparison, next(diff_paths))  # atomic; InputError (exit 2) on failure
+        write_diff_png(
+            result.comparison, next(diff_paths)
+        )  # atomic; InputError (exit 2) on failure
     c = result.comparison
     c.error_map = c.edge_mask = c.nan_mask = None
 
@@ -199,8 +289,13 @@ def _num(v: float) -> str:
     return "inf" if math.isinf(v) else f"{v:.4g}"
 
 
-def format_frame(result, precision: str = "float32", samples: int = 1, worst: int = 3,
-                 names: tuple[str, str] = BACKENDS) -> str:
+def format_frame(
+    result,
+    precision: str = "float32",
+    samples: int = 1,
+    worst: int = 3,
+    names: tuple[str, str] = BACKENDS,
+) -> str:
     """The short text table of one frame; `names` label the two sides (default numpy, gl)."""
     a, b = names
     c = result.comparison
@@ -213,12 +308,18 @@ def format_frame(result, precision: str = "float32", samples: int = 1, worst: in
         extra += f"  {samples} samples"
     lines = [f"{result.shader}  {w}x{h}  iTime {s.time:g}  iFrame {s.frame}{extra}"]
     psnr = "inf" if math.isinf(c.psnr_db) else f"{c.psnr_db:.1f} dB"
-    lines.append(f"  max abs error    {_num(c.max_abs_error):<10}  mean {c.mean_abs_error:.3g}  PSNR {psnr}")
-    lines.append(f"  mismatched       {c.mismatched_pixels:<10}  budget {int(c.mismatch_budget)}"
-                 f"  (over {c.abs_tol * 255:.0f}/255)")
+    lines.append(
+        f"  max abs error    {_num(c.max_abs_error):<10}  mean {c.mean_abs_error:.3g}  PSNR {psnr}"
+    )
+    lines.append(
+        f"  mismatched       {c.mismatched_pixels:<10}  budget {int(c.mismatch_budget)}"
+        f"  (over {c.abs_tol * 255:.0f}/255)"
+    )
     lines.append(f"  edge pixels      {c.edge_pixels:<10}  budget {int(c.edge_budget)}")
-    lines.append(f"  NaN/Inf pixels   {a} {c.nan_numpy}, {b} {c.nan_gl}"
-                 + (f", {c.nan_mismatched_pixels} in one image only" if c.nan_mismatched_pixels else ""))
+    lines.append(
+        f"  NaN/Inf pixels   {a} {c.nan_numpy}, {b} {c.nan_gl}"
+        + (f", {c.nan_mismatched_pixels} in one image only" if c.nan_mismatched_pixels else "")
+    )
     if c.nan_numpy:
         from .probe import nan_hint
 
@@ -226,27 +327,43 @@ def format_frame(result, precision: str = "float32", samples: int = 1, worst: in
     drivers = getattr(result, "drivers", None)
     if drivers is not None:  # verify --against webgl (glslcheck/verification/drivers.py)
         plain = result.plain
-        lines.append(f"  driver-dependent {result.driver_pixels:<10}  pixels where gl and webgl differ; "
-                     f"there {a} need match only the closer driver")
-        lines.append(f"  {a} vs {b} alone {plain.mismatched_pixels} mismatched, {plain.edge_pixels} edge, "
-                     f"max abs error {_num(plain.max_abs_error)}")
+        lines.append(
+            f"  driver-dependent {result.driver_pixels:<10}  pixels where gl and webgl differ; "
+            f"there {a} need match only the closer driver"
+        )
+        lines.append(
+            f"  {a} vs {b} alone {plain.mismatched_pixels} mismatched, {plain.edge_pixels} edge, "
+            f"max abs error {_num(plain.max_abs_error)}"
+        )
     if c.bbox is not None:
         x0, y0, x1, y1 = c.bbox
-        lines.append(f"  differences in   x {x0}..{x1 - 1}, y {y0}..{y1 - 1} (from the top left); "
-                     f"fragCoord x {x0 + 0.5}..{x1 - 0.5}, y {h - y1 + 0.5}..{h - y0 - 0.5}")
+        lines.append(
+            f"  differences in   x {x0}..{x1 - 1}, y {y0}..{y1 - 1} (from the top left); "
+            f"fragCoord x {x0 + 0.5}..{x1 - 0.5}, y {h - y1 + 0.5}..{h - y0 - 0.5}"
+        )
     for p in c.worst[:worst]:
-        lines.append(f"  {p.kind:<8} pixel ({p.x}, {p.y}) fragCoord ({p.frag_coord[0]}, {p.frag_coord[1]}): "
-                     f"{a} {_rgb(p.numpy)} {b} {_rgb(p.gl)}")
+        lines.append(
+            f"  {p.kind:<8} pixel ({p.x}, {p.y}) fragCoord ({p.frag_coord[0]}, {p.frag_coord[1]}): "
+            f"{a} {_rgb(p.numpy)} {b} {_rgb(p.gl)}"
+        )
     if c.unstable_pixels:
-        lines.append(f"  unstable pixels  {c.unstable_pixels:<10}  both float32 renders far from the float64 "
-                     "reference (not counted)")
+        lines.append(
+            f"  unstable pixels  {c.unstable_pixels:<10}  both float32 renders far from the float64 "
+            "reference (not counted)"
+        )
     lines.extend(f"  note: {n}" for n in getattr(result, "notes", ()))
     for u in c.unstable_lines[:3]:
-        lines.append(f"  precision lost   {u['file']}:{u['line']} `{u['code']}` keeps {u['bits']} of 24 bits "
-                     f"(~{u['pixels']} unstable pixels)")
+        lines.append(
+            f"  precision lost   {u['file']}:{u['line']} `{u['code']}` keeps {u['bits']} of 24 bits "
+            f"(~{u['pixels']} unstable pixels)"
+        )
     if c.match and c.unstable_pixels:
-        where = (f": line {c.unstable_lines[0]['line']} `{c.unstable_lines[0]['code']}` keeps "
-                 f"{c.unstable_lines[0]['bits']} of 24 bits" if c.unstable_lines else "")
+        where = (
+            f": line {c.unstable_lines[0]['line']} `{c.unstable_lines[0]['code']}` keeps "
+            f"{c.unstable_lines[0]['bits']} of 24 bits"
+            if c.unstable_lines
+            else ""
+        )
         lines.append(f"  -> match, except {c.unstable_pixels} unstable pixels{where}")
     else:
         lines.append("  -> match" if c.match else "  -> MISMATCH")

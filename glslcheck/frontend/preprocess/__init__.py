@@ -45,4 +45,12 @@ from .driver import WRAPPER_COLOR, preprocess
 from .result import Macro, PPResult
 from .units import Comment
 
-__all__ = ["preprocess", "PPResult", "Comment", "Macro", "MAX_EXPANSION_DEPTH", "MAX_EXPANSION_TOKENS", "WRAPPER_COLOR"]
+__all__ = [
+    "preprocess",
+    "PPResult",
+    "Comment",
+    "Macro",
+    "MAX_EXPANSION_DEPTH",
+    "MAX_EXPANSION_TOKENS",
+    "WRAPPER_COLOR",
+]

@@ -13,8 +13,24 @@ from .tokens import ID, NUM, OP, Token
 
 MAX_IF_NESTING = 100  # parentheses and unary operators in one #if expression
 _BINARY_PREC = {
-    "||": 1, "&&": 2, "|": 3, "^": 4, "&": 5, "==": 6, "!=": 6,
-    "<": 7, ">": 7, "<=": 7, ">=": 7, "<<": 8, ">>": 8, "+": 9, "-": 9, "*": 10, "/": 10, "%": 10,
+    "||": 1,
+    "&&": 2,
+    "|": 3,
+    "^": 4,
+    "&": 5,
+    "==": 6,
+    "!=": 6,
+    "<": 7,
+    ">": 7,
+    "<=": 7,
+    ">=": 7,
+    "<<": 8,
+    ">>": 8,
+    "+": 9,
+    "-": 9,
+    "*": 10,
+    "/": 10,
+    "%": 10,
 }
 INTEGER_RE = compiled(r"0[xX][0-9A-Fa-f]+|0[0-7]*|[1-9][0-9]*")
 
@@ -36,18 +52,26 @@ def eval_if(pp: PreprocessorState, toks: list[Token], directive: Token) -> bool:
             if i + 1 < len(toks) and toks[i + 1].kind == ID:
                 target, i = toks[i + 1], i + 2
                 end = target.end
-            elif (i + 3 < len(toks) and toks[i + 1].text == "(" and toks[i + 2].kind == ID
-                  and toks[i + 3].text == ")"):
+            elif (
+                i + 3 < len(toks)
+                and toks[i + 1].text == "("
+                and toks[i + 2].kind == ID
+                and toks[i + 3].text == ")"
+            ):
                 target, end, i = toks[i + 2], toks[i + 3].end, i + 4
             else:
-                raise pp.token_error("'defined' needs a macro name: defined NAME or defined(NAME)", t)
+                raise pp.token_error(
+                    "'defined' needs a macro name: defined NAME or defined(NAME)", t
+                )
             pre.append(Token(NUM, "1" if target.text in pp.macros else "0", t.start, end, t.ws))
             continue
         pre.append(t)
         i += 1
     expr = expand_list(pp, pre, 0)
     if not expr:
-        raise pp.token_error(f"#{directive.text} needs an expression (the macros expand to nothing)", directive)
+        raise pp.token_error(
+            f"#{directive.text} needs an expression (the macros expand to nothing)", directive
+        )
     ev = IfEvaluator(pp, expr, directive)
     value = ev.expression(1, True, 0)
     if ev.i < len(expr):
@@ -99,16 +123,28 @@ class IfEvaluator:
         if op in ("<<", ">>"):
             b &= 31
             return wrap32(a << b) if op == "<<" else a >> b
-        return wrap32({
-            "*": lambda: a * b, "+": lambda: a + b, "-": lambda: a - b,
-            "<": lambda: int(a < b), ">": lambda: int(a > b), "<=": lambda: int(a <= b),
-            ">=": lambda: int(a >= b), "==": lambda: int(a == b), "!=": lambda: int(a != b),
-            "&": lambda: a & b, "^": lambda: a ^ b, "|": lambda: a | b,
-        }[op]())
+        return wrap32(
+            {
+                "*": lambda: a * b,
+                "+": lambda: a + b,
+                "-": lambda: a - b,
+                "<": lambda: int(a < b),
+                ">": lambda: int(a > b),
+                "<=": lambda: int(a <= b),
+                ">=": lambda: int(a >= b),
+                "==": lambda: int(a == b),
+                "!=": lambda: int(a != b),
+                "&": lambda: a & b,
+                "^": lambda: a ^ b,
+                "|": lambda: a | b,
+            }[op]()
+        )
 
     def unary(self, live: bool, nesting: int) -> int:
         if nesting > MAX_IF_NESTING:
-            raise self._fail(f"the #{self.directive.text} expression is nested too deeply", self._peek())
+            raise self._fail(
+                f"the #{self.directive.text} expression is nested too deeply", self._peek()
+            )
         t = self._peek()
         if t is None:
             raise self._fail(f"the #{self.directive.text} expression ends too early", None)
@@ -125,8 +161,14 @@ class IfEvaluator:
             return v
         if t.kind == NUM:
             if not INTEGER_RE.fullmatch(t.text):
-                raise self._fail(f"#if expressions use integers only; '{t.text}' is not an integer literal", t)
-            v = int(t.text, 0) if not (t.text.startswith("0") and t.text[1:].isdigit()) else int(t.text, 8)
+                raise self._fail(
+                    f"#if expressions use integers only; '{t.text}' is not an integer literal", t
+                )
+            v = (
+                int(t.text, 0)
+                if not (t.text.startswith("0") and t.text[1:].isdigit())
+                else int(t.text, 8)
+            )
             if v > 0xFFFFFFFF:
                 raise self._fail(f"the number '{t.text}' is too large for an #if expression", t)
             return wrap32(v)

@@ -34,7 +34,13 @@ class PreprocessorState:
     def __init__(self, predefined: dict[str, str] | None, shadertoy: bool):
         self.shadertoy = shadertoy
         self.macros: dict[str, Macro] = {}
-        base = {"GL_ES": "1", "__VERSION__": "300", "GL_FRAGMENT_PRECISION_HIGH": "1", "__LINE__": "", "__FILE__": ""}
+        base = {
+            "GL_ES": "1",
+            "__VERSION__": "300",
+            "GL_FRAGMENT_PRECISION_HIGH": "1",
+            "__LINE__": "",
+            "__FILE__": "",
+        }
         if shadertoy:
             base["HW_PERFORMANCE"] = "1"
         base.update(predefined or {})
@@ -64,7 +70,11 @@ class PreprocessorState:
             return
         if end < 0 and self.segs:
             last = self.segs[-1]
-            if last.end < 0 and last.unit is unit and last.start + (self.out_len - last.out_start) == start:
+            if (
+                last.end < 0
+                and last.unit is unit
+                and last.start + (self.out_len - last.out_start) == start
+            ):
                 self.out.append(text)
                 self.out_len += len(text)
                 return
@@ -132,5 +142,14 @@ class PreprocessorState:
     def result(self) -> PPResult:
         """The program read so far, as the later stages take it."""
         text = "".join(self.out)
-        return PPResult(text, self.version, self.extensions, self.pragmas, self.comments, self.macros,
-                        self.diagnostics, self.seg_starts, self.segs)
+        return PPResult(
+            text,
+            self.version,
+            self.extensions,
+            self.pragmas,
+            self.comments,
+            self.macros,
+            self.diagnostics,
+            self.seg_starts,
+            self.segs,
+        )

@@ -21,7 +21,9 @@ WRAPPER_COLOR = "glslcheck_color"
 _LEAD_WS_RE = compiled(rf"[{WS}]*")
 
 
-def preprocess(units: list[Source], predefined: dict[str, str] | None = None, *, shadertoy: bool = True) -> PPResult:
+def preprocess(
+    units: list[Source], predefined: dict[str, str] | None = None, *, shadertoy: bool = True
+) -> PPResult:
     """Preprocess `units` in order (Shadertoy: Common, then the pass's tab) as one program.
 
     Raises GlslError at the first error, located in the user's file."""
@@ -43,9 +45,14 @@ def _wrapper_call(pp: PreprocessorState, index: int) -> None:
     if macro is None or macro.params is None or len(macro.params) != 2 or macro.loc is None:
         return
     pad = "\n" * (macro.loc.line - 1)
-    header = Source(macro.loc.path, pad + f"void mainImage(out vec4 {WRAPPER_COLOR}, in vec2 glslcheck_coord) {{\n")
-    body = Source(macro.loc.path,
-                  pad + f"{WRAPPER_COLOR} = vec4(1e20); mainImage({WRAPPER_COLOR}, glslcheck_coord); }}\n")
+    header = Source(
+        macro.loc.path,
+        pad + f"void mainImage(out vec4 {WRAPPER_COLOR}, in vec2 glslcheck_coord) {{\n",
+    )
+    body = Source(
+        macro.loc.path,
+        pad + f"{WRAPPER_COLOR} = vec4(1e20); mainImage({WRAPPER_COLOR}, glslcheck_coord); }}\n",
+    )
     del pp.macros["mainImage"]  # the header names the function; only the call expands
     run_unit(pp, Unit(header, index))
     pp.macros["mainImage"] = macro

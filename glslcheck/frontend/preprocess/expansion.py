@@ -15,7 +15,7 @@ from .units import Unit
 
 TYPE_CHECKING = False  # not typing's: importing typing costs every start-up
 if TYPE_CHECKING:
-    from typing import Iterator
+    from collections.abc import Iterator
 
 _EMPTY: frozenset[str] = frozenset()
 
@@ -94,12 +94,20 @@ def expansion_error(pp: PreprocessorState, what: str, t: Token | None) -> GlslEr
     s, e = t.span() if t is not None else (0, 0)
     return pp.error(
         f"macro expansion is too {'deep' if what == 'deep' else 'large'}"
-        + (f" (more than {MAX_EXPANSION_DEPTH} nested expansions)" if what == "deep"
-           else f" (more than {MAX_EXPANSION_TOKENS} tokens)"),
-        s, e, help="a macro probably expands to itself through other macros, or doubles at each level")
+        + (
+            f" (more than {MAX_EXPANSION_DEPTH} nested expansions)"
+            if what == "deep"
+            else f" (more than {MAX_EXPANSION_TOKENS} tokens)"
+        ),
+        s,
+        e,
+        help="a macro probably expands to itself through other macros, or doubles at each level",
+    )
 
 
-def expand_token(pp: PreprocessorState, t: Token, inp: TokenInput, out: list[Token], depth: int) -> None:
+def expand_token(
+    pp: PreprocessorState, t: Token, inp: TokenInput, out: list[Token], depth: int
+) -> None:
     """Expand t if it names a macro (pushing the result back onto inp), else output it."""
     name = t.text
     macro = pp.macros.get(name) if t.kind == ID else None
@@ -127,8 +135,11 @@ def expand_token(pp: PreprocessorState, t: Token, inp: TokenInput, out: list[Tok
             s, e = t.span()[0], rp.span()[1]
             raise pp.error(
                 f"macro '{name}' takes {nparams} argument{'s' if nparams != 1 else ''} "
-                f"but {len(args)} {'were' if len(args) != 1 else 'was'} given", s, e,
-                help=f"'{name}' is defined at {macro.loc}" if macro.loc else None)
+                f"but {len(args)} {'were' if len(args) != 1 else 'was'} given",
+                s,
+                e,
+                help=f"'{name}' is defined at {macro.loc}" if macro.loc else None,
+            )
         hide = hide & (rp.hide or _EMPTY)
         use = (t.span()[0], rp.span()[1])
         index = {p: i for i, p in enumerate(macro.params)}
@@ -154,19 +165,34 @@ def expand_token(pp: PreprocessorState, t: Token, inp: TokenInput, out: list[Tok
         raise expansion_error(pp, "large", t)
     stack = inp.stack
     for b in reversed(body):
-        stack.append(Token(b.kind, b.text, use[0], use[1], b.ws,
-                           hide if b.hide is None else (b.hide | hide), use))
+        stack.append(
+            Token(
+                b.kind,
+                b.text,
+                use[0],
+                use[1],
+                b.ws,
+                hide if b.hide is None else (b.hide | hide),
+                use,
+            )
+        )
 
 
-def _collect_args(pp: PreprocessorState, name: Token, inp: TokenInput) -> tuple[list[list[Token]], Token]:
+def _collect_args(
+    pp: PreprocessorState, name: Token, inp: TokenInput
+) -> tuple[list[list[Token]], Token]:
     args: list[list[Token]] = [[]]
     level = 0
     while True:
         t = inp.next()
         if t is None:
             raise pp.token_error(
-                f"the argument list of macro '{name.text}' is not closed: a ')' is missing", name,
-                help="a macro call in a directive must end on the same line" if inp.end == 0 else None)
+                f"the argument list of macro '{name.text}' is not closed: a ')' is missing",
+                name,
+                help="a macro call in a directive must end on the same line"
+                if inp.end == 0
+                else None,
+            )
         if t.kind == OP:
             if t.text == "(":
                 level += 1
@@ -206,7 +232,9 @@ def _find_identifier(text: str, name: str, start: int, end: int) -> int:
     n = len(name)
     i = text.find(name, start, end)
     while i >= 0:
-        if (i == 0 or text[i - 1] not in _WORD_CHARS) and (i + n == end or text[i + n] not in _WORD_CHARS):
+        if (i == 0 or text[i - 1] not in _WORD_CHARS) and (
+            i + n == end or text[i + n] not in _WORD_CHARS
+        ):
             return i
         i = text.find(name, i + 1, end)
     return -1

@@ -63,7 +63,9 @@ class PPResult:
 
     def _seg_len(self, seg: Segment) -> int:
         i = bisect_right(self._seg_starts, seg.out_start)
-        return (self._seg_starts[i] if i < len(self._seg_starts) else len(self.text)) - seg.out_start
+        return (
+            self._seg_starts[i] if i < len(self._seg_starts) else len(self.text)
+        ) - seg.out_start
 
     def locate(self, offset: int) -> Location:
         """The user's file, line and column of `offset` in `text`: a point for copied text, the
@@ -84,7 +86,11 @@ class PPResult:
         starts = self._seg_starts
         i = bisect_right(starts, start) - 1
         seg = self._segs[i]
-        if seg.end < 0 and i >= 0 and end <= (starts[i + 1] if i + 1 < len(starts) else len(self.text)):
+        if (
+            seg.end < 0
+            and i >= 0
+            and end <= (starts[i + 1] if i + 1 < len(starts) else len(self.text))
+        ):
             # Both ends in one copied piece of text: the common case of a token.
             shift = seg.start - seg.out_start
             return seg.unit.span(start + shift, end + shift)

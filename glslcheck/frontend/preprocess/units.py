@@ -75,10 +75,14 @@ class Unit:
                 close = clean.find("*/", cstart + 2)
                 if close < 0:
                     rs = self.c2r(cstart)
-                    raise GlslError(Diagnostic(
-                        "this /* comment is never closed: the file ends inside it",
-                        self._raw_loc(rs, rs + 2), rule=RULE,
-                        help="add */ where the comment should end"))
+                    raise GlslError(
+                        Diagnostic(
+                            "this /* comment is never closed: the file ends inside it",
+                            self._raw_loc(rs, rs + 2),
+                            rule=RULE,
+                            help="add */ where the comment should end",
+                        )
+                    )
                 cend = close + 2
                 kind = "block"
                 k = clean.count("\n", cstart, cend)
@@ -86,7 +90,9 @@ class Unit:
             rs, re_ = self.c2r(cstart), self.c2r(cend - 1) + 1
             self.comment_starts.append(olen)
             # located when read (as the AST's spans): the linter reads its own scan's comments
-            self.comments.append(Comment(pending_location(self._raw_loc, rs, re_), raw[rs:re_], kind))
+            self.comments.append(
+                Comment(pending_location(self._raw_loc, rs, re_), raw[rs:re_], kind)
+            )
             if rep == " ":
                 self.bp_s.append(olen)
                 self.bp_r.append(rs)

@@ -26,13 +26,14 @@ and has a row in `RULE_TABLE` below. Nothing else registers a rule.
 from __future__ import annotations
 
 import importlib
-from ...base.records import record
 from functools import cache
 from types import ModuleType
 
+from ...base.records import record
+
 TYPE_CHECKING = False  # not typing's: importing typing costs every start-up
 if TYPE_CHECKING:
-    from typing import Callable, Iterable
+    from collections.abc import Callable, Iterable
 
 # Every rule: (NAME, module in this package). The order is the order docs and `--all` list them.
 RULE_TABLE: tuple[tuple[str, str], ...] = (
@@ -120,7 +121,9 @@ def _load(name: str, module_name: str) -> Rule:
     if severity not in SEVERITIES:
         problems.append(f"SEVERITY must be one of {', '.join(SEVERITIES)}, not {severity!r}")
     elif isinstance(penalty, int) and (severity == "warning") != (penalty > 0):
-        problems.append("a course rule (PENALTY > 0) is a warning, a worth-knowing one (PENALTY 0) a note")
+        problems.append(
+            "a course rule (PENALTY > 0) is a warning, a worth-knowing one (PENALTY 0) a note"
+        )
     if getattr(mod, "NEEDS", None) not in NEEDS:
         problems.append(f"NEEDS must be one of {', '.join(NEEDS)}")
     if getattr(mod, "READS", "functions") not in READS:
@@ -134,7 +137,14 @@ def _load(name: str, module_name: str) -> Rule:
     if problems:
         raise TypeError(f"lint rule {where}: " + "; ".join(problems))
     return Rule(
-        name, penalty, severity, mod.NEEDS, summary.strip(), body.strip(), mod.check, mod,
+        name,
+        penalty,
+        severity,
+        mod.NEEDS,
+        summary.strip(),
+        body.strip(),
+        mod.check,
+        mod,
         getattr(mod, "READS", "functions"),
     )
 

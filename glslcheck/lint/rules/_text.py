@@ -3,15 +3,15 @@ not in the table). The analysis they report on lives in glslcheck/analysis."""
 
 from __future__ import annotations
 
-
 from ...frontend import syntax as A
+from ...frontend.printer import to_glsl
 from ...semantics.analysis import builtin_call, numbers, program_facts
 from ...semantics.model import Model
-from ...frontend.printer import to_glsl
 
 TYPE_CHECKING = False  # not typing's: importing typing costs every start-up
 if TYPE_CHECKING:
-    from typing import Any, Iterator
+    from collections.abc import Iterator
+    from typing import Any
 
 COMPARISONS = ("<", "<=", ">", ">=")
 FLIPPED = {"<": ">", "<=": ">=", ">": "<", ">=": "<="}  # a op b  <=>  b FLIPPED[op] a
@@ -24,7 +24,9 @@ def negative_reason(fn: Any, e: A.Expr) -> str | None:
     if why is None:
         return None
     reason, source = why
-    return reason if fn.contains(e, source) else f"{reason}: {text(source)} (line {source.loc.line})"
+    return (
+        reason if fn.contains(e, source) else f"{reason}: {text(source)} (line {source.loc.line})"
+    )
 
 
 def compared_calls(model: Model, path: str, *names: str) -> Iterator[tuple[A.Call, A.Expr, str]]:

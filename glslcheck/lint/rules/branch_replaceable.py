@@ -38,15 +38,16 @@ vec3 color = mix(background, surface, step(0.0, t)); // t == 0.0 counts as a hit
 
 from __future__ import annotations
 
-
+from ...base.diagnostics import Diagnostic
 from ...frontend import syntax as A
 from ...semantics.analysis import numbers, program_facts
-from ...base.diagnostics import Diagnostic
 from ._text import text
 
 TYPE_CHECKING = False  # not typing's: importing typing costs every start-up
 if TYPE_CHECKING:
-    from typing import Any, Iterator
+    from collections.abc import Iterator
+    from typing import Any
+
     from ..engine import LintContext
 
 NAME = "branch-replaceable"
@@ -84,7 +85,11 @@ def _finding(node: Any, what: str, fix: tuple[str, str]) -> Diagnostic:
 def _single_assignment(stmt: Any) -> A.Assignment | None:
     while type(stmt) is A.Compound and len(stmt.stmts) == 1:
         stmt = stmt.stmts[0]
-    if type(stmt) is A.ExpressionStatement and type(stmt.expr) is A.Assignment and stmt.expr.op == "=":
+    if (
+        type(stmt) is A.ExpressionStatement
+        and type(stmt.expr) is A.Assignment
+        and stmt.expr.op == "="
+    ):
         return stmt.expr
     return None
 
@@ -113,7 +118,10 @@ def _comparison(fn, cond: Any, *bases: str) -> tuple[Any, str, Any] | None:
     if type(cond) is not A.Binary or cond.op not in _OPS:
         return None
     t = fn.model.type_of(cond.left)
-    if not (getattr(t, "is_scalar", False) and t.base in bases) or fn.model.type_of(cond.right) != t:
+    if (
+        not (getattr(t, "is_scalar", False) and t.base in bases)
+        or fn.model.type_of(cond.right) != t
+    ):
         return None
     if not (fn.is_pure(cond.left) and fn.is_pure(cond.right)):
         return None

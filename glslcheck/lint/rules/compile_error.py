@@ -39,12 +39,12 @@ vec4 shade(in vec3 n)
 
 from __future__ import annotations
 
-
 from ...base.diagnostics import Diagnostic
 
 TYPE_CHECKING = False  # not typing's: importing typing costs every start-up
 if TYPE_CHECKING:
-    from typing import Iterator
+    from collections.abc import Iterator
+
     from ..engine import LintContext
 
 NAME = "compile-error"
@@ -58,5 +58,6 @@ def check(ctx: LintContext) -> Iterator[Diagnostic]:
         yield Diagnostic(
             error.message,
             error.loc,
-            help=error.help or "Shadertoy does not compile this: fix it first (`glslcheck check` prints the same error)",
+            help=error.help
+            or "Shadertoy does not compile this: fix it first (`glslcheck check` prints the same error)",
         )

@@ -26,13 +26,13 @@ if (distSq <= radius * radius) inCircle = 1.0;
 
 from __future__ import annotations
 
-
 from ...base.diagnostics import Diagnostic
 from ._text import compared_calls, squared, text
 
 TYPE_CHECKING = False  # not typing's: importing typing costs every start-up
 if TYPE_CHECKING:
-    from typing import Iterator
+    from collections.abc import Iterator
+
     from ..engine import LintContext
 
 NAME = "length-comparison"
@@ -49,8 +49,7 @@ def check(ctx: LintContext) -> Iterator[Diagnostic]:
             fix = f"compare dot(v, v) with the squared bound: with v = {v}, dot(v, v) {op} {bound}"
         else:
             a, b = text(side.args[0]), text(side.args[1])
-            fix = (f"compare the squared distance: with d = {a} - {b}, "
-                   f"dot(d, d) {op} {bound}")
+            fix = f"compare the squared distance: with d = {a} - {b}, dot(d, d) {op} {bound}"
         yield Diagnostic(
             f"{side.callee}() is compared with a bound: its square root is not needed",
             side.loc,

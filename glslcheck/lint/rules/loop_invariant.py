@@ -38,15 +38,15 @@ for (int i = 0; i < kLightCount; ++i)
 
 from __future__ import annotations
 
-
+from ...base.diagnostics import Diagnostic
 from ...frontend import syntax as A
 from ...semantics.analysis import program_facts
-from ...base.diagnostics import Diagnostic
 from ._text import text
 
 TYPE_CHECKING = False  # not typing's: importing typing costs every start-up
 if TYPE_CHECKING:
-    from typing import Iterator
+    from collections.abc import Iterator
+
     from ..engine import LintContext
 
 NAME = "loop-invariant"
@@ -110,8 +110,11 @@ def _check_function(fn) -> Iterator[Diagnostic]:
     for places in values.values():
         n, loop = places[0]
         lines = sorted({p.loc.line for p, _ in places})
-        where = f"line {lines[0]}" if len(lines) == 1 else \
-            "lines " + ", ".join(map(str, lines[:-1])) + f" and {lines[-1]}"
+        where = (
+            f"line {lines[0]}"
+            if len(lines) == 1
+            else "lines " + ", ".join(map(str, lines[:-1])) + f" and {lines[-1]}"
+        )
         times = "" if len(places) == 1 else f" (computed {len(places)} times in it, at {where})"
         yield Diagnostic(
             f"'{text(n)}' has the same value on every iteration of the {_LOOP_WORD[type(loop)]} "

@@ -41,16 +41,27 @@ vec3 col = a * lightColor; // the light reaching the surface
 
 from __future__ import annotations
 
-
 import re
 
-from ...base.regexes import compiled
 from ...base.diagnostics import Diagnostic
-from ..textscan import BLANK, BRACE, BRACE_COMMENT, CODE, COMMENT, DIRECTIVE, LEADING, TRAILING, LineKind, inactive_lines
+from ...base.regexes import compiled
+from ..textscan import (
+    BLANK,
+    BRACE,
+    BRACE_COMMENT,
+    CODE,
+    COMMENT,
+    DIRECTIVE,
+    LEADING,
+    TRAILING,
+    LineKind,
+    inactive_lines,
+)
 
 TYPE_CHECKING = False  # not typing's: importing typing costs every start-up
 if TYPE_CHECKING:
-    from typing import Iterator
+    from collections.abc import Iterator
+
     from ..engine import LintContext
 
 NAME = "missing-comment"
@@ -106,16 +117,22 @@ ATTRIBUTION_RE = compiled(
 def _attributions(ctx) -> set[int]:
     """Lines of whole-line comments that only attribute or mark."""
     return {
-        c.line for c in ctx.comments
-        if c.line == c.end_line and ctx.line_kinds[c.line - 1] is COMMENT and ATTRIBUTION_RE.match(c.text)
+        c.line
+        for c in ctx.comments
+        if c.line == c.end_line
+        and ctx.line_kinds[c.line - 1] is COMMENT
+        and ATTRIBUTION_RE.match(c.text)
     }
 
 
 def check(ctx: LintContext) -> Iterator[Diagnostic]:
     # code the preprocessor skips (an inactive #ifdef branch) is not compiled: not linted
     inactive = inactive_lines(ctx.lines)
-    kinds = [DIRECTIVE if n in inactive else k for n, k in enumerate(ctx.line_kinds, start=1)] if inactive \
+    kinds = (
+        [DIRECTIVE if n in inactive else k for n, k in enumerate(ctx.line_kinds, start=1)]
+        if inactive
         else ctx.line_kinds
+    )
     span = ctx.config.comment_span
     runs = uncovered_runs(kinds, span)
     for first, last, count in runs:
@@ -127,11 +144,19 @@ def check(ctx: LintContext) -> Iterator[Diagnostic]:
         seen = {line for first, last, _ in runs for line in range(first, last + 1)}
         for first, last, count in uncovered_runs(plain, span):
             if not any(line in seen for line in range(first, last + 1)):
-                yield _finding(ctx, first, last, count, True,
-                               "explained only by a comment that credits or marks (not why the code is there)")
+                yield _finding(
+                    ctx,
+                    first,
+                    last,
+                    count,
+                    True,
+                    "explained only by a comment that credits or marks (not why the code is there)",
+                )
 
 
-def _finding(ctx: LintContext, first: int, last: int, count: int, advisory: bool, what: str) -> Diagnostic:
+def _finding(
+    ctx: LintContext, first: int, last: int, count: int, advisory: bool, what: str
+) -> Diagnostic:
     lines = f"line {first}" if first == last else f"lines {first}-{last}"
     noun = "line" if count == 1 else "lines"
     return Diagnostic(

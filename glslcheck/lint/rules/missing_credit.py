@@ -34,12 +34,13 @@ from __future__ import annotations
 
 import re
 
-from ...base.regexes import compiled
 from ...base.diagnostics import Diagnostic
+from ...base.regexes import compiled
 
 TYPE_CHECKING = False  # not typing's: importing typing costs every start-up
 if TYPE_CHECKING:
-    from typing import Iterator
+    from collections.abc import Iterator
+
     from ..engine import LintContext
 
 NAME = "missing-credit"

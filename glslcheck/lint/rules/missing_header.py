@@ -49,15 +49,16 @@ from __future__ import annotations
 
 import re
 
-from ...base.regexes import compiled
 from ...base.diagnostics import Diagnostic
+from ...base.regexes import compiled
 from ...shadertoy.sources import path_name, path_stem, tab_name
 from ..textscan import BLANK, COMMENT, DIRECTIVE
 from .missing_credit import has_credit
 
 TYPE_CHECKING = False  # not typing's: importing typing costs every start-up
 if TYPE_CHECKING:
-    from typing import Iterator
+    from collections.abc import Iterator
+
     from ..engine import LintContext
 
 NAME = "missing-header"
@@ -72,7 +73,8 @@ _PURPOSE_LABEL = compiled(
 )
 _DOXYGEN_BRIEF = compiled(r"^\W*[@\\](?:brief|details)\s+\w", re.I | re.M)
 _PURPOSE_SENTENCE = compiled(
-    r"\bthis\s+(?:file|shader|tab|pass|buffer|program|code)\s+(?:is\s+|will\s+)?(?!except\b)[a-z]+", re.I
+    r"\bthis\s+(?:file|shader|tab|pass|buffer|program|code)\s+(?:is\s+|will\s+)?(?!except\b)[a-z]+",
+    re.I,
 )
 _CONTRIB_LABEL = compiled(
     r"^\W*(?:auth[oe]rs?|copyright(?:\s+(?:\(c\)|\u00a9))?(?:\s+\d{4}(?:\s*-\s*\d{4})?)?|contributors?|contributions|team(?:\s+members)?|programmers?|developers?"
@@ -141,13 +143,15 @@ def states_purpose(text: str, path: str, tab: str) -> bool:
     full, others = _names(path, tab)
     for n in (full, *others):
         # words after the name on its line: `Image.glsl - draws lit spheres`
-        if re.search(rf"(?<!\w){_flex(n)}{_EXT}(?:\s+{_TAB_WORDS})?[\"'`]?\s*{_SEP}\s*\w+\W+\w+", text, re.I):
+        if re.search(
+            rf"(?<!\w){_flex(n)}{_EXT}(?:\s+{_TAB_WORDS})?[\"'`]?\s*{_SEP}\s*\w+\W+\w+", text, re.I
+        ):
             return True
     return False
 
 
 def contributors(text: str) -> str:
-    """"ok", "none" (no contributor list), or "bare" (names without what each did). A license's
+    """ "ok", "none" (no contributor list), or "bare" (names without what each did). A license's
     `Copyright <year> <names>` lines name authors only when no other list does."""
     lines = text.split("\n")
     lists: dict[bool, list[str]] = {True: [], False: []}  # copyright line? -> entries
@@ -182,9 +186,14 @@ def header_text(ctx) -> str | None:
     # authors written after a `#define` are still header: a directive line is no code
     lines = ctx.lines
     first_code = next(
-        (i for i, k in enumerate(ctx.line_kinds, start=1)
-         if k is not BLANK and k is not COMMENT and k is not DIRECTIVE  # code, or a brace
-         and not lines[i - 1].lstrip().startswith("#")),
+        (
+            i
+            for i, k in enumerate(ctx.line_kinds, start=1)
+            if k is not BLANK
+            and k is not COMMENT
+            and k is not DIRECTIVE  # code, or a brace
+            and not lines[i - 1].lstrip().startswith("#")
+        ),
         len(ctx.line_kinds) + 1,
     )
     parts: list[str] = []
@@ -212,7 +221,9 @@ def missing_parts(ctx) -> list[str] | None:
         missing.append("states no purpose")
     who = contributors(text)
     if who == "none" and has_credit(text):
-        missing.append("lists no contributors with what each did (a starter-code credit names no author)")
+        missing.append(
+            "lists no contributors with what each did (a starter-code credit names no author)"
+        )
     elif who == "none":
         missing.append("lists no contributors with what each did")
     elif who == "bare":

@@ -51,17 +51,18 @@ vec3 normal = (position - sphere.center) / sphere.radius; // |p - c| is the radi
 
 from __future__ import annotations
 
-
+from ...base.diagnostics import Diagnostic
 from ...frontend import syntax as A
 from ...language import glsl_types as T
 from ...semantics.analysis import builtin_call, calls_in, program_facts
 from ...semantics.model import Constructor, Symbol
-from ...base.diagnostics import Diagnostic
 from ._text import text, wrap
 
 TYPE_CHECKING = False  # not typing's: importing typing costs every start-up
 if TYPE_CHECKING:
-    from typing import Any, Iterator
+    from collections.abc import Iterator
+    from typing import Any
+
     from ..engine import LintContext
 
 NAME = "normalize-known-length"
@@ -74,11 +75,15 @@ _MAX_DEPTH = 8  # assignments and fields followed back from one value
 
 def check(ctx: LintContext) -> Iterator[Diagnostic]:
     for fn in program_facts(ctx.model).in_file(ctx.path):
-        normalizes = [(n, n.args[0]) for n in fn.nodes if type(n) is A.Call and _is_normalize(fn, n)]
+        normalizes = [
+            (n, n.args[0]) for n in fn.nodes if type(n) is A.Call and _is_normalize(fn, n)
+        ]
         normalizes += [(n, v) for n in fn.nodes if (v := _written_out(fn, n)) is not None]
         if not normalizes:
             continue
-        known = [c for c in calls_in(fn, "length", "distance", "dot") if _measured_key(fn, c) is not None]
+        known = [
+            c for c in calls_in(fn, "length", "distance", "dot") if _measured_key(fn, c) is not None
+        ]
         for node, v in sorted(normalizes, key=lambda nv: fn.enter[id(nv[0])]):
             found = None
             if builtin_call(fn.model, node, "normalize"):
@@ -101,7 +106,12 @@ def _is_normalize(fn, call: A.Call) -> bool:
     if not isinstance(target, Symbol) or not isinstance(d, A.FunctionDefinition) or d.body is None:
         return False
     stmts = [st for st in d.body.stmts]
-    if len(stmts) != 1 or type(stmts[0]) is not A.Return or stmts[0].value is None or len(d.proto.params) != 1:
+    if (
+        len(stmts) != 1
+        or type(stmts[0]) is not A.Return
+        or stmts[0].value is None
+        or len(d.proto.params) != 1
+    ):
         return False
     v, param = stmts[0].value, d.proto.params[0].name
 
@@ -109,7 +119,12 @@ def _is_normalize(fn, call: A.Call) -> bool:
         return type(e) is A.Identifier and e.name == param
 
     def call_of(e, name: str, n: int) -> bool:
-        return type(e) is A.Call and e.callee == name and len(e.args) == n and all(is_param(a) for a in e.args)
+        return (
+            type(e) is A.Call
+            and e.callee == name
+            and len(e.args) == n
+            and all(is_param(a) for a in e.args)
+        )
 
     if call_of(v, "normalize", 1):
         return True
@@ -117,8 +132,17 @@ def _is_normalize(fn, call: A.Call) -> bool:
         return call_of(v.right, "length", 1)
     if type(v) is A.Binary and v.op == "*" and is_param(v.left):
         r = v.right
-        return (type(r) is A.Call and r.callee == "inversesqrt" and len(r.args) == 1 and call_of(r.args[0], "dot", 2)) \
-            or (type(r) is A.Binary and r.op == "/" and _number(r.left) == 1.0 and call_of(r.right, "length", 1))
+        return (
+            type(r) is A.Call
+            and r.callee == "inversesqrt"
+            and len(r.args) == 1
+            and call_of(r.args[0], "dot", 2)
+        ) or (
+            type(r) is A.Binary
+            and r.op == "/"
+            and _number(r.left) == 1.0
+            and call_of(r.right, "length", 1)
+        )
     return False
 
 
@@ -172,15 +196,23 @@ def _already_measured(fn, call: A.Call, known: list) -> tuple[str, str] | None:
     kv = fn.key(v)
     ops = fn.operands(v)
     for c in known:
-        if _measured_key(fn, c) != kv or not fn.dominates(c, call) or fn.written_between(c, call, ops):
+        if (
+            _measured_key(fn, c) != kv
+            or not fn.dominates(c, call)
+            or fn.written_between(c, call, ops)
+        ):
             continue
         name = _stored_in(fn, c)
         value = name or text(c)
         if c.callee == "dot":
-            return (f"normalize() recomputes dot(v, v), already computed at line {c.loc.line}",
-                    f"multiply by its reciprocal square root: {wrap(v)} * inversesqrt({value})")
-        return (f"normalize() of a vector whose length is already computed at line {c.loc.line}",
-                f"divide by that length: {wrap(v)} / {value if name else wrap(c)}")
+            return (
+                f"normalize() recomputes dot(v, v), already computed at line {c.loc.line}",
+                f"multiply by its reciprocal square root: {wrap(v)} * inversesqrt({value})",
+            )
+        return (
+            f"normalize() of a vector whose length is already computed at line {c.loc.line}",
+            f"divide by that length: {wrap(v)} / {value if name else wrap(c)}",
+        )
     return None
 
 
@@ -215,8 +247,10 @@ def _sphere_normal(fn, call, v) -> tuple[str, str] | None:
         name = f"{call.callee}() (a normalize)"
     else:
         name = f"'{text(call)}' (a normalize written out)"
-    return (f"{name} of {text(diff)}, {why}: its length is the radius, {radius}",
-            f"divide by the radius: {wrap(v)} / {radius}")
+    return (
+        f"{name} of {text(diff)}, {why}: its length is the radius, {radius}",
+        f"divide by the radius: {wrap(v)} / {radius}",
+    )
 
 
 def _unswizzle(e, model):
@@ -225,8 +259,12 @@ def _unswizzle(e, model):
     while True:
         if type(e) is A.Field and e.name in ("xyz", "rgb", "stp", "xy"):
             e = e.base
-        elif type(e) is A.Call and len(e.args) == 1 and e.callee in ("vec2", "vec3") \
-                and getattr(model.type_of(e.args[0]), "is_vector", False):
+        elif (
+            type(e) is A.Call
+            and len(e.args) == 1
+            and e.callee in ("vec2", "vec3")
+            and getattr(model.type_of(e.args[0]), "is_vector", False)
+        ):
             e = e.args[0]
         else:
             return e
@@ -255,7 +293,9 @@ def _resolve(fn, e, depth: int = 0, params_only: bool = False, across_calls: boo
                 value = _field_value(fn, e.base, e.name, e)
         elif type(e) is A.Field and type(e.base) is A.Identifier:
             base = fn.model.symbol_of(e.base)
-            if base is not None and base.kind == "param" and across_calls:  # a field of a struct passed in
+            if (
+                base is not None and base.kind == "param" and across_calls
+            ):  # a field of a struct passed in
                 arg_fn, arg = _argument(fn, base)
                 if arg is not None:
                     arg_fn, arg = _resolve(arg_fn, arg, depth)
@@ -296,14 +336,21 @@ def _field_value(fn, base: A.Identifier, name: str, at) -> Any:
         return None
     for w in reversed([w for w in fn.writes_to(sym) if w.pos < pos]):
         node = w.node
-        if w.kind == "part" and type(node) is A.Assignment and type(node.target) is A.Field \
-                and type(node.target.base) is A.Identifier:
+        if (
+            w.kind == "part"
+            and type(node) is A.Assignment
+            and type(node.target) is A.Field
+            and type(node.target.base) is A.Identifier
+        ):
             if node.target.name != name:
                 if _disjoint(fn, node.target, at):
                     continue  # another field or other components: this one is unchanged
                 return None
-            if node.op != "=" or not fn.dominates(node, at) \
-                    or fn.written_between(node, at, fn.operands(node.value) - {sym}):
+            if (
+                node.op != "="
+                or not fn.dominates(node, at)
+                or fn.written_between(node, at, fn.operands(node.value) - {sym})
+            ):
                 return None
             return node.value
         if w.kind in ("=", "init") and type(w.value) is A.Call and fn.dominates(node, at):
@@ -352,20 +399,30 @@ def _on_sphere(fn, point, center, home) -> tuple[str | None, str]:
         if radius is not None:
             return radius, "a point built on the sphere (center + (dp.xy, sqrt(r^2 - |dp.xy|^2)))"
         # c + r * normalize(u): a point at distance r from c
-        for r, u in ((m.left, m.right), (m.right, m.left)) if type(m) is A.Binary and m.op == "*" else ():
+        for r, u in (
+            ((m.left, m.right), (m.right, m.left)) if type(m) is A.Binary and m.op == "*" else ()
+        ):
             unit_fn, unit = _resolve(fn, u)
             if _vkey(fn, o) == center and type(unit) is A.Call and _is_normalize(unit_fn, unit):
                 return text(r), f"a point at distance {text(r)} from {text(o)}"
         # o + t * d with t = hit(o, d, sphere)
-        for t, d in ((m.left, m.right), (m.right, m.left)) if type(m) is A.Binary and m.op == "*" else ():
+        for t, d in (
+            ((m.left, m.right), (m.right, m.left)) if type(m) is A.Binary and m.op == "*" else ()
+        ):
             hit_fn, hit = _resolve(fn, t)
             if type(hit) is not A.Call:
                 continue
             roles = _sphere_hit(hit_fn, hit)
             if roles is None:
                 continue
-            if roles["center"] == center and roles["origin"] == _vkey(fn, o) and roles["direction"] == _vkey(fn, d):
-                return roles["radius"], f"the hit point of the ray with the sphere {hit.callee}() intersects"
+            if (
+                roles["center"] == center
+                and roles["origin"] == _vkey(fn, o)
+                and roles["direction"] == _vkey(fn, d)
+            ):
+                return roles[
+                    "radius"
+                ], f"the hit point of the ray with the sphere {hit.callee}() intersects"
     return None, ""
 
 
@@ -375,11 +432,18 @@ def _procedural_offset(fn, m, home) -> str | None:
     an offset of length r. Values are followed as by `_resolve` (across a call too); the squared
     length and x, y must end in the same function's values (else unsure: None)."""
     m_fn, m = _resolve(fn, m)
-    if type(m) is not A.Call or m.callee != "vec3" or not isinstance(m_fn.model.call_target(m), Constructor):
+    if (
+        type(m) is not A.Call
+        or m.callee != "vec3"
+        or not isinstance(m_fn.model.call_target(m), Constructor)
+    ):
         return None
     args = m.args
     if len(args) == 3:
-        (x_fn, x), (part_fn, y) = _resolve(m_fn, args[0], params_only=True), _resolve(m_fn, args[1], params_only=True)
+        (x_fn, x), (part_fn, y) = (
+            _resolve(m_fn, args[0], params_only=True),
+            _resolve(m_fn, args[1], params_only=True),
+        )
         if x_fn is not part_fn:
             return None
         parts = [part_fn.key(x), part_fn.key(y)]
@@ -428,8 +492,12 @@ def _sphere_hit(fn, call: A.Call) -> dict | None:
         field = None
         if type(e) is A.Field and not model.is_swizzle(e):
             e, field = _unswizzle(e.base, model), e.name
-        if type(e) is A.Identifier and e.name in params and model.symbol_of(e) is not None \
-                and model.symbol_of(e).kind == "param":
+        if (
+            type(e) is A.Identifier
+            and e.name in params
+            and model.symbol_of(e) is not None
+            and model.symbol_of(e).kind == "param"
+        ):
             return params.index(e.name), field
         return None
 
@@ -445,8 +513,18 @@ def _sphere_hit(fn, call: A.Call) -> dict | None:
             diffs[holder] = (root(value.left), root(value.right), value)
     if not diffs or not any(type(n) is A.Call and n.callee == "sqrt" for n in nodes):
         return None
-    radius = next((root(n.left) for n in nodes if type(n) is A.Binary and n.op == "*" and root(n.left)
-                   and root(n.left) == root(n.right) and text(n.left) == text(n.right)), None)
+    radius = next(
+        (
+            root(n.left)
+            for n in nodes
+            if type(n) is A.Binary
+            and n.op == "*"
+            and root(n.left)
+            and root(n.left) == root(n.right)
+            and text(n.left) == text(n.right)
+        ),
+        None,
+    )
     if radius is None:
         return None
     for holder, (origin, center, value) in diffs.items():
@@ -454,11 +532,17 @@ def _sphere_hit(fn, call: A.Call) -> dict | None:
             if type(n) is A.Call and n.callee == "dot" and len(n.args) == 2:
                 a, b = n.args
                 for x, y in ((a, b), (b, a)):
-                    is_oc = (type(x) is A.Identifier and x.name == holder) or (holder is None and x is value)
+                    is_oc = (type(x) is A.Identifier and x.name == holder) or (
+                        holder is None and x is value
+                    )
                     if is_oc and root(y) and root(y) not in (origin, center):
                         direction = root(y)
                         roles = {}
-                        for role, r in (("origin", origin), ("direction", direction), ("center", center)):
+                        for role, r in (
+                            ("origin", origin),
+                            ("direction", direction),
+                            ("center", center),
+                        ):
                             roles[role] = _role_key(fn, call, r)
                         roles["radius"] = _role_text(fn, call, radius)
                         if None not in roles.values():
@@ -476,8 +560,11 @@ def _role_arg(fn, call: A.Call, r):
     if field is None:
         return fn, arg
     base_fn, base = _resolve(fn, arg, across_calls=False)  # compared by key: see _vkey
-    value = _field_value(fn, base, field, call) if base_fn is fn and type(base) is A.Identifier \
+    value = (
+        _field_value(fn, base, field, call)
+        if base_fn is fn and type(base) is A.Identifier
         else _field_in(base_fn, base, field)
+    )
     if value is not None:
         return base_fn, value
     return fn, ("field", arg, field)
@@ -501,7 +588,7 @@ def _role_text(fn, call: A.Call, r) -> str | None:
     value_fn, e = found
     index, field = r
     if isinstance(e, tuple) or value_fn is not fn:  # unknown, or known only from the caller:
-        arg = call.args[index]                      # name it as this function can
+        arg = call.args[index]  # name it as this function can
         return f"{text(arg)}.{field}" if field else text(arg)
     value = _resolve(fn, e, across_calls=False)[1]
     return text(value) if type(value) in (A.FloatLiteral, A.IntLiteral) else text(e)

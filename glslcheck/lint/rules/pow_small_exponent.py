@@ -27,14 +27,14 @@ float fresnel = k2 * k2;
 
 from __future__ import annotations
 
-
-from ...semantics.analysis import builtin_calls, numbers
 from ...base.diagnostics import Diagnostic
+from ...semantics.analysis import builtin_calls, numbers
 from ._text import is_atom, text, wrap
 
 TYPE_CHECKING = False  # not typing's: importing typing costs every start-up
 if TYPE_CHECKING:
-    from typing import Iterator
+    from collections.abc import Iterator
+
     from ..engine import LintContext
 
 NAME = "pow-small-exponent"

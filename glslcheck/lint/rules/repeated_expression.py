@@ -55,14 +55,15 @@ vec3 toLight = light.center - position;
 
 from __future__ import annotations
 
+from ...base.diagnostics import Diagnostic
 from ...frontend import syntax as A
 from ...semantics.analysis import program_facts, written_variable
-from ...base.diagnostics import Diagnostic
 from ._text import text
 
 TYPE_CHECKING = False  # not typing's: importing typing costs every start-up
 if TYPE_CHECKING:
-    from typing import Iterator
+    from collections.abc import Iterator
+
     from ..engine import LintContext
 
 NAME = "repeated-expression"
@@ -76,8 +77,12 @@ def _holder(fn, first) -> str | None:
     parent = fn.parent.get(id(first))
     if type(parent) is A.Declarator and parent.init is first:
         return parent.name
-    if type(parent) is A.Assignment and parent.op == "=" and parent.value is first \
-            and type(parent.target) is A.Identifier:
+    if (
+        type(parent) is A.Assignment
+        and parent.op == "="
+        and parent.value is first
+        and type(parent.target) is A.Identifier
+    ):
         return parent.target.name
     return None
 
@@ -93,6 +98,8 @@ def _holder_symbol(fn, first):
 
 _CANDIDATES = 64  # earlier occurrences tried as the one to reuse
 _LEAVES = (A.Identifier, A.FloatLiteral, A.IntLiteral, A.BoolLiteral)
+
+
 def check(ctx: LintContext) -> Iterator[Diagnostic]:
     for fn in program_facts(ctx.model).in_file(ctx.path):
         yield from _check_function(fn)
@@ -120,7 +127,9 @@ def _within_chains(fn, groups: dict) -> dict[int, object]:
         for k in wanted:
             x, y = k[1]
             times, i = 0, 0
-            while i + 2 <= len(keys):  # non-overlapping pairs of the value's two factors, either order
+            while i + 2 <= len(
+                keys
+            ):  # non-overlapping pairs of the value's two factors, either order
                 a, b = keys[i], keys[i + 1]
                 if (a == x and b == y) or (a == y and b == x):
                     times, i = times + 1, i + 2
@@ -148,10 +157,17 @@ def _check_function(fn) -> Iterator[Diagnostic]:
     groups: dict = {}
     targets = {id(n.target) for n in fn.nodes if type(n) is A.Assignment}
     for n in fn.nodes:
-        if type(n) in _LEAVES:  # no operation: never worth reusing (half the nodes, skipped cheaply)
+        if (
+            type(n) in _LEAVES
+        ):  # no operation: never worth reusing (half the nodes, skipped cheaply)
             continue
-        if isinstance(n, A.Expr) and id(n) not in targets and fn.worth_reusing(n) and fn.is_pure(n) \
-                and not fn.is_dead(n):
+        if (
+            isinstance(n, A.Expr)
+            and id(n) not in targets
+            and fn.worth_reusing(n)
+            and fn.is_pure(n)
+            and not fn.is_dead(n)
+        ):
             groups.setdefault(fn.key(n), []).append(n)
     within = _within_chains(fn, groups)
     groups = {k: v for k, v in groups.items() if len(v) > 1}
@@ -162,7 +178,9 @@ def _check_function(fn) -> Iterator[Diagnostic]:
     # Largest expressions first, so a repeated expression hides its repeated parts.
     order = sorted(groups.items(), key=lambda kv: -(fn.exit[id(kv[1][0])] - fn.enter[id(kv[1][0])]))
     covered: set[int] = set()
-    values: list[list] = []  # per repeated value: (place, key) of first, repeats..., parts merged in
+    values: list[
+        list
+    ] = []  # per repeated value: (place, key) of first, repeats..., parts merged in
     owner: dict[int, list] = {}  # id of a node inside a reported occurrence -> its value
     for k, occ in order:
         chains: dict[int, list] = {}  # id(first occurrence) -> the occurrences of that value
@@ -172,13 +190,21 @@ def _check_function(fn) -> Iterator[Diagnostic]:
             operands = fn.operands(b)
             # The first _CANDIDATES occurrences only: the same for any real shader, linear (not
             # quadratic) for a generated file repeating one expression thousands of times.
-            first = next((a for a in occ[:min(j, _CANDIDATES)]
-                          if (fn.dominates(a, b) or (id(b) in within and fn.contains(b, a)))
-                          and not fn.written_between(a, b, operands)), None)
+            first = next(
+                (
+                    a
+                    for a in occ[: min(j, _CANDIDATES)]
+                    if (fn.dominates(a, b) or (id(b) in within and fn.contains(b, a)))
+                    and not fn.written_between(a, b, operands)
+                ),
+                None,
+            )
             if first is None:
                 continue
             root = next((r for r, chain in chains.items() if first in chain), None)
-            chain = chains.setdefault(root if root is not None else id(first), [first] if root is None else [])
+            chain = chains.setdefault(
+                root if root is not None else id(first), [first] if root is None else []
+            )
             chain.append(b)
             covered.update(id(n) for n in b.walk())
         for chain in chains.values():
@@ -210,7 +236,9 @@ def _check_function(fn) -> Iterator[Diagnostic]:
         else:
             fix = "compute it once into a local variable (named for what it is) and reuse that"
         times = "twice" if len(same) == 2 else f"{len(same)} times"
-        message = f"'{text(sample[key])}' is computed {times}, with the same value, at {_places(same)}"
+        message = (
+            f"'{text(sample[key])}' is computed {times}, with the same value, at {_places(same)}"
+        )
         for k, where in parts.items():
             message += f"; its part '{text(sample[k])}' also at {_places(where)}"
         notes, seen = [], {(b.loc.line, b.loc.column)}
@@ -218,6 +246,8 @@ def _check_function(fn) -> Iterator[Diagnostic]:
             where = (n.loc.line, n.loc.column)
             if where not in seen:
                 seen.add(where)
-                what = "also computed here" if k == key else f"'{text(sample[k])}' also computed here"
+                what = (
+                    "also computed here" if k == key else f"'{text(sample[k])}' also computed here"
+                )
                 notes.append(Diagnostic(what, n.loc, severity="note"))
         yield Diagnostic(message, b.loc, help=fix, notes=notes)

@@ -22,13 +22,13 @@ if (distSq < radius * radius) hit = 1.0;
 
 from __future__ import annotations
 
-
 from ...base.diagnostics import Diagnostic
 from ._text import compared_calls, squared, text
 
 TYPE_CHECKING = False  # not typing's: importing typing costs every start-up
 if TYPE_CHECKING:
-    from typing import Iterator
+    from collections.abc import Iterator
+
     from ..engine import LintContext
 
 NAME = "sqrt-comparison"

@@ -30,14 +30,14 @@ float t = -halfB - sqrt(max(disc, 0.0)); // the miss is masked with step(0.0, di
 
 from __future__ import annotations
 
-
-from ...semantics.analysis import builtin_calls
 from ...base.diagnostics import Diagnostic
+from ...semantics.analysis import builtin_calls
 from ._text import negative_reason, text
 
 TYPE_CHECKING = False  # not typing's: importing typing costs every start-up
 if TYPE_CHECKING:
-    from typing import Iterator
+    from collections.abc import Iterator
+
     from ..engine import LintContext
 
 NAME = "unguarded-sqrt"

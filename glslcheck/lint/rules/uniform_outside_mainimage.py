@@ -35,14 +35,14 @@ vec3 lightPosition(in float time)
 
 from __future__ import annotations
 
-
+from ...base.diagnostics import Diagnostic
 from ...frontend import syntax as A
 from ...semantics.analysis import program_facts
-from ...base.diagnostics import Diagnostic
 
 TYPE_CHECKING = False  # not typing's: importing typing costs every start-up
 if TYPE_CHECKING:
-    from typing import Iterator
+    from collections.abc import Iterator
+
     from ..engine import LintContext
 
 NAME = "uniform-outside-mainimage"
@@ -64,7 +64,9 @@ def check(ctx: LintContext) -> Iterator[Diagnostic]:
             if type(node) is not A.Identifier:
                 continue
             sym = model.symbol_of(node)
-            if sym is None or not (sym.kind == "uniform" or (sym.kind == "global" and sym.qualifier == "uniform")):
+            if sym is None or not (
+                sym.kind == "uniform" or (sym.kind == "global" and sym.qualifier == "uniform")
+            ):
                 continue
             yield Diagnostic(
                 f"the uniform '{node.name}' is read in '{name}', not in mainImage",

@@ -33,14 +33,15 @@ color += kS * specularColor;
 
 from __future__ import annotations
 
-
+from ...base.diagnostics import Diagnostic
 from ...frontend import syntax as A
 from ...semantics.analysis import param_directions, program_facts, written_variable
-from ...base.diagnostics import Diagnostic
 
 TYPE_CHECKING = False  # not typing's: importing typing costs every start-up
 if TYPE_CHECKING:
-    from typing import Any, Iterator
+    from collections.abc import Iterator
+    from typing import Any
+
     from ..engine import LintContext
 
 NAME = "uninitialized-read"

@@ -28,14 +28,14 @@ vec3 blinnPhong(in vec3 n, in vec3 l, in vec3 v) { /* ... */ }
 
 from __future__ import annotations
 
-
-from ...semantics.analysis import program_facts
 from ...base.diagnostics import Diagnostic
+from ...semantics.analysis import program_facts
 from .unused_variable import common_shared
 
 TYPE_CHECKING = False  # not typing's: importing typing costs every start-up
 if TYPE_CHECKING:
-    from typing import Iterator
+    from collections.abc import Iterator
+
     from ..engine import LintContext
 
 NAME = "unused-function"

@@ -33,7 +33,8 @@ from ...base.diagnostics import Diagnostic
 
 TYPE_CHECKING = False  # not typing's: importing typing costs every start-up
 if TYPE_CHECKING:
-    from typing import Iterator
+    from collections.abc import Iterator
+
     from ..engine import LintContext
 
 NAME = "unused-suppression"

@@ -31,15 +31,16 @@ vec3 color = kD * attenuation * albedo * light.color;
 
 from __future__ import annotations
 
-
-from ...frontend import syntax as A
 from ...base.diagnostics import Diagnostic
-from ...shadertoy.wrapper import PASS_TABS
+from ...frontend import syntax as A
 from ...semantics.analysis import program_facts
+from ...shadertoy.wrapper import PASS_TABS
 
 TYPE_CHECKING = False  # not typing's: importing typing costs every start-up
 if TYPE_CHECKING:
-    from typing import Any, Iterator
+    from collections.abc import Iterator
+    from typing import Any
+
     from ..engine import LintContext
 
 NAME = "unused-variable"

@@ -19,11 +19,36 @@ uniformity.py ask `written_variable` and `param_directions`).
 
 from __future__ import annotations
 
-from .dataflow import FunctionFacts, ProgramFacts, Write, builtin_call, builtin_calls, calls_in, function_cost, is_float_type, param_directions, program_facts, pure_function, written_variable
+from .dataflow import (
+    FunctionFacts,
+    ProgramFacts,
+    Write,
+    builtin_call,
+    builtin_calls,
+    calls_in,
+    function_cost,
+    is_float_type,
+    param_directions,
+    program_facts,
+    pure_function,
+    written_variable,
+)
 from .values import NONNEGATIVE_UNIFORMS, ValueRanges, numbers
 
 __all__ = [
-    "FunctionFacts", "ProgramFacts", "Write", "ValueRanges", "NONNEGATIVE_UNIFORMS",
-    "builtin_call", "builtin_calls", "calls_in", "function_cost", "is_float_type", "numbers", "param_directions",
-    "program_facts", "pure_function", "written_variable",
+    "FunctionFacts",
+    "ProgramFacts",
+    "Write",
+    "ValueRanges",
+    "NONNEGATIVE_UNIFORMS",
+    "builtin_call",
+    "builtin_calls",
+    "calls_in",
+    "function_cost",
+    "is_float_type",
+    "numbers",
+    "param_directions",
+    "program_facts",
+    "pure_function",
+    "written_variable",
 ]

@@ -29,7 +29,8 @@ from .values import ValueRanges, numbers
 
 TYPE_CHECKING = False  # not typing's: importing typing costs every start-up
 if TYPE_CHECKING:
-    from typing import Any, Iterable, Iterator
+    from collections.abc import Iterable, Iterator
+    from typing import Any
 
 
 def written_variable(model: Model, target: A.Expr) -> tuple[Symbol | None, bool]:
@@ -45,7 +46,7 @@ def written_variable(model: Model, target: A.Expr) -> tuple[Symbol | None, bool]
 
 
 def param_directions(target: CallTarget | None) -> list[str]:
-    """"in", "out" or "inout" for each parameter of a call's target (a constructor: none)."""
+    """ "in", "out" or "inout" for each parameter of a call's target (a constructor: none)."""
     if isinstance(target, Symbol):
         return [d for _, _, d in target.params]
     if isinstance(target, B.Overload):
@@ -55,12 +56,12 @@ def param_directions(target: CallTarget | None) -> list[str]:
 
 def builtin_call(model: Model, e: A.Node, *names: str) -> bool:
     """`e` is a call of one of the built-in functions `names` (not a user function so named)."""
-    return (type(e) is A.Call and e.callee in names
-            and isinstance(model.call_target(e), B.Overload))
+    return type(e) is A.Call and e.callee in names and isinstance(model.call_target(e), B.Overload)
 
 
-def builtin_calls(model: Model, path: str, *names: str,
-                  arity: int | None = None) -> Iterator[tuple["FunctionFacts", A.Call]]:
+def builtin_calls(
+    model: Model, path: str, *names: str, arity: int | None = None
+) -> Iterator[tuple[FunctionFacts, A.Call]]:
     """Every call of one of the built-in functions `names` (with `arity` arguments, if given) in
     the functions defined in the file `path` (those with a compile error apart), in source
     order, with the facts of the function it is in."""
@@ -86,15 +87,20 @@ class ProgramFacts:
         errors = [d.loc for d in model.errors if d.loc is not None]
         # functions with a compile error: their types are partly unknown (error recovery)
         self.broken: set[int] = {
-            id(d) for d in self.definitions
-            if any(e.path == d.loc.path and d.loc.line <= e.line <= (d.loc.end_line or d.loc.line) for e in errors)
+            id(d)
+            for d in self.definitions
+            if any(
+                e.path == d.loc.path and d.loc.line <= e.line <= (d.loc.end_line or d.loc.line)
+                for e in errors
+            )
         }
 
-    def in_file(self, path: str, *, with_broken: bool = False) -> list["FunctionFacts"]:
+    def in_file(self, path: str, *, with_broken: bool = False) -> list[FunctionFacts]:
         """Facts of every function defined in the file `path`, in source order; a function with
         a compile error only `with_broken` (for rules that read names and scopes only)."""
         return [
-            self.fn(d) for d in self.definitions
+            self.fn(d)
+            for d in self.definitions
             if d.loc.path == path and (with_broken or id(d) not in self.broken)
         ]
 
@@ -102,13 +108,13 @@ class ProgramFacts:
         """The functions defined in `path` that have a compile error, in source order."""
         return [d for d in self.definitions if d.loc.path == path and id(d) in self.broken]
 
-    def fn(self, definition: A.FunctionDefinition) -> "FunctionFacts":
+    def fn(self, definition: A.FunctionDefinition) -> FunctionFacts:
         f = self._fns.get(id(definition))
         if f is None:
             f = self._fns[id(definition)] = FunctionFacts(definition, self.model)
         return f
 
-    def call_sites(self, function: Symbol) -> list[tuple["FunctionFacts", A.Call]]:
+    def call_sites(self, function: Symbol) -> list[tuple[FunctionFacts, A.Call]]:
         """Every call of the user function `function` in a function that checks: (the caller's
         facts, the call), in source order."""
         sites = self.__dict__.setdefault("_sites", None)
@@ -125,7 +131,7 @@ class ProgramFacts:
                             sites.setdefault(id(target), []).append((caller, n))
         return sites.get(id(function), [])
 
-    def argument(self, fn: "FunctionFacts", param: Symbol) -> tuple["FunctionFacts", A.Expr] | None:
+    def argument(self, fn: FunctionFacts, param: Symbol) -> tuple[FunctionFacts, A.Expr] | None:
         """The value an `in` parameter of `fn` holds, followed across the call: (the caller's
         facts, the argument) when `fn` has exactly one call site, in another function, and never
         writes the parameter; else None (several callers may pass different values)."""
@@ -145,7 +151,7 @@ class ProgramFacts:
 _CACHE: dict[str, Any] = {"model": None, "facts": None}
 
 
-def program_facts(model: Model | None) -> "ProgramFacts | _NoFacts":
+def program_facts(model: Model | None) -> ProgramFacts | _NoFacts:
     """The facts of `model`, built once per program (the linter lints its files in a row).
     Without a semantic model (a tree handed in by a test or a tool), no function has facts."""
     if model is None:
@@ -174,7 +180,9 @@ def _any_between(positions: list[int], lo: int, hi: int) -> bool:
 
 
 _JUMPS = (A.Return, A.Break, A.Continue, A.Discard)
-_WRITERS = frozenset((A.Assignment, A.Unary, A.Postfix, A.Declarator, A.ConditionDeclaration, A.Call))  # _record_writes
+_WRITERS = frozenset(
+    (A.Assignment, A.Unary, A.Postfix, A.Declarator, A.ConditionDeclaration, A.Call)
+)  # _record_writes
 # the node types `_visit` walks in an order or regions of their own (the others: their children
 # in field order); tested first, as one set, instead of each in turn
 _ORDERED = frozenset((A.If, A.Ternary, A.Binary, A.For, A.While, A.DoWhile, A.Compound, A.Switch))
@@ -202,8 +210,12 @@ def pure_function(model: Model, sym: Symbol, _seen: frozenset = frozenset()) -> 
     if id(sym) in cache:
         return cache[id(sym)]
     d = sym.node
-    ok = (isinstance(d, A.FunctionDefinition) and d.body is not None and id(sym) not in _seen
-          and all(direction == "in" for _, _, direction in sym.params))
+    ok = (
+        isinstance(d, A.FunctionDefinition)
+        and d.body is not None
+        and id(sym) not in _seen
+        and all(direction == "in" for _, _, direction in sym.params)
+    )
     if ok:
         for n in model.body_nodes(d):
             t = type(n)
@@ -213,8 +225,14 @@ def pure_function(model: Model, sym: Symbol, _seen: frozenset = frozenset()) -> 
                     ok = False
             elif t is A.Call:
                 target = model.call_target(n)
-                if target is None or (isinstance(target, B.Overload) and target.out_params) or (
-                        isinstance(target, Symbol) and not pure_function(model, target, _seen | {id(sym)})):
+                if (
+                    target is None
+                    or (isinstance(target, B.Overload) and target.out_params)
+                    or (
+                        isinstance(target, Symbol)
+                        and not pure_function(model, target, _seen | {id(sym)})
+                    )
+                ):
                     ok = False
             if not ok:
                 break
@@ -231,7 +249,11 @@ def function_cost(model: Model, sym: Symbol) -> bool:
         cache[id(sym)] = False  # a recursive call (an error anyway) costs nothing more
         ops, costly = 0, False
         d = sym.node
-        for n in (model.body_nodes(d) if isinstance(d, A.FunctionDefinition) and d.body is not None else ()):
+        for n in (
+            model.body_nodes(d)
+            if isinstance(d, A.FunctionDefinition) and d.body is not None
+            else ()
+        ):
             if type(n) in (A.Binary, A.Ternary) or (type(n) is A.Unary and n.op != "+"):
                 ops += 1
             elif type(n) is A.Call:
@@ -390,7 +412,10 @@ class FunctionFacts(ValueRanges):
         return any(lo <= pos <= hi for lo, hi in self.dead)
 
     def contains(self, outer: Any, inner: Any) -> bool:
-        return self.enter[id(outer)] <= self.enter[id(inner)] and self.exit[id(inner)] <= self.exit[id(outer)]
+        return (
+            self.enter[id(outer)] <= self.enter[id(inner)]
+            and self.exit[id(inner)] <= self.exit[id(outer)]
+        )
 
     def dominates(self, a: Any, b: Any) -> bool:
         """`a` is evaluated, earlier, on every path that evaluates `b` (same or enclosing region)."""
@@ -399,7 +424,7 @@ class FunctionFacts(ValueRanges):
 
     def enclosing_loops(self, node: Any) -> list[Any]:
         """Loop statements whose condition, body or step holds `node`, outermost first."""
-        return [l for l in self.loops if self.contains(l, node) and l is not node]
+        return [lp for lp in self.loops if self.contains(lp, node) and lp is not node]
 
     def writes_to(self, sym: Symbol) -> list[Write]:
         return self.writes.get(id(sym), [])
@@ -409,7 +434,7 @@ class FunctionFacts(ValueRanges):
         a write between them, or anywhere in a loop around `b` that is not around `a`."""
         lo, hi = self.exit[id(a)], self.enter[id(b)]
         spans = [(lo, hi)]
-        loops_a = {id(l) for l in self.enclosing_loops(a)}
+        loops_a = {id(lp) for lp in self.enclosing_loops(a)}
         for loop in self.enclosing_loops(b):
             if id(loop) not in loops_a:
                 spans.append((self.enter[id(loop)], self.exit[id(loop)]))
@@ -418,11 +443,11 @@ class FunctionFacts(ValueRanges):
             if s.kind == "global" and s.qualifier != "const":
                 globals_read = True
             positions = self._positions(id(s), lambda: [w.pos for w in self.writes_to(s)])
-            if any(_any_between(positions, l, h) for l, h in spans):
+            if any(_any_between(positions, lo_, hi_) for lo_, hi_ in spans):
                 return True
         if globals_read:
             calls = self._positions("calls", lambda: self.user_calls)
-            return any(_any_between(calls, l, h) for l, h in spans)
+            return any(_any_between(calls, lo_, hi_) for lo_, hi_ in spans)
         return False
 
     def _positions(self, key: Any, make) -> list[int]:
@@ -476,8 +501,18 @@ class FunctionFacts(ValueRanges):
             if e.callee == "dot" and len(e.args) == 2 and isinstance(target, B.Overload):
                 n = getattr(self.model._types.get(id(e.args[0])), "size", None)
                 if isinstance(n, int) and n > 1:
-                    products = (("*", tuple(sorted((self._component(e.args[0], i), self._component(e.args[1], i)),
-                                                   key=hash))) for i in range(n))
+                    products = (
+                        (
+                            "*",
+                            tuple(
+                                sorted(
+                                    (self._component(e.args[0], i), self._component(e.args[1], i)),
+                                    key=hash,
+                                )
+                            ),
+                        )
+                        for i in range(n)
+                    )
                     return ("+", tuple(sorted(products, key=hash)))
             inlined = self._inline(e, target)
             if inlined is not None:
@@ -504,9 +539,16 @@ class FunctionFacts(ValueRanges):
         types = self.model._types
         left, right = types.get(id(e.left)), types.get(id(e.right))
         # (`is None`, not `None in (left, right)`: that calls the types' Python __eq__)
-        if left is None or right is None or getattr(left, "is_matrix", False) or getattr(right, "is_matrix", False):
+        if (
+            left is None
+            or right is None
+            or getattr(left, "is_matrix", False)
+            or getattr(right, "is_matrix", False)
+        ):
             return False
-        return e.op == "*" or (getattr(left, "base", None) == "float" and getattr(right, "base", None) == "float")
+        return e.op == "*" or (
+            getattr(left, "base", None) == "float" and getattr(right, "base", None) == "float"
+        )
 
     def terms(self, e: Any) -> list[Any] | None:
         """The keys of the operands of a chain of `+`, or of `*` and `/` (a divisor as
@@ -572,8 +614,13 @@ class FunctionFacts(ValueRanges):
         """The key of a pure user function's single returned expression with its parameters
         replaced by the arguments' keys; None when the function is not that simple."""
         d = getattr(target, "node", None)
-        if not isinstance(target, Symbol) or not isinstance(d, A.FunctionDefinition) or d.body is None \
-                or len(self._subst_stack) >= 4 or not pure_function(self.model, target):
+        if (
+            not isinstance(target, Symbol)
+            or not isinstance(d, A.FunctionDefinition)
+            or d.body is None
+            or len(self._subst_stack) >= 4
+            or not pure_function(self.model, target)
+        ):
             return None
         stmts = d.body.stmts
         if len(stmts) != 1 or type(stmts[0]) is not A.Return or stmts[0].value is None:
@@ -603,7 +650,9 @@ class FunctionFacts(ValueRanges):
             return False
         if t is A.Call:
             target = self.model.call_target(e)
-            if target is None or (isinstance(target, Symbol) and not pure_function(self.model, target)):
+            if target is None or (
+                isinstance(target, Symbol) and not pure_function(self.model, target)
+            ):
                 return False
             if isinstance(target, B.Overload) and target.out_params:
                 return False
@@ -622,7 +671,11 @@ class FunctionFacts(ValueRanges):
             if t in A.LEAF_CLASSES:  # a name or literal: no operation (not worth a cache entry)
                 return _NO_OPS
             n, costly = 0, False
-            if t is A.Binary or t is A.Ternary or (t is A.Unary and e.op != "+" and not _is_literal(e.operand)):
+            if (
+                t is A.Binary
+                or t is A.Ternary
+                or (t is A.Unary and e.op != "+" and not _is_literal(e.operand))
+            ):
                 n = 1  # (a negative literal, `-1.0`, is a constant, not an operation)
             elif t is A.Call:
                 target = self.model.call_target(e)
@@ -656,7 +709,9 @@ class FunctionFacts(ValueRanges):
             return not self.model.is_constant(e)
         if n != 1 or not is_float_type(self.model.type_of(e)) or self.model.is_constant(e):
             return False
-        unit = [x for x in (e.left, e.right) if numbers(self.model.const_value(x)) in ([1.0], [-1.0])]
+        unit = [
+            x for x in (e.left, e.right) if numbers(self.model.const_value(x)) in ([1.0], [-1.0])
+        ]
         return not (unit and e.op in ("*", "/"))
 
     def operands(self, e: Any) -> frozenset:

@@ -24,18 +24,30 @@ from ..model import Constructor
 TYPE_CHECKING = False  # not typing's: importing typing costs every start-up
 if TYPE_CHECKING:
     from typing import Any
+
     from ..model import Model
 
 Range = tuple  # (lo: float | None, hi: float | None, witness: tuple[str, node] | None)
 
-NONNEGATIVE_UNIFORMS = frozenset({"iTime", "iTimeDelta", "iFrameRate", "iFrame", "iChannelTime",
-                                  "iChannelResolution", "iResolution", "iDate", "iSampleRate"})
+NONNEGATIVE_UNIFORMS = frozenset(
+    {
+        "iTime",
+        "iTimeDelta",
+        "iFrameRate",
+        "iFrame",
+        "iChannelTime",
+        "iChannelResolution",
+        "iResolution",
+        "iDate",
+        "iSampleRate",
+    }
+)
 
 
 class ValueRanges:
     """The sign analysis of one function's expressions (cached per node)."""
 
-    model: "Model"
+    model: Model
     _ranges: dict[int, Range]
 
     def value_range(self, e: Any, depth: int = 0) -> tuple:
@@ -75,7 +87,11 @@ class ValueRanges:
             return unknown
         if t is A.Index:
             base_t = self.model.type_of(e.base)
-            return rec(e.base) if getattr(base_t, "is_vector", False) or getattr(base_t, "is_matrix", False) else unknown
+            return (
+                rec(e.base)
+                if getattr(base_t, "is_vector", False) or getattr(base_t, "is_matrix", False)
+                else unknown
+            )
         if t is A.Unary:
             if e.op == "+":
                 return rec(e.operand)
@@ -111,7 +127,11 @@ class ValueRanges:
             return (lo, hi, aw or ("a difference", e))
         if op == "*":
             if self.key(e.left) == self.key(e.right):  # x * x
-                return (0.0, None if alo is None or ahi is None else max(alo * alo, ahi * ahi), None)
+                return (
+                    0.0,
+                    None if alo is None or ahi is None else max(alo * alo, ahi * ahi),
+                    None,
+                )
             if _nonneg(alo) and _nonneg(blo):
                 return (alo * blo, _mul(ahi, bhi), None)
             if None not in (alo, ahi, blo, bhi):
@@ -150,8 +170,11 @@ class ValueRanges:
         if name in ("tan", "asin", "atan", "sinh", "tanh", "sign", "dFdx", "dFdy"):
             return (None, None, (f"{name}() can be negative", e))
         if name in ("reflect", "refract", "cross", "faceforward", "normalize"):
-            return (-1.0 if name == "normalize" else None, 1.0 if name == "normalize" else None,
-                    (f"the components of {name}() can be negative", e))
+            return (
+                -1.0 if name == "normalize" else None,
+                1.0 if name == "normalize" else None,
+                (f"the components of {name}() can be negative", e),
+            )
         if name == "max":
             (alo, ahi, aw), (blo, bhi, bw) = rec(args[0]), rec(args[1])
             known = [x for x in (alo, blo) if x is not None]
@@ -229,5 +252,3 @@ def _join(*ranges: tuple) -> tuple:
     hi = None if any(x is None for x in his) else max(his)
     why = None if _nonneg(lo) else next((r[2] for r in ranges if r[2] is not None), None)
     return (lo, hi, why)
-
-

@@ -44,12 +44,21 @@ if TYPE_CHECKING:
     from typing import Any
 
 
-class Checker(DeclarationChecks, FunctionChecks, StatementChecks, ExpressionChecks, CallChecks, ShadertoyRules,
-              A.NodeVisitor):
+class Checker(
+    DeclarationChecks,
+    FunctionChecks,
+    StatementChecks,
+    ExpressionChecks,
+    CallChecks,
+    ShadertoyRules,
+    A.NodeVisitor,
+):
     """`Checker(parse_result, tab, channel_types).run()`: the `Model` of one program, its
     diagnostics collected on it."""
 
-    def __init__(self, parse_result: Any, tab: str, channel_types: dict[str, T.Type] | None = None) -> None:
+    def __init__(
+        self, parse_result: Any, tab: str, channel_types: dict[str, T.Type] | None = None
+    ) -> None:
         self.pr = parse_result
         self.channel_types = channel_types or {}  # iChannelN -> its sampler type (channel_types.py)
         self.ast: A.TranslationUnit = parse_result.ast
@@ -58,7 +67,9 @@ class Checker(DeclarationChecks, FunctionChecks, StatementChecks, ExpressionChec
         self.tab = "GLSL" if self.plain else tab
         self.common_paths = {s.path for s in sources if getattr(s, "tab", None) == "Common"}
         tab_src = [s for s in sources if getattr(s, "tab", None) == self.tab] or sources[-1:]
-        self.tab_path = tab_src[0].path if tab_src else (self.ast.loc.path if self.ast.loc else "<string>")
+        self.tab_path = (
+            tab_src[0].path if tab_src else (self.ast.loc.path if self.ast.loc else "<string>")
+        )
         self.model = Model(self.ast, self.tab)
         m = self.model
         self.types = m._types
@@ -72,9 +83,15 @@ class Checker(DeclarationChecks, FunctionChecks, StatementChecks, ExpressionChec
         self.unique = UniqueNames(self._names_in_program)
         # Default precisions in effect (spec 4.5.4: a fragment shader has none for float and for
         # most samplers); Shadertoy's prelude sets float, int and sampler3D.
-        self.default_precision: dict[str, str] = {"int": "mediump", "sampler2D": "lowp", "samplerCube": "lowp"}
+        self.default_precision: dict[str, str] = {
+            "int": "mediump",
+            "sampler2D": "lowp",
+            "samplerCube": "lowp",
+        }
         if not self.plain:
-            self.default_precision.update({"float": "highp", "int": "highp", "sampler3D": "mediump"})
+            self.default_precision.update(
+                {"float": "highp", "int": "highp", "sampler3D": "mediump"}
+            )
         self.builtin_scope = Scope(None, "builtin")
         self.scope = Scope(self.builtin_scope, "global")
         self.global_scope = self.scope
@@ -85,9 +102,13 @@ class Checker(DeclarationChecks, FunctionChecks, StatementChecks, ExpressionChec
         names = {getattr(n, "name", None) for n in self.model.nodes()}
         return {n for n in names if isinstance(n, str)}
 
-    def error(self, message: str, node: Any, help: str | None = None, severity: str = "error") -> None:
+    def error(
+        self, message: str, node: Any, help: str | None = None, severity: str = "error"
+    ) -> None:
         loc = node if isinstance(node, Location) else getattr(node, "loc", None)
-        self.model.diagnostics.append(Diagnostic(message, loc, severity=severity, rule="type", help=help))
+        self.model.diagnostics.append(
+            Diagnostic(message, loc, severity=severity, rule="type", help=help)
+        )
 
     def warning(self, message: str, node: Any, help: str | None = None) -> None:
         self.error(message, node, help, severity="warning")

@@ -30,15 +30,20 @@ class CallChecks:
         arg_types = [self.expr(a) for a in n.args]
         where = NameAt(n, "callee_loc")
         if sym is not None and sym.kind != "function":
-            self.error(f"'{name}' is a variable, not a function", where,
-                       help="a local variable with this name hides the function; rename the variable")
+            self.error(
+                f"'{name}' is a variable, not a function",
+                where,
+                help="a local variable with this name hides the function; rename the variable",
+            )
             return ERROR
         if ERROR in arg_types:
             return ERROR
         if sym is None:
             if B.is_builtin_function(name):
                 return self.builtin_call(n, name, arg_types)
-            self.error(f"'{name}' is not declared", where, help=self.did_you_mean(name, functions=True))
+            self.error(
+                f"'{name}' is not declared", where, help=self.did_you_mean(name, functions=True)
+            )
             return ERROR
         overloads = self.model.functions.get(name, [])
         shown = f"{name}({', '.join(map(str, arg_types))})"
@@ -53,31 +58,45 @@ class CallChecks:
         cands = "; ".join(fn.signature() for fn in overloads)
         hint = None
         if len(overloads) == 1 and len(overloads[0].params) == len(arg_types):
-            for i, ((_, want, _), got, arg) in enumerate(zip(overloads[0].params, arg_types, n.args)):
+            for i, ((_, want, _), got, arg) in enumerate(
+                zip(overloads[0].params, arg_types, n.args)
+            ):
                 if want != got:
                     h = int_literal_hint(arg) if want.base == "float" else None
-                    hint = f"argument {i + 1} is '{got}' but the parameter is '{want}'" + (f": {h}" if h else "")
+                    hint = f"argument {i + 1} is '{got}' but the parameter is '{want}'" + (
+                        f": {h}" if h else ""
+                    )
                     break
-        self.error(f"no function '{shown}' matches the arguments; candidates: {cands}", where, help=hint)
+        self.error(
+            f"no function '{shown}' matches the arguments; candidates: {cands}", where, help=hint
+        )
         return ERROR
 
     def _out_argument(self, arg: A.Node, direction: str, fname: str) -> None:
         why = self.lvalue_problem(arg)
         if why is not None:
-            self.error(f"the argument for an '{direction}' parameter of '{fname}' must be a variable: {why}", arg,
-                       help="pass a local variable and copy it afterwards")
+            self.error(
+                f"the argument for an '{direction}' parameter of '{fname}' must be a variable: {why}",
+                arg,
+                help="pass a local variable and copy it afterwards",
+            )
 
     def builtin_call(self, n: A.Call, name: str, arg_types: list[T.Type]) -> T.Type:
         ov = B.resolve(name, arg_types)
         if isinstance(ov, str):
             hint = None
-            if any(t.base == "int" for t in arg_types) and any(t.base == "float" for t in arg_types):
+            if any(t.base == "int" for t in arg_types) and any(
+                t.base == "float" for t in arg_types
+            ):
                 for arg, t in zip(n.args, arg_types):
                     h = int_literal_hint(arg) if t.base == "int" else None
                     if h:
                         hint = h
                         break
-                hint = hint or "GLSL ES has no implicit int-to-float conversion: convert with float(...)"
+                hint = (
+                    hint
+                    or "GLSL ES has no implicit int-to-float conversion: convert with float(...)"
+                )
             self.error(ov, n.callee_loc if n.callee_loc.line else n, help=hint)
             return ERROR
         self.model._calls[id(n)] = ov
@@ -87,10 +106,19 @@ class CallChecks:
         if name in B.CONSTANT_OFFSET_FUNCTIONS:
             offset = self._offset_index(ov)
             if offset is not None and not self.is_const(n.args[offset]):
-                self.error(f"the offset argument of {name}() must be a constant expression", n.args[offset],
-                           help="use literals or consts, e.g. ivec2(1, 0)")
-        if ov.category != B.TEXTURE and ov.category != B.DERIVATIVE and all(self.is_const(a) for a in n.args):
-            self.consts[id(n)] = C.builtin(name, ov.params, ov.returns, [self.consts[id(a)] for a in n.args])
+                self.error(
+                    f"the offset argument of {name}() must be a constant expression",
+                    n.args[offset],
+                    help="use literals or consts, e.g. ivec2(1, 0)",
+                )
+        if (
+            ov.category != B.TEXTURE
+            and ov.category != B.DERIVATIVE
+            and all(self.is_const(a) for a in n.args)
+        ):
+            self.consts[id(n)] = C.builtin(
+                name, ov.params, ov.returns, [self.consts[id(a)] for a in n.args]
+            )
         return ov.returns
 
     @staticmethod
@@ -127,7 +155,11 @@ class CallChecks:
             hint = None
             if target.is_struct or target.is_array:
                 elem = target.element if target.is_array else None
-                for arg, t, want in zip(n.args, arg_types, [elem] * len(arg_types) if elem else [f for _, f in target.fields]):
+                for arg, t, want in zip(
+                    n.args,
+                    arg_types,
+                    [elem] * len(arg_types) if elem else [f for _, f in target.fields],
+                ):
                     if want is not None and want.base == "float" and t.base == "int":
                         hint = int_literal_hint(arg)
                         break

@@ -17,7 +17,8 @@ from .hints import NameAt, conversion_help, int_literal_hint
 
 TYPE_CHECKING = False  # not typing's: importing typing costs every start-up
 if TYPE_CHECKING:
-    from typing import Any, Iterable
+    from collections.abc import Iterable
+    from typing import Any
 
 
 class DeclarationChecks:
@@ -40,23 +41,31 @@ class DeclarationChecks:
             for name in decl.names:
                 sym = self.scope.lookup(name)
                 if sym is None or sym.kind in ("function", "struct"):
-                    self.error(f"'{name}' is not a declared variable", decl,
-                               help="a qualifier followed by a name re-qualifies an existing variable; "
-                                    "to declare one, give its type")
+                    self.error(
+                        f"'{name}' is not a declared variable",
+                        decl,
+                        help="a qualifier followed by a name re-qualifies an existing variable; "
+                        "to declare one, give its type",
+                    )
         elif isinstance(decl, A.QualifierDeclaration):  # `layout(std140) uniform;`
             q = decl.qualifiers
             if q is not None and q.storage not in ("uniform", "in", "out"):
-                self.error("a default layout needs 'uniform', 'in' or 'out' after it", decl,
-                           help="write e.g. 'layout(std140) uniform;'")
+                self.error(
+                    "a default layout needs 'uniform', 'in' or 'out' after it",
+                    decl,
+                    help="write e.g. 'layout(std140) uniform;'",
+                )
 
     def block_declaration(self, decl: A.BlockDeclaration) -> None:
         """`uniform Block { members } instance[N];` (spec 4.3.7): a struct-like type whose members
         are globals when there is no instance name."""
         storage = decl.qualifiers.storage if decl.qualifiers is not None else None
         if storage != "uniform":
-            self.error(f"a fragment shader's interface block must be 'uniform', not '{storage}'", decl)
+            self.error(
+                f"a fragment shader's interface block must be 'uniform', not '{storage}'", decl
+            )
         if decl.qualifiers is not None:
-            layout_ids = [i.name for l in decl.qualifiers.layouts for i in l.ids]
+            layout_ids = [i.name for lay in decl.qualifiers.layouts for i in lay.ids]
             self.webgl(webgl_rules.block_layout_problem(layout_ids), decl.qualifiers)
         fields: list[tuple[str, T.Type]] = []
         for member in decl.members:
@@ -85,7 +94,10 @@ class DeclarationChecks:
     def precision_declaration(self, decl: A.PrecisionDeclaration) -> None:
         t = self.resolve_type(decl.type)
         if t is not ERROR and not (t in (T.FLOAT, T.INT) or t.is_opaque):
-            self.error(f"a default precision can be set only for float, int and sampler types, not '{t}'", decl)
+            self.error(
+                f"a default precision can be set only for float, int and sampler types, not '{t}'",
+                decl,
+            )
         elif t is not ERROR:
             self.default_precision[str(t)] = decl.precision
 
@@ -101,20 +113,37 @@ class DeclarationChecks:
             return
         if key in self.default_precision or any(w in A.PRECISION_QUALIFIERS for w in words):
             return
-        self.error(f"no precision is given for '{key}' and this shader sets no default for it", node,
-                   help=f"add 'precision highp {key};' after the #version line")
+        self.error(
+            f"no precision is given for '{key}' and this shader sets no default for it",
+            node,
+            help=f"add 'precision highp {key};' after the #version line",
+        )
 
     def qualifier_words(self, words: list[str], node: Any) -> None:
         """At most one storage and one precision qualifier (spec 4.3, 4.5.2)."""
-        storage = [w for w in words if w in ("const", "uniform", "in", "out", "inout", "centroid in", "centroid out")]
+        storage = [
+            w
+            for w in words
+            if w in ("const", "uniform", "in", "out", "inout", "centroid in", "centroid out")
+        ]
         precision = [w for w in words if w in A.PRECISION_QUALIFIERS]
         if len(storage) > 1:
-            self.error(f"too many storage qualifiers: {' '.join(storage)}", node, help="keep one of them")
+            self.error(
+                f"too many storage qualifiers: {' '.join(storage)}", node, help="keep one of them"
+            )
         if len(precision) > 1:
-            self.error(f"too many precision qualifiers: {' '.join(precision)}", node, help="keep one of them")
+            self.error(
+                f"too many precision qualifiers: {' '.join(precision)}",
+                node,
+                help="keep one of them",
+            )
         interpolation = [w for w in words if w in ("flat", "smooth")]
         if len(interpolation) > 1:
-            self.error(f"too many interpolation qualifiers: {' '.join(interpolation)}", node, help="keep one of them")
+            self.error(
+                f"too many interpolation qualifiers: {' '.join(interpolation)}",
+                node,
+                help="keep one of them",
+            )
         repeated = sorted({w for w in words if words.count(w) > 1 and w != "layout"})
         if repeated and len(storage) <= 1 and len(precision) <= 1 and len(interpolation) <= 1:
             self.error(f"the qualifier '{repeated[0]}' is repeated", node, help="write it once")
@@ -122,8 +151,11 @@ class DeclarationChecks:
     # -- names ---------------------------------------------------------------------------------
     def check_name(self, name: str, node: Any) -> bool:
         if name.startswith("gl_"):
-            self.error(f"'{name}': names starting with 'gl_' are reserved for OpenGL", node,
-                       help=f"rename it, for example to '{name[3:] or 'value'}'")
+            self.error(
+                f"'{name}': names starting with 'gl_' are reserved for OpenGL",
+                node,
+                help=f"rename it, for example to '{name[3:] or 'value'}'",
+            )
             return False
         self.webgl(webgl_rules.name_problem(name), node)
         return True
@@ -134,13 +166,24 @@ class DeclarationChecks:
             pass
         old = self.scope.local(sym.name)
         if old is not None:
-            what = {"uniform": "a Shadertoy uniform", "function": "a function", "struct": "a struct",
-                    "param": "a parameter"}.get(old.kind, "a variable")
-            msg = (f"'{sym.name}' is already declared by Shadertoy as a uniform" if old.kind == "uniform"
-                   else f"'{sym.name}' is already declared in this scope (as {what})")
-            self.error(msg, where,
-                       help="rename one of them" if old.kind != "uniform" else
-                       "Shadertoy declares this uniform already; remove your declaration or rename it")
+            what = {
+                "uniform": "a Shadertoy uniform",
+                "function": "a function",
+                "struct": "a struct",
+                "param": "a parameter",
+            }.get(old.kind, "a variable")
+            msg = (
+                f"'{sym.name}' is already declared by Shadertoy as a uniform"
+                if old.kind == "uniform"
+                else f"'{sym.name}' is already declared in this scope (as {what})"
+            )
+            self.error(
+                msg,
+                where,
+                help="rename one of them"
+                if old.kind != "uniform"
+                else "Shadertoy declares this uniform already; remove your declaration or rename it",
+            )
         else:
             self.scope.names[sym.name] = sym
         sym.unique_name = self.unique.make(sym.name)
@@ -158,7 +201,11 @@ class DeclarationChecks:
         else:
             sym = self.scope.lookup(spec.name or "")
             if sym is None or sym.kind != "struct":
-                self.error(f"'{spec.name}' is not a type", spec, help=self.did_you_mean(spec.name or "", structs=True))
+                self.error(
+                    f"'{spec.name}' is not a type",
+                    spec,
+                    help=self.did_you_mean(spec.name or "", structs=True),
+                )
                 return ERROR
             t = sym.type
             self.symbols[id(spec)] = sym
@@ -173,8 +220,11 @@ class DeclarationChecks:
         if array is None or t is ERROR:
             return t
         if t.is_array:
-            self.error("arrays of arrays are not available in GLSL ES 3.00", array,
-                       help="use a longer one-dimensional array and compute the index")
+            self.error(
+                "arrays of arrays are not available in GLSL ES 3.00",
+                array,
+                help="use a longer one-dimensional array and compute the index",
+            )
             return ERROR
         size = self.array_size(array)
         if size is ERROR:
@@ -189,8 +239,11 @@ class DeclarationChecks:
         if t is ERROR:
             return ERROR
         if t not in (T.INT, T.UINT) or not self.is_const(spec.size):
-            self.error("an array size must be a constant integer expression", spec.size,
-                       help="use an int literal or a 'const int' declared before")
+            self.error(
+                "an array size must be a constant integer expression",
+                spec.size,
+                help="use an int literal or a 'const int' declared before",
+            )
             return ERROR
         v = self.model.const_value(spec.size)
         if v is None:
@@ -206,17 +259,24 @@ class DeclarationChecks:
         ok = True
         for member in spec.members:
             if member.type is not None and member.type.struct_ is not None:
-                self.error("a struct cannot define another struct inside it (GLSL ES 3.00)", member.type,
-                           help=f"declare 'struct {member.type.struct_.name or 'Inner'}' before this struct and use its name")
+                self.error(
+                    "a struct cannot define another struct inside it (GLSL ES 3.00)",
+                    member.type,
+                    help=f"declare 'struct {member.type.struct_.name or 'Inner'}' before this struct and use its name",
+                )
                 ok = False
                 continue
             if member.qualifiers is not None and member.qualifiers.storage is not None:
-                self.error(f"struct members cannot be '{member.qualifiers.storage}'", member.qualifiers)
+                self.error(
+                    f"struct members cannot be '{member.qualifiers.storage}'", member.qualifiers
+                )
             mt = self.resolve_type(member.type)
             if mt is ERROR:
                 ok = False
                 continue
-            self.require_precision(mt, member.qualifiers.words if member.qualifiers else (), member.type)
+            self.require_precision(
+                mt, member.qualifiers.words if member.qualifiers else (), member.type
+            )
             for d in member.declarators:
                 ft = self.with_array(mt, d.array, d)
                 if ft is ERROR:
@@ -255,21 +315,36 @@ class DeclarationChecks:
         if decl.qualifiers is not None:
             self.qualifier_words(decl.qualifiers.words, decl.qualifiers)
             packing = {"std140", "shared", "packed", "row_major", "column_major"}
-            if storage != "uniform" and any(i.name in packing for l in decl.qualifiers.layouts for i in l.ids):
-                self.error("packing and matrix layout qualifiers apply only to uniforms", decl.qualifiers)
+            if storage != "uniform" and any(
+                i.name in packing for lay in decl.qualifiers.layouts for i in lay.ids
+            ):
+                self.error(
+                    "packing and matrix layout qualifiers apply only to uniforms", decl.qualifiers
+                )
         base = self.resolve_type(decl.type)
         if not decl.declarators:
             return  # `struct S {...};` or `float;`
         if storage in ("uniform", "in", "out", "centroid in", "centroid out") and not is_global:
-            self.error(f"a local variable cannot be '{storage}'", decl.qualifiers,
-                       help="only global variables take 'uniform', 'in' or 'out'")
+            self.error(
+                f"a local variable cannot be '{storage}'",
+                decl.qualifiers,
+                help="only global variables take 'uniform', 'in' or 'out'",
+            )
         if base is not ERROR:
-            self.require_precision(base, decl.qualifiers.words if decl.qualifiers else (), decl.type)
+            self.require_precision(
+                base, decl.qualifiers.words if decl.qualifiers else (), decl.type
+            )
         for d in decl.declarators:
             self.declarator(d, base, storage, is_global, decl)
 
-    def declarator(self, d: A.Declarator, base: T.Type, storage: str | None, is_global: bool,
-                   decl: A.VariableDeclaration) -> None:
+    def declarator(
+        self,
+        d: A.Declarator,
+        base: T.Type,
+        storage: str | None,
+        is_global: bool,
+        decl: A.VariableDeclaration,
+    ) -> None:
         t = self.with_array(base, d.array, d)
         if base is not ERROR and base.is_array and d.array is not None:
             t = ERROR
@@ -279,13 +354,19 @@ class DeclarationChecks:
                 self.error(f"'{d.name}' cannot be declared 'void': void is only a return type", d)
                 t = ERROR
             elif t.contains_opaque and storage != "uniform":
-                self.error(f"'{d.name}': sampler types can only be uniforms or function parameters", d,
-                           help="pass the sampler (iChannel0 ...) to the function as a parameter")
+                self.error(
+                    f"'{d.name}': sampler types can only be uniforms or function parameters",
+                    d,
+                    help="pass the sampler (iChannel0 ...) to the function as a parameter",
+                )
                 t = ERROR
         if t is not ERROR and t.is_array and t.array_size is None:
             if init_t is None:
-                self.error(f"the array '{d.name}' needs a size or an initializer", d,
-                           help=f"write '{d.name}[N]' or initialise it with '{t.element}[](...)'")
+                self.error(
+                    f"the array '{d.name}' needs a size or an initializer",
+                    d,
+                    help=f"write '{d.name}[N]' or initialise it with '{t.element}[](...)'",
+                )
                 t = ERROR
             elif init_t is not ERROR and init_t.is_array and init_t.element == t.element:
                 t = init_t
@@ -295,16 +376,24 @@ class DeclarationChecks:
             if storage == "const" and self.is_const(d.init) and init_t == t:
                 sym.const_value = self.model.const_value(d.init)
         elif storage == "const":
-            self.error(f"the const '{d.name}' needs an initial value", d,
-                       help=f"write 'const {t} {d.name} = ...;'")
+            self.error(
+                f"the const '{d.name}' needs an initial value",
+                d,
+                help=f"write 'const {t} {d.name} = ...;'",
+            )
         self.declare(sym, d, NameAt(d))
         if is_global:
             self.model.globals.append(sym)
 
-    def initializer(self, d: Any, t: T.Type, init_t: T.Type | None, storage: str | None, is_global: bool) -> None:
+    def initializer(
+        self, d: Any, t: T.Type, init_t: T.Type | None, storage: str | None, is_global: bool
+    ) -> None:
         if storage in ("uniform", "in", "out", "centroid in", "centroid out"):
-            self.error(f"a '{storage}' variable cannot have an initializer", d.init,
-                       help="uniforms are set by Shadertoy; remove the '= ...'")
+            self.error(
+                f"a '{storage}' variable cannot have an initializer",
+                d.init,
+                help="uniforms are set by Shadertoy; remove the '= ...'",
+            )
             return
         if t is ERROR or init_t is ERROR or init_t is None:
             return
@@ -318,8 +407,14 @@ class DeclarationChecks:
             self.error(msg, d.init, help=hint or conversion_help(t, init_t))
             return
         if storage == "const" and not self.is_const(d.init):
-            self.error(f"the initializer of the const '{d.name}' is not a constant expression", d.init,
-                       help="use literals, other consts and built-in functions only, or drop 'const'")
+            self.error(
+                f"the initializer of the const '{d.name}' is not a constant expression",
+                d.init,
+                help="use literals, other consts and built-in functions only, or drop 'const'",
+            )
         elif is_global and not self.is_const(d.init):
-            self.error("a global variable's initializer must be a constant expression in GLSL ES 3.00", d.init,
-                       help="declare the global without a value and assign it in mainImage, or pass the value as a parameter")
+            self.error(
+                "a global variable's initializer must be a constant expression in GLSL ES 3.00",
+                d.init,
+                help="declare the global without a value and assign it in mainImage, or pass the value as a parameter",
+            )

@@ -29,7 +29,9 @@ class ExpressionChecks:
         return T.UINT if n.unsigned else T.INT
 
     def expr_FloatLiteral(self, n: A.FloatLiteral) -> T.Type:
-        self.consts[id(n)] = float32_literal(n.text) if n.text else C.f32(n.value)  # the decimal rounded once
+        self.consts[id(n)] = (
+            float32_literal(n.text) if n.text else C.f32(n.value)
+        )  # the decimal rounded once
         return T.FLOAT
 
     def expr_BoolLiteral(self, n: A.BoolLiteral) -> T.Type:
@@ -45,13 +47,19 @@ class ExpressionChecks:
             self.error(f"'{n.name}' is a function; call it with arguments: {n.name}(...)", n)
             return ERROR
         if sym.kind == "struct":
-            self.error(f"'{n.name}' is a struct type, not a value", n,
-                       help=f"construct one with {n.name}(...)")
+            self.error(
+                f"'{n.name}' is a struct type, not a value",
+                n,
+                help=f"construct one with {n.name}(...)",
+            )
             return ERROR
         self.symbols[id(n)] = sym
         if sym.kind == "uniform":
-            if n.loc.path in self.common_paths and n.name not in B.COMMON_TAB_UNIFORMS \
-                    and not self.in_macro_entry():
+            if (
+                n.loc.path in self.common_paths
+                and n.name not in B.COMMON_TAB_UNIFORMS
+                and not self.in_macro_entry()
+            ):
                 self.common_uniform_error(n)
             self.model._uniforms_from.setdefault(self.func, set()).add(n.name)
         if sym.qualifier == "const" and sym.kind != "param":
@@ -64,18 +72,28 @@ class ExpressionChecks:
             self.common_uniform_error(n)
             return
         if B.is_builtin_function(n.name):
-            self.error(f"'{n.name}' is a built-in function; call it with arguments: {n.name}(...)", n)
+            self.error(
+                f"'{n.name}' is a built-in function; call it with arguments: {n.name}(...)", n
+            )
             return
         if n.name in RENAMED_UNIFORMS and not self.plain:
             new = RENAMED_UNIFORMS[n.name]
-            self.error(f"'{n.name}' is Shadertoy's old name for '{new}', which Shadertoy no longer "
-                       "declares", n, help=f"replace '{n.name}' with '{new}'")
+            self.error(
+                f"'{n.name}' is Shadertoy's old name for '{new}', which Shadertoy no longer "
+                "declares",
+                n,
+                help=f"replace '{n.name}' with '{new}'",
+            )
             return
         self.error(f"'{n.name}' is not declared", n, help=self.did_you_mean(n.name))
 
     def did_you_mean(self, name: str, functions: bool = False, structs: bool = False) -> str | None:
         if structs:
-            known = [s for s in self.scope.visible_names() if (self.scope.lookup(s) or Symbol("", "", T.VOID)).kind == "struct"]
+            known = [
+                s
+                for s in self.scope.visible_names()
+                if (self.scope.lookup(s) or Symbol("", "", T.VOID)).kind == "struct"
+            ]
             known += [k for k in T.BY_NAME]
         elif functions:
             known = list(self.model.functions) + list(B.BUILTINS)
@@ -98,11 +116,16 @@ class ExpressionChecks:
         if isinstance(res, str):
             hint = self._mix_hint(n.left, lt, n.right, rt)
             if hint and hint.startswith("write"):
-                res = res.split(": GLSL ES has no implicit", 1)[0] + f": GLSL ES has no implicit conversion; {hint}"
+                res = (
+                    res.split(": GLSL ES has no implicit", 1)[0]
+                    + f": GLSL ES has no implicit conversion; {hint}"
+                )
             self.error(res, n, help=hint)
             return ERROR
         if self.is_const(n.left) and self.is_const(n.right):
-            self.consts[id(n)] = C.binary(n.op, lt, rt, res, self.consts[id(n.left)], self.consts[id(n.right)])
+            self.consts[id(n)] = C.binary(
+                n.op, lt, rt, res, self.consts[id(n.left)], self.consts[id(n.right)]
+            )
         return res
 
     def _mix_hint(self, left: A.Node, lt: T.Type, right: A.Node, rt: T.Type) -> str | None:
@@ -155,7 +178,9 @@ class ExpressionChecks:
             hint = None
             if tt.base == "float" and vt.base == "int":
                 hint = int_literal_hint(n.value) or "convert the value: float(...)"
-            self.error(res + (f"; {hint}" if hint and hint.startswith("write") else ""), n, help=hint)
+            self.error(
+                res + (f"; {hint}" if hint and hint.startswith("write") else ""), n, help=hint
+            )
             self.require_lvalue(n.target, "assignment")
             return ERROR
         self.require_lvalue(n.target, "assignment")
@@ -176,7 +201,9 @@ class ExpressionChecks:
             if sym.kind == "uniform" or sym.qualifier == "uniform":
                 return f"'{node.name}' is a uniform (read-only)"
             if sym.qualifier == "const":
-                return f"'{node.name}' is const" + (" (a const parameter)" if sym.kind == "param" else "")
+                return f"'{node.name}' is const" + (
+                    " (a const parameter)" if sym.kind == "param" else ""
+                )
             if sym.kind == "builtin-var" and sym.qualifier != "out":
                 return f"'{node.name}' is a read-only built-in variable"
             if sym.kind == "global" and sym.qualifier in ("in", "centroid in"):
@@ -211,8 +238,11 @@ class ExpressionChecks:
                 hint = int_literal_hint(n.else_)
             elif b.base == "float" and a.base == "int":
                 hint = int_literal_hint(n.then)
-            self.error(f"the two branches of '?:' have different types, '{a}' and '{b}'", n,
-                       help=hint or "convert one branch so both have the same type")
+            self.error(
+                f"the two branches of '?:' have different types, '{a}' and '{b}'",
+                n,
+                help=hint or "convert one branch so both have the same type",
+            )
             return ERROR
         if a.is_void:
             self.error("the branches of '?:' cannot be void", n)
@@ -220,7 +250,9 @@ class ExpressionChecks:
         self.webgl(webgl_rules.ternary_problem(a), n)
         if self.is_const(n.cond) and self.is_const(n.then) and self.is_const(n.else_):
             c = self.consts[id(n.cond)]
-            self.consts[id(n)] = C.UNKNOWN if c is C.UNKNOWN else self.consts[id(n.then if c else n.else_)]
+            self.consts[id(n)] = (
+                C.UNKNOWN if c is C.UNKNOWN else self.consts[id(n.then if c else n.else_)]
+            )
         return a
 
     def expr_Sequence(self, n: A.Sequence) -> T.Type:
@@ -248,9 +280,14 @@ class ExpressionChecks:
             size = bt.array_size if bt.is_array else (bt.cols if bt.is_matrix else bt.size)
             what = "array" if bt.is_array else ("matrix" if bt.is_matrix else "vector")
             if v is not None and (v < 0 or (size is not None and v >= size)):
-                self.error(f"index {v} is out of range for this {what} of {size} "
-                           f"{'elements' if bt.is_array else ('columns' if bt.is_matrix else 'components')}"
-                           f" (valid: 0 to {size - 1})" if size else f"index {v} is out of range", n.index)
+                self.error(
+                    f"index {v} is out of range for this {what} of {size} "
+                    f"{'elements' if bt.is_array else ('columns' if bt.is_matrix else 'components')}"
+                    f" (valid: 0 to {size - 1})"
+                    if size
+                    else f"index {v} is out of range",
+                    n.index,
+                )
                 return ERROR
             if self.is_const(n.base):
                 self.consts[id(n)] = C.index(self.consts[id(n.base)], v)
@@ -267,8 +304,15 @@ class ExpressionChecks:
 
                 names = [f for f, _ in bt.fields]
                 match = difflib.get_close_matches(n.name, names, n=1)
-                self.error(f"the struct '{bt}' has no member '{n.name}'", n.name_loc if n.name_loc.line else n,
-                           help=(f"did you mean '{match[0]}'?" if match else f"its members are: {', '.join(names)}"))
+                self.error(
+                    f"the struct '{bt}' has no member '{n.name}'",
+                    n.name_loc if n.name_loc.line else n,
+                    help=(
+                        f"did you mean '{match[0]}'?"
+                        if match
+                        else f"its members are: {', '.join(names)}"
+                    ),
+                )
                 return ERROR
             if self.is_const(n.base):
                 i = [f for f, _ in bt.fields].index(n.name)
@@ -291,7 +335,9 @@ class ExpressionChecks:
         if bt is ERROR:
             return ERROR
         if n.name != "length":
-            self.error(f"'.{n.name}()' is not a method: GLSL ES 3.00 has only '.length()' of arrays", n)
+            self.error(
+                f"'.{n.name}()' is not a method: GLSL ES 3.00 has only '.length()' of arrays", n
+            )
             return ERROR
         if not bt.is_array:
             hint = "use length(v) for the Euclidean length of a vector" if bt.is_vector else None

@@ -15,7 +15,8 @@ from .hints import NameAt, conversion_help, int_literal_hint
 
 TYPE_CHECKING = False  # not typing's: importing typing costs every start-up
 if TYPE_CHECKING:
-    from typing import Any, Iterable
+    from collections.abc import Iterable
+    from typing import Any
 
 
 class StatementChecks:
@@ -45,8 +46,11 @@ class StatementChecks:
         if isinstance(decl, A.VariableDeclaration):
             self.variable_declaration(decl, is_global=False)
         elif isinstance(decl, A.FunctionDeclaration):
-            self.error("functions cannot be declared inside a function in GLSL ES", decl,
-                       help="move the prototype to global scope")
+            self.error(
+                "functions cannot be declared inside a function in GLSL ES",
+                decl,
+                help="move the prototype to global scope",
+            )
         elif isinstance(decl, A.PrecisionDeclaration):
             self.precision_declaration(decl)
         else:
@@ -65,7 +69,10 @@ class StatementChecks:
             if t is not ERROR and t != T.BOOL:
                 self.error(f"the condition of {what} must be a bool, not '{t}'", cond)
             elif t is not ERROR and init_t is not ERROR and init_t != t:
-                self.error(f"cannot initialise '{cond.name}' of type '{t}' with a value of type '{init_t}'", cond.init)
+                self.error(
+                    f"cannot initialise '{cond.name}' of type '{t}' with a value of type '{init_t}'",
+                    cond.init,
+                )
             storage = cond.qualifiers.storage if cond.qualifiers else None
             sym = Symbol(cond.name, "local", t, node=cond, qualifier=storage)
             self.declare(sym, cond, NameAt(cond))
@@ -123,8 +130,11 @@ class StatementChecks:
     def stmt_Switch(self, s: A.Switch) -> None:
         t = self.expr(s.expr) if s.expr is not None else ERROR
         if t is not ERROR and t not in (T.INT, T.UINT):
-            self.error(f"a switch needs an int or uint value, not '{t}'", s.expr,
-                       help="switch on an int, or use if/else for other types")
+            self.error(
+                f"a switch needs an int or uint value, not '{t}'",
+                s.expr,
+                help="switch on an int, or use if/else for other types",
+            )
             t = ERROR
         self.push("switch")
         self.switch_depth += 1
@@ -132,8 +142,11 @@ class StatementChecks:
         default_seen = False
         body = s.body
         if body and not isinstance(body[0], A.Case):
-            self.error("a switch cannot have statements before its first 'case' or 'default' label", body[0],
-                       help="move the statement before the switch, or add a 'case' label above it")
+            self.error(
+                "a switch cannot have statements before its first 'case' or 'default' label",
+                body[0],
+                help="move the statement before the switch, or add a 'case' label above it",
+            )
         for stmt in body:
             if isinstance(stmt, A.Case):
                 if stmt.expr is None:
@@ -148,8 +161,11 @@ class StatementChecks:
                     self.error("a case label must be a constant integer expression", stmt.expr)
                     continue
                 if t is not ERROR and ct != t:
-                    self.error(f"the case label is '{ct}' but the switch value is '{t}'", stmt.expr,
-                               help="write the label with the same type (add or remove the 'u' suffix)")
+                    self.error(
+                        f"the case label is '{ct}' but the switch value is '{t}'",
+                        stmt.expr,
+                        help="write the label with the same type (add or remove the 'u' suffix)",
+                    )
                 v = self.model.const_value(stmt.expr)
                 if v is not None:
                     if v in seen:
@@ -158,8 +174,11 @@ class StatementChecks:
             else:
                 self.stmt(stmt)
         if body and isinstance(body[-1], A.Case):
-            self.error("the last case label of a switch must be followed by a statement", body[-1],
-                       help="add 'break;' after it")
+            self.error(
+                "the last case label of a switch must be followed by a statement",
+                body[-1],
+                help="add 'break;' after it",
+            )
         self.switch_depth -= 1
         self.pop()
 
@@ -182,14 +201,21 @@ class StatementChecks:
         ret = self.func.type if self.func is not None else T.VOID
         if s.value is None:
             if ret is not ERROR and not ret.is_void:
-                self.error(f"this function must return a '{ret}' value", s, help=f"write 'return <{ret} value>;'")
+                self.error(
+                    f"this function must return a '{ret}' value",
+                    s,
+                    help=f"write 'return <{ret} value>;'",
+                )
             return
         t = self.expr(s.value)
         if ret is ERROR or t is ERROR:
             return
         if ret.is_void:
-            self.error(f"a void function cannot return a value (this returns '{t}')", s.value,
-                       help="remove the value, or change the return type")
+            self.error(
+                f"a void function cannot return a value (this returns '{t}')",
+                s.value,
+                help="remove the value, or change the return type",
+            )
         elif t != ret:
             hint = int_literal_hint(s.value) if ret.base == "float" else None
             msg = f"the function returns '{ret}' but this value is '{t}'"

@@ -75,13 +75,41 @@ set") or a bool array; writes under a mask keep the old value elsewhere (`rt.ass
 #   limits.py       Python's limits (spilling, outlining) and the lane-state estimate
 #   module.py       the Transpiler and the module it writes; transpile(), transpile_shader()
 
-from .common import LOOP_CAP, OUTLINE_EXPR_INDENT, OUTLINE_INDENT, OUTLINE_LOOPS, RULE, SMALL_STATE, SPILL_HEIGHT, check_program
+from .common import (
+    LOOP_CAP,
+    OUTLINE_EXPR_INDENT,
+    OUTLINE_INDENT,
+    OUTLINE_LOOPS,
+    RULE,
+    SMALL_STATE,
+    SPILL_HEIGHT,
+    check_program,
+)
 from .expressions import LValue
 from .functions import FnState
-from .limits import PythonLimits, glsl_location, compile_generated, lane_state, too_complex
+from .limits import PythonLimits, compile_generated, glsl_location, lane_state, too_complex
 from .module import Transpiled, Transpiler, transpile, transpile_shader
 from .statements import LoopCtx
 
-__all__ = ["LOOP_CAP", "OUTLINE_EXPR_INDENT", "OUTLINE_INDENT", "OUTLINE_LOOPS", "RULE", "SMALL_STATE", "SPILL_HEIGHT",
-           "check_program", "LValue", "FnState", "PythonLimits", "glsl_location", "compile_generated", "lane_state",
-           "too_complex", "Transpiled", "Transpiler", "transpile", "transpile_shader", "LoopCtx"]
+__all__ = [
+    "LOOP_CAP",
+    "OUTLINE_EXPR_INDENT",
+    "OUTLINE_INDENT",
+    "OUTLINE_LOOPS",
+    "RULE",
+    "SMALL_STATE",
+    "SPILL_HEIGHT",
+    "check_program",
+    "LValue",
+    "FnState",
+    "PythonLimits",
+    "glsl_location",
+    "compile_generated",
+    "lane_state",
+    "too_complex",
+    "Transpiled",
+    "Transpiler",
+    "transpile",
+    "transpile_shader",
+    "LoopCtx",
+]

@@ -72,8 +72,26 @@ from ....semantics.model import Symbol
 from .common import _RUNTIME_NAMES
 
 # built-ins computed component by component (the runtime's function of a scalar array)
-_COMPONENTWISE = ("sin", "cos", "tan", "asin", "acos", "exp", "exp2", "log", "log2", "sqrt", "inversesqrt",
-                  "abs", "sign", "floor", "ceil", "fract", "radians", "degrees")
+_COMPONENTWISE = (
+    "sin",
+    "cos",
+    "tan",
+    "asin",
+    "acos",
+    "exp",
+    "exp2",
+    "log",
+    "log2",
+    "sqrt",
+    "inversesqrt",
+    "abs",
+    "sign",
+    "floor",
+    "ceil",
+    "fract",
+    "radians",
+    "degrees",
+)
 
 
 class _Refuse(Exception):
@@ -86,8 +104,14 @@ class _T:
 
     __slots__ = ("op", "args", "const", "value", "code")
 
-    def __init__(self, op: str, args: tuple = (), const: bool = False, value: float | None = None,
-                 code: str = "") -> None:
+    def __init__(
+        self,
+        op: str,
+        args: tuple = (),
+        const: bool = False,
+        value: float | None = None,
+        code: str = "",
+    ) -> None:
         self.op, self.args, self.const, self.value, self.code = op, args, const, value, code
 
 
@@ -117,8 +141,13 @@ class _Eval:
 
     def mul(self, a: _T, b: _T) -> _T:
         if a.op == "neg" or b.op == "neg":  # (fmul(fneg a, b) -> fneg(fmul(a, b)): the same bits)
-            return self.neg(self.mul(a.args[0] if a.op == "neg" else a, b.args[0] if b.op == "neg" else b)) \
-                if (a.op == "neg") != (b.op == "neg") else self.mul(a.args[0], b.args[0])
+            return (
+                self.neg(
+                    self.mul(a.args[0] if a.op == "neg" else a, b.args[0] if b.op == "neg" else b)
+                )
+                if (a.op == "neg") != (b.op == "neg")
+                else self.mul(a.args[0], b.args[0])
+            )
         if a.value is not None and b.value is not None:
             return _k(fold_tree("*", a.value, b.value))
         for c, x in ((a, b), (b, a)):
@@ -130,7 +159,12 @@ class _Eval:
                 if c.value == 0.0:
                     return _k(0.0)
         for c, x in ((a, b), (b, a)):
-            if c.value is not None and x.op == "*" and x.code == "once" and not any(y.const for y in x.args):
+            if (
+                c.value is not None
+                and x.op == "*"
+                and x.code == "once"
+                and not any(y.const for y in x.args)
+            ):
                 self.merges += 1  # ~fmul(is_used_once)(fmul(is_used_once)(a, b), #c) -> (a*c) * b
                 return self.mul(self.mul(x.args[0], c), x.args[1])
         for c, x in ((a, b), (b, a)):
@@ -177,11 +211,19 @@ class _Eval:
         if a.value is not None and b.value is not None:
             self.merges += 1
             with np.errstate(all="ignore"):
-                return _k(float(np.float32(np.float64(np.float32(a.value)) ** np.float64(np.float32(b.value)))))
+                return _k(
+                    float(
+                        np.float32(
+                            np.float64(np.float32(a.value)) ** np.float64(np.float32(b.value))
+                        )
+                    )
+                )
         if b.value == 4.0:  # (fpow(a, 4.0) -> (a*a)*(a*a), its product used once: `mul`)
             sq = self.mul(a, a)
             return _T("*", (sq, sq), const=a.const, code="once")
-        if b.value is not None:  # (Mesa's fpow(a, 2.0) -> a*a, 4.0 -> (a*a)*(a*a): `Runtime.pow_const`)
+        if (
+            b.value is not None
+        ):  # (Mesa's fpow(a, 2.0) -> a*a, 4.0 -> (a*a)*(a*a): `Runtime.pow_const`)
             return _T("call", (a,), const=a.const, code=f"pow_const({{}}, {b.value!r})")
         return _T("call", (a, b), const=a.const and b.const, code="pow")
 
@@ -194,7 +236,7 @@ class _Eval:
         if op == "*" and lt.is_matrix and (rt.is_vector or rt.is_matrix):
             rows, out = lt.rows, []
             for c in range(rt.cols if rt.is_matrix else 1):
-                col = rv[c * lt.cols:(c + 1) * lt.cols]
+                col = rv[c * lt.cols : (c + 1) * lt.cols]
                 for r in range(rows):
                     s = self.mul(lv[r], col[0])
                     for k in range(1, lt.cols):
@@ -219,8 +261,13 @@ class _Eval:
     def expr(self, e: Any, env: dict[int, list]) -> list[_T]:
         tr = self.tr
         t = tr.type_of(e)
-        if t.is_array or t.is_struct or t.base not in ("float", "int") or tr.has_effects(e) and not isinstance(
-                e, A.Call):
+        if (
+            t.is_array
+            or t.is_struct
+            or t.base not in ("float", "int")
+            or tr.has_effects(e)
+            and not isinstance(e, A.Call)
+        ):
             raise _Refuse
         cv = tr.model.const_value(e)
         if cv is not None:
@@ -247,13 +294,18 @@ class _Eval:
             if not isinstance(i, int) or isinstance(i, bool) or bt.is_array:
                 raise _Refuse
             base, w = self.expr(e.base, env), (bt.rows if bt.is_matrix else 1)
-            return base[i * w:(i + 1) * w]
+            return base[i * w : (i + 1) * w]
         if isinstance(e, A.Unary) and e.op in ("-", "+"):
             v = self.expr(e.operand, env)
             return [self.neg(x) for x in v] if e.op == "-" else v
         if isinstance(e, A.Binary):
-            return self.binary(e.op, tr.type_of(e.left), self.expr(e.left, env), tr.type_of(e.right),
-                               self.expr(e.right, env))
+            return self.binary(
+                e.op,
+                tr.type_of(e.left),
+                self.expr(e.left, env),
+                tr.type_of(e.right),
+                self.expr(e.right, env),
+            )
         if isinstance(e, A.Call):
             return self.call(e, t, env)
         raise _Refuse
@@ -281,11 +333,11 @@ class _Eval:
             raise _Refuse
         flat = [x for a in args for x in a]
         if t.is_vector:
-            return flat * t.size if len(flat) == 1 else flat[:t.size]
+            return flat * t.size if len(flat) == 1 else flat[: t.size]
         if t.is_matrix and len(args) == 1 and len(flat) == 1:
             return [flat[0] if c == r else _k(0.0) for c in range(t.cols) for r in range(t.rows)]
         if t.is_matrix and not any(tr.type_of(a).is_matrix for a in e.args) and len(flat) >= t.size:
-            return flat[:t.size]
+            return flat[: t.size]
         if t.is_scalar:
             return flat[:1]
         raise _Refuse
@@ -302,7 +354,9 @@ class _Eval:
             psym = self.tr.model.symbol_of(p)
             if psym is None:
                 raise _Refuse
-            inner[id(psym)] = self.expr(a, env) if d != "out" else [None] * _width(self.tr.type_of(a))
+            inner[id(psym)] = (
+                self.expr(a, env) if d != "out" else [None] * _width(self.tr.type_of(a))
+            )
         result = self.body(fn, inner)
         for p, a, d in zip(params, args, dirs):
             if d != "in":
@@ -315,7 +369,9 @@ class _Eval:
         for i, st in enumerate(stmts):
             if isinstance(st, A.Return) and i == len(stmts) - 1:
                 return self.expr(st.value, env) if st.value is not None else []
-            if isinstance(st, A.DeclarationStatement) and isinstance(st.decl, A.VariableDeclaration):
+            if isinstance(st, A.DeclarationStatement) and isinstance(
+                st.decl, A.VariableDeclaration
+            ):
                 for d in st.decl.declarators:
                     sym = self.tr.model.symbol_of(d)
                     if d.init is None or sym is None:
@@ -325,11 +381,19 @@ class _Eval:
                 a = st.expr
                 value = self.expr(a.value, env)
                 if a.op != "=":
-                    value = self.binary(a.op[:-1], self.tr.type_of(a.target), self.expr(a.target, env),
-                                        self.tr.type_of(a.value), value)
+                    value = self.binary(
+                        a.op[:-1],
+                        self.tr.type_of(a.target),
+                        self.expr(a.target, env),
+                        self.tr.type_of(a.value),
+                        value,
+                    )
                 self.assign(a.target, value, env)
-            elif isinstance(st, A.ExpressionStatement) and isinstance(st.expr, A.Call) and isinstance(
-                    self.tr.model.call_target(st.expr), Symbol):
+            elif (
+                isinstance(st, A.ExpressionStatement)
+                and isinstance(st.expr, A.Call)
+                and isinstance(self.tr.model.call_target(st.expr), Symbol)
+            ):
                 self.user_call(self.tr.model.call_target(st.expr), st.expr.args, env)
             else:
                 raise _Refuse
@@ -389,7 +453,12 @@ def _constant_components(tr: Any, arg: Any, call: A.Call) -> list[_T | None] | N
     for a local declared, then written, by top-level statements of the current function
     before the one that holds `call` (writes of single components keep the others)."""
     sym = tr.model.symbol_of(arg) if isinstance(arg, A.Identifier) else None
-    if sym is None or sym.kind != "local" or not isinstance(sym.node, A.Declarator) or sym.node.init is None:
+    if (
+        sym is None
+        or sym.kind != "local"
+        or not isinstance(sym.node, A.Declarator)
+        or sym.node.init is None
+    ):
         return None
     stmts = tr.fn.sym.node.body.stmts
     decl = next((i for i, st in enumerate(stmts) if any(n is sym.node for n in st.walk())), None)
@@ -407,10 +476,10 @@ def _constant_components(tr: Any, arg: Any, call: A.Call) -> list[_T | None] | N
         for a in init.args:
             v = tr.model.const_value(a)
             comps += [_k(x) for x in _flat(v)] if v is not None else [None] * _width(tr.type_of(a))
-        comps = comps[:t.size]
+        comps = comps[: t.size]
     else:
         return None
-    for st in stmts[decl + 1:at + 1]:
+    for st in stmts[decl + 1 : at + 1]:
         for n in st.walk():
             hit = _written_components(tr, n, sym, call)
             if hit == "all":
@@ -427,17 +496,27 @@ def _unchanged_init(tr: Any, ident: A.Identifier, call: A.Call) -> Any:
     the initializer reads is written in between (so the initializer, evaluated again at the
     call, gives its value); else None."""
     sym = tr.model.symbol_of(ident)
-    if sym is None or sym.kind != "local" or not isinstance(sym.node, A.Declarator) or sym.node.init is None:
+    if (
+        sym is None
+        or sym.kind != "local"
+        or not isinstance(sym.node, A.Declarator)
+        or sym.node.init is None
+    ):
         return None
     stmts = tr.fn.sym.node.body.stmts
     decl = next((i for i, st in enumerate(stmts) if any(n is sym.node for n in st.walk())), None)
     at = next((i for i, st in enumerate(stmts) if any(n is call for n in st.walk())), None)
-    if decl is None or at is None or not isinstance(stmts[decl], A.DeclarationStatement) or decl >= at:
+    if (
+        decl is None
+        or at is None
+        or not isinstance(stmts[decl], A.DeclarationStatement)
+        or decl >= at
+    ):
         return None
     init = sym.node.init
     read = {sym} | {tr.model.symbol_of(n) for n in init.walk() if isinstance(n, A.Identifier)}
     read = [r for r in read if r is not None and r.kind in ("local", "param")]
-    for st in stmts[decl + 1:at + 1]:
+    for st in stmts[decl + 1 : at + 1]:
         for n in st.walk():
             if any(_written_components(tr, n, r, call) for r in read):
                 return None
@@ -475,15 +554,22 @@ def folded_call(tr: Any, call: A.Call, fn: Any, mask: str | None) -> str | None:
     the constants merge no more than they do with every argument a run-time value (merges
     inside the callee alone are nir_fold's, in the function's own code), and no dot product
     of the callee factors (``vec3(p.xyx)`` of Dave Hoskins' hash12: two products share p.x)."""
-    if (tr.fn is None or tr.fold_state.call_fold_off or tr.fold_state.inline_frames or tr.watched is not None
-            or any(tr.has_effects(a) for a in call.args)):
+    if (
+        tr.fn is None
+        or tr.fold_state.call_fold_off
+        or tr.fold_state.inline_frames
+        or tr.watched is not None
+        or any(tr.has_effects(a) for a in call.args)
+    ):
         return None
     try:
         constant = _has_constant_argument(tr, call, fn)
         if not constant and not _calls_dot(tr, fn):
             return None
         ev, env, params, result, holders = _evaluate(tr, call, fn, mask, True)
-        if ev.factored == 0:  # (a factored dot product is folded here only: Runtime.dot keeps the products)
+        if (
+            ev.factored == 0
+        ):  # (a factored dot product is folded here only: Runtime.dot keeps the products)
             if not constant or ev.merges == 0:
                 return None
             if _evaluate(tr, call, fn, mask, False)[0].merges >= ev.merges:
@@ -497,15 +583,22 @@ def _calls_dot(tr: Any, fn: Any) -> bool:
     """`fn`'s body calls the built-in dot (where :meth:`_Eval.factored_add` may apply)."""
     memo = tr.fold_state.call_fold_dots
     if id(fn) not in memo:
-        memo[id(fn)] = any(isinstance(n, A.Call) and n.callee == "dot" and isinstance(tr.model.call_target(n), B.Overload)
-                           for n in fn.node.body.walk())
+        memo[id(fn)] = any(
+            isinstance(n, A.Call)
+            and n.callee == "dot"
+            and isinstance(tr.model.call_target(n), B.Overload)
+            for n in fn.node.body.walk()
+        )
     return memo[id(fn)]
 
 
 def _has_constant_argument(tr: Any, call: A.Call, fn: Any) -> bool:
     for a, (_, _, dr) in zip(call.args, fn.params):
-        if dr != "out" and (tr.model.const_value(a) is not None or _scaled_argument(tr, a, call) is not None or any(
-                k is not None for k in _constant_components(tr, a, call) or ())):
+        if dr != "out" and (
+            tr.model.const_value(a) is not None
+            or _scaled_argument(tr, a, call) is not None
+            or any(k is not None for k in _constant_components(tr, a, call) or ())
+        ):
             return True
     return False
 
@@ -522,8 +615,14 @@ def _scaled_argument(tr: Any, a: Any, call: A.Call) -> tuple[Any, Any] | None:
         return None
     for y, c in ((a.left, a.right), (a.right, a.left)):
         ty, tc = tr.type_of(y), tr.type_of(c)
-        if (tr.model.const_value(c) is not None and tr.model.const_value(y) is None and ty == tr.type_of(a)
-                and not ty.is_matrix and not tc.is_matrix and (tc.is_scalar or tc == ty)):
+        if (
+            tr.model.const_value(c) is not None
+            and tr.model.const_value(y) is None
+            and ty == tr.type_of(a)
+            and not ty.is_matrix
+            and not tc.is_matrix
+            and (tc.is_scalar or tc == ty)
+        ):
             return y, c
     return None
 
@@ -549,16 +648,25 @@ def _evaluate(tr: Any, call: A.Call, fn: Any, mask: str | None, constants: bool)
             args.append([_k(v) for v in _flat(cv)])
             continue
         scaled = _scaled_argument(tr, a, call) if constants else None
-        if scaled is not None:  # y * #c: each component a product by the constant (NIR merges into it)
+        if (
+            scaled is not None
+        ):  # y * #c: each component a product by the constant (NIR merges into it)
             y, c = scaled
             holders.append((i, y))
             cs = [_k(v) for v in _flat(tr.model.const_value(c))]
-            args.append([_T("*", (x, cs[0] if len(cs) == 1 else cs[j])) for j, x in enumerate(_leaves(f"@{i}@", t))])
+            args.append(
+                [
+                    _T("*", (x, cs[0] if len(cs) == 1 else cs[j]))
+                    for j, x in enumerate(_leaves(f"@{i}@", t))
+                ]
+            )
             continue
         known = _constant_components(tr, a, call) if constants else None
         leaves = _leaves(f"@{i}@", t)
         holders.append((i, a))
-        args.append([k if k is not None else x for k, x in zip(known or [None] * len(leaves), leaves)])
+        args.append(
+            [k if k is not None else x for k, x in zip(known or [None] * len(leaves), leaves)]
+        )
     params = [tr.model.symbol_of(p) for p in fn.node.proto.params]
     if any(p is None for p in params):
         raise _Refuse
@@ -568,8 +676,16 @@ def _evaluate(tr: Any, call: A.Call, fn: Any, mask: str | None, constants: bool)
     return ev, env, params, result, holders
 
 
-def _emit_call(tr: Any, call: A.Call, fn: Any, mask: str | None, env: dict[int, list], params: list[Any],
-               result: list[_T], holders: list[tuple[int, Any]]) -> str:
+def _emit_call(
+    tr: Any,
+    call: A.Call,
+    fn: Any,
+    mask: str | None,
+    env: dict[int, list],
+    params: list[Any],
+    result: list[_T],
+    holders: list[tuple[int, Any]],
+) -> str:
     r = tr.fresh("t")
     tr.emit("if rt.lp:  # constants propagated into the call as NIR does (transpile/call_fold.py)")
     tr.indent += 1
@@ -590,7 +706,11 @@ def _emit_call(tr: Any, call: A.Call, fn: Any, mask: str | None, env: dict[int, 
             if t.op == "neg":
                 c = tr.tmp(f"(-{parts[0]})")
             elif t.op == "call":
-                c = tr.tmp(f"rt.{t.code.format(*parts)}" if "{" in t.code else f"rt.{t.code}({', '.join(parts)})")
+                c = tr.tmp(
+                    f"rt.{t.code.format(*parts)}"
+                    if "{" in t.code
+                    else f"rt.{t.code}({', '.join(parts)})"
+                )
             else:
                 c = tr.tmp(f"({parts[0]} {t.op} {parts[1]})")
         memo[id(t)] = c
@@ -608,9 +728,16 @@ def _emit_call(tr: Any, call: A.Call, fn: Any, mask: str | None, env: dict[int, 
     for a, p, (_, _, dr) in zip(call.args, params, fn.params):
         if dr != "in":
             tr.write(tr.lvalue(a, mask), value(env[id(p)], tr.type_of(a)), mask)
-            if isinstance(a, A.Identifier):  # (the products summed in each component: `product_sums`)
+            if isinstance(
+                a, A.Identifier
+            ):  # (the products summed in each component: `product_sums`)
                 sums[(id(call), id(tr.model.symbol_of(a)))] = (
-                    [tuple(memo[id(x)] for x in t.args) if _product_sum(t) else None for t in env[id(p)]], tr.lines)
+                    [
+                        tuple(memo[id(x)] for x in t.args) if _product_sum(t) else None
+                        for t in env[id(p)]
+                    ],
+                    tr.lines,
+                )
     tr.emit(f"{r} = {value(result, tr.type_of(call)) if result else 'None'}")
     tr.indent -= 1
     tr.emit("else:")
@@ -651,7 +778,9 @@ def out_roots(tr: Any, call: A.Call, sym: Any) -> set[str] | None:
 def _product_sum(t: _T) -> bool:
     """The term is ``p1 + p2`` of two run-time products (or negated products: fneg(fmul) is
     fused as fmul of a negated factor)."""
-    return t.op == "+" and all((x.args[0] if x.op == "neg" else x).op == "*" and not x.const for x in t.args)
+    return t.op == "+" and all(
+        (x.args[0] if x.op == "neg" else x).op == "*" and not x.const for x in t.args
+    )
 
 
 def product_sums(tr: Any, call: A.Call, sym: Any) -> list[tuple[str, str] | None] | None:

@@ -24,13 +24,37 @@ OUTLINE_LOOPS = 16  # and a statement inside this many Python loops of one funct
 SMALL_STATE = 1024
 _IDENT = re.compile(r"^[A-Za-z_][A-Za-z0-9_]*$")
 _LOCAL_REF = re.compile(r"(?<![.\w\"'])(v_\w+|_[a-z]+\d*)\b")
-_ASSIGNED = re.compile(r"^(?!(?:if|elif|while|return) )([^=]*?)\s*[-+*/]?=(?!=)")  # a stripped statement's targets
+_ASSIGNED = re.compile(
+    r"^(?!(?:if|elif|while|return) )([^=]*?)\s*[-+*/]?=(?!=)"
+)  # a stripped statement's targets
 _RUNTIME_NAMES = {"min": "min_", "max": "max_", "not": "not_vec"}
-_FLOAT_OPERATORS = ("+", "-", "*", "/", "<", "<=", ">", ">=")  # printed as Python operators on floats
+_FLOAT_OPERATORS = (
+    "+",
+    "-",
+    "*",
+    "/",
+    "<",
+    "<=",
+    ">",
+    ">=",
+)  # printed as Python operators on floats
 _BIN_METHODS = {
-    "+": "add", "-": "sub", "*": "mul", "/": "div", "<": "lt", "<=": "le", ">": "gt", ">=": "ge",
-    "<<": "shl", ">>": "shr", "&": "bit_and", "|": "bit_or", "^": "bit_xor",
-    "&&": "and_", "||": "or_", "^^": "xor_",
+    "+": "add",
+    "-": "sub",
+    "*": "mul",
+    "/": "div",
+    "<": "lt",
+    "<=": "le",
+    ">": "gt",
+    ">=": "ge",
+    "<<": "shl",
+    ">>": "shr",
+    "&": "bit_and",
+    "|": "bit_or",
+    "^": "bit_xor",
+    "&&": "and_",
+    "||": "or_",
+    "^^": "xor_",
 }
 
 

@@ -70,11 +70,19 @@ class ConstantFlow:
     def _function(self, fn: Any) -> None:
         m = self.model
         for n in fn.node.body.walk():
-            if isinstance(n, A.Declarator) and n.init is not None and self.may_be_zero_constant(n.init):
+            if (
+                isinstance(n, A.Declarator)
+                and n.init is not None
+                and self.may_be_zero_constant(n.init)
+            ):
                 self._add(m.symbol_of(n))
             elif isinstance(n, A.Assignment) and n.op == "=" and self.may_be_zero_constant(n.value):
                 self._add(written_variable(m, n.target)[0])
-            elif isinstance(n, A.Return) and n.value is not None and self.may_be_zero_constant(n.value):
+            elif (
+                isinstance(n, A.Return)
+                and n.value is not None
+                and self.may_be_zero_constant(n.value)
+            ):
                 self.returns.add(id(fn))
             elif isinstance(n, A.Call):
                 tgt = m.call_target(n)

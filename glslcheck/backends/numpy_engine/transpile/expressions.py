@@ -10,22 +10,38 @@ from typing import Any
 
 from ....base.precision import float32_literal
 from ....frontend import syntax as A
+from ....frontend.printer import to_glsl
 from ....language import builtin_functions as B
 from ....language import glsl_types as T
-from ...cpu_core.common import DERIVATIVES, IMPLICIT_LOD, TEXTURE_FUNCTIONS, fold_tree
-from ...cpu_core.facts import is_plain_read
-from .common import (_BIN_METHODS, _FLOAT_OPERATORS, _IDENT, _RUNTIME_NAMES, OUTLINE_EXPR_INDENT, SPILL_HEIGHT,
-                     _components, _error, _is_constant_text)
-from . import nir_fold
-from .inline import bound_code
 from ....semantics.analysis import param_directions
 from ....semantics.model import Constructor, Symbol
-from ....frontend.printer import to_glsl
+from ...cpu_core.common import DERIVATIVES, IMPLICIT_LOD, TEXTURE_FUNCTIONS, fold_tree
+from ...cpu_core.facts import is_plain_read
+from . import nir_fold
+from .common import (
+    _BIN_METHODS,
+    _FLOAT_OPERATORS,
+    _IDENT,
+    _RUNTIME_NAMES,
+    OUTLINE_EXPR_INDENT,
+    SPILL_HEIGHT,
+    _components,
+    _error,
+    _is_constant_text,
+)
+from .inline import bound_code
 
 # Built-ins whose runtime method, on float operands, is one NumPy ufunc (Runtime.np_*): called
 # directly, as `rt.np_fmin(a, b)`, without the method's Python frame (`Runtime.min_` ...)
-_FLOAT_UFUNCS = {"min": "np_fmin", "max": "np_fmax", "abs": "np_abs", "sqrt": "np_sqrt", "floor": "np_floor",
-                 "ceil": "np_ceil", "trunc": "np_trunc"}
+_FLOAT_UFUNCS = {
+    "min": "np_fmin",
+    "max": "np_fmax",
+    "abs": "np_abs",
+    "sqrt": "np_sqrt",
+    "floor": "np_floor",
+    "ceil": "np_ceil",
+    "trunc": "np_trunc",
+}
 # Operators that are NumPy's operator on two int or two uint operands (int32 and uint32 arrays,
 # as constants and every runtime result are): rt.add is np.add, rt.bit_xor np.bitwise_xor ...
 # (`/` and `%` have GLSL's own rules for zero and signs; `<<` on int goes through unsigned bits)
@@ -46,7 +62,9 @@ class LValue:
     base: str
     base_type: Any
     path: list[tuple] = field(default_factory=list)
-    free: bool = False  # written without a mask (`Uniformity.is_free`: no lane left out reads it again)
+    free: bool = (
+        False  # written without a mask (`Uniformity.is_free`: no lane left out reads it again)
+    )
 
 
 class Expressions:
@@ -59,10 +77,18 @@ class Expressions:
 
     # -- expressions ---------------------------------------------------------------------------
     def expr(self, e: Any, mask: str | None) -> str:
-        if (self.cse is None or _own_mask(e)) and self.CSE_CALLS and self.fn is not None and not self.in_const:
+        if (
+            (self.cse is None or _own_mask(e))
+            and self.CSE_CALLS
+            and self.fn is not None
+            and not self.in_const
+        ):
             # an expression without side effects (or a part evaluated under a mask of its own):
             # the calls it repeats, shared by its parts (an empty set: none to share)
-            saved, self.cse = self.cse, None if self.has_effects(e) else (self.repeated_calls(e), {})
+            saved, self.cse = (
+                self.cse,
+                None if self.has_effects(e) else (self.repeated_calls(e), {}),
+            )
             try:
                 return self.print_expr(e, mask)
             finally:
@@ -72,7 +98,9 @@ class Expressions:
     def print_expr(self, e: Any, mask: str | None) -> str:
         method = getattr(self, "_print_" + type(e).__name__, None)
         if method is None:
-            raise _error(f"{type(e).__name__} expressions are not supported by the NumPy backend", e)
+            raise _error(
+                f"{type(e).__name__} expressions are not supported by the NumPy backend", e
+            )
         if self.too_deep(OUTLINE_EXPR_INDENT, loops=False):
             return self.outline(lambda: self.expr(e, mask), e)
         if self.fn is None or self.in_const or self.model.const_value(e) is None:
@@ -108,10 +136,18 @@ class Expressions:
             n = stack.pop()
             if n is not e and _own_mask(n):
                 continue  # a part under a mask of its own: its calls are its own (`expr`)
-            if isinstance(n, A.Call) and not isinstance(self.model.call_target(n), (Constructor, Symbol)):
+            if isinstance(n, A.Call) and not isinstance(
+                self.model.call_target(n), (Constructor, Symbol)
+            ):
                 groups.setdefault(to_glsl(n), []).append(n)
             stack.extend(n.children())
-        return {id(n) for g in groups.values() if len(g) > 1 for n in g if self.model.const_value(n) is None}
+        return {
+            id(n)
+            for g in groups.values()
+            if len(g) > 1
+            for n in g
+            if self.model.const_value(n) is None
+        }
 
     def type_of(self, e: Any) -> Any:
         return self.model.type_of(e)
@@ -132,9 +168,12 @@ class Expressions:
                 return True
             if isinstance(tgt, Symbol) and id(tgt) in self.facts.may_discard:
                 return True
-        if isinstance(n, (A.Ternary, A.Binary)) and (not isinstance(n, A.Binary) or n.op in ("&&", "||")):
+        if isinstance(n, (A.Ternary, A.Binary)) and (
+            not isinstance(n, A.Binary) or n.op in ("&&", "||")
+        ):
             if self.has_effects(n.then if isinstance(n, A.Ternary) else n.right) or (
-                    isinstance(n, A.Ternary) and self.has_effects(n.else_)):
+                isinstance(n, A.Ternary) and self.has_effects(n.else_)
+            ):
                 return True
         return False
 
@@ -192,7 +231,11 @@ class Expressions:
                     return f"({left} {op} {right})"  # np.equal / np.not_equal, as rt.eq and rt.ne
                 return f"rt.{'eq' if op == '==' else 'ne'}({left}, {right})"
             return f"rt.{'equal_all' if op == '==' else 'nequal_all'}({left}, {right})"
-        if op == "%" and self.model.const_value(e.left) is not None and self.model.const_value(e.right) is not None:
+        if (
+            op == "%"
+            and self.model.const_value(e.left) is not None
+            and self.model.const_value(e.right) is not None
+        ):
             return f"rt.rem_const({left}, {right})"
         if op not in _BIN_METHODS and op != "%":
             raise _error(f"the operator '{op}' is not supported", e)
@@ -238,7 +281,9 @@ class Expressions:
 
     def incdec(self, e: Any, mask: str | None, want_value: bool) -> str:
         lv = self.lvalue(e.operand, mask)
-        old = self.tmp(self.read(lv)) if (want_value and isinstance(e, A.Postfix)) else self.read(lv)
+        old = (
+            self.tmp(self.read(lv)) if (want_value and isinstance(e, A.Postfix)) else self.read(lv)
+        )
         fn = "inc" if e.op == "++" else "dec"
         new = f"rt.{fn}({old})"
         if want_value and isinstance(e, A.Unary):
@@ -262,8 +307,9 @@ class Expressions:
         if value is None:
             value = nir_fold.keep_term(self, e, self.expr(e.value, mask))
             if e.op != "=":
-                value = self.binary_values(e.op[:-1], self.type_of(e.target), self.type_of(e.value),
-                                           self.read(lv), value)
+                value = self.binary_values(
+                    e.op[:-1], self.type_of(e.target), self.type_of(e.value), self.read(lv), value
+                )
         if want_value:
             value = self.tmp(value)
         self.write(lv, value, mask)
@@ -388,7 +434,9 @@ class Expressions:
         if t.is_array:
             return f"rt.array({', '.join(args)})"
         if t.is_struct:
-            fields = ", ".join(f"{self.member(fname, e)}={a}" for (fname, _), a in zip(t.fields, args))
+            fields = ", ".join(
+                f"{self.member(fname, e)}={a}" for (fname, _), a in zip(t.fields, args)
+            )
             return f'rt.struct("{self.struct_name(t)}", {fields})'
         if t.is_scalar:
             at = self.type_of(e.args[0])
@@ -409,10 +457,17 @@ class Expressions:
 
     def builtin_call(self, e: A.Call, ov: Any, mask: str | None) -> str:
         name = ov.name
-        if getattr(ov, "category", None) == B.TEXTURE or name.startswith("texture") or name.startswith("texel"):
+        if (
+            getattr(ov, "category", None) == B.TEXTURE
+            or name.startswith("texture")
+            or name.startswith("texel")
+        ):
             if name not in TEXTURE_FUNCTIONS or str(self.type_of(e.args[0])) != "sampler2D":
-                raise _error(f"{name}(): this texture lookup is not supported by the NumPy backend yet", e,
-                             help="render this shader with --backend gl")
+                raise _error(
+                    f"{name}(): this texture lookup is not supported by the NumPy backend yet",
+                    e,
+                    help="render this shader with --backend gl",
+                )
             width = ", width=S.width" if name in IMPLICIT_LOD else ""
             return f"rt.{name}({', '.join(self.exprs(e.args, mask))}{width})"  # textures.py
         quals = list(getattr(ov, "qualifiers", ()) or ())
@@ -430,7 +485,9 @@ class Expressions:
         if name == "dot":
             merged = nir_fold.merged_dot(self, e, args, mask)  # constants merged into a dot product
             if merged is None:
-                merged = nir_fold.broadcast_dot(self, e, args, mask)  # dot(vec2(s), #K): s * (K.x + K.y)
+                merged = nir_fold.broadcast_dot(
+                    self, e, args, mask
+                )  # dot(vec2(s), #K): s * (K.x + K.y)
             if merged is not None:
                 return merged
         if name == "pow":
@@ -467,7 +524,9 @@ class Expressions:
         comps = [float(v) for v in _components(c)]
         if not any(v in (1.0, 2.0, 4.0) or (v == 0.0 and str(v) == "0.0") for v in comps):
             return None
-        lit = repr(comps[0]) if not isinstance(c, tuple) else "(" + ", ".join(map(repr, comps)) + ")"
+        lit = (
+            repr(comps[0]) if not isinstance(c, tuple) else "(" + ", ".join(map(repr, comps)) + ")"
+        )
         return f"rt.pow_const({args[0]}, {lit})"
 
     # -- l-values ------------------------------------------------------------------------------
@@ -514,7 +573,11 @@ class Expressions:
             if kind == "field":
                 v = f'rt.field({v}, "{arg}")'
             elif kind == "swz":
-                v = f"{v}[{arg[0]}]" if len(arg) == 1 else f'rt.swizzle({v}, "{"".join("xyzw"[i] for i in arg)}")'
+                v = (
+                    f"{v}[{arg[0]}]"
+                    if len(arg) == 1
+                    else f'rt.swizzle({v}, "{"".join("xyzw"[i] for i in arg)}")'
+                )
             else:
                 v = f"rt.index({v}, {arg})"
         return v
@@ -528,7 +591,9 @@ class Expressions:
             if kind == "field":
                 new = f'rt.assign_field({parent}, "{arg}", {new}, {m})'
             elif kind == "swz":
-                new = f'rt.assign_swizzle({parent}, "{"".join("xyzw"[i] for i in arg)}", {new}, {m})'
+                new = (
+                    f'rt.assign_swizzle({parent}, "{"".join("xyzw"[i] for i in arg)}", {new}, {m})'
+                )
             else:
                 new = f"rt.assign_index({parent}, {arg}, {new}, {m})"
             m = None

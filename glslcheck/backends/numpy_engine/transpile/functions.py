@@ -7,15 +7,16 @@ from __future__ import annotations
 from typing import Any
 
 from ....frontend import syntax as A
-from ...cpu_core.uniformity import Uniformity
-from .expressions import LValue
-from .statements import LoopCtx
-from ...cpu_core.facts import events_of
 from ....semantics.model import Symbol
 from ...cpu_core.common import comment_safe
-from .inline import inline_call, worth_inlining
-from .call_fold import folded_call
+from ...cpu_core.facts import events_of
+from ...cpu_core.uniformity import Uniformity
 from . import nir_fold
+from .call_fold import folded_call
+from .expressions import LValue
+from .inline import inline_call, worth_inlining
+from .statements import LoopCtx
+
 
 class FnState:
     def __init__(self, sym: Any, uni: Uniformity, is_entry: bool) -> None:
@@ -81,10 +82,17 @@ class Functions:
         ev = events_of(node.body, self.facts, self.model) if early is None else None
         tail = body[-1] if body and isinstance(body[-1], A.Return) else None
         nontail_ret = early is None and (
-            any(isinstance(n, (A.Return, A.Discard)) and n is not tail for n in node.body.walk()) or (
-                ev.ret and any(isinstance(n, A.Call) and isinstance(self.model.call_target(n), Symbol)
-                               and id(self.model.call_target(n)) in self.facts.may_discard
-                               for n in node.body.walk())))
+            any(isinstance(n, (A.Return, A.Discard)) and n is not tail for n in node.body.walk())
+            or (
+                ev.ret
+                and any(
+                    isinstance(n, A.Call)
+                    and isinstance(self.model.call_target(n), Symbol)
+                    and id(self.model.call_target(n)) in self.facts.may_discard
+                    for n in node.body.walk()
+                )
+            )
+        )
         if nontail_ret:
             fs.has_ret = True
             self.emit("_ret = X.NO")
@@ -98,7 +106,11 @@ class Functions:
             cond_stmt, ret = early
             self.comment_line(cond_stmt)
             c = self.tmp(self.expr(cond_stmt.cond, "_m"))
-            then = cond_stmt.then.stmts[0] if isinstance(cond_stmt.then, A.Compound) else cond_stmt.then
+            then = (
+                cond_stmt.then.stmts[0]
+                if isinstance(cond_stmt.then, A.Compound)
+                else cond_stmt.then
+            )
             a = self.expr(then.value, "_m")
             self.emit(f"if X.every({c}):  # no lane goes on: the rest is not computed")
             self.indent += 1
@@ -138,8 +150,11 @@ class Functions:
             for m in n.walk():
                 if isinstance(m, (A.Return, A.Discard)):
                     return None
-                if isinstance(m, A.Call) and isinstance(self.model.call_target(m), Symbol) \
-                        and id(self.model.call_target(m)) in self.facts.may_discard:
+                if (
+                    isinstance(m, A.Call)
+                    and isinstance(self.model.call_target(m), Symbol)
+                    and id(self.model.call_target(m)) in self.facts.may_discard
+                ):
                     return None
         return st, body[-1]
 
@@ -155,14 +170,19 @@ class Functions:
 
     def user_call(self, e: A.Call, fn: Any, mask: str | None) -> str:
         if worth_inlining(self, e, fn, nir_fold.dot_operand):
-            return inline_call(self, e, fn, mask)  # Mesa's rewrites reach into an argument: inline.py
+            return inline_call(
+                self, e, fn, mask
+            )  # Mesa's rewrites reach into an argument: inline.py
         folded = folded_call(self, e, fn, mask)  # constants propagated into the call: call_fold.py
         if folded is not None:
             return folded
         uni = self.fn.uni if self.fn is not None else None
         call_mask = mask
-        if uni is not None and self.facts.closed(fn) and all(
-                uni.is_uniform(a) or d == "out" for a, (_, _, d) in zip(e.args, fn.params)):
+        if (
+            uni is not None
+            and self.facts.closed(fn)
+            and all(uni.is_uniform(a) or d == "out" for a, (_, _, d) in zip(e.args, fn.params))
+        ):
             call_mask = None  # same arguments in every lane: compute once, for all lanes
         args: list[str] = []
         outs: list[tuple[int, LValue]] = []
@@ -188,6 +208,8 @@ class Functions:
             self.write(lv, f"{r}[{k}]", mask)
         return f"{r}[0]"
 
-    def call_text(self, e: A.Call, fn: Any, call_mask: str | None, args: list[str], mask: str | None) -> str:
+    def call_text(
+        self, e: A.Call, fn: Any, call_mask: str | None, args: list[str], mask: str | None
+    ) -> str:
         """The Python call of user function `fn` (the tracing transpiler, tracing.py, wraps it)."""
         return f"{self.fn_name(fn)}(S, {call_mask}{''.join(', ' + x for x in args)})"

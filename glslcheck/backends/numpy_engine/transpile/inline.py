@@ -63,15 +63,22 @@ def _body_expression(tr: Any, fn: Any) -> Any:
         return memo[id(fn)]
     value = None
     stmts = fn.node.body.stmts
-    if (len(stmts) == 1 and isinstance(stmts[0], A.Return) and stmts[0].value is not None
-            and all(d == "in" for _, _, d in fn.params)):
+    if (
+        len(stmts) == 1
+        and isinstance(stmts[0], A.Return)
+        and stmts[0].value is not None
+        and all(d == "in" for _, _, d in fn.params)
+    ):
         value = stmts[0].value
         for n in value.walk():
-            if isinstance(n, A.Call) and (isinstance(tr.model.call_target(n), Symbol) or n.callee == "mix"):
+            if isinstance(n, A.Call) and (
+                isinstance(tr.model.call_target(n), Symbol) or n.callee == "mix"
+            ):
                 value = None
                 break
             if isinstance(n, (A.Assignment, A.Unary, A.Postfix)) and (
-                    isinstance(n, A.Assignment) or n.op in ("++", "--")):
+                isinstance(n, A.Assignment) or n.op in ("++", "--")
+            ):
                 value = None  # (a parameter written: not a plain read of the argument)
                 break
         if value is not None and any(tr.model.symbol_of(p) is None for p in fn.node.proto.params):
@@ -97,13 +104,20 @@ def worth_inlining(tr: Any, call: A.Call, fn: Any, constant_product: Any) -> boo
     if not products:
         return False
     for n in value.walk():
-        if (isinstance(n, A.Call) and n.callee == "dot" and len(n.args) == 2
-                and isinstance(tr.model.call_target(n), B.Overload)):
+        if (
+            isinstance(n, A.Call)
+            and n.callee == "dot"
+            and len(n.args) == 2
+            and isinstance(tr.model.call_target(n), B.Overload)
+        ):
             for a, b in ((n.args[0], n.args[1]), (n.args[1], n.args[0])):
                 if isinstance(a, A.Field) and tr.model.is_swizzle(a):
                     a = a.base  # (`co.xy` of a vec2(s) is vec2(s): nir_fold.broadcast_dot)
-                if (isinstance(a, A.Identifier) and id(tr.model.symbol_of(a)) in products
-                        and tr.model.const_value(b) is not None):
+                if (
+                    isinstance(a, A.Identifier)
+                    and id(tr.model.symbol_of(a)) in products
+                    and tr.model.const_value(b) is not None
+                ):
                     return True
     return False
 

@@ -6,10 +6,11 @@ from __future__ import annotations
 import re
 from typing import Any
 
-from ....frontend import syntax as A
 from ....base.diagnostics import Diagnostic, GlslError, Location
-from .common import _ASSIGNED, _LOCAL_REF, OUTLINE_LOOPS, RULE, SPILL_HEIGHT
+from ....frontend import syntax as A
 from ...cpu_core.common import comment_safe, fold_tree
+from .common import _ASSIGNED, _LOCAL_REF, OUTLINE_LOOPS, RULE, SPILL_HEIGHT
+
 
 class PythonLimits:
     """What keeps the generated code inside CPython's limits, whatever the GLSL's nesting:
@@ -38,7 +39,9 @@ class PythonLimits:
         for ln in lines:
             names = cache.get(ln)
             if names is None:
-                names = cache[ln] = frozenset(m.group(1) for m in _LOCAL_REF.finditer(ln.split("#", 1)[0]))
+                names = cache[ln] = frozenset(
+                    m.group(1) for m in _LOCAL_REF.finditer(ln.split("#", 1)[0])
+                )
             out |= names
         return out
 
@@ -63,7 +66,14 @@ class PythonLimits:
         defined = set(fs.defined)
         saved = self.lines, self.indent, fs.nest, fs.blocks, self.cse
         # (no common subexpressions shared with the caller: temporaries here are the function's)
-        self.lines, self.indent, fs.nest, fs.blocks, self.last_line, self.cse = [], 1, 0, 0, None, None
+        self.lines, self.indent, fs.nest, fs.blocks, self.last_line, self.cse = (
+            [],
+            1,
+            0,
+            0,
+            None,
+            None,
+        )
         try:
             value = build()
             if value is not None:
@@ -74,20 +84,32 @@ class PythonLimits:
             self.last_line = None
         used = sorted(self.local_names(body) & defined)
         # the locals it may rebind: every name left of an `=` (more than needed is harmless)
-        targets = {m.group(1) for ln in body for t in _ASSIGNED.findall(ln.split("#", 1)[0].strip())
-                   for m in _LOCAL_REF.finditer(t)}
-        out = ([value] if value is not None and value in fs.defined else []) + [u for u in used if u in targets]
+        targets = {
+            m.group(1)
+            for ln in body
+            for t in _ASSIGNED.findall(ln.split("#", 1)[0].strip())
+            for m in _LOCAL_REF.finditer(t)
+        }
+        out = ([value] if value is not None and value in fs.defined else []) + [
+            u for u in used if u in targets
+        ]
         self.n += 1
         sym = fs.sym
         base = self.fn_name(sym)[2:] if getattr(sym, "kind", None) == "function" else "globals"
         name = f"h_{base}_{self.n}"
         loc = getattr(node, "loc", None)
         where = f" line {loc.line}" if loc is not None and loc.line else ""
-        self.helpers.append("\n".join(
-            [f"def {name}({', '.join(['S'] + used)}):",
-             f'    """Part of {comment_safe(sym.name, 60)}{where}, a function of its own to stay within'
-             ' Python\'s nesting limits."""']
-            + body + [f"    return ({''.join(o + ', ' for o in out)})", ""]))
+        self.helpers.append(
+            "\n".join(
+                [
+                    f"def {name}({', '.join(['S'] + used)}):",
+                    f'    """Part of {comment_safe(sym.name, 60)}{where}, a function of its own to stay within'
+                    ' Python\'s nesting limits."""',
+                ]
+                + body
+                + [f"    return ({''.join(o + ', ' for o in out)})", ""]
+            )
+        )
         call = f"{name}({', '.join(['S'] + used)})"
         self.emit(f"{''.join(o + ', ' for o in out)}= {call}" if out else call)
         return value
@@ -112,7 +134,9 @@ def lane_state(model: Any, functions: list[Any]) -> tuple[int, Any]:
     nodes = [g.node for g in model.globals if g.kind == "global" and not g.type.contains_opaque]
     for fn in functions:
         nodes += fn.node.proto.params
-        nodes += [n for n in fn.node.body.walk() if isinstance(n, (A.Declarator, A.ConditionDeclaration))]
+        nodes += [
+            n for n in fn.node.body.walk() if isinstance(n, (A.Declarator, A.ConditionDeclaration))
+        ]
     total, largest, at = 0, 0, None
     for n in nodes:
         sym = model.symbol_of(n)
@@ -126,9 +150,14 @@ def lane_state(model: Any, functions: list[Any]) -> tuple[int, Any]:
 
 
 def too_complex(message: str, loc: Any) -> GlslError:
-    return GlslError(Diagnostic(
-        f"this program is too complex to render on the CPU ({message})", loc, rule=RULE,
-        help="simplify the nesting here, or render with --backend gl"))
+    return GlslError(
+        Diagnostic(
+            f"this program is too complex to render on the CPU ({message})",
+            loc,
+            rule=RULE,
+            help="simplify the nesting here, or render with --backend gl",
+        )
+    )
 
 
 def glsl_location(source: str, lineno: int, path: str) -> Location:
@@ -148,5 +177,6 @@ def compile_generated(source: str, filename: str, path: str) -> Any:
     except (SyntaxError, RecursionError, MemoryError, ValueError) as e:
         lineno = getattr(e, "lineno", None) or 1
         msg = getattr(e, "msg", None) or str(e) or type(e).__name__
-        raise too_complex(f"Python cannot compile the generated code: {msg}",
-                          glsl_location(source, lineno, path)) from None
+        raise too_complex(
+            f"Python cannot compile the generated code: {msg}", glsl_location(source, lineno, path)
+        ) from None

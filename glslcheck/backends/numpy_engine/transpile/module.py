@@ -8,17 +8,18 @@ import sys
 from dataclasses import dataclass
 from typing import Any
 
-from ....frontend import syntax as A
 from ....base.diagnostics import Location
-from ..fold_state import FoldState
+from ....frontend import syntax as A
 from ...cpu_core.common import comment_safe
 from ...cpu_core.facts import Facts, SideEffects
+from ..fold_state import FoldState
 from .common import LOOP_CAP, SMALL_STATE, _error, check_program
 from .expressions import Expressions
 from .functions import FnState, Functions
 from .limits import PythonLimits, compile_generated, lane_state, too_complex
 from .names import Names
 from .statements import Statements
+
 
 class Transpiler(Names, Functions, Statements, Expressions, PythonLimits):
     """`Transpiler(model, tab_path).module()` -> (Python source, meta dict)."""
@@ -28,8 +29,13 @@ class Transpiler(Names, Functions, Statements, Expressions, PythonLimits):
     # (tracing.py); None when not tracing.
     watched: dict[int, tuple[str, Any, str]] | None = None
 
-    def __init__(self, model: Any, path: str = "<shader>", source_text: str | None = None,
-                 keep_alpha: bool = False) -> None:
+    def __init__(
+        self,
+        model: Any,
+        path: str = "<shader>",
+        source_text: str | None = None,
+        keep_alpha: bool = False,
+    ) -> None:
         self.keep_alpha = keep_alpha  # a Buffer pass: Shadertoy keeps the alpha mainImage wrote
         self.model = model
         self.path = path
@@ -41,14 +47,18 @@ class Transpiler(Names, Functions, Statements, Expressions, PythonLimits):
         self.fold_state = FoldState()  # the Mesa rewrites' memo of this program (fold_state.py)
         self.lines: list[str] = []
         self.consts: dict[str, str] = {}  # name -> defining expression
-        self.float_consts: dict[str, float] = {}  # a float literal's name -> its value (const_float)
+        self.float_consts: dict[
+            str, float
+        ] = {}  # a float literal's name -> its value (const_float)
         self.const_exprs: dict[str, str] = {}  # printed constant expression -> its C_x name
         self.in_const = False
         self.zero_defs: dict[str, str] = {}
         self.fn_names: dict[int, str] = {}
         self.struct_names: dict[int, str] = {}
         self.n = 0
-        self.regions: dict[int, tuple[str, str, str, int]] = {}  # id -> (kind, function, path, line)
+        self.regions: dict[
+            int, tuple[str, str, str, int]
+        ] = {}  # id -> (kind, function, path, line)
         self.loops: dict[int, tuple[str, int, int]] = {}
         self.fn: FnState | None = None
         self.indent = 0
@@ -92,7 +102,7 @@ class Transpiler(Names, Functions, Statements, Expressions, PythonLimits):
             loc = at.loc
             meta["lane_state"] = (scalars, loc.path, loc.line, loc.column)
         out = [self.header(), "", f"SHADER_META = {meta!r}", ""]
-        out.append("if __name__ == \"__main__\":  # run on its own: python this_file.py --help")
+        out.append('if __name__ == "__main__":  # run on its own: python this_file.py --help')
         out.append("    from glslcheck.backends.numpy_engine.program import standalone_globals")
         out.append("    globals().update(standalone_globals(SHADER_META))")
         out.append("")
@@ -106,7 +116,7 @@ class Transpiler(Names, Functions, Statements, Expressions, PythonLimits):
             out += ["", f, ""]
         out += ["", init, "", "", shade, ""]
         out.append("")
-        out.append("if __name__ == \"__main__\":")
+        out.append('if __name__ == "__main__":')
         out.append("    from glslcheck.backends.numpy_engine.program import run_standalone")
         out.append("    run_standalone(globals())")
         return "\n".join(out) + "\n", meta
@@ -121,7 +131,9 @@ class Transpiler(Names, Functions, Statements, Expressions, PythonLimits):
 
     def _uniforms_from_model(self) -> set[str]:
         try:
-            return set(self.model.uniforms_read())  # samplers included: channels.ChannelInput values
+            return set(
+                self.model.uniforms_read()
+            )  # samplers included: channels.ChannelInput values
         except Exception:  # pragma: no cover - the model's API is still settling
             return set()
 
@@ -143,7 +155,9 @@ class Transpiler(Names, Functions, Statements, Expressions, PythonLimits):
     def gen_globals(self) -> None:
         self.emit("def init_globals(S):")
         self.indent += 1
-        self.emit('"""Global variables at the start of every invocation (their initializers are constant)."""')
+        self.emit(
+            '"""Global variables at the start of every invocation (their initializers are constant)."""'
+        )
         empty = True
         fake = type("G", (), {"name": "<globals>", "node": None})()
         self.fn = FnState(fake, None, True)  # type: ignore[arg-type]
@@ -168,16 +182,24 @@ class Transpiler(Names, Functions, Statements, Expressions, PythonLimits):
         self.indent += 1
         if self.plain:
             self.emit('"""main() of a plain GLSL shader: the value of its `out vec4` variable."""')
-            outs = [g for g in self.model.globals if g.qualifier == "out" and g.kind == "global"
-                    and str(g.type) == "vec4"]
+            outs = [
+                g
+                for g in self.model.globals
+                if g.qualifier == "out" and g.kind == "global" and str(g.type) == "vec4"
+            ]
             self.emit(f"{name}(S, None)")
             if not outs:
                 raise _error("a plain GLSL shader needs an 'out vec4' variable", entry.node)
             self.emit(f"return {self.var_name(outs[0], entry.node)}")
         else:
-            self.emit('"""Shadertoy\'s main(): color = vec4(1e20); mainImage(color, fragCoord); its RGB."""')
+            self.emit(
+                '"""Shadertoy\'s main(): color = vec4(1e20); mainImage(color, fragCoord); its RGB."""'
+            )
             args = []
-            init = self.consts.setdefault("C_vec4_1e20", "rt.vec(4, rt.const_float(1e20))") and "C_vec4_1e20"
+            init = (
+                self.consts.setdefault("C_vec4_1e20", "rt.vec(4, rt.const_float(1e20))")
+                and "C_vec4_1e20"
+            )
             (_, _, d0), (_, _, d1) = entry.params
             if d0 != "out":
                 args.append(init)
@@ -218,7 +240,9 @@ def transpile(model: Any, path: str = "<shader>", keep_alpha: bool = False) -> T
         source, meta = tr.module()
     except RecursionError:
         where = getattr(tr, "where", None)
-        raise too_complex("it is nested too deeply", getattr(where, "loc", None) or Location(path, 1, 1)) from None
+        raise too_complex(
+            "it is nested too deeply", getattr(where, "loc", None) or Location(path, 1, 1)
+        ) from None
     finally:
         sys.setrecursionlimit(old)
     filename = f"<glslcheck-numpy {comment_safe(path, 200)}>"
@@ -235,4 +259,6 @@ def transpile_shader(shader: Any, tab: str | None = None) -> Transpiled:
     pr = parse_shader(shader, tab)
     model = check_program(pr)
     src = shader.tabs.get(tab)
-    return transpile(model, src.path if src is not None else shader.root, keep_alpha=tab.startswith("Buffer"))
+    return transpile(
+        model, src.path if src is not None else shader.root, keep_alpha=tab.startswith("Buffer")
+    )

@@ -36,7 +36,11 @@ class Names:
         from ....base.diagnostics import source_line
 
         text = source_line(loc.path, loc.line) or ""
-        where = f"line {loc.line}" if loc.path == self.path else f"{comment_safe(loc.path, 60)} line {loc.line}"
+        where = (
+            f"line {loc.line}"
+            if loc.path == self.path
+            else f"{comment_safe(loc.path, 60)} line {loc.line}"
+        )
         self.emit(f"# {where}: {comment_safe(text)}".rstrip())
 
     def region(self, kind: str, node: Any) -> int:
@@ -55,8 +59,11 @@ class Names:
             return "S.u_" + sym.name
         if sym.kind == "global":
             if sym.type.contains_opaque:
-                raise _error(f"'{sym.name}': textures are not supported by the NumPy backend yet", node,
-                             help="render with --backend gl")
+                raise _error(
+                    f"'{sym.name}': textures are not supported by the NumPy backend yet",
+                    node,
+                    help="render with --backend gl",
+                )
             return "S.g_" + python_ident(sym.unique_name or sym.name, node)
         if sym.kind == "uniform":
             from ....shadertoy.wrapper import UNIFORMS_BY_NAME
@@ -65,8 +72,11 @@ class Names:
             if u is None:
                 raise _error(f"unknown uniform '{sym.name}'", node)
             if u.glsl_type.startswith("sampler") and u.glsl_type != "sampler2D":
-                raise _error(f"'{sym.name}': {u.glsl_type} is not supported by the NumPy backend yet", node,
-                             help="render with --backend gl")
+                raise _error(
+                    f"'{sym.name}': {u.glsl_type} is not supported by the NumPy backend yet",
+                    node,
+                    help="render with --backend gl",
+                )
             self.uniforms.add(sym.name)  # a sampler's value: a channels.ChannelInput (textures.py)
             return "S.u_" + sym.name
         if sym.kind == "builtin-var":
@@ -163,7 +173,10 @@ class Names:
             sname = self.struct_name(t)
             key = "Z_" + sname + "".join(f"_a{n}" for n in lead)
             if key not in self.zero_defs:
-                fields = ", ".join(f"{self.member(fname, node)}={self.zero(ft, node, lead)}" for fname, ft in t.fields)
+                fields = ", ".join(
+                    f"{self.member(fname, node)}={self.zero(ft, node, lead)}"
+                    for fname, ft in t.fields
+                )
                 self.zero_defs[key] = f'rt.struct("{sname}", {fields})'
             return key
         shape, kind = self.shape_of(t, node)

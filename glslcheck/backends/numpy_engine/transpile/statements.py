@@ -7,15 +7,16 @@ from __future__ import annotations
 from dataclasses import dataclass
 from typing import Any
 
+from ....base.diagnostics import Location
 from ....frontend import syntax as A
 from ....language import builtin_functions as B
 from ....language import glsl_types as T
-from ....base.diagnostics import Location
+from ....semantics.model import Symbol
 from ...cpu_core.common import DERIVATIVES, IMPLICIT_LOD, fold_tree
 from ...cpu_core.facts import Events, events_of, induction_variable
-from .common import LOOP_CAP, OUTLINE_INDENT, _error
-from ....semantics.model import Symbol
 from . import nir_fold
+from .common import LOOP_CAP, OUTLINE_INDENT, _error
+
 
 @dataclass
 class LoopCtx:
@@ -56,7 +57,7 @@ class Statements:
                     self.emit(f"if X.live({mask}):")
                     self.indent += 1
                     fs.nest += 1
-                    if self.rest_compacted(stmts[i + 1:], mask):
+                    if self.rest_compacted(stmts[i + 1 :], mask):
                         break
         fs.nest -= self.indent - start_indent
         self.indent = start_indent
@@ -72,7 +73,9 @@ class Statements:
         fs = self.fn
         if fs.no_compact or not rest:
             return False
-        node = A.Compound(stmts=rest, loc=getattr(rest[0], "loc", None) or Location(self.path, 0, 0))
+        node = A.Compound(
+            stmts=rest, loc=getattr(rest[0], "loc", None) or Location(self.path, 0, 0)
+        )
         if self._region_uses_derivs(node) or not self._worth_compacting(node):
             return False
         self.region_body(lambda m: self.block(rest, m), mask, "rest", node)
@@ -136,8 +139,10 @@ class Statements:
         for n in node.walk():
             if isinstance(n, (A.For, A.While, A.DoWhile)):
                 return True
-            if isinstance(n, A.Call) and (isinstance(self.model.call_target(n), Symbol)
-                                          or getattr(self.model.call_target(n), "cost", None) == B.EXPENSIVE):
+            if isinstance(n, A.Call) and (
+                isinstance(self.model.call_target(n), Symbol)
+                or getattr(self.model.call_target(n), "cost", None) == B.EXPENSIVE
+            ):
                 return True
             count += 1
             if count >= self.COMPACT_MIN_NODES:
@@ -152,7 +157,9 @@ class Statements:
             return True
         if isinstance(n, A.Call):
             tgt = self.model.call_target(n)
-            if getattr(tgt, "name", None) in DERIVATIVES + IMPLICIT_LOD and not isinstance(tgt, Symbol):
+            if getattr(tgt, "name", None) in DERIVATIVES + IMPLICIT_LOD and not isinstance(
+                tgt, Symbol
+            ):
                 return True
             if isinstance(tgt, Symbol) and id(tgt) in self.facts.uses_derivs:
                 return True
@@ -222,7 +229,9 @@ class Statements:
             name = self.var_name(sym, dec)
             value = nir_fold.component_write(self, dec, mask) if dec.init is not None else None
             if value is None:
-                value = self.expr(dec.init, mask) if dec.init is not None else self.zero(sym.type, dec)
+                value = (
+                    self.expr(dec.init, mask) if dec.init is not None else self.zero(sym.type, dec)
+                )
             if dec.init is not None:
                 value = nir_fold.keep_term(self, dec, value)
                 self.after_discarding_call(dec.init)
@@ -235,7 +244,9 @@ class Statements:
 
     def declare_switch_locals(self, s: A.Switch) -> None:
         for st in s.body:
-            if isinstance(st, A.DeclarationStatement) and isinstance(st.decl, A.VariableDeclaration):
+            if isinstance(st, A.DeclarationStatement) and isinstance(
+                st.decl, A.VariableDeclaration
+            ):
                 for dec in st.decl.declarators:
                     sym = self.model.symbol_of(dec)
                     if sym is not None:
@@ -384,14 +395,22 @@ class Statements:
         self.comment_line(s)
         self.loop(s, mask, s.cond, s.body, None, do_while=True)
 
-    def loop(self, s: Any, mask: str | None, cond: Any, body: Any, step: Any, do_while: bool) -> None:
+    def loop(
+        self, s: Any, mask: str | None, cond: Any, body: Any, step: Any, do_while: bool
+    ) -> None:
         fs = self.fn
         lid = self.region("loop", s)
         self.loops[lid] = (s.loc.path, s.loc.line, s.loc.column)
         ind = induction_variable(s, self.model, self.facts)
         ev_body = events_of(body, self.facts, self.model)
-        if (not do_while and cond is not None and not isinstance(cond, A.ConditionDeclaration)
-                and not ev_body.any and fs.uni is not None and fs.uni.is_uniform(cond)):
+        if (
+            not do_while
+            and cond is not None
+            and not isinstance(cond, A.ConditionDeclaration)
+            and not ev_body.any
+            and fs.uni is not None
+            and fs.uni.is_uniform(cond)
+        ):
             self.uniform_loop(lid, mask, cond, body, step, ind)
             return
         live = self.fresh("live")
@@ -466,7 +485,9 @@ class Statements:
         self.emit(f"if X.tick(S, {lid}, {count}):")
         self.emit("    break")
 
-    def uniform_loop(self, lid: int, mask: str | None, cond: Any, body: Any, step: Any, ind: Any) -> None:
+    def uniform_loop(
+        self, lid: int, mask: str | None, cond: Any, body: Any, step: Any, ind: Any
+    ) -> None:
         """A loop whose condition is the same in every lane and whose body cannot leave it
         early (no break, continue, return or discard): every iteration runs on the lanes that
         entered, so it is plain Python control flow with no mask of its own."""

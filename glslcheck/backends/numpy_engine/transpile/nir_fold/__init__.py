@@ -55,5 +55,18 @@ from .flrp import mix_hint
 from .return_register import register_call
 from .returned_sums import keep_term, return_constant_args, sunk_return, sunk_return_value
 
-__all__ = ["FoldContext", "binary", "broadcast_dot", "component_write", "dot_operand", "keep_term", "merged_dot",
-           "mix_hint", "register_call", "return_constant_args", "sunk_return", "sunk_return_value", "zero_add"]
+__all__ = [
+    "FoldContext",
+    "binary",
+    "broadcast_dot",
+    "component_write",
+    "dot_operand",
+    "keep_term",
+    "merged_dot",
+    "mix_hint",
+    "register_call",
+    "return_constant_args",
+    "sunk_return",
+    "sunk_return_value",
+    "zero_add",
+]

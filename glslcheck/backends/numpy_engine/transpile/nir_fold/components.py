@@ -13,11 +13,11 @@ from __future__ import annotations
 from typing import Any
 
 from .....frontend import syntax as A
-from .....semantics.analysis import param_directions
 from .....frontend.printer import to_glsl
 from .....language.glsl_types import FLOAT
-from .queries import FunctionStandin, constant_value, function_facts, has_matrix, is_constant
+from .....semantics.analysis import param_directions
 from .compound_products import kept_product
+from .queries import FunctionStandin, constant_value, function_facts, has_matrix, is_constant
 
 
 def component_write(tr: Any, node: Any, mask: str | None, old: str | None = None) -> str | None:
@@ -47,7 +47,12 @@ def component_write(tr: Any, node: Any, mask: str | None, old: str | None = None
         value = node.value
     else:
         return None
-    if sym is None or id(sym) not in _component_locals(tr) or value is None or _writes_locals(tr, value):
+    if (
+        sym is None
+        or id(sym) not in _component_locals(tr)
+        or value is None
+        or _writes_locals(tr, value)
+    ):
         return None
     facts = function_facts(tr)
     if id(node) not in facts.enter:
@@ -62,7 +67,9 @@ def component_write(tr: Any, node: Any, mask: str | None, old: str | None = None
         return None  # (no product by a constant reads what this write would keep)
     if compound:
         t = tr.type_of(node.target)
-        entries, old = _times(tr, _chain(tr, node.target, mask, keep=True)[0], old, value, _size(t), mask, True)
+        entries, old = _times(
+            tr, _chain(tr, node.target, mask, keep=True)[0], old, value, _size(t), mask, True
+        )
         written = tr.binary_values("*", t, tr.type_of(value), old, tr.expr(value, mask))
     else:
         entries, written = _chain(tr, value, mask, keep=True)
@@ -106,7 +113,9 @@ def _merged_code(tr: Any, entries: list[tuple[str, list[Any]]], written: str) ->
     return f"({merged} if rt.lp else {written})"
 
 
-def _chain(tr: Any, node: Any, mask: str | None, keep: bool) -> tuple[list[tuple[str, list[Any]]], str]:
+def _chain(
+    tr: Any, node: Any, mask: str | None, keep: bool
+) -> tuple[list[tuple[str, list[Any]]], str]:
     """([(y, [c1, c2, ...]) per component], the code of the value as written): the value of
     each component is ``y * c1 * c2 ...`` to NIR, y's code and the constants' codes.
     Followed: products by constants, swizzles, ``x + 0.0`` (x to NIR) and reads of a local
@@ -121,17 +130,31 @@ def _chain(tr: Any, node: Any, mask: str | None, keep: bool) -> tuple[list[tuple
             entries, wx = _times(tr, inner, wx, k, n, mask, keep)
             tk = tr.expr(k, mask)
             lt, rt_ = tr.type_of(node.left), tr.type_of(node.right)
-            written = tr.binary_values("*", lt, rt_, tk, wx) if k_left else tr.binary_values("*", lt, rt_, wx, tk)
+            written = (
+                tr.binary_values("*", lt, rt_, tk, wx)
+                if k_left
+                else tr.binary_values("*", lt, rt_, wx, tk)
+            )
             return entries, written
-    if (isinstance(node, A.Binary) and node.op == "+" and _zero(tr, node.right)
-            and tr.type_of(node.left) == tr.type_of(node)):
+    if (
+        isinstance(node, A.Binary)
+        and node.op == "+"
+        and _zero(tr, node.right)
+        and tr.type_of(node.left) == tr.type_of(node)
+    ):
         inner, wx = _chain(tr, node.left, mask, keep)
         return inner, f"rt.fadd({wx}, {tr.expr(node.right, mask)})"
-    if isinstance(node, A.Field) and tr.model.is_swizzle(node) and not tr.type_of(node.base).is_scalar:
+    if (
+        isinstance(node, A.Field)
+        and tr.model.is_swizzle(node)
+        and not tr.type_of(node.base).is_scalar
+    ):
         inner, wb = _chain(tr, node.base, mask, keep)
         idx = tr.model.swizzle_indices(node)
         sw = "".join("xyzw"[i] for i in idx)
-        return [inner[i] for i in idx], (f"{wb}[{idx[0]}]" if len(idx) == 1 else f'rt.swizzle({wb}, "{sw}")')
+        return [inner[i] for i in idx], (
+            f"{wb}[{idx[0]}]" if len(idx) == 1 else f'rt.swizzle({wb}, "{sw}")'
+        )
     code = tr.expr(node, mask)
     found = [None] * n
     if isinstance(node, A.Identifier) and tr.type_of(node).base == "float":
@@ -139,13 +162,23 @@ def _chain(tr: Any, node: Any, mask: str | None, keep: bool) -> tuple[list[tuple
     return [f if f else (_component(code, i, n), []) for i, f in enumerate(found)], code
 
 
-def _times(tr: Any, entries: list[tuple[str, list[Any]]], code: str, k: Any, n: int, mask: str | None,
-           keep: bool) -> tuple[list[tuple[str, list[Any]]], str]:
+def _times(
+    tr: Any,
+    entries: list[tuple[str, list[Any]]],
+    code: str,
+    k: Any,
+    n: int,
+    mask: str | None,
+    keep: bool,
+) -> tuple[list[tuple[str, list[Any]]], str]:
     """Each component's entry times the constant k (a scalar, or a vector: its component), and
     the code of the factor (a temporary with `keep` when a component is the factor itself)."""
     if keep and any(not cs for _, cs in entries):
         code = tr.tmp(code)
-        entries = [(y, cs) if cs else (_component(code, i, len(entries)), []) for i, (y, cs) in enumerate(entries)]
+        entries = [
+            (y, cs) if cs else (_component(code, i, len(entries)), [])
+            for i, (y, cs) in enumerate(entries)
+        ]
     if len(entries) == 1 and n > 1:
         entries = entries * n  # (a scalar times a vector constant)
     if tr.type_of(k).is_scalar:
@@ -192,8 +225,12 @@ def _target_components(tr: Any, target: Any) -> tuple[Any, tuple[int, ...] | Non
     that is a local or one swizzle of it; else (None, None)."""
     if isinstance(target, A.Identifier):
         return tr.model.symbol_of(target), None
-    if (isinstance(target, A.Field) and isinstance(target.base, A.Identifier) and tr.model.is_swizzle(target)
-            and not tr.type_of(target.base).is_scalar):
+    if (
+        isinstance(target, A.Field)
+        and isinstance(target.base, A.Identifier)
+        and tr.model.is_swizzle(target)
+        and not tr.type_of(target.base).is_scalar
+    ):
         return tr.model.symbol_of(target.base), tuple(tr.model.swizzle_indices(target))
     return None, None
 
@@ -210,7 +247,9 @@ def _component_locals(tr: Any) -> set[int]:
     if not facts.ok:
         cache[key] = set()
         return cache[key]
-    partly = {key_ for key_, ws in facts.writes.items() if any(w.kind in ("part", "op") for w in ws)}
+    partly = {
+        key_ for key_, ws in facts.writes.items() if any(w.kind in ("part", "op") for w in ws)
+    }
     reads: dict[int, list[Any]] = {}  # id(symbol) -> the nodes that read it so
     copies: list[tuple[Any, Any, Any]] = []
     for n in tr.fn.sym.node.body.walk():
@@ -249,7 +288,12 @@ def _cancelled_sum(tr: Any, node: A.Assignment, mask: str | None, old: str) -> s
         return None
     sym, comps = _target_components(tr, node.target)
     value = node.value
-    if sym is None or id(sym) not in _component_locals(tr) or _writes_locals(tr, value) or has_matrix(tr, value):
+    if (
+        sym is None
+        or id(sym) not in _component_locals(tr)
+        or _writes_locals(tr, value)
+        or has_matrix(tr, value)
+    ):
         return None
     facts = function_facts(tr)
     if id(node) not in facts.enter or tr.type_of(node.target).base != "float":
@@ -262,8 +306,14 @@ def _cancelled_sum(tr: Any, node: A.Assignment, mask: str | None, old: str) -> s
     for c in comps:
         w = _component_source(tr, ident, c)
         kept = undo.get(id(w.node)) if w is not None else None
-        if (kept is None or kept[0] is not tr.lines or c not in kept[1] or w.node.op == node.op
-                or to_glsl(w.node.value) != to_glsl(value) or tr.type_of(w.node.value) != tr.type_of(value)):
+        if (
+            kept is None
+            or kept[0] is not tr.lines
+            or c not in kept[1]
+            or w.node.op == node.op
+            or to_glsl(w.node.value) != to_glsl(value)
+            or tr.type_of(w.node.value) != tr.type_of(value)
+        ):
             before = None
             break
         read = [tr.model.symbol_of(n) for n in value.walk() if isinstance(n, A.Identifier)]
@@ -275,9 +325,16 @@ def _cancelled_sum(tr: Any, node: A.Assignment, mask: str | None, old: str) -> s
         return None
     n = len(comps)
     t_old = tr.tmp(old)
-    undo[id(node)] = (tr.lines, {c: (_component(t_old, j, n), _component_record(tr, ident, c))
-                                 for j, c in enumerate(comps)})
-    written = tr.binary_values(node.op[0], tr.type_of(node.target), tr.type_of(value), t_old, tr.expr(value, mask))
+    undo[id(node)] = (
+        tr.lines,
+        {
+            c: (_component(t_old, j, n), _component_record(tr, ident, c))
+            for j, c in enumerate(comps)
+        },
+    )
+    written = tr.binary_values(
+        node.op[0], tr.type_of(node.target), tr.type_of(value), t_old, tr.expr(value, mask)
+    )
     if before is None:
         return written
     records[id(node)] = (tr.lines, {c: rec for c, (_, rec) in zip(comps, before) if rec})
@@ -289,8 +346,14 @@ def _cancelled_later(tr: Any, facts: Any, sym: Any, node: A.Assignment) -> bool:
     """A later compound assignment of ``sym`` subtracts what ``node`` adds (or adds what it
     subtracts), the same text: :func:`_cancelled_sum` may need the value before ``node``."""
     text, end = to_glsl(node.value), facts.exit[id(node)]
-    return any(isinstance(w.node, A.Assignment) and w.node.op in ("+=", "-=") and w.node.op != node.op
-               and w.pos > end and to_glsl(w.node.value) == text for w in facts.writes_to(sym))
+    return any(
+        isinstance(w.node, A.Assignment)
+        and w.node.op in ("+=", "-=")
+        and w.node.op != node.op
+        and w.pos > end
+        and to_glsl(w.node.value) == text
+        for w in facts.writes_to(sym)
+    )
 
 
 def _component_record(tr: Any, ident: A.Identifier, i: int) -> tuple[str, list[str]] | None:
@@ -321,7 +384,7 @@ def _component_source(tr: Any, ident: A.Identifier, i: int) -> Any:
             last = w
     if last is None or not facts.dominates(last.node, ident):
         return None
-    loops_w = {id(l) for l in facts.enclosing_loops(last.node)}
+    loops_w = {id(lp) for lp in facts.enclosing_loops(last.node)}
     for loop in facts.enclosing_loops(ident):
         if id(loop) not in loops_w:
             lo, hi = facts.enter[id(loop)], facts.exit[id(loop)]
@@ -334,9 +397,15 @@ def _writes_locals(tr: Any, value: Any) -> bool:
     """The expression writes a variable (an assignment, ++/--, an out argument): a user call
     that only reads its arguments is computed once, as written, so it may stay."""
     for n in value.walk():
-        if isinstance(n, (A.Assignment, A.Sequence)) or isinstance(n, (A.Unary, A.Postfix)) and n.op in ("++", "--"):
+        if (
+            isinstance(n, (A.Assignment, A.Sequence))
+            or isinstance(n, (A.Unary, A.Postfix))
+            and n.op in ("++", "--")
+        ):
             return True
-        if isinstance(n, A.Call) and any(d != "in" for d in param_directions(tr.model.call_target(n))):
+        if isinstance(n, A.Call) and any(
+            d != "in" for d in param_directions(tr.model.call_target(n))
+        ):
             return True
     return False
 

@@ -11,8 +11,8 @@ from __future__ import annotations
 from typing import Any
 
 from .....frontend import syntax as A
-from .....semantics.model import Symbol
 from .....frontend.printer import to_glsl
+from .....semantics.model import Symbol
 from .queries import FunctionStandin, function_facts, has_matrix, is_constant, is_product
 
 
@@ -43,9 +43,13 @@ def sunk_through_compound(tr: Any, e: A.Binary, mask: str | None) -> str | None:
         return None
     k = e.right if is_constant(tr, e.right) else e.left
     tk = tr.expr(k, mask)
-    written = tr.binary_values("*", tr.type_of(e.left), tr.type_of(e.right), *tr.exprs([e.left, e.right], mask))
+    written = tr.binary_values(
+        "*", tr.type_of(e.left), tr.type_of(e.right), *tr.exprs([e.left, e.right], mask)
+    )
     t = tr.type_of(e)
-    sunk = tr.binary_values("*", t, t, tr.binary_values("*", t, tr.type_of(k), kept[1], tk), kept[2])
+    sunk = tr.binary_values(
+        "*", t, t, tr.binary_values("*", t, tr.type_of(k), kept[1], tk), kept[2]
+    )
     return f"({sunk} if rt.lp else {written})"
 
 
@@ -54,8 +58,12 @@ def _returns_product(tr: Any, call: A.Call) -> bool:
     its result is not known here."""
     stmts = tr.model.call_target(call).node.body.stmts
     last = stmts[-1] if stmts else None
-    return not isinstance(last, A.Return) or last.value is None or is_product(tr, last.value) or any(
-        isinstance(n, A.Return) for st in stmts[:-1] for n in st.walk())
+    return (
+        not isinstance(last, A.Return)
+        or last.value is None
+        or is_product(tr, last.value)
+        or any(isinstance(n, A.Return) for st in stmts[:-1] for n in st.walk())
+    )
 
 
 def _sink_reads(tr: Any) -> dict[int, int]:
@@ -73,13 +81,25 @@ def _sink_reads(tr: Any) -> dict[int, int]:
         if isinstance(n, A.Call) and isinstance(tr.model.call_target(n), Symbol):
             calls[to_glsl(n)] = calls.get(to_glsl(n), 0) + 1
     reads: dict[int, list[Any]] = {}
-    targets = {id(n.target) for n in tr.fn.sym.node.body.walk() if isinstance(n, A.Assignment) and n.op == "="}
+    targets = {
+        id(n.target)
+        for n in tr.fn.sym.node.body.walk()
+        if isinstance(n, A.Assignment) and n.op == "="
+    }
     for n in tr.fn.sym.node.body.walk():
-        if isinstance(n, A.Identifier) and tr.model.symbol_of(n) is not None and id(n) not in targets:
+        if (
+            isinstance(n, A.Identifier)
+            and tr.model.symbol_of(n) is not None
+            and id(n) not in targets
+        ):
             reads.setdefault(id(tr.model.symbol_of(n)), []).append(n)
     for n in tr.fn.sym.node.body.walk() if facts.ok else ():
-        if not (isinstance(n, A.Binary) and n.op == "*" and tr.type_of(n).base == "float"
-                and not has_matrix(tr, n.left, n.right)):
+        if not (
+            isinstance(n, A.Binary)
+            and n.op == "*"
+            and tr.type_of(n).base == "float"
+            and not has_matrix(tr, n.left, n.right)
+        ):
             continue
         x = n.left if is_constant(tr, n.right) else n.right if is_constant(tr, n.left) else None
         if not isinstance(x, A.Identifier) or is_constant(tr, x) or id(x) not in facts.enter:
@@ -87,20 +107,41 @@ def _sink_reads(tr: Any) -> dict[int, int]:
         sym = tr.model.symbol_of(x)
         before = [w for w in facts.writes_to(sym) if w.pos < facts.enter[id(x)]]
         w = before[-1] if before else None
-        if (w is None or not isinstance(w.node, A.Assignment) or w.node.op != "*=" or is_constant(tr, w.node.value)
-                or not isinstance(w.node.target, A.Identifier) or tr.type_of(w.node.target) != tr.type_of(x)
-                or not facts.dominates(w.node, x) or facts.written_between(w.node, x, [sym])):
+        if (
+            w is None
+            or not isinstance(w.node, A.Assignment)
+            or w.node.op != "*="
+            or is_constant(tr, w.node.value)
+            or not isinstance(w.node.target, A.Identifier)
+            or tr.type_of(w.node.target) != tr.type_of(x)
+            or not facts.dominates(w.node, x)
+            or facts.written_between(w.node, x, [sym])
+        ):
             continue
         later = [w2.pos for w2 in facts.writes_to(sym) if w2.pos > w.pos]
         end = min(later) if later else None
-        users = [r for r in reads.get(id(sym), ()) if id(r) in facts.enter and facts.enter[id(r)] > w.pos
-                 and (end is None or facts.enter[id(r)] < end) and r is not w.node.target]
+        users = [
+            r
+            for r in reads.get(id(sym), ())
+            if id(r) in facts.enter
+            and facts.enter[id(r)] > w.pos
+            and (end is None or facts.enter[id(r)] < end)
+            and r is not w.node.target
+        ]
         if users != [x] or facts.enclosing_loops(x) != facts.enclosing_loops(w.node):
             continue
         prev = [v for v in facts.writes_to(sym) if v.pos < facts.enter[id(w.node.target)]]
         a = prev[-1].value if prev and prev[-1].kind in ("=", "init") else None
-        if a is None or is_product(tr, a) or (isinstance(a, A.Call) and isinstance(tr.model.call_target(a), Symbol)
-                                               and calls.get(to_glsl(a), 0) < 2 and _returns_product(tr, a)):
+        if (
+            a is None
+            or is_product(tr, a)
+            or (
+                isinstance(a, A.Call)
+                and isinstance(tr.model.call_target(a), Symbol)
+                and calls.get(to_glsl(a), 0) < 2
+                and _returns_product(tr, a)
+            )
+        ):
             continue
         out[id(n)] = id(w.node)
     cache[key] = out

@@ -12,9 +12,17 @@ from typing import Any
 
 from .....frontend import syntax as A
 from .....language.glsl_types import FLOAT
-from .queries import SUMS, has_matrix, is_builtin, is_constant, is_varying, reaching_value, stable_init
-from .ssa_values import product_parts
 from .dot_constants import broadcast_dot_parts
+from .queries import (
+    SUMS,
+    has_matrix,
+    is_builtin,
+    is_constant,
+    is_varying,
+    reaching_value,
+    stable_init,
+)
+from .ssa_values import product_parts
 
 
 def merge_constants(tr: Any, e: A.Binary, mask: str | None) -> str | None:
@@ -30,16 +38,24 @@ def merge_constants(tr: Any, e: A.Binary, mask: str | None) -> str | None:
     inner, kept = x_node, None
     if isinstance(inner, A.Identifier):
         parts = product_parts(tr, inner) if e.op == "*" else None
-        kept = parts[2] if parts is not None else None  # (y's value kept: :func:`ssa_values.keep_factor`)
+        kept = (
+            parts[2] if parts is not None else None
+        )  # (y's value kept: :func:`ssa_values.keep_factor`)
         inner = reaching_value(tr, inner) if kept is not None else stable_init(tr, inner)
     ops = ("*",) if e.op == "*" else SUMS
     factored = broadcast_dot_parts(tr, inner) if e.op == "*" and kept is None else None
-    if factored is not None and tr.type_of(k_node).is_scalar:  # s * sum(K) by broadcast_dot, then merged
+    if (
+        factored is not None and tr.type_of(k_node).is_scalar
+    ):  # s * sum(K) by broadcast_dot, then merged
         tk, tx = tr.exprs([k_node, x_node], mask)
-        written = tr.binary_values("*", FLOAT, FLOAT, tx, tk) if x_node is e.left else tr.binary_values(
-            "*", FLOAT, FLOAT, tk, tx)
-        rewritten = tr.binary_values("*", FLOAT, FLOAT, tr.expr(factored[0], mask),
-                                     f"({tk} * {tr.const_float(factored[1])})")
+        written = (
+            tr.binary_values("*", FLOAT, FLOAT, tx, tk)
+            if x_node is e.left
+            else tr.binary_values("*", FLOAT, FLOAT, tk, tx)
+        )
+        rewritten = tr.binary_values(
+            "*", FLOAT, FLOAT, tr.expr(factored[0], mask), f"({tk} * {tr.const_float(factored[1])})"
+        )
         return f"({rewritten} if rt.lp else {written})"
     parts = _scalar_dot(tr, inner) if e.op == "*" else None
     if parts is None:
@@ -60,9 +76,12 @@ def merge_constants(tr: Any, e: A.Binary, mask: str | None) -> str | None:
     if has_matrix(tr, b_node, c_node):
         return None  # m * v is no elementwise product: NIR lowers it to columns first
     b_inner = stable_init(tr, b_node) if isinstance(b_node, A.Identifier) else b_node
-    if (isinstance(b_inner, A.Binary) and b_inner.op in ops
-            and (is_constant(tr, b_inner.left) or is_constant(tr, b_inner.right))
-            and not has_matrix(tr, b_inner.left, b_inner.right)):
+    if (
+        isinstance(b_inner, A.Binary)
+        and b_inner.op in ops
+        and (is_constant(tr, b_inner.left) or is_constant(tr, b_inner.right))
+        and not has_matrix(tr, b_inner.left, b_inner.right)
+    ):
         return None  # NIR would merge further into b: not copied (m * v is a sum of columns)
     if kept is not None:
         tk, tc, tx = tr.exprs([k_node, c_node, x_node], mask)
@@ -72,7 +91,11 @@ def merge_constants(tr: Any, e: A.Binary, mask: str | None) -> str | None:
     t = tr.type_of(e)
     if e.op == "*":
         rewritten = tr.binary_values("*", t, t, tb, f"({tk} * {tc})")
-        written = tr.binary_values("*", t, t, tx, tk) if x_node is e.left else tr.binary_values("*", t, t, tk, tx)
+        written = (
+            tr.binary_values("*", t, t, tx, tk)
+            if x_node is e.left
+            else tr.binary_values("*", t, t, tk, tx)
+        )
     else:
         k = f"(-{tk})" if e.op == "-" else tk
         c = f"(-{tc})" if c_sign == "-" else tc
@@ -86,7 +109,12 @@ def _scalar_dot(tr: Any, node: Any) -> tuple[str, Any, Any] | None:
     (builtin_functions.cpp ``_dot``: ``ir_binop_mul`` for one component), so NIR merges a
     constant into it as into ``a * b`` (a hash's ``dot(n, 123.456) * 789.123`` is ``n *
     (123.456*789.123)``, measured); None for anything else."""
-    if not (isinstance(node, A.Call) and node.callee == "dot" and len(node.args) == 2 and is_builtin(tr, node)):
+    if not (
+        isinstance(node, A.Call)
+        and node.callee == "dot"
+        and len(node.args) == 2
+        and is_builtin(tr, node)
+    ):
         return None
     if not all(tr.type_of(a).is_scalar and tr.type_of(a).base == "float" for a in node.args):
         return None

@@ -12,15 +12,15 @@ from __future__ import annotations
 from typing import Any
 
 from .....frontend import syntax as A
-from .lower_precision import LOWP_OPS, lowp_tree
-from .ssa_values import keep_factor, merge_into_matrix
+from .components import merge_components
+from .compound_products import sunk_through_compound
 from .constant_merge import merge_constants
 from .factoring import factor
 from .ffma_split import fused_after_call
-from .sink import sink_constant
-from .compound_products import sunk_through_compound
-from .components import merge_components
+from .lower_precision import LOWP_OPS, lowp_tree
 from .returned_sums import sink_into_call
+from .sink import sink_constant
+from .ssa_values import keep_factor, merge_into_matrix
 
 
 def binary(tr: Any, e: A.Binary, mask: str | None) -> str | None:

@@ -14,7 +14,15 @@ from typing import Any
 
 from .....frontend import syntax as A
 from .....language.glsl_types import FLOAT
-from .queries import constant_value, has_matrix, is_builtin, is_constant, is_varying, read_once, stable_init
+from .queries import (
+    constant_value,
+    has_matrix,
+    is_builtin,
+    is_constant,
+    is_varying,
+    read_once,
+    stable_init,
+)
 
 
 def merged_dot(tr: Any, call: A.Call, args: list[str], mask: str | None) -> str | None:
@@ -75,7 +83,12 @@ def broadcast_dot(tr: Any, call: A.Call, args: list[str], mask: str | None) -> s
 
 def broadcast_dot_parts(tr: Any, call: Any) -> tuple[Any, float] | None:
     """(s, the float32 sum of K right to left) for a call ``dot(vecN(s), #K)``, else None."""
-    if not (isinstance(call, A.Call) and call.callee == "dot" and len(call.args) == 2 and is_builtin(tr, call)):
+    if not (
+        isinstance(call, A.Call)
+        and call.callee == "dot"
+        and len(call.args) == 2
+        and is_builtin(tr, call)
+    ):
         return None
     if tr.fn is None or tr.type_of(call).base != "float" or tr.has_effects(call):
         return None
@@ -110,7 +123,12 @@ def _broadcast(tr: Any, v: Any) -> Any:
         return None
     s = built.args[0]
     t = tr.type_of(built)
-    if not (t.is_vector and t.base == "float" and tr.type_of(s).is_scalar and tr.type_of(s).base == "float"):
+    if not (
+        t.is_vector
+        and t.base == "float"
+        and tr.type_of(s).is_scalar
+        and tr.type_of(s).base == "float"
+    ):
         return None
     return None if tr.has_effects(s) else s
 
@@ -131,7 +149,9 @@ def _product_chain(tr: Any, v: Any) -> tuple[Any, list[list[Any]]]:
             if not read_once(tr, inner) and trees[-1]:
                 trees.append([])
             inner = init
-        if not (isinstance(inner, A.Binary) and inner.op == "*") or has_matrix(tr, inner.left, inner.right):
+        if not (isinstance(inner, A.Binary) and inner.op == "*") or has_matrix(
+            tr, inner.left, inner.right
+        ):
             break
         if tr.type_of(inner) != tr.type_of(v) or tr.has_effects(inner):
             break

@@ -46,7 +46,9 @@ def factor_parts(tr: Any, e: Any) -> tuple[Any, Any, Any] | None:
     else:
         return None
     rest = [x[0] if isinstance(x, tuple) else x for x in (b, c)]
-    if not all(is_opaque(tr, x) or is_constant(tr, x) for x in rest) or all(is_constant(tr, x) for x in rest):
+    if not all(is_opaque(tr, x) or is_constant(tr, x) for x in rest) or all(
+        is_constant(tr, x) for x in rest
+    ):
         return None  # b + c would be rewritten further (or folded): not copied
     return shared, b, c
 
@@ -56,7 +58,8 @@ def _factors(tr: Any, node: Any) -> tuple[tuple[str, str], tuple[Any, Any]] | No
     pairs), looking through a never-written local defined as a product; None otherwise."""
     if is_product(tr, node):
         if tr.type_of(node.left) != tr.type_of(node.right) and not (
-                tr.type_of(node.left).is_scalar or tr.type_of(node.right).is_scalar):
+            tr.type_of(node.left).is_scalar or tr.type_of(node.right).is_scalar
+        ):
             return None
         return (to_glsl(node.left), to_glsl(node.right)), (node.left, node.right)
     comp = None

@@ -32,12 +32,24 @@ def fused_after_call(tr: Any, e: A.Binary, mask: str | None) -> str | None:
             continue
         sums = product_sums(tr, w.node, tr.model.symbol_of(x))
         tx, to = tr.type_of(x), tr.type_of(other)
-        if (sums is None or not any(sums) or to.base != "float" or to.is_matrix or tx.is_matrix
-                or to != tx and not to.is_scalar or tr.has_effects(other)):
+        if (
+            sums is None
+            or not any(sums)
+            or to.base != "float"
+            or to.is_matrix
+            or tx.is_matrix
+            or to != tx
+            and not to.is_scalar
+            or tr.has_effects(other)
+        ):
             continue
-        reads = [n for n in tr.fn.sym.node.body.walk() if isinstance(n, A.Identifier)
-                 and tr.model.symbol_of(n) is tr.model.symbol_of(x)
-                 and function_facts(tr).enter.get(id(n), -1) > function_facts(tr).exit[id(w.node)]]
+        reads = [
+            n
+            for n in tr.fn.sym.node.body.walk()
+            if isinstance(n, A.Identifier)
+            and tr.model.symbol_of(n) is tr.model.symbol_of(x)
+            and function_facts(tr).enter.get(id(n), -1) > function_facts(tr).exit[id(w.node)]
+        ]
         if reads != [x]:
             return None  # (x read again: the sum is used twice)
         tl, trr = tr.exprs([e.left, e.right], mask)

@@ -57,9 +57,19 @@ def _shared_mixes(tr: Any) -> set[int]:
     cache = tr.fold_state.mix
     key = id(tr.fn.sym)
     if key not in cache:
-        calls = [n for n in tr.fn.sym.node.body.walk() if isinstance(n, A.Call) and n.callee == "mix"
-                 and len(n.args) == 3 and is_builtin(tr, n) and tr.type_of(n.args[2]).base == "float"]
+        calls = [
+            n
+            for n in tr.fn.sym.node.body.walk()
+            if isinstance(n, A.Call)
+            and n.callee == "mix"
+            and len(n.args) == 3
+            and is_builtin(tr, n)
+            and tr.type_of(n.args[2]).base == "float"
+        ]
         texts = [(n, [to_glsl(a) for a in n.args]) for n in calls]
-        cache[key] = {id(n) for n, (x, y, t) in texts
-                      if any(m is not n and t == t2 and (x == x2 or y == y2) for m, (x2, y2, t2) in texts)}
+        cache[key] = {
+            id(n)
+            for n, (x, y, t) in texts
+            if any(m is not n and t == t2 and (x == x2 or y == y2) for m, (x2, y2, t2) in texts)
+        }
     return cache[key]

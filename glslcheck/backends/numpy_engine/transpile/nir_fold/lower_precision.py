@@ -15,7 +15,6 @@ from .....frontend import syntax as A
 from ....cpu_core.common import TEXTURE_FUNCTIONS
 from .queries import constant_value, is_builtin
 
-
 LOWP_OPS = ("+", "-", "*", "/")
 
 
@@ -38,7 +37,11 @@ def lowp_tree(tr: Any, e: A.Binary, mask: str | None) -> str | None:
     values (``smoothstep(0.3, 0.4, texture(..).x)`` is float16 on llvmpipe too,
     not measured), lookups through a sampler parameter, mediump/lowp variables (see
     glslcheck/semantics/mediump.py), and NIR's reassociations inside the float16 tree."""
-    if tr.fn is None or tr.fold_state.lowp_written is not None and id(e) in tr.fold_state.lowp_written:
+    if (
+        tr.fn is None
+        or tr.fold_state.lowp_written is not None
+        and id(e) in tr.fold_state.lowp_written
+    ):
         return None
     memo = tr.fold_state.lowp  # id(node) -> kind: linear in a chain
     if _lowp_kind(tr, e, memo) != "low" or tr.has_effects(e):
@@ -47,7 +50,9 @@ def lowp_tree(tr: Any, e: A.Binary, mask: str | None) -> str | None:
     samplers: list[Any] = []
     _lowp_parts(e, memo, nodes, samplers)
     low = _lowp_code(tr, e, mask, {id(n) for n in nodes})
-    tr.fold_state.lowp_written = {id(n) for n in nodes}  # the written form: this tree without the rule
+    tr.fold_state.lowp_written = {
+        id(n) for n in nodes
+    }  # the written form: this tree without the rule
     try:
         written = tr.expr(e, mask)
     finally:
@@ -57,7 +62,7 @@ def lowp_tree(tr: Any, e: A.Binary, mask: str | None) -> str | None:
 
 
 def _lowp_kind(tr: Any, node: Any, memo: dict[int, Any]) -> str | None:
-    """"const" (a literal constant), "lookup" (an iChannel lookup, swizzled or not), "low" (an
+    """ "const" (a literal constant), "lookup" (an iChannel lookup, swizzled or not), "low" (an
     operation float16 on llvmpipe) or None (float32) for a node of such a tree (memoised)."""
     key = id(node)
     if key not in memo:
@@ -75,7 +80,9 @@ def _lowp_kind_of(tr: Any, node: Any, memo: dict[int, Any]) -> str | None:
     if tr.model.const_value(node) is not None:
         # literals only; a zero is left to the float32 forms (Mesa drops `x + 0.0` and
         # `x * 0.0`, a NaN operand too)
-        if not all(_lowp_kind(tr, k, memo) == "const" for k in kids) or not all(constant_value(tr, node) or [0.0]):
+        if not all(_lowp_kind(tr, k, memo) == "const" for k in kids) or not all(
+            constant_value(tr, node) or [0.0]
+        ):
             return None
         return "const"
     t = tr.type_of(node)
@@ -88,8 +95,12 @@ def _lowp_kind_of(tr: Any, node: Any, memo: dict[int, Any]) -> str | None:
     if isinstance(node, A.Call):
         sampler = node.args[0] if node.args else None
         sym = tr.model.symbol_of(sampler) if isinstance(sampler, A.Identifier) else None
-        if (getattr(tr.model.call_target(node), "name", None) not in TEXTURE_FUNCTIONS or sym is None
-                or sym.kind != "uniform" or str(tr.type_of(sampler)) != "sampler2D"):
+        if (
+            getattr(tr.model.call_target(node), "name", None) not in TEXTURE_FUNCTIONS
+            or sym is None
+            or sym.kind != "uniform"
+            or str(tr.type_of(sampler)) != "sampler2D"
+        ):
             return None
         return "lookup"
     if isinstance(node, A.Unary) and node.op == "-":
@@ -103,8 +114,12 @@ def _lowp_kind_of(tr: Any, node: Any, memo: dict[int, Any]) -> str | None:
 def _square(tr: Any, node: A.Call) -> bool:
     """``pow(x, 2.0)`` (a vector of 2.0 too) of the built-in: x * x to NIR (``fpow(a, 2.0) ->
     a * a``), in float16 for a float16 x (gargantua's ``pow(texture(..).rgb, vec3(2.0)) * 4.0``)."""
-    return (node.callee == "pow" and len(node.args) == 2 and is_builtin(tr, node)
-            and set(constant_value(tr, node.args[1]) or [0.0]) == {2.0})
+    return (
+        node.callee == "pow"
+        and len(node.args) == 2
+        and is_builtin(tr, node)
+        and set(constant_value(tr, node.args[1]) or [0.0]) == {2.0}
+    )
 
 
 def _lowp_parts(node: Any, memo: dict[int, Any], nodes: list[Any], samplers: list[Any]) -> None:
@@ -112,8 +127,13 @@ def _lowp_parts(node: Any, memo: dict[int, Any], nodes: list[Any], samplers: lis
     kind = memo.get(id(node))
     if kind == "low":
         nodes.append(node)
-        kids = (node.operand,) if isinstance(node, A.Unary) else node.args[:1] if isinstance(node, A.Call) else (
-            node.left, node.right)
+        kids = (
+            (node.operand,)
+            if isinstance(node, A.Unary)
+            else node.args[:1]
+            if isinstance(node, A.Call)
+            else (node.left, node.right)
+        )
         for k in kids:
             _lowp_parts(k, memo, nodes, samplers)
     elif kind == "lookup":
@@ -132,8 +152,15 @@ def _lowp_code(tr: Any, node: Any, mask: str | None, ops: set[int]) -> str:
     if isinstance(node, A.Call):  # pow(x, 2.0): x * x, x computed once
         x = tr.fresh("h")
         return f"(({x} := {_lowp_code(tr, node.args[0], mask, ops)}) * {x})"
-    square, k = (node.left, node.right) if isinstance(node.left, A.Call) else (node.right, node.left)
-    if node.op == "*" and isinstance(square, A.Call) and id(square) in ops and tr.model.const_value(k) is not None:
+    square, k = (
+        (node.left, node.right) if isinstance(node.left, A.Call) else (node.right, node.left)
+    )
+    if (
+        node.op == "*"
+        and isinstance(square, A.Call)
+        and id(square) in ops
+        and tr.model.const_value(k) is not None
+    ):
         # (x*x) * #k, the square used once: (x * #k) * x (``(a*b)*#c -> (a*#c)*b``)
         x = tr.fresh("h")
         xk = f"(({x} := {_lowp_code(tr, square.args[0], mask, ops)}) * {_lowp_code(tr, k, mask, ops)})"

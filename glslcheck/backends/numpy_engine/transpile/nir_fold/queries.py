@@ -14,13 +14,12 @@ from __future__ import annotations
 
 from typing import Any
 
+from .....base.diagnostics import Location
 from .....frontend import syntax as A
 from .....language import builtin_functions as B
 from .....semantics.analysis import param_directions
 from .....semantics.model import Symbol
-from .....base.diagnostics import Location
 from ..inline import bound_argument, inline_owner
-
 
 SUMS = ("+", "-")
 
@@ -28,7 +27,11 @@ SUMS = ("+", "-")
 def constant_value(tr: Any, node: Any) -> list[float] | None:
     """The scalars of a constant operand (see :func:`flrp.mix_hint`), else None."""
     v = tr.model.const_value(node)
-    if v is None and isinstance(node, A.Identifier) and constant_global(tr, tr.model.symbol_of(node)):
+    if (
+        v is None
+        and isinstance(node, A.Identifier)
+        and constant_global(tr, tr.model.symbol_of(node))
+    ):
         v = tr.model.const_value(tr.model.symbol_of(node).node.init)
     if v is None and isinstance(node, A.Identifier):
         init = stable_init(tr, node)
@@ -77,14 +80,21 @@ def constant_global(tr: Any, sym: Any) -> bool:
     if sym is None or sym.kind != "global" or sym.const_value is not None:
         return False
     init = sym.node.init if isinstance(sym.node, A.Declarator) else None
-    return (init is not None and tr.model.const_value(init) is not None
-            and id(sym) not in tr.facts.written_globals)
+    return (
+        init is not None
+        and tr.model.const_value(init) is not None
+        and id(sym) not in tr.facts.written_globals
+    )
 
 
 def is_product(tr: Any, node: Any) -> bool:
     """A product of numbers or vectors (a matrix product is no elementwise product)."""
-    return (isinstance(node, A.Binary) and node.op == "*" and not is_constant(tr, node)
-            and not has_matrix(tr, node.left, node.right))
+    return (
+        isinstance(node, A.Binary)
+        and node.op == "*"
+        and not is_constant(tr, node)
+        and not has_matrix(tr, node.left, node.right)
+    )
 
 
 def has_matrix(tr: Any, *nodes: Any) -> bool:
@@ -93,9 +103,33 @@ def has_matrix(tr: Any, *nodes: Any) -> bool:
 
 # built-ins whose NIR result is an fadd or fmul (lowered to arithmetic): their values are not
 # opaque to nir_opt_algebraic
-_ARITHMETIC_BUILTINS = {"dot", "mix", "smoothstep", "normalize", "cross", "reflect", "refract",
-                        "faceforward", "radians", "degrees", "mod", "step", "atan", "asin", "acos",
-                        "tan", "sinh", "cosh", "tanh", "asinh", "acosh", "atanh", "exp", "log", "pow"}
+_ARITHMETIC_BUILTINS = {
+    "dot",
+    "mix",
+    "smoothstep",
+    "normalize",
+    "cross",
+    "reflect",
+    "refract",
+    "faceforward",
+    "radians",
+    "degrees",
+    "mod",
+    "step",
+    "atan",
+    "asin",
+    "acos",
+    "tan",
+    "sinh",
+    "cosh",
+    "tanh",
+    "asinh",
+    "acosh",
+    "atanh",
+    "exp",
+    "log",
+    "pow",
+}
 
 
 def is_opaque(tr: Any, node: Any, depth: int = 0) -> bool:
@@ -109,8 +143,11 @@ def is_opaque(tr: Any, node: Any, depth: int = 0) -> bool:
     if isinstance(node, A.Call):
         if node.constructor:
             return False
-        return (is_builtin(tr, node) and node.callee not in _ARITHMETIC_BUILTINS
-                and not is_constant(tr, node))
+        return (
+            is_builtin(tr, node)
+            and node.callee not in _ARITHMETIC_BUILTINS
+            and not is_constant(tr, node)
+        )
     if isinstance(node, A.Identifier):
         sym = tr.model.symbol_of(node)
         if sym is None or is_constant(tr, node):
@@ -285,7 +322,12 @@ def stable_init(tr: Any, ident: A.Identifier) -> Any:
     bound = bound_argument(tr, sym)  # a parameter of an inlined call (transpile/inline.py)
     if bound is not None:
         return None if tr.has_effects(bound) else bound
-    if sym is None or sym.kind != "local" or not isinstance(sym.node, A.Declarator) or sym.node.init is None:
+    if (
+        sym is None
+        or sym.kind != "local"
+        or not isinstance(sym.node, A.Declarator)
+        or sym.node.init is None
+    ):
         return None
     init = sym.node.init
     if tr.has_effects(init):

@@ -39,8 +39,11 @@ def _returns_in_branch(tr: Any, fn: Any) -> bool:
         return False
     for n in fn.node.body.walk():
         if isinstance(n, (A.If, A.For, A.While, A.DoWhile)) and any(
-                isinstance(r, A.Return) and r.value is not None
-                and any(isinstance(c, A.Call) and not c.constructor for c in r.value.walk()) for r in n.walk()):
+            isinstance(r, A.Return)
+            and r.value is not None
+            and any(isinstance(c, A.Call) and not c.constructor for c in r.value.walk())
+            for r in n.walk()
+        ):
             return True
     return False
 
@@ -61,8 +64,12 @@ def _in_kept_loop(tr: Any, sym: Any, node: Any, depth: int) -> bool:
     loops = facts.enclosing_loops(node)
     if loops:
         return not _unrolled(tr, loops[-1])
-    sites = [(f, n) for f in tr.facts.functions for n in f.node.body.walk()
-             if isinstance(n, A.Call) and tr.model.call_target(n) is sym]
+    sites = [
+        (f, n)
+        for f in tr.facts.functions
+        for n in f.node.body.walk()
+        if isinstance(n, A.Call) and tr.model.call_target(n) is sym
+    ]
     return bool(sites) and all(_in_kept_loop(tr, f, n, depth + 1) for f, n in sites)
 
 
@@ -72,12 +79,24 @@ def _unrolled(tr: Any, loop: Any) -> bool:
         return False
     decl = loop.init.decl.declarators[0]
     start, cond, step = tr.model.const_value(decl.init), loop.cond, loop.step
-    if not (isinstance(start, int) and isinstance(cond, A.Binary) and cond.op in ("<", "<=")
-            and isinstance(cond.left, A.Identifier) and tr.model.symbol_of(cond.left) is tr.model.symbol_of(decl)):
+    if not (
+        isinstance(start, int)
+        and isinstance(cond, A.Binary)
+        and cond.op in ("<", "<=")
+        and isinstance(cond.left, A.Identifier)
+        and tr.model.symbol_of(cond.left) is tr.model.symbol_of(decl)
+    ):
         return False
     end = tr.model.const_value(cond.right)
-    inc = 1 if isinstance(step, (A.Unary, A.Postfix)) and step.op == "++" else (
-        tr.model.const_value(step.value) if isinstance(step, A.Assignment) and step.op == "+=" else None)
+    inc = (
+        1
+        if isinstance(step, (A.Unary, A.Postfix)) and step.op == "++"
+        else (
+            tr.model.const_value(step.value)
+            if isinstance(step, A.Assignment) and step.op == "+="
+            else None
+        )
+    )
     if not isinstance(end, int) or not isinstance(inc, int) or inc <= 0:
         return False
     return (end - start + (cond.op == "<=") + inc - 1) // inc <= 32

@@ -14,7 +14,15 @@ from typing import Any
 
 from .....frontend import syntax as A
 from .....semantics.model import Symbol
-from .queries import FunctionStandin, SUMS, function_facts, is_fmul, is_opaque, use_counts, used_once
+from .queries import (
+    SUMS,
+    FunctionStandin,
+    function_facts,
+    is_fmul,
+    is_opaque,
+    use_counts,
+    used_once,
+)
 from .sink import known_term
 
 
@@ -59,19 +67,36 @@ def _sink_calls(tr: Any) -> set[int]:
 
 def _return_chain(tr: Any, fn: Any) -> list[tuple[Any, Any, str]] | None:
     body = fn.node.body.stmts
-    if not body or not isinstance(body[-1], A.Return) or not isinstance(body[-1].value, A.Identifier):
+    if (
+        not body
+        or not isinstance(body[-1], A.Return)
+        or not isinstance(body[-1].value, A.Identifier)
+    ):
         return None
     ret = body[-1].value
     sym = tr.model.symbol_of(ret)
-    if sym is None or sym.kind != "local" or tr.type_of(ret).base != "float" or tr.type_of(ret).is_matrix:
+    if (
+        sym is None
+        or sym.kind != "local"
+        or tr.type_of(ret).base != "float"
+        or tr.type_of(ret).is_matrix
+    ):
         return None
     for n in fn.node.body.walk():
-        if isinstance(n, (A.Return, A.Discard)) and n is not body[-1] or isinstance(n, A.Call) and id(
-                tr.model.call_target(n)) in tr.facts.may_discard:
+        if (
+            isinstance(n, (A.Return, A.Discard))
+            and n is not body[-1]
+            or isinstance(n, A.Call)
+            and id(tr.model.call_target(n)) in tr.facts.may_discard
+        ):
             return None  # (an early exit: the return would not be the function's last statement)
     top = {id(st.expr) for st in body if isinstance(st, A.ExpressionStatement)}
-    top |= {id(d) for st in body if isinstance(st, A.DeclarationStatement)
-            and isinstance(st.decl, A.VariableDeclaration) for d in st.decl.declarators}
+    top |= {
+        id(d)
+        for st in body
+        if isinstance(st, A.DeclarationStatement) and isinstance(st.decl, A.VariableDeclaration)
+        for d in st.decl.declarators
+    }
     writes = [w for w in function_facts(tr).writes_to(sym) if w.kind != "decl"]
     if len(writes) < 2 or writes[0].kind not in ("=", "init") or writes[0].value is None:
         return None
@@ -82,7 +107,12 @@ def _return_chain(tr: Any, fn: Any) -> list[tuple[Any, Any, str]] | None:
         chain.append((w.node, w.node.value, w.node.op[0]))
     targets = {id(w.node.target) for w in writes if isinstance(w.node, A.Assignment)}
     for n in fn.node.body.walk():
-        if isinstance(n, A.Identifier) and tr.model.symbol_of(n) is sym and n is not ret and id(n) not in targets:
+        if (
+            isinstance(n, A.Identifier)
+            and tr.model.symbol_of(n) is sym
+            and n is not ret
+            and id(n) not in targets
+        ):
             return None  # (f read elsewhere: an intermediate sum used twice)
     if any(id(w) not in top or tr.type_of(v) != tr.type_of(ret) for w, v, _ in chain):
         return None
@@ -107,15 +137,28 @@ def sink_into_call(tr: Any, e: A.Binary, mask: str | None) -> str | None:
         return None
     call, k = (e.left, e.right) if isinstance(e.left, A.Call) else (e.right, e.left)
     target = tr.model.call_target(call) if isinstance(call, A.Call) else None
-    if (not isinstance(target, Symbol) or tr.model.const_value(k) is None or tr.type_of(k) != tr.type_of(e)
-            or call is e.right and e.op == "-" or sunk_return(tr, target) is None):
+    if (
+        not isinstance(target, Symbol)
+        or tr.model.const_value(k) is None
+        or tr.type_of(k) != tr.type_of(e)
+        or call is e.right
+        and e.op == "-"
+        or sunk_return(tr, target) is None
+    ):
         return None
     if not (used_once(tr, e) and used_once(tr, call)):
         return None
     shapes = use_counts(tr)[0]
-    others = [n for n in tr.fn.sym.node.body.walk()
-              if isinstance(n, A.Call) and n is not call and tr.model.call_target(n) is target]
-    if any(shapes.get(id(n)) == shapes.get(id(call)) for n in others) or others and tr.type_of(call).is_vector:
+    others = [
+        n
+        for n in tr.fn.sym.node.body.walk()
+        if isinstance(n, A.Call) and n is not call and tr.model.call_target(n) is target
+    ]
+    if (
+        any(shapes.get(id(n)) == shapes.get(id(call)) for n in others)
+        or others
+        and tr.type_of(call).is_vector
+    ):
         return None  # NIR's CSE merges the inlined copies (per component for a vector): used twice
     tk = tr.expr(k, mask)
     signed = f"(-{tk})" if e.op == "-" else tk

@@ -20,16 +20,34 @@ from typing import Any
 
 from .....frontend import syntax as A
 from ..call_fold import out_roots
-from .queries import (SUMS, call_write, has_matrix, is_builtin, is_constant, is_fmul, is_opaque, one_copy,
-                      reaching_value, read_once, stable_init, used_once, written_symbols)
 from .factoring import factor_parts
+from .queries import (
+    SUMS,
+    call_write,
+    has_matrix,
+    is_builtin,
+    is_constant,
+    is_fmul,
+    is_opaque,
+    one_copy,
+    reaching_value,
+    read_once,
+    stable_init,
+    used_once,
+    written_symbols,
+)
 from .squared_lengths import merged_argument, shared_dot, squared_length
 
 
 def sink_constant(tr: Any, e: A.Binary, mask: str | None) -> str | None:
     """Constants sunk into a sum (:func:`_sink_sum`), a two-term product, or a dot product."""
     inner, k, k_left = e.left, e.right, False
-    if is_constant(tr, inner) and not is_constant(tr, k) or e.op == "*" and _local_constant(tr, inner):
+    if (
+        is_constant(tr, inner)
+        and not is_constant(tr, k)
+        or e.op == "*"
+        and _local_constant(tr, inner)
+    ):
         inner, k, k_left = e.right, e.left, True
     if not (is_constant(tr, k) or e.op == "*" and _local_constant(tr, k)) or is_constant(tr, inner):
         return None
@@ -46,8 +64,10 @@ def sink_constant(tr: Any, e: A.Binary, mask: str | None) -> str | None:
     a, b = inner.left, inner.right
     if has_matrix(tr, a, b):
         return None  # a matrix product is not reassociated as numbers are
-    if not ((is_opaque(tr, a) or _settled(tr, a) or _normalized_once(tr, a) is not None)
-            and (is_opaque(tr, b) or _settled(tr, b) or _scaled(tr, b))):
+    if not (
+        (is_opaque(tr, a) or _settled(tr, a) or _normalized_once(tr, a) is not None)
+        and (is_opaque(tr, b) or _settled(tr, b) or _scaled(tr, b))
+    ):
         return None  # an operand NIR would look into further: not copied
     t, ty = tr.type_of(e), [tr.type_of(x) for x in (a, b, k)]
     if any(x != t and not x.is_scalar for x in ty):
@@ -55,10 +75,15 @@ def sink_constant(tr: Any, e: A.Binary, mask: str | None) -> str | None:
     ta, tb, tk = tr.exprs([a, b, k], mask)
     prod = lambda x, y, tx, ty: tr.binary_values("*", tx, ty, x, y)  # noqa: E731
     ab, ak = tr.type_of(inner), (ty[0] if ty[0] == t else ty[2])  # (types of a*b, a*#c)
-    written = prod(prod(ta, tb, ty[0], ty[1]), tk, ab, ty[2]) if not k_left else prod(
-        tk, prod(ta, tb, ty[0], ty[1]), ty[2], ab)
+    written = (
+        prod(prod(ta, tb, ty[0], ty[1]), tk, ab, ty[2])
+        if not k_left
+        else prod(tk, prod(ta, tb, ty[0], ty[1]), ty[2], ab)
+    )
     x = _normalized_once(tr, a)
-    if x is not None:  # a = x * inversesqrt(dot(x, x)) to NIR, used once: the constant sinks into it
+    if (
+        x is not None
+    ):  # a = x * inversesqrt(dot(x, x)) to NIR, used once: the constant sinks into it
         tx = tr.tmp(tr.expr(x, mask))
         scaled = prod(tx, tk, ty[0], ty[2])
         ta_k = prod(scaled, f"rt.inversesqrt(rt.dot({tx}, {tx}))", ty[0], tr.type_of(k))
@@ -70,7 +95,12 @@ def _local_constant(tr: Any, node: Any) -> bool:
     """A never-written local initialised by a constant expression (``float warpAmount = 5.0;``):
     a constant to NIR (GLSL IR's constant propagation), counted as one by the product sink."""
     sym = tr.model.symbol_of(node) if isinstance(node, A.Identifier) else None
-    if sym is None or sym.kind != "local" or not isinstance(sym.node, A.Declarator) or sym.node.init is None:
+    if (
+        sym is None
+        or sym.kind != "local"
+        or not isinstance(sym.node, A.Declarator)
+        or sym.node.init is None
+    ):
         return False
     return tr.model.const_value(sym.node.init) is not None and id(sym) not in written_symbols(tr)
 
@@ -83,13 +113,27 @@ def _normalized_once(tr: Any, node: Any) -> Any:
     43,200 values off on a copy of the function, 8 with the constant beside normalize's
     result); else None."""
     sym = tr.model.symbol_of(node) if isinstance(node, A.Identifier) else None
-    if sym is None or sym.kind != "local" or not isinstance(sym.node, A.Declarator) or id(sym) in written_symbols(tr):
+    if (
+        sym is None
+        or sym.kind != "local"
+        or not isinstance(sym.node, A.Declarator)
+        or id(sym) in written_symbols(tr)
+    ):
         return None
     init = sym.node.init
-    if not (isinstance(init, A.Call) and init.callee == "normalize" and is_builtin(tr, init)
-            and tr.type_of(init.args[0]).is_vector and not tr.has_effects(init)):
+    if not (
+        isinstance(init, A.Call)
+        and init.callee == "normalize"
+        and is_builtin(tr, init)
+        and tr.type_of(init.args[0]).is_vector
+        and not tr.has_effects(init)
+    ):
         return None
-    reads = [n for n in tr.fn.sym.node.body.walk() if isinstance(n, A.Identifier) and tr.model.symbol_of(n) is sym]
+    reads = [
+        n
+        for n in tr.fn.sym.node.body.walk()
+        if isinstance(n, A.Identifier) and tr.model.symbol_of(n) is sym
+    ]
     return init.args[0] if reads == [node] else None
 
 
@@ -111,13 +155,27 @@ def _scaled(tr: Any, node: Any) -> bool:
     NIR leaves it whole, measured (gargantua: ``((eyevec * dither) * 15.0) / 200.0`` is
     ``((eyevec * 15.0) * dither) / 200.0``; WarpSpace's warpFactor likewise)."""
     sym = tr.model.symbol_of(node) if isinstance(node, A.Identifier) else None
-    if sym is None or sym.kind != "local" or not isinstance(sym.node, A.Declarator) or id(sym) in written_symbols(tr):
+    if (
+        sym is None
+        or sym.kind != "local"
+        or not isinstance(sym.node, A.Declarator)
+        or id(sym) in written_symbols(tr)
+    ):
         return False
     init = sym.node.init  # (its value, whatever calls compute it: a user function's result too)
-    if isinstance(init, A.Binary) and init.op == "/" and is_constant(tr, init.left) and not is_constant(tr, init.right):
+    if (
+        isinstance(init, A.Binary)
+        and init.op == "/"
+        and is_constant(tr, init.left)
+        and not is_constant(tr, init.right)
+    ):
         return tr.type_of(init).is_scalar  # (1.0 / y, gargantua's warpFactor: measured the same)
-    return (isinstance(init, A.Binary) and init.op == "*" and not has_matrix(tr, init.left, init.right)
-            and is_constant(tr, init.left) != is_constant(tr, init.right))
+    return (
+        isinstance(init, A.Binary)
+        and init.op == "*"
+        and not has_matrix(tr, init.left, init.right)
+        and is_constant(tr, init.left) != is_constant(tr, init.right)
+    )
 
 
 def _sink_sum(tr: Any, e: A.Binary, inner: Any, k: Any, mask: str | None) -> str | None:
@@ -129,8 +187,12 @@ def _sink_sum(tr: Any, e: A.Binary, inner: Any, k: Any, mask: str | None) -> str
     never-written local read once (to NIR the same SSA value, used once). Not copied (None):
     a chain GLSL IR rebalances first (:func:`_rebalanced`), a ``dot`` other than
     ``dot(oc, oc)`` (:func:`_stable_vector`), a term that is none of opaque, product, sum."""
-    if (isinstance(inner, A.Call) and inner.callee == "dot" and is_builtin(tr, inner)
-            and all(_stable_vector(tr, x) for x in inner.args)):
+    if (
+        isinstance(inner, A.Call)
+        and inner.callee == "dot"
+        and is_builtin(tr, inner)
+        and all(_stable_vector(tr, x) for x in inner.args)
+    ):
         u, v, kk = tr.exprs([*inner.args, k], mask)
         signed = f"(-{kk})" if e.op == "-" else kk
         return f"(rt.dot_add({u}, {v}, {signed}) if rt.lp else (rt.dot({u}, {v}) {e.op} {kk}))"
@@ -234,7 +296,9 @@ def _rebalanced(tr: Any, e: A.Binary) -> bool:
             stack += [n.left, n.right]
         elif is_constant(tr, n):
             constants += 1
-        elif not (isinstance(n, A.Identifier) or (isinstance(n, A.Field) and tr.model.is_swizzle(n))):
+        elif not (
+            isinstance(n, A.Identifier) or (isinstance(n, A.Field) and tr.model.is_swizzle(n))
+        ):
             return False
     return ops >= 3 and constants <= 1
 
@@ -247,5 +311,13 @@ def _stable_vector(tr: Any, node: Any) -> bool:
     init = stable_init(tr, node) if isinstance(node, A.Identifier) else None
     if not (isinstance(init, A.Binary) and init.op == "-"):
         return False
-    return all(is_opaque(tr, x) or (isinstance(x, A.Call) and x.constructor and len(x.args) > 1
-                                  and all(is_opaque(tr, a) for a in x.args)) for x in (init.left, init.right))
+    return all(
+        is_opaque(tr, x)
+        or (
+            isinstance(x, A.Call)
+            and x.constructor
+            and len(x.args) > 1
+            and all(is_opaque(tr, a) for a in x.args)
+        )
+        for x in (init.left, init.right)
+    )

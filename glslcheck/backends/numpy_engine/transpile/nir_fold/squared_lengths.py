@@ -13,7 +13,14 @@ from __future__ import annotations
 from typing import Any
 
 from .....frontend import syntax as A
-from .queries import FunctionStandin, constant_value, function_facts, is_builtin, stable_init, written_symbols
+from .queries import (
+    FunctionStandin,
+    constant_value,
+    function_facts,
+    is_builtin,
+    stable_init,
+    written_symbols,
+)
 
 
 def squared_length(tr: Any, node: Any) -> Any:
@@ -24,23 +31,42 @@ def squared_length(tr: Any, node: Any) -> Any:
     its innermost addition (measured: gargantua's ``1.0 / (pow(distance(raypos, origin),
     2.0) + 0.000001)``, 14,400 of 14,400 pixels; the written ``sqrt(d)*sqrt(d) + c`` differs
     in 6,014); else None."""
-    if not (isinstance(node, A.Call) and node.callee == "pow" and is_builtin(tr, node) and len(node.args) == 2
-            and constant_value(tr, node.args[1]) == [2.0] and tr.type_of(node).is_scalar):
+    if not (
+        isinstance(node, A.Call)
+        and node.callee == "pow"
+        and is_builtin(tr, node)
+        and len(node.args) == 2
+        and constant_value(tr, node.args[1]) == [2.0]
+        and tr.type_of(node).is_scalar
+    ):
         return None
     length = node.args[0]
     if isinstance(length, A.Identifier):
         length = stable_init(tr, length)
-    if not (isinstance(length, A.Call) and is_builtin(tr, length) and length.callee in ("length", "distance")):
+    if not (
+        isinstance(length, A.Call)
+        and is_builtin(tr, length)
+        and length.callee in ("length", "distance")
+    ):
         return None
     args = list(length.args)
     if length.callee == "distance":
-        zero = [a for a in args if (constant_value(tr, a) or [1.0]) and not any(constant_value(tr, a) or [1.0])]
+        zero = [
+            a
+            for a in args
+            if (constant_value(tr, a) or [1.0]) and not any(constant_value(tr, a) or [1.0])
+        ]
         if len(zero) != 1:
             return None
         args.remove(zero[0])
     x = args[0]
     sym = tr.model.symbol_of(x) if isinstance(x, A.Identifier) else None
-    if sym is None or sym.kind != "param" or id(sym) in written_symbols(tr) or not tr.type_of(x).is_vector:
+    if (
+        sym is None
+        or sym.kind != "param"
+        or id(sym) in written_symbols(tr)
+        or not tr.type_of(x).is_vector
+    ):
         return None
     return x
 
@@ -55,15 +81,24 @@ def shared_dot(tr: Any, x: Any, pow_call: Any) -> bool:
     for n in pow_call.walk():
         own.add(id(n))
     init = stable_init(tr, pow_call.args[0]) if isinstance(pow_call.args[0], A.Identifier) else None
-    for n in (init.walk() if init is not None else ()):
+    for n in init.walk() if init is not None else ():
         own.add(id(n))
     for n in tr.fn.sym.node.body.walk():
-        if (id(n) in own or not isinstance(n, A.Call) or n.callee not in ("length", "distance", "normalize", "dot")
-                or not is_builtin(tr, n)):
+        if (
+            id(n) in own
+            or not isinstance(n, A.Call)
+            or n.callee not in ("length", "distance", "normalize", "dot")
+            or not is_builtin(tr, n)
+        ):
             continue
         for a in n.args:
-            while isinstance(a, A.Unary) and a.op == "-" or isinstance(a, A.Binary) and a.op == "-" and (
-                    constant_value(tr, a.left) is not None):
+            while (
+                isinstance(a, A.Unary)
+                and a.op == "-"
+                or isinstance(a, A.Binary)
+                and a.op == "-"
+                and (constant_value(tr, a.left) is not None)
+            ):
                 a = a.operand if isinstance(a, A.Unary) else a.right
             if isinstance(a, A.Identifier) and tr.model.symbol_of(a) is sym:
                 return True
@@ -103,8 +138,15 @@ def merged_argument(tr: Any, x: Any) -> bool:
             if not facts.ok or id(arg) not in facts.enter:
                 return False
             # (the out write of a call of this function, which never writes x, changes nothing)
-            writes = [w for w in facts.writes_to(sym)
-                      if not (w.kind == "out" and isinstance(w.node, A.Call) and tr.model.call_target(w.node) is fn)]
+            writes = [
+                w
+                for w in facts.writes_to(sym)
+                if not (
+                    w.kind == "out"
+                    and isinstance(w.node, A.Call)
+                    and tr.model.call_target(w.node) is fn
+                )
+            ]
             at = facts.enter[id(arg)]
             before = [w for w in writes if w.pos < at]
             if not before:
@@ -113,8 +155,12 @@ def merged_argument(tr: Any, x: Any) -> bool:
             merged = not facts.dominates(last.node, arg)
             if not merged:
                 outer = {id(loop) for loop in facts.enclosing_loops(last.node)}
-                merged = any(facts.enter[id(loop)] <= w.pos <= facts.exit[id(loop)]
-                             for loop in facts.enclosing_loops(arg) if id(loop) not in outer for w in writes)
+                merged = any(
+                    facts.enter[id(loop)] <= w.pos <= facts.exit[id(loop)]
+                    for loop in facts.enclosing_loops(arg)
+                    if id(loop) not in outer
+                    for w in writes
+                )
             if not merged:
                 return False
             found = True

@@ -12,8 +12,16 @@ from __future__ import annotations
 from typing import Any
 
 from .....frontend import syntax as A
-from .queries import (function_facts, has_matrix, is_constant, is_fmul, is_varying, reaching_value, stable_init,
-                      written_symbols)
+from .queries import (
+    function_facts,
+    has_matrix,
+    is_constant,
+    is_fmul,
+    is_varying,
+    reaching_value,
+    stable_init,
+    written_symbols,
+)
 
 
 def keep_factor(tr: Any, e: A.Binary, mask: str | None) -> str | None:
@@ -23,8 +31,11 @@ def keep_factor(tr: Any, e: A.Binary, mask: str | None) -> str | None:
     the second is ``(m*2.02) * (m*p)``, SSA); the generated code has one variable per GLSL
     one, so the value y had is kept here, in float32 and float64 mode alike (the same
     values: only llvmpipe mode reads the temporary)."""
-    if e.op != "*" or tr.type_of(e.left) != tr.type_of(e.right) and not (
-            tr.type_of(e.left).is_scalar or tr.type_of(e.right).is_scalar):
+    if (
+        e.op != "*"
+        or tr.type_of(e.left) != tr.type_of(e.right)
+        and not (tr.type_of(e.left).is_scalar or tr.type_of(e.right).is_scalar)
+    ):
         return None
     k_left = is_constant(tr, e.left)
     y, k = (e.right, e.left) if k_left else (e.left, e.right)
@@ -52,8 +63,14 @@ def _write_of(tr: Any, value: Any) -> Any:
     index = tr.fold_state.writes
     key = id(tr.fn.sym)
     if key not in index:
-        index[key] = {id(w.value): w for ws in facts.writes.values() for w in ws
-                      if w.kind in ("=", "init") and w.value is not None and w.symbol.kind in ("local", "param")}
+        index[key] = {
+            id(w.value): w
+            for ws in facts.writes.values()
+            for w in ws
+            if w.kind in ("=", "init")
+            and w.value is not None
+            and w.symbol.kind in ("local", "param")
+        }
     return index[key].get(id(value))
 
 
@@ -67,7 +84,11 @@ def _merge_reads(tr: Any) -> dict[int, list[A.Identifier]]:
         for n in tr.fn.sym.node.body.walk():
             if isinstance(n, A.Binary) and n.op == "*":
                 for a, b in ((n.left, n.right), (n.right, n.left)):
-                    if isinstance(b, A.Identifier) and is_constant(tr, a) and tr.model.symbol_of(b) is not None:
+                    if (
+                        isinstance(b, A.Identifier)
+                        and is_constant(tr, a)
+                        and tr.model.symbol_of(b) is not None
+                    ):
                         out.setdefault(id(tr.model.symbol_of(b)), []).append(b)
         cache[key] = out
     return cache[key]
@@ -105,7 +126,11 @@ def merge_into_matrix(tr: Any, e: A.Binary, mask: str | None) -> str | None:
     if tr.model.const_value(e.left) is None and not is_constant(tr, e.left):
         return None
     parts = product_parts(tr, e.right)
-    if parts is None or not tr.type_of(parts[1]).is_scalar or tr.type_of(parts[0]) != tr.type_of(e.right):
+    if (
+        parts is None
+        or not tr.type_of(parts[1]).is_scalar
+        or tr.type_of(parts[0]) != tr.type_of(e.right)
+    ):
         return None
     y, c, code = parts
     if code is None and (not is_varying(tr, y) or tr.has_effects(y)):
