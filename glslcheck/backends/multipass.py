@@ -67,6 +67,7 @@ class MultipassProgram:
         # the exact float32 results SwiftShader's WebGL returns (it ignores lowp, measured).
         self.lowp_samplers = True
         self._state: dict[str, np.ndarray] = {}
+        self._images: dict[tuple, ChannelInput] = {}
         self._key = None
         self._next = 0
 
@@ -124,14 +125,27 @@ class MultipassProgram:
             if b is None:
                 chans.append(None)
                 continue
+            if b.buffer is None:
+                chans.append(self._image_input(b))
+                continue
             # buffers are stored bottom row first, images top row first (unflipped, as uploaded)
-            texels = self._state[b.buffer] if b.buffer is not None else self.textures[b.texture]
-            if b.vflip:
-                texels = texels[::-1]
+            texels = self._state[b.buffer][::-1] if b.vflip else self._state[b.buffer]
             chans.append(
                 ChannelInput(np.ascontiguousarray(texels), b.filter, b.wrap, self.lowp_samplers)
             )
         return chans
+
+    def _image_input(self, b) -> ChannelInput:
+        """An image channel, made once for all frames and passes: its mipmap levels are computed
+        once, and a backend that keeps textures (WebGL) uploads it once."""
+        key = (b.texture, b.vflip, b.filter, b.wrap, self.lowp_samplers)
+        if key not in self._images:
+            texels = self.textures[b.texture]
+            texels = texels[::-1] if b.vflip else texels
+            self._images[key] = ChannelInput(
+                np.ascontiguousarray(texels), b.filter, b.wrap, self.lowp_samplers
+            )
+        return self._images[key]
 
     def render(
         self,

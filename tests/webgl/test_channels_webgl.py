@@ -169,3 +169,43 @@ def test_channel_time_is_zero_for_images_and_buffers_on_webgl(webgl, tmp_path):
         size=(8, 4), time=3.0, frame=2
     )
     assert np.array_equal(img, np.broadcast_to(np.float32([0.0, 0.0, 0.0, 1.0]), img.shape))
+
+
+def test_a_large_texture_is_uploaded_in_pieces_once_and_sampled_as_on_numpy(webgl, tmp_path):
+    # 2048x2048 RGBA32F with its mipmaps is 85 MB of texels and 113 MB as base64: too large for
+    # one DevTools message (it ended the page). Uploaded in CHUNK_BYTES pieces, once for all
+    # frames, it must sample as the NumPy backend does (lowp off, as SwiftShader ignores it).
+    from glslcheck.backends.webgl import program as webgl_program
+
+    _png(tmp_path / "tex.png", w=2048, h=2048, seed=3)
+    image = (
+        "void mainImage(out vec4 c, in vec2 p) {\n"
+        "    c = textureLod(iChannel0, p / iResolution.xy, iTime);\n"
+        "}\n"
+    )
+    folder = _folder(
+        tmp_path,
+        {"Image": image},
+        {"Image": {"iChannel0": {"texture": "tex.png", "filter": "mipmap"}}},
+    )
+    numpy_prog, webgl_prog = _exact_numpy(folder), api.compile(folder, backend="webgl")
+    browser = webgl_prog.impl.programs["Image"].browser
+    calls = []
+    original = browser.call
+
+    def counting(function, *args):
+        calls.append(function)
+        return original(function, *args)
+
+    browser.call = counting
+    try:
+        for lod in (0.0, 1.0, 5.0):
+            got = webgl_prog.render(size=(64, 36), time=lod)
+            want = numpy_prog.render(size=(64, 36), time=lod)
+            # explicit-LOD lookups agree to float32 rounding (module docstring)
+            np.testing.assert_allclose(got, want, rtol=0, atol=2e-6)
+    finally:
+        browser.call = original
+    assert calls.count("textureBegin") == 1 and calls.count("render") == 3
+    assert calls.count("textureChunk") > 1  # more than one piece: the split was exercised
+    assert all(size <= webgl_program.KEPT_TEXTURE_BYTES for size in browser.textures.values())

@@ -32,6 +32,7 @@ import re
 import shutil
 import signal
 import time
+from collections import OrderedDict
 from importlib import resources
 from pathlib import Path
 
@@ -145,6 +146,8 @@ class Browser:
             )
         self.executable = executable
         self.pending_release: list[int] = []  # page programs whose WebGLProgram is gone
+        # Channel textures the page holds (key -> bytes), least recently used first.
+        self.textures: OrderedDict[str, int] = OrderedDict()
         start = time.perf_counter()
         self._playwright = None
         self._browser = None

@@ -128,53 +128,78 @@
   }
 
   function fromBase64(text) {
+    if (Uint8Array.fromBase64) return Uint8Array.fromBase64(text);
     const raw = atob(text);
     const bytes = new Uint8Array(raw.length);
     for (let i = 0; i < raw.length; i++) bytes[i] = raw.charCodeAt(i);
-    return new Float32Array(bytes.buffer);
+    return bytes;
   }
 
-  // Channel textures, each {width, height, filter, wrap, levels: [base64 RGBA32F, ...]} with
-  // level 0 first and row 0 at t near 0 (OpenGL's first row): glslcheck's own mipmap pyramid
-  // (channels.mip_levels) is uploaded level by level, as on the GL backend, so every backend
-  // samples the same texels. The units are 0..3 as iChannel0..3; null leaves a unit unbound.
+  // Channel textures are uploaded once and kept by key until dropped: `textureBegin` gives the
+  // size, filter, wrap and the byte length of each level (RGBA32F, level 0 first, row 0 at t
+  // near 0: glslcheck's own mipmap pyramid, as on the GL backend, so every backend samples the
+  // same texels), `textureChunk` fills the bytes in pieces small enough for the DevTools
+  // protocol, `textureEnd` makes the texture.
+  state.textures = new Map();
+  state.textureBegin = (key, width, height, filter, wrap, sizes) => {
+    if (filter !== "nearest" && !state.floatLinear) {
+      throw new Error("WebGL 2 has no OES_texture_float_linear: linear filtering of float channels is not available");
+    }
+    state.textures.set(key, { width, height, filter, wrap, levels: sizes.map((n) => new Uint8Array(n)), texture: null });
+    return true;
+  };
+  state.textureChunk = (key, level, offset, text) => {
+    state.textures.get(key).levels[level].set(fromBase64(text), offset);
+    return true;
+  };
+  state.textureEnd = (key) => {
+    const c = state.textures.get(key);
+    const texture = gl.createTexture();
+    gl.bindTexture(gl.TEXTURE_2D, texture);
+    gl.pixelStorei(gl.UNPACK_ALIGNMENT, 1);
+    gl.pixelStorei(gl.UNPACK_FLIP_Y_WEBGL, false);
+    gl.texStorage2D(gl.TEXTURE_2D, c.levels.length, gl.RGBA32F, c.width, c.height);
+    c.levels.forEach((bytes, level) => {
+      const w = Math.max(1, c.width >> level), h = Math.max(1, c.height >> level);
+      const floats = new Float32Array(bytes.buffer, bytes.byteOffset, bytes.byteLength / 4);
+      gl.texSubImage2D(gl.TEXTURE_2D, level, 0, 0, w, h, gl.RGBA, gl.FLOAT, floats);
+    });
+    const mag = c.filter === "nearest" ? gl.NEAREST : gl.LINEAR;
+    const min = c.filter === "mipmap" ? gl.LINEAR_MIPMAP_LINEAR : mag;
+    gl.texParameteri(gl.TEXTURE_2D, gl.TEXTURE_MIN_FILTER, min);
+    gl.texParameteri(gl.TEXTURE_2D, gl.TEXTURE_MAG_FILTER, mag);
+    const wrap = c.wrap === "repeat" ? gl.REPEAT : gl.CLAMP_TO_EDGE;
+    gl.texParameteri(gl.TEXTURE_2D, gl.TEXTURE_WRAP_S, wrap);
+    gl.texParameteri(gl.TEXTURE_2D, gl.TEXTURE_WRAP_T, wrap);
+    gl.bindTexture(gl.TEXTURE_2D, null);
+    c.levels = null;
+    c.texture = texture;
+    return true;
+  };
+  state.textureDrop = (keys) => {
+    for (const key of keys) {
+      const c = state.textures.get(key);
+      if (c && c.texture) gl.deleteTexture(c.texture);
+      state.textures.delete(key);
+    }
+    return true;
+  };
+
+  // The units are 0..3 as iChannel0..3, each a key of an uploaded texture or null (unbound).
   function bindChannels(channels) {
-    const made = [];
-    channels.forEach((c, unit) => {
+    channels.forEach((key, unit) => {
       gl.activeTexture(gl.TEXTURE0 + unit);
-      if (c === null) { gl.bindTexture(gl.TEXTURE_2D, null); return; }
-      if (c.filter !== "nearest" && !state.floatLinear) {
-        throw new Error("WebGL 2 has no OES_texture_float_linear: linear filtering of float channels is not available");
-      }
-      const texture = gl.createTexture();
-      made.push(texture);
-      gl.bindTexture(gl.TEXTURE_2D, texture);
-      gl.pixelStorei(gl.UNPACK_ALIGNMENT, 1);
-      gl.pixelStorei(gl.UNPACK_FLIP_Y_WEBGL, false);
-      gl.texStorage2D(gl.TEXTURE_2D, c.levels.length, gl.RGBA32F, c.width, c.height);
-      c.levels.forEach((data, level) => {
-        const w = Math.max(1, c.width >> level), h = Math.max(1, c.height >> level);
-        gl.texSubImage2D(gl.TEXTURE_2D, level, 0, 0, w, h, gl.RGBA, gl.FLOAT, fromBase64(data));
-      });
-      const mag = c.filter === "nearest" ? gl.NEAREST : gl.LINEAR;
-      const min = c.filter === "mipmap" ? gl.LINEAR_MIPMAP_LINEAR : mag;
-      gl.texParameteri(gl.TEXTURE_2D, gl.TEXTURE_MIN_FILTER, min);
-      gl.texParameteri(gl.TEXTURE_2D, gl.TEXTURE_MAG_FILTER, mag);
-      const wrap = c.wrap === "repeat" ? gl.REPEAT : gl.CLAMP_TO_EDGE;
-      gl.texParameteri(gl.TEXTURE_2D, gl.TEXTURE_WRAP_S, wrap);
-      gl.texParameteri(gl.TEXTURE_2D, gl.TEXTURE_WRAP_T, wrap);
+      gl.bindTexture(gl.TEXTURE_2D, key === null ? null : state.textures.get(key).texture);
     });
     gl.activeTexture(gl.TEXTURE0);
-    return made;
   }
 
-  function unbindChannels(made) {
+  function unbindChannels() {
     for (let unit = 0; unit < 4; unit++) {
       gl.activeTexture(gl.TEXTURE0 + unit);
       gl.bindTexture(gl.TEXTURE_2D, null);
     }
     gl.activeTexture(gl.TEXTURE0);
-    for (const texture of made) gl.deleteTexture(texture);
   }
 
   // Little-endian float32 bytes as base64 (the cheapest way through the DevTools protocol).
@@ -193,11 +218,11 @@
     const entry = state.programs.get(id);
     if (!entry) throw new Error(`no program ${id}`);
     const t = target(width, height); // first: making a target binds (then unbinds) a texture
-    const made = channels ? bindChannels(channels) : [];
+    if (channels) bindChannels(channels);
     try {
       return draw(entry, t, width, height, uniforms, offsets);
     } finally {
-      unbindChannels(made);
+      unbindChannels();
     }
   };
 

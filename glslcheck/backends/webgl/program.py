@@ -92,22 +92,43 @@ def uniform_values(
     return out
 
 
-def _channel_json(channel) -> dict | None:
-    """A channels.ChannelInput as harness.js `bindChannels` takes it (levels as base64 float32)."""
+# Bytes of base64 text per call into the page: one DevTools message must stay well under its
+# size limit (a 2048x2048 RGBA32F texture with its mipmaps is 120 MB as one string and ends the
+# page).
+CHUNK_BYTES = 8 << 20
+# Channel textures a page keeps between frames (static images are uploaded once); past this,
+# the least recently used ones not bound in the frame at hand are dropped.
+KEPT_TEXTURE_BYTES = 1 << 30
+
+
+def _texture_key(browser: Browser, channel, bound: set[str]) -> str | None:
+    """The key of `channel` (a channels.ChannelInput, or None) in the page's textures, uploaded
+    first if the page does not hold it: level by level, in chunks of CHUNK_BYTES."""
     if channel is None:
         return None
+    key = f"c{channel.serial}"
+    bound.add(key)
+    kept = browser.textures
+    if key in kept:
+        kept.move_to_end(key)
+        return key
     levels = channel.levels() if channel.filter == "mipmap" else [channel.texels]
+    data = [np.ascontiguousarray(t, dtype="<f4").tobytes() for t in levels]
+    size = sum(len(d) for d in data)
+    old = [k for k in kept if k not in bound]
+    while old and sum(kept.values()) + size > KEPT_TEXTURE_BYTES:
+        drop = old.pop(0)
+        browser.call("textureDrop", [drop])
+        del kept[drop]
     h, w = channel.texels.shape[:2]
-    return {
-        "width": w,
-        "height": h,
-        "filter": channel.filter,
-        "wrap": channel.wrap,
-        "levels": [
-            base64.b64encode(np.ascontiguousarray(t, dtype="<f4").tobytes()).decode("ascii")
-            for t in levels
-        ],
-    }
+    browser.call("textureBegin", key, w, h, channel.filter, channel.wrap, [len(d) for d in data])
+    for level, raw in enumerate(data):
+        for offset in range(0, len(raw), CHUNK_BYTES):
+            text = base64.b64encode(raw[offset : offset + CHUNK_BYTES]).decode("ascii")
+            browser.call("textureChunk", key, level, offset, text)
+    browser.call("textureEnd", key)
+    kept[key] = size
+    return key
 
 
 # ANGLE quotes the token it complains about first: "'=' : cannot convert from ...".
@@ -232,7 +253,6 @@ class WebGLProgram:
             inputs.frame_rate,
             channels,
         )
-        js_channels = None if channels is None else [_channel_json(c) for c in channels]
         js_offsets = [list(o) if samples > 1 else None for o in inputs.offsets]
         if self.browser.closed:
             raise GlslError(
@@ -244,6 +264,12 @@ class WebGLProgram:
                 )
             )
         try:
+            bound: set[str] = set()
+            js_channels = (
+                None
+                if channels is None
+                else [_texture_key(self.browser, c, bound) for c in channels]
+            )
             data = self.browser.call(
                 "render", program_id, width, height, uniforms, js_offsets, js_channels
             )
