@@ -46,7 +46,9 @@ class _OtherMesa:
         return getattr(self._ctx, name)
 
 
-def test_a_mismatch_on_another_mesa_says_the_emulation_was_copied_from_another(gl, make_shader):
+def test_a_mismatch_on_another_mesa_says_the_emulation_was_copied_from_another(
+    llvmpipe, make_shader
+):
     red = make_shader("void mainImage(out vec4 c, in vec2 p) { c = vec4(1.0, 0.0, 0.0, 1.0); }")
     green = make_shader("void mainImage(out vec4 c, in vec2 p) { c = vec4(0.0, 1.0, 0.0, 1.0); }")
     numpy = compile_backend(red, "numpy")
