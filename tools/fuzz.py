@@ -42,12 +42,19 @@ Inputs, each reproducible from (seed, index) alone:
             terms, local arrays up to 4,000,000 floats, runaway nested loops of 99,999
             iterations, 300-deep call chains; parse and check must accept them, transpile
             and render (8x8, frame budget FRAME_SECONDS) end ok or with a located error;
+- channels: folders with an Image tab and often a Buffer A sampling iChannel0..1, small images
+            (PNG, JPEG, TIFF of odd sizes and modes) and a channels.json (--channels-rate, its
+            own random stream too): "channels" binds everything validly with every filter, wrap
+            and vflip (render must succeed and verify match), "channels-bad" carries faults
+            (wrong types, unknown tabs and keys, names outside the folder, cycles, damaged
+            images, cut or deeply nested JSON: a located error and exit 2, never a traceback);
 - soup:     random sequences of GLSL tokens;
 - bytes:    random bytes.
 
 Each input goes through every entry point in-process via `glslcheck.cli.main.main` with stdout
 and stderr captured: parse, check and lint always; transpile when check accepts the program (and
-on a sample of the rest); render and verify at 8x8 on samples. --jobs worker processes (spawned
+on a sample of the rest); render and verify at 8x8 on samples; `compiled` (render --backend
+compiled, numba's engine, with the frame budget) on --compiled-rate of the programs check accepts. --jobs worker processes (spawned
 once per run, each with a 3 GB address-space limit) run the inputs; the parent kills and
 restarts one when a command exceeds its time budget (CPU seconds of the worker).
 
@@ -85,11 +92,19 @@ if str(ROOT) not in sys.path:
     sys.path.insert(0, str(ROOT))
 
 LIGHT = ("parse", "check", "lint")
-HEAVY = ("transpile", "render", "verify")
+HEAVY = ("transpile", "render", "verify", "compiled")
 NORMAL = {"ok", "findings", "usage"}
 # Per-command time budgets in seconds: generous, the machine is shared (a typical call takes
 # 10-100 ms; render/verify at 8x8 under a second). --timeout-scale multiplies them.
-BUDGET = {"parse": 20, "check": 20, "lint": 20, "transpile": 30, "render": 60, "verify": 60}
+BUDGET = {
+    "parse": 20,
+    "check": 20,
+    "lint": 20,
+    "transpile": 30,
+    "render": 60,
+    "verify": 60,
+    "compiled": 180,  # `render --backend compiled`: numba compiles the shader first
+}
 FRAME_SECONDS = 10  # the NumPy renderer's frame budget in the workers (GLSLCHECK_FRAME_SECONDS)
 # ... and of a hostile program's render (its --frame-budget): the runaway loops run to it, so it
 # bounds their wall time. The largest other hostile renders take up to 2 s of CPU at 8x8: on a
@@ -683,6 +698,115 @@ def hostile_program(rng: random.Random, shape: str | None = None) -> str:
 
 
 HOSTILE_RATE = 0.05  # share of inputs replaced by hostile programs (the others stay as they were)
+CHANNELS_RATE = 0.05  # share of inputs replaced by channel folders (from their own stream too)
+
+CHANNEL_IMAGE = (
+    "void mainImage(out vec4 fragColor, in vec2 fragCoord) {\n"
+    "    vec2 uv = fragCoord / iResolution.xy;\n"
+    "    fragColor = texture(iChannel0, uv) + texture(iChannel1, uv * 2.0);\n"
+    "}\n"
+)
+CHANNEL_BUFFER = (
+    "void mainImage(out vec4 fragColor, in vec2 fragCoord) {\n"
+    "    vec2 uv = fragCoord / iResolution.xy;\n"
+    "    fragColor = 0.5 * texture(iChannel0, uv) + vec4(uv, sin(iTime), 1.0);\n"
+    "}\n"
+)
+# Texture names a channels.json may give: the folder's own files, and names that leave it.
+TEXTURE_NAMES = ("tex.png", "tex.jpg", "missing.png", "../tex.png", "/etc/passwd", "", "sub/t.png")
+CHANNEL_VALUES = (
+    None, 0, -1, 1.5, True, "", "nearest", "mipmap", "repeat", "clamp", [], {}, [1, 2],
+    {"buffer": "Buffer A"}, "x" * 300,
+)  # fmt: skip
+
+
+def _image_bytes(rng: random.Random, damage: bool) -> bytes:
+    """A small image file: a PNG, JPEG or TIFF of an odd size and mode; with `damage`, sometimes
+    cut short or with a byte changed."""
+    from PIL import Image
+
+    w, h = rng.choice((1, 2, 3, 17, 64)), rng.choice((1, 2, 5, 33))
+    mode = rng.choice(("RGB", "RGBA", "L", "LA", "P", "I;16", "F"))
+    fmt = "JPEG" if mode in ("RGB", "L") and rng.random() < 0.3 else "PNG"
+    if mode == "F":
+        fmt = "TIFF"
+    image = Image.frombytes("L", (w, h), bytes(rng.randrange(256) for _ in range(w * h))).convert(
+        mode
+    )
+    buf = io.BytesIO()
+    image.save(buf, fmt)
+    data = buf.getvalue()
+    if damage and rng.random() < 0.2:
+        cut = rng.randrange(len(data))
+        data = (
+            data[:cut]
+            if rng.random() < 0.5
+            else data[:cut] + bytes([rng.randrange(256)]) + data[cut + 1 :]
+        )
+    return data
+
+
+def channels_input(rng: random.Random) -> tuple[str, dict[str, bytes]]:
+    """A folder with an Image tab (and often a Buffer A) sampling iChannel0..1, images, and a
+    channels.json that binds them: valid bindings with every filter, wrap and vflip, and values
+    of the wrong type, names that leave the folder, unknown tabs and keys, cycles, bad JSON."""
+    valid = rng.random() < 0.7  # most folders are valid, the rest carry faults
+    files = {"Image.glsl": CHANNEL_IMAGE.encode()}
+    if rng.random() < 0.6:
+        files["Buffer A.glsl"] = CHANNEL_BUFFER.encode()
+    if valid or rng.random() < 0.8:
+        files["tex.png"] = _image_bytes(rng, damage=not valid)
+
+    def binding() -> object:
+        if valid:
+            spec: dict[str, object] = (
+                {"buffer": "Buffer A"}
+                if "Buffer A.glsl" in files and rng.random() < 0.5
+                else {"texture": "tex.png"}
+            )
+            for key, values in (
+                ("filter", ("nearest", "linear", "mipmap")),
+                ("wrap", ("clamp", "repeat")),
+                ("vflip", (True, False)),
+            ):
+                if rng.random() < 0.5:
+                    spec[key] = rng.choice(values)
+            return spec
+        x = rng.random()
+        if x < 0.15:
+            return rng.choice(CHANNEL_VALUES)
+        spec = (
+            {"buffer": rng.choice(("Buffer A", "Buffer B", "Image", "buffer a", 3))}
+            if x < 0.5
+            else {"texture": rng.choice(TEXTURE_NAMES)}
+        )
+        for key, values in (
+            ("filter", ("nearest", "linear", "mipmap", "trilinear", 1)),
+            ("wrap", ("clamp", "repeat", "mirror", None)),
+            ("vflip", (True, False, "yes")),
+            ("type", ("cubemap", "2d")),
+        ):
+            if rng.random() < 0.4:
+                spec[key] = rng.choice(values)
+        return spec
+
+    tabs = {}
+    for tab in ("Image", "Buffer A", "Buffer Z", "Common"):
+        if tab == "Image" or (tab == "Buffer A" and "Buffer A.glsl" in files):
+            # a valid folder binds every channel its tabs read; a faulty one may leave one out
+            tabs[tab] = {f"iChannel{n}": binding() for n in (0, 1) if valid or rng.random() < 0.8}
+        elif not valid and rng.random() < 0.1:
+            tabs[tab] = {f"iChannel{rng.choice((0, 1, 4))}": binding()}
+    text = json.dumps(tabs)
+    y = 1.0 if valid else rng.random()
+    if y < 0.05:
+        text = text[: rng.randrange(len(text) + 1)]  # cut short
+    elif y < 0.08:
+        text = "[" * 5000 + "]" * 5000  # deep
+    elif y < 0.1:
+        text = json.dumps(rng.choice(CHANNEL_VALUES))
+    files["channels.json"] = text.encode()
+    return ("channels" if valid else "channels-bad"), files
 
 
 def make_input(
@@ -691,11 +815,15 @@ def make_input(
     seeds: list[dict[str, str]],
     pool: list[str],
     hostile_rate: float = HOSTILE_RATE,
+    channels_rate: float = CHANNELS_RATE,
 ) -> tuple[str, dict[str, bytes]]:
     """(kind, {file name: bytes}) for input `index` of run `seed`."""
     pick = random.Random(f"{seed}:{index}:hostile")
     if pick.random() < hostile_rate:
         return "hostile", {"shader.glsl": hostile_program(pick).encode()}
+    chan = random.Random(f"{seed}:{index}:channels")
+    if chan.random() < channels_rate:
+        return channels_input(chan)
     rng = random.Random(f"{seed}:{index}")
     x = rng.random()
     if x < 0.55:
@@ -764,7 +892,7 @@ def judge(
             ln, col = int(m.group("line")), int(m.group("col"))
             if not (1 <= ln <= len(lens)) or not (1 <= col <= lens[ln - 1] + 2):
                 return "bad-location", f"{line} (the file has {len(lens)} lines)"
-    if rc == 1 and errors == 0 and command in ("parse", "check", "transpile", "render"):
+    if rc == 1 and errors == 0 and command in ("parse", "check", "transpile", "render", "compiled"):
         return "no-location", f"exit 1 without an error message: {err[-500:]}"
     if command == "verify" and rc == 1 and "MISMATCH" in out:
         return "mismatch", out[-1500:]
@@ -788,6 +916,9 @@ def run_command(
         argv += ["--size", "8x8", "-o", str(folder / "out.npy")]
     elif command == "verify":
         argv += ["--size", "8x8"]
+    elif command == "compiled":
+        argv = ["render", target, "--backend", "compiled", "--size", "8x8"]
+        argv += [*extra, "-o", str(folder / "out.npy")]
     out, err = io.StringIO(), io.StringIO()
     try:
         with contextlib.redirect_stdout(out), contextlib.redirect_stderr(err):
@@ -935,15 +1066,27 @@ class Worker:
 
 
 def commands_for(
-    kind: str, rng: random.Random, results: dict[str, str], heavy_rate: float, verify_rate: float
+    kind: str,
+    rng: random.Random,
+    results: dict[str, str],
+    heavy_rate: float,
+    verify_rate: float,
+    compiled_rate: float = 0.0,
 ) -> list[str]:
     """Which heavy commands an input gets, once its light results are known."""
+    checked = results.get("check") == "ok"
+    # numba's compile takes seconds a shader: the compiled engine gets a share of the programs
+    # that check accepts (the hostile ones included: its frame budget must hold)
+    compiled = ["compiled"] if checked and rng.random() < compiled_rate else []
+    if kind.startswith(
+        "channels"
+    ):  # textures and buffers: the renderers read what channels.json binds
+        return ["render", *(["verify"] if rng.random() < verify_rate else []), *compiled]
     if (
         kind == "hostile"
     ):  # the NumPy path only: Mesa's compile time on such nesting is the driver's
-        return ["transpile", "render"]
-    cmds = []
-    checked = results.get("check") == "ok"
+        return ["transpile", "render", *compiled]
+    cmds = compiled
     if checked or rng.random() < heavy_rate:
         cmds.append("transpile")
     if rng.random() < heavy_rate * (4 if checked else 1):
@@ -970,6 +1113,8 @@ def fuzz_range(
     worker: Worker | None = None,
     deadline: float | None = None,
     hostile_rate: float = HOSTILE_RATE,
+    channels_rate: float = CHANNELS_RATE,
+    compiled_rate: float = 0.0,
     halt=None,
 ) -> tuple[collections.Counter, list[dict]]:
     """Fuzz inputs start..stop-1 of run `seed` in one worker; (counts, flagged). With
@@ -991,7 +1136,7 @@ def fuzz_range(
                 and halt.is_set()
             ):
                 break
-            kind, data = make_input(seed, index, seeds, pool, hostile_rate)
+            kind, data = make_input(seed, index, seeds, pool, hostile_rate, channels_rate)
             counts[("input", kind)] += 1
             rng = random.Random(f"{seed}:{index}:heavy")
             results: dict[str, str] = {}
@@ -1004,7 +1149,7 @@ def fuzz_range(
                 t0 = time.perf_counter()
                 extra = (
                     ("--frame-budget", f"{HOSTILE_FRAME_SECONDS:g}")
-                    if kind == "hostile" and command == "render"
+                    if kind == "hostile" and command in ("render", "compiled")
                     else ()
                 )
                 outcome, detail = worker.run(command, data, BUDGET[command] * timeout_scale, extra)
@@ -1014,10 +1159,12 @@ def fuzz_range(
                     and command in ("parse", "check", "transpile", "render")
                     or kind == "hostile"
                     and command in ("parse", "check")
+                    or kind == "channels"
+                    and command in ("render", "verify")
                 ) and outcome != "ok":
                     if outcome in NORMAL:
                         outcome = "gen-rejected"
-                if outcome == "mismatch" and kind != "generate":
+                if outcome == "mismatch" and kind not in ("generate", "channels"):
                     # A mutant may compute undefined values (smoothstep(e, e, x), 0/0, ...):
                     # different images are verify's finding there, only generated programs must match.
                     outcome = "findings"
@@ -1039,7 +1186,9 @@ def fuzz_range(
                 if command == "lint":
                     todo += [
                         c
-                        for c in commands_for(kind, rng, results, heavy_rate, verify_rate)
+                        for c in commands_for(
+                            kind, rng, results, heavy_rate, verify_rate, compiled_rate
+                        )
                         if c in commands
                     ]
             if progress:
@@ -1126,6 +1275,18 @@ def main(argv: list[str] | None = None) -> int:
         help=f"share of inputs that are hostile valid programs (default {HOSTILE_RATE})",
     )
     p.add_argument(
+        "--channels-rate",
+        type=float,
+        default=CHANNELS_RATE,
+        help=f"share of inputs that are folders with channels.json (default {CHANNELS_RATE})",
+    )
+    p.add_argument(
+        "--compiled-rate",
+        type=float,
+        default=0.01,
+        help="share of checked programs also rendered by the compiled engine (default 0.01)",
+    )
+    p.add_argument(
         "--parse-rate",
         type=float,
         default=1.0,
@@ -1178,7 +1339,9 @@ def main(argv: list[str] | None = None) -> int:
 
     if args.show is not None:
         seeds, pool = seeds_and_pool()
-        kind, data = make_input(args.seed, args.show, seeds, pool, args.hostile_rate)
+        kind, data = make_input(
+            args.seed, args.show, seeds, pool, args.hostile_rate, args.channels_rate
+        )
         for name, raw in data.items():
             print(f"== {kind}: {name} ({len(raw)} bytes)")
             sys.stdout.write(raw.decode("utf-8", "backslashreplace"))
@@ -1193,6 +1356,8 @@ def main(argv: list[str] | None = None) -> int:
         out_dir=Path(args.out),
         commands=commands,
         hostile_rate=args.hostile_rate,
+        channels_rate=args.channels_rate,
+        compiled_rate=args.compiled_rate,
     )
     return run(args, opts)
 

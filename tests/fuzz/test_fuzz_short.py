@@ -1,5 +1,5 @@
 """The short CI fuzz run (bad input never breaks glslcheck): a fixed set of inputs from tools/fuzz.py -- inputs 0..399 of
-seed 2026 -- through parse, check, lint, transpile, render and verify, in-process, each in a
+seed 2026 -- through parse, check, lint, transpile, render, verify and the compiled engine, in-process, each in a
 worker process with a time budget. Zero flagged outcomes allowed: no traceback, no escaped
 exception, no exit code outside {0, 1, 2}, no hang, no error without file:line:col in the user's
 file, no modified file, and every generated (valid) program accepted by parse/check/transpile/
@@ -50,6 +50,7 @@ def test_short_fuzz_run_has_no_flagged_inputs(gl, tmp_path):
             parse_rate=0.2,
             out_dir=tmp_path,
             hostile_rate=0.0,
+            compiled_rate=0.02,
         )
 
     counts: collections.Counter = collections.Counter()
@@ -67,8 +68,8 @@ def test_short_fuzz_run_has_no_flagged_inputs(gl, tmp_path):
     )
     kinds = {k: n for (c, k), n in counts.items() if c == "input"}
     assert sum(kinds.values()) == WORKERS * PER_WORKER, kinds
-    assert {"mutate", "generate", "soup", "bytes"} <= set(kinds), kinds
-    for command in ("parse", "check", "lint", "transpile", "render", "verify"):
+    assert {"mutate", "generate", "soup", "bytes", "channels", "channels-bad"} <= set(kinds), kinds
+    for command in ("parse", "check", "lint", "transpile", "render", "verify", "compiled"):
         assert sum(n for (c, _), n in counts.items() if c == command) > 0, command
     # The generator reaches clean programs and the mutants reach errors.
     assert counts[("check", "ok")] > 0 and counts[("check", "findings")] > 0

@@ -209,7 +209,7 @@ def generate(shader: Any, tab: str | None = None, lanes: int | None = None) -> t
     the rewrite does not handle the program (the per-pixel module then says why in
     LANES_FALLBACK)."""
     from ...frontend.parser import parse_shader
-    from ...shadertoy.channels import needs_passes
+    from ...shadertoy.channels import BUFFER_TABS, channel_reads, needs_passes
     from ..driver_profile import host_model
     from ..numpy_engine.llvmpipe_reference import HOST_FMA
     from ..numpy_engine.transpile.common import check_program
@@ -217,7 +217,10 @@ def generate(shader: Any, tab: str | None = None, lanes: int | None = None) -> t
     from .values import engine_error, not_yet
 
     if needs_passes(shader):
-        loc = Location(shader.root, 1, 1)
+        # at the first iChannel the Image tab reads, else at the first Buffer tab
+        reads = channel_reads(shader, "Image") if "Image" in shader.tabs else {}
+        buffers = [shader.tabs[t].path for t in BUFFER_TABS if t in shader.tabs]
+        loc = reads[min(reads)] if reads else Location(buffers[0] if buffers else shader.root, 1, 1)
         raise GlslError(
             Diagnostic(
                 "Buffer tabs and iChannel inputs: not supported by the compiled engine yet",
