@@ -27,6 +27,7 @@ import math
 import os
 import threading
 from collections.abc import Iterator
+from contextlib import contextmanager
 from dataclasses import dataclass, field
 from typing import Any
 
@@ -41,7 +42,8 @@ from ..backends.numpy_engine.tracing import (
     Site,
     TraceTranspiler,
 )
-from ..base.diagnostics import InputError, source_line
+from ..base.diagnostics import Diagnostic, GlslError, InputError, source_line
+from ..semantics.analysis import undefined_reads
 
 UNSTABLE_BITS = 16  # first_unstable: a value keeping fewer bits than this has lost more than a third of float32's 24
 BITS_KINDS = ("assign", "return", "call")  # the steps whose values are compared with their shadow
@@ -85,6 +87,8 @@ class Step:
     depth: int = 0
     what: str = ""  # loop markers: start, iteration, end
     count: int = 0
+    why: str = ""  # an undefined value's step: the kind of read (semantics.analysis.undefined)
+    read_line: int = 0  # ... and the line it is read at
 
     def to_json(self) -> dict:
         return {
@@ -96,6 +100,7 @@ class Step:
             "value": to_py(self.value, True),
             "value64": to_py(self.value64, False),
             "bits": self.bits,
+            **({"undefined": self.why, "read_line": self.read_line} if self.why else {}),
         }
 
 
@@ -251,13 +256,39 @@ class Probe:
                 )
             S.budget = Budget(frame_seconds()).start()  # a runaway trace stops as a frame does
             try:
-                color = ns["shade"](S)
+                with self.undefined_notes():
+                    color = ns["shade"](S)
             finally:
                 S.budget.finish()
             color = np.broadcast_to(color, (len(color), lanes)).astype(np.float64)
             if len(color) == 3:
                 color = np.concatenate([color, np.ones((1, lanes))])
             return np.where(np.broadcast_to(S.discard, (lanes,)), 0.0, color)
+
+    @contextmanager
+    def undefined_notes(self) -> Iterator[None]:
+        """A loop that never ends (or a frame over its budget) in a program that reads undefined
+        values: its error also names those reads, which may be why (a `while (true)` waiting
+        for a random point whose seed is an out parameter ends on one driver, not with zeros)."""
+        try:
+            yield
+        except GlslError as e:
+            reads = undefined_reads(self.model)
+            stops = ("numpy-runaway-loop", "numpy-frame-budget")
+            for d in e.diagnostics:
+                if d.rule in stops and reads:
+                    d.notes.extend(
+                        Diagnostic(
+                            f"the program reads a value GLSL leaves undefined here ({u.kind}); "
+                            "this render gives it WebGL's value, and where the loop ends may "
+                            "depend on it",
+                            u.loc,
+                            severity="note",
+                            rule=d.rule,
+                        )
+                        for u in reads[:4]
+                    )
+            raise
 
     # -- one pixel -------------------------------------------------------------------------------
     def pixel(
@@ -363,6 +394,8 @@ class Probe:
                     r.depth,
                     r.what,
                     r.count,
+                    s.why,
+                    s.read_line,
                 )
             )
         return steps
@@ -375,13 +408,14 @@ class Probe:
         from ..backends.numpy_engine.tiles import TILE_LANES
 
         w, h = inputs.size
-        img = self.program().render(
-            size=inputs.size,
-            time=inputs.time,
-            frame=inputs.frame,
-            mouse=inputs.mouse,
-            date=inputs.date,
-        )
+        with self.undefined_notes():
+            img = self.program().render(
+                size=inputs.size,
+                time=inputs.time,
+                frame=inputs.frame,
+                mouse=inputs.mouse,
+                date=inputs.date,
+            )
         nan = np.isnan(img).any(axis=-1)
         inf = np.isinf(img).any(axis=-1) & ~nan
         report = NanReport(int(nan.sum()), int(inf.sum()))
@@ -750,7 +784,25 @@ def _describe(s: Step) -> str:
         return s.name
     if s.kind == "discard":
         return "discard: the pixel is dropped"
+    if s.kind == "undefined":
+        what = UNDEFINED_ENTRIES.get(s.why, "a value GLSL leaves undefined")
+        return (
+            f"{s.name} = {fmt(s.value)}: UNDEFINED in the shader, {what} (read at line "
+            f"{s.read_line}); this render gives it WebGL's value, a GPU may give it any: "
+            "what follows from it depends on the driver (`glslcheck check` warns at the read)"
+        )
     return s.name
+
+
+# what enters at an undefined value's site (Step.why: semantics.analysis.undefined's kinds)
+UNDEFINED_ENTRIES = {
+    "out-parameter": "an out parameter's value on entry",
+    "uninitialized-local": "a local declared without an initializer",
+    "division-by-zero": "an integer division by zero",
+    "shift-out-of-range": "a shift out of range",
+    "conversion-out-of-range": "a conversion out of range",
+    "domain": "a built-in outside its domain",
+}
 
 
 def _format_steps(steps: list[Step], i: int, j: int, out: list[str], last: list, nest: int) -> None:

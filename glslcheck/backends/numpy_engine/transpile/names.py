@@ -165,7 +165,7 @@ class Names:
             return (t.cols, t.rows), "float"
         raise _error(f"values of type '{t}' are not supported by the NumPy backend", node)
 
-    def initial(self, t: Any, node: Any) -> str:
+    def initial(self, t: Any, node: Any, mask: str | None = None) -> str:
         """The value a variable declared without one starts with (an out parameter, a local
         without an initializer): zero, as WebGL; an undefined read's variable in the "vary"
         mode draws a value (`X.undefined`)."""

@@ -232,7 +232,7 @@ class Statements:
                 value = (
                     self.expr(dec.init, mask)
                     if dec.init is not None
-                    else self.initial(sym.type, dec)
+                    else self.initial(sym.type, dec, mask)
                 )
             if dec.init is not None:
                 value = nir_fold.keep_term(self, dec, value)
