@@ -111,8 +111,9 @@ class Transpiler(Names, Functions, Statements, Expressions, PythonLimits):
             "loops": self.loops,
             "uses_derivatives": bool(self.facts.uses_derivs),
             "loop_cap": LOOP_CAP,
-            "undefined": self.undefined,
         }
+        if self.undefined != "zero":  # (the normal module is the same text as without the option)
+            meta["undefined"] = self.undefined
         scalars, at = lane_state(self.model, self.functions)
         if scalars > SMALL_STATE and at is not None:
             loc = at.loc
