@@ -374,23 +374,9 @@ class UndefinedSide:
 
     def __init__(self, shader: Shader, programs: Sequence, numpy_under_test: bool) -> None:
         self.shader = shader
-        self.sites: list = []
+        self._found: list | None = None  # the reads, found when a frame first fails
         self._programs: dict = {}
         self._template = getattr(programs[0], "impl", programs[0]) if numpy_under_test else None
-        from ..shadertoy.channels import needs_passes
-
-        if needs_passes(shader):
-            return
-        from ..frontend.parser import parse_shader
-        from ..semantics import check
-        from ..semantics.analysis import origins
-
-        tab = "Image" if "Image" in shader.tabs else ("GLSL" if "GLSL" in shader.tabs else "Image")
-        try:
-            model = check(parse_shader(shader, tab))
-        except GlslError:
-            return
-        self.sites = list(origins(model).values())
         self._float_to_uint = next(
             (
                 p.meta["float_to_uint"]
@@ -399,6 +385,30 @@ class UndefinedSide:
             ),
             None,
         )
+
+    @property
+    def sites(self) -> list:
+        """The program's undefined reads, one per origin (semantics.analysis.origins), in
+        source order; none for a shader of several passes."""
+        if self._found is None:
+            from ..frontend.parser import parse_shader
+            from ..semantics import check
+            from ..semantics.analysis import origins
+            from ..shadertoy.channels import needs_passes
+
+            self._found = []
+            shader = self.shader
+            tab = (
+                "Image"
+                if "Image" in shader.tabs
+                else ("GLSL" if "GLSL" in shader.tabs else "Image")
+            )
+            if not needs_passes(shader):
+                try:
+                    self._found = list(origins(check(parse_shader(shader, tab))).values())
+                except GlslError:
+                    pass
+        return self._found
 
     def _program(self, mode: str, sites: tuple[int, ...] | None = None):
         key = (mode, sites)
