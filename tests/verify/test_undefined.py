@@ -114,3 +114,14 @@ def test_cli_text_and_json(gl, capsys, tmp_path):
     assert "UNDEFINED IN THE SHADER" in text and "MISMATCH" not in text
     line = out["undefined_lines"][0]["line"]
     assert f"{path}:{line}:" in text
+
+
+def test_report_page_names_undefined_pixels(gl):
+    from glslcheck.verification.report import gather, page_html
+
+    shader = load_shader(CASES / "local.glsl")
+    report = gather(shader, size=SIZE, backends=("numpy", "gl"), bench=None)
+    ((a, b, c, _),) = report.pairs
+    assert c.verdict in ("match", "undefined") and c.mismatched_pixels == 0
+    page = page_html([report], SIZE, 0.0, "report")
+    assert ("undefined in the shader" in page) == (c.verdict == "undefined")
