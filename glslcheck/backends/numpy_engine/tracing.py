@@ -132,7 +132,11 @@ class TraceTranspiler(Transpiler):
         self._loop_bodies: dict[int, int] = {}  # id(loop body) -> loop site
         self._glsl: dict[str, str] = {}  # Python name -> GLSL name
         self._loop_steps: set[int] = set()  # id() of for-loop steps
-        self.undefined_at = origins(model)  # id(node) -> the undefined read it starts (T.u)
+        # id(node) -> the undefined read it starts (T.u); an out parameter left unwritten on
+        # some path is undefined only where the caller reads it after such a path: not traced
+        self.undefined_at = {
+            k: u for k, u in origins(model).items() if u.kind != "out-parameter-unwritten"
+        }
 
     # -- sites -------------------------------------------------------------------------------------
     def site(

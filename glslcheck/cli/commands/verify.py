@@ -34,7 +34,8 @@ warns at each), found by rendering the NumPy side with other values at those rea
 (verification/verify.py, UndefinedSide); they are counted apart from the mismatches, and the
 verdict is "undefined" (match false, exit 1: the shader is at fault, not the renderer) when they
 are the only difference; undefined_lines is [{"file", "line", "column", "code", "kind",
-"pixels"}] of the reads, kind one of out-parameter, uninitialized-local, division-by-zero,
+"pixels"}] of the reads, kind one of out-parameter, out-parameter-unwritten (at the return
+that leaves it so), uninitialized-local, division-by-zero,
 shift-out-of-range, conversion-out-of-range, domain; driver is {"renderer", "mesa",
 "emulated"} of the GL side, emulated false when the NumPy backend's bit-exact emulation was
 copied from another driver than this one, llvmpipe of Mesa 22.3: a mismatch then also says so
@@ -402,6 +403,7 @@ def format_frame(
 
 UNDEFINED_KINDS = {
     "out-parameter": "an out parameter read before it is written",
+    "out-parameter-unwritten": "an out parameter a path leaves unwritten",
     "uninitialized-local": "a local read before it is assigned",
     "division-by-zero": "integer division by zero",
     "shift-out-of-range": "a shift out of range",

@@ -10,6 +10,10 @@ Kinds (`UndefinedRead.kind`):
 * "out-parameter": an `out` parameter read before it is written. Its value on entry is
   undefined (spec 6.1.1: out parameters are copied out, not in); WebGL passes zero, a desktop
   driver whatever its register held. `origin` is the parameter's declaration.
+* "out-parameter-unwritten": an `out` parameter some path returns without writing; the caller's
+  variable then receives an undefined value. `loc` is that return (or the body's end). Not one
+  of `undefined_reads` (a `bool hit(..., out float t)` writing `t` only when it returns true is
+  correct), only of `origins`: verify varies it, and a pixel whose colour changes used it.
 * "uninitialized-local": a local variable declared without an initializer and read before it
   is assigned (spec 4.3: undefined; WebGL zero-initialises it, desktop GL does not). `origin` is
   the declarator.
@@ -49,6 +53,7 @@ if TYPE_CHECKING:
 
 KINDS = (
     "out-parameter",
+    "out-parameter-unwritten",
     "uninitialized-local",
     "division-by-zero",
     "shift-out-of-range",
@@ -56,7 +61,7 @@ KINDS = (
     "domain",
 )
 # The kinds whose undefined value is a variable's initial value (the others: an operation's).
-VARIABLE_KINDS = ("out-parameter", "uninitialized-local")
+VARIABLE_KINDS = ("out-parameter", "out-parameter-unwritten", "uninitialized-local")
 
 
 @record(frozen=True)
@@ -92,10 +97,16 @@ def undefined_reads(model: Model) -> list[UndefinedRead]:
 
 
 def origins(model: Model) -> dict[int, UndefinedRead]:
-    """id(origin node) -> the first undefined read of it (what a backend makes undefined)."""
+    """id(origin node) -> the first undefined read of it (what a backend makes undefined): the
+    reads `check` warns at, then the out parameters left unwritten (`unwritten_outs`)."""
     out: dict[int, UndefinedRead] = {}
     for u in undefined_reads(model):
         out.setdefault(id(u.origin), u)
+    for fn in model.reachable_functions():
+        definition = fn.node
+        if isinstance(definition, A.FunctionDefinition) and definition.body is not None:
+            for u in unwritten_outs(model, definition):
+                out.setdefault(id(u.origin), u)
     return out
 
 
@@ -106,6 +117,19 @@ def origins(model: Model) -> dict[int, UndefinedRead]:
 def unassigned_reads(model: Model, definition: A.FunctionDefinition) -> list[UndefinedRead]:
     """The first read of each `out` parameter and each local declared without an initializer
     that some path reaches before an assignment (cached per function)."""
+    return _assignment(model, definition)[0]
+
+
+def unwritten_outs(model: Model, definition: A.FunctionDefinition) -> list[UndefinedRead]:
+    """Each `out` parameter that some path to a `return` (or the end) leaves unwritten, kind
+    "out-parameter-unwritten", at the first such return: the caller's variable then receives
+    an undefined value. Not a warning of `check` (a `bool hit(..., out float t)` that writes `t`
+    only when it returns true is the usual, correct pattern), but where verify varies the value
+    (a pixel whose colour then changes did use it)."""
+    return _assignment(model, definition)[1]
+
+
+def _assignment(model: Model, definition: A.FunctionDefinition) -> tuple[list, list]:
     cache = model.analysis_caches.setdefault("unassigned_reads", {})
     got = cache.get(id(definition))
     if got is not None:
@@ -120,16 +144,45 @@ def unassigned_reads(model: Model, definition: A.FunctionDefinition) -> list[Und
             sym = model.symbol_of(n)
             if sym is not None and sym.kind == "local":
                 tracked[id(sym)] = ("uninitialized-local", n)
-    got = []
+    reads: list = []
+    unwritten: list = []
     if tracked:
         flow = _Flow(model, tracked)
         try:
-            flow.stmt(definition.body, set())
+            end = flow.stmt(definition.body, set())
         except RecursionError:
-            flow.found = []
-        got = [_variable_read(model, ident, *tracked[i]) for i, ident in flow.found]
-    cache[id(definition)] = got
+            flow.found, flow.returns, end = [], [], None
+        reads = [_variable_read(model, ident, *tracked[i]) for i, ident in flow.found]
+        exits = flow.returns + ([(None, end)] if end is not None else [])
+        for p in definition.proto.params:
+            sym = model.symbol_of(p)
+            if sym is None or tracked.get(id(sym), ("", None))[0] != "out-parameter":
+                continue
+            where = next((r for r, st in exits if id(sym) not in st), False)
+            if where is not False:
+                loc = where.loc if where is not None else _end(definition)
+                unwritten.append(
+                    UndefinedRead(
+                        "out-parameter-unwritten",
+                        loc,
+                        f"the out parameter '{sym.name}' is not written on this path: the "
+                        "caller's variable receives an undefined value (GLSL ES 3.00 6.1.1)",
+                        f"write '{sym.name}' on every path, or leave the caller's variable unread there",
+                        p,
+                        where if where is not None else definition,
+                        sym,
+                    )
+                )
+    got = cache[id(definition)] = (reads, unwritten)
     return got
+
+
+def _end(definition: A.FunctionDefinition) -> Location:
+    """Where a function's body ends (its closing brace), else its start."""
+    loc = definition.body.loc or definition.loc
+    if loc.end_line:
+        return Location(loc.path, loc.end_line, max(1, (loc.end_column or 2) - 1))
+    return loc
 
 
 def _variable_read(model: Model, ident: A.Identifier, kind: str, origin: Any) -> UndefinedRead:
@@ -170,6 +223,7 @@ class _Flow:
         # (states at each break, states at each continue) of the loops and switches being
         # walked, innermost last (a switch has no continues: None)
         self.frames: list[tuple[list, list | None]] = []
+        self.returns: list[tuple[Any, set]] = []  # (return statement, its state), in order
 
     # -- statements ----------------------------------------------------------------------------
     def stmt(self, s: Any, st: set | None) -> set | None:
@@ -243,7 +297,8 @@ class _Flow:
             return out if out is not None else st
         if t is A.Return:
             if s.value is not None:
-                self.expr(s.value, st)
+                st = self.expr(s.value, st)
+            self.returns.append((s, st))
             return None
         if t is A.Break:
             if self.frames:
