@@ -117,6 +117,8 @@ class Origin:
     source: str = ""  # the whole source line
     pixels: int = 0
     box: tuple[int, int, int, int] = (0, 0, 0, 0)
+    # of `pixels`, those whose colour changes with the shader's undefined values (--nan)
+    undefined_pixels: int = 0
 
     @property
     def help(self) -> str:
@@ -131,7 +133,9 @@ class Origin:
             "operation": self.operation,
         }
         if with_pixels:
-            out.update(pixels=self.pixels, box=list(self.box))
+            out.update(
+                pixels=self.pixels, box=list(self.box), undefined_pixels=self.undefined_pixels
+            )
         return out
 
 
@@ -159,12 +163,16 @@ class NanReport:
     nan_pixels: int
     inf_pixels: int
     origins: list[Origin] = field(default_factory=list)
+    # the program's undefined reads when some NaN/Inf pixel depends on them:
+    # {"file", "line", "column", "kind"} (semantics.analysis.undefined)
+    undefined_reads: list[dict] = field(default_factory=list)
 
     def to_json(self) -> dict:
         return {
             "nan_pixels": self.nan_pixels,
             "inf_pixels": self.inf_pixels,
             "origins": [o.to_json() for o in self.origins],
+            "undefined_reads": list(self.undefined_reads),
         }
 
 
@@ -264,6 +272,30 @@ class Probe:
             if len(color) == 3:
                 color = np.concatenate([color, np.ones((1, lanes))])
             return np.where(np.broadcast_to(S.discard, (lanes,)), 0.0, color)
+
+    def undefined_mask(self, inputs: Inputs, image: np.ndarray) -> np.ndarray | None:
+        """bool (h, w): the pixels of `image` (this frame's render) whose colour changes when
+        the shader's undefined values do (verify's taint: the module that draws them anew,
+        compare.depends_on_undefined); None when the program has no undefined reads."""
+        from ..semantics.analysis import origins
+
+        found = list(origins(self.model).values())
+        if not found:
+            return None
+        from ..backends.numpy_engine.program import NumpyProgram
+        from ..backends.numpy_engine.transpile import transpile
+        from .compare import depends_on_undefined
+
+        t = transpile(self.model, self.path, undefined="vary")
+        varied = NumpyProgram(t.source, t.meta, t.filename).render(
+            size=inputs.size,
+            time=inputs.time,
+            frame=inputs.frame,
+            mouse=inputs.mouse,
+            date=inputs.date,
+        )
+        self.undefined_found = found
+        return depends_on_undefined(image, varied)
 
     @contextmanager
     def undefined_notes(self) -> Iterator[None]:
@@ -422,6 +454,7 @@ class Probe:
         ys, xs = np.nonzero(nan | inf)  # rows from the top
         if not len(xs):
             return report
+        undefined = self.undefined_mask(inputs, img)
         fx, fy = xs.astype(np.int64), (h - 1 - ys).astype(np.int64)
         if self.meta.get("uses_derivatives"):  # whole quads, stacked in a 2-wide strip
             quads = np.unique(np.stack([fy & ~1, fx & ~1], axis=1), axis=0)
@@ -468,8 +501,15 @@ class Probe:
                 org = Origin(None, None, None, "", "unknown (no traced operation made it)")
             org.pixels = int(m.sum())
             org.box = (int(xs[m].min()), int(ys[m].min()), int(xs[m].max()), int(ys[m].max()))
+            if undefined is not None:
+                org.undefined_pixels = int(undefined[ys[m], xs[m]].sum())
             report.origins.append(org)
         report.origins.sort(key=lambda o: (-o.pixels, o.file or "", o.line or 0, o.column or 0))
+        if any(o.undefined_pixels for o in report.origins):
+            report.undefined_reads = [
+                {"file": u.loc.path, "line": u.loc.line, "column": u.loc.column, "kind": u.kind}
+                for u in self.undefined_found
+            ]
         return report
 
 
@@ -797,6 +837,7 @@ def _describe(s: Step) -> str:
 # what enters at an undefined value's site (Step.why: semantics.analysis.undefined's kinds)
 UNDEFINED_ENTRIES = {
     "out-parameter": "an out parameter's value on entry",
+    "out-parameter-unwritten": "an out parameter a path returns without writing",
     "uninitialized-local": "a local declared without an initializer",
     "division-by-zero": "an integer division by zero",
     "shift-out-of-range": "a shift out of range",
@@ -898,6 +939,17 @@ def format_nan(report: NanReport, shader: str, inputs: Inputs) -> str:
             )
         if o.help:
             out.append(f"  help: {o.help}")
+        if o.undefined_pixels:
+            out.append(
+                f"  note: {o.undefined_pixels} of these pixels change when the shader's "
+                "undefined values do: that NaN/Inf is the shader's undefined behaviour (below)"
+            )
+    for u in report.undefined_reads[:4]:
+        what = UNDEFINED_ENTRIES.get(u["kind"], "a value GLSL leaves undefined")
+        out.append(
+            f"{_short(u['file'])}:{u['line']}:{u['column']}: note: undefined in the shader: {what} "
+            "(`glslcheck check` says more)"
+        )
     if not report.origins:
         out.append("no pixel is NaN or Inf")
     return "\n".join(out)

@@ -48,3 +48,23 @@ def test_a_constant_operation_enters_where_it_is():
     path = CASES / "divzero.glsl"
     report = Probe(path).pixel(3, 9, Inputs(size=(32, 18)))
     assert [(s.line, s.why) for s in report.steps if s.kind == "undefined"] == _marked(path)
+
+
+def test_nan_pixels_that_depend_on_an_undefined_value_are_named():
+    """The square root's argument is an out parameter read before it is written: WebGL's zero
+    makes it negative (NaN) in every pixel; other values would not."""
+    path = CASES / "nan_from_out_parameter.glsl"
+    inputs = Inputs(size=(16, 9))
+    report = Probe(path).nan_origins(inputs)
+    (origin,) = report.origins
+    assert origin.pixels == report.nan_pixels > 0
+    assert origin.undefined_pixels == origin.pixels
+    ((line, kind),) = _marked(path)
+    assert [(u["line"], u["kind"]) for u in report.undefined_reads] == [(line, kind)]
+
+
+def test_nan_pixels_of_a_program_without_undefined_reads_stay_the_operations():
+    report = Probe(CASES.parents[1] / "probe" / "shaders" / "light_in_plane").nan_origins(
+        Inputs(size=(80, 45))
+    )
+    assert report.undefined_reads == [] and all(o.undefined_pixels == 0 for o in report.origins)
