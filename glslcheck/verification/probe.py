@@ -42,8 +42,8 @@ from ..backends.numpy_engine.tracing import (
     Site,
     TraceTranspiler,
 )
-from ..base.diagnostics import Diagnostic, GlslError, InputError, source_line
-from ..semantics.analysis import undefined_reads
+from ..base.diagnostics import GlslError, InputError, source_line
+from ..semantics.analysis import STOPS, stop_notes, undefined_reads
 
 UNSTABLE_BITS = 16  # first_unstable: a value keeping fewer bits than this has lost more than a third of float32's 24
 BITS_KINDS = ("assign", "return", "call")  # the steps whose values are compared with their shadow
@@ -306,20 +306,9 @@ class Probe:
             yield
         except GlslError as e:
             reads = undefined_reads(self.model)
-            stops = ("numpy-runaway-loop", "numpy-frame-budget")
             for d in e.diagnostics:
-                if d.rule in stops and reads:
-                    d.notes.extend(
-                        Diagnostic(
-                            f"the program reads a value GLSL leaves undefined here ({u.kind}); "
-                            "this render gives it WebGL's value, and where the loop ends may "
-                            "depend on it",
-                            u.loc,
-                            severity="note",
-                            rule=d.rule,
-                        )
-                        for u in reads[:4]
-                    )
+                if d.rule in STOPS and reads:
+                    d.notes.extend(stop_notes(reads, d.rule))
             raise
 
     # -- one pixel -------------------------------------------------------------------------------

@@ -36,6 +36,7 @@ import os
 import sys
 from collections import abc
 from collections.abc import Iterator, Sequence
+from contextlib import contextmanager
 from dataclasses import dataclass
 from pathlib import Path
 
@@ -303,7 +304,8 @@ def verify_frames(
     undefined = UndefinedSide(shader, programs, records[backends[0]].name == "numpy")
     for w_h in size_list:
         for spec in specs:
-            numpy_img, gl_img = pair.render(spec, w_h, tuple(mouse), date, precision, samples)
+            with undefined.explains_stops():
+                numpy_img, gl_img = pair.render(spec, w_h, tuple(mouse), date, precision, samples)
             comparison = compare(numpy_img, gl_img, **(compare_options or {}))
             if not comparison.match:
                 # unstable pixels: only worth a float64 render when the frame fails
@@ -409,6 +411,20 @@ class UndefinedSide:
                 except GlslError:
                     pass
         return self._found
+
+    @contextmanager
+    def explains_stops(self) -> Iterator[None]:
+        """A render stopped by a runaway loop or the frame budget: its error also names the
+        program's undefined reads (semantics.analysis.stop_notes), which may be why."""
+        from ..semantics.analysis import STOPS, stop_notes
+
+        try:
+            yield
+        except GlslError as e:
+            for d in e.diagnostics:
+                if d.rule in STOPS and self.sites:
+                    d.notes.extend(stop_notes(self.sites, d.rule))
+            raise
 
     def _program(self, mode: str, sites: tuple[int, ...] | None = None):
         key = (mode, sites)

@@ -36,7 +36,15 @@ from .dataflow import (
     pure_function,
     written_variable,
 )
-from .undefined import VARIABLE_KINDS, UndefinedRead, origins, unassigned_reads, undefined_reads
+from .undefined import (
+    STOPS,
+    VARIABLE_KINDS,
+    UndefinedRead,
+    origins,
+    stop_notes,
+    unassigned_reads,
+    undefined_reads,
+)
 from .values import NONNEGATIVE_UNIFORMS, ValueRanges, numbers
 
 __all__ = [
@@ -46,6 +54,8 @@ __all__ = [
     "ValueRanges",
     "UndefinedRead",
     "VARIABLE_KINDS",
+    "STOPS",
+    "stop_notes",
     "NONNEGATIVE_UNIFORMS",
     "builtin_call",
     "builtin_calls",

@@ -41,7 +41,7 @@ from __future__ import annotations
 
 import math
 
-from ...base.diagnostics import Location
+from ...base.diagnostics import Diagnostic, Location
 from ...base.records import record
 from ...frontend import syntax as A
 from ..model import Model, Symbol
@@ -108,6 +108,27 @@ def origins(model: Model) -> dict[int, UndefinedRead]:
             for u in unwritten_outs(model, definition):
                 out.setdefault(id(u.origin), u)
     return out
+
+
+def stop_notes(reads: list[UndefinedRead], rule: str, limit: int = 4) -> list[Diagnostic]:
+    """Notes for an error that stopped a render (a loop that never ended, a frame over its
+    budget) in a program with undefined reads: where the loop ends may depend on them (a
+    `while (true)` waiting for a random point whose seed is an out parameter ends on a driver
+    that leaves the seed's garbage in, never with WebGL's zeros)."""
+    return [
+        Diagnostic(
+            f"the program reads a value GLSL leaves undefined here ({u.kind}); this render gives "
+            "it WebGL's value, and where the loop ends may depend on it",
+            u.loc,
+            severity="note",
+            rule=rule,
+        )
+        for u in reads[:limit]
+    ]
+
+
+# Rules of the errors that stop a render early (the NumPy renderer's), which stop_notes explains
+STOPS = ("numpy-runaway-loop", "numpy-frame-budget")
 
 
 # ---------------------------------------------------------------------------------------------
