@@ -481,25 +481,30 @@ _DOMAINS = {
     "inversesqrt": (1, lambda x: x <= 0, "inversesqrt(x) is undefined for x <= 0"),
 }
 _INT_CONSTRUCTORS = ("int", "uint", "ivec2", "ivec3", "ivec4", "uvec2", "uvec3", "uvec4")
+_CHECKED_CALLS = frozenset(_INT_CONSTRUCTORS) | frozenset(_DOMAINS)
 
 
 def undefined_operations(model: Model, definition: A.FunctionDefinition) -> list[UndefinedRead]:
     """Integer division by zero, out-of-range shifts and conversions, and built-ins outside
     their domain, where the operands that decide it are constants."""
     out = []
+    binary, call, assignment = A.Binary, A.Call, A.Assignment  # (locals: every node is tested)
+    int_ops, int_assignments, checked_calls = _INT_OPS, _INT_ASSIGNMENTS, _CHECKED_CALLS
     for n in model.body_nodes(definition):
         t = type(n)
-        if t is A.Binary or (t is A.Assignment and n.op != "="):
-            op = n.op if t is A.Binary else n.op[:-1]
-            right = n.right if t is A.Binary else n.value
-            u = _binary(model, n, op, right)
-        elif t is A.Call:
-            u = _call(model, n)
-        else:
-            continue
-        if u is not None:
-            out.append(u)
-    return out
+        if t is binary:
+            if n.op in int_ops:
+                out.append(_binary(model, n, n.op, n.right))
+        elif t is call:
+            if n.callee in checked_calls:
+                out.append(_call(model, n))
+        elif t is assignment and n.op in int_assignments:
+            out.append(_binary(model, n, n.op[:-1], n.value))
+    return [u for u in out if u is not None]
+
+
+_INT_OPS = frozenset(("/", "%", "<<", ">>"))
+_INT_ASSIGNMENTS = frozenset(op + "=" for op in _INT_OPS)
 
 
 def _components(v: Any) -> list:
