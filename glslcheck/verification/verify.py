@@ -378,7 +378,11 @@ class UndefinedSide:
         self.shader = shader
         self._found: list | None = None  # the reads, found when a frame first fails
         self._programs: dict = {}
-        self._template = getattr(programs[0], "impl", programs[0]) if numpy_under_test else None
+        self._numpy_under_test = numpy_under_test  # its render is the zeros' render
+        # the NumPy renders stop loops where the program under test does (llvmpipe's limit
+        # against GL, none against WebGL), so that only the undefined values differ
+        under_test = getattr(programs[0], "impl", programs[0])
+        self._loop_limit = getattr(under_test, "loop_limit", LLVMPIPE_LOOP_LIMIT)
         self._float_to_uint = next(
             (
                 p.meta["float_to_uint"]
@@ -433,7 +437,7 @@ class UndefinedSide:
             from ..backends.numpy_engine.program import compile_numpy
 
             prog = compile_numpy(self.shader, undefined=mode, undefined_sites=sites)
-            prog.loop_limit = LLVMPIPE_LOOP_LIMIT
+            prog.loop_limit = self._loop_limit
             if self._float_to_uint is not None:
                 prog.emulate_float_to_uint(self._float_to_uint)
             self._programs[key] = prog
@@ -444,7 +448,7 @@ class UndefinedSide:
         `image` is the render under test, used as the zeros' render when it is the NumPy one."""
         if not self.sites:
             return None
-        zero = image if self._template is not None else self._program("zero").render(**inputs)
+        zero = image if self._numpy_under_test else self._program("zero").render(**inputs)
         self._zero = zero
         return depends_on_undefined(zero, self._program("vary").render(**inputs))
 
