@@ -23,6 +23,8 @@ the run) and gets one verdict:
 - match: every frame verifies (the verification/compare.py tolerance model, the same as the CLI);
 - mismatch: some frame does not; the reason names the frame, the over-tolerance and NaN/Inf
   pixel counts;
+- undefined: the frames that do not verify differ only where the shader reads a value GLSL
+  leaves undefined (verify's "undefined" verdict); the reason names the first such read;
 - does not compile: the GL driver rejects the shader (a GLSL error on Shadertoy's side too);
 - unsupported: the NumPy backend refuses it (texture lookups, a construct it does not
   transpile) or stops it (a loop bound);
@@ -147,7 +149,17 @@ def verify_one(path: str, size: tuple[int, int], times: list[float]) -> dict:
     bad = [(t, c) for t, c in frames if not c.match]
     if not bad:
         return {"verdict": "match", "reason": ""}
-    t, c = bad[0]
+    if all(c.verdict == "undefined" for _, c in bad):
+        t, c = bad[0]
+        u = c.undefined_lines[0] if c.undefined_lines else {}
+        return {
+            "verdict": "undefined",
+            "reason": (
+                f"{len(bad)}/{len(frames)} frames; t={t:g}: {c.undefined_pixels} pixels depend on "
+                f"{u.get('kind', 'an undefined read')} at line {u.get('line', '?')}"
+            ),
+        }
+    t, c = next((t, c) for t, c in bad if c.verdict == "mismatch")
     j = c.to_json()
     return {
         "verdict": "mismatch",
@@ -159,7 +171,7 @@ def verify_one(path: str, size: tuple[int, int], times: list[float]) -> dict:
     }
 
 
-ORDER = ("match", "mismatch", "does not compile", "unsupported", "timeout", "error")
+ORDER = ("match", "mismatch", "undefined", "does not compile", "unsupported", "timeout", "error")
 
 
 def run_child(cmd: list[str], timeout: float) -> dict:

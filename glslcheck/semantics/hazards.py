@@ -19,6 +19,10 @@ give different pixels; `check` warns (never errors) and `verify` may then report
   Buffer tab. A branch writes only when both arms do; a loop body may not run; a switch is
   taken as writing nothing unless the colour was written before it; an `out`/`inout`
   argument counts as a write of the whole colour; `discard` ends the path without a warning.
+* `undefined_read_warnings`: each read of a value GLSL leaves undefined that the analysis finds
+  (`analysis.undefined_reads`: an out parameter or a local read before it is written, integer
+  division by zero, out-of-range shifts and conversions, built-ins outside their domain on
+  constants), at the read.
 """
 
 from __future__ import annotations
@@ -27,6 +31,7 @@ import math
 
 from ..base.diagnostics import Diagnostic
 from ..frontend import syntax as A
+from .analysis.undefined import undefined_reads
 from .model import Symbol
 
 TYPE_CHECKING = False  # not typing's: importing typing costs every start-up
@@ -38,7 +43,7 @@ RULE = "undefined-behaviour"
 
 
 def hazard_warnings(model: Any) -> list[Diagnostic]:
-    """Both kinds of warning for a model without errors, in source order."""
+    """Every kind of warning for a model without errors (the caller sorts them)."""
     out: list[Diagnostic] = []
     for fn in model.reachable_functions():
         definition = fn.node
@@ -51,7 +56,14 @@ def hazard_warnings(model: Any) -> list[Diagnostic]:
         and isinstance(entry.node, A.FunctionDefinition)
     ):
         out += output_warnings(model, entry.node)
-    return out
+    return out + undefined_read_warnings(model)
+
+
+def undefined_read_warnings(model: Any) -> list[Diagnostic]:
+    return [
+        Diagnostic(u.message, u.loc, severity="warning", rule=RULE, help=u.help)
+        for u in undefined_reads(model)
+    ]
 
 
 # ---------------------------------------------------------------------------------------------

@@ -56,6 +56,14 @@ picture". The tolerance model, step by step (every number is argued where it is 
    `"verdict"`; `"match"` stays true). A pixel where only the NumPy render strays from the
    reference is still a mismatch: a transpiler bug cannot hide here.
 
+8. **Undefined pixels** (with `undefined`, a mask `verify` makes when the program reads a value
+   GLSL leaves undefined: `semantics.analysis.undefined`): an over-tolerance pixel whose NumPy
+   colour itself changes when the undefined values change (`depends_on_undefined`) is the
+   shader's undefined behaviour, not a renderer's fault: it is counted in `undefined_pixels`,
+   left out of every other count, and `undefined_lines` names the reads. When such pixels are
+   the only difference the verdict is "undefined" (`"match"` false: the renders differ, and
+   the shader is at fault).
+
 Metrics (`max_abs_error`, `mean_abs_error`, `psnr_db`) are over the clamped RGB values. Where
 the differences lie is kept too: the bounding box of over-tolerance pixels and the worst pixels,
 each in image space (x, y from the top-left, as in the PNG) and in fragCoord space (pixel
@@ -90,6 +98,8 @@ JSON_KEYS = (
     "nan_gl",
     "unstable_pixels",
     "unstable_lines",
+    "undefined_pixels",
+    "undefined_lines",
     "driver",
 )
 
@@ -108,7 +118,7 @@ class PixelDiff:
     numpy: tuple[float, ...]
     gl: tuple[float, ...]
     error: float
-    kind: str  # "mismatch" | "edge" | "nan"
+    kind: str  # "mismatch" | "edge" | "nan" | "undefined"
 
 
 @dataclass(eq=False)
@@ -144,17 +154,27 @@ class Comparison:
     # [{"file", "line", "code", "bits", "pixels"}]: the statements where the unstable pixels
     # lose their precision, filled in by verify.unstable_lines (glslcheck probe's tracing).
     unstable_lines: list = field(default_factory=list)
+    # Undefined pixels (step 8): over tolerance, and their colour depends on a value GLSL
+    # leaves undefined; [{"file", "line", "column", "code", "kind", "pixels"}] names the reads
+    # (filled in by verify.undefined_side).
+    undefined_pixels: int = 0
+    undefined_mask: np.ndarray | None = field(default=None, repr=False)
+    undefined_lines: list = field(default_factory=list)
     # {"renderer", "mesa", "emulated"} of the GL side, set by verify (None: not a GL driver);
     # "emulated" is false when the NumPy backend's bit-exact emulation was not copied from it
     # (glslcheck/backends/driver_profile.py): a difference may then be the driver's.
     driver: dict | None = None
 
+    # set by compare: the frame matches once undefined pixels are set apart (step 8)
+    rest_matches: bool = True
+
     @property
     def verdict(self) -> str:
-        """ "match", "match-unstable" (a match only once unstable pixels are set apart) or
+        """ "match", "match-unstable" (a match only once unstable pixels are set apart),
+        "undefined" (the only differences are pixels that depend on undefined values) or
         "mismatch"."""
         if not self.match:
-            return "mismatch"
+            return "undefined" if self.undefined_pixels and self.rest_matches else "mismatch"
         return "match-unstable" if self.unstable_pixels else "match"
 
     def to_json(self) -> dict:
@@ -172,6 +192,8 @@ class Comparison:
             "nan_gl": int(self.nan_gl),
             "unstable_pixels": int(self.unstable_pixels),
             "unstable_lines": list(self.unstable_lines),
+            "undefined_pixels": int(self.undefined_pixels),
+            "undefined_lines": list(self.undefined_lines),
             "driver": dict(self.driver) if self.driver is not None else None,
         }
 
@@ -180,7 +202,9 @@ class Comparison:
 
     def summary(self) -> str:
         """One human line: verdict, counts against budgets, and where the worst pixel is."""
-        verdict = "match" if self.match else "MISMATCH"
+        verdict = {"match": "match", "match-unstable": "match", "undefined": "UNDEFINED"}.get(
+            self.verdict, "MISMATCH"
+        )
         psnr = "inf" if math.isinf(self.psnr_db) else f"{self.psnr_db:.1f}"
         text = (
             f"{verdict}: max abs error {self.max_abs_error:.4g}, PSNR {psnr} dB, "
@@ -188,6 +212,8 @@ class Comparison:
             f"{self.edge_pixels} edge (budget {int(self.edge_budget)}), "
             f"NaN/Inf numpy {self.nan_numpy} gl {self.nan_gl}"
         )
+        if self.undefined_pixels:
+            text += f", {self.undefined_pixels} undefined in the shader"
         if self.worst:
             w = self.worst[0]
             text += (
@@ -237,10 +263,12 @@ def compare(
     edge_fraction: float = DEFAULT_EDGE_FRACTION,
     include_alpha: bool = False,
     reference: np.ndarray | None = None,
+    undefined: np.ndarray | None = None,
 ) -> Comparison:
     """Compare two renders of one shader (float (h, w, 3|4), top row first) by the module's model.
 
-    `reference` (the float64 render of the same frame) enables step 7: unstable pixels."""
+    `reference` (the float64 render of the same frame) enables step 7: unstable pixels;
+    `undefined` (bool (h, w): pixels whose colour depends on an undefined value) step 8."""
     a, b = _as_float(numpy_img), _as_float(gl_img)
     if a.shape[:2] != b.shape[:2]:
         raise ValueError(
@@ -309,12 +337,24 @@ def compare(
         nan_mask = nan_mask & ~unstable
         edge_mask &= ~unstable
 
+    # Step 8: pixels whose colour depends on a value GLSL leaves undefined: the shader's fault,
+    # whatever else they are.
+    undef = np.zeros((height, width), dtype=bool)
+    if undefined is not None:
+        undef = over & np.asarray(undefined, dtype=bool)
+        mismatch_mask &= ~undef
+        nan_mask = nan_mask & ~undef
+        edge_mask &= ~undef
+        unstable &= ~undef
+
     mismatched = int(mismatch_mask.sum())
     edges = int(edge_mask.sum())
     nan_mismatched = int(nan_mask.sum())
     mismatch_budget = (1.0 - min_fraction) * pixels
     edge_budget = edge_fraction * pixels
-    match = mismatched <= mismatch_budget and edges <= edge_budget and nan_mismatched == 0
+    rest_matches = mismatched <= mismatch_budget and edges <= edge_budget and nan_mismatched == 0
+    # an undefined pixel is a difference (the renders disagree there): no match with any
+    match = rest_matches and not undef.any()
 
     mse = float(np.mean(diff**2)) if diff.size else 0.0
     psnr = math.inf if mse == 0.0 else 10.0 * math.log10(1.0 / mse)
@@ -340,7 +380,7 @@ def compare(
         nan_mismatched_pixels=nan_mismatched,
         max_abs_error_unclamped=unclamped,
         bbox=bbox,
-        worst=_worst_pixels(a, b, error_map, over, edge_mask, nan_mask),
+        worst=_worst_pixels(a, b, error_map, over, edge_mask, nan_mask, undef),
         abs_tol=abs_tol,
         mismatch_budget=mismatch_budget,
         edge_budget=edge_budget,
@@ -349,11 +389,29 @@ def compare(
         nan_mask=nan_mask,
         unstable_pixels=int(unstable.sum()),
         unstable_mask=unstable,
+        undefined_pixels=int(undef.sum()),
+        undefined_mask=undef,
+        rest_matches=bool(rest_matches),
     )
 
 
+def depends_on_undefined(
+    zero: np.ndarray, varied: np.ndarray, abs_tol: float = DEFAULT_ABS_TOL
+) -> np.ndarray:
+    """bool (h, w): the pixels whose RGB differs between two renders of one program that differ
+    only in the values of its undefined reads (WebGL's zeros, and values drawn anew: the NumPy
+    backend's undefined="vary"), by the tolerance of step 4 or in being finite. Such a pixel
+    depends on the undefined values: a witness, never a guess (nothing else changed between
+    the renders); a pixel both values happen to colour alike is not found."""
+    a, b = _as_float(zero)[..., :3], _as_float(varied)[..., :3]
+    with np.errstate(invalid="ignore"):
+        special = np.isfinite(a) != np.isfinite(b)
+        special |= ~np.isfinite(a) & ~np.isfinite(b) & ~((np.isnan(a) & np.isnan(b)) | (a == b))
+    return ((np.abs(_display(a) - _display(b)) > abs_tol) | special).any(axis=-1)
+
+
 def _worst_pixels(
-    a, b, error_map, over, edge_mask, nan_mask, count: int = WORST_PIXELS
+    a, b, error_map, over, edge_mask, nan_mask, undef, count: int = WORST_PIXELS
 ) -> list[PixelDiff]:
     """The over-tolerance pixels with the largest error, worst first (NaN mismatches first of all)."""
     ys, xs = np.nonzero(over)
@@ -365,7 +423,15 @@ def _worst_pixels(
     out = []
     for i in order:
         y, x = int(ys[i]), int(xs[i])
-        kind = "nan" if nan_mask[y, x] else "edge" if edge_mask[y, x] else "mismatch"
+        kind = (
+            "undefined"
+            if undef[y, x]
+            else "nan"
+            if nan_mask[y, x]
+            else "edge"
+            if edge_mask[y, x]
+            else "mismatch"
+        )
         out.append(
             PixelDiff(
                 x=x,

@@ -14,6 +14,10 @@ times with the same inputs (NumPy, WebGL, GL):
   real driver). Everywhere else the model is unchanged, so a NumPy bug still fails: a wrong
   value matches neither driver.
 - `plain` is NumPy against WebGL alone, kept for the numbers.
+- A frame that fails in a program that reads undefined values sets apart, in the verdict and
+  in `plain`, the pixels whose NumPy colour changes with those values (verify.UndefinedSide):
+  WebGL zero-initialises variables as the NumPy renderer does, but an operation on constants
+  outside its range is each driver's own.
 """
 
 from __future__ import annotations
@@ -24,7 +28,15 @@ from dataclasses import dataclass
 import numpy as np
 
 from .compare import Comparison, compare
-from .verify import FrameResult, _as_shader, _Pair, compile_backend, emulate_driver, frame_specs
+from .verify import (
+    FrameResult,
+    UndefinedSide,
+    _as_shader,
+    _Pair,
+    compile_backend,
+    emulate_driver,
+    frame_specs,
+)
 
 
 @dataclass(eq=False)
@@ -62,16 +74,20 @@ def closest_driver(
 
 
 def driver_verdict(
-    numpy_img, webgl_img, gl_img, **compare_options
+    numpy_img, webgl_img, gl_img, undefined=None, **compare_options
 ) -> tuple[Comparison, Comparison, Comparison]:
-    """(verdict, plain, drivers) for one frame; see the module docstring."""
+    """(verdict, plain, drivers) for one frame; see the module docstring. `undefined`: the
+    pixels that depend on undefined values (compare's step 8), set apart in verdict and plain."""
     drivers = compare(gl_img, webgl_img, **compare_options)
-    plain = compare(numpy_img, webgl_img, **compare_options)
+    plain = compare(numpy_img, webgl_img, undefined=undefined, **compare_options)
     mask = drivers.error_map > drivers.abs_tol
     if not mask.any() or plain.match:
         return plain, plain, drivers
     verdict = compare(
-        numpy_img, closest_driver(numpy_img, webgl_img, gl_img, mask), **compare_options
+        numpy_img,
+        closest_driver(numpy_img, webgl_img, gl_img, mask),
+        undefined=undefined,
+        **compare_options,
     )
     return verdict, plain, drivers
 
@@ -108,14 +124,25 @@ def verify_against_webgl(
         programs = (compile_backend(shader, "numpy"), webgl, gl)
     emulate_driver([programs[0], programs[2]])  # the NumPy side copies the measured GL driver
     pair = _Pair(programs)
+    undefined = UndefinedSide(shader, programs, numpy_under_test=True)
     name = shader.root or (shader.image.path if shader.image else "<shader>")
     options = compare_options or {}
     for w_h in [tuple(s) for s in (sizes or [size])]:
         for spec in specs:
-            numpy_img, webgl_img, gl_img = pair.render(
-                spec, w_h, tuple(mouse), date, precision, samples
-            )
+            with undefined.explains_stops():
+                numpy_img, webgl_img, gl_img = pair.render(
+                    spec, w_h, tuple(mouse), date, precision, samples
+                )
             verdict, plain, drivers = driver_verdict(numpy_img, webgl_img, gl_img, **options)
+            if not verdict.match:
+                inputs = pair.inputs(spec, w_h, tuple(mouse), date, precision, samples)
+                mask = undefined.mask(inputs, numpy_img)
+                if mask is not None:
+                    verdict, plain, drivers = driver_verdict(
+                        numpy_img, webgl_img, gl_img, undefined=mask, **options
+                    )
+                    if verdict.undefined_pixels:
+                        verdict.undefined_lines = undefined.lines(inputs, verdict.undefined_mask)
             if progress is not None:
                 progress.step(f"{name} t={spec.time:g}")
             kept = (numpy_img, webgl_img, gl_img) if keep_images else (None, None, None)

@@ -27,6 +27,7 @@ import math
 import os
 import threading
 from collections.abc import Iterator
+from contextlib import contextmanager
 from dataclasses import dataclass, field
 from typing import Any
 
@@ -41,7 +42,8 @@ from ..backends.numpy_engine.tracing import (
     Site,
     TraceTranspiler,
 )
-from ..base.diagnostics import InputError, source_line
+from ..base.diagnostics import GlslError, InputError, source_line
+from ..semantics.analysis import STOPS, stop_notes, undefined_reads
 
 UNSTABLE_BITS = 16  # first_unstable: a value keeping fewer bits than this has lost more than a third of float32's 24
 BITS_KINDS = ("assign", "return", "call")  # the steps whose values are compared with their shadow
@@ -85,6 +87,8 @@ class Step:
     depth: int = 0
     what: str = ""  # loop markers: start, iteration, end
     count: int = 0
+    why: str = ""  # an undefined value's step: the kind of read (semantics.analysis.undefined)
+    read_line: int = 0  # ... and the line it is read at
 
     def to_json(self) -> dict:
         return {
@@ -96,6 +100,7 @@ class Step:
             "value": to_py(self.value, True),
             "value64": to_py(self.value64, False),
             "bits": self.bits,
+            **({"undefined": self.why, "read_line": self.read_line} if self.why else {}),
         }
 
 
@@ -112,6 +117,8 @@ class Origin:
     source: str = ""  # the whole source line
     pixels: int = 0
     box: tuple[int, int, int, int] = (0, 0, 0, 0)
+    # of `pixels`, those whose colour changes with the shader's undefined values (--nan)
+    undefined_pixels: int = 0
 
     @property
     def help(self) -> str:
@@ -126,7 +133,9 @@ class Origin:
             "operation": self.operation,
         }
         if with_pixels:
-            out.update(pixels=self.pixels, box=list(self.box))
+            out.update(
+                pixels=self.pixels, box=list(self.box), undefined_pixels=self.undefined_pixels
+            )
         return out
 
 
@@ -154,12 +163,16 @@ class NanReport:
     nan_pixels: int
     inf_pixels: int
     origins: list[Origin] = field(default_factory=list)
+    # the program's undefined reads when some NaN/Inf pixel depends on them:
+    # {"file", "line", "column", "kind"} (semantics.analysis.undefined)
+    undefined_reads: list[dict] = field(default_factory=list)
 
     def to_json(self) -> dict:
         return {
             "nan_pixels": self.nan_pixels,
             "inf_pixels": self.inf_pixels,
             "origins": [o.to_json() for o in self.origins],
+            "undefined_reads": list(self.undefined_reads),
         }
 
 
@@ -251,13 +264,52 @@ class Probe:
                 )
             S.budget = Budget(frame_seconds()).start()  # a runaway trace stops as a frame does
             try:
-                color = ns["shade"](S)
+                with self.undefined_notes():
+                    color = ns["shade"](S)
             finally:
                 S.budget.finish()
             color = np.broadcast_to(color, (len(color), lanes)).astype(np.float64)
             if len(color) == 3:
                 color = np.concatenate([color, np.ones((1, lanes))])
             return np.where(np.broadcast_to(S.discard, (lanes,)), 0.0, color)
+
+    def undefined_mask(self, inputs: Inputs, image: np.ndarray) -> np.ndarray | None:
+        """bool (h, w): the pixels of `image` (this frame's render) whose colour changes when
+        the shader's undefined values do (verify's taint: the module that draws them anew,
+        compare.depends_on_undefined); None when the program has no undefined reads."""
+        from ..semantics.analysis import origins
+
+        found = list(origins(self.model).values())
+        if not found:
+            return None
+        from ..backends.numpy_engine.program import NumpyProgram
+        from ..backends.numpy_engine.transpile import transpile
+        from .compare import depends_on_undefined
+
+        t = transpile(self.model, self.path, undefined="vary")
+        varied = NumpyProgram(t.source, t.meta, t.filename).render(
+            size=inputs.size,
+            time=inputs.time,
+            frame=inputs.frame,
+            mouse=inputs.mouse,
+            date=inputs.date,
+        )
+        self.undefined_found = found
+        return depends_on_undefined(image, varied)
+
+    @contextmanager
+    def undefined_notes(self) -> Iterator[None]:
+        """A loop that never ends (or a frame over its budget) in a program that reads undefined
+        values: its error also names those reads, which may be why (a `while (true)` waiting
+        for a random point whose seed is an out parameter ends on one driver, not with zeros)."""
+        try:
+            yield
+        except GlslError as e:
+            reads = undefined_reads(self.model)
+            for d in e.diagnostics:
+                if d.rule in STOPS and reads:
+                    d.notes.extend(stop_notes(reads, d.rule))
+            raise
 
     # -- one pixel -------------------------------------------------------------------------------
     def pixel(
@@ -363,6 +415,8 @@ class Probe:
                     r.depth,
                     r.what,
                     r.count,
+                    s.why,
+                    s.read_line,
                 )
             )
         return steps
@@ -375,19 +429,21 @@ class Probe:
         from ..backends.numpy_engine.tiles import TILE_LANES
 
         w, h = inputs.size
-        img = self.program().render(
-            size=inputs.size,
-            time=inputs.time,
-            frame=inputs.frame,
-            mouse=inputs.mouse,
-            date=inputs.date,
-        )
+        with self.undefined_notes():
+            img = self.program().render(
+                size=inputs.size,
+                time=inputs.time,
+                frame=inputs.frame,
+                mouse=inputs.mouse,
+                date=inputs.date,
+            )
         nan = np.isnan(img).any(axis=-1)
         inf = np.isinf(img).any(axis=-1) & ~nan
         report = NanReport(int(nan.sum()), int(inf.sum()))
         ys, xs = np.nonzero(nan | inf)  # rows from the top
         if not len(xs):
             return report
+        undefined = self.undefined_mask(inputs, img)
         fx, fy = xs.astype(np.int64), (h - 1 - ys).astype(np.int64)
         if self.meta.get("uses_derivatives"):  # whole quads, stacked in a 2-wide strip
             quads = np.unique(np.stack([fy & ~1, fx & ~1], axis=1), axis=0)
@@ -434,8 +490,15 @@ class Probe:
                 org = Origin(None, None, None, "", "unknown (no traced operation made it)")
             org.pixels = int(m.sum())
             org.box = (int(xs[m].min()), int(ys[m].min()), int(xs[m].max()), int(ys[m].max()))
+            if undefined is not None:
+                org.undefined_pixels = int(undefined[ys[m], xs[m]].sum())
             report.origins.append(org)
         report.origins.sort(key=lambda o: (-o.pixels, o.file or "", o.line or 0, o.column or 0))
+        if any(o.undefined_pixels for o in report.origins):
+            report.undefined_reads = [
+                {"file": u.loc.path, "line": u.loc.line, "column": u.loc.column, "kind": u.kind}
+                for u in self.undefined_found
+            ]
         return report
 
 
@@ -750,7 +813,26 @@ def _describe(s: Step) -> str:
         return s.name
     if s.kind == "discard":
         return "discard: the pixel is dropped"
+    if s.kind == "undefined":
+        what = UNDEFINED_ENTRIES.get(s.why, "a value GLSL leaves undefined")
+        return (
+            f"{s.name} = {fmt(s.value)}: UNDEFINED in the shader, {what} (read at line "
+            f"{s.read_line}); this render gives it WebGL's value, a GPU may give it any: "
+            "what follows from it depends on the driver (`glslcheck check` warns at the read)"
+        )
     return s.name
+
+
+# what enters at an undefined value's site (Step.why: semantics.analysis.undefined's kinds)
+UNDEFINED_ENTRIES = {
+    "out-parameter": "an out parameter's value on entry",
+    "out-parameter-unwritten": "an out parameter a path returns without writing",
+    "uninitialized-local": "a local declared without an initializer",
+    "division-by-zero": "an integer division by zero",
+    "shift-out-of-range": "a shift out of range",
+    "conversion-out-of-range": "a conversion out of range",
+    "domain": "a built-in outside its domain",
+}
 
 
 def _format_steps(steps: list[Step], i: int, j: int, out: list[str], last: list, nest: int) -> None:
@@ -846,6 +928,17 @@ def format_nan(report: NanReport, shader: str, inputs: Inputs) -> str:
             )
         if o.help:
             out.append(f"  help: {o.help}")
+        if o.undefined_pixels:
+            out.append(
+                f"  note: {o.undefined_pixels} of these pixels change when the shader's "
+                "undefined values do: that NaN/Inf is the shader's undefined behaviour (below)"
+            )
+    for u in report.undefined_reads[:4]:
+        what = UNDEFINED_ENTRIES.get(u["kind"], "a value GLSL leaves undefined")
+        out.append(
+            f"{_short(u['file'])}:{u['line']}:{u['column']}: note: undefined in the shader: {what} "
+            "(`glslcheck check` says more)"
+        )
     if not report.origins:
         out.append("no pixel is NaN or Inf")
     return "\n".join(out)

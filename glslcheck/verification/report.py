@@ -253,7 +253,7 @@ def gather(
     NaN origins (when a render has NaN/Inf pixels) and, unless `bench` is None, the bench at
     that size."""
     from .drivers import driver_verdict
-    from .verify import FrameSpec, _Pair, compile_backend, emulate_driver
+    from .verify import FrameSpec, UndefinedSide, _Pair, compile_backend, emulate_driver
 
     ready = ready if ready is not None else {b: _backend_ready(b) for b in backends}
     name = shader.root or (shader.image.path if shader.image else "<shader>")
@@ -300,7 +300,18 @@ def gather(
             )
             report.pairs.append((a, b, verdict, note))
         else:
-            report.pairs.append((a, b, compare(r[a], r[b]), ""))
+            c = compare(r[a], r[b])
+            if not c.match and a == registry.DEFAULT:
+                # pixels that depend on the shader's undefined reads (verify.UndefinedSide)
+                pair = _Pair([programs[a], programs[b]])
+                side = UndefinedSide(shader, pair.programs, numpy_under_test=True)
+                inputs = pair.inputs(spec, tuple(size), (0.0, 0.0, 0.0, 0.0), None, "float32", 1)
+                undefined = side.mask(inputs, r[a])
+                if undefined is not None:
+                    c = compare(r[a], r[b], undefined=undefined)
+                    if c.undefined_pixels:
+                        c.undefined_lines = side.lines(inputs, c.undefined_mask)
+            report.pairs.append((a, b, c, ""))
     _nan_origins(report, size, time)
     if bench is not None and r:
         _bench(report, bench, bench_runs, time)
@@ -366,6 +377,13 @@ def _anchor(name: str) -> str:
 
 def _badge(ok: bool, yes: str = "match", no: str = "MISMATCH") -> str:
     return f'<span class="badge {"ok" if ok else "bad"}">{yes if ok else no}</span>'
+
+
+def _pair_badge(c: Comparison) -> str:
+    """The badge of the renderer under test against a driver."""
+    if c.verdict == "undefined":
+        return '<span class="badge warn">undefined in the shader</span>'
+    return _badge(c.match)
 
 
 def _num(v: float) -> str:
@@ -527,6 +545,12 @@ def _pair_table(a: str, b: str, c: Comparison) -> str:
         ("edge pixels", f"{c.edge_pixels} (budget {int(c.edge_budget)})"),
         ("NaN/Inf pixels", f"{a} {c.nan_numpy}, {b} {c.nan_gl}"),
     ]
+    if c.undefined_pixels:
+        rows.append(("undefined pixels", f"{c.undefined_pixels} (not counted)"))
+        rows += [
+            (f"undefined read, line {u['line']}", f"{u['kind']}: {u['pixels']} pixels")
+            for u in c.undefined_lines[:3]
+        ]
     return (
         "<table>"
         + "".join(f'<tr><td>{k}</td><td class="num">{_e(v)}</td></tr>' for k, v in rows)
@@ -582,7 +606,7 @@ def _section(
         figs = []
         for a, b, c, note in r.pairs:
             badge = (
-                _badge(c.match)
+                _pair_badge(c)
                 if a == registry.DEFAULT
                 else (
                     '<span class="badge ok">drivers agree</span>'
@@ -633,7 +657,7 @@ def page_html(
         for r in reports:
             verdicts = (
                 " ".join(
-                    f"{a}/{b} {_badge(c.match)}" for a, b, c, _ in r.pairs if a == registry.DEFAULT
+                    f"{a}/{b} {_pair_badge(c)}" for a, b, c, _ in r.pairs if a == registry.DEFAULT
                 )
                 or "-"
             )

@@ -36,6 +36,7 @@ import os
 import sys
 from collections import abc
 from collections.abc import Iterator, Sequence
+from contextlib import contextmanager
 from dataclasses import dataclass
 from pathlib import Path
 
@@ -47,7 +48,7 @@ from ..base.precision import check_precision
 from ..semantics.mediump import mediump_notes
 from ..shadertoy.sources import Shader, load_shader
 from ..shadertoy.wrapper import DEFAULT_SIZE
-from .compare import Comparison, compare
+from .compare import Comparison, compare, depends_on_undefined
 
 BACKENDS = ("numpy", "gl")  # the default pair: the side under test, then its reference
 DEFAULT_FPS = 60.0
@@ -162,6 +163,21 @@ class _Pair:
                 common = a if common is None else common & a
         self._common = common
         self._accepted = accepted
+
+    def inputs(self, spec: FrameSpec, size, mouse, date, precision, samples) -> dict:
+        """The keyword arguments a NumPy program renders this frame with, as the pair's."""
+        shared = {
+            "size": size,
+            "time": spec.time,
+            "frame": spec.frame,
+            "mouse": mouse,
+            "date": date,
+            "samples": samples,
+            "time_delta": spec.time_delta,
+            "frame_rate": spec.frame_rate,
+        }
+        kwargs = {k: v for k, v in shared.items() if self._common is None or k in self._common}
+        return {**kwargs, "precision": precision}
 
     def render(
         self, spec: FrameSpec, size, mouse, date, precision, samples, only_first: bool = False
@@ -285,20 +301,37 @@ def verify_frames(
     mediump = (
         mediump_notes(shader) if any("float16" in r.precisions for r in records.values()) else ()
     )
+    undefined = UndefinedSide(shader, programs, records[backends[0]].name == "numpy")
     for w_h in size_list:
         for spec in specs:
-            numpy_img, gl_img = pair.render(spec, w_h, tuple(mouse), date, precision, samples)
+            with undefined.explains_stops():
+                numpy_img, gl_img = pair.render(spec, w_h, tuple(mouse), date, precision, samples)
             comparison = compare(numpy_img, gl_img, **(compare_options or {}))
-            if not comparison.match and precision == "float32":
-                # unstable pixels: only worth a float64 render when the frame fails (verification/compare.py)
-                ref = pair.reference(spec, w_h, tuple(mouse), date, samples)
-                if ref is not None:
+            if not comparison.match:
+                # unstable pixels: only worth a float64 render when the frame fails
+                # (verification/compare.py), and the taint of undefined values likewise
+                ref = (
+                    pair.reference(spec, w_h, tuple(mouse), date, samples)
+                    if precision == "float32"
+                    else None
+                )
+                render = pair.inputs(spec, w_h, tuple(mouse), date, precision, samples)
+                undef = undefined.mask(render, numpy_img)
+                if ref is not None or undef is not None:
                     comparison = compare(
-                        numpy_img, gl_img, reference=ref, **(compare_options or {})
+                        numpy_img,
+                        gl_img,
+                        reference=ref,
+                        undefined=undef,
+                        **(compare_options or {}),
                     )
                     if comparison.unstable_pixels:
                         comparison.unstable_lines = unstable_lines(
                             shader, comparison, w_h, spec, tuple(mouse), date
+                        )
+                    if comparison.undefined_pixels:
+                        comparison.undefined_lines = undefined.lines(
+                            render, comparison.undefined_mask
                         )
             if progress is not None:
                 progress.step(f"{name} t={spec.time:g}")
@@ -322,6 +355,134 @@ def verify_frames(
                 gl_img if keep_images else None,
                 notes,
             )
+
+
+class UndefinedSide:
+    """Which pixels of a frame depend on the shader's undefined reads (semantics.analysis.undefined:
+    out parameters and locals read before written, operations on constants outside their
+    range), and which reads. The taint is differential: the NumPy backend renders the frame with
+    WebGL's values at those reads (zeros, its normal module) and with values drawn anew at each
+    (`undefined="vary"`, backends/numpy_engine/transpile); a pixel whose colour differs between
+    the two depends on an undefined value (compare.depends_on_undefined). Nothing else differs
+    between the renders, so a pixel found is certain; a pixel both values colour alike is left
+    to the other counts, which keeps a renderer's bug from hiding here. With several reads, each
+    of the first MAX_SITES gets a render of its own that varies it alone: the pixels it
+    changes are its count in `lines`.
+
+    Renders happen only for a frame that fails and a program with undefined reads; a shader of
+    several passes (buffers, channels) is not tainted: its undefined pixels stay mismatches."""
+
+    MAX_SITES = 4
+
+    def __init__(self, shader: Shader, programs: Sequence, numpy_under_test: bool) -> None:
+        self.shader = shader
+        self._found: list | None = None  # the reads, found when a frame first fails
+        self._programs: dict = {}
+        self._numpy_under_test = numpy_under_test  # its render is the zeros' render
+        # the NumPy renders stop loops where the program under test does (llvmpipe's limit
+        # against GL, none against WebGL), so that only the undefined values differ
+        under_test = getattr(programs[0], "impl", programs[0])
+        self._loop_limit = getattr(under_test, "loop_limit", LLVMPIPE_LOOP_LIMIT)
+        self._float_to_uint = next(
+            (
+                p.meta["float_to_uint"]
+                for p in (getattr(q, "impl", q) for q in programs)
+                if isinstance(getattr(p, "meta", None), dict) and "float_to_uint" in p.meta
+            ),
+            None,
+        )
+
+    @property
+    def sites(self) -> list:
+        """The program's undefined reads, one per origin (semantics.analysis.origins), in
+        source order; none for a shader of several passes."""
+        if self._found is None:
+            from ..frontend.parser import parse_shader
+            from ..semantics import check
+            from ..semantics.analysis import origins
+            from ..shadertoy.channels import needs_passes
+
+            self._found = []
+            shader = self.shader
+            tab = (
+                "Image"
+                if "Image" in shader.tabs
+                else ("GLSL" if "GLSL" in shader.tabs else "Image")
+            )
+            if not needs_passes(shader):
+                try:
+                    self._found = list(origins(check(parse_shader(shader, tab))).values())
+                except GlslError:
+                    pass
+        return self._found
+
+    @contextmanager
+    def explains_stops(self) -> Iterator[None]:
+        """A render stopped by a runaway loop or the frame budget: its error also names the
+        program's undefined reads (semantics.analysis.stop_notes), which may be why."""
+        from ..semantics.analysis import STOPS, stop_notes
+
+        try:
+            yield
+        except GlslError as e:
+            for d in e.diagnostics:
+                if d.rule in STOPS and self.sites:
+                    d.notes.extend(stop_notes(self.sites, d.rule))
+            raise
+
+    def _program(self, mode: str, sites: tuple[int, ...] | None = None):
+        key = (mode, sites)
+        prog = self._programs.get(key)
+        if prog is None:
+            from ..backends.numpy_engine.program import compile_numpy
+
+            prog = compile_numpy(self.shader, undefined=mode, undefined_sites=sites)
+            prog.loop_limit = self._loop_limit
+            if self._float_to_uint is not None:
+                prog.emulate_float_to_uint(self._float_to_uint)
+            self._programs[key] = prog
+        return prog
+
+    def mask(self, inputs: dict, image: np.ndarray) -> np.ndarray | None:
+        """bool (h, w) of the pixels that depend on an undefined read (None: no reads to taint).
+        `image` is the render under test, used as the zeros' render when it is the NumPy one."""
+        if not self.sites:
+            return None
+        zero = image if self._numpy_under_test else self._program("zero").render(**inputs)
+        self._zero = zero
+        return depends_on_undefined(zero, self._program("vary").render(**inputs))
+
+    def lines(self, inputs: dict, undefined: np.ndarray) -> list[dict]:
+        """{"file", "line", "column", "code", "kind", "pixels"} of each undefined read whose
+        variation changes some of the `undefined` pixels (the over-tolerance ones), most pixels
+        first; "pixels" is null for the reads past MAX_SITES (not rendered apart)."""
+        from ..base.diagnostics import source_line
+
+        counts: list[int | None] = []
+        if len(self.sites) == 1:
+            counts = [int(undefined.sum())]
+        else:
+            for k in range(len(self.sites)):
+                if k >= self.MAX_SITES:
+                    counts.append(None)
+                    continue
+                alone = self._program("vary", (k,)).render(**inputs)
+                counts.append(int((depends_on_undefined(self._zero, alone) & undefined).sum()))
+        out = []
+        for u, n in zip(self.sites, counts):
+            if n == 0:
+                continue
+            out.append(
+                {
+                    "file": u.loc.path,
+                    "line": u.loc.line,
+                    "column": u.loc.column,
+                    "code": (source_line(u.loc.path, u.loc.line) or "").strip(),
+                    "kind": u.kind,
+                    "pixels": n,
+                }
+            )
+        return sorted(out, key=lambda d: (-(d["pixels"] or 0), d["file"], d["line"]))
 
 
 UNSTABLE_PROBES = 24  # unstable pixels traced per frame to name the lines that lose precision

@@ -126,6 +126,8 @@ def test_json_keys_are_exact():
             "nan_gl",
             "unstable_pixels",
             "unstable_lines",
+            "undefined_pixels",
+            "undefined_lines",
             "driver",
         )
     )

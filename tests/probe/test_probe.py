@@ -455,8 +455,10 @@ def test_cli_nan_json_and_exit_codes(tmp_path, capsys):
                 "operation": "normalize of a zero vector",
                 "pixels": 1,
                 "box": [4, 4, 4, 4],
+                "undefined_pixels": 0,
             }
         ],
+        "undefined_reads": [],
     }
     fixed = write_shader(
         tmp_path, NORMALIZE_ZERO.replace("vec3(p, 0.0)", "vec3(p, 1.0)"), "Fixed.glsl"

@@ -546,9 +546,16 @@ class NumpyProgram:
         return "\n".join(rows)
 
 
-def compile_numpy(shader, tab: str | None = None) -> NumpyProgram:
-    """Parse, check and transpile a shader's Image tab (or plain GLSL file, or Buffer `tab`)."""
-    t = transpile_shader(shader, tab)
+def compile_numpy(
+    shader,
+    tab: str | None = None,
+    undefined: str = "zero",
+    undefined_sites: tuple[int, ...] | None = None,
+) -> NumpyProgram:
+    """Parse, check and transpile a shader's Image tab (or plain GLSL file, or Buffer `tab`);
+    `undefined="vary"` draws a new value at each undefined read (of the origins
+    `undefined_sites` only, when given: transpile.Transpiler)."""
+    t = transpile_shader(shader, tab, undefined=undefined, undefined_sites=undefined_sites)
     prog = NumpyProgram(t.source, t.meta, t.filename, _code=t.code)
     prog.module("float32")  # a broken module fails here, not in the middle of a render
     return prog

@@ -319,6 +319,29 @@ class LaneHelpers:
             )
         )
 
+    # undefined values ---------------------------------------------------------------------------
+    # The value a module transpiled with undefined="vary" gives an undefined read: the n-th drawn
+    # in the tile (counted on its uncompacted state, so the same tile draws the same values),
+    # spread over (0.1, 0.9) for floats by the golden ratio's multiples, 1..7 for integers, true
+    # for bools: never zero or false, WebGL's value, and different from one draw to the next, as
+    # a register's leftover is, so a loop waiting for a random point inside a sphere ends.
+    GOLDEN = 0.6180339887498949
+
+    def undefined(self, S, zero):
+        root = S
+        while root.__dict__.get("parent") is not None:
+            root = root.parent
+        n = root.__dict__.get("undefined_draws", 0) + 1
+        root.undefined_draws = n
+        f = 0.1 + 0.8 * ((n * self.GOLDEN) % 1.0)
+        return self._filled(zero, f, 1 + n % 7)
+
+    def _filled(self, zero, f: float, i: int):
+        if hasattr(zero, "map"):  # a struct (runtime_values.Struct): each field
+            return zero.map(lambda v: self._filled(v, f, i))
+        kind = zero.dtype.kind
+        return np.full_like(zero, f if kind == "f" else (True if kind == "b" else i))
+
     # compaction -------------------------------------------------------------------------------
     @staticmethod
     def sparse(S, m, fraction: float | None = None):

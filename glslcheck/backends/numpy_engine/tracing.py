@@ -11,6 +11,10 @@ puts in the module's namespace before a run (`ns["T"] = tracer`):
     T.le / T.li / T.lx(S, site, mask)        a loop starts, one of its iterations starts, it ends
     T.call(S, site, mask, f, call_mask, *args) -> f(S, call_mask, *args)   a user function call
     T.o(S, site, mask, fn, *args) -> fn(*args)   a float operator or built-in that can make NaN/Inf
+    T.u(S, site, mask, value) -> value       an undefined value enters (semantics.analysis.undefined:
+                                             an out parameter or a local that is read before it is
+                                             written, at its declaration; an operation on constants
+                                             outside its range); value: what this render gives it
 
 `site` indexes `TraceTranspiler.sites` (file, line, column, source line, kind, name). The normal
 module (`transpile.transpile`) has none of this and is not changed by it; the only difference in
@@ -44,6 +48,7 @@ import numpy as np
 from ...base.diagnostics import source_line
 from ...frontend import syntax as A
 from ...frontend.printer import to_glsl
+from ...semantics.analysis import origins
 from .runtime_values import Struct
 from .transpile import Transpiler
 
@@ -105,6 +110,8 @@ class Site:
     function: str = ""
     params: tuple[str, ...] = ()  # a call's in and inout parameters, in order
     loop_step: bool = False  # the step of a for loop (run unmasked for an induction variable)
+    why: str = ""  # an undefined value's site: the kind of read (semantics.analysis.undefined)
+    read_line: int = 0  # ... and the line of its first undefined read
 
 
 class TraceTranspiler(Transpiler):
@@ -125,10 +132,21 @@ class TraceTranspiler(Transpiler):
         self._loop_bodies: dict[int, int] = {}  # id(loop body) -> loop site
         self._glsl: dict[str, str] = {}  # Python name -> GLSL name
         self._loop_steps: set[int] = set()  # id() of for-loop steps
+        # id(node) -> the undefined read it starts (T.u); an out parameter left unwritten on
+        # some path is undefined only where the caller reads it after such a path: not traced
+        self.undefined_at = {
+            k: u for k, u in origins(model).items() if u.kind != "out-parameter-unwritten"
+        }
 
     # -- sites -------------------------------------------------------------------------------------
     def site(
-        self, kind: str, node: Any, name: str = "", expr: Any = None, params: tuple = ()
+        self,
+        kind: str,
+        node: Any,
+        name: str = "",
+        expr: Any = None,
+        params: tuple = (),
+        why: Any = None,
     ) -> int:
         key = (kind, id(node), name)
         sid = self._site_ids.get(key)
@@ -149,6 +167,8 @@ class TraceTranspiler(Transpiler):
                     fname,
                     params,
                     id(node) in self._loop_steps,
+                    why.kind if why is not None else "",
+                    why.loc.line if why is not None else 0,
                 )
             )
             sid = self._site_ids[key] = len(self.sites) - 1
@@ -181,8 +201,20 @@ class TraceTranspiler(Transpiler):
         self._stmt = node
         super().comment_line(node)
 
+    def initial(self, t: Any, node: Any, mask: str | None = None) -> str:
+        text = super().initial(t, node, mask)
+        u = self.undefined_at.get(id(node))
+        if u is None or not self._traced():
+            return text
+        sid = self.site("undefined", node, u.symbol.name if u.symbol else "", why=u)
+        return f"T.u(S, {sid}, {mask}, {text})"
+
     def expr(self, e: Any, mask: str | None) -> str:
         text = super().expr(e, mask)
+        u = self.undefined_at.get(id(e))
+        if u is not None and self._traced():
+            sid = self.site("undefined", e, to_glsl(e), e, why=u)
+            text = f"T.u(S, {sid}, {mask}, {text})"
         watch = self.watched.get(id(e))
         if watch is None or not self._traced():
             return text
@@ -523,6 +555,9 @@ class LaneTracer:
     def b(self, S: Any, site: int, mask: Any, cond: Any) -> Any:
         return cond
 
+    def u(self, S: Any, site: int, mask: Any, value: Any) -> Any:
+        return value
+
     def e(self, S: Any, site: int, mask: Any) -> None:
         pass
 
@@ -633,6 +668,10 @@ class PixelTracer(LaneTracer):
     def b(self, S, site, mask, cond):
         self._step(S, site, mask, cond)
         return cond
+
+    def u(self, S, site, mask, value):
+        self._step(S, site, mask, value)
+        return value
 
     def e(self, S, site, mask):
         if self.on(S, mask) is not None and self.sites[site].name in ("break", "discard"):

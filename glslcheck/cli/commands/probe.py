@@ -9,20 +9,29 @@ program run in float64 on the same pixel -- and how many bits of it the float32 
 the branches taken, each loop iteration (a long loop shows its first and last few), function
 calls with their arguments and return values, discard, and the final fragColor. JSON:
 {"pixel": [x, y], "frag_coord": [fx, fy], "color": [r, g, b, a], "steps": [{"file", "line",
-"code", "kind": "assign|branch|loop|call|return|discard", "name", "value", "value64", "bits"}],
+"code", "kind": "assign|branch|loop|call|return|discard|undefined", "name", "value", "value64",
+"bits"}],
 "first_nan": {"file", "line", "column", "code", "operation"} | null}. Names and values by kind:
 assign: the variable and its whole value after the write; branch: "if", "if/else" or "switch"
 with the condition or selector, "break", "continue"; loop: "for start", "for iteration" with its
 number, "for end" with the iteration count (also "while", "do"); call: the function with its
 arguments by parameter name; return: the function and the returned value. Vectors are lists,
 matrices lists of columns, structs objects; non-finite floats are "nan", "inf" and "-inf"; bits
-is null where there is no float to compare or no float64 step to pair with.
+is null where there is no float to compare or no float64 step to pair with. undefined: where a
+value GLSL leaves undefined enters (an out parameter on entry, a local declared without an
+initializer, an operation on constants outside its range; `glslcheck check` warns at its read)
+with the value this render gives it (WebGL's), and the keys "undefined" (the kind) and
+"read_line" (the line of its read).
 
 --nan renders the frame and groups every NaN or Inf pixel by the operation where its first NaN
 or Inf appeared (file:line:col, the expression, what made it: 0/0, sqrt or log of a negative,
 normalize of a zero vector, inversesqrt(0), pow of a negative base, overflow, ...), with the
-pixel count, the bounding box and a help line. JSON: {"nan_pixels", "inf_pixels", "origins":
-[{"file", "line", "column", "code", "operation", "pixels", "box": [x0, y0, x1, y1]}]}.
+pixel count, the bounding box and a help line. When the program reads undefined values, the
+frame is rendered again with other values at those reads: the pixels whose colour changes
+depend on them, counted per origin ("undefined_pixels") and followed by the reads. JSON:
+{"nan_pixels", "inf_pixels", "origins": [{"file", "line", "column", "code", "operation",
+"pixels", "box": [x0, y0, x1, y1], "undefined_pixels"}], "undefined_reads": [{"file", "line",
+"column", "kind"}] (empty unless some NaN/Inf pixel depends on one)}.
 
 The uniform options are render's. Exit 0 (1 with --nan when some pixel is NaN or Inf), 1 on a
 shader error, 2 on usage or I/O errors.

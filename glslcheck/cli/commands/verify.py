@@ -23,17 +23,27 @@ frames show a progress bar on stderr when it is a terminal (--progress forces it
 
 --format json prints exactly {"match", "verdict", "size", "max_abs_error", "mean_abs_error",
 "psnr_db", "mismatched_pixels", "edge_pixels", "nan_numpy", "nan_gl", "unstable_pixels",
-"unstable_lines", "driver"} for one frame (psnr_db is null for identical images; verdict is "match",
-"match-unstable" or "mismatch"; unstable pixels are those where both float32 renders are far
-from the float64 reference, see verification/compare.py; unstable_lines names the statements where they lose
-precision, traced by glslcheck probe on a sample of them; driver is {"renderer", "mesa",
+"unstable_lines", "undefined_pixels", "undefined_lines", "driver"} for one frame (psnr_db is null
+for identical images; verdict is "match", "match-unstable", "undefined" or "mismatch"; unstable
+pixels are those where both float32 renders are far from the float64 reference, see
+verification/compare.py; unstable_lines names the statements where they lose
+precision, traced by glslcheck probe on a sample of them; undefined pixels are those over
+tolerance whose colour depends on a value the shader leaves undefined (an out parameter or a
+local read before it is written, an operation on constants outside its range: `glslcheck check`
+warns at each), found by rendering the NumPy side with other values at those reads
+(verification/verify.py, UndefinedSide); they are counted apart from the mismatches, and the
+verdict is "undefined" (match false, exit 1: the shader is at fault, not the renderer) when they
+are the only difference; undefined_lines is [{"file", "line", "column", "code", "kind",
+"pixels"}] of the reads, kind one of out-parameter, out-parameter-unwritten (at the return
+that leaves it so), uninitialized-local, division-by-zero,
+shift-out-of-range, conversion-out-of-range, domain; driver is {"renderer", "mesa",
 "emulated"} of the GL side, emulated false when the NumPy backend's bit-exact emulation was
 copied from another driver than this one, llvmpipe of Mesa 22.3: a mismatch then also says so
 in the text output, since it may be the driver's), or a JSON list of such objects, in order (shader by shader, then frame by
 frame), when more than one frame is verified. --diff diff.png writes the heat map of the
 differences (diff-0.png, diff-1.png, ... for several frames).
 
-Exit 0 when every frame matches, 1 on a mismatch or a GLSL error (diagnostics as file:line:col
+Exit 0 when every frame matches, 1 on a mismatch, undefined pixels or a GLSL error (diagnostics as file:line:col
 on stderr), 2 on usage or I/O errors, or when no OpenGL context can be created.
 """
 
@@ -271,11 +281,14 @@ def _print_text(results, args, glsl_errors: int) -> None:
     out = sys.stdout
     for result in results:
         out.write(format_frame(result, args.precision, args.samples, names=args.backends))
-    failed = sum(not r.match for r in results)
+    failed = sum(r.comparison.verdict == "mismatch" for r in results)
+    undefined = sum(r.comparison.verdict == "undefined" for r in results)
     n = len(results)
     frames = f"{n} frame{'s' if n != 1 else ''}"
-    if failed:
-        line = f"verify: MISMATCH in {failed} of {frames}"
+    if failed or undefined:
+        parts = [f"MISMATCH in {failed}"] if failed else []
+        parts += [f"undefined in the shader in {undefined}"] if undefined else []
+        line = f"verify: {', '.join(parts)} of {frames}"
     elif n:
         line = f"verify: match ({frames})"
     else:
@@ -357,7 +370,25 @@ def format_frame(
             f"  precision lost   {u['file']}:{u['line']} `{u['code']}` keeps {u['bits']} of 24 bits "
             f"(~{u['pixels']} unstable pixels)"
         )
-    if c.match and c.unstable_pixels:
+    if c.undefined_pixels:
+        lines.append(
+            f"  undefined        {c.undefined_pixels:<10}  pixels whose colour depends on a value "
+            "the shader leaves undefined (not counted)"
+        )
+    for u in c.undefined_lines[:3]:
+        count = f"{u['pixels']} pixels" if u["pixels"] is not None else "pixels not counted"
+        lines.append(
+            f"  undefined read   {u['file']}:{u['line']}:{u['column']} `{u['code']}` "
+            f"({UNDEFINED_KINDS.get(u['kind'], u['kind'])}; {count})"
+        )
+    if c.verdict == "undefined":
+        first = c.undefined_lines[0] if c.undefined_lines else None
+        where = f" (line {first['line']}: `glslcheck check` says why)" if first else ""
+        lines.append(
+            "  -> UNDEFINED IN THE SHADER: the renders differ only where it reads undefined "
+            f"values{where}"
+        )
+    elif c.match and c.unstable_pixels:
         where = (
             f": line {c.unstable_lines[0]['line']} `{c.unstable_lines[0]['code']}` keeps "
             f"{c.unstable_lines[0]['bits']} of 24 bits"
@@ -368,6 +399,17 @@ def format_frame(
     else:
         lines.append("  -> match" if c.match else "  -> MISMATCH")
     return "\n".join(lines) + "\n"
+
+
+UNDEFINED_KINDS = {
+    "out-parameter": "an out parameter read before it is written",
+    "out-parameter-unwritten": "an out parameter a path leaves unwritten",
+    "uninitialized-local": "a local read before it is assigned",
+    "division-by-zero": "integer division by zero",
+    "shift-out-of-range": "a shift out of range",
+    "conversion-out-of-range": "a conversion out of range",
+    "domain": "a built-in outside its domain",
+}
 
 
 def _rgb(values) -> str:

@@ -52,6 +52,7 @@ RULE_TABLE: tuple[tuple[str, str], ...] = (
     ("loop-invariant", "loop_invariant"),
     ("branch-replaceable", "branch_replaceable"),
     ("normalize-known-length", "normalize_known_length"),
+    ("out-parameter-read", "out_parameter_read"),
     ("uninitialized-read", "uninitialized_read"),
     ("unused-variable", "unused_variable"),
     ("unused-function", "unused_function"),

@@ -11,6 +11,9 @@
   writes) and `param_directions` (in/out/inout of a call's arguments), the one answer to each
   for every stage.
 * `values.py`: the sign analysis (`value_range`: bounds and why a value can be negative).
+* `undefined.py`: where the program reads a value GLSL leaves undefined (`undefined_reads`:
+  out parameters and locals read before written, integer division by zero, out-of-range
+  shifts and conversions, built-ins outside their domain), for `check`, lint, verify and probe.
 
 It reads the semantic model (`glslcheck.semantics.Model`) and the AST only; its users are the lint
 rules (glslcheck/lint/rules) and both CPU engines (backends/cpu_core/facts.py and
@@ -33,6 +36,15 @@ from .dataflow import (
     pure_function,
     written_variable,
 )
+from .undefined import (
+    STOPS,
+    VARIABLE_KINDS,
+    UndefinedRead,
+    origins,
+    stop_notes,
+    unassigned_reads,
+    undefined_reads,
+)
 from .values import NONNEGATIVE_UNIFORMS, ValueRanges, numbers
 
 __all__ = [
@@ -40,6 +52,10 @@ __all__ = [
     "ProgramFacts",
     "Write",
     "ValueRanges",
+    "UndefinedRead",
+    "VARIABLE_KINDS",
+    "STOPS",
+    "stop_notes",
     "NONNEGATIVE_UNIFORMS",
     "builtin_call",
     "builtin_calls",
@@ -51,4 +67,7 @@ __all__ = [
     "program_facts",
     "pure_function",
     "written_variable",
+    "origins",
+    "unassigned_reads",
+    "undefined_reads",
 ]

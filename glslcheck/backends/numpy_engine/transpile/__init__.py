@@ -49,6 +49,11 @@ set") or a bool array; writes under a mask keep the old value elsewhere (`rt.ass
 * out/inout arguments: arguments are evaluated left to right once (index expressions of an
   l-value included); the callee returns `(value, out1, out2, ...)` and the caller copies the
   outs back under its own mask, left to right. `out` parameters start at zero.
+* undefined values: an `out` parameter and a local without an initializer start at zero, as
+  WebGL's; with `Transpiler(..., undefined="vary")` the ones the checker finds read before
+  written (semantics.analysis.undefined.origins), and the operations on constants outside their
+  range, get a value drawn anew at each (`X.undefined`, tiles.py) instead: verify renders both
+  modules to find the pixels that depend on them. The normal module is unchanged by the option.
 * `pow` with a constant exponent of 1.0, 2.0, 4.0 or +0.0 (per vector component) or a constant
   base of ones is emitted as Mesa compiles it (`rt.pow_const`, `rt.pow_one`): products instead
   of `exp2(y*log2(x))`, so `pow(-0.5, 2.0)` is 0.25 as on llvmpipe, not NaN.

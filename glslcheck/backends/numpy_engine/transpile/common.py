@@ -62,6 +62,9 @@ _STRING = re.compile(r'"[^"]*"')
 _NAME = re.compile(r"(?<![.\w])([A-Za-z_]\w*)(\s*=(?!=))?")
 
 
+UNDEFINED_MODES = ("zero", "vary")  # what undefined reads see (Transpiler's `undefined`)
+
+
 def _is_constant_text(text: str) -> bool:
     """True when printed code refers to nothing but `rt` and module constants (no lanes, no S)."""
     for name, kwarg in _NAME.findall(_STRING.sub('""', text)):

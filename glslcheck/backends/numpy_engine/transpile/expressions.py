@@ -103,6 +103,9 @@ class Expressions:
             )
         if self.too_deep(OUTLINE_EXPR_INDENT, loops=False):
             return self.outline(lambda: self.expr(e, mask), e)
+        if id(e) in self.undefined_origins and self.fn is not None:
+            # an operation whose value GLSL leaves undefined, in the "vary" mode (module.py)
+            return f"X.undefined(S, {self.zero(self.type_of(e), e)})"
         if self.fn is None or self.in_const or self.model.const_value(e) is None:
             return self.spill(e, method(e, mask))
         # a constant expression inside a function: computed once, as a module constant (the

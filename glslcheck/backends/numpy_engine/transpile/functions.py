@@ -56,7 +56,7 @@ class Functions:
             pyname = self.var_name(psym, p) if psym is not None else f"_unnamed{k}"
             fs.defined.append(pyname)
             if direction == "out":
-                prologue.append(f"{pyname} = {self.zero(ptype, p)}")
+                prologue.append(f"{pyname} = {self.initial(ptype, p, '_m')}")
             else:
                 params.append(pyname)
             if direction != "in":

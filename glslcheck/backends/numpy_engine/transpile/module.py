@@ -10,10 +10,11 @@ from typing import Any
 
 from ....base.diagnostics import Location
 from ....frontend import syntax as A
+from ....semantics.analysis import origins
 from ...cpu_core.common import comment_safe
 from ...cpu_core.facts import Facts, SideEffects
 from ..fold_state import FoldState
-from .common import LOOP_CAP, SMALL_STATE, _error, check_program
+from .common import LOOP_CAP, SMALL_STATE, UNDEFINED_MODES, _error, check_program
 from .expressions import Expressions
 from .functions import FnState, Functions
 from .limits import PythonLimits, compile_generated, lane_state, too_complex
@@ -35,8 +36,22 @@ class Transpiler(Names, Functions, Statements, Expressions, PythonLimits):
         path: str = "<shader>",
         source_text: str | None = None,
         keep_alpha: bool = False,
+        undefined: str = "zero",
+        undefined_sites: tuple[int, ...] | None = None,
     ) -> None:
         self.keep_alpha = keep_alpha  # a Buffer pass: Shadertoy keeps the alpha mainImage wrote
+        # What the program's undefined reads (semantics.analysis.undefined) see: "zero", WebGL's
+        # values, or "vary": a value drawn anew at each (X.undefined), so that pixels whose colour
+        # depends on one differ between the two modules (verify's taint of undefined values);
+        # `undefined_sites` limits "vary" to those origins (indexes into `origins(model)`).
+        if undefined not in UNDEFINED_MODES:
+            raise ValueError(f"undefined must be one of {', '.join(UNDEFINED_MODES)}")
+        self.undefined = undefined
+        varied = origins(model) if undefined == "vary" else {}
+        if undefined_sites is not None:
+            keep = {k for i, k in enumerate(varied) if i in undefined_sites}
+            varied = {k: v for k, v in varied.items() if k in keep}
+        self.undefined_origins = varied
         self.model = model
         self.path = path
         self.entry = model.entry
@@ -97,6 +112,8 @@ class Transpiler(Names, Functions, Statements, Expressions, PythonLimits):
             "uses_derivatives": bool(self.facts.uses_derivs),
             "loop_cap": LOOP_CAP,
         }
+        if self.undefined != "zero":  # (the normal module is the same text as without the option)
+            meta["undefined"] = self.undefined
         scalars, at = lane_state(self.model, self.functions)
         if scalars > SMALL_STATE and at is not None:
             loc = at.loc
@@ -230,10 +247,19 @@ class Transpiled:
     code: Any = None  # the compiled module (compiled once, to check it: see `compile_generated`)
 
 
-def transpile(model: Any, path: str = "<shader>", keep_alpha: bool = False) -> Transpiled:
+def transpile(
+    model: Any,
+    path: str = "<shader>",
+    keep_alpha: bool = False,
+    undefined: str = "zero",
+    undefined_sites: tuple[int, ...] | None = None,
+) -> Transpiled:
     """Generate the Python module of a checked program (model from glslcheck.semantics); a located
-    GlslError when it is too complex for Python (see `PythonLimits`)."""
-    tr = Transpiler(model, path, keep_alpha=keep_alpha)
+    GlslError when it is too complex for Python (see `PythonLimits`). `undefined`: see
+    `Transpiler`."""
+    tr = Transpiler(
+        model, path, keep_alpha=keep_alpha, undefined=undefined, undefined_sites=undefined_sites
+    )
     old = sys.getrecursionlimit()
     sys.setrecursionlimit(max(old, 20000))  # expressions nested as deep as the checker allows
     try:
@@ -249,9 +275,14 @@ def transpile(model: Any, path: str = "<shader>", keep_alpha: bool = False) -> T
     return Transpiled(source, meta, filename, compile_generated(source, filename, path))
 
 
-def transpile_shader(shader: Any, tab: str | None = None) -> Transpiled:
+def transpile_shader(
+    shader: Any,
+    tab: str | None = None,
+    undefined: str = "zero",
+    undefined_sites: tuple[int, ...] | None = None,
+) -> Transpiled:
     """Parse, check and transpile a Shadertoy shader (its Image tab, or a plain GLSL file, or the
-    Buffer tab `tab`, which keeps its alpha)."""
+    Buffer tab `tab`, which keeps its alpha); `undefined`: see `Transpiler`."""
     from ....frontend.parser import parse_shader
 
     if tab is None:
@@ -260,5 +291,9 @@ def transpile_shader(shader: Any, tab: str | None = None) -> Transpiled:
     model = check_program(pr)
     src = shader.tabs.get(tab)
     return transpile(
-        model, src.path if src is not None else shader.root, keep_alpha=tab.startswith("Buffer")
+        model,
+        src.path if src is not None else shader.root,
+        keep_alpha=tab.startswith("Buffer"),
+        undefined=undefined,
+        undefined_sites=undefined_sites,
     )

@@ -165,6 +165,14 @@ class Names:
             return (t.cols, t.rows), "float"
         raise _error(f"values of type '{t}' are not supported by the NumPy backend", node)
 
+    def initial(self, t: Any, node: Any, mask: str | None = None) -> str:
+        """The value a variable declared without one starts with (an out parameter, a local
+        without an initializer): zero, as WebGL; an undefined read's variable in the "vary"
+        mode draws a value (`X.undefined`)."""
+        if id(node) in self.undefined_origins:
+            return f"X.undefined(S, {self.zero(t, node)})"
+        return self.zero(t, node)
+
     def zero(self, t: Any, node: Any, lead: tuple[int, ...] = ()) -> str:
         """The name of a module constant holding the zero value of type t (with leading array axes)."""
         if t.is_array and (t.element.is_struct or lead):

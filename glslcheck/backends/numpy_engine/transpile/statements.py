@@ -230,7 +230,9 @@ class Statements:
             value = nir_fold.component_write(self, dec, mask) if dec.init is not None else None
             if value is None:
                 value = (
-                    self.expr(dec.init, mask) if dec.init is not None else self.zero(sym.type, dec)
+                    self.expr(dec.init, mask)
+                    if dec.init is not None
+                    else self.initial(sym.type, dec, mask)
                 )
             if dec.init is not None:
                 value = nir_fold.keep_term(self, dec, value)
