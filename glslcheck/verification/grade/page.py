@@ -39,6 +39,8 @@ tr.reference td { background: #f6f8fa; }
 details summary { cursor: pointer; } details pre { margin: 2px 0 6px; background: #fff;
   border: 1px solid #d8dee4; padding: 2px 6px; font-size: 12px; white-space: pre-wrap; }
 .reason { color: #a40e26; }
+table.grades .badge { white-space: nowrap; }
+table.grades td.read { min-width: 240px; max-width: 460px; overflow-wrap: anywhere; }
 """
 )
 
@@ -159,7 +161,7 @@ def _row(rank: int, g: Grade, times: tuple[float, ...]) -> str:
         f'<td data-sort="{place}">{verdict}<div class="small">{psnr_text}</div></td>'
         f'<td class="num" data-sort="{g.points}">{points}</td>'
         f'<td data-sort="{len(g.frames)}">{thumbs}</td>'
-        f'<td data-sort="{len(g.problems) + len(g.errors)}">{_details(g)}</td></tr>'
+        f'<td class="read" data-sort="{len(g.problems) + len(g.errors)}">{_details(g)}</td></tr>'
     )
 
 
