@@ -189,3 +189,33 @@ def test_folders_files_and_bad_submissions_each_get_a_row(tmp_path):
     assert by["no-image"].status == "failed" and by["no-image"].reason.startswith("no Image tab")
     assert by["empty"].status == "failed" and "empty" in by["empty"].reason
     assert by["gone"].status == "failed" and "no such file" in by["gone"].reason
+
+
+def test_a_render_over_the_frame_budget_is_a_row_with_the_loop(tmp_path, capsys):
+    slow = tmp_path / "slow"
+    slow.mkdir()
+    # 90,000 passes per pixel: seconds on any CPU, far over a 0.05 s budget
+    (slow / "Image.glsl").write_text(
+        "void mainImage(out vec4 fragColor, in vec2 fragCoord)\n{\n    float x = fragCoord.x;\n"
+        "    for (int i = 0; i < 90000; i++) { x = fract(x * 1.0001 + 0.1); }\n"
+        "    fragColor = vec4(x);\n}\n"
+    )
+    code = main(
+        [
+            "grade",
+            str(slow),
+            str(FINAL),
+            "--size",
+            "96x54",
+            "--times",
+            "0",
+            "--frame-budget",
+            "0.05",
+        ]
+    )
+    out = capsys.readouterr().out
+    assert code == 1
+    row = next(line for line in out.split("\n") if " slow " in line)
+    assert "failed" in row and "render at iTime 0 failed: " in row
+    assert f"{slow}/Image.glsl:4:" in row and "still rendering after 0.05 s" in row
+    assert next(line for line in out.split("\n") if " 07_final " in line).split()[2] == "graded"

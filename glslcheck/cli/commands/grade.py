@@ -24,10 +24,9 @@ a reference that does not render.
 
 from __future__ import annotations
 
-import os
 import sys
 
-from ...base import limits
+from ...base import config, limits
 from ...base.diagnostics import GlslError, InputError
 from . import args as cli_args
 
@@ -98,20 +97,8 @@ def add_arguments(p) -> None:
 
 
 def run(args) -> int:
-    from ...base.images import atomic_write, check_output
-    from ...verification.grade import (
-        GradeProgress,
-        Options,
-        from_paths,
-        grade_class,
-        page_html,
-        read_roster,
-        render_reference,
-        to_csv,
-        to_json,
-        write_images,
-    )
-    from ...verification.grade.outputs import table
+    from ...base.images import check_output
+    from ...verification.grade import from_paths, read_roster
 
     for path, suffixes, what in (
         (args.output, (".html", ".htm"), "grades page (an HTML page)"),
@@ -135,8 +122,26 @@ def run(args) -> int:
         if s.team in seen:
             raise InputError(f"glslcheck grade: error: two submissions are named {s.team!r}")
         seen.add(s.team)
-    if args.frame_budget is None and "GLSLCHECK_FRAME_SECONDS" not in os.environ:
-        os.environ["GLSLCHECK_FRAME_SECONDS"] = repr(GRADE_FRAME_SECONDS)
+    # --frame-budget (set by main), else the variable, else grade's own default; as it was after
+    budget = None if args.frame_budget is not None else config.frame_seconds(GRADE_FRAME_SECONDS)
+    with cli_args.environment(GLSLCHECK_FRAME_SECONDS=None if budget is None else repr(budget)):
+        return _grade(args, submissions)
+
+
+def _grade(args, submissions) -> int:
+    from ...base.images import atomic_write
+    from ...verification.grade import (
+        GradeProgress,
+        Options,
+        grade_class,
+        page_html,
+        render_reference,
+        to_csv,
+        to_json,
+        write_images,
+    )
+    from ...verification.grade.outputs import table
+
     options = Options(size=tuple(args.size), times=tuple(args.times), backend=args.backend)
     reference = None
     if args.reference:

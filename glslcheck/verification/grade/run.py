@@ -24,6 +24,7 @@ from collections.abc import Sequence
 from concurrent.futures import ProcessPoolExecutor, as_completed
 from concurrent.futures.process import BrokenProcessPool
 
+from ...base import config
 from ..verify import Progress
 from .grading import Options, Reference, grade_submission, render_reference
 from .records import FAILED, Grade
@@ -40,8 +41,9 @@ _REFERENCE: Reference | None = None  # each worker's copy, set when it starts
 def _worker_setup(reference: Reference | None) -> None:
     global _REFERENCE
     _REFERENCE = reference
-    os.environ.setdefault("GLSLCHECK_PARALLEL", "threads")
-    os.environ["GLSLCHECK_JOBS"] = "1"
+    if config.parallel() == "auto":  # the cores are taken by the other workers already
+        os.environ.update(GLSLCHECK_PARALLEL="threads")
+    os.environ.update(GLSLCHECK_JOBS="1")
 
 
 def _grade_in_worker(submission: Submission, options: Options) -> Grade:
