@@ -232,7 +232,7 @@ class ShaderCheck:
             f"{_name(shader)} does not animate: the frames at iTime "
             f"{', '.join(f'{t:g}' for t in times)} differ from the first by at most "
             f"{largest:.4g} (a visible change is over 2/255 = {DEFAULT_ABS_TOL:.4g}); "
-            f"diff image (iTime {at:g} against {times[0]:g}): {path}"
+            f"diff image: {path} (iTime {at:g} against {times[0]:g})"
         )
 
 
