@@ -168,3 +168,35 @@ def test_the_size_option_reaches_the_fixture(pytester):
     result.assert_outcomes(passed=1)
     bad = pytester.runpytest("-p", "glslcheck.testing", "--glslcheck-size", "forty")
     assert bad.ret != 0
+
+
+def _autograder(pytester, common_text: str) -> None:
+    """docs/autograder.md's layout in the pytester folder, its test file as the page has it."""
+    doc = (ROOT / "docs" / "autograder.md").read_text()
+    code = re.search(r"```python\n(.*?)```", doc, re.S).group(1)
+    pytester.makepyfile(test_part3=code)
+    part = ROOT / "lab_shaders" / "03_lambert_color"
+    shutil.copytree(part, pytester.path / "reference" / "part3")
+    team = pytester.path / "submission" / "lab4"
+    team.mkdir(parents=True)
+    (team / "Image.txt").write_text((part / "Image.glsl").read_text())
+    (team / "Common.txt").write_text(common_text)
+
+
+def test_the_documented_autograder_passes_the_reference_itself(pytester):
+    _autograder(pytester, (ROOT / "lab_shaders" / "03_lambert_color" / "Common.glsl").read_text())
+    pytester.runpytest("-p", "glslcheck.testing", "-p", "no:cacheprovider").assert_outcomes(
+        passed=5
+    )
+
+
+def test_the_documented_autograder_fails_the_unnormalised_light_vector(pytester):
+    common = (ROOT / "lab_shaders" / "03_lambert_color" / "Common.glsl").read_text()
+    assert "    return toLight * invDist;" in common
+    _autograder(pytester, common.replace("    return toLight * invDist;", "    return toLight;"))
+    result = pytester.runpytest("-p", "glslcheck.testing", "-p", "no:cacheprovider")
+    result.assert_outcomes(passed=4, failed=1)
+    text = result.stdout.str()
+    assert "FAILED test_part3.py::test_part3_renders_like_the_reference" in text
+    assert "tolerance 'close': PSNR >= 30 dB): PSNR " in text
+    _diff_path(text)
