@@ -95,7 +95,8 @@ def test_a_shader_that_does_not_compile_gets_its_error_and_its_deductions(graded
 def test_a_missing_branch_is_named_with_the_branches_there_are(graded):
     g = graded[0]["missing-branch"]
     assert g.status == "failed" and g.tabs == [] and g.frames == []
-    assert f"no branch '{BRANCH}' (branches: main)" in g.reason
+    # named as the roster names it, not as the clone's path
+    assert g.reason == f"repos/missing-branch: no branch '{BRANCH}' (branches: main)"
 
 
 def test_the_class_is_ranked_as_a_ta_would(graded):
@@ -219,3 +220,16 @@ def test_a_render_over_the_frame_budget_is_a_row_with_the_loop(tmp_path, capsys)
     assert "failed" in row and "render at iTime 0 failed: " in row
     assert f"{slow}/Image.glsl:4:" in row and "still rendering after 0.05 s" in row
     assert next(line for line in out.split("\n") if " 07_final " in line).split()[2] == "graded"
+
+
+def test_a_bad_roster_is_named_at_its_line_and_column(tmp_path, capsys):
+    roster = tmp_path / "roster.csv"
+    roster.write_text("team,repo,branch\na,repos/a,lab4-main\nb,,lab4-main\n")
+    assert main(["grade", "--roster", str(roster)]) == 2
+    assert f"{roster}:3:2: error: the repo cell is empty" in capsys.readouterr().err
+    roster.write_text("team,contributors,repository\n")
+    assert main(["grade", "--roster", str(roster)]) == 2
+    assert "the roster's header has no repo, branch column" in capsys.readouterr().err
+    roster.write_text("team,repo,branch\na,x,b\na,y,b\n")
+    assert main(["grade", "--roster", str(roster)]) == 2
+    assert f"{roster}:3:1: error: team 'a' is on line 2 too" in capsys.readouterr().err

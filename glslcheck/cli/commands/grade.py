@@ -178,7 +178,7 @@ def _grade(args, submissions) -> int:
     sys.stdout.write(table(grades, ref_name))
     failed = [g.team for g in grades if g.status != "graded"]
     print(
-        f"{len(grades)} submission{'s' * (len(grades) != 1)} graded"
+        f"{len(grades)} submission{'s' * (len(grades) != 1)}, {len(grades) - len(failed)} graded"
         + (f", {len(failed)} could not be: {', '.join(failed)}" if failed else "")
         + "".join(f"; {path} written" for path, _, _ in writes),
         file=sys.stderr,

@@ -64,6 +64,7 @@ document.querySelectorAll("table.grades th[data-key]").forEach(function (th) {
 """
 
 _BADGE = {SAME: "ok", CLOSE: "warn", DIFFERENT: "bad"}
+OPEN_DEDUCTIONS = 5  # a row shows this many deductions unfolded
 
 
 def _uri(png: bytes) -> str:
@@ -111,7 +112,11 @@ def _details(g: Grade) -> str:
             for d in g.deductions
         )
         label = f"{len(g.deductions)} deduction{'s' * (len(g.deductions) != 1)}"
-        out.append(f'<details><summary>{label}</summary><ul class="diags">{items}</ul></details>')
+        # a few are read at a glance; a long list stays folded until asked for
+        out.append(
+            f"<details{' open' * (len(g.deductions) <= OPEN_DEDUCTIONS)}><summary>{label}"
+            f'</summary><ul class="diags">{items}</ul></details>'
+        )
     if g.suppressions:
         items = "".join(f"<li><code>{escape(s)}</code></li>" for s in g.suppressions)
         out.append(

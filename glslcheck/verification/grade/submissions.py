@@ -43,17 +43,22 @@ class SubmissionError(Exception):
 
 @dataclass
 class Submission:
-    """One team's hand-in: `source` is a folder, a file, a repository path or a URL."""
+    """One team's hand-in: `source` is a folder, a file, a repository path or a URL, as the
+    TA wrote it (every message shows it so); a relative path is read from `base`."""
 
     team: str
     source: str
     branch: str | None = None
     contributors: list[str] = field(default_factory=list)
     path: str | None = None  # the folder inside the checkout that holds the tabs
+    base: str = ""  # the roster's folder; "" for the current one
 
     @property
-    def label(self) -> str:
-        return f"{self.source}@{self.branch}" if self.branch else self.source
+    def location(self) -> str:
+        """`source` as a path or URL to open or clone."""
+        if not self.base or _is_url(self.source) or os.path.isabs(self.source):
+            return self.source
+        return os.path.join(self.base, self.source)
 
 
 def from_paths(paths: list[str], branch: str | None = None) -> list[Submission]:
@@ -113,14 +118,12 @@ def read_roster(path: str | os.PathLike) -> list[Submission]:
                 f"{path}:{number}:{col['team'] + 1}: error: team {team!r} is on line {seen[team]} too"
             )
         seen[team] = number
-        repo = cell("repo")
-        if not _is_url(repo) and not os.path.isabs(repo):
-            repo = str(base / repo)
         names = cell("contributors").replace(";", ",").split(",")
         out.append(
             Submission(
                 team=team,
-                source=repo,
+                source=cell("repo"),
+                base=str(base),
                 branch=cell("branch"),
                 contributors=[n.strip() for n in names if n.strip()],
                 path=cell("path") or None,
@@ -149,13 +152,15 @@ class Checkout:
     def __enter__(self) -> Checkout:
         s = self.submission
         if s.branch is None:
-            if not os.path.exists(s.source):
+            if not os.path.exists(s.location):
                 raise SubmissionError(f"{s.source}: no such file or folder")
-            self.root = s.source
+            self.root = s.location
             return self
         self._tmp = tempfile.mkdtemp(prefix="glslcheck-grade-")
         try:
-            self.root = clone_branch(s.source, s.branch, os.path.join(self._tmp, "checkout"))
+            self.root = clone_branch(
+                s.location, s.branch, os.path.join(self._tmp, "checkout"), s.source
+            )
         except BaseException:
             self.__exit__(None, None, None)
             raise
@@ -200,11 +205,13 @@ def _git_message(result: subprocess.CompletedProcess) -> str:
     return lines[-1] if lines else f"git exited with status {result.returncode}"
 
 
-def branches(repo: str) -> list[str]:
-    """The branch names of a repository (SubmissionError when it cannot be read)."""
-    result = _git(["-c", "protocol.file.allow=always", "ls-remote", "--heads", "--", repo], repo)
+def branches(repo: str, name: str | None = None) -> list[str]:
+    """The branch names of a repository (SubmissionError, naming it `name`, when it cannot be
+    read)."""
+    name = name or repo
+    result = _git(["-c", "protocol.file.allow=always", "ls-remote", "--heads", "--", repo], name)
     if result.returncode != 0:
-        raise SubmissionError(f"{repo}: not a repository git can read ({_git_message(result)})")
+        raise SubmissionError(f"{name}: not a repository git can read ({_git_message(result)})")
     return sorted(
         line.split("refs/heads/", 1)[1]
         for line in result.stdout.splitlines()
@@ -212,12 +219,14 @@ def branches(repo: str) -> list[str]:
     )
 
 
-def clone_branch(repo: str, branch: str, dest: str) -> str:
-    """Clone the one branch of `repo` into `dest` (see the module docstring); the folder."""
-    names = branches(repo)
+def clone_branch(repo: str, branch: str, dest: str, name: str | None = None) -> str:
+    """Clone the one branch of `repo` into `dest` (see the module docstring); the folder.
+    Messages name the repository `name` (default `repo`)."""
+    name = name or repo
+    names = branches(repo, name)
     if branch not in names:
         there = ", ".join(names[:12]) + (", ..." if len(names) > 12 else "") if names else "none"
-        raise SubmissionError(f"{repo}: no branch {branch!r} (branches: {there})")
+        raise SubmissionError(f"{name}: no branch {branch!r} (branches: {there})")
     result = _git(
         [
             "-c",
@@ -234,10 +243,10 @@ def clone_branch(repo: str, branch: str, dest: str) -> str:
             repo,
             dest,
         ],
-        repo,
+        name,
     )
     if result.returncode != 0:
-        raise SubmissionError(f"{repo}: cannot clone branch {branch!r} ({_git_message(result)})")
+        raise SubmissionError(f"{name}: cannot clone branch {branch!r} ({_git_message(result)})")
     return dest
 
 
