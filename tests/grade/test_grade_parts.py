@@ -1,0 +1,85 @@
+"""The pieces of grade on their own: choosing the shader of a submission, certain and possible
+points, the outputs' shapes, the progress bar."""
+
+from __future__ import annotations
+
+import csv
+import io
+import json
+import shutil
+
+import pytest
+from lab_class import FINAL
+
+from glslcheck.verification.grade import (
+    CSV_COLUMNS,
+    Deduction,
+    Grade,
+    GradeProgress,
+    Options,
+    SubmissionError,
+    from_paths,
+    grade_class,
+    submission_shader,
+    table,
+    to_csv,
+    to_json,
+)
+
+
+def _two_shaders(tmp_path):
+    for name in ("lab3", "lab4"):
+        shutil.copytree(FINAL, tmp_path / "repo" / name)
+    return tmp_path / "repo"
+
+
+def test_several_shaders_need_a_path_and_the_path_chooses(tmp_path):
+    repo = _two_shaders(tmp_path)
+    with pytest.raises(
+        SubmissionError, match=r"2 shaders in the submission .*roster's path column"
+    ):
+        submission_shader(str(repo))
+    assert submission_shader(str(repo), "lab4").root.endswith("lab4")
+    with pytest.raises(SubmissionError, match="lab5: no such file or folder in the submission"):
+        submission_shader(str(repo), "lab5")
+
+
+def test_a_text_file_without_main_image_is_not_the_shader(tmp_path):
+    repo = tmp_path / "repo"
+    shutil.copytree(FINAL, repo / "lab4")
+    (repo / "notes.txt").write_text("Remember: comment every line.\n")
+    assert submission_shader(str(repo)).root.endswith("lab4")
+
+
+def _deduction(rule: str, certainty: str) -> Deduction:
+    return Deduction(rule, "m", "Image.txt", 3, 1, 1, certainty, "code")
+
+
+def test_certain_and_possible_points_are_apart_everywhere():
+    sure = Grade("sure", "s", deductions=[_deduction("missing-comment", "certain")] * 2)
+    maybe = Grade(
+        "maybe",
+        "m",
+        deductions=[_deduction("missing-comment", "certain"), _deduction("branch", "possible")],
+    )
+    assert (maybe.certain_points, maybe.possible_points, maybe.points) == (1, 1, 2)
+    # fewer certain points rank first, whatever the possible ones
+    assert [g.team for g in sorted([sure, maybe], key=Grade.rank_key)] == ["maybe", "sure"]
+    rows = {r["team"]: r for r in csv.DictReader(io.StringIO(to_csv([sure, maybe])))}
+    assert list(rows["maybe"]) == list(CSV_COLUMNS)
+    assert (rows["maybe"]["points_certain"], rows["maybe"]["points_possible"]) == ("-1", "-1")
+    assert rows["maybe"]["deductions"] == "missing-comment -1; branch -1"
+    doc = json.loads(to_json([sure, maybe], Options(), None))
+    assert doc["teams"][0]["points"] == {"certain": -1, "possible": -1, "total": -2}
+    text = table([sure, maybe], None)
+    assert "-2 (1 possible)" in text and "Image.txt:3:1: -1 [branch] (possible) m" in text
+
+
+def test_the_progress_bar_counts_the_submissions(tmp_path):
+    stream = io.StringIO()
+    bar = GradeProgress(2, stream=stream)
+    paths = [str(FINAL), str(tmp_path / "missing")]
+    grade_class(from_paths(paths), Options(size=(32, 18), times=(0.0,)), jobs=1, progress=bar)
+    bar.finish()
+    text = stream.getvalue()
+    assert "grade [" in text and "2/2 missing" in text and text.endswith("\n")
