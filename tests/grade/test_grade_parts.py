@@ -83,3 +83,14 @@ def test_the_progress_bar_counts_the_submissions(tmp_path):
     bar.finish()
     text = stream.getvalue()
     assert "grade [" in text and "2/2 missing" in text and text.endswith("\n")
+
+
+def test_a_findings_certainty_is_read_from_its_fields():
+    from types import SimpleNamespace
+
+    from glslcheck.verification.grade.grading import certainty
+
+    assert certainty(SimpleNamespace(rule="x")) == "certain"
+    assert certainty(SimpleNamespace(certainty="possible")) == "possible"
+    assert certainty(SimpleNamespace(certainty="certain")) == "certain"
+    assert certainty(SimpleNamespace(certain=False)) == "possible"

@@ -200,6 +200,18 @@ def _source_error(d: Diagnostic, where) -> SourceError:
     )
 
 
+def certainty(finding) -> str:
+    """ "possible" when the finding says the linter may be wrong here (a `certainty` of
+    "possible", or `certain` False), else "certain": findings are read by their fields, so a
+    linter without the distinction gives certain deductions."""
+    if (
+        getattr(finding, "certainty", None) == POSSIBLE
+        or getattr(finding, "certain", True) is False
+    ):
+        return POSSIBLE
+    return CERTAIN
+
+
 def _deductions(shader: Shader, where) -> tuple[list[Deduction], list[str]]:
     """The findings that cost points, over every tab file, with the course's configuration
     (not the team's) and their `glslcheck: ignore` comments counted anyway."""
@@ -226,7 +238,6 @@ def _deductions(shader: Shader, where) -> tuple[list[Deduction], list[str]]:
         for f in findings:
             if f.penalty <= 0 or f.loc is None:
                 continue
-            certainty = getattr(f, "certainty", None)
             out.append(
                 Deduction(
                     rule=f.rule,
@@ -235,7 +246,7 @@ def _deductions(shader: Shader, where) -> tuple[list[Deduction], list[str]]:
                     line=f.loc.line,
                     column=f.loc.column,
                     penalty=int(f.penalty),
-                    certainty=POSSIBLE if certainty == POSSIBLE else CERTAIN,
+                    certainty=certainty(f),
                     code=(source_line(f.loc.path, f.loc.line) or "").rstrip(),
                 )
             )
