@@ -200,8 +200,11 @@ def _git(args: list[str], what: str) -> subprocess.CompletedProcess:
 
 
 def _git_message(result: subprocess.CompletedProcess) -> str:
+    """git's own reason: its first fatal or error line (the advice after it is git's)."""
     lines = [ln.strip() for ln in result.stderr.splitlines() if ln.strip()]
-    lines = [ln.removeprefix("fatal: ").removeprefix("error: ") for ln in lines]
+    for ln in lines:
+        if ln.startswith(("fatal: ", "error: ")):
+            return ln.split(": ", 1)[1]
     return lines[-1] if lines else f"git exited with status {result.returncode}"
 
 
@@ -209,6 +212,8 @@ def branches(repo: str, name: str | None = None) -> list[str]:
     """The branch names of a repository (SubmissionError, naming it `name`, when it cannot be
     read)."""
     name = name or repo
+    if not _is_url(repo) and not os.path.exists(repo):
+        raise SubmissionError(f"{name}: no such repository (no such folder)")
     result = _git(["-c", "protocol.file.allow=always", "ls-remote", "--heads", "--", repo], name)
     if result.returncode != 0:
         raise SubmissionError(f"{name}: not a repository git can read ({_git_message(result)})")
