@@ -236,9 +236,11 @@ def thumbnail(img: np.ndarray, width: int = THUMBNAIL_WIDTH) -> np.ndarray:
 
 
 def png_bytes(rgb: np.ndarray) -> bytes:
-    """An 8-bit RGB array as the bytes of a PNG file (for pages that inline their images)."""
+    """An 8-bit RGB array as the bytes of a PNG file (for pages that inline their images), at
+    zlib's default level: `optimize` would make a thumbnail a few percent smaller for several
+    times the encoding time, which a page of a whole class pays per image."""
     from PIL import Image
 
     buffer = io.BytesIO()
-    Image.fromarray(rgb).save(buffer, format="PNG", optimize=True)
+    Image.fromarray(rgb).save(buffer, format="PNG")
     return buffer.getvalue()

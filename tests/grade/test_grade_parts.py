@@ -94,3 +94,28 @@ def test_a_findings_certainty_is_read_from_its_fields():
     assert certainty(SimpleNamespace(certainty="possible")) == "possible"
     assert certainty(SimpleNamespace(certainty="certain")) == "certain"
     assert certainty(SimpleNamespace(certain=False)) == "possible"
+
+
+def test_images_writes_every_render_and_diff_and_the_json_names_them(tmp_path, capsys):
+    from glslcheck.cli.main import main
+
+    out = tmp_path / "images"
+    js = tmp_path / "g.json"
+    paths = [str(FINAL), str(FINAL.parent / "06_multiple_lights")]
+    args = ["grade", *paths, "--reference", str(FINAL), "--size", "48x27", "--times", "0,1"]
+    assert main([*args, "--images", str(out), "--json", str(js), "--jobs", "1"]) == 0
+    names = sorted(p.name for p in out.iterdir())
+    assert names == sorted(
+        [f"reference-t{i}.png" for i in (0, 1)]
+        + [
+            f"{team}-t{i}{kind}.png"
+            for team in ("07_final", "06_multiple_lights")
+            for i in (0, 1)
+            for kind in ("", "-diff")
+        ]
+    )
+    teams = json.loads(js.read_text())["teams"]
+    assert all(set(t["images"]) == {"0:render", "0:diff", "1:render", "1:diff"} for t in teams)
+    from glslcheck.base.images import load_image
+
+    assert load_image(out / "07_final-t1.png").shape == (27, 48, 4)

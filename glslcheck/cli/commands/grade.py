@@ -142,7 +142,12 @@ def _grade(args, submissions) -> int:
     )
     from ...verification.grade.outputs import table
 
-    options = Options(size=tuple(args.size), times=tuple(args.times), backend=args.backend)
+    options = Options(
+        size=tuple(args.size),
+        times=tuple(args.times),
+        backend=args.backend,
+        full_images=bool(args.images),
+    )
     reference = None
     if args.reference:
         try:

@@ -42,6 +42,7 @@ class Options:
     size: tuple[int, int] = DEFAULT_SIZE
     times: tuple[float, ...] = DEFAULT_TIMES
     backend: str = "numpy"
+    full_images: bool = False  # keep each render and diff as a full-size PNG (--images)
 
 
 @dataclass
@@ -140,20 +141,21 @@ def _grade_checkout(
             _fail(grade, f"render at iTime {t:g} failed: {first}")
             return
         images.append(img)
-        grade.frames.append(_frame(img, t, reference.images[i] if reference else None))
+        ref = reference.images[i] if reference else None
+        grade.frames.append(_frame(img, t, ref, options.full_images))
     grade.animates = closeness.animates(images)
     _problems(grade, reference)
     if reference is not None:
         grade.verdict = closeness.worst([f.verdict for f in grade.frames if f.verdict])
 
 
-def _frame(img: np.ndarray, t: float, ref: np.ndarray | None) -> Frame:
+def _frame(img: np.ndarray, t: float, ref: np.ndarray | None, full: bool) -> Frame:
     frame = Frame(
         time=float(t),
         nonfinite_pixels=closeness.nonfinite_pixels(img),
         flat=closeness.is_flat(img),
         thumbnail=png_bytes(thumbnail(img)),
-        render=png_bytes(quantise(img[..., :3])),
+        render=png_bytes(quantise(img[..., :3])) if full else b"",
     )
     if ref is not None:
         c = compare(img, ref)
@@ -164,7 +166,7 @@ def _frame(img: np.ndarray, t: float, ref: np.ndarray | None) -> Frame:
         pixels = c.size[0] * c.size[1]
         frame.over_tolerance = (c.mismatched_pixels + c.edge_pixels) / pixels if pixels else 0.0
         rgb = diff_colours(c)
-        frame.diff = png_bytes(rgb)
+        frame.diff = png_bytes(rgb) if full else b""
         frame.diff_thumbnail = png_bytes(thumbnail(rgb.astype(np.float32) / 255.0))
     return frame
 

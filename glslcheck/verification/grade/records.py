@@ -72,14 +72,14 @@ class Frame:
     nonfinite_pixels: int
     flat: bool
     thumbnail: bytes = b""  # PNG, base/images.THUMBNAIL_WIDTH across
-    render: bytes = b""  # PNG at the graded size
+    render: bytes = b""  # PNG at the graded size (Options.full_images)
     verdict: str | None = None  # closeness.VERDICTS; None without a reference
     psnr_db: float | None = None  # math.inf for identical pictures
     max_abs_error: float | None = None
     mean_abs_error: float | None = None
     over_tolerance: float | None = None  # share of pixels off by more than verify's 2/255
     diff_thumbnail: bytes = b""
-    diff: bytes = b""
+    diff: bytes = b""  # the diff image at the graded size (Options.full_images)
 
     def to_json(self) -> dict:
         psnr = self.psnr_db
