@@ -128,7 +128,7 @@ def _details(g: Grade) -> str:
     return "".join(out) or "-"
 
 
-def _row(rank: int, g: Grade, times: tuple[float, ...]) -> str:
+def _row(rank: int, g: Grade) -> str:
     psnr_text, psnr_key = _psnr(g)
     place = VERDICTS.index(g.verdict) if g.verdict in VERDICTS else len(VERDICTS)
     verdict = (
@@ -214,7 +214,7 @@ def page_html(
             f'<div class="small">{escape(reference.name)}; {moves}</div></td>'
             f"<td>{ref}</td><td></td></tr>"
         )
-    rows = "".join(_row(i, g, options.times) for i, g in enumerate(ranked(grades), 1))
+    rows = "".join(_row(i, g) for i, g in enumerate(ranked(grades), 1))
     body = (
         f"<h1>{escape(title)}</h1>{meta}"
         f'<table class="grades"><thead><tr>{header}</tr>{ref_row}</thead><tbody>{rows}</tbody></table>'
