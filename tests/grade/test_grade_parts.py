@@ -119,3 +119,30 @@ def test_images_writes_every_render_and_diff_and_the_json_names_them(tmp_path, c
     from glslcheck.base.images import load_image
 
     assert load_image(out / "07_final-t1.png").shape == (27, 48, 4)
+
+
+def test_nan_pixels_and_a_flat_picture_are_render_problems(tmp_path):
+    nan = tmp_path / "nan"
+    nan.mkdir()
+    (nan / "Image.glsl").write_text(
+        "void mainImage(out vec4 fragColor, in vec2 fragCoord)\n{\n"
+        "    vec2 uv = fragCoord / iResolution.xy;\n"
+        "    fragColor = vec4(sqrt(uv.x - 0.5), uv.y, 0.25, 1.0);\n}\n"
+    )
+    flat = tmp_path / "flat"
+    flat.mkdir()
+    (flat / "Image.glsl").write_text(
+        "void mainImage(out vec4 fragColor, in vec2 fragCoord)\n{\n"
+        "    fragColor = vec4(0.2, 0.3, 0.4, 1.0);\n}\n"
+    )
+    animated = FINAL.parent / "bonus_animated_lights"
+    options = Options(size=(64, 36), times=(0.0, 1.7))
+    grades = grade_class(from_paths([str(nan), str(flat)]), options, animated, jobs=1)
+    by = {g.team: g for g in grades}
+    # left half NaN (x < 32 of 64, every row), counted from the renders themselves
+    assert by["nan"].problems[0].startswith("NaN/Inf pixels: 1152 at iTime 0, 1152 at iTime 1.7")
+    assert by["nan"].verdict == "different"
+    assert by["flat"].problems == [
+        "the image is one flat colour at every time rendered",
+        "it does not animate (the reference does)",
+    ]

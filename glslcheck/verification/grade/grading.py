@@ -173,12 +173,11 @@ def _frame(img: np.ndarray, t: float, ref: np.ndarray | None, full: bool) -> Fra
 
 def _problems(grade: Grade, reference: Reference | None) -> None:
     """What the renders show by themselves: NaN/Inf pixels, one flat colour, no animation."""
-    for f in grade.frames:
-        if f.nonfinite_pixels:
-            grade.problems.append(
-                f"{f.nonfinite_pixels} NaN/Inf pixel{'s' * (f.nonfinite_pixels != 1)} at iTime "
-                f"{f.time:g} (glslcheck probe --nan finds where they come from)"
-            )
+    nan = [f"{f.nonfinite_pixels} at iTime {f.time:g}" for f in grade.frames if f.nonfinite_pixels]
+    if nan:
+        grade.problems.append(
+            f"NaN/Inf pixels: {', '.join(nan)} (glslcheck probe --nan finds where they come from)"
+        )
     flat = [f.time for f in grade.frames if f.flat]
     if flat and len(flat) == len(grade.frames):
         grade.problems.append("the image is one flat colour at every time rendered")
