@@ -108,7 +108,7 @@ def main() -> int:
     wall, cpu = walls[len(walls) // 2], cpus[len(cpus) // 2]
     print(
         f"1. glslcheck grade (whole process, {jobs} workers): {wall:.2f} s wall, {cpu:.2f} s CPU; "
-        f"{ms(wall / n)} wall per submission"
+        f"{ms(wall / n)} wall, {ms(cpu / n)} CPU per submission"
     )
 
     times = paired(
