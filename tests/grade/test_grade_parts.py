@@ -17,6 +17,7 @@ from glslcheck.verification.grade import (
     Grade,
     GradeProgress,
     Options,
+    Submission,
     SubmissionError,
     from_paths,
     grade_class,
@@ -146,3 +147,33 @@ def test_nan_pixels_and_a_flat_picture_are_render_problems(tmp_path):
         "the image is one flat colour at every time rendered",
         "it does not animate (the reference does)",
     ]
+
+
+class Crasher(Submission):
+    """A submission whose grading kills the worker process (as a crash in a library would);
+    in this process it is an ordinary submission."""
+
+    @property
+    def path(self):
+        import multiprocessing
+        import os
+
+        if multiprocessing.parent_process() is not None:
+            os._exit(3)
+        return None
+
+    @path.setter
+    def path(self, value):
+        pass
+
+
+def test_a_worker_that_dies_costs_only_its_submission():
+    subs = [
+        Submission("before", str(FINAL)),
+        Crasher("crasher", str(FINAL)),
+        Submission("after", str(FINAL)),
+    ]
+    grades = grade_class(subs, Options(size=(32, 18), times=(0.0,)), jobs=2)
+    assert [g.team for g in grades] == ["before", "crasher", "after"]
+    assert [g.status for g in grades] == ["graded", "failed", "graded"]
+    assert grades[1].reason.startswith("the process grading it died")
