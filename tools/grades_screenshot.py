@@ -38,33 +38,30 @@ vec3 backgroundAt(in vec2 fragCoord)
 }
 
 """
-TEAMS = {  # team: (contributors, tab -> (old, new) edits, branch)
-    "moon-lab": ("Ada Lovelace; Bo Chen", {}, "lab4-main"),
-    "wide-highlights": ("Cy Diaz; Di Evans", {"Image": ("4.0 * 32.0", "4.0 * 16.0")}, "lab4-main"),
+BRANCH = "lab4-main"
+CLAMPED = "max(dot(normal, lightDir), 0.0) * attenuated"
+TEAMS = {  # team: (contributors, [(tab, old, new) edits of the final part], branch pushed)
+    "moon-lab": ("Ada Lovelace; Bo Chen", [], BRANCH),
+    "wide-highlights": ("Cy Diaz; Di Evans", [("Image", "4.0 * 32.0", "4.0 * 16.0")], BRANCH),
     "dark-side": (
         "Ed Fox; Fay Gold",
-        {
-            "Common": (
-                "max(dot(normal, lightDir), 0.0) * attenuated",
-                "dot(normal, lightDir) * attenuated",
-            )
-        },
-        "lab4-main",
+        [("Common", CLAMPED, "dot(normal, lightDir) * attenuated")],
+        BRANCH,
     ),
     "helpers": (
         "Gus Hale; Ivy Ito",
-        {
-            "Image": (GRADIENT, "vec3 background = backgroundAt(fragCoord);"),
-            "Image2": ("// Shadertoy entry point", HELPER + "// Shadertoy entry point"),
-        },
-        "lab4-main",
+        [
+            ("Image", GRADIENT, "vec3 background = backgroundAt(fragCoord);"),
+            ("Image", "// Shadertoy entry point", HELPER + "// Shadertoy entry point"),
+        ],
+        BRANCH,
     ),
     "semicolon": (
         "Jo King",
-        {"Image": ("sRay ray = calcRay(viewport);", "sRay ray = calcRay(viewport)")},
-        "lab4-main",
+        [("Image", "sRay ray = calcRay(viewport);", "sRay ray = calcRay(viewport)")],
+        BRANCH,
     ),
-    "no-push": ("Kim Lee; Lu Moss", {}, "main"),
+    "no-push": ("Kim Lee; Lu Moss", [], "main"),
 }
 
 
@@ -89,8 +86,7 @@ def make_class(base: Path) -> Path:
         if branch != "main":
             git(repo, "checkout", "-q", "-b", branch)
         texts = {tab: (FINAL / f"{tab}.glsl").read_text() for tab in ("Image", "Common")}
-        for tab, (old, new) in edits.items():
-            tab = tab.rstrip("2")
+        for tab, old, new in edits:
             assert old in texts[tab], (team, old)
             texts[tab] = texts[tab].replace(old, new)
         for tab, text in texts.items():
@@ -101,9 +97,6 @@ def make_class(base: Path) -> Path:
     roster = base / "roster.csv"
     roster.write_text("\n".join(lines) + "\n")
     return roster
-
-
-BRANCH = "lab4-main"
 
 
 def main() -> int:
