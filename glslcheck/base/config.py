@@ -127,13 +127,14 @@ def _text(name: str) -> str:
     return os.environ.get(name, "").strip()
 
 
-def frame_seconds() -> float:
-    """GLSLCHECK_FRAME_SECONDS, else FRAME_SECONDS: the range --frame-budget takes."""
+def frame_seconds(default: float = FRAME_SECONDS) -> float:
+    """GLSLCHECK_FRAME_SECONDS, else `default` (FRAME_SECONDS; `glslcheck grade` has its own):
+    the range --frame-budget takes."""
     from .limits import MAX_FRAME_SECONDS, MIN_FRAME_SECONDS
 
     text = _text("GLSLCHECK_FRAME_SECONDS")
     try:
-        value = float(text) if text else FRAME_SECONDS
+        value = float(text) if text else default
     except ValueError:
         value = math.nan
     if not MIN_FRAME_SECONDS <= value <= MAX_FRAME_SECONDS:

@@ -13,6 +13,8 @@
 - `check_output(path, suffixes, what)`: refuses, before any work, a file name whose extension
   is not one of the formats the writer makes (`verify --diff bad`, `bench --plot x.xyz`).
 - `load_image(path)`: a `.npy` float array or an image file as float32 RGBA in [0, 1].
+- `thumbnail(img)`, `png_bytes(rgb)`: a render scaled down as the screen shows it, and PNG bytes
+  of an 8-bit image (pages inline them as data URIs).
 
 Write errors come back as `InputError` (exit 2) naming the path and the reason.
 """
@@ -215,3 +217,30 @@ class GifWriter:
             atomic.__exit__(type(e), e, e.__traceback__)
             raise
         atomic.__exit__(kind, error, tb)
+
+
+THUMBNAIL_WIDTH = 160  # a grades page shows a row of these per team: small, still readable
+
+
+def thumbnail(img: np.ndarray, width: int = THUMBNAIL_WIDTH) -> np.ndarray:
+    """8-bit RGB of a float render as the screen shows it (`quantise`), scaled down to `width`
+    pixels across (aspect kept; never scaled up) by averaging the pixels each one covers."""
+    from PIL import Image
+
+    rgb = quantise(np.asarray(img)[..., :3])
+    h, w = rgb.shape[:2]
+    if w <= width:
+        return rgb
+    height = max(1, round(h * width / w))
+    return np.asarray(Image.fromarray(rgb, "RGB").resize((width, height), Image.Resampling.BOX))
+
+
+def png_bytes(rgb: np.ndarray) -> bytes:
+    """An 8-bit RGB array as the bytes of a PNG file (for pages that inline their images), at
+    zlib's default level: `optimize` would make a thumbnail a few percent smaller for several
+    times the encoding time, which a page of a whole class pays per image."""
+    from PIL import Image
+
+    buffer = io.BytesIO()
+    Image.fromarray(rgb).save(buffer, format="PNG")
+    return buffer.getvalue()

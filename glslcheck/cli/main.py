@@ -36,6 +36,7 @@ COMMANDS = [
         "report",
         "one HTML page: source and findings, every backend's render, differences, verdicts",
     ),
+    ("grade", "grade", "grade a class: deductions, renders and closeness to a reference"),
 ]
 
 
@@ -125,7 +126,13 @@ def build_parser(only: str | None = None) -> argparse.ArgumentParser:
     return parser
 
 
-_RENDERING = ("render", "verify", "bench", "report")  # the commands that run the NumPy renderer
+_RENDERING = (
+    "render",
+    "verify",
+    "bench",
+    "report",
+    "grade",
+)  # the commands that run the NumPy renderer
 _BUDGETED = _RENDERING + (
     "probe",
 )  # and those that take --frame-budget (probe's --nan renders a frame)

@@ -237,9 +237,12 @@ def lint_source(
     *,
     errors: Sequence[Diagnostic] = (),
     dropped: Sequence[tuple[str, int, int, str]] = (),
+    honour_suppressions: bool = True,
 ) -> list[Finding]:
     """Lint one file; its compile errors (`errors`, of the program: this file's are reported)
-    first, then every finding in line order. `dropped`: declarations syntax recovery took out."""
+    first, then every finding in line order. `dropped`: declarations syntax recovery took out.
+    `honour_suppressions=False` keeps the findings the file's `glslcheck: ignore` comments
+    would silence (a grader counts the course's deductions, not the ones a file opts out of)."""
     config = config or LintConfig()
     rules = all_rules()
     if source_line(source.path, 1) is None:
@@ -281,7 +284,7 @@ def lint_source(
             ran.add(rule.name)
             for d in rule.check(ctx):
                 f = _finding(rule, d, ctx)
-                if not is_suppressed(f, ctx.suppressions):
+                if not (honour_suppressions and is_suppressed(f, ctx.suppressions)):
                     findings.append(f)
     order = {name: i for i, name in enumerate(rules)}  # ties in registry-table order
     # compile errors first, then which rules could not run, then the findings in line order

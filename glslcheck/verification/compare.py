@@ -457,6 +457,17 @@ def heat_colours(error: np.ndarray) -> np.ndarray:
     return (rgb * 255.0 + 0.5).astype(np.uint8)
 
 
+def diff_colours(comp: Comparison) -> np.ndarray:
+    """The diff image of a comparison as uint8 RGB: `heat_colours` of the per-pixel error, edge
+    pixels in EDGE_COLOUR, NaN/Inf in one image only in NAN_COLOUR."""
+    if comp.error_map is None:
+        raise ValueError("this Comparison carries no per-pixel maps")
+    rgb = heat_colours(comp.error_map)
+    rgb[comp.edge_mask] = EDGE_COLOUR
+    rgb[comp.nan_mask] = NAN_COLOUR
+    return rgb
+
+
 def write_diff_png(comparison_or_imgs, path: str | os.PathLike) -> Comparison:
     """Write the heat map of per-pixel max abs difference; returns the Comparison used.
 
@@ -471,10 +482,7 @@ def write_diff_png(comparison_or_imgs, path: str | os.PathLike) -> Comparison:
     if not isinstance(comp, Comparison):
         numpy_img, gl_img = comparison_or_imgs
         comp = compare(numpy_img, gl_img)
-    if comp.error_map is None:
-        raise ValueError("this Comparison carries no per-pixel maps")
-    rgb = heat_colours(comp.error_map)
-    rgb[comp.edge_mask] = EDGE_COLOUR
-    rgb[comp.nan_mask] = NAN_COLOUR
-    save_rgb(rgb, path, "diff image")  # atomic; InputError (exit 2) when it cannot be written
+    save_rgb(
+        diff_colours(comp), path, "diff image"
+    )  # atomic; InputError (exit 2) when it cannot be written
     return comp

@@ -51,7 +51,7 @@ from ..base.diagnostics import Diagnostic, GlslError, InputError, Location
 from ..shadertoy.sources import Shader, find_shaders
 from .bench import HEADER as BENCH_HEADER
 from .bench import TABLE_NOTE, Row, row_cells
-from .compare import EDGE_COLOUR, NAN_COLOUR, Comparison, compare, heat_colours
+from .compare import NAN_COLOUR, Comparison, compare, diff_colours
 
 if TYPE_CHECKING:
     from .probe import NanReport
@@ -361,14 +361,15 @@ def plot_png(rows: list[Row], title: str) -> str:
 
 def diff_png(c: Comparison) -> str:
     """The heat map `verify --diff` writes."""
-    rgb = heat_colours(c.error_map)
-    rgb[c.edge_mask] = EDGE_COLOUR
-    rgb[c.nan_mask] = NAN_COLOUR
-    return _png(rgb)
+    return _png(diff_colours(c))
 
 
-def _e(text) -> str:
+def escape(text) -> str:
+    """Any value as HTML text or an attribute value (quotes escaped too)."""
     return html.escape(str(text), quote=True)
+
+
+_e = escape
 
 
 def _anchor(name: str) -> str:

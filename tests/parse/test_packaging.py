@@ -85,3 +85,21 @@ def test_wheel_contains_grammar_and_parses_from_it(tmp_path):
     )
     assert lint.returncode in (0, 1) and "Traceback" not in lint.stderr, lint.stderr
     assert "file" in lint.stdout
+    # The pytest plugin comes with the wheel: a fresh project's test asks for the fixture by
+    # name, with no -p and no conftest (the entry point in the wheel's metadata loads it).
+    (tmp_path / "project").mkdir()
+    (tmp_path / "project" / "test_shader.py").write_text(
+        "def test_the_final_part_is_finite(shader_check):\n"
+        f"    shader_check.assert_no_nan({str(ROOT / 'lab_shaders' / '07_final')!r}, size=(32, 18))\n"
+    )
+    run = subprocess.run(
+        [sys.executable, "-m", "pytest", "-q", "-p", "no:cacheprovider", "test_shader.py"],
+        cwd=tmp_path / "project",
+        env=env,
+        capture_output=True,
+        text=True,
+    )
+    assert run.returncode == 0 and "1 passed" in run.stdout, run.stdout + run.stderr
+    with zipfile.ZipFile(wheel) as z:
+        (entry_points,) = [n for n in names if n.endswith(".dist-info/entry_points.txt")]
+        assert "[pytest11]\nglslcheck.testing = glslcheck.testing" in z.read(entry_points).decode()
