@@ -32,7 +32,6 @@ from ..shadertoy.sources import (
     check_path,
     find_shaders,
     path_name,
-    path_suffix,
     posix_path,
 )
 from .config import COMMAND_LINE, ConfigFinder, LintConfig, apply_overrides
@@ -66,6 +65,7 @@ class LintResult:
     findings: list[Finding]
     files: int
     paths: list[str] = field(default_factory=list)  # the linted files, in order
+    skipped: list[str] = field(default_factory=list)  # named files left out: not shader files
 
     @property
     def penalty(self) -> int:
@@ -378,10 +378,13 @@ def lint_paths(
     wanted = [str(p) for p in paths]
     for p in wanted:
         check_path(p)  # a symlink loop is named as one before any path is resolved
+    skipped: list[str] = []
     if skip_non_shaders:
-        wanted = [p for p in wanted if os.path.isdir(p) or is_shader_name(p, finder.for_file(p))]
+        kept = [p for p in wanted if os.path.isdir(p) or is_shader_file(p, finder.for_file(p))]
+        skipped = [p for p in wanted if p not in kept]
+        wanted = kept
     if not wanted:
-        return LintResult([], 0, [])
+        return LintResult([], 0, [], skipped)
     files = {os.path.realpath(p) for p in wanted if not os.path.isdir(p)}
     folders = [os.path.realpath(p) for p in wanted if os.path.isdir(p)]
     linted: list[str] = []
@@ -400,7 +403,7 @@ def lint_paths(
             )  # InputError: bad configuration
         if todo:
             work.append(todo)
-    return LintResult(lint_work(work), len(linted), linted)
+    return LintResult(lint_work(work), len(linted), linted, skipped)
 
 
 def _within(path: str, folder: str) -> bool:
@@ -449,19 +452,23 @@ def _lint_files(work: list[list[tuple[Shader, Source, LintConfig]]]) -> list[Fin
     return findings
 
 
-def is_shader_name(path: str, config: LintConfig) -> bool:
-    """Whether a file name is a shader file: .glsl/.frag, a Shadertoy tab name, or a tab-pattern."""
+def is_shader_file(path: str, config: LintConfig, text: str | None = None) -> bool:
+    """Whether a file is a shader file: .glsl/.frag, a Shadertoy tab name, a tab-pattern, or a
+    `.txt` or extension-less file whose text is shader code (`text` when given, else the file's
+    start; see sources.looks_like_shader)."""
     from fnmatch import fnmatch
 
-    from ..shadertoy.sources import tab_name
+    from ..shadertoy.sources import looks_like_shader, name_says_shader, sniff_shader_file
 
-    suffix = path_suffix(path).lower()
-    if suffix in (".glsl", ".frag"):
-        return True
-    if suffix in (".txt", "") and tab_name(path) is not None:
+    by_name = name_says_shader(path)
+    if by_name:
         return True
     posix = posix_path(path)
-    return any(fnmatch(posix, pat) or fnmatch(path_name(posix), pat) for pat in config.tab_patterns)
+    if any(fnmatch(posix, pat) or fnmatch(path_name(posix), pat) for pat in config.tab_patterns):
+        return True
+    if by_name is None:
+        return looks_like_shader(text) if text is not None else sniff_shader_file(path)
+    return False
 
 
 def iter_rules(names: Iterable[str] | None = None) -> list[Rule]:

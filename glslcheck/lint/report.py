@@ -59,6 +59,8 @@ def _plural(n: int, word: str) -> str:
 
 def summary_line(result: LintResult) -> str:
     files = _plural(result.files, "file")
+    if not result.files:  # never a clean bill: nothing was read
+        return "no shader files linted (0 files): nothing was checked"
     if not result.findings:
         return f"no findings in {files}"
     points = result.penalty
