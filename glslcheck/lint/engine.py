@@ -49,7 +49,9 @@ PHASES = ("text", "ast", "suppressions")
 
 @record
 class Finding(Diagnostic):
-    """A lint rule hit: a Diagnostic (rule = rule NAME, loc in the user's file) and its penalty."""
+    """A lint rule hit: a Diagnostic (rule = rule NAME, loc in the user's file) and its penalty.
+    A deduction (penalty > 0) has a `certainty`: "certain" (the rubric's text makes it one) or
+    "possible" (a reading of an ambiguous rubric sentence); anything else has None."""
 
     penalty: int = 0
 
@@ -69,7 +71,13 @@ class LintResult:
 
     @property
     def penalty(self) -> int:
-        return sum(f.penalty for f in self.findings)
+        """The points the certain deductions cost."""
+        return sum(f.penalty for f in self.findings if f.certainty != "possible")
+
+    @property
+    def possible_penalty(self) -> int:
+        """The points the possible deductions may cost on top of `penalty`."""
+        return sum(f.penalty for f in self.findings if f.certainty == "possible")
 
 
 @record
@@ -342,6 +350,7 @@ def _finding(rule: Rule, d: Diagnostic, ctx: LintContext) -> Finding:
     if loc.end_line is None or loc.end_column is None:
         loc = ctx.location(loc.line, loc.column, loc.end_line, loc.end_column)
     advisory = d.severity == "note" and rule.severity == "warning"  # a course rule's advice
+    penalty = 0 if advisory else rule.penalty
     return Finding(
         message=d.message,
         loc=loc,
@@ -349,7 +358,8 @@ def _finding(rule: Rule, d: Diagnostic, ctx: LintContext) -> Finding:
         rule=rule.name,
         help=d.help,
         notes=list(d.notes),
-        penalty=0 if advisory else rule.penalty,
+        penalty=penalty,
+        certainty=(d.certainty or rule.certainty) if penalty else None,
     )
 
 
