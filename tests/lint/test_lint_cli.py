@@ -277,7 +277,9 @@ def test_bad_pyproject_table_names_the_table(workdir):
 def test_rule_prints_docs(capsys):
     assert main(["rule", "missing-comment"]) == 0
     out = capsys.readouterr().out
-    assert out.startswith("missing-comment: Code lines that no comment explains.\n")
+    assert out.startswith(
+        "missing-comment: Code that no comment explains, as a TA reads the comments.\n"
+    )
     for section in ("## What it does", "## Why is this bad?", "## Example", "## Use instead"):
         assert section in out
 

@@ -1,22 +1,60 @@
-"""Code lines that no comment explains.
+"""Code that no comment explains, as a TA reads the comments.
 
 ## What it does
-Finds runs of code lines that no comment covers. A comment line covers the code lines right
-below it, at most `comment-span` of them (3 by default), stopping at a blank line or the next
-comment. A comment at the end of a code line covers that line; a comment before code on the same
-line (`/* why */ x = 1.0;`, or code after a block comment's `*/`) covers that line and the
-lines below it as a comment line would. Lines holding only braces (`{`, `}`, `};`, `} {`) need no
-comment and use up none of a comment's span; a brace line with a comment (`{ // per light`) is a
-comment line. Function, struct and struct-member lines and preprocessor lines (`#define`) are
-code like any other. A `glslcheck:` directive is not an explanation and covers nothing.
+Reads the file as a TA does, statement by statement (a signature or a call written over several
+lines is one statement), and reports each run of statements that no comment explains:
 
-One finding per run of consecutive uncovered code lines, at the run's first line.
+- A comment explains the statement or small group of statements it stands above: up to
+  `comment-span` statements (5 by default: the rubric's "every few related lines"), until a
+  blank line, the next comment, or the end of the block it is in. Lines of a comment block
+  explain as one comment. A comment above an `if` or a loop goes on into its body.
+- A function's comment covers its signature (all its lines) and goes on into the body as a
+  comment above a group does; a comment separated from a function or struct by a blank line
+  still documents it when it names it (`// shade: ...` above `vec3 shade(...)`). A struct's
+  comment covers its members; a struct whose members are commented one by one needs no comment
+  of its own.
+- A trailing comment covers its statement (`x = 1.0; // why`, on any of its lines), and on a
+  signature or a loop/`if` header, the block it opens as a comment above would.
+- Trivial statements need no comment: returning a literal or a plain variable (`return true;`,
+  `return col;`), `break;`, `continue;`, `discard;`, `else`, braces. Code in an `#ifdef`/`#if`
+  branch the preprocessor skips is not compiled and not linted (where that is sure: `#ifdef`,
+  `#ifndef`, `#if defined(X)`, `#if 0`).
+- Credits and attributions ("Code from class by ...", "Referenced https://..."), section markers
+  ("// part 3", "// TEST", "// END CLASS MATERIAL", a `-----` rule), commented-out code
+  (`//dp.z = r * r;`) and `glslcheck:` directives explain nothing: a TA reads past them.
 
-Code in an `#ifdef`/`#if` branch the preprocessor skips is not compiled and is not linted
-(where that is sure: `#ifdef`, `#ifndef`, `#if defined(X)`, `#if 0`). A comment that only
-credits or marks ("Code from class by ...", "// part 3", "// TEST", a `-----` rule) says where
-code came from, not why it is there: the lines only it covers are reported as advisory notes
-(no points), apart from the deductions.
+A blank line ends a group and a run, except one right after an opening brace or before a
+closing one. Each top-level function or struct is a run of its own. One finding per run of
+uncovered statements, spanning its lines, as the rubric deducts "per ambiguous
+section/block/line".
+
+Examples, all covered: the function's comment covers both signature lines and the body,
+`return true;` and `return false;` need none, the trailing comment covers its two-line call:
+```glsl
+// inCircle: whether p lies in the circle of centre c and radius r (no square root)
+bool inCircle(in vec2 p, in vec2 c,
+              in float r)
+{
+    vec2 d = p - c;
+    if (dot(d, d) <= r * r)
+    {
+        return true;
+    }
+    return false;
+}
+vec4 lit = shade(position, normal, // lit colour of the surface point
+                 light);
+```
+and not covered, two findings (a heading parted from its code by a blank line explains nothing
+below the blank; an attribution explains nothing):
+```glsl
+// SCENE
+
+sSphere s;
+initSphere(s, vec3(0.0), 1.0);
+// Code from class by Daniel Buckstein
+vec3 dp = p - s.center.xyz;
+```
 
 ## Why is this bad?
 The course's coding standards: "Every section, block and line of code must be commented
@@ -44,6 +82,7 @@ from __future__ import annotations
 import re
 
 from ...base.diagnostics import Diagnostic
+from ...base.records import record
 from ...base.regexes import compiled
 from ..textscan import (
     BLANK,
@@ -72,57 +111,287 @@ NEEDS = "text"
 HELP = "add a comment above saying why these lines are there"
 
 
-def uncovered_runs(kinds: list[LineKind], span: int) -> list[tuple[int, int, int]]:
-    """(first line, last line, number of code lines) of each run of uncovered code lines."""
-    runs: list[tuple[int, int, int]] = []
-    budget = 0  # code lines the last comment line still covers
-    run: list[int] | None = None  # [first, last, count]
-    for number, kind in enumerate(kinds, start=1):  # the kinds as globals (see textscan)
-        covered = True
-        if kind is COMMENT or kind is BRACE_COMMENT:
-            budget = span
-        elif kind is BLANK:
-            budget = 0
-        elif kind is LEADING:
-            budget = span - 1
-        elif kind is CODE or kind is TRAILING:
-            covered = kind is TRAILING or budget > 0
-            budget = max(budget - 1, 0)
-        # BRACE and DIRECTIVE lines neither need a comment nor use one up.
-        if not covered:  # (only a CODE line is not: TRAILING and LEADING lines are covered)
-            if run is None:
-                run = [number, number, 0]
-            run[1] = number
-            run[2] += 1
-        elif kind is not BRACE and kind is not DIRECTIVE and run is not None:
-            runs.append((run[0], run[1], run[2]))
-            run = None
-    if run is not None:
-        runs.append((run[0], run[1], run[2]))
-    return runs
-
-
 # A comment that only credits or marks ("code from class by ...", "// part 3", "// TEST"):
 # it says where the code came from or where a part starts, not why the code is there.
 ATTRIBUTION_RE = compiled(
     r"^[\s*/!-]*(?:"
     r"(?:code\s+|taken\s+|copied\s+|adapted\s+|borrowed\s+)?from\s+(?:class|the\s+starter|lecture)\b[^.;]*"
     r"|(?:\w+\s+){0,3}by\s+(?-i:[A-Z][\w.]*)(?:\s+(?-i:[A-Z][\w.]*)){0,3}"  # "Code by Dan Buckstein"
-    r"|(?:part|step|section)\s*[#\d.]+|test|todo"  # a bare marker
+    r"|(?:parts?|pt|step|section|task|ch(?:apter)?)\s*[#\d.]+(?:\s*(?:and|&|,|-)\s*[#\d.]+)*"
+    r"|test|todo|(?:start|end|begin)(?:\s+\w+){0,3}|(?:\w+\s+){0,3}(?:start|end|begin)"
     r"|-{3,}|={3,}|\*{3,})[\s*/!.:-]*$",
+    re.I,
+)
+# Commented-out code: a statement, a declaration, a call or a control header kept in a comment.
+COMMENTED_CODE_RE = compiled(
+    r"^\s*(?:(?:if|else\s+if|for|while)\s*\(.*"
+    r"|return\b[^;]*;"
+    r"|[\w.\[\]]+\s*[-+*/]?=\s*[^=][^;]*;"
+    r"|(?:const\s+)?(?:float|u?int|bool|void|[biu]?vec[234]|mat[234]|(?-i:[A-Z]\w*|s[A-Z]\w*))"
+    r"\s+[A-Za-z_]\w*\s*(?:=[^;]*)?;"
+    r"|[\w.]+\s*\(.*\)\s*;"
+    r"|[{}]\s*;?)\s*(?://.*)?$"
+)
+# Statements that need no comment: returning a literal or a plain variable, break, continue,
+# discard, a bare `else`.
+TRIVIAL_RE = compiled(
+    r"^\s*\}?\s*(?:return\s*(?:[-+]?[\w.]+|\w+\(\s*[\w.]+\s*\))?\s*;|break\s*;|continue\s*;"
+    r"|discard\s*;|else)\s*\{?\s*\}?\s*$"
+)
+
+
+# A credit: a comment that names where code came from (a link, the starter, a reference).
+CREDIT_RE = compiled(
+    r"^[\s*/!-]*(?:https?://|www\.|(?:\w+\s+){0,2}(?:referenc\w*|sources?|credits?|thanks?"
+    r"|adapted|based\s+on|borrowed|inspired|taken\s+from|copied|got\s+(?:help|assistance)"
+    r"|help\s+from|assistance|starter|original\s+code|glsl\s+starter)\b)",
     re.I,
 )
 
 
-def _attributions(ctx) -> set[int]:
-    """Lines of whole-line comments that only attribute or mark."""
-    return {
-        c.line
-        for c in ctx.comments
-        if c.line == c.end_line
-        and ctx.line_kinds[c.line - 1] is COMMENT
-        and ATTRIBUTION_RE.match(c.text)
-    }
+def explains(text: str) -> bool:
+    """Whether a comment's text explains code: not empty, not a credit or a marker, not code."""
+    body = text.strip().strip("/*!").strip()
+    return (
+        bool(body)
+        and not ATTRIBUTION_RE.match(text)
+        and not COMMENTED_CODE_RE.match(body)
+        and not CREDIT_RE.match(body)
+    )
+
+
+def _line_explains(scan, number: int) -> bool:
+    """Whether a comment on line `number` explains (a block comment: its text on that line)."""
+    for c in scan.comments_on(number):
+        if c.is_directive:
+            continue
+        text = c.text.split("\n")[number - c.line] if c.end_line > c.line else c.text
+        if explains(text):
+            return True
+    return False
+
+
+@record
+class _Cover:
+    """A comment's coverage: the block depth it was written at and the statements it has left."""
+
+    depth: int
+    left: int
+    text: str = ""  # the comment's words (a definition's name in them: it documents it)
+
+
+_NAME_RE = compiled(r"(\w+)\s*(?:\(|\{|$)")  # a definition's name: before its `(` or `{`
+_SIGNATURE_RE = compiled(r"^(?:[A-Za-z_]\w*\s+)+[A-Za-z_]\w*\s*\([^;]*\)\s*\{?\s*$")
+_HEADER_RE = compiled(r"^\}?\s*(?:if|for|while|else\s+if|switch)\s*\(")  # a control header
+_STRUCT_RE = compiled(r"^struct\b")
+_GOES_ON = (",", "+", "-", "*", "/", "=", "&", "|", "?", ":", "<", ">", "(", "!")
+
+
+class _Reader:
+    """Reads a file's lines into statements and decides which are covered (see uncovered_runs)."""
+
+    def __init__(self, scan, kinds: list[LineKind], span: int):
+        self.scan, self.kinds, self.span = scan, kinds, span
+        self.code = scan.code_lines
+        self.runs: list[tuple[int, int, int]] = []
+        self.run: list[int] | None = None  # [first, last, code lines]
+        self.cover: _Cover | None = None
+        self.above: _Cover | None = None  # a top-level comment a blank line parts from its code
+        self.depth = 0
+        self.blocks: list[str] = []  # per open block: "struct", "function" or "other"
+        self.statement: list[int] = []  # the lines of the statement being read
+        self.start_depth = 0  # the depth the statement started at
+        self.parens = 0
+        self.last_head = ""  # the last statement read (what a `{` on the next line opens)
+        # an uncovered function or struct header, decided by its body: the body's first
+        # statement explained by a comment of its own (or its members) explains it too
+        self.deferred: list[int] | None = None
+        self.blank = False  # a blank line was read and not yet acted on
+        self.after_open = False  # the last line read ended with `{`
+        self.last_comment = 0  # the last explaining comment line
+
+    def close_run(self) -> None:
+        if self.run is not None:
+            self.runs.append((self.run[0], self.run[1], self.run[2]))
+            self.run = None
+
+    def add_to_run(self, lines: list[int]) -> None:
+        if self.run is None:
+            self.run = [lines[0], lines[-1], len(lines)]
+        else:
+            self.run[1] = lines[-1]
+            self.run[2] += len(lines)
+
+    def settle_deferred(self, explained: bool) -> None:
+        if self.deferred is not None:
+            if not explained:
+                self.add_to_run(self.deferred)
+            self.deferred = None
+
+    def own_comment(self, lines: list[int]) -> bool:
+        return any(
+            self.kinds[n - 1] in (TRAILING, LEADING) and _line_explains(self.scan, n) for n in lines
+        )
+
+    def finish(self) -> None:
+        """Decide the statement read so far: covered, trivial or uncovered."""
+        if not self.statement:
+            return
+        lines = list(self.statement)
+        self.statement.clear()
+        self.parens = 0
+        text = " ".join(self.code[n - 1].strip() for n in lines)
+        self.last_head = text
+        top = self.start_depth == 0
+        header = top and (_SIGNATURE_RE.match(text) is not None or _STRUCT_RE.match(text))
+        if header and self.cover is None and self.above is not None:
+            name = _NAME_RE.search(text.split("(")[0] + "(")
+            if name and re.search(rf"\b{re.escape(name.group(1))}\b", self.above.text):
+                self.cover = self.above  # the definition's own comment, across a blank line
+        self.above = None
+        if TRIVIAL_RE.match(text):
+            return  # needs no comment; neither covers nor breaks a run
+        in_struct = bool(self.blocks) and self.blocks[-1] == "struct"
+        cover = self.cover
+        covered = cover is not None and cover.left > 0
+        if covered and not (in_struct or header):
+            cover.left -= 1
+        own = self.own_comment(lines)
+        if own and (header or _HEADER_RE.match(text)):
+            # `float f(float x) // why`, `for (...) // why`: it explains what the block does
+            self.cover = _Cover(self.start_depth, self.span)
+        if header and _STRUCT_RE.match(text) and not covered and not own:
+            self.settle_deferred(False)
+            self.deferred = lines  # its members' comments may explain it
+            return
+        if covered or own:
+            self.settle_deferred(own or in_struct)
+            self.close_run()
+        else:
+            self.settle_deferred(False)
+            self.add_to_run(lines)
+
+    def braces(self, line: str) -> None:
+        """Follow the blocks a line closes and opens (closing first: `} else {`)."""
+        for _ in range(line.count("}")):
+            if self.blocks:
+                self.blocks.pop()
+            self.depth = max(self.depth - 1, 0)
+            if self.cover is not None and (self.depth < self.cover.depth or self.depth == 0):
+                self.cover = None  # the block ends, or the definition a top comment stood above
+            if self.depth == 0:
+                self.settle_deferred(False)  # a body with nothing explained
+                self.close_run()  # each top-level definition is a run of its own
+        opened = line.count("{")
+        if opened:
+            head = (
+                " ".join(self.code[n - 1].strip() for n in self.statement)
+                if self.statement
+                else self.last_head
+            )
+            if _STRUCT_RE.match(head.lstrip()):
+                what = "struct"
+            elif self.depth == 0 and _SIGNATURE_RE.match(head.split("{")[0]):
+                what = "function"
+            else:
+                what = "other"
+            self.blocks.extend([what] * opened)
+            self.depth += opened
+
+    def new_comment(self, number: int) -> None:
+        """An explaining comment line: it covers the group below it (a run of comment lines is
+        one comment)."""
+        self.close_run()
+        text = " ".join(c.text for c in self.scan.comments_on(number))
+        if self.cover is not None and self.last_comment == number - 1:
+            self.cover.left = self.span
+            self.cover.text += " " + text
+        else:
+            self.cover = _Cover(self.depth, self.span, text)
+        self.last_comment = number
+
+    def complete(self) -> bool:
+        """Whether the statement being read can end here (a blank or comment line follows): its
+        parentheses are closed and its last line does not end with an operator or a comma."""
+        last = self.code[self.statement[-1] - 1].rstrip() if self.statement else ""
+        return self.parens <= 0 and not last.endswith(_GOES_ON)
+
+    def read(self) -> list[tuple[int, int, int]]:
+        for number, kind in enumerate(self.kinds, start=1):
+            if kind is not CODE and kind is not TRAILING and self.statement and self.complete():
+                self.finish()  # `GEN_DECLARE(float)` with no `;`, then a blank or a comment
+            if kind is BLANK:
+                self.blank = True
+                continue
+            if kind is DIRECTIVE:
+                continue  # a glslcheck directive, or code the preprocessor skips
+            line = self.code[number - 1].strip()
+            if self.blank and not self.statement:
+                self.blank = False
+                # a blank line parts groups; one next to a brace parts nothing
+                if not line.startswith("}") and not self.after_open:
+                    if self.depth == 0 and self.cover is not None:
+                        self.above = self.cover
+                    self.cover = None
+                    self.close_run()
+            self.blank = False
+            self.after_open = line.endswith("{")
+            explaining = (
+                kind is not CODE and kind is not BRACE and _line_explains(self.scan, number)
+            )
+            if kind is COMMENT:
+                if explaining and not self.statement:
+                    self.new_comment(number)
+                continue
+            if kind is BRACE or kind is BRACE_COMMENT:
+                if self.statement and self.parens <= 0:
+                    self.finish()
+                self.braces(line)
+                self.last_head = line
+                if kind is BRACE_COMMENT and explaining:
+                    self.new_comment(number)
+                continue
+            if kind is LEADING and explaining and not self.statement:
+                self.new_comment(number)
+            if not self.statement:
+                self.start_depth = self.depth
+            if line.startswith("#"):  # a preprocessor line: a statement of its own
+                self.finish()
+                self.start_depth = self.depth
+                self.statement.append(number)
+                self.finish()
+                continue
+            self.statement.append(number)
+            self.parens += line.count("(") - line.count(")")
+            if self.parens <= 0 and self.ends(line):
+                self.finish()  # at the depth it starts at; a `{` it ends with opens after it
+            self.braces(line)
+        self.finish()
+        self.settle_deferred(False)
+        self.close_run()
+        return self.runs
+
+    def ends(self, line: str) -> bool:
+        """Whether `line` ends the statement being read."""
+        if line.endswith((";", "{", "}")) or line == "else" or line.endswith(" else"):
+            return True
+        if line.endswith(")"):  # a header ends there (its body follows); an expression goes on
+            text = " ".join(self.code[n - 1].strip() for n in self.statement)
+            return bool(_HEADER_RE.match(text) or _SIGNATURE_RE.match(text))
+        return False
+
+
+def uncovered_runs(scan, kinds: list[LineKind], span: int) -> list[tuple[int, int, int]]:
+    """(first line, last line, number of code lines) of each run of uncovered statements.
+
+    Statements are read whole (a signature or a call over several lines is one). A comment
+    covers up to `span` statements below it, stopping at a blank line, the next explaining
+    comment, or the end of its block (for a top-level comment, the end of the function or
+    struct it stands above). A trailing comment covers its statement. Struct members and a
+    function's signature use up none of the span; trivial statements need no comment; credits,
+    markers and commented-out code explain nothing and stop nothing. A run ends at a covered
+    statement, a blank line or an explaining comment."""
+    return _Reader(scan, kinds, span).read()
 
 
 def check(ctx: LintContext) -> Iterator[Diagnostic]:
@@ -133,35 +402,16 @@ def check(ctx: LintContext) -> Iterator[Diagnostic]:
         if inactive
         else ctx.line_kinds
     )
-    span = ctx.config.comment_span
-    runs = uncovered_runs(kinds, span)
-    for first, last, count in runs:
-        yield _finding(ctx, first, last, count, False, "without a comment")
-    # lines that only an attribution or a marker "explains": advisory, not a deduction
-    marks = _attributions(ctx)
-    if marks:
-        plain = [BLANK if n in marks else k for n, k in enumerate(kinds, start=1)]
-        seen = {line for first, last, _ in runs for line in range(first, last + 1)}
-        for first, last, count in uncovered_runs(plain, span):
-            if not any(line in seen for line in range(first, last + 1)):
-                yield _finding(
-                    ctx,
-                    first,
-                    last,
-                    count,
-                    True,
-                    "explained only by a comment that credits or marks (not why the code is there)",
-                )
+    for first, last, count in uncovered_runs(ctx.scan, kinds, ctx.config.comment_span):
+        yield _finding(ctx, first, last, count)
 
 
-def _finding(
-    ctx: LintContext, first: int, last: int, count: int, advisory: bool, what: str
-) -> Diagnostic:
+def _finding(ctx: LintContext, first: int, last: int, count: int) -> Diagnostic:
     lines = f"line {first}" if first == last else f"lines {first}-{last}"
     noun = "line" if count == 1 else "lines"
     return Diagnostic(
-        f"{count} {noun} of code {what} ({lines})",
-        ctx.location(first),
-        severity="note" if advisory else SEVERITY,  # a note: advice, not a deduction
+        f"{count} {noun} of code without a comment that explains {'it' if count == 1 else 'them'}"
+        f" ({lines})",
+        ctx.location(first),  # the run's first line: where a suppression comment applies
         help=HELP,
     )
