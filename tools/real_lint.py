@@ -292,6 +292,8 @@ def score(
             if j in pairs:
                 tp[lab["rule"]] += 1
                 by_label[sure, "hit"] += 1
+                said = got[pairs[j]].get("certainty") or "certain"
+                by_label["pairs", "agree" if said == sure else "differ"] += 1
             else:
                 fn[lab["rule"]] += 1
                 if verbose:
@@ -327,6 +329,8 @@ def score(
             f"  {sure:9} labels {lab_all:4d}, found {lab_hit:4d}: recall {_rate(lab_hit, lab_all):>4}"
             f"   findings {f_all:4d}, matched {f_hit:4d}: precision {_rate(f_hit, f_all):>4}"
         )
+    agree, differ = by_label["pairs", "agree"], by_label["pairs", "differ"]
+    print(f"  matched pairs whose certainty agrees: {agree} of {agree + differ}")
     print(
         "files that did not lint fully (as the linter reports it):"
         if not_full

@@ -25,8 +25,13 @@ lines is one statement), and reports each run of statements that no comment expl
 
 A blank line ends a group and a run, except one right after an opening brace or before a
 closing one. Each top-level function or struct is a run of its own. One finding per run of
-uncovered statements, spanning its lines, as the rubric deducts "per ambiguous
-section/block/line".
+uncovered statements, at its first line and naming its last, as the rubric deducts "per
+ambiguous section/block/line".
+
+A run is a certain deduction, except where whether a comment reaches it is a reading (a
+possible deduction): the groups of a section whose heading comment is followed by a blank line
+(`// SCENE`, blank, then the scene's code), and a function signature with no comment above
+whose body opens with a comment saying what the function does.
 
 Examples, all covered: the function's comment covers both signature lines and the body,
 `return true;` and `return false;` need none, the trailing comment covers its two-line call:
@@ -109,6 +114,9 @@ SEVERITY = "warning"
 NEEDS = "text"
 
 HELP = "add a comment above saying why these lines are there"
+# Why a run is only a possible deduction: a reading of how far a comment reaches.
+HEADING = "only a section heading explains it, parted from it by a blank line"
+BODY_ONLY = "the function's first body comment says what it does, none stands above it"
 
 
 # A comment that only credits or marks ("code from class by ...", "// part 3", "// TEST"):
@@ -193,8 +201,12 @@ class _Reader:
     def __init__(self, scan, kinds: list[LineKind], span: int):
         self.scan, self.kinds, self.span = scan, kinds, span
         self.code = scan.code_lines
-        self.runs: list[tuple[int, int, int]] = []
-        self.run: list[int] | None = None  # [first, last, code lines]
+        self.runs: list[tuple[int, int, int, str]] = []
+        self.run: list | None = None  # [first, last, code lines, reading or ""]
+        # the depth of a heading: an explaining comment followed by a blank line. Whether it
+        # explains the groups of its section below the blank is a reading (a possible deduction)
+        self.heading: int | None = None
+        self.signature_run = False  # the open run is one function signature, nothing more
         self.cover: _Cover | None = None
         self.above: _Cover | None = None  # a top-level comment a blank line parts from its code
         self.depth = 0
@@ -212,15 +224,18 @@ class _Reader:
 
     def close_run(self) -> None:
         if self.run is not None:
-            self.runs.append((self.run[0], self.run[1], self.run[2]))
+            self.runs.append((self.run[0], self.run[1], self.run[2], self.run[3]))
             self.run = None
 
-    def add_to_run(self, lines: list[int]) -> None:
+    def add_to_run(self, lines: list[int], signature: bool = False) -> None:
         if self.run is None:
-            self.run = [lines[0], lines[-1], len(lines)]
+            under_heading = self.heading is not None and self.cover is None
+            self.run = [lines[0], lines[-1], len(lines), HEADING if under_heading else ""]
+            self.signature_run = signature
         else:
             self.run[1] = lines[-1]
             self.run[2] += len(lines)
+            self.signature_run = False
 
     def settle_deferred(self, explained: bool) -> None:
         if self.deferred is not None:
@@ -269,7 +284,7 @@ class _Reader:
             self.close_run()
         else:
             self.settle_deferred(False)
-            self.add_to_run(lines)
+            self.add_to_run(lines, signature=header and not _STRUCT_RE.match(text))
 
     def braces(self, line: str) -> None:
         """Follow the blocks a line closes and opens (closing first: `} else {`)."""
@@ -279,6 +294,8 @@ class _Reader:
             self.depth = max(self.depth - 1, 0)
             if self.cover is not None and (self.depth < self.cover.depth or self.depth == 0):
                 self.cover = None  # the block ends, or the definition a top comment stood above
+            if self.heading is not None and (self.depth < self.heading or self.depth == 0):
+                self.heading = None  # the section's block, or its first definition, ends
             if self.depth == 0:
                 self.settle_deferred(False)  # a body with nothing explained
                 self.close_run()  # each top-level definition is a run of its own
@@ -301,7 +318,10 @@ class _Reader:
     def new_comment(self, number: int) -> None:
         """An explaining comment line: it covers the group below it (a run of comment lines is
         one comment)."""
+        if self.run is not None and self.signature_run and self.after_open and self.depth == 1:
+            self.run[3] = BODY_ONLY  # the body opens with what the function does
         self.close_run()
+        self.heading = None
         text = " ".join(c.text for c in self.scan.comments_on(number))
         if self.cover is not None and self.last_comment == number - 1:
             self.cover.left = self.span
@@ -316,7 +336,7 @@ class _Reader:
         last = self.code[self.statement[-1] - 1].rstrip() if self.statement else ""
         return self.parens <= 0 and not last.endswith(_GOES_ON)
 
-    def read(self) -> list[tuple[int, int, int]]:
+    def read(self) -> list[tuple[int, int, int, str]]:
         for number, kind in enumerate(self.kinds, start=1):
             if kind is not CODE and kind is not TRAILING and self.statement and self.complete():
                 self.finish()  # `GEN_DECLARE(float)` with no `;`, then a blank or a comment
@@ -332,16 +352,22 @@ class _Reader:
                 if not line.startswith("}") and not self.after_open:
                     if self.depth == 0 and self.cover is not None:
                         self.above = self.cover
+                    if self.cover is not None and self.cover.left == self.span and self.last_head:
+                        # a comment with a blank line below (not the file's header: no code yet)
+                        self.heading = self.cover.depth
                     self.cover = None
                     self.close_run()
             self.blank = False
+            opened_before = self.after_open
             self.after_open = line.endswith("{")
             explaining = (
                 kind is not CODE and kind is not BRACE and _line_explains(self.scan, number)
             )
             if kind is COMMENT:
                 if explaining and not self.statement:
+                    self.after_open = opened_before
                     self.new_comment(number)
+                    self.after_open = False
                 continue
             if kind is BRACE or kind is BRACE_COMMENT:
                 if self.statement and self.parens <= 0:
@@ -381,8 +407,10 @@ class _Reader:
         return False
 
 
-def uncovered_runs(scan, kinds: list[LineKind], span: int) -> list[tuple[int, int, int]]:
-    """(first line, last line, number of code lines) of each run of uncovered statements.
+def uncovered_runs(scan, kinds: list[LineKind], span: int) -> list[tuple[int, int, int, str]]:
+    """(first line, last line, number of code lines, reading) of each run of uncovered
+    statements; `reading` is "" for a certain deduction, else why it is only a possible one
+    (HEADING, BODY_ONLY).
 
     Statements are read whole (a signature or a call over several lines is one). A comment
     covers up to `span` statements below it, stopping at a blank line, the next explaining
@@ -402,16 +430,17 @@ def check(ctx: LintContext) -> Iterator[Diagnostic]:
         if inactive
         else ctx.line_kinds
     )
-    for first, last, count in uncovered_runs(ctx.scan, kinds, ctx.config.comment_span):
-        yield _finding(ctx, first, last, count)
+    for first, last, count, reading in uncovered_runs(ctx.scan, kinds, ctx.config.comment_span):
+        yield _finding(ctx, first, last, count, reading)
 
 
-def _finding(ctx: LintContext, first: int, last: int, count: int) -> Diagnostic:
+def _finding(ctx: LintContext, first: int, last: int, count: int, reading: str) -> Diagnostic:
     lines = f"line {first}" if first == last else f"lines {first}-{last}"
     noun = "line" if count == 1 else "lines"
     return Diagnostic(
         f"{count} {noun} of code without a comment that explains {'it' if count == 1 else 'them'}"
-        f" ({lines})",
+        f" ({lines})" + (f"; a possible deduction: {reading}" if reading else ""),
         ctx.location(first),  # the run's first line: where a suppression comment applies
         help=HELP,
+        certainty="possible" if reading else None,
     )
