@@ -9,10 +9,13 @@ lines is one statement), and reports each run of statements that no comment expl
   blank line, the next comment, or the end of the block it is in. Lines of a comment block
   explain as one comment. A comment above an `if` or a loop goes on into its body.
 - A function's comment covers its signature (all its lines) and goes on into the body as a
-  comment above a group does; a comment separated from a function or struct by a blank line
-  still documents it when it names it (`// shade: ...` above `vec3 shade(...)`). A struct's
-  comment covers its members; a struct whose members are commented one by one needs no comment
-  of its own.
+  comment above a group does; a short function (at most 8 statements) with no comment in its
+  body is explained whole by its comment above, blank lines in it notwithstanding. A comment
+  separated from a function or struct by a blank line still documents it when it names it
+  (`// shade: ...` above `vec3 shade(...)`). A struct's comment covers its members; a struct
+  whose members are commented one by one needs no comment of its own.
+- A function with no explaining comment anywhere (above, inside, trailing) is one run from its
+  signature to its last line: the one ambiguous block the rubric deducts once.
 - A trailing comment covers its statement (`x = 1.0; // why`, on any of its lines), and on a
   signature or a loop/`if` header, the block it opens as a comment above would.
 - Trivial statements need no comment: returning a literal or a plain variable (`return true;`,
@@ -126,7 +129,7 @@ ATTRIBUTION_RE = compiled(
     r"(?:code\s+|taken\s+|copied\s+|adapted\s+|borrowed\s+)?from\s+(?:class|the\s+starter|lecture)\b[^.;]*"
     r"|(?:\w+\s+){0,3}by\s+(?-i:[A-Z][\w.]*)(?:\s+(?-i:[A-Z][\w.]*)){0,3}"  # "Code by Dan Buckstein"
     r"|(?:parts?|pt|step|section|task|ch(?:apter)?)\s*[#\d.]+(?:\s*(?:and|&|,|-)\s*[#\d.]+)*"
-    r"|test|todo|(?:start|end|begin)(?:\s+\w+){0,3}|(?:\w+\s+){0,3}(?:start|end|begin)"
+    r"|test|todo|(?-i:(?:START|END|BEGIN)(?:\s+[A-Z]+){0,3})|(?:\w+\s+){0,2}(?:start|end|begin)"
     r"|-{3,}|={3,}|\*{3,})[\s*/!.:-]*$",
     re.I,
 )
@@ -192,6 +195,7 @@ _NAME_RE = compiled(r"(\w+)\s*(?:\(|\{|$)")  # a definition's name: before its `
 _SIGNATURE_RE = compiled(r"^(?:[A-Za-z_]\w*\s+)+[A-Za-z_]\w*\s*\([^;]*\)\s*\{?\s*$")
 _HEADER_RE = compiled(r"^\}?\s*(?:if|for|while|else\s+if|switch)\s*\(")  # a control header
 _STRUCT_RE = compiled(r"^struct\b")
+SHORT_BODY = 8  # statements of a function its comment above explains whole
 _GOES_ON = (",", "+", "-", "*", "/", "=", "&", "|", "?", ":", "<", ">", "(", "!")
 
 
@@ -207,6 +211,12 @@ class _Reader:
         # explains the groups of its section below the blank is a reading (a possible deduction)
         self.heading: int | None = None
         self.signature_run = False  # the open run is one function signature, nothing more
+        # the top-level function being read: {"sig": its signature lines, "explained": whether
+        # a comment explains the signature, "inner": whether one explains anything in its
+        # body, "count": its body's statements, "last": its last code line, "runs": the index
+        # of its first run}
+        self.function: dict | None = None
+        self.signature: tuple[list[int], bool] | None = None  # the last signature read
         self.cover: _Cover | None = None
         self.above: _Cover | None = None  # a top-level comment a blank line parts from its code
         self.depth = 0
@@ -279,6 +289,12 @@ class _Reader:
             self.settle_deferred(False)
             self.deferred = lines  # its members' comments may explain it
             return
+        if header and not _STRUCT_RE.match(text):
+            self.signature = (lines, covered or own)
+        elif self.function is not None and self.start_depth > 0:
+            self.function["count"] += 1
+            self.function["last"] = lines[-1]
+            self.function["inner"] = self.function["inner"] or own
         if covered or own:
             self.settle_deferred(own or in_struct)
             self.close_run()
@@ -299,6 +315,7 @@ class _Reader:
             if self.depth == 0:
                 self.settle_deferred(False)  # a body with nothing explained
                 self.close_run()  # each top-level definition is a run of its own
+                self.end_function()
         opened = line.count("{")
         if opened:
             head = (
@@ -312,14 +329,41 @@ class _Reader:
                 what = "function"
             else:
                 what = "other"
+            if what == "function" and self.signature is not None:
+                lines, explained = self.signature
+                self.function = {
+                    "sig": lines,
+                    "explained": explained,
+                    "inner": False,
+                    "count": 0,
+                    "last": lines[-1],
+                    "runs": len(self.runs) - (0 if self.run is not None else 0),
+                }
             self.blocks.extend([what] * opened)
             self.depth += opened
+
+    def end_function(self) -> None:
+        """A function read whole: one with no comment anywhere is one run, the ambiguous block the
+        rubric deducts once; a short one (at most SHORT_BODY statements) whose comment above
+        explains it and whose body has none of its own is explained whole."""
+        f, self.function = self.function, None
+        if f is None:
+            return
+        mine = self.runs[f["runs"] :]
+        if not f["explained"] and not f["inner"] and mine:
+            first = min(f["sig"][0], mine[0][0])
+            count = sum(r[2] for r in mine)
+            self.runs[f["runs"] :] = [(first, f["last"], count, "")]
+        elif f["explained"] and not f["inner"] and f["count"] <= SHORT_BODY:
+            self.runs[f["runs"] :] = [r for r in mine if r[1] < f["sig"][0]]
 
     def new_comment(self, number: int) -> None:
         """An explaining comment line: it covers the group below it (a run of comment lines is
         one comment)."""
         if self.run is not None and self.signature_run and self.after_open and self.depth == 1:
             self.run[3] = BODY_ONLY  # the body opens with what the function does
+        if self.function is not None and self.depth > 0:
+            self.function["inner"] = True
         self.close_run()
         self.heading = None
         text = " ".join(c.text for c in self.scan.comments_on(number))
