@@ -171,9 +171,10 @@ def explains(text: str) -> bool:
     )
 
 
-def _line_explains(scan, number: int) -> bool:
-    """Whether a comment on line `number` explains (a block comment: its text on that line)."""
-    for c in scan.comments_on(number):
+def _line_explains(comments: list, number: int) -> bool:
+    """Whether a comment on line `number` explains (a block comment: its text on that line);
+    `comments` are the comments on that line."""
+    for c in comments:
         if c.is_directive:
             continue
         text = c.text.split("\n")[number - c.line] if c.end_line > c.line else c.text
@@ -193,6 +194,7 @@ class _Cover:
 
 _NAME_RE = compiled(r"(\w+)\s*(?:\(|\{|$)")  # a definition's name: before its `(` or `{`
 _SIGNATURE_RE = compiled(r"^(?:[A-Za-z_]\w*\s+)+[A-Za-z_]\w*\s*\([^;]*\)\s*\{?\s*$")
+_SIGNATURE_START_RE = compiled(r"^(?:[A-Za-z_]\w*\s+)+[A-Za-z_]\w*\s*\(")
 _HEADER_RE = compiled(r"^\}?\s*(?:if|for|while|else\s+if|switch)\s*\(")  # a control header
 _STRUCT_RE = compiled(r"^struct\b")
 SHORT_BODY = 8  # statements of a function its comment above explains whole
@@ -205,6 +207,10 @@ class _Reader:
     def __init__(self, scan, kinds: list[LineKind], span: int):
         self.scan, self.kinds, self.span = scan, kinds, span
         self.code = scan.code_lines
+        self.on_line: dict[int, list] = {}  # line -> the comments on it (built once: linear)
+        for c in scan.comments:
+            for n in range(c.line, c.end_line + 1):
+                self.on_line.setdefault(n, []).append(c)
         self.runs: list[tuple[int, int, int, str]] = []
         self.run: list | None = None  # [first, last, code lines, reading or ""]
         # the depth of a heading: an explaining comment followed by a blank line. Whether it
@@ -232,6 +238,9 @@ class _Reader:
         self.after_open = False  # the last line read ended with `{`
         self.last_comment = 0  # the last explaining comment line
 
+    def explains(self, number: int) -> bool:
+        return _line_explains(self.on_line.get(number, ()), number)
+
     def close_run(self) -> None:
         if self.run is not None:
             self.runs.append((self.run[0], self.run[1], self.run[2], self.run[3]))
@@ -254,9 +263,7 @@ class _Reader:
             self.deferred = None
 
     def own_comment(self, lines: list[int]) -> bool:
-        return any(
-            self.kinds[n - 1] in (TRAILING, LEADING) and _line_explains(self.scan, n) for n in lines
-        )
+        return any(self.kinds[n - 1] in (TRAILING, LEADING) and self.explains(n) for n in lines)
 
     def finish(self) -> None:
         """Decide the statement read so far: covered, trivial or uncovered."""
@@ -366,7 +373,7 @@ class _Reader:
             self.function["inner"] = True
         self.close_run()
         self.heading = None
-        text = " ".join(c.text for c in self.scan.comments_on(number))
+        text = " ".join(c.text for c in self.on_line.get(number, ()))
         if self.cover is not None and self.last_comment == number - 1:
             self.cover.left = self.span
             self.cover.text += " " + text
@@ -404,9 +411,7 @@ class _Reader:
             self.blank = False
             opened_before = self.after_open
             self.after_open = line.endswith("{")
-            explaining = (
-                kind is not CODE and kind is not BRACE and _line_explains(self.scan, number)
-            )
+            explaining = kind is not CODE and kind is not BRACE and self.explains(number)
             if kind is COMMENT:
                 if explaining and not self.statement:
                     self.after_open = opened_before
@@ -446,8 +451,8 @@ class _Reader:
         if line.endswith((";", "{", "}")) or line == "else" or line.endswith(" else"):
             return True
         if line.endswith(")"):  # a header ends there (its body follows); an expression goes on
-            text = " ".join(self.code[n - 1].strip() for n in self.statement)
-            return bool(_HEADER_RE.match(text) or _SIGNATURE_RE.match(text))
+            first = self.code[self.statement[0] - 1].strip()  # a header shows on its first line
+            return bool(_HEADER_RE.match(first) or _SIGNATURE_START_RE.match(first))
         return False
 
 
