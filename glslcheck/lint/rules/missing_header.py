@@ -9,8 +9,10 @@ student. A student is named by
 - an authorship phrase: `Made by`, `Written by`, `Modified by`, `Code extended by`,
   `Assignment by:`, `Rest of the code by ...`, `Collaborated with ...`;
 - a `Copyright <year> <name>` line of a license;
-- a line that is only a person's name (`// Eli Moore`), unless it sits under a heading that
-  credits help or sources (`// Source assistance` / `// Jake Siede`).
+- a line of people's names (`// Eli Moore`, `// Jane Doe & John Smith`, `// Eli Moore,
+  GPR-200`), or names after the lab they are for (`// GPR-200 Lab 4 - Eli Moore`), unless it
+  sits under a heading that credits help or sources (`// Source assistance` / `// Jake Siede`);
+  a title of capitalised words (`// Lighting - Phong Shading`, `// TYPE ALIASES`) is no name.
 The instructor's starter line ("GLSL STARTER CODE BY DANIEL S. BUCKSTEIN"), thanks and source
 credits ("Thanks to Dan Buckstein", "Got assistance from ...") name no author of the file.
 
@@ -185,13 +187,27 @@ def contributors(text: str) -> str:
 # A person's name: two to four capitalised words (`Ana Ruiz`, `Demetrius J Nekos`, `Mr. Li`).
 _PERSON = r"(?-i:[A-Z][\w'\u2019.-]*)(?:\s+(?-i:[A-Z][\w'\u2019.-]*)){1,3}"
 _PERSON_AT = compiled(rf"\s*(?P<name>{_PERSON})")  # a name at the start of a list entry
-_NAME_LINE = compiled(rf"^[\s*/#>\-\u2022]*(?P<name>{_PERSON})[\s*/.,;]*$")
+# A line that is only names (`// Eli Moore`, `// Jane Doe & John Smith`), or names then a
+# course, class or date after a comma or a dash (`// Eli Moore, GPR-200`).
+_NAME_LINE = compiled(
+    rf"^[\s*/#>\-\u2022]*(?P<name>{_PERSON}(?:\s*(?:,|&|\band\b)\s*{_PERSON})*)"
+    r"\s*(?:$|[*/.;]+\s*$|(?:,|\s[-\u2013\u2014|]\s)[^a-z]*(?:\d|gpr|lab|class|course)[^\n]*$)"
+)
+# `Lab 4 - Eli Moore`: a name after the lab or assignment it is for.
+_AFTER_LAB = compiled(
+    rf"\b(?:lab|assignment|project|homework|hw)\s*#?\d+\s*(?:[-:|,\u2013\u2014]|by)\s*"
+    rf"(?P<name>{_PERSON}(?:\s*(?:,|&|\band\b)\s*{_PERSON})*)\s*$",
+    re.I,
+)
 # Words that make a capitalised line a title, not a person (`Lab Four`, `Shadertoy Code`).
 _NOT_NAME_WORDS = compiled(
     r"\b(?:lab|labs|shader|shaders|shadertoy|code|image|common|buffer|graphics|lighting|starter"
     r"|sources?|notes?|class|assignment|project|effect|effects|functions?|utility|utilities|main"
     r"|scene|sphere|spheres|light|lights|ray|tracing|tracer|gpr|intro|introduction|part|final"
-    r"|the|and|of|for|to|in|with|by|from|see|todo|test|gpu|glsl|struct|structs|camera|globals?)\b",
+    r"|the|and|of|for|to|in|with|by|from|see|todo|test|gpu|glsl|struct|structs|camera|globals?"
+    r"|phong|blinn|lambert\w*|shading|reflect\w*|diffuse|specular|ambient|attenuation|normals?"
+    r"|colou?rs?|textures?|noise|march\w*|cube|maps?|helpers?|math|vectors?|constants?|variables?"
+    r"|output|input|setup|version|license|licence|copyright)\b",
     re.I,
 )
 # Authorship: a label followed by names, or a phrase with `by`/`with` before them.
@@ -256,10 +272,13 @@ def named_students(text: str) -> list[str]:
             if found:
                 names.extend(found)
                 continue
-        bare = _NAME_LINE.match(line)
+        bare = _NAME_LINE.match(line) or _AFTER_LAB.search(line)
         above = next((x for x in reversed(lines[:i]) if x.strip()), "")
-        if bare and _is_person(bare.group("name")) and not _HELP_HEADING.search(above):
-            names.append(bare.group("name"))
+        if bare and not _HELP_HEADING.search(above):
+            found = re.split(r"\s*(?:,|&|\band\b)\s*", bare.group("name"))
+            # every one a person, not a heading in capitals (`TYPE ALIASES & UTILITY FUNCTIONS`)
+            if all(_is_person(n) and not n.isupper() for n in found):
+                names.extend(found)
     return names
 
 
