@@ -19,7 +19,8 @@ lines is one statement), and reports each run of statements that no comment expl
 - A trailing comment covers its statement (`x = 1.0; // why`, on any of its lines), and on a
   signature or a loop/`if` header, the block it opens as a comment above would.
 - Trivial statements need no comment: returning a literal or a plain variable (`return true;`,
-  `return col;`), `break;`, `continue;`, `discard;`, `else`, braces. Code in an `#ifdef`/`#if`
+  `return col;`, or a vector of them: `return vec4(col, 1.0);`), `break;`, `continue;`,
+  `discard;`, `else`, braces. Code in an `#ifdef`/`#if`
   branch the preprocessor skips is not compiled and not linted (where that is sure: `#ifdef`,
   `#ifndef`, `#if defined(X)`, `#if 0`).
 - Credits and attributions ("Code from class by ...", "Referenced https://..."), section markers
@@ -146,16 +147,19 @@ COMMENTED_CODE_RE = compiled(
 # Statements that need no comment: returning a literal or a plain variable, break, continue,
 # discard, a bare `else`.
 TRIVIAL_RE = compiled(
-    r"^\s*\}?\s*(?:return\s*(?:[-+]?[\w.]+|\w+\(\s*[\w.]+\s*\))?\s*;|break\s*;|continue\s*;"
-    r"|discard\s*;|else)\s*\{?\s*\}?\s*$"
+    r"^\s*\}?\s*(?:return\s*(?:[-+]?[\w.]+|(?:[biu]?vec[234]|float|u?int|bool)\(\s*[-+]?[\w.]+"
+    r"(?:\s*,\s*[-+]?[\w.]+)*\s*\))?\s*;|break\s*;|continue\s*;|discard\s*;|else)\s*\{?\s*\}?\s*$"
 )
 
 
 # A credit: a comment that names where code came from (a link, the starter, a reference).
 CREDIT_RE = compiled(
-    r"^[\s*/!-]*(?:https?://|www\.|(?:\w+\s+){0,2}(?:referenc\w*|sources?|credits?|thanks?"
-    r"|adapted|based\s+on|borrowed|inspired|taken\s+from|copied|got\s+(?:help|assistance)"
-    r"|help\s+from|assistance|starter|original\s+code|glsl\s+starter)\b)",
+    r"^[\s*/!-]*(?:https?://|www\.|(?:\w+\s+){0,2}based\s+on\b.*(?:https?://|www\.)"
+    r"|(?:\w+\s+){0,2}(?:referenc\w*|sources?(?:\s+used)?\s*:|credits?\b|thanks?\s+to"
+    r"|starter\s+code|glsl\s+starter|original\s+code|got\s+(?:help|assistance)|help\s+from"
+    r"|assistance\s+from|source\s+assistance)"
+    r"|(?:(?:code|this|it|functions?)\s+(?:was\s+|is\s+)?)?(?:adapted|borrowed|inspired|taken|copied)"
+    r"\s+(?:from|by)\b)",
     re.I,
 )
 
