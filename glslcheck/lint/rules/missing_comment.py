@@ -33,9 +33,12 @@ uncovered statements, at its first line and naming its last, as the rubric deduc
 ambiguous section/block/line".
 
 A run is a certain deduction, except where whether a comment reaches it is a reading (a
-possible deduction): the groups of a section whose heading comment is followed by a blank line
-(`// SCENE`, blank, then the scene's code), and a function signature with no comment above
-whose body opens with a comment saying what the function does.
+possible deduction): the groups of a section below its heading, parted from it by a blank line,
+when the heading is a comment with a blank line below it (`// SCENE`, blank, the scene's code)
+or a few words naming a stage (`// Lambertian Reflectance`, `//difCo vars`) whose own group a
+blank line ends; and a function signature with no comment above whose body opens with a
+comment saying what the function does. A credit or a marker ends a heading's section, and a
+function or struct with no comment of its own is certain.
 
 Examples, all covered: the function's comment covers both signature lines and the body,
 `return true;` and `return false;` need none, the trailing comment covers its two-line call:
@@ -187,6 +190,22 @@ def _line_explains(comments: list, number: int) -> bool:
     return False
 
 
+# A section heading: a few words naming a stage (`// SCENE`, `// Lambertian Reflectance`,
+# `//difCo vars`, `// Variable Declarations`), not a sentence about the next line.
+_HEADING_WORDS = compiled(
+    r"\b(?:vars?|variables|declarations?|definitions?|parameters|constants|setup|scene|init\w*"
+    r"|lighting|reflectance|shading|calculations?|calcs|helpers|utilit\w+|globals?)\b",
+    re.I,
+)
+
+
+def _is_heading(text: str) -> bool:
+    words = text.strip(" \t/*!-=:").split()
+    if not words or len(words) > 5 or text.rstrip().endswith((".", ";", ")")):
+        return False
+    return words[0][:1].isupper() or _HEADING_WORDS.search(text) is not None
+
+
 @record
 class _Cover:
     """A comment's coverage: the block depth it was written at and the statements it has left."""
@@ -300,6 +319,8 @@ class _Reader:
             self.settle_deferred(False)
             self.deferred = lines  # its members' comments may explain it
             return
+        if header:
+            self.heading = None  # a definition with no comment of its own: certain
         if header and not _STRUCT_RE.match(text):
             self.signature = (lines, covered or own)
         elif self.function is not None and self.start_depth > 0:
@@ -407,8 +428,13 @@ class _Reader:
                 if not line.startswith("}") and not self.after_open:
                     if self.depth == 0 and self.cover is not None:
                         self.above = self.cover
-                    if self.cover is not None and self.cover.left == self.span and self.last_head:
-                        # a comment with a blank line below (not the file's header: no code yet)
+                    if (
+                        self.cover is not None
+                        and self.last_head  # not the file's header: no code read yet
+                        and (self.cover.left == self.span or _is_heading(self.cover.text))
+                    ):
+                        # a comment with a blank line below it, or a heading naming a stage
+                        # whose group a blank line ends: it may head the section below
                         self.heading = self.cover.depth
                     self.cover = None
                     self.close_run()
@@ -417,6 +443,8 @@ class _Reader:
             self.after_open = line.endswith("{")
             explaining = kind is not CODE and kind is not BRACE and self.explains(number)
             if kind is COMMENT:
+                if not explaining and not self.statement:
+                    self.heading = None  # a credit or a marker starts a part no heading explains
                 if explaining and not self.statement:
                     self.after_open = opened_before
                     self.new_comment(number)
