@@ -260,6 +260,7 @@ class _Reader:
         self.blank = False  # a blank line was read and not yet acted on
         self.after_open = False  # the last line read ended with `{`
         self.last_comment = 0  # the last explaining comment line
+        self.macro = False  # the last preprocessor line ended with a backslash
 
     def explains(self, number: int) -> bool:
         return _line_explains(self.on_line.get(number, ()), number)
@@ -418,6 +419,7 @@ class _Reader:
                 self.finish()  # `GEN_DECLARE(float)` with no `;`, then a blank or a comment
             if kind is BLANK:
                 self.blank = True
+                self.macro = False
                 continue
             if kind is DIRECTIVE:
                 continue  # a glslcheck directive, or code the preprocessor skips
@@ -462,11 +464,15 @@ class _Reader:
                 self.new_comment(number)
             if not self.statement:
                 self.start_depth = self.depth
+            if self.macro:  # a `#define` continued with a backslash: part of its statement
+                self.macro = line.endswith("\\")
+                continue
             if line.startswith("#"):  # a preprocessor line: a statement of its own
                 self.finish()
                 self.start_depth = self.depth
                 self.statement.append(number)
                 self.finish()
+                self.macro = line.endswith("\\")
                 continue
             self.statement.append(number)
             self.parens += line.count("(") - line.count(")")
