@@ -39,6 +39,7 @@ matching). Certainty is reported apart: the recall of the certain and of the pos
 from __future__ import annotations
 
 import argparse
+import glob
 import json
 import re
 import subprocess
@@ -105,13 +106,20 @@ def load(corrected: bool = True) -> tuple[list[dict], dict]:
 
 
 def local_path(entry: dict, texts: Path = TEXTS) -> Path:
-    """Where a manifest entry's text is: <texts>/<id>/<file name>, or the one file in
-    <texts>/<id>/ when it is named otherwise."""
+    """Where a manifest entry's text is: <texts>/<id>/<file name>, else the one file in
+    <texts>/<id>/, else a flat folder's <texts>/<id>.<ext> or <texts>/<file name>."""
     path = texts / entry["id"] / Path(entry["path"]).name
-    if not path.exists() and (texts / entry["id"]).is_dir():
+    if path.exists():
+        return path
+    if (texts / entry["id"]).is_dir():
         inside = [p for p in (texts / entry["id"]).iterdir() if p.is_file()]
         if len(inside) == 1:
             return inside[0]
+    flat = sorted(texts.glob(f"{glob.escape(entry['id'])}.*")) if texts.is_dir() else []
+    if len(flat) == 1:
+        return flat[0]
+    if (texts / Path(entry["path"]).name).is_file():
+        return texts / Path(entry["path"]).name
     return path
 
 
@@ -255,7 +263,7 @@ def score(
     present = [e for e in manifest if local_path(e, texts).exists()]
     for e in manifest:
         if e not in present:
-            print(f"missing text: {e['id']} {e['repo']}:{e['path']} (run `populate`)")
+            print(f"missing text: {e['id']} {e.get('repo', '')}:{e['path']} (run `populate`)")
     if not present:
         return 2
     tp, fp, fn = Counter(), Counter(), Counter()

@@ -90,3 +90,10 @@ def test_score_a_set_given_on_the_command_line(tmp_path):
     assert rows["missing-comment"] == ["1", "1", "1", "1.00", "1.00"]
     assert rows["incomplete-header"] == ["0", "0", "0", "-", "-"]
     assert "certain   labels    2, found    2: recall 1.00" in proc.stdout
+
+
+def test_texts_in_a_flat_folder_are_found(tmp_path):
+    (tmp_path / "t07.txt").write_text("x")
+    (tmp_path / "Lab04.txt").write_text("y")
+    assert real_lint.local_path({"id": "t07", "path": "a/b/c.txt"}, tmp_path).name == "t07.txt"
+    assert real_lint.local_path({"id": "t08", "path": "x/Lab04.txt"}, tmp_path).name == "Lab04.txt"
