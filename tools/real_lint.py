@@ -154,7 +154,7 @@ def populate(mirrors: Path | None, clone: bool) -> int:
                 print(f"missing: {e['id']} {e['repo']}@{e['commit'][:8]}:{e['path']}")
                 missing += 1
                 continue
-            out = local_path(e)
+            out = TEXTS / e["id"] / Path(e["path"]).name  # where score looks first
             out.parent.mkdir(parents=True, exist_ok=True)
             out.write_bytes(shown.stdout)
     print(f"{len(manifest) - missing} of {len(manifest)} files in {TEXTS.relative_to(ROOT)}")
