@@ -13,6 +13,8 @@ from glslcheck.shadertoy.sources import (
     find_shaders,
     folder_entries,
     load_shader,
+    looks_like_shader,
+    name_says_shader,
     path_name,
     path_stem,
     path_suffix,
@@ -195,3 +197,80 @@ def test_folder_entries_are_sorted_iterdir(tmp_path, monkeypatch):
     monkeypatch.chdir(tmp_path)
     assert folder_entries(".") == [str(p) for p in sorted(Path(".").iterdir())]
     assert folder_entries(str(tmp_path)) == [str(p) for p in sorted(tmp_path.iterdir())]
+
+
+# --- which .txt and extension-less files are shaders: their text decides ------------------
+
+SHADER_TEXT = """\
+// Lab 4.txt: spheres lit by one point light
+struct PointLight { vec3 center; vec3 color; float intensity; };
+
+// the light above and to the right of the viewer
+const vec3 kLight = vec3(1.0, 1.0, -1.0);
+"""
+
+
+@pytest.mark.parametrize(
+    "text",
+    [
+        SHADER_TEXT,
+        "void mainImage(out vec4 fragColor, in vec2 fragCoord)\n{\n    fragColor = vec4(1.0);\n}\n",
+        "float sq(float x) { return x * x; }\n",  # a Common tab: declarations only
+        "#define PI 3.14159\n",
+        # a short note above the code, uncommented: still mostly code
+        "Lab 4 by Ana Ruiz and Ben Li\nvoid mainImage(out vec4 c, in vec2 p)\n{\n    c = vec4(p, 0.0, 1.0);\n}\n",
+    ],
+)
+def test_shader_texts_are_shaders(text):
+    assert looks_like_shader(text)
+
+
+@pytest.mark.parametrize(
+    "text",
+    [
+        "",
+        "plain notes\n",
+        "Lab 4 notes: we did the lights together, then the spheres.\nThe float values are fine.\n",
+        # Markdown with a shader in a fence: a README, never parsed as GLSL
+        "# Lab 4\n```glsl\nvoid mainImage(out vec4 c, in vec2 p) { c = vec4(1.0); }\n```\n",
+        # prose that mentions a declaration once
+        "To make it work we wrote\nfloat d = length(p);\nbut then we changed our minds about the\n"
+        "way the lights should attenuate over the distance from the surface to the light.\n",
+        "// only a comment: void mainImage(out vec4 c, in vec2 p) {}\n",
+        "vec3 x;\0binary",
+        "all: build\n\tcc -o lab main.c\n",  # a Makefile
+    ],
+)
+def test_other_texts_are_not_shaders(text):
+    assert not looks_like_shader(text)
+
+
+@pytest.mark.parametrize(
+    "name,says",
+    [
+        ("Image.txt", True),
+        ("lab4/buffer_a", True),
+        ("x.glsl", True),
+        ("Lab 4.txt", None),
+        ("code", None),
+        ("README.txt", False),
+        ("LICENSE", False),
+        ("readme", False),
+        ("notes.md", False),
+        (".hidden.txt", False),
+    ],
+)
+def test_what_a_name_says(name, says):
+    assert name_says_shader(name) is says
+
+
+def test_walk_takes_txt_files_by_their_text(tmp_path):
+    course = tmp_path / "course"
+    for name in ("Lab 4.txt", "Lab4/Lab4.txt", "GPRO-Graphics-Lab4/main.txt", "code"):
+        (course / name).parent.mkdir(parents=True, exist_ok=True)
+        (course / name).write_text(SHADER_TEXT)
+    (course / "notes.txt").write_text("We split the work: Ana the spheres, Ben the lights.\n")
+    (course / "README.txt").write_text(SHADER_TEXT)  # a README by its name
+    (course / "Makefile").write_text("all: build\n")
+    roots = sorted(os.path.relpath(s.root, course) for s in find_shaders([str(course)]))
+    assert roots == ["GPRO-Graphics-Lab4/main.txt", "Lab 4.txt", "Lab4/Lab4.txt", "code"]

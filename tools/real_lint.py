@@ -9,6 +9,11 @@ never committed: they live in tests/real_lint/texts/<id>/<file name> (git-ignore
     python tools/real_lint.py populate --clone         ... or clone the repositories (network)
     python tools/real_lint.py score [--verbose]        recall and precision per rule and overall
     python tools/real_lint.py score --only f27-f37     ... of some files only
+    python tools/real_lint.py score --labels L.json --manifest M.json --texts DIR
+                                                       ... of another labelled set, no code edit
+    python tools/real_lint.py merge-labels L.json --rules R,... --source TEXT
+                                                       take another labeller's labels of some
+                                                       rules into labels.json
 
 `populate --mirrors DIR` reads each file with `git --git-dir=<mirror> show <commit>:<path>`,
 where <mirror> is DIR/<owner>+<name>/repo (or .../repo/.git): the layout the agents' `fetch`
@@ -16,15 +21,25 @@ tool leaves in /work/.mirror. Without mirrors, `--clone` runs `git clone --bare`
 https://github.com/<owner>/<name> into a temporary folder (the commits are pinned, so the texts
 are the labelled ones). `score` reads only the local folder and names every missing file.
 
-Matching: a finding matches a label of the same rule when one of the finding's lines (its own
-line, or for repeated-expression and loop-invariant every place its message lists) is one of
-the label's lines. Each label and each finding counts once. The scored rules are the course
-deductions of labels.json's "rules"; findings of other rules (notes) are not scored.
+Labels: labels.json's form ({"rules": [...], "files": {id: [label, ...]}, "corrections": [...]})
+or the blind labellers' form (/work/labels/RULES.md: {id: [label, ...]}); a label is {"rule",
+"lines", "why", "certainty"}. The scored rules are the rules the labels cover (labels.json's
+"rules"; for the labellers' form every rule id of RULES.md, or `--rules`): a file with no label
+for a scored rule is labelled clean for it, so every finding there counts against precision.
+Findings of other rules and notes (penalty 0) are not scored.
+
+Matching: a finding matches a label of the same rule when they share a line: the finding's own
+line (a missing-comment finding: every line of its run, first to last; repeated-expression and
+loop-invariant: every place the message lists) and the label's lines (a missing-comment label
+is a run [first, last]: any line in it). Labels and findings are matched one to one (a maximum
+matching). Certainty is reported apart: the recall of the certain and of the possible labels
+(a label without one is certain), the precision of the certain and of the possible findings.
 """
 
 from __future__ import annotations
 
 import argparse
+import glob
 import json
 import re
 import subprocess
@@ -38,13 +53,41 @@ CORPUS = ROOT / "tests" / "real_lint"
 TEXTS = CORPUS / "texts"
 
 
-def load(corrected: bool = True) -> tuple[list[dict], dict]:
-    """The manifest and the labels; with `corrected`, the labels' documented corrections applied."""
-    manifest = json.loads((CORPUS / "manifest.json").read_text())
-    labels = json.loads((CORPUS / "labels.json").read_text())
+# Every rule id of the labelling guide (/work/labels/RULES.md): what a blind labeller labels.
+GUIDE_RULES = [
+    "compile-error",
+    "missing-header",
+    "incomplete-header",
+    "missing-comment",
+    "uniform-outside-mainimage",
+    "length-comparison",
+    "sqrt-comparison",
+    "pow-small-exponent",
+    "pow-negative-base",
+    "repeated-expression",
+    "loop-invariant",
+    "branch-replaceable",
+    "normalize-known-length",
+    "out-parameter-read",
+    "other-inefficiency",
+]
+RUN_RULES = ("missing-comment",)  # labelled and reported as runs of lines [first, last]
+
+
+def load_labels(
+    path: Path | None = None, corrected: bool = True, rules: list[str] | None = None
+) -> dict:
+    """Labels in labels.json's form ({"rules", "files", "corrections"}); a labellers' file
+    ({id: [label, ...]}) is read into it, covering `rules` (default: every guide rule). With
+    `corrected`, the documented corrections are applied."""
+    doc = json.loads((path or CORPUS / "labels.json").read_text())
+    if "files" not in doc:
+        doc = {"rules": list(GUIDE_RULES), "files": doc, "corrections": []}
+    if rules is not None:
+        doc["rules"] = list(rules)
     if corrected:
-        for c in labels.get("corrections", []):
-            files = labels["files"].setdefault(c["file"], [])
+        for c in doc.get("corrections", []):
+            files = doc["files"].setdefault(c["file"], [])
             if c["action"] == "add":
                 files.append(c["label"])
             else:
@@ -54,11 +97,30 @@ def load(corrected: bool = True) -> tuple[list[dict], dict]:
                     if lab["rule"] == c["label"]["rule"] and lab["lines"] == c["label"]["lines"]
                 )
                 files.remove(gone)
-    return manifest, labels
+    return doc
 
 
-def local_path(entry: dict) -> Path:
-    return TEXTS / entry["id"] / Path(entry["path"]).name
+def load(corrected: bool = True) -> tuple[list[dict], dict]:
+    """The manifest and the labels; with `corrected`, the labels' documented corrections applied."""
+    return json.loads((CORPUS / "manifest.json").read_text()), load_labels(None, corrected)
+
+
+def local_path(entry: dict, texts: Path = TEXTS) -> Path:
+    """Where a manifest entry's text is: <texts>/<id>/<file name>, else the one file in
+    <texts>/<id>/, else a flat folder's <texts>/<id>.<ext> or <texts>/<file name>."""
+    path = texts / entry["id"] / Path(entry["path"]).name
+    if path.exists():
+        return path
+    if (texts / entry["id"]).is_dir():
+        inside = [p for p in (texts / entry["id"]).iterdir() if p.is_file()]
+        if len(inside) == 1:
+            return inside[0]
+    flat = sorted(texts.glob(f"{glob.escape(entry['id'])}.*")) if texts.is_dir() else []
+    if len(flat) == 1:
+        return flat[0]
+    if (texts / Path(entry["path"]).name).is_file():
+        return texts / Path(entry["path"]).name
+    return path
 
 
 def _git_dir(mirrors: Path, repo: str) -> Path | None:
@@ -92,24 +154,37 @@ def populate(mirrors: Path | None, clone: bool) -> int:
                 print(f"missing: {e['id']} {e['repo']}@{e['commit'][:8]}:{e['path']}")
                 missing += 1
                 continue
-            out = local_path(e)
+            out = TEXTS / e["id"] / Path(e["path"]).name  # where score looks first
             out.parent.mkdir(parents=True, exist_ok=True)
             out.write_bytes(shown.stdout)
     print(f"{len(manifest) - missing} of {len(manifest)} files in {TEXTS.relative_to(ROOT)}")
     return 1 if missing else 0
 
 
+_RUN = re.compile(r"\(lines? (\d+)(?:-(\d+))?\)")
 _PLACES = re.compile(r"\blines? ((?:\d+(?:, | and )?)+)")
 
 
 def finding_lines(f: dict) -> set[int]:
-    """The lines a finding points at: its own, and the places its message or JSON lists."""
+    """The lines a finding points at: its own (a run's every line), and the places its message or
+    JSON lists."""
     lines = {f["line"]}
+    if f["rule"] in RUN_RULES:  # the run: its span, or the `(lines 12-15)` its message names
+        run = _RUN.search(f["message"])
+        last = int(run.group(2) or run.group(1)) if run else f.get("end_line", f["line"])
+        lines.update(range(f["line"], max(last, f.get("end_line", f["line"])) + 1))
     lines.update(n["line"] for n in f.get("notes", ()))
     if f["rule"] in ("repeated-expression", "loop-invariant"):
         for m in _PLACES.finditer(f["message"]):
             lines.update(int(n) for n in re.findall(r"\d+", m.group(1)))
     return lines
+
+
+def label_lines(lab: dict) -> set[int]:
+    """The lines a label is about: a run label's every line from its first to its last."""
+    if lab["rule"] in RUN_RULES:
+        return set(range(lab["lines"][0], lab["lines"][-1] + 1))
+    return set(lab["lines"])
 
 
 def match(labels: list[dict], findings: list[dict]) -> dict[int, int]:
@@ -119,7 +194,7 @@ def match(labels: list[dict], findings: list[dict]) -> dict[int, int]:
         [
             i
             for i, f in enumerate(findings)
-            if f["rule"] == lab["rule"] and finding_lines(f) & set(lab["lines"])
+            if f["rule"] == lab["rule"] and finding_lines(f) & label_lines(lab)
         ]
         for lab in labels
     ]
@@ -164,23 +239,39 @@ def _ids(spec: str | None) -> set[str] | None:
     return out
 
 
-def score(verbose: bool, corrected: bool = True, root: Path = ROOT, only: str | None = None) -> int:
-    manifest, labels = load(corrected)
+def _rate(hit: int, total: int) -> str:
+    return f"{hit / total:.2f}" if total else "-"
+
+
+def score(
+    verbose: bool,
+    corrected: bool = True,
+    root: Path = ROOT,
+    only: str | None = None,
+    labels_path: Path | None = None,
+    manifest_path: Path | None = None,
+    texts: Path = TEXTS,
+    rules: list[str] | None = None,
+) -> int:
+    manifest = json.loads((manifest_path or CORPUS / "manifest.json").read_text())
+    labels = load_labels(labels_path, corrected, rules)
     rules = labels["rules"]
     ids = _ids(only)
     if ids is not None:
         manifest = [e for e in manifest if e["id"] in ids]
         labels = {**labels, "files": {k: v for k, v in labels["files"].items() if k in ids}}
-    present = [e for e in manifest if local_path(e).exists()]
+    present = [e for e in manifest if local_path(e, texts).exists()]
     for e in manifest:
         if e not in present:
-            print(f"missing text: {e['id']} {e['repo']}:{e['path']} (run `populate`)")
+            print(f"missing text: {e['id']} {e.get('repo', '')}:{e['path']} (run `populate`)")
     if not present:
         return 2
     tp, fp, fn = Counter(), Counter(), Counter()
+    # certainty: labels found / labels, findings matched / findings, per certainty
+    by_label, by_finding = Counter(), Counter()
     not_full = []
     for e in present:
-        findings, stderr, rc = lint_json([local_path(e).resolve()], root)
+        findings, stderr, rc = lint_json([local_path(e, texts).resolve()], root)
         if "Traceback" in stderr or rc not in (0, 1):
             not_full.append(f"{e['id']}: exit {rc}: {stderr.strip().splitlines()[-1:]}")
         errors = [
@@ -204,34 +295,50 @@ def score(verbose: bool, corrected: bool = True, root: Path = ROOT, only: str | 
         pairs = match(want, got)
         used = set(pairs.values())
         for j, lab in enumerate(want):
+            sure = lab.get("certainty") or "certain"
+            by_label[sure, "all"] += 1
             if j in pairs:
                 tp[lab["rule"]] += 1
+                by_label[sure, "hit"] += 1
+                said = got[pairs[j]].get("certainty") or "certain"
+                by_label["pairs", "agree" if said == sure else "differ"] += 1
             else:
                 fn[lab["rule"]] += 1
                 if verbose:
                     print(f"  missed  {e['id']}:{lab['lines'][0]} {lab['rule']}: {lab['why']}")
         for i, f in enumerate(got):
-            if i not in used:
+            sure = f.get("certainty") or "certain"  # compile errors: none, as the labels
+            by_finding[sure, "all"] += 1
+            if i in used:
+                by_finding[sure, "hit"] += 1
+            else:
                 fp[f["rule"]] += 1
                 if verbose:
                     print(f"  extra   {e['id']}:{f['line']} {f['rule']}: {f['message']}")
     which = (
         "with the documented corrections"
-        if corrected
+        if corrected and labels.get("corrections")
         else "as first labelled, before any linter run"
     )
-    print(
-        f"{len(present)} of {len(manifest)} files, {sum(len(v) for v in labels['files'].values())} labels ({which})"
-    )
+    count = sum(len([lab for lab in v if lab["rule"] in rules]) for v in labels["files"].values())
+    print(f"{len(present)} of {len(manifest)} files, {count} labels ({which})")
     print(f"{'rule':28} {'labels':>6} {'found':>6} {'tp':>4} {'recall':>7} {'precision':>9}")
     for rule in [*rules, "overall"]:
         if rule == "overall":
             t, p, n = sum(tp.values()), sum(fp.values()), sum(fn.values())
         else:
             t, p, n = tp[rule], fp[rule], fn[rule]
-        rec = f"{t / (t + n):.2f}" if t + n else "-"
-        pre = f"{t / (t + p):.2f}" if t + p else "-"
-        print(f"{rule:28} {t + n:6d} {t + p:6d} {t:4d} {rec:>7} {pre:>9}")
+        print(f"{rule:28} {t + n:6d} {t + p:6d} {t:4d} {_rate(t, t + n):>7} {_rate(t, t + p):>9}")
+    print("by certainty (labels: the labeller's; findings: the linter's)")
+    for sure in ("certain", "possible"):
+        lab_hit, lab_all = by_label[sure, "hit"], by_label[sure, "all"]
+        f_hit, f_all = by_finding[sure, "hit"], by_finding[sure, "all"]
+        print(
+            f"  {sure:9} labels {lab_all:4d}, found {lab_hit:4d}: recall {_rate(lab_hit, lab_all):>4}"
+            f"   findings {f_all:4d}, matched {f_hit:4d}: precision {_rate(f_hit, f_all):>4}"
+        )
+    agree, differ = by_label["pairs", "agree"], by_label["pairs", "differ"]
+    print(f"  matched pairs whose certainty agrees: {agree} of {agree + differ}")
     print(
         "files that did not lint fully (as the linter reports it):"
         if not_full
@@ -239,6 +346,58 @@ def score(verbose: bool, corrected: bool = True, root: Path = ROOT, only: str | 
     )
     for line in not_full:
         print("  " + line)
+    return 0
+
+
+def labels_text(doc: dict) -> str:
+    """labels.json as it is kept: its notes and rules first, then one label or correction a line
+    (a diff then shows each label changed)."""
+
+    def one(x: object) -> str:
+        return json.dumps(x, ensure_ascii=False)
+
+    out = ["{"]
+    for key, value in doc.items():
+        if key == "files":
+            out.append(' "files": {')
+            for n, (fid, labs) in enumerate(value.items()):
+                body = ",\n".join(f"   {one(lab)}" for lab in labs)
+                out.append(f"  {one(fid)}: [\n{body}\n  ]" if labs else f"  {one(fid)}: []")
+                out[-1] += "," if n < len(value) - 1 else ""
+            out.append(" }")
+        elif key == "corrections":
+            body = ",\n".join(f"  {one(c)}" for c in value)
+            out.append(f' "corrections": [\n{body}\n ]' if value else ' "corrections": []')
+        else:
+            out.append(f" {one(key)}: {one(value)}")
+        out[-1] += ","
+    out[-1] = out[-1].rstrip(",")
+    return "\n".join(out) + "\n}\n"
+
+
+def merge_labels(source: Path, rules: list[str], provenance: str) -> int:
+    """Take `source`'s labels (the labellers' form) of `rules` into labels.json: for each file it
+    labels, its labels of those rules replace the ones there, as first labels (corrections of
+    those rules on those files are dropped: they corrected the replaced labels). `provenance`
+    is recorded in "about"."""
+    path = CORPUS / "labels.json"
+    doc = json.loads(path.read_text())
+    new = json.loads(source.read_text())
+    wanted = set(rules)
+    for fid, labs in sorted(new.items()):
+        kept = [lab for lab in doc["files"].get(fid, []) if lab["rule"] not in wanted]
+        doc["files"][fid] = kept + [lab for lab in labs if lab["rule"] in wanted]
+    doc["corrections"] = [
+        c for c in doc["corrections"] if not (c["file"] in new and c["label"]["rule"] in wanted)
+    ]
+    doc["rules"] = [r for r in GUIDE_RULES if r in set(doc["rules"]) | wanted]
+    files = f"{min(new)}-{max(new)}" if new else "no files"
+    note = f" Labels of {', '.join(rules)} for {files}: {provenance}"
+    if note not in doc["about"]:
+        doc["about"] += note
+    doc["files"] = dict(sorted(doc["files"].items()))
+    path.write_text(labels_text(doc))
+    print(f"merged {sum(len(v) for v in new.values())} labels of {len(new)} files into {path}")
     return 0
 
 
@@ -262,10 +421,42 @@ def main() -> int:
         help="score the glslcheck of another checkout (e.g. `git archive <commit>` unpacked)",
     )
     s.add_argument("--only", metavar="IDS", help="score these files only, e.g. f27-f37 or f01,f04")
+    s.add_argument(
+        "--labels",
+        type=Path,
+        metavar="FILE",
+        help="labels to score against (labels.json's form, or the labellers' {id: [label]})",
+    )
+    s.add_argument(
+        "--manifest", type=Path, metavar="FILE", help="the files' manifest (manifest.json's form)"
+    )
+    s.add_argument(
+        "--texts", type=Path, default=TEXTS, metavar="DIR", help="the texts: DIR/<id>/<file name>"
+    )
+    s.add_argument(
+        "--rules",
+        metavar="R,...",
+        help="the rules the labels cover (default: labels.json's, or every rule of the guide)",
+    )
+    m = sub.add_parser("merge-labels", help="take another labeller's labels into labels.json")
+    m.add_argument("source", type=Path, help="a labellers' file {id: [label, ...]}")
+    m.add_argument("--rules", required=True, metavar="R,...", help="the rules to take")
+    m.add_argument("--source", dest="provenance", required=True, help="who labelled, and how")
     args = ap.parse_args()
     if args.cmd == "populate":
         return populate(args.mirrors, args.clone)
-    return score(args.verbose, not args.as_labelled, args.glslcheck_root.resolve(), args.only)
+    if args.cmd == "merge-labels":
+        return merge_labels(args.source, args.rules.split(","), args.provenance)
+    return score(
+        args.verbose,
+        not args.as_labelled,
+        args.glslcheck_root.resolve(),
+        args.only,
+        args.labels,
+        args.manifest,
+        args.texts,
+        args.rules.split(",") if args.rules else None,
+    )
 
 
 if __name__ == "__main__":

@@ -106,6 +106,8 @@ class Diagnostic:
     rule: str = "syntax"
     help: str | None = None
     notes: list[Diagnostic] = field(default_factory=list)
+    # a lint deduction's certainty when it differs from its rule's ("certain" or "possible")
+    certainty: str | None = None
 
 
 class GlslError(Exception):

@@ -10,7 +10,7 @@ When one folder holds both, `glslcheck.toml` wins. Settings:
 
     select        = ["rule-name", ...]   only these rules (default: every rule)
     ignore        = ["rule-name", ...]   never these rules
-    comment-span  = 3                    code lines a comment line covers (missing-comment)
+    comment-span  = 5                    statements a comment covers (missing-comment)
     tab-patterns  = ["lab4/*.txt", ...]  extra file-name globs taken as shader files by hooks
                                          and by `glslcheck lint --skip-non-shaders`
 
@@ -30,7 +30,7 @@ if TYPE_CHECKING:
     from collections.abc import Mapping
     from typing import Any
 
-DEFAULT_COMMENT_SPAN = 3
+DEFAULT_COMMENT_SPAN = 5
 # key -> (python type of the value, description used in error messages)
 COMMAND_LINE = "glslcheck lint"  # the `where` of command-line settings in messages
 KEYS: dict[str, tuple[type, str]] = {

@@ -32,7 +32,6 @@ from ..shadertoy.sources import (
     check_path,
     find_shaders,
     path_name,
-    path_suffix,
     posix_path,
 )
 from .config import COMMAND_LINE, ConfigFinder, LintConfig, apply_overrides
@@ -50,7 +49,9 @@ PHASES = ("text", "ast", "suppressions")
 
 @record
 class Finding(Diagnostic):
-    """A lint rule hit: a Diagnostic (rule = rule NAME, loc in the user's file) and its penalty."""
+    """A lint rule hit: a Diagnostic (rule = rule NAME, loc in the user's file) and its penalty.
+    A deduction (penalty > 0) has a `certainty`: "certain" (the rubric's text makes it one) or
+    "possible" (a reading of an ambiguous rubric sentence); anything else has None."""
 
     penalty: int = 0
 
@@ -66,10 +67,17 @@ class LintResult:
     findings: list[Finding]
     files: int
     paths: list[str] = field(default_factory=list)  # the linted files, in order
+    skipped: list[str] = field(default_factory=list)  # named files left out: not shader files
 
     @property
     def penalty(self) -> int:
-        return sum(f.penalty for f in self.findings)
+        """The points the certain deductions cost."""
+        return sum(f.penalty for f in self.findings if f.certainty != "possible")
+
+    @property
+    def possible_penalty(self) -> int:
+        """The points the possible deductions may cost on top of `penalty`."""
+        return sum(f.penalty for f in self.findings if f.certainty == "possible")
 
 
 @record
@@ -345,6 +353,7 @@ def _finding(rule: Rule, d: Diagnostic, ctx: LintContext) -> Finding:
     if loc.end_line is None or loc.end_column is None:
         loc = ctx.location(loc.line, loc.column, loc.end_line, loc.end_column)
     advisory = d.severity == "note" and rule.severity == "warning"  # a course rule's advice
+    penalty = 0 if advisory else rule.penalty
     return Finding(
         message=d.message,
         loc=loc,
@@ -352,7 +361,8 @@ def _finding(rule: Rule, d: Diagnostic, ctx: LintContext) -> Finding:
         rule=rule.name,
         help=d.help,
         notes=list(d.notes),
-        penalty=0 if advisory else rule.penalty,
+        penalty=penalty,
+        certainty=(d.certainty or rule.certainty) if penalty else None,
     )
 
 
@@ -381,10 +391,13 @@ def lint_paths(
     wanted = [str(p) for p in paths]
     for p in wanted:
         check_path(p)  # a symlink loop is named as one before any path is resolved
+    skipped: list[str] = []
     if skip_non_shaders:
-        wanted = [p for p in wanted if os.path.isdir(p) or is_shader_name(p, finder.for_file(p))]
+        kept = [p for p in wanted if os.path.isdir(p) or is_shader_file(p, finder.for_file(p))]
+        skipped = [p for p in wanted if p not in kept]
+        wanted = kept
     if not wanted:
-        return LintResult([], 0, [])
+        return LintResult([], 0, [], skipped)
     files = {os.path.realpath(p) for p in wanted if not os.path.isdir(p)}
     folders = [os.path.realpath(p) for p in wanted if os.path.isdir(p)]
     linted: list[str] = []
@@ -403,7 +416,7 @@ def lint_paths(
             )  # InputError: bad configuration
         if todo:
             work.append(todo)
-    return LintResult(lint_work(work), len(linted), linted)
+    return LintResult(lint_work(work), len(linted), linted, skipped)
 
 
 def _within(path: str, folder: str) -> bool:
@@ -452,19 +465,23 @@ def _lint_files(work: list[list[tuple[Shader, Source, LintConfig]]]) -> list[Fin
     return findings
 
 
-def is_shader_name(path: str, config: LintConfig) -> bool:
-    """Whether a file name is a shader file: .glsl/.frag, a Shadertoy tab name, or a tab-pattern."""
+def is_shader_file(path: str, config: LintConfig, text: str | None = None) -> bool:
+    """Whether a file is a shader file: .glsl/.frag, a Shadertoy tab name, a tab-pattern, or a
+    `.txt` or extension-less file whose text is shader code (`text` when given, else the file's
+    start; see sources.looks_like_shader)."""
     from fnmatch import fnmatch
 
-    from ..shadertoy.sources import tab_name
+    from ..shadertoy.sources import looks_like_shader, name_says_shader, sniff_shader_file
 
-    suffix = path_suffix(path).lower()
-    if suffix in (".glsl", ".frag"):
-        return True
-    if suffix in (".txt", "") and tab_name(path) is not None:
+    by_name = name_says_shader(path)
+    if by_name:
         return True
     posix = posix_path(path)
-    return any(fnmatch(posix, pat) or fnmatch(path_name(posix), pat) for pat in config.tab_patterns)
+    if any(fnmatch(posix, pat) or fnmatch(path_name(posix), pat) for pat in config.tab_patterns):
+        return True
+    if by_name is None:
+        return looks_like_shader(text) if text is not None else sniff_shader_file(path)
+    return False
 
 
 def iter_rules(names: Iterable[str] | None = None) -> list[Rule]:

@@ -2,12 +2,22 @@
 
 Detection is the engine's job; this module only formats. Formats (`FORMATS`):
 
-    text    `path:line:col: rule-name message`, the source line with `^~~~` under the span, a
-            `help:` line, and a closing summary with the estimated deduction
+    text    `path:line:col: rule-name message` (`rule-name [possible]` for a possible
+            deduction), the source line with `^~~~` under the span, a `help:` line, and a
+            closing summary with the estimated deduction, the certain and the possible apart
     json    {"findings": [{path, line, column, end_line, end_column, rule, severity, penalty,
-            message, help, notes: [{line, column, message}]}], "summary": {files, findings, penalty}}
-    sarif   SARIF 2.1.0 for GitHub code scanning (one run; every rule in tool.driver.rules)
-    github  GitHub Actions workflow commands (`::warning file=...::message`)
+            certainty, message, help, notes: [{line, column, message}]}],
+            "summary": {files, findings, penalty, possible_findings, possible_penalty}}
+    sarif   SARIF 2.1.0 for GitHub code scanning (one run; every rule in tool.driver.rules); a
+            certain deduction is level "warning", a possible one "note", and each result's
+            properties hold its penalty and certainty
+    github  GitHub Actions workflow commands (`::warning file=...::message`; `::notice` for a
+            possible deduction)
+
+Certainty: a deduction (penalty > 0) is "certain" when the rubric's text makes it one, and
+"possible" when it rests on a reading of an ambiguous rubric sentence (a TA may deduct it or
+not); other findings (compile errors, notes) have none (JSON null). `penalty` counts the
+certain deductions' points, `possible_penalty` those a TA may add.
 
 Lines and columns are 1-based and point into the user's file; an end column is the column just
 past the span's last character. A file name's bytes that are not UTF-8 (kept by Python as lone
@@ -59,6 +69,8 @@ def _plural(n: int, word: str) -> str:
 
 def summary_line(result: LintResult) -> str:
     files = _plural(result.files, "file")
+    if not result.files:  # never a clean bill: nothing was read
+        return "no shader files linted (0 files): nothing was checked"
     if not result.findings:
         return f"no findings in {files}"
     points = result.penalty
@@ -66,6 +78,13 @@ def summary_line(result: LintResult) -> str:
     line = (
         f"{_plural(len(result.findings), 'finding')} in {files}, estimated deduction: {deduction}"
     )
+    possible = sum(1 for f in result.findings if f.certainty == "possible")
+    if possible:
+        line += (
+            f", and -{_plural(result.possible_penalty, 'point')} more possible "
+            f"({_plural(possible, 'possible deduction')}: a reading of an ambiguous rubric "
+            "sentence, marked [possible])"
+        )
     errors = sum(1 for f in result.findings if f.severity == "error")
     if errors:
         line += (
@@ -80,8 +99,9 @@ def format_finding(f: Finding) -> str:
     name in place of the severity and no colon after it."""
     block = format_text(f, show_rule=True)
     head = f"{printable(str(f.loc))}: {f.rule}: " if f.loc else f"{f.rule}: "
+    mark = " [possible]" if f.certainty == "possible" else ""
     if block.startswith(head):
-        block = head[:-2] + " " + block[len(head) :]
+        block = head[:-2] + mark + " " + block[len(head) :]
     return block
 
 
@@ -138,6 +158,7 @@ def finding_record(f: Finding) -> dict:
         "rule": f.rule,
         "severity": f.severity,
         "penalty": f.penalty,
+        "certainty": f.certainty,
         "message": f.message,
         "help": f.help,
         # the other places a finding is about (every evaluation of a repeated value)
@@ -156,6 +177,8 @@ def json_report(result: LintResult) -> str:
             "files": result.files,
             "findings": len(result.findings),
             "penalty": result.penalty,
+            "possible_findings": sum(1 for f in result.findings if f.certainty == "possible"),
+            "possible_penalty": result.possible_penalty,
         },
     }
     return _json_text(doc)
@@ -176,7 +199,10 @@ def artifact_uri(path: str, root: str | None = None) -> str:
     return quote(os.fsencode(rel.as_posix()))
 
 
-def sarif_level(severity: str) -> str:
+def sarif_level(severity: str, certainty: str | None = None) -> str:
+    """SARIF level: compile errors "error", certain deductions "warning", the rest "note"."""
+    if certainty == "possible":
+        return "note"
     return {"error": "error", "warning": "warning"}.get(severity, "note")
 
 
@@ -194,8 +220,12 @@ def sarif_document(result: LintResult, root: str | None = None) -> dict:
                 "shortDescription": {"text": r.summary},
                 "fullDescription": {"text": r.section("What it does")},
                 "help": {"text": r.doc, "markdown": r.doc},
-                "defaultConfiguration": {"level": sarif_level(r.severity)},
-                "properties": {"penalty": r.penalty, "tags": [r.kind]},
+                "defaultConfiguration": {"level": sarif_level(r.severity, r.certainty)},
+                "properties": {
+                    "penalty": r.penalty,
+                    "certainty": r.certainty if r.penalty else None,
+                    "tags": [r.kind],
+                },
             }
         )
     results = []
@@ -204,7 +234,7 @@ def sarif_document(result: LintResult, root: str | None = None) -> dict:
         message = f.message + (f"\nhelp: {f.help}" if f.help else "")
         entry = {
             "ruleId": f.rule,
-            "level": sarif_level(f.severity),
+            "level": sarif_level(f.severity, f.certainty),
             "message": {"text": message},
             "locations": [
                 {
@@ -219,7 +249,7 @@ def sarif_document(result: LintResult, root: str | None = None) -> dict:
                     }
                 }
             ],
-            "properties": {"penalty": f.penalty},
+            "properties": {"penalty": f.penalty, "certainty": f.certainty},
         }
         if f.rule in index:
             entry["ruleIndex"] = index[f.rule]
@@ -260,7 +290,8 @@ def github_report(result: LintResult) -> str:
     out = []
     for f in result.findings:
         rec = finding_record(f)
-        command = {"error": "error", "warning": "warning"}.get(f.severity, "notice")
+        level = sarif_level(f.severity, f.certainty)
+        command = {"error": "error", "warning": "warning"}.get(level, "notice")
         props = ",".join(
             f"{k}={_escape_property(str(v))}"
             for k, v in (

@@ -73,9 +73,9 @@ def _is_regular(mode: str) -> bool:
     return mode.startswith("100")  # 100644 or 100755 (git writes no other file mode)
 
 
-def staged_entries(top: str) -> list[tuple[str, str]]:
-    """(index mode, repository-relative name) of each staged entry that was added, copied,
-    modified, renamed (the new name) or changed type, in git's order."""
+def staged_entries(top: str) -> list[tuple[str, str, str]]:
+    """(index mode, object id, repository-relative name) of each staged entry that was added,
+    copied, modified, renamed (the new name) or changed type, in git's order."""
     fields = _names(_git("diff", "--cached", "--raw", "-z", "--diff-filter=ACMRT", cwd=top))
     # `-z --raw`: ":old-mode new-mode old-id new-id status" then the path (two paths for R and C).
     entries = []
@@ -83,7 +83,7 @@ def staged_entries(top: str) -> list[tuple[str, str]]:
     while i < len(fields):
         meta = fields[i].split()
         paths = 2 if meta[-1][:1] in ("R", "C") else 1
-        entries.append((meta[1], fields[i + paths]))
+        entries.append((meta[1], meta[3], fields[i + paths]))
         i += 1 + paths
     return entries
 
@@ -132,14 +132,40 @@ def _sibling_tabs(top: str, names: list[str]) -> list[str]:
     return [n for n in siblings if PurePosixPath(n).parent in folders and tab_name(n) is not None]
 
 
-def _shader_names(names: list[str]) -> list[str]:
-    """The names that are shader files by the (checked out) configuration of their folder."""
+def _shader_names(names: list[str], texts: dict[str, str] | None = None) -> list[str]:
+    """The names that are shader files by the (checked out) configuration of their folder and,
+    for a name that leaves it open (a `.txt` or extension-less file), by their staged text."""
     from .config import ConfigFinder
-    from .engine import is_shader_name
+    from .engine import is_shader_file
     from .rules import rule_names
 
     finder = ConfigFinder({}, rule_names())
-    return [n for n in names if is_shader_name(n, finder.for_file(n))]
+    texts = texts or {}
+    return [n for n in names if is_shader_file(n, finder.for_file(n), texts.get(n, ""))]
+
+
+def _sniffed_texts(top: str, entries: list[tuple[str, str]]) -> dict[str, str]:
+    """The start (SNIFF_BYTES) of the staged text of each (name, object id) whose name leaves
+    it open whether it is a shader: what the content sniff reads, without writing any file. A
+    blob over MAX_FILE_BYTES is no student's tab file: left out (so not taken as a shader)."""
+    from ..shadertoy.sources import MAX_FILE_BYTES, SNIFF_BYTES, name_says_shader
+
+    wanted = [(name, oid) for name, oid in entries if name_says_shader(name) is None]
+    if not wanted:
+        return {}
+    ids = "".join(f"{oid}\n" for _, oid in wanted).encode()
+    sizes = _git("cat-file", "--batch-check=%(objectsize)", cwd=top, stdin=ids).split()
+    small = [(n, oid) for (n, oid), size in zip(wanted, sizes) if int(size) <= MAX_FILE_BYTES]
+    out = _git("cat-file", "--batch", cwd=top, stdin="".join(f"{o}\n" for _, o in small).encode())
+    texts: dict[str, str] = {}
+    at = 0
+    for name, _ in small:  # "<id> <type> <size>\n<content>\n" per object, in order
+        header_end = out.index(b"\n", at)
+        size = int(out[at:header_end].split()[2])
+        body = out[header_end + 1 : header_end + 1 + size]
+        texts[name] = body[:SNIFF_BYTES].decode("utf-8", "replace")
+        at = header_end + 1 + size + 1
+    return texts
 
 
 def _checkout(top: str, folder: str, names: list[str]) -> None:
@@ -149,20 +175,23 @@ def _checkout(top: str, folder: str, names: list[str]) -> None:
 
 
 @contextlib.contextmanager
-def staged_checkout(skipped: list[tuple[str, str]] | None = None) -> Iterator[list[str]]:
+def staged_checkout(
+    skipped: list[tuple[str, str]] | None = None, passed_over: list[str] | None = None
+) -> Iterator[list[str]]:
     """Write the staged shader files (and their context) into a temporary folder, enter it, and
     yield their names (relative to it and to the top of the work tree); cwd and the folder are
     restored and removed afterwards. InputError outside a git work tree. `skipped` (when given)
-    receives (name, what it is) for each staged symbolic link or submodule named as a shader."""
+    receives (name, what it is) for each staged symbolic link or submodule named as a shader;
+    `passed_over` (when given) the staged files that are not shader files."""
     try:
         top = os.fsdecode(_git("rev-parse", "--show-toplevel").rstrip(b"\n"))
     except InputError:
         raise InputError("glslcheck lint --staged: error: not inside a git work tree") from None
     entries = staged_entries(top)
-    staged = [name for mode, name in entries if _is_regular(mode)]
+    staged = [name for mode, _, name in entries if _is_regular(mode)]
     others = [
         (name, NOT_FILES.get(mode, f"mode {mode}"))
-        for mode, name in entries
+        for mode, _, name in entries
         if not _is_regular(mode)
     ]
     # Mode 0700, so no other user writes in it; inside the git folder, so the configuration
@@ -179,7 +208,11 @@ def staged_checkout(skipped: list[tuple[str, str]] | None = None) -> Iterator[li
         # those are written, so a large staged binary is never copied.
         _checkout(top, folder, _config_names(top, staged))
         os.chdir(folder)
-        shaders = _shader_names(staged)
+        texts = _sniffed_texts(top, [(n, oid) for mode, oid, n in entries if _is_regular(mode)])
+        shaders = _shader_names(staged, texts)
+        if passed_over is not None:
+            taken = set(shaders)
+            passed_over.extend(name for name in staged if name not in taken)
         if skipped is not None:
             named = set(_shader_names([name for name, _ in others]))
             skipped.extend((name, what) for name, what in others if name in named)

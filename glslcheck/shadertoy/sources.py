@@ -3,7 +3,9 @@
 A shader is given as one file per Shadertoy tab (`Image`, `Common`, `Buffer A`..`Buffer D`,
 `Sound`, `Cube A`; extension `.glsl`, `.frag`, `.txt` or none; names matched case-insensitively
 with spaces, `_` and `-` ignored, so `Buffer A.glsl` and `buffer_a.glsl` are the same tab) or a
-folder of such files. A file whose name is not a tab name is taken as an Image tab. A file with
+folder of such files. A file whose name is not a tab name is taken as an Image tab. A folder
+walk takes a `.txt` or extension-less file with another name when its text is shader code
+(`looks_like_shader`: students name their tab files as they like, `Lab 4.txt` or `code.txt`). A file with
 its own `#version` line and a `main()` is a plain GLSL ES fragment shader, taken as it is. A
 `.json` file is Shadertoy's own export of a whole shader (`load_shadertoy_json`): its passes
 become the tabs and its inputs the channel bindings.
@@ -241,17 +243,86 @@ def _is_plain_glsl(text: str) -> bool:
 
 
 def _is_tab_file(p: str) -> bool:
-    return _is_shader_file(p) and tab_name(p) is not None
+    return os.path.isfile(p) and name_says_shader(p) is True and tab_name(p) is not None
+
+
+# Which files hold shader code. The name decides for `.glsl`/`.frag` files and Shadertoy tab
+# names (`Image.txt`, `Common`); students name their other tab files as they like (`Lab 4.txt`,
+# `code.txt`, `Lab4/main.txt`), so a `.txt` or extension-less file is a shader when its text is
+# one: a `mainImage`, or GLSL declarations, in a text that reads as code rather than prose. A
+# README, a licence, notes or Markdown is never taken for GLSL.
+SNIFF_BYTES = 65_536  # how much of a file the sniff reads: a shader shows itself in its start
+_NOT_SHADER_STEMS = frozenset(
+    ("readme", "license", "licence", "copying", "changelog", "authors", "notice", "contributing")
+)
+_MAIN_IMAGE_RE = compiled(r"\bvoid\s+mainImage\s*\(")
+_GLSL_TYPE = r"(?:void|bool|u?int|float|[biu]?vec[234]|mat[234](?:x[234])?|sampler\w+)"
+_DECLARATION_RE = compiled(
+    rf"^[ \t]*(?:(?:const|uniform|highp|mediump|lowp)\s+)*{_GLSL_TYPE}\s+[A-Za-z_]\w*\s*[(=;\[,]"
+    r"|^[ \t]*struct\s+[A-Za-z_]\w*\s*(?:\{|$)"
+    r"|^[ \t]*#[ \t]*(?:define|version|ifdef|ifndef)\b",
+    re.M,
+)
+_FENCE_RE = compiled(r"^[ \t]*(?:```|~~~)", re.M)  # Markdown code fences: never in GLSL
+_CODE_END = (";", "{", "}", ")", ",", "(")
+
+
+def name_says_shader(path: str | os.PathLike) -> bool | None:
+    """True: the name makes a file a shader file (.glsl, .frag, a Shadertoy tab name); None: its
+    text decides (`looks_like_shader`: a `.txt` or extension-less file); False: it is not one
+    (another extension, a hidden file, a README or licence by its name)."""
+    name = path_name(path)
+    suffix = path_suffix(name).lower()
+    if name.startswith(".") or suffix not in SHADER_EXTENSIONS:
+        return False
+    if suffix in (".glsl", ".frag") or tab_name(name) is not None:
+        return True
+    stem = path_stem(name).lower().replace("-", "_").split("_")[0]
+    return False if stem in _NOT_SHADER_STEMS else None
+
+
+def looks_like_shader(text: str) -> bool:
+    """Whether a text is shader code: a `mainImage` or a GLSL declaration outside comments, no
+    Markdown fence, and no more lines of prose than lines of code."""
+    if "\0" in text or _FENCE_RE.search(text):
+        return False
+    code = _COMMENT_RE.sub(" ", text)
+    if not (_MAIN_IMAGE_RE.search(code) or _DECLARATION_RE.search(code)):
+        return False
+    code_lines = prose_lines = 0
+    for line in code.splitlines():
+        line = line.strip()
+        if not line:
+            continue
+        if line.endswith(_CODE_END) or line.startswith("#") or _DECLARATION_RE.match(line):
+            code_lines += 1
+        elif len(line.split()) >= 3:
+            prose_lines += 1
+    return code_lines >= prose_lines
+
+
+def sniff_shader_file(path: str | os.PathLike) -> bool:
+    """`looks_like_shader` of a file's first SNIFF_BYTES bytes. A file that cannot be read is
+    taken as a shader: reading it then reports why (a file that may be a shader is never skipped
+    in silence)."""
+    try:
+        fd = os.open(str(path), os.O_RDONLY | os.O_NONBLOCK | getattr(os, "O_CLOEXEC", 0))
+        with os.fdopen(fd, "rb") as f:
+            if not stat.S_ISREG(os.fstat(f.fileno()).st_mode):
+                return True
+            data = f.read(SNIFF_BYTES)
+    except OSError:
+        return True
+    return looks_like_shader(data.decode("utf-8", "replace"))
 
 
 def _is_shader_file(p: str) -> bool:
-    suffix = path_suffix(p)
-    return (
-        os.path.isfile(p)
-        and not path_name(p).startswith(".")
-        and suffix.lower() in SHADER_EXTENSIONS
-        and (suffix != "" or tab_name(p) is not None)
-    )
+    """A regular file that is a shader file by its name or, when the name leaves it open, by its
+    text."""
+    if not os.path.isfile(p):
+        return False
+    by_name = name_says_shader(p)
+    return by_name if by_name is not None else sniff_shader_file(p)
 
 
 def load_shader(path: str | os.PathLike) -> Shader:
@@ -295,7 +366,8 @@ def load_shader(path: str | os.PathLike) -> Shader:
 def find_shaders(paths: list[str]) -> list[Shader]:
     """Expand command-line paths. A file is one shader; a folder holding tab files (Image.glsl,
     Common.glsl, ...) is one shader; any other folder is walked: each of its sub-folders with
-    tab files is a shader, and each loose .glsl/.frag/.txt file is a shader of its own. A symbolic
+    tab files is a shader, and each loose shader file (.glsl, .frag, or a .txt or extension-less
+    file whose text is GLSL: `looks_like_shader`) is a shader of its own. A symbolic
     link to a folder is followed only when the walk has not been in that real folder yet, so links
     back to the folder itself or above it (or many links to one folder) cost one visit."""
     out: list[Shader] = []
@@ -336,7 +408,7 @@ def _walk(folder: str, visited: set[str]) -> list[Shader]:
                 found.append(load_shader(f))
             else:
                 found.extend(_walk(f, visited))
-        elif _is_shader_file(f) and path_suffix(f):
+        elif _is_shader_file(f):
             shader = Shader(root=f)
             src = read_source(f)
             shader.tabs[src.tab] = src

@@ -117,6 +117,23 @@ def test_skip_non_shaders(workdir, capsys):
     assert capsys.readouterr().out == "no findings in 1 file\n"
 
 
+def test_lint_folder_takes_txt_tab_files_by_their_text(workdir, capsys):
+    (workdir / "Lab4").mkdir()
+    (workdir / "Lab4" / "Lab4.txt").write_text(BAD_SHADER)
+    (workdir / "notes.txt").write_text("We split the work: Ana the spheres, Ben the lights.\n")
+    assert main(["lint", "."]) == 1
+    out = capsys.readouterr().out
+    assert "Lab4/Lab4.txt:1:1: missing-header" in out and "notes.txt" not in out
+
+
+def test_lint_of_no_shader_file_is_no_clean_bill(workdir, capsys):
+    (workdir / "notes.txt").write_text("plain notes\n")
+    assert main(["lint", "--skip-non-shaders", "notes.txt"]) == 0
+    captured = capsys.readouterr()
+    assert captured.out == "no shader files linted (0 files): nothing was checked\n"
+    assert "1 file given left out as not shader files: notes.txt" in captured.err
+
+
 # --- lint never modifies files -----------------------------------------------------------
 
 
@@ -260,7 +277,9 @@ def test_bad_pyproject_table_names_the_table(workdir):
 def test_rule_prints_docs(capsys):
     assert main(["rule", "missing-comment"]) == 0
     out = capsys.readouterr().out
-    assert out.startswith("missing-comment: Code lines that no comment explains.\n")
+    assert out.startswith(
+        "missing-comment: Code that no comment explains, as a TA reads the comments.\n"
+    )
     for section in ("## What it does", "## Why is this bad?", "## Example", "## Use instead"):
         assert section in out
 

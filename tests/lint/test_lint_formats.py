@@ -27,12 +27,12 @@ def linted(tmp_path, monkeypatch) -> LintResult:
 def test_text_format(linted):
     text = render(linted, "text")
     assert text.split("\n\n")[1].splitlines()[0] == (
-        "Buffer A.glsl:1:1: missing-header the file opens with no header comment (it should name the "
-        "file, state its purpose and list the contributors with what each did)"
+        "Buffer A.glsl:1:1: missing-header the file opens with no header comment: no student is "
+        "named at its top"
     )
     block = text.split("\n\n")[0].splitlines()
     assert block == [
-        "Buffer A.glsl:1:1: missing-comment 2 lines of code without a comment (lines 1-3)",
+        "Buffer A.glsl:1:1: missing-comment 2 lines of code without a comment that explains them (lines 1-3)",
         "    void mainImage(out vec4 fragColor, in vec2 fragCoord)",
         "    ^" + "~" * 52,
         "  help: add a comment above saying why these lines are there",
@@ -48,7 +48,13 @@ def test_text_summary_without_findings():
 def test_json_format_exact_shape(linted):
     doc = json.loads(render(linted, "json"))
     assert set(doc) == {"findings", "summary"}
-    assert doc["summary"] == {"files": 2, "findings": 3, "penalty": 2}
+    assert doc["summary"] == {
+        "files": 2,
+        "findings": 3,
+        "penalty": 2,
+        "possible_findings": 0,
+        "possible_penalty": 0,
+    }
     keys = [
         "path",
         "line",
@@ -58,6 +64,7 @@ def test_json_format_exact_shape(linted):
         "rule",
         "severity",
         "penalty",
+        "certainty",
         "message",
         "help",
         "notes",
@@ -74,12 +81,13 @@ def test_json_format_exact_shape(linted):
         "rule": "missing-comment",
         "severity": "warning",
         "penalty": 1,
-        "message": "2 lines of code without a comment (lines 1-3)",
+        "certainty": "certain",
+        "message": "2 lines of code without a comment that explains them (lines 1-3)",
         "help": "add a comment above saying why these lines are there",
         "notes": [],
     }
     credit = next(f for f in doc["findings"] if f["rule"] == "missing-credit")
-    assert (credit["severity"], credit["penalty"]) == ("note", 0)
+    assert (credit["severity"], credit["penalty"], credit["certainty"]) == ("note", 0, None)
 
 
 def _check_sarif(doc: dict) -> None:
@@ -163,7 +171,7 @@ def test_github_format(linted):
     assert len(lines) == 3
     assert lines[0] == (
         "::warning file=Buffer A.glsl,line=1,col=1,endLine=1,endColumn=54,title=missing-comment::"
-        "2 lines of code without a comment (lines 1-3)%0Ahelp: add a comment above saying why these lines are there"
+        "2 lines of code without a comment that explains them (lines 1-3)%0Ahelp: add a comment above saying why these lines are there"
     )
     assert lines[2].startswith("::notice file=Buffer A.glsl,line=1,col=1,")
     for line in lines:
@@ -175,3 +183,57 @@ def test_github_escapes_properties(tmp_path, monkeypatch):
     Path("a,b:c.glsl").write_text(BAD_SHADER)
     out = render(lint_paths(["a,b:c.glsl"]), "github")
     assert "file=a%2Cb%3Ac.glsl," in out
+
+
+# A student named (a certain deduction avoided) but no file name, purpose or roles: a possible
+# deduction (incomplete-header), beside a certain one (missing-comment on the uncommented body).
+POSSIBLE_SHADER = """\
+// Modified by Ana Ruiz
+
+void mainImage(out vec4 fragColor, in vec2 fragCoord)
+{
+    fragColor = vec4(1.0);
+}
+"""
+
+
+@pytest.fixture
+def possible(tmp_path, monkeypatch) -> LintResult:
+    monkeypatch.chdir(tmp_path)
+    Path("Image.glsl").write_text(POSSIBLE_SHADER)
+    return lint_paths(["Image.glsl"], {"select": ["incomplete-header", "missing-comment"]})
+
+
+def test_certain_and_possible_apart_in_text(possible):
+    text = render(possible, "text")
+    assert "Image.glsl:1:1: incomplete-header [possible] the header names its author" in text
+    assert "missing-comment [possible]" not in text
+    assert text.endswith(
+        "\n2 findings in 1 file, estimated deduction: -1 point, and -1 point more possible "
+        "(1 possible deduction: a reading of an ambiguous rubric sentence, marked [possible])\n"
+    )
+
+
+def test_certain_and_possible_apart_in_json_sarif_and_github(possible):
+    doc = json.loads(render(possible, "json"))
+    assert {f["rule"]: f["certainty"] for f in doc["findings"]} == {
+        "incomplete-header": "possible",
+        "missing-comment": "certain",
+    }
+    assert doc["summary"] == {
+        "files": 1,
+        "findings": 2,
+        "penalty": 1,
+        "possible_findings": 1,
+        "possible_penalty": 1,
+    }
+    sarif = json.loads(render(possible, "sarif"))
+    _check_sarif(sarif)
+    results = {r["ruleId"]: r for r in sarif["runs"][0]["results"]}
+    assert results["incomplete-header"]["level"] == "note"
+    assert results["incomplete-header"]["properties"] == {"penalty": 1, "certainty": "possible"}
+    assert results["missing-comment"]["level"] == "warning"
+    rules = {r["id"]: r for r in sarif["runs"][0]["tool"]["driver"]["rules"]}
+    assert rules["incomplete-header"]["defaultConfiguration"]["level"] == "note"
+    github = render(possible, "github").splitlines()
+    assert [line.split(" ", 1)[0] for line in github] == ["::notice", "::warning"]

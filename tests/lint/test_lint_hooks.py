@@ -27,9 +27,12 @@ def _hook_definition() -> dict:
 
 def test_hook_definition():
     hook = _hook_definition()
-    assert hook["entry"] == "glslcheck lint"
+    # pre-commit passes every .txt and extension-less file; glslcheck keeps those whose text is
+    # a shader's (a student's `Lab 4.txt`) and passes over a README or notes file
+    assert hook["entry"] == "glslcheck lint --skip-non-shaders"
     assert hook["language"] == "python"
     assert hook["pass_filenames"] is True
+    assert hook["types"] == ["text"]
     files = re.compile(hook["files"])
     for name in (
         "Image.glsl",
@@ -38,9 +41,12 @@ def test_hook_definition():
         "lab4/buffer_b",
         "Common",
         "x/IMAGE.TXT",
+        "Lab 4.txt",
+        "GPRO-Graphics-Lab4/main.txt",
+        "notes.txt",
     ):
         assert files.search(name), name
-    for name in ("README.md", "notes.txt", "lab4/image.png", "imagery.txt"):
+    for name in ("README.md", "lab4/image.png", "src/main.cpp", ".gitignore"):
         assert not files.search(name), name
 
 
@@ -67,7 +73,7 @@ def test_pre_commit_framework_runs_the_hook(git_repo: GitRepo):
                     {
                         "id": hook["id"],
                         "name": hook["name"],
-                        "entry": f"{GLSLCHECK} lint",
+                        "entry": f"{GLSLCHECK} lint --skip-non-shaders",
                         "language": "system",
                         "files": hook["files"],
                         "pass_filenames": hook["pass_filenames"],
@@ -92,6 +98,12 @@ def test_pre_commit_framework_runs_the_hook(git_repo: GitRepo):
 
     proc, _ = _commit(git_repo, "notes.txt", "not a shader\n")  # not a shader: the hook skips it
     assert proc.returncode == 0, proc.stdout + proc.stderr
+
+    # a tab file named as a student names it: a shader by its text
+    proc, _ = _commit(git_repo, "Lab4/Lab4.txt", BAD_SHADER)
+    assert proc.returncode != 0
+    assert "Lab4/Lab4.txt:1:1: missing-header" in proc.stdout + proc.stderr
+    assert not _committed(git_repo, "Lab4/Lab4.txt")
 
 
 def test_install_hook_blocks_findings_and_passes_clean(git_repo: GitRepo):

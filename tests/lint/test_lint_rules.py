@@ -29,6 +29,7 @@ def _found(folder: Path, select: list[str]) -> list[dict]:
             "rule": f.rule,
             "message": f.message,
             "help": f.help,  # the suggested rewrite: what students read
+            "certainty": f.certainty,  # certain or possible deduction (None: not a deduction)
         }
         for f in result.findings
     ]

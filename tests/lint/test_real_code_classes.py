@@ -387,7 +387,7 @@ def test_inactive_ifdef_branches():
     assert inactive_lines(lines) == {5, 8, 11}
 
 
-def test_attribution_comments_are_advice_not_deductions(tmp_path: Path):
+def test_attribution_comments_explain_nothing(tmp_path: Path):
     text = (
         HEADER
         + """
@@ -404,8 +404,9 @@ void mainImage(out vec4 fragColor, in vec2 fragCoord)
 }
 """
     )
+    # the rubric asks for the why: a credit says where code came from, so a TA deducts there
     (f,) = _lint(tmp_path, text, ["missing-comment"]).findings
-    assert (f.severity, f.penalty, f.loc.line) == ("note", 0, 6)
+    assert (f.severity, f.penalty, f.certainty, f.loc.line) == ("warning", 1, "certain", 6)
 
 
 def test_the_same_value_written_differently(tmp_path: Path):

@@ -1,7 +1,11 @@
 """Report every Lab 4 coding-standard deduction in shader files and folders.
 
 Exit status: 0 no findings, 1 findings, 2 usage, input or configuration errors. Never modifies
-a shader file. Configuration: [tool.glslcheck] in the nearest pyproject.toml, or glslcheck.toml
+a shader file. Every finding counts for the exit status, a possible deduction (a reading of an
+ambiguous rubric sentence, `[possible]` in the text report) as much as a certain one: the hook
+shows a student what may cost points before the TA does; a possible deduction the student has
+decided against is silenced like any finding (`glslcheck: ignore[incomplete-header]`, or
+`ignore` in the configuration). The summary counts the certain and the possible points apart. Configuration: [tool.glslcheck] in the nearest pyproject.toml, or glslcheck.toml
 (see `glslcheck rule --all` for the rules).
 """
 
@@ -46,7 +50,8 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
         "--skip-non-shaders",
         action="store_true",
         help="leave out named files that are not shader files (.glsl, .frag, Shadertoy tab names, "
-        "tab-patterns); for git hooks given every staged file",
+        "tab-patterns, .txt or extension-less files whose text is shader code); for git hooks "
+        "given every staged file",
     )
     parser.add_argument(
         "--staged",
@@ -73,9 +78,12 @@ def run(args: argparse.Namespace) -> int:
         from ...lint.staged import staged_checkout
 
         skipped: list[tuple[str, str]] = []
-        with staged_checkout(skipped) as names:  # messages name the repository-relative paths
+        passed_over: list[str] = []
+        with staged_checkout(skipped, passed_over) as names:  # names: repository-relative
             result = lint_paths(names, overrides, skip_non_shaders=True)
             text = render(result, args.format)
+        if not result.files:
+            _say_nothing_linted(passed_over + result.skipped, "staged file")
         for name, what in skipped:  # named as a shader, but no shader text in the commit
             print(
                 printable(f"{name}: note: {what}, not a shader file; not linted"), file=sys.stderr
@@ -85,6 +93,8 @@ def run(args: argparse.Namespace) -> int:
     else:
         result = lint_paths(args.paths, overrides, skip_non_shaders=args.skip_non_shaders)
         text = render(result, args.format)
+        if not result.files:
+            _say_nothing_linted(result.skipped, "file given")
     if args.output:
         from pathlib import Path  # only here: not on every lint's start-up
 
@@ -101,6 +111,32 @@ def run(args: argparse.Namespace) -> int:
     else:
         sys.stdout.write(text)
     return 1 if result.findings else 0
+
+
+SHADER_FILES = (
+    "a shader file is a .glsl or .frag file, a Shadertoy tab name (Image.txt, Common, Buffer A, "
+    "...), or a .txt or extension-less file whose text is shader code (a mainImage, or GLSL "
+    "declarations)"
+)
+
+
+def _say_nothing_linted(left_out: list[str], what: str) -> None:
+    """On stderr: the files were all left out as not shader files, and how to include them."""
+    if not left_out:
+        return
+    shown = ", ".join(left_out[:8]) + (
+        f" and {len(left_out) - 8} more" if len(left_out) > 8 else ""
+    )
+    noun = f"{what}s" if len(left_out) > 1 else what
+    print(
+        printable(
+            f"glslcheck lint: note: no shader file linted; {len(left_out)} {noun} left out as not "
+            f"shader files: {shown}. {SHADER_FILES[0].upper()}{SHADER_FILES[1:]}; to lint other "
+            "files, add a glob of their names to `tab-patterns` in glslcheck.toml (or "
+            "[tool.glslcheck] in pyproject.toml)"
+        ),
+        file=sys.stderr,
+    )
 
 
 def _read_by_lint(out, linted: list[str]) -> bool:

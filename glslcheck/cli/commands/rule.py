@@ -17,6 +17,11 @@ def describe(rule) -> str:
     """A rule's full documentation as `glslcheck rule NAME` prints it."""
     penalty = (
         f"-{rule.penalty} point{'s' if rule.penalty != 1 else ''} per finding"
+        + (
+            " (a possible deduction: a reading of an ambiguous rubric sentence)"
+            if rule.certainty == "possible"
+            else ""
+        )
         if rule.penalty
         else "no deduction"
     )

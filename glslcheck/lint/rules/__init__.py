@@ -6,6 +6,10 @@ A rule is a module in this package that declares
               it names the pattern, not the fix ("ignore missing-comment" reads naturally)
     PENALTY   points the course deducts per finding: 1 for a course rule, 0 for worth-knowing
     SEVERITY  "warning" for a course rule (PENALTY > 0), "note" for worth-knowing (PENALTY 0)
+    CERTAINTY optional, for a course rule: "certain" (the default: the rubric's text makes each
+              finding a deduction) or "possible" (a reading of an ambiguous sentence of the
+              rubric: a TA may deduct it or not); a finding may say otherwise
+              (`Diagnostic.certainty`)
     NEEDS     "text" (runs on every file), "ast" (runs only when the engine has a parse tree
               and semantic model for the file) or "suppressions" (runs last, reading which
               suppressions were used)
@@ -40,6 +44,7 @@ RULE_TABLE: tuple[tuple[str, str], ...] = (
     ("compile-error", "compile_error"),
     ("missing-comment", "missing_comment"),
     ("missing-header", "missing_header"),
+    ("incomplete-header", "incomplete_header"),
     ("missing-credit", "missing_credit"),
     ("unused-suppression", "unused_suppression"),
     ("uniform-outside-mainimage", "uniform_outside_mainimage"),
@@ -60,6 +65,7 @@ RULE_TABLE: tuple[tuple[str, str], ...] = (
 
 SECTIONS = ("What it does", "Why is this bad?", "Example", "Use instead")
 SEVERITIES = {"error": "compile error", "warning": "course rule", "note": "worth knowing"}
+CERTAINTIES = ("certain", "possible")
 NEEDS = ("text", "ast", "suppressions")
 READS = ("functions", "names", "program")
 
@@ -77,6 +83,7 @@ class Rule:
     check: Callable[..., Iterable]
     module: ModuleType
     reads: str = "functions"
+    certainty: str = "certain"
 
     @property
     def kind(self) -> str:
@@ -127,6 +134,8 @@ def _load(name: str, module_name: str) -> Rule:
         )
     if getattr(mod, "NEEDS", None) not in NEEDS:
         problems.append(f"NEEDS must be one of {', '.join(NEEDS)}")
+    if getattr(mod, "CERTAINTY", "certain") not in CERTAINTIES:
+        problems.append(f"CERTAINTY must be one of {', '.join(CERTAINTIES)}")
     if getattr(mod, "READS", "functions") not in READS:
         problems.append(f"READS must be one of {', '.join(READS)}")
     if not callable(getattr(mod, "check", None)):
@@ -147,6 +156,7 @@ def _load(name: str, module_name: str) -> Rule:
         mod.check,
         mod,
         getattr(mod, "READS", "functions"),
+        getattr(mod, "CERTAINTY", "certain"),
     )
 
 

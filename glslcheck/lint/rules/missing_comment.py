@@ -1,22 +1,72 @@
-"""Code lines that no comment explains.
+"""Code that no comment explains, as a TA reads the comments.
 
 ## What it does
-Finds runs of code lines that no comment covers. A comment line covers the code lines right
-below it, at most `comment-span` of them (3 by default), stopping at a blank line or the next
-comment. A comment at the end of a code line covers that line; a comment before code on the same
-line (`/* why */ x = 1.0;`, or code after a block comment's `*/`) covers that line and the
-lines below it as a comment line would. Lines holding only braces (`{`, `}`, `};`, `} {`) need no
-comment and use up none of a comment's span; a brace line with a comment (`{ // per light`) is a
-comment line. Function, struct and struct-member lines and preprocessor lines (`#define`) are
-code like any other. A `glslcheck:` directive is not an explanation and covers nothing.
+Reads the file as a TA does, statement by statement (a signature or a call written over several
+lines is one statement), and reports each run of statements that no comment explains:
 
-One finding per run of consecutive uncovered code lines, at the run's first line.
+- A comment explains the statement or small group of statements it stands above: up to
+  `comment-span` statements (5 by default: the rubric's "every few related lines"), until a
+  blank line, the next comment, or the end of the block it is in. Lines of a comment block
+  explain as one comment. A comment above an `if` or a loop goes on into its body.
+- A function's comment covers its signature (all its lines) and goes on into the body as a
+  comment above a group does; a short function (at most 8 statements) with no comment in its
+  body is explained whole by its comment above, blank lines in it notwithstanding. A comment
+  separated from a function or struct by a blank line still documents it when it names it
+  (`// shade: ...` above `vec3 shade(...)`). A struct's comment covers its members; a struct
+  whose members are commented one by one needs no comment of its own.
+- A function with no explaining comment anywhere (above, inside, trailing) is one run from its
+  signature to its last line: the one ambiguous block the rubric deducts once.
+- A trailing comment covers its statement (`x = 1.0; // why`, on any of its lines), and on a
+  signature or a loop/`if` header, the block it opens as a comment above would.
+- Trivial statements need no comment: returning a literal or a plain variable (`return true;`,
+  `return col;`, or a vector of them: `return vec4(col, 1.0);`), `break;`, `continue;`,
+  `discard;`, `else`, braces. Code in an `#ifdef`/`#if`
+  branch the preprocessor skips is not compiled and not linted (where that is sure: `#ifdef`,
+  `#ifndef`, `#if defined(X)`, `#if 0`).
+- Credits and attributions ("Code from class by ...", "Referenced https://..."), section markers
+  ("// part 3", "// TEST", "// END CLASS MATERIAL", a `-----` rule), commented-out code
+  (`//dp.z = r * r;`) and `glslcheck:` directives explain nothing: a TA reads past them.
 
-Code in an `#ifdef`/`#if` branch the preprocessor skips is not compiled and is not linted
-(where that is sure: `#ifdef`, `#ifndef`, `#if defined(X)`, `#if 0`). A comment that only
-credits or marks ("Code from class by ...", "// part 3", "// TEST", a `-----` rule) says where
-code came from, not why it is there: the lines only it covers are reported as advisory notes
-(no points), apart from the deductions.
+A blank line ends a group and a run, except one right after an opening brace or before a
+closing one. Each top-level function or struct is a run of its own. One finding per run of
+uncovered statements, at its first line and naming its last, as the rubric deducts "per
+ambiguous section/block/line".
+
+A run is a certain deduction, except where whether a comment reaches it is a reading (a
+possible deduction): the groups of a section below its heading, parted from it by a blank line,
+when the heading is a comment with a blank line below it (`// SCENE`, blank, the scene's code)
+or a few words naming a stage (`// Lambertian Reflectance`, `//difCo vars`) whose own group a
+blank line ends; and a function signature with no comment above whose body opens with a
+comment saying what the function does. A credit or a marker ends a heading's section, and a
+function or struct with no comment of its own is certain.
+
+Examples, all covered: the function's comment covers both signature lines and the body,
+`return true;` and `return false;` need none, the trailing comment covers its two-line call:
+```glsl
+// inCircle: whether p lies in the circle of centre c and radius r (no square root)
+bool inCircle(in vec2 p, in vec2 c,
+              in float r)
+{
+    vec2 d = p - c;
+    if (dot(d, d) <= r * r)
+    {
+        return true;
+    }
+    return false;
+}
+vec4 lit = shade(position, normal, // lit colour of the surface point
+                 light);
+```
+and not covered, two findings (a heading parted from its code by a blank line explains nothing
+below the blank; an attribution explains nothing):
+```glsl
+// SCENE
+
+sSphere s;
+initSphere(s, vec3(0.0), 1.0);
+// Code from class by Daniel Buckstein
+vec3 dp = p - s.center.xyz;
+```
 
 ## Why is this bad?
 The course's coding standards: "Every section, block and line of code must be commented
@@ -44,6 +94,7 @@ from __future__ import annotations
 import re
 
 from ...base.diagnostics import Diagnostic
+from ...base.records import record
 from ...base.regexes import compiled
 from ..textscan import (
     BLANK,
@@ -70,36 +121,9 @@ SEVERITY = "warning"
 NEEDS = "text"
 
 HELP = "add a comment above saying why these lines are there"
-
-
-def uncovered_runs(kinds: list[LineKind], span: int) -> list[tuple[int, int, int]]:
-    """(first line, last line, number of code lines) of each run of uncovered code lines."""
-    runs: list[tuple[int, int, int]] = []
-    budget = 0  # code lines the last comment line still covers
-    run: list[int] | None = None  # [first, last, count]
-    for number, kind in enumerate(kinds, start=1):  # the kinds as globals (see textscan)
-        covered = True
-        if kind is COMMENT or kind is BRACE_COMMENT:
-            budget = span
-        elif kind is BLANK:
-            budget = 0
-        elif kind is LEADING:
-            budget = span - 1
-        elif kind is CODE or kind is TRAILING:
-            covered = kind is TRAILING or budget > 0
-            budget = max(budget - 1, 0)
-        # BRACE and DIRECTIVE lines neither need a comment nor use one up.
-        if not covered:  # (only a CODE line is not: TRAILING and LEADING lines are covered)
-            if run is None:
-                run = [number, number, 0]
-            run[1] = number
-            run[2] += 1
-        elif kind is not BRACE and kind is not DIRECTIVE and run is not None:
-            runs.append((run[0], run[1], run[2]))
-            run = None
-    if run is not None:
-        runs.append((run[0], run[1], run[2]))
-    return runs
+# Why a run is only a possible deduction: a reading of how far a comment reaches.
+HEADING = "only a section heading explains it, parted from it by a blank line"
+BODY_ONLY = "the function's first body comment says what it does, none stands above it"
 
 
 # A comment that only credits or marks ("code from class by ...", "// part 3", "// TEST"):
@@ -108,21 +132,381 @@ ATTRIBUTION_RE = compiled(
     r"^[\s*/!-]*(?:"
     r"(?:code\s+|taken\s+|copied\s+|adapted\s+|borrowed\s+)?from\s+(?:class|the\s+starter|lecture)\b[^.;]*"
     r"|(?:\w+\s+){0,3}by\s+(?-i:[A-Z][\w.]*)(?:\s+(?-i:[A-Z][\w.]*)){0,3}"  # "Code by Dan Buckstein"
-    r"|(?:part|step|section)\s*[#\d.]+|test|todo"  # a bare marker
+    r"|(?:parts?|pt|step|section|task|ch(?:apter)?)\s*[#\d.]+(?:\s*(?:and|&|,|-)\s*[#\d.]+)*"
+    r"|test|todo|(?-i:(?:START|END|BEGIN)(?:\s+[A-Z]+){0,3})|(?:\w+\s+){0,2}(?:start|end|begin)"
     r"|-{3,}|={3,}|\*{3,})[\s*/!.:-]*$",
+    re.I,
+)
+# Commented-out code: a statement, a declaration, a call or a control header kept in a comment.
+COMMENTED_CODE_RE = compiled(
+    r"^\s*(?:(?:if|else\s+if|for|while)\s*\(.*"
+    r"|return\b[^;]*;"
+    r"|[\w.\[\]]+\s*[-+*/]?=\s*[^=][^;]*;"
+    r"|(?:const\s+)?(?:float|u?int|bool|void|[biu]?vec[234]|mat[234]|(?-i:[A-Z]\w*|s[A-Z]\w*))"
+    r"\s+[A-Za-z_]\w*\s*(?:=[^;]*)?;"
+    r"|[\w.]+\s*\(.*\)\s*;"
+    r"|[{}]\s*;?)\s*(?://.*)?$"
+)
+# Statements that need no comment: returning a literal or a plain variable, break, continue,
+# discard, a bare `else`.
+TRIVIAL_RE = compiled(
+    r"^\s*\}?\s*(?:return\s*(?:[-+]?[\w.]+|(?:[biu]?vec[234]|float|u?int|bool)\(\s*[-+]?[\w.]+"
+    r"(?:\s*,\s*[-+]?[\w.]+)*\s*\))?\s*;|break\s*;|continue\s*;|discard\s*;|else)\s*\{?\s*\}?\s*$"
+)
+
+
+# A credit: a comment that names where code came from (a link, the starter, a reference).
+CREDIT_RE = compiled(
+    r"^[\s*/!-]*(?:https?://|www\.|(?:\w+\s+){0,2}based\s+on\b.*(?:https?://|www\.)"
+    r"|(?:\w+\s+){0,2}(?:referenc\w*|sources?(?:\s+used)?\s*:|credits?\b|thanks?\s+to"
+    r"|starter\s+code|glsl\s+starter|original\s+code|got\s+(?:help|assistance)|help\s+from"
+    r"|assistance\s+from|source\s+assistance)"
+    r"|(?:(?:code|this|it|functions?)\s+(?:was\s+|is\s+)?)?(?:adapted|borrowed|inspired|taken|copied)"
+    r"\s+(?:from|by)\b)",
     re.I,
 )
 
 
-def _attributions(ctx) -> set[int]:
-    """Lines of whole-line comments that only attribute or mark."""
-    return {
-        c.line
-        for c in ctx.comments
-        if c.line == c.end_line
-        and ctx.line_kinds[c.line - 1] is COMMENT
-        and ATTRIBUTION_RE.match(c.text)
-    }
+def explains(text: str) -> bool:
+    """Whether a comment's text explains code: not empty, not a credit or a marker, not code."""
+    body = text.strip().strip("/*!").strip()
+    return (
+        bool(body)
+        and not ATTRIBUTION_RE.match(text)
+        and not COMMENTED_CODE_RE.match(body)
+        and not CREDIT_RE.match(body)
+    )
+
+
+def _line_explains(comments: list, number: int) -> bool:
+    """Whether a comment on line `number` explains (a block comment: its text on that line);
+    `comments` are the comments on that line."""
+    for c in comments:
+        if c.is_directive:
+            continue
+        text = c.text.split("\n")[number - c.line] if c.end_line > c.line else c.text
+        if explains(text):
+            return True
+    return False
+
+
+# A section heading: a few words naming a stage (`// SCENE`, `// Lambertian Reflectance`,
+# `//difCo vars`, `// Variable Declarations`), not a sentence about the next line.
+_HEADING_WORDS = compiled(
+    r"\b(?:vars?|variables|declarations?|definitions?|parameters|constants|setup|scene|init\w*"
+    r"|lighting|reflectance|shading|calculations?|calcs|helpers|utilit\w+|globals?)\b",
+    re.I,
+)
+
+
+def _is_heading(text: str) -> bool:
+    words = text.strip(" \t/*!-=:").split()
+    if not words or len(words) > 5 or text.rstrip().endswith((".", ";", ")")):
+        return False
+    return words[0][:1].isupper() or _HEADING_WORDS.search(text) is not None
+
+
+@record
+class _Cover:
+    """A comment's coverage: the block depth it was written at and the statements it has left."""
+
+    depth: int
+    left: int
+    text: str = ""  # the comment's words (a definition's name in them: it documents it)
+
+
+_NAME_RE = compiled(r"(\w+)\s*(?:\(|\{|$)")  # a definition's name: before its `(` or `{`
+_SIGNATURE_RE = compiled(r"^(?:[A-Za-z_]\w*\s+)+[A-Za-z_]\w*\s*\([^;]*\)\s*\{?\s*$")
+_SIGNATURE_START_RE = compiled(r"^(?:[A-Za-z_]\w*\s+)+[A-Za-z_]\w*\s*\(")
+_HEADER_RE = compiled(r"^\}?\s*(?:if|for|while|else\s+if|switch)\s*\(")  # a control header
+_STRUCT_RE = compiled(r"^struct\b")
+SHORT_BODY = 8  # statements of a function its comment above explains whole
+_GOES_ON = (",", "+", "-", "*", "/", "=", "&", "|", "?", ":", "<", ">", "(", "!")
+
+
+class _Reader:
+    """Reads a file's lines into statements and decides which are covered (see uncovered_runs)."""
+
+    def __init__(self, scan, kinds: list[LineKind], span: int):
+        self.scan, self.kinds, self.span = scan, kinds, span
+        self.code = scan.code_lines
+        self.on_line: dict[int, list] = {}  # line -> the comments on it (built once: linear)
+        for c in scan.comments:
+            for n in range(c.line, c.end_line + 1):
+                self.on_line.setdefault(n, []).append(c)
+        self.runs: list[tuple[int, int, int, str]] = []
+        self.run: list | None = None  # [first, last, code lines, reading or ""]
+        # the depth of a heading: an explaining comment followed by a blank line. Whether it
+        # explains the groups of its section below the blank is a reading (a possible deduction)
+        self.heading: int | None = None
+        self.signature_run = False  # the open run is one function signature, nothing more
+        # the top-level function being read: {"sig": its signature lines, "explained": whether
+        # a comment explains the signature, "inner": whether one explains anything in its
+        # body, "count": its body's statements, "last": its last code line, "runs": the index
+        # of its first run}
+        self.function: dict | None = None
+        self.signature: tuple[list[int], bool] | None = None  # the last signature read
+        self.cover: _Cover | None = None
+        self.above: _Cover | None = None  # a top-level comment a blank line parts from its code
+        self.depth = 0
+        self.blocks: list[str] = []  # per open block: "struct", "function" or "other"
+        self.statement: list[int] = []  # the lines of the statement being read
+        self.start_depth = 0  # the depth the statement started at
+        self.parens = 0
+        self.last_head = ""  # the last statement read (what a `{` on the next line opens)
+        # an uncovered function or struct header, decided by its body: the body's first
+        # statement explained by a comment of its own (or its members) explains it too
+        self.deferred: list[int] | None = None
+        self.blank = False  # a blank line was read and not yet acted on
+        self.after_open = False  # the last line read ended with `{`
+        self.last_comment = 0  # the last explaining comment line
+        self.macro = False  # the last preprocessor line ended with a backslash
+
+    def explains(self, number: int) -> bool:
+        return _line_explains(self.on_line.get(number, ()), number)
+
+    def close_run(self) -> None:
+        if self.run is not None:
+            self.runs.append((self.run[0], self.run[1], self.run[2], self.run[3]))
+            self.run = None
+
+    def add_to_run(self, lines: list[int], signature: bool = False) -> None:
+        if self.run is None:
+            under_heading = self.heading is not None and self.cover is None
+            self.run = [lines[0], lines[-1], len(lines), HEADING if under_heading else ""]
+            self.signature_run = signature
+        else:
+            self.run[1] = lines[-1]
+            self.run[2] += len(lines)
+            self.signature_run = False
+
+    def settle_deferred(self, explained: bool) -> None:
+        if self.deferred is not None:
+            if not explained:
+                self.add_to_run(self.deferred)
+            self.deferred = None
+
+    def own_comment(self, lines: list[int]) -> bool:
+        return any(self.kinds[n - 1] in (TRAILING, LEADING) and self.explains(n) for n in lines)
+
+    def finish(self) -> None:
+        """Decide the statement read so far: covered, trivial or uncovered."""
+        if not self.statement:
+            return
+        lines = list(self.statement)
+        self.statement.clear()
+        self.parens = 0
+        text = " ".join(self.code[n - 1].strip() for n in lines)
+        self.last_head = text
+        top = self.start_depth == 0
+        header = top and (_SIGNATURE_RE.match(text) is not None or _STRUCT_RE.match(text))
+        if header and self.cover is None and self.above is not None:
+            name = _NAME_RE.search(text.split("(")[0] + "(")
+            if name and re.search(rf"\b{re.escape(name.group(1))}\b", self.above.text):
+                self.cover = self.above  # the definition's own comment, across a blank line
+        self.above = None
+        if TRIVIAL_RE.match(text):
+            return  # needs no comment; neither covers nor breaks a run
+        in_struct = bool(self.blocks) and self.blocks[-1] == "struct"
+        cover = self.cover
+        covered = cover is not None and cover.left > 0
+        if covered and not (in_struct or header):
+            cover.left -= 1
+        own = self.own_comment(lines)
+        if own and (header or _HEADER_RE.match(text)):
+            # `float f(float x) // why`, `for (...) // why`: it explains what the block does
+            self.cover = _Cover(self.start_depth, self.span)
+        if header and _STRUCT_RE.match(text) and not covered and not own:
+            self.settle_deferred(False)
+            self.deferred = lines  # its members' comments may explain it
+            return
+        if header:
+            self.heading = None  # a definition with no comment of its own: certain
+        if header and not _STRUCT_RE.match(text):
+            self.signature = (lines, covered or own)
+        elif self.function is not None and self.start_depth > 0:
+            self.function["count"] += 1
+            self.function["last"] = lines[-1]
+            self.function["inner"] = self.function["inner"] or own
+        if covered or own:
+            self.settle_deferred(own or in_struct)
+            self.close_run()
+        else:
+            self.settle_deferred(False)
+            self.add_to_run(lines, signature=header and not _STRUCT_RE.match(text))
+
+    def braces(self, line: str) -> None:
+        """Follow the blocks a line closes and opens (closing first: `} else {`)."""
+        for _ in range(line.count("}")):
+            if self.blocks:
+                self.blocks.pop()
+            self.depth = max(self.depth - 1, 0)
+            if self.cover is not None and (self.depth < self.cover.depth or self.depth == 0):
+                self.cover = None  # the block ends, or the definition a top comment stood above
+            if self.heading is not None and (self.depth < self.heading or self.depth == 0):
+                self.heading = None  # the section's block, or its first definition, ends
+            if self.depth == 0:
+                self.settle_deferred(False)  # a body with nothing explained
+                self.close_run()  # each top-level definition is a run of its own
+                self.end_function()
+        opened = line.count("{")
+        if opened:
+            head = (
+                " ".join(self.code[n - 1].strip() for n in self.statement)
+                if self.statement
+                else self.last_head
+            )
+            if _STRUCT_RE.match(head.lstrip()):
+                what = "struct"
+            elif self.depth == 0 and _SIGNATURE_RE.match(head.split("{")[0]):
+                what = "function"
+            else:
+                what = "other"
+            if what == "function" and self.signature is not None:
+                lines, explained = self.signature
+                self.function = {
+                    "sig": lines,
+                    "explained": explained,
+                    "inner": False,
+                    "count": 0,
+                    "last": lines[-1],
+                    "runs": len(self.runs) - (0 if self.run is not None else 0),
+                }
+            self.blocks.extend([what] * opened)
+            self.depth += opened
+
+    def end_function(self) -> None:
+        """A function read whole: one with no comment anywhere is one run, the ambiguous block the
+        rubric deducts once; a short one (at most SHORT_BODY statements) whose comment above
+        explains it and whose body has none of its own is explained whole."""
+        f, self.function = self.function, None
+        if f is None:
+            return
+        mine = self.runs[f["runs"] :]
+        if not f["explained"] and not f["inner"] and mine:
+            first = min(f["sig"][0], mine[0][0])
+            count = sum(r[2] for r in mine)
+            self.runs[f["runs"] :] = [(first, f["last"], count, "")]
+        elif f["explained"] and not f["inner"] and f["count"] <= SHORT_BODY:
+            self.runs[f["runs"] :] = [r for r in mine if r[1] < f["sig"][0]]
+
+    def new_comment(self, number: int) -> None:
+        """An explaining comment line: it covers the group below it (a run of comment lines is
+        one comment)."""
+        if self.run is not None and self.signature_run and self.after_open and self.depth == 1:
+            self.run[3] = BODY_ONLY  # the body opens with what the function does
+        if self.function is not None and self.depth > 0:
+            self.function["inner"] = True
+        self.close_run()
+        self.heading = None
+        text = " ".join(c.text for c in self.on_line.get(number, ()))
+        if self.cover is not None and self.last_comment == number - 1:
+            self.cover.left = self.span
+            self.cover.text += " " + text
+        else:
+            self.cover = _Cover(self.depth, self.span, text)
+        self.last_comment = number
+
+    def complete(self) -> bool:
+        """Whether the statement being read can end here (a blank or comment line follows): its
+        parentheses are closed and its last line does not end with an operator or a comma."""
+        last = self.code[self.statement[-1] - 1].rstrip() if self.statement else ""
+        return self.parens <= 0 and not last.endswith(_GOES_ON)
+
+    def read(self) -> list[tuple[int, int, int, str]]:
+        for number, kind in enumerate(self.kinds, start=1):
+            if kind is not CODE and kind is not TRAILING and self.statement and self.complete():
+                self.finish()  # `GEN_DECLARE(float)` with no `;`, then a blank or a comment
+            if kind is BLANK:
+                self.blank = True
+                self.macro = False
+                continue
+            if kind is DIRECTIVE:
+                continue  # a glslcheck directive, or code the preprocessor skips
+            line = self.code[number - 1].strip()
+            if self.blank and not self.statement:
+                self.blank = False
+                # a blank line parts groups; one next to a brace parts nothing
+                if not line.startswith("}") and not self.after_open:
+                    if self.depth == 0 and self.cover is not None:
+                        self.above = self.cover
+                    if (
+                        self.cover is not None
+                        and self.last_head  # not the file's header: no code read yet
+                        and (self.cover.left == self.span or _is_heading(self.cover.text))
+                    ):
+                        # a comment with a blank line below it, or a heading naming a stage
+                        # whose group a blank line ends: it may head the section below
+                        self.heading = self.cover.depth
+                    self.cover = None
+                    self.close_run()
+            self.blank = False
+            opened_before = self.after_open
+            self.after_open = line.endswith("{")
+            explaining = kind is not CODE and kind is not BRACE and self.explains(number)
+            if kind is COMMENT:
+                if not explaining and not self.statement:
+                    self.heading = None  # a credit or a marker starts a part no heading explains
+                if explaining and not self.statement:
+                    self.after_open = opened_before
+                    self.new_comment(number)
+                    self.after_open = False
+                continue
+            if kind is BRACE or kind is BRACE_COMMENT:
+                if self.statement and self.parens <= 0:
+                    self.finish()
+                self.braces(line)
+                self.last_head = line
+                if kind is BRACE_COMMENT and explaining:
+                    self.new_comment(number)
+                continue
+            if kind is LEADING and explaining and not self.statement:
+                self.new_comment(number)
+            if not self.statement:
+                self.start_depth = self.depth
+            if self.macro:  # a `#define` continued with a backslash: part of its statement
+                self.macro = line.endswith("\\")
+                continue
+            if line.startswith("#"):  # a preprocessor line: a statement of its own
+                self.finish()
+                self.start_depth = self.depth
+                self.statement.append(number)
+                self.finish()
+                self.macro = line.endswith("\\")
+                continue
+            self.statement.append(number)
+            self.parens += line.count("(") - line.count(")")
+            if self.parens <= 0 and self.ends(line):
+                self.finish()  # at the depth it starts at; a `{` it ends with opens after it
+            self.braces(line)
+        self.finish()
+        self.settle_deferred(False)
+        self.close_run()
+        return self.runs
+
+    def ends(self, line: str) -> bool:
+        """Whether `line` ends the statement being read."""
+        if line.endswith((";", "{", "}")) or line == "else" or line.endswith(" else"):
+            return True
+        if line.endswith(")"):  # a header ends there (its body follows); an expression goes on
+            first = self.code[self.statement[0] - 1].strip()  # a header shows on its first line
+            return bool(_HEADER_RE.match(first) or _SIGNATURE_START_RE.match(first))
+        return False
+
+
+def uncovered_runs(scan, kinds: list[LineKind], span: int) -> list[tuple[int, int, int, str]]:
+    """(first line, last line, number of code lines, reading) of each run of uncovered
+    statements; `reading` is "" for a certain deduction, else why it is only a possible one
+    (HEADING, BODY_ONLY).
+
+    Statements are read whole (a signature or a call over several lines is one). A comment
+    covers up to `span` statements below it, stopping at a blank line, the next explaining
+    comment, or the end of its block (for a top-level comment, the end of the function or
+    struct it stands above). A trailing comment covers its statement. Struct members and a
+    function's signature use up none of the span; trivial statements need no comment; credits,
+    markers and commented-out code explain nothing and stop nothing. A run ends at a covered
+    statement, a blank line or an explaining comment."""
+    return _Reader(scan, kinds, span).read()
 
 
 def check(ctx: LintContext) -> Iterator[Diagnostic]:
@@ -133,35 +517,17 @@ def check(ctx: LintContext) -> Iterator[Diagnostic]:
         if inactive
         else ctx.line_kinds
     )
-    span = ctx.config.comment_span
-    runs = uncovered_runs(kinds, span)
-    for first, last, count in runs:
-        yield _finding(ctx, first, last, count, False, "without a comment")
-    # lines that only an attribution or a marker "explains": advisory, not a deduction
-    marks = _attributions(ctx)
-    if marks:
-        plain = [BLANK if n in marks else k for n, k in enumerate(kinds, start=1)]
-        seen = {line for first, last, _ in runs for line in range(first, last + 1)}
-        for first, last, count in uncovered_runs(plain, span):
-            if not any(line in seen for line in range(first, last + 1)):
-                yield _finding(
-                    ctx,
-                    first,
-                    last,
-                    count,
-                    True,
-                    "explained only by a comment that credits or marks (not why the code is there)",
-                )
+    for first, last, count, reading in uncovered_runs(ctx.scan, kinds, ctx.config.comment_span):
+        yield _finding(ctx, first, last, count, reading)
 
 
-def _finding(
-    ctx: LintContext, first: int, last: int, count: int, advisory: bool, what: str
-) -> Diagnostic:
+def _finding(ctx: LintContext, first: int, last: int, count: int, reading: str) -> Diagnostic:
     lines = f"line {first}" if first == last else f"lines {first}-{last}"
     noun = "line" if count == 1 else "lines"
     return Diagnostic(
-        f"{count} {noun} of code {what} ({lines})",
-        ctx.location(first),
-        severity="note" if advisory else SEVERITY,  # a note: advice, not a deduction
+        f"{count} {noun} of code without a comment that explains {'it' if count == 1 else 'them'}"
+        f" ({lines})" + (f"; a possible deduction: {reading}" if reading else ""),
+        ctx.location(first),  # the run's first line: where a suppression comment applies
         help=HELP,
+        certainty="possible" if reading else None,
     )

@@ -1,27 +1,26 @@
-"""A file that does not open with a header naming it, its purpose and its contributors.
+"""A file whose top names no student: its author information is missing.
 
 ## What it does
 Reads the comments at the top of the file, before its first line of code (a license block may
-come first; `#define` lines do not end the header), and checks that they
-1. name the file: its file name with or without extension, its Shadertoy tab name
-   (`Image.glsl`, `File: Image`, `Buffer A tab`, or a line starting with the name), or a
-   `Title:` line;
-2. state its purpose: a `Purpose:`, `Description:`, `Brief:`, `Summary:` or `About:` label, a
-   sentence starting "This file/shader/tab ...", or words after the name (`Image: lit spheres`);
-3. list the contributors with what each did: an `Author(s):`, `Contributors:`, `By`,
-   `Written by`, `Created by`, `Modified by`, `Edited by` or `Team:` label (also inside a
-   license block), each entry saying what that person did (`Ana Ruiz: lighting`,
-   `Ben Li - optimization`, `Cy (comments)`). A single author did all of it: one name is enough.
-   The instructor's starter line ("GLSL STARTER CODE BY ...") credits the framework; it names
-   no author of the file.
+come first; `#define` lines do not end the header), and reports the file when they name no
+student. A student is named by
+- a label: `Author:`, `Authors:`, `Contributors:`, `Team:`, `Students:`, `Names:` (with the
+  names after it or on the lines below);
+- an authorship phrase: `Made by`, `Written by`, `Modified by`, `Code extended by`,
+  `Assignment by:`, `Rest of the code by ...`, `Collaborated with ...`;
+- a `Copyright <year> <name>` line of a license;
+- a line of people's names (`// Eli Moore`, `// Jane Doe & John Smith`, `// Eli Moore,
+  GPR-200`), or names after the lab they are for (`// GPR-200 Lab 4 - Eli Moore`), unless it
+  sits under a heading that credits help or sources (`// Source assistance` / `// Jake Siede`);
+  a title of capitalised words (`// Lighting - Phong Shading`, `// TYPE ALIASES`) is no name.
+The instructor's starter line ("GLSL STARTER CODE BY DANIEL S. BUCKSTEIN"), thanks and source
+credits ("Thanks to Dan Buckstein", "Got assistance from ...") name no author of the file.
 
-One finding per file, at line 1, saying every part that is missing. Which omissions cost the
-point: the rubric asks for "author information" at the top of each file, made of 1) the name
-and purpose of the file and 2) the contributors and what they did, "-1 for each omission". A TA
-deducts one point for a file whose author information is incomplete, whichever part is
-missing: a file with no author at all (nothing, or only the starter credit) and a file that
-names its students but not itself or its purpose both cost that point, and the message lists
-what to add. A complete header with one author and no role list costs nothing.
+One finding per file, at line 1. It is a certain deduction: the rubric's "Add author
+information to the top of each code file (-1 for each omission)" leaves no reading in which a
+file with no student named at its top keeps the point. A file that names its students but not
+the file's name and purpose, or not what each contributor did, is `incomplete-header` (a
+possible deduction).
 
 ## Why is this bad?
 The course's coding standards: "Add author information to the top of each code file (-1 for each
@@ -31,12 +30,16 @@ contributors and what they did."
 
 ## Example
 ```glsl
+// GLSL STARTER CODE BY DANIEL S. BUCKSTEIN
+
 // lighting lab
 void mainImage(out vec4 fragColor, in vec2 fragCoord)
 ```
 
 ## Use instead
 ```glsl
+// GLSL STARTER CODE BY DANIEL S. BUCKSTEIN
+
 // Image.glsl: draws lit spheres with Lambert, Phong and Blinn-Phong shading (Lab 4)
 // Contributors:
 //   Ana Ruiz: sphere ray-tracing, point lights
@@ -181,6 +184,110 @@ def contributors(text: str) -> str:
     return "ok" if all(_DID.search(e) for e in entries) else "bare"
 
 
+# A person's name: two to four capitalised words (`Ana Ruiz`, `Demetrius J Nekos`, `Mr. Li`).
+_PERSON = r"(?-i:[A-Z][\w'\u2019.-]*)(?:\s+(?-i:[A-Z][\w'\u2019.-]*)){1,3}"
+_PERSON_AT = compiled(rf"\s*(?P<name>{_PERSON})")  # a name at the start of a list entry
+# A line that is only names (`// Eli Moore`, `// Jane Doe & John Smith`), or names then a
+# course, class or date after a comma or a dash (`// Eli Moore, GPR-200`).
+_NAME_LINE = compiled(
+    rf"^[\s*/#>\-\u2022]*(?P<name>{_PERSON}(?:\s*(?:,|&|\band\b)\s*{_PERSON})*)"
+    r"\s*(?:$|[*/.;]+\s*$|(?:,|\s[-\u2013\u2014|]\s)[^a-z]*(?:\d|gpr|lab|class|course)[^\n]*$)"
+)
+# `Lab 4 - Eli Moore`: a name after the lab or assignment it is for.
+_AFTER_LAB = compiled(
+    rf"\b(?:lab|assignment|project|homework|hw)\s*#?\d+\s*(?:[-:|,\u2013\u2014]|by)\s*"
+    rf"(?P<name>{_PERSON}(?:\s*(?:,|&|\band\b)\s*{_PERSON})*)\s*$",
+    re.I,
+)
+# Words that make a capitalised line a title, not a person (`Lab Four`, `Shadertoy Code`).
+_NOT_NAME_WORDS = compiled(
+    r"\b(?:lab|labs|shader|shaders|shadertoy|code|image|common|buffer|graphics|lighting|starter"
+    r"|sources?|notes?|class|assignment|project|effect|effects|functions?|utility|utilities|main"
+    r"|scene|sphere|spheres|light|lights|ray|tracing|tracer|gpr|intro|introduction|part|final"
+    r"|the|and|of|for|to|in|with|by|from|see|todo|test|gpu|glsl|struct|structs|camera|globals?"
+    r"|phong|blinn|lambert\w*|shading|reflect\w*|diffuse|specular|ambient|attenuation|normals?"
+    r"|colou?rs?|textures?|noise|march\w*|cube|maps?|helpers?|math|vectors?|constants?|variables?"
+    r"|output|input|setup|version|license|licence|copyright)\b",
+    re.I,
+)
+# Authorship: a label followed by names, or a phrase with `by`/`with` before them.
+_AUTHOR_LABEL = compiled(
+    r"^\W*@?(?:auth[oe]rs?|contributors?|team(?:\s+members)?|students?|names?|group(?:\s+members)?"
+    r"|partners?|programmers?|developers?)\s*[:\-]\s*(?P<rest>.*)$",
+    re.I,
+)
+_AUTHOR_PHRASE = compiled(
+    rf"(?:\bby|\b(?:collaborat\w*|work\w*|together|partner\w*)\s+with)\s*:?\s*(?P<name>{_PERSON})",
+    re.I,
+)
+# What a `by`/`with` phrase credits rather than authors: the starter code, sources, help.
+_CREDIT_PHRASE = compiled(
+    r"\b(?:starter|framework|provided|original|inspired|adapted|based|taken|borrowed|courtesy"
+    r"|thanks?|referenc\w*|tutorial|book|assist\w*|help\w*|source\w*|derived|from)\b",
+    re.I,
+)
+_COPYRIGHT_NAME = compiled(
+    rf"^\W*copyright\b(?:\s*(?:\(c\)|\u00a9))?(?:\s*\d{{4}}(?:\s*-\s*\d{{4}})?)?\s*,?\s*(?P<name>{_PERSON})",
+    re.I,
+)
+_INSTRUCTOR = compiled(r"buckst[ei]{2}n", re.I)  # the instructor's name, however spelt
+_HELP_HEADING = compiled(r"\b(?:assist\w*|help\w*|thanks?|sources?|credits?|references?)\b", re.I)
+
+
+def _is_person(text: str) -> bool:
+    return not _INSTRUCTOR.search(text) and not _NOT_NAME_WORDS.search(text)
+
+
+def named_students(text: str) -> list[str]:
+    """The students a header names (see the rule's doc), in order; empty when it names none."""
+    names: list[str] = []
+    lines = text.split("\n")
+    for i, line in enumerate(lines):
+        label = _AUTHOR_LABEL.match(line)
+        if label:
+            entries = [label.group("rest")]
+            if not label.group("rest").strip():  # the names on the lines below the label
+                for follow in lines[i + 1 :]:
+                    if not follow.strip() or _OTHER_LABEL.match(follow):
+                        break
+                    entries.append(follow)
+            for entry in entries:
+                # `Ryan Littleton - using starter from Daniel Buckstein`: the part before the credit
+                entry = _LIST_MARK.sub("", re.split(r"\s[-\u2013\u2014]\s|[(;/]", entry)[0])
+                if entry.strip() and not _INSTRUCTOR.search(entry):
+                    names.append(entry.strip())
+            continue
+        copyright_name = _COPYRIGHT_NAME.match(line)
+        if copyright_name and not _INSTRUCTOR.search(copyright_name.group("name")):
+            names.append(copyright_name.group("name"))
+            continue
+        phrase = _AUTHOR_PHRASE.search(line)
+        if phrase and not _CREDIT_PHRASE.search(line[: phrase.start()]):
+            chunks = re.split(r"[,;&]|\band\b", line[phrase.start("name") :])
+            found = [
+                m.group("name")
+                for m in map(_PERSON_AT.match, chunks)
+                if m and _is_person(m.group("name"))
+            ]
+            if found:
+                names.extend(found)
+                continue
+        bare = _NAME_LINE.match(line) or _AFTER_LAB.search(line)
+        above = next((x for x in reversed(lines[:i]) if x.strip()), "")
+        if bare and not _HELP_HEADING.search(above):
+            found = re.split(r"\s*(?:,|&|\band\b)\s*", bare.group("name"))
+            # every one a person, not a heading in capitals (`TYPE ALIASES & UTILITY FUNCTIONS`)
+            if all(_is_person(n) and not n.isupper() for n in found):
+                names.extend(found)
+    return names
+
+
+def names_a_student(text: str) -> bool:
+    """Whether a header names a student: `named_students`, or a contributor list
+    (`contributors`: `By Ana: all of it`, `Copyright 2020 Morgan Reyes`)."""
+    return bool(named_students(text)) or contributors(text) != "none"
+
+
 def header_text(ctx) -> str | None:
     """The text of the comments before the first code line (directives left out), or None."""
     # authors written after a `#define` are still header: a directive line is no code
@@ -208,8 +315,9 @@ def header_text(ctx) -> str | None:
     return "\n".join(parts) if parts else None
 
 
-def missing_parts(ctx) -> list[str] | None:
-    """What the header lacks, as phrases; None when there is no header comment at all."""
+def missing_parts(ctx, authors: int) -> list[str] | None:
+    """What the header lacks besides its authors, as phrases; None when there is no header
+    comment at all. `authors`: how many students it names (one did all of it: no roles needed)."""
     text = header_text(ctx)
     if text is None:
         return None
@@ -220,35 +328,27 @@ def missing_parts(ctx) -> list[str] | None:
     if not states_purpose(text, path, tab):
         missing.append("states no purpose")
     who = contributors(text)
-    if who == "none" and has_credit(text):
-        missing.append(
-            "lists no contributors with what each did (a starter-code credit names no author)"
-        )
-    elif who == "none":
-        missing.append("lists no contributors with what each did")
-    elif who == "bare":
-        missing.append("lists contributors without what each did")
+    if who == "bare" or (who == "none" and authors > 1):
+        missing.append("does not say what each contributor did")
     return missing
-
-
-def _join(phrases: list[str]) -> str:
-    return phrases[0] if len(phrases) == 1 else ", ".join(phrases[:-1]) + " and " + phrases[-1]
 
 
 def check(ctx: LintContext) -> Iterator[Diagnostic]:
     if not ctx.source.text.strip():
         return
-    missing = missing_parts(ctx)
+    text = header_text(ctx)
+    if text is not None and names_a_student(text):
+        return  # what else the header lacks is incomplete-header's
     name = path_name(ctx.source.path)
-    if missing is None:
+    if text is None:
+        message = "the file opens with no header comment: no student is named at its top"
+    elif has_credit(text):
         message = (
-            "the file opens with no header comment (it should name the file, state its purpose "
-            "and list the contributors with what each did)"
+            "the header credits the starter code or sources but names no student: the file's "
+            "author information is missing"
         )
-    elif missing:
-        message = "the header " + _join(missing)
     else:
-        return
+        message = "the header names no student: the file's author information is missing"
     yield Diagnostic(
         message,
         ctx.location(1, 1),

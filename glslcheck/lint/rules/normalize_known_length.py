@@ -51,6 +51,8 @@ vec3 normal = (position - sphere.center) / sphere.radius; // |p - c| is the radi
 
 from __future__ import annotations
 
+import re
+
 from ...base.diagnostics import Diagnostic
 from ...frontend import syntax as A
 from ...language import glsl_types as T
@@ -202,6 +204,9 @@ def _already_measured(fn, call: A.Call, known: list) -> tuple[str, str] | None:
             or fn.written_between(c, call, ops)
         ):
             continue
+        root = fn.parent.get(id(c))
+        if c.callee == "dot" and builtin_call(fn.model, root, "sqrt") and root.args[0] is c:
+            c = root  # sqrt(dot(v, v)): the length, written by hand
         name = _stored_in(fn, c)
         value = name or text(c)
         if c.callee == "dot":
@@ -515,11 +520,11 @@ def _sphere_hit(fn, call: A.Call) -> dict | None:
         return None
     radius = next(
         (
-            root(n.left)
+            root(n.left) or _local_radius(model, d, n.left)
             for n in nodes
             if type(n) is A.Binary
             and n.op == "*"
-            and root(n.left)
+            and (root(n.left) or _local_radius(model, d, n.left))
             and root(n.left) == root(n.right)
             and text(n.left) == text(n.right)
         ),
@@ -544,10 +549,50 @@ def _sphere_hit(fn, call: A.Call) -> dict | None:
                             ("center", center),
                         ):
                             roles[role] = _role_key(fn, call, r)
-                        roles["radius"] = _role_text(fn, call, radius)
+                        roles["radius"] = (
+                            _expression_text(call, params, radius)
+                            if isinstance(radius, A.Node)
+                            else _role_text(fn, call, radius)
+                        )
                         if None not in roles.values():
                             return roles
     return None
+
+
+def _local_radius(model, d: A.FunctionDefinition, e) -> A.Expr | None:
+    """The value of a local of the hit function `d` computed from its parameters only, with
+    built-ins (`float r = 0.5 + 0.25 * sin(time);`): the radius the caller's arguments make."""
+    if type(e) is not A.Identifier:
+        return None
+    sym = model.symbol_of(e)
+    if sym is None or sym.kind != "local":
+        return None
+    value = program_facts(model).fn(d).reaching_value(e, sym)
+    if value is None:
+        return None
+    todo, names = [value], 0
+    while todo:
+        n = todo.pop()
+        if type(n) is A.Identifier:
+            ref = model.symbol_of(n)
+            if ref is None or ref.kind != "param":
+                return None
+            names += 1
+        elif type(n) is A.Call and not (
+            builtin_call(model, n, n.callee) or isinstance(model.call_target(n), Constructor)
+        ):
+            return None  # a user function: not followed
+        todo.extend(n.children())
+    return value if names else None
+
+
+def _expression_text(call: A.Call, params: list[str], value: A.Expr) -> str | None:
+    """`value` (an expression of the callee's parameters) as the caller writes it: each
+    parameter replaced by the argument the call passes."""
+    out = text(value)
+    for name, arg in zip(params, call.args):
+        out = re.sub(rf"(?<![.\w]){re.escape(name)}\b", lambda _m, a=arg: wrap(a), out)
+    return out if type(value) in (A.Identifier, A.Call, A.Field) else f"({out})"
 
 
 def _role_arg(fn, call: A.Call, r):

@@ -3,7 +3,9 @@
 ## What it does
 Reports `pow(x, e)` where the exponent `e` is a constant (a literal or a folded constant
 expression, every component equal) of 2, 3 or 4 (multiply `x` by itself), 0.5 (`sqrt`), -0.5
-(`inversesqrt`), 1 (`x` itself) or -1 (`1.0 / x`).
+(`inversesqrt`), 1 (`x` itself) or -1 (`1.0 / x`). The constant may reach the call through
+local variables (`float highlight = 4.0; ... pow(specCo, highlight)`) when that value reaches
+it on every path, with no other write between (the dataflow's `reaching_value`).
 
 ## Why is this bad?
 The course's coding standards: "Use the most efficient methods (-1 per inefficient/unnecessary
@@ -61,8 +63,9 @@ def _replacement(e: float, base) -> str | None:
 
 
 def check(ctx: LintContext) -> Iterator[Diagnostic]:
-    for _, node in builtin_calls(ctx.model, ctx.path, "pow", arity=2):
-        values = numbers(ctx.model.const_value(node.args[1]))
+    for fn, node in builtin_calls(ctx.model, ctx.path, "pow", arity=2):
+        value, through = fn.constant_through_locals(node.args[1])
+        values = numbers(value)
         if not values or any(v != values[0] for v in values):
             continue
         fix = _replacement(values[0], node.args[0])
@@ -70,8 +73,9 @@ def check(ctx: LintContext) -> Iterator[Diagnostic]:
             continue
         e = values[0]
         shown = f"{e:g}" if e != int(e) else f"{int(e)}"
+        via = f" (through `{through.name}`)" if through is not None else ""
         yield Diagnostic(
-            f"pow() with the constant exponent {shown} costs two transcendentals",
+            f"pow() with the constant exponent {shown}{via} costs two transcendentals",
             node.loc,
             help=f"write {fix}",
         )

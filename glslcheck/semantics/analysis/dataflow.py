@@ -750,6 +750,25 @@ class FunctionFacts(ValueRanges):
             return None
         return last.value
 
+    def constant_through_locals(self, e: Any) -> tuple[Any, A.Identifier | None]:
+        """The constant value of `e` (None: not constant) and the local variable it was reached
+        through (None: `e` is a constant expression itself). A local is followed to the value
+        reaching it (`float highlight = 4.0; ... pow(s, highlight)`), and on through locals."""
+        value = self.model.const_value(e)
+        through = None
+        seen = 0
+        while value is None and type(e) is A.Identifier and seen < 8:
+            sym = self.model.symbol_of(e)
+            if sym is None or sym.kind != "local":
+                break
+            reaching = self.reaching_value(e, sym)
+            if reaching is None:
+                break
+            through = through or e
+            e, seen = reaching, seen + 1
+            value = self.model.const_value(e)
+        return value, (through if value is not None else None)
+
 
 def calls_in(fn: FunctionFacts, *names: str) -> Iterator[A.Call]:
     """Calls of the built-ins `names` in a function, in execution order."""

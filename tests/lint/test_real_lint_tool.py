@@ -1,0 +1,99 @@
+"""tools/real_lint.py, the scorer of the real-code corpus: its matching of run labels, its
+reading of a blind labeller's file, and `score` on a labelled set of its own (our texts)."""
+
+from __future__ import annotations
+
+import json
+import subprocess
+import sys
+
+from .conftest import REPO_ROOT
+
+sys.path.insert(0, str(REPO_ROOT / "tools"))
+import real_lint  # noqa: E402
+
+
+def _comment_finding(first: int, last: int) -> dict:
+    return {
+        "rule": "missing-comment",
+        "line": first,
+        "end_line": last,
+        "message": f"{last - first + 1} lines of code without a comment (lines {first}-{last})",
+    }
+
+
+def test_a_finding_anywhere_in_a_labelled_run_matches_it_once():
+    labels = [
+        {"rule": "missing-comment", "lines": [10, 14]},
+        {"rule": "missing-comment", "lines": [20, 20]},
+    ]
+    # 12-16 overlaps the first run only; 13 is inside it too, but a label matches one finding
+    findings = [_comment_finding(12, 16), _comment_finding(13, 13), _comment_finding(17, 19)]
+    assert real_lint.match(labels, findings) == {0: 0}
+    assert real_lint.match(labels, [_comment_finding(19, 21)]) == {1: 0}
+
+
+def test_a_labellers_file_covers_every_rule_of_the_guide(tmp_path):
+    path = tmp_path / "labels.json"
+    path.write_text(json.dumps({"f01": [{"rule": "missing-header", "lines": [1]}], "f02": []}))
+    doc = real_lint.load_labels(path)
+    assert doc["rules"] == real_lint.GUIDE_RULES and set(doc["files"]) == {"f01", "f02"}
+    assert real_lint.load_labels(path, rules=["missing-header"])["rules"] == ["missing-header"]
+
+
+def test_labels_json_is_kept_one_label_a_line():
+    path = REPO_ROOT / "tests" / "real_lint" / "labels.json"
+    assert real_lint.labels_text(json.loads(path.read_text())) == path.read_text()
+
+
+def test_score_a_set_given_on_the_command_line(tmp_path):
+    text = (
+        "void mainImage(out vec4 fragColor, in vec2 fragCoord)\n{\n    fragColor = vec4(1.0);\n}\n"
+    )
+    (tmp_path / "texts" / "t01").mkdir(parents=True)
+    (tmp_path / "texts" / "t01" / "Lab 4.txt").write_text(text)
+    manifest = [{"id": "t01", "repo": "ours/lab", "commit": "0" * 40, "path": "Lab 4.txt"}]
+    (tmp_path / "manifest.json").write_text(json.dumps(manifest))
+    labels = {
+        "t01": [
+            {"rule": "missing-header", "lines": [1], "why": "no author", "certainty": "certain"},
+            {
+                "rule": "missing-comment",
+                "lines": [1, 3],
+                "why": "no comment",
+                "certainty": "certain",
+            },
+        ]
+    }
+    (tmp_path / "labels.json").write_text(json.dumps(labels))
+    proc = subprocess.run(
+        [
+            sys.executable,
+            str(REPO_ROOT / "tools" / "real_lint.py"),
+            "score",
+            "--labels",
+            str(tmp_path / "labels.json"),
+            "--manifest",
+            str(tmp_path / "manifest.json"),
+            "--texts",
+            str(tmp_path / "texts"),
+            "--rules",
+            "missing-header,missing-comment,incomplete-header",
+        ],
+        capture_output=True,
+        text=True,
+        cwd=tmp_path,
+    )
+    assert proc.returncode == 0, proc.stderr
+    rows = {line.split()[0]: line.split()[1:] for line in proc.stdout.splitlines() if line}
+    assert rows["missing-header"] == ["1", "1", "1", "1.00", "1.00"]
+    assert rows["missing-comment"] == ["1", "1", "1", "1.00", "1.00"]
+    assert rows["incomplete-header"] == ["0", "0", "0", "-", "-"]
+    assert "certain   labels    2, found    2: recall 1.00" in proc.stdout
+
+
+def test_texts_in_a_flat_folder_are_found(tmp_path):
+    (tmp_path / "t07.txt").write_text("x")
+    (tmp_path / "Lab04.txt").write_text("y")
+    assert real_lint.local_path({"id": "t07", "path": "a/b/c.txt"}, tmp_path).name == "t07.txt"
+    assert real_lint.local_path({"id": "t08", "path": "x/Lab04.txt"}, tmp_path).name == "Lab04.txt"
