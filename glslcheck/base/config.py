@@ -138,7 +138,8 @@ def frame_seconds() -> float:
         value = math.nan
     if not MIN_FRAME_SECONDS <= value <= MAX_FRAME_SECONDS:
         raise InputError(
-            f"error: GLSLCHECK_FRAME_SECONDS must be a number of seconds from {MIN_FRAME_SECONDS:g} "
+            "error: GLSLCHECK_FRAME_SECONDS must be a number of seconds from "
+            f"{MIN_FRAME_SECONDS:g} "
             f"to {MAX_FRAME_SECONDS:g} (like --frame-budget), not {text!r}"
         )
     return value
@@ -207,7 +208,8 @@ def webgl_timeout() -> float:
 
 
 def chromium() -> str | None:
-    """GLSLCHECK_CHROMIUM, an executable file; None when unset or empty (the caller searches PATH)."""
+    """GLSLCHECK_CHROMIUM, an executable file; None when unset or empty (the caller searches
+    PATH)."""
     given = os.environ.get("GLSLCHECK_CHROMIUM")
     if not given:
         return None
@@ -223,13 +225,15 @@ def jobs() -> int | None:
         return None
     if not (text.isdigit() and int(text) >= 1):
         raise InputError(
-            f"error: GLSLCHECK_JOBS must be auto or a whole number of processes from 1, not {text!r}"
+            "error: GLSLCHECK_JOBS must be auto or a whole number of processes from 1, "
+            f"not {text!r}"
         )
     return min(int(text), 2)
 
 
 def update_snapshots() -> bool:
-    """GLSLCHECK_UPDATE_SNAPSHOTS: whether tests rewrite their snapshots (1) or compare (0, unset)."""
+    """GLSLCHECK_UPDATE_SNAPSHOTS: whether tests rewrite their snapshots (1) or compare (0,
+    unset)."""
     text = _text("GLSLCHECK_UPDATE_SNAPSHOTS")
     if text not in ("", "0", "1"):
         raise InputError(f"error: GLSLCHECK_UPDATE_SNAPSHOTS must be 0 or 1, not {text!r}")
