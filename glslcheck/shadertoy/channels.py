@@ -8,7 +8,8 @@ channels.json, in the shader's folder (one object per tab that has inputs):
 
     {"Buffer A": {"iChannel0": {"buffer": "Buffer A"}},
      "Image": {"iChannel0": {"buffer": "Buffer A", "filter": "linear"},
-               "iChannel1": {"texture": "tex.png", "filter": "mipmap", "wrap": "repeat", "vflip": true}}}
+               "iChannel1": {"texture": "tex.png", "filter": "mipmap", "wrap": "repeat", "vflip":
+               true}}}
 
 Each binding has `buffer` (a Buffer tab) or `texture` (an image path relative to the folder, read
 with Pillow), and optional `filter` (nearest | linear | mipmap; default mipmap for textures,
