@@ -5,7 +5,8 @@ Detection is the engine's job; this module only formats. Formats (`FORMATS`):
     text    `path:line:col: rule-name message`, the source line with `^~~~` under the span, a
             `help:` line, and a closing summary with the estimated deduction
     json    {"findings": [{path, line, column, end_line, end_column, rule, severity, penalty,
-            message, help, notes: [{line, column, message}]}], "summary": {files, findings, penalty}}
+            message, help, notes: [{line, column, message}]}], "summary": {files, findings,
+            penalty}}
     sarif   SARIF 2.1.0 for GitHub code scanning (one run; every rule in tool.driver.rules)
     github  GitHub Actions workflow commands (`::warning file=...::message`)
 

@@ -107,7 +107,8 @@ def uncovered_runs(kinds: list[LineKind], span: int) -> list[tuple[int, int, int
 ATTRIBUTION_RE = compiled(
     r"^[\s*/!-]*(?:"
     r"(?:code\s+|taken\s+|copied\s+|adapted\s+|borrowed\s+)?from\s+(?:class|the\s+starter|lecture)\b[^.;]*"
-    r"|(?:\w+\s+){0,3}by\s+(?-i:[A-Z][\w.]*)(?:\s+(?-i:[A-Z][\w.]*)){0,3}"  # "Code by Dan Buckstein"
+    # "Code by Dan Buckstein"
+    r"|(?:\w+\s+){0,3}by\s+(?-i:[A-Z][\w.]*)(?:\s+(?-i:[A-Z][\w.]*)){0,3}"
     r"|(?:part|step|section)\s*[#\d.]+|test|todo"  # a bare marker
     r"|-{3,}|={3,}|\*{3,})[\s*/!.:-]*$",
     re.I,

@@ -65,7 +65,8 @@ def check(ctx: LintContext) -> Iterator[Diagnostic]:
                 f"'{ident.name}' may be read before it is assigned a value "
                 f"(declared at line {decl.node.loc.line} without an initializer)",
                 ident.loc,
-                help=f"initialise '{ident.name}' where it is declared, or assign it on every path before this read",
+                help=f"initialise '{ident.name}' where it is declared, "
+                "or assign it on every path before this read",
             )
 
 
