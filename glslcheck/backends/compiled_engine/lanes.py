@@ -12,36 +12,8 @@ How: this is a rewrite of the generated Python (its `ast`), not a second code ge
 per-pixel module is the reference, and every lane of a statement is that statement with its
 names renamed, so each lane computes exactly the per-pixel engine's operations (the bits).
 
-- Uniform names. A local whose every write has an operand-free-of-lanes value (constants,
-  uniforms `uf`/`ui`, other uniform locals, calls of the scalar runtime on those) and happens
-  in uniform control stays ONE scalar for the block (`sin(iTime * 0.12)` once per block). A
-  fixpoint over the function: the per-pixel state arrays `gf`/`gi`/`gu`/`gb` and arrays are
-  per lane. Reads of state no function writes (`const` arrays of structs) read lane 0's copy
-  and are uniform (`_SharedReads`).
-- Uniform across calls. A call passes each argument free of lanes as one scalar, to the
-  callee's variant for those parameters (`f_rad__s0`: parameter 0 one scalar; Lanes.variant,
-  made once, callees first: GLSL has no recursion), and a result slot every return of that
-  variant writes in uniform control with a value free of lanes comes back as one scalar (a
-  second fixpoint, `ret_uniform`). The entry `shade` takes fragCoord.y and the pixel centre's
-  y as one scalar (ROW_UNIFORM: a block is W pixels of one row), so what a shader computes
-  from iTime, iResolution or a row's y, in loops and helper functions too, is computed once a
-  block. Only the variants shade reaches are written.
-- Control flow as llvmpipe runs it. Each function takes the block's mask `m__0..` first. An
-  `if` whose condition is uniform stays an `if`. A divergent one computes both sides' masks,
-  runs each side only when one of its lanes is active, and writes under the mask by select
-  (`x__k = lsel(mask__k, v, x__k)`, lanes_rt.py; a name written once, or its first write in
-  the text, is written plainly: the lanes outside the mask never read it). A loop whose exits are all uniform stays a loop; a divergent one runs
-  while any lane is active (`act`), with break (clears `act`), continue (`cont`, reset each
-  pass) and return (`live`, return slots `_r<i>`, clears every enclosing loop's `act`) as
-  masks. A loop's pass count is the block's (the slowest lane's): LOOP_CAP as per pixel.
-- Writes to the per-pixel state arrays (globals) are always under the mask; writes to locals in
-  uniform control are plain (a lane outside the function's mask never reads them), also after
-  a divergent return (`ldiv`: the lanes left out have returned and never read this call's
-  locals again; not with derivatives, whose neighbours read them), so a lights array built
-  element by element after `if (miss) return ...;` stays uniform, as the NumPy backend's free
-  writes (backends/cpu_core/uniformity.py).
-- Math: the scalar runtime's one-lane functions, lane by lane; the names lanes_math.py defines
-  (branch-free, same bits) replace them when that module exists (`MATH`, the one switch).
+The rewrite in detail (uniform names, uniform arguments and results across calls, control
+flow under masks, free writes, branch-free math): docs/compiled-engine.md, "Lockstep lanes".
 
 What is not rewritten (`Unsupported`: the engine falls back to the per-pixel module for that
 shader, the result unchanged): statements the per-pixel generator does not write today (an
