@@ -227,7 +227,8 @@ def emulation_note(ctx) -> str | None:
         return None
     driver = f"{renderer}, Mesa {mesa}" if mesa else renderer
     return (
-        f"the GL driver is {driver}; the NumPy backend copies llvmpipe of Mesa {EMULATED_MESA} bit for "
+        f"the GL driver is {driver}; the NumPy backend copies llvmpipe of Mesa {EMULATED_MESA} "
+        "bit for "
         "bit, so differences in hash-like or sign-of-zero pixels may be this driver's, not a bug"
     )
 

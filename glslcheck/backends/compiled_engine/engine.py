@@ -118,8 +118,8 @@ def abandoned() -> bool:
 def run_bounded(threads: int, calls: list[tuple], deadline: float | None) -> None:
     """Run `calls` ((function, *args) each) on the worker threads; the calling thread waits in
     slices of WAIT_SLICE, so Ctrl-C (KeyboardInterrupt) reaches it. Raises TimeoutError when
-    they have not all returned by `deadline` (time.monotonic(); None: none), KeyboardInterrupt as it came,
-    or the first call's exception; on a timeout or an interrupt the calls not yet started are
+    they have not all returned by `deadline` (time.monotonic(); None: none), KeyboardInterrupt as it
+    came, or the first call's exception; on a timeout or an interrupt the calls not yet started are
     dropped and the threads of the others are retired (`abandoned()`)."""
     workers = _workers(threads)
     futures = [workers.submit(*c) for c in calls]
@@ -455,16 +455,19 @@ class CompiledProgram:
         if first:
             return GlslError(
                 Diagnostic(
-                    f"numba was still compiling this shader after {seconds:g} s (the frame budget, at least "
+                    f"numba was still compiling this shader after {seconds:g} s (the frame "
+                    "budget, at least "
                     f"{COMPILE_SECONDS:g} s); the compiled engine stopped waiting for it",
                     Location(path, line, col),
                     rule="compiled-frame-budget",
-                    help=f"render with --backend numpy, or make the program shorter (numba's work grows with it); {how}",
+                    help="render with --backend numpy, or make the program shorter (numba's "
+                    f"work grows with it); {how}",
                 )
             )
         return GlslError(
             Diagnostic(
-                f"the frame was still rendering after {seconds:g} s on the CPU, in '{name}' or a function it calls; "
+                f"the frame was still rendering after {seconds:g} s on the CPU, "
+                f"in '{name}' or a function it calls; "
                 "the compiled engine stopped waiting for it (a GPU would hang or reset)",
                 Location(path, line, col),
                 rule="compiled-frame-budget",

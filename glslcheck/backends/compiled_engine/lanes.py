@@ -109,8 +109,8 @@ def quad_lanes(name: str, k: int, W: int) -> tuple[int, int]:
     """The lanes whose difference is lane k's derivative (`dfdx`/`dfdy`) in a block of 2x2
     quads: lanes 0..W/2-1 are the lower row (even y, counted from the bottom as gl_FragCoord),
     W/2..W-1 the row above, each row from an even x. As llvmpipe (fine derivatives,
-    backends/numpy_engine/runtime.py Runtime.dFdx): dFdx(x, y) = v(x|1, y) - v(x&~1, y), dFdy(x, y) =
-    v(x, y|1) - v(x, y&~1)."""
+    backends/numpy_engine/runtime.py Runtime.dFdx): dFdx(x, y) = v(x|1, y) - v(x&~1, y), dFdy(x, y)
+    = v(x, y|1) - v(x, y&~1)."""
     h = W // 2
     c, r = k % h, k // h
     if name == "dfdx":
@@ -774,7 +774,8 @@ class Lanes:
                 out += math_imports()
                 names = "lsel, dfdx, dfdy" if self.quads else "lsel"
                 out.append(
-                    f"from glslcheck.backends.compiled_engine.lanes_rt import {names}  # {_rt_hash()}"
+                    f"from glslcheck.backends.compiled_engine.lanes_rt import {names}  # "
+                    f"{_rt_hash()}"
                 )
                 continue
             if (
@@ -851,7 +852,8 @@ def render_source(
     lines = _prologue(
         W,
         [
-            '    """Rows y0..y1-1 (counted from the bottom) into out (height, width, 4), top row first,',
+            '    """Rows y0..y1-1 (counted from the bottom) into out (height, width, 4), '
+            "top row first,",
             f'    {W} pixels of a row a call of shade; offs: the (dx, dy) sample offsets."""',
         ],
     )
@@ -932,8 +934,10 @@ def _render_quads(W: int, slots: dict | None, shade: str, ret_uniform: Any) -> s
     lines = _prologue(
         W,
         [
-            '    """Rows y0..y1-1 (counted from the bottom; y0 even) into out (height, width, 4), top row',
-            f'    first, 2x2 quads: {h} pixels of two rows a call of shade; offs: the sample offsets."""',
+            '    """Rows y0..y1-1 (counted from the bottom; y0 even) into out (height, width, '
+            "4), top row",
+            f"    first, 2x2 quads: {h} pixels of two rows a call of shade; offs: "
+            'the sample offsets."""',
         ],
     )
     lines += [
@@ -945,7 +949,8 @@ def _render_quads(W: int, slots: dict | None, shade: str, ret_uniform: Any) -> s
     ]
     for c in range(h):
         lines.append(
-            f"            px__{c} = F32((x0 + {c} if x0 + {c & ~1} < width else last + {c & 1}) + 0.5)"
+            f"            px__{c} = F32((x0 + {c} if x0 + {c & ~1} < width else last + {c & 1}) "
+            "+ 0.5)"
         )
     lines += _sample_head(W, slots)
     lines += [
@@ -964,6 +969,7 @@ def _render_quads(W: int, slots: dict | None, shade: str, ret_uniform: Any) -> s
         "                    break",
         f"                for k in range(min({h}, width - x0)):",
         "                    for c in range(4):",
-        f"                        out[height - 1 - y - r, x0 + k, c] = acc[c, r * {h} + k] / samples",
+        "                        out[height - 1 - y - r, x0 + k, c] = acc[c, "
+        f"r * {h} + k] / samples",
     ]
     return "\n".join(lines)

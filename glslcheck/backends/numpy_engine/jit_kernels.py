@@ -48,7 +48,8 @@ _ONE, _ZERO = lane.ONE, lane.ZERO
 
 @numba.njit("boolean(float32[::1], float32[::1], boolean, int64)", **_OPTS)
 def trig(a, out, fma, which):
-    """llvmpipe_math.lane.trig of every lane of ``a`` into ``out`` (same size); False (declined) where some
+    """llvmpipe_math.lane.trig of every lane of ``a`` into ``out`` (same size); False (declined)
+    where some
     |x| >= 2**29 or is not finite."""
     n = a.size
     for k in range(n):
@@ -81,7 +82,8 @@ def explog(x, y, out, fma, which):
     elif which == 1:
         for k in range(n):
             out[k] = lane.log2(x[k], fma)
-    else:  # no exit from this loop, so that LLVM can vectorise it: a NaN is noted and told at the end
+    # no exit from this loop, so that LLVM can vectorise it: a NaN is noted and told at the end
+    else:
         nan = False
         for k in range(n):
             xk = x[k if nx > 1 else 0]

@@ -4,8 +4,8 @@ This module owns the ES 3.00 lookups on a sampler2D for the NumPy backend: `text
 `textureLod`, `textureGrad`, `textureOffset`, their `Proj` and `Offset` combinations,
 `texelFetch`, `texelFetchOffset` and `textureSize`. `Runtime` inherits
 them (`TextureFunctions`), so generated code calls `rt.texture(S.u_iChannel0, uv, S.width)`.
-A sampler value is a `glslcheck.shadertoy.channels.ChannelInput` (texels float32 (height, width, 4), row
-0 = texture coordinate t near 0, i.e. the bottom as OpenGL uploads it) or None (unbound: GL's
+A sampler value is a `glslcheck.shadertoy.channels.ChannelInput` (texels float32 (height, width, 4),
+row 0 = texture coordinate t near 0, i.e. the bottom as OpenGL uploads it) or None (unbound: GL's
 incomplete texture, which reads (0, 0, 0, 1) and has size 0).
 
 What llvmpipe does (nearest and linear filtering, wraps, lowp results and their float16
@@ -55,7 +55,8 @@ _INT_MIN = -(2**31)
 
 def _to_int32(x: np.ndarray) -> np.ndarray:
     """x86's cvttps2dq (LLVM's fptosi there): truncation towards zero; a NaN or a value outside
-    int32 gives INT_MIN (0x80000000). Kept in int64 (the wraps below only read low bits or clamp)."""
+    int32 gives INT_MIN (0x80000000). Kept in int64 (the wraps below only read low bits or
+    clamp)."""
     ok = (x >= np.float32(-(2.0**31))) & (x < np.float32(2.0**31))
     if ok.all():  # the usual case: one conversion (astype truncates towards zero)
         return x.astype(np.int64)
@@ -203,13 +204,14 @@ class TextureFunctions:
 
     def lowp_arith(self, *samplers) -> bool:
         """Whether arithmetic on these samplers' lookups is float16, as on llvmpipe: float32 mode
-        (llvmpipe's) and lowp samplers (an unbound channel is lowp too). nir_fold.lower_precision.lowp_tree."""
+        (llvmpipe's) and lowp samplers (an unbound channel is lowp too).
+        nir_fold.lower_precision.lowp_tree."""
         return self.lp is not None and all(s is None or s.lowp for s in samplers)
 
     @staticmethod
     def half(x) -> np.ndarray:
-        """A float16 operand of nir_fold.lower_precision.lowp_tree's code (rounded to nearest; a lookup's lowp
-        result is already a float16 value)."""
+        """A float16 operand of nir_fold.lower_precision.lowp_tree's code (rounded to nearest; a
+        lookup's lowp result is already a float16 value)."""
         return np.asarray(x, dtype=np.float16)
 
     def lowp_full(self, x: np.ndarray) -> np.ndarray:
@@ -341,7 +343,8 @@ class TextureFunctions:
         return self.texture(s, _project(p), bias, width)
 
     def textureOffset(self, s, p, offset, bias=None, width=None) -> np.ndarray:
-        """The (constant) texel offset is added to the integer texel coordinates, before the wrap."""
+        """The (constant) texel offset is added to the integer texel coordinates, before the
+        wrap."""
         p = self._coords(p)
         return self._sample(s, p, _offset(offset), self._implicit_lod(s, p, width, bias))
 
