@@ -1,6 +1,6 @@
 """The one home of glslcheck's environment variables: every `GLSLCHECK_*` setting is listed in
 VARIABLES (name, what it sets, allowed values, default, who reads it) and read by one function
-here, with its default and its validation. The table in README.md ("Environment variables") is
+here, with its default and its validation. The table in docs/configuration.md is
 `table()`'s output; tests/test_config.py holds the two to each other and to the source.
 
 Each function reads os.environ when called, never at import: the CLI sets some variables from
@@ -241,7 +241,7 @@ def update_snapshots() -> bool:
 
 
 def table() -> str:
-    """VARIABLES and FOREIGN as the Markdown tables of README.md's "Environment variables"."""
+    """VARIABLES and FOREIGN as the Markdown tables of docs/configuration.md."""
     rows = ["| Variable | Sets | Allowed | Default | Read by |", "|---|---|---|---|---|"]
     rows += [
         f"| `{name}` | {sets} | {allowed} | {default} | {readers} |"
