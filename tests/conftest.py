@@ -6,6 +6,11 @@ need it are skipped on a developer machine but FAIL on CI (any non-empty `CI` en
 variable), so a CI image without them cannot pass silently.
 
 `make_shader` builds an in-memory Shadertoy shader from tab texts, for tests that need no files.
+
+`--update-snapshots` (the `update_snapshots` fixture) makes every snapshot test rewrite what it
+compares against instead of comparing: the transpiler's modules (tests/numpy/snapshots), the lint
+rules' expected.json (tests/lint/fixtures) and the golden images (tests/golden). Read the diff
+before committing it.
 """
 
 from __future__ import annotations
@@ -42,6 +47,21 @@ FOLDER_MARKERS = {
     "compiled": ("numba", "slow"),
     "fuzz": ("slow",),
 }
+
+
+def pytest_addoption(parser):
+    parser.addoption(
+        "--update-snapshots",
+        action="store_true",
+        default=False,
+        help="rewrite the snapshots and golden images the tests compare against, then compare",
+    )
+
+
+@pytest.fixture(scope="session")
+def update_snapshots(request) -> bool:
+    """Whether this run rewrites snapshots (--update-snapshots) instead of only comparing."""
+    return bool(request.config.getoption("--update-snapshots"))
 
 
 def pytest_collection_modifyitems(config, items):

@@ -62,7 +62,6 @@ READERS = {
     "GLSLCHECK_WEBGL_TIMEOUT": (config.webgl_timeout, "inf"),
     "GLSLCHECK_CHROMIUM": (config.chromium, os.devnull),
     "GLSLCHECK_JOBS": (config.jobs, "0"),
-    "GLSLCHECK_UPDATE_SNAPSHOTS": (config.update_snapshots, "yes"),
 }
 
 
@@ -107,8 +106,6 @@ def test_reader_reads_at_call_time(monkeypatch, name):
         ("GLSLCHECK_JOBS", "auto", None),
         ("GLSLCHECK_JOBS", "1", 1),
         ("GLSLCHECK_JOBS", "8", 2),
-        ("GLSLCHECK_UPDATE_SNAPSHOTS", "1", True),
-        ("GLSLCHECK_UPDATE_SNAPSHOTS", "", False),
     ],
 )
 def test_reader_accepts(monkeypatch, name, text, value):

@@ -92,13 +92,6 @@ VARIABLES = (
         "auto (2 when a core is idle)",
         "lint/parallel.py",
     ),
-    (
-        "GLSLCHECK_UPDATE_SNAPSHOTS",
-        "whether the lint rule tests rewrite their expected.json",
-        "0, 1",
-        "0",
-        "tests/lint/test_lint_rules.py",
-    ),
 )
 
 # Read, not owned: (name, whose it is, who reads it)
@@ -229,15 +222,6 @@ def jobs() -> int | None:
             f"not {text!r}"
         )
     return min(int(text), 2)
-
-
-def update_snapshots() -> bool:
-    """GLSLCHECK_UPDATE_SNAPSHOTS: whether tests rewrite their snapshots (1) or compare (0,
-    unset)."""
-    text = _text("GLSLCHECK_UPDATE_SNAPSHOTS")
-    if text not in ("", "0", "1"):
-        raise InputError(f"error: GLSLCHECK_UPDATE_SNAPSHOTS must be 0 or 1, not {text!r}")
-    return text == "1"
 
 
 def table() -> str:

@@ -6,7 +6,7 @@ expression whose operands are all mediump or lowp (variables, lookups on a lowp 
 of functions declared mediump; a constant takes its partner's precision) and computes it in
 float16, with f2fmp conversions at the edges and constants rounded to float16. What is lowered
 in the end also depends on NIR's later passes, which glslcheck cannot pin: measured with
-tests/channels/measure_mediump.py (moderngl EGL, `#version 300 es`, `precision mediump
+tools/measure_mediump.py (moderngl EGL, `#version 300 es`, `precision mediump
 float;`, mediump x and y computed from gl_FragCoord):
 
 - `x - y * 1.7`, `fract(x * 3.7)`, `mix(x, y, 0.3)`, `x * y + x`, `dot`, `length`: float16

@@ -1,5 +1,5 @@
 """Rule snapshots: each folder under fixtures/ is linted and its findings compared with the
-folder's expected.json (GLSLCHECK_UPDATE_SNAPSHOTS=1 rewrites them); the registry's contract."""
+folder's expected.json (`--update-snapshots` rewrites them); the registry's contract."""
 
 from __future__ import annotations
 
@@ -9,13 +9,11 @@ from pathlib import Path
 
 import pytest
 
-from glslcheck.base import config
 from glslcheck.lint import lint_paths
 from glslcheck.lint.rules import RULE_TABLE, SECTIONS, all_rules, doc_sections
 
 from .conftest import FIXTURES
 
-UPDATE = config.update_snapshots()
 FIXTURE_DIRS = sorted(p for p in FIXTURES.iterdir() if (p / "expected.json").is_file())
 
 
@@ -35,11 +33,11 @@ def _found(folder: Path, select: list[str]) -> list[dict]:
 
 
 @pytest.mark.parametrize("folder", FIXTURE_DIRS, ids=lambda p: p.name)
-def test_rule_fixture_matches_snapshot(folder: Path):
+def test_rule_fixture_matches_snapshot(update_snapshots, folder: Path):
     expected_file = folder / "expected.json"
     expected = json.loads(expected_file.read_text(encoding="utf-8"))
     found = _found(folder, expected["select"])
-    if UPDATE:
+    if update_snapshots:
         expected["findings"] = found
         expected_file.write_text(json.dumps(expected, indent=2) + "\n", encoding="utf-8")
     assert found == expected["findings"]

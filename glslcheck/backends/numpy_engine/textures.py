@@ -9,7 +9,7 @@ row 0 = texture coordinate t near 0, i.e. the bottom as OpenGL uploads it) or No
 incomplete texture, which reads (0, 0, 0, 1) and has size 0).
 
 What llvmpipe does (nearest and linear filtering, wraps, lowp results and their float16
-arithmetic, mipmap LOD selection), measured with tests/channels/measure_sampling.py and copied
+arithmetic, mipmap LOD selection), measured with tools/measure_sampling.py and copied
 here bit for bit: docs/llvmpipe.md, "Texture sampling".
 """
 
@@ -266,7 +266,7 @@ class TextureFunctions:
         return a
 
     def _implicit_lod(self, s, p: np.ndarray, width: int | None, bias=None):
-        """llvmpipe's LOD of a 2x2 quad (measured, tests/channels/measure_sampling.py): the
+        """llvmpipe's LOD of a 2x2 quad (measured, tools/measure_sampling.py): the
         derivatives of the scaled coordinates between the quad's bottom-left pixel and its right
         and upper neighbours, lod = 0.5 * fast_log2(max(dx.dx, dy.dy)) with fast_log2 the
         piecewise-linear exponent + (mantissa - 1), the same for the four pixels."""

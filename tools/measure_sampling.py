@@ -1,6 +1,6 @@
 """Measure how the GL driver (Mesa llvmpipe here) samples textures; not a test.
 
-Run `python tests/channels/measure_sampling.py`. It prints what glslcheck/backends/numpy_engine/textures.py
+Run `python tools/measure_sampling.py`. It prints what glslcheck/backends/numpy_engine/textures.py
 copies: (1) lowp/mediump sampler2D results are float32 with the low 13 mantissa bits cleared
 (highp: exact); (2) linear filtering of an RGBA32F texture uses float32 weights (4096 distinct,
 exact weights across a 2-texel texture), and how far textures.py's bilinear order is from the
@@ -17,7 +17,7 @@ from pathlib import Path
 
 import numpy as np
 
-sys.path.insert(0, str(Path(__file__).resolve().parents[2]))
+sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
 
 from glslcheck.backends.gl import get_context, renderer_name  # noqa: E402
 from glslcheck.backends.gl.program import VERTEX_SHADER, _bind_channel  # noqa: E402
