@@ -24,8 +24,8 @@ from glslcheck.backends import driver_profile
 from glslcheck.base.diagnostics import register_source
 from glslcheck.shadertoy.sources import Shader, Source
 
-# numba's kernels (backends/numpy_engine/jit.py) are off unless a test turns them on: in auto mode the
-# process would switch to them once the tests before had spent a second in the llvmpipe math,
+# numba's kernels (backends/numpy_engine/jit.py) are off unless a test turns them on: in auto mode
+# the process would switch to them once the tests before had spent a second in the llvmpipe math,
 # so what a test of the NumPy path exercised would depend on the tests run before it. The
 # kernels' own tests (tests/numpy/test_jit*.py) set the mode they test.
 os.environ.setdefault("GLSLCHECK_JIT", "off")
@@ -90,14 +90,15 @@ def gl():
         if os.environ.get("CI"):
             pytest.fail(f"an OpenGL context is required on CI: {e}")
         pytest.skip(
-            "no OpenGL context on this machine (developer machine without EGL/Mesa); CI fails instead"
+            "no OpenGL context on this machine (developer machine without EGL/Mesa); "
+            "CI fails instead"
         )
 
 
 @pytest.fixture(scope="session")
 def jit_kernels():
-    """numba's compiled kernels of the llvmpipe math (backends/numpy_engine/jit.py), loaded once. numba
-    is the optional `jit` extra: skipped without it on a developer machine, a failure on CI
+    """numba's compiled kernels of the llvmpipe math (backends/numpy_engine/jit.py), loaded once.
+    numba is the optional `jit` extra: skipped without it on a developer machine, a failure on CI
     (make setup, which .ci/run calls, installs the extra)."""
     from glslcheck.backends.numpy_engine import jit
 
@@ -129,9 +130,11 @@ def llvmpipe(gl):
     renderer, mesa = driver_profile.driver_name(gl)
     if not driver_profile.is_emulated(renderer, mesa):
         pytest.fail(
-            f"these bit-exact tests were written for llvmpipe of Mesa {driver_profile.EMULATED_MESA}; "
+            "these bit-exact tests were written for llvmpipe of Mesa "
+            f"{driver_profile.EMULATED_MESA}; "
             f"this GL driver is {renderer}, Mesa {mesa or 'unknown'}: the NumPy emulation "
-            "(glslcheck/backends/driver_profile.py, backends/numpy_engine/runtime.py, nir_fold/) must be re-measured "
+            "(glslcheck/backends/driver_profile.py, backends/numpy_engine/runtime.py, "
+            "nir_fold/) must be re-measured "
             "for it before these results mean anything"
         )
     return gl
@@ -150,7 +153,8 @@ def glslang():
 
 @pytest.fixture
 def make_shader():
-    """make_shader(image_text, common=None, **other_tabs) -> Shader with files Image.glsl, Common.glsl, ...
+    """make_shader(image_text, common=None, **other_tabs) -> Shader with files Image.glsl,
+    Common.glsl, ...
 
     The texts are registered as sources so diagnostics can quote their lines.
     """

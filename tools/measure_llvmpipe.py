@@ -222,7 +222,8 @@ LOOPS = [
     ),
     (
         "100 x 1,000 nested",
-        "int k = 0, j2 = 0; for (int j = 0; j < 100 + n * 0; j++) { j2++; for (int i = 0; i < n; i++) k++; }"
+        "int k = 0, j2 = 0; for (int j = 0; j < 100 + n * 0; j++) { j2++; for (int i = 0; i < n; "
+        "i++) k++; }"
         " o.x = k; o.y = j2;",
         1000,
     ),
@@ -253,7 +254,8 @@ def bulk_lines(ctx) -> list[str]:
             lines.append(f"| `{expr}` | {100.0 * np.mean(u == 0):.3f}% | {int(u.max())} |")
     lines += [
         "",
-        "The `length`/`dot` residue is subnormal products: llvmpipe flushes them to zero (DAZ/FTZ),",
+        "The `length`/`dot` residue is subnormal products: llvmpipe flushes them to zero "
+        "(DAZ/FTZ),",
         "the NumPy runtime keeps them in plain arithmetic (the inputs below 1e-19 produce them).",
         "",
         "| loops (n from a texture) | llvmpipe passes |",
@@ -279,11 +281,15 @@ def main() -> None:
         "# What Mesa llvmpipe returns for GLSL ES 3.00 edge cases",
         "",
         f"Measured with `{renderer_name()}`, GL {ctx.version_code}, by `tools/measure_llvmpipe.py`",
-        "(regenerate with `python tools/measure_llvmpipe.py`). Values were read back from an RGBA32F",
+        "(regenerate with `python tools/measure_llvmpipe.py`). "
+        "Values were read back from an RGBA32F",
         "framebuffer, so they are exact float32 (integer results were converted with `float()`).",
-        "`literal` uses constant operands, which Mesa's compiler folds at compile time; `run time` takes",
-        "the same operands from uniforms, so llvmpipe computes them while shading. A shader's operands",
-        "are nearly always run-time values: copy the run-time column, and note where the two differ.",
+        "`literal` uses constant operands, which Mesa's compiler folds at compile time; "
+        "`run time` takes",
+        "the same operands from uniforms, so llvmpipe computes them while shading. "
+        "A shader's operands",
+        "are nearly always run-time values: copy the run-time column, "
+        "and note where the two differ.",
         "",
         "| case | GLSL ES 3.00 says | llvmpipe, literal (folded) | llvmpipe, run time |",
         "|---|---|---|---|",
@@ -291,8 +297,10 @@ def main() -> None:
     lines += [f"| `{c}` | {s} | {lit} | {rt} |" for c, s, lit, rt in rows]
     lines += [
         "",
-        f"Render time: a simple 800x450 Shadertoy shader (the default new-shader colour cycle) takes "
-        f"{seconds * 1000:.1f} ms per frame on llvmpipe, including the float framebuffer read-back.",
+        "Render time: a simple 800x450 Shadertoy shader (the default new-shader colour cycle) "
+        "takes "
+        f"{seconds * 1000:.1f} ms per frame on llvmpipe, including the float framebuffer "
+        "read-back.",
     ]
     lines += bulk_lines(ctx) + [""]
     out = ROOT / "docs" / "llvmpipe-measurements.md"

@@ -77,7 +77,8 @@ def main() -> None:
             rel = np.nanmax(np.abs(got - high) / np.maximum(np.abs(high), 1e-30))
         print(
             f"{expr:30s} equal to float16: {int((ours == got).sum()):4d}/{got.size}, to highp: "
-            f"{int((got == high).sum()):4d}/{got.size}, max relative difference from highp {rel:.3g}, "
+            f"{int((got == high).sum()):4d}/{got.size}, max relative difference from highp "
+            f"{rel:.3g}, "
             f"inf {int(np.isinf(got).sum())}"
         )
 

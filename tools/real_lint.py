@@ -195,7 +195,8 @@ def score(verbose: bool, corrected: bool = True, root: Path = ROOT, only: str | 
         ]
         if errors or not_run:
             not_full.append(
-                f"{e['id']}: compile errors at {', '.join(errors) or '-'}; rules that could not run "
+                f"{e['id']}: compile errors at {', '.join(errors) or '-'}; "
+                "rules that could not run "
                 f"everywhere: {', '.join(not_run) or 'none'}"
             )
         want = [lab for lab in labels["files"].get(e["id"], []) if lab["rule"] in rules]
@@ -221,7 +222,8 @@ def score(verbose: bool, corrected: bool = True, root: Path = ROOT, only: str | 
         else "as first labelled, before any linter run"
     )
     print(
-        f"{len(present)} of {len(manifest)} files, {sum(len(v) for v in labels['files'].values())} labels ({which})"
+        f"{len(present)} of {len(manifest)} files, "
+        f"{sum(len(v) for v in labels['files'].values())} labels ({which})"
     )
     print(f"{'rule':28} {'labels':>6} {'found':>6} {'tp':>4} {'recall':>7} {'precision':>9}")
     for rule in [*rules, "overall"]:

@@ -8,8 +8,8 @@ then look at them again.
 Tolerance. The goldens are 8-bit: golden = Q(gl) with Q(x) = round(255 * clamp(x, 0, 1)) / 255,
 and a render r is compared after the same quantisation. Q moves a value by at most 0.5/255, so
 |Q(r) - Q(gl)| <= |r - gl| + 1/255: a render within verify's float tolerance (2/255, see
-glslcheck/verification/compare.py step 4) of the render the golden came from is within 3/255 of the golden,
-and 3/255 is what we allow per channel. The rest of the model (edge pixels, pixel budgets,
+glslcheck/verification/compare.py step 4) of the render the golden came from is within 3/255 of the
+golden, and 3/255 is what we allow per channel. The rest of the model (edge pixels, pixel budgets,
 NaN/Inf: a PNG holds none, Q maps NaN to 0 as the display does) is verify's own, unchanged.
 """
 

@@ -27,7 +27,8 @@ def linted(tmp_path, monkeypatch) -> LintResult:
 def test_text_format(linted):
     text = render(linted, "text")
     assert text.split("\n\n")[1].splitlines()[0] == (
-        "Buffer A.glsl:1:1: missing-header the file opens with no header comment (it should name the "
+        "Buffer A.glsl:1:1: missing-header the file opens with no header comment (it should name "
+        "the "
         "file, state its purpose and list the contributors with what each did)"
     )
     block = text.split("\n\n")[0].splitlines()
@@ -163,7 +164,8 @@ def test_github_format(linted):
     assert len(lines) == 3
     assert lines[0] == (
         "::warning file=Buffer A.glsl,line=1,col=1,endLine=1,endColumn=54,title=missing-comment::"
-        "2 lines of code without a comment (lines 1-3)%0Ahelp: add a comment above saying why these lines are there"
+        "2 lines of code without a comment (lines 1-3)%0Ahelp: "
+        "add a comment above saying why these lines are there"
     )
     assert lines[2].startswith("::notice file=Buffer A.glsl,line=1,col=1,")
     for line in lines:

@@ -66,8 +66,8 @@ def test_rule_module_contract(name: str):
 
 
 def test_has_credit_agrees_with_the_case_insensitive_pattern():
-    """missing-credit's fast search (ASCII text lowercased, a case-sensitive pattern, faster than re.I)
-    gives CREDIT_RE's answer: upper and mixed case, word boundaries, every alternative, and
+    """missing-credit's fast search (ASCII text lowercased, a case-sensitive pattern, faster than
+    re.I) gives CREDIT_RE's answer: upper and mixed case, word boundaries, every alternative, and
     non-ASCII text (searched with CREDIT_RE itself: re.I folds the long s and the Kelvin sign)."""
     from glslcheck.lint.rules.missing_credit import _CREDIT, CREDIT_RE, has_credit
 

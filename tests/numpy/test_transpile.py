@@ -264,7 +264,8 @@ def test_module_runs_without_builtins(make_shader):
 
 
 def test_texture_lookup_is_a_located_error(make_shader):
-    # iChannel0-3 are sampled (backends/numpy_engine/textures.py); a sampler uniform of the user's own is not
+    # iChannel0-3 are sampled (backends/numpy_engine/textures.py); a sampler uniform of the user's
+    # own is not
     shader = make_shader(
         _image(
             "vec2 uv = fragCoord;\n    fragColor = texture(myTex, uv);", "uniform sampler2D myTex;"
