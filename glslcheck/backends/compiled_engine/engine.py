@@ -534,7 +534,7 @@ def _listdir(folder: str) -> list[str]:
 TIER_LANES = 8  # the lockstep width TieredProgram moves to (8: AVX2's float32 lanes)
 # Lockstep's cold compile over the per-pixel module's, for TieredProgram's estimate of what
 # moving costs: the median over the 67 lab and tuned real shaders (quartiles 3.5 and 6.2),
-# benchmarks/bench_compiled.py --fresh-cache --lanes 0,8 (docs/performance.md, "Two tiers").
+# as benchmarks/bench_compiled.py --fresh-cache --lanes 0,8 prints both compile times.
 LOCKSTEP_COMPILE_RATIO = 4.7
 # Seconds of lockstep compile per line of the per-pixel module, the estimate when the per-pixel
 # module's compile time is not known (a numba cache filled before compile times were recorded):

@@ -5,8 +5,8 @@ call. A raymarcher makes tens of thousands of such calls a frame on the few hund
 loop keeps after compaction, and there the calls are all overhead; on a whole tile each operation
 is a pass over memory. backends/numpy_engine/jit_kernels.py makes the same float32 steps in one
 compiled loop (numba), which LLVM vectorises: 10-40x less CPU a call at 143 lanes, 7-18x at
-3,600, 6-9x on a 48,000-lane tile (pow the least; docs/performance.md, "Compiled math
-kernels"). The frames are the same bits with and without them (tests/numpy/test_jit_*.py).
+3,600, 6-9x on a 48,000-lane tile (pow the least; docs/performance.md, "The llvmpipe
+math emulation"). The frames are the same bits with and without them (tests/numpy/test_jit_*.py).
 
 numba is an optional extra (``pip install 'glslcheck[jit]'``); without it nothing changes. It is
 not free: ``import numba`` and loading the kernels' machine code from numba's cache take

@@ -5,7 +5,7 @@ operations; on the few hundred lanes of a compacted march loop each costs more t
 arithmetic. These kernels make the same float32 operations, in the same order with the same
 roundings, lane by lane in one compiled loop without a branch out of it, which LLVM
 vectorises (10-40x less CPU a call at 143 lanes, 6-9x on a whole tile: docs/performance.md,
-"Compiled math kernels").
+"The llvmpipe math emulation").
 
 The one-lane algorithms are backends/llvmpipe_math/lane.py's (which the compiled engine calls per
 pixel too); this module runs them over arrays. Imported only by backends/numpy_engine/jit.py, which
