@@ -89,8 +89,7 @@ def main() -> int:
     size = tuple(int(v) for v in args.size.split("x"))
     print(
         f"lanes_math.py at {args.rev} (before) against the working tree (after), lockstep 8, "
-        f"{args.size}, "
-        f"best of {args.repeat} frames, CPU"
+        f"{args.size}, best of {args.repeat} frames, CPU"
     )
     for path in args.shaders:
         source, tab = generate(load_shader(path), lanes=8)

@@ -197,8 +197,7 @@ def summary(rows: list, label: str, mode) -> None:
     lanes = sum(r["label"] != "pixel" for r in sel)
     print(
         f"\n{label}, mode {mode if mode is not None else 'auto'} ({lanes} of {len(sel)} in "
-        "lockstep): "
-        f"{len(sel)} shaders, worst CPU ratios first"
+        f"lockstep): {len(sel)} shaders, worst CPU ratios first"
     )
     for r in sel[:12]:
         print(
@@ -297,8 +296,7 @@ def main() -> int:
                 f"  {name:24s} {r['size']:>8s} {r['label']:>7s} load "
                 f"{r['load']:6.2f}s{' cold' if r['cold'] else ' warm'}  "
                 f"compiled {r['compiled cpu'] * 1000:8.1f} ms cpu {r['compiled'] * 1000:8.1f} ms "
-                "wall  "
-                f"gl {r['gl cpu'] * 1000:7.1f} / {r['gl'] * 1000:7.1f} ms  cpu "
+                f"wall  gl {r['gl cpu'] * 1000:7.1f} / {r['gl'] * 1000:7.1f} ms  cpu "
                 f"{r['cpu_ratio']:6.2f}x  "
                 f"wall {r['ratio']:6.2f}x{extra}",
                 flush=True,

@@ -107,8 +107,7 @@ def main() -> int:
     names = [n for n in SHADERS if not args.only or n in args.only.split(",")]
     print(
         f"load {' '.join(f'{v:.1f}' for v in os.getloadavg())}; {args.runs} runs per mode, "
-        "in turns; "
-        "wall and CPU seconds of the whole process"
+        "in turns; wall and CPU seconds of the whole process"
     )
     failed = 0
     with tempfile.TemporaryDirectory() as tmp:

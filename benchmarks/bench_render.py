@@ -267,8 +267,7 @@ def memory() -> None:
         )
         print(
             f"{mode:9s}: render {seconds:.2f} s; tracemalloc peak {traced / 2**20:.0f} MiB; "
-            "peak resident "
-            f"{rss / 2**20:.0f} MiB{extra} = {total / 2**20:.0f} MiB (limit 2048 MiB)"
+            f"peak resident {rss / 2**20:.0f} MiB{extra} = {total / 2**20:.0f} MiB (limit 2048 MiB)"
         )
 
 

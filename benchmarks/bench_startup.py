@@ -226,8 +226,7 @@ def _section(
         )
         print(
             f"   {label:40s} {_ms(wall, cpu)} {_ms(ref_wall, ref_cpu)}  {wall / ref_wall:5.2f}x "
-            f"({cpu / ref_cpu:5.2f}x)"
-            f"   {verdict}"
+            f"({cpu / ref_cpu:5.2f}x)   {verdict}"
         )
     floor = paired({"python -c pass": [*python, "-c", "pass"]}, runs, env, cwd=where)
     for label, (wall, cpu) in floor.items():

@@ -106,8 +106,7 @@ def main() -> int:
             )
             rows.append((name, size, t["gl"], t["webgl"]))
             print(
-                "   "
-                f"{name:<24}{size[0]:>5}x{size[1]:<3}"
+                f"   {name:<24}{size[0]:>5}x{size[1]:<3}"
                 f"{t['gl'] * 1000:>9.1f}{t['webgl'] * 1000:>9.1f}"
                 f"{t['webgl'] / t['gl']:>8.1f}"
             )

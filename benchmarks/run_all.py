@@ -301,10 +301,8 @@ def section_memory() -> list[str]:
     return [
         f"4. memory of a {UHD[0]}x{UHD[1]} NumPy render of lab 07_final (fresh subprocess each)",
         f"   threads: peak resident {rss / mib:.0f} MiB; baseline (8x8 render) {base / mib:.0f} "
-        "MiB; "
-        f"render adds {(rss - base) / mib:.0f} MiB = {(rss - base) / image:.1f} x the float32 "
-        "RGBA image "
-        f"({image / mib:.0f} MiB)",
+        f"MiB; render adds {(rss - base) / mib:.0f} MiB = {(rss - base) / image:.1f} x the float32 "
+        f"RGBA image ({image / mib:.0f} MiB)",
         f"   tracemalloc peak {traced / mib:.0f} MiB; render {seconds:.2f} s",
         f"   worker processes: caller {p_rss / mib:.0f} MiB + {workers} workers of at most "
         f"{worker / mib:.0f} MiB "

@@ -223,8 +223,7 @@ LOOPS = [
     (
         "100 x 1,000 nested",
         "int k = 0, j2 = 0; for (int j = 0; j < 100 + n * 0; j++) { j2++; for (int i = 0; i < n; "
-        "i++) k++; }"
-        " o.x = k; o.y = j2;",
+        "i++) k++; } o.x = k; o.y = j2;",
         1000,
     ),
 ]
@@ -298,8 +297,7 @@ def main() -> None:
     lines += [
         "",
         "Render time: a simple 800x450 Shadertoy shader (the default new-shader colour cycle) "
-        "takes "
-        f"{seconds * 1000:.1f} ms per frame on llvmpipe, including the float framebuffer "
+        f"takes {seconds * 1000:.1f} ms per frame on llvmpipe, including the float framebuffer "
         "read-back.",
     ]
     lines += bulk_lines(ctx) + [""]

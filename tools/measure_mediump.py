@@ -78,8 +78,7 @@ def main() -> None:
         print(
             f"{expr:30s} equal to float16: {int((ours == got).sum()):4d}/{got.size}, to highp: "
             f"{int((got == high).sum()):4d}/{got.size}, max relative difference from highp "
-            f"{rel:.3g}, "
-            f"inf {int(np.isinf(got).sum())}"
+            f"{rel:.3g}, inf {int(np.isinf(got).sum())}"
         )
 
 

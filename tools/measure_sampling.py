@@ -124,8 +124,7 @@ def main() -> None:
     )
     print(
         "implicit LOD per quad, 0.5 * fast_log2(max |d|^2): max error "
-        f"{np.abs(lod.reshape(h, w) - got).max():.3g} "
-        "of a level"
+        f"{np.abs(lod.reshape(h, w) - got).max():.3g} of a level"
     )
 
     # (4) arithmetic on lowp/mediump operands only (lookup results, lowp/mediump variables): float16

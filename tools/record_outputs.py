@@ -545,8 +545,7 @@ def record(args: argparse.Namespace) -> int:
             }
             print(
                 f"[{section}] {n_keys} keys, {n_excl} excluded, {checked} commands run twice: "
-                "same; "
-                f"{secs:.0f} s",
+                f"same; {secs:.0f} s",
                 flush=True,
             )
         pool.shutdown()

@@ -309,8 +309,7 @@ def output_warnings(model: Any, definition: A.FunctionDefinition) -> list[Diagno
         out.append(
             Diagnostic(
                 f"'{sym.name}' is not written on every path through mainImage; where it is not, "
-                "the pixel's "
-                "colour is undefined, so the NumPy backend and the GPU may disagree",
+                "the pixel's colour is undefined, so the NumPy backend and the GPU may disagree",
                 where,
                 severity="warning",
                 rule=RULE,

@@ -453,8 +453,7 @@ def _nan_html(r: ShaderReport) -> str:
         "<code>glslcheck probe --nan</code>'s (glslcheck/verification/probe.py): "
         "it runs the NumPy backend's traced module "
         "on each such pixel of the NumPy render and groups the pixels by the first operation "
-        "that made a "
-        "NaN or Inf. Each origin is also noted under its source line below.</p>",
+        "that made a NaN or Inf. Each origin is also noted under its source line below.</p>",
     ]
     if r.nan is None:
         out.append(f'<p><span class="badge off">no origins</span> {_e(r.nan_note)}</p>')
@@ -503,8 +502,7 @@ def _bench_html(r: ShaderReport, runs: int, size, time: float) -> str:
             f" Load average when measured: {r.bench_load[0]:.2f}, {r.bench_load[1]:.2f}, "
             f"{r.bench_load[2]:.2f} "
             f"on {os.cpu_count()} CPUs: times on a busy machine are slower and noisier; "
-            "compare rows, "
-            "which share the load (round-robin), rather than absolute times."
+            "compare rows, which share the load (round-robin), rather than absolute times."
         )
         if r.bench_load
         else ""

@@ -53,8 +53,7 @@ KNOWN_DIFFERENCES = [
         "call-without-definition",
         "float g(float x);\n" + MAIN,
         "glslangValidator without -l does not link; the driver (and glslangValidator -l) rejects "
-        "a call "
-        "to a function that has no body at link time",
+        "a call to a function that has no body at link time",
     ),
     (
         "static-recursion",

@@ -328,8 +328,7 @@ def test_mesa_reassociation_is_not_copied_yet(numba, make_shader):
         ),
         (
             "void mainImage(out vec4 c, in vec2 f) { switch (int(f.x)) { case 1: c = vec4(1.0); "
-            "break; "
-            "default: c = vec4(0.0); } }",
+            "break; default: c = vec4(0.0); } }",
             "switch",
         ),
     ],

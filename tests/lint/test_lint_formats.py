@@ -28,8 +28,7 @@ def test_text_format(linted):
     text = render(linted, "text")
     assert text.split("\n\n")[1].splitlines()[0] == (
         "Buffer A.glsl:1:1: missing-header the file opens with no header comment (it should name "
-        "the "
-        "file, state its purpose and list the contributors with what each did)"
+        "the file, state its purpose and list the contributors with what each did)"
     )
     block = text.split("\n\n")[0].splitlines()
     assert block == [

@@ -304,8 +304,7 @@ class LaneHelpers:
                 Location(path, line, col),
                 rule="numpy-frame-budget",
                 help="bound the loops' iteration counts (nested loops multiply) and the arrays' "
-                "sizes; "
-                "--frame-budget SECONDS (or GLSLCHECK_FRAME_SECONDS) sets the budget",
+                "sizes; --frame-budget SECONDS (or GLSLCHECK_FRAME_SECONDS) sets the budget",
             )
         )
 
@@ -315,8 +314,7 @@ class LaneHelpers:
         raise GlslError(
             Diagnostic(
                 f"this loop did not end after {cap:,} iterations; the NumPy renderer stops it (a "
-                "GPU would "
-                "hang or reset)",
+                "GPU would hang or reset)",
                 Location(path, line, col),
                 rule="numpy-runaway-loop",
                 help="check the loop's condition and step; give it a constant upper bound",

@@ -318,23 +318,19 @@ HELP = {
     "division by zero": "the denominator is zero here: guard it (max(d, "
     "1e-6)) or test it before dividing",
     "sqrt of a negative": "the argument is negative here (rounding can push a difference of "
-    "squares "
-    "below zero): use sqrt(max(x, 0.0))",
+    "squares below zero): use sqrt(max(x, 0.0))",
     "log of a negative": "the argument is negative here: clamp it above zero (max(x, 1e-6))",
     "log of zero": "the argument is zero here (the result is -inf): clamp it above zero (max(x, "
     "1e-6))",
     "normalize of a zero vector": "the vector is zero here (the light sits on the surface point, "
-    "or "
-    "two points coincide): guard the zero vector, e.g. test "
+    "or two points coincide): guard the zero vector, e.g. test "
     "dot(v, v) > 0.0 before normalizing",
     "inversesqrt(0)": "the argument is zero here: add a small epsilon or test it first",
     "inversesqrt of a negative": "the argument is negative here: use inversesqrt(max(x, 1e-12))",
     "pow of a negative base": "pow(x, y) is undefined for x < 0 (GPUs give NaN): use pow(max(x, "
-    "0.0), y), "
-    "or pow(abs(x), y) with the sign put back",
+    "0.0), y), or pow(abs(x), y) with the sign put back",
     "asin or acos outside [-1, 1]": "clamp the argument to [-1, 1] (rounding can push a dot "
-    "product "
-    "of unit vectors past 1)",
+    "product of unit vectors past 1)",
     "mod by zero": "the divisor is zero here: guard it",
     "overflow": "the value exceeds the float32 range (3.4e38): scale the computation down or "
     "clamp its inputs",

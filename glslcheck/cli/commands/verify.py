@@ -352,15 +352,13 @@ def format_frame(
     if c.unstable_pixels:
         lines.append(
             f"  unstable pixels  {c.unstable_pixels:<10}  both float32 renders far from the "
-            "float64 "
-            "reference (not counted)"
+            "float64 reference (not counted)"
         )
     lines.extend(f"  note: {n}" for n in getattr(result, "notes", ()))
     for u in c.unstable_lines[:3]:
         lines.append(
             f"  precision lost   {u['file']}:{u['line']} `{u['code']}` keeps {u['bits']} of 24 "
-            "bits "
-            f"(~{u['pixels']} unstable pixels)"
+            f"bits (~{u['pixels']} unstable pixels)"
         )
     if c.match and c.unstable_pixels:
         where = (

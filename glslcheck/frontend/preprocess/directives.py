@@ -236,8 +236,7 @@ def _extension(pp: PreprocessorState, toks: list[Token], nt: Token, hash_pos: in
     if pp.shadertoy:
         raise pp.error(
             "#extension is not allowed in a Shadertoy tab: Shadertoy's own declarations come "
-            "first, "
-            "and an #extension after code is rejected by WebGL 2",
+            "first, and an #extension after code is rejected by WebGL 2",
             hash_pos,
             nl,
         )

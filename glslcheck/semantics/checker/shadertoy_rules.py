@@ -78,8 +78,7 @@ class ShadertoyRules:
     def common_uniform_error(self, n: A.Identifier) -> None:
         self.error(
             f"'{n.name}' is not available in the Common tab: the Common tab is compiled by "
-            "Shadertoy "
-            f"without {n.name}; pass it as a parameter from mainImage",
+            f"Shadertoy without {n.name}; pass it as a parameter from mainImage",
             n,
             help=f"add a parameter to this function and pass {n.name} from mainImage",
         )
