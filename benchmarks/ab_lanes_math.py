@@ -1,5 +1,5 @@
-"""A/B of the lockstep engine's branch-free math: backends/compiled_engine/lanes_math.py as it was at a
-git revision against the working tree's, on the same lockstep modules, in one process.
+"""A/B of the lockstep engine's branch-free math: backends/compiled_engine/lanes_math.py as it was
+at a git revision against the working tree's, on the same lockstep modules, in one process.
 
     python benchmarks/ab_lanes_math.py --rev 287eb58 [--size 400x225] [--repeat 7] SHADER ...
 
@@ -8,11 +8,12 @@ git revision against the working tree's, on the same lockstep modules, in one pr
 SHADER: a shader folder (lab_shaders/07_final) or a one-file shader (a real corpus text,
 tests/real_verify/texts/57-2d.glsl). For each, the lockstep module (8 lanes) is generated once
 and compiled twice, without numba's cache: importing the revision's lanes_math (loaded from
-`git show`, as the module ``glslcheck.backends.compiled_engine.lanes_math_ab``) and the working tree's. Both render the same frames in turns (each at a new iTime); printed: whether the two
-images have the same bits, and the best CPU time (time.process_time) of --repeat frames of
-each, with their ratio. One process, so the machine's load moves both sides alike: the way a
-change to lanes_math.py is judged (docs/performance.md), a full bench_compiled.py run moving
-per-shader ratios by 0.5-3.4x between runs.
+`git show`, as the module ``glslcheck.backends.compiled_engine.lanes_math_ab``) and the working
+tree's. Both render the same frames in turns (each at a new iTime); printed: whether the two images
+have the same bits, and the best CPU time (time.process_time) of --repeat frames of each, with their
+ratio. One process, so the machine's load moves both sides alike: the way a change to lanes_math.py
+is judged (docs/performance.md), a full bench_compiled.py run moving per-shader ratios by 0.5-3.4x
+between runs.
 """
 
 from __future__ import annotations
@@ -87,8 +88,8 @@ def main() -> int:
     load_revision(args.rev)
     size = tuple(int(v) for v in args.size.split("x"))
     print(
-        f"lanes_math.py at {args.rev} (before) against the working tree (after), lockstep 8, {args.size}, "
-        f"best of {args.repeat} frames, CPU"
+        f"lanes_math.py at {args.rev} (before) against the working tree (after), lockstep 8, "
+        f"{args.size}, best of {args.repeat} frames, CPU"
     )
     for path in args.shaders:
         source, tab = generate(load_shader(path), lanes=8)
@@ -117,7 +118,8 @@ def main() -> int:
         name = os.path.basename(path.rstrip("/"))
         print(
             f"  {name:32s} same bits {str(same):5s}  before {best['before'] * 1e3:8.1f} ms  "
-            f"after {best['after'] * 1e3:8.1f} ms  after/before {best['after'] / best['before']:.3f}",
+            f"after {best['after'] * 1e3:8.1f} ms  after/before "
+            f"{best['after'] / best['before']:.3f}",
             flush=True,
         )
     return 0

@@ -5,8 +5,8 @@
 Scenes (benchmarks/scenes): `textured` (one pass sampling an image with mipmap and linear
 filtering; its tex.png, 256x256 noise, is written into a temporary copy of the folder) and
 `feedback` (Buffer A reads its own previous frame, Image reads Buffer A). Each backend renders
-N consecutive frames (buffers carried, see glslcheck/shadertoy/channels.py), the two backends in turns,
-R rounds; reported: the best time per frame of each and the ratio numpy / gl. NumPy runs on
+N consecutive frames (buffers carried, see glslcheck/shadertoy/channels.py), the two backends in
+turns, R rounds; reported: the best time per frame of each and the ratio numpy / gl. NumPy runs on
 worker processes and on threads of this process (NumpyProgram.parallel). --webgl adds the WebGL
 backend (headless Chromium, SwiftShader; the channels go to the page each pass) and its ratio
 webgl / gl.
@@ -95,7 +95,8 @@ def main() -> None:
                 line += f"  {w:>7.1f} ms  {w / g:.2f}x"
             print(line)
     print(
-        f"total {time.perf_counter() - started:.0f} s; load at the end {' '.join(f'{v:.1f}' for v in os.getloadavg())}"
+        f"total {time.perf_counter() - started:.0f} s; load at the end "
+        f"{' '.join(f'{v:.1f}' for v in os.getloadavg())}"
     )
 
 

@@ -196,12 +196,13 @@ def summary(rows: list, label: str, mode) -> None:
         return
     lanes = sum(r["label"] != "pixel" for r in sel)
     print(
-        f"\n{label}, mode {mode if mode is not None else 'auto'} ({lanes} of {len(sel)} in lockstep): "
-        f"{len(sel)} shaders, worst CPU ratios first"
+        f"\n{label}, mode {mode if mode is not None else 'auto'} ({lanes} of {len(sel)} in "
+        f"lockstep): {len(sel)} shaders, worst CPU ratios first"
     )
     for r in sel[:12]:
         print(
-            f"  {r['shader']:24s} {r['label']:>7s} cpu {r['cpu_ratio']:6.2f}x  wall {r['ratio']:6.2f}x"
+            f"  {r['shader']:24s} {r['label']:>7s} cpu {r['cpu_ratio']:6.2f}x  wall "
+            f"{r['ratio']:6.2f}x"
         )
     for key, what in (("cpu_ratio", "CPU"), ("ratio", "wall")):
         g = math.exp(sum(math.log(r[key]) for r in sel) / len(sel))
@@ -214,7 +215,8 @@ def summary(rows: list, label: str, mode) -> None:
     withp = [r for r in sel if "pixel_differ" in r and r["label"] != "pixel"]
     if withp:
         print(
-            f"  lockstep bit-identical to the per-pixel engine: {sum(r['pixel_differ'] == 0 for r in withp)} "
+            "  lockstep bit-identical to the per-pixel engine: "
+            f"{sum(r['pixel_differ'] == 0 for r in withp)} "
             f"of {len(withp)}"
         )
     withn = [r for r in sel if "numpy_differ" in r]
@@ -242,7 +244,8 @@ def main() -> int:
     ap.add_argument(
         "--scenes",
         action="store_true",
-        help="also the render benchmark's scenes (benchmarks/scenes: four_spheres, lights_array, lab4_submission)",
+        help="also the render benchmark's scenes (benchmarks/scenes: four_spheres, lights_array, "
+        "lab4_submission)",
     )
     ap.add_argument("--json", default=None)
     ap.add_argument(
@@ -277,9 +280,11 @@ def main() -> int:
             extra = ""
             if "numpy" in r:
                 extra = (
-                    f"  numpy {r['numpy cpu'] / r['gl cpu']:6.2f}x cpu, differ {r['numpy_differ']:5d} px "
+                    f"  numpy {r['numpy cpu'] / r['gl cpu']:6.2f}x cpu, "
+                    f"differ {r['numpy_differ']:5d} px "
                     f"(max {r['numpy_max_abs']:.2g}, nan {r['numpy_nan_differ']}), "
-                    f"verify {'match' if r['gl_match'] else 'MISMATCH'} (numpy {'match' if r['numpy_gl_match'] else 'MISMATCH'})"
+                    f"verify {'match' if r['gl_match'] else 'MISMATCH'} (numpy "
+                    f"{'match' if r['numpy_gl_match'] else 'MISMATCH'})"
                 )
             else:
                 extra = f"  verify {'match' if r['gl_match'] else 'MISMATCH'}"
@@ -288,9 +293,11 @@ def main() -> int:
             if r["fallback"]:
                 extra += f"  (fallback: {r['fallback']})"
             print(
-                f"  {name:24s} {r['size']:>8s} {r['label']:>7s} load {r['load']:6.2f}s{' cold' if r['cold'] else ' warm'}  "
-                f"compiled {r['compiled cpu'] * 1000:8.1f} ms cpu {r['compiled'] * 1000:8.1f} ms wall  "
-                f"gl {r['gl cpu'] * 1000:7.1f} / {r['gl'] * 1000:7.1f} ms  cpu {r['cpu_ratio']:6.2f}x  "
+                f"  {name:24s} {r['size']:>8s} {r['label']:>7s} load "
+                f"{r['load']:6.2f}s{' cold' if r['cold'] else ' warm'}  "
+                f"compiled {r['compiled cpu'] * 1000:8.1f} ms cpu {r['compiled'] * 1000:8.1f} ms "
+                f"wall  gl {r['gl cpu'] * 1000:7.1f} / {r['gl'] * 1000:7.1f} ms  cpu "
+                f"{r['cpu_ratio']:6.2f}x  "
                 f"wall {r['ratio']:6.2f}x{extra}",
                 flush=True,
             )

@@ -1,5 +1,5 @@
-"""numba's compiled kernels of the llvmpipe math (backends/numpy_engine/jit_kernels.py) against the NumPy
-emulation they replace: their cost, their bits, their speed per call.
+"""numba's compiled kernels of the llvmpipe math (backends/numpy_engine/jit_kernels.py) against the
+NumPy emulation they replace: their cost, their bits, their speed per call.
 
     python benchmarks/bench_jit_kernels.py [--lanes 143,3600,16000,48000] [--check N] [--repeat N]
 
@@ -131,7 +131,8 @@ def check(n: int) -> None:
 
 
 def _per_call(name: str, n: int, fns: dict, call: tuple[np.ndarray, ...], repeat: int) -> str:
-    """CPU time per call of ``fns["off"]`` and ``fns["on"]``, best of ``repeat`` three times in turns."""
+    """CPU time per call of ``fns["off"]`` and ``fns["on"]``, best of ``repeat`` three times in
+    turns."""
     t = {m: float("inf") for m in fns}
     for _ in range(3):
         for m, fn in fns.items():
@@ -153,10 +154,12 @@ def costs() -> None:
     base = min(_seconds("import numpy", env) for _ in range(3))
     imp = min(_seconds("import numpy, numba", env) for _ in range(3))
     print(
-        f"   import numpy {base * 1000:.0f} ms; import numpy, numba {imp * 1000:.0f} ms (+{(imp - base) * 1000:.0f} ms)"
+        f"   import numpy {base * 1000:.0f} ms; import numpy, numba {imp * 1000:.0f} ms "
+        f"(+{(imp - base) * 1000:.0f} ms)"
     )
     load = (
-        "import time; t = time.perf_counter(); from glslcheck.backends.numpy_engine import jit; jit.load(True); "
+        "import time; t = time.perf_counter(); from glslcheck.backends.numpy_engine import jit; "
+        "jit.load(True); "
         "print(f'{(time.perf_counter() - t) * 1000:.0f} ms', end='')"
     )
     with tempfile.TemporaryDirectory() as cache:
@@ -184,7 +187,8 @@ def main() -> int:
     print("2. bit for bit against LlvmpipeMath's reference")
     check(args.check)
     print(
-        f"3. CPU time per call, best of {args.repeat} in turns (the public method; ratio = off / on)"
+        f"3. CPU time per call, best of {args.repeat} in turns (the public method; "
+        "ratio = off / on)"
     )
     rng = np.random.default_rng(7)
     math, runtimes = {}, {}

@@ -1,6 +1,7 @@
 """Where one frame of the slowest real shaders spends its time, per runtime function.
 
-    python benchmarks/bench_jit_profile.py [--only ID,...] [--size 128x72] [--top 14] [--jit on|off|auto]
+    python benchmarks/bench_jit_profile.py [--only ID,...] [--size 128x72] [--top 14] [--jit
+    on|off|auto]
 
 Each shader (tools/real_verify.py's texts, fetched into tests/real_verify/texts) is compiled
 for the NumPy backend, rendered once on one thread (warm-up: module execution, numba's load
@@ -72,7 +73,8 @@ def main() -> int:
             : args.top
         ]:
             print(
-                f"   {tt:6.2f} s {100 * tt / total:5.1f}%  {n:8d} calls  {os.path.basename(f)}:{line} {name}"
+                f"   {tt:6.2f} s {100 * tt / total:5.1f}%  {n:8d} calls  "
+                f"{os.path.basename(f)}:{line} {name}"
             )
         for (f, _, name), (_, n, tt, _, _) in stats.items():
             key = f"{os.path.basename(f)}:{name}"

@@ -53,7 +53,8 @@ from glslcheck.cli.main import main
 code = main(sys.argv[1:])
 from glslcheck.backends.numpy_engine import jit
 s = jit._STATE
-print(json.dumps({"code": code, "loaded": s.kernels is not None, "load": s.load_seconds, "spent": s.spent,
+print(json.dumps({"code": code, "loaded": s.kernels is not None, "load": s.load_seconds, "spent": \
+    s.spent,
                   "numba": "numba" in sys.modules}))
 """
 
@@ -105,8 +106,8 @@ def main() -> int:
     modes = args.modes.split(",")
     names = [n for n in SHADERS if not args.only or n in args.only.split(",")]
     print(
-        f"load {' '.join(f'{v:.1f}' for v in os.getloadavg())}; {args.runs} runs per mode, in turns; "
-        "wall and CPU seconds of the whole process"
+        f"load {' '.join(f'{v:.1f}' for v in os.getloadavg())}; {args.runs} runs per mode, "
+        "in turns; wall and CPU seconds of the whole process"
     )
     failed = 0
     with tempfile.TemporaryDirectory() as tmp:
@@ -131,18 +132,22 @@ def main() -> int:
                 med = {k: statistics.median(r[k] for r in res[m]) for k in ("wall", "cpu")}
                 last = res[m][-1]
                 jit = (
-                    f"kernels loaded in {last['load']:.2f} s after {last['spent']:.2f} s of math on NumPy"
+                    f"kernels loaded in {last['load']:.2f} s after {last['spent']:.2f} s of math "
+                    "on NumPy"
                     if last["loaded"]
                     else f"no kernels ({last['spent']:.2f} s of math on NumPy counted)"
                 )
                 print(
-                    f"  {m:4s} wall {best['wall']:7.2f} s (median {med['wall']:7.2f}, x{base['wall'] / best['wall']:.2f})"
-                    f"  cpu {best['cpu']:7.2f} s (median {med['cpu']:7.2f}, x{base['cpu'] / best['cpu']:.2f})"
+                    f"  {m:4s} wall {best['wall']:7.2f} s (median {med['wall']:7.2f}, "
+                    f"x{base['wall'] / best['wall']:.2f})"
+                    f"  cpu {best['cpu']:7.2f} s (median {med['cpu']:7.2f}, "
+                    f"x{base['cpu'] / best['cpu']:.2f})"
                     f"  {jit}; {differ[m]} values differ"
                 )
                 failed += differ[m] != 0
     print(
-        f"load at the end {' '.join(f'{v:.1f}' for v in os.getloadavg())}; (xN: {modes[0]}'s best / this mode's best)"
+        f"load at the end {' '.join(f'{v:.1f}' for v in os.getloadavg())}; (xN: "
+        f"{modes[0]}'s best / this mode's best)"
     )
     return 1 if failed else 0
 

@@ -56,8 +56,10 @@ def main(argv: list[str]) -> int:
     children = resource.getrusage(resource.RUSAGE_CHILDREN)
     cpu = time.process_time() - c0 + children.ru_utime + children.ru_stime
     print(
-        f"{sid} {size[0]}x{size[1]} x{frames} on 2 workers after the parent loaded: wall {total:.2f} s, "
-        f"CPU (this process after the first shader + workers) {cpu:.2f} s; frames {' '.join(walls)}; "
+        f"{sid} {size[0]}x{size[1]} x{frames} on 2 workers after the parent loaded: "
+        f"wall {total:.2f} s, "
+        f"CPU (this process after the first shader + workers) {cpu:.2f} s; "
+        f"frames {' '.join(walls)}; "
         f"load {os.getloadavg()[0]:.1f}"
     )
     return 0

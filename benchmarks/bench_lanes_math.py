@@ -1,5 +1,6 @@
-"""Branch-free lane math (backends/compiled_engine/lanes_math.py) in W-lane tuples against scalar.py's
-functions one lane at a time: CPU nanoseconds per lane, in one process, the same arguments.
+"""Branch-free lane math (backends/compiled_engine/lanes_math.py) in W-lane tuples against
+scalar.py's functions one lane at a time: CPU nanoseconds per lane, in one process, the same
+arguments.
 
     python benchmarks/bench_lanes_math.py [--only sin,cos] [--lanes 65536] [--repeat 7]
 
@@ -96,7 +97,10 @@ def _lanes_loop(f, nargs: int, width: int, fma: bool | None):
     xs = [f"x{k}" for k in range(nargs)]
     tail = ", FMA" if fma is not None else ""
     if width == 1:
-        body = f"    for k in range(out.size):\n        out[k] = f({', '.join(x + '[k]' for x in xs)}{tail})\n"
+        body = (
+            "    for k in range(out.size):\n        out[k] = "
+            f"f({', '.join(x + '[k]' for x in xs)}{tail})\n"
+        )
     else:
         body = f"    for b in range(out.size // {width}):\n        i = np.uint64(b * {width})\n"
         for x in xs:
@@ -156,7 +160,8 @@ def main() -> None:
     names = [n for n in opts.only.split(",") if n] or list(lanes_math.REWRITTEN + lanes_math.AS_IS)
     names = [n for n in names if n in SPECS]
     print(
-        f"load average at the start: {_load()}; {opts.lanes} lanes, best of {opts.repeat}, FMA {HOST_FMA}"
+        f"load average at the start: {_load()}; {opts.lanes} lanes, best of {opts.repeat}, "
+        f"FMA {HOST_FMA}"
     )
     print(
         f"{'function':18s} {'args':8s} {'scalar':>8s} {'one':>8s} {'W8':>8s} {'W16':>8s}   "
@@ -192,7 +197,8 @@ def main() -> None:
         if r8:
             print(
                 f"geometric mean scalar/W8 {np.exp(np.mean(np.log(r8))):.2f}, scalar/W16 "
-                f"{np.exp(np.mean(np.log(r16))):.2f} ({'coherent' if coherent else 'random'} arguments)"
+                f"{np.exp(np.mean(np.log(r16))):.2f} ({'coherent' if coherent else 'random'} "
+                "arguments)"
             )
     print(f"load average at the end: {_load()}")
 

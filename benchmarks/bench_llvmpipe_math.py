@@ -90,7 +90,8 @@ def builtins(repeat: int) -> None:
                 a = best(lambda: [ours() for _ in range(calls)], repeat) / calls
                 b = best(lambda: [numpy() for _ in range(calls)], repeat) / calls
                 print(
-                    f"   {name:<5} emulated {a * 1e3:7.2f} ms   numpy {b * 1e3:6.2f} ms   ratio {a / b:5.1f}x"
+                    f"   {name:<5} emulated {a * 1e3:7.2f} ms   numpy {b * 1e3:6.2f} ms   ratio "
+                    f"{a / b:5.1f}x"
                 )
 
 
@@ -117,7 +118,8 @@ def frames(repeat: int) -> None:
             timings[mode] = best(render, repeat)
         rt.lp, rt.fold_constants = lp, fold
         print(
-            f"   {name:<13} emulated {timings['emulated']:6.3f} s   plain {timings['plain']:6.3f} s   "
+            f"   {name:<13} emulated {timings['emulated']:6.3f} s   plain "
+            f"{timings['plain']:6.3f} s   "
             f"ratio {timings['emulated'] / timings['plain']:4.2f}x"
         )
 
@@ -170,7 +172,8 @@ def against(rev: str, repeat: int) -> None:
                         t[key].append((time.process_time() - c) / calls)
                 a, b = min(t["new"]), min(t["old"])
                 print(
-                    f"   {lanes:>6,} lanes {name:<5} this {a * 1e6:8.1f} us   {rev} {b * 1e6:8.1f} us   "
+                    f"   {lanes:>6,} lanes {name:<5} this {a * 1e6:8.1f} us   {rev} "
+                    f"{b * 1e6:8.1f} us   "
                     f"ratio {a / b:4.2f}"
                 )
 

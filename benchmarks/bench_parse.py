@@ -67,10 +67,12 @@ def main() -> int:
     )
     cpu = median_ms(lambda: parse_units(units), args.runs, clock=time.process_time)
     print(
-        f"load average: {os.getloadavg()[0]:.1f} (other processes on {os.cpu_count()} cores inflate wall times)"
+        f"load average: {os.getloadavg()[0]:.1f} (other processes on {os.cpu_count()} cores "
+        "inflate wall times)"
     )
     print(
-        f"warm preprocess+parse+AST, {lines} lines: {parse:.1f} ms wall, {cpu:.1f} ms CPU (target <= 30 ms)"
+        f"warm preprocess+parse+AST, {lines} lines: {parse:.1f} ms wall, "
+        f"{cpu:.1f} ms CPU (target <= 30 ms)"
     )
     try:
         from glslcheck.semantics import check
@@ -78,7 +80,8 @@ def main() -> int:
         parsed = parse_units(units)
         check_ms = median_ms(lambda: check(parsed), args.runs)
         print(
-            f"check on top of parse: {check_ms:.1f} ms = {check_ms / parse:.0%} of parse (target <= 50%)"
+            f"check on top of parse: {check_ms:.1f} ms = {check_ms / parse:.0%} of parse (target "
+            "<= 50%)"
         )
     except Exception as e:  # the checker may not accept the synthetic program yet
         print(f"check: not measured ({type(e).__name__}: {e})")
@@ -92,7 +95,8 @@ def main() -> int:
             subprocess.run([exe, "parse", "-q", str(path)], check=True)
             cli.append(time.perf_counter() - t)
         print(
-            f"one CLI call `glslcheck parse` on one file: {statistics.median(cli):.3f} s (target <= 0.3 s)"
+            f"one CLI call `glslcheck parse` on one file: {statistics.median(cli):.3f} s (target "
+            "<= 0.3 s)"
         )
         glslang = shutil.which("glslangValidator")
         if glslang:

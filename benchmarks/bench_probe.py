@@ -117,7 +117,8 @@ def nan_scan(runs: int, folder: Path) -> None:
         t = paired({"scan": scan, "render": render}, runs)
         r = result[-1]
         print(
-            f"   {name:<26} --nan {ms(t['scan'])}  render {ms(t['render'])}  ratio {t['scan'] / t['render']:.2f}x"
+            f"   {name:<26} --nan {ms(t['scan'])}  render {ms(t['render'])}  ratio "
+            f"{t['scan'] / t['render']:.2f}x"
             f"   ({r.nan_pixels} NaN pixels, {len(r.origins)} origin(s))"
         )
 
@@ -153,7 +154,8 @@ def unchanged(runs: int) -> None:
         path = sh.tabs["Image"].path
         same += transpile(model, path).source == base.transpile(model, path).source
     print(
-        f"3. normal generated module: identical to the transpiler at {BASE} for {same} of {len(shaders)} lab shaders"
+        f"3. normal generated module: identical to the transpiler at {BASE} for {same} of "
+        f"{len(shaders)} lab shaders"
     )
     sh = load_shader(FINAL)
     model = check_program(parse_shader(sh, "Image"))
@@ -174,7 +176,8 @@ def unchanged(runs: int) -> None:
 
     t = paired({k: render(k) for k in progs}, runs)
     print(
-        f"   07_final 800x450 render: now {ms(t['now'])}, {BASE} {ms(t[BASE])}, ratio {t['now'] / t[BASE]:.3f}"
+        f"   07_final 800x450 render: now {ms(t['now'])}, {BASE} {ms(t[BASE])}, "
+        f"ratio {t['now'] / t[BASE]:.3f}"
     )
 
 

@@ -7,9 +7,9 @@
 
 Every shader that both backends render is timed in this one process, the two backends in turns,
 best of `--repeat` frames each, every frame at a new iTime (0.01 apart, as an animation: the
-NumPy frame cache is emptied and nothing computed from iTime is reused). Ratio = numpy / gl. It prints one line
-per shader, slowest ratio first, then the geometric mean (the targets: <= 1.5x, and no
-shader over 6x) and the load average at the start and the end (a shared machine moves both sides
+NumPy frame cache is emptied and nothing computed from iTime is reused). Ratio = numpy / gl. It
+prints one line per shader, slowest ratio first, then the geometric mean (the targets: <= 1.5x, and
+no shader over 6x) and the load average at the start and the end (a shared machine moves both sides
 of a ratio alike, single timings much more). Each frame's CPU time is measured too (this
 process's: llvmpipe's threads are in it) and its ratio printed beside: the least disturbed by
 other load, and with `--mode one` the work NumPy does against the work llvmpipe does. Shaders
@@ -88,7 +88,8 @@ def main() -> int:
     ap.add_argument(
         "--set",
         choices=tuple(real_verify.SETS),
-        help="tools/real_verify.py's corpus: main (tuned on; the default, or REAL_VERIFY_SET) or holdout",
+        help="tools/real_verify.py's corpus: main (tuned on; the default, "
+        "or REAL_VERIFY_SET) or holdout",
     )
     args = ap.parse_args()
     if args.set:
@@ -97,7 +98,8 @@ def main() -> int:
     only = {s for s in args.only.split(",") if s}
     entries = [e for e in real_verify.load_manifest() if not only or e["id"] in only]
     print(
-        f"corpus {os.environ['REAL_VERIFY_SET']}: NumPy ({args.mode}) against GL at {size[0]}x{size[1]}, best of {args.repeat}; "
+        f"corpus {os.environ['REAL_VERIFY_SET']}: NumPy ({args.mode}) against GL at "
+        f"{size[0]}x{size[1]}, best of {args.repeat}; "
         f"load {_load()} (1/5/15-minute load average)",
         flush=True,
     )
@@ -123,8 +125,10 @@ def main() -> int:
             )
     for sid, r in sorted(results.items(), key=lambda kv: -kv[1]["ratio"]):
         print(
-            f"  {sid:22s} {r['kind']:16s} numpy {r['numpy'] * 1000:8.1f} ms  gl {r['gl'] * 1000:7.1f} ms  "
-            f"{r['ratio']:6.2f}x   CPU numpy {r['numpy cpu'] * 1000:8.1f} ms  gl {r['gl cpu'] * 1000:7.1f} ms  "
+            f"  {sid:22s} {r['kind']:16s} numpy {r['numpy'] * 1000:8.1f} ms  gl "
+            f"{r['gl'] * 1000:7.1f} ms  "
+            f"{r['ratio']:6.2f}x   CPU numpy {r['numpy cpu'] * 1000:8.1f} ms  gl "
+            f"{r['gl cpu'] * 1000:7.1f} ms  "
             f"{r['cpu_ratio']:6.2f}x",
             flush=True,
         )
@@ -136,8 +140,10 @@ def main() -> int:
         geo = math.exp(sum(math.log(r[key]) for r in results.values()) / len(results))
         worst = max(results.items(), key=lambda kv: kv[1][key])
         print(
-            f"{what}: {len(results)} shaders, geometric mean {geo:.2f}x (target 1.5x); worst {worst[0]} "
-            f"{worst[1][key]:.1f}x (target 6x); over 6x: {sum(r[key] > 6 for r in results.values())}"
+            f"{what}: {len(results)} shaders, geometric mean {geo:.2f}x (target 1.5x); "
+            f"worst {worst[0]} "
+            f"{worst[1][key]:.1f}x (target 6x); over 6x: "
+            f"{sum(r[key] > 6 for r in results.values())}"
         )
     print(f"load at the end {_load()}")
     if args.json:

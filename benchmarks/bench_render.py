@@ -9,8 +9,8 @@
    final scene, lab_shaders/07_final, if present), rendered by both backends in turns in the
    same run; best and median of N renders each (the NumPy frame cache is cleared before every
    render). Ratio = numpy / gl; the floor is 6x, the target 3x. NumPy is timed on worker
-   processes (what long renders use, see glslcheck/backends/numpy_engine/workers.py) and on threads of
-   this process; and as CPU time, NumPy on one thread against llvmpipe's CPU time over all its
+   processes (what long renders use, see glslcheck/backends/numpy_engine/workers.py) and on threads
+   of this process; and as CPU time, NumPy on one thread against llvmpipe's CPU time over all its
    threads (the work each does: the least moved by other load on a shared machine).
    `--speed-only` runs this part alone.
 2. Coverage scaling: the sphere scene with small spheres (10% of the pixels) and with large
@@ -147,7 +147,8 @@ def speed(repeat: int) -> None:
     from glslcheck.backends.gl import compile_gl, renderer_name
 
     print(
-        f"== speed at {SIZE[0]}x{SIZE[1]} (best and median of {repeat}, in turns); GL: {renderer_name()}; "
+        f"== speed at {SIZE[0]}x{SIZE[1]} (best and median of {repeat}, in turns); GL: "
+        f"{renderer_name()}; "
         f"NumPy on {os.cpu_count()} worker processes and on {os.cpu_count()} threads; "
         f"load {_load()} (1/5/15-minute load average)"
     )
@@ -172,9 +173,11 @@ def speed(repeat: int) -> None:
         for how, pick in (("best", min), ("median", statistics.median)):
             v = {k: pick(x) for k, x in t.items()}
             print(
-                f"{name:40s} {how:6s} gl {v['gl'] * 1000:6.1f} ms   numpy processes {v['processes'] * 1000:6.1f} ms "
+                f"{name:40s} {how:6s} gl {v['gl'] * 1000:6.1f} ms   numpy processes "
+                f"{v['processes'] * 1000:6.1f} ms "
                 f"= {v['processes'] / v['gl']:5.2f}x   threads {v['threads'] * 1000:6.1f} ms "
-                f"= {v['threads'] / v['gl']:5.2f}x   CPU: numpy one thread {v['cpu'] * 1000:6.1f} ms, "
+                f"= {v['threads'] / v['gl']:5.2f}x   CPU: numpy one thread "
+                f"{v['cpu'] * 1000:6.1f} ms, "
                 f"gl {v['gl cpu'] * 1000:6.1f} ms = {v['cpu'] / v['gl cpu']:5.2f}x"
             )
     print(f"(floor 6x, target 3x); load at the end {_load()}")
@@ -211,13 +214,15 @@ def coverage(repeat: int) -> None:
     for label in progs:
         print(
             f"{label:6s} spheres cover {cov[label] * 100:5.1f}% of the pixels: processes "
-            f"{t[label, 'processes'] * 1000:5.1f} ms, threads {t[label, 'threads'] * 1000:5.1f} ms, "
+            f"{t[label, 'processes'] * 1000:5.1f} ms, threads {t[label, 'threads'] * 1000:5.1f} "
+            "ms, "
             f"one thread {t[label, 'cpu'] * 1000:5.1f} ms CPU; gl {t[label, 'gl'] * 1000:5.1f} ms"
         )
     r = {k: t["small", k] / t["large", k] for k in keys}
     print(
         f"time(small) / time(large) on processes = {r['processes']:.1%} (target <= 35%); "
-        f"threads {r['threads']:.0%}; one-thread CPU {r['cpu']:.0%}; llvmpipe for reference {r['gl']:.0%}"
+        f"threads {r['threads']:.0%}; one-thread CPU {r['cpu']:.0%}; "
+        f"llvmpipe for reference {r['gl']:.0%}"
     )
 
 
@@ -239,7 +244,8 @@ assert prog.last_parallel in ({mode!r}, "one thread")
 _, peak = tracemalloc.get_traced_memory()
 workers.shutdown()  # waited for: their peak shows in RUSAGE_CHILDREN
 kids = resource.getrusage(resource.RUSAGE_CHILDREN).ru_maxrss * 1024
-print(img.shape, round(t1 - t0, 2), peak, resource.getrusage(resource.RUSAGE_SELF).ru_maxrss * 1024, kids)
+print(img.shape, round(t1 - t0, 2), peak, resource.getrusage(resource.RUSAGE_SELF).ru_maxrss * \
+    1024, kids)
 """
 
 
@@ -260,8 +266,8 @@ def memory() -> None:
             f" + workers {os.cpu_count()} x {kids / 2**20:.0f} MiB" if mode == "processes" else ""
         )
         print(
-            f"{mode:9s}: render {seconds:.2f} s; tracemalloc peak {traced / 2**20:.0f} MiB; peak resident "
-            f"{rss / 2**20:.0f} MiB{extra} = {total / 2**20:.0f} MiB (limit 2048 MiB)"
+            f"{mode:9s}: render {seconds:.2f} s; tracemalloc peak {traced / 2**20:.0f} MiB; "
+            f"peak resident {rss / 2**20:.0f} MiB{extra} = {total / 2**20:.0f} MiB (limit 2048 MiB)"
         )
 
 

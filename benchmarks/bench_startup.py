@@ -213,7 +213,8 @@ def _section(
     ]
     print(f"{title} (load {_load()})")
     print(
-        f"   {'whole process: wall time (CPU time)':40s} {'glslcheck':>19s} {'glslang':>19s}   ratio (CPU)   target"
+        f"   {'whole process: wall time (CPU time)':40s} {'glslcheck':>19s} {'glslang':>19s}   "
+        "ratio (CPU)   target"
     )
     for label, ours, theirs, target, extra in rows:
         t = paired({"ours": ours, "glslang": theirs}, runs, env, extra, cwd=where)
@@ -224,8 +225,8 @@ def _section(
             else f"{target * 1000:4.0f} ms {'met' if wall <= target else 'missed'}"
         )
         print(
-            f"   {label:40s} {_ms(wall, cpu)} {_ms(ref_wall, ref_cpu)}  {wall / ref_wall:5.2f}x ({cpu / ref_cpu:5.2f}x)"
-            f"   {verdict}"
+            f"   {label:40s} {_ms(wall, cpu)} {_ms(ref_wall, ref_cpu)}  {wall / ref_wall:5.2f}x "
+            f"({cpu / ref_cpu:5.2f}x)   {verdict}"
         )
     floor = paired({"python -c pass": [*python, "-c", "pass"]}, runs, env, cwd=where)
     for label, (wall, cpu) in floor.items():
@@ -253,7 +254,8 @@ def main() -> int:
     python = str(Path(exe).with_name("python"))
     print(
         f"glslcheck start-up (benchmarks/bench_startup.py, median of {args.runs} runs, "
-        f"{'no .pyc: compiled from source' if args.no_pyc else 'with .pyc'}; {os.cpu_count()} cores; "
+        f"{'no .pyc: compiled from source' if args.no_pyc else 'with .pyc'}; "
+        f"{os.cpu_count()} cores; "
         f"load = 1/5/15-minute load average)"
     )
     with tempfile.TemporaryDirectory() as tmp:

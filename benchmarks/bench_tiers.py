@@ -1,4 +1,5 @@
-"""The compiled engine's two tiers (engine.TieredProgram) against each mode alone, as a user meets them.
+"""The compiled engine's two tiers (engine.TieredProgram) against each mode alone, as a user meets
+them.
 
     python benchmarks/bench_tiers.py [--size 400x225] [--frames 1,30] [--only ID,...]
 
@@ -37,7 +38,8 @@ prog = compile_compiled(sys.argv[1])
 w, h = (int(x) for x in sys.argv[2].split("x"))
 for k in range(int(sys.argv[3])):
     prog.impl.render(size=(w, h), time=1.0 + k / 60)
-print(json.dumps({"seconds": time.perf_counter() - t0, "mode": getattr(prog.impl, "mode", "fixed")}))
+print(json.dumps({"seconds": time.perf_counter() - t0,
+                  "mode": getattr(prog.impl, "mode", "fixed")}))
 """
 
 
@@ -98,7 +100,8 @@ def main() -> int:
             worst = max(worst, over)
             print(
                 f"  {name:24s} {frames:4d} frames  per pixel {got['pixel']['seconds']:7.1f} s  "
-                f"lockstep {got['lanes8']['seconds']:7.1f} s  tiers {got['tiers']['seconds']:7.1f} s "
+                f"lockstep {got['lanes8']['seconds']:7.1f} s  tiers "
+                f"{got['tiers']['seconds']:7.1f} s "
                 f"(ended {got['tiers']['mode']})  tiers / better {over:.2f}",
                 flush=True,
             )

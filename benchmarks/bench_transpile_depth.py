@@ -99,7 +99,8 @@ def main() -> int:
     args = p.parse_args()
     depths = [int(d) for d in args.depths.split(",")]
     print(
-        f"# {platform.processor() or platform.machine()}, Python {platform.python_version()}; best of {args.runs}"
+        f"# {platform.processor() or platform.machine()}, Python {platform.python_version()}; "
+        f"best of {args.runs}"
     )
     print(f"{'shape':<10} {'depth':>6} {'seconds':>9} {'ms/level':>9} {'vs flat':>8}")
     ref = {n: transpile_seconds(flat(n), args.runs) for n in depths}

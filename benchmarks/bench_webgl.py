@@ -1,4 +1,5 @@
-"""Benchmark of the WebGL backend (headless Chromium, ANGLE on SwiftShader) against GL (Mesa llvmpipe).
+"""Benchmark of the WebGL backend (headless Chromium, ANGLE on SwiftShader) against GL (Mesa
+llvmpipe).
 
     python benchmarks/bench_webgl.py [--runs N] [--starts N]
 
@@ -85,8 +86,10 @@ def main() -> int:
     print(f"WebGL: {info['renderer']}")
     print(
         "\n1. browser start-up (Playwright driver + Chromium + page + WebGL2 context), "
-        f"median of {args.starts}: {start * 1000:.0f} ms = {start / one_gl:.0f} GL frames of 07_final at 800x450 "
-        f"({one_gl * 1000:.1f} ms each, same run); starts: {', '.join(f'{s * 1000:.0f}' for s in starts)} ms"
+        f"median of {args.starts}: {start * 1000:.0f} ms = {start / one_gl:.0f} GL frames of "
+        "07_final at 800x450 "
+        f"({one_gl * 1000:.1f} ms each, same run); starts: "
+        f"{', '.join(f'{s * 1000:.0f}' for s in starts)} ms"
     )
 
     get_browser()
@@ -103,7 +106,8 @@ def main() -> int:
             )
             rows.append((name, size, t["gl"], t["webgl"]))
             print(
-                f"   {name:<24}{size[0]:>5}x{size[1]:<3}{t['gl'] * 1000:>9.1f}{t['webgl'] * 1000:>9.1f}"
+                f"   {name:<24}{size[0]:>5}x{size[1]:<3}"
+                f"{t['gl'] * 1000:>9.1f}{t['webgl'] * 1000:>9.1f}"
                 f"{t['webgl'] / t['gl']:>8.1f}"
             )
 
@@ -117,9 +121,11 @@ def main() -> int:
         args.runs,
     )
     print(
-        f"\n3. a WebGL frame of 07_final at 800x450: {t['frame'] * 1000:.1f} ms; of it, the round trip "
+        f"\n3. a WebGL frame of 07_final at 800x450: {t['frame'] * 1000:.1f} ms; of it, "
+        "the round trip "
         f"(1x1 render) {t['tiny'] * 1000:.1f} ms = {t['tiny'] / t['frame']:.0%}, an empty shader's "
-        f"800x450 frame (clear, draw, read back, transfer) {t['empty'] * 1000:.1f} ms = {t['empty'] / t['frame']:.0%}"
+        f"800x450 frame (clear, draw, read back, transfer) {t['empty'] * 1000:.1f} ms = "
+        f"{t['empty'] / t['frame']:.0%}"
     )
     print(f"\nload average {os.getloadavg()[0]:.2f} at the end")
     close_browser()

@@ -97,11 +97,13 @@ def machine() -> list[str]:
 
     return [
         f"CPU        {cpu}, {os.cpu_count()} cores ({usable} usable), {platform.machine()}",
-        f"Python     {platform.python_version()} ({platform.python_implementation()}), NumPy {np.__version__}, "
+        f"Python     {platform.python_version()} ({platform.python_implementation()}), "
+        f"NumPy {np.__version__}, "
         f"moderngl {moderngl.__version__}",
         f"GL         {gl}",
         f"glslang    glslangValidator {version}",
-        f"load       {_load()} (1/5/15-minute load average at the start; above {os.cpu_count()} other jobs compete)",
+        f"load       {_load()} (1/5/15-minute load average at the start; "
+        f"above {os.cpu_count()} other jobs compete)",
     ]
 
 
@@ -196,7 +198,8 @@ def section_parse(runs: int) -> list[str]:
         for label, ours, theirs in rows:
             t = paired({"ours": ours, "glslang": theirs}, runs)
             lines.append(
-                f"   {label:44s} {ms(t['ours'])} {ms(t['glslang'])}   {t['ours'] / t['glslang']:5.2f}x"
+                f"   {label:44s} {ms(t['ours'])} {ms(t['glslang'])}   "
+                f"{t['ours'] / t['glslang']:5.2f}x"
             )
     return lines
 
@@ -233,7 +236,8 @@ def _render_fns(shader, size=SIZE) -> dict:
 
 def section_render(runs: int) -> list[str]:
     lines = [
-        f"2. NumPy (float32, 1 sample) against GL on llvmpipe at {SIZE[0]}x{SIZE[1]} (ratio = numpy / gl;",
+        f"2. NumPy (float32, 1 sample) against GL on llvmpipe at {SIZE[0]}x{SIZE[1]} (ratio = "
+        "numpy / gl;",
         f"   NumPy on {os.cpu_count()} worker processes and on {os.cpu_count()} threads)",
     ]
     lines.append(f"   {'':40s} {'processes':>11s} {'threads':>11s} {'gl':>11s}   ratios")
@@ -266,7 +270,8 @@ def section_coverage(runs: int) -> list[str]:
         )
     for side in ("processes", "threads", "gl"):
         lines.append(
-            f"   {side}: time(small) / time(large) = {results['small'][side] / results['large'][side]:.0%}"
+            f"   {side}: time(small) / time(large) = "
+            f"{results['small'][side] / results['large'][side]:.0%}"
         )
     return lines
 
@@ -295,12 +300,14 @@ def section_memory() -> list[str]:
     mib = 2**20
     return [
         f"4. memory of a {UHD[0]}x{UHD[1]} NumPy render of lab 07_final (fresh subprocess each)",
-        f"   threads: peak resident {rss / mib:.0f} MiB; baseline (8x8 render) {base / mib:.0f} MiB; "
-        f"render adds {(rss - base) / mib:.0f} MiB = {(rss - base) / image:.1f} x the float32 RGBA image "
-        f"({image / mib:.0f} MiB)",
+        f"   threads: peak resident {rss / mib:.0f} MiB; baseline (8x8 render) {base / mib:.0f} "
+        f"MiB; render adds {(rss - base) / mib:.0f} MiB = {(rss - base) / image:.1f} x the float32 "
+        f"RGBA image ({image / mib:.0f} MiB)",
         f"   tracemalloc peak {traced / mib:.0f} MiB; render {seconds:.2f} s",
-        f"   worker processes: caller {p_rss / mib:.0f} MiB + {workers} workers of at most {worker / mib:.0f} MiB "
-        f"= {(p_rss + workers * worker) / mib:.0f} MiB at most; render {p_seconds:.2f} s (workers started first)",
+        f"   worker processes: caller {p_rss / mib:.0f} MiB + {workers} workers of at most "
+        f"{worker / mib:.0f} MiB "
+        f"= {(p_rss + workers * worker) / mib:.0f} MiB at most; "
+        f"render {p_seconds:.2f} s (workers started first)",
     ]
 
 

@@ -6,6 +6,11 @@ need it are skipped on a developer machine but FAIL on CI (any non-empty `CI` en
 variable), so a CI image without them cannot pass silently.
 
 `make_shader` builds an in-memory Shadertoy shader from tab texts, for tests that need no files.
+
+`--update-snapshots` (the `update_snapshots` fixture) makes every snapshot test rewrite what it
+compares against instead of comparing: the transpiler's modules (tests/numpy/snapshots), the lint
+rules' expected.json (tests/lint/fixtures) and the golden images (tests/golden). Read the diff
+before committing it.
 """
 
 from __future__ import annotations
@@ -19,8 +24,8 @@ from glslcheck.backends import driver_profile
 from glslcheck.base.diagnostics import register_source
 from glslcheck.shadertoy.sources import Shader, Source
 
-# numba's kernels (backends/numpy_engine/jit.py) are off unless a test turns them on: in auto mode the
-# process would switch to them once the tests before had spent a second in the llvmpipe math,
+# numba's kernels (backends/numpy_engine/jit.py) are off unless a test turns them on: in auto mode
+# the process would switch to them once the tests before had spent a second in the llvmpipe math,
 # so what a test of the NumPy path exercised would depend on the tests run before it. The
 # kernels' own tests (tests/numpy/test_jit*.py) set the mode they test.
 os.environ.setdefault("GLSLCHECK_JIT", "off")
@@ -52,12 +57,24 @@ def pytest_addoption(parser):
         help="declare the NumPy emulation to copy another Mesa release (a test hook: shows what "
         "passes and what skips on a driver that is not the emulated one)",
     )
+    parser.addoption(
+        "--update-snapshots",
+        action="store_true",
+        default=False,
+        help="rewrite the snapshots and golden images the tests compare against, then compare",
+    )
 
 
 def pytest_configure(config):
     version = config.getoption("--emulated-mesa")
     if version:
         driver_profile.EMULATED_MESA = version
+
+
+@pytest.fixture(scope="session")
+def update_snapshots(request) -> bool:
+    """Whether this run rewrites snapshots (--update-snapshots) instead of only comparing."""
+    return bool(request.config.getoption("--update-snapshots"))
 
 
 def pytest_collection_modifyitems(config, items):
@@ -86,14 +103,15 @@ def gl():
         if os.environ.get("CI"):
             pytest.fail(f"an OpenGL context is required on CI: {e}")
         pytest.skip(
-            "no OpenGL context on this machine (developer machine without EGL/Mesa); CI fails instead"
+            "no OpenGL context on this machine (developer machine without EGL/Mesa); "
+            "CI fails instead"
         )
 
 
 @pytest.fixture(scope="session")
 def jit_kernels():
-    """numba's compiled kernels of the llvmpipe math (backends/numpy_engine/jit.py), loaded once. numba
-    is the optional `jit` extra: skipped without it on a developer machine, a failure on CI
+    """numba's compiled kernels of the llvmpipe math (backends/numpy_engine/jit.py), loaded once.
+    numba is the optional `jit` extra: skipped without it on a developer machine, a failure on CI
     (make setup, which .ci/run calls, installs the extra)."""
     from glslcheck.backends.numpy_engine import jit
 
@@ -147,7 +165,8 @@ def glslang():
 
 @pytest.fixture
 def make_shader():
-    """make_shader(image_text, common=None, **other_tabs) -> Shader with files Image.glsl, Common.glsl, ...
+    """make_shader(image_text, common=None, **other_tabs) -> Shader with files Image.glsl,
+    Common.glsl, ...
 
     The texts are registered as sources so diagnostics can quote their lines.
     """

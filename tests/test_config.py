@@ -1,6 +1,7 @@
 """glslcheck/base/config.py is the one home of the `GLSLCHECK_*` environment variables: every name
-the source mentions is in its table, the README carries that table, each reader refuses a bad
-value with an InputError naming its variable, and nothing else in glslcheck/ reads one."""
+the source mentions is in its table, docs/configuration.md carries that table, each reader
+refuses a bad value with an InputError naming its variable, and nothing else in glslcheck/ reads
+one."""
 
 from __future__ import annotations
 
@@ -41,8 +42,8 @@ def test_only_config_reads_them():
     assert readers == []
 
 
-def test_readme_has_the_table():
-    assert config.table() in (ROOT / "README.md").read_text(encoding="utf-8")
+def test_docs_have_the_table():
+    assert config.table() in (ROOT / "docs" / "configuration.md").read_text(encoding="utf-8")
 
 
 def test_table_rows_are_complete():
@@ -61,7 +62,6 @@ READERS = {
     "GLSLCHECK_WEBGL_TIMEOUT": (config.webgl_timeout, "inf"),
     "GLSLCHECK_CHROMIUM": (config.chromium, os.devnull),
     "GLSLCHECK_JOBS": (config.jobs, "0"),
-    "GLSLCHECK_UPDATE_SNAPSHOTS": (config.update_snapshots, "yes"),
 }
 
 
@@ -106,8 +106,6 @@ def test_reader_reads_at_call_time(monkeypatch, name):
         ("GLSLCHECK_JOBS", "auto", None),
         ("GLSLCHECK_JOBS", "1", 1),
         ("GLSLCHECK_JOBS", "8", 2),
-        ("GLSLCHECK_UPDATE_SNAPSHOTS", "1", True),
-        ("GLSLCHECK_UPDATE_SNAPSHOTS", "", False),
     ],
 )
 def test_reader_accepts(monkeypatch, name, text, value):

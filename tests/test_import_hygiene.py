@@ -1,7 +1,7 @@
 """Start-up: `glslcheck lint`, `check` and `parse` run in every pre-commit hook, so
 they must not import what only rendering needs (NumPy, moderngl, Pillow) nor Lark (the parser's
-tables ship as data, glslcheck/frontend/parse_tables.py). Deterministic: a fresh interpreter runs the
-command and reports which modules it loaded; no timing is asserted (see
+tables ship as data, glslcheck/frontend/parse_tables.py). Deterministic: a fresh interpreter runs
+the command and reports which modules it loaded; no timing is asserted (see
 benchmarks/bench_startup.py for the times)."""
 
 from __future__ import annotations
@@ -77,8 +77,9 @@ def test_lint_does_not_import_typing(tmp_path):
     assert "glslcheck.lint.rules.repeated_expression" in report["modules"]  # the rules ran
     assert "typing" not in report["modules"]
     # pathlib (with urllib.parse and ipaddress): about 17 M instructions; the lint path spells
-    # its paths with glslcheck.shadertoy.sources' helpers (tests/test_sources.py holds them to pathlib's).
-    # (The dev venv's editable-install finder imports pathlib in `site`, before glslcheck.)
+    # its paths with glslcheck.shadertoy.sources' helpers (tests/test_sources.py holds them to
+    # pathlib's). (The dev venv's editable-install finder imports pathlib in `site`, before
+    # glslcheck.)
     loaded = {m.split(".")[0] for m in set(report["modules"]) - set(report["preloaded"])}
     assert not {"pathlib", "urllib", "difflib"} & loaded
 
@@ -87,7 +88,8 @@ def test_check_expands_only_the_builtin_functions_it_looks_up():
     """builtins.BUILTINS keeps the spec's generic signatures and expands a function's overloads
     on its first look-up (expanding all of them at import was a sixth of a one-file lint)."""
     code = (
-        "import io, contextlib, sys; from glslcheck.cli.main import main; from glslcheck.language import builtin_functions as B\n"
+        "import io, contextlib, sys; from glslcheck.cli.main import main; "
+        "from glslcheck.language import builtin_functions as B\n"
         "with contextlib.redirect_stdout(io.StringIO()): main(sys.argv[1:])\n"
         "print(len(B.BUILTINS._built), len(B.BUILTINS), 'texture' in B.BUILTINS._built)"
     )
@@ -105,9 +107,9 @@ def test_check_expands_only_the_builtin_functions_it_looks_up():
 
 @pytest.mark.parametrize("jit", ["auto", "off"])
 def test_a_cheap_render_never_loads_numba(tmp_path, jit):
-    """numba (the optional `jit` extra, backends/numpy_engine/jit.py) costs 0.7-2 s to load: a render
-    that spends less than that in the llvmpipe math on few lanes (a lab scene) must not load it
-    in auto mode, and --jit off never does. (Installed or not, this holds; on a machine without
+    """numba (the optional `jit` extra, backends/numpy_engine/jit.py) costs 0.7-2 s to load: a
+    render that spends less than that in the llvmpipe math on few lanes (a lab scene) must not load
+    it in auto mode, and --jit off never does. (Installed or not, this holds; on a machine without
     numba it holds trivially.)"""
     done = subprocess.run(
         [

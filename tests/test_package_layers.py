@@ -125,7 +125,8 @@ def test_no_import_runs_up_or_sideways():
             t_floor, t_home = _layer(target)
             if t_floor > floor or (t_floor == floor and t_home != home):
                 bad.append(
-                    f"{MODULES[name]}:{line}: {name} imports {target} ({t_home} is not below {home})"
+                    f"{MODULES[name]}:{line}: {name} imports {target} ({t_home} is not below "
+                    f"{home})"
                 )
     assert bad == []
 

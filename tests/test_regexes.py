@@ -1,6 +1,7 @@
 """glslcheck/base/regexes.py: the lint path's regular expressions compiled ahead of time (so
-start-up does not pay for compiling them). The stored programs must be the ones this interpreter's `re` makes for exactly the
-patterns the lint path compiles, and a pattern made from them must be the same `re.Pattern`."""
+start-up does not pay for compiling them). The stored programs must be the ones this interpreter's
+`re` makes for exactly the patterns the lint path compiles, and a pattern made from them must be the
+same `re.Pattern`."""
 
 from __future__ import annotations
 

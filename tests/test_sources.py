@@ -179,8 +179,8 @@ def test_parse_cli_exit_codes_and_output(tmp_path, capsys):
     ],
 )
 def test_path_helpers_spell_paths_as_pathlib_does(path):
-    """The lint path spells paths without pathlib (importing it costs start-up time); every message must name
-    a path as the pathlib code before it did."""
+    """The lint path spells paths without pathlib (importing it costs start-up time); every message
+    must name a path as the pathlib code before it did."""
     from pathlib import PurePosixPath
 
     p = PurePosixPath(path)

@@ -85,7 +85,8 @@ def main(argv: list[str] | None = None) -> int:
     print(f"shader: {total} lines (Common + Image), {sum(1 for _ in result.ast.walk())} AST nodes")
     print(f"parse: {t_parse * 1000:.2f} ms (median of {args.repeat})")
     print(
-        f"check: {t_check * 1000:.2f} ms (median of {args.repeat}) = {100 * t_check / t_parse:.0f}% of parse time"
+        f"check: {t_check * 1000:.2f} ms (median of {args.repeat}) = "
+        f"{100 * t_check / t_parse:.0f}% of parse time"
         f" (target <= 50%)"
     )
     return 0 if t_check <= 0.5 * t_parse else 1

@@ -15,8 +15,9 @@ shared machine (it checkpoints to --json after every chunk of CHUNK inputs, stop
 --max-seconds or on SIGTERM with the counts so far, and --resume continues it):
 
     ulimit -v 8000000; GLSLCHECK_FUZZ_NICE=0 nohup nice -n 10 python tools/fuzz.py --count 100000 \
-        --seed 16 --jobs 2 --parse-rate 0.34 --heavy-rate 0.03 --verify-rate 0.03 --hostile-rate 0.05 \
-        --max-seconds 5000 --json run.json [--resume run.json] > fuzz.log 2>&1 &
+        --seed 16 --jobs 2 --parse-rate 0.34 --heavy-rate 0.03 --verify-rate 0.03 \
+        --hostile-rate 0.05 --max-seconds 5000 --json run.json [--resume run.json] \
+        > fuzz.log 2>&1 &
 
 Run on 2026-12-01 (2 cores shared by 8 agents, load average 8 to 25, 92
 minutes, stopped by --max-seconds): 21,163 of the 100,000 inputs (mutate 11,029, generate 5,075,
@@ -123,15 +124,16 @@ TOKEN_RE = re.compile(
 )
 
 POOL = (
-    "void float int uint bool vec2 vec3 vec4 ivec2 ivec3 bvec2 uvec4 mat2 mat3 mat4 mat2x3 sampler2D "
-    "struct in out inout const uniform highp mediump lowp precision if else for while do switch case "
-    "default break continue return discard true false mainImage main fragColor fragCoord iTime "
-    "iResolution iMouse iFrame iChannel0 texture sin cos pow sqrt normalize length dot cross mix clamp "
-    "smoothstep step fract floor mod abs min max atan exp log inversesqrt reflect refract ; ; , , . "
-    "( ) ( ) { } { } [ ] = += -= *= /= %= <<= |= + - * / % < > <= >= == != && || ^^ ! ~ ? : ++ -- "
-    "0 1 2 0.0 1.0 .5 1e38 3.4e39 1e-45 0x7fffffff 0xffffffff 4294967295u 2147483648 99999999999 "
-    "007 08 1.0f x y z w xyzw rgba stpq xx xyzwxyzw a b S s i j k __LINE__ __FILE__ __VERSION__ "
-    "GL_ES #define #undef #if #ifdef #ifndef #else #elif #endif #error #pragma #extension #version "
+    "void float int uint bool vec2 vec3 vec4 ivec2 ivec3 bvec2 uvec4 mat2 mat3 mat4 mat2x3 "
+    "sampler2D struct in out inout const uniform highp mediump lowp precision if else for while do "
+    "switch case default break continue return discard true false mainImage main fragColor "
+    "fragCoord iTime iResolution iMouse iFrame iChannel0 texture sin cos pow sqrt normalize length "
+    "dot cross mix clamp smoothstep step fract floor mod abs min max atan exp log inversesqrt "
+    "reflect refract ; ; , , . ( ) ( ) { } { } [ ] = += -= *= /= %= <<= |= + - * / % < > <= >= == "
+    "!= && || ^^ ! ~ ? : ++ -- 0 1 2 0.0 1.0 .5 1e38 3.4e39 1e-45 0x7fffffff 0xffffffff "
+    "4294967295u 2147483648 99999999999 007 08 1.0f x y z w xyzw rgba stpq xx xyzwxyzw a b S s i j "
+    "k __LINE__ __FILE__ __VERSION__ GL_ES #define #undef #if #ifdef #ifndef #else #elif #endif "
+    "#error #pragma #extension #version "
     "#line defined M(x) x## /* */ // \\"
 ).split() + ["\n", "\n", " ", "\t", "\r\n", "\r", '"', "'", "@", "$", "`"]
 
@@ -469,7 +471,8 @@ class ProgramGenerator:
                 t = r.choice(("float", "vec3"))
                 n = r.randint(2, 4)
                 out.append(
-                    f"{indent}{t} {a}[{n}] = {t}[{n}]({', '.join(self.expr(t, scope, ints, 2) for _ in range(n))});"
+                    f"{indent}{t} {a}[{n}] = "
+                    f"{t}[{n}]({', '.join(self.expr(t, scope, ints, 2) for _ in range(n))});"
                 )
                 idx = f"{r.choice(ints)} % {n}" if ints else str(r.randrange(n))
                 v = self.name("v")
@@ -957,7 +960,9 @@ def _worker(conn, workdir: str) -> None:
     # a runaway frame stops (a located error) well inside the render budget below
     os.environ.setdefault("GLSLCHECK_FRAME_SECONDS", str(FRAME_SECONDS))
     import glslcheck.backends.numpy_engine.program  # noqa: F401
-    import glslcheck.cli.main  # noqa: F401 - loaded before the first job, whose budget it would spend
+
+    # loaded before the first job, whose budget it would spend
+    import glslcheck.cli.main  # noqa: F401
 
     folder = Path(workdir)
     while True:
@@ -1166,7 +1171,8 @@ def fuzz_range(
                         outcome = "gen-rejected"
                 if outcome == "mismatch" and kind not in ("generate", "channels"):
                     # A mutant may compute undefined values (smoothstep(e, e, x), 0/0, ...):
-                    # different images are verify's finding there, only generated programs must match.
+                    # different images are verify's finding there, only generated programs must
+                    # match.
                     outcome = "findings"
                 results[command] = outcome
                 counts[(command, outcome)] += 1
@@ -1216,7 +1222,8 @@ def print_counts(
     secs = {k: n for (c, k), n in counts.items() if c == "seconds"}
     total = sum(kinds.values())
     print(
-        f"inputs: {total} ({', '.join(f'{k} {n}' for k, n in sorted(kinds.items()))}) in {elapsed:.0f} s",
+        f"inputs: {total} ({', '.join(f'{k} {n}' for k, n in sorted(kinds.items()))}) in "
+        f"{elapsed:.0f} s",
         file=file,
     )
     outcomes = sorted(
@@ -1260,7 +1267,8 @@ def main(argv: list[str] | None = None) -> int:
         "--heavy-rate",
         type=float,
         default=0.05,
-        help="share of inputs that get render (x4 when check passes) and transpile though check failed",
+        help="share of inputs that get render (x4 when check passes) and transpile though check "
+        "failed",
     )
     p.add_argument(
         "--verify-rate",
@@ -1442,7 +1450,8 @@ def run(args, opts: dict) -> int:
                             pending.add(pool.submit(chunk, nxt))
                     total = sum(v for (k, _), v in counts.items() if k == "input")
                     print(
-                        f"[{time.time() - t0:6.0f} s] {total} inputs ({total / max(time.time() - t0, 1e-9):.1f}/s), "
+                        f"[{time.time() - t0:6.0f} s] {total} inputs "
+                        f"({total / max(time.time() - t0, 1e-9):.1f}/s), "
                         f"{len(flagged)} flagged",
                         file=sys.stderr,
                         flush=True,

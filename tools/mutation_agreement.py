@@ -33,9 +33,11 @@ from glslcheck.shadertoy.sources import Shader, Source, find_shaders  # noqa: E4
 
 # Messages of glslcheck errors that glslangValidator (compile only, no -l) does not report, and why.
 EXPLAINED = {
-    "has no definition": "link-time error: glslangValidator without -l does not link (see test_known_differences)",
+    "has no definition": "link-time error: glslangValidator without -l does not link (see "
+    "test_known_differences)",
     "recursion is not allowed": "link-time error: glslang detects recursion only when linking",
-    "the case label is": "spec 6.2 requires case labels of the switch value's type; glslang does not check",
+    "the case label is": "spec 6.2 requires case labels of the switch value's type; "
+    "glslang does not check",
 }
 
 _TOKEN = re.compile(
@@ -132,7 +134,8 @@ def mutations(text: str, rng: random.Random, rounds: int = 3) -> list[tuple[str,
             )
             out.append(
                 (
-                    f"swap '{first.text}' (line {line(first)}) and '{second.text}' (line {line(second)})",
+                    f"swap '{first.text}' (line {line(first)}) and '{second.text}' (line "
+                    f"{line(second)})",
                     new,
                 )
             )

@@ -1,4 +1,5 @@
-"""Score `glslcheck verify` on real public Shadertoy shaders that read channels (textures, Buffer A-D).
+"""Score `glslcheck verify` on real public Shadertoy shaders that read channels (textures, Buffer
+A-D).
 
 The repository keeps only tests/real_channels/manifest.json: each shader's Shadertoy JSON
 (repository, path, commit; chosen by its inputs before any was run) and, for the preset textures
@@ -138,7 +139,8 @@ def verify_one(path: str, size: tuple[int, int], frames: int) -> dict:
     return {
         "verdict": "mismatch",
         "reason": (
-            f"{len(bad)}/{len(results)} frames; frame {bad[0].spec.frame}: {j['mismatched_pixels']} over "
+            f"{len(bad)}/{len(results)} frames; frame {bad[0].spec.frame}: "
+            f"{j['mismatched_pixels']} over "
             f"tolerance, {j['edge_pixels']} edge, NaN/Inf numpy {j['nan_numpy']} gl {j['nan_gl']}, "
             f"max err {j['max_abs_error']:.3g}"
         ),
@@ -166,7 +168,8 @@ def score(size: str, frames: int, timeout: float, only: set[str] | None, out: Pa
         )
         results.append(result)
         print(
-            f"{entry['id']:<32} {entry['kind']:<17} {result['verdict']:<17} {result['seconds']:6.1f}s  "
+            f"{entry['id']:<32} {entry['kind']:<17} {result['verdict']:<17} "
+            f"{result['seconds']:6.1f}s  "
             f"{result['reason']}",
             flush=True,
         )

@@ -286,7 +286,8 @@ def score(
         ]
         if errors or not_run:
             not_full.append(
-                f"{e['id']}: compile errors at {', '.join(errors) or '-'}; rules that could not run "
+                f"{e['id']}: compile errors at {', '.join(errors) or '-'}; "
+                "rules that could not run "
                 f"everywhere: {', '.join(not_run) or 'none'}"
             )
         want = [lab for lab in labels["files"].get(e["id"], []) if lab["rule"] in rules]

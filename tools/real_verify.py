@@ -50,7 +50,8 @@ SETS = {"main": ("manifest.json", "texts"), "holdout": ("holdout.json", "holdout
 
 
 def select(name: str) -> None:
-    """Read the corpus `name` of SETS from now on (this process and, through REAL_VERIFY_SET, its children)."""
+    """Read the corpus `name` of SETS from now on (this process and, through REAL_VERIFY_SET, its
+    children)."""
     global MANIFEST, TEXTS
     if name not in SETS:
         raise SystemExit(
@@ -106,7 +107,8 @@ def fetch(mirror: Path | None) -> int:
                 data = _from_github(entry)
             except OSError as e:
                 print(
-                    f"{entry['id']}: cannot read {entry['repo']}:{entry['path']}@{entry['commit'][:10]} ({e})",
+                    f"{entry['id']}: cannot read "
+                    f"{entry['repo']}:{entry['path']}@{entry['commit'][:10]} ({e})",
                     file=sys.stderr,
                 )
                 missing += 1
@@ -192,7 +194,8 @@ def score(size: str, times: str, timeout: float, only: set[str] | None, out: Pat
     absent = [e["id"] for e in entries if not text_path(e).exists()]
     if absent:
         print(
-            f"{len(absent)} texts are missing ({', '.join(absent[:5])} ...): run `python tools/real_verify.py "
+            f"{len(absent)} texts are missing ({', '.join(absent[:5])} ...): "
+            "run `python tools/real_verify.py "
             f"--set {os.environ['REAL_VERIFY_SET']} fetch`",
             file=sys.stderr,
         )
@@ -208,7 +211,8 @@ def score(size: str, times: str, timeout: float, only: set[str] | None, out: Pat
         )
         results.append(result)
         print(
-            f"{entry['id']:<24} {result['verdict']:<17} {result['seconds']:6.1f}s  {result['reason']}",
+            f"{entry['id']:<24} {result['verdict']:<17} {result['seconds']:6.1f}s  "
+            f"{result['reason']}",
             flush=True,
         )
     counts = {v: sum(r["verdict"] == v for r in results) for v in ORDER}
@@ -232,7 +236,8 @@ def score(size: str, times: str, timeout: float, only: set[str] | None, out: Pat
 def arguments(
     doc: str, texts: str, size: str, schedule: str, schedule_options: dict, sets: bool = False
 ) -> argparse.ArgumentParser:
-    """The fetch / score command line of this tool and of tools/real_channels.py (`sets`: this tool's --set)."""
+    """The fetch / score command line of this tool and of tools/real_channels.py (`sets`: this
+    tool's --set)."""
     p = argparse.ArgumentParser(description=doc.split("\n\n")[0])
     if sets:
         p.add_argument(

@@ -319,7 +319,8 @@ def lint_fixtures(root: Path) -> Path:
 def build_cases(
     root: Path, args: argparse.Namespace, missing: dict[str, list[str]]
 ) -> dict[str, list[Case]]:
-    rel = lambda p: str(Path(p).relative_to(root))  # noqa: E731 (paths relative to the checkout: the same in every checkout)
+    # paths relative to the checkout: the same in every checkout
+    rel = lambda p: str(Path(p).relative_to(root))  # noqa: E731
     want = set(args.corpora)
     size, t = args.size, args.time
     lab = [(p.name, p) for p in lab_shaders(root)] if "lab" in want else []
@@ -451,7 +452,8 @@ def record(args: argparse.Namespace) -> int:
         where = Path(probe.stdout.strip() or "?").resolve()
         if probe.returncode or root not in where.parents:
             print(
-                f"error: `python -m glslcheck` in {root} imports {where}, not this checkout's package "
+                f"error: `python -m glslcheck` in {root} imports {where}, "
+                "not this checkout's package "
                 f"({probe.stderr.strip()[-300:]})",
                 file=sys.stderr,
             )
@@ -467,7 +469,8 @@ def record(args: argparse.Namespace) -> int:
             ["git", "-C", str(root), "rev-parse", "HEAD"], capture_output=True, text=True
         )
         print(
-            f"glslcheck: {where} ({version.stdout.strip()}), {root} at {head.stdout.strip()[:12] or '?'}"
+            f"glslcheck: {where} ({version.stdout.strip()}), {root} at "
+            f"{head.stdout.strip()[:12] or '?'}"
         )
         print(
             f"sections: {', '.join(sections)}; jobs {args.jobs}; temporary folder {tmp}", flush=True
@@ -541,8 +544,8 @@ def record(args: argparse.Namespace) -> int:
                 "seconds": round(secs, 1),
             }
             print(
-                f"[{section}] {n_keys} keys, {n_excl} excluded, {checked} commands run twice: same; "
-                f"{secs:.0f} s",
+                f"[{section}] {n_keys} keys, {n_excl} excluded, {checked} commands run twice: "
+                f"same; {secs:.0f} s",
                 flush=True,
             )
         pool.shutdown()

@@ -1,15 +1,17 @@
 #!/usr/bin/env python3
-"""Write the lab folder's report and the screenshots the README shows (docs/report.png, docs/report_nan.png).
+"""Write the lab folder's report and the screenshots docs/usage.md shows (docs/report.png,
+docs/report_nan.png).
 
     python tools/report_screenshot.py [--out build/report.html] [--png docs/report.png]
                                       [--nan-png docs/report_nan.png]
 
-The pages are loaded in the WebGL backend's headless Chromium (glslcheck.verification.report.load_in_browser):
-any console error, page error or network request fails the run. The first screenshot is the top
-of the lab folder's page: the index and the first shader, down to its accuracy/time table and
-plot (bench at the report's default size, 64x36). No lab shader makes a NaN, so the second is the
-top of the page of tests/hard_cases/pow_edge.glsl (pow of a negative base on half the image):
-its renders, differences and the NaN origins the probe found, under their source line.
+The pages are loaded in the WebGL backend's headless Chromium
+(glslcheck.verification.report.load_in_browser): any console error, page error or network request
+fails the run. The first screenshot is the top of the lab folder's page: the index and the first
+shader, down to its accuracy/time table and plot (bench at the report's default size, 64x36). No lab
+shader makes a NaN, so the second is the top of the page of tests/hard_cases/pow_edge.glsl (pow of a
+negative base on half the image): its renders, differences and the NaN origins the probe found,
+under their source line.
 """
 
 from __future__ import annotations
@@ -52,7 +54,8 @@ def main() -> int:
 
 
 def shoot(paths, out: str, png: str, height: int, **options) -> list[str]:
-    """Write the report of `paths` to `out`, open it in Chromium, keep the top `height` pixels in `png`."""
+    """Write the report of `paths` to `out`, open it in Chromium, keep the top `height` pixels in
+    `png`."""
     from PIL import Image
 
     page = build_report(paths, size=(320, 180), time=1.7, **options)

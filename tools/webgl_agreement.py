@@ -1,5 +1,6 @@
 #!/usr/bin/env python3
-"""Four compilers' verdicts on the same Shadertoy programs: glslcheck, glslangValidator, Mesa, ANGLE.
+"""Four compilers' verdicts on the same Shadertoy programs: glslcheck, glslangValidator, Mesa,
+ANGLE.
 
 A shader is accepted by a judge when every program Shadertoy compiles from it (Common alone,
 then Common + each pass tab; glslcheck.semantics.agreement.passes) is accepted:
@@ -10,9 +11,10 @@ then Common + each pass tab; glslcheck.semantics.agreement.passes) is accepted:
   a Shadertoy user's browser does.
 
 Corpora: tests/check/invalid (every fixture is invalid: the rejection rate is the figure),
-tests/webgl/invalid (what ANGLE alone rejects, now rules of our checker), the valid shaders (tests/corpus, lab_shaders: the acceptance rate), and the mutants of
-tools/mutation_agreement.py (pairwise agreement). Every shader where ANGLE and another judge
-disagree is listed with both sides' first message.
+tests/webgl/invalid (what ANGLE alone rejects, now rules of our checker), the valid shaders
+(tests/corpus, lab_shaders: the acceptance rate), and the mutants of tools/mutation_agreement.py
+(pairwise agreement). Every shader where ANGLE and another judge disagree is listed with both sides'
+first message.
 
     python tools/webgl_agreement.py [--mutants N] [--seed S]
 """
@@ -92,7 +94,8 @@ def summarise(name: str, results: list[tuple[str, dict[str, list[str]]]]) -> lis
     lines.append("|---|---|")
     for j in JUDGES:
         lines.append(
-            f"| {j} | {sum(bool(v[j]) for _, v in results)} ({100 * sum(bool(v[j]) for _, v in results) / max(n, 1):.1f}%) |"
+            f"| {j} | {sum(bool(v[j]) for _, v in results)} "
+            f"({100 * sum(bool(v[j]) for _, v in results) / max(n, 1):.1f}%) |"
         )
     lines += ["", "| pair | agree |", "|---|---|"]
     for a, b in itertools.combinations(JUDGES, 2):

@@ -6,8 +6,7 @@ lowers that with whatever instructions the host CPU has, so the answer changes w
 
 ``avx512``  x86-64 with AVX-512F and AVX-512VL: one ``vcvttps2udq``. Truncates; a result outside
             ``[0, 2**32)`` and NaN give ``0xFFFFFFFF``; ``uint(-0.5)`` is 0 (``trunc(-0.5)`` is -0).
-            Recorded on such a machine by this project's earlier runs of
-            tests/numpy/test_runtime_gl.py.
+            Recorded on such a machine with tests/numpy/test_runtime_gl.py.
 ``sse``     x86-64 without AVX-512 (SSE2 ... AVX2): two signed ``cvttps2dq``, of ``f`` and of
             ``f - 2**31`` with the top bit then set, the second chosen where ``f >= 2**31``; the
             signed conversion gives ``0x80000000`` for NaN and for anything outside the int
@@ -227,7 +226,8 @@ def emulation_note(ctx) -> str | None:
         return None
     driver = f"{renderer}, Mesa {mesa}" if mesa else renderer
     return (
-        f"the GL driver is {driver}; the NumPy backend copies llvmpipe of Mesa {EMULATED_MESA} bit for "
+        f"the GL driver is {driver}; the NumPy backend copies llvmpipe of Mesa {EMULATED_MESA} "
+        "bit for "
         "bit, so differences in hash-like or sign-of-zero pixels may be this driver's, not a bug"
     )
 

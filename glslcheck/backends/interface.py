@@ -85,7 +85,8 @@ class Program:
 
     @property
     def source(self) -> str:
-        """The generated Python module (NumPy and compiled engines) or the GLSL program (GL, WebGL)."""
+        """The generated Python module (NumPy and compiled engines) or the GLSL program (GL,
+        WebGL)."""
         return self.backend.program_text(self.impl)
 
     def __repr__(self) -> str:

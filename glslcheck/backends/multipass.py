@@ -63,8 +63,8 @@ class MultipassProgram:
                     texture_path(shader, b.texture, where, fail), where, fail
                 )
         self.programs = {t: self._compile(t) for t in self.passes}
-        # Lookups return lowp results as llvmpipe's do (backends/numpy_engine/textures.py); False gives
-        # the exact float32 results SwiftShader's WebGL returns (it ignores lowp, measured).
+        # Lookups return lowp results as llvmpipe's do (backends/numpy_engine/textures.py); False
+        # gives the exact float32 results SwiftShader's WebGL returns (it ignores lowp, measured).
         self.lowp_samplers = True
         self._state: dict[str, np.ndarray] = {}
         self._images: dict[tuple, ChannelInput] = {}

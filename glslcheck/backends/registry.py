@@ -2,7 +2,8 @@
 render frames.
 
     import glslcheck
-    prog = glslcheck.compile("lab_shaders/07_final", backend="numpy")   # or "gl", "webgl", "compiled"
+    prog = glslcheck.compile("lab_shaders/07_final", backend="numpy")   # or "gl", "webgl",
+                                                                        "compiled"
     img = prog.render(size=(800, 450), time=0.0, frame=0, mouse=(0, 0, 0, 0), date=None,
                       precision="float32", samples=1)
     # img: float32 numpy array (height, width, 4), top row first, values as the shader wrote them
@@ -12,7 +13,8 @@ render frames.
 `Shader`. `compile` raises GlslError (with file:line:col diagnostics) when the shader does not
 parse, check or compile, InputError when the path cannot be read, and GLUnavailable (an
 InputError) for backend="gl" without an OpenGL context (WebGLUnavailable for backend="webgl"
-without headless Chromium: glslcheck/backends/webgl; InputError for backend="compiled" without numba).
+without headless Chromium: glslcheck/backends/webgl; InputError for backend="compiled" without
+numba).
 
 `render` also takes `time_delta` (iTimeDelta, default 1/60) and `frame_rate` (iFrameRate,
 default 60), as the GL backend does. `precision` is the float type inside the shader:
@@ -74,8 +76,8 @@ def compile(
     path: str | os.PathLike | Shader, backend: str = "numpy", output: str = "Image"
 ) -> Program:  # noqa: A001
     """Load, check and compile a shader for `backend` (one of `names()`). A shader with Buffer
-    tabs, a channels.json or iChannel reads runs its passes frame after frame (backends/multipass.py);
-    `output` chooses the pass `render` returns ("Buffer A", ...)."""
+    tabs, a channels.json or iChannel reads runs its passes frame after frame
+    (backends/multipass.py); `output` chooses the pass `render` returns ("Buffer A", ...)."""
     record = get(backend)
     record.require()
     if output != "Image" and not record.multipass:

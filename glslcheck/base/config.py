@@ -1,6 +1,6 @@
 """The one home of glslcheck's environment variables: every `GLSLCHECK_*` setting is listed in
 VARIABLES (name, what it sets, allowed values, default, who reads it) and read by one function
-here, with its default and its validation. The table in README.md ("Environment variables") is
+here, with its default and its validation. The table in docs/configuration.md is
 `table()`'s output; tests/test_config.py holds the two to each other and to the source.
 
 Each function reads os.environ when called, never at import: the CLI sets some variables from
@@ -92,13 +92,6 @@ VARIABLES = (
         "auto (2 when a core is idle)",
         "lint/parallel.py",
     ),
-    (
-        "GLSLCHECK_UPDATE_SNAPSHOTS",
-        "whether the lint rule tests rewrite their expected.json",
-        "0, 1",
-        "0",
-        "tests/lint/test_lint_rules.py",
-    ),
 )
 
 # Read, not owned: (name, whose it is, who reads it)
@@ -139,7 +132,8 @@ def frame_seconds(default: float = FRAME_SECONDS) -> float:
         value = math.nan
     if not MIN_FRAME_SECONDS <= value <= MAX_FRAME_SECONDS:
         raise InputError(
-            f"error: GLSLCHECK_FRAME_SECONDS must be a number of seconds from {MIN_FRAME_SECONDS:g} "
+            "error: GLSLCHECK_FRAME_SECONDS must be a number of seconds from "
+            f"{MIN_FRAME_SECONDS:g} "
             f"to {MAX_FRAME_SECONDS:g} (like --frame-budget), not {text!r}"
         )
     return value
@@ -208,7 +202,8 @@ def webgl_timeout() -> float:
 
 
 def chromium() -> str | None:
-    """GLSLCHECK_CHROMIUM, an executable file; None when unset or empty (the caller searches PATH)."""
+    """GLSLCHECK_CHROMIUM, an executable file; None when unset or empty (the caller searches
+    PATH)."""
     given = os.environ.get("GLSLCHECK_CHROMIUM")
     if not given:
         return None
@@ -224,21 +219,14 @@ def jobs() -> int | None:
         return None
     if not (text.isdigit() and int(text) >= 1):
         raise InputError(
-            f"error: GLSLCHECK_JOBS must be auto or a whole number of processes from 1, not {text!r}"
+            "error: GLSLCHECK_JOBS must be auto or a whole number of processes from 1, "
+            f"not {text!r}"
         )
     return min(int(text), 2)
 
 
-def update_snapshots() -> bool:
-    """GLSLCHECK_UPDATE_SNAPSHOTS: whether tests rewrite their snapshots (1) or compare (0, unset)."""
-    text = _text("GLSLCHECK_UPDATE_SNAPSHOTS")
-    if text not in ("", "0", "1"):
-        raise InputError(f"error: GLSLCHECK_UPDATE_SNAPSHOTS must be 0 or 1, not {text!r}")
-    return text == "1"
-
-
 def table() -> str:
-    """VARIABLES and FOREIGN as the Markdown tables of README.md's "Environment variables"."""
+    """VARIABLES and FOREIGN as the Markdown tables of docs/configuration.md."""
     rows = ["| Variable | Sets | Allowed | Default | Read by |", "|---|---|---|---|---|"]
     rows += [
         f"| `{name}` | {sets} | {allowed} | {default} | {readers} |"

@@ -17,7 +17,8 @@ if TYPE_CHECKING:
 
 @record(frozen=True)
 class Location:
-    """A span in a user's file: 1-based lines and columns, end exclusive-ish (points at the last char + 1)."""
+    """A span in a user's file: 1-based lines and columns, end exclusive-ish (points at the last
+    char + 1)."""
 
     __slots__ = ("_pending",)  # a `pending_location`'s span, until it is computed
 

@@ -101,7 +101,8 @@ def atomic_write(path: str | os.PathLike, what: str = "file") -> Iterator[str]:
 
 
 def save_image(img: np.ndarray, path: str | os.PathLike) -> None:
-    """`.npy`: the float32 array; otherwise an 8-bit RGBA image in the format the extension names."""
+    """`.npy`: the float32 array; otherwise an 8-bit RGBA image in the format the extension
+    names."""
     with atomic_write(path, "image") as tmp:
         if str(path).lower().endswith(".npy"):
             buffer = io.BytesIO()  # np.save seeks: write it whole, so a pipe can take it too

@@ -104,7 +104,8 @@ def parse_samples(text: str) -> int:
 def parse_floats(
     text: str, count: int | None = None, what: str = "value", limit: float = MAX_MAGNITUDE
 ) -> tuple[float, ...]:
-    """'0,0.5,1' -> (0.0, 0.5, 1.0): finite numbers of size at most `limit`; exactly `count` if given."""
+    """'0,0.5,1' -> (0.0, 0.5, 1.0): finite numbers of size at most `limit`; exactly `count` if
+    given."""
     items = [t.strip() for t in text.split(",")]
     try:
         values = tuple(float(t) for t in items)

@@ -1,7 +1,8 @@
 """The float precisions the NumPy backend renders in: the one list that the runtime, the API, the
 CLI (`--precision`), verify and bench all use.
 
-- "float16": GLSL mediump, emulated: values are stored as float16 (backends/numpy_engine/runtime.py);
+- "float16": GLSL mediump, emulated: values are stored as float16
+  (backends/numpy_engine/runtime.py);
 - "float32": GLSL highp, what the GPU driver (llvmpipe) computes in; the default;
 - "float64": a reference, the shader's arithmetic without float32's rounding.
 

@@ -141,7 +141,8 @@ def lint_path_templates() -> list[str]:
         os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__)))), "lab_shaders"
     )
     script = (
-        "import io, json, sys, contextlib; from glslcheck.base import records; records._recorded = []; "
+        "import io, json, sys, contextlib; from glslcheck.base import records; "
+        "records._recorded = []; "
         "records._precompiled = {}\n"
         "from glslcheck.cli.main import main\n"
         "with contextlib.redirect_stdout(io.StringIO()):\n"
@@ -210,7 +211,8 @@ def _object_setattr_to(name: str, obj: Any, value: Any) -> None:
 
 
 def tuple_getter(names: tuple[str, ...]) -> Callable[[Any], tuple]:
-    """`obj -> (obj.a, obj.b, ...)`, a tuple for any number of names (one C call for two or more)."""
+    """`obj -> (obj.a, obj.b, ...)`, a tuple for any number of names (one C call for two or
+    more)."""
     if len(names) >= 2:
         return attrgetter(*names)
     if names:

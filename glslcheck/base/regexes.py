@@ -67,7 +67,8 @@ def _stored() -> dict:
 
 
 def compiled(pattern: str, flags: int = 0) -> re.Pattern:
-    """`re.compile(pattern, flags)`, from the stored program when there is one for this interpreter."""
+    """`re.compile(pattern, flags)`, from the stored program when there is one for this
+    interpreter."""
     flags = int(flags)
     if _recorded is not None:
         _recorded.append((pattern, flags))
@@ -114,10 +115,12 @@ def lint_path_patterns() -> list[tuple[str, int]]:
     import subprocess
 
     script = (
-        "import json, sys; from glslcheck.base import regexes; regexes._recorded = []; regexes._table = {}\n"
+        "import json, sys; from glslcheck.base import regexes; regexes._recorded = []; "
+        "regexes._table = {}\n"
         "from glslcheck.frontend import parser as parse; from glslcheck.cli import main as cli\n"
         "from glslcheck.cli.commands import lint as _lint_command\n"
-        "from glslcheck.lint import engine, recover, report; from glslcheck.lint.rules import all_rules\n"
+        "from glslcheck.lint import engine, recover, report; from glslcheck.lint.rules import "
+        "all_rules\n"
         "parse.get_parser(); all_rules()\n"
         "print(json.dumps(regexes._recorded))\n"
     )
@@ -130,7 +133,8 @@ def lint_path_patterns() -> list[tuple[str, int]]:
 def source(patterns: list[tuple[str, int]]) -> str:
     """The text of `base/_regex_code.py` for `patterns`, compiled by this interpreter."""
     lines = [
-        '"""The compiled programs of the lint path\'s regular expressions (see glslcheck/base/regexes.py).',
+        '"""The compiled programs of the lint path\'s regular expressions (see '
+        "glslcheck/base/regexes.py).",
         "",
         "Written by `python -m glslcheck.base.regexes`; do not edit.",
         '"""',

@@ -1,1 +1,2 @@
-"""The `glslcheck` command line: argument parsing only (main), one module a subcommand (commands)."""
+"""The `glslcheck` command line: argument parsing only (main), one module a subcommand
+(commands)."""

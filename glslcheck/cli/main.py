@@ -107,14 +107,16 @@ def build_parser(only: str | None = None) -> argparse.ArgumentParser:
                 "--parallel",
                 choices=config.PARALLEL_MODES,
                 default=None,
-                help="NumPy tiles on worker processes, on threads, or auto: threads until a program "
+                help="NumPy tiles on worker processes, on threads, or auto: "
+                "threads until a program "
                 "has rendered for a second, then processes (default: $GLSLCHECK_PARALLEL or auto)",
             )
             p.add_argument(
                 "--jit",
                 choices=config.JIT_MODES,
                 default=None,
-                help="llvmpipe's sin, cos, exp2, log2, pow... by compiled kernels (the optional numba extra): "
+                help="llvmpipe's sin, cos, exp2, log2, pow... by compiled kernels (the optional "
+                "numba extra): "
                 "on, off, or auto: once a process has spent in that math what loading them "
                 "costs (default: $GLSLCHECK_JIT or auto)",
             )

@@ -15,8 +15,8 @@ lookup and an integer test:
   reductions only move the state, and a whole run of them (an operand climbing the ladder
   from primary_expression to expression) is one memoised step.
 
-The trees are the ones `Lark.parse` builds (this module's `Tree` and frontend/lexer.py's `Token` have
-Lark's attributes), and a missing action raises `UnexpectedToken` with the token and the
+The trees are the ones `Lark.parse` builds (this module's `Tree` and frontend/lexer.py's `Token`
+have Lark's attributes), and a missing action raises `UnexpectedToken` with the token and the
 expected terminals, as Lark does
 (tests/parse/test_fast_parser.py compares both on the corpus, the lab and mutations).
 """
@@ -60,7 +60,8 @@ class Tree:
 
 
 class UnexpectedToken(UnexpectedInput):
-    """No action for `token` in the parser's state; `expected` are the terminals it accepts there."""
+    """No action for `token` in the parser's state; `expected` are the terminals it accepts
+    there."""
 
     def __init__(self, token: Token, expected: set[str]) -> None:
         super().__init__(

@@ -144,7 +144,8 @@ class UnexpectedCharacters(UnexpectedInput):
         self, text: str, pos_in_stream: int, line: int, column: int, allowed: frozenset[str]
     ) -> None:
         super().__init__(
-            f"unexpected character {text[pos_in_stream : pos_in_stream + 1]!r} at line {line}, column {column}"
+            f"unexpected character {text[pos_in_stream : pos_in_stream + 1]!r} at line {line}, "
+            f"column {column}"
         )
         self.pos_in_stream = pos_in_stream
         self.line = line

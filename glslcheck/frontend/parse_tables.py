@@ -1,15 +1,16 @@
-"""The parser's tables: built from grammar/glsl.lark by Lark, shipped as a generated module, loaded at start-up.
+"""The parser's tables: built from grammar/glsl.lark by Lark, shipped as a generated module, loaded
+at start-up.
 
-Owns the one step that needs Lark: turning the grammar into what frontend/lexer.py and frontend/lalr.py run on
-(the lexer's master regular expression and keyword tables, the LALR action table, and for each
-rule the shape of the tree it builds). Lark does that analysis in about a second, so it is done
-ahead of time and the result ships in the package as `glslcheck/grammar/glsl_tables.py`: a
-module of plain literals (tuples, strings, bytes, numbers; tests/robustness checks that it
-holds nothing else), never a pickle, and never written at run time, so no cache file exists that
-another user could plant and a CLI call does not import Lark. As a module it is read from its
-`.pyc` like the rest of the package: its literals are the code's constants, which the
-interpreter unmarshals in C, far cheaper at start-up than parsing a JSON file into lists
-(docs/performance.md).
+Owns the one step that needs Lark: turning the grammar into what frontend/lexer.py and
+frontend/lalr.py run on (the lexer's master regular expression and keyword tables, the LALR action
+table, and for each rule the shape of the tree it builds). Lark does that analysis in about a
+second, so it is done ahead of time and the result ships in the package as
+`glslcheck/grammar/glsl_tables.py`: a module of plain literals (tuples, strings, bytes, numbers;
+tests/robustness checks that it holds nothing else), never a pickle, and never written at run time,
+so no cache file exists that another user could plant and a CLI call does not import Lark. As a
+module it is read from its `.pyc` like the rest of the package: its literals are the code's
+constants, which the interpreter unmarshals in C, far cheaper at start-up than parsing a JSON file
+into lists (docs/performance.md).
 
 The module records the SHA-256 of the grammar it was built from. `load()` compares it with the
 grammar that ships beside it; stale tables (the grammar was edited and the tables were not
@@ -100,7 +101,8 @@ def tables_module():
 
 
 def read_tables(module, grammar: str) -> dict[str, Any]:
-    """The tables `module` holds; StaleTablesError unless they were built from `grammar` in this format."""
+    """The tables `module` holds; StaleTablesError unless they were built from `grammar` in this
+    format."""
     if getattr(module, "FORMAT", None) != FORMAT:
         raise StaleTablesError(f"{module.__file__} has an old format")
     if module.GRAMMAR_SHA256 != grammar_hash(grammar):
@@ -124,8 +126,8 @@ def read_tables(module, grammar: str) -> dict[str, Any]:
 
 
 # How the module stores the LALR actions (`actions[state]`: terminal or rule name -> action, see
-# frontend/lalr.py): the 404 states' 15 459 entries have only 113 distinct tuples of names, and more than
-# half of the states do one thing whatever comes next (reduce by one rule). So the module lists
+# frontend/lalr.py): the 404 states' 15 459 entries have only 113 distinct tuples of names, and more
+# than half of the states do one thing whatever comes next (reduce by one rule). So the module lists
 # the distinct name tuples once (`KEYS`, each as one string of space-separated names) and each
 # state as `(index into KEYS, its actions)`, the actions one number when they are all the same,
 # else the bytes of 16-bit little-endian numbers; `dict.fromkeys` / `dict(zip(...))` rebuild
@@ -169,7 +171,8 @@ def _unpack_actions(keys: tuple[str, ...], rows: tuple[tuple, ...]) -> list[dict
 
 
 def load() -> dict[str, Any]:
-    """The tables for the installed grammar: the shipped module, or built in memory when it is stale."""
+    """The tables for the installed grammar: the shipped module, or built in memory when it is
+    stale."""
     grammar = grammar_text()
     try:
         return read_tables(tables_module(), grammar)

@@ -1,4 +1,5 @@
-"""Parsing: preprocessed GLSL ES 3.00 text -> tokens -> LALR parse tree -> the typed AST (frontend/syntax.py).
+"""Parsing: preprocessed GLSL ES 3.00 text -> tokens -> LALR parse tree -> the typed AST
+(frontend/syntax.py).
 
 Owns the loaded parser (once per process, from the tables frontend/parse_tables.py ships beside
 grammar/glsl.lark: nothing is built or cached at run time), the pass that builds AST nodes from
@@ -23,7 +24,8 @@ from ..base.diagnostics import Diagnostic, GlslError, Location, pending_location
 from ..base.records import field, record
 
 # The keywords (3.6), to tell "a keyword used as a name" in error messages.
-from ..language.builtin_functions import KEYWORDS  # noqa: E402  (one table, shared with the checker)
+# one table, shared with the checker
+from ..language.builtin_functions import KEYWORDS  # noqa: E402
 from ..language.glsl_types import BY_NAME  # noqa: E402
 from ..shadertoy.sources import Shader, Source
 from . import parse_tables
@@ -48,7 +50,8 @@ def grammar_text() -> str:
 @record(frozen=True, slots=False)
 class Parser:
     """The loaded grammar's tables and what runs them: the lexer (frontend/lexer.py) and the LALR
-    driver (frontend/lalr.py), both made from the tables frontend/parse_tables.py ships with the grammar."""
+    driver (frontend/lalr.py), both made from the tables frontend/parse_tables.py ships with the
+    grammar."""
 
     lexer: Lexer
     driver: Driver
@@ -276,13 +279,15 @@ def _syntax_error(e: UnexpectedInput, lexed: Tokens, locate_span) -> Diagnostic:
         return Diagnostic(
             "'else' without a matching 'if'",
             loc,
-            help="an 'else' must follow the statement of an 'if'; check for a stray ';' or a missing '{'",
+            help="an 'else' must follow the statement of an 'if'; check for a stray ';' or a "
+            "missing '{'",
         )
     if tok.type == "IDENTIFIER" and prev is not None and prev.type == "IDENTIFIER":
         return Diagnostic(
             f"unexpected name '{tok.value}' after '{prev.value}'",
             loc,
-            help=f"'{prev.value}' is not a type here; declare a struct named '{prev.value}' before using it, or add an operator",
+            help=f"'{prev.value}' is not a type here; declare a struct named '{prev.value}' "
+            "before using it, or add an operator",
         )
     if (
         (tok.type == "TYPE_NAME" or tok.value in _BASIC_TYPES or tok.value in KEYWORDS)

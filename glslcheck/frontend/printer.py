@@ -156,7 +156,10 @@ class _Printer(A.NodeVisitor):
         pad = self.unit * (level + 1)
         members = "".join(f"\n{pad}{self.member(m)};" for m in d.members)
         inst = f" {d.instance}{self.array(d.array)}" if d.instance else ""
-        return f"{self.qualifiers(d.qualifiers)}{d.block_name} {{{members}\n{self.unit * level}}}{inst}"
+        return (
+            f"{self.qualifiers(d.qualifiers)}{d.block_name} "
+            f"{{{members}\n{self.unit * level}}}{inst}"
+        )
 
     def _decl_InvariantDeclaration(self, d: A.InvariantDeclaration, level: int) -> str:
         return f"{self.qualifiers(d.qualifiers)}{', '.join(d.names)}"
@@ -257,7 +260,10 @@ class _Printer(A.NodeVisitor):
 
     def condition(self, c: A.Node) -> str:
         if isinstance(c, A.ConditionDeclaration):
-            return f"{self.qualifiers(c.qualifiers)}{self.type(c.type)} {c.name} = {self.expr(c.init, PRECEDENCE['='])}"
+            return (
+                f"{self.qualifiers(c.qualifiers)}{self.type(c.type)} {c.name} = "
+                f"{self.expr(c.init, PRECEDENCE['='])}"
+            )
         return self.expr(c)
 
     # -- expressions ---------------------------------------------------------------------------

@@ -145,7 +145,8 @@ def parse_config(
 def apply_overrides(
     base: LintConfig, table: Mapping[str, Any], known_rules: frozenset[str], where: str
 ) -> LintConfig:
-    """`base` with the settings in `table` replacing its own; InputError naming `where` on a mistake."""
+    """`base` with the settings in `table` replacing its own; InputError naming `where` on a
+    mistake."""
     changes: dict[str, Any] = {}
     command_line = where == COMMAND_LINE
     for key, value in table.items():

@@ -1,8 +1,10 @@
 """Inline and file-wide suppressions: reading them from comments and applying them to findings.
 
-    x = 1.0; // glslcheck: ignore[missing-comment]            findings of that rule starting on this line
+    x = 1.0; // glslcheck: ignore[missing-comment]            findings of that rule starting on this
+                                                              line
     // glslcheck: ignore[rule-a, rule-b]                        several rules (comma-separated)
-    // glslcheck: ignore-file[missing-credit]                   that rule's findings anywhere in the file
+    // glslcheck: ignore-file[missing-credit]                   that rule's findings anywhere in the
+                                                                file
 
 A suppression applies to a finding whose location starts on the suppression's line (rules report
 the narrowest span, so its start line is where a suppression goes). Each suppression remembers
@@ -64,7 +66,10 @@ def find_suppressions(path: str, comments: Iterable[Comment]) -> list[Suppressio
                 continue
             parsed = tuple(n.strip() for n in (names or "").split(",") if n.strip())
             if not parsed:
-                problem = f"`{verb}` needs rule names in brackets, e.g. `glslcheck: {verb}[missing-comment]`"
+                problem = (
+                    f"`{verb}` needs rule names in brackets, e.g. `glslcheck: "
+                    f"{verb}[missing-comment]`"
+                )
                 out.append(Suppression((), VERBS[verb], loc, m.group(0), problem=problem))
                 continue
             out.append(Suppression(parsed, VERBS[verb], loc, m.group(0)))

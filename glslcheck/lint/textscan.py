@@ -61,7 +61,8 @@ _BRACE_ONLY_RE = compiled(r"^\s*(?:[{}]\s*)+;?\s*$")
 
 @record(frozen=True)
 class Comment:
-    """One comment: `text` without its delimiters; 1-based position of its first and last char + 1."""
+    """One comment: `text` without its delimiters; 1-based position of its first and last char +
+    1."""
 
     text: str
     line: int
@@ -78,7 +79,8 @@ class Comment:
 
 @record
 class TextScan:
-    """The scan of one file: its lines, comments, each line's kind and its code with comments blanked."""
+    """The scan of one file: its lines, comments, each line's kind and its code with comments
+    blanked."""
 
     lines: list[str]
     comments: list[Comment]

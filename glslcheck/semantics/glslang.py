@@ -52,7 +52,8 @@ def glslang_path() -> str | None:
 
 
 def _clean(message: str) -> str:
-    """`'=' :  cannot convert from ' const int' to ' temp highp float'` -> single spaces, no `'' :`."""
+    """`'=' :  cannot convert from ' const int' to ' temp highp float'` -> single spaces, no `''
+    :`."""
     message = re.sub(r"^'' :\s*", "", message)
     message = re.sub(r"' (const|temp|uniform|in|out|inout) ", r"'\1 ", message)
     return re.sub(r"\s{2,}", " ", message).strip()

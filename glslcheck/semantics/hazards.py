@@ -98,7 +98,8 @@ def index_warnings(model: Any, definition: A.FunctionDefinition) -> list[Diagnos
         known = f" (it can be {_show(bounds)})" if all(map(math.isfinite, bounds)) else ""
         out.append(
             Diagnostic(
-                f"this index may be outside 0..{size - 1} of the {what}{known}; an index out of range is "
+                f"this index may be outside 0..{size - 1} of the {what}{known}; "
+                "an index out of range is "
                 "undefined behaviour, so the NumPy backend and the GPU may disagree",
                 node.index.loc,
                 severity="warning",
@@ -305,7 +306,8 @@ def output_warnings(model: Any, definition: A.FunctionDefinition) -> list[Diagno
     end = flow.block(definition.body.stmts, 0)
     out = [
         Diagnostic(
-            f"'{sym.name}' is not written on this path to the return; its colour is then undefined, so the "
+            f"'{sym.name}' is not written on this path to the return; "
+            "its colour is then undefined, so the "
             "NumPy backend and the GPU may disagree",
             loc,
             severity="warning",
@@ -318,8 +320,8 @@ def output_warnings(model: Any, definition: A.FunctionDefinition) -> list[Diagno
         where = definition.proto.name_loc if definition.proto.name_loc.line else definition.loc
         out.append(
             Diagnostic(
-                f"'{sym.name}' is not written on every path through mainImage; where it is not, the pixel's "
-                "colour is undefined, so the NumPy backend and the GPU may disagree",
+                f"'{sym.name}' is not written on every path through mainImage; where it is not, "
+                "the pixel's colour is undefined, so the NumPy backend and the GPU may disagree",
                 where,
                 severity="warning",
                 rule=RULE,

@@ -6,7 +6,7 @@ expression whose operands are all mediump or lowp (variables, lookups on a lowp 
 of functions declared mediump; a constant takes its partner's precision) and computes it in
 float16, with f2fmp conversions at the edges and constants rounded to float16. What is lowered
 in the end also depends on NIR's later passes, which glslcheck cannot pin: measured with
-tests/channels/measure_mediump.py (moderngl EGL, `#version 300 es`, `precision mediump
+tools/measure_mediump.py (moderngl EGL, `#version 300 es`, `precision mediump
 float;`, mediump x and y computed from gl_FragCoord):
 
 - `x - y * 1.7`, `fract(x * 3.7)`, `mix(x, y, 0.3)`, `x * y + x`, `dot`, `length`: float16
@@ -18,15 +18,16 @@ float;`, mediump x and y computed from gl_FragCoord):
 - `pow(x, 1.3)`: float16-like, within 0.4% of highp but not NumPy's float16 of the float32 pow.
 
 The NumPy backend computes every float in float32 (highp). So verify does not emulate this: it
-compares such a shader's pixels with verification/compare.py's usual tolerance (2/255 per channel) and says
-why they may differ (`notes`): float16 rounds to 11 significant bits (2^-11 relative per
+compares such a shader's pixels with verification/compare.py's usual tolerance (2/255 per channel)
+and says why they may differ (`notes`): float16 rounds to 11 significant bits (2^-11 relative per
 operation, 0.0005 on a colour of 1, inside the tolerance), but overflows past 65504 and turns a
 hash such as `fract(sin(x) * 43758.5453)` into other values, which the tolerance rightly does
 not absorb. Declaring `precision highp float;` compares like with like. A lookup's own lowp
-result (Shadertoy's samplers are lowp) is emulated (backends/numpy_engine/textures.py); arithmetic on
-it directly (`0.5 * texture(...)`) is float16 on llvmpipe too, and here for `+ - * /` over lookups
-and constants (backends/numpy_engine/transpile/nir_fold/lower_precision.py `lowp_tree`); built-in calls on it stay float32, within
-the same 2^-11 per operation, and are not flagged (nearly every textured shader has them).
+result (Shadertoy's samplers are lowp) is emulated (backends/numpy_engine/textures.py); arithmetic
+on it directly (`0.5 * texture(...)`) is float16 on llvmpipe too, and here for `+ - * /` over
+lookups and constants (backends/numpy_engine/transpile/nir_fold/lower_precision.py `lowp_tree`);
+built-in calls on it stay float32, within the same 2^-11 per operation, and are not flagged (nearly
+every textured shader has them).
 """
 
 from __future__ import annotations
@@ -65,5 +66,6 @@ def mediump_notes(shader) -> tuple[str, ...]:
         "float16, glslcheck's NumPy backend in float32; pixels are compared with the usual "
         "tolerance (2/255), which float16's rounding (2^-11 relative per operation) stays "
         "inside, but a float16 overflow past 65504 or a hash such as fract(sin(x) * 43758.5453) "
-        "differs; declare `precision highp float;` to compare like with like (glslcheck/semantics/mediump.py)",
+        "differs; declare `precision highp float;` to compare like with like "
+        "(glslcheck/semantics/mediump.py)",
     )

@@ -3,9 +3,9 @@ although glslangValidator and Mesa accept it.
 
 Shadertoy users hit ANGLE, so the checker follows it. Each rule was found by compiling the same
 Shadertoy program with all four judges (tools/webgl_agreement.py, docs/webgl.md) and is pinned by
-a fixture in tests/webgl/invalid that ANGLE must reject at the same line (tests/webgl). The checker calls
-these functions; each returns (message, help) for an error, or None. The checker reports them as
-errors in Shadertoy tabs and as warnings in a plain GLSL ES file (own #version and main), which
+a fixture in tests/webgl/invalid that ANGLE must reject at the same line (tests/webgl). The checker
+calls these functions; each returns (message, help) for an error, or None. The checker reports them
+as errors in Shadertoy tabs and as warnings in a plain GLSL ES file (own #version and main), which
 need not run in WebGL.
 
 - Names starting with `webgl_` or `_webgl_` are reserved by WebGL (WebGL 1.0 spec 6.23; ANGLE:
@@ -35,17 +35,20 @@ def name_problem(name: str) -> tuple[str, str] | None:
     if name.startswith(RESERVED_PREFIXES):
         prefix = next(p for p in RESERVED_PREFIXES if name.startswith(p))
         return (
-            f"'{name}': names starting with '{prefix}' are reserved by WebGL (Shadertoy's browser rejects it)",
+            f"'{name}': names starting with '{prefix}' are reserved by WebGL (Shadertoy's "
+            "browser rejects it)",
             f"rename it, for example to '{name[len(prefix) :] or 'value'}'",
         )
     if "__" in name:
         return (
-            f"'{name}': names containing '__' are reserved in GLSL ES (Shadertoy's browser rejects it)",
+            f"'{name}': names containing '__' are reserved in GLSL ES (Shadertoy's browser "
+            "rejects it)",
             f"rename it, for example to '{name.replace('__', '_').strip('_') or 'value'}'",
         )
     if len(name) > MAX_NAME_LENGTH:
         return (
-            f"'{name[:20]}...': a name of {len(name)} characters; WebGL allows at most {MAX_NAME_LENGTH}",
+            f"'{name[:20]}...': a name of {len(name)} characters; "
+            f"WebGL allows at most {MAX_NAME_LENGTH}",
             "use a shorter name",
         )
     return None

@@ -8,7 +8,8 @@ channels.json, in the shader's folder (one object per tab that has inputs):
 
     {"Buffer A": {"iChannel0": {"buffer": "Buffer A"}},
      "Image": {"iChannel0": {"buffer": "Buffer A", "filter": "linear"},
-               "iChannel1": {"texture": "tex.png", "filter": "mipmap", "wrap": "repeat", "vflip": true}}}
+               "iChannel1": {"texture": "tex.png", "filter": "mipmap", "wrap": "repeat", "vflip":
+               true}}}
 
 Each binding has `buffer` (a Buffer tab) or `texture` (an image path relative to the folder, read
 with Pillow), and optional `filter` (nearest | linear | mipmap; default mipmap for textures,
@@ -23,7 +24,7 @@ cleared to zero before frame 0, and double-buffered: a pass reads what earlier p
 frame wrote, and its own and later buffers' previous frame. Hence every cycle between buffers is a
 feedback and valid; the one cycle that is not (reading the Image tab, which nothing can read
 on Shadertoy) is an error. Image files are sampled as RGBA float32 texels (value / 255) on both
-backends (see backends/numpy_engine/textures.py for why, and for what llvmpipe's filtering does).
+backends (docs/llvmpipe.md, "Texture sampling", says why, and what llvmpipe's filtering does).
 
 iChannelResolution[N] is (width, height, 1) of the image or the buffer (the Image's size);
 iChannelTime[N] stays 0 for both: Shadertoy's page (effect.js, `EffectPass.Paint_Image`, as kept

@@ -65,7 +65,8 @@ def path_name(path: str | os.PathLike) -> str:
 
 
 def path_suffix(path: str | os.PathLike) -> str:
-    """`PurePosixPath(path).suffix`: from the name's last dot, unless the name starts or ends there."""
+    """`PurePosixPath(path).suffix`: from the name's last dot, unless the name starts or ends
+    there."""
     name = path_name(path)
     i = name.rfind(".")
     return name[i:] if 0 < i < len(name) - 1 else ""
@@ -116,7 +117,8 @@ class Shader:
         return self.tabs.get("Common")
 
     def units_for(self, tab: str = "Image") -> list[Source]:
-        """The texts compiled for a pass, in order: Common first (as Shadertoy does), then the tab."""
+        """The texts compiled for a pass, in order: Common first (as Shadertoy does), then the
+        tab."""
         src = self.tabs.get(tab)
         if src is None:
             raise InputError(f"{self.root}: no {tab} tab")
@@ -168,13 +170,15 @@ def read_source(path: str | os.PathLike, tab: str | None = None) -> Source:
             mode = os.fstat(f.fileno()).st_mode
             if not stat.S_ISREG(mode):
                 raise InputError(
-                    f"{spath}: error: {_not_regular(mode)}, not a regular file; glslcheck reads shader files"
+                    f"{spath}: error: {_not_regular(mode)}, not a regular file; "
+                    "glslcheck reads shader files"
                 )
             data = f.read(MAX_FILE_BYTES + 1)  # never more, whatever the file's size claims
         if len(data) > MAX_FILE_BYTES:
             size = max(os.path.getsize(spath), len(data))
             raise InputError(
-                f"{spath}: error: the file is {size} bytes; glslcheck reads shader files up to {MAX_FILE_BYTES} bytes"
+                f"{spath}: error: the file is {size} bytes; glslcheck reads shader files up to "
+                f"{MAX_FILE_BYTES} bytes"
             )
     except InputError:
         raise
@@ -341,13 +345,15 @@ def load_shader(path: str | os.PathLike) -> Shader:
         files = [f for f in folder_entries(p) if _is_tab_file(f)]
         if not files:
             raise InputError(
-                f"{spath}: error: the folder holds no Shadertoy tab files (Image.glsl, Common.glsl, ...)"
+                f"{spath}: error: the folder holds no Shadertoy tab files (Image.glsl, "
+                "Common.glsl, ...)"
             )
         for f in files:
             src = read_source(f)
             if src.tab in shader.tabs:
                 raise InputError(
-                    f"{f}: error: a second file for the {src.tab} tab (first: {shader.tabs[src.tab].path})"
+                    f"{f}: error: a second file for the {src.tab} tab (first: "
+                    f"{shader.tabs[src.tab].path})"
                 )
             shader.tabs[src.tab] = src
         return shader
@@ -423,7 +429,8 @@ _ST_INPUTS = {"texture": "texture", "buffer": "buffer"}
 
 def read_json(path: str | os.PathLike) -> object:
     """The JSON value in the file at `path` (channels.json, a Shadertoy export); InputError (exit 2)
-    naming the file when it cannot be read, is not JSON, or nests deeper than the parser recurses."""
+    naming the file when it cannot be read, is not JSON, or nests deeper than the parser
+    recurses."""
     import json
 
     spath = str(path)

@@ -65,7 +65,8 @@ UNIFORMS: tuple[Uniform, ...] = (
         "float",
         (0.0, 0.0, 0.0, 0.0),
         4,
-        "playback time of each input: 0 for images and buffers, as Shadertoy (shadertoy/channels.py)",
+        "playback time of each input: 0 for images and buffers, "
+        "as Shadertoy (shadertoy/channels.py)",
     ),
     Uniform(
         "iMouse",

@@ -76,7 +76,8 @@ JSON_KEYS = (
 
 @dataclass(frozen=True, slots=True)
 class Config:
-    """One way of rendering: backend (a name of `registry.names()`), float precision, samples per pixel."""
+    """One way of rendering: backend (a name of `registry.names()`), float precision, samples per
+    pixel."""
 
     backend: str
     precision: str
@@ -323,7 +324,8 @@ def format_table(
     runs: int | None = None,
     time: float | None = None,
 ) -> str:
-    """A table per shader; '*' in the last column marks the Pareto front (time against mean error)."""
+    """A table per shader; '*' in the last column marks the Pareto front (time against mean
+    error)."""
     out = []
     for shader in dict.fromkeys(r.shader for r in rows):
         mine = [r for r in rows if r.shader == shader]

@@ -1,4 +1,5 @@
-"""Comparing a NumPy (CPU) render with an OpenGL render: the metrics, the tolerance model, the diff image.
+"""Comparing a NumPy (CPU) render with an OpenGL render: the metrics, the tolerance model, the diff
+image.
 
 This module owns the verdict of `verify`: when two float images of one shader count as "the same
 picture". The tolerance model, step by step (every number is argued where it is defined):
@@ -413,7 +414,8 @@ def depends_on_undefined(
 def _worst_pixels(
     a, b, error_map, over, edge_mask, nan_mask, undef, count: int = WORST_PIXELS
 ) -> list[PixelDiff]:
-    """The over-tolerance pixels with the largest error, worst first (NaN mismatches first of all)."""
+    """The over-tolerance pixels with the largest error, worst first (NaN mismatches first of
+    all)."""
     ys, xs = np.nonzero(over)
     if len(ys) == 0:
         return []

@@ -1,4 +1,5 @@
-"""`verify --against webgl`: NumPy against WebGL, with the pixels that depend on the driver set apart.
+"""`verify --against webgl`: NumPy against WebGL, with the pixels that depend on the driver set
+apart.
 
 Two real drivers do not agree on every pixel: SwiftShader (under ANGLE, in the browser) and
 Mesa's llvmpipe compute `pow`, `exp2`, `log2`, `sin` ... with different float32 approximations,

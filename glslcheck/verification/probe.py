@@ -1,4 +1,5 @@
-"""Probing a shader: what one pixel computed, statement by statement, and where NaN/Inf pixels came from.
+"""Probing a shader: what one pixel computed, statement by statement, and where NaN/Inf pixels came
+from.
 
 Library API (the `glslcheck probe` command and verify's unstable pixels call it):
 
@@ -11,13 +12,14 @@ Library API (the `glslcheck probe` command and verify's unstable pixels call it)
     step = first_unstable(p, 400, 225, inputs)       # first Step whose float32 value keeps
                                                      # fewer than 16 bits of its float64 shadow
 
-The steps come from the traced module (backends/numpy_engine/tracing.py) run on the probed pixel's lane
-(its 2x2 quad when the shader takes derivatives) twice: in float32, the render's precision, and
+The steps come from the traced module (backends/numpy_engine/tracing.py) run on the probed pixel's
+lane (its 2x2 quad when the shader takes derivatives) twice: in float32, the render's precision, and
 in float64, the shadow. The two runs are paired step by step (`pairs`: where they part, `difflib`
 realigns the rest, the float64 run having taken another branch or run another number of
 iterations; an unpaired step has no shadow). `bits`: how many significant bits of the float64
-shadow the float32 value keeps, min(24, floor(-log2(|v32 - v64| / |v64|))) with |.| the largest component (a vector or matrix
-is judged as a whole: a component that is tiny next to the others does not count), 24 when equal.
+shadow the float32 value keeps, min(24, floor(-log2(|v32 - v64| / |v64|))) with |.| the largest
+component (a vector or matrix is judged as a whole: a component that is tiny next to the others does
+not count), 24 when equal.
 """
 
 from __future__ import annotations
@@ -45,7 +47,8 @@ from ..backends.numpy_engine.tracing import (
 from ..base.diagnostics import GlslError, InputError, source_line
 from ..semantics.analysis import STOPS, stop_notes, undefined_reads
 
-UNSTABLE_BITS = 16  # first_unstable: a value keeping fewer bits than this has lost more than a third of float32's 24
+# first_unstable: a value keeping fewer bits than this has lost more than a third of float32's 24
+UNSTABLE_BITS = 16
 BITS_KINDS = ("assign", "return", "call")  # the steps whose values are compared with their shadow
 FIRST_ITERATIONS, LAST_ITERATIONS = (
     3,
@@ -107,7 +110,8 @@ class Step:
 @dataclass
 class Origin:
     """Where a first NaN or Inf appeared: the operation's location and GLSL text, what made it,
-    and (for --nan) the pixels it reached with their bounding box (x0, y0, x1, y1 from the top left)."""
+    and (for --nan) the pixels it reached with their bounding box (x0, y0, x1, y1 from the top
+    left)."""
 
     file: str | None
     line: int | None
@@ -766,7 +770,8 @@ def format_pixel(report: PixelReport, shader: str, inputs: Inputs) -> str:
     fx, fy = report.frag_coord
     w, h = inputs.size
     out = [
-        f"{shader}: pixel {x},{y} from the top left (fragCoord {fx:g}, {fy:g}) of {w}x{h}, iTime {inputs.time:g}",
+        f"{shader}: pixel {x},{y} from the top left (fragCoord {fx:g}, {fy:g}) of {w}x{h}, "
+        f"iTime {inputs.time:g}",
         "each step: file:line, the source line, then what it did; float values in float32, then "
         "[the float64 shadow (when it differs), bits of it kept]",
         "",
@@ -915,7 +920,8 @@ def format_nan(report: NanReport, shader: str, inputs: Inputs) -> str:
         where = f"{_short(o.file)}:{o.line}:{o.column}: " if o.file else ""
         out.append("")
         out.append(
-            f"{where}{o.operation} in `{o.code}`: the first NaN/Inf of {_count(o.pixels, 'pixel')}, "
+            f"{where}{o.operation} in `{o.code}`: the first NaN/Inf of "
+            f"{_count(o.pixels, 'pixel')}, "
             f"in {x0},{y0} .. {x1},{y1} (from the top left)"
         )
         if o.file:

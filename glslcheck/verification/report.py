@@ -7,14 +7,14 @@ shaders get an index at the top) the page shows
   each under the source line it is about, in the user's own tab files;
 - the render of every backend side by side (NumPy on the CPU, GL = Mesa llvmpipe, WebGL = ANGLE
   on SwiftShader in headless Chromium) with the time each render took;
-- for each pair of backends the heat map of their differences (glslcheck.verification.compare's colours:
-  black equal, red to white larger, cyan a discontinuity, magenta NaN in one image only) with
-  verify's numbers and verdict; NumPy against WebGL is the driver-aware verdict of
+- for each pair of backends the heat map of their differences (glslcheck.verification.compare's
+  colours: black equal, red to white larger, cyan a discontinuity, magenta NaN in one image only)
+  with verify's numbers and verdict; NumPy against WebGL is the driver-aware verdict of
   `verify --against webgl` (glslcheck/verification/drivers.py);
 - where a render has NaN or Inf pixels, where they came from: `probe --nan`'s origins
   (glslcheck/verification/probe.py), each also under its source line, and a map of those pixels;
-- the accuracy/time table and plot of `glslcheck bench` (glslcheck/verification/bench.py: each backend,
-  NumPy at float16/32/64, 1, 4 and 16 samples per pixel, time against error), measured at a
+- the accuracy/time table and plot of `glslcheck bench` (glslcheck/verification/bench.py: each
+  backend, NumPy at float16/32/64, 1, 4 and 16 samples per pixel, time against error), measured at a
   small size (BENCH_SIZE, 64x36: the twelve to fifteen configurations, float16 at 16 samples the
   slowest, then take seconds, not minutes, per shader) and said so on the page.
 
@@ -72,9 +72,11 @@ CSS = """
 body { font: 14px/1.45 system-ui, sans-serif; margin: 0 auto; max-width: 1200px; padding: 16px 24px;
        color: #1d232a; background: #fafbfc; }
 h1 { font-size: 22px; margin: 8px 0 4px; } h2 { font-size: 19px; margin: 28px 0 6px;
-     border-bottom: 2px solid #d8dee4; padding-bottom: 4px; } h3 { font-size: 15px; margin: 16px 0 6px; }
+     border-bottom: 2px solid #d8dee4; padding-bottom: 4px; } h3 { font-size: 15px; \
+margin: 16px 0 6px; }
 .meta { color: #57606a; }
-.badge { display: inline-block; padding: 1px 8px; border-radius: 10px; font-size: 12px; font-weight: 600; }
+.badge { display: inline-block; padding: 1px 8px; border-radius: 10px; font-size: 12px; \
+font-weight: 600; }
 .ok { background: #dafbe1; color: #116329; } .bad { background: #ffebe9; color: #a40e26; }
 .warn { background: #fff8c5; color: #7d4e00; } .off { background: #eaeef2; color: #57606a; }
 table { border-collapse: collapse; margin: 6px 0; } td, th { padding: 3px 10px; text-align: left;
@@ -82,17 +84,22 @@ table { border-collapse: collapse; margin: 6px 0; } td, th { padding: 3px 10px; 
 td.num { text-align: right; font-variant-numeric: tabular-nums; }
 .images { display: flex; flex-wrap: wrap; gap: 14px; }
 figure { margin: 0; } figcaption { font-size: 12px; color: #57606a; max-width: 330px; }
-img.render { width: 320px; image-rendering: pixelated; border: 1px solid #d8dee4; background: #000; }
-pre.src { background: #fff; border: 1px solid #d8dee4; padding: 6px 0; overflow-x: auto; font-size: 12.5px;
+img.render { width: 320px; image-rendering: pixelated; border: 1px solid #d8dee4; \
+background: #000; }
+pre.src { background: #fff; border: 1px solid #d8dee4; padding: 6px 0; overflow-x: auto; \
+font-size: 12.5px;
           line-height: 1.4; margin: 4px 0; }
-pre.src span.ln { display: inline-block; width: 3.5em; color: #8c959f; text-align: right; padding-right: 10px;
+pre.src span.ln { display: inline-block; width: 3.5em; color: #8c959f; text-align: right; \
+padding-right: 10px;
                   user-select: none; }
 pre.src .hit { background: #fff8c5; display: inline-block; min-width: 100%; }
-pre.src .note { display: block; color: #a40e26; padding-left: calc(3.5em + 10px); white-space: pre-wrap; }
+pre.src .note { display: block; color: #a40e26; padding-left: calc(3.5em + 10px); \
+white-space: pre-wrap; }
 pre.src .note.lint { color: #7d4e00; }
 pre.src .note.nan { color: #9c1f9c; }
 ul.diags { margin: 4px 0; padding-left: 20px; } code { font-size: 12.5px; }
-table.bench tr.front td { background: #fff3e0; } table.bench td { padding: 2px 8px; font-size: 12.5px; }
+table.bench tr.front td { background: #fff3e0; } table.bench td { padding: 2px 8px; \
+font-size: 12.5px; }
 img.plot { max-width: 520px; border: 1px solid #d8dee4; background: #fff; }
 .index td:first-child a { font-weight: 600; }
 """
@@ -291,7 +298,8 @@ def gather(
             n = int(drivers.mismatched_pixels + drivers.edge_pixels)
             note = (
                 (
-                    f"{n} driver-dependent pixels (GL and WebGL differ): there NumPy need match only the closer "
+                    f"{n} driver-dependent pixels (GL and WebGL differ): "
+                    "there NumPy need match only the closer "
                     f"driver; NumPy against WebGL alone: {plain.mismatched_pixels} mismatched, "
                     f"{plain.edge_pixels} edge"
                 )
@@ -331,7 +339,8 @@ def _png(rgb: np.ndarray) -> str:
 
 
 def _screen(image: np.ndarray) -> np.ndarray:
-    """RGB as the screen shows it: clamped to [0, 1], *255 + 0.5, NaN as 0 (as `render -o x.png`)."""
+    """RGB as the screen shows it: clamped to [0, 1], *255 + 0.5, NaN as 0 (as `render -o
+    x.png`)."""
     with np.errstate(invalid="ignore"):
         q = np.floor(np.clip(np.nan_to_num(image[..., :3], nan=0.0), 0.0, 1.0) * 255.0 + 0.5)
     return q.astype(np.uint8)
@@ -440,7 +449,8 @@ def _origin_notes(r: ShaderReport) -> list[Diagnostic]:
         return []
     return [
         Diagnostic(
-            f"{o.operation} in `{o.code}`: the first NaN/Inf of {o.pixels} pixel{'s' * (o.pixels != 1)}",
+            f"{o.operation} in `{o.code}`: the first NaN/Inf of {o.pixels} "
+            f"pixel{'s' * (o.pixels != 1)}",
             Location(o.file, o.line, o.column),
             severity="note",
             rule=NAN_RULE,
@@ -457,10 +467,12 @@ def _nan_html(r: ShaderReport) -> str:
     counts = ", ".join(f"{registry.get(b).title} {n}" for b, n in r.nonfinite.items())
     out = [
         "<h3>NaN and Inf pixels: where they came from</h3>",
-        f'<p class="meta">Pixels with a NaN or Inf channel per render: {_e(counts)}. The origins are '
-        "<code>glslcheck probe --nan</code>'s (glslcheck/verification/probe.py): it runs the NumPy backend's traced module "
-        "on each such pixel of the NumPy render and groups the pixels by the first operation that made a "
-        "NaN or Inf. Each origin is also noted under its source line below.</p>",
+        f'<p class="meta">Pixels with a NaN or Inf channel per render: {_e(counts)}. '
+        "The origins are "
+        "<code>glslcheck probe --nan</code>'s (glslcheck/verification/probe.py): "
+        "it runs the NumPy backend's traced module "
+        "on each such pixel of the NumPy render and groups the pixels by the first operation "
+        "that made a NaN or Inf. Each origin is also noted under its source line below.</p>",
     ]
     if r.nan is None:
         out.append(f'<p><span class="badge off">no origins</span> {_e(r.nan_note)}</p>')
@@ -476,18 +488,22 @@ def _nan_html(r: ShaderReport) -> str:
         )
     if not rows:
         rows.append(
-            '<tr><td colspan="6">the NumPy render has no NaN or Inf pixel: only the drivers made them</td></tr>'
+            '<tr><td colspan="6">the NumPy render has no NaN or Inf pixel: '
+            "only the drivers made them</td></tr>"
         )
     figure = ""
     if "numpy" in r.renders and r.nonfinite.get("numpy"):
         figure = (
             f'<figure><img class="render" alt="NaN/Inf pixels of the NumPy render" '
-            f'src="{nan_map_png(r.renders["numpy"])}"><figcaption>NumPy render, NaN/Inf pixels in magenta'
+            f'src="{nan_map_png(r.renders["numpy"])}"><figcaption>NumPy render, '
+            "NaN/Inf pixels in magenta"
             "</figcaption></figure>"
         )
     out.append(
-        f'<div class="images">{figure}<table class="nan"><tr><th>where</th><th>operation</th><th>code</th>'
-        f"<th>pixels</th><th>box (x, y from the top left)</th><th>help</th></tr>{''.join(rows)}</table></div>"
+        f'<div class="images">{figure}<table '
+        'class="nan"><tr><th>where</th><th>operation</th><th>code</th>'
+        "<th>pixels</th><th>box (x, y from the top "
+        f"left)</th><th>help</th></tr>{''.join(rows)}</table></div>"
     )
     return "\n".join(out)
 
@@ -502,21 +518,27 @@ def _bench_html(r: ShaderReport, runs: int, size, time: float) -> str:
     w, h = size
     load = (
         (
-            f" Load average when measured: {r.bench_load[0]:.2f}, {r.bench_load[1]:.2f}, {r.bench_load[2]:.2f} "
-            f"on {os.cpu_count()} CPUs: times on a busy machine are slower and noisier; compare rows, "
-            "which share the load (round-robin), rather than absolute times."
+            f" Load average when measured: {r.bench_load[0]:.2f}, {r.bench_load[1]:.2f}, "
+            f"{r.bench_load[2]:.2f} "
+            f"on {os.cpu_count()} CPUs: times on a busy machine are slower and noisier; "
+            "compare rows, which share the load (round-robin), rather than absolute times."
         )
         if r.bench_load
         else ""
     )
     out.append(
-        f'<p class="meta">Measured as <code>glslcheck bench --size {w}x{h} --runs {runs} --time {time:g}'
+        f'<p class="meta">Measured as <code>glslcheck bench --size {w}x{h} --runs {runs} --time '
+        f"{time:g}"
         f"{' --webgl' if any(x.config.backend == 'webgl' for x in r.bench) else ''}</code> does "
-        "(glslcheck/verification/bench.py), at this small size to keep the report quick. Each configuration (backend, "
-        "precision, samples per pixel on a 1x1, 2x2 or 4x4 sub-pixel grid) renders once to warm up, then "
-        f"{runs} round{'s' * (runs != 1)} in turn; its time is the median of its rounds of the whole render call (uniforms, "
+        "(glslcheck/verification/bench.py), at this small size to keep the report quick. "
+        "Each configuration (backend, "
+        "precision, samples per pixel on a 1x1, 2x2 or 4x4 sub-pixel grid) renders once to warm "
+        "up, then "
+        f"{runs} round{'s' * (runs != 1)} in turn; its time is the median of its rounds of the "
+        "whole render call (uniforms, "
         "every sample, the averaging, the image back in memory). Error: RGB as the screen shows it "
-        "(clamped to [0, 1]) against NumPy float64 at 16 samples per pixel, with verification/compare.py's metrics; "
+        "(clamped to [0, 1]) against NumPy float64 at 16 samples per pixel, "
+        "with verification/compare.py's metrics; "
         f"px &gt; 1/255: pixels off by more than one 8-bit step.{_e(load)}</p>"
     )
     head = "".join(f"<th>{_e(c)}</th>" for c in BENCH_HEADER)
@@ -589,7 +611,8 @@ def _section(
         name = registry.get(b).title
         if b in r.renders:
             figs.append(
-                f'<figure><img class="render" alt="{_e(name)} render" src="{render_png(r.renders[b])}">'
+                f'<figure><img class="render" alt="{_e(name)} render" '
+                f'src="{render_png(r.renders[b])}">'
                 f"<figcaption><b>{_e(name)}</b> {r.times_ms[b]:.0f} ms</figcaption></figure>"
             )
         elif b in r.unavailable:
@@ -617,13 +640,15 @@ def _section(
             )
             caption = f"<b>{_e(a)} vs {_e(b)}</b> {badge}"
             figs.append(
-                f'<figure><img class="render" alt="difference {_e(a)} vs {_e(b)}" src="{diff_png(c)}">'
+                f'<figure><img class="render" alt="difference {_e(a)} vs {_e(b)}" '
+                f'src="{diff_png(c)}">'
                 f"<figcaption>{caption}{_pair_table(a, b, c)}{_e(note)}</figcaption></figure>"
             )
         out.append('<div class="images">' + "".join(figs) + "</div>")
         out.append(
             '<p class="meta">Heat map: black = equal, red to yellow to white = larger differences, '
-            "cyan = a difference a sub-pixel shift explains (an edge), magenta = NaN/Inf in one image "
+            "cyan = a difference a sub-pixel shift explains (an edge), "
+            "magenta = NaN/Inf in one image "
             "only. Tolerance and budgets: glslcheck/verification/compare.py.</p>"
         )
     out.append(_nan_html(r))
@@ -650,7 +675,8 @@ def page_html(
     )
     body = [
         f"<h1>{_e(title)}</h1>",
-        f'<p class="meta">glslcheck {__version__} report: {len(reports)} shader{"s" * (len(reports) != 1)}, '
+        f'<p class="meta">glslcheck {__version__} report: {len(reports)} '
+        f"shader{'s' * (len(reports) != 1)}, "
         f"renders at {size[0]}x{size[1]}, iTime {time:g}</p>",
     ]
     if len(reports) > 1:

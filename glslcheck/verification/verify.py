@@ -3,8 +3,8 @@
 
 This module owns the frame schedule (which times, frame numbers and rates a run covers) and the
 pairing of the two backends; the values a user gives and their limits are in
-`glslcheck.base.limits`, shared by every command. The verdict itself (metrics, tolerance model, diff image) belongs to
-`glslcheck.verification.compare`; each frame's outcome is a `compare.Comparison`.
+`glslcheck.base.limits`, shared by every command. The verdict itself (metrics, tolerance model, diff
+image) belongs to `glslcheck.verification.compare`; each frame's outcome is a `compare.Comparison`.
 
 Library API:
 
@@ -126,7 +126,8 @@ def frame_specs(
 
 
 def compile_backend(shader: Shader, backend: str):
-    """A compiled program of `backend` (one of `registry.names()`) with a `render(size=..., ...)` method.
+    """A compiled program of `backend` (one of `registry.names()`) with a `render(size=..., ...)`
+    method.
 
     A driver's side is the backend's own program, whose render takes no precision: verify feeds
     `precision` to each side that takes it (`_Pair`). GlslError (exit 1) when the shader does not
@@ -510,7 +511,8 @@ def unstable_lines(
     picks = np.unique(np.linspace(0, len(xs) - 1, min(UNSTABLE_PROBES, len(xs))).astype(int))
     try:
         probe = Probe(shader)
-    except Exception:  # noqa: BLE001 - attribution is a hint: a shader probe cannot trace keeps its count
+    # attribution is a hint: a shader probe cannot trace keeps its count
+    except Exception:  # noqa: BLE001
         return []
     inputs = Inputs(
         size=(int(size[0]), int(size[1])), time=spec.time, frame=spec.frame, mouse=mouse, date=date
@@ -544,7 +546,8 @@ def unstable_lines(
 
 
 def _spread(n: int) -> list[int]:
-    """0..n-1 in bit-reversed order (0, n/2, n/4, 3n/4, ...): every prefix is spread over the range."""
+    """0..n-1 in bit-reversed order (0, n/2, n/4, 3n/4, ...): every prefix is spread over the
+    range."""
     bits = max(1, (n - 1).bit_length())
     order = [int(f"{k:0{bits}b}"[::-1], 2) for k in range(1 << bits)]
     return [k for k in order if k < n]
@@ -572,8 +575,8 @@ def limited_loops(program) -> list[tuple[str, int]]:
 def emulate_driver(programs: Sequence) -> None:
     """Have every program that emulates a driver (the NumPy side) compute what the measured
     driver (the GL side) does where GLSL leaves a value undefined and the CPU decides
-    (glslcheck/backends/driver_profile.py). A driver that follows no known model is reported on stderr,
-    and the NumPy side keeps its prediction for this machine."""
+    (glslcheck/backends/driver_profile.py). A driver that follows no known model is reported on
+    stderr, and the NumPy side keeps its prediction for this machine."""
     programs = [getattr(p, "impl", p) for p in programs]  # a Program wraps a backend's program
     models = {p.float_to_uint_model for p in programs if hasattr(p, "float_to_uint_model")}
     if not models:
@@ -582,7 +585,8 @@ def emulate_driver(programs: Sequence) -> None:
     if model is None:
         logging.getLogger("glslcheck").warning(
             "note: the GL driver's uint(x) of negative, NaN or huge x follows no model glslcheck "
-            "knows (glslcheck/backends/driver_profile.py); pixels that depend on such conversions may differ"
+            "knows (glslcheck/backends/driver_profile.py); pixels that depend on such "
+            "conversions may differ"
         )
         return
     for p in programs:

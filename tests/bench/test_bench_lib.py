@@ -1,5 +1,6 @@
-"""glslcheck.verification.bench as a library, with fake programs and a fake clock: what is rendered and timed,
-the reference, the error metrics, the Pareto front and the plot. No real timing is asserted."""
+"""glslcheck.verification.bench as a library, with fake programs and a fake clock: what is rendered
+and timed, the reference, the error metrics, the Pareto front and the plot. No real timing is
+asserted."""
 
 from __future__ import annotations
 

@@ -1,5 +1,5 @@
-"""Channels and passes (glslcheck/shadertoy/channels.py): channels.json, images, Buffer A-D with feedback,
-on both backends, against the GL driver; and the errors of bad channels.json files."""
+"""Channels and passes (glslcheck/shadertoy/channels.py): channels.json, images, Buffer A-D with
+feedback, on both backends, against the GL driver; and the errors of bad channels.json files."""
 
 from __future__ import annotations
 
@@ -27,7 +27,8 @@ FEEDBACK = """void mainImage(out vec4 fragColor, in vec2 fragCoord) {
 IMAGE = """void mainImage(out vec4 fragColor, in vec2 fragCoord) {
     vec2 uv = fragCoord / iResolution.xy;
     ivec2 t = ivec2(fragCoord) % textureSize(iChannel1, 0);
-    fragColor = texture(iChannel0, uv) + 0.25 * texelFetch(iChannel1, t, 0) + iChannelResolution[1].x * 1e-3;
+    fragColor = texture(iChannel0, uv) + 0.25 * texelFetch(iChannel1, t, 0) + \
+        iChannelResolution[1].x * 1e-3;
 }
 """
 
@@ -133,7 +134,10 @@ def test_lowp_sampler_truncates_like_llvmpipe(gl, tmp_path):
     _png(tmp_path / "tex.png", 7, 5, seed=3)
     # the lookup's result stored in a highp variable first: an expression of lowp operands only
     # (texelFetch(...) * 3.14) is itself lowp and llvmpipe truncates its result too (not emulated)
-    body = "void mainImage(out vec4 c, in vec2 p) { vec4 t = texelFetch(iChannel0, ivec2(p) % 5, 0); c = t * 3.14159265; }\n"
+    body = (
+        "void mainImage(out vec4 c, in vec2 p) { vec4 t = texelFetch(iChannel0, ivec2(p) % 5, "
+        "0); c = t * 3.14159265; }\n"
+    )
     folder = _folder(
         tmp_path,
         {"Image": body},
@@ -207,10 +211,12 @@ MIPMAP_UV = """float s = exp2(fragCoord.x / 10.0 - 1.0) * (1.0 + 0.3 * fragCoord
 @pytest.mark.parametrize(
     "lookup",
     [
-        "texture(iChannel0, uv)",  # the implicit LOD of each 2x2 quad, from 0 to past the last level
+        # the implicit LOD of each 2x2 quad, from 0 to past the last level
+        "texture(iChannel0, uv)",
         "texture(iChannel0, uv, 0.7)",  # with a bias
         "textureLod(iChannel0, uv, fragCoord.x / 9.0 - 0.5)",
-        "textureGrad(iChannel0, uv, vec2(fragCoord.x / 900.0, 0.0), vec2(0.0, fragCoord.y / 300.0))",
+        "textureGrad(iChannel0, uv, vec2(fragCoord.x / 900.0, 0.0), vec2(0.0, "
+        "fragCoord.y / 300.0))",
         "textureProjOffset(iChannel0, vec3(uv, 1.5), ivec2(1, 0))",
         "textureProjLod(iChannel0, vec3(uv, 1.5), fragCoord.y / 6.0)",
     ],
@@ -219,7 +225,10 @@ def test_mipmap_against_gl(gl, tmp_path, lookup, wrap):
     _png(
         tmp_path / "tex.png", 70, 50, seed=5
     )  # odd level sizes on the way down: 70x50, 35x25, 17x12, ...
-    body = f"void mainImage(out vec4 fragColor, in vec2 fragCoord) {{\n    {MIPMAP_UV}\n    fragColor = {lookup};\n}}\n"
+    body = (
+        f"void mainImage(out vec4 fragColor, in vec2 fragCoord) {{\n    {MIPMAP_UV}\n    "
+        f"fragColor = {lookup};\n}}\n"
+    )
     folder = _folder(
         tmp_path, {"Image": body}, {"Image": {"iChannel0": {"texture": "tex.png", "wrap": wrap}}}
     )  # textures default to mipmap
@@ -427,7 +436,8 @@ void mainImage(out vec4 fragColor, in vec2 fragCoord)
 
 CHANNEL_TIME = """void mainImage(out vec4 fragColor, in vec2 fragCoord) {
     float used = texture(iChannel0, vec2(0.5)).x * 0.0 + texture(iChannel1, vec2(0.5)).a * 0.0;
-    fragColor = vec4(iChannelTime[0], iChannelTime[1], iChannelTime[2] + used, iChannelTime[3] + 1.0);
+    fragColor = vec4(iChannelTime[0], iChannelTime[1], iChannelTime[2] + used, iChannelTime[3] + \
+        1.0);
 }
 """
 
@@ -476,8 +486,8 @@ def test_shadertoy_json_export_older_buffer_names(tmp_path):
 
 def test_shadertoy_json_export_reads_an_unbound_channel_as_shadertoy_does(gl, tmp_path):
     # Shadertoy runs a pass that reads a channel with no input (a real public shader does, see
-    # shadertoy/channels.py): the unit has no texture, so lookups give (0, 0, 0, 1) (textureSize of such a
-    # unit is left undefined by ES 3.00: llvmpipe says 1x1, not pinned here)
+    # shadertoy/channels.py): the unit has no texture, so lookups give (0, 0, 0, 1) (textureSize of
+    # such a unit is left undefined by ES 3.00: llvmpipe says 1x1, not pinned here)
     _export(tmp_path)
     data = json.loads((tmp_path / "shader.json").read_text())
     image = data["Shader"]["renderpass"][1]
@@ -498,8 +508,8 @@ def test_shadertoy_json_export_reads_an_unbound_channel_as_shadertoy_does(gl, tm
 def test_odd_sizes_shade_helper_pixels_as_llvmpipe(gl, tmp_path, size):
     # An odd right or top edge: llvmpipe's 2x2 quads there take helper pixels outside the
     # viewport, which the derivatives and the implicit LOD read; the NumPy side renders the same
-    # helper column/row (backends/numpy_engine/program.py render_tile). Without them these differed by up
-    # to 0.56 (dFdy) and the implicit LOD picked other levels in the last row or column.
+    # helper column/row (backends/numpy_engine/program.py render_tile). Without them these differed
+    # by up to 0.56 (dFdy) and the implicit LOD picked other levels in the last row or column.
     _png(tmp_path / "tex.png", 70, 50, seed=5)
     body = f"""void mainImage(out vec4 fragColor, in vec2 fragCoord) {{
     {MIPMAP_UV}
@@ -564,7 +574,8 @@ def test_implicit_lod_of_a_quad_with_a_nan_derivative(gl, tmp_path):
     _png(tmp_path / "tex.png", 16, 16, seed=7)
     body = """void mainImage(out vec4 fragColor, in vec2 fragCoord) {
     vec2 uv = fragCoord / 64.0;
-    if (fragCoord.y < 1.0 && fragCoord.x > 30.0 && fragCoord.x < 32.0) uv.x = iResolution.x * 1e37 * 1e37;
+    if (fragCoord.y < 1.0 && fragCoord.x > 30.0 && fragCoord.x < 32.0) uv.x = iResolution.x * \
+        1e37 * 1e37;
     fragColor = texture(iChannel0, uv);
 }
 """
@@ -632,7 +643,8 @@ def test_wrap_of_huge_and_infinite_coordinates_on_pot_and_npot_sizes(
     body = f"""void mainImage(out vec4 fragColor, in vec2 fragCoord) {{
     float inf = iResolution.x * 1e37 * 1e37;
     float u[8] = float[8](1e30, -1e30, inf, -inf, 3e9 + 0.7, 1.2e7 + 0.3, -7.77e5 - 0.1, 0.37);
-    vec2 uv = vec2(u[int(fragCoord.x) % 8], u[int(fragCoord.y) % 8]) + fragCoord * vec2(0.013, 0.021);
+    vec2 uv = vec2(u[int(fragCoord.x) % 8], u[int(fragCoord.y) % 8]) + fragCoord * vec2(0.013, \
+        0.021);
     const ivec2 off = ivec2(-3, 5);
     if (fragCoord.x > 8.0) fragColor = texture(iChannel0, uv);
     else fragColor = {lookup};
@@ -724,7 +736,8 @@ def test_an_integer_lod_reads_one_level(gl, tmp_path, lod):
     # into NaN (0 * inf), as the fused lerp with weight 0 would (textures.py _two_levels).
     buf = """void mainImage(out vec4 fragColor, in vec2 fragCoord) {
     float inf = iResolution.x * 1e37 * 1e37;
-    fragColor = vec4(fragCoord.x > 10.0 && fragCoord.y > 5.0 ? inf : fragCoord.x / 16.0, 0.5, -inf, 1.0);
+    fragColor = vec4(fragCoord.x > 10.0 && fragCoord.y > 5.0 ? inf : fragCoord.x / 16.0, 0.5, \
+        -inf, 1.0);
 }
 """
     image = f"""void mainImage(out vec4 fragColor, in vec2 fragCoord) {{
@@ -747,13 +760,13 @@ def test_an_integer_lod_reads_one_level(gl, tmp_path, lod):
 def test_arithmetic_on_lowp_lookups_is_float16(gl, tmp_path):
     # Mesa lowers GLSL's precision rules to float16 (glsl/lower_precision.cpp): an operation
     # whose operands are lowp lookups and constants runs in float16, each constant rounded to
-    # float16 (nir_fold.lower_precision.lowp_tree). elephant's terrain, `2.1 + 0.1*textureLod(..).x`, reads
-    # 2.130859375 where float32 gives 2.1319335: its raymarch stopped elsewhere in 93 of 144
-    # pixels of Buffer A at 16x9. Measured: float32 arithmetic equals llvmpipe in 0-797 of the
-    # 2048 pixels of these expressions, float16 in all. A highp operand (the variable `h`,
-    # iTime) keeps float32, and so does a `const` variable or a never-written global (highp
-    # variables, unlike literals: alien_corridor's Buffer A mismatched when they counted as
-    # constants); `rgb` stays as it is (a swizzled lookup alone is no operation).
+    # float16 (nir_fold.lower_precision.lowp_tree). elephant's terrain, `2.1 +
+    # 0.1*textureLod(..).x`, reads 2.130859375 where float32 gives 2.1319335: its raymarch stopped
+    # elsewhere in 93 of 144 pixels of Buffer A at 16x9. Measured: float32 arithmetic equals
+    # llvmpipe in 0-797 of the 2048 pixels of these expressions, float16 in all. A highp operand
+    # (the variable `h`, iTime) keeps float32, and so does a `const` variable or a never-written
+    # global (highp variables, unlike literals: alien_corridor's Buffer A mismatched when they
+    # counted as constants); `rgb` stays as it is (a swizzled lookup alone is no operation).
     _png(tmp_path / "tex.png", 61, 37, seed=4)
     body = """const float K = 0.1;
 float PI = 3.14159265;
@@ -765,8 +778,10 @@ void mainImage(out vec4 fragColor, in vec2 fragCoord) {
                   textureLod(iChannel0, uv, 0.0).x * texture(iChannel0, uv * 3.0).y - 1.7,
                   -texture(iChannel0, uv).z * 0.3 + 2.1,
                   texture(iChannel0, uv).w / 3.0 + 0.1);
-    vec4 b = vec4(2.0 * texture(iChannel0, uv).rgb - 1.0, 2.1 + 0.1 * h + texture(iChannel0, uv).y * iTime);
-    vec4 c = vec4(K * texture(iChannel0, uv).x, PI * texture(iChannel0, uv).y, (2.0 * 0.05) * h, 0.0);
+    vec4 b = vec4(2.0 * texture(iChannel0, uv).rgb - 1.0, 2.1 + 0.1 * h + texture(iChannel0, \
+        uv).y * iTime);
+    vec4 c = vec4(K * texture(iChannel0, uv).x, PI * texture(iChannel0, uv).y, (2.0 * 0.05) * h, \
+        0.0);
     fragColor = int(fragCoord.y) % 3 == 0 ? a : int(fragCoord.y) % 3 == 1 ? b : c;
 }
 """
@@ -781,8 +796,8 @@ void mainImage(out vec4 fragColor, in vec2 fragCoord) {
 @pytest.mark.usefixtures("llvmpipe")  # bit for bit with Mesa 22.3's llvmpipe
 def test_the_square_of_a_lowp_lookup_is_float16(gl, tmp_path):
     # `pow(x, 2.0)` is x * x to NIR (fpow(a, 2.0) -> a * a), so on a lowp lookup it is one more
-    # float16 operation of the tree (nir_fold.lower_precision._square), and a constant factor sinks into it,
-    # `(x * #k) * x` (the square is used once): gargantua's Buffer A, `dustColor *=
+    # float16 operation of the tree (nir_fold.lower_precision._square), and a constant factor sinks
+    # into it, `(x * #k) * x` (the square is used once): gargantua's Buffer A, `dustColor *=
     # pow(texture(iChannel1, ..).rgb, vec3(2.0)) * 4.0`, the first difference of its loop at
     # iteration 27 (1 pixel). Measured without it: 502, 500 and 512 of the 512 pixels differed
     # from llvmpipe (r, g, b); with x * x but the constant outside, 189 in b.

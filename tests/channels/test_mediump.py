@@ -1,6 +1,6 @@
-"""verify's note on mediump/lowp float arithmetic (glslcheck/semantics/mediump.py): found where the shader
-asks for it, and said beside the comparison; llvmpipe's float16 itself is measured by
-tests/channels/measure_mediump.py (what it lowers depends on Mesa's passes, so no test pins it)."""
+"""verify's note on mediump/lowp float arithmetic (glslcheck/semantics/mediump.py): found where the
+shader asks for it, and said beside the comparison; llvmpipe's float16 itself is measured by
+tools/measure_mediump.py (what it lowers depends on Mesa's passes, so no test pins it)."""
 
 from __future__ import annotations
 

@@ -1,4 +1,5 @@
-"""The built-in function table, overload resolution and the predefined names (glslcheck.language.builtin_functions)."""
+"""The built-in function table, overload resolution and the predefined names
+(glslcheck.language.builtin_functions)."""
 
 import pytest
 

@@ -46,14 +46,14 @@ MAIN = (
     "\nvoid mainImage(out vec4 fragColor, in vec2 fragCoord)\n{\n    fragColor = vec4(g(1.0));\n}\n"
 )
 
-# Programs where glslangValidator (as glslcheck.semantics.glslang runs it: compile only, no -l) accepts what
-# a GL driver rejects. Each: (name, Image tab text, why glslang is wrong here).
+# Programs where glslangValidator (as glslcheck.semantics.glslang runs it: compile only, no -l)
+# accepts what a GL driver rejects. Each: (name, Image tab text, why glslang is wrong here).
 KNOWN_DIFFERENCES = [
     (
         "call-without-definition",
         "float g(float x);\n" + MAIN,
-        "glslangValidator without -l does not link; the driver (and glslangValidator -l) rejects a call "
-        "to a function that has no body at link time",
+        "glslangValidator without -l does not link; the driver (and glslangValidator -l) rejects "
+        "a call to a function that has no body at link time",
     ),
     (
         "static-recursion",
@@ -62,9 +62,11 @@ KNOWN_DIFFERENCES = [
     ),
     (
         "case-label-type",
-        "float g(float x)\n{\n    switch (int(x))\n    {\n    case 1u:\n        return 1.0;\n    }\n"
+        "float g(float x)\n{\n    switch (int(x))\n    {\n    case 1u:\n        return 1.0;\n    "
+        "}\n"
         "    return 0.0;\n}\n" + MAIN,
-        "GLSL ES 3.00 section 6.2: the case labels' type must match the switch value's; glslang does not check",
+        "GLSL ES 3.00 section 6.2: the case labels' type must match the switch value's; "
+        "glslang does not check",
     ),
 ]
 

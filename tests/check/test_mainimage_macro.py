@@ -2,8 +2,8 @@
 
 Shadertoy compiles its `main()` wrapper after the user's code, so `#define mainImage(O, U) ...`
 turns the wrapper's `mainImage(color, gl_FragCoord.xy);` into the user's code. The preprocessor
-models that call as the entry function (frontend/preprocess/driver.py `_wrapper_call`); the checker, the NumPy
-backend and the GL backend (which compiles the real wrapper) then run the same program."""
+models that call as the entry function (frontend/preprocess/driver.py `_wrapper_call`); the checker,
+the NumPy backend and the GL backend (which compiles the real wrapper) then run the same program."""
 
 from __future__ import annotations
 
@@ -17,7 +17,8 @@ GOLF = "#define mainImage(O, U) O = vec4(U / iResolution.xy, 0.5 + 0.5 * sin(iTi
 GOLF_LOOP = (
     "// three channels, one statement per channel\n"
     "#define R iResolution.xy\n"
-    "#define mainImage(O, U) for (int i = 0; i < 3; i++) O[i] = 0.5 + 0.5 * sin(float(i) + iTime + U.x / R.x)\n"
+    "#define mainImage(O, U) for (int i = 0; i < 3; i++) O[i] = 0.5 + 0.5 * sin(float(i) + iTime "
+    "+ U.x / R.x)\n"
 )
 
 

@@ -177,7 +177,8 @@ def test_listed_nodes_are_the_walks(model, make_shader):
     src = """\
 float f(float a);
 const float K[2] = float[2](1.0, 2.0);
-float g(float a) { for (int i = 0; i < 2; i++) { for (int j = 0; j < i; j++) { a += K[j]; } } return a; }
+float g(float a) { for (int i = 0; i < 2; i++) { for (int j = 0; j < i; j++) { a += K[j]; } } \
+    return a; }
 uniform float extra;
 float f(float a) { return g(a) * extra; }
 void mainImage(out vec4 c, in vec2 p) { c = vec4(f(p.x)); }

@@ -1,4 +1,5 @@
-"""The GLSL ES 3.00 type objects and the typing rules in glslcheck.language.glsl_types (spec 4.1, 5.4-5.9)."""
+"""The GLSL ES 3.00 type objects and the typing rules in glslcheck.language.glsl_types (spec 4.1,
+5.4-5.9)."""
 
 import pytest
 

@@ -80,7 +80,8 @@ void mainImage(out vec4 c, in vec2 f) {
     "control_flow": """
 int side = 0;
 bool bump() { side += 1; return side > 2; }
-vec2 pick(float x) { if (x > 0.5) { return vec2(1.0, x); } else if (x > 0.2) { return vec2(x, 2.0); } }  // x <= 0.2: 0
+vec2 pick(float x) { if (x > 0.5) { return vec2(1.0, x); } else if (x > 0.2) { return vec2(x, \
+    2.0); } }  // x <= 0.2: 0
 float march(vec2 p) {
     float t = 0.0;
     for (int i = 0; i < 64; i++) {
@@ -125,7 +126,8 @@ void mainImage(out vec4 c, in vec2 f) {
     int d = i != 0 ? 100 / i : -1;
     float a = 0.0;
     float w = uv.y > 0.5 ? (a = 2.0) : (a = 3.0);
-    c = vec4(col * (flip ? 0.5 : 1.0) + idx * 0.001, b + float(side) * 0.01 + float(d) * 0.1 + a + w);
+    c = vec4(col * (flip ? 0.5 : 1.0) + idx * 0.001, b + float(side) * 0.01 + float(d) * 0.1 + a \
+        + w);
 }""",
     "structs_arrays": """
 struct Light { vec3 pos; float power; bool on; };
@@ -198,26 +200,33 @@ float s3(vec3 v) { return s(v.x) + s(v.y) * 3.0 + s(v.z) * 7.0; }
 void mainImage(out vec4 c, in vec2 f) {
     vec2 uv = f / iResolution.xy - 0.5;
     float x = uv.x * 40.0;
-    if (uv.y > 2.0) x = 0.0;  // x written again: Mesa's constant merging through it (nir_fold) stays out
+    if (uv.y > 2.0) x = 0.0;  // x written again: \
+        Mesa's constant merging through it (nir_fold) stays out
     vec3 z = vec3(uv.y > 0.3 ? 0.0 : uv.x, 0.0, 0.0);
     vec3 n = normalize(z);                              // NaN for the zero vector
     float p = pow(x, uv.y * 3.0);                        // negative base: NaN
-    float p2 = s(pow(x, 2.0)) + s(pow(-abs(x), 4.0)) + s(pow(x, 0.0)) + s(pow(1.0, x));  // Mesa's rewrites
+    float p2 = s(pow(x, 2.0)) + s(pow(-abs(x), 4.0)) + s(pow(x, 0.0)) + s(pow(1.0, x));  // \
+        Mesa's rewrites
     float huge = s(sin(x * 1e8)) + s(cos(x * 1e12)) + s(tan(x * 3e9)) + s(sin(x)) + s(cos(x * 7.0));
-    float tiny = s(exp2(x * 10.0)) + s(log2(abs(x) * 1e-39)) + s(exp(-x * 5.0)) + s(log(x)) + s(log2(x));
+    float tiny = s(exp2(x * 10.0)) + s(log2(abs(x) * 1e-39)) + s(exp(-x * 5.0)) + s(log(x)) + \
+        s(log2(x));
     float inf = 1.0 / uv.x;                              // +-Inf, NaN for 0/0
     float q = inf * 0.0 + 0.0 * uv.x;                    // 0 * Inf: NaN, unless folded
     vec3 mixes = mix(vec3(1.0), vec3(0.0, 2.0, x), uv.x) + mix(z, n, step(0.0, uv.y));
-    float a = s(atan(uv.y, uv.x)) + s(atan(x)) * 3.0 + s(asin(uv.y * 3.0)) * 5.0 + s(acos(uv.x)) * 7.0
+    float a = s(atan(uv.y, uv.x)) + s(atan(x)) * 3.0 + s(asin(uv.y * 3.0)) * 5.0 + s(acos(uv.x)) \
+        * 7.0
             + s(atan(0.0, uv.y)) * 11.0 + s(atan(x, 0.0)) * 13.0;
     float h = s(sinh(x)) + s(cosh(uv.y)) * 3.0 + s(tanh(x * 10.0)) * 5.0 + s(asinh(x)) * 7.0
             + s(acosh(x)) * 11.0 + s(atanh(uv.y * 3.0)) * 13.0;
     float m = s(mod(x, uv.y)) + s(fract(-x)) + s(sign(uv.x)) + s(smoothstep(0.1, -0.1, uv.y))
             + s(clamp(x, -1.0, inversesqrt(uv.y))) + s(min(inf, x)) + s(max(q, 1.0)) + s(round(x))
-            + s(roundEven(x)) + s(trunc(x)) + s(ceil(x)) + s(floor(x)) + s(degrees(x)) + s(radians(x));
-    vec3 g = reflect(n, vec3(0.0, 1.0, 0.0)) + refract(vec3(uv, -1.0), vec3(0.0, 0.0, 1.0), 1.5 + uv.x)
+            + s(roundEven(x)) + s(trunc(x)) + s(ceil(x)) + s(floor(x)) + s(degrees(x)) + \
+                s(radians(x));
+    vec3 g = reflect(n, vec3(0.0, 1.0, 0.0)) + refract(vec3(uv, -1.0), vec3(0.0, 0.0, 1.0), 1.5 + \
+        uv.x)
            + cross(vec3(uv, 1.0), z) + faceforward(vec3(1.0), vec3(uv, 0.5), vec3(0.0, 1.0, 0.0));
-    float bits = s(intBitsToFloat(floatBitsToInt(x) ^ 1)) + s(uintBitsToFloat(floatBitsToUint(uv.y) + 7u));
+    float bits = s(intBitsToFloat(floatBitsToInt(x) ^ 1)) + \
+        s(uintBitsToFloat(floatBitsToUint(uv.y) + 7u));
     bvec3 bv = lessThan(vec3(x), vec3(0.0, 1.0, 2.0));
     float rel = float(any(bv)) + float(all(not(bv))) + float(isnan(p)) + float(isinf(inf));
     c = vec4(s3(n) + s(p) + p2 + huge * 17.0, tiny + s(q) + a * 19.0 + h * 23.0,
@@ -239,7 +248,8 @@ void mainImage(out vec4 c, in vec2 f) {
     float negz = -0.0 * uv.x + 0.0;        // x + 0.0 keeps the sign of -0.0
     vec3 left = tone(vec3(uv, -0.0 * uv.y));  // K.x = 0.0 + x: the right side, -0.0 kept
     negz += 1.0 / left.z + (0.0 - uv.x);
-    c = vec4(counter + left.x * 3.0, last.y + folded.x, folded.y + 1.0 / negz, iTime + iMouse.x + iDate.w * 0.0
+    c = vec4(counter + left.x * 3.0, last.y + folded.x, folded.y + 1.0 / negz, iTime + iMouse.x + \
+        iDate.w * 0.0
              + iResolution.x + float(iFrame));
 }""",
 }
@@ -249,8 +259,9 @@ void mainImage(out vec4 c, in vec2 f) {
 def test_construct_bit_for_bit(numba, make_shader, name):
     shader = make_shader(CONSTRUCTS[name])
     # none of Mesa's reassociations, which the NumPy backend copies and this engine does not
-    # (backends/numpy_engine/transpile/nir_fold/ emits each as `(<Mesa's order> if rt.lp else <written>)`):
-    # these shaders test the engine's own rules (the reassociations: test_mesa_reassociation_...)
+    # (backends/numpy_engine/transpile/nir_fold/ emits each as `(<Mesa's order> if rt.lp else
+    # <written>)`): these shaders test the engine's own rules (the reassociations:
+    # test_mesa_reassociation_...)
     assert "if rt.lp else" not in glslcheck.compile(shader, backend="numpy").source
     _compare(shader)
 
@@ -316,8 +327,8 @@ def test_mesa_reassociation_is_not_copied_yet(numba, make_shader):
             "discard",
         ),
         (
-            "void mainImage(out vec4 c, in vec2 f) { switch (int(f.x)) { case 1: c = vec4(1.0); break; "
-            "default: c = vec4(0.0); } }",
+            "void mainImage(out vec4 c, in vec2 f) { switch (int(f.x)) { case 1: c = vec4(1.0); "
+            "break; default: c = vec4(0.0); } }",
             "switch",
         ),
     ],
@@ -335,7 +346,10 @@ def test_unsupported_is_a_located_error(numba, make_shader, text, what):
 def test_runaway_loop_is_a_located_error(numba, make_shader):
     from glslcheck.backends.compiled_engine.engine import compile_compiled
 
-    text = "void mainImage(out vec4 c, in vec2 f) {\n float t = 0.0;\n while (f.x > 0.0) { t += 1.0; }\n c = vec4(t); }"
+    text = (
+        "void mainImage(out vec4 c, in vec2 f) {\n float t = 0.0;\n while (f.x > 0.0) { t += "
+        "1.0; }\n c = vec4(t); }"
+    )
     prog = compile_compiled(make_shader(text))
     with pytest.raises(GlslError, match="loop ran more than") as info:
         prog.render(size=(2, 2))

@@ -27,7 +27,8 @@ void mainImage(out vec4 c, in vec2 f) {
     vec2 d = dFdx(uv * uv) * 1000.0 + dFdy(sin(uv * 9.0)) * 100.0;
     float t = dFdx(iTime) + dFdy(iTime * 3.0);            // uniform: 0
     float s = uv.x * uv.y * 50.0;
-    s = dFdx(s) + fwidth(s);                              // the quad's lanes read before any is written
+    s = dFdx(s) + fwidth(s);                              // the \
+        quad's lanes read before any is written
     vec3 w = fwidth(vec3(uv, uv.x * uv.y * 7.0)) * 40.0;
     c = vec4(d, s + t, 1.0) + vec4(w, 0.0);
 }""",
@@ -36,7 +37,8 @@ void mainImage(out vec4 c, in vec2 f) {
     "branch_checkers": """
 float checkersGradBox(in vec2 p) {
     vec2 w = fwidth(p) + 0.001;
-    vec2 i = 2.0 * (abs(fract((p - 0.5 * w) * 0.5) - 0.5) - abs(fract((p + 0.5 * w) * 0.5) - 0.5)) / w;
+    vec2 i = 2.0 * (abs(fract((p - 0.5 * w) * 0.5) - 0.5) - abs(fract((p + 0.5 * w) * 0.5) - \
+        0.5)) / w;
     return 0.5 - 0.5 * i.x * i.y;
 }
 void mainImage(out vec4 c, in vec2 f) {

@@ -1,4 +1,5 @@
-"""Pixels in lockstep (backends/compiled_engine/lanes.py) against the per-pixel compiled engine, bit for bit.
+"""Pixels in lockstep (backends/compiled_engine/lanes.py) against the per-pixel compiled engine, bit
+for bit.
 
 The per-pixel module is the reference: every lane of the lockstep module must compute exactly
 its operations, so the two images are compared bit for bit (a NaN must be the same NaN: both
@@ -64,7 +65,8 @@ float diverge(float t, float x) { if (x > t) return x - t; return t; }
 void split(float t, out float a, out float b) { a = fract(t); b = t - a; }
 float row(float y) { if (y > 11.5) return 0.25; return 0.75; }
 // ro one scalar (iTime's), then written with lane values: its lanes start from the scalar
-float walk(vec3 ro, vec3 rd) { ro = ro + rd * 2.0; if (rd.x > 0.4) ro.y += 1.0; return ro.x + ro.y; }
+float walk(vec3 ro, vec3 rd) { ro = ro + rd * 2.0; if (rd.x > 0.4) ro.y += 1.0; return ro.x + \
+    ro.y; }
 void mainImage(out vec4 fragColor, in vec2 fragCoord) {
     vec2 uv = fragCoord / iResolution.xy;
     float a, b;
@@ -116,7 +118,8 @@ def test_unhandled_statement_is_unsupported():
 
     source = (
         "@jit\ndef f_g(v_x_0):\n    for i in range(3):\n        pass\n    return (v_x_0,)\n\n"
-        "@jit\ndef shade(fx, fy, px, py):\n    _t1, = f_g(fx)\n    return (_t1, _t1, _t1, F32(1.0))\n"
+        "@jit\ndef shade(fx, fy, px, py):\n    _t1, = f_g(fx)\n    return (_t1, _t1, _t1, "
+        "F32(1.0))\n"
     )
     with pytest.raises(Unsupported, match="For"):
         lanes_module(source, 8)
@@ -124,8 +127,8 @@ def test_unhandled_statement_is_unsupported():
 
 def test_fallback_and_mode_switch(make_shader, monkeypatch):
     """GLSLCHECK_COMPILED_LANES=0 gives the per-pixel module, a width the lockstep one, nothing
-    the engine's choice; a shader the rewrite refuses falls back to the per-pixel module, which says why; a bad value is an
-    input error (exit 2)."""
+    the engine's choice; a shader the rewrite refuses falls back to the per-pixel module, which says
+    why; a bad value is an input error (exit 2)."""
     from glslcheck.backends.compiled_engine import lanes
     from glslcheck.backends.compiled_engine.engine import generate
     from glslcheck.base.diagnostics import InputError

@@ -1,5 +1,5 @@
-"""backends/compiled_engine/lanes_math.py against scalar.py: the same bits for every input, and straight-line
-code that LLVM's SLP vectoriser turns into packed (W-wide) instructions.
+"""backends/compiled_engine/lanes_math.py against scalar.py: the same bits for every input, and
+straight-line code that LLVM's SLP vectoriser turns into packed (W-wide) instructions.
 
 Each function of lanes_math runs here as the lockstep engine calls it: W = 8 pixels' values in a
 tuple, ``(f(a[0], ...), ..., f(a[7], ...))``, in a loop over blocks, with ``FMA`` a compile-time
@@ -290,7 +290,8 @@ def _assert_same_bits(name: str, args: list[np.ndarray], want: np.ndarray, got: 
         shown = ", ".join(f"{a[k]!r} (0x{a[k : k + 1].view(np.uint32)[0]:08x})" for a in args)
         pytest.fail(
             f"{name}: {bad.size} of {want.size} results differ; first: {name}({shown}) = "
-            f"0x{got[k : k + 1].view(np.uint32)[0]:08x}, scalar.py 0x{want[k : k + 1].view(np.uint32)[0]:08x}"
+            f"0x{got[k : k + 1].view(np.uint32)[0]:08x}, scalar.py "
+            f"0x{want[k : k + 1].view(np.uint32)[0]:08x}"
         )
 
 
@@ -412,13 +413,16 @@ def test_lists_cover_scalar(modules):
 
 # -- vectorisation --------------------------------------------------------------------------
 # The kernel is one block, no loop (LLVM's loop vectoriser would add its own vector loop and
-# remainder). A function that runs its W lanes one at a time needs at least W scalar instructions for its
-# arithmetic (one a lane), a branch on a lane's value at least W conditional jumps, and a call
-# that LLVM did not inline W calls. So the machine code of the W-lane kernel is vectorised when
-# it has packed (xmm or ymm) arithmetic (or, for a reinterpretation of bits, 8-lane moves), fewer than W scalar arithmetic instructions, fewer than W
-# conditional jumps and no call. No exact count is pinned:
-# the instructions LLVM chooses depend on the CPU and LLVM's release.
-_ARITH = r"(?:add|sub|mul|div|sqrt|min|max|round|fn?m(?:add|sub)\w*|cmp\w*|and|andn|or|xor|blendv|cvt\w*)"
+# remainder). A function that runs its W lanes one at a time needs at least W scalar instructions
+# for its arithmetic (one a lane), a branch on a lane's value at least W conditional jumps, and a
+# call that LLVM did not inline W calls. So the machine code of the W-lane kernel is vectorised when
+# it has packed (xmm or ymm) arithmetic (or, for a reinterpretation of bits, 8-lane moves), fewer
+# than W scalar arithmetic instructions, fewer than W conditional jumps and no call. No exact count
+# is pinned: the instructions LLVM chooses depend on the CPU and LLVM's release.
+_ARITH = (
+    r"(?:add|sub|mul|div|sqrt|min|max|round|fn?m(?:add|sub)\w*|"
+    r"cmp\w*|and|andn|or|xor|blendv|cvt\w*)"
+)
 _PACKED = re.compile(
     rf"\tv{_ARITH}p[sd]\t[^\n]*%[xy]mm|\tvp\w+\t[^\n]*%[xy]mm|\tvmov(?:up[sd]|dq[au])\t[^\n]*%ymm"
 )

@@ -4,7 +4,7 @@
 the operands `a`, `b`, `c` are read from highp R32F textures (`precision highp sampler2D`, or
 Mesa clamps them to half range) with texelFetch, so the compiler cannot fold them, and the
 result comes back as `floatBitsToInt` in an RGBA32I target: every bit, NaN and -0 included.
-Shared by the GL cross-check tests and by `measure_llvmpipe.py`.
+Shared by the GL cross-check tests and by tools/measure_llvmpipe.py.
 """
 
 from __future__ import annotations

@@ -5,7 +5,10 @@ import pytest
 from glslcheck.backends.gl import compile_gl, parse_driver_log
 from glslcheck.base.diagnostics import GlslError
 
-COMMON = "float twice(float x) {\n    return 2.0 * x;\n}\n\nfloat broken() {\n    return undefined_name;\n}\n"
+COMMON = (
+    "float twice(float x) {\n    return 2.0 * x;\n}\n\nfloat broken() {\n    return "
+    "undefined_name;\n}\n"
+)
 IMAGE = "void mainImage(out vec4 c, in vec2 p) {\n    c = vec4(twice(p.x));\n}\n"
 
 
@@ -16,7 +19,10 @@ def _errors(shader):
 
 
 def test_error_in_image_is_reported_at_its_line(gl, make_shader):
-    image = "void mainImage(out vec4 c, in vec2 p) {\n    vec3 col = vec3(1.0);\n\n    c = vec4(col, nope);\n}\n"
+    image = (
+        "void mainImage(out vec4 c, in vec2 p) {\n    vec3 col = vec3(1.0);\n\n    c = "
+        "vec4(col, nope);\n}\n"
+    )
     diags = _errors(make_shader(image, "float twice(float x) { return x; }\n"))
     assert {(d.loc.path, d.loc.line) for d in diags} == {
         ("Image.glsl", 4)
@@ -46,7 +52,10 @@ def test_missing_mainimage_points_at_the_tab_file(gl, make_shader):
 
 
 def test_driver_log_formats():
-    log = "GLSL Compiler failed\n\nfragment_shader\n===============\n0:42(5): error: `y' undeclared\n0:3(1): warning: meh\n"
+    log = (
+        "GLSL Compiler failed\n\nfragment_shader\n===============\n0:42(5): error: "
+        "`y' undeclared\n0:3(1): warning: meh\n"
+    )
     assert parse_driver_log(log) == [(42, 5, "error", "`y' undeclared"), (3, 1, "warning", "meh")]
     assert parse_driver_log("ERROR: 0:7: 'x' : undeclared identifier") == [
         (7, None, "error", "'x' : undeclared identifier")

@@ -1,4 +1,5 @@
-"""Rendering with the GL driver: orientation, pixel centres, alpha, float framebuffer, supersampling."""
+"""Rendering with the GL driver: orientation, pixel centres, alpha, float framebuffer,
+supersampling."""
 
 import datetime
 
@@ -41,7 +42,10 @@ def test_values_are_unquantised_and_unclamped(gl, make_shader):
 
 
 def test_inputs_reach_the_shader(gl, make_shader):
-    body = "c = vec4(iTime + float(iFrame), iMouse.x + iMouse.w, iDate.x + iDate.y + iDate.z + iDate.w + iSampleRate, 0.0);"
+    body = (
+        "c = vec4(iTime + float(iFrame), iMouse.x + iMouse.w, "
+        "iDate.x + iDate.y + iDate.z + iDate.w + iSampleRate, 0.0);"
+    )
     img = _render(make_shader, body, size=(2, 2), time=1.5, frame=3, mouse=(10, 20, 30, -4))
     assert tuple(img[0, 0, :3]) == (4.5, 6.0, 2026.0 + 0 + 1 + 0 + 44100.0)
     when = datetime.datetime(2024, 3, 5, 1, 2, 3)

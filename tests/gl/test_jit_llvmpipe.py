@@ -1,12 +1,13 @@
-"""numba's compiled math kernels (backends/numpy_engine/jit.py) against llvmpipe itself, bit for bit.
+"""numba's compiled math kernels (backends/numpy_engine/jit.py) against llvmpipe itself, bit for
+bit.
 
 tests/numpy/test_jit_kernels.py compares the kernels with LlvmpipeMath's NumPy reference, which
 tests/gl/test_llvmpipe_math.py compares with the driver; this closes the loop directly: the
 cases of test_llvmpipe_math.py whose runtime function is a built-in the kernels compute (sin,
 cos, tan, exp2, exp, log2, log, pow, and the Mesa lowerings atan, atan(y, x), asin, acos),
 evaluated by a runtime with `--jit on`. Each case is one
-call per block of 65,536 lanes (llvmpipe_reference.blocked): the first block holds the uniform arguments
-and is the kernel's; the second holds the spread magnitudes and the edges, and where those
+call per block of 65,536 lanes (llvmpipe_reference.blocked): the first block holds the uniform
+arguments and is the kernel's; the second holds the spread magnitudes and the edges, and where those
 include a NaN or a huge angle the kernel declines it to NumPy. Needs numba (`jit_kernels`:
 skipped without it on a developer machine, a failure on CI) and Mesa 22.3's llvmpipe.
 """

@@ -3,14 +3,15 @@
 GLSL ES 3.00 has no `precise`, so Mesa reassociates: `mix` becomes one of four formulas
 (nir_lower_flrp: which one depends on the operands the compiler knows and on the other `mix`
 calls), and nir_opt_algebraic factors `a*b + a*c` and sinks constants into sums, products and
-dot products. `glslcheck/backends/numpy_engine/transpile/nir_fold/` and `Runtime.mix` repeat the rewrites in
-float32 mode. Each shader below computes its operands with opaque built-ins (fract, sin, sqrt,
-floor: values NIR does not look into) over 160x90 pixels. Without the rewrites (written order,
+dot products. `glslcheck/backends/numpy_engine/transpile/nir_fold/` and `Runtime.mix` repeat the
+rewrites in float32 mode. Each shader below computes its operands with opaque built-ins (fract, sin,
+sqrt, floor: values NIR does not look into) over 160x90 pixels. Without the rewrites (written order,
 strict mix everywhere) these channels differ from llvmpipe (measured): constants_sunk 680, 4718
 and 5163 pixels in its first three, factoring 979, 6694, 6556, mix_constant_operands 1169 and
 2074 (second and third), mix_forms 5623 (first), mix_shared_operands 3261 (third),
-constants_merged 3600, 3200, 2165 (first three), constants_sunk_further 30, 4667, 1103, constants_merged_through_assignments 5035, 7837, 9300, constants_sunk_beside_a_selection 3498, 6900, 1538; the other
-channels pin forms that give the same bits here.
+constants_merged 3600, 3200, 2165 (first three), constants_sunk_further 30, 4667, 1103,
+constants_merged_through_assignments 5035, 7837, 9300, constants_sunk_beside_a_selection 3498, 6900,
+1538; the other channels pin forms that give the same bits here.
 
 Written for llvmpipe of Mesa 22.3 (the `llvmpipe` fixture of tests/conftest.py fails naming
 that release on another driver).
@@ -32,38 +33,46 @@ CASES = {
     # run-time weight: x + t*(y - x); constant weight: x*(1 - t) + y*t; x = +-1: (x -+ t) + y*t
     "mix_forms": "c = vec4(mix(a, b, t), mix(a, b, 0.37), mix(1.0, d, t), mix(-1.0, e, t));",
     # y = 1 -> strict; constant x and y of similar size -> fast; 1e-6 and 1 are not similar
-    "mix_constant_operands": "c = vec4(mix(a, 1.0, t), mix(0.3, 1.0, t), mix(1.0, 0.7, t), mix(1e-6, 1.0, t));",
+    "mix_constant_operands": "c = vec4(mix(a, 1.0, t), mix(0.3, 1.0, t), mix(1.0, 0.7, t), "
+    "mix(1e-6, 1.0, t));",
     # another mix with the same weight and x (or y): strict for both
-    "mix_shared_operands": "c = vec4(mix(a, b, t), mix(a, d, t), mix(e, f, t), mix(d, b, t + 0.5));",
+    "mix_shared_operands": "c = vec4(mix(a, b, t), mix(a, d, t), mix(e, f, t), mix(d, b, "
+    "t + 0.5));",
     # (a + b) + K -> (a + K) + b; (e*f + b) - K -> (b - K) + e*f; (a*b)*K -> (a*K)*b;
     # dot(o, o) - K -> o.x*o.x + (o.y*o.y + (o.z*o.z - K))
     "constants_sunk": """vec3 o = vec3(e, b, d) - vec3(d, e, b);
-        c = vec4((a + b) + 2.7182817, (e * f + b) - 2.7182817, (a * b) * 2.7182817, dot(o, o) - 2.7182817);""",
+        c = vec4((a + b) + 2.7182817, (e * f + b) - 2.7182817, (a * b) * 2.7182817, dot(o, o) - \
+            2.7182817);""",
     # a*b + c*a -> a*(b + c), also through a local product (a hash of a real shader)
     "factoring": """vec2 uv = 50.0 * fract(p / 3.14159265);
-        c = vec4(fract(uv.x * uv.y * (uv.x + uv.y)), a * b + d * a, e * 1.37 + e * b, 2.7182817 * (a * b));""",
+        c = vec4(fract(uv.x * uv.y * (uv.x + uv.y)), a * b + d * a, e * 1.37 + e * b, 2.7182817 * \
+            (a * b));""",
     # (a + b) + K with longer terms: K sinks down a chain of sums used once, also through a
     # local read once (a sum stored, or assigned before: iq's noise, `uv + 0.5` with
     # uv = (p.xy + K2*p.z) + f.xy and f = f*f*(3 - 2f)), beside products of any factors
-    "constants_sunk_further": """vec3 x3 = vec3(a * 20.0, b * 30.0, d * 7.0), fl = floor(x3), fr = fract(x3);
+    "constants_sunk_further": """vec3 x3 = vec3(a * 20.0, b * 30.0, d * 7.0), fl = floor(x3), fr \
+        = fract(x3);
         fr = fr*fr*(3.0 - 2.0*fr);
         vec2 uv = (fl.xy + vec2(37.0, 17.0)*fl.z) + fr.xy;
         float v = fl.y - fr.y*(b + 1.0);
         c = vec4(((uv + 0.5) / 256.0).x, (v - 2.7182817) * e, a*b*d + e + 1.37, 1.0);""",
     # beside a selection (a bcsel: no product), through locals: (u + f*a) + K -> (u + K) + f*a
-    "constants_sunk_beside_a_selection": """float u = d > 0.5 ? a*b : e; float v = u + f*a; float w = t > 0.3 ? e : b;
+    "constants_sunk_beside_a_selection": """float u = d > 0.5 ? a*b : e; float v = u + f*a; float \
+        w = t > 0.3 ? e : b;
         c = vec4(v + 0.9, (w - d*e) - 1.7, (a > 0.5 ? a : d) + e*t + 2.3, 1.0);""",
     # a product by a constant seen through a variable assigned again (SSA): #M * (y * #c) ->
     # (M*c) * y for a constant matrix (iq's fbm: p = m*p*2.02; p = m*p*2.03), and
     # (y * #c) * #k -> y * (c*k)
-    "constants_merged_through_assignments": """const mat3 m = mat3(0.0, 0.8, 0.6, -0.8, 0.36, -0.48, -0.6, -0.48, 0.64);
+    "constants_merged_through_assignments": """const mat3 m = mat3(0.0, 0.8, 0.6, -0.8, 0.36, \
+        -0.48, -0.6, -0.48, 0.64);
         vec3 r = vec3(a, b, d);
         r = m*r*2.02;
         r = m*r*2.03;
         vec3 w = r * 3.5;
         c = vec4(r.x, w.y, (m*r*2.01).z, 1.0);""",
     # #a * (b * #c) -> (a*c) * b and #a + (b + #c) -> (a + c) + b, also through a local
-    "constants_merged": """vec2 uv = (2.0 * p - iResolution.xy) / min(iResolution.x, iResolution.y) * 1.2;
+    "constants_merged": """vec2 uv = (2.0 * p - iResolution.xy) / min(iResolution.x, \
+        iResolution.y) * 1.2;
         vec2 w = uv * 0.2; float q = b + 0.37;
         c = vec4(w, (q - 1.3) * 1.0, 2.5 - (q + 1.7));""",
 }
@@ -143,7 +152,8 @@ def test_an_added_constant_zero_keeps_the_sign_of_zero(llvmpipe, make_shader):
     assert (f64[..., 0] == np.inf).all() and (f64[..., 2] == np.inf).all()
 
 
-MERGED_DOTS = """float hash(vec2 v) { return fract(15465.1327854 * sin(dot(v, vec2(173.93422, 102.5165)))); }
+MERGED_DOTS = """float hash(vec2 v) { return fract(15465.1327854 * sin(dot(v, vec2(173.93422, \
+    102.5165)))); }
 void mainImage(out vec4 c, in vec2 p) {
     vec2 uv = (2.0 * p - iResolution.xy) / min(iResolution.x, iResolution.y) * 1.2;
     vec3 r = fract(vec3(p.x, p.y, p.x + p.y) * 0.013);
@@ -166,11 +176,13 @@ def test_constants_merge_into_a_dot_product_also_through_an_inlined_argument(llv
     assert same.all(), (~same).reshape(-1, 4).sum(0).tolist()
 
 
-ONE_VALUE_DOTS = """float hash(vec2 co) { return fract(sin(dot(co.xy, vec2(12.9898, 78.233))) * 43758.5453); }
+ONE_VALUE_DOTS = """float hash(vec2 co) { return fract(sin(dot(co.xy, vec2(12.9898, 78.233))) * \
+    43758.5453); }
 void mainImage(out vec4 c, in vec2 p) {
     float a = fract(p.x * 0.1371 + p.y * 0.0917), q = floor(p.x) / 61.0 + floor(p.y) * 0.0173;
     c = vec4(fract(sin(dot(a, 123.456) * 789.123)),
-             fract(dot(vec2(q), vec2(12.9898, 78.233)) * 43.7) + fract(dot(vec4(a), vec4(12.9898, 78.233, 37.719, 4.581))),
+             fract(dot(vec2(q), vec2(12.9898, 78.233)) * 43.7) + fract(dot(vec4(a), vec4(12.9898, \
+                 78.233, 37.719, 4.581))),
              hash(vec2(q)) + fract(dot(vec3(a), vec3(0.1, 0.2, 0.7)) * 4373.1), 1.0);
 }"""
 
@@ -186,7 +198,8 @@ def test_a_dot_product_of_one_value_is_a_product(llvmpipe, make_shader):
     _assert_bit_for_bit(make_shader(ONE_VALUE_DOTS))
 
 
-GLOBAL_CONSTANTS = """float PI = 3.14159265;  // globals that are not const but never written: constants to Mesa
+GLOBAL_CONSTANTS = """float PI = 3.14159265;  // globals that are not const but never written: \
+    constants to Mesa
 float SCALE = 0.37;
 void mainImage(out vec4 c, in vec2 p) {
     vec2 uv = 50.0 * fract(p / PI);
@@ -219,9 +232,11 @@ SSA_VALUES = (
 
 RETURNED_SUMS = """float h(vec3 x) { return fract(sin(x.x * 1.7 + x.y * 3.1) * 43.7 + x.z); }
 float fbm(vec3 p) { float f; f = 0.5*h(p); f += 0.25*h(p + 1.0); f += 0.125*h(p + 2.0); return f; }
-float wave(vec3 p) { float f = fract(p.x * 3.1); f -= 0.5*fract(p.y * 1.7); f += p.z * 0.3; return f; }
+float wave(vec3 p) { float f = fract(p.x * 3.1); f -= 0.5*fract(p.y * 1.7); f += p.z * 0.3; \
+    return f; }
 void mainImage(out vec4 c, in vec2 q) {
-    vec3 p = vec3(fract(q.x * 0.1371 + q.y * 0.0917), sin(q.y * 0.917 + q.x * 0.0311), fract(q.x * 0.01377 + q.y * 0.0311));
+    vec3 p = vec3(fract(q.x * 0.1371 + q.y * 0.0917), sin(q.y * 0.917 + q.x * 0.0311), fract(q.x \
+        * 0.01377 + q.y * 0.0311));
     c = vec4(fbm(p) - 0.4, wave(p) + 1.3, 0.7 + fbm(p.zxy), 1.0);
 }"""
 
@@ -249,7 +264,8 @@ RETURNED_SUMS_SHARED = (
     + """
 vec3 fbm3(vec3 p) { vec3 f = 0.5*fract(p*7.0); f += 0.25*fract(p*3.0); return f; }
 void mainImage(out vec4 c, in vec2 q) {
-    vec3 p = vec3(fract(q.x * 0.1371 + q.y * 0.0917), sin(q.y * 0.917 + q.x * 0.0311), fract(q.x * 0.01377 + q.y * 0.0311));
+    vec3 p = vec3(fract(q.x * 0.1371 + q.y * 0.0917), sin(q.y * 0.917 + q.x * 0.0311), fract(q.x \
+        * 0.01377 + q.y * 0.0311));
     float d = fbm(p);
     vec3 a = (fbm3(p) - vec3(0.3, 0.2, 0.1)) * 1.5, b = fbm3(p.zxy) * 2.0;
     c = vec4(fbm(p) - 0.4 + d * 2.0, a.x + b.y, a.z + b.x, 1.0);
@@ -309,7 +325,8 @@ def test_constants_propagated_into_a_call_per_component(llvmpipe, make_shader):
     assert same.all(), (~same).reshape(-1, 4).sum(0).tolist()
 
 
-SCALED_ARGUMENTS = """float hash11(float p) { vec3 p3 = fract(vec3(p) * 443.8975); p3 += dot(p3, p3.yzx + 19.19); return fract((p3.x + p3.y) * p3.z); }
+SCALED_ARGUMENTS = """float hash11(float p) { vec3 p3 = fract(vec3(p) * 443.8975); p3 += dot(p3, \
+    p3.yzx + 19.19); return fract((p3.x + p3.y) * p3.z); }
 float scaled(vec2 q) { vec2 r = fract(q * 7.31); return dot(r, vec2(3.7, 1.3)); }
 void mainImage(out vec4 c, in vec2 p) {
     float a = fract(p.x * 0.1371 + p.y * 0.0917), fi = floor(p.x) + 160.0 * floor(p.y);
@@ -330,12 +347,16 @@ def test_a_product_by_a_constant_passed_into_a_call_merges_with_its_constants(
     _assert_bit_for_bit(make_shader(SCALED_ARGUMENTS))
 
 
-HASHES_WITHOUT_SINE = """float hash11(float p) { vec3 p3 = fract(vec3(p) * .1031); p3 += dot(p3, p3.yzx + 33.33); return fract((p3.x + p3.y) * p3.z); }
-float hash12(vec2 p) { vec3 p3 = fract(vec3(p.xyx) * .1031); p3 += dot(p3, p3.yzx + 33.33); return fract((p3.x + p3.y) * p3.z); }
-float hash13(vec3 p3) { p3 = fract(p3 * .1031); p3 += dot(p3, p3.zyx + 31.32); return fract((p3.x + p3.y) * p3.z); }
+HASHES_WITHOUT_SINE = """float hash11(float p) { vec3 p3 = fract(vec3(p) * .1031); p3 += dot(p3, \
+    p3.yzx + 33.33); return fract((p3.x + p3.y) * p3.z); }
+float hash12(vec2 p) { vec3 p3 = fract(vec3(p.xyx) * .1031); p3 += dot(p3, p3.yzx + 33.33); \
+    return fract((p3.x + p3.y) * p3.z); }
+float hash13(vec3 p3) { p3 = fract(p3 * .1031); p3 += dot(p3, p3.zyx + 31.32); return fract((p3.x \
+    + p3.y) * p3.z); }
 void mainImage(out vec4 c, in vec2 p) {
     float q = fract(p.x * 0.01371 + p.y * 0.0917) * 50.0;
-    c = vec4(hash11(p.x + 160.0 * p.y) + hash11(q), hash12(p), hash13(vec3(p, p.x * 0.7 + 3.0)), 1.0);
+    c = vec4(hash11(p.x + 160.0 * p.y) + hash11(q), hash12(p), hash13(vec3(p, p.x * 0.7 + 3.0)), \
+        1.0);
 }"""
 
 
@@ -373,8 +394,8 @@ void mainImage(out vec4 c, in vec2 p) {
 def test_a_sum_returned_through_a_folded_call_fuses_with_its_next_addition(llvmpipe, make_shader):
     """gargantua's first ray step, ``pos + dir * dither * far / 200.0`` with pos folded by the
     call (each component ``p1 + p2`` of two products) and read only there: llvmpipe fuses and
-    splits again, ``(p1 + step) + p2`` (nir_fold.ffma_split.fused_after_call), and ``(dir * dither) *
-    15.0`` is ``(dir * 15.0) * dither`` (the product sink past a broadcast operand: dir is what
+    splits again, ``(p1 + step) + p2`` (nir_fold.ffma_split.fused_after_call), and ``(dir * dither)
+    * 15.0`` is ``(dir * 15.0) * dither`` (the product sink past a broadcast operand: dir is what
     the call wrote, dither a product by a constant). Measured: 3832, 4665 and 3901 pixels
     differed from llvmpipe with the call folded alone, 4127, 8716 and 4021 without any of it."""
     shader = make_shader(CALL_CONSTANTS_STEP)
@@ -406,8 +427,8 @@ def test_a_squared_length_plus_a_constant_is_a_dot_product(llvmpipe, make_shader
     """``pow(distance(r, vec3(0.0)), 2.0) + K`` (gargantua's WarpSpace) is ``dot(r, r) + K`` on
     llvmpipe: fpow(a, 2.0) -> a*a, sqrt(a)*sqrt(a) -> a, and K joins the dot product's
     innermost addition, unless another length/normalize/dot of r shares that dot product
-    (steer(): K stays outside; nir_fold.squared_lengths.squared_length). Measured without the rule: 6048,
-    6791 and 6168 of the 14,400 pixels differed from llvmpipe; with K always sunk, 477 of
+    (steer(): K stays outside; nir_fold.squared_lengths.squared_length). Measured without the rule:
+    6048, 6791 and 6168 of the 14,400 pixels differed from llvmpipe; with K always sunk, 477 of
     steer()'s."""
     shader = make_shader(SQUARED_LENGTHS)
     got_gl = np.asarray(compile_backend(shader, "gl").render(size=(160, 90)), np.float32)
@@ -455,7 +476,8 @@ def _warp_after(steps: str) -> str:
     "steps",
     [
         "    for (int i = 0; i < int(iTime * 0.0) + 4; i++) { warp(e, r); r += e * 0.075; }",
-        "    if (q.y > 40.0) { r = r * 1.5 + sin(r.zxy) * cos(r) + exp(r.yzx) * 0.1 + log(abs(r) + 1.0); }\n"
+        "    if (q.y > 40.0) { r = r * 1.5 + sin(r.zxy) * cos(r) + exp(r.yzx) * 0.1 + log(abs(r) "
+        "+ 1.0); }\n"
         "    warp(e, r);",
     ],
     ids=["loop", "branch"],
@@ -463,8 +485,8 @@ def _warp_after(steps: str) -> str:
 def test_a_constant_joins_a_shared_dot_product_of_a_merged_value(llvmpipe, make_shader, steps):
     """The same warp, its r written in the loop around the call (gargantua's ray steps) or in a
     branch before it: the constant joins the dot product's innermost addition although
-    normalize() shares it (nir_fold.squared_lengths.merged_argument). Measured with it kept outside: 3 and 1
-    of the 14,400 pixels differed from llvmpipe (x); NORMALIZED_STEPS itself: 0 outside, 1
+    normalize() shares it (nir_fold.squared_lengths.merged_argument). Measured with it kept outside:
+    3 and 1 of the 14,400 pixels differed from llvmpipe (x); NORMALIZED_STEPS itself: 0 outside, 1
     sunk."""
     shader = make_shader(_warp_after(steps))
     got_gl = np.asarray(compile_backend(shader, "gl").render(size=(160, 90)), np.float32)
@@ -569,7 +591,8 @@ KEPT_RETURNS = """const float pi = 3.14159265;
 float atan2(float y, float x) {  // gargantua's: returns from inside branches, after atan()
     if (x > 0.0) { return atan(y / x); }
     else if (x == 0.0) {
-        if (y > 0.0) { return pi / 2.0; } else if (y < 0.0) { return -(pi / 2.0); } else { return 0.0; }
+        if (y > 0.0) { return pi / 2.0; } else if (y < 0.0) { return -(pi / 2.0); } else { return \
+            0.0; }
     } else {
         if (y >= 0.0) { return atan(y / x) + pi; } else { return atan(y / x) - pi; }
     }
@@ -622,9 +645,9 @@ void mainImage(out vec4 c, in vec2 p) {  // gargantua's GasDisc
 
 def test_a_constant_sinks_into_a_compound_product_read_once(llvmpipe, make_shader):
     """``x *= b; ... x * #c`` with x's new value read only there is ``(a * #c) * b`` (a: x
-    before), the product used once in SSA (nir_fold.compound_products.sunk_through_compound); copied one level:
-    a is a sin() here, and the pcurve() value that CSE shares with the second identical call.
-    Measured without it: 4537 and 5121 of the 14,400 pixels differed from llvmpipe."""
+    before), the product used once in SSA (nir_fold.compound_products.sunk_through_compound); copied
+    one level: a is a sin() here, and the pcurve() value that CSE shares with the second identical
+    call. Measured without it: 4537 and 5121 of the 14,400 pixels differed from llvmpipe."""
     _assert_bit_for_bit(make_shader(SUNK_THROUGH_COMPOUNDS))
 
 

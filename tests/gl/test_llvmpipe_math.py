@@ -2,9 +2,10 @@
 
 llvmpipe evaluates sin, cos, exp2, log2 (and tan, pow, exp, log, the hyperbolic functions built
 on them) with its own polynomials (gallivm lp_bld_arit.c), asin/acos with Mesa's GLSL formula
-and atan with NIR's polynomial (after nir_opt_algebraic's reassociation of its last term); `Runtime("float32")` repeats them step by step (see
-`LlvmpipeMath` in glslcheck/backends/numpy_engine/runtime.py). Each case renders a few hundred thousand
-inputs at once (uniform grid, random, subnormal, huge, +-0, +-Inf, NaN) and compares every bit.
+and atan with NIR's polynomial (after nir_opt_algebraic's reassociation of its last term);
+`Runtime("float32")` repeats them step by step (see `LlvmpipeMath` in
+glslcheck/backends/numpy_engine/runtime.py). Each case renders a few hundred thousand inputs at once
+(uniform grid, random, subnormal, huge, +-0, +-Inf, NaN) and compares every bit.
 
 CPU dependence: the steps llvmpipe builds with `llvm.fmuladd` are fused on a CPU with FMA and
 not fused without; `Runtime()` follows this machine (`HOST_FMA`), and a test checks that the

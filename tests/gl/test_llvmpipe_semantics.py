@@ -32,7 +32,8 @@ CASES = {
     "mix_and_dot_fold": """
         void mainImage(out vec4 c, in vec2 p) {
             float n = (p.x - p.x) / (p.y - p.y);
-            c = vec4(mix(n, 0.5, 1.0), mix(0.25, n, 0.0), dot(vec3(n, p.x, 2.0), vec3(0.0, 1.0, 1.0)), 1.0);
+            c = vec4(mix(n, 0.5, 1.0), mix(0.25, n, 0.0), dot(vec3(n, p.x, 2.0), vec3(0.0, 1.0, \
+                1.0)), 1.0);
         }""",
     # two constants multiply out (IEEE): 0 * inf stays NaN
     "constant_times_constant": """
@@ -59,13 +60,15 @@ CASES = {
         struct Light { vec4 center; vec4 color; float intensity; };
         void mainImage(out vec4 c, in vec2 p) {
             Light lights[3];
-            lights[0].center = vec4(2.0, 2.0, 0.0, 1.0); lights[0].color = vec4(1.0); lights[0].intensity = 10.0;
+            lights[0].center = vec4(2.0, 2.0, 0.0, 1.0); lights[0].color = vec4(1.0); \
+                lights[0].intensity = 10.0;
             vec3 pos = vec3(p / 8.0, -1.0);
             vec4 acc;
             for (int i = 2; i >= 0; --i) {
                 vec3 l = lights[i].center.xyz - pos;
                 float d2 = dot(l, l);
-                float diff = max(0.0, dot(normalize(pos), l * inversesqrt(d2))) * (1.0 - d2 / (lights[i].intensity * lights[i].intensity));
+                float diff = max(0.0, dot(normalize(pos), l * inversesqrt(d2))) * (1.0 - d2 / \
+                    (lights[i].intensity * lights[i].intensity));
                 acc += diff * vec4(0.5) * lights[i].color;
             }
             c = acc;

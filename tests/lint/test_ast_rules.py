@@ -20,7 +20,10 @@ from .conftest import REPO_ROOT
 LAB = REPO_ROOT / "lab_shaders"
 CORPUS = REPO_ROOT / "tests" / "corpus"
 AST_RULES = [r.name for r in all_rules().values() if r.needs == "ast"]
-HEADER = "// Image.glsl: a test\n// Contributors: Ana: all\n// starter framework by Daniel S. Buckstein\n"
+HEADER = (
+    "// Image.glsl: a test\n// Contributors: Ana: all\n// starter framework by Daniel S. "
+    "Buckstein\n"
+)
 
 
 def _findings(text: str, select: list[str] | None = None):
@@ -91,8 +94,8 @@ def test_common_is_linted_inside_the_image_pass(tmp_path: Path):
         HEADER + "float helper(in float x) { return x * iDate.w; }\n"
     )
     (tmp_path / "Image.glsl").write_text(
-        HEADER
-        + "void mainImage(out vec4 fragColor, in vec2 fragCoord) { fragColor = vec4(helper(1.0)); }\n"
+        HEADER + "void mainImage(out vec4 fragColor, in vec2 fragCoord) { fragColor = "
+        "vec4(helper(1.0)); }\n"
     )
     result = lint_paths([tmp_path], {"select": ["uniform-outside-mainimage", "unused-function"]})
     assert [(Path(f.path).name, f.loc.line, f.rule) for f in result.findings] == [
@@ -114,9 +117,8 @@ def test_a_file_that_does_not_check_gets_text_rules_only(tmp_path: Path):
 
 def test_ast_findings_are_suppressed_like_any_other():
     text = (
-        HEADER
-        + "float f(in float x)\n{\n    return pow(x, 2.0); // glslcheck: ignore[pow-small-exponent]\n}\n"
-        + MAIN
+        HEADER + "float f(in float x)\n{\n    return pow(x, 2.0); // glslcheck: "
+        "ignore[pow-small-exponent]\n}\n" + MAIN
     )
     assert _findings(text, ["pow-small-exponent", "unused-suppression"]) == []
 

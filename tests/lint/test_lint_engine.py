@@ -83,7 +83,8 @@ def test_scan_keeps_every_line_and_column(text):
         "File: Image\nPurpose: lit spheres\nAuthors: Ana: lighting",
         "@file Image.glsl\n@brief lit spheres\n@author Ana Ruiz (lighting)",
         " * Image tab - draws the scene\n * Modified by Ben Li: added Blinn-Phong",
-        "Filename: image.glsl\nThis shader draws lit spheres.\nContributors:\n  Ana - lighting\n  Ben - comments",
+        "Filename: image.glsl\nThis shader draws lit spheres.\nContributors:\n  Ana - "
+        "lighting\n  Ben - comments",
     ],
 )
 def test_header_wordings_accepted(header):
@@ -99,7 +100,8 @@ def test_header_wordings_accepted(header):
         ("By Ana and Ben", "bare"),
         ("Written by Madeline Cody", "ok"),  # one author did all of it: no role list to give
         (
-            "Copyright 2020 Ana Ruiz and Ben Li\nAuthors:\n  Ana Ruiz (lighting)\n  Ben Li (comments)",
+            "Copyright 2020 Ana Ruiz and Ben Li\nAuthors:\n  Ana Ruiz (lighting)\n  Ben Li "
+            "(comments)",
             "ok",
         ),
         ("Copyright 2020 Dan Buckstein\nCopyright 2020 Ana Ruiz", "ok"),  # the license names her
@@ -132,7 +134,8 @@ def test_ast_rule_runs_only_with_a_tree(monkeypatch):
     rules["pow-two"] = _fake_ast_rule()
     monkeypatch.setattr(engine, "all_rules", lambda: rules)
     text = (
-        "// Image.glsl: squares x\n// By Ana: all of it\n// starter framework by Daniel S. Buckstein\n"
+        "// Image.glsl: squares x\n// By Ana: all of it\n// starter framework by Daniel S. "
+        "Buckstein\n"
         "float y = pow(x, 2.0); // square\n"
     )
     src = Source("Image.glsl", text)

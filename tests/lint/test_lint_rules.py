@@ -1,5 +1,5 @@
 """Rule snapshots: each folder under fixtures/ is linted and its findings compared with the
-folder's expected.json (GLSLCHECK_UPDATE_SNAPSHOTS=1 rewrites them); the registry's contract."""
+folder's expected.json (`--update-snapshots` rewrites them); the registry's contract."""
 
 from __future__ import annotations
 
@@ -9,13 +9,11 @@ from pathlib import Path
 
 import pytest
 
-from glslcheck.base import config
 from glslcheck.lint import lint_paths
 from glslcheck.lint.rules import RULE_TABLE, SECTIONS, all_rules, doc_sections
 
 from .conftest import FIXTURES
 
-UPDATE = config.update_snapshots()
 FIXTURE_DIRS = sorted(p for p in FIXTURES.iterdir() if (p / "expected.json").is_file())
 
 
@@ -36,11 +34,11 @@ def _found(folder: Path, select: list[str]) -> list[dict]:
 
 
 @pytest.mark.parametrize("folder", FIXTURE_DIRS, ids=lambda p: p.name)
-def test_rule_fixture_matches_snapshot(folder: Path):
+def test_rule_fixture_matches_snapshot(update_snapshots, folder: Path):
     expected_file = folder / "expected.json"
     expected = json.loads(expected_file.read_text(encoding="utf-8"))
     found = _found(folder, expected["select"])
-    if UPDATE:
+    if update_snapshots:
         expected["findings"] = found
         expected_file.write_text(json.dumps(expected, indent=2) + "\n", encoding="utf-8")
     assert found == expected["findings"]
@@ -69,8 +67,8 @@ def test_rule_module_contract(name: str):
 
 
 def test_has_credit_agrees_with_the_case_insensitive_pattern():
-    """missing-credit's fast search (ASCII text lowercased, a case-sensitive pattern, faster than re.I)
-    gives CREDIT_RE's answer: upper and mixed case, word boundaries, every alternative, and
+    """missing-credit's fast search (ASCII text lowercased, a case-sensitive pattern, faster than
+    re.I) gives CREDIT_RE's answer: upper and mixed case, word boundaries, every alternative, and
     non-ASCII text (searched with CREDIT_RE itself: re.I folds the long s and the Kelvin sign)."""
     from glslcheck.lint.rules.missing_credit import _CREDIT, CREDIT_RE, has_credit
 

@@ -15,7 +15,10 @@ from glslcheck.lint import lint_paths
 from glslcheck.lint.report import render, summary_line
 from glslcheck.lint.textscan import inactive_lines
 
-HEADER = "// Image.glsl: a test\n// Contributors: Ana: all\n// starter framework by Daniel S. Buckstein\n"
+HEADER = (
+    "// Image.glsl: a test\n// Contributors: Ana: all\n// starter framework by Daniel S. "
+    "Buckstein\n"
+)
 
 
 def _lint(tmp_path: Path, text: str, select: list[str] | None = None, name: str = "Image.glsl"):
@@ -447,7 +450,8 @@ def test_a_broken_directive_drops_only_its_line(tmp_path: Path):
     text = (
         HEADER
         + "#define SCALE(x (x * 2.0)\n// a uniform in a helper\nfloat t() { return iTime; }\n"
-        "// the image\nvoid mainImage(out vec4 fragColor, in vec2 fragCoord) { fragColor = vec4(t()); }\n"
+        "// the image\nvoid mainImage(out vec4 fragColor, in vec2 fragCoord) { fragColor = "
+        "vec4(t()); }\n"
     )
     found = [(f.rule, f.severity, f.loc.line) for f in _lint(tmp_path, text).findings]
     assert found[0] == ("compile-error", "error", 4)
@@ -492,8 +496,8 @@ def test_a_mainimage_macro_in_common_reads_the_pass_uniforms(tmp_path: Path):
     # the macro expands in the Image pass's wrapper, where iTime is declared; Common compiled
     # alone never expands it. A Common *function* reading iTime is still an error.
     (tmp_path / "Common.glsl").write_text(
-        HEADER
-        + "// the whole image, golfed\n#define mainImage(O, U) O = vec4(sin(iTime), U / iResolution.xy, 1.0)\n"
+        HEADER + "// the whole image, golfed\n#define mainImage(O, U) O = vec4(sin(iTime), "
+        "U / iResolution.xy, 1.0)\n"
     )
     (tmp_path / "Image.glsl").write_text(HEADER + "// the image is the Common tab's macro\n")
     result = lint_paths(

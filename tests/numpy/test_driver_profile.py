@@ -1,4 +1,5 @@
-"""The float->uint models of glslcheck/backends/driver_profile.py against what each kind of CPU measured.
+"""The float->uint models of glslcheck/backends/driver_profile.py against what each kind of CPU
+measured.
 
 llvmpipe computes ``uint(x)`` of negative, NaN or huge ``x`` (undefined in GLSL ES 3.00) with
 whatever instructions the CPU has, so one machine's answer cannot be pinned. These tables were

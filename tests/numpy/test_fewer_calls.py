@@ -1,5 +1,5 @@
-"""The per-call cuts for the slowest real shaders (fewer NumPy calls per frame) change no pixel and do
-cut the calls: a built-in call repeated in one expression is computed once (`Expressions.
+"""The per-call cuts for the slowest real shaders (fewer NumPy calls per frame) change no pixel and
+do cut the calls: a built-in call repeated in one expression is computed once (`Expressions.
 repeated_calls`), int and uint operators are NumPy's, swizzles are views or `take`, `dot` makes
 its products in one call.
 
@@ -88,7 +88,8 @@ void mainImage(out vec4 o, in vec2 f) {
     s ^= s << 5;
     int i = int(f.x) - 3;
     int j = (i >> 1) + (i & 6) - (i | 1) * (i ^ 5);
-    o = vec4(float(s & 0xffffu) / 65535.0, float(s >> 16) / 65535.0, float(j) + float(i < 0 == s > 7u) * 100.0, 1.0);
+    o = vec4(float(s & 0xffffu) / 65535.0, float(s >> 16) / 65535.0, float(j) + float(i < 0 == s \
+        > 7u) * 100.0, 1.0);
 }
 """
 

@@ -1,7 +1,7 @@
-"""When the compiled math kernels are used (backends/numpy_engine/jit.py): the modes, the tiered rule of
-auto, numba's cache directory. Runs without numba: the kernels are replaced by a stand-in that
-computes the reference and counts its calls (the real kernels are tests/numpy/test_jit_kernels.py
-and test_jit_render.py)."""
+"""When the compiled math kernels are used (backends/numpy_engine/jit.py): the modes, the tiered
+rule of auto, numba's cache directory. Runs without numba: the kernels are replaced by a stand-in
+that computes the reference and counts its calls (the real kernels are
+tests/numpy/test_jit_kernels.py and test_jit_render.py)."""
 
 from __future__ import annotations
 

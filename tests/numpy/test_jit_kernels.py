@@ -1,11 +1,11 @@
-"""numba's compiled kernels (backends/numpy_engine/jit_kernels.py) against LlvmpipeMath's step-by-step
-algorithms, bit for bit, with and without FMA.
+"""numba's compiled kernels (backends/numpy_engine/jit_kernels.py) against LlvmpipeMath's
+step-by-step algorithms, bit for bit, with and without FMA.
 
-Through `jit.compiled`, the function llvmpipe_reference.LlvmpipeMath calls once the kernels are on: on about
-1,500,000 lanes per function and FMA choice, in calls of 1 to 49,152 lanes (a tile), with the arguments of
-tests/numpy/test_llvmpipe_fast_kernels.py (every scale, log-spread down to FLT_MIN, exact
-multiples of 1/8, where the fused steps' float64 sums land on float32 midpoints; specials mixed
-in: +-0, subnormals, +-Inf, NaN, huge). A call the kernel takes must give the reference's bits
+Through `jit.compiled`, the function llvmpipe_reference.LlvmpipeMath calls once the kernels are on:
+on about 1,500,000 lanes per function and FMA choice, in calls of 1 to 49,152 lanes (a tile), with
+the arguments of tests/numpy/test_llvmpipe_fast_kernels.py (every scale, log-spread down to FLT_MIN,
+exact multiples of 1/8, where the fused steps' float64 sums land on float32 midpoints; specials
+mixed in: +-0, subnormals, +-Inf, NaN, huge). A call the kernel takes must give the reference's bits
 exactly; a call it declines (a NaN would come out, or |x| >= 2**29 for sin/cos/tan) goes to the
 NumPy function, which must be asked for it. Skipped without numba on a developer machine, a
 failure on CI (the `jit_kernels` fixture).

@@ -41,12 +41,14 @@ void mainImage(out vec4 fragColor, in vec2 fragCoord) {
     for (int i = 0; i < 64; i++) {
         float d = map(ro + rd * t);
         float a = atan(rd.y + d, rd.x - d) + atan(d * 4.0);
-        glow += exp2(-8.0 * abs(d)) * 0.02 + 1e-3 * mix(a, asin(clamp(d, -1.0, 1.0)), fract(t * 3.0));
+        glow += exp2(-8.0 * abs(d)) * 0.02 + 1e-3 * mix(a, asin(clamp(d, -1.0, 1.0)), fract(t * \
+            3.0));
         if (d < 0.001 || t > 12.0) break;
         t += d;
     }
     vec3 p = ro + rd * t;
-    float spec = pow(max(dot(normalize(p), normalize(vec3(1.0, 2.0, 1.5))), 0.0), 24.0 + uv.x * 8.0);
+    float spec = pow(max(dot(normalize(p), normalize(vec3(1.0, 2.0, 1.5))), 0.0), 24.0 + uv.x * \
+        8.0);
     float f = log2(1.0 + t) + tan(uv.x * 1.4) * 0.05;
     float edge = pow(uv.x, 0.5) + pow(0.0, uv.y + 1.0) + sin(uv.y * 3.0e9) + log(max(uv.x, 0.0));
     fragColor = vec4(spec + glow, f, exp(-0.3 * t) + 1e-3 * edge, acos(uv.y * 1.2));

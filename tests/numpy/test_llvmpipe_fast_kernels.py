@@ -1,7 +1,7 @@
 """llvmpipe_fast's kernels against LlvmpipeMath's step-by-step algorithms, bit for bit.
 
-The kernels (glslcheck/backends/numpy_engine/llvmpipe_fast.py) are the same float32 steps in fewer NumPy
-calls, for arguments in the common range; elsewhere they decline (return None) and the
+The kernels (glslcheck/backends/numpy_engine/llvmpipe_fast.py) are the same float32 steps in fewer
+NumPy calls, for arguments in the common range; elsewhere they decline (return None) and the
 reference path runs. Compared here on about two million lanes per kernel and FMA choice:
 arguments at every scale the kernels accept (uniform, log-spread down to FLT_MIN, exact
 multiples of 1/8, the edges of their ranges) with specials mixed in at random (+-0, subnormals,

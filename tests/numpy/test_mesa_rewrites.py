@@ -101,7 +101,8 @@ def test_transpiler_emits_the_rewrites(make_shader):
             "void mainImage(out vec4 o, in vec2 f) {\n"
             "    float x = -f.x;\n"
             "    o = vec4(pow(x, 2.0), pow(x, E), pow(x, 3.0), pow(1.0, x))\n"
-            "      + pow(vec4(x), vec4(1.0, 0.0, 0.5, 2.0)) + pow(2.0, x) + pow(vec2(2.0), vec2(x)).x;\n"
+            "      + pow(vec4(x), vec4(1.0, 0.0, 0.5, 2.0)) + pow(2.0, x) + pow(vec2(2.0), "
+            "vec2(x)).x;\n"
             "}\n"
         )
     )

@@ -68,7 +68,8 @@ def _render(prog, **kw):
 
 @pytest.fixture
 def knobs(monkeypatch):
-    """Set module settings for one test: tile sizes (frame.py), frame cache and pool (program.py)."""
+    """Set module settings for one test: tile sizes (frame.py), frame cache and pool
+    (program.py)."""
 
     def set_(**values):
         for k, v in values.items():
@@ -231,7 +232,8 @@ def test_tiles_of_one_colour_are_written_whole(make_shader, knobs, monkeypatch):
         make_shader(
             "void mainImage(out vec4 o, in vec2 f) {\n"
             "    vec4 c = vec4(0.25, 0.5, 0.75, 0.3);\n"
-            "    if (f.x < 10.0) c = vec4(f, 0.5, 0.0);   // no lane of the tiles right of x = 16 runs it\n"
+            "    if (f.x < 10.0) c = vec4(f, 0.5, 0.0);   // no lane of the tiles right of x = "
+            "16 runs it\n"
             "    o = c;\n"
             "}"
         )
@@ -285,7 +287,8 @@ def test_a_pure_right_operand_of_and_or_is_skipped_where_no_lane_needs_it(
 def test_image_rows_run_top_to_bottom(make_shader, knobs):
     prog = compile_numpy(
         make_shader(
-            "void mainImage(out vec4 o, in vec2 f) { o = vec4(f, gl_FragCoord.x + gl_FragCoord.y, 1.0); }"
+            "void mainImage(out vec4 o, in vec2 f) { o = vec4(f, "
+            "gl_FragCoord.x + gl_FragCoord.y, 1.0); }"
         )
     )
     knobs(TILE_LANES=40)

@@ -1,12 +1,12 @@
 """NumPy renders against the GL driver (Mesa llvmpipe): the corpus, masks, calls, indexing,
 precision and supersampling.
 
-Tolerance: `glslcheck.verification.compare.compare`, the project's one tolerance model (2/255 per channel
-after clamping, scattered/edge budgets; argued in verification/compare.py). Our float32 arithmetic follows
-llvmpipe operation by operation (no FMA, the same formulas for the built-ins, see runtime.py),
-so smooth shading agrees to ~1e-3 at worst (exp2/log2/pow ULPs through a lighting chain); the
-budget for edge pixels covers silhouettes where one float32 rounding flips a comparison. Tests
-of exact integer/bool logic (`_exact`) demand bit equality instead.
+Tolerance: `glslcheck.verification.compare.compare`, the project's one tolerance model (2/255 per
+channel after clamping, scattered/edge budgets; argued in verification/compare.py). Our float32
+arithmetic follows llvmpipe operation by operation (no FMA, the same formulas for the built-ins, see
+runtime.py), so smooth shading agrees to ~1e-3 at worst (exp2/log2/pow ULPs through a lighting
+chain); the budget for edge pixels covers silhouettes where one float32 rounding flips a comparison.
+Tests of exact integer/bool logic (`_exact`) demand bit equality instead.
 """
 
 from __future__ import annotations
@@ -226,7 +226,8 @@ def test_structs_and_dynamic_indexing(gl, make_shader):
     mat3 m = mat3(1.0, 2.0, 3.0, 4.0, 5.0, 6.0, 7.0, 8.0, 9.0);
     vec3 col = m[j];
     col[j] *= 2.0;
-    fragColor = vec4(l.pos.y + lights[j].k[0] + l.k[1], col.x / 10.0, col[int(fragCoord.y) % 3] / 20.0, 1.0);"""
+    fragColor = vec4(l.pos.y + lights[j].k[0] + l.k[1], col.x / 10.0, col[int(fragCoord.y) % 3] / \
+        20.0, 1.0);"""
     _exact(gl, make_shader(_image(body, helpers)), size=(6, 3))
 
 
@@ -257,7 +258,8 @@ def test_precision_modes_use_their_dtypes(make_shader):
         make_shader(
             _image(
                 # u is 1 at run time but no constant: Mesa would reassociate (1.0 + t) - 1.0 into t
-                "float e = 1.0 / 1024.0; float t = iTime * 1e-8; float u = iResolution.x / iResolution.x;"
+                "float e = 1.0 / 1024.0; float t = iTime * 1e-8; float u = iResolution.x / "
+                "iResolution.x;"
                 "fragColor = vec4((1.0 + e * 0.4 - 1.0) * 1024.0, (1.0 + t - u) * 1e8, 0.0, 1.0);"
             )
         )
@@ -280,7 +282,10 @@ def test_precision_modes_use_their_dtypes(make_shader):
 
 
 def test_samples_4_matches_gl(gl, make_shader):
-    body = "float d = length(fragCoord - iResolution.xy * 0.5) - 9.3; fragColor = vec4(step(0.0, d), fract(fragCoord * 0.37), 1.0);"
+    body = (
+        "float d = length(fragCoord - iResolution.xy * 0.5) - 9.3; fragColor = vec4(step(0.0, "
+        "d), fract(fragCoord * 0.37), 1.0);"
+    )
     a, b = _match(gl, make_shader(_image(body)), size=(32, 24), samples=4)
     one = P.compile_numpy(make_shader(_image(body))).render(size=(32, 24))
     assert not np.array_equal(a, one)  # the edge really is antialiased
@@ -289,5 +294,8 @@ def test_samples_4_matches_gl(gl, make_shader):
 def test_tiles_and_odd_sizes(gl, make_shader, monkeypatch):
     monkeypatch.setattr(F, "TILE_WIDTH", 16)
     monkeypatch.setattr(F, "TILE_HEIGHT", 8)
-    body = "vec2 uv = fragCoord / iResolution.xy; fragColor = vec4(uv, dFdx(uv.x * uv.x) * 100.0, 1.0);"
+    body = (
+        "vec2 uv = fragCoord / iResolution.xy; fragColor = vec4(uv, "
+        "dFdx(uv.x * uv.x) * 100.0, 1.0);"
+    )
     _match(gl, make_shader(_image(body)), size=(37, 19))

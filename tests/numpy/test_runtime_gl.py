@@ -214,8 +214,9 @@ INT_CASES = [
 ]
 
 # uint(x) of negative, NaN or huge x is undefined and llvmpipe's answer depends on the CPU
-# (glslcheck/backends/driver_profile.py): the runtime is given the model measured on this driver, so these
-# cases hold on every machine; tests/numpy/test_driver_profile.py checks each model on any machine.
+# (glslcheck/backends/driver_profile.py): the runtime is given the model measured on this driver, so
+# these cases hold on every machine; tests/numpy/test_driver_profile.py checks each model on any
+# machine.
 UINT_INPUTS = (-0.5, -1.0, -3.5, 5e9, NAN, 3e9, 4294967040.0, INF, 2.7, 2147483648.0)
 
 

@@ -2,7 +2,7 @@
 locations, runaway loops, uniform values, statistics, the frame cache, running on its own.
 
 Snapshots live in tests/numpy/snapshots/<name>.py; regenerate them with
-`UPDATE_SNAPSHOTS=1 pytest tests/numpy/test_transpile.py` and read the diff.
+`pytest tests/numpy/test_transpile.py --update-snapshots` and read the diff.
 """
 
 from __future__ import annotations
@@ -78,16 +78,17 @@ void mainImage(out vec4 fragColor, in vec2 fragCoord) {
 
 
 @pytest.mark.parametrize("name", sorted(SNAPSHOT_SHADERS))
-def test_generated_code_snapshot(make_shader, name):
+def test_generated_code_snapshot(make_shader, update_snapshots, name):
     source = transpile_shader(make_shader(SNAPSHOT_SHADERS[name])).source
     path = os.path.join(SNAPSHOTS, f"{name}.py")
-    if os.environ.get("UPDATE_SNAPSHOTS") or not os.path.exists(path):
+    if update_snapshots:
         os.makedirs(SNAPSHOTS, exist_ok=True)
         with open(path, "w", encoding="utf-8") as f:
             f.write(source)
+    assert os.path.exists(path), f"no snapshot {path}; run with --update-snapshots and review it"
     with open(path, encoding="utf-8") as f:
         assert source == f.read(), (
-            f"generated code changed; rerun with UPDATE_SNAPSHOTS=1 and review {path}"
+            f"generated code changed; rerun with --update-snapshots and review {path}"
         )
 
 
@@ -263,7 +264,8 @@ def test_module_runs_without_builtins(make_shader):
 
 
 def test_texture_lookup_is_a_located_error(make_shader):
-    # iChannel0-3 are sampled (backends/numpy_engine/textures.py); a sampler uniform of the user's own is not
+    # iChannel0-3 are sampled (backends/numpy_engine/textures.py); a sampler uniform of the user's
+    # own is not
     shader = make_shader(
         _image(
             "vec2 uv = fragCoord;\n    fragColor = texture(myTex, uv);", "uniform sampler2D myTex;"

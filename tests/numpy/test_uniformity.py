@@ -27,7 +27,8 @@ def _image(body: str, helpers: str = "") -> str:
 
 
 def analyse(make_shader, text: str, fn_name: str = "mainImage"):
-    """(the analysis of function `fn_name`, the model, {variable name: [its free-write verdicts]})."""
+    """(the analysis of function `fn_name`, the model, {variable name: [its free-write
+    verdicts]})."""
     model = check_program(parse_shader(make_shader(text), "Image"))
     functions = list(model.reachable_functions())
     facts = Facts(model, functions)
@@ -136,7 +137,10 @@ def test_out_parameters(make_shader):
 void init(out vec3 v, float k) { v = vec3(k); v.y = 2.0; }
 float early(out float o, float x) { o = 1.0; if (x > 0.5) return 0.0; o = 2.0; return 1.0; }
 """
-    body = "vec3 a; init(a, 1.0); float o; float r = early(o, fragCoord.x); fragColor = vec4(a, o + r);"
+    body = (
+        "vec3 a; init(a, 1.0); float o; float r = early(o, fragCoord.x); fragColor = vec4(a, "
+        "o + r);"
+    )
     _, _, writes = analyse(make_shader, _image(body, helpers), "init")
     assert writes["v"] == [True, True]  # nothing leaves init early: the caller's lanes are init's
     _, _, writes = analyse(make_shader, _image(body, helpers), "early")
@@ -191,8 +195,8 @@ def test_fragment_coordinates_are_varying(make_shader):
 
 
 def test_a_free_write_in_a_masked_loop_of_a_function_is_varying(make_shader):
-    """A loop run with a live mask may be compacted (LaneHelpers.push): variables from outside it come
-    back from the scatter one value per lane, so they cannot be judged uniform."""
+    """A loop run with a live mask may be compacted (LaneHelpers.push): variables from outside it
+    come back from the scatter one value per lane, so they cannot be judged uniform."""
     helpers = """
 float f(float x) {
     float acc = 0.0;

@@ -1,5 +1,5 @@
-"""Rendering tiles in worker processes (glslcheck/backends/numpy_engine/workers.py) changes no pixel,
-no statistic and no error: every frame here is rendered with processes and with threads and
+"""Rendering tiles in worker processes (glslcheck/backends/numpy_engine/workers.py) changes no
+pixel, no statistic and no error: every frame here is rendered with processes and with threads and
 must be bit-identical. A worker that dies makes the frame fall back to threads.
 
 Worker processes need Linux (memfd_create); elsewhere these tests are skipped and say so (CI

@@ -1,5 +1,5 @@
-"""The AST's declarations (glslcheck/frontend/syntax.py): children derived from the declared fields, the
-generated constructors, and NodeVisitor's dispatch."""
+"""The AST's declarations (glslcheck/frontend/syntax.py): children derived from the declared fields,
+the generated constructors, and NodeVisitor's dispatch."""
 
 from __future__ import annotations
 

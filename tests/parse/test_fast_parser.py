@@ -1,9 +1,10 @@
-"""The fast lexer (glslcheck/frontend/lexer.py) and LALR driver (glslcheck/frontend/lalr.py) against Lark itself.
+"""The fast lexer (glslcheck/frontend/lexer.py) and LALR driver (glslcheck/frontend/lalr.py) against
+Lark itself.
 
 The reference is Lark's own basic lexer and LALR parser on the same grammar and tables, with
 `_Reference` as its post-lexer: the struct-name and reserved-word rule written the plain way
-(a generator over Lark's lazy token stream, as frontend/parser.py had it before frontend/lexer.py took over).
-On every corpus shader, every lab program and seeded mutations of each (tokens deleted,
+(a generator over Lark's lazy token stream, as frontend/parser.py had it before frontend/lexer.py
+took over). On every corpus shader, every lab program and seeded mutations of each (tokens deleted,
 duplicated, swapped, replaced, glued together or split, stray characters inserted), both
 sides must give the same tokens (type, text, positions, lines, columns), the same tree, or
 the same error at the same token with the same expected terminals, and the same history and

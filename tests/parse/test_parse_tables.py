@@ -1,8 +1,8 @@
 """The parser tables shipped beside the grammar (glslcheck/frontend/parse_tables.py).
 
 The module (grammar/glsl_tables.py) must be what Lark builds from the shipped grammar today (a
-grammar edit without `python -m glslcheck.frontend.parse_tables` fails here), and tables built from another
-grammar, or a damaged module, must be detected at run time and not used.
+grammar edit without `python -m glslcheck.frontend.parse_tables` fails here), and tables built from
+another grammar, or a damaged module, must be detected at run time and not used.
 """
 
 from __future__ import annotations
@@ -30,7 +30,8 @@ def test_shipped_tables_are_built_from_the_shipped_grammar():
 
 
 def test_loaded_tables_are_the_built_ones():
-    """What `load` gives from the module (tuples, from the .pyc) equals what `build` gives (lists)."""
+    """What `load` gives from the module (tuples, from the .pyc) equals what `build` gives
+    (lists)."""
 
     def plain(value):
         if isinstance(value, dict):

@@ -16,7 +16,8 @@ CASES = [
     # The ';' belongs right after `1.0` (line 2, col 16), not at the next line's token.
     (
         "missing-semicolon-declaration",
-        "void mainImage(out vec4 c, in vec2 f) {\n    float x = 1.0\n    float y = 2.0;\n    c = vec4(x + y);\n}\n",
+        "void mainImage(out vec4 c, in vec2 f) {\n    float x = 1.0\n    float y = 2.0;\n    c = "
+        "vec4(x + y);\n}\n",
         2,
         18,
         "expected ';' after this declaration",
@@ -30,7 +31,8 @@ CASES = [
     ),
     (
         "missing-semicolon-return",
-        "float f() {\n    return 1.0\n}\nvoid mainImage(out vec4 c, in vec2 f) { c = vec4(f()); }\n",
+        "float f() {\n    return 1.0\n}\nvoid mainImage(out vec4 c, in vec2 f) { c = vec4(f()); "
+        "}\n",
         2,
         15,
         "expected ';' after this return statement",
@@ -38,7 +40,8 @@ CASES = [
     # An unclosed block points at the '{' that opened it.
     (
         "unclosed-brace",
-        "void mainImage(out vec4 c, in vec2 f)\n{\n    if (f.x > 1.0) {\n        c = vec4(1.0);\n    \n}\n",
+        "void mainImage(out vec4 c, in vec2 f)\n{\n    if (f.x > 1.0) {\n        c = "
+        "vec4(1.0);\n    \n}\n",
         2,
         1,
         "this '{' is never closed",
@@ -52,21 +55,24 @@ CASES = [
     ),
     (
         "reserved-word-input",
-        "void mainImage(out vec4 c, in vec2 f) {\n    float input = 1.0;\n    c = vec4(input);\n}\n",
+        "void mainImage(out vec4 c, in vec2 f) {\n    float input = 1.0;\n    c = "
+        "vec4(input);\n}\n",
         2,
         11,
         "'input' is a reserved word",
     ),
     (
         "reserved-word-output-param",
-        "float g(float output) { return output; }\nvoid mainImage(out vec4 c, in vec2 f) { c = vec4(g(1.0)); }\n",
+        "float g(float output) { return output; }\nvoid mainImage(out vec4 c, "
+        "in vec2 f) { c = vec4(g(1.0)); }\n",
         1,
         15,
         "'output' is a reserved word",
     ),
     (
         "non-ascii-identifier",
-        "void mainImage(out vec4 c, in vec2 f) {\n    float caf\u00e9 = 1.0;\n    c = vec4(1.0);\n}\n",
+        "void mainImage(out vec4 c, in vec2 f) {\n    float caf\u00e9 = 1.0;\n    c = "
+        "vec4(1.0);\n}\n",
         2,
         14,
         "GLSL source is ASCII outside comments",
@@ -94,7 +100,8 @@ CASES = [
     ),
     (
         "integer-too-large",
-        "void mainImage(out vec4 c, in vec2 f) {\n    uint x = 5000000000u;\n    c = vec4(float(x));\n}\n",
+        "void mainImage(out vec4 c, in vec2 f) {\n    uint x = 5000000000u;\n    c = "
+        "vec4(float(x));\n}\n",
         2,
         14,
         "does not fit in 32 bits",
@@ -122,14 +129,16 @@ CASES = [
     ),
     (
         "two-types",
-        "void mainImage(out vec4 c, in vec2 f) {\n    float float x = 1.0;\n    c = vec4(1.0);\n}\n",
+        "void mainImage(out vec4 c, in vec2 f) {\n    float float x = 1.0;\n    c = "
+        "vec4(1.0);\n}\n",
         2,
         11,
         "'float' is a keyword and cannot be used as a name",
     ),
     (
         "struct-member-semicolon",
-        "struct L {\n    vec3 p\n    vec3 c;\n};\nvoid mainImage(out vec4 c, in vec2 f) { c = vec4(1.0); }\n",
+        "struct L {\n    vec3 p\n    vec3 c;\n};\nvoid mainImage(out vec4 c, "
+        "in vec2 f) { c = vec4(1.0); }\n",
         2,
         11,
         "expected ';'",

@@ -1,4 +1,5 @@
-"""Tests for glslcheck.frontend.preprocess: directives, macro expansion, limits and the location map."""
+"""Tests for glslcheck.frontend.preprocess: directives, macro expansion, limits and the location
+map."""
 
 from __future__ import annotations
 
@@ -127,7 +128,10 @@ def test_object_like_macro():
 
 
 def test_function_like_macro_with_nested_and_rescanned_expansion():
-    src = "#define SQ(x) ((x)*(x))\n#define TWICE(x) SQ(x) + SQ(x)\n#define ONE 1.0\nfloat a = TWICE(ONE);\n"
+    src = (
+        "#define SQ(x) ((x)*(x))\n#define TWICE(x) SQ(x) + SQ(x)\n#define ONE 1.0\nfloat a = "
+        "TWICE(ONE);\n"
+    )
     assert "".join(words(src)) == "floata=((1.0)*(1.0))+((1.0)*(1.0));"
 
 
@@ -269,7 +273,10 @@ def test_ifdef_ifndef_else():
 
 
 def test_elif_chain_takes_the_first_true_group_only():
-    src = "#define N 2\n#if N == 1\none\n#elif N == 2\ntwo\n#elif N >= 2\nalso\n#else\nother\n#endif\n"
+    src = (
+        "#define N 2\n#if N == 1\none\n#elif N == 2\ntwo\n#elif N >= "
+        "2\nalso\n#else\nother\n#endif\n"
+    )
     assert words(src) == ["two"]
 
 
@@ -348,7 +355,10 @@ def test_undefined_macro_error_points_at_it():
 
 
 def test_if_expression_with_macros():
-    src = "#define A 2\n#define B A\n#define F(x) x\n#define G F\n#if B == 2 && G(3) == 3\nyes\n#endif\n"
+    src = (
+        "#define A 2\n#define B A\n#define F(x) x\n#define G F\n#if B == 2 && G(3) == "
+        "3\nyes\n#endif\n"
+    )
     assert words(src) == ["yes"]
 
 
@@ -390,7 +400,8 @@ def test_pragmas():
     r = pp("#pragma STDGL foo\n#pragma optimize(on)\n#pragma debug(off)\n")
     assert [p for p, _ in r.pragmas] == ["STDGL foo", "optimize(on)", "debug(off)"]
     assert r.pragmas[1][1].line == 2
-    # GLSL ES 3.00 4.6.1: invariant(all) is for vertex shaders; Mesa rejects it in a fragment shader.
+    # GLSL ES 3.00 4.6.1: invariant(all) is for vertex shaders; Mesa rejects it in a fragment
+    # shader.
     assert (
         "cannot be used in a fragment shader" in error("#pragma STDGL invariant( all )\n").message
     )
@@ -544,7 +555,10 @@ def test_multi_unit_locations_and_shared_macros():
 
 
 def test_comments_collected_with_locations():
-    src = "float a; // line one\n/* block\n   two */ float b; /* three */\n#if 0\n// dead\n#endif // end\n"
+    src = (
+        "float a; // line one\n/* block\n   two */ float b; /* three */\n#if 0\n// "
+        "dead\n#endif // end\n"
+    )
     r = pp(src)
     assert [(c.kind, c.text, c.active) for c in r.comments] == [
         ("line", "// line one", True),
@@ -642,7 +656,8 @@ def test_rejected_like_glslang(tmp_path, program):
         "#define a__b 1",
         "#if 0 && UNDEFINED_THING\n#endif",
         "#define F(x) x\n#define G F\n#if G(3) == 3\n#else\n#error bad\n#endif",
-        "#if -1 >> 1 == -1 && (5 % -3) == 2 && (-5/2) == -2 && 0xFFFFFFFF == -1\n#else\n#error bad\n#endif",
+        "#if -1 >> 1 == -1 && (5 % -3) == 2 && (-5/2) == -2 && 0xFFFFFFFF == -1\n#else\n#error "
+        "bad\n#endif",
         "#line 10\n#if __LINE__ == 10\n#else\n#error bad\n#endif",
         "#define X 1 /* a\n b */ + 2\nint k = X;",
         "float x = 1.e5 + .5 + 1.5e-3 + 1e3;",

@@ -70,8 +70,9 @@ def test_normalize_of_zero_vector_found_at_its_line_and_operation(make_shader):
 def test_operations_are_told_apart_and_a_discarded_select_side_is_no_origin(make_shader):
     # column x of an 8x8 image: x = 0 takes log(0) (-inf, line 5); x = 1 divides 0/0 (line 6);
     # x = 2 takes sqrt(-1) (line 7); x = 3 overflows (line 8; not `x * 1e38 * 100.0`, whose
-    # constants Mesa multiplies out first, to +Inf, as the NumPy backend now does). Line 4 computes sqrt of a negative
-    # for x < 4 on the side the select throws away: not their origin (x >= 4 stays finite).
+    # constants Mesa multiplies out first, to +Inf, as the NumPy backend now does). Line 4 computes
+    # sqrt of a negative for x < 4 on the side the select throws away: not their origin (x >= 4
+    # stays finite).
     src = """\
 void mainImage(out vec4 fragColor, in vec2 fragCoord) {
     float x = floor(fragCoord.x);

@@ -31,14 +31,20 @@ def _driver_errors(tmp_path, text: str, capsys) -> list[str]:
 
 def test_a_mesa_preprocessor_error_points_at_its_own_line(tmp_path, gl, capsys):
     # Mesa says "0:25(1): preprocessor error: ..."; it was placed at mainImage's line.
-    text = "// a\n#if 1\n#error boom here\n#endif\nvoid mainImage(out vec4 c, in vec2 p) { c = vec4(1.0); }\n"
+    text = (
+        "// a\n#if 1\n#error boom here\n#endif\nvoid mainImage(out vec4 c, "
+        "in vec2 p) { c = vec4(1.0); }\n"
+    )
     heads = _driver_errors(tmp_path, text, capsys)
     assert heads == [f"{tmp_path / 'Image.glsl'}:3:1: error: #error boom here"]
 
 
 def test_a_users_line_directive_is_mapped_back_to_the_real_line(tmp_path, gl, capsys):
     # Mesa numbers the lines after `#line 100` from 100; the message points at line 5 of the file.
-    text = "// a\n#line 100\nvoid mainImage(out vec4 c, in vec2 p) {\n  c = vec4(1.0);\n  c = nothing;\n}\n"
+    text = (
+        "// a\n#line 100\nvoid mainImage(out vec4 c, in vec2 p) {\n  c = vec4(1.0);\n  c = "
+        "nothing;\n}\n"
+    )
     heads = _driver_errors(tmp_path, text, capsys)
     assert heads == [f"{tmp_path / 'Image.glsl'}:5:7: error: `nothing' undeclared"]
 

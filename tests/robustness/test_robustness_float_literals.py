@@ -20,7 +20,8 @@ ABOVE_HALF = (
 
 
 def _nearest_float32(exact: Fraction) -> float:
-    """The float32 nearest `exact`, ties to even, by comparing it with its two float32 neighbours."""
+    """The float32 nearest `exact`, ties to even, by comparing it with its two float32
+    neighbours."""
     lo = np.float32(float(exact))
     while Fraction(float(lo)) > exact:
         lo = np.nextafter(lo, np.float32(-np.inf))

@@ -239,7 +239,10 @@ SHADERS = ["course/lab1", "course/notes/loose.glsl", "course/shared/lab9"]
 
 def test_walk_enters_each_real_folder_once(tmp_path: Path):
     _looping_tree(tmp_path / "course", tmp_path / "outside")
-    code = "from glslcheck.shadertoy.sources import find_shaders\nfor s in find_shaders(['course']): print(s.root)\n"
+    code = (
+        "from glslcheck.shadertoy.sources import find_shaders\nfor s in "
+        "find_shaders(['course']): print(s.root)\n"
+    )
     proc = subprocess.run(
         [sys.executable, "-c", code],
         cwd=tmp_path,

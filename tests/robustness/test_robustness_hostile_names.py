@@ -1,5 +1,5 @@
-"""The generated Python can do nothing but arithmetic (bad input must never run code), with hostile names in every
-place a GLSL name can be declared.
+"""The generated Python can do nothing but arithmetic (bad input must never run code), with hostile
+names in every place a GLSL name can be declared.
 
 tests/numpy/test_transpile.py has the transpiler owner's catalogue (function names, locals,
 struct fields). This one puts a second catalogue, aimed at Python escapes (dunders, builtins,
@@ -84,7 +84,10 @@ def _shader(position: str, name: str, plain: bool | None = None) -> dict[str, st
     """make_shader's arguments: a Shadertoy Image tab, or for a name with `__` (an error in a
     tab: no browser compiles it; glslcheck/semantics/webgl_rules.py) a plain GLSL ES file."""
     decl, use = POSITIONS[position](name)
-    body = f"    float acc = 0.0;\n    {use}\n    fragColor = vec4(acc, fragCoord.x * 0.1, 0.0, 1.0);\n}}\n"
+    body = (
+        f"    float acc = 0.0;\n    {use}\n    fragColor = vec4(acc, fragCoord.x * 0.1, 0.0, "
+        "1.0);\n}\n"
+    )
     if plain if plain is not None else "__" in name:
         return {
             "GLSL": "#version 300 es\nprecision highp float;\nout vec4 fragColor;\n"

@@ -64,8 +64,8 @@ def test_21_nested_loops(tmp_path):
     counts = [1] * (n - 2) + [2, 3]
     loops = "".join(f"for (int i{k} = 0; i{k} < {m}; i{k}++) {{ " for k, m in enumerate(counts))
     text = (
-        MAIN
-        + f"    float x = 0.0;\n    {loops}x += 1.0; if (p.x < 4.0) break; {'}' * n}\n    c = vec4(x);\n}}\n"
+        MAIN + f"    float x = 0.0;\n    {loops}x += 1.0; if (p.x < 4.0) break; "
+        f"{'}' * n}\n    c = vec4(x);\n}}\n"
     )
     size = (8, 2)
     # the innermost loop (3 iterations) breaks after one where p.x < 4; the one around it runs twice

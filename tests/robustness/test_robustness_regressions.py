@@ -28,7 +28,8 @@ def run_cli(
     name: str = "shader.glsl",
     extra: tuple[str, ...] = (),
 ) -> tuple[int, str, str]:
-    """Run `glslcheck COMMAND FILE` in-process; assert the bad-input contract; return (rc, out, err)."""
+    """Run `glslcheck COMMAND FILE` in-process; assert the bad-input contract; return (rc, out,
+    err)."""
     path = tmp_path / name
     raw = data.encode("utf-8") if isinstance(data, str) else data
     path.write_bytes(raw)
@@ -187,7 +188,10 @@ def test_safety_net_turns_recursion_and_memory_errors_into_messages(
 def test_lint_and_other_commands_never_modify_the_file(tmp_path, command):
     """The pre-commit hook and lint never modify a file (run_cli compares the bytes),
     also for a file with findings in every rule family."""
-    text = "\xef\xbb\xbfvoid mainImage(out vec4 c, in vec2 p)\r\n{\tfloat x = pow(p.x, 2.0);  \r\n c = vec4(x); }"
+    text = (
+        "\xef\xbb\xbfvoid mainImage(out vec4 c, in vec2 p)\r\n{\tfloat x = pow(p.x, "
+        "2.0);  \r\n c = vec4(x); }"
+    )
     extra = ("-o", str(tmp_path / "out.py")) if command == "transpile" else ()
     run_cli(command, text.encode("latin-1"), tmp_path, extra=extra)
 
@@ -197,14 +201,15 @@ def test_lint_and_other_commands_never_modify_the_file(tmp_path, command):
     [
         "void mainImage(out vec4 , in vec2 fragCoord) {}\n",
         "float f(float) { return 0.5; }\nvoid g(out float, inout vec2 q) { q += 1.0; }\n"
-        f"{MAIN}\n    vec2 q = fragCoord; float z; g(z, q);\n    fragColor = vec4(f(2.0), q * 0.01, 1.0);\n}}\n",
+        f"{MAIN}\n    vec2 q = fragCoord; float z; g(z, q);\n    fragColor = vec4(f(2.0), "
+        "q * 0.01, 1.0);\n}\n",
     ],
 )
 def test_unnamed_parameters_render(tmp_path, text):
     """Found by tools/fuzz.py (seed 9, inputs 18849 and 66533, mutants of the lint fixtures):
     the transpiler dropped unnamed parameters, so `shade` unpacked None (TypeError traceback).
-    glslangValidator accepts unnamed parameters in a definition (the transpiler now passes them), but Mesa
-    rejects them ("formal parameter lacks a name"), so `check` does as the driver:
+    glslangValidator accepts unnamed parameters in a definition (the transpiler now passes them),
+    but Mesa rejects them ("formal parameter lacks a name"), so `check` does as the driver:
     a located error, exit 1, and no traceback from any command."""
     rc, _, err = run_cli("check", text, tmp_path)
     assert rc == 1 and "a parameter of a function definition needs a name" in err

@@ -6,8 +6,8 @@ resident memory (`os.wait4` rusage, no tracing overhead). The child is forked by
 launcher process, not by pytest: Linux counts the memory of the process a child was forked
 from into the child's peak (exec records the old address space's high-water mark), so a
 child of the test process would report the test process's own size, which grows with the
-tests that ran before (numba's compiler in tests/compiled: 979 MB). Bounds are deliberately generous, so
-a loaded CI machine cannot make them flake:
+tests that ran before (numba's compiler in tests/compiled: 979 MB). Bounds are deliberately
+generous, so a loaded CI machine cannot make them flake:
 
 - memory: a Python process with NumPy and the Lark tables is about 50-100 MB; a 1 MB shader's
   tokens, trees, AST and semantic model take about 300 MB more. 700 MB leaves room for that
@@ -111,7 +111,8 @@ def many_functions(n: int) -> str:
     fs = "".join(f"float f{i}(float x) {{ return x * {i % 7}.0 + 1.0; }}\n" for i in range(n))
     return (
         fs
-        + f"void mainImage(out vec4 c, in vec2 p) {{ c = vec4(f{n - 1}(p.x), f0(1.0), 0.0, 1.0); }}\n"
+        + f"void mainImage(out vec4 c, in vec2 p) {{ c = vec4(f{n - 1}(p.x), f0(1.0), 0.0, 1.0); "
+        "}\n"
     )
 
 

@@ -22,7 +22,10 @@ from pathlib import Path
 
 import pytest
 
-SHADER = "void mainImage(out vec4 fragColor, in vec2 fragCoord) { fragColor = vec4(fragCoord.x / 8.0); }\n"
+SHADER = (
+    "void mainImage(out vec4 fragColor, in vec2 fragCoord) { fragColor = vec4(fragCoord.x / "
+    "8.0); }\n"
+)
 
 _RUN = r"""
 import json, os, sys

@@ -20,7 +20,10 @@ from glslcheck.backends.compiled_engine.engine import CompiledProgram, generate
 from glslcheck.backends.numpy_engine import numba_cache
 from glslcheck.shadertoy.sources import load_shader
 
-SHADER = "void mainImage(out vec4 fragColor, in vec2 fragCoord) { fragColor = vec4(fragCoord.x / 8.0, 0.25, 0.5, 1.0); }\n"
+SHADER = (
+    "void mainImage(out vec4 fragColor, in vec2 fragCoord) { fragColor = vec4(fragCoord.x / "
+    "8.0, 0.25, 0.5, 1.0); }\n"
+)
 
 
 def _render(shader: Path, cache: Path, out: Path) -> subprocess.CompletedProcess:

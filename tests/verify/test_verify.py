@@ -132,7 +132,8 @@ def test_supersampling_and_precision_reach_the_numpy_side(gl):
     assert c16.max_abs_error >= c64.max_abs_error
 
 
-# uint(x) of a negative or huge x: the CPU decides what llvmpipe returns (backends/driver_profile.py).
+# uint(x) of a negative or huge x: the CPU decides what llvmpipe returns
+# (backends/driver_profile.py).
 UINT_HASH = """
 void mainImage(out vec4 fragColor, in vec2 fragCoord)
 {

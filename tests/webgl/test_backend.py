@@ -1,4 +1,5 @@
-"""The WebGL backend renders what Shadertoy's page renders, and maps ANGLE's errors to the user's lines."""
+"""The WebGL backend renders what Shadertoy's page renders, and maps ANGLE's errors to the user's
+lines."""
 
 from __future__ import annotations
 
@@ -28,7 +29,8 @@ void mainImage(out vec4 fragColor, in vec2 fragCoord)
     else if (column == 1) v = iMouse;
     else if (column == 2) v = iDate;
     else if (column == 3) v = vec4(float(iFrame), iTimeDelta, iFrameRate, iSampleRate);
-    else if (column == 4) v = vec4(iChannelTime[0], iChannelTime[3], iChannelResolution[0].x, iChannelResolution[3].z);
+    else if (column == 4) v = vec4(iChannelTime[0], iChannelTime[3], iChannelResolution[0].x, \
+        iChannelResolution[3].z);
     else if (column == 5) v = texture(iChannel0, vec2(0.5));
     fragColor = v;
 }
@@ -82,7 +84,8 @@ def test_supersampling_uses_the_gl_backends_grid(webgl, make_shader):
     img = compile_webgl(shader).render(size=(16, 2), samples=4)
     x = np.arange(16, dtype=np.float64) + 0.5
     assert np.allclose(img[0, :, 0], x, atol=1e-6)
-    # mean of (x -+ 0.25)^2 = x^2 + 0.0625: the offsets are +-1/4 pixel, as shadertoy.wrapper.sample_offsets
+    # mean of (x -+ 0.25)^2 = x^2 + 0.0625: the offsets are +-1/4 pixel, as
+    # shadertoy.wrapper.sample_offsets
     assert np.allclose(img[0, :, 1], x * x + 0.0625, rtol=1e-6)
 
 
@@ -125,7 +128,8 @@ from glslcheck.shadertoy.sources import Shader, Source
 from glslcheck.backends.webgl import compile_webgl, get_browser
 
 text = ("void mainImage(out vec4 c, in vec2 f)\\n{\\n    float s = 0.0;\\n"
-        "    for (int i = 0; i < 2000000000; i++) { s += sin(float(i) + f.x); }\\n    c = vec4(s);\\n}\\n")
+        "    for (int i = 0; i < 2000000000; i++) { s += sin(float(i) + f.x); }\\n"
+        "    c = vec4(s);\\n}\\n")
 register_source("Image.glsl", text)
 shader = Shader(root="<test>")
 shader.tabs["Image"] = Source("Image.glsl", text, "Image")

@@ -6,10 +6,10 @@ filtered value), so the NumPy side is compared with its lowp truncation off
 (`MultipassProgram.lowp_samplers = False`); nearest and linear lookups and explicit-LOD mipmap
 lookups then agree to float32 rounding. Its projective lookups (textureProj*) divide otherwise
 than p.xy / p.z (neither that nor p.xy * (1 / p.z) reproduces them): up to 4.7e-4 apart, below
-verification/compare.py's 1/255 steps, so not pinned here. A textureLodOffset whose LOD varies per pixel
-reads other texels than llvmpipe and NumPy (which agree) at some pixels (up to 0.5 apart,
-measured); with a constant LOD the three agree. Its implicit LOD (texture() on a mipmap, textureGrad)
-is computed otherwise than llvmpipe's: those pixels are driver-dependent, which `verify
+verification/compare.py's 1/255 steps, so not pinned here. A textureLodOffset whose LOD varies per
+pixel reads other texels than llvmpipe and NumPy (which agree) at some pixels (up to 0.5 apart,
+measured); with a constant LOD the three agree. Its implicit LOD (texture() on a mipmap,
+textureGrad) is computed otherwise than llvmpipe's: those pixels are driver-dependent, which `verify
 --against webgl` sets apart.
 """
 
@@ -29,7 +29,8 @@ from glslcheck.verification.drivers import verify_against_webgl
 from glslcheck.verification.verify import compile_backend
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "channels"))
-from test_channels import MIPMAP_UV, SIZE, _folder, _png, _sampling_case, feedback  # noqa: E402,F401 (a fixture)
+# a fixture
+from test_channels import MIPMAP_UV, SIZE, _folder, _png, _sampling_case, feedback  # noqa: E402,F401
 
 ROOT = Path(__file__).resolve().parents[2]
 
@@ -47,7 +48,8 @@ def test_feedback_with_a_texture_over_30_frames(webgl, gl, feedback):
     results = list(verify_against_webgl(shader, size=SIZE, frames=30, programs=programs))
     assert len(results) == 30 and all(r.match for r in results)
     # NumPy truncates lookups to lowp as llvmpipe does, SwiftShader does not; through 30 frames of
-    # feedback the truncations add up to 0.0033 (measured), inside the 1/255 steps of verification/compare.py
+    # feedback the truncations add up to 0.0033 (measured), inside the 1/255 steps of
+    # verification/compare.py
     assert max(r.comparison.max_abs_error for r in results) < 2.0 / 255
     # without the truncation only float32 rounding remains (sin, mix): 2.0e-6 measured, about 8
     # ulps of values in [1, 2) (ulp 2^-22) after 30 frames; bounded at 16 such ulps
@@ -93,7 +95,10 @@ def test_each_filter_and_wrap_against_webgl(webgl, tmp_path, filt, wrap, vflip):
 def test_mipmap_explicit_lod_against_webgl(webgl, tmp_path, wrap):
     _png(tmp_path / "tex.png", 70, 50, seed=5)
     lookup = "textureLod(iChannel0, uv, fragCoord.x / 9.0 - 0.5)"
-    body = f"void mainImage(out vec4 fragColor, in vec2 fragCoord) {{\n    {MIPMAP_UV}\n    fragColor = {lookup};\n}}\n"
+    body = (
+        f"void mainImage(out vec4 fragColor, in vec2 fragCoord) {{\n    {MIPMAP_UV}\n    "
+        f"fragColor = {lookup};\n}}\n"
+    )
     folder = _folder(
         tmp_path, {"Image": body}, {"Image": {"iChannel0": {"texture": "tex.png", "wrap": wrap}}}
     )
@@ -107,7 +112,10 @@ def test_mipmap_explicit_lod_against_webgl(webgl, tmp_path, wrap):
 
 def test_mipmap_implicit_lod_is_driver_dependent(webgl, gl, tmp_path):
     _png(tmp_path / "tex.png", 70, 50, seed=5)
-    body = f"void mainImage(out vec4 fragColor, in vec2 fragCoord) {{\n    {MIPMAP_UV}\n    fragColor = texture(iChannel0, uv);\n}}\n"
+    body = (
+        f"void mainImage(out vec4 fragColor, in vec2 fragCoord) {{\n    {MIPMAP_UV}\n    "
+        "fragColor = texture(iChannel0, uv);\n}\n"
+    )
     folder = _folder(tmp_path, {"Image": body}, {"Image": {"iChannel0": {"texture": "tex.png"}}})
     (result,) = verify_against_webgl(folder, size=SIZE)
     # SwiftShader picks other LODs than llvmpipe (0.016 apart at 85 of 2304 pixels, measured):

@@ -115,7 +115,7 @@ def test_check_webgl_reports_angle_in_the_users_line(tmp_path, capsys, webgl):
     assert main(["check", str(folder), "--webgl"]) == 1
     err = capsys.readouterr().err
     assert (
-        f"{folder / 'Image.glsl'}:3:13: error: WebGL: '=' : cannot convert from 'const int' to 'highp float'"
-        in err
+        f"{folder / 'Image.glsl'}:3:13: error: WebGL: '=' : cannot convert from 'const int' to "
+        "'highp float'" in err
     )
     assert main(["check", "lab_shaders/07_final", "--webgl"]) == 0

@@ -1,4 +1,5 @@
-"""`verify --against webgl`: NumPy against WebGL, driver-dependent pixels set apart; and it can fail."""
+"""`verify --against webgl`: NumPy against WebGL, driver-dependent pixels set apart; and it can
+fail."""
 
 from __future__ import annotations
 

@@ -1,6 +1,7 @@
 """Built-in function calls of the compiled engine: each component as the NumPy runtime
 computes it (runtime.Runtime's method of the same name), with Mesa's compile-time rewrites of
-`pow` and nir_lower_flrp's choice of formula for `mix` (backends/numpy_engine/transpile/nir_fold.mix_hint)."""
+`pow` and nir_lower_flrp's choice of formula for `mix`
+(backends/numpy_engine/transpile/nir_fold.mix_hint)."""
 
 from __future__ import annotations
 
@@ -67,7 +68,8 @@ def builtin_call(cg: Any, e: A.Call, ov: Any) -> Val:
         form = {"dFdx": "dfdx({})", "dFdy": "dfdy({})"}.get(
             name, "(np.abs(dfdx({0})) + np.abs(dfdy({0})))"
         )
-        # into fresh temporaries: every lane reads its quad's lanes before any is written (`x = dFdx(x)`)
+        # into fresh temporaries: every lane reads its quad's lanes before any is written (`x =
+        # dFdx(x)`)
         return Val(rtype, [cg.tmp_fresh(form.format(p)) for p in x])
     if name == "modf":
         x = cg.expr(e.args[0])

@@ -4,8 +4,8 @@ scalar functions, one call per pixel.
 Where backends/numpy_engine/transpile runs every pixel of a tile as lanes of NumPy arrays, this
 generator writes the program for ONE pixel, and numba compiles it (nopython, no fast-math,
 error_model="numpy": x / 0 is IEEE). Types and symbols come from glslcheck.semantics, as in the
-NumPy transpiler; every operation computes what glslcheck/backends/numpy_engine/runtime.py computes for
-one lane (the scalar functions are backends/compiled_engine/scalar.py).
+NumPy transpiler; every operation computes what glslcheck/backends/numpy_engine/runtime.py computes
+for one lane (the scalar functions are backends/compiled_engine/scalar.py).
 
 Values
 ======
@@ -38,8 +38,8 @@ textures and channels, derivatives, discard, switch, arrays of structs holding a
 inverse() of 3x3 and 4x4 matrices, and the packing built-ins.
 
 What the NumPy backend does that this generator does not copy: Mesa's reassociations
-(backends/numpy_engine/transpile/nir_fold/, transpile/call_fold.py, inline.py) and its run-time test of
-"a value the same in every lane counts as a constant" (Runtime.fmul/fadd/pow on values of one
+(backends/numpy_engine/transpile/nir_fold/, transpile/call_fold.py, inline.py) and its run-time test
+of "a value the same in every lane counts as a constant" (Runtime.fmul/fadd/pow on values of one
 lane): here only compile-time constants (`model.const_value`) fold, so `x * 0.0` is 0 for a
 NaN x, as there, but `float k = 0.0; x * k` multiplies. docs/performance.md measures what that
 changes.
@@ -334,7 +334,8 @@ class Codegen(ExpressionEmitter):
         loc = getattr(self.entry.node, "loc", None) or Location(self.path, 1, 1)
         entry = (loc.path, loc.line, loc.column, self.entry.name)
         out.append(
-            f"ENTRY = {entry!r}  # mainImage (file, line, column, name): where a frame over budget stops"
+            f"ENTRY = {entry!r}  # mainImage (file, line, column, name): "
+            "where a frame over budget stops"
         )
         if self.derivative is not None:
             out.append("QUADS = True  # dFdx/dFdy: lockstep blocks of 2x2 quads only (lanes.py)")
@@ -454,7 +455,8 @@ class Codegen(ExpressionEmitter):
         self.emit("")  # the def line, once the state arrays the body uses are known
         self.indent += 1
         self.emit(
-            f'"""{comment_safe(sym.signature(), 150)} (line {proto.loc.line if proto.loc else "?"})."""'
+            f'"""{comment_safe(sym.signature(), 150)} (line '
+            f'{proto.loc.line if proto.loc else "?"})."""'
         )
         for part in [p for p in self.vars_of_params(sym) if isinstance(p, Arr)]:
             self.emit(f"{part.name} = acopy({part.name})  # arrays are passed by value")

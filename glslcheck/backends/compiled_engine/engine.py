@@ -118,8 +118,8 @@ def abandoned() -> bool:
 def run_bounded(threads: int, calls: list[tuple], deadline: float | None) -> None:
     """Run `calls` ((function, *args) each) on the worker threads; the calling thread waits in
     slices of WAIT_SLICE, so Ctrl-C (KeyboardInterrupt) reaches it. Raises TimeoutError when
-    they have not all returned by `deadline` (time.monotonic(); None: none), KeyboardInterrupt as it came,
-    or the first call's exception; on a timeout or an interrupt the calls not yet started are
+    they have not all returned by `deadline` (time.monotonic(); None: none), KeyboardInterrupt as it
+    came, or the first call's exception; on a timeout or an interrupt the calls not yet started are
     dropped and the threads of the others are retired (`abandoned()`)."""
     workers = _workers(threads)
     futures = [workers.submit(*c) for c in calls]
@@ -458,16 +458,19 @@ class CompiledProgram:
         if first:
             return GlslError(
                 Diagnostic(
-                    f"numba was still compiling this shader after {seconds:g} s (the frame budget, at least "
+                    f"numba was still compiling this shader after {seconds:g} s (the frame "
+                    "budget, at least "
                     f"{COMPILE_SECONDS:g} s); the compiled engine stopped waiting for it",
                     Location(path, line, col),
                     rule="compiled-frame-budget",
-                    help=f"render with --backend numpy, or make the program shorter (numba's work grows with it); {how}",
+                    help="render with --backend numpy, or make the program shorter (numba's "
+                    f"work grows with it); {how}",
                 )
             )
         return GlslError(
             Diagnostic(
-                f"the frame was still rendering after {seconds:g} s on the CPU, in '{name}' or a function it calls; "
+                f"the frame was still rendering after {seconds:g} s on the CPU, "
+                f"in '{name}' or a function it calls; "
                 "the compiled engine stopped waiting for it (a GPU would hang or reset)",
                 Location(path, line, col),
                 rule="compiled-frame-budget",
@@ -534,7 +537,7 @@ def _listdir(folder: str) -> list[str]:
 TIER_LANES = 8  # the lockstep width TieredProgram moves to (8: AVX2's float32 lanes)
 # Lockstep's cold compile over the per-pixel module's, for TieredProgram's estimate of what
 # moving costs: the median over the 67 lab and tuned real shaders (quartiles 3.5 and 6.2),
-# benchmarks/bench_compiled.py --fresh-cache --lanes 0,8 (docs/performance.md, "Two tiers").
+# as benchmarks/bench_compiled.py --fresh-cache --lanes 0,8 prints both compile times.
 LOCKSTEP_COMPILE_RATIO = 4.7
 # Seconds of lockstep compile per line of the per-pixel module, the estimate when the per-pixel
 # module's compile time is not known (a numba cache filled before compile times were recorded):

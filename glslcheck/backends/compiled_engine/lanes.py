@@ -12,36 +12,8 @@ How: this is a rewrite of the generated Python (its `ast`), not a second code ge
 per-pixel module is the reference, and every lane of a statement is that statement with its
 names renamed, so each lane computes exactly the per-pixel engine's operations (the bits).
 
-- Uniform names. A local whose every write has an operand-free-of-lanes value (constants,
-  uniforms `uf`/`ui`, other uniform locals, calls of the scalar runtime on those) and happens
-  in uniform control stays ONE scalar for the block (`sin(iTime * 0.12)` once per block). A
-  fixpoint over the function: the per-pixel state arrays `gf`/`gi`/`gu`/`gb` and arrays are
-  per lane. Reads of state no function writes (`const` arrays of structs) read lane 0's copy
-  and are uniform (`_SharedReads`).
-- Uniform across calls. A call passes each argument free of lanes as one scalar, to the
-  callee's variant for those parameters (`f_rad__s0`: parameter 0 one scalar; Lanes.variant,
-  made once, callees first: GLSL has no recursion), and a result slot every return of that
-  variant writes in uniform control with a value free of lanes comes back as one scalar (a
-  second fixpoint, `ret_uniform`). The entry `shade` takes fragCoord.y and the pixel centre's
-  y as one scalar (ROW_UNIFORM: a block is W pixels of one row), so what a shader computes
-  from iTime, iResolution or a row's y, in loops and helper functions too, is computed once a
-  block. Only the variants shade reaches are written.
-- Control flow as llvmpipe runs it. Each function takes the block's mask `m__0..` first. An
-  `if` whose condition is uniform stays an `if`. A divergent one computes both sides' masks,
-  runs each side only when one of its lanes is active, and writes under the mask by select
-  (`x__k = lsel(mask__k, v, x__k)`, lanes_rt.py; a name written once, or its first write in
-  the text, is written plainly: the lanes outside the mask never read it). A loop whose exits are all uniform stays a loop; a divergent one runs
-  while any lane is active (`act`), with break (clears `act`), continue (`cont`, reset each
-  pass) and return (`live`, return slots `_r<i>`, clears every enclosing loop's `act`) as
-  masks. A loop's pass count is the block's (the slowest lane's): LOOP_CAP as per pixel.
-- Writes to the per-pixel state arrays (globals) are always under the mask; writes to locals in
-  uniform control are plain (a lane outside the function's mask never reads them), also after
-  a divergent return (`ldiv`: the lanes left out have returned and never read this call's
-  locals again; not with derivatives, whose neighbours read them), so a lights array built
-  element by element after `if (miss) return ...;` stays uniform, as the NumPy backend's free
-  writes (backends/cpu_core/uniformity.py).
-- Math: the scalar runtime's one-lane functions, lane by lane; the names lanes_math.py defines
-  (branch-free, same bits) replace them when that module exists (`MATH`, the one switch).
+The rewrite in detail (uniform names, uniform arguments and results across calls, control
+flow under masks, free writes, branch-free math): docs/compiled-engine.md, "Lockstep lanes".
 
 What is not rewritten (`Unsupported`: the engine falls back to the per-pixel module for that
 shader, the result unchanged): statements the per-pixel generator does not write today (an
@@ -137,8 +109,8 @@ def quad_lanes(name: str, k: int, W: int) -> tuple[int, int]:
     """The lanes whose difference is lane k's derivative (`dfdx`/`dfdy`) in a block of 2x2
     quads: lanes 0..W/2-1 are the lower row (even y, counted from the bottom as gl_FragCoord),
     W/2..W-1 the row above, each row from an even x. As llvmpipe (fine derivatives,
-    backends/numpy_engine/runtime.py Runtime.dFdx): dFdx(x, y) = v(x|1, y) - v(x&~1, y), dFdy(x, y) =
-    v(x, y|1) - v(x, y&~1)."""
+    backends/numpy_engine/runtime.py Runtime.dFdx): dFdx(x, y) = v(x|1, y) - v(x&~1, y), dFdy(x, y)
+    = v(x, y|1) - v(x, y&~1)."""
     h = W // 2
     c, r = k % h, k // h
     if name == "dfdx":
@@ -802,7 +774,8 @@ class Lanes:
                 out += math_imports()
                 names = "lsel, dfdx, dfdy" if self.quads else "lsel"
                 out.append(
-                    f"from glslcheck.backends.compiled_engine.lanes_rt import {names}  # {_rt_hash()}"
+                    f"from glslcheck.backends.compiled_engine.lanes_rt import {names}  # "
+                    f"{_rt_hash()}"
                 )
                 continue
             if (
@@ -879,7 +852,8 @@ def render_source(
     lines = _prologue(
         W,
         [
-            '    """Rows y0..y1-1 (counted from the bottom) into out (height, width, 4), top row first,',
+            '    """Rows y0..y1-1 (counted from the bottom) into out (height, width, 4), '
+            "top row first,",
             f'    {W} pixels of a row a call of shade; offs: the (dx, dy) sample offsets."""',
         ],
     )
@@ -960,8 +934,10 @@ def _render_quads(W: int, slots: dict | None, shade: str, ret_uniform: Any) -> s
     lines = _prologue(
         W,
         [
-            '    """Rows y0..y1-1 (counted from the bottom; y0 even) into out (height, width, 4), top row',
-            f'    first, 2x2 quads: {h} pixels of two rows a call of shade; offs: the sample offsets."""',
+            '    """Rows y0..y1-1 (counted from the bottom; y0 even) into out (height, width, '
+            "4), top row",
+            f"    first, 2x2 quads: {h} pixels of two rows a call of shade; offs: "
+            'the sample offsets."""',
         ],
     )
     lines += [
@@ -973,7 +949,8 @@ def _render_quads(W: int, slots: dict | None, shade: str, ret_uniform: Any) -> s
     ]
     for c in range(h):
         lines.append(
-            f"            px__{c} = F32((x0 + {c} if x0 + {c & ~1} < width else last + {c & 1}) + 0.5)"
+            f"            px__{c} = F32((x0 + {c} if x0 + {c & ~1} < width else last + {c & 1}) "
+            "+ 0.5)"
         )
     lines += _sample_head(W, slots)
     lines += [
@@ -992,6 +969,7 @@ def _render_quads(W: int, slots: dict | None, shade: str, ret_uniform: Any) -> s
         "                    break",
         f"                for k in range(min({h}, width - x0)):",
         "                    for c in range(4):",
-        f"                        out[height - 1 - y - r, x0 + k, c] = acc[c, r * {h} + k] / samples",
+        "                        out[height - 1 - y - r, x0 + k, c] = acc[c, "
+        f"r * {h} + k] / samples",
     ]
     return "\n".join(lines)

@@ -50,7 +50,7 @@ modes: tests/compiled/test_lanes_math.py). What differs is only how it is comput
 
 What this does not change: integer division stays float64 (4 lanes a ymm register: vdivpd),
 and a caller's loads with a signed index keep numba's wrap-around select per lane, which stops
-the packing of the loads themselves (docs/performance.md, "Branch-free math for lanes").
+the packing of the loads themselves (docs/performance.md, "Lane math").
 """
 
 from __future__ import annotations

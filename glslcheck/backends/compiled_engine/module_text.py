@@ -40,7 +40,8 @@ def render_rows(out, y0, y1, width, height, offs, uf, ui, gtf, gti, gtu, gtb):
                 aset(gi, 0, gti)
                 aset(gu, 0, gtu)
                 aset(gb, 0, gtb)
-                r, g, b, a = shade(gf, gi, gu, gb, uf, ui, F32(px + F32(offs[s, 0])), F32(py + F32(offs[s, 1])),
+                r, g, b, a = shade(gf, gi, gu, gb, uf, ui, F32(px + F32(offs[s, 0])), \
+F32(py + F32(offs[s, 1])),
                                    px, py)
                 if s == 0:
                     ar, ag, ab, aa = np.float64(r), np.float64(g), np.float64(b), np.float64(a)

@@ -1,8 +1,8 @@
 """The scalar runtime of the compiled engine: one GLSL operation on one pixel's values, as
 numba functions the generated module calls (inlined by LLVM).
 
-Each function computes, for one lane, exactly what glslcheck/backends/numpy_engine/runtime.py computes
-for every lane (its docstring is the reference for every rule quoted here): IEEE float32
+Each function computes, for one lane, exactly what glslcheck/backends/numpy_engine/runtime.py
+computes for every lane (its docstring is the reference for every rule quoted here): IEEE float32
 arithmetic, llvmpipe's integer division and remainder, shift counts mod 32, float-to-int
 conversions through x86's cvttps2dq, IEEE minNum/maxNum for min/max, and gallivm's
 sin/cos/tan/exp2/log2/pow, for which backends/llvmpipe_math/lane.py has the one-lane algorithms
@@ -493,7 +493,8 @@ def pow_special(y):
 @njit
 def pow_uniform(x, y, special, zeros, fma):
     """Runtime.pow with a lane-uniform exponent y: when every component is special
-    (`pow_special`), Runtime.pow_const's rewrite (all zeros: 1 everywhere); else the run-time pow."""
+    (`pow_special`), Runtime.pow_const's rewrite (all zeros: 1 everywhere); else the run-time
+    pow."""
     if special:
         if zeros:
             return _ONE

@@ -111,7 +111,8 @@ class Uniformity:
             self.decl_seq[id(sym)] = 0
         while True:
             before = (set(self.varying), set(self.divergent_loops))
-            self.mu = is_entry  # the mask is None or one value for all lanes (mainImage's lanes start all active)
+            # the mask is None or one value for all lanes (mainImage's lanes start all active)
+            self.mu = is_entry
             self.level = 0  # divergent constructs around the current point
             self.switch_depth = 0
             self.loop_flags: list[

@@ -1,4 +1,5 @@
-"""The OpenGL context: one headless EGL context (Mesa llvmpipe on a machine without a GPU) per process.
+"""The OpenGL context: one headless EGL context (Mesa llvmpipe on a machine without a GPU) per
+process.
 
 WebGL, which Shadertoy runs on, initialises every variable to zero; desktop Mesa leaves them
 undefined, and llvmpipe really does return garbage for an uninitialised local. Mesa's driconf
@@ -20,7 +21,8 @@ ADVICE = (
     "install the Debian packages libegl1 libegl-mesa0 libgl1-mesa-dri "
     "(sudo apt-get install libegl1 libegl-mesa0 libgl1-mesa-dri)"
 )
-# The lowest GL version whose drivers compile `#version 300 es` (GL_ARB_ES3_compatibility is core in 4.3).
+# The lowest GL version whose drivers compile `#version 300 es` (GL_ARB_ES3_compatibility is core in
+# 4.3).
 REQUIRED_GL_VERSION = 330
 
 _context = None

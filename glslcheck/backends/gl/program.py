@@ -1,8 +1,8 @@
 """Compiling a Shadertoy shader for the GL driver and rendering it into a float framebuffer.
 
 `compile_gl(shader)` wraps the Image tab (or a plain GLSL file) as Shadertoy does
-(`glslcheck.shadertoy.wrapper.build_program`), compiles it with the driver and turns a driver error log
-into `GlslError` diagnostics located in the user's own files. `GLProgram.render(...)` draws a
+(`glslcheck.shadertoy.wrapper.build_program`), compiles it with the driver and turns a driver error
+log into `GlslError` diagnostics located in the user's own files. `GLProgram.render(...)` draws a
 full-screen triangle into an RGBA32F framebuffer and returns the pixels as float32
 (height, width, 4), top row first, neither clamped nor quantised.
 
@@ -11,9 +11,9 @@ Inputs, and what glslcheck feeds them (see `glslcheck.shadertoy.wrapper.UNIFORMS
 - iResolution = (width, height, 1); iTime, iFrame, iMouse, iTimeDelta, iFrameRate from `render`.
 - iDate = `date`, by default the fixed `DEFAULT_DATE` (2026, 0, 1, 0.0) = 2026-01-01 00:00:00,
   so renders are reproducible. Give a tuple (year, month 0-11, day, seconds) or a `datetime`.
-- iChannelTime all 0 (Shadertoy's value for images and buffers, shadertoy/channels.py), iSampleRate 44100;
-  without `channels` iChannelResolution all 0 and iChannel0..3 unbound (texture() then returns
-  (0, 0, 0, 1), GL's value for an incomplete texture).
+- iChannelTime all 0 (Shadertoy's value for images and buffers, shadertoy/channels.py), iSampleRate
+  44100; without `channels` iChannelResolution all 0 and iChannel0..3 unbound (texture() then
+  returns (0, 0, 0, 1), GL's value for an incomplete texture).
 - Uniforms the shader does not use are skipped (the driver drops inactive uniforms, and trims
   arrays to the highest index used).
 
@@ -109,9 +109,9 @@ def driver_line_map(text: str) -> dict[tuple[int | None, int], list[int]]:
     `#line N [S]` makes the next line line N (of source string S); GLSL ES 3.00 section 3.4.
     Mesa (22) prints source string 0 whatever S says, so each line is also keyed (None, line),
     for a lookup that ignores the source number. Where `#line` makes lines share a number, all
-    are listed in program order (the caller prefers one in the user's text over the wrapper's). A `#line` whose
-    arguments are not integer literals (macros, expressions) stops the map: the lines after it
-    are left out, and their errors fall back to the location of mainImage.
+    are listed in program order (the caller prefers one in the user's text over the wrapper's). A
+    `#line` whose arguments are not integer literals (macros, expressions) stops the map: the lines
+    after it are left out, and their errors fall back to the location of mainImage.
     """
     mapping: dict[tuple[int | None, int], list[int]] = {}
     source, number = 0, 1
@@ -129,7 +129,8 @@ def driver_line_map(text: str) -> dict[tuple[int | None, int], list[int]]:
 
 
 def mesa_column(line_text: str, column: int) -> int:
-    """The real 1-based column for Mesa's `column`: its lexer counts a run of blanks as one column."""
+    """The real 1-based column for Mesa's `column`: its lexer counts a run of blanks as one
+    column."""
     counter, pos = 1, 0
     while pos < len(line_text) and counter < column:
         if line_text[pos] in " \t":
@@ -158,7 +159,8 @@ def driver_diagnostics(program: Program, log: str) -> list[Diagnostic]:
             if line is not None:
                 message += f" (line {line} of the Shadertoy wrapper around the {program.tab} tab)"
             help_ = (
-                "the Image tab must define `void mainImage(out vec4 fragColor, in vec2 fragCoord)`, "
+                "the Image tab must define `void mainImage(out vec4 fragColor, "
+                "in vec2 fragCoord)`, "
                 "with both parameters named"
                 if "mainImage" in message
                 else None
@@ -230,8 +232,9 @@ class GLProgram:
 
     @property
     def float_to_uint_model(self) -> str | None:
-        """How this driver computes uint(x) where the CPU decides (glslcheck/backends/driver_profile.py),
-        measured once per context; None when it follows no known model."""
+        """How this driver computes uint(x) where the CPU decides
+        (glslcheck/backends/driver_profile.py), measured once per context; None when it follows no
+        known model."""
         return driver_model(self.ctx)
 
     @property
@@ -347,7 +350,8 @@ def _set_uniform(gl_program, name: str, value, array_size: int | None = None) ->
     uniform = gl_program[name]
     expected = _GL_TYPES.get(UNIFORMS_BY_NAME[name].glsl_type) if name in UNIFORMS_BY_NAME else None
     if expected is not None and getattr(uniform, "gl_type", expected) != expected:
-        return  # a plain file's uniform of another type: not fed, 0 as on NumPy (shadertoy.fed_uniform)
+        # a plain file's uniform of another type: not fed, 0 as on NumPy (shadertoy.fed_uniform)
+        return
     if array_size:
         items = list(value)[: max(uniform.array_length, 1)]
         value = (

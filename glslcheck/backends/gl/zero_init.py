@@ -1,4 +1,5 @@
-"""WebGL's zero initialisation of struct locals and out parameters, which Mesa's `glsl_zero_init` leaves out.
+"""WebGL's zero initialisation of struct locals and out parameters, which Mesa's `glsl_zero_init`
+leaves out.
 
 Shadertoy runs on WebGL, which initialises every local variable to zero. The GL backend asks
 Mesa for the same with the driconf option `glsl_zero_init` (see context.py), but Mesa applies

@@ -293,7 +293,8 @@ def asin_expr(x, p0, p1):
 
 @numba.njit(**INLINE)
 def arc(x, y, which):
-    """atan (``which`` 0), asin (1), acos (2) of ``x``, or atan2 (3) of ``y`` = ``x`` and ``x`` = ``y``."""
+    """atan (``which`` 0), asin (1), acos (2) of ``x``, or atan2 (3) of ``y`` = ``x`` and ``x`` =
+    ``y``."""
     if which == 0:
         return atan(daz(x))
     if which == 1:

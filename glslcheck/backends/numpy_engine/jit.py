@@ -1,12 +1,12 @@
 """Compiled kernels for the llvmpipe math emulation, used when they pay.
 
-llvmpipe_reference.LlvmpipeMath's sin, cos, tan, exp2, log2 and pow are 30-70 NumPy operations a call. A
-raymarcher makes tens of thousands of such calls a frame on the few hundred lanes a march loop
-keeps after compaction, and there the calls are all overhead; on a whole tile each operation
+llvmpipe_reference.LlvmpipeMath's sin, cos, tan, exp2, log2 and pow are 30-70 NumPy operations a
+call. A raymarcher makes tens of thousands of such calls a frame on the few hundred lanes a march
+loop keeps after compaction, and there the calls are all overhead; on a whole tile each operation
 is a pass over memory. backends/numpy_engine/jit_kernels.py makes the same float32 steps in one
 compiled loop (numba), which LLVM vectorises: 10-40x less CPU a call at 143 lanes, 7-18x at
-3,600, 6-9x on a 48,000-lane tile (pow the least; docs/performance.md, "Compiled math
-kernels"). The frames are the same bits with and without them (tests/numpy/test_jit_*.py).
+3,600, 6-9x on a 48,000-lane tile (pow the least; docs/performance.md, "The llvmpipe
+math emulation"). The frames are the same bits with and without them (tests/numpy/test_jit_*.py).
 
 numba is an optional extra (``pip install 'glslcheck[jit]'``); without it nothing changes. It is
 not free: ``import numba`` and loading the kernels' machine code from numba's cache take
@@ -41,8 +41,9 @@ The hook: llvmpipe_reference.LlvmpipeMath._kernel passes each NumPy function it 
 :func:`dispatch`, which returns it unchanged (off, numba missing, a function without kernel) or
 wrapped; LlvmpipeMath.builtin does the same for the Runtime's own float32 lowerings of atan,
 atan(y, x), asin and acos (Mesa's: 12-40 NumPy operations a call; the kernels take 8-30x less
-CPU a call, docs/performance.md), whose NumPy time counts towards auto's threshold too. A call the kernel declines (edge arguments that give NaN, see jit_kernels) goes to the
-NumPy function: the same bits either way.
+CPU a call, docs/performance.md), whose NumPy time counts towards auto's threshold too. A call the
+kernel declines (edge arguments that give NaN, see jit_kernels) goes to the NumPy function: the same
+bits either way.
 """
 
 from __future__ import annotations

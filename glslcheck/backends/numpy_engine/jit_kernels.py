@@ -5,7 +5,7 @@ operations; on the few hundred lanes of a compacted march loop each costs more t
 arithmetic. These kernels make the same float32 operations, in the same order with the same
 roundings, lane by lane in one compiled loop without a branch out of it, which LLVM
 vectorises (10-40x less CPU a call at 143 lanes, 6-9x on a whole tile: docs/performance.md,
-"Compiled math kernels").
+"The llvmpipe math emulation").
 
 The one-lane algorithms are backends/llvmpipe_math/lane.py's (which the compiled engine calls per
 pixel too); this module runs them over arrays. Imported only by backends/numpy_engine/jit.py, which
@@ -48,7 +48,8 @@ _ONE, _ZERO = lane.ONE, lane.ZERO
 
 @numba.njit("boolean(float32[::1], float32[::1], boolean, int64)", **_OPTS)
 def trig(a, out, fma, which):
-    """llvmpipe_math.lane.trig of every lane of ``a`` into ``out`` (same size); False (declined) where some
+    """llvmpipe_math.lane.trig of every lane of ``a`` into ``out`` (same size); False (declined)
+    where some
     |x| >= 2**29 or is not finite."""
     n = a.size
     for k in range(n):
@@ -81,7 +82,8 @@ def explog(x, y, out, fma, which):
     elif which == 1:
         for k in range(n):
             out[k] = lane.log2(x[k], fma)
-    else:  # no exit from this loop, so that LLVM can vectorise it: a NaN is noted and told at the end
+    # no exit from this loop, so that LLVM can vectorise it: a NaN is noted and told at the end
+    else:
         nan = False
         for k in range(n):
             xk = x[k if nx > 1 else 0]

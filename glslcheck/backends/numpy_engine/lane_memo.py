@@ -3,11 +3,11 @@
 A uniform value (the same in every lane, backends/cpu_core/uniformity.py) is an array of one lane,
 so `sin(iTime * 0.5)` or a rotation `sin(float(i) * 0.7)` in a uniform loop costs one call per
 tile, per loop iteration, per march step. For one lane the call is all overhead: the bit-exact
-llvmpipe emulation (llvmpipe_reference.LlvmpipeMath: range reduction, polynomials, fused multiply-adds) is
-30-odd NumPy operations, about 0.1 ms, where the value was usually computed a moment ago in
-another tile or iteration. `MemoMath` wraps the runtime's LlvmpipeMath and answers a call whose
-arguments are all small (a scalar or vector of one lane) from a table keyed by their exact
-bits, so each distinct input is computed once per render (and kept across frames until the
+llvmpipe emulation (llvmpipe_reference.LlvmpipeMath: range reduction, polynomials, fused
+multiply-adds) is 30-odd NumPy operations, about 0.1 ms, where the value was usually computed a
+moment ago in another tile or iteration. `MemoMath` wraps the runtime's LlvmpipeMath and answers a
+call whose arguments are all small (a scalar or vector of one lane) from a table keyed by their
+exact bits, so each distinct input is computed once per render (and kept across frames until the
 table is full). The answer is the emulation's own result, copied: bit for bit what the call
 gives, llvmpipe's rounding included. Calls on lane arrays go straight through.
 """

@@ -1,7 +1,7 @@
 """The llvmpipe math emulation's fast path: the same float32 steps in fewer NumPy calls.
 
-llvmpipe_reference.LlvmpipeMath repeats gallivm's sin/cos/exp2/log2/pow (lp_bld_arit.c) step by step and
-handles every input: subnormals flushed (DAZ), +-Inf, NaN, out-of-range conversions, the edges
+llvmpipe_reference.LlvmpipeMath repeats gallivm's sin/cos/exp2/log2/pow (lp_bld_arit.c) step by step
+and handles every input: subnormals flushed (DAZ), +-Inf, NaN, out-of-range conversions, the edges
 of log2. A raymarcher calls it tens of thousands of times a frame on a few hundred lanes (a
 march loop compacted to the lanes still marching), where each of its 40-70 NumPy calls costs
 more than the arithmetic. The kernels here make the same float32 operations, in the same order
@@ -14,16 +14,16 @@ with the same roundings, for the common case only, and say so first:
 - the fused multiply-adds (``llvm.fmuladd``, fused on an FMA CPU) are made in float64 rows of
   one buffer (the product of two float32 values is exact there, the sum rounded once) and
   rounded to float32; a float64 sum that is exactly a float32 midpoint is the only case where
-  that double rounding can differ from the fused one (see llvmpipe_reference.fma32), and one test over
-  the whole buffer at the end finds it: the lanes where one is are then computed again by the
+  that double rounding can differ from the fused one (see llvmpipe_reference.fma32), and one test
+  over the whole buffer at the end finds it: the lanes where one is are then computed again by the
   reference (rare on random arguments, a few lanes of a frame where values are short
   fractions: colours of 0.5, exact powers of two);
 - the two Horner chains of a polynomial (even and odd coefficients), and sin/cos's two
   polynomials, are evaluated as the two rows of one array: elementwise, so the same bits in
   half the calls.
 
-LlvmpipeMath uses the kernels up to 4096 lanes a call (llvmpipe_reference.DEFER_LANES): on whole tiles
-their float64 rows cost as much as the calls they save.
+LlvmpipeMath uses the kernels up to 4096 lanes a call (llvmpipe_reference.DEFER_LANES): on whole
+tiles their float64 rows cost as much as the calls they save.
 
 Every kernel is checked bit for bit against the reference on millions of inputs, specials
 included (tests/numpy/test_llvmpipe_fast_kernels.py). Without FMA a fused step is a float32

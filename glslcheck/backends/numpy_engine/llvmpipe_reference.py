@@ -316,8 +316,8 @@ class LlvmpipeMath:
     @staticmethod
     def _sin_cos_result(a: np.ndarray, reduced: tuple[np.ndarray, ...], cos: bool) -> np.ndarray:
         """From :meth:`_sin_cos_reduced`: the sign (sin: the argument's sign flipped by bit 2
-        of j; cos: bit 2 of j - 2, inverted), the polynomial picked by bit 1 of j (cos: of j - 2), the
-        clamp and NaN for non-finite input. ``fmin(y, 1)``/``fmax(., -1)`` are minps/maxps
+        of j; cos: bit 2 of j - 2, inverted), the polynomial picked by bit 1 of j (cos: of j - 2),
+        the clamp and NaN for non-finite input. ``fmin(y, 1)``/``fmax(., -1)`` are minps/maxps
         here: a NaN y becomes 1 in both."""
         ai, emm2_add, emm2_and, y_10, y2_9 = reduced
         if cos:

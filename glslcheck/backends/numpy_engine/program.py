@@ -1,4 +1,5 @@
-"""Compiling a shader to its NumPy module and rendering its frames: scheduling, caches, budgets, stats.
+"""Compiling a shader to its NumPy module and rendering its frames: scheduling, caches, budgets,
+stats.
 
 This module owns what happens around one frame: the frame cache for shaders that do not
 animate, the uniform values and globals every tile shares (`FrameSpec`), the order and the
@@ -132,7 +133,8 @@ def frame_seconds() -> float:
 
 
 def uniform_value(rt: Runtime, name: str, value: Any) -> Any:
-    """`value` of the Shadertoy uniform `name` as the runtime holds it (a sampler: its ChannelInput)."""
+    """`value` of the Shadertoy uniform `name` as the runtime holds it (a sampler: its
+    ChannelInput)."""
     u = UNIFORMS_BY_NAME[name]
     t = u.glsl_type
     if t.startswith("sampler"):
@@ -233,8 +235,8 @@ class NumpyProgram:
     # program has rendered for PROCESSES_AFTER seconds in this process
     parallel: str = field(default_factory=config.parallel)
     last_parallel: str = ""  # how the last frame was rendered: "processes", "threads", "one thread"
-    # llvmpipe's loop limiter (LaneHelpers.tick): None = loops run until they end (a runaway loop is an
-    # error after LOOP_CAP passes); 65535 = stop as llvmpipe does (verify sets it)
+    # llvmpipe's loop limiter (LaneHelpers.tick): None = loops run until they end (a runaway loop is
+    # an error after LOOP_CAP passes); 65535 = stop as llvmpipe does (verify sets it)
     loop_limit: int | None = None
     frame_seconds: float | None = (
         None  # the frame budget; None: GLSLCHECK_FRAME_SECONDS or FRAME_SECONDS
@@ -263,8 +265,9 @@ class NumpyProgram:
         return any(u in ANIMATED_UNIFORMS for u in self.uniforms)
 
     def emulate_float_to_uint(self, model: str) -> None:
-        """Compute ``uint(x)`` of out-of-range floats as `model` does (glslcheck/backends/driver_profile.py;
-        by default this machine's prediction): verify sets the model it measured on the driver."""
+        """Compute ``uint(x)`` of out-of-range floats as `model` does
+        (glslcheck/backends/driver_profile.py; by default this machine's prediction): verify sets
+        the model it measured on the driver."""
         with self._lock:
             if self.meta.get("float_to_uint", host_model()) != model:
                 self.meta = {**self.meta, "float_to_uint": model}
@@ -300,8 +303,9 @@ class NumpyProgram:
         """Render one frame: float32 (height, width, 4), row 0 = top of the image, unclamped.
 
         Arguments as `GLProgram.render` (`shadertoy.FrameInputs`, then `channels`: the inputs of
-        iChannel0..3, glslcheck.shadertoy.channels.ChannelInput or None); `precision` is the float dtype
-        inside the shader. Discarded pixels are (0, 0, 0, 0), the GL backend's clear colour."""
+        iChannel0..3, glslcheck.shadertoy.channels.ChannelInput or None); `precision` is the float
+        dtype inside the shader. Discarded pixels are (0, 0, 0, 0), the GL backend's clear
+        colour."""
         ns = self.module(precision)
         values = inputs.uniforms()
         if (
@@ -495,9 +499,9 @@ class NumpyProgram:
         return seconds
 
     def _fit_memory(self, precision: str, threads: int) -> tuple[int, int]:
-        """(at most this many lanes per tile, tiles at once) that keep the tiles' state within `memory_budget()`:
-        fewer lanes per tile, then one tile at a time; a located GlslError when even one 2x2
-        tile does not fit."""
+        """(at most this many lanes per tile, tiles at once) that keep the tiles' state within
+        `memory_budget()`: fewer lanes per tile, then one tile at a time; a located GlslError when
+        even one 2x2 tile does not fit."""
         per_lane, loc = lane_bytes(self.meta, precision)
         limit = memory_budget()
         lanes = limit // (threads * per_lane)
@@ -507,12 +511,15 @@ class NumpyProgram:
         if lanes < MIN_TILE_LANES:
             raise GlslError(
                 Diagnostic(
-                    f"this shader needs about {_megabytes(per_lane)} per pixel on the CPU (its largest variable is "
-                    f"declared here): even a 2x2 tile would take {_megabytes(MIN_TILE_LANES * per_lane)}, more than "
+                    f"this shader needs about {_megabytes(per_lane)} per pixel on the CPU (its "
+                    "largest variable is "
+                    "declared here): even a 2x2 tile would take "
+                    f"{_megabytes(MIN_TILE_LANES * per_lane)}, more than "
                     f"the memory budget of {_megabytes(limit)}",
                     loc or Location(self.meta.get("source", "<shader>"), 1, 1),
                     rule="numpy-memory-budget",
-                    help="use smaller arrays, or render with --backend gl; GLSLCHECK_MEMORY_MB sets the budget "
+                    help="use smaller arrays, or render with --backend gl; "
+                    "GLSLCHECK_MEMORY_MB sets the budget "
                     f"(default {MEMORY_FRACTION:.0%} of the machine's memory)",
                 )
             )
@@ -597,7 +604,8 @@ def standalone_globals(meta: dict) -> dict:
 
 
 def run_standalone(ns: dict) -> None:
-    """`python shader.py [-o out.png|out.npy] [--size WxH] [--time T] [--frame N] [--precision P]`."""
+    """`python shader.py [-o out.png|out.npy] [--size WxH] [--time T] [--frame N] [--precision
+    P]`."""
     import argparse
 
     p = argparse.ArgumentParser(description="Render this transpiled shader with NumPy.")

@@ -127,10 +127,11 @@ class CommonFunctions:
         constants whose exponents differ by at most 11 -> fast; x a constant of all +1 / -1 ->
         one / minus_one; y a constant of all +1 or all -1 -> strict; a constant -> strict; else
         fast. For direct calls only: transpiled code passes the form :func:`nir_fold.mix_hint`
-        decides from the source (this run-time guess depends on the lane count). "Constant" is :meth:`_const` (lane-uniform and not a uniform input, as for
-        :meth:`fmul`) with ``fold_constants``; direct calls count a lane-uniform ``a`` only.
-        Approximation: a value computed from uniforms only (``sin(iTime)``) counts as a
-        constant here, where Mesa sees a run-time value."""
+        decides from the source (this run-time guess depends on the lane count). "Constant" is
+        :meth:`_const` (lane-uniform and not a uniform input, as for :meth:`fmul`) with
+        ``fold_constants``; direct calls count a lane-uniform ``a`` only. Approximation: a value
+        computed from uniforms only (``sin(iTime)``) counts as a constant here, where Mesa sees a
+        run-time value."""
         if not self.fold_constants:
             return "strict" if a.ndim == 0 or a.shape[-1] == 1 else "fast"
         cx, cy = self._const(x) and x.size <= 16, self._const(y) and y.size <= 16

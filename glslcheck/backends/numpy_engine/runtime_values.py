@@ -230,8 +230,8 @@ class ValueOps:
 
     def to_uint(self, x: Any) -> np.ndarray:
         """``uint(x)``: float truncates; negatives, NaN and values past 2**32 are undefined and
-        follow the runtime's ``float_to_uint`` model (glslcheck/backends/driver_profile.py: what llvmpipe
-        computes on this kind of CPU); int reinterprets the bits; bool 0/1."""
+        follow the runtime's ``float_to_uint`` model (glslcheck/backends/driver_profile.py: what
+        llvmpipe computes on this kind of CPU); int reinterprets the bits; bool 0/1."""
         x = self._num(x) if not isinstance(x, np.ndarray) else x
         k = x.dtype.kind
         if k == "u":
@@ -470,7 +470,8 @@ class ValueOps:
         return np.ascontiguousarray(np.moveaxis(picked, 0, -1))
 
     def assign_index(self, old: Any, idx: Any, new: Any, mask: Any = None) -> Any:
-        """``old[idx] = new`` under ``mask`` with per-lane clamped ``idx``; returns the new value."""
+        """``old[idx] = new`` under ``mask`` with per-lane clamped ``idx``; returns the new
+        value."""
         if isinstance(old, Struct):
             return Struct(
                 old._name,

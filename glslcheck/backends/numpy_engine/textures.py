@@ -4,91 +4,13 @@ This module owns the ES 3.00 lookups on a sampler2D for the NumPy backend: `text
 `textureLod`, `textureGrad`, `textureOffset`, their `Proj` and `Offset` combinations,
 `texelFetch`, `texelFetchOffset` and `textureSize`. `Runtime` inherits
 them (`TextureFunctions`), so generated code calls `rt.texture(S.u_iChannel0, uv, S.width)`.
-A sampler value is a `glslcheck.shadertoy.channels.ChannelInput` (texels float32 (height, width, 4), row
-0 = texture coordinate t near 0, i.e. the bottom as OpenGL uploads it) or None (unbound: GL's
+A sampler value is a `glslcheck.shadertoy.channels.ChannelInput` (texels float32 (height, width, 4),
+row 0 = texture coordinate t near 0, i.e. the bottom as OpenGL uploads it) or None (unbound: GL's
 incomplete texture, which reads (0, 0, 0, 1) and has size 0).
 
-What llvmpipe does, measured with tests/channels/measure_sampling.py (Mesa 22.3.6, LLVM 15):
-
-- nearest: texel floor(u * width) (float32 product), then the wrap; bit for bit equal.
-- linear on float textures: float32 weights (not 8-bit fixed point: a 2x1 texture 0..1 gave
-  4096 distinct, exact weights over 4096 pixels; RGBA32F is not an 8-bit AoS format, so llvmpipe
-  takes its SoA path). The weight x = u * width - 0.5 (a product and a sum, not fused), x0 =
-  floor(x), w = x - x0, and Mesa's lp_build_lerp (gallivm/lp_bld_arit.c) along x then y:
-  lp_build_mad(w, b - a, a), an llvm.fmuladd that LLVM fuses into one FMA on a host with FMA
-  (`_lerp` emulates the FMA through float64). Bit for bit equal on a 50x70 texture over a ramp
-  of scales, anisotropies and rotations, both wraps (16384 of 16384 values; the unfused
-  a + w * (b - a) matched 8575 and 15401; tests/channels/test_channels.py
-  test_filtering_bit_for_bit_on_a_ramp_of_scales). On a host without FMA llvmpipe does not
-  fuse: a last-bit difference, which after the lowp truncation below can cross one truncation
-  step (2^-10 relative), the bound the tests use there.
-- clamp with linear filtering (lp_build_sample_wrap_linear, CLAMP_TO_EDGE): the coordinate is
-  clamped as a float before its integer conversion, min(u * size + offset, size) - 0.5, then
-  max(0), so 1e30 and +inf read the last texel and -1e30, -inf the first (converting first
-  overflowed: 1e30 read the first texel, inf gave NaN). A NaN coordinate through a whole
-  Shadertoy render still differs (not emulated).
-- the wrap per axis (lp_build_sample_wrap_nearest / lp_build_sample_wrap_linear), chosen by
-  whether level 0's size on that axis is a power of two (llvmpipe's static pot_width/height, for
-  every level): repeat on a power of two is u * n (- 0.5 for linear), then floor, the int32 index
-  masked with n - 1; on other sizes the fraction u - floor(u) comes first (nearest: kept below 1,
-  NaN -> 1 - 2^-24, then truncated), and a texel offset is added to u in normalised units
-  (offset / n) before the repeat; nearest clamp is int32 truncation of u * n + offset, clamped.
-  The float-to-int conversions are x86's (INT_MIN for NaN and past 2^31), so huge and infinite
-  coordinates read what llvmpipe reads: equal bit for bit on 16x16, 12x10 and 16x10 textures at
-  +-1e30, +-inf, 3e9, 1.2e7, -7.8e5, with and without offsets (test_channels.py
-  test_wrap_of_huge_and_infinite_coordinates_on_pot_and_npot_sizes; 11 of its 18 cases differed
-  when the fraction came first everywhere).
-- precision: Shadertoy's prelude declares `precision mediump sampler3D` only, so the iChannel
-  uniforms it declares are lowp sampler2D (the ES 3.00 fragment default), and llvmpipe honours
-  it: every lookup result (after filtering) is converted to float16 rounding towards zero and
-  back: its float32 mantissa truncated to 10 bits (the low 13 bits cleared; pi reads 3.140625),
-  finite values past 65504 give 65504 (elevated's Image pass unpacks a velocity stored as
-  about 5e5 in Buffer A's alpha: it reads 65504 on llvmpipe), values below 2^-14 are float16
-  subnormals (multiples of 2^-24, truncated). A `precision highp sampler2D;` in the user's tab comes
-  after the uniforms' declarations and changes nothing (measured). The lookups here truncate the
-  same way (`ChannelInput.lowp`).
-- precision of the arithmetic on those results (measured, measure_sampling.py part 4): llvmpipe
-  lowers GLSL's precision rules to float16. An operation whose operands are all lowp or mediump
-  (a lookup's result, a lowp/mediump variable; a constant takes its partner's precision) runs in
-  float16 with round to nearest, `texture(...) * 3.14159265` included (1024 of 1024 products equal
-  to the float16 ones), and past 65504 it is inf; one highp operand (iTime, a highp variable, a
-  uniform) makes it float32. The NumPy backend copies this for trees of `+ - * /` and negation
-  over lookups on an iChannel and constants (backends/numpy_engine/transpile/nir_fold/lower_precision.py `lowp_tree`, bit for bit:
-  test_channels.py test_arithmetic_on_lowp_lookups_is_float16; elephant's terrain height
-  `2.1 + 0.1*textureLod(..).x` is 2.130859375 on llvmpipe, 2.1319335 in float32). It does not
-  propagate precision further: built-in calls on such values (`smoothstep(.., texture(..).x)`),
-  lookups through a sampler parameter and mediump/lowp variables stay float32, within about
-  2^-11 relative per operation of llvmpipe's, and verify reports a mismatch only where a
-  lowp/mediump-only expression overflows float16 or accumulates such errors. Storing the lookup
-  in a highp variable first (`vec4 t = texture(...);`, the default float precision is highp)
-  makes the rest float32 and equal on every backend.
-  SwiftShader's WebGL computes lowp and mediump in float32 (measured: exact lookups, and a
-  mediump x * 1e5 past 65504 stays finite).
-- mipmap: the levels are glslcheck's own 2x2 box pyramid (channels.mip_levels), uploaded level
-  by level to GL too, so both sample the same texels. The LOD is Mesa 22.3's
-  lp_build_lod_selector (gallivm/lp_bld_sample.c) with llvmpipe's default GALLIVM_PERF flags
-  (lp_bld_sample_soa.c: no_rho_approx and no_brilinear are set unless GALLIVM_PERF names
-  rho_approx / brilinear, so neither approximation is on; no_quad_lod is off, so the implicit
-  LOD is one per 2x2 quad):
-  lp_build_rho takes the coordinates' differences between the quad's bottom-left pixel and its
-  right and upper neighbours, *then* multiplies them by the level-0 size (differencing the
-  scaled coordinates rounds differently on a size that is not a power of two), rho^2 =
-  max(ds^2 + dt^2 along x, along y) with max as x86 maxps (the second operand where either is
-  NaN), no sqrt; lod = 0.5 * lp_build_fast_log2(rho^2), which reads the float's exponent field
-  and its mantissa in [1, 2) with no special case (0 -> -127, inf -> 128, NaN -> about 128.5);
-  plus the shader's bias per pixel (a per-pixel bias makes the LOD per pixel, the rho staying
-  the quad's); lp_build_linear_mip_levels clamps it to the levels; the fraction lod - floor(lod)
-  blends the two levels' bilinear results with the same fused lerp, and only when some lane's
-  fraction is above 0 (lp_build_sample_mipmap's need_lerp): an integer LOD reads one level, so
-  an infinite texel one level up does not make 0 * inf = NaN (test_an_integer_lod_reads_one_level). Brilinear filtering
-  (lp_build_brilinear_rho / lp_build_brilinear_lod, BRILINEAR_FACTOR), which snaps the fraction
-  near integers, is only used with GALLIVM_PERF=brilinear. textureGrad uses the given
-  derivatives per pixel and zeroes an inf/NaN rho, as lp_build_rho does for explicit ones.
-  Measured (as measure_sampling.py part 3: levels filled with their index): the LOD
-  equal bit for bit on 4096 of 4096 pixels of a ramp of scales 2^-2..2^8, anisotropies 1..16 and
-  rotations, with and without a per-pixel bias, and at coordinates near 1000; whole lookups on
-  random RGBA32F texels equal on 16384 of 16384 values (texture, with a bias, textureLod), which
-  unfused lerps and scaled differences do not give.
+What llvmpipe does (nearest and linear filtering, wraps, lowp results and their float16
+arithmetic, mipmap LOD selection), measured with tools/measure_sampling.py and copied
+here bit for bit: docs/llvmpipe.md, "Texture sampling".
 """
 
 from __future__ import annotations
@@ -133,7 +55,8 @@ _INT_MIN = -(2**31)
 
 def _to_int32(x: np.ndarray) -> np.ndarray:
     """x86's cvttps2dq (LLVM's fptosi there): truncation towards zero; a NaN or a value outside
-    int32 gives INT_MIN (0x80000000). Kept in int64 (the wraps below only read low bits or clamp)."""
+    int32 gives INT_MIN (0x80000000). Kept in int64 (the wraps below only read low bits or
+    clamp)."""
     ok = (x >= np.float32(-(2.0**31))) & (x < np.float32(2.0**31))
     if ok.all():  # the usual case: one conversion (astype truncates towards zero)
         return x.astype(np.int64)
@@ -281,13 +204,14 @@ class TextureFunctions:
 
     def lowp_arith(self, *samplers) -> bool:
         """Whether arithmetic on these samplers' lookups is float16, as on llvmpipe: float32 mode
-        (llvmpipe's) and lowp samplers (an unbound channel is lowp too). nir_fold.lower_precision.lowp_tree."""
+        (llvmpipe's) and lowp samplers (an unbound channel is lowp too).
+        nir_fold.lower_precision.lowp_tree."""
         return self.lp is not None and all(s is None or s.lowp for s in samplers)
 
     @staticmethod
     def half(x) -> np.ndarray:
-        """A float16 operand of nir_fold.lower_precision.lowp_tree's code (rounded to nearest; a lookup's lowp
-        result is already a float16 value)."""
+        """A float16 operand of nir_fold.lower_precision.lowp_tree's code (rounded to nearest; a
+        lookup's lowp result is already a float16 value)."""
         return np.asarray(x, dtype=np.float16)
 
     def lowp_full(self, x: np.ndarray) -> np.ndarray:
@@ -342,7 +266,7 @@ class TextureFunctions:
         return a
 
     def _implicit_lod(self, s, p: np.ndarray, width: int | None, bias=None):
-        """llvmpipe's LOD of a 2x2 quad (measured, tests/channels/measure_sampling.py): the
+        """llvmpipe's LOD of a 2x2 quad (measured, tools/measure_sampling.py): the
         derivatives of the scaled coordinates between the quad's bottom-left pixel and its right
         and upper neighbours, lod = 0.5 * fast_log2(max(dx.dx, dy.dy)) with fast_log2 the
         piecewise-linear exponent + (mantissa - 1), the same for the four pixels."""
@@ -419,7 +343,8 @@ class TextureFunctions:
         return self.texture(s, _project(p), bias, width)
 
     def textureOffset(self, s, p, offset, bias=None, width=None) -> np.ndarray:
-        """The (constant) texel offset is added to the integer texel coordinates, before the wrap."""
+        """The (constant) texel offset is added to the integer texel coordinates, before the
+        wrap."""
         p = self._coords(p)
         return self._sample(s, p, _offset(offset), self._implicit_lod(s, p, width, bias))
 

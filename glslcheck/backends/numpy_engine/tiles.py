@@ -1,4 +1,5 @@
-"""One frame's tiles on the CPU: what runs the generated code, shared by this process and the workers.
+"""One frame's tiles on the CPU: what runs the generated code, shared by this process and the
+workers.
 
 This module owns everything a tile needs, whether it renders on one of the caller's threads
 (program.py) or in a worker process (workers.py); both import it, and neither imports the
@@ -52,9 +53,9 @@ MIN_TILE_LANES = 4  # one 2x2 derivative quad
 
 @dataclass(frozen=True)
 class Compaction:
-    """When a varying region runs on a gathered copy of the lanes that take it (`LaneHelpers.sparse`)
-    instead of masked on all of them: a frame's setting (`FrameSpec.compaction`, from
-    `NumpyProgram.compaction`), carried by each tile's `State`."""
+    """When a varying region runs on a gathered copy of the lanes that take it
+    (`LaneHelpers.sparse`) instead of masked on all of them: a frame's setting
+    (`FrameSpec.compaction`, from `NumpyProgram.compaction`), carried by each tile's `State`."""
 
     fraction: float = 0.5  # compact a region when fewer than this fraction of the lanes take it
     min_lanes: int = 1024  # below this many lanes gathering costs more than it saves
@@ -297,12 +298,13 @@ class LaneHelpers:
         )
         raise GlslError(
             Diagnostic(
-                f"the frame was still rendering after {budget.seconds:g} s on the CPU, in {where}; the NumPy "
+                f"the frame was still rendering after {budget.seconds:g} s on the CPU, "
+                f"in {where}; the NumPy "
                 "renderer stops it (a GPU would hang or reset)",
                 Location(path, line, col),
                 rule="numpy-frame-budget",
-                help="bound the loops' iteration counts (nested loops multiply) and the arrays' sizes; "
-                "--frame-budget SECONDS (or GLSLCHECK_FRAME_SECONDS) sets the budget",
+                help="bound the loops' iteration counts (nested loops multiply) and the arrays' "
+                "sizes; --frame-budget SECONDS (or GLSLCHECK_FRAME_SECONDS) sets the budget",
             )
         )
 
@@ -311,8 +313,8 @@ class LaneHelpers:
         cap = self.meta.get("loop_cap", 0)
         raise GlslError(
             Diagnostic(
-                f"this loop did not end after {cap:,} iterations; the NumPy renderer stops it (a GPU would "
-                "hang or reset)",
+                f"this loop did not end after {cap:,} iterations; the NumPy renderer stops it (a "
+                "GPU would hang or reset)",
                 Location(path, line, col),
                 rule="numpy-runaway-loop",
                 help="check the loop's condition and step; give it a constant upper bound",
@@ -356,7 +358,8 @@ class LaneHelpers:
 
     @staticmethod
     def loop_sparse(S, m):
-        """`sparse` for a loop's live lanes, at the top of each pass (`Compaction.loop_fraction`)."""
+        """`sparse` for a loop's live lanes, at the top of each pass
+        (`Compaction.loop_fraction`)."""
         return LaneHelpers.sparse(S, m, S.compaction.loop_fraction)
 
     @staticmethod
@@ -528,7 +531,8 @@ def _frame_tiles(
 FRAG_CACHE_LANES = 2 * 1920 * 1080
 _FRAGS: dict = {}
 _FRAG_LANES = [0]
-_GRIDS: dict = {}  # (w, h) -> pixel-centre offsets (float64) of a tile shape; a frame has few shapes
+# (w, h) -> pixel-centre offsets (float64) of a tile shape; a frame has few shapes
+_GRIDS: dict = {}
 
 
 def _fragments(rt, tile, dx: float, dy: float, need4: bool):

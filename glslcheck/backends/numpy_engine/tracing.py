@@ -4,7 +4,8 @@
 runs the same lane model and the same runtime calls, plus calls of `T`, a tracer that the caller
 puts in the module's namespace before a run (`ns["T"] = tracer`):
 
-    T.a(S, site, mask, value)                a variable was declared or assigned; value: the variable
+    T.a(S, site, mask, value)                a variable was declared or assigned; value: the
+                                             variable
     T.b(S, site, mask, cond) -> cond         the condition of an if or the selector of a switch
     T.r(S, site, mask, value) -> value       the value of a return statement
     T.e(S, site, mask)                       break, continue or discard
@@ -231,7 +232,8 @@ class TraceTranspiler(Transpiler):
             sym = self.model.symbol_of(dec)
             if sym is not None and dec.init is not None:
                 self.emit(
-                    f"T.a(S, {self.site('assign', dec, sym.name)}, {mask}, {self.var_name(sym, dec)})"
+                    f"T.a(S, {self.site('assign', dec, sym.name)}, {mask}, "
+                    f"{self.var_name(sym, dec)})"
                 )
 
     def write(self, lv: Any, value: str, mask: str | None) -> None:
@@ -282,7 +284,10 @@ class TraceTranspiler(Transpiler):
         if not self._traced():
             return text
         sid = self.site("call", e, fn.name, params=tuple(p for p, _, d in fn.params if d != "out"))
-        return f"T.call(S, {sid}, {mask}, {self.fn_name(fn)}, {call_mask}{''.join(', ' + x for x in args)})"
+        return (
+            f"T.call(S, {sid}, {mask}, {self.fn_name(fn)}, "
+            f"{call_mask}{''.join(', ' + x for x in args)})"
+        )
 
     # -- operations that can make NaN or Inf -------------------------------------------------------
     def _print_Binary(self, e: A.Binary, mask: str | None) -> str:
@@ -342,24 +347,29 @@ class TraceTranspiler(Transpiler):
 HELP = {
     "0/0": "both sides of the division are zero here: guard the denominator (max(d, 1e-6)) or "
     "handle the degenerate case first",
-    "division by zero": "the denominator is zero here: guard it (max(d, 1e-6)) or test it before dividing",
-    "sqrt of a negative": "the argument is negative here (rounding can push a difference of squares "
-    "below zero): use sqrt(max(x, 0.0))",
+    "division by zero": "the denominator is zero here: guard it (max(d, "
+    "1e-6)) or test it before dividing",
+    "sqrt of a negative": "the argument is negative here (rounding can push a difference of "
+    "squares below zero): use sqrt(max(x, 0.0))",
     "log of a negative": "the argument is negative here: clamp it above zero (max(x, 1e-6))",
-    "log of zero": "the argument is zero here (the result is -inf): clamp it above zero (max(x, 1e-6))",
-    "normalize of a zero vector": "the vector is zero here (the light sits on the surface point, or "
-    "two points coincide): guard the zero vector, e.g. test "
+    "log of zero": "the argument is zero here (the result is -inf): clamp it above zero (max(x, "
+    "1e-6))",
+    "normalize of a zero vector": "the vector is zero here (the light sits on the surface point, "
+    "or two points coincide): guard the zero vector, e.g. test "
     "dot(v, v) > 0.0 before normalizing",
     "inversesqrt(0)": "the argument is zero here: add a small epsilon or test it first",
     "inversesqrt of a negative": "the argument is negative here: use inversesqrt(max(x, 1e-12))",
-    "pow of a negative base": "pow(x, y) is undefined for x < 0 (GPUs give NaN): use pow(max(x, 0.0), y), "
-    "or pow(abs(x), y) with the sign put back",
-    "asin or acos outside [-1, 1]": "clamp the argument to [-1, 1] (rounding can push a dot product "
-    "of unit vectors past 1)",
+    "pow of a negative base": "pow(x, y) is undefined for x < 0 (GPUs give NaN): use pow(max(x, "
+    "0.0), y), or pow(abs(x), y) with the sign put back",
+    "asin or acos outside [-1, 1]": "clamp the argument to [-1, 1] (rounding can push a dot "
+    "product of unit vectors past 1)",
     "mod by zero": "the divisor is zero here: guard it",
-    "overflow": "the value exceeds the float32 range (3.4e38): scale the computation down or clamp its inputs",
-    "an Inf or NaN operand": "an operand was already Inf or NaN (a constant or an input): check where it comes from",
-    "a non-finite value": "the value was Inf or NaN without an operation that made it (a constant out of "
+    "overflow": "the value exceeds the float32 range (3.4e38): scale the computation down or "
+    "clamp its inputs",
+    "an Inf or NaN operand": "an operand was already Inf or NaN (a constant or an input): "
+    "check where it comes from",
+    "a non-finite value": "the value was Inf or NaN without an operation that made it (a "
+    "constant out of "
     "range?): check the constant",
 }
 OPERATIONS = list(HELP)
@@ -381,7 +391,8 @@ def _lanes_any(x: np.ndarray, lanes: int) -> np.ndarray:
 
 def _bad(v: Any, lanes: int) -> np.ndarray | None:
     """bool (lanes,) where the value holds NaN or Inf; None when it holds none (the fast path:
-    one sum, which is finite exactly when... every term is, unless it overflows: then the exact test)."""
+    one sum, which is finite exactly when... every term is, unless it overflows: then the exact
+    test)."""
     if isinstance(v, Struct):
         out = None
         for f in v.fields.values():

@@ -7,8 +7,8 @@ the benchmark machine two threads render the sparse four-sphere scene no faster 
 
 Design:
 - A process-wide pool of workers, each a fresh interpreter (`python -m
-  glslcheck.backends.numpy_engine.workers FD`) that imports only NumPy and this package; nothing of the
-  caller is inherited (no GL context, threads or locks), and the caller's `__main__` is never
+  glslcheck.backends.numpy_engine.workers FD`) that imports only NumPy and this package; nothing of
+  the caller is inherited (no GL context, threads or locks), and the caller's `__main__` is never
   imported. Parent and worker talk over a socket pair with `multiprocessing.connection`.
 - A worker compiles a program's module the first time it sees the program's key and keeps the
   last few.
@@ -197,8 +197,11 @@ class _Worker:
                 env=env,
                 stdin=subprocess.DEVNULL,
                 close_fds=True,
-                cwd=root,  # `-m` puts the working directory first on sys.path: another checkout there would win
-                stderr=subprocess.DEVNULL,  # a worker that fails is reported as Unavailable, no traceback
+                # `-m` puts the working directory first on sys.path: another checkout there would
+                # win
+                cwd=root,
+                # a worker that fails is reported as Unavailable, no traceback
+                stderr=subprocess.DEVNULL,
                 start_new_session=True,
             )  # Ctrl-C reaches the caller, which ends the workers
         except BaseException:
@@ -442,7 +445,8 @@ def _serve(conn: Connection) -> None:
             files[number] = (fd, mmap.mmap(fd, HEADER + shape[0] * shape[1] * shape[2] * 4))
         fd, mm = files[number]
         stats: list[dict] = []
-        seconds: dict = {}  # tile -> seconds it took here (the caller orders the next frame's tiles)
+        # tile -> seconds it took here (the caller orders the next frame's tiles)
+        seconds: dict = {}
         try:
             _render_frame(
                 fd,

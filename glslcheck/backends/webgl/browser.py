@@ -200,7 +200,8 @@ class Browser:
         timeout = call_timeout()
         try:
             self.page.wait_for_function(
-                f"(args) => {{ window.glslcheck.out = window.glslcheck.{function}(...args); return true; }}",
+                f"(args) => {{ window.glslcheck.out = window.glslcheck.{function}(...args); "
+                "return true; }",
                 arg=list(args),
                 timeout=timeout * 1000.0,
             )

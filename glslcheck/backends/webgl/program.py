@@ -9,11 +9,12 @@ diagnostics located in the user's files, as `gl_backend` does with Mesa's log (t
 gives the same float32 (height, width, 4) image, top row first: drawn into an RGBA32F texture
 (EXT_color_buffer_float) and read back with `readPixels(FLOAT)`, neither clamped nor quantised.
 
-Uniforms are set as Shadertoy's page sets them (glslcheck/shadertoy/wrapper.py `UNIFORMS`: iResolution,
-iTime, iMouse, iChannelTime, iDate, iChannelResolution, iSampleRate, iChannel0..3 = units 0..3,
-iFrame, iTimeDelta, iFrameRate); inactive ones are skipped by WebGL. `render(channels=...)` binds
-the channels (glslcheck.shadertoy.channels.ChannelInput) as RGBA32F textures on units 0..3, with their
-filter, wrap and glslcheck's mipmap levels, as the GL backend does; without it they are unbound.
+Uniforms are set as Shadertoy's page sets them (glslcheck/shadertoy/wrapper.py `UNIFORMS`:
+iResolution, iTime, iMouse, iChannelTime, iDate, iChannelResolution, iSampleRate, iChannel0..3 =
+units 0..3, iFrame, iTimeDelta, iFrameRate); inactive ones are skipped by WebGL.
+`render(channels=...)` binds the channels (glslcheck.shadertoy.channels.ChannelInput) as RGBA32F
+textures on units 0..3, with their filter, wrap and glslcheck's mipmap levels, as the GL backend
+does; without it they are unbound.
 
 What SwiftShader's WebGL does with them (measured, tests/webgl/test_channels_webgl.py): it
 ignores lowp, so lookups return the exact float32 filtered value where llvmpipe (and the NumPy
@@ -197,7 +198,8 @@ def _compile(browser: Browser, program: Program) -> tuple[int, list[str]]:
 def webgl_diagnostics(
     shader: Shader, tab: str = "Image", browser: Browser | None = None
 ) -> list[Diagnostic]:
-    """ANGLE's errors for the program Shadertoy compiles for `tab`; [] when it compiles and links."""
+    """ANGLE's errors for the program Shadertoy compiles for `tab`; [] when it compiles and
+    links."""
     browser = browser or get_browser()
     program = build_program(shader, tab)
     try:
@@ -276,11 +278,13 @@ class WebGLProgram:
         except WebGLTimeout as e:
             raise GlslError(
                 Diagnostic(
-                    f"WebGL: the {self.program.tab} program ran for more than {e.seconds:g} s in the browser (an "
+                    f"WebGL: the {self.program.tab} program ran for more than {e.seconds:g} s in "
+                    "the browser (an "
                     f"endless or very long loop?); the browser was ended",
                     entry_location(self.program),
                     rule=RULE,
-                    help="a loop whose count depends on a uniform or a pixel may never end; bound it with a "
+                    help="a loop whose count depends on a uniform or a pixel may never end; "
+                    "bound it with a "
                     "constant, or raise $GLSLCHECK_WEBGL_TIMEOUT for a slow shader",
                 )
             ) from None

@@ -39,7 +39,8 @@ def arg(parse: Callable[[str], object]) -> Callable[[str], object]:
 
 
 def add_uniform_arguments(p: argparse.ArgumentParser) -> None:
-    """The uniform options (--size --time --frame --mouse --date) of `glslcheck render` and `glslcheck probe`."""
+    """The uniform options (--size --time --frame --mouse --date) of `glslcheck render` and
+    `glslcheck probe`."""
     p.add_argument(
         "--size", type=arg(parse_size), default=(800, 450), metavar="WxH", help="default 800x450"
     )
@@ -77,7 +78,8 @@ def add_frame_budget(p: argparse.ArgumentParser) -> None:
         default=None,
         metavar="SECONDS",
         help="stop a NumPy frame still rendering after SECONDS with an error at the loop it was in "
-        f"({MIN_FRAME_SECONDS:g} to {MAX_FRAME_SECONDS:g}; default: $GLSLCHECK_FRAME_SECONDS or 300)",
+        f"({MIN_FRAME_SECONDS:g} to {MAX_FRAME_SECONDS:g}; default: "
+        "$GLSLCHECK_FRAME_SECONDS or 300)",
     )
 
 

@@ -8,7 +8,8 @@ float64, each at 1, 4 and 16 samples per pixel (--webgl adds WebGL 2 in headless
 each, in the plot's purple; --backend compiled adds the compiled engine, glslcheck/compiled_backend,
 at each, in brown: it needs numba, the extra glslcheck[jit], exit 2 with the pip line without
 it). Each is timed (median of --runs rounds after a warm-up render; the rounds go round-robin
-over the configurations so machine load falls on all alike) and compared with the reference, NumPy float64 at 16 samples per pixel.
+over the configurations so machine load falls on all alike) and compared with the reference, NumPy
+float64 at 16 samples per pixel.
 
 Error is over RGB as the screen shows it (NaN as 0, +Inf as 1, clamped to [0, 1]; NaN/Inf in
 one image only counts as 1): max and mean absolute error, PSNR, and the pixels where some
@@ -70,7 +71,8 @@ def add_arguments(p) -> None:
         type=cli_args.arg(limits.parse_runs),
         default=DEFAULT_RUNS,
         metavar="N",
-        help=f"timed renders per configuration after one warm-up; the median is reported (default {DEFAULT_RUNS})",
+        help="timed renders per configuration after one warm-up; "
+        f"the median is reported (default {DEFAULT_RUNS})",
     )
     p.add_argument(
         "--time",

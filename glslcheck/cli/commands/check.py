@@ -1,8 +1,8 @@
 """glslcheck check PATH...: parse and type-check shaders (GLSL ES 3.00 and Shadertoy rules).
 
-Each PATH is a tab file or a folder of tabs (see glslcheck/shadertoy/sources.py). Every pass is checked as
-Shadertoy compiles it: the Common tab alone (only iDate and iSampleRate declared), then Common
-followed by each pass tab (Image, Buffer A..D). An error in the Common tab is reported once.
+Each PATH is a tab file or a folder of tabs (see glslcheck/shadertoy/sources.py). Every pass is
+checked as Shadertoy compiles it: the Common tab alone (only iDate and iSampleRate declared), then
+Common followed by each pass tab (Image, Buffer A..D). An error in the Common tab is reported once.
 With --webgl each of those programs is also compiled by WebGL 2 in headless Chromium (ANGLE,
 the compiler Shadertoy's page uses) and ANGLE's errors are reported in the user's tab and line
 (rule webgl-compile, messages starting "WebGL:"); a program ANGLE rejects counts as an error.
@@ -27,7 +27,8 @@ def add_arguments(p) -> None:
     p.add_argument(
         "--webgl",
         action="store_true",
-        help="also compile each program with WebGL 2 in headless Chromium (ANGLE) and report its errors",
+        help="also compile each program with WebGL 2 in headless Chromium (ANGLE) and report its "
+        "errors",
     )
 
 

@@ -1,13 +1,14 @@
 """Install a git pre-commit hook that runs `glslcheck lint` on the staged shader files.
 
 The hook is a plain POSIX sh script in the repository's hooks folder (`core.hooksPath` is
-honoured). It runs `glslcheck lint --staged` (see glslcheck/lint/staged.py): the staged version of the
-files that were added, copied, modified, renamed or changed type and are shader files (.glsl, .frag, a
-Shadertoy tab name, or a `tab-patterns` glob of the configuration), and stops the commit when
-there is a finding; `git commit --no-verify` skips it once. It runs the Python that installed it
-in isolated mode, so a `glslcheck/` folder in the repository is never imported. A hook that glslcheck did not write is left alone unless --force is
-given (it is then kept as pre-commit.glslcheck-backup, or the first free
-pre-commit.glslcheck-backup.N: an earlier backup is never overwritten). Exit 2 outside a git repository.
+honoured). It runs `glslcheck lint --staged` (see glslcheck/lint/staged.py): the staged version of
+the files that were added, copied, modified, renamed or changed type and are shader files (.glsl,
+.frag, a Shadertoy tab name, or a `tab-patterns` glob of the configuration), and stops the commit
+when there is a finding; `git commit --no-verify` skips it once. It runs the Python that installed
+it in isolated mode, so a `glslcheck/` folder in the repository is never imported. A hook that
+glslcheck did not write is left alone unless --force is given (it is then kept as
+pre-commit.glslcheck-backup, or the first free pre-commit.glslcheck-backup.N: an earlier backup is
+never overwritten). Exit 2 outside a git repository.
 """
 
 from __future__ import annotations
@@ -119,7 +120,8 @@ def install(
         elif not force:
             raise InputError(
                 f"{path}: error: a pre-commit hook that glslcheck did not write is already there; "
-                f"run `glslcheck install-hook --force` to replace it (it is kept as {backup_path(path).name})"
+                "run `glslcheck install-hook --force` to replace it (it is kept as "
+                f"{backup_path(path).name})"
             )
         else:
             backup = backup_path(path)

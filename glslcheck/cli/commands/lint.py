@@ -56,7 +56,8 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     parser.add_argument(
         "--staged",
         action="store_true",
-        help="lint the staged (index) version of every staged shader file, as the commit will hold it "
+        help="lint the staged (index) version of every staged shader file, "
+        "as the commit will hold it "
         "(the pre-commit hook's mode; paths are relative to the top of the work tree)",
     )
 

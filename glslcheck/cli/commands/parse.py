@@ -1,7 +1,7 @@
 """glslcheck parse PATH... [--print] [--ast]: parse shaders and report syntax errors.
 
-Each PATH is a tab file or a folder of tabs (see glslcheck/shadertoy/sources.py). Every pass is parsed
-as Shadertoy compiles it: the Common tab followed by the pass's tab. Exit 0 when all parse,
+Each PATH is a tab file or a folder of tabs (see glslcheck/shadertoy/sources.py). Every pass is
+parsed as Shadertoy compiles it: the Common tab followed by the pass's tab. Exit 0 when all parse,
 1 on syntax errors, 2 on usage or I/O errors.
 """
 

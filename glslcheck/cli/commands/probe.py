@@ -114,6 +114,7 @@ def nan_hint(path: str, nan_pixels: int, size: tuple[int, int], time: float) -> 
         f" --time {time:g}" if time else ""
     )
     return (
-        f"{nan_pixels} pixel{'s are' if nan_pixels != 1 else ' is'} NaN: `glslcheck probe {path} --nan{opts}` "
+        f"{nan_pixels} pixel{'s are' if nan_pixels != 1 else ' is'} NaN: "
+        f"`glslcheck probe {path} --nan{opts}` "
         "shows where they came from"
     )

@@ -26,7 +26,10 @@ def describe(rule) -> str:
         else "no deduction"
     )
     head = f"{rule.name}: {rule.summary}"
-    return f"{head}\n{'=' * len(head)}\n{rule.kind} ({rule.severity}, {penalty}; reads the {rule.needs})\n\n{rule.doc}\n"
+    return (
+        f"{head}\n{'=' * len(head)}\n{rule.kind} ({rule.severity}, {penalty}; "
+        f"reads the {rule.needs})\n\n{rule.doc}\n"
+    )
 
 
 def listing(rules) -> str:
@@ -34,7 +37,8 @@ def listing(rules) -> str:
     rows = [f"{'rule'.ljust(width)}  penalty  kind           summary"]
     for r in rules:
         rows.append(
-            f"{r.name.ljust(width)}  {('-' + str(r.penalty)) if r.penalty else '0':>7}  {r.kind:<13}  {r.summary}"
+            f"{r.name.ljust(width)}  {('-' + str(r.penalty)) if r.penalty else '0':>7}  "
+            f"{r.kind:<13}  {r.summary}"
         )
     return "\n".join(rows) + "\n"
 
@@ -53,7 +57,8 @@ def run(args: argparse.Namespace) -> int:
         close = difflib.get_close_matches(args.name, list(rules), n=1)
         hint = f" (did you mean `{close[0]}`?)" if close else ""
         raise InputError(
-            f"glslcheck rule: error: no rule named `{args.name}`{hint}; `glslcheck rule --all` lists them"
+            f"glslcheck rule: error: no rule named `{args.name}`{hint}; "
+            "`glslcheck rule --all` lists them"
         )
     print(describe(rule), end="")
     return 0

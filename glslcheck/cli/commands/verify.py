@@ -1,13 +1,14 @@
 """glslcheck verify SHADER... [--size WxH] [--time T | --times T,T,... | --frames N [--fps F]]
 [--frame N] [--mouse X,Y,Z,W] [--precision float32|float16|float64] [--samples N]
-[--diff diff.png] [--format text|json] [--against gl|webgl]: render with NumPy and OpenGL and compare.
+[--diff diff.png] [--format text|json] [--against gl|webgl]: render with NumPy and OpenGL and
+compare.
 
 Each SHADER is a tab file or a folder of tabs (see glslcheck/shadertoy/sources.py). Its Image tab is
 rendered by the NumPy backend and by the OpenGL driver (Mesa llvmpipe) with the same uniforms,
-and the two float images are compared by the tolerance model of glslcheck/verification/compare.py: max and
-mean abs error, PSNR, pixels over tolerance ("mismatched"), edge pixels (differences a sub-pixel
-shift explains), NaN/Inf counts in each image, and where the differences lie (bounding box and
-worst pixels, with fragCoord).
+and the two float images are compared by the tolerance model of glslcheck/verification/compare.py:
+max and mean abs error, PSNR, pixels over tolerance ("mismatched"), edge pixels (differences a
+sub-pixel shift explains), NaN/Inf counts in each image, and where the differences lie (bounding box
+and worst pixels, with fragCoord).
 
 --against webgl compares with WebGL 2 in headless Chromium (ANGLE on SwiftShader, as Shadertoy's
 page renders; glslcheck/webgl_backend). Each frame is also rendered with GL: a pixel where the two
@@ -39,9 +40,9 @@ that leaves it so), uninitialized-local, division-by-zero,
 shift-out-of-range, conversion-out-of-range, domain; driver is {"renderer", "mesa",
 "emulated"} of the GL side, emulated false when the NumPy backend's bit-exact emulation was
 copied from another driver than this one, llvmpipe of Mesa 22.3: a mismatch then also says so
-in the text output, since it may be the driver's), or a JSON list of such objects, in order (shader by shader, then frame by
-frame), when more than one frame is verified. --diff diff.png writes the heat map of the
-differences (diff-0.png, diff-1.png, ... for several frames).
+in the text output, since it may be the driver's), or a JSON list of such objects, in order (shader
+by shader, then frame by frame), when more than one frame is verified. --diff diff.png writes the
+heat map of the differences (diff-0.png, diff-1.png, ... for several frames).
 
 Exit 0 when every frame matches, 1 on a mismatch, undefined pixels or a GLSL error (diagnostics as file:line:col
 on stderr), 2 on usage or I/O errors, or when no OpenGL context can be created.
@@ -75,7 +76,8 @@ def _backends(text: str) -> tuple[str, str]:
     names = tuple(t.strip() for t in text.split(","))
     if len(names) != 2 or not all(n in registry.names() for n in names):
         raise ValueError(
-            f"--backends takes two of {', '.join(registry.names())} separated by a comma, not {text!r}"
+            f"--backends takes two of {', '.join(registry.names())} separated by a comma, "
+            f"not {text!r}"
         )
     return names  # type: ignore[return-value]
 
@@ -113,7 +115,8 @@ def add_arguments(p) -> None:
         type=cli_args.arg(limits.parse_fps),
         default=None,
         metavar="F",
-        help=f"frames per second: iFrameRate, iTimeDelta = 1/F and the --frames clock (default {DEFAULT_FPS:g})",
+        help="frames per second: iFrameRate, iTimeDelta = 1/F and the --frames clock (default "
+        f"{DEFAULT_FPS:g})",
     )
     p.add_argument(
         "--frame",
@@ -361,14 +364,14 @@ def format_frame(
         )
     if c.unstable_pixels:
         lines.append(
-            f"  unstable pixels  {c.unstable_pixels:<10}  both float32 renders far from the float64 "
-            "reference (not counted)"
+            f"  unstable pixels  {c.unstable_pixels:<10}  both float32 renders far from the "
+            "float64 reference (not counted)"
         )
     lines.extend(f"  note: {n}" for n in getattr(result, "notes", ()))
     for u in c.unstable_lines[:3]:
         lines.append(
-            f"  precision lost   {u['file']}:{u['line']} `{u['code']}` keeps {u['bits']} of 24 bits "
-            f"(~{u['pixels']} unstable pixels)"
+            f"  precision lost   {u['file']}:{u['line']} `{u['code']}` keeps {u['bits']} of 24 "
+            f"bits (~{u['pixels']} unstable pixels)"
         )
     if c.undefined_pixels:
         lines.append(

@@ -143,7 +143,8 @@ def _define(pp: PreprocessorState, toks: list[Token], directive: Token) -> None:
                 break
             if sep.text != ",":
                 raise pp.token_error(
-                    f"expected ',' or ')' in the parameters of macro '{nt.text}', found '{sep.text}'",
+                    f"expected ',' or ')' in the parameters of macro '{nt.text}', "
+                    f"found '{sep.text}'",
                     sep,
                 )
         params = tuple(plist)
@@ -234,8 +235,8 @@ def _extension(pp: PreprocessorState, toks: list[Token], nt: Token, hash_pos: in
     # WebGL 2 (ANGLE) and Mesa reject the program.
     if pp.shadertoy:
         raise pp.error(
-            "#extension is not allowed in a Shadertoy tab: Shadertoy's own declarations come first, "
-            "and an #extension after code is rejected by WebGL 2",
+            "#extension is not allowed in a Shadertoy tab: Shadertoy's own declarations come "
+            "first, and an #extension after code is rejected by WebGL 2",
             hash_pos,
             nl,
         )

@@ -1,6 +1,6 @@
-"""One unit (a Shadertoy tab or GLSL file) after the first phases of preprocessing: backslash-newlines
-spliced, comments collected and replaced, and the map from offsets of the stripped text back to the
-user's lines and columns.
+"""One unit (a Shadertoy tab or GLSL file) after the first phases of preprocessing:
+backslash-newlines spliced, comments collected and replaced, and the map from offsets of the
+stripped text back to the user's lines and columns.
 """
 
 from __future__ import annotations

@@ -244,7 +244,8 @@ def _near(left, op, right) -> str:
 
 
 def _cheap(fn, e) -> bool:
-    """A value, not a computation: a name, literal, field, swizzle, constant or constructor of those."""
+    """A value, not a computation: a name, literal, field, swizzle, constant or constructor of
+    those."""
     if fn.model.is_constant(e):
         return True
     t = type(e)

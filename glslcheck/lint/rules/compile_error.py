@@ -59,5 +59,6 @@ def check(ctx: LintContext) -> Iterator[Diagnostic]:
             error.message,
             error.loc,
             help=error.help
-            or "Shadertoy does not compile this: fix it first (`glslcheck check` prints the same error)",
+            or "Shadertoy does not compile this: fix it first (`glslcheck check` prints the same "
+            "error)",
         )

@@ -71,7 +71,8 @@ NEEDS = "text"
 
 _SEP = r"[:=\-\u2013\u2014|(]"
 _PURPOSE_LABEL = compiled(
-    r"^\W*(?:purpose|description|desc|brief|summary|about|overview|what it does)\b\s*[:\-\u2013\u2014]",
+    r"^\W*(?:purpose|description|desc|brief|summary|about|overview|what it "
+    r"does)\b\s*[:\-\u2013\u2014]",
     re.I | re.M,
 )
 _DOXYGEN_BRIEF = compiled(r"^\W*[@\\](?:brief|details)\s+\w", re.I | re.M)

@@ -18,7 +18,8 @@ variables, like `d * invIntensity` or `light.center - position`, but not a sign 
 
 Expressions are compared by value, variables by the declaration they name: operands of `+` and
 `*` in any order and grouping (not a matrix product), a float quotient as a product by the
-inverse (`a / b * c` is `a * c / b`; integer division rounds, so not there), a component by its index (`v.x`, `v.r`),
+inverse (`a / b * c` is `a * c / b`; integer division rounds, so not there), a component by its \
+index (`v.x`, `v.r`),
 `dot(a, b)` as its sum of products and a pure one-line user function by what it returns, so
 `lenSq(dp.xy)` and `dp.x * dp.x + dp.y * dp.y` are the same value, and so are the two
 `length(v)` in `length(v) * length(v)`. A one-operation value written again inside a longer

@@ -54,5 +54,6 @@ def check(ctx: LintContext) -> Iterator[Diagnostic]:
             yield Diagnostic(
                 f"the argument of {node.callee}() can be negative ({why})",
                 arg.loc,
-                help=f"guard it: {node.callee}(max({text(arg)}, 0.0)), and mask the result where it was negative",
+                help=f"guard it: {node.callee}(max({text(arg)}, 0.0)), "
+                "and mask the result where it was negative",
             )

@@ -418,7 +418,8 @@ class FunctionFacts(ValueRanges):
         )
 
     def dominates(self, a: Any, b: Any) -> bool:
-        """`a` is evaluated, earlier, on every path that evaluates `b` (same or enclosing region)."""
+        """`a` is evaluated, earlier, on every path that evaluates `b` (same or enclosing
+        region)."""
         ra, rb = self.region[id(a)], self.region[id(b)]
         return self.exit[id(a)] < self.enter[id(b)] and rb[: len(ra)] == ra
 

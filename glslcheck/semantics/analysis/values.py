@@ -9,8 +9,8 @@ vectors), so `1.0 - max(dot(n, v), 0.0)` is known to be >= 0. A variable's value
 assigned by its last write before the use when that write is on every path to the use (else
 unknown: `FunctionFacts.reaching_value`).
 
-`ValueRanges` is a mixin of `glslcheck.semantics.analysis.dataflow.FunctionFacts`, whose value keys and
-reaching definitions it reads.
+`ValueRanges` is a mixin of `glslcheck.semantics.analysis.dataflow.FunctionFacts`, whose value keys
+and reaching definitions it reads.
 """
 
 from __future__ import annotations

@@ -1,4 +1,5 @@
-"""Calls and constructors: overload resolution of user and built-in functions, and type constructors.
+"""Calls and constructors: overload resolution of user and built-in functions, and type
+constructors.
 
 Owns a call's target (a user overload matched exactly, or a built-in from
 `language/builtin_functions.py`), `out`/`inout` arguments (they must be variables), constant
@@ -76,7 +77,8 @@ class CallChecks:
         why = self.lvalue_problem(arg)
         if why is not None:
             self.error(
-                f"the argument for an '{direction}' parameter of '{fname}' must be a variable: {why}",
+                f"the argument for an '{direction}' parameter of '{fname}' must be a variable: "
+                f"{why}",
                 arg,
                 help="pass a local variable and copy it afterwards",
             )

@@ -182,7 +182,8 @@ class DeclarationChecks:
                 where,
                 help="rename one of them"
                 if old.kind != "uniform"
-                else "Shadertoy declares this uniform already; remove your declaration or rename it",
+                else "Shadertoy declares this uniform already; remove your declaration or rename "
+                "it",
             )
         else:
             self.scope.names[sym.name] = sym
@@ -262,7 +263,8 @@ class DeclarationChecks:
                 self.error(
                     "a struct cannot define another struct inside it (GLSL ES 3.00)",
                     member.type,
-                    help=f"declare 'struct {member.type.struct_.name or 'Inner'}' before this struct and use its name",
+                    help=f"declare 'struct {member.type.struct_.name or 'Inner'}' before this "
+                    "struct and use its name",
                 )
                 ok = False
                 continue
@@ -416,5 +418,6 @@ class DeclarationChecks:
             self.error(
                 "a global variable's initializer must be a constant expression in GLSL ES 3.00",
                 d.init,
-                help="declare the global without a value and assign it in mainImage, or pass the value as a parameter",
+                help="declare the global without a value and assign it in mainImage, "
+                "or pass the value as a parameter",
             )

@@ -1,4 +1,5 @@
-"""Expressions and operators: the type (and constant value) of literals, names, operators and accesses.
+"""Expressions and operators: the type (and constant value) of literals, names, operators and
+accesses.
 
 Owns exact-match typing of operators (no implicit conversions; the rules are in
 `language/glsl_types.py`), l-values, `?:`, indexes (constant ones within range), struct fields,
@@ -282,7 +283,7 @@ class ExpressionChecks:
             if v is not None and (v < 0 or (size is not None and v >= size)):
                 self.error(
                     f"index {v} is out of range for this {what} of {size} "
-                    f"{'elements' if bt.is_array else ('columns' if bt.is_matrix else 'components')}"
+                    f"{'elements' if bt.is_array else 'columns' if bt.is_matrix else 'components'}"
                     f" (valid: 0 to {size - 1})"
                     if size
                     else f"index {v} is out of range",

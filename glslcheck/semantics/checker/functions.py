@@ -48,7 +48,8 @@ class FunctionChecks:
                 self.error(
                     "a parameter's type cannot define a struct",
                     p.type,
-                    help=f"declare 'struct {p.type.struct_.name or 'S'} {{ ... }};' before the function "
+                    help=f"declare 'struct {p.type.struct_.name or 'S'} {{ ... "
+                    "};' before the function "
                     "and use its name as the type",
                 )
             pt = self.resolve_type(p.type)
@@ -129,7 +130,8 @@ class FunctionChecks:
         model = self.model
         if B.is_builtin_function(name):
             self.error(
-                f"'{name}' is a built-in function; GLSL ES does not allow redefining or overloading it",
+                f"'{name}' is a built-in function; GLSL ES does not allow redefining or "
+                "overloading it",
                 where,
                 help=f"rename your function, for example to 'my{name[:1].upper()}{name[1:]}'",
             )
@@ -143,7 +145,8 @@ class FunctionChecks:
         existing = self.global_scope.local(name)
         if existing is not None and existing.kind != "function":
             self.error(
-                f"'{name}' is already declared as a {existing.kind if existing.kind != 'uniform' else 'Shadertoy uniform'}"
+                f"'{name}' is already declared as a "
+                f"{existing.kind if existing.kind != 'uniform' else 'Shadertoy uniform'}"
                 " and cannot also name a function",
                 where,
                 help="rename the function",
@@ -155,16 +158,19 @@ class FunctionChecks:
                 continue
             if old.type != ret and ERROR not in (old.type, ret):
                 self.error(
-                    f"'{name}' is declared again with return type '{ret}' but was declared with '{old.type}'",
+                    f"'{name}' is declared again with return type '{ret}' but was declared with "
+                    f"'{old.type}'",
                     where,
                     help="overloads must differ in their parameter types, not only the return type",
                 )
             for i, ((_, _, d_new), (_, _, d_old)) in enumerate(zip(params, old.params)):
                 if d_new != d_old:
                     self.error(
-                        f"parameter {i + 1} of '{name}' is '{d_new}' here but '{d_old}' in an earlier declaration",
+                        f"parameter {i + 1} of '{name}' is '{d_new}' here but '{d_old}' in an "
+                        "earlier declaration",
                         where,
-                        help="a prototype and its definition must use the same in/out/inout qualifiers",
+                        help="a prototype and its definition must use the same in/out/inout "
+                        "qualifiers",
                     )
                     break
             if definition is not None:

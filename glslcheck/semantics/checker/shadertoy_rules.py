@@ -1,4 +1,5 @@
-"""What Shadertoy adds to GLSL ES: its uniforms and output, the Common tab's limits, `mainImage`, WebGL.
+"""What Shadertoy adds to GLSL ES: its uniforms and output, the Common tab's limits, `mainImage`,
+WebGL.
 
 Owns the names the Shadertoy wrapper declares (shadertoy/wrapper.py's prelude and footer: the
 uniforms a tab sees, the Common tab compiled alone with only iDate and iSampleRate, the output
@@ -19,7 +20,8 @@ TYPE_CHECKING = False  # not typing's: importing typing costs every start-up
 if TYPE_CHECKING:
     from typing import Any
 
-# What the Shadertoy wrapper declares besides the uniforms (shadertoy/wrapper.py's footer and prelude).
+# What the Shadertoy wrapper declares besides the uniforms (shadertoy/wrapper.py's footer and
+# prelude).
 WRAPPER_OUTPUT = "shadertoy_out_color"
 
 # Uniforms Shadertoy renamed (iGlobalTime became iTime in 2017); old shaders still use them.
@@ -61,9 +63,10 @@ class ShadertoyRules:
             )
 
     def in_macro_entry(self) -> bool:
-        """In the entry function modelled for a `#define mainImage(O, U)` (frontend/preprocess/driver.py): the
-        macro expands in the pass's wrapper, where every uniform is declared, even when the
-        macro is defined in Common (Common compiled alone never expands it)."""
+        """In the entry function modelled for a `#define mainImage(O, U)`
+        (frontend/preprocess/driver.py): the macro expands in the pass's wrapper, where every
+        uniform is declared, even when the macro is defined in Common (Common compiled alone never
+        expands it)."""
         f = self.func
         return (
             f is not None
@@ -74,8 +77,8 @@ class ShadertoyRules:
 
     def common_uniform_error(self, n: A.Identifier) -> None:
         self.error(
-            f"'{n.name}' is not available in the Common tab: the Common tab is compiled by Shadertoy "
-            f"without {n.name}; pass it as a parameter from mainImage",
+            f"'{n.name}' is not available in the Common tab: the Common tab is compiled by "
+            f"Shadertoy without {n.name}; pass it as a parameter from mainImage",
             n,
             help=f"add a parameter to this function and pass {n.name} from mainImage",
         )
@@ -112,10 +115,12 @@ class ShadertoyRules:
                 )
                 if fn.params[0][2] == "in":
                     self.warning(
-                        "mainImage's first parameter should be 'out vec4 fragColor': as 'in' the color "
+                        "mainImage's first parameter should be 'out vec4 fragColor': "
+                        "as 'in' the color "
                         "it computes is thrown away",
                         where,
-                        help="declare it as 'void mainImage(out vec4 fragColor, in vec2 fragCoord)'",
+                        help="declare it as 'void mainImage(out vec4 fragColor, "
+                        "in vec2 fragCoord)'",
                     )
                 if fn.params[1][2] != "in":
                     self.warning(
@@ -128,12 +133,14 @@ class ShadertoyRules:
             self.error(
                 f"the {self.tab} tab has no 'mainImage' function",
                 start,
-                help="Shadertoy calls 'void mainImage(out vec4 fragColor, in vec2 fragCoord)'; define it",
+                help="Shadertoy calls 'void mainImage(out vec4 fragColor, in vec2 fragCoord)'; "
+                "define it",
             )
         else:
             got = "; ".join(fn.signature() for fn in overloads)
             self.error(
-                f"'mainImage' has the wrong parameters ({got}); Shadertoy calls mainImage(vec4, vec2)",
+                f"'mainImage' has the wrong parameters ({got}); Shadertoy calls mainImage(vec4, "
+                "vec2)",
                 start,
                 help="declare it as 'void mainImage(out vec4 fragColor, in vec2 fragCoord)'",
             )

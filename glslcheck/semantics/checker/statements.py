@@ -70,7 +70,8 @@ class StatementChecks:
                 self.error(f"the condition of {what} must be a bool, not '{t}'", cond)
             elif t is not ERROR and init_t is not ERROR and init_t != t:
                 self.error(
-                    f"cannot initialise '{cond.name}' of type '{t}' with a value of type '{init_t}'",
+                    f"cannot initialise '{cond.name}' of type '{t}' with a value of type "
+                    f"'{init_t}'",
                     cond.init,
                 )
             storage = cond.qualifiers.storage if cond.qualifiers else None

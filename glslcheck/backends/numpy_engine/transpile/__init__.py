@@ -2,8 +2,8 @@
 
 This module owns the translation of the checked AST (types and symbols come from
 `glslcheck.semantics`, never re-derived here) into Python source that calls the runtime
-(`glslcheck.backends.numpy_engine.runtime`, lane representation in its docstring). The printer is many
-tiny `_print_<Node>` / `_stmt_<Node>` methods; built-ins come from the built-in table; an
+(`glslcheck.backends.numpy_engine.runtime`, lane representation in its docstring). The printer is
+many tiny `_print_<Node>` / `_stmt_<Node>` methods; built-ins come from the built-in table; an
 unsupported construct (texture lookups, `gl_FragDepth`, ...) is a `GlslError` at its location.
 
 The generated module
@@ -72,8 +72,8 @@ set") or a bool array; writes under a mask keep the old value elsewhere (`rt.ass
 
 # The passes, one module each (a newcomer reads them in this order):
 #   common.py       limits, names and helpers every pass shares
-#   (../../cpu_core: facts.py, the static facts; uniformity.py, which values are the same in every lane)
-#   names.py        mangled names, module constants and zero values
+#   (../../cpu_core: facts.py, the static facts; uniformity.py, which values are the same in every
+#   lane) names.py        mangled names, module constants and zero values
 #   expressions.py  expressions and l-values
 #   statements.py   statements, control flow, loops and compaction
 #   functions.py    functions and calls

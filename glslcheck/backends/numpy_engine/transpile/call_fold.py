@@ -126,7 +126,8 @@ def fold_tree(op: str, a: float, b: float) -> float:
 
 
 class _Eval:
-    """The scalar evaluation of one call (see the module doc); `merges`: how often a merge rule fired."""
+    """The scalar evaluation of one call (see the module doc); `merges`: how often a merge rule
+    fired."""
 
     def __init__(self, tr: Any, mask: str | None) -> None:
         self.tr, self.mask, self.merges, self.depth, self.factored = tr, mask, 0, 0, 0

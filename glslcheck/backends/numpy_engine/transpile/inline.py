@@ -5,7 +5,8 @@ Mesa compiles a program by inlining every function (GLSL IR's do_function_inlini
 before its algebraic passes run, so a rewrite that merges constants sees an argument's
 expression inside the callee's body. The real shader that shows it (a star field's hash):
 
-    float random(in vec2 v) { return fract(15465.1327854 * sin(dot(v, vec2(173.93422, 102.5165)))); }
+    float random(in vec2 v) { return fract(15465.1327854 * sin(dot(v, vec2(173.93422, 102.5165))));
+    }
     ... vec2 uv = (2.0 * fragCoord - res) / min(res.x, res.y) * 1.2;  ... random(uv * 0.2) ...
 
 llvmpipe computes ``dot(q, (K * 0.2) * 1.2)`` with q the division, the constants merged in
@@ -13,7 +14,8 @@ float32 (nir_fold.merged_dot); the written order differs in the last bits of the
 argument, and a hash amplifies them (a star where llvmpipe has none). The NumPy backend writes a
 function once for every call, so its body cannot see ``uv * 0.2``. Here such a call is
 inlined: the callee's return expression is generated at the call site, each parameter read as
-its argument's value, and nir_fold's look-through (`nir_fold.queries.stable_init`) sees the argument.
+its argument's value, and nir_fold's look-through (`nir_fold.queries.stable_init`) sees the
+argument.
 
 Only where it pays: the callee is a single ``return <expression>;`` with ``in`` parameters it
 never writes, no calls of user functions and no ``mix`` (whose lowering depends on the other
@@ -136,8 +138,9 @@ def inline_call(tr: Any, call: A.Call, fn: Any, mask: str | None) -> str:
     frames = tr.fold_state.inline_frames
     frames.append({"fn": fn, "params": params})
     value = _body_expression(tr, fn)
-    # the tracing transpiler (backends/numpy_engine/tracing.py, glslcheck probe) records a function's
-    # return value: inlined, the expression is part of the caller's statement, not a return
+    # the tracing transpiler (backends/numpy_engine/tracing.py, glslcheck probe) records a
+    # function's return value: inlined, the expression is part of the caller's statement, not a
+    # return
     watch = tr.watched.pop(id(value), None) if tr.watched is not None else None
     try:
         return tr.expr(value, mask)

@@ -103,7 +103,8 @@ class PythonLimits:
             "\n".join(
                 [
                     f"def {name}({', '.join(['S'] + used)}):",
-                    f'    """Part of {comment_safe(sym.name, 60)}{where}, a function of its own to stay within'
+                    f'    """Part of {comment_safe(sym.name, 60)}{where}, '
+                    "a function of its own to stay within"
                     ' Python\'s nesting limits."""',
                 ]
                 + body

@@ -174,7 +174,8 @@ class Names:
         return self.zero(t, node)
 
     def zero(self, t: Any, node: Any, lead: tuple[int, ...] = ()) -> str:
-        """The name of a module constant holding the zero value of type t (with leading array axes)."""
+        """The name of a module constant holding the zero value of type t (with leading array
+        axes)."""
         if t.is_array and (t.element.is_struct or lead):
             return self.zero(t.element, node, lead + (t.array_size,))
         if t.is_struct:

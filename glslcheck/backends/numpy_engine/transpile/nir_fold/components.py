@@ -1,4 +1,5 @@
-"""Products by constants merged per vector component, through component writes: NIR's SSA per component.
+"""Products by constants merged per vector component, through component writes: NIR's SSA per
+component.
 
 NIR splits vectors into components, so a component written as ``y * #c`` (or a whole local so
 written) merges with a later ``*=`` or ``*`` by a constant, also through a copy ``q = r +

@@ -1,4 +1,5 @@
-"""Constants merged across an operand: ``#a * (b * #c) -> (a*c) * b``, ``#a + (b + #c) -> (a + c) + b``.
+"""Constants merged across an operand: ``#a * (b * #c) -> (a*c) * b``, ``#a + (b + #c) -> (a + c) +
+b``.
 
 nir_opt_algebraic folds the two constants into one (in float32) with no "used once" condition,
 so the rule reaches through any SSA value, here a never-written local: ``vec2 uv = q * 1.2;

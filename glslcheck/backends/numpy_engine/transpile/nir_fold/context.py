@@ -1,4 +1,5 @@
-"""What nir_fold's decisions read of the engine that asks them, for an engine that is not the NumPy transpiler.
+"""What nir_fold's decisions read of the engine that asks them, for an engine that is not the NumPy
+transpiler.
 
 The rules take the NumPy Transpiler (`tr`) and read of it the program (`model`, `facts`), the
 function being emitted (`fn`: its `sym` and `is_entry`), their memo (`fold_state`), `type_of`

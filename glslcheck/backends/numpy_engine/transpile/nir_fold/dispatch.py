@@ -1,4 +1,5 @@
-"""Which of nir_fold's rules rewrites a binary expression: the first one that applies gives the code.
+"""Which of nir_fold's rules rewrites a binary expression: the first one that applies gives the
+code.
 
 Tried in this order: the float16 tree of lowp lookups (lower_precision.py: its type decides
 every operation in it); for an expression with side effects, only a constant added to a call's

@@ -64,5 +64,8 @@ def fused_after_call(tr: Any, e: A.Binary, mask: str | None) -> str | None:
             xi = f"{tx_code}[{i}]" if tx.is_vector else tx_code
             parts.append(f"(({s[0]} + {oi}) + {s[1]})" if s is not None else f"({xi} + {oi})")
         rewritten = parts[0] if tx.is_scalar else f"rt.vec({tx.size}, {', '.join(parts)})"
-        return f"({rewritten} if rt.lp else {tr.binary_values('+', tr.type_of(e.left), tr.type_of(e.right), tl, trr)})"
+        return (
+            f"({rewritten} if rt.lp else "
+            f"{tr.binary_values('+', tr.type_of(e.left), tr.type_of(e.right), tl, trr)})"
+        )
     return None

@@ -163,6 +163,12 @@ def _lowp_code(tr: Any, node: Any, mask: str | None, ops: set[int]) -> str:
     ):
         # (x*x) * #k, the square used once: (x * #k) * x (``(a*b)*#c -> (a*#c)*b``)
         x = tr.fresh("h")
-        xk = f"(({x} := {_lowp_code(tr, square.args[0], mask, ops)}) * {_lowp_code(tr, k, mask, ops)})"
+        xk = (
+            f"(({x} := {_lowp_code(tr, square.args[0], mask, ops)}) * "
+            f"{_lowp_code(tr, k, mask, ops)})"
+        )
         return f"({xk} * {x})"
-    return f"({_lowp_code(tr, node.left, mask, ops)} {node.op} {_lowp_code(tr, node.right, mask, ops)})"
+    return (
+        f"({_lowp_code(tr, node.left, mask, ops)} {node.op} "
+        f"{_lowp_code(tr, node.right, mask, ops)})"
+    )

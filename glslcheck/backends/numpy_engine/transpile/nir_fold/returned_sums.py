@@ -36,7 +36,8 @@ def sunk_return(tr: Any, fn: Any) -> list[tuple[Any, Any, str]] | None:
     as ``f = a`` (or an initializer) then ``f += t`` / ``f -= t``; no out parameter, no other
     return. The terms [(write, value, operator)], else None. Such a function takes one more
     argument, the constant (None: add nothing; :func:`return_constant_args`), its terms are
-    kept in temporaries (:func:`keep_term`) and its return reads them (:func:`sunk_return_value`)."""
+    kept in temporaries (:func:`keep_term`) and its return reads them
+    (:func:`sunk_return_value`)."""
     cache = tr.fold_state.sunk_returns
     if id(fn) not in cache:
         cache[id(fn)] = None

@@ -278,7 +278,8 @@ def known_term(tr: Any, node: Any) -> bool:
 
 
 def _sum(tr: Any, node: Any) -> bool:
-    """A sum or difference (no product: :func:`queries.is_fmul` tells which term keeps the constant)."""
+    """A sum or difference (no product: :func:`queries.is_fmul` tells which term keeps the
+    constant)."""
     return isinstance(node, A.Binary) and node.op in SUMS
 
 

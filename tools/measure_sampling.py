@@ -1,13 +1,14 @@
 """Measure how the GL driver (Mesa llvmpipe here) samples textures; not a test.
 
-Run `python tests/channels/measure_sampling.py`. It prints what glslcheck/backends/numpy_engine/textures.py
-copies: (1) lowp/mediump sampler2D results are float32 with the low 13 mantissa bits cleared
-(highp: exact); (2) linear filtering of an RGBA32F texture uses float32 weights (4096 distinct,
-exact weights across a 2-texel texture), and how far textures.py's bilinear order is from the
-driver's on random texels; (3) the implicit LOD of LINEAR_MIPMAP_LINEAR: levels filled with
-their own index make the result equal the LOD, compared with 0.5 * fast_log2(max |d|^2) per quad;
-(4) arithmetic whose operands are all lowp/mediump (a lookup's result, a lowp or mediump
-variable, constants) runs in float16 with round to nearest: past 65504 it is inf.
+Run `python tools/measure_sampling.py`. It prints what
+glslcheck/backends/numpy_engine/textures.py copies: (1) lowp/mediump sampler2D results are float32
+with the low 13 mantissa bits cleared (highp: exact); (2) linear filtering of an RGBA32F texture
+uses float32 weights (4096 distinct, exact weights across a 2-texel texture), and how far
+textures.py's bilinear order is from the driver's on random texels; (3) the implicit LOD of
+LINEAR_MIPMAP_LINEAR: levels filled with their own index make the result equal the LOD, compared
+with 0.5 * fast_log2(max |d|^2) per quad; (4) arithmetic whose operands are all lowp/mediump (a
+lookup's result, a lowp or mediump variable, constants) runs in float16 with round to nearest: past
+65504 it is inf.
 """
 
 from __future__ import annotations
@@ -17,7 +18,7 @@ from pathlib import Path
 
 import numpy as np
 
-sys.path.insert(0, str(Path(__file__).resolve().parents[2]))
+sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
 
 from glslcheck.backends.gl import get_context, renderer_name  # noqa: E402
 from glslcheck.backends.gl.program import VERTEX_SHADER, _bind_channel  # noqa: E402
@@ -74,7 +75,8 @@ def main() -> None:
         (np.arange(n) + 0.5).astype(np.float32) / np.float32(n)
     )
     print(
-        f"linear weights: {len(np.unique(got))} distinct over {n} pixels, max error against float32 "
+        f"linear weights: {len(np.unique(got))} distinct over {n} pixels, "
+        "max error against float32 "
         f"weights {np.abs(got - (x * 2 - 0.5)).max():.3g}"
     )
 
@@ -92,7 +94,8 @@ def main() -> None:
         )
         ours = _bilinear(tex, u, v, (0, 0), wrap)
         print(
-            f"bilinear ({wrap}) against textures.py: {int((got != ours).sum())} of {got.size} values differ, "
+            f"bilinear ({wrap}) against textures.py: {int((got != ours).sum())} of {got.size} "
+            "values differ, "
             f"max {np.abs(got - ours).max():.3g} (texels |x| <= {np.abs(tex).max():.2f})"
         )
 
@@ -120,8 +123,8 @@ def main() -> None:
         np.float32(0.5) * _fast_log2(np.maximum((dx * dx).sum(0), (dy * dy).sum(0))), 0, levels - 1
     )
     print(
-        f"implicit LOD per quad, 0.5 * fast_log2(max |d|^2): max error {np.abs(lod.reshape(h, w) - got).max():.3g} "
-        "of a level"
+        "implicit LOD per quad, 0.5 * fast_log2(max |d|^2): max error "
+        f"{np.abs(lod.reshape(h, w) - got).max():.3g} of a level"
     )
 
     # (4) arithmetic on lowp/mediump operands only (lookup results, lowp/mediump variables): float16
@@ -144,7 +147,8 @@ def main() -> None:
             f"{int((got[..., i] != m.astype(np.float32)).sum())} of {m.size} differ"
             for i, m in enumerate(f16)
         )
-        + f"; x * 1e5 (over 65504): {np.isinf(got[..., 2]).mean():.0%} inf; 1 / (x * 1000 + 1e6) (the sum past "
+        + f"; x * 1e5 (over 65504): {np.isinf(got[..., 2]).mean():.0%} inf; "
+        "1 / (x * 1000 + 1e6) (the sum past "
         f"float16's range): {(got[..., 3] == 0).mean():.0%} zero"
     )
     w = h = 16
@@ -155,8 +159,10 @@ def main() -> None:
     ok = np.abs(trunc) < 60000 / 3.2
     model = (texel * np.float16(3.14159265)).astype(np.float32)
     print(
-        f"lookup * 3.14159265 without a highp operand: float16 product {int((got != model)[ok].sum())} of "
-        f"{int(ok.sum())} in-range values differ; float32 product {int((got != trunc * np.float32(3.14159265))[ok].sum())}"
+        "lookup * 3.14159265 without a highp operand: float16 product "
+        f"{int((got != model)[ok].sum())} of "
+        f"{int(ok.sum())} in-range values differ; float32 product "
+        f"{int((got != trunc * np.float32(3.14159265))[ok].sum())}"
     )
 
 

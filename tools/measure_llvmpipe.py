@@ -1,6 +1,6 @@
 """Measure what the GL driver (Mesa llvmpipe here) returns for GLSL's undefined and edge cases.
 
-Not a test: run `python tests/gl/measure_llvmpipe.py` to regenerate llvmpipe_measurements.md
+Not a test: run `python tools/measure_llvmpipe.py` to regenerate docs/llvmpipe-measurements.md
 (the NumPy backend copies these values). Each case is evaluated twice: with literal operands,
 which Mesa's compiler folds at compile time, and with operands from uniforms, which llvmpipe
 computes at run time; the two can differ. Also times an 800x450 render of a simple shader.
@@ -14,8 +14,9 @@ from pathlib import Path
 
 import numpy as np
 
-sys.path.insert(0, str(Path(__file__).resolve().parents[2]))
-sys.path.insert(0, str(Path(__file__).resolve().parent))
+ROOT = Path(__file__).resolve().parents[1]
+sys.path.insert(0, str(ROOT))
+sys.path.insert(0, str(ROOT / "tests" / "gl"))  # llvmpipe_eval, shared with the GL tests
 
 from glslcheck.backends.gl import compile_gl, get_context, renderer_name  # noqa: E402
 from glslcheck.backends.gl.program import VERTEX_SHADER  # noqa: E402
@@ -221,8 +222,8 @@ LOOPS = [
     ),
     (
         "100 x 1,000 nested",
-        "int k = 0, j2 = 0; for (int j = 0; j < 100 + n * 0; j++) { j2++; for (int i = 0; i < n; i++) k++; }"
-        " o.x = k; o.y = j2;",
+        "int k = 0, j2 = 0; for (int j = 0; j < 100 + n * 0; j++) { j2++; for (int i = 0; i < n; "
+        "i++) k++; } o.x = k; o.y = j2;",
         1000,
     ),
 ]
@@ -252,7 +253,8 @@ def bulk_lines(ctx) -> list[str]:
             lines.append(f"| `{expr}` | {100.0 * np.mean(u == 0):.3f}% | {int(u.max())} |")
     lines += [
         "",
-        "The `length`/`dot` residue is subnormal products: llvmpipe flushes them to zero (DAZ/FTZ),",
+        "The `length`/`dot` residue is subnormal products: llvmpipe flushes them to zero "
+        "(DAZ/FTZ),",
         "the NumPy runtime keeps them in plain arithmetic (the inputs below 1e-19 produce them).",
         "",
         "| loops (n from a texture) | llvmpipe passes |",
@@ -277,12 +279,16 @@ def main() -> None:
     lines = [
         "# What Mesa llvmpipe returns for GLSL ES 3.00 edge cases",
         "",
-        f"Measured with `{renderer_name()}`, GL {ctx.version_code}, by `tests/gl/measure_llvmpipe.py`",
-        "(regenerate with `python tests/gl/measure_llvmpipe.py`). Values were read back from an RGBA32F",
+        f"Measured with `{renderer_name()}`, GL {ctx.version_code}, by `tools/measure_llvmpipe.py`",
+        "(regenerate with `python tools/measure_llvmpipe.py`). "
+        "Values were read back from an RGBA32F",
         "framebuffer, so they are exact float32 (integer results were converted with `float()`).",
-        "`literal` uses constant operands, which Mesa's compiler folds at compile time; `run time` takes",
-        "the same operands from uniforms, so llvmpipe computes them while shading. A shader's operands",
-        "are nearly always run-time values: copy the run-time column, and note where the two differ.",
+        "`literal` uses constant operands, which Mesa's compiler folds at compile time; "
+        "`run time` takes",
+        "the same operands from uniforms, so llvmpipe computes them while shading. "
+        "A shader's operands",
+        "are nearly always run-time values: copy the run-time column, "
+        "and note where the two differ.",
         "",
         "| case | GLSL ES 3.00 says | llvmpipe, literal (folded) | llvmpipe, run time |",
         "|---|---|---|---|",
@@ -290,11 +296,12 @@ def main() -> None:
     lines += [f"| `{c}` | {s} | {lit} | {rt} |" for c, s, lit, rt in rows]
     lines += [
         "",
-        f"Render time: a simple 800x450 Shadertoy shader (the default new-shader colour cycle) takes "
-        f"{seconds * 1000:.1f} ms per frame on llvmpipe, including the float framebuffer read-back.",
+        "Render time: a simple 800x450 Shadertoy shader (the default new-shader colour cycle) "
+        f"takes {seconds * 1000:.1f} ms per frame on llvmpipe, including the float framebuffer "
+        "read-back.",
     ]
     lines += bulk_lines(ctx) + [""]
-    out = Path(__file__).with_name("llvmpipe_measurements.md")
+    out = ROOT / "docs" / "llvmpipe-measurements.md"
     out.write_text("\n".join(lines))
     print("\n".join(lines))
 

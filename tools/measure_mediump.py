@@ -1,6 +1,6 @@
 """Measure how the GL driver (Mesa llvmpipe here) computes mediump float arithmetic; not a test.
 
-Run `python tests/channels/measure_mediump.py`. For each expression it renders a
+Run `python tools/measure_mediump.py`. For each expression it renders a
 `#version 300 es` shader with `precision mediump float;` and mediump variables x, y computed from
 gl_FragCoord, and prints how many of the 2048 results equal NumPy's float16 evaluation (inputs
 rounded to float16, every operation rounded to nearest) and how many equal the same shader with
@@ -14,7 +14,7 @@ from pathlib import Path
 
 import numpy as np
 
-sys.path.insert(0, str(Path(__file__).resolve().parents[2]))
+sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
 
 from glslcheck.backends.gl import get_context, renderer_name  # noqa: E402
 from glslcheck.backends.gl.program import VERTEX_SHADER  # noqa: E402
@@ -77,8 +77,8 @@ def main() -> None:
             rel = np.nanmax(np.abs(got - high) / np.maximum(np.abs(high), 1e-30))
         print(
             f"{expr:30s} equal to float16: {int((ours == got).sum()):4d}/{got.size}, to highp: "
-            f"{int((got == high).sum()):4d}/{got.size}, max relative difference from highp {rel:.3g}, "
-            f"inf {int(np.isinf(got).sum())}"
+            f"{int((got == high).sum()):4d}/{got.size}, max relative difference from highp "
+            f"{rel:.3g}, inf {int(np.isinf(got).sum())}"
         )
 
 
