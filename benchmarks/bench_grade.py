@@ -94,7 +94,8 @@ def main() -> int:
     print("\n".join(machine()))
     print(
         f"class: {n} submissions (lab_shaders/*) against lab_shaders/07_final, {DEFAULT_SIZE[0]}x"
-        f"{DEFAULT_SIZE[1]}, iTime {', '.join(f'{t:g}' for t in DEFAULT_TIMES)}; median of {args.runs}"
+        f"{DEFAULT_SIZE[1]}, iTime {', '.join(f'{t:g}' for t in DEFAULT_TIMES)}; "
+        f"median of {args.runs}"
     )
 
     walls, cpus = [], []
@@ -129,7 +130,8 @@ def main() -> int:
         f"grade takes {one / base:.2f}x the floor"
     )
     print(
-        f"3. in process, jobs={jobs}: {ms(many / n)} per submission, {one / many:.2f}x faster than jobs=1"
+        f"3. in process, jobs={jobs}: {ms(many / n)} per submission, "
+        f"{one / many:.2f}x faster than jobs=1"
     )
     return 0
 

@@ -99,7 +99,10 @@ def _numbers(c: Comparison, ours: str, theirs: str) -> str:
         w = c.worst[0]
         show = ", ".join(f"{v:.4g}" for v in w.numpy[:3])
         other = ", ".join(f"{v:.4g}" for v in w.gl[:3])
-        text += f"; worst at pixel ({w.x}, {w.y}) from the top left: {ours} ({show}), {theirs} ({other})"
+        text += (
+            f"; worst at pixel ({w.x}, {w.y}) from the top left: "
+            f"{ours} ({show}), {theirs} ({other})"
+        )
     return text
 
 

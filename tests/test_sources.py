@@ -218,7 +218,8 @@ const vec3 kLight = vec3(1.0, 1.0, -1.0);
         "float sq(float x) { return x * x; }\n",  # a Common tab: declarations only
         "#define PI 3.14159\n",
         # a short note above the code, uncommented: still mostly code
-        "Lab 4 by Ana Ruiz and Ben Li\nvoid mainImage(out vec4 c, in vec2 p)\n{\n    c = vec4(p, 0.0, 1.0);\n}\n",
+        "Lab 4 by Ana Ruiz and Ben Li\nvoid mainImage(out vec4 c, in vec2 p)\n"
+        "{\n    c = vec4(p, 0.0, 1.0);\n}\n",
     ],
 )
 def test_shader_texts_are_shaders(text):

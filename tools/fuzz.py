@@ -55,9 +55,10 @@ Inputs, each reproducible from (seed, index) alone:
 Each input goes through every entry point in-process via `glslcheck.cli.main.main` with stdout
 and stderr captured: parse, check and lint always; transpile when check accepts the program (and
 on a sample of the rest); render and verify at 8x8 on samples; `compiled` (render --backend
-compiled, numba's engine, with the frame budget) on --compiled-rate of the programs check accepts. --jobs worker processes (spawned
-once per run, each with a 3 GB address-space limit) run the inputs; the parent kills and
-restarts one when a command exceeds its time budget (CPU seconds of the worker).
+compiled, numba's engine, with the frame budget) on --compiled-rate of the programs check
+accepts. --jobs worker processes (spawned once per run, each with a 3 GB address-space limit)
+run the inputs; the parent kills and restarts one when a command exceeds its time budget (CPU
+seconds of the worker).
 
 Flagged outcomes (anything but ok / findings / usage): `exception` (escaped main), `traceback`
 (in the output), `bad-exit` (not 0, 1 or 2), `timeout`, `no-location` (an error message without

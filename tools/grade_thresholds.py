@@ -96,7 +96,8 @@ def main() -> int:
                 c = compare(render(folder, args.size, args.time), ref)
                 share = (c.mismatched_pixels + c.edge_pixels) / (args.size[0] * args.size[1])
                 print(
-                    f"| {group} | {name} | {c.match} | {c.psnr_db:.1f} | {100 * share:.1f}% | {verdict(c)} |"
+                    f"| {group} | {name} | {c.match} | {c.psnr_db:.1f} | "
+                    f"{100 * share:.1f}% | {verdict(c)} |"
                 )
     best = None
     for part in sorted((ROOT / "lab_shaders").iterdir()):
@@ -105,7 +106,8 @@ def main() -> int:
             if best is None or c.psnr_db > best[1]:
                 best = (part.name, c.psnr_db, verdict(c))
     print(
-        f"| other part | the closest of the 16 others: {best[0]} | False | {best[1]:.1f} | | {best[2]} |"
+        f"| other part | the closest of the 16 others: {best[0]} | False | "
+        f"{best[1]:.1f} | | {best[2]} |"
     )
     return 0
 

@@ -335,7 +335,8 @@ def score(
         lab_hit, lab_all = by_label[sure, "hit"], by_label[sure, "all"]
         f_hit, f_all = by_finding[sure, "hit"], by_finding[sure, "all"]
         print(
-            f"  {sure:9} labels {lab_all:4d}, found {lab_hit:4d}: recall {_rate(lab_hit, lab_all):>4}"
+            f"  {sure:9} labels {lab_all:4d}, found {lab_hit:4d}: "
+            f"recall {_rate(lab_hit, lab_all):>4}"
             f"   findings {f_all:4d}, matched {f_hit:4d}: precision {_rate(f_hit, f_all):>4}"
         )
     agree, differ = by_label["pairs", "agree"], by_label["pairs", "differ"]

@@ -5,10 +5,10 @@ A shader is given as one file per Shadertoy tab (`Image`, `Common`, `Buffer A`..
 with spaces, `_` and `-` ignored, so `Buffer A.glsl` and `buffer_a.glsl` are the same tab) or a
 folder of such files. A file whose name is not a tab name is taken as an Image tab. A folder
 walk takes a `.txt` or extension-less file with another name when its text is shader code
-(`looks_like_shader`: students name their tab files as they like, `Lab 4.txt` or `code.txt`). A file with
-its own `#version` line and a `main()` is a plain GLSL ES fragment shader, taken as it is. A
-`.json` file is Shadertoy's own export of a whole shader (`load_shadertoy_json`): its passes
-become the tabs and its inputs the channel bindings.
+(`looks_like_shader`: students name their tab files as they like, `Lab 4.txt` or `code.txt`).
+A file with its own `#version` line and a `main()` is a plain GLSL ES fragment shader, taken as
+it is. A `.json` file is Shadertoy's own export of a whole shader (`load_shadertoy_json`): its
+passes become the tabs and its inputs the channel bindings.
 
 Text is decoded as UTF-8 (a BOM is dropped) and line endings are normalised to `\n` (CRLF and
 lone CR), which keeps every line and column of the user's file. Anything that cannot be read

@@ -1,9 +1,10 @@
-"""The short CI fuzz run (bad input never breaks glslcheck): a fixed set of inputs from tools/fuzz.py -- inputs 0..399 of
-seed 2026 -- through parse, check, lint, transpile, render, verify and the compiled engine, in-process, each in a
-worker process with a time budget. Zero flagged outcomes allowed: no traceback, no escaped
-exception, no exit code outside {0, 1, 2}, no hang, no error without file:line:col in the user's
-file, no modified file, and every generated (valid) program accepted by parse/check/transpile/
-render and equal on both backends when verified.
+"""The short CI fuzz run (bad input never breaks glslcheck): a fixed set of inputs from
+tools/fuzz.py -- inputs 0..399 of seed 2026 -- through parse, check, lint, transpile, render,
+verify and the compiled engine, in-process, each in a worker process with a time budget. Zero
+flagged outcomes allowed: no traceback, no escaped exception, no exit code outside {0, 1, 2}, no
+hang, no error without file:line:col in the user's file, no modified file, and every generated
+(valid) program accepted by parse/check/transpile/ render and equal on both backends when
+verified.
 
 A count, not a time box: every run checks the same 400 inputs, however busy the machine (a run
 that stopped at a deadline checked fewer inputs on a slow machine and failed under load). The

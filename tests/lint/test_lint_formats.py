@@ -32,7 +32,8 @@ def test_text_format(linted):
     )
     block = text.split("\n\n")[0].splitlines()
     assert block == [
-        "Buffer A.glsl:1:1: missing-comment 2 lines of code without a comment that explains them (lines 1-3)",
+        "Buffer A.glsl:1:1: missing-comment 2 lines of code without a comment that explains them "
+        "(lines 1-3)",
         "    void mainImage(out vec4 fragColor, in vec2 fragCoord)",
         "    ^" + "~" * 52,
         "  help: add a comment above saying why these lines are there",
@@ -171,7 +172,8 @@ def test_github_format(linted):
     assert len(lines) == 3
     assert lines[0] == (
         "::warning file=Buffer A.glsl,line=1,col=1,endLine=1,endColumn=54,title=missing-comment::"
-        "2 lines of code without a comment that explains them (lines 1-3)%0Ahelp: add a comment above saying why these lines are there"
+        "2 lines of code without a comment that explains them (lines 1-3)%0Ahelp: "
+        "add a comment above saying why these lines are there"
     )
     assert lines[2].startswith("::notice file=Buffer A.glsl,line=1,col=1,")
     for line in lines:

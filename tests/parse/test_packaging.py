@@ -90,7 +90,8 @@ def test_wheel_contains_grammar_and_parses_from_it(tmp_path):
     (tmp_path / "project").mkdir()
     (tmp_path / "project" / "test_shader.py").write_text(
         "def test_the_final_part_is_finite(shader_check):\n"
-        f"    shader_check.assert_no_nan({str(ROOT / 'lab_shaders' / '07_final')!r}, size=(32, 18))\n"
+        "    shader_check.assert_no_nan("
+        f"{str(ROOT / 'lab_shaders' / '07_final')!r}, size=(32, 18))\n"
     )
     run = subprocess.run(
         [sys.executable, "-m", "pytest", "-q", "-p", "no:cacheprovider", "test_shader.py"],

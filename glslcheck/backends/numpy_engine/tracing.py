@@ -12,10 +12,11 @@ puts in the module's namespace before a run (`ns["T"] = tracer`):
     T.le / T.li / T.lx(S, site, mask)        a loop starts, one of its iterations starts, it ends
     T.call(S, site, mask, f, call_mask, *args) -> f(S, call_mask, *args)   a user function call
     T.o(S, site, mask, fn, *args) -> fn(*args)   a float operator or built-in that can make NaN/Inf
-    T.u(S, site, mask, value) -> value       an undefined value enters (semantics.analysis.undefined:
-                                             an out parameter or a local that is read before it is
-                                             written, at its declaration; an operation on constants
-                                             outside its range); value: what this render gives it
+    T.u(S, site, mask, value) -> value       an undefined value enters (semantics.analysis.
+                                             undefined: an out parameter or a local that is read
+                                             before it is written, at its declaration; an
+                                             operation on constants outside its range); value:
+                                             what this render gives it
 
 `site` indexes `TraceTranspiler.sites` (file, line, column, source line, kind, name). The normal
 module (`transpile.transpile`) has none of this and is not changed by it; the only difference in

@@ -53,7 +53,8 @@ def add_arguments(p) -> None:
     p.add_argument(
         "--path",
         metavar="FOLDER",
-        help="the folder inside each submission that holds the tabs (when it holds several shaders)",
+        help="the folder inside each submission that holds the tabs "
+        "(when it holds several shaders)",
     )
     p.add_argument(
         "--reference", metavar="SHADER", help="the reference solution (a folder of tab files)"

@@ -5,8 +5,9 @@ a shader file. Every finding counts for the exit status, a possible deduction (a
 ambiguous rubric sentence, `[possible]` in the text report) as much as a certain one: the hook
 shows a student what may cost points before the TA does; a possible deduction the student has
 decided against is silenced like any finding (`glslcheck: ignore[incomplete-header]`, or
-`ignore` in the configuration). The summary counts the certain and the possible points apart. Configuration: [tool.glslcheck] in the nearest pyproject.toml, or glslcheck.toml
-(see `glslcheck rule --all` for the rules).
+`ignore` in the configuration). The summary counts the certain and the possible points apart.
+Configuration: [tool.glslcheck] in the nearest pyproject.toml, or glslcheck.toml (see
+`glslcheck rule --all` for the rules).
 """
 
 from __future__ import annotations

@@ -44,8 +44,8 @@ in the text output, since it may be the driver's), or a JSON list of such object
 by shader, then frame by frame), when more than one frame is verified. --diff diff.png writes the
 heat map of the differences (diff-0.png, diff-1.png, ... for several frames).
 
-Exit 0 when every frame matches, 1 on a mismatch, undefined pixels or a GLSL error (diagnostics as file:line:col
-on stderr), 2 on usage or I/O errors, or when no OpenGL context can be created.
+Exit 0 when every frame matches, 1 on a mismatch, undefined pixels or a GLSL error (diagnostics
+as file:line:col on stderr), 2 on usage or I/O errors, or when no OpenGL context can be created.
 """
 
 from __future__ import annotations

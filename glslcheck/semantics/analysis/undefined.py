@@ -188,7 +188,8 @@ def _assignment(model: Model, definition: A.FunctionDefinition) -> tuple[list, l
                         loc,
                         f"the out parameter '{sym.name}' is not written on this path: the "
                         "caller's variable receives an undefined value (GLSL ES 3.00 6.1.1)",
-                        f"write '{sym.name}' on every path, or leave the caller's variable unread there",
+                        f"write '{sym.name}' on every path, "
+                        "or leave the caller's variable unread there",
                         p,
                         where if where is not None else definition,
                         sym,

@@ -184,10 +184,13 @@ def page_html(
     )
     meta = (
         f'<p class="meta">glslcheck {escape(__version__)}: {len(grades)} submission'
-        f"{'s' * (len(grades) != 1)}, {graded} graded; renders at {w}x{h} by {escape(options.backend)}, "
+        f"{'s' * (len(grades) != 1)}, {graded} graded; "
+        f"renders at {w}x{h} by {escape(options.backend)}, "
         f"iTime {escape(times)}. Points: the course's coding standards, -1 per instance "
-        "(<code>glslcheck rule NAME</code> explains each). Verdict against the reference, per frame, "
-        f"the worst shown: <b>{SAME}</b> = glslcheck verify's match (differences the display cannot "
+        "(<code>glslcheck rule NAME</code> explains each). "
+        "Verdict against the reference, per frame, "
+        f"the worst shown: <b>{SAME}</b> = glslcheck verify's match "
+        "(differences the display cannot "
         f"show or sub-pixel edge shifts), <b>{CLOSE}</b> = PSNR at least {CLOSE_PSNR_DB:g} dB "
         f"(the same scene with a parameter changed), <b>{DIFFERENT}</b> = below (docs/grading.md). "
         "Under each render its difference from the reference: black equal, red to white larger, "
@@ -217,7 +220,8 @@ def page_html(
     rows = "".join(_row(i, g) for i, g in enumerate(ranked(grades), 1))
     body = (
         f"<h1>{escape(title)}</h1>{meta}"
-        f'<table class="grades"><thead><tr>{header}</tr>{ref_row}</thead><tbody>{rows}</tbody></table>'
+        f'<table class="grades"><thead><tr>{header}</tr>{ref_row}</thead>'
+        f"<tbody>{rows}</tbody></table>"
         f"<script>{SCRIPT}</script>"
     )
     return head + body + "\n</body></html>\n"

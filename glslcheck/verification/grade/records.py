@@ -16,7 +16,8 @@ CERTAIN, POSSIBLE = "certain", "possible"
 
 @dataclass
 class Deduction:
-    """A lint finding that costs points (the rubric's -1 per instance), where the team's file has it."""
+    """A lint finding that costs points (the rubric's -1 per instance), where the team's file has
+    it."""
 
     rule: str
     message: str

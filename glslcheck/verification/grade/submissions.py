@@ -115,7 +115,8 @@ def read_roster(path: str | os.PathLike) -> list[Submission]:
         team = cell("team")
         if team in seen:
             raise InputError(
-                f"{path}:{number}:{col['team'] + 1}: error: team {team!r} is on line {seen[team]} too"
+                f"{path}:{number}:{col['team'] + 1}: error: "
+                f"team {team!r} is on line {seen[team]} too"
             )
         seen[team] = number
         names = cell("contributors").replace(";", ",").split(",")
