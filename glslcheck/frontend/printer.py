@@ -258,6 +258,7 @@ class _Printer(A.NodeVisitor):
     def condition(self, c: A.Node) -> str:
         if isinstance(c, A.ConditionDeclaration):
             return f"{self.qualifiers(c.qualifiers)}{self.type(c.type)} {c.name} = {self.expr(c.init, PRECEDENCE['='])}"
+        assert isinstance(c, A.Expr)  # a condition is an expression or a declaration
         return self.expr(c)
 
     # -- expressions ---------------------------------------------------------------------------
