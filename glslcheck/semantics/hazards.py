@@ -109,7 +109,7 @@ def _writes(model: Any, body: A.Node, sym: Any) -> bool:
             n.target
             if type(n) is A.Assignment
             else n.operand
-            if type(n) in (A.Unary, A.Postfix) and n.op in ("++", "--")
+            if (type(n) is A.Unary or type(n) is A.Postfix) and n.op in ("++", "--")
             else None
         )
         if type(target) is A.Identifier and model.symbol_of(target) is sym:
