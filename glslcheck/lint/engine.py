@@ -286,9 +286,13 @@ def lint_source(
     order = {name: i for i, name in enumerate(rules)}  # ties in registry-table order
     # compile errors first, then which rules could not run, then the findings in line order
     first = {(COMPILE_ERROR, "error"): 0, (COMPILE_ERROR, "note"): 1}
-    findings.sort(
-        key=lambda f: (first.get((f.rule, f.severity), 2), f.loc.line, f.loc.column, order[f.rule])
-    )
+
+    def sort_key(f: Finding) -> tuple[int, int, int, int]:
+        loc = f.loc
+        assert loc is not None  # _finding gives every finding a location
+        return (first.get((f.rule, f.severity), 2), loc.line, loc.column, order[f.rule])
+
+    findings.sort(key=sort_key)
     return findings
 
 
@@ -303,7 +307,7 @@ def _not_run(rule: Rule, ctx: LintContext) -> list[Finding]:
     """One note when the AST rule `rule` could not run on all of this file: on which functions
     (they do not compile), or on the whole file (no tree, or a rule that reads the whole
     program, which has errors)."""
-    first = (ctx.compile_errors or [None])[0]
+    first = ctx.compile_errors[0] if ctx.compile_errors else None
     if ctx.ast is None or (rule.reads == "program" and _has_errors(ctx)):
         if first is None:
             return []

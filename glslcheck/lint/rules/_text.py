@@ -38,7 +38,7 @@ def compared_calls(model: Model, path: str, *names: str) -> Iterator[tuple[A.Cal
             if type(node) is not A.Binary or node.op not in COMPARISONS:
                 continue
             for side, other in ((node.left, node.right), (node.right, node.left)):
-                if builtin_call(model, side, *names):
+                if type(side) is A.Call and builtin_call(model, side, *names):
                     yield side, other, node.op if side is node.left else FLIPPED[node.op]
 
 

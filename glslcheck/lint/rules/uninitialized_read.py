@@ -109,6 +109,7 @@ class _Flow:
             return _meet(self.stmt(s.then, set(st)), self.stmt(s.else_, set(st)) if s.else_ else st)
         if t is A.For:
             st = self.stmt(s.init, st)
+            assert st is not None  # an init (a declaration or an expression) always completes
             st = self.cond(s.cond, st)
             body = self.stmt(s.body, set(st))
             if body is not None and s.step is not None:
@@ -200,7 +201,7 @@ class _Flow:
             return self.target(e.operand, st, reads=False)
         if t is A.Ternary:
             st = self.expr(e.cond, st)
-            return _meet(self.expr(e.then, set(st)), self.expr(e.else_, set(st)))
+            return self.expr(e.then, set(st)) & self.expr(e.else_, set(st))  # both complete
         if t is A.Binary and e.op in ("&&", "||"):
             st = self.expr(e.left, st)
             self.expr(e.right, set(st))

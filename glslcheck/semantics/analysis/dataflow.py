@@ -168,6 +168,9 @@ class _NoFacts:
     def in_file(self, path: str, *, with_broken: bool = False) -> list:
         return []
 
+    def argument(self, fn: FunctionFacts, param: Symbol) -> None:
+        return None
+
     def broken_in_file(self, path: str) -> list:
         return []
 
