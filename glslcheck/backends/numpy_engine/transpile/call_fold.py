@@ -514,8 +514,8 @@ def _unchanged_init(tr: Any, ident: A.Identifier, call: A.Call) -> Any:
     ):
         return None
     init = sym.node.init
-    read = {sym} | {tr.model.symbol_of(n) for n in init.walk() if isinstance(n, A.Identifier)}
-    read = [r for r in read if r is not None and r.kind in ("local", "param")]
+    named = {sym} | {tr.model.symbol_of(n) for n in init.walk() if isinstance(n, A.Identifier)}
+    read = [r for r in named if r is not None and r.kind in ("local", "param")]
     for st in stmts[decl + 1 : at + 1]:
         for n in st.walk():
             if any(_written_components(tr, n, r, call) for r in read):
@@ -635,7 +635,7 @@ def _evaluate(tr: Any, call: A.Call, fn: Any, mask: str | None, constants: bool)
     ev = _Eval(tr, mask)
     env: dict[int, list] = {}
     holders: list[tuple[int, Any]] = []
-    args = []
+    args: list[list[Any]] = []  # per argument, its components' terms (None: unknown)
     for i, (a, (_, _, dr)) in enumerate(zip(call.args, fn.params)):
         t = tr.type_of(a)
         if t.is_array or t.is_struct or t.base != "float":

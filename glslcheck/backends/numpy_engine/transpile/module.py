@@ -15,9 +15,10 @@ from ...cpu_core.facts import Facts, SideEffects
 from ..fold_state import FoldState
 from .common import LOOP_CAP, SMALL_STATE, _error, check_program
 from .expressions import Expressions
-from .functions import FnState, Functions
+from .functions import Functions
 from .limits import PythonLimits, compile_generated, lane_state, too_complex
 from .names import Names
+from .state import FnState
 from .statements import Statements
 
 

@@ -9,9 +9,10 @@ from typing import Any
 from ....base.diagnostics import Location
 from ...cpu_core.common import comment_safe
 from .common import _IDENT, _error, python_ident
+from .state import TranspilerState
 
 
-class Names:
+class Names(TranspilerState):
     """The naming and constant pass of `Transpiler` (see the package docstring for the scheme)."""
 
     # -- small emission helpers ----------------------------------------------------------------

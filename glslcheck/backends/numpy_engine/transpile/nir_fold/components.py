@@ -39,6 +39,7 @@ def component_write(tr: Any, node: Any, mask: str | None, old: str | None = None
     if tr.fn is None or isinstance(tr.fn, FunctionStandin):
         return None
     if isinstance(node, A.Assignment) and node.op in ("+=", "-="):
+        assert old is not None  # given with every assignment
         return _cancelled_sum(tr, node, mask, old)
     if isinstance(node, A.Declarator):
         sym, comps, value = tr.model.symbol_of(node), None, node.init
@@ -59,6 +60,7 @@ def component_write(tr: Any, node: Any, mask: str | None, old: str | None = None
         return None  # (a node of an inlined body)
     compound = isinstance(node, A.Assignment) and node.op == "*="
     if compound and not is_constant(tr, value):
+        assert old is not None
         return kept_product(tr, node, mask, old)
     if compound and has_matrix(tr, value):
         return None
@@ -66,6 +68,7 @@ def component_write(tr: Any, node: Any, mask: str | None, old: str | None = None
     if not kept and not _read_later(tr, facts, sym, node):
         return None  # (no product by a constant reads what this write would keep)
     if compound:
+        assert old is not None
         t = tr.type_of(node.target)
         entries, old = _times(
             tr, _chain(tr, node.target, mask, keep=True)[0], old, value, _size(t), mask, True
@@ -156,7 +159,7 @@ def _chain(
             f"{wb}[{idx[0]}]" if len(idx) == 1 else f'rt.swizzle({wb}, "{sw}")'
         )
     code = tr.expr(node, mask)
-    found = [None] * n
+    found: list[tuple[str, list[str]] | None] = [None] * n
     if isinstance(node, A.Identifier) and tr.type_of(node).base == "float":
         found = [_component_record(tr, node, i) for i in range(n)]
     return [f if f else (_component(code, i, n), []) for i, f in enumerate(found)], code
@@ -184,7 +187,9 @@ def _times(
     if tr.type_of(k).is_scalar:
         ks: list[Any] = [tr.expr(k, mask)] * n
     else:
-        ks = list(constant_value(tr, k))  # (values: named by _merged_code only if it uses them)
+        values = constant_value(tr, k)
+        assert values is not None  # `k` was tested as a constant
+        ks = list(values)  # (values: named by _merged_code only if it uses them)
     return [(y, cs + [kc]) for (y, cs), kc in zip(entries, ks)], code
 
 
@@ -298,11 +303,16 @@ def _cancelled_sum(tr: Any, node: A.Assignment, mask: str | None, old: str) -> s
     facts = function_facts(tr)
     if id(node) not in facts.enter or tr.type_of(node.target).base != "float":
         return None
-    ident = node.target if isinstance(node.target, A.Identifier) else node.target.base
+    target = node.target  # a local or one swizzle of it (_target_components)
+    assert isinstance(target, (A.Identifier, A.Field))
+    ident = target if isinstance(target, A.Identifier) else target.base
+    assert isinstance(ident, A.Identifier)
     comps = comps if comps is not None else tuple(range(_size(tr.type_of(node.target))))
     undo = tr.fold_state.undo
     records = tr.fold_state.components
-    before = []  # per component: (code, record) of its value before the write this one cancels
+    before: (
+        list[Any] | None
+    ) = []  # per component: (code, record) of its value before the write this one cancels
     for c in comps:
         w = _component_source(tr, ident, c)
         kept = undo.get(id(w.node)) if w is not None else None
@@ -320,6 +330,7 @@ def _cancelled_sum(tr: Any, node: A.Assignment, mask: str | None, old: str) -> s
         if facts.written_between(w.node, node, [r for r in read if r is not None]):
             before = None
             break
+        assert before is not None  # (set to None only on the way out of the loop)
         before.append(kept[1][c])
     if before is None and not _cancelled_later(tr, facts, sym, node):
         return None

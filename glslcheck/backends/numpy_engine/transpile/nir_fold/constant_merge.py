@@ -37,7 +37,7 @@ def merge_constants(tr: Any, e: A.Binary, mask: str | None) -> str | None:
         return None
     inner, kept = x_node, None
     if isinstance(inner, A.Identifier):
-        parts = product_parts(tr, inner) if e.op == "*" else None
+        parts: tuple[Any, ...] | None = product_parts(tr, inner) if e.op == "*" else None
         kept = (
             parts[2] if parts is not None else None
         )  # (y's value kept: :func:`ssa_values.keep_factor`)

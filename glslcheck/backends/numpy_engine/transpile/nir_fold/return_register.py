@@ -77,7 +77,9 @@ def _unrolled(tr: Any, loop: Any) -> bool:
     """A ``for`` loop of a constant count of at most 32 iterations (NIR unrolls it)."""
     if not isinstance(loop, A.For) or induction_variable(loop, tr.model) is None:
         return False
-    decl = loop.init.decl.declarators[0]
+    init = loop.init  # an induction variable's declaration (induction_variable)
+    assert isinstance(init, A.DeclarationStatement) and isinstance(init.decl, A.VariableDeclaration)
+    decl = init.decl.declarators[0]
     start, cond, step = tr.model.const_value(decl.init), loop.cond, loop.step
     if not (
         isinstance(start, int)

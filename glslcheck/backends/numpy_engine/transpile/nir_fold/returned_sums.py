@@ -188,7 +188,7 @@ def keep_term(tr: Any, node: Any, code: str) -> str:
     return t
 
 
-def sunk_return_value(tr: Any, ret: A.Return, code: str) -> str:
+def sunk_return_value(tr: Any, ret: A.Return, code: str | None) -> str | None:
     """The returned value of a function with a :func:`sunk_return`: ``code`` when the caller
     adds nothing (``_k`` None), else the sum with the constant sunk as NIR sinks it."""
     chain = sunk_return(tr, tr.fn.sym) if tr.fn is not None else None

@@ -286,7 +286,8 @@ def _rebalanced(tr: Any, e: A.Binary) -> bool:
     """GLSL IR's do_rebalance_tree balances an expression tree of three or more additions of
     the same type whose leaves are variables (at most one constant) before NIR sees it:
     ``(a + b + c) + K`` reaches NIR as ``(a + b) + (c + K)`` (measured)."""
-    stack, ops, constants = [e], 0, 0
+    stack: list[A.Expr] = [e]
+    ops, constants = 0, 0
     while stack:
         n = stack.pop()
         if isinstance(n, A.Binary):
