@@ -56,7 +56,7 @@ from ...semantics.model import Constructor, Symbol
 from ..cpu_core.common import comment_safe
 from ..cpu_core.facts import Facts
 from ..cpu_core.uniformity import Uniformity
-from .expressions import ExpressionEmitter
+from .expressions import ExpressionEmitter, FnState
 from .module_text import HEADER, RENDER
 from .values import (
     ATOM,
@@ -70,14 +70,6 @@ from .values import (
     leaves,
     not_yet,
 )
-
-
-class FnState:
-    def __init__(self, sym: Any, uni: Any = None) -> None:
-        self.sym = sym
-        self.uni = uni  # cpu_core's Uniformity of the function (None: global initializers)
-        self.outs: list = []  # the parts of out/inout parameters, returned after the value
-        self.loops: list[tuple[str, Any]] = []  # (kind, continue emitter)
 
 
 class Codegen(ExpressionEmitter):
@@ -125,6 +117,7 @@ class Codegen(ExpressionEmitter):
 
         if self._fold_context is None:
             self._fold_context = FoldContext(self.model, self.facts)
+        assert self.fn is not None  # asked while a function is generated
         return self._fold_context.at(self.fn.sym, self.fn.sym is self.entry)
 
     # -- emission ------------------------------------------------------------------------------
@@ -485,6 +478,7 @@ class Codegen(ExpressionEmitter):
 
     def return_text(self, value: list | None) -> str:
         fs = self.fn
+        assert fs is not None  # generating a function's body
         parts = list(value or []) + list(fs.outs)
         if not parts:
             return "return 0"
@@ -566,6 +560,7 @@ class Codegen(ExpressionEmitter):
         return True
 
     def _stmt_Continue(self, s: A.Continue) -> bool:
+        assert self.fn is not None  # generating a function's body
         kind, cont = self.fn.loops[-1]
         if cont is not None:
             cont()
@@ -625,6 +620,7 @@ class Codegen(ExpressionEmitter):
         self.emit(f"if {count} > {LOOP_CAP}:  # a runaway loop: the engine reports its line")
         self.emit(f"    raise LoopCapError({lid})")
         cont = step if not do_while else test
+        assert self.fn is not None  # generating a function's body
         self.fn.loops.append(("loop", cont))
         ended = self.stmt(body)
         self.fn.loops.pop()
