@@ -67,7 +67,7 @@ class MultipassProgram:
         # the exact float32 results SwiftShader's WebGL returns (it ignores lowp, measured).
         self.lowp_samplers = True
         self._state: dict[str, np.ndarray] = {}
-        self._key = None
+        self._key: tuple[int, int, str | None] | None = None  # (width, height, precision)
         self._next = 0
 
     def _check_reads(self) -> None:
@@ -118,14 +118,18 @@ class MultipassProgram:
         return self.programs[self.output].format_stats()
 
     def _inputs(self, tab: str) -> list:
-        chans = []
+        chans: list[ChannelInput | None] = []
         for n in range(4):
             b = self.bindings[tab].get(n)
             if b is None:
                 chans.append(None)
                 continue
             # buffers are stored bottom row first, images top row first (unflipped, as uploaded)
-            texels = self._state[b.buffer] if b.buffer is not None else self.textures[b.texture]
+            if b.buffer is not None:
+                texels = self._state[b.buffer]
+            else:
+                assert b.texture is not None  # a binding reads a buffer or a texture
+                texels = self.textures[b.texture]
             if b.vflip:
                 texels = texels[::-1]
             chans.append(
@@ -177,4 +181,5 @@ class MultipassProgram:
                 if tab == self.output:
                     out = img
             self._next = i + 1
+        assert out is not None  # frame >= 0: the loop ran at least once
         return out

@@ -244,7 +244,7 @@ def induction_variable(s: Any, model: Any, facts: Facts | None = None) -> Any:
     for part in (s.cond, s.body):
         if part is None:
             continue
-        for n in part.walk():
-            if any(w is sym for w in written_variables(model, n)):
+        for node in part.walk():
+            if any(w is sym for w in written_variables(model, node)):
                 return None
     return sym

@@ -213,6 +213,7 @@ class TraceTranspiler(Transpiler):
 
     def _stmt_Break(self, s: A.Break, mask: str | None) -> None:
         super()._stmt_Break(s, mask)
+        assert self.fn is not None  # generating a function's body
         self._event(
             s, "branch", "break" if self.fn.loops[-1].kind == "loop" else "break (switch)", mask
         )
@@ -343,7 +344,7 @@ _NAME_OPS = {
 def _lanes_any(x: np.ndarray, lanes: int) -> np.ndarray:
     """bool (lanes,): any component of x (lane axis last, size lanes or 1) is true."""
     if x.ndim > 1:
-        x = x.reshape(-1, x.shape[-1]).any(axis=0)
+        x = np.asarray(x.reshape(-1, x.shape[-1]).any(axis=0))
     return np.broadcast_to(x, (lanes,))
 
 
