@@ -7,7 +7,7 @@ calls as Python expressions over scalar leaves (values.py's `Val`).
 
 from __future__ import annotations
 
-from typing import TYPE_CHECKING, Any
+from typing import Any
 
 from ...base.precision import float32_literal
 from ...frontend import syntax as A
@@ -30,6 +30,8 @@ from .values import (
     not_yet,
     pure_expr,
 )
+
+TYPE_CHECKING = False  # not typing's: importing typing costs every start-up
 
 
 class FnState:

@@ -30,7 +30,7 @@ import linecache
 import threading
 import time as _time
 from dataclasses import dataclass
-from typing import TYPE_CHECKING, Any
+from typing import Any
 
 import numpy as np
 
@@ -39,6 +39,8 @@ from .lane_memo import MemoMath
 from .runtime import Runtime
 from .runtime_values import Struct
 from .transpile import glsl_location, too_complex
+
+TYPE_CHECKING = False  # not typing's: importing typing costs every start-up
 
 TILE_LANES = (
     49152  # lanes per tile: fewer calls in compacted regions; full-lane work measured flat 24k-49k
