@@ -161,7 +161,7 @@ class Transpiler(Names, Functions, Statements, Expressions, PythonLimits):
         )
         empty = True
         fake = type("G", (), {"name": "<globals>", "node": None})()
-        self.fn = FnState(fake, None, True)  # type: ignore[arg-type]
+        self.fn = FnState(fake, None, True)
         for sym in self.model.globals:
             if sym.kind != "global" or sym.type.contains_opaque:
                 continue  # samplers: an error where they are used

@@ -31,9 +31,9 @@ class LoopCtx:
 
 
 class FnState:
-    def __init__(self, sym: Any, uni: Uniformity, is_entry: bool) -> None:
+    def __init__(self, sym: Any, uni: Uniformity | None, is_entry: bool) -> None:
         self.sym = sym
-        self.uni = uni
+        self.uni = uni  # None for the global initializers (gen_globals)
         self.is_entry = is_entry
         self.defined: list[str] = []  # Python locals bound so far, in order
         self.loops: list[LoopCtx] = []
