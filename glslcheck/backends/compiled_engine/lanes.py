@@ -208,17 +208,12 @@ class _SharedReads(ast.NodeTransformer):
                     and isinstance(n.value, ast.Name)
                 ):
                     self.store(n.value.id, n.slice)
-                elif (
-                    isinstance(n, ast.Call)
-                    and _call_name(n) == "aset"
-                    and n.args
-                    and isinstance(n.args[0], ast.Name)
-                ):
-                    self.store(n.args[0].id, None)
+                elif isinstance(n, ast.Call) and _call_name(n) == "aset":
+                    if n.args and isinstance(n.args[0], ast.Name):
+                        self.store(n.args[0].id, None)
 
     def store(self, kind: str, index: Any) -> None:
-        written = self.written.get(kind)
-        if written is None:
+        if (written := self.written.get(kind)) is None:
             return
         if isinstance(index, ast.Constant) and isinstance(index.value, int):
             written.add(index.value)
@@ -418,12 +413,10 @@ class _Fn:
             self.emit(ast.unparse(s))
             return
         name = _call_name(v)
-        if name in self.L.functions:
-            assert isinstance(v, ast.Call)  # (what has a call's name)
+        if name in self.L.functions and isinstance(v, ast.Call):  # (a name: a call)
             self.user_call(v, [])
             return
-        if name == "aset":
-            assert isinstance(v, ast.Call)
+        if name == "aset" and isinstance(v, ast.Call):
             dst = v.args[0]
             if not isinstance(dst, ast.Name):
                 raise Unsupported("aset of an expression")
