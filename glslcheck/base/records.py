@@ -33,12 +33,21 @@ if TYPE_CHECKING:
 else:
 
     def dataclass_transform(**_options):
-        """`typing.dataclass_transform`, which only tells type checkers that `record` makes
-        dataclass-like classes: nothing to do at run time (and no import of typing)."""
+        """`typing.dataclass_transform`, which only tells type checkers that a decorator or a
+        metaclass makes dataclass-like classes (`record`, frontend/syntax.py's nodes): nothing
+        to do at run time (and no import of typing)."""
         return lambda function: function
 
 
-__all__ = ["record", "field", "field_names", "replace", "FrozenInstanceError", "tuple_getter"]
+__all__ = [
+    "record",
+    "field",
+    "field_names",
+    "replace",
+    "FrozenInstanceError",
+    "tuple_getter",
+    "dataclass_transform",
+]
 
 _MISSING = object()
 

@@ -25,20 +25,13 @@ from __future__ import annotations
 from types import FunctionType
 
 from ..base.diagnostics import Location
-from ..base.records import init_code, tuple_getter
+from ..base.records import dataclass_transform, init_code, tuple_getter
 
 TYPE_CHECKING = False  # not typing's: importing typing costs every start-up
 if TYPE_CHECKING:
     from collections.abc import Callable, Iterator
     from dataclasses import KW_ONLY
-    from typing import Any, ClassVar, dataclass_transform
-else:
-
-    def dataclass_transform(**_options):
-        """`typing.dataclass_transform`, which only tells type checkers that the node classes
-        are dataclass-like: nothing to do at run time (and no import of typing)."""
-        return lambda cls: cls
-
+    from typing import Any, ClassVar
 
 _NOLOC = Location("<builtin>", 0, 0)
 
