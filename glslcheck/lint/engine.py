@@ -45,6 +45,8 @@ if TYPE_CHECKING:
     from collections.abc import Iterable, Mapping, Sequence
     from typing import Any
 
+    from ..semantics.model import Model
+
 PHASES = ("text", "ast", "suppressions")
 
 
@@ -84,7 +86,7 @@ class LintContext:
     scan: TextScan
     shader: Shader | None = None  # the shader the file belongs to (its other tabs), when known
     ast: Any = None  # the parse tree (NEEDS = "ast" rules run only when it is not None)
-    model: Any = None  # the semantic model (scopes, types) of `ast`
+    model: Model | None = None  # the semantic model (scopes, types) of `ast`
     suppressions: list[Suppression] = field(default_factory=list)
     rules_run: frozenset[str] = frozenset()  # rules whose findings were checked for suppression
     known_rules: frozenset[str] = frozenset()
@@ -122,7 +124,7 @@ class ProgramTree:
     (path, first line, last line, name)."""
 
     ast: Any = None
-    model: Any = None
+    model: Model | None = None
     errors: list[Diagnostic] = field(default_factory=list)
     dropped: list[tuple[str, int, int, str]] = field(default_factory=list)
 
@@ -233,7 +235,7 @@ def lint_source(
     config: LintConfig | None = None,
     shader: Shader | None = None,
     ast: Any = None,
-    model: Any = None,
+    model: Model | None = None,
     *,
     errors: Sequence[Diagnostic] = (),
     dropped: Sequence[tuple[str, int, int, str]] = (),

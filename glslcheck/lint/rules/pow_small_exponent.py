@@ -61,8 +61,11 @@ def _replacement(e: float, base) -> str | None:
 
 
 def check(ctx: LintContext) -> Iterator[Diagnostic]:
-    for _, node in builtin_calls(ctx.model, ctx.path, "pow", arity=2):
-        values = numbers(ctx.model.const_value(node.args[1]))
+    model = ctx.model
+    if model is None:  # (no semantic model: no function has facts)
+        return
+    for _, node in builtin_calls(model, ctx.path, "pow", arity=2):
+        values = numbers(model.const_value(node.args[1]))
         if not values or any(v != values[0] for v in values):
             continue
         fix = _replacement(values[0], node.args[0])

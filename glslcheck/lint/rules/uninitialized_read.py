@@ -42,6 +42,7 @@ if TYPE_CHECKING:
     from collections.abc import Iterator
     from typing import Any
 
+    from ...semantics.model import Model
     from ..engine import LintContext
 
 NAME = "uninitialized-read"
@@ -73,7 +74,7 @@ class _Flow:
     """Definite assignment: a state is the set of tracked variables assigned on every path
     (None: unreachable, after return/break/continue/discard)."""
 
-    def __init__(self, model: Any, tracked: dict) -> None:
+    def __init__(self, model: Model, tracked: dict) -> None:
         self.model = model
         self.tracked = tracked
         self.reported: set[int] = set()
