@@ -71,11 +71,16 @@ from .values import (
     not_yet,
 )
 
+TYPE_CHECKING = False  # not typing's: importing typing costs every start-up
+if TYPE_CHECKING:
+    from ...semantics.model import Model
+    from ..numpy_engine.transpile.nir_fold import FoldContext
+
 
 class Codegen(ExpressionEmitter):
     """`Codegen(model, path).module()` -> the generated Python source."""
 
-    def __init__(self, model: Any, path: str, fma: bool, float_to_uint: str) -> None:
+    def __init__(self, model: Model, path: str, fma: bool, float_to_uint: str) -> None:
         self.model = model
         self.path = path
         self.fma = fma
@@ -107,9 +112,9 @@ class Codegen(ExpressionEmitter):
         # the first dFdx/dFdy/fwidth call: its leaves are written `dfdx(v)` / `dfdy(v)`, which
         # only the lockstep rewrite computes (lanes.py: a block's lanes hold whole 2x2 quads)
         self.derivative: Any = None
-        self._fold_context: Any = None  # fold_context(): made on first use
+        self._fold_context: FoldContext | None = None  # fold_context(): made on first use
 
-    def fold_context(self) -> Any:
+    def fold_context(self) -> FoldContext:
         """The NumPy backend's Mesa rewrites' context at the current function, for the decisions
         this engine shares with it (nir_fold.mix_hint: nir_lower_flrp's formula for a `mix`;
         nir_fold.zero_add: an added constant zero)."""
@@ -632,7 +637,7 @@ class Codegen(ExpressionEmitter):
         self.indent -= 1
 
 
-def _literal_tree(model: Any, e: Any, base: str) -> bool:
+def _literal_tree(model: Model, e: Any, base: str) -> bool:
     """Literals of type `base`, their negations and vector constructors of them only."""
     if isinstance(e, (A.FloatLiteral, A.IntLiteral, A.BoolLiteral)):
         return model.type_of(e).base == base

@@ -32,6 +32,9 @@ from .values import (
 )
 
 TYPE_CHECKING = False  # not typing's: importing typing costs every start-up
+if TYPE_CHECKING:
+    from ...semantics.model import Model
+    from ..numpy_engine.transpile.nir_fold import FoldContext
 
 
 class FnState:
@@ -48,7 +51,7 @@ class ExpressionEmitter:
     """Expressions, l-values and calls of Codegen (see the module docstring)."""
 
     if TYPE_CHECKING:  # Codegen's (codegen.py), declared for type checkers
-        model: Any
+        model: Model
         path: str
         fma: bool
         float_to_uint: str
@@ -61,7 +64,7 @@ class ExpressionEmitter:
         pending: list[tuple[Any, frozenset]]
         derivative: Any
 
-        def fold_context(self) -> Any: ...
+        def fold_context(self) -> FoldContext: ...
         def emit(self, text: str) -> None: ...
         def fresh(self, prefix: str = "t") -> str: ...
         def tmp(self, value: str) -> str: ...

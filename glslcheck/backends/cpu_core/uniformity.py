@@ -62,6 +62,10 @@ from ...semantics.analysis import param_directions, written_variable
 from ...semantics.model import Symbol
 from .facts import NO_EVENTS, Facts, events_of, induction_variable
 
+TYPE_CHECKING = False  # not typing's: importing typing costs every start-up
+if TYPE_CHECKING:
+    from ...semantics.model import Model
+
 
 class Uniformity:
     """The analysis of one function `fn` (a function symbol of the checker's model); see the
@@ -69,7 +73,7 @@ class Uniformity:
 
     def __init__(
         self,
-        model: Any,
+        model: Model,
         facts: Facts,
         fn: Any,
         is_entry: bool,

@@ -47,6 +47,10 @@ from ...frontend.printer import to_glsl
 from .runtime_values import Struct
 from .transpile import Transpiler
 
+TYPE_CHECKING = False  # not typing's: importing typing costs every start-up
+if TYPE_CHECKING:
+    from ...semantics.model import Model
+
 MAX_STEPS = (
     200_000  # steps PixelTracer records; later steps only count (a runaway shader stays bounded)
 )
@@ -113,7 +117,7 @@ class TraceTranspiler(Transpiler):
 
     CSE_CALLS = False  # every call where it runs, each reported (not one shared by repeats)
 
-    def __init__(self, model: Any, path: str = "<shader>") -> None:
+    def __init__(self, model: Model, path: str = "<shader>") -> None:
         super().__init__(model, path)
         self.sites: list[Site] = []
         self._site_ids: dict[tuple, int] = {}

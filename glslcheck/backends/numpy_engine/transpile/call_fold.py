@@ -71,6 +71,10 @@ from ....semantics.analysis import param_directions
 from ....semantics.model import Symbol
 from .common import _RUNTIME_NAMES
 
+TYPE_CHECKING = False  # not typing's: importing typing costs every start-up
+if TYPE_CHECKING:
+    from .state import TranspilerState
+
 # built-ins computed component by component (the runtime's function of a scalar array)
 _COMPONENTWISE = (
     "sin",
@@ -128,7 +132,7 @@ def fold_tree(op: str, a: float, b: float) -> float:
 class _Eval:
     """The scalar evaluation of one call (see the module doc); `merges`: how often a merge rule fired."""
 
-    def __init__(self, tr: Any, mask: str | None) -> None:
+    def __init__(self, tr: TranspilerState, mask: str | None) -> None:
         self.tr, self.mask, self.merges, self.depth, self.factored = tr, mask, 0, 0, 0
 
     # -- scalar rules ----------------------------------------------------------------------
@@ -447,7 +451,7 @@ def _leaves(code: str, t: Any) -> list[_T]:
     return [_T("x", code=f"{code}[{c}][{r}]") for c in range(t.cols) for r in range(t.rows)]
 
 
-def _constant_components(tr: Any, arg: Any, call: A.Call) -> list[_T | None] | None:
+def _constant_components(tr: TranspilerState, arg: Any, call: A.Call) -> list[_T | None] | None:
     """Per component of a local `arg` read by `call`: a constant term where its value is a
     compile-time constant there, else None; None when `arg` is not such a local. Known only
     for a local declared, then written, by top-level statements of the current function
@@ -460,6 +464,7 @@ def _constant_components(tr: Any, arg: Any, call: A.Call) -> list[_T | None] | N
         or sym.node.init is None
     ):
         return None
+    assert tr.fn is not None  # folding a call inside a function
     stmts = tr.fn.sym.node.body.stmts
     decl = next((i for i, st in enumerate(stmts) if any(n is sym.node for n in st.walk())), None)
     at = next((i for i, st in enumerate(stmts) if any(n is call for n in st.walk())), None)
@@ -490,7 +495,7 @@ def _constant_components(tr: Any, arg: Any, call: A.Call) -> list[_T | None] | N
     return comps
 
 
-def _unchanged_init(tr: Any, ident: A.Identifier, call: A.Call) -> Any:
+def _unchanged_init(tr: TranspilerState, ident: A.Identifier, call: A.Call) -> Any:
     """The initializer of the local `ident` when it is declared by a top-level statement of the
     current function before the one that holds `call`, and neither it nor a local or parameter
     the initializer reads is written in between (so the initializer, evaluated again at the
@@ -503,6 +508,7 @@ def _unchanged_init(tr: Any, ident: A.Identifier, call: A.Call) -> Any:
         or sym.node.init is None
     ):
         return None
+    assert tr.fn is not None  # folding a call inside a function
     stmts = tr.fn.sym.node.body.stmts
     decl = next((i for i, st in enumerate(stmts) if any(n is sym.node for n in st.walk())), None)
     at = next((i for i, st in enumerate(stmts) if any(n is call for n in st.walk())), None)
@@ -523,7 +529,7 @@ def _unchanged_init(tr: Any, ident: A.Identifier, call: A.Call) -> Any:
     return init
 
 
-def _written_components(tr: Any, n: Any, sym: Any, call: A.Call) -> Any:
+def _written_components(tr: TranspilerState, n: Any, sym: Any, call: A.Call) -> Any:
     """The components of `sym` the node `n` writes: "all", a tuple of indices, or ()."""
     targets: list[Any] = []
     if isinstance(n, A.Assignment):
@@ -547,7 +553,7 @@ def _written_components(tr: Any, n: Any, sym: Any, call: A.Call) -> Any:
     return ()
 
 
-def folded_call(tr: Any, call: A.Call, fn: Any, mask: str | None) -> str | None:
+def folded_call(tr: TranspilerState, call: A.Call, fn: Any, mask: str | None) -> str | None:
     """The code of the call `call` of user function `fn` with constants propagated as NIR does
     (module doc), emitted as ``if rt.lp: <folded> else: <the call as written>``; None where
     this call is left as written (the common case): no argument has a constant component, or
@@ -579,7 +585,7 @@ def folded_call(tr: Any, call: A.Call, fn: Any, mask: str | None) -> str | None:
     return _emit_call(tr, call, fn, mask, env, params, result, holders)
 
 
-def _calls_dot(tr: Any, fn: Any) -> bool:
+def _calls_dot(tr: TranspilerState, fn: Any) -> bool:
     """`fn`'s body calls the built-in dot (where :meth:`_Eval.factored_add` may apply)."""
     memo = tr.fold_state.call_fold_dots
     if id(fn) not in memo:
@@ -592,7 +598,7 @@ def _calls_dot(tr: Any, fn: Any) -> bool:
     return memo[id(fn)]
 
 
-def _has_constant_argument(tr: Any, call: A.Call, fn: Any) -> bool:
+def _has_constant_argument(tr: TranspilerState, call: A.Call, fn: Any) -> bool:
     for a, (_, _, dr) in zip(call.args, fn.params):
         if dr != "out" and (
             tr.model.const_value(a) is not None
@@ -603,7 +609,7 @@ def _has_constant_argument(tr: Any, call: A.Call, fn: Any) -> bool:
     return False
 
 
-def _scaled_argument(tr: Any, a: Any, call: A.Call) -> tuple[Any, Any] | None:
+def _scaled_argument(tr: TranspilerState, a: Any, call: A.Call) -> tuple[Any, Any] | None:
     """(y, #c) for an argument written ``y * #c`` or ``#c * y`` (c a compile-time constant of
     y's type or a scalar, y not constant, no matrix): after inlining each component of the
     parameter is that product, into which NIR merges the callee's constants (NebulaSmoke's
@@ -627,7 +633,9 @@ def _scaled_argument(tr: Any, a: Any, call: A.Call) -> tuple[Any, Any] | None:
     return None
 
 
-def _evaluate(tr: Any, call: A.Call, fn: Any, mask: str | None, constants: bool) -> tuple:
+def _evaluate(
+    tr: TranspilerState, call: A.Call, fn: Any, mask: str | None, constants: bool
+) -> tuple:
     """The call evaluated with its arguments bound to stand-in parameters: (the evaluation,
     the parameters' final terms by symbol id, the parameter symbols, the result's terms, the
     arguments read at run time as (index, node)); `constants`: the arguments' constant
@@ -677,7 +685,7 @@ def _evaluate(tr: Any, call: A.Call, fn: Any, mask: str | None, constants: bool)
 
 
 def _emit_call(
-    tr: Any,
+    tr: TranspilerState,
     call: A.Call,
     fn: Any,
     mask: str | None,
@@ -752,7 +760,7 @@ def _emit_call(
     return r
 
 
-def out_roots(tr: Any, call: A.Call, sym: Any) -> set[str] | None:
+def out_roots(tr: TranspilerState, call: A.Call, sym: Any) -> set[str] | None:
     """The operations at the root of each component of the value `call` (a call of a user
     function in the current function) writes into the variable `sym` passed whole as an out
     or inout argument, as NIR sees them after inlining: "+" (a sum), "*", "/", "neg", "call"
@@ -783,7 +791,9 @@ def _product_sum(t: _T) -> bool:
     )
 
 
-def product_sums(tr: Any, call: A.Call, sym: Any) -> list[tuple[str, str] | None] | None:
+def product_sums(
+    tr: TranspilerState, call: A.Call, sym: Any
+) -> list[tuple[str, str] | None] | None:
     """Per component of the value the folded call `call` (emitted by :func:`folded_call` in the
     current Python function) wrote into the variable `sym`: the code of its two products when
     it is ``p1 + p2`` to NIR, else None; None when the call was not folded here. For

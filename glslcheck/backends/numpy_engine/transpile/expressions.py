@@ -530,6 +530,7 @@ class Expressions(TranspilerState):
     def lvalue_path(self, e: Any, mask: str | None) -> LValue:
         if isinstance(e, A.Identifier):
             sym = self.model.symbol_of(e)
+            assert sym is not None  # every name of a checked program has its symbol
             return LValue(self.var_name(sym, e), sym.type)
         if isinstance(e, A.Field):
             lv = self.lvalue_path(e.base, mask)
@@ -549,10 +550,10 @@ class Expressions(TranspilerState):
             lv = self.lvalue_path(e.base, mask)
             cv = self.model.const_value(e.index)
             if isinstance(cv, int) and not isinstance(cv, bool):
-                idx = str(cv)
+                index = str(cv)
             else:
-                idx = self.tmp(self.expr(e.index, mask))
-            lv.path.append(("index", idx))
+                index = self.tmp(self.expr(e.index, mask))
+            lv.path.append(("index", index))
             return lv
         raise _error("this expression cannot be assigned to", e)
 

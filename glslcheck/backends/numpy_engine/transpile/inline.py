@@ -31,8 +31,12 @@ from ....frontend import syntax as A
 from ....language import builtin_functions as B
 from ....semantics.model import Symbol
 
+TYPE_CHECKING = False  # not typing's: importing typing costs every start-up
+if TYPE_CHECKING:
+    from .state import FoldEngine, TranspilerState
 
-def bound_argument(tr: Any, sym: Any) -> Any:
+
+def bound_argument(tr: FoldEngine, sym: Any) -> Any:
     """The argument node of an inlined call a parameter symbol stands for, else None."""
     for frame in reversed(tr.fold_state.inline_frames):
         if id(sym) in frame["params"]:
@@ -40,7 +44,7 @@ def bound_argument(tr: Any, sym: Any) -> Any:
     return None
 
 
-def bound_code(tr: Any, sym: Any) -> str | None:
+def bound_code(tr: TranspilerState, sym: Any) -> str | None:
     """The Python expression of the argument value an inlined parameter reads, else None."""
     for frame in reversed(tr.fold_state.inline_frames):
         if id(sym) in frame["params"]:
@@ -48,7 +52,7 @@ def bound_code(tr: Any, sym: Any) -> str | None:
     return None
 
 
-def inline_owner(tr: Any, sym: Any) -> Any:
+def inline_owner(tr: TranspilerState, sym: Any) -> Any:
     """The inlined function a parameter symbol belongs to, else None."""
     for frame in reversed(tr.fold_state.inline_frames):
         if id(sym) in frame["params"]:
@@ -56,7 +60,7 @@ def inline_owner(tr: Any, sym: Any) -> Any:
     return None
 
 
-def _body_expression(tr: Any, fn: Any) -> Any:
+def _body_expression(tr: TranspilerState, fn: Any) -> Any:
     """The expression of `fn`'s body when it may be inlined (see the module doc), else None."""
     memo = tr.fold_state.inline_bodies
     if id(fn) in memo:
@@ -87,7 +91,7 @@ def _body_expression(tr: Any, fn: Any) -> Any:
     return value
 
 
-def worth_inlining(tr: Any, call: A.Call, fn: Any, constant_product: Any) -> bool:
+def worth_inlining(tr: TranspilerState, call: A.Call, fn: Any, constant_product: Any) -> bool:
     """Some argument is a product by a constant or a ``vecN(s)`` (`constant_product(tr, node)`:
     nir_fold.dot_operand, passed in so this module does not import nir_fold, which imports it)
     that the callee hands to a ``dot`` with a constant (nir_fold.merged_dot then merges the
@@ -122,7 +126,7 @@ def worth_inlining(tr: Any, call: A.Call, fn: Any, constant_product: Any) -> boo
     return False
 
 
-def inline_call(tr: Any, call: A.Call, fn: Any, mask: str | None) -> str:
+def inline_call(tr: TranspilerState, call: A.Call, fn: Any, mask: str | None) -> str:
     """The callee's return expression at the call site, its parameters read as the arguments'
     values (each argument evaluated once, left to right, before the body as a call does)."""
     from ...cpu_core.facts import is_plain_read
@@ -143,5 +147,5 @@ def inline_call(tr: Any, call: A.Call, fn: Any, mask: str | None) -> str:
         return tr.expr(value, mask)
     finally:
         frames.pop()
-        if watch is not None:
+        if watch is not None and tr.watched is not None:  # (a watch came from tr.watched)
             tr.watched[id(value)] = watch

@@ -12,6 +12,10 @@ from ...cpu_core.common import comment_safe, fold_tree
 from .common import _ASSIGNED, _LOCAL_REF, OUTLINE_LOOPS, RULE, SPILL_HEIGHT
 from .state import TranspilerState
 
+TYPE_CHECKING = False  # not typing's: importing typing costs every start-up
+if TYPE_CHECKING:
+    from ....semantics.model import Model
+
 
 class PythonLimits(TranspilerState):
     """What keeps the generated code inside CPython's limits, whatever the GLSL's nesting:
@@ -128,7 +132,7 @@ def _scalars(t: Any) -> int:
     return t.size if t.is_vector else 1
 
 
-def lane_state(model: Any, functions: list[Any]) -> tuple[int, Any]:
+def lane_state(model: Model, functions: list[Any]) -> tuple[int, Any]:
     """(an estimate of the scalars one lane holds at once, the declaration of the largest
     variable): every variable of every function (as if all were alive together), two more
     copies of the largest one (a masked write to an array builds the new array beside the old)

@@ -21,6 +21,10 @@ from .names import Names
 from .state import FnState
 from .statements import Statements
 
+TYPE_CHECKING = False  # not typing's: importing typing costs every start-up
+if TYPE_CHECKING:
+    from ....semantics.model import Model
+
 
 class Transpiler(Names, Functions, Statements, Expressions, PythonLimits):
     """`Transpiler(model, tab_path).module()` -> (Python source, meta dict)."""
@@ -32,7 +36,7 @@ class Transpiler(Names, Functions, Statements, Expressions, PythonLimits):
 
     def __init__(
         self,
-        model: Any,
+        model: Model,
         path: str = "<shader>",
         source_text: str | None = None,
         keep_alpha: bool = False,
@@ -231,7 +235,7 @@ class Transpiled:
     code: Any = None  # the compiled module (compiled once, to check it: see `compile_generated`)
 
 
-def transpile(model: Any, path: str = "<shader>", keep_alpha: bool = False) -> Transpiled:
+def transpile(model: Model, path: str = "<shader>", keep_alpha: bool = False) -> Transpiled:
     """Generate the Python module of a checked program (model from glslcheck.semantics); a located
     GlslError when it is too complex for Python (see `PythonLimits`)."""
     tr = Transpiler(model, path, keep_alpha=keep_alpha)

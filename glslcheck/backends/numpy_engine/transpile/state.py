@@ -11,6 +11,7 @@ run time it is an empty class. (This module imports none of the parts: they all 
 from __future__ import annotations
 
 from dataclasses import dataclass, field
+from typing import Protocol
 
 TYPE_CHECKING = False  # not typing's: importing typing costs every start-up
 if TYPE_CHECKING:
@@ -18,6 +19,7 @@ if TYPE_CHECKING:
     from typing import Any
 
     from ....frontend import syntax as A
+    from ....semantics.model import Model
     from ...cpu_core.facts import Facts, SideEffects
     from ...cpu_core.uniformity import Uniformity
     from ..fold_state import FoldState
@@ -60,12 +62,37 @@ class LValue:
     )
 
 
+class FoldedFunction(Protocol):
+    """What the decisions read of the function they are asked for."""
+
+    @property
+    def sym(self) -> Any: ...
+    @property
+    def is_entry(self) -> bool: ...
+
+
+class FoldEngine(Protocol):
+    """What the decisions that emit nothing read of the engine that asks them: the NumPy
+    Transpiler (TranspilerState), or nir_fold's FoldContext (for the compiled engine)."""
+
+    @property
+    def model(self) -> Any: ...
+    @property
+    def facts(self) -> Facts: ...
+    @property
+    def fold_state(self) -> FoldState: ...
+    @property
+    def fn(self) -> FoldedFunction | None: ...
+    def type_of(self, e: Any) -> Any: ...
+    def has_effects(self, e: Any) -> bool: ...
+
+
 class TranspilerState:
     if TYPE_CHECKING:
         # Set up by Transpiler.__init__ (see there).
         COMPACT_MIN_NODES: int
         keep_alpha: bool
-        model: Any
+        model: Model
         path: str
         entry: Any
         functions: list[Any]
@@ -94,6 +121,8 @@ class TranspilerState:
         _derivs: dict[int, bool]
         _line_names: dict[str, frozenset]
         cse: tuple[set[int], dict[str, str]] | None
+        # The tracing transpiler's expressions to report (tracing.py), else None.
+        watched: dict[int, tuple[str, Any, str]] | None
 
         # Names (names.py)
         def emit(self, text: str) -> None: ...
@@ -130,6 +159,9 @@ class TranspilerState:
         def lvalue(self, e: Any, mask: str | None) -> LValue: ...
         def read(self, lv: LValue, upto: int | None = None) -> str: ...
         def write(self, lv: LValue, value: str, mask: str | None) -> None: ...
+        def type_of(self, e: Any) -> Any: ...
+        def exprs(self, items: list[Any], mask: str | None) -> list[str]: ...
+        def binary_values(self, op: str, lt: Any, rtp: Any, left: str, right: str) -> str: ...
 
         # PythonLimits (limits.py)
         def local_names(self, lines: list[str]) -> set[str]: ...

@@ -24,8 +24,12 @@ from .queries import (
 )
 from .ssa_values import product_parts
 
+TYPE_CHECKING = False  # not typing's: importing typing costs every start-up
+if TYPE_CHECKING:
+    from ..state import TranspilerState
 
-def merge_constants(tr: Any, e: A.Binary, mask: str | None) -> str | None:
+
+def merge_constants(tr: TranspilerState, e: A.Binary, mask: str | None) -> str | None:
     """``#a * (b * #c) -> (a*c) * b`` and ``#a + (b + #c) -> (a + c) + b`` (no "used once"
     condition: they reach through any SSA value, here a never-written local such as
     ``vec2 uv = q * 1.2; ... uv * 0.2``, which is ``q * 0.24`` on llvmpipe: 1.2*0.2 is folded
@@ -104,7 +108,7 @@ def merge_constants(tr: Any, e: A.Binary, mask: str | None) -> str | None:
     return f"({rewritten} if rt.lp else {written})"
 
 
-def _scalar_dot(tr: Any, node: Any) -> tuple[str, Any, Any] | None:
+def _scalar_dot(tr: TranspilerState, node: Any) -> tuple[str, Any, Any] | None:
     """``("*", a, b)`` for ``dot(a, b)`` of two floats: Mesa's built-in is a multiply there
     (builtin_functions.cpp ``_dot``: ``ir_binop_mul`` for one component), so NIR merges a
     constant into it as into ``a * b`` (a hash's ``dot(n, 123.456) * 789.123`` is ``n *

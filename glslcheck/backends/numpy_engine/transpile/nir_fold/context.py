@@ -14,6 +14,10 @@ from typing import Any
 from ....cpu_core.facts import Facts, SideEffects
 from ...fold_state import FoldState
 
+TYPE_CHECKING = False  # not typing's: importing typing costs every start-up
+if TYPE_CHECKING:
+    from .....semantics.model import Model
+
 
 class EmittedFunction:
     """The function the decisions are asked for (what they read of the transpiler's `tr.fn`)."""
@@ -25,7 +29,7 @@ class EmittedFunction:
 class FoldContext:
     """The program, its facts and the rules' memo, at one function (:meth:`at`) at a time."""
 
-    def __init__(self, model: Any, facts: Facts) -> None:
+    def __init__(self, model: Model, facts: Facts) -> None:
         self.model = model
         self.facts = facts
         self.fold_state = FoldState()
