@@ -105,7 +105,7 @@ def _show(bounds: tuple[float, float]) -> str:
     return f"{lo}..{hi}"
 
 
-def _writes(model: Model, body: A.Node, sym: Any) -> bool:
+def _writes(model: Model, body: A.Node, sym: Symbol) -> bool:
     """Whether `body` assigns `sym` (=, op=, ++, --)."""
     for n in body.walk():
         target = (
@@ -152,11 +152,11 @@ def _loop_ranges(model: Model, fors: list[A.For]) -> dict[int, tuple[float, floa
     return out
 
 
-def _is(model: Model, e: Any, sym: Any) -> bool:
+def _is(model: Model, e: Any, sym: Symbol) -> bool:
     return type(e) is A.Identifier and model.symbol_of(e) is sym
 
 
-def _step(model: Model, e: Any, sym: Any) -> int | None:
+def _step(model: Model, e: Any, sym: Symbol) -> int | None:
     """+c or -c for `i++`, `++i`, `i--`, `i += c`, `i -= c`, `i = i + c` (c a positive constant)."""
     if type(e) in (A.Unary, A.Postfix) and e.op in ("++", "--") and _is(model, e.operand, sym):
         return 1 if e.op == "++" else -1
@@ -180,7 +180,7 @@ def _step(model: Model, e: Any, sym: Any) -> int | None:
 _FLIP = {"<": ">", "<=": ">=", ">": "<", ">=": "<="}
 
 
-def _limit(model: Model, cond: Any, sym: Any) -> tuple[str, int] | None:
+def _limit(model: Model, cond: Any, sym: Symbol) -> tuple[str, int] | None:
     """(op, bound) for a condition `i op bound` or `bound op i` with a constant bound."""
     if type(cond) is not A.Binary or cond.op not in _FLIP:
         return None
@@ -324,7 +324,7 @@ class _Flow:
     """Which components of the colour are certainly written, statement by statement. A state
     is a 4-bit mask (x, y, z, w), or None after a statement no path falls out of."""
 
-    def __init__(self, model: Model, sym: Any, need: int):
+    def __init__(self, model: Model, sym: Symbol, need: int):
         self.model, self.sym, self.need = model, sym, need
         self.unwritten_returns: list = []
 

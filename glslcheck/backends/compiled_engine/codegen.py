@@ -205,7 +205,7 @@ class Codegen(ExpressionEmitter):
         return out
 
     # -- variables -----------------------------------------------------------------------------
-    def declare_local(self, sym: Any, node: Any) -> list:
+    def declare_local(self, sym: Symbol, node: Any) -> list:
         from ..numpy_engine.transpile.common import python_ident
 
         name = python_ident(sym.unique_name or sym.name, node)
@@ -218,7 +218,7 @@ class Codegen(ExpressionEmitter):
         self.vars[id(sym)] = parts
         return parts
 
-    def global_parts(self, sym: Any, node: Any) -> list:
+    def global_parts(self, sym: Symbol, node: Any) -> list:
         parts = self.vars.get(id(sym))
         if parts is None:
             parts = []
@@ -253,7 +253,7 @@ class Codegen(ExpressionEmitter):
             ]
         return [f"{arr}[{off + c}]" for c in range(comps)]
 
-    def literal_global(self, sym: Any) -> list | None:
+    def literal_global(self, sym: Symbol) -> list | None:
         """A `const` global of literals (`const float EPS = 0.001;`, `const vec3 K = vec3(1, 0,
         -2);`) as module constants: the value init_globals would store (a literal, its negation
         and a constructor of them are exact), read without a state array, folded by LLVM."""
@@ -261,16 +261,19 @@ class Codegen(ExpressionEmitter):
         if sym.qualifier != "const" or not isinstance(d, A.Declarator) or d.init is None:
             return None
         t = sym.type
-        if not (t.is_scalar or t.is_vector) or not _literal_tree(self.model, d.init, t.base):
+        base = t.base
+        if not (t.is_scalar or t.is_vector) or base is None:  # (a scalar or vector has a base)
+            return None
+        if not _literal_tree(self.model, d.init, base):
             return None
         cv = self.model.const_value(d.init)
         if cv is None:
             return None
         values = flatten(cv)
         values = values * t.size if t.is_vector and len(values) == 1 else values
-        return [self.const_part(t.base, v) for v in values]
+        return [self.const_part(base, v) for v in values]
 
-    def var_parts(self, sym: Any, node: Any) -> list:
+    def var_parts(self, sym: Symbol, node: Any) -> list:
         if sym.kind in ("local", "param"):
             parts = self.vars.get(id(sym))
             if parts is None:
@@ -410,19 +413,19 @@ class Codegen(ExpressionEmitter):
         self.indent -= 1
 
     # -- functions -----------------------------------------------------------------------------
-    def fn_name(self, sym: Any) -> str:
+    def fn_name(self, sym: Symbol) -> str:
         from ..numpy_engine.transpile.common import python_ident
 
         return "f_" + python_ident(sym.unique_name or sym.name, sym.node)
 
-    def variant_name(self, sym: Any, seed: frozenset) -> str:
+    def variant_name(self, sym: Symbol, seed: frozenset) -> str:
         """A function's name, with the indices of its lane-uniform parameters when it has any
         (`f_map__u0_2`): the NumPy backend passes a value of one lane to the parameter there,
         which its constant folding reads as a constant (see `lane_uniform`)."""
         base = self.fn_name(sym)
         return base if not seed else base + "__u" + "_".join(str(i) for i in sorted(seed))
 
-    def gen_function(self, sym: Any, seed: frozenset = frozenset()) -> None:
+    def gen_function(self, sym: Symbol, seed: frozenset = frozenset()) -> None:
         node = sym.node
         self.variants.add((id(sym), seed))
         params_u = {
@@ -473,7 +476,7 @@ class Codegen(ExpressionEmitter):
         )
         self.fn = None
 
-    def vars_of_params(self, sym: Any) -> list:
+    def vars_of_params(self, sym: Symbol) -> list:
         out = []
         for p, (_, _, d) in zip(sym.node.proto.params, sym.params):
             psym = self.model.symbol_of(p)
@@ -581,6 +584,7 @@ class Codegen(ExpressionEmitter):
     def condition(self, cond: Any) -> str:
         if isinstance(cond, A.ConditionDeclaration):
             sym = self.model.symbol_of(cond)
+            assert sym is not None  # every declaration of a checked program has its symbol
             value = self.expr(cond.init).parts
             parts = self.declare_local(sym, cond)
             self.write(parts, value)

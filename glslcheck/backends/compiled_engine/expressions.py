@@ -40,7 +40,7 @@ if TYPE_CHECKING:
 class FnState:
     """The function Codegen is generating."""
 
-    def __init__(self, sym: Any, uni: Any = None) -> None:
+    def __init__(self, sym: Symbol | None, uni: Any = None) -> None:
         self.sym = sym
         self.uni = uni  # cpu_core's Uniformity of the function (None: global initializers)
         self.outs: list = []  # the parts of out/inout parameters, returned after the value
@@ -71,9 +71,9 @@ class ExpressionEmitter:
         def atom(self, value: Any) -> Any: ...
         def cf(self, v: float) -> str: ...
         def ci(self, v: int, unsigned: bool = False) -> str: ...
-        def var_parts(self, sym: Any, node: Any) -> list: ...
-        def fn_name(self, sym: Any) -> str: ...
-        def variant_name(self, sym: Any, seed: frozenset) -> str: ...
+        def var_parts(self, sym: Symbol, node: Any) -> list: ...
+        def fn_name(self, sym: Symbol) -> str: ...
+        def variant_name(self, sym: Symbol, seed: frozenset) -> str: ...
 
     # -- writes --------------------------------------------------------------------------------
     def write(self, targets: list, values: list, fresh_arrays: bool = False) -> None:
@@ -125,6 +125,7 @@ class ExpressionEmitter:
         """The target parts of an l-value, its index expressions evaluated (once, in order)."""
         if isinstance(e, A.Identifier):
             sym = self.model.symbol_of(e)
+            assert sym is not None  # every name of a checked program has its symbol
             return list(self.var_parts(sym, e))
         if isinstance(e, A.Field):
             base = self.lvalue(e.base)

@@ -141,7 +141,7 @@ class Uniformity:
         ++/--, an out argument: the whole l-value, `v.x` not `v`) needs no mask."""
         return id(target) in self.free
 
-    def is_varying(self, sym: Any) -> bool:
+    def is_varying(self, sym: Symbol) -> bool:
         """True when the variable (a symbol) may differ between lanes."""
         return id(sym) in self.varying
 
@@ -237,7 +237,7 @@ class Uniformity:
         if not (uniform and (free or self.mu)):
             self.varying.add(id(sym))
 
-    def declare(self, sym: Any, uniform: bool, level: int | None = None) -> None:
+    def declare(self, sym: Symbol | None, uniform: bool, level: int | None = None) -> None:
         if sym is None:
             return
         self.seq += 1

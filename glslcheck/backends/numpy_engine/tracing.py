@@ -49,7 +49,7 @@ from .transpile import Transpiler
 
 TYPE_CHECKING = False  # not typing's: importing typing costs every start-up
 if TYPE_CHECKING:
-    from ...semantics.model import Model
+    from ...semantics.model import Model, Symbol
 
 MAX_STEPS = (
     200_000  # steps PixelTracer records; later steps only count (a runaway shader stays bounded)
@@ -163,7 +163,7 @@ class TraceTranspiler(Transpiler):
         return self.fn is not None and not self.in_const and self.fn.sym.name != "<globals>"
 
     # -- what is traced ----------------------------------------------------------------------------
-    def var_name(self, sym: Any, node: Any) -> str:
+    def var_name(self, sym: Symbol, node: Any) -> str:
         name = super().var_name(sym, node)
         self._glsl.setdefault(name, sym.name)
         return name
@@ -171,7 +171,7 @@ class TraceTranspiler(Transpiler):
     def early_out(self, body: list[Any]) -> None:
         return None  # the select computes the return that does not happen: not traceable
 
-    def gen_function(self, sym: Any) -> None:
+    def gen_function(self, sym: Symbol) -> None:
         for n in sym.node.body.walk():
             if isinstance(n, A.If):
                 self.watched[id(n.cond)] = ("b", n, "if" if n.else_ is None else "if/else")

@@ -529,7 +529,7 @@ def _unchanged_init(tr: TranspilerState, ident: A.Identifier, call: A.Call) -> A
     return init
 
 
-def _written_components(tr: TranspilerState, n: Any, sym: Any, call: A.Call) -> Any:
+def _written_components(tr: TranspilerState, n: Any, sym: Symbol, call: A.Call) -> Any:
     """The components of `sym` the node `n` writes: "all", a tuple of indices, or ()."""
     targets: list[Any] = []
     if isinstance(n, A.Assignment):
@@ -760,7 +760,7 @@ def _emit_call(
     return r
 
 
-def out_roots(tr: TranspilerState, call: A.Call, sym: Any) -> set[str] | None:
+def out_roots(tr: TranspilerState, call: A.Call, sym: Symbol | None) -> set[str] | None:
     """The operations at the root of each component of the value `call` (a call of a user
     function in the current function) writes into the variable `sym` passed whole as an out
     or inout argument, as NIR sees them after inlining: "+" (a sum), "*", "/", "neg", "call"
@@ -792,7 +792,7 @@ def _product_sum(t: _T) -> bool:
 
 
 def product_sums(
-    tr: TranspilerState, call: A.Call, sym: Any
+    tr: TranspilerState, call: A.Call, sym: Symbol | None
 ) -> list[tuple[str, str] | None] | None:
     """Per component of the value the folded call `call` (emitted by :func:`folded_call` in the
     current Python function) wrote into the variable `sym`: the code of its two products when

@@ -100,7 +100,7 @@ class ConstantFlow:
                     if d != "in" and psym is not None and id(psym) in self.symbols:
                         self._add(written_variable(m, arg)[0])
 
-    def _add(self, sym: Any) -> None:
+    def _add(self, sym: Symbol | None) -> None:
         if sym is not None:
             self.symbols.add(id(sym))
 

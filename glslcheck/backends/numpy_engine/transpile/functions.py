@@ -21,7 +21,7 @@ class Functions(TranspilerState):
     """The function and call pass of `Transpiler`."""
 
     # -- functions -----------------------------------------------------------------------------
-    def gen_function(self, sym: Any) -> None:
+    def gen_function(self, sym: Symbol) -> None:
         node = sym.node
         is_entry = sym is self.entry
         uni = Uniformity(self.model, self.facts, sym, is_entry)

@@ -36,7 +36,7 @@ if TYPE_CHECKING:
     from .state import FoldEngine, TranspilerState
 
 
-def bound_argument(tr: FoldEngine, sym: Any) -> Any:
+def bound_argument(tr: FoldEngine, sym: Symbol) -> Any:
     """The argument node of an inlined call a parameter symbol stands for, else None."""
     for frame in reversed(tr.fold_state.inline_frames):
         if id(sym) in frame["params"]:
@@ -44,7 +44,7 @@ def bound_argument(tr: FoldEngine, sym: Any) -> Any:
     return None
 
 
-def bound_code(tr: TranspilerState, sym: Any) -> str | None:
+def bound_code(tr: TranspilerState, sym: Symbol) -> str | None:
     """The Python expression of the argument value an inlined parameter reads, else None."""
     for frame in reversed(tr.fold_state.inline_frames):
         if id(sym) in frame["params"]:
@@ -52,7 +52,7 @@ def bound_code(tr: TranspilerState, sym: Any) -> str | None:
     return None
 
 
-def inline_owner(tr: TranspilerState, sym: Any) -> Any:
+def inline_owner(tr: TranspilerState, sym: Symbol | None) -> Any:
     """The inlined function a parameter symbol belongs to, else None."""
     for frame in reversed(tr.fold_state.inline_frames):
         if id(sym) in frame["params"]:

@@ -23,7 +23,7 @@ from .statements import Statements
 
 TYPE_CHECKING = False  # not typing's: importing typing costs every start-up
 if TYPE_CHECKING:
-    from ....semantics.model import Model
+    from ....semantics.model import Model, Symbol
 
 
 class Transpiler(Names, Functions, Statements, Expressions, PythonLimits):
@@ -127,7 +127,7 @@ class Transpiler(Names, Functions, Statements, Expressions, PythonLimits):
         return "\n".join(out) + "\n", meta
 
     @staticmethod
-    def _fed(sym: Any) -> bool:
+    def _fed(sym: Symbol) -> bool:
         """Whether a declared uniform gets Shadertoy's value (shadertoy.fed_uniform), as on GL."""
         from ....shadertoy.wrapper import fed_uniform
 

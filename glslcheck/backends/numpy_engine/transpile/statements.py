@@ -528,6 +528,7 @@ class Statements(TranspilerState):
         assert fs is not None  # generating a function's body
         if isinstance(cond, A.ConditionDeclaration):
             sym = self.model.symbol_of(cond)
+            assert sym is not None  # every declaration of a checked program has its symbol
             name = self.var_name(sym, cond)
             self.emit(f"{name} = {self.expr(cond.init, mask)}")
             if name not in fs.defined:

@@ -28,6 +28,7 @@ from .queries import (
 
 TYPE_CHECKING = False  # not typing's: importing typing costs every start-up
 if TYPE_CHECKING:
+    from .....semantics.model import Symbol
     from ..state import TranspilerState
 
 
@@ -368,7 +369,7 @@ def _cancelled_sum(
     return f"({lp} if rt.lp else {written})"
 
 
-def _cancelled_later(tr: TranspilerState, facts: Any, sym: Any, node: A.Assignment) -> bool:
+def _cancelled_later(tr: TranspilerState, facts: Any, sym: Symbol, node: A.Assignment) -> bool:
     """A later compound assignment of ``sym`` subtracts what ``node`` adds (or adds what it
     subtracts), the same text: :func:`_cancelled_sum` may need the value before ``node``."""
     text, end = to_glsl(node.value), facts.exit[id(node)]
@@ -438,7 +439,7 @@ def _writes_locals(tr: TranspilerState, value: Any) -> bool:
     return False
 
 
-def _read_later(tr: TranspilerState, facts: Any, sym: Any, node: Any) -> bool:
+def _read_later(tr: TranspilerState, facts: Any, sym: Symbol, node: Any) -> bool:
     """A product by a constant (or a copy into a local read so) reads ``sym`` after ``node``
     (one before it, in a loop, is not reached by this write: :func:`_component_record`)."""
     end = facts.exit[id(node)]

@@ -16,13 +16,13 @@ from ...fold_state import FoldState
 
 TYPE_CHECKING = False  # not typing's: importing typing costs every start-up
 if TYPE_CHECKING:
-    from .....semantics.model import Model
+    from .....semantics.model import Model, Symbol
 
 
 class EmittedFunction:
     """The function the decisions are asked for (what they read of the transpiler's `tr.fn`)."""
 
-    def __init__(self, sym: Any, is_entry: bool) -> None:
+    def __init__(self, sym: Symbol | None, is_entry: bool) -> None:  # (None: the globals)
         self.sym, self.is_entry = sym, is_entry
 
 
@@ -36,7 +36,7 @@ class FoldContext:
         self.has_effects = SideEffects(model)
         self.fn: EmittedFunction | None = None
 
-    def at(self, sym: Any, is_entry: bool) -> FoldContext:
+    def at(self, sym: Symbol | None, is_entry: bool) -> FoldContext:
         """This context, at the function `sym`."""
         if self.fn is None or self.fn.sym is not sym:
             self.fn = EmittedFunction(sym, is_entry)

@@ -73,7 +73,7 @@ def is_constant(tr: TranspilerState, node: Any) -> bool:
     return isinstance(node, A.Identifier) and constant_global(tr, tr.model.symbol_of(node))
 
 
-def constant_global(tr: FoldEngine, sym: Any) -> bool:
+def constant_global(tr: FoldEngine, sym: Symbol | None) -> bool:
     """A global variable (not `const`) initialised by a constant expression and never written:
     a constant to Mesa (GLSL IR propagates it, opt_constant_variable), so to every rule here
     (``float PI = 3.14159265;`` then ``fract(p / PI)``: measured, the rules apply as for a
@@ -380,7 +380,7 @@ def written_symbols(tr: FoldEngine) -> set[int]:
 class FunctionStandin(FnState):
     """The transpiler's current function (`tr.fn`) as the rules read it, for another one."""
 
-    def __init__(self, sym: Any) -> None:
+    def __init__(self, sym: Symbol) -> None:
         super().__init__(sym, None, False)
 
 

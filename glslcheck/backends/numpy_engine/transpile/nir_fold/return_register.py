@@ -16,6 +16,7 @@ from .queries import current_function
 
 TYPE_CHECKING = False  # not typing's: importing typing costs every start-up
 if TYPE_CHECKING:
+    from .....semantics.model import Symbol
     from ..state import TranspilerState
 
 
@@ -57,7 +58,7 @@ def _returns_in_branch(tr: TranspilerState, fn: Any) -> bool:
     return False
 
 
-def _in_kept_loop(tr: TranspilerState, sym: Any, node: Any, depth: int) -> bool:
+def _in_kept_loop(tr: TranspilerState, sym: Symbol, node: Any, depth: int) -> bool:
     """``node`` (in function ``sym``) runs again and again in one invocation: its innermost
     loop, here or around every call of the function, is one NIR does not unroll."""
     from .....semantics.analysis.dataflow import FunctionFacts
