@@ -596,7 +596,7 @@ class ExpressionEmitter:
             raise engine_error(f"the call of '{e.callee}' was not resolved by the checker", e)
         return builtin_call(self, e, tgt)
 
-    def user_call(self, e: A.Call, fn: Any) -> Val:
+    def user_call(self, e: A.Call, fn: Symbol) -> Val:
         args: list[str] = []
         outs: list[list] = []
         for a, (_, ptype, d) in zip(e.args, fn.params):

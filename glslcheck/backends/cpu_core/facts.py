@@ -108,7 +108,7 @@ class Facts:
         """The variables a node itself writes (assignment, ++/--, out and inout arguments)."""
         return written_variables(self.model, node)
 
-    def closed(self, fn: Any) -> bool:
+    def closed(self, fn: Symbol) -> bool:
         """A call of `fn` with uniform arguments gives a uniform result (no lane state read or
         written, no discard)."""
         return (
@@ -117,7 +117,7 @@ class Facts:
             and not self.writes_globals(fn)
         )
 
-    def writes_globals(self, fn: Any) -> bool:
+    def writes_globals(self, fn: Symbol) -> bool:
         key = id(fn)
         if key not in self._calls_cache:
             res = False

@@ -75,7 +75,7 @@ class Uniformity:
         self,
         model: Model,
         facts: Facts,
-        fn: Any,
+        fn: Symbol,
         is_entry: bool,
         uniform_params: frozenset | set = frozenset(),
     ) -> None:

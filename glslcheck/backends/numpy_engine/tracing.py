@@ -249,7 +249,7 @@ class TraceTranspiler(Transpiler):
         super().sub(s, mask)
 
     def call_text(
-        self, e: A.Call, fn: Any, call_mask: str | None, args: list[str], mask: str | None
+        self, e: A.Call, fn: Symbol, call_mask: str | None, args: list[str], mask: str | None
     ) -> str:
         text = super().call_text(e, fn, call_mask, args, mask)
         if not self._traced():

@@ -346,7 +346,7 @@ class _Eval:
             return flat[:1]
         raise _Refuse
 
-    def user_call(self, fn: Any, args: list[Any], env: dict[int, list]) -> list[_T]:
+    def user_call(self, fn: Symbol, args: list[Any], env: dict[int, list]) -> list[_T]:
         """The callee's result; its out/inout parameters written back into `env`."""
         self.depth += 1
         if self.depth > 16:
@@ -368,7 +368,7 @@ class _Eval:
         self.depth -= 1
         return result
 
-    def body(self, fn: Any, env: dict[int, list]) -> list[_T]:
+    def body(self, fn: Symbol, env: dict[int, list]) -> list[_T]:
         stmts = fn.node.body.stmts
         for i, st in enumerate(stmts):
             if isinstance(st, A.Return) and i == len(stmts) - 1:
@@ -396,9 +396,9 @@ class _Eval:
             elif (
                 isinstance(st, A.ExpressionStatement)
                 and isinstance(st.expr, A.Call)
-                and isinstance(self.tr.model.call_target(st.expr), Symbol)
+                and isinstance(target := self.tr.model.call_target(st.expr), Symbol)
             ):
-                self.user_call(self.tr.model.call_target(st.expr), st.expr.args, env)
+                self.user_call(target, st.expr.args, env)
             else:
                 raise _Refuse
         return []  # (a function that returns a value ends with a return: checked by the checker)
@@ -553,7 +553,7 @@ def _written_components(tr: TranspilerState, n: Any, sym: Symbol, call: A.Call) 
     return ()
 
 
-def folded_call(tr: TranspilerState, call: A.Call, fn: Any, mask: str | None) -> str | None:
+def folded_call(tr: TranspilerState, call: A.Call, fn: Symbol, mask: str | None) -> str | None:
     """The code of the call `call` of user function `fn` with constants propagated as NIR does
     (module doc), emitted as ``if rt.lp: <folded> else: <the call as written>``; None where
     this call is left as written (the common case): no argument has a constant component, or
@@ -585,7 +585,7 @@ def folded_call(tr: TranspilerState, call: A.Call, fn: Any, mask: str | None) ->
     return _emit_call(tr, call, fn, mask, env, params, result, holders)
 
 
-def _calls_dot(tr: TranspilerState, fn: Any) -> bool:
+def _calls_dot(tr: TranspilerState, fn: Symbol) -> bool:
     """`fn`'s body calls the built-in dot (where :meth:`_Eval.factored_add` may apply)."""
     memo = tr.fold_state.call_fold_dots
     if id(fn) not in memo:
@@ -598,7 +598,7 @@ def _calls_dot(tr: TranspilerState, fn: Any) -> bool:
     return memo[id(fn)]
 
 
-def _has_constant_argument(tr: TranspilerState, call: A.Call, fn: Any) -> bool:
+def _has_constant_argument(tr: TranspilerState, call: A.Call, fn: Symbol) -> bool:
     for a, (_, _, dr) in zip(call.args, fn.params):
         if dr != "out" and (
             tr.model.const_value(a) is not None
@@ -634,7 +634,7 @@ def _scaled_argument(tr: TranspilerState, a: Any, call: A.Call) -> tuple[Any, An
 
 
 def _evaluate(
-    tr: TranspilerState, call: A.Call, fn: Any, mask: str | None, constants: bool
+    tr: TranspilerState, call: A.Call, fn: Symbol, mask: str | None, constants: bool
 ) -> tuple:
     """The call evaluated with its arguments bound to stand-in parameters: (the evaluation,
     the parameters' final terms by symbol id, the parameter symbols, the result's terms, the
@@ -687,7 +687,7 @@ def _evaluate(
 def _emit_call(
     tr: TranspilerState,
     call: A.Call,
-    fn: Any,
+    fn: Symbol,
     mask: str | None,
     env: dict[int, list],
     params: list[Any],

@@ -72,7 +72,7 @@ class ConstantFlow:
             return sym is not None and id(sym) in self.symbols
         return False
 
-    def _function(self, fn: Any) -> None:
+    def _function(self, fn: Symbol) -> None:
         m = self.model
         for n in fn.node.body.walk():
             if (

@@ -152,7 +152,7 @@ class Functions(TranspilerState):
             return "return None"
         return f"return {ret}"
 
-    def user_call(self, e: A.Call, fn: Any, mask: str | None) -> str:
+    def user_call(self, e: A.Call, fn: Symbol, mask: str | None) -> str:
         if worth_inlining(self, e, fn, nir_fold.dot_operand):
             return inline_call(
                 self, e, fn, mask
@@ -193,7 +193,7 @@ class Functions(TranspilerState):
         return f"{r}[0]"
 
     def call_text(
-        self, e: A.Call, fn: Any, call_mask: str | None, args: list[str], mask: str | None
+        self, e: A.Call, fn: Symbol, call_mask: str | None, args: list[str], mask: str | None
     ) -> str:
         """The Python call of user function `fn` (the tracing transpiler, tracing.py, wraps it)."""
         return f"{self.fn_name(fn)}(S, {call_mask}{''.join(', ' + x for x in args)})"

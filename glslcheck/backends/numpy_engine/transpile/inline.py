@@ -60,7 +60,7 @@ def inline_owner(tr: TranspilerState, sym: Symbol | None) -> Any:
     return None
 
 
-def _body_expression(tr: TranspilerState, fn: Any) -> Any:
+def _body_expression(tr: TranspilerState, fn: Symbol) -> Any:
     """The expression of `fn`'s body when it may be inlined (see the module doc), else None."""
     memo = tr.fold_state.inline_bodies
     if id(fn) in memo:
@@ -91,7 +91,7 @@ def _body_expression(tr: TranspilerState, fn: Any) -> Any:
     return value
 
 
-def worth_inlining(tr: TranspilerState, call: A.Call, fn: Any, constant_product: Any) -> bool:
+def worth_inlining(tr: TranspilerState, call: A.Call, fn: Symbol, constant_product: Any) -> bool:
     """Some argument is a product by a constant or a ``vecN(s)`` (`constant_product(tr, node)`:
     nir_fold.dot_operand, passed in so this module does not import nir_fold, which imports it)
     that the callee hands to a ``dot`` with a constant (nir_fold.merged_dot then merges the
@@ -126,7 +126,7 @@ def worth_inlining(tr: TranspilerState, call: A.Call, fn: Any, constant_product:
     return False
 
 
-def inline_call(tr: TranspilerState, call: A.Call, fn: Any, mask: str | None) -> str:
+def inline_call(tr: TranspilerState, call: A.Call, fn: Symbol, mask: str | None) -> str:
     """The callee's return expression at the call site, its parameters read as the arguments'
     values (each argument evaluated once, left to right, before the body as a call does)."""
     from ...cpu_core.facts import is_plain_read

@@ -20,7 +20,7 @@ if TYPE_CHECKING:
     from ..state import TranspilerState
 
 
-def register_call(tr: TranspilerState, call: A.Call, fn: Any) -> bool:
+def register_call(tr: TranspilerState, call: A.Call, fn: Symbol) -> bool:
     """The result of this call of ``fn``, made under a mask in a function that takes
     derivatives, is llvmpipe's register in the lanes the mask leaves out: they keep the value
     they had the last time this call ran for them (frame.Lanes.reg).
@@ -43,7 +43,7 @@ def register_call(tr: TranspilerState, call: A.Call, fn: Any) -> bool:
     return _in_kept_loop(tr, current_function(tr).sym, call, 0)
 
 
-def _returns_in_branch(tr: TranspilerState, fn: Any) -> bool:
+def _returns_in_branch(tr: TranspilerState, fn: Symbol) -> bool:
     """``fn`` returns a value from inside an ``if`` or a loop, computed there by a call."""
     if fn.type is None or str(fn.type) == "void":
         return False

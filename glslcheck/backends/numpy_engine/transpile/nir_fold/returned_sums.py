@@ -31,7 +31,7 @@ if TYPE_CHECKING:
     from ..state import TranspilerState
 
 
-def sunk_return(tr: TranspilerState, fn: Any) -> list[tuple[Any, Any, str]] | None:
+def sunk_return(tr: TranspilerState, fn: Symbol) -> list[tuple[Any, Any, str]] | None:
     """The sum a user function returns when a caller adds a constant to its result and NIR,
     which inlines every function, would sink that constant into it (:func:`sink._sink_sum`):
     ``float f; f = 0.5*noise(p); f += 0.25*noise(q); ... return f;`` called as
@@ -70,7 +70,7 @@ def _sink_calls(tr: TranspilerState) -> set[int]:
     return found
 
 
-def _return_chain(tr: TranspilerState, fn: Any) -> list[tuple[Any, Any, str]] | None:
+def _return_chain(tr: TranspilerState, fn: Symbol) -> list[tuple[Any, Any, str]] | None:
     body = fn.node.body.stmts
     if (
         not body
@@ -172,7 +172,7 @@ def sink_into_call(tr: TranspilerState, e: A.Binary, mask: str | None) -> str | 
     return f"({result} if rt.lp else ({result} {e.op} {tk}))"
 
 
-def return_constant_args(tr: TranspilerState, call: A.Call, fn: Any) -> list[str]:
+def return_constant_args(tr: TranspilerState, call: A.Call, fn: Symbol) -> list[str]:
     """The extra argument of a call of a function with a :func:`sunk_return`: the constant the
     caller adds (:func:`sink._sink_sum`, llvmpipe mode) or None; [] for other functions."""
     if sunk_return(tr, fn) is None:
