@@ -43,11 +43,13 @@ run: setup
 test: setup
 	$(PY) -m pytest -q
 
-# The project's own checks: ruff's linter and formatter (configuration in pyproject.toml).
+# The project's own checks: ruff's linter and formatter, and mypy's type check of the package
+# (configuration of each in pyproject.toml).
 LINTED := glslcheck tests tools benchmarks
 check: setup
 	$(VENV)/bin/ruff check $(LINTED)
 	$(VENV)/bin/ruff format --check $(LINTED)
+	$(VENV)/bin/mypy
 
 clean:
 	rm -rf $(VENV) build dist *.egg-info

@@ -9,12 +9,13 @@ from __future__ import annotations
 
 from collections.abc import Callable
 from dataclasses import dataclass
-from typing import TYPE_CHECKING, Any
+from typing import Any
 
 from ..base.precision import check_precision
 from ..shadertoy.frame_inputs import FrameInputs, frame_inputs
 from ..shadertoy.sources import Shader
 
+TYPE_CHECKING = False  # not typing's: importing typing costs every start-up
 if TYPE_CHECKING:
     import numpy as np
 

@@ -68,7 +68,7 @@ class MultipassProgram:
         self.lowp_samplers = True
         self._state: dict[str, np.ndarray] = {}
         self._images: dict[tuple, ChannelInput] = {}
-        self._key = None
+        self._key: tuple[int, int, str | None] | None = None  # (width, height, precision)
         self._next = 0
 
     def _check_reads(self) -> None:
@@ -119,7 +119,7 @@ class MultipassProgram:
         return self.programs[self.output].format_stats()
 
     def _inputs(self, tab: str) -> list:
-        chans = []
+        chans: list[ChannelInput | None] = []
         for n in range(4):
             b = self.bindings[tab].get(n)
             if b is None:
@@ -191,4 +191,5 @@ class MultipassProgram:
                 if tab == self.output:
                     out = img
             self._next = i + 1
+        assert out is not None  # frame >= 0: the loop ran at least once
         return out

@@ -2,6 +2,10 @@
 glslcheck/base/records.py). Written by `python -m glslcheck.base.records`; do not edit.
 """
 
+# `_set0`, `_set1`, ... and `_Factory` are the globals each class's `__init__` is given
+# where it is made (records._make_init, frontend/syntax.py), not names of this module.
+# mypy: disable-error-code="name-defined"
+
 
 def _t0(self):
     pass

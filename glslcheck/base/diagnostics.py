@@ -8,7 +8,7 @@ preprocessing and the Shadertoy wrapper.
 
 from __future__ import annotations
 
-from .records import field, record
+from .records import field, field_names, record
 
 TYPE_CHECKING = False  # not typing's: importing typing costs every start-up
 if TYPE_CHECKING:
@@ -82,8 +82,8 @@ class _PendingLocation(Location):
         return repr(self._compute())
 
 
-_FIELDS = frozenset(Location._fields)
-_FIELD_SETTERS = tuple((name, Location.__dict__[name].__set__) for name in Location._fields)
+_FIELDS = frozenset(field_names(Location))
+_FIELD_SETTERS = tuple((name, Location.__dict__[name].__set__) for name in field_names(Location))
 _new_pending = _PendingLocation.__new__
 _set_pending = Location.__dict__["_pending"].__set__
 _del_pending = Location.__dict__["_pending"].__delete__

@@ -166,17 +166,17 @@ class GifWriter:
             int(round(1000 / fps)), 10
         )  # ms; GIF counts in 1/100 s, browsers floor to 10 ms
         self.frames = 0
-        self._atomic = None
-        self._file = None
+        self._atomic: contextlib.AbstractContextManager[str] | None = None
+        self._file: io.BufferedWriter | None = None  # open between __enter__ and __exit__
 
     def __enter__(self) -> GifWriter:
         check_output(self.path, (".gif",), "animation")
-        self._atomic = atomic_write(self.path, "animation")
-        tmp = self._atomic.__enter__()
+        self._atomic = atomic = atomic_write(self.path, "animation")
+        tmp = atomic.__enter__()
         try:
             self._file = open(tmp, "wb")
         except OSError as e:
-            self._atomic.__exit__(type(e), e, e.__traceback__)
+            atomic.__exit__(type(e), e, e.__traceback__)
             raise InputError(
                 f"{self.path}: error: cannot write the animation ({e.strerror or e})"
             ) from None
@@ -198,6 +198,7 @@ class GifWriter:
                 header = []
             # Each frame carries its own colour table (the first one's is also the global one).
             data = GifImagePlugin.getdata(frame, duration=self.duration, include_color_table=True)
+            assert self._file is not None, "GifWriter.add outside its with block"
             self._file.write(b"".join(bytes(b) for b in (*header, *data)))
         except OSError as e:
             raise InputError(
@@ -207,6 +208,7 @@ class GifWriter:
 
     def __exit__(self, kind, error, tb) -> None:
         atomic, self._atomic = self._atomic, None
+        assert atomic is not None and self._file is not None, "__exit__ without __enter__"
         try:
             if error is None:
                 if not self.frames:

@@ -133,7 +133,8 @@ def parse_times(text: str) -> tuple[float, ...]:
 
 def parse_mouse(text: str) -> tuple[float, float, float, float]:
     """'X,Y,Z,W' -> iMouse (pixels; signs of Z and W as on Shadertoy)."""
-    return parse_floats(text, 4, "--mouse")  # type: ignore[return-value]
+    x, y, z, w = parse_floats(text, 4, "--mouse")
+    return x, y, z, w
 
 
 def parse_frame(text: str) -> int:

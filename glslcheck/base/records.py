@@ -29,9 +29,25 @@ from types import FunctionType, MemberDescriptorType
 TYPE_CHECKING = False  # not typing's: importing typing costs every start-up
 if TYPE_CHECKING:
     from collections.abc import Callable
-    from typing import Any
+    from typing import Any, dataclass_transform
+else:
 
-__all__ = ["record", "field", "replace", "FrozenInstanceError", "tuple_getter"]
+    def dataclass_transform(**_options):
+        """`typing.dataclass_transform`, which only tells type checkers that a decorator or a
+        metaclass makes dataclass-like classes (`record`, frontend/syntax.py's nodes): nothing
+        to do at run time (and no import of typing)."""
+        return lambda function: function
+
+
+__all__ = [
+    "record",
+    "field",
+    "field_names",
+    "replace",
+    "FrozenInstanceError",
+    "tuple_getter",
+    "dataclass_transform",
+]
 
 _MISSING = object()
 
@@ -106,7 +122,7 @@ def _init_template(count: int, frozen: bool, factories: tuple[bool, ...]):
 # `base/_init_code.py` holds them as functions, compiled into its .pyc like any module,
 # keyed by the exact text `init_code` would compile; `python -m glslcheck.base.records` writes it,
 # and tests/test_records.py checks that it holds exactly the lint path's templates.
-_precompiled: dict | None = None
+_precompiled: dict[str, Any] | None = None  # template text -> its function (any arity)
 _recorded: list[str] | None = None  # the texts asked for, while the generator records them
 
 
@@ -117,16 +133,21 @@ def init_code(source: str):
     if _recorded is not None:
         _recorded.append(source)
     if _precompiled is None:
-        try:
-            from ._init_code import SOURCES as _precompiled
-        except ImportError:  # the generator's first run
-            _precompiled = {}
+        _precompiled = _stored_templates()
     function = _precompiled.get(source)
     if function is not None:
         return function.__code__.replace(co_name="__init__", co_qualname="__init__")
     env: dict[str, Any] = {}
     exec(source, {}, env)  # noqa: S102 - a fixed template
     return env["__init__"].__code__
+
+
+def _stored_templates() -> dict[str, Any]:
+    try:
+        from ._init_code import SOURCES
+    except ImportError:  # the generator's first run
+        return {}
+    return SOURCES
 
 
 def lint_path_templates() -> list[str]:
@@ -166,6 +187,10 @@ def init_code_source(templates: list[str]) -> str:
         "glslcheck/base/records.py). Written by `python -m glslcheck.base.records`; do not edit.",
         '"""',
         "",
+        "# `_set0`, `_set1`, ... and `_Factory` are the globals each class's `__init__` is given",
+        "# where it is made (records._make_init, frontend/syntax.py), not names of this module.",
+        '# mypy: disable-error-code="name-defined"',
+        "",
     ]
     for i, source in enumerate(templates):
         head, sep, body = source.partition("\n")
@@ -185,8 +210,9 @@ def main() -> int:
     return 0
 
 
-def _make_init(cls: type, names: tuple[str, ...], defaults: tuple, frozen: bool) -> FunctionType:
-    factories = tuple(cls._field_specs[name].factory is not None for name in names)
+def _make_init(cls: type, specs: dict[str, _Field], defaults: tuple, frozen: bool) -> FunctionType:
+    names = tuple(specs)
+    factories = tuple(specs[name].factory is not None for name in names)
     template = _init_template(len(names), frozen, factories)
     rename = {f"_f{i}": name for i, name in enumerate(names)}
     code = template.replace(
@@ -256,9 +282,10 @@ def _reduce(self):
     return type(self), tuple(getattr(self, name) for name in self._fields)
 
 
+@dataclass_transform(field_specifiers=(field,))
 def record(
     cls: type | None = None, /, *, frozen: bool = False, eq: bool = True, slots: bool = True
-):
+) -> Any:
     """Make `cls` a record class (see the module's docstring); `@record` or `@record(...)`."""
     if cls is None:
         return lambda c: _process(c, frozen, eq, slots)
@@ -299,14 +326,15 @@ def _process(cls: type, frozen: bool, eq: bool, slots: bool) -> type:
         for name in own:
             if name in cls.__dict__:
                 delattr(cls, name)
-    cls._field_specs = specs
-    cls._fields = names
-    cls._shown = tuple(n for n in names if specs[n].repr)
-    cls._key = staticmethod(tuple_getter(tuple(n for n in names if specs[n].compare)))
-    cls.__match_args__ = names
+    made: Any = cls  # the record class: its attributes are set here, at run time
+    made._field_specs = specs
+    made._fields = names
+    made._shown = tuple(n for n in names if specs[n].repr)
+    made._key = staticmethod(tuple_getter(tuple(n for n in names if specs[n].compare)))
+    setattr(made, "__match_args__", names)  # mypy allows assigning it only in a class body
     # As @dataclass: a method the class defines itself is kept.
     own_methods = {
-        "__init__": _make_init(cls, names, tuple(defaults), frozen),
+        "__init__": _make_init(cls, specs, tuple(defaults), frozen),
         "__repr__": _repr,
         **({"__eq__": _eq} if eq else {}),
         # A frozen record cannot be unpickled field by field (its __setattr__ refuses): by value.
@@ -323,8 +351,14 @@ def _process(cls: type, frozen: bool, eq: bool, slots: bool) -> type:
         "__hash__" in ns and "__eq__" not in ns
     )
     if eq and not explicit_hash:
-        cls.__hash__ = _hash if frozen else None
-    return cls
+        made.__hash__ = _hash if frozen else None
+    return made
+
+
+def field_names(cls: type) -> tuple[str, ...]:
+    """The fields of the record class `cls`, in order."""
+    names: tuple[str, ...] = getattr(cls, "_fields")  # set by `record`, unseen by type checkers
+    return names
 
 
 def replace(obj: Any, /, **changes: Any) -> Any:

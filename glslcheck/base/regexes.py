@@ -93,7 +93,8 @@ def program(pattern: str, flags: int) -> tuple:
     """What `re.compile(pattern, flags)` hands `_sre.compile`, as `_regex_code.CODE` stores it:
     (flags with the pattern's inline ones, the program, the number of groups, (name, index) of
     each named group)."""
-    from re import _compiler, _parser
+    import re._compiler as _compiler
+    import re._parser as _parser
 
     parsed = _parser.parse(pattern, flags)
     code = _compiler._code(parsed, flags)

@@ -27,6 +27,11 @@ from itertools import chain
 
 from .lexer import Token, Tokens, UnexpectedInput
 
+TYPE_CHECKING = False  # not typing's: importing typing costs every start-up
+if TYPE_CHECKING:
+    from collections.abc import Callable
+    from typing import Any
+
 END = "$END"
 
 
@@ -148,7 +153,9 @@ def _tree_shape(callback) -> list:
     return [str(callback.args[0]), expand1, keep, append_none]
 
 
-def _callback(size: int, name: str, expand1: bool, keep: list | None, append_none: int):
+def _callback(
+    size: int, name: str, expand1: bool, keep: list | None, append_none: int
+) -> Callable[[list], Any] | None:
     """The function that builds a rule's tree from its `size` children, as Lark's callback
     does; None when it would return its one child unchanged (nothing to call)."""
     keep = None if keep is None else [tuple(k) for k in keep]  # lists built, tuples shipped
@@ -190,7 +197,7 @@ class Driver:
         # (size, origin, callback, plain): `plain` is the tree's name when the callback would
         # only make `Tree(name, children)`, which the parse loop then makes itself (most
         # reductions are of this kind, and a Python class call for each is dear)
-        self.rules: list[tuple[int, str, object, str | None]] = [
+        self.rules: list[tuple[int, str, Callable[[list], Any] | None, str | None]] = [
             (
                 size,
                 origin,
@@ -293,6 +300,7 @@ class Driver:
                 return values[-1]
             if kind in actions[state]:
                 raise  # not a missing action: a bug, not a syntax error
+            assert tok is not None  # the loop met a token: at least the end of input
             raise UnexpectedToken(tok, self.expected(state)) from None
         raise AssertionError("the end of input is never shifted")
 

@@ -60,6 +60,12 @@ class Token(str):
     tests and a few error messages) are computed from the text's line starts when first read."""
 
     __slots__ = ("type", "value", "start_pos", "end_pos", "_where", "_lines")
+    type: str
+    value: str
+    start_pos: int | None
+    end_pos: int | None
+    _where: tuple[int | None, int | None, int | None, int | None]
+    _lines: _Lines
 
     def __new__(
         cls,
@@ -97,7 +103,8 @@ class Token(str):
         """(line, column, end_line, end_column), computed once from the lexed text's lines."""
         try:
             return self._where
-        except AttributeError:
+        except AttributeError:  # a token the lexer made: it has its offsets and lines
+            assert self.start_pos is not None and self.end_pos is not None
             where = self._where = self._lines.where(self.start_pos, self.end_pos)
             return where
 

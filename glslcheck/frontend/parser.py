@@ -127,9 +127,9 @@ def _parse_text_no_gc(text: str, locate_span: Callable[[int, int], Location]) ->
     try:
         tree = parser.driver.parse(lexed)
     except BadNameError as e:  # a reserved word or an over-long identifier
-        raise GlslError(
-            Diagnostic(e.message, locate_span(e.token.start_pos, e.token.end_pos), help=e.help)
-        ) from None
+        start, end = e.token.start_pos, e.token.end_pos
+        assert start is not None and end is not None  # a token the lexer made
+        raise GlslError(Diagnostic(e.message, locate_span(start, end), help=e.help)) from None
     except UnexpectedInput as e:
         raise GlslError(_syntax_error(e, lexed, locate_span)) from None
     builder = _Builder(locate_span, text)
@@ -258,20 +258,20 @@ def _syntax_error(e: UnexpectedInput, lexed: Tokens, locate_span) -> Diagnostic:
         end = len(text.rstrip())
         end_loc = locate_span(max(end - 1, 0), max(end, 1))
         if open_brackets:
-            opener = open_brackets[-1]
-            closer = {"{": "}", "(": ")", "[": "]"}[opener.value]
-            what = {"{": "block", "(": "parenthesis", "[": "bracket"}[opener.value]
+            last_open = open_brackets[-1]
+            closer = {"{": "}", "(": ")", "[": "]"}[last_open.value]
+            what = {"{": "block", "(": "parenthesis", "[": "bracket"}[last_open.value]
             return Diagnostic(
-                f"this '{opener.value}' is never closed: the file ends before its '{closer}'",
-                locate_span(opener.start_pos, opener.end_pos),
+                f"this '{last_open.value}' is never closed: the file ends before its '{closer}'",
+                locate_span(last_open.start_pos, last_open.end_pos),
                 help=f"add the missing '{closer}' where the {what} should end",
             )
         if "SEMICOLON" in expected and prev is not None:
+            prev_end = prev.end_pos
+            assert prev_end is not None  # a token the lexer made
             return Diagnostic(
                 f"expected ';' after this {_what_statement(history)}",
-                locate_span(prev.end_pos, prev.end_pos + 1)
-                if prev.end_pos < len(text)
-                else end_loc,
+                locate_span(prev_end, prev_end + 1) if prev_end < len(text) else end_loc,
             )
         return Diagnostic("unexpected end of file", end_loc)
     loc = locate_span(tok.start_pos, tok.end_pos)
@@ -314,7 +314,9 @@ def _syntax_error(e: UnexpectedInput, lexed: Tokens, locate_span) -> Diagnostic:
     ):
         # As compilers do: point just past the previous token, where the ';' belongs.
         what = _what_statement(history[:-1] if history and history[-1] is tok else history)
-        ploc = locate_span(prev.end_pos - 1, prev.end_pos)
+        prev_end = prev.end_pos
+        assert prev_end is not None  # a token the lexer made
+        ploc = locate_span(prev_end - 1, prev_end)
         ploc = Location(ploc.path, ploc.end_line or ploc.line, ploc.end_column or ploc.column + 1)
         return Diagnostic(
             f"expected ';' after this {what}", ploc, help=f"found {_describe(tok)} instead"
@@ -378,6 +380,7 @@ class _Builder:
         start, end = item.start_pos, item.end_pos
         if start is None:  # a tree without tokens
             return self.locate_span(0, 0)
+        assert end is not None  # a start means a first token, so a last one
         # Nested nodes often share both ends (a declaration and its type, a call and its
         # callee): one location for each span, computed when it is first read (a lint reads
         # about a third of them).

@@ -264,6 +264,7 @@ class _Printer(A.NodeVisitor):
                 f"{self.qualifiers(c.qualifiers)}{self.type(c.type)} {c.name} = "
                 f"{self.expr(c.init, PRECEDENCE['='])}"
             )
+        assert isinstance(c, A.Expr)  # a condition is an expression or a declaration
         return self.expr(c)
 
     # -- expressions ---------------------------------------------------------------------------

@@ -25,12 +25,13 @@ from __future__ import annotations
 from types import FunctionType
 
 from ..base.diagnostics import Location
-from ..base.records import init_code, tuple_getter
+from ..base.records import dataclass_transform, init_code, tuple_getter
 
 TYPE_CHECKING = False  # not typing's: importing typing costs every start-up
 if TYPE_CHECKING:
     from collections.abc import Callable, Iterator
-    from typing import Any
+    from dataclasses import KW_ONLY
+    from typing import Any, ClassVar
 
 _NOLOC = Location("<builtin>", 0, 0)
 
@@ -46,14 +47,28 @@ class _Factory:
         return self.text
 
 
-LIST = _Factory(list, "LIST")
+# Typed as what it stands for in every field it defaults: a fresh list.
+LIST: Any = _Factory(list, "LIST")
+# The default of a child the grammar requires (an operator's operands, an `if`'s condition):
+# the parser always sets it, so the field is typed as the node; None only in a node built by
+# hand without it.
+PARSED: Any = None
 
-_NODE_CLASSES: dict[str, type] = {}
+_NODE_CLASSES: dict[str, _NodeMeta] = {}
 
 
+@dataclass_transform()
 class _NodeMeta(type):
     """Turns a node class's annotated fields into `__slots__` and records their defaults; the
     methods are made for all classes at once by `_make_methods` at the end of the module."""
+
+    # What the metaclass and `_make_methods` set on each node class (see `Node`).
+    _fields: tuple[str, ...]
+    _defaults: dict[str, Any]
+    _children: tuple[str, ...]
+    _children_reversed: Callable[[Node], tuple]
+    _children_values: Callable[[Node], tuple]
+    _shown: tuple[str, ...]
 
     def __new__(mcls, name, bases, ns):
         own = [f for f in ns.get("__annotations__", {}) if not f.startswith("_")]
@@ -74,12 +89,22 @@ class _NodeMeta(type):
 
 
 class Node(metaclass=_NodeMeta):
+    if TYPE_CHECKING:
+        _: KW_ONLY  # `loc` is keyword-only in every node's __init__
     loc: Location = _NOLOC
-    _children: tuple[str, ...] = ()
-    _children_reversed: Callable[[Node], tuple] = staticmethod(lambda node: ())
-    _children_values: Callable[[Node], tuple] = staticmethod(lambda node: ())
-    _fields: tuple[str, ...] = ()
-    _shown: tuple[str, ...] = ()  # the fields __repr__ shows: all but locations
+    _children: ClassVar[tuple[str, ...]] = ()
+    _fields: ClassVar[tuple[str, ...]] = ()
+    _shown: ClassVar[tuple[str, ...]] = ()  # the fields __repr__ shows: all but locations
+
+    @staticmethod
+    def _children_reversed(node: Node) -> tuple:
+        """The values of the child fields, last first (each class's own: `_make_methods`)."""
+        return ()
+
+    @staticmethod
+    def _children_values(node: Node) -> tuple:
+        """The values of the child fields, in order (each class's own: `_make_methods`)."""
+        return ()
 
     def __repr__(self) -> str:
         fields = ", ".join(f"{name}={getattr(self, name)!r}" for name in self._shown)
@@ -171,7 +196,7 @@ class Qualifiers(Node):
 
 class StructMember(Node):
     qualifiers: Qualifiers | None = None
-    type: TypeSpec | None = None
+    type: TypeSpec = PARSED
     declarators: list[StructDeclarator] = LIST
 
 
@@ -235,36 +260,36 @@ class Binary(Expr):
     """`left op right` for every binary operator but assignment and the comma."""
 
     op: str = "+"
-    left: Expr | None = None
-    right: Expr | None = None
+    left: Expr = PARSED
+    right: Expr = PARSED
 
 
 class Unary(Expr):
     """Prefix `+ - ! ~ ++ --` (op) applied to operand."""
 
     op: str = "-"
-    operand: Expr | None = None
+    operand: Expr = PARSED
 
 
 class Postfix(Expr):
     """Postfix `++` / `--`."""
 
     op: str = "++"
-    operand: Expr | None = None
+    operand: Expr = PARSED
 
 
 class Assignment(Expr):
     """`target op value` with op one of `= += -= *= /= %= <<= >>= &= ^= |=`."""
 
     op: str = "="
-    target: Expr | None = None
-    value: Expr | None = None
+    target: Expr = PARSED
+    value: Expr = PARSED
 
 
 class Ternary(Expr):
-    cond: Expr | None = None
-    then: Expr | None = None
-    else_: Expr | None = None
+    cond: Expr = PARSED
+    then: Expr = PARSED
+    else_: Expr = PARSED
 
 
 class Sequence(Expr):
@@ -287,14 +312,14 @@ class Call(Expr):
 
 
 class Index(Expr):
-    base: Expr | None = None
-    index: Expr | None = None
+    base: Expr = PARSED
+    index: Expr = PARSED
 
 
 class Field(Expr):
     """`base.name`: a struct member or a vector swizzle (the checker tells which)."""
 
-    base: Expr | None = None
+    base: Expr = PARSED
     name: str = ""
     name_loc: Location = _NOLOC
 
@@ -302,7 +327,7 @@ class Field(Expr):
 class MethodCall(Expr):
     """`base.name()`: GLSL ES 3.00 has one method, `.length()` of arrays."""
 
-    base: Expr | None = None
+    base: Expr = PARSED
     name: str = ""
 
 
@@ -324,13 +349,13 @@ class VariableDeclaration(Node):
     """`qualifiers type a = 1.0, b[2];` (no declarators: `struct S {...};` or `float;`)."""
 
     qualifiers: Qualifiers | None = None
-    type: TypeSpec | None = None
+    type: TypeSpec = PARSED
     declarators: list[Declarator] = LIST
 
 
 class Param(Node):
     qualifiers: list[str] = LIST  # "const", "in", "out", "inout", precision
-    type: TypeSpec | None = None
+    type: TypeSpec = PARSED
     name: str | None = None
     array: ArraySpec | None = None
     name_loc: Location = _NOLOC
@@ -345,7 +370,7 @@ class Param(Node):
 
 class FunctionPrototype(Node):
     qualifiers: Qualifiers | None = None
-    return_type: TypeSpec | None = None
+    return_type: TypeSpec = PARSED
     name: str = ""
     params: list[Param] = LIST
     name_loc: Location = _NOLOC
@@ -354,19 +379,19 @@ class FunctionPrototype(Node):
 class FunctionDeclaration(Node):
     """A prototype alone: `float f(float x);`."""
 
-    proto: FunctionPrototype | None = None
+    proto: FunctionPrototype = PARSED
 
 
 class FunctionDefinition(Node):
-    proto: FunctionPrototype | None = None
-    body: Compound | None = None
+    proto: FunctionPrototype = PARSED
+    body: Compound = PARSED
 
 
 class PrecisionDeclaration(Node):
     """`precision highp float;`."""
 
     precision: str = "highp"
-    type: TypeSpec | None = None
+    type: TypeSpec = PARSED
 
 
 class BlockDeclaration(Node):
@@ -406,7 +431,7 @@ class Compound(Stmt):
 
 
 class DeclarationStatement(Stmt):
-    decl: Node | None = None
+    decl: Node = PARSED
 
 
 class ExpressionStatement(Stmt):
@@ -416,13 +441,13 @@ class ExpressionStatement(Stmt):
 
 
 class If(Stmt):
-    cond: Expr | None = None
-    then: Stmt | None = None
+    cond: Expr = PARSED
+    then: Stmt = PARSED
     else_: Stmt | None = None
 
 
 class Switch(Stmt):
-    expr: Expr | None = None
+    expr: Expr = PARSED
     body: list[Stmt] = LIST
 
 
@@ -436,27 +461,27 @@ class ConditionDeclaration(Node):
     """The `bool b = f()` of `while (bool b = f())`."""
 
     qualifiers: Qualifiers | None = None
-    type: TypeSpec | None = None
+    type: TypeSpec = PARSED
     name: str = ""
-    init: Expr | None = None
+    init: Expr = PARSED
     name_loc: Location = _NOLOC
 
 
 class While(Stmt):
-    cond: Node | None = None  # Expr or ConditionDeclaration
-    body: Stmt | None = None
+    cond: Node = PARSED  # Expr or ConditionDeclaration
+    body: Stmt = PARSED
 
 
 class DoWhile(Stmt):
-    body: Stmt | None = None
-    cond: Expr | None = None
+    body: Stmt = PARSED
+    cond: Expr = PARSED
 
 
 class For(Stmt):
     init: Stmt | None = None  # DeclarationStatement or ExpressionStatement
     cond: Node | None = None  # Expr, ConditionDeclaration or None
     step: Expr | None = None
-    body: Stmt | None = None
+    body: Stmt = PARSED
 
 
 class Break(Stmt):
@@ -515,7 +540,7 @@ def _make_methods() -> None:
     class, from its declared fields."""
     names = set(_NODE_CLASSES)
     for cls in _NODE_CLASSES.values():
-        annotations = {}
+        annotations: dict[str, str] = {}
         for klass in reversed(cls.__mro__):
             annotations.update(getattr(klass, "__annotations__", {}))
         cls._children = tuple(
@@ -536,8 +561,9 @@ def _make_methods() -> None:
         )
         init = FunctionType(code, globals(), "__init__", defaults)
         init.__kwdefaults__ = {"loc": _NOLOC}
-        cls.__init__ = init
-        cls.__match_args__ = positional
+        # (set through setattr: mypy refuses assigning either outside a class body)
+        setattr(cls, "__init__", init)
+        setattr(cls, "__match_args__", positional)
         cls._shown = tuple(f for f in positional if not _is_location(f))
 
 

@@ -122,9 +122,11 @@ _SQUARE_MATS = [T.MAT2, T.MAT3, T.MAT4]
 
 def _concrete(word: str, n: int | None, g: str, mat: Type | None) -> Type:
     if word in _GEN_N:
+        assert n is not None, "a signature with a generic word has a component count"
         base = _GEN_N[word][0]
         return T.vector(base, n)
     if word == "mat":
+        assert mat is not None, "a signature with `mat` is expanded over the matrices"
         return mat
     if word.startswith("g"):  # gvec4, gsampler2D, ...: g is "", "i" or "u"
         word = g + word[1:]
@@ -208,12 +210,13 @@ def _overloads(name: str, category: str, cost: str, forms) -> list[Overload]:
     return overloads
 
 
-BUILTINS: Mapping[str, Builtin] = _Table()
+_TABLE = _Table()
+BUILTINS: Mapping[str, Builtin] = _TABLE
 
 
 def _define(name: str, category: str, cost: str, *sigs: str, fragment_only: bool = False) -> None:
     """Add overloads of ``name``; signatures ending in ``[, float bias]`` come in both forms."""
-    forms = BUILTINS._defs.setdefault(name, (category, cost, []))[2]
+    forms = _TABLE._defs.setdefault(name, (category, cost, []))[2]
     for sig in sigs:
         if "[, float bias]" in sig:
             forms.append((sig.replace("[, float bias]", ""), fragment_only))
@@ -227,7 +230,7 @@ def _define_explicit(
 ) -> None:
     """Add overloads that the generic names cannot express (transpose, outerProduct): `rows()`
     gives their (return, params)."""
-    BUILTINS._defs[name] = (category, cost, rows)
+    _TABLE._defs[name] = (category, cost, rows)
 
 
 # 8.1 Angle and trigonometry functions.

@@ -20,6 +20,8 @@ from __future__ import annotations
 
 from ..base.records import field, record
 
+TYPE_CHECKING = False  # not typing's: importing typing costs every start-up
+
 BASES = ("float", "int", "uint", "bool")
 _VECTOR_PREFIX = {"float": "vec", "int": "ivec", "uint": "uvec", "bool": "bvec"}
 
@@ -31,6 +33,8 @@ class Type:
 
     # ``base``: "float" | "int" | "uint" | "bool" for scalars, vectors and matrices, else
     # None. Declared by each subclass (a default here would leak into the records).
+    if TYPE_CHECKING:
+        base: str | None
 
     @property
     def size(self) -> int:
@@ -547,7 +551,7 @@ SWIZZLE_SETS = ("xyzw", "rgba", "stpq")
 
 def swizzle_result(t: Type, fields: str) -> Type | str:
     """The type of ``t.fields`` for a vector ``t``, or an error message."""
-    if not t.is_vector:
+    if not isinstance(t, VectorType):
         if t.is_scalar:
             return f"cannot select '.{fields}' of scalar '{t}': GLSL ES has no scalar swizzles"
         return f"'{t}' has no components to select with '.{fields}'"
@@ -571,11 +575,11 @@ def swizzle_is_lvalue(fields: str) -> bool:
 
 def index_result(t: Type) -> Type | str:
     """The type of ``t[i]``: array element, matrix column or vector component."""
-    if t.is_array:
+    if isinstance(t, ArrayType):
         return t.element
-    if t.is_matrix:
+    if isinstance(t, MatrixType):
         return t.column_type
-    if t.is_vector:
+    if isinstance(t, VectorType):
         return t.component_type
     return f"'{t}' cannot be indexed"
 
@@ -601,7 +605,7 @@ def constructor_check(target: Type, args: list[Type]) -> str | None:
     for a in args:
         if a.is_void:
             return f"'{target}' constructor got a 'void' argument"
-    if target.is_struct:
+    if isinstance(target, StructType):
         if len(args) != len(target.fields):
             return (
                 f"'{target}' constructor takes {_plural(len(target.fields), 'argument')}, "
@@ -611,7 +615,7 @@ def constructor_check(target: Type, args: list[Type]) -> str | None:
             if a != ftype:
                 return f"'{target}' field '{fname}' is '{ftype}' but the argument is '{a}'"
         return None
-    if target.is_array:
+    if isinstance(target, ArrayType):
         if target.array_size is not None and len(args) != target.array_size:
             return (
                 f"'{target}' constructor takes {_plural(target.array_size, 'argument')} "
@@ -670,6 +674,6 @@ def constructor_result(target: Type, args: list[Type]) -> Type | str:
     err = constructor_check(target, args)
     if err is not None:
         return err
-    if target.is_array and target.array_size is None:
+    if isinstance(target, ArrayType) and target.array_size is None:
         return ArrayType(target.element, len(args))
     return target

@@ -158,7 +158,8 @@ def apply_overrides(
         if value is None:
             continue
         kind, what = KEYS[key]
-        if not isinstance(value, kind) or isinstance(value, bool):
+        well_typed = isinstance(value, kind) and not isinstance(value, bool)
+        if not well_typed:
             raise InputError(f"{where}: error: {shown} must be {what}, not {value!r}")
         if kind is list and not all(isinstance(v, str) for v in value):
             raise InputError(f"{where}: error: {shown} must be {what}, not {value!r}")

@@ -44,6 +44,8 @@ if TYPE_CHECKING:
     from collections.abc import Iterable, Mapping, Sequence
     from typing import Any
 
+    from ..semantics.model import Model
+
 PHASES = ("text", "ast", "suppressions")
 
 
@@ -92,7 +94,7 @@ class LintContext:
     scan: TextScan
     shader: Shader | None = None  # the shader the file belongs to (its other tabs), when known
     ast: Any = None  # the parse tree (NEEDS = "ast" rules run only when it is not None)
-    model: Any = None  # the semantic model (scopes, types) of `ast`
+    model: Model | None = None  # the semantic model (scopes, types) of `ast`
     suppressions: list[Suppression] = field(default_factory=list)
     rules_run: frozenset[str] = frozenset()  # rules whose findings were checked for suppression
     known_rules: frozenset[str] = frozenset()
@@ -130,7 +132,7 @@ class ProgramTree:
     (path, first line, last line, name)."""
 
     ast: Any = None
-    model: Any = None
+    model: Model | None = None
     errors: list[Diagnostic] = field(default_factory=list)
     dropped: list[tuple[str, int, int, str]] = field(default_factory=list)
 
@@ -241,7 +243,7 @@ def lint_source(
     config: LintConfig | None = None,
     shader: Shader | None = None,
     ast: Any = None,
-    model: Any = None,
+    model: Model | None = None,
     *,
     errors: Sequence[Diagnostic] = (),
     dropped: Sequence[tuple[str, int, int, str]] = (),
@@ -297,9 +299,13 @@ def lint_source(
     order = {name: i for i, name in enumerate(rules)}  # ties in registry-table order
     # compile errors first, then which rules could not run, then the findings in line order
     first = {(COMPILE_ERROR, "error"): 0, (COMPILE_ERROR, "note"): 1}
-    findings.sort(
-        key=lambda f: (first.get((f.rule, f.severity), 2), f.loc.line, f.loc.column, order[f.rule])
-    )
+
+    def sort_key(f: Finding) -> tuple[int, int, int, int]:
+        loc = f.loc
+        assert loc is not None  # _finding gives every finding a location
+        return (first.get((f.rule, f.severity), 2), loc.line, loc.column, order[f.rule])
+
+    findings.sort(key=sort_key)
     return findings
 
 
@@ -314,7 +320,7 @@ def _not_run(rule: Rule, ctx: LintContext) -> list[Finding]:
     """One note when the AST rule `rule` could not run on all of this file: on which functions
     (they do not compile), or on the whole file (no tree, or a rule that reads the whole
     program, which has errors)."""
-    first = (ctx.compile_errors or [None])[0]
+    first = ctx.compile_errors[0] if ctx.compile_errors else None
     if ctx.ast is None or (rule.reads == "program" and _has_errors(ctx)):
         if first is None:
             return []

@@ -27,7 +27,7 @@ import os
 
 from ..base import config
 
-TYPE_CHECKING = False
+TYPE_CHECKING = False  # not typing's: importing typing costs every start-up
 if TYPE_CHECKING:
     from collections.abc import Callable
     from typing import TypeVar

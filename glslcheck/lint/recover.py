@@ -87,6 +87,7 @@ def declarations(text: str) -> list[tuple[int, int, int | None]]:
             if depth < 0:
                 return out
             if depth == 0 and body is not None:
+                assert start is not None  # a body is found inside a declaration
                 out.append((start, i + 1, body))
                 start = None
         elif c == ";" and depth == 0 and start is not None:

@@ -37,6 +37,7 @@ from .rules import all_rules
 TYPE_CHECKING = False  # not typing's: importing typing costs every start-up
 if TYPE_CHECKING:
     from collections.abc import Callable
+    from typing import Any
 
 SARIF_SCHEMA = "https://json.schemastore.org/sarif-2.1.0.json"
 SARIF_VERSION = "2.1.0"
@@ -232,7 +233,7 @@ def sarif_document(result: LintResult, root: str | None = None) -> dict:
     for f in result.findings:
         rec = finding_record(f)
         message = f.message + (f"\nhelp: {f.help}" if f.help else "")
-        entry = {
+        entry: dict[str, Any] = {
             "ruleId": f.rule,
             "level": sarif_level(f.severity, f.certainty),
             "message": {"text": message},

@@ -126,7 +126,8 @@ def scan(text: str) -> TextScan:
                 in_directive_comment[row] = True
             else:
                 col = start[1] if row == start[0] else 0
-                if first_comment[row] is None or col < first_comment[row]:
+                first = first_comment[row]
+                if first is None or col < first:
                     first_comment[row] = col
 
     find_start = _COMMENT_START_RE.search

@@ -30,14 +30,14 @@ from .model import ErrorType
 
 TYPE_CHECKING = False  # not typing's: importing typing costs every start-up
 if TYPE_CHECKING:
-    from typing import Any
+    from .model import Model
 
 CHANNELS = tuple(f"iChannel{i}" for i in range(4))
 SAMPLER_2D = T.SAMPLERS["sampler2D"]
 SAMPLER_CUBE = T.SAMPLERS["samplerCube"]
 
 
-def cube_channels(model: Any) -> frozenset[str]:
+def cube_channels(model: Model) -> frozenset[str]:
     """The channels a checked program (with errors, from the sampler2D pass) uses only as cube
     maps (see the module docstring)."""
     uses: dict[str, list[bool]] = {}
@@ -52,7 +52,7 @@ def cube_channels(model: Any) -> frozenset[str]:
     return frozenset(name for name, cube in uses.items() if cube and all(cube))
 
 
-def _cube_like(model: Any, call: A.Call, i: int) -> bool:
+def _cube_like(model: Model, call: A.Call, i: int) -> bool:
     if call.array is not None or call.struct_ is not None:
         return False
     if B.is_builtin_function(call.callee) and call.callee not in model.functions:

@@ -66,7 +66,9 @@ def flatten(t: T.Type, v: Any) -> list[Any]:
 
 def build(t: T.Type, comps: list[Any]) -> Any:
     """A value of scalar/vector/matrix type `t` from its components (column-major)."""
-    comps = [wrap(t.base, c) for c in comps]
+    base = t.base
+    assert base is not None  # a scalar, vector or matrix type has a base
+    comps = [wrap(base, c) for c in comps]
     if t.is_scalar:
         return comps[0]
     if t.is_vector:
@@ -170,6 +172,7 @@ def binary(op: str, lt: T.Type, rt: T.Type, result: T.Type, a: Any, b: Any) -> A
         if len(lb) == 1:
             lb = lb * n
         base = result.base
+        assert base is not None  # the result of arithmetic is a scalar, vector or matrix
         return build(result, [_scalar_op(op, base, x, y) for x, y in zip(la, lb)])
     except (ZeroDivisionError, OverflowError, ValueError):
         return UNKNOWN
@@ -230,7 +233,9 @@ def construct(target: T.Type, arg_types: list[T.Type], values: list[Any]) -> Any
         comps.extend(flatten(t, v))
     if len(comps) == 1 and not target.is_scalar:
         comps = comps * target.size
-    comps = [_convert(c, target.base) for c in comps[: target.size]]
+    base = target.base
+    assert base is not None  # constructed from components: a scalar, vector or matrix
+    comps = [_convert(c, base) for c in comps[: target.size]]
     return build(target, comps)
 
 
@@ -358,8 +363,8 @@ def builtin(name: str, param_types: tuple[T.Type, ...], result: T.Type, values: 
         if name == "distance":
             return build(result, [math.sqrt(sum((x - y) ** 2 for x, y in zip(fl[0], fl[1])))])
         if name == "normalize":
-            n = math.sqrt(sum(x * x for x in fl[0]))
-            return build(result, [x / n if n else math.nan for x in fl[0]])
+            norm = math.sqrt(sum(x * x for x in fl[0]))
+            return build(result, [x / norm if norm else math.nan for x in fl[0]])
         if name == "cross":
             (a0, a1, a2), (b0, b1, b2) = fl
             return build(result, [a1 * b2 - a2 * b1, a2 * b0 - a0 * b2, a0 * b1 - a1 * b0])

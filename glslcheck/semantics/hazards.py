@@ -31,6 +31,7 @@ import math
 
 from ..base.diagnostics import Diagnostic
 from ..frontend import syntax as A
+from ..language import glsl_types as T
 from .analysis.undefined import undefined_reads
 from .model import Symbol
 
@@ -39,10 +40,12 @@ if TYPE_CHECKING:
     from collections.abc import Iterator
     from typing import Any
 
+    from .model import Model
+
 RULE = "undefined-behaviour"
 
 
-def hazard_warnings(model: Any) -> list[Diagnostic]:
+def hazard_warnings(model: Model) -> list[Diagnostic]:
     """Every kind of warning for a model without errors (the caller sorts them)."""
     out: list[Diagnostic] = []
     for fn in model.reachable_functions():
@@ -70,7 +73,7 @@ def undefined_read_warnings(model: Any) -> list[Diagnostic]:
 # Indexes
 
 
-def index_warnings(model: Any, definition: A.FunctionDefinition) -> list[Diagnostic]:
+def index_warnings(model: Model, definition: A.FunctionDefinition) -> list[Diagnostic]:
     indexes, fors = [], []  # one walk of the body finds both
     for node in model.body_nodes(definition):
         t = type(node)
@@ -86,7 +89,7 @@ def index_warnings(model: Any, definition: A.FunctionDefinition) -> list[Diagnos
         base_t = model.type_of(node.base)
         size = (
             base_t.array_size
-            if base_t.is_array
+            if isinstance(base_t, T.ArrayType)
             else (base_t.cols if base_t.is_matrix else base_t.size)
         )
         if not size:
@@ -115,14 +118,14 @@ def _show(bounds: tuple[float, float]) -> str:
     return f"{lo}..{hi}"
 
 
-def _writes(model: Any, body: A.Node, sym: Any) -> bool:
+def _writes(model: Model, body: A.Node, sym: Symbol) -> bool:
     """Whether `body` assigns `sym` (=, op=, ++, --)."""
     for n in body.walk():
         target = (
             n.target
             if type(n) is A.Assignment
             else n.operand
-            if type(n) in (A.Unary, A.Postfix) and n.op in ("++", "--")
+            if (type(n) is A.Unary or type(n) is A.Postfix) and n.op in ("++", "--")
             else None
         )
         if type(target) is A.Identifier and model.symbol_of(target) is sym:
@@ -130,7 +133,7 @@ def _writes(model: Any, body: A.Node, sym: Any) -> bool:
     return False
 
 
-def _loop_ranges(model: Any, fors: list[A.For]) -> dict[int, tuple[float, float]]:
+def _loop_ranges(model: Model, fors: list[A.For]) -> dict[int, tuple[float, float]]:
     """id(loop variable symbol) -> the values it takes in the body of its counting for loop
     (`fors`: the for statements of a function, in walk order)."""
     out: dict[int, tuple[float, float]] = {}
@@ -162,11 +165,11 @@ def _loop_ranges(model: Any, fors: list[A.For]) -> dict[int, tuple[float, float]
     return out
 
 
-def _is(model: Any, e: Any, sym: Any) -> bool:
+def _is(model: Model, e: Any, sym: Symbol) -> bool:
     return type(e) is A.Identifier and model.symbol_of(e) is sym
 
 
-def _step(model: Any, e: Any, sym: Any) -> int | None:
+def _step(model: Model, e: Any, sym: Symbol) -> int | None:
     """+c or -c for `i++`, `++i`, `i--`, `i += c`, `i -= c`, `i = i + c` (c a positive constant)."""
     if type(e) in (A.Unary, A.Postfix) and e.op in ("++", "--") and _is(model, e.operand, sym):
         return 1 if e.op == "++" else -1
@@ -190,7 +193,7 @@ def _step(model: Any, e: Any, sym: Any) -> int | None:
 _FLIP = {"<": ">", "<=": ">=", ">": "<", ">=": "<="}
 
 
-def _limit(model: Any, cond: Any, sym: Any) -> tuple[str, int] | None:
+def _limit(model: Model, cond: Any, sym: Symbol) -> tuple[str, int] | None:
     """(op, bound) for a condition `i op bound` or `bound op i` with a constant bound."""
     if type(cond) is not A.Binary or cond.op not in _FLIP:
         return None
@@ -206,7 +209,7 @@ def _limit(model: Any, cond: Any, sym: Any) -> tuple[str, int] | None:
     return op, bound
 
 
-def _interval(model: Any, e: Any, loops: dict, depth: int) -> tuple[float, float]:
+def _interval(model: Model, e: Any, loops: dict, depth: int) -> tuple[float, float]:
     """[lo, hi] of an int expression, each end possibly infinite (unknown)."""
     if depth > 32:
         return UNKNOWN
@@ -289,7 +292,7 @@ def _call(e: A.Call, rec) -> tuple[float, float]:
 # The colour output
 
 
-def output_warnings(model: Any, definition: A.FunctionDefinition) -> list[Diagnostic]:
+def output_warnings(model: Model, definition: A.FunctionDefinition) -> list[Diagnostic]:
     params = definition.proto.params
     if not params or definition.body is None:
         return []
@@ -335,7 +338,7 @@ class _Flow:
     """Which components of the colour are certainly written, statement by statement. A state
     is a 4-bit mask (x, y, z, w), or None after a statement no path falls out of."""
 
-    def __init__(self, model: Any, sym: Any, need: int):
+    def __init__(self, model: Model, sym: Symbol, need: int):
         self.model, self.sym, self.need = model, sym, need
         self.unwritten_returns: list = []
 

@@ -66,6 +66,11 @@ from .bindings import FILTERS, KIND_DEFAULTS, WRAPS, Binding
 from .sources import BUFFER_TABS, Shader, read_json
 from .wrapper import PASS_TABS
 
+TYPE_CHECKING = False  # not typing's: importing typing costs every start-up
+if TYPE_CHECKING:
+    from collections.abc import Callable
+    from typing import NoReturn
+
 CHANNELS_FILE = "channels.json"
 _UNSUPPORTED = ("cubemap", "video", "webcam", "microphone", "music", "sound", "keyboard", "volume")
 _SERIAL = itertools.count()
@@ -140,7 +145,7 @@ def load_bindings(shader: Shader) -> tuple[str | None, list[Binding]]:
     spath = str(path)
     data = read_json(path)
 
-    def fail(key: str, message: str):
+    def fail(key: str, message: str) -> NoReturn:
         raise InputError(f"{spath}: error: {key}: {message}")
 
     if not isinstance(data, dict):
@@ -165,7 +170,9 @@ def load_bindings(shader: Shader) -> tuple[str | None, list[Binding]]:
     return spath, out
 
 
-def _binding(shader: Shader, tab: str, channel: int, spec, where: str, fail) -> Binding:
+def _binding(
+    shader: Shader, tab: str, channel: int, spec, where: str, fail: Callable[[str, str], NoReturn]
+) -> Binding:
     if not isinstance(spec, dict):
         fail(where, 'must be an object with "buffer" or "texture"')
     kinds = [k for k in ("buffer", "texture") if k in spec]

@@ -90,5 +90,6 @@ def frame_inputs(render: Callable) -> Callable:
         inputs = FrameInputs(**{name: given.pop(name) for name in names if name in given})
         return render(given.pop(own[0].name), inputs, **given)
 
+    # (inspect.signature reads it; typeshed gives functions no such attribute)
     wrapper.__signature__ = signature  # type: ignore[attr-defined]
     return wrapper

@@ -28,7 +28,9 @@ from ..base.regexes import compiled
 
 TYPE_CHECKING = False  # not typing's: importing typing costs every start-up
 if TYPE_CHECKING:
+    from collections.abc import Callable
     from pathlib import Path
+    from typing import Any, NoReturn
 
     from .bindings import Binding
 
@@ -104,7 +106,7 @@ class Shader:
 
     tabs: dict[str, Source] = field(default_factory=dict)
     root: str = ""
-    channels: list | None = (
+    channels: list[Binding] | None = (
         None  # bindings.Binding list of a Shadertoy JSON export (else channels.json)
     )
 
@@ -456,7 +458,8 @@ def json_kind(value) -> str:
         return "true" if value else "false"
     if value is None:
         return "null"
-    return {dict: "an object", list: "a list", str: "a string"}.get(type(value), "a number")
+    kinds: dict[type, str] = {dict: "an object", list: "a list", str: "a string"}
+    return kinds.get(type(value), "a number")
 
 
 def load_shadertoy_json(path) -> Shader:
@@ -471,10 +474,10 @@ def load_shadertoy_json(path) -> Shader:
     spath = str(path)
     data = read_json(path)
 
-    def fail(where: str, message: str):
+    def fail(where: str, message: str) -> NoReturn:
         raise InputError(f"{spath}: error: {where}: {message}")
 
-    def typed(value, types: tuple, where: str, expected: str):
+    def typed(value: Any, types: tuple[type, ...], where: str, expected: str) -> Any:
         """`value` when it is one of `types` (null counting as absent: None); else the error."""
         if value is None or (isinstance(value, types) and not isinstance(value, bool)):
             return value
@@ -489,7 +492,8 @@ def load_shadertoy_json(path) -> Shader:
     if not isinstance(passes, list):
         fail("the top level", 'not a Shadertoy export: expected {"Shader": {"renderpass": [...]}}')
     base = f"{base}.renderpass".lstrip(".")
-    shader = Shader(root=spath, channels=[])
+    channels: list[Binding] = []
+    shader = Shader(root=spath, channels=channels)
     outputs: dict[str, str] = {}  # output id -> Buffer tab
     buffers = iter(BUFFER_TABS)
     placed: list[tuple[str, str, list]] = []  # each pass's tab, field path and inputs
@@ -524,7 +528,7 @@ def load_shadertoy_json(path) -> Shader:
         for j, inp in enumerate(inputs):
             where = f"{at}.inputs[{j}]"
             typed(inp, (dict,), where, "an object")
-            shader.channels.append(
+            channels.append(
                 _export_binding(
                     shader, tab, inp or {}, outputs, Path(path).parent, fail, typed, where
                 )
@@ -533,7 +537,14 @@ def load_shadertoy_json(path) -> Shader:
 
 
 def _export_binding(
-    shader: Shader, tab: str, inp: dict, outputs: dict, folder: Path, fail, typed, at: str
+    shader: Shader,
+    tab: str,
+    inp: dict,
+    outputs: dict[str, str],
+    folder: Path,
+    fail: Callable[[str, str], NoReturn],
+    typed: Callable[[Any, tuple[type, ...], str, str], Any],
+    at: str,
 ) -> Binding:
     import json
     from pathlib import Path

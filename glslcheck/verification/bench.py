@@ -430,7 +430,9 @@ LEGEND_SHAPES = ("1 sample", "4 samples", "16 samples", "Pareto front (ringed)")
 def _legend_layout(text_widths: Sequence[float], width: int) -> list[tuple[float, int]]:
     """(x, row) of each legend item: left to right, wrapped to `width`."""
     S = SCALE
-    out, x, row = [], 20 * S, 0
+    out: list[tuple[float, int]] = []
+    x: float = 20 * S
+    row = 0
     for tw in text_widths:
         w = 20 * S + tw + 24 * S
         if x + w > width - 10 * S and x > 20 * S:
@@ -643,7 +645,7 @@ def write_plot(rows: Sequence[Row], path: str | os.PathLike, title: str | None =
             draw.text(best[:2], text, font=f_label, fill=_colour(r.config))
 
     # Legend: colours are backends and precisions, shapes are samples per pixel.
-    symbols = [
+    symbols: list[Callable[..., object]] = [
         lambda x, y, c=COLOURS[k]: draw.rectangle([x, y - 6 * S, x + 12 * S, y + 6 * S], fill=c)
         for k in colour_keys
     ]
@@ -658,7 +660,7 @@ def write_plot(rows: Sequence[Row], path: str | os.PathLike, title: str | None =
         symbol(x, y)
         draw.text((x + 20 * S, y), text, font=f_axis, fill=(0, 0, 0), anchor="lm")
 
-    img = img.resize((width // S, height // S), Image.LANCZOS)
+    img = img.resize((width // S, height // S), Image.Resampling.LANCZOS)
     from ..base.images import save_pil
 
     save_pil(img, path, "plot")  # atomic; InputError (exit 2) when it cannot be written

@@ -81,7 +81,8 @@ def driver_verdict(
     pixels that depend on undefined values (compare's step 8), set apart in verdict and plain."""
     drivers = compare(gl_img, webgl_img, **compare_options)
     plain = compare(numpy_img, webgl_img, undefined=undefined, **compare_options)
-    mask = drivers.error_map > drivers.abs_tol
+    assert drivers.error_map is not None  # compare() fills it
+    mask = np.asarray(drivers.error_map > drivers.abs_tol)
     if not mask.any() or plain.match:
         return plain, plain, drivers
     verdict = compare(

@@ -47,6 +47,10 @@ from ..backends.numpy_engine.tracing import (
 from ..base.diagnostics import GlslError, InputError, source_line
 from ..semantics.analysis import STOPS, stop_notes, undefined_reads
 
+TYPE_CHECKING = False  # not typing's: importing typing costs every start-up
+if TYPE_CHECKING:
+    from ..backends.numpy_engine.program import NumpyProgram
+
 # first_unstable: a value keeping fewer bits than this has lost more than a third of float32's 24
 UNSTABLE_BITS = 16
 BITS_KINDS = ("assign", "return", "call")  # the steps whose values are compared with their shadow
@@ -129,7 +133,7 @@ class Origin:
         return HELP.get(self.operation, "")
 
     def to_json(self, with_pixels: bool = True) -> dict:
-        out = {
+        out: dict[str, Any] = {
             "file": self.file,
             "line": self.line,
             "column": self.column,
@@ -147,7 +151,7 @@ class Origin:
 class PixelReport:
     pixel: tuple[int, int]
     frag_coord: tuple[float, float]
-    color: tuple[float, float, float, float]
+    color: tuple[float, ...]  # RGBA
     steps: list[Step]
     first_nan: Origin | None
     truncated: int = 0  # steps past the recording limit
@@ -212,7 +216,7 @@ class Probe:
         self.sites: list[Site] = tr.sites
         self.filename = f"<glslcheck-probe {self.path}>"
         self._modules: dict[str, dict] = {}
-        self._program = None
+        self._program: NumpyProgram | None = None
         self._tracers = _PerThread()
 
     def module(self, precision: str) -> dict:
@@ -355,6 +359,7 @@ class Probe:
         bits of its shadow while both follow the same path (_ShadowedTracer; RGBA None then)."""
         w, h = inputs.size
         if frag_coord is None:
+            assert x is not None and y is not None, "a pixel or a fragment coordinate"
             if not (0 <= x < w and 0 <= y < h):
                 raise InputError(
                     f"error: the pixel {x},{y} is outside the {w}x{h} image "
@@ -374,6 +379,7 @@ class Probe:
         else:
             frags, lane, width = np.array([[fx], [fy]]), 0, 1
         t64 = PixelTracer(frags.shape[1], self.sites, lane)
+        color: np.ndarray | None
         if stop_bits is None:
             t32 = PixelTracer(frags.shape[1], self.sites, lane)
             color = self.run("float32", inputs, frags, width, t32)[:, lane]
@@ -562,9 +568,8 @@ def first_unstable(
     than `min_bits` bits of its float64 shadow (Step: file, line, code, bits), or None: the steps
     `probe.pixel` reports, compared in order and only up to the first that departs. Where the
     two runs part before any value departs, at most `realign` steps are realigned (None: all)."""
-    return first_unstable_traced(
-        probe, *probe.traces(x, y, inputs, stop_bits=min_bits)[3:], min_bits, realign
-    )
+    _, _, _, t32, t64 = probe.traces(x, y, inputs, stop_bits=min_bits)
+    return first_unstable_traced(probe, t32, t64, min_bits, realign)
 
 
 def first_unstable_traced(
@@ -925,6 +930,7 @@ def format_nan(report: NanReport, shader: str, inputs: Inputs) -> str:
             f"in {x0},{y0} .. {x1},{y1} (from the top left)"
         )
         if o.file:
+            assert o.line is not None and o.column is not None  # a located origin
             text = source_line(o.file, o.line) or ""
             out.append(f"    {text.rstrip()}")
             out.append(

@@ -42,7 +42,6 @@ import tempfile
 import time as _time
 from dataclasses import dataclass, field
 from pathlib import Path
-from typing import TYPE_CHECKING
 
 import numpy as np
 
@@ -53,6 +52,7 @@ from .bench import HEADER as BENCH_HEADER
 from .bench import TABLE_NOTE, Row, row_cells
 from .compare import NAN_COLOUR, Comparison, compare, diff_colours
 
+TYPE_CHECKING = False  # not typing's: importing typing costs every start-up
 if TYPE_CHECKING:
     from .probe import NanReport
 
@@ -419,6 +419,7 @@ def _source_html(shader: Shader, diags: list[Diagnostic]) -> str:
             # a note is a block of its own: no newline after it, or the listing gets blank lines
             rows.append(f'<span class="hit">{text}</span>' if hits else text + "\n")
             for d in hits:
+                assert d.loc is not None  # (placed by its location)
                 kind = (
                     "nan"
                     if d.rule == NAN_RULE
@@ -451,7 +452,8 @@ def _origin_notes(r: ShaderReport) -> list[Diagnostic]:
         Diagnostic(
             f"{o.operation} in `{o.code}`: the first NaN/Inf of {o.pixels} "
             f"pixel{'s' * (o.pixels != 1)}",
-            Location(o.file, o.line, o.column),
+            # (the unknown origin has no location: None in each field, placed nowhere)
+            Location(o.file, o.line, o.column),  # type: ignore[arg-type]
             severity="note",
             rule=NAN_RULE,
         )

@@ -281,7 +281,7 @@ def verify_frames(
         for b in sorted(backends, key=lambda b: not records[b].driver):
             try:
                 by_name[b] = compile_backend(shader, b)
-            except GlslError as driver:
+            except GlslError as driver_error:
                 if not records[b].driver or ours is None:
                     raise
                 # our own front end's diagnostics are clearer than the driver's cascade (and
@@ -290,7 +290,7 @@ def verify_frames(
                     compile_backend(shader, ours)
                 except GlslError as own:
                     raise own from None
-                raise driver
+                raise driver_error
         programs = [by_name[b] for b in backends]
     emulate_driver(programs)
     driver, driver_note = gl_driver(programs)

@@ -200,10 +200,11 @@ def pow_call(cg: Any, e: A.Call, args: list[Val], rtype: Any, n: int) -> Val:
     special = c is not None and any(
         v in (1.0, 2.0, 4.0) or (v == 0.0 and math.copysign(1.0, v) > 0) for v in c
     )
+    consts = c if c is not None else []  # (read only when special: c is not None)
     out = []
     for i in range(n):
         if special:
-            v = float(c[i])
+            v = float(consts[i])
             if v == 1.0:
                 out.append(xs[i])
                 continue
@@ -306,41 +307,46 @@ def geometric(cg: Any, name: str, args: list[Val], rtype: Any) -> Val:
         d = cg.tmp(f"(F32(1.0) / np.sqrt({cg.dot_text(parts, parts)}))")
         return Val(rtype, [f"({p} * {d})" for p in parts])
     if name == "cross":
-        a = [cg.atom(p) for p in args[0].parts]
-        b = [cg.atom(p) for p in args[1].parts]
+        pa = [cg.atom(p) for p in args[0].parts]
+        pb = [cg.atom(p) for p in args[1].parts]
         return Val(
             rtype,
             [
-                f"(({a[1]} * {b[2]}) - ({a[2]} * {b[1]}))",
-                f"(({a[2]} * {b[0]}) - ({a[0]} * {b[2]}))",
-                f"(({a[0]} * {b[1]}) - ({a[1]} * {b[0]}))",
+                f"(({pa[1]} * {pb[2]}) - ({pa[2]} * {pb[1]}))",
+                f"(({pa[2]} * {pb[0]}) - ({pa[0]} * {pb[2]}))",
+                f"(({pa[0]} * {pb[1]}) - ({pa[1]} * {pb[0]}))",
             ],
         )
     if name == "reflect":  # i - 2 * (dot(n, i) * n)
-        i = [cg.atom(p) for p in args[0].parts]
-        nn = [cg.atom(p) for p in args[1].parts]
-        d = cg.tmp(cg.dot_text(nn, i) if len(i) > 1 else f"({nn[0]} * {i[0]})")
+        pi = [cg.atom(p) for p in args[0].parts]
+        pn = [cg.atom(p) for p in args[1].parts]
+        d = cg.tmp(cg.dot_text(pn, pi) if len(pi) > 1 else f"({pn[0]} * {pi[0]})")
         two = cg.cf(2.0)
-        return Val(rtype, [f"({p} - ({two} * ({d} * {q})))" for p, q in zip(i, nn)])
+        return Val(rtype, [f"({p} - ({two} * ({d} * {q})))" for p, q in zip(pi, pn)])
     if name == "refract":
-        i = [cg.atom(p) for p in args[0].parts]
-        nn = [cg.atom(p) for p in args[1].parts]
+        pi = [cg.atom(p) for p in args[0].parts]
+        pn = [cg.atom(p) for p in args[1].parts]
         eta = cg.atom(args[2].parts[0])
-        d = cg.tmp(cg.dot_text(nn, i) if len(i) > 1 else f"({nn[0]} * {i[0]})")
+        d = cg.tmp(cg.dot_text(pn, pi) if len(pi) > 1 else f"({pn[0]} * {pi[0]})")
         one = cg.cf(1.0)
         k = cg.tmp(f"({one} - (({eta} * {eta}) * ({one} - ({d} * {d}))))")
         f = cg.tmp(f"(({eta} * {d}) + np.sqrt({k}))")
         zero = cg.cf(0.0)
         return Val(
             rtype,
-            [f"({zero} if {k} < {zero} else (({eta} * {p}) - ({f} * {q})))" for p, q in zip(i, nn)],
+            [
+                f"({zero} if {k} < {zero} else (({eta} * {p}) - ({f} * {q})))"
+                for p, q in zip(pi, pn)
+            ],
         )
     if name == "faceforward":
-        nn, i, nref = args
-        a = [cg.atom(p) for p in nref.parts]
-        b = [cg.atom(p) for p in i.parts]
-        c = cg.tmp(f"({cg.dot_text(a, b) if len(a) > 1 else f'({a[0]} * {b[0]})'} < {cg.cf(0.0)})")
-        return Val(rtype, [f"({p} if {c} else (-{p}))" for p in [cg.atom(q) for q in nn.parts]])
+        vn, vi, nref = args
+        pa = [cg.atom(p) for p in nref.parts]
+        pb = [cg.atom(p) for p in vi.parts]
+        c = cg.tmp(
+            f"({cg.dot_text(pa, pb) if len(pa) > 1 else f'({pa[0]} * {pb[0]})'} < {cg.cf(0.0)})"
+        )
+        return Val(rtype, [f"({p} if {c} else (-{p}))" for p in [cg.atom(q) for q in vn.parts]])
     raise engine_error(f"{name}()", None)
 
 

@@ -56,7 +56,7 @@ from ...semantics.model import Constructor, Symbol
 from ..cpu_core.common import comment_safe
 from ..cpu_core.facts import Facts
 from ..cpu_core.uniformity import Uniformity
-from .expressions import ExpressionEmitter
+from .expressions import ExpressionEmitter, FnState
 from .module_text import HEADER, RENDER
 from .values import (
     ATOM,
@@ -71,19 +71,16 @@ from .values import (
     not_yet,
 )
 
-
-class FnState:
-    def __init__(self, sym: Any, uni: Any = None) -> None:
-        self.sym = sym
-        self.uni = uni  # cpu_core's Uniformity of the function (None: global initializers)
-        self.outs: list = []  # the parts of out/inout parameters, returned after the value
-        self.loops: list[tuple[str, Any]] = []  # (kind, continue emitter)
+TYPE_CHECKING = False  # not typing's: importing typing costs every start-up
+if TYPE_CHECKING:
+    from ...semantics.model import Model
+    from ..numpy_engine.transpile.nir_fold import FoldContext
 
 
 class Codegen(ExpressionEmitter):
     """`Codegen(model, path).module()` -> the generated Python source."""
 
-    def __init__(self, model: Any, path: str, fma: bool, float_to_uint: str) -> None:
+    def __init__(self, model: Model, path: str, fma: bool, float_to_uint: str) -> None:
         self.model = model
         self.path = path
         self.fma = fma
@@ -115,9 +112,9 @@ class Codegen(ExpressionEmitter):
         # the first dFdx/dFdy/fwidth call: its leaves are written `dfdx(v)` / `dfdy(v)`, which
         # only the lockstep rewrite computes (lanes.py: a block's lanes hold whole 2x2 quads)
         self.derivative: Any = None
-        self._fold_context: Any = None  # fold_context(): made on first use
+        self._fold_context: FoldContext | None = None  # fold_context(): made on first use
 
-    def fold_context(self) -> Any:
+    def fold_context(self) -> FoldContext:
         """The NumPy backend's Mesa rewrites' context at the current function, for the decisions
         this engine shares with it (nir_fold.mix_hint: nir_lower_flrp's formula for a `mix`;
         nir_fold.zero_add: an added constant zero)."""
@@ -125,6 +122,7 @@ class Codegen(ExpressionEmitter):
 
         if self._fold_context is None:
             self._fold_context = FoldContext(self.model, self.facts)
+        assert self.fn is not None  # asked while a function is generated
         return self._fold_context.at(self.fn.sym, self.fn.sym is self.entry)
 
     # -- emission ------------------------------------------------------------------------------
@@ -207,7 +205,7 @@ class Codegen(ExpressionEmitter):
         return out
 
     # -- variables -----------------------------------------------------------------------------
-    def declare_local(self, sym: Any, node: Any) -> list:
+    def declare_local(self, sym: Symbol, node: Any) -> list:
         from ..numpy_engine.transpile.common import python_ident
 
         name = python_ident(sym.unique_name or sym.name, node)
@@ -220,7 +218,7 @@ class Codegen(ExpressionEmitter):
         self.vars[id(sym)] = parts
         return parts
 
-    def global_parts(self, sym: Any, node: Any) -> list:
+    def global_parts(self, sym: Symbol, node: Any) -> list:
         parts = self.vars.get(id(sym))
         if parts is None:
             parts = []
@@ -255,7 +253,7 @@ class Codegen(ExpressionEmitter):
             ]
         return [f"{arr}[{off + c}]" for c in range(comps)]
 
-    def literal_global(self, sym: Any) -> list | None:
+    def literal_global(self, sym: Symbol) -> list | None:
         """A `const` global of literals (`const float EPS = 0.001;`, `const vec3 K = vec3(1, 0,
         -2);`) as module constants: the value init_globals would store (a literal, its negation
         and a constructor of them are exact), read without a state array, folded by LLVM."""
@@ -263,16 +261,19 @@ class Codegen(ExpressionEmitter):
         if sym.qualifier != "const" or not isinstance(d, A.Declarator) or d.init is None:
             return None
         t = sym.type
-        if not (t.is_scalar or t.is_vector) or not _literal_tree(self.model, d.init, t.base):
+        base = t.base
+        if not (t.is_scalar or t.is_vector) or base is None:  # (a scalar or vector has a base)
+            return None
+        if not _literal_tree(self.model, d.init, base):
             return None
         cv = self.model.const_value(d.init)
         if cv is None:
             return None
         values = flatten(cv)
         values = values * t.size if t.is_vector and len(values) == 1 else values
-        return [self.const_part(t.base, v) for v in values]
+        return [self.const_part(base, v) for v in values]
 
-    def var_parts(self, sym: Any, node: Any) -> list:
+    def var_parts(self, sym: Symbol, node: Any) -> list:
         if sym.kind in ("local", "param"):
             parts = self.vars.get(id(sym))
             if parts is None:
@@ -413,19 +414,19 @@ class Codegen(ExpressionEmitter):
         self.indent -= 1
 
     # -- functions -----------------------------------------------------------------------------
-    def fn_name(self, sym: Any) -> str:
+    def fn_name(self, sym: Symbol) -> str:
         from ..numpy_engine.transpile.common import python_ident
 
         return "f_" + python_ident(sym.unique_name or sym.name, sym.node)
 
-    def variant_name(self, sym: Any, seed: frozenset) -> str:
+    def variant_name(self, sym: Symbol, seed: frozenset) -> str:
         """A function's name, with the indices of its lane-uniform parameters when it has any
         (`f_map__u0_2`): the NumPy backend passes a value of one lane to the parameter there,
         which its constant folding reads as a constant (see `lane_uniform`)."""
         base = self.fn_name(sym)
         return base if not seed else base + "__u" + "_".join(str(i) for i in sorted(seed))
 
-    def gen_function(self, sym: Any, seed: frozenset = frozenset()) -> None:
+    def gen_function(self, sym: Symbol, seed: frozenset = frozenset()) -> None:
         node = sym.node
         self.variants.add((id(sym), seed))
         params_u = {
@@ -477,7 +478,7 @@ class Codegen(ExpressionEmitter):
         )
         self.fn = None
 
-    def vars_of_params(self, sym: Any) -> list:
+    def vars_of_params(self, sym: Symbol) -> list:
         out = []
         for p, (_, _, d) in zip(sym.node.proto.params, sym.params):
             psym = self.model.symbol_of(p)
@@ -487,6 +488,7 @@ class Codegen(ExpressionEmitter):
 
     def return_text(self, value: list | None) -> str:
         fs = self.fn
+        assert fs is not None  # generating a function's body
         parts = list(value or []) + list(fs.outs)
         if not parts:
             return "return 0"
@@ -568,6 +570,7 @@ class Codegen(ExpressionEmitter):
         return True
 
     def _stmt_Continue(self, s: A.Continue) -> bool:
+        assert self.fn is not None  # generating a function's body
         kind, cont = self.fn.loops[-1]
         if cont is not None:
             cont()
@@ -583,6 +586,7 @@ class Codegen(ExpressionEmitter):
     def condition(self, cond: Any) -> str:
         if isinstance(cond, A.ConditionDeclaration):
             sym = self.model.symbol_of(cond)
+            assert sym is not None  # every declaration of a checked program has its symbol
             value = self.expr(cond.init).parts
             parts = self.declare_local(sym, cond)
             self.write(parts, value)
@@ -627,6 +631,7 @@ class Codegen(ExpressionEmitter):
         self.emit(f"if {count} > {LOOP_CAP}:  # a runaway loop: the engine reports its line")
         self.emit(f"    raise LoopCapError({lid})")
         cont = step if not do_while else test
+        assert self.fn is not None  # generating a function's body
         self.fn.loops.append(("loop", cont))
         ended = self.stmt(body)
         self.fn.loops.pop()
@@ -638,7 +643,7 @@ class Codegen(ExpressionEmitter):
         self.indent -= 1
 
 
-def _literal_tree(model: Any, e: Any, base: str) -> bool:
+def _literal_tree(model: Model, e: Any, base: str) -> bool:
     """Literals of type `base`, their negations and vector constructors of them only."""
     if isinstance(e, (A.FloatLiteral, A.IntLiteral, A.BoolLiteral)):
         return model.type_of(e).base == base

@@ -132,9 +132,10 @@ def run_bounded(threads: int, calls: list[tuple], deadline: float | None) -> Non
                 futures, WAIT_SLICE if left is None else min(WAIT_SLICE, left), FIRST_EXCEPTION
             )
             for f in done:
-                if f.exception() is not None:
+                error = f.exception()
+                if error is not None:
                     _drop(workers, futures)
-                    raise f.exception()
+                    raise error
             if not pending:
                 return
     except (TimeoutError, KeyboardInterrupt):
@@ -438,6 +439,7 @@ class CompiledProgram:
             run_bounded(self.threads, [(mod.globals_template, uf, ui, *gt)], deadline)
             run_bounded(self.threads, calls, deadline)
         except TimeoutError:
+            assert seconds is not None  # (only a deadline times out)
             raise self._over_budget(mod, seconds, first) from None
         except LoopCapError as e:
             from ..numpy_engine.transpile.common import LOOP_CAP

@@ -31,9 +31,49 @@ from .values import (
     pure_expr,
 )
 
+TYPE_CHECKING = False  # not typing's: importing typing costs every start-up
+if TYPE_CHECKING:
+    from ...semantics.model import Model
+    from ..numpy_engine.transpile.nir_fold import FoldContext
+
+
+class FnState:
+    """The function Codegen is generating."""
+
+    def __init__(self, sym: Symbol | None, uni: Any = None) -> None:
+        self.sym = sym
+        self.uni = uni  # cpu_core's Uniformity of the function (None: global initializers)
+        self.outs: list = []  # the parts of out/inout parameters, returned after the value
+        self.loops: list[tuple[str, Any]] = []  # (kind, continue emitter)
+
 
 class ExpressionEmitter:
     """Expressions, l-values and calls of Codegen (see the module docstring)."""
+
+    if TYPE_CHECKING:  # Codegen's (codegen.py), declared for type checkers
+        model: Model
+        path: str
+        fma: bool
+        float_to_uint: str
+        entry: Any
+        lines: list[str]
+        indent: int
+        fn: FnState | None
+        needs: dict[str, list[str]]
+        variants: set[tuple[int, frozenset]]
+        pending: list[tuple[Any, frozenset]]
+        derivative: Any
+
+        def fold_context(self) -> FoldContext: ...
+        def emit(self, text: str) -> None: ...
+        def fresh(self, prefix: str = "t") -> str: ...
+        def tmp(self, value: str) -> str: ...
+        def atom(self, value: Any) -> Any: ...
+        def cf(self, v: float) -> str: ...
+        def ci(self, v: int, unsigned: bool = False) -> str: ...
+        def var_parts(self, sym: Symbol, node: Any) -> list: ...
+        def fn_name(self, sym: Symbol) -> str: ...
+        def variant_name(self, sym: Symbol, seed: frozenset) -> str: ...
 
     # -- writes --------------------------------------------------------------------------------
     def write(self, targets: list, values: list, fresh_arrays: bool = False) -> None:
@@ -85,6 +125,7 @@ class ExpressionEmitter:
         """The target parts of an l-value, its index expressions evaluated (once, in order)."""
         if isinstance(e, A.Identifier):
             sym = self.model.symbol_of(e)
+            assert sym is not None  # every name of a checked program has its symbol
             return list(self.var_parts(sym, e))
         if isinstance(e, A.Field):
             base = self.lvalue(e.base)
@@ -366,20 +407,20 @@ class ExpressionEmitter:
     def _expr_Binary(self, e: A.Binary) -> Val:
         op = e.op
         if op in ("&&", "||"):
-            left = self.tmp(self.expr(e.left).parts[0])
+            lcode = self.tmp(self.expr(e.left).parts[0])
             mark = len(self.lines)
             self.indent += 1
-            right = self.expr(e.right).parts[0]
+            rcode = self.expr(e.right).parts[0]
             self.indent -= 1
             if len(self.lines) == mark:  # nothing to run first: Python's own short circuit
-                return Val(T.BOOL, [f"({left} {'and' if op == '&&' else 'or'} {right})"])
+                return Val(T.BOOL, [f"({lcode} {'and' if op == '&&' else 'or'} {rcode})"])
             res = self.fresh()
             body = self.lines[mark:]
             del self.lines[mark:]
-            self.emit(f"{res} = {left}")
+            self.emit(f"{res} = {lcode}")
             self.emit(f"if {'' if op == '&&' else 'not '}{res}:")
             self.lines += body
-            self.emit(f"    {res} = {right}")
+            self.emit(f"    {res} = {rcode}")
             return Val(T.BOOL, [res])
         left = self.expr(e.left)
         right = self.expr(e.right)
@@ -555,7 +596,7 @@ class ExpressionEmitter:
             raise engine_error(f"the call of '{e.callee}' was not resolved by the checker", e)
         return builtin_call(self, e, tgt)
 
-    def user_call(self, e: A.Call, fn: Any) -> Val:
+    def user_call(self, e: A.Call, fn: Symbol) -> Val:
         args: list[str] = []
         outs: list[list] = []
         for a, (_, ptype, d) in zip(e.args, fn.params):
@@ -621,9 +662,9 @@ class ExpressionEmitter:
                 self.convert(p, v.t.base if not v.t.is_matrix else "float", t.base or "float")
                 for p in v.parts
             ]
-        const = None
+        const: list[Any] | None = None
         if all(v.const is not None for v in args):
-            const = [c for v in args for c in v.const]
+            const = [c for v in args for c in v.const or ()]  # (none is None)
         if t.is_scalar:
             return Val(t, comps[:1], const[:1] if const else None)
         if t.is_vector:
@@ -638,17 +679,17 @@ class ExpressionEmitter:
                 zero = self.cf(0.0)
                 return Val(t, [s if i == j else zero for i in range(c) for j in range(r)])
             if len(args) == 1 and args[0].t.is_matrix:
-                m = args[0]
-                mc, mr = m.t.cols, m.t.rows
+                mat = args[0]
+                mc, mr = mat.t.cols, mat.t.rows
                 one, zero = self.cf(1.0), self.cf(0.0)
-                out = []
+                cols: list[Any] = []
                 for i in range(c):
                     for j in range(r):
                         if i < mc and j < mr:
-                            out.append(m.parts[i * mr + j])
+                            cols.append(mat.parts[i * mr + j])
                         else:
-                            out.append(one if i == j else zero)
-                return Val(t, out)
+                            cols.append(one if i == j else zero)
+                return Val(t, cols)
             return Val(t, comps[: c * r])
         raise not_yet(f"constructing '{t}'", e)
 

@@ -128,7 +128,7 @@ class _Rename(ast.NodeTransformer):
         """`a if c else b` of pure sides (codegen's `0 if x == 0 else y * x` for a value the NumPy
         backend takes for a constant) as lsel: two basic blocks per lane stop the SLP
         vectorizer from packing the lanes; both sides computed, the same value picked."""
-        node = self.generic_visit(node)
+        self.generic_visit(node)  # (in place: it returns `node`)
         if pure_expr(node):
             return ast.copy_location(
                 ast.Call(ast.Name("lsel", ast.Load()), [node.test, node.body, node.orelse], []),
@@ -180,14 +180,15 @@ class _SharedReads(ast.NodeTransformer):
                     and isinstance(n.value, ast.Name)
                 ):
                     self.store(n.value.id, n.slice)
-                elif _call_name(n) == "aset" and n.args and isinstance(n.args[0], ast.Name):
-                    self.store(n.args[0].id, None)
+                elif isinstance(n, ast.Call) and _call_name(n) == "aset":
+                    if n.args and isinstance(n.args[0], ast.Name):
+                        self.store(n.args[0].id, None)
 
     def store(self, kind: str, index: Any) -> None:
-        if kind not in self.written or self.written[kind] is None:
+        if (written := self.written.get(kind)) is None:
             return
         if isinstance(index, ast.Constant) and isinstance(index.value, int):
-            self.written[kind].add(index.value)
+            written.add(index.value)
         else:
             self.written[kind] = None
 
@@ -384,10 +385,10 @@ class _Fn:
             self.emit(ast.unparse(s))
             return
         name = _call_name(v)
-        if name in self.L.functions:
+        if name in self.L.functions and isinstance(v, ast.Call):  # (a name: a call)
             self.user_call(v, [])
             return
-        if name == "aset":
+        if name == "aset" and isinstance(v, ast.Call):
             dst = v.args[0]
             if not isinstance(dst, ast.Name):
                 raise Unsupported("aset of an expression")
@@ -416,7 +417,8 @@ class _Fn:
                 isinstance(x, ast.Name) for x in targets
             ):
                 raise Unsupported("a tuple assignment")
-            self.user_call(v, [x.id for x in targets])
+            assert isinstance(v, ast.Call)  # (what has a call's name)
+            self.user_call(v, [x.id for x in targets if isinstance(x, ast.Name)])  # (all are)
             return
         if isinstance(t, ast.Subscript):
             if not isinstance(t.value, ast.Name):
@@ -454,7 +456,7 @@ class _Fn:
         self.emit(ast.unparse(s))
 
     def user_call(self, call: ast.Call, targets: list[str]) -> None:
-        name = _call_name(call)
+        name = ast.unparse(call.func)  # (_call_name of a call)
         callee = self.L.functions[name]
         params = [a.arg for a in callee.args.args]
         if len(params) != len(call.args) or call.keywords:

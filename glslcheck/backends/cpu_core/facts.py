@@ -12,6 +12,10 @@ from ...semantics.analysis import param_directions, written_variable
 from ...semantics.model import Symbol
 from .common import DERIVATIVES, IMPLICIT_LOD, fold_tree
 
+TYPE_CHECKING = False  # not typing's: importing typing costs every start-up
+if TYPE_CHECKING:
+    from ...semantics.model import Model
+
 
 @dataclass(frozen=True)
 class Events:
@@ -34,7 +38,7 @@ class Facts:
     """Program-wide facts the code generator needs: discarding and derivative-using functions,
     written globals, functions whose calls are lane-uniform for uniform arguments."""
 
-    def __init__(self, model: Any, functions: list[Any]) -> None:
+    def __init__(self, model: Model, functions: list[Any]) -> None:
         self.model = model
         self.functions = functions  # callees first
         self.may_discard: set[int] = set()
@@ -65,10 +69,10 @@ class Facts:
         for fn in functions:
             for node in fn.node.body.walk():
                 if isinstance(node, A.Identifier):
-                    sym = model.symbol_of(node)
-                    if sym is not None and (
-                        (sym.kind == "global" and id(sym) in self.written_globals)
-                        or (sym.kind == "builtin-var" and sym.name == "gl_FragCoord")
+                    read = model.symbol_of(node)
+                    if read is not None and (
+                        (read.kind == "global" and id(read) in self.written_globals)
+                        or (read.kind == "builtin-var" and read.name == "gl_FragCoord")
                     ):
                         self.reads_lane_state.add(id(fn))
                 elif isinstance(node, A.Call):
@@ -104,7 +108,7 @@ class Facts:
         """The variables a node itself writes (assignment, ++/--, out and inout arguments)."""
         return written_variables(self.model, node)
 
-    def closed(self, fn: Any) -> bool:
+    def closed(self, fn: Symbol) -> bool:
         """A call of `fn` with uniform arguments gives a uniform result (no lane state read or
         written, no discard)."""
         return (
@@ -113,7 +117,7 @@ class Facts:
             and not self.writes_globals(fn)
         )
 
-    def writes_globals(self, fn: Any) -> bool:
+    def writes_globals(self, fn: Symbol) -> bool:
         key = id(fn)
         if key not in self._calls_cache:
             res = False
@@ -128,7 +132,7 @@ class Facts:
         return self._calls_cache[key][0]
 
 
-def written_lvalues(model: Any, node: Any) -> list[Any]:
+def written_lvalues(model: Model, node: Any) -> list[Any]:
     """The l-values a node itself writes: an assignment's target, the operand of ++/--, the
     out and inout arguments of a call."""
     if isinstance(node, A.Assignment):
@@ -141,7 +145,7 @@ def written_lvalues(model: Any, node: Any) -> list[Any]:
     return []
 
 
-def written_variables(model: Any, node: Any) -> list[Symbol]:
+def written_variables(model: Model, node: Any) -> list[Symbol]:
     """The variables a node itself writes (`written_variable` of each of its `written_lvalues`)."""
     return [
         sym
@@ -155,7 +159,7 @@ class SideEffects:
     inout argument) or calls a user function, asked of many nodes of one program (memoized per
     node: linear over a tree)."""
 
-    def __init__(self, model: Any) -> None:
+    def __init__(self, model: Model) -> None:
         self.model = model
         self.memo: dict[int, bool] = {}
 
@@ -181,7 +185,7 @@ def is_plain_read(e: Any) -> bool:
     return isinstance(e, (A.Identifier, A.IntLiteral, A.FloatLiteral, A.BoolLiteral))
 
 
-def events_of(stmt: Any, facts: Facts, model: Any, in_loop_or_switch: bool = False) -> Events:
+def events_of(stmt: Any, facts: Facts, model: Model, in_loop_or_switch: bool = False) -> Events:
     """Events that escape `stmt` (a break/continue inside a nested loop does not escape it).
     Memoized per node (`facts.events`): asked of every statement at every nesting level."""
 
@@ -206,7 +210,7 @@ def events_of(stmt: Any, facts: Facts, model: Any, in_loop_or_switch: bool = Fal
     return fold_tree(stmt, facts.events, own)
 
 
-def induction_variable(s: Any, model: Any, facts: Facts | None = None) -> Any:
+def induction_variable(s: Any, model: Model, facts: Facts | None = None) -> Any:
     """The Symbol of a for loop's induction variable: declared in the init, written only by the
     step (`i++`, `++i`, `i--`, `i += e`, `i -= e`, `i = i + e`); else None. With `facts`, the
     body is not walked: the variable is scoped to the loop, so it is written nowhere but the
@@ -244,7 +248,7 @@ def induction_variable(s: Any, model: Any, facts: Facts | None = None) -> Any:
     for part in (s.cond, s.body):
         if part is None:
             continue
-        for n in part.walk():
-            if any(w is sym for w in written_variables(model, n)):
+        for node in part.walk():
+            if any(w is sym for w in written_variables(model, node)):
                 return None
     return sym

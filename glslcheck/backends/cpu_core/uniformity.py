@@ -62,6 +62,10 @@ from ...semantics.analysis import param_directions, written_variable
 from ...semantics.model import Symbol
 from .facts import NO_EVENTS, Facts, events_of, induction_variable
 
+TYPE_CHECKING = False  # not typing's: importing typing costs every start-up
+if TYPE_CHECKING:
+    from ...semantics.model import Model
+
 
 class Uniformity:
     """The analysis of one function `fn` (a function symbol of the checker's model); see the
@@ -69,9 +73,9 @@ class Uniformity:
 
     def __init__(
         self,
-        model: Any,
+        model: Model,
         facts: Facts,
-        fn: Any,
+        fn: Symbol,
         is_entry: bool,
         uniform_params: frozenset | set = frozenset(),
     ) -> None:
@@ -138,7 +142,7 @@ class Uniformity:
         ++/--, an out argument: the whole l-value, `v.x` not `v`) needs no mask."""
         return id(target) in self.free
 
-    def is_varying(self, sym: Any) -> bool:
+    def is_varying(self, sym: Symbol) -> bool:
         """True when the variable (a symbol) may differ between lanes."""
         return id(sym) in self.varying
 
@@ -234,7 +238,7 @@ class Uniformity:
         if not (uniform and (free or self.mu)):
             self.varying.add(id(sym))
 
-    def declare(self, sym: Any, uniform: bool, level: int | None = None) -> None:
+    def declare(self, sym: Symbol | None, uniform: bool, level: int | None = None) -> None:
         if sym is None:
             return
         self.seq += 1

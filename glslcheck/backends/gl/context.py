@@ -59,7 +59,10 @@ def create_context():
         ) from None
     os.environ.setdefault("glsl_zero_init", "true")
     try:
-        ctx = _quietly(lambda: moderngl.create_context(standalone=True, backend="egl"))
+        ctx = _quietly(
+            # (moderngl's stubs type each **setting as a dict; a string is what it takes)
+            lambda: moderngl.create_context(standalone=True, backend="egl")  # type: ignore[arg-type]
+        )
     except Exception as e:  # moderngl/glcontext raise plain Exception subclasses
         raise GLUnavailable(
             f"error: cannot create an OpenGL context with EGL ({e}); {ADVICE}"

@@ -39,6 +39,10 @@ from ..driver_profile import driver_model
 from .context import get_context
 from .zero_init import zero_initialized
 
+TYPE_CHECKING = False  # not typing's: importing typing costs every start-up
+if TYPE_CHECKING:
+    import moderngl
+
 RULE = "gl-compile"
 
 # A triangle that covers the viewport, from gl_VertexID alone (no vertex buffer):
@@ -217,8 +221,8 @@ class _Compiled:
     """One driver program and the vertex array that draws it."""
 
     program: Program
-    gl_program: object
-    vao: object
+    gl_program: moderngl.Program
+    vao: moderngl.VertexArray
 
 
 @dataclass(eq=False)
@@ -227,7 +231,7 @@ class GLProgram:
 
     shader: Shader
     program: Program  # the one-sample program (exactly what Shadertoy compiles)
-    ctx: object
+    ctx: moderngl.Context
     _variants: dict[bool, _Compiled] = field(default_factory=dict, repr=False)
 
     @property
@@ -301,6 +305,7 @@ class GLProgram:
             texture.release()
             for t in channel_textures:
                 t.release()
+        assert total is not None  # at least one sample offset
         image = (total / len(offsets)).astype(np.float32)
         return np.ascontiguousarray(image[::-1])  # GL rows go bottom-up; images top-down
 

@@ -23,10 +23,11 @@ from ...shadertoy.sources import Shader, Source
 
 def zero_text(t: T.Type) -> str | None:
     """A constant expression of type t with every component zero (None if t has none)."""
-    if t.is_struct:
+    if isinstance(t, T.StructType):
         parts = [zero_text(ft) for _, ft in t.fields]
-        return None if any(p is None for p in parts) else f"{t.name}({', '.join(parts)})"
-    if t.is_array:
+        known = [p for p in parts if p is not None]
+        return None if len(known) < len(parts) else f"{t.name}({', '.join(known)})"
+    if isinstance(t, T.ArrayType):
         if t.array_size is None:
             return None
         inner = zero_text(t.element)

@@ -275,20 +275,25 @@ def compiled(
     kind, which = _KERNELS[name]
     kernel = getattr(kernels, kind)
 
+    take: Callable[..., bool]  # (out, the arguments) -> whether the kernel computed them
     if kind == "trig":
 
-        def take(out: np.ndarray, a: np.ndarray) -> bool:
+        def take_trig(out: np.ndarray, a: np.ndarray) -> bool:
             return kernel(a, out, fma, which)
+
+        take = take_trig
     elif kind == "mix":
 
-        def take(out: np.ndarray, x: np.ndarray, y: np.ndarray, a: np.ndarray) -> bool:
+        def take_mix(out: np.ndarray, x: np.ndarray, y: np.ndarray, a: np.ndarray) -> bool:
             return kernel(x, y, a, out)
 
-        return _rows_call(run, take)
+        return _rows_call(run, take_mix)
     else:  # explog, arc: exp2, log2, atan, asin and acos read no y
 
-        def take(out: np.ndarray, x: np.ndarray, y: np.ndarray = _ONE_LANE) -> bool:
+        def take_xy(out: np.ndarray, x: np.ndarray, y: np.ndarray = _ONE_LANE) -> bool:
             return kernel(x, y, out, fma, which)
+
+        take = take_xy
 
     def call(x: np.ndarray, *rest: np.ndarray) -> np.ndarray:
         if not rest:

@@ -98,16 +98,19 @@ class _Fused:
         if not self.fma:
             return np.add(np.multiply(a, b, dtype=F32), c, dtype=F32)
         k = self.used
-        s = self.buf[k] if rows == 1 else self.buf[k : k + rows]
+        buf = self.buf
+        assert buf is not None  # made with fma
+        s = buf[k] if rows == 1 else buf[k : k + rows]
         self.used = k + rows
-        np.multiply(a, b, out=s, signature=_SIG64)
+        # (NumPy's stubs take a signature as strings only; its dtypes are accepted too)
+        np.multiply(a, b, out=s, signature=_SIG64)  # type: ignore[arg-type]
         np.add(s, c, out=s)
         return s.astype(F32)
 
     def midpoints(self) -> np.ndarray | None:
         """None when no float64 sum is a float32 midpoint (each rounding equals the fused
         one), else the lanes where one is (the rows are overwritten by the test)."""
-        if not self.used:
+        if not self.used or self.buf is None:  # (no buffer: nothing used)
             return None
         low = self.buf[: self.used].view(I64)
         np.bitwise_and(low, _LOW29, out=low)
@@ -188,8 +191,8 @@ def sin_cos(a: np.ndarray, fma: bool, cos: bool, ref: Any = None) -> np.ndarray 
         # sin(x_3) and y_10 = 1 + (a - z/2) with 0 <= a < z/2: both within [-1, 1] already
         np.fmin(y, _ONE, out=y)
         np.fmax(y, _MINUS_ONE, out=y)
-    y = _fix(y, bad, ref, a)
-    return None if y is None else y.reshape(shape)
+    fixed = _fix(y, bad, ref, a)
+    return None if fixed is None else fixed.reshape(shape)
 
 
 def exp2(x: np.ndarray, fma: bool, ref: Any = None) -> np.ndarray | None:
@@ -271,8 +274,8 @@ def pow(x: np.ndarray, y: np.ndarray, fma: bool, ref: Any = None) -> np.ndarray 
         lg = _log2(np.where(zero, _ONE, x), fma)
         if lg is None:
             return None
-    lg, bad_x = lg
-    t = lg.reshape(x.shape) * y
+    lg2, bad_x = lg
+    t = lg2.reshape(x.shape) * y
     e = _exp2(t, fma)
     if e is None:
         return None
@@ -288,4 +291,4 @@ def pow(x: np.ndarray, y: np.ndarray, fma: bool, ref: Any = None) -> np.ndarray 
     if ref is None:
         return None
     flat = _fix(r.reshape(-1), bad, ref, *(np.broadcast_to(v, t.shape).reshape(-1) for v in (x, y)))
-    return flat.reshape(t.shape)
+    return None if flat is None else flat.reshape(t.shape)

@@ -7,6 +7,7 @@ jit.py's compiled ones. Runtime (runtime.py) owns one LlvmpipeMath in float32.
 from __future__ import annotations
 
 import math
+from collections.abc import Callable
 from typing import Any
 
 import numpy as np
@@ -213,16 +214,20 @@ class LlvmpipeMath:
         per name (a hot path: one call per tile, loop iteration and march step)."""
         run = self._kernels.get(name)
         if run is None:
-            fast, slow, fma = _FAST_KERNELS.get(name), self._fast(name), self.fma
+            kernel, slow, fma = _FAST_KERNELS.get(name), self._fast(name), self.fma
+            chosen = slow
+            if kernel is not None:
+                fast = kernel
 
-            def run(*args: np.ndarray) -> np.ndarray:
-                if max(a.size for a in args) > DEFER_LANES:
-                    return slow(*args)
-                r = fast(*args, fma, slow)  # slow: also for the lanes of a float32 midpoint
-                return slow(*args) if r is None else r
+                def with_kernel(*args: np.ndarray) -> np.ndarray:
+                    if max(a.size for a in args) > DEFER_LANES:
+                        return slow(*args)
+                    r = fast(*args, fma, slow)  # slow: also for the lanes of a float32 midpoint
+                    return slow(*args) if r is None else r
 
+                chosen = with_kernel
             # compiled kernels (numba) where jit.py's rule says they pay; else run itself
-            self._kernels[name] = run = jit.dispatch(name, run if fast else slow, fma)
+            self._kernels[name] = run = jit.dispatch(name, chosen, fma)
         return run
 
     def builtin(self, name: str, ref: Any) -> Any:
@@ -239,7 +244,8 @@ class LlvmpipeMath:
         """``lp_build_polynomial``: even and odd coefficients in x*x separately (each by
         Horner with mad), then ``mad(odd, x, even)``."""
         x2 = x * x
-        even = odd = None
+        even: np.ndarray | np.floating | None = None
+        odd: np.ndarray | np.floating | None = None
         for i in range(len(coeffs) - 1, -1, -1):
             c = F32(coeffs[i])
             if i % 2 == 0:
@@ -299,9 +305,9 @@ class LlvmpipeMath:
         p = self.SIN_COS
         if z.size <= DEFER_LANES:  # (flat: the argument may be a vector, e.g. of shape (3, 1))
             zf = z.reshape(-1)
-            both = self.mad(self.mad(zf, p[0], p[1]), zf, p[2])
-            both *= zf
-            both = [row.reshape(z.shape) for row in both]
+            stacked = self.mad(self.mad(zf, p[0], p[1]), zf, p[2])
+            stacked *= zf
+            both = [row.reshape(z.shape) for row in stacked]
         else:
             both = [
                 self.mad(self.mad(z, p[0, i, 0], p[1, i, 0]), z, p[2, i, 0]) * z for i in (0, 1)
@@ -393,7 +399,9 @@ class LlvmpipeMath:
         return r
 
 
-_FAST_KERNELS = {  # LlvmpipeMath._kernel: name -> kernel(*args, fma, ref), None where it declines
+_FAST_KERNELS: dict[
+    str, Callable[..., np.ndarray | None]
+] = {  # LlvmpipeMath._kernel: name -> kernel(*args, fma, ref), None where it declines
     "_sin": lambda a, fma, ref: llvmpipe_fast.sin_cos(a, fma, False, ref),
     "_cos": lambda a, fma, ref: llvmpipe_fast.sin_cos(a, fma, True, ref),
     "_exp2": llvmpipe_fast.exp2,

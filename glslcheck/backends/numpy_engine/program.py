@@ -39,6 +39,7 @@ import sys
 import threading
 import time as _time
 from collections import OrderedDict
+from collections.abc import Sequence
 from concurrent.futures import FIRST_EXCEPTION, ThreadPoolExecutor, wait
 from dataclasses import dataclass, field
 from typing import Any, NamedTuple
@@ -247,7 +248,7 @@ class NumpyProgram:
     _render_seconds: float = field(default=0.0, repr=False)
     _keys: dict = field(default_factory=dict, repr=False)
     _modules: dict = field(default_factory=dict, repr=False)
-    _cache: OrderedDict = field(default_factory=lambda: _FrameCache(), repr=False)
+    _cache: _FrameCache = field(default_factory=lambda: _FrameCache(), repr=False)
     _specs: OrderedDict = field(default_factory=OrderedDict, repr=False)  # frame key -> FrameSpec
     _tile_order: OrderedDict = field(
         default_factory=OrderedDict, repr=False
@@ -441,7 +442,10 @@ class NumpyProgram:
                 for k, v in st.items():
                     total[k] = total.get(k, 0) + v
             regions = self.meta.get("regions", {})
-            self.last_stats = [RegionStat(*regions[k], total.get(k, 0)) for k in sorted(regions)]
+            self.last_stats = []
+            for k in sorted(regions):
+                kind, function, path, line = regions[k]
+                self.last_stats.append(RegionStat(kind, function, path, line, total.get(k, 0)))
             return
         with self._lock:
             self._cache[key] = cached
@@ -488,9 +492,7 @@ class NumpyProgram:
                 for f in futures:  # ... and let the running ones finish before returning
                     if not f.cancelled():
                         f.exception()
-            errors = [
-                f.exception() for f in futures if not f.cancelled() and f.exception() is not None
-            ]
+            errors = [e for f in futures if not f.cancelled() and (e := f.exception()) is not None]
             if errors:  # the tile's own error, not the Cancelled of the tiles it stopped
                 raise next((e for e in errors if not isinstance(e, Cancelled)), errors[0])
         else:
@@ -525,7 +527,7 @@ class NumpyProgram:
             )
         return lanes, threads  # frame_tiles makes tiles of at most TILE_LANES
 
-    def _use_processes(self, threads: int, tiles: list) -> bool:
+    def _use_processes(self, threads: int, tiles: Sequence) -> bool:
         """Worker processes for frames of several tiles when asked to, or ("auto") once this
         program has spent PROCESSES_AFTER seconds rendering here or a pool is already up:
         starting the workers costs a few tenths of a second, which one small frame would not

@@ -7,10 +7,11 @@ from typing import Any
 import numpy as np
 
 from .llvmpipe_reference import keeps_shape
+from .runtime_state import RuntimeState
 from .runtime_values import BOOL, I32, U32, GLSLRuntimeError
 
 
-class CommonFunctions:
+class CommonFunctions(RuntimeState):
     """GLSL's common, packing, geometric, relational and derivative functions (a mixin of
     Runtime)."""
 

@@ -8,10 +8,11 @@ from typing import Any
 
 import numpy as np
 
+from .runtime_state import RuntimeState
 from .runtime_values import BOOL, I32, U32, Struct, lanes_of
 
 
-class ArithmeticOps:
+class ArithmeticOps(RuntimeState):
     """GLSL's operators and matrix functions (a mixin of Runtime)."""
 
     # ------------------------------------------------------------------ arithmetic
@@ -219,6 +220,7 @@ class ArithmeticOps:
             for k, v in a._fields.items():
                 e = self.equal_all(v, b._fields[k])
                 res = e if res is None else res & e
+            assert res is not None  # a struct has a field
             return res
         a, b = self._pair(a, b)
         e = np.equal(a, b)

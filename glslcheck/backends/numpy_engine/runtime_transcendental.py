@@ -10,9 +10,10 @@ from typing import Any
 import numpy as np
 
 from .llvmpipe_reference import POW_REWRITTEN, daz
+from .runtime_state import RuntimeState
 
 
-class TranscendentalFunctions:
+class TranscendentalFunctions(RuntimeState):
     """GLSL's angle, trigonometric and exponential functions (a mixin of Runtime)."""
 
     # ------------------------------------------------------------------ angle & trig

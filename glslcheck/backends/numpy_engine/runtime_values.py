@@ -10,6 +10,7 @@ from typing import Any
 import numpy as np
 
 from ..driver_profile import float_to_uint
+from .runtime_state import RuntimeState
 
 I32 = np.int32
 U32 = np.uint32
@@ -108,7 +109,7 @@ def lanes_of(*values: Any) -> int:
 _CONVERTERS = {"float": "to_float", "int": "to_int", "uint": "to_uint", "bool": "to_bool"}
 
 
-class ValueOps:
+class ValueOps(RuntimeState):
     """Runtime's plumbing, constants, conversions, constructors and access (a mixin of Runtime:
     it reads the precision and constants Runtime.__init__ sets)."""
 

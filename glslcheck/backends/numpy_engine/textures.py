@@ -166,9 +166,9 @@ def _quad_corner_diff(v: np.ndarray, width: int, axis: int) -> np.ndarray:
     between the quad's bottom-left pixel and its right (axis 1) or upper (axis 0) neighbour,
     repeated over the quad. An odd last column or row pairs with its left or lower neighbour."""
     n = v.shape[-1]
-    img = v.reshape(v.shape[:-1] + (n // width, width))
+    img: np.ndarray = v.reshape(v.shape[:-1] + (n // width, width))
     other = 1 - axis
-    size = img.shape[-2 + axis]
+    size: int = img.shape[-2 + axis]
     if size < 2:
         return np.zeros_like(v)
     take = lambda a, sl, ax: a[(Ellipsis, sl, slice(None)) if ax == 0 else (Ellipsis, sl)]  # noqa: E731

@@ -41,6 +41,8 @@ from .runtime import Runtime
 from .runtime_values import Struct
 from .transpile import glsl_location, too_complex
 
+TYPE_CHECKING = False  # not typing's: importing typing costs every start-up
+
 TILE_LANES = (
     49152  # lanes per tile: fewer calls in compacted regions; full-lane work measured flat 24k-49k
 )
@@ -125,6 +127,16 @@ class State:
         None  # [passes left] of llvmpipe's loop limiter when emulated (LaneHelpers.tick), else None
     )
 
+    if TYPE_CHECKING:  # a compacted view's own fields (`compact`), and gl_FragCoord
+        parent: State
+        lanes: int
+        idx: np.ndarray
+        lazy: set[str]
+        gathered: dict[str, Any]
+        frag_coord4: Any
+        width: int
+        frag_coord: Any
+
     def __init__(self, **values: Any) -> None:
         self.__dict__.update(values)
 
@@ -165,6 +177,7 @@ class LaneHelpers:
             if not m[0]:
                 return old
             m = None
+        assert self.rt is not None  # (helpers of a render have its runtime)
         return self.rt.assign(old, new, m)
 
     def reg(self, S, name: str, new, m):
@@ -173,6 +186,7 @@ class LaneHelpers:
         lane field `name`: llvmpipe's register for a value merged across control flow (a
         function's return from inside a branch, after inlining), stored under the exec mask,
         so a neighbour's derivative reads the old value there (transpile/functions.py)."""
+        assert self.rt is not None  # (helpers of a render have its runtime)
         if not self.rt.lp:
             return new  # (llvmpipe's, float32 renders only: the float64 reference keeps zero there)
         old = getattr(S, name, None)  # (a `g_` field: gathered and scattered as a global)
@@ -632,6 +646,7 @@ def render_tile(
                     color = color.astype(np.float64)
             color = np.broadcast_to(color, (len(color), lanes))
         acc = color if acc is None else acc + color
+    assert acc is not None  # (at least one sample)
     if samples > 1:
         acc = acc / samples
     # tile row 0 is the bottom one (y0); the image's row 0 is the top of the picture
@@ -661,6 +676,6 @@ def _too_deep(ns: dict, e: RecursionError) -> GlslError:
     while tb is not None:
         code = tb.tb_frame.f_code
         if tb.tb_frame.f_globals is ns and code.co_filename in linecache.cache:
-            loc = glsl_location("".join(linecache.cache[code.co_filename][2]), tb.tb_lineno, path)
+            loc = glsl_location("".join(linecache.getlines(code.co_filename)), tb.tb_lineno, path)
         tb = tb.tb_next
     return too_complex("its function calls are nested too deeply for Python", loc)

@@ -54,6 +54,10 @@ from ...semantics.analysis import origins
 from .runtime_values import Struct
 from .transpile import Transpiler
 
+TYPE_CHECKING = False  # not typing's: importing typing costs every start-up
+if TYPE_CHECKING:
+    from ...semantics.model import Model, Symbol
+
 MAX_STEPS = (
     200_000  # steps PixelTracer records; later steps only count (a runaway shader stays bounded)
 )
@@ -122,7 +126,7 @@ class TraceTranspiler(Transpiler):
 
     CSE_CALLS = False  # every call where it runs, each reported (not one shared by repeats)
 
-    def __init__(self, model: Any, path: str = "<shader>") -> None:
+    def __init__(self, model: Model, path: str = "<shader>") -> None:
         super().__init__(model, path)
         self.sites: list[Site] = []
         self._site_ids: dict[tuple, int] = {}
@@ -181,7 +185,7 @@ class TraceTranspiler(Transpiler):
         return self.fn is not None and not self.in_const and self.fn.sym.name != "<globals>"
 
     # -- what is traced ----------------------------------------------------------------------------
-    def var_name(self, sym: Any, node: Any) -> str:
+    def var_name(self, sym: Symbol, node: Any) -> str:
         name = super().var_name(sym, node)
         self._glsl.setdefault(name, sym.name)
         return name
@@ -189,7 +193,7 @@ class TraceTranspiler(Transpiler):
     def early_out(self, body: list[Any]) -> None:
         return None  # the select computes the return that does not happen: not traceable
 
-    def gen_function(self, sym: Any) -> None:
+    def gen_function(self, sym: Symbol) -> None:
         for n in sym.node.body.walk():
             if isinstance(n, A.If):
                 self.watched[id(n.cond)] = ("b", n, "if" if n.else_ is None else "if/else")
@@ -248,6 +252,7 @@ class TraceTranspiler(Transpiler):
 
     def _stmt_Break(self, s: A.Break, mask: str | None) -> None:
         super()._stmt_Break(s, mask)
+        assert self.fn is not None  # generating a function's body
         self._event(
             s, "branch", "break" if self.fn.loops[-1].kind == "loop" else "break (switch)", mask
         )
@@ -279,7 +284,7 @@ class TraceTranspiler(Transpiler):
         super().sub(s, mask)
 
     def call_text(
-        self, e: A.Call, fn: Any, call_mask: str | None, args: list[str], mask: str | None
+        self, e: A.Call, fn: Symbol, call_mask: str | None, args: list[str], mask: str | None
     ) -> str:
         text = super().call_text(e, fn, call_mask, args, mask)
         if not self._traced():
@@ -386,7 +391,7 @@ _NAME_OPS = {
 def _lanes_any(x: np.ndarray, lanes: int) -> np.ndarray:
     """bool (lanes,): any component of x (lane axis last, size lanes or 1) is true."""
     if x.ndim > 1:
-        x = x.reshape(-1, x.shape[-1]).any(axis=0)
+        x = np.asarray(x.reshape(-1, x.shape[-1]).any(axis=0))
     return np.broadcast_to(x, (lanes,))
 
 

@@ -46,6 +46,7 @@ import threading
 import time
 import weakref
 from collections import OrderedDict
+from collections.abc import Sequence
 from multiprocessing import reduction
 from multiprocessing.connection import Connection
 from typing import Any
@@ -112,7 +113,7 @@ def render(
     meta: dict,
     precision: str,
     spec: Any,
-    tiles: list[tuple[int, int, int, int]],
+    tiles: Sequence[tuple[int, int, int, int]],
     workers: int,
     budget: Any = None,
 ) -> tuple[np.ndarray, np.ndarray, list[dict], dict]:

@@ -217,6 +217,7 @@ class Browser:
 
     def new_page(self, **options):
         """Another page of this browser (e.g. to load a report); the caller closes it."""
+        assert self._browser is not None, "the browser is closed"
         return self._browser.new_page(**options)
 
     def close(self) -> None:

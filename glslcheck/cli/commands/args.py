@@ -90,7 +90,7 @@ def environment(**values: str | None):
     (--parallel: GLSLCHECK_PARALLEL, --frame-budget: GLSLCHECK_FRAME_SECONDS), and main() may
     run again in the same process."""
     before = {name: os.environ.get(name) for name, value in values.items() if value is not None}
-    os.environ.update({name: values[name] for name in before})
+    os.environ.update({name: value for name, value in values.items() if value is not None})
     try:
         yield
     finally:

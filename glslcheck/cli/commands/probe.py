@@ -85,13 +85,13 @@ def run(args) -> int:
     )
     probe = Probe(args.path)
     if args.nan:
-        report = probe.nan_origins(inputs)
+        nan_report = probe.nan_origins(inputs)
         print(
-            json.dumps(report.to_json())
+            json.dumps(nan_report.to_json())
             if args.format == "json"
-            else format_nan(report, args.path, inputs)
+            else format_nan(nan_report, args.path, inputs)
         )
-        return 1 if report.nan_pixels or report.inf_pixels else 0
+        return 1 if nan_report.nan_pixels or nan_report.inf_pixels else 0
     if args.frag_coord is not None:
         fx, fy = args.frag_coord
         w, h = args.size
@@ -99,7 +99,8 @@ def run(args) -> int:
             raise InputError(f"error: --frag-coord {fx:g},{fy:g} is outside the {w}x{h} image")
         report = probe.pixel(None, None, inputs, frag_coord=(fx, fy))
     else:
-        report = probe.pixel(*args.pixel, inputs)
+        x, y = args.pixel
+        report = probe.pixel(x, y, inputs)
     print(
         json.dumps(report.to_json())
         if args.format == "json"

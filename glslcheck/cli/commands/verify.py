@@ -64,12 +64,17 @@ from ...shadertoy.sources import find_shaders
 from ...verification.verify import (
     BACKENDS,
     DEFAULT_FPS,
+    FrameResult,
     Progress,
     diff_paths,
     frame_specs,
     verify_frames,
 )
 from . import args as cli_args
+
+TYPE_CHECKING = False  # not typing's: importing typing costs every start-up
+if TYPE_CHECKING:
+    from collections.abc import Iterator
 
 
 def _backends(text: str) -> tuple[str, str]:
@@ -79,7 +84,7 @@ def _backends(text: str) -> tuple[str, str]:
             f"--backends takes two of {', '.join(registry.names())} separated by a comma, "
             f"not {text!r}"
         )
-    return names  # type: ignore[return-value]
+    return names
 
 
 def add_arguments(p) -> None:
@@ -236,6 +241,7 @@ def run(args) -> int:
                     samples=args.samples,
                     progress=progress,
                 )
+                frames: Iterator[FrameResult]
                 if args.against == "webgl":  # NumPy vs WebGL, driver-dependent pixels apart
                     from ...verification.drivers import verify_against_webgl
 

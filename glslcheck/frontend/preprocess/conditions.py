@@ -99,7 +99,9 @@ class IfEvaluator:
         lhs = self.unary(live, nesting)
         while True:
             t = self._peek()
-            prec = _BINARY_PREC.get(t.text) if t is not None and t.kind == OP else None
+            if t is None or t.kind != OP:
+                return lhs
+            prec = _BINARY_PREC.get(t.text)
             if prec is None or prec < min_prec:
                 return lhs
             self.i += 1

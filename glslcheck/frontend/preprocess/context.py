@@ -31,6 +31,8 @@ class Conditional:
 class PreprocessorState:
     """Everything the preprocessor knows between two lines; `preprocess` makes one per program."""
 
+    out_line: int  # the output's line the next text lands on (from 1 in each unit: start_unit)
+
     def __init__(self, predefined: dict[str, str] | None, shadertoy: bool):
         self.shadertoy = shadertoy
         self.macros: dict[str, Macro] = {}

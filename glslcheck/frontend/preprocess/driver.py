@@ -71,7 +71,9 @@ def run_unit(pp: PreprocessorState, u: Unit) -> None:
     for i, nl in enumerate(nls):
         if nl in soft:
             continue
-        f = _LEAD_WS_RE.match(text, start, nl).end()
+        lead = _LEAD_WS_RE.match(text, start, nl)
+        assert lead is not None  # a run of white space, maybe empty: it matches everywhere
+        f = lead.end()
         active = pp.cond_active
         if f < nl and text[f] == "#":
             if run_start is not None:

@@ -54,6 +54,7 @@ def lex(text: str, pos: int, end: int) -> Token | None:
     if m is None:
         return None
     kind = m.lastgroup
+    assert kind is not None  # every alternative of the pattern is a named group
     t = m.group(kind)
     e = m.end()
     s = e - len(t)
@@ -61,7 +62,7 @@ def lex(text: str, pos: int, end: int) -> Token | None:
 
 
 def lex_all(text: str, pos: int, end: int) -> list[Token]:
-    out = []
+    out: list[Token] = []
     while True:
         t = lex(text, pos, end)
         if t is None:

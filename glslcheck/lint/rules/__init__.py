@@ -146,6 +146,7 @@ def _load(name: str, module_name: str) -> Rule:
         problems.append(f"the docstring lacks the section(s) {', '.join(missing)}")
     if problems:
         raise TypeError(f"lint rule {where}: " + "; ".join(problems))
+    assert isinstance(penalty, int) and isinstance(severity, str)  # else a problem above
     return Rule(
         name,
         penalty,

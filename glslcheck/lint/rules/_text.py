@@ -13,11 +13,13 @@ if TYPE_CHECKING:
     from collections.abc import Iterator
     from typing import Any
 
+    from ...semantics.analysis import FunctionFacts
+
 COMPARISONS = ("<", "<=", ">", ">=")
 FLIPPED = {"<": ">", "<=": ">=", ">": "<", ">=": "<="}  # a op b  <=>  b FLIPPED[op] a
 
 
-def negative_reason(fn: Any, e: A.Expr) -> str | None:
+def negative_reason(fn: FunctionFacts, e: A.Expr) -> str | None:
     """Why `e` can be negative (`FunctionFacts.negative_witness`) as the rules say it: the reason,
     followed by `: <source> (line N)` when its source lies outside `e`; None: it cannot."""
     why = fn.negative_witness(e)
@@ -38,7 +40,7 @@ def compared_calls(model: Model, path: str, *names: str) -> Iterator[tuple[A.Cal
             if type(node) is not A.Binary or node.op not in COMPARISONS:
                 continue
             for side, other in ((node.left, node.right), (node.right, node.left)):
-                if builtin_call(model, side, *names):
+                if type(side) is A.Call and builtin_call(model, side, *names):
                     yield side, other, node.op if side is node.left else FLIPPED[node.op]
 
 

@@ -42,8 +42,11 @@ NEEDS = "ast"
 
 
 def check(ctx: LintContext) -> Iterator[Diagnostic]:
-    for side, other, op in compared_calls(ctx.model, ctx.path, "length", "distance"):
-        bound = squared(ctx.model, other)
+    model = ctx.model
+    if model is None:  # (no semantic model: no function has facts)
+        return
+    for side, other, op in compared_calls(model, ctx.path, "length", "distance"):
+        bound = squared(model, other)
         if side.callee == "length":
             v = text(side.args[0])
             fix = f"compare dot(v, v) with the squared bound: with v = {v}, dot(v, v) {op} {bound}"

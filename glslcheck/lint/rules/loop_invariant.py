@@ -54,7 +54,7 @@ PENALTY = 1
 SEVERITY = "warning"
 NEEDS = "ast"
 
-_LOOP_WORD = {A.For: "for", A.While: "while", A.DoWhile: "do-while"}
+_LOOP_WORD: dict[type, str] = {A.For: "for", A.While: "while", A.DoWhile: "do-while"}
 
 
 def check(ctx: LintContext) -> Iterator[Diagnostic]:

@@ -158,6 +158,8 @@ def _written_out(fn, e) -> Any:
     for v, m in pairs:
         if not getattr(model.type_of(v), "is_vector", False):
             continue
+        if type(m) is not A.Call:  # (builtin_call tells a call of which function)
+            continue
         if e.op == "/" and builtin_call(model, m, "length") and fn.key(m.args[0]) == fn.key(v):
             return v
         if e.op == "/" and builtin_call(model, m, "sqrt"):
@@ -166,7 +168,11 @@ def _written_out(fn, e) -> Any:
             continue
         else:
             m = m.args[0]
-        if builtin_call(model, m, "dot") and fn.key(m.args[0]) == fn.key(v) == fn.key(m.args[1]):
+        if (
+            type(m) is A.Call
+            and builtin_call(model, m, "dot")
+            and fn.key(m.args[0]) == fn.key(v) == fn.key(m.args[1])
+        ):
             return v
     return None
 
@@ -275,7 +281,9 @@ def _unswizzle(e, model):
             return e
 
 
-def _resolve(fn, e, depth: int = 0, params_only: bool = False, across_calls: bool = True):
+def _resolve(
+    fn, e, depth: int = 0, params_only: bool = False, across_calls: bool = True
+) -> tuple[Any, Any]:
     """(facts, expression): what a local variable, a local struct's field or an `in` parameter
     holds at `e`, followed back through assignments on every path and, for a parameter of a
     function called from one place only, to the argument of that call (in the caller's facts);

@@ -47,7 +47,10 @@ NEEDS = "ast"
 
 
 def check(ctx: LintContext) -> Iterator[Diagnostic]:
-    for fn, node in builtin_calls(ctx.model, ctx.path, "pow", arity=2):
+    model = ctx.model
+    if model is None:  # (no semantic model: no function has facts)
+        return
+    for fn, node in builtin_calls(model, ctx.path, "pow", arity=2):
         base = node.args[0]
         why = negative_reason(fn, base)
         if why is not None:

@@ -63,7 +63,10 @@ def _replacement(e: float, base) -> str | None:
 
 
 def check(ctx: LintContext) -> Iterator[Diagnostic]:
-    for fn, node in builtin_calls(ctx.model, ctx.path, "pow", arity=2):
+    model = ctx.model
+    if model is None:  # (no semantic model: no function has facts)
+        return
+    for fn, node in builtin_calls(model, ctx.path, "pow", arity=2):
         value, through = fn.constant_through_locals(node.args[1])
         values = numbers(value)
         if not values or any(v != values[0] for v in values):

@@ -38,8 +38,11 @@ NEEDS = "ast"
 
 
 def check(ctx: LintContext) -> Iterator[Diagnostic]:
-    for side, other, op in compared_calls(ctx.model, ctx.path, "sqrt"):
-        x, bound = text(side.args[0]), squared(ctx.model, other)
+    model = ctx.model
+    if model is None:  # (no semantic model: no function has facts)
+        return
+    for side, other, op in compared_calls(model, ctx.path, "sqrt"):
+        x, bound = text(side.args[0]), squared(model, other)
         yield Diagnostic(
             "sqrt() is compared with a bound: compare its argument with the squared bound",
             side.loc,

@@ -56,7 +56,9 @@ ENTRY = "mainImage"
 
 def check(ctx: LintContext) -> Iterator[Diagnostic]:
     model = ctx.model
-    for fn in program_facts(ctx.model).in_file(ctx.path, with_broken=True):
+    if model is None:  # (no semantic model: no function has facts)
+        return
+    for fn in program_facts(model).in_file(ctx.path, with_broken=True):
         name = fn.definition.proto.name
         if name == ENTRY:
             continue

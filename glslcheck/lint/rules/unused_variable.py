@@ -41,6 +41,7 @@ if TYPE_CHECKING:
     from collections.abc import Iterator
     from typing import Any
 
+    from ...semantics.model import Model
     from ..engine import LintContext
 
 NAME = "unused-variable"
@@ -57,7 +58,7 @@ def common_shared(ctx) -> bool:
     return sum(t in ctx.shader.tabs for t in PASS_TABS) > 1
 
 
-def read_symbols(model: Any) -> set[int]:
+def read_symbols(model: Model) -> set[int]:
     """ids of every Symbol the program reads somewhere (cached on the program facts)."""
     pf = _program_reads.get("model")
     if pf is model:

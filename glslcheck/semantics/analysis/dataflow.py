@@ -117,9 +117,11 @@ class ProgramFacts:
     def call_sites(self, function: Symbol) -> list[tuple[FunctionFacts, A.Call]]:
         """Every call of the user function `function` in a function that checks: (the caller's
         facts, the call), in source order."""
+        sites: dict[int, list[tuple[FunctionFacts, A.Call]]] | None
         sites = self.__dict__.setdefault("_sites", None)
         if sites is None:
-            sites = self._sites = {}
+            sites = {}
+            self._sites = sites
             for d in self.definitions:
                 if id(d) in self.broken:
                     continue
@@ -165,6 +167,9 @@ def program_facts(model: Model | None) -> ProgramFacts | _NoFacts:
 class _NoFacts:
     def in_file(self, path: str, *, with_broken: bool = False) -> list:
         return []
+
+    def argument(self, fn: FunctionFacts, param: Symbol) -> None:
+        return None
 
     def broken_in_file(self, path: str) -> list:
         return []
@@ -559,7 +564,7 @@ class FunctionFacts(ValueRanges):
             return None
         ops = ("+",) if e.op == "+" else ("*", "/")
         out: list[Any] = []
-        stack = [(e, False)]  # depth first, left before right
+        stack: list[tuple[A.Expr, bool]] = [(e, False)]  # depth first, left before right
         while stack:
             x, inverse = stack.pop()
             if type(x) is A.Binary and x.op in ops and self._commutes(x):
@@ -578,7 +583,7 @@ class FunctionFacts(ValueRanges):
         if type(e) is not A.Binary or e.op not in ("*", "/") or not self._commutes(e):
             return None
         spine, keys = [], []
-        x = e
+        x: A.Expr = e
         while type(x) is A.Binary and x.op in ("*", "/") and self._commutes(x):
             spine.append(x)
             k = self.key(x.right)

@@ -25,7 +25,7 @@ TYPE_CHECKING = False  # not typing's: importing typing costs every start-up
 if TYPE_CHECKING:
     from typing import Any
 
-    from ..model import Model
+    from ..model import Model, Symbol
 
 Range = tuple  # (lo: float | None, hi: float | None, witness: tuple[str, node] | None)
 
@@ -49,6 +49,11 @@ class ValueRanges:
 
     model: Model
     _ranges: dict[int, Range]
+
+    if TYPE_CHECKING:  # defined by dataflow.FunctionFacts, the one subclass
+
+        def reaching_value(self, ident: A.Identifier, sym: Symbol) -> Any: ...
+        def key(self, e: Any) -> Any: ...
 
     def value_range(self, e: Any, depth: int = 0) -> tuple:
         """(lo, hi, witness) of an expression; lo/hi None when unbounded; witness is None or

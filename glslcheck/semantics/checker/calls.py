@@ -15,9 +15,10 @@ from ...language import glsl_types as T
 from .. import consteval as C
 from ..model import ERROR, Constructor
 from .hints import NameAt, int_literal_hint
+from .state import CheckerState
 
 
-class CallChecks:
+class CallChecks(CheckerState):
     """Function calls and constructors, for `Checker`."""
 
     # -- calls ---------------------------------------------------------------------------------
@@ -155,13 +156,13 @@ class CallChecks:
         res = T.constructor_result(target, arg_types)
         if isinstance(res, str):
             hint = None
-            if target.is_struct or target.is_array:
-                elem = target.element if target.is_array else None
-                for arg, t, want in zip(
-                    n.args,
-                    arg_types,
-                    [elem] * len(arg_types) if elem else [f for _, f in target.fields],
-                ):
+            if isinstance(target, (T.StructType, T.ArrayType)):
+                wants = (
+                    [target.element] * len(arg_types)
+                    if isinstance(target, T.ArrayType)
+                    else [f for _, f in target.fields]
+                )
+                for arg, t, want in zip(n.args, arg_types, wants):
                     if want is not None and want.base == "float" and t.base == "int":
                         hint = int_literal_hint(arg)
                         break

@@ -14,6 +14,7 @@ from ...language import glsl_types as T
 from .. import webgl_rules
 from ..model import ERROR, Symbol
 from .hints import NameAt, conversion_help, int_literal_hint
+from .state import CheckerState
 
 TYPE_CHECKING = False  # not typing's: importing typing costs every start-up
 if TYPE_CHECKING:
@@ -21,7 +22,7 @@ if TYPE_CHECKING:
     from typing import Any
 
 
-class DeclarationChecks:
+class DeclarationChecks(CheckerState):
     """Declarations of a program and of its functions' bodies, for `Checker`."""
 
     # -- the program's declarations ------------------------------------------------------------
@@ -103,7 +104,7 @@ class DeclarationChecks:
 
     def require_precision(self, t: T.Type, words: Iterable[str], node: Any) -> None:
         """A float or sampler declaration needs a precision: its own or a default (spec 4.5.4)."""
-        while t.is_array:
+        while isinstance(t, T.ArrayType):
             t = t.element
         if t.base == "float":
             key = "float"
@@ -287,7 +288,7 @@ class DeclarationChecks:
                 if ft.is_void:
                     self.error(f"struct member '{d.name}' cannot be 'void'", d)
                     ok = False
-                if ft.is_array and ft.array_size is None:
+                if isinstance(ft, T.ArrayType) and ft.array_size is None:
                     self.error(f"struct member '{d.name}' needs an array size", d)
                     ok = False
                 if d.name in seen:
@@ -362,7 +363,7 @@ class DeclarationChecks:
                     help="pass the sampler (iChannel0 ...) to the function as a parameter",
                 )
                 t = ERROR
-        if t is not ERROR and t.is_array and t.array_size is None:
+        if t is not ERROR and isinstance(t, T.ArrayType) and t.array_size is None:
             if init_t is None:
                 self.error(
                     f"the array '{d.name}' needs a size or an initializer",
@@ -370,7 +371,11 @@ class DeclarationChecks:
                     help=f"write '{d.name}[N]' or initialise it with '{t.element}[](...)'",
                 )
                 t = ERROR
-            elif init_t is not ERROR and init_t.is_array and init_t.element == t.element:
+            elif (
+                init_t is not ERROR
+                and isinstance(init_t, T.ArrayType)
+                and init_t.element == t.element
+            ):
                 t = init_t
         sym = Symbol(d.name, "global" if is_global else "local", t, node=d, qualifier=storage)
         if d.init is not None:

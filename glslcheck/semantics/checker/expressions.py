@@ -19,9 +19,10 @@ from .. import webgl_rules
 from ..model import ERROR, Symbol
 from .hints import int_literal_hint
 from .shadertoy_rules import RENAMED_UNIFORMS
+from .state import CheckerState
 
 
-class ExpressionChecks:
+class ExpressionChecks(CheckerState):
     """Expressions other than calls, for `Checker`."""
 
     # -- literals and names --------------------------------------------------------------------
@@ -278,7 +279,11 @@ class ExpressionChecks:
             return ERROR
         if self.is_const(n.index):
             v = self.model.const_value(n.index)
-            size = bt.array_size if bt.is_array else (bt.cols if bt.is_matrix else bt.size)
+            size = (
+                bt.array_size
+                if isinstance(bt, T.ArrayType)
+                else (bt.cols if bt.is_matrix else bt.size)
+            )
             what = "array" if bt.is_array else ("matrix" if bt.is_matrix else "vector")
             if v is not None and (v < 0 or (size is not None and v >= size)):
                 self.error(
@@ -298,7 +303,7 @@ class ExpressionChecks:
         bt = self.expr(n.base)
         if bt is ERROR:
             return ERROR
-        if bt.is_struct:
+        if isinstance(bt, T.StructType):
             ft = bt.field_type(n.name)
             if ft is None:
                 import difflib
@@ -340,7 +345,7 @@ class ExpressionChecks:
                 f"'.{n.name}()' is not a method: GLSL ES 3.00 has only '.length()' of arrays", n
             )
             return ERROR
-        if not bt.is_array:
+        if not isinstance(bt, T.ArrayType):
             hint = "use length(v) for the Euclidean length of a vector" if bt.is_vector else None
             self.error(f"'.length()' applies to arrays only, not '{bt}'", n, help=hint)
             return ERROR

@@ -14,13 +14,14 @@ from ...language import glsl_types as T
 from ..model import ERROR, Symbol
 from ..scopes import Scope
 from .hints import NameAt
+from .state import CheckerState
 
 TYPE_CHECKING = False  # not typing's: importing typing costs every start-up
 if TYPE_CHECKING:
     from typing import Any
 
 
-class FunctionChecks:
+class FunctionChecks(CheckerState):
     """Function declarations and definitions, and the whole-program rules, for `Checker`."""
 
     # -- functions -----------------------------------------------------------------------------
@@ -38,7 +39,7 @@ class FunctionChecks:
             )
         if ret is not ERROR and ret.contains_opaque:
             self.error("a function cannot return a sampler", proto.return_type)
-        if ret is not ERROR and ret.is_array and ret.array_size is None:
+        if ret is not ERROR and isinstance(ret, T.ArrayType) and ret.array_size is None:
             self.error("a function returning an array must give its size", proto.return_type)
         params: list[tuple[str, T.Type, str]] = []
         for p in proto.params:
@@ -85,7 +86,7 @@ class FunctionChecks:
                 )
             if pt is not ERROR and not pt.is_void:
                 self.require_precision(pt, p.qualifiers, p.type or p)
-            if pt is not ERROR and pt.is_array and pt.array_size is None:
+            if pt is not ERROR and isinstance(pt, T.ArrayType) and pt.array_size is None:
                 self.error("an array parameter needs a size", p)
                 pt = ERROR
             if pt is not ERROR and pt.contains_opaque and p.direction != "in":

@@ -15,6 +15,7 @@ from ...frontend.preprocess import WRAPPER_COLOR
 from ...language import builtin_functions as B
 from ...language import glsl_types as T
 from ..model import ERROR, Symbol
+from .state import CheckerState
 
 TYPE_CHECKING = False  # not typing's: importing typing costs every start-up
 if TYPE_CHECKING:
@@ -28,7 +29,7 @@ WRAPPER_OUTPUT = "shadertoy_out_color"
 RENAMED_UNIFORMS = {"iGlobalTime": "iTime"}
 
 
-class ShadertoyRules:
+class ShadertoyRules(CheckerState):
     """Shadertoy's declarations, entry point and WebGL reporting, for `Checker`."""
 
     # -- what Shadertoy declares ---------------------------------------------------------------

@@ -12,6 +12,7 @@ from ...frontend import syntax as A
 from ...language import glsl_types as T
 from ..model import ERROR, Symbol
 from .hints import NameAt, conversion_help, int_literal_hint
+from .state import CheckerState
 
 TYPE_CHECKING = False  # not typing's: importing typing costs every start-up
 if TYPE_CHECKING:
@@ -19,7 +20,7 @@ if TYPE_CHECKING:
     from typing import Any
 
 
-class StatementChecks:
+class StatementChecks(CheckerState):
     """Statements and control flow, for `Checker`."""
 
     # -- statements ----------------------------------------------------------------------------

@@ -90,11 +90,9 @@ from .common import (
     SPILL_HEIGHT,
     check_program,
 )
-from .expressions import LValue
-from .functions import FnState
 from .limits import PythonLimits, compile_generated, glsl_location, lane_state, too_complex
 from .module import Transpiled, Transpiler, transpile, transpile_shader
-from .statements import LoopCtx
+from .state import FnState, LoopCtx, LValue
 
 __all__ = [
     "LOOP_CAP",

@@ -71,6 +71,10 @@ from ....semantics.analysis import param_directions
 from ....semantics.model import Symbol
 from .common import _RUNTIME_NAMES
 
+TYPE_CHECKING = False  # not typing's: importing typing costs every start-up
+if TYPE_CHECKING:
+    from .state import TranspilerState
+
 # built-ins computed component by component (the runtime's function of a scalar array)
 _COMPONENTWISE = (
     "sin",
@@ -129,7 +133,7 @@ class _Eval:
     """The scalar evaluation of one call (see the module doc); `merges`: how often a merge rule
     fired."""
 
-    def __init__(self, tr: Any, mask: str | None) -> None:
+    def __init__(self, tr: TranspilerState, mask: str | None) -> None:
         self.tr, self.mask, self.merges, self.depth, self.factored = tr, mask, 0, 0, 0
 
     # -- scalar rules ----------------------------------------------------------------------
@@ -343,7 +347,7 @@ class _Eval:
             return flat[:1]
         raise _Refuse
 
-    def user_call(self, fn: Any, args: list[Any], env: dict[int, list]) -> list[_T]:
+    def user_call(self, fn: Symbol, args: list[Any], env: dict[int, list]) -> list[_T]:
         """The callee's result; its out/inout parameters written back into `env`."""
         self.depth += 1
         if self.depth > 16:
@@ -365,7 +369,7 @@ class _Eval:
         self.depth -= 1
         return result
 
-    def body(self, fn: Any, env: dict[int, list]) -> list[_T]:
+    def body(self, fn: Symbol, env: dict[int, list]) -> list[_T]:
         stmts = fn.node.body.stmts
         for i, st in enumerate(stmts):
             if isinstance(st, A.Return) and i == len(stmts) - 1:
@@ -393,9 +397,9 @@ class _Eval:
             elif (
                 isinstance(st, A.ExpressionStatement)
                 and isinstance(st.expr, A.Call)
-                and isinstance(self.tr.model.call_target(st.expr), Symbol)
+                and isinstance(target := self.tr.model.call_target(st.expr), Symbol)
             ):
-                self.user_call(self.tr.model.call_target(st.expr), st.expr.args, env)
+                self.user_call(target, st.expr.args, env)
             else:
                 raise _Refuse
         return []  # (a function that returns a value ends with a return: checked by the checker)
@@ -448,7 +452,7 @@ def _leaves(code: str, t: Any) -> list[_T]:
     return [_T("x", code=f"{code}[{c}][{r}]") for c in range(t.cols) for r in range(t.rows)]
 
 
-def _constant_components(tr: Any, arg: Any, call: A.Call) -> list[_T | None] | None:
+def _constant_components(tr: TranspilerState, arg: Any, call: A.Call) -> list[_T | None] | None:
     """Per component of a local `arg` read by `call`: a constant term where its value is a
     compile-time constant there, else None; None when `arg` is not such a local. Known only
     for a local declared, then written, by top-level statements of the current function
@@ -461,6 +465,7 @@ def _constant_components(tr: Any, arg: Any, call: A.Call) -> list[_T | None] | N
         or sym.node.init is None
     ):
         return None
+    assert tr.fn is not None  # folding a call inside a function
     stmts = tr.fn.sym.node.body.stmts
     decl = next((i for i, st in enumerate(stmts) if any(n is sym.node for n in st.walk())), None)
     at = next((i for i, st in enumerate(stmts) if any(n is call for n in st.walk())), None)
@@ -491,7 +496,7 @@ def _constant_components(tr: Any, arg: Any, call: A.Call) -> list[_T | None] | N
     return comps
 
 
-def _unchanged_init(tr: Any, ident: A.Identifier, call: A.Call) -> Any:
+def _unchanged_init(tr: TranspilerState, ident: A.Identifier, call: A.Call) -> Any:
     """The initializer of the local `ident` when it is declared by a top-level statement of the
     current function before the one that holds `call`, and neither it nor a local or parameter
     the initializer reads is written in between (so the initializer, evaluated again at the
@@ -504,6 +509,7 @@ def _unchanged_init(tr: Any, ident: A.Identifier, call: A.Call) -> Any:
         or sym.node.init is None
     ):
         return None
+    assert tr.fn is not None  # folding a call inside a function
     stmts = tr.fn.sym.node.body.stmts
     decl = next((i for i, st in enumerate(stmts) if any(n is sym.node for n in st.walk())), None)
     at = next((i for i, st in enumerate(stmts) if any(n is call for n in st.walk())), None)
@@ -515,8 +521,8 @@ def _unchanged_init(tr: Any, ident: A.Identifier, call: A.Call) -> Any:
     ):
         return None
     init = sym.node.init
-    read = {sym} | {tr.model.symbol_of(n) for n in init.walk() if isinstance(n, A.Identifier)}
-    read = [r for r in read if r is not None and r.kind in ("local", "param")]
+    named = {sym} | {tr.model.symbol_of(n) for n in init.walk() if isinstance(n, A.Identifier)}
+    read = [r for r in named if r is not None and r.kind in ("local", "param")]
     for st in stmts[decl + 1 : at + 1]:
         for n in st.walk():
             if any(_written_components(tr, n, r, call) for r in read):
@@ -524,7 +530,7 @@ def _unchanged_init(tr: Any, ident: A.Identifier, call: A.Call) -> Any:
     return init
 
 
-def _written_components(tr: Any, n: Any, sym: Any, call: A.Call) -> Any:
+def _written_components(tr: TranspilerState, n: Any, sym: Symbol, call: A.Call) -> Any:
     """The components of `sym` the node `n` writes: "all", a tuple of indices, or ()."""
     targets: list[Any] = []
     if isinstance(n, A.Assignment):
@@ -548,7 +554,7 @@ def _written_components(tr: Any, n: Any, sym: Any, call: A.Call) -> Any:
     return ()
 
 
-def folded_call(tr: Any, call: A.Call, fn: Any, mask: str | None) -> str | None:
+def folded_call(tr: TranspilerState, call: A.Call, fn: Symbol, mask: str | None) -> str | None:
     """The code of the call `call` of user function `fn` with constants propagated as NIR does
     (module doc), emitted as ``if rt.lp: <folded> else: <the call as written>``; None where
     this call is left as written (the common case): no argument has a constant component, or
@@ -580,7 +586,7 @@ def folded_call(tr: Any, call: A.Call, fn: Any, mask: str | None) -> str | None:
     return _emit_call(tr, call, fn, mask, env, params, result, holders)
 
 
-def _calls_dot(tr: Any, fn: Any) -> bool:
+def _calls_dot(tr: TranspilerState, fn: Symbol) -> bool:
     """`fn`'s body calls the built-in dot (where :meth:`_Eval.factored_add` may apply)."""
     memo = tr.fold_state.call_fold_dots
     if id(fn) not in memo:
@@ -593,7 +599,7 @@ def _calls_dot(tr: Any, fn: Any) -> bool:
     return memo[id(fn)]
 
 
-def _has_constant_argument(tr: Any, call: A.Call, fn: Any) -> bool:
+def _has_constant_argument(tr: TranspilerState, call: A.Call, fn: Symbol) -> bool:
     for a, (_, _, dr) in zip(call.args, fn.params):
         if dr != "out" and (
             tr.model.const_value(a) is not None
@@ -604,7 +610,7 @@ def _has_constant_argument(tr: Any, call: A.Call, fn: Any) -> bool:
     return False
 
 
-def _scaled_argument(tr: Any, a: Any, call: A.Call) -> tuple[Any, Any] | None:
+def _scaled_argument(tr: TranspilerState, a: Any, call: A.Call) -> tuple[Any, Any] | None:
     """(y, #c) for an argument written ``y * #c`` or ``#c * y`` (c a compile-time constant of
     y's type or a scalar, y not constant, no matrix): after inlining each component of the
     parameter is that product, into which NIR merges the callee's constants (NebulaSmoke's
@@ -628,7 +634,9 @@ def _scaled_argument(tr: Any, a: Any, call: A.Call) -> tuple[Any, Any] | None:
     return None
 
 
-def _evaluate(tr: Any, call: A.Call, fn: Any, mask: str | None, constants: bool) -> tuple:
+def _evaluate(
+    tr: TranspilerState, call: A.Call, fn: Symbol, mask: str | None, constants: bool
+) -> tuple:
     """The call evaluated with its arguments bound to stand-in parameters: (the evaluation,
     the parameters' final terms by symbol id, the parameter symbols, the result's terms, the
     arguments read at run time as (index, node)); `constants`: the arguments' constant
@@ -636,7 +644,7 @@ def _evaluate(tr: Any, call: A.Call, fn: Any, mask: str | None, constants: bool)
     ev = _Eval(tr, mask)
     env: dict[int, list] = {}
     holders: list[tuple[int, Any]] = []
-    args = []
+    args: list[list[Any]] = []  # per argument, its components' terms (None: unknown)
     for i, (a, (_, _, dr)) in enumerate(zip(call.args, fn.params)):
         t = tr.type_of(a)
         if t.is_array or t.is_struct or t.base != "float":
@@ -678,9 +686,9 @@ def _evaluate(tr: Any, call: A.Call, fn: Any, mask: str | None, constants: bool)
 
 
 def _emit_call(
-    tr: Any,
+    tr: TranspilerState,
     call: A.Call,
-    fn: Any,
+    fn: Symbol,
     mask: str | None,
     env: dict[int, list],
     params: list[Any],
@@ -753,7 +761,7 @@ def _emit_call(
     return r
 
 
-def out_roots(tr: Any, call: A.Call, sym: Any) -> set[str] | None:
+def out_roots(tr: TranspilerState, call: A.Call, sym: Symbol | None) -> set[str] | None:
     """The operations at the root of each component of the value `call` (a call of a user
     function in the current function) writes into the variable `sym` passed whole as an out
     or inout argument, as NIR sees them after inlining: "+" (a sum), "*", "/", "neg", "call"
@@ -784,7 +792,9 @@ def _product_sum(t: _T) -> bool:
     )
 
 
-def product_sums(tr: Any, call: A.Call, sym: Any) -> list[tuple[str, str] | None] | None:
+def product_sums(
+    tr: TranspilerState, call: A.Call, sym: Symbol | None
+) -> list[tuple[str, str] | None] | None:
     """Per component of the value the folded call `call` (emitted by :func:`folded_call` in the
     current Python function) wrote into the variable `sym`: the code of its two products when
     it is ``p1 + p2`` to NIR, else None; None when the call was not folded here. For

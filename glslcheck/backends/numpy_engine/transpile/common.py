@@ -97,21 +97,8 @@ def python_ident(name: str, node: Any) -> str:
 
 
 def check_program(parse_result: Any) -> Any:
-    """The semantic model of a parsed program; GlslError when it does not check.
+    """The semantic model of a parsed program (`glslcheck.semantics.check`); GlslError when it
+    does not check."""
+    from ....semantics import check
 
-    ADAPTER: uses `glslcheck.semantics.check` when the package exports it, else runs the checker
-    class directly and raises on its errors (the same contract)."""
-    try:
-        from ....semantics import check  # type: ignore[attr-defined]
-    except ImportError:
-        check = None
-    if check is not None:
-        return check(parse_result)
-    from ....semantics.checker import Checker
-
-    sources = list(getattr(parse_result, "sources", []) or [])
-    tab = sources[-1].tab if sources else "Image"
-    model = Checker(parse_result, tab).run()
-    if model.errors:
-        raise GlslError(model.errors)
-    return model
+    return check(parse_result)

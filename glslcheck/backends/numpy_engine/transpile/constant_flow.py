@@ -32,11 +32,16 @@ from ....frontend import syntax as A
 from ....semantics.analysis import param_directions, written_variable
 from ....semantics.model import Symbol
 
+TYPE_CHECKING = False  # not typing's: importing typing costs every start-up
+if TYPE_CHECKING:
+    from ....semantics.model import Model
+    from .state import FoldEngine
+
 
 class ConstantFlow:
     """`ConstantFlow(model)`: `may_be_zero_constant(node)` for any expression of the program."""
 
-    def __init__(self, model: Any) -> None:
+    def __init__(self, model: Model) -> None:
         self.model = model
         self.symbols: set[int] = set()  # ids of symbols that may hold a constant zero
         self.returns: set[int] = set()  # ids of functions that may return one
@@ -67,7 +72,7 @@ class ConstantFlow:
             return sym is not None and id(sym) in self.symbols
         return False
 
-    def _function(self, fn: Any) -> None:
+    def _function(self, fn: Symbol) -> None:
         m = self.model
         for n in fn.node.body.walk():
             if (
@@ -95,7 +100,7 @@ class ConstantFlow:
                     if d != "in" and psym is not None and id(psym) in self.symbols:
                         self._add(written_variable(m, arg)[0])
 
-    def _add(self, sym: Any) -> None:
+    def _add(self, sym: Symbol | None) -> None:
         if sym is not None:
             self.symbols.add(id(sym))
 
@@ -106,7 +111,7 @@ def _has_zero(value: Any) -> bool:
     return isinstance(value, float) and value == 0.0
 
 
-def constant_flow(tr: Any) -> ConstantFlow:
+def constant_flow(tr: FoldEngine) -> ConstantFlow:
     """The analysis of the transpiler's program, made once."""
     flow = tr.fold_state.constant_flow
     if flow is None:

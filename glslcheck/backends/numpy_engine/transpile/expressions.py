@@ -5,7 +5,6 @@ constants, and reads and masked writes through fields, swizzles and indices. Mix
 
 from __future__ import annotations
 
-from dataclasses import dataclass, field
 from typing import Any
 
 from ....base.precision import float32_literal
@@ -30,6 +29,7 @@ from .common import (
     _is_constant_text,
 )
 from .inline import bound_code
+from .state import LValue, TranspilerState
 
 # Built-ins whose runtime method, on float operands, is one NumPy ufunc (Runtime.np_*): called
 # directly, as `rt.np_fmin(a, b)`, without the method's Python frame (`Runtime.min_` ...)
@@ -54,20 +54,7 @@ def _own_mask(e: Any) -> bool:
     return isinstance(e, A.Ternary) or (isinstance(e, A.Binary) and e.op in ("&&", "||"))
 
 
-@dataclass
-class LValue:
-    """An l-value with its index expressions already evaluated: base name and an access path.
-    path items: ("field", "m_name") | ("swz", (i, j, ...)) | ("index", "expr", type_of_base)."""
-
-    base: str
-    base_type: Any
-    path: list[tuple] = field(default_factory=list)
-    free: bool = (
-        False  # written without a mask (`Uniformity.is_free`: no lane left out reads it again)
-    )
-
-
-class Expressions:
+class Expressions(TranspilerState):
     """The expression pass of `Transpiler`."""
 
     # Repeated built-in calls of the expression being printed (`repeated_calls`): (ids of the
@@ -102,7 +89,9 @@ class Expressions:
                 f"{type(e).__name__} expressions are not supported by the NumPy backend", e
             )
         if self.too_deep(OUTLINE_EXPR_INDENT, loops=False):
-            return self.outline(lambda: self.expr(e, mask), e)
+            value = self.outline(lambda: self.expr(e, mask), e)
+            assert value is not None  # what build returns: the expression's value
+            return value
         if id(e) in self.undefined_origins and self.fn is not None:
             # an operation whose value GLSL leaves undefined, in the "vary" mode (module.py)
             return f"X.undefined(S, {self.zero(self.type_of(e), e)})"
@@ -346,6 +335,7 @@ class Expressions:
 
     def _print_Ternary(self, e: A.Ternary, mask: str | None) -> str:
         fs = self.fn
+        assert fs is not None  # generating a function's body
         effects = self.has_effects(e.then) or self.has_effects(e.else_)
         if not effects:
             if fs is not None and fs.uni is not None and fs.uni.is_uniform(e.cond):
@@ -543,6 +533,7 @@ class Expressions:
     def lvalue_path(self, e: Any, mask: str | None) -> LValue:
         if isinstance(e, A.Identifier):
             sym = self.model.symbol_of(e)
+            assert sym is not None  # every name of a checked program has its symbol
             return LValue(self.var_name(sym, e), sym.type)
         if isinstance(e, A.Field):
             lv = self.lvalue_path(e.base, mask)
@@ -562,10 +553,10 @@ class Expressions:
             lv = self.lvalue_path(e.base, mask)
             cv = self.model.const_value(e.index)
             if isinstance(cv, int) and not isinstance(cv, bool):
-                idx = str(cv)
+                index = str(cv)
             else:
-                idx = self.tmp(self.expr(e.index, mask))
-            lv.path.append(("index", idx))
+                index = self.tmp(self.expr(e.index, mask))
+            lv.path.append(("index", index))
             return lv
         raise _error("this expression cannot be assigned to", e)
 

@@ -13,33 +13,15 @@ from ...cpu_core.facts import events_of
 from ...cpu_core.uniformity import Uniformity
 from . import nir_fold
 from .call_fold import folded_call
-from .expressions import LValue
 from .inline import inline_call, worth_inlining
-from .statements import LoopCtx
+from .state import FnState, LValue, TranspilerState
 
 
-class FnState:
-    def __init__(self, sym: Any, uni: Uniformity, is_entry: bool) -> None:
-        self.sym = sym
-        self.uni = uni
-        self.is_entry = is_entry
-        self.defined: list[str] = []  # Python locals bound so far, in order
-        self.loops: list[LoopCtx] = []
-        self.has_ret = False
-        self.rv: str | None = None
-        self.outs: list[str] = []
-        self.switch_depth = 0
-        self.no_compact = 0
-        self.nest = 0
-        self.blocks = 0  # Python loops around the current line, in this Python function
-        self.switch_locals: set[str] = set()  # declared in a switch body: bound before the switch
-
-
-class Functions:
+class Functions(TranspilerState):
     """The function and call pass of `Transpiler`."""
 
     # -- functions -----------------------------------------------------------------------------
-    def gen_function(self, sym: Any) -> None:
+    def gen_function(self, sym: Symbol) -> None:
         node = sym.node
         is_entry = sym is self.entry
         uni = Uniformity(self.model, self.facts, sym, is_entry)
@@ -84,7 +66,8 @@ class Functions:
         nontail_ret = early is None and (
             any(isinstance(n, (A.Return, A.Discard)) and n is not tail for n in node.body.walk())
             or (
-                ev.ret
+                ev is not None  # (computed when there is no early out)
+                and ev.ret
                 and any(
                     isinstance(n, A.Call)
                     and isinstance(self.model.call_target(n), Symbol)
@@ -111,6 +94,7 @@ class Functions:
                 if isinstance(cond_stmt.then, A.Compound)
                 else cond_stmt.then
             )
+            assert isinstance(then, A.Return)  # (early_out)
             a = self.expr(then.value, "_m")
             self.emit(f"if X.every({c}):  # no lane goes on: the rest is not computed")
             self.indent += 1
@@ -135,7 +119,7 @@ class Functions:
         st = body[-2]
         if not isinstance(st, A.If) or st.else_ is not None:
             return None
-        then = st.then
+        then: A.Node = st.then
         if isinstance(then, A.Compound):
             if len(then.stmts) != 1:
                 return None
@@ -168,7 +152,7 @@ class Functions:
             return "return None"
         return f"return {ret}"
 
-    def user_call(self, e: A.Call, fn: Any, mask: str | None) -> str:
+    def user_call(self, e: A.Call, fn: Symbol, mask: str | None) -> str:
         if worth_inlining(self, e, fn, nir_fold.dot_operand):
             return inline_call(
                 self, e, fn, mask
@@ -209,7 +193,7 @@ class Functions:
         return f"{r}[0]"
 
     def call_text(
-        self, e: A.Call, fn: Any, call_mask: str | None, args: list[str], mask: str | None
+        self, e: A.Call, fn: Symbol, call_mask: str | None, args: list[str], mask: str | None
     ) -> str:
         """The Python call of user function `fn` (the tracing transpiler, tracing.py, wraps it)."""
         return f"{self.fn_name(fn)}(S, {call_mask}{''.join(', ' + x for x in args)})"

@@ -33,8 +33,12 @@ from ....frontend import syntax as A
 from ....language import builtin_functions as B
 from ....semantics.model import Symbol
 
+TYPE_CHECKING = False  # not typing's: importing typing costs every start-up
+if TYPE_CHECKING:
+    from .state import FoldEngine, TranspilerState
 
-def bound_argument(tr: Any, sym: Any) -> Any:
+
+def bound_argument(tr: FoldEngine, sym: Symbol) -> Any:
     """The argument node of an inlined call a parameter symbol stands for, else None."""
     for frame in reversed(tr.fold_state.inline_frames):
         if id(sym) in frame["params"]:
@@ -42,7 +46,7 @@ def bound_argument(tr: Any, sym: Any) -> Any:
     return None
 
 
-def bound_code(tr: Any, sym: Any) -> str | None:
+def bound_code(tr: TranspilerState, sym: Symbol) -> str | None:
     """The Python expression of the argument value an inlined parameter reads, else None."""
     for frame in reversed(tr.fold_state.inline_frames):
         if id(sym) in frame["params"]:
@@ -50,7 +54,7 @@ def bound_code(tr: Any, sym: Any) -> str | None:
     return None
 
 
-def inline_owner(tr: Any, sym: Any) -> Any:
+def inline_owner(tr: TranspilerState, sym: Symbol | None) -> Any:
     """The inlined function a parameter symbol belongs to, else None."""
     for frame in reversed(tr.fold_state.inline_frames):
         if id(sym) in frame["params"]:
@@ -58,7 +62,7 @@ def inline_owner(tr: Any, sym: Any) -> Any:
     return None
 
 
-def _body_expression(tr: Any, fn: Any) -> Any:
+def _body_expression(tr: TranspilerState, fn: Symbol) -> Any:
     """The expression of `fn`'s body when it may be inlined (see the module doc), else None."""
     memo = tr.fold_state.inline_bodies
     if id(fn) in memo:
@@ -89,7 +93,7 @@ def _body_expression(tr: Any, fn: Any) -> Any:
     return value
 
 
-def worth_inlining(tr: Any, call: A.Call, fn: Any, constant_product: Any) -> bool:
+def worth_inlining(tr: TranspilerState, call: A.Call, fn: Symbol, constant_product: Any) -> bool:
     """Some argument is a product by a constant or a ``vecN(s)`` (`constant_product(tr, node)`:
     nir_fold.dot_operand, passed in so this module does not import nir_fold, which imports it)
     that the callee hands to a ``dot`` with a constant (nir_fold.merged_dot then merges the
@@ -124,7 +128,7 @@ def worth_inlining(tr: Any, call: A.Call, fn: Any, constant_product: Any) -> boo
     return False
 
 
-def inline_call(tr: Any, call: A.Call, fn: Any, mask: str | None) -> str:
+def inline_call(tr: TranspilerState, call: A.Call, fn: Symbol, mask: str | None) -> str:
     """The callee's return expression at the call site, its parameters read as the arguments'
     values (each argument evaluated once, left to right, before the body as a call does)."""
     from ...cpu_core.facts import is_plain_read
@@ -146,5 +150,5 @@ def inline_call(tr: Any, call: A.Call, fn: Any, mask: str | None) -> str:
         return tr.expr(value, mask)
     finally:
         frames.pop()
-        if watch is not None:
+        if watch is not None and tr.watched is not None:  # (a watch came from tr.watched)
             tr.watched[id(value)] = watch

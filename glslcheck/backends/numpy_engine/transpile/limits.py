@@ -10,9 +10,14 @@ from ....base.diagnostics import Diagnostic, GlslError, Location
 from ....frontend import syntax as A
 from ...cpu_core.common import comment_safe, fold_tree
 from .common import _ASSIGNED, _LOCAL_REF, OUTLINE_LOOPS, RULE, SPILL_HEIGHT
+from .state import TranspilerState
+
+TYPE_CHECKING = False  # not typing's: importing typing costs every start-up
+if TYPE_CHECKING:
+    from ....semantics.model import Model
 
 
-class PythonLimits:
+class PythonLimits(TranspilerState):
     """What keeps the generated code inside CPython's limits, whatever the GLSL's nesting:
 
     * an expression node SPILL_HEIGHT syntax levels high (or a multiple of it) is computed into a
@@ -63,6 +68,7 @@ class PythonLimits:
         """Emit what `build()` emits (and its value, if it returns one) in a new module-level
         function of the locals it reads; emit the call here and return the value's name."""
         fs = self.fn
+        assert fs is not None  # generating a function's body
         defined = set(fs.defined)
         saved = self.lines, self.indent, fs.nest, fs.blocks, self.cse
         # (no common subexpressions shared with the caller: temporaries here are the function's)
@@ -127,7 +133,7 @@ def _scalars(t: Any) -> int:
     return t.size if t.is_vector else 1
 
 
-def lane_state(model: Any, functions: list[Any]) -> tuple[int, Any]:
+def lane_state(model: Model, functions: list[Any]) -> tuple[int, Any]:
     """(an estimate of the scalars one lane holds at once, the declaration of the largest
     variable): every variable of every function (as if all were alive together), two more
     copies of the largest one (a masked write to an array builds the new array beside the old)

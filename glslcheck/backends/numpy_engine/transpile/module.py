@@ -16,10 +16,15 @@ from ...cpu_core.facts import Facts, SideEffects
 from ..fold_state import FoldState
 from .common import LOOP_CAP, SMALL_STATE, UNDEFINED_MODES, _error, check_program
 from .expressions import Expressions
-from .functions import FnState, Functions
+from .functions import Functions
 from .limits import PythonLimits, compile_generated, lane_state, too_complex
 from .names import Names
+from .state import FnState
 from .statements import Statements
+
+TYPE_CHECKING = False  # not typing's: importing typing costs every start-up
+if TYPE_CHECKING:
+    from ....semantics.model import Model, Symbol
 
 
 class Transpiler(Names, Functions, Statements, Expressions, PythonLimits):
@@ -32,7 +37,7 @@ class Transpiler(Names, Functions, Statements, Expressions, PythonLimits):
 
     def __init__(
         self,
-        model: Any,
+        model: Model,
         path: str = "<shader>",
         source_text: str | None = None,
         keep_alpha: bool = False,
@@ -139,7 +144,7 @@ class Transpiler(Names, Functions, Statements, Expressions, PythonLimits):
         return "\n".join(out) + "\n", meta
 
     @staticmethod
-    def _fed(sym: Any) -> bool:
+    def _fed(sym: Symbol) -> bool:
         """Whether a declared uniform gets Shadertoy's value (shadertoy.fed_uniform), as on GL."""
         from ....shadertoy.wrapper import fed_uniform
 
@@ -180,7 +185,7 @@ class Transpiler(Names, Functions, Statements, Expressions, PythonLimits):
         )
         empty = True
         fake = type("G", (), {"name": "<globals>", "node": None})()
-        self.fn = FnState(fake, None, True)  # type: ignore[arg-type]
+        self.fn = FnState(fake, None, True)
         for sym in self.model.globals:
             if sym.kind != "global" or sym.type.contains_opaque:
                 continue  # samplers: an error where they are used
@@ -252,7 +257,7 @@ class Transpiled:
 
 
 def transpile(
-    model: Any,
+    model: Model,
     path: str = "<shader>",
     keep_alpha: bool = False,
     undefined: str = "zero",

@@ -7,11 +7,13 @@ from __future__ import annotations
 from typing import Any
 
 from ....base.diagnostics import Location
+from ....semantics.model import Symbol
 from ...cpu_core.common import comment_safe
 from .common import _IDENT, _error, python_ident
+from .state import TranspilerState
 
 
-class Names:
+class Names(TranspilerState):
     """The naming and constant pass of `Transpiler` (see the package docstring for the scheme)."""
 
     # -- small emission helpers ----------------------------------------------------------------
@@ -51,7 +53,7 @@ class Names:
         return self.n
 
     # -- names ---------------------------------------------------------------------------------
-    def var_name(self, sym: Any, node: Any) -> str:
+    def var_name(self, sym: Symbol, node: Any) -> str:
         if sym.kind in ("local", "param"):
             return "v_" + python_ident(sym.unique_name or sym.name, node)
         if sym.kind == "global" and sym.qualifier == "uniform" and self._fed(sym):
@@ -89,7 +91,7 @@ class Names:
             raise _error(f"'{sym.name}' is not supported by the NumPy backend", node)
         raise _error(f"'{sym.name}' ({sym.kind}) cannot be used as a value here", node)
 
-    def fn_name(self, sym: Any) -> str:
+    def fn_name(self, sym: Symbol) -> str:
         key = id(sym)
         if key not in self.fn_names:
             self.fn_names[key] = "f_" + python_ident(sym.unique_name or sym.name, sym.node)

@@ -4,7 +4,6 @@ return and discard. Mixed into `Transpiler`."""
 
 from __future__ import annotations
 
-from dataclasses import dataclass
 from typing import Any
 
 from ....base.diagnostics import Location
@@ -16,16 +15,10 @@ from ...cpu_core.common import DERIVATIVES, IMPLICIT_LOD, fold_tree
 from ...cpu_core.facts import Events, events_of, induction_variable
 from . import nir_fold
 from .common import LOOP_CAP, OUTLINE_INDENT, _error
+from .state import LoopCtx, TranspilerState
 
 
-@dataclass
-class LoopCtx:
-    kind: str  # "loop" | "switch"
-    live: str
-    cont: str | None = None
-
-
-class Statements:
+class Statements(TranspilerState):
     """The statement pass of `Transpiler`."""
 
     # -- blocks and masks ----------------------------------------------------------------------
@@ -33,6 +26,7 @@ class Statements:
         """Emit statements under `mask`; returns True when the Python code ended with `return`
         at this indentation (nothing after it runs)."""
         fs = self.fn
+        assert fs is not None  # generating a function's body
         start_indent = self.indent
         for i, s in enumerate(stmts):
             last = i == len(stmts) - 1
@@ -71,6 +65,7 @@ class Statements:
         return value under the mask (no Python `return` inside the gathered region: the
         scatter must run); the function's `return _rv` follows the block."""
         fs = self.fn
+        assert fs is not None  # generating a function's body
         if fs.no_compact or not rest:
             return False
         node = A.Compound(
@@ -83,6 +78,7 @@ class Statements:
 
     def refresh(self, mask: str | None, ev: Events) -> str:
         fs = self.fn
+        assert fs is not None  # generating a function's body
         live = None
         drops = []
         if ev.brk and fs.loops:
@@ -107,6 +103,7 @@ class Statements:
     def region_body(self, emit_body, mask: str, kind: str, node: Any) -> None:
         """Emit a varying region (already under `if X.live(mask):`) with compaction when sparse."""
         fs = self.fn
+        assert fs is not None  # generating a function's body
         rid = self.region(kind, node)
         if fs.no_compact or self._region_uses_derivs(node) or not self._worth_compacting(node):
             self.emit(f"X.count(S, {rid}, {mask})")
@@ -206,6 +203,7 @@ class Statements:
 
     def after_discarding_call(self, e: Any) -> None:
         fs = self.fn
+        assert fs is not None  # generating a function's body
         if not fs.has_ret:
             return
         for n in e.walk():
@@ -216,6 +214,8 @@ class Statements:
                     return
 
     def _stmt_DeclarationStatement(self, s: A.DeclarationStatement, mask: str | None) -> None:
+        fs = self.fn
+        assert fs is not None  # generating a function's body
         d = s.decl
         if isinstance(d, A.PrecisionDeclaration):
             return
@@ -237,14 +237,16 @@ class Statements:
             if dec.init is not None:
                 value = nir_fold.keep_term(self, dec, value)
                 self.after_discarding_call(dec.init)
-            if name in self.fn.switch_locals:  # (one in a block inside a case is scoped to it)
+            if name in fs.switch_locals:  # (one in a block inside a case is scoped to it)
                 self.emit(f"{name} = X.put({name}, {value}, {mask})")
             else:
                 self.emit(f"{name} = {value}")
-            if name not in self.fn.defined:
-                self.fn.defined.append(name)
+            if name not in fs.defined:
+                fs.defined.append(name)
 
     def declare_switch_locals(self, s: A.Switch) -> None:
+        fs = self.fn
+        assert fs is not None  # generating a function's body
         for st in s.body:
             if isinstance(st, A.DeclarationStatement) and isinstance(
                 st.decl, A.VariableDeclaration
@@ -254,12 +256,13 @@ class Statements:
                     if sym is not None:
                         name = self.var_name(sym, dec)
                         self.emit(f"{name} = {self.zero(sym.type, dec)}")
-                        self.fn.defined.append(name)
-                        self.fn.switch_locals.add(name)
+                        fs.defined.append(name)
+                        fs.switch_locals.add(name)
 
     def _stmt_If(self, s: A.If, mask: str | None) -> None:
         self.comment_line(s)
         fs = self.fn
+        assert fs is not None  # generating a function's body
         cond = self.expr(s.cond, mask)
         self.after_discarding_call(s.cond)
         if fs.uni is not None and fs.uni.is_uniform(s.cond):
@@ -298,24 +301,31 @@ class Statements:
             self.emit("pass")
 
     def _stmt_Break(self, s: A.Break, mask: str | None) -> None:
+        fs = self.fn
+        assert fs is not None  # generating a function's body
         self.comment_line(s)
-        lp = self.fn.loops[-1]
+        lp = fs.loops[-1]
         self.emit(f"{lp.live} = X.andnot({lp.live}, {mask})")
 
     def _stmt_Continue(self, s: A.Continue, mask: str | None) -> None:
+        fs = self.fn
+        assert fs is not None  # generating a function's body
         self.comment_line(s)
-        lp = next(lp for lp in reversed(self.fn.loops) if lp.kind == "loop")
+        lp = next(lp for lp in reversed(fs.loops) if lp.kind == "loop")
         self.emit(f"{lp.cont} = X.or_({lp.cont}, {mask})")
 
     def _stmt_Discard(self, s: A.Discard, mask: str | None) -> None:
+        fs = self.fn
+        assert fs is not None  # generating a function's body
         self.comment_line(s)
         self.emit(f"S.discard = X.or_(S.discard, {mask})")
-        if self.fn.has_ret:
+        if fs.has_ret:
             self.emit(f"_ret = X.or_(_ret, {mask})")
 
     def _stmt_Return(self, s: A.Return, mask: str | None) -> None:
         self.comment_line(s)
         fs = self.fn
+        assert fs is not None  # generating a function's body
         if s.value is not None:
             val = self.expr(s.value, mask)
             self.after_discarding_call(s.value)
@@ -327,6 +337,7 @@ class Statements:
     def _stmt_Switch(self, s: A.Switch, mask: str | None) -> None:
         self.comment_line(s)
         fs = self.fn
+        assert fs is not None  # generating a function's body
         sel = self.fresh("sv")
         self.emit(f"{sel} = {self.expr(s.expr, mask)}")
         self.declare_switch_locals(s)
@@ -401,6 +412,7 @@ class Statements:
         self, s: Any, mask: str | None, cond: Any, body: Any, step: Any, do_while: bool
     ) -> None:
         fs = self.fn
+        assert fs is not None  # generating a function's body
         lid = self.region("loop", s)
         self.loops[lid] = (s.loc.path, s.loc.line, s.loc.column)
         ind = induction_variable(s, self.model, self.facts)
@@ -478,9 +490,11 @@ class Statements:
     def loop_top(self, lid: int, count: str) -> None:
         """Open a loop's `while True:` with its guards: the iteration count (`LOOP_CAP`, a located
         error past it) and llvmpipe's loop limiter, if rendering with one (`X.tick`)."""
+        fs = self.fn
+        assert fs is not None  # generating a function's body
         self.emit("while True:")
         self.indent += 1
-        self.fn.blocks += 1
+        fs.blocks += 1
         self.emit(f"{count} += 1")
         self.emit(f"if {count} > {LOOP_CAP}:")
         self.emit(f"    X.runaway({lid})")
@@ -494,6 +508,7 @@ class Statements:
         early (no break, continue, return or discard): every iteration runs on the lanes that
         entered, so it is plain Python control flow with no mask of its own."""
         fs = self.fn
+        assert fs is not None  # generating a function's body
         count = self.fresh("n")
         self.emit(f"{count} = 0")
         self.loop_top(lid, count)
@@ -511,11 +526,14 @@ class Statements:
         fs.blocks -= 1
 
     def condition(self, cond: Any, mask: str | None) -> str:
+        fs = self.fn
+        assert fs is not None  # generating a function's body
         if isinstance(cond, A.ConditionDeclaration):
             sym = self.model.symbol_of(cond)
+            assert sym is not None  # every declaration of a checked program has its symbol
             name = self.var_name(sym, cond)
             self.emit(f"{name} = {self.expr(cond.init, mask)}")
-            if name not in self.fn.defined:
-                self.fn.defined.append(name)
+            if name not in fs.defined:
+                fs.defined.append(name)
             return name
         return self.expr(cond, mask)

@@ -40,10 +40,11 @@ and merged through the callee's arithmetic, matrix products included, for straig
 callees: transpile/call_fold.py, gargantua's camera rotation ``(cos(-0.45)*10) * sin(x)``),
 and a squared length that is not followed by a constant sum (``sqrt(a)*sqrt(a)`` stays).
 
-Every function takes the transpiler (`tr`, typed Any: the Transpiler class imports this
-package through transpile/expressions.py) and reads its model, facts, current function and
+Every function takes the transpiler (`tr`, typed as transpile/state.py's TranspilerState,
+which imports none of the transpiler's parts) and reads its model, facts, current function and
 `fold_state` (numpy_engine/fold_state.py, the rules' memo of the program); the compiled engine
-asks the two decisions it shares of a context.FoldContext instead.
+asks the two decisions it shares (and what they call) of a context.FoldContext instead: those
+take a state.FoldEngine, what both provide.
 """
 
 from .added_zero import zero_add

@@ -8,14 +8,16 @@ asks the same question (compiled_engine/expressions.py `zero_add`)."""
 
 from __future__ import annotations
 
-from typing import Any
-
 from .....frontend import syntax as A
 from ..constant_flow import constant_flow
 from .queries import SUMS
 
+TYPE_CHECKING = False  # not typing's: importing typing costs every start-up
+if TYPE_CHECKING:
+    from ..state import FoldEngine
 
-def zero_add(tr: Any, e: A.Binary, left: str, right: str) -> str | None:
+
+def zero_add(tr: FoldEngine, e: A.Binary, left: str, right: str) -> str | None:
     """``rt.fadd(l, r)`` / ``rt.fsub(l, r)`` for a float ``+`` / ``-`` whose operand may be a
     constant zero once Mesa has inlined the function, else None (the plain operator).
 

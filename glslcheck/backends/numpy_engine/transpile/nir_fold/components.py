@@ -18,10 +18,24 @@ from .....frontend.printer import to_glsl
 from .....language.glsl_types import FLOAT
 from .....semantics.analysis import param_directions
 from .compound_products import kept_product
-from .queries import FunctionStandin, constant_value, function_facts, has_matrix, is_constant
+from .queries import (
+    FunctionStandin,
+    constant_value,
+    current_function,
+    function_facts,
+    has_matrix,
+    is_constant,
+)
+
+TYPE_CHECKING = False  # not typing's: importing typing costs every start-up
+if TYPE_CHECKING:
+    from .....semantics.model import Symbol
+    from ..state import TranspilerState
 
 
-def component_write(tr: Any, node: Any, mask: str | None, old: str | None = None) -> str | None:
+def component_write(
+    tr: TranspilerState, node: Any, mask: str | None, old: str | None = None
+) -> str | None:
     """The code of the value a write gives a local, component by component as NIR sees it,
     or None (the write as usual). ``node``: a declarator with an initializer, or an assignment
     ``=`` / ``*=`` (``old``: the code of the target's value before a ``*=``).
@@ -40,6 +54,7 @@ def component_write(tr: Any, node: Any, mask: str | None, old: str | None = None
     if tr.fn is None or isinstance(tr.fn, FunctionStandin):
         return None
     if isinstance(node, A.Assignment) and node.op in ("+=", "-="):
+        assert old is not None  # given with every assignment
         return _cancelled_sum(tr, node, mask, old)
     if isinstance(node, A.Declarator):
         sym, comps, value = tr.model.symbol_of(node), None, node.init
@@ -60,6 +75,7 @@ def component_write(tr: Any, node: Any, mask: str | None, old: str | None = None
         return None  # (a node of an inlined body)
     compound = isinstance(node, A.Assignment) and node.op == "*="
     if compound and not is_constant(tr, value):
+        assert old is not None
         return kept_product(tr, node, mask, old)
     if compound and has_matrix(tr, value):
         return None
@@ -67,6 +83,7 @@ def component_write(tr: Any, node: Any, mask: str | None, old: str | None = None
     if not kept and not _read_later(tr, facts, sym, node):
         return None  # (no product by a constant reads what this write would keep)
     if compound:
+        assert old is not None
         t = tr.type_of(node.target)
         entries, old = _times(
             tr, _chain(tr, node.target, mask, keep=True)[0], old, value, _size(t), mask, True
@@ -83,7 +100,7 @@ def component_write(tr: Any, node: Any, mask: str | None, old: str | None = None
     return _merged_code(tr, entries, written)
 
 
-def merge_components(tr: Any, e: A.Binary, mask: str | None) -> str | None:
+def merge_components(tr: TranspilerState, e: A.Binary, mask: str | None) -> str | None:
     """``x * #k`` with x (or a swizzle of it) a local whose components :func:`component_write`
     kept, when a component's constants merge: each component ``y * (c*...*k)`` (llvmpipe
     mode), else as written."""
@@ -100,7 +117,7 @@ def merge_components(tr: Any, e: A.Binary, mask: str | None) -> str | None:
     return _merged_code(tr, entries, written)
 
 
-def _merged_code(tr: Any, entries: list[tuple[str, list[Any]]], written: str) -> str:
+def _merged_code(tr: TranspilerState, entries: list[tuple[str, list[Any]]], written: str) -> str:
     if not any(len(cs) > 1 for _, cs in entries):
         return written
     parts = []
@@ -115,7 +132,7 @@ def _merged_code(tr: Any, entries: list[tuple[str, list[Any]]], written: str) ->
 
 
 def _chain(
-    tr: Any, node: Any, mask: str | None, keep: bool
+    tr: TranspilerState, node: Any, mask: str | None, keep: bool
 ) -> tuple[list[tuple[str, list[Any]]], str]:
     """([(y, [c1, c2, ...]) per component], the code of the value as written): the value of
     each component is ``y * c1 * c2 ...`` to NIR, y's code and the constants' codes.
@@ -157,14 +174,14 @@ def _chain(
             f"{wb}[{idx[0]}]" if len(idx) == 1 else f'rt.swizzle({wb}, "{sw}")'
         )
     code = tr.expr(node, mask)
-    found = [None] * n
+    found: list[tuple[str, list[str]] | None] = [None] * n
     if isinstance(node, A.Identifier) and tr.type_of(node).base == "float":
         found = [_component_record(tr, node, i) for i in range(n)]
     return [f if f else (_component(code, i, n), []) for i, f in enumerate(found)], code
 
 
 def _times(
-    tr: Any,
+    tr: TranspilerState,
     entries: list[tuple[str, list[Any]]],
     code: str,
     k: Any,
@@ -185,7 +202,9 @@ def _times(
     if tr.type_of(k).is_scalar:
         ks: list[Any] = [tr.expr(k, mask)] * n
     else:
-        ks = list(constant_value(tr, k))  # (values: named by _merged_code only if it uses them)
+        values = constant_value(tr, k)
+        assert values is not None  # `k` was tested as a constant
+        ks = list(values)  # (values: named by _merged_code only if it uses them)
     return [(y, cs + [kc]) for (y, cs), kc in zip(entries, ks)], code
 
 
@@ -197,7 +216,7 @@ def _size(t: Any) -> int:
     return t.size if t.is_vector else 1
 
 
-def _zero(tr: Any, node: Any) -> bool:
+def _zero(tr: TranspilerState, node: Any) -> bool:
     """A float constant +0.0 (``fadd(a, 0.0) -> a``)."""
     import math
 
@@ -205,7 +224,7 @@ def _zero(tr: Any, node: Any) -> bool:
     return isinstance(v, float) and v == 0.0 and math.copysign(1.0, v) > 0
 
 
-def _local_root(tr: Any, node: Any) -> Any:
+def _local_root(tr: TranspilerState, node: Any) -> Any:
     """The local or parameter a read names, through swizzles and ``+ 0.0``; else None."""
     while True:
         if isinstance(node, A.Field) and tr.model.is_swizzle(node):
@@ -221,7 +240,7 @@ def _local_root(tr: Any, node: Any) -> Any:
     return None
 
 
-def _target_components(tr: Any, target: Any) -> tuple[Any, tuple[int, ...] | None]:
+def _target_components(tr: TranspilerState, target: Any) -> tuple[Any, tuple[int, ...] | None]:
     """(the local an assignment writes, the components it writes: None for all) for a target
     that is a local or one swizzle of it; else (None, None)."""
     if isinstance(target, A.Identifier):
@@ -236,12 +255,12 @@ def _target_components(tr: Any, target: Any) -> tuple[Any, tuple[int, ...] | Non
     return None, None
 
 
-def _component_locals(tr: Any) -> set[int]:
+def _component_locals(tr: TranspilerState) -> set[int]:
     """ids of the float locals of the current function :func:`component_write` follows: written
     in part (a component, a compound assignment) and read in a product by a constant (or by
     ``*=`` one), directly or through a copy into such a local."""
     cache = tr.fold_state.component_locals
-    key = id(tr.fn.sym)
+    key = id(current_function(tr).sym)
     if key in cache:
         return cache[key]
     facts = function_facts(tr)
@@ -253,7 +272,7 @@ def _component_locals(tr: Any) -> set[int]:
     }
     reads: dict[int, list[Any]] = {}  # id(symbol) -> the nodes that read it so
     copies: list[tuple[Any, Any, Any]] = []
-    for n in tr.fn.sym.node.body.walk():
+    for n in current_function(tr).sym.node.body.walk():
         if isinstance(n, A.Binary) and n.op == "*":
             for a, b in ((n.left, n.right), (n.right, n.left)):
                 s = _local_root(tr, b) if is_constant(tr, a) and not is_constant(tr, b) else None
@@ -279,7 +298,9 @@ def _component_locals(tr: Any) -> set[int]:
     return cache[key]
 
 
-def _cancelled_sum(tr: Any, node: A.Assignment, mask: str | None, old: str) -> str | None:
+def _cancelled_sum(
+    tr: TranspilerState, node: A.Assignment, mask: str | None, old: str
+) -> str | None:
     """``x.y += e; ... x.y -= e`` (either order, e the same text, its variables not written in
     between): x.y is its value before the ``+=`` to NIR (``('~fadd', ('fneg', a), ('fadd', a,
     b)) -> b``), with the constants :func:`component_write` kept for it (gargantua's ``rc.y +=
@@ -299,11 +320,16 @@ def _cancelled_sum(tr: Any, node: A.Assignment, mask: str | None, old: str) -> s
     facts = function_facts(tr)
     if id(node) not in facts.enter or tr.type_of(node.target).base != "float":
         return None
-    ident = node.target if isinstance(node.target, A.Identifier) else node.target.base
+    target = node.target  # a local or one swizzle of it (_target_components)
+    assert isinstance(target, (A.Identifier, A.Field))
+    ident = target if isinstance(target, A.Identifier) else target.base
+    assert isinstance(ident, A.Identifier)
     comps = comps if comps is not None else tuple(range(_size(tr.type_of(node.target))))
     undo = tr.fold_state.undo
     records = tr.fold_state.components
-    before = []  # per component: (code, record) of its value before the write this one cancels
+    before: (
+        list[Any] | None
+    ) = []  # per component: (code, record) of its value before the write this one cancels
     for c in comps:
         w = _component_source(tr, ident, c)
         kept = undo.get(id(w.node)) if w is not None else None
@@ -321,6 +347,7 @@ def _cancelled_sum(tr: Any, node: A.Assignment, mask: str | None, old: str) -> s
         if facts.written_between(w.node, node, [r for r in read if r is not None]):
             before = None
             break
+        assert before is not None  # (set to None only on the way out of the loop)
         before.append(kept[1][c])
     if before is None and not _cancelled_later(tr, facts, sym, node):
         return None
@@ -343,7 +370,7 @@ def _cancelled_sum(tr: Any, node: A.Assignment, mask: str | None, old: str) -> s
     return f"({lp} if rt.lp else {written})"
 
 
-def _cancelled_later(tr: Any, facts: Any, sym: Any, node: A.Assignment) -> bool:
+def _cancelled_later(tr: TranspilerState, facts: Any, sym: Symbol, node: A.Assignment) -> bool:
     """A later compound assignment of ``sym`` subtracts what ``node`` adds (or adds what it
     subtracts), the same text: :func:`_cancelled_sum` may need the value before ``node``."""
     text, end = to_glsl(node.value), facts.exit[id(node)]
@@ -357,7 +384,9 @@ def _cancelled_later(tr: Any, facts: Any, sym: Any, node: A.Assignment) -> bool:
     )
 
 
-def _component_record(tr: Any, ident: A.Identifier, i: int) -> tuple[str, list[str]] | None:
+def _component_record(
+    tr: TranspilerState, ident: A.Identifier, i: int
+) -> tuple[str, list[str]] | None:
     """(y, constants) :func:`component_write` kept for component i of the local read here (from
     :func:`_component_source`'s write)."""
     last = _component_source(tr, ident, i)
@@ -367,7 +396,7 @@ def _component_record(tr: Any, ident: A.Identifier, i: int) -> tuple[str, list[s
     return kept[1].get(i)
 
 
-def _component_source(tr: Any, ident: A.Identifier, i: int) -> Any:
+def _component_source(tr: TranspilerState, ident: A.Identifier, i: int) -> Any:
     """The write (analysis.dataflow.Write) that last gave component i of the local read here its
     value: it runs before this read on every path, and nothing writes the component in between
     (loops around the read included); else None."""
@@ -394,7 +423,7 @@ def _component_source(tr: Any, ident: A.Identifier, i: int) -> Any:
     return last
 
 
-def _writes_locals(tr: Any, value: Any) -> bool:
+def _writes_locals(tr: TranspilerState, value: Any) -> bool:
     """The expression writes a variable (an assignment, ++/--, an out argument): a user call
     that only reads its arguments is computed once, as written, so it may stay."""
     for n in value.walk():
@@ -411,19 +440,19 @@ def _writes_locals(tr: Any, value: Any) -> bool:
     return False
 
 
-def _read_later(tr: Any, facts: Any, sym: Any, node: Any) -> bool:
+def _read_later(tr: TranspilerState, facts: Any, sym: Symbol, node: Any) -> bool:
     """A product by a constant (or a copy into a local read so) reads ``sym`` after ``node``
     (one before it, in a loop, is not reached by this write: :func:`_component_record`)."""
     end = facts.exit[id(node)]
     return any(facts.enter.get(id(r), -1) > end for r in _component_reads(tr).get(id(sym), ()))
 
 
-def _component_reads(tr: Any) -> dict[int, list[Any]]:
+def _component_reads(tr: TranspilerState) -> dict[int, list[Any]]:
     _component_locals(tr)
-    return tr.fold_state.component_reads[id(tr.fn.sym)]
+    return tr.fold_state.component_reads[id(current_function(tr).sym)]
 
 
-def _writes_component(tr: Any, w: Any, i: int) -> bool:
+def _writes_component(tr: TranspilerState, w: Any, i: int) -> bool:
     if isinstance(w.node, A.Assignment):
         comps = _target_components(tr, w.node.target)[1]
         if comps is not None:

@@ -13,10 +13,21 @@ from typing import Any
 from .....frontend import syntax as A
 from .....frontend.printer import to_glsl
 from .....semantics.model import Symbol
-from .queries import FunctionStandin, function_facts, has_matrix, is_constant, is_product
+from .queries import (
+    FunctionStandin,
+    current_function,
+    function_facts,
+    has_matrix,
+    is_constant,
+    is_product,
+)
+
+TYPE_CHECKING = False  # not typing's: importing typing costs every start-up
+if TYPE_CHECKING:
+    from ..state import TranspilerState
 
 
-def kept_product(tr: Any, node: A.Assignment, mask: str | None, old: str) -> str | None:
+def kept_product(tr: TranspilerState, node: A.Assignment, mask: str | None, old: str) -> str | None:
     """``x *= b`` read once, by a product by a constant: its factors kept for
     :func:`sunk_through_compound` (None: the write as usual)."""
     if not isinstance(node.target, A.Identifier) or id(node) not in _sink_reads(tr).values():
@@ -27,7 +38,7 @@ def kept_product(tr: Any, node: A.Assignment, mask: str | None, old: str) -> str
     return tr.binary_values("*", t, tr.type_of(node.value), ta, tb)
 
 
-def sunk_through_compound(tr: Any, e: A.Binary, mask: str | None) -> str | None:
+def sunk_through_compound(tr: TranspilerState, e: A.Binary, mask: str | None) -> str | None:
     """``x * #c`` where x's value is ``a * b`` from ``x *= b``, read only here: ``(a * #c) * b``
     (``('~fmul', ('fmul(is_used_once)', a, b), '#c') -> (a * #c) * b``, the product used once
     in SSA): gargantua's ``coverage *= saturate(..); coverage = saturate(coverage * 0.7)``.
@@ -35,7 +46,10 @@ def sunk_through_compound(tr: Any, e: A.Binary, mask: str | None) -> str | None:
     sinks on (not copied, left as written), so a must not be one (a sum, a built-in, or a
     call of a user function repeated with the same arguments in the function: CSE shares
     its value, as gargantua's second ``pcurve(radialGradient, 4.0, 0.9)``)."""
-    if isinstance(tr.fn, FunctionStandin) or getattr(tr.fn.sym, "node", None) is None:
+    if (
+        isinstance(tr.fn, FunctionStandin)
+        or getattr(current_function(tr).sym, "node", None) is None
+    ):
         return None  # (a global's initializer)
     w_id = _sink_reads(tr).get(id(e))
     kept = tr.fold_state.kept_products.get(w_id) if w_id is not None else None
@@ -53,10 +67,12 @@ def sunk_through_compound(tr: Any, e: A.Binary, mask: str | None) -> str | None:
     return f"({sunk} if rt.lp else {written})"
 
 
-def _returns_product(tr: Any, call: A.Call) -> bool:
+def _returns_product(tr: TranspilerState, call: A.Call) -> bool:
     """The user function called returns a product (its last statement ``return a * b``), or
     its result is not known here."""
-    stmts = tr.model.call_target(call).node.body.stmts
+    target = tr.model.call_target(call)
+    assert isinstance(target, Symbol)  # asked for calls of user functions
+    stmts = target.node.body.stmts
     last = stmts[-1] if stmts else None
     return (
         not isinstance(last, A.Return)
@@ -66,34 +82,34 @@ def _returns_product(tr: Any, call: A.Call) -> bool:
     )
 
 
-def _sink_reads(tr: Any) -> dict[int, int]:
+def _sink_reads(tr: TranspilerState) -> dict[int, int]:
     """id(``x * #c``) -> id(``x *= b``) for the products :func:`sunk_through_compound`
     rewrites: b not constant, x's value read only by that product, the value x had before
     the ``*=`` not a product NIR would sink into (see there)."""
     cache = tr.fold_state.sink_reads
-    key = id(tr.fn.sym)
+    key = id(current_function(tr).sym)
     if key in cache:
         return cache[key]
     out: dict[int, int] = {}
     facts = function_facts(tr)
     calls: dict[str, int] = {}
-    for n in tr.fn.sym.node.body.walk():
+    for n in current_function(tr).sym.node.body.walk():
         if isinstance(n, A.Call) and isinstance(tr.model.call_target(n), Symbol):
             calls[to_glsl(n)] = calls.get(to_glsl(n), 0) + 1
     reads: dict[int, list[Any]] = {}
     targets = {
         id(n.target)
-        for n in tr.fn.sym.node.body.walk()
+        for n in current_function(tr).sym.node.body.walk()
         if isinstance(n, A.Assignment) and n.op == "="
     }
-    for n in tr.fn.sym.node.body.walk():
+    for n in current_function(tr).sym.node.body.walk():
         if (
             isinstance(n, A.Identifier)
             and tr.model.symbol_of(n) is not None
             and id(n) not in targets
         ):
             reads.setdefault(id(tr.model.symbol_of(n)), []).append(n)
-    for n in tr.fn.sym.node.body.walk() if facts.ok else ():
+    for n in current_function(tr).sym.node.body.walk() if facts.ok else ():
         if not (
             isinstance(n, A.Binary)
             and n.op == "*"

@@ -25,8 +25,12 @@ from .queries import (
 )
 from .ssa_values import product_parts
 
+TYPE_CHECKING = False  # not typing's: importing typing costs every start-up
+if TYPE_CHECKING:
+    from ..state import TranspilerState
 
-def merge_constants(tr: Any, e: A.Binary, mask: str | None) -> str | None:
+
+def merge_constants(tr: TranspilerState, e: A.Binary, mask: str | None) -> str | None:
     """``#a * (b * #c) -> (a*c) * b`` and ``#a + (b + #c) -> (a + c) + b`` (no "used once"
     condition: they reach through any SSA value, here a never-written local such as
     ``vec2 uv = q * 1.2; ... uv * 0.2``, which is ``q * 0.24`` on llvmpipe: 1.2*0.2 is folded
@@ -38,7 +42,7 @@ def merge_constants(tr: Any, e: A.Binary, mask: str | None) -> str | None:
         return None
     inner, kept = x_node, None
     if isinstance(inner, A.Identifier):
-        parts = product_parts(tr, inner) if e.op == "*" else None
+        parts: tuple[Any, ...] | None = product_parts(tr, inner) if e.op == "*" else None
         kept = (
             parts[2] if parts is not None else None
         )  # (y's value kept: :func:`ssa_values.keep_factor`)
@@ -105,7 +109,7 @@ def merge_constants(tr: Any, e: A.Binary, mask: str | None) -> str | None:
     return f"({rewritten} if rt.lp else {written})"
 
 
-def _scalar_dot(tr: Any, node: Any) -> tuple[str, Any, Any] | None:
+def _scalar_dot(tr: TranspilerState, node: Any) -> tuple[str, Any, Any] | None:
     """``("*", a, b)`` for ``dot(a, b)`` of two floats: Mesa's built-in is a multiply there
     (builtin_functions.cpp ``_dot``: ``ir_binop_mul`` for one component), so NIR merges a
     constant into it as into ``a * b`` (a hash's ``dot(n, 123.456) * 789.123`` is ``n *

@@ -15,25 +15,29 @@ from typing import Any
 from ....cpu_core.facts import Facts, SideEffects
 from ...fold_state import FoldState
 
+TYPE_CHECKING = False  # not typing's: importing typing costs every start-up
+if TYPE_CHECKING:
+    from .....semantics.model import Model, Symbol
+
 
 class EmittedFunction:
     """The function the decisions are asked for (what they read of the transpiler's `tr.fn`)."""
 
-    def __init__(self, sym: Any, is_entry: bool) -> None:
+    def __init__(self, sym: Symbol | None, is_entry: bool) -> None:  # (None: the globals)
         self.sym, self.is_entry = sym, is_entry
 
 
 class FoldContext:
     """The program, its facts and the rules' memo, at one function (:meth:`at`) at a time."""
 
-    def __init__(self, model: Any, facts: Facts) -> None:
+    def __init__(self, model: Model, facts: Facts) -> None:
         self.model = model
         self.facts = facts
         self.fold_state = FoldState()
         self.has_effects = SideEffects(model)
         self.fn: EmittedFunction | None = None
 
-    def at(self, sym: Any, is_entry: bool) -> FoldContext:
+    def at(self, sym: Symbol | None, is_entry: bool) -> FoldContext:
         """This context, at the function `sym`."""
         if self.fn is None or self.fn.sym is not sym:
             self.fn = EmittedFunction(sym, is_entry)

@@ -10,8 +10,6 @@ last, a product by a constant kept through a variable assigned again (ssa_values
 
 from __future__ import annotations
 
-from typing import Any
-
 from .....frontend import syntax as A
 from .components import merge_components
 from .compound_products import sunk_through_compound
@@ -23,8 +21,12 @@ from .returned_sums import sink_into_call
 from .sink import sink_constant
 from .ssa_values import keep_factor, merge_into_matrix
 
+TYPE_CHECKING = False  # not typing's: importing typing costs every start-up
+if TYPE_CHECKING:
+    from ..state import TranspilerState
 
-def binary(tr: Any, e: A.Binary, mask: str | None) -> str | None:
+
+def binary(tr: TranspilerState, e: A.Binary, mask: str | None) -> str | None:
     """The generated code of ``e`` when one of the package's rules rewrites it, else None."""
     low = lowp_tree(tr, e, mask) if e.op in LOWP_OPS else None
     if low is not None:

@@ -13,8 +13,12 @@ from .....frontend import syntax as A
 from .....frontend.printer import to_glsl
 from .queries import is_constant, is_opaque, is_product, stable_init
 
+TYPE_CHECKING = False  # not typing's: importing typing costs every start-up
+if TYPE_CHECKING:
+    from ..state import TranspilerState
 
-def factor(tr: Any, e: A.Binary, mask: str | None) -> str | None:
+
+def factor(tr: TranspilerState, e: A.Binary, mask: str | None) -> str | None:
     """``a*b + a*c`` (either operand order, products possibly stored in never-written locals)
     as ``a * (b + c)``."""
     parts = factor_parts(tr, e)
@@ -28,7 +32,7 @@ def factor(tr: Any, e: A.Binary, mask: str | None) -> str | None:
     return f"({rewritten} if rt.lp else ({tl} + {trr}))"
 
 
-def factor_parts(tr: Any, e: Any) -> tuple[Any, Any, Any] | None:
+def factor_parts(tr: TranspilerState, e: Any) -> tuple[Any, Any, Any] | None:
     """(a, b, c) when the sum ``e`` is ``a*b + a*c`` as :func:`factor` rewrites it, else None."""
     if not (isinstance(e, A.Binary) and e.op == "+"):
         return None
@@ -53,7 +57,7 @@ def factor_parts(tr: Any, e: Any) -> tuple[Any, Any, Any] | None:
     return shared, b, c
 
 
-def _factors(tr: Any, node: Any) -> tuple[tuple[str, str], tuple[Any, Any]] | None:
+def _factors(tr: TranspilerState, node: Any) -> tuple[tuple[str, str], tuple[Any, Any]] | None:
     """The two factors of a product ``node`` (their GLSL texts, and nodes or (node, component)
     pairs), looking through a never-written local defined as a product; None otherwise."""
     if is_product(tr, node):
@@ -85,7 +89,7 @@ def _factors(tr: Any, node: Any) -> tuple[tuple[str, str], tuple[Any, Any]] | No
     return (parts[0][1], parts[1][1]), (parts[0][0], parts[1][0])
 
 
-def _code(tr: Any, x: Any, mask: str | None) -> str | None:
+def _code(tr: TranspilerState, x: Any, mask: str | None) -> str:
     if isinstance(x, tuple):
         node, comp = x
         return f"{tr.expr(node, mask)}[{comp}]"

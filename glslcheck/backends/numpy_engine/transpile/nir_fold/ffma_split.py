@@ -9,14 +9,16 @@ inside one written expression, ``(a*b + c*d) + e``, measured the same but not co
 
 from __future__ import annotations
 
-from typing import Any
-
 from .....frontend import syntax as A
 from ..call_fold import product_sums
-from .queries import call_write, function_facts
+from .queries import call_write, current_function, function_facts
+
+TYPE_CHECKING = False  # not typing's: importing typing costs every start-up
+if TYPE_CHECKING:
+    from ..state import TranspilerState
 
 
-def fused_after_call(tr: Any, e: A.Binary, mask: str | None) -> str | None:
+def fused_after_call(tr: TranspilerState, e: A.Binary, mask: str | None) -> str | None:
     """``x + e`` where x's value, written by a call folded per call site
     (transpile/call_fold.py), is ``p1 + p2`` in a component, two products, and this is x's
     only read: ``(p1 + e) + p2`` there. llvmpipe fuses ``p1 + p2`` into ``ffma(p2's factors,
@@ -45,7 +47,7 @@ def fused_after_call(tr: Any, e: A.Binary, mask: str | None) -> str | None:
             continue
         reads = [
             n
-            for n in tr.fn.sym.node.body.walk()
+            for n in current_function(tr).sym.node.body.walk()
             if isinstance(n, A.Identifier)
             and tr.model.symbol_of(n) is tr.model.symbol_of(x)
             and function_facts(tr).enter.get(id(n), -1) > function_facts(tr).exit[id(w.node)]

@@ -10,14 +10,16 @@ one-pixel probe run picks what the render picks; the rest of the choice is made 
 
 from __future__ import annotations
 
-from typing import Any
-
 from .....frontend import syntax as A
 from .....frontend.printer import to_glsl
-from .queries import constant_value, is_builtin
+from .queries import constant_value, current_function, is_builtin
+
+TYPE_CHECKING = False  # not typing's: importing typing costs every start-up
+if TYPE_CHECKING:
+    from ..state import FoldEngine
 
 
-def mix_hint(tr: Any, call: A.Call) -> list[str]:
+def mix_hint(tr: FoldEngine, call: A.Call) -> list[str]:
     """The extra argument of ``rt.mix``: the formula nir_lower_flrp (Mesa 22.3, no FFMA on
     llvmpipe) picks for this float-weighted `mix`, in its order: x and y constants whose
     exponents differ by at most 11 -> "fast" ``x + t*(y-x)``; x a constant of all +1 / -1 ->
@@ -51,15 +53,15 @@ def _similar(a: list[float], b: list[float]) -> bool:
     return all(abs(math.frexp(p)[1] - math.frexp(q)[1]) <= 11 for p, q in zip(a, b))
 
 
-def _shared_mixes(tr: Any) -> set[int]:
+def _shared_mixes(tr: FoldEngine) -> set[int]:
     """Float-weighted mix calls of the current function that share t and x (or t and y) with
     another one (get_similar_flrp_stats)."""
     cache = tr.fold_state.mix
-    key = id(tr.fn.sym)
+    key = id(current_function(tr).sym)
     if key not in cache:
         calls = [
             n
-            for n in tr.fn.sym.node.body.walk()
+            for n in current_function(tr).sym.node.body.walk()
             if isinstance(n, A.Call)
             and n.callee == "mix"
             and len(n.args) == 3

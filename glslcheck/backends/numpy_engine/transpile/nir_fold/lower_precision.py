@@ -15,10 +15,14 @@ from .....frontend import syntax as A
 from ....cpu_core.common import TEXTURE_FUNCTIONS
 from .queries import constant_value, is_builtin
 
+TYPE_CHECKING = False  # not typing's: importing typing costs every start-up
+if TYPE_CHECKING:
+    from ..state import TranspilerState
+
 LOWP_OPS = ("+", "-", "*", "/")
 
 
-def lowp_tree(tr: Any, e: A.Binary, mask: str | None) -> str | None:
+def lowp_tree(tr: TranspilerState, e: A.Binary, mask: str | None) -> str | None:
     """``e`` computed in float16 where llvmpipe does, else None.
 
     Mesa's GLSL compiler lowers GLSL ES precision to float16 (glsl/lower_precision.cpp, on
@@ -61,7 +65,7 @@ def lowp_tree(tr: Any, e: A.Binary, mask: str | None) -> str | None:
     return f"(rt.lowp_full({low}) if rt.lowp_arith({used}) else {written})"
 
 
-def _lowp_kind(tr: Any, node: Any, memo: dict[int, Any]) -> str | None:
+def _lowp_kind(tr: TranspilerState, node: Any, memo: dict[int, Any]) -> str | None:
     """ "const" (a literal constant), "lookup" (an iChannel lookup, swizzled or not), "low" (an
     operation float16 on llvmpipe) or None (float32) for a node of such a tree (memoised)."""
     key = id(node)
@@ -70,7 +74,7 @@ def _lowp_kind(tr: Any, node: Any, memo: dict[int, Any]) -> str | None:
     return memo[key]
 
 
-def _lowp_kind_of(tr: Any, node: Any, memo: dict[int, Any]) -> str | None:
+def _lowp_kind_of(tr: TranspilerState, node: Any, memo: dict[int, Any]) -> str | None:
     if isinstance(node, (A.FloatLiteral, A.IntLiteral)):
         return "const"
     if isinstance(node, A.Identifier):
@@ -111,7 +115,7 @@ def _lowp_kind_of(tr: Any, node: Any, memo: dict[int, Any]) -> str | None:
     return None
 
 
-def _square(tr: Any, node: A.Call) -> bool:
+def _square(tr: TranspilerState, node: A.Call) -> bool:
     """``pow(x, 2.0)`` (a vector of 2.0 too) of the built-in: x * x to NIR (``fpow(a, 2.0) ->
     a * a``), in float16 for a float16 x (gargantua's ``pow(texture(..).rgb, vec3(2.0)) * 4.0``)."""
     return (
@@ -142,7 +146,7 @@ def _lowp_parts(node: Any, memo: dict[int, Any], nodes: list[Any], samplers: lis
         samplers.append(node.args[0])
 
 
-def _lowp_code(tr: Any, node: Any, mask: str | None, ops: set[int]) -> str:
+def _lowp_code(tr: TranspilerState, node: Any, mask: str | None, ops: set[int]) -> str:
     """The float16 code of a tree found by :func:`_lowp_kind`: leaves rounded to float16
     (``rt.half``), each operation a NumPy float16 operation (one rounding each)."""
     if id(node) not in ops:

@@ -20,11 +20,12 @@ from .....language import builtin_functions as B
 from .....semantics.analysis import param_directions
 from .....semantics.model import Symbol
 from ..inline import bound_argument, inline_owner
+from ..state import FnState, FoldedFunction, FoldEngine, TranspilerState
 
 SUMS = ("+", "-")
 
 
-def constant_value(tr: Any, node: Any) -> list[float] | None:
+def constant_value(tr: FoldEngine, node: Any) -> list[float] | None:
     """The scalars of a constant operand (see :func:`flrp.mix_hint`), else None."""
     v = tr.model.const_value(node)
     if (
@@ -49,11 +50,11 @@ def constant_value(tr: Any, node: Any) -> list[float] | None:
     return flat
 
 
-def read_once(tr: Any, ident: A.Identifier) -> bool:
+def read_once(tr: TranspilerState, ident: A.Identifier) -> bool:
     """The variable is read at one place of its function (GLSL IR grafts its value there)."""
     sym = tr.model.symbol_of(ident)
     owner = inline_owner(tr, sym)
-    body = owner.node.body if owner is not None else tr.fn.sym.node.body
+    body = owner.node.body if owner is not None else current_function(tr).sym.node.body
     reads = tr.fold_state.reads
     if id(body) not in reads:
         counts: dict[int, int] = {}
@@ -66,13 +67,13 @@ def read_once(tr: Any, ident: A.Identifier) -> bool:
     return reads[id(body)].get(id(sym), 0) == 1
 
 
-def is_constant(tr: Any, node: Any) -> bool:
+def is_constant(tr: TranspilerState, node: Any) -> bool:
     if tr.model.const_value(node) is not None:
         return True
     return isinstance(node, A.Identifier) and constant_global(tr, tr.model.symbol_of(node))
 
 
-def constant_global(tr: Any, sym: Any) -> bool:
+def constant_global(tr: FoldEngine, sym: Symbol | None) -> bool:
     """A global variable (not `const`) initialised by a constant expression and never written:
     a constant to Mesa (GLSL IR propagates it, opt_constant_variable), so to every rule here
     (``float PI = 3.14159265;`` then ``fract(p / PI)``: measured, the rules apply as for a
@@ -87,7 +88,7 @@ def constant_global(tr: Any, sym: Any) -> bool:
     )
 
 
-def is_product(tr: Any, node: Any) -> bool:
+def is_product(tr: TranspilerState, node: Any) -> bool:
     """A product of numbers or vectors (a matrix product is no elementwise product)."""
     return (
         isinstance(node, A.Binary)
@@ -97,7 +98,7 @@ def is_product(tr: Any, node: Any) -> bool:
     )
 
 
-def has_matrix(tr: Any, *nodes: Any) -> bool:
+def has_matrix(tr: TranspilerState, *nodes: Any) -> bool:
     return any(tr.type_of(n).is_matrix for n in nodes)
 
 
@@ -132,7 +133,7 @@ _ARITHMETIC_BUILTINS = {
 }
 
 
-def is_opaque(tr: Any, node: Any, depth: int = 0) -> bool:
+def is_opaque(tr: TranspilerState, node: Any, depth: int = 0) -> bool:
     """The value reaches NIR as something no algebraic rule looks into: a uniform, a
     never-written parameter of mainImage, a built-in computed by its own instruction (sin,
     fract, floor, sqrt, ...), a swizzle of one, or a never-written local initialised so."""
@@ -155,35 +156,35 @@ def is_opaque(tr: Any, node: Any, depth: int = 0) -> bool:
         if sym.kind in ("uniform", "builtin-var"):
             return True
         if sym.kind == "param":
-            return tr.fn.is_entry and id(sym) not in written_symbols(tr)
+            return current_function(tr).is_entry and id(sym) not in written_symbols(tr)
         init = stable_init(tr, node)
         return init is not None and is_opaque(tr, init, depth + 1)
     return False
 
 
-def used_once(tr: Any, e: Any) -> bool:
+def used_once(tr: TranspilerState, e: Any) -> bool:
     """``e`` feeds one instruction: its GLSL text appears once in the function (NIR's CSE
     would merge a copy) and it is an operand of a larger expression (a value stored in a
     variable feeds every use of the variable)."""
     return id(e) in use_counts(tr)[2] and one_copy(tr, e)
 
 
-def one_copy(tr: Any, e: Any) -> bool:
+def one_copy(tr: TranspilerState, e: Any) -> bool:
     """The GLSL text of ``e`` appears once in the function (NIR's CSE would merge a copy)."""
     shapes, counts, _ = use_counts(tr)
     return counts.get(shapes.get(id(e), -1), 0) <= 1
 
 
-def use_counts(tr: Any) -> tuple[dict[int, int], dict[int, int], set[int]]:
+def use_counts(tr: TranspilerState) -> tuple[dict[int, int], dict[int, int], set[int]]:
     """(shape of each node, copies of each shape among the binary expressions, ids of the
     operands of binary expressions and built-in calls) of the current function."""
     parents = tr.fold_state.parents
-    key = id(tr.fn.sym)
+    key = id(current_function(tr).sym)
     if key not in parents:
-        shapes = node_shapes(tr.fn.sym.node.body)
+        shapes = node_shapes(current_function(tr).sym.node.body)
         counts: dict[int, int] = {}
         operands: set[int] = set()
-        for n in tr.fn.sym.node.body.walk():
+        for n in current_function(tr).sym.node.body.walk():
             if isinstance(n, A.Binary):
                 operands.update((id(n.left), id(n.right)))
                 counts[shapes[id(n)]] = counts.get(shapes[id(n)], 0) + 1
@@ -224,7 +225,7 @@ def node_shapes(root: Any) -> dict[int, int]:
     return ids
 
 
-def call_write(tr: Any, node: Any) -> Any:
+def call_write(tr: TranspilerState, node: Any) -> Any:
     """The write (analysis.dataflow.Write) of a call of a user function that gave the variable
     ``node`` its value here (an out or inout argument, nothing written since), else None."""
     sym = tr.model.symbol_of(node) if isinstance(node, A.Identifier) else None
@@ -242,7 +243,7 @@ def call_write(tr: Any, node: Any) -> Any:
     return w
 
 
-def is_fmul(tr: Any, node: Any) -> bool:
+def is_fmul(tr: TranspilerState, node: Any) -> bool:
     """The value is a product in NIR (nir_search's ``is_fmul``): a product of numbers or
     vectors, a local whose value here is one (its initializer, or the assignment that reaches
     this read: ``f = f*f*(3.0 - 2.0*f); ... f.xy``), or a component of either."""
@@ -253,18 +254,18 @@ def is_fmul(tr: Any, node: Any) -> bool:
     return node is not None and is_product(tr, node)
 
 
-def function_facts(tr: Any) -> Any:
+def function_facts(tr: TranspilerState) -> Any:
     """analysis.dataflow's execution-order facts of the current function, made once."""
     from .....semantics.analysis.dataflow import FunctionFacts
 
     cache = tr.fold_state.facts
-    key = id(tr.fn.sym)
+    key = id(current_function(tr).sym)
     if key not in cache:
-        cache[key] = FunctionFacts(tr.fn.sym.node, tr.model)
+        cache[key] = FunctionFacts(current_function(tr).sym.node, tr.model)
     return cache[key]
 
 
-def reaching_value(tr: Any, ident: A.Identifier, unchanged: bool = False) -> Any:
+def reaching_value(tr: TranspilerState, ident: A.Identifier, unchanged: bool = False) -> Any:
     """The value the last whole assignment (or initializer) of a local gave it, when that write
     runs before this read on every path and nothing writes the variable in between (in
     program order, loops included: analysis.dataflow); else None. Its operands may have
@@ -291,7 +292,7 @@ def reaching_value(tr: Any, ident: A.Identifier, unchanged: bool = False) -> Any
     return w.value
 
 
-def is_varying(tr: Any, node: Any, depth: int = 0) -> bool:
+def is_varying(tr: TranspilerState, node: Any, depth: int = 0) -> bool:
     """The value depends on an input (a uniform, fragCoord, a parameter, a written variable):
     it is not a constant after NIR's constant propagation."""
     if depth > 8:
@@ -309,13 +310,13 @@ def is_varying(tr: Any, node: Any, depth: int = 0) -> bool:
     return False
 
 
-def is_builtin(tr: Any, call: A.Call) -> bool:
+def is_builtin(tr: FoldEngine, call: A.Call) -> bool:
     """The call names a built-in function (not a user function, not a constructor)."""
     tgt = tr.model.call_target(call)
     return isinstance(tgt, B.Overload)
 
 
-def stable_init(tr: Any, ident: A.Identifier) -> Any:
+def stable_init(tr: FoldEngine, ident: A.Identifier) -> Any:
     """The initializer of a local that is written only by its declaration, whose identifiers
     are all such locals, never-written parameters, uniforms or constants; else None."""
     sym = tr.model.symbol_of(ident)
@@ -347,11 +348,11 @@ def stable_init(tr: Any, ident: A.Identifier) -> Any:
     return init
 
 
-def written_symbols(tr: Any) -> set[int]:
+def written_symbols(tr: FoldEngine) -> set[int]:
     """Symbols of the current function that are assigned, incremented or passed to an out or
     inout parameter of a user function."""
     cache = tr.fold_state.written
-    key = id(tr.fn.sym)
+    key = id(current_function(tr).sym)
     if key not in cache:
         out: set[int] = set()
 
@@ -363,7 +364,7 @@ def written_symbols(tr: Any) -> set[int]:
                 if s is not None:
                     out.add(id(s))
 
-        for n in tr.fn.sym.node.walk():
+        for n in current_function(tr).sym.node.walk():
             if isinstance(n, A.Assignment):
                 roots(n.target)
             elif isinstance(n, (A.Unary, A.Postfix)) and n.op in ("++", "--"):
@@ -376,8 +377,15 @@ def written_symbols(tr: Any) -> set[int]:
     return cache[key]
 
 
-class FunctionStandin:
-    """What the rules read of the transpiler's current function (`tr.fn`), for another one."""
+class FunctionStandin(FnState):
+    """The transpiler's current function (`tr.fn`) as the rules read it, for another one."""
 
-    def __init__(self, sym: Any) -> None:
-        self.sym, self.is_entry = sym, False
+    def __init__(self, sym: Symbol) -> None:
+        super().__init__(sym, None, False)
+
+
+def current_function(tr: FoldEngine) -> FoldedFunction:
+    """The function the rules are asked about (they run inside one: `tr.fn` is set)."""
+    fn = tr.fn
+    assert fn is not None
+    return fn

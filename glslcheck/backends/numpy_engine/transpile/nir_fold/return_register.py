@@ -12,9 +12,15 @@ from typing import Any
 
 from .....frontend import syntax as A
 from ....cpu_core.facts import induction_variable
+from .queries import current_function
+
+TYPE_CHECKING = False  # not typing's: importing typing costs every start-up
+if TYPE_CHECKING:
+    from .....semantics.model import Symbol
+    from ..state import TranspilerState
 
 
-def register_call(tr: Any, call: A.Call, fn: Any) -> bool:
+def register_call(tr: TranspilerState, call: A.Call, fn: Symbol) -> bool:
     """The result of this call of ``fn``, made under a mask in a function that takes
     derivatives, is llvmpipe's register in the lanes the mask leaves out: they keep the value
     they had the last time this call ran for them (frame.Lanes.reg).
@@ -28,12 +34,16 @@ def register_call(tr: Any, call: A.Call, fn: Any) -> bool:
     (max_unroll_iterations) is unrolled, each copy its own register, zero in such a lane
     (measured on a 4-step loop: the register kept across iterations put 917 of 14,400 pixels
     off, zero none)."""
-    if tr.fn is None or id(tr.fn.sym) not in tr.facts.uses_derivs or not _returns_in_branch(tr, fn):
+    if (
+        tr.fn is None
+        or id(current_function(tr).sym) not in tr.facts.uses_derivs
+        or not _returns_in_branch(tr, fn)
+    ):
         return False
-    return _in_kept_loop(tr, tr.fn.sym, call, 0)
+    return _in_kept_loop(tr, current_function(tr).sym, call, 0)
 
 
-def _returns_in_branch(tr: Any, fn: Any) -> bool:
+def _returns_in_branch(tr: TranspilerState, fn: Symbol) -> bool:
     """``fn`` returns a value from inside an ``if`` or a loop, computed there by a call."""
     if fn.type is None or str(fn.type) == "void":
         return False
@@ -48,7 +58,7 @@ def _returns_in_branch(tr: Any, fn: Any) -> bool:
     return False
 
 
-def _in_kept_loop(tr: Any, sym: Any, node: Any, depth: int) -> bool:
+def _in_kept_loop(tr: TranspilerState, sym: Symbol, node: Any, depth: int) -> bool:
     """``node`` (in function ``sym``) runs again and again in one invocation: its innermost
     loop, here or around every call of the function, is one NIR does not unroll."""
     from .....semantics.analysis.dataflow import FunctionFacts
@@ -73,11 +83,13 @@ def _in_kept_loop(tr: Any, sym: Any, node: Any, depth: int) -> bool:
     return bool(sites) and all(_in_kept_loop(tr, f, n, depth + 1) for f, n in sites)
 
 
-def _unrolled(tr: Any, loop: Any) -> bool:
+def _unrolled(tr: TranspilerState, loop: Any) -> bool:
     """A ``for`` loop of a constant count of at most 32 iterations (NIR unrolls it)."""
     if not isinstance(loop, A.For) or induction_variable(loop, tr.model) is None:
         return False
-    decl = loop.init.decl.declarators[0]
+    init = loop.init  # an induction variable's declaration (induction_variable)
+    assert isinstance(init, A.DeclarationStatement) and isinstance(init.decl, A.VariableDeclaration)
+    decl = init.decl.declarators[0]
     start, cond, step = tr.model.const_value(decl.init), loop.cond, loop.step
     if not (
         isinstance(start, int)

@@ -17,6 +17,7 @@ from .....semantics.model import Symbol
 from .queries import (
     SUMS,
     FunctionStandin,
+    current_function,
     function_facts,
     is_fmul,
     is_opaque,
@@ -25,8 +26,12 @@ from .queries import (
 )
 from .sink import known_term
 
+TYPE_CHECKING = False  # not typing's: importing typing costs every start-up
+if TYPE_CHECKING:
+    from ..state import TranspilerState
 
-def sunk_return(tr: Any, fn: Any) -> list[tuple[Any, Any, str]] | None:
+
+def sunk_return(tr: TranspilerState, fn: Symbol) -> list[tuple[Any, Any, str]] | None:
     """The sum a user function returns when a caller adds a constant to its result and NIR,
     which inlines every function, would sink that constant into it (:func:`sink._sink_sum`):
     ``float f; f = 0.5*noise(p); f += 0.25*noise(q); ... return f;`` called as
@@ -51,7 +56,7 @@ def sunk_return(tr: Any, fn: Any) -> list[tuple[Any, Any, str]] | None:
     return cache[id(fn)]
 
 
-def _sink_calls(tr: Any) -> set[int]:
+def _sink_calls(tr: TranspilerState) -> set[int]:
     """ids of the user functions some call of which has a constant added to its result."""
     found = tr.fold_state.sink_calls
     if found is None:
@@ -66,7 +71,7 @@ def _sink_calls(tr: Any) -> set[int]:
     return found
 
 
-def _return_chain(tr: Any, fn: Any) -> list[tuple[Any, Any, str]] | None:
+def _return_chain(tr: TranspilerState, fn: Symbol) -> list[tuple[Any, Any, str]] | None:
     body = fn.node.body.stmts
     if (
         not body
@@ -127,7 +132,7 @@ def _return_chain(tr: Any, fn: Any) -> list[tuple[Any, Any, str]] | None:
     return chain
 
 
-def sink_into_call(tr: Any, e: A.Binary, mask: str | None) -> str | None:
+def sink_into_call(tr: TranspilerState, e: A.Binary, mask: str | None) -> str | None:
     """``f(...) +- #c`` where f has a :func:`sunk_return`: the call, passed the constant in
     llvmpipe mode (the callee adds it where NIR sinks it), else None. Not where the function
     computes the same sum for another call of this function (same arguments, or any other call
@@ -152,7 +157,7 @@ def sink_into_call(tr: Any, e: A.Binary, mask: str | None) -> str | None:
     shapes = use_counts(tr)[0]
     others = [
         n
-        for n in tr.fn.sym.node.body.walk()
+        for n in current_function(tr).sym.node.body.walk()
         if isinstance(n, A.Call) and n is not call and tr.model.call_target(n) is target
     ]
     if (
@@ -168,7 +173,7 @@ def sink_into_call(tr: Any, e: A.Binary, mask: str | None) -> str | None:
     return f"({result} if rt.lp else ({result} {e.op} {tk}))"
 
 
-def return_constant_args(tr: Any, call: A.Call, fn: Any) -> list[str]:
+def return_constant_args(tr: TranspilerState, call: A.Call, fn: Symbol) -> list[str]:
     """The extra argument of a call of a function with a :func:`sunk_return`: the constant the
     caller adds (:func:`sink._sink_sum`, llvmpipe mode) or None; [] for other functions."""
     if sunk_return(tr, fn) is None:
@@ -176,12 +181,12 @@ def return_constant_args(tr: Any, call: A.Call, fn: Any) -> list[str]:
     return [tr.fold_state.call_k.get(id(call), "None")]
 
 
-def keep_term(tr: Any, node: Any, code: str) -> str:
+def keep_term(tr: TranspilerState, node: Any, code: str) -> str:
     """The code of a term of a :func:`sunk_return` sum, kept in a temporary; other values as
     they are. ``node``: the assignment or declarator that writes it."""
     if tr.fn is None or isinstance(tr.fn, FunctionStandin):
         return code
-    chain = sunk_return(tr, tr.fn.sym)
+    chain = sunk_return(tr, current_function(tr).sym)
     if chain is None or not any(w is node for w, _, _ in chain):
         return code
     t = tr.tmp(code)
@@ -189,10 +194,10 @@ def keep_term(tr: Any, node: Any, code: str) -> str:
     return t
 
 
-def sunk_return_value(tr: Any, ret: A.Return, code: str) -> str:
+def sunk_return_value(tr: TranspilerState, ret: A.Return, code: str | None) -> str | None:
     """The returned value of a function with a :func:`sunk_return`: ``code`` when the caller
     adds nothing (``_k`` None), else the sum with the constant sunk as NIR sinks it."""
-    chain = sunk_return(tr, tr.fn.sym) if tr.fn is not None else None
+    chain = sunk_return(tr, current_function(tr).sym) if tr.fn is not None else None
     terms = tr.fold_state.terms
     if chain is None or ret.value is None or not all(id(w) in terms for w, _, _ in chain):
         return code

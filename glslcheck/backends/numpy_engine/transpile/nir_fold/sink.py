@@ -24,6 +24,7 @@ from .factoring import factor_parts
 from .queries import (
     SUMS,
     call_write,
+    current_function,
     has_matrix,
     is_builtin,
     is_constant,
@@ -38,8 +39,12 @@ from .queries import (
 )
 from .squared_lengths import merged_argument, shared_dot, squared_length
 
+TYPE_CHECKING = False  # not typing's: importing typing costs every start-up
+if TYPE_CHECKING:
+    from ..state import TranspilerState
 
-def sink_constant(tr: Any, e: A.Binary, mask: str | None) -> str | None:
+
+def sink_constant(tr: TranspilerState, e: A.Binary, mask: str | None) -> str | None:
     """Constants sunk into a sum (:func:`_sink_sum`), a two-term product, or a dot product."""
     inner, k, k_left = e.left, e.right, False
     if (
@@ -91,7 +96,7 @@ def sink_constant(tr: Any, e: A.Binary, mask: str | None) -> str | None:
     return f"({prod(prod(ta, tk, ty[0], ty[2]), tb, ak, ty[1])} if rt.lp else {written})"
 
 
-def _local_constant(tr: Any, node: Any) -> bool:
+def _local_constant(tr: TranspilerState, node: Any) -> bool:
     """A never-written local initialised by a constant expression (``float warpAmount = 5.0;``):
     a constant to NIR (GLSL IR's constant propagation), counted as one by the product sink."""
     sym = tr.model.symbol_of(node) if isinstance(node, A.Identifier) else None
@@ -105,7 +110,7 @@ def _local_constant(tr: Any, node: Any) -> bool:
     return tr.model.const_value(sym.node.init) is not None and id(sym) not in written_symbols(tr)
 
 
-def _normalized_once(tr: Any, node: Any) -> Any:
+def _normalized_once(tr: TranspilerState, node: Any) -> Any:
     """x when ``node`` reads a never-written local initialised as ``normalize(x)`` (x a vector)
     and read only here: NIR sees ``x * frsq(dot(x, x))`` used once, and a constant multiplying
     it sinks on to x: ``(normalize(x) * b) * #c`` is ``((x * #c) * inversesqrt(dot(x, x))) * b``
@@ -131,13 +136,13 @@ def _normalized_once(tr: Any, node: Any) -> Any:
         return None
     reads = [
         n
-        for n in tr.fn.sym.node.body.walk()
+        for n in current_function(tr).sym.node.body.walk()
         if isinstance(n, A.Identifier) and tr.model.symbol_of(n) is sym
     ]
     return init.args[0] if reads == [node] else None
 
 
-def _settled(tr: Any, node: Any) -> bool:
+def _settled(tr: TranspilerState, node: Any) -> bool:
     """A variable whose value here is what a call of a user function wrote into it (an out or
     inout argument, nothing written since), where that value is, to NIR after inlining, a sum
     or a built-in's result in every component (transpile/call_fold.out_roots: gargantua's
@@ -149,7 +154,7 @@ def _settled(tr: Any, node: Any) -> bool:
     return roots is not None and roots <= {"+", "call"}
 
 
-def _scaled(tr: Any, node: Any) -> bool:
+def _scaled(tr: TranspilerState, node: Any) -> bool:
     """A never-written local initialised as a product by a constant (``float dither = rand(uv)
     * 2.0``) or a constant divided by a value (``1.0 / (...)``): beside ``(a * dither) * #c``
     NIR leaves it whole, measured (gargantua: ``((eyevec * dither) * 15.0) / 200.0`` is
@@ -178,7 +183,7 @@ def _scaled(tr: Any, node: Any) -> bool:
     )
 
 
-def _sink_sum(tr: Any, e: A.Binary, inner: Any, k: Any, mask: str | None) -> str | None:
+def _sink_sum(tr: TranspilerState, e: A.Binary, inner: Any, k: Any, mask: str | None) -> str | None:
     """``(a + b) + #c -> (a + #c) + b`` as nir_opt_algebraic applies it: first the variant that
     keeps a product ``b`` whole (``is_fmul``, so the constant joins the other term), else the
     constant joins ``a``; the new sum ``a + #c`` is matched again, so the constant sinks down
@@ -215,7 +220,7 @@ def _sink_sum(tr: Any, e: A.Binary, inner: Any, k: Any, mask: str | None) -> str
     return f"({rewritten} if rt.lp else ({codes[-3]} {e.op} {codes[-2]}))"
 
 
-def _sum_plan(tr: Any, x: Any, t: Any, depth: int) -> tuple | None:
+def _sum_plan(tr: TranspilerState, x: Any, t: Any, depth: int) -> tuple | None:
     """Where a constant added to ``x`` goes: ("leaf", x) when x is a term it stays beside,
     ("sum", receiver plan, other term, operator, receiver on the left) when x is a sum used
     once, None where the rewrite is not copied."""
@@ -264,7 +269,7 @@ def _plan_code(plan: tuple, codes: Any, k: str) -> str:
     return f"({recv} {plan[3]} {other})" if plan[4] else f"({recv} + {other})"
 
 
-def known_term(tr: Any, node: Any) -> bool:
+def known_term(tr: TranspilerState, node: Any) -> bool:
     """A term whose kind to NIR is known: opaque, a product (:func:`queries.is_fmul`), a sum, or a
     selection (``c ? x : y``, a bcsel: no product), written or the value of a local here."""
     if is_opaque(tr, node) or is_fmul(tr, node) or _sum(tr, node):
@@ -277,17 +282,18 @@ def known_term(tr: Any, node: Any) -> bool:
     return not (isinstance(x, A.Binary) and isinstance(y, A.Binary) and x.op == y.op)
 
 
-def _sum(tr: Any, node: Any) -> bool:
+def _sum(tr: TranspilerState, node: Any) -> bool:
     """A sum or difference (no product: :func:`queries.is_fmul` tells which term keeps the
     constant)."""
     return isinstance(node, A.Binary) and node.op in SUMS
 
 
-def _rebalanced(tr: Any, e: A.Binary) -> bool:
+def _rebalanced(tr: TranspilerState, e: A.Binary) -> bool:
     """GLSL IR's do_rebalance_tree balances an expression tree of three or more additions of
     the same type whose leaves are variables (at most one constant) before NIR sees it:
     ``(a + b + c) + K`` reaches NIR as ``(a + b) + (c + K)`` (measured)."""
-    stack, ops, constants = [e], 0, 0
+    stack: list[A.Expr] = [e]
+    ops, constants = 0, 0
     while stack:
         n = stack.pop()
         if isinstance(n, A.Binary):
@@ -304,7 +310,7 @@ def _rebalanced(tr: Any, e: A.Binary) -> bool:
     return ops >= 3 and constants <= 1
 
 
-def _stable_vector(tr: Any, node: Any) -> bool:
+def _stable_vector(tr: TranspilerState, node: Any) -> bool:
     """A never-written vector local initialised as the difference of two opaque vectors
     (``vec3 oc = ro - center``: measured). A vector built from scalars is left out: there
     llvmpipe's bits follow neither order (other rules, such as ``sqrt(x) * sqrt(x) -> x``,

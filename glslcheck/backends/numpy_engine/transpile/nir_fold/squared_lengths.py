@@ -16,14 +16,19 @@ from .....frontend import syntax as A
 from .queries import (
     FunctionStandin,
     constant_value,
+    current_function,
     function_facts,
     is_builtin,
     stable_init,
     written_symbols,
 )
 
+TYPE_CHECKING = False  # not typing's: importing typing costs every start-up
+if TYPE_CHECKING:
+    from ..state import TranspilerState
 
-def squared_length(tr: Any, node: Any) -> Any:
+
+def squared_length(tr: TranspilerState, node: Any) -> Any:
     """x when ``node`` is ``pow(L, 2.0)`` and L is ``length(x)`` or ``distance(x, #0)`` (or a
     never-written local initialised so), x a parameter the function never writes: to NIR
     ``fsqrt(dot(x, x))`` squared is the dot product itself (fpow(a, 2.0) -> a*a, then
@@ -71,7 +76,7 @@ def squared_length(tr: Any, node: Any) -> Any:
     return x
 
 
-def shared_dot(tr: Any, x: Any, pow_call: Any) -> bool:
+def shared_dot(tr: TranspilerState, x: Any, pow_call: Any) -> bool:
     """Another ``length``, ``distance``, ``normalize`` or ``dot`` of the current function reads
     the parameter x (alone, negated or subtracted from a constant): after inlining and CSE its
     ``dot(x, x)`` is the squared length's too, used twice, and a constant added to one of them
@@ -83,7 +88,7 @@ def shared_dot(tr: Any, x: Any, pow_call: Any) -> bool:
     init = stable_init(tr, pow_call.args[0]) if isinstance(pow_call.args[0], A.Identifier) else None
     for n in init.walk() if init is not None else ():
         own.add(id(n))
-    for n in tr.fn.sym.node.body.walk():
+    for n in current_function(tr).sym.node.body.walk():
         if (
             id(n) in own
             or not isinstance(n, A.Call)
@@ -105,7 +110,7 @@ def shared_dot(tr: Any, x: Any, pow_call: Any) -> bool:
     return False
 
 
-def merged_argument(tr: Any, x: Any) -> bool:
+def merged_argument(tr: TranspilerState, x: Any) -> bool:
     """Every call of the current function passes for the parameter x a variable whose value
     there merges several writes (to NIR a phi: written in a loop around the call, or last
     written in a branch before it). Then the constant joins the shared dot product's innermost
@@ -115,7 +120,7 @@ def merged_argument(tr: Any, x: Any) -> bool:
     loop that writes x, 0 pixels off sunk and 1-3 outside; after an ``if`` that writes x, 0
     and 1; in a loop that does not write x, or after straight-line writes, 1 sunk and 0
     outside). Which pass ordering makes a phi differ was not traced in Mesa's source."""
-    fn = tr.fn.sym
+    fn = current_function(tr).sym
     names = [name for name, _, _ in fn.params]
     if x.name not in names:
         return False

@@ -13,6 +13,7 @@ from typing import Any
 
 from .....frontend import syntax as A
 from .queries import (
+    current_function,
     function_facts,
     has_matrix,
     is_constant,
@@ -23,8 +24,12 @@ from .queries import (
     written_symbols,
 )
 
+TYPE_CHECKING = False  # not typing's: importing typing costs every start-up
+if TYPE_CHECKING:
+    from ..state import TranspilerState
 
-def keep_factor(tr: Any, e: A.Binary, mask: str | None) -> str | None:
+
+def keep_factor(tr: TranspilerState, e: A.Binary, mask: str | None) -> str | None:
     """``x = y * #c`` where x is read later in a product by a constant: the code of the
     product, y's value kept in a temporary for that read (:func:`product_parts`). NIR sees
     through x to y however often x is assigned (``p = m*p*2.02; p = m*p*2.03;`` in an fbm:
@@ -55,13 +60,13 @@ def keep_factor(tr: Any, e: A.Binary, mask: str | None) -> str | None:
     return tr.binary_values("*", t, t, tk, ty) if k_left else tr.binary_values("*", t, t, ty, tk)
 
 
-def _write_of(tr: Any, value: Any) -> Any:
+def _write_of(tr: TranspilerState, value: Any) -> Any:
     """The write (analysis.dataflow.Write) of a local whose whole new value is ``value``."""
     facts = function_facts(tr)
     if not facts.ok:
         return None
     index = tr.fold_state.writes
-    key = id(tr.fn.sym)
+    key = id(current_function(tr).sym)
     if key not in index:
         index[key] = {
             id(w.value): w
@@ -74,14 +79,14 @@ def _write_of(tr: Any, value: Any) -> Any:
     return index[key].get(id(value))
 
 
-def _merge_reads(tr: Any) -> dict[int, list[A.Identifier]]:
+def _merge_reads(tr: TranspilerState) -> dict[int, list[A.Identifier]]:
     """id(symbol) -> the reads of it as a factor of a product by a constant, in the current
     function."""
     cache = tr.fold_state.merge_reads
-    key = id(tr.fn.sym)
+    key = id(current_function(tr).sym)
     if key not in cache:
         out: dict[int, list[A.Identifier]] = {}
-        for n in tr.fn.sym.node.body.walk():
+        for n in current_function(tr).sym.node.body.walk():
             if isinstance(n, A.Binary) and n.op == "*":
                 for a, b in ((n.left, n.right), (n.right, n.left)):
                     if (
@@ -94,7 +99,7 @@ def _merge_reads(tr: Any) -> dict[int, list[A.Identifier]]:
     return cache[key]
 
 
-def product_parts(tr: Any, node: Any) -> tuple[Any, Any, str | None] | None:
+def product_parts(tr: TranspilerState, node: Any) -> tuple[Any, Any, str | None] | None:
     """(y, #c, code) when the value of the variable ``node`` is ``y * #c`` to NIR: a
     never-written local's initializer (code None: y is computed again here), or the
     assignment reaching this read when :func:`keep_factor` kept y (code: its temporary)."""
@@ -116,7 +121,7 @@ def product_parts(tr: Any, node: Any) -> tuple[Any, Any, str | None] | None:
     return None
 
 
-def merge_into_matrix(tr: Any, e: A.Binary, mask: str | None) -> str | None:
+def merge_into_matrix(tr: TranspilerState, e: A.Binary, mask: str | None) -> str | None:
     """``#M * v`` with v a vector whose value is ``y * #c`` (c a scalar): NIR lowers the
     product to columns, ``M[j][i] * (y[j] * c)``, and merges each constant, ``(M[j][i]*c) *
     y[j]`` (``('~fmul', '#a', ('fmul', 'b(is_not_const)', '#c'))``): ``(M * c) * y``, M * c
