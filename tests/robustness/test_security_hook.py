@@ -155,14 +155,15 @@ def test_hook_lints_a_renamed_and_edited_file(repo: Repo):
     repo.git("add", "lab4/Image.glsl")
     assert repo.commit().returncode == 0
     repo.git("mv", "lab4/Image.glsl", "lab4/Final.glsl")
-    # Edited after the move: the header's first line goes, so missing-header fires.
+    # Edited after the move: the header's first line (the file's name and purpose) goes, so the
+    # header names its contributors but not the file: incomplete-header fires.
     repo.write("lab4/Final.glsl", long_clean.split("\n", 1)[1])
     repo.git("add", "lab4/Final.glsl")
     status = repo.git("diff", "--cached", "--name-status").stdout
     assert status.startswith("R"), status  # git sees R0xx: a rename with edits
     proc = repo.commit()
     assert proc.returncode != 0, proc.stdout + proc.stderr
-    assert "lab4/Final.glsl:1:1: missing-header" in proc.stdout + proc.stderr
+    assert "lab4/Final.glsl:1:1: incomplete-header" in proc.stdout + proc.stderr
 
 
 @pytest.mark.parametrize(
