@@ -36,6 +36,7 @@ from ..shadertoy.sources import (
     posix_path,
 )
 from .config import COMMAND_LINE, ConfigFinder, LintConfig, apply_overrides
+from .fixes import Fix
 from .rules import Rule, all_rules, rule_names
 from .suppress import Suppression, find_suppressions, is_suppressed
 from .textscan import Comment, LineKind, TextScan, scan
@@ -50,9 +51,11 @@ PHASES = ("text", "ast", "suppressions")
 
 @record
 class Finding(Diagnostic):
-    """A lint rule hit: a Diagnostic (rule = rule NAME, loc in the user's file) and its penalty."""
+    """A lint rule hit: a Diagnostic (rule = rule NAME, loc in the user's file), its penalty and
+    the fix its rule offers (`fixes.Fix`, or None)."""
 
     penalty: int = 0
+    fix: Fix | None = None
 
     @property
     def path(self) -> str:
@@ -350,6 +353,7 @@ def _finding(rule: Rule, d: Diagnostic, ctx: LintContext) -> Finding:
         help=d.help,
         notes=list(d.notes),
         penalty=0 if advisory else rule.penalty,
+        fix=getattr(d, "fix", None),
     )
 
 
