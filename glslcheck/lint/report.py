@@ -3,9 +3,12 @@
 Detection is the engine's job; this module only formats. Formats (`FORMATS`):
 
     text    `path:line:col: rule-name message`, the source line with `^~~~` under the span, a
-            `help:` line, and a closing summary with the estimated deduction
+            `help:` line, a `fix (safe|unsafe): ...` line when the rule offers a fix, and a
+            closing summary with the estimated deduction (and how many findings have a fix)
     json    {"findings": [{path, line, column, end_line, end_column, rule, severity, penalty,
-            message, help, notes: [{line, column, message}]}], "summary": {files, findings, penalty}}
+            message, help, notes: [{line, column, message}], fix: null or {title,
+            applicability, why, edits: [{line, column, end_line, end_column, text, item}]}}],
+            "summary": {files, findings, penalty}}
     sarif   SARIF 2.1.0 for GitHub code scanning (one run; every rule in tool.driver.rules)
     github  GitHub Actions workflow commands (`::warning file=...::message`)
 
@@ -85,7 +88,7 @@ def format_finding(f: Finding) -> str:
     return block
 
 
-def text_report(result: LintResult) -> str:
+def text_report(result: LintResult, fix_command: str = "glslcheck lint --fix") -> str:
     blocks: list[str] = []
     not_run: list[Finding] = []  # a run of "rule could not run" notes: one block, folded
 
@@ -99,10 +102,35 @@ def text_report(result: LintResult) -> str:
             not_run.append(f)
             continue
         flush()
-        blocks.append(format_finding(f))
+        block = format_finding(f)
+        if f.fix is not None:
+            block += f"\n  fix ({f.fix.applicability}): {printable(f.fix.title)}"
+        blocks.append(block)
     flush()
     blocks.append(summary_line(result))
+    fixable = fixes_line(result, fix_command)
+    if fixable:
+        blocks.append(fixable)
     return "\n\n".join(blocks) + "\n"
+
+
+def fixes_line(result: LintResult, command: str = "glslcheck lint --fix") -> str:
+    """How many findings have a fix and which command applies them ("" when none has)."""
+    safe = sum(1 for f in result.findings if f.fix is not None and f.fix.applicability == "safe")
+    unsafe = sum(1 for f in result.findings if f.fix is not None and f.fix.applicability != "safe")
+    if not safe and not unsafe:
+        return ""
+    parts = []
+    if safe:
+        parts.append(
+            f"{_plural(safe, 'finding')} with a safe fix: `{command}` applies each one it proves by "
+            "rendering the shader before and after (`--diff` shows them first)"
+        )
+    if unsafe:
+        parts.append(
+            f"{_plural(unsafe, 'finding')} with an unsafe fix (applied with `--unsafe-fixes` too)"
+        )
+    return "; ".join(parts)
 
 
 def _not_run_block(notes: list[Finding]) -> str:
@@ -146,6 +174,25 @@ def finding_record(f: Finding) -> dict:
             for n in f.notes
             if n.loc is not None
         ],
+        # the rewrite the rule offers (edits of the file; applied by `lint --fix` once proven)
+        "fix": None
+        if f.fix is None
+        else {
+            "title": f.fix.title,
+            "applicability": f.fix.applicability,
+            "why": f.fix.why,
+            "edits": [
+                {
+                    "line": e.line,
+                    "column": e.column,
+                    "end_line": e.end_line,
+                    "end_column": e.end_column,
+                    "text": e.text,
+                    "item": e.item,
+                }
+                for e in f.fix.edits
+            ],
+        },
     }
 
 

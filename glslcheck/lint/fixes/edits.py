@@ -2,11 +2,13 @@
 
 from __future__ import annotations
 
+from bisect import bisect_right
+
 from . import Edit, Fix
 
 TYPE_CHECKING = False  # not typing's: importing typing costs every start-up
 if TYPE_CHECKING:
-    from collections.abc import Iterable, Sequence
+    from collections.abc import Callable, Iterable, Sequence
 
 
 class EditError(ValueError):
@@ -34,9 +36,9 @@ def offset(starts: list[int], text: str, line: int, column: int) -> int:
     return start + column - 1
 
 
-def apply_edits(text: str, edits: Iterable[Edit]) -> str:
-    """`text` with `edits` made (identical edits once; insertions at one place in the order
-    given, `item` insertions joined with ", "). EditError when two edits change the same text."""
+def _spans(text: str, edits: Iterable[Edit]) -> list[tuple[int, int, Edit]]:
+    """(start offset, end offset, edit) of each distinct edit, in the order they are made:
+    by place, insertions before a span at one place, else in the order given."""
     starts = line_starts(text)
     spans: list[tuple[int, int, int, Edit]] = []
     seen: set[Edit] = set()
@@ -51,11 +53,17 @@ def apply_edits(text: str, edits: Iterable[Edit]) -> str:
         if b < a:
             raise EditError(f"an edit ends before it starts at {e.line}:{e.column}")
         spans.append((a, b, order, e))
-    spans.sort(key=lambda s: (s[0], s[1] != s[0], s[2]))  # insertions before a span at one place
+    spans.sort(key=lambda s: (s[0], s[1] != s[0], s[2]))
+    return [(a, b, e) for a, b, _, e in spans]
+
+
+def apply_edits(text: str, edits: Iterable[Edit]) -> str:
+    """`text` with `edits` made (identical edits once; insertions at one place in the order
+    given, `item` insertions joined with ", "). EditError when two edits change the same text."""
     out: list[str] = []
     pos = 0
     previous_item_at = -1
-    for a, b, _, e in spans:
+    for a, b, e in _spans(text, edits):
         if a < pos:
             raise EditError(f"two fixes change the text at {e.line}:{e.column}")
         out.append(text[pos:a])
@@ -67,6 +75,39 @@ def apply_edits(text: str, edits: Iterable[Edit]) -> str:
         pos = b
     out.append(text[pos:])
     return "".join(out)
+
+
+def position_map(text: str, edits: Iterable[Edit]) -> Callable[[int, int], tuple[int, int]]:
+    """Where a (line, column) of `text` is once `edits` are made: text after an insertion point
+    follows the inserted text; a place inside a replaced span goes to the start of its
+    replacement."""
+    spans = _spans(text, edits)
+    new = apply_edits(text, [e for _, _, e in spans])
+    old_starts, new_starts = line_starts(text), line_starts(new)
+    moves: list[tuple[int, int, int, int]] = []  # old start, old end, new start, shift after
+    shift = 0
+    previous_item_at = -1
+    for a, b, e in spans:
+        joined = 2 if e.item and previous_item_at == a else 0
+        if e.item:
+            previous_item_at = a
+        moves.append((a, b, a + shift + joined, shift + joined + len(e.text) - (b - a)))
+        shift = moves[-1][3]
+
+    def where(line: int, column: int) -> tuple[int, int]:
+        o = offset(old_starts, text, line, column)
+        n = o
+        for a, b, start, after in moves:
+            if b <= o:  # before o (an insertion at o too: the old text follows it)
+                n = o + after
+                continue
+            if a <= o:
+                n = start
+            break
+        i = bisect_right(new_starts, n) - 1
+        return i + 1, n - new_starts[i] + 1
+
+    return where
 
 
 def apply_fixes(text: str, fixes: Sequence[Fix]) -> str:

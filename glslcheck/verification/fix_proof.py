@@ -1,0 +1,336 @@
+"""Proving lint fixes by rendering: a fix is safe only when the picture stays the same.
+
+`plan_fixes(result, ...)` takes a lint run (`LintResult`, whose findings carry the fixes their
+rules offer: glslcheck/lint/fixes) and decides, file by file, which fixes to apply. A fix is
+*proven* when, with its edits made,
+
+1. the file still parses and checks (no compile error),
+2. its rule no longer reports the findings it fixes,
+3. no other finding appears (matched by rule and line, lines followed through the edits); a
+   `missing-comment` finding on a line the fix added is expected, not new: comments are never
+   written for the student, and the line is theirs to explain, and
+4. the NumPy backend renders the shader the same before and after, at the frames `verify` uses
+   (`verify.frame_specs()`: iTime 0, iFrame 0) and its size (800x450), within verify's
+   tolerance (`compare.compare`: 2/255 per channel, edge and scattered-pixel budgets, no NaN
+   difference). A fix that changes a pixel beyond that is refused, with the numbers.
+
+Each offered fix is first proven alone; the proven ones that do not touch the same text are then
+proven together, and when together they fail, added one by one (a fix that fails with the
+others is left for the next pass). After a pass the file is linted again and the fixes offered
+on the new text (those that overlapped, and names made fresh again) get another pass, up to
+`MAX_PASSES`. Every render is compared with the original's, so passes do not drift. The files of
+one shader are fixed one after another, each proven with the fixes of those before it.
+
+`--fix` applies the fixes offered as safe and proven; `--unsafe-fixes` also applies the others
+(offered unsafe, or not proven), as long as the file still compiles.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from ..base.diagnostics import GlslError, InputError, register_source
+from ..lint.config import ConfigFinder
+from ..lint.engine import Finding, LintResult, check_overrides, lint_source, program_tree
+from ..lint.fixes import Fix
+from ..lint.fixes.edits import EditError, apply_fixes, line_map, position_map
+from ..lint.fixes.files import FileText, read_file
+from ..lint.rules import rule_names
+from ..shadertoy.sources import Shader, Source, find_shaders
+from ..shadertoy.wrapper import DEFAULT_SIZE
+from .compare import Comparison, compare
+from .verify import compile_backend, frame_specs
+
+MAX_PASSES = 4
+EXPECTED_ON_NEW_LINES = "missing-comment"  # a line a fix adds is the student's to explain
+
+
+@dataclass
+class Proof:
+    """What one set of fixes did to a file: whether it compiles, is proven, and why not."""
+
+    compiles: bool
+    proven: bool
+    reason: str = ""
+    comparison: Comparison | None = None
+    text: str = ""
+    new_lines: list[int] = field(default_factory=list)  # lines the fixes added, to explain
+
+
+@dataclass
+class Outcome:
+    """One offered fix in the end: applied or not, proven or not, and why."""
+
+    fix: Fix
+    rule: str
+    findings: int  # the findings it fixes
+    applied: bool = False
+    proven: bool = False
+    reason: str = ""
+
+
+@dataclass
+class FilePlan:
+    """The fixes of one file: the text to write (None: nothing to change) and every outcome."""
+
+    path: str
+    original: FileText | None
+    new_text: str | None = None
+    outcomes: list[Outcome] = field(default_factory=list)
+    error: str = ""  # why the file's fixes could not be tried at all
+    new_lines: list[int] = field(default_factory=list)
+
+
+def plan_fixes(
+    result: LintResult,
+    overrides: dict | None = None,
+    *,
+    unsafe: bool = False,
+    size: tuple[int, int] = DEFAULT_SIZE,
+) -> list[FilePlan]:
+    """The plan of every linted file with an offered fix (see the module docstring). `overrides`
+    are the command line's rule settings: they choose which findings are fixed; the proof looks
+    for new findings of every rule the file's configuration enables."""
+    wanted = {f.path for f in result.findings if f.fix is not None}
+    if not wanted:
+        return []
+    choose = ConfigFinder(check_overrides(overrides), rule_names())
+    every = ConfigFinder(check_overrides({}), rule_names())
+    plans: list[FilePlan] = []
+    for shader in find_shaders(sorted(wanted)):
+        renders = None
+        for source in shader.sources():
+            if source.path not in wanted:
+                continue
+            wanted.discard(source.path)
+            if renders is None:
+                renders = _renders(shader, size)
+            plan = _plan_file(
+                shader,
+                source,
+                choose.for_file(source.path),
+                every.for_file(source.path),
+                renders,
+                unsafe,
+                size,
+            )
+            plans.append(plan)
+            if plan.new_text is not None:
+                shader = _with_text(shader, source, plan.new_text)
+        for source in shader.sources():
+            register_source(source.path, source.text)
+    for path in sorted(wanted):  # a fixable file find_shaders did not give back (a JSON tab)
+        plans.append(FilePlan(path, None, error="not a shader file fixes can rewrite"))
+    for plan in plans:
+        if plan.original is not None:
+            register_source(plan.path, plan.original.text)  # reports quote the file as it was
+    return plans
+
+
+def _renders(shader: Shader, size) -> list[np.ndarray] | str:
+    """The original's frames, or why it does not render."""
+    try:
+        program = compile_backend(shader, "numpy")
+        return [
+            program.render(
+                size=size,
+                time=spec.time,
+                frame=spec.frame,
+                time_delta=spec.time_delta,
+                frame_rate=spec.frame_rate,
+            )
+            for spec in frame_specs()
+        ]
+    except (GlslError, InputError) as e:
+        return str(e).split("\n")[0]
+
+
+def _with_text(shader: Shader, source: Source, text: str) -> Shader:
+    tabs = {
+        t: (Source(s.path, text, s.tab) if s.path == source.path else s)
+        for t, s in shader.tabs.items()
+    }
+    return Shader(tabs=tabs, root=shader.root, channels=shader.channels)
+
+
+def _lint(shader: Shader, source: Source, config) -> list[Finding]:
+    tree = program_tree(source, shader)
+    return lint_source(
+        source, config, shader, tree.ast, tree.model, errors=tree.errors, dropped=tree.dropped
+    )
+
+
+def _key(fix: Fix, rule: str) -> tuple[str, str]:
+    return (rule, fix.title)
+
+
+def _plan_file(shader, source, choose, every, renders, unsafe, size) -> FilePlan:
+    try:
+        original = read_file(source.path)
+    except InputError as e:
+        return FilePlan(source.path, None, error=str(e))
+    plan = FilePlan(source.path, original)
+    if original.text != source.text:
+        plan.error = "changed on disk since it was linted; left alone (lint it again)"
+        return plan
+    outcomes: dict[tuple[str, str], Outcome] = {}
+    base = source.text
+    added: list[int] = []
+    for _ in range(MAX_PASSES):
+        current = _with_text(shader, source, base)
+        here = Source(source.path, base, source.tab)
+        offered: dict[Fix, list[Finding]] = {}
+        for f in _lint(current, here, choose):
+            if f.fix is not None and f.fix.path == source.path:
+                offered.setdefault(f.fix, []).append(f)
+        before = _lint(current, here, every)
+        tried = []
+        for fix, found in offered.items():
+            rule = found[0].rule
+            key = _key(fix, rule)
+            if key in outcomes and (outcomes[key].applied or outcomes[key].reason):
+                continue
+            outcome = outcomes.setdefault(key, Outcome(fix, rule, len(found)))
+            outcome.fix = fix
+            if fix.applicability != "safe" and not unsafe:
+                outcome.reason = f"unsafe: {fix.why}" if fix.why else "unsafe"
+                continue
+            tried.append((fix, found, outcome))
+        if not tried:
+            break
+        accepted = []
+        for fix, found, outcome in tried:
+            proof = _prove(current, here, [fix], found, before, every, renders, size)
+            outcome.proven = proof.proven and fix.applicability == "safe"
+            why = [f"unsafe: {fix.why}"] if fix.applicability != "safe" and fix.why else []
+            outcome.reason = "; ".join(why + ([proof.reason] if proof.reason else []))
+            if proof.proven or (unsafe and proof.compiles):
+                accepted.append((fix, found, outcome))
+        chosen = []
+        for item in accepted:
+            if any(item[0].overlaps(c[0]) for c in chosen):
+                continue  # the next pass offers it again on the new text
+            chosen.append(item)
+        if not chosen:
+            break
+        proof = _prove(
+            current, here, [c[0] for c in chosen], [f for c in chosen for f in c[1]],
+            before, every, renders, size,
+        )  # fmt: skip
+        if not (proof.proven or (unsafe and proof.compiles)):
+            together = [chosen[0]]
+            for item in chosen[1:]:
+                trial = together + [item]
+                p = _prove(
+                    current, here, [c[0] for c in trial], [f for c in trial for f in c[1]],
+                    before, every, renders, size,
+                )  # fmt: skip
+                if p.proven or (unsafe and p.compiles):
+                    together, proof = trial, p
+            if len(together) == 1:
+                proof = _prove(
+                    current, here, [together[0][0]], together[0][1], before, every, renders, size
+                )
+            chosen = together
+        for _fix, _found, outcome in chosen:
+            outcome.applied = True
+        # the lines fixes added so far, followed into the new text
+        mapping = line_map(base, proof.text)
+        kept = [n for n, old in mapping.items() if old in added]
+        added = proof.new_lines + kept
+        base = proof.text
+    plan.outcomes = list(outcomes.values())
+    if base != source.text:
+        plan.new_text = base
+        plan.new_lines = sorted(set(added))
+    return plan
+
+
+def _prove(shader, source, fixes, fixed, before, every, renders, size) -> Proof:
+    """Make `fixes` on `source` (of `shader`) and check the four conditions of the module
+    docstring; `fixed` are the findings they fix, `before` every finding of the text now."""
+    try:
+        text = apply_fixes(source.text, fixes)
+    except EditError as e:
+        return Proof(False, False, f"its edits do not apply: {e}")
+    new_source = Source(source.path, text, source.tab)
+    new_shader = _with_text(shader, source, text)
+    after = _lint(new_shader, new_source, every)
+    errors = _errors(after)
+    had_errors = _errors(before)
+    if len(errors) > len(had_errors) or (errors and not had_errors):
+        return Proof(False, False, f"the rewritten file does not compile: {errors[0].message}")
+    mapping = line_map(source.text, text)
+    new_lines = [n for n in range(1, text.count("\n") + 2) if n not in mapping]
+    moved = position_map(source.text, [e for f in fixes for e in f.edits])
+    reason = _findings_changed(fixed, before, after, moved, mapping)
+    if had_errors:
+        reason = reason or "the file does not compile, before the fix as after: nothing renders"
+    elif isinstance(renders, str):
+        reason = reason or f"the shader does not render: {renders}"
+    if reason:
+        return Proof(True, False, reason, None, text, new_lines)
+    after_renders = _renders(new_shader, size)
+    if isinstance(after_renders, str):
+        reason = f"the rewritten shader does not render: {after_renders}"
+        return Proof(True, False, reason, None, text, new_lines)
+    for spec, old_img, new_img in zip(frame_specs(), renders, after_renders):
+        c = compare(old_img, new_img)
+        if not c.match:
+            return Proof(True, False, _changed(c, spec.time), c, text, new_lines)
+    return Proof(True, True, "", None, text, new_lines)
+
+
+def _errors(findings: list[Finding]) -> list[Finding]:
+    return [f for f in findings if f.rule == "compile-error" and f.severity == "error"]
+
+
+def _findings_changed(fixed, before, after, moved, mapping: dict[int, int]) -> str:
+    """Why the findings after the edits are not those before less the fixed ones: the rule still
+    reports one it fixes, or another finding appeared; "" when they are the same. Findings are
+    matched by rule and place (a place before the edits followed through them: `moved`); a
+    `missing-comment` finding on a line the edits added (`mapping` has no old line for it) is
+    expected."""
+    gone: dict[tuple[str, int, int], int] = {}
+    for f in fixed:
+        k = (f.rule, f.loc.line, f.loc.column)
+        gone[k] = gone.get(k, 0) + 1
+    left: dict[tuple[str, tuple[int, int]], int] = {}
+    for f in before:
+        g = (f.rule, f.loc.line, f.loc.column)
+        if gone.get(g, 0) > 0:
+            gone[g] -= 1
+            continue
+        k = (f.rule, moved(f.loc.line, f.loc.column))
+        left[k] = left.get(k, 0) + 1
+    rules = {f.rule for f in fixed}
+    for f in after:
+        k = (f.rule, (f.loc.line, f.loc.column))
+        if left.get(k, 0) > 0:
+            left[k] -= 1
+            continue
+        if f.rule == EXPECTED_ON_NEW_LINES and f.loc.line not in mapping:
+            continue
+        if f.rule in rules:
+            return f"{f.rule} still reports line {f.loc.line}: {f.message}"
+        return f"a new finding: {f.rule} at line {f.loc.line}: {f.message}"
+    return ""
+
+
+def _changed(c: Comparison, time: float) -> str:
+    """What a refused fix changed in the picture, with verify's numbers."""
+    w, h = c.size
+    parts = [
+        f"changes the picture at iTime {time:g} ({w}x{h}): {c.mismatched_pixels} pixels beyond "
+        f"verify's tolerance of {c.abs_tol * 255:.0f}/255 (budget {c.mismatch_budget:.0f})",
+        f"{c.edge_pixels} edge pixels (budget {c.edge_budget:.0f})",
+        f"largest difference {c.max_abs_error:.4f}",
+    ]
+    if c.nan_mismatched_pixels:
+        parts.append(f"{c.nan_mismatched_pixels} pixels NaN in one render only")
+    if c.worst:
+        p = c.worst[0]
+        parts.append(f"worst at pixel {p.x},{p.y}")
+    return ", ".join(parts)
