@@ -27,6 +27,7 @@ one shader are fixed one after another, each proven with the fixes of those befo
 
 from __future__ import annotations
 
+import re
 from dataclasses import dataclass, field
 
 import numpy as np
@@ -241,6 +242,12 @@ def _plan_file(shader, source, choose, every, renders, unsafe, size) -> FilePlan
         kept = [n for n, old in mapping.items() if old in added]
         added = proof.new_lines + kept
         base = proof.text
+    for outcome in outcomes.values():
+        if not outcome.applied and not outcome.reason:
+            outcome.reason = (
+                "proven alone, but it changes the same text as the fixes applied, or fails with "
+                f"them, in {MAX_PASSES} passes"
+            )
     plan.outcomes = list(outcomes.values())
     if base != source.text:
         plan.new_text = base
@@ -265,7 +272,9 @@ def _prove(shader, source, fixes, fixed, before, every, renders, size) -> Proof:
     mapping = line_map(source.text, text)
     new_lines = [n for n in range(1, text.count("\n") + 2) if n not in mapping]
     moved = position_map(source.text, [e for f in fixes for e in f.edits])
-    reason = _findings_changed(fixed, before, after, moved, mapping)
+    reason = _findings_changed(fixed, before, after, moved, mapping) or _comments_changed(
+        source.text, text, new_lines, every, shader, source
+    )
     if had_errors:
         reason = reason or "the file does not compile, before the fix as after: nothing renders"
     elif isinstance(renders, str):
@@ -290,33 +299,85 @@ def _errors(findings: list[Finding]) -> list[Finding]:
 def _findings_changed(fixed, before, after, moved, mapping: dict[int, int]) -> str:
     """Why the findings after the edits are not those before less the fixed ones: the rule still
     reports one it fixes, or another finding appeared; "" when they are the same. Findings are
-    matched by rule and place (a place before the edits followed through them: `moved`); a
-    `missing-comment` finding on a line the edits added (`mapping` has no old line for it) is
-    expected."""
+    matched by rule and place (a place before the edits followed through them: `moved`), then a
+    finding that moved with the code the fix moved by rule and message (a uniform read in the
+    local a fix declared). `missing-comment` findings are left to `_comments_changed`."""
     gone: dict[tuple[str, int, int], int] = {}
     for f in fixed:
         k = (f.rule, f.loc.line, f.loc.column)
         gone[k] = gone.get(k, 0) + 1
-    left: dict[tuple[str, tuple[int, int]], int] = {}
+    left: dict[tuple[str, tuple[int, int]], list[Finding]] = {}
     for f in before:
         g = (f.rule, f.loc.line, f.loc.column)
         if gone.get(g, 0) > 0:
             gone[g] -= 1
             continue
-        k = (f.rule, moved(f.loc.line, f.loc.column))
-        left[k] = left.get(k, 0) + 1
-    rules = {f.rule for f in fixed}
+        left.setdefault((f.rule, moved(f.loc.line, f.loc.column)), []).append(f)
+    unmatched = []
     for f in after:
-        k = (f.rule, (f.loc.line, f.loc.column))
-        if left.get(k, 0) > 0:
-            left[k] -= 1
+        if f.rule == EXPECTED_ON_NEW_LINES:
             continue
-        if f.rule == EXPECTED_ON_NEW_LINES and f.loc.line not in mapping:
+        found = left.get((f.rule, (f.loc.line, f.loc.column)))
+        if found:
+            found.pop()
+        else:
+            unmatched.append(f)
+    rest: dict[tuple[str, str], int] = {}
+    for fs in left.values():
+        for f in fs:
+            rest[(f.rule, f.message)] = rest.get((f.rule, f.message), 0) + 1
+    rules = {f.rule for f in fixed}
+    for f in unmatched:
+        if rest.get((f.rule, f.message), 0) > 0:
+            rest[(f.rule, f.message)] -= 1
             continue
         if f.rule in rules:
             return f"{f.rule} still reports line {f.loc.line}: {f.message}"
         return f"a new finding: {f.rule} at line {f.loc.line}: {f.message}"
     return ""
+
+
+def _comments_changed(old: str, new: str, new_lines: list[int], every, shader, source) -> str:
+    """A `missing-comment` finding the edits brought, other than those a comment over the lines
+    they added clears (the line is the student's to explain, and explaining it also covers what
+    their own comment no longer reaches): the new text is linted with a placeholder comment over
+    each run of added lines, and its missing-comment findings must be among the old ones."""
+    lines = new.split("\n")
+    out: list[str] = []
+    for i, line in enumerate(lines, start=1):
+        if i in new_lines and (i - 1) not in new_lines:
+            indent = line[: len(line) - len(line.lstrip())]
+            out.append(f"{indent}// the student's explanation of the next line")
+        out.append(line)
+    variant = "\n".join(out)
+    mapping = line_map(old, variant)
+    before = _lint(shader, Source(source.path, old, source.tab), every)
+    explained = _with_text(shader, source, variant)
+    after = _lint(explained, Source(source.path, variant, source.tab), every)
+    had = {n for f in before if f.rule == EXPECTED_ON_NEW_LINES for n in _uncovered(f)}
+    for f in after:
+        if f.rule != EXPECTED_ON_NEW_LINES:
+            continue
+        lost = [n for n in _uncovered(f) if mapping.get(n) not in had]
+        if lost:
+            return (
+                f"a new finding: {f.rule} at line {f.loc.line}: {f.message} (line {lost[0]} "
+                "was explained before the fix)"
+            )
+    return ""
+
+
+_RUN = re.compile(r"\(lines? (\d+)(?:-(\d+))?\)$")
+
+
+def _uncovered(f: Finding) -> range:
+    """The code lines a missing-comment finding is about: its message ends with them, `(lines
+    43-44)` (its location is the run's first line only)."""
+    m = _RUN.search(f.message)
+    if m is None:
+        return range(f.loc.line, f.loc.line + 1)
+    first = int(m.group(1))
+    return range(first, int(m.group(2) or first) + 1)
 
 
 def _changed(c: Comparison, time: float) -> str:

@@ -31,8 +31,9 @@ _POSTFIXES = (A.Call, A.Index, A.Field, A.MethodCall, A.Postfix)
 
 
 def program_texts(ctx: LintContext) -> list[str]:
-    """The texts of every file of the linted file's program (its shader's tabs), this one first."""
-    texts = [ctx.source.text]
+    """The texts of every file of the linted file's program (its shader's tabs), this one first
+    with its comments blanked (a word in a comment names nothing)."""
+    texts = ["\n".join(ctx.scan.code_lines)]
     if ctx.shader is not None:
         texts += [s.text for s in ctx.shader.sources() if s.path != ctx.source.path]
     return texts
@@ -48,23 +49,27 @@ def _defines(texts: tuple[str, ...]) -> frozenset[str]:
     return frozenset(m.group(1) for t in texts for m in re.finditer(_DEFINE, t, re.M))
 
 
-def node_text(ctx: LintContext, node: Any) -> str | None:
-    """The text the user wrote for `node`, or None: in another file, from a macro, or without a
-    span."""
-    loc = getattr(node, "loc", None)
+def span_text(ctx: LintContext, loc: Any, code: bool = False) -> str | None:
+    """The text of the file at a location of it (None: another file, or no span); with `code`,
+    its comments blanked."""
     if loc is None or loc.path != ctx.path or loc.end_line is None or loc.end_column is None:
         return None
-    lines = ctx.lines
+    lines = ctx.scan.code_lines if code else ctx.lines
     if not 1 <= loc.line <= loc.end_line <= len(lines):
         return None
     if loc.line == loc.end_line:
-        text = lines[loc.line - 1][loc.column - 1 : loc.end_column - 1]
-    else:
-        parts = [lines[loc.line - 1][loc.column - 1 :]]
-        parts += lines[loc.line : loc.end_line - 1]
-        parts.append(lines[loc.end_line - 1][: loc.end_column - 1])
-        text = "\n".join(parts)
-    if not text.strip():
+        return lines[loc.line - 1][loc.column - 1 : loc.end_column - 1]
+    parts = [lines[loc.line - 1][loc.column - 1 :]]
+    parts += lines[loc.line : loc.end_line - 1]
+    parts.append(lines[loc.end_line - 1][: loc.end_column - 1])
+    return "\n".join(parts)
+
+
+def node_text(ctx: LintContext, node: Any) -> str | None:
+    """The text the user wrote for `node`, or None: in another file, from a macro, or without a
+    span."""
+    text = span_text(ctx, getattr(node, "loc", None))
+    if text is None or not text.strip():
         return None
     macros = _macros(ctx)
     if macros and any(w in macros for w in re.findall(_WORD, text)):
@@ -186,10 +191,10 @@ def _parts(node: Any, out: list[str]) -> None:
         right: list[str] = []
         _parts(node.left, left)
         _parts(node.right, right)
-        out.extend(left)
         if left and right:
-            out.append(_OP_WORDS.get(node.op, ""))
-        out.extend(right)
+            out.extend([*left, _OP_WORDS.get(node.op, ""), *right])
+        elif left or right:  # a name and a number: scaled or offset
+            out.extend([*left, *right, "Scaled" if node.op in ("*", "/") else "Offset"])
         return
     if t is A.Identifier:
         out.append(node.name)

@@ -90,15 +90,32 @@ def write_file(original: FileText, new_text: str) -> str | None:
     return None
 
 
-def unified_diff(original: FileText, new_text: str) -> str:
-    """The change as a unified diff of the file's text, both sides named by the path."""
-    from difflib import unified_diff as diff
+def unified_diff(original: FileText, new_text: str, context: int = 3) -> str:
+    """The change as a unified diff of the file's text, both sides named by the path (difflib's
+    hunks without its "junk" heuristic, which in a long file leaves a `}` line unmatched)."""
+    from difflib import SequenceMatcher
 
     name = original.path.replace(os.sep, "/")
-    lines = diff(
-        original.text.splitlines(keepends=True), new_text.splitlines(keepends=True), name, name
+    a = original.text.splitlines(keepends=True)
+    b = new_text.splitlines(keepends=True)
+    out = [f"--- {name}\n", f"+++ {name}\n"]
+    matcher = SequenceMatcher(None, a, b, autojunk=False)
+    for group in matcher.get_grouped_opcodes(context):
+        i1, i2, j1, j2 = group[0][1], group[-1][2], group[0][3], group[-1][4]
+        out.append(f"@@ -{_range(i1, i2)} +{_range(j1, j2)} @@\n")
+        for tag, a1, a2, b1, b2 in group:
+            if tag == "equal":
+                out.extend(" " + line for line in a[a1:a2])
+                continue
+            out.extend("-" + line for line in a[a1:a2])
+            out.extend("+" + line for line in b[b1:b2])
+    return "".join(
+        line if line.endswith("\n") else line + "\n\\ No newline at end of file\n" for line in out
     )
-    out = []
-    for line in lines:
-        out.append(line if line.endswith("\n") else line + "\n\\ No newline at end of file\n")
-    return "".join(out)
+
+
+def _range(start: int, stop: int) -> str:
+    """A hunk's `first,count` (as `diff -u` writes it: `first` is 0 for an empty side)."""
+    count = stop - start
+    first = start + 1 if count else start
+    return f"{first}" if count == 1 else f"{first},{count}"

@@ -1,8 +1,10 @@
 """The fix of `missing-header`: a header template whose fields the student fills in.
 
-The template says only what is known (the file's name) and leaves each other field as a
-`<placeholder>` naming what belongs there: a fix never writes a purpose or a contributor for the
-student, so the rule keeps reporting the header until they do, and the fix is never safe."""
+The template says only what is known (the file's name) and leaves each other field empty after
+its label: `// Image.glsl:` (the purpose goes after the colon) and `// Contributors:` (each
+name with what they did). A fix never writes a purpose or a contributor for the student, and
+no placeholder text is written that the rule could take for one: the rule keeps reporting the
+header until the student fills the fields in, so the fix is never safe."""
 
 from __future__ import annotations
 
@@ -13,9 +15,10 @@ TYPE_CHECKING = False  # not typing's: importing typing costs every start-up
 if TYPE_CHECKING:
     from ..engine import LintContext
 
-PURPOSE = "<what this file does>"
-CONTRIBUTOR = "<name>: <what they did>"
-WHY = "a template: the header is complete only once you write its fields (<...>) yourself"
+WHY = (
+    "a template: fill in the purpose after the file's name and the contributors with what each "
+    "did; the rule reports the header until you do"
+)
 
 
 def header_fix(ctx: LintContext, missing: list[str] | None, header_end: int | None) -> Fix | None:
@@ -25,16 +28,14 @@ def header_fix(ctx: LintContext, missing: list[str] | None, header_end: int | No
     student knows who did what): no fix for that part."""
     name = path_name(ctx.source.path)
     if missing is None:
-        lines = [f"// {name}: {PURPOSE}", "// Contributors:", f"//   {CONTRIBUTOR}"]
+        lines = [f"// {name}:", "// Contributors:"]
         at = 1
     else:
         lines = []
-        if any(m.startswith("does not name the file") for m in missing):
-            lines.append(f"// File: {name}")
-        if "states no purpose" in missing:
-            lines.append(f"// Purpose: {PURPOSE}")
+        if any(m.startswith("does not name the file") or m == "states no purpose" for m in missing):
+            lines.append(f"// {name}:")
         if any(m.startswith("lists no contributors") for m in missing):
-            lines.append(f"// Contributors: {CONTRIBUTOR}")
+            lines.append("// Contributors:")
         if not lines or header_end is None:
             return None
         at = header_end + 1

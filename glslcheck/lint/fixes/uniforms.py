@@ -11,7 +11,7 @@ from ...frontend import syntax as A
 from ...semantics.analysis import program_facts
 from ...semantics.model import Symbol
 from . import Edit, Fix
-from .build import fresh_name, node_text, replace
+from .build import fresh_name, node_text, replace, span_text
 
 TYPE_CHECKING = False  # not typing's: importing typing costs every start-up
 if TYPE_CHECKING:
@@ -66,7 +66,7 @@ def uniform_fix(ctx: LintContext, uniform: Symbol) -> Fix | None:
     if not needs:
         return None
     in_word = any("in" in p.qualifiers for d in facts.definitions for p in d.proto.params)
-    texts = [node_text(ctx, d) or "" for d in needs]
+    texts = [span_text(ctx, d.loc, code=True) or "" for d in needs]
     name = fresh_name(ctx, parameter_name(uniform.name), texts=texts)
     edits: list[Edit] = []
     declared = f"{'in ' if in_word else ''}{uniform.type} {name}"
