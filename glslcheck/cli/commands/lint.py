@@ -185,13 +185,15 @@ def _fix(args: argparse.Namespace, overrides: dict) -> int:
             if problem is not None:
                 print(printable(f"{plan.path}: note: {problem}"), file=sys.stderr)
                 continue
-            if plan.new_lines:
-                lines = ", ".join(map(str, plan.new_lines))
+            new = plan.new_text.split("\n")
+            code = [n for n in plan.new_lines if not new[n - 1].lstrip().startswith("//")]
+            if code:
+                lines = ", ".join(map(str, code))
                 print(
                     printable(
                         f"{plan.path}: note: lines {lines} were added by the fixes; explain them "
                         "in a comment (fixes never write comments for you)"
-                        if len(plan.new_lines) > 1
+                        if len(code) > 1
                         else f"{plan.path}: note: line {lines} was added by a fix; explain it in a "
                         "comment (fixes never write comments for you)"
                     ),
