@@ -70,6 +70,7 @@ class Outcome:
     applied: bool = False
     proven: bool = False
     reason: str = ""
+    lines: tuple[int, ...] = ()  # its findings' lines in the file as it was read
 
 
 @dataclass
@@ -179,6 +180,7 @@ def _plan_file(shader, source, choose, every, renders, unsafe, size) -> FilePlan
     outcomes: dict[tuple[str, str], Outcome] = {}
     base = source.text
     added: list[int] = []
+    to_original = {n: n for n in range(1, base.count("\n") + 2)}  # line now -> line read
     for _ in range(MAX_PASSES):
         current = _with_text(shader, source, base)
         here = Source(source.path, base, source.tab)
@@ -193,7 +195,8 @@ def _plan_file(shader, source, choose, every, renders, unsafe, size) -> FilePlan
             key = _key(fix, rule)
             if key in outcomes and (outcomes[key].applied or outcomes[key].reason):
                 continue
-            outcome = outcomes.setdefault(key, Outcome(fix, rule, len(found)))
+            lines = tuple(sorted({to_original.get(f.loc.line, 0) for f in found} - {0}))
+            outcome = outcomes.setdefault(key, Outcome(fix, rule, len(found), lines=lines))
             outcome.fix = fix
             if fix.applicability != "safe" and not unsafe:
                 outcome.reason = f"unsafe: {fix.why}" if fix.why else "unsafe"
@@ -216,24 +219,16 @@ def _plan_file(shader, source, choose, every, renders, unsafe, size) -> FilePlan
             chosen.append(item)
         if not chosen:
             break
-        proof = _prove(
-            current, here, [c[0] for c in chosen], [f for c in chosen for f in c[1]],
-            before, every, renders, size,
-        )  # fmt: skip
+        proof = _prove_all(current, here, chosen, before, every, renders, size)
         if not (proof.proven or (unsafe and proof.compiles)):
             together = [chosen[0]]
             for item in chosen[1:]:
                 trial = together + [item]
-                p = _prove(
-                    current, here, [c[0] for c in trial], [f for c in trial for f in c[1]],
-                    before, every, renders, size,
-                )  # fmt: skip
+                p = _prove_all(current, here, trial, before, every, renders, size)
                 if p.proven or (unsafe and p.compiles):
                     together, proof = trial, p
             if len(together) == 1:
-                proof = _prove(
-                    current, here, [together[0][0]], together[0][1], before, every, renders, size
-                )
+                proof = _prove_all(current, here, together, before, every, renders, size)
             chosen = together
         for _fix, _found, outcome in chosen:
             outcome.applied = True
@@ -241,18 +236,30 @@ def _plan_file(shader, source, choose, every, renders, unsafe, size) -> FilePlan
         mapping = line_map(base, proof.text)
         kept = [n for n, old in mapping.items() if old in added]
         added = proof.new_lines + kept
+        to_original = {n: to_original[o] for n, o in mapping.items() if o in to_original}
         base = proof.text
+    applied = {(o.rule, line) for o in outcomes.values() if o.applied for line in o.lines}
+    plan.outcomes = []
     for outcome in outcomes.values():
         if not outcome.applied and not outcome.reason:
+            if any((outcome.rule, line) in applied for line in outcome.lines):
+                continue  # offered again on the text a later pass had (a name made fresh)
             outcome.reason = (
                 "proven alone, but it changes the same text as the fixes applied, or fails with "
                 f"them, in {MAX_PASSES} passes"
             )
-    plan.outcomes = list(outcomes.values())
+        plan.outcomes.append(outcome)
     if base != source.text:
         plan.new_text = base
         plan.new_lines = sorted(set(added))
     return plan
+
+
+def _prove_all(shader, source, items, before, every, renders, size) -> Proof:
+    """`_prove` of several (fix, findings, outcome) together."""
+    fixes = [fix for fix, _, _ in items]
+    fixed = [f for _, found, _ in items for f in found]
+    return _prove(shader, source, fixes, fixed, before, every, renders, size)
 
 
 def _prove(shader, source, fixes, fixed, before, every, renders, size) -> Proof:

@@ -159,8 +159,8 @@ def _fix(args: argparse.Namespace, overrides: dict) -> int:
             print(printable(f"{plan.path}: note: no fix applied: {plan.error}"), file=sys.stderr)
             continue
         for o in plan.outcomes:
+            line = o.lines[0] if o.lines else 1
             if not o.applied:
-                line = o.fix.edits[0].line if o.fix.edits else 1
                 print(
                     printable(
                         f"{plan.path}:{line}: {o.rule}: not fixed ({o.fix.title}): {o.reason}"
@@ -168,7 +168,6 @@ def _fix(args: argparse.Namespace, overrides: dict) -> int:
                     file=sys.stderr,
                 )
             elif o.reason:
-                line = o.fix.edits[0].line if o.fix.edits else 1
                 print(
                     printable(
                         f"{plan.path}:{line}: {o.rule}: fixed without proof ({o.fix.title}): "

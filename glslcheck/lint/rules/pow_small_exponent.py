@@ -131,7 +131,7 @@ def _fix(ctx: LintContext, node, e: float) -> Fix | None:
     edits.append(replace(node, fit(fn, node, new, binds)))
     nonneg = e in (0.5, -0.5) or _nonnegative(fn, base)
     return Fix(
-        f"replace pow(x, {e:g}) with {new}",
+        f"replace the pow() call with {new}",
         ctx.path,
         tuple(edits),
         "safe" if nonneg else "unsafe",
