@@ -3,8 +3,9 @@
 Detection is the engine's job; this module only formats. Formats (`FORMATS`):
 
     text    `path:line:col: rule-name message`, the source line with `^~~~` under the span, a
-            `help:` line, a `fix (safe|unsafe): ...` line when the rule offers a fix, and a
-            closing summary with the estimated deduction (and how many findings have a fix)
+            `help:` line, a `fix (safe|unsafe): ...` line when the rule offers a fix, how many
+            findings have a fix and the command that applies them, and a closing summary with
+            the estimated deduction
     json    {"findings": [{path, line, column, end_line, end_column, rule, severity, penalty,
             message, help, notes: [{line, column, message}], fix: null or {title,
             applicability, why, edits: [{line, column, end_line, end_column, text, item}]}}],
@@ -107,10 +108,10 @@ def text_report(result: LintResult, fix_command: str = "glslcheck lint --fix") -
             block += f"\n  fix ({f.fix.applicability}): {printable(f.fix.title)}"
         blocks.append(block)
     flush()
-    blocks.append(summary_line(result))
     fixable = fixes_line(result, fix_command)
     if fixable:
         blocks.append(fixable)
+    blocks.append(summary_line(result))
     return "\n\n".join(blocks) + "\n"
 
 

@@ -305,3 +305,21 @@ def test_the_diff_applies_back_to_the_new_text(tmp_path):
             pos += 1
     out.extend(src[pos:])
     assert "\n".join(out) + "\n" == new
+
+
+def test_the_json_report_carries_the_fix_edits(tmp_path):
+    """The edits in the JSON report rebuild the text the fixer makes."""
+    import json
+
+    from glslcheck.lint.report import render
+
+    path = tmp_path / "Image.glsl"
+    path.write_text(HEADER + CASES["loop-invariant"][0])
+    result = lint_paths([str(path)])
+    finding = next(f for f in result.findings if f.rule == "loop-invariant")
+    record = next(
+        r for r in json.loads(render(result, "json"))["findings"] if r["rule"] == "loop-invariant"
+    )
+    assert record["fix"]["applicability"] == "safe"
+    edits = [Edit(**e) for e in record["fix"]["edits"]]
+    assert apply_edits(path.read_text(), edits) == apply_fixes(path.read_text(), [finding.fix])
