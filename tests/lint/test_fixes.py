@@ -323,3 +323,13 @@ def test_the_json_report_carries_the_fix_edits(tmp_path):
     assert record["fix"]["applicability"] == "safe"
     edits = [Edit(**e) for e in record["fix"]["edits"]]
     assert apply_edits(path.read_text(), edits) == apply_fixes(path.read_text(), [finding.fix])
+
+
+def test_a_local_is_never_declared_inside_a_block_comment(tmp_path):
+    """The first computation's statement follows the last line of a block comment opened after
+    code: the local goes on the statement's line, not into the comment."""
+    body = CASES["repeated-expression"][0].replace(
+        "// 0..1\n", "/* 0..1,\n       across the screen */\n"
+    )
+    fix, new, _, _ = fixed(tmp_path, body, "repeated-expression")
+    assert "/* 0..1,\n       across the screen */\n" in new

@@ -175,6 +175,8 @@ def insert_before(ctx: LintContext, stmt: Any, code: str) -> Edit | None:
     kinds = ctx.line_kinds
     while line > 1 and str(kinds[line - 2]) == "comment":
         line -= 1
+    if any(c.line < line <= c.end_line for c in ctx.comments):
+        line = loc.line  # the lines above end a comment opened after code: not inside it
     return Edit(line, 1, line, 1, f"{indent}{code}\n")
 
 
