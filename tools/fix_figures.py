@@ -33,6 +33,7 @@ from pathlib import Path
 ROOT = Path(__file__).resolve().parent.parent
 sys.path.insert(0, str(ROOT))
 
+from glslcheck.base.diagnostics import GlslError, InputError  # noqa: E402
 from glslcheck.lint import lint_paths  # noqa: E402
 from glslcheck.lint.fixes.files import write_file  # noqa: E402
 from glslcheck.shadertoy.sources import find_shaders  # noqa: E402
@@ -45,8 +46,14 @@ CORPORA = (("real student files", ROOT / "tests/real_lint/texts"), ("lab", ROOT 
 
 
 def render(shader):
-    program = compile_backend(shader, "numpy")
-    return [program.render(size=DEFAULT_SIZE, time=s.time, frame=s.frame) for s in frame_specs()]
+    """The frames verify renders, or the first line of why the shader does not render."""
+    try:
+        program = compile_backend(shader, "numpy")
+        return [
+            program.render(size=DEFAULT_SIZE, time=s.time, frame=s.frame) for s in frame_specs()
+        ]
+    except (GlslError, InputError) as e:
+        return str(e).split("\n")[0]
 
 
 def shader_of(path: str):
@@ -127,27 +134,31 @@ def run(name: str, source: Path, unsafe: bool, gl: bool) -> None:
         for rule in sorted(set(count_before) | set(count_after)):
             expected = count_before[rule] - applied[rule]
             extra = count_after[rule] - expected - (on_added if rule == "missing-comment" else 0)
-            if extra > 0:
+            if extra > 0:  # a fixed finding still reported, or a new one
                 unexplained.append(f"{rule} +{extra}")
-            left = min(applied[rule], max(0, count_after[rule] - expected))
-            if rule != "missing-comment" and left:
-                unexplained.append(f"{rule}: {left} of the fixed still reported")
         print(
             f"findings not accounted for: {', '.join(unexplained) or 'none'}; missing-comment on "
             f"lines the fixes added (the student's to explain): {on_added}"
         )
-        same = 0
+        same = unrendered = 0
         for path, shader in originals.items():
             fixed_shader = shader_of(path)
             old_imgs, new_imgs = render(shader), render(fixed_shader)
-            ok = all(compare(a, b).match for a, b in zip(old_imgs, new_imgs))
-            same += ok
+            if isinstance(old_imgs, str) or isinstance(new_imgs, str):
+                ok = "does not render before" if isinstance(old_imgs, str) else "does not render"
+                unrendered += 1
+            else:
+                ok = all(compare(a, b).match for a, b in zip(old_imgs, new_imgs))
+                same += ok
             line = f"- {Path(path).relative_to(work)}: renders the same as before: {ok}"
             if gl:
                 line += f"; verify (NumPy vs OpenGL): before {gl_verdict(shader)}, after "
                 line += gl_verdict(fixed_shader)
             print(line)
-        print(f"\n{same} of {len(originals)} fixed files render as their originals did")
+        print(
+            f"\n{same} of {len(originals)} fixed files render as their originals did "
+            f"({unrendered} do not render, before the fixes or after)"
+        )
 
 
 def _kind(reason: str) -> str:
