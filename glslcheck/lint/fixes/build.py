@@ -83,6 +83,27 @@ def replace(node: Any, text: str) -> Edit:
     return Edit(loc.line, loc.column, loc.end_line, loc.end_column, text)
 
 
+def replace_with_name(ctx: LintContext, node: Any, name: str) -> Edit:
+    """An edit putting the variable `name` where `node` is written, with the parentheses that
+    only grouped it (`(a - b).x` -> `ab.x`, `lenSq((a - b))` -> `lenSq(ab)`; a call's own
+    parentheses stay)."""
+    loc = node.loc
+    if loc.line != loc.end_line:
+        return replace(node, name)
+    code = ctx.scan.code_lines[loc.line - 1]  # comments blanked: a `(` in one is not code
+    start, end = loc.column - 1, loc.end_column - 1
+    while True:
+        a = len(code[:start].rstrip())
+        b = end + len(code[end:]) - len(code[end:].lstrip())
+        if a == 0 or b >= len(code) or code[a - 1] != "(" or code[b] != ")":
+            break
+        before = code[: a - 1].rstrip()
+        if before and (before[-1].isalnum() or before[-1] in "_])"):
+            break  # the parentheses of a call or a constructor
+        start, end = a - 1, b + 1
+    return Edit(loc.line, start + 1, loc.line, end + 1, name)
+
+
 def precedence(node: Any) -> int:
     """How tightly an expression binds (the printer's table)."""
     t = type(node)
@@ -181,6 +202,9 @@ def insert_before(ctx: LintContext, stmt: Any, code: str) -> Edit | None:
 
 
 _OP_WORDS = {"+": "Plus", "-": "Minus", "*": "Times", "/": "Over"}
+_TYPE_NAMES = frozenset(
+    f"{p}{k}{n}" for p in ("", "i", "u", "b") for k in ("vec",) for n in (2, 3, 4)
+) | frozenset(("float", "int", "uint", "bool", "mat2", "mat3", "mat4"))
 _MAX_PARTS = 4
 
 
@@ -204,7 +228,8 @@ def _parts(node: Any, out: list[str]) -> None:
         _parts(node.base, out)
         out.append(node.name)
     elif t is A.Call:
-        out.append(node.callee or "value")
+        if node.callee not in _TYPE_NAMES:  # `vec3(n * 0.5 + 0.5)` is named for what it holds
+            out.append(node.callee or "value")
         for a in node.args:
             _parts(a, out)
     elif t is A.Unary:
@@ -324,4 +349,4 @@ def local_for(
     if found is None:
         return None
     name, insert = found
-    return name, [insert] + [replace(n, name) for n in [first, *uses]]
+    return name, [insert] + [replace_with_name(ctx, n, name) for n in [first, *uses]]

@@ -42,7 +42,7 @@ from ...base.diagnostics import Diagnostic
 from ...frontend import syntax as A
 from ...semantics.analysis import program_facts
 from ..fixes import Fix, Fixable
-from ..fixes.build import declare_before, name_hint, node_text, replace, statement_of
+from ..fixes.build import declare_before, name_hint, node_text, replace_with_name, statement_of
 from ._text import text
 
 TYPE_CHECKING = False  # not typing's: importing typing costs every start-up
@@ -146,5 +146,5 @@ def _fix(ctx: LintContext, fn, loop, places: list) -> Fix | None:
     return Fix(
         f"compute it once before the loop, into '{name}'",
         ctx.path,
-        (insert, *(replace(p, name) for p in places)),
+        (insert, *(replace_with_name(ctx, p, name) for p in places)),
     )

@@ -59,7 +59,7 @@ from ...base.diagnostics import Diagnostic
 from ...frontend import syntax as A
 from ...semantics.analysis import program_facts, written_variable
 from ..fixes import Fix, Fixable
-from ..fixes.build import local_for, node_text, replace
+from ..fixes.build import local_for, node_text, replace_with_name
 from ._text import text
 
 TYPE_CHECKING = False  # not typing's: importing typing costs every start-up
@@ -272,7 +272,9 @@ def _fix(ctx: LintContext, fn, same: list, holder: str | None, sym) -> Fix | Non
             node_text(ctx, b) is None for b in repeats
         ):
             return None
-        return Fix(f"reuse '{holder}'", ctx.path, tuple(replace(b, holder) for b in repeats))
+        return Fix(
+            f"reuse '{holder}'", ctx.path, tuple(replace_with_name(ctx, b, holder) for b in repeats)
+        )
     found = local_for(ctx, fn, first, repeats)
     if found is None:
         return None
