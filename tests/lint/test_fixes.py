@@ -333,3 +333,18 @@ def test_a_local_is_never_declared_inside_a_block_comment(tmp_path):
     )
     fix, new, _, _ = fixed(tmp_path, body, "repeated-expression")
     assert "/* 0..1,\n       across the screen */\n" in new
+
+
+def test_grouping_parentheses_go_with_the_value_a_call_s_stay(tmp_path):
+    body = """// distance to a light, twice
+void mainImage(out vec4 fragColor, in vec2 fragCoord)
+{
+    vec2 uv = fragCoord / iResolution.xy; // 0..1
+    float x = (uv - vec2(0.5, 0.2)).x; // across
+    float d = dot((uv - vec2(0.5, 0.2)), uv); // along
+    fragColor = vec4(x, d, 0.0, 1.0); // both
+}
+"""
+    fix, new, _, _ = fixed(tmp_path, body, "repeated-expression")
+    name = fix.title.split("'")[1]
+    assert f"float x = {name}.x;" in new and f"dot({name}, uv)" in new
