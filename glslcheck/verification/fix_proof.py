@@ -83,6 +83,7 @@ class FilePlan:
     outcomes: list[Outcome] = field(default_factory=list)
     error: str = ""  # why the file's fixes could not be tried at all
     new_lines: list[int] = field(default_factory=list)
+    note: str = ""  # how the proof rendered the shader, when not as verify does
 
 
 def plan_fixes(
@@ -103,12 +104,13 @@ def plan_fixes(
     plans: list[FilePlan] = []
     for shader in find_shaders(sorted(wanted)):
         renders = None
+        note = ""
         for source in shader.sources():
             if source.path not in wanted:
                 continue
             wanted.discard(source.path)
             if renders is None:
-                renders = _renders(shader, size)
+                shader, renders, note = _renderable(shader, size)
             plan = _plan_file(
                 shader,
                 source,
@@ -118,6 +120,7 @@ def plan_fixes(
                 unsafe,
                 size,
             )
+            plan.note = note if any(o.proven for o in plan.outcomes) else ""
             plans.append(plan)
             if plan.new_text is not None:
                 shader = _with_text(shader, source, plan.new_text)
@@ -132,7 +135,7 @@ def plan_fixes(
 
 
 def _renders(shader: Shader, size) -> list[np.ndarray] | str:
-    """The original's frames, or why it does not render."""
+    """The shader's frames, or why it does not render."""
     try:
         program = compile_backend(shader, "numpy")
         return [
@@ -147,6 +150,34 @@ def _renders(shader: Shader, size) -> list[np.ndarray] | str:
         ]
     except (GlslError, InputError) as e:
         return str(e).split("\n")[0]
+
+
+def _renderable(shader: Shader, size) -> tuple[Shader, list[np.ndarray] | str, str]:
+    """(the shader as the proof renders it, its frames or why it does not render, a note). A
+    shader whose only trouble is a channel read that no channels.json binds (a student's file
+    without its textures) is rendered with every channel unbound, as Shadertoy renders a channel
+    without an input ((0, 0, 0, 1)) and as glslcheck renders Shadertoy's exports."""
+    renders = _renders(shader, size)
+    if not isinstance(renders, str) or shader.channels is not None:
+        return shader, renders, ""
+    try:
+        compile_backend(shader, "numpy")
+    except GlslError as e:
+        if not e.diagnostics or any(d.rule != "unbound-channel" for d in e.diagnostics):
+            return shader, renders, ""
+    except InputError:
+        return shader, renders, ""
+    empty = Shader(tabs=dict(shader.tabs), root=shader.root, channels=[])
+    again = _renders(empty, size)
+    if isinstance(again, str):
+        return shader, renders, ""
+    return empty, again, EMPTY_CHANNELS
+
+
+EMPTY_CHANNELS = (
+    "proven with its iChannels unbound ((0, 0, 0, 1), as Shadertoy reads a channel without an "
+    "input): no channels.json binds the ones it reads"
+)
 
 
 def _with_text(shader: Shader, source: Source, text: str) -> Shader:

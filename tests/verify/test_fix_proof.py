@@ -179,12 +179,32 @@ def test_a_file_changed_after_the_plan_is_left_alone(workdir):
     assert path.read_text() == SHADER + "// edited meanwhile\n"
 
 
-def test_a_shader_that_does_not_render_gets_no_fix(workdir, capsys):
+def test_a_shader_that_does_not_compile_gets_no_fix(workdir, capsys):
+    broken = SHADER.replace("glow / 3.0", "glow / 3")  # float / int: a compile error
     path = workdir / "Image.glsl"
-    path.write_text(SHADER.replace("glow / 3.0", "texture(iChannel0, uv).r"))
+    path.write_text(broken)
     main(["lint", "--fix", "Image.glsl"])
-    assert path.read_text() == SHADER.replace("glow / 3.0", "texture(iChannel0, uv).r")
-    assert "does not render" in capsys.readouterr().err
+    assert path.read_text() == broken
+    assert "does not compile" in capsys.readouterr().err
+
+
+def test_unbound_channels_are_read_as_shadertoy_reads_an_empty_one(workdir, capsys):
+    """A student's file without its textures (no channels.json): the proof renders it with the
+    channels unbound, says so, and the fixed file renders as the original did that way."""
+    from glslcheck.shadertoy.sources import Shader
+
+    textured = SHADER.replace("glow / 3.0", "texture(iChannel0, uv).r")
+    path = workdir / "Image.glsl"
+    path.write_text(textured)
+    original = load_shader(path)
+    main(["lint", "--fix", "Image.glsl"])
+    assert "iChannels unbound" in capsys.readouterr().err
+    assert path.read_text() != textured
+    fixed = load_shader(path)
+    empty = [Shader(tabs=dict(s.tabs), root=s.root, channels=[]) for s in (original, fixed)]
+    programs = [compile_backend(s, "numpy") for s in empty]
+    images = [p.render(size=DEFAULT_SIZE, time=0.0, frame=0) for p in programs]
+    assert compare(*images).match
 
 
 def test_fix_with_staged_is_a_usage_error(workdir):

@@ -158,6 +158,8 @@ def _fix(args: argparse.Namespace, overrides: dict) -> int:
         if plan.error:
             print(printable(f"{plan.path}: note: no fix applied: {plan.error}"), file=sys.stderr)
             continue
+        if plan.note:
+            print(printable(f"{plan.path}: note: {plan.note}"), file=sys.stderr)
         for o in plan.outcomes:
             line = o.lines[0] if o.lines else 1
             if not o.applied:
