@@ -36,17 +36,20 @@ sys.path.insert(0, str(ROOT))
 from glslcheck.base.diagnostics import GlslError, InputError  # noqa: E402
 from glslcheck.lint import lint_paths  # noqa: E402
 from glslcheck.lint.fixes.files import write_file  # noqa: E402
-from glslcheck.shadertoy.sources import find_shaders  # noqa: E402
+from glslcheck.shadertoy.sources import Shader, find_shaders  # noqa: E402
 from glslcheck.shadertoy.wrapper import DEFAULT_SIZE  # noqa: E402
 from glslcheck.verification.compare import compare  # noqa: E402
-from glslcheck.verification.fix_proof import plan_fixes  # noqa: E402
+from glslcheck.verification.fix_proof import plan_fixes, renderable  # noqa: E402
 from glslcheck.verification.verify import compile_backend, frame_specs, verify  # noqa: E402
 
 CORPORA = (("real student files", ROOT / "tests/real_lint/texts"), ("lab", ROOT / "lab_shaders"))
 
 
-def render(shader):
-    """The frames verify renders, or the first line of why the shader does not render."""
+def render(shader, channels=None):
+    """The frames verify renders (the channels unbound as the proof renders a file without its
+    textures, when `channels` is []), or the first line of why the shader does not render."""
+    if channels is not None:
+        shader = Shader(tabs=dict(shader.tabs), root=shader.root, channels=channels)
     try:
         program = compile_backend(shader, "numpy")
         return [
@@ -86,11 +89,12 @@ def run(name: str, source: Path, unsafe: bool, gl: bool) -> None:
             if f.fix is not None:
                 offered[f.rule] += 1
                 safe[f.rule] += f.fix.applicability == "safe"
-        proven, applied = Counter(), Counter()
+        proven, applied, unbound = Counter(), Counter(), Counter()
         reasons = Counter()
         for plan in plans:
             for o in plan.outcomes:
                 proven[o.rule] += o.findings if o.proven else 0
+                unbound[o.rule] += o.findings if o.proven and plan.note else 0
                 applied[o.rule] += o.findings if o.applied else 0
                 if not o.applied:
                     reasons[_kind(o.reason)] += o.findings
@@ -106,17 +110,20 @@ def run(name: str, source: Path, unsafe: bool, gl: bool) -> None:
             added[plan.path] = set(plan.new_lines)
         after = lint_paths([str(work)])
         rules = sorted(set(offered) | {f.rule for f in before.findings})
-        print("| rule | findings | fix offered | offered safe | proven safe | applied |")
+        print(
+            "| rule | findings | fix offered | offered safe | proven safe (of which with the "
+            "channels unbound) | applied |"
+        )
         print("|---|---:|---:|---:|---:|---:|")
         count_before = Counter(f.rule for f in before.findings)
         for rule in rules:
             if offered[rule]:
                 print(
                     f"| {rule} | {count_before[rule]} | {offered[rule]} | {safe[rule]} | "
-                    f"{proven[rule]} | {applied[rule]} |"
+                    f"{proven[rule]} ({unbound[rule]}) | {applied[rule]} |"
                 )
-        total = [sum(c.values()) for c in (offered, safe, proven, applied)]
-        print(f"| all | {len(before.findings)} | {' | '.join(map(str, total))} |")
+        o, s, p, u, a = (sum(c.values()) for c in (offered, safe, proven, unbound, applied))
+        print(f"| all | {len(before.findings)} | {o} | {s} | {p} ({u}) | {a} |")
         print("\nwhy the others were not applied (findings):")
         for why, n in reasons.most_common():
             print(f"- {why}: {n}")
@@ -143,7 +150,9 @@ def run(name: str, source: Path, unsafe: bool, gl: bool) -> None:
         same = unrendered = 0
         for path, shader in originals.items():
             fixed_shader = shader_of(path)
-            old_imgs, new_imgs = render(shader), render(fixed_shader)
+            proof_shader = renderable(shader, DEFAULT_SIZE)[0]  # as the proof rendered it
+            old_imgs = render(shader, proof_shader.channels)
+            new_imgs = render(fixed_shader, proof_shader.channels)
             if isinstance(old_imgs, str) or isinstance(new_imgs, str):
                 ok = "does not render before" if isinstance(old_imgs, str) else "does not render"
                 unrendered += 1

@@ -110,7 +110,7 @@ def plan_fixes(
                 continue
             wanted.discard(source.path)
             if renders is None:
-                shader, renders, note = _renderable(shader, size)
+                shader, renders, note = renderable(shader, size)
             plan = _plan_file(
                 shader,
                 source,
@@ -152,7 +152,7 @@ def _renders(shader: Shader, size) -> list[np.ndarray] | str:
         return str(e).split("\n")[0]
 
 
-def _renderable(shader: Shader, size) -> tuple[Shader, list[np.ndarray] | str, str]:
+def renderable(shader: Shader, size) -> tuple[Shader, list[np.ndarray] | str, str]:
     """(the shader as the proof renders it, its frames or why it does not render, a note). A
     shader whose only trouble is a channel read that no channels.json binds (a student's file
     without its textures) is rendered with every channel unbound, as Shadertoy renders a channel
