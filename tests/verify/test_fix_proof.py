@@ -51,8 +51,13 @@ void mainImage(out vec4 fragColor, in vec2 fragCoord)
 )
 
 
-def render(path) -> list:
-    program = compile_backend(load_shader(path), "numpy")
+def render(path, channels=None) -> list:
+    shader = load_shader(path)
+    if channels is not None:
+        from glslcheck.shadertoy.sources import Shader
+
+        shader = Shader(tabs=dict(shader.tabs), root=shader.root, channels=channels)
+    program = compile_backend(shader, "numpy")
     return [program.render(size=DEFAULT_SIZE, time=s.time, frame=s.frame) for s in frame_specs()]
 
 
@@ -209,3 +214,53 @@ def test_unbound_channels_are_read_as_shadertoy_reads_an_empty_one(workdir, caps
 
 def test_fix_with_staged_is_a_usage_error(workdir):
     assert main(["lint", "--fix", "--staged"]) == 2
+
+
+# the sqrt fixture's bounds are parameters of unknown sign (its fixes are unsafe): a disc instead
+DISC = (
+    HEADER
+    + """// a disc from a squared length
+void mainImage(out vec4 fragColor, in vec2 fragCoord)
+{
+    vec2 p = fragCoord / iResolution.y - vec2(0.8, 0.5); // from the centre
+    float inside = sqrt(dot(p, p)) < 0.3 ? 1.0 : 0.0; // in the disc
+    fragColor = vec4(vec3(inside), 1.0); // white disc
+}
+"""
+)
+RULE_FIXTURES = {
+    "normalize-known-length": "normals.glsl",
+    "length-comparison": "circles.glsl",
+    "sqrt-comparison": DISC,
+    "pow-small-exponent": "exponents.glsl",
+    "loop-invariant": "loops.glsl",
+    "repeated-expression": "repeats.glsl",
+    "uniform-outside-mainimage": "uniforms.glsl",
+}
+
+
+@pytest.mark.parametrize("rule", sorted(RULE_FIXTURES))
+def test_each_rules_fixes_on_its_fixture_render_as_the_original(workdir, rule):
+    """The rule's lint fixture: its fixes applied by --fix are proven, and the fixed text renders
+    as the original does (recomputed here from the two texts)."""
+    from pathlib import Path
+
+    text = RULE_FIXTURES[rule]
+    if "\n" not in text:
+        text = (Path(__file__).parent.parent / "lint" / "fixtures" / rule / text).read_text()
+    path = workdir / "Image.glsl"
+    path.write_text(text)
+    plans = plan_fixes(lint_paths([str(path)]), {"select": [rule]})
+    applied = [o for p in plans for o in p.outcomes if o.applied]
+    assert applied and all(o.proven and o.rule == rule for o in applied)
+    (plan,) = plans
+    fixed = workdir / "fixed" / "Image.glsl"
+    fixed.parent.mkdir()
+    fixed.write_text(plan.new_text)
+    channels = [] if plan.note else None  # unbound iChannels read as empty ones, as proven
+    for old, new in zip(render(path, channels), render(fixed, channels)):
+        assert compare(old, new).match
+    left = [f for f in lint_paths([str(fixed)]).findings if f.rule == rule]
+    assert len(left) == sum(f.rule == rule for f in lint_paths([str(path)]).findings) - sum(
+        o.findings for o in applied
+    )
