@@ -44,6 +44,12 @@ def _macros(ctx: LintContext) -> frozenset[str]:
 
 
 @lru_cache(maxsize=8)
+def _words(texts: tuple[str, ...]) -> frozenset[str]:
+    """Every word of the texts (the names a new name must not take)."""
+    return frozenset(w for t in texts for w in re.findall(_WORD, t))
+
+
+@lru_cache(maxsize=8)
 def _defines(texts: tuple[str, ...]) -> frozenset[str]:
     """The names `#define`d in the texts (a fix never rewrites through a macro)."""
     return frozenset(m.group(1) for t in texts for m in re.finditer(_DEFINE, t, re.M))
@@ -260,14 +266,10 @@ def fresh_name(
     """`hint`, or `hint2`, `hint3`, ...: the first that is no keyword, reserved word or built-in
     function and that no word of the program's files uses (with `texts`: no word of those texts
     and no top-level name of the program: a parameter of the functions they are)."""
-    used = set(taken)
     if texts is None:
-        for t in program_texts(ctx):
-            used.update(re.findall(_WORD, t))
+        used = _words(tuple(program_texts(ctx))) | set(taken)
     else:
-        for t in texts:
-            used.update(re.findall(_WORD, t))
-        used.update(_top_level_names(ctx.model))
+        used = _words(tuple(texts)) | _top_level_names(ctx.model) | set(taken)
     for n in range(1, 1000):
         name = hint if n == 1 else f"{hint}{n}"
         if (
