@@ -39,7 +39,7 @@ from ..lint.fixes import Fix
 from ..lint.fixes.edits import EditError, apply_fixes, line_map, position_map
 from ..lint.fixes.files import FileText, read_file
 from ..lint.rules import rule_names
-from ..shadertoy.sources import Shader, Source, find_shaders
+from ..shadertoy.sources import Shader, Source, find_shaders, tab_name
 from ..shadertoy.wrapper import DEFAULT_SIZE
 from .compare import Comparison, compare
 from .verify import compile_backend, frame_specs
@@ -102,7 +102,7 @@ def plan_fixes(
     choose = ConfigFinder(check_overrides(overrides), rule_names())
     every = ConfigFinder(check_overrides({}), rule_names())
     plans: list[FilePlan] = []
-    for shader in find_shaders(sorted(wanted)):
+    for shader in _shaders(sorted(wanted)):
         renders = None
         note = ""
         for source in shader.sources():
@@ -150,6 +150,30 @@ def _renders(shader: Shader, size) -> list[np.ndarray] | str:
         ]
     except (GlslError, InputError) as e:
         return str(e).split("\n")[0]
+
+
+def _shaders(paths: list[str]) -> list[Shader]:
+    """The shaders the files belong to, each once: a Shadertoy tab with the other tabs of its
+    folder (an Image is proven with its Common, and their fixes one after the other), any other
+    file alone."""
+    import os
+
+    found: list[Shader] = []
+    seen: set[str] = set()
+    for path in paths:
+        if path in seen:
+            continue
+        folder = os.path.dirname(path) or "."
+        for shader in find_shaders([folder] if tab_name(path) is not None else [path]):
+            files = {s.path for s in shader.sources()}
+            if path in files:
+                seen.update(files)
+                found.append(shader)
+                break
+        else:
+            found.extend(find_shaders([path]))
+            seen.add(path)
+    return found
 
 
 def renderable(shader: Shader, size) -> tuple[Shader, list[np.ndarray] | str, str]:

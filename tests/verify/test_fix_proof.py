@@ -264,3 +264,40 @@ def test_each_rules_fixes_on_its_fixture_render_as_the_original(workdir, rule):
     assert len(left) == sum(f.rule == rule for f in lint_paths([str(path)]).findings) - sum(
         o.findings for o in applied
     )
+
+
+def test_the_tabs_of_one_shader_are_fixed_one_after_the_other(workdir, capsys):
+    """Common and Image each with a fix: both applied, each proven with the other's fix, and the
+    shader renders as before."""
+    (workdir / "Common.glsl").write_text(
+        """// Common.glsl: shared helpers
+// Contributors: Ana Ruiz: all of it
+// the squared falloff of a distance
+float falloff(in float d)
+{
+    float a = abs(d); // the distance, whatever its sign
+    return 1.0 / (1.0 + pow(a, 2.0)); // inverse square
+}
+"""
+    )
+    (workdir / "Image.glsl").write_text(
+        """// Image.glsl: a glow
+// Contributors: Ana Ruiz: all of it
+// shade by distance from the centre
+void mainImage(out vec4 fragColor, in vec2 fragCoord)
+{
+    vec2 uv = (fragCoord - 0.5 * iResolution.xy) / iResolution.y; // centred
+    float d = length(uv); // distance
+    fragColor = vec4(vec3(falloff(d * 4.0)), 1.0) + vec4(vec3(falloff(d * 4.0)) * 0.1, 0.0); // glow
+}
+"""
+    )
+    before = render(workdir)
+    originals = {n: (workdir / n).read_text() for n in ("Common.glsl", "Image.glsl")}
+    main(["lint", "--fix", "Image.glsl", "Common.glsl"])
+    capsys.readouterr()
+    assert all((workdir / n).read_text() != text for n, text in originals.items())
+    left = {f.rule for f in lint_paths([str(workdir)]).findings}
+    assert not left & {"pow-small-exponent", "repeated-expression"}
+    for old, new in zip(before, render(workdir)):
+        assert compare(old, new).match
