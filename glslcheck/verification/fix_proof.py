@@ -193,8 +193,8 @@ def renderable(shader: Shader, size) -> tuple[Shader, list[np.ndarray] | str, st
         return shader, renders, ""
     empty = Shader(tabs=dict(shader.tabs), root=shader.root, channels=[])
     again = _renders(empty, size)
-    if isinstance(again, str):
-        return shader, renders, ""
+    if isinstance(again, str):  # say why it does not render even so
+        return shader, f"{renders.split(': ')[0]}, and with the channels unbound: {again}", ""
     return empty, again, EMPTY_CHANNELS
 
 
