@@ -71,6 +71,9 @@ class Outcome:
     proven: bool = False
     reason: str = ""
     lines: tuple[int, ...] = ()  # its findings' lines in the file as it was read
+    tried: bool = (
+        False  # proven (or tried to be): not an unsafe fix left out without --unsafe-fixes
+    )
 
 
 @dataclass
@@ -256,6 +259,7 @@ def _plan_file(shader, source, choose, every, renders, unsafe, size) -> FilePlan
             if fix.applicability != "safe" and not unsafe:
                 outcome.reason = f"unsafe: {fix.why}" if fix.why else "unsafe"
                 continue
+            outcome.tried = True
             tried.append((fix, found, outcome))
         if not tried:
             break

@@ -162,7 +162,15 @@ def _fix(args: argparse.Namespace, overrides: dict) -> int:
             print(printable(f"{plan.path}: note: {plan.note}"), file=sys.stderr)
         for o in plan.outcomes:
             line = o.lines[0] if o.lines else 1
-            if not o.applied:
+            if not o.applied and not o.tried:
+                print(
+                    printable(
+                        f"{plan.path}:{line}: {o.rule}: unsafe fix not applied ({o.fix.title}): "
+                        f"{o.reason.removeprefix('unsafe: ')}; `--unsafe-fixes` applies it"
+                    ),
+                    file=sys.stderr,
+                )
+            elif not o.applied:
                 print(
                     printable(
                         f"{plan.path}:{line}: {o.rule}: not fixed ({o.fix.title}): {o.reason}"
