@@ -78,7 +78,8 @@ def _fix(ctx: LintContext, side, other) -> Fix | None:
         else:
             a, b = operand_text(ctx, side.args[0], 13), operand_text(ctx, side.args[1], 14)
             value = None if a is None or b is None else f"{a} - {b}"
-            hint = name_hint(side.args[0]) + "To" + name_hint(side.args[1]).capitalize()
+            to = name_hint(side.args[1])
+            hint = name_hint(side.args[0]) + "To" + to[0].upper() + to[1:]
         if value is None:
             return None
         found = declare_before(ctx, fn, side, fn.model.type_of(v), value, hint)
