@@ -10,7 +10,8 @@ Detection is the engine's job; this module only formats. Formats (`FORMATS`):
             message, help, notes: [{line, column, message}], fix: null or {title,
             applicability, why, edits: [{line, column, end_line, end_column, text, item}]}}],
             "summary": {files, findings, penalty}}
-    sarif   SARIF 2.1.0 for GitHub code scanning (one run; every rule in tool.driver.rules)
+    sarif   SARIF 2.1.0 for GitHub code scanning (one run; every rule in tool.driver.rules; a
+            finding's fix as the result's `fixes`)
     github  GitHub Actions workflow commands (`::warning file=...::message`)
 
 Lines and columns are 1-based and point into the user's file; an end column is the column just
@@ -228,6 +229,34 @@ def sarif_level(severity: str) -> str:
     return {"error": "error", "warning": "warning"}.get(severity, "note")
 
 
+def _sarif_fix(f: Finding, root: str | None) -> dict:
+    """A SARIF `fix`: the rule's edits as replacements (an insertion is an empty region)."""
+    fix = f.fix
+    return {
+        "description": {
+            "text": f"{fix.title} ({fix.applicability}: `glslcheck lint --fix` applies it once "
+            "rendering proves it keeps the picture)"
+        },
+        "artifactChanges": [
+            {
+                "artifactLocation": {"uri": artifact_uri(fix.path, root)},
+                "replacements": [
+                    {
+                        "deletedRegion": {
+                            "startLine": e.line,
+                            "startColumn": e.column,
+                            "endLine": e.end_line,
+                            "endColumn": e.end_column,
+                        },
+                        "insertedContent": {"text": e.text},
+                    }
+                    for e in fix.edits
+                ],
+            }
+        ],
+    }
+
+
 def sarif_document(result: LintResult, root: str | None = None) -> dict:
     from ..base.version import __version__
 
@@ -271,6 +300,8 @@ def sarif_document(result: LintResult, root: str | None = None) -> dict:
         }
         if f.rule in index:
             entry["ruleIndex"] = index[f.rule]
+        if f.fix is not None:
+            entry["fixes"] = [_sarif_fix(f, root)]
         results.append(entry)
     return {
         "$schema": SARIF_SCHEMA,

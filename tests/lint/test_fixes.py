@@ -348,3 +348,29 @@ void mainImage(out vec4 fragColor, in vec2 fragCoord)
     fix, new, _, _ = fixed(tmp_path, body, "repeated-expression")
     name = fix.title.split("'")[1]
     assert f"float x = {name}.x;" in new and f"dot({name}, uv)" in new
+
+
+def test_the_sarif_report_carries_the_fix_as_replacements(tmp_path):
+    """SARIF `fixes`: the replacements rebuild the text the fixer makes."""
+    import json
+
+    from glslcheck.lint.report import render
+
+    path = tmp_path / "Image.glsl"
+    path.write_text(HEADER + CASES["repeated-expression"][0])
+    result = lint_paths([str(path)])
+    finding = next(f for f in result.findings if f.rule == "repeated-expression")
+    doc = json.loads(render(result, "sarif"))
+    entry = next(r for r in doc["runs"][0]["results"] if r["ruleId"] == "repeated-expression")
+    (change,) = entry["fixes"][0]["artifactChanges"]
+    edits = [
+        Edit(
+            r["deletedRegion"]["startLine"],
+            r["deletedRegion"]["startColumn"],
+            r["deletedRegion"]["endLine"],
+            r["deletedRegion"]["endColumn"],
+            r["insertedContent"]["text"],
+        )
+        for r in change["replacements"]
+    ]
+    assert apply_edits(path.read_text(), edits) == apply_fixes(path.read_text(), [finding.fix])
