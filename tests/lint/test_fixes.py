@@ -374,3 +374,19 @@ def test_the_sarif_report_carries_the_fix_as_replacements(tmp_path):
         for r in change["replacements"]
     ]
     assert apply_edits(path.read_text(), edits) == apply_fixes(path.read_text(), [finding.fix])
+
+
+def test_the_text_report_shows_each_fix_and_the_command(tmp_path):
+    from glslcheck.lint.report import render
+
+    path = tmp_path / "Image.glsl"
+    path.write_text(HEADER + CASES["loop-invariant"][0])
+    result = lint_paths([str(path)])
+    text = render(result, "text")
+    finding = next(f for f in result.findings if f.rule == "loop-invariant")
+    assert f"  fix (safe): {finding.fix.title}" in text
+    safe = sum(1 for f in result.findings if f.fix is not None and f.fix.applicability == "safe")
+    assert (
+        f"{safe} finding{'s' if safe != 1 else ''} with a safe fix: `glslcheck lint --fix`" in text
+    )
+    assert text.rstrip().split("\n")[-1].startswith(f"{len(result.findings)} finding")
