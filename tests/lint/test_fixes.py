@@ -390,3 +390,25 @@ def test_the_text_report_shows_each_fix_and_the_command(tmp_path):
         f"{safe} finding{'s' if safe != 1 else ''} with a safe fix: `glslcheck lint --fix`" in text
     )
     assert text.rstrip().split("\n")[-1].startswith(f"{len(result.findings)} finding")
+
+
+def test_a_file_that_cannot_be_written_is_reported_not_raised(tmp_path, monkeypatch):
+    """A write error (a read-only folder, a full disk: made here by the writer failing) is the
+    file's message; the run goes on with the other files."""
+    import contextlib
+
+    from glslcheck.base import images
+    from glslcheck.base.diagnostics import InputError
+
+    @contextlib.contextmanager
+    def failing(path, what="file"):
+        raise InputError(f"{path}: error: cannot write the {what} (permission denied)")
+        yield  # pragma: no cover
+
+    path = tmp_path / "Image.glsl"
+    path.write_text("float a;\n")
+    original = read_file(str(path))
+    monkeypatch.setattr(images, "atomic_write", failing)
+    problem = write_file(original, "float c;\n")
+    assert problem == "cannot write the fixed shader (permission denied); not written"
+    assert path.read_text() == "float a;\n"

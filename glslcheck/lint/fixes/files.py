@@ -84,9 +84,12 @@ def write_file(original: FileText, new_text: str) -> str | None:
     from ...base.images import atomic_write  # numpy: only when a file is written
 
     data = to_bytes(original, new_text)
-    with atomic_write(original.path, "fixed shader") as tmp:
-        with open(tmp, "wb") as f:
-            f.write(data)
+    try:
+        with atomic_write(original.path, "fixed shader") as tmp:
+            with open(tmp, "wb") as f:
+                f.write(data)
+    except InputError as e:  # the folder or file cannot be written: the others still are
+        return str(e).split(": error: ", 1)[-1] + "; not written"
     return None
 
 
