@@ -173,7 +173,8 @@ def _fix(args: argparse.Namespace, overrides: dict) -> int:
             elif not o.applied:
                 print(
                     printable(
-                        f"{plan.path}:{line}: {o.rule}: not fixed ({o.fix.title}): {o.reason}"
+                        f"{plan.path}:{line}: {o.rule}: not fixed, not proven safe "
+                        f"({o.fix.title}): {o.reason}"
                     ),
                     file=sys.stderr,
                 )
