@@ -267,6 +267,7 @@ def _plan_file(shader, source, choose, every, renders, unsafe, size) -> FilePlan
         for fix, found, outcome in tried:
             proof = _prove(current, here, [fix], found, before, every, renders, size)
             outcome.proven = proof.proven and fix.applicability == "safe"
+            outcome.renders_same = proof.proven
             why = [f"unsafe: {fix.why}"] if fix.applicability != "safe" and fix.why else []
             outcome.reason = "; ".join(why + ([proof.reason] if proof.reason else []))
             if proof.proven or (unsafe and proof.compiles):
