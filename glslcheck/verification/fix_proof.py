@@ -6,13 +6,19 @@ rules offer: glslcheck/lint/fixes) and decides, file by file, which fixes to app
 
 1. the file still parses and checks (no compile error),
 2. its rule no longer reports the findings it fixes,
-3. no other finding appears (matched by rule and line, lines followed through the edits); a
-   `missing-comment` finding on a line the fix added is expected, not new: comments are never
-   written for the student, and the line is theirs to explain, and
+3. no other finding appears: findings are matched by rule and place, a place followed through
+   the edits (`edits.position_map`), then a finding that moved with the code a fix moved by
+   rule and message; `missing-comment` is judged on the file with a placeholder comment over
+   each run of lines the fixes added (comments are never written for the student: those lines
+   are theirs to explain, and explaining them also covers what their own comments no longer
+   reach), and
 4. the NumPy backend renders the shader the same before and after, at the frames `verify` uses
    (`verify.frame_specs()`: iTime 0, iFrame 0) and its size (800x450), within verify's
    tolerance (`compare.compare`: 2/255 per channel, edge and scattered-pixel budgets, no NaN
-   difference). A fix that changes a pixel beyond that is refused, with the numbers.
+   difference). A fix that changes a pixel beyond that is refused, with the numbers. A file
+   whose only trouble is an iChannel no channels.json binds (a student's file without its
+   textures) is rendered with its channels unbound, as Shadertoy renders an empty channel, and
+   the plan says so (`renderable`).
 
 Each offered fix is first proven alone; the proven ones that do not touch the same text are then
 proven together, and when together they fail, added one by one (a fix that fails with the
