@@ -5,7 +5,9 @@
 
 The package owns: the engine (`engine`: files, rules, phases, suppression), configuration
 (`config`), suppression comments (`suppress`), the text view rules share (`textscan`), the
-rule registry and one module per rule (`rules/`), and the output formats (`report`).
+rule registry and one module per rule (`rules/`), the output formats (`report`), and the
+fixes rules offer (`fixes/`: edits of the source text, and the files they are written to; whether
+a fix keeps the picture is proven by rendering, in verification/fix_proof.py).
 """
 
 from .config import LintConfig

@@ -35,6 +35,7 @@ from ..shadertoy.sources import (
     posix_path,
 )
 from .config import COMMAND_LINE, ConfigFinder, LintConfig, apply_overrides
+from .fixes import Fix
 from .rules import Rule, all_rules, rule_names
 from .suppress import Suppression, find_suppressions, is_suppressed
 from .textscan import Comment, LineKind, TextScan, scan
@@ -51,11 +52,13 @@ PHASES = ("text", "ast", "suppressions")
 
 @record
 class Finding(Diagnostic):
-    """A lint rule hit: a Diagnostic (rule = rule NAME, loc in the user's file) and its penalty.
-    A deduction (penalty > 0) has a `certainty`: "certain" (the rubric's text makes it one) or
-    "possible" (a reading of an ambiguous rubric sentence); anything else has None."""
+    """A lint rule hit: a Diagnostic (rule = rule NAME, loc in the user's file), its penalty and
+    the fix its rule offers (`fixes.Fix`, or None). A deduction (penalty > 0) has a `certainty`:
+    "certain" (the rubric's text makes it one) or "possible" (a reading of an ambiguous rubric
+    sentence); anything else has None."""
 
     penalty: int = 0
+    fix: Fix | None = None
 
     @property
     def path(self) -> str:
@@ -369,6 +372,7 @@ def _finding(rule: Rule, d: Diagnostic, ctx: LintContext) -> Finding:
         notes=list(d.notes),
         penalty=penalty,
         certainty=(d.certainty or rule.certainty) if penalty else None,
+        fix=getattr(d, "fix", None),
     )
 
 

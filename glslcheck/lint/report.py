@@ -3,14 +3,17 @@
 Detection is the engine's job; this module only formats. Formats (`FORMATS`):
 
     text    `path:line:col: rule-name message` (`rule-name [possible]` for a possible
-            deduction), the source line with `^~~~` under the span, a `help:` line, and a
-            closing summary with the estimated deduction, the certain and the possible apart
+            deduction), the source line with `^~~~` under the span, a `help:` line, a
+            `fix (safe|unsafe): ...` line when the rule offers a fix, how many findings have a
+            fix and the command that applies them, and a closing summary with the estimated
+            deduction, the certain and the possible apart
     json    {"findings": [{path, line, column, end_line, end_column, rule, severity, penalty,
-            certainty, message, help, notes: [{line, column, message}]}],
+            certainty, message, help, notes: [{line, column, message}], fix: null or {title,
+            applicability, why, edits: [{line, column, end_line, end_column, text, item}]}}],
             "summary": {files, findings, penalty, possible_findings, possible_penalty}}
     sarif   SARIF 2.1.0 for GitHub code scanning (one run; every rule in tool.driver.rules); a
             certain deduction is level "warning", a possible one "note", and each result's
-            properties hold its penalty and certainty
+            properties hold its penalty and certainty; a finding's fix is the result's `fixes`
     github  GitHub Actions workflow commands (`::warning file=...::message`; `::notice` for a
             possible deduction)
 
@@ -106,7 +109,7 @@ def format_finding(f: Finding) -> str:
     return block
 
 
-def text_report(result: LintResult) -> str:
+def text_report(result: LintResult, fix_command: str = "glslcheck lint --fix") -> str:
     blocks: list[str] = []
     not_run: list[Finding] = []  # a run of "rule could not run" notes: one block, folded
 
@@ -120,10 +123,35 @@ def text_report(result: LintResult) -> str:
             not_run.append(f)
             continue
         flush()
-        blocks.append(format_finding(f))
+        block = format_finding(f)
+        if f.fix is not None:
+            block += f"\n  fix ({f.fix.applicability}): {printable(f.fix.title)}"
+        blocks.append(block)
     flush()
+    fixable = fixes_line(result, fix_command)
+    if fixable:
+        blocks.append(fixable)
     blocks.append(summary_line(result))
     return "\n\n".join(blocks) + "\n"
+
+
+def fixes_line(result: LintResult, command: str = "glslcheck lint --fix") -> str:
+    """How many findings have a fix and which command applies them ("" when none has)."""
+    safe = sum(1 for f in result.findings if f.fix is not None and f.fix.applicability == "safe")
+    unsafe = sum(1 for f in result.findings if f.fix is not None and f.fix.applicability != "safe")
+    if not safe and not unsafe:
+        return ""
+    parts = []
+    if safe:
+        parts.append(
+            f"{_plural(safe, 'finding')} with a safe fix: `{command}` applies each one it proves "
+            "by rendering the shader before and after (`--diff` shows them first)"
+        )
+    if unsafe:
+        parts.append(
+            f"{_plural(unsafe, 'finding')} with an unsafe fix (applied with `--unsafe-fixes` too)"
+        )
+    return "; ".join(parts)
 
 
 def _not_run_block(notes: list[Finding]) -> str:
@@ -168,6 +196,25 @@ def finding_record(f: Finding) -> dict:
             for n in f.notes
             if n.loc is not None
         ],
+        # the rewrite the rule offers (edits of the file; applied by `lint --fix` once proven)
+        "fix": None
+        if f.fix is None
+        else {
+            "title": f.fix.title,
+            "applicability": f.fix.applicability,
+            "why": f.fix.why,
+            "edits": [
+                {
+                    "line": e.line,
+                    "column": e.column,
+                    "end_line": e.end_line,
+                    "end_column": e.end_column,
+                    "text": e.text,
+                    "item": e.item,
+                }
+                for e in f.fix.edits
+            ],
+        },
     }
 
 
@@ -205,6 +252,34 @@ def sarif_level(severity: str, certainty: str | None = None) -> str:
     if certainty == "possible":
         return "note"
     return {"error": "error", "warning": "warning"}.get(severity, "note")
+
+
+def _sarif_fix(f: Finding, root: str | None) -> dict:
+    """A SARIF `fix`: the rule's edits as replacements (an insertion is an empty region)."""
+    fix = f.fix
+    return {
+        "description": {
+            "text": f"{fix.title} ({fix.applicability}: `glslcheck lint --fix` applies it once "
+            "rendering proves it keeps the picture)"
+        },
+        "artifactChanges": [
+            {
+                "artifactLocation": {"uri": artifact_uri(fix.path, root)},
+                "replacements": [
+                    {
+                        "deletedRegion": {
+                            "startLine": e.line,
+                            "startColumn": e.column,
+                            "endLine": e.end_line,
+                            "endColumn": e.end_column,
+                        },
+                        "insertedContent": {"text": e.text},
+                    }
+                    for e in fix.edits
+                ],
+            }
+        ],
+    }
 
 
 def sarif_document(result: LintResult, root: str | None = None) -> dict:
@@ -254,6 +329,8 @@ def sarif_document(result: LintResult, root: str | None = None) -> dict:
         }
         if f.rule in index:
             entry["ruleIndex"] = index[f.rule]
+        if f.fix is not None:
+            entry["fixes"] = [_sarif_fix(f, root)]
         results.append(entry)
     return {
         "$schema": SARIF_SCHEMA,

@@ -69,6 +69,7 @@ def test_json_format_exact_shape(linted):
         "message",
         "help",
         "notes",
+        "fix",
     ]
     for f in doc["findings"]:
         assert list(f) == keys
@@ -86,6 +87,7 @@ def test_json_format_exact_shape(linted):
         "message": "2 lines of code without a comment that explains them (lines 1-3)",
         "help": "add a comment above saying why these lines are there",
         "notes": [],
+        "fix": None,  # comments are never written for the student
     }
     credit = next(f for f in doc["findings"] if f["rule"] == "missing-credit")
     assert (credit["severity"], credit["penalty"], credit["certainty"]) == ("note", 0, None)

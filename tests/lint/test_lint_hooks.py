@@ -162,3 +162,31 @@ def test_install_hook_outside_a_repository(tmp_path):
     )
     assert proc.returncode == 2
     assert "not inside a git repository" in proc.stderr and "Traceback" not in proc.stderr
+
+
+FIXABLE_SHADER = CLEAN_SHADER.replace(
+    "    fragColor = vec4(0.2, 0.4, 0.6, 1.0);\n",
+    "    float d = length(fragCoord); // distance from the corner\n"
+    "    fragColor = vec4(vec3(pow(d, 2.0)), 1.0); // its square\n",
+)
+
+
+def test_the_hook_names_the_command_that_fixes_and_rewrites_nothing(
+    git_repo: GitRepo, monkeypatch, capsys
+):
+    """`lint --staged`, the hook's command, run in this process (the hook itself runs the
+    installed glslcheck in isolated mode)."""
+    from glslcheck.cli.main import main
+
+    path = git_repo.write("lab4/Image.glsl", FIXABLE_SHADER)
+    git_repo.git("add", "lab4/Image.glsl")
+    before = snapshot([path])
+    monkeypatch.chdir(git_repo.root)
+    for key, value in git_repo.env.items():
+        monkeypatch.setenv(key, value)
+    assert main(["lint", "--staged"]) == 1
+    out = capsys.readouterr().out
+    assert "pow-small-exponent" in out
+    assert "`glslcheck lint --fix lab4/Image.glsl` applies" in out
+    assert snapshot([path]) == before  # neither the work tree nor the index changed
+    assert git_repo.git("show", ":lab4/Image.glsl").stdout == FIXABLE_SHADER

@@ -1,13 +1,23 @@
-"""Report every Lab 4 coding-standard deduction in shader files and folders.
+"""Report every Lab 4 coding-standard deduction in shader files and folders, and fix them.
 
-Exit status: 0 no findings, 1 findings, 2 usage, input or configuration errors. Never modifies
-a shader file. Every finding counts for the exit status, a possible deduction (a reading of an
-ambiguous rubric sentence, `[possible]` in the text report) as much as a certain one: the hook
-shows a student what may cost points before the TA does; a possible deduction the student has
-decided against is silenced like any finding (`glslcheck: ignore[incomplete-header]`, or
-`ignore` in the configuration). The summary counts the certain and the possible points apart.
-Configuration: [tool.glslcheck] in the nearest pyproject.toml, or glslcheck.toml (see
-`glslcheck rule --all` for the rules).
+Exit status: 0 no findings, 1 findings, 2 usage, input or configuration errors. Without `--fix`
+it never modifies a shader file. Every finding counts for the exit status, a possible deduction
+(a reading of an ambiguous rubric sentence, `[possible]` in the text report) as much as a
+certain one: the hook shows a student what may cost points before the TA does; a possible
+deduction the student has decided against is silenced like any finding (`glslcheck:
+ignore[incomplete-header]`, or `ignore` in the configuration). The summary counts the certain
+and the possible points apart. Configuration: [tool.glslcheck] in the nearest pyproject.toml,
+or glslcheck.toml (see `glslcheck rule --all` for the rules).
+
+`--fix` applies the fixes the rules offer as safe once each is proven by rendering
+(glslcheck/verification/fix_proof.py), writes each changed file (atomically, its line endings
+kept; a file changed on disk since it was read is left alone), lints again and reports what
+remains: exit 0 when nothing remains, 1 when findings remain. `--unsafe-fixes` also applies the
+fixes offered as unsafe or not proven, as long as the file still compiles. `--diff` writes
+nothing: it prints what `--fix` would change as a unified diff on standard output, exit 1 when
+there is a change, 0 when there is none (as ruff's `--diff`). What was fixed and each fix not
+applied, with why (the render's numbers for one that changes the picture), go to standard
+error.
 """
 
 from __future__ import annotations
@@ -55,6 +65,24 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
         "given every staged file",
     )
     parser.add_argument(
+        "--fix",
+        action="store_true",
+        help="apply the fixes proven safe: each rewritten file must compile, lose the finding, "
+        "gain no other, and render the same as before (verify's frames and tolerance, NumPy backend)",
+    )
+    parser.add_argument(
+        "--unsafe-fixes",
+        action="store_true",
+        help="with --fix or --diff: also apply the fixes that are offered as unsafe or not proven "
+        "(the file must still compile)",
+    )
+    parser.add_argument(
+        "--diff",
+        action="store_true",
+        help="print the changes --fix would make as a unified diff and write nothing (exit 1 when "
+        "there is a change)",
+    )
+    parser.add_argument(
         "--staged",
         action="store_true",
         help="lint the staged (index) version of every staged shader file, "
@@ -65,13 +93,21 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
 
 def run(args: argparse.Namespace) -> int:
     from ...lint import lint_paths
-    from ...lint.report import render
+    from ...lint.report import fixes_line, render, text_report
 
     overrides = {}
     if args.select is not None:
         overrides["select"] = args.select
     if args.ignore is not None:
         overrides["ignore"] = args.ignore
+    fixing = args.fix or args.diff
+    if args.unsafe_fixes and not fixing:
+        raise InputError("glslcheck lint: error: --unsafe-fixes goes with --fix or --diff")
+    if fixing and args.staged:
+        raise InputError(
+            "glslcheck lint: error: --staged lints the index and never rewrites it; run "
+            "`glslcheck lint --fix PATH...` on the work tree, then stage the result"
+        )
     if args.staged:
         if args.paths:
             raise InputError(
@@ -83,7 +119,15 @@ def run(args: argparse.Namespace) -> int:
         passed_over: list[str] = []
         with staged_checkout(skipped, passed_over) as names:  # names: repository-relative
             result = lint_paths(names, overrides, skip_non_shaders=True)
-            text = render(result, args.format)
+            # the hook never rewrites the index: it names the command that fixes the work tree
+            command = "glslcheck lint --fix " + " ".join(_quoted(result))
+            if args.format == "text":
+                text = text_report(result, command)
+            else:
+                text = render(result, args.format)
+                fixable = fixes_line(result, command)
+                if fixable:
+                    print(printable(fixable), file=sys.stderr)
         if not result.files:
             _say_nothing_linted(passed_over + result.skipped, "staged file")
         for name, what in skipped:  # named as a shader, but no shader text in the commit
@@ -92,11 +136,113 @@ def run(args: argparse.Namespace) -> int:
             )
     elif not args.paths:
         raise InputError("glslcheck lint: error: give at least one PATH (or --staged)")
+    elif fixing:
+        return _fix(args, overrides)
     else:
         result = lint_paths(args.paths, overrides, skip_non_shaders=args.skip_non_shaders)
         text = render(result, args.format)
         if not result.files:
             _say_nothing_linted(result.skipped, "file given")
+    _write_report(args, text, result)
+    return 1 if result.findings else 0
+
+
+def _quoted(result) -> list[str]:
+    """The files with a fix, as shell words (the command the hook's report names)."""
+    import shlex
+
+    paths = sorted({f.path for f in result.findings if f.fix is not None})
+    return [shlex.quote(p) for p in paths]
+
+
+def _fix(args: argparse.Namespace, overrides: dict) -> int:
+    """`--fix` / `--diff`: plan and prove the fixes, then write them or print the diff."""
+    from ...lint import lint_paths
+    from ...lint.fixes.files import unified_diff, write_file
+    from ...lint.report import render
+    from ...verification.fix_proof import plan_fixes
+
+    result = lint_paths(args.paths, overrides, skip_non_shaders=args.skip_non_shaders)
+    plans = plan_fixes(result, overrides, unsafe=args.unsafe_fixes)
+    changed = 0
+    fixed = 0
+    for plan in plans:
+        if plan.error:
+            print(printable(f"{plan.path}: note: no fix applied: {plan.error}"), file=sys.stderr)
+            continue
+        if plan.note:
+            print(printable(f"{plan.path}: note: {plan.note}"), file=sys.stderr)
+        for o in plan.outcomes:
+            line = o.lines[0] if o.lines else 1
+            if not o.applied and not o.tried:
+                print(
+                    printable(
+                        f"{plan.path}:{line}: {o.rule}: unsafe fix not applied ({o.fix.title}): "
+                        f"{o.reason.removeprefix('unsafe: ')}; `--unsafe-fixes` applies it"
+                    ),
+                    file=sys.stderr,
+                )
+            elif not o.applied:
+                print(
+                    printable(
+                        f"{plan.path}:{line}: {o.rule}: not fixed, not proven safe "
+                        f"({o.fix.title}): {o.reason}"
+                    ),
+                    file=sys.stderr,
+                )
+            elif o.reason:
+                how, after = (
+                    ("unsafe fix applied", "; the shader renders the same here")
+                    if o.renders_same
+                    else ("fixed without proof", "")
+                )
+                print(
+                    printable(
+                        f"{plan.path}:{line}: {o.rule}: {how} ({o.fix.title}): {o.reason}{after}"
+                    ),
+                    file=sys.stderr,
+                )
+        if plan.new_text is None or plan.original is None:
+            continue
+        if args.diff:
+            sys.stdout.write(unified_diff(plan.original, plan.new_text))
+        else:
+            problem = write_file(plan.original, plan.new_text)
+            if problem is not None:
+                print(printable(f"{plan.path}: note: {problem}"), file=sys.stderr)
+                continue
+            new = plan.new_text.split("\n")
+            code = [n for n in plan.new_lines if not new[n - 1].lstrip().startswith("//")]
+            if code:
+                lines = ", ".join(map(str, code))
+                print(
+                    printable(
+                        f"{plan.path}: note: lines {lines} were added by the fixes; explain them "
+                        "in a comment (fixes never write comments for you)"
+                        if len(code) > 1
+                        else f"{plan.path}: note: line {lines} was added by a fix; explain it in a "
+                        "comment (fixes never write comments for you)"
+                    ),
+                    file=sys.stderr,
+                )
+        changed += 1
+        fixed += sum(o.findings for o in plan.outcomes if o.applied)
+    verb = "would fix" if args.diff else "fixed"
+    refused = sum(1 for p in plans for o in p.outcomes if not o.applied)
+    print(
+        f"{verb} {fixed} finding{'s' if fixed != 1 else ''} in {changed} "
+        f"file{'s' if changed != 1 else ''}; "
+        f"{refused} fix{'es' if refused != 1 else ''} not applied",
+        file=sys.stderr,
+    )
+    if args.diff:
+        return 1 if changed else 0
+    after = lint_paths(args.paths, overrides, skip_non_shaders=args.skip_non_shaders)
+    _write_report(args, render(after, args.format), after)
+    return 1 if after.findings else 0
+
+
+def _write_report(args: argparse.Namespace, text: str, result) -> None:
     if args.output:
         from pathlib import Path  # only here: not on every lint's start-up
 
@@ -112,7 +258,6 @@ def run(args: argparse.Namespace) -> int:
             Path(tmp).write_text(text, encoding="utf-8")
     else:
         sys.stdout.write(text)
-    return 1 if result.findings else 0
 
 
 SHADER_FILES = (

@@ -73,3 +73,20 @@ def squared(model: Model, e: Any) -> str:
         return s if len(s) < 12 else f"{v:g}"
     w = wrap(e)
     return f"{w} * {w}"
+
+
+def squared_bound(ctx: Any, fn: Any, bound: A.Expr) -> tuple[str, bool] | None:
+    """The text of a comparison's bound squared, for a fix, and whether the bound is known to be
+    >= 0 (squaring both sides keeps the comparison only then): the folded square of a constant
+    (None for a negative one), `r * r` for a name or field `r`; None for any other bound (its
+    square written out would compute it twice)."""
+    from ..fixes.build import node_text
+
+    nums = numbers(ctx.model.const_value(bound))
+    if len(nums) == 1:
+        return (squared(ctx.model, bound), True) if nums[0] >= 0 else None
+    r = node_text(ctx, bound)
+    if r is None or not is_atom(bound) or len(nums) > 1:
+        return None
+    lo = fn.value_range(bound)[0]
+    return f"{r} * {r}", lo is not None and lo >= 0

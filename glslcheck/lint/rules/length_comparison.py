@@ -26,13 +26,15 @@ if (distSq <= radius * radius) inCircle = 1.0;
 
 from __future__ import annotations
 
-from ...base.diagnostics import Diagnostic
-from ._text import compared_calls, squared, text
+from ..fixes import Fix, Fixable
+from ..fixes.build import declare_before, facts_of, fit, name_hint, node_text, operand_text, replace
+from ._text import compared_calls, is_atom, squared, squared_bound, text
 
 TYPE_CHECKING = False  # not typing's: importing typing costs every start-up
 if TYPE_CHECKING:
     from collections.abc import Iterator
 
+    from ...base.diagnostics import Diagnostic
     from ..engine import LintContext
 
 NAME = "length-comparison"
@@ -53,8 +55,52 @@ def check(ctx: LintContext) -> Iterator[Diagnostic]:
         else:
             a, b = text(side.args[0]), text(side.args[1])
             fix = f"compare the squared distance: with d = {a} - {b}, dot(d, d) {op} {bound}"
-        yield Diagnostic(
+        yield Fixable(
             f"{side.callee}() is compared with a bound: its square root is not needed",
             side.loc,
             help=fix,
+            fix=_fix(ctx, side, other),
         )
+
+
+def _fix(ctx: LintContext, side, other) -> Fix | None:
+    """`dot(v, v) < r * r` for `length(v) < r` (v in a local first when it is not a name; for
+    `distance(a, b)` the local is `a - b`): the same comparison when the bound is >= 0."""
+    fn = facts_of(ctx, side)
+    bound = squared_bound(ctx, fn, other) if fn is not None else None
+    if bound is None:
+        return None
+    bound_text, nonneg = bound
+    edits = []
+    v = side.args[0]
+    if side.callee == "length" and is_atom(v):
+        name = node_text(ctx, v)
+    else:
+        if side.callee == "length":
+            value, hint = node_text(ctx, v), name_hint(v)
+        else:
+            a, b = operand_text(ctx, side.args[0], 13), operand_text(ctx, side.args[1], 14)
+            value = None if a is None or b is None else f"{a} - {b}"
+            to = name_hint(side.args[1])
+            hint = name_hint(side.args[0]) + "To" + to[0].upper() + to[1:]
+        if value is None:
+            return None
+        found = declare_before(ctx, fn, side, fn.model.type_of(v), value, hint)
+        if found is None:
+            return None
+        name, insert = found
+        edits.append(insert)
+    if name is None:
+        return None
+    edits.append(replace(side, f"dot({name}, {name})"))
+    edits.append(replace(other, fit(fn, other, bound_text, 14 if "*" in bound_text else 17)))
+    return Fix(
+        f"compare dot({name}, {name}) with {bound_text}",
+        ctx.path,
+        tuple(edits),
+        "safe" if nonneg else "unsafe",
+        ""
+        if nonneg
+        else f"squaring keeps the comparison only for a bound >= 0, and "
+        f"'{text(other)}' may be negative",
+    )

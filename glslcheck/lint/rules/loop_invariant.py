@@ -41,6 +41,8 @@ from __future__ import annotations
 from ...base.diagnostics import Diagnostic
 from ...frontend import syntax as A
 from ...semantics.analysis import program_facts
+from ..fixes import Fix, Fixable
+from ..fixes.build import declare_before, name_hint, node_text, replace_with_name, statement_of
 from ._text import text
 
 TYPE_CHECKING = False  # not typing's: importing typing costs every start-up
@@ -59,10 +61,10 @@ _LOOP_WORD: dict[type, str] = {A.For: "for", A.While: "while", A.DoWhile: "do-wh
 
 def check(ctx: LintContext) -> Iterator[Diagnostic]:
     for fn in program_facts(ctx.model).in_file(ctx.path):
-        yield from _check_function(fn)
+        yield from _check_function(fn, ctx)
 
 
-def _check_function(fn) -> Iterator[Diagnostic]:
+def _check_function(fn, ctx: LintContext) -> Iterator[Diagnostic]:
     reported_spans: list[tuple[int, int]] = []
     targets = {id(n.target) for n in fn.nodes if type(n) is A.Assignment}
     found = []
@@ -116,10 +118,33 @@ def _check_function(fn) -> Iterator[Diagnostic]:
             else "lines " + ", ".join(map(str, lines[:-1])) + f" and {lines[-1]}"
         )
         times = "" if len(places) == 1 else f" (computed {len(places)} times in it, at {where})"
-        yield Diagnostic(
+        yield Fixable(
             f"'{text(n)}' has the same value on every iteration of the {_LOOP_WORD[type(loop)]} "
             f"loop at line {loop.loc.line}{times}",
             n.loc,
             help="compute it once before the loop, in a local variable, and use that inside",
             notes=[Diagnostic("also computed here", p.loc, severity="note") for p, _ in places[1:]],
+            fix=_fix(ctx, fn, loop, [p for p, _ in places]),
         )
+
+
+def _fix(ctx: LintContext, fn, loop, places: list) -> Fix | None:
+    """The value computed once into a local declared before the loop (a statement of a block),
+    read at every place the loop computed it."""
+    value = node_text(ctx, places[0])
+    found = statement_of(fn, loop)
+    if value is None or found is None or found[0] is not loop:
+        return None
+    if any(node_text(ctx, p) is None for p in places):
+        return None
+    declared = declare_before(
+        ctx, fn, loop, fn.model.type_of(places[0]), value, name_hint(places[0]), places
+    )
+    if declared is None:
+        return None
+    name, insert = declared
+    return Fix(
+        f"compute it once before the loop, into '{name}'",
+        ctx.path,
+        (insert, *(replace_with_name(ctx, p, name) for p in places)),
+    )

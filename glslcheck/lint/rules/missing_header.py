@@ -55,6 +55,8 @@ import re
 from ...base.diagnostics import Diagnostic
 from ...base.regexes import compiled
 from ...shadertoy.sources import path_name, path_stem, tab_name
+from ..fixes import Fixable
+from ..fixes.header import header_fix
 from ..textscan import BLANK, COMMENT, DIRECTIVE
 from .missing_credit import has_credit
 
@@ -350,9 +352,27 @@ def check(ctx: LintContext) -> Iterator[Diagnostic]:
         )
     else:
         message = "the header names no student: the file's author information is missing"
-    yield Diagnostic(
+    # the template's missing part: the whole header, or the contributors' line after it
+    missing = None if text is None else ["lists no contributors with what each did"]
+    yield Fixable(
         message,
         ctx.location(1, 1),
         help=f"open the file with a comment such as `// {name}: <what it does>` and "
         "`// Contributors: <name>: <what they did>; ...`",
+        fix=header_fix(ctx, missing, _header_end(ctx)),
     )
+
+
+def _header_end(ctx) -> int | None:
+    """The last line of the header's comments (before the first code line), or None."""
+    first_code = next(
+        (
+            i
+            for i, k in enumerate(ctx.line_kinds, start=1)
+            if k not in (BLANK, COMMENT, DIRECTIVE)
+            and not ctx.lines[i - 1].lstrip().startswith("#")
+        ),
+        len(ctx.line_kinds) + 1,
+    )
+    ends = [c.end_line for c in ctx.comments if c.line < first_code and not c.is_directive]
+    return max(ends) if ends else None

@@ -58,6 +58,8 @@ from ...frontend import syntax as A
 from ...language import glsl_types as T
 from ...semantics.analysis import builtin_call, calls_in, program_facts
 from ...semantics.model import Constructor, Symbol
+from ..fixes import Fix, Fixable
+from ..fixes.build import facts_of, fit, node_text, operand_text, replace
 from ._text import text, wrap
 
 TYPE_CHECKING = False  # not typing's: importing typing costs every start-up
@@ -92,8 +94,34 @@ def check(ctx: LintContext) -> Iterator[Diagnostic]:
                 found = _already_measured(fn, node, known)
             found = found or _sphere_normal(fn, node, v)
             if found is not None:
-                message, fix = found
-                yield Diagnostic(message, node.loc, help=fix)
+                message, fix, by = found
+                yield Fixable(message, node.loc, help=fix, fix=_fix(ctx, node, v, by))
+
+
+_NAME_OR_NUMBER = r"[A-Za-z_][\w.]*|[0-9][0-9.eE+\-]*"
+
+
+def _fix(ctx: LintContext, node, v, by: tuple[str, str] | None) -> Fix | None:
+    """`v / r` (the radius, or the length already held in a variable) or `v * inversesqrt(s)`
+    (the squared length held in a variable) in place of the normalize."""
+    import re
+
+    fn = facts_of(ctx, node)
+    if by is None or fn is None:
+        return None
+    how, value = by
+    if value.endswith("...") or node_text(ctx, node) is None:
+        return None  # a radius too long to name here, or a normalize from a macro
+    vt = operand_text(ctx, v, 14)
+    if vt is None:
+        return None
+    if how == "inversesqrt":
+        new = f"{vt} * inversesqrt({value})"
+    else:
+        new = f"{vt} / {value if re.fullmatch(_NAME_OR_NUMBER, value) else f'({value})'}"
+    return Fix(
+        f"replace the normalize with {new}", ctx.path, (replace(node, fit(fn, node, new, 14)),)
+    )
 
 
 def _is_normalize(fn, call: A.Call) -> bool:
@@ -199,7 +227,7 @@ def _stored_in(fn, e) -> str | None:
     return None
 
 
-def _already_measured(fn, call: A.Call, known: list) -> tuple[str, str] | None:
+def _already_measured(fn, call: A.Call, known: list) -> tuple[str, str, Any] | None:
     v = call.args[0]
     kv = fn.key(v)
     ops = fn.operands(v)
@@ -215,14 +243,20 @@ def _already_measured(fn, call: A.Call, known: list) -> tuple[str, str] | None:
             c = root  # sqrt(dot(v, v)): the length, written by hand
         name = _stored_in(fn, c)
         value = name or text(c)
+        # a fix reads the variable holding the length, when nothing writes it before the call
+        held = name is not None and not fn.written_between(
+            fn.parent[id(c)], call, [fn.model.symbol_of(fn.parent[id(c)])]
+        )
         if c.callee == "dot":
             return (
                 f"normalize() recomputes dot(v, v), already computed at line {c.loc.line}",
                 f"multiply by its reciprocal square root: {wrap(v)} * inversesqrt({value})",
+                ("inversesqrt", name) if held else None,
             )
         return (
             f"normalize() of a vector whose length is already computed at line {c.loc.line}",
             f"divide by that length: {wrap(v)} / {value if name else wrap(c)}",
+            ("divide", name) if held else None,
         )
     return None
 
@@ -239,7 +273,7 @@ def _difference(fn, v) -> A.Binary | None:
     return None
 
 
-def _sphere_normal(fn, call, v) -> tuple[str, str] | None:
+def _sphere_normal(fn, call, v) -> tuple[str, str, Any] | None:
     """`normalize(p - c)` where p provably lies on the sphere of center c: p is a ray's point
     `o + t * d` with t the hit of that ray with that sphere (a user function that intersects a
     sphere, called with the same origin, direction and center), or `c + r * normalize(u)`.
@@ -261,6 +295,7 @@ def _sphere_normal(fn, call, v) -> tuple[str, str] | None:
     return (
         f"{name} of {text(diff)}, {why}: its length is the radius, {radius}",
         f"divide by the radius: {wrap(v)} / {radius}",
+        ("divide", radius),
     )
 
 

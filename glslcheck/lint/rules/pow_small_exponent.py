@@ -29,14 +29,25 @@ float fresnel = k2 * k2;
 
 from __future__ import annotations
 
-from ...base.diagnostics import Diagnostic
 from ...semantics.analysis import builtin_calls, numbers
+from ..fixes import Fix, Fixable
+from ..fixes.build import (
+    declare_before,
+    facts_of,
+    fit,
+    name_hint,
+    node_text,
+    operand_text,
+    precedence,
+    replace,
+)
 from ._text import is_atom, text, wrap
 
 TYPE_CHECKING = False  # not typing's: importing typing costs every start-up
 if TYPE_CHECKING:
     from collections.abc import Iterator
 
+    from ...base.diagnostics import Diagnostic
     from ..engine import LintContext
 
 NAME = "pow-small-exponent"
@@ -77,8 +88,67 @@ def check(ctx: LintContext) -> Iterator[Diagnostic]:
         e = values[0]
         shown = f"{e:g}" if e != int(e) else f"{int(e)}"
         via = f" (through `{through.name}`)" if through is not None else ""
-        yield Diagnostic(
+        yield Fixable(
             f"pow() with the constant exponent {shown}{via} costs two transcendentals",
             node.loc,
             help=f"write {fix}",
+            fix=_fix(ctx, node, e),
         )
+
+
+_MUL = 14  # the printer's precedence of `*` and `/`
+
+
+def _fix(ctx: LintContext, node, e: float) -> Fix | None:
+    """`x * x` for pow(x, 2.0) (a local first when x is not a name), `sqrt(x)` for 0.5, ...:
+    the same value where pow is defined (x >= 0); where x may be negative pow is undefined and
+    the rewrite is not, so the fix is unsafe there."""
+    fn = facts_of(ctx, node)
+    base = node.args[0]
+    x = node_text(ctx, base)
+    if fn is None or x is None:
+        return None
+    edits = []
+    if e in (0.5, -0.5):
+        new, binds = f"{'sqrt' if e > 0 else 'inversesqrt'}({x})", 16
+    elif e == 1.0:
+        new, binds = x, precedence(base)
+    elif e == -1.0:
+        new, binds = f"1.0 / {operand_text(ctx, base, _MUL + 1)}", _MUL
+    else:
+        v = operand_text(ctx, base, _MUL + 1)
+        kind = fn.model.type_of(base)
+        if not is_atom(base):
+            found = declare_before(ctx, fn, node, kind, x, name_hint(base))
+            if found is None:
+                return None
+            v, insert = found
+            edits.append(insert)
+        if e == 4.0:
+            hint = (name_hint(base) if is_atom(base) else v) + "Sq"
+            found = declare_before(ctx, fn, node, kind, f"{v} * {v}", hint)
+            if found is None:
+                return None
+            v2, insert = found
+            edits.append(insert)
+            new = f"{v2} * {v2}"
+        else:
+            new = " * ".join([v] * int(e))
+        binds = _MUL
+    edits.append(replace(node, fit(fn, node, new, binds)))
+    nonneg = e in (0.5, -0.5) or _nonnegative(fn, base)
+    return Fix(
+        f"replace the pow() call with {new}",
+        ctx.path,
+        tuple(edits),
+        "safe" if nonneg else "unsafe",
+        ""
+        if nonneg
+        else "pow() is undefined for a negative base and the rewrite is not: the "
+        "picture changes wherever the base is negative",
+    )
+
+
+def _nonnegative(fn, e) -> bool:
+    lo = fn.value_range(e)[0]
+    return lo is not None and lo >= 0

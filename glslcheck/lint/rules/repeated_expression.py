@@ -59,6 +59,8 @@ from __future__ import annotations
 from ...base.diagnostics import Diagnostic
 from ...frontend import syntax as A
 from ...semantics.analysis import program_facts, written_variable
+from ..fixes import Fix, Fixable
+from ..fixes.build import local_for, node_text, replace_with_name
 from ._text import text
 
 TYPE_CHECKING = False  # not typing's: importing typing costs every start-up
@@ -103,7 +105,7 @@ _LEAVES = (A.Identifier, A.FloatLiteral, A.IntLiteral, A.BoolLiteral)
 
 def check(ctx: LintContext) -> Iterator[Diagnostic]:
     for fn in program_facts(ctx.model).in_file(ctx.path):
-        yield from _check_function(fn)
+        yield from _check_function(fn, ctx)
 
 
 def _within_chains(fn, groups: dict) -> dict[int, object]:
@@ -154,7 +156,7 @@ def _places(nodes) -> str:
     return "lines " + ", ".join(map(str, lines[:-1])) + f" and {lines[-1]}"
 
 
-def _check_function(fn) -> Iterator[Diagnostic]:
+def _check_function(fn, ctx: LintContext) -> Iterator[Diagnostic]:
     groups: dict = {}
     targets = {id(n.target) for n in fn.nodes if type(n) is A.Assignment}
     for n in fn.nodes:
@@ -232,10 +234,16 @@ def _check_function(fn) -> Iterator[Diagnostic]:
                 parts.setdefault(k, []).append(n)
         holder = _holder(fn, first) if within.get(id(first)) != key else None
         sym = _holder_symbol(fn, first) if holder else None
-        if holder and sym is not None and not fn.written_between(fn.parent[id(first)], b, [sym]):
+        reuse = (
+            holder and sym is not None and not fn.written_between(fn.parent[id(first)], b, [sym])
+        )
+        if reuse:
             fix = f"reuse '{holder}', which holds this value since line {first.loc.line}"
         else:
             fix = "compute it once into a local variable (named for what it is) and reuse that"
+        edit = None
+        if len(parts) == 0 and all(within.get(id(n)) != key for n in same):
+            edit = _fix(ctx, fn, same, holder if reuse else None, sym)
         times = "twice" if len(same) == 2 else f"{len(same)} times"
         message = (
             f"'{text(sample[key])}' is computed {times}, with the same value, at {_places(same)}"
@@ -251,4 +259,25 @@ def _check_function(fn) -> Iterator[Diagnostic]:
                     "also computed here" if k == key else f"'{text(sample[k])}' also computed here"
                 )
                 notes.append(Diagnostic(what, n.loc, severity="note"))
-        yield Diagnostic(message, b.loc, help=fix, notes=notes)
+        yield Fixable(message, b.loc, help=fix, notes=notes, fix=edit)
+
+
+def _fix(ctx: LintContext, fn, same: list, holder: str | None, sym) -> Fix | None:
+    """Every later computation of the value replaced by the variable that holds it: `holder`
+    (still holding it at each of them), else a new local declared before the first's statement
+    (`build.local_for`, named after what the expression reads)."""
+    first, repeats = same[0], same[1:]
+    if holder is not None:
+        decl = fn.parent[id(first)]
+        if any(fn.written_between(decl, b, [sym]) for b in repeats) or any(
+            node_text(ctx, b) is None for b in repeats
+        ):
+            return None
+        return Fix(
+            f"reuse '{holder}'", ctx.path, tuple(replace_with_name(ctx, b, holder) for b in repeats)
+        )
+    found = local_for(ctx, fn, first, repeats)
+    if found is None:
+        return None
+    name, edits = found
+    return Fix(f"compute it once into '{name}'", ctx.path, tuple(edits))

@@ -22,13 +22,15 @@ if (distSq < radius * radius) hit = 1.0;
 
 from __future__ import annotations
 
-from ...base.diagnostics import Diagnostic
-from ._text import compared_calls, squared, text
+from ..fixes import Fix, Fixable
+from ..fixes.build import facts_of, fit, node_text, precedence, replace
+from ._text import compared_calls, squared, squared_bound, text
 
 TYPE_CHECKING = False  # not typing's: importing typing costs every start-up
 if TYPE_CHECKING:
     from collections.abc import Iterator
 
+    from ...base.diagnostics import Diagnostic
     from ..engine import LintContext
 
 NAME = "sqrt-comparison"
@@ -43,8 +45,38 @@ def check(ctx: LintContext) -> Iterator[Diagnostic]:
         return
     for side, other, op in compared_calls(model, ctx.path, "sqrt"):
         x, bound = text(side.args[0]), squared(model, other)
-        yield Diagnostic(
+        yield Fixable(
             "sqrt() is compared with a bound: compare its argument with the squared bound",
             side.loc,
             help=f"write {x} {op} {bound} (for a bound >= 0)",
+            fix=_fix(ctx, side, other),
         )
+
+
+def _fix(ctx: LintContext, side, other) -> Fix | None:
+    """`x < r * r` for `sqrt(x) < r`: the same comparison when x >= 0 (else sqrt is NaN and
+    every comparison false) and r >= 0."""
+    fn = facts_of(ctx, side)
+    bound = squared_bound(ctx, fn, other) if fn is not None else None
+    x = side.args[0]
+    x_text = node_text(ctx, x)
+    if bound is None or x_text is None:
+        return None
+    bound_text, nonneg = bound
+    lo = fn.value_range(x)[0]
+    x_nonneg = lo is not None and lo >= 0
+    why = []
+    if not nonneg:
+        why.append(f"the bound '{text(other)}' may be negative")
+    if not x_nonneg:
+        why.append(f"'{text(x)}' may be negative, where sqrt() is NaN and the comparison false")
+    return Fix(
+        f"compare {text(x)} with {bound_text}",
+        ctx.path,
+        (
+            replace(side, fit(fn, side, x_text, precedence(x))),
+            replace(other, fit(fn, other, bound_text, 14 if "*" in bound_text else 17)),
+        ),
+        "unsafe" if why else "safe",
+        " and ".join(why),
+    )

@@ -35,14 +35,16 @@ vec3 lightPosition(in float time)
 
 from __future__ import annotations
 
-from ...base.diagnostics import Diagnostic
 from ...frontend import syntax as A
 from ...semantics.analysis import program_facts
+from ..fixes import Fixable
+from ..fixes.uniforms import uniform_fix
 
 TYPE_CHECKING = False  # not typing's: importing typing costs every start-up
 if TYPE_CHECKING:
     from collections.abc import Iterator
 
+    from ...base.diagnostics import Diagnostic
     from ..engine import LintContext
 
 NAME = "uniform-outside-mainimage"
@@ -58,6 +60,7 @@ def check(ctx: LintContext) -> Iterator[Diagnostic]:
     model = ctx.model
     if model is None:  # (no semantic model: no function has facts)
         return
+    fixes: dict[int, object] = {}  # one fix per uniform, shared by its findings
     for fn in program_facts(model).in_file(ctx.path, with_broken=True):
         name = fn.definition.proto.name
         if name == ENTRY:
@@ -70,8 +73,11 @@ def check(ctx: LintContext) -> Iterator[Diagnostic]:
                 sym.kind == "uniform" or (sym.kind == "global" and sym.qualifier == "uniform")
             ):
                 continue
-            yield Diagnostic(
+            if id(sym) not in fixes:
+                fixes[id(sym)] = uniform_fix(ctx, sym)
+            yield Fixable(
                 f"the uniform '{node.name}' is read in '{name}', not in mainImage",
                 node.loc,
                 help=f"add a parameter to '{name}' and pass {node.name} to it from mainImage",
+                fix=fixes[id(sym)],
             )
