@@ -67,8 +67,9 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     parser.add_argument(
         "--fix",
         action="store_true",
-        help="apply the fixes proven safe: each rewritten file must compile, lose the finding, "
-        "gain no other, and render the same as before (verify's frames and tolerance, NumPy backend)",
+        help="apply the fixes proven safe: each rewritten file must compile, lose the "
+        "finding, gain no other, and render the same as before (verify's frames and "
+        "tolerance, NumPy backend)",
     )
     parser.add_argument(
         "--unsafe-fixes",

@@ -352,8 +352,11 @@ def check(ctx: LintContext) -> Iterator[Diagnostic]:
         )
     else:
         message = "the header names no student: the file's author information is missing"
-    # the template's missing part: the whole header, or the contributors' line after it
-    missing = None if text is None else ["lists no contributors with what each did"]
+    # the template: the whole header, or after the existing one the parts it lacks, contributors
+    # always (no student is named)
+    missing = missing_parts(ctx, authors=0)
+    if missing is not None:
+        missing.append("lists no contributors with what each did")
     yield Fixable(
         message,
         ctx.location(1, 1),
