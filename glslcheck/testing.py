@@ -45,6 +45,10 @@ from .verification.compare import DEFAULT_ABS_TOL, NAN_COLOUR, Comparison, compa
 from .verification.grade.closeness import CLOSE_PSNR_DB
 from .verification.verify import compile_backend
 
+TYPE_CHECKING = False  # not typing's: importing typing costs every start-up
+if TYPE_CHECKING:
+    from typing import Any
+
 DEFAULT_SIZE = (320, 180)
 
 
@@ -114,7 +118,8 @@ class ShaderCheck:
         self.size = (int(size[0]), int(size[1]))
         self.backend = backend
         self._diff_dir = Path(diff_dir) if diff_dir is not None else None
-        self._programs: dict[tuple, object] = {}
+        # compile_backend's programs: a backend's Program, or a driver's own (no common type)
+        self._programs: dict[tuple, Any] = {}
 
     @property
     def diff_dir(self) -> Path:

@@ -143,7 +143,8 @@ def verify_against_webgl(
                     verdict, plain, drivers = driver_verdict(
                         numpy_img, webgl_img, gl_img, undefined=mask, **options
                     )
-                    if verdict.undefined_pixels:
+                    # compare sets the mask of the pixels it counts
+                    if verdict.undefined_pixels and verdict.undefined_mask is not None:
                         verdict.undefined_lines = undefined.lines(inputs, verdict.undefined_mask)
             if progress is not None:
                 progress.step(f"{name} t={spec.time:g}")

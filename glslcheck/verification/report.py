@@ -317,7 +317,8 @@ def gather(
                 undefined = side.mask(inputs, r[a])
                 if undefined is not None:
                     c = compare(r[a], r[b], undefined=undefined)
-                    if c.undefined_pixels:
+                    # compare sets the mask of the pixels it counts
+                    if c.undefined_pixels and c.undefined_mask is not None:
                         c.undefined_lines = side.lines(inputs, c.undefined_mask)
             report.pairs.append((a, b, c, ""))
     _nan_origins(report, size, time)

@@ -330,7 +330,8 @@ def verify_frames(
                         comparison.unstable_lines = unstable_lines(
                             shader, comparison, w_h, spec, tuple(mouse), date
                         )
-                    if comparison.undefined_pixels:
+                    # compare sets the mask of the pixels it counts
+                    if comparison.undefined_pixels and comparison.undefined_mask is not None:
                         comparison.undefined_lines = undefined.lines(
                             render, comparison.undefined_mask
                         )

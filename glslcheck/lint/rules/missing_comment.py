@@ -264,7 +264,7 @@ class _Reader:
         self.macro = False  # the last preprocessor line ended with a backslash
 
     def explains(self, number: int) -> bool:
-        return _line_explains(self.on_line.get(number, ()), number)
+        return _line_explains(self.on_line.get(number, []), number)
 
     def close_run(self) -> None:
         if self.run is not None:
@@ -300,7 +300,9 @@ class _Reader:
         text = " ".join(self.code[n - 1].strip() for n in lines)
         self.last_head = text
         top = self.start_depth == 0
-        header = top and (_SIGNATURE_RE.match(text) is not None or _STRUCT_RE.match(text))
+        header = top and (
+            _SIGNATURE_RE.match(text) is not None or _STRUCT_RE.match(text) is not None
+        )
         if header and self.cover is None and self.above is not None:
             name = _NAME_RE.search(text.split("(")[0] + "(")
             if name and re.search(rf"\b{re.escape(name.group(1))}\b", self.above.text):
@@ -312,6 +314,7 @@ class _Reader:
         cover = self.cover
         covered = cover is not None and cover.left > 0
         if covered and not (in_struct or header):
+            assert cover is not None  # covered: a cover with lines left
             cover.left -= 1
         own = self.own_comment(lines)
         if own and (header or _HEADER_RE.match(text)):

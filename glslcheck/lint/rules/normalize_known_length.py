@@ -629,12 +629,15 @@ def _local_radius(model, d: A.FunctionDefinition, e) -> A.Expr | None:
     return value if names else None
 
 
-def _expression_text(call: A.Call, params: list[str], value: A.Expr) -> str | None:
+def _expression_text(call: A.Call, params: list[str | None], value: A.Node) -> str | None:
     """`value` (an expression of the callee's parameters) as the caller writes it: each
     parameter replaced by the argument the call passes."""
     out = text(value)
     for name, arg in zip(params, call.args):
-        out = re.sub(rf"(?<![.\w]){re.escape(name)}\b", lambda _m, a=arg: wrap(a), out)
+        if name is None:
+            continue  # an unnamed parameter: the expression cannot name it
+        argument = wrap(arg)  # returned by a function, so that re.sub reads no escapes in it
+        out = re.sub(rf"(?<![.\w]){re.escape(name)}\b", lambda _m: argument, out)
     return out if type(value) in (A.Identifier, A.Call, A.Field) else f"({out})"
 
 

@@ -64,8 +64,11 @@ NEEDS = "ast"
 
 
 def check(ctx: LintContext) -> Iterator[Diagnostic]:
-    for fn in program_facts(ctx.model).in_file(ctx.path):
-        for u in unassigned_reads(ctx.model, fn.definition):
+    model = ctx.model
+    if model is None:
+        return
+    for fn in program_facts(model).in_file(ctx.path):
+        for u in unassigned_reads(model, fn.definition):
             if u.kind != "out-parameter":
                 continue
             name = u.node.name

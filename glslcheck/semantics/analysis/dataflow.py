@@ -30,7 +30,7 @@ from .values import ValueRanges, numbers
 TYPE_CHECKING = False  # not typing's: importing typing costs every start-up
 if TYPE_CHECKING:
     from collections.abc import Iterable, Iterator
-    from typing import Any
+    from typing import Any, overload
 
 
 def written_variable(model: Model, target: A.Expr) -> tuple[Symbol | None, bool]:
@@ -151,6 +151,16 @@ class ProgramFacts:
 
 
 _CACHE: dict[str, Any] = {"model": None, "facts": None}
+
+
+if TYPE_CHECKING:  # a model's facts are a ProgramFacts; only no model gives none
+
+    @overload
+    def program_facts(model: Model) -> ProgramFacts: ...
+    @overload
+    def program_facts(model: None) -> _NoFacts: ...
+    @overload
+    def program_facts(model: Model | None) -> ProgramFacts | _NoFacts: ...
 
 
 def program_facts(model: Model | None) -> ProgramFacts | _NoFacts:

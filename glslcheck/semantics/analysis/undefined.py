@@ -49,6 +49,7 @@ from .dataflow import builtin_call, param_directions, written_variable
 
 TYPE_CHECKING = False  # not typing's: importing typing costs every start-up
 if TYPE_CHECKING:
+    from collections.abc import Callable
     from typing import Any
 
 KINDS = (
@@ -179,8 +180,9 @@ def _assignment(model: Model, definition: A.FunctionDefinition) -> tuple[list, l
             sym = model.symbol_of(p)
             if sym is None or tracked.get(id(sym), ("", None))[0] != "out-parameter":
                 continue
-            where = next((r for r, st in exits if id(sym) not in st), False)
-            if where is not False:
+            unwritten_at = [r for r, st in exits if id(sym) not in st]
+            if unwritten_at:
+                where = unwritten_at[0]  # a return statement, or None: the body's end
                 loc = where.loc if where is not None else _end(definition)
                 unwritten.append(
                     UndefinedRead(
@@ -277,12 +279,16 @@ class _Flow:
             return _meet(self.stmt(s.then, set(st)), self.stmt(s.else_, set(st)) if s.else_ else st)
         if t in (A.For, A.While):
             st = self.stmt(s.init, st) if t is A.For else st
+            # a for's init is a declaration or an expression statement: it never ends the path
+            assert st is not None
             forever = s.cond is None or self.model.const_value(s.cond) is True
             once = t is A.For and _runs_once(self.model, s)
             st = self.cond(s.cond, st)
-            self.frames.append(([], []))
+            breaks: list = []
+            continues: list = []
+            self.frames.append((breaks, continues))
             body = self.stmt(s.body, set(st))
-            breaks, continues = self.frames.pop()
+            self.frames.pop()
             step_st = _meet(body, _meet_all(continues))
             if step_st is not None and t is A.For and s.step is not None:
                 self.expr(s.step, step_st)
@@ -293,9 +299,10 @@ class _Flow:
                 return _meet_all(breaks)
             return _meet(step_st, _meet_all(breaks)) if once else st
         if t is A.DoWhile:
-            self.frames.append(([], []))
+            breaks, continues = [], []
+            self.frames.append((breaks, continues))
             body = self.stmt(s.body, st)
-            breaks, continues = self.frames.pop()
+            self.frames.pop()
             at_cond = _meet(body, _meet_all(continues))
             after = self.expr(s.cond, at_cond) if at_cond is not None else None
             if after is not None and self.model.const_value(s.cond) is True:
@@ -303,7 +310,8 @@ class _Flow:
             return _meet(after, _meet_all(breaks))
         if t is A.Switch:
             st = self.expr(s.expr, st)
-            self.frames.append(([], None))
+            breaks = []
+            self.frames.append((breaks, None))
             cur: set | None = None
             has_default = False
             for x in s.body:
@@ -312,7 +320,7 @@ class _Flow:
                     cur = set(st) if cur is None else _meet(cur, set(st))
                     continue
                 cur = self.stmt(x, cur) if cur is not None else None
-            breaks, _ = self.frames.pop()
+            self.frames.pop()
             out = _meet(_meet_all(breaks), cur)
             if not has_default:
                 out = _meet(out, st)
@@ -327,9 +335,9 @@ class _Flow:
                 self.frames[-1][0].append(st)
             return None
         if t is A.Continue:
-            loops = [f for f in self.frames if f[1] is not None]
+            loops = [cs for _, cs in self.frames if cs is not None]
             if loops:
-                loops[-1][1].append(st)
+                loops[-1].append(st)
             return None
         if t is A.Discard:
             return None
@@ -386,7 +394,7 @@ class _Flow:
             return self.target(e.operand, st, reads=False)
         if t is A.Ternary:
             st = self.expr(e.cond, st)
-            return _meet(self.expr(e.then, set(st)), self.expr(e.else_, set(st)))
+            return self.expr(e.then, set(st)) & self.expr(e.else_, set(st))  # both paths
         if t is A.Binary and e.op in ("&&", "||"):
             st = self.expr(e.left, st)
             self.expr(e.right, set(st))
@@ -470,7 +478,7 @@ INT_RANGE = (-(2**31), 2**31)  # [lo, hi) of a 32-bit int, the range int(x) is d
 UINT_RANGE = (0, 2**32)
 SHIFT_BITS = 32  # int and uint are 32-bit (highp; Shadertoy's prelude sets highp int)
 # built-in -> (the test of its constant arguments that makes it undefined, why), spec 8.2
-_DOMAINS = {
+_DOMAINS: dict[str, tuple[int, Callable[..., bool], str]] = {
     "pow": (
         2,
         lambda x, y: x < 0 or (x == 0 and y <= 0),

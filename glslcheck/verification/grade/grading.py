@@ -137,8 +137,8 @@ def _grade_checkout(
             img = program.render(size=options.size, time=t)
         except GlslError as e:  # over the frame budget, a runaway loop: at its line
             grade.errors = [_source_error(d, where) for d in e.diagnostics]
-            first = grade.errors[0] if grade.errors else "the render failed"
-            _fail(grade, f"render at iTime {t:g} failed: {first}")
+            cause = grade.errors[0] if grade.errors else "the render failed"
+            _fail(grade, f"render at iTime {t:g} failed: {cause}")
             return
         images.append(img)
         ref = reference.images[i] if reference else None

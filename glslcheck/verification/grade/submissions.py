@@ -285,7 +285,7 @@ def submission_shader(root: str, path: str | None = None) -> Shader:
             + (f"; found only {found}" if found else "")
         )
     if len(with_image) > 1:
-        entry = [s for s in with_image if "mainImage" in s.image.text]
+        entry = [s for s in with_image if s.image is not None and "mainImage" in s.image.text]
         if len(entry) == 1:
             return entry[0]
         names = ", ".join(s.root for s in (entry or with_image))

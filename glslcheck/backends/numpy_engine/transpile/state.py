@@ -19,6 +19,7 @@ if TYPE_CHECKING:
     from typing import Any
 
     from ....frontend import syntax as A
+    from ....semantics.analysis import UndefinedRead
     from ....semantics.model import Model, Symbol
     from ...cpu_core.facts import Facts, SideEffects
     from ...cpu_core.uniformity import Uniformity
@@ -92,6 +93,9 @@ class TranspilerState:
         # Set up by Transpiler.__init__ (see there).
         COMPACT_MIN_NODES: int
         keep_alpha: bool
+        undefined: str  # what undefined reads see: "zero" (WebGL's) or "vary"
+        # id(origin node) -> its undefined read, for the origins "vary" draws a value for
+        undefined_origins: dict[int, UndefinedRead]
         model: Model
         path: str
         entry: Any
@@ -137,6 +141,7 @@ class TranspilerState:
         def const_float(self, v: float, v32: float | None = None) -> str: ...
         def const_int(self, v: int, unsigned: bool) -> str: ...
         def const_bool(self, v: bool) -> str: ...
+        def initial(self, t: Any, node: Any, mask: str | None = None) -> str: ...
         def zero(self, t: Any, node: Any, lead: tuple[int, ...] = ()) -> str: ...
 
         # Functions (functions.py)
