@@ -77,9 +77,9 @@ class Outcome:
     proven: bool = False
     reason: str = ""
     lines: tuple[int, ...] = ()  # its findings' lines in the file as it was read
-    tried: bool = (
-        False  # proven (or tried to be): not an unsafe fix left out without --unsafe-fixes
-    )
+    # proven (or tried to be): not an unsafe fix left out without --unsafe-fixes
+    tried: bool = False
+    renders_same: bool = False  # an unsafe fix applied: whether the render stayed the same
 
 
 @dataclass

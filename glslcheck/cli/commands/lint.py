@@ -192,14 +192,14 @@ def _fix(args: argparse.Namespace, overrides: dict) -> int:
                     file=sys.stderr,
                 )
             elif o.reason:
-                how, after = (
+                how, tail = (
                     ("unsafe fix applied", "; the shader renders the same here")
                     if o.renders_same
                     else ("fixed without proof", "")
                 )
                 print(
                     printable(
-                        f"{plan.path}:{line}: {o.rule}: {how} ({o.fix.title}): {o.reason}{after}"
+                        f"{plan.path}:{line}: {o.rule}: {how} ({o.fix.title}): {o.reason}{tail}"
                     ),
                     file=sys.stderr,
                 )
