@@ -42,6 +42,8 @@ if TYPE_CHECKING:
     from collections.abc import Callable
     from typing import Any
 
+    from .fixes import Fix
+
 SARIF_SCHEMA = "https://json.schemastore.org/sarif-2.1.0.json"
 SARIF_VERSION = "2.1.0"
 
@@ -254,9 +256,8 @@ def sarif_level(severity: str, certainty: str | None = None) -> str:
     return {"error": "error", "warning": "warning"}.get(severity, "note")
 
 
-def _sarif_fix(f: Finding, root: str | None) -> dict:
+def _sarif_fix(fix: Fix, root: str | None) -> dict:
     """A SARIF `fix`: the rule's edits as replacements (an insertion is an empty region)."""
-    fix = f.fix
     return {
         "description": {
             "text": f"{fix.title} ({fix.applicability}: `glslcheck lint --fix` applies it once "
@@ -330,7 +331,7 @@ def sarif_document(result: LintResult, root: str | None = None) -> dict:
         if f.rule in index:
             entry["ruleIndex"] = index[f.rule]
         if f.fix is not None:
-            entry["fixes"] = [_sarif_fix(f, root)]
+            entry["fixes"] = [_sarif_fix(f.fix, root)]
         results.append(entry)
     return {
         "$schema": SARIF_SCHEMA,

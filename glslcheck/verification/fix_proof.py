@@ -232,6 +232,12 @@ def _key(fix: Fix, rule: str) -> tuple[str, str]:
     return (rule, fix.title)
 
 
+def _line(f: Finding) -> int:
+    """The line a finding is on (the linter gives every finding a location)."""
+    assert f.loc is not None
+    return f.loc.line
+
+
 def _plan_file(shader, source, choose, every, renders, unsafe, size) -> FilePlan:
     try:
         original = read_file(source.path)
@@ -259,7 +265,7 @@ def _plan_file(shader, source, choose, every, renders, unsafe, size) -> FilePlan
             key = _key(fix, rule)
             if key in outcomes and (outcomes[key].applied or outcomes[key].reason):
                 continue
-            lines = tuple(sorted({to_original.get(f.loc.line, 0) for f in found} - {0}))
+            lines = tuple(sorted({to_original.get(_line(f), 0) for f in found} - {0}))
             outcome = outcomes.setdefault(key, Outcome(fix, rule, len(found), lines=lines))
             outcome.fix = fix
             if fix.applicability != "safe" and not unsafe:
@@ -278,7 +284,7 @@ def _plan_file(shader, source, choose, every, renders, unsafe, size) -> FilePlan
             outcome.reason = "; ".join(why + ([proof.reason] if proof.reason else []))
             if proof.proven or (unsafe and proof.compiles):
                 accepted.append((fix, found, outcome))
-        chosen = []
+        chosen: list[tuple[Fix, list[Finding], Outcome]] = []
         for item in accepted:
             if any(item[0].overlaps(c[0]) for c in chosen):
                 continue  # the next pass offers it again on the new text
@@ -434,7 +440,7 @@ def _comments_changed(old: str, new: str, new_lines: list[int], every, shader, s
         lost = [n for n in _uncovered(f) if mapping.get(n) not in had]
         if lost:
             return (
-                f"a new finding: {f.rule} at line {f.loc.line}: {f.message} (line {lost[0]} "
+                f"a new finding: {f.rule} at line {_line(f)}: {f.message} (line {lost[0]} "
                 "was explained before the fix)"
             )
     return ""
@@ -448,7 +454,7 @@ def _uncovered(f: Finding) -> range:
     43-44)` (its location is the run's first line only)."""
     m = _RUN.search(f.message)
     if m is None:
-        return range(f.loc.line, f.loc.line + 1)
+        return range(_line(f), _line(f) + 1)
     first = int(m.group(1))
     return range(first, int(m.group(2) or first) + 1)
 

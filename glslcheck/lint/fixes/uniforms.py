@@ -35,12 +35,9 @@ def uniform_fix(ctx: LintContext, uniform: Symbol) -> Fix | None:
     alone (a function or call elsewhere, one that does not compile, a call through a macro, a
     function no call chain leads to from mainImage but that is called)."""
     model = ctx.model
+    if model is None:  # no semantic model: no call graph to follow
+        return None
     facts = program_facts(model)
-    by_symbol: dict[int, Any] = {}
-    for d in facts.definitions:
-        sym = model.symbol_of(d.proto)
-        if sym is not None:
-            by_symbol[id(sym)] = d
     readers = []
     for d in facts.definitions:
         if d.proto.name == ENTRY:
@@ -56,10 +53,11 @@ def uniform_fix(ctx: LintContext, uniform: Symbol) -> Fix | None:
         d = work.pop()
         if any(d is n for n in needs):
             continue
-        if d.loc.path != ctx.path or id(d) in facts.broken:
+        fn = model.symbol_of(d.proto)  # None for a definition that did not check
+        if d.loc.path != ctx.path or id(d) in facts.broken or fn is None:
             return None
         needs.append(d)
-        for caller, call in facts.call_sites(model.symbol_of(d.proto)):
+        for caller, call in facts.call_sites(fn):
             sites.append((caller.definition, call))
             if caller.definition.proto.name != ENTRY:
                 work.append(caller.definition)

@@ -106,7 +106,8 @@ def _fix(ctx: LintContext, node, e: float) -> Fix | None:
     fn = facts_of(ctx, node)
     base = node.args[0]
     x = node_text(ctx, base)
-    if fn is None or x is None:
+    operand = operand_text(ctx, base, _MUL + 1)  # x as a factor: parenthesised when it must be
+    if fn is None or x is None or operand is None:
         return None
     edits = []
     if e in (0.5, -0.5):
@@ -114,9 +115,9 @@ def _fix(ctx: LintContext, node, e: float) -> Fix | None:
     elif e == 1.0:
         new, binds = x, precedence(base)
     elif e == -1.0:
-        new, binds = f"1.0 / {operand_text(ctx, base, _MUL + 1)}", _MUL
+        new, binds = f"1.0 / {operand}", _MUL
     else:
-        v = operand_text(ctx, base, _MUL + 1)
+        v = operand
         kind = fn.model.type_of(base)
         if not is_atom(base):
             found = declare_before(ctx, fn, node, kind, x, name_hint(base))

@@ -46,6 +46,7 @@ if TYPE_CHECKING:
 
     from ...base.diagnostics import Diagnostic
     from ..engine import LintContext
+    from ..fixes import Fix
 
 NAME = "uniform-outside-mainimage"
 PENALTY = 1
@@ -60,7 +61,7 @@ def check(ctx: LintContext) -> Iterator[Diagnostic]:
     model = ctx.model
     if model is None:  # (no semantic model: no function has facts)
         return
-    fixes: dict[int, object] = {}  # one fix per uniform, shared by its findings
+    fixes: dict[int, Fix | None] = {}  # one fix per uniform, shared by its findings
     for fn in program_facts(model).in_file(ctx.path, with_broken=True):
         name = fn.definition.proto.name
         if name == ENTRY:
