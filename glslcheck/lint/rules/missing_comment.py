@@ -124,6 +124,9 @@ HELP = "add a comment above saying why these lines are there"
 # Why a run is only a possible deduction: a reading of how far a comment reaches.
 HEADING = "only a section heading explains it, parted from it by a blank line"
 BODY_ONLY = "the function's first body comment says what it does, none stands above it"
+REACH = "whether the function's comment above reaches into a body that has comments of its own"
+LONG_BODY = "only the function's comment above explains its body, which is more than a few lines"
+OVERLOAD = "it is an overload right under one whose comment may explain both"
 
 
 # A comment that only credits or marks ("code from class by ...", "// part 3", "// TEST"):
@@ -162,7 +165,15 @@ CREDIT_RE = compiled(
     r"|starter\s+code|glsl\s+starter|original\s+code|got\s+(?:help|assistance)|help\s+from"
     r"|assistance\s+from|source\s+assistance)"
     r"|(?:(?:code|this|it|functions?)\s+(?:was\s+|is\s+)?)?(?:adapted|borrowed|inspired|taken|copied)"
-    r"\s+(?:from|by)\b)",
+    r"\s+(?:from|by)\b"
+    # "Code by Peter Shirley in ...", "Provided by Dan Buckstein during class", "Based of code ..."
+    r"|(?:(?:base|original)\s+)?(?:code|functions?|framework)\s+(?:was\s+|is\s+)?"
+    r"(?:written\s+|given\s+|provided\s+)?by\s*(?-i:[A-Z])"
+    r"|(?:provided|written|modified|given)\s+by\s*(?-i:[A-Z])|based\s+(?:on|of)\s+(?:of\s+)?code\b"
+    # "These matrices from https://...", "Source for math: ...", "Link: ...", "Copy from Sphere",
+    # "Idea for the wave was gotten from ...", "Used X as math references", "NOT ORIGINAL WORK"
+    r"|(?:\w+\s+){0,4}from\s+(?:https?://|www\.)|sources?\b[^:]{0,20}:|links?\s*:|cop(?:y|ied)\s+from\b"
+    r"|ideas?\b.*\b(?:from|by)\b|(?:\w+\s+){0,8}as\s+(?:\w+\s+)?references?\b|not\s+(?:my\s+)?original\b)",
     re.I,
 )
 
@@ -172,6 +183,7 @@ def explains(text: str) -> bool:
     body = text.strip().strip("/*!").strip()
     return (
         bool(body)
+        and not (body.endswith("?") and len(body.split()) <= 2)  # "efficient?": a question
         and not ATTRIBUTION_RE.match(text)
         and not COMMENTED_CODE_RE.match(body)
         and not CREDIT_RE.match(body)
@@ -220,7 +232,15 @@ _SIGNATURE_RE = compiled(r"^(?:[A-Za-z_]\w*\s+)+[A-Za-z_]\w*\s*\([^;]*\)\s*\{?\s
 _SIGNATURE_START_RE = compiled(r"^(?:[A-Za-z_]\w*\s+)+[A-Za-z_]\w*\s*\(")
 _HEADER_RE = compiled(r"^\}?\s*(?:if|for|while|else\s+if|switch)\s*\(")  # a control header
 _STRUCT_RE = compiled(r"^struct\b")
-SHORT_BODY = 8  # statements of a function its comment above explains whole
+
+
+def _function_name(signature: str) -> str:
+    name = _NAME_RE.search(signature.split("(")[0] + "(")
+    return name.group(1) if name else ""
+
+
+SIMPLE_BODY = 4  # statements of a function its comment above explains whole, with no branch
+SHORT_BODY = 8  # more, or a branching body longer than this, is a certain run under that comment
 _GOES_ON = (",", "+", "-", "*", "/", "=", "&", "|", "?", ":", "<", ">", "(", "!")
 
 
@@ -261,6 +281,10 @@ class _Reader:
         self.after_open = False  # the last line read ended with `{`
         self.last_comment = 0  # the last explaining comment line
         self.macro = False  # the last preprocessor line ended with a backslash
+        self.number = 0  # the line being read
+        self.reach = 0  # body statements a function's comment above may reach (REACH)
+        self.closed_at = 0  # the line the last top-level definition closed on
+        self.previous: tuple[str, bool] | None = None  # the last function: name, explained
 
     def explains(self, number: int) -> bool:
         return _line_explains(self.on_line.get(number, ()), number)
@@ -273,7 +297,8 @@ class _Reader:
     def add_to_run(self, lines: list[int], signature: bool = False) -> None:
         if self.run is None:
             under_heading = self.heading is not None and self.cover is None
-            self.run = [lines[0], lines[-1], len(lines), HEADING if under_heading else ""]
+            reading = REACH if self.reach > 0 else HEADING if under_heading else ""
+            self.run = [lines[0], lines[-1], len(lines), reading]
             self.signature_run = signature
         else:
             self.run[1] = lines[-1]
@@ -326,8 +351,12 @@ class _Reader:
             self.signature = (lines, covered or own)
         elif self.function is not None and self.start_depth > 0:
             self.function["count"] += 1
+            self.function["first"] = self.function["first"] or lines[0]
             self.function["last"] = lines[-1]
             self.function["inner"] = self.function["inner"] or own
+            self.function["branches"] = self.function["branches"] or bool(_HEADER_RE.match(text))
+        if self.start_depth > 0 and not in_struct:
+            self.reach -= 1
         if covered or own:
             self.settle_deferred(own or in_struct)
             self.close_run()
@@ -349,6 +378,9 @@ class _Reader:
                 self.settle_deferred(False)  # a body with nothing explained
                 self.close_run()  # each top-level definition is a run of its own
                 self.end_function()
+                self.closed_at = self.number
+            elif not self.else_follows(line):
+                self.close_run()  # the block the run was in ends (`} else {` goes on)
         opened = line.count("{")
         if opened:
             head = (
@@ -369,26 +401,70 @@ class _Reader:
                     "explained": explained,
                     "inner": False,
                     "count": 0,
+                    "first": 0,
+                    "branches": False,
+                    "name": _function_name(" ".join(self.code[n - 1].strip() for n in lines)),
+                    "after": self.closed_at == lines[0] - 1,  # right under the last definition
                     "last": lines[-1],
                     "runs": len(self.runs) - (0 if self.run is not None else 0),
                 }
+            if what == "function":
+                # the function's comment explains the function: its signature, and its body whole
+                # when that is simple and has no comment of its own (end_function). In a body with
+                # comments of its own, whether it reaches the statements it would cover as a
+                # comment above a group is a reading (REACH)
+                self.reach = self.cover.left if self.cover is not None else 0
+                self.cover = None
             self.blocks.extend([what] * opened)
             self.depth += opened
 
+    def marks(self, number: int) -> bool:
+        """Whether a comment line that explains nothing marks a part: a credit or a section
+        marker, not commented-out code, an empty comment or a directive."""
+        for c in self.on_line.get(number, ()):
+            if c.is_directive:
+                continue
+            text = c.text.split("\n")[number - c.line] if c.end_line > c.line else c.text
+            body = text.strip().strip("/*!").strip()
+            if body and not COMMENTED_CODE_RE.match(body):
+                return True
+        return False
+
+    def else_follows(self, line: str) -> bool:
+        """Whether the block a `}` closes goes on in an `else` (on its line or the next code line)."""
+        rest = line.split("}")[-1].strip()
+        if rest:
+            return rest.startswith("else")
+        following = (
+            self.code[n - 1].strip()
+            for n in range(self.number + 1, len(self.kinds) + 1)
+            if self.kinds[n - 1] is not BLANK and self.kinds[n - 1] is not COMMENT
+        )
+        return next(following, "").startswith("else")
+
     def end_function(self) -> None:
-        """A function read whole: one with no comment anywhere is one run, the ambiguous block the
-        rubric deducts once; a short one (at most SHORT_BODY statements) whose comment above
-        explains it and whose body has none of its own is explained whole."""
+        """A function read whole (see uncovered_runs): one with no comment anywhere is one run, the
+        ambiguous block the rubric deducts once; one whose comment above is its only comment is
+        explained whole when its body is simple, else its body is one run."""
         f, self.function = self.function, None
         if f is None:
             return
+        # an overload right under a commented one: that comment may speak for both
+        overload = f["after"] and self.previous == (f["name"], True)
+        self.previous = (f["name"], f["explained"] or (overload and not f["inner"]))
         mine = self.runs[f["runs"] :]
         if not f["explained"] and not f["inner"] and mine:
             first = min(f["sig"][0], mine[0][0])
             count = sum(r[2] for r in mine)
-            self.runs[f["runs"] :] = [(first, f["last"], count, "")]
-        elif f["explained"] and not f["inner"] and f["count"] <= SHORT_BODY:
-            self.runs[f["runs"] :] = [r for r in mine if r[1] < f["sig"][0]]
+            self.runs[f["runs"] :] = [(first, f["last"], count, OVERLOAD if overload else "")]
+        elif f["explained"] and not f["inner"]:
+            kept = [r for r in mine if r[1] < f["sig"][0]]
+            if f["count"] > SIMPLE_BODY or (f["branches"] and f["count"] == SIMPLE_BODY):
+                # more than "a few related lines" under one comment: one run, the body; certain
+                # when it is long and branches, else a reading of how far a comment reaches
+                sure = f["count"] > SHORT_BODY and f["branches"]
+                kept.append((f["first"], f["last"], f["count"], "" if sure else LONG_BODY))
+            self.runs[f["runs"] :] = kept
 
     def new_comment(self, number: int) -> None:
         """An explaining comment line: it covers the group below it (a run of comment lines is
@@ -399,6 +475,7 @@ class _Reader:
             self.function["inner"] = True
         self.close_run()
         self.heading = None
+        self.reach = 0
         text = " ".join(c.text for c in self.on_line.get(number, ()))
         if self.cover is not None and self.last_comment == number - 1:
             self.cover.left = self.span
@@ -415,6 +492,7 @@ class _Reader:
 
     def read(self) -> list[tuple[int, int, int, str]]:
         for number, kind in enumerate(self.kinds, start=1):
+            self.number = number
             if kind is not CODE and kind is not TRAILING and self.statement and self.complete():
                 self.finish()  # `GEN_DECLARE(float)` with no `;`, then a blank or a comment
             if kind is BLANK:
@@ -439,14 +517,17 @@ class _Reader:
                         # whose group a blank line ends: it may head the section below
                         self.heading = self.cover.depth
                     self.cover = None
-                    self.close_run()
+                    self.reach = 0
+                    if self.depth == 0:
+                        self.close_run()  # between definitions; in a body a run goes on
             self.blank = False
             opened_before = self.after_open
             self.after_open = line.endswith("{")
             explaining = kind is not CODE and kind is not BRACE and self.explains(number)
             if kind is COMMENT:
-                if not explaining and not self.statement:
+                if not explaining and not self.statement and self.marks(number):
                     self.heading = None  # a credit or a marker starts a part no heading explains
+                    self.close_run()  # ... and a new run: what follows is another part
                 if explaining and not self.statement:
                     self.after_open = opened_before
                     self.new_comment(number)
