@@ -52,7 +52,13 @@ import re
 from ...base.diagnostics import Diagnostic
 from ...base.regexes import compiled
 from ...shadertoy.sources import path_name
-from .missing_header import header_text, missing_parts, named_students, names_a_student
+from .missing_header import (
+    header_text,
+    left_out,
+    missing_parts,
+    named_students,
+    names_a_student,
+)
 
 TYPE_CHECKING = False  # not typing's: importing typing costs every start-up
 if TYPE_CHECKING:
@@ -82,13 +88,21 @@ def check(ctx: LintContext) -> Iterator[Diagnostic]:
     text = header_text(ctx)
     if text is None or not names_a_student(text):
         return  # missing-header's
-    missing = missing_parts(ctx, max(len(named_students(text)), 1))
+    missing = missing_parts(ctx, max(len(named_students(text)), 1)) or []
+    # the license names an author the contributor list leaves out: whether the list must give
+    # the author's own part too is a reading (possible, license or not)
+    only_left_out = not missing
+    omitted = left_out(text)
+    if omitted and not any("each contributor" in m for m in missing):
+        missing.append(f"does not say what {_join(omitted)} did")
     if not missing:
         return
-    licensed = LICENSE_RE.search(text) is not None
+    licensed = LICENSE_RE.search(text) is not None and not (omitted and only_left_out)
     why = (
         "the header holds a license, so the rubric asks for this block"
         if licensed
+        else "a possible deduction: its contributor list leaves out the author the license names"
+        if omitted and only_left_out
         else "a possible deduction: the rubric asks for this block in the sentence about licenses"
     )
     name = path_name(ctx.source.path)

@@ -206,8 +206,13 @@ def _line_explains(comments: list, number: int) -> bool:
 # `//difCo vars`, `// Variable Declarations`), not a sentence about the next line.
 _HEADING_WORDS = compiled(
     r"\b(?:vars?|variables|declarations?|definitions?|parameters|constants|setup|scene|init\w*"
-    r"|lighting|reflectance|shading|calculations?|calcs|helpers|utilit\w+|globals?)\b",
+    r"|lighting|reflectance|shading|calculations?|calcs|helpers|utilit\w+|globals?|info)\b",
     re.I,
+)
+# A comment that heads a list of declarations ("// Variables for the camera"): the whole list,
+# up to a blank line, is the group it explains, however long.
+_LIST_HEADING = compiled(
+    r"^[\s/*!-]*(?:\w+\s+){0,2}(?:vars?|variables|declarations?|constants)\b", re.I
 )
 
 
@@ -239,6 +244,7 @@ def _function_name(signature: str) -> str:
     return name.group(1) if name else ""
 
 
+UNLIMITED = 1 << 30  # the span of a comment heading a list: up to the blank line
 SIMPLE_BODY = 4  # statements of a function its comment above explains whole, with no branch
 SHORT_BODY = 8  # more, or a branching body longer than this, is a certain run under that comment
 _GOES_ON = (",", "+", "-", "*", "/", "=", "&", "|", "?", ":", "<", ">", "(", "!")
@@ -477,11 +483,12 @@ class _Reader:
         self.heading = None
         self.reach = 0
         text = " ".join(c.text for c in self.on_line.get(number, ()))
+        span = UNLIMITED if _LIST_HEADING.match(text) else self.span
         if self.cover is not None and self.last_comment == number - 1:
-            self.cover.left = self.span
+            self.cover.left = max(self.span, span)
             self.cover.text += " " + text
         else:
-            self.cover = _Cover(self.depth, self.span, text)
+            self.cover = _Cover(self.depth, span, text)
         self.last_comment = number
 
     def complete(self) -> bool:
