@@ -2,45 +2,59 @@
 
 ## What it does
 Reads the file as a TA does, statement by statement (a signature or a call written over several
-lines is one statement), and reports each run of statements that no comment explains:
+lines is one statement), and reports each run of statements that no comment explains. The
+model is what three blind readings of the rubric (three labellers, 49 student files) agree on;
+where they part, the finding is a possible deduction (below).
 
+Coverage, what a comment explains:
 - A comment explains the statement or small group of statements it stands above: up to
   `comment-span` statements (5 by default: the rubric's "every few related lines"), until a
   blank line, the next comment, or the end of the block it is in. Lines of a comment block
-  explain as one comment. A comment above an `if` or a loop goes on into its body.
-- A function's comment covers its signature (all its lines) and goes on into the body as a
-  comment above a group does; a short function (at most 8 statements) with no comment in its
-  body is explained whole by its comment above, blank lines in it notwithstanding. A comment
-  separated from a function or struct by a blank line still documents it when it names it
-  (`// shade: ...` above `vec3 shade(...)`). A struct's comment covers its members; a struct
-  whose members are commented one by one needs no comment of its own.
-- A function with no explaining comment anywhere (above, inside, trailing) is one run from its
-  signature to its last line: the one ambiguous block the rubric deducts once.
+  explain as one comment. A comment above an `if` or a loop goes on into its body. A comment
+  heading a list of declarations (`// Variables for the camera`) explains the whole list, up to
+  the blank line.
 - A trailing comment covers its statement (`x = 1.0; // why`, on any of its lines), and on a
   signature or a loop/`if` header, the block it opens as a comment above would.
+- A function's comment (above it, or a blank line above it when it names the function:
+  `// shade: ...` above `vec3 shade(...)`) explains the function: its signature, and its body
+  whole when the body is simple: at most 4 statements, with no branch or loop at 4. A longer
+  body with no comment of its own is one run, the body; a body with comments of its own is
+  read by them. A struct's comment covers its members; a struct whose members are commented one
+  by one needs no comment of its own.
 - Trivial statements need no comment: returning a literal or a plain variable (`return true;`,
   `return col;`, or a vector of them: `return vec4(col, 1.0);`), `break;`, `continue;`,
-  `discard;`, `else`, braces. Code in an `#ifdef`/`#if`
-  branch the preprocessor skips is not compiled and not linted (where that is sure: `#ifdef`,
-  `#ifndef`, `#if defined(X)`, `#if 0`).
-- Credits and attributions ("Code from class by ...", "Referenced https://..."), section markers
-  ("// part 3", "// TEST", "// END CLASS MATERIAL", a `-----` rule), commented-out code
-  (`//dp.z = r * r;`) and `glslcheck:` directives explain nothing: a TA reads past them.
+  `discard;`, `else`, braces. Code in an `#ifdef`/`#if` branch the preprocessor skips is not
+  compiled and not linted (where that is sure: `#ifdef`, `#ifndef`, `#if defined(X)`, `#if 0`).
+- Credits and attributions ("Code from class by ...", "Code by Peter Shirley in ...", "Source
+  for math: https://..."), section markers ("// part 3", "// TEST", "// END CLASS MATERIAL", a
+  `-----` rule), a bare question ("// efficient?"), commented-out code (`//dp.z = r * r;`) and
+  `glslcheck:` directives explain nothing: a TA reads past them.
 
-A blank line ends a group and a run, except one right after an opening brace or before a
-closing one. Each top-level function or struct is a run of its own. One finding per run of
-uncovered statements, at its first line and naming its last, as the rubric deducts "per
-ambiguous section/block/line".
+Runs, what one finding is: one finding per run of uncovered statements, at its first line and
+naming its last, as the rubric deducts "per ambiguous section/block/line". A run goes on across
+blank lines and commented-out code: uncommented code is one ambiguous section however it is
+spaced. It ends at an explaining comment, a covered statement, a credit or a section marker
+(they start another part), and the close of the block it is in (`} else {` goes on). Each
+top-level function or struct is a run of its own, and a function with no explaining comment
+anywhere is one run from its signature to its last line: the one ambiguous block the rubric
+deducts once.
 
-A run is a certain deduction, except where whether a comment reaches it is a reading (a
-possible deduction): the groups of a section below its heading, parted from it by a blank line,
-when the heading is a comment with a blank line below it (`// SCENE`, blank, the scene's code)
-or a few words naming a stage (`// Lambertian Reflectance`, `//difCo vars`) whose own group a
-blank line ends; and a function signature with no comment above whose body opens with a
-comment saying what the function does. A credit or a marker ends a heading's section, and a
-function or struct with no comment of its own is certain.
+A run is a certain deduction, except where the readings of the rubric part (a possible one):
+- the code of a section below its heading, parted from it by a blank line, when the heading is
+  a comment with a blank line below it (`// SCENE`, blank, the scene's code) or a few words
+  naming a stage (`// Lambertian Reflectance`, `//sphere info`) whose own group a blank line
+  ends (one reading lets a heading explain its section, one lets it explain nothing, one deducts
+  each group); a credit or a marker ends a heading's section;
+- the body of a function its comment above is the only comment of, when the body is more than
+  simple but short (at most 8 statements) or does not branch; a longer branching body is certain;
+- the first statements of a body that has comments of its own, which the function's comment
+  above would cover as a comment above a group (whether a function's comment reaches into its
+  body is a reading);
+- a function signature with no comment above whose body opens with a comment saying what the
+  function does;
+- an overload with no comment written right under a commented overload of the same name.
 
-Examples, all covered: the function's comment covers both signature lines and the body,
+Examples, all covered: the function's comment covers both signature lines and the short body,
 `return true;` and `return false;` need none, the trailing comment covers its two-line call:
 ```glsl
 // inCircle: whether p lies in the circle of centre c and radius r (no square root)
@@ -57,15 +71,22 @@ bool inCircle(in vec2 p, in vec2 c,
 vec4 lit = shade(position, normal, // lit colour of the surface point
                  light);
 ```
-and not covered, two findings (a heading parted from its code by a blank line explains nothing
-below the blank; an attribution explains nothing):
+and not covered: one finding for the two statements after the covered one, blank line and
+commented-out code notwithstanding (an attribution explains nothing), and a second after the
+marker, which starts another part:
 ```glsl
-// SCENE
+// scene: the offset of p from the scene's origin
+void scene(out vec3 dp, in vec3 p)
+{
+    dp = vec3(0.0); // start from the origin
+    // Code from class by Daniel Buckstein
+    dp = p * 2.0;
 
-sSphere s;
-initSphere(s, vec3(0.0), 1.0);
-// Code from class by Daniel Buckstein
-vec3 dp = p - s.center.xyz;
+    //dp.z = p.z * p.z;
+    dp.z = p.z;
+    // part 3
+    dp.x += 1.0;
+}
 ```
 
 ## Why is this bad?
@@ -303,7 +324,8 @@ class _Reader:
     def add_to_run(self, lines: list[int], signature: bool = False) -> None:
         if self.run is None:
             under_heading = self.heading is not None and self.cover is None
-            reading = REACH if self.reach > 0 else HEADING if under_heading else ""
+            reach = self.reach > 0 and self.function is not None and self.depth > 0
+            reading = REACH if reach else HEADING if under_heading else ""
             self.run = [lines[0], lines[-1], len(lines), reading]
             self.signature_run = signature
         else:
@@ -362,7 +384,7 @@ class _Reader:
             self.function["inner"] = self.function["inner"] or own
             self.function["branches"] = self.function["branches"] or bool(_HEADER_RE.match(text))
         if self.start_depth > 0 and not in_struct:
-            self.reach -= 1
+            self.reach = 0 if own else self.reach - 1  # up to the body's first comment
         if covered or own:
             self.settle_deferred(own or in_struct)
             self.close_run()
@@ -453,6 +475,7 @@ class _Reader:
         ambiguous block the rubric deducts once; one whose comment above is its only comment is
         explained whole when its body is simple, else its body is one run."""
         f, self.function = self.function, None
+        self.reach = 0
         if f is None:
             return
         # an overload right under a commented one: that comment may speak for both
@@ -534,6 +557,7 @@ class _Reader:
             if kind is COMMENT:
                 if not explaining and not self.statement and self.marks(number):
                     self.heading = None  # a credit or a marker starts a part no heading explains
+                    self.reach = 0  # ... nor the function's comment
                     self.close_run()  # ... and a new run: what follows is another part
                 if explaining and not self.statement:
                     self.after_open = opened_before
@@ -585,15 +609,16 @@ class _Reader:
 def uncovered_runs(scan, kinds: list[LineKind], span: int) -> list[tuple[int, int, int, str]]:
     """(first line, last line, number of code lines, reading) of each run of uncovered
     statements; `reading` is "" for a certain deduction, else why it is only a possible one
-    (HEADING, BODY_ONLY).
+    (HEADING, BODY_ONLY, REACH, LONG_BODY, OVERLOAD).
 
     Statements are read whole (a signature or a call over several lines is one). A comment
     covers up to `span` statements below it, stopping at a blank line, the next explaining
-    comment, or the end of its block (for a top-level comment, the end of the function or
-    struct it stands above). A trailing comment covers its statement. Struct members and a
+    comment, or the end of its block; a function's comment covers its signature, and its body
+    as end_function decides. A trailing comment covers its statement. Struct members and a
     function's signature use up none of the span; trivial statements need no comment; credits,
-    markers and commented-out code explain nothing and stop nothing. A run ends at a covered
-    statement, a blank line or an explaining comment."""
+    markers and commented-out code explain nothing. A run ends at a covered statement, an
+    explaining comment, a credit or a marker, the close of its block, or (at top level) a blank
+    line; in a body it goes on across blank lines and commented-out code."""
     return _Reader(scan, kinds, span).read()
 
 
