@@ -384,7 +384,7 @@ class _Reader:
             self.function["inner"] = self.function["inner"] or own
             self.function["branches"] = self.function["branches"] or bool(_HEADER_RE.match(text))
         if self.start_depth > 0 and not in_struct:
-            self.reach = 0 if own else self.reach - 1  # up to the body's first comment
+            self.reach -= 1  # as a comment above would, past trailing comments
         if covered or own:
             self.settle_deferred(own or in_struct)
             self.close_run()
