@@ -258,6 +258,7 @@ _SIGNATURE_RE = compiled(r"^(?:[A-Za-z_]\w*\s+)+[A-Za-z_]\w*\s*\([^;]*\)\s*\{?\s
 _SIGNATURE_START_RE = compiled(r"^(?:[A-Za-z_]\w*\s+)+[A-Za-z_]\w*\s*\(")
 _HEADER_RE = compiled(r"^\}?\s*(?:if|for|while|else\s+if|switch)\s*\(")  # a control header
 _STRUCT_RE = compiled(r"^struct\b")
+_BRACES_RE = compiled(r"\{+|\}+")
 
 
 def _function_name(signature: str) -> str:
@@ -393,8 +394,17 @@ class _Reader:
             self.add_to_run(lines, signature=header and not _STRUCT_RE.match(text))
 
     def braces(self, line: str) -> None:
-        """Follow the blocks a line closes and opens (closing first: `} else {`)."""
-        for _ in range(line.count("}")):
+        """Follow the blocks a line closes and opens, in the order written (`} else {`,
+        `if (a) { b = 1; }`)."""
+        for mark in _BRACES_RE.finditer(line):
+            if mark.group()[0] == "}":
+                self.close_blocks(line, len(mark.group()))
+            else:
+                self.open_blocks(len(mark.group()))
+
+    def close_blocks(self, line: str, closed: int) -> None:
+        """Close `closed` blocks: what a comment covered in them, a run in them, a function."""
+        for _ in range(closed):
             if self.blocks:
                 self.blocks.pop()
             self.depth = max(self.depth - 1, 0)
@@ -409,7 +419,9 @@ class _Reader:
                 self.closed_at = self.number
             elif not self.else_follows(line):
                 self.close_run()  # the block the run was in ends (`} else {` goes on)
-        opened = line.count("{")
+
+    def open_blocks(self, opened: int) -> None:
+        """Open `opened` blocks of the statement just read (a struct, a function or other)."""
         if opened:
             head = (
                 " ".join(self.code[n - 1].strip() for n in self.statement)
@@ -422,8 +434,13 @@ class _Reader:
                 what = "function"
             else:
                 what = "other"
+            if what == "function" and (
+                self.signature is None or self.signature[0][-1] < self.number - 1
+            ):
+                what = "other"  # a whole function on one line: one statement, a run of its own
             if what == "function" and self.signature is not None:
                 lines, explained = self.signature
+                self.signature = None
                 self.function = {
                     "sig": lines,
                     "explained": explained,
