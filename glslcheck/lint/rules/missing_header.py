@@ -97,6 +97,9 @@ _DID = compiled(
     re.I,
 )
 _WORD_BREAK = compiled(r"[\s_\-]+")
+_LICENSE_TEXT = compiled(
+    r"^\W*(?:licen[cs]ed\s+under|permission\s+is\s+hereby|all\s+rights\s+reserved)", re.I
+)
 _COPYRIGHT = compiled(r"^\W*copyright\b", re.I)
 _LIST_MARK = compiled(r"^[\s*/#>\-\u2022\d.)]*")  # a list item's bullet or number
 _NAME_LIST = compiled(r",|&|\band\b")  # more than one name in an entry
@@ -210,6 +213,7 @@ def _contributor_lists(text: str) -> dict[bool, list[str]]:
                 or _CONTRIB_LABEL.match(follow)
                 or _OTHER_LABEL.match(follow)
                 or has_credit(follow)  # a credit line is no contributor
+                or _LICENSE_TEXT.match(follow)  # nor the license under a Copyright line
             ):
                 break
             entries.append(body)
