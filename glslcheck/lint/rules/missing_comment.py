@@ -52,7 +52,9 @@ A run is a certain deduction, except where the readings of the rubric part (a po
   body is a reading);
 - a function signature with no comment above whose body opens with a comment saying what the
   function does;
-- an overload with no comment written right under a commented overload of the same name.
+- an overload with no comment written right under a commented overload of the same name;
+- a definition with no comment at all right under another (blank lines between, nothing else),
+  each after the first: one reading deducts such a region once, the others each definition.
 
 Examples, all covered: the function's comment covers both signature lines and the short body,
 `return true;` and `return false;` need none, the trailing comment covers its two-line call:
@@ -147,6 +149,7 @@ HEADING = "only a section heading explains it, parted from it by a blank line"
 BODY_ONLY = "the function's first body comment says what it does, none stands above it"
 REACH = "whether the function's comment above reaches into a body that has comments of its own"
 LONG_BODY = "only the function's comment above explains its body, which is more than a few lines"
+ADJACENT = "one of several uncommented definitions in a row, which a TA may deduct once"
 OVERLOAD = "it is an overload right under one whose comment may explain both"
 
 
@@ -310,6 +313,8 @@ class _Reader:
         self.last_comment = 0  # the last explaining comment line
         self.macro = False  # the last preprocessor line ended with a backslash
         self.number = 0  # the line being read
+        self.def_start = 0  # the first line of the top-level definition being read
+        self.bare_end = 0  # the last line of the last definition with no comment at all
         self.reach = 0  # body statements a function's comment above may reach (REACH)
         self.closed_at = 0  # the line the last top-level definition closed on
         self.previous: tuple[str, bool] | None = None  # the last function: name, explained
@@ -354,6 +359,8 @@ class _Reader:
         self.last_head = text
         top = self.start_depth == 0
         header = top and (_SIGNATURE_RE.match(text) is not None or _STRUCT_RE.match(text))
+        if header:
+            self.def_start = lines[0]
         if header and self.cover is None and self.above is not None:
             name = _NAME_RE.search(text.split("(")[0] + "(")
             if name and re.search(rf"\b{re.escape(name.group(1))}\b", self.above.text):
@@ -416,6 +423,7 @@ class _Reader:
                 self.settle_deferred(False)  # a body with nothing explained
                 self.close_run()  # each top-level definition is a run of its own
                 self.end_function()
+                self.adjacent_definitions()
                 self.closed_at = self.number
             elif not self.else_follows(line):
                 self.close_run()  # the block the run was in ends (`} else {` goes on)
@@ -462,6 +470,20 @@ class _Reader:
                 self.cover = None
             self.blocks.extend([what] * opened)
             self.depth += opened
+
+    def adjacent_definitions(self) -> None:
+        """A definition with no comment at all right under another (blank lines between, nothing
+        else): one reading deducts the uncommented region once, others each definition, so
+        every one after the first is a possible deduction."""
+        last = self.runs[-1] if self.runs else None
+        bare = last is not None and last[0] == self.def_start and last[3] == ""
+        if (
+            bare
+            and self.bare_end
+            and all(self.kinds[n - 1] is BLANK for n in range(self.bare_end + 1, self.def_start))
+        ):
+            self.runs[-1] = (*last[:3], ADJACENT)
+        self.bare_end = self.number if bare or (last and last[3] == ADJACENT) else 0
 
     def marks(self, number: int) -> bool:
         """Whether a comment line that explains nothing marks a part: a credit or a section
@@ -626,7 +648,7 @@ class _Reader:
 def uncovered_runs(scan, kinds: list[LineKind], span: int) -> list[tuple[int, int, int, str]]:
     """(first line, last line, number of code lines, reading) of each run of uncovered
     statements; `reading` is "" for a certain deduction, else why it is only a possible one
-    (HEADING, BODY_ONLY, REACH, LONG_BODY, OVERLOAD).
+    (HEADING, BODY_ONLY, REACH, LONG_BODY, OVERLOAD, ADJACENT).
 
     Statements are read whole (a signature or a call over several lines is one). A comment
     covers up to `span` statements below it, stopping at a blank line, the next explaining
