@@ -32,8 +32,13 @@ Matching: a finding matches a label of the same rule when they share a line: the
 line (a missing-comment finding: every line of its run, first to last; repeated-expression and
 loop-invariant: every place the message lists) and the label's lines (a missing-comment label
 is a run [first, last]: any line in it). Labels and findings are matched one to one (a maximum
-matching). Certainty is reported apart: the recall of the certain and of the possible labels
-(a label without one is certain), the precision of the certain and of the possible findings.
+matching): recall and precision count the points a student loses, so a labeller's one run
+over four blocks against four findings is one hit and three extras. Beside them, at line level
+and not one to one: "held", the share of labels sharing a line with some finding, and
+"inside", the share of findings sharing a line with some label (where the linter and the
+labeller disagree only on how to cut the same uncommented code into runs, these stay high).
+Certainty is reported apart: the recall of the certain and of the possible labels (a label
+without one is certain), the precision of the certain and of the possible findings.
 """
 
 from __future__ import annotations
@@ -187,17 +192,23 @@ def label_lines(lab: dict) -> set[int]:
     return set(lab["lines"])
 
 
+def shares_line(lab: dict, f: dict) -> bool:
+    """Whether a finding and a label can match: the same rule and a line in common."""
+    return f["rule"] == lab["rule"] and bool(finding_lines(f) & label_lines(lab))
+
+
+def line_level(labels: list[dict], findings: list[dict]) -> tuple[Counter, Counter]:
+    """Per rule, the labels holding some finding and the findings inside some label (sharing a
+    line, as `match` pairs them, but not one to one)."""
+    held = Counter(lab["rule"] for lab in labels if any(shares_line(lab, f) for f in findings))
+    inside = Counter(f["rule"] for f in findings if any(shares_line(lab, f) for lab in labels))
+    return held, inside
+
+
 def match(labels: list[dict], findings: list[dict]) -> dict[int, int]:
     """A maximum matching of labels to findings (label index -> finding index): same rule and a
     shared line; augmenting paths, so the order of labels and findings does not matter."""
-    can = [
-        [
-            i
-            for i, f in enumerate(findings)
-            if f["rule"] == lab["rule"] and finding_lines(f) & label_lines(lab)
-        ]
-        for lab in labels
-    ]
+    can = [[i for i, f in enumerate(findings) if shares_line(lab, f)] for lab in labels]
     owner: dict[int, int] = {}  # finding -> label
 
     def augment(j: int, seen: set[int]) -> bool:
@@ -267,6 +278,8 @@ def score(
     if not present:
         return 2
     tp, fp, fn = Counter(), Counter(), Counter()
+    # line level, not one to one: findings inside some label, labels holding some finding
+    inside, held = Counter(), Counter()
     # certainty: labels found / labels, findings matched / findings, per certainty
     by_label, by_finding = Counter(), Counter()
     not_full = []
@@ -295,6 +308,9 @@ def score(
         got = [f for f in findings if f["rule"] in rules and f["severity"] != "note"]
         pairs = match(want, got)
         used = set(pairs.values())
+        file_held, file_inside = line_level(want, got)
+        held.update(file_held)
+        inside.update(file_inside)
         for j, lab in enumerate(want):
             sure = lab.get("certainty") or "certain"
             by_label[sure, "all"] += 1
@@ -323,13 +339,25 @@ def score(
     )
     count = sum(len([lab for lab in v if lab["rule"] in rules]) for v in labels["files"].values())
     print(f"{len(present)} of {len(manifest)} files, {count} labels ({which})")
-    print(f"{'rule':28} {'labels':>6} {'found':>6} {'tp':>4} {'recall':>7} {'precision':>9}")
+    print(
+        f"{'rule':28} {'labels':>6} {'found':>6} {'tp':>4} {'recall':>7} {'precision':>9}"
+        f"   {'held':>5} {'inside':>6}"
+    )
     for rule in [*rules, "overall"]:
         if rule == "overall":
             t, p, n = sum(tp.values()), sum(fp.values()), sum(fn.values())
+            h, i = sum(held.values()), sum(inside.values())
         else:
             t, p, n = tp[rule], fp[rule], fn[rule]
-        print(f"{rule:28} {t + n:6d} {t + p:6d} {t:4d} {_rate(t, t + n):>7} {_rate(t, t + p):>9}")
+            h, i = held[rule], inside[rule]
+        print(
+            f"{rule:28} {t + n:6d} {t + p:6d} {t:4d} {_rate(t, t + n):>7} {_rate(t, t + p):>9}"
+            f"   {_rate(h, t + n):>5} {_rate(i, t + p):>6}"
+        )
+    print(
+        "  held: share of labels sharing a line with some finding; inside: share of findings "
+        "sharing a line with some label (line level, not one to one)"
+    )
     print("by certainty (labels: the labeller's; findings: the linter's)")
     for sure in ("certain", "possible"):
         lab_hit, lab_all = by_label[sure, "hit"], by_label[sure, "all"]

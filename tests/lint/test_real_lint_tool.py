@@ -33,6 +33,19 @@ def test_a_finding_anywhere_in_a_labelled_run_matches_it_once():
     assert real_lint.match(labels, [_comment_finding(19, 21)]) == {1: 0}
 
 
+def test_line_level_counts_a_run_split_in_four_as_held_and_inside():
+    # one labelled run 10-30 and four findings cutting it in four, one finding outside: one to
+    # one that is one hit and four extras; at line level the label holds a finding and four of
+    # the five findings lie inside a label
+    labels = [{"rule": "missing-comment", "lines": [10, 30]}]
+    cuts = [(10, 12), (15, 17), (20, 22), (25, 30), (40, 41)]
+    findings = [_comment_finding(a, b) for a, b in cuts]
+    assert len(real_lint.match(labels, findings)) == 1
+    held, inside = real_lint.line_level(labels, findings)
+    assert held == {"missing-comment": 1} and inside == {"missing-comment": 4}
+    assert real_lint.line_level(labels, []) == ({}, {})
+
+
 def test_a_labellers_file_covers_every_rule_of_the_guide(tmp_path):
     path = tmp_path / "labels.json"
     path.write_text(json.dumps({"f01": [{"rule": "missing-header", "lines": [1]}], "f02": []}))
@@ -86,9 +99,9 @@ def test_score_a_set_given_on_the_command_line(tmp_path):
     )
     assert proc.returncode == 0, proc.stderr
     rows = {line.split()[0]: line.split()[1:] for line in proc.stdout.splitlines() if line}
-    assert rows["missing-header"] == ["1", "1", "1", "1.00", "1.00"]
-    assert rows["missing-comment"] == ["1", "1", "1", "1.00", "1.00"]
-    assert rows["incomplete-header"] == ["0", "0", "0", "-", "-"]
+    assert rows["missing-header"] == ["1", "1", "1", "1.00", "1.00", "1.00", "1.00"]
+    assert rows["missing-comment"] == ["1", "1", "1", "1.00", "1.00", "1.00", "1.00"]
+    assert rows["incomplete-header"] == ["0", "0", "0", "-", "-", "-", "-"]
     assert "certain   labels    2, found    2: recall 1.00" in proc.stdout
 
 

@@ -5,11 +5,14 @@ For a file whose top names a student (else it is `missing-header`), checks that 
 comments also
 1. name the file: its file name with or without extension, its Shadertoy tab name
    (`Image.glsl`, `File: Image`, `Buffer A tab`, or a line starting with the name), or a
-   `Title:` line;
+   `Title:` line; a file called after its lab (`Lab 3.txt`) is not named by a line `Lab 3`
+   alone, which names the lab;
 2. state its purpose: a `Purpose:`, `Description:`, `Brief:`, `Summary:` or `About:` label, a
    sentence starting "This file/shader/tab ...", or words after the name (`Image: lit spheres`);
 3. say what each contributor did (`Ana Ruiz: lighting`, `Ben Li - optimization`,
-   `Cy (comments)`). A single author did all of it: one name is enough.
+   `Cy (comments)`). A single author did all of it: one name is enough. A license's
+   `Copyright 2020 <name>` over a `Contributors:` list of others only (the instructor, a book)
+   does not say what that author did.
 
 One finding per file, at line 1, listing what is missing.
 
@@ -19,7 +22,9 @@ block with: 1) the name and purpose of the file; and 2) a list of contributors a
 did." Whether that block is required without a license is a reading of an ambiguous sentence,
 so a TA may deduct the point or not. With a license in the header (`Licensed under the Apache
 License`, `Creative Commons`, `Permission is hereby granted`) the sentence is plain: the finding
-is then a certain deduction.
+is then a certain deduction, unless all the header lacks is the part of the author its license
+names, left out of a contributor list of others: whether that list must give the author's own
+part is a reading, and a possible deduction.
 
 ## Why is this bad?
 The course's coding standards: "Add author information to the top of each code file (-1 for each
@@ -52,7 +57,13 @@ import re
 from ...base.diagnostics import Diagnostic
 from ...base.regexes import compiled
 from ...shadertoy.sources import path_name
-from .missing_header import header_text, missing_parts, named_students, names_a_student
+from .missing_header import (
+    header_text,
+    left_out,
+    missing_parts,
+    named_students,
+    names_a_student,
+)
 
 TYPE_CHECKING = False  # not typing's: importing typing costs every start-up
 if TYPE_CHECKING:
@@ -82,13 +93,21 @@ def check(ctx: LintContext) -> Iterator[Diagnostic]:
     text = header_text(ctx)
     if text is None or not names_a_student(text):
         return  # missing-header's
-    missing = missing_parts(ctx, max(len(named_students(text)), 1))
+    missing = missing_parts(ctx, max(len(named_students(text)), 1)) or []
+    # the license names an author the contributor list leaves out: whether the list must give
+    # the author's own part too is a reading (possible, license or not)
+    only_left_out = not missing
+    omitted = left_out(text)
+    if omitted and not any("each contributor" in m for m in missing):
+        missing.append(f"does not say what {_join(omitted)} did")
     if not missing:
         return
-    licensed = LICENSE_RE.search(text) is not None
+    licensed = LICENSE_RE.search(text) is not None and not (omitted and only_left_out)
     why = (
         "the header holds a license, so the rubric asks for this block"
         if licensed
+        else "a possible deduction: its contributor list leaves out the author the license names"
+        if omitted and only_left_out
         else "a possible deduction: the rubric asks for this block in the sentence about licenses"
     )
     name = path_name(ctx.source.path)

@@ -2,45 +2,61 @@
 
 ## What it does
 Reads the file as a TA does, statement by statement (a signature or a call written over several
-lines is one statement), and reports each run of statements that no comment explains:
+lines is one statement), and reports each run of statements that no comment explains. The
+model is what three blind readings of the rubric (three labellers, 49 student files) agree on;
+where they part, the finding is a possible deduction (below).
 
+Coverage, what a comment explains:
 - A comment explains the statement or small group of statements it stands above: up to
   `comment-span` statements (5 by default: the rubric's "every few related lines"), until a
   blank line, the next comment, or the end of the block it is in. Lines of a comment block
-  explain as one comment. A comment above an `if` or a loop goes on into its body.
-- A function's comment covers its signature (all its lines) and goes on into the body as a
-  comment above a group does; a short function (at most 8 statements) with no comment in its
-  body is explained whole by its comment above, blank lines in it notwithstanding. A comment
-  separated from a function or struct by a blank line still documents it when it names it
-  (`// shade: ...` above `vec3 shade(...)`). A struct's comment covers its members; a struct
-  whose members are commented one by one needs no comment of its own.
-- A function with no explaining comment anywhere (above, inside, trailing) is one run from its
-  signature to its last line: the one ambiguous block the rubric deducts once.
+  explain as one comment. A comment above an `if` or a loop goes on into its body. A comment
+  heading a list of declarations (`// Variables for the camera`) explains the whole list, up to
+  the blank line.
 - A trailing comment covers its statement (`x = 1.0; // why`, on any of its lines), and on a
   signature or a loop/`if` header, the block it opens as a comment above would.
+- A function's comment (above it, or a blank line above it when it names the function:
+  `// shade: ...` above `vec3 shade(...)`) explains the function: its signature, and its body
+  whole when the body is simple: at most 4 statements, with no branch or loop at 4. A longer
+  body with no comment of its own is one run, the body; a body with comments of its own is
+  read by them. A struct's comment covers its members; a struct whose members are commented one
+  by one needs no comment of its own.
 - Trivial statements need no comment: returning a literal or a plain variable (`return true;`,
   `return col;`, or a vector of them: `return vec4(col, 1.0);`), `break;`, `continue;`,
-  `discard;`, `else`, braces. Code in an `#ifdef`/`#if`
-  branch the preprocessor skips is not compiled and not linted (where that is sure: `#ifdef`,
-  `#ifndef`, `#if defined(X)`, `#if 0`).
-- Credits and attributions ("Code from class by ...", "Referenced https://..."), section markers
-  ("// part 3", "// TEST", "// END CLASS MATERIAL", a `-----` rule), commented-out code
-  (`//dp.z = r * r;`) and `glslcheck:` directives explain nothing: a TA reads past them.
+  `discard;`, `else`, braces. Code in an `#ifdef`/`#if` branch the preprocessor skips is not
+  compiled and not linted (where that is sure: `#ifdef`, `#ifndef`, `#if defined(X)`, `#if 0`).
+- Credits and attributions ("Code from class by ...", "Code by Peter Shirley in ...", "Source
+  for math: https://..."), section markers ("// part 3", "// TEST", "// END CLASS MATERIAL", a
+  `-----` rule), a bare question ("// efficient?"), commented-out code (`//dp.z = r * r;`) and
+  `glslcheck:` directives explain nothing: a TA reads past them.
 
-A blank line ends a group and a run, except one right after an opening brace or before a
-closing one. Each top-level function or struct is a run of its own. One finding per run of
-uncovered statements, at its first line and naming its last, as the rubric deducts "per
-ambiguous section/block/line".
+Runs, what one finding is: one finding per run of uncovered statements, at its first line and
+naming its last, as the rubric deducts "per ambiguous section/block/line". A run goes on across
+blank lines and commented-out code: uncommented code is one ambiguous section however it is
+spaced. It ends at an explaining comment, a covered statement, a credit or a section marker
+(they start another part), and the close of the block it is in (`} else {` goes on). Each
+top-level function or struct is a run of its own, and a function with no explaining comment
+anywhere is one run from its signature to its last line: the one ambiguous block the rubric
+deducts once.
 
-A run is a certain deduction, except where whether a comment reaches it is a reading (a
-possible deduction): the groups of a section below its heading, parted from it by a blank line,
-when the heading is a comment with a blank line below it (`// SCENE`, blank, the scene's code)
-or a few words naming a stage (`// Lambertian Reflectance`, `//difCo vars`) whose own group a
-blank line ends; and a function signature with no comment above whose body opens with a
-comment saying what the function does. A credit or a marker ends a heading's section, and a
-function or struct with no comment of its own is certain.
+A run is a certain deduction, except where the readings of the rubric part (a possible one):
+- the code of a section below its heading, parted from it by a blank line, when the heading is
+  a comment with a blank line below it (`// SCENE`, blank, the scene's code) or a few words
+  naming a stage (`// Lambertian Reflectance`, `//sphere info`) whose own group a blank line
+  ends (one reading lets a heading explain its section, one lets it explain nothing, one deducts
+  each group); a credit or a marker ends a heading's section;
+- the body of a function its comment above is the only comment of, when the body is more than
+  simple but short (at most 8 statements) or does not branch; a longer branching body is certain;
+- the first statements of a body that has comments of its own, which the function's comment
+  above would cover as a comment above a group (whether a function's comment reaches into its
+  body is a reading);
+- a function signature with no comment above whose body opens with a comment saying what the
+  function does;
+- an overload with no comment written right under a commented overload of the same name;
+- a definition with no comment at all right under another (blank lines between, nothing else),
+  each after the first: one reading deducts such a region once, the others each definition.
 
-Examples, all covered: the function's comment covers both signature lines and the body,
+Examples, all covered: the function's comment covers both signature lines and the short body,
 `return true;` and `return false;` need none, the trailing comment covers its two-line call:
 ```glsl
 // inCircle: whether p lies in the circle of centre c and radius r (no square root)
@@ -57,15 +73,22 @@ bool inCircle(in vec2 p, in vec2 c,
 vec4 lit = shade(position, normal, // lit colour of the surface point
                  light);
 ```
-and not covered, two findings (a heading parted from its code by a blank line explains nothing
-below the blank; an attribution explains nothing):
+and not covered: one finding for the two statements after the covered one, blank line and
+commented-out code notwithstanding (an attribution explains nothing), and a second after the
+marker, which starts another part:
 ```glsl
-// SCENE
+// scene: the offset of p from the scene's origin
+void scene(out vec3 dp, in vec3 p)
+{
+    dp = vec3(0.0); // start from the origin
+    // Code from class by Daniel Buckstein
+    dp = p * 2.0;
 
-sSphere s;
-initSphere(s, vec3(0.0), 1.0);
-// Code from class by Daniel Buckstein
-vec3 dp = p - s.center.xyz;
+    //dp.z = p.z * p.z;
+    dp.z = p.z;
+    // part 3
+    dp.x += 1.0;
+}
 ```
 
 ## Why is this bad?
@@ -124,6 +147,10 @@ HELP = "add a comment above saying why these lines are there"
 # Why a run is only a possible deduction: a reading of how far a comment reaches.
 HEADING = "only a section heading explains it, parted from it by a blank line"
 BODY_ONLY = "the function's first body comment says what it does, none stands above it"
+REACH = "whether the function's comment above reaches into a body that has comments of its own"
+LONG_BODY = "only the function's comment above explains its body, which is more than a few lines"
+ADJACENT = "one of several uncommented definitions in a row, which a TA may deduct once"
+OVERLOAD = "it is an overload right under one whose comment may explain both"
 
 
 # A comment that only credits or marks ("code from class by ...", "// part 3", "// TEST"):
@@ -163,7 +190,15 @@ CREDIT_RE = compiled(
     r"|starter\s+code|glsl\s+starter|original\s+code|got\s+(?:help|assistance)|help\s+from"
     r"|assistance\s+from|source\s+assistance)"
     r"|(?:(?:code|this|it|functions?)\s+(?:was\s+|is\s+)?)?(?:adapted|borrowed|inspired|taken|copied)"
-    r"\s+(?:from|by)\b)",
+    r"\s+(?:from|by)\b"
+    # "Code by Peter Shirley in ...", "Provided by Dan Buckstein during class", "Based of code ..."
+    r"|(?:(?:base|original)\s+)?(?:code|functions?|framework)\s+(?:was\s+|is\s+)?"
+    r"(?:written\s+|given\s+|provided\s+)?by\s*(?-i:[A-Z])"
+    r"|(?:provided|written|modified|given)\s+by\s*(?-i:[A-Z])|based\s+(?:on|of)\s+(?:of\s+)?code\b"
+    # "These matrices from https://...", "Source for math: ...", "Link: ...", "Copy from Sphere",
+    # "Idea for the wave was gotten from ...", "Used X as math references", "NOT ORIGINAL WORK"
+    r"|(?:\w+\s+){0,4}from\s+(?:https?://|www\.)|sources?\b[^:]{0,20}:|links?\s*:|cop(?:y|ied)\s+from\b"
+    r"|ideas?\b.*\b(?:from|by)\b|(?:\w+\s+){0,8}as\s+(?:\w+\s+)?references?\b|not\s+(?:my\s+)?original\b)",
     re.I,
 )
 
@@ -173,6 +208,7 @@ def explains(text: str) -> bool:
     body = text.strip().strip("/*!").strip()
     return (
         bool(body)
+        and not (body.endswith("?") and len(body.split()) <= 2)  # "efficient?": a question
         and not ATTRIBUTION_RE.match(text)
         and not COMMENTED_CODE_RE.match(body)
         and not CREDIT_RE.match(body)
@@ -195,8 +231,13 @@ def _line_explains(comments: list, number: int) -> bool:
 # `//difCo vars`, `// Variable Declarations`), not a sentence about the next line.
 _HEADING_WORDS = compiled(
     r"\b(?:vars?|variables|declarations?|definitions?|parameters|constants|setup|scene|init\w*"
-    r"|lighting|reflectance|shading|calculations?|calcs|helpers|utilit\w+|globals?)\b",
+    r"|lighting|reflectance|shading|calculations?|calcs|helpers|utilit\w+|globals?|info)\b",
     re.I,
+)
+# A comment that heads a list of declarations ("// Variables for the camera"): the whole list,
+# up to a blank line, is the group it explains, however long.
+_LIST_HEADING = compiled(
+    r"^[\s/*!-]*(?:\w+\s+){0,2}(?:vars?|variables|declarations?|constants)\b", re.I
 )
 
 
@@ -221,7 +262,17 @@ _SIGNATURE_RE = compiled(r"^(?:[A-Za-z_]\w*\s+)+[A-Za-z_]\w*\s*\([^;]*\)\s*\{?\s
 _SIGNATURE_START_RE = compiled(r"^(?:[A-Za-z_]\w*\s+)+[A-Za-z_]\w*\s*\(")
 _HEADER_RE = compiled(r"^\}?\s*(?:if|for|while|else\s+if|switch)\s*\(")  # a control header
 _STRUCT_RE = compiled(r"^struct\b")
-SHORT_BODY = 8  # statements of a function its comment above explains whole
+_BRACES_RE = compiled(r"\{+|\}+")
+
+
+def _function_name(signature: str) -> str:
+    name = _NAME_RE.search(signature.split("(")[0] + "(")
+    return name.group(1) if name else ""
+
+
+UNLIMITED = 1 << 30  # the span of a comment heading a list: up to the blank line
+SIMPLE_BODY = 4  # statements of a function its comment above explains whole, with no branch
+SHORT_BODY = 8  # more, or a branching body longer than this, is a certain run under that comment
 _GOES_ON = (",", "+", "-", "*", "/", "=", "&", "|", "?", ":", "<", ">", "(", "!")
 
 
@@ -262,6 +313,12 @@ class _Reader:
         self.after_open = False  # the last line read ended with `{`
         self.last_comment = 0  # the last explaining comment line
         self.macro = False  # the last preprocessor line ended with a backslash
+        self.number = 0  # the line being read
+        self.def_start = 0  # the first line of the top-level definition being read
+        self.bare_end = 0  # the last line of the last definition with no comment at all
+        self.reach = 0  # body statements a function's comment above may reach (REACH)
+        self.closed_at = 0  # the line the last top-level definition closed on
+        self.previous: tuple[str, bool] | None = None  # the last function: name, explained
 
     def explains(self, number: int) -> bool:
         return _line_explains(self.on_line.get(number, []), number)
@@ -274,7 +331,9 @@ class _Reader:
     def add_to_run(self, lines: list[int], signature: bool = False) -> None:
         if self.run is None:
             under_heading = self.heading is not None and self.cover is None
-            self.run = [lines[0], lines[-1], len(lines), HEADING if under_heading else ""]
+            reach = self.reach > 0 and self.function is not None and self.depth > 0
+            reading = REACH if reach else HEADING if under_heading else ""
+            self.run = [lines[0], lines[-1], len(lines), reading]
             self.signature_run = signature
         else:
             self.run[1] = lines[-1]
@@ -303,6 +362,8 @@ class _Reader:
         header = top and (
             _SIGNATURE_RE.match(text) is not None or _STRUCT_RE.match(text) is not None
         )
+        if header:
+            self.def_start = lines[0]
         if header and self.cover is None and self.above is not None:
             name = _NAME_RE.search(text.split("(")[0] + "(")
             if name and re.search(rf"\b{re.escape(name.group(1))}\b", self.above.text):
@@ -330,8 +391,12 @@ class _Reader:
             self.signature = (lines, covered or own)
         elif self.function is not None and self.start_depth > 0:
             self.function["count"] += 1
+            self.function["first"] = self.function["first"] or lines[0]
             self.function["last"] = lines[-1]
             self.function["inner"] = self.function["inner"] or own
+            self.function["branches"] = self.function["branches"] or bool(_HEADER_RE.match(text))
+        if self.start_depth > 0 and not in_struct:
+            self.reach -= 1  # as a comment above would, past trailing comments
         if covered or own:
             self.settle_deferred(own or in_struct)
             self.close_run()
@@ -340,8 +405,17 @@ class _Reader:
             self.add_to_run(lines, signature=header and not _STRUCT_RE.match(text))
 
     def braces(self, line: str) -> None:
-        """Follow the blocks a line closes and opens (closing first: `} else {`)."""
-        for _ in range(line.count("}")):
+        """Follow the blocks a line closes and opens, in the order written (`} else {`,
+        `if (a) { b = 1; }`)."""
+        for mark in _BRACES_RE.finditer(line):
+            if mark.group()[0] == "}":
+                self.close_blocks(line, len(mark.group()))
+            else:
+                self.open_blocks(len(mark.group()))
+
+    def close_blocks(self, line: str, closed: int) -> None:
+        """Close `closed` blocks: what a comment covered in them, a run in them, a function."""
+        for _ in range(closed):
             if self.blocks:
                 self.blocks.pop()
             self.depth = max(self.depth - 1, 0)
@@ -353,7 +427,13 @@ class _Reader:
                 self.settle_deferred(False)  # a body with nothing explained
                 self.close_run()  # each top-level definition is a run of its own
                 self.end_function()
-        opened = line.count("{")
+                self.adjacent_definitions()
+                self.closed_at = self.number
+            elif not self.else_follows(line):
+                self.close_run()  # the block the run was in ends (`} else {` goes on)
+
+    def open_blocks(self, opened: int) -> None:
+        """Open `opened` blocks of the statement just read (a struct, a function or other)."""
         if opened:
             head = (
                 " ".join(self.code[n - 1].strip() for n in self.statement)
@@ -366,33 +446,99 @@ class _Reader:
                 what = "function"
             else:
                 what = "other"
+            if what == "function" and (
+                self.signature is None or self.signature[0][-1] < self.number - 1
+            ):
+                what = "other"  # a whole function on one line: one statement, a run of its own
             if what == "function" and self.signature is not None:
                 lines, explained = self.signature
+                self.signature = None
                 self.function = {
                     "sig": lines,
                     "explained": explained,
                     "inner": False,
                     "count": 0,
+                    "first": 0,
+                    "branches": False,
+                    "name": _function_name(" ".join(self.code[n - 1].strip() for n in lines)),
+                    "after": self.closed_at == lines[0] - 1,  # right under the last definition
                     "last": lines[-1],
                     "runs": len(self.runs) - (0 if self.run is not None else 0),
                 }
+            if what == "function":
+                # the function's comment explains the function: its signature, and its body whole
+                # when that is simple and has no comment of its own (end_function). In a body with
+                # comments of its own, whether it reaches the statements it would cover as a
+                # comment above a group is a reading (REACH)
+                self.reach = self.cover.left if self.cover is not None else 0
+                self.cover = None
             self.blocks.extend([what] * opened)
             self.depth += opened
 
+    def adjacent_definitions(self) -> None:
+        """A definition with no comment at all right under another (blank lines between, nothing
+        else): one reading deducts the uncommented region once, others each definition, so
+        every one after the first is a possible deduction."""
+        last = self.runs[-1] if self.runs else None
+        bare = last is not None and last[0] == self.def_start and last[3] == ""
+        if (
+            last is not None
+            and bare
+            and self.bare_end
+            and all(self.kinds[n - 1] is BLANK for n in range(self.bare_end + 1, self.def_start))
+        ):
+            self.runs[-1] = (*last[:3], ADJACENT)
+        self.bare_end = self.number if bare or (last and last[3] == ADJACENT) else 0
+
+    def marks(self, number: int) -> bool:
+        """Whether a comment line that explains nothing marks a part: a credit or a section
+        marker, not commented-out code, an empty comment or a directive."""
+        for c in self.on_line.get(number, ()):
+            if c.is_directive:
+                continue
+            text = c.text.split("\n")[number - c.line] if c.end_line > c.line else c.text
+            body = text.strip().strip("/*!").strip()
+            if body and not COMMENTED_CODE_RE.match(body):
+                return True
+        return False
+
+    def else_follows(self, line: str) -> bool:
+        """Whether the block a `}` closes goes on in an `else` (on its line or the next code
+        line)."""
+        rest = line.split("}")[-1].strip()
+        if rest:
+            return rest.startswith("else")
+        following = (
+            self.code[n - 1].strip()
+            for n in range(self.number + 1, len(self.kinds) + 1)
+            if self.kinds[n - 1] is not BLANK and self.kinds[n - 1] is not COMMENT
+        )
+        return next(following, "").startswith("else")
+
     def end_function(self) -> None:
-        """A function read whole: one with no comment anywhere is one run, the ambiguous block the
-        rubric deducts once; a short one (at most SHORT_BODY statements) whose comment above
-        explains it and whose body has none of its own is explained whole."""
+        """A function read whole (see uncovered_runs): one with no comment anywhere is one run, the
+        ambiguous block the rubric deducts once; one whose comment above is its only comment is
+        explained whole when its body is simple, else its body is one run."""
         f, self.function = self.function, None
+        self.reach = 0
         if f is None:
             return
+        # an overload right under a commented one: that comment may speak for both
+        overload = f["after"] and self.previous == (f["name"], True)
+        self.previous = (f["name"], f["explained"] or (overload and not f["inner"]))
         mine = self.runs[f["runs"] :]
         if not f["explained"] and not f["inner"] and mine:
             first = min(f["sig"][0], mine[0][0])
             count = sum(r[2] for r in mine)
-            self.runs[f["runs"] :] = [(first, f["last"], count, "")]
-        elif f["explained"] and not f["inner"] and f["count"] <= SHORT_BODY:
-            self.runs[f["runs"] :] = [r for r in mine if r[1] < f["sig"][0]]
+            self.runs[f["runs"] :] = [(first, f["last"], count, OVERLOAD if overload else "")]
+        elif f["explained"] and not f["inner"]:
+            kept = [r for r in mine if r[1] < f["sig"][0]]
+            if f["count"] > SIMPLE_BODY or (f["branches"] and f["count"] == SIMPLE_BODY):
+                # more than "a few related lines" under one comment: one run, the body; certain
+                # when it is long and branches, else a reading of how far a comment reaches
+                sure = f["count"] > SHORT_BODY and f["branches"]
+                kept.append((f["first"], f["last"], f["count"], "" if sure else LONG_BODY))
+            self.runs[f["runs"] :] = kept
 
     def new_comment(self, number: int) -> None:
         """An explaining comment line: it covers the group below it (a run of comment lines is
@@ -403,12 +549,14 @@ class _Reader:
             self.function["inner"] = True
         self.close_run()
         self.heading = None
+        self.reach = 0
         text = " ".join(c.text for c in self.on_line.get(number, ()))
+        span = UNLIMITED if _LIST_HEADING.match(text) else self.span
         if self.cover is not None and self.last_comment == number - 1:
-            self.cover.left = self.span
+            self.cover.left = max(self.span, span)
             self.cover.text += " " + text
         else:
-            self.cover = _Cover(self.depth, self.span, text)
+            self.cover = _Cover(self.depth, span, text)
         self.last_comment = number
 
     def complete(self) -> bool:
@@ -419,6 +567,7 @@ class _Reader:
 
     def read(self) -> list[tuple[int, int, int, str]]:
         for number, kind in enumerate(self.kinds, start=1):
+            self.number = number
             if kind is not CODE and kind is not TRAILING and self.statement and self.complete():
                 self.finish()  # `GEN_DECLARE(float)` with no `;`, then a blank or a comment
             if kind is BLANK:
@@ -443,14 +592,18 @@ class _Reader:
                         # whose group a blank line ends: it may head the section below
                         self.heading = self.cover.depth
                     self.cover = None
-                    self.close_run()
+                    self.reach = 0
+                    if self.depth == 0:
+                        self.close_run()  # between definitions; in a body a run goes on
             self.blank = False
             opened_before = self.after_open
             self.after_open = line.endswith("{")
             explaining = kind is not CODE and kind is not BRACE and self.explains(number)
             if kind is COMMENT:
-                if not explaining and not self.statement:
+                if not explaining and not self.statement and self.marks(number):
                     self.heading = None  # a credit or a marker starts a part no heading explains
+                    self.reach = 0  # ... nor the function's comment
+                    self.close_run()  # ... and a new run: what follows is another part
                 if explaining and not self.statement:
                     self.after_open = opened_before
                     self.new_comment(number)
@@ -501,15 +654,16 @@ class _Reader:
 def uncovered_runs(scan, kinds: list[LineKind], span: int) -> list[tuple[int, int, int, str]]:
     """(first line, last line, number of code lines, reading) of each run of uncovered
     statements; `reading` is "" for a certain deduction, else why it is only a possible one
-    (HEADING, BODY_ONLY).
+    (HEADING, BODY_ONLY, REACH, LONG_BODY, OVERLOAD, ADJACENT).
 
     Statements are read whole (a signature or a call over several lines is one). A comment
     covers up to `span` statements below it, stopping at a blank line, the next explaining
-    comment, or the end of its block (for a top-level comment, the end of the function or
-    struct it stands above). A trailing comment covers its statement. Struct members and a
+    comment, or the end of its block; a function's comment covers its signature, and its body
+    as end_function decides. A trailing comment covers its statement. Struct members and a
     function's signature use up none of the span; trivial statements need no comment; credits,
-    markers and commented-out code explain nothing and stop nothing. A run ends at a covered
-    statement, a blank line or an explaining comment."""
+    markers and commented-out code explain nothing. A run ends at a covered statement, an
+    explaining comment, a credit or a marker, the close of its block, or (at top level) a blank
+    line; in a body it goes on across blank lines and commented-out code."""
     return _Reader(scan, kinds, span).read()
 
 

@@ -100,6 +100,9 @@ _DID = compiled(
     re.I,
 )
 _WORD_BREAK = compiled(r"[\s_\-]+")
+_LICENSE_TEXT = compiled(
+    r"^\W*(?:licen[cs]ed\s+under|permission\s+is\s+hereby|all\s+rights\s+reserved)", re.I
+)
 _COPYRIGHT = compiled(r"^\W*copyright\b", re.I)
 _LIST_MARK = compiled(r"^[\s*/#>\-\u2022\d.)]*")  # a list item's bullet or number
 _NAME_LIST = compiled(r",|&|\band\b")  # more than one name in an entry
@@ -121,6 +124,8 @@ def _names(path: str, tab: str) -> tuple[str, list[str]]:
     return path_name(path), others
 
 
+# A file named after its assignment (`Lab 3.txt`, `lab4`, `A3`): the name is the lab's too.
+_ASSIGNMENT = compiled(r"(?:lab|assignment|project|homework|hw|a)[\s_-]*\d+", re.I)
 _TITLE = compiled(r"^\W*(?:titt?le|name)\s*[:\-]\s*\w", re.I | re.M)  # `Title: Lab 2 effects`
 
 
@@ -132,12 +137,13 @@ def names_file(text: str, path: str, tab: str) -> bool:
         return True
     for n in others:
         f = _flex(n) + _EXT  # `Image.glsl` names the Image tab kept in Image.txt too
-        patterns = (
+        patterns: tuple[str, ...] = (
             rf"^\W*(?:file\s*(?:name)?|filename|tab|name|shader|pass)\s*{_SEP}\s*[\"'`]?{f}(?!\w)",
-            rf"^[\W_]*[\"'`]?{f}[\"'`]?\s*(?:$|{_SEP}|,)",
             rf"(?<!\w){f}\s+{_TAB_WORDS}\b",
             rf"\b{_TAB_WORDS}\s*[:\-]?\s*[\"'`]?{f}(?!\w)",
         )
+        if not _ASSIGNMENT.match(n):  # `Lab 3` alone names the lab, even in `Lab 3.txt`
+            patterns += (rf"^[\W_]*[\"'`]?{f}[\"'`]?\s*(?:$|{_SEP}|,)",)
         if any(re.search(pat, text, re.I | re.M) for pat in patterns):
             return True
     return False
@@ -159,6 +165,40 @@ def states_purpose(text: str, path: str, tab: str) -> bool:
 def contributors(text: str) -> str:
     """ "ok", "none" (no contributor list), or "bare" (names without what each did). A license's
     `Copyright <year> <names>` lines name authors only when no other list does."""
+    lists = _contributor_lists(text)
+    entries = lists[False] or lists[True]
+    if not entries:
+        return "none"
+    if len(entries) == 1 and not _NAME_LIST.search(entries[0]):
+        return "ok"  # one author did all of it: no list of who did what to give
+    return "ok" if all(_DID.search(e) for e in entries) else "bare"
+
+
+def left_out(text: str) -> list[str]:
+    """The students a license's `Copyright <year> <name>` line names whom the header's contributor
+    list (`Contributors:` ...) leaves out: that list does not say what they did."""
+    lines = text.split("\n")
+    listed = ""  # the lines of the contributor lists, credits too (`Dan Buckstein - provided ...`)
+    for i, line in enumerate(lines):
+        m = _CONTRIB_LABEL.match(line)
+        if m and not _COPYRIGHT.match(line):
+            listed += " " + m.group("rest")
+            for follow in lines[i + 1 :]:
+                if not _LIST_MARK.sub("", follow).strip() or _CONTRIB_LABEL.match(follow):
+                    break
+                listed += " " + follow
+    if not listed.strip():
+        return []
+    names = [
+        m.group("name")
+        for m in map(_COPYRIGHT_NAME.match, text.split("\n"))
+        if m and not _INSTRUCTOR.search(m.group("name"))
+    ]
+    return [n for n in names if not any(w in listed for w in n.split() if len(w) > 2)]
+
+
+def _contributor_lists(text: str) -> dict[bool, list[str]]:
+    """The entries of the header's contributor lists, by whether a `Copyright` line gave them."""
     lines = text.split("\n")
     lists: dict[bool, list[str]] = {True: [], False: []}  # copyright line? -> entries
     for i, line in enumerate(lines):
@@ -176,15 +216,11 @@ def contributors(text: str) -> str:
                 or _CONTRIB_LABEL.match(follow)
                 or _OTHER_LABEL.match(follow)
                 or has_credit(follow)  # a credit line is no contributor
+                or _LICENSE_TEXT.match(follow)  # nor the license under a Copyright line
             ):
                 break
             entries.append(body)
-    entries = lists[False] or lists[True]
-    if not entries:
-        return "none"
-    if len(entries) == 1 and not _NAME_LIST.search(entries[0]):
-        return "ok"  # one author did all of it: no list of who did what to give
-    return "ok" if all(_DID.search(e) for e in entries) else "bare"
+    return lists
 
 
 # A person's name: two to four capitalised words (`Ana Ruiz`, `Demetrius J Nekos`, `Mr. Li`).
