@@ -136,8 +136,12 @@ def _git_dir(mirrors: Path, repo: str) -> Path | None:
     return None
 
 
-def populate(mirrors: Path | None, clone: bool) -> int:
-    manifest, _ = load()
+def populate(
+    mirrors: Path | None, clone: bool, manifest_path: Path | None = None, texts: Path = TEXTS
+) -> int:
+    """Write each manifest entry's text to `texts`/<id>/<file name>, from a git mirror or a
+    clone, at its pinned commit."""
+    manifest = json.loads((manifest_path or CORPUS / "manifest.json").read_text())
     missing = 0
     with tempfile.TemporaryDirectory() as tmp:
         for e in manifest:
@@ -159,10 +163,10 @@ def populate(mirrors: Path | None, clone: bool) -> int:
                 print(f"missing: {e['id']} {e['repo']}@{e['commit'][:8]}:{e['path']}")
                 missing += 1
                 continue
-            out = TEXTS / e["id"] / Path(e["path"]).name  # where score looks first
+            out = texts / e["id"] / Path(e["path"]).name  # where score looks first
             out.parent.mkdir(parents=True, exist_ok=True)
             out.write_bytes(shown.stdout)
-    print(f"{len(manifest) - missing} of {len(manifest)} files in {TEXTS.relative_to(ROOT)}")
+    print(f"{len(manifest) - missing} of {len(manifest)} files in {texts}")
     return 1 if missing else 0
 
 
@@ -437,6 +441,12 @@ def main() -> int:
     p = sub.add_parser("populate", help="copy the texts into tests/real_lint/texts")
     p.add_argument("--mirrors", type=Path, help="folder of git mirrors <owner>+<name>/repo")
     p.add_argument("--clone", action="store_true", help="clone repositories without a mirror")
+    p.add_argument(
+        "--manifest", type=Path, metavar="FILE", help="another manifest (manifest.json's form)"
+    )
+    p.add_argument(
+        "--texts", type=Path, default=TEXTS, metavar="DIR", help="where to write: DIR/<id>/<name>"
+    )
     s = sub.add_parser("score", help="lint the local texts and score against the labels")
     s.add_argument("--verbose", "-v", action="store_true", help="list every miss and extra finding")
     s.add_argument(
@@ -474,7 +484,7 @@ def main() -> int:
     m.add_argument("--source", dest="provenance", required=True, help="who labelled, and how")
     args = ap.parse_args()
     if args.cmd == "populate":
-        return populate(args.mirrors, args.clone)
+        return populate(args.mirrors, args.clone, args.manifest, args.texts)
     if args.cmd == "merge-labels":
         return merge_labels(args.source, args.rules.split(","), args.provenance)
     return score(
