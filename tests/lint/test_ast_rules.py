@@ -149,6 +149,29 @@ def test_branch_replaceable_help_is_valid_glsl():
         )
 
 
+def test_faceforward_replacement_computes_what_the_branch_computes(gl, make_shader):
+    """The help's faceforward() gives the branch's vector for every direction, the ones
+    perpendicular to the normal (dot exactly 0) included, as the GL driver computes both."""
+    from glslcheck.backends.gl import compile_gl
+
+    branch = "dot(d, n) < 0.0 ? n : -n"
+    text = f"vec3 f(in vec3 d, in vec3 n)\n{{\n    return {branch};\n}}\n" + MAIN
+    (finding,) = _findings(text, ["branch-replaceable"])
+    replacement = finding.help.removeprefix("write ")
+    assert replacement.startswith("faceforward(")
+    # one direction per pixel: x and y in -2..2 by halves, some perpendicular to n = (1, 0, 0)
+    image = (
+        "void mainImage(out vec4 fragColor, in vec2 fragCoord)\n{\n"
+        "    vec3 n = vec3(1.0, 0.0, 0.0);\n"
+        "    vec3 d = vec3(floor(fragCoord) * 0.5 - 2.0, -1.0);\n"
+        f"    vec3 a = {branch};\n    vec3 b = {replacement};\n"
+        "    fragColor = vec4(abs(a - b), dot(d, n) == 0.0 ? 1.0 : 0.5);\n}\n"
+    )
+    pixels = compile_gl(make_shader(image), gl).render(size=(9, 9))
+    assert (pixels[..., 3] == 1.0).any()  # perpendicular directions were tried
+    assert not pixels[..., :3].any()
+
+
 def test_length_comparison_flips_the_operator_for_a_right_hand_length():
     text = "float f(in vec2 v, in float r)\n{\n    return float(r > length(v));\n}\n" + MAIN
     (finding,) = _findings(text, ["length-comparison"])
