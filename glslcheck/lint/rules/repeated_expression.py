@@ -12,7 +12,9 @@ variables, like `d * invIntensity` or `light.center - position`, but not a sign 
   repeated),
 * no variable it reads is written in between (an assignment, `++`/`--`, an `out` or `inout`
   argument, or any write in a loop around the second one but not the first; a global it reads
-  is taken as written by any user function called in between), and
+  is taken as written by any user function called in between; an assignment to a field of a
+  struct it reads, `rec.normal = ...`, counts only when it reads that field or the whole
+  struct), and
 * it calls no built-in with an `out` parameter and only pure user functions (`in` parameters
   only, no global variable read or written, only pure functions called: `lenSq(v)`).
 
@@ -195,7 +197,7 @@ def _check_function(fn) -> Iterator[Diagnostic]:
                     a
                     for a in occ[: min(j, _CANDIDATES)]
                     if (fn.dominates(a, b) or (id(b) in within and fn.contains(b, a)))
-                    and not fn.written_between(a, b, operands)
+                    and not fn.written_between(a, b, operands, reads=b)
                 ),
                 None,
             )

@@ -179,6 +179,14 @@ def _any_between(positions: list[int], lo: int, hi: int) -> bool:
     return i < len(positions) and positions[i] < hi
 
 
+def _apart(written: tuple[str, ...] | None, read: list[tuple[str, ...]]) -> bool:
+    """A write to the field path `written` leaves every path of `read` unchanged: neither is a
+    prefix of the other (`normal` and `point`; not `()`, the whole struct, and `point`)."""
+    if written is None:
+        return False
+    return all(written[: len(r)] != r and r[: len(written)] != written for r in read)
+
+
 _JUMPS = (A.Return, A.Break, A.Continue, A.Discard)
 _WRITERS = frozenset(
     (A.Assignment, A.Unary, A.Postfix, A.Declarator, A.ConditionDeclaration, A.Call)
@@ -429,9 +437,52 @@ class FunctionFacts(ValueRanges):
     def writes_to(self, sym: Symbol) -> list[Write]:
         return self.writes.get(id(sym), [])
 
-    def written_between(self, a: Any, b: Any, syms: Iterable[Symbol]) -> bool:
+    def written_between(self, a: Any, b: Any, syms: Iterable[Symbol], reads: Any = None) -> bool:
         """Whether a variable of `syms` may be written after `a` and before `b` is evaluated:
-        a write between them, or anywhere in a loop around `b` that is not around `a`."""
+        a write between them, or anywhere in a loop around `b` that is not around `a`. With
+        `reads` (an expression of this function), a write to a struct field the expression
+        never reads (`rec.normal = ...` when it reads `rec.point`) does not count."""
+        if reads is not None:
+            paths = self._field_paths(reads)
+            syms = [s for s in syms if s not in paths or self._written_between(a, b, [s], paths[s])]
+        return self._written_between(a, b, syms)
+
+    def _field_paths(self, e: Any) -> dict[Symbol, list[tuple[str, ...]]]:
+        """For each variable `e` reads, the struct-field paths it reads it by (`rec.point` ->
+        ("point",); `rec` whole or through an index -> ())."""
+        out: dict[Symbol, list[tuple[str, ...]]] = {}
+        for n in e.walk():
+            if type(n) is not A.Identifier:
+                continue
+            sym = self.model.symbol_of(n)
+            if sym is None:
+                continue
+            path: list[str] = []
+            up = self.parent.get(id(n)) if n is not e else None
+            child = n
+            while type(up) is A.Field and up.base is child and not self.model.is_swizzle(up):
+                path.append(up.name)
+                child, up = up, (self.parent.get(id(up)) if up is not e else None)
+            out.setdefault(sym, []).append(tuple(path))
+        return out
+
+    def _write_path(self, w: Write) -> tuple[str, ...] | None:
+        """The struct-field path a "part" assignment writes (`rec.normal = ...` -> ("normal",)),
+        None when it is not one of fields only."""
+        if w.kind != "part" or type(w.node) is not A.Assignment:
+            return None
+        path: list[str] = []
+        t = w.node.target
+        while type(t) is A.Field and not self.model.is_swizzle(t):
+            path.append(t.name)
+            t = t.base
+        if type(t) is not A.Identifier or not path:
+            return None  # an element or components: not a field apart
+        return tuple(reversed(path))
+
+    def _written_between(
+        self, a: Any, b: Any, syms: Iterable[Symbol], read_paths: list | None = None
+    ) -> bool:
         lo, hi = self.exit[id(a)], self.enter[id(b)]
         spans = [(lo, hi)]
         loops_a = {id(lp) for lp in self.enclosing_loops(a)}
@@ -442,6 +493,16 @@ class FunctionFacts(ValueRanges):
         for s in syms:
             if s.kind == "global" and s.qualifier != "const":
                 globals_read = True
+            if read_paths is not None:  # a field write elsewhere than every path read: none
+                found = [
+                    w
+                    for w in self.writes_to(s)
+                    if any(lo_ < w.pos < hi_ for lo_, hi_ in spans)
+                    and not _apart(self._write_path(w), read_paths)
+                ]
+                if found:
+                    return True
+                continue
             positions = self._positions(id(s), lambda: [w.pos for w in self.writes_to(s)])
             if any(_any_between(positions, lo_, hi_) for lo_, hi_ in spans):
                 return True
