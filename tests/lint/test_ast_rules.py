@@ -10,6 +10,7 @@ import pytest
 from glslcheck.frontend import syntax as A
 from glslcheck.frontend.parser import parse_units
 from glslcheck.lint import engine, lint_paths, lint_source
+from glslcheck.lint.config import LintConfig
 from glslcheck.lint.rules import all_rules
 from glslcheck.semantics import check
 from glslcheck.semantics.analysis import FunctionFacts
@@ -23,12 +24,14 @@ AST_RULES = [r.name for r in all_rules().values() if r.needs == "ast"]
 HEADER = "// Image.glsl: a test\n// Contributors: Ana: all\n// starter framework by Daniel S. Buckstein\n"
 
 
-def _findings(text: str, select: list[str] | None = None):
+def _findings(text: str, select: list[str] | None = None, *, only: bool = False):
+    """The findings of `select`'s rules; with `only`, the other rules do not run at all."""
     src = Source("Image.glsl", text)
     shader = Shader(tabs={"Image": src}, root=".")
     tree, model = engine.syntax_tree(src, shader)
     assert model is not None, "the snippet must parse and check"
-    found = lint_source(src, None, shader, tree, model)
+    config = LintConfig(select=frozenset(select)) if only and select else None
+    found = lint_source(src, config, shader, tree, model)
     return [f for f in found if select is None or f.rule in select]
 
 
@@ -170,6 +173,27 @@ def test_faceforward_replacement_computes_what_the_branch_computes(gl, make_shad
     pixels = compile_gl(make_shader(image), gl).render(size=(9, 9))
     assert (pixels[..., 3] == 1.0).any()  # perpendicular directions were tried
     assert not pixels[..., :3].any()
+
+
+def test_a_repetition_inside_loop_invariant_work_is_left_to_loop_invariant():
+    text = (
+        "float f(in vec2 p, in float w)\n{\n    float s = 0.0;\n"
+        "    for (int i = 0; i < 4; ++i)\n    {\n"
+        "        float u = (p.x + sin(dot(p, p))) / w;\n"
+        "        float v = (p.y + sin(dot(p, p))) / w;\n"
+        "        s += u * v + float(i);\n    }\n    return s + sin(dot(p, p));\n}\n" + MAIN
+    )
+    both = _findings(text, ["loop-invariant", "repeated-expression"])
+    assert [(f.rule, f.loc.line) for f in both] == [("loop-invariant", 6)]
+    assert "(line 6) and" in both[0].message and "(line 7)" in both[0].message
+    # alone, repeated-expression reports the repetition; and one computed outside the hoisted
+    # expressions is still reported beside loop-invariant
+    assert [f.loc.line for f in _findings(text, ["repeated-expression"], only=True)] == [7]
+    outside = text.replace("float s = 0.0;", "float s = (p.x + sin(dot(p, p))) / w;")
+    assert {f.rule for f in _findings(outside, ["loop-invariant", "repeated-expression"])} == {
+        "loop-invariant",
+        "repeated-expression",
+    }
 
 
 def test_length_comparison_flips_the_operator_for_a_right_hand_length():

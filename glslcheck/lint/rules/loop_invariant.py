@@ -9,8 +9,10 @@ variable written anywhere in the loop (the loop counter included), no variable d
 loop, calls only pure user functions and no built-in with an `out` parameter, and reads no
 global variable when the loop calls a user function (which could write it). One operation in a
 loop bound (`i < n - 1`) is idiomatic and not reported; nor is code after a `return` or `break`.
-Only the largest such expression is reported, for the outermost loop it does not depend on,
-one finding per value with every place it is computed in that loop.
+Only the largest such expression is reported, for the outermost loop it does not depend on:
+one finding per loop, naming every value to compute before it and every place it is computed
+(hoisting them is one fix: `u` and `v` of an anti-aliasing loop that jitters by a random value
+of the pixel alone are one finding).
 
 ## Why is this bad?
 The course's coding standards: "Use the most efficient methods (-1 per inefficient/unnecessary
@@ -62,7 +64,10 @@ def check(ctx: LintContext) -> Iterator[Diagnostic]:
         yield from _check_function(fn)
 
 
-def _check_function(fn) -> Iterator[Diagnostic]:
+def invariant_places(fn) -> list[tuple[A.Expr, A.Node]]:
+    """(expression, loop) for each expression this rule reports in the function `fn` (the
+    largest invariant ones, each for the outermost loop it does not depend on), in source
+    order."""
     reported_spans: list[tuple[int, int]] = []
     targets = {id(n.target) for n in fn.nodes if type(n) is A.Assignment}
     found = []
@@ -104,22 +109,49 @@ def _check_function(fn) -> Iterator[Diagnostic]:
             skip_until = span[1]
             found.append((n, loop))
     found.sort(key=lambda pair: fn.enter[id(pair[0])])
-    values: dict = {}  # one finding per invariant value and loop, all its places listed
-    for n, loop in found:
-        values.setdefault((fn.key(n), id(loop)), []).append((n, loop))
-    for places in values.values():
-        n, loop = places[0]
-        lines = sorted({p.loc.line for p, _ in places})
-        where = (
-            f"line {lines[0]}"
-            if len(lines) == 1
-            else "lines " + ", ".join(map(str, lines[:-1])) + f" and {lines[-1]}"
-        )
-        times = "" if len(places) == 1 else f" (computed {len(places)} times in it, at {where})"
+    return found
+
+
+def _lines(places) -> str:
+    lines = sorted({p.loc.line for p in places})
+    if len(lines) == 1:
+        return f"line {lines[0]}"
+    return "lines " + ", ".join(map(str, lines[:-1])) + f" and {lines[-1]}"
+
+
+def _check_function(fn) -> Iterator[Diagnostic]:
+    loops: dict = {}  # one finding per loop: every invariant value in it, all its places listed
+    for n, loop in invariant_places(fn):
+        loops.setdefault(id(loop), (loop, {}))[1].setdefault(fn.key(n), []).append(n)
+    for loop, values in loops.values():
+        places = [n for ns in values.values() for n in ns]
+        first = places[0]
+        where = f"{_LOOP_WORD[type(loop)]} loop at line {loop.loc.line}"
+        if len(values) == 1:
+            times = (
+                ""
+                if len(places) == 1
+                else f" (computed {len(places)} times in it, at {_lines(places)})"
+            )
+            message = f"'{text(first)}' has the same value on every iteration of the {where}{times}"
+            help_ = "compute it once before the loop, in a local variable, and use that inside"
+        else:
+            named = [f"'{text(ns[0])}' ({_lines(ns)})" for ns in values.values()]
+            message = (
+                f"{len(values)} expressions give the same value on every iteration of the "
+                f"{where}: " + ", ".join(named[:-1]) + f" and {named[-1]}"
+            )
+            help_ = "compute them once before the loop, in local variables, and use those inside"
         yield Diagnostic(
-            f"'{text(n)}' has the same value on every iteration of the {_LOOP_WORD[type(loop)]} "
-            f"loop at line {loop.loc.line}{times}",
-            n.loc,
-            help="compute it once before the loop, in a local variable, and use that inside",
-            notes=[Diagnostic("also computed here", p.loc, severity="note") for p, _ in places[1:]],
+            message,
+            first.loc,
+            help=help_,
+            notes=[
+                Diagnostic(
+                    "also computed here" if fn.key(p) == fn.key(first) else f"'{text(p)}' here",
+                    p.loc,
+                    severity="note",
+                )
+                for p in places[1:]
+            ],
         )

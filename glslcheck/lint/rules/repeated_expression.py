@@ -32,7 +32,8 @@ repeated value, at its second evaluation, listing every place it is computed (in
 and as notes: the JSON `notes`): the deduction counts one inefficient practice once. A repeated
 value's repeated parts are not reported again; a part that is also repeated elsewhere at most
 once (`sin(t)` at line 5 and inside `sin(t) * k` twice at line 6) joins the larger value's
-finding.
+finding. A value computed only inside expressions that loop-invariant reports is left to that
+rule: computed once before the loop, it is computed once.
 
 ## Why is this bad?
 The course's coding standards: "Use the most efficient methods (-1 per inefficient/unnecessary
@@ -60,6 +61,7 @@ from __future__ import annotations
 from ...base.diagnostics import Diagnostic
 from ...frontend import syntax as A
 from ...semantics.analysis import program_facts, written_variable
+from . import loop_invariant
 from ._text import text
 
 TYPE_CHECKING = False  # not typing's: importing typing costs every start-up
@@ -103,8 +105,10 @@ _LEAVES = (A.Identifier, A.FloatLiteral, A.IntLiteral, A.BoolLiteral)
 
 
 def check(ctx: LintContext) -> Iterator[Diagnostic]:
+    hoisted = ctx.config.enabled(loop_invariant.NAME)
     for fn in program_facts(ctx.model).in_file(ctx.path):
-        yield from _check_function(fn)
+        inside = [n for n, _ in loop_invariant.invariant_places(fn)] if hoisted else []
+        yield from _check_function(fn, inside)
 
 
 def _within_chains(fn, groups: dict) -> dict[int, object]:
@@ -155,7 +159,9 @@ def _places(nodes) -> str:
     return "lines " + ", ".join(map(str, lines[:-1])) + f" and {lines[-1]}"
 
 
-def _check_function(fn) -> Iterator[Diagnostic]:
+def _check_function(fn, hoisted: list) -> Iterator[Diagnostic]:
+    """The findings of one function; a value computed only inside the expressions of `hoisted`
+    (what loop-invariant reports: computed once before the loop, it is computed once) is not."""
     groups: dict = {}
     targets = {id(n.target) for n in fn.nodes if type(n) is A.Assignment}
     for n in fn.nodes:
@@ -225,6 +231,8 @@ def _check_function(fn) -> Iterator[Diagnostic]:
                     owner.setdefault(id(m), places)
     values.sort(key=lambda places: fn.enter[id(places[1][0])])
     for places in values:
+        if hoisted and all(any(fn.contains(h, n) for h in hoisted) for n, _ in places):
+            continue
         (first, key), (b, _) = places[0], places[1]
         same = [n for n, k in places if k == key]
         parts: dict = {}  # repeated parts merged into this value: key -> their places
