@@ -71,6 +71,20 @@ GUIDE_RULES = [
     "out-parameter-read",
     "other-inefficiency",
 ]
+# The rules of the efficiency standard: a finding of one of them on the lines of an
+# "other-inefficiency" label (the guide's id for an inefficiency no specific id fits) is the
+# same deduction under a more specific name; `score` counts those pairs apart.
+EFFICIENCY_RULES = (
+    "length-comparison",
+    "sqrt-comparison",
+    "pow-small-exponent",
+    "pow-negative-base",
+    "repeated-expression",
+    "loop-invariant",
+    "branch-replaceable",
+    "normalize-known-length",
+)
+OTHER = "other-inefficiency"
 RUN_RULES = ("missing-comment",)  # labelled and reported as runs of lines [first, last]
 
 
@@ -187,14 +201,15 @@ def label_lines(lab: dict) -> set[int]:
     return set(lab["lines"])
 
 
-def match(labels: list[dict], findings: list[dict]) -> dict[int, int]:
-    """A maximum matching of labels to findings (label index -> finding index): same rule and a
-    shared line; augmenting paths, so the order of labels and findings does not matter."""
+def match(labels: list[dict], findings: list[dict], any_rule: bool = False) -> dict[int, int]:
+    """A maximum matching of labels to findings (label index -> finding index): same rule (any
+    rule with `any_rule`) and a shared line; augmenting paths, so the order of labels and
+    findings does not matter."""
     can = [
         [
             i
             for i, f in enumerate(findings)
-            if f["rule"] == lab["rule"] and finding_lines(f) & label_lines(lab)
+            if (any_rule or f["rule"] == lab["rule"]) and finding_lines(f) & label_lines(lab)
         ]
         for lab in labels
     ]
@@ -270,6 +285,7 @@ def score(
     # certainty: labels found / labels, findings matched / findings, per certainty
     by_label, by_finding = Counter(), Counter()
     not_full = []
+    crossed: list[str] = []  # an extra efficiency finding on a missed other-inefficiency label
     for e in present:
         findings, stderr, rc = lint_json([local_path(e, texts).resolve()], root)
         if "Traceback" in stderr or rc not in (0, 1):
@@ -315,6 +331,15 @@ def score(
                 fp[f["rule"]] += 1
                 if verbose:
                     print(f"  extra   {e['id']}:{f['line']} {f['rule']}: {f['message']}")
+        missed_other = [
+            lab for j, lab in enumerate(want) if j not in pairs and lab["rule"] == OTHER
+        ]
+        extra_efficiency = [
+            f for i, f in enumerate(got) if i not in used and f["rule"] in EFFICIENCY_RULES
+        ]
+        for j, i in match(missed_other, extra_efficiency, any_rule=True).items():
+            f = extra_efficiency[i]
+            crossed.append(f"{e['id']}:{missed_other[j]['lines'][0]} {f['rule']}")
     which = (
         "with the documented corrections"
         if corrected and labels.get("corrections")
@@ -329,6 +354,12 @@ def score(
         else:
             t, p, n = tp[rule], fp[rule], fn[rule]
         print(f"{rule:28} {t + n:6d} {t + p:6d} {t:4d} {_rate(t, t + n):>7} {_rate(t, t + p):>9}")
+    if crossed:
+        print(
+            f"{OTHER} labels met by an extra finding of an efficiency rule on their lines (the "
+            f"same deduction, a specific id; counted above as a miss and an extra): "
+            f"{len(crossed)}: {', '.join(crossed)}"
+        )
     print("by certainty (labels: the labeller's; findings: the linter's)")
     for sure in ("certain", "possible"):
         lab_hit, lab_all = by_label[sure, "hit"], by_label[sure, "all"]

@@ -33,6 +33,14 @@ def test_a_finding_anywhere_in_a_labelled_run_matches_it_once():
     assert real_lint.match(labels, [_comment_finding(19, 21)]) == {1: 0}
 
 
+def test_an_other_inefficiency_label_meets_a_specific_finding_only_across_rules():
+    labels = [{"rule": "other-inefficiency", "lines": [123, 124]}]
+    findings = [{"rule": "normalize-known-length", "line": 123, "message": "normalize() ..."}]
+    assert real_lint.match(labels, findings) == {}
+    assert real_lint.match(labels, findings, any_rule=True) == {0: 0}
+    assert "normalize-known-length" in real_lint.EFFICIENCY_RULES
+
+
 def test_a_labellers_file_covers_every_rule_of_the_guide(tmp_path):
     path = tmp_path / "labels.json"
     path.write_text(json.dumps({"f01": [{"rule": "missing-header", "lines": [1]}], "f02": []}))
