@@ -83,6 +83,7 @@ EFFICIENCY_RULES = (
     "loop-invariant",
     "branch-replaceable",
     "normalize-known-length",
+    "unused-variable",
 )
 OTHER = "other-inefficiency"
 RUN_RULES = ("missing-comment",)  # labelled and reported as runs of lines [first, last]

@@ -9,7 +9,11 @@ Parameters, uniforms and shader inputs/outputs are not reported. A Common tab is
 together with the Image tab, so a global of Common that only Image reads is used; when the
 shader has other passes too (Buffer A..D), Common's globals are not reported at all.
 
-This is a note, not a deduction.
+A local whose value is a computation (`float h = dot(n, normalize(l + v));`: an operation or a
+call of a built-in or user function, not a literal or a constructor of constants) is a possible
+deduction: the shader does that work for nothing, an "unnecessary practice" of the standards
+(possible: the compiler drops the dead code, so the cost is to the reader). The finding lists
+every place the value is computed. Any other unused variable is a note, not a deduction.
 
 ## Why is this bad?
 An unused variable is dead code: a leftover from an earlier version or a computation whose
@@ -44,8 +48,9 @@ if TYPE_CHECKING:
     from ..engine import LintContext
 
 NAME = "unused-variable"
-PENALTY = 0
-SEVERITY = "note"
+PENALTY = 1
+SEVERITY = "warning"
+CERTAINTY = "possible"
 NEEDS = "ast"
 READS = "program"  # a read in code that does not compile may be missing
 
@@ -110,17 +115,53 @@ def check(ctx: LintContext) -> Iterator[Diagnostic]:
     for fn in program_facts(ctx.model).in_file(ctx.path):
         for n in fn.nodes:
             if type(n) is A.Declarator:
-                yield from _unused(ctx, model, n, reads, "local")
+                yield from _unused(ctx, model, n, reads, "local", fn)
 
 
-def _unused(ctx, model, d: A.Declarator, reads: set[int], kind: str) -> Iterator[Diagnostic]:
+def _computed(fn, value) -> bool:
+    """`value` is work done at run time: an operation or a call, not constant."""
+    return (
+        value is not None
+        and fn.op_count(value)[0] > 0
+        and not fn.model.is_constant(value)
+        and not fn.is_dead(value)
+    )
+
+
+def _unused(
+    ctx, model, d: A.Declarator, reads: set[int], kind: str, fn: Any = None
+) -> Iterator[Diagnostic]:
     sym = model.symbol_of(d)
     if sym is None or id(sym) in reads:
         return
     loc = d.name_loc if d.name_loc.line else d.loc
     what = "constant" if sym.qualifier == "const" else "variable"
+    help_ = f"remove '{d.name}', or use it where its value was meant to go"
+    work = []  # the writes that compute its value
+    if fn is not None:
+        for w in fn.writes_to(sym):
+            value = w.value if w.kind in ("init", "=") else getattr(w.node, "value", None)
+            if w.kind in ("init", "=", "part") and _computed(fn, value):
+                work.append(value)
+    if not work:
+        yield Diagnostic(
+            f"the {kind} {what} '{d.name}' is never read", loc, help=help_, severity="note"
+        )
+        return
+    lines = sorted({v.loc.line for v in work})
+    where = (
+        f"line {lines[0]}"
+        if len(lines) == 1
+        else "lines " + ", ".join(map(str, lines[:-1])) + f" and {lines[-1]}"
+    )
     yield Diagnostic(
-        f"the {kind} {what} '{d.name}' is never read",
+        f"the {kind} {what} '{d.name}' is never read: its value, computed at {where}, is work "
+        "done for nothing",
         loc,
-        help=f"remove '{d.name}', or use it where its value was meant to go",
+        help=help_,
+        notes=[
+            Diagnostic("computed here", v.loc, severity="note")
+            for v in work
+            if v.loc.line != loc.line
+        ],
     )
