@@ -15,6 +15,11 @@ deduction: the shader does that work for nothing, an "unnecessary practice" of t
 (possible: the compiler drops the dead code, so the cost is to the reader). The finding lists
 every place the value is computed. Any other unused variable is a note, not a deduction.
 
+Likewise a possible deduction: a local's computed value that the next statement of the same
+block writing the whole variable replaces (`v = ...;`, or passing `v` to an `out` parameter)
+before anything reads it (`dir = target - origin; calcRay(dir, ...);` with
+`calcRay(out vec4 dir, ...)`).
+
 ## Why is this bad?
 An unused variable is dead code: a leftover from an earlier version or a computation whose
 result was forgotten (often the bug). The course's coding standards ask to "remove redundant
@@ -37,7 +42,7 @@ from __future__ import annotations
 
 from ...base.diagnostics import Diagnostic
 from ...frontend import syntax as A
-from ...semantics.analysis import program_facts
+from ...semantics.analysis import param_directions, program_facts
 from ...shadertoy.wrapper import PASS_TABS
 
 TYPE_CHECKING = False  # not typing's: importing typing costs every start-up
@@ -116,6 +121,75 @@ def check(ctx: LintContext) -> Iterator[Diagnostic]:
         for n in fn.nodes:
             if type(n) is A.Declarator:
                 yield from _unused(ctx, model, n, reads, "local", fn)
+        yield from _overwritten(fn, reads)
+
+
+def _read_positions(fn) -> dict[int, list[int]]:
+    """id(symbol) -> the positions where the function reads that variable (not the variable an
+    `=` writes whole, nor an `out` argument)."""
+    skip: set[int] = set()
+    for n in fn.nodes:
+        if type(n) is A.Assignment and n.op == "=" and type(n.target) is A.Identifier:
+            skip.add(id(n.target))
+        elif type(n) is A.Call:
+            for arg, d in zip(n.args, param_directions(fn.model.call_target(n))):
+                if d == "out" and type(arg) is A.Identifier:
+                    skip.add(id(arg))
+    out: dict[int, list[int]] = {}
+    for n in fn.nodes:
+        if type(n) is A.Identifier and id(n) not in skip:
+            sym = fn.model.symbol_of(n)
+            if sym is not None:
+                out.setdefault(id(sym), []).append(fn.enter[id(n)])
+    return out
+
+
+def _out_writes(fn, sym) -> list[int]:
+    """Positions of the calls that pass the variable itself to an `out` parameter."""
+    found = []
+    for w in fn.writes_to(sym):
+        if w.kind != "out" or type(w.node) is not A.Call:
+            continue
+        for arg, d in zip(w.node.args, param_directions(fn.model.call_target(w.node))):
+            if d == "out" and type(arg) is A.Identifier and fn.model.symbol_of(arg) is sym:
+                found.append(w)
+                break
+    return found
+
+
+def _overwritten(fn, reads: set[int]) -> Iterator[Diagnostic]:
+    """A local's computed value that the next statement writing the variable replaces, in the
+    same block, before anything reads it (`d = a - b; calc(d);` with `calc(out vec4 d)`)."""
+    positions = None
+    for sym_id, writes in fn.writes.items():
+        sym = writes[0].symbol
+        if sym.kind != "local" or sym_id not in reads:
+            continue  # a variable never read at all is reported as unused
+        whole = sorted(
+            [w for w in writes if w.kind in ("=", "init")] + _out_writes(fn, sym),
+            key=lambda w: w.pos,
+        )
+        for first, then in zip(whole, whole[1:]):
+            if not _computed(fn, first.value) or first.kind not in ("=", "init"):
+                continue
+            if fn.region[id(first.node)] != fn.region[id(then.node)] or fn.is_dead(then.node):
+                continue
+            if positions is None:
+                positions = _read_positions(fn)
+            if any(first.pos < p < then.pos for p in positions.get(sym_id, ())):
+                continue
+            how = (
+                f"{then.node.callee}()'s out parameter"
+                if type(then.node) is A.Call
+                else "an assignment"
+            )
+            yield Diagnostic(
+                f"the value computed for '{sym.name}' here is never read: {how} at line "
+                f"{then.node.loc.line} replaces it first",
+                first.value.loc,
+                help=f"remove this computation, or use '{sym.name}' before it is replaced",
+                notes=[Diagnostic("replaced here", then.node.loc, severity="note")],
+            )
 
 
 def _computed(fn, value) -> bool:
