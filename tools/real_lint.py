@@ -337,6 +337,10 @@ def score(
         ]
         extra_efficiency = [
             f for i, f in enumerate(got) if i not in used and f["rule"] in EFFICIENCY_RULES
+        ] + [  # deductions of efficiency rules the labels have no id for (unused-variable)
+            f
+            for f in findings
+            if f["rule"] in EFFICIENCY_RULES and f["rule"] not in rules and f["penalty"]
         ]
         for j, i in match(missed_other, extra_efficiency, any_rule=True).items():
             f = extra_efficiency[i]
@@ -358,7 +362,8 @@ def score(
     if crossed:
         print(
             f"{OTHER} labels met by an extra finding of an efficiency rule on their lines (the "
-            f"same deduction, a specific id; counted above as a miss and an extra): "
+            f"same deduction, a specific id; counted above as a miss, and a scored rule's "
+            f"finding as an extra): "
             f"{len(crossed)}: {', '.join(crossed)}"
         )
     print("by certainty (labels: the labeller's; findings: the linter's)")
