@@ -210,19 +210,24 @@ def _model_cache(model: Model, name: str) -> dict:
     return model.analysis_caches.setdefault(name, {})
 
 
-def pure_function(model: Model, sym: Symbol, _seen: frozenset = frozenset()) -> bool:
+def pure_function(
+    model: Model, sym: Symbol, _seen: frozenset = frozenset(), outputs: bool = False
+) -> bool:
     """A user function whose result depends only on its arguments: `in` parameters only, no
     write to a global, no read of a global variable that is not const (uniforms are constant in
-    a frame), and only pure functions called (`float lenSq(vec2 v) { return dot(v, v); }`)."""
-    cache = _model_cache(model, "pure_function")
+    a frame), and only pure functions called (`float lenSq(vec2 v) { return dot(v, v); }`).
+    With `outputs`, `out` and `inout` parameters are allowed too: its results (returned and
+    written out) depend only on its arguments' values."""
+    cache = _model_cache(model, "pure_outputs" if outputs else "pure_function")
     if id(sym) in cache:
         return cache[id(sym)]
     d = sym.node
+    allowed = ("in", "out", "inout") if outputs else ("in",)
     ok = (
         isinstance(d, A.FunctionDefinition)
         and d.body is not None
         and id(sym) not in _seen
-        and all(direction == "in" for _, _, direction in sym.params)
+        and all(direction in allowed for _, _, direction in sym.params)
     )
     if ok:
         for n in model.body_nodes(d):
@@ -238,7 +243,7 @@ def pure_function(model: Model, sym: Symbol, _seen: frozenset = frozenset()) -> 
                     or (isinstance(target, B.Overload) and target.out_params)
                     or (
                         isinstance(target, Symbol)
-                        and not pure_function(model, target, _seen | {id(sym)})
+                        and not pure_function(model, target, _seen | {id(sym)}, outputs)
                     )
                 ):
                     ok = False
