@@ -78,7 +78,15 @@ def check(ctx: LintContext) -> Iterator[Diagnostic]:
 def invariant_places(fn) -> list[tuple[A.Expr, A.Node]]:
     """(expression, loop) for each expression this rule reports in the function `fn` (the
     largest invariant ones, each for the outermost loop it does not depend on), in source
-    order."""
+    order; computed once per function (repeated-expression asks too)."""
+    cached = fn.__dict__.get("_invariant_places")
+    if cached is not None:
+        return cached
+    found = fn.__dict__["_invariant_places"] = _invariant_places(fn)
+    return found
+
+
+def _invariant_places(fn) -> list[tuple[A.Expr, A.Node]]:
     reported_spans: list[tuple[int, int]] = []
     targets = {id(n.target) for n in fn.nodes if type(n) is A.Assignment}
     found = []

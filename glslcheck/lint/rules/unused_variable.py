@@ -40,6 +40,8 @@ vec3 color = kD * attenuation * albedo * light.color;
 
 from __future__ import annotations
 
+from bisect import bisect_right
+
 from ...base.diagnostics import Diagnostic
 from ...frontend import syntax as A
 from ...semantics.analysis import param_directions, program_facts
@@ -176,7 +178,9 @@ def _overwritten(fn, reads: set[int]) -> Iterator[Diagnostic]:
                 continue
             if positions is None:
                 positions = _read_positions(fn)
-            if any(first.pos < p < then.pos for p in positions.get(sym_id, ())):
+            read_at = positions.get(sym_id, [])  # in execution order: sorted
+            i = bisect_right(read_at, first.pos)
+            if i < len(read_at) and read_at[i] < then.pos:
                 continue
             how = (
                 f"{then.node.callee}()'s out parameter"

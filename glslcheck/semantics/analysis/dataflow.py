@@ -454,8 +454,12 @@ class FunctionFacts(ValueRanges):
 
     def _field_paths(self, e: Any) -> dict[Symbol, list[tuple[str, ...]]]:
         """For each variable `e` reads, the struct-field paths it reads it by (`rec.point` ->
-        ("point",); `rec` whole or through an index -> ())."""
+        ("point",); `rec` whole or through an index -> ()). Cached per expression."""
+        cache = self.__dict__.setdefault("_field_path_cache", {})
+        if id(e) in cache:
+            return cache[id(e)]
         out: dict[Symbol, list[tuple[str, ...]]] = {}
+        cache[id(e)] = out
         for n in e.walk():
             if type(n) is not A.Identifier:
                 continue
