@@ -83,6 +83,7 @@ EFFICIENCY_RULES = (
     "loop-invariant",
     "branch-replaceable",
     "normalize-known-length",
+    "no-op-arithmetic",
     "unused-variable",
 )
 OTHER = "other-inefficiency"
