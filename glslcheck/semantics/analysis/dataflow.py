@@ -449,7 +449,12 @@ class FunctionFacts(ValueRanges):
         never reads (`rec.normal = ...` when it reads `rec.point`) does not count."""
         if reads is not None:
             paths = self._field_paths(reads)
-            syms = [s for s in syms if s not in paths or self._written_between(a, b, [s], paths[s])]
+            syms = [
+                s
+                for s in syms
+                if not (paths.get(s) and all(paths[s]))  # read whole somewhere: any write
+                or self._written_between(a, b, [s], paths[s])
+            ]
         return self._written_between(a, b, syms)
 
     def _field_paths(self, e: Any) -> dict[Symbol, list[tuple[str, ...]]]:
@@ -502,17 +507,16 @@ class FunctionFacts(ValueRanges):
         for s in syms:
             if s.kind == "global" and s.qualifier != "const":
                 globals_read = True
-            if read_paths is not None:  # a field write elsewhere than every path read: none
-                found = [
-                    w
-                    for w in self.writes_to(s)
-                    if any(lo_ < w.pos < hi_ for lo_, hi_ in spans)
-                    and not _apart(self._write_path(w), read_paths)
-                ]
-                if found:
-                    return True
-                continue
             positions = self._positions(id(s), lambda: [w.pos for w in self.writes_to(s)])
+            if read_paths is not None:  # a field write elsewhere than every path read: none
+                writes = self.writes_to(s)  # in position order, as `positions`
+                for lo_, hi_ in spans:
+                    i = bisect_right(positions, lo_)
+                    while i < len(positions) and positions[i] < hi_:
+                        if not _apart(self._write_path(writes[i]), read_paths):
+                            return True
+                        i += 1
+                continue
             if any(_any_between(positions, lo_, hi_) for lo_, hi_ in spans):
                 return True
         if globals_read:
