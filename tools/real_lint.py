@@ -76,6 +76,22 @@ GUIDE_RULES = [
     "out-parameter-read",
     "other-inefficiency",
 ]
+# The rules of the efficiency standard: a finding of one of them on the lines of an
+# "other-inefficiency" label (the guide's id for an inefficiency no specific id fits) is the
+# same deduction under a more specific name; `score` counts those pairs apart.
+EFFICIENCY_RULES = (
+    "length-comparison",
+    "sqrt-comparison",
+    "pow-small-exponent",
+    "pow-negative-base",
+    "repeated-expression",
+    "loop-invariant",
+    "branch-replaceable",
+    "normalize-known-length",
+    "no-op-arithmetic",
+    "unused-variable",
+)
+OTHER = "other-inefficiency"
 RUN_RULES = ("missing-comment",)  # labelled and reported as runs of lines [first, last]
 
 
@@ -196,9 +212,10 @@ def label_lines(lab: dict) -> set[int]:
     return set(lab["lines"])
 
 
-def shares_line(lab: dict, f: dict) -> bool:
-    """Whether a finding and a label can match: the same rule and a line in common."""
-    return f["rule"] == lab["rule"] and bool(finding_lines(f) & label_lines(lab))
+def shares_line(lab: dict, f: dict, any_rule: bool = False) -> bool:
+    """Whether a finding and a label can match: the same rule (any rule with `any_rule`) and a
+    line in common."""
+    return (any_rule or f["rule"] == lab["rule"]) and bool(finding_lines(f) & label_lines(lab))
 
 
 def line_level(labels: list[dict], findings: list[dict]) -> tuple[Counter, Counter]:
@@ -209,10 +226,11 @@ def line_level(labels: list[dict], findings: list[dict]) -> tuple[Counter, Count
     return held, inside
 
 
-def match(labels: list[dict], findings: list[dict]) -> dict[int, int]:
-    """A maximum matching of labels to findings (label index -> finding index): same rule and a
-    shared line; augmenting paths, so the order of labels and findings does not matter."""
-    can = [[i for i, f in enumerate(findings) if shares_line(lab, f)] for lab in labels]
+def match(labels: list[dict], findings: list[dict], any_rule: bool = False) -> dict[int, int]:
+    """A maximum matching of labels to findings (label index -> finding index): same rule (any
+    rule with `any_rule`) and a shared line; augmenting paths, so the order of labels and
+    findings does not matter."""
+    can = [[i for i, f in enumerate(findings) if shares_line(lab, f, any_rule)] for lab in labels]
     owner: dict[int, int] = {}  # finding -> label
 
     def augment(j: int, seen: set[int]) -> bool:
@@ -287,6 +305,7 @@ def score(
     # certainty: labels found / labels, findings matched / findings, per certainty
     by_label, by_finding = Counter(), Counter()
     not_full = []
+    crossed: list[str] = []  # an extra efficiency finding on a missed other-inefficiency label
     for e in present:
         findings, stderr, rc = lint_json([local_path(e, texts).resolve()], root)
         if "Traceback" in stderr or rc not in (0, 1):
@@ -336,6 +355,19 @@ def score(
                 fp[f["rule"]] += 1
                 if verbose:
                     print(f"  extra   {e['id']}:{f['line']} {f['rule']}: {f['message']}")
+        missed_other = [
+            lab for j, lab in enumerate(want) if j not in pairs and lab["rule"] == OTHER
+        ]
+        extra_efficiency = [
+            f for i, f in enumerate(got) if i not in used and f["rule"] in EFFICIENCY_RULES
+        ] + [  # deductions of efficiency rules the labels have no id for (unused-variable)
+            f
+            for f in findings
+            if f["rule"] in EFFICIENCY_RULES and f["rule"] not in rules and f["penalty"]
+        ]
+        for j, i in match(missed_other, extra_efficiency, any_rule=True).items():
+            f = extra_efficiency[i]
+            crossed.append(f"{e['id']}:{missed_other[j]['lines'][0]} {f['rule']}")
     which = (
         "with the documented corrections"
         if corrected and labels.get("corrections")
@@ -362,6 +394,13 @@ def score(
         "  held: share of labels sharing a line with some finding; inside: share of findings "
         "sharing a line with some label (line level, not one to one)"
     )
+    if crossed:
+        print(
+            f"{OTHER} labels met by an extra finding of an efficiency rule on their lines (the "
+            f"same deduction, a specific id; counted above as a miss, and a scored rule's "
+            f"finding as an extra): "
+            f"{len(crossed)}: {', '.join(crossed)}"
+        )
     print("by certainty (labels: the labeller's; findings: the linter's)")
     for sure in ("certain", "possible"):
         lab_hit, lab_all = by_label[sure, "hit"], by_label[sure, "all"]

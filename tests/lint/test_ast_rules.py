@@ -10,6 +10,7 @@ import pytest
 from glslcheck.frontend import syntax as A
 from glslcheck.frontend.parser import parse_units
 from glslcheck.lint import engine, lint_paths, lint_source
+from glslcheck.lint.config import LintConfig
 from glslcheck.lint.rules import all_rules
 from glslcheck.semantics import check
 from glslcheck.semantics.analysis import FunctionFacts
@@ -26,12 +27,14 @@ HEADER = (
 )
 
 
-def _findings(text: str, select: list[str] | None = None):
+def _findings(text: str, select: list[str] | None = None, *, only: bool = False):
+    """The findings of `select`'s rules; with `only`, the other rules do not run at all."""
     src = Source("Image.glsl", text)
     shader = Shader(tabs={"Image": src}, root=".")
     tree, model = engine.syntax_tree(src, shader)
     assert model is not None, "the snippet must parse and check"
-    found = lint_source(src, None, shader, tree, model)
+    config = LintConfig(select=frozenset(select)) if only and select else None
+    found = lint_source(src, config, shader, tree, model)
     return [f for f in found if select is None or f.rule in select]
 
 
@@ -149,6 +152,50 @@ def test_branch_replaceable_help_is_valid_glsl():
                 [Source("t.glsl", f"float g(float a, float b, float x) {{ return {h}; }}" + MAIN)]
             )
         )
+
+
+def test_faceforward_replacement_computes_what_the_branch_computes(gl, make_shader):
+    """The help's faceforward() gives the branch's vector for every direction, the ones
+    perpendicular to the normal (dot exactly 0) included, as the GL driver computes both."""
+    from glslcheck.backends.gl import compile_gl
+
+    branch = "dot(d, n) < 0.0 ? n : -n"
+    text = f"vec3 f(in vec3 d, in vec3 n)\n{{\n    return {branch};\n}}\n" + MAIN
+    (finding,) = _findings(text, ["branch-replaceable"])
+    replacement = finding.help.removeprefix("write ")
+    assert replacement.startswith("faceforward(")
+    # one direction per pixel: x and y in -2..2 by halves, some perpendicular to n = (1, 0, 0)
+    image = (
+        "void mainImage(out vec4 fragColor, in vec2 fragCoord)\n{\n"
+        "    vec3 n = vec3(1.0, 0.0, 0.0);\n"
+        "    vec3 d = vec3(floor(fragCoord) * 0.5 - 2.0, -1.0);\n"
+        f"    vec3 a = {branch};\n    vec3 b = {replacement};\n"
+        "    fragColor = vec4(abs(a - b), dot(d, n) == 0.0 ? 1.0 : 0.5);\n}\n"
+    )
+    pixels = compile_gl(make_shader(image), gl).render(size=(9, 9))
+    assert (pixels[..., 3] == 1.0).any()  # perpendicular directions were tried
+    assert not pixels[..., :3].any()
+
+
+def test_a_repetition_inside_loop_invariant_work_is_left_to_loop_invariant():
+    text = (
+        "float f(in vec2 p, in float w)\n{\n    float s = 0.0;\n"
+        "    for (int i = 0; i < 4; ++i)\n    {\n"
+        "        float u = (p.x + sin(dot(p, p))) / w;\n"
+        "        float v = (p.y + sin(dot(p, p))) / w;\n"
+        "        s += u * v + float(i);\n    }\n    return s + sin(dot(p, p));\n}\n" + MAIN
+    )
+    both = _findings(text, ["loop-invariant", "repeated-expression"])
+    assert [(f.rule, f.loc.line) for f in both] == [("loop-invariant", 6)]
+    assert "(line 6) and" in both[0].message and "(line 7)" in both[0].message
+    # alone, repeated-expression reports the repetition; and one computed outside the hoisted
+    # expressions is still reported beside loop-invariant
+    assert [f.loc.line for f in _findings(text, ["repeated-expression"], only=True)] == [7]
+    outside = text.replace("float s = 0.0;", "float s = (p.x + sin(dot(p, p))) / w;")
+    assert {f.rule for f in _findings(outside, ["loop-invariant", "repeated-expression"])} == {
+        "loop-invariant",
+        "repeated-expression",
+    }
 
 
 def test_length_comparison_flips_the_operator_for_a_right_hand_length():

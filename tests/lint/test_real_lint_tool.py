@@ -46,6 +46,14 @@ def test_line_level_counts_a_run_split_in_four_as_held_and_inside():
     assert real_lint.line_level(labels, []) == ({}, {})
 
 
+def test_an_other_inefficiency_label_meets_a_specific_finding_only_across_rules():
+    labels = [{"rule": "other-inefficiency", "lines": [123, 124]}]
+    findings = [{"rule": "normalize-known-length", "line": 123, "message": "normalize() ..."}]
+    assert real_lint.match(labels, findings) == {}
+    assert real_lint.match(labels, findings, any_rule=True) == {0: 0}
+    assert "normalize-known-length" in real_lint.EFFICIENCY_RULES
+
+
 def test_a_labellers_file_covers_every_rule_of_the_guide(tmp_path):
     path = tmp_path / "labels.json"
     path.write_text(json.dumps({"f01": [{"rule": "missing-header", "lines": [1]}], "f02": []}))

@@ -119,3 +119,35 @@ def test_check_webgl_reports_angle_in_the_users_line(tmp_path, capsys, webgl):
         "'highp float'" in err
     )
     assert main(["check", "lab_shaders/07_final", "--webgl"]) == 0
+
+
+# GLSL ES 3.00 section 4.3.3: a call of a built-in function (other than a texture lookup) whose
+# arguments are constant expressions is a constant expression, so a const may be initialised by
+# one. glslangValidator folds only some built-ins and rejects the bit casts ("global const
+# initializers must be constant"); ANGLE, Shadertoy's compiler, folds them: check follows the
+# spec and ANGLE.
+BIT_CAST_CONSTS = (
+    "const float largest = intBitsToFloat(2139095039);\n"
+    "const int oneBits = floatBitsToInt(1.0);\n"
+    "const float half_ = uintBitsToFloat(0x3F000000u);\n"
+    "void mainImage(out vec4 c, in vec2 f) { c = vec4(largest, float(oneBits), half_, 1.0); }\n"
+)
+
+
+def _tab(text: str) -> Shader:
+    shader = Shader(root="bit-cast-consts")
+    register_source("Image.glsl", text)
+    shader.tabs["Image"] = Source("Image.glsl", text, "Image")
+    return shader
+
+
+def test_const_initialised_by_a_built_in_on_constants_is_accepted(webgl):
+    shader = _tab(BIT_CAST_CONSTS)
+    assert our_errors(shader) == []
+    angle = [d for d in webgl_diagnostics(shader, "Image") if d.severity == "error"]
+    assert angle == [], [(str(d.loc), d.message) for d in angle]
+
+
+def test_glslang_rejects_the_bit_cast_consts(glslang):
+    """The difference is glslang's: if it starts folding the bit casts, this documents nothing."""
+    assert glslang_errors(_tab(BIT_CAST_CONSTS))

@@ -11,10 +11,16 @@ and shows the replacement:
 * `x >= e ? 1.0 : 0.0` -> `step(e, x)` (and the other comparisons, exactly:
   `x > e ? 1.0 : 0.0` is `1.0 - step(x, e)`);
 * `x < e ? a : b` with `a` and `b` cheap float values (names, literals, fields, swizzles,
-  constants) -> `mix(a, b, step(e, x))`, also as `if (..) v = a; else v = b;`.
+  constants) -> `mix(a, b, step(e, x))`, also as `if (..) v = a; else v = b;`;
+* `dot(d, n) < 0.0 ? n : -n` (the front-face normal of a ray tracer) -> `faceforward(n, d, n)`,
+  which is `n` exactly when `dot(n, d) < 0.0`, else `-n`; also when the comparison is kept in
+  a bool variable or field first (`rec.frontFace = dot(d, n) < 0.0;
+  rec.normal = rec.frontFace ? n : -n;`, with no write between to what it reads), and as
+  `if (..) v = n; else v = -n;`. A comparison that differs from faceforward's where the dot
+  product is 0 (`<= 0.0`) is not reported.
 
-The condition must be one comparison of two float (or, for min/max, int) scalars; the
-statement forms must be a single assignment to the same variable in each arm.
+Except for faceforward, the condition must be one comparison of two float (or, for min/max,
+int) scalars; the statement forms must be a single assignment to the same variable in each arm.
 
 ## Why is this bad?
 The course's coding standards: "Use inefficient functions and methods sparingly and out of
@@ -40,7 +46,7 @@ from __future__ import annotations
 
 from ...base.diagnostics import Diagnostic
 from ...frontend import syntax as A
-from ...semantics.analysis import numbers, program_facts
+from ...semantics.analysis import builtin_call, numbers, program_facts
 from ._text import text
 
 TYPE_CHECKING = False  # not typing's: importing typing costs every start-up
@@ -189,6 +195,9 @@ def _is_const(fn, e) -> bool:
 
 def _select(fn, cond, a, b, inner: set[int], allow_mix: bool = True) -> tuple[str, str] | None:
     """(built-in, replacement text) for `cond ? a : b`, or None."""
+    facing = _face_forward(fn, cond, a, b)
+    if facing is not None:
+        return facing
     clamp = _clamp(fn, cond, a, b, inner)
     if clamp is not None:
         return clamp
@@ -235,6 +244,78 @@ def _select(fn, cond, a, b, inner: set[int], allow_mix: bool = True) -> tuple[st
         return None
     first, second = (b, a) if sense else (a, b)
     return "mix", f"mix({text(first)}, {text(second)}, {t})"
+
+
+def _negation_of(fn, e, v) -> bool:
+    """`e` is `-v` (or `v * -1.0`, `-1.0 * v`)."""
+    if type(e) is A.Unary and e.op == "-":
+        return fn.key(e.operand) == fn.key(v)
+    if type(e) is A.Binary and e.op == "*":
+        for x, y in ((e.left, e.right), (e.right, e.left)):
+            if numbers(fn.model.const_value(x)) == [-1.0] and fn.key(y) == fn.key(v):
+                return True
+    return False
+
+
+def _stored_condition(fn, cond) -> Any:
+    """The comparison a bool variable or field holds where it is read: the value last assigned
+    to it (`frontFace = dot(d, n) < 0.0;`, `rec.frontFace = ...`) when that assignment is on
+    every path to the read, nothing else writes the variable in between and nothing the value
+    reads is written in between; else `cond` itself."""
+    if type(cond) not in (A.Identifier, A.Field):
+        return cond
+    root = cond
+    while type(root) is A.Field:
+        root = root.base
+    sym = fn.model.symbol_of(root) if type(root) is A.Identifier else None
+    pos = fn.enter.get(id(cond))
+    if sym is None or pos is None:
+        return cond
+    before = [w for w in fn.writes_to(sym) if w.pos < pos]
+    if not before:
+        return cond
+    node = before[-1].node
+    value = None
+    if type(node) is A.Declarator and type(cond) is A.Identifier:
+        value = node.init
+    elif type(node) is A.Assignment and node.op == "=" and fn.key(node.target) == fn.key(cond):
+        value = node.value
+    if (
+        value is None
+        or not fn.dominates(node, cond)
+        or fn.enclosing_loops(cond) != fn.enclosing_loops(node)
+        or fn.written_between(node, cond, fn.operands(value))
+    ):
+        return cond
+    return value
+
+
+def _face_forward(fn, cond, a, b) -> tuple[str, str] | None:
+    """`dot(i, n) < 0.0 ? n : -n` (the condition also through a bool variable or field that
+    holds it, and its mirror images): what faceforward(n, i, n) computes, exactly."""
+    if _negation_of(fn, b, a):
+        n, sense = a, True  # n when the condition holds
+    elif _negation_of(fn, a, b):
+        n, sense = b, False
+    else:
+        return None
+    value = _stored_condition(fn, cond)
+    if type(value) is not A.Binary or value.op not in _OPS:
+        return None
+    left, op, right = value.left, value.op, value.right
+    if numbers(fn.model.const_value(left)) == [0.0]:
+        left, right, op = right, left, {"<": ">", "<=": ">=", ">": "<", ">=": "<="}[op]
+    if numbers(fn.model.const_value(right)) != [0.0] or not builtin_call(fn.model, left, "dot"):
+        return None
+    # faceforward(n, i, n) is n exactly when dot(n, i) < 0.0
+    if (op, sense) not in (("<", True), (">=", False)):
+        return None
+    assert isinstance(left, A.Call)  # builtin_call said so
+    x, y = left.args
+    i = y if fn.key(x) == fn.key(n) else x if fn.key(y) == fn.key(n) else None
+    if i is None:
+        return None
+    return "faceforward", f"faceforward({text(n)}, {text(i)}, {text(n)})"
 
 
 def _near(left, op, right) -> str:

@@ -9,8 +9,15 @@ variable written anywhere in the loop (the loop counter included), no variable d
 loop, calls only pure user functions and no built-in with an `out` parameter, and reads no
 global variable when the loop calls a user function (which could write it). One operation in a
 loop bound (`i < n - 1`) is idiomatic and not reported; nor is code after a `return` or `break`.
-Only the largest such expression is reported, for the outermost loop it does not depend on,
-one finding per value with every place it is computed in that loop.
+A call of a user function with `out` parameters whose results depend only on its inputs (it
+reads and writes no global, nor an `out` parameter before writing it), none of which the loop
+changes, is reported too: it computes the same outputs on every iteration (an anti-aliasing
+loop that calls `calcRay(dir, origin, viewport)` with a viewport computed before it traces the
+same ray every time).
+Only the largest such expression is reported, for the outermost loop it does not depend on:
+one finding per run of adjacent statements of the loop holding such work, naming every value
+to compute before it and every place it is computed (hoisting them is one fix: `u` and `v` of
+an anti-aliasing loop that jitters by a random value of the pixel alone are one finding).
 
 ## Why is this bad?
 The course's coding standards: "Use the most efficient methods (-1 per inefficient/unnecessary
@@ -40,7 +47,13 @@ from __future__ import annotations
 
 from ...base.diagnostics import Diagnostic
 from ...frontend import syntax as A
-from ...semantics.analysis import program_facts
+from ...semantics.analysis import (
+    param_directions,
+    program_facts,
+    pure_function,
+    unassigned_reads,
+)
+from ...semantics.model import Symbol
 from ..fixes import Fix, Fixable
 from ..fixes.build import declare_before, name_hint, node_text, replace_with_name, statement_of
 from ._text import text
@@ -64,7 +77,18 @@ def check(ctx: LintContext) -> Iterator[Diagnostic]:
         yield from _check_function(fn, ctx)
 
 
-def _check_function(fn, ctx: LintContext) -> Iterator[Diagnostic]:
+def invariant_places(fn) -> list[tuple[A.Expr, A.Node]]:
+    """(expression, loop) for each expression this rule reports in the function `fn` (the
+    largest invariant ones, each for the outermost loop it does not depend on), in source
+    order; computed once per function (repeated-expression asks too)."""
+    cached = fn.__dict__.get("_invariant_places")
+    if cached is not None:
+        return cached
+    found = fn.__dict__["_invariant_places"] = _invariant_places(fn)
+    return found
+
+
+def _invariant_places(fn) -> list[tuple[A.Expr, A.Node]]:
     reported_spans: list[tuple[int, int]] = []
     targets = {id(n.target) for n in fn.nodes if type(n) is A.Assignment}
     found = []
@@ -105,26 +129,118 @@ def _check_function(fn, ctx: LintContext) -> Iterator[Diagnostic]:
             reported_spans.append(span)
             skip_until = span[1]
             found.append((n, loop))
+        for call in fn.calls:  # a call whose outputs are the same on every iteration
+            e = enter[id(call)]
+            if not lo < e < hi or any(a <= e <= b for a, b in reported_spans):
+                continue
+            if fn.contains(loop.body, call) and _same_outputs(fn, call, written, calls_user):
+                reported_spans.append((e, fn.exit[id(call)]))
+                found.append((call, loop))
     found.sort(key=lambda pair: fn.enter[id(pair[0])])
-    values: dict = {}  # one finding per invariant value and loop, all its places listed
-    for n, loop in found:
-        values.setdefault((fn.key(n), id(loop)), []).append((n, loop))
-    for places in values.values():
-        n, loop = places[0]
-        lines = sorted({p.loc.line for p, _ in places})
-        where = (
-            f"line {lines[0]}"
-            if len(lines) == 1
-            else "lines " + ", ".join(map(str, lines[:-1])) + f" and {lines[-1]}"
+    return found
+
+
+def _same_outputs(fn, call, written: set[int], calls_user: bool) -> bool:
+    """A call of a user function with `out` parameters (`calcRay(dir, origin, viewport)`) whose
+    results depend only on its inputs (`pure_function(..., outputs=True)`), none of which the
+    loop changes: it computes the same outputs on every iteration."""
+    target = fn.model.call_target(call)
+    if not isinstance(target, Symbol) or fn.is_dead(call):
+        return False
+    directions = param_directions(target)
+    if "out" not in directions or not pure_function(fn.model, target, outputs=True):
+        return False
+    if any(u.kind == "out-parameter" for u in unassigned_reads(fn.model, target.node)):
+        return False  # it reads an undefined out value: the outputs may differ
+    for arg, d in zip(call.args, directions):
+        if d == "out":
+            continue
+        if not fn.is_pure(arg):
+            return False
+        ops = fn.operands(arg)
+        if any(id(s) in written for s in ops):
+            return False
+        if calls_user and any(s.kind == "global" and s.qualifier != "const" for s in ops):
+            return False
+    return True
+
+
+def _lines(places) -> str:
+    lines = sorted({p.loc.line for p in places})
+    if len(lines) == 1:
+        return f"line {lines[0]}"
+    return "lines " + ", ".join(map(str, lines[:-1])) + f" and {lines[-1]}"
+
+
+def _statement(fn, n) -> tuple[int, int]:
+    """(id of the block, index in it) of the statement holding `n`; (0, -1) outside a block."""
+    child, up = n, fn.parent.get(id(n))
+    while up is not None and type(up) is not A.Compound:
+        child, up = up, fn.parent.get(id(up))
+    if up is None:
+        return 0, -1
+    return id(up), next(i for i, st in enumerate(up.stmts) if st is child)
+
+
+def _has_outputs(fn, n) -> bool:
+    return type(n) is A.Call and "out" in param_directions(fn.model.call_target(n))
+
+
+def _check_function(fn, ctx: LintContext) -> Iterator[Diagnostic]:
+    # one finding per run of adjacent statements of a loop holding invariant work (the `u` and
+    # `v` of a sample loop: one block to move before it), every value and place listed
+    values: dict = {}  # (loop, key) -> places, in source order
+    for n, loop in invariant_places(fn):
+        values.setdefault((id(loop), fn.key(n)), (loop, []))[1].append(n)
+    runs: list[tuple] = []  # (loop, block, last index, [places of each value])
+    for loop, places in sorted(values.values(), key=lambda lp: fn.enter[id(lp[1][0])]):
+        block, index = _statement(fn, places[0])
+        if runs and runs[-1][0] is loop and runs[-1][1] == block and 0 <= index - runs[-1][2] <= 1:
+            last = runs[-1]
+            runs[-1] = (loop, block, index, last[3] + [places])
+        else:
+            runs.append((loop, block, index, [places]))
+    for loop, _, _, group in runs:
+        first = group[0][0]
+        where = f"{_LOOP_WORD[type(loop)]} loop at line {loop.loc.line}"
+        places = [p for ps in group for p in ps]
+        if len(group) == 1 and _has_outputs(fn, first):
+            message = (
+                f"'{text(first)}' computes the same outputs on every iteration of the {where}: "
+                "none of its inputs changes in the loop"
+            )
+            help_ = "call it once before the loop"
+        elif len(group) == 1:
+            ps = group[0]
+            times = "" if len(ps) == 1 else f" (computed {len(ps)} times in it, at {_lines(ps)})"
+            message = f"'{text(first)}' has the same value on every iteration of the {where}{times}"
+            help_ = "compute it once before the loop, in a local variable, and use that inside"
+        else:
+            named = [f"'{text(ps[0])}' ({_lines(ps)})" for ps in group]
+            message = (
+                f"{len(group)} expressions give the same value on every iteration of the "
+                f"{where}: " + ", ".join(named[:-1]) + f" and {named[-1]}"
+            )
+            help_ = "compute them once before the loop, in local variables, and use those inside"
+        # one value computed in the loop: the fix computes it once before the loop
+        fix = (
+            _fix(ctx, fn, loop, group[0])
+            if len(group) == 1 and not _has_outputs(fn, first)
+            else None
         )
-        times = "" if len(places) == 1 else f" (computed {len(places)} times in it, at {where})"
         yield Fixable(
-            f"'{text(n)}' has the same value on every iteration of the {_LOOP_WORD[type(loop)]} "
-            f"loop at line {loop.loc.line}{times}",
-            n.loc,
-            help="compute it once before the loop, in a local variable, and use that inside",
-            notes=[Diagnostic("also computed here", p.loc, severity="note") for p, _ in places[1:]],
-            fix=_fix(ctx, fn, loop, [p for p, _ in places]),
+            message,
+            first.loc,
+            help=help_,
+            fix=fix,
+            notes=[
+                Diagnostic(
+                    "also computed here" if fn.key(p) == fn.key(first) else f"'{text(p)}' here",
+                    p.loc,
+                    severity="note",
+                )
+                for p in places[1:]
+            ],
         )
 
 

@@ -22,12 +22,21 @@ Reports `normalize(v)` when the length of `v` is already known in that function:
   another sphere's hit, a squared length taken before the vector changed), the rule is silent.
   A hand-written normalize (a function returning `v / length(v)` or
   `v * inversesqrt(dot(v, v))`) counts as normalize here;
-* **a length already computed**: `length(v)` (or `distance(a, b)` for `v = a - b`) was
-  evaluated earlier on every path to the call with no write to `v`'s variables in between:
+* **a length already computed**: `length(v)` (or `distance(a, b)` for `v = a - b` or
+  `b - a`, or `sqrt` of v's squared components written out, `sqrt(sq(v.x) + sq(v.y) + ...)`)
+  was evaluated earlier on every path to the call with no write to `v`'s variables in between:
   divide by that length;
 * **a squared length already computed**: `dot(v, v)` likewise: multiply by its
   `inversesqrt` (the light-vector idiom of Lab 4: one `inversesqrt` gives both the unit vector
-  and the distance).
+  and the distance);
+* **a length computed again after it**: the same measures evaluated after the normalize, on
+  every path from it and with no write to `v`'s variables in between
+  (`L = normalize(light - p); d = distance(light, p);`): the length is computed twice;
+  compute it first and divide by it.
+
+Vectors are compared by value: a local variable stands for the value assigned to it on every
+path (`vec3 d = vec3(p.x - c.x, p.y - c.y, p.z - c.z)` is `p - c`), and `v` and `-v` have the
+same length.
 
 ## Why is this bad?
 The course's coding standards: "Use the most efficient methods (-1 per inefficient/unnecessary
@@ -86,11 +95,13 @@ def check(ctx: LintContext) -> Iterator[Diagnostic]:
         if not normalizes:
             continue
         known = [
-            c for c in calls_in(fn, "length", "distance", "dot") if _measured_key(fn, c) is not None
+            (c, m)
+            for c in calls_in(fn, "length", "distance", "dot", "sqrt")
+            if (m := _measured_key(fn, c)) is not None
         ]
         for node, v in sorted(normalizes, key=lambda nv: fn.enter[id(nv[0])]):
             found = None
-            if builtin_call(fn.model, node, "normalize"):
+            if type(node) is A.Call:  # normalize(), or a user function that is one
                 found = _already_measured(fn, node, known)
             found = found or _sphere_normal(fn, node, v)
             if found is not None:
@@ -209,52 +220,167 @@ def _number(e) -> float | None:
     return float(e.value) if type(e) in (A.FloatLiteral, A.IntLiteral) else None
 
 
-def _measured_key(fn, c: A.Call) -> Any:
-    """The key of the vector whose (squared) length the call computes."""
+def _measured_key(fn, c: A.Call) -> tuple[str, Any, frozenset] | None:
+    """("length" | "dot", the length key of the vector, the variables it reads) of a call that
+    measures a vector: `length(v)`, `distance(a, b)` (the vector a - b), `dot(v, v)` (its
+    squared length) and `sqrt` of a squared length written by hand (`sqrt(x * x + y * y)` of
+    v's components, `sqrt(lenSq(v))`); None for any other call."""
+    reads: set = set()
+    kind, k = "length", None
     if c.callee == "length" and len(c.args) == 1:
-        return fn.key(c.args[0])
-    if c.callee == "distance" and len(c.args) == 2:
-        return ("B", "-", fn.key(c.args[0]), fn.key(c.args[1]))
-    if c.callee == "dot" and len(c.args) == 2 and fn.key(c.args[0]) == fn.key(c.args[1]):
-        return fn.key(c.args[0])
+        k = _length_key(fn, c.args[0], reads)
+    elif c.callee == "distance" and len(c.args) == 2:
+        k = _difference_key(fn, c.args[0], c.args[1], reads)
+    elif c.callee == "dot" and len(c.args) == 2 and fn.key(c.args[0]) == fn.key(c.args[1]):
+        kind, k = "dot", _length_key(fn, c.args[0], reads)
+    elif c.callee == "sqrt" and len(c.args) == 1 and not builtin_call(fn.model, c.args[0], "dot"):
+        v = _squared_vector(fn, c.args[0])  # (sqrt(dot(v, v)): the dot is taken as the measure)
+        k = None if v is None else _length_key(fn, v, reads)
+    return None if k is None else (kind, k, frozenset(reads))
+
+
+def _squared_vector(fn, squared) -> Any:
+    """The vector v when `squared` computes the sum of the squares of all of v's components
+    (`v.x * v.x + v.y * v.y + v.z * v.z`, `sq(v.x) + ...`, `lenSq(v)`), else None."""
+    key = fn.key(squared)
+    if key[0] != "+":
+        return None
+    for n in squared.walk():
+        size = getattr(fn.model.type_of(n), "size", None)
+        if (
+            type(n) in (A.Identifier, A.Field)
+            and getattr(fn.model.type_of(n), "is_vector", False)
+            and isinstance(size, int)
+            and fn.sum_of_squares_key([fn.component_key(n, i) for i in range(size)]) == key
+        ):
+            return n
     return None
 
 
+def _components(fn, v, reads: set, depth: int = 0) -> tuple | None:
+    """The keys of the components of the vector `v`: a local variable followed to the value
+    reaching it, a constructor of scalars to its arguments, a difference or sum of two vectors
+    component by component (`vec3(p.x - c.x, ...)` and `p - c` are the same); None when `v` is
+    not a vector of known size. The variables the components read are added to `reads`."""
+    t = fn.model.type_of(v)
+    size = getattr(t, "size", None)
+    if not getattr(t, "is_vector", False) or not isinstance(size, int) or depth > _MAX_DEPTH:
+        return None
+    if type(v) is A.Identifier:
+        sym = fn.model.symbol_of(v)
+        value = fn.reaching_value(v, sym) if sym is not None and sym.kind == "local" else None
+        if value is not None:
+            found = _components(fn, value, reads, depth + 1)
+            if found is not None:
+                return found
+    if type(v) is A.Binary and v.op in ("-", "+"):
+        left = _components(fn, v.left, reads, depth + 1)
+        right = _components(fn, v.right, reads, depth + 1)
+        if left is not None and right is not None and len(left) == len(right) == size:
+            return tuple(("B", v.op, a, b) for a, b in zip(left, right))
+    reads.update(fn.operands(v))
+    if (
+        type(v) is A.Call
+        and len(v.args) == size
+        and isinstance(fn.model.call_target(v), Constructor)
+        and all(getattr(fn.model.type_of(a), "is_scalar", False) for a in v.args)
+    ):
+        return tuple(_scalar_key(fn, a) for a in v.args)
+    return tuple(fn.component_key(v, i) for i in range(size))
+
+
+def _scalar_key(fn, e) -> Any:
+    """The key of a scalar, a difference of two components compared as the vectors' ones."""
+    if type(e) is A.Binary and e.op in ("-", "+"):
+        return ("B", e.op, fn.key(e.left), fn.key(e.right))
+    return fn.key(e)
+
+
+def _negated(k) -> Any:
+    return ("B", "-", k[3], k[2]) if k[0] == "B" and k[1] == "-" else ("U", "-", k)
+
+
+def _length_key(fn, v, reads: set) -> Any:
+    """A key of |v|: the same for vectors of the same components, and for v and -v (`a - b` and
+    `b - a`); None when `v` is not a vector. The variables it reads are added to `reads`."""
+    comps = _components(fn, v, reads)
+    if comps is None:
+        return None
+    return frozenset((comps, tuple(_negated(k) for k in comps)))
+
+
+def _difference_key(fn, a, b, reads: set) -> Any:
+    ca, cb = _components(fn, a, reads), _components(fn, b, reads)
+    if ca is None or cb is None or len(ca) != len(cb):
+        return None
+    comps = tuple(("B", "-", x, y) for x, y in zip(ca, cb))
+    return frozenset((comps, tuple(_negated(k) for k in comps)))
+
+
 def _stored_in(fn, e) -> str | None:
+    """The local variable `e` is stored in (`float d = e;`, `d = e;`), if any."""
     parent = fn.parent.get(id(e))
     if type(parent) is A.Declarator and parent.init is e:
         return parent.name
+    if (
+        type(parent) is A.Assignment
+        and parent.op == "="
+        and parent.value is e
+        and type(parent.target) is A.Identifier
+    ):
+        return parent.target.name
     return None
 
 
 def _already_measured(fn, call: A.Call, known: list) -> tuple[str, str, Any] | None:
+    """A length (or squared length) of the normalized vector computed in the same function on
+    the same path: before the normalize (reuse it), or after it with nothing it reads written
+    in between (the length is computed twice: compute it once, first, and divide by it). With
+    the message and help, what a fix may write (None: no fix)."""
     v = call.args[0]
-    kv = fn.key(v)
-    ops = fn.operands(v)
-    for c in known:
-        if (
-            _measured_key(fn, c) != kv
-            or not fn.dominates(c, call)
-            or fn.written_between(c, call, ops)
-        ):
+    reads: set = set()
+    kv = _length_key(fn, v, reads)
+    if kv is None:
+        return None
+    for c, (kind, k, measured_reads) in known:
+        if k != kv or fn.contains(call, c) or fn.contains(c, call):
+            continue
+        both = reads | measured_reads
+        before = fn.dominates(c, call) and not fn.written_between(c, call, both)
+        after = not before and fn.dominates(call, c) and not fn.written_between(call, c, both)
+        if not (before or after):
             continue
         root = fn.parent.get(id(c))
-        if c.callee == "dot" and builtin_call(fn.model, root, "sqrt") and root.args[0] is c:
-            c = root  # sqrt(dot(v, v)): the length, written by hand
+        if kind == "dot" and builtin_call(fn.model, root, "sqrt") and root.args[0] is c:
+            c, kind = root, "length"  # sqrt(dot(v, v)): the length, written by hand
         name = _stored_in(fn, c)
+        what = "normalize()" if builtin_call(fn.model, call, "normalize") else f"{call.callee}()"
+        if after:
+            squared = kind == "dot"
+            use = f"{wrap(v)} * inversesqrt({name})" if squared else f"{wrap(v)} / {name}"
+            return (
+                f"{what} computes the length of {text(v)}, and "
+                f"{'its square' if squared else 'that length'} is computed again at line "
+                f"{c.loc.line}",
+                f"compute {name} first and write {use}"
+                if name
+                else f"compute {text(c)} once, into a local variable before the {what}, and "
+                f"{'multiply by its inversesqrt' if squared else 'divide by it'}",
+                None,  # the length comes after: no rewrite in place
+            )
         value = name or text(c)
         # a fix reads the variable holding the length, when nothing writes it before the call
         held = name is not None and not fn.written_between(
             fn.parent[id(c)], call, [fn.model.symbol_of(fn.parent[id(c)])]
         )
-        if c.callee == "dot":
+        if kind == "dot":
             return (
-                f"normalize() recomputes dot(v, v), already computed at line {c.loc.line}",
+                f"{what} recomputes dot(v, v), already computed at line {c.loc.line}",
                 f"multiply by its reciprocal square root: {wrap(v)} * inversesqrt({value})",
                 ("inversesqrt", name) if held else None,
             )
         return (
-            f"normalize() of a vector whose length is already computed at line {c.loc.line}",
+            f"{what} of a vector whose length is already computed at line {c.loc.line}",
             f"divide by that length: {wrap(v)} / {value if name else wrap(c)}",
             ("divide", name) if held else None,
         )

@@ -12,7 +12,9 @@ variables, like `d * invIntensity` or `light.center - position`, but not a sign 
   repeated),
 * no variable it reads is written in between (an assignment, `++`/`--`, an `out` or `inout`
   argument, or any write in a loop around the second one but not the first; a global it reads
-  is taken as written by any user function called in between), and
+  is taken as written by any user function called in between; an assignment to a field of a
+  struct it reads, `rec.normal = ...`, counts only when it reads that field or the whole
+  struct), and
 * it calls no built-in with an `out` parameter and only pure user functions (`in` parameters
   only, no global variable read or written, only pure functions called: `lenSq(v)`).
 
@@ -31,7 +33,8 @@ repeated value, at its second evaluation, listing every place it is computed (in
 and as notes: the JSON `notes`): the deduction counts one inefficient practice once. A repeated
 value's repeated parts are not reported again; a part that is also repeated elsewhere at most
 once (`sin(t)` at line 5 and inside `sin(t) * k` twice at line 6) joins the larger value's
-finding.
+finding. A value computed only inside expressions that loop-invariant reports is left to that
+rule: computed once before the loop, it is computed once.
 
 ## Why is this bad?
 The course's coding standards: "Use the most efficient methods (-1 per inefficient/unnecessary
@@ -61,6 +64,7 @@ from ...frontend import syntax as A
 from ...semantics.analysis import program_facts, written_variable
 from ..fixes import Fix, Fixable
 from ..fixes.build import local_for, node_text, replace_with_name
+from . import loop_invariant
 from ._text import text
 
 TYPE_CHECKING = False  # not typing's: importing typing costs every start-up
@@ -104,8 +108,10 @@ _LEAVES = (A.Identifier, A.FloatLiteral, A.IntLiteral, A.BoolLiteral)
 
 
 def check(ctx: LintContext) -> Iterator[Diagnostic]:
+    hoisted = ctx.config.enabled(loop_invariant.NAME)
     for fn in program_facts(ctx.model).in_file(ctx.path):
-        yield from _check_function(fn, ctx)
+        inside = [n for n, _ in loop_invariant.invariant_places(fn)] if hoisted else []
+        yield from _check_function(fn, ctx, inside)
 
 
 def _within_chains(fn, groups: dict) -> dict[int, object]:
@@ -156,7 +162,9 @@ def _places(nodes) -> str:
     return "lines " + ", ".join(map(str, lines[:-1])) + f" and {lines[-1]}"
 
 
-def _check_function(fn, ctx: LintContext) -> Iterator[Diagnostic]:
+def _check_function(fn, ctx: LintContext, hoisted: list) -> Iterator[Diagnostic]:
+    """The findings of one function; a value computed only inside the expressions of `hoisted`
+    (what loop-invariant reports: computed once before the loop, it is computed once) is not."""
     groups: dict = {}
     targets = {id(n.target) for n in fn.nodes if type(n) is A.Assignment}
     for n in fn.nodes:
@@ -198,7 +206,7 @@ def _check_function(fn, ctx: LintContext) -> Iterator[Diagnostic]:
                     a
                     for a in occ[: min(j, _CANDIDATES)]
                     if (fn.dominates(a, b) or (id(b) in within and fn.contains(b, a)))
-                    and not fn.written_between(a, b, operands)
+                    and not fn.written_between(a, b, operands, reads=b)
                 ),
                 None,
             )
@@ -226,6 +234,8 @@ def _check_function(fn, ctx: LintContext) -> Iterator[Diagnostic]:
                     owner.setdefault(id(m), places)
     values.sort(key=lambda places: fn.enter[id(places[1][0])])
     for places in values:
+        if hoisted and all(any(fn.contains(h, n) for h in hoisted) for n, _ in places):
+            continue
         (first, key), (b, _) = places[0], places[1]
         same = [n for n, k in places if k == key]
         parts: dict = {}  # repeated parts merged into this value: key -> their places

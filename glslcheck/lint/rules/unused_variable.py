@@ -9,7 +9,16 @@ Parameters, uniforms and shader inputs/outputs are not reported. A Common tab is
 together with the Image tab, so a global of Common that only Image reads is used; when the
 shader has other passes too (Buffer A..D), Common's globals are not reported at all.
 
-This is a note, not a deduction.
+A local whose value is a computation (`float h = dot(n, normalize(l + v));`: an operation or a
+call of a built-in or user function, not a literal or a constructor of constants) is a possible
+deduction: the shader does that work for nothing, an "unnecessary practice" of the standards
+(possible: the compiler drops the dead code, so the cost is to the reader). The finding lists
+every place the value is computed. Any other unused variable is a note, not a deduction.
+
+Likewise a possible deduction: a local's computed value that the next statement of the same
+block writing the whole variable replaces (`v = ...;`, or passing `v` to an `out` parameter)
+before anything reads it (`dir = target - origin; calcRay(dir, ...);` with
+`calcRay(out vec4 dir, ...)`).
 
 ## Why is this bad?
 An unused variable is dead code: a leftover from an earlier version or a computation whose
@@ -31,9 +40,11 @@ vec3 color = kD * attenuation * albedo * light.color;
 
 from __future__ import annotations
 
+from bisect import bisect_right
+
 from ...base.diagnostics import Diagnostic
 from ...frontend import syntax as A
-from ...semantics.analysis import program_facts
+from ...semantics.analysis import param_directions, program_facts
 from ...shadertoy.wrapper import PASS_TABS
 
 TYPE_CHECKING = False  # not typing's: importing typing costs every start-up
@@ -45,8 +56,9 @@ if TYPE_CHECKING:
     from ..engine import LintContext
 
 NAME = "unused-variable"
-PENALTY = 0
-SEVERITY = "note"
+PENALTY = 1
+SEVERITY = "warning"
+CERTAINTY = "possible"
 NEEDS = "ast"
 READS = "program"  # a read in code that does not compile may be missing
 
@@ -111,17 +123,124 @@ def check(ctx: LintContext) -> Iterator[Diagnostic]:
     for fn in program_facts(ctx.model).in_file(ctx.path):
         for n in fn.nodes:
             if type(n) is A.Declarator:
-                yield from _unused(ctx, model, n, reads, "local")
+                yield from _unused(ctx, model, n, reads, "local", fn)
+        yield from _overwritten(fn, reads)
 
 
-def _unused(ctx, model, d: A.Declarator, reads: set[int], kind: str) -> Iterator[Diagnostic]:
+def _read_positions(fn) -> dict[int, list[int]]:
+    """id(symbol) -> the positions where the function reads that variable (not the variable an
+    `=` writes whole, nor an `out` argument)."""
+    skip: set[int] = set()
+    for n in fn.nodes:
+        if type(n) is A.Assignment and n.op == "=" and type(n.target) is A.Identifier:
+            skip.add(id(n.target))
+        elif type(n) is A.Call:
+            for arg, d in zip(n.args, param_directions(fn.model.call_target(n))):
+                if d == "out" and type(arg) is A.Identifier:
+                    skip.add(id(arg))
+    out: dict[int, list[int]] = {}
+    for n in fn.nodes:
+        if type(n) is A.Identifier and id(n) not in skip:
+            sym = fn.model.symbol_of(n)
+            if sym is not None:
+                out.setdefault(id(sym), []).append(fn.enter[id(n)])
+    return out
+
+
+def _out_writes(fn, sym) -> list[int]:
+    """Positions of the calls that pass the variable itself to an `out` parameter."""
+    found = []
+    for w in fn.writes_to(sym):
+        if w.kind != "out" or type(w.node) is not A.Call:
+            continue
+        for arg, d in zip(w.node.args, param_directions(fn.model.call_target(w.node))):
+            if d == "out" and type(arg) is A.Identifier and fn.model.symbol_of(arg) is sym:
+                found.append(w)
+                break
+    return found
+
+
+def _overwritten(fn, reads: set[int]) -> Iterator[Diagnostic]:
+    """A local's computed value that the next statement writing the variable replaces, in the
+    same block, before anything reads it (`d = a - b; calc(d);` with `calc(out vec4 d)`)."""
+    positions = None
+    for sym_id, writes in fn.writes.items():
+        sym = writes[0].symbol
+        if sym.kind != "local" or sym_id not in reads:
+            continue  # a variable never read at all is reported as unused
+        whole = sorted(
+            [w for w in writes if w.kind in ("=", "init")] + _out_writes(fn, sym),
+            key=lambda w: w.pos,
+        )
+        for first, then in zip(whole, whole[1:]):
+            if not _computed(fn, first.value) or first.kind not in ("=", "init"):
+                continue
+            if fn.region[id(first.node)] != fn.region[id(then.node)] or fn.is_dead(then.node):
+                continue
+            if positions is None:
+                positions = _read_positions(fn)
+            read_at = positions.get(sym_id, [])  # in execution order: sorted
+            i = bisect_right(read_at, first.pos)
+            if i < len(read_at) and read_at[i] < then.pos:
+                continue
+            how = (
+                f"{then.node.callee}()'s out parameter"
+                if type(then.node) is A.Call
+                else "an assignment"
+            )
+            yield Diagnostic(
+                f"the value computed for '{sym.name}' here is never read: {how} at line "
+                f"{then.node.loc.line} replaces it first",
+                first.value.loc,
+                help=f"remove this computation, or use '{sym.name}' before it is replaced",
+                notes=[Diagnostic("replaced here", then.node.loc, severity="note")],
+            )
+
+
+def _computed(fn, value) -> bool:
+    """`value` is work done at run time: an operation or a call, not constant."""
+    return (
+        value is not None
+        and fn.op_count(value)[0] > 0
+        and not fn.model.is_constant(value)
+        and not fn.is_dead(value)
+    )
+
+
+def _unused(
+    ctx, model, d: A.Declarator, reads: set[int], kind: str, fn: Any = None
+) -> Iterator[Diagnostic]:
     sym = model.symbol_of(d)
     if sym is None or id(sym) in reads:
         return
     loc = d.name_loc if d.name_loc.line else d.loc
     what = "constant" if sym.qualifier == "const" else "variable"
+    help_ = f"remove '{d.name}', or use it where its value was meant to go"
+    work = []  # the writes that compute its value
+    if fn is not None:
+        for w in fn.writes_to(sym):
+            value = w.value if w.kind in ("init", "=") else getattr(w.node, "value", None)
+            if value is not None and w.kind in ("init", "=", "part") and _computed(fn, value):
+                work.append(value)
+    if not work:
+        yield Diagnostic(
+            f"the {kind} {what} '{d.name}' is never read", loc, help=help_, severity="note"
+        )
+        return
+    lines = sorted({v.loc.line for v in work})
+    where = (
+        f"line {lines[0]}"
+        if len(lines) == 1
+        else "lines " + ", ".join(map(str, lines[:-1])) + f" and {lines[-1]}"
+    )
     yield Diagnostic(
-        f"the {kind} {what} '{d.name}' is never read",
+        f"the {kind} {what} '{d.name}' is never read: its value, computed at {where}, is work "
+        "done for nothing",
         loc,
-        help=f"remove '{d.name}', or use it where its value was meant to go",
+        help=help_,
+        notes=[
+            Diagnostic("computed here", v.loc, severity="note")
+            for v in work
+            if v.loc.line != loc.line
+        ],
     )

@@ -194,6 +194,14 @@ def _any_between(positions: list[int], lo: int, hi: int) -> bool:
     return i < len(positions) and positions[i] < hi
 
 
+def _apart(written: tuple[str, ...] | None, read: list[tuple[str, ...]]) -> bool:
+    """A write to the field path `written` leaves every path of `read` unchanged: neither is a
+    prefix of the other (`normal` and `point`; not `()`, the whole struct, and `point`)."""
+    if written is None:
+        return False
+    return all(written[: len(r)] != r and r[: len(written)] != written for r in read)
+
+
 _JUMPS = (A.Return, A.Break, A.Continue, A.Discard)
 _WRITERS = frozenset(
     (A.Assignment, A.Unary, A.Postfix, A.Declarator, A.ConditionDeclaration, A.Call)
@@ -217,19 +225,24 @@ def _model_cache(model: Model, name: str) -> dict:
     return model.analysis_caches.setdefault(name, {})
 
 
-def pure_function(model: Model, sym: Symbol, _seen: frozenset = frozenset()) -> bool:
+def pure_function(
+    model: Model, sym: Symbol, _seen: frozenset = frozenset(), outputs: bool = False
+) -> bool:
     """A user function whose result depends only on its arguments: `in` parameters only, no
     write to a global, no read of a global variable that is not const (uniforms are constant in
-    a frame), and only pure functions called (`float lenSq(vec2 v) { return dot(v, v); }`)."""
-    cache = _model_cache(model, "pure_function")
+    a frame), and only pure functions called (`float lenSq(vec2 v) { return dot(v, v); }`).
+    With `outputs`, `out` and `inout` parameters are allowed too: its results (returned and
+    written out) depend only on its arguments' values."""
+    cache = _model_cache(model, "pure_outputs" if outputs else "pure_function")
     if id(sym) in cache:
         return cache[id(sym)]
     d = sym.node
+    allowed = ("in", "out", "inout") if outputs else ("in",)
     ok = (
         isinstance(d, A.FunctionDefinition)
         and d.body is not None
         and id(sym) not in _seen
-        and all(direction == "in" for _, _, direction in sym.params)
+        and all(direction in allowed for _, _, direction in sym.params)
     )
     if ok:
         for n in model.body_nodes(d):
@@ -245,7 +258,7 @@ def pure_function(model: Model, sym: Symbol, _seen: frozenset = frozenset()) -> 
                     or (isinstance(target, B.Overload) and target.out_params)
                     or (
                         isinstance(target, Symbol)
-                        and not pure_function(model, target, _seen | {id(sym)})
+                        and not pure_function(model, target, _seen | {id(sym)}, outputs)
                     )
                 ):
                     ok = False
@@ -445,9 +458,61 @@ class FunctionFacts(ValueRanges):
     def writes_to(self, sym: Symbol) -> list[Write]:
         return self.writes.get(id(sym), [])
 
-    def written_between(self, a: Any, b: Any, syms: Iterable[Symbol]) -> bool:
+    def written_between(self, a: Any, b: Any, syms: Iterable[Symbol], reads: Any = None) -> bool:
         """Whether a variable of `syms` may be written after `a` and before `b` is evaluated:
-        a write between them, or anywhere in a loop around `b` that is not around `a`."""
+        a write between them, or anywhere in a loop around `b` that is not around `a`. With
+        `reads` (an expression of this function), a write to a struct field the expression
+        never reads (`rec.normal = ...` when it reads `rec.point`) does not count."""
+        if reads is not None:
+            paths = self._field_paths(reads)
+            syms = [
+                s
+                for s in syms
+                if not (paths.get(s) and all(paths[s]))  # read whole somewhere: any write
+                or self._written_between(a, b, [s], paths[s])
+            ]
+        return self._written_between(a, b, syms)
+
+    def _field_paths(self, e: Any) -> dict[Symbol, list[tuple[str, ...]]]:
+        """For each variable `e` reads, the struct-field paths it reads it by (`rec.point` ->
+        ("point",); `rec` whole or through an index -> ()). Cached per expression."""
+        cache = self.__dict__.setdefault("_field_path_cache", {})
+        if id(e) in cache:
+            return cache[id(e)]
+        out: dict[Symbol, list[tuple[str, ...]]] = {}
+        cache[id(e)] = out
+        for n in e.walk():
+            if type(n) is not A.Identifier:
+                continue
+            sym = self.model.symbol_of(n)
+            if sym is None:
+                continue
+            path: list[str] = []
+            up = self.parent.get(id(n)) if n is not e else None
+            child: A.Expr = n
+            while type(up) is A.Field and up.base is child and not self.model.is_swizzle(up):
+                path.append(up.name)
+                child, up = up, (self.parent.get(id(up)) if up is not e else None)
+            out.setdefault(sym, []).append(tuple(path))
+        return out
+
+    def _write_path(self, w: Write) -> tuple[str, ...] | None:
+        """The struct-field path a "part" assignment writes (`rec.normal = ...` -> ("normal",)),
+        None when it is not one of fields only."""
+        if w.kind != "part" or type(w.node) is not A.Assignment:
+            return None
+        path: list[str] = []
+        t = w.node.target
+        while type(t) is A.Field and not self.model.is_swizzle(t):
+            path.append(t.name)
+            t = t.base
+        if type(t) is not A.Identifier or not path:
+            return None  # an element or components: not a field apart
+        return tuple(reversed(path))
+
+    def _written_between(
+        self, a: Any, b: Any, syms: Iterable[Symbol], read_paths: list | None = None
+    ) -> bool:
         lo, hi = self.exit[id(a)], self.enter[id(b)]
         spans = [(lo, hi)]
         loops_a = {id(lp) for lp in self.enclosing_loops(a)}
@@ -459,6 +524,15 @@ class FunctionFacts(ValueRanges):
             if s.kind == "global" and s.qualifier != "const":
                 globals_read = True
             positions = self._positions(id(s), lambda: [w.pos for w in self.writes_to(s)])
+            if read_paths is not None:  # a field write elsewhere than every path read: none
+                writes = self.writes_to(s)  # in position order, as `positions`
+                for lo_, hi_ in spans:
+                    i = bisect_right(positions, lo_)
+                    while i < len(positions) and positions[i] < hi_:
+                        if not _apart(self._write_path(writes[i]), read_paths):
+                            return True
+                        i += 1
+                continue
             if any(_any_between(positions, lo_, hi_) for lo_, hi_ in spans):
                 return True
         if globals_read:

@@ -1,0 +1,95 @@
+"""An operation that gives back its other operand unchanged.
+
+## What it does
+Reports a multiply or divide by one (`x * 1.0`, `c * vec4(1.0, 1.0, 1.0, 1.0)`, `x / 1.0`)
+and an add or subtract of zero (`v + vec3(0.0)`, `x - 0.0`) whose result is the other operand
+itself: the constant, written out as a literal or a constructor of literals, has every
+component exactly 1 (or 0), and the other operand already has the result's type. A named
+constant (`x * kGain`) is a setting and is not reported.
+
+A possible deduction: a literal left at its neutral value may stand for a setting too (a speed
+of `1.0`, a white light color), and the compiler folds the operation away. A constant that
+widens a scalar to a vector (`t * vec3(1.0)`, the starter's white in `(1.0 - t) * vec3(1.0) + t
+* blue`) does something and is not reported; nor is a constant expression (`2.0 * 0.5`).
+
+## Why is this bad?
+The course's coding standards: "Use the most efficient methods (-1 per inefficient/unnecessary
+practices)". An operation that changes nothing is unnecessary: it is read, and maybe computed,
+for nothing.
+
+## Example
+```glsl
+return texture(iChannel0, uv) * vec4(1.0, 1.0, 1.0, 1.0) * diffuse;
+```
+
+## Use instead
+```glsl
+return texture(iChannel0, uv) * diffuse;
+```
+"""
+
+from __future__ import annotations
+
+from ...base.diagnostics import Diagnostic
+from ...frontend import syntax as A
+from ...semantics.analysis import numbers, program_facts
+from ._text import text
+
+TYPE_CHECKING = False  # not typing's: importing typing costs every start-up
+if TYPE_CHECKING:
+    from collections.abc import Iterator
+
+    from ..engine import LintContext
+
+NAME = "no-op-arithmetic"
+PENALTY = 1
+SEVERITY = "warning"
+CERTAINTY = "possible"
+NEEDS = "ast"
+
+# operator -> (the constant that changes nothing, whether it may stand on the left too)
+_IDENTITY = {"*": (1.0, True), "/": (1.0, False), "+": (0.0, True), "-": (0.0, False)}
+_VERB = {"*": "multiplying by", "/": "dividing by", "+": "adding", "-": "subtracting"}
+
+
+def check(ctx: LintContext) -> Iterator[Diagnostic]:
+    for fn in program_facts(ctx.model).in_file(ctx.path):
+        for n in fn.nodes:
+            if type(n) is not A.Binary or n.op not in _IDENTITY or fn.is_dead(n):
+                continue
+            found = _no_op(fn, n)
+            if found is not None:
+                constant, other = found
+                yield Diagnostic(
+                    f"'{text(n)}' is {text(other)}: {_VERB[n.op]} {text(constant)} changes nothing",
+                    n.loc,
+                    help=f"write {text(other)}",
+                )
+
+
+def _no_op(fn, n: A.Binary):
+    """(the constant, the other operand) when `n` gives back its other operand unchanged."""
+    model = fn.model
+    if model.is_constant(n):
+        return None  # folded by the compiler, and often a named constant's meaning
+    identity, either_side = _IDENTITY[n.op]
+    sides = [(n.right, n.left)] + ([(n.left, n.right)] if either_side else [])
+    result = model.type_of(n)
+    for constant, other in sides:
+        if not _written_out(constant):
+            continue  # a named constant (`x * kGain`) is a setting, 1.0 for now
+        values = numbers(model.const_value(constant))
+        if not values or any(v != identity for v in values):
+            continue
+        if getattr(model.type_of(constant), "base", None) != "float":
+            continue  # an int product may be a conversion's spelling; floats only
+        if model.type_of(other) == result:
+            return constant, other
+    return None
+
+
+def _written_out(e) -> bool:
+    """A literal, or a constructor of literals (`vec4(1.0, 1.0, 1.0, 1.0)`)."""
+    if type(e) in (A.FloatLiteral, A.IntLiteral):
+        return True
+    return type(e) is A.Call and bool(e.args) and all(_written_out(a) for a in e.args)
