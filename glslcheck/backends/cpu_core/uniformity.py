@@ -97,14 +97,27 @@ class Uniformity:
         self.decl_seq: dict[int, int] = {}  # symbol id -> declarations seen before it in this pass
         self.free: set[int] = set()  # ids of the l-values (whole targets) of free writes
         self.cache: dict[int, bool] = {}
-        # local symbol id -> ids of the identifiers that use it (for sinking a declaration into
-        # the one branch arm that uses it: `sink`)
-        self.uses: dict[int, set[int]] = {}
-        for n in fn.node.body.walk():
-            if isinstance(n, A.Identifier):
-                sym = model.symbol_of(n)
+        # for sinking a declaration into the one branch arm that uses it (`sink`): each node's
+        # span of preorder numbers (its own, one past its last descendant's), and each local's
+        # first and last use in that order
+        self.span: dict[int, tuple[int, int]] = {}
+        self.uses: dict[int, tuple[int, int]] = {}
+        stack: list[tuple[Any, bool]] = [(fn.node.body, False)]
+        order = 0
+        while stack:
+            node, done = stack.pop()
+            if done:
+                self.span[id(node)] = (self.span[id(node)][0], order)
+                continue
+            self.span[id(node)] = (order, order)
+            if isinstance(node, A.Identifier):
+                sym = model.symbol_of(node)
                 if sym is not None and sym.kind == "local":
-                    self.uses.setdefault(id(sym), set()).add(id(n))
+                    first, _ = self.uses.get(id(sym), (order, order))
+                    self.uses[id(sym)] = (first, order)
+            order += 1
+            stack.append((node, True))
+            stack.extend((c, False) for c in reversed(node.children()))
         # out and inout parameters are copied back to the caller in every lane it called with:
         # free writes only when no lane can leave the function before the end (no return but
         # the last statement, no discard)
@@ -378,14 +391,15 @@ class Uniformity:
         lies inside it (module docstring); returns their ids for `unsink`."""
         if not self.allow_free or self.switch_depth:
             return []
-        inside = {id(n) for n in arm.walk() if isinstance(n, A.Identifier)}
+        start, end = self.span[id(arm)]
         moved = [
             sid
-            for sid, ids in self.uses.items()
-            if sid in self.declared
+            for sid, (first, last) in self.uses.items()
+            if start <= first
+            and last < end
+            and sid in self.declared
             and self.decl_level.get(sid) == self.level
             and self.decl_loops.get(sid) == len(self.loop_flags)
-            and ids <= inside
         ]
         for sid in moved:
             self.decl_level[sid] = self.level + 1
