@@ -1,10 +1,12 @@
 """glslcheck render SHADER [-o out.png|out.npy|anim.gif] [--size WxH] [--time T] [--frame N]
 [--mouse X,Y,Z,W] [--date Y,M,D,S] [--precision float16|float32|float64] [--samples N]
-[--backend numpy|gl|webgl|compiled] [--stats] [--frames N --fps F] [--pass TAB]: render a shader's Image
+[--backend auto|numpy|gl|webgl|compiled] [--stats] [--frames N --fps F] [--pass TAB]: render a shader's Image
 tab (or, with --pass "Buffer A", a buffer). Buffers and channels.json: see glslcheck/shadertoy/channels.py;
 --frame N of a multipass shader runs frames 0..N.
 
-The NumPy backend (default) renders on the CPU; --backend gl uses the OpenGL driver (Mesa
+By default (--backend auto) the NumPy backend renders on the CPU and hands the frames to the
+compiled engine once they have cost its compile and it gives the same bits, faster
+(glslcheck/backends/tiered.py); --backend numpy keeps the NumPy backend; --backend gl uses the OpenGL driver (Mesa
 llvmpipe); --backend webgl renders as Shadertoy's page does, with WebGL 2 in headless Chromium
 (ANGLE on SwiftShader); --backend compiled compiles each pixel's program with numba (the extra
 glslcheck[jit]; an Image tab without channels, float32: glslcheck/compiled_backend). Inputs: iResolution from --size (default 800x450), iTime --time (0), iFrame --frame
@@ -59,8 +61,10 @@ def add_arguments(p) -> None:
     p.add_argument(
         "--backend",
         choices=registry.names(),
-        default="numpy",
-        help="default numpy; compiled: by numba, per pixel, then 8 pixels in lockstep once that pays (glslcheck/compiled_backend)",
+        default="auto",
+        help="default auto: the NumPy engine, then the compiled engine once that pays and gives "
+        "the same bits (backends/tiered.py); numpy; compiled: by numba, per pixel, then 8 pixels "
+        "in lockstep once that pays",
     )
     p.add_argument(
         "--stats", action="store_true", help="print the lanes that ran each function and branch"
