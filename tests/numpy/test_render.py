@@ -166,6 +166,21 @@ def test_switch_fall_through(gl, make_shader):
     _exact(gl, make_shader(_image(body)), size=(12, 4))
 
 
+def test_continue_in_a_switch_skips_the_later_cases(gl, make_shader):
+    body = """
+    float acc = 0.0;
+    for (int i = 0; i < 5; i++) {
+        switch ((int(fragCoord.x) + i) % 4) {
+            case 1: acc += 0.125; continue;
+            case 2: if (fragCoord.y > 1.0) { acc += 0.5; continue; }
+            case 3: acc -= 0.0625;
+        }
+        acc += 0.25;
+    }
+    fragColor = vec4(acc, 0.0, 0.0, 1.0);"""
+    _exact(gl, make_shader(_image(body)), size=(8, 4))
+
+
 def test_discard_keeps_the_clear_colour(gl, make_shader):
     helpers = "void kill(float x) { if (x > 5.0) discard; }"
     body = (
