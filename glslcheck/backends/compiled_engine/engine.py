@@ -699,10 +699,8 @@ class TieredProgram:
         with self._lock:
             if self._mover is None and not self.stay and self.pixels:
                 ahead = self.spent / self.pixels * inputs.width * inputs.height
-                cost = self.move_cost()
-                if cost > LOCKSTEP_BUDGET:
-                    self.stay = True  # over the budget: per pixel for good
-                elif self.spent + ahead >= cost:
+                cost = self.move_cost()  # (over the budget: not built, the frames stay per pixel)
+                if cost <= LOCKSTEP_BUDGET and self.spent + ahead >= cost:
                     # a daemon: a process that ends first drops the compile (numba writes its
                     # cache files whole, by rename; the marker follows a finished load)
                     self._mover = threading.Thread(
