@@ -221,7 +221,8 @@ class TieredCpuProgram:
                 return out
             # the next frame of this size, at the rate measured so far
             ahead = self.spent / self.pixels * pixels
-            if self.spent + ahead < self.move_cost():
+            # (no move costs less than a cache load: a quick frame reads no record)
+            if self.spent + ahead < CACHED_LOAD_SECONDS or self.spent + ahead < self.move_cost():
                 return out
             why = self._eligible()
             if why:

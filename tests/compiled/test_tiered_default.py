@@ -44,6 +44,7 @@ def eager(monkeypatch, tmp_path):
     """Move as soon as one frame has rendered, and stay moved (no timing trial); records in a
     temporary file."""
     monkeypatch.setattr(tiered, "COMPILE_GUESS_SECONDS", 0.0)
+    monkeypatch.setattr(tiered, "CACHED_LOAD_SECONDS", 0.0)
     monkeypatch.setattr(tiered, "TRIAL_FRAMES", 0)
     monkeypatch.setattr(
         tiered.TieredCpuProgram, "_record_path", lambda self: str(tmp_path / "t.tier")
