@@ -24,7 +24,11 @@ The move happens only where the two engines are known to give the same bits:
   program on NumPy for good;
 * and is faster on: the compiled program's first TRIAL_FRAMES frames, per pixel, against the
   NumPy backend's last frames before the compile began (a light shader's NumPy frames, whose
-  uniform values are computed once a tile, can beat the compiled engine's per-pixel ones).
+  uniform values are computed once a tile, can beat the compiled engine's per-pixel ones). A
+  per-pixel program found slower hands the frames back to NumPy until they have paid for its
+  lockstep module too (engine.TieredProgram.move_cost, within engine.LOCKSTEP_BUDGET), which is
+  then made beside them and tried the same way; slower again (or no lockstep module), NumPy
+  keeps the frames for good.
 
 The verdict, the compiled module's key and what compiling it took are kept beside numba's cache
 (`<cache>/compiled/t<hash>.tier`, keyed by the NumPy module and the compiled engine's code): a later
@@ -74,6 +78,7 @@ _OWN = {
     "rates",
     "numpy_rate",
     "trial",
+    "later",
 }
 
 
@@ -96,6 +101,9 @@ class TieredCpuProgram:
         d["rates"] = []  # seconds per pixel of the last NumPy frames (RATE_FRAMES)
         d["numpy_rate"] = 0.0  # their median when the compile started (before it competed)
         d["trial"] = []  # seconds per pixel of the compiled program's first frames
+        # a compiled program slower per pixel that may still move to lockstep (engine's
+        # TieredProgram): tried again once its lockstep module is ready
+        d["later"] = None
 
     def __getattr__(self, name: str) -> Any:
         return getattr(self.__dict__["first"], name)
@@ -208,6 +216,10 @@ class TieredCpuProgram:
             out = second.render(**kw)
             self._judge((time.perf_counter() - t0) / pixels)
             return out
+        later = self.later
+        if later is not None and not why and getattr(later, "fast", None) is not None:
+            self.later, self.trial, self.second = None, [], later  # lockstep: a new trial
+            return self.render(**kw)
         t0 = time.perf_counter()
         out = self.first.render(**kw, precision=precision, stats=stats, channels=channels)
         if why:
@@ -217,6 +229,10 @@ class TieredCpuProgram:
             self.spent += took
             self.pixels += pixels
             self.rates = [*self.rates[-(RATE_FRAMES - 1) :], took / pixels]
+            if later is not None and (
+                later.stay or (self.spent >= later.move_cost() and not later.move_now())
+            ):
+                self._give_up(later)
             if self._mover is not None or self.stay is not None:
                 return out
             # the next frame of this size, at the rate measured so far
@@ -245,12 +261,21 @@ class TieredCpuProgram:
             return
         mine = sorted(self.trial)[len(self.trial) // 2]
         if mine >= self.numpy_rate:
+            second, self.second = self.second, None
+            if getattr(second, "mode", "") == "pixel" and not getattr(second, "stay", True):
+                self.later = second  # NumPy frames until lockstep pays and is made, then a trial
+                return
             self.stay = (
                 f"slower: the compiled engine {mine * 1e9:.0f} ns a pixel, "
                 f"the NumPy backend {self.numpy_rate * 1e9:.0f}"
             )
-            self.second = None
             self._keep(verdict=self.stay)
+
+    def _give_up(self, later: Any) -> None:
+        """The lockstep module of a slower per-pixel program cannot be made: NumPy for good."""
+        self.later = None
+        self.stay = "slower: the compiled engine per pixel, and no lockstep module"
+        self._keep(verdict=self.stay)
 
     def _move(self, kw: dict, want: np.ndarray) -> None:
         """Make the compiled program and check it on one NumPy frame (in the mover thread)."""

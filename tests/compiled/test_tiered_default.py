@@ -122,7 +122,9 @@ def test_a_compiled_frame_that_differs_keeps_numpy(numba, make_shader, eager, mo
 
 
 def test_a_slower_compiled_engine_hands_the_frames_back(numba, make_shader, eager, monkeypatch):
+    """A compiled program with no lockstep tier to try (a fixed mode) loses for good."""
     monkeypatch.setattr(tiered, "TRIAL_FRAMES", 2)
+    monkeypatch.setenv("GLSLCHECK_COMPILED_LANES", "0")
     shader = make_shader(ANIMATED)
     prog = glslcheck.compile(shader)
     _frames(prog, [0.5])
@@ -174,3 +176,33 @@ def test_a_lockstep_compile_over_the_budget_is_not_built(numba, make_shader, mon
     prog.pixels = 1
     prog.render(size=SIZE, time=0.5)
     assert prog._mover is None and prog.mode == "pixel"
+
+
+def test_a_slower_per_pixel_program_is_tried_again_in_lockstep(
+    numba, make_shader, eager, monkeypatch
+):
+    """Per pixel slower than NumPy: NumPy frames until they pay for lockstep, which is then made
+    and tried; faster, it keeps the frames, with NumPy's bits."""
+    from glslcheck.backends.compiled_engine import engine
+
+    monkeypatch.setattr(tiered, "TRIAL_FRAMES", 1)
+    monkeypatch.delenv("GLSLCHECK_COMPILED_LANES", raising=False)
+    # lockstep never pays by itself (a module cached by an earlier run would load at once)
+    monkeypatch.setattr(engine.TieredProgram, "move_cost", lambda self: 1e9)
+    shader = make_shader(ANIMATED)
+    prog = glslcheck.compile(shader)
+    _frames(prog, [0.5])
+    assert prog.impl.settle(300) and prog.impl.mode == "compiled pixel", prog.impl.stay
+    prog.impl.numpy_rate = 0.0  # per pixel loses the trial
+    _frames(prog, [0.6])
+    assert prog.impl.mode == "numpy" and prog.impl.later is not None and prog.impl.stay is None
+    monkeypatch.setattr(engine.TieredProgram, "move_cost", lambda self: 0.0)  # lockstep paid
+    _frames(prog, [0.7])
+    assert prog.impl.later.settle(300) and prog.impl.later.mode == "lanes8"
+    prog.impl.numpy_rate = 1.0  # lockstep wins its trial
+    times = [0.8, 0.9, 1.0]
+    got = _frames(prog, times)
+    assert prog.impl.mode == "compiled lanes8" and prog.impl.stay is None
+    want = _frames(glslcheck.compile(shader, backend="numpy"), times)
+    for t, image, w in zip(times, got, want):
+        assert _same(image, w), t

@@ -682,6 +682,18 @@ class TieredProgram:
         _write(self._marker(), fast.key + "\n")
         self.fast = fast
 
+    def move_now(self) -> bool:
+        """Start making the lockstep module now (a caller whose own frames paid for it: the
+        tiered CPU program's NumPy frames), unless it is started, cannot be made, or is expected
+        to take more than LOCKSTEP_BUDGET; whether a move is under way or done."""
+        with self._lock:
+            if self._mover is None and not self.stay and self.move_cost() <= LOCKSTEP_BUDGET:
+                self._mover = threading.Thread(
+                    target=self._move, name="glslcheck-lockstep", daemon=True
+                )
+                self._mover.start()
+            return self._mover is not None
+
     def settle(self, timeout: float | None = None) -> bool:
         """Wait for a lockstep compile under way (at most timeout seconds); whether none is left."""
         mover = self._mover
