@@ -27,8 +27,8 @@ The move happens only where the two engines are known to give the same bits:
   uniform values are computed once a tile, can beat the compiled engine's per-pixel ones). A
   per-pixel program found slower hands the frames back to NumPy until they have paid for its
   lockstep module too (engine.TieredProgram.move_cost, within engine.LOCKSTEP_BUDGET), which is
-  then made beside them and tried the same way; slower again (or no lockstep module), NumPy
-  keeps the frames for good.
+  then made beside them, checked on one frame against NumPy's and tried the same way; slower
+  again (or no lockstep module, or a differing frame), NumPy keeps the frames for good.
 
 The verdict, the compiled module's key and what compiling it took are kept beside numba's cache
 (`<cache>/compiled/t<hash>.tier`, keyed by the NumPy module and the compiled engine's code): a later
@@ -218,8 +218,16 @@ class TieredCpuProgram:
             return out
         later = self.later
         if later is not None and not why and getattr(later, "fast", None) is not None:
-            self.later, self.trial, self.second = None, [], later  # lockstep: a new trial
-            return self.render(**kw)
+            # lockstep is ready: this frame on both engines (the check), then a new trial
+            out = self.first.render(**kw, precision=precision, stats=stats, channels=channels)
+            self.later, self.trial = None, []
+            differ = _differing(later.render(**kw), out)
+            if differ:
+                self.stay = f"differs: {differ} pixels of the lockstep check frame"
+                self._keep(verdict=self.stay)
+            else:
+                self.second = later
+            return out
         t0 = time.perf_counter()
         out = self.first.render(**kw, precision=precision, stats=stats, channels=channels)
         if why:
@@ -304,9 +312,9 @@ class TieredCpuProgram:
             )
             self.stay = f"failed: {type(e).__name__}"
             return
-        same = (got.view(np.uint32) == want.view(np.uint32)) | (np.isnan(got) & np.isnan(want))
-        if not same.all():
-            self.stay = f"differs: {int((~same.all(axis=-1)).sum())} pixels of the check frame"
+        differ = _differing(got, want)
+        if differ:
+            self.stay = f"differs: {differ} pixels of the check frame"
             self._keep(verdict=self.stay)
             return
         key = base.key
@@ -325,6 +333,12 @@ class TieredCpuProgram:
                 return False
         second = self.second
         return second is None or getattr(second, "settle", lambda t: True)(timeout)
+
+
+def _differing(got: np.ndarray, want: np.ndarray) -> int:
+    """Pixels of different bit patterns (a NaN for a NaN is the same)."""
+    same = (got.view(np.uint32) == want.view(np.uint32)) | (np.isnan(got) & np.isnan(want))
+    return int((~same.all(axis=-1)).sum())
 
 
 def compile_tiered(shader: Any, tab: str = "Image") -> Any:
