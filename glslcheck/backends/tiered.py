@@ -33,7 +33,8 @@ The move happens only where the two engines are known to give the same bits:
 The verdict, the compiled module's key and what compiling it took are kept beside numba's cache
 (`<cache>/compiled/t<hash>.tier`, keyed by the NumPy module and the compiled engine's code): a later
 process moves as soon as the cache load pays, and never retries a shader refused or found to
-differ. `GLSLCHECK_TIERS=off` (config.tiers) keeps every frame on NumPy.
+differ (a timing trial lost is not kept: it depends on the machine's load).
+`GLSLCHECK_TIERS=off` (config.tiers) keeps every frame on NumPy.
 """
 
 from __future__ import annotations
@@ -273,17 +274,16 @@ class TieredCpuProgram:
             if getattr(second, "mode", "") == "pixel" and not getattr(second, "stay", True):
                 self.later = second  # NumPy frames until lockstep pays and is made, then a trial
                 return
+            # (not recorded: a timing on a loaded machine; a later process tries again)
             self.stay = (
                 f"slower: the compiled engine {mine * 1e9:.0f} ns a pixel, "
                 f"the NumPy backend {self.numpy_rate * 1e9:.0f}"
             )
-            self._keep(verdict=self.stay)
 
     def _give_up(self, later: Any) -> None:
         """The lockstep module of a slower per-pixel program cannot be made: NumPy for good."""
         self.later = None
         self.stay = "slower: the compiled engine per pixel, and no lockstep module"
-        self._keep(verdict=self.stay)
 
     def _move(self, kw: dict, want: np.ndarray) -> None:
         """Make the compiled program and check it on one NumPy frame (in the mover thread)."""
