@@ -5,6 +5,8 @@
 1. Speed: the scenes of `SCENES` at 800x450 (the four-sphere, four-point-light Blinn-Phong
    scene of benchmarks/scenes/four_spheres; the same scene with its lights built element by
    element in mainImage after background pixels have returned, benchmarks/scenes/lights_array;
+   the same lights declared before and filled inside the branch the sphere pixels take,
+   benchmarks/scenes/lights_in_branch;
    a scene in the shape of real Lab 4 submissions, benchmarks/scenes/lab4_submission; the lab's
    final scene, lab_shaders/07_final, if present), rendered by both backends in turns in the
    same run; best and median of N renders each (the NumPy frame cache is cleared before every
@@ -12,7 +14,7 @@
    processes (what long renders use, see glslcheck/backends/numpy_engine/workers.py) and on threads
    of this process; and as CPU time, NumPy on one thread against llvmpipe's CPU time over all its
    threads (the work each does: the least moved by other load on a shared machine).
-   `--speed-only` runs this part alone.
+   `--speed-only` runs this part alone, `--scene TEXT` only the scenes whose label holds TEXT.
 2. Coverage scaling: the sphere scene with small spheres (10% of the pixels) and with large
    ones (99%; the share is counted from the render statistics: the lanes that ran the scene's
    hit branch). Background pixels should cost almost nothing (masked branches
@@ -47,6 +49,7 @@ FINAL = os.path.join(ROOT, "lab_shaders", "07_final")
 SCENES = [
     ("four spheres, four lights (Blinn-Phong)", os.path.dirname(SCENE)),
     ("lights array built in mainImage", os.path.join(HERE, "scenes", "lights_array")),
+    ("lights array filled in a branch", os.path.join(HERE, "scenes", "lights_in_branch")),
     ("Lab 4 submission shape", os.path.join(HERE, "scenes", "lab4_submission")),
     ("lab 07_final", FINAL),
 ]
@@ -141,7 +144,7 @@ def sphere_coverage(prog) -> float:
     return lanes[0] / (SIZE[0] * SIZE[1])
 
 
-def speed(repeat: int) -> None:
+def speed(repeat: int, only: str = "") -> None:
     import statistics
 
     from glslcheck.backends.gl import compile_gl, renderer_name
@@ -153,7 +156,7 @@ def speed(repeat: int) -> None:
         f"load {_load()} (1/5/15-minute load average)"
     )
     for name, folder in SCENES:
-        if not os.path.isdir(folder):
+        if not os.path.isdir(folder) or only not in name:
             continue
         shader = load_shader(folder)
         prog = compile_numpy(shader)
@@ -276,8 +279,9 @@ def main() -> int:
     p.add_argument("--repeat", type=int, default=9)
     p.add_argument("--skip-memory", action="store_true")
     p.add_argument("--speed-only", action="store_true", help="part 1 only")
+    p.add_argument("--scene", default="", help="part 1 on the scenes whose label holds this")
     args = p.parse_args()
-    speed(args.repeat)
+    speed(args.repeat, args.scene)
     if args.speed_only:
         return 0
     coverage(args.repeat)

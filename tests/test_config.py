@@ -59,6 +59,7 @@ READERS = {
     "GLSLCHECK_PARALLEL": (config.parallel, "fibres"),
     "GLSLCHECK_JIT": (config.jit, "fast"),
     "GLSLCHECK_COMPILED_LANES": (config.compiled_lanes, "4"),
+    "GLSLCHECK_TIERS": (config.tiers, "never"),
     "GLSLCHECK_WEBGL_TIMEOUT": (config.webgl_timeout, "inf"),
     "GLSLCHECK_CHROMIUM": (config.chromium, os.devnull),
     "GLSLCHECK_JOBS": (config.jobs, "0"),

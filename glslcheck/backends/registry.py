@@ -2,8 +2,8 @@
 render frames.
 
     import glslcheck
-    prog = glslcheck.compile("lab_shaders/07_final", backend="numpy")   # or "gl", "webgl",
-                                                                        "compiled"
+    prog = glslcheck.compile("lab_shaders/07_final")   # or backend="numpy", "gl", "webgl",
+                                                       # "compiled"
     img = prog.render(size=(800, 450), time=0.0, frame=0, mouse=(0, 0, 0, 0), date=None,
                       precision="float32", samples=1)
     # img: float32 numpy array (height, width, 4), top row first, values as the shader wrote them
@@ -24,6 +24,10 @@ a backend renders in its record's `precisions` only (GL, WebGL and the compiled 
 grid on every backend). With backend="numpy", `render(..., stats=True)` counts the lanes that ran
 each function, branch and loop body; `prog.format_stats()` prints them.
 
+The default, backend="auto" (backends/tiered.py), renders with the NumPy backend and moves a
+shader's frames to the compiled engine once they have cost what compiling it is expected to,
+where the two give the same bits; it takes every option the NumPy backend takes.
+
 `names()` lists the backends without importing any of them; `get(name)` imports the one asked for
 and returns its Backend record (glslcheck/backends/interface.py).
 """
@@ -38,6 +42,7 @@ from .interface import Backend, Program
 
 # name -> the module that declares its Backend record (as BACKEND), in the order choices list them
 BACKENDS = {
+    "auto": "glslcheck.backends.tiered",
     "numpy": "glslcheck.backends.numpy_engine.backend",
     "gl": "glslcheck.backends.gl.backend",
     "webgl": "glslcheck.backends.webgl.backend",
@@ -48,7 +53,7 @@ REFERENCE_DRIVER = "gl"  # the real driver verify compares with by default and b
 
 
 def names() -> tuple[str, ...]:
-    """Every backend's name, the default ("numpy") first."""
+    """Every backend's name, the default ("auto") first."""
     return tuple(BACKENDS)
 
 
@@ -73,7 +78,7 @@ def backend_program(shader: Shader, backend: Backend, output: str = "Image"):
 
 
 def compile(
-    path: str | os.PathLike | Shader, backend: str = "numpy", output: str = "Image"
+    path: str | os.PathLike | Shader, backend: str = "auto", output: str = "Image"
 ) -> Program:  # noqa: A001
     """Load, check and compile a shader for `backend` (one of `names()`). A shader with Buffer
     tabs, a channels.json or iChannel reads runs its passes frame after frame

@@ -24,6 +24,7 @@ FRAME_SECONDS = (
     300.0  # the NumPy and compiled engines' frame budget (base/limits.py holds its range)
 )
 JIT_MODES = ("auto", "on", "off")  # backends/numpy_engine/jit.py
+TIER_MODES = ("auto", "off")  # backends/tiered.py
 PARALLEL_MODES = ("auto", "threads", "processes")  # NumpyProgram.parallel
 # The compiled engine's widths: one pixel a call, or AVX2's and AVX-512's float32 lanes (wider
 # blocks only grow the compile, and a width of 1,000,000 took minutes and 5 GB).
@@ -70,6 +71,14 @@ VARIABLES = (
         "auto, 0, 8, 16",
         "auto (per pixel, then lockstep when it pays)",
         "backends/compiled_engine/engine.py",
+    ),
+    (
+        "GLSLCHECK_TIERS",
+        "whether the default CPU program (`--backend auto`) may move its frames from the NumPy "
+        "engine to the compiled engine once that pays",
+        "auto, off",
+        "auto",
+        "backends/tiered.py",
     ),
     (
         "GLSLCHECK_WEBGL_TIMEOUT",
@@ -170,6 +179,11 @@ def parallel() -> str:
 def jit() -> str:
     """GLSLCHECK_JIT: one of JIT_MODES, "auto" when unset."""
     return _mode("GLSLCHECK_JIT", JIT_MODES)
+
+
+def tiers() -> bool:
+    """GLSLCHECK_TIERS: False for `off` (every frame of `--backend auto` on the NumPy engine)."""
+    return _mode("GLSLCHECK_TIERS", TIER_MODES) != "off"
 
 
 def compiled_lanes() -> int | None:

@@ -43,8 +43,8 @@ def test_render_writes_the_numpy_backends_image(numba, tmp_path):
 def test_unsupported_construct_exits_1_at_its_line(numba, tmp_path, capsys):
     path = tmp_path / "Image.glsl"
     path.write_text(
-        "void mainImage(out vec4 c, in vec2 f) {\n    c = vec4(1.0);\n    if (f.x > 2.0) "
-        "discard;\n}\n"
+        "void mainImage(out vec4 c, in vec2 f) {\n    c = vec4(1.0);\n    c.x = "
+        "float(packHalf2x16(f));\n}\n"
     )
     assert main(["render", str(path), "-o", str(tmp_path / "c.png"), "--backend", "compiled"]) == 1
     err = capsys.readouterr().err
@@ -175,8 +175,8 @@ def test_bench_times_the_compiled_engine_beside_numpy(numba, gl, tmp_path, capsy
 def test_bench_compiled_unsupported_construct_exits_1_at_its_line(numba, gl, tmp_path, capsys):
     path = tmp_path / "Image.glsl"
     path.write_text(
-        "void mainImage(out vec4 c, in vec2 f) {\n    c = vec4(1.0);\n    if (f.x > 2.0) "
-        "discard;\n}\n"
+        "void mainImage(out vec4 c, in vec2 f) {\n    c = vec4(1.0);\n    c.x = "
+        "float(packHalf2x16(f));\n}\n"
     )
     assert main(["bench", str(path), "--size", "4x2", "--runs", "1", "--backend", "compiled"]) == 1
     err = capsys.readouterr().err
@@ -268,8 +268,8 @@ def test_verify_compiled_errors(gl, tmp_path, capsys, monkeypatch):
     if engine.available():
         bad = tmp_path / "Bad.glsl"
         bad.write_text(
-            "void mainImage(out vec4 c, in vec2 f) {\n    c = vec4(1.0);\n    if (f.x > 2.0) "
-            "discard;\n}\n"
+            "void mainImage(out vec4 c, in vec2 f) {\n    c = vec4(1.0);\n    c.x = "
+            "float(packHalf2x16(f));\n}\n"
         )
         assert main(["verify", str(bad), "--size", "4x2", "--backends", "compiled,gl"]) == 1
         err = capsys.readouterr().err

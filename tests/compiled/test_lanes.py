@@ -272,3 +272,33 @@ def test_locals_after_a_return_stay_uniform(numba, make_shader):
     assert re.search(r"if not \(live__0 \| live__1 .*\):\n +return \(_r0__0, ", fn), "no early exit"
     _same_bits(shader, 8)
     _same_bits(shader, 16)
+
+
+FILLED_IN_A_BRANCH = """
+struct Light { vec3 pos; float power; };
+float shadeIt(vec2 uv) {
+    Light L[2];                               // used only inside the branch below
+    float acc = 0.1;
+    if (uv.x > 0.3) {                         // a divergent branch
+        L[0] = Light(vec3(1.0, 2.0, 3.0), 0.5);
+        L[1] = Light(vec3(cos(iTime), 0.0, 1.0), 0.25);
+        for (int k = 0; k < 2; k++) acc += L[k].power * dot(L[k].pos, vec3(uv, 1.0));
+    }
+    return acc;
+}
+void mainImage(out vec4 c, in vec2 f) {
+    vec2 uv = f / iResolution.xy;
+    c = vec4(shadeIt(uv), uv, 1.0);
+}
+"""
+
+
+def test_a_local_used_only_inside_a_branch_has_the_numpy_backends_bits(numba, make_shader):
+    """A local declared before a divergent branch and used only inside it is one value per tile
+    in the NumPy backend (cpu_core/uniformity.py), which the compiled engine's constant-like
+    values follow: per pixel and in lockstep, the NumPy backend's bits."""
+    from test_compiled_render import _compare
+
+    shader = make_shader(FILLED_IN_A_BRANCH)
+    _compare(shader)
+    _same_bits(shader, 8)

@@ -166,6 +166,32 @@ def test_switch_fall_through(gl, make_shader):
     _exact(gl, make_shader(_image(body)), size=(12, 4))
 
 
+def test_continue_in_a_switch_skips_the_later_cases(gl, make_shader):
+    body = """
+    float acc = 0.0;
+    for (int i = 0; i < 5; i++) {
+        switch ((int(fragCoord.x) + i) % 4) {
+            case 1: acc += 0.125; continue;
+            case 2: if (fragCoord.y > 1.0) { acc += 0.5; continue; }
+            case 3: acc -= 0.0625;
+        }
+        acc += 0.25;
+    }
+    fragColor = vec4(acc, 0.0, 0.0, 1.0);"""
+    _exact(gl, make_shader(_image(body)), size=(8, 4))
+
+
+def test_a_discard_of_every_lane_keeps_the_clear_colour(gl, make_shader):
+    """Under a uniform condition in mainImage (or a function it calls with every lane), where
+    the discard mask is the entry's full mask."""
+    helpers = "void kill() { if (iTime > 2.0) discard; }"
+    body = "if (iTime > 1.0) discard; kill(); fragColor = vec4(0.5, 0.25, 1.0, 1.0);"
+    shader = make_shader(_image(body, helpers))
+    for t in (0.5, 1.5, 2.5):
+        img = _exact(gl, shader, size=(8, 4), time=t)
+        assert np.all(img[..., 3] == (1.0 if t < 1.0 else 0.0))
+
+
 def test_discard_keeps_the_clear_colour(gl, make_shader):
     helpers = "void kill(float x) { if (x > 5.0) discard; }"
     body = (

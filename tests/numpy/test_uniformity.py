@@ -93,6 +93,58 @@ def test_writes_under_a_varying_condition_keep_their_mask(make_shader):
     assert writes["b"] == [False, True]  # under fragCoord: masked; under iTime: a uniform branch
 
 
+LIGHTS_FILLED_IN_A_BRANCH = _image(
+    """
+    Light L[2];
+    float depth = fragCoord.x - 6.0;
+    vec3 c = vec3(0.1);
+    if (depth > 0.0) {
+        L[0] = Light(vec3(1.0, 2.0, 3.0), 0.5 + 0.5 * sin(iTime));
+        L[1] = Light(vec3(-1.0, 2.0, 3.0), 1.0);
+        for (int k = 0; k < 2; k++) {
+            c += L[k].color * L[k].pos * depth;
+        }
+    }
+    fragColor = vec4(c, 1.0);""",
+    "struct Light { vec3 pos; float color; };\n",
+)
+
+
+def test_a_local_used_only_inside_one_branch_is_declared_there(make_shader):
+    uni, model, writes = analyse(make_shader, LIGHTS_FILLED_IN_A_BRANCH)
+    assert writes["L"] == [True, True]  # no lane left out of the branch ever reads L
+    assert not varying(uni, model, "L")
+    assert writes["c"] == [False] and varying(uni, model, "c")  # read after the branch
+
+
+@pytest.mark.parametrize(
+    "body",
+    [
+        # read after the branch: the lanes left out see the declared value
+        "float a; if (fragCoord.x > 4.0) { a = 2.0; fragColor = vec4(a); } fragColor.y = a;",
+        # a loop between the declaration and the branch: a later pass reads the earlier value
+        "float a = 0.0; for (int i = 0; i < 3; i++) {"
+        " if (fragCoord.x > float(i)) { fragColor.x += a; a = 2.0; } }",
+        # used in both arms: the else arm runs after the then arm has written every lane
+        "float a = 1.0; if (fragCoord.x > 4.0) { a = 2.0; fragColor = vec4(a); }"
+        " else { fragColor = vec4(a); }",
+    ],
+)
+def test_a_local_used_outside_the_branch_keeps_its_mask(make_shader, body):
+    uni, model, writes = analyse(make_shader, _image(body))
+    assert False in writes["a"] and varying(uni, model, "a")
+
+
+def test_a_local_of_a_function_with_derivatives_keeps_its_mask(make_shader):
+    """llvmpipe computes the inactive lanes of a branch with the register's old value, and a
+    neighbour's derivative reads them: no sinking where derivatives are taken."""
+    uni, model, writes = analyse(
+        make_shader,
+        _image("float a; if (fragCoord.x > 4.0) { a = 2.0 * iTime; fragColor = vec4(dFdx(a)); }"),
+    )
+    assert writes["a"] == [False] and varying(uni, model, "a")
+
+
 def test_loops_whose_lanes_diverge(make_shader):
     uni, model, writes = analyse(
         make_shader,
@@ -244,6 +296,15 @@ def test_uniform_arrays_are_not_broadcast_to_the_lanes(make_shader):
     assert np.all(img[:, :8, :3] == 0.0) and np.all(img[1:, 8:, 1] > 0.0)
 
 
+def test_an_array_filled_inside_a_branch_is_not_broadcast_to_the_lanes(make_shader):
+    prog = P.compile_numpy(make_shader(LIGHTS_FILLED_IN_A_BRANCH))
+    ns = prog.module()
+    spy = _ShapeSpy(ns["rt"], ("assign_index", "index"))
+    ns["rt"] = spy
+    prog.render(size=(16, 8), time=0.7)
+    assert spy.shapes == {"assign_index": {1}, "index": {1}}
+
+
 # Programs whose frames must not change when free writes are turned off: each exercises one way
 # lanes leave the mask (returns, breaks, continues, out parameters, switch, nested functions).
 SAME_WITH_MASKS = {
@@ -283,6 +344,24 @@ vec3 shade(vec3 p) {
     return c;
 }""",
     ),
+    "lights filled in a branch": LIGHTS_FILLED_IN_A_BRANCH,
+    "locals used in one arm": _image("""
+    float a;
+    vec2 b = vec2(0.5);
+    float c = 0.0;
+    if (fragCoord.x > 7.0) {
+        a = 0.25;
+        b.y = 0.75;
+        if (fragCoord.y > 3.0) { float d; d = a + b.y; c = d; }
+    } else {
+        float e = 0.5;
+        c = e * 0.5;
+    }
+    float f = 0.0;
+    for (int i = 0; i < 4; i++) {
+        if (fragCoord.x > float(i) * 4.0) { c += f; f = 0.125; }
+    }
+    fragColor = vec4(a * 0.0 + c, 0.0, 0.0, 1.0);"""),
     "switch": _image("""
     float c = 0.1;
     switch (int(fragCoord.x) % 3) {

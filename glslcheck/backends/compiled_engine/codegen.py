@@ -28,13 +28,17 @@ no global gets none); the globals are reset to their initial values before each 
 
 Control flow is Python's own: `if`, `while` loops for GLSL's three loops (a `continue` in a
 `for` runs the step first; in a `do`-`while` it tests the condition), `return` anywhere,
-`&&`/`||`/`?:` evaluate only the side they need. Each loop counts its passes and stops after
+`&&`/`||`/`?:` evaluate only the side they need; a `switch` is a loop of one pass over its
+sections from the one its selector enters at (fall-through; `break` leaves it, a `continue` of
+the loop around leaves it by a flag); `discard` sets a per-pixel flag and returns, every call
+of a function that may discard returns after it when the flag is set, and `shade` gives the
+clear colour (0, 0, 0, 0). Each loop counts its passes and stops after
 transpile.LOOP_CAP by raising LoopCapError(its id) (the engine raises the located error). A user
 function returns a tuple: its value's leaves, then the leaves of its out/inout parameters,
 which the caller writes back left to right.
 
 Not supported yet (a GlslError at the construct, "not supported by the compiled engine yet"):
-textures and channels, derivatives, discard, switch, arrays of structs holding arrays,
+textures and channels, derivatives, arrays of structs holding arrays,
 inverse() of 3x3 and 4x4 matrices, and the packing built-ins.
 
 What the NumPy backend does that this generator does not copy: Mesa's reassociations
@@ -103,6 +107,7 @@ class Codegen(ExpressionEmitter):
         self.loop_lines: dict[int, tuple[str, int, int]] = {}
         self.fn: FnState | None = None
         self.frag4: list[str] | None = None
+        self.discarded: str | None = None  # the discard flag's slot (discard_flag)
         self.last_line: tuple[str, int] | None = None
         self.needs: dict[str, list[str]] = {}  # function -> the state arrays it takes
         self.variants: set[tuple[int, frozenset]] = (
@@ -410,6 +415,9 @@ class Codegen(ExpressionEmitter):
             else:
                 self.emit(call)
             color = res[:4] if d0 != "in" else [big] * 4
+            if id(entry) in self.facts.may_discard:
+                self.emit(f"if {self.discard_flag()}:  # a discarded pixel keeps the clear colour")
+                self.emit("    return F32(0.0), F32(0.0), F32(0.0), F32(0.0)")
             self.emit(f"return {color[0]}, {color[1]}, {color[2]}, F32(1.0)  # RGB: alpha is 1")
         self.indent -= 1
 
@@ -569,19 +577,91 @@ class Codegen(ExpressionEmitter):
         self.emit("break")
         return True
 
-    def _stmt_Continue(self, s: A.Continue) -> bool:
+    def _stmt_Continue(self, s: A.Continue | None) -> bool:
         assert self.fn is not None  # generating a function's body
         kind, cont = self.fn.loops[-1]
+        if kind == "switch":  # leave the switch's one-pass loop, then continue the loop around
+            if cont[0] is None:
+                cont[0] = self.fresh("sc")
+            self.emit(f"{cont[0]} = True")
+            self.emit("break")
+            return True
         if cont is not None:
             cont()
         self.emit("continue")
         return True
 
-    def _stmt_Discard(self, s: A.Discard) -> None:
-        raise not_yet("discard", s)
+    def discard_flag(self) -> str:
+        """The per-pixel bool slot that says the pixel was discarded (one for the program; the
+        state is reset for every pixel, so it starts False)."""
+        if self.discarded is None:
+            off = self.slots["bool"]
+            self.slots["bool"] += 1
+            self.discarded = f"gb[{off}]"
+        return self.discarded
+
+    def leave_discarded(self, node: Any) -> None:
+        """Return from the current function (any value: the pixel's output is dropped) once the
+        pixel is discarded; the callers do the same after each call that may discard."""
+        fs = self.fn
+        if fs is None or fs.sym is None:
+            raise not_yet("discard in a global initializer", node)
+        rtype = fs.sym.type
+        self.emit(self.return_text(None if rtype.is_void else self.zero_parts(rtype, node)))
+
+    def _stmt_Discard(self, s: A.Discard) -> bool:
+        self.comment(s)
+        self.emit(f"{self.discard_flag()} = True")
+        self.leave_discarded(s)
+        return True
 
     def _stmt_Switch(self, s: A.Switch) -> None:
-        raise not_yet("switch", s)
+        """A switch as a loop of one pass: the index of the section the selector enters at (its
+        case's, else default's, else past the end), then each section when that index is at or
+        before it (fall-through), `break` leaving the loop; a `continue` sets a flag, leaves,
+        and continues the enclosing loop after it."""
+        self.comment(s)
+        sel = self.atom(self.expr(s.expr).parts[0])
+        sections: list[tuple[list, list]] = []  # (case labels, None for default; statements)
+        for st in s.body:
+            if isinstance(st, A.Case):
+                if not sections or sections[-1][1]:
+                    sections.append(([], []))
+                sections[-1][0].append(st.expr)
+            elif sections:  # (a statement before the first label is never run)
+                sections[-1][1].append(st)
+        entry = self.fresh("sw")
+        default = next((k for k, (labels, _) in enumerate(sections) if None in labels), None)
+        self.emit(f"{entry} = {len(sections) if default is None else default}")
+        for k, (labels, _) in enumerate(sections):
+            for label in labels:
+                if label is not None:
+                    self.emit(f"if {sel} == {self.expr(label).parts[0]}:")
+                    self.emit(f"    {entry} = {k}")
+        flag: list[str | None] = [None]
+        at = len(self.lines)
+        self.emit("")  # the continue flag's initialisation, once it is known to be needed
+        self.emit("while True:")
+        self.indent += 1
+        self.fn.loops.append(("switch", flag))
+        for k, (_, stmts) in enumerate(sections):
+            if not stmts:
+                continue
+            self.emit(f"if {entry} <= {k}:")
+            self.indent += 1
+            n = len(self.lines)
+            if not self.block(stmts) and len(self.lines) == n:
+                self.emit("pass")
+            self.indent -= 1
+        self.emit("break")
+        self.fn.loops.pop()
+        self.indent -= 1
+        if flag[0] is not None:
+            self.lines[at] = "    " * self.indent + f"{flag[0]} = False"
+            self.emit(f"if {flag[0]}:")
+            self.indent += 1
+            self._stmt_Continue(None)
+            self.indent -= 1
 
     def condition(self, cond: Any) -> str:
         if isinstance(cond, A.ConditionDeclaration):

@@ -501,6 +501,39 @@ def _folder() -> str:
     return os.path.join(numba_cache.trusted_dir(), "compiled")
 
 
+def compiled_folder() -> str:
+    """The folder of the compiled modules, beside numba's cache (what other tiers record there
+    lives with them)."""
+    return _folder()
+
+
+def write_cache_file(path: str, text: str) -> None:
+    """A small record in the cache folder, written atomically; a read-only cache keeps none."""
+    _write(path, text)
+
+
+_FINGERPRINT: list[str] = []
+
+
+def engine_fingerprint() -> str:
+    """A hash of this engine's code and of the versions its modules depend on: a record about
+    what the engine did with a shader holds for this fingerprint only."""
+    if not _FINGERPRINT:
+        here = os.path.dirname(__file__)
+        h = hashlib.sha256(_versions().encode())
+        for name in sorted(os.listdir(here)):
+            if name.endswith(".py"):
+                with open(os.path.join(here, name), "rb") as f:
+                    h.update(f.read())
+        _FINGERPRINT.append(h.hexdigest()[:24])
+    return _FINGERPRINT[0]
+
+
+def module_cached(key: str) -> bool:
+    """Whether numba's cache holds the machine code of the module of this key."""
+    return bool(key) and _cached(os.path.dirname(_folder()), key)
+
+
 def _write(path: str, text: str, quiet: bool = True) -> None:
     """A file of the cache, atomically (a reader sees all of it or none); `quiet`: a read-only
     cache is no error (a record not kept)."""
@@ -541,6 +574,10 @@ TIER_LANES = 8  # the lockstep width TieredProgram moves to (8: AVX2's float32 l
 # moving costs: the median over the 67 lab and tuned real shaders (quartiles 3.5 and 6.2),
 # as benchmarks/bench_compiled.py --fresh-cache --lanes 0,8 prints both compile times.
 LOCKSTEP_COMPILE_RATIO = 4.7
+# The most a lockstep compile may be expected to take: a module whose estimate (move_cost) is
+# longer is not built and the program stays per pixel (the real corpora's slowest lockstep
+# compiles took 124 s cold, for 2-4x faster frames: minutes of rendering to pay back).
+LOCKSTEP_BUDGET = 30.0
 # Seconds of lockstep compile per line of the per-pixel module, the estimate when the per-pixel
 # module's compile time is not known (a numba cache filled before compile times were recorded):
 # the median of the same run (quartiles 0.021 and 0.036; a machine's speed moves it).
@@ -565,7 +602,8 @@ class TieredProgram:
     moved), else LOCKSTEP_COMPILE_RATIO x the per-pixel module's compile time. The frames are
     the same either way: lockstep is bit-identical to per pixel (tests/compiled/test_lanes.py),
     so the moment of the move changes no pixel. A lockstep module that cannot be made (the
-    rewrite falls back, numba fails) leaves the program per pixel, with a warning for a failure.
+    rewrite falls back, numba fails) leaves the program per pixel, with a warning for a failure,
+    and so does one expected to take more than LOCKSTEP_BUDGET seconds to compile.
     """
 
     def __init__(self, shader: Any, first: CompiledProgram, threads: int | None = None) -> None:
@@ -652,6 +690,18 @@ class TieredProgram:
         _write(self._marker(), fast.key + "\n")
         self.fast = fast
 
+    def move_now(self) -> bool:
+        """Start making the lockstep module now (a caller whose own frames paid for it: the
+        tiered CPU program's NumPy frames), unless it is started, cannot be made, or is expected
+        to take more than LOCKSTEP_BUDGET; whether a move is under way or done."""
+        with self._lock:
+            if self._mover is None and not self.stay and self.move_cost() <= LOCKSTEP_BUDGET:
+                self._mover = threading.Thread(
+                    target=self._move, name="glslcheck-lockstep", daemon=True
+                )
+                self._mover.start()
+            return self._mover is not None
+
     def settle(self, timeout: float | None = None) -> bool:
         """Wait for a lockstep compile under way (at most timeout seconds); whether none is left."""
         mover = self._mover
@@ -669,7 +719,8 @@ class TieredProgram:
         with self._lock:
             if self._mover is None and not self.stay and self.pixels:
                 ahead = self.spent / self.pixels * inputs.width * inputs.height
-                if self.spent + ahead >= self.move_cost():
+                cost = self.move_cost()  # (over the budget: not built, the frames stay per pixel)
+                if cost <= LOCKSTEP_BUDGET and self.spent + ahead >= cost:
                     # a daemon: a process that ends first drops the compile (numba writes its
                     # cache files whole, by rename; the marker follows a finished load)
                     self._mover = threading.Thread(

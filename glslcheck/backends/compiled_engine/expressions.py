@@ -626,6 +626,11 @@ class ExpressionEmitter:
             self.emit(f"{', '.join(res)}, = {call}")
         else:
             self.emit(call)
+        if id(fn) in self.facts.may_discard:
+            self.emit(f"if {self.discard_flag()}:")
+            self.indent += 1
+            self.leave_discarded(e)
+            self.indent -= 1
         k = n_val
         for targets in outs:
             vals = []

@@ -44,7 +44,12 @@ generator two things about one function, as a GPU compiler's divergence analysis
   under a varying `if` gives the second lookup's quad the neighbours' own `m * p`, as llvmpipe
   (tests/channels test_derivatives_of_values_computed_under_a_branch). A variable declared
   outside a branch and written inside it stays masked (llvmpipe computes the new value in every
-  lane until the branch ends: not emulated).
+  lane until the branch ends: not emulated), except
+  - a local whose every use lies inside one arm of a varying `if`, declared at that `if`'s level
+    and loop depth (no loop between them: the arm is entered at most once per declaration): no
+    lane left out of the arm ever reads it, and the lanes entering it see the declared value, so
+    it counts as declared at the arm's start (`PointLight L[4];` before `if (hit) { L[0] = ...;
+    ... L[k] ... }` stays one value). Not in functions that use derivatives.
 
 A variable is uniform when every write to it stores a uniform value at a uniform index and is
 free, or (in `mainImage`, whose lanes start all active) happens under a uniform mask. The
@@ -96,6 +101,27 @@ class Uniformity:
         self.decl_seq: dict[int, int] = {}  # symbol id -> declarations seen before it in this pass
         self.free: set[int] = set()  # ids of the l-values (whole targets) of free writes
         self.cache: dict[int, bool] = {}
+        # for sinking a declaration into the one branch arm that uses it (`sink`): each node's
+        # span of preorder numbers (its own, one past its last descendant's), and each local's
+        # first and last use in that order
+        self.span: dict[int, tuple[int, int]] = {}
+        self.uses: dict[int, tuple[int, int]] = {}
+        stack: list[tuple[Any, bool]] = [(fn.node.body, False)]
+        order = 0
+        while stack:
+            node, done = stack.pop()
+            if done:
+                self.span[id(node)] = (self.span[id(node)][0], order)
+                continue
+            self.span[id(node)] = (order, order)
+            if isinstance(node, A.Identifier):
+                sym = model.symbol_of(node)
+                if sym is not None and sym.kind == "local":
+                    first, _ = self.uses.get(id(sym), (order, order))
+                    self.uses[id(sym)] = (first, order)
+            order += 1
+            stack.append((node, True))
+            stack.extend((c, False) for c in reversed(node.children()))
         # out and inout parameters are copied back to the caller in every lane it called with:
         # free writes only when no lane can leave the function before the end (no return but
         # the last statement, no discard)
@@ -125,6 +151,7 @@ class Uniformity:
             self.fn_varying_return = False
             self.free = set()
             self.seq = 0
+            self.declared: set[int] = set()  # symbol ids declared so far in this pass
             self.compacted_from: int | None = (
                 None  # the first declaration inside the outermost masked loop around
             )
@@ -243,6 +270,7 @@ class Uniformity:
             return
         self.seq += 1
         self.decl_seq[id(sym)] = self.seq
+        self.declared.add(id(sym))
         self.decl_level[id(sym)] = (
             None
             if self.switch_depth and level is None
@@ -306,10 +334,16 @@ class Uniformity:
         if isinstance(s, A.If):
             c = self.uniform(s.cond)
             inner = mu and c
+            sunk = [] if c else self.sink(s.then)
             self.level += 0 if c else 1
             t = self.stmt(s.then, inner)
+            self.level -= 0 if c else 1
+            self.unsink(sunk)
+            sunk = [] if c or s.else_ is None else self.sink(s.else_)
+            self.level += 0 if c else 1
             e = self.stmt(s.else_, inner) if s.else_ is not None else inner
             self.level -= 0 if c else 1
+            self.unsink(sunk)
             ev_t = events_of(s.then, self.facts, self.model)
             ev_e = events_of(s.else_, self.facts, self.model) if s.else_ is not None else NO_EVENTS
             self.mu = mu
@@ -355,6 +389,30 @@ class Uniformity:
                     f[0] = True
             return mu
         return mu
+
+    def sink(self, arm: Any) -> list[int]:
+        """Move into `arm` (a branch of a varying `if` about to be analysed at the current level)
+        the declarations of the locals declared at this level and loop depth whose every use
+        lies inside it (module docstring); returns their ids for `unsink`."""
+        if not self.allow_free or self.switch_depth:
+            return []
+        start, end = self.span[id(arm)]
+        moved = [
+            sid
+            for sid, (first, last) in self.uses.items()
+            if start <= first
+            and last < end
+            and sid in self.declared
+            and self.decl_level.get(sid) == self.level
+            and self.decl_loops.get(sid) == len(self.loop_flags)
+        ]
+        for sid in moved:
+            self.decl_level[sid] = self.level + 1
+        return moved
+
+    def unsink(self, moved: list[int]) -> None:
+        for sid in moved:
+            self.decl_level[sid] = self.level
 
     def loop(self, s: Any, mu: bool) -> bool:
         ind = induction_variable(s, self.model, self.facts)

@@ -641,7 +641,9 @@ def render_tile(
                     )
                 color = np.broadcast_to(color, (4, lanes))
                 if S.discard is not LaneHelpers.NO:
-                    color = np.where(np.broadcast_to(S.discard, (lanes,)), 0.0, color)
+                    # a mask of None is every lane (a discard under the entry's full mask)
+                    every = S.discard is None
+                    color = np.where(np.broadcast_to(every or S.discard, (lanes,)), 0.0, color)
                 if samples > 1:
                     color = color.astype(np.float64)
             color = np.broadcast_to(color, (len(color), lanes))

@@ -1,17 +1,20 @@
 """glslcheck render SHADER [-o out.png|out.npy|anim.gif] [--size WxH] [--time T] [--frame N]
 [--mouse X,Y,Z,W] [--date Y,M,D,S] [--precision float16|float32|float64] [--samples N]
-[--backend numpy|gl|webgl|compiled] [--stats] [--frames N --fps F] [--pass TAB]: render a shader's
-Image tab (or, with --pass "Buffer A", a buffer). Buffers and channels.json: see
+[--backend auto|numpy|gl|webgl|compiled] [--stats] [--frames N --fps F] [--pass TAB]: render a
+shader's Image tab (or, with --pass "Buffer A", a buffer). Buffers and channels.json: see
 glslcheck/shadertoy/channels.py; --frame N of a multipass shader runs frames 0..N.
 
-The NumPy backend (default) renders on the CPU; --backend gl uses the OpenGL driver (Mesa
-llvmpipe); --backend webgl renders as Shadertoy's page does, with WebGL 2 in headless Chromium
-(ANGLE on SwiftShader); --backend compiled compiles each pixel's program with numba (the extra
-glslcheck[jit]; an Image tab without channels, float32: glslcheck/compiled_backend). Inputs:
-iResolution from --size (default 800x450), iTime --time (0), iFrame --frame (0), iMouse --mouse,
-iDate --date (year, month 0-11, day, seconds; default 2026-01-01 00:00), iTimeDelta 1/60 and
-iFrameRate 60 (with --frames: 1/F and F). fragCoord is the pixel centre with the origin at the
-bottom left; the image's first row is its top. Alpha is 1, as on Shadertoy.
+By default (--backend auto) the NumPy backend renders on the CPU and hands the frames to the
+compiled engine once they have cost its compile and it gives the same bits, faster
+(glslcheck/backends/tiered.py); --backend numpy keeps the NumPy backend; --backend gl uses the
+OpenGL driver (Mesa llvmpipe); --backend webgl renders as Shadertoy's page does, with WebGL 2 in
+headless Chromium (ANGLE on SwiftShader); --backend compiled compiles each pixel's program with
+numba (the extra glslcheck[jit]; an Image tab without channels, float32:
+glslcheck/compiled_backend). Inputs: iResolution from --size (default 800x450), iTime --time
+(0), iFrame --frame (0), iMouse --mouse, iDate --date (year, month 0-11, day, seconds; default
+2026-01-01 00:00), iTimeDelta 1/60 and iFrameRate 60 (with --frames: 1/F and F). fragCoord is
+the pixel centre with the origin at the bottom left; the image's first row is its top. Alpha is
+1, as on Shadertoy.
 
 Output: .png (values clamped to [0, 1], *255 + 0.5 rounded down), .npy (the float32 array,
 unclamped) or, with --frames N, a .gif animation of N frames at --fps F (iTime = --time + i / F,
@@ -60,9 +63,10 @@ def add_arguments(p) -> None:
     p.add_argument(
         "--backend",
         choices=registry.names(),
-        default="numpy",
-        help="default numpy; compiled: by numba, per pixel, then 8 pixels in lockstep once that "
-        "pays (glslcheck/compiled_backend)",
+        default="auto",
+        help="default auto: the NumPy engine, then the compiled engine once that pays and gives "
+        "the same bits (backends/tiered.py); numpy; compiled: by numba, per pixel, then 8 pixels "
+        "in lockstep once that pays",
     )
     p.add_argument(
         "--stats", action="store_true", help="print the lanes that ran each function and branch"

@@ -359,6 +359,9 @@ class Statements(TranspilerState):
                 self.emit(f"{dflt} = {self.const_bool(True)}")
         live = self.fresh("sl")
         fall = self.fresh("fall")
+        # lanes that `continue` the loop around in one case run no later case
+        around = next((lp for lp in reversed(fs.loops) if lp.kind == "loop"), None)
+        cont = around.cont if around is not None else None
         self.emit(f"{live} = {mask}")
         self.emit(f"{fall} = X.NO")
         fs.loops.append(LoopCtx("switch", live))
@@ -385,6 +388,8 @@ class Statements(TranspilerState):
             self.emit(f"{cur} = X.and_(X.and_({live}, {fall}), {mask})")
             if fs.has_ret:
                 self.emit(f"{cur} = X.andnot({cur}, _ret)")
+            if cont is not None:
+                self.emit(f"{cur} = X.andnot({cur}, {cont})")
             self.emit(f"if X.live({cur}):")
             self.indent += 1
             self.emit(f"X.count(S, {self.region('case', labs[0])}, {cur})")

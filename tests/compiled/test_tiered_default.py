@@ -1,0 +1,208 @@
+"""The default CPU program (backends/tiered.py): NumPy frames first, the compiled engine's once
+they pay, and only where the two give the same bits.
+
+The move is forced by an expected compile cost of zero (the rule itself is the compiled
+engine's ski rental, tested in test_lanes.py); every frame is compared with the NumPy backend's
+own render of the same inputs, bit for bit. The tier records go to a temporary file, so no
+verdict of a test reaches another test or the user's cache.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+import glslcheck
+from glslcheck.backends import tiered
+from glslcheck.backends.numpy_engine.program import NumpyProgram
+
+SIZE = (40, 24)
+
+ANIMATED = """
+float wave(vec2 p) { return 0.5 + 0.5 * sin(p.x * 9.0 + iTime) * cos(p.y * 7.0 - iTime); }
+void mainImage(out vec4 c, in vec2 f) {
+    vec2 uv = f / iResolution.xy;
+    float acc = 0.0;
+    for (int i = 0; i < 3; i++) {
+        if (uv.x > 0.2 * float(i)) acc += wave(uv + float(i));
+    }
+    c = vec4(acc, uv, 1.0);
+}
+"""
+
+# a construct the compiled engine refuses (its error names the line)
+REFUSED = """
+void mainImage(out vec4 c, in vec2 f) {
+    float v = 0.1 * iTime;
+    c = vec4(v, float(packHalf2x16(f)) * 1e-9, 0.0, 1.0);
+}
+"""
+
+
+@pytest.fixture
+def eager(monkeypatch, tmp_path):
+    """Move as soon as one frame has rendered, and stay moved (no timing trial); records in a
+    temporary file."""
+    monkeypatch.setattr(tiered, "COMPILE_GUESS_SECONDS", 0.0)
+    monkeypatch.setattr(tiered, "CACHED_LOAD_SECONDS", 0.0)
+    monkeypatch.setattr(tiered, "TRIAL_FRAMES", 0)
+    monkeypatch.setattr(
+        tiered.TieredCpuProgram, "_record_path", lambda self: str(tmp_path / "t.tier")
+    )
+    monkeypatch.delenv("GLSLCHECK_TIERS", raising=False)
+
+
+def _frames(prog, times):
+    return [prog.render(size=SIZE, time=t) for t in times]
+
+
+def _same(a: np.ndarray, b: np.ndarray) -> bool:
+    return bool(((a.view(np.uint32) == b.view(np.uint32)) | (np.isnan(a) & np.isnan(b))).all())
+
+
+def test_the_default_backend_is_the_tiered_program(make_shader, monkeypatch):
+    monkeypatch.delenv("GLSLCHECK_TIERS", raising=False)
+    prog = glslcheck.compile(make_shader(ANIMATED))
+    assert prog.backend.name == "auto" and isinstance(prog.impl, tiered.TieredCpuProgram)
+    assert prog.impl.mode == "numpy"
+    prog.impl.parallel = "threads"  # the NumPy program's settings are set through it
+    assert prog.impl.first.parallel == "threads"
+    monkeypatch.setenv("GLSLCHECK_TIERS", "off")
+    assert isinstance(glslcheck.compile(make_shader(ANIMATED)).impl, NumpyProgram)
+
+
+def test_frames_move_to_the_compiled_engine_with_the_same_bits(numba, make_shader, eager):
+    shader = make_shader(ANIMATED)
+    prog = glslcheck.compile(shader)
+    reference = glslcheck.compile(shader, backend="numpy")
+    times = [0.5 + 0.1 * k for k in range(6)]
+    got = _frames(prog, times[:1])
+    assert prog.impl.settle(300)
+    assert prog.impl.mode.startswith("compiled"), prog.impl.stay
+    assert prog.impl.record()["verdict"] == "same"
+    got += _frames(prog, times[1:])
+    for t, image, want in zip(times, got, _frames(reference, times)):
+        assert _same(image, want), t
+
+
+def test_a_shader_the_compiled_engine_refuses_stays_on_numpy(numba, make_shader, eager):
+    shader = make_shader(REFUSED)
+    prog = glslcheck.compile(shader)
+    _frames(prog, [0.5])
+    assert prog.impl.settle(300)
+    assert prog.impl.mode == "numpy" and prog.impl.stay.startswith("refused: ")
+    assert "packHalf2x16" in prog.impl.stay
+    # the verdict is kept: a later program of the shader does not try again
+    again = glslcheck.compile(shader)
+    _frames(again, [0.5, 0.6])
+    assert again.impl.stay == prog.impl.stay and again.impl._mover is None
+    want = glslcheck.compile(shader, backend="numpy").render(size=SIZE, time=0.6)
+    assert _same(again.render(size=SIZE, time=0.6), want)
+
+
+def test_a_compiled_frame_that_differs_keeps_numpy(numba, make_shader, eager, monkeypatch):
+    from glslcheck.backends.compiled_engine import engine
+
+    real = engine.CompiledProgram.render
+
+    def off_by_one_bit(self, **kw):
+        image = real(self, **kw)
+        image.view(np.uint32)[0, 0, 0] ^= 1
+        return image
+
+    monkeypatch.setattr(engine.CompiledProgram, "render", off_by_one_bit)
+    monkeypatch.setenv("GLSLCHECK_COMPILED_LANES", "0")  # one program: CompiledProgram.render
+    shader = make_shader(ANIMATED)
+    prog = glslcheck.compile(shader)
+    _frames(prog, [0.5])
+    assert prog.impl.settle(300)
+    assert prog.impl.mode == "numpy" and prog.impl.stay.startswith("differs: 1 pixels")
+    want = glslcheck.compile(shader, backend="numpy").render(size=SIZE, time=0.7)
+    assert _same(prog.render(size=SIZE, time=0.7), want)
+
+
+def test_a_slower_compiled_engine_hands_the_frames_back(numba, make_shader, eager, monkeypatch):
+    """A compiled program with no lockstep tier to try (a fixed mode) loses for good."""
+    monkeypatch.setattr(tiered, "TRIAL_FRAMES", 2)
+    monkeypatch.setenv("GLSLCHECK_COMPILED_LANES", "0")
+    shader = make_shader(ANIMATED)
+    prog = glslcheck.compile(shader)
+    _frames(prog, [0.5])
+    assert prog.impl.settle(300) and prog.impl.mode.startswith("compiled"), prog.impl.stay
+    prog.impl.numpy_rate = 0.0  # NumPy frames as fast as can be: no compiled frame is faster
+    times = [0.6, 0.7, 0.8]
+    got = _frames(prog, times)
+    assert prog.impl.mode == "numpy" and prog.impl.stay.startswith("slower: ")
+    assert prog.impl.record()["verdict"] == "same"  # a timing is not kept: tried again later
+    for t, image, want in zip(
+        times, got, _frames(glslcheck.compile(shader, backend="numpy"), times)
+    ):
+        assert _same(image, want), t
+
+
+@pytest.mark.parametrize(
+    "options", [{"precision": "float64"}, {"precision": "float16"}, {"stats": True}]
+)
+def test_frames_the_compiled_engine_cannot_render_never_move(make_shader, eager, options):
+    prog = glslcheck.compile(make_shader(ANIMATED))
+    for k in range(3):
+        prog.render(size=SIZE, time=0.5 + k, **options)
+    assert prog.impl._mover is None and prog.impl.pixels == 0
+
+
+def test_verify_s_llvmpipe_emulations_stay_on_numpy(make_shader, eager):
+    prog = glslcheck.compile(make_shader(ANIMATED))
+    prog.impl.loop_limit = 65535
+    _frames(prog, [0.5, 0.6])
+    assert prog.impl._mover is None and "loop limiter" in prog.impl.stay
+
+
+def test_buffer_passes_are_numpy_programs(make_shader):
+    from glslcheck.backends import registry
+
+    shader = make_shader(ANIMATED, Buffer_A=ANIMATED)
+    assert isinstance(registry.get("auto").compile_pass(shader, "Buffer A"), NumpyProgram)
+    assert isinstance(registry.get("auto").compile_pass(shader, "Image"), NumpyProgram)
+
+
+def test_a_lockstep_compile_over_the_budget_is_not_built(numba, make_shader, monkeypatch):
+    from glslcheck.backends.compiled_engine import engine
+
+    monkeypatch.delenv("GLSLCHECK_COMPILED_LANES", raising=False)
+    prog = engine.compile_compiled(make_shader(ANIMATED))
+    assert isinstance(prog, engine.TieredProgram)
+    monkeypatch.setattr(prog, "move_cost", lambda: engine.LOCKSTEP_BUDGET + 1.0)
+    prog.spent = 10 * engine.LOCKSTEP_BUDGET  # frames that would have paid for it many times
+    prog.pixels = 1
+    prog.render(size=SIZE, time=0.5)
+    assert prog._mover is None and prog.mode == "pixel"
+
+
+def test_a_slower_per_pixel_program_is_tried_again_in_lockstep(
+    numba, make_shader, eager, monkeypatch
+):
+    """Per pixel slower than NumPy: NumPy frames until they pay for lockstep, which is then made
+    and tried; faster, it keeps the frames, with NumPy's bits."""
+    from glslcheck.backends.compiled_engine import engine
+
+    monkeypatch.setattr(tiered, "TRIAL_FRAMES", 1)
+    monkeypatch.delenv("GLSLCHECK_COMPILED_LANES", raising=False)
+    # lockstep never pays by itself (a module cached by an earlier run would load at once)
+    monkeypatch.setattr(engine.TieredProgram, "move_cost", lambda self: 1e9)
+    shader = make_shader(ANIMATED)
+    prog = glslcheck.compile(shader)
+    _frames(prog, [0.5])
+    assert prog.impl.settle(300) and prog.impl.mode == "compiled pixel", prog.impl.stay
+    prog.impl.numpy_rate = 0.0  # per pixel loses the trial
+    _frames(prog, [0.6])
+    assert prog.impl.mode == "numpy" and prog.impl.later is not None and prog.impl.stay is None
+    monkeypatch.setattr(engine.TieredProgram, "move_cost", lambda self: 0.0)  # lockstep paid
+    _frames(prog, [0.7])
+    assert prog.impl.later.settle(300) and prog.impl.later.mode == "lanes8"
+    prog.impl.numpy_rate = 1.0  # lockstep wins its trial
+    times = [0.8, 0.9, 1.0]
+    got = _frames(prog, times)
+    assert prog.impl.mode == "compiled lanes8" and prog.impl.stay is None
+    want = _frames(glslcheck.compile(shader, backend="numpy"), times)
+    for t, image, w in zip(times, got, want):
+        assert _same(image, w), t
