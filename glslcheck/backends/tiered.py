@@ -53,6 +53,11 @@ from ..base import config
 from ..shadertoy.frame_inputs import FrameInputs, frame_inputs
 from .interface import Backend
 
+TYPE_CHECKING = False  # not typing's: importing typing costs every start-up
+if TYPE_CHECKING:
+    from .compiled_engine.engine import CompiledProgram, TieredProgram
+    from .numpy_engine.program import NumpyProgram
+
 # Expected wall seconds of numba's first compile of a shader's per-pixel module when nothing is
 # known about it yet: the hidden real set's median was 2.0 s (max 16 s), the lab shaders 4-7 s
 # on a loaded 2-core machine (benchmarks/bench_default.py prints both).
@@ -88,7 +93,22 @@ class TieredCpuProgram:
     (module docstring). Every attribute it does not define is the NumPy program's (`parallel`,
     `threads`, `loop_limit`, `format_stats`, ...), read and set there."""
 
-    def __init__(self, shader: Any, first: Any) -> None:
+    # its own attributes (_OWN), set in __init__ through __dict__
+    shader: Any
+    first: NumpyProgram
+    second: CompiledProgram | TieredProgram | None
+    stay: str | None
+    spent: float
+    pixels: int
+    _lock: threading.Lock
+    _mover: threading.Thread | None
+    _record: dict | None
+    rates: list[float]
+    numpy_rate: float
+    trial: list[float]
+    later: TieredProgram | None
+
+    def __init__(self, shader: Any, first: NumpyProgram) -> None:
         d = self.__dict__
         d["shader"] = shader
         d["first"] = first
@@ -265,13 +285,16 @@ class TieredCpuProgram:
     def _judge(self, rate: float) -> None:
         """Time one of the compiled program's first frames; after TRIAL_FRAMES, keep it only
         when its median is faster than the NumPy frames before the move."""
+        from .compiled_engine.engine import TieredProgram
+
         self.trial.append(rate)
         if len(self.trial) < TRIAL_FRAMES:
             return
         mine = sorted(self.trial)[len(self.trial) // 2]
         if mine >= self.numpy_rate:
             second, self.second = self.second, None
-            if getattr(second, "mode", "") == "pixel" and not getattr(second, "stay", True):
+            # (a per-pixel TieredProgram whose lockstep module may still be made)
+            if isinstance(second, TieredProgram) and second.mode == "pixel" and not second.stay:
                 self.later = second  # NumPy frames until lockstep pays and is made, then a trial
                 return
             # (not recorded: a timing on a loaded machine; a later process tries again)

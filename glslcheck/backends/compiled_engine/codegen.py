@@ -643,6 +643,7 @@ class Codegen(ExpressionEmitter):
         self.emit("")  # the continue flag's initialisation, once it is known to be needed
         self.emit("while True:")
         self.indent += 1
+        assert self.fn is not None  # generating a function's body
         self.fn.loops.append(("switch", flag))
         for k, (_, stmts) in enumerate(sections):
             if not stmts:

@@ -34,6 +34,7 @@ from .values import (
 TYPE_CHECKING = False  # not typing's: importing typing costs every start-up
 if TYPE_CHECKING:
     from ...semantics.model import Model
+    from ..cpu_core.facts import Facts
     from ..numpy_engine.transpile.nir_fold import FoldContext
 
 
@@ -52,6 +53,7 @@ class ExpressionEmitter:
 
     if TYPE_CHECKING:  # Codegen's (codegen.py), declared for type checkers
         model: Model
+        facts: Facts
         path: str
         fma: bool
         float_to_uint: str
@@ -74,6 +76,8 @@ class ExpressionEmitter:
         def var_parts(self, sym: Symbol, node: Any) -> list: ...
         def fn_name(self, sym: Symbol) -> str: ...
         def variant_name(self, sym: Symbol, seed: frozenset) -> str: ...
+        def discard_flag(self) -> str: ...
+        def leave_discarded(self, node: Any) -> None: ...
 
     # -- writes --------------------------------------------------------------------------------
     def write(self, targets: list, values: list, fresh_arrays: bool = False) -> None:
