@@ -29,7 +29,8 @@ no global gets none); the globals are reset to their initial values before each 
 Control flow is Python's own: `if`, `while` loops for GLSL's three loops (a `continue` in a
 `for` runs the step first; in a `do`-`while` it tests the condition), `return` anywhere,
 `&&`/`||`/`?:` evaluate only the side they need. Each loop counts its passes and stops after
-transpile.LOOP_CAP by raising LoopCapError(its id) (the engine raises the located error). A user
+transpile.LOOP_CAP by raising LoopCapError(its id) (the engine raises the located error), and
+spends llvmpipe's pass budget as the NumPy backend does (`lc`, scalar.tick; `loop`). A user
 function returns a tuple: its value's leaves, then the leaves of its out/inout parameters,
 which the caller writes back left to right.
 
@@ -77,7 +78,7 @@ class FnState:
         self.sym = sym
         self.uni = uni  # cpu_core's Uniformity of the function (None: global initializers)
         self.outs: list = []  # the parts of out/inout parameters, returned after the value
-        self.loops: list[tuple[str, Any]] = []  # (kind, continue emitter)
+        self.loops: list[tuple[int, str, Any]] = []  # (loop id, its break flag, continue emitter)
 
 
 class Codegen(ExpressionEmitter):
@@ -558,15 +559,19 @@ class Codegen(ExpressionEmitter):
         value = self.expr(s.value).parts if s.value is not None else None
         if value is not None:
             value = [self.atom(p) if not isinstance(p, Arr) else p for p in value]
+        for _ in self.fn.loops:  # each loop it leaves: the pass it ends costs 1
+            self.emit("tick_end(lc)")
         self.emit(self.return_text(value))
         return True
 
     def _stmt_Break(self, s: A.Break) -> bool:
-        self.emit("break")
+        _, done, _ = self.fn.loops[-1]
+        self.emit(f"{done} = True")
+        self.emit("continue  # to the top of the pass, which leaves the loop")
         return True
 
     def _stmt_Continue(self, s: A.Continue) -> bool:
-        kind, cont = self.fn.loops[-1]
+        _, _, cont = self.fn.loops[-1]
         if cont is not None:
             cont()
         self.emit("continue")
@@ -603,29 +608,44 @@ class Codegen(ExpressionEmitter):
         self.loop(s, s.cond, s.body, None, do_while=True)
 
     def loop(self, s: Any, cond: Any, body: Any, step: Any, do_while: bool) -> None:
+        """GLSL's loops as the NumPy backend's (transpile/statements.py loop_top): the top of
+        every pass counts it (a runaway loop past LOOP_CAP is an error at its line) and pays
+        the pass before it from llvmpipe's budget (scalar.tick). A false condition, a `break`
+        and a do-while's false condition set the loop's flag `done` and go round to that top,
+        which pays the pass they ended and leaves: every pass costs 1 when it ends, as in
+        llvmpipe (a return pays for each loop it leaves, `tick_end`)."""
         from ..numpy_engine.transpile.common import LOOP_CAP
 
         lid = len(self.loop_lines) + 1
         loc = s.loc
         self.loop_lines[lid] = (loc.path, loc.line, loc.column)
         count = self.fresh("n")
+        done = self.fresh("b")
         self.emit(f"{count} = 0")
+        self.emit(f"{done} = False")
         self.emit("while True:")
         self.indent += 1
+        self.emit(f"{count} += 1")
+        self.emit(f"if tick(lc, {count}):")  # a statement of its own: one call a block in lockstep
+        self.emit(f"    if not {done}:")
+        self.emit(f"        limited(lc, {lid})")
+        self.emit("    break")
+        self.emit(f"if {done}:")
+        self.emit("    break")
+        self.emit(f"if {count} > {LOOP_CAP}:  # a runaway loop: the engine reports its line")
+        self.emit(f"    raise LoopCapError({lid})")
 
         def test() -> None:
             if cond is not None:
                 c = self.condition(cond)
                 self.emit(f"if not {c}:")
-                self.emit("    break")
+                self.emit(f"    {done} = True")
+                self.emit("    continue")
 
         if not do_while:
             test()
-        self.emit(f"{count} += 1")
-        self.emit(f"if {count} > {LOOP_CAP}:  # a runaway loop: the engine reports its line")
-        self.emit(f"    raise LoopCapError({lid})")
         cont = step if not do_while else test
-        self.fn.loops.append(("loop", cont))
+        self.fn.loops.append((lid, done, cont))
         ended = self.stmt(body)
         self.fn.loops.pop()
         if not ended:

@@ -45,6 +45,7 @@ from ...shadertoy.frame_inputs import FrameInputs, frame_inputs
 from ...shadertoy.wrapper import UNIFORMS_BY_NAME
 
 PIP = "pip install 'glslcheck[jit]'"
+NO_LIMIT = 2**62  # the loop budget without llvmpipe's limiter: more passes than any frame runs
 _LOCK = threading.Lock()
 _MODULES: dict[str, Any] = {}  # hash -> loaded module (one per process)
 _SOURCES: dict[str, str] = {}  # hash -> the loaded module's source
@@ -279,6 +280,10 @@ class CompiledProgram:
         self.path = path
         self.threads = threads or os.cpu_count() or 1
         self.frame_seconds: float | None = None
+        # llvmpipe's loop limiter (scalar.tick): None = loops run until they end (a runaway loop
+        # is an error after LOOP_CAP passes); 65535 = stop as llvmpipe does (verify sets it)
+        self.loop_limit: int | None = None
+        self._limited: set[tuple[str, int]] = set()
         self.mod: Any = None
         self.load_seconds: float | None = None  # wall time of import + numba compile or cache load
         self.cold: bool | None = None  # True when numba compiled (no cache), False when it loaded
@@ -411,6 +416,8 @@ class CompiledProgram:
         ]
         from .scalar import LoopCapError
 
+        lt = np.zeros(1 + len(mod.LOOPS), np.int64)  # the budget, then a flag per loop id
+        lt[0] = NO_LIMIT if self.loop_limit is None else self.loop_limit
         out = np.empty((height, width, 4), np.float32)
         if seconds is None and not first:
             seconds = self.budget()
@@ -426,13 +433,13 @@ class CompiledProgram:
             ):  # a block is two rows (a 2x2 quad's): bands start at even rows
                 edges = [e - e % 2 for e in edges[:-1]] + [height]
             calls = [
-                (mod.render_rows, out, edges[k], edges[k + 1], width, height, offs, uf, ui, *gt)
+                (mod.render_rows, out, edges[k], edges[k + 1], width, height, offs, uf, ui, *gt, lt)
                 for k in range(bands)
                 if edges[k] < edges[k + 1] or first
             ]
             deadline = None if seconds is None else time.monotonic() + seconds
             # the globals' initializers run the shader's code too (and numba compiles them first)
-            run_bounded(self.threads, [(mod.globals_template, uf, ui, *gt)], deadline)
+            run_bounded(self.threads, [(mod.globals_template, uf, ui, *gt, lt)], deadline)
             run_bounded(self.threads, calls, deadline)
         except TimeoutError:
             raise self._over_budget(mod, seconds, first) from None
@@ -447,7 +454,13 @@ class CompiledProgram:
                     rule="compiled-engine",
                 )
             ) from None
+        self._limited |= {tuple(mod.LOOPS[lid][:2]) for lid in np.flatnonzero(lt[1:]) + 1}
         return out
+
+    def limited_loops(self) -> list[tuple[str, int]]:
+        """(file, line) of the loops llvmpipe's limiter stopped since the last call."""
+        found, self._limited = sorted(self._limited), set()
+        return found
 
     def _over_budget(self, mod: Any, seconds: float, first: bool) -> GlslError:
         path, line, col, name = getattr(mod, "ENTRY", (self.path, 1, 1, "mainImage"))
@@ -583,6 +596,23 @@ class TieredProgram:
         return (self.fast or self.first).source
 
     @property
+    def loop_limit(self) -> int | None:
+        """llvmpipe's loop limiter (CompiledProgram.loop_limit), for both tiers."""
+        return self.first.loop_limit
+
+    @loop_limit.setter
+    def loop_limit(self, limit: int | None) -> None:
+        self.first.loop_limit = limit
+        if self.fast is not None:
+            self.fast.loop_limit = limit
+
+    def limited_loops(self) -> list[tuple[str, int]]:
+        found = set(self.first.limited_loops())
+        if self.fast is not None:
+            found |= set(self.fast.limited_loops())
+        return sorted(found)
+
+    @property
     def mode(self) -> str:
         return f"lanes{TIER_LANES}" if self.fast is not None else "pixel"
 
@@ -627,6 +657,7 @@ class TieredProgram:
                 return
             fast = CompiledProgram(source, self.first.path, self.threads)
             fast.frame_seconds = self.first.frame_seconds
+            fast.loop_limit = self.first.loop_limit
             fast.load(bounded=False)  # no frame waits for it
         except (
             Exception

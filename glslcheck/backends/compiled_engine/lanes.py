@@ -33,7 +33,7 @@ names renamed, so each lane computes exactly the per-pixel engine's operations (
   the text, is written plainly: the lanes outside the mask never read it). A loop whose exits are all uniform stays a loop; a divergent one runs
   while any lane is active (`act`), with break (clears `act`), continue (`cont`, reset each
   pass) and return (`live`, return slots `_r<i>`, clears every enclosing loop's `act`) as
-  masks. A loop's pass count is the block's (the slowest lane's): LOOP_CAP as per pixel.
+  masks. A loop's pass count is the block's (the slowest lane's), for LOOP_CAP and llvmpipe's budget.
 - Writes to the per-pixel state arrays (globals) are always under the mask; writes to locals in
   uniform control are plain (a lane outside the function's mask never reads them), also after
   a divergent return (`ldiv`: the lanes left out have returned and never read this call's
@@ -69,14 +69,12 @@ from typing import Any
 from .values import pure_expr
 
 STATE_LANES = ("gf", "gi", "gu", "gb")  # per-pixel state: one array per lane
-UNIFORM_STATE = ("uf", "ui")
-ROW_UNIFORM = (
-    "fy",
-    "py",
-)  # shade's fragCoord.y and pixel centre y: one value for a block (a row's)
-MATH = (
-    "glslcheck.backends.compiled_engine.scalar",
-    "glslcheck.backends.compiled_engine.lanes_math",
+UNIFORM_STATE = ("uf", "ui", "lc")  # lc: llvmpipe's loop budget, one per block as there
+BLOCK_CALLS = ("limited", "tick_end")  # the loop budget's statements (scalar.tick)
+# shade's fragCoord.y and pixel centre y: one value for a block (a row's)
+ROW_UNIFORM = ("fy", "py")
+MATH = tuple(
+    f"glslcheck.backends.compiled_engine.{m}" for m in ("scalar", "lanes_math")
 )  # later wins
 
 
@@ -414,6 +412,9 @@ class _Fn:
         name = _call_name(v)
         if name in self.L.functions:
             self.user_call(v, [])
+            return
+        if name in BLOCK_CALLS:  # once for the block, when one of its lanes does it
+            self.emit((f"if {self.any_of(self.mask)}: " if self.div else "") + ast.unparse(s))
             return
         if name == "aset":
             dst = v.args[0]
@@ -893,7 +894,7 @@ def render_source(
         lines.append(f"            px__{k} = F32(min(x0 + {k}, width - 1) + 0.5)")
     lines += _sample_head(W, slots)
     lines.append("                oy = F32(py + F32(offs[s, 1]))")
-    args = ["True"] * W + st + ["uf", "ui"]
+    args = ["True"] * W + st + ["uf", "ui", "lc"]
     args += [f"F32(px__{k} + ox)" for k in range(W)] + (["oy"] if "fy" in scalar else ["oy"] * W)
     args += [f"px__{k}" for k in range(W)] + (["py"] if "py" in scalar else ["py"] * W)
     lines.append(f"                res = {shade}({', '.join(args)})")
@@ -902,16 +903,16 @@ def render_source(
         f"            for k in range(min({W}, width - x0)):",
         "                for c in range(4):",
         "                    out[row, x0 + k, c] = acc[c, k] / samples",
+        "    loops_limited(lt, lc)",
     ]
     return "\n".join(lines)
 
 
 def _prologue(W: int, doc: list[str]) -> list[str]:
     """render_rows' signature, docstring, per-lane state copies and accumulator."""
-    lines = [
-        "@numba.njit(cache=True, nogil=True, error_model='numpy')",
-        "def render_rows(out, y0, y1, width, height, offs, uf, ui, gtf, gti, gtu, gtb):",
-    ] + doc
+    sig = "def render_rows(out, y0, y1, width, height, offs, uf, ui, gtf, gti, gtu, gtb, lt):"
+    head = ["@numba.njit(cache=True, nogil=True, error_model='numpy')", sig]
+    lines = head + doc + ["    lc = acopy(lt)"]  # the loop budget: per block (scalar.tick)
     for a, t in zip(STATE_LANES, ("gtf", "gti", "gtu", "gtb")):
         lines += [f"    {a}__{k} = acopy({t})" for k in range(W)]
     return lines + ["    samples = offs.shape[0]", f"    acc = np.zeros((4, {W}), np.float64)"]
@@ -927,7 +928,7 @@ def _sample_head(W: int, slots: dict | None) -> list[str]:
         if slots is not None and not slots.get(kind):
             continue
         lines += [f"                aset({a}__{k}, 0, {t})" for k in range(W)]
-    return lines + ["                ox = F32(offs[s, 0])"]
+    return lines + ["                lc[0] = lt[0]", "                ox = F32(offs[s, 0])"]
 
 
 def _accumulate(W: int, ret_uniform: Any) -> list[str]:
@@ -981,7 +982,7 @@ def _render_quads(W: int, slots: dict | None, shade: str, ret_uniform: Any) -> s
         "                oy1 = F32(py1 + F32(offs[s, 1]))",
     ]
     px = [f"px__{k % h}" for k in range(W)]
-    args = ["True"] * W + st + ["uf", "ui"]
+    args = ["True"] * W + st + ["uf", "ui", "lc"]
     args += [f"F32({p} + ox)" for p in px] + ["oy0"] * h + ["oy1"] * h
     args += px + ["py0"] * h + ["py1"] * h
     lines.append(f"                res = {shade}({', '.join(args)})")
@@ -993,5 +994,6 @@ def _render_quads(W: int, slots: dict | None, shade: str, ret_uniform: Any) -> s
         f"                for k in range(min({h}, width - x0)):",
         "                    for c in range(4):",
         f"                        out[height - 1 - y - r, x0 + k, c] = acc[c, r * {h} + k] / samples",
+        "    loops_limited(lt, lc)",
     ]
     return "\n".join(lines)
