@@ -120,7 +120,7 @@ def agree_one(
     out = []
     for width in lanes:
         try:
-            source, where = generate(shader, lanes=width)
+            source, where = generate(shader, lanes=width, budget=True)
             if width and "LANES_FALLBACK" in source:
                 why = source.rsplit("LANES_FALLBACK = ", 1)[1].split("  #")[0]
                 out.append({"lanes": width, "verdict": "per pixel", "reason": why})

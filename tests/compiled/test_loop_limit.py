@@ -73,11 +73,11 @@ def programs(numba):
     numpy = glslcheck.compile(shader, backend="numpy").impl
     compiled = {}
     for lanes in (0, 8):
-        source, path = generate(shader, lanes=lanes)
+        source, path = generate(shader, lanes=lanes, budget=True)
         if lanes:
             assert "LANES_FALLBACK" not in source
         compiled[lanes] = CompiledProgram(source, path)
-    return _Memo(numpy), compiled
+    return _Memo(numpy), compiled, shader
 
 
 class _Memo:
@@ -116,7 +116,7 @@ def _render(prog, limit):
 @pytest.mark.parametrize("lanes", [0, 8])
 @pytest.mark.parametrize("budget", BUDGETS)
 def test_budget_spent_as_the_numpy_backend_spends_it(programs, budget, lanes):
-    numpy, compiled = programs
+    numpy, compiled, _ = programs
     want, want_loops = _render(numpy, budget)
     got, got_loops = _render(compiled[lanes], budget)
     assert got.view(np.uint32).tolist() == want.view(np.uint32).tolist()
@@ -129,10 +129,13 @@ def test_budget_spent_as_the_numpy_backend_spends_it(programs, budget, lanes):
 
 def test_no_limit_renders_every_pass(programs):
     """Without the limiter (render, not verify) no loop stops early: the same image as a budget
-    the program never reaches."""
-    numpy, compiled = programs
+    the program never reaches, and as a module made without the budget (the one `render`
+    compiles: it neither counts passes nor passes `lc`)."""
+    from glslcheck.backends.compiled_engine.engine import CompiledProgram, generate
+
+    numpy, compiled, shader = programs
     want, _ = _render(numpy, None)
-    for prog in compiled.values():
+    for lanes, prog in compiled.items():
         got, loops = _render(prog, None)
         assert got.view(np.uint32).tolist() == want.view(np.uint32).tolist()
         assert loops == []
@@ -140,6 +143,10 @@ def test_no_limit_renders_every_pass(programs):
             got.view(np.uint32).tolist()
             == _render(prog, LLVMPIPE_LOOP_LIMIT)[0].view(np.uint32).tolist()
         )
+        source, path = generate(shader, lanes=lanes)
+        assert "tick(" not in source and "BUDGET = False" in source
+        image = CompiledProgram(source, path).render(size=SIZE, time=0.5)
+        assert image.view(np.uint32).tolist() == want.view(np.uint32).tolist()
 
 
 NESTED = """void mainImage(out vec4 fragColor, in vec2 fragCoord)
@@ -166,8 +173,9 @@ def test_three_nested_runaway_loops_stop_as_llvmpipe_does(numba, make_shader, la
 
     shader = make_shader(NESTED)
     numpy = glslcheck.compile(shader, backend="numpy").impl
-    source, path = generate(shader, lanes=lanes)
+    source, path = generate(shader, lanes=lanes, budget=True)
     compiled = CompiledProgram(source, path)
+    compiled.loop_limit = LLVMPIPE_LOOP_LIMIT  # (the module with the budget)
     compiled.load()  # numba's compile is not the frame's time
     compiled.frame_seconds = numpy.frame_seconds = 120.0
     want, want_loops = _render(numpy, LLVMPIPE_LOOP_LIMIT)

@@ -61,6 +61,8 @@ from .expressions import ExpressionEmitter
 from .module_text import HEADER, RENDER
 from .values import (
     ATOM,
+    BUDGET_OFF,
+    BUDGET_ON,
     DTYPE,
     KIND_ARRAY,
     STATE,
@@ -78,14 +80,17 @@ class FnState:
         self.sym = sym
         self.uni = uni  # cpu_core's Uniformity of the function (None: global initializers)
         self.outs: list = []  # the parts of out/inout parameters, returned after the value
-        self.loops: list[tuple[int, str, Any]] = []  # (loop id, its break flag, continue emitter)
+        self.loops: list[tuple[int, Any]] = []  # (loop id, continue emitter)
 
 
 class Codegen(ExpressionEmitter):
     """`Codegen(model, path).module()` -> the generated Python source."""
 
-    def __init__(self, model: Any, path: str, fma: bool, float_to_uint: str) -> None:
+    def __init__(
+        self, model: Any, path: str, fma: bool, float_to_uint: str, budget: bool = False
+    ) -> None:
         self.model = model
+        self.budget = budget  # llvmpipe's loop budget in the code (`loop`), else none of it
         self.path = path
         self.fma = fma
         self.float_to_uint = float_to_uint
@@ -332,6 +337,7 @@ class Codegen(ExpressionEmitter):
         layout = {k: (v[0], v[1]) for k, v in self.uniforms.items()}
         out.append(f"UNIFORMS = {layout!r}  # uniform -> (kind, offset in uf/ui)")
         out.append(f"LOOPS = {self.loop_lines!r}  # loop id -> (file, line, column)")
+        out.append(f"{BUDGET_ON if self.budget else BUDGET_OFF}  # llvmpipe's loop budget (`lc`)")
         loc = getattr(self.entry.node, "loc", None) or Location(self.path, 1, 1)
         entry = (loc.path, loc.line, loc.column, self.entry.name)
         out.append(
@@ -345,11 +351,11 @@ class Codegen(ExpressionEmitter):
         out.append("")
         for f in funcs + [init, shade]:
             out += ["", "@jit", *f.split("\n"), ""]
-        out.append(RENDER)
+        out.append(RENDER if self.budget else RENDER.replace("uf, ui, lc,", "uf, ui,"))
         return "\n".join(out) + "\n"
 
     def gen_globals(self) -> None:
-        self.emit(f"def init_globals({', '.join(STATE)}):")
+        self.emit(f"def init_globals({', '.join(self.state())}):")
         self.indent += 1
         self.emit('"""Global variables at the start of every invocation."""')
         self.fn = FnState(None)
@@ -377,7 +383,7 @@ class Codegen(ExpressionEmitter):
     def gen_shade(self) -> None:
         entry = self.entry
         name = self.fn_name(entry)
-        self.emit(f"def shade({', '.join(STATE)}, fx, fy, px, py):")
+        self.emit(f"def shade({', '.join(self.state())}, fx, fy, px, py):")
         self.indent += 1
         self.emit('"""One pixel: fragCoord (fx, fy), pixel centre (px, py) -> RGBA."""')
         if self.frag4 is not None:
@@ -413,6 +419,10 @@ class Codegen(ExpressionEmitter):
         self.indent -= 1
 
     # -- functions -----------------------------------------------------------------------------
+    def state(self) -> list[str]:
+        """The state arrays shade and init_globals take (`lc` only with the loop budget)."""
+        return [a for a in STATE if a != "lc" or self.budget]
+
     def fn_name(self, sym: Any) -> str:
         from ..numpy_engine.transpile.common import python_ident
 
@@ -559,19 +569,17 @@ class Codegen(ExpressionEmitter):
         value = self.expr(s.value).parts if s.value is not None else None
         if value is not None:
             value = [self.atom(p) if not isinstance(p, Arr) else p for p in value]
-        for _ in self.fn.loops:  # each loop it leaves: the pass it ends costs 1
+        for _ in self.fn.loops if self.budget else ():  # each loop it leaves: its pass costs 1
             self.emit("tick_end(lc)")
         self.emit(self.return_text(value))
         return True
 
     def _stmt_Break(self, s: A.Break) -> bool:
-        _, done, _ = self.fn.loops[-1]
-        self.emit(f"{done} = True")
-        self.emit("continue  # to the top of the pass, which leaves the loop")
+        self.emit("break")
         return True
 
     def _stmt_Continue(self, s: A.Continue) -> bool:
-        _, _, cont = self.fn.loops[-1]
+        _, cont = self.fn.loops[-1]
         if cont is not None:
             cont()
         self.emit("continue")
@@ -610,42 +618,43 @@ class Codegen(ExpressionEmitter):
     def loop(self, s: Any, cond: Any, body: Any, step: Any, do_while: bool) -> None:
         """GLSL's loops as the NumPy backend's (transpile/statements.py loop_top): the top of
         every pass counts it (a runaway loop past LOOP_CAP is an error at its line) and pays
-        the pass before it from llvmpipe's budget (scalar.tick). A false condition, a `break`
-        and a do-while's false condition set the loop's flag `done` and go round to that top,
-        which pays the pass they ended and leaves: every pass costs 1 when it ends, as in
-        llvmpipe (a return pays for each loop it leaves, `tick_end`)."""
+        the pass before it from llvmpipe's budget (scalar.tick), which stops the loop when none
+        is left; the pass a loop leaves by its condition or a `break` pays after the loop, one
+        a loop (`stopped`: not when the budget stopped it), and a return pays one per loop it
+        leaves (`tick_end`): every pass costs 1 when it ends, as in llvmpipe. Only in a module
+        made with the budget (`budget`; engine.CompiledProgram.loop_limit makes it): the others
+        neither count it nor pass `lc`."""
         from ..numpy_engine.transpile.common import LOOP_CAP
 
         lid = len(self.loop_lines) + 1
         loc = s.loc
         self.loop_lines[lid] = (loc.path, loc.line, loc.column)
         count = self.fresh("n")
-        done = self.fresh("b")
+        stopped = self.fresh("s")
         self.emit(f"{count} = 0")
-        self.emit(f"{done} = False")
+        if self.budget:
+            self.emit(f"{stopped} = False")
         self.emit("while True:")
         self.indent += 1
         self.emit(f"{count} += 1")
-        self.emit(f"if tick(lc, {count}):")  # a statement of its own: one call a block in lockstep
-        self.emit(f"    if not {done}:")
-        self.emit(f"        limited(lc, {lid})")
-        self.emit("    break")
-        self.emit(f"if {done}:")
-        self.emit("    break")
         self.emit(f"if {count} > {LOOP_CAP}:  # a runaway loop: the engine reports its line")
         self.emit(f"    raise LoopCapError({lid})")
+        if self.budget:
+            self.emit(f"if tick(lc, {count}):")  # uniform: one call a block in lockstep
+            self.emit(f"    limited(lc, {lid})")
+            self.emit(f"    {stopped} = True")
+            self.emit("    break")
 
         def test() -> None:
             if cond is not None:
                 c = self.condition(cond)
                 self.emit(f"if not {c}:")
-                self.emit(f"    {done} = True")
-                self.emit("    continue")
+                self.emit("    break")
 
         if not do_while:
             test()
         cont = step if not do_while else test
-        self.fn.loops.append((lid, done, cont))
+        self.fn.loops.append((lid, cont))
         ended = self.stmt(body)
         self.fn.loops.pop()
         if not ended:
@@ -654,6 +663,9 @@ class Codegen(ExpressionEmitter):
             elif step is not None:
                 step()
         self.indent -= 1
+        if self.budget:
+            self.emit(f"if not {stopped}:  # the pass that left the loop")
+            self.emit("    tick_end(lc)")
 
 
 def _literal_tree(model: Any, e: Any, base: str) -> bool:

@@ -43,6 +43,7 @@ from ...base import config
 from ...base.diagnostics import Diagnostic, GlslError, InputError, Location
 from ...shadertoy.frame_inputs import FrameInputs, frame_inputs
 from ...shadertoy.wrapper import UNIFORMS_BY_NAME
+from .values import BUDGET_OFF
 
 PIP = "pip install 'glslcheck[jit]'"
 NO_LIMIT = 2**62  # the loop budget without llvmpipe's limiter: more passes than any frame runs
@@ -204,11 +205,13 @@ def tiered() -> bool:
     return config.compiled_lanes() is None
 
 
-def generate(shader: Any, tab: str | None = None, lanes: int | None = None) -> tuple[str, str]:
+def generate(
+    shader: Any, tab: str | None = None, lanes: int | None = None, budget: bool = False
+) -> tuple[str, str]:
     """(generated source, path of the GLSL tab) of a shader's Image (or plain GLSL) tab: blocks
     of `lanes_width(lanes)` pixels in lockstep (lanes.py), or one pixel a call when that is 0 or
     the rewrite does not handle the program (the per-pixel module then says why in
-    LANES_FALLBACK)."""
+    LANES_FALLBACK); `budget`: with llvmpipe's loop budget (CompiledProgram.loop_limit)."""
     from ...frontend.parser import parse_shader
     from ...shadertoy.channels import needs_passes
     from ..driver_profile import host_model
@@ -236,7 +239,7 @@ def generate(shader: Any, tab: str | None = None, lanes: int | None = None) -> t
     old = sys.getrecursionlimit()
     sys.setrecursionlimit(max(old, 20000))
     try:
-        cg = Codegen(model, path, HOST_FMA, host_model())
+        cg = Codegen(model, path, HOST_FMA, host_model(), budget)
         source = cg.module()
         width = lanes_width(lanes)
         if cg.derivative is not None and not width:
@@ -275,19 +278,45 @@ class CompiledProgram:
     numba's compile or cache load as much but at least COMPILE_SECONDS, before it stops with a
     GlslError, rule "compiled-frame-budget" (the module docstring: what runs on after it)."""
 
-    def __init__(self, source: str, path: str, threads: int | None = None) -> None:
+    def __init__(
+        self, source: str, path: str, threads: int | None = None, remake: Callable | None = None
+    ) -> None:
         self.source = source
+        self.remake = remake  # () -> the source with llvmpipe's loop budget (generate's budget)
         self.path = path
         self.threads = threads or os.cpu_count() or 1
         self.frame_seconds: float | None = None
-        # llvmpipe's loop limiter (scalar.tick): None = loops run until they end (a runaway loop
-        # is an error after LOOP_CAP passes); 65535 = stop as llvmpipe does (verify sets it)
-        self.loop_limit: int | None = None
+        self._loop_limit: int | None = None
         self._limited: set[tuple[str, int]] = set()
         self.mod: Any = None
         self.load_seconds: float | None = None  # wall time of import + numba compile or cache load
         self.cold: bool | None = None  # True when numba compiled (no cache), False when it loaded
         self.key = hashlib.sha256((_versions() + "\n" + source).encode()).hexdigest()[:24]
+
+    @property
+    def loop_limit(self) -> int | None:
+        """llvmpipe's loop limiter (scalar.tick): None = loops run until they end (a runaway
+        loop is an error after LOOP_CAP passes); 65535 = stop as llvmpipe does (verify sets
+        it). A module made without the budget (the faster: it neither counts passes nor passes
+        `lc`) is made again with it (`remake`) when a limit is set: set it before the first
+        frame, or that module is compiled too."""
+        return self._loop_limit
+
+    @loop_limit.setter
+    def loop_limit(self, limit: int | None) -> None:
+        from .values import BUDGET_OFF
+
+        self._loop_limit = limit
+        if limit is not None and BUDGET_OFF in self.source:
+            if self.remake is None:
+                raise ValueError("this module has no loop budget: generate(..., budget=True)")
+            with _LOCK:
+                self.source = self.remake()
+                self.key = hashlib.sha256((_versions() + "\n" + self.source).encode()).hexdigest()[
+                    :24
+                ]
+                self.mod = None
+                self.cold = self.load_seconds = None
 
     def load(self, bounded: bool = True) -> Any:
         """The module, compiled or loaded from numba's cache; `bounded`: the compile has the
@@ -649,13 +678,14 @@ class TieredProgram:
     def _move(self) -> None:
         """Make the lockstep module (in the mover thread); self.fast once it can render."""
         try:
+            budget = self.first.loop_limit is not None
             source = self._cached_fast()
-            if source is None:
-                source, _ = generate(self.shader, lanes=TIER_LANES)
+            if source is None or (budget and BUDGET_OFF in source):
+                source, _ = generate(self.shader, lanes=TIER_LANES, budget=budget)
             if "LANES_FALLBACK" in source:
                 self.stay = True
                 return
-            fast = CompiledProgram(source, self.first.path, self.threads)
+            fast = CompiledProgram(source, self.first.path, self.threads, self._remake_fast)
             fast.frame_seconds = self.first.frame_seconds
             fast.loop_limit = self.first.loop_limit
             fast.load(bounded=False)  # no frame waits for it
@@ -674,6 +704,9 @@ class TieredProgram:
             return
         _write(self._marker(), fast.key + "\n")
         self.fast = fast
+
+    def _remake_fast(self) -> str:
+        return generate(self.shader, lanes=TIER_LANES, budget=True)[0]
 
     def settle(self, timeout: float | None = None) -> bool:
         """Wait for a lockstep compile under way (at most timeout seconds); whether none is left."""
@@ -721,7 +754,7 @@ def compile_compiled(
 
     shader = path_or_shader if isinstance(path_or_shader, Shader) else load_shader(path_or_shader)
     source, path = generate(shader)
-    prog = CompiledProgram(source, path, threads)
+    prog = CompiledProgram(source, path, threads, lambda: generate(shader, budget=True)[0])
     if (
         tiered() and "LANES_FALLBACK" not in source and "\nLANES = " not in source
     ):  # lockstep from the start: derivatives

@@ -824,11 +824,10 @@ class Lanes:
             None,
         )
         shade = self.variants[self.entry()]
-        out.append(
-            render_source(
-                self.W, slots, shade.name, shade.scalar_params, shade.ret_uniform, self.quads
-            )
+        render = render_source(
+            self.W, slots, shade.name, shade.scalar_params, shade.ret_uniform, self.quads
         )
+        out.append(render if "lc" in shade.params else render.replace("uf, ui, lc,", "uf, ui,"))
         return "\n\n".join(out) + "\n"
 
 

@@ -60,6 +60,6 @@ def render_rows(out, y0, y1, width, height, offs, uf, ui, gtf, gti, gtu, gtb, lt
 def globals_template(uf, ui, gtf, gti, gtu, gtb, lt):
     """The globals' initial values, written into the template arrays (once per frame)."""
     lc = acopy(lt)
-    init_globals(gtf, gti, gtu, gtb, uf, ui, lc)
+    init_globals(gtf, gti, gtu, gtb, uf, ui, lc,)
     loops_limited(lt, lc)
 '''

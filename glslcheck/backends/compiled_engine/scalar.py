@@ -532,7 +532,7 @@ def limited(lc, lid):
 
 @numba.njit(inline="always", **lane.OPTIONS)
 def tick_end(lc):
-    """A return from inside a loop ends the loop's pass: it costs 1."""
+    """The pass that left a loop (its condition, a break, a return) costs 1."""
     lc[0] -= 1
     return 0
 

@@ -73,6 +73,7 @@ SWIZZLE_LETTERS = "xyzw"
 # the per-pixel state arrays (codegen's docstring); `lc`: llvmpipe's loop pass budget (scalar.tick)
 STATE = ("gf", "gi", "gu", "gb", "uf", "ui", "lc")
 STATE_NAME = re.compile(r"(?<![\w.])(gf|gi|gu|gb|uf|ui|lc)(?!\w)")
+BUDGET_OFF, BUDGET_ON = "BUDGET = False", "BUDGET = True"  # the generated module's line
 SMALL_ARRAY = 64  # arrays of up to this many scalars are scalars too (no allocation per pixel)
 
 
