@@ -62,6 +62,8 @@ KNOWN = {
             "h59-volumetric-noise",
         )
     },
+    "52-2d": "in lockstep (its dFdx/dFdy: not one pixel a call), 1,294 pixels at iTime 1.3 by "
+    "up to 0.002; not isolated (the NumPy code has Mesa rewrites)",
     "h18-2d": "not isolated (no Mesa rewrite in the NumPy code); likely " + ONE_LANE,
     "h40-volumetric": "not isolated (no Mesa rewrite in the NumPy code); likely " + ONE_LANE,
 }
