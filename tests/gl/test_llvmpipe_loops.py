@@ -66,3 +66,62 @@ def test_iglobaltime_is_an_error_with_the_fix(gl, make_shader):
     (d,) = e.value.diagnostics
     assert d.loc.line == 1 and d.loc.column == 1 + shader.image.text.index("iGlobalTime")
     assert "old name for 'iTime'" in d.message and d.help == "replace 'iGlobalTime' with 'iTime'"
+
+
+# How each way of leaving a loop spends the budget: the passes a loop ends by its condition,
+# by a break, by a do-while's condition, by a continue, by a return from two loops deep, and
+# three nested loops (an outer pass is paid when it ends, after its inner loops ran); the
+# counting loop after each shows the budget left, to the pass. Bounds from fragCoord * 0.0 keep
+# NIR from unrolling or folding the loops (a few-pass loop around a call that returns from two
+# loops deep spends a few passes more or less there: NIR's loop unrolling, not copied).
+EXITS = {
+    "nested": """
+    int a = 0, b = 0, c = 0;
+    for (int i = 0; i < Z + 99999; i++) { a++;
+        for (int j = 0; j < Z + 99999; j++) { b++;
+            for (int k = 0; k < Z + 99999; k++) c++; } }
+    fragColor = vec4(float(a), float(b), float(c), 1.0);""",
+    "break": """
+    int a = 0, m = 0;
+    for (int i = 0; i < Z + 99999; i++) { a++; if (i == Z + 30000) break; }
+    for (int i = 0; i < Z + 99999; i++) m++;
+    fragColor = vec4(float(a), float(m), 0.0, 1.0);""",
+    "do_while": """
+    int a = 0, m = 0;
+    do { a++; } while (a < Z + 30000);
+    for (int i = 0; i < Z + 99999; i++) m++;
+    fragColor = vec4(float(a), float(m), 0.0, 1.0);""",
+    "continue": """
+    int a = 0, m = 0;
+    for (int i = 0; i < Z + 30000; i++) { if (i % 2 == 0) continue; a++; }
+    for (int i = 0; i < Z + 99999; i++) m++;
+    fragColor = vec4(float(a), float(m), 0.0, 1.0);""",
+    "return": """
+    int a = found(Z + 300, Z + 40000);
+    int m = 0;
+    for (int i = 0; i < Z + 99999; i++) m++;
+    fragColor = vec4(float(a), float(m), 0.0, 1.0);""",
+}
+FOUND = """
+int found(int n, int at) {
+    for (int i = 0; i < n; i++)
+        for (int j = 0; j < n; j++)
+            if (i * n + j == at) return i * 1000 + j;
+    return -1;
+}
+"""
+
+
+@pytest.mark.parametrize("name", sorted(EXITS))
+def test_every_way_out_of_a_loop_spends_the_budget_as_llvmpipe(llvmpipe, make_shader, name):
+    body = EXITS[name]
+    shader = make_shader(
+        FOUND + "void mainImage(out vec4 fragColor, in vec2 fragCoord) {\n"
+        "    int Z = int(fragCoord.x * 0.0);" + body + "\n}"
+    )
+    numpy, gl_prog = compile_backend(shader, "numpy"), compile_backend(shader, "gl")
+    llvmpipe_loop_limit(numpy)
+    got_gl = gl_prog.render(size=(2, 2))
+    got_np = numpy.render(size=(2, 2))
+    np.testing.assert_array_equal(got_np, got_gl)
+    assert got_gl[0, 0, 1] > 1 or name == "nested"  # budget was left to count

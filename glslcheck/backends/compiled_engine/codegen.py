@@ -33,7 +33,8 @@ sections from the one its selector enters at (fall-through; `break` leaves it, a
 the loop around leaves it by a flag); `discard` sets a per-pixel flag and returns, every call
 of a function that may discard returns after it when the flag is set, and `shade` gives the
 clear colour (0, 0, 0, 0). Each loop counts its passes and stops after
-transpile.LOOP_CAP by raising LoopCapError(its id) (the engine raises the located error). A user
+transpile.LOOP_CAP by raising LoopCapError(its id) (the engine raises the located error), and
+spends llvmpipe's pass budget as the NumPy backend does (`lc`, scalar.tick; `loop`). A user
 function returns a tuple: its value's leaves, then the leaves of its out/inout parameters,
 which the caller writes back left to right.
 
@@ -64,6 +65,8 @@ from .expressions import ExpressionEmitter, FnState
 from .module_text import HEADER, RENDER
 from .values import (
     ATOM,
+    BUDGET_OFF,
+    BUDGET_ON,
     DTYPE,
     KIND_ARRAY,
     STATE,
@@ -84,8 +87,11 @@ if TYPE_CHECKING:
 class Codegen(ExpressionEmitter):
     """`Codegen(model, path).module()` -> the generated Python source."""
 
-    def __init__(self, model: Model, path: str, fma: bool, float_to_uint: str) -> None:
+    def __init__(
+        self, model: Model, path: str, fma: bool, float_to_uint: str, budget: bool = False
+    ) -> None:
         self.model = model
+        self.budget = budget  # llvmpipe's loop budget in the code (`loop`), else none of it
         self.path = path
         self.fma = fma
         self.float_to_uint = float_to_uint
@@ -337,6 +343,7 @@ class Codegen(ExpressionEmitter):
         layout = {k: (v[0], v[1]) for k, v in self.uniforms.items()}
         out.append(f"UNIFORMS = {layout!r}  # uniform -> (kind, offset in uf/ui)")
         out.append(f"LOOPS = {self.loop_lines!r}  # loop id -> (file, line, column)")
+        out.append(f"{BUDGET_ON if self.budget else BUDGET_OFF}  # llvmpipe's loop budget (`lc`)")
         loc = getattr(self.entry.node, "loc", None) or Location(self.path, 1, 1)
         entry = (loc.path, loc.line, loc.column, self.entry.name)
         out.append(
@@ -351,11 +358,11 @@ class Codegen(ExpressionEmitter):
         out.append("")
         for f in funcs + [init, shade]:
             out += ["", "@jit", *f.split("\n"), ""]
-        out.append(RENDER)
+        out.append(RENDER if self.budget else RENDER.replace("uf, ui, lc,", "uf, ui,"))
         return "\n".join(out) + "\n"
 
     def gen_globals(self) -> None:
-        self.emit(f"def init_globals({', '.join(STATE)}):")
+        self.emit(f"def init_globals({', '.join(self.state())}):")
         self.indent += 1
         self.emit('"""Global variables at the start of every invocation."""')
         self.fn = FnState(None)
@@ -383,7 +390,7 @@ class Codegen(ExpressionEmitter):
     def gen_shade(self) -> None:
         entry = self.entry
         name = self.fn_name(entry)
-        self.emit(f"def shade({', '.join(STATE)}, fx, fy, px, py):")
+        self.emit(f"def shade({', '.join(self.state())}, fx, fy, px, py):")
         self.indent += 1
         self.emit('"""One pixel: fragCoord (fx, fy), pixel centre (px, py) -> RGBA."""')
         if self.frag4 is not None:
@@ -422,6 +429,10 @@ class Codegen(ExpressionEmitter):
         self.indent -= 1
 
     # -- functions -----------------------------------------------------------------------------
+    def state(self) -> list[str]:
+        """The state arrays shade and init_globals take (`lc` only with the loop budget)."""
+        return [a for a in STATE if a != "lc" or self.budget]
+
     def fn_name(self, sym: Symbol) -> str:
         from ..numpy_engine.transpile.common import python_ident
 
@@ -570,6 +581,10 @@ class Codegen(ExpressionEmitter):
         value = self.expr(s.value).parts if s.value is not None else None
         if value is not None:
             value = [self.atom(p) if not isinstance(p, Arr) else p for p in value]
+        assert self.fn is not None  # generating a function's body
+        for kind, _ in self.fn.loops if self.budget else ():
+            if kind == "loop":  # each loop it leaves (not a switch): its pass costs 1
+                self.emit("tick_end(lc)")
         self.emit(self.return_text(value))
         return True
 
@@ -690,15 +705,34 @@ class Codegen(ExpressionEmitter):
         self.loop(s, s.cond, s.body, None, do_while=True)
 
     def loop(self, s: Any, cond: Any, body: Any, step: Any, do_while: bool) -> None:
+        """GLSL's loops as the NumPy backend's (transpile/statements.py loop_top): the top of
+        every pass counts it (a runaway loop past LOOP_CAP is an error at its line) and pays
+        the pass before it from llvmpipe's budget (scalar.tick), which stops the loop when none
+        is left; the pass a loop leaves by its condition or a `break` pays after the loop, one
+        a loop (`stopped`: not when the budget stopped it), and a return pays one per loop it
+        leaves (`tick_end`): every pass costs 1 when it ends, as in llvmpipe. Only in a module
+        made with the budget (`budget`; engine.CompiledProgram.loop_limit makes it): the others
+        neither count it nor pass `lc`."""
         from ..numpy_engine.transpile.common import LOOP_CAP
 
         lid = len(self.loop_lines) + 1
         loc = s.loc
         self.loop_lines[lid] = (loc.path, loc.line, loc.column)
         count = self.fresh("n")
+        stopped = self.fresh("s")
         self.emit(f"{count} = 0")
+        if self.budget:
+            self.emit(f"{stopped} = False")
         self.emit("while True:")
         self.indent += 1
+        self.emit(f"{count} += 1")
+        self.emit(f"if {count} > {LOOP_CAP}:  # a runaway loop: the engine reports its line")
+        self.emit(f"    raise LoopCapError({lid})")
+        if self.budget:
+            self.emit(f"if tick(lc, {count}):")  # uniform: one call a block in lockstep
+            self.emit(f"    limited(lc, {lid})")
+            self.emit(f"    {stopped} = True")
+            self.emit("    break")
 
         def test() -> None:
             if cond is not None:
@@ -708,9 +742,6 @@ class Codegen(ExpressionEmitter):
 
         if not do_while:
             test()
-        self.emit(f"{count} += 1")
-        self.emit(f"if {count} > {LOOP_CAP}:  # a runaway loop: the engine reports its line")
-        self.emit(f"    raise LoopCapError({lid})")
         cont = step if not do_while else test
         assert self.fn is not None  # generating a function's body
         self.fn.loops.append(("loop", cont))
@@ -722,6 +753,9 @@ class Codegen(ExpressionEmitter):
             elif step is not None:
                 step()
         self.indent -= 1
+        if self.budget:
+            self.emit(f"if not {stopped}:  # the pass that left the loop")
+            self.emit("    tick_end(lc)")
 
 
 def _literal_tree(model: Model, e: Any, base: str) -> bool:

@@ -43,8 +43,10 @@ from ...base import config
 from ...base.diagnostics import Diagnostic, GlslError, InputError, Location
 from ...shadertoy.frame_inputs import FrameInputs, frame_inputs
 from ...shadertoy.wrapper import UNIFORMS_BY_NAME
+from .values import BUDGET_OFF
 
 PIP = "pip install 'glslcheck[jit]'"
+NO_LIMIT = 2**62  # the loop budget without llvmpipe's limiter: more passes than any frame runs
 _LOCK = threading.Lock()
 _MODULES: dict[str, Any] = {}  # hash -> loaded module (one per process)
 _SOURCES: dict[str, str] = {}  # hash -> the loaded module's source
@@ -204,11 +206,13 @@ def tiered() -> bool:
     return config.compiled_lanes() is None
 
 
-def generate(shader: Any, tab: str | None = None, lanes: int | None = None) -> tuple[str, str]:
+def generate(
+    shader: Any, tab: str | None = None, lanes: int | None = None, budget: bool = False
+) -> tuple[str, str]:
     """(generated source, path of the GLSL tab) of a shader's Image (or plain GLSL) tab: blocks
     of `lanes_width(lanes)` pixels in lockstep (lanes.py), or one pixel a call when that is 0 or
     the rewrite does not handle the program (the per-pixel module then says why in
-    LANES_FALLBACK)."""
+    LANES_FALLBACK); `budget`: with llvmpipe's loop budget (CompiledProgram.loop_limit)."""
     from ...frontend.parser import parse_shader
     from ...shadertoy.channels import BUFFER_TABS, channel_reads, needs_passes
     from ..driver_profile import host_model
@@ -239,7 +243,7 @@ def generate(shader: Any, tab: str | None = None, lanes: int | None = None) -> t
     old = sys.getrecursionlimit()
     sys.setrecursionlimit(max(old, 20000))
     try:
-        cg = Codegen(model, path, HOST_FMA, host_model())
+        cg = Codegen(model, path, HOST_FMA, host_model(), budget)
         source = cg.module()
         width = lanes_width(lanes)
         if cg.derivative is not None and not width:
@@ -278,15 +282,45 @@ class CompiledProgram:
     numba's compile or cache load as much but at least COMPILE_SECONDS, before it stops with a
     GlslError, rule "compiled-frame-budget" (the module docstring: what runs on after it)."""
 
-    def __init__(self, source: str, path: str, threads: int | None = None) -> None:
+    def __init__(
+        self, source: str, path: str, threads: int | None = None, remake: Callable | None = None
+    ) -> None:
         self.source = source
+        self.remake = remake  # () -> the source with llvmpipe's loop budget (generate's budget)
         self.path = path
         self.threads = threads or os.cpu_count() or 1
         self.frame_seconds: float | None = None
+        self._loop_limit: int | None = None
+        self._limited: set[tuple[str, int]] = set()
         self.mod: Any = None
         self.load_seconds: float | None = None  # wall time of import + numba compile or cache load
         self.cold: bool | None = None  # True when numba compiled (no cache), False when it loaded
         self.key = hashlib.sha256((_versions() + "\n" + source).encode()).hexdigest()[:24]
+
+    @property
+    def loop_limit(self) -> int | None:
+        """llvmpipe's loop limiter (scalar.tick): None = loops run until they end (a runaway
+        loop is an error after LOOP_CAP passes); 65535 = stop as llvmpipe does (verify sets
+        it). A module made without the budget (the faster: it neither counts passes nor passes
+        `lc`) is made again with it (`remake`) when a limit is set: set it before the first
+        frame, or that module is compiled too."""
+        return self._loop_limit
+
+    @loop_limit.setter
+    def loop_limit(self, limit: int | None) -> None:
+        from .values import BUDGET_OFF
+
+        self._loop_limit = limit
+        if limit is not None and BUDGET_OFF in self.source:
+            if self.remake is None:
+                raise ValueError("this module has no loop budget: generate(..., budget=True)")
+            with _LOCK:
+                self.source = self.remake()
+                self.key = hashlib.sha256((_versions() + "\n" + self.source).encode()).hexdigest()[
+                    :24
+                ]
+                self.mod = None
+                self.cold = self.load_seconds = None
 
     def load(self, bounded: bool = True) -> Any:
         """The module, compiled or loaded from numba's cache; `bounded`: the compile has the
@@ -415,6 +449,8 @@ class CompiledProgram:
         ]
         from .scalar import LoopCapError
 
+        lt = np.zeros(1 + len(mod.LOOPS), np.int64)  # the budget, then a flag per loop id
+        lt[0] = NO_LIMIT if self.loop_limit is None else self.loop_limit
         out = np.empty((height, width, 4), np.float32)
         if seconds is None and not first:
             seconds = self.budget()
@@ -430,13 +466,13 @@ class CompiledProgram:
             ):  # a block is two rows (a 2x2 quad's): bands start at even rows
                 edges = [e - e % 2 for e in edges[:-1]] + [height]
             calls = [
-                (mod.render_rows, out, edges[k], edges[k + 1], width, height, offs, uf, ui, *gt)
+                (mod.render_rows, out, edges[k], edges[k + 1], width, height, offs, uf, ui, *gt, lt)
                 for k in range(bands)
                 if edges[k] < edges[k + 1] or first
             ]
             deadline = None if seconds is None else time.monotonic() + seconds
             # the globals' initializers run the shader's code too (and numba compiles them first)
-            run_bounded(self.threads, [(mod.globals_template, uf, ui, *gt)], deadline)
+            run_bounded(self.threads, [(mod.globals_template, uf, ui, *gt, lt)], deadline)
             run_bounded(self.threads, calls, deadline)
         except TimeoutError:
             assert seconds is not None  # (only a deadline times out)
@@ -452,7 +488,13 @@ class CompiledProgram:
                     rule="compiled-engine",
                 )
             ) from None
+        self._limited |= {tuple(mod.LOOPS[lid][:2]) for lid in np.flatnonzero(lt[1:]) + 1}
         return out
+
+    def limited_loops(self) -> list[tuple[str, int]]:
+        """(file, line) of the loops llvmpipe's limiter stopped since the last call."""
+        found, self._limited = sorted(self._limited), set()
+        return found
 
     def _over_budget(self, mod: Any, seconds: float, first: bool) -> GlslError:
         path, line, col, name = getattr(mod, "ENTRY", (self.path, 1, 1, "mainImage"))
@@ -629,6 +671,23 @@ class TieredProgram:
         return (self.fast or self.first).source
 
     @property
+    def loop_limit(self) -> int | None:
+        """llvmpipe's loop limiter (CompiledProgram.loop_limit), for both tiers."""
+        return self.first.loop_limit
+
+    @loop_limit.setter
+    def loop_limit(self, limit: int | None) -> None:
+        self.first.loop_limit = limit
+        if self.fast is not None:
+            self.fast.loop_limit = limit
+
+    def limited_loops(self) -> list[tuple[str, int]]:
+        found = set(self.first.limited_loops())
+        if self.fast is not None:
+            found |= set(self.fast.limited_loops())
+        return sorted(found)
+
+    @property
     def mode(self) -> str:
         return f"lanes{TIER_LANES}" if self.fast is not None else "pixel"
 
@@ -665,14 +724,16 @@ class TieredProgram:
     def _move(self) -> None:
         """Make the lockstep module (in the mover thread); self.fast once it can render."""
         try:
+            budget = self.first.loop_limit is not None
             source = self._cached_fast()
-            if source is None:
-                source, _ = generate(self.shader, lanes=TIER_LANES)
+            if source is None or (budget and BUDGET_OFF in source):
+                source, _ = generate(self.shader, lanes=TIER_LANES, budget=budget)
             if "LANES_FALLBACK" in source:
                 self.stay = True
                 return
-            fast = CompiledProgram(source, self.first.path, self.threads)
+            fast = CompiledProgram(source, self.first.path, self.threads, self._remake_fast)
             fast.frame_seconds = self.first.frame_seconds
+            fast.loop_limit = self.first.loop_limit
             fast.load(bounded=False)  # no frame waits for it
         except (
             Exception
@@ -701,6 +762,9 @@ class TieredProgram:
                 )
                 self._mover.start()
             return self._mover is not None
+
+    def _remake_fast(self) -> str:
+        return generate(self.shader, lanes=TIER_LANES, budget=True)[0]
 
     def settle(self, timeout: float | None = None) -> bool:
         """Wait for a lockstep compile under way (at most timeout seconds); whether none is left."""
@@ -749,7 +813,7 @@ def compile_compiled(
 
     shader = path_or_shader if isinstance(path_or_shader, Shader) else load_shader(path_or_shader)
     source, path = generate(shader)
-    prog = CompiledProgram(source, path, threads)
+    prog = CompiledProgram(source, path, threads, lambda: generate(shader, budget=True)[0])
     if (
         tiered() and "LANES_FALLBACK" not in source and "\nLANES = " not in source
     ):  # lockstep from the start: derivatives

@@ -41,14 +41,12 @@ from typing import Any
 from .values import pure_expr
 
 STATE_LANES = ("gf", "gi", "gu", "gb")  # per-pixel state: one array per lane
-UNIFORM_STATE = ("uf", "ui")
-ROW_UNIFORM = (
-    "fy",
-    "py",
-)  # shade's fragCoord.y and pixel centre y: one value for a block (a row's)
-MATH = (
-    "glslcheck.backends.compiled_engine.scalar",
-    "glslcheck.backends.compiled_engine.lanes_math",
+UNIFORM_STATE = ("uf", "ui", "lc")  # lc: llvmpipe's loop budget, one per block as there
+BLOCK_CALLS = ("limited", "tick_end")  # the loop budget's statements (scalar.tick)
+# shade's fragCoord.y and pixel centre y: one value for a block (a row's)
+ROW_UNIFORM = ("fy", "py")
+MATH = tuple(
+    f"glslcheck.backends.compiled_engine.{m}" for m in ("scalar", "lanes_math")
 )  # later wins
 
 
@@ -387,6 +385,9 @@ class _Fn:
         name = _call_name(v)
         if name in self.L.functions and isinstance(v, ast.Call):  # (a name: a call)
             self.user_call(v, [])
+            return
+        if name in BLOCK_CALLS:  # once for the block, when one of its lanes does it
+            self.emit((f"if {self.any_of(self.mask)}: " if self.div else "") + ast.unparse(s))
             return
         if name == "aset" and isinstance(v, ast.Call):
             dst = v.args[0]
@@ -798,11 +799,10 @@ class Lanes:
             None,
         )
         shade = self.variants[self.entry()]
-        out.append(
-            render_source(
-                self.W, slots, shade.name, shade.scalar_params, shade.ret_uniform, self.quads
-            )
+        render = render_source(
+            self.W, slots, shade.name, shade.scalar_params, shade.ret_uniform, self.quads
         )
+        out.append(render if "lc" in shade.params else render.replace("uf, ui, lc,", "uf, ui,"))
         return "\n\n".join(out) + "\n"
 
 
@@ -869,7 +869,7 @@ def render_source(
         lines.append(f"            px__{k} = F32(min(x0 + {k}, width - 1) + 0.5)")
     lines += _sample_head(W, slots)
     lines.append("                oy = F32(py + F32(offs[s, 1]))")
-    args = ["True"] * W + st + ["uf", "ui"]
+    args = ["True"] * W + st + ["uf", "ui", "lc"]
     args += [f"F32(px__{k} + ox)" for k in range(W)] + (["oy"] if "fy" in scalar else ["oy"] * W)
     args += [f"px__{k}" for k in range(W)] + (["py"] if "py" in scalar else ["py"] * W)
     lines.append(f"                res = {shade}({', '.join(args)})")
@@ -878,16 +878,16 @@ def render_source(
         f"            for k in range(min({W}, width - x0)):",
         "                for c in range(4):",
         "                    out[row, x0 + k, c] = acc[c, k] / samples",
+        "    loops_limited(lt, lc)",
     ]
     return "\n".join(lines)
 
 
 def _prologue(W: int, doc: list[str]) -> list[str]:
     """render_rows' signature, docstring, per-lane state copies and accumulator."""
-    lines = [
-        "@numba.njit(cache=True, nogil=True, error_model='numpy')",
-        "def render_rows(out, y0, y1, width, height, offs, uf, ui, gtf, gti, gtu, gtb):",
-    ] + doc
+    sig = "def render_rows(out, y0, y1, width, height, offs, uf, ui, gtf, gti, gtu, gtb, lt):"
+    head = ["@numba.njit(cache=True, nogil=True, error_model='numpy')", sig]
+    lines = head + doc + ["    lc = acopy(lt)"]  # the loop budget: per block (scalar.tick)
     for a, t in zip(STATE_LANES, ("gtf", "gti", "gtu", "gtb")):
         lines += [f"    {a}__{k} = acopy({t})" for k in range(W)]
     return lines + ["    samples = offs.shape[0]", f"    acc = np.zeros((4, {W}), np.float64)"]
@@ -903,7 +903,7 @@ def _sample_head(W: int, slots: dict | None) -> list[str]:
         if slots is not None and not slots.get(kind):
             continue
         lines += [f"                aset({a}__{k}, 0, {t})" for k in range(W)]
-    return lines + ["                ox = F32(offs[s, 0])"]
+    return lines + ["                lc[0] = lt[0]", "                ox = F32(offs[s, 0])"]
 
 
 def _accumulate(W: int, ret_uniform: Any) -> list[str]:
@@ -960,7 +960,7 @@ def _render_quads(W: int, slots: dict | None, shade: str, ret_uniform: Any) -> s
         "                oy1 = F32(py1 + F32(offs[s, 1]))",
     ]
     px = [f"px__{k % h}" for k in range(W)]
-    args = ["True"] * W + st + ["uf", "ui"]
+    args = ["True"] * W + st + ["uf", "ui", "lc"]
     args += [f"F32({p} + ox)" for p in px] + ["oy0"] * h + ["oy1"] * h
     args += px + ["py0"] * h + ["py1"] * h
     lines.append(f"                res = {shade}({', '.join(args)})")
@@ -973,5 +973,6 @@ def _render_quads(W: int, slots: dict | None, shade: str, ret_uniform: Any) -> s
         "                    for c in range(4):",
         "                        out[height - 1 - y - r, x0 + k, c] = acc[c, "
         f"r * {h} + k] / samples",
+        "    loops_limited(lt, lc)",
     ]
     return "\n".join(lines)

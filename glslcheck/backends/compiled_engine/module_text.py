@@ -21,9 +21,11 @@ jit = numba.njit(cache=True, nogil=True, error_model="numpy")'''
 
 RENDER = '''
 @numba.njit(cache=True, nogil=True, error_model="numpy")
-def render_rows(out, y0, y1, width, height, offs, uf, ui, gtf, gti, gtu, gtb):
+def render_rows(out, y0, y1, width, height, offs, uf, ui, gtf, gti, gtu, gtb, lt):
     """Rows y0..y1-1 (counted from the bottom) into out (height, width, 4), top row first;
-    offs: the (dx, dy) sample offsets (one row of zeros for one sample)."""
+    offs: the (dx, dy) sample offsets (one row of zeros for one sample); lt: the loop budget of
+    an invocation, then a flag per loop it stopped (scalar.tick)."""
+    lc = acopy(lt)
     gf = acopy(gtf)
     gi = acopy(gti)
     gu = acopy(gtu)
@@ -40,7 +42,8 @@ def render_rows(out, y0, y1, width, height, offs, uf, ui, gtf, gti, gtu, gtb):
                 aset(gi, 0, gti)
                 aset(gu, 0, gtu)
                 aset(gb, 0, gtb)
-                r, g, b, a = shade(gf, gi, gu, gb, uf, ui, F32(px + F32(offs[s, 0])), \
+                lc[0] = lt[0]
+                r, g, b, a = shade(gf, gi, gu, gb, uf, ui, lc, F32(px + F32(offs[s, 0])), \
 F32(py + F32(offs[s, 1])),
                                    px, py)
                 if s == 0:
@@ -51,10 +54,13 @@ F32(py + F32(offs[s, 1])),
             out[row, x, 1] = ag / samples
             out[row, x, 2] = ab / samples
             out[row, x, 3] = aa / samples
+    loops_limited(lt, lc)
 
 
 @numba.njit(cache=True, nogil=True, error_model="numpy")
-def globals_template(uf, ui, gtf, gti, gtu, gtb):
+def globals_template(uf, ui, gtf, gti, gtu, gtb, lt):
     """The globals' initial values, written into the template arrays (once per frame)."""
-    init_globals(gtf, gti, gtu, gtb, uf, ui)
+    lc = acopy(lt)
+    init_globals(gtf, gti, gtu, gtb, uf, ui, lc,)
+    loops_limited(lt, lc)
 '''

@@ -509,6 +509,44 @@ def pow_uniform(x, y, special, zeros, fma):
     return pow(x, y, fma)
 
 
+# llvmpipe's loop limiter (gallivm lp_exec_endloop, LP_MAX_TGSI_LOOP_ITERATIONS), as the NumPy
+# backend's LaneHelpers.tick counts it: one budget of passes per invocation, shared by every loop,
+# in lc[0] (the engine sets it per pixel, or per block in lockstep: 65,535 when verifying, else
+# more than any frame can spend); each pass costs 1 when it ends, and lc[lid] is set when the
+# budget stopped loop lid.
+@numba.njit(inline="always", **lane.OPTIONS)
+def tick(lc, n):
+    """At the top of pass n, where pass n - 1 ended and costs 1: True when no budget is left
+    (the loop stops)."""
+    if n == 1:
+        return False
+    lc[0] -= 1
+    return lc[0] <= 0
+
+
+@numba.njit(inline="always", **lane.OPTIONS)
+def limited(lc, lid):
+    """The budget stopped loop lid with the pixel still in it."""
+    lc[lid] = 1
+    return 0
+
+
+@numba.njit(inline="always", **lane.OPTIONS)
+def tick_end(lc):
+    """The pass that left a loop (its condition, a break, a return) costs 1."""
+    lc[0] -= 1
+    return 0
+
+
+@njit
+def loops_limited(lt, lc):
+    """Flag in lt (shared by a frame's bands) the loops the budget stopped in lc (one band's)."""
+    for k in range(1, lc.size):
+        if lc[k]:
+            lt[k] = 1
+    return 0
+
+
 class LoopCapError(Exception):
     """A loop of the generated code ran more than transpile.LOOP_CAP passes; args[0] is its id
     (the module's LOOPS gives its file, line and column)."""

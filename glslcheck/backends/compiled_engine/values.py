@@ -70,8 +70,10 @@ KIND_ARRAY = {"float": "gf", "int": "gi", "uint": "gu", "bool": "gb"}
 DTYPE = {"float": "np.float32", "int": "np.int32", "uint": "np.uint32", "bool": "np.bool_"}
 CAST = {"float": "F32", "int": "I32", "uint": "U32", "bool": "bool"}
 SWIZZLE_LETTERS = "xyzw"
-STATE = ("gf", "gi", "gu", "gb", "uf", "ui")  # the per-pixel state arrays (see the docstring)
-STATE_NAME = re.compile(r"(?<![\w.])(gf|gi|gu|gb|uf|ui)(?!\w)")
+# the per-pixel state arrays (codegen's docstring); `lc`: llvmpipe's loop pass budget (scalar.tick)
+STATE = ("gf", "gi", "gu", "gb", "uf", "ui", "lc")
+STATE_NAME = re.compile(r"(?<![\w.])(gf|gi|gu|gb|uf|ui|lc)(?!\w)")
+BUDGET_OFF, BUDGET_ON = "BUDGET = False", "BUDGET = True"  # the generated module's line
 SMALL_ARRAY = 64  # arrays of up to this many scalars are scalars too (no allocation per pixel)
 
 

@@ -277,26 +277,35 @@ class LaneHelpers:
         )
         st[rid] = st.get(rid, 0) + n
 
-    def tick(self, S, lid: int, n: int) -> bool:
+    def tick(self, S, n: int) -> bool:
         """llvmpipe's loop limiter, when the program renders with `loop_limit` (gallivm
-        lp_exec_endloop, LP_MAX_TGSI_LOOP_ITERATIONS = 65535): one pass budget per invocation shared
-        by every loop; each pass of a loop costs 1 (the pass that ends it on its condition too:
-        llvmpipe masks the lanes out and runs to the loop's end), and a loop goes round again
-        only while the budget is positive. Called at the top of pass `n` of loop `lid`: the
-        check belongs to the end of pass n - 1. Matches llvmpipe's pass counts exactly:
-        `for (i < 70000)` runs 65,535 times; two loops of 40,000 run 40,000 and 25,534; a loop
-        entered with no budget left runs once; 100 x 1,000 nested runs 65,405 inner passes.
+        lp_exec_endloop, LP_MAX_TGSI_LOOP_ITERATIONS = 65535): one pass budget per invocation
+        shared by every loop; each pass of a loop costs 1 when it ends, and the loop goes round
+        again only while the budget is positive. Called at the top of pass `n`, where pass
+        n - 1 ended: True when the loop must stop (`stop` records it). The pass that ends a
+        loop on its condition costs 1 too (`spend`: llvmpipe masks the lanes out and runs to
+        the loop's end); a break or a return ends the pass it is in. Matches llvmpipe's pass
+        counts exactly: `for (i < 70000)` runs 65,535 times; two loops of 40,000 run 40,000 and
+        25,534; a loop entered with no budget left runs once; three nested loops of 99,999 run
+        1, 1 and 65,535 passes (an outer pass is paid when it ends, after its inner loop).
         The budget is per tile here and per 8-lane group there: for loops whose pass count
-        differs between pixels it can bite at a slightly different pass. True when the loop
-        must stop (recorded in `limited`)."""
+        differs between pixels it can bite at a slightly different pass."""
         passes = S.passes
-        if passes is None:
+        if passes is None or n == 1:
             return False
-        if n > 1 and passes[0] <= 0:
-            self.limited.add(lid)
-            return True
         passes[0] -= 1
-        return False
+        return passes[0] <= 0
+
+    @staticmethod
+    def spend(S) -> None:
+        """The pass whose condition ends the loop: it costs 1 (see `tick`)."""
+        if S.passes is not None:
+            S.passes[0] -= 1
+
+    def stop(self, lid: int, live) -> None:
+        """The limiter stopped loop `lid`: recorded when some lane was still in it."""
+        if self.live(live):
+            self.limited.add(lid)
 
     def over_budget(self, budget: Budget, rid: int) -> None:
         if budget.cancelled:

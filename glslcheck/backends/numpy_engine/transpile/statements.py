@@ -442,16 +442,16 @@ class Statements(TranspilerState):
         if stack:
             self.emit(f"{stack} = []")
         start_lines = len(self.lines)
-        self.loop_top(lid, count)
-        if ev_body.ret and fs.has_ret:
-            self.emit(f"{live} = X.andnot({live}, _ret)")
-        if do_while or cond is None:
-            self.emit(f"if not X.live({live}):")
-            self.emit("    break")
-        else:
+        self.loop_top(
+            lid, count, live, f"X.andnot({live}, _ret)" if ev_body.ret and fs.has_ret else None
+        )
+        self.emit(f"if not X.live({live}):")
+        self.emit("    break")
+        if not (do_while or cond is None):
             c = self.condition(cond, live)
             self.emit(f"{live} = X.and_({live}, {c})")
             self.emit(f"if not X.live({live}):")
+            self.emit("    X.spend(S)")
             self.emit("    break")
         compact_at = len(self.lines)
         cont = None
@@ -492,9 +492,12 @@ class Statements(TranspilerState):
             self.emit(f"if {stack}:")
             self.emit(f"    S, ({', '.join(used)},) = X.unwind({stack}, S, {tup})")
 
-    def loop_top(self, lid: int, count: str) -> None:
+    def loop_top(
+        self, lid: int, count: str, live: str | None = None, returned: str | None = None
+    ) -> None:
         """Open a loop's `while True:` with its guards: the iteration count (`LOOP_CAP`, a located
-        error past it) and llvmpipe's loop limiter, if rendering with one (`X.tick`)."""
+        error past it) and llvmpipe's loop limiter, if rendering with one (`X.tick`; it stops
+        the loop's `live` lanes, after the lanes that returned, `returned`, left them)."""
         fs = self.fn
         assert fs is not None  # generating a function's body
         self.emit("while True:")
@@ -503,7 +506,10 @@ class Statements(TranspilerState):
         self.emit(f"{count} += 1")
         self.emit(f"if {count} > {LOOP_CAP}:")
         self.emit(f"    X.runaway({lid})")
-        self.emit(f"if X.tick(S, {lid}, {count}):")
+        if returned is not None:
+            self.emit(f"{live} = {returned}")
+        self.emit(f"if X.tick(S, {count}):")
+        self.emit(f"    X.stop({lid}, {live or 'None'})")
         self.emit("    break")
 
     def uniform_loop(
@@ -516,9 +522,10 @@ class Statements(TranspilerState):
         assert fs is not None  # generating a function's body
         count = self.fresh("n")
         self.emit(f"{count} = 0")
-        self.loop_top(lid, count)
+        self.loop_top(lid, count, mask)
         c = self.condition(cond, mask)
         self.emit(f"if not X.true({c}):")
+        self.emit("    X.spend(S)")
         self.emit("    break")
         fs.loops.append(LoopCtx("loop", mask if mask is not None else "None", None))
         self.emit(f"X.count(S, {lid}, {mask})")
