@@ -5,14 +5,14 @@ The lab shaders, the render benchmark's scenes and the two real corpora of tools
 rendered by the NumPy backend and by the compiled engine, per pixel and 8 pixels in lockstep,
 as verify renders them, and compared bit for bit (tools/engines_agree.py, one process a shader):
 an engine may refuse a shader with an error at a line (or lockstep leave it to the per-pixel
-module), never render other bits. A corpus that
-is not fetched skips its shaders, with the command that fetches it (on CI it fails).
+module), never render other bits. The corpora are third-party texts, never committed: where
+they are not fetched (a fresh checkout, CI) their shaders skip with the command that fetches
+them, and the lab and the scenes, which are in the repository, still run.
 """
 
 from __future__ import annotations
 
 import json
-import os
 import sys
 from pathlib import Path
 
@@ -34,9 +34,6 @@ TIMEOUT = 900.0  # seconds a shader may take (two cold numba compiles on a loade
 REWRITES = "Mesa's reassociations (nir_fold), not copied by the compiled engine"
 ONE_LANE = "a lane-uniform value folded as Mesa's constant at run time (Runtime.fmul/fadd/pow)"
 KNOWN = {
-    "06-lab4": "pow(x, e) with e written under a varying branch and read in it: the NumPy "
-    "backend finds e one lane at run time (Mesa's constant) where the compiled engine's "
-    "static analysis does not",
     "20-lab3-raytrace": "iTime * x with iTime 0 folded to +0 (llvmpipe and the NumPy backend: "
     "1 / +0 = +inf; the compiled engine -inf): " + ONE_LANE,
     "42-2d": "sin(time * 0.4) with time = iTime * 0.9, the constants merged: " + REWRITES,
@@ -86,10 +83,7 @@ CASES = [
 def test_numpy_and_compiled_render_the_same_bits(numba, group, path):
     if not path.exists():
         fetch = "python tools/real_verify.py" + (" --set holdout" if group == "holdout" else "")
-        reason = f"{path.relative_to(ROOT)} is not fetched ({fetch} fetch)"
-        if os.environ.get("CI"):
-            pytest.fail(f"{reason}: CI measures every corpus")
-        pytest.skip(reason)
+        pytest.skip(f"{path.relative_to(ROOT)} is not fetched ({fetch} fetch)")
     job = dict(path=str(path), size=SIZE, times=TIMES, frame=60, mouse=(40.0, 20.0, 40.0, 20.0))
     cmd = [sys.executable, engines_agree.__file__, "_one", json.dumps(dict(job, lanes=LANES))]
     rows = engines_agree.run_child(cmd, TIMEOUT, LANES)

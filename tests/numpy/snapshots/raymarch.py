@@ -69,10 +69,14 @@ def f_mainImage(S, _m, v_fragCoord):
         _n7 += 1
         if _n7 > 100000:
             X.runaway(5)
-        if X.tick(S, 5, _n7):
+        if X.tick(S, _n7):
+            X.stop(5, _live6)
+            break
+        if not X.live(_live6):
             break
         _live6 = X.and_(_live6, (v_i < C_i_64))
         if not X.live(_live6):
+            X.spend(S)
             break
         if X.loop_sparse(S, _live6) is not None:
             S, (_live6, _n7, v_i, v_rd, v_t,) = X.push(_k8, S, _live6, (_live6, _n7, v_i, v_rd, v_t,))
