@@ -15,6 +15,13 @@ import sys
 from ..base import config
 from ..base.diagnostics import GlslError, InputError, format_text, printable
 
+# What `glslcheck --help` says first: for the user, not the module's design.
+DESCRIPTION = (
+    "Check Shadertoy GLSL against the GPR-200 Lab 4 coding standards, render it on the CPU, "
+    "and verify the CPU render against OpenGL and WebGL. "
+    "Exit codes: 0 clean, 1 findings or errors in a shader, 2 usage or I/O errors."
+)
+
 # (name, module, one-line help), in the order `--help` lists them.
 COMMANDS = [
     ("parse", "parse", "parse shaders and report syntax errors"),
@@ -84,7 +91,7 @@ class _Parser(argparse.ArgumentParser):
 
 
 def build_parser(only: str | None = None) -> argparse.ArgumentParser:
-    parser = _Parser(prog="glslcheck", description=__doc__.split("\n\n")[0])
+    parser = _Parser(prog="glslcheck", description=DESCRIPTION)
     from ..base.version import __version__
 
     parser.add_argument("--version", action="version", version=f"glslcheck {__version__}")
