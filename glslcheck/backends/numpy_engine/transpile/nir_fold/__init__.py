@@ -53,6 +53,7 @@ from .context import FoldContext
 from .dispatch import binary
 from .dot_constants import broadcast_dot, dot_operand, merged_dot
 from .flrp import mix_hint
+from .repeated_sums import repeated_sum
 from .return_register import register_call
 from .returned_sums import keep_term, return_constant_args, sunk_return, sunk_return_value
 
@@ -66,6 +67,7 @@ __all__ = [
     "merged_dot",
     "mix_hint",
     "register_call",
+    "repeated_sum",
     "return_constant_args",
     "sunk_return",
     "sunk_return_value",
