@@ -19,25 +19,37 @@ from .queries import current_function, function_facts, is_constant, is_varying
 
 TYPE_CHECKING = False  # not typing's: importing typing costs every start-up
 if TYPE_CHECKING:
-    from ..state import TranspilerState
+    from ..state import FoldEngine, TranspilerState
 
 
-def repeated_sum(tr: TranspilerState, e: A.Assignment, mask: str | None, old: str) -> str | None:
-    """The code of the new value of ``x += #c`` (``x -= #c``, ``x = x + #c``, ``x = #c + x``,
-    ``x = x - #c``) whose previous write is such a step too: ``base + (c1 + c2 ...)`` in
-    llvmpipe mode, the written ``old + c`` otherwise; None for any other write. The first step
-    of a chain keeps the value before it (`old`) in a temporary and returns None."""
+def sum_step(tr: FoldEngine, e: Any) -> tuple[str, Any, Any, bool] | None:
+    """(sign, the constant, the previous step or None, whether a later step continues this
+    one and its value before must be kept) for a step ``x += #c`` (``x -= #c``, ``x = x +
+    #c``, ``x = #c + x``, ``x = x - #c``); None for any other write. Emits nothing: both CPU
+    engines ask it."""
     step = _step(tr, e)
     if step is None:
         return None
-    sign, k_node = step
+    prev = _previous_step(tr, e)
+    kept = prev is None and id(e) in _chained(tr) and _varying_start(tr, e)
+    return step[0], step[1], prev, kept
+
+
+def repeated_sum(tr: TranspilerState, e: A.Assignment, mask: str | None, old: str) -> str | None:
+    """The code of the new value of a step (:func:`sum_step`) whose previous write is a step
+    too: ``base + (c1 + c2 ...)`` in llvmpipe mode, the written ``old + c`` otherwise; None
+    for any other write. The first step of a chain keeps the value before it (`old`) in a
+    temporary and returns None."""
+    step = sum_step(tr, e)
+    if step is None:
+        return None
+    sign, k_node, prev, kept = step
     tk = tr.expr(k_node, mask)
     k = f"(-{tk})" if sign == "-" else tk
     chains = tr.fold_state.sum_chains
-    prev = _previous_step(tr, e)
     known = chains.get(id(prev)) if prev is not None else None
     if known is None or known[2] is not tr.lines:
-        if id(e) in _chained(tr) and _varying_start(tr, e):
+        if kept:
             chains[id(e)] = (tr.tmp(old), k, tr.lines)
         return None
     base, merged, _ = known
@@ -48,7 +60,7 @@ def repeated_sum(tr: TranspilerState, e: A.Assignment, mask: str | None, old: st
     return f"(({base} + {merged}) if rt.lp else {written})"
 
 
-def _step(tr: TranspilerState, e: Any) -> tuple[str, Any] | None:
+def _step(tr: FoldEngine, e: Any) -> tuple[str, Any] | None:
     """("+" or "-", the constant) when `e` adds a float constant to a whole local or parameter
     and stores the sum back in it; else None."""
     if not isinstance(e, A.Assignment) or not isinstance(e.target, A.Identifier):
@@ -75,11 +87,11 @@ def _step(tr: TranspilerState, e: Any) -> tuple[str, Any] | None:
     return sign, k_node
 
 
-def _reads(tr: TranspilerState, node: Any, sym: Any) -> bool:
+def _reads(tr: FoldEngine, node: Any, sym: Any) -> bool:
     return isinstance(node, A.Identifier) and tr.model.symbol_of(node) is sym
 
 
-def _previous_step(tr: TranspilerState, e: A.Assignment) -> Any:
+def _previous_step(tr: FoldEngine, e: A.Assignment) -> Any:
     """The step whose value alone reaches `e` (NIR sees it as e's operand), else None."""
     facts = function_facts(tr)
     if not facts.ok or id(e) not in facts.enter:
@@ -96,7 +108,7 @@ def _previous_step(tr: TranspilerState, e: A.Assignment) -> Any:
     return w.node
 
 
-def _chained(tr: TranspilerState) -> set[int]:
+def _chained(tr: FoldEngine) -> set[int]:
     """ids of the steps of the current function that a later step continues."""
     cache = tr.fold_state.sum_chained
     key = id(current_function(tr).sym)
@@ -112,7 +124,7 @@ def _chained(tr: TranspilerState) -> set[int]:
     return cache[key]
 
 
-def _varying_start(tr: TranspilerState, e: A.Assignment) -> bool:
+def _varying_start(tr: FoldEngine, e: A.Assignment) -> bool:
     """The value before the chain is no constant to NIR (``b(is_not_const)``: a constant is
     folded step by step instead)."""
     facts = function_facts(tr)
