@@ -318,6 +318,32 @@ def test_mesa_reassociation_is_not_copied_yet(numba, make_shader):
     np.testing.assert_allclose(got, want, rtol=2e-5, atol=0)
 
 
+REPEATED_SUMS = """float rnd(inout float seed) { seed += 0.1; return seed; }
+void mainImage(out vec4 c, in vec2 p) {
+    float s0 = fract(p.x * 0.1371 + p.y * 0.0917) * 40.0, seed = s0;
+    seed += 0.1; seed += 0.1; seed += 0.1;
+    float a = fract(sin(seed) * 43758.5453);
+    vec2 v = vec2(seed += 0.1, seed += 0.1);
+    seed = seed + 0.1; seed -= 0.1; seed += 0.2;
+    vec3 w = vec3(s0); w += 0.047; w += vec3(1.802, 0.5, 0.25); w -= 1.423;
+    for (int i = 0; i < iFrame + 2; i++) { seed += 0.1; seed += 0.1; }
+    float b = seed;
+    if (s0 > 20.0) { seed += 0.1; seed += 0.7; } seed += 0.1;
+    rnd(seed); rnd(seed);
+    c = vec4(a + v.y, b + w.y, seed + w.x, rnd(seed));
+}"""
+
+
+def test_repeated_sums_bit_for_bit(numba, make_shader):
+    """``seed += 0.1`` written again and again: NIR's merged constants
+    (nir_fold.repeated_sums, measured on llvmpipe: tests/gl/test_llvmpipe_repeated_sums.py) in
+    both engines, in a straight line, a constructor, mixed forms, vectors, a loop, a branch and
+    through calls."""
+    shader = make_shader(REPEATED_SUMS)
+    assert "if rt.lp else" in glslcheck.compile(shader, backend="numpy").source
+    _compare(shader, time=0.0)
+
+
 @pytest.mark.parametrize(
     "text, what",
     [

@@ -43,7 +43,8 @@ textures and channels, derivatives, arrays of structs holding arrays,
 inverse() of 3x3 and 4x4 matrices, and the packing built-ins.
 
 What the NumPy backend does that this generator does not copy: Mesa's reassociations
-(backends/numpy_engine/transpile/nir_fold/, transpile/call_fold.py, inline.py) and its run-time test
+(backends/numpy_engine/transpile/nir_fold/, transpile/call_fold.py, inline.py; copied: the
+constants of ``x += #c`` written again and again, nir_fold.sum_step) and its run-time test
 of "a value the same in every lane counts as a constant" (Runtime.fmul/fadd/pow on values of one
 lane): here only compile-time constants (`model.const_value`) fold, so `x * 0.0` is 0 for a
 NaN x, as there, but `float k = 0.0; x * k` multiplies. docs/performance.md measures what that

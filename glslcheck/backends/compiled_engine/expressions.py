@@ -46,6 +46,7 @@ class FnState:
         self.uni = uni  # cpu_core's Uniformity of the function (None: global initializers)
         self.outs: list = []  # the parts of out/inout parameters, returned after the value
         self.loops: list[tuple[str, Any]] = []  # (kind, continue emitter)
+        self.sum_chains: dict[int, tuple[list, list, int]] = {}  # step -> base, constants, depth
 
 
 class ExpressionEmitter:
@@ -307,12 +308,44 @@ class ExpressionEmitter:
         targets = self.lvalue(e.target)
         value = self.expr(e.value)
         tt = self.type_of(e.target)
-        if e.op != "=":
+        merged = self.repeated_sum(e, targets)
+        if merged is not None:
+            value = merged
+        elif e.op != "=":
             old = Val(tt, [self.read(p) for p in targets])
             value = self.binary_values(e.op[:-1], old, value, e)
         parts = [self.tmp(p) if isinstance(p, str) else p for p in value.parts]
         self.write(targets, parts)
         return Val(tt, parts)
+
+    def repeated_sum(self, e: A.Assignment, targets: list) -> Val | None:
+        """``x += #c`` continuing a chain of such steps: ``base + (c1 + c2 ...)``, the
+        constants added left to right in float32 (the NumPy backend's nir_fold.repeated_sums,
+        which decides: nir_fold.sum_step); None for any other write. The first step of a chain
+        keeps the value before it in temporaries."""
+        from ..numpy_engine.transpile import nir_fold
+
+        fn = self.fn
+        step = nir_fold.sum_step(self.fold_context(), e) if fn is not None else None
+        if step is None:
+            return None
+        assert fn is not None
+        sign, k_node, prev, kept = step
+        k = self.expr(k_node)  # (a constant: nothing emitted)
+        if any(not isinstance(p, str) for p in k.parts + targets):
+            return None
+        ks = [f"(-{p})" if sign == "-" else p for p in k.parts]
+        known = fn.sum_chains.get(id(prev)) if prev is not None else None
+        if known is None or known[2] > self.indent:
+            if kept:  # (a chain is followed only where its start's temporaries are defined)
+                base = [self.tmp_copy(self.read(p)) for p in targets]
+                fn.sum_chains[id(e)] = (base, ks, self.indent)
+            return None
+        base, merged, depth = known
+        n = len(base)
+        merged = [f"({merged[i % len(merged)]} + {ks[i % len(ks)]})" for i in range(n)]
+        fn.sum_chains[id(e)] = (base, merged, depth)
+        return Val(self.type_of(e.target), [f"({b} + {m})" for b, m in zip(base, merged)])
 
     def _expr_Unary(self, e: A.Unary) -> Val:
         if e.op in ("++", "--"):

@@ -35,6 +35,8 @@ class FoldState:
     sink_calls: set | None = None  # functions some call of which has a constant added to its result
     call_k: dict = field(default_factory=dict)  # call -> the constant sunk into its result
     terms: dict = field(default_factory=dict)  # returned term -> its kept code
+    sum_chains: dict = field(default_factory=dict)  # `x += #c` -> (base, merged constant, lines)
+    sum_chained: dict = field(default_factory=dict)  # function -> steps a later step continues
     # transpile/constant_flow.py
     constant_flow: Any = None  # the program's ConstantFlow, made on first use
     # transpile/call_fold.py

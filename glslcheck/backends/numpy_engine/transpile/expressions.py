@@ -297,6 +297,8 @@ class Expressions(TranspilerState):
         lv = self.lvalue(e.target, mask)
         value = nir_fold.component_write(self, e, mask, self.read(lv))  # NIR's view per component
         if value is None:
+            value = nir_fold.repeated_sum(self, e, mask, self.read(lv))
+        if value is None:
             value = nir_fold.keep_term(self, e, self.expr(e.value, mask))
             if e.op != "=":
                 value = self.binary_values(

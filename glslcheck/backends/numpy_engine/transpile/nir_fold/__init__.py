@@ -14,6 +14,7 @@ The rules copied here, each measured bit for bit against llvmpipe on 50,000 rand
 - dot_constants.py: constants merged into a ``dot`` with a constant, ``dot(vecN(s), #K)`` factored;
 - ffma_split.py: ``(p1 + p2) + e`` returned through a folded call is ``(p1 + e) + p2`` (ffma);
 - returned_sums.py: a constant added to a call's result sinks into the ``+=`` chain it returns;
+- repeated_sums.py: ``seed += 0.1`` written again and again is ``seed0 + (0.1 + 0.1 ...)``;
 - ssa_values.py: a variable assigned again still stands for its value (``p = m*p*2.02``);
 - components.py: NIR's SSA per vector component, constants merged through component writes,
   a ``+= e`` undone by a later ``-= e``;
@@ -53,6 +54,7 @@ from .context import FoldContext
 from .dispatch import binary
 from .dot_constants import broadcast_dot, dot_operand, merged_dot
 from .flrp import mix_hint
+from .repeated_sums import repeated_sum, sum_step
 from .return_register import register_call
 from .returned_sums import keep_term, return_constant_args, sunk_return, sunk_return_value
 
@@ -66,7 +68,9 @@ __all__ = [
     "merged_dot",
     "mix_hint",
     "register_call",
+    "repeated_sum",
     "return_constant_args",
+    "sum_step",
     "sunk_return",
     "sunk_return_value",
     "zero_add",
