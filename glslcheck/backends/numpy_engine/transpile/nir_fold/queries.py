@@ -67,7 +67,7 @@ def read_once(tr: TranspilerState, ident: A.Identifier) -> bool:
     return reads[id(body)].get(id(sym), 0) == 1
 
 
-def is_constant(tr: TranspilerState, node: Any) -> bool:
+def is_constant(tr: FoldEngine, node: Any) -> bool:
     if tr.model.const_value(node) is not None:
         return True
     return isinstance(node, A.Identifier) and constant_global(tr, tr.model.symbol_of(node))
@@ -254,7 +254,7 @@ def is_fmul(tr: TranspilerState, node: Any) -> bool:
     return node is not None and is_product(tr, node)
 
 
-def function_facts(tr: TranspilerState) -> Any:
+def function_facts(tr: FoldEngine) -> Any:
     """analysis.dataflow's execution-order facts of the current function, made once."""
     from .....semantics.analysis.dataflow import FunctionFacts
 
@@ -292,7 +292,7 @@ def reaching_value(tr: TranspilerState, ident: A.Identifier, unchanged: bool = F
     return w.value
 
 
-def is_varying(tr: TranspilerState, node: Any, depth: int = 0) -> bool:
+def is_varying(tr: FoldEngine, node: Any, depth: int = 0) -> bool:
     """The value depends on an input (a uniform, fragCoord, a parameter, a written variable):
     it is not a constant after NIR's constant propagation."""
     if depth > 8:
