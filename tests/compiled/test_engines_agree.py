@@ -61,6 +61,10 @@ KNOWN = {
     },
     "52-2d": "in lockstep (its dFdx/dFdy: not one pixel a call), 1,294 pixels at iTime 1.3 by "
     "up to 0.002; not isolated (the NumPy code has Mesa rewrites)",
+    "h41-raymarch": "in lockstep only (8 lanes): 609 pixels by up to 1.8e-7 at iTime 0; not "
+    "isolated (found after the uniformity and loop-limit changes met in the lockstep rewrite)",
+    "h56-raymarch": "in lockstep only (8 lanes): 36 pixels by up to 0.065 at iTime 0; not "
+    "isolated (found after the uniformity and loop-limit changes met in the lockstep rewrite)",
     "h18-2d": "not isolated (no Mesa rewrite in the NumPy code); likely " + ONE_LANE,
     "h40-volumetric": "not isolated (no Mesa rewrite in the NumPy code); likely " + ONE_LANE,
 }
