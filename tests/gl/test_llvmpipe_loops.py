@@ -34,7 +34,7 @@ void mainImage(out vec4 c, in vec2 p) {
 }"""
 
 
-def test_a_70000_pass_loop_stops_where_llvmpipe_stops_it(gl, make_shader):
+def test_a_70000_pass_loop_stops_where_llvmpipe_stops_it(llvmpipe, make_shader):
     shader = make_shader(SUM_70000)
     numpy, gl_prog = compile_backend(shader, "numpy"), compile_backend(shader, "gl")
     assert numpy.render(size=(2, 2))[0, 0, 0] == pytest.approx(1.0, abs=1e-3)  # a GPU's answer
@@ -47,7 +47,7 @@ def test_a_70000_pass_loop_stops_where_llvmpipe_stops_it(gl, make_shader):
     )
 
 
-def test_the_budget_is_shared_by_sequential_and_nested_loops(gl, make_shader):
+def test_the_budget_is_shared_by_sequential_and_nested_loops(llvmpipe, make_shader):
     shader = make_shader(COUNTS)
     numpy, gl_prog = compile_backend(shader, "numpy"), compile_backend(shader, "gl")
     llvmpipe_loop_limit(numpy)
