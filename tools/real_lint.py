@@ -306,6 +306,7 @@ def score(
     by_label, by_finding = Counter(), Counter()
     not_full = []
     crossed: list[str] = []  # an extra efficiency finding on a missed other-inefficiency label
+    unguided = 0  # findings of course rules the guide has no id for (they cost points too)
     for e in present:
         findings, stderr, rc = lint_json([local_path(e, texts).resolve()], root)
         if "Traceback" in stderr or rc not in (0, 1):
@@ -365,6 +366,7 @@ def score(
             for f in findings
             if f["rule"] in EFFICIENCY_RULES and f["rule"] not in rules and f["penalty"]
         ]
+        unguided += sum(1 for f in findings if f["rule"] not in rules and f["penalty"])
         for j, i in match(missed_other, extra_efficiency, any_rule=True).items():
             f = extra_efficiency[i]
             crossed.append(f"{e['id']}:{missed_other[j]['lines'][0]} {f['rule']}")
@@ -401,6 +403,12 @@ def score(
             f"finding as an extra): "
             f"{len(crossed)}: {', '.join(crossed)}"
         )
+    t, p, n = sum(tp.values()), sum(fp.values()), sum(fn.values())
+    print(
+        f"every deduction users see (the crossed pairs above matched; findings of course rules "
+        f"the guide has no id for, {unguided}, counted): recall {_rate(t + len(crossed), t + n)}"
+        f", precision {_rate(t + len(crossed), t + p + unguided)}"
+    )
     print("by certainty (labels: the labeller's; findings: the linter's)")
     for sure in ("certain", "possible"):
         lab_hit, lab_all = by_label[sure, "hit"], by_label[sure, "all"]
