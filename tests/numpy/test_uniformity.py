@@ -536,7 +536,8 @@ def test_code_after_early_exits_is_compacted_and_changes_no_pixel(gl, make_shade
 # Values a compacted region leaves behind (Statements._region_names): in a 128x64 tile the
 # branch and the code after the early return run on the 40 of 128 columns gathered. `L` is
 # declared before them and written there with uniform values only: used in one arm of the `if`
-# (dead after it), or after a return (its writes free, the lanes that returned never read it).
+# (dead after it), or after a return, also read after the region (its writes are free, the
+# lanes that returned never read it: one value for the lanes left).
 LIGHTS_LEFT_BEHIND = {
     "declared before a branch": _image(
         """
@@ -566,6 +567,24 @@ LIGHTS_LEFT_BEHIND = {
     fragColor = vec4(c, 1.0);""",
         "struct Light { vec3 pos; float color; };\n",
     ),
+    "read after the region": _image(
+        """
+    Light L[2];
+    vec3 c = vec3(0.1);
+    if (iTime >= 0.0) {
+        if (fragCoord.x >= 40.0) { fragColor = vec4(c, 1.0); return; }
+        L[0] = Light(vec3(1.0, 2.0, 3.0), 0.5 + 0.5 * sin(iTime));
+        L[1] = Light(vec3(-1.0, 2.0, 3.0), 1.0);
+        for (int k = 0; k < 2; k++) {
+            c += 0.1 * float(k) * normalize(vec3(fragCoord * 0.01, 1.0));
+        }
+    }
+    for (int k = 0; k < 2; k++) {
+        c += L[k].color * normalize(L[k].pos - vec3(fragCoord * 0.01, 1.0));
+    }
+    fragColor = vec4(c, 1.0);""",
+        "struct Light { vec3 pos; float color; };\n",
+    ),
 }
 
 
@@ -585,11 +604,13 @@ def test_a_compacted_region_leaves_uniform_values_one_value(make_shader, monkeyp
 
     monkeypatch.setattr(P.LaneHelpers, "scatter", scatter)
     prog.render(size=(128, 64), time=0.7)
-    assert len(back) == 1  # the one region, compacted
-    if "branch" in name:
-        assert back == [[]]  # L is dead after the branch: left as it is
+    if name == "declared before a branch":
+        assert back == [[]]  # the one region, compacted; L is dead after it: left as it is
     else:
-        assert len(back[0]) == 1 and lanes_of(back[0][0]) == 1  # L: one value for all lanes
+        # the code after the return (in the uniform `if`'s arm, then after the `if`): L is put
+        # back as one value for all lanes
+        assert len(back) == (2 if name == "read after the region" else 1)
+        assert all(len(b) == 1 and lanes_of(b[0]) == 1 for b in back)
 
 
 @pytest.mark.parametrize("name", sorted(LIGHTS_LEFT_BEHIND) + sorted(SAME_WITH_MASKS))
