@@ -7,7 +7,9 @@
    element in mainImage after background pixels have returned, benchmarks/scenes/lights_array;
    the same lights declared before and filled inside the branch the sphere pixels take,
    benchmarks/scenes/lights_in_branch;
-   a scene in the shape of real Lab 4 submissions, benchmarks/scenes/lab4_submission; the lab's
+   a scene in the shape of real Lab 4 submissions, benchmarks/scenes/lab4_submission, and the
+   same with its lights array declared before and filled inside the branch the sphere pixels
+   take, benchmarks/scenes/lab4_lights_in_branch; the lab's
    final scene, lab_shaders/07_final, if present), rendered by both backends in turns in the
    same run; best and median of N renders each (the NumPy frame cache is cleared before every
    render). Ratio = numpy / gl; the floor is 6x, the target 3x. NumPy is timed on worker
@@ -51,6 +53,10 @@ SCENES = [
     ("lights array built in mainImage", os.path.join(HERE, "scenes", "lights_array")),
     ("lights array filled in a branch", os.path.join(HERE, "scenes", "lights_in_branch")),
     ("Lab 4 submission shape", os.path.join(HERE, "scenes", "lab4_submission")),
+    (
+        "Lab 4 shape, lights filled in a branch",
+        os.path.join(HERE, "scenes", "lab4_lights_in_branch"),
+    ),
     ("lab 07_final", FINAL),
 ]
 SIZE = (800, 450)

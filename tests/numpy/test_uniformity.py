@@ -531,3 +531,101 @@ def test_code_after_early_exits_is_compacted_and_changes_no_pixel(gl, make_shade
     np.testing.assert_array_equal(fast, masked)
     c = compare(fast, compile_gl(shader, gl).render(size=(128, 64), time=0.8))
     assert c.match, (c.max_abs_error, c.mismatched_pixels)
+
+
+# Values a compacted region leaves behind (Statements._region_names): in a 128x64 tile the
+# branch and the code after the early return run on the 40 of 128 columns gathered. `L` is
+# declared before them and written there with uniform values only: used in one arm of the `if`
+# (dead after it), or after a return, also read after the region (its writes are free, the
+# lanes that returned never read it: one value for the lanes left).
+LIGHTS_LEFT_BEHIND = {
+    "declared before a branch": _image(
+        """
+    Light L[2];
+    float depth = 40.0 - fragCoord.x;
+    vec3 c = vec3(0.1);
+    if (depth > 0.0) {
+        L[0] = Light(vec3(1.0, 2.0, 3.0), 0.5 + 0.5 * sin(iTime));
+        L[1] = Light(vec3(-1.0, 2.0, 3.0), 1.0);
+        for (int k = 0; k < 2; k++) {
+            c += L[k].color * normalize(L[k].pos - vec3(fragCoord * 0.01, depth));
+        }
+    }
+    fragColor = vec4(c, 1.0);""",
+        "struct Light { vec3 pos; float color; };\n",
+    ),
+    "declared before a return": _image(
+        """
+    Light L[2];
+    vec3 c = vec3(0.1);
+    if (fragCoord.x >= 40.0) { fragColor = vec4(c, 1.0); return; }
+    L[0] = Light(vec3(1.0, 2.0, 3.0), 0.5 + 0.5 * sin(iTime));
+    L[1] = Light(vec3(-1.0, 2.0, 3.0), 1.0);
+    for (int k = 0; k < 2; k++) {
+        c += L[k].color * normalize(L[k].pos - vec3(fragCoord * 0.01, 1.0));
+    }
+    fragColor = vec4(c, 1.0);""",
+        "struct Light { vec3 pos; float color; };\n",
+    ),
+    "read after the region": _image(
+        """
+    Light L[2];
+    vec3 c = vec3(0.1);
+    if (iTime >= 0.0) {
+        if (fragCoord.x >= 40.0) { fragColor = vec4(c, 1.0); return; }
+        L[0] = Light(vec3(1.0, 2.0, 3.0), 0.5 + 0.5 * sin(iTime));
+        L[1] = Light(vec3(-1.0, 2.0, 3.0), 1.0);
+        for (int k = 0; k < 2; k++) {
+            c += 0.1 * float(k) * normalize(vec3(fragCoord * 0.01, 1.0));
+        }
+    }
+    for (int k = 0; k < 2; k++) {
+        c += L[k].color * normalize(L[k].pos - vec3(fragCoord * 0.01, 1.0));
+    }
+    fragColor = vec4(c, 1.0);""",
+        "struct Light { vec3 pos; float color; };\n",
+    ),
+}
+
+
+@pytest.mark.parametrize("name", sorted(LIGHTS_LEFT_BEHIND))
+def test_a_compacted_region_leaves_uniform_values_one_value(make_shader, monkeypatch, name):
+    from glslcheck.backends.numpy_engine.runtime_values import Struct, lanes_of
+
+    prog = P.compile_numpy(make_shader(LIGHTS_LEFT_BEHIND[name]))
+    prog.parallel, prog.threads = "threads", 1
+    real = P.LaneHelpers.scatter
+    back: list = []  # per compacted region: the structs it put back
+
+    def scatter(self, S, idx, rec, values, *rest):
+        parent, out = real(self, S, idx, rec, values, *rest)
+        back.append([v for v in out if isinstance(v, Struct)])
+        return parent, out
+
+    monkeypatch.setattr(P.LaneHelpers, "scatter", scatter)
+    prog.render(size=(128, 64), time=0.7)
+    if name == "declared before a branch":
+        assert back == [[]]  # the one region, compacted; L is dead after it: left as it is
+    else:
+        # the code after the return (in the uniform `if`'s arm, then after the `if`): L is put
+        # back as one value for all lanes
+        assert len(back) == (2 if name == "read after the region" else 1)
+        assert all(len(b) == 1 and lanes_of(b[0]) == 1 for b in back)
+
+
+@pytest.mark.parametrize("name", sorted(LIGHTS_LEFT_BEHIND) + sorted(SAME_WITH_MASKS))
+def test_values_left_in_place_change_no_pixel(gl, make_shader, monkeypatch, name):
+    """Against the same module with every value put back into the lanes, at a size where the
+    regions are compacted, and against llvmpipe."""
+    from glslcheck.backends.gl import compile_gl
+    from glslcheck.backends.numpy_engine.transpile import Transpiler
+    from glslcheck.verification.compare import compare
+
+    shader = make_shader({**LIGHTS_LEFT_BEHIND, **SAME_WITH_MASKS}[name])
+    fast = P.compile_numpy(shader).render(size=(128, 64), time=0.8)
+    monkeypatch.setattr(Transpiler, "_region_names", lambda self, used, node: (used, [], []))
+    slow = P.compile_numpy(shader).render(size=(128, 64), time=0.8)
+    np.testing.assert_array_equal(fast, slow)
+    if name in LIGHTS_LEFT_BEHIND:
+        c = compare(fast, compile_gl(shader, gl).render(size=(128, 64), time=0.8))
+        assert c.match, (c.max_abs_error, c.mismatched_pixels)

@@ -49,7 +49,9 @@ generator two things about one function, as a GPU compiler's divergence analysis
     and loop depth (no loop between them: the arm is entered at most once per declaration): no
     lane left out of the arm ever reads it, and the lanes entering it see the declared value, so
     it counts as declared at the arm's start (`PointLight L[4];` before `if (hit) { L[0] = ...;
-    ... L[k] ... }` stays one value). Not in functions that use derivatives.
+    ... L[k] ... }` stays one value). Not in functions that use derivatives. Such a local is
+    dead when the arm ends (`Uniformity.dead_after`): the NumPy backend does not put it back
+    into the lanes of a compacted arm.
 
 A variable is uniform when every write to it stores a uniform value at a uniform index and is
 free, or (in `mainImage`, whose lanes start all active) happens under a uniform mask. The
@@ -106,6 +108,7 @@ class Uniformity:
         # first and last use in that order
         self.span: dict[int, tuple[int, int]] = {}
         self.uses: dict[int, tuple[int, int]] = {}
+        self.sunk: dict[int, frozenset[int]] = {}  # id(arm) -> ids of the locals sunk into it
         stack: list[tuple[Any, bool]] = [(fn.node.body, False)]
         order = 0
         while stack:
@@ -172,6 +175,16 @@ class Uniformity:
     def is_varying(self, sym: Symbol) -> bool:
         """True when the variable (a symbol) may differ between lanes."""
         return id(sym) in self.varying
+
+    def is_own(self, sym: Symbol) -> bool:
+        """True for a local or parameter of this function (one the analysis has verdicts on)."""
+        return id(sym) in self.decl_level
+
+    def dead_after(self, sym: Symbol, arm: Any) -> bool:
+        """True when the local `sym` is declared before the varying `if` whose branch is `arm`
+        and used only inside `arm`, with no loop between (`sink`): what `arm` leaves in it is
+        never read again, by any lane."""
+        return id(sym) in self.sunk.get(id(arm), ())
 
     # -- expressions ---------------------------------------------------------------------------
     def uniform(self, e: Any) -> bool:
@@ -408,6 +421,7 @@ class Uniformity:
         ]
         for sid in moved:
             self.decl_level[sid] = self.level + 1
+        self.sunk[id(arm)] = frozenset(moved)
         return moved
 
     def unsink(self, moved: list[int]) -> None:

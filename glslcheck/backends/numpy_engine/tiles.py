@@ -38,7 +38,7 @@ import numpy as np
 from ...base.diagnostics import Diagnostic, GlslError, Location
 from .lane_memo import MemoMath
 from .runtime import Runtime
-from .runtime_values import Struct
+from .runtime_values import Struct, lanes_of
 from .transpile import glsl_location, too_complex
 
 TYPE_CHECKING = False  # not typing's: importing typing costs every start-up
@@ -448,7 +448,12 @@ class LaneHelpers:
         gathered = tuple(self._take(v, idx, lanes) for v in values)
         return child, _Gathered(gathered, values)
 
-    def scatter(self, S, idx, rec: _Gathered, values: tuple):
+    def scatter(self, S, idx, rec: _Gathered, values: tuple, uniform: int = 0):
+        """The region's end: S's parent back, with what the region wrote put into the lanes
+        `idx` (`values`: the region's variables, in the order gathered; fewer when the region
+        leaves the last ones dead). The last `uniform` of `values` are variables every write of
+        which in the region was free (backends/cpu_core/uniformity.py): one value for all lanes
+        stays that, not an array of them."""
         parent = S.parent
         lanes = parent.lanes
         for k, g in S.gathered.items():
@@ -461,9 +466,14 @@ class LaneHelpers:
                     setattr(parent, k, self._put(getattr(parent, k), v, idx, lanes))
                 else:
                     setattr(parent, k, v)
+        first_uniform = len(values) - uniform
         out = tuple(
-            self._put(o, v, idx, lanes) if v is not g else o
-            for o, g, v in zip(rec.originals, rec.values, values)
+            o
+            if v is g
+            else v
+            if k >= first_uniform and lanes_of(v) == 1
+            else self._put(o, v, idx, lanes)
+            for k, (o, g, v) in enumerate(zip(rec.originals, rec.values, values))
         )
         return parent, out
 

@@ -67,7 +67,11 @@ set") or a bool array; writes under a mask keep the old value elsewhere (`rt.ass
   active (and there are enough lanes to matter), the values the region uses are gathered to the
   active lanes (`X.gather` / `X.push`), the region runs on the short arrays with no mask, and the
   values are scattered back afterwards (globals and fragment coordinates are gathered on first
-  read). Regions that use derivatives are never compacted.
+  read). Regions that use derivatives are never compacted. Two kinds of values are not put back
+  into the lanes: a uniform local keeps the one value the region wrote (its writes there are
+  free), and a local used only in this branch of a varying `if` (`Uniformity.dead_after`) is
+  left as the region ended: no lane reads it again. So `PointLight L[4];` declared before
+  `if (hit) { L[0] = ...; ... }` is not broadcast to every lane of the tile at the branch's end.
 """
 
 # The passes, one module each (a newcomer reads them in this order):

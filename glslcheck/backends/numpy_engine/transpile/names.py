@@ -55,7 +55,10 @@ class Names(TranspilerState):
     # -- names ---------------------------------------------------------------------------------
     def var_name(self, sym: Symbol, node: Any) -> str:
         if sym.kind in ("local", "param"):
-            return "v_" + python_ident(sym.unique_name or sym.name, node)
+            name = "v_" + python_ident(sym.unique_name or sym.name, node)
+            if self.fn is not None:
+                self.fn.local_syms[name] = sym
+            return name
         if sym.kind == "global" and sym.qualifier == "uniform" and self._fed(sym):
             self.uniforms.add(sym.name)  # a plain file's own `uniform vec3 iResolution;`
             return "S.u_" + sym.name

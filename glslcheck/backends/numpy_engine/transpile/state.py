@@ -39,6 +39,7 @@ class FnState:
         self.uni = uni  # None for the global initializers (gen_globals)
         self.is_entry = is_entry
         self.defined: list[str] = []  # Python locals bound so far, in order
+        self.local_syms: dict[str, Symbol] = {}  # Python name -> its local or parameter
         self.loops: list[LoopCtx] = []
         self.has_ret = False
         self.rv: str | None = None

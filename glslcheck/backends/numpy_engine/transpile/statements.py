@@ -116,7 +116,10 @@ class Statements(TranspilerState):
         self.emit(f"X.count(S, {rid}, {mask})")
         emit_body(mask)
         body_lines = self.lines[start:]
-        used = sorted((self.local_names(body_lines) & snapshot) - {mask})
+        lanes, uniform, dead = self._region_names(
+            sorted((self.local_names(body_lines) & snapshot) - {mask}), node
+        )
+        used = lanes + uniform + dead
         del self.lines[start:]
         tup = "(" + "".join(n + ", " for n in used) + ")"
         self.emit(f"{ix} = X.sparse(S, {mask})")
@@ -127,7 +130,32 @@ class Statements(TranspilerState):
         self.emit(f"    {mask} = None")
         self.lines.extend(body_lines)
         self.emit(f"if {ix} is not None:")
-        self.emit(f"    S, {tup if used else '_'} = X.scatter(S, {ix}, {saved}, {tup})")
+        back = lanes + uniform
+        out = "(" + "".join(n + ", " for n in back) + ")"
+        extra = f", {len(uniform)}" if uniform else ""
+        self.emit(f"    S, {out if back else '_'} = X.scatter(S, {ix}, {saved}, {out}{extra})")
+
+    def _region_names(self, used: list[str], node: Any) -> tuple[list[str], list[str], list[str]]:
+        """The variables a compacted region reads or writes, in three groups: those put back
+        into the region's lanes at its end; uniform locals (every write of them in the region is
+        free: `X.scatter` keeps one value for all lanes as that); and locals used only in this
+        branch of a varying `if` (`Uniformity.dead_after`), gathered but never put back."""
+        fs = self.fn
+        assert fs is not None  # generating a function's body
+        lanes: list[str] = []
+        uniform: list[str] = []
+        dead: list[str] = []
+        for name in used:
+            sym = fs.local_syms.get(name)
+            if sym is None or fs.uni is None or not fs.uni.is_own(sym):
+                lanes.append(name)
+            elif fs.uni.dead_after(sym, node):
+                dead.append(name)
+            elif not fs.uni.is_varying(sym):
+                uniform.append(name)
+            else:
+                lanes.append(name)
+        return lanes, uniform, dead
 
     def _worth_compacting(self, node: Any) -> bool:
         """Gathering pays off for a region with a loop, a user call or some arithmetic; a
