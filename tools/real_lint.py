@@ -91,6 +91,7 @@ EFFICIENCY_RULES = (
     "loop-invariant",
     "branch-replaceable",
     "normalize-known-length",
+    "length-computed-twice",
     "no-op-arithmetic",
     "unused-variable",
 )
