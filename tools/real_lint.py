@@ -92,6 +92,7 @@ EFFICIENCY_RULES = (
     "branch-replaceable",
     "normalize-known-length",
     "length-computed-twice",
+    "squared-square-root",
     "no-op-arithmetic",
     "unused-variable",
 )

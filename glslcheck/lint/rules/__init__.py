@@ -50,6 +50,7 @@ RULE_TABLE: tuple[tuple[str, str], ...] = (
     ("uniform-outside-mainimage", "uniform_outside_mainimage"),
     ("length-comparison", "length_comparison"),
     ("sqrt-comparison", "sqrt_comparison"),
+    ("squared-square-root", "squared_square_root"),
     ("pow-small-exponent", "pow_small_exponent"),
     ("pow-negative-base", "pow_negative_base"),
     ("unguarded-sqrt", "unguarded_sqrt"),
