@@ -93,6 +93,7 @@ EFFICIENCY_RULES = (
     "normalize-known-length",
     "length-computed-twice",
     "squared-square-root",
+    "repeated-across-calls",
     "no-op-arithmetic",
     "unused-variable",
 )

@@ -55,6 +55,7 @@ RULE_TABLE: tuple[tuple[str, str], ...] = (
     ("pow-negative-base", "pow_negative_base"),
     ("unguarded-sqrt", "unguarded_sqrt"),
     ("repeated-expression", "repeated_expression"),
+    ("repeated-across-calls", "repeated_across_calls"),
     ("loop-invariant", "loop_invariant"),
     ("branch-replaceable", "branch_replaceable"),
     ("normalize-known-length", "normalize_known_length"),
