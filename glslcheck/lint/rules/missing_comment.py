@@ -16,7 +16,9 @@ Coverage, what a comment explains:
   heading a list of declarations (`// Variables for the camera`) explains the whole list, up to
   the blank line.
 - A trailing comment covers its statement (`x = 1.0; // why`, on any of its lines), and on a
-  signature or a loop/`if` header, the block it opens as a comment above would.
+  signature or a loop/`if` header, the block it opens as a comment above would. A trailing
+  comment too long for its line, continued on the line below and indented well past the
+  statement (8 columns or more), is that statement's too.
 - A function's comment (above it, or a blank line above it when it names the function:
   `// shade: ...` above `vec3 shade(...)`) explains the function: its signature, and its body
   whole when the body is simple: at most 4 statements, with no branch or loop at 4. A longer
@@ -273,6 +275,17 @@ def _function_name(signature: str) -> str:
     return name.group(1) if name else ""
 
 
+# how much deeper than its statement a comment line below it sits when it is that statement's
+# trailing comment wrapped (a comment for the next block sits at its indentation, 4 deeper)
+WRAPPED = 8
+
+
+def _column(line: str) -> int:
+    """The column a line's text starts at, tabs to 4."""
+    expanded = line.expandtabs(4)
+    return len(expanded) - len(expanded.lstrip())
+
+
 UNLIMITED = 1 << 30  # the span of a comment heading a list: up to the blank line
 SIMPLE_BODY = 4  # statements of a function its comment above explains whole, with no branch
 SHORT_BODY = 8  # more, or a branching body longer than this, is a certain run under that comment
@@ -350,7 +363,16 @@ class _Reader:
             self.deferred = None
 
     def own_comment(self, lines: list[int]) -> bool:
-        return any(self.kinds[n - 1] in (TRAILING, LEADING) and self.explains(n) for n in lines)
+        """A comment of the statement's own: trailing one of its lines, or a trailing comment
+        wrapped to the line below it (a comment line indented well past the statement)."""
+        if any(self.kinds[n - 1] in (TRAILING, LEADING) and self.explains(n) for n in lines):
+            return True
+        below = lines[-1] + 1
+        if below > len(self.kinds) or self.kinds[below - 1] is not COMMENT:
+            return False
+        return _column(self.scan.lines[below - 1]) >= _column(
+            self.scan.lines[lines[0] - 1]
+        ) + WRAPPED and self.explains(below)
 
     def finish(self) -> None:
         """Decide the statement read so far: covered, trivial or uncovered."""
