@@ -10,6 +10,8 @@ repeated value) when a function calls the helper two or more times, each call on
 to the next, with the same arguments for those parameters and nothing they read written in
 between: the lighting helper called once per light computes the view vector once per light,
 from the same eye and surface point. One finding per value, at the value, naming the calls.
+Calls that pass the same value for every argument are not reported here: the call itself is
+then the repeated value (`repeated-expression`'s, for a pure function).
 A call in a loop that gives the helper the same arguments on every iteration is
 `loop-invariant`'s.
 
@@ -66,8 +68,11 @@ def check(ctx: LintContext) -> Iterator[Diagnostic]:
         sites = call_sites(fn)
         if len(sites) < 2:
             continue
+        every = [i for i, param in enumerate(fn.symbol.params) if param[2] != "out"]
         for value, indexes in values:
             for caller, calls in _groups(sites, indexes):
+                if all(same_arguments(caller, a, b, every) for a, b in zip(calls, calls[1:])):
+                    continue  # every argument the same: the calls themselves repeat
                 names = [fn.definition.proto.params[i].name for i in indexes]
                 lines = [str(n) for n in sorted({c.loc.line for c in calls})]
                 at = f"line {lines[0]}" if len(lines) == 1 else f"lines {_list(lines)}"
