@@ -2,14 +2,14 @@
 the same arguments (shared by repeated-across-calls and loop-invariant).
 
 A value of a helper `H` is an expression worth reusing (as repeated-expression means it) that
-takes a square root or a transcendental function (`normalize`, `length`, `sqrt`, `pow`, `sin`,
-..., or a user function that does), pure, that reads only `in` parameters `H` never writes
-(and constants), that `H` computes on every call (not inside a branch or a loop of `H`, nor
-after its `return`), and that is not part of a returned value computed from those parameters
-alone (then the calls themselves are the repeated value, the caller's to reuse). Two calls of `H`
-with the same arguments for those parameters compute it twice with the same value; a call in a
-loop whose arguments for them the loop does not change computes it on every iteration with the
-same value.
+takes a square root, a transcendental function or a division (`normalize`, `length`, `sqrt`,
+`pow`, `sin`, ..., `(p - c) / r`, or a user function that does), pure, that reads only `in`
+parameters `H` never writes (and constants), that `H` computes on every call (not inside a
+branch or a loop of `H`, nor after its `return`), and that is not part of a returned value
+computed from those parameters alone (then the calls themselves are the repeated value, the
+caller's to reuse). Two calls of `H` with the same arguments for those parameters compute it
+twice with the same value; a call in a loop whose arguments for them the loop does not change
+computes it on every iteration with the same value.
 """
 
 from __future__ import annotations
@@ -79,8 +79,10 @@ _COSTLY = frozenset(
 
 
 def _costly(model, e, depth: int) -> bool:
-    """Whether `e` calls a built-in of _COSTLY, or a user function whose body does."""
+    """Whether `e` divides, calls a built-in of _COSTLY, or a user function whose body does."""
     for n in e.walk():
+        if type(n) is A.Binary and n.op == "/":
+            return True  # a reciprocal: dearer than adds and multiplies
         if type(n) is not A.Call:
             continue
         target = model.call_target(n)

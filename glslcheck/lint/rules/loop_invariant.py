@@ -15,10 +15,10 @@ changes, is reported too: it computes the same outputs on every iteration (an an
 loop that calls `calcRay(dir, origin, viewport)` with a viewport computed before it traces the
 same ray every time).
 A value a helper function computes from its `in` parameters alone (one worth reusing that
-takes a square root or a transcendental function, on every call of the helper) is reported in
-the helper when a loop calls it with the same arguments for those parameters on every iteration
-(the lighting helper called per light computes the view vector from the same eye and surface
-point each time), unless every argument is the same (then the call itself is).
+takes a square root, a transcendental function or a division, on every call of the helper) is
+reported in the helper when a loop calls it with the same arguments for those parameters on
+every iteration (the lighting helper called per light computes the view vector from the same
+eye and surface point each time), unless every argument is the same (then the call itself is).
 Only the largest such expression is reported, for the outermost loop it does not depend on:
 one finding per run of adjacent statements of the loop holding such work, naming every value
 to compute before it and every place it is computed (hoisting them is one fix: `u` and `v` of

@@ -2,8 +2,9 @@
 
 ## What it does
 Reports a value a helper function computes from its `in` parameters alone (an expression worth
-reusing, as `repeated-expression` means it, that takes a square root or a transcendental
-function: `normalize(eye - position)`, `pow(k, shininess)`, or a user function that does; pure,
+reusing, as `repeated-expression` means it, that takes a square root, a transcendental
+function or a division: `normalize(eye - position)`, `pow(k, shininess)`, `(p - c) / r`, or a
+user function that does (a dot product is too cheap to pass around); pure,
 reading only parameters the helper never writes, computed on every call: not in a branch or a
 loop of the helper, and not the value the helper returns, which makes the calls themselves the
 repeated value) when a function calls the helper two or more times, each call on every path
