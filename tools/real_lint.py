@@ -94,6 +94,7 @@ EFFICIENCY_RULES = (
     "length-computed-twice",
     "squared-square-root",
     "repeated-across-calls",
+    "unit-length",
     "no-op-arithmetic",
     "unused-variable",
 )

@@ -60,6 +60,7 @@ RULE_TABLE: tuple[tuple[str, str], ...] = (
     ("branch-replaceable", "branch_replaceable"),
     ("normalize-known-length", "normalize_known_length"),
     ("length-computed-twice", "length_computed_twice"),
+    ("unit-length", "unit_length"),
     ("no-op-arithmetic", "no_op_arithmetic"),
     ("out-parameter-read", "out_parameter_read"),
     ("uninitialized-read", "uninitialized_read"),
