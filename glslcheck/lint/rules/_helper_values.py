@@ -45,18 +45,18 @@ def helper_values(fn) -> list[tuple[A.Expr, list[int]]]:
     }
     if not usable:
         return found
-    chosen: set[int] = set()
-    for n in fn.nodes:
+    skip_until = -1  # the exit of the last value chosen: its parts are not values of their own
+    for n in fn.nodes:  # in execution order: a value's parts follow it
         if type(n) in A.LEAF_CLASSES or not isinstance(n, A.Expr):
             continue
-        if any(id(a) in chosen for a in _ancestors(fn, n)):
-            continue  # a part of a larger value
-        if fn.is_dead(n) or model.is_constant(n) or not (fn.worth_reusing(n) and fn.is_pure(n)):
+        if fn.enter[id(n)] <= skip_until:
             continue
-        ops = fn.operands(n)
+        ops = fn.operands(n)  # (cached) the cheap test first: parameters only
         if not ops or any(
             id(s) not in usable and not (s.kind == "global" and s.qualifier == "const") for s in ops
         ):
+            continue
+        if fn.is_dead(n) or model.is_constant(n) or not (fn.worth_reusing(n) and fn.is_pure(n)):
             continue
         ups = _ancestors(fn, n)
         if any(type(a) in _CONDITIONAL or _short_circuit(a) for a in ups):
@@ -66,7 +66,7 @@ def helper_values(fn) -> list[tuple[A.Expr, list[int]]]:
             continue  # what the helper returns comes from those parameters alone
         if not _costly(model, n, 0):
             continue
-        chosen.add(id(n))
+        skip_until = fn.exit[id(n)]
         found.append((n, sorted({usable[id(s)] for s in ops if id(s) in usable})))
     return found
 

@@ -88,10 +88,10 @@ def _helper_in_loop(fn) -> Iterator[Diagnostic]:
     """A value the helper `fn` computes from `in` parameters alone (_helper_values), where a
     call in a loop passes the same arguments for them on every iteration (and not for all its
     parameters: then the call itself is the same every time, reported where it is)."""
-    values = helper_values(fn)
-    if not values:
-        return
     sites = [(caller, call) for caller, call in call_sites(fn) if caller.enclosing_loops(call)]
+    if not sites:
+        return
+    values = helper_values(fn)
     every = [i for i, param in enumerate(fn.symbol.params) if param[2] != "out"]
     for value, indexes in values:
         for caller, call in sites:

@@ -63,11 +63,11 @@ NEEDS = "ast"
 
 def check(ctx: LintContext) -> Iterator[Diagnostic]:
     for fn in program_facts(ctx.model).in_file(ctx.path):
+        sites = call_sites(fn)  # (cached for the program) the cheap test first
+        if len(sites) < 2:
+            continue
         values = helper_values(fn)
         if not values:
-            continue
-        sites = call_sites(fn)
-        if len(sites) < 2:
             continue
         every = [i for i, param in enumerate(fn.symbol.params) if param[2] != "out"]
         for value, indexes in values:
