@@ -26,7 +26,10 @@ or the blind labellers' form (/work/labels/RULES.md: {id: [label, ...]}); a labe
 "lines", "why", "certainty"}. The scored rules are the rules the labels cover (labels.json's
 "rules"; for the labellers' form every rule id of RULES.md, or `--rules`): a file with no label
 for a scored rule is labelled clean for it, so every finding there counts against precision.
-Findings of other rules and notes (penalty 0) are not scored.
+Findings of other rules and notes (penalty 0) are not scored, except that where the labels
+cover "other-inefficiency" (the guide's id for an inefficiency none of its ids fits), a deduction
+of an efficiency rule the guide has no id for (unused-variable, no-op-arithmetic) is scored as
+one: it is that kind of deduction, and counts against precision where no label meets it.
 
 Matching: a finding matches a label of the same rule when they share a line: the finding's own
 line (a missing-comment finding: every line of its run, first to last; repeated-expression and
@@ -88,6 +91,10 @@ EFFICIENCY_RULES = (
     "loop-invariant",
     "branch-replaceable",
     "normalize-known-length",
+    "length-computed-twice",
+    "squared-square-root",
+    "repeated-across-calls",
+    "unit-length",
     "no-op-arithmetic",
     "unused-variable",
 )
@@ -247,6 +254,21 @@ def match(labels: list[dict], findings: list[dict], any_rule: bool = False) -> d
     return {j: i for i, j in owner.items()}
 
 
+def scored_as(f: dict, rules: list[str]) -> dict:
+    """The finding as scored: a deduction of an efficiency rule the guide has no id for
+    (unused-variable, no-op-arithmetic) is what the guide's other-inefficiency labels (an
+    inefficiency none of its ids fits), so where the labels cover that id it is scored as one,
+    its own rule kept in "as"."""
+    if (
+        OTHER in rules
+        and f["rule"] in EFFICIENCY_RULES
+        and f["rule"] not in GUIDE_RULES
+        and f["penalty"]
+    ):
+        return {**f, "rule": OTHER, "as": f["rule"]}
+    return f
+
+
 def lint_json(paths: list[Path], root: Path = ROOT) -> tuple[list[dict], str, int]:
     """`glslcheck lint --format json` of the glslcheck in `root` (its folder comes first on the
     path of `python -m`): another checkout scores an older linter on the same labels."""
@@ -306,7 +328,6 @@ def score(
     by_label, by_finding = Counter(), Counter()
     not_full = []
     crossed: list[str] = []  # an extra efficiency finding on a missed other-inefficiency label
-    unguided = 0  # findings of course rules the guide has no id for (they cost points too)
     for e in present:
         findings, stderr, rc = lint_json([local_path(e, texts).resolve()], root)
         if "Traceback" in stderr or rc not in (0, 1):
@@ -329,7 +350,11 @@ def score(
             )
         want = [lab for lab in labels["files"].get(e["id"], []) if lab["rule"] in rules]
         # a "could not run" note (compile-error, severity note) is not a finding to score
-        got = [f for f in findings if f["rule"] in rules and f["severity"] != "note"]
+        got = [
+            scored_as(f, rules)
+            for f in findings
+            if scored_as(f, rules)["rule"] in rules and f["severity"] != "note"
+        ]
         pairs = match(want, got)
         used = set(pairs.values())
         file_held, file_inside = line_level(want, got)
@@ -361,12 +386,13 @@ def score(
         ]
         extra_efficiency = [
             f for i, f in enumerate(got) if i not in used and f["rule"] in EFFICIENCY_RULES
-        ] + [  # deductions of efficiency rules the labels have no id for (unused-variable)
+        ] + [  # deductions of efficiency rules the labels have no id for, when not scored
             f
             for f in findings
-            if f["rule"] in EFFICIENCY_RULES and f["rule"] not in rules and f["penalty"]
+            if f["rule"] in EFFICIENCY_RULES
+            and scored_as(f, rules)["rule"] not in rules
+            and f["penalty"]
         ]
-        unguided += sum(1 for f in findings if f["rule"] not in rules and f["penalty"])
         for j, i in match(missed_other, extra_efficiency, any_rule=True).items():
             f = extra_efficiency[i]
             crossed.append(f"{e['id']}:{missed_other[j]['lines'][0]} {f['rule']}")
@@ -403,12 +429,6 @@ def score(
             f"finding as an extra): "
             f"{len(crossed)}: {', '.join(crossed)}"
         )
-    t, p, n = sum(tp.values()), sum(fp.values()), sum(fn.values())
-    print(
-        f"every deduction users see (the crossed pairs above matched; findings of course rules "
-        f"the guide has no id for, {unguided}, counted): recall {_rate(t + len(crossed), t + n)}"
-        f", precision {_rate(t + len(crossed), t + p + unguided)}"
-    )
     print("by certainty (labels: the labeller's; findings: the linter's)")
     for sure in ("certain", "possible"):
         lab_hit, lab_all = by_label[sure, "hit"], by_label[sure, "all"]

@@ -54,6 +54,21 @@ def test_an_other_inefficiency_label_meets_a_specific_finding_only_across_rules(
     assert "normalize-known-length" in real_lint.EFFICIENCY_RULES
 
 
+def test_a_deduction_the_guide_has_no_id_for_is_scored_as_other_inefficiency():
+    unused = {"rule": "unused-variable", "line": 130, "message": "never read", "penalty": 1}
+    note = {**unused, "penalty": 0}
+    specific = {"rule": "normalize-known-length", "line": 123, "message": "...", "penalty": 1}
+    guide = real_lint.GUIDE_RULES
+    assert real_lint.scored_as(unused, guide)["rule"] == "other-inefficiency"
+    assert real_lint.scored_as(unused, guide)["as"] == "unused-variable"
+    # a note costs nothing; a guide id keeps its own; labels without the id leave it alone
+    assert real_lint.scored_as(note, guide) is note
+    assert real_lint.scored_as(specific, guide) is specific
+    assert real_lint.scored_as(unused, ["missing-comment"]) is unused
+    labels = [{"rule": "other-inefficiency", "lines": [130]}]
+    assert real_lint.match(labels, [real_lint.scored_as(unused, guide)]) == {0: 0}
+
+
 def test_a_labellers_file_covers_every_rule_of_the_guide(tmp_path):
     path = tmp_path / "labels.json"
     path.write_text(json.dumps({"f01": [{"rule": "missing-header", "lines": [1]}], "f02": []}))

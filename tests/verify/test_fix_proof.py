@@ -36,7 +36,7 @@ float ring(in vec2 p) // one ring's brightness
 void mainImage(out vec4 fragColor, in vec2 fragCoord)
 {
     vec2 uv = (fragCoord - 0.5 * iResolution.xy) / iResolution.y; // centred
-    float d = length(uv); // distance from the centre
+    float d = 2.0 * length(uv); // twice the distance from the centre
     float k = 1.0 / (1.0 + pow(d, 2.0)); // the falloff
     float glow = 0.0; // summed below
     for (int i = 0; i < 3; ++i)

@@ -14,6 +14,11 @@ reads and writes no global, nor an `out` parameter before writing it), none of w
 changes, is reported too: it computes the same outputs on every iteration (an anti-aliasing
 loop that calls `calcRay(dir, origin, viewport)` with a viewport computed before it traces the
 same ray every time).
+A value a helper function computes from its `in` parameters alone (one worth reusing that
+takes a square root, a transcendental function or a division, on every call of the helper) is
+reported in the helper when a loop calls it with the same arguments for those parameters on
+every iteration (the lighting helper called per light computes the view vector from the same
+eye and surface point each time), unless every argument is the same (then the call itself is).
 Only the largest such expression is reported, for the outermost loop it does not depend on:
 one finding per run of adjacent statements of the loop holding such work, naming every value
 to compute before it and every place it is computed (hoisting them is one fix: `u` and `v` of
@@ -56,6 +61,7 @@ from ...semantics.analysis import (
 from ...semantics.model import Symbol
 from ..fixes import Fix, Fixable
 from ..fixes.build import declare_before, name_hint, node_text, replace_with_name, statement_of
+from ._helper_values import call_sites, helper_values, invariant_arguments
 from ._text import text
 
 TYPE_CHECKING = False  # not typing's: importing typing costs every start-up
@@ -75,6 +81,43 @@ _LOOP_WORD: dict[type, str] = {A.For: "for", A.While: "while", A.DoWhile: "do-wh
 def check(ctx: LintContext) -> Iterator[Diagnostic]:
     for fn in program_facts(ctx.model).in_file(ctx.path):
         yield from _check_function(fn, ctx)
+        yield from _helper_in_loop(fn)
+
+
+def _helper_in_loop(fn) -> Iterator[Diagnostic]:
+    """A value the helper `fn` computes from `in` parameters alone (_helper_values), where a
+    call in a loop passes the same arguments for them on every iteration (and not for all its
+    parameters: then the call itself is the same every time, reported where it is)."""
+    sites = [(caller, call) for caller, call in call_sites(fn) if caller.enclosing_loops(call)]
+    if not sites:
+        return
+    values = helper_values(fn)
+    every = [i for i, param in enumerate(fn.symbol.params) if param[2] != "out"]
+    for value, indexes in values:
+        for caller, call in sites:
+            if caller.is_dead(call):
+                continue
+            loop = next(
+                (
+                    lp
+                    for lp in caller.enclosing_loops(call)
+                    if caller.contains(lp.body, call)
+                    and invariant_arguments(caller, call, lp, indexes)
+                ),
+                None,
+            )
+            if loop is None or invariant_arguments(caller, call, loop, every):
+                continue
+            named = [fn.definition.proto.params[i].name for i in indexes]
+            names = ", ".join(named[:-1]) + " and " + named[-1] if len(named) > 1 else named[0]
+            yield Diagnostic(
+                f"'{text(value)}' in {fn.definition.proto.name} has the same value on every "
+                f"iteration of the {_LOOP_WORD[type(loop)]} loop at line {loop.loc.line} that "
+                f"calls it (line {call.loc.line}): the loop passes the same {names}",
+                value.loc,
+                help="compute it once before the loop and pass it in as a parameter",
+                notes=[Diagnostic("called here, in the loop", call.loc, severity="note")],
+            )
 
 
 def invariant_places(fn) -> list[tuple[A.Expr, A.Node]]:

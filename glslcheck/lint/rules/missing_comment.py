@@ -9,18 +9,25 @@ where they part, the finding is a possible deduction (below).
 Coverage, what a comment explains:
 - A comment explains the statement or small group of statements it stands above: up to
   `comment-span` statements (5 by default: the rubric's "every few related lines"), until a
-  blank line, the next comment, or the end of the block it is in. Lines of a comment block
-  explain as one comment. A comment above an `if` or a loop goes on into its body. A comment
+  blank line, the next comment, or the end of the block it is in. A statement with a trailing
+  comment of its own uses none of the group's few lines: `// PHONG` above three commented
+  lines and three plain ones explains all six. Lines of a comment block explain as one
+  comment. A comment above an `if` or a loop goes on into its body. A comment
   heading a list of declarations (`// Variables for the camera`) explains the whole list, up to
   the blank line.
 - A trailing comment covers its statement (`x = 1.0; // why`, on any of its lines), and on a
-  signature or a loop/`if` header, the block it opens as a comment above would.
+  signature or a loop/`if` header, the block it opens as a comment above would. A trailing
+  comment too long for its line, continued on the line below and indented well past the
+  statement (8 columns or more), is that statement's too.
 - A function's comment (above it, or a blank line above it when it names the function:
   `// shade: ...` above `vec3 shade(...)`) explains the function: its signature, and its body
   whole when the body is simple: at most 4 statements, with no branch or loop at 4. A longer
   body with no comment of its own is one run, the body; a body with comments of its own is
   read by them. A struct's comment covers its members; a struct whose members are commented one
-  by one needs no comment of its own.
+  by one needs no comment of its own. Overloads written right under a commented one, with no
+  blank line between (`// lengthSq: the squared length of a vector` above `lengthSq(vec2)`,
+  `lengthSq(vec3)`, `lengthSq(vec4)`), are one group that comment explains; after a blank line
+  an overload is a definition of its own and needs its own comment.
 - Trivial statements need no comment: returning a literal or a plain variable (`return true;`,
   `return col;`, or a vector of them: `return vec4(col, 1.0);`), `break;`, `continue;`,
   `discard;`, `else`, braces. Code in an `#ifdef`/`#if` branch the preprocessor skips is not
@@ -52,7 +59,6 @@ A run is a certain deduction, except where the readings of the rubric part (a po
   body is a reading);
 - a function signature with no comment above whose body opens with a comment saying what the
   function does;
-- an overload with no comment written right under a commented overload of the same name;
 - a definition with no comment at all right under another (blank lines between, nothing else),
   each after the first: one reading deducts such a region once, the others each definition.
 
@@ -150,7 +156,6 @@ BODY_ONLY = "the function's first body comment says what it does, none stands ab
 REACH = "whether the function's comment above reaches into a body that has comments of its own"
 LONG_BODY = "only the function's comment above explains its body, which is more than a few lines"
 ADJACENT = "one of several uncommented definitions in a row, which a TA may deduct once"
-OVERLOAD = "it is an overload right under one whose comment may explain both"
 
 
 # A comment that only credits or marks ("code from class by ...", "// part 3", "// TEST"):
@@ -270,6 +275,17 @@ def _function_name(signature: str) -> str:
     return name.group(1) if name else ""
 
 
+# how much deeper than its statement a comment line below it sits when it is that statement's
+# trailing comment wrapped (a comment for the next block sits at its indentation, 4 deeper)
+WRAPPED = 8
+
+
+def _column(line: str) -> int:
+    """The column a line's text starts at, tabs to 4."""
+    expanded = line.expandtabs(4)
+    return len(expanded) - len(expanded.lstrip())
+
+
 UNLIMITED = 1 << 30  # the span of a comment heading a list: up to the blank line
 SIMPLE_BODY = 4  # statements of a function its comment above explains whole, with no branch
 SHORT_BODY = 8  # more, or a branching body longer than this, is a certain run under that comment
@@ -347,7 +363,16 @@ class _Reader:
             self.deferred = None
 
     def own_comment(self, lines: list[int]) -> bool:
-        return any(self.kinds[n - 1] in (TRAILING, LEADING) and self.explains(n) for n in lines)
+        """A comment of the statement's own: trailing one of its lines, or a trailing comment
+        wrapped to the line below it (a comment line indented well past the statement)."""
+        if any(self.kinds[n - 1] in (TRAILING, LEADING) and self.explains(n) for n in lines):
+            return True
+        below = lines[-1] + 1
+        if below > len(self.kinds) or self.kinds[below - 1] is not COMMENT:
+            return False
+        return _column(self.scan.lines[below - 1]) >= _column(
+            self.scan.lines[lines[0] - 1]
+        ) + WRAPPED and self.explains(below)
 
     def finish(self) -> None:
         """Decide the statement read so far: covered, trivial or uncovered."""
@@ -374,10 +399,11 @@ class _Reader:
         in_struct = bool(self.blocks) and self.blocks[-1] == "struct"
         cover = self.cover
         covered = cover is not None and cover.left > 0
-        if covered and not (in_struct or header):
+        own = self.own_comment(lines)
+        if covered and not (in_struct or header or own):
+            # a statement its own comment explains uses up none of the group above's few lines
             assert cover is not None  # covered: a cover with lines left
             cover.left -= 1
-        own = self.own_comment(lines)
         if own and (header or _HEADER_RE.match(text)):
             # `float f(float x) // why`, `for (...) // why`: it explains what the block does
             self.cover = _Cover(self.start_depth, self.span)
@@ -523,14 +549,16 @@ class _Reader:
         self.reach = 0
         if f is None:
             return
-        # an overload right under a commented one: that comment may speak for both
+        # an overload right under a commented one (no blank line): that comment speaks for both
         overload = f["after"] and self.previous == (f["name"], True)
         self.previous = (f["name"], f["explained"] or (overload and not f["inner"]))
         mine = self.runs[f["runs"] :]
         if not f["explained"] and not f["inner"] and mine:
             first = min(f["sig"][0], mine[0][0])
             count = sum(r[2] for r in mine)
-            self.runs[f["runs"] :] = [(first, f["last"], count, OVERLOAD if overload else "")]
+            # an overload right under a commented one, no blank line between: one group the
+            # comment above explains
+            self.runs[f["runs"] :] = [] if overload else [(first, f["last"], count, "")]
         elif f["explained"] and not f["inner"]:
             kept = [r for r in mine if r[1] < f["sig"][0]]
             if f["count"] > SIMPLE_BODY or (f["branches"] and f["count"] == SIMPLE_BODY):
@@ -654,7 +682,7 @@ class _Reader:
 def uncovered_runs(scan, kinds: list[LineKind], span: int) -> list[tuple[int, int, int, str]]:
     """(first line, last line, number of code lines, reading) of each run of uncovered
     statements; `reading` is "" for a certain deduction, else why it is only a possible one
-    (HEADING, BODY_ONLY, REACH, LONG_BODY, OVERLOAD, ADJACENT).
+    (HEADING, BODY_ONLY, REACH, LONG_BODY, ADJACENT).
 
     Statements are read whole (a signature or a call over several lines is one). A comment
     covers up to `span` statements below it, stopping at a blank line, the next explaining

@@ -14,7 +14,10 @@ student. A student is named by
   sits under a heading that credits help or sources (`// Source assistance` / `// Jake Siede`);
   a title of capitalised words (`// Lighting - Phong Shading`, `// TYPE ALIASES`) is no name.
 The instructor's starter line ("GLSL STARTER CODE BY DANIEL S. BUCKSTEIN"), thanks and source
-credits ("Thanks to Dan Buckstein", "Got assistance from ...") name no author of the file.
+credits ("Thanks to Dan Buckstein", "Got assistance from ...") name no author of the file, nor
+does a `Created by` line right under a line crediting borrowed code by its link (`// Random
+generator from https://...` / `// Created by dcerisano`: the author of the source; `Modified
+by` there names the student).
 
 One finding per file, at line 1. It is a certain deduction: the rubric's "Add author
 information to the top of each code file (-1 for each omission)" leaves no reading in which a
@@ -203,7 +206,7 @@ def _contributor_lists(text: str) -> dict[bool, list[str]]:
     lists: dict[bool, list[str]] = {True: [], False: []}  # copyright line? -> entries
     for i, line in enumerate(lines):
         m = _CONTRIB_LABEL.match(line)
-        if not m:
+        if not m or _under_credit(lines, i):
             continue
         entries = lists[bool(_COPYRIGHT.match(line))]
         rest = m.group("rest").strip()
@@ -273,6 +276,22 @@ _INSTRUCTOR = compiled(r"buckst[ei]{2}n", re.I)  # the instructor's name, howeve
 _HELP_HEADING = compiled(r"\b(?:assist\w*|help\w*|thanks?|sources?|credits?|references?)\b", re.I)
 
 
+def _under_credit(lines: list[str], i: int) -> bool:
+    """Whether line i is a `Created by` line right under a line that credits a source by its
+    link (`// Random generator from https://...` / `// Created by dcerisano`): it names that
+    source's author, not the file's (`Modified by` names who changed it: the student)."""
+    above = lines[i - 1] if i > 0 else ""
+    return (
+        _LINK.search(above) is not None
+        and has_credit(above)
+        and _CREATED_BY.match(lines[i]) is not None
+    )
+
+
+_LINK = compiled(r"https?://|www\.", re.I)
+_CREATED_BY = compiled(r"^\W*(?:created|written|made|authored)?\s*by\b", re.I)
+
+
 def _is_person(text: str) -> bool:
     return not _INSTRUCTOR.search(text) and not _NOT_NAME_WORDS.search(text)
 
@@ -301,7 +320,11 @@ def named_students(text: str) -> list[str]:
             names.append(copyright_name.group("name"))
             continue
         phrase = _AUTHOR_PHRASE.search(line)
-        if phrase and not _CREDIT_PHRASE.search(line[: phrase.start()]):
+        if (
+            phrase
+            and not _CREDIT_PHRASE.search(line[: phrase.start()])
+            and not _under_credit(lines, i)
+        ):
             chunks = re.split(r"[,;&]|\band\b", line[phrase.start("name") :])
             found = [
                 m.group("name")

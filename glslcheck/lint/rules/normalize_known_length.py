@@ -28,11 +28,10 @@ Reports `normalize(v)` when the length of `v` is already known in that function:
   divide by that length;
 * **a squared length already computed**: `dot(v, v)` likewise: multiply by its
   `inversesqrt` (the light-vector idiom of Lab 4: one `inversesqrt` gives both the unit vector
-  and the distance);
-* **a length computed again after it**: the same measures evaluated after the normalize, on
-  every path from it and with no write to `v`'s variables in between
-  (`L = normalize(light - p); d = distance(light, p);`): the length is computed twice;
-  compute it first and divide by it.
+  and the distance).
+
+A length computed after the normalize (`L = normalize(light - p); d = distance(light, p);`) is
+not known at the normalize: that is `length-computed-twice`.
 
 Vectors are compared by value: a local variable stands for the value assigned to it on every
 path (`vec3 d = vec3(p.x - c.x, p.y - c.y, p.z - c.z)` is `p - c`), and `v` and `-v` have the
@@ -88,21 +87,15 @@ _MAX_DEPTH = 8  # assignments and fields followed back from one value
 
 def check(ctx: LintContext) -> Iterator[Diagnostic]:
     for fn in program_facts(ctx.model).in_file(ctx.path):
-        normalizes = [
-            (n, n.args[0]) for n in fn.nodes if type(n) is A.Call and _is_normalize(fn, n)
-        ]
+        normalizes = [(n, n.args[0]) for n in normalize_calls(fn)]
         normalizes += [(n, v) for n in fn.nodes if (v := _written_out(fn, n)) is not None]
         if not normalizes:
             continue
-        known = [
-            (c, m)
-            for c in calls_in(fn, "length", "distance", "dot", "sqrt")
-            if (m := _measured_key(fn, c)) is not None
-        ]
+        known = measured_lengths(fn)
         for node, v in sorted(normalizes, key=lambda nv: fn.enter[id(nv[0])]):
             found = None
             if type(node) is A.Call:  # normalize(), or a user function that is one
-                found = _already_measured(fn, node, known)
+                found = measured(fn, node, known, after=False)
             found = found or _sphere_normal(fn, node, v)
             if found is not None:
                 message, fix, by = found
@@ -133,6 +126,22 @@ def _fix(ctx: LintContext, node, v, by: tuple[str, str] | None) -> Fix | None:
     return Fix(
         f"replace the normalize with {new}", ctx.path, (replace(node, fit(fn, node, new, 14)),)
     )
+
+
+def normalize_calls(fn) -> list[A.Call]:
+    """The calls in a function that normalize their one vector: normalize(v), or a user
+    function that returns its argument normalized."""
+    return [n for n in fn.nodes if type(n) is A.Call and _is_normalize(fn, n)]
+
+
+def measured_lengths(fn) -> list[tuple[A.Call, tuple[str, Any, frozenset]]]:
+    """The calls in a function that measure a vector, each with what it measures
+    (_measured_key): length, distance, dot(v, v), sqrt of a squared length written out."""
+    return [
+        (c, m)
+        for c in calls_in(fn, "length", "distance", "dot", "sqrt")
+        if (m := _measured_key(fn, c)) is not None
+    ]
 
 
 def _is_normalize(fn, call: A.Call) -> bool:
@@ -332,11 +341,12 @@ def _stored_in(fn, e) -> str | None:
     return None
 
 
-def _already_measured(fn, call: A.Call, known: list) -> tuple[str, str, Any] | None:
-    """A length (or squared length) of the normalized vector computed in the same function on
-    the same path: before the normalize (reuse it), or after it with nothing it reads written
-    in between (the length is computed twice: compute it once, first, and divide by it). With
-    the message and help, what a fix may write (None: no fix)."""
+def measured(fn, call: A.Call, known: list, after: bool) -> tuple[str, str, Any] | None:
+    """A length (or squared length) of the vector `call` normalizes computed in the same
+    function on the same path: before the normalize (reuse it), or with `after` one computed
+    after it with nothing it reads written in between (the length is computed twice: compute it
+    once, first, and divide by it). With the message and help, what a fix may write (None: no
+    fix). `known` is measured_lengths(fn)."""
     v = call.args[0]
     reads: set = set()
     kv = _length_key(fn, v, reads)
@@ -347,8 +357,8 @@ def _already_measured(fn, call: A.Call, known: list) -> tuple[str, str, Any] | N
             continue
         both = reads | measured_reads
         before = fn.dominates(c, call) and not fn.written_between(c, call, both)
-        after = not before and fn.dominates(call, c) and not fn.written_between(call, c, both)
-        if not (before or after):
+        later = not before and fn.dominates(call, c) and not fn.written_between(call, c, both)
+        if not (later if after else before):
             continue
         root = fn.parent.get(id(c))
         if kind == "dot" and builtin_call(fn.model, root, "sqrt") and root.args[0] is c:

@@ -5,7 +5,8 @@ Reports `pow(x, e)` where the exponent `e` is a constant (a literal or a folded 
 expression, every component equal) of 2, 3 or 4 (multiply `x` by itself), 0.5 (`sqrt`), -0.5
 (`inversesqrt`), 1 (`x` itself) or -1 (`1.0 / x`). The constant may reach the call through
 local variables (`float highlight = 4.0; ... pow(specCo, highlight)`) when that value reaches
-it on every path, with no other write between (the dataflow's `reaching_value`).
+it on every path, with no other write between (the dataflow's `reaching_value`), and through
+scalar arithmetic of such locals (`float eh = 2.0; eh = eh * eh; ... pow(Ks, eh)`: 4).
 
 ## Why is this bad?
 The course's coding standards: "Use the most efficient methods (-1 per inefficient/unnecessary

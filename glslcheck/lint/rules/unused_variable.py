@@ -3,8 +3,10 @@
 ## What it does
 Reports a variable declared in the file (a local in a function, or a global or `const` at
 file scope) that nothing in the program reads. Assigning it (`x = ...`, `x.y = ...`) is not a
-read; `x += 1.0`, an argument (also `out`: the call needs a variable to write, even when only
-another of its outputs is wanted) or any other use is.
+read, nor is a local's update of itself with no other effect (`loc *= 4.0;`, `sum += d;`,
+`i++` as a statement: the value it updates is still never used); an argument (also `out`: the
+call needs a variable to write, even when only another of its outputs is wanted) or any other
+use is.
 Parameters, uniforms and shader inputs/outputs are not reported. A Common tab is checked
 together with the Image tab, so a global of Common that only Image reads is used; when the
 shader has other passes too (Buffer A..D), Common's globals are not reported at all.
@@ -44,7 +46,8 @@ from bisect import bisect_right
 
 from ...base.diagnostics import Diagnostic
 from ...frontend import syntax as A
-from ...semantics.analysis import param_directions, program_facts
+from ...semantics.analysis import param_directions, program_facts, pure_function
+from ...semantics.model import Symbol
 from ...shadertoy.wrapper import PASS_TABS
 
 TYPE_CHECKING = False  # not typing's: importing typing costs every start-up
@@ -79,17 +82,25 @@ def read_symbols(model: Model) -> set[int]:
     # fields and indexes (`v`, `v.x`, `a[i].f`; the index `i` is read). An out argument is a
     # read too: the call needs a variable there.
     idents: list[A.Identifier] = []
-    written: set[int] = set()  # ids of the identifiers `=` writes
+    written: set[int] = set()  # ids of the identifiers `=` writes, or a local updates itself
+    statements: set[int] = set()  # ids of the expressions that are a statement of their own
     for node in model.nodes():
         t = type(node)
         if t is A.Identifier:
             idents.append(node)
+        elif t is A.ExpressionStatement and node.expr is not None:
+            statements.add(id(node.expr))
+        elif t is A.For and node.step is not None:
+            statements.add(id(node.step))  # `i++` of a loop header: a statement too
         elif t is A.Assignment and node.op == "=":
             target = node.target
             while type(target) in (A.Field, A.Index):
                 target = target.base
             if type(target) is A.Identifier:
                 written.add(id(target))
+    for node in model.nodes():
+        if id(node) in statements and (target := _self_update(model, node)) is not None:
+            written.add(id(target))
     symbol_of = model.symbol_of
     reads: set[int] = set()
     for node in idents:
@@ -103,6 +114,35 @@ def read_symbols(model: Model) -> set[int]:
 
 
 _program_reads: dict[str, Any] = {}
+
+
+def _self_update(model: Model, node: Any) -> A.Identifier | None:
+    """The local a statement only updates from itself (`x *= e;`, `x += e;`, `x++;`), with
+    nothing else done (`e` writes nothing and calls only pure functions): that use of `x` only
+    feeds `x`, so it is no read."""
+    t = type(node)
+    if t is A.Assignment and node.op != "=":
+        target, value = node.target, node.value
+    elif t is A.Postfix or (t is A.Unary and node.op in ("++", "--")):
+        target, value = node.operand, None
+    else:
+        return None
+    if type(target) is not A.Identifier:
+        return None
+    sym = model.symbol_of(target)
+    if sym is None or sym.kind != "local":
+        return None
+    for n in value.walk() if value is not None else ():
+        k = type(n)
+        if k in (A.Assignment, A.Postfix, A.Sequence) or (k is A.Unary and n.op in ("++", "--")):
+            return None
+        if k is A.Call:
+            callee = model.call_target(n)
+            if callee is None or (isinstance(callee, Symbol) and not pure_function(model, callee)):
+                return None
+            if getattr(callee, "out_params", None):
+                return None
+    return target
 
 
 def check(ctx: LintContext) -> Iterator[Diagnostic]:
@@ -220,7 +260,7 @@ def _unused(
     if fn is not None:
         for w in fn.writes_to(sym):
             value = w.value if w.kind in ("init", "=") else getattr(w.node, "value", None)
-            if value is not None and w.kind in ("init", "=", "part") and _computed(fn, value):
+            if value is not None and w.kind in ("init", "=", "part", "op") and _computed(fn, value):
                 work.append(value)
     if not work:
         yield Diagnostic(

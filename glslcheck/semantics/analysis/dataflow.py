@@ -843,21 +843,45 @@ class FunctionFacts(ValueRanges):
     def constant_through_locals(self, e: Any) -> tuple[Any, A.Identifier | None]:
         """The constant value of `e` (None: not constant) and the local variable it was reached
         through (None: `e` is a constant expression itself). A local is followed to the value
-        reaching it (`float highlight = 4.0; ... pow(s, highlight)`), and on through locals."""
+        reaching it (`float highlight = 4.0; ... pow(s, highlight)`), and on through locals,
+        and scalar arithmetic of such values is folded (`float e = 2.0; e = e * e;`: 4)."""
         value = self.model.const_value(e)
-        through = None
-        seen = 0
-        while value is None and type(e) is A.Identifier and seen < 8:
+        if value is not None:
+            return value, None
+        through: list[A.Identifier] = []
+        value = self._fold_locals(e, through, 0)
+        return value, (through[0] if value is not None and through else None)
+
+    def _fold_locals(self, e: Any, through: list[A.Identifier], depth: int) -> Any:
+        """constant_through_locals' value: a constant, a local's reaching value, or + - * / and
+        negation of scalar ones (folded in double precision: the exponents and factors asked
+        about are small integers and halves, exact in float32 too); None otherwise."""
+        value = self.model.const_value(e)
+        if value is not None or depth >= 8:  # (a chain of locals no longer than 8)
+            return value
+        if type(e) is A.Identifier:
             sym = self.model.symbol_of(e)
             if sym is None or sym.kind != "local":
-                break
+                return None
             reaching = self.reaching_value(e, sym)
             if reaching is None:
-                break
-            through = through or e
-            e, seen = reaching, seen + 1
-            value = self.model.const_value(e)
-        return value, (through if value is not None else None)
+                return None
+            through.append(e)
+            return self._fold_locals(reaching, through, depth + 1)
+        t = self.model.type_of(e)
+        if not (is_float_type(t) and t.is_scalar):
+            return None  # (int arithmetic divides otherwise; vectors are not asked about)
+        if type(e) is A.Unary and e.op in ("-", "+"):
+            x = numbers(self._fold_locals(e.operand, through, depth + 1))
+            return (-x[0] if e.op == "-" else x[0]) if len(x) == 1 else None
+        if type(e) is A.Binary and e.op in ("+", "-", "*", "/"):
+            a = numbers(self._fold_locals(e.left, through, depth + 1))
+            b = numbers(self._fold_locals(e.right, through, depth + 1))
+            if len(a) != 1 or len(b) != 1 or (e.op == "/" and b[0] == 0.0):
+                return None
+            x, y = a[0], b[0]
+            return {"+": x + y, "-": x - y, "*": x * y, "/": x / y}[e.op]
+        return None
 
 
 def calls_in(fn: FunctionFacts, *names: str) -> Iterator[A.Call]:
