@@ -67,14 +67,14 @@ def check(ctx: LintContext) -> Iterator[Diagnostic]:
         if len(sites) < 2:
             continue
         values = helper_values(fn)
-        if not values:
+        if not values or fn.symbol is None:
             continue
         every = [i for i, param in enumerate(fn.symbol.params) if param[2] != "out"]
         for value, indexes in values:
             for caller, calls in _groups(sites, indexes):
                 if all(same_arguments(caller, a, b, every) for a, b in zip(calls, calls[1:])):
                     continue  # every argument the same: the calls themselves repeat
-                names = [fn.definition.proto.params[i].name for i in indexes]
+                names = [fn.definition.proto.params[i].name or "?" for i in indexes]
                 lines = [str(n) for n in sorted({c.loc.line for c in calls})]
                 at = f"line {lines[0]}" if len(lines) == 1 else f"lines {_list(lines)}"
                 yield Diagnostic(

@@ -879,8 +879,8 @@ class FunctionFacts(ValueRanges):
             b = numbers(self._fold_locals(e.right, through, depth + 1))
             if len(a) != 1 or len(b) != 1 or (e.op == "/" and b[0] == 0.0):
                 return None
-            x, y = a[0], b[0]
-            return {"+": x + y, "-": x - y, "*": x * y, "/": x / y}[e.op]
+            u, v = a[0], b[0]
+            return {"+": u + v, "-": u - v, "*": u * v, "/": u / v}[e.op]
         return None
 
 
