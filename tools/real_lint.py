@@ -96,6 +96,7 @@ EFFICIENCY_RULES = (
     "repeated-across-calls",
     "unit-length",
     "no-op-arithmetic",
+    "unreachable-code",
     "unused-variable",
 )
 OTHER = "other-inefficiency"

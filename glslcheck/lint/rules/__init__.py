@@ -62,6 +62,7 @@ RULE_TABLE: tuple[tuple[str, str], ...] = (
     ("length-computed-twice", "length_computed_twice"),
     ("unit-length", "unit_length"),
     ("no-op-arithmetic", "no_op_arithmetic"),
+    ("unreachable-code", "unreachable_code"),
     ("out-parameter-read", "out_parameter_read"),
     ("uninitialized-read", "uninitialized_read"),
     ("unused-variable", "unused_variable"),

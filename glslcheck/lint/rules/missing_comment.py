@@ -12,7 +12,8 @@ Coverage, what a comment explains:
   blank line, the next comment, or the end of the block it is in. A statement with a trailing
   comment of its own uses none of the group's few lines: `// PHONG` above three commented
   lines and three plain ones explains all six. Lines of a comment block explain as one
-  comment. A comment above an `if` or a loop goes on into its body. A comment
+  comment. A comment above an `if` or a loop goes on into its body (one right above an
+  `if` whose body has comment lines of its own: below). A comment
   heading a list of declarations (`// Variables for the camera`) explains the whole list, up to
   the blank line.
 - A trailing comment covers its statement (`x = 1.0; // why`, on any of its lines), and on a
@@ -57,6 +58,11 @@ A run is a certain deduction, except where the readings of the rubric part (a po
 - the first statements of a body that has comments of its own, which the function's comment
   above would cover as a comment above a group (whether a function's comment reaches into its
   body is a reading);
+- the first statements of an `if`'s body that has comment lines of its own, under a comment
+  right above the `if` (not one whose group the `if` is further down in): that comment speaks
+  for the condition (`// if the discriminant is positive, the ray hits`), the body's comments
+  for the rest; whether it reaches the body's first statements is a reading, and the group it
+  started ends with the block;
 - a function signature with no comment above whose body opens with a comment saying what the
   function does;
 - a definition with no comment at all right under another (blank lines between, nothing else),
@@ -154,6 +160,7 @@ HELP = "add a comment above saying why these lines are there"
 HEADING = "only a section heading explains it, parted from it by a blank line"
 BODY_ONLY = "the function's first body comment says what it does, none stands above it"
 REACH = "whether the function's comment above reaches into a body that has comments of its own"
+IF_REACH = "whether the comment above the `if` reaches into a body that has comments of its own"
 LONG_BODY = "only the function's comment above explains its body, which is more than a few lines"
 ADJACENT = "one of several uncommented definitions in a row, which a TA may deduct once"
 
@@ -266,6 +273,7 @@ _NAME_RE = compiled(r"(\w+)\s*(?:\(|\{|$)")  # a definition's name: before its `
 _SIGNATURE_RE = compiled(r"^(?:[A-Za-z_]\w*\s+)+[A-Za-z_]\w*\s*\([^;]*\)\s*\{?\s*$")
 _SIGNATURE_START_RE = compiled(r"^(?:[A-Za-z_]\w*\s+)+[A-Za-z_]\w*\s*\(")
 _HEADER_RE = compiled(r"^\}?\s*(?:if|for|while|else\s+if|switch)\s*\(")  # a control header
+_IF_RE = compiled(r"^\}?\s*(?:else\s+)?if\s*\(")
 _STRUCT_RE = compiled(r"^struct\b")
 _BRACES_RE = compiled(r"\{+|\}+")
 
@@ -332,7 +340,10 @@ class _Reader:
         self.number = 0  # the line being read
         self.def_start = 0  # the first line of the top-level definition being read
         self.bare_end = 0  # the last line of the last definition with no comment at all
-        self.reach = 0  # body statements a function's comment above may reach (REACH)
+        self.reach = 0  # body statements a function's or an if's comment above may reach
+        self.reach_reading = REACH  # which of the two (REACH or IF_REACH)
+        self.own_header = False  # the last statement read was a control header with its comment
+        self.header_line = 0  # the first line of the last statement read
         self.closed_at = 0  # the line the last top-level definition closed on
         self.previous: tuple[str, bool] | None = None  # the last function: name, explained
 
@@ -348,7 +359,7 @@ class _Reader:
         if self.run is None:
             under_heading = self.heading is not None and self.cover is None
             reach = self.reach > 0 and self.function is not None and self.depth > 0
-            reading = REACH if reach else HEADING if under_heading else ""
+            reading = self.reach_reading if reach else HEADING if under_heading else ""
             self.run = [lines[0], lines[-1], len(lines), reading]
             self.signature_run = signature
         else:
@@ -404,6 +415,8 @@ class _Reader:
             # a statement its own comment explains uses up none of the group above's few lines
             assert cover is not None  # covered: a cover with lines left
             cover.left -= 1
+        self.own_header = own and _HEADER_RE.match(text) is not None
+        self.header_line = lines[0]
         if own and (header or _HEADER_RE.match(text)):
             # `float f(float x) // why`, `for (...) // why`: it explains what the block does
             self.cover = _Cover(self.start_depth, self.span)
@@ -437,7 +450,7 @@ class _Reader:
             if mark.group()[0] == "}":
                 self.close_blocks(line, len(mark.group()))
             else:
-                self.open_blocks(len(mark.group()))
+                self.open_blocks(len(mark.group()), line[mark.end() :])
 
     def close_blocks(self, line: str, closed: int) -> None:
         """Close `closed` blocks: what a comment covered in them, a run in them, a function."""
@@ -458,8 +471,9 @@ class _Reader:
             elif not self.else_follows(line):
                 self.close_run()  # the block the run was in ends (`} else {` goes on)
 
-    def open_blocks(self, opened: int) -> None:
-        """Open `opened` blocks of the statement just read (a struct, a function or other)."""
+    def open_blocks(self, opened: int, rest: str = "") -> None:
+        """Open `opened` blocks of the statement just read (a struct, a function or other);
+        `rest` is the line's code after the opening brace."""
         if opened:
             head = (
                 " ".join(self.code[n - 1].strip() for n in self.statement)
@@ -497,9 +511,39 @@ class _Reader:
                 # comments of its own, whether it reaches the statements it would cover as a
                 # comment above a group is a reading (REACH)
                 self.reach = self.cover.left if self.cover is not None else 0
+                self.reach_reading = REACH
+                self.cover = None
+            elif (
+                self.cover is not None
+                and not self.own_header
+                and _IF_RE.match(head.lstrip())
+                and self.last_comment == self.header_line - 1
+                and self.body_has_comments(rest)
+            ):
+                # a comment right above an `if` whose body has comments of its own speaks for
+                # the condition: whether it reaches the body's first statements is a reading, as
+                # for a function's comment (the group it started ends with the block)
+                self.reach, self.reach_reading = self.cover.left, IF_REACH
                 self.cover = None
             self.blocks.extend([what] * opened)
             self.depth += opened
+
+    def body_has_comments(self, rest: str) -> bool:
+        """Whether the block opened on the line being read (its code after the `{`: `rest`) has
+        a comment line of its own that explains, before the `}` that closes it."""
+        depth, number = 1, self.number
+        while True:
+            for mark in _BRACES_RE.finditer(rest):
+                depth += len(mark.group()) if mark.group()[0] == "{" else -len(mark.group())
+                if depth <= 0:
+                    return False
+            number += 1
+            if number > len(self.kinds):
+                return False
+            kind = self.kinds[number - 1]
+            if kind in (COMMENT, LEADING, BRACE_COMMENT) and self.explains(number):
+                return True
+            rest = self.code[number - 1]
 
     def adjacent_definitions(self) -> None:
         """A definition with no comment at all right under another (blank lines between, nothing
@@ -682,7 +726,7 @@ class _Reader:
 def uncovered_runs(scan, kinds: list[LineKind], span: int) -> list[tuple[int, int, int, str]]:
     """(first line, last line, number of code lines, reading) of each run of uncovered
     statements; `reading` is "" for a certain deduction, else why it is only a possible one
-    (HEADING, BODY_ONLY, REACH, LONG_BODY, ADJACENT).
+    (HEADING, BODY_ONLY, REACH, IF_REACH, LONG_BODY, ADJACENT).
 
     Statements are read whole (a signature or a call over several lines is one). A comment
     covers up to `span` statements below it, stopping at a blank line, the next explaining

@@ -20,8 +20,12 @@ Reports `normalize(v)` when the length of `v` is already known in that function:
   the caller passes the same argument to both). When any
   link is unsure (a function called from several places, a light's center, the ray origin,
   another sphere's hit, a squared length taken before the vector changed), the rule is silent.
-  A hand-written normalize (a function returning `v / length(v)` or
-  `v * inversesqrt(dot(v, v))`) counts as normalize here;
+  A hand-written normalize counts as normalize here: a function of one vector returning
+  `v / length(v)` or `v * inversesqrt(dot(v, v))`, or any straight-line body of arithmetic,
+  square roots and helpers of the same kind that computes `v / |v|` (`float s = 1.0 /
+  vecLen(v); v.x *= s; v.y *= s; v.z *= s; return v;`, `vec3(v.x / l, v.y / l, v.z / l)`):
+  such a body is an algebraic function of `v`, and the rule evaluates it at three generic
+  vectors, where a function that is not v / |v| does not agree with it;
 * **a length already computed**: `length(v)` (or `distance(a, b)` for `v = a - b` or
   `b - a`, or `sqrt` of v's squared components written out, `sqrt(sq(v.x) + sq(v.y) + ...)`)
   was evaluated earlier on every path to the call with no write to `v`'s variables in between:
@@ -59,6 +63,7 @@ vec3 normal = (position - sphere.center) / sphere.radius; // |p - c| is the radi
 
 from __future__ import annotations
 
+import math
 import re
 
 from ...base.diagnostics import Diagnostic
@@ -156,6 +161,8 @@ def _is_normalize(fn, call: A.Call) -> bool:
     if not isinstance(target, Symbol) or not isinstance(d, A.FunctionDefinition) or d.body is None:
         return False
     stmts = [st for st in d.body.stmts]
+    if _computes_normalize(fn.model, d):
+        return True
     if (
         len(stmts) != 1
         or type(stmts[0]) is not A.Return
@@ -194,6 +201,168 @@ def _is_normalize(fn, call: A.Call) -> bool:
             and call_of(r.right, "length", 1)
         )
     return False
+
+
+# Three generic vectors a hand-written normalize is evaluated at (see _computes_normalize)
+_PROBES = (
+    (0.6180339, -1.4142136, 2.7182818, 0.5772157),
+    (-2.2360680, 0.3010300, 1.7320508, -0.6931472),
+    (1.2020569, 3.1415927, -0.4342945, 1.6487213),
+)
+# Components of order 1 computed in doubles by a few operations agree with v / |v| to about
+# 1e-15 when the function is a normalize; anything else misses by far more than this
+_AGREE = 1e-9
+_SWIZZLE = {c: i for names in ("xyzw", "rgba", "stpq") for i, c in enumerate(names)}
+
+
+def _computes_normalize(model, d: A.FunctionDefinition) -> bool:
+    """Whether a user function of one `vecN` returns it normalized however it is written
+    (`v / sqrt(v.x * v.x + ...)`, `s = 1.0 / len(v); v.x *= s; ...; return v;`, helpers for the
+    length). Its body must be straight-line arithmetic, square roots and pure helpers of the
+    same kind: such a function is algebraic, and one equal to v / |v| at three generic vectors
+    is v / |v| (a different one of this size meets it there with probability zero)."""
+    params = d.proto.params
+    n = _VEC_SIZE.get(params[0].type.name or "") if len(params) == 1 else None
+    if n is None or d.proto.return_type.name != params[0].type.name:
+        return False
+    for probe in _PROBES:
+        v = list(probe[:n])
+        got = _run(model, d, [v], 0)
+        norm = math.sqrt(sum(x * x for x in v))
+        if got is None or len(got) != n or any(abs(g - x / norm) > _AGREE for g, x in zip(got, v)):
+            return False
+    return True
+
+
+_VEC_SIZE = {"vec2": 2, "vec3": 3, "vec4": 4}
+
+
+def _run(model, d: A.FunctionDefinition, args: list, depth: int) -> list[float] | None:
+    """The value a straight-line function returns for `args` (lists of floats), or None when
+    its body is anything else (a branch, a loop, an out parameter, a call it cannot follow)."""
+    if depth > 3 or d.body is None or len(args) != len(d.proto.params):
+        return None
+    env: dict[str, list[float] | None] = {}
+    for p, a in zip(d.proto.params, args):
+        if p.name is None or {"out", "inout"} & set(p.qualifiers) or p.array is not None:
+            return None
+        env[p.name] = a
+    for st in d.body.stmts:
+        if type(st) is A.Return:
+            return _eval(model, st.value, env, depth) if st.value is not None else None
+        if type(st) is A.DeclarationStatement and type(st.decl) is A.VariableDeclaration:
+            for dc in st.decl.declarators:
+                if dc.array is not None:
+                    return None
+                env[dc.name] = _eval(model, dc.init, env, depth) if dc.init is not None else None
+        elif type(st) is A.ExpressionStatement and type(st.expr) is A.Assignment:
+            if not _assign(model, st.expr, env, depth):
+                return None
+        else:
+            return None
+    return None
+
+
+def _assign(model, e: A.Assignment, env: dict, depth: int) -> bool:
+    """Apply `x = v`, `x op= v` or `x.c op= v` to `env`; False when it cannot."""
+    t = e.target
+    base = t.base if type(t) is A.Field else t
+    if type(base) is not A.Identifier:
+        return False
+    whole = env.get(base.name)
+    if whole is None:  # a variable declared without a value: only `x = v` gives it one
+        env[base.name] = _eval(model, e.value, env, depth) if t is base and e.op == "=" else None
+        return env[base.name] is not None
+    idx = [_SWIZZLE.get(c, 9) for c in t.name] if type(t) is A.Field else list(range(len(whole)))
+    if any(i >= len(whole) for i in idx):
+        return False
+    value = _eval(model, e.value, env, depth)
+    if value is None:
+        return False
+    old = [whole[i] for i in idx]
+    new = value if e.op == "=" else _arith(e.op[:-1], old, value)
+    if new is None or len(new) not in (1, len(idx)):
+        return False
+    out = list(whole)
+    for k, i in enumerate(idx):
+        out[i] = new[k if len(new) > 1 else 0]
+    env[base.name] = out
+    return True
+
+
+def _arith(op: str, a: list[float], b: list[float]) -> list[float] | None:
+    if len(a) != len(b) and 1 not in (len(a), len(b)):
+        return None
+    n = max(len(a), len(b))
+    a, b = (a * n if len(a) == 1 else a), (b * n if len(b) == 1 else b)
+    try:
+        if op == "+":
+            return [x + y for x, y in zip(a, b)]
+        if op == "-":
+            return [x - y for x, y in zip(a, b)]
+        if op == "*":
+            return [x * y for x, y in zip(a, b)]
+        if op == "/":
+            return [x / y for x, y in zip(a, b)]
+    except ZeroDivisionError:
+        return None
+    return None
+
+
+def _eval(model, e, env: dict, depth: int) -> list[float] | None:
+    """The value of an arithmetic expression over `env` (lists of floats), or None."""
+    if type(e) is A.FloatLiteral or type(e) is A.IntLiteral:
+        return [float(e.value)]
+    if type(e) is A.Identifier:
+        return env.get(e.name)
+    if type(e) is A.Field:
+        v = _eval(model, e.base, env, depth)
+        idx = [_SWIZZLE.get(c, 9) for c in e.name]
+        return None if v is None or any(i >= len(v) for i in idx) else [v[i] for i in idx]
+    if type(e) is A.Unary and e.op in "-+":
+        v = _eval(model, e.operand, env, depth)
+        return None if v is None else [-x if e.op == "-" else x for x in v]
+    if type(e) is A.Binary and e.op in ("+", "-", "*", "/"):
+        a, b = _eval(model, e.left, env, depth), _eval(model, e.right, env, depth)
+        return None if a is None or b is None else _arith(e.op, a, b)
+    if type(e) is not A.Call or e.array is not None:
+        return None
+    args = [_eval(model, a, env, depth) for a in e.args]
+    if any(a is None for a in args):
+        return None
+    if e.constructor:
+        flat = [x for a in args for x in a]  # type: ignore[union-attr]
+        n = {"float": 1, **_VEC_SIZE}.get(e.callee)
+        if n is None or not flat:
+            return None
+        return flat * n if len(flat) == 1 else flat[:n] if len(flat) >= n else None
+    if builtin_call(model, e, e.callee):
+        return _builtin(e.callee, args)  # type: ignore[arg-type]
+    target = model.call_target(e)
+    body = getattr(target, "node", None)
+    if isinstance(target, Symbol) and isinstance(body, A.FunctionDefinition):
+        return _run(model, body, args, depth + 1)
+    return None
+
+
+def _builtin(name: str, args: list[list[float]]) -> list[float] | None:
+    try:
+        if name == "dot" and len(args) == 2 and len(args[0]) == len(args[1]):
+            return [sum(x * y for x, y in zip(args[0], args[1]))]
+        if len(args) != 1:
+            return None
+        (a,) = args
+        if name == "length":
+            return [math.sqrt(sum(x * x for x in a))]
+        if name == "sqrt":
+            return [math.sqrt(x) for x in a]
+        if name == "inversesqrt":
+            return [1.0 / math.sqrt(x) for x in a]
+        if name == "abs":
+            return [abs(x) for x in a]
+    except (ValueError, ZeroDivisionError):
+        return None
+    return None
 
 
 def _written_out(fn, e) -> Any:
