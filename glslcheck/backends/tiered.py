@@ -16,12 +16,16 @@ program is itself tiered (per pixel, then lockstep within engine.LOCKSTEP_BUDGET
 The move happens only where the two engines are known to give the same bits:
 
 * frames the compiled engine renders at all: float32, no lane statistics, no channel inputs, an
-  Image pass of a shader without Buffer tabs or iChannel reads, a NumPy program with its own
-  loop and float-to-uint settings (verify's llvmpipe emulations stay on NumPy), numba installed;
+  Image pass of a shader without Buffer tabs or iChannel reads, numba installed; llvmpipe's
+  loop limiter (verify's) is passed on to the compiled program, which emulates it alike, while a
+  driver's float-to-uint model other than this machine's keeps the frames on NumPy;
 * a shader the compiled engine compiles (one with a construct it refuses stays on NumPy);
 * and agrees on: the compiled program's first frame renders the inputs of the last NumPy frame
-  before the move, and any pixel of a different bit pattern (NaN for NaN excepted) keeps the
-  program on NumPy for good;
+  before the move, and each of its trial frames (below) is rendered by both engines; any pixel
+  of a different bit pattern (NaN for NaN excepted) in any of them keeps the program on NumPy
+  for good. Bits that differ only at inputs no checked frame had (the engines' known
+  differences are listed in tests/compiled/test_engines_agree.py) are not caught: these checks
+  are evidence on the frames this shader renders, the agreement tests are the proof;
 * and is faster on: the compiled program's first TRIAL_FRAMES frames, per pixel, against the
   NumPy backend's last frames before the compile began (a light shader's NumPy frames, whose
   uniform values are computed once a tile, can beat the compiled engine's per-pixel ones). A
@@ -31,7 +35,8 @@ The move happens only where the two engines are known to give the same bits:
   again (or no lockstep module, or a differing frame), NumPy keeps the frames for good.
 
 The verdict, the compiled module's key and what compiling it took are kept beside numba's cache
-(`<cache>/compiled/t<hash>.tier`, keyed by the NumPy module and the compiled engine's code): a later
+(`<cache>/compiled/t<hash>.tier`, keyed by the NumPy module, the loop limiter and the compiled
+engine's code): a later
 process moves as soon as the cache load pays, and never retries a shader refused or found to
 differ (a timing trial lost is not kept: it depends on the machine's load).
 `GLSLCHECK_TIERS=off` (config.tiers) keeps every frame on NumPy.
@@ -85,6 +90,7 @@ _OWN = {
     "numpy_rate",
     "trial",
     "later",
+    "engine",
 }
 
 
@@ -107,6 +113,7 @@ class TieredCpuProgram:
     numpy_rate: float
     trial: list[float]
     later: TieredProgram | None
+    engine: str
 
     def __init__(self, shader: Any, first: NumpyProgram) -> None:
         d = self.__dict__
@@ -125,6 +132,7 @@ class TieredCpuProgram:
         # a compiled program slower per pixel that may still move to lockstep (engine's
         # TieredProgram): tried again once its lockstep module is ready
         d["later"] = None
+        d["engine"] = "numpy"  # the engine that rendered the last frame (`mode` at that time)
 
     def __getattr__(self, name: str) -> Any:
         return getattr(self.__dict__["first"], name)
@@ -132,8 +140,21 @@ class TieredCpuProgram:
     def __setattr__(self, name: str, value: Any) -> None:
         if name in _OWN:
             self.__dict__[name] = value
-        else:
-            setattr(self.first, name, value)
+            return
+        setattr(self.first, name, value)
+        if name == "loop_limit":  # both engines stop loops alike
+            for other in (self.second, self.later):
+                if other is not None:
+                    other.loop_limit = value
+
+    def limited_loops(self) -> list[tuple[str, int]]:
+        """(file, line) of the loops llvmpipe's limiter stopped, in the frames of either engine
+        since the last call (NumpyProgram.limited_loops)."""
+        found = set(self.first.limited_loops())
+        for other in (self.second, self.later):
+            if other is not None:
+                found |= set(other.limited_loops())
+        return sorted(found)
 
     @property
     def source(self) -> str:
@@ -153,7 +174,9 @@ class TieredCpuProgram:
 
         try:
             folder = compiled_folder()
-            h = hashlib.sha256(f"{engine_fingerprint()}\n{self.first.source}".encode())
+            # (llvmpipe's loop limiter makes another compiled module, with a verdict of its own)
+            limit = self.first.loop_limit
+            h = hashlib.sha256(f"{engine_fingerprint()} {limit}\n{self.first.source}".encode())
         except OSError:
             return None
         return os.path.join(folder, f"t{h.hexdigest()[:24]}.tier")
@@ -212,8 +235,6 @@ class TieredCpuProgram:
             return "GLSLCHECK_TIERS=off"
         if not available():
             return "numba is not installed"
-        if self.first.loop_limit is not None:
-            return "llvmpipe's loop limiter (the NumPy backend's emulation)"
         if self.first.meta.get("float_to_uint", host_model()) != host_model():
             return "a driver's float-to-uint model"
         verdict = self.record().get("verdict")
@@ -232,12 +253,24 @@ class TieredCpuProgram:
         second = self.second
         if second is not None and not why:
             if len(self.trial) >= TRIAL_FRAMES:
+                self.engine = self.mode
                 return second.render(**kw)
+            # a trial frame: timed, and checked against the NumPy backend's render of it
             t0 = time.perf_counter()
-            out = second.render(**kw)
-            self._judge((time.perf_counter() - t0) / pixels)
+            got = second.render(**kw)
+            rate = (time.perf_counter() - t0) / pixels
+            out = self.first.render(**kw, precision=precision, stats=stats, channels=channels)
+            self.engine = "numpy"
+            differ = _differing(got, out)
+            if differ:
+                self.second, self.later = None, None
+                self.stay = f"differs: {differ} pixels of a trial frame"
+                self._keep(verdict=self.stay)
+            else:
+                self._judge(rate)
             return out
         later = self.later
+        self.engine = "numpy"
         if later is not None and not why and getattr(later, "fast", None) is not None:
             # lockstep is ready: this frame on both engines (the check), then a new trial
             out = self.first.render(**kw, precision=precision, stats=stats, channels=channels)
@@ -316,6 +349,8 @@ class TieredCpuProgram:
         t0 = time.perf_counter()
         try:
             prog = compile_compiled(self.shader)
+            if self.first.loop_limit is not None:  # before the load: the module counts passes
+                prog.loop_limit = self.first.loop_limit
             base = prog if isinstance(prog, CompiledProgram) else prog.first
             base.frame_seconds = self.first.frame_seconds
             base.load(bounded=False)  # no frame waits for it
