@@ -6,12 +6,15 @@ tenths of a second), while the compiled engine renders each frame several times 
 first be compiled by numba (seconds; a cache load in a later process). So frames are rendered by
 the NumPy backend until the time they have taken, counting the frame about to be rendered (its
 pixels at the rate measured so far), reaches what making the compiled program is expected to
-cost (`TieredCpuProgram.move_cost`); then the compiled program is made in a thread of its own
-while the frames go on in NumPy (no frame waits for numba), and every frame after it is ready
-and checked uses it. This is the compiled engine's ski-rental rule (compiled_engine/engine.py,
-TieredProgram) with the NumPy backend as the first tier: whatever the number of frames, the
-total is at most about twice what the better engine alone would have cost. The compiled
-program is itself tiered (per pixel, then lockstep within engine.LOCKSTEP_BUDGET).
+cost (`TieredCpuProgram.move_cost`); then the compiled program is made beside the frames, which
+go on in NumPy (no frame waits for numba): numba compiles it in a child process
+(CompiledProgram.build_apart), stopped after engine.PIXEL_BUDGET seconds (the shader then stays
+on NumPy, and the record keeps it there), and a thread of this process loads the machine code
+from numba's cache; every frame after it is ready and checked uses it. This is the compiled
+engine's ski-rental rule (compiled_engine/engine.py, TieredProgram) with the NumPy backend as
+the first tier: whatever the number of frames, the total is at most about twice what the better
+engine alone would have cost. The compiled program is itself tiered (per pixel, then lockstep
+within engine.LOCKSTEP_BUDGET).
 
 The move happens only where the two engines are known to give the same bits:
 
@@ -292,7 +295,9 @@ class TieredCpuProgram:
             self.pixels += pixels
             self.rates = [*self.rates[-(RATE_FRAMES - 1) :], took / pixels]
             if later is not None and (
-                later.stay or (self.spent >= later.move_cost() and not later.move_now())
+                later.stay
+                or later.over_budget()
+                or (self.spent >= later.move_cost() and not later.move_now())
             ):
                 self._give_up(later)
             if self._mover is not None or self.stay is not None:
@@ -344,17 +349,24 @@ class TieredCpuProgram:
     def _move(self, kw: dict, want: np.ndarray) -> None:
         """Make the compiled program and check it on one NumPy frame (in the mover thread)."""
         from ..base.diagnostics import GlslError
-        from .compiled_engine.engine import CompiledProgram, compile_compiled
+        from .compiled_engine.engine import PIXEL_BUDGET, CompiledProgram, compile_compiled
 
-        t0 = time.perf_counter()
         try:
             prog = compile_compiled(self.shader)
             if self.first.loop_limit is not None:  # before the load: the module counts passes
                 prog.loop_limit = self.first.loop_limit
             base = prog if isinstance(prog, CompiledProgram) else prog.first
             base.frame_seconds = self.first.frame_seconds
-            base.load(bounded=False)  # no frame waits for it
-            seconds = time.perf_counter() - t0
+            # numba's compile in a child process, stopped at the budget: the NumPy frames keep
+            # this process's GIL and cores (but the one it takes)
+            why = base.build_apart(PIXEL_BUDGET)
+            if why == "over budget":
+                self.stay = f"over budget: numba's compile passed {PIXEL_BUDGET:g} s"
+                self._keep(verdict=self.stay)
+                return
+            if why.startswith("killed"):
+                raise RuntimeError(why)
+            base.load(bounded=False)  # a cache load (a failure's compile here gives its error)
             got = prog.render(**kw)
         except GlslError as e:  # a construct the compiled engine refuses, a loop cap, a budget
             first = e.diagnostics[0] if getattr(e, "diagnostics", None) else None
@@ -377,7 +389,8 @@ class TieredCpuProgram:
             return
         key = base.key
         fields: dict[str, Any] = {"verdict": "same", "key": key}
-        if base.cold:
+        seconds = base.compile_seconds()  # (the child's compile, recorded beside the module)
+        if seconds is not None:
             fields["seconds"] = round(seconds, 3)
         self._keep(**fields)
         self.second = prog
