@@ -7,6 +7,10 @@ compiles and no test's machine code or verdict reaches another test or the user'
 
 from __future__ import annotations
 
+import os
+import subprocess
+import sys
+
 import numpy as np
 import pytest
 
@@ -101,3 +105,18 @@ def test_the_default_program_stays_on_numpy_past_the_budget(
     assert prog.impl.record()["verdict"] == prog.impl.stay  # kept: not tried again
     want = glslcheck.compile(shader, backend="numpy").render(size=SIZE, time=0.6)
     assert _same(prog.render(size=SIZE, time=0.6), want) and prog.engine == "numpy"
+
+
+def test_a_compile_whose_asking_process_is_gone_ends(numba, make_shader, own_cache):
+    """The child watches the process that asked for it (build.py): with that one gone (here: a
+    process id that is not its parent), it ends at once instead of compiling for nobody."""
+    prog, _ = engine.generate(_shader(make_shader, "0.0625 + 0.9375"), lanes=0)
+    file = own_cache / "m.py"
+    file.write_text(prog)
+    child = subprocess.run(
+        [sys.executable, "-m", "glslcheck.backends.compiled_engine.build", str(file), "x", "1"],
+        env=dict(os.environ, PYTHONPATH=os.pathsep.join(sys.path)),
+        capture_output=True,
+        timeout=120,
+    )
+    assert child.returncode == 1 and not child.stderr  # ended by the watch, not by an error

@@ -26,6 +26,7 @@ threads, but it may pull the runtime from under them (LLVM aborts a compile cut 
 
 from __future__ import annotations
 
+import atexit
 import hashlib
 import math
 import os
@@ -96,6 +97,15 @@ class Workers:
         """No more jobs: each thread ends once its current band does."""
         for _ in range(self.threads):
             self.jobs.put(None)
+
+
+_CHILDREN: set[subprocess.Popen] = set()  # compiles under way in child processes (build_apart)
+
+
+@atexit.register
+def _stop_children() -> None:
+    for child in list(_CHILDREN):
+        child.kill()
 
 
 _WORKERS: dict[int, Workers] = {}
@@ -361,21 +371,26 @@ class CompiledProgram:
         root = os.path.dirname(os.path.dirname(os.path.dirname(os.path.dirname(__file__))))
         env["PYTHONPATH"] = os.pathsep.join(p for p in (root, env.get("PYTHONPATH")) if p)
         child = subprocess.Popen(
-            [sys.executable, "-m", f"{__package__}.build", file, self.path],
+            [sys.executable, "-m", f"{__package__}.build", file, self.path, str(os.getpid())],
             stdin=subprocess.DEVNULL,
             stdout=subprocess.DEVNULL,
             stderr=subprocess.PIPE,
             env=env,
         )
+        # no compile outlives the process that wanted it: stopped at its exit (and the child
+        # ends by itself when this process is gone without one: build.py)
+        _CHILDREN.add(child)
         try:
             _, err = child.communicate(timeout=seconds)
         except subprocess.TimeoutExpired:
             child.kill()
             child.communicate()
             return "over budget"
-        except BaseException:  # Ctrl-C: no compile outlives its process
+        except BaseException:  # Ctrl-C
             child.kill()
             raise
+        finally:
+            _CHILDREN.discard(child)
         if child.returncode < 0:
             return f"killed: numba's compile ended by signal {-child.returncode}"
         if child.returncode:
