@@ -311,8 +311,8 @@ class TieredCpuProgram:
             if why:
                 self.stay = why
                 return out
-            # a daemon: a process that ends first drops the compile (numba writes its cache
-            # files whole, by rename); the check frame is this one
+            # a daemon: a process that ends first drops the move (and stops the compile's child
+            # process: engine.build_apart); the check frame is this one
             self.numpy_rate = sorted(self.rates)[len(self.rates) // 2]
             self._mover = threading.Thread(
                 target=self._move, args=(kw, out.copy()), name="glslcheck-tier", daemon=True
@@ -352,9 +352,10 @@ class TieredCpuProgram:
         from .compiled_engine.engine import PIXEL_BUDGET, CompiledProgram, compile_compiled
 
         try:
-            prog = compile_compiled(self.shader)
-            if self.first.loop_limit is not None:  # before the load: the module counts passes
-                prog.loop_limit = self.first.loop_limit
+            limit = self.first.loop_limit  # (verify's: the module counts loop passes)
+            prog = compile_compiled(self.shader, budget=limit is not None)
+            if limit is not None:
+                prog.loop_limit = limit
             base = prog if isinstance(prog, CompiledProgram) else prog.first
             base.frame_seconds = self.first.frame_seconds
             # numba's compile in a child process, stopped at the budget: the NumPy frames keep

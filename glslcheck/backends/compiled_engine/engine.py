@@ -891,15 +891,16 @@ class TieredProgram:
 
 
 def compile_compiled(
-    path_or_shader: Any, threads: int | None = None
+    path_or_shader: Any, threads: int | None = None, budget: bool = False
 ) -> CompiledProgram | TieredProgram:
     """The compiled engine's program for a shader's Image tab: a TieredProgram when the mode is
     not fixed (tiered()), else a CompiledProgram (`glslcheck.compile(path, backend="compiled")`
-    wraps it in a Program)."""
+    wraps it in a Program). `budget`: made with llvmpipe's loop budget from the start, for a
+    caller that sets `loop_limit` (which would otherwise generate the module again)."""
     from ...shadertoy.sources import Shader, load_shader
 
     shader = path_or_shader if isinstance(path_or_shader, Shader) else load_shader(path_or_shader)
-    source, path = generate(shader)
+    source, path = generate(shader, budget=budget)
     prog = CompiledProgram(source, path, threads, lambda: generate(shader, budget=True)[0])
     if (
         tiered() and "LANES_FALLBACK" not in source and "\nLANES = " not in source
