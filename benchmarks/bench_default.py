@@ -184,12 +184,18 @@ def main() -> int:
     p.add_argument("--repeat", type=int, default=5)
     p.add_argument("--frames", type=int, default=100)
     p.add_argument("--size", default="400x225")
-    p.add_argument("--first", default=FIRST, help="lab shaders for part 1, comma-separated")
+    p.add_argument("--first", default=FIRST, help="lab shaders for part 1, comma-separated, or all")
     p.add_argument("--steady", default=STEADY, help="shaders for part 2, comma-separated")
     p.add_argument("--during", default="", help="shaders for part 3, comma-separated")
     args = p.parse_args()
     if args.first:
-        first_frame(args.first.split(","), args.repeat)
+        lab = os.path.join(ROOT, "lab_shaders")
+        names = (
+            sorted(d for d in os.listdir(lab) if os.path.isdir(os.path.join(lab, d)))
+            if args.first == "all"
+            else args.first.split(",")
+        )
+        first_frame(names, args.repeat)
     if args.steady:
         steady(args.steady.split(","), args.frames, args.size, args.repeat)
     if args.during:
