@@ -349,7 +349,12 @@ class TieredCpuProgram:
     def _move(self, kw: dict, want: np.ndarray) -> None:
         """Make the compiled program and check it on one NumPy frame (in the mover thread)."""
         from ..base.diagnostics import GlslError
-        from .compiled_engine.engine import PIXEL_BUDGET, CompiledProgram, compile_compiled
+        from .compiled_engine.engine import (
+            EXITING,
+            PIXEL_BUDGET,
+            CompiledProgram,
+            compile_compiled,
+        )
 
         try:
             limit = self.first.loop_limit  # (verify's: the module counts loop passes)
@@ -361,6 +366,8 @@ class TieredCpuProgram:
             # numba's compile in a child process, stopped at the budget: the NumPy frames keep
             # this process's GIL and cores (but the one it takes)
             why = base.build_apart(PIXEL_BUDGET)
+            if why == EXITING:  # (the process ends: no verdict)
+                return
             if why == "over budget":
                 self.stay = f"over budget: numba's compile passed {PIXEL_BUDGET:g} s"
                 self._keep(verdict=self.stay)

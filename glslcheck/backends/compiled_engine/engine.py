@@ -100,10 +100,12 @@ class Workers:
 
 
 _CHILDREN: set[subprocess.Popen] = set()  # compiles under way in child processes (build_apart)
+_EXITING: list[bool] = []  # the interpreter is exiting: the children were stopped on purpose
 
 
 @atexit.register
 def _stop_children() -> None:
+    _EXITING.append(True)
     for child in list(_CHILDREN):
         child.kill()
 
@@ -354,6 +356,7 @@ class CompiledProgram:
         neither this process's GIL nor its frames up, and stop it after `seconds` (numba's
         compile cannot be stopped inside a process; a child can). "" when the cache holds the
         machine code (`load` then loads it: tenths of a second), "over budget" when stopped,
+        EXITING when this process is exiting (the child stopped with it: nothing to say),
         "failed: ..." when the child failed (its last line; `load` in this process gives the
         error itself) or "killed: ..." when it died of a signal. A cache numba cannot write
         leaves `load` to compile here."""
@@ -391,6 +394,8 @@ class CompiledProgram:
             raise
         finally:
             _CHILDREN.discard(child)
+        if _EXITING:
+            return EXITING
         if child.returncode < 0:
             return f"killed: numba's compile ended by signal {-child.returncode}"
         if child.returncode:
@@ -674,6 +679,7 @@ def _listdir(folder: str) -> list[str]:
 
 TIER_LANES = 8  # the lockstep width TieredProgram moves to (8: AVX2's float32 lanes)
 OVER = "over budget"  # a marker's text when the lockstep build was stopped
+EXITING = "exiting"  # build_apart's answer when the process exits under it
 # Lockstep's cold compile over the per-pixel module's, for TieredProgram's estimate of what
 # moving costs: the median over the 67 lab and tuned real shaders (quartiles 3.5 and 6.2),
 # as benchmarks/bench_compiled.py --fresh-cache --lanes 0,8 prints both compile times.
@@ -815,6 +821,9 @@ class TieredProgram:
             fast.frame_seconds = self.first.frame_seconds
             fast.loop_limit = self.first.loop_limit
             why = fast.build_apart(LOCKSTEP_BUDGET)
+            if why == EXITING:
+                self.stay = True
+                return
             if why == "over budget":
                 _write(self._marker(), f"{OVER} {LOCKSTEP_BUDGET:g} s\n")
                 self._over, self.stay = True, True
