@@ -2,7 +2,7 @@
 and the compiled engine alone, as a user meets them.
 
     python benchmarks/bench_default.py [--repeat 5] [--frames 200] [--size 400x225]
-                                       [--first LAB,...] [--steady PATH,...]
+                                       [--first LAB,...] [--steady PATH,...] [--during PATH,...]
 
 1. First frame: a fresh process per run (`import glslcheck`, compile, one frame at 800x450,
    `render`'s default size), the default program and the NumPy backend in turns; the median
@@ -15,6 +15,11 @@ and the compiled engine alone, as a user meets them.
    shared machine's load moves single runs by 2x). numba's cache is the user's: a first run on a
    machine compiles (the default moves after the frames have cost the compile's estimate), later
    runs load.
+3. Frames during the compile (`--during`): one process per shader with a numba cache of its own
+   (so numba compiles), frames at `--size` until the compiled engine renders or 120 s pass; the
+   median NumPy frame before the compile starts against the median and the slowest NumPy frame
+   while it runs (the compile's cost to the frames beside it), and the seconds until the first
+   frame of the compiled engine.
 """
 
 from __future__ import annotations
@@ -76,6 +81,54 @@ print(json.dumps({"total": total, "tail": tail, "gl": gl,
 """
 
 
+DURING_RUN = r"""
+import atexit, json, os, shutil, statistics, sys, tempfile, time
+os.environ["NUMBA_CACHE_DIR"] = tempfile.mkdtemp(prefix="bench-default-")
+atexit.register(shutil.rmtree, os.environ["NUMBA_CACHE_DIR"], True)
+import glslcheck
+path = sys.argv[1]
+w, h = (int(x) for x in sys.argv[2].split("x"))
+prog = glslcheck.compile(path)
+impl = prog.impl
+before, during, first, k = [], [], None, 0
+t0 = time.perf_counter()
+while time.perf_counter() - t0 < 120.0:
+    mover = getattr(impl, "_mover", None)
+    busy = mover is not None and mover.is_alive()
+    t = time.perf_counter()
+    prog.render(size=(w, h), time=1.0 + k / 60)
+    took = time.perf_counter() - t
+    k += 1
+    if impl.mode != "numpy":
+        first = time.perf_counter() - t0
+        break
+    if getattr(impl, "stay", None):
+        break
+    (during if busy else before if mover is None else []).append(took)
+print(json.dumps({"before": statistics.median(before) if before else None,
+                  "during": statistics.median(during) if during else None,
+                  "slowest": max(during) if during else None, "n": len(during),
+                  "first": first, "mode": impl.mode, "stay": getattr(impl, "stay", None)}))
+"""
+
+
+def during(paths: list[str], size: str) -> None:
+    print(f"== NumPy frames beside a cold compile at {size} (wall ms; a numba cache of its own)")
+    for p in paths:
+        path = p if os.path.isabs(p) else os.path.join(ROOT, p)
+        r = _run(DURING_RUN, path, size)
+        ms = {
+            k: (f"{r[k] * 1000:.0f}" if r[k] is not None else "-")
+            for k in ("before", "during", "slowest")
+        }
+        first = f"{r['first']:.1f} s" if r["first"] is not None else f"never ({r['stay']})"
+        print(
+            f"{os.path.basename(path.rstrip('/'))}: before {ms['before']} | during median "
+            f"{ms['during']}, slowest {ms['slowest']} ({r['n']} frames) | first compiled frame "
+            f"after {first} ({r['mode']})"
+        )
+
+
 def _run(code: str, *args: str) -> dict:
     env = dict(os.environ, PYTHONPATH=ROOT)
     out = subprocess.run(
@@ -131,13 +184,22 @@ def main() -> int:
     p.add_argument("--repeat", type=int, default=5)
     p.add_argument("--frames", type=int, default=100)
     p.add_argument("--size", default="400x225")
-    p.add_argument("--first", default=FIRST, help="lab shaders for part 1, comma-separated")
+    p.add_argument("--first", default=FIRST, help="lab shaders for part 1, comma-separated, or all")
     p.add_argument("--steady", default=STEADY, help="shaders for part 2, comma-separated")
+    p.add_argument("--during", default="", help="shaders for part 3, comma-separated")
     args = p.parse_args()
     if args.first:
-        first_frame(args.first.split(","), args.repeat)
+        lab = os.path.join(ROOT, "lab_shaders")
+        names = (
+            sorted(d for d in os.listdir(lab) if os.path.isdir(os.path.join(lab, d)))
+            if args.first == "all"
+            else args.first.split(",")
+        )
+        first_frame(names, args.repeat)
     if args.steady:
         steady(args.steady.split(","), args.frames, args.size, args.repeat)
+    if args.during:
+        during(args.during.split(","), args.size)
     return 0
 
 

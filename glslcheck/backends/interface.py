@@ -85,6 +85,17 @@ class Program:
         return self.impl.format_stats()
 
     @property
+    def engine(self) -> str:
+        """The engine that rendered the last frame: the default CPU program's "numpy",
+        "compiled pixel" or "compiled lanes8" (backends/tiered.py), the compiled engine's
+        "compiled pixel" or "compiled lanes8", else the backend's name."""
+        engine = getattr(self.impl, "engine", None)
+        if isinstance(engine, str):
+            return engine
+        mode = getattr(self.impl, "mode", None)
+        return f"{self.backend.name} {mode}" if isinstance(mode, str) else self.backend.name
+
+    @property
     def source(self) -> str:
         """The generated Python module (NumPy and compiled engines) or the GLSL program (GL,
         WebGL)."""

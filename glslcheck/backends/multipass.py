@@ -71,6 +71,13 @@ class MultipassProgram:
         self._key: tuple[int, int, str | None] | None = None  # (width, height, precision)
         self._next = 0
 
+    @property
+    def engine(self) -> str:
+        """The engine that renders the output pass (Program.engine): the default CPU program
+        runs the passes of such a shader on the NumPy backend."""
+        engine = getattr(self.programs[self.output], "engine", None)
+        return engine if isinstance(engine, str) else self.backend.name
+
     def _check_reads(self) -> None:
         if self.shader.channels is not None:
             # Shadertoy's own export: Shadertoy runs a read of a channel without an input (the

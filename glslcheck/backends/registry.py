@@ -48,7 +48,9 @@ BACKENDS = {
     "webgl": "glslcheck.backends.webgl.backend",
     "compiled": "glslcheck.backends.compiled_engine.backend",
 }
-DEFAULT = "numpy"  # what render, verify and report run unless told: the CPU engine they check
+# what render, verify, report, bench and grade run unless told: the CPU program they check
+# (the NumPy backend, then the compiled engine where that gives the same bits: tiered.py)
+DEFAULT = "auto"
 REFERENCE_DRIVER = "gl"  # the real driver verify compares with by default and bench times against
 
 

@@ -6,22 +6,29 @@ tenths of a second), while the compiled engine renders each frame several times 
 first be compiled by numba (seconds; a cache load in a later process). So frames are rendered by
 the NumPy backend until the time they have taken, counting the frame about to be rendered (its
 pixels at the rate measured so far), reaches what making the compiled program is expected to
-cost (`TieredCpuProgram.move_cost`); then the compiled program is made in a thread of its own
-while the frames go on in NumPy (no frame waits for numba), and every frame after it is ready
-and checked uses it. This is the compiled engine's ski-rental rule (compiled_engine/engine.py,
-TieredProgram) with the NumPy backend as the first tier: whatever the number of frames, the
-total is at most about twice what the better engine alone would have cost. The compiled
-program is itself tiered (per pixel, then lockstep within engine.LOCKSTEP_BUDGET).
+cost (`TieredCpuProgram.move_cost`); then the compiled program is made beside the frames, which
+go on in NumPy (no frame waits for numba): numba compiles it in a child process
+(CompiledProgram.build_apart), stopped after engine.PIXEL_BUDGET seconds (the shader then stays
+on NumPy, and the record keeps it there), and a thread of this process loads the machine code
+from numba's cache; every frame after it is ready and checked uses it. This is the compiled
+engine's ski-rental rule (compiled_engine/engine.py, TieredProgram) with the NumPy backend as
+the first tier: whatever the number of frames, the total is at most about twice what the better
+engine alone would have cost. The compiled program is itself tiered (per pixel, then lockstep
+within engine.LOCKSTEP_BUDGET).
 
 The move happens only where the two engines are known to give the same bits:
 
 * frames the compiled engine renders at all: float32, no lane statistics, no channel inputs, an
-  Image pass of a shader without Buffer tabs or iChannel reads, a NumPy program with its own
-  loop and float-to-uint settings (verify's llvmpipe emulations stay on NumPy), numba installed;
+  Image pass of a shader without Buffer tabs or iChannel reads, numba installed; llvmpipe's
+  loop limiter (verify's) is passed on to the compiled program, which emulates it alike, while a
+  driver's float-to-uint model other than this machine's keeps the frames on NumPy;
 * a shader the compiled engine compiles (one with a construct it refuses stays on NumPy);
 * and agrees on: the compiled program's first frame renders the inputs of the last NumPy frame
-  before the move, and any pixel of a different bit pattern (NaN for NaN excepted) keeps the
-  program on NumPy for good;
+  before the move, and each of its trial frames (below) is rendered by both engines; any pixel
+  of a different bit pattern (NaN for NaN excepted) in any of them keeps the program on NumPy
+  for good. Bits that differ only at inputs no checked frame had (the engines' known
+  differences are listed in tests/compiled/test_engines_agree.py) are not caught: these checks
+  are evidence on the frames this shader renders, the agreement tests are the proof;
 * and is faster on: the compiled program's first TRIAL_FRAMES frames, per pixel, against the
   NumPy backend's last frames before the compile began (a light shader's NumPy frames, whose
   uniform values are computed once a tile, can beat the compiled engine's per-pixel ones). A
@@ -31,7 +38,8 @@ The move happens only where the two engines are known to give the same bits:
   again (or no lockstep module, or a differing frame), NumPy keeps the frames for good.
 
 The verdict, the compiled module's key and what compiling it took are kept beside numba's cache
-(`<cache>/compiled/t<hash>.tier`, keyed by the NumPy module and the compiled engine's code): a later
+(`<cache>/compiled/t<hash>.tier`, keyed by the NumPy module, the loop limiter and the compiled
+engine's code): a later
 process moves as soon as the cache load pays, and never retries a shader refused or found to
 differ (a timing trial lost is not kept: it depends on the machine's load).
 `GLSLCHECK_TIERS=off` (config.tiers) keeps every frame on NumPy.
@@ -85,6 +93,7 @@ _OWN = {
     "numpy_rate",
     "trial",
     "later",
+    "engine",
 }
 
 
@@ -107,6 +116,7 @@ class TieredCpuProgram:
     numpy_rate: float
     trial: list[float]
     later: TieredProgram | None
+    engine: str
 
     def __init__(self, shader: Any, first: NumpyProgram) -> None:
         d = self.__dict__
@@ -125,6 +135,7 @@ class TieredCpuProgram:
         # a compiled program slower per pixel that may still move to lockstep (engine's
         # TieredProgram): tried again once its lockstep module is ready
         d["later"] = None
+        d["engine"] = "numpy"  # the engine that rendered the last frame (`mode` at that time)
 
     def __getattr__(self, name: str) -> Any:
         return getattr(self.__dict__["first"], name)
@@ -132,8 +143,21 @@ class TieredCpuProgram:
     def __setattr__(self, name: str, value: Any) -> None:
         if name in _OWN:
             self.__dict__[name] = value
-        else:
-            setattr(self.first, name, value)
+            return
+        setattr(self.first, name, value)
+        if name == "loop_limit":  # both engines stop loops alike
+            for other in (self.second, self.later):
+                if other is not None:
+                    other.loop_limit = value
+
+    def limited_loops(self) -> list[tuple[str, int]]:
+        """(file, line) of the loops llvmpipe's limiter stopped, in the frames of either engine
+        since the last call (NumpyProgram.limited_loops)."""
+        found = set(self.first.limited_loops())
+        for other in (self.second, self.later):
+            if other is not None:
+                found |= set(other.limited_loops())
+        return sorted(found)
 
     @property
     def source(self) -> str:
@@ -153,7 +177,9 @@ class TieredCpuProgram:
 
         try:
             folder = compiled_folder()
-            h = hashlib.sha256(f"{engine_fingerprint()}\n{self.first.source}".encode())
+            # (llvmpipe's loop limiter makes another compiled module, with a verdict of its own)
+            limit = self.first.loop_limit
+            h = hashlib.sha256(f"{engine_fingerprint()} {limit}\n{self.first.source}".encode())
         except OSError:
             return None
         return os.path.join(folder, f"t{h.hexdigest()[:24]}.tier")
@@ -212,8 +238,6 @@ class TieredCpuProgram:
             return "GLSLCHECK_TIERS=off"
         if not available():
             return "numba is not installed"
-        if self.first.loop_limit is not None:
-            return "llvmpipe's loop limiter (the NumPy backend's emulation)"
         if self.first.meta.get("float_to_uint", host_model()) != host_model():
             return "a driver's float-to-uint model"
         verdict = self.record().get("verdict")
@@ -232,12 +256,24 @@ class TieredCpuProgram:
         second = self.second
         if second is not None and not why:
             if len(self.trial) >= TRIAL_FRAMES:
+                self.engine = self.mode
                 return second.render(**kw)
+            # a trial frame: timed, and checked against the NumPy backend's render of it
             t0 = time.perf_counter()
-            out = second.render(**kw)
-            self._judge((time.perf_counter() - t0) / pixels)
+            got = second.render(**kw)
+            rate = (time.perf_counter() - t0) / pixels
+            out = self.first.render(**kw, precision=precision, stats=stats, channels=channels)
+            self.engine = "numpy"
+            differ = _differing(got, out)
+            if differ:
+                self.second, self.later = None, None
+                self.stay = f"differs: {differ} pixels of a trial frame"
+                self._keep(verdict=self.stay)
+            else:
+                self._judge(rate)
             return out
         later = self.later
+        self.engine = "numpy"
         if later is not None and not why and getattr(later, "fast", None) is not None:
             # lockstep is ready: this frame on both engines (the check), then a new trial
             out = self.first.render(**kw, precision=precision, stats=stats, channels=channels)
@@ -259,7 +295,9 @@ class TieredCpuProgram:
             self.pixels += pixels
             self.rates = [*self.rates[-(RATE_FRAMES - 1) :], took / pixels]
             if later is not None and (
-                later.stay or (self.spent >= later.move_cost() and not later.move_now())
+                later.stay
+                or later.over_budget()
+                or (self.spent >= later.move_cost() and not later.move_now())
             ):
                 self._give_up(later)
             if self._mover is not None or self.stay is not None:
@@ -273,8 +311,8 @@ class TieredCpuProgram:
             if why:
                 self.stay = why
                 return out
-            # a daemon: a process that ends first drops the compile (numba writes its cache
-            # files whole, by rename); the check frame is this one
+            # a daemon: a process that ends first drops the move (and stops the compile's child
+            # process: engine.build_apart); the check frame is this one
             self.numpy_rate = sorted(self.rates)[len(self.rates) // 2]
             self._mover = threading.Thread(
                 target=self._move, args=(kw, out.copy()), name="glslcheck-tier", daemon=True
@@ -311,15 +349,32 @@ class TieredCpuProgram:
     def _move(self, kw: dict, want: np.ndarray) -> None:
         """Make the compiled program and check it on one NumPy frame (in the mover thread)."""
         from ..base.diagnostics import GlslError
-        from .compiled_engine.engine import CompiledProgram, compile_compiled
+        from .compiled_engine.engine import (
+            EXITING,
+            PIXEL_BUDGET,
+            CompiledProgram,
+            compile_compiled,
+        )
 
-        t0 = time.perf_counter()
         try:
-            prog = compile_compiled(self.shader)
+            limit = self.first.loop_limit  # (verify's: the module counts loop passes)
+            prog = compile_compiled(self.shader, budget=limit is not None)
+            if limit is not None:
+                prog.loop_limit = limit
             base = prog if isinstance(prog, CompiledProgram) else prog.first
             base.frame_seconds = self.first.frame_seconds
-            base.load(bounded=False)  # no frame waits for it
-            seconds = time.perf_counter() - t0
+            # numba's compile in a child process, stopped at the budget: the NumPy frames keep
+            # this process's GIL and cores (but the one it takes)
+            why = base.build_apart(PIXEL_BUDGET)
+            if why == EXITING:  # (the process ends: no verdict)
+                return
+            if why == "over budget":
+                self.stay = f"over budget: numba's compile passed {PIXEL_BUDGET:g} s"
+                self._keep(verdict=self.stay)
+                return
+            if why.startswith("killed"):
+                raise RuntimeError(why)
+            base.load(bounded=False)  # a cache load (a failure's compile here gives its error)
             got = prog.render(**kw)
         except GlslError as e:  # a construct the compiled engine refuses, a loop cap, a budget
             first = e.diagnostics[0] if getattr(e, "diagnostics", None) else None
@@ -342,7 +397,8 @@ class TieredCpuProgram:
             return
         key = base.key
         fields: dict[str, Any] = {"verdict": "same", "key": key}
-        if base.cold:
+        seconds = base.compile_seconds()  # (the child's compile, recorded beside the module)
+        if seconds is not None:
             fields["seconds"] = round(seconds, 3)
         self._keep(**fields)
         self.second = prog

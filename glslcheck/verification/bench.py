@@ -11,11 +11,15 @@ Library API:
     write_plot(rows, "accuracy.png")
     [row.to_json() for row in rows]          # exactly the keys in JSON_KEYS
 
-Configurations (`configurations()`): the GL driver (highp = float32) and the NumPy backend at
-float16, float32 and float64, each at 1, 4 and 16 samples per pixel (a 1x1, 2x2, 4x4 sub-pixel
-grid, the same on both backends): 12 per shader; with `compiled=True` also the compiled engine
-(glslcheck/compiled_backend, float32; its first render loads or compiles its module, so that
-time is in the warm-up, not in the timed rounds), and with `webgl=True` WebGL 2.
+Configurations (`configurations()`): the GL driver (highp = float32) and the default CPU program
+at float16, float32 and float64, each at 1, 4 and 16 samples per pixel (a 1x1, 2x2, 4x4 sub-pixel
+grid, the same on both backends): 12 per shader. The default CPU program is the NumPy backend,
+whose float32 frames move to the compiled engine once they have cost its compile, where that
+gives the same bits (backends/tiered.py); each row says which engine rendered its timed rounds
+("numpy", "compiled lanes8", or both in order, "numpy then compiled lanes8"); with
+`compiled=True` also the compiled engine alone (glslcheck/compiled_backend, float32; its first
+render loads or compiles its module, so that time is in the warm-up, not in the timed rounds),
+and with `webgl=True` WebGL 2.
 
 Timing: one warm-up render per configuration (it compiles the GL supersampling variant and
 executes the NumPy module for that precision), then `runs` rounds in which every configuration
@@ -53,9 +57,10 @@ from ..backends import registry
 from ..base.precision import PRECISIONS
 from ..shadertoy.sources import Shader, load_shader
 from .compare import compare
+from .verify import engine_of
 
 SAMPLES = (1, 4, 16)
-REFERENCE = ("numpy", "float64", 16)  # backend, precision, samples
+REFERENCE = (registry.DEFAULT, "float64", 16)  # backend, precision, samples (NumPy's frames)
 DEFAULT_SIZE = (400, 225)
 DEFAULT_RUNS = 3
 ONE_STEP = 1.0 / 255.0
@@ -71,6 +76,7 @@ JSON_KEYS = (
     "mean_abs_error",
     "psnr_db",
     "pixels_over_1_255",
+    "engine",
 )
 
 
@@ -105,7 +111,7 @@ def configurations(
     configs = [Config("gl", "float32", s) for s in samples]
     configs += [Config("webgl", "float32", s) for s in samples if webgl]
     configs += [Config("compiled", "float32", s) for s in samples if compiled]
-    configs += [Config("numpy", p, s) for p in PRECISIONS for s in samples]
+    configs += [Config(registry.DEFAULT, p, s) for p in PRECISIONS for s in samples]
     return configs
 
 
@@ -123,6 +129,7 @@ class Row:
     pixels_over_1_255: int
     times_ms: list[float] = field(default_factory=list)
     pareto: bool = False  # on the shader's Pareto front (no other row is both faster and closer)
+    engine: str = ""  # the engines of its timed rounds, in order ("numpy then compiled lanes8")
 
     def to_json(self) -> dict:
         """Exactly JSON_KEYS; psnr_db is null when infinite (JSON has no inf)."""
@@ -137,6 +144,7 @@ class Row:
             "mean_abs_error": float(self.mean_abs_error),
             "psnr_db": None if math.isinf(self.psnr_db) else float(self.psnr_db),
             "pixels_over_1_255": int(self.pixels_over_1_255),
+            "engine": self.engine or self.config.backend,
         }
 
 
@@ -166,9 +174,10 @@ def _pin_parallel(program) -> None:
 
 
 def _compile_both(shader: Shader):
-    """(gl, numpy) programs; GL first so a missing context is reported before a slow transpile."""
+    """(gl, the default CPU program); GL first so a missing context is reported before a slow
+    transpile."""
     gl = registry.compile(shader, backend="gl")
-    return gl, registry.compile(shader, backend="numpy")
+    return gl, registry.compile(shader, backend=registry.DEFAULT)
 
 
 def bench_shader(
@@ -186,7 +195,8 @@ def bench_shader(
 ) -> list[Row]:
     """Time and measure every configuration of one shader (see the module docstring).
 
-    `shader` is a path or a `Shader`; `programs` = (gl, numpy) compiled programs instead.
+    `shader` is a path or a `Shader`; `programs` = (gl, the CPU program) compiled programs
+    instead (a NumPy program is timed as the CPU rows).
     `step(label)` is called after each render (for a progress bar): `len(configurations())`
     times `runs + 1` calls. GlslError when the shader does not compile or a render fails,
     GLUnavailable (exit 2) without an OpenGL context.
@@ -198,13 +208,15 @@ def bench_shader(
     gl, numpy_prog = programs if programs is not None else _compile_both(shader)
     _pin_parallel(numpy_prog)
     configs = configurations(samples, webgl, compiled)
-    by_backend = {"gl": gl, "numpy": numpy_prog}
+    by_backend = {"gl": gl, registry.DEFAULT: numpy_prog}
     # WebGL 2 in headless Chromium; the compiled engine per pixel, by numba (InputError without
     # numba, GlslError for what it lacks)
     for backend in dict.fromkeys(c.backend for c in configs):
         if backend not in by_backend:
             by_backend[backend] = registry.compile(shader, backend=backend)
     kwargs = dict(size=tuple(size), time=float(time))
+
+    engines: dict[Config, list[str]] = {c: [] for c in configs}
 
     def render(config: Config) -> tuple[np.ndarray, float]:
         program = by_backend[config.backend]
@@ -215,7 +227,9 @@ def bench_shader(
             extra = {}
         start = clock()
         image = program.render(**kwargs, samples=config.samples, **extra)
-        return image, (clock() - start) * 1000.0
+        took = (clock() - start) * 1000.0
+        engines[config].append(engine_of(program, config.backend))
+        return image, took
 
     images: dict[Config, np.ndarray] = {}
     times: dict[Config, list[float]] = {c: [] for c in configs}
@@ -250,7 +264,18 @@ def bench_shader(
         max_err, mean_err, psnr, over = measure_error(images[config], reference)
         ratio = medians[config] / gl_one if gl_one else math.nan
         rows.append(
-            Row(name, config, medians[config], ratio, max_err, mean_err, psnr, over, times[config])
+            Row(
+                name,
+                config,
+                medians[config],
+                ratio,
+                max_err,
+                mean_err,
+                psnr,
+                over,
+                times[config],
+                engine=" then ".join(dict.fromkeys(engines[config][1:])),
+            )
         )
     mark_pareto(rows)
     return rows
@@ -305,7 +330,7 @@ def row_cells(r: Row) -> tuple[str, ...]:
     """A row's cells under HEADER, as the text table (and glslcheck report's table) shows them."""
     return (
         r.config.label,
-        r.config.backend,
+        r.engine or r.config.backend,
         r.config.precision,
         str(r.config.samples),
         f"{r.median_ms:.1f}",

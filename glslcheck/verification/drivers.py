@@ -30,12 +30,14 @@ import numpy as np
 
 from .compare import Comparison, compare
 from .verify import (
+    BACKENDS,
     FrameResult,
     UndefinedSide,
     _as_shader,
     _Pair,
     compile_backend,
     emulate_driver,
+    engine_of,
     frame_specs,
 )
 
@@ -113,7 +115,8 @@ def verify_against_webgl(
     progress=None,
     programs=None,
 ) -> Iterator[DriverFrameResult]:
-    """`verify.verify_frames` for the pair (numpy, webgl), each frame also rendered by GL.
+    """`verify.verify_frames` for the pair (the default CPU program, webgl), each frame also
+    rendered by GL.
 
     `programs` = (numpy, webgl, gl) compiled programs instead of compiling them here (the
     drivers first, so a missing browser or context is reported before the NumPy transpile).
@@ -123,7 +126,7 @@ def verify_against_webgl(
     if programs is None:
         webgl = compile_backend(shader, "webgl")
         gl = compile_backend(shader, "gl")
-        programs = (compile_backend(shader, "numpy"), webgl, gl)
+        programs = (compile_backend(shader, BACKENDS[0]), webgl, gl)
     emulate_driver([programs[0], programs[2]])  # the NumPy side copies the measured GL driver
     pair = _Pair(programs)
     undefined = UndefinedSide(shader, programs, numpy_under_test=True)
@@ -156,6 +159,7 @@ def verify_against_webgl(
                 verdict,
                 kept[0],
                 kept[1],
+                engine=engine_of(programs[0], BACKENDS[0]),
                 plain=plain,
                 drivers=drivers,
                 driver_image=kept[2],

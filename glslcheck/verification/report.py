@@ -5,8 +5,10 @@ shaders get an index at the top) the page shows
 
 - the check (our checker and, where the browser runs, ANGLE's verdict) and the lint findings,
   each under the source line it is about, in the user's own tab files;
-- the render of every backend side by side (NumPy on the CPU, GL = Mesa llvmpipe, WebGL = ANGLE
-  on SwiftShader in headless Chromium) with the time each render took;
+- the render of every backend side by side (the default CPU program: the NumPy backend, whose
+  frames move to the compiled engine where that gives the same bits, backends/tiered.py; GL =
+  Mesa llvmpipe, WebGL = ANGLE on SwiftShader in headless Chromium) with the time each render
+  took and the engine that rendered it; the CPU side is named after that engine ("numpy");
 - for each pair of backends the heat map of their differences (glslcheck.verification.compare's
   colours: black equal, red to white larger, cyan a discontinuity, magenta NaN in one image only)
   with verify's numbers and verdict; NumPy against WebGL is the driver-aware verdict of
@@ -57,7 +59,7 @@ if TYPE_CHECKING:
     from .probe import NanReport
 
 DEFAULT_BACKENDS = (
-    "numpy",
+    registry.DEFAULT,
     "gl",
     "webgl",
 )  # the side under test first; GL and WebGL are the drivers
@@ -116,6 +118,8 @@ class ShaderReport:
     renders: dict[str, np.ndarray] = field(default_factory=dict)
     times_ms: dict[str, float] = field(default_factory=dict)
     unavailable: dict[str, str] = field(default_factory=dict)  # backend -> why
+    engines: dict[str, str] = field(default_factory=dict)  # backend -> the engine that rendered
+    tested: str = registry.DEFAULT  # the side under test (the first backend): a CPU engine
     pairs: list[tuple[str, str, Comparison, str]] = field(
         default_factory=list
     )  # a, b, comparison, note
@@ -141,7 +145,7 @@ class ShaderReport:
         return (
             not self.errors
             and bool(self.renders)
-            and all(c.match for a, _, c, _ in self.pairs if a == registry.DEFAULT)
+            and all(c.match for a, _, c, _ in self.pairs if a == self.tested)
         )
 
 
@@ -260,11 +264,11 @@ def gather(
     NaN origins (when a render has NaN/Inf pixels) and, unless `bench` is None, the bench at
     that size."""
     from .drivers import driver_verdict
-    from .verify import FrameSpec, UndefinedSide, _Pair, compile_backend, emulate_driver
+    from .verify import FrameSpec, UndefinedSide, _Pair, compile_backend, emulate_driver, engine_of
 
     ready = ready if ready is not None else {b: _backend_ready(b) for b in backends}
     name = shader.root or (shader.image.path if shader.image else "<shader>")
-    report = ShaderReport(name, shader)
+    report = ShaderReport(name, shader, tested=backends[0] if backends else registry.DEFAULT)
     report.unavailable = {b: why for b, why in ready.items() if why}
     report.angle = "webgl" in backends and "webgl" not in report.unavailable
     report.check = _check(shader, report.angle)
@@ -291,9 +295,10 @@ def gather(
             continue
         report.times_ms[b] = (_time.perf_counter() - start) * 1000.0
         report.renders[b] = image
+        report.engines[b] = engine_of(program, b)
     r = report.renders
     for a, b in itertools.combinations([x for x in backends if x in r], 2):
-        if (a, b) == ("numpy", "webgl") and "gl" in r:
+        if (a, b) == (report.tested, "webgl") and "gl" in r:
             verdict, plain, drivers = driver_verdict(r[a], r[b], r["gl"])
             n = int(drivers.mismatched_pixels + drivers.edge_pixels)
             note = (
@@ -309,7 +314,7 @@ def gather(
             report.pairs.append((a, b, verdict, note))
         else:
             c = compare(r[a], r[b])
-            if not c.match and a == registry.DEFAULT:
+            if not c.match and a == report.tested:
                 # pixels that depend on the shader's undefined reads (verify.UndefinedSide)
                 pair = _Pair([programs[a], programs[b]])
                 side = UndefinedSide(shader, pair.programs, numpy_under_test=True)
@@ -495,10 +500,11 @@ def _nan_html(r: ShaderReport) -> str:
             "only the drivers made them</td></tr>"
         )
     figure = ""
-    if "numpy" in r.renders and r.nonfinite.get("numpy"):
+    cpu = r.tested
+    if cpu in r.renders and r.nonfinite.get(cpu):
         figure = (
             f'<figure><img class="render" alt="NaN/Inf pixels of the NumPy render" '
-            f'src="{nan_map_png(r.renders["numpy"])}"><figcaption>NumPy render, '
+            f'src="{nan_map_png(r.renders[cpu])}"><figcaption>NumPy render, '
             "NaN/Inf pixels in magenta"
             "</figcaption></figure>"
         )
@@ -562,6 +568,14 @@ def _bench_html(r: ShaderReport, runs: int, size, time: float) -> str:
     return "\n".join(out)
 
 
+def _label(r: ShaderReport, backend: str) -> str:
+    """How the page names a side: the default CPU program after the engine that rendered it
+    ("numpy", "compiled"), as verify's text does; any other backend by its name."""
+    if backend != registry.DEFAULT:
+        return backend
+    return r.engines.get(backend, "numpy").split()[0]
+
+
 def _pair_table(a: str, b: str, c: Comparison) -> str:
     rows = [
         ("max abs error", _num(c.max_abs_error)),
@@ -613,10 +627,13 @@ def _section(
     for b in (b for b in registry.names() if b in r.renders or b in r.unavailable):
         name = registry.get(b).title
         if b in r.renders:
+            by = r.engines.get(b, b)
+            engine = f", by {'the NumPy backend' if by == 'numpy' else by}" if by != b else ""
             figs.append(
                 f'<figure><img class="render" alt="{_e(name)} render" '
                 f'src="{render_png(r.renders[b])}">'
-                f"<figcaption><b>{_e(name)}</b> {r.times_ms[b]:.0f} ms</figcaption></figure>"
+                f"<figcaption><b>{_e(name)}</b> {r.times_ms[b]:.0f} ms{_e(engine)}</figcaption>"
+                "</figure>"
             )
         elif b in r.unavailable:
             figs.append(
@@ -634,18 +651,19 @@ def _section(
         for a, b, c, note in r.pairs:
             badge = (
                 _pair_badge(c)
-                if a == registry.DEFAULT
+                if a == r.tested
                 else (
                     '<span class="badge ok">drivers agree</span>'
                     if c.match
                     else '<span class="badge warn">drivers differ</span>'
                 )
             )
-            caption = f"<b>{_e(a)} vs {_e(b)}</b> {badge}"
+            la, lb = _label(r, a), _label(r, b)
+            caption = f"<b>{_e(la)} vs {_e(lb)}</b> {badge}"
             figs.append(
-                f'<figure><img class="render" alt="difference {_e(a)} vs {_e(b)}" '
+                f'<figure><img class="render" alt="difference {_e(la)} vs {_e(lb)}" '
                 f'src="{diff_png(c)}">'
-                f"<figcaption>{caption}{_pair_table(a, b, c)}{_e(note)}</figcaption></figure>"
+                f"<figcaption>{caption}{_pair_table(la, lb, c)}{_e(note)}</figcaption></figure>"
             )
         out.append('<div class="images">' + "".join(figs) + "</div>")
         out.append(
@@ -687,7 +705,9 @@ def page_html(
         for r in reports:
             verdicts = (
                 " ".join(
-                    f"{a}/{b} {_pair_badge(c)}" for a, b, c, _ in r.pairs if a == registry.DEFAULT
+                    f"{_label(r, a)}/{_label(r, b)} {_pair_badge(c)}"
+                    for a, b, c, _ in r.pairs
+                    if a == r.tested
                 )
                 or "-"
             )

@@ -1,5 +1,7 @@
-"""Verifying the CPU renderer: render one shader with the NumPy backend and with OpenGL
-(Mesa llvmpipe) at the same inputs, frame by frame, and compare the two images.
+"""Verifying the CPU renderer: render one shader with the default CPU program (the NumPy
+backend, whose frames move to the compiled engine where that gives the same bits:
+backends/tiered.py) and with OpenGL (Mesa llvmpipe) at the same inputs, frame by frame, and
+compare the two images. Each frame's result names the engine that rendered it.
 
 This module owns the frame schedule (which times, frame numbers and rates a run covers) and the
 pairing of the two backends; the values a user gives and their limits are in
@@ -48,10 +50,13 @@ from ..base.precision import check_precision
 from ..semantics.mediump import mediump_notes
 from ..shadertoy.sources import Shader, load_shader
 from ..shadertoy.wrapper import DEFAULT_SIZE
+from .compare import JSON_KEYS as COMPARISON_KEYS
 from .compare import Comparison, compare, depends_on_undefined
 
-BACKENDS = ("numpy", "gl")  # the default pair: the side under test, then its reference
+BACKENDS = ("auto", "gl")  # the default pair: the side under test, then its reference
 DEFAULT_FPS = 60.0
+# a verified frame in JSON: its comparison, then the engine that rendered the side under test
+JSON_KEYS = (*COMPARISON_KEYS, "engine")
 
 
 # ---------------------------------------------------------------------------------------------
@@ -229,10 +234,17 @@ class FrameResult:
     numpy_image: np.ndarray | None = None
     gl_image: np.ndarray | None = None
     notes: tuple[str, ...] = ()  # what the report should say besides the metrics
+    # the engine that rendered the side under test (Program.engine: "numpy", "compiled lanes8",
+    # "gl", ...)
+    engine: str = ""
 
     @property
     def match(self) -> bool:
         return self.comparison.match
+
+    def to_json(self) -> dict:
+        """Exactly JSON_KEYS: the comparison's keys and "engine"."""
+        return {**self.comparison.to_json(), "engine": self.engine}
 
 
 def _as_shader(shader) -> Shader:
@@ -302,7 +314,8 @@ def verify_frames(
     mediump = (
         mediump_notes(shader) if any("float16" in r.precisions for r in records.values()) else ()
     )
-    undefined = UndefinedSide(shader, programs, records[backends[0]].name == "numpy")
+    # the default CPU program's frames are the NumPy backend's bits (backends/tiered.py)
+    undefined = UndefinedSide(shader, programs, records[backends[0]].name in ("numpy", "auto"))
     for w_h in size_list:
         for spec in specs:
             with undefined.explains_stops():
@@ -356,6 +369,7 @@ def verify_frames(
                 numpy_img if keep_images else None,
                 gl_img if keep_images else None,
                 notes,
+                engine_of(programs[0], records[backends[0]].name),
             )
 
 
@@ -611,6 +625,12 @@ def gl_driver(programs: Sequence) -> tuple[dict | None, str | None]:
                 "emulated": is_emulated(renderer, mesa),
             }, emulation_note(ctx)
     return None, None
+
+
+def engine_of(program, name: str) -> str:
+    """The engine that rendered `program`'s last frame (Program.engine), else `name`."""
+    engine = getattr(program, "engine", None)
+    return engine if isinstance(engine, str) else name
 
 
 def verify(shader, **options) -> list[Comparison]:

@@ -39,17 +39,20 @@ def test_json_exact_keys_and_twelve_rows(json_run):
     assert all(tuple(r) == JSON_KEYS for r in rows)
     assert {(r["backend"], r["precision"]) for r in rows} == {
         ("gl", "float32"),
-        ("numpy", "float16"),
-        ("numpy", "float32"),
-        ("numpy", "float64"),
+        ("auto", "float16"),
+        ("auto", "float32"),
+        ("auto", "float64"),
     }
     assert sorted({r["samples"] for r in rows}) == [1, 4, 16]
+    # the default CPU program: float16 and float64 are the NumPy backend's alone
+    assert {r["engine"] for r in rows if r["precision"] != "float32"} == {"numpy"}
+    assert {r["engine"] for r in rows if r["backend"] == "gl"} == {"gl"}
 
 
 def test_reference_row_error_zero_and_ratio_column(json_run):
     rows = json_run[1]["rows"]
     (ref,) = [
-        r for r in rows if (r["backend"], r["precision"], r["samples"]) == ("numpy", "float64", 16)
+        r for r in rows if (r["backend"], r["precision"], r["samples"]) == ("auto", "float64", 16)
     ]
     assert (
         ref["max_abs_error"] == 0 and ref["mean_abs_error"] == 0 and ref["pixels_over_1_255"] == 0

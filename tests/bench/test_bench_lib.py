@@ -78,12 +78,12 @@ def test_twelve_configurations_gl_first():
     configs = configurations()
     assert len(configs) == 12
     assert [c.label for c in configs[:3]] == ["gl x1", "gl x4", "gl x16"]
-    assert {c.precision for c in configs if c.backend == "numpy"} == {
+    assert {c.precision for c in configs if c.backend == "auto"} == {
         "float16",
         "float32",
         "float64",
     }
-    assert [c for c in configs if c.is_reference] == [Config("numpy", "float64", 16)]
+    assert [c for c in configs if c.is_reference] == [Config("auto", "float64", 16)]
 
 
 def test_warm_up_then_round_robin_runs(rows_and_programs):
@@ -107,7 +107,7 @@ def test_reference_row_has_no_error_and_ratio_is_to_gl_at_one_sample(rows_and_pr
     assert gl1.config == Config("gl", "float32", 1) and gl1.ratio_to_gl == 1.0
     for r in rows:
         assert r.ratio_to_gl == pytest.approx(r.median_ms / gl1.median_ms)
-    f16 = next(r for r in rows if r.config == Config("numpy", "float16", 1))
+    f16 = next(r for r in rows if r.config == Config("auto", "float16", 1))
     assert f16.max_abs_error == pytest.approx(0.14, abs=1e-6)
     assert f16.pixels_over_1_255 == W * H
 
@@ -116,7 +116,7 @@ def test_json_keys_exact(rows_and_programs):
     for r in rows_and_programs[0]:
         obj = r.to_json()
         assert tuple(obj) == JSON_KEYS
-        assert obj["backend"] in ("gl", "numpy")
+        assert obj["backend"] in ("gl", "auto")
 
 
 def test_measure_error_clamps_to_the_display_and_counts_one_step():

@@ -161,7 +161,7 @@ def test_bench_times_the_compiled_engine_beside_numpy(numba, gl, tmp_path, capsy
     rows = json.loads(capsys.readouterr().out)["rows"]
     compiled = {r["samples"]: r for r in rows if r["backend"] == "compiled"}
     numpy32 = {
-        r["samples"]: r for r in rows if r["backend"] == "numpy" and r["precision"] == "float32"
+        r["samples"]: r for r in rows if r["backend"] == "auto" and r["precision"] == "float32"
     }
     assert sorted(compiled) == [1, 4, 16] and len(rows) == 15
     for n, r in compiled.items():

@@ -150,11 +150,44 @@ def test_frames_the_compiled_engine_cannot_render_never_move(make_shader, eager,
     assert prog.impl._mover is None and prog.impl.pixels == 0
 
 
-def test_verify_s_llvmpipe_emulations_stay_on_numpy(make_shader, eager):
+# a loop of more passes than the limit the test sets: llvmpipe's limiter stops it
+LOOPY = """
+void mainImage(out vec4 c, in vec2 f) {
+    float acc = 0.0;
+    for (int i = 0; i < 1500; i++) { acc += 0.001 * sin(float(i) + iTime); }
+    c = vec4(acc, f / iResolution.xy, 1.0);
+}
+"""
+
+
+def test_verify_s_loop_limiter_moves_with_the_frames(numba, make_shader, eager):
+    """verify stops loops as llvmpipe does (a limit on the NumPy program): the compiled program
+    gets the same limit, stops the loop where NumPy does and reports it."""
+    shader = make_shader(LOOPY)
+    prog = glslcheck.compile(shader)
+    prog.impl.loop_limit = 1000  # (llvmpipe's is 65,535: a small one keeps the test quick)
+    _frames(prog, [0.5])
+    assert prog.impl.settle(300)
+    assert prog.impl.mode.startswith("compiled"), prog.impl.stay
+    prog.impl.limited_loops()  # (forget the NumPy frame's)
+    times = [0.6, 0.7]
+    got = _frames(prog, times)
+    assert prog.engine.startswith("compiled")
+    assert [line for _, line in prog.impl.limited_loops()] == [4]
+    reference = glslcheck.compile(shader, backend="numpy")
+    reference.impl.loop_limit = 1000
+    for t, image, want in zip(times, got, _frames(reference, times)):
+        assert _same(image, want), t
+
+
+def test_a_driver_s_float_to_uint_model_stays_on_numpy(make_shader, eager):
+    from glslcheck.backends.driver_profile import host_model
+
     prog = glslcheck.compile(make_shader(ANIMATED))
-    prog.impl.loop_limit = 65535
+    prog.impl.emulate_float_to_uint("arm64" if host_model() != "arm64" else "sse")
     _frames(prog, [0.5, 0.6])
-    assert prog.impl._mover is None and "loop limiter" in prog.impl.stay
+    assert prog.impl._mover is None and "float-to-uint" in prog.impl.stay
+    assert prog.engine == "numpy"
 
 
 def test_buffer_passes_are_numpy_programs(make_shader):

@@ -149,6 +149,9 @@ def test_the_command_writes_table_csv_json_and_page(lab_class, tmp_path, capsys)
     assert {"file", "line", "column", "rule", "penalty", "certainty", "code"} <= set(
         helper["deductions"][0]
     )
+    # the default CPU program, whose first frame is always the NumPy backend's
+    assert doc["backend"] == "auto" and helper["frames"][0]["engine"] == "numpy"
+    assert {f["engine"] for f in helper["frames"]} <= {"numpy", "compiled pixel", "compiled lanes8"}
     page = out["html"].read_text()
     assert page.startswith("<!DOCTYPE html>") and page.count('<tr id="team-') == 6
 

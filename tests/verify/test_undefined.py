@@ -18,6 +18,7 @@ from glslcheck.backends.numpy_engine.program import compile_numpy
 from glslcheck.cli.main import main
 from glslcheck.shadertoy.sources import load_shader
 from glslcheck.verification.compare import JSON_KEYS, compare, depends_on_undefined
+from glslcheck.verification.verify import JSON_KEYS as VERIFY_KEYS
 from glslcheck.verification.verify import verify_frames
 
 CASES = Path(__file__).resolve().parent / "undefined"
@@ -103,7 +104,7 @@ def test_cli_text_and_json(gl, capsys, tmp_path):
     path = CASES / "local.glsl"
     code = main(["verify", str(path), "--size", "32x18", "--format", "json"])
     out = json.loads(capsys.readouterr().out)
-    assert list(out) == list(JSON_KEYS)
+    assert list(out) == list(VERIFY_KEYS)
     if out["verdict"] == "match":  # this driver zero-initialises locals too
         assert code == 0
         pytest.skip("this driver gives the uninitialized local WebGL's value: nothing differs")

@@ -172,3 +172,13 @@ def test_verify_emulates_the_drivers_float_to_uint(gl, tmp_path):
         a = numpy_side.render(size=(160, 90))
         b = gl_side.render(size=(160, 90))
         assert not np.array_equal(a, b), model
+
+
+def test_a_shader_with_buffers_is_verified_on_the_numpy_backend(gl, make_shader):
+    """The default CPU program runs a shader's passes on the NumPy backend (Buffer A-D are not
+    the compiled engine's): each frame says so, as verify's text and JSON name it."""
+    from glslcheck.verification.verify import verify_frames
+
+    text = "void mainImage(out vec4 c, in vec2 f) { c = vec4(f / iResolution.xy, 0.5, 1.0); }"
+    (result,) = verify_frames(make_shader(text, Buffer_A=text), size=(16, 8))
+    assert result.match and result.engine == "numpy" and result.to_json()["engine"] == "numpy"

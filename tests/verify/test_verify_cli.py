@@ -8,7 +8,7 @@ from pathlib import Path
 import pytest
 
 from glslcheck.cli.main import main
-from glslcheck.verification.compare import JSON_KEYS
+from glslcheck.verification.verify import BACKENDS, JSON_KEYS
 
 ROOT = Path(__file__).resolve().parents[2]
 PART = str(ROOT / "lab_shaders" / "02_point_light")
@@ -20,6 +20,7 @@ def test_match_exit_0_and_exact_json_keys(gl, capsys):
     obj = json.loads(capsys.readouterr().out)
     assert isinstance(obj, dict) and tuple(obj) == JSON_KEYS
     assert obj["match"] is True and obj["size"] == [64, 36]
+    assert obj["engine"] == "numpy"  # one quick frame: the default CPU program's first engine
 
 
 def test_several_frames_give_a_list_of_exact_objects(gl, capsys):
@@ -56,7 +57,7 @@ def test_mismatch_exit_1_text_and_diff(gl, capsys, tmp_path, monkeypatch):
             return img
 
     monkeypatch.setattr(
-        v, "compile_backend", lambda s, b: Tampered(real(s, b)) if b == "numpy" else real(s, b)
+        v, "compile_backend", lambda s, b: Tampered(real(s, b)) if b == BACKENDS[0] else real(s, b)
     )
     diff = tmp_path / "diff.png"
     assert main(["verify", PART, *SMALL, "--diff", str(diff)]) == 1

@@ -43,10 +43,12 @@ def test_page_is_self_contained_and_complete(tmp_path, webgl, gl):
     )
     good, bad = page.shaders
     assert good.ok and not bad.ok and not page.ok
-    assert set(good.renders) == {"numpy", "gl", "webgl"} and not bad.renders
+    # the default CPU program first (one frame: the NumPy backend's), then the drivers
+    assert set(good.renders) == {"auto", "gl", "webgl"} and not bad.renders
+    assert good.engines == {"auto": "numpy", "gl": "gl", "webgl": "webgl"}
     assert [(a, b) for a, b, _, _ in good.pairs] == [
-        ("numpy", "gl"),
-        ("numpy", "webgl"),
+        ("auto", "gl"),
+        ("auto", "webgl"),
         ("gl", "webgl"),
     ]
     text = page.html
@@ -59,6 +61,7 @@ def test_page_is_self_contained_and_complete(tmp_path, webgl, gl):
         and "WebGL: &#x27;webgl_k&#x27; : reserved built-in name" in text
     )
     assert '<span class="ln">3</span>' in text
+    assert "<b>numpy vs gl</b>" in text and "by the NumPy backend</figcaption>" in text
 
 
 def test_nan_origins_are_on_the_page(tmp_path, gl):

@@ -26,9 +26,12 @@ threads, but it may pull the runtime from under them (LLVM aborts a compile cut 
 
 from __future__ import annotations
 
+import atexit
 import hashlib
+import math
 import os
 import queue
+import subprocess
 import sys
 import threading
 import time
@@ -94,6 +97,17 @@ class Workers:
         """No more jobs: each thread ends once its current band does."""
         for _ in range(self.threads):
             self.jobs.put(None)
+
+
+_CHILDREN: set[subprocess.Popen] = set()  # compiles under way in child processes (build_apart)
+_EXITING: list[bool] = []  # the interpreter is exiting: the children were stopped on purpose
+
+
+@atexit.register
+def _stop_children() -> None:
+    _EXITING.append(True)
+    for child in list(_CHILDREN):
+        child.kill()
 
 
 _WORKERS: dict[int, Workers] = {}
@@ -336,6 +350,58 @@ class CompiledProgram:
                 _SOURCES[self.key] = self.source
             self.mod = mod
             return mod
+
+    def build_apart(self, seconds: float) -> str:
+        """Compile the module into numba's cache in a child process (build.py), which holds
+        neither this process's GIL nor its frames up, and stop it after `seconds` (numba's
+        compile cannot be stopped inside a process; a child can). "" when the cache holds the
+        machine code (`load` then loads it: tenths of a second), "over budget" when stopped,
+        EXITING when this process is exiting (the child stopped with it: nothing to say),
+        "failed: ..." when the child failed (its last line; `load` in this process gives the
+        error itself) or "killed: ..." when it died of a signal. A cache numba cannot write
+        leaves `load` to compile here."""
+        require_numba()
+        from ..numpy_engine import jit
+
+        cache = jit.use_cache_dir()  # (in the environment: the child's numba reads it)
+        if self.mod is not None or self.key in _MODULES or _cached(cache, self.key):
+            return ""
+        file = os.path.join(_folder(), f"m{self.key}.py")
+        if _read(file, strip=False) != self.source:
+            _write(file, self.source, quiet=False)
+        env = dict(os.environ)
+        # the child imports this glslcheck, wherever this process found it
+        root = os.path.dirname(os.path.dirname(os.path.dirname(os.path.dirname(__file__))))
+        env["PYTHONPATH"] = os.pathsep.join(p for p in (root, env.get("PYTHONPATH")) if p)
+        child = subprocess.Popen(
+            [sys.executable, "-m", f"{__package__}.build", file, self.path, str(os.getpid())],
+            stdin=subprocess.DEVNULL,
+            stdout=subprocess.DEVNULL,
+            stderr=subprocess.PIPE,
+            env=env,
+        )
+        # no compile outlives the process that wanted it: stopped at its exit (and the child
+        # ends by itself when this process is gone without one: build.py)
+        _CHILDREN.add(child)
+        try:
+            _, err = child.communicate(timeout=seconds)
+        except subprocess.TimeoutExpired:
+            child.kill()
+            child.communicate()
+            return "over budget"
+        except BaseException:  # Ctrl-C
+            child.kill()
+            raise
+        finally:
+            _CHILDREN.discard(child)
+        if _EXITING:
+            return EXITING
+        if child.returncode < 0:
+            return f"killed: numba's compile ended by signal {-child.returncode}"
+        if child.returncode:
+            lines = err.decode("utf-8", "replace").strip().splitlines()
+            return f"failed: {lines[-1] if lines else child.returncode}"
+        return ""
 
     def _import(self, bounded: bool) -> Any:
         from ..numpy_engine import jit
@@ -612,14 +678,22 @@ def _listdir(folder: str) -> list[str]:
 
 
 TIER_LANES = 8  # the lockstep width TieredProgram moves to (8: AVX2's float32 lanes)
+OVER = "over budget"  # a marker's text when the lockstep build was stopped
+EXITING = "exiting"  # build_apart's answer when the process exits under it
 # Lockstep's cold compile over the per-pixel module's, for TieredProgram's estimate of what
 # moving costs: the median over the 67 lab and tuned real shaders (quartiles 3.5 and 6.2),
 # as benchmarks/bench_compiled.py --fresh-cache --lanes 0,8 prints both compile times.
 LOCKSTEP_COMPILE_RATIO = 4.7
-# The most a lockstep compile may be expected to take: a module whose estimate (move_cost) is
-# longer is not built and the program stays per pixel (the real corpora's slowest lockstep
-# compiles took 124 s cold, for 2-4x faster frames: minutes of rendering to pay back).
+# The most a lockstep compile may take: a module whose estimate (move_cost) is longer is not
+# built, and a build still running after it is stopped (build_apart; the program stays per
+# pixel, and later processes do not try again). The real corpora's slowest lockstep compiles
+# took 124 s cold, for 2-4x faster frames: minutes of rendering to pay back.
 LOCKSTEP_BUDGET = 30.0
+# The most the default CPU program's compile of a per-pixel module may take beside the NumPy
+# frames (tiered.py): the real corpora's per-pixel compiles took a median of 2 s and at most
+# 36 s (h38-2d-sprites) cold, and they pay back more than lockstep's (NumPy frames are 3-10x the
+# compiled engine's on heavy shaders), so the budget is twice the slowest.
+PIXEL_BUDGET = 60.0
 # Seconds of lockstep compile per line of the per-pixel module, the estimate when the per-pixel
 # module's compile time is not known (a numba cache filled before compile times were recorded):
 # the median of the same run (quartiles 0.021 and 0.036; a machine's speed moves it).
@@ -634,9 +708,9 @@ class TieredProgram:
     student's one render of a lab shader would wait for it and gain milliseconds. So frames
     are rendered per pixel until the time they have taken, counting the frame about to be
     rendered (its pixels at the rate measured so far), reaches what compiling lockstep is
-    expected to cost; then the lockstep module is made, in a thread of its own while the frames
-    go on per pixel (numba's compile beside the render's threads: no frame waits for it, a
-    one-off 1,000 s compile included), and every frame after it is ready uses it. This is
+    expected to cost; then the lockstep module is made beside the frames, which go on per pixel
+    (numba compiles it in a child process, build_apart, and a thread of this one loads it from
+    numba's cache: no frame waits for it), and every frame after it is ready uses it. This is
     the ski-rental rule: whatever the number of frames to come, the total is at most about twice
     what the better of the two modes alone would have cost (moving too late costs at most
     the compile once more, moving never costs nothing when the frames stop first). The expected
@@ -645,7 +719,9 @@ class TieredProgram:
     the same either way: lockstep is bit-identical to per pixel (tests/compiled/test_lanes.py),
     so the moment of the move changes no pixel. A lockstep module that cannot be made (the
     rewrite falls back, numba fails) leaves the program per pixel, with a warning for a failure,
-    and so does one expected to take more than LOCKSTEP_BUDGET seconds to compile.
+    and so does one expected to take more than LOCKSTEP_BUDGET seconds to compile, or whose
+    compile (in a child process: CompiledProgram.build_apart) runs longer than that: the
+    marker beside the per-pixel module then says so, and no later process builds it.
     """
 
     def __init__(self, shader: Any, first: CompiledProgram, threads: int | None = None) -> None:
@@ -661,6 +737,7 @@ class TieredProgram:
             str | None
         ] = []  # _cached_fast's answer, looked up once (it walks the cache)
         self._mover: threading.Thread | None = None  # the lockstep compile, once started
+        self._over = False  # a lockstep build was stopped at the budget (over_budget)
 
     @property
     def path(self) -> str:
@@ -701,8 +778,14 @@ class TieredProgram:
             self._found.append(self._lookup_fast())
         return self._found[0]
 
+    def over_budget(self) -> bool:
+        """Whether a build of the lockstep module was stopped at LOCKSTEP_BUDGET (its marker)."""
+        self._cached_fast()
+        return self._over
+
     def _lookup_fast(self) -> str | None:
         key = _read(self._marker())
+        self._over = bool(key) and key.startswith(OVER)
         if key in _SOURCES:  # loaded in this process already
             return _SOURCES[key]
         if not key or not _cached(os.path.dirname(_folder()), key):
@@ -713,7 +796,10 @@ class TieredProgram:
         return source if source is not None and CompiledProgram(source, "").key == key else None
 
     def move_cost(self) -> float:
-        """Expected wall seconds of making the lockstep module now."""
+        """Expected wall seconds of making the lockstep module now (infinite when a build of it
+        was stopped at the budget)."""
+        if self.over_budget():
+            return math.inf
         if self._cached_fast() is not None:
             return self.first.load_seconds or 0.0  # a cache load, as the per-pixel one was
         known = self.first.compile_seconds()
@@ -734,7 +820,17 @@ class TieredProgram:
             fast = CompiledProgram(source, self.first.path, self.threads, self._remake_fast)
             fast.frame_seconds = self.first.frame_seconds
             fast.loop_limit = self.first.loop_limit
-            fast.load(bounded=False)  # no frame waits for it
+            why = fast.build_apart(LOCKSTEP_BUDGET)
+            if why == EXITING:
+                self.stay = True
+                return
+            if why == "over budget":
+                _write(self._marker(), f"{OVER} {LOCKSTEP_BUDGET:g} s\n")
+                self._over, self.stay = True, True
+                return
+            if why.startswith("killed"):
+                raise RuntimeError(why)
+            fast.load(bounded=False)  # a cache load (a failure's compile here gives its error)
         except (
             Exception
         ) as e:  # an engine bug in the lockstep path: the per-pixel program still renders
@@ -804,15 +900,16 @@ class TieredProgram:
 
 
 def compile_compiled(
-    path_or_shader: Any, threads: int | None = None
+    path_or_shader: Any, threads: int | None = None, budget: bool = False
 ) -> CompiledProgram | TieredProgram:
     """The compiled engine's program for a shader's Image tab: a TieredProgram when the mode is
     not fixed (tiered()), else a CompiledProgram (`glslcheck.compile(path, backend="compiled")`
-    wraps it in a Program)."""
+    wraps it in a Program). `budget`: made with llvmpipe's loop budget from the start, for a
+    caller that sets `loop_limit` (which would otherwise generate the module again)."""
     from ...shadertoy.sources import Shader, load_shader
 
     shader = path_or_shader if isinstance(path_or_shader, Shader) else load_shader(path_or_shader)
-    source, path = generate(shader)
+    source, path = generate(shader, budget=budget)
     prog = CompiledProgram(source, path, threads, lambda: generate(shader, budget=True)[0])
     if (
         tiered() and "LANES_FALLBACK" not in source and "\nLANES = " not in source

@@ -227,6 +227,8 @@ class RegionStat:
 class NumpyProgram:
     """A shader transpiled to Python; render it as often as needed (thread-safe)."""
 
+    engine = "numpy"  # the engine that renders its frames (Program.engine; not a field)
+
     source: str
     meta: dict
     filename: str

@@ -1,10 +1,13 @@
 """glslcheck bench SHADER... [--size WxH] [--runs N] [--time T] [--format text|json]
-[--plot out.png] [--webgl] [--backend compiled]: render time against error for GL and the NumPy
+[--plot out.png] [--webgl] [--backend compiled]: render time against error for GL and the CPU
 precision modes.
 
 For each SHADER (a tab file or a folder of tabs) the Image tab is rendered 12 ways: by the
-OpenGL driver (Mesa llvmpipe, highp = float32) and by the NumPy backend at float16, float32 and
-float64, each at 1, 4 and 16 samples per pixel (--webgl adds WebGL 2 in headless Chromium at
+OpenGL driver (Mesa llvmpipe, highp = float32) and by the default CPU program at float16, float32
+and float64, each at 1, 4 and 16 samples per pixel (the NumPy backend, whose float32 frames move
+to the compiled engine once they have cost its compile, where that gives the same bits:
+glslcheck/backends/tiered.py; the table's backend column and the JSON's engine say which engine
+rendered the timed rounds) (--webgl adds WebGL 2 in headless Chromium at
 each, in the plot's purple; --backend compiled adds the compiled engine, glslcheck/compiled_backend,
 at each, in brown: it needs numba, the extra glslcheck[jit], exit 2 with the pip line without
 it). Each is timed (median of --runs rounds after a warm-up render; the rounds go round-robin
@@ -20,7 +23,9 @@ error); --plot draws time against mean error on log axes, one panel per shader, 
 
 --format json prints exactly {"rows": [{"shader", "backend", "precision", "samples",
 "median_ms", "ratio_to_gl", "max_abs_error", "mean_abs_error", "psnr_db",
-"pixels_over_1_255"}, ...]} (psnr_db null when infinite, i.e. for the reference itself).
+"pixels_over_1_255", "engine"}, ...]} (psnr_db null when infinite, i.e. for the reference itself;
+backend "auto" for the default CPU program; engine "numpy", "compiled pixel", "compiled lanes8",
+"numpy then compiled lanes8" when it moved during the rounds, or the backend's name).
 A progress bar runs on stderr when it is a terminal (--progress forces it).
 
 Exit 0 when every shader was measured, 1 when a shader has GLSL errors (the others are still

@@ -75,9 +75,10 @@ def add_arguments(p) -> None:
     )
     p.add_argument(
         "--backend",
-        choices=("numpy", "compiled", "gl"),
-        default="numpy",
-        help="what renders (default numpy: the CPU renderer, which honours --frame-budget)",
+        choices=("auto", "numpy", "compiled", "gl"),
+        default="auto",
+        help="what renders (default auto: the NumPy backend, then the compiled engine where "
+        "that gives the same bits; the CPU engines honour --frame-budget)",
     )
     p.add_argument(
         "--jobs",

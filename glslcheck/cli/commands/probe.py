@@ -33,8 +33,11 @@ depend on them, counted per origin ("undefined_pixels") and followed by the read
 "pixels", "box": [x0, y0, x1, y1], "undefined_pixels"}], "undefined_reads": [{"file", "line",
 "column", "kind"}] (empty unless some NaN/Inf pixel depends on one)}.
 
-The uniform options are render's. Exit 0 (1 with --nan when some pixel is NaN or Inf), 1 on a
-shader error, 2 on usage or I/O errors.
+probe runs on the NumPy backend only, whatever render's default: its step trace and NaN origins
+come from the NumPy backend's traced module, which the compiled engine has no counterpart of
+(the two render the same bits where the default CPU program moves, so the values are the
+render's). The uniform options are render's. Exit 0 (1 with --nan when some pixel is NaN or
+Inf), 1 on a shader error, 2 on usage or I/O errors.
 """
 
 from __future__ import annotations

@@ -1,10 +1,14 @@
 """glslcheck verify SHADER... [--size WxH] [--time T | --times T,T,... | --frames N [--fps F]]
 [--frame N] [--mouse X,Y,Z,W] [--precision float32|float16|float64] [--samples N]
-[--diff diff.png] [--format text|json] [--against gl|webgl]: render with NumPy and OpenGL and
-compare.
+[--diff diff.png] [--format text|json] [--against gl|webgl]: render on the CPU and with OpenGL
+and compare.
 
 Each SHADER is a tab file or a folder of tabs (see glslcheck/shadertoy/sources.py). Its Image tab is
-rendered by the NumPy backend and by the OpenGL driver (Mesa llvmpipe) with the same uniforms,
+rendered by the default CPU program and by the OpenGL driver (Mesa llvmpipe) with the same
+uniforms. The default CPU program is the NumPy backend, whose frames move to the compiled engine
+once they have cost its compile, where that gives the same bits (glslcheck/backends/tiered.py);
+the text names the side under test after the engine of each frame ("numpy", or "compiled" for a
+frame of the compiled engine). The two float images are compared
 and the two float images are compared by the tolerance model of glslcheck/verification/compare.py:
 max and mean abs error, PSNR, pixels over tolerance ("mismatched"), edge pixels (differences a
 sub-pixel shift explains), NaN/Inf counts in each image, and where the differences lie (bounding box
@@ -24,10 +28,10 @@ frames show a progress bar on stderr when it is a terminal (--progress forces it
 
 --format json prints exactly {"match", "verdict", "size", "max_abs_error", "mean_abs_error",
 "psnr_db", "mismatched_pixels", "edge_pixels", "nan_numpy", "nan_gl", "unstable_pixels",
-"unstable_lines", "undefined_pixels", "undefined_lines", "driver"} for one frame (psnr_db is null
-for identical images; verdict is "match", "match-unstable", "undefined" or "mismatch"; unstable
-pixels are those where both float32 renders are far from the float64 reference, see
-verification/compare.py; unstable_lines names the statements where they lose
+"unstable_lines", "undefined_pixels", "undefined_lines", "driver", "engine"} for one frame
+(psnr_db is null for identical images; verdict is "match", "match-unstable", "undefined" or
+"mismatch"; unstable pixels are those where both float32 renders are far from the float64
+reference, see verification/compare.py; unstable_lines names the statements where they lose
 precision, traced by glslcheck probe on a sample of them; undefined pixels are those over
 tolerance whose colour depends on a value the shader leaves undefined (an out parameter or a
 local read before it is written, an operation on constants outside its range: `glslcheck check`
@@ -35,14 +39,16 @@ warns at each), found by rendering the NumPy side with other values at those rea
 (verification/verify.py, UndefinedSide); they are counted apart from the mismatches, and the
 verdict is "undefined" (match false, exit 1: the shader is at fault, not the renderer) when they
 are the only difference; undefined_lines is [{"file", "line", "column", "code", "kind",
-"pixels"}] of the reads, kind one of out-parameter, out-parameter-unwritten (at the return
-that leaves it so), uninitialized-local, division-by-zero,
-shift-out-of-range, conversion-out-of-range, domain; driver is {"renderer", "mesa",
-"emulated"} of the GL side, emulated false when the NumPy backend's bit-exact emulation was
-copied from another driver than this one, llvmpipe of Mesa 22.3: a mismatch then also says so
-in the text output, since it may be the driver's), or a JSON list of such objects, in order (shader
-by shader, then frame by frame), when more than one frame is verified. --diff diff.png writes the
-heat map of the differences (diff-0.png, diff-1.png, ... for several frames).
+"pixels"}] of the reads, kind one of out-parameter, out-parameter-unwritten (at the return that
+leaves it so), uninitialized-local, division-by-zero, shift-out-of-range,
+conversion-out-of-range, domain; driver is {"renderer", "mesa", "emulated"} of the GL side,
+emulated false when the NumPy backend's bit-exact emulation was copied from another driver than
+this one, llvmpipe of Mesa 22.3: a mismatch then also says so in the text output, since it may
+be the driver's; engine is the engine that rendered the side under test: "numpy", "compiled
+pixel" or "compiled lanes8" for the default CPU program), or a JSON list of such objects, in
+order (shader by shader, then frame by frame), when more than one frame is verified. --diff
+diff.png writes the heat map of the differences (diff-0.png, diff-1.png, ... for several
+frames).
 
 Exit 0 when every frame matches, 1 on a mismatch, undefined pixels or a GLSL error (diagnostics
 as file:line:col on stderr), 2 on usage or I/O errors, or when no OpenGL context can be created.
@@ -205,7 +211,7 @@ def run(args) -> int:
         raise InputError(f"glslcheck verify: error: {e}") from None
     if args.against and args.backends:
         raise InputError("glslcheck verify: error: give --against or --backends, not both")
-    args.backends = args.backends or (("numpy", args.against) if args.against else BACKENDS)
+    args.backends = args.backends or ((BACKENDS[0], args.against) if args.against else BACKENDS)
     for (
         name
     ) in args.backends:  # a driver's side is always its highp; an engine of ours renders as told
@@ -261,7 +267,7 @@ def run(args) -> int:
         progress.finish()
 
     if args.format == "json":
-        objects = [r.comparison.to_json() for r in results]
+        objects = [r.to_json() for r in results]
         if len(objects) == 1:
             print(json.dumps(objects[0]))
         elif objects or not glsl_errors:
@@ -289,7 +295,8 @@ def _keep(result, diff_paths) -> None:
 def _print_text(results, args, glsl_errors: int) -> None:
     out = sys.stdout
     for result in results:
-        out.write(format_frame(result, args.precision, args.samples, names=args.backends))
+        names = side_names(args.backends, result.engine)
+        out.write(format_frame(result, args.precision, args.samples, names=names))
     failed = sum(r.comparison.verdict == "mismatch" for r in results)
     undefined = sum(r.comparison.verdict == "undefined" for r in results)
     n = len(results)
@@ -305,6 +312,15 @@ def _print_text(results, args, glsl_errors: int) -> None:
     if glsl_errors:
         line += f"; {glsl_errors} shader{'s' if glsl_errors != 1 else ''} with GLSL errors"
     out.write(line + "\n")
+
+
+def side_names(backends: tuple[str, str], engine: str) -> tuple[str, str]:
+    """How the text names the two sides of a frame: the default CPU program ("auto") after the
+    engine that rendered it, "numpy" or "compiled"."""
+    a, b = backends
+    if a == "auto":
+        a = engine.split()[0] if engine else "numpy"
+    return a, b
 
 
 def _num(v: float) -> str:

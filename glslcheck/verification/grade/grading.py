@@ -22,11 +22,12 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from ...backends import registry
 from ...base.diagnostics import Diagnostic, GlslError, InputError, source_line
 from ...base.images import png_bytes, quantise, thumbnail
 from ...shadertoy.sources import Shader, load_shader
 from ..compare import compare, diff_colours
-from ..verify import compile_backend
+from ..verify import compile_backend, engine_of
 from . import closeness
 from .records import CERTAIN, FAILED, POSSIBLE, Deduction, Frame, Grade, SourceError
 from .submissions import Checkout, Submission, SubmissionError, submission_shader
@@ -41,7 +42,7 @@ class Options:
 
     size: tuple[int, int] = DEFAULT_SIZE
     times: tuple[float, ...] = DEFAULT_TIMES
-    backend: str = "numpy"
+    backend: str = registry.DEFAULT  # the default CPU program (backends/tiered.py)
     full_images: bool = False  # keep each render and diff as a full-size PNG (--images)
 
 
@@ -143,6 +144,7 @@ def _grade_checkout(
         images.append(img)
         ref = reference.images[i] if reference else None
         grade.frames.append(_frame(img, t, ref, options.full_images))
+        grade.frames[-1].engine = engine_of(program, options.backend)
     grade.animates = closeness.animates(images)
     _problems(grade, reference)
     if reference is not None:

@@ -81,11 +81,13 @@ class Frame:
     over_tolerance: float | None = None  # share of pixels off by more than verify's 2/255
     diff_thumbnail: bytes = b""
     diff: bytes = b""  # the diff image at the graded size (Options.full_images)
+    engine: str = ""  # the engine that rendered it (Program.engine: "numpy", "compiled lanes8")
 
     def to_json(self) -> dict:
         psnr = self.psnr_db
         return {
             "time": self.time,
+            "engine": self.engine or None,
             "nonfinite_pixels": self.nonfinite_pixels,
             "flat": self.flat,
             "verdict": self.verdict,

@@ -1,0 +1,122 @@
+"""numba's compiles beside the frames (CompiledProgram.build_apart): in a child process whose
+machine code this process then loads from numba's cache, and stopped at a budget.
+
+Each test has a numba cache of its own (a temporary $NUMBA_CACHE_DIR), so the child really
+compiles and no test's machine code or verdict reaches another test or the user's cache.
+"""
+
+from __future__ import annotations
+
+import os
+import subprocess
+import sys
+
+import numpy as np
+import pytest
+
+import glslcheck
+from glslcheck.backends import tiered
+from glslcheck.backends.compiled_engine import engine
+
+SIZE = (24, 16)
+
+SHADER = """
+float ring(vec2 p) { return smoothstep(0.3, 0.28, abs(length(p) - 0.3)); }
+void mainImage(out vec4 c, in vec2 f) {
+    vec2 p = (f - 0.5 * iResolution.xy) / iResolution.y;
+    c = vec4(ring(p), 0.5 + 0.5 * sin(iTime + p.x), p.y, %s);
+}
+"""
+
+
+def _shader(make_shader, alpha: str):
+    """A shader of its own per test: a module this process loaded once is never built again."""
+    return make_shader(SHADER % alpha)
+
+
+@pytest.fixture
+def own_cache(monkeypatch, tmp_path):
+    monkeypatch.setenv("NUMBA_CACHE_DIR", str(tmp_path / "numba"))
+    monkeypatch.delenv("GLSLCHECK_TIERS", raising=False)
+    yield tmp_path
+    # numba's config follows the environment again at the next use_cache_dir (a changed value)
+
+
+def _same(a: np.ndarray, b: np.ndarray) -> bool:
+    return bool(((a.view(np.uint32) == b.view(np.uint32)) | (np.isnan(a) & np.isnan(b))).all())
+
+
+def test_the_child_compiles_and_this_process_loads_its_machine_code(numba, make_shader, own_cache):
+    shader = _shader(make_shader, "1.0")
+    prog, _ = engine.generate(shader, lanes=0)
+    prog = engine.CompiledProgram(prog, "Image.glsl")
+    assert not engine.module_cached(prog.key)
+    assert prog.build_apart(600.0) == ""
+    assert engine.module_cached(prog.key)  # the child wrote numba's cache
+    assert prog.compile_seconds() is not None  # and what its compile took
+    prog.load(bounded=False)
+    assert prog.cold is False  # loaded, not compiled here
+    want = glslcheck.compile(shader, backend="numpy").render(size=SIZE, time=0.7)
+    assert _same(prog.render(size=SIZE, time=0.7), want)
+    assert prog.build_apart(600.0) == ""  # in the cache already: no child
+
+
+def test_a_build_past_its_budget_is_stopped(numba, make_shader, own_cache):
+    prog, _ = engine.generate(_shader(make_shader, "0.5 + 0.5"), lanes=0)
+    prog = engine.CompiledProgram(prog, "Image.glsl")
+    # (a child cannot start Python, import numba and compile in a hundredth of a second)
+    assert prog.build_apart(0.01) == "over budget"
+    assert not engine.module_cached(prog.key)
+
+
+def test_a_lockstep_build_over_budget_is_never_tried_again(
+    numba, make_shader, own_cache, monkeypatch
+):
+    monkeypatch.delenv("GLSLCHECK_COMPILED_LANES", raising=False)
+    shader = _shader(make_shader, "0.25 + 0.75")
+    prog = engine.compile_compiled(shader)
+    assert isinstance(prog, engine.TieredProgram)
+    prog.render(size=SIZE, time=0.5)  # the per-pixel module, compiled here
+    monkeypatch.setattr(engine, "LOCKSTEP_BUDGET", 0.01)
+    monkeypatch.setattr(engine.TieredProgram, "move_cost", lambda self: 0.0)
+    assert prog.move_now() and prog.settle(600)
+    assert prog.stay and prog.mode == "pixel" and prog.over_budget()
+    monkeypatch.undo()  # the real budget and rule, the same cache
+    monkeypatch.setenv("NUMBA_CACHE_DIR", str(own_cache / "numba"))
+    again = engine.compile_compiled(shader)
+    assert again.over_budget() and again.move_cost() == float("inf")
+    assert not again.move_now()
+
+
+def test_the_default_program_stays_on_numpy_past_the_budget(
+    numba, make_shader, own_cache, monkeypatch
+):
+    monkeypatch.setattr(tiered, "COMPILE_GUESS_SECONDS", 0.0)
+    monkeypatch.setattr(tiered, "CACHED_LOAD_SECONDS", 0.0)
+    monkeypatch.setattr(engine, "PIXEL_BUDGET", 0.01)
+    monkeypatch.setattr(
+        tiered.TieredCpuProgram, "_record_path", lambda self: str(own_cache / "t.tier")
+    )
+    shader = _shader(make_shader, "0.125 + 0.875")
+    prog = glslcheck.compile(shader)
+    prog.render(size=SIZE, time=0.5)
+    assert prog.impl.settle(600)
+    assert prog.impl.mode == "numpy" and prog.impl.stay.startswith("over budget")
+    assert prog.impl.record()["verdict"] == prog.impl.stay  # kept: not tried again
+    want = glslcheck.compile(shader, backend="numpy").render(size=SIZE, time=0.6)
+    assert _same(prog.render(size=SIZE, time=0.6), want) and prog.engine == "numpy"
+
+
+def test_a_compile_whose_asking_process_is_gone_ends(numba, make_shader, own_cache):
+    """The child watches the process that asked for it (build.py): with that one gone (here: a
+    process id that is not its parent), it ends at once instead of compiling for nobody."""
+    prog, _ = engine.generate(_shader(make_shader, "0.0625 + 0.9375"), lanes=0)
+    file = own_cache / "m.py"
+    file.write_text(prog)
+    child = subprocess.run(
+        [sys.executable, "-m", "glslcheck.backends.compiled_engine.build", str(file), "x", "1"],
+        env=dict(os.environ, PYTHONPATH=os.pathsep.join(sys.path)),
+        capture_output=True,
+        timeout=120,
+    )
+    assert child.returncode == 1 and not child.stderr  # ended by the watch, not by an error
