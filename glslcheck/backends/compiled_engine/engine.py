@@ -785,7 +785,7 @@ class TieredProgram:
 
     def _lookup_fast(self) -> str | None:
         key = _read(self._marker())
-        self._over = bool(key) and key.startswith(OVER)
+        self._over = key is not None and key.startswith(OVER)
         if key in _SOURCES:  # loaded in this process already
             return _SOURCES[key]
         if not key or not _cached(os.path.dirname(_folder()), key):
