@@ -35,7 +35,7 @@ TYPE_CHECKING = False  # not typing's: importing typing costs every start-up
 if TYPE_CHECKING:
     from ...semantics.model import Model
     from ..cpu_core.facts import Facts
-    from ..numpy_engine.transpile.nir_fold import FoldContext
+    from .fold_values import FoldValues
 
 
 class FnState:
@@ -67,7 +67,7 @@ class ExpressionEmitter:
         pending: list[tuple[Any, frozenset]]
         derivative: Any
 
-        def fold_context(self) -> FoldContext: ...
+        def fold_context(self) -> FoldValues: ...
         def emit(self, text: str) -> None: ...
         def fresh(self, prefix: str = "t") -> str: ...
         def tmp(self, value: str) -> str: ...
@@ -241,6 +241,11 @@ class ExpressionEmitter:
         if self.fn is None or self.fn.uni is None:
             return True
         return self.fn.uni.is_uniform(e)
+
+    def one_lane(self, e: Any) -> bool:
+        """Whether the NumPy backend holds e's value as one lane for the whole tile (a uniform
+        input too: Uniformity's verdict; global initializers run on one lane there)."""
+        return self.fn is None or self.fn.uni is None or self.fn.uni.is_uniform(e)
 
     def _is_input(self, ident: Any) -> bool:
         sym = self.model.symbol_of(ident)
@@ -459,6 +464,13 @@ class ExpressionEmitter:
             self.lines += body
             self.emit(f"    {res} = {rcode}")
             return Val(T.BOOL, [res])
+        if self.fn is not None and self.fn.sym is not None:
+            from ..numpy_engine.transpile import nir_fold
+            from .fold_values import COPIED
+
+            folded = nir_fold.copied_binary(self.fold_context(), e, None, COPIED)  # Mesa's order
+            if folded is not None:
+                return folded
         left = self.expr(e.left)
         right = self.expr(e.right)
         if (

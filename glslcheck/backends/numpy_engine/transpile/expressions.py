@@ -335,6 +335,21 @@ class Expressions(TranspilerState):
             return f"({left} {op} {right})"  # the same, for int32 or uint32 arrays
         return f"rt.{_BIN_METHODS[op]}({left}, {right})"
 
+    # The operations nir_fold's rules build Mesa's order from (state.FoldEmitter).
+    @staticmethod
+    def ieee(op: str, left: str, right: str) -> str:
+        """`left op right` of two float values, IEEE (NumPy's operator: no constant folding)."""
+        return f"({left} {op} {right})"
+
+    @staticmethod
+    def negate(value: str) -> str:
+        return f"(-{value})"
+
+    @staticmethod
+    def llvmpipe(rewritten: str, written: str) -> str:
+        """Mesa's order in float32 (llvmpipe) mode, the written one in float64 and float16."""
+        return f"({rewritten} if rt.lp else {written})"
+
     def _print_Ternary(self, e: A.Ternary, mask: str | None) -> str:
         fs = self.fn
         assert fs is not None  # generating a function's body

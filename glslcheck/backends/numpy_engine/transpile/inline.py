@@ -54,7 +54,7 @@ def bound_code(tr: TranspilerState, sym: Symbol) -> str | None:
     return None
 
 
-def inline_owner(tr: TranspilerState, sym: Symbol | None) -> Any:
+def inline_owner(tr: FoldEngine, sym: Symbol | None) -> Any:
     """The inlined function a parameter symbol belongs to, else None."""
     for frame in reversed(tr.fold_state.inline_frames):
         if id(sym) in frame["params"]:

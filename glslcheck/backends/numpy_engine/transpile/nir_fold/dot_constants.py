@@ -26,7 +26,7 @@ from .queries import (
 
 TYPE_CHECKING = False  # not typing's: importing typing costs every start-up
 if TYPE_CHECKING:
-    from ..state import TranspilerState
+    from ..state import FoldEngine, TranspilerState
 
 
 def merged_dot(tr: TranspilerState, call: A.Call, args: list[str], mask: str | None) -> str | None:
@@ -87,7 +87,7 @@ def broadcast_dot(
     return f"({rewritten} if rt.lp else rt.dot({args[0]}, {args[1]}))"
 
 
-def broadcast_dot_parts(tr: TranspilerState, call: Any) -> tuple[Any, float] | None:
+def broadcast_dot_parts(tr: FoldEngine, call: Any) -> tuple[Any, float] | None:
     """(s, the float32 sum of K right to left) for a call ``dot(vecN(s), #K)``, else None."""
     if not (
         isinstance(call, A.Call)
@@ -119,7 +119,7 @@ def dot_operand(tr: TranspilerState, node: Any) -> bool:
     return constant_product(tr, node) or tr.fn is not None and _broadcast(tr, node) is not None
 
 
-def _broadcast(tr: TranspilerState, v: Any) -> Any:
+def _broadcast(tr: FoldEngine, v: Any) -> Any:
     """The float s of a vector ``vecN(s)`` (also a never-written local or inlined parameter
     so built, or a swizzle of one), else None."""
     if isinstance(v, A.Field) and tr.model.is_swizzle(v):

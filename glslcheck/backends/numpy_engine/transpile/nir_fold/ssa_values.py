@@ -26,7 +26,7 @@ from .queries import (
 
 TYPE_CHECKING = False  # not typing's: importing typing costs every start-up
 if TYPE_CHECKING:
-    from ..state import TranspilerState
+    from ..state import FoldEngine, TranspilerState
 
 
 def keep_factor(tr: TranspilerState, e: A.Binary, mask: str | None) -> str | None:
@@ -99,17 +99,18 @@ def _merge_reads(tr: TranspilerState) -> dict[int, list[A.Identifier]]:
     return cache[key]
 
 
-def product_parts(tr: TranspilerState, node: Any) -> tuple[Any, Any, str | None] | None:
+def product_parts(tr: FoldEngine, node: Any) -> tuple[Any, Any, str | None] | None:
     """(y, #c, code) when the value of the variable ``node`` is ``y * #c`` to NIR: a
     never-written local's initializer (code None: y is computed again here), or the
-    assignment reaching this read when :func:`keep_factor` kept y (code: its temporary)."""
+    assignment reaching this read when :func:`keep_factor` kept y (code: its temporary, in the
+    Python function being written, `tr.lines`; an engine that keeps none has no `lines`)."""
     if not isinstance(node, A.Identifier):
         return None
     init, code = stable_init(tr, node), None
     if init is None:
         init = reaching_value(tr, node)
         kept = tr.fold_state.kept.get(id(init))
-        if kept is None or kept[1] is not tr.lines:
+        if kept is None or kept[1] is not getattr(tr, "lines", None):
             return None  # (not kept, or kept in another Python function: an outlined part)
         code = kept[0]
     if not (isinstance(init, A.Binary) and init.op == "*") or has_matrix(tr, init.left, init.right):

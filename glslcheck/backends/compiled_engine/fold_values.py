@@ -1,0 +1,79 @@
+"""Mesa's rewrites (the NumPy backend's nir_fold) computed by the compiled engine: the rules decide,
+this module gives them the compiled engine's values to build Mesa's order from.
+
+A rule of backends/numpy_engine/transpile/nir_fold builds its rewrite from the operations of
+state.FoldEmitter (operands, products and sums as the engine writes them, IEEE operations,
+negation) and never spells one itself; the NumPy Transpiler answers with Python text over lane
+arrays, :class:`FoldValues` with Codegen's `Val`s. So a rule changes both engines at once, and
+both compute the same float32 operations in the same order.
+
+What the NumPy backend holds as one lane matters to the bits (Runtime.fmul takes a value the
+same in every lane, computed, for a constant, and folds ``x * 0.0`` to 0): a value here carries
+`Val.one` (one lane there: a uniform input, a constant, a value of the uniformity analysis) and
+`Val.uni` (one lane and computed: taken there for a constant), as the arrays there are."""
+
+from __future__ import annotations
+
+from typing import Any
+
+from ...language import glsl_types as T
+from ...semantics.consteval import f32
+from ..numpy_engine.transpile.nir_fold import FoldContext
+from .values import Val
+
+COPIED = frozenset({"constant_merge"})  # the families of nir_fold.binary built from FoldEmitter's
+
+
+class FoldValues(FoldContext):
+    """nir_fold's context for the compiled engine, with the operations its rules emit through
+    (state.FoldEmitter): every value is a `Val` of the Codegen being generated."""
+
+    def __init__(self, cg: Any) -> None:  # (a Codegen, which imports this module)
+        super().__init__(cg.model, cg.facts)
+        self.cg = cg
+
+    def expr(self, e: Any, mask: str | None = None) -> Val:
+        v = self.cg.expr(e)
+        v.one = self.cg.one_lane(e)
+        return v
+
+    def exprs(self, items: list[Any], mask: str | None = None) -> list[Val]:
+        return [self.expr(e, mask) for e in items]
+
+    def const_float(self, v: float, v32: float | None = None) -> Val:
+        x = v32 if v32 is not None else f32(v)
+        return Val(T.FLOAT, [self.cg.cf(x)], [x], uni=True, one=True)
+
+    def binary_values(self, op: str, lt: Any, rtp: Any, left: Val, right: Val) -> Val:
+        """`left op right` as the NumPy Transpiler's binary_values computes it: a float product
+        is Runtime.fmul (Codegen.fmul; a matrix product by shape), a sum the operator."""
+        rtype = T.binary_result(op, lt, rtp)
+        assert not isinstance(rtype, str), rtype  # (the rules combine operands of checked types)
+        cg = self.cg
+        if op == "*" and (lt.is_matrix or rtp.is_matrix) and not (lt.is_scalar or rtp.is_scalar):
+            v = cg.linear_product(left, right, rtype)
+        elif op == "*":
+            v = cg.fmul(left, right, rtype)
+        else:
+            v = cg.componentwise(left, right, rtype, lambda a, b, i: f"({a} {op} {b})")
+        return _computed(v, left, right)
+
+    def ieee(self, op: str, left: Val, right: Val) -> Val:
+        rtype = T.binary_result(op, left.t, right.t)
+        assert not isinstance(rtype, str), rtype
+        v = self.cg.componentwise(left, right, rtype, lambda a, b, i: f"({a} {op} {b})")
+        return _computed(v, left, right)
+
+    def negate(self, value: Val) -> Val:
+        return Val(value.t, [f"(-{p})" for p in value.parts], None, value.one, value.one)
+
+    def llvmpipe(self, rewritten: Val, written: Val) -> Val:
+        """Mesa's order: the compiled engine computes llvmpipe's float32 only."""
+        return rewritten
+
+
+def _computed(v: Val, left: Val, right: Val) -> Val:
+    """v, the result of an operation on left and right, flagged as the NumPy backend's array of
+    it is: one lane when both operands are, and then a computed value (a constant to fmul)."""
+    one = left.one and right.one
+    return Val(v.t, v.parts, None, one, one)
