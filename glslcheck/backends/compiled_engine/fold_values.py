@@ -19,9 +19,11 @@ from typing import Any
 from ...language import glsl_types as T
 from ...semantics.consteval import f32
 from ..numpy_engine.transpile.nir_fold import FoldContext
+from .builtin_calls import geometric
 from .values import Val
 
-COPIED = frozenset({"constant_merge"})  # the families of nir_fold.binary built from FoldEmitter's
+# the families of nir_fold.copied_binary this engine computes (built from FoldEmitter's operations)
+COPIED = frozenset({"factoring", "constant_merge", "sink"})
 
 
 class FoldValues(FoldContext):
@@ -70,6 +72,36 @@ class FoldValues(FoldContext):
     def llvmpipe(self, rewritten: Val, written: Val) -> Val:
         """Mesa's order: the compiled engine computes llvmpipe's float32 only."""
         return rewritten
+
+    def tmp(self, value: Val) -> Val:
+        parts = [self.cg.tmp(p) for p in value.parts]
+        return Val(value.t, parts, value.const, value.uni, value.one)
+
+    def component(self, value: Val, i: int) -> Val:
+        const = [value.const[i]] if value.const is not None else None
+        return Val(T.SCALARS[value.t.base], [value.parts[i]], const, value.uni, value.one)
+
+    def runtime(self, name: str, *args: Val) -> Val:
+        """The Runtime's operation `name` (runtime_operators.py, runtime_transcendental.py), as
+        the NumPy backend computes it: `dot` (Runtime.dot, products summed right to left),
+        `dot_add` (the constant in the innermost sum), `inversesqrt`."""
+        cg = self.cg
+        if name == "dot":
+            u, v = args
+            return _computed(geometric(cg, "dot", [u, v], T.FLOAT), u, v)
+        if name == "dot_add":
+            u, v, k = args
+            u = Val(u.t, [cg.atom(p) for p in u.parts], u.const, u.uni, u.one)
+            v = Val(v.t, [cg.atom(p) for p in v.parts], v.const, v.uni, v.one)
+            prods = cg.fmul(u, v, u.t if len(u.parts) >= len(v.parts) else v.t).parts
+            text = f"({prods[-1]} + {k.parts[0]})"
+            for p in reversed(prods[:-1]):
+                text = f"({p} + {text})"
+            return _computed(_computed(Val(T.FLOAT, [text]), u, v), k, k)
+        if name == "inversesqrt":
+            (x,) = args
+            return _computed(Val(x.t, [f"inversesqrt({p})" for p in x.parts]), x, x)
+        raise ValueError(f"no Runtime operation {name!r} here")
 
 
 def _computed(v: Val, left: Val, right: Val) -> Val:

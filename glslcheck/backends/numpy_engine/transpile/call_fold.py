@@ -73,7 +73,7 @@ from .common import _RUNTIME_NAMES
 
 TYPE_CHECKING = False  # not typing's: importing typing costs every start-up
 if TYPE_CHECKING:
-    from .state import TranspilerState
+    from .state import FoldEmitter, TranspilerState
 
 # built-ins computed component by component (the runtime's function of a scalar array)
 _COMPONENTWISE = (
@@ -133,7 +133,7 @@ class _Eval:
     """The scalar evaluation of one call (see the module doc); `merges`: how often a merge rule
     fired."""
 
-    def __init__(self, tr: TranspilerState, mask: str | None) -> None:
+    def __init__(self, tr: FoldEmitter, mask: str | None) -> None:
         self.tr, self.mask, self.merges, self.depth, self.factored = tr, mask, 0, 0, 0
 
     # -- scalar rules ----------------------------------------------------------------------
@@ -452,7 +452,7 @@ def _leaves(code: str, t: Any) -> list[_T]:
     return [_T("x", code=f"{code}[{c}][{r}]") for c in range(t.cols) for r in range(t.rows)]
 
 
-def _constant_components(tr: TranspilerState, arg: Any, call: A.Call) -> list[_T | None] | None:
+def _constant_components(tr: FoldEmitter, arg: Any, call: A.Call) -> list[_T | None] | None:
     """Per component of a local `arg` read by `call`: a constant term where its value is a
     compile-time constant there, else None; None when `arg` is not such a local. Known only
     for a local declared, then written, by top-level statements of the current function
@@ -496,7 +496,7 @@ def _constant_components(tr: TranspilerState, arg: Any, call: A.Call) -> list[_T
     return comps
 
 
-def _unchanged_init(tr: TranspilerState, ident: A.Identifier, call: A.Call) -> Any:
+def _unchanged_init(tr: FoldEmitter, ident: A.Identifier, call: A.Call) -> Any:
     """The initializer of the local `ident` when it is declared by a top-level statement of the
     current function before the one that holds `call`, and neither it nor a local or parameter
     the initializer reads is written in between (so the initializer, evaluated again at the
@@ -530,7 +530,7 @@ def _unchanged_init(tr: TranspilerState, ident: A.Identifier, call: A.Call) -> A
     return init
 
 
-def _written_components(tr: TranspilerState, n: Any, sym: Symbol, call: A.Call) -> Any:
+def _written_components(tr: FoldEmitter, n: Any, sym: Symbol, call: A.Call) -> Any:
     """The components of `sym` the node `n` writes: "all", a tuple of indices, or ()."""
     targets: list[Any] = []
     if isinstance(n, A.Assignment):
@@ -610,7 +610,7 @@ def _has_constant_argument(tr: TranspilerState, call: A.Call, fn: Symbol) -> boo
     return False
 
 
-def _scaled_argument(tr: TranspilerState, a: Any, call: A.Call) -> tuple[Any, Any] | None:
+def _scaled_argument(tr: FoldEmitter, a: Any, call: A.Call) -> tuple[Any, Any] | None:
     """(y, #c) for an argument written ``y * #c`` or ``#c * y`` (c a compile-time constant of
     y's type or a scalar, y not constant, no matrix): after inlining each component of the
     parameter is that product, into which NIR merges the callee's constants (NebulaSmoke's
@@ -635,7 +635,7 @@ def _scaled_argument(tr: TranspilerState, a: Any, call: A.Call) -> tuple[Any, An
 
 
 def _evaluate(
-    tr: TranspilerState, call: A.Call, fn: Symbol, mask: str | None, constants: bool
+    tr: FoldEmitter, call: A.Call, fn: Symbol, mask: str | None, constants: bool
 ) -> tuple:
     """The call evaluated with its arguments bound to stand-in parameters: (the evaluation,
     the parameters' final terms by symbol id, the parameter symbols, the result's terms, the
@@ -761,7 +761,7 @@ def _emit_call(
     return r
 
 
-def out_roots(tr: TranspilerState, call: A.Call, sym: Symbol | None) -> set[str] | None:
+def out_roots(tr: FoldEmitter, call: A.Call, sym: Symbol | None) -> set[str] | None:
     """The operations at the root of each component of the value `call` (a call of a user
     function in the current function) writes into the variable `sym` passed whole as an out
     or inout argument, as NIR sees them after inlining: "+" (a sum), "*", "/", "neg", "call"

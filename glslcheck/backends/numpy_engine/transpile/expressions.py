@@ -350,6 +350,16 @@ class Expressions(TranspilerState):
         """Mesa's order in float32 (llvmpipe) mode, the written one in float64 and float16."""
         return f"({rewritten} if rt.lp else {written})"
 
+    @staticmethod
+    def component(value: str, i: int) -> str:
+        """Component i of a vector value (a view: NumPy's lane arrays are component first)."""
+        return f"{value}[{i}]"
+
+    @staticmethod
+    def runtime(name: str, *args: str) -> str:
+        """A call of the Runtime's operation `name` (fold_values.RUNTIME: those the rules use)."""
+        return f"rt.{name}({', '.join(args)})"
+
     def _print_Ternary(self, e: A.Ternary, mask: str | None) -> str:
         fs = self.fn
         assert fs is not None  # generating a function's body

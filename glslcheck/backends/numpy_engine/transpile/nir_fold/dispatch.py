@@ -70,6 +70,12 @@ def copied_binary(tr: FoldEmitter, e: A.Binary, mask: str | None, copied: frozen
         return None
     if tr.has_effects(e) or tr.type_of(e.left).is_matrix or tr.type_of(e.right).is_matrix:
         return None
+    if e.op == "+" and "factoring" in copied:
+        folded = factor(tr, e, mask)
+        if folded is not None:
+            return folded
     if "constant_merge" in copied:
-        return merge_constants(tr, e, mask)
-    return None
+        folded = merge_constants(tr, e, mask)
+        if folded is not None:
+            return folded
+    return sink_constant(tr, e, mask) if "sink" in copied else None
