@@ -23,7 +23,7 @@ from .builtin_calls import geometric
 from .values import Val
 
 # the families of nir_fold.copied_binary this engine computes (built from FoldEmitter's operations)
-COPIED = frozenset({"factoring", "constant_merge", "sink"})
+COPIED = frozenset({"matrix", "factoring", "constant_merge", "sink", "ssa_values"})
 
 
 class FoldValues(FoldContext):
@@ -33,6 +33,11 @@ class FoldValues(FoldContext):
     def __init__(self, cg: Any) -> None:  # (a Codegen, which imports this module)
         super().__init__(cg.model, cg.facts)
         self.cg = cg
+
+    @property
+    def lines(self) -> Any:
+        """The function being generated (each variant anew): a value a rule kept is read there."""
+        return self.cg.fn
 
     def expr(self, e: Any, mask: str | None = None) -> Val:
         v = self.cg.expr(e)

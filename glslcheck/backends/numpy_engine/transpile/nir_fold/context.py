@@ -47,3 +47,8 @@ class FoldContext:
 
     def type_of(self, e: Any) -> Any:
         return self.model.type_of(e)
+
+    @property
+    def lines(self) -> Any:
+        """The function being emitted, which a value a rule keeps belongs to (none here)."""
+        return None

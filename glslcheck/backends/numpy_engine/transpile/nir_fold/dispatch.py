@@ -68,8 +68,10 @@ def copied_binary(tr: FoldEmitter, e: A.Binary, mask: str | None, copied: frozen
     same order; None where none of them rewrites ``e``."""
     if e.op not in ("+", "-", "*") or tr.fn is None or tr.type_of(e).base != "float":
         return None
-    if tr.has_effects(e) or tr.type_of(e.left).is_matrix or tr.type_of(e.right).is_matrix:
+    if tr.has_effects(e):
         return None
+    if tr.type_of(e.left).is_matrix or tr.type_of(e.right).is_matrix:
+        return merge_into_matrix(tr, e, mask) if "matrix" in copied else None
     if e.op == "+" and "factoring" in copied:
         folded = factor(tr, e, mask)
         if folded is not None:
@@ -78,4 +80,7 @@ def copied_binary(tr: FoldEmitter, e: A.Binary, mask: str | None, copied: frozen
         folded = merge_constants(tr, e, mask)
         if folded is not None:
             return folded
-    return sink_constant(tr, e, mask) if "sink" in copied else None
+    folded = sink_constant(tr, e, mask) if "sink" in copied else None
+    if folded is None and "ssa_values" in copied:
+        folded = keep_factor(tr, e, mask)
+    return folded
