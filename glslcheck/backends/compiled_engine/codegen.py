@@ -560,7 +560,10 @@ class Codegen(ExpressionEmitter):
             if sym is None:
                 continue
             self.comment(dec)
-            value = self.expr(dec.init).parts if dec.init is not None else None
+            value = None
+            if dec.init is not None:
+                merged = self.component_write(dec)  # (NIR's SSA per component: nir_fold)
+                value = (merged if merged is not None else self.expr(dec.init)).parts
             parts = self.declare_local(sym, dec)
             if value is None:
                 value = self.zero_parts(sym.type, dec)

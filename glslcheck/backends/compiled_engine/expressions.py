@@ -311,9 +311,11 @@ class ExpressionEmitter:
 
     def _expr_Assignment(self, e: A.Assignment) -> Val:
         targets = self.lvalue(e.target)
-        value = self.expr(e.value)
         tt = self.type_of(e.target)
-        merged = self.repeated_sum(e, targets)
+        merged = self.component_write(e, Val(tt, [self.read(p) for p in targets]))
+        value = merged if merged is not None else self.expr(e.value)
+        if merged is None:
+            merged = self.repeated_sum(e, targets)
         if merged is not None:
             value = merged
         elif e.op != "=":
@@ -322,6 +324,19 @@ class ExpressionEmitter:
         parts = [self.tmp(p) if isinstance(p, str) else p for p in value.parts]
         self.write(targets, parts)
         return Val(tt, parts)
+
+    def component_write(self, node: Any, old: Val | None = None) -> Val | None:
+        """The value a write gives a local as NIR sees it per component (nir_fold.component_write
+        decides and computes it: constants merged through component writes, a ``+= e`` undone
+        by a later ``-= e``), or None: the write as usual. ``old``: the target's value before
+        an assignment."""
+        if self.fn is None or self.fn.sym is None:
+            return None
+        if any(not isinstance(p, str) for p in (old.parts if old is not None else [])):
+            return None
+        from ..numpy_engine.transpile import nir_fold
+
+        return nir_fold.component_write(self.fold_context(), node, None, old)
 
     def repeated_sum(self, e: A.Assignment, targets: list) -> Val | None:
         """``x += #c`` continuing a chain of such steps: ``base + (c1 + c2 ...)``, the

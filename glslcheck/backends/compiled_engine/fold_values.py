@@ -23,7 +23,9 @@ from .builtin_calls import geometric
 from .values import Val
 
 # the families of nir_fold.copied_binary this engine computes (built from FoldEmitter's operations)
-COPIED = frozenset({"matrix", "factoring", "constant_merge", "sink", "ssa_values"})
+COPIED = frozenset(
+    {"matrix", "factoring", "constant_merge", "components", "compound", "sink", "ssa_values"}
+)
 
 
 class FoldValues(FoldContext):
@@ -79,18 +81,43 @@ class FoldValues(FoldContext):
         return rewritten
 
     def tmp(self, value: Val) -> Val:
-        parts = [self.cg.tmp(p) for p in value.parts]
+        """value in temporaries that later writes leave alone (a rule reads them after the
+        variable they came from is written again: a variable's name is copied too)."""
+        parts = [
+            p if p.startswith(("F_", "I_", "U_", "_t")) else self.cg.tmp_fresh(p)
+            for p in value.parts
+        ]
         return Val(value.t, parts, value.const, value.uni, value.one)
 
     def component(self, value: Val, i: int) -> Val:
         const = [value.const[i]] if value.const is not None else None
         return Val(T.SCALARS[value.t.base], [value.parts[i]], const, value.uni, value.one)
 
+    def vector(self, parts: list[Val]) -> Val:
+        one = all(p.one for p in parts)  # (Runtime.vec: a new array)
+        return Val(T.vector("float", len(parts)), [p.parts[0] for p in parts], None, one, one)
+
+    def swizzle(self, value: Val, idx: tuple[int, ...]) -> Val:
+        """Runtime.swizzle: a view where the components are evenly spaced (a uniform input's
+        stays read-only: no constant), else a new array."""
+        step = idx[1] - idx[0] if len(idx) > 1 else 1
+        view = step > 0 and all(b - a == step for a, b in zip(idx, idx[1:]))
+        uni = value.uni if view else value.one
+        const = [value.const[i] for i in idx] if value.const is not None else None
+        t = T.vector(value.t.base, len(idx))
+        return Val(t, [value.parts[i] for i in idx], const, uni, value.one)
+
     def runtime(self, name: str, *args: Val) -> Val:
         """The Runtime's operation `name` (runtime_operators.py, runtime_transcendental.py), as
         the NumPy backend computes it: `dot` (Runtime.dot, products summed right to left),
-        `dot_add` (the constant in the innermost sum), `inversesqrt`."""
+        `dot_add` (the constant in the innermost sum), `inversesqrt`, `fadd` (a constant zero
+        added keeps the other operand)."""
         cg = self.cg
+        if name == "fadd":
+            a, b = args
+            rtype = T.binary_result("+", a.t, b.t)
+            assert not isinstance(rtype, str), rtype
+            return _computed(cg.fadd("+", a, b, rtype), a, b)
         if name == "dot":
             u, v = args
             return _computed(geometric(cg, "dot", [u, v], T.FLOAT), u, v)

@@ -356,6 +356,15 @@ class Expressions(TranspilerState):
         return f"{value}[{i}]"
 
     @staticmethod
+    def vector(parts: list[str]) -> str:
+        """The float vector of these scalar values."""
+        return f"rt.vec({len(parts)}, {', '.join(parts)})"
+
+    @staticmethod
+    def swizzle(value: str, idx: tuple[int, ...]) -> str:
+        return f'rt.swizzle({value}, "{"".join("xyzw"[i] for i in idx)}")'
+
+    @staticmethod
     def runtime(name: str, *args: str) -> str:
         """A call of the Runtime's operation `name` (fold_values.RUNTIME: those the rules use)."""
         return f"rt.{name}({', '.join(args)})"

@@ -80,6 +80,11 @@ def copied_binary(tr: FoldEmitter, e: A.Binary, mask: str | None, copied: frozen
         folded = merge_constants(tr, e, mask)
         if folded is not None:
             return folded
+    folded = merge_components(tr, e, mask) if "components" in copied else None
+    if folded is None and "compound" in copied:
+        folded = sunk_through_compound(tr, e, mask)
+    if folded is not None:
+        return folded
     folded = sink_constant(tr, e, mask) if "sink" in copied else None
     if folded is None and "ssa_values" in copied:
         folded = keep_factor(tr, e, mask)
