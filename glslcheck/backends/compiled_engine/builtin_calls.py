@@ -153,6 +153,15 @@ def builtin_call(cg: Any, e: A.Call, ov: Any) -> Val:
         return Val(rtype, ["(" + " and ".join(args[0].parts) + ")"])
     if name == "not":
         return each(lambda x: f"(not {x})")
+    if name == "dot" and cg.fn is not None and cg.fn.sym is not None:
+        from ..numpy_engine.transpile import nir_fold
+
+        fold = cg.fold_context()  # constants merged into a dot product, dot(vec2(s), #K)
+        merged = nir_fold.merged_dot(fold, e, args, None)
+        if merged is None:
+            merged = nir_fold.broadcast_dot(fold, e, args, None)
+        if merged is not None:
+            return merged
     if name in (
         "dot",
         "length",

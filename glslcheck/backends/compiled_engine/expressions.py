@@ -274,7 +274,19 @@ class ExpressionEmitter:
         sym = self.model.symbol_of(e)
         if sym is None:
             raise engine_error(f"'{e.name}' has no symbol", e)
+        if self.inlining():
+            from ..numpy_engine.transpile.inline import bound_code
+
+            bound = bound_code(self.fold_context(), sym)  # a parameter of an inlined call
+            if bound is not None:
+                return Val(bound.t, list(bound.parts), bound.const, bound.uni, bound.one)
         return Val(sym.type, [self.read(p) for p in self.var_parts(sym, e)])
+
+    def inlining(self) -> bool:
+        """A call is being inlined (nir_fold's transpile/inline.py: Mesa's rewrites reach into
+        its argument)."""
+        fold = self.fold_context() if self.fn is not None and self.fn.sym is not None else None
+        return fold is not None and bool(fold.fold_state.inline_frames)
 
     def _expr_Field(self, e: A.Field) -> Val:
         base = self.expr(e.base)
@@ -661,6 +673,12 @@ class ExpressionEmitter:
         return builtin_call(self, e, tgt)
 
     def user_call(self, e: A.Call, fn: Symbol) -> Val:
+        if self.fn is not None and self.fn.sym is not None:
+            from ..numpy_engine.transpile import nir_fold
+            from ..numpy_engine.transpile.inline import inline_call, worth_inlining
+
+            if worth_inlining(self.fold_context(), e, fn, nir_fold.dot_operand):
+                return inline_call(self.fold_context(), e, fn, None)  # as the NumPy backend
         args: list[str] = []
         outs: list[list] = []
         for a, (_, ptype, d) in zip(e.args, fn.params):
