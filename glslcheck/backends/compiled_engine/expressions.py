@@ -679,6 +679,11 @@ class ExpressionEmitter:
 
             if worth_inlining(self.fold_context(), e, fn, nir_fold.dot_operand):
                 return inline_call(self.fold_context(), e, fn, None)  # as the NumPy backend
+            from .fold_values import folded_call
+
+            folded = folded_call(self, e, fn)  # constants propagated into the call
+            if folded is not None:
+                return folded
         args: list[str] = []
         outs: list[list] = []
         for a, (_, ptype, d) in zip(e.args, fn.params):

@@ -14,13 +14,14 @@ same in every lane, computed, for a constant, and folds ``x * 0.0`` to 0): a val
 
 from __future__ import annotations
 
+import math
 from typing import Any
 
 from ...language import glsl_types as T
 from ...semantics.consteval import f32
 from ..numpy_engine.transpile.nir_fold import FoldContext
-from .builtin_calls import geometric
-from .values import Val
+from .builtin_calls import componentwise_text, geometric
+from .values import Val, not_yet
 
 # the families of nir_fold.copied_binary this engine computes (built from FoldEmitter's operations)
 COPIED = frozenset(
@@ -97,6 +98,9 @@ class FoldValues(FoldContext):
         one = all(p.one for p in parts)  # (Runtime.vec: a new array)
         return Val(T.vector("float", len(parts)), [p.parts[0] for p in parts], None, one, one)
 
+    def leaves(self, value: Val, t: Any) -> list[str]:
+        return [self.cg.atom(p) for p in value.parts]
+
     def swizzle(self, value: Val, idx: tuple[int, ...]) -> Val:
         """Runtime.swizzle: a view where the components are evenly spaced (a uniform input's
         stays read-only: no constant), else a new array."""
@@ -141,3 +145,74 @@ def _computed(v: Val, left: Val, right: Val) -> Val:
     it is: one lane when both operands are, and then a computed value (a constant to fmul)."""
     one = left.one and right.one
     return Val(v.t, v.parts, None, one, one)
+
+
+def folded_call(cg: Any, call: Any, fn: Any) -> Val | None:
+    """The call `call` of user function `fn` with constants propagated into it as NIR does,
+    where the NumPy backend's transpile/call_fold.py decides so (fold_plan: the terms of its
+    out parameters and its result), computed from those terms as the Transpiler emits them
+    (call_fold._emit_call); None: the call as usual."""
+    from ..numpy_engine.transpile.call_fold import fold_plan, holder_leaf, term_fields
+
+    plan = fold_plan(cg.fold_context(), call, fn, None)
+    if plan is None:
+        return None
+    env, params, result, holders = plan
+    fold = cg.fold_context()
+    held = {i: (fold.tmp(cg.expr(a)).parts, cg.type_of(a)) for i, a in holders}
+    memo: dict[int, str] = {}
+
+    def code(term: Any) -> str:
+        if id(term) in memo:
+            return memo[id(term)]
+        op, args, value, text = term_fields(term)
+        if op == "k" and value is not None:
+            c = cg.cf(value)
+        elif op == "x":
+            leaf = holder_leaf(text)
+            if leaf is None:
+                c = text  # (a value the engine computed: a uniform the callee reads)
+            else:
+                parts, t = held[leaf[0]]
+                idx = leaf[1]
+                c = parts[idx[0] * t.rows + idx[1] if len(idx) == 2 else idx[0] if idx else 0]
+        else:
+            xs = [code(x) for x in args]
+            if op == "neg":
+                c = cg.tmp(f"(-{xs[0]})")
+            elif op == "call":
+                c = cg.tmp(_runtime_text(cg, text, xs))
+            elif op in ("+", "-", "*", "/") and len(xs) == 2:
+                c = cg.tmp(f"({xs[0]} {op} {xs[1]})")
+            else:
+                raise not_yet(f"a folded call's term {op!r}", call)
+        memo[id(term)] = c
+        return c
+
+    for a, p, (_, _, d) in zip(call.args, params, fn.params):
+        if d != "in":
+            cg.write(cg.lvalue(a), [code(x) for x in env[id(p)]])
+    return Val(fn.type, [code(x) for x in result])
+
+
+def _runtime_text(cg: Any, method: str, xs: list[str]) -> str:
+    """A call term's Runtime method (call_fold: `pow`, ``pow_const({}, c)``, a component-wise
+    built-in) of one component, as this engine computes it."""
+    if method == "pow":
+        return f"pow({xs[0]}, {xs[1]}, FMA)"
+    if method.startswith("pow_const("):
+        c = float(method[len("pow_const({}, ") : -1])  # (Runtime.pow_const's exponents)
+        if c == 1.0:
+            return xs[0]
+        if c == 2.0:
+            return f"({xs[0]} * {xs[0]})"
+        if c == 4.0:
+            sq = cg.tmp(f"({xs[0]} * {xs[0]})")
+            return f"({sq} * {sq})"
+        if c == 0.0 and math.copysign(1.0, c) > 0:
+            return f"pow_zero({xs[0]})"
+        return f"pow({xs[0]}, {cg.cf(c)}, FMA)"
+    text = componentwise_text(cg, method, xs[0]) if len(xs) == 1 else None
+    if text is None:
+        raise ValueError(f"no Runtime method {method!r} here")
+    return text

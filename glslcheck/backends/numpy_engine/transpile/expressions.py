@@ -361,6 +361,15 @@ class Expressions(TranspilerState):
         return f"rt.vec({len(parts)}, {', '.join(parts)})"
 
     @staticmethod
+    def leaves(value: str, t: Any) -> list[str]:
+        """The codes of a float value's scalars (a matrix column by column)."""
+        if t.is_scalar:
+            return [value]
+        if t.is_vector:
+            return [f"{value}[{i}]" for i in range(t.size)]
+        return [f"{value}[{c}][{r}]" for c in range(t.cols) for r in range(t.rows)]
+
+    @staticmethod
     def swizzle(value: str, idx: tuple[int, ...]) -> str:
         return f'rt.swizzle({value}, "{"".join("xyzw"[i] for i in idx)}")'
 
