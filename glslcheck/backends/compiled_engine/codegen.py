@@ -454,9 +454,9 @@ class Codegen(ExpressionEmitter):
         params_u = {
             id(self.model.symbol_of(p)) for i, p in enumerate(node.proto.params) if i in seed
         }
-        self.fn = fs = FnState(
-            sym, Uniformity(self.model, self.facts, sym, sym is self.entry, params_u)
-        )
+        # out arguments by the callee's values (out_values): what the NumPy backend's arrays hold
+        uni = Uniformity(self.model, self.facts, sym, sym is self.entry, params_u, out_values=True)
+        self.fn = fs = FnState(sym, uni)
         proto = node.proto
         params: list[str] = []
         prologue: list[tuple[list, Any, str]] = []
