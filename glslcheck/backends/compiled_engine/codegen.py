@@ -42,14 +42,12 @@ Not supported yet (a GlslError at the construct, "not supported by the compiled 
 textures and channels, derivatives, arrays of structs holding arrays,
 inverse() of 3x3 and 4x4 matrices, and the packing built-ins.
 
-Mesa's reassociations (backends/numpy_engine/transpile/nir_fold/) are decided by nir_fold for
-both engines: the families built from state.FoldEmitter's operations are computed here with
-this engine's values (fold_values.py, `COPIED`: constants merged across an operand), the
-constants of ``x += #c`` written again and again too (nir_fold.sum_step). Not copied yet: the
-other families of nir_fold.binary, the component writes and call rewrites (components.py,
-transpile/call_fold.py, inline.py). A value the NumPy backend holds as one lane for a tile
-counts there as a constant (Runtime.fmul/fadd/pow); `Val.uni` marks the same values here
-(Uniformity), with a run-time test where the value is not known when generating.
+Mesa's reassociations (backends/numpy_engine/transpile/nir_fold/, call_fold.py, inline.py) are
+decided there for both engines and computed here with this engine's values (fold_values.py;
+docs/compiled-engine.md lists what is asked and the few rules not yet). A value the NumPy
+backend holds as one lane for a tile counts there as a constant (Runtime.fmul/fadd/pow);
+`Val.uni` marks the same values here (Uniformity with out_values), with a run-time test where
+the value is not known when generating.
 """
 
 from __future__ import annotations
