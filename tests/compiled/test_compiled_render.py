@@ -298,24 +298,21 @@ def test_pure_ternaries_are_selects(make_shader):
         assert any(line.startswith("if ") for line in code), (glsl, code)
 
 
-def test_mesa_reassociation_is_not_copied_yet(numba, make_shader):
-    """`x * 10.0` with `float x = uv.x * 40.0` never written again is `uv.x * 400.0` on
-    llvmpipe (nir_opt_algebraic merges the constants through the SSA value; the NumPy backend
-    copies it, nir_fold/); this engine computes the written order, two roundings instead of
-    one. The product's relative difference is at most 2**-23 (one float32 rounding), so
-    exp2's result differs by at most ln(2) * |t| * 2**-23 relative: 1.1e-5 for |t| <= 128
-    (past 128 exp2 is clamped: the same). The pixels must differ (else the case tests nothing)
-    and stay within rtol 2e-5."""
-    from glslcheck.backends.compiled_engine.engine import compile_compiled
+def test_mesa_reassociation_bit_for_bit(numba, make_shader):
+    """`x * 3.1` with `float x = uv.x * 40.0` never written again is `uv.x * (3.1*40.0)` on
+    llvmpipe (nir_opt_algebraic merges the constants through the SSA value): nir_fold's
+    constant_merge decides it for both engines, and the compiled engine computes the merged
+    product (its module multiplies the two constants) to the NumPy backend's bits."""
+    from glslcheck.backends.compiled_engine.engine import compile_compiled, generate
 
     shader = make_shader(
         "void mainImage(out vec4 c, in vec2 f) {\n float x = (f.x / iResolution.x - 0.5) * 40.0;"
         "\n c = vec4(exp2(x * 3.1), 1.0, 1.0, 1.0); }"
     )
+    assert "(F_3p1 * F_40p0)" in generate(shader)[0]
     got = compile_compiled(shader).render(size=SIZE)
     want = glslcheck.compile(shader, backend="numpy").render(size=SIZE)
-    assert (got != want).any()
-    np.testing.assert_allclose(got, want, rtol=2e-5, atol=0)
+    np.testing.assert_array_equal(got.view(np.uint32), want.view(np.uint32))
 
 
 REPEATED_SUMS = """float rnd(inout float seed) { seed += 0.1; return seed; }

@@ -27,46 +27,13 @@ TIMES = [0.0, 1.3]
 LANES = (0, 8)
 TIMEOUT = 900.0  # seconds a shader may take (two cold numba compiles on a loaded machine)
 # Differences measured by tools/engines_agree.py and not fixed yet, each with its cause (strict:
-# a fixed one must leave the list). The compiled engine does not copy two things the NumPy
-# backend does (codegen.py's docstring): Mesa's reassociations (nir_fold, call_fold, inline:
-# `(... if rt.lp else ...)` in the NumPy code) and Mesa's constant folding of values that are
-# the same in every lane, which the NumPy backend applies at run time (Runtime.fmul/fadd/pow).
-REWRITES = "Mesa's reassociations (nir_fold), not copied by the compiled engine"
-ONE_LANE = "a lane-uniform value folded as Mesa's constant at run time (Runtime.fmul/fadd/pow)"
+# a fixed one must leave the list). Mesa's rewrites are nir_fold's decisions in both engines
+# (docs/compiled-engine.md); what is left is the lockstep rewrite's.
 KNOWN = {
-    "20-lab3-raytrace": "iTime * x with iTime 0 folded to +0 (llvmpipe and the NumPy backend: "
-    "1 / +0 = +inf; the compiled engine -inf): " + ONE_LANE,
-    "42-2d": "sin(time * 0.4) with time = iTime * 0.9, the constants merged: " + REWRITES,
-    "59-2d": "sin(time * 0.4) with time = iTime * 0.9, the constants merged: " + REWRITES,
-    **{
-        name: REWRITES + " or " + ONE_LANE
-        for name in (
-            "23-2d",
-            "32-raytrace",
-            "33-volumetric-noise",
-            "34-lighting",
-            "40-2d",
-            "41-2d",
-            "47-2d-fractal",
-            "56-2d",
-            "60-2d",
-            "h04-lab2",
-            "h12-noise",
-            "h14-noise",
-            "h34-volumetric",
-            "h38-2d-sprites",
-            "h42-raymarch-heightfield",
-            "h59-volumetric-noise",
-        )
-    },
-    "52-2d": "in lockstep (its dFdx/dFdy: not one pixel a call), 1,294 pixels at iTime 1.3 by "
-    "up to 0.002; not isolated (the NumPy code has Mesa rewrites)",
-    "h41-raymarch": "in lockstep only (8 lanes): 609 pixels by up to 1.8e-7 at iTime 0; not "
-    "isolated (found after the uniformity and loop-limit changes met in the lockstep rewrite)",
-    "h56-raymarch": "in lockstep only (8 lanes): 36 pixels by up to 0.065 at iTime 0; not "
-    "isolated (found after the uniformity and loop-limit changes met in the lockstep rewrite)",
-    "h18-2d": "not isolated (no Mesa rewrite in the NumPy code); likely " + ONE_LANE,
-    "h40-volumetric": "not isolated (no Mesa rewrite in the NumPy code); likely " + ONE_LANE,
+    "h56-raymarch": "in lockstep only (8 lanes): lanes.py writes a function's first return slot "
+    "in the text plainly, which inside a loop overwrites, in a later pass, the slot of lanes that "
+    "returned by another return in an earlier one (raymarch's `return t` after `if (t > 100.0) "
+    "return -1.0;`): 36 pixels by up to 0.065 at iTime 0",
 }
 
 CASES = [

@@ -92,26 +92,16 @@ def builtin_call(cg: Any, e: A.Call, ov: Any) -> Val:
         cols = [comps(a) for a in args]
         return Val(rtype, [fn(*xs) for xs in zip(*cols)])
 
-    fma = "FMA"
-    if name in _UNARY_FMA and base == "float":
-        return each(lambda x: f"{name}({x}, {fma})")
+    if base == "float" and componentwise_text(cg, name, "x") is not None:
+        return each(lambda x: componentwise_text(cg, name, x))
     if name == "atan":
         if len(args) == 1:
             return each(lambda y: f"atan({y})")
         return each(lambda y, x: f"atan2({y}, {x})")
-    if name in _UNARY:
-        if name == "abs" and base == "int":
-            return each(lambda x: f"iabs({x})")
-        if name == "sign" and base == "int":
-            return each(lambda x: f"isign({x})")
-        if base == "float":
-            return each(lambda x: f"{_UNARY[name]}({x})")
-    if name == "radians":
-        k = cg.cf(math.pi / 180.0)
-        return each(lambda x: f"({x} * {k})")
-    if name == "degrees":
-        k = cg.cf(180.0 / math.pi)
-        return each(lambda x: f"({x} * {k})")
+    if name == "abs" and base == "int":
+        return each(lambda x: f"iabs({x})")
+    if name == "sign" and base == "int":
+        return each(lambda x: f"isign({x})")
     if name == "pow":
         return pow_call(cg, e, args, rtype, n)
     if name in ("min", "max"):
@@ -153,6 +143,15 @@ def builtin_call(cg: Any, e: A.Call, ov: Any) -> Val:
         return Val(rtype, ["(" + " and ".join(args[0].parts) + ")"])
     if name == "not":
         return each(lambda x: f"(not {x})")
+    if name == "dot" and cg.fn is not None and cg.fn.sym is not None:
+        from ..numpy_engine.transpile import nir_fold
+
+        fold = cg.fold_context()  # constants merged into a dot product, dot(vec2(s), #K)
+        merged = nir_fold.merged_dot(fold, e, args, None)
+        if merged is None:
+            merged = nir_fold.broadcast_dot(fold, e, args, None)
+        if merged is not None:
+            return merged
     if name in (
         "dot",
         "length",
@@ -182,6 +181,19 @@ def builtin_call(cg: Any, e: A.Call, ov: Any) -> Val:
         adj = [m[3], f"(-{m[1]})", f"(-{m[2]})", m[0]]
         return Val(rtype, [f"({a} / {det})" for a in adj])
     raise not_yet(f"the built-in {name}()", e)
+
+
+def componentwise_text(cg: Any, name: str, x: str) -> Any:
+    """The float built-in `name` of one component x (the Runtime's method of that name), or None
+    for a built-in that is not computed component by component from one argument."""
+    if name in _UNARY_FMA:
+        return f"{name}({x}, FMA)"  # (fma: llvmpipe's fused steps)
+    if name in _UNARY:
+        return f"{_UNARY[name]}({x})"
+    if name in ("radians", "degrees"):
+        k = cg.cf(math.pi / 180.0 if name == "radians" else 180.0 / math.pi)
+        return f"({x} * {k})"
+    return None
 
 
 def pow_call(cg: Any, e: A.Call, args: list[Val], rtype: Any, n: int) -> Val:

@@ -42,13 +42,12 @@ Not supported yet (a GlslError at the construct, "not supported by the compiled 
 textures and channels, derivatives, arrays of structs holding arrays,
 inverse() of 3x3 and 4x4 matrices, and the packing built-ins.
 
-What the NumPy backend does that this generator does not copy: Mesa's reassociations
-(backends/numpy_engine/transpile/nir_fold/, transpile/call_fold.py, inline.py; copied: the
-constants of ``x += #c`` written again and again, nir_fold.sum_step) and its run-time test
-of "a value the same in every lane counts as a constant" (Runtime.fmul/fadd/pow on values of one
-lane): here only compile-time constants (`model.const_value`) fold, so `x * 0.0` is 0 for a
-NaN x, as there, but `float k = 0.0; x * k` multiplies. docs/performance.md measures what that
-changes.
+Mesa's reassociations (backends/numpy_engine/transpile/nir_fold/, call_fold.py, inline.py) are
+decided there for both engines and computed here with this engine's values (fold_values.py;
+docs/compiled-engine.md lists what is asked and the few rules not yet). A value the NumPy
+backend holds as one lane for a tile counts there as a constant (Runtime.fmul/fadd/pow);
+`Val.uni` marks the same values here (Uniformity with out_values), with a run-time test where
+the value is not known when generating.
 """
 
 from __future__ import annotations
@@ -82,7 +81,7 @@ from .values import (
 TYPE_CHECKING = False  # not typing's: importing typing costs every start-up
 if TYPE_CHECKING:
     from ...semantics.model import Model
-    from ..numpy_engine.transpile.nir_fold import FoldContext
+    from .fold_values import FoldValues
 
 
 class Codegen(ExpressionEmitter):
@@ -124,16 +123,17 @@ class Codegen(ExpressionEmitter):
         # the first dFdx/dFdy/fwidth call: its leaves are written `dfdx(v)` / `dfdy(v)`, which
         # only the lockstep rewrite computes (lanes.py: a block's lanes hold whole 2x2 quads)
         self.derivative: Any = None
-        self._fold_context: FoldContext | None = None  # fold_context(): made on first use
+        self._fold_context: FoldValues | None = None  # fold_context(): made on first use
 
-    def fold_context(self) -> FoldContext:
-        """The NumPy backend's Mesa rewrites' context at the current function, for the decisions
-        this engine shares with it (nir_fold.mix_hint: nir_lower_flrp's formula for a `mix`;
-        nir_fold.zero_add: an added constant zero)."""
-        from ..numpy_engine.transpile.nir_fold import FoldContext
+    def fold_context(self) -> FoldValues:
+        """The NumPy backend's Mesa rewrites' context at the current function: the decisions this
+        engine shares with it (nir_fold.mix_hint: nir_lower_flrp's formula for a `mix`;
+        nir_fold.zero_add: an added constant zero) and the rewrites it computes with this
+        engine's values (fold_values.py)."""
+        from .fold_values import FoldValues
 
         if self._fold_context is None:
-            self._fold_context = FoldContext(self.model, self.facts)
+            self._fold_context = FoldValues(self)
         assert self.fn is not None  # asked while a function is generated
         return self._fold_context.at(self.fn.sym, self.fn.sym is self.entry)
 
@@ -452,9 +452,9 @@ class Codegen(ExpressionEmitter):
         params_u = {
             id(self.model.symbol_of(p)) for i, p in enumerate(node.proto.params) if i in seed
         }
-        self.fn = fs = FnState(
-            sym, Uniformity(self.model, self.facts, sym, sym is self.entry, params_u)
-        )
+        # out arguments by the callee's values (out_values): what the NumPy backend's arrays hold
+        uni = Uniformity(self.model, self.facts, sym, sym is self.entry, params_u, out_values=True)
+        self.fn = fs = FnState(sym, uni)
         proto = node.proto
         params: list[str] = []
         prologue: list[tuple[list, Any, str]] = []
@@ -558,7 +558,10 @@ class Codegen(ExpressionEmitter):
             if sym is None:
                 continue
             self.comment(dec)
-            value = self.expr(dec.init).parts if dec.init is not None else None
+            value = None
+            if dec.init is not None:
+                merged = self.component_write(dec)  # (NIR's SSA per component: nir_fold)
+                value = (merged if merged is not None else self.expr(dec.init)).parts
             parts = self.declare_local(sym, dec)
             if value is None:
                 value = self.zero_parts(sym.type, dec)

@@ -35,7 +35,7 @@ TYPE_CHECKING = False  # not typing's: importing typing costs every start-up
 if TYPE_CHECKING:
     from ...semantics.model import Model
     from ..cpu_core.facts import Facts
-    from ..numpy_engine.transpile.nir_fold import FoldContext
+    from .fold_values import FoldValues
 
 
 class FnState:
@@ -67,7 +67,7 @@ class ExpressionEmitter:
         pending: list[tuple[Any, frozenset]]
         derivative: Any
 
-        def fold_context(self) -> FoldContext: ...
+        def fold_context(self) -> FoldValues: ...
         def emit(self, text: str) -> None: ...
         def fresh(self, prefix: str = "t") -> str: ...
         def tmp(self, value: str) -> str: ...
@@ -242,6 +242,11 @@ class ExpressionEmitter:
             return True
         return self.fn.uni.is_uniform(e)
 
+    def one_lane(self, e: Any) -> bool:
+        """Whether the NumPy backend holds e's value as one lane for the whole tile (a uniform
+        input too: Uniformity's verdict; global initializers run on one lane there)."""
+        return self.fn is None or self.fn.uni is None or self.fn.uni.is_uniform(e)
+
     def _is_input(self, ident: Any) -> bool:
         sym = self.model.symbol_of(ident)
         return sym is not None and (
@@ -269,7 +274,19 @@ class ExpressionEmitter:
         sym = self.model.symbol_of(e)
         if sym is None:
             raise engine_error(f"'{e.name}' has no symbol", e)
+        if self.inlining():
+            from ..numpy_engine.transpile.inline import bound_code
+
+            bound = bound_code(self.fold_context(), sym)  # a parameter of an inlined call
+            if bound is not None:
+                return Val(bound.t, list(bound.parts), bound.const, bound.uni, bound.one)
         return Val(sym.type, [self.read(p) for p in self.var_parts(sym, e)])
+
+    def inlining(self) -> bool:
+        """A call is being inlined (nir_fold's transpile/inline.py: Mesa's rewrites reach into
+        its argument)."""
+        fold = self.fold_context() if self.fn is not None and self.fn.sym is not None else None
+        return fold is not None and bool(fold.fold_state.inline_frames)
 
     def _expr_Field(self, e: A.Field) -> Val:
         base = self.expr(e.base)
@@ -306,9 +323,11 @@ class ExpressionEmitter:
 
     def _expr_Assignment(self, e: A.Assignment) -> Val:
         targets = self.lvalue(e.target)
-        value = self.expr(e.value)
         tt = self.type_of(e.target)
-        merged = self.repeated_sum(e, targets)
+        merged = self.component_write(e, Val(tt, [self.read(p) for p in targets]))
+        value = merged if merged is not None else self.expr(e.value)
+        if merged is None:
+            merged = self.repeated_sum(e, targets)
         if merged is not None:
             value = merged
         elif e.op != "=":
@@ -317,6 +336,19 @@ class ExpressionEmitter:
         parts = [self.tmp(p) if isinstance(p, str) else p for p in value.parts]
         self.write(targets, parts)
         return Val(tt, parts)
+
+    def component_write(self, node: Any, old: Val | None = None) -> Val | None:
+        """The value a write gives a local as NIR sees it per component (nir_fold.component_write
+        decides and computes it: constants merged through component writes, a ``+= e`` undone
+        by a later ``-= e``), or None: the write as usual. ``old``: the target's value before
+        an assignment."""
+        if self.fn is None or self.fn.sym is None:
+            return None
+        if any(not isinstance(p, str) for p in (old.parts if old is not None else [])):
+            return None
+        from ..numpy_engine.transpile import nir_fold
+
+        return nir_fold.component_write(self.fold_context(), node, None, old)
 
     def repeated_sum(self, e: A.Assignment, targets: list) -> Val | None:
         """``x += #c`` continuing a chain of such steps: ``base + (c1 + c2 ...)``, the
@@ -459,6 +491,13 @@ class ExpressionEmitter:
             self.lines += body
             self.emit(f"    {res} = {rcode}")
             return Val(T.BOOL, [res])
+        if self.fn is not None and self.fn.sym is not None:
+            from ..numpy_engine.transpile import nir_fold
+            from .fold_values import COPIED
+
+            folded = nir_fold.copied_binary(self.fold_context(), e, None, COPIED)  # Mesa's order
+            if folded is not None:
+                return folded
         left = self.expr(e.left)
         right = self.expr(e.right)
         if (
@@ -634,6 +673,17 @@ class ExpressionEmitter:
         return builtin_call(self, e, tgt)
 
     def user_call(self, e: A.Call, fn: Symbol) -> Val:
+        if self.fn is not None and self.fn.sym is not None:
+            from ..numpy_engine.transpile import nir_fold
+            from ..numpy_engine.transpile.inline import inline_call, worth_inlining
+
+            if worth_inlining(self.fold_context(), e, fn, nir_fold.dot_operand):
+                return inline_call(self.fold_context(), e, fn, None)  # as the NumPy backend
+            from .fold_values import folded_call
+
+            folded = folded_call(self, e, fn)  # constants propagated into the call
+            if folded is not None:
+                return folded
         args: list[str] = []
         outs: list[list] = []
         for a, (_, ptype, d) in zip(e.args, fn.params):

@@ -124,6 +124,7 @@ class Val:
     parts: list
     const: list | None = None
     uni: bool = False  # one value for a whole tile in the NumPy backend, taken there for a constant
+    one: bool = False  # one lane there, a uniform input too (fold_values.py: its rules read it)
 
     @property
     def constlike(self) -> bool:

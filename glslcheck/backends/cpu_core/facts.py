@@ -49,6 +49,9 @@ class Facts:
         self.events: dict[int, Events] = {}  # node id -> events_of(node)
         self._discarding: dict[int, bool] = {}  # node id -> a discarding call in its subtree
         self._write_counts: dict[int, int] | None = None
+        # (function id, ids of its uniform parameters) -> its out parameters left uniform
+        # (Uniformity.uniform_outs)
+        self.uniform_outs: dict[tuple[int, frozenset], set[int]] = {}
         for fn in functions:
             body = fn.node.body
             for node in body.walk():

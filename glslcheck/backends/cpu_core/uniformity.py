@@ -85,13 +85,19 @@ class Uniformity:
         fn: Symbol,
         is_entry: bool,
         uniform_params: frozenset | set = frozenset(),
+        out_values: bool = False,
     ) -> None:
         """uniform_params: ids of parameter symbols that start uniform (the compiled engine's
         variants of a function called with values of one lane); a varying write still makes them
-        varying. Every other parameter but an `out` one starts varying."""
+        varying. Every other parameter but an `out` one starts varying. out_values: an out or
+        inout argument of a call with a varying argument is uniform when the callee's value of
+        that parameter is, analysed with the call's uniform arguments (:meth:`uniform_outs`: the
+        NumPy backend's arrays of one lane there, which the compiled engine follows); else only
+        when every argument is uniform (the transpiler's rule)."""
         self.model = model
         self.facts = facts
         self.fn = fn
+        self.out_values = out_values
         self.is_entry = is_entry
         self.allow_free = id(fn) not in facts.uses_derivs
         self.varying: set[int] = set()  # symbol ids
@@ -224,15 +230,19 @@ class Uniformity:
                 self.uniform(a) or (i < len(dirs) and dirs[i] == "out")
                 for i, a in enumerate(e.args)
             ]
+            outs: set[int] = set()
             if isinstance(tgt, Symbol):
                 res = all(args_u) and self.facts.closed(tgt)
                 if id(tgt) in self.facts.may_discard and not self.mu:
                     self.fn_varying_return = True
+                if self.out_values and not res:
+                    outs = self.uniform_outs(tgt, args_u)
             else:
                 res = all(args_u)
             for i, d in enumerate(dirs):
                 if d in ("out", "inout") and i < len(e.args):
-                    self.write(e.args[i], res and self.index_uniform(e.args[i]))
+                    ok = res or i in outs
+                    self.write(e.args[i], ok and self.index_uniform(e.args[i]))
             return res
         if isinstance(e, A.Ternary):
             c = self.uniform(e.cond)
@@ -249,6 +259,27 @@ class Uniformity:
             if isinstance(c, A.Expr):
                 ok = self.uniform(c) and ok
         return ok
+
+    def uniform_outs(self, fn: Symbol, args_u: list[bool]) -> set[int]:
+        """Indexes of the out and inout parameters of `fn` whose value at its end is uniform when
+        it is called with these arguments (args_u: which are uniform; an out one counts as
+        uniform): the callee analysed with those parameters uniform (memo: facts)."""
+        params = [self.model.symbol_of(p) for p in fn.node.proto.params]
+        dirs = param_directions(fn)
+        seed = frozenset(
+            id(s) for s, u, d in zip(params, args_u, dirs) if s is not None and u and d != "out"
+        )
+        memo = self.facts.uniform_outs
+        key = (id(fn), seed)
+        if key not in memo:
+            memo[key] = set()  # (GLSL has no recursion: a placeholder while it is analysed)
+            callee = Uniformity(self.model, self.facts, fn, False, seed, out_values=True)
+            memo[key] = {
+                i
+                for i, (s, d) in enumerate(zip(params, dirs))
+                if s is not None and d in ("out", "inout") and id(s) not in callee.varying
+            }
+        return memo[key]
 
     def index_uniform(self, target: Any) -> bool:
         ok = True

@@ -73,7 +73,7 @@ from .common import _RUNTIME_NAMES
 
 TYPE_CHECKING = False  # not typing's: importing typing costs every start-up
 if TYPE_CHECKING:
-    from .state import TranspilerState
+    from .state import FoldEmitter, FoldEngine, TranspilerState
 
 # built-ins computed component by component (the runtime's function of a scalar array)
 _COMPONENTWISE = (
@@ -133,7 +133,7 @@ class _Eval:
     """The scalar evaluation of one call (see the module doc); `merges`: how often a merge rule
     fired."""
 
-    def __init__(self, tr: TranspilerState, mask: str | None) -> None:
+    def __init__(self, tr: FoldEmitter, mask: str | None) -> None:
         self.tr, self.mask, self.merges, self.depth, self.factored = tr, mask, 0, 0, 0
 
     # -- scalar rules ----------------------------------------------------------------------
@@ -287,7 +287,7 @@ class _Eval:
                 return list(env[id(sym)])
             if sym is None or sym.kind != "uniform":
                 raise _Refuse
-            return _leaves(tr.expr(e, self.mask), t)
+            return [_T("x", code=c) for c in tr.leaves(tr.expr(e, self.mask), t)]
         if isinstance(e, A.Field):
             if tr.type_of(e.base).is_struct:
                 raise _Refuse
@@ -439,12 +439,28 @@ def _flat(v: Any) -> list[float]:
     return [float(v)]
 
 
+def holder_leaf(code: str) -> tuple[int, tuple[int, ...]] | None:
+    """(argument i, the indexes after it) of a term's code ``@i@[c][r]`` (:func:`_leaves`), or
+    None for the code of a value the engine computed (a uniform the callee reads)."""
+    if not code.startswith("@"):
+        return None
+    i, _, rest = code[1:].partition("@")
+    return int(i), tuple(int(x) for x in rest.replace("]", "").split("[")[1:])
+
+
+def term_fields(t: Any) -> tuple[str, tuple, float | None, str]:
+    """(op, args, value, code) of a term of :func:`fold_plan` (module doc: "k" a constant, "x" a
+    run-time value, "*", "+", "/", "neg", "call" of the Runtime's method `code`)."""
+    return t.op, t.args, t.value, t.code
+
+
 def _width(t: Any) -> int:
     return t.size if t.is_matrix or t.is_vector else 1
 
 
 def _leaves(code: str, t: Any) -> list[_T]:
-    """The run-time components of a value whose code is `code`."""
+    """The run-time components of the argument whose placeholder is `code` (``@i@``: argument
+    i, replaced by its value's code when emitted; :func:`holder_leaf` reads it back)."""
     if t.is_scalar:
         return [_T("x", code=code)]
     if t.is_vector:
@@ -452,7 +468,7 @@ def _leaves(code: str, t: Any) -> list[_T]:
     return [_T("x", code=f"{code}[{c}][{r}]") for c in range(t.cols) for r in range(t.rows)]
 
 
-def _constant_components(tr: TranspilerState, arg: Any, call: A.Call) -> list[_T | None] | None:
+def _constant_components(tr: FoldEmitter, arg: Any, call: A.Call) -> list[_T | None] | None:
     """Per component of a local `arg` read by `call`: a constant term where its value is a
     compile-time constant there, else None; None when `arg` is not such a local. Known only
     for a local declared, then written, by top-level statements of the current function
@@ -496,7 +512,7 @@ def _constant_components(tr: TranspilerState, arg: Any, call: A.Call) -> list[_T
     return comps
 
 
-def _unchanged_init(tr: TranspilerState, ident: A.Identifier, call: A.Call) -> Any:
+def _unchanged_init(tr: FoldEmitter, ident: A.Identifier, call: A.Call) -> Any:
     """The initializer of the local `ident` when it is declared by a top-level statement of the
     current function before the one that holds `call`, and neither it nor a local or parameter
     the initializer reads is written in between (so the initializer, evaluated again at the
@@ -530,7 +546,7 @@ def _unchanged_init(tr: TranspilerState, ident: A.Identifier, call: A.Call) -> A
     return init
 
 
-def _written_components(tr: TranspilerState, n: Any, sym: Symbol, call: A.Call) -> Any:
+def _written_components(tr: FoldEmitter, n: Any, sym: Symbol, call: A.Call) -> Any:
     """The components of `sym` the node `n` writes: "all", a tuple of indices, or ()."""
     targets: list[Any] = []
     if isinstance(n, A.Assignment):
@@ -557,15 +573,26 @@ def _written_components(tr: TranspilerState, n: Any, sym: Symbol, call: A.Call) 
 def folded_call(tr: TranspilerState, call: A.Call, fn: Symbol, mask: str | None) -> str | None:
     """The code of the call `call` of user function `fn` with constants propagated as NIR does
     (module doc), emitted as ``if rt.lp: <folded> else: <the call as written>``; None where
-    this call is left as written (the common case): no argument has a constant component, or
-    the constants merge no more than they do with every argument a run-time value (merges
-    inside the callee alone are nir_fold's, in the function's own code), and no dot product
-    of the callee factors (``vec3(p.xyx)`` of Dave Hoskins' hash12: two products share p.x)."""
+    :func:`fold_plan` leaves the call as written."""
+    if tr.watched is not None:
+        return None
+    plan = fold_plan(tr, call, fn, mask)
+    return None if plan is None else _emit_call(tr, call, fn, mask, *plan)
+
+
+def fold_plan(tr: FoldEmitter, call: A.Call, fn: Symbol, mask: str | None) -> tuple | None:
+    """(the parameters' final terms by symbol id, the parameter symbols, the result's terms,
+    the arguments read at run time as (index, node)) of the call `call` of user function `fn`
+    evaluated with constants propagated as NIR does (module doc: each engine emits the terms);
+    None where this call is left as written (the common case): no argument has a constant
+    component, or the constants merge no more than they do with every argument a run-time value
+    (merges inside the callee alone are nir_fold's, in the function's own code), and no dot
+    product of the callee factors (``vec3(p.xyx)`` of Dave Hoskins' hash12: two products share
+    p.x)."""
     if (
         tr.fn is None
         or tr.fold_state.call_fold_off
         or tr.fold_state.inline_frames
-        or tr.watched is not None
         or any(tr.has_effects(a) for a in call.args)
     ):
         return None
@@ -583,10 +610,10 @@ def folded_call(tr: TranspilerState, call: A.Call, fn: Symbol, mask: str | None)
                 return None
     except _Refuse:
         return None
-    return _emit_call(tr, call, fn, mask, env, params, result, holders)
+    return env, params, result, holders
 
 
-def _calls_dot(tr: TranspilerState, fn: Symbol) -> bool:
+def _calls_dot(tr: FoldEngine, fn: Symbol) -> bool:
     """`fn`'s body calls the built-in dot (where :meth:`_Eval.factored_add` may apply)."""
     memo = tr.fold_state.call_fold_dots
     if id(fn) not in memo:
@@ -599,7 +626,7 @@ def _calls_dot(tr: TranspilerState, fn: Symbol) -> bool:
     return memo[id(fn)]
 
 
-def _has_constant_argument(tr: TranspilerState, call: A.Call, fn: Symbol) -> bool:
+def _has_constant_argument(tr: FoldEmitter, call: A.Call, fn: Symbol) -> bool:
     for a, (_, _, dr) in zip(call.args, fn.params):
         if dr != "out" and (
             tr.model.const_value(a) is not None
@@ -610,7 +637,7 @@ def _has_constant_argument(tr: TranspilerState, call: A.Call, fn: Symbol) -> boo
     return False
 
 
-def _scaled_argument(tr: TranspilerState, a: Any, call: A.Call) -> tuple[Any, Any] | None:
+def _scaled_argument(tr: FoldEmitter, a: Any, call: A.Call) -> tuple[Any, Any] | None:
     """(y, #c) for an argument written ``y * #c`` or ``#c * y`` (c a compile-time constant of
     y's type or a scalar, y not constant, no matrix): after inlining each component of the
     parameter is that product, into which NIR merges the callee's constants (NebulaSmoke's
@@ -635,7 +662,7 @@ def _scaled_argument(tr: TranspilerState, a: Any, call: A.Call) -> tuple[Any, An
 
 
 def _evaluate(
-    tr: TranspilerState, call: A.Call, fn: Symbol, mask: str | None, constants: bool
+    tr: FoldEmitter, call: A.Call, fn: Symbol, mask: str | None, constants: bool
 ) -> tuple:
     """The call evaluated with its arguments bound to stand-in parameters: (the evaluation,
     the parameters' final terms by symbol id, the parameter symbols, the result's terms, the
@@ -761,7 +788,7 @@ def _emit_call(
     return r
 
 
-def out_roots(tr: TranspilerState, call: A.Call, sym: Symbol | None) -> set[str] | None:
+def out_roots(tr: FoldEmitter, call: A.Call, sym: Symbol | None) -> set[str] | None:
     """The operations at the root of each component of the value `call` (a call of a user
     function in the current function) writes into the variable `sym` passed whole as an out
     or inout argument, as NIR sees them after inlining: "+" (a sum), "*", "/", "neg", "call"

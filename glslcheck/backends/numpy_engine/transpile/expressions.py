@@ -335,6 +335,49 @@ class Expressions(TranspilerState):
             return f"({left} {op} {right})"  # the same, for int32 or uint32 arrays
         return f"rt.{_BIN_METHODS[op]}({left}, {right})"
 
+    # The operations nir_fold's rules build Mesa's order from (state.FoldEmitter).
+    @staticmethod
+    def ieee(op: str, left: str, right: str) -> str:
+        """`left op right` of two float values, IEEE (NumPy's operator: no constant folding)."""
+        return f"({left} {op} {right})"
+
+    @staticmethod
+    def negate(value: str) -> str:
+        return f"(-{value})"
+
+    @staticmethod
+    def llvmpipe(rewritten: str, written: str) -> str:
+        """Mesa's order in float32 (llvmpipe) mode, the written one in float64 and float16."""
+        return f"({rewritten} if rt.lp else {written})"
+
+    @staticmethod
+    def component(value: str, i: int) -> str:
+        """Component i of a vector value (a view: NumPy's lane arrays are component first)."""
+        return f"{value}[{i}]"
+
+    @staticmethod
+    def vector(parts: list[str]) -> str:
+        """The float vector of these scalar values."""
+        return f"rt.vec({len(parts)}, {', '.join(parts)})"
+
+    @staticmethod
+    def leaves(value: str, t: Any) -> list[str]:
+        """The codes of a float value's scalars (a matrix column by column)."""
+        if t.is_scalar:
+            return [value]
+        if t.is_vector:
+            return [f"{value}[{i}]" for i in range(t.size)]
+        return [f"{value}[{c}][{r}]" for c in range(t.cols) for r in range(t.rows)]
+
+    @staticmethod
+    def swizzle(value: str, idx: tuple[int, ...]) -> str:
+        return f'rt.swizzle({value}, "{"".join("xyzw"[i] for i in idx)}")'
+
+    @staticmethod
+    def runtime(name: str, *args: str) -> str:
+        """A call of the Runtime's operation `name` (fold_values.RUNTIME: those the rules use)."""
+        return f"rt.{name}({', '.join(args)})"
+
     def _print_Ternary(self, e: A.Ternary, mask: str | None) -> str:
         fs = self.fn
         assert fs is not None  # generating a function's body

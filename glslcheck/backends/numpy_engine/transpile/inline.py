@@ -35,7 +35,7 @@ from ....semantics.model import Symbol
 
 TYPE_CHECKING = False  # not typing's: importing typing costs every start-up
 if TYPE_CHECKING:
-    from .state import FoldEngine, TranspilerState
+    from .state import FoldEmitter, FoldEngine
 
 
 def bound_argument(tr: FoldEngine, sym: Symbol) -> Any:
@@ -46,15 +46,16 @@ def bound_argument(tr: FoldEngine, sym: Symbol) -> Any:
     return None
 
 
-def bound_code(tr: TranspilerState, sym: Symbol) -> str | None:
-    """The Python expression of the argument value an inlined parameter reads, else None."""
+def bound_code(tr: FoldEngine, sym: Symbol) -> Any:
+    """The value (the engine's: FoldEmitter) of the argument an inlined parameter reads, else
+    None."""
     for frame in reversed(tr.fold_state.inline_frames):
         if id(sym) in frame["params"]:
             return frame["params"][id(sym)][0]
     return None
 
 
-def inline_owner(tr: TranspilerState, sym: Symbol | None) -> Any:
+def inline_owner(tr: FoldEngine, sym: Symbol | None) -> Any:
     """The inlined function a parameter symbol belongs to, else None."""
     for frame in reversed(tr.fold_state.inline_frames):
         if id(sym) in frame["params"]:
@@ -62,7 +63,7 @@ def inline_owner(tr: TranspilerState, sym: Symbol | None) -> Any:
     return None
 
 
-def _body_expression(tr: TranspilerState, fn: Symbol) -> Any:
+def _body_expression(tr: FoldEngine, fn: Symbol) -> Any:
     """The expression of `fn`'s body when it may be inlined (see the module doc), else None."""
     memo = tr.fold_state.inline_bodies
     if id(fn) in memo:
@@ -93,7 +94,7 @@ def _body_expression(tr: TranspilerState, fn: Symbol) -> Any:
     return value
 
 
-def worth_inlining(tr: TranspilerState, call: A.Call, fn: Symbol, constant_product: Any) -> bool:
+def worth_inlining(tr: FoldEngine, call: A.Call, fn: Symbol, constant_product: Any) -> bool:
     """Some argument is a product by a constant or a ``vecN(s)`` (`constant_product(tr, node)`:
     nir_fold.dot_operand, passed in so this module does not import nir_fold, which imports it)
     that the callee hands to a ``dot`` with a constant (nir_fold.merged_dot then merges the
@@ -128,12 +129,12 @@ def worth_inlining(tr: TranspilerState, call: A.Call, fn: Symbol, constant_produ
     return False
 
 
-def inline_call(tr: TranspilerState, call: A.Call, fn: Symbol, mask: str | None) -> str:
+def inline_call(tr: FoldEmitter, call: A.Call, fn: Symbol, mask: str | None) -> Any:
     """The callee's return expression at the call site, its parameters read as the arguments'
     values (each argument evaluated once, left to right, before the body as a call does)."""
     from ...cpu_core.facts import is_plain_read
 
-    params: dict[int, tuple[str, Any]] = {}
+    params: dict[int, tuple[Any, Any]] = {}
     for p, arg in zip(fn.node.proto.params, call.args):
         code = tr.expr(arg, mask)
         if not is_plain_read(arg):
@@ -145,10 +146,11 @@ def inline_call(tr: TranspilerState, call: A.Call, fn: Symbol, mask: str | None)
     # the tracing transpiler (backends/numpy_engine/tracing.py, glslcheck probe) records a
     # function's return value: inlined, the expression is part of the caller's statement, not a
     # return
-    watch = tr.watched.pop(id(value), None) if tr.watched is not None else None
+    watched = getattr(tr, "watched", None)  # (the Transpiler's; the compiled engine traces none)
+    watch = watched.pop(id(value), None) if watched is not None else None
     try:
         return tr.expr(value, mask)
     finally:
         frames.pop()
-        if watch is not None and tr.watched is not None:  # (a watch came from tr.watched)
-            tr.watched[id(value)] = watch
+        if watch is not None and watched is not None:  # (a watch came from tr.watched)
+            watched[id(value)] = watch

@@ -51,7 +51,7 @@ take a state.FoldEngine, what both provide.
 from .added_zero import zero_add
 from .components import component_write
 from .context import FoldContext
-from .dispatch import binary
+from .dispatch import binary, copied_binary
 from .dot_constants import broadcast_dot, dot_operand, merged_dot
 from .flrp import mix_hint
 from .repeated_sums import repeated_sum, sum_step
@@ -63,6 +63,7 @@ __all__ = [
     "binary",
     "broadcast_dot",
     "component_write",
+    "copied_binary",
     "dot_operand",
     "keep_term",
     "merged_dot",

@@ -30,12 +30,10 @@ from .queries import (
 TYPE_CHECKING = False  # not typing's: importing typing costs every start-up
 if TYPE_CHECKING:
     from .....semantics.model import Symbol
-    from ..state import TranspilerState
+    from ..state import FoldEmitter, FoldEngine
 
 
-def component_write(
-    tr: TranspilerState, node: Any, mask: str | None, old: str | None = None
-) -> str | None:
+def component_write(tr: FoldEmitter, node: Any, mask: str | None, old: Any = None) -> Any:
     """The code of the value a write gives a local, component by component as NIR sees it,
     or None (the write as usual). ``node``: a declarator with an initializer, or an assignment
     ``=`` / ``*=`` (``old``: the code of the target's value before a ``*=``).
@@ -100,7 +98,7 @@ def component_write(
     return _merged_code(tr, entries, written)
 
 
-def merge_components(tr: TranspilerState, e: A.Binary, mask: str | None) -> str | None:
+def merge_components(tr: FoldEmitter, e: A.Binary, mask: str | None) -> Any:
     """``x * #k`` with x (or a swizzle of it) a local whose components :func:`component_write`
     kept, when a component's constants merge: each component ``y * (c*...*k)`` (llvmpipe
     mode), else as written."""
@@ -117,23 +115,23 @@ def merge_components(tr: TranspilerState, e: A.Binary, mask: str | None) -> str 
     return _merged_code(tr, entries, written)
 
 
-def _merged_code(tr: TranspilerState, entries: list[tuple[str, list[Any]]], written: str) -> str:
+def _merged_code(tr: FoldEmitter, entries: list[tuple[Any, list[Any]]], written: Any) -> Any:
     if not any(len(cs) > 1 for _, cs in entries):
         return written
     parts = []
     for y, cs in entries:
-        cs = [c if isinstance(c, str) else tr.const_float(c) for c in cs]
+        cs = [tr.const_float(c) if isinstance(c, (int, float)) else c for c in cs]
         c = cs[-1] if cs else None
         for inner in reversed(cs[:-1]):
-            c = f"({inner} * {c})"  # (nir_opt_algebraic visits the last instruction first)
+            c = tr.ieee("*", inner, c)  # (nir_opt_algebraic visits the last instruction first)
         parts.append(y if c is None else tr.binary_values("*", FLOAT, FLOAT, y, c))
-    merged = parts[0] if len(parts) == 1 else f"rt.vec({len(parts)}, {', '.join(parts)})"
-    return f"({merged} if rt.lp else {written})"
+    merged = parts[0] if len(parts) == 1 else tr.vector(parts)
+    return tr.llvmpipe(merged, written)
 
 
 def _chain(
-    tr: TranspilerState, node: Any, mask: str | None, keep: bool
-) -> tuple[list[tuple[str, list[Any]]], str]:
+    tr: FoldEmitter, node: Any, mask: str | None, keep: bool
+) -> tuple[list[tuple[Any, list[Any]]], Any]:
     """([(y, [c1, c2, ...]) per component], the code of the value as written): the value of
     each component is ``y * c1 * c2 ...`` to NIR, y's code and the constants' codes.
     Followed: products by constants, swizzles, ``x + 0.0`` (x to NIR) and reads of a local
@@ -161,7 +159,7 @@ def _chain(
         and tr.type_of(node.left) == tr.type_of(node)
     ):
         inner, wx = _chain(tr, node.left, mask, keep)
-        return inner, f"rt.fadd({wx}, {tr.expr(node.right, mask)})"
+        return inner, tr.runtime("fadd", wx, tr.expr(node.right, mask))
     if (
         isinstance(node, A.Field)
         and tr.model.is_swizzle(node)
@@ -169,32 +167,31 @@ def _chain(
     ):
         inner, wb = _chain(tr, node.base, mask, keep)
         idx = tr.model.swizzle_indices(node)
-        sw = "".join("xyzw"[i] for i in idx)
         return [inner[i] for i in idx], (
-            f"{wb}[{idx[0]}]" if len(idx) == 1 else f'rt.swizzle({wb}, "{sw}")'
+            tr.component(wb, idx[0]) if len(idx) == 1 else tr.swizzle(wb, tuple(idx))
         )
     code = tr.expr(node, mask)
-    found: list[tuple[str, list[str]] | None] = [None] * n
+    found: list[tuple[Any, list[Any]] | None] = [None] * n
     if isinstance(node, A.Identifier) and tr.type_of(node).base == "float":
         found = [_component_record(tr, node, i) for i in range(n)]
-    return [f if f else (_component(code, i, n), []) for i, f in enumerate(found)], code
+    return [f if f else (_component(tr, code, i, n), []) for i, f in enumerate(found)], code
 
 
 def _times(
-    tr: TranspilerState,
-    entries: list[tuple[str, list[Any]]],
-    code: str,
+    tr: FoldEmitter,
+    entries: list[tuple[Any, list[Any]]],
+    code: Any,
     k: Any,
     n: int,
     mask: str | None,
     keep: bool,
-) -> tuple[list[tuple[str, list[Any]]], str]:
+) -> tuple[list[tuple[Any, list[Any]]], Any]:
     """Each component's entry times the constant k (a scalar, or a vector: its component), and
     the code of the factor (a temporary with `keep` when a component is the factor itself)."""
     if keep and any(not cs for _, cs in entries):
         code = tr.tmp(code)
         entries = [
-            (y, cs) if cs else (_component(code, i, len(entries)), [])
+            (y, cs) if cs else (_component(tr, code, i, len(entries)), [])
             for i, (y, cs) in enumerate(entries)
         ]
     if len(entries) == 1 and n > 1:
@@ -208,15 +205,15 @@ def _times(
     return [(y, cs + [kc]) for (y, cs), kc in zip(entries, ks)], code
 
 
-def _component(code: str, i: int, n: int) -> str:
-    return code if n == 1 else f"{code}[{i}]"
+def _component(tr: FoldEmitter, code: Any, i: int, n: int) -> Any:
+    return code if n == 1 else tr.component(code, i)
 
 
 def _size(t: Any) -> int:
     return t.size if t.is_vector else 1
 
 
-def _zero(tr: TranspilerState, node: Any) -> bool:
+def _zero(tr: FoldEngine, node: Any) -> bool:
     """A float constant +0.0 (``fadd(a, 0.0) -> a``)."""
     import math
 
@@ -224,7 +221,7 @@ def _zero(tr: TranspilerState, node: Any) -> bool:
     return isinstance(v, float) and v == 0.0 and math.copysign(1.0, v) > 0
 
 
-def _local_root(tr: TranspilerState, node: Any) -> Any:
+def _local_root(tr: FoldEngine, node: Any) -> Any:
     """The local or parameter a read names, through swizzles and ``+ 0.0``; else None."""
     while True:
         if isinstance(node, A.Field) and tr.model.is_swizzle(node):
@@ -240,7 +237,7 @@ def _local_root(tr: TranspilerState, node: Any) -> Any:
     return None
 
 
-def _target_components(tr: TranspilerState, target: Any) -> tuple[Any, tuple[int, ...] | None]:
+def _target_components(tr: FoldEngine, target: Any) -> tuple[Any, tuple[int, ...] | None]:
     """(the local an assignment writes, the components it writes: None for all) for a target
     that is a local or one swizzle of it; else (None, None)."""
     if isinstance(target, A.Identifier):
@@ -255,7 +252,7 @@ def _target_components(tr: TranspilerState, target: Any) -> tuple[Any, tuple[int
     return None, None
 
 
-def _component_locals(tr: TranspilerState) -> set[int]:
+def _component_locals(tr: FoldEngine) -> set[int]:
     """ids of the float locals of the current function :func:`component_write` follows: written
     in part (a component, a compound assignment) and read in a product by a constant (or by
     ``*=`` one), directly or through a copy into such a local."""
@@ -298,9 +295,7 @@ def _component_locals(tr: TranspilerState) -> set[int]:
     return cache[key]
 
 
-def _cancelled_sum(
-    tr: TranspilerState, node: A.Assignment, mask: str | None, old: str
-) -> str | None:
+def _cancelled_sum(tr: FoldEmitter, node: A.Assignment, mask: str | None, old: Any) -> Any:
     """``x.y += e; ... x.y -= e`` (either order, e the same text, its variables not written in
     between): x.y is its value before the ``+=`` to NIR (``('~fadd', ('fneg', a), ('fadd', a,
     b)) -> b``), with the constants :func:`component_write` kept for it (gargantua's ``rc.y +=
@@ -356,7 +351,7 @@ def _cancelled_sum(
     undo[id(node)] = (
         tr.lines,
         {
-            c: (_component(t_old, j, n), _component_record(tr, ident, c))
+            c: (_component(tr, t_old, j, n), _component_record(tr, ident, c))
             for j, c in enumerate(comps)
         },
     )
@@ -366,11 +361,11 @@ def _cancelled_sum(
     if before is None:
         return written
     records[id(node)] = (tr.lines, {c: rec for c, (_, rec) in zip(comps, before) if rec})
-    lp = before[0][0] if n == 1 else f"rt.vec({n}, {', '.join(code for code, _ in before)})"
-    return f"({lp} if rt.lp else {written})"
+    lp = before[0][0] if n == 1 else tr.vector([code for code, _ in before])
+    return tr.llvmpipe(lp, written)
 
 
-def _cancelled_later(tr: TranspilerState, facts: Any, sym: Symbol, node: A.Assignment) -> bool:
+def _cancelled_later(tr: FoldEngine, facts: Any, sym: Symbol, node: A.Assignment) -> bool:
     """A later compound assignment of ``sym`` subtracts what ``node`` adds (or adds what it
     subtracts), the same text: :func:`_cancelled_sum` may need the value before ``node``."""
     text, end = to_glsl(node.value), facts.exit[id(node)]
@@ -384,9 +379,7 @@ def _cancelled_later(tr: TranspilerState, facts: Any, sym: Symbol, node: A.Assig
     )
 
 
-def _component_record(
-    tr: TranspilerState, ident: A.Identifier, i: int
-) -> tuple[str, list[str]] | None:
+def _component_record(tr: FoldEngine, ident: A.Identifier, i: int) -> tuple[Any, list[Any]] | None:
     """(y, constants) :func:`component_write` kept for component i of the local read here (from
     :func:`_component_source`'s write)."""
     last = _component_source(tr, ident, i)
@@ -396,7 +389,7 @@ def _component_record(
     return kept[1].get(i)
 
 
-def _component_source(tr: TranspilerState, ident: A.Identifier, i: int) -> Any:
+def _component_source(tr: FoldEngine, ident: A.Identifier, i: int) -> Any:
     """The write (analysis.dataflow.Write) that last gave component i of the local read here its
     value: it runs before this read on every path, and nothing writes the component in between
     (loops around the read included); else None."""
@@ -423,7 +416,7 @@ def _component_source(tr: TranspilerState, ident: A.Identifier, i: int) -> Any:
     return last
 
 
-def _writes_locals(tr: TranspilerState, value: Any) -> bool:
+def _writes_locals(tr: FoldEngine, value: Any) -> bool:
     """The expression writes a variable (an assignment, ++/--, an out argument): a user call
     that only reads its arguments is computed once, as written, so it may stay."""
     for n in value.walk():
@@ -440,19 +433,19 @@ def _writes_locals(tr: TranspilerState, value: Any) -> bool:
     return False
 
 
-def _read_later(tr: TranspilerState, facts: Any, sym: Symbol, node: Any) -> bool:
+def _read_later(tr: FoldEngine, facts: Any, sym: Symbol, node: Any) -> bool:
     """A product by a constant (or a copy into a local read so) reads ``sym`` after ``node``
     (one before it, in a loop, is not reached by this write: :func:`_component_record`)."""
     end = facts.exit[id(node)]
     return any(facts.enter.get(id(r), -1) > end for r in _component_reads(tr).get(id(sym), ()))
 
 
-def _component_reads(tr: TranspilerState) -> dict[int, list[Any]]:
+def _component_reads(tr: FoldEngine) -> dict[int, list[Any]]:
     _component_locals(tr)
     return tr.fold_state.component_reads[id(current_function(tr).sym)]
 
 
-def _writes_component(tr: TranspilerState, w: Any, i: int) -> bool:
+def _writes_component(tr: FoldEngine, w: Any, i: int) -> bool:
     if isinstance(w.node, A.Assignment):
         comps = _target_components(tr, w.node.target)[1]
         if comps is not None:

@@ -24,10 +24,10 @@ from .queries import (
 
 TYPE_CHECKING = False  # not typing's: importing typing costs every start-up
 if TYPE_CHECKING:
-    from ..state import TranspilerState
+    from ..state import FoldEmitter, FoldEngine
 
 
-def kept_product(tr: TranspilerState, node: A.Assignment, mask: str | None, old: str) -> str | None:
+def kept_product(tr: FoldEmitter, node: A.Assignment, mask: str | None, old: Any) -> Any:
     """``x *= b`` read once, by a product by a constant: its factors kept for
     :func:`sunk_through_compound` (None: the write as usual)."""
     if not isinstance(node.target, A.Identifier) or id(node) not in _sink_reads(tr).values():
@@ -38,7 +38,7 @@ def kept_product(tr: TranspilerState, node: A.Assignment, mask: str | None, old:
     return tr.binary_values("*", t, tr.type_of(node.value), ta, tb)
 
 
-def sunk_through_compound(tr: TranspilerState, e: A.Binary, mask: str | None) -> str | None:
+def sunk_through_compound(tr: FoldEmitter, e: A.Binary, mask: str | None) -> Any:
     """``x * #c`` where x's value is ``a * b`` from ``x *= b``, read only here: ``(a * #c) * b``
     (``('~fmul', ('fmul(is_used_once)', a, b), '#c') -> (a * #c) * b``, the product used once
     in SSA): gargantua's ``coverage *= saturate(..); coverage = saturate(coverage * 0.7)``.
@@ -64,10 +64,10 @@ def sunk_through_compound(tr: TranspilerState, e: A.Binary, mask: str | None) ->
     sunk = tr.binary_values(
         "*", t, t, tr.binary_values("*", t, tr.type_of(k), kept[1], tk), kept[2]
     )
-    return f"({sunk} if rt.lp else {written})"
+    return tr.llvmpipe(sunk, written)
 
 
-def _returns_product(tr: TranspilerState, call: A.Call) -> bool:
+def _returns_product(tr: FoldEngine, call: A.Call) -> bool:
     """The user function called returns a product (its last statement ``return a * b``), or
     its result is not known here."""
     target = tr.model.call_target(call)
@@ -82,7 +82,7 @@ def _returns_product(tr: TranspilerState, call: A.Call) -> bool:
     )
 
 
-def _sink_reads(tr: TranspilerState) -> dict[int, int]:
+def _sink_reads(tr: FoldEngine) -> dict[int, int]:
     """id(``x * #c``) -> id(``x *= b``) for the products :func:`sunk_through_compound`
     rewrites: b not constant, x's value read only by that product, the value x had before
     the ``*=`` not a product NIR would sink into (see there)."""

@@ -27,10 +27,10 @@ from .ssa_values import product_parts
 
 TYPE_CHECKING = False  # not typing's: importing typing costs every start-up
 if TYPE_CHECKING:
-    from ..state import TranspilerState
+    from ..state import FoldEmitter
 
 
-def merge_constants(tr: TranspilerState, e: A.Binary, mask: str | None) -> str | None:
+def merge_constants(tr: FoldEmitter, e: A.Binary, mask: str | None) -> Any:
     """``#a * (b * #c) -> (a*c) * b`` and ``#a + (b + #c) -> (a + c) + b`` (no "used once"
     condition: they reach through any SSA value, here a never-written local such as
     ``vec2 uv = q * 1.2; ... uv * 0.2``, which is ``q * 0.24`` on llvmpipe: 1.2*0.2 is folded
@@ -58,10 +58,9 @@ def merge_constants(tr: TranspilerState, e: A.Binary, mask: str | None) -> str |
             if x_node is e.left
             else tr.binary_values("*", FLOAT, FLOAT, tk, tx)
         )
-        rewritten = tr.binary_values(
-            "*", FLOAT, FLOAT, tr.expr(factored[0], mask), f"({tk} * {tr.const_float(factored[1])})"
-        )
-        return f"({rewritten} if rt.lp else {written})"
+        merged = tr.ieee("*", tk, tr.const_float(factored[1]))
+        rewritten = tr.binary_values("*", FLOAT, FLOAT, tr.expr(factored[0], mask), merged)
+        return tr.llvmpipe(rewritten, written)
     parts = _scalar_dot(tr, inner) if e.op == "*" else None
     if parts is None:
         if not isinstance(inner, A.Binary):
@@ -95,21 +94,21 @@ def merge_constants(tr: TranspilerState, e: A.Binary, mask: str | None) -> str |
         tk, tc, tb, tx = tr.exprs([k_node, c_node, b_node, x_node], mask)
     t = tr.type_of(e)
     if e.op == "*":
-        rewritten = tr.binary_values("*", t, t, tb, f"({tk} * {tc})")
+        rewritten = tr.binary_values("*", t, t, tb, tr.ieee("*", tk, tc))
         written = (
             tr.binary_values("*", t, t, tx, tk)
             if x_node is e.left
             else tr.binary_values("*", t, t, tk, tx)
         )
     else:
-        k = f"(-{tk})" if e.op == "-" else tk
-        c = f"(-{tc})" if c_sign == "-" else tc
-        rewritten = f"(({k} + {c}) {b_sign} {tb})"
-        written = f"({tx} {e.op} {tk})" if x_node is e.left else f"({tk} {e.op} {tx})"
-    return f"({rewritten} if rt.lp else {written})"
+        k = tr.negate(tk) if e.op == "-" else tk
+        c = tr.negate(tc) if c_sign == "-" else tc
+        rewritten = tr.ieee(b_sign, tr.ieee("+", k, c), tb)
+        written = tr.ieee(e.op, tx, tk) if x_node is e.left else tr.ieee(e.op, tk, tx)
+    return tr.llvmpipe(rewritten, written)
 
 
-def _scalar_dot(tr: TranspilerState, node: Any) -> tuple[str, Any, Any] | None:
+def _scalar_dot(tr: FoldEmitter, node: Any) -> tuple[str, Any, Any] | None:
     """``("*", a, b)`` for ``dot(a, b)`` of two floats: Mesa's built-in is a multiply there
     (builtin_functions.cpp ``_dot``: ``ir_binop_mul`` for one component), so NIR merges a
     constant into it as into ``a * b`` (a hash's ``dot(n, 123.456) * 789.123`` is ``n *

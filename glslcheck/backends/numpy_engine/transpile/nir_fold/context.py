@@ -17,6 +17,8 @@ from ...fold_state import FoldState
 
 TYPE_CHECKING = False  # not typing's: importing typing costs every start-up
 if TYPE_CHECKING:
+    from typing import Self
+
     from .....semantics.model import Model, Symbol
 
 
@@ -37,7 +39,7 @@ class FoldContext:
         self.has_effects = SideEffects(model)
         self.fn: EmittedFunction | None = None
 
-    def at(self, sym: Symbol | None, is_entry: bool) -> FoldContext:
+    def at(self, sym: Symbol | None, is_entry: bool) -> Self:
         """This context, at the function `sym`."""
         if self.fn is None or self.fn.sym is not sym:
             self.fn = EmittedFunction(sym, is_entry)
@@ -45,3 +47,8 @@ class FoldContext:
 
     def type_of(self, e: Any) -> Any:
         return self.model.type_of(e)
+
+    @property
+    def lines(self) -> Any:
+        """The function being emitted, which a value a rule keeps belongs to (none here)."""
+        return None

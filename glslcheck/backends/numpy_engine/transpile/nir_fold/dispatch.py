@@ -6,7 +6,11 @@ every operation in it); for an expression with side effects, only a constant add
 result (returned_sums.py); for a matrix operand, only constants merged into the matrix
 (ssa_values.py); for a sum, factoring (factoring.py) then the ffma split (ffma_split.py); then
 constants merged (constant_merge.py, components.py, compound_products.py) or sunk (sink.py);
-last, a product by a constant kept through a variable assigned again (ssa_values.py)."""
+last, a product by a constant kept through a variable assigned again (ssa_values.py).
+
+:func:`copied_binary` is the same order for an engine that computes some families only (the
+compiled engine: compiled_engine/fold_values.COPIED, the families built from
+state.FoldEmitter's operations)."""
 
 from __future__ import annotations
 
@@ -23,7 +27,9 @@ from .ssa_values import keep_factor, merge_into_matrix
 
 TYPE_CHECKING = False  # not typing's: importing typing costs every start-up
 if TYPE_CHECKING:
-    from ..state import TranspilerState
+    from typing import Any
+
+    from ..state import FoldEmitter, TranspilerState
 
 
 def binary(tr: TranspilerState, e: A.Binary, mask: str | None) -> str | None:
@@ -55,3 +61,31 @@ def binary(tr: TranspilerState, e: A.Binary, mask: str | None) -> str | None:
         return folded
     folded = sink_constant(tr, e, mask)
     return folded if folded is not None else keep_factor(tr, e, mask)
+
+
+def copied_binary(tr: FoldEmitter, e: A.Binary, mask: str | None, copied: frozenset[str]) -> Any:
+    """:func:`binary` for an engine that computes the families `copied` only: those, in the
+    same order; None where none of them rewrites ``e``."""
+    if e.op not in ("+", "-", "*") or tr.fn is None or tr.type_of(e).base != "float":
+        return None
+    if tr.has_effects(e):
+        return None
+    if tr.type_of(e.left).is_matrix or tr.type_of(e.right).is_matrix:
+        return merge_into_matrix(tr, e, mask) if "matrix" in copied else None
+    if e.op == "+" and "factoring" in copied:
+        folded = factor(tr, e, mask)
+        if folded is not None:
+            return folded
+    if "constant_merge" in copied:
+        folded = merge_constants(tr, e, mask)
+        if folded is not None:
+            return folded
+    folded = merge_components(tr, e, mask) if "components" in copied else None
+    if folded is None and "compound" in copied:
+        folded = sunk_through_compound(tr, e, mask)
+    if folded is not None:
+        return folded
+    folded = sink_constant(tr, e, mask) if "sink" in copied else None
+    if folded is None and "ssa_values" in copied:
+        folded = keep_factor(tr, e, mask)
+    return folded

@@ -26,10 +26,10 @@ from .queries import (
 
 TYPE_CHECKING = False  # not typing's: importing typing costs every start-up
 if TYPE_CHECKING:
-    from ..state import TranspilerState
+    from ..state import FoldEmitter, FoldEngine
 
 
-def merged_dot(tr: TranspilerState, call: A.Call, args: list[str], mask: str | None) -> str | None:
+def merged_dot(tr: FoldEmitter, call: A.Call, args: list[Any], mask: str | None) -> Any:
     """``dot(v, #K)`` where v is a chain of products by constants, ``(x * #c1) * #c2``, also
     through never-written locals and inlined parameters (:func:`queries.stable_init`).
 
@@ -66,13 +66,11 @@ def merged_dot(tr: TranspilerState, call: A.Call, args: list[str], mask: str | N
         for c in codes[1:]:
             folded = tr.binary_values("*", t, t, folded, c)
         merged = tr.binary_values("*", t, t, merged, folded)
-    rewritten = f"rt.dot({tx}, {merged})" if v_first else f"rt.dot({merged}, {tx})"
-    return f"({rewritten} if rt.lp else rt.dot({args[0]}, {args[1]}))"
+    rewritten = tr.runtime("dot", tx, merged) if v_first else tr.runtime("dot", merged, tx)
+    return tr.llvmpipe(rewritten, tr.runtime("dot", args[0], args[1]))
 
 
-def broadcast_dot(
-    tr: TranspilerState, call: A.Call, args: list[str], mask: str | None
-) -> str | None:
+def broadcast_dot(tr: FoldEmitter, call: A.Call, args: list[Any], mask: str | None) -> Any:
     """``dot(vecN(s), #K)`` (s a float, also through a never-written local or an inlined
     parameter, :func:`queries.stable_init`) is ``s * (K[0] + (K[1] + ...))`` on llvmpipe: the dot
     product lowered to ``s*K[0] + (s*K[1] + ...)`` (summed right to left), NIR's factoring
@@ -84,10 +82,10 @@ def broadcast_dot(
         return None
     x, total = parts
     rewritten = tr.binary_values("*", FLOAT, FLOAT, tr.expr(x, mask), tr.const_float(total))
-    return f"({rewritten} if rt.lp else rt.dot({args[0]}, {args[1]}))"
+    return tr.llvmpipe(rewritten, tr.runtime("dot", args[0], args[1]))
 
 
-def broadcast_dot_parts(tr: TranspilerState, call: Any) -> tuple[Any, float] | None:
+def broadcast_dot_parts(tr: FoldEngine, call: Any) -> tuple[Any, float] | None:
     """(s, the float32 sum of K right to left) for a call ``dot(vecN(s), #K)``, else None."""
     if not (
         isinstance(call, A.Call)
@@ -112,14 +110,14 @@ def broadcast_dot_parts(tr: TranspilerState, call: Any) -> tuple[Any, float] | N
     return None
 
 
-def dot_operand(tr: TranspilerState, node: Any) -> bool:
+def dot_operand(tr: FoldEngine, node: Any) -> bool:
     """``node`` is an operand the rules of a ``dot`` with a constant rewrite: a product by a
     constant (:func:`constant_product`, for :func:`merged_dot`) or ``vecN(s)`` (for
     :func:`broadcast_dot`); transpile/inline.py inlines a call that passes one to such a dot."""
     return constant_product(tr, node) or tr.fn is not None and _broadcast(tr, node) is not None
 
 
-def _broadcast(tr: TranspilerState, v: Any) -> Any:
+def _broadcast(tr: FoldEngine, v: Any) -> Any:
     """The float s of a vector ``vecN(s)`` (also a never-written local or inlined parameter
     so built, or a swizzle of one), else None."""
     if isinstance(v, A.Field) and tr.model.is_swizzle(v):
@@ -139,7 +137,7 @@ def _broadcast(tr: TranspilerState, v: Any) -> Any:
     return None if tr.has_effects(s) else s
 
 
-def _product_chain(tr: TranspilerState, v: Any) -> tuple[Any, list[list[Any]]]:
+def _product_chain(tr: FoldEngine, v: Any) -> tuple[Any, list[list[Any]]]:
     """(x, trees) for ``v = (x * #c2) * #c1``: the constant factors grouped by the GLSL IR
     expression tree they sit in, outer tree and outer factor first. A never-written local read
     once (or an inlined parameter, read once in its function) is grafted into the tree that
@@ -172,7 +170,7 @@ def _product_chain(tr: TranspilerState, v: Any) -> tuple[Any, list[list[Any]]]:
     return node, [tree for tree in trees if tree]
 
 
-def constant_product(tr: TranspilerState, node: Any) -> bool:
+def constant_product(tr: FoldEngine, node: Any) -> bool:
     """``node`` is, or is a never-written local initialised by, a product of a constant and a
     value that is not constant (the start of :func:`_product_chain`)."""
     if tr.fn is None or tr.has_effects(node):

@@ -15,10 +15,10 @@ from .queries import is_constant, is_opaque, is_product, stable_init
 
 TYPE_CHECKING = False  # not typing's: importing typing costs every start-up
 if TYPE_CHECKING:
-    from ..state import TranspilerState
+    from ..state import FoldEmitter, FoldEngine
 
 
-def factor(tr: TranspilerState, e: A.Binary, mask: str | None) -> str | None:
+def factor(tr: FoldEmitter, e: A.Binary, mask: str | None) -> Any:
     """``a*b + a*c`` (either operand order, products possibly stored in never-written locals)
     as ``a * (b + c)``."""
     parts = factor_parts(tr, e)
@@ -28,11 +28,11 @@ def factor(tr: TranspilerState, e: A.Binary, mask: str | None) -> str | None:
     t = tr.type_of(e)
     ts, tb, tc = (_code(tr, x, mask) for x in (shared, b, c))
     tl, trr = tr.exprs([e.left, e.right], mask)
-    rewritten = tr.binary_values("*", t, t, ts, f"({tb} + {tc})")  # float, no matrix: rt.fmul
-    return f"({rewritten} if rt.lp else ({tl} + {trr}))"
+    rewritten = tr.binary_values("*", t, t, ts, tr.ieee("+", tb, tc))  # float, no matrix: fmul
+    return tr.llvmpipe(rewritten, tr.ieee("+", tl, trr))
 
 
-def factor_parts(tr: TranspilerState, e: Any) -> tuple[Any, Any, Any] | None:
+def factor_parts(tr: FoldEngine, e: Any) -> tuple[Any, Any, Any] | None:
     """(a, b, c) when the sum ``e`` is ``a*b + a*c`` as :func:`factor` rewrites it, else None."""
     if not (isinstance(e, A.Binary) and e.op == "+"):
         return None
@@ -57,7 +57,7 @@ def factor_parts(tr: TranspilerState, e: Any) -> tuple[Any, Any, Any] | None:
     return shared, b, c
 
 
-def _factors(tr: TranspilerState, node: Any) -> tuple[tuple[str, str], tuple[Any, Any]] | None:
+def _factors(tr: FoldEngine, node: Any) -> tuple[tuple[str, str], tuple[Any, Any]] | None:
     """The two factors of a product ``node`` (their GLSL texts, and nodes or (node, component)
     pairs), looking through a never-written local defined as a product; None otherwise."""
     if is_product(tr, node):
@@ -89,8 +89,8 @@ def _factors(tr: TranspilerState, node: Any) -> tuple[tuple[str, str], tuple[Any
     return (parts[0][1], parts[1][1]), (parts[0][0], parts[1][0])
 
 
-def _code(tr: TranspilerState, x: Any, mask: str | None) -> str:
+def _code(tr: FoldEmitter, x: Any, mask: str | None) -> Any:
     if isinstance(x, tuple):
         node, comp = x
-        return f"{tr.expr(node, mask)}[{comp}]"
+        return tr.component(tr.expr(node, mask), comp)
     return tr.expr(x, mask)

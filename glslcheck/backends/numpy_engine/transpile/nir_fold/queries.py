@@ -20,7 +20,7 @@ from .....language import builtin_functions as B
 from .....semantics.analysis import param_directions
 from .....semantics.model import Symbol
 from ..inline import bound_argument, inline_owner
-from ..state import FnState, FoldedFunction, FoldEngine, TranspilerState
+from ..state import FnState, FoldedFunction, FoldEngine
 
 SUMS = ("+", "-")
 
@@ -50,7 +50,7 @@ def constant_value(tr: FoldEngine, node: Any) -> list[float] | None:
     return flat
 
 
-def read_once(tr: TranspilerState, ident: A.Identifier) -> bool:
+def read_once(tr: FoldEngine, ident: A.Identifier) -> bool:
     """The variable is read at one place of its function (GLSL IR grafts its value there)."""
     sym = tr.model.symbol_of(ident)
     owner = inline_owner(tr, sym)
@@ -88,7 +88,7 @@ def constant_global(tr: FoldEngine, sym: Symbol | None) -> bool:
     )
 
 
-def is_product(tr: TranspilerState, node: Any) -> bool:
+def is_product(tr: FoldEngine, node: Any) -> bool:
     """A product of numbers or vectors (a matrix product is no elementwise product)."""
     return (
         isinstance(node, A.Binary)
@@ -98,7 +98,7 @@ def is_product(tr: TranspilerState, node: Any) -> bool:
     )
 
 
-def has_matrix(tr: TranspilerState, *nodes: Any) -> bool:
+def has_matrix(tr: FoldEngine, *nodes: Any) -> bool:
     return any(tr.type_of(n).is_matrix for n in nodes)
 
 
@@ -133,7 +133,7 @@ _ARITHMETIC_BUILTINS = {
 }
 
 
-def is_opaque(tr: TranspilerState, node: Any, depth: int = 0) -> bool:
+def is_opaque(tr: FoldEngine, node: Any, depth: int = 0) -> bool:
     """The value reaches NIR as something no algebraic rule looks into: a uniform, a
     never-written parameter of mainImage, a built-in computed by its own instruction (sin,
     fract, floor, sqrt, ...), a swizzle of one, or a never-written local initialised so."""
@@ -162,20 +162,20 @@ def is_opaque(tr: TranspilerState, node: Any, depth: int = 0) -> bool:
     return False
 
 
-def used_once(tr: TranspilerState, e: Any) -> bool:
+def used_once(tr: FoldEngine, e: Any) -> bool:
     """``e`` feeds one instruction: its GLSL text appears once in the function (NIR's CSE
     would merge a copy) and it is an operand of a larger expression (a value stored in a
     variable feeds every use of the variable)."""
     return id(e) in use_counts(tr)[2] and one_copy(tr, e)
 
 
-def one_copy(tr: TranspilerState, e: Any) -> bool:
+def one_copy(tr: FoldEngine, e: Any) -> bool:
     """The GLSL text of ``e`` appears once in the function (NIR's CSE would merge a copy)."""
     shapes, counts, _ = use_counts(tr)
     return counts.get(shapes.get(id(e), -1), 0) <= 1
 
 
-def use_counts(tr: TranspilerState) -> tuple[dict[int, int], dict[int, int], set[int]]:
+def use_counts(tr: FoldEngine) -> tuple[dict[int, int], dict[int, int], set[int]]:
     """(shape of each node, copies of each shape among the binary expressions, ids of the
     operands of binary expressions and built-in calls) of the current function."""
     parents = tr.fold_state.parents
@@ -225,7 +225,7 @@ def node_shapes(root: Any) -> dict[int, int]:
     return ids
 
 
-def call_write(tr: TranspilerState, node: Any) -> Any:
+def call_write(tr: FoldEngine, node: Any) -> Any:
     """The write (analysis.dataflow.Write) of a call of a user function that gave the variable
     ``node`` its value here (an out or inout argument, nothing written since), else None."""
     sym = tr.model.symbol_of(node) if isinstance(node, A.Identifier) else None
@@ -243,7 +243,7 @@ def call_write(tr: TranspilerState, node: Any) -> Any:
     return w
 
 
-def is_fmul(tr: TranspilerState, node: Any) -> bool:
+def is_fmul(tr: FoldEngine, node: Any) -> bool:
     """The value is a product in NIR (nir_search's ``is_fmul``): a product of numbers or
     vectors, a local whose value here is one (its initializer, or the assignment that reaches
     this read: ``f = f*f*(3.0 - 2.0*f); ... f.xy``), or a component of either."""
@@ -265,7 +265,7 @@ def function_facts(tr: FoldEngine) -> Any:
     return cache[key]
 
 
-def reaching_value(tr: TranspilerState, ident: A.Identifier, unchanged: bool = False) -> Any:
+def reaching_value(tr: FoldEngine, ident: A.Identifier, unchanged: bool = False) -> Any:
     """The value the last whole assignment (or initializer) of a local gave it, when that write
     runs before this read on every path and nothing writes the variable in between (in
     program order, loops included: analysis.dataflow); else None. Its operands may have

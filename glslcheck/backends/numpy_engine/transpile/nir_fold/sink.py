@@ -41,10 +41,10 @@ from .squared_lengths import merged_argument, shared_dot, squared_length
 
 TYPE_CHECKING = False  # not typing's: importing typing costs every start-up
 if TYPE_CHECKING:
-    from ..state import TranspilerState
+    from ..state import FoldEmitter, FoldEngine
 
 
-def sink_constant(tr: TranspilerState, e: A.Binary, mask: str | None) -> str | None:
+def sink_constant(tr: FoldEmitter, e: A.Binary, mask: str | None) -> Any:
     """Constants sunk into a sum (:func:`_sink_sum`), a two-term product, or a dot product."""
     inner, k, k_left = e.left, e.right, False
     if (
@@ -91,12 +91,13 @@ def sink_constant(tr: TranspilerState, e: A.Binary, mask: str | None) -> str | N
     ):  # a = x * inversesqrt(dot(x, x)) to NIR, used once: the constant sinks into it
         tx = tr.tmp(tr.expr(x, mask))
         scaled = prod(tx, tk, ty[0], ty[2])
-        ta_k = prod(scaled, f"rt.inversesqrt(rt.dot({tx}, {tx}))", ty[0], tr.type_of(k))
-        return f"({prod(ta_k, tb, ak, ty[1])} if rt.lp else {written})"
-    return f"({prod(prod(ta, tk, ty[0], ty[2]), tb, ak, ty[1])} if rt.lp else {written})"
+        rsq = tr.runtime("inversesqrt", tr.runtime("dot", tx, tx))
+        ta_k = prod(scaled, rsq, ty[0], tr.type_of(k))
+        return tr.llvmpipe(prod(ta_k, tb, ak, ty[1]), written)
+    return tr.llvmpipe(prod(prod(ta, tk, ty[0], ty[2]), tb, ak, ty[1]), written)
 
 
-def _local_constant(tr: TranspilerState, node: Any) -> bool:
+def _local_constant(tr: FoldEngine, node: Any) -> bool:
     """A never-written local initialised by a constant expression (``float warpAmount = 5.0;``):
     a constant to NIR (GLSL IR's constant propagation), counted as one by the product sink."""
     sym = tr.model.symbol_of(node) if isinstance(node, A.Identifier) else None
@@ -110,7 +111,7 @@ def _local_constant(tr: TranspilerState, node: Any) -> bool:
     return tr.model.const_value(sym.node.init) is not None and id(sym) not in written_symbols(tr)
 
 
-def _normalized_once(tr: TranspilerState, node: Any) -> Any:
+def _normalized_once(tr: FoldEngine, node: Any) -> Any:
     """x when ``node`` reads a never-written local initialised as ``normalize(x)`` (x a vector)
     and read only here: NIR sees ``x * frsq(dot(x, x))`` used once, and a constant multiplying
     it sinks on to x: ``(normalize(x) * b) * #c`` is ``((x * #c) * inversesqrt(dot(x, x))) * b``
@@ -142,7 +143,7 @@ def _normalized_once(tr: TranspilerState, node: Any) -> Any:
     return init.args[0] if reads == [node] else None
 
 
-def _settled(tr: TranspilerState, node: Any) -> bool:
+def _settled(tr: FoldEmitter, node: Any) -> bool:
     """A variable whose value here is what a call of a user function wrote into it (an out or
     inout argument, nothing written since), where that value is, to NIR after inlining, a sum
     or a built-in's result in every component (transpile/call_fold.out_roots: gargantua's
@@ -154,7 +155,7 @@ def _settled(tr: TranspilerState, node: Any) -> bool:
     return roots is not None and roots <= {"+", "call"}
 
 
-def _scaled(tr: TranspilerState, node: Any) -> bool:
+def _scaled(tr: FoldEngine, node: Any) -> bool:
     """A never-written local initialised as a product by a constant (``float dither = rand(uv)
     * 2.0``) or a constant divided by a value (``1.0 / (...)``): beside ``(a * dither) * #c``
     NIR leaves it whole, measured (gargantua: ``((eyevec * dither) * 15.0) / 200.0`` is
@@ -183,7 +184,7 @@ def _scaled(tr: TranspilerState, node: Any) -> bool:
     )
 
 
-def _sink_sum(tr: TranspilerState, e: A.Binary, inner: Any, k: Any, mask: str | None) -> str | None:
+def _sink_sum(tr: FoldEmitter, e: A.Binary, inner: Any, k: Any, mask: str | None) -> Any:
     """``(a + b) + #c -> (a + #c) + b`` as nir_opt_algebraic applies it: first the variant that
     keeps a product ``b`` whole (``is_fmul``, so the constant joins the other term), else the
     constant joins ``a``; the new sum ``a + #c`` is matched again, so the constant sinks down
@@ -199,28 +200,30 @@ def _sink_sum(tr: TranspilerState, e: A.Binary, inner: Any, k: Any, mask: str | 
         and all(_stable_vector(tr, x) for x in inner.args)
     ):
         u, v, kk = tr.exprs([*inner.args, k], mask)
-        signed = f"(-{kk})" if e.op == "-" else kk
-        return f"(rt.dot_add({u}, {v}, {signed}) if rt.lp else (rt.dot({u}, {v}) {e.op} {kk}))"
+        signed = tr.negate(kk) if e.op == "-" else kk
+        written = tr.ieee(e.op, tr.runtime("dot", u, v), kk)
+        return tr.llvmpipe(tr.runtime("dot_add", u, v, signed), written)
     squared = squared_length(tr, inner)
     if squared is not None:
         u, kk, written = tr.exprs([squared, k, inner], mask)
-        signed = f"(-{kk})" if e.op == "-" else kk
+        signed = tr.negate(kk) if e.op == "-" else kk
         if shared_dot(tr, squared, inner) and not merged_argument(tr, squared):
             # (dot(x, x) used twice after CSE: the constant stays outside)
-            return f"((rt.dot({u}, {u}) {e.op} {kk}) if rt.lp else ({written} {e.op} {kk}))"
-        return f"(rt.dot_add({u}, {u}, {signed}) if rt.lp else ({written} {e.op} {kk}))"
+            rewritten = tr.ieee(e.op, tr.runtime("dot", u, u), kk)
+            return tr.llvmpipe(rewritten, tr.ieee(e.op, written, kk))
+        return tr.llvmpipe(tr.runtime("dot_add", u, u, signed), tr.ieee(e.op, written, kk))
     plan = _sum_plan(tr, inner, tr.type_of(e), 0)
     if plan is None or plan[0] != "sum" or _rebalanced(tr, e):
         return None
     leaves: list[Any] = []
     _plan_leaves(plan, leaves)
     codes = tr.exprs([*leaves, e.left, e.right, k], mask)
-    tk = f"(-{codes[-1]})" if e.op == "-" else codes[-1]
-    rewritten = _plan_code(plan, iter(codes), tk)
-    return f"({rewritten} if rt.lp else ({codes[-3]} {e.op} {codes[-2]}))"
+    tk = tr.negate(codes[-1]) if e.op == "-" else codes[-1]
+    rewritten = _plan_code(tr, plan, iter(codes), tk)
+    return tr.llvmpipe(rewritten, tr.ieee(e.op, codes[-3], codes[-2]))
 
 
-def _sum_plan(tr: TranspilerState, x: Any, t: Any, depth: int) -> tuple | None:
+def _sum_plan(tr: FoldEngine, x: Any, t: Any, depth: int) -> tuple | None:
     """Where a constant added to ``x`` goes: ("leaf", x) when x is a term it stays beside,
     ("sum", receiver plan, other term, operator, receiver on the left) when x is a sum used
     once, None where the rewrite is not copied."""
@@ -259,17 +262,17 @@ def _plan_leaves(plan: tuple, out: list[Any]) -> None:
         out.append(plan[1])
 
 
-def _plan_code(plan: tuple, codes: Any, k: str) -> str:
+def _plan_code(tr: FoldEmitter, plan: tuple, codes: Any, k: Any) -> Any:
     if plan[0] == "leaf":
-        return f"({next(codes)} + {k})"
+        return tr.ieee("+", next(codes), k)
     if plan[0] == "neg":
-        return f"((-{next(codes)}) + {k})"
-    recv = _plan_code(plan[1], codes, k)
+        return tr.ieee("+", tr.negate(next(codes)), k)
+    recv = _plan_code(tr, plan[1], codes, k)
     other = next(codes)
-    return f"({recv} {plan[3]} {other})" if plan[4] else f"({recv} + {other})"
+    return tr.ieee(plan[3], recv, other) if plan[4] else tr.ieee("+", recv, other)
 
 
-def known_term(tr: TranspilerState, node: Any) -> bool:
+def known_term(tr: FoldEngine, node: Any) -> bool:
     """A term whose kind to NIR is known: opaque, a product (:func:`queries.is_fmul`), a sum, or a
     selection (``c ? x : y``, a bcsel: no product), written or the value of a local here."""
     if is_opaque(tr, node) or is_fmul(tr, node) or _sum(tr, node):
@@ -282,13 +285,13 @@ def known_term(tr: TranspilerState, node: Any) -> bool:
     return not (isinstance(x, A.Binary) and isinstance(y, A.Binary) and x.op == y.op)
 
 
-def _sum(tr: TranspilerState, node: Any) -> bool:
+def _sum(tr: FoldEngine, node: Any) -> bool:
     """A sum or difference (no product: :func:`queries.is_fmul` tells which term keeps the
     constant)."""
     return isinstance(node, A.Binary) and node.op in SUMS
 
 
-def _rebalanced(tr: TranspilerState, e: A.Binary) -> bool:
+def _rebalanced(tr: FoldEngine, e: A.Binary) -> bool:
     """GLSL IR's do_rebalance_tree balances an expression tree of three or more additions of
     the same type whose leaves are variables (at most one constant) before NIR sees it:
     ``(a + b + c) + K`` reaches NIR as ``(a + b) + (c + K)`` (measured)."""
@@ -310,7 +313,7 @@ def _rebalanced(tr: TranspilerState, e: A.Binary) -> bool:
     return ops >= 3 and constants <= 1
 
 
-def _stable_vector(tr: TranspilerState, node: Any) -> bool:
+def _stable_vector(tr: FoldEngine, node: Any) -> bool:
     """A never-written vector local initialised as the difference of two opaque vectors
     (``vec3 oc = ro - center``: measured). A vector built from scalars is left out: there
     llvmpipe's bits follow neither order (other rules, such as ``sqrt(x) * sqrt(x) -> x``,

@@ -25,10 +25,10 @@ from .queries import (
 
 TYPE_CHECKING = False  # not typing's: importing typing costs every start-up
 if TYPE_CHECKING:
-    from ..state import TranspilerState
+    from ..state import FoldEngine
 
 
-def squared_length(tr: TranspilerState, node: Any) -> Any:
+def squared_length(tr: FoldEngine, node: Any) -> Any:
     """x when ``node`` is ``pow(L, 2.0)`` and L is ``length(x)`` or ``distance(x, #0)`` (or a
     never-written local initialised so), x a parameter the function never writes: to NIR
     ``fsqrt(dot(x, x))`` squared is the dot product itself (fpow(a, 2.0) -> a*a, then
@@ -76,7 +76,7 @@ def squared_length(tr: TranspilerState, node: Any) -> Any:
     return x
 
 
-def shared_dot(tr: TranspilerState, x: Any, pow_call: Any) -> bool:
+def shared_dot(tr: FoldEngine, x: Any, pow_call: Any) -> bool:
     """Another ``length``, ``distance``, ``normalize`` or ``dot`` of the current function reads
     the parameter x (alone, negated or subtracted from a constant): after inlining and CSE its
     ``dot(x, x)`` is the squared length's too, used twice, and a constant added to one of them
@@ -110,7 +110,7 @@ def shared_dot(tr: TranspilerState, x: Any, pow_call: Any) -> bool:
     return False
 
 
-def merged_argument(tr: TranspilerState, x: Any) -> bool:
+def merged_argument(tr: Any, x: Any) -> bool:  # (sets tr.fn for a while)
     """Every call of the current function passes for the parameter x a variable whose value
     there merges several writes (to NIR a phi: written in a loop around the call, or last
     written in a branch before it). Then the constant joins the shared dot product's innermost

@@ -26,10 +26,10 @@ from .queries import (
 
 TYPE_CHECKING = False  # not typing's: importing typing costs every start-up
 if TYPE_CHECKING:
-    from ..state import TranspilerState
+    from ..state import FoldEmitter, FoldEngine
 
 
-def keep_factor(tr: TranspilerState, e: A.Binary, mask: str | None) -> str | None:
+def keep_factor(tr: FoldEmitter, e: A.Binary, mask: str | None) -> Any:
     """``x = y * #c`` where x is read later in a product by a constant: the code of the
     product, y's value kept in a temporary for that read (:func:`product_parts`). NIR sees
     through x to y however often x is assigned (``p = m*p*2.02; p = m*p*2.03;`` in an fbm:
@@ -60,7 +60,7 @@ def keep_factor(tr: TranspilerState, e: A.Binary, mask: str | None) -> str | Non
     return tr.binary_values("*", t, t, tk, ty) if k_left else tr.binary_values("*", t, t, ty, tk)
 
 
-def _write_of(tr: TranspilerState, value: Any) -> Any:
+def _write_of(tr: FoldEngine, value: Any) -> Any:
     """The write (analysis.dataflow.Write) of a local whose whole new value is ``value``."""
     facts = function_facts(tr)
     if not facts.ok:
@@ -79,7 +79,7 @@ def _write_of(tr: TranspilerState, value: Any) -> Any:
     return index[key].get(id(value))
 
 
-def _merge_reads(tr: TranspilerState) -> dict[int, list[A.Identifier]]:
+def _merge_reads(tr: FoldEngine) -> dict[int, list[A.Identifier]]:
     """id(symbol) -> the reads of it as a factor of a product by a constant, in the current
     function."""
     cache = tr.fold_state.merge_reads
@@ -99,10 +99,11 @@ def _merge_reads(tr: TranspilerState) -> dict[int, list[A.Identifier]]:
     return cache[key]
 
 
-def product_parts(tr: TranspilerState, node: Any) -> tuple[Any, Any, str | None] | None:
+def product_parts(tr: FoldEngine, node: Any) -> tuple[Any, Any, Any] | None:
     """(y, #c, code) when the value of the variable ``node`` is ``y * #c`` to NIR: a
     never-written local's initializer (code None: y is computed again here), or the
-    assignment reaching this read when :func:`keep_factor` kept y (code: its temporary)."""
+    assignment reaching this read when :func:`keep_factor` kept y (code: its temporary, in the
+    Python function being written, `tr.lines`)."""
     if not isinstance(node, A.Identifier):
         return None
     init, code = stable_init(tr, node), None
@@ -121,7 +122,7 @@ def product_parts(tr: TranspilerState, node: Any) -> tuple[Any, Any, str | None]
     return None
 
 
-def merge_into_matrix(tr: TranspilerState, e: A.Binary, mask: str | None) -> str | None:
+def merge_into_matrix(tr: FoldEmitter, e: A.Binary, mask: str | None) -> Any:
     """``#M * v`` with v a vector whose value is ``y * #c`` (c a scalar): NIR lowers the
     product to columns, ``M[j][i] * (y[j] * c)``, and merges each constant, ``(M[j][i]*c) *
     y[j]`` (``('~fmul', '#a', ('fmul', 'b(is_not_const)', '#c'))``): ``(M * c) * y``, M * c
@@ -145,4 +146,4 @@ def merge_into_matrix(tr: TranspilerState, e: A.Binary, mask: str | None) -> str
     mt, vt = tr.type_of(e.left), tr.type_of(e.right)
     merged = tr.binary_values("*", mt, tr.type_of(c), tm, tc)
     rewritten = tr.binary_values("*", mt, vt, merged, ty)
-    return f"({rewritten} if rt.lp else {tr.binary_values('*', mt, vt, tm, tv)})"
+    return tr.llvmpipe(rewritten, tr.binary_values("*", mt, vt, tm, tv))

@@ -1,0 +1,218 @@
+"""Mesa's rewrites (the NumPy backend's nir_fold) computed by the compiled engine: the rules decide,
+this module gives them the compiled engine's values to build Mesa's order from.
+
+A rule of backends/numpy_engine/transpile/nir_fold builds its rewrite from the operations of
+state.FoldEmitter (operands, products and sums as the engine writes them, IEEE operations,
+negation) and never spells one itself; the NumPy Transpiler answers with Python text over lane
+arrays, :class:`FoldValues` with Codegen's `Val`s. So a rule changes both engines at once, and
+both compute the same float32 operations in the same order.
+
+What the NumPy backend holds as one lane matters to the bits (Runtime.fmul takes a value the
+same in every lane, computed, for a constant, and folds ``x * 0.0`` to 0): a value here carries
+`Val.one` (one lane there: a uniform input, a constant, a value of the uniformity analysis) and
+`Val.uni` (one lane and computed: taken there for a constant), as the arrays there are."""
+
+from __future__ import annotations
+
+import math
+from typing import Any
+
+from ...language import glsl_types as T
+from ...semantics.consteval import f32
+from ..numpy_engine.transpile.nir_fold import FoldContext
+from .builtin_calls import componentwise_text, geometric
+from .values import Val, not_yet
+
+# the families of nir_fold.copied_binary this engine computes (built from FoldEmitter's operations)
+COPIED = frozenset(
+    {"matrix", "factoring", "constant_merge", "components", "compound", "sink", "ssa_values"}
+)
+
+
+class FoldValues(FoldContext):
+    """nir_fold's context for the compiled engine, with the operations its rules emit through
+    (state.FoldEmitter): every value is a `Val` of the Codegen being generated."""
+
+    def __init__(self, cg: Any) -> None:  # (a Codegen, which imports this module)
+        super().__init__(cg.model, cg.facts)
+        self.cg = cg
+
+    @property
+    def lines(self) -> Any:
+        """The function being generated (each variant anew): a value a rule kept is read there."""
+        return self.cg.fn
+
+    def expr(self, e: Any, mask: str | None = None) -> Val:
+        v = self.cg.expr(e)
+        v.one = self.cg.one_lane(e)
+        return v
+
+    def exprs(self, items: list[Any], mask: str | None = None) -> list[Val]:
+        return [self.expr(e, mask) for e in items]
+
+    def const_float(self, v: float, v32: float | None = None) -> Val:
+        x = v32 if v32 is not None else f32(v)
+        return Val(T.FLOAT, [self.cg.cf(x)], [x], uni=True, one=True)
+
+    def binary_values(self, op: str, lt: Any, rtp: Any, left: Val, right: Val) -> Val:
+        """`left op right` as the NumPy Transpiler's binary_values computes it: a float product
+        is Runtime.fmul (Codegen.fmul; a matrix product by shape), a sum the operator."""
+        rtype = T.binary_result(op, lt, rtp)
+        assert not isinstance(rtype, str), rtype  # (the rules combine operands of checked types)
+        cg = self.cg
+        if op == "*" and (lt.is_matrix or rtp.is_matrix) and not (lt.is_scalar or rtp.is_scalar):
+            v = cg.linear_product(left, right, rtype)
+        elif op == "*":
+            v = cg.fmul(left, right, rtype)
+        else:
+            v = cg.componentwise(left, right, rtype, lambda a, b, i: f"({a} {op} {b})")
+        return _computed(v, left, right)
+
+    def ieee(self, op: str, left: Val, right: Val) -> Val:
+        rtype = T.binary_result(op, left.t, right.t)
+        assert not isinstance(rtype, str), rtype
+        v = self.cg.componentwise(left, right, rtype, lambda a, b, i: f"({a} {op} {b})")
+        return _computed(v, left, right)
+
+    def negate(self, value: Val) -> Val:
+        return Val(value.t, [f"(-{p})" for p in value.parts], None, value.one, value.one)
+
+    def llvmpipe(self, rewritten: Val, written: Val) -> Val:
+        """Mesa's order: the compiled engine computes llvmpipe's float32 only."""
+        return rewritten
+
+    def tmp(self, value: Val) -> Val:
+        """value in temporaries that later writes leave alone (a rule reads them after the
+        variable they came from is written again: a variable's name is copied too)."""
+        parts = [
+            p if p.startswith(("F_", "I_", "U_", "_t")) else self.cg.tmp_fresh(p)
+            for p in value.parts
+        ]
+        return Val(value.t, parts, value.const, value.uni, value.one)
+
+    def component(self, value: Val, i: int) -> Val:
+        const = [value.const[i]] if value.const is not None else None
+        return Val(T.SCALARS[value.t.base], [value.parts[i]], const, value.uni, value.one)
+
+    def vector(self, parts: list[Val]) -> Val:
+        one = all(p.one for p in parts)  # (Runtime.vec: a new array)
+        return Val(T.vector("float", len(parts)), [p.parts[0] for p in parts], None, one, one)
+
+    def leaves(self, value: Val, t: Any) -> list[str]:
+        return [self.cg.atom(p) for p in value.parts]
+
+    def swizzle(self, value: Val, idx: tuple[int, ...]) -> Val:
+        """Runtime.swizzle: a view where the components are evenly spaced (a uniform input's
+        stays read-only: no constant), else a new array."""
+        step = idx[1] - idx[0] if len(idx) > 1 else 1
+        view = step > 0 and all(b - a == step for a, b in zip(idx, idx[1:]))
+        uni = value.uni if view else value.one
+        const = [value.const[i] for i in idx] if value.const is not None else None
+        t = T.vector(value.t.base, len(idx))
+        return Val(t, [value.parts[i] for i in idx], const, uni, value.one)
+
+    def runtime(self, name: str, *args: Val) -> Val:
+        """The Runtime's operation `name` (runtime_operators.py, runtime_transcendental.py), as
+        the NumPy backend computes it: `dot` (Runtime.dot, products summed right to left),
+        `dot_add` (the constant in the innermost sum), `inversesqrt`, `fadd` (a constant zero
+        added keeps the other operand)."""
+        cg = self.cg
+        if name == "fadd":
+            a, b = args
+            rtype = T.binary_result("+", a.t, b.t)
+            assert not isinstance(rtype, str), rtype
+            return _computed(cg.fadd("+", a, b, rtype), a, b)
+        if name == "dot":
+            u, v = args
+            return _computed(geometric(cg, "dot", [u, v], T.FLOAT), u, v)
+        if name == "dot_add":
+            u, v, k = args
+            u = Val(u.t, [cg.atom(p) for p in u.parts], u.const, u.uni, u.one)
+            v = Val(v.t, [cg.atom(p) for p in v.parts], v.const, v.uni, v.one)
+            prods = cg.fmul(u, v, u.t if len(u.parts) >= len(v.parts) else v.t).parts
+            text = f"({prods[-1]} + {k.parts[0]})"
+            for p in reversed(prods[:-1]):
+                text = f"({p} + {text})"
+            return _computed(_computed(Val(T.FLOAT, [text]), u, v), k, k)
+        if name == "inversesqrt":
+            (x,) = args
+            return _computed(Val(x.t, [f"inversesqrt({p})" for p in x.parts]), x, x)
+        raise ValueError(f"no Runtime operation {name!r} here")
+
+
+def _computed(v: Val, left: Val, right: Val) -> Val:
+    """v, the result of an operation on left and right, flagged as the NumPy backend's array of
+    it is: one lane when both operands are, and then a computed value (a constant to fmul)."""
+    one = left.one and right.one
+    return Val(v.t, v.parts, None, one, one)
+
+
+def folded_call(cg: Any, call: Any, fn: Any) -> Val | None:
+    """The call `call` of user function `fn` with constants propagated into it as NIR does,
+    where the NumPy backend's transpile/call_fold.py decides so (fold_plan: the terms of its
+    out parameters and its result), computed from those terms as the Transpiler emits them
+    (call_fold._emit_call); None: the call as usual."""
+    from ..numpy_engine.transpile.call_fold import fold_plan, holder_leaf, term_fields
+
+    plan = fold_plan(cg.fold_context(), call, fn, None)
+    if plan is None:
+        return None
+    env, params, result, holders = plan
+    fold = cg.fold_context()
+    held = {i: (fold.tmp(cg.expr(a)).parts, cg.type_of(a)) for i, a in holders}
+    memo: dict[int, str] = {}
+
+    def code(term: Any) -> str:
+        if id(term) in memo:
+            return memo[id(term)]
+        op, args, value, text = term_fields(term)
+        if op == "k" and value is not None:
+            c = cg.cf(value)
+        elif op == "x":
+            leaf = holder_leaf(text)
+            if leaf is None:
+                c = text  # (a value the engine computed: a uniform the callee reads)
+            else:
+                parts, t = held[leaf[0]]
+                idx = leaf[1]
+                c = parts[idx[0] * t.rows + idx[1] if len(idx) == 2 else idx[0] if idx else 0]
+        else:
+            xs = [code(x) for x in args]
+            if op == "neg":
+                c = cg.tmp(f"(-{xs[0]})")
+            elif op == "call":
+                c = cg.tmp(_runtime_text(cg, text, xs))
+            elif op in ("+", "-", "*", "/") and len(xs) == 2:
+                c = cg.tmp(f"({xs[0]} {op} {xs[1]})")
+            else:
+                raise not_yet(f"a folded call's term {op!r}", call)
+        memo[id(term)] = c
+        return c
+
+    for a, p, (_, _, d) in zip(call.args, params, fn.params):
+        if d != "in":
+            cg.write(cg.lvalue(a), [code(x) for x in env[id(p)]])
+    return Val(fn.type, [code(x) for x in result])
+
+
+def _runtime_text(cg: Any, method: str, xs: list[str]) -> str:
+    """A call term's Runtime method (call_fold: `pow`, ``pow_const({}, c)``, a component-wise
+    built-in) of one component, as this engine computes it."""
+    if method == "pow":
+        return f"pow({xs[0]}, {xs[1]}, FMA)"
+    if method.startswith("pow_const("):
+        c = float(method[len("pow_const({}, ") : -1])  # (Runtime.pow_const's exponents)
+        if c == 1.0:
+            return xs[0]
+        if c == 2.0:
+            return f"({xs[0]} * {xs[0]})"
+        if c == 4.0:
+            sq = cg.tmp(f"({xs[0]} * {xs[0]})")
+            return f"({sq} * {sq})"
+        if c == 0.0 and math.copysign(1.0, c) > 0:
+            return f"pow_zero({xs[0]})"
+        return f"pow({xs[0]}, {cg.cf(c)}, FMA)"
+    text = componentwise_text(cg, method, xs[0]) if len(xs) == 1 else None
+    if text is None:
+        raise ValueError(f"no Runtime method {method!r} here")
+    return text
