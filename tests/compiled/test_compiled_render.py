@@ -104,6 +104,24 @@ void mainImage(out vec4 c, in vec2 f) {
     float s = uv.x < 0.3 ? (uv.y < 0.5 ? 1.0 : 2.0) : float(side);
     c = vec4(m, b ? 1.0 : 0.0, o ? s : -s, float(side) + pick(uv.x).x - pick(uv.y).y);
 }""",
+    # two returns in a loop: the lanes right of the middle leave by the second (on the third
+    # pass) long before the others reach the first (on the eleventh); a lane that returned
+    # keeps its value when another lane later returns by a write above it in the text
+    "returns_in_a_loop": """
+float steps(vec2 p) {
+    float t = 0.0;
+    for (int i = 0; i < 32; i++) {
+        float d = p.x < 0.5 ? 1.0 - 0.1 * float(i) : 1.0;
+        if (d < 0.05) return t;
+        t += p.x < 0.5 ? d * 0.1 : d;
+        if (t > 2.5) return -1.0 - t;
+    }
+    return -9.0;
+}
+void mainImage(out vec4 c, in vec2 f) {
+    vec2 uv = f / iResolution.xy;
+    c = vec4(steps(uv), steps(uv.yx), uv);
+}""",
     # ternaries whose sides are pure become selects (codegen._speculable): the side not taken
     # is computed too, so it must do nothing (x / 0 on it); sides with calls, side effects,
     # int division or assignments keep their branch

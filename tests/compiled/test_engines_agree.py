@@ -28,13 +28,8 @@ LANES = (0, 8)
 TIMEOUT = 900.0  # seconds a shader may take (two cold numba compiles on a loaded machine)
 # Differences measured by tools/engines_agree.py and not fixed yet, each with its cause (strict:
 # a fixed one must leave the list). Mesa's rewrites are nir_fold's decisions in both engines
-# (docs/compiled-engine.md); what is left is the lockstep rewrite's.
-KNOWN = {
-    "h56-raymarch": "in lockstep only (8 lanes): lanes.py writes a function's first return slot "
-    "in the text plainly, which inside a loop overwrites, in a later pass, the slot of lanes that "
-    "returned by another return in an earlier one (raymarch's `return t` after `if (t > 100.0) "
-    "return -1.0;`): 36 pixels by up to 0.065 at iTime 0",
-}
+# (docs/compiled-engine.md).
+KNOWN: dict[str, str] = {}
 
 CASES = [
     pytest.param(

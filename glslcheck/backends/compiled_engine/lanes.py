@@ -318,6 +318,7 @@ class _Fn:
         self.ldiv = False
         self.mask = "m"  # the current region's mask (the function's in uniform control)
         self.loops: list[tuple[str, str, str] | None] = []  # None: a loop of Python's own
+        self.guarded: set[int] = set()  # return slots written under a flag (guarded_write)
         self.live = False  # a divergent return happened: `live__k` lanes are still running
         self.defined = set(self.params)  # names written so far in the text
         self.calls = set()
@@ -641,7 +642,11 @@ class _Fn:
             for i, e in enumerate(elts):  # the first slot write in the text is plain (see write)
                 first = f"_r{i}" not in self.defined
                 self.defined.add(f"_r{i}")
-                for k, text in enumerate(self.lanes_of(e)):
+                texts = self.lanes_of(e)
+                if i in self.guarded or (first and self.loops):
+                    self.guarded_write(i, texts)
+                    continue
+                for k, text in enumerate(texts):
                     self.emit(
                         f"_r{i}__{k} = {text}"
                         if first
@@ -657,6 +662,23 @@ class _Fn:
             if loop is not None:
                 for k in range(self.W):
                     self.emit(f"{loop[0]}__{k} = {loop[0]}__{k} & (not {self.mask}__{k})")
+
+    def guarded_write(self, i: int, texts: list[str]) -> None:
+        """A slot whose first write in the text is inside a loop: the write that runs first (on
+        whichever pass, from whichever return) is plain, every later one keeps the lanes that
+        returned before. A flag set at the function's top tells them apart (the slot's type is
+        not known here to start it with a value of its own)."""
+        flag = f"_rs{i}"
+        if i not in self.guarded:
+            self.guarded.add(i)
+            self.lines.insert(0, "    " + f"{flag} = False")
+        self.emit(f"if not {flag}:")  # (numba reads the plain write first: it defines the slot)
+        for k, text in enumerate(texts):
+            self.emit(f"    _r{i}__{k} = {text}")
+        self.emit("else:")
+        for k, text in enumerate(texts):
+            self.emit(f"    _r{i}__{k} = lsel({self.mask}__{k}, {text}, _r{i}__{k})")
+        self.emit(f"{flag} = True")
 
     def emit_slots_return(self, value: bool) -> None:
         if not value:
