@@ -156,3 +156,23 @@ def test_texel_fetch_size_and_unbound_agree(numba, lowp):
     ).all()
     assert (_bits(tk.tex_fetch(uf, ui, tm, 2, 0, 0, 0)) == _bits(unbound)).all()
     assert tk.tex_lowp(ui, tm, 1) == ref.lowp_arith(s) and tk.tex_lowp(ui, tm, 0)
+
+
+def test_half_rounds_as_numpy_float16(numba):
+    """half() against NumPy's float32 -> float16 conversion, on the float16 grid's ties, its
+    subnormals, its overflow edge and random values, and float16 arithmetic through it."""
+    from glslcheck.backends.numpy_engine import texture_kernels as tk
+
+    rng = np.random.default_rng(5)
+    h = np.arange(0, 0x7C01, dtype=np.uint16).view(np.float16).astype(F)  # every finite float16
+    mids = (h[:-1] + (h[1:] - h[:-1]) * F(0.5)).astype(F)
+    xs = np.concatenate([h, mids, np.nextafter(mids, F(0)), np.nextafter(mids, F(1e9))])
+    xs = np.concatenate([xs, -xs, rng.standard_normal(4000).astype(F) * 1e3, [np.inf, -np.inf]])
+    want = xs.astype(np.float16).astype(F)
+    got = np.array([tk.half(x) for x in xs], F)
+    assert (got.view(np.uint32) == want.view(np.uint32)).all()
+    a, b = rng.standard_normal((2, 3000)).astype(np.float16) * np.float16(40)
+    for op in (np.add, np.subtract, np.multiply, np.divide):
+        want = op(a, b).astype(F)
+        got = np.array([tk.half(op(x, y)) for x, y in zip(a.astype(F), b.astype(F))], F)
+        assert (_bits(got) == _bits(want)).all()

@@ -89,9 +89,21 @@ class Codegen(ExpressionEmitter):
     """`Codegen(model, path).module()` -> the generated Python source."""
 
     def __init__(
-        self, model: Model, path: str, fma: bool, float_to_uint: str, budget: bool = False
+        self,
+        model: Model,
+        path: str,
+        fma: bool,
+        float_to_uint: str,
+        budget: bool = False,
+        mipmap: frozenset = frozenset(),
     ) -> None:
         self.model = model
+        # texture lookups (texture_calls.py): the channels bound with mipmaps, whether the
+        # module samples, and the float16 trees being written in their float32 form
+        self.mipmap = frozenset(mipmap)
+        self.textures = False
+        self.implicit = False  # an implicit-LOD lookup (texture(), textureProj(), ...)
+        self.lowp_written: set[int] = set()
         self.budget = budget  # llvmpipe's loop budget in the code (`loop`), else none of it
         self.path = path
         self.fma = fma
@@ -102,6 +114,11 @@ class Codegen(ExpressionEmitter):
                 "the program has no mainImage (or main) to render", Location(path, 1, 1)
             )
         self.functions = list(model.reachable_functions())
+        self.samples = any(  # texture lookups anywhere (texture_calls.lowp_tree asked)
+            isinstance(n, A.Call) and str(n.callee).startswith(("texture", "texel"))
+            for fn in self.functions
+            for n in fn.node.body.walk()
+        )
         self.facts = Facts(model, self.functions)  # (nir_fold.mix_hint reads it: fold_context)
         self.lines: list[str] = []
         self.indent = 0
@@ -248,8 +265,8 @@ class Codegen(ExpressionEmitter):
         u = UNIFORMS_BY_NAME.get(name)
         if u is None:
             raise engine_error(f"unknown uniform '{name}'", node)
-        if u.glsl_type.startswith("sampler"):
-            raise not_yet(f"'{name}': textures and channels", node)
+        if u.glsl_type.startswith("sampler"):  # its channel number (texture_calls.py)
+            return [self.ci(int(name[len("iChannel") :]))]
         comps = 1 if u.glsl_type in ("float", "int") else int(u.glsl_type[-1])
         kind = "int" if u.glsl_type == "int" else "float"
         arr = "ui" if kind == "int" else "uf"
@@ -293,6 +310,9 @@ class Codegen(ExpressionEmitter):
             return parts
         if sym.kind == "global" and sym.qualifier == "uniform":
             from ...shadertoy.wrapper import fed_uniform
+
+            if str(sym.type) == "sampler2D" and sym.name in _CHANNELS:
+                return [self.ci(_CHANNELS.index(sym.name))]
 
             if fed_uniform(sym.name, str(sym.type)) is not None:
                 return self.uniform_parts(sym.name, node)
@@ -338,6 +358,14 @@ class Codegen(ExpressionEmitter):
         self.gen_shade()
         shade = "\n".join(self.lines)
         out = [HEADER.format(path=_safe(self.path)), ""]
+        if self.textures:
+            from .texture_calls import IMPORT
+
+            out += [IMPORT, ""]
+            out.append("TEXTURES = True  # iChannel lookups: their words in ui from TM")
+            out.append(f"TM = {max(1, self.uslots['int'])}")
+            mip = tuple(sorted(self.mipmap)) if self.implicit else None
+            out.append(f"MIPMAP = {mip!r}  # channels with implicit LODs (None: no such lookup)")
         out.append(f"FMA = {self.fma!r}  # llvm.fmuladd is fused on this CPU (runtime.HOST_FMA)")
         out.append(f"SLOTS = {dict(self.slots)!r}  # global state per scalar type")
         out.append(f"USLOTS = {dict(self.uslots)!r}")
@@ -773,6 +801,9 @@ def _literal_tree(model: Model, e: Any, base: str) -> bool:
             and all(_literal_tree(model, a, base) for a in e.args)
         )
     return False
+
+
+_CHANNELS = ("iChannel0", "iChannel1", "iChannel2", "iChannel3")
 
 
 def _safe(text: str) -> str:

@@ -66,6 +66,7 @@ class ExpressionEmitter:
         variants: set[tuple[int, frozenset]]
         pending: list[tuple[Any, frozenset]]
         derivative: Any
+        samples: bool
 
         def fold_context(self) -> FoldContext: ...
         def emit(self, text: str) -> None: ...
@@ -459,6 +460,12 @@ class ExpressionEmitter:
             self.lines += body
             self.emit(f"    {res} = {rcode}")
             return Val(T.BOOL, [res])
+        if op in ("+", "-", "*", "/") and self.samples:  # float16 on lowp lookups
+            from .texture_calls import lowp_tree
+
+            low = lowp_tree(self, e)
+            if low is not None:
+                return low
         left = self.expr(e.left)
         right = self.expr(e.right)
         if (

@@ -43,6 +43,8 @@ _MIN_NORMAL16 = F32(2.0**-14)
 _MAX16 = F32(65504)
 _SUB16 = F32(2.0**24)
 _SUB16_INV = F32(2.0**-24)
+_HALF_INF = F32(65520)  # the midpoint between float16's largest value and 2^16
+_INF = F32(np.inf)
 
 
 @numba.njit(inline="always", **_J)
@@ -261,6 +263,22 @@ def tex_lowp(ui, tm, ch):
     """textures.TextureFunctions.lowp_arith for one channel: its lookups are lowp (or unbound)."""
     m = tm + META * ch
     return ui[m + BOUND] == 0 or ui[m + LOWP] != 0
+
+
+@numba.njit(inline="always", **_J)
+def half(x):
+    """TextureFunctions.half for one value: float32 x rounded to the nearest float16 (ties to
+    even; 65520 and past give an infinity), as a float32. An operation of two such values in
+    float32 rounded again by `half` is the float16 operation (NumPy's float16 arithmetic does
+    the same: a float32 result has more than twice float16's precision)."""
+    a = np.abs(x)
+    if not (a < _HALF_INF):
+        return x if a != a else np.copysign(_INF, x)
+    if a < _MIN_NORMAL16:  # float16 subnormals: multiples of 2^-24
+        return np.copysign(np.rint(a * _SUB16) * _SUB16_INV, x)
+    b = bits(x)
+    b = (b + np.uint32(0xFFF) + ((b >> np.uint32(13)) & np.uint32(1))) & np.uint32(0xFFFFE000)
+    return from_bits(b)
 
 
 def pack(channels, uf_base: int) -> tuple[np.ndarray, np.ndarray]:

@@ -17,7 +17,7 @@ from .queries import constant_value, is_builtin
 
 TYPE_CHECKING = False  # not typing's: importing typing costs every start-up
 if TYPE_CHECKING:
-    from ..state import TranspilerState
+    from ..state import FoldEngine, TranspilerState
 
 LOWP_OPS = ("+", "-", "*", "/")
 
@@ -63,6 +63,21 @@ def lowp_tree(tr: TranspilerState, e: A.Binary, mask: str | None) -> str | None:
         tr.fold_state.lowp_written = None
     used = ", ".join(dict.fromkeys(tr.expr(s, mask) for s in samplers))
     return f"(rt.lowp_full({low}) if rt.lowp_arith({used}) else {written})"
+
+
+def float16_tree(tr: FoldEngine, e: A.Binary) -> tuple[set[int], list[Any]] | None:
+    """For an engine that writes its own code (the compiled engine): when :func:`lowp_tree`
+    computes ``e`` in float16, the ids of the tree's operation nodes and its lookups' sampler
+    operands, else None."""
+    if e.op not in LOWP_OPS:
+        return None
+    memo = tr.fold_state.lowp
+    if _lowp_kind(tr, e, memo) != "low" or tr.has_effects(e):
+        return None
+    nodes: list[Any] = []
+    samplers: list[Any] = []
+    _lowp_parts(e, memo, nodes, samplers)
+    return {id(n) for n in nodes}, samplers
 
 
 def _lowp_kind(tr: TranspilerState, node: Any, memo: dict[int, Any]) -> str | None:
