@@ -96,13 +96,17 @@ class Codegen(ExpressionEmitter):
         float_to_uint: str,
         budget: bool = False,
         mipmap: frozenset = frozenset(),
+        keep_alpha: bool = False,
     ) -> None:
         self.model = model
+        self.keep_alpha = keep_alpha  # a Buffer pass: Shadertoy keeps the alpha mainImage wrote
         # texture lookups (texture_calls.py): the channels bound with mipmaps, whether the
         # module samples, and the float16 trees being written in their float32 form
         self.mipmap = frozenset(mipmap)
         self.textures = False
-        self.implicit = False  # an implicit-LOD lookup (texture(), textureProj(), ...)
+        # the channels (-1: a sampler parameter) of implicit-LOD lookups written without a LOD
+        self.level0_lookups: set[int] = set()
+        self.sampler_flow: dict | None = None  # texture_calls.sampler_flow, made on first use
         self.lowp_written: set[int] = set()
         self.budget = budget  # llvmpipe's loop budget in the code (`loop`), else none of it
         self.path = path
@@ -364,8 +368,8 @@ class Codegen(ExpressionEmitter):
             out += [IMPORT, ""]
             out.append("TEXTURES = True  # iChannel lookups: their words in ui from TM")
             out.append(f"TM = {max(1, self.uslots['int'])}")
-            mip = tuple(sorted(self.mipmap)) if self.implicit else None
-            out.append(f"MIPMAP = {mip!r}  # channels with implicit LODs (None: no such lookup)")
+            level0 = tuple(sorted(self.level0_lookups))
+            out.append(f"LEVEL0 = {level0!r}  # channels whose texture() reads level 0 (-1: any)")
         out.append(f"FMA = {self.fma!r}  # llvm.fmuladd is fused on this CPU (runtime.HOST_FMA)")
         out.append(f"SLOTS = {dict(self.slots)!r}  # global state per scalar type")
         out.append(f"USLOTS = {dict(self.uslots)!r}")
@@ -454,7 +458,10 @@ class Codegen(ExpressionEmitter):
             if id(entry) in self.facts.may_discard:
                 self.emit(f"if {self.discard_flag()}:  # a discarded pixel keeps the clear colour")
                 self.emit("    return F32(0.0), F32(0.0), F32(0.0), F32(0.0)")
-            self.emit(f"return {color[0]}, {color[1]}, {color[2]}, F32(1.0)  # RGB: alpha is 1")
+            if self.keep_alpha:
+                self.emit(f"return {color[0]}, {color[1]}, {color[2]}, {color[3]}  # a Buffer")
+            else:
+                self.emit(f"return {color[0]}, {color[1]}, {color[2]}, F32(1.0)  # RGB: alpha 1")
         self.indent -= 1
 
     # -- functions -----------------------------------------------------------------------------

@@ -246,7 +246,9 @@ def generate(
     old = sys.getrecursionlimit()
     sys.setrecursionlimit(max(old, 20000))
     try:
-        cg = Codegen(model, path, HOST_FMA, host_model(), budget, mipmap)
+        cg = Codegen(
+            model, path, HOST_FMA, host_model(), budget, mipmap, keep_alpha=tab.startswith("Buffer")
+        )
         source = cg.module()
         width = lanes_width(lanes)
         if cg.derivative is not None and not width:
@@ -406,7 +408,7 @@ class CompiledProgram:
 
             chans = list(channels or []) + [None] * 4
             for c, s in enumerate(chans[:4]):
-                if s is not None and s.filter == "mipmap" and c not in (mod.MIPMAP or (c,)):
+                if s is not None and s.filter == "mipmap" and ({c, -1} & set(mod.LEVEL0)):
                     raise ValueError(
                         f"iChannel{c} has mipmaps, but the program was generated without them "
                         "(generate(..., mipmap=...))"

@@ -81,14 +81,17 @@ def texture_call(cg: Any, e: A.Call, name: str) -> Val:
         offset = tuple(rest[at].parts)
         rest = rest[:at] + rest[at + 1 :]
     has_lod, lod = "False", "F32(0.0)"
-    cg.implicit |= lod_kind == "implicit"
     if lod_kind == "explicit":
         has_lod, lod = "True", rest[0].parts[0]
     elif lod_kind == "grad":
         gx, gy = rest[0].parts, rest[1].parts
         has_lod = "True"
         lod = cg.tmp_fresh(f"tex_lod(ui, TM, {ch}, {gx[0]}, {gx[1]}, {gy[0]}, {gy[1]}, True)")
-    elif lod_kind == "implicit" and _needs_lod(cg, e.args[0]):
+    elif lod_kind == "implicit" and not _needs_lod(cg, e.args[0]):
+        # level 0, right for a channel without mipmaps (the engine refuses one with them)
+        known = channel_of(cg, e.args[0])
+        cg.level0_lookups.add(-1 if known is None else known)
+    elif lod_kind == "implicit":
         if cg.derivative is None:
             cg.derivative = e  # the quads' differences: lockstep only, as dFdx
         d = [
@@ -108,9 +111,50 @@ def texture_call(cg: Any, e: A.Call, name: str) -> Val:
 
 def _needs_lod(cg: Any, sampler: Any) -> bool:
     """Whether an implicit-LOD lookup on this sampler may read mipmaps: its channel is bound
-    with them, or (a sampler parameter) some channel of the pass is."""
+    with them, or (a sampler parameter) a channel its callers may pass is."""
     ch = channel_of(cg, sampler)
-    return bool(cg.mipmap) if ch is None else ch in cg.mipmap
+    if ch is not None:
+        return ch in cg.mipmap
+    sym = cg.model.symbol_of(sampler) if isinstance(sampler, A.Identifier) else None
+    if sym is None or sym.kind != "param" or cg.fn is None or cg.fn.sym is None:
+        return bool(cg.mipmap)
+    return bool(sampler_flow(cg).get((id(cg.fn.sym), sym.name), set()) & cg.mipmap)
+
+
+def sampler_flow(cg: Any) -> dict[tuple[int, str], set[int]]:
+    """(id of a function, name of its sampler2D parameter) -> the channels its calls pass
+    there: an iChannel directly or through the caller's own sampler parameter (a fixpoint;
+    GLSL has no recursion)."""
+    if cg.sampler_flow is not None:
+        return cg.sampler_flow
+    from ...semantics.model import Symbol
+
+    edges: list[tuple[tuple[int, str], Any, Any]] = []  # (callee's key, caller, argument)
+    for fn in cg.functions:
+        for n in fn.node.body.walk():
+            tgt = cg.model.call_target(n) if isinstance(n, A.Call) else None
+            if not isinstance(tgt, Symbol) or not tgt.params:
+                continue
+            for a, (pname, ptype, _) in zip(n.args, tgt.params):
+                if str(ptype) == "sampler2D":
+                    edges.append(((id(tgt), pname), fn, a))
+    flow: dict[tuple[int, str], set[int]] = {}
+    changed = True
+    while changed:
+        changed = False
+        for key, caller, a in edges:
+            ch = channel_of(cg, a)
+            if ch is not None:
+                got = {ch}
+            elif isinstance(a, A.Identifier):
+                got = flow.get((id(caller), a.name), set())
+            else:
+                got = set()
+            if not got <= flow.setdefault(key, set()):
+                flow[key] |= got
+                changed = True
+    cg.sampler_flow = flow
+    return flow
 
 
 # -- float16 arithmetic on lowp lookups ------------------------------------------------------

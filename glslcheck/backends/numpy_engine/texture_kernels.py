@@ -265,7 +265,7 @@ def tex_lowp(ui, tm, ch):
     return ui[m + BOUND] == 0 or ui[m + LOWP] != 0
 
 
-@numba.njit(inline="always", **_J)
+@numba.njit(**_J)  # (not inlined into numba's IR: a lockstep module calls it hundreds of times)
 def half(x):
     """TextureFunctions.half for one value: float32 x rounded to the nearest float16 (ties to
     even; 65520 and past give an infinity), as a float32. An operation of two such values in
