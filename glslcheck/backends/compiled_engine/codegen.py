@@ -38,9 +38,13 @@ spends llvmpipe's pass budget as the NumPy backend does (`lc`, scalar.tick; `loo
 function returns a tuple: its value's leaves, then the leaves of its out/inout parameters,
 which the caller writes back left to right.
 
+Texture lookups on a sampler2D: texture_calls.py (a sampler is its channel number; texels and
+channel descriptions follow the uniforms in `uf`/`ui`).
+
 Not supported yet (a GlslError at the construct, "not supported by the compiled engine yet"):
-textures and channels, derivatives, arrays of structs holding arrays,
-inverse() of 3x3 and 4x4 matrices, and the packing built-ins.
+cube maps and other sampler types, arrays of structs holding arrays, inverse() of 3x3 and 4x4
+matrices, and the packing built-ins; derivatives and implicit mipmap LODs only in lockstep
+(lanes.py).
 
 What the NumPy backend does that this generator does not copy: Mesa's reassociations
 (backends/numpy_engine/transpile/nir_fold/, transpile/call_fold.py, inline.py; copied: the
