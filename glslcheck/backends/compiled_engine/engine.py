@@ -185,6 +185,7 @@ def _versions() -> str:
         os.path.join(here, "lanes_math.py"),
         os.path.join(math, "lane.py"),
         os.path.join(math, "coefficients.py"),
+        os.path.join(os.path.dirname(here), "numpy_engine", "texture_kernels.py"),
     ):
         with open(path, "rb") as f:
             h.update(f.read())
