@@ -256,7 +256,7 @@ def generate(
             if lanes is not None or not tiered():
                 raise engine_error(
                     f"{cg.derivative.callee}() one pixel a call: the compiled engine computes "
-                    "derivatives (and mipmap LODs) only with pixels in lockstep (2x2 quads)",
+                    "derivatives only with pixels in lockstep (2x2 quads; mipmap LODs too)",
                     cg.derivative,
                     help=f"unset GLSLCHECK_COMPILED_LANES (or set it to {TIER_LANES}), "
                     "or render with --backend numpy or gl",

@@ -89,8 +89,7 @@ def texture_call(cg: Any, e: A.Call, name: str) -> Val:
         lod = cg.tmp_fresh(f"tex_lod(ui, TM, {ch}, {gx[0]}, {gx[1]}, {gy[0]}, {gy[1]}, True)")
     elif lod_kind == "implicit" and not _needs_lod(cg, e.args[0]):
         # level 0, right for a channel without mipmaps (the engine refuses one with them)
-        known = channel_of(cg, e.args[0])
-        cg.level0_lookups.add(-1 if known is None else known)
+        cg.level0_lookups |= _channels(cg, e.args[0])
     elif lod_kind == "implicit":
         if cg.derivative is None:
             cg.derivative = e  # the quads' differences: lockstep only, as dFdx
@@ -112,13 +111,20 @@ def texture_call(cg: Any, e: A.Call, name: str) -> Val:
 def _needs_lod(cg: Any, sampler: Any) -> bool:
     """Whether an implicit-LOD lookup on this sampler may read mipmaps: its channel is bound
     with them, or (a sampler parameter) a channel its callers may pass is."""
+    chans = _channels(cg, sampler)
+    return bool(cg.mipmap) if -1 in chans else bool(chans & cg.mipmap)
+
+
+def _channels(cg: Any, sampler: Any) -> set[int]:
+    """The channels a sampler operand may be: {N} for iChannelN, what the callers pass for a
+    sampler parameter (sampler_flow), {-1} when that is not known."""
     ch = channel_of(cg, sampler)
     if ch is not None:
-        return ch in cg.mipmap
+        return {ch}
     sym = cg.model.symbol_of(sampler) if isinstance(sampler, A.Identifier) else None
     if sym is None or sym.kind != "param" or cg.fn is None or cg.fn.sym is None:
-        return bool(cg.mipmap)
-    return bool(sampler_flow(cg).get((id(cg.fn.sym), sym.name), set()) & cg.mipmap)
+        return {-1}
+    return sampler_flow(cg).get((id(cg.fn.sym), sym.name), set())
 
 
 def sampler_flow(cg: Any) -> dict[tuple[int, str], set[int]]:
