@@ -254,7 +254,8 @@ def tex_size(ui, tm, ch, lod):
     w, h = np.int64(ui[m + LEVEL0 + 1]), np.int64(ui[m + LEVEL0 + 2])
     s = np.int64(lod)
     if 0 <= s < 32:
-        return I32(max(w >> s, 1)), I32(max(h >> s, 1))
+        a, b = w >> s, h >> s
+        return I32(a if a > 1 else 1), I32(b if b > 1 else 1)
     return I32(1), I32(1)
 
 

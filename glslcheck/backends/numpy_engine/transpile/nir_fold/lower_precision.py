@@ -80,7 +80,7 @@ def float16_tree(tr: FoldEngine, e: A.Binary) -> tuple[set[int], list[Any]] | No
     return {id(n) for n in nodes}, samplers
 
 
-def _lowp_kind(tr: TranspilerState, node: Any, memo: dict[int, Any]) -> str | None:
+def _lowp_kind(tr: FoldEngine, node: Any, memo: dict[int, Any]) -> str | None:
     """ "const" (a literal constant), "lookup" (an iChannel lookup, swizzled or not), "low" (an
     operation float16 on llvmpipe) or None (float32) for a node of such a tree (memoised)."""
     key = id(node)
@@ -89,7 +89,7 @@ def _lowp_kind(tr: TranspilerState, node: Any, memo: dict[int, Any]) -> str | No
     return memo[key]
 
 
-def _lowp_kind_of(tr: TranspilerState, node: Any, memo: dict[int, Any]) -> str | None:
+def _lowp_kind_of(tr: FoldEngine, node: Any, memo: dict[int, Any]) -> str | None:
     if isinstance(node, (A.FloatLiteral, A.IntLiteral)):
         return "const"
     if isinstance(node, A.Identifier):
@@ -130,7 +130,7 @@ def _lowp_kind_of(tr: TranspilerState, node: Any, memo: dict[int, Any]) -> str |
     return None
 
 
-def _square(tr: TranspilerState, node: A.Call) -> bool:
+def _square(tr: FoldEngine, node: A.Call) -> bool:
     """``pow(x, 2.0)`` (a vector of 2.0 too) of the built-in: x * x to NIR (``fpow(a, 2.0) ->
     a * a``), in float16 for a float16 x (gargantua's ``pow(texture(..).rgb, vec3(2.0)) * 4.0``)."""
     return (
