@@ -1,6 +1,7 @@
 """Benchmark of textured and multipass shaders: the NumPy backend against the GL driver.
 
     python benchmarks/bench_channels.py [--frames N] [--repeat R] [--size WxH] [--webgl]
+                                        [--compiled]
 
 Scenes (benchmarks/scenes): `textured` (one pass sampling an image with mipmap and linear
 filtering; its tex.png, 256x256 noise, is written into a temporary copy of the folder) and
@@ -9,7 +10,8 @@ N consecutive frames (buffers carried, see glslcheck/shadertoy/channels.py), the
 turns, R rounds; reported: the best time per frame of each and the ratio numpy / gl. NumPy runs on
 worker processes and on threads of this process (NumpyProgram.parallel). --webgl adds the WebGL
 backend (headless Chromium, SwiftShader; the channels go to the page each pass) and its ratio
-webgl / gl.
+webgl / gl. --compiled adds the compiled engine (numba; its compile is done before the timing,
+by a frame at 8x8) and its ratio compiled / gl.
 """
 
 from __future__ import annotations
@@ -63,6 +65,7 @@ def main() -> None:
     ap.add_argument("--repeat", type=int, default=3)
     ap.add_argument("--size", default="800x450")
     ap.add_argument("--webgl", action="store_true", help="also time the WebGL backend")
+    ap.add_argument("--compiled", action="store_true", help="also time the compiled engine")
     args = ap.parse_args()
     size = tuple(int(v) for v in args.size.lower().split("x"))
     started = time.perf_counter()
@@ -73,6 +76,7 @@ def main() -> None:
     print(
         f"{'':<38}{'processes':>10}{'threads':>10}{'gl':>10}   ratios"
         + ("   webgl     ratio" if args.webgl else "")
+        + ("   compiled  ratio" if args.compiled else "")
     )
     with tempfile.TemporaryDirectory() as tmp:
         for name in SCENES:
@@ -80,6 +84,9 @@ def main() -> None:
             progs = {"gl": api.compile(folder, backend="gl")}
             if args.webgl:
                 progs["webgl"] = api.compile(folder, backend="webgl")
+            if args.compiled:
+                progs["compiled"] = api.compile(folder, backend="compiled")
+                progs["compiled"].render(size=(8, 8))  # numba's compile (or cache load)
             for mode in ("processes", "threads"):  # one program each: each carries its own buffers
                 progs[mode] = api.compile(folder, backend="numpy")
                 _set_mode(progs[mode], mode)
@@ -93,6 +100,9 @@ def main() -> None:
             if args.webgl:
                 w = best["webgl"] * 1000
                 line += f"  {w:>7.1f} ms  {w / g:.2f}x"
+            if args.compiled:
+                c = best["compiled"] * 1000
+                line += f"  {c:>7.1f} ms  {c / g:.2f}x"
             print(line)
     print(
         f"total {time.perf_counter() - started:.0f} s; load at the end "

@@ -52,33 +52,35 @@ def test_unsupported_construct_exits_1_at_its_line(numba, tmp_path, capsys):
     assert "Traceback" not in err and not (tmp_path / "c.png").exists()
 
 
-def test_multipass_and_buffer_passes_are_refused(numba, tmp_path, capsys):
+def test_buffer_passes_render_and_unbound_channels_are_located(numba, tmp_path, capsys):
+    """A multipass shader renders on the compiled engine (any pass, through the one multipass
+    driver) with the NumPy backend's bits; a channel read but not bound is the same located
+    error on both."""
+    import json
+
+    import numpy as np
+
     (tmp_path / "Image.glsl").write_text(
-        "void mainImage(out vec4 c, in vec2 f) { c = texture(iChannel0, f); }\n"
+        "void mainImage(out vec4 c, in vec2 f) {\n    c = texture(iChannel0, f / 9.0);\n}\n"
     )
     (tmp_path / "Buffer A.glsl").write_text(
-        "void mainImage(out vec4 c, in vec2 f) { c = vec4(1.0); }\n"
+        "void mainImage(out vec4 c, in vec2 f) { c = vec4(f * 0.1, iTime, 0.5); }\n"
     )
-    assert (
-        main(["render", str(tmp_path), "-o", str(tmp_path / "c.png"), "--backend", "compiled"]) == 1
+    args = ["render", str(tmp_path), "--size", "6x3", "--backend"]
+    assert main([*args, "compiled", "-o", str(tmp_path / "c.png")]) == 1
+    err = capsys.readouterr().err
+    assert "Image.glsl:2:" in err and "iChannel0 is read but not bound" in err
+    assert "Traceback" not in err and not (tmp_path / "c.png").exists()
+    (tmp_path / "channels.json").write_text(
+        json.dumps({"Image": {"iChannel0": {"buffer": "Buffer A"}}})
     )
-    assert "not supported by the compiled engine yet" in capsys.readouterr().err
-    assert (
-        main(
-            [
-                "render",
-                str(tmp_path),
-                "-o",
-                str(tmp_path / "c.png"),
-                "--backend",
-                "compiled",
-                "--pass",
-                "Buffer A",
-            ]
-        )
-        == 2
-    )
-    assert "Image pass only" in capsys.readouterr().err
+    for backend in ("compiled", "numpy"):
+        for tab in ("Image", "Buffer A"):
+            out = str(tmp_path / f"{backend}-{tab}.npy")
+            assert main([*args, backend, "--pass", tab, "-o", out]) == 0
+    for tab in ("Image", "Buffer A"):
+        got = np.load(tmp_path / f"compiled-{tab}.npy")
+        assert got.tobytes() == np.load(tmp_path / f"numpy-{tab}.npy").tobytes()
 
 
 def test_without_numba_exit_2_with_the_pip_line(tmp_path, capsys, monkeypatch):

@@ -362,7 +362,10 @@ def test_repeated_sums_bit_for_bit(numba, make_shader):
 @pytest.mark.parametrize(
     "text, what",
     [
-        ("void mainImage(out vec4 c, in vec2 f) { c = texture(iChannel0, f); }", "iChannel inputs"),
+        (
+            "void mainImage(out vec4 c, in vec2 f) { c = texture(iChannel0, vec3(f, 1.0)); }",
+            "cube maps",
+        ),
         (
             "void mainImage(out vec4 c, in vec2 f) { c = vec4(float(packHalf2x16(f))); }",
             "packHalf2x16",

@@ -1,4 +1,5 @@
-"""The compiled engine's Backend record: float32, the Image pass only, numba needed."""
+"""The compiled engine's Backend record: float32, every pass (Buffers and channels), numba
+needed."""
 
 from __future__ import annotations
 
@@ -8,7 +9,7 @@ from ..interface import Backend
 def _compile_pass(shader, tab: str):
     from .engine import compile_compiled
 
-    return compile_compiled(shader)
+    return compile_compiled(shader, tab=tab)
 
 
 def _require() -> None:
@@ -22,7 +23,7 @@ BACKEND = Backend(
     title="compiled engine (numba)",
     called="the compiled engine",
     precisions=("float32",),
-    multipass=False,
+    multipass=True,
     lane_stats=False,
     driver=False,
     needs="numba",

@@ -55,7 +55,9 @@ _RELATIONAL = {
 def builtin_call(cg: Any, e: A.Call, ov: Any) -> Val:
     name = ov.name
     if getattr(ov, "category", None) == B.TEXTURE or name.startswith(("texture", "texel")):
-        raise not_yet(f"{name}(): textures and channels", e)
+        from .texture_calls import texture_call
+
+        return texture_call(cg, e, name)
     rtype = cg.type_of(e)
     if name in ("dFdx", "dFdy", "fwidth"):
         # Placeholders the lockstep rewrite replaces by differences between a quad's lanes

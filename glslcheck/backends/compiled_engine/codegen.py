@@ -38,9 +38,13 @@ spends llvmpipe's pass budget as the NumPy backend does (`lc`, scalar.tick; `loo
 function returns a tuple: its value's leaves, then the leaves of its out/inout parameters,
 which the caller writes back left to right.
 
+Texture lookups on a sampler2D: texture_calls.py (a sampler is its channel number; texels and
+channel descriptions follow the uniforms in `uf`/`ui`).
+
 Not supported yet (a GlslError at the construct, "not supported by the compiled engine yet"):
-textures and channels, derivatives, arrays of structs holding arrays,
-inverse() of 3x3 and 4x4 matrices, and the packing built-ins.
+cube maps and other sampler types, arrays of structs holding arrays, inverse() of 3x3 and 4x4
+matrices, and the packing built-ins; derivatives and implicit mipmap LODs only in lockstep
+(lanes.py).
 
 Mesa's reassociations (backends/numpy_engine/transpile/nir_fold/, call_fold.py, inline.py) are
 decided there for both engines and computed here with this engine's values (fold_values.py;
@@ -88,9 +92,25 @@ class Codegen(ExpressionEmitter):
     """`Codegen(model, path).module()` -> the generated Python source."""
 
     def __init__(
-        self, model: Model, path: str, fma: bool, float_to_uint: str, budget: bool = False
+        self,
+        model: Model,
+        path: str,
+        fma: bool,
+        float_to_uint: str,
+        budget: bool = False,
+        mipmap: frozenset = frozenset(),
+        keep_alpha: bool = False,
     ) -> None:
         self.model = model
+        self.keep_alpha = keep_alpha  # a Buffer pass: Shadertoy keeps the alpha mainImage wrote
+        # texture lookups (texture_calls.py): the channels bound with mipmaps, whether the
+        # module samples, and the float16 trees being written in their float32 form
+        self.mipmap = frozenset(mipmap)
+        self.textures = False
+        # the channels (-1: a sampler parameter) of implicit-LOD lookups written without a LOD
+        self.level0_lookups: set[int] = set()
+        self.sampler_flow: dict | None = None  # texture_calls.sampler_flow, made on first use
+        self.lowp_written: set[int] = set()
         self.budget = budget  # llvmpipe's loop budget in the code (`loop`), else none of it
         self.path = path
         self.fma = fma
@@ -101,6 +121,11 @@ class Codegen(ExpressionEmitter):
                 "the program has no mainImage (or main) to render", Location(path, 1, 1)
             )
         self.functions = list(model.reachable_functions())
+        self.samples = any(  # texture lookups anywhere (texture_calls.lowp_tree asked)
+            isinstance(n, A.Call) and str(n.callee).startswith(("texture", "texel"))
+            for fn in self.functions
+            for n in fn.node.body.walk()
+        )
         self.facts = Facts(model, self.functions)  # (nir_fold.mix_hint reads it: fold_context)
         self.lines: list[str] = []
         self.indent = 0
@@ -248,8 +273,8 @@ class Codegen(ExpressionEmitter):
         u = UNIFORMS_BY_NAME.get(name)
         if u is None:
             raise engine_error(f"unknown uniform '{name}'", node)
-        if u.glsl_type.startswith("sampler"):
-            raise not_yet(f"'{name}': textures and channels", node)
+        if u.glsl_type.startswith("sampler"):  # its channel number (texture_calls.py)
+            return [self.ci(int(name[len("iChannel") :]))]
         comps = 1 if u.glsl_type in ("float", "int") else int(u.glsl_type[-1])
         kind = "int" if u.glsl_type == "int" else "float"
         arr = "ui" if kind == "int" else "uf"
@@ -293,6 +318,9 @@ class Codegen(ExpressionEmitter):
             return parts
         if sym.kind == "global" and sym.qualifier == "uniform":
             from ...shadertoy.wrapper import fed_uniform
+
+            if str(sym.type) == "sampler2D" and sym.name in _CHANNELS:
+                return [self.ci(_CHANNELS.index(sym.name))]
 
             if fed_uniform(sym.name, str(sym.type)) is not None:
                 return self.uniform_parts(sym.name, node)
@@ -338,6 +366,14 @@ class Codegen(ExpressionEmitter):
         self.gen_shade()
         shade = "\n".join(self.lines)
         out = [HEADER.format(path=_safe(self.path)), ""]
+        if self.textures:
+            from .texture_calls import IMPORT
+
+            out += [IMPORT, ""]
+            out.append("TEXTURES = True  # iChannel lookups: their words in ui from TM")
+            out.append(f"TM = {max(1, self.uslots['int'])}")
+            level0 = tuple(sorted(self.level0_lookups))
+            out.append(f"LEVEL0 = {level0!r}  # channels whose texture() reads level 0 (-1: any)")
         out.append(f"FMA = {self.fma!r}  # llvm.fmuladd is fused on this CPU (runtime.HOST_FMA)")
         out.append(f"SLOTS = {dict(self.slots)!r}  # global state per scalar type")
         out.append(f"USLOTS = {dict(self.uslots)!r}")
@@ -426,7 +462,10 @@ class Codegen(ExpressionEmitter):
             if id(entry) in self.facts.may_discard:
                 self.emit(f"if {self.discard_flag()}:  # a discarded pixel keeps the clear colour")
                 self.emit("    return F32(0.0), F32(0.0), F32(0.0), F32(0.0)")
-            self.emit(f"return {color[0]}, {color[1]}, {color[2]}, F32(1.0)  # RGB: alpha is 1")
+            if self.keep_alpha:
+                self.emit(f"return {color[0]}, {color[1]}, {color[2]}, {color[3]}  # a Buffer")
+            else:
+                self.emit(f"return {color[0]}, {color[1]}, {color[2]}, F32(1.0)  # RGB: alpha 1")
         self.indent -= 1
 
     # -- functions -----------------------------------------------------------------------------
@@ -776,6 +815,9 @@ def _literal_tree(model: Model, e: Any, base: str) -> bool:
             and all(_literal_tree(model, a, base) for a in e.args)
         )
     return False
+
+
+_CHANNELS = ("iChannel0", "iChannel1", "iChannel2", "iChannel3")
 
 
 def _safe(text: str) -> str:

@@ -199,6 +199,7 @@ def _versions() -> str:
         os.path.join(here, "lanes_math.py"),
         os.path.join(math, "lane.py"),
         os.path.join(math, "coefficients.py"),
+        os.path.join(os.path.dirname(here), "numpy_engine", "texture_kernels.py"),
     ):
         with open(path, "rb") as f:
             h.update(f.read())
@@ -220,36 +221,39 @@ def tiered() -> bool:
     return config.compiled_lanes() is None
 
 
+def mipmap_channels(shader: Any, tab: str) -> frozenset:
+    """The channels of the tab that channels.json (or Shadertoy's export) binds with mipmaps:
+    their `texture()` lookups read the quads' implicit LOD (texture_calls.py)."""
+    from ...shadertoy.channels import load_bindings
+
+    _, bindings = load_bindings(shader)
+    return frozenset(b.channel for b in bindings if b.tab == tab and b.filter == "mipmap")
+
+
 def generate(
-    shader: Any, tab: str | None = None, lanes: int | None = None, budget: bool = False
+    shader: Any,
+    tab: str | None = None,
+    lanes: int | None = None,
+    budget: bool = False,
+    mipmap: frozenset | None = None,
 ) -> tuple[str, str]:
-    """(generated source, path of the GLSL tab) of a shader's Image (or plain GLSL) tab: blocks
-    of `lanes_width(lanes)` pixels in lockstep (lanes.py), or one pixel a call when that is 0 or
-    the rewrite does not handle the program (the per-pixel module then says why in
-    LANES_FALLBACK); `budget`: with llvmpipe's loop budget (CompiledProgram.loop_limit)."""
+    """(generated source, path of the GLSL tab) of a shader's tab (default the Image, or the
+    plain GLSL one): blocks of `lanes_width(lanes)` pixels in lockstep (lanes.py), or one pixel a
+    call when that is 0 or the rewrite does not handle the program (the per-pixel module then
+    says why in LANES_FALLBACK); `budget`: with llvmpipe's loop budget
+    (CompiledProgram.loop_limit); `mipmap`: the channels bound with mipmaps (default: as the
+    shader's bindings say, mipmap_channels)."""
     from ...frontend.parser import parse_shader
-    from ...shadertoy.channels import BUFFER_TABS, channel_reads, needs_passes
     from ..driver_profile import host_model
     from ..numpy_engine.llvmpipe_reference import HOST_FMA
     from ..numpy_engine.transpile.common import check_program
     from .codegen import Codegen
     from .values import engine_error, not_yet
 
-    if needs_passes(shader):
-        # at the first iChannel the Image tab reads, else at the first Buffer tab
-        reads = channel_reads(shader, "Image") if "Image" in shader.tabs else {}
-        buffers = [shader.tabs[t].path for t in BUFFER_TABS if t in shader.tabs]
-        loc = reads[min(reads)] if reads else Location(buffers[0] if buffers else shader.root, 1, 1)
-        raise GlslError(
-            Diagnostic(
-                "Buffer tabs and iChannel inputs: not supported by the compiled engine yet",
-                loc,
-                rule="compiled-engine",
-                help="render with --backend numpy or gl",
-            )
-        )
     if tab is None:
         tab = "Image" if "Image" in shader.tabs else ("GLSL" if "GLSL" in shader.tabs else "Image")
+    if mipmap is None:
+        mipmap = mipmap_channels(shader, tab) if tab != "GLSL" else frozenset()
     pr = parse_shader(shader, tab)
     model = check_program(pr)
     src = shader.tabs.get(tab)
@@ -257,14 +261,16 @@ def generate(
     old = sys.getrecursionlimit()
     sys.setrecursionlimit(max(old, 20000))
     try:
-        cg = Codegen(model, path, HOST_FMA, host_model(), budget)
+        cg = Codegen(
+            model, path, HOST_FMA, host_model(), budget, mipmap, keep_alpha=tab.startswith("Buffer")
+        )
         source = cg.module()
         width = lanes_width(lanes)
         if cg.derivative is not None and not width:
             if lanes is not None or not tiered():
                 raise engine_error(
-                    "dFdx/dFdy/fwidth() one pixel a call: the compiled engine computes derivatives "
-                    "only with pixels in lockstep (2x2 quads)",
+                    f"{cg.derivative.callee}() one pixel a call: the compiled engine computes "
+                    "derivatives only with pixels in lockstep (2x2 quads; mipmap LODs too)",
                     cg.derivative,
                     help=f"unset GLSLCHECK_COMPILED_LANES (or set it to {TIER_LANES}), "
                     "or render with --backend numpy or gl",
@@ -280,7 +286,8 @@ def generate(
             except Unsupported as e:
                 if cg.derivative is not None:  # no per-pixel module to fall back to
                     raise not_yet(
-                        f"dFdx/dFdy/fwidth(): derivatives in this program ({e})", cg.derivative
+                        f"{cg.derivative.callee}(): derivatives in this program ({e})",
+                        cg.derivative,
                     ) from None
                 source += (
                     f"\nLANES_FALLBACK = {str(e)!r}  # why this shader runs one pixel a call\n"
@@ -456,10 +463,30 @@ class CompiledProgram:
         except ValueError:
             return None
 
-    def _inputs(self, mod: Any, values: dict | None) -> tuple[np.ndarray, np.ndarray]:
+    def _inputs(
+        self, mod: Any, values: dict | None, channels: Any = None
+    ) -> tuple[np.ndarray, np.ndarray]:
         uf = np.zeros(max(1, mod.USLOTS["float"]), np.float32)
-        ui = np.zeros(max(1, mod.USLOTS["int"]), np.int32)
-        values = values or {}
+        ui = np.zeros(getattr(mod, "TM", max(1, mod.USLOTS["int"])), np.int32)
+        values = dict(values or {})
+        if getattr(mod, "TEXTURES", False):  # the channels after the uniforms (texture_calls.py)
+            from ...shadertoy.channels import channel_uniforms
+            from ..numpy_engine.texture_kernels import pack
+
+            chans = list(channels or []) + [None] * 4
+            for c, s in enumerate(chans[:4]):
+                if s is not None and s.filter == "mipmap" and ({c, -1} & set(mod.LEVEL0)):
+                    raise ValueError(
+                        f"iChannel{c} has mipmaps, but the program was generated without them "
+                        "(generate(..., mipmap=...))"
+                    )
+            values.update(channel_uniforms(chans[:4]))
+            floats, meta = pack(chans[:4], uf.size)
+            uf, ui = np.concatenate([uf, floats]), np.concatenate([ui, meta])
+        elif channels is not None:
+            from ...shadertoy.channels import channel_uniforms
+
+            values.update(channel_uniforms(list(channels)))
         for name, (kind, off) in mod.UNIFORMS.items():
             u = UNIFORMS_BY_NAME[name]
             v = values.get(name, u.default)
@@ -590,15 +617,16 @@ class CompiledProgram:
 
     @frame_inputs
     def render(
-        self, inputs: FrameInputs, precision: str = "float32", stats: bool = False
+        self, inputs: FrameInputs, precision: str = "float32", stats: bool = False, channels=None
     ) -> np.ndarray:
-        """One frame: float32 (height, width, 4), top row first (the NumPy backend's layout)."""
+        """One frame: float32 (height, width, 4), top row first (the NumPy backend's layout);
+        `channels`: iChannel0..3's inputs (channels.ChannelInput or None), as NumpyProgram's."""
         if precision != "float32":
             raise ValueError("the compiled engine renders in float32 only")
         if stats:
             raise ValueError("stats=True needs backend='numpy'")
         mod = self.load()
-        uf, ui = self._inputs(mod, inputs.uniforms())
+        uf, ui = self._inputs(mod, inputs.uniforms(), channels)
         offs = np.array(inputs.offsets if len(inputs.offsets) > 1 else [(0.0, 0.0)], np.float64)
         return self._frame(mod, inputs.width, inputs.height, offs, uf, ui)
 
@@ -724,8 +752,11 @@ class TieredProgram:
     marker beside the per-pixel module then says so, and no later process builds it.
     """
 
-    def __init__(self, shader: Any, first: CompiledProgram, threads: int | None = None) -> None:
+    def __init__(
+        self, shader: Any, first: CompiledProgram, threads: int | None = None, tab: str = "Image"
+    ) -> None:
         self.shader = shader
+        self.tab = tab
         self.first = first
         self.threads = threads
         self.fast: CompiledProgram | None = None  # the lockstep program once moved
@@ -813,7 +844,7 @@ class TieredProgram:
             budget = self.first.loop_limit is not None
             source = self._cached_fast()
             if source is None or (budget and BUDGET_OFF in source):
-                source, _ = generate(self.shader, lanes=TIER_LANES, budget=budget)
+                source, _ = generate(self.shader, self.tab, lanes=TIER_LANES, budget=budget)
             if "LANES_FALLBACK" in source:
                 self.stay = True
                 return
@@ -860,7 +891,7 @@ class TieredProgram:
             return self._mover is not None
 
     def _remake_fast(self) -> str:
-        return generate(self.shader, lanes=TIER_LANES, budget=True)[0]
+        return generate(self.shader, self.tab, lanes=TIER_LANES, budget=True)[0]
 
     def settle(self, timeout: float | None = None) -> bool:
         """Wait for a lockstep compile under way (at most timeout seconds); whether none is left."""
@@ -872,10 +903,10 @@ class TieredProgram:
 
     @frame_inputs
     def render(
-        self, inputs: FrameInputs, precision: str = "float32", stats: bool = False
+        self, inputs: FrameInputs, precision: str = "float32", stats: bool = False, channels=None
     ) -> np.ndarray:
         """One frame (CompiledProgram.render), by whichever program is current."""
-        kw = dict(inputs.keywords(), precision=precision, stats=stats)
+        kw = dict(inputs.keywords(), precision=precision, stats=stats, channels=channels)
         with self._lock:
             if self._mover is None and not self.stay and self.pixels:
                 ahead = self.spent / self.pixels * inputs.width * inputs.height
@@ -900,19 +931,23 @@ class TieredProgram:
 
 
 def compile_compiled(
-    path_or_shader: Any, threads: int | None = None, budget: bool = False
+    path_or_shader: Any,
+    threads: int | None = None,
+    budget: bool = False,
+    tab: str | None = None,
 ) -> CompiledProgram | TieredProgram:
-    """The compiled engine's program for a shader's Image tab: a TieredProgram when the mode is
-    not fixed (tiered()), else a CompiledProgram (`glslcheck.compile(path, backend="compiled")`
-    wraps it in a Program). `budget`: made with llvmpipe's loop budget from the start, for a
-    caller that sets `loop_limit` (which would otherwise generate the module again)."""
+    """The compiled engine's program for a shader's tab (default its Image): a TieredProgram
+    when the mode is not fixed (tiered()), else a CompiledProgram (`glslcheck.compile(path,
+    backend="compiled")` wraps it in a Program). `budget`: made with llvmpipe's loop budget
+    from the start, for a caller that sets `loop_limit` (which would otherwise generate the
+    module again)."""
     from ...shadertoy.sources import Shader, load_shader
 
     shader = path_or_shader if isinstance(path_or_shader, Shader) else load_shader(path_or_shader)
-    source, path = generate(shader, budget=budget)
-    prog = CompiledProgram(source, path, threads, lambda: generate(shader, budget=True)[0])
+    source, path = generate(shader, tab, budget=budget)
+    prog = CompiledProgram(source, path, threads, lambda: generate(shader, tab, budget=True)[0])
     if (
         tiered() and "LANES_FALLBACK" not in source and "\nLANES = " not in source
     ):  # lockstep from the start: derivatives
-        return TieredProgram(shader, prog, threads)
+        return TieredProgram(shader, prog, threads, tab or "Image")
     return prog

@@ -66,6 +66,7 @@ class ExpressionEmitter:
         variants: set[tuple[int, frozenset]]
         pending: list[tuple[Any, frozenset]]
         derivative: Any
+        samples: bool
 
         def fold_context(self) -> FoldValues: ...
         def emit(self, text: str) -> None: ...
@@ -491,6 +492,12 @@ class ExpressionEmitter:
             self.lines += body
             self.emit(f"    {res} = {rcode}")
             return Val(T.BOOL, [res])
+        if op in ("+", "-", "*", "/") and self.samples:  # float16 on lowp lookups
+            from .texture_calls import lowp_tree
+
+            low = lowp_tree(self, e)
+            if low is not None:
+                return low
         if self.fn is not None and self.fn.sym is not None:
             from ..numpy_engine.transpile import nir_fold
             from .fold_values import COPIED

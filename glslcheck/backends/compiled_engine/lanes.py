@@ -108,11 +108,17 @@ def quad_lanes(name: str, k: int, W: int) -> tuple[int, int]:
     quads: lanes 0..W/2-1 are the lower row (even y, counted from the bottom as gl_FragCoord),
     W/2..W-1 the row above, each row from an even x. As llvmpipe (fine derivatives,
     backends/numpy_engine/runtime.py Runtime.dFdx): dFdx(x, y) = v(x|1, y) - v(x&~1, y), dFdy(x, y)
-    = v(x, y|1) - v(x, y&~1)."""
+    = v(x, y|1) - v(x, y&~1). `qdx`/`qdy` (texture_calls.py): the differences from the quad's
+    bottom-left pixel to its right and upper neighbours, the same for the quad's four pixels
+    (textures._quad_corner_diff: llvmpipe's implicit LOD)."""
     h = W // 2
     c, r = k % h, k // h
     if name == "dfdx":
         return r * h + (c | 1), r * h + (c & ~1)
+    if name == "qdx":  # the quad's x difference on its lower row, for all four of its pixels
+        return c | 1, c & ~1
+    if name == "qdy":  # and its y difference on its left column: a mipmap lookup's implicit LOD
+        return h + (c & ~1), c & ~1
     return h + c, c
 
 
@@ -139,7 +145,7 @@ class _Rename(ast.NodeTransformer):
         if (
             self.quads
             and isinstance(f, ast.Name)
-            and f.id in ("dfdx", "dfdy")
+            and f.id in ("dfdx", "dfdy", "qdx", "qdy")
             and len(node.args) == 1
             and isinstance(node.args[0], ast.Name)
             and node.args[0].id in self.varying
@@ -797,7 +803,7 @@ class Lanes:
                 and node.module == "glslcheck.backends.compiled_engine.scalar"
             ):
                 out += math_imports()
-                names = "lsel, dfdx, dfdy" if self.quads else "lsel"
+                names = "lsel, dfdx, dfdy, qdx, qdy" if self.quads else "lsel"
                 out.append(
                     f"from glslcheck.backends.compiled_engine.lanes_rt import {names}  # "
                     f"{_rt_hash()}"

@@ -52,4 +52,4 @@ def dfdx(typingctx, v):
     return t(v), codegen
 
 
-dfdy = dfdx  # the same 0 for a uniform value
+dfdy = qdx = qdy = dfdx  # the same 0 for a uniform value (qdx, qdy: lanes.quad_lanes)

@@ -17,7 +17,7 @@ from .queries import constant_value, is_builtin
 
 TYPE_CHECKING = False  # not typing's: importing typing costs every start-up
 if TYPE_CHECKING:
-    from ..state import TranspilerState
+    from ..state import FoldEngine, TranspilerState
 
 LOWP_OPS = ("+", "-", "*", "/")
 
@@ -65,7 +65,22 @@ def lowp_tree(tr: TranspilerState, e: A.Binary, mask: str | None) -> str | None:
     return f"(rt.lowp_full({low}) if rt.lowp_arith({used}) else {written})"
 
 
-def _lowp_kind(tr: TranspilerState, node: Any, memo: dict[int, Any]) -> str | None:
+def float16_tree(tr: FoldEngine, e: A.Binary) -> tuple[set[int], list[Any]] | None:
+    """For an engine that writes its own code (the compiled engine): when :func:`lowp_tree`
+    computes ``e`` in float16, the ids of the tree's operation nodes and its lookups' sampler
+    operands, else None."""
+    if e.op not in LOWP_OPS:
+        return None
+    memo = tr.fold_state.lowp
+    if _lowp_kind(tr, e, memo) != "low" or tr.has_effects(e):
+        return None
+    nodes: list[Any] = []
+    samplers: list[Any] = []
+    _lowp_parts(e, memo, nodes, samplers)
+    return {id(n) for n in nodes}, samplers
+
+
+def _lowp_kind(tr: FoldEngine, node: Any, memo: dict[int, Any]) -> str | None:
     """ "const" (a literal constant), "lookup" (an iChannel lookup, swizzled or not), "low" (an
     operation float16 on llvmpipe) or None (float32) for a node of such a tree (memoised)."""
     key = id(node)
@@ -74,7 +89,7 @@ def _lowp_kind(tr: TranspilerState, node: Any, memo: dict[int, Any]) -> str | No
     return memo[key]
 
 
-def _lowp_kind_of(tr: TranspilerState, node: Any, memo: dict[int, Any]) -> str | None:
+def _lowp_kind_of(tr: FoldEngine, node: Any, memo: dict[int, Any]) -> str | None:
     if isinstance(node, (A.FloatLiteral, A.IntLiteral)):
         return "const"
     if isinstance(node, A.Identifier):
@@ -115,7 +130,7 @@ def _lowp_kind_of(tr: TranspilerState, node: Any, memo: dict[int, Any]) -> str |
     return None
 
 
-def _square(tr: TranspilerState, node: A.Call) -> bool:
+def _square(tr: FoldEngine, node: A.Call) -> bool:
     """``pow(x, 2.0)`` (a vector of 2.0 too) of the built-in: x * x to NIR (``fpow(a, 2.0) ->
     a * a``), in float16 for a float16 x (gargantua's ``pow(texture(..).rgb, vec3(2.0)) * 4.0``)."""
     return (

@@ -1,0 +1,233 @@
+"""Texture lookups in the compiled engine: the ES 3.00 built-ins on a sampler2D as calls of
+backends/numpy_engine/texture_kernels.py (the one-pixel form of the NumPy backend's
+textures.py), and arithmetic on lowp lookups in float16 where the NumPy backend computes it so
+(nir_fold.lower_precision: llvmpipe's float16 lowering).
+
+A sampler is one int leaf, its channel number (iChannelN is the constant N; a sampler parameter
+passes it on). The texels and each channel's filter, wrap and sizes are read at run time from
+the tails of the uniform arrays `uf` and `ui` (engine.py packs them each frame; `TM`, a module
+constant, is where the channels' words start in `ui`). The implicit LOD of a mipmap channel's
+`texture()` reads the differences of the coordinates across the 2x2 quad (`qdx`/`qdy`, which
+only the lockstep rewrite computes, lanes.py): the generator is told which channels are bound
+with mipmaps (`Codegen.mipmap`), and a lookup on any other channel reads level 0 without them.
+Cube maps are not sampled (neither does the NumPy backend): a located "not supported yet"."""
+
+from __future__ import annotations
+
+from typing import Any
+
+from ...frontend import syntax as A
+from .values import Val, not_yet
+
+# lookups and their argument layout after the sampler: (coordinate components taken from the
+# projective divide or not, then the rest), `lod`: "implicit" | "explicit" | "grad" | None
+_LOOKUPS = {
+    "texture": ("implicit", False, False),
+    "textureOffset": ("implicit", False, True),
+    "textureProj": ("implicit", True, False),
+    "textureProjOffset": ("implicit", True, True),
+    "textureLod": ("explicit", False, False),
+    "textureLodOffset": ("explicit", False, True),
+    "textureProjLod": ("explicit", True, False),
+    "textureProjLodOffset": ("explicit", True, True),
+    "textureGrad": ("grad", False, False),
+    "textureGradOffset": ("grad", False, True),
+    "textureProjGrad": ("grad", True, False),
+    "textureProjGradOffset": ("grad", True, True),
+}
+KERNELS = "tex_sample, tex_lod, tex_fetch, tex_size, tex_lowp, half"
+IMPORT = f"from glslcheck.backends.numpy_engine.texture_kernels import {KERNELS}  # noqa: F401"
+
+
+def channel_of(cg: Any, sampler: Any) -> int | None:
+    """The channel number of an iChannelN operand, None for a sampler parameter."""
+    sym = cg.model.symbol_of(sampler) if isinstance(sampler, A.Identifier) else None
+    if sym is not None and sym.kind in ("uniform", "global") and sym.name.startswith("iChannel"):
+        return int(sym.name[len("iChannel") :])
+    return None
+
+
+def texture_call(cg: Any, e: A.Call, name: str) -> Val:
+    """A lookup built-in (common.TEXTURE_FUNCTIONS) on a sampler2D."""
+    stype = str(cg.type_of(e.args[0]))
+    if stype != "sampler2D":
+        what = "cube maps" if stype == "samplerCube" else f"'{stype}' lookups"
+        raise not_yet(f"{name}(): {what}", e)
+    cg.textures = True
+    rtype = cg.type_of(e)
+    ch = cg.atom(cg.expr(e.args[0]).parts[0])
+    args = [cg.expr(a) for a in e.args[1:]]
+    if name == "textureSize":
+        t = cg.tmp_fresh(f"tex_size(ui, TM, {ch}, {args[0].parts[0]})")
+        return Val(rtype, [f"{t}[0]", f"{t}[1]"])
+    if name in ("texelFetch", "texelFetchOffset"):
+        x, y = args[0].parts
+        if name == "texelFetchOffset":
+            ox, oy = args[2].parts
+            x, y = f"(np.int64({x}) + {ox})", f"(np.int64({y}) + {oy})"
+        t = cg.tmp_fresh(f"tex_fetch(uf, ui, TM, {ch}, {x}, {y}, {args[1].parts[0]})")
+        return Val(rtype, [f"{t}[{i}]" for i in range(4)])
+    if name not in _LOOKUPS:
+        raise not_yet(f"{name}()", e)
+    lod_kind, proj, has_offset = _LOOKUPS[name]
+    p = [cg.atom(x) for x in args[0].parts]
+    u, v = p[0], p[1]
+    if proj:  # p.xy / p.z (vec3) or p.xy / p.w (vec4), in float32
+        u, v = cg.tmp(f"({u} / {p[-1]})"), cg.tmp(f"({v} / {p[-1]})")
+    rest = args[1:]
+    offset = ("0", "0")
+    if has_offset:  # the offset comes after the LOD or the gradients
+        at = {"implicit": 0, "explicit": 1, "grad": 2}[lod_kind]
+        offset = tuple(rest[at].parts)
+        rest = rest[:at] + rest[at + 1 :]
+    has_lod, lod = "False", "F32(0.0)"
+    if lod_kind == "explicit":
+        has_lod, lod = "True", rest[0].parts[0]
+    elif lod_kind == "grad":
+        gx, gy = rest[0].parts, rest[1].parts
+        has_lod = "True"
+        lod = cg.tmp_fresh(f"tex_lod(ui, TM, {ch}, {gx[0]}, {gx[1]}, {gy[0]}, {gy[1]}, True)")
+    elif lod_kind == "implicit" and not _needs_lod(cg, e.args[0]):
+        # level 0, right for a channel without mipmaps (the engine refuses one with them)
+        cg.level0_lookups |= _channels(cg, e.args[0])
+    elif lod_kind == "implicit":
+        if cg.derivative is None:
+            cg.derivative = e  # the quads' differences: lockstep only, as dFdx
+        d = [
+            cg.tmp_fresh(f"{f}({c if c.isidentifier() else cg.tmp_fresh(c)})")
+            for f in ("qdx", "qdy")
+            for c in (u, v)
+        ]
+        has_lod = "True"
+        lod = cg.tmp_fresh(f"tex_lod(ui, TM, {ch}, {d[0]}, {d[1]}, {d[2]}, {d[3]}, False)")
+        if rest:  # the bias, added to the implicit LOD
+            lod = cg.tmp_fresh(f"({lod} + {rest[0].parts[0]})")
+    t = cg.tmp_fresh(
+        f"tex_sample(uf, ui, TM, {ch}, {u}, {v}, {offset[0]}, {offset[1]}, {has_lod}, {lod})"
+    )
+    return Val(rtype, [f"{t}[{i}]" for i in range(4)])
+
+
+def _needs_lod(cg: Any, sampler: Any) -> bool:
+    """Whether an implicit-LOD lookup on this sampler may read mipmaps: its channel is bound
+    with them, or (a sampler parameter) a channel its callers may pass is."""
+    chans = _channels(cg, sampler)
+    return bool(cg.mipmap) if -1 in chans else bool(chans & cg.mipmap)
+
+
+def _channels(cg: Any, sampler: Any) -> set[int]:
+    """The channels a sampler operand may be: {N} for iChannelN, what the callers pass for a
+    sampler parameter (sampler_flow), {-1} when that is not known."""
+    ch = channel_of(cg, sampler)
+    if ch is not None:
+        return {ch}
+    sym = cg.model.symbol_of(sampler) if isinstance(sampler, A.Identifier) else None
+    if sym is None or sym.kind != "param" or cg.fn is None or cg.fn.sym is None:
+        return {-1}
+    return sampler_flow(cg).get((id(cg.fn.sym), sym.name), set())
+
+
+def sampler_flow(cg: Any) -> dict[tuple[int, str], set[int]]:
+    """(id of a function, name of its sampler2D parameter) -> the channels its calls pass
+    there: an iChannel directly or through the caller's own sampler parameter (a fixpoint;
+    GLSL has no recursion)."""
+    if cg.sampler_flow is not None:
+        return cg.sampler_flow
+    from ...semantics.model import Symbol
+
+    edges: list[tuple[tuple[int, str], Any, Any]] = []  # (callee's key, caller, argument)
+    for fn in cg.functions:
+        for n in fn.node.body.walk():
+            tgt = cg.model.call_target(n) if isinstance(n, A.Call) else None
+            if not isinstance(tgt, Symbol) or not tgt.params:
+                continue
+            for a, (pname, ptype, _) in zip(n.args, tgt.params):
+                if str(ptype) == "sampler2D":
+                    edges.append(((id(tgt), pname), fn, a))
+    flow: dict[tuple[int, str], set[int]] = {}
+    changed = True
+    while changed:
+        changed = False
+        for key, caller, a in edges:
+            ch = channel_of(cg, a)
+            if ch is not None:
+                got = {ch}
+            elif isinstance(a, A.Identifier):
+                got = flow.get((id(caller), a.name), set())
+            else:
+                got = set()
+            if not got <= flow.setdefault(key, set()):
+                flow[key] |= got
+                changed = True
+    cg.sampler_flow = flow
+    return flow
+
+
+# -- float16 arithmetic on lowp lookups ------------------------------------------------------
+def lowp_tree(cg: Any, e: A.Binary) -> Val | None:
+    """`e` as the NumPy backend computes it (nir_fold.lower_precision.lowp_tree): in float16
+    when it is such a tree and every sampler it reads is lowp (tex_lowp, at run time), else
+    in float32 (the written form); None when e is no such tree."""
+    from ..numpy_engine.transpile.nir_fold.lower_precision import float16_tree
+
+    if cg.fn is None or cg.fn.sym is None or id(e) in cg.lowp_written:
+        return None
+    found = float16_tree(cg.fold_context(), e)
+    if found is None:
+        return None
+    ops, samplers = found
+    chans = list(dict.fromkeys(cg.atom(cg.expr(s).parts[0]) for s in samplers))
+    cond = cg.tmp_fresh(" and ".join(f"tex_lowp(ui, TM, {c})" for c in chans))
+    rtype = cg.type_of(e)
+    out = [cg.fresh() for _ in range(_size(rtype))]
+    for name in out:  # (written first outside the branches: lockstep selects under masks)
+        cg.emit(f"{name} = F32(0.0)")
+    cg.emit(f"if {cond}:")
+    cg.indent += 1
+    low = _half_code(cg, e, ops, len(out))
+    for name, part in zip(out, low):
+        cg.emit(f"{name} = {part}")
+    cg.indent -= 1
+    cg.emit("else:")
+    cg.indent += 1
+    cg.lowp_written |= ops
+    try:
+        written = cg.expr(e).parts
+    finally:
+        cg.lowp_written -= ops
+    for name, part in zip(out, written):
+        cg.emit(f"{name} = {part}")
+    cg.indent -= 1
+    return Val(rtype, out)
+
+
+def _size(t: Any) -> int:
+    return 1 if t.is_scalar else t.size
+
+
+def _half_code(cg: Any, node: Any, ops: set[int], n: int) -> list[str]:
+    """The float16 components of a tree (lower_precision._lowp_code's operations): leaves
+    rounded to float16 (`half`), each operation one float32 operation rounded to float16 (exact
+    for these: a float32 result of two float16 operands rounds to the float16 one)."""
+    if id(node) not in ops:
+        parts = [cg.atom(f"half({p})") for p in cg.expr(node).parts]
+        return parts if len(parts) == n else parts * n
+    if isinstance(node, A.Unary):
+        return [f"(-{x})" for x in _half_code(cg, node.operand, ops, n)]
+    if isinstance(node, A.Call):  # pow(x, 2.0): x * x
+        return [cg.atom(f"half({x} * {x})") for x in _half_code(cg, node.args[0], ops, n)]
+    square, k = (
+        (node.left, node.right) if isinstance(node.left, A.Call) else (node.right, node.left)
+    )
+    if (
+        node.op == "*"
+        and isinstance(square, A.Call)
+        and id(square) in ops
+        and cg.model.const_value(k) is not None
+    ):  # (x*x) * #k, the square used once: (x * #k) * x
+        xs = _half_code(cg, square.args[0], ops, n)
+        ks = _half_code(cg, k, ops, n)
+        return [cg.atom(f"half(half({x} * {c}) * {x})") for x, c in zip(xs, ks)]
+    a = _half_code(cg, node.left, ops, n)
+    b = _half_code(cg, node.right, ops, n)
+    return [cg.atom(f"half({x} {node.op} {y})") for x, y in zip(a, b)]

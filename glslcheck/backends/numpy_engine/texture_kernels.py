@@ -1,0 +1,310 @@
+"""Texture sampling for one pixel, as numba functions: the compiled engine's lookups.
+
+The same rules as textures.py (the NumPy backend's lookups over lanes, and the reference: what
+llvmpipe does, measured, docs/llvmpipe.md "Texture sampling"), written for one lane: every
+function here is the one-lane form of the function of the same name there, the same float32
+operations in the same order (the lerp through float64 as `_lerp` does), so both agree bit for
+bit (tests/compiled/test_texture_kernels.py runs both on every path). One difference: where a
+mipmap LOD lies exactly on a level, textures.py blends in the next level when some other lane of
+the same level has a fraction above 0 (lerp by 0, which changes nothing unless the two levels'
+texels differ by an infinity or a NaN); here each pixel decides for itself.
+
+The texels of the bound channels live in the float uniform array `uf` and their description in
+the int one `ui` (`pack` writes both; the generated module passes them as it passes the other
+uniforms): at `ui[tm + META * channel]` the words below, then each level's offset into `uf`,
+width and height. The texels of a level are row by row from the bottom, RGBA.
+"""
+
+from __future__ import annotations
+
+from .numba_cache import use_cache_dir
+
+use_cache_dir()  # numba's cache directory first
+
+import numba  # noqa: E402
+import numpy as np  # noqa: E402
+
+from ..llvmpipe_math.lane import bits, from_bits  # noqa: E402
+
+F32 = np.float32
+I32 = np.int32
+# a channel's words in ui: bound, filter, wrap, lowp, level count, level-0 power-of-two flags
+BOUND, FILTER, WRAP, LOWP, LEVELS, POT_W, POT_H = range(7)
+LEVEL0 = 8  # then (offset, width, height) per level
+MAX_LEVELS = 32  # a 2^31-texel side has 32 levels
+META = LEVEL0 + 3 * MAX_LEVELS
+FILTERS = {"nearest": 0, "linear": 1, "mipmap": 2}
+_J = dict(cache=True, nogil=True, error_model="numpy")
+_INT_MIN = -(2**31)
+_HALF = F32(0.5)
+_ONE_BELOW = F32(1 - 2.0**-24)
+_LOWP_MASK = np.uint32(0xFFFFE000)
+_MIN_NORMAL16 = F32(2.0**-14)
+_MAX16 = F32(65504)
+_SUB16 = F32(2.0**24)
+_SUB16_INV = F32(2.0**-24)
+_HALF_INF = F32(65520)  # the midpoint between float16's largest value and 2^16
+_INF = F32(np.inf)
+
+
+@numba.njit(inline="always", **_J)
+def _to_int32(x):
+    """textures._to_int32: truncation towards zero; NaN or outside int32 gives INT_MIN."""
+    if x >= F32(-(2.0**31)) and x < F32(2.0**31):
+        return np.int64(np.trunc(x))
+    return np.int64(_INT_MIN)
+
+
+@numba.njit(inline="always", **_J)
+def _fract_safe(u):
+    f = u - np.floor(u)
+    return f if f < _ONE_BELOW else _ONE_BELOW
+
+
+@numba.njit(inline="always", **_J)
+def _axis_nearest(u, n, pot, repeat, off):
+    """textures._axis_nearest for one lane."""
+    nf = F32(n)
+    if not repeat:
+        i = _to_int32(u * nf + F32(off))
+        return min(max(i, 0), n - 1)
+    if pot:
+        return (_to_int32(np.floor(u * nf)) + off) & (n - 1)
+    if off != 0:
+        u = u + F32(off) / nf
+    return min(_to_int32(_fract_safe(u) * nf), n - 1)  # (below n: the fraction is below 1)
+
+
+@numba.njit(inline="always", **_J)
+def _axis_linear(u, n, pot, repeat, off):
+    """textures._axis_linear for one lane: (i0, i1, weight)."""
+    nf = F32(n)
+    if not repeat:
+        a = u * nf + F32(off)
+        a = a if a < nf else nf  # np.fmin: a NaN gives n
+        x = a - _HALF
+        x = x if x > F32(0) else F32(0)
+        fl = np.floor(x)
+        i0 = _to_int32(fl)
+        return i0, min(i0 + 1, n - 1), x - fl
+    if pot:
+        x = u * nf - _HALF + F32(off)
+        fl = np.floor(x)
+        i0 = _to_int32(fl)
+        return i0 & (n - 1), (i0 + 1) & (n - 1), x - fl
+    if off != 0:
+        u = u + F32(off) / nf
+    x = (u - np.floor(u)) * nf - _HALF
+    fl = np.floor(x)
+    i0 = _to_int32(fl)
+    if not (x >= F32(0)):
+        i0 = np.int64(n - 1)
+    i1 = i0 + 1 if i0 != n - 1 else np.int64(0)
+    return i0, i1, x - fl
+
+
+@numba.njit(inline="always", **_J)
+def _lerp(a, b, w):
+    """textures._lerp: fmuladd(w, b - a, a) through float64 (one rounding to float32)."""
+    return F32(np.float64(w) * np.float64(b - a) + np.float64(a))
+
+
+@numba.njit(**_J)
+def _truncate_lowp(v):
+    """textures._truncate_lowp for one value."""
+    a = np.abs(v)
+    if a < _MIN_NORMAL16:
+        return np.copysign(np.floor(a * _SUB16) * _SUB16_INV, v)
+    if np.isfinite(a) and a > _MAX16:
+        return np.copysign(_MAX16, v)
+    return from_bits(bits(v) & _LOWP_MASK)
+
+
+@numba.njit(inline="always", **_J)
+def _texel(uf, at, w, x, y):
+    k = at + (y * w + x) * 4
+    return uf[k], uf[k + 1], uf[k + 2], uf[k + 3]
+
+
+@numba.njit(inline="always", **_J)
+def _level(ui, m, k):
+    """(offset into uf, width, height) of level k of the channel at ui[m]."""
+    j = m + LEVEL0 + 3 * k
+    return np.int64(ui[j]), np.int64(ui[j + 1]), np.int64(ui[j + 2])
+
+
+@numba.njit(**_J)
+def _nearest(uf, ui, m, u, v, ox, oy):
+    at, w, h = _level(ui, m, 0)
+    repeat = ui[m + WRAP] != 0
+    x = _axis_nearest(u, w, ui[m + POT_W] != 0, repeat, ox)
+    y = _axis_nearest(v, h, ui[m + POT_H] != 0, repeat, oy)
+    return _texel(uf, at, w, x, y)
+
+
+@numba.njit(**_J)
+def _bilinear(uf, ui, m, k, u, v, ox, oy):
+    """textures._bilinear of level k (the wraps chosen by level 0's power-of-two sizes)."""
+    at, w, h = _level(ui, m, k)
+    repeat = ui[m + WRAP] != 0
+    xa, xb, fx = _axis_linear(u, w, ui[m + POT_W] != 0, repeat, ox)
+    ya, yb, fy = _axis_linear(v, h, ui[m + POT_H] != 0, repeat, oy)
+    a0, a1, a2, a3 = _texel(uf, at, w, xa, ya)
+    b0, b1, b2, b3 = _texel(uf, at, w, xb, ya)
+    c0, c1, c2, c3 = _texel(uf, at, w, xa, yb)
+    d0, d1, d2, d3 = _texel(uf, at, w, xb, yb)
+    return (
+        _lerp(_lerp(a0, b0, fx), _lerp(c0, d0, fx), fy),
+        _lerp(_lerp(a1, b1, fx), _lerp(c1, d1, fx), fy),
+        _lerp(_lerp(a2, b2, fx), _lerp(c2, d2, fx), fy),
+        _lerp(_lerp(a3, b3, fx), _lerp(c3, d3, fx), fy),
+    )
+
+
+@numba.njit(**_J)
+def _result(ui, m, r, g, b, a):
+    """textures.TextureFunctions._tex_result: lowp channels truncated."""
+    if ui[m + LOWP] != 0:
+        return _truncate_lowp(r), _truncate_lowp(g), _truncate_lowp(b), _truncate_lowp(a)
+    return r, g, b, a
+
+
+@numba.njit(**_J)
+def tex_sample(uf, ui, tm, ch, u, v, ox, oy, has_lod, lod):
+    """textures.TextureFunctions._sample: the channel's filter and wrap at (u, v), texel offset
+    (ox, oy); `lod` (when has_lod) chooses the levels of a mipmap channel, else level 0."""
+    m = tm + META * ch
+    if ui[m + BOUND] == 0:
+        return F32(0), F32(0), F32(0), F32(1)
+    f = ui[m + FILTER]
+    if f == 0:
+        r, g, b, a = _nearest(uf, ui, m, u, v, ox, oy)
+        return _result(ui, m, r, g, b, a)
+    if f == 1 or not has_lod:
+        r, g, b, a = _bilinear(uf, ui, m, 0, u, v, ox, oy)
+        return _result(ui, m, r, g, b, a)
+    top = F32(ui[m + LEVELS] - 1)
+    if lod != lod:  # (textures.py has no level for a NaN LOD: level 0 here)
+        lo, frac = F32(0), lod
+    else:
+        c = lod if lod > F32(0) else F32(0)
+        c = c if c < top else top
+        lo = np.floor(c)
+        frac = c - lo
+    k = np.int64(lo)
+    r, g, b, a = _bilinear(uf, ui, m, k, u, v, ox, oy)
+    if k + 1 < ui[m + LEVELS] and frac > F32(0):
+        r1, g1, b1, a1 = _bilinear(uf, ui, m, k + 1, u, v, ox, oy)
+        r, g, b, a = _lerp(r, r1, frac), _lerp(g, g1, frac), _lerp(b, b1, frac), _lerp(a, a1, frac)
+    return _result(ui, m, r, g, b, a)
+
+
+@numba.njit(inline="always", **_J)
+def _fast_log2(x):
+    """textures._fast_log2 for one value."""
+    b = bits(x)
+    exponent = I32((b >> np.uint32(23)) & np.uint32(0xFF)) - I32(128)
+    mantissa = from_bits((b & np.uint32(0x007FFFFF)) | np.uint32(0x3F800000))
+    return F32(exponent) + mantissa
+
+
+@numba.njit(**_J)
+def tex_lod(ui, tm, ch, dxu, dxv, dyu, dyv, explicit):
+    """The LOD of a mipmap lookup from the coordinates' differences (dxu, dxv) along x and
+    (dyu, dyv) along y: textures.TextureFunctions._implicit_lod (the quad's differences), or
+    textureGradOffset's (`explicit`: the given gradients, an infinite or NaN rho read as 0)."""
+    m = tm + META * ch
+    w, h = F32(ui[m + LEVEL0 + 1]), F32(ui[m + LEVEL0 + 2])
+    x0, x1, y0, y1 = dxu * w, dxv * h, dyu * w, dyv * h
+    p, q = x0 * x0 + x1 * x1, y0 * y0 + y1 * y1
+    rho2 = p if p > q else q  # maxps: q where either is NaN
+    if explicit and not np.isfinite(rho2):
+        rho2 = F32(0)
+    return _HALF * _fast_log2(rho2)
+
+
+@numba.njit(**_J)
+def tex_mipmapped(ui, tm, ch):
+    """Whether the channel is bound with mipmap filtering (its lookups read a LOD)."""
+    m = tm + META * ch
+    return ui[m + BOUND] != 0 and ui[m + FILTER] == 2
+
+
+@numba.njit(**_J)
+def tex_fetch(uf, ui, tm, ch, x, y, lod):
+    """textures.TextureFunctions.texelFetch: the texel at (x, y) of level 0; out of range (or
+    another level) the clamped texel times 0."""
+    m = tm + META * ch
+    if ui[m + BOUND] == 0:
+        return F32(0), F32(0), F32(0), F32(1)
+    at, w, h = _level(ui, m, 0)
+    xi, yi = np.int64(x), np.int64(y)
+    inside = F32(1) if (0 <= xi < w and 0 <= yi < h and lod == 0) else F32(0)
+    r, g, b, a = _texel(uf, at, w, min(max(xi, 0), w - 1), min(max(yi, 0), h - 1))
+    return _result(ui, m, r * inside, g * inside, b * inside, a * inside)
+
+
+@numba.njit(**_J)
+def tex_size(ui, tm, ch, lod):
+    """textures.TextureFunctions.textureSize: max(1, size >> lod) (a shift of 32 or more, or a
+    negative one, gives 0, as NumPy's); (0, 0) unbound."""
+    m = tm + META * ch
+    if ui[m + BOUND] == 0:
+        return I32(0), I32(0)
+    w, h = np.int64(ui[m + LEVEL0 + 1]), np.int64(ui[m + LEVEL0 + 2])
+    s = np.int64(lod)
+    if 0 <= s < 32:
+        a, b = w >> s, h >> s
+        return I32(a if a > 1 else 1), I32(b if b > 1 else 1)
+    return I32(1), I32(1)
+
+
+@numba.njit(**_J)
+def tex_lowp(ui, tm, ch):
+    """textures.TextureFunctions.lowp_arith for one channel: its lookups are lowp (or unbound)."""
+    m = tm + META * ch
+    return ui[m + BOUND] == 0 or ui[m + LOWP] != 0
+
+
+@numba.njit(**_J)  # (not inlined into numba's IR: a lockstep module calls it hundreds of times)
+def half(x):
+    """TextureFunctions.half for one value: float32 x rounded to the nearest float16 (ties to
+    even; 65520 and past give an infinity), as a float32. An operation of two such values in
+    float32 rounded again by `half` is the float16 operation (NumPy's float16 arithmetic does
+    the same: a float32 result has more than twice float16's precision)."""
+    a = np.abs(x)
+    if not (a < _HALF_INF):
+        return x if a != a else np.copysign(_INF, x)
+    if a < _MIN_NORMAL16:  # float16 subnormals: multiples of 2^-24
+        return np.copysign(np.rint(a * _SUB16) * _SUB16_INV, x)
+    b = bits(x)
+    b = (b + np.uint32(0xFFF) + ((b >> np.uint32(13)) & np.uint32(1))) & np.uint32(0xFFFFE000)
+    return from_bits(b)
+
+
+def pack(channels, uf_base: int) -> tuple[np.ndarray, np.ndarray]:
+    """(float tail, int tail) describing iChannel0..3 (`channels`: ChannelInput or None each):
+    the texels of every level, at uf offsets from `uf_base`, and META words per channel."""
+    meta = np.zeros(4 * META, np.int32)
+    parts: list[np.ndarray] = []
+    at = uf_base
+    for c, s in enumerate(list(channels)[:4]):
+        if s is None:
+            continue
+        m = META * c
+        levels = s.levels() if s.filter == "mipmap" else [s.texels]
+        h, w = levels[0].shape[:2]
+        meta[m + BOUND] = 1
+        meta[m + FILTER] = FILTERS[s.filter]
+        meta[m + WRAP] = s.wrap == "repeat"
+        meta[m + LOWP] = bool(s.lowp)
+        meta[m + LEVELS] = len(levels)
+        meta[m + POT_W] = (w & (w - 1)) == 0
+        meta[m + POT_H] = (h & (h - 1)) == 0
+        for k, t in enumerate(levels):
+            j = m + LEVEL0 + 3 * k
+            meta[j], meta[j + 1], meta[j + 2] = at, t.shape[1], t.shape[0]
+            parts.append(np.ascontiguousarray(t, np.float32).reshape(-1))
+            at += parts[-1].size
+    floats = np.concatenate(parts) if parts else np.zeros(0, np.float32)
+    return floats, meta

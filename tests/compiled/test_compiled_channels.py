@@ -1,0 +1,183 @@
+"""Textures and Buffers in the compiled engine against the NumPy backend, bit for bit.
+
+Every lookup built-in on every filter and wrap (images of power-of-two and other sizes, a Buffer
+with feedback), lookups through a sampler parameter and under a divergent branch, arithmetic on
+lowp lookups (float16 where the NumPy backend computes it so), texelFetch and textureSize, over
+several frames (the Buffer carried from frame to frame by the one multipass driver), per pixel
+and in lockstep, at even and odd sizes (helper pixels past the edge of a quad). The NumPy
+backend's sampling is llvmpipe's (tests/channels/test_channels.py checks it against GL), so the
+compiled engine must give its bits. Cube maps are a located error on both CPU engines."""
+
+from __future__ import annotations
+
+import json
+
+import numpy as np
+import pytest
+from PIL import Image
+
+import glslcheck
+from glslcheck.base.diagnostics import GlslError
+
+FRAMES = 3
+
+BUFFER_A = """void mainImage(out vec4 fragColor, in vec2 fragCoord) {
+    vec2 uv = fragCoord / iResolution.xy;
+    vec2 flow = 0.01 * vec2(sin(uv.y * 12.0 + iTime), cos(uv.x * 10.0 - iTime));
+    vec4 prev = texture(iChannel0, uv + flow);
+    vec4 img = textureLod(iChannel1, uv * 3.0 - 1.0, 0.0);
+    float s = smoothstep(0.2, 0.0, length(uv - 0.5 - 0.2 * vec2(cos(iTime), sin(iTime))));
+    fragColor = prev * 0.9 + img * 0.05 + vec4(s, 0.5 * s, float(iFrame) * 0.1, 1.0);
+}
+"""
+
+# every lookup that reads no implicit LOD of a mipmap channel: one pixel a call can run it
+IMAGE_PLAIN = """vec4 lookup(sampler2D s, vec2 p) { return texture(s, p * 1.7); }
+void mainImage(out vec4 c, in vec2 fc) {
+    vec2 uv = fc / iResolution.xy;
+    vec2 q = (uv - 0.5) * (1.0 + 6.0 * uv.x * uv.x) + vec2(0.1 * iTime, 0.0);
+    vec4 a = texture(iChannel1, q) + texture(iChannel2, q * 3.0, 0.5);
+    a += textureOffset(iChannel1, q, ivec2(1, -1)) + textureProj(iChannel2, vec3(q, 1.0 + uv.y));
+    a += textureProj(iChannel1, vec4(q, 0.0, 0.5 + uv.x));
+    a += textureLod(iChannel0, q, uv.x * 7.0 - 1.0) + textureLodOffset(iChannel0, q, 2.3,
+        ivec2(-2, 1));
+    a += textureGrad(iChannel0, q, vec2(uv.x * 0.3, 0.01), vec2(0.0, uv.y * 0.2));
+    a += lookup(iChannel1, q) + lookup(iChannel3, uv);
+    if (uv.x > 0.4) {
+        a += texture(iChannel2, q * 3.0);
+    }
+    a += texelFetch(iChannel3, ivec2(fc) - 3, 0) + texelFetchOffset(iChannel1, ivec2(fc), 0,
+        ivec2(2, 1));
+    a += vec4(vec2(textureSize(iChannel0, 1)), vec2(textureSize(iChannel3, 0))) * 0.01;
+    a.x += texture(iChannel2, q).x * 0.1 + 2.1;
+    a.yzw -= pow(texture(iChannel1, uv).rgb, vec3(2.0)) * 4.0 - texture(iChannel3, uv).xyz / 3.0;
+    c = a + iChannelResolution[0].x * 1e-3;
+}
+"""
+
+# implicit LODs of a mipmap channel (2x2 quads: lockstep only), with a bias, through a sampler
+# parameter, under a divergent branch and beside dFdx
+IMAGE_QUADS = """vec4 lookup(sampler2D s, vec2 p) { return texture(s, p * 1.7); }
+void mainImage(out vec4 c, in vec2 fc) {
+    vec2 uv = fc / iResolution.xy;
+    vec2 q = (uv - 0.5) * (1.0 + 30.0 * uv.x * uv.x) + vec2(0.1 * iTime, 0.0);
+    vec4 a = texture(iChannel0, q) + texture(iChannel0, q, 1.5) + lookup(iChannel0, q);
+    a += textureOffset(iChannel0, q, ivec2(1, -1)) + textureProj(iChannel0, vec3(q, 1.0 + uv.y));
+    a += textureGrad(iChannel0, q, dFdx(q) * 3.0, dFdy(q));
+    if (uv.y > 0.3 + 0.2 * sin(uv.x * 9.0)) {
+        a += texture(iChannel0, q * 5.0) + lookup(iChannel1, q);
+    }
+    a += texture(iChannel3, uv) + texture(iChannel0, q).x * 0.1 + 2.1;
+    c = a;
+}
+"""
+
+
+def _png(path, w, h, seed):
+    rng = np.random.default_rng(seed)
+    Image.fromarray(rng.integers(0, 256, (h, w, 4), dtype=np.uint8), "RGBA").save(path)
+
+
+def _folder(tmp_path, image: str) -> str:
+    _png(tmp_path / "npot.png", 13, 9, 1)
+    _png(tmp_path / "pot.png", 16, 8, 2)
+    (tmp_path / "Buffer A.glsl").write_text(BUFFER_A)
+    (tmp_path / "Image.glsl").write_text(image)
+    channels = {
+        "Buffer A": {
+            "iChannel0": {"buffer": "Buffer A"},
+            "iChannel1": {"texture": "npot.png", "filter": "linear", "wrap": "repeat"},
+        },
+        "Image": {
+            "iChannel0": {"texture": "npot.png", "filter": "mipmap", "wrap": "repeat"},
+            "iChannel1": {"texture": "pot.png", "filter": "linear", "wrap": "clamp"},
+            "iChannel2": {"texture": "pot.png", "filter": "nearest", "wrap": "repeat"},
+            "iChannel3": {"buffer": "Buffer A", "filter": "linear"},
+        },
+    }
+    (tmp_path / "channels.json").write_text(json.dumps(channels))
+    return str(tmp_path)
+
+
+def _differing(got: np.ndarray, want: np.ndarray) -> int:
+    same = (got.view(np.uint32) == want.view(np.uint32)) | (np.isnan(got) & np.isnan(want))
+    return int((~same.all(axis=-1)).sum())
+
+
+def _agree(folder: str, size, output: str = "Image") -> None:
+    kw = dict(size=size, time=1.3, frame=FRAMES - 1)
+    want = glslcheck.compile(folder, backend="numpy", output=output).render(**kw)
+    prog = glslcheck.compile(folder, backend="compiled", output=output)
+    got = prog.render(**kw)
+    assert np.isfinite(want).all()
+    assert _differing(got, want) == 0, f"{output} at {size}"
+
+
+@pytest.mark.parametrize("lanes", ["0", "8"])
+@pytest.mark.parametrize("size", [(40, 24), (41, 23)])
+def test_lookups_and_buffers_bit_for_bit(numba, tmp_path, monkeypatch, lanes, size):
+    monkeypatch.setenv("GLSLCHECK_COMPILED_LANES", lanes)
+    folder = _folder(tmp_path, IMAGE_PLAIN)
+    _agree(folder, size)
+    _agree(folder, size, output="Buffer A")
+
+
+@pytest.mark.parametrize("size", [(40, 24), (41, 23)])
+def test_implicit_mipmap_lods_bit_for_bit(numba, tmp_path, size):
+    """The default program: a pass with implicit mipmap LODs renders in lockstep from its first
+    frame (2x2 quads), the others per pixel."""
+    folder = _folder(tmp_path, IMAGE_QUADS)
+    _agree(folder, size)
+
+
+def test_lowp_arithmetic_is_float16_and_changes_bits(numba, tmp_path):
+    """The float16 tree is what the engines agree on, and it matters: computed in float32 (the
+    tree's written form, which exact samplers select), `texture(..).x * 0.1 + 2.1` differs."""
+    image = """void mainImage(out vec4 c, in vec2 fc) {
+    vec2 uv = fc / iResolution.xy;
+    c = vec4(texture(iChannel1, uv).x * 0.1 + 2.1, -texture(iChannel1, uv * 2.0).y / 3.0,
+             pow(texture(iChannel1, uv).z, 2.0) * 0.3, 1.0);
+}
+"""
+    folder = _folder(tmp_path, image)
+    kw = dict(size=(16, 8), time=0.0)
+    low = glslcheck.compile(folder, backend="compiled")
+    want = glslcheck.compile(folder, backend="numpy").render(**kw)
+    got = low.render(**kw)
+    assert _differing(got, want) == 0
+    exact, exact_numpy = (glslcheck.compile(folder, backend=b) for b in ("compiled", "numpy"))
+    exact.impl.lowp_samplers = exact_numpy.impl.lowp_samplers = False  # (WebGL's exact lookups)
+    got_exact = exact.render(**kw)
+    assert _differing(got_exact, want) > 0
+    assert _differing(got_exact, exact_numpy.render(**kw)) == 0
+
+
+def test_cube_maps_are_a_located_error(numba, make_shader):
+    shader = make_shader(
+        "void mainImage(out vec4 c, in vec2 f) {\n"
+        "    c = texture(iChannel0, normalize(vec3(f, 1.0)));\n}\n"
+    )
+    from glslcheck.backends.compiled_engine.engine import generate
+
+    with pytest.raises(GlslError) as err:
+        generate(shader)
+    d = err.value.diagnostics[0]
+    assert "cube maps" in d.message and "compiled engine" in d.message
+    assert (d.loc.path, d.loc.line, d.loc.column) == ("Image.glsl", 2, 9)
+
+
+def test_a_mipmap_channel_the_program_was_not_made_for_is_refused(numba, make_shader):
+    """Implicit LODs need the quads' differences, generated only for the channels bound with
+    mipmaps: a program made without them refuses such an input rather than read level 0."""
+    from glslcheck.backends.compiled_engine.engine import CompiledProgram, generate
+    from glslcheck.shadertoy.channels import ChannelInput
+
+    shader = make_shader(
+        "void mainImage(out vec4 c, in vec2 f) { c = texture(iChannel0, f / iResolution.xy); }\n"
+    )
+    source, path = generate(shader, lanes=0)
+    texels = np.ones((4, 4, 4), np.float32)
+    prog = CompiledProgram(source, path)
+    assert prog.render(size=(4, 2), channels=[ChannelInput(texels, "linear")]).shape == (2, 4, 4)
+    with pytest.raises(ValueError, match="mipmaps"):
+        prog.render(size=(4, 2), channels=[ChannelInput(texels, "mipmap")])
