@@ -132,7 +132,7 @@ def test_derivatives_start_in_lockstep(numba, make_shader, monkeypatch):
 
 def test_quad_lanes():
     """Lane k's pair: lanes 0..3 the lower row, 4..7 the upper (8 lanes)."""
-    from glslcheck.backends.compiled_engine.lanes import quad_lanes
+    from glslcheck.backends.compiled_engine.lanes_render import quad_lanes
 
     assert [quad_lanes("dfdx", k, 8) for k in range(8)] == [
         (1, 0),

@@ -40,7 +40,7 @@ def lsel(typingctx, c, a, b):
 @intrinsic
 def dfdx(typingctx, v):
     """dFdx of a value that is the same in every lane of the block (the rewrite writes a
-    varying one as the difference of two lanes, lanes.quad_lanes): 0, as the NumPy backend's
+    varying one as the difference of two lanes, lanes_render.quad_lanes): 0, as the NumPy backend's
     derivative of a lane-uniform value (runtime.Runtime._quad_diff)."""
     t = types.unliteral(v)
     if not isinstance(t, types.Float):
@@ -52,4 +52,4 @@ def dfdx(typingctx, v):
     return t(v), codegen
 
 
-dfdy = qdx = qdy = dfdx  # the same 0 for a uniform value (qdx, qdy: lanes.quad_lanes)
+dfdy = qdx = qdy = dfdx  # the same 0 for a uniform value (qdx, qdy: lanes_render.quad_lanes)
