@@ -33,7 +33,7 @@ from glslcheck.backends import registry as api  # noqa: E402
 SCENES = ("textured", "feedback")
 
 
-def _copy_scene(name: str, into: str) -> str:
+def copy_scene(name: str, into: str) -> str:
     dst = os.path.join(into, name)
     shutil.copytree(os.path.join(HERE, "scenes", name), dst)
     if name == "textured":
@@ -80,7 +80,7 @@ def main() -> None:
     )
     with tempfile.TemporaryDirectory() as tmp:
         for name in SCENES:
-            folder = _copy_scene(name, tmp)
+            folder = copy_scene(name, tmp)
             progs = {"gl": api.compile(folder, backend="gl")}
             if args.webgl:
                 progs["webgl"] = api.compile(folder, backend="webgl")

@@ -33,6 +33,7 @@ import json
 import os
 import subprocess
 import sys
+import tempfile
 import time
 from pathlib import Path
 
@@ -107,6 +108,14 @@ def agree_one(
     from glslcheck.shadertoy.sources import load_shader
     from glslcheck.verification.verify import llvmpipe_loop_limit
 
+    scene = Path(path)
+    if scene.parent == ROOT / "benchmarks" / "scenes" and scene.name == "textured":
+        # its texture is made by the channel benchmark, into a copy of the folder
+        sys.path.insert(0, str(ROOT / "benchmarks"))
+        from bench_channels import copy_scene
+
+        folder = tempfile.TemporaryDirectory(prefix="engines-agree-")  # gone with the call
+        path = copy_scene(scene.name, folder.name)
     shader = load_shader(path)
     kw = dict(size=size, frame=frame, mouse=mouse)
     try:
