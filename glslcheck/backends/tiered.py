@@ -79,30 +79,13 @@ RATE_FRAMES = 5
 # 0.45 s measured on a lab shader, 0.04 s once numba is loaded).
 CACHED_LOAD_SECONDS = 0.5
 
-_OWN = {
-    "shader",
-    "first",
-    "second",
-    "stay",
-    "spent",
-    "pixels",
-    "_lock",
-    "_mover",
-    "_record",
-    "rates",
-    "numpy_rate",
-    "trial",
-    "later",
-    "engine",
-}
-
 
 class TieredCpuProgram:
     """A NumPy program (`first`) that moves its frames to the compiled engine once that pays
     (module docstring). Every attribute it does not define is the NumPy program's (`parallel`,
     `threads`, `loop_limit`, `format_stats`, ...), read and set there."""
 
-    # its own attributes (_OWN), set in __init__ through __dict__
+    # its own attributes (the names annotated here), set in __init__ through __dict__
     shader: Any
     first: NumpyProgram
     second: CompiledProgram | TieredProgram | None
@@ -141,7 +124,7 @@ class TieredCpuProgram:
         return getattr(self.__dict__["first"], name)
 
     def __setattr__(self, name: str, value: Any) -> None:
-        if name in _OWN:
+        if name in TieredCpuProgram.__annotations__:
             self.__dict__[name] = value
             return
         setattr(self.first, name, value)
