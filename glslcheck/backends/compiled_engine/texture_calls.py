@@ -17,24 +17,18 @@ from __future__ import annotations
 from typing import Any
 
 from ...frontend import syntax as A
+from ..cpu_core.common import TEXTURE_FUNCTIONS
 from .values import Val, not_yet
 
-# lookups and their argument layout after the sampler: (coordinate components taken from the
-# projective divide or not, then the rest), `lod`: "implicit" | "explicit" | "grad" | None
-_LOOKUPS = {
-    "texture": ("implicit", False, False),
-    "textureOffset": ("implicit", False, True),
-    "textureProj": ("implicit", True, False),
-    "textureProjOffset": ("implicit", True, True),
-    "textureLod": ("explicit", False, False),
-    "textureLodOffset": ("explicit", False, True),
-    "textureProjLod": ("explicit", True, False),
-    "textureProjLodOffset": ("explicit", True, True),
-    "textureGrad": ("grad", False, False),
-    "textureGradOffset": ("grad", False, True),
-    "textureProjGrad": ("grad", True, False),
-    "textureProjGradOffset": ("grad", True, True),
-}
+
+def _layout(name: str) -> tuple[str, bool, bool]:
+    """A sampling lookup's argument layout after the sampler, from its name: how its LOD comes
+    ("implicit" | "explicit" | "grad"), whether its coordinate is divided (Proj), whether an
+    offset follows."""
+    lod = "grad" if "Grad" in name else "explicit" if "Lod" in name else "implicit"
+    return lod, "Proj" in name, name.endswith("Offset")
+
+
 KERNELS = "tex_sample, tex_lod, tex_fetch, tex_size, tex_lowp, half"
 IMPORT = f"from glslcheck.backends.numpy_engine.texture_kernels import {KERNELS}  # noqa: F401"
 
@@ -67,9 +61,9 @@ def texture_call(cg: Any, e: A.Call, name: str) -> Val:
             x, y = f"(np.int64({x}) + {ox})", f"(np.int64({y}) + {oy})"
         t = cg.tmp_fresh(f"tex_fetch(uf, ui, TM, {ch}, {x}, {y}, {args[1].parts[0]})")
         return Val(rtype, [f"{t}[{i}]" for i in range(4)])
-    if name not in _LOOKUPS:
+    if name not in TEXTURE_FUNCTIONS:
         raise not_yet(f"{name}()", e)
-    lod_kind, proj, has_offset = _LOOKUPS[name]
+    lod_kind, proj, has_offset = _layout(name)
     p = [cg.atom(x) for x in args[0].parts]
     u, v = p[0], p[1]
     if proj:  # p.xy / p.z (vec3) or p.xy / p.w (vec4), in float32
