@@ -41,7 +41,9 @@ def render() -> str:
             "",
             f"## {r.name}",
             "",
-            f"*{r.summary}* ({r.kind}, severity `{r.severity}`, penalty {r.penalty})",
+            f"*{r.summary}* ({r.kind}"
+            + (f" of the {r.standard} standard" if r.standard else "")
+            + f", severity `{r.severity}`, penalty {r.penalty})",
             "",
         ]
         # The docstring's own `## Section` headings become level-3 headings under the rule.

@@ -59,7 +59,9 @@ from pathlib import Path
 ROOT = Path(__file__).resolve().parent.parent
 CORPUS = ROOT / "tests" / "real_lint"
 TEXTS = CORPUS / "texts"
+sys.path.insert(0, str(ROOT))
 
+from glslcheck.lint.rules import all_rules  # noqa: E402
 
 # Every rule id of the labelling guide (/work/labels/RULES.md): what a blind labeller labels.
 GUIDE_RULES = [
@@ -81,24 +83,9 @@ GUIDE_RULES = [
 ]
 # The rules of the efficiency standard: a finding of one of them on the lines of an
 # "other-inefficiency" label (the guide's id for an inefficiency no specific id fits) is the
-# same deduction under a more specific name; `score` counts those pairs apart.
-EFFICIENCY_RULES = (
-    "length-comparison",
-    "sqrt-comparison",
-    "pow-small-exponent",
-    "pow-negative-base",
-    "repeated-expression",
-    "loop-invariant",
-    "branch-replaceable",
-    "normalize-known-length",
-    "length-computed-twice",
-    "squared-square-root",
-    "repeated-across-calls",
-    "unit-length",
-    "no-op-arithmetic",
-    "unreachable-code",
-    "unused-variable",
-)
+# same deduction under a more specific name; `score` counts those pairs apart. The registry
+# of this checkout names them (a rule's STANDARD), also when scoring an older linter.
+EFFICIENCY_RULES = tuple(r.name for r in all_rules().values() if r.standard == "efficiency")
 OTHER = "other-inefficiency"
 RUN_RULES = ("missing-comment",)  # labelled and reported as runs of lines [first, last]
 

@@ -10,7 +10,7 @@ from pathlib import Path
 import pytest
 
 from glslcheck.lint import lint_paths
-from glslcheck.lint.rules import RULE_TABLE, SECTIONS, all_rules, doc_sections
+from glslcheck.lint.rules import RULE_TABLE, SECTIONS, STANDARDS, _load, all_rules, doc_sections
 
 from .conftest import FIXTURES
 
@@ -64,6 +64,19 @@ def test_rule_module_contract(name: str):
     )
     assert rule.needs in ("text", "ast", "suppressions")
     assert rule.summary.endswith(".")
+    assert (rule.standard in STANDARDS) == (rule.penalty > 0)
+
+
+def test_a_course_rule_without_its_standard_is_refused(monkeypatch):
+    """The registry refuses a course rule that does not say which standard it deducts under:
+    the scorer and the docs read it, and nothing else lists the efficiency rules."""
+    mod = all_rules()["pow-small-exponent"].module
+    monkeypatch.delattr(mod, "STANDARD")
+    with pytest.raises(TypeError, match="STANDARD"):
+        _load("pow-small-exponent", "pow_small_exponent")
+    monkeypatch.setattr(mod, "STANDARD", "style", raising=False)
+    with pytest.raises(TypeError, match="STANDARD"):
+        _load("pow-small-exponent", "pow_small_exponent")
 
 
 def test_has_credit_agrees_with_the_case_insensitive_pattern():

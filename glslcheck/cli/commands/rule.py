@@ -26,8 +26,9 @@ def describe(rule) -> str:
         else "no deduction"
     )
     head = f"{rule.name}: {rule.summary}"
+    kind = f"{rule.kind} of the {rule.standard} standard" if rule.standard else rule.kind
     return (
-        f"{head}\n{'=' * len(head)}\n{rule.kind} ({rule.severity}, {penalty}; "
+        f"{head}\n{'=' * len(head)}\n{kind} ({rule.severity}, {penalty}; "
         f"reads the {rule.needs})\n\n{rule.doc}\n"
     )
 

@@ -10,6 +10,9 @@ A rule is a module in this package that declares
               finding a deduction) or "possible" (a reading of an ambiguous sentence of the
               rubric: a TA may deduct it or not); a finding may say otherwise
               (`Diagnostic.certainty`)
+    STANDARD  for a course rule, the coding standard of the rubric it deducts under:
+              "comments", "header", "uniforms", "efficiency" or "correctness" (the
+              rubric's "correct and stable final product")
     NEEDS     "text" (runs on every file), "ast" (runs only when the engine has a parse tree
               and semantic model for the file) or "suppressions" (runs last, reading which
               suppressions were used)
@@ -72,6 +75,7 @@ RULE_TABLE: tuple[tuple[str, str], ...] = (
 SECTIONS = ("What it does", "Why is this bad?", "Example", "Use instead")
 SEVERITIES = {"error": "compile error", "warning": "course rule", "note": "worth knowing"}
 CERTAINTIES = ("certain", "possible")
+STANDARDS = ("comments", "header", "uniforms", "efficiency", "correctness")
 NEEDS = ("text", "ast", "suppressions")
 READS = ("functions", "names", "program")
 
@@ -90,6 +94,7 @@ class Rule:
     module: ModuleType
     reads: str = "functions"
     certainty: str = "certain"
+    standard: str | None = None  # a course rule's coding standard (STANDARDS)
 
     @property
     def kind(self) -> str:
@@ -142,6 +147,11 @@ def _load(name: str, module_name: str) -> Rule:
         problems.append(f"NEEDS must be one of {', '.join(NEEDS)}")
     if getattr(mod, "CERTAINTY", "certain") not in CERTAINTIES:
         problems.append(f"CERTAINTY must be one of {', '.join(CERTAINTIES)}")
+    standard = getattr(mod, "STANDARD", None)
+    if isinstance(penalty, int) and penalty > 0 and standard not in STANDARDS:
+        problems.append(f"a course rule declares STANDARD, one of {', '.join(STANDARDS)}")
+    elif not (isinstance(penalty, int) and penalty > 0) and standard is not None:
+        problems.append("only a course rule (PENALTY > 0) declares a STANDARD")
     if getattr(mod, "READS", "functions") not in READS:
         problems.append(f"READS must be one of {', '.join(READS)}")
     if not callable(getattr(mod, "check", None)):
@@ -164,6 +174,7 @@ def _load(name: str, module_name: str) -> Rule:
         mod,
         getattr(mod, "READS", "functions"),
         getattr(mod, "CERTAINTY", "certain"),
+        standard,
     )
 
 

@@ -58,6 +58,7 @@ if TYPE_CHECKING:
 
 NAME = "branch-replaceable"
 PENALTY = 1
+STANDARD = "efficiency"
 SEVERITY = "warning"
 NEEDS = "ast"
 

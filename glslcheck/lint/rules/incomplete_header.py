@@ -73,6 +73,7 @@ if TYPE_CHECKING:
 
 NAME = "incomplete-header"
 PENALTY = 1
+STANDARD = "header"
 SEVERITY = "warning"
 NEEDS = "text"
 CERTAINTY = "possible"

@@ -39,6 +39,7 @@ if TYPE_CHECKING:
 
 NAME = "length-comparison"
 PENALTY = 1
+STANDARD = "efficiency"
 SEVERITY = "warning"
 NEEDS = "ast"
 

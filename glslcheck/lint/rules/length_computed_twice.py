@@ -47,6 +47,7 @@ if TYPE_CHECKING:
 
 NAME = "length-computed-twice"
 PENALTY = 1
+STANDARD = "efficiency"
 SEVERITY = "warning"
 NEEDS = "ast"
 

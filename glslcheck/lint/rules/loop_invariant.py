@@ -72,6 +72,7 @@ if TYPE_CHECKING:
 
 NAME = "loop-invariant"
 PENALTY = 1
+STANDARD = "efficiency"
 SEVERITY = "warning"
 NEEDS = "ast"
 

@@ -152,6 +152,7 @@ if TYPE_CHECKING:
 
 NAME = "missing-comment"
 PENALTY = 1
+STANDARD = "comments"
 SEVERITY = "warning"
 NEEDS = "text"
 

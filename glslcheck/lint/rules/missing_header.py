@@ -71,6 +71,7 @@ if TYPE_CHECKING:
 
 NAME = "missing-header"
 PENALTY = 1
+STANDARD = "header"
 SEVERITY = "warning"
 NEEDS = "text"
 

@@ -43,6 +43,7 @@ if TYPE_CHECKING:
 
 NAME = "no-op-arithmetic"
 PENALTY = 1
+STANDARD = "efficiency"
 SEVERITY = "warning"
 CERTAINTY = "possible"
 NEEDS = "ast"

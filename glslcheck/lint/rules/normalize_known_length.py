@@ -84,6 +84,7 @@ if TYPE_CHECKING:
 
 NAME = "normalize-known-length"
 PENALTY = 1
+STANDARD = "efficiency"
 SEVERITY = "warning"
 NEEDS = "ast"
 

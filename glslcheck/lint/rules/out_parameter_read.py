@@ -59,6 +59,7 @@ if TYPE_CHECKING:
 
 NAME = "out-parameter-read"
 PENALTY = 1
+STANDARD = "correctness"
 SEVERITY = "warning"
 NEEDS = "ast"
 

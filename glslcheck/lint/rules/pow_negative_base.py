@@ -42,6 +42,7 @@ if TYPE_CHECKING:
 
 NAME = "pow-negative-base"
 PENALTY = 1
+STANDARD = "efficiency"
 SEVERITY = "warning"
 NEEDS = "ast"
 

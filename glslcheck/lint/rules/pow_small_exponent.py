@@ -53,6 +53,7 @@ if TYPE_CHECKING:
 
 NAME = "pow-small-exponent"
 PENALTY = 1
+STANDARD = "efficiency"
 SEVERITY = "warning"
 NEEDS = "ast"
 

@@ -57,6 +57,7 @@ if TYPE_CHECKING:
 
 NAME = "repeated-across-calls"
 PENALTY = 1
+STANDARD = "efficiency"
 SEVERITY = "warning"
 NEEDS = "ast"
 

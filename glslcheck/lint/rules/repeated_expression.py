@@ -75,6 +75,7 @@ if TYPE_CHECKING:
 
 NAME = "repeated-expression"
 PENALTY = 1
+STANDARD = "efficiency"
 SEVERITY = "warning"
 NEEDS = "ast"
 

@@ -35,6 +35,7 @@ if TYPE_CHECKING:
 
 NAME = "sqrt-comparison"
 PENALTY = 1
+STANDARD = "efficiency"
 SEVERITY = "warning"
 NEEDS = "ast"
 

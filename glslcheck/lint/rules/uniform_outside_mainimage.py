@@ -50,6 +50,7 @@ if TYPE_CHECKING:
 
 NAME = "uniform-outside-mainimage"
 PENALTY = 1
+STANDARD = "uniforms"
 SEVERITY = "warning"
 NEEDS = "ast"
 READS = "names"  # a function with a compile error is still read: uniforms are names

@@ -43,6 +43,7 @@ if TYPE_CHECKING:
 
 NAME = "unit-length"
 PENALTY = 1
+STANDARD = "efficiency"
 SEVERITY = "warning"
 NEEDS = "ast"
 

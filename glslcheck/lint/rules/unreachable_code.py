@@ -43,6 +43,7 @@ if TYPE_CHECKING:
 
 NAME = "unreachable-code"
 PENALTY = 1
+STANDARD = "efficiency"
 SEVERITY = "warning"
 CERTAINTY = "possible"
 NEEDS = "ast"

@@ -60,6 +60,7 @@ if TYPE_CHECKING:
 
 NAME = "unused-variable"
 PENALTY = 1
+STANDARD = "efficiency"
 SEVERITY = "warning"
 CERTAINTY = "possible"
 NEEDS = "ast"
