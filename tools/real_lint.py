@@ -270,15 +270,16 @@ def lint_json(paths: list[Path], root: Path = ROOT) -> tuple[list[dict], str, in
 
 
 def _ids(spec: str | None) -> set[str] | None:
-    """`f27-f37,f40` -> {"f27", ..., "f37", "f40"}; None for every file."""
+    """`f27-f37,m40` -> {"f27", ..., "f37", "m40"} (each set's own letter); None for every
+    file."""
     if not spec:
         return None
     out: set[str] = set()
     for part in spec.split(","):
         lo, _, hi = part.strip().partition("-")
         hi = hi or lo
-        width = len(lo) - 1
-        out.update(f"f{i:0{width}d}" for i in range(int(lo[1:]), int(hi[1:]) + 1))
+        letter, width = lo[0], len(lo) - 1
+        out.update(f"{letter}{i:0{width}d}" for i in range(int(lo[1:]), int(hi[1:]) + 1))
     return out
 
 
@@ -308,6 +309,7 @@ def score(
         if e not in present:
             print(f"missing text: {e['id']} {e.get('repo', '')}:{e['path']} (run `populate`)")
     if not present:
+        print("no file of the manifest to score" + (f" among {only}" if only else ""))
         return 2
     tp, fp, fn = Counter(), Counter(), Counter()
     # line level, not one to one: findings inside some label, labels holding some finding

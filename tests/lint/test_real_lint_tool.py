@@ -133,3 +133,10 @@ def test_texts_in_a_flat_folder_are_found(tmp_path):
     (tmp_path / "Lab04.txt").write_text("y")
     assert real_lint.local_path({"id": "t07", "path": "a/b/c.txt"}, tmp_path).name == "t07.txt"
     assert real_lint.local_path({"id": "t08", "path": "x/Lab04.txt"}, tmp_path).name == "Lab04.txt"
+
+
+def test_only_reads_each_sets_own_letter():
+    """`--only` names files by their set's letter (f, g, k, m, ...), ranges and lists alike."""
+    assert real_lint._ids("m01-m03,k10") == {"m01", "m02", "m03", "k10"}
+    assert real_lint._ids("f27-f28") == {"f27", "f28"}
+    assert real_lint._ids(None) is None
