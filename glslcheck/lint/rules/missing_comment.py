@@ -21,9 +21,10 @@ Coverage, what a comment explains:
   comment too long for its line, continued on the line below and indented well past the
   statement (8 columns or more), is that statement's too.
 - A function's comment (above it, or a blank line above it when it names the function:
-  `// shade: ...` above `vec3 shade(...)`) explains the function: its signature, and its body
-  whole when the body is simple: at most 4 statements, with no branch or loop at 4. A longer
-  body with no comment of its own is one run, the body; a body with comments of its own is
+  `// shade: ...` above `vec3 shade(...)`) explains the function: its signature, and its body whole
+  when the body is simple: at most 4 statements, with no branch or loop at 4, whatever comments
+  of their own some of its lines have (a few related lines under one comment). A longer body
+  with no comment of its own is one run, the body; a longer body with comments of its own is
   read by them. A struct's comment covers its members; a struct whose members are commented one
   by one needs no comment of its own. Overloads written right under a commented one, with no
   blank line between (`// lengthSq: the squared length of a vector` above `lengthSq(vec2)`,
@@ -55,9 +56,9 @@ A run is a certain deduction, except where the readings of the rubric part (a po
   each group); a credit or a marker ends a heading's section;
 - the body of a function its comment above is the only comment of, when the body is more than
   simple but short (at most 8 statements) or does not branch; a longer branching body is certain;
-- the first statements of a body that has comments of its own, which the function's comment
-  above would cover as a comment above a group (whether a function's comment reaches into its
-  body is a reading);
+- the first statements of a body longer than simple that has comments of its own, which the
+  function's comment above would cover as a comment above a group (whether a function's
+  comment reaches into its body is a reading);
 - the first statements of an `if`'s body that has comment lines of its own, under a comment
   right above the `if` (not one whose group the `if` is further down in): that comment speaks
   for the condition (`// if the discriminant is positive, the ray hits`), the body's comments
@@ -298,6 +299,13 @@ UNLIMITED = 1 << 30  # the span of a comment heading a list: up to the blank lin
 SIMPLE_BODY = 4  # statements of a function its comment above explains whole, with no branch
 SHORT_BODY = 8  # more, or a branching body longer than this, is a certain run under that comment
 _GOES_ON = (",", "+", "-", "*", "/", "=", "&", "|", "?", ":", "<", ">", "(", "!")
+
+
+def _simple(function: dict) -> bool:
+    """Whether a function's body is "a few related lines" its comment above explains whole: at
+    most SIMPLE_BODY statements, with no branch or loop at SIMPLE_BODY."""
+    count = function["count"]
+    return count < SIMPLE_BODY or (count == SIMPLE_BODY and not function["branches"])
 
 
 class _Reader:
@@ -605,12 +613,16 @@ class _Reader:
             self.runs[f["runs"] :] = [] if overload else [(first, f["last"], count, "")]
         elif f["explained"] and not f["inner"]:
             kept = [r for r in mine if r[1] < f["sig"][0]]
-            if f["count"] > SIMPLE_BODY or (f["branches"] and f["count"] == SIMPLE_BODY):
+            if not _simple(f):
                 # more than "a few related lines" under one comment: one run, the body; certain
                 # when it is long and branches, else a reading of how far a comment reaches
                 sure = f["count"] > SHORT_BODY and f["branches"]
                 kept.append((f["first"], f["last"], f["count"], "" if sure else LONG_BODY))
             self.runs[f["runs"] :] = kept
+        elif f["explained"] and _simple(f):
+            # a simple body is "a few related lines": its function's comment explains it
+            # whole, whatever comments of their own some of its lines have
+            self.runs[f["runs"] :] = [r for r in mine if r[3] != REACH]
 
     def new_comment(self, number: int) -> None:
         """An explaining comment line: it covers the group below it (a run of comment lines is
