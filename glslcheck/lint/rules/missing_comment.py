@@ -34,10 +34,11 @@ Coverage, what a comment explains:
   `return col;`, or a vector of them: `return vec4(col, 1.0);`), `break;`, `continue;`,
   `discard;`, `else`, braces. Code in an `#ifdef`/`#if` branch the preprocessor skips is not
   compiled and not linted (where that is sure: `#ifdef`, `#ifndef`, `#if defined(X)`, `#if 0`).
-- Credits and attributions ("Code from class by ...", "Code by Peter Shirley in ...", "Source
-  for math: https://..."), section markers ("// part 3", "// TEST", "// END CLASS MATERIAL", a
-  `-----` rule), a bare question ("// efficient?"), commented-out code (`//dp.z = r * r;`) and
-  `glslcheck:` directives explain nothing: a TA reads past them.
+- Credits and attributions ("Code from class by ...", "Code by Peter Shirley in ...", "code
+  translated from ...", "Source for math: https://..."), section markers ("// part 3",
+  "// TEST", "// END CLASS MATERIAL", a `-----` rule), a bare question ("// efficient?"),
+  commented-out code (`//dp.z = r * r;`, a type name left alone: `//bool`) and `glslcheck:`
+  directives explain nothing: a TA reads past them.
 
 Runs, what one finding is: one finding per run of uncovered statements, at its first line and
 naming its last, as the rubric deducts "per ambiguous section/block/line". A run goes on across
@@ -186,7 +187,10 @@ COMMENTED_CODE_RE = compiled(
     r"|(?:const\s+)?(?:float|u?int|bool|void|[biu]?vec[234]|mat[234]|(?-i:[A-Z]\w*|s[A-Z]\w*))"
     r"\s+[A-Za-z_]\w*\s*(?:=[^;]*)?;"
     r"|[\w.]+\s*\(.*\)\s*;"
-    r"|[{}]\s*;?)\s*(?://.*)?$"
+    r"|[{}]\s*;?"
+    # a type or a keyword left alone (`//bool` above a function returning float)
+    r"|(?:const\s+)?(?:bool|float|u?int|void|[biu]?vec[234]|mat[234](?:x[234])?|struct|return"
+    r"|else|in|out|inout|uniform))\s*(?://.*)?$"
 )
 # Statements that need no comment: returning a literal or a plain variable, break, continue,
 # discard, a bare `else`.
@@ -204,6 +208,8 @@ CREDIT_RE = compiled(
     r"|assistance\s+from|source\s+assistance)"
     r"|(?:(?:code|this|it|functions?)\s+(?:was\s+|is\s+)?)?(?:adapted|borrowed|inspired|taken|copied)"
     r"\s+(?:from|by)\b"
+    # "code translated from ...": with its subject, not "converted from degrees to radians"
+    r"|(?:code|this|it|functions?)\s+(?:was\s+|is\s+)?(?:translated|ported|converted)\s+from\b"
     # "Code by Peter Shirley in ...", "Provided by Dan Buckstein during class", "Based of code ..."
     r"|(?:(?:base|original)\s+)?(?:code|functions?|framework)\s+(?:was\s+|is\s+)?"
     r"(?:written\s+|given\s+|provided\s+)?by\s*(?-i:[A-Z])"
