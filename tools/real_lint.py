@@ -97,6 +97,7 @@ EFFICIENCY_RULES = (
     "unit-length",
     "no-op-arithmetic",
     "unreachable-code",
+    "unset-array-elements",
     "unused-variable",
 )
 OTHER = "other-inefficiency"
