@@ -11,11 +11,13 @@ Coverage, what a comment explains:
   `comment-span` statements (5 by default: the rubric's "every few related lines"), until a
   blank line, the next comment, or the end of the block it is in. A statement with a trailing
   comment of its own uses none of the group's few lines: `// PHONG` above three commented
-  lines and three plain ones explains all six. Lines of a comment block explain as one
-  comment. A comment above an `if` or a loop goes on into its body (one right above an
-  `if` whose body has comment lines of its own: below). A comment
-  heading a list of declarations (`// Variables for the camera`) explains the whole list, up to
-  the blank line.
+  lines and three plain ones explains all six, and nor does a statement that repeats one of
+  the two before it but for its numbers (`initLight(light2, vec3(0.0, 1.0, 2.0));` after
+  `initLight(light1, vec3(2.0, 1.0, 0.0));`: one comment for the lines written once per
+  light). Lines of a comment block explain as one comment. A comment above an `if` or a loop
+  goes on into its body (one right above an `if` whose body has comment lines of its own:
+  below). A comment heading a list of declarations (`// Variables for the camera`) explains
+  the whole list, up to the blank line.
 - A trailing comment covers its statement (`x = 1.0; // why`, on any of its lines), and on a
   signature or a loop/`if` header, the block it opens as a comment above would. A trailing
   comment too long for its line, continued on the line below and indented well past the
@@ -274,8 +276,10 @@ class _Cover:
     depth: int
     left: int
     text: str = ""  # the comment's words (a definition's name in them: it documents it)
+    shapes: tuple = ()  # the statements read under it, their numbers masked (_SHAPE_RE)
 
 
+_SHAPE_RE = compiled(r"\d+(?:\.\d*)?|\.\d+")  # numbers, in literals and in names (`light2`)
 _NAME_RE = compiled(r"(\w+)\s*(?:\(|\{|$)")  # a definition's name: before its `(` or `{`
 _SIGNATURE_RE = compiled(r"^(?:[A-Za-z_]\w*\s+)+[A-Za-z_]\w*\s*\([^;]*\)\s*\{?\s*$")
 _SIGNATURE_START_RE = compiled(r"^(?:[A-Za-z_]\w*\s+)+[A-Za-z_]\w*\s*\(")
@@ -425,10 +429,14 @@ class _Reader:
         cover = self.cover
         covered = cover is not None and cover.left > 0
         own = self.own_comment(lines)
+        shape = _SHAPE_RE.sub("#", text)
         if covered and not (in_struct or header or own):
             # a statement its own comment explains uses up none of the group above's few lines
             assert cover is not None  # covered: a cover with lines left
-            cover.left -= 1
+            if shape not in cover.shapes[-2:]:  # a line repeated but for its numbers: none
+                cover.left -= 1
+        if cover is not None:
+            cover.shapes = (*cover.shapes, shape)
         self.own_header = own and _HEADER_RE.match(text) is not None
         self.header_line = lines[0]
         if own and (header or _HEADER_RE.match(text)):
