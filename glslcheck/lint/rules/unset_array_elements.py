@@ -109,6 +109,7 @@ def check(ctx: LintContext) -> Iterator[Diagnostic]:
                     loop.loc,
                     help=f"loop over the {len(set_)} element{'s' * (len(set_) != 1)} "
                     f"{home.definition.proto.name} sets, or set the others",
+                    notes=[Diagnostic("read here", read.loc, severity="note")],
                 )
 
 
