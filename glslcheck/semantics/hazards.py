@@ -81,7 +81,7 @@ def index_warnings(model: Model, definition: A.FunctionDefinition) -> list[Diagn
             indexes.append(node)
         elif t is A.For:
             fors.append(node)
-    loops = _loop_ranges(model, fors)
+    loops = loop_ranges(model, fors)
     out = []
     for node in indexes:
         if model.const_value(node.index) is not None:
@@ -133,7 +133,7 @@ def _writes(model: Model, body: A.Node, sym: Symbol) -> bool:
     return False
 
 
-def _loop_ranges(model: Model, fors: list[A.For]) -> dict[int, tuple[float, float]]:
+def loop_ranges(model: Model, fors: list[A.For]) -> dict[int, tuple[float, float]]:
     """id(loop variable symbol) -> the values it takes in the body of its counting for loop
     (`fors`: the for statements of a function, in walk order)."""
     out: dict[int, tuple[float, float]] = {}

@@ -188,11 +188,22 @@ def test_a_repetition_inside_loop_invariant_work_is_left_to_loop_invariant():
     both = _findings(text, ["loop-invariant", "repeated-expression"])
     assert [(f.rule, f.loc.line) for f in both] == [("loop-invariant", 6)]
     assert "(line 6) and" in both[0].message and "(line 7)" in both[0].message
-    # alone, repeated-expression reports the repetition; and one computed outside the hoisted
-    # expressions is still reported beside loop-invariant
+    # alone, repeated-expression reports the repetition; computed once before the loop too, it
+    # is still the loop-invariant work (hoisted, it is that value, reused); computed twice
+    # outside the hoisted expressions, it is a repetition of its own beside loop-invariant
     assert [f.loc.line for f in _findings(text, ["repeated-expression"], only=True)] == [7]
-    outside = text.replace("float s = 0.0;", "float s = (p.x + sin(dot(p, p))) / w;")
-    assert {f.rule for f in _findings(outside, ["loop-invariant", "repeated-expression"])} == {
+    before = text.replace("float s = 0.0;", "float s = (p.x + sin(dot(p, p))) / w;").replace(
+        "return s + sin(dot(p, p));", "return s;"
+    )
+    assert [f.rule for f in _findings(before, ["loop-invariant", "repeated-expression"])] == [
+        "loop-invariant"
+    ]
+    twice = before.replace(
+        "float s = (p.x + sin(dot(p, p))) / w;",
+        "float s = (p.x + sin(dot(p, p))) / w;\n    s += (p.x + sin(dot(p, p))) / w;",
+    )
+    assert twice != before
+    assert {f.rule for f in _findings(twice, ["loop-invariant", "repeated-expression"])} == {
         "loop-invariant",
         "repeated-expression",
     }

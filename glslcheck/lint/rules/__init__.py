@@ -66,6 +66,7 @@ RULE_TABLE: tuple[tuple[str, str], ...] = (
     ("unit-length", "unit_length"),
     ("no-op-arithmetic", "no_op_arithmetic"),
     ("unreachable-code", "unreachable_code"),
+    ("unset-array-elements", "unset_array_elements"),
     ("out-parameter-read", "out_parameter_read"),
     ("uninitialized-read", "uninitialized_read"),
     ("unused-variable", "unused_variable"),

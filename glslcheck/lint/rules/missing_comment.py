@@ -11,19 +11,22 @@ Coverage, what a comment explains:
   `comment-span` statements (5 by default: the rubric's "every few related lines"), until a
   blank line, the next comment, or the end of the block it is in. A statement with a trailing
   comment of its own uses none of the group's few lines: `// PHONG` above three commented
-  lines and three plain ones explains all six. Lines of a comment block explain as one
-  comment. A comment above an `if` or a loop goes on into its body (one right above an
-  `if` whose body has comment lines of its own: below). A comment
-  heading a list of declarations (`// Variables for the camera`) explains the whole list, up to
-  the blank line.
+  lines and three plain ones explains all six, and nor does a statement that repeats one of
+  the two before it but for its numbers (`initLight(light2, vec3(0.0, 1.0, 2.0));` after
+  `initLight(light1, vec3(2.0, 1.0, 0.0));`: one comment for the lines written once per
+  light). Lines of a comment block explain as one comment. A comment above an `if` or a loop
+  goes on into its body (one right above an `if` whose body has comment lines of its own:
+  below). A comment heading a list of declarations (`// Variables for the camera`) explains
+  the whole list, up to the blank line.
 - A trailing comment covers its statement (`x = 1.0; // why`, on any of its lines), and on a
   signature or a loop/`if` header, the block it opens as a comment above would. A trailing
   comment too long for its line, continued on the line below and indented well past the
   statement (8 columns or more), is that statement's too.
 - A function's comment (above it, or a blank line above it when it names the function:
-  `// shade: ...` above `vec3 shade(...)`) explains the function: its signature, and its body
-  whole when the body is simple: at most 4 statements, with no branch or loop at 4. A longer
-  body with no comment of its own is one run, the body; a body with comments of its own is
+  `// shade: ...` above `vec3 shade(...)`) explains the function: its signature, and its body whole
+  when the body is simple: at most 4 statements, with no branch or loop at 4, whatever comments
+  of their own some of its lines have (a few related lines under one comment). A longer body
+  with no comment of its own is one run, the body; a longer body with comments of its own is
   read by them. A struct's comment covers its members; a struct whose members are commented one
   by one needs no comment of its own. Overloads written right under a commented one, with no
   blank line between (`// lengthSq: the squared length of a vector` above `lengthSq(vec2)`,
@@ -33,10 +36,11 @@ Coverage, what a comment explains:
   `return col;`, or a vector of them: `return vec4(col, 1.0);`), `break;`, `continue;`,
   `discard;`, `else`, braces. Code in an `#ifdef`/`#if` branch the preprocessor skips is not
   compiled and not linted (where that is sure: `#ifdef`, `#ifndef`, `#if defined(X)`, `#if 0`).
-- Credits and attributions ("Code from class by ...", "Code by Peter Shirley in ...", "Source
-  for math: https://..."), section markers ("// part 3", "// TEST", "// END CLASS MATERIAL", a
-  `-----` rule), a bare question ("// efficient?"), commented-out code (`//dp.z = r * r;`) and
-  `glslcheck:` directives explain nothing: a TA reads past them.
+- Credits and attributions ("Code from class by ...", "Code by Peter Shirley in ...", "code
+  translated from ...", "Source for math: https://..."), section markers ("// part 3",
+  "// TEST", "// END CLASS MATERIAL", a `-----` rule), a bare question ("// efficient?"),
+  commented-out code (`//dp.z = r * r;`, a type name left alone: `//bool`) and `glslcheck:`
+  directives explain nothing: a TA reads past them.
 
 Runs, what one finding is: one finding per run of uncovered statements, at its first line and
 naming its last, as the rubric deducts "per ambiguous section/block/line". A run goes on across
@@ -55,9 +59,9 @@ A run is a certain deduction, except where the readings of the rubric part (a po
   each group); a credit or a marker ends a heading's section;
 - the body of a function its comment above is the only comment of, when the body is more than
   simple but short (at most 8 statements) or does not branch; a longer branching body is certain;
-- the first statements of a body that has comments of its own, which the function's comment
-  above would cover as a comment above a group (whether a function's comment reaches into its
-  body is a reading);
+- the first statements of a body longer than simple that has comments of its own, which the
+  function's comment above would cover as a comment above a group (whether a function's
+  comment reaches into its body is a reading);
 - the first statements of an `if`'s body that has comment lines of its own, under a comment
   right above the `if` (not one whose group the `if` is further down in): that comment speaks
   for the condition (`// if the discriminant is positive, the ray hits`), the body's comments
@@ -186,7 +190,10 @@ COMMENTED_CODE_RE = compiled(
     r"|(?:const\s+)?(?:float|u?int|bool|void|[biu]?vec[234]|mat[234]|(?-i:[A-Z]\w*|s[A-Z]\w*))"
     r"\s+[A-Za-z_]\w*\s*(?:=[^;]*)?;"
     r"|[\w.]+\s*\(.*\)\s*;"
-    r"|[{}]\s*;?)\s*(?://.*)?$"
+    r"|[{}]\s*;?"
+    # a type or a keyword left alone (`//bool` above a function returning float)
+    r"|(?:const\s+)?(?:bool|float|u?int|void|[biu]?vec[234]|mat[234](?:x[234])?|struct|return"
+    r"|else|in|out|inout|uniform))\s*(?://.*)?$"
 )
 # Statements that need no comment: returning a literal or a plain variable, break, continue,
 # discard, a bare `else`.
@@ -204,6 +211,8 @@ CREDIT_RE = compiled(
     r"|assistance\s+from|source\s+assistance)"
     r"|(?:(?:code|this|it|functions?)\s+(?:was\s+|is\s+)?)?(?:adapted|borrowed|inspired|taken|copied)"
     r"\s+(?:from|by)\b"
+    # "code translated from ...": with its subject, not "converted from degrees to radians"
+    r"|(?:code|this|it|functions?)\s+(?:was\s+|is\s+)?(?:translated|ported|converted)\s+from\b"
     # "Code by Peter Shirley in ...", "Provided by Dan Buckstein during class", "Based of code ..."
     r"|(?:(?:base|original)\s+)?(?:code|functions?|framework)\s+(?:was\s+|is\s+)?"
     r"(?:written\s+|given\s+|provided\s+)?by\s*(?-i:[A-Z])"
@@ -268,8 +277,10 @@ class _Cover:
     depth: int
     left: int
     text: str = ""  # the comment's words (a definition's name in them: it documents it)
+    shapes: tuple = ()  # the statements read under it, their numbers masked (_SHAPE_RE)
 
 
+_SHAPE_RE = compiled(r"\d+(?:\.\d*)?|\.\d+")  # numbers, in literals and in names (`light2`)
 _NAME_RE = compiled(r"(\w+)\s*(?:\(|\{|$)")  # a definition's name: before its `(` or `{`
 _SIGNATURE_RE = compiled(r"^(?:[A-Za-z_]\w*\s+)+[A-Za-z_]\w*\s*\([^;]*\)\s*\{?\s*$")
 _SIGNATURE_START_RE = compiled(r"^(?:[A-Za-z_]\w*\s+)+[A-Za-z_]\w*\s*\(")
@@ -299,6 +310,13 @@ UNLIMITED = 1 << 30  # the span of a comment heading a list: up to the blank lin
 SIMPLE_BODY = 4  # statements of a function its comment above explains whole, with no branch
 SHORT_BODY = 8  # more, or a branching body longer than this, is a certain run under that comment
 _GOES_ON = (",", "+", "-", "*", "/", "=", "&", "|", "?", ":", "<", ">", "(", "!")
+
+
+def _simple(function: dict) -> bool:
+    """Whether a function's body is "a few related lines" its comment above explains whole: at
+    most SIMPLE_BODY statements, with no branch or loop at SIMPLE_BODY."""
+    count = function["count"]
+    return count < SIMPLE_BODY or (count == SIMPLE_BODY and not function["branches"])
 
 
 class _Reader:
@@ -412,10 +430,14 @@ class _Reader:
         cover = self.cover
         covered = cover is not None and cover.left > 0
         own = self.own_comment(lines)
+        shape = _SHAPE_RE.sub("#", text)
         if covered and not (in_struct or header or own):
             # a statement its own comment explains uses up none of the group above's few lines
             assert cover is not None  # covered: a cover with lines left
-            cover.left -= 1
+            if shape not in cover.shapes[-2:]:  # a line repeated but for its numbers: none
+                cover.left -= 1
+        if cover is not None:
+            cover.shapes = (*cover.shapes, shape)
         self.own_header = own and _HEADER_RE.match(text) is not None
         self.header_line = lines[0]
         if own and (header or _HEADER_RE.match(text)):
@@ -606,12 +628,16 @@ class _Reader:
             self.runs[f["runs"] :] = [] if overload else [(first, f["last"], count, "")]
         elif f["explained"] and not f["inner"]:
             kept = [r for r in mine if r[1] < f["sig"][0]]
-            if f["count"] > SIMPLE_BODY or (f["branches"] and f["count"] == SIMPLE_BODY):
+            if not _simple(f):
                 # more than "a few related lines" under one comment: one run, the body; certain
                 # when it is long and branches, else a reading of how far a comment reaches
                 sure = f["count"] > SHORT_BODY and f["branches"]
                 kept.append((f["first"], f["last"], f["count"], "" if sure else LONG_BODY))
             self.runs[f["runs"] :] = kept
+        elif f["explained"] and _simple(f):
+            # a simple body is "a few related lines": its function's comment explains it
+            # whole, whatever comments of their own some of its lines have
+            self.runs[f["runs"] :] = [r for r in mine if r[3] != REACH]
 
     def new_comment(self, number: int) -> None:
         """An explaining comment line: it covers the group below it (a run of comment lines is

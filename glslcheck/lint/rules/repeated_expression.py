@@ -33,8 +33,9 @@ repeated value, at its second evaluation, listing every place it is computed (in
 and as notes: the JSON `notes`): the deduction counts one inefficient practice once. A repeated
 value's repeated parts are not reported again; a part that is also repeated elsewhere at most
 once (`sin(t)` at line 5 and inside `sin(t) * k` twice at line 6) joins the larger value's
-finding. A value computed only inside expressions that loop-invariant reports is left to that
-rule: computed once before the loop, it is computed once.
+finding. A value computed only inside expressions that loop-invariant reports, or once before
+the loop and then only inside them, is left to that rule: hoisted out of the loop, it is
+computed once (and reused).
 
 ## Why is this bad?
 The course's coding standards: "Use the most efficient methods (-1 per inefficient/unnecessary
@@ -165,7 +166,8 @@ def _places(nodes) -> str:
 
 def _check_function(fn, ctx: LintContext, hoisted: list) -> Iterator[Diagnostic]:
     """The findings of one function; a value computed only inside the expressions of `hoisted`
-    (what loop-invariant reports: computed once before the loop, it is computed once) is not."""
+    (what loop-invariant reports: computed once before the loop, it is computed once), or first
+    elsewhere and then only inside them (hoisted, it is that value, reused), is not."""
     groups: dict = {}
     targets = {id(n.target) for n in fn.nodes if type(n) is A.Assignment}
     for n in fn.nodes:
@@ -235,9 +237,10 @@ def _check_function(fn, ctx: LintContext, hoisted: list) -> Iterator[Diagnostic]
                     owner.setdefault(id(m), places)
     values.sort(key=lambda places: fn.enter[id(places[1][0])])
     for places in values:
-        if hoisted and all(any(fn.contains(h, n) for h in hoisted) for n, _ in places):
-            continue
         (first, key), (b, _) = places[0], places[1]
+        again = [n for n, _ in places if not fn.contains(first, n)]  # not the first or its parts
+        if hoisted and again and all(any(fn.contains(h, n) for h in hoisted) for n in again):
+            continue
         same = [n for n, k in places if k == key]
         parts: dict = {}  # repeated parts merged into this value: key -> their places
         for n, k in places:

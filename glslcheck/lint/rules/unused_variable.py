@@ -22,6 +22,15 @@ block writing the whole variable replaces (`v = ...;`, or passing `v` to an `out
 before anything reads it (`dir = target - origin; calcRay(dir, ...);` with
 `calcRay(out vec4 dir, ...)`).
 
+Likewise a possible deduction: a call, as a statement, of a user function whose results are
+its `out` arguments (it writes no global) when each of them is replaced before anything reads
+it, on every path from the call: by the next write of the whole variable in the same block, or
+in a counting loop there that runs at least once, with no jump between (`calcViewport(vp, ...);
+calcRay(dir, vp);` before a sampling loop that calls both again first thing), or is never read
+at all. A read by another such call is no read, and calls that follow each other are one
+finding. A function that reads an `out` parameter before writing it meant `inout`: its calls
+are left to `out-parameter-read`.
+
 ## Why is this bad?
 An unused variable is dead code: a leftover from an earlier version or a computation whose
 result was forgotten (often the bug). The course's coding standards ask to "remove redundant
@@ -46,7 +55,13 @@ from bisect import bisect_right
 
 from ...base.diagnostics import Diagnostic
 from ...frontend import syntax as A
-from ...semantics.analysis import param_directions, program_facts, pure_function
+from ...semantics.analysis import (
+    param_directions,
+    program_facts,
+    pure_function,
+    unassigned_reads,
+)
+from ...semantics.hazards import loop_ranges
 from ...semantics.model import Symbol
 from ...shadertoy.wrapper import PASS_TABS
 
@@ -166,6 +181,7 @@ def check(ctx: LintContext) -> Iterator[Diagnostic]:
             if type(n) is A.Declarator:
                 yield from _unused(ctx, model, n, reads, "local", fn)
         yield from _overwritten(fn, reads)
+        yield from _dead_calls(fn)
 
 
 def _read_positions(fn) -> dict[int, list[int]]:
@@ -284,4 +300,130 @@ def _unused(
             for v in work
             if v.loc.line != loc.line
         ],
+    )
+
+
+_JUMPS = (A.Break, A.Continue, A.Return, A.Discard)
+
+
+def _dead_calls(fn) -> Iterator[Diagnostic]:
+    """Calls whose every output is replaced before anything reads it (see the module's doc),
+    consecutive ones in a block as one finding."""
+    model = fn.model
+    calls = []
+    for c in fn.calls:
+        target = model.call_target(c)
+        if (
+            type(fn.parent.get(id(c))) is not A.ExpressionStatement
+            or not isinstance(target, Symbol)
+            or fn.is_dead(c)
+            or not pure_function(model, target, outputs=True)
+            or any(u.kind == "out-parameter" for u in unassigned_reads(model, target.node))
+        ):
+            continue  # one that reads an out parameter first meant `inout`: out-parameter-read
+        outs = [a for a, d in zip(c.args, param_directions(target)) if d in ("out", "inout")]
+        syms = [model.symbol_of(a) if type(a) is A.Identifier else None for a in outs]
+        if syms and all(s is not None and s.kind == "local" for s in syms):
+            calls.append((c, syms))
+    if not calls:
+        return
+    positions = _read_positions(fn)
+    ranges = loop_ranges(model, [lp for lp in fn.loops if type(lp) is A.For])
+    dead: dict[int, tuple[A.Call, list]] = {}
+    changed = True
+    while changed:  # a read by a dead call is no read: its outputs may be dead in turn
+        changed = False
+        ignored = [(fn.enter[id(c)], fn.exit[id(c)]) for c, _ in dead.values()]
+        for c, syms in calls:
+            if id(c) in dead:
+                continue
+            replaced = [_replaced_at(fn, c, s, positions, ignored, ranges) for s in syms]
+            if all(r is not None for r in replaced) and any(r for r in replaced):
+                dead[id(c)] = (c, [w for r in replaced if r for w in r])
+                changed = True
+    group: list[tuple[A.Call, list]] = []
+    for c, _ in calls:
+        if id(c) not in dead:
+            continue
+        if group and not _next_statement(fn, group[-1][0], c):
+            yield _dead_finding(group)
+            group = []
+        group.append(dead[id(c)])
+    if group:
+        yield _dead_finding(group)
+
+
+def _replaced_at(fn, call: A.Call, sym, positions: dict, ignored: list, ranges: dict):
+    """The write that replaces the value `call` writes to `sym` before anything reads it: the
+    next whole write, on every path from the call (in its block, or in a counting loop there
+    that runs at least once, with no jump between); [] when nothing ever reads `sym`; None
+    when the value may be read."""
+    read_at = [p for p in positions.get(id(sym), []) if not any(a <= p <= b for a, b in ignored)]
+    start = fn.exit[id(call)]
+    later = sorted(
+        (
+            w
+            for w in [w for w in fn.writes_to(sym) if w.kind == "="] + _out_writes(fn, sym)
+            if w.pos > start
+        ),
+        key=lambda w: w.pos,
+    )
+    if not later:
+        return None if any(p > start for p in read_at) or _in_loop(fn, call) else []
+    then = later[0]
+    home, there = fn.region[id(call)], fn.region[id(then.node)]
+    if there[: len(home)] != home or fn.is_dead(then.node):
+        return None
+    for loop_id, kind in there[len(home) :]:
+        loop = next((lp for lp in fn.loops if id(lp) == loop_id), None)
+        if kind != "loop" or type(loop) is not A.For or not _runs(fn.model, loop, ranges):
+            return None
+    if any(start < p < then.pos for p in read_at):
+        return None
+    end = fn.enter[id(then.node)]
+    if any(type(n) in _JUMPS and start < fn.enter[id(n)] < end for n in fn.nodes):
+        return None
+    return [then]
+
+
+def _in_loop(fn, node) -> bool:
+    return any(kind == "loop" for _, kind in fn.region[id(node)])
+
+
+def _runs(model, loop: A.For, ranges: dict) -> bool:
+    """Whether a counting for loop runs its body at least once (a constant, non-empty range)."""
+    init = loop.init
+    if type(init) is not A.DeclarationStatement or type(init.decl) is not A.VariableDeclaration:
+        return False
+    sym = model.symbol_of(init.decl.declarators[0]) if init.decl.declarators else None
+    return sym is not None and id(sym) in ranges
+
+
+def _next_statement(fn, a: A.Call, b: A.Call) -> bool:
+    """Whether call statement `b` follows call statement `a` right away in the same block."""
+    sa, sb = fn.parent.get(id(a)), fn.parent.get(id(b))
+    block = fn.parent.get(id(sa))
+    if type(block) is not A.Compound or fn.parent.get(id(sb)) is not block:
+        return False
+    stmts = block.stmts
+    return any(x is sa and y is sb for x, y in zip(stmts, stmts[1:]))
+
+
+def _dead_finding(group: list[tuple[A.Call, list]]) -> Diagnostic:
+    first = group[0][0]
+    names = " and ".join(f"{c.callee}()" for c, _ in group)
+    replaced = sorted({w.node.loc.line for _, ws in group for w in ws})
+    where = (
+        f"line {replaced[0]}"
+        if len(replaced) == 1
+        else ("lines " + ", ".join(map(str, replaced[:-1])) + f" and {replaced[-1]}")
+    )
+    return Diagnostic(
+        f"what {names} compute{'s' if len(group) == 1 else ''} here is work done for nothing: "
+        f"each output is replaced (at {where}) before anything reads it, or never read",
+        first.loc,
+        help="remove the calls, or use what they compute"
+        if len(group) > 1
+        else "remove the call, or use what it computes",
+        notes=[Diagnostic("also never read", c.loc, severity="note") for c, _ in group[1:]],
     )
