@@ -50,6 +50,14 @@ def text(e: Any) -> str:
     return s if len(s) <= 60 else s[:57] + "..."
 
 
+def at_lines(nodes: Any) -> str:
+    """`line 4`, or `lines 4, 9 and 12`: where the nodes are, for a message."""
+    lines = sorted({n.loc.line for n in nodes})
+    if len(lines) == 1:
+        return f"line {lines[0]}"
+    return "lines " + ", ".join(map(str, lines[:-1])) + f" and {lines[-1]}"
+
+
 def is_atom(e: Any) -> bool:
     """A name, a literal, or a field/swizzle/element of one: printed inside a larger expression
     it needs no parentheses. (Not the NumPy transpiler's `is_plain_read`, which asks whether a value
