@@ -118,6 +118,21 @@ def test_a_rules_fix_removes_its_finding_and_compiles(tmp_path, rule):
         assert sum(f.rule == r for f in after) <= sum(f.rule == r for f in before), r
 
 
+def test_one_pow_finding_per_line_rewrites_every_call_of_it(tmp_path):
+    body = """// a ring
+void mainImage(out vec4 fragColor, in vec2 fragCoord)
+{
+    vec2 p = fragCoord / iResolution.xy - 0.5; // centred
+    float r = pow(p.x, 2.0) + pow(p.y, 2.0) + pow(p.x + p.y, 2.0); // squared sizes
+    fragColor = vec4(vec3(r), 1.0); // grey
+}
+"""
+    fix, new, before, after = fixed(tmp_path, body, "pow-small-exponent")
+    assert sum(f.rule == "pow-small-exponent" for f in before) == 1
+    assert not [f for f in after if f.rule == "pow-small-exponent"]
+    assert "pow(" not in new and "p.x * p.x + p.y * p.y" in new
+
+
 def test_the_uniform_fix_passes_the_uniform_down_every_call_chain(tmp_path):
     body = """// a pulse
 float pulse(in float x) // how bright at x

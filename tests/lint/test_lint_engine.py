@@ -11,7 +11,12 @@ from hypothesis import strategies as st
 from glslcheck.base.diagnostics import Diagnostic
 from glslcheck.lint import engine, lint_source
 from glslcheck.lint.rules import Rule, all_rules
-from glslcheck.lint.rules.missing_header import contributors, names_file, states_purpose
+from glslcheck.lint.rules.missing_header import (
+    contributors,
+    named_students,
+    names_file,
+    states_purpose,
+)
 from glslcheck.lint.textscan import scan
 from glslcheck.shadertoy.sources import Source
 
@@ -111,6 +116,28 @@ def test_header_wordings_accepted(header):
 )
 def test_contributor_lists(header, expected):
     assert contributors(header) == expected
+
+
+@pytest.mark.parametrize(
+    "header, expected",
+    [
+        (
+            "GLSL STARTER CODE BY DANIEL S. BUCKSTEIN\nModification Author: Shakeem Brown",
+            ["Shakeem Brown"],
+        ),
+        ("Lead author - Ana Ruiz", ["Ana Ruiz"]),
+        (
+            "This assignment was written by Dylan Rubin. Sources used are credited below.",
+            ["Dylan Rubin"],
+        ),
+        ("Written by J. R. Smith", ["J. R. Smith"]),  # initials are no sentence end
+        ("Modification Title: Intro to Textures & Image Processing", []),
+        ("Lab Author notes: see the bottom", []),  # no label: words follow the qualifier
+        ("Shaded by Phong. Lighting Model notes", []),  # the sentence after is no name either
+    ],
+)
+def test_named_students(header, expected):
+    assert named_students(header) == expected
 
 
 def test_image_as_a_word_does_not_name_the_file():

@@ -44,10 +44,60 @@ def compared_calls(model: Model, path: str, *names: str) -> Iterator[tuple[A.Cal
                     yield side, other, node.op if side is node.left else FLIPPED[node.op]
 
 
+def _compared(fn, e) -> tuple[Any, str] | None:
+    """(the other side, the operator read with `e` on the left) when `e` is a side of a
+    comparison or an argument of step(), the comparison it makes (`step(edge, x)` is
+    `x >= edge`); else None."""
+    up = fn.parent.get(id(e))
+    if type(up) is A.Binary and up.op in COMPARISONS:
+        return (up.right, up.op) if up.left is e else (up.left, FLIPPED[up.op])
+    if type(up) is A.Call and len(up.args) == 2 and builtin_call(fn.model, up, "step"):
+        return (up.args[0], ">=") if up.args[1] is e else (up.args[1], "<=")
+    return None
+
+
+def compared_values(
+    model: Model, path: str, *names: str
+) -> Iterator[tuple[A.Call, A.Expr, str, bool]]:
+    """Every call of one of the built-in functions `names` computed only to be compared, in the
+    file `path`: a side of a comparison or of a step(), directly (`length(v) < r`, `step(r,
+    length(v))`), or through a local it initializes and that is never written again, every read
+    of which is such a side (`float d = length(v); ... step(r, d)`). (The call, the other side of
+    its first comparison, the operator read with the call on the left, whether directly.)"""
+    for fn in program_facts(model).in_file(path):
+        for node in fn.nodes:
+            if type(node) is A.Call and builtin_call(model, node, *names):
+                found = _compared(fn, node)
+                if found is not None:
+                    yield node, found[0], found[1], True
+            elif type(node) is A.Declarator and type(node.init) is A.Call:
+                if not builtin_call(model, node.init, *names):
+                    continue
+                sym = model.symbol_of(node)
+                if sym is None or len(fn.writes_to(sym)) != 1:
+                    continue
+                reads = [
+                    n for n in fn.nodes if type(n) is A.Identifier and model.symbol_of(n) is sym
+                ]
+                sides = [_compared(fn, r) for r in reads]
+                if reads and all(x is not None for x in sides):
+                    first = sides[0]
+                    assert first is not None
+                    yield node.init, first[0], first[1], False
+
+
 def text(e: Any) -> str:
     """GLSL text of an expression, shortened for a message."""
     s = to_glsl(e)
     return s if len(s) <= 60 else s[:57] + "..."
+
+
+def at_lines(nodes: Any) -> str:
+    """`line 4`, or `lines 4, 9 and 12`: where the nodes are, for a message."""
+    lines = sorted({n.loc.line for n in nodes})
+    if len(lines) == 1:
+        return f"line {lines[0]}"
+    return "lines " + ", ".join(map(str, lines[:-1])) + f" and {lines[-1]}"
 
 
 def is_atom(e: Any) -> bool:

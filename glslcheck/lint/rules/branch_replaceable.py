@@ -10,8 +10,17 @@ and shows the replacement:
 * a max of a min with constant bounds (`x < lo ? lo : (x > hi ? hi : x)`) -> `clamp(x, lo, hi)`;
 * `x >= e ? 1.0 : 0.0` -> `step(e, x)` (and the other comparisons, exactly:
   `x > e ? 1.0 : 0.0` is `1.0 - step(x, e)`);
-* `x < e ? a : b` with `a` and `b` cheap float values (names, literals, fields, swizzles,
-  constants) -> `mix(a, b, step(e, x))`, also as `if (..) v = a; else v = b;`;
+* `x < e ? a : b` with `a` and `b` float values mix() may compute both of (names, literals,
+  fields, swizzles, constants, and constructors, negations, sums, differences and products of
+  those, or one divided by a value that cannot be zero; no call) -> `mix(a, b, step(e, x))`,
+  also as `if (..) v = a; else v = b;`, as `if (..) v = a;` (`v = mix(v, a, ...)`) and as
+  `if (..) return a; else return b;`;
+* nested if/else statements whose arms each give one variable (or the result) such a value
+  (`if (..) { if (..) c = red; else c = blue; } else ...`, an `else if` chain of returns ending
+  in an `else`): one finding at the outer if, with the mix of mixes;
+* conditions beyond one comparison: `&&`, `||` and `!` of float comparisons (a product, a max
+  and `1.0 -` of their steps), and a step() result compared with 0.0 or 1.0 (the branch on a
+  step value, which is the selector itself);
 * `dot(d, n) < 0.0 ? n : -n` (the front-face normal of a ray tracer) -> `faceforward(n, d, n)`,
   which is `n` exactly when `dot(n, d) < 0.0`, else `-n`; also when the comparison is kept in
   a bool variable or field first (`rec.frontFace = dot(d, n) < 0.0;
@@ -19,8 +28,12 @@ and shows the replacement:
   `if (..) v = n; else v = -n;`. A comparison that differs from faceforward's where the dot
   product is 0 (`<= 0.0`) is not reported.
 
-Except for faceforward, the condition must be one comparison of two float (or, for min/max,
-int) scalars; the statement forms must be a single assignment to the same variable in each arm.
+Except for faceforward, the condition must be made of comparisons of two float (or, for one
+min/max, int) scalars; the statement forms must be a single assignment to the same variable (or
+a return) in each arm. Ifs in a row that each select (`if (..) col.x = 1.0;`, then `col.y`,
+`col.z`) are one finding: the rubric deducts "per inefficient practice". The replacement gives
+the same value on every path: conditions and arms are free of side effects, and step() is
+exactly 0.0 or 1.0, so the mix picks an arm (an arm the branch skipped may not divide by zero).
 
 ## Why is this bad?
 The course's coding standards: "Use inefficient functions and methods sparingly and out of
@@ -68,24 +81,60 @@ _OPS = ("<", "<=", ">", ">=")
 def check(ctx: LintContext) -> Iterator[Diagnostic]:
     for fn in program_facts(ctx.model).in_file(ctx.path):
         inner: set[int] = set()  # ternaries already explained as part of a clamp
+        covered: set[int] = set()  # ifs already explained as part of an outer one's select
+        run: list[tuple[Any, str, tuple[str, str]]] = []  # selecting ifs in a row, one finding
         for node in fn.nodes:
             if type(node) is A.Ternary and id(node) not in inner:
                 fix = _select(fn, node.cond, node.then, node.else_, inner)
                 if fix is not None:
-                    yield _finding(node, "?:", fix)
-            elif type(node) is A.If:
-                fix = _if_statement(fn, node)
-                if fix is not None:
-                    yield _finding(node, "if", fix)
+                    yield _finding([(node, "?:", fix)])
+            elif type(node) is A.If and id(node) not in covered:
+                nest: list[Any] = []
+                fix = _nested(fn, node, nest) or _if_statement(fn, node)
+                if fix is None:
+                    continue
+                covered.update(id(n) for n in nest)
+                what = "nest" if len(nest) > 1 else "if" if node.else_ is not None else "lone if"
+                if run and _follows(fn, run[-1][0], node):
+                    run.append((node, what, fix))
+                    continue
+                if run:
+                    yield _finding(run)
+                run = [(node, what, fix)]
+        if run:
+            yield _finding(run)
+            run = []
 
 
-def _finding(node: Any, what: str, fix: tuple[str, str]) -> Diagnostic:
-    fn_name, replacement = fix
-    kind = "an if/else" if what == "if" else "a ?: selection"
+def _follows(fn, before: Any, node: Any) -> bool:
+    """Whether the statement `node` comes right after `before` in the same block."""
+    block = fn.parent.get(id(node))
+    if type(block) is not A.Compound or fn.parent.get(id(before)) is not block:
+        return False
+    i = next((k for k, st in enumerate(block.stmts) if st is node), 0)
+    return i > 0 and block.stmts[i - 1] is before
+
+
+def _finding(run: list[tuple[Any, str, tuple[str, str]]]) -> Diagnostic:
+    """One finding for a select, or for a run of if statements in a row that each select (three
+    ifs setting `col.x`, `col.y`, `col.z`): the rubric's one inefficient practice."""
+    node, what, (fn_name, replacement) = run[0]
+    kinds = {"if": "an if/else", "lone if": "an if", "nest": "nested if/else statements"}
+    if len(run) == 1:
+        verb = "compute" if what == "nest" else "computes"
+        return Diagnostic(
+            f"{kinds.get(what, 'a ?: selection')} {verb} what {fn_name}() computes without a "
+            "branch",
+            node.loc,
+            help=f"write {replacement}",
+        )
+    names = list(dict.fromkeys(f"{f[0]}()" for _, _, f in run))
     return Diagnostic(
-        f"{kind} computes what {fn_name}() computes without a branch",
+        f"{len(run)} if statements in a row (lines {node.loc.line}-{run[-1][0].loc.line}) compute "
+        f"what {' and '.join(names)} {'computes' if len(names) == 1 else 'compute'} without a "
+        "branch",
         node.loc,
-        help=f"write {replacement}",
+        help="write " + " ".join(f[1] for _, _, f in run),
     )
 
 
@@ -107,14 +156,12 @@ def _if_statement(fn, node: A.If) -> tuple[str, str] | None:
         return None
     if node.else_ is None:
         other = then.target  # if (c) x = a;  is  x = c ? a : x;
-        allow_mix = False
     else:
         other_assign = _single_assignment(node.else_)
         if other_assign is None or fn.key(other_assign.target) != fn.key(then.target):
             return None
         other = other_assign.value
-        allow_mix = True
-    found = _select(fn, node.cond, then.value, other, set(), allow_mix=allow_mix)
+    found = _select(fn, node.cond, then.value, other, set())
     if found is None:
         return None
     name, expr = found
@@ -194,7 +241,7 @@ def _is_const(fn, e) -> bool:
     return len(numbers(fn.model.const_value(e))) == 1
 
 
-def _select(fn, cond, a, b, inner: set[int], allow_mix: bool = True) -> tuple[str, str] | None:
+def _select(fn, cond, a, b, inner: set[int]) -> tuple[str, str] | None:
     """(built-in, replacement text) for `cond ? a : b`, or None."""
     facing = _face_forward(fn, cond, a, b)
     if facing is not None:
@@ -219,32 +266,150 @@ def _select(fn, cond, a, b, inner: set[int], allow_mix: bool = True) -> tuple[st
                 inner.add(id(nested))
             return "clamp", f"clamp({text(value)}, {text(lo)}, {text(hi)})"
         return name, f"{name}({text(x)}, {text(y)})"
-    cmp = _comparison(fn, cond, "float")
-    if cmp is None:
-        return None
-    left, op, right = cmp
-    # t is 1.0 exactly when the condition holds (sense True) or exactly when it fails (False)
-    if op == ">=":
-        t, sense = f"step({text(right)}, {text(left)})", True
-    elif op == "<":
-        t, sense = f"step({text(right)}, {text(left)})", False
-    elif op == "<=":
-        t, sense = f"step({text(left)}, {text(right)})", True
-    else:  # >
-        t, sense = f"step({text(left)}, {text(right)})", False
-    va, vb = numbers(fn.model.const_value(a)), numbers(fn.model.const_value(b))
-    if fn.model.type_of(a) == fn.model.type_of(cond.left) and len(va) == 1 and len(vb) == 1:
-        if (va[0], vb[0]) == (1.0, 0.0):
-            return "step", t if sense else f"1.0 - {t}{_near(left, op, right)}"
-        if (va[0], vb[0]) == (0.0, 1.0):
-            return "step", f"1.0 - {t}{_near(left, op, right)}" if sense else t
-    if not allow_mix or not (_cheap(fn, a) and _cheap(fn, b)):
-        return None
     ta = fn.model.type_of(a)
-    if getattr(ta, "base", None) != "float" or not (ta.is_scalar or ta.is_vector):
+    va, vb = numbers(fn.model.const_value(a)), numbers(fn.model.const_value(b))
+    ones = len(va) == 1 and len(vb) == 1 and getattr(ta, "is_scalar", False) and ta.base == "float"
+    cmp = _comparison(fn, cond, "float")
+    if cmp is not None:
+        left, op, right = cmp
+        t, sense = _step(left, op, right)
+        if ones and (va[0], vb[0]) == (1.0, 0.0):
+            return "step", t if sense else f"1.0 - {t}{_near(left, op, right)}"
+        if ones and (va[0], vb[0]) == (0.0, 1.0):
+            return "step", f"1.0 - {t}{_near(left, op, right)}" if sense else t
+    else:
+        indicator = _indicator(fn, cond)
+        if indicator is None:
+            return None
+        t, sense = indicator, True
+        if ones and (va[0], vb[0]) == (1.0, 0.0):
+            return "step", t
+        if ones and (va[0], vb[0]) == (0.0, 1.0):
+            return "step", f"1.0 - {_factor(t)}"
+    if not (_value(fn, a) and _value(fn, b)):
+        return None
+    if not _float_valued(fn, a) or fn.model.type_of(b) != ta:
         return None
     first, second = (b, a) if sense else (a, b)
     return "mix", f"mix({text(first)}, {text(second)}, {t})"
+
+
+def _step(left, op, right) -> tuple[str, bool]:
+    """(a step() call, sense): the call is 1.0 exactly when `left op right` holds (sense True)
+    or exactly when it fails (sense False); step(e, x) is 1.0 exactly when x >= e."""
+    if op == ">=":
+        return f"step({text(right)}, {text(left)})", True
+    if op == "<":
+        return f"step({text(right)}, {text(left)})", False
+    if op == "<=":
+        return f"step({text(left)}, {text(right)})", True
+    return f"step({text(left)}, {text(right)})", False  # >
+
+
+def _factor(t: str) -> str:
+    """`t` as an operand of `*` or `-`: parenthesised when it is a difference or a product."""
+    return f"({t})" if " - " in t or " * " in t else t
+
+
+def _indicator(fn, cond) -> str | None:
+    """A float that is exactly 1.0 when `cond` holds and 0.0 when it does not, made without a
+    branch: a step() of a comparison of float scalars, the product (`&&`), max (`||`) and
+    `1.0 -` (`!`) of such, or a step() result compared with 0.0 or 1.0 (a branch on the step
+    value, which is the selector itself). None for any other condition."""
+    t = type(cond)
+    if t is A.Binary and cond.op in ("&&", "||"):
+        a, b = _indicator(fn, cond.left), _indicator(fn, cond.right)
+        if a is None or b is None:
+            return None
+        return f"{_factor(a)} * {_factor(b)}" if cond.op == "&&" else f"max({a}, {b})"
+    if t is A.Unary and cond.op == "!":
+        a = _indicator(fn, cond.operand)
+        return None if a is None else f"1.0 - {_factor(a)}"
+    if t is A.Binary and cond.op in ("==", "!="):
+        for side, other in ((cond.left, cond.right), (cond.right, cond.left)):
+            bound = numbers(fn.model.const_value(other))
+            kind = fn.model.type_of(side)
+            if (
+                builtin_call(fn.model, side, "step")
+                and getattr(kind, "is_scalar", False)
+                and fn.is_pure(side)
+                and bound in ([0.0], [1.0])
+            ):
+                one = (bound == [1.0]) == (cond.op == "==")  # the condition holds at 1.0
+                return text(side) if one else f"1.0 - {text(side)}"
+        return None
+    cmp = _comparison(fn, cond, "float")
+    if cmp is None:
+        return None
+    step, sense = _step(*cmp)
+    return step if sense else f"1.0 - {step}"
+
+
+def _nested(fn, node: A.If, nest: list) -> tuple[str, str] | None:
+    """`mix` for an if/else whose arms give one variable (or the function's result) a value
+    each, through nested if/else statements too (`if (a) { if (b) c = x; else c = y; } else
+    ...`, `if (a) return x; else if (b) return x; else return y;`): one finding for the whole
+    nest, whose ifs go to `nest`. None for a single if/else assigning (`_if_statement`'s)."""
+    if node.else_ is None:
+        return None
+    leaf: Any = node.then
+    while True:
+        while type(leaf) is A.Compound and len(leaf.stmts) == 1:
+            leaf = leaf.stmts[0]
+        if type(leaf) is not A.If:
+            break
+        leaf = leaf.then
+    assign = _single_assignment(leaf)
+    if type(leaf) is A.Return:
+        target = None
+    elif assign is not None and fn.is_pure(assign.target):
+        target = assign.target
+    else:
+        return None
+    kinds: list[Any] = []
+    value = _arm(fn, node, target, nest, kinds)
+    if value is None or any(k != kinds[0] for k in kinds) or (target is not None and len(nest) < 2):
+        return None
+    if target is None:
+        return "mix", f"return {value};"
+    return "mix", f"{text(target)} = {value};"
+
+
+def _arm(fn, stmt, target, nest: list, kinds: list) -> str | None:
+    """The value an arm gives `target` (None: returns) as text: a single `target = v;` (or
+    `return v;`) of a branch-free float value (`_value`), or an if/else of such arms on a
+    condition `_indicator` makes a selector of (added to `nest`). None otherwise."""
+    while type(stmt) is A.Compound and len(stmt.stmts) == 1:
+        stmt = stmt.stmts[0]
+    if type(stmt) is A.If:
+        if stmt.else_ is None:
+            return None
+        cmp = _comparison(fn, stmt.cond, "float")
+        indicator, sense = _step(*cmp) if cmp is not None else (_indicator(fn, stmt.cond), True)
+        if indicator is None:
+            return None
+        a = _arm(fn, stmt.then, target, nest, kinds)
+        b = _arm(fn, stmt.else_, target, nest, kinds)
+        if a is None or b is None:
+            return None
+        nest.append(stmt)
+        return f"mix({b}, {a}, {indicator})" if sense else f"mix({a}, {b}, {indicator})"
+    value = None
+    if target is None:
+        value = stmt.value if type(stmt) is A.Return else None
+    else:
+        assign = _single_assignment(stmt)
+        if assign is not None and fn.key(assign.target) == fn.key(target):
+            value = assign.value
+    if value is None or not _value(fn, value) or not _float_valued(fn, value):
+        return None
+    kinds.append(fn.model.type_of(value))
+    return text(value)
+
+
+def _float_valued(fn, e) -> bool:
+    kind = fn.model.type_of(e)
+    return getattr(kind, "base", None) == "float" and (kind.is_scalar or kind.is_vector)
 
 
 def _negation_of(fn, e, v) -> bool:
@@ -337,4 +502,25 @@ def _cheap(fn, e) -> bool:
         return _cheap(fn, e.base)
     if t is A.Unary and e.op == "-":
         return _cheap(fn, e.operand)
+    return False
+
+
+def _value(fn, e) -> bool:
+    """A value mix() may compute on both sides: a cheap value (`_cheap`), or a constructor, a
+    negation, a sum, difference or product of such, or one divided by a value that cannot be
+    zero. No call: each side costs a few arithmetic operations; no division by what may be
+    zero: the side the branch skipped would make an infinity that mix() turns into NaN."""
+    if _cheap(fn, e):
+        return True
+    t = type(e)
+    if t is A.Unary and e.op == "-":
+        return _value(fn, e.operand)
+    if t is A.Call:
+        return e.constructor and e.array is None and all(_value(fn, a) for a in e.args)
+    if t is A.Binary and e.op in ("+", "-", "*"):
+        return _value(fn, e.left) and _value(fn, e.right)
+    if t is A.Binary and e.op == "/":
+        lo, hi, _ = fn.value_range(e.right)
+        nonzero = (lo is not None and lo > 0) or (hi is not None and hi < 0)
+        return nonzero and _value(fn, e.left) and _value(fn, e.right)
     return False

@@ -1,7 +1,10 @@
 """A length or distance is computed only to be compared with a bound.
 
 ## What it does
-Reports `length(v)` or `distance(a, b)` used directly as an operand of `<`, `<=`, `>` or `>=`.
+Reports `length(v)` or `distance(a, b)` used as an operand of `<`, `<=`, `>` or `>=` or of
+`step()` (`step(r, length(v))` compares `length(v) >= r`), directly or through a local it
+initializes that is never written again and only ever compared (`float d = length(center -
+uv); return 1.0 - step(radius, d);`). The fix, for a direct comparison, squares both sides.
 
 ## Why is this bad?
 The course's coding standards: "Use the most efficient methods (-1 per inefficient/unnecessary
@@ -28,7 +31,7 @@ from __future__ import annotations
 
 from ..fixes import Fix, Fixable
 from ..fixes.build import declare_before, facts_of, fit, name_hint, node_text, operand_text, replace
-from ._text import compared_calls, is_atom, squared, squared_bound, text
+from ._text import compared_values, is_atom, squared, squared_bound, text
 
 TYPE_CHECKING = False  # not typing's: importing typing costs every start-up
 if TYPE_CHECKING:
@@ -48,7 +51,7 @@ def check(ctx: LintContext) -> Iterator[Diagnostic]:
     model = ctx.model
     if model is None:  # (no semantic model: no function has facts)
         return
-    for side, other, op in compared_calls(model, ctx.path, "length", "distance"):
+    for side, other, op, direct in compared_values(model, ctx.path, "length", "distance"):
         bound = squared(model, other)
         if side.callee == "length":
             v = text(side.args[0])
@@ -56,11 +59,12 @@ def check(ctx: LintContext) -> Iterator[Diagnostic]:
         else:
             a, b = text(side.args[0]), text(side.args[1])
             fix = f"compare the squared distance: with d = {a} - {b}, dot(d, d) {op} {bound}"
+        kept = "" if direct else ", its value kept in a local that is only compared"
         yield Fixable(
-            f"{side.callee}() is compared with a bound: its square root is not needed",
+            f"{side.callee}() is compared with a bound{kept}: its square root is not needed",
             side.loc,
             help=fix,
-            fix=_fix(ctx, side, other),
+            fix=_fix(ctx, side, other) if direct else None,
         )
 
 

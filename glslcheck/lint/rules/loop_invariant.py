@@ -62,7 +62,7 @@ from ...semantics.model import Symbol
 from ..fixes import Fix, Fixable
 from ..fixes.build import declare_before, name_hint, node_text, replace_with_name, statement_of
 from ._helper_values import call_sites, helper_values, invariant_arguments
-from ._text import text
+from ._text import at_lines, text
 
 TYPE_CHECKING = False  # not typing's: importing typing costs every start-up
 if TYPE_CHECKING:
@@ -209,13 +209,6 @@ def _same_outputs(fn, call, written: set[int], calls_user: bool) -> bool:
     return True
 
 
-def _lines(places) -> str:
-    lines = sorted({p.loc.line for p in places})
-    if len(lines) == 1:
-        return f"line {lines[0]}"
-    return "lines " + ", ".join(map(str, lines[:-1])) + f" and {lines[-1]}"
-
-
 def _statement(fn, n) -> tuple[int, int]:
     """(id of the block, index in it) of the statement holding `n`; (0, -1) outside a block."""
     child, up = n, fn.parent.get(id(n))
@@ -256,11 +249,11 @@ def _check_function(fn, ctx: LintContext) -> Iterator[Diagnostic]:
             help_ = "call it once before the loop"
         elif len(group) == 1:
             ps = group[0]
-            times = "" if len(ps) == 1 else f" (computed {len(ps)} times in it, at {_lines(ps)})"
+            times = "" if len(ps) == 1 else f" (computed {len(ps)} times in it, at {at_lines(ps)})"
             message = f"'{text(first)}' has the same value on every iteration of the {where}{times}"
             help_ = "compute it once before the loop, in a local variable, and use that inside"
         else:
-            named = [f"'{text(ps[0])}' ({_lines(ps)})" for ps in group]
+            named = [f"'{text(ps[0])}' ({at_lines(ps)})" for ps in group]
             message = (
                 f"{len(group)} expressions give the same value on every iteration of the "
                 f"{where}: " + ", ".join(named[:-1]) + f" and {named[-1]}"

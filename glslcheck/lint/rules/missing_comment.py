@@ -21,7 +21,8 @@ Coverage, what a comment explains:
 - A trailing comment covers its statement (`x = 1.0; // why`, on any of its lines), and on a
   signature or a loop/`if` header, the block it opens as a comment above would. A trailing
   comment too long for its line, continued on the line below and indented well past the
-  statement (8 columns or more), is that statement's too.
+  statement (8 columns or more), is that statement's too, and so is a comment on the opening
+  brace's own line right under a signature or a header (`{ // a sine wave moving right`).
 - A function's comment (above it, or a blank line above it when it names the function:
   `// shade: ...` above `vec3 shade(...)`) explains the function: its signature, and its body whole
   when the body is simple: at most 4 statements, with no branch or loop at 4, whatever comments
@@ -398,7 +399,12 @@ class _Reader:
         if any(self.kinds[n - 1] in (TRAILING, LEADING) and self.explains(n) for n in lines):
             return True
         below = lines[-1] + 1
-        if below > len(self.kinds) or self.kinds[below - 1] is not COMMENT:
+        if below > len(self.kinds):
+            return False
+        if self.kinds[below - 1] is BRACE_COMMENT and self.code[below - 1].strip() == "{":
+            # `{ // why` under a signature or a header: its opening brace's comment is its own
+            return self.explains(below)
+        if self.kinds[below - 1] is not COMMENT:
             return False
         return _column(self.scan.lines[below - 1]) >= _column(
             self.scan.lines[lines[0] - 1]

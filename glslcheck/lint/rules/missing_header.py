@@ -5,9 +5,11 @@ Reads the comments at the top of the file, before its first line of code (a lice
 come first; `#define` lines do not end the header), and reports the file when they name no
 student. A student is named by
 - a label: `Author:`, `Authors:`, `Contributors:`, `Team:`, `Students:`, `Names:` (with the
-  names after it or on the lines below);
+  names after it or on the lines below), also after a word saying whose authorship it is
+  (`Modification Author:`, `Lead author -`);
 - an authorship phrase: `Made by`, `Written by`, `Modified by`, `Code extended by`,
-  `Assignment by:`, `Rest of the code by ...`, `Collaborated with ...`;
+  `Assignment by:`, `Rest of the code by ...`, `Collaborated with ...`; the name ends with its
+  sentence (`written by Dylan Rubin. Sources used ...`: `Sources` is no part of it);
 - a `Copyright <year> <name>` line of a license;
 - a line of people's names (`// Eli Moore`, `// Jane Doe & John Smith`, `// Eli Moore,
   GPR-200`), or names after the lab they are for (`// GPR-200 Lab 4 - Eli Moore`), unless it
@@ -254,8 +256,10 @@ _NOT_NAME_WORDS = compiled(
     re.I,
 )
 # Authorship: a label followed by names, or a phrase with `by`/`with` before them.
+# A label may carry a word saying whose authorship it is (`Modification Author:`, `Lead author:`).
 _AUTHOR_LABEL = compiled(
-    r"^\W*@?(?:auth[oe]rs?|contributors?|team(?:\s+members)?|students?|names?|group(?:\s+members)?"
+    r"^\W*@?(?:(?:modification|modifying|lead|co|student|project|lab|assignment|code|file)[\s-]+)?"
+    r"(?:auth[oe]rs?|contributors?|team(?:\s+members)?|students?|names?|group(?:\s+members)?"
     r"|partners?|programmers?|developers?)\s*[:\-]\s*(?P<rest>.*)$",
     re.I,
 )
@@ -326,7 +330,9 @@ def named_students(text: str) -> list[str]:
             and not _CREDIT_PHRASE.search(line[: phrase.start()])
             and not _under_credit(lines, i)
         ):
-            chunks = re.split(r"[,;&]|\band\b", line[phrase.start("name") :])
+            # a name ends at a sentence's end too (`by Dylan Rubin. Sources used ...`); an
+            # initial or a title (`J.`, `Mr.`) has fewer than three small letters before its dot
+            chunks = re.split(r"[,;&]|\band\b|(?<=[a-z]{3})\.\s", line[phrase.start("name") :])
             found = [
                 m.group("name")
                 for m in map(_PERSON_AT.match, chunks)

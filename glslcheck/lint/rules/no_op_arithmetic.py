@@ -7,6 +7,9 @@ itself: the constant, written out as a literal or a constructor of literals, has
 component exactly 1 (or 0), and the other operand already has the result's type. A named
 constant (`x * kGain`) is a setting and is not reported.
 
+The same no-op written again in a function (`time * 1.0` in each of its returns) is one
+finding naming every place: one unnecessary practice.
+
 A possible deduction: a literal left at its neutral value may stand for a setting too (a speed
 of `1.0`, a white light color), and the compiler folds the operation away. A constant that
 widens a scalar to a vector (`t * vec3(1.0)`, the starter's white in `(1.0 - t) * vec3(1.0) + t
@@ -33,7 +36,7 @@ from __future__ import annotations
 from ...base.diagnostics import Diagnostic
 from ...frontend import syntax as A
 from ...semantics.analysis import numbers, program_facts
-from ._text import text
+from ._text import at_lines, text
 
 TYPE_CHECKING = False  # not typing's: importing typing costs every start-up
 if TYPE_CHECKING:
@@ -55,17 +58,30 @@ _VERB = {"*": "multiplying by", "/": "dividing by", "+": "adding", "-": "subtrac
 
 def check(ctx: LintContext) -> Iterator[Diagnostic]:
     for fn in program_facts(ctx.model).in_file(ctx.path):
+        # the same no-op written again in a function (`time * 1.0` in each of its returns) is one
+        # unnecessary practice, as the rubric deducts it: one finding naming every place
+        same: dict[tuple, list[tuple]] = {}  # (operator, the constant's values) -> places
         for n in fn.nodes:
             if type(n) is not A.Binary or n.op not in _IDENTITY or fn.is_dead(n):
                 continue
             found = _no_op(fn, n)
             if found is not None:
                 constant, other = found
-                yield Diagnostic(
-                    f"'{text(n)}' is {text(other)}: {_VERB[n.op]} {text(constant)} changes nothing",
-                    n.loc,
-                    help=f"write {text(other)}",
-                )
+                key = (n.op, tuple(numbers(fn.model.const_value(constant))))
+                same.setdefault(key, []).append((n, constant, other))
+        for places in same.values():
+            n, constant, other = places[0]
+            again = (
+                ""
+                if len(places) == 1
+                else f", and {len(places) - 1} more at {at_lines([p[0] for p in places[1:]])}"
+            )
+            yield Diagnostic(
+                f"'{text(n)}' is {text(other)}: {_VERB[n.op]} {text(constant)} changes "
+                f"nothing{again}",
+                n.loc,
+                help=f"write {text(other)}" + (" (and likewise at each place)" if again else ""),
+            )
 
 
 def _no_op(fn, n: A.Binary):

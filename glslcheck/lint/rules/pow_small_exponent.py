@@ -8,6 +8,10 @@ local variables (`float highlight = 4.0; ... pow(specCo, highlight)`) when that 
 it on every path, with no other write between (the dataflow's `reaching_value`), and through
 scalar arithmetic of such locals (`float eh = 2.0; eh = eh * eh; ... pow(Ks, eh)`: 4).
 
+The rubric deducts "per inefficient practice": the calls of one line (`pow(dx, 2.0) +
+pow(dy, 2.0)`) are one finding that names each call, and so are the same calls written again on
+other lines of the function (`pow(1.618, -1.)` on three lines); the fix rewrites every call.
+
 ## Why is this bad?
 The course's coding standards: "Use the most efficient methods (-1 per inefficient/unnecessary
 practices)". `pow` is evaluated as `exp2(e * log2(x))`: two transcendental functions where a
@@ -42,11 +46,12 @@ from ..fixes.build import (
     precedence,
     replace,
 )
-from ._text import is_atom, text, wrap
+from ._text import at_lines, is_atom, text, wrap
 
 TYPE_CHECKING = False  # not typing's: importing typing costs every start-up
 if TYPE_CHECKING:
     from collections.abc import Iterator
+    from typing import Any
 
     from ...base.diagnostics import Diagnostic
     from ..engine import LintContext
@@ -75,27 +80,89 @@ def _replacement(e: float, base) -> str | None:
     }.get(e)
 
 
+def small_exponent(fn, node) -> tuple[float, Any] | None:
+    """(the exponent, the local it came through or None) when this rule reports the pow() call
+    `node` of the function `fn`, else None."""
+    value, through = fn.constant_through_locals(node.args[1])
+    values = numbers(value)
+    if not values or any(v != values[0] for v in values):
+        return None
+    if _replacement(values[0], node.args[0]) is None:
+        return None
+    return values[0], through
+
+
 def check(ctx: LintContext) -> Iterator[Diagnostic]:
     model = ctx.model
     if model is None:  # (no semantic model: no function has facts)
         return
+    # The rubric deducts "per inefficient practice": the calls of one line are one practice, and
+    # a line of the same calls written again in the function (`pow(g, -1.)` on three lines) is
+    # that practice again, not a new one. One finding for each, naming every call.
+    groups: dict[tuple, list[tuple]] = {}  # (function, line) -> [(call, exponent, local)]
     for fn, node in builtin_calls(model, ctx.path, "pow", arity=2):
-        value, through = fn.constant_through_locals(node.args[1])
-        values = numbers(value)
-        if not values or any(v != values[0] for v in values):
-            continue
-        fix = _replacement(values[0], node.args[0])
-        if fix is None:
-            continue
-        e = values[0]
-        shown = f"{e:g}" if e != int(e) else f"{int(e)}"
+        small = small_exponent(fn, node)
+        if small is not None:
+            groups.setdefault((id(fn), node.loc.line), []).append((node, *small))
+    merged: dict[tuple, list[tuple]] = {}  # (function, the line's calls as text) -> calls
+    for (fn_id, _), calls in groups.items():
+        merged.setdefault((fn_id, tuple(text(c[0]) for c in calls)), []).extend(calls)
+    for calls in merged.values():
+        yield _finding(ctx, calls)
+
+
+def _shown(e: float) -> str:
+    return f"{e:g}" if e != int(e) else f"{int(e)}"
+
+
+def _finding(ctx: LintContext, calls: list[tuple]) -> Fixable:
+    node, e, through = calls[0]
+    if len(calls) == 1:
         via = f" (through `{through.name}`)" if through is not None else ""
-        yield Fixable(
-            f"pow() with the constant exponent {shown}{via} costs two transcendentals",
+        return Fixable(
+            f"pow() with the constant exponent {_shown(e)}{via} costs two transcendentals",
             node.loc,
-            help=f"write {fix}",
+            help=f"write {_replacement(e, node.args[0])}",
             fix=_fix(ctx, node, e),
         )
+    named = []
+    for n, ne, nthrough in calls:
+        via = f" through `{nthrough.name}`" if nthrough is not None else ""
+        named.append(f"`{text(n)}` (exponent {_shown(ne)}{via})")
+    distinct = list(dict.fromkeys(named))
+    where = at_lines([c[0] for c in calls])
+    listed = ", ".join(distinct[:-1]) + f" and {distinct[-1]}" if len(distinct) > 1 else named[0]
+    helps = list(
+        dict.fromkeys(f"{_replacement(ne, n.args[0])} for `{text(n)}`" for n, ne, _ in calls)
+    )
+    return Fixable(
+        f"{len(calls)} pow() calls with small constant exponents at {where}, {listed}, cost two "
+        "transcendentals each",
+        node.loc,
+        help="write " + "; ".join(helps),
+        fix=_joined(ctx, [_fix(ctx, n, ne) for n, ne, _ in calls]),
+    )
+
+
+def _joined(ctx: LintContext, fixes: list[Fix | None]) -> Fix | None:
+    """The fixes of several calls as one: None when one has none, two touch the same text or
+    two declare the same name (each was made as if it were alone)."""
+    if any(f is None for f in fixes):
+        return None
+    real = [f for f in fixes if f is not None]
+    declared = [e.text.split("=")[0].split()[-1] for f in real for e in f.edits if "=" in e.text]
+    if len(set(declared)) < len(declared):
+        return None
+    if any(a.overlaps(b) for i, a in enumerate(real) for b in real[i + 1 :]):
+        return None
+    unsafe = [f for f in real if f.applicability != "safe"]
+    return Fix(
+        f"replace the {len(real)} pow() calls",
+        ctx.path,
+        tuple(e for f in real for e in f.edits),
+        "unsafe" if unsafe else "safe",
+        unsafe[0].why if unsafe else "",
+    )
 
 
 _MUL = 14  # the printer's precedence of `*` and `/`

@@ -66,7 +66,7 @@ from ...semantics.analysis import program_facts, written_variable
 from ..fixes import Fix, Fixable
 from ..fixes.build import local_for, node_text, replace_with_name
 from . import loop_invariant
-from ._text import text
+from ._text import at_lines, text
 
 TYPE_CHECKING = False  # not typing's: importing typing costs every start-up
 if TYPE_CHECKING:
@@ -155,13 +155,6 @@ def _within_chains(fn, groups: dict) -> dict[int, object]:
                 groups[k].sort(key=lambda m: fn.exit[id(m)])
                 break
     return found
-
-
-def _places(nodes) -> str:
-    lines = sorted({n.loc.line for n in nodes})
-    if len(lines) == 1:
-        return f"line {lines[0]}"
-    return "lines " + ", ".join(map(str, lines[:-1])) + f" and {lines[-1]}"
 
 
 def _check_function(fn, ctx: LintContext, hoisted: list) -> Iterator[Diagnostic]:
@@ -260,10 +253,10 @@ def _check_function(fn, ctx: LintContext, hoisted: list) -> Iterator[Diagnostic]
             edit = _fix(ctx, fn, same, holder if reuse else None, sym)
         times = "twice" if len(same) == 2 else f"{len(same)} times"
         message = (
-            f"'{text(sample[key])}' is computed {times}, with the same value, at {_places(same)}"
+            f"'{text(sample[key])}' is computed {times}, with the same value, at {at_lines(same)}"
         )
         for k, where in parts.items():
-            message += f"; its part '{text(sample[k])}' also at {_places(where)}"
+            message += f"; its part '{text(sample[k])}' also at {at_lines(where)}"
         notes, seen = [], {(b.loc.line, b.loc.column)}
         for n, k in places:
             where = (n.loc.line, n.loc.column)
