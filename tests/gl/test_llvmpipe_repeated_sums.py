@@ -38,6 +38,7 @@ void mainImage(out vec4 c, in vec2 p) {
     float seed = s0;
 """
 K, K2 = np.float32(0.1), np.float32(0.2)
+P1 = np.float32(2.329)
 R1, R2, R3 = np.float32(0.047), np.float32(1.802), np.float32(-1.423)
 
 
@@ -107,7 +108,54 @@ THROUGH_CALLS = {
         "for (int i = 0; i < 4; i++) { rnd(seed); } c = vec4(s0, seed, 0.0, 1.0);",
         {1: (lambda s: _steps(s, 4), lambda s: _merged(s, 4))},
     ),
+    "into_an_unrolled_loop": (
+        "seed += 2.329; float r = 0.0; for (int i = 0; i < 4; i++) { r = rnd(seed); }"
+        " c = vec4(s0, r, 0.0, 1.0);",
+        {
+            1: (
+                lambda s: _left_to_right(s, [P1] + [K] * 4),
+                lambda s: _unrolled(s, [P1], [K], 4, []),
+            )
+        },
+    ),
 }
+
+# Measured, not copied: an unrolled loop whose body adds two constants merges them first,
+# ``phi + (0.1 + 0.1)``, then each copy's sum into the one before (the NumPy backend restarts
+# the chain at the loop top there: repeated_sums.py says why).
+UNROLLED_BODIES = {
+    "unrolled_loop_of_two_steps": (
+        "for (int i = 0; i < 4; i++) { seed += 0.1; seed += 0.1; } c = vec4(s0, seed, 0.0, 1.0);",
+        {1: (lambda s: _merged(s, 8), lambda s: _unrolled(s, [], [K, K], 4, []))},
+    ),
+}
+
+
+def _unrolled(s0, pre, body, times, post):
+    """NIR's order for a loop it unrolls, as measured: the body's constants merged first
+    (``phi + (c1 + c2)``), the copies' sums added up, then the constants `pre` before the loop
+    (merged left to right) and those `post` after it, one at a time."""
+    step = np.float32(0.0)
+    for k in body:
+        step = step + k
+    acc = np.float32(0.0)
+    for _ in range(times):
+        acc = acc + step
+    if pre:
+        before = np.float32(0.0)
+        for k in pre:
+            before = before + k
+        acc = acc + before
+    for k in post:
+        acc = acc + k
+    return s0 + acc
+
+
+def _left_to_right(s0, ks):
+    acc = np.float32(0.0)
+    for k in ks:
+        acc = acc + k
+    return s0 + acc
 
 
 def _render(shader, backend):
@@ -115,11 +163,11 @@ def _render(shader, backend):
     return np.asarray(got, np.float32).reshape(-1, 4)
 
 
-@pytest.mark.parametrize("name", sorted(SHAPES) + sorted(THROUGH_CALLS))
+@pytest.mark.parametrize("name", sorted(SHAPES) + sorted(THROUGH_CALLS) + sorted(UNROLLED_BODIES))
 def test_llvmpipe_merges_the_constants_of_a_repeated_sum(llvmpipe, make_shader, name):
     """The driver's value is the merged order on every pixel, and the shape tells the orders
     apart (else the comparison proves nothing)."""
-    body, channels = {**SHAPES, **THROUGH_CALLS}[name]
+    body, channels = {**SHAPES, **THROUGH_CALLS, **UNROLLED_BODIES}[name]
     got = _render(make_shader(HEAD + body + "\n}"), "gl")
     s0 = got[:, 0]
     for ch, (stepwise, merged) in channels.items():
@@ -136,7 +184,6 @@ def test_numpy_merges_the_constants_of_a_repeated_sum_as_mesa(llvmpipe, make_sha
     assert same.all(), (name, (~same).sum(0).tolist())
 
 
-@pytest.mark.xfail(strict=True, reason="the chain is not followed through calls and unrolled loops")
 @pytest.mark.parametrize("name", sorted(THROUGH_CALLS))
 def test_numpy_merges_the_constants_through_calls_as_mesa(llvmpipe, make_shader, name):
     shader = make_shader(HEAD + THROUGH_CALLS[name][0] + "\n}")

@@ -65,7 +65,7 @@ from ...semantics.model import Constructor, Symbol
 from ..cpu_core.common import comment_safe
 from ..cpu_core.facts import Facts
 from ..cpu_core.uniformity import Uniformity
-from .expressions import ExpressionEmitter, FnState
+from .expressions import ExpressionEmitter, FnState, nir_chain_params
 from .module_text import HEADER, RENDER
 from .values import (
     ATOM,
@@ -511,6 +511,10 @@ class Codegen(ExpressionEmitter):
                     params.append(part.name if isinstance(part, Arr) else part)
             if direction != "in":
                 fs.outs += parts
+        for i in sorted(nir_chain_params(self, sym)):  # a caller's `+= #c` chain: base, pre, merged
+            names = [f"_c{i}b", f"_c{i}p", f"_c{i}m"]
+            params += names
+            fs.sum_chains[id(proto.params[i])] = ([names[0]], [names[1]], [names[2]], 1)
         def_at = len(self.lines)
         self.emit("")  # the def line, once the state arrays the body uses are known
         self.indent += 1
@@ -736,12 +740,52 @@ class Codegen(ExpressionEmitter):
         self.comment(s)
         if s.init is not None:
             self.stmt(s.init)
+        self.enter_unrolled(s)
         step = (lambda: self.expr(s.step)) if s.step is not None else None
         self.loop(s, s.cond, s.body, step, do_while=False)
 
     def _stmt_While(self, s: A.While) -> None:
         self.comment(s)
         self.loop(s, s.cond, s.body, None, do_while=False)
+
+    def enter_unrolled(self, loop: A.For) -> None:
+        """Before a loop NIR unrolls that continues a ``+= #c`` chain (nir_fold.loop_chain): the
+        sum of the loop's own constants, 0 before the first copy, and the chain its body's step
+        continues, the constant before the loop its `pre` (nir_fold.enter_unrolled, the NumPy
+        backend's)."""
+        from ..numpy_engine.transpile import nir_fold
+
+        fs = self.fn
+        assert fs is not None  # generating a function's body
+        ctx = self.fold_context()
+        for sym, _ in nir_fold.loop_chain(ctx, loop):
+            prev = nir_fold.chain_before(ctx, loop, sym)
+            known = fs.sum_chains.get(id(prev)) if prev is not None else None
+            if known is not None and known[3] <= self.indent:
+                base, pre = known[0], known[2]
+                if known[1] is not None:
+                    pre = [f"({m} + {p})" for m, p in zip(known[2], known[1])]
+                pre = [self.tmp_fresh(p) for p in pre]
+            elif nir_fold.varying_start(ctx, loop, sym):
+                base = [self.tmp_copy(self.read(p)) for p in self.var_parts(sym, loop)]
+                pre = None
+            else:
+                continue
+            acc = [self.tmp_fresh(self.cf(0.0)) for _ in base]
+            fs.sum_chains[id(loop)] = (base, pre, acc, self.indent)
+
+    def end_of_unrolled_body(self, loop: A.For) -> None:
+        """The loop's sum advanced by the iteration's constant (:meth:`enter_unrolled`)."""
+        from ..numpy_engine.transpile import nir_fold
+
+        fs = self.fn
+        assert fs is not None  # generating a function's body
+        for _, last in nir_fold.loop_chain(self.fold_context(), loop):
+            start, end = fs.sum_chains.get(id(loop)), fs.sum_chains.get(id(last))
+            if start is None or end is None or end[1] is not start[1]:
+                continue
+            for a, m in zip(start[2], end[2]):
+                self.emit(f"{a} = {m}")
 
     def _stmt_DoWhile(self, s: A.DoWhile) -> None:
         self.comment(s)
@@ -789,6 +833,8 @@ class Codegen(ExpressionEmitter):
         assert self.fn is not None  # generating a function's body
         self.fn.loops.append(("loop", cont))
         ended = self.stmt(body)
+        if isinstance(s, A.For) and not ended:
+            self.end_of_unrolled_body(s)
         self.fn.loops.pop()
         if not ended:
             if do_while:

@@ -38,6 +38,16 @@ if TYPE_CHECKING:
     from .fold_values import FoldValues
 
 
+def nir_chain_params(gen: Any, fn: Symbol) -> dict[int, list[float]]:
+    """nir_fold.chain_params of user function `fn` (the parameters a caller's ``+= #c`` chain
+    runs through), {} outside a function."""
+    from ..numpy_engine.transpile import nir_fold
+
+    if gen.fn is None or gen.fn.sym is None:
+        return {}
+    return nir_fold.chain_params(gen.fold_context(), fn)
+
+
 class FnState:
     """The function Codegen is generating."""
 
@@ -46,7 +56,8 @@ class FnState:
         self.uni = uni  # cpu_core's Uniformity of the function (None: global initializers)
         self.outs: list = []  # the parts of out/inout parameters, returned after the value
         self.loops: list[tuple[str, Any]] = []  # (kind, continue emitter)
-        self.sum_chains: dict[int, tuple[list, list, int]] = {}  # step -> base, constants, depth
+        # `x += #c` (or a call, a loop) -> base, constant before an unrolled loop, merged, depth
+        self.sum_chains: dict[int, tuple[list, list | None, list, int]] = {}
 
 
 class ExpressionEmitter:
@@ -369,16 +380,51 @@ class ExpressionEmitter:
             return None
         ks = [f"(-{p})" if sign == "-" else p for p in k.parts]
         known = fn.sum_chains.get(id(prev)) if prev is not None else None
-        if known is None or known[2] > self.indent:
+        if known is None or known[3] > self.indent:
             if kept:  # (a chain is followed only where its start's temporaries are defined)
                 base = [self.tmp_copy(self.read(p)) for p in targets]
-                fn.sum_chains[id(e)] = (base, ks, self.indent)
+                fn.sum_chains[id(e)] = (base, None, ks, self.indent)
             return None
-        base, merged, depth = known
+        base, pre, merged, depth = known
         n = len(base)
         merged = [f"({merged[i % len(merged)]} + {ks[i % len(ks)]})" for i in range(n)]
-        fn.sum_chains[id(e)] = (base, merged, depth)
-        return Val(self.type_of(e.target), [f"({b} + {m})" for b, m in zip(base, merged)])
+        fn.sum_chains[id(e)] = (base, pre, merged, depth)
+        total = merged if pre is None else [f"({m} + {p})" for m, p in zip(merged, pre)]
+        return Val(self.type_of(e.target), [f"({b} + {m})" for b, m in zip(base, total)])
+
+    def chain_args(self, e: A.Call, fn: Symbol, inouts: dict[int, str]) -> list[str]:
+        """The chain arguments of a call of `fn`, three scalars (base, pre, merged) for each of
+        its nir_fold.chain_params parameters: the caller's chain where the call continues one,
+        else (value, 0, 0); `inouts`: each such argument's value, kept in a temporary. Records
+        the chain the call leaves (nir_fold.repeated_sums, as the NumPy backend)."""
+        from ..numpy_engine.transpile import nir_fold
+
+        if self.fn is None or self.fn.sym is None:
+            return []
+        ctx = self.fold_context()
+        params = nir_fold.chain_params(ctx, fn)
+        zero = self.cf(0.0)
+        step = nir_fold.call_step(ctx, e)
+        out: list[str] = []
+        for i in sorted(params):
+            if step is None or step[0] != i:
+                out += [inouts[i], zero, zero]
+                continue
+            prev = nir_fold.chain_before(ctx, e, step[1])
+            known = self.fn.sum_chains.get(id(prev)) if prev is not None else None
+            pres: list | None = None
+            if known is None or known[3] > self.indent:
+                base, merged, depth = inouts[i], None, self.indent
+            else:
+                base, pres, merged, depth = known[0][0], known[1], known[2][0], known[3]
+            out += [base, pres[0] if pres else zero, merged or zero]
+            if known is not None or nir_fold.varying_start(ctx, e, step[1]):
+                for k in step[2]:
+                    c = self.cf(float(f32(k)))
+                    merged = c if merged is None else f"({merged} + {c})"
+                assert merged is not None  # (a chain parameter adds one constant or more)
+                self.fn.sum_chains[id(e)] = ([base], pres, [merged], depth)
+        return out
 
     def _expr_Unary(self, e: A.Unary) -> Val:
         if e.op in ("++", "--"):
@@ -693,15 +739,21 @@ class ExpressionEmitter:
                 return folded
         args: list[str] = []
         outs: list[list] = []
-        for a, (_, ptype, d) in zip(e.args, fn.params):
+        chained = nir_chain_params(self, fn)
+        inouts: dict[int, str] = {}
+        for i, (a, (_, ptype, d)) in enumerate(zip(e.args, fn.params)):
             if d == "in":
                 parts = self.expr(a).parts
             else:
                 targets = self.lvalue(a)
                 outs.append(targets)
                 parts = [self.read(p) for p in targets] if d == "inout" else []
+                if i in chained:  # (the value before the call, a chain's base: kept)
+                    parts = [self.tmp_copy(p) for p in parts]
+                    inouts[i] = parts[0]
             for p in parts:
                 args.append(p.whole() if isinstance(p, Arr) else p)
+        args += self.chain_args(e, fn, inouts)
         rtype = fn.type
         n_val = 0 if rtype.is_void else len(leaves(rtype, e))
         ret_leaves = [] if rtype.is_void else leaves(rtype, e)

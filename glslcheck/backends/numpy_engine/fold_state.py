@@ -37,6 +37,10 @@ class FoldState:
     terms: dict = field(default_factory=dict)  # returned term -> its kept code
     sum_chains: dict = field(default_factory=dict)  # `x += #c` -> (base, merged constant, lines)
     sum_chained: dict = field(default_factory=dict)  # function -> steps a later step continues
+    sum_params: dict = field(
+        default_factory=dict
+    )  # function -> its parameters a chain runs through
+    sum_loops: dict = field(default_factory=dict)  # (loop, symbol) -> whether copies continue it
     # transpile/constant_flow.py
     constant_flow: Any = None  # the program's ConstantFlow, made on first use
     # transpile/call_fold.py

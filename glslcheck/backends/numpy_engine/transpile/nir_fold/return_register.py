@@ -17,7 +17,7 @@ from .queries import current_function
 TYPE_CHECKING = False  # not typing's: importing typing costs every start-up
 if TYPE_CHECKING:
     from .....semantics.model import Symbol
-    from ..state import TranspilerState
+    from ..state import FoldEngine, TranspilerState
 
 
 def register_call(tr: TranspilerState, call: A.Call, fn: Symbol) -> bool:
@@ -73,7 +73,7 @@ def _in_kept_loop(tr: TranspilerState, sym: Symbol, node: Any, depth: int) -> bo
         return False
     loops = facts.enclosing_loops(node)
     if loops:
-        return not _unrolled(tr, loops[-1])
+        return not unrolled(tr, loops[-1])
     sites = [
         (f, n)
         for f in tr.facts.functions
@@ -83,7 +83,7 @@ def _in_kept_loop(tr: TranspilerState, sym: Symbol, node: Any, depth: int) -> bo
     return bool(sites) and all(_in_kept_loop(tr, f, n, depth + 1) for f, n in sites)
 
 
-def _unrolled(tr: TranspilerState, loop: Any) -> bool:
+def unrolled(tr: FoldEngine, loop: Any) -> bool:
     """A ``for`` loop of a constant count of at most 32 iterations (NIR unrolls it)."""
     if not isinstance(loop, A.For) or induction_variable(loop, tr.model) is None:
         return False
