@@ -511,10 +511,8 @@ class Codegen(ExpressionEmitter):
                     params.append(part.name if isinstance(part, Arr) else part)
             if direction != "in":
                 fs.outs += parts
-        for i in sorted(nir_chain_params(self, sym)):  # a caller's `+= #c` chain: base, pre, merged
-            names = [f"_c{i}b", f"_c{i}p", f"_c{i}m"]
-            params += names
-            fs.sum_chains[id(proto.params[i])] = ([names[0]], [names[1]], [names[2]], 1)
+        for i, ks in sorted(nir_chain_params(self, sym).items()):  # a caller's `+= #c` chain
+            params += [f"_c{i}f", f"_c{i}b"] + [f"_c{i}k{m}" for m in range(len(ks))]
         def_at = len(self.lines)
         self.emit("")  # the def line, once the state arrays the body uses are known
         self.indent += 1
@@ -749,43 +747,29 @@ class Codegen(ExpressionEmitter):
         self.loop(s, s.cond, s.body, None, do_while=False)
 
     def enter_unrolled(self, loop: A.For) -> None:
-        """Before a loop NIR unrolls that continues a ``+= #c`` chain (nir_fold.loop_chain): the
-        sum of the loop's own constants, 0 before the first copy, and the chain its body's step
-        continues, the constant before the loop its `pre` (nir_fold.enter_unrolled, the NumPy
-        backend's)."""
+        """Before a loop NIR unrolls (nir_fold.enter_unrolled, the NumPy backend's): the value
+        before a chain that starts there, kept, and a count of its passes where its steps'
+        constants differ from copy to copy."""
         from ..numpy_engine.transpile import nir_fold
 
         fs = self.fn
         assert fs is not None  # generating a function's body
         ctx = self.fold_context()
-        for sym, _ in nir_fold.loop_chain(ctx, loop):
-            prev = nir_fold.chain_before(ctx, loop, sym)
-            known = fs.sum_chains.get(id(prev)) if prev is not None else None
-            if known is not None and known[3] <= self.indent:
-                base, pre = known[0], known[2]
-                if known[1] is not None:
-                    pre = [f"({m} + {p})" for m, p in zip(known[2], known[1])]
-                pre = [self.tmp_fresh(p) for p in pre]
-            elif nir_fold.varying_start(ctx, loop, sym):
-                base = [self.tmp_copy(self.read(p)) for p in self.var_parts(sym, loop)]
-                pre = None
-            else:
-                continue
-            acc = [self.tmp_fresh(self.cf(0.0)) for _ in base]
-            fs.sum_chains[id(loop)] = (base, pre, acc, self.indent)
+        entry = nir_fold.sum_entry(ctx, loop)
+        if entry is not None and entry.root:
+            self.chain_base(entry, [self.read(p) for p in self.var_parts(entry.sym, loop)])
+        if nir_fold.indexed_loop(ctx, loop):
+            name = self.fresh("ix")
+            self.emit(f"{name} = 0")
+            fs.sum_index[id(loop)] = name
 
     def end_of_unrolled_body(self, loop: A.For) -> None:
-        """The loop's sum advanced by the iteration's constant (:meth:`enter_unrolled`)."""
-        from ..numpy_engine.transpile import nir_fold
-
+        """The loop's pass count advanced (:meth:`enter_unrolled`)."""
         fs = self.fn
         assert fs is not None  # generating a function's body
-        for _, last in nir_fold.loop_chain(self.fold_context(), loop):
-            start, end = fs.sum_chains.get(id(loop)), fs.sum_chains.get(id(last))
-            if start is None or end is None or end[1] is not start[1]:
-                continue
-            for a, m in zip(start[2], end[2]):
-                self.emit(f"{a} = {m}")
+        name = fs.sum_index.get(id(loop))
+        if name is not None:
+            self.emit(f"{name} += 1")
 
     def _stmt_DoWhile(self, s: A.DoWhile) -> None:
         self.comment(s)

@@ -35,12 +35,14 @@ class FoldState:
     sink_calls: set | None = None  # functions some call of which has a constant added to its result
     call_k: dict = field(default_factory=dict)  # call -> the constant sunk into its result
     terms: dict = field(default_factory=dict)  # returned term -> its kept code
-    sum_chains: dict = field(default_factory=dict)  # `x += #c` -> (base, merged constant, lines)
-    sum_chained: dict = field(default_factory=dict)  # function -> steps a later step continues
-    sum_params: dict = field(
-        default_factory=dict
-    )  # function -> its parameters a chain runs through
-    sum_loops: dict = field(default_factory=dict)  # (loop, symbol) -> whether copies continue it
+    # repeated_sums: (function, chain, symbol) -> (its base, lines); function -> its plan, its
+    # chain parameters, their steps; (loop, symbol) -> copies continue it; loop -> pass count
+    sum_chains: dict = field(default_factory=dict)
+    sum_plans: dict = field(default_factory=dict)
+    sum_params: dict = field(default_factory=dict)
+    sum_param_steps: dict = field(default_factory=dict)
+    sum_loops: dict = field(default_factory=dict)
+    sum_index: dict = field(default_factory=dict)
     # transpile/constant_flow.py
     constant_flow: Any = None  # the program's ConstantFlow, made on first use
     # transpile/call_fold.py

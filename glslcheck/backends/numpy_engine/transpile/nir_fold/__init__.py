@@ -14,8 +14,8 @@ The rules copied here, each measured bit for bit against llvmpipe on 50,000 rand
 - dot_constants.py: constants merged into a ``dot`` with a constant, ``dot(vecN(s), #K)`` factored;
 - ffma_split.py: ``(p1 + p2) + e`` returned through a folded call is ``(p1 + e) + p2`` (ffma);
 - returned_sums.py: a constant added to a call's result sinks into the ``+=`` chain it returns;
-- repeated_sums.py: ``seed += 0.1`` written again and again is ``seed0 + (0.1 + 0.1 ...)``,
-  also through calls NIR inlines and loops it unrolls;
+- repeated_sums.py: ``seed += 0.1`` written again and again is ``seed0 + K``, also through calls
+  NIR inlines and loops it unrolls, K in the order sum_order.py simulates;
 - ssa_values.py: a variable assigned again still stands for its value (``p = m*p*2.02``);
 - components.py: NIR's SSA per vector component, constants merged through component writes,
   a ``+= e`` undone by a later ``-= e``;
@@ -56,32 +56,32 @@ from .dispatch import binary, copied_binary
 from .dot_constants import broadcast_dot, dot_operand, merged_dot
 from .flrp import mix_hint
 from .repeated_sums import (
+    Entry,
     call_step,
-    chain_before,
     chain_call_args,
     chain_param_names,
     chain_params,
     end_of_unrolled_body,
     enter_unrolled,
-    loop_chain,
+    indexed_loop,
+    param_step,
     repeated_sum,
-    sum_step,
-    varying_start,
+    sum_entry,
 )
 from .return_register import register_call
 from .returned_sums import keep_term, return_constant_args, sunk_return, sunk_return_value
 
 __all__ = [
     "FoldContext",
+    "Entry",
     "binary",
     "call_step",
-    "chain_before",
     "chain_call_args",
     "chain_param_names",
     "chain_params",
     "end_of_unrolled_body",
     "enter_unrolled",
-    "loop_chain",
+    "indexed_loop",
     "broadcast_dot",
     "component_write",
     "copied_binary",
@@ -89,12 +89,12 @@ __all__ = [
     "keep_term",
     "merged_dot",
     "mix_hint",
+    "param_step",
     "register_call",
     "repeated_sum",
     "return_constant_args",
-    "sum_step",
+    "sum_entry",
     "sunk_return",
     "sunk_return_value",
-    "varying_start",
     "zero_add",
 ]

@@ -1,30 +1,26 @@
 """A variable advanced by constants: ``seed += 0.1`` written again and again (path tracers'
-random numbers).
+random numbers), through the calls NIR inlines and the loops it unrolls.
 
 NIR is SSA: ``seed += 0.1; seed += 0.1; seed += 0.1`` is ``((s0 + 0.1) + 0.1) + 0.1``, and
-``('~fadd', '#a', ('fadd', 'b(is_not_const)', '#c')) -> (a + c) + b`` folds each new constant
-into the sum before it, in float32, left to right: ``s0 + ((0.1 + 0.1) + 0.1)`` (measured on
-llvmpipe, tests/gl/test_llvmpipe_repeated_sums.py). The chain runs while each step's previous
-write reaches it alone (analysis.dataflow: it runs before on every path, nothing writes the
-variable in between), so it restarts at a loop top and stops at the join after a branch that
-writes the variable (a phi to NIR). The generated code has one variable per GLSL one, so the
-value before the chain is kept in a temporary (:func:`repeated_sum`).
+``('~fadd', '#a', ('fadd', 'b(is_not_const)', '#c')) -> (a + c) + b`` merges the constants
+into one, ``s0 + K``, in an order sum_order.py simulates (not simply left to right). A chain
+runs while each step's previous write reaches it alone (analysis.dataflow: it runs before on
+every path, nothing writes the variable in between), so it restarts at the top of a loop NIR
+keeps and after the join of a branch that writes the variable (a phi to NIR), and not from a
+constant (NIR folds those step by step, as written).
 
-NIR inlines every call first, so the chain runs through a call that passes the variable to an
+NIR inlines every call first, so a chain runs through a call that passes the variable to an
 ``inout`` parameter its callee only advances by constants (:func:`chain_params`: ``float
-rnd(inout float s) { s += 0.1; return s; }`` called three times is ``s0 + ((0.1 + 0.1) +
-0.1)``, measured). Such a callee takes the caller's chain as one more argument per parameter,
-``(base, pre, merged)``: its steps compute ``base + ((merged + c) + pre)``, and a caller with no
-chain passes ``(value, 0, 0)``, which gives the written ``value + c`` (``0 + c`` is c).
+rnd(inout float s) { s += 0.1; return s; }``). It unrolls a ``for`` of a constant count after
+one pass of the rules over its body (:func:`unrolled_chain`), so the copies continue it.
 
-NIR unrolls a loop of a constant count (:func:`unrolled_chain`), and the copies continue the
-chain, but not left to right from the constant before the loop: the loop's own constants are
-summed first and the one before the loop (``pre``) added to that sum, ``s0 + ((c + c) + p)``
-in the second copy of ``p; for (4) { += c }`` (measured, with the constants after the loop
-added left to right after it). Followed only where the body adds one constant an iteration (a
-step, or a call of a callee that adds one): with two or more, the measured orders (the body's
-constants summed right to left first, the values inside the body in yet another order) are not
-copied, and the chain restarts at the loop top as for a loop NIR keeps."""
+:func:`chain_plan` builds each chain of a function (steps, calls spread into their callees'
+steps, unrolled loops) and asks sum_order.py for K at every step, per copy of an unrolled
+loop. The engines emit ``base + K`` in llvmpipe mode (the NumPy backend: repeated_sum and the
+functions after it; the compiled engine the same from the plan): the value before the chain
+kept in a temporary, K a constant, or a loop's constants indexed by its pass, and a callee's
+step reads its K from one more argument per chain parameter, ``(base, (K1, K2, ...))`` or None
+(no chain: the written order)."""
 
 from __future__ import annotations
 
@@ -33,56 +29,25 @@ from typing import Any
 from .....frontend import syntax as A
 from .....semantics.analysis.dataflow import FunctionFacts, written_variable
 from .....semantics.model import Symbol
-from .queries import current_function, function_facts, is_constant, is_varying
+from .queries import constant_value, current_function, function_facts, is_constant, is_varying
 from .return_register import unrolled
+from .sum_order import Loop, Step, chain_constants
 
 TYPE_CHECKING = False  # not typing's: importing typing costs every start-up
 if TYPE_CHECKING:
     from ..state import FoldEngine, TranspilerState
 
 
-def sum_step(tr: FoldEngine, e: Any) -> tuple[str, Any, Any, bool] | None:
-    """(sign, the constant, the previous step or None, whether a later step continues this
-    one and its value before must be kept) for a step ``x += #c`` (``x -= #c``, ``x = x +
-    #c``, ``x = #c + x``, ``x = x - #c``); None for any other write. Emits nothing: both CPU
-    engines ask it."""
-    step = _step(tr, e)
-    if step is None:
-        return None
-    sym = tr.model.symbol_of(e.target)
-    prev = _previous_step(tr, e, sym)
-    kept = prev is None and id(e) in _chained(tr) and _varying_start(tr, e, sym)
-    return step[0], step[1], prev, kept
+class Entry:
+    """A write of a chain in the plan of a function: its chain (a number), whether it is the
+    chain's first (the value before it is the base), the K of its value for each copy of the
+    unrolled `loop` around it (one copy outside; a step: one K per component, a call: one per
+    step of its callee) and the written variable."""
 
+    __slots__ = ("chain", "root", "ks", "loop", "sym")
 
-def repeated_sum(tr: TranspilerState, e: A.Assignment, mask: str | None, old: str) -> str | None:
-    """The code of the new value of a step (:func:`sum_step`) whose previous write is a step
-    too: ``base + (c1 + c2 ...)`` in llvmpipe mode, the written ``old + c`` otherwise; None
-    for any other write. The first step of a chain keeps the value before it (`old`) in a
-    temporary and returns None."""
-    step = sum_step(tr, e)
-    if step is None:
-        return None
-    sign, k_node, prev, kept = step
-    tk = tr.expr(k_node, mask)
-    k = f"(-{tk})" if sign == "-" else tk
-    chains = tr.fold_state.sum_chains
-    known = chains.get(id(prev)) if prev is not None else None
-    if known is None or known[3] is not tr.lines:
-        if kept:
-            chains[id(e)] = (tr.tmp(old), None, k, tr.lines)
-        return None
-    base, pre, merged, _ = known
-    merged = k if merged is None else f"({merged} + {k})"
-    chains[id(e)] = (base, pre, merged, tr.lines)
-    t = tr.type_of(e.target)
-    written = tr.binary_values(sign, t, tr.type_of(k_node), old, tk)
-    return f"(({base} + {_total(pre, merged)}) if rt.lp else {written})"
-
-
-def _total(pre: str | None, merged: str) -> str:
-    """The code of a chain's constant: the merged one, plus the one before an unrolled loop."""
-    return merged if pre is None else f"({merged} + {pre})"
+    def __init__(self, chain: int, root: bool, ks: list, loop: Any, sym: Any) -> None:
+        self.chain, self.root, self.ks, self.loop, self.sym = chain, root, ks, loop, sym
 
 
 def _step(tr: FoldEngine, e: Any) -> tuple[str, Any] | None:
@@ -120,8 +85,8 @@ def _previous_step(tr: FoldEngine, e: Any, sym: Any) -> Any:
     """The step (or call of a :func:`chain_params` callee) whose value of `sym` alone reaches
     `e` (NIR sees it as e's operand); the parameter's node at the first write of a chain
     parameter of the function being emitted (the caller's chain comes in there); the loop at
-    the write in the body of an unrolled loop that advances `sym` (:func:`unrolled_chain`);
-    else None."""
+    the first write of `sym` in the body of an unrolled loop (:func:`unrolled_chain`), and
+    its body after such a loop that nothing leaves early; else None."""
     facts = function_facts(tr)
     if not facts.ok or id(e) not in facts.enter:
         return None  # (a node of an inlined body: another function's)
@@ -131,10 +96,19 @@ def _previous_step(tr: FoldEngine, e: Any, sym: Any) -> Any:
         return loops[-1]  # (the first write of the body: its chain starts at the loop's phi)
     if not before:
         fn = current_function(tr).sym
-        params = chain_params(tr, fn) if fn is not None else {}
         index = [i for i, p in enumerate(fn.node.proto.params) if tr.model.symbol_of(p) is sym]
-        return fn.node.proto.params[index[0]] if index and index[0] in params else None
+        if index and index[0] in chain_params(tr, fn):
+            return fn.node.proto.params[index[0]]
+        return None
     w = before[-1]
+    left = [lp for lp in facts.enclosing_loops(w.node) if not facts.contains(lp, e)]
+    if left:  # (the last write is in a loop `e` follows)
+        loop = left[-1]
+        if len(left) > 1 or not unrolled_chain(tr, loop, sym) or _leaves(loop):
+            return None
+        if facts.dominates(loop, e) and not facts.written_between(loop, e, [sym]):
+            return loop.body  # (after the loop: its last copy's value)
+        return None
     if not _is_step(tr, w.node, sym) or not facts.dominates(w.node, e):
         return None
     if facts.written_between(w.node, e, [sym]):
@@ -142,22 +116,28 @@ def _previous_step(tr: FoldEngine, e: Any, sym: Any) -> Any:
     return w.node
 
 
+def _leaves(loop: Any) -> bool:
+    """The loop can be left before its last pass (a break or a return in its body)."""
+    return any(isinstance(n, (A.Break, A.Return)) for n in loop.body.walk())
+
+
 def _is_step(tr: FoldEngine, node: Any, sym: Any) -> bool:
     if isinstance(node, A.Call):
-        return call_step(tr, node) is not None and call_step(tr, node)[1] is sym
-    return _step(tr, node) is not None
+        step = call_step(tr, node)
+        return step is not None and step[1] is sym
+    return isinstance(node, A.Assignment) and _step(tr, node) is not None
 
 
-def call_step(tr: FoldEngine, call: A.Call) -> tuple[int, Any, list[float]] | None:
+def call_step(tr: FoldEngine, call: A.Call) -> tuple[int, Any, list[tuple[float, bool]]] | None:
     """(the parameter's index, the caller's variable, the constants the callee adds to it in
-    order, signed) for a call that passes a whole float variable to a :func:`chain_params`
-    parameter; None for any other call (or one with two such parameters)."""
+    order: (value, whether written as a subtraction)) for a call that passes a whole float
+    variable to a :func:`chain_params` parameter; None for any other call (or one with two
+    such parameters)."""
     target = tr.model.call_target(call)
     if not isinstance(target, Symbol):
         return None
-    params = chain_params(tr, target)
     found = []
-    for i, ks in params.items():
+    for i, ks in chain_params(tr, target).items():
         sym, whole = written_variable(tr.model, call.args[i])
         if (
             sym is not None
@@ -169,86 +149,89 @@ def call_step(tr: FoldEngine, call: A.Call) -> tuple[int, Any, list[float]] | No
     return found[0] if len(found) == 1 else None
 
 
-def chain_params(tr: FoldEngine, fn: Symbol) -> dict[int, list[float]]:
-    """index -> the constants (signed, in order) for each ``inout float`` parameter of user
+def chain_params(tr: FoldEngine, fn: Symbol) -> dict[int, list[tuple[float, bool]]]:
+    """index -> the constants (:func:`call_step`'s) for each ``inout float`` parameter of user
     function `fn` that it only advances by constants, in steps or calls of such functions, all
     in its body's straight line (no branch, loop or return before its end around them): NIR
     inlines the call and the caller's chain runs through it."""
     cache = tr.fold_state.sum_params
-    if id(fn) in cache:
-        return cache[id(fn)]
-    cache[id(fn)] = {}  # (GLSL has no recursion: a guard only)
+    if id(fn) not in cache:
+        cache[id(fn)] = {}  # (GLSL has no recursion: a guard only)
+        cache[id(fn)] = {i: ks for i, (ks, _) in _param_steps(tr, fn).items()}
+    return cache[id(fn)]
+
+
+def _param_steps(tr: FoldEngine, fn: Symbol) -> dict[int, tuple[list, dict[int, int]]]:
+    """index -> (the constants, id(write) -> the offset of its first constant)."""
     facts = _facts_of(tr, fn)
     body = fn.node.body.stmts
     if not facts.ok or any(
         isinstance(n, A.Discard) or isinstance(n, A.Return) and (not body or n is not body[-1])
         for n in fn.node.body.walk()
     ):
-        return cache[id(fn)]
-    out: dict[int, list[float]] = {}
+        return {}
+    out: dict[int, tuple[list, dict[int, int]]] = {}
     for i, (p, (_, ptype, d)) in enumerate(zip(fn.node.proto.params, fn.params)):
         psym = tr.model.symbol_of(p)
         if d != "inout" or psym is None or ptype.base != "float" or not ptype.is_scalar:
             continue
-        ks: list[float] | None = []
+        ks: list[tuple[float, bool]] = []
+        offsets: dict[int, int] = {}
         for w in facts.writes_to(psym):
-            if facts.region[id(w.node)] != () or facts.is_dead(w.node) or ks is None:
-                ks = None
+            if facts.region[id(w.node)] != () or facts.is_dead(w.node):
                 break
             step = _step(tr, w.node) if isinstance(w.node, A.Assignment) else None
             inner = call_step(tr, w.node) if isinstance(w.node, A.Call) else None
+            offsets[id(w.node)] = len(ks)
             if step is not None:
                 v = float(tr.model.const_value(step[1]))
-                ks.append(-v if step[0] == "-" else v)
+                ks.append((-v, True) if step[0] == "-" else (v, False))
             elif inner is not None and inner[1] is psym:
                 ks += inner[2]
             else:
-                ks = None
-        if ks:
-            out[i] = ks
-    cache[id(fn)] = out
+                break
+        else:
+            if ks:
+                out[i] = (ks, offsets)
     return out
+
+
+def param_step(tr: FoldEngine, node: Any) -> tuple[int, int, int] | None:
+    """(the parameter's index, the offset of the node's first constant, how many it adds) for
+    a write of a :func:`chain_params` parameter of the function being emitted; else None."""
+    fn = current_function(tr).sym
+    if fn is None:
+        return None
+    cache = tr.fold_state.sum_param_steps
+    if id(fn) not in cache:
+        cache[id(fn)] = _param_steps(tr, fn)
+    for i, (ks, offsets) in cache[id(fn)].items():
+        if id(node) in offsets:
+            at = offsets[id(node)]
+            ends = sorted(o for o in offsets.values() if o > at) + [len(ks)]
+            return i, at, ends[0] - at
+    return None
 
 
 def unrolled_chain(tr: FoldEngine, loop: Any, sym: Any) -> bool:
     """`loop` is one NIR unrolls (a ``for`` of a constant count, :func:`unrolled`, with no
-    jump and no loop in its body) and its body advances `sym` by one constant, in a step or a
-    call in its straight line: each copy continues the chain of the one before."""
+    loop, continue or discard in its body) and its body writes `sym` only by steps in its
+    straight line: each copy continues the chain of the one before."""
     cache = tr.fold_state.sum_loops
     key = (id(loop), id(sym))
     if key not in cache:
         cache[key] = False
         facts = function_facts(tr)
         if unrolled(tr, loop) and not any(
-            isinstance(n, (A.Break, A.Continue, A.Return, A.Discard, A.For, A.While, A.DoWhile))
+            isinstance(n, (A.Continue, A.Discard, A.For, A.While, A.DoWhile))
             for n in loop.body.walk()
         ):
             inner = facts.region[id(loop.body)]
             writes = [w for w in facts.writes_to(sym) if facts.contains(loop.body, w.node)]
-            if len(writes) == 1 and facts.region[id(writes[0].node)] == inner:
-                node = writes[0].node
-                step = call_step(tr, node) if isinstance(node, A.Call) else None
-                cache[key] = (
-                    _step(tr, node) is not None
-                    if isinstance(node, A.Assignment)
-                    else step is not None and step[1] is sym and len(step[2]) == 1
-                )
+            cache[key] = bool(writes) and all(
+                facts.region[id(w.node)] == inner and _is_step(tr, w.node, sym) for w in writes
+            )
     return cache[key]
-
-
-def loop_chain(tr: FoldEngine, loop: Any) -> list[tuple[Any, Any]]:
-    """(the variable, the last write of the body) for each float local or parameter whose
-    chain an unrolled loop continues (:func:`unrolled_chain`)."""
-    facts = function_facts(tr)
-    if not facts.ok or id(loop) not in facts.enter:
-        return []
-    out = []
-    for ws in facts.writes.values():
-        inside = [w for w in ws if facts.contains(loop.body, w.node)]
-        sym = ws[0].symbol
-        if inside and sym.kind in ("local", "param") and unrolled_chain(tr, loop, sym):
-            out.append((sym, inside[-1].node))
-    return out
 
 
 def _facts_of(tr: FoldEngine, fn: Symbol) -> Any:
@@ -256,32 +239,6 @@ def _facts_of(tr: FoldEngine, fn: Symbol) -> Any:
     if id(fn) not in cache:
         cache[id(fn)] = FunctionFacts(fn.node, tr.model)
     return cache[id(fn)]
-
-
-def _chained(tr: FoldEngine) -> set[int]:
-    """ids of the steps of the current function that a later step continues."""
-    cache = tr.fold_state.sum_chained
-    key = id(current_function(tr).sym)
-    if key not in cache:
-        out: set[int] = set()
-        body = current_function(tr).sym.node.body
-        for n in body.walk():
-            if isinstance(n, A.Assignment) and _step(tr, n) is not None:
-                prev = _previous_step(tr, n, tr.model.symbol_of(n.target))
-            elif isinstance(n, A.Call) and call_step(tr, n) is not None:
-                prev = _previous_step(tr, n, call_step(tr, n)[1])
-            elif isinstance(n, A.For):
-                for sym, _ in loop_chain(tr, n):
-                    prev = _previous_step(tr, n, sym)
-                    if prev is not None:
-                        out.add(id(prev))
-                continue
-            else:
-                continue
-            if prev is not None:
-                out.add(id(prev))
-        cache[key] = out
-    return cache[key]
 
 
 def _varying_start(tr: FoldEngine, e: Any, sym: Any) -> bool:
@@ -297,87 +254,285 @@ def _varying_start(tr: FoldEngine, e: Any, sym: Any) -> bool:
     return True
 
 
-def chain_before(tr: FoldEngine, node: Any, sym: Any) -> Any:
-    """The node whose chain of `sym` reaches `node` (a call or a loop: :func:`_previous_step`),
-    else None; and whether a chain may start there (the value before is no constant)."""
-    return _previous_step(tr, node, sym)
+# -- the plan ----------------------------------------------------------------------------------
+def chain_plan(tr: FoldEngine) -> dict[int, Entry]:
+    """id(step, call or loop) -> its :class:`Entry`, for the chains of the function being
+    emitted (its :func:`chain_params` parameters apart: their steps read the caller's K)."""
+    fn = current_function(tr).sym
+    cache = tr.fold_state.sum_plans
+    if id(fn) not in cache:
+        cache[id(fn)] = {}
+        facts = function_facts(tr)
+        if facts.ok:
+            own = chain_params(tr, fn)
+            skip = {id(tr.model.symbol_of(fn.node.proto.params[i])) for i in own}
+            for ws in facts.writes.values():
+                sym = ws[0].symbol
+                t = sym.type
+                if (
+                    id(sym) in skip
+                    or sym.kind not in ("local", "param")
+                    or t is None
+                    or t.base != "float"
+                    or t.is_matrix
+                    or t.is_array
+                ):
+                    continue
+                _plan_variable(tr, facts, sym, ws, cache[id(fn)])
+    return cache[id(fn)]
 
 
-def varying_start(tr: FoldEngine, node: Any, sym: Any) -> bool:
-    """The value of `sym` before `node` is no constant to NIR (a chain may start there)."""
-    return _varying_start(tr, node, sym)
+def _plan_variable(tr: FoldEngine, facts: Any, sym: Any, ws: list, plan: dict) -> None:
+    nodes = []
+    for w in ws:
+        if _is_step(tr, w.node, sym) and all(n is not w.node for n in nodes):
+            nodes.append(w.node)
+    if not nodes:
+        return
+    loops = []
+    for n in nodes:
+        for lp in facts.enclosing_loops(n):
+            if unrolled_chain(tr, lp, sym) and all(lp is not x for x in loops):
+                loops.append(lp)
+    items = sorted(nodes + loops, key=lambda x: facts.enter[id(x)])
+    chain_of: dict[int, int] = {}  # id(item) -> chain number
+    chains: dict[int, list] = {}  # chain number -> ops (top level)
+    where: dict[int, tuple[Any, int, int]] = {}  # id(item) -> (loop or None, first op, count)
+    roots: set[int] = set()
+    loop_ops: dict[int, list] = {}  # id(loop) -> its body's ops
+    components = sym.type.size if sym.type.is_vector else 1
+    for x in items:
+        loop = next((lp for lp in loops if lp is not x and facts.contains(lp.body, x)), None)
+        prev = _previous_step(tr, x, sym)
+        if loop is not None:  # (in an unrolled loop's body: its chain is the loop's)
+            if id(loop) not in chain_of:
+                continue
+            ops, start = loop_ops[id(loop)], -1
+            if prev is not loop:
+                if prev is None or id(prev) not in where:
+                    continue
+                start = where[id(prev)][1] + where[id(prev)][2] - 1
+            chain_of[id(x)] = chain_of[id(loop)]
+        elif prev is None:
+            if not _varying_start(tr, x, sym):
+                continue
+            chain_of[id(x)] = len(chains) + 1
+            chains[chain_of[id(x)]] = ops = []
+            start = -1
+            roots.add(id(x))
+        else:
+            ref = _owner(loops, prev) or prev  # (after a loop: its last copy's value)
+            if id(ref) not in chain_of or where[id(ref)][0] is not None:
+                continue
+            chain_of[id(x)] = chain_of[id(ref)]
+            ops = chains[chain_of[id(x)]]
+            start = where[id(ref)][1] + where[id(ref)][2] - 1
+        first = len(ops)
+        if isinstance(x, A.For):
+            body: list = []
+            loop_ops[id(x)] = body
+            ops.append(Loop(start, _count(tr, x), body, _leaves(x)))
+        else:
+            for j, (k, neg) in enumerate(_constants(tr, x, components)):
+                ops.append(Step(start if j == 0 else len(ops) - 1, k, neg))
+        where[id(x)] = (loop, first, len(ops) - first)
+    for number, ops in chains.items():
+        if len(ops) == 1 and isinstance(ops[0], Step):
+            continue  # (one addition: as written)
+        per_component = []
+        for c in range(components):
+            got = chain_constants(_component(ops, c))
+            if got is None:
+                break
+            per_component.append(got)
+        else:
+            for x in items:
+                if chain_of.get(id(x)) != number:
+                    continue
+                loop, first, count = where[id(x)]
+                plan[id(x)] = Entry(
+                    number,
+                    id(x) in roots,
+                    _ks(per_component, loops, where, x, loop, first, count),
+                    loop,
+                    sym,
+                )
+
+
+def _owner(loops: list, prev: Any) -> Any:
+    """The loop whose body `prev` is (the value after that loop), else None."""
+    return next((lp for lp in loops if lp.body is prev), None)
+
+
+def _count(tr: FoldEngine, loop: Any) -> int:
+    decl = loop.init.decl.declarators[0]
+    start, end = tr.model.const_value(decl.init), tr.model.const_value(loop.cond.right)
+    step = loop.step
+    inc = 1 if isinstance(step, (A.Unary, A.Postfix)) else tr.model.const_value(step.value)
+    return (end - start + (loop.cond.op == "<=") + inc - 1) // inc
+
+
+def _constants(tr: FoldEngine, x: Any, components: int) -> list:
+    """The constants a step or a call adds, as (per-component values, negated)."""
+    if isinstance(x, A.Call):
+        step = call_step(tr, x)
+        assert step is not None  # (an item is a step)
+        return [([v], neg) for v, neg in step[2]]
+    sign, k_node = _step(tr, x)
+    values = constant_value(tr, k_node)
+    if len(values) == 1:
+        values = values * components
+    return [([-v for v in values], True) if sign == "-" else (values, False)]
+
+
+def _component(ops: list, c: int) -> list:
+    out = []
+    for op in ops:
+        if isinstance(op, Loop):
+            out.append(Loop(op.prev, op.count, _component(op.body, c), op.breaks))
+        else:
+            out.append(Step(op.prev, op.k[c] if len(op.k) > 1 else op.k[0], op.neg))
+    return out
+
+
+def _ks(
+    per_component: list, loops: list, where: dict, x: Any, loop: Any, first: int, count: int
+) -> list:
+    """The K of item `x` per copy: per component for a step, per callee constant for a call."""
+    if isinstance(x, A.For):
+        return []
+    if loop is None:
+        vals = [[got[i] for got in per_component] for i in range(first, first + count)]
+        return [_shape(x, vals)]
+    at = where[id(loop)][1]
+    copies = len(per_component[0][at])
+    out = []
+    for j in range(copies):
+        vals = [[got[at][j][i] for got in per_component] for i in range(first, first + count)]
+        out.append(_shape(x, vals))
+    return out
+
+
+def _shape(x: Any, vals: list) -> list:
+    """A step's K per component, or a call's K per constant (scalar)."""
+    return vals[0] if not isinstance(x, A.Call) else [v[0] for v in vals]
+
+
+def sum_entry(tr: FoldEngine, node: Any) -> Entry | None:
+    """The :class:`Entry` of a step, call or loop of the function being emitted, else None."""
+    if tr.fn is None or current_function(tr).sym is None:
+        return None
+    return chain_plan(tr).get(id(node))
+
+
+def indexed_loop(tr: FoldEngine, loop: Any) -> bool:
+    """Some step in the unrolled `loop` has a K per copy: the engines count its passes."""
+    if tr.fn is None or current_function(tr).sym is None:
+        return False
+    return any(e.loop is loop and len(e.ks) > 1 for e in chain_plan(tr).values())
+
+
+def chain_roots_at(tr: FoldEngine, loop: Any) -> list[Any]:
+    """The variables whose chain starts at the unrolled `loop` (the value before it, kept)."""
+    entry = sum_entry(tr, loop)
+    return [entry.sym] if entry is not None and entry.root else []
+
+
+# -- the NumPy backend's code ------------------------------------------------------------------
+def repeated_sum(tr: TranspilerState, e: A.Assignment, mask: str | None, old: str) -> str | None:
+    """The code of the new value of a step of a chain: ``base + K`` in llvmpipe mode (K
+    :func:`chain_plan`'s), the written ``old + c`` otherwise; None for any other write. The
+    first step of a chain keeps the value before it (`old`) in a temporary."""
+    step = _step(tr, e)
+    if step is None or tr.fn is None:
+        return None
+    sign, k_node = step
+    tk = tr.expr(k_node, mask)
+    written = tr.binary_values(sign, tr.type_of(e.target), tr.type_of(k_node), old, tk)
+    own = param_step(tr, e)
+    if own is not None:  # (a chain parameter: the caller's base and K, or None)
+        c = f"_c{own[0]}"
+        return f"(({c}[0] + {c}[1][{own[1]}]) if rt.lp and {c} is not None else {written})"
+    entry = sum_entry(tr, e)
+    base = _base(tr, entry, old)
+    if entry is None or base is None:
+        return None
+    k = _k_code(tr, entry, [_vector(tr, ks) for ks in entry.ks])
+    return f"(({base} + {k}) if rt.lp else {written})"
+
+
+def _base(tr: TranspilerState, entry: Entry | None, old: str | None) -> str | None:
+    """The code of the value before the entry's chain: kept in a temporary at its first write
+    (`old`: the value there), read in the same Python function after it."""
+    if entry is None:
+        return None
+    bases = tr.fold_state.sum_chains
+    key = (id(current_function(tr).sym), entry.chain, id(entry.sym))
+    if entry.root and old is not None:
+        bases[key] = (tr.tmp(old), tr.lines)
+    known = bases.get(key)
+    return known[0] if known is not None and known[1] is tr.lines else None
+
+
+def _vector(tr: TranspilerState, ks: list) -> str:
+    codes = [tr.const_float(float(k)) for k in ks]
+    return codes[0] if len(codes) == 1 else tr.vector(codes)
+
+
+def _k_code(tr: TranspilerState, entry: Entry, codes: list[str]) -> str:
+    """One code per copy: the copy's, indexed by the unrolled loop's pass when they differ."""
+    if len(codes) == 1:
+        return codes[0]
+    return f"({', '.join(codes)})[{tr.fold_state.sum_index[id(entry.loop)]}]"
 
 
 def chain_call_args(
     tr: TranspilerState, call: A.Call, fn: Symbol, args: dict[int, str]
 ) -> list[str]:
-    """The chain arguments of a call of `fn` (one per :func:`chain_params` parameter, in order:
-    ``(base, pre, merged)``), the caller's chain where the call continues one, else ``(value,
-    0, 0)``; `args`: the code of each inout argument's value by index. Records the chain the
-    call leaves for the steps after it."""
+    """The chain arguments of a call of `fn`, one per :func:`chain_params` parameter, in order:
+    ``(base, (K1, K2, ...))`` where the call continues or starts a chain of the caller (or
+    passes on the caller's own chain parameter), None where it does not (the callee computes
+    as written). `args`: the code of each inout argument's value by index."""
     params = chain_params(tr, fn)
-    if not params:
-        return []
-    zero = tr.const_float(0.0)
-    step = call_step(tr, call)
     out = []
     for i in sorted(params):
-        if step is None or step[0] != i:
-            out.append(f"({args[i]}, {zero}, {zero})")
+        entry = sum_entry(tr, call)
+        step = call_step(tr, call)
+        own = param_step(tr, call)
+        if step is not None and step[0] == i and own is not None:
+            c, a, n = f"_c{own[0]}", own[1], own[2]
+            out.append(f"(None if {c} is None else ({c}[0], {c}[1][{a}:{a + n}]))")
             continue
-        chains = tr.fold_state.sum_chains
-        prev = _previous_step(tr, call, step[1])
-        known = chains.get(id(prev)) if prev is not None else None
-        if known is None or known[3] is not tr.lines:
-            base, pre, merged = args[i], None, None
-        else:
-            base, pre, merged = known[:3]
-        out.append(f"({base}, {pre or zero}, {merged or zero})")
-        if known is not None or _varying_start(tr, call, step[1]):
-            for k in step[2]:
-                c = tr.const_float(k)
-                merged = c if merged is None else f"({merged} + {c})"
-            chains[id(call)] = (base, pre, merged, tr.lines)
+        base = _base(tr, entry, args.get(i)) if step is not None and step[0] == i else None
+        if entry is None or base is None:
+            out.append("None")
+            continue
+        tuples = [f"({''.join(tr.const_float(float(k)) + ', ' for k in ks)})" for ks in entry.ks]
+        out.append(f"({base}, {_k_code(tr, entry, tuples)})")
     return out
 
 
 def chain_param_names(tr: TranspilerState, fn: Symbol) -> list[str]:
-    """The extra parameters of a function with :func:`chain_params` (the caller's chain of each,
-    :func:`chain_call_args`), registered as the chains its first steps continue."""
-    names = []
-    for i in sorted(chain_params(tr, fn)):
-        name = f"_c{i}"
-        names.append(name)
-        node = fn.node.proto.params[i]
-        tr.fold_state.sum_chains[id(node)] = (f"{name}[0]", f"{name}[1]", f"{name}[2]", tr.lines)
-    return names
+    """The extra parameters of a function with :func:`chain_params`: the caller's chain of
+    each (:func:`chain_call_args`)."""
+    return [f"_c{i}" for i in sorted(chain_params(tr, fn))]
 
 
 def enter_unrolled(tr: TranspilerState, loop: Any) -> None:
-    """Before an unrolled loop that continues a chain (:func:`loop_chain`): a variable for the
-    sum of the loop's own constants (0 before the first copy), the chain its body's step
-    continues, with the constant before the loop as its ``pre``."""
-    chains = tr.fold_state.sum_chains
-    for sym, _ in loop_chain(tr, loop):
-        prev = _previous_step(tr, loop, sym)
-        known = chains.get(id(prev)) if prev is not None else None
-        if known is not None and known[3] is tr.lines:
-            base, pre = known[0], tr.tmp(_total(known[1], known[2]))
-        elif _varying_start(tr, loop, sym):
-            base, pre = tr.tmp(tr.var_name(sym, sym.node)), None
-        else:
-            continue
-        acc = tr.fresh("ka")
-        tr.emit(f"{acc} = {tr.const_float(0.0)}")
-        chains[id(loop)] = (base, pre, acc, tr.lines)
+    """Before an unrolled loop of the plan: the value before a chain that starts there, kept,
+    and a count of its passes where its steps' constants differ from copy to copy."""
+    entry = sum_entry(tr, loop)
+    if entry is not None and entry.root:
+        _base(tr, entry, tr.var_name(entry.sym, entry.sym.node))
+    if indexed_loop(tr, loop):
+        name = tr.fresh("ix")
+        current_function(tr).defined.remove(name)  # (a pass count, no lane value)
+        tr.emit(f"{name} = 0")
+        tr.fold_state.sum_index[id(loop)] = name
 
 
 def end_of_unrolled_body(tr: TranspilerState, loop: Any) -> None:
-    """At the end of an unrolled loop's body: the loop's sum advanced by the iteration's
-    constant (:func:`enter_unrolled`)."""
-    chains = tr.fold_state.sum_chains
-    for _, last in loop_chain(tr, loop):
-        start, end = chains.get(id(loop)), chains.get(id(last))
-        if start is None or end is None or end[3] is not tr.lines or end[1] is not start[1]:
-            continue
-        tr.emit(f"{start[2]} = {end[2]}")
+    """At the end of an unrolled loop's body: its pass count advanced (:func:`enter_unrolled`)."""
+    name = tr.fold_state.sum_index.get(id(loop))
+    if name is not None:
+        tr.emit(f"{name} += 1")
