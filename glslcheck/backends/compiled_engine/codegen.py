@@ -511,8 +511,8 @@ class Codegen(ExpressionEmitter):
                     params.append(part.name if isinstance(part, Arr) else part)
             if direction != "in":
                 fs.outs += parts
-        for i, ks in sorted(nir_chain_params(self, sym).items()):  # a caller's `+= #c` chain
-            params += [f"_c{i}f", f"_c{i}b"] + [f"_c{i}k{m}" for m in range(len(ks))]
+        for i, program in sorted(nir_chain_params(self, sym).items()):  # a caller's chain
+            params += [f"_c{i}f", f"_c{i}b"] + [f"_c{i}k{m}" for m in range(program.slots())]
         def_at = len(self.lines)
         self.emit("")  # the def line, once the state arrays the body uses are known
         self.indent += 1

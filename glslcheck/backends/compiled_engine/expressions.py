@@ -390,12 +390,12 @@ class ExpressionEmitter:
         ctx = self.fold_context()
         own = nir_fold.param_step(ctx, e)
         if own is not None:
-            i, at = own[0], own[1]
+            i = own[0]
             old = Val(self.type_of(e.target), [self.read(p) for p in targets])
-            written = self.binary_values(
-                e.op[:-1] if e.op != "=" else e.value.op, old, self.expr(_step_constant(e)), e
-            )
-            return Val(written.t, [f"((_c{i}b + _c{i}k{at}) if _c{i}f else {written.parts[0]})"])
+            op = e.op[:-1] if e.op != "=" else e.value.op
+            written = self.binary_values(op, old, self.expr(_step_constant(e)), e)
+            k = self.param_k(own, 0)
+            return Val(written.t, [f"((_c{i}b + {k}) if _c{i}f else {written.parts[0]})"])
         entry = nir_fold.sum_entry(ctx, e)
         base = self.chain_base(entry, [self.read(p) for p in targets])
         if entry is None or base is None:
@@ -418,6 +418,19 @@ class ExpressionEmitter:
         known = self.fn.sum_chains.get((entry.chain, id(entry.sym)))
         return known[0] if known is not None and known[1] <= self.indent else None
 
+    def param_k(self, own: tuple, m: int) -> str:
+        """The m-th K of a write of this function's chain parameter (nir_fold.param_step): its
+        slot's argument, or in an unrolled loop the copies' arguments indexed by its pass."""
+        from ..numpy_engine.transpile import nir_fold
+
+        i, at, stride, loop, _ = own
+        if loop is None:
+            return f"_c{i}k{at + m}"
+        assert self.fn is not None
+        copies = nir_fold.loop_count(self.fold_context(), loop)
+        names = [f"_c{i}k{at + m + stride * j}" for j in range(copies)]
+        return f"({', '.join(names)})[{self.fn.sum_index[id(loop)]}]"
+
     def k_code(self, entry: Any, codes: list[str]) -> str:
         """One constant per copy of the unrolled loop around the entry, indexed by its pass
         where they differ."""
@@ -438,22 +451,23 @@ class ExpressionEmitter:
         ctx = self.fold_context()
         zero = self.cf(0.0)
         out: list[str] = []
-        for i, ks in sorted(nir_fold.chain_params(ctx, fn).items()):
+        for i, program in sorted(nir_fold.chain_params(ctx, fn).items()):
             step = nir_fold.call_step(ctx, e)
             mine = step is not None and step[0] == i
             own = nir_fold.param_step(ctx, e) if mine else None
             if own is not None:
-                j, at, n = own
-                out += [f"_c{j}f", f"_c{j}b"] + [f"_c{j}k{at + m}" for m in range(n)]
+                j = own[0]
+                out += [f"_c{j}f", f"_c{j}b"] + [self.param_k(own, m) for m in range(own[4])]
                 continue
             entry = nir_fold.sum_entry(ctx, e) if mine else None
             base = self.chain_base(entry, [inouts[i]] if i in inouts else None)
             if entry is None or base is None:
-                out += ["False", zero] + [zero] * len(ks)
+                out += ["False", zero] + [zero] * program.slots()
                 continue
             out += ["True", base[0]]
             out += [
-                self.k_code(entry, [self.cf(float(c[m])) for c in entry.ks]) for m in range(len(ks))
+                self.k_code(entry, [self.cf(float(c[m])) for c in entry.ks])
+                for m in range(program.slots())
             ]
         return out
 

@@ -46,7 +46,9 @@ class Functions(TranspilerState):
         fs.defined.append("_m")
         if nir_fold.sunk_return(self, sym) is not None:
             params.append("_k")  # a constant the caller adds to the result (nir_fold.sunk_return)
-        params += nir_fold.chain_param_names(self, sym)  # the caller's `+= #c` chains
+        chains = nir_fold.chain_param_names(self, sym)  # the caller's `+= #c` chains
+        params += chains
+        fs.defined += chains[::2]  # (a base has lanes: a compacted region gathers it)
         self.last_line = None
         sig = ", ".join(["S", "_m"] + params)
         self.emit(f"def {self.fn_name(sym)}({sig}):")

@@ -64,8 +64,10 @@ from .repeated_sums import (
     end_of_unrolled_body,
     enter_unrolled,
     indexed_loop,
+    loop_count,
     param_step,
     repeated_sum,
+    slot_code,
     sum_entry,
 )
 from .return_register import register_call
@@ -82,6 +84,7 @@ __all__ = [
     "end_of_unrolled_body",
     "enter_unrolled",
     "indexed_loop",
+    "loop_count",
     "broadcast_dot",
     "component_write",
     "copied_binary",
@@ -92,6 +95,7 @@ __all__ = [
     "param_step",
     "register_call",
     "repeated_sum",
+    "slot_code",
     "return_constant_args",
     "sum_entry",
     "sunk_return",

@@ -26,10 +26,19 @@ from __future__ import annotations
 
 from typing import Any
 
+import numpy as np
+
 from .....frontend import syntax as A
 from .....semantics.analysis.dataflow import FunctionFacts, written_variable
 from .....semantics.model import Symbol
-from .queries import constant_value, current_function, function_facts, is_constant, is_varying
+from .queries import (
+    FunctionStandin,
+    constant_value,
+    current_function,
+    function_facts,
+    is_constant,
+    is_varying,
+)
 from .return_register import unrolled
 from .sum_order import Loop, Step, chain_constants
 
@@ -128,16 +137,15 @@ def _is_step(tr: FoldEngine, node: Any, sym: Any) -> bool:
     return isinstance(node, A.Assignment) and _step(tr, node) is not None
 
 
-def call_step(tr: FoldEngine, call: A.Call) -> tuple[int, Any, list[tuple[float, bool]]] | None:
-    """(the parameter's index, the caller's variable, the constants the callee adds to it in
-    order: (value, whether written as a subtraction)) for a call that passes a whole float
-    variable to a :func:`chain_params` parameter; None for any other call (or one with two
-    such parameters)."""
+def call_step(tr: FoldEngine, call: A.Call) -> tuple[int, Any, Program] | None:
+    """(the parameter's index, the caller's variable, the callee's :class:`Program` for it) for
+    a call that passes a whole float variable to a :func:`chain_params` parameter; None for
+    any other call (or one with two such parameters)."""
     target = tr.model.call_target(call)
     if not isinstance(target, Symbol):
         return None
     found = []
-    for i, ks in chain_params(tr, target).items():
+    for i, program in chain_params(tr, target).items():
         sym, whole = written_variable(tr.model, call.args[i])
         if (
             sym is not None
@@ -145,71 +153,95 @@ def call_step(tr: FoldEngine, call: A.Call) -> tuple[int, Any, list[tuple[float,
             and isinstance(call.args[i], A.Identifier)
             and sym.kind in ("local", "param")
         ):
-            found.append((i, sym, ks))
+            found.append((i, sym, program))
     return found[0] if len(found) == 1 else None
 
 
-def chain_params(tr: FoldEngine, fn: Symbol) -> dict[int, list[tuple[float, bool]]]:
-    """index -> the constants (:func:`call_step`'s) for each ``inout float`` parameter of user
-    function `fn` that it only advances by constants, in steps or calls of such functions, all
-    in its body's straight line (no branch, loop or return before its end around them): NIR
-    inlines the call and the caller's chain runs through it."""
+class Program:
+    """What a callee does to a chain parameter: its additions as sum_order ops (prev -1: the
+    value the caller passes), where each write's ops are (id(write) -> (the unrolled loop
+    around it or None, first op, how many)), and whether a loop it can leave early ends it
+    (the value after the call is then a phi: a chain of the caller restarts there)."""
+
+    __slots__ = ("ops", "where", "leaves")
+
+    def __init__(self, ops: list, where: dict, leaves: bool) -> None:
+        self.ops, self.where, self.leaves = ops, where, leaves
+
+    def slots(self) -> int:
+        """How many constants a caller passes: one per addition, per copy in a loop."""
+        return sum(1 if isinstance(op, Step) else op.count * len(op.body) for op in self.ops)
+
+    def slot(self, node: Any) -> tuple[int, int, Any, int]:
+        """(the slot of the write's first constant in the first copy, the stride between two
+        copies (0 outside a loop), the loop, how many constants the write adds a copy)."""
+        loop, first, count = self.where[id(node)]
+        at = 0
+        for j, op in enumerate(self.ops):
+            if loop is None and j == first:
+                return at, 0, None, count
+            if isinstance(op, Loop) and loop is not None and j == self.where[id(loop)][1]:
+                return at + first, len(op.body), loop, count
+            at += 1 if isinstance(op, Step) else op.count * len(op.body)
+        raise AssertionError("a write of the program")
+
+
+def chain_params(tr: FoldEngine, fn: Symbol) -> dict[int, Program]:
+    """index -> the :class:`Program` of each ``inout float`` parameter of user function `fn`
+    that it only advances by constants (steps, calls of such functions), in its body's
+    straight line or that of a loop NIR unrolls: NIR inlines the call and the caller's chain
+    runs through it."""
     cache = tr.fold_state.sum_params
     if id(fn) not in cache:
         cache[id(fn)] = {}  # (GLSL has no recursion: a guard only)
-        cache[id(fn)] = {i: ks for i, (ks, _) in _param_steps(tr, fn).items()}
+        saved = tr.fn
+        tr.fn = FunctionStandin(fn)
+        try:
+            cache[id(fn)] = _programs(tr, fn)
+        finally:
+            tr.fn = saved
     return cache[id(fn)]
 
 
-def _param_steps(tr: FoldEngine, fn: Symbol) -> dict[int, tuple[list, dict[int, int]]]:
-    """index -> (the constants, id(write) -> the offset of its first constant)."""
-    facts = _facts_of(tr, fn)
+def _programs(tr: FoldEngine, fn: Symbol) -> dict[int, Program]:
+    facts = function_facts(tr)
     body = fn.node.body.stmts
-    if not facts.ok or any(
-        isinstance(n, A.Discard) or isinstance(n, A.Return) and (not body or n is not body[-1])
-        for n in fn.node.body.walk()
-    ):
+    if not facts.ok or any(isinstance(n, A.Discard) for n in fn.node.body.walk()):
         return {}
-    out: dict[int, tuple[list, dict[int, int]]] = {}
+    out: dict[int, Program] = {}
     for i, (p, (_, ptype, d)) in enumerate(zip(fn.node.proto.params, fn.params)):
         psym = tr.model.symbol_of(p)
-        if d != "inout" or psym is None or ptype.base != "float" or not ptype.is_scalar:
+        ws = facts.writes_to(psym) if psym is not None else []
+        if d != "inout" or not ws or ptype.base != "float" or not ptype.is_scalar:
             continue
-        ks: list[tuple[float, bool]] = []
-        offsets: dict[int, int] = {}
-        for w in facts.writes_to(psym):
-            if facts.region[id(w.node)] != () or facts.is_dead(w.node):
-                break
-            step = _step(tr, w.node) if isinstance(w.node, A.Assignment) else None
-            inner = call_step(tr, w.node) if isinstance(w.node, A.Call) else None
-            offsets[id(w.node)] = len(ks)
-            if step is not None:
-                v = float(tr.model.const_value(step[1]))
-                ks.append((-v, True) if step[0] == "-" else (v, False))
-            elif inner is not None and inner[1] is psym:
-                ks += inner[2]
-            else:
-                break
-        else:
-            if ks:
-                out[i] = (ks, offsets)
+        chains = _chains(tr, facts, psym, ws, param_root=True)
+        writes = [x for x in chains[0]["items"] if not isinstance(x, A.For)] if chains else []
+        if len(chains) != 1 or len(writes) != len({id(w.node) for w in ws}):
+            continue
+        loops = [x for x in chains[0]["items"] if isinstance(x, A.For)]
+        returns = [n for n in fn.node.body.walk() if isinstance(n, A.Return)]
+        if any(
+            r is not body[-1] and not any(facts.contains(lp.body, r) for lp in loops)
+            for r in returns
+        ) or any(facts.region[id(x)] != () for x in loops):
+            continue  # (a return outside the unrolled loops: the rest runs on some lanes)
+        ops = chains[0]["ops"]
+        out[i] = Program(
+            ops, chains[0]["where"], any(isinstance(op, Loop) and op.breaks for op in ops)
+        )
     return out
 
 
-def param_step(tr: FoldEngine, node: Any) -> tuple[int, int, int] | None:
-    """(the parameter's index, the offset of the node's first constant, how many it adds) for
-    a write of a :func:`chain_params` parameter of the function being emitted; else None."""
+def param_step(tr: FoldEngine, node: Any) -> tuple[int, int, int, Any, int] | None:
+    """(the parameter's index, the slot of the node's first constant, the stride between two
+    copies of its loop, the loop, how many constants it adds a copy) for a write of a
+    :func:`chain_params` parameter of the function being emitted; else None."""
     fn = current_function(tr).sym
-    if fn is None:
+    if fn is None or isinstance(tr.fn, FunctionStandin):
         return None
-    cache = tr.fold_state.sum_param_steps
-    if id(fn) not in cache:
-        cache[id(fn)] = _param_steps(tr, fn)
-    for i, (ks, offsets) in cache[id(fn)].items():
-        if id(node) in offsets:
-            at = offsets[id(node)]
-            ends = sorted(o for o in offsets.values() if o > at) + [len(ks)]
-            return i, at, ends[0] - at
+    for i, program in chain_params(tr, fn).items():
+        if id(node) in program.where:
+            return (i, *program.slot(node))
     return None
 
 
@@ -229,7 +261,13 @@ def unrolled_chain(tr: FoldEngine, loop: Any, sym: Any) -> bool:
             inner = facts.region[id(loop.body)]
             writes = [w for w in facts.writes_to(sym) if facts.contains(loop.body, w.node)]
             cache[key] = bool(writes) and all(
-                facts.region[id(w.node)] == inner and _is_step(tr, w.node, sym) for w in writes
+                facts.region[id(w.node)] == inner
+                and _is_step(tr, w.node, sym)
+                and not (
+                    isinstance(w.node, A.Call)
+                    and any(isinstance(op, Loop) for op in call_step(tr, w.node)[2].ops)
+                )
+                for w in writes
             )
     return cache[key]
 
@@ -283,24 +321,44 @@ def chain_plan(tr: FoldEngine) -> dict[int, Entry]:
 
 
 def _plan_variable(tr: FoldEngine, facts: Any, sym: Any, ws: list, plan: dict) -> None:
-    nodes = []
+    components = sym.type.size if sym.type.is_vector else 1
+    for number, chain in enumerate(_chains(tr, facts, sym, ws, param_root=False), 1):
+        ops = chain["ops"]
+        if len(ops) == 1 and isinstance(ops[0], Step):
+            continue  # (one addition: as written)
+        per_component = []
+        for c in range(components):
+            got = chain_constants(_component(ops, c))
+            if got is None:
+                break
+            per_component.append(got)
+        else:
+            for x in chain["items"]:
+                loop, first, count = chain["where"][id(x)]
+                ks = _ks(per_component, chain["where"], x, loop, first, count)
+                plan[id(x)] = Entry(number, id(x) in chain["roots"], ks, loop, sym)
+
+
+def _chains(tr: FoldEngine, facts: Any, sym: Any, ws: list, param_root: bool) -> list[dict]:
+    """The chains of `sym` in the function being emitted, each {"ops": sum_order ops, "where":
+    id(item) -> (its unrolled loop or None, first op, count), "items": its steps, calls and
+    loops, "roots": ids of its first items}. A chain starts where a step has no previous one
+    and the value is no constant, or (`param_root`: a chain parameter's program) at the
+    parameter."""
+    nodes: list = []
     for w in ws:
         if _is_step(tr, w.node, sym) and all(n is not w.node for n in nodes):
             nodes.append(w.node)
-    if not nodes:
-        return
-    loops = []
+    loops: list = []
     for n in nodes:
         for lp in facts.enclosing_loops(n):
             if unrolled_chain(tr, lp, sym) and all(lp is not x for x in loops):
                 loops.append(lp)
     items = sorted(nodes + loops, key=lambda x: facts.enter[id(x)])
-    chain_of: dict[int, int] = {}  # id(item) -> chain number
-    chains: dict[int, list] = {}  # chain number -> ops (top level)
-    where: dict[int, tuple[Any, int, int]] = {}  # id(item) -> (loop or None, first op, count)
-    roots: set[int] = set()
-    loop_ops: dict[int, list] = {}  # id(loop) -> its body's ops
-    components = sym.type.size if sym.type.is_vector else 1
+    chain_of: dict[int, int] = {}
+    chains: list[dict] = []
+    where: dict[int, tuple[Any, int, int]] = {}
+    loop_ops: dict[int, list] = {}
     for x in items:
         loop = next((lp for lp in loops if lp is not x and facts.contains(lp.body, x)), None)
         prev = _previous_step(tr, x, sym)
@@ -313,50 +371,41 @@ def _plan_variable(tr: FoldEngine, facts: Any, sym: Any, ws: list, plan: dict) -
                     continue
                 start = where[id(prev)][1] + where[id(prev)][2] - 1
             chain_of[id(x)] = chain_of[id(loop)]
-        elif prev is None:
-            if not _varying_start(tr, x, sym):
+        elif prev is None or param_root and isinstance(prev, A.Param):
+            if not param_root and not _varying_start(tr, x, sym):
                 continue
-            chain_of[id(x)] = len(chains) + 1
-            chains[chain_of[id(x)]] = ops = []
-            start = -1
-            roots.add(id(x))
+            chain_of[id(x)] = len(chains)
+            chains.append({"ops": [], "where": where, "items": [], "roots": {id(x)}})
+            ops, start = chains[-1]["ops"], -1
         else:
             ref = _owner(loops, prev) or prev  # (after a loop: its last copy's value)
             if id(ref) not in chain_of or where[id(ref)][0] is not None:
                 continue
             chain_of[id(x)] = chain_of[id(ref)]
-            ops = chains[chain_of[id(x)]]
+            ops = chains[chain_of[id(x)]]["ops"]
             start = where[id(ref)][1] + where[id(ref)][2] - 1
+        chains[chain_of[id(x)]]["items"].append(x)
         first = len(ops)
         if isinstance(x, A.For):
             body: list = []
             loop_ops[id(x)] = body
-            ops.append(Loop(start, _count(tr, x), body, _leaves(x)))
+            ops.append(Loop(start, loop_count(tr, x), body, _leaves(x)))
+        elif isinstance(x, A.Call):
+            program = call_step(tr, x)[2]
+            for op in program.ops:  # (the callee's ops, its entry the value here)
+                prev_op = start if op.prev < 0 else first + op.prev
+                if isinstance(op, Loop):
+                    ops.append(Loop(prev_op, op.count, op.body, op.breaks))
+                else:
+                    ops.append(Step(prev_op, op.k, op.neg))
         else:
-            for j, (k, neg) in enumerate(_constants(tr, x, components)):
-                ops.append(Step(start if j == 0 else len(ops) - 1, k, neg))
+            sign, k_node = _step(tr, x)
+            values = [float(v) for v in constant_value(tr, k_node)]
+            if sign == "-":
+                values = [-v for v in values]
+            ops.append(Step(start, values, sign == "-"))
         where[id(x)] = (loop, first, len(ops) - first)
-    for number, ops in chains.items():
-        if len(ops) == 1 and isinstance(ops[0], Step):
-            continue  # (one addition: as written)
-        per_component = []
-        for c in range(components):
-            got = chain_constants(_component(ops, c))
-            if got is None:
-                break
-            per_component.append(got)
-        else:
-            for x in items:
-                if chain_of.get(id(x)) != number:
-                    continue
-                loop, first, count = where[id(x)]
-                plan[id(x)] = Entry(
-                    number,
-                    id(x) in roots,
-                    _ks(per_component, loops, where, x, loop, first, count),
-                    loop,
-                    sym,
-                )
+    return chains
 
 
 def _owner(loops: list, prev: Any) -> Any:
@@ -364,25 +413,13 @@ def _owner(loops: list, prev: Any) -> Any:
     return next((lp for lp in loops if lp.body is prev), None)
 
 
-def _count(tr: FoldEngine, loop: Any) -> int:
+def loop_count(tr: FoldEngine, loop: Any) -> int:
+    """How many copies NIR makes of an unrolled loop (:func:`unrolled`)."""
     decl = loop.init.decl.declarators[0]
     start, end = tr.model.const_value(decl.init), tr.model.const_value(loop.cond.right)
     step = loop.step
     inc = 1 if isinstance(step, (A.Unary, A.Postfix)) else tr.model.const_value(step.value)
     return (end - start + (loop.cond.op == "<=") + inc - 1) // inc
-
-
-def _constants(tr: FoldEngine, x: Any, components: int) -> list:
-    """The constants a step or a call adds, as (per-component values, negated)."""
-    if isinstance(x, A.Call):
-        step = call_step(tr, x)
-        assert step is not None  # (an item is a step)
-        return [([v], neg) for v, neg in step[2]]
-    sign, k_node = _step(tr, x)
-    values = constant_value(tr, k_node)
-    if len(values) == 1:
-        values = values * components
-    return [([-v for v in values], True) if sign == "-" else (values, False)]
 
 
 def _component(ops: list, c: int) -> list:
@@ -391,31 +428,36 @@ def _component(ops: list, c: int) -> list:
         if isinstance(op, Loop):
             out.append(Loop(op.prev, op.count, _component(op.body, c), op.breaks))
         else:
-            out.append(Step(op.prev, op.k[c] if len(op.k) > 1 else op.k[0], op.neg))
+            k = np.atleast_1d(op.k)
+            out.append(Step(op.prev, k[c] if len(k) > 1 else k[0], op.neg))
     return out
 
 
-def _ks(
-    per_component: list, loops: list, where: dict, x: Any, loop: Any, first: int, count: int
-) -> list:
-    """The K of item `x` per copy: per component for a step, per callee constant for a call."""
+def _ks(per_component: list, where: dict, x: Any, loop: Any, first: int, count: int) -> list:
+    """The K of item `x` per copy of its loop: per component for a step, per slot of the
+    callee's :class:`Program` for a call (its loops' copies one after the other)."""
     if isinstance(x, A.For):
         return []
-    if loop is None:
-        vals = [[got[i] for got in per_component] for i in range(first, first + count)]
-        return [_shape(x, vals)]
-    at = where[id(loop)][1]
-    copies = len(per_component[0][at])
+    copies = 1 if loop is None else len(per_component[0][where[id(loop)][1]])
     out = []
     for j in range(copies):
-        vals = [[got[at][j][i] for got in per_component] for i in range(first, first + count)]
-        out.append(_shape(x, vals))
+        vals = []
+        for got in per_component:
+            level = got if loop is None else got[where[id(loop)][1]][j]
+            vals.append(_flat(level[first : first + count]))
+        out.append([v[0] for v in vals] if not isinstance(x, A.Call) else vals[0])
     return out
 
 
-def _shape(x: Any, vals: list) -> list:
-    """A step's K per component, or a call's K per constant (scalar)."""
-    return vals[0] if not isinstance(x, A.Call) else [v[0] for v in vals]
+def _flat(values: list) -> list:
+    out: list = []
+    for v in values:
+        if isinstance(v, list):
+            for copy in v:
+                out += _flat(copy)
+        else:
+            out.append(v)
+    return out
 
 
 def sum_entry(tr: FoldEngine, node: Any) -> Entry | None:
@@ -427,9 +469,21 @@ def sum_entry(tr: FoldEngine, node: Any) -> Entry | None:
 
 def indexed_loop(tr: FoldEngine, loop: Any) -> bool:
     """Some step in the unrolled `loop` has a K per copy: the engines count its passes."""
-    if tr.fn is None or current_function(tr).sym is None:
+    fn = current_function(tr).sym if tr.fn is not None else None
+    if fn is None:
         return False
+    if any(p.where.get(id(loop)) for p in chain_params(tr, fn).values()):
+        return True
     return any(e.loop is loop and len(e.ks) > 1 for e in chain_plan(tr).values())
+
+
+def slot_code(tr: FoldEngine, own: tuple, m: int = 0) -> str:
+    """The index of the m-th constant of a chain parameter's write (:func:`param_step`) among
+    the constants the caller passed: its slot, plus the stride times the loop's pass."""
+    _, at, stride, loop, _ = own
+    if loop is None:
+        return str(at + m)
+    return f"{at + m} + {stride} * {tr.fold_state.sum_index[id(loop)]}"
 
 
 def chain_roots_at(tr: FoldEngine, loop: Any) -> list[Any]:
@@ -451,8 +505,8 @@ def repeated_sum(tr: TranspilerState, e: A.Assignment, mask: str | None, old: st
     written = tr.binary_values(sign, tr.type_of(e.target), tr.type_of(k_node), old, tk)
     own = param_step(tr, e)
     if own is not None:  # (a chain parameter: the caller's base and K, or None)
-        c = f"_c{own[0]}"
-        return f"(({c}[0] + {c}[1][{own[1]}]) if rt.lp and {c} is not None else {written})"
+        b, k = f"_cb{own[0]}", f"_ck{own[0]}"
+        return f"(({b} + {k}[{slot_code(tr, own)}]) if rt.lp and {k} is not None else {written})"
     entry = sum_entry(tr, e)
     base = _base(tr, entry, old)
     if entry is None or base is None:
@@ -489,33 +543,33 @@ def _k_code(tr: TranspilerState, entry: Entry, codes: list[str]) -> str:
 def chain_call_args(
     tr: TranspilerState, call: A.Call, fn: Symbol, args: dict[int, str]
 ) -> list[str]:
-    """The chain arguments of a call of `fn`, one per :func:`chain_params` parameter, in order:
-    ``(base, (K1, K2, ...))`` where the call continues or starts a chain of the caller (or
-    passes on the caller's own chain parameter), None where it does not (the callee computes
-    as written). `args`: the code of each inout argument's value by index."""
-    params = chain_params(tr, fn)
+    """The chain arguments of a call of `fn`, two per :func:`chain_params` parameter, in
+    order: the base and ``(K1, K2, ...)`` where the call continues or starts a chain of the
+    caller (or passes on the caller's own chain parameter), None and None where it does not
+    (the callee computes as written). `args`: the code of each inout argument's value."""
     out = []
-    for i in sorted(params):
+    for i in sorted(chain_params(tr, fn)):
         entry = sum_entry(tr, call)
         step = call_step(tr, call)
-        own = param_step(tr, call)
-        if step is not None and step[0] == i and own is not None:
-            c, a, n = f"_c{own[0]}", own[1], own[2]
-            out.append(f"(None if {c} is None else ({c}[0], {c}[1][{a}:{a + n}]))")
+        mine = step is not None and step[0] == i
+        own = param_step(tr, call) if mine else None
+        if own is not None:
+            j, a, n = own[0], slot_code(tr, own), own[4]
+            out += [f"_cb{j}", f"(None if _ck{j} is None else _ck{j}[{a}:{a} + {n}])"]
             continue
-        base = _base(tr, entry, args.get(i)) if step is not None and step[0] == i else None
+        base = _base(tr, entry, args.get(i)) if mine else None
         if entry is None or base is None:
-            out.append("None")
+            out += ["None", "None"]
             continue
         tuples = [f"({''.join(tr.const_float(float(k)) + ', ' for k in ks)})" for ks in entry.ks]
-        out.append(f"({base}, {_k_code(tr, entry, tuples)})")
+        out += [base, _k_code(tr, entry, tuples)]
     return out
 
 
 def chain_param_names(tr: TranspilerState, fn: Symbol) -> list[str]:
-    """The extra parameters of a function with :func:`chain_params`: the caller's chain of
-    each (:func:`chain_call_args`)."""
-    return [f"_c{i}" for i in sorted(chain_params(tr, fn))]
+    """The extra parameters of a function with :func:`chain_params`: the base and the
+    constants of the caller's chain through each (:func:`chain_call_args`)."""
+    return [f"_c{x}{i}" for i in sorted(chain_params(tr, fn)) for x in "bk"]
 
 
 def enter_unrolled(tr: TranspilerState, loop: Any) -> None:
