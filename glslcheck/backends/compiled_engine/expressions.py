@@ -798,6 +798,11 @@ class ExpressionEmitter:
                     inouts[i] = parts[0]
             for p in parts:
                 args.append(p.whole() if isinstance(p, Arr) else p)
+        if self.fn is not None and self.fn.sym is not None:
+            from ..numpy_engine.transpile import nir_fold
+
+            for key, g in nir_fold.chain_globals(self.fold_context(), fn):  # (globals' chains)
+                inouts[key] = self.tmp_copy(self.read(self.var_parts(g, e)[0]))
         args += self.chain_args(e, fn, inouts)
         rtype = fn.type
         n_val = 0 if rtype.is_void else len(leaves(rtype, e))

@@ -43,6 +43,9 @@ class FoldState:
     sum_param_steps: dict = field(default_factory=dict)
     sum_loops: dict = field(default_factory=dict)
     sum_index: dict = field(default_factory=dict)
+    sum_global_keys: dict = field(default_factory=dict)  # global -> (its chain key, itself)
+    sum_globals: list | None = None  # the globals the shader's functions read or write
+    sum_global_writers: dict = field(default_factory=dict)  # (function, global) -> writes it
     # transpile/constant_flow.py
     constant_flow: Any = None  # the program's ConstantFlow, made on first use
     # transpile/call_fold.py

@@ -185,6 +185,8 @@ class Functions(TranspilerState):
                     args.append(self.tmp(self.read(lv)))
                     inouts[i] = args[-1]
         args += nir_fold.return_constant_args(self, e, fn)
+        for key, g in nir_fold.chain_globals(self, fn):  # (a global's chain runs through too)
+            inouts[key] = self.tmp(self.var_name(g, e))
         args += nir_fold.chain_call_args(self, e, fn, inouts)
         call = self.call_text(e, fn, call_mask, args, mask)
         if call_mask is not None and nir_fold.register_call(self, e, fn):

@@ -60,13 +60,13 @@ class Entry:
 
 
 def _step(tr: FoldEngine, e: Any) -> tuple[str, Any] | None:
-    """("+" or "-", the constant) when `e` adds a float constant to a whole local or parameter
-    and stores the sum back in it; else None."""
+    """("+" or "-", the constant) when `e` adds a float constant to a whole local, parameter or
+    global variable and stores the sum back in it; else None."""
     if not isinstance(e, A.Assignment) or not isinstance(e.target, A.Identifier):
         return None
     sym = tr.model.symbol_of(e.target)
     t = tr.type_of(e.target)
-    if sym is None or sym.kind not in ("local", "param") or t.base != "float" or t.is_matrix:
+    if not _variable(sym) or t.base != "float" or t.is_matrix:
         return None
     if e.op in ("+=", "-="):
         sign, k_node = e.op[0], e.value
@@ -86,6 +86,66 @@ def _step(tr: FoldEngine, e: Any) -> tuple[str, Any] | None:
     return sign, k_node
 
 
+def _variable(sym: Any) -> bool:
+    """A variable a chain may advance: a local, a parameter, a global the shader writes."""
+    return sym is not None and (
+        sym.kind in ("local", "param") or sym.kind == "global" and sym.qualifier is None
+    )
+
+
+class _CallWrite:
+    """A call of a user function that writes a global (what analysis.dataflow's Write is for a
+    direct write: its position is the call's exit)."""
+
+    __slots__ = ("symbol", "pos", "kind", "value", "node")
+
+    def __init__(self, symbol: Any, pos: int, node: Any) -> None:
+        self.symbol, self.pos, self.kind, self.value, self.node = symbol, pos, "out", None, node
+
+
+def _writes(tr: FoldEngine, facts: Any, sym: Any) -> list:
+    """The writes of `sym` in the function of `facts`, in order; for a global, also the calls of
+    user functions that write it (NIR inlines them: its chain runs through)."""
+    ws = facts.writes_to(sym)
+    if sym.kind != "global":
+        return ws
+    calls = [
+        _CallWrite(sym, facts.exit[id(c)], c)
+        for c in facts.calls
+        if isinstance(tr.model.call_target(c), Symbol)
+        and _writes_global(tr, tr.model.call_target(c), sym)
+    ]
+    return sorted(list(ws) + calls, key=lambda w: w.pos)
+
+
+def _writes_global(tr: FoldEngine, fn: Symbol, sym: Any) -> bool:
+    """User function `fn` writes the global `sym`, itself or through the functions it calls."""
+    cache = tr.fold_state.sum_global_writers
+    key = (id(fn), id(sym))
+    if key not in cache:
+        cache[key] = False  # (GLSL has no recursion: a guard only)
+        facts = _facts_of(tr, fn)
+        cache[key] = bool(facts.writes_to(sym)) or any(
+            isinstance(tr.model.call_target(c), Symbol)
+            and _writes_global(tr, tr.model.call_target(c), sym)
+            for c in facts.calls
+        )
+    return cache[key]
+
+
+def _written_between(tr: FoldEngine, facts: Any, a: Any, b: Any, sym: Any) -> bool:
+    """`sym` may be written after `a` and before `b` (analysis.dataflow's question; for a global
+    only the calls that write it count, not every call)."""
+    if sym.kind != "global":
+        return facts.written_between(a, b, [sym])
+    spans = [(facts.exit[id(a)], facts.enter[id(b)])]
+    around_a = {id(lp) for lp in facts.enclosing_loops(a)}
+    for loop in facts.enclosing_loops(b):
+        if id(loop) not in around_a:
+            spans.append((facts.enter[id(loop)], facts.exit[id(loop)]))
+    return any(lo < w.pos < hi for w in _writes(tr, facts, sym) for lo, hi in spans)
+
+
 def _reads(tr: FoldEngine, node: Any, sym: Any) -> bool:
     return isinstance(node, A.Identifier) and tr.model.symbol_of(node) is sym
 
@@ -99,7 +159,7 @@ def _previous_step(tr: FoldEngine, e: Any, sym: Any) -> Any:
     facts = function_facts(tr)
     if not facts.ok or id(e) not in facts.enter:
         return None  # (a node of an inlined body: another function's)
-    before = [w for w in facts.writes_to(sym) if w.pos < facts.enter[id(e)]]
+    before = [w for w in _writes(tr, facts, sym) if w.pos < facts.enter[id(e)]]
     loops = [lp for lp in facts.enclosing_loops(e) if unrolled_chain(tr, lp, sym)]
     if loops and not any(facts.contains(loops[-1].body, w.node) for w in before):
         return loops[-1]  # (the first write of the body: its chain starts at the loop's phi)
@@ -108,6 +168,8 @@ def _previous_step(tr: FoldEngine, e: Any, sym: Any) -> Any:
         index = [i for i, p in enumerate(fn.node.proto.params) if tr.model.symbol_of(p) is sym]
         if index and index[0] in chain_params(tr, fn):
             return fn.node.proto.params[index[0]]
+        if sym.kind == "global" and _key(tr, sym) in chain_params(tr, fn):
+            return sym.node  # (the caller's chain of the global comes in here)
         return None
     w = before[-1]
     left = [lp for lp in facts.enclosing_loops(w.node) if not facts.contains(lp, e)]
@@ -115,12 +177,12 @@ def _previous_step(tr: FoldEngine, e: Any, sym: Any) -> Any:
         loop = left[-1]
         if len(left) > 1 or not unrolled_chain(tr, loop, sym) or _leaves(loop):
             return None
-        if facts.dominates(loop, e) and not facts.written_between(loop, e, [sym]):
+        if facts.dominates(loop, e) and not _written_between(tr, facts, loop, e, sym):
             return loop.body  # (after the loop: its last copy's value)
         return None
     if not _is_step(tr, w.node, sym) or not facts.dominates(w.node, e):
         return None
-    if facts.written_between(w.node, e, [sym]):
+    if _written_between(tr, facts, w.node, e, sym):
         return None
     return w.node
 
@@ -146,6 +208,9 @@ def call_step(tr: FoldEngine, call: A.Call) -> tuple[int, Any, Program] | None:
         return None
     found = []
     for i, program in chain_params(tr, target).items():
+        if i >= _GLOBALS:
+            found.append((i, _global_of(tr, i), program))
+            continue
         sym, whole = written_variable(tr.model, call.args[i])
         if (
             sym is not None
@@ -186,11 +251,27 @@ class Program:
         raise AssertionError("a write of the program")
 
 
+_GLOBALS = 1000  # chain_params' keys from here on are globals (_key), below parameters
+
+
+def _key(tr: FoldEngine, sym: Any) -> int:
+    """The chain_params key of a global: its number, in the order first asked, from _GLOBALS."""
+    keys = tr.fold_state.sum_global_keys
+    if id(sym) not in keys:
+        keys[id(sym)] = (_GLOBALS + len(keys), sym)
+    return keys[id(sym)][0]
+
+
+def _global_of(tr: FoldEngine, key: int) -> Any:
+    return next(sym for k, sym in tr.fold_state.sum_global_keys.values() if k == key)
+
+
 def chain_params(tr: FoldEngine, fn: Symbol) -> dict[int, Program]:
     """index -> the :class:`Program` of each ``inout float`` parameter of user function `fn`
     that it only advances by constants (steps, calls of such functions), in its body's
     straight line or that of a loop NIR unrolls: NIR inlines the call and the caller's chain
-    runs through it."""
+    runs through it. A float global written so (itself or by the functions `fn` calls) is
+    one too, under its :func:`_key`."""
     cache = tr.fold_state.sum_params
     if id(fn) not in cache:
         cache[id(fn)] = {}  # (GLSL has no recursion: a guard only)
@@ -205,31 +286,67 @@ def chain_params(tr: FoldEngine, fn: Symbol) -> dict[int, Program]:
 
 def _programs(tr: FoldEngine, fn: Symbol) -> dict[int, Program]:
     facts = function_facts(tr)
-    body = fn.node.body.stmts
     if not facts.ok or any(isinstance(n, A.Discard) for n in fn.node.body.walk()):
         return {}
     out: dict[int, Program] = {}
     for i, (p, (_, ptype, d)) in enumerate(zip(fn.node.proto.params, fn.params)):
         psym = tr.model.symbol_of(p)
-        ws = facts.writes_to(psym) if psym is not None else []
-        if d != "inout" or not ws or ptype.base != "float" or not ptype.is_scalar:
-            continue
-        chains = _chains(tr, facts, psym, ws, param_root=True)
-        writes = [x for x in chains[0]["items"] if not isinstance(x, A.For)] if chains else []
-        if len(chains) != 1 or len(writes) != len({id(w.node) for w in ws}):
-            continue
-        loops = [x for x in chains[0]["items"] if isinstance(x, A.For)]
-        returns = [n for n in fn.node.body.walk() if isinstance(n, A.Return)]
-        if any(
-            r is not body[-1] and not any(facts.contains(lp.body, r) for lp in loops)
-            for r in returns
-        ) or any(facts.region[id(x)] != () for x in loops):
-            continue  # (a return outside the unrolled loops: the rest runs on some lanes)
-        ops = chains[0]["ops"]
-        out[i] = Program(
-            ops, chains[0]["where"], any(isinstance(op, Loop) and op.breaks for op in ops)
-        )
+        if d == "inout" and psym is not None and ptype.base == "float" and ptype.is_scalar:
+            program = _program(tr, fn, facts, psym)
+            if program is not None:
+                out[i] = program
+    for sym in _globals_written(tr, fn):
+        program = _program(tr, fn, facts, sym)
+        if program is not None:
+            out[_key(tr, sym)] = program
     return out
+
+
+def _globals_written(tr: FoldEngine, fn: Symbol) -> list:
+    """The float scalar globals `fn` writes, itself or through the functions it calls."""
+    found = tr.fold_state.sum_globals
+    if found is None:
+        seen: dict[int, Any] = {}
+        for f in tr.model.reachable_functions():
+            for n in f.node.body.walk():
+                sym = tr.model.symbol_of(n) if isinstance(n, A.Identifier) else None
+                if sym is not None and sym.kind == "global" and _variable(sym):
+                    seen.setdefault(id(sym), sym)
+        found = tr.fold_state.sum_globals = list(seen.values())
+    out = found
+    return [
+        g
+        for g in out
+        if g.type is not None
+        and g.type.base == "float"
+        and g.type.is_scalar
+        and _writes_global(tr, fn, g)
+    ]
+
+
+def _program(tr: FoldEngine, fn: Symbol, facts: Any, sym: Any) -> Program | None:
+    ws = _writes(tr, facts, sym)
+    if not ws:
+        return None
+    body = fn.node.body.stmts
+    chains = _chains(tr, facts, sym, ws, param_root=True)
+    writes = [x for x in chains[0]["items"] if not isinstance(x, A.For)] if chains else []
+    if len(chains) != 1 or len(writes) != len({id(w.node) for w in ws}):
+        return None
+    loops = [x for x in chains[0]["items"] if isinstance(x, A.For)]
+    returns = [n for n in fn.node.body.walk() if isinstance(n, A.Return)]
+    if any(
+        r is not body[-1] and not any(facts.contains(lp.body, r) for lp in loops) for r in returns
+    ) or any(facts.region[id(x)] != () for x in loops):
+        return None  # (a return outside the unrolled loops: the rest runs on some lanes)
+    ops = chains[0]["ops"]
+    return Program(ops, chains[0]["where"], any(isinstance(op, Loop) and op.breaks for op in ops))
+
+
+def chain_globals(tr: FoldEngine, fn: Symbol) -> list[tuple[int, Any]]:
+    """(key, global) for each global among `fn`'s :func:`chain_params`: a call passes its value
+    before the call as the base where a chain starts there."""
+    return [(k, _global_of(tr, k)) for k in sorted(chain_params(tr, fn)) if k >= _GLOBALS]
 
 
 def param_step(tr: FoldEngine, node: Any) -> tuple[int, int, int, Any, int] | None:
@@ -259,7 +376,7 @@ def unrolled_chain(tr: FoldEngine, loop: Any, sym: Any) -> bool:
             for n in loop.body.walk()
         ):
             inner = facts.region[id(loop.body)]
-            writes = [w for w in facts.writes_to(sym) if facts.contains(loop.body, w.node)]
+            writes = [w for w in _writes(tr, facts, sym) if facts.contains(loop.body, w.node)]
             cache[key] = bool(writes) and all(
                 facts.region[id(w.node)] == inner
                 and _is_step(tr, w.node, sym)
@@ -283,9 +400,9 @@ def _varying_start(tr: FoldEngine, e: Any, sym: Any) -> bool:
     """The value before the chain is no constant to NIR (``b(is_not_const)``: a constant is
     folded step by step instead)."""
     facts = function_facts(tr)
-    before = [w for w in facts.writes_to(sym) if w.pos < facts.enter[id(e)]]
-    if not before:
-        return sym.kind == "param"
+    before = [w for w in _writes(tr, facts, sym) if w.pos < facts.enter[id(e)]]
+    if not before:  # (a global is its constant initializer at the start of the entry point)
+        return sym.kind == "param" or sym.kind == "global" and not current_function(tr).is_entry
     w = before[-1]
     if w.kind in ("=", "init") and w.value is not None and facts.dominates(w.node, e):
         return is_varying(tr, w.value)
@@ -295,7 +412,7 @@ def _varying_start(tr: FoldEngine, e: Any, sym: Any) -> bool:
 # -- the plan ----------------------------------------------------------------------------------
 def chain_plan(tr: FoldEngine) -> dict[int, Entry]:
     """id(step, call or loop) -> its :class:`Entry`, for the chains of the function being
-    emitted (its :func:`chain_params` parameters apart: their steps read the caller's K)."""
+    emitted (its :func:`chain_params` variables apart: their steps read the caller's K)."""
     fn = current_function(tr).sym
     cache = tr.fold_state.sum_plans
     if id(fn) not in cache:
@@ -303,20 +420,23 @@ def chain_plan(tr: FoldEngine) -> dict[int, Entry]:
         facts = function_facts(tr)
         if facts.ok:
             own = chain_params(tr, fn)
-            skip = {id(tr.model.symbol_of(fn.node.proto.params[i])) for i in own}
-            for ws in facts.writes.values():
-                sym = ws[0].symbol
+            skip = {id(tr.model.symbol_of(fn.node.proto.params[i])) for i in own if i < _GLOBALS}
+            skip |= {id(_global_of(tr, k)) for k in own if k >= _GLOBALS}
+            syms = {id(ws[0].symbol): ws[0].symbol for ws in facts.writes.values()}
+            for g in _globals_written(tr, fn):
+                syms.setdefault(id(g), g)
+            for sym in syms.values():
                 t = sym.type
                 if (
                     id(sym) in skip
-                    or sym.kind not in ("local", "param")
+                    or not _variable(sym)
                     or t is None
                     or t.base != "float"
                     or t.is_matrix
                     or t.is_array
                 ):
                     continue
-                _plan_variable(tr, facts, sym, ws, cache[id(fn)])
+                _plan_variable(tr, facts, sym, _writes(tr, facts, sym), cache[id(fn)])
     return cache[id(fn)]
 
 
