@@ -363,6 +363,17 @@ def test_repeated_sums_bit_for_bit(numba, make_shader):
     _compare(shader, time=0.0)
 
 
+PATH_TRACERS = os.path.join(os.path.dirname(__file__), "..", "gl", "path_tracers")
+
+
+@pytest.mark.parametrize("name", ["global_seed_sin_hash", "inout_seed_bits_hash"])
+def test_path_tracers_bit_for_bit(numba, name):
+    """A seed advanced through calls and an unrolled bounce loop (a global, an inout
+    parameter): the chain's constants from one plan in both engines
+    (tests/gl/test_llvmpipe_path_tracers.py verifies them against llvmpipe)."""
+    _compare(os.path.join(PATH_TRACERS, f"{name}.glsl"))
+
+
 @pytest.mark.parametrize(
     "text, what",
     [

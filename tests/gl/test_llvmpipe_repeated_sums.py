@@ -23,7 +23,8 @@ merged across the join; ``+= 0.047; += 1.802; -= 1.423``: left to right 14,400, 
 11,320; ``+= 0.047; += 1.802; += 0.311`` read there: right to left 14,400, left to right
 13,731. Through calls (inlined) and loops of constant count (unrolled): ``rnd(seed)`` (one
 ``+=``) three times merged 14,400, stepwise 298; ``hash2(seed)`` (a constructor of two) twice,
-its last value merged 14,400, stepwise 162; ``rnd`` in the unrolled loop merged 14,400,
+its last value merged 14,400, stepwise 162 (so a global seed advanced in ``ghash()``);
+``rnd`` in the unrolled loop merged 14,400,
 stepwise 162; two ``+=`` a pass, the body's sum first: 14,400, left to right 13,250; a
 constant before the loop, added after the loop's own: 14,400, left to right 12,483. Written
 for llvmpipe of Mesa 22.3 (the `llvmpipe` fixture skips elsewhere).
@@ -38,6 +39,8 @@ from glslcheck.verification.verify import compile_backend
 
 HEAD = """float rnd(inout float seed) { seed += 0.1; return seed; }
 vec2 hash2(inout float seed) { return vec2(seed += 0.1, seed += 0.1); }
+float gseed;
+vec2 ghash() { return vec2(gseed += 0.1, gseed += 0.1); }
 void mainImage(out vec4 c, in vec2 p) {
     float s0 = fract(p.x * 0.1371 + p.y * 0.0917) * 40.0;
     float seed = s0;
@@ -113,6 +116,10 @@ THROUGH_CALLS = {
     ),
     "two_calls_with_a_constructor": (
         "vec2 a = hash2(seed); vec2 b = hash2(seed); c = vec4(s0, b.y, 0.0, 1.0);",
+        {1: (lambda s: _steps(s, 4), lambda s: _merged(s, 4))},
+    ),
+    "a_global_through_calls": (
+        "gseed = s0; ghash(); vec2 h = ghash(); c = vec4(s0, h.y, 0.0, 1.0);",
         {1: (lambda s: _steps(s, 4), lambda s: _merged(s, 4))},
     ),
     "unrolled_loop": (
