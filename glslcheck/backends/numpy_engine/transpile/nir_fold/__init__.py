@@ -15,7 +15,7 @@ The rules copied here, each measured bit for bit against llvmpipe on 50,000 rand
 - ffma_split.py: ``(p1 + p2) + e`` returned through a folded call is ``(p1 + e) + p2`` (ffma);
 - returned_sums.py: a constant added to a call's result sinks into the ``+=`` chain it returns;
 - repeated_sums.py: ``seed += 0.1`` written again and again is ``seed0 + K``, also through calls
-  NIR inlines and loops it unrolls, K in the order sum_order.py simulates;
+  NIR inlines and loops it unrolls; sum_order.py: K in the order Mesa's passes merge it;
 - ssa_values.py: a variable assigned again still stands for its value (``p = m*p*2.02``);
 - components.py: NIR's SSA per vector component, constants merged through component writes,
   a ``+= e`` undone by a later ``-= e``;
