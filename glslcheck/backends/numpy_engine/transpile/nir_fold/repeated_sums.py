@@ -444,8 +444,8 @@ def _plan_variable(tr: FoldEngine, facts: Any, sym: Any, ws: list, plan: dict) -
     components = sym.type.size if sym.type.is_vector else 1
     for number, chain in enumerate(_chains(tr, facts, sym, ws, param_root=False), 1):
         ops = chain["ops"]
-        if len(ops) == 1 and isinstance(ops[0], Step):
-            continue  # (one addition: as written)
+        if len(ops) == 1 and isinstance(ops[0], Step) or _size(ops) > _MOST:
+            continue  # (one addition: as written; a very long chain too)
         per_component = []
         for c in range(components):
             got = chain_constants(_component(ops, c))
@@ -469,6 +469,8 @@ def _chains(tr: FoldEngine, facts: Any, sym: Any, ws: list, param_root: bool) ->
     for w in ws:
         if _is_step(tr, w.node, sym) and all(n is not w.node for n in nodes):
             nodes.append(w.node)
+    if len(nodes) > _MOST:
+        return []  # (left as written: the simulation grows with the square of a chain)
     loops: list = []
     for n in nodes:
         for lp in facts.enclosing_loops(n):
@@ -526,6 +528,13 @@ def _chains(tr: FoldEngine, facts: Any, sym: Any, ws: list, param_root: bool) ->
             ops.append(Step(start, values, sign == "-"))
         where[id(x)] = (loop, first, len(ops) - first)
     return chains
+
+
+_MOST = 200  # additions a chain may have (copies of unrolled loops counted) to be followed
+
+
+def _size(ops: list) -> int:
+    return sum(1 if isinstance(op, Step) else op.count * _size(op.body) for op in ops)
 
 
 def _owner(loops: list, prev: Any) -> Any:
