@@ -370,8 +370,14 @@ PATH_TRACERS = os.path.join(os.path.dirname(__file__), "..", "gl", "path_tracers
 def test_path_tracers_bit_for_bit(numba, name):
     """A seed advanced through calls and an unrolled bounce loop (a global, an inout
     parameter): the chain's constants from one plan in both engines
-    (tests/gl/test_llvmpipe_path_tracers.py verifies them against llvmpipe)."""
-    _compare(os.path.join(PATH_TRACERS, f"{name}.glsl"))
+    (tests/gl/test_llvmpipe_path_tracers.py verifies them against llvmpipe), and the lockstep
+    rewrite takes the loop's pass count."""
+    from glslcheck.backends.compiled_engine.engine import generate
+    from glslcheck.shadertoy.sources import load_shader
+
+    path = os.path.join(PATH_TRACERS, f"{name}.glsl")
+    assert "LANES_FALLBACK" not in generate(load_shader(path), lanes=8)[0]
+    _compare(path)
 
 
 @pytest.mark.parametrize(

@@ -769,7 +769,7 @@ class Codegen(ExpressionEmitter):
         assert fs is not None  # generating a function's body
         name = fs.sum_index.get(id(loop))
         if name is not None:
-            self.emit(f"{name} += 1")
+            self.emit(f"{name} = {name} + 1")
 
     def _stmt_DoWhile(self, s: A.DoWhile) -> None:
         self.comment(s)
