@@ -44,6 +44,7 @@ class FoldState:
     sum_loops: dict = field(default_factory=dict)
     sum_index: dict = field(default_factory=dict)
     sum_global_keys: dict = field(default_factory=dict)  # global -> (its chain key, itself)
+    loop_costs: dict = field(default_factory=dict)  # loop -> its body's cost (loop_unroll)
     sum_globals: list | None = None  # the globals the shader's functions read or write
     sum_global_writers: dict = field(default_factory=dict)  # (function, global) -> writes it
     # transpile/constant_flow.py

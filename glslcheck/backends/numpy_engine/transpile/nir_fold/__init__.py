@@ -20,6 +20,7 @@ The rules copied here, each measured bit for bit against llvmpipe on 50,000 rand
 - components.py: NIR's SSA per vector component, constants merged through component writes,
   a ``+= e`` undone by a later ``-= e``;
 - compound_products.py: ``x *= b; ... x * #c`` with the new x read once is ``(a * #c) * b``;
+- loop_unroll.py: which loops NIR unrolls (a constant count, a body small enough);
 - return_register.py: a call's result in the lanes a mask leaves out, llvmpipe's register;
 - added_zero.py: ``fadd(a, 0.0) -> a``, which keeps the sign of a -0.0;
 - flrp.py: nir_lower_flrp's formula for a `mix`, chosen from the other `mix` calls;

@@ -31,6 +31,7 @@ import numpy as np
 from .....frontend import syntax as A
 from .....semantics.analysis.dataflow import FunctionFacts, written_variable
 from .....semantics.model import Symbol
+from .loop_unroll import nir_unrolls, trip_count
 from .queries import (
     FunctionStandin,
     constant_value,
@@ -39,7 +40,6 @@ from .queries import (
     is_constant,
     is_varying,
 )
-from .return_register import unrolled
 from .sum_order import Loop, Step, chain_constants
 
 TYPE_CHECKING = False  # not typing's: importing typing costs every start-up
@@ -363,15 +363,15 @@ def param_step(tr: FoldEngine, node: Any) -> tuple[int, int, int, Any, int] | No
 
 
 def unrolled_chain(tr: FoldEngine, loop: Any, sym: Any) -> bool:
-    """`loop` is one NIR unrolls (a ``for`` of a constant count, :func:`unrolled`, with no
-    loop, continue or discard in its body) and its body writes `sym` only by steps in its
+    """`loop` is one NIR unrolls (loop_unroll.nir_unrolls, with no loop, continue or
+    discard in its body) and its body writes `sym` only by steps in its
     straight line: each copy continues the chain of the one before."""
     cache = tr.fold_state.sum_loops
     key = (id(loop), id(sym))
     if key not in cache:
         cache[key] = False
         facts = function_facts(tr)
-        if unrolled(tr, loop) and not any(
+        if nir_unrolls(tr, loop) and not any(
             isinstance(n, (A.Continue, A.Discard, A.For, A.While, A.DoWhile))
             for n in loop.body.walk()
         ):
@@ -543,12 +543,10 @@ def _owner(loops: list, prev: Any) -> Any:
 
 
 def loop_count(tr: FoldEngine, loop: Any) -> int:
-    """How many copies NIR makes of an unrolled loop (:func:`unrolled`)."""
-    decl = loop.init.decl.declarators[0]
-    start, end = tr.model.const_value(decl.init), tr.model.const_value(loop.cond.right)
-    step = loop.step
-    inc = 1 if isinstance(step, (A.Unary, A.Postfix)) else tr.model.const_value(step.value)
-    return (end - start + (loop.cond.op == "<=") + inc - 1) // inc
+    """How many copies NIR makes of an unrolled loop (loop_unroll.trip_count)."""
+    count = trip_count(tr, loop)
+    assert count is not None  # (an unrolled loop)
+    return count
 
 
 def _component(ops: list, c: int) -> list:
