@@ -10,17 +10,19 @@ keeps and after the join of a branch that writes the variable (a phi to NIR), an
 constant (NIR folds those step by step, as written).
 
 NIR inlines every call first, so a chain runs through a call that passes the variable to an
-``inout`` parameter its callee only advances by constants (:func:`chain_params`: ``float
-rnd(inout float s) { s += 0.1; return s; }``). It unrolls a ``for`` of a constant count after
-one pass of the rules over its body (:func:`unrolled_chain`), so the copies continue it.
+``inout`` parameter, or a global the callee writes, that the callee only advances by constants
+(:func:`chain_params`: ``float rnd(inout float s) { s += 0.1; return s; }``, a path tracer's
+``float seed;`` advanced in ``hash2()``). It unrolls a ``for`` of a constant count and a small
+body after one pass of the rules over the body (:func:`unrolled_chain`, loop_unroll.py), so
+the copies continue it; a loop left early ends in a phi.
 
 :func:`chain_plan` builds each chain of a function (steps, calls spread into their callees'
-steps, unrolled loops) and asks sum_order.py for K at every step, per copy of an unrolled
+programs, unrolled loops) and asks sum_order.py for K at every step, per copy of an unrolled
 loop. The engines emit ``base + K`` in llvmpipe mode (the NumPy backend: repeated_sum and the
 functions after it; the compiled engine the same from the plan): the value before the chain
-kept in a temporary, K a constant, or a loop's constants indexed by its pass, and a callee's
-step reads its K from one more argument per chain parameter, ``(base, (K1, K2, ...))`` or None
-(no chain: the written order)."""
+kept in a temporary, K a constant, or a loop's constants indexed by its pass; a callee's step
+reads its K from two more arguments per chain variable, the caller's base and its constants
+``(K1, K2, ...)``, or None (no chain: the written order)."""
 
 from __future__ import annotations
 
@@ -604,19 +606,13 @@ def indexed_loop(tr: FoldEngine, loop: Any) -> bool:
     return any(e.loop is loop and len(e.ks) > 1 for e in chain_plan(tr).values())
 
 
-def slot_code(tr: FoldEngine, own: tuple, m: int = 0) -> str:
-    """The index of the m-th constant of a chain parameter's write (:func:`param_step`) among
-    the constants the caller passed: its slot, plus the stride times the loop's pass."""
+def slot_code(tr: FoldEngine, own: tuple) -> str:
+    """The index of a chain parameter's write's first constant (:func:`param_step`) among the
+    constants the caller passed: its slot, plus the stride times the loop's pass."""
     _, at, stride, loop, _ = own
     if loop is None:
-        return str(at + m)
-    return f"{at + m} + {stride} * {tr.fold_state.sum_index[id(loop)]}"
-
-
-def chain_roots_at(tr: FoldEngine, loop: Any) -> list[Any]:
-    """The variables whose chain starts at the unrolled `loop` (the value before it, kept)."""
-    entry = sum_entry(tr, loop)
-    return [entry.sym] if entry is not None and entry.root else []
+        return str(at)
+    return f"{at} + {stride} * {tr.fold_state.sum_index[id(loop)]}"
 
 
 # -- the NumPy backend's code ------------------------------------------------------------------
