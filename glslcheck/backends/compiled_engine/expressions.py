@@ -449,9 +449,10 @@ class ExpressionEmitter:
         if self.fn is None or self.fn.sym is None:
             return []
         ctx = self.fold_context()
-        zero = self.cf(0.0)
+        params = nir_fold.chain_params(ctx, fn)
+        zero = self.cf(0.0) if params else ""
         out: list[str] = []
-        for i, program in sorted(nir_fold.chain_params(ctx, fn).items()):
+        for i, program in sorted(params.items()):
             step = nir_fold.call_step(ctx, e)
             mine = step is not None and step[0] == i
             own = nir_fold.param_step(ctx, e) if mine else None
