@@ -334,6 +334,7 @@ def test_mesa_reassociation_bit_for_bit(numba, make_shader):
 
 
 REPEATED_SUMS = """float rnd(inout float seed) { seed += 0.1; return seed; }
+vec2 hash2(inout float seed) { return vec2(seed += 0.1, seed += 0.1); }
 void mainImage(out vec4 c, in vec2 p) {
     float s0 = fract(p.x * 0.1371 + p.y * 0.0917) * 40.0, seed = s0;
     seed += 0.1; seed += 0.1; seed += 0.1;
@@ -345,18 +346,38 @@ void mainImage(out vec4 c, in vec2 p) {
     float b = seed;
     if (s0 > 20.0) { seed += 0.1; seed += 0.7; } seed += 0.1;
     rnd(seed); rnd(seed);
-    c = vec4(a + v.y, b + w.y, seed + w.x, rnd(seed));
+    vec2 h = hash2(seed); h += hash2(seed);
+    seed += 2.329; float r = 0.0;
+    for (int i = 0; i < 4; i++) { r += rnd(seed); }
+    c = vec4(a + v.y + h.x, b + w.y + h.y, seed + w.x + r, rnd(seed));
 }"""
 
 
 def test_repeated_sums_bit_for_bit(numba, make_shader):
     """``seed += 0.1`` written again and again: NIR's merged constants
     (nir_fold.repeated_sums, measured on llvmpipe: tests/gl/test_llvmpipe_repeated_sums.py) in
-    both engines, in a straight line, a constructor, mixed forms, vectors, a loop, a branch and
-    through calls."""
+    both engines, in a straight line, a constructor, mixed forms, vectors, a loop, a branch,
+    through calls (inout parameters, a constructor's in the callee) and an unrolled loop."""
     shader = make_shader(REPEATED_SUMS)
     assert "if rt.lp else" in glslcheck.compile(shader, backend="numpy").source
     _compare(shader, time=0.0)
+
+
+PATH_TRACERS = os.path.join(os.path.dirname(__file__), "..", "gl", "path_tracers")
+
+
+@pytest.mark.parametrize("name", ["global_seed_sin_hash", "inout_seed_bits_hash"])
+def test_path_tracers_bit_for_bit(numba, name):
+    """A seed advanced through calls and an unrolled bounce loop (a global, an inout
+    parameter): the chain's constants from one plan in both engines
+    (tests/gl/test_llvmpipe_path_tracers.py verifies them against llvmpipe), and the lockstep
+    rewrite takes the loop's pass count."""
+    from glslcheck.backends.compiled_engine.engine import generate
+    from glslcheck.shadertoy.sources import load_shader
+
+    path = os.path.join(PATH_TRACERS, f"{name}.glsl")
+    assert "LANES_FALLBACK" not in generate(load_shader(path), lanes=8)[0]
+    _compare(path)
 
 
 @pytest.mark.parametrize(

@@ -3,10 +3,14 @@ numbers), rendered by llvmpipe and by the NumPy backend bit for bit.
 
 NIR is SSA: ``seed += 0.1; seed += 0.1; seed += 0.1`` is ``((s0 + 0.1) + 0.1) + 0.1``, and
 nir_opt_algebraic's ``#a + (b + #c) -> (a + c) + b`` folds the constants into one in float32,
-``s0 + (0.1 + 0.1 + 0.1)``. The rule stops at a phi: a loop top or the join after a branch that
-writes the variable. Each shader writes s0 (an opaque fract, 0 to 40) to the first channel;
+``s0 + K``, in the order nir_fold/sum_order.py simulates: right to left in a line of ``+=``
+(its worklist visits the last addition first), left to right where a ``-=`` is involved (the
+negation is a constant only a pass later), a loop of a constant count unrolled after the
+body's constants were merged once. The rule stops at a phi: the top of a loop NIR keeps, the
+join after a branch that writes the variable, the end of a loop that can be left early. Each
+shader writes s0 (an opaque fract, 0 to 40) to the first channel;
 :func:`test_llvmpipe_merges_the_constants_of_a_repeated_sum` compares the driver's other
-channels with the two orders computed here in NumPy float32 from that s0.
+channels with two orders computed here in NumPy float32 from that s0, Mesa's and another.
 
 Measured on llvmpipe of Mesa 22.3 (160x90, 14,400 values a channel; the two orders differ on
 the count in brackets): three ``+=`` match the merged order on 14,400 and the step-by-step one
@@ -15,13 +19,17 @@ stepwise 7,812 (6,588); ``+=``, ``= seed +``, ``-=`` and ``+= 0.2`` mixed: merge
 stepwise 6,839; two ``+=`` in a loop body run twice (the merge restarts at each loop top):
 merged per iteration 14,400, stepwise 7,524; a write inside an ``if`` then one after it (the
 merge runs within the branch and stops at the join): 14,400 that way, 11,487 stepwise, 6,506
-merged across the join; ``+= 0.047; += 1.802; -= 1.423``: the constants folded left to right
-14,400, right to left 11,320. Through calls (inlined) and a loop of constant count 4 (unrolled):
-``rnd(seed)`` (one ``+=``) three times merged 14,400, stepwise 298; ``hash2(seed)`` (a
-constructor of two) twice, its last value merged 14,400, stepwise 162; ``rnd`` in the
-unrolled loop merged 14,400, stepwise 162 (two ``+=`` in it, 8 steps: merged left to right
-only 13,250, stepwise 222: another grouping, not pinned here). Written for llvmpipe of Mesa
-22.3 (the `llvmpipe` fixture skips elsewhere).
+merged across the join; ``+= 0.047; += 1.802; -= 1.423``: left to right 14,400, right to left
+11,320; ``+= 0.047; += 1.802; += 0.311`` read there: right to left 14,400, left to right
+13,731. Through calls (inlined) and loops of constant count (unrolled): ``rnd(seed)`` (one
+``+=``) three times merged 14,400, stepwise 298; ``hash2(seed)`` (a constructor of two) twice,
+its last value merged 14,400, stepwise 162 (so a global seed advanced in ``ghash()``);
+``rnd`` in the unrolled loop merged 14,400,
+stepwise 162; two ``+=`` a pass, the body's sum first: 14,400, left to right 13,250; a
+constant before the loop, added after the loop's own: 14,400, left to right 12,483; a loop
+NIR keeps for the size of its body restarts the chain at every pass (16 passes of 17 lines of
+3 instructions: 14,400 that way, 364 as if unrolled; of 16 lines: unrolled, 14,400). Written
+for llvmpipe of Mesa 22.3 (the `llvmpipe` fixture skips elsewhere).
 """
 
 from __future__ import annotations
@@ -33,12 +41,16 @@ from glslcheck.verification.verify import compile_backend
 
 HEAD = """float rnd(inout float seed) { seed += 0.1; return seed; }
 vec2 hash2(inout float seed) { return vec2(seed += 0.1, seed += 0.1); }
+float gseed;
+vec2 ghash() { return vec2(gseed += 0.1, gseed += 0.1); }
 void mainImage(out vec4 c, in vec2 p) {
     float s0 = fract(p.x * 0.1371 + p.y * 0.0917) * 40.0;
     float seed = s0;
 """
 K, K2 = np.float32(0.1), np.float32(0.2)
+P1 = np.float32(2.329)
 R1, R2, R3 = np.float32(0.047), np.float32(1.802), np.float32(-1.423)
+R4 = np.float32(0.311)
 
 
 def _steps(s0, n):
@@ -75,6 +87,11 @@ SHAPES = {
         "seed += 0.047; seed += 1.802; seed -= 1.423; c = vec4(s0, seed, 0.0, 1.0);",
         {1: (lambda s: s + ((R3 + R2) + R1), lambda s: s + ((R1 + R2) + R3))},
     ),
+    "constants_folded_right_to_left": (
+        "seed += 0.047; seed += 1.802; seed += 0.311; float r = seed; seed += 2.719;"
+        " c = vec4(s0, r, seed, 1.0);",
+        {1: (lambda s: s + ((R1 + R2) + R4), lambda s: s + (R1 + (R2 + R4)))},
+    ),
     "loop_body": (
         "for (int i = 0; i < iFrame + 2; i++) { seed += 0.1; seed += 0.1; }"
         " c = vec4(s0, seed, 0.0, 1.0);",
@@ -103,11 +120,91 @@ THROUGH_CALLS = {
         "vec2 a = hash2(seed); vec2 b = hash2(seed); c = vec4(s0, b.y, 0.0, 1.0);",
         {1: (lambda s: _steps(s, 4), lambda s: _merged(s, 4))},
     ),
+    "a_global_through_calls": (
+        "gseed = s0; ghash(); vec2 h = ghash(); c = vec4(s0, h.y, 0.0, 1.0);",
+        {1: (lambda s: _steps(s, 4), lambda s: _merged(s, 4))},
+    ),
     "unrolled_loop": (
         "for (int i = 0; i < 4; i++) { rnd(seed); } c = vec4(s0, seed, 0.0, 1.0);",
         {1: (lambda s: _steps(s, 4), lambda s: _merged(s, 4))},
     ),
+    "into_an_unrolled_loop": (
+        "seed += 2.329; float r = 0.0; for (int i = 0; i < 4; i++) { r = rnd(seed); }"
+        " c = vec4(s0, r, 0.0, 1.0);",
+        {
+            1: (
+                lambda s: _left_to_right(s, [P1] + [K] * 4),
+                lambda s: _unrolled(s, [P1], [K], 4, []),
+            )
+        },
+    ),
 }
+
+
+def _restarted(s0, body, times):
+    """A loop NIR keeps: the body's constants merged, the chain restarted at each pass."""
+    step = np.float32(0.0)
+    for k in body:
+        step = step + k
+    out = s0
+    for _ in range(times):
+        out = out + step
+    return out
+
+
+def _sines(n):
+    """A loop body of two additions and n lines of 3 instructions each: NIR unrolls 16 passes
+    of it up to n = 16 (cost (3n + 2) * 16 against 32 * 26)."""
+    lines = " ".join(f"a = sin(a * 1.01 + {i}.0);" for i in range(n))
+    return (
+        f"float a = s0; for (int i = 0; i < 16; i++) {{ seed += 0.1; seed += 0.2; {lines} }}"
+        " c = vec4(s0, seed, a, 1.0);"
+    )
+
+
+# An unrolled loop whose body adds two constants merges them first, ``phi + (0.1 + 0.1)``, then
+# each copy's sum into the one before; a loop whose body costs too much is kept.
+UNROLLED_BODIES = {
+    "small_enough_to_unroll": (
+        _sines(16),
+        {1: (lambda s: _restarted(s, [K, K2], 16), lambda s: _unrolled(s, [], [K, K2], 16, []))},
+    ),
+    "one_line_too_big_to_unroll": (
+        _sines(17),
+        {1: (lambda s: _unrolled(s, [], [K, K2], 16, []), lambda s: _restarted(s, [K, K2], 16))},
+    ),
+    "unrolled_loop_of_two_steps": (
+        "for (int i = 0; i < 4; i++) { seed += 0.1; seed += 0.1; } c = vec4(s0, seed, 0.0, 1.0);",
+        {1: (lambda s: _merged(s, 8), lambda s: _unrolled(s, [], [K, K], 4, []))},
+    ),
+}
+
+
+def _unrolled(s0, pre, body, times, post):
+    """NIR's order for a loop it unrolls, as measured: the body's constants merged first
+    (``phi + (c1 + c2)``), the copies' sums added up, then the constants `pre` before the loop
+    (merged left to right) and those `post` after it, one at a time."""
+    step = np.float32(0.0)
+    for k in body:
+        step = step + k
+    acc = np.float32(0.0)
+    for _ in range(times):
+        acc = acc + step
+    if pre:
+        before = np.float32(0.0)
+        for k in pre:
+            before = before + k
+        acc = acc + before
+    for k in post:
+        acc = acc + k
+    return s0 + acc
+
+
+def _left_to_right(s0, ks):
+    acc = np.float32(0.0)
+    for k in ks:
+        acc = acc + k
+    return s0 + acc
 
 
 def _render(shader, backend):
@@ -115,11 +212,11 @@ def _render(shader, backend):
     return np.asarray(got, np.float32).reshape(-1, 4)
 
 
-@pytest.mark.parametrize("name", sorted(SHAPES) + sorted(THROUGH_CALLS))
+@pytest.mark.parametrize("name", sorted(SHAPES) + sorted(THROUGH_CALLS) + sorted(UNROLLED_BODIES))
 def test_llvmpipe_merges_the_constants_of_a_repeated_sum(llvmpipe, make_shader, name):
     """The driver's value is the merged order on every pixel, and the shape tells the orders
     apart (else the comparison proves nothing)."""
-    body, channels = {**SHAPES, **THROUGH_CALLS}[name]
+    body, channels = {**SHAPES, **THROUGH_CALLS, **UNROLLED_BODIES}[name]
     got = _render(make_shader(HEAD + body + "\n}"), "gl")
     s0 = got[:, 0]
     for ch, (stepwise, merged) in channels.items():
@@ -136,9 +233,8 @@ def test_numpy_merges_the_constants_of_a_repeated_sum_as_mesa(llvmpipe, make_sha
     assert same.all(), (name, (~same).sum(0).tolist())
 
 
-@pytest.mark.xfail(strict=True, reason="the chain is not followed through calls and unrolled loops")
-@pytest.mark.parametrize("name", sorted(THROUGH_CALLS))
+@pytest.mark.parametrize("name", sorted(THROUGH_CALLS) + sorted(UNROLLED_BODIES))
 def test_numpy_merges_the_constants_through_calls_as_mesa(llvmpipe, make_shader, name):
-    shader = make_shader(HEAD + THROUGH_CALLS[name][0] + "\n}")
+    shader = make_shader(HEAD + {**THROUGH_CALLS, **UNROLLED_BODIES}[name][0] + "\n}")
     got_gl, got_np = _render(shader, "gl"), _render(shader, "numpy")
     assert (got_np.view(np.int32) == got_gl.view(np.int32)).all()

@@ -65,7 +65,7 @@ from ...semantics.model import Constructor, Symbol
 from ..cpu_core.common import comment_safe
 from ..cpu_core.facts import Facts
 from ..cpu_core.uniformity import Uniformity
-from .expressions import ExpressionEmitter, FnState
+from .expressions import ExpressionEmitter, FnState, nir_chain_params
 from .module_text import HEADER, RENDER
 from .values import (
     ATOM,
@@ -511,6 +511,8 @@ class Codegen(ExpressionEmitter):
                     params.append(part.name if isinstance(part, Arr) else part)
             if direction != "in":
                 fs.outs += parts
+        for i, program in sorted(nir_chain_params(self, sym).items()):  # a caller's chain
+            params += [f"_c{i}f", f"_c{i}b"] + [f"_c{i}k{m}" for m in range(program.slots())]
         def_at = len(self.lines)
         self.emit("")  # the def line, once the state arrays the body uses are known
         self.indent += 1
@@ -736,12 +738,38 @@ class Codegen(ExpressionEmitter):
         self.comment(s)
         if s.init is not None:
             self.stmt(s.init)
+        self.enter_unrolled(s)
         step = (lambda: self.expr(s.step)) if s.step is not None else None
         self.loop(s, s.cond, s.body, step, do_while=False)
 
     def _stmt_While(self, s: A.While) -> None:
         self.comment(s)
         self.loop(s, s.cond, s.body, None, do_while=False)
+
+    def enter_unrolled(self, loop: A.For) -> None:
+        """Before a loop NIR unrolls (nir_fold.enter_unrolled, the NumPy backend's): the value
+        before a chain that starts there, kept, and a count of its passes where its steps'
+        constants differ from copy to copy."""
+        from ..numpy_engine.transpile import nir_fold
+
+        fs = self.fn
+        assert fs is not None  # generating a function's body
+        ctx = self.fold_context()
+        entry = nir_fold.sum_entry(ctx, loop)
+        if entry is not None and entry.root:
+            self.chain_base(entry, [self.read(p) for p in self.var_parts(entry.sym, loop)])
+        if nir_fold.indexed_loop(ctx, loop):
+            name = self.fresh("ix")
+            self.emit(f"{name} = 0")
+            fs.sum_index[id(loop)] = name
+
+    def end_of_unrolled_body(self, loop: A.For) -> None:
+        """The loop's pass count advanced (:meth:`enter_unrolled`)."""
+        fs = self.fn
+        assert fs is not None  # generating a function's body
+        name = fs.sum_index.get(id(loop))
+        if name is not None:
+            self.emit(f"{name} = {name} + 1")
 
     def _stmt_DoWhile(self, s: A.DoWhile) -> None:
         self.comment(s)
@@ -789,6 +817,8 @@ class Codegen(ExpressionEmitter):
         assert self.fn is not None  # generating a function's body
         self.fn.loops.append(("loop", cont))
         ended = self.stmt(body)
+        if isinstance(s, A.For) and not ended:
+            self.end_of_unrolled_body(s)
         self.fn.loops.pop()
         if not ended:
             if do_while:

@@ -38,6 +38,31 @@ if TYPE_CHECKING:
     from .fold_values import FoldValues
 
 
+def _step_constant(e: A.Assignment) -> Any:
+    """The constant of a step ``x += #c`` (``x = x + #c``, ``x = #c + x``, ...)."""
+    if e.op != "=":
+        return e.value
+    assert isinstance(e.value, A.Binary)  # (nir_fold's steps)
+    left = e.value.left
+    if isinstance(left, A.Identifier) and left.name == _target_name(e):
+        return e.value.right
+    return left
+
+
+def _target_name(e: A.Assignment) -> str | None:
+    return e.target.name if isinstance(e.target, A.Identifier) else None
+
+
+def nir_chain_params(gen: Any, fn: Symbol) -> dict[int, list]:
+    """nir_fold.chain_params of user function `fn` (the parameters a caller's ``+= #c`` chain
+    runs through), {} outside a function."""
+    from ..numpy_engine.transpile import nir_fold
+
+    if gen.fn is None or gen.fn.sym is None:
+        return {}
+    return nir_fold.chain_params(gen.fold_context(), fn)
+
+
 class FnState:
     """The function Codegen is generating."""
 
@@ -46,7 +71,8 @@ class FnState:
         self.uni = uni  # cpu_core's Uniformity of the function (None: global initializers)
         self.outs: list = []  # the parts of out/inout parameters, returned after the value
         self.loops: list[tuple[str, Any]] = []  # (kind, continue emitter)
-        self.sum_chains: dict[int, tuple[list, list, int]] = {}  # step -> base, constants, depth
+        self.sum_chains: dict[tuple, tuple[list, int]] = {}  # a chain -> its base, its depth
+        self.sum_index: dict[int, str] = {}  # unrolled loop -> its pass count's name
 
 
 class ExpressionEmitter:
@@ -352,33 +378,99 @@ class ExpressionEmitter:
         return nir_fold.component_write(self.fold_context(), node, None, old)
 
     def repeated_sum(self, e: A.Assignment, targets: list) -> Val | None:
-        """``x += #c`` continuing a chain of such steps: ``base + (c1 + c2 ...)``, the
-        constants added left to right in float32 (the NumPy backend's nir_fold.repeated_sums,
-        which decides: nir_fold.sum_step); None for any other write. The first step of a chain
-        keeps the value before it in temporaries."""
+        """A step of a ``+= #c`` chain: ``base + K``, K from the NumPy backend's plan
+        (nir_fold.repeated_sums: Mesa's order, sum_order.py), the base kept at the chain's
+        first step; a step of a chain parameter of this function reads the caller's base and
+        K (or computes as written when the caller passes none). None for any other write."""
         from ..numpy_engine.transpile import nir_fold
 
         fn = self.fn
-        step = nir_fold.sum_step(self.fold_context(), e) if fn is not None else None
-        if step is None:
+        if fn is None or fn.sym is None or any(not isinstance(p, str) for p in targets):
             return None
-        assert fn is not None
-        sign, k_node, prev, kept = step
-        k = self.expr(k_node)  # (a constant: nothing emitted)
-        if any(not isinstance(p, str) for p in k.parts + targets):
+        ctx = self.fold_context()
+        own = nir_fold.param_step(ctx, e)
+        if own is not None:
+            i = own[0]
+            old = Val(self.type_of(e.target), [self.read(p) for p in targets])
+            op = e.op[:-1] if e.op != "=" else e.value.op
+            written = self.binary_values(op, old, self.expr(_step_constant(e)), e)
+            k = self.param_k(own, 0)
+            return Val(written.t, [f"((_c{i}b + {k}) if _c{i}f else {written.parts[0]})"])
+        entry = nir_fold.sum_entry(ctx, e)
+        base = self.chain_base(entry, [self.read(p) for p in targets])
+        if entry is None or base is None:
             return None
-        ks = [f"(-{p})" if sign == "-" else p for p in k.parts]
-        known = fn.sum_chains.get(id(prev)) if prev is not None else None
-        if known is None or known[2] > self.indent:
-            if kept:  # (a chain is followed only where its start's temporaries are defined)
-                base = [self.tmp_copy(self.read(p)) for p in targets]
-                fn.sum_chains[id(e)] = (base, ks, self.indent)
+        ks = [
+            self.k_code(entry, [self.cf(float(k[c])) for k in entry.ks]) for c in range(len(base))
+        ]
+        return Val(self.type_of(e.target), [f"({b} + {k})" for b, k in zip(base, ks)])
+
+    def chain_base(self, entry: Any, old: list | None) -> list | None:
+        """The value before the entry's chain, kept in temporaries at its first write (`old`:
+        the value there), defined where it is read (not inside a deeper block)."""
+        if entry is None or self.fn is None:
             return None
-        base, merged, depth = known
-        n = len(base)
-        merged = [f"({merged[i % len(merged)]} + {ks[i % len(ks)]})" for i in range(n)]
-        fn.sum_chains[id(e)] = (base, merged, depth)
-        return Val(self.type_of(e.target), [f"({b} + {m})" for b, m in zip(base, merged)])
+        if entry.root and old is not None:
+            self.fn.sum_chains[(entry.chain, id(entry.sym))] = (
+                [self.tmp_copy(p) for p in old],
+                self.indent,
+            )
+        known = self.fn.sum_chains.get((entry.chain, id(entry.sym)))
+        return known[0] if known is not None and known[1] <= self.indent else None
+
+    def param_k(self, own: tuple, m: int) -> str:
+        """The m-th K of a write of this function's chain parameter (nir_fold.param_step): its
+        slot's argument, or in an unrolled loop the copies' arguments indexed by its pass."""
+        from ..numpy_engine.transpile import nir_fold
+
+        i, at, stride, loop, _ = own
+        if loop is None:
+            return f"_c{i}k{at + m}"
+        assert self.fn is not None
+        copies = nir_fold.loop_count(self.fold_context(), loop)
+        names = [f"_c{i}k{at + m + stride * j}" for j in range(copies)]
+        return f"({', '.join(names)})[{self.fn.sum_index[id(loop)]}]"
+
+    def k_code(self, entry: Any, codes: list[str]) -> str:
+        """One constant per copy of the unrolled loop around the entry, indexed by its pass
+        where they differ."""
+        if len(codes) == 1:
+            return codes[0]
+        assert self.fn is not None
+        return f"({', '.join(codes)})[{self.fn.sum_index[id(entry.loop)]}]"
+
+    def chain_args(self, e: A.Call, fn: Symbol, inouts: dict[int, str]) -> list[str]:
+        """The chain arguments of a call of `fn` (nir_fold.chain_params), for each such
+        parameter a flag, the base and one K per constant its callee adds: the caller's chain
+        (or its own chain parameter passed on), or a false flag and zeros (the callee computes
+        as written); `inouts`: each such argument's value, kept in a temporary."""
+        from ..numpy_engine.transpile import nir_fold
+
+        if self.fn is None or self.fn.sym is None:
+            return []
+        ctx = self.fold_context()
+        params = nir_fold.chain_params(ctx, fn)
+        zero = self.cf(0.0) if params else ""
+        out: list[str] = []
+        for i, program in sorted(params.items()):
+            step = nir_fold.call_step(ctx, e)
+            mine = step is not None and step[0] == i
+            own = nir_fold.param_step(ctx, e) if mine else None
+            if own is not None:
+                j = own[0]
+                out += [f"_c{j}f", f"_c{j}b"] + [self.param_k(own, m) for m in range(own[4])]
+                continue
+            entry = nir_fold.sum_entry(ctx, e) if mine else None
+            base = self.chain_base(entry, [inouts[i]] if i in inouts else None)
+            if entry is None or base is None:
+                out += ["False", zero] + [zero] * program.slots()
+                continue
+            out += ["True", base[0]]
+            out += [
+                self.k_code(entry, [self.cf(float(c[m])) for c in entry.ks])
+                for m in range(program.slots())
+            ]
+        return out
 
     def _expr_Unary(self, e: A.Unary) -> Val:
         if e.op in ("++", "--"):
@@ -693,15 +785,26 @@ class ExpressionEmitter:
                 return folded
         args: list[str] = []
         outs: list[list] = []
-        for a, (_, ptype, d) in zip(e.args, fn.params):
+        chained = nir_chain_params(self, fn)
+        inouts: dict[int, str] = {}
+        for i, (a, (_, ptype, d)) in enumerate(zip(e.args, fn.params)):
             if d == "in":
                 parts = self.expr(a).parts
             else:
                 targets = self.lvalue(a)
                 outs.append(targets)
                 parts = [self.read(p) for p in targets] if d == "inout" else []
+                if i in chained:  # (the value before the call, a chain's base: kept)
+                    parts = [self.tmp_copy(p) for p in parts]
+                    inouts[i] = parts[0]
             for p in parts:
                 args.append(p.whole() if isinstance(p, Arr) else p)
+        if self.fn is not None and self.fn.sym is not None:
+            from ..numpy_engine.transpile import nir_fold
+
+            for key, g in nir_fold.chain_globals(self.fold_context(), fn):  # (globals' chains)
+                inouts[key] = self.tmp_copy(self.read(self.var_parts(g, e)[0]))
+        args += self.chain_args(e, fn, inouts)
         rtype = fn.type
         n_val = 0 if rtype.is_void else len(leaves(rtype, e))
         ret_leaves = [] if rtype.is_void else leaves(rtype, e)

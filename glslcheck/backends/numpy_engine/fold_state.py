@@ -35,8 +35,18 @@ class FoldState:
     sink_calls: set | None = None  # functions some call of which has a constant added to its result
     call_k: dict = field(default_factory=dict)  # call -> the constant sunk into its result
     terms: dict = field(default_factory=dict)  # returned term -> its kept code
-    sum_chains: dict = field(default_factory=dict)  # `x += #c` -> (base, merged constant, lines)
-    sum_chained: dict = field(default_factory=dict)  # function -> steps a later step continues
+    # repeated_sums: (function, chain, symbol) -> (its base, lines); function -> its plan, its
+    # chain parameters, their steps; (loop, symbol) -> copies continue it; loop -> pass count
+    sum_chains: dict = field(default_factory=dict)
+    sum_plans: dict = field(default_factory=dict)
+    sum_params: dict = field(default_factory=dict)
+    sum_param_steps: dict = field(default_factory=dict)
+    sum_loops: dict = field(default_factory=dict)
+    sum_index: dict = field(default_factory=dict)
+    sum_global_keys: dict = field(default_factory=dict)  # global -> (its chain key, itself)
+    loop_costs: dict = field(default_factory=dict)  # loop -> its body's cost (loop_unroll)
+    sum_globals: list | None = None  # the globals the shader's functions read or write
+    sum_global_writers: dict = field(default_factory=dict)  # (function, global) -> writes it
     # transpile/constant_flow.py
     constant_flow: Any = None  # the program's ConstantFlow, made on first use
     # transpile/call_fold.py

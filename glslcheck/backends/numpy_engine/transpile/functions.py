@@ -46,6 +46,9 @@ class Functions(TranspilerState):
         fs.defined.append("_m")
         if nir_fold.sunk_return(self, sym) is not None:
             params.append("_k")  # a constant the caller adds to the result (nir_fold.sunk_return)
+        chains = nir_fold.chain_param_names(self, sym)  # the caller's `+= #c` chains
+        params += chains
+        fs.defined += chains[::2]  # (a base has lanes: a compacted region gathers it)
         self.last_line = None
         sig = ", ".join(["S", "_m"] + params)
         self.emit(f"def {self.fn_name(sym)}({sig}):")
@@ -170,8 +173,9 @@ class Functions(TranspilerState):
             call_mask = None  # same arguments in every lane: compute once, for all lanes
         args: list[str] = []
         outs: list[tuple[int, LValue]] = []
+        inouts: dict[int, str] = {}
         directions = [d for _, _, d in fn.params]
-        for a, d in zip(e.args, directions):  # read after earlier side effects, as exprs()
+        for i, (a, d) in enumerate(zip(e.args, directions)):  # (after earlier side effects)
             if d == "in":
                 args.append(self.expr(a, mask))
             else:
@@ -179,7 +183,11 @@ class Functions(TranspilerState):
                 outs.append((len(outs) + 1, lv))
                 if d == "inout":
                     args.append(self.tmp(self.read(lv)))
+                    inouts[i] = args[-1]
         args += nir_fold.return_constant_args(self, e, fn)
+        for key, g in nir_fold.chain_globals(self, fn):  # (a global's chain runs through too)
+            inouts[key] = self.tmp(self.var_name(g, e))
+        args += nir_fold.chain_call_args(self, e, fn, inouts)
         call = self.call_text(e, fn, call_mask, args, mask)
         if call_mask is not None and nir_fold.register_call(self, e, fn):
             self.n += 1  # (a name no GLSL global has: `__` is reserved)

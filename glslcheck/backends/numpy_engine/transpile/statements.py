@@ -431,6 +431,7 @@ class Statements(TranspilerState):
         self.comment_line(s)
         if s.init is not None:
             self.stmt(s.init, mask)
+        nir_fold.enter_unrolled(self, s)  # a `+= #c` chain the unrolled copies continue
         self.loop(s, mask, s.cond, s.body, s.step, do_while=False)
 
     def _stmt_While(self, s: A.While, mask: str | None) -> None:
@@ -458,7 +459,7 @@ class Statements(TranspilerState):
             and fs.uni is not None
             and fs.uni.is_uniform(cond)
         ):
-            self.uniform_loop(lid, mask, cond, body, step, ind)
+            self.uniform_loop(s, lid, mask, cond, body, step, ind)
             return
         live = self.fresh("live")
         count = self.fresh("n")
@@ -490,6 +491,8 @@ class Statements(TranspilerState):
         self.emit(f"X.count(S, {lid}, {live})")
         bmask = live
         self.sub(body, bmask)
+        if isinstance(s, A.For):
+            nir_fold.end_of_unrolled_body(self, s)
         fs.loops.pop()
         if do_while:
             c = self.condition(cond, live)
@@ -541,7 +544,7 @@ class Statements(TranspilerState):
         self.emit("    break")
 
     def uniform_loop(
-        self, lid: int, mask: str | None, cond: Any, body: Any, step: Any, ind: Any
+        self, s: Any, lid: int, mask: str | None, cond: Any, body: Any, step: Any, ind: Any
     ) -> None:
         """A loop whose condition is the same in every lane and whose body cannot leave it
         early (no break, continue, return or discard): every iteration runs on the lanes that
@@ -558,6 +561,8 @@ class Statements(TranspilerState):
         fs.loops.append(LoopCtx("loop", mask if mask is not None else "None", None))
         self.emit(f"X.count(S, {lid}, {mask})")
         self.sub(body, mask)
+        if isinstance(s, A.For):
+            nir_fold.end_of_unrolled_body(self, s)
         fs.loops.pop()
         if step is not None:
             self.comment_line(step)

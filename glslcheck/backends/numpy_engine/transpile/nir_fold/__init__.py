@@ -14,11 +14,13 @@ The rules copied here, each measured bit for bit against llvmpipe on 50,000 rand
 - dot_constants.py: constants merged into a ``dot`` with a constant, ``dot(vecN(s), #K)`` factored;
 - ffma_split.py: ``(p1 + p2) + e`` returned through a folded call is ``(p1 + e) + p2`` (ffma);
 - returned_sums.py: a constant added to a call's result sinks into the ``+=`` chain it returns;
-- repeated_sums.py: ``seed += 0.1`` written again and again is ``seed0 + (0.1 + 0.1 ...)``;
+- repeated_sums.py: ``seed += 0.1`` written again and again is ``seed0 + K``, also through calls
+  NIR inlines and loops it unrolls; sum_order.py: K in the order Mesa's passes merge it;
 - ssa_values.py: a variable assigned again still stands for its value (``p = m*p*2.02``);
 - components.py: NIR's SSA per vector component, constants merged through component writes,
   a ``+= e`` undone by a later ``-= e``;
 - compound_products.py: ``x *= b; ... x * #c`` with the new x read once is ``(a * #c) * b``;
+- loop_unroll.py: which loops NIR unrolls (a constant count, a body small enough);
 - return_register.py: a call's result in the lanes a mask leaves out, llvmpipe's register;
 - added_zero.py: ``fadd(a, 0.0) -> a``, which keeps the sign of a -0.0;
 - flrp.py: nir_lower_flrp's formula for a `mix`, chosen from the other `mix` calls;
@@ -54,13 +56,38 @@ from .context import FoldContext
 from .dispatch import binary, copied_binary
 from .dot_constants import broadcast_dot, dot_operand, merged_dot
 from .flrp import mix_hint
-from .repeated_sums import repeated_sum, sum_step
+from .repeated_sums import (
+    Entry,
+    call_step,
+    chain_call_args,
+    chain_globals,
+    chain_param_names,
+    chain_params,
+    end_of_unrolled_body,
+    enter_unrolled,
+    indexed_loop,
+    loop_count,
+    param_step,
+    repeated_sum,
+    slot_code,
+    sum_entry,
+)
 from .return_register import register_call
 from .returned_sums import keep_term, return_constant_args, sunk_return, sunk_return_value
 
 __all__ = [
     "FoldContext",
+    "Entry",
     "binary",
+    "call_step",
+    "chain_call_args",
+    "chain_globals",
+    "chain_param_names",
+    "chain_params",
+    "end_of_unrolled_body",
+    "enter_unrolled",
+    "indexed_loop",
+    "loop_count",
     "broadcast_dot",
     "component_write",
     "copied_binary",
@@ -68,10 +95,12 @@ __all__ = [
     "keep_term",
     "merged_dot",
     "mix_hint",
+    "param_step",
     "register_call",
     "repeated_sum",
+    "slot_code",
     "return_constant_args",
-    "sum_step",
+    "sum_entry",
     "sunk_return",
     "sunk_return_value",
     "zero_add",

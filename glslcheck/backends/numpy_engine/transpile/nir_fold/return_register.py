@@ -11,13 +11,13 @@ from __future__ import annotations
 from typing import Any
 
 from .....frontend import syntax as A
-from ....cpu_core.facts import induction_variable
+from .loop_unroll import MAX_ITERATIONS, trip_count
 from .queries import current_function
 
 TYPE_CHECKING = False  # not typing's: importing typing costs every start-up
 if TYPE_CHECKING:
     from .....semantics.model import Symbol
-    from ..state import TranspilerState
+    from ..state import FoldEngine, TranspilerState
 
 
 def register_call(tr: TranspilerState, call: A.Call, fn: Symbol) -> bool:
@@ -73,7 +73,7 @@ def _in_kept_loop(tr: TranspilerState, sym: Symbol, node: Any, depth: int) -> bo
         return False
     loops = facts.enclosing_loops(node)
     if loops:
-        return not _unrolled(tr, loops[-1])
+        return not unrolled(tr, loops[-1])
     sites = [
         (f, n)
         for f in tr.facts.functions
@@ -83,32 +83,7 @@ def _in_kept_loop(tr: TranspilerState, sym: Symbol, node: Any, depth: int) -> bo
     return bool(sites) and all(_in_kept_loop(tr, f, n, depth + 1) for f, n in sites)
 
 
-def _unrolled(tr: TranspilerState, loop: Any) -> bool:
+def unrolled(tr: FoldEngine, loop: Any) -> bool:
     """A ``for`` loop of a constant count of at most 32 iterations (NIR unrolls it)."""
-    if not isinstance(loop, A.For) or induction_variable(loop, tr.model) is None:
-        return False
-    init = loop.init  # an induction variable's declaration (induction_variable)
-    assert isinstance(init, A.DeclarationStatement) and isinstance(init.decl, A.VariableDeclaration)
-    decl = init.decl.declarators[0]
-    start, cond, step = tr.model.const_value(decl.init), loop.cond, loop.step
-    if not (
-        isinstance(start, int)
-        and isinstance(cond, A.Binary)
-        and cond.op in ("<", "<=")
-        and isinstance(cond.left, A.Identifier)
-        and tr.model.symbol_of(cond.left) is tr.model.symbol_of(decl)
-    ):
-        return False
-    end = tr.model.const_value(cond.right)
-    inc = (
-        1
-        if isinstance(step, (A.Unary, A.Postfix)) and step.op == "++"
-        else (
-            tr.model.const_value(step.value)
-            if isinstance(step, A.Assignment) and step.op == "+="
-            else None
-        )
-    )
-    if not isinstance(end, int) or not isinstance(inc, int) or inc <= 0:
-        return False
-    return (end - start + (cond.op == "<=") + inc - 1) // inc <= 32
+    count = trip_count(tr, loop)
+    return count is not None and count <= MAX_ITERATIONS
