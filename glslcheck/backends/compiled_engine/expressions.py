@@ -53,7 +53,7 @@ def _target_name(e: A.Assignment) -> str | None:
     return e.target.name if isinstance(e.target, A.Identifier) else None
 
 
-def nir_chain_params(gen: Any, fn: Symbol) -> dict[int, list]:
+def nir_chain_params(gen: Any, fn: Symbol) -> dict[int, Any]:  # index -> sum_order.Program
     """nir_fold.chain_params of user function `fn` (the parameters a caller's ``+= #c`` chain
     runs through), {} outside a function."""
     from ..numpy_engine.transpile import nir_fold
@@ -392,7 +392,11 @@ class ExpressionEmitter:
         if own is not None:
             i = own[0]
             old = Val(self.type_of(e.target), [self.read(p) for p in targets])
-            op = e.op[:-1] if e.op != "=" else e.value.op
+            if e.op == "=":  # x = x + #c
+                assert isinstance(e.value, A.Binary)
+                op = e.value.op
+            else:  # x += #c
+                op = e.op[:-1]
             written = self.binary_values(op, old, self.expr(_step_constant(e)), e)
             k = self.param_k(own, 0)
             return Val(written.t, [f"((_c{i}b + {k}) if _c{i}f else {written.parts[0]})"])

@@ -12,6 +12,8 @@ transpiler's `fold_state`."""
 
 from __future__ import annotations
 
+from collections.abc import Iterator
+from contextlib import contextmanager
 from typing import Any
 
 from .....base.diagnostics import Location
@@ -382,6 +384,20 @@ class FunctionStandin(FnState):
 
     def __init__(self, sym: Symbol) -> None:
         super().__init__(sym, None, False)
+
+
+@contextmanager
+def asked_in(tr: FoldEngine, fn: Symbol) -> Iterator[None]:
+    """The rules asked about user function `fn` for a while (its facts, its chains), the
+    engine's current function put back after. The one place that moves `tr.fn`, which the
+    rules otherwise only read."""
+    engine: Any = tr  # FoldEngine's fn is read-only to the rules
+    saved = engine.fn
+    engine.fn = FunctionStandin(fn)
+    try:
+        yield
+    finally:
+        engine.fn = saved
 
 
 def current_function(tr: FoldEngine) -> FoldedFunction:

@@ -36,6 +36,7 @@ from .....semantics.model import Symbol
 from .loop_unroll import nir_unrolls, trip_count
 from .queries import (
     FunctionStandin,
+    asked_in,
     constant_value,
     current_function,
     function_facts,
@@ -201,6 +202,13 @@ def _is_step(tr: FoldEngine, node: Any, sym: Any) -> bool:
     return isinstance(node, A.Assignment) and _step(tr, node) is not None
 
 
+def _callee_program(tr: FoldEngine, call: A.Call) -> Program:
+    """The callee's :class:`Program` of a call that advances a chain (:func:`call_step`)."""
+    step = call_step(tr, call)
+    assert step is not None
+    return step[2]
+
+
 def call_step(tr: FoldEngine, call: A.Call) -> tuple[int, Any, Program] | None:
     """(the parameter's index, the caller's variable, the callee's :class:`Program` for it) for
     a call that passes a whole float variable to a :func:`chain_params` parameter; None for
@@ -277,12 +285,8 @@ def chain_params(tr: FoldEngine, fn: Symbol) -> dict[int, Program]:
     cache = tr.fold_state.sum_params
     if id(fn) not in cache:
         cache[id(fn)] = {}  # (GLSL has no recursion: a guard only)
-        saved = tr.fn
-        tr.fn = FunctionStandin(fn)
-        try:
+        with asked_in(tr, fn):
             cache[id(fn)] = _programs(tr, fn)
-        finally:
-            tr.fn = saved
     return cache[id(fn)]
 
 
@@ -384,7 +388,7 @@ def unrolled_chain(tr: FoldEngine, loop: Any, sym: Any) -> bool:
                 and _is_step(tr, w.node, sym)
                 and not (
                     isinstance(w.node, A.Call)
-                    and any(isinstance(op, Loop) for op in call_step(tr, w.node)[2].ops)
+                    and any(isinstance(op, Loop) for op in _callee_program(tr, w.node).ops)
                 )
                 for w in writes
             )
@@ -515,7 +519,7 @@ def _chains(tr: FoldEngine, facts: Any, sym: Any, ws: list, param_root: bool) ->
             loop_ops[id(x)] = body
             ops.append(Loop(start, loop_count(tr, x), body, _leaves(x)))
         elif isinstance(x, A.Call):
-            program = call_step(tr, x)[2]
+            program = _callee_program(tr, x)
             for op in program.ops:  # (the callee's ops, its entry the value here)
                 prev_op = start if op.prev < 0 else first + op.prev
                 if isinstance(op, Loop):
@@ -523,8 +527,12 @@ def _chains(tr: FoldEngine, facts: Any, sym: Any, ws: list, param_root: bool) ->
                 else:
                     ops.append(Step(prev_op, op.k, op.neg))
         else:
-            sign, k_node = _step(tr, x)
-            values = [float(v) for v in constant_value(tr, k_node)]
+            step = _step(tr, x)
+            assert step is not None  # (an item of a chain: a call or a step)
+            sign, k_node = step
+            constants = constant_value(tr, k_node)
+            assert constants is not None  # (_step's operand is a constant)
+            values = [float(v) for v in constants]
             if sign == "-":
                 values = [-v for v in values]
             ops.append(Step(start, values, sign == "-"))
@@ -552,7 +560,7 @@ def loop_count(tr: FoldEngine, loop: Any) -> int:
 
 
 def _component(ops: list, c: int) -> list:
-    out = []
+    out: list = []
     for op in ops:
         if isinstance(op, Loop):
             out.append(Loop(op.prev, op.count, _component(op.body, c), op.breaks))
@@ -703,7 +711,9 @@ def enter_unrolled(tr: TranspilerState, loop: Any) -> None:
         _base(tr, entry, tr.var_name(entry.sym, entry.sym.node))
     if indexed_loop(tr, loop):
         name = tr.fresh("ix")
-        current_function(tr).defined.remove(name)  # (a pass count, no lane value)
+        fn = tr.fn
+        assert fn is not None  # (emitting a function)
+        fn.defined.remove(name)  # (a pass count, no lane value)
         tr.emit(f"{name} = 0")
         tr.fold_state.sum_index[id(loop)] = name
 

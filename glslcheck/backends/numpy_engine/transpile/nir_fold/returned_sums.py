@@ -17,6 +17,7 @@ from .....semantics.model import Symbol
 from .queries import (
     SUMS,
     FunctionStandin,
+    asked_in,
     current_function,
     function_facts,
     is_fmul,
@@ -47,12 +48,8 @@ def sunk_return(tr: TranspilerState, fn: Symbol) -> list[tuple[Any, Any, str]] |
     if id(fn) not in cache:
         cache[id(fn)] = None
         if id(fn) in _sink_calls(tr) and all(d == "in" for _, _, d in fn.params):
-            saved = tr.fn
-            tr.fn = FunctionStandin(fn)
-            try:
+            with asked_in(tr, fn):
                 cache[id(fn)] = _return_chain(tr, fn)
-            finally:
-                tr.fn = saved
     return cache[id(fn)]
 
 

@@ -14,7 +14,7 @@ from typing import Any
 
 from .....frontend import syntax as A
 from .queries import (
-    FunctionStandin,
+    asked_in,
     constant_value,
     current_function,
     function_facts,
@@ -134,12 +134,8 @@ def merged_argument(tr: Any, x: Any) -> bool:  # (sets tr.fn for a while)
             sym = tr.model.symbol_of(arg) if isinstance(arg, A.Identifier) else None
             if sym is None or sym.kind not in ("local", "param"):
                 return False
-            saved = tr.fn
-            tr.fn = FunctionStandin(caller)
-            try:
+            with asked_in(tr, caller):
                 facts = function_facts(tr)
-            finally:
-                tr.fn = saved
             if not facts.ok or id(arg) not in facts.enter:
                 return False
             # (the out write of a call of this function, which never writes x, changes nothing)

@@ -22,6 +22,8 @@ differ)."""
 
 from __future__ import annotations
 
+from typing import Any
+
 import numpy as np
 
 _F = np.float32
@@ -34,7 +36,7 @@ class Step:
 
     __slots__ = ("prev", "k", "neg")
 
-    def __init__(self, prev: int, k: float, neg: bool = False) -> None:
+    def __init__(self, prev: int, k: Any, neg: bool = False) -> None:  # k: one, or a vector's
         self.prev, self.k, self.neg = prev, _F(k), neg
 
 
