@@ -157,11 +157,16 @@ class TieredCpuProgram:
 
     @property
     def mode(self) -> str:
-        """Which engine renders the next frame: "numpy", or the compiled program's mode."""
+        """Which engine renders the next frame: "numpy", or the compiled program's mode
+        ("compiled pixel", "compiled lanes8")."""
         second = self.second
         if second is None:
             return "numpy"
-        return f"compiled {getattr(second, 'mode', 'fixed')}"
+        mode = getattr(second, "mode", None)
+        if mode is None:  # a program of one mode (lockstep from the start: derivatives)
+            width = second.source.partition("\nLANES = ")[2].split(" ", 1)[0]
+            mode = f"lanes{width}" if width else "pixel"
+        return f"compiled {mode}"
 
     # -- the record kept beside numba's cache ----------------------------------------------------
     def _record_path(self) -> str | None:
