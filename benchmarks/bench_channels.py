@@ -1,7 +1,7 @@
 """Benchmark of textured and multipass shaders: the NumPy backend against the GL driver.
 
     python benchmarks/bench_channels.py [--frames N] [--repeat R] [--size WxH] [--webgl]
-                                        [--compiled]
+                                        [--compiled] [--default] [--settle S]
 
 Scenes (benchmarks/scenes): `textured` (one pass sampling an image with mipmap and linear
 filtering; its tex.png, 256x256 noise, is written into a temporary copy of the folder) and
@@ -11,7 +11,11 @@ turns, R rounds; reported: the best time per frame of each and the ratio numpy /
 worker processes and on threads of this process (NumpyProgram.parallel). --webgl adds the WebGL
 backend (headless Chromium, SwiftShader; the channels go to the page each pass) and its ratio
 webgl / gl. --compiled adds the compiled engine (numba; its compile is done before the timing,
-by a frame at 8x8) and its ratio compiled / gl.
+by a frame at 8x8) and its ratio compiled / gl. --default adds the default CPU program
+(`--backend auto`, backends/tiered.py) and its ratio default / gl: before the timing it renders
+frames at the benchmark's size until every pass has settled (stays on NumPy for good, or the
+compiled engine renders past its trial; at most --settle seconds), and the line after the scene
+says on which engine each pass settled and what settling took (frames, seconds).
 """
 
 from __future__ import annotations
@@ -53,6 +57,28 @@ def _per_frame(prog, frames: int, size, start: int) -> float:
     return (time.perf_counter() - t0) / frames
 
 
+def _settle(prog, size, seconds: float) -> tuple[int, float]:
+    """Frames of the default program from frame 0 until every pass has settled (at most
+    `seconds`): (frames rendered, seconds taken)."""
+    passes = list(prog.impl.programs.values())
+    t0, k = time.perf_counter(), 0
+    while time.perf_counter() - t0 < seconds:
+        prog.render(size=size, frame=k, time=k / 60.0)
+        k += 1
+        if all(getattr(p, "settled", lambda: True)() for p in passes):
+            break
+    return k, time.perf_counter() - t0
+
+
+def _engines(prog) -> str:
+    """Each pass's engine and, for one kept on NumPy for good, why."""
+    out = []
+    for tab, p in prog.impl.programs.items():
+        stay = getattr(p, "stay", None)
+        out.append(f"{tab}: {getattr(p, 'mode', 'numpy')}" + (f" ({stay})" if stay else ""))
+    return "; ".join(out)
+
+
 def _set_mode(prog, mode: str) -> None:
     """NumpyProgram.parallel of every pass (Program -> MultipassProgram -> one per tab)."""
     for p in prog.impl.programs.values():
@@ -66,6 +92,8 @@ def main() -> None:
     ap.add_argument("--size", default="800x450")
     ap.add_argument("--webgl", action="store_true", help="also time the WebGL backend")
     ap.add_argument("--compiled", action="store_true", help="also time the compiled engine")
+    ap.add_argument("--default", action="store_true", help="also time the default CPU program")
+    ap.add_argument("--settle", type=float, default=300.0, help="seconds the default may settle")
     args = ap.parse_args()
     size = tuple(int(v) for v in args.size.lower().split("x"))
     started = time.perf_counter()
@@ -77,6 +105,7 @@ def main() -> None:
         f"{'':<38}{'processes':>10}{'threads':>10}{'gl':>10}   ratios"
         + ("   webgl     ratio" if args.webgl else "")
         + ("   compiled  ratio" if args.compiled else "")
+        + ("   default   ratio" if args.default else "")
     )
     with tempfile.TemporaryDirectory() as tmp:
         for name in SCENES:
@@ -87,13 +116,23 @@ def main() -> None:
             if args.compiled:
                 progs["compiled"] = api.compile(folder, backend="compiled")
                 progs["compiled"].render(size=(8, 8))  # numba's compile (or cache load)
+            # the frame each program continues from: consecutive frames carry the buffers (a
+            # frame out of order would replay them from frame 0)
+            first = {}
+            settled = ""
+            if args.default:
+                progs["default"] = api.compile(folder)
+                k, took = _settle(progs["default"], size, args.settle)
+                first["default"] = k
+                settled = f"      default settled after {k} frames, {took:.1f} s: "
+                settled += _engines(progs["default"])
             for mode in ("processes", "threads"):  # one program each: each carries its own buffers
                 progs[mode] = api.compile(folder, backend="numpy")
                 _set_mode(progs[mode], mode)
             best = {k: float("inf") for k in progs}
             for r in range(args.repeat):
-                start = r * args.frames  # consecutive frames continue the buffers (no replay)
                 for k, prog in progs.items():
+                    start = first.get(k, 0) + r * args.frames
                     best[k] = min(best[k], _per_frame(prog, args.frames, size, start))
             p, t, g = (best[k] * 1000 for k in ("processes", "threads", "gl"))
             line = f"   {name:<35}{p:>8.1f} ms{t:>7.1f} ms{g:>7.1f} ms   {p / g:.2f}x  {t / g:.2f}x"
@@ -103,7 +142,10 @@ def main() -> None:
             if args.compiled:
                 c = best["compiled"] * 1000
                 line += f"  {c:>7.1f} ms  {c / g:.2f}x"
-            print(line)
+            if args.default:
+                d = best["default"] * 1000
+                line += f"  {d:>7.1f} ms  {d / g:.2f}x"
+            print(line + ("\n" + settled if settled else ""), flush=True)
     print(
         f"total {time.perf_counter() - started:.0f} s; load at the end "
         f"{' '.join(f'{v:.1f}' for v in os.getloadavg())}"

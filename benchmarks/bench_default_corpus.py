@@ -43,7 +43,6 @@ sys.path.insert(0, os.path.join(ROOT, "tools"))
 ONE = r"""
 import json, statistics, sys, time
 import glslcheck
-from glslcheck.backends import tiered
 from glslcheck.base.diagnostics import GlslError
 
 path, size, settle, extra = sys.argv[1], sys.argv[2], float(sys.argv[3]), int(sys.argv[4])
@@ -64,16 +63,10 @@ def render(side, k):
 
 
 def settled():
-    if not isinstance(impl, tiered.TieredCpuProgram):
-        return True  # a NumPy program (Buffer tabs, channels): nothing to move
-    if impl.stay is not None:
-        return True
-    second = impl.second
-    if second is None or len(impl.trial) < tiered.TRIAL_FRAMES:
-        return False
-    # the compiled engine's own move to lockstep: made, ruled out, or over its budget
-    return (getattr(second, "fast", None) is not None or getattr(second, "stay", True)
-            or second.over_budget())
+    # every pass (a multipass shader's MultipassProgram holds one program a pass); a NumPy
+    # program (GLSLCHECK_TIERS=off) has nothing to move
+    passes = impl.programs.values() if hasattr(impl, "programs") else [impl]
+    return all(getattr(p, "settled", lambda: True)() for p in passes)
 
 
 times, k = [], 0

@@ -73,8 +73,8 @@ class MultipassProgram:
 
     @property
     def engine(self) -> str:
-        """The engine that renders the output pass (Program.engine): the default CPU program
-        runs the passes of such a shader on the NumPy backend."""
+        """The engine that rendered the output pass's last frame (Program.engine): under the
+        default CPU program each pass moves to the compiled engine on its own (tiered.py)."""
         engine = getattr(self.programs[self.output], "engine", None)
         return engine if isinstance(engine, str) else self.backend.name
 

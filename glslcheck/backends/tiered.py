@@ -18,10 +18,13 @@ within engine.LOCKSTEP_BUDGET).
 
 The move happens only where the two engines are known to give the same bits:
 
-* frames the compiled engine renders at all: float32, no lane statistics, no channel inputs, an
-  Image pass of a shader without Buffer tabs or iChannel reads, numba installed; llvmpipe's
-  loop limiter (verify's) is passed on to the compiled program, which emulates it alike, while a
-  driver's float-to-uint model other than this machine's keeps the frames on NumPy;
+* frames the compiled engine renders at all: float32, no lane statistics, numba installed; any
+  pass (Image or Buffer A-D, each pass of a multipass shader a program of its own, moving on its
+  own frames) with the channel inputs channels.json binds: the check and trial frames below
+  sample the same `ChannelInput`s on both engines (buffers carried from frame to frame by
+  backends/multipass.py, feedback included). llvmpipe's loop limiter (verify's) is passed on to
+  the compiled program, which emulates it alike, while a driver's float-to-uint model other than
+  this machine's keeps the frames on NumPy;
 * a shader the compiled engine compiles (one with a construct it refuses stays on NumPy);
 * and agrees on: the compiled program's first frame renders the inputs of the last NumPy frame
   before the move, and each of its trial frames (below) is rendered by both engines; any pixel
@@ -38,11 +41,13 @@ The move happens only where the two engines are known to give the same bits:
   again (or no lockstep module, or a differing frame), NumPy keeps the frames for good.
 
 The verdict, the compiled module's key and what compiling it took are kept beside numba's cache
-(`<cache>/compiled/t<hash>.tier`, keyed by the NumPy module, the loop limiter and the compiled
-engine's code): a later
+(`<cache>/compiled/t<hash>.tier`, keyed by the NumPy module, the loop limiter, the compiled
+engine's code and the pass's channel bindings): a later
 process moves as soon as the cache load pays, and never retries a shader refused or found to
 differ (a timing trial lost is not kept: it depends on the machine's load).
-`GLSLCHECK_TIERS=off` (config.tiers) keeps every frame on NumPy.
+`GLSLCHECK_TIERS=off` (config.tiers) keeps every frame on NumPy. One compile runs at a time in
+a process (`_COMPILING`): the passes of a multipass shader that pay at the same frame compile one
+after another instead of taking every core from the frames.
 """
 
 from __future__ import annotations
@@ -78,6 +83,8 @@ RATE_FRAMES = 5
 # Expected seconds of loading the compiled module from numba's cache (import of numba included:
 # 0.45 s measured on a lab shader, 0.04 s once numba is loaded).
 CACHED_LOAD_SECONDS = 0.5
+# held by a move while numba compiles its module (one compile at a time in a process)
+_COMPILING = threading.Lock()
 
 
 class TieredCpuProgram:
@@ -87,6 +94,7 @@ class TieredCpuProgram:
 
     # its own attributes (the names annotated here), set in __init__ through __dict__
     shader: Any
+    tab: str
     first: NumpyProgram
     second: CompiledProgram | TieredProgram | None
     stay: str | None
@@ -101,9 +109,10 @@ class TieredCpuProgram:
     later: TieredProgram | None
     engine: str
 
-    def __init__(self, shader: Any, first: NumpyProgram) -> None:
+    def __init__(self, shader: Any, first: NumpyProgram, tab: str = "Image") -> None:
         d = self.__dict__
         d["shader"] = shader
+        d["tab"] = tab  # the pass it renders
         d["first"] = first
         d["second"] = None  # the compiled program, once made and checked
         d["stay"] = None  # why the frames stay on NumPy for good (None: they may move)
@@ -148,21 +157,31 @@ class TieredCpuProgram:
 
     @property
     def mode(self) -> str:
-        """Which engine renders the next frame: "numpy", or the compiled program's mode."""
+        """Which engine renders the next frame: "numpy", or the compiled program's mode
+        ("compiled pixel", "compiled lanes8")."""
         second = self.second
         if second is None:
             return "numpy"
-        return f"compiled {getattr(second, 'mode', 'fixed')}"
+        mode = getattr(second, "mode", None)
+        if mode is None:  # a program of one mode (lockstep from the start: derivatives)
+            width = second.source.partition("\nLANES = ")[2].split(" ", 1)[0]
+            mode = f"lanes{width}" if width else "pixel"
+        return f"compiled {mode}"
 
     # -- the record kept beside numba's cache ----------------------------------------------------
     def _record_path(self) -> str | None:
+        from ..shadertoy.channels import load_bindings
         from .compiled_engine.engine import compiled_folder, engine_fingerprint
 
         try:
             folder = compiled_folder()
             # (llvmpipe's loop limiter makes another compiled module, with a verdict of its own)
             limit = self.first.loop_limit
-            h = hashlib.sha256(f"{engine_fingerprint()} {limit}\n{self.first.source}".encode())
+            # (the bindings choose the compiled module's mipmap lookups and the texels sampled)
+            bound = sorted(repr(b) for b in load_bindings(self.shader)[1] if b.tab == self.tab)
+            h = hashlib.sha256(
+                f"{engine_fingerprint()} {limit} {self.tab} {bound}\n{self.first.source}".encode()
+            )
         except OSError:
             return None
         return os.path.join(folder, f"t{h.hexdigest()[:24]}.tier")
@@ -202,14 +221,12 @@ class TieredCpuProgram:
                 return float(rec["seconds"])
         return COMPILE_GUESS_SECONDS
 
-    def _refusal(self, inputs: FrameInputs, precision: str, stats: bool, channels: Any) -> str:
+    def _refusal(self, precision: str, stats: bool) -> str:
         """Why this frame cannot move ("" when it can)."""
         if precision != "float32":
             return "precision"
         if stats:
             return "stats"
-        if channels is not None:
-            return "channels"
         return ""
 
     def _eligible(self) -> str:
@@ -234,16 +251,18 @@ class TieredCpuProgram:
     ) -> np.ndarray:
         """One frame (NumpyProgram.render), by whichever engine is current."""
         kw = inputs.keywords()
-        why = self._refusal(inputs, precision, stats, channels)
+        why = self._refusal(precision, stats)
+        # a compiled frame: the same inputs, channels included
+        ckw = {**kw, "channels": channels} if channels is not None else kw
         pixels = inputs.width * inputs.height
         second = self.second
         if second is not None and not why:
             if len(self.trial) >= TRIAL_FRAMES:
                 self.engine = self.mode
-                return second.render(**kw)
+                return second.render(**ckw)
             # a trial frame: timed, and checked against the NumPy backend's render of it
             t0 = time.perf_counter()
-            got = second.render(**kw)
+            got = second.render(**ckw)
             rate = (time.perf_counter() - t0) / pixels
             out = self.first.render(**kw, precision=precision, stats=stats, channels=channels)
             self.engine = "numpy"
@@ -261,7 +280,7 @@ class TieredCpuProgram:
             # lockstep is ready: this frame on both engines (the check), then a new trial
             out = self.first.render(**kw, precision=precision, stats=stats, channels=channels)
             self.later, self.trial = None, []
-            differ = _differing(later.render(**kw), out)
+            differ = _differing(later.render(**ckw), out)
             if differ:
                 self.stay = f"differs: {differ} pixels of the lockstep check frame"
                 self._keep(verdict=self.stay)
@@ -298,7 +317,7 @@ class TieredCpuProgram:
             # process: engine.build_apart); the check frame is this one
             self.numpy_rate = sorted(self.rates)[len(self.rates) // 2]
             self._mover = threading.Thread(
-                target=self._move, args=(kw, out.copy()), name="glslcheck-tier", daemon=True
+                target=self._move, args=(ckw, out.copy()), name="glslcheck-tier", daemon=True
             )
             self._mover.start()
         return out
@@ -341,14 +360,17 @@ class TieredCpuProgram:
 
         try:
             limit = self.first.loop_limit  # (verify's: the module counts loop passes)
-            prog = compile_compiled(self.shader, budget=limit is not None)
+            # (the Image: the compiled engine picks the Image or a plain GLSL file's one tab)
+            tab = None if self.tab == "Image" else self.tab
+            prog = compile_compiled(self.shader, budget=limit is not None, tab=tab)
             if limit is not None:
                 prog.loop_limit = limit
             base = prog if isinstance(prog, CompiledProgram) else prog.first
             base.frame_seconds = self.first.frame_seconds
             # numba's compile in a child process, stopped at the budget: the NumPy frames keep
             # this process's GIL and cores (but the one it takes)
-            why = base.build_apart(PIXEL_BUDGET)
+            with _COMPILING:
+                why = base.build_apart(PIXEL_BUDGET)
             if why == EXITING:  # (the process ends: no verdict)
                 return
             if why == "over budget":
@@ -386,6 +408,18 @@ class TieredCpuProgram:
         self._keep(**fields)
         self.second = prog
 
+    def settled(self) -> bool:
+        """Whether the engine of this program's frames is decided: NumPy for good (`stay`), or
+        the compiled program past its trial with its own move to lockstep made or ruled out."""
+        if self.stay is not None:
+            return True
+        second = self.second
+        if second is None or len(self.trial) < TRIAL_FRAMES:
+            return False
+        if not hasattr(second, "over_budget"):  # a program of one fixed mode
+            return True
+        return bool(second.fast is not None or second.stay or second.over_budget())
+
     def settle(self, timeout: float | None = None) -> bool:
         """Wait for a move under way (at most `timeout` seconds); whether none is left."""
         mover = self._mover
@@ -404,15 +438,14 @@ def _differing(got: np.ndarray, want: np.ndarray) -> int:
 
 
 def compile_tiered(shader: Any, tab: str = "Image") -> Any:
-    """The default CPU program of one pass: a TieredCpuProgram for an Image pass the compiled
-    engine may run, else the NumPy backend's program."""
-    from ..shadertoy.channels import needs_passes
+    """The default CPU program of one pass (the Image or a Buffer): a TieredCpuProgram, or the
+    NumPy backend's program when GLSLCHECK_TIERS=off."""
     from .numpy_engine.program import compile_numpy
 
     first = compile_numpy(shader, tab if tab != "Image" else None)
-    if tab != "Image" or needs_passes(shader) or not config.tiers():
+    if not config.tiers():
         return first
-    return TieredCpuProgram(shader, first)
+    return TieredCpuProgram(shader, first, tab)
 
 
 def _compile_pass(shader: Any, tab: str) -> Any:

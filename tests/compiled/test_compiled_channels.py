@@ -152,6 +152,33 @@ def test_lowp_arithmetic_is_float16_and_changes_bits(numba, tmp_path):
     assert _differing(got_exact, exact_numpy.render(**kw)) == 0
 
 
+# float16 trees of every shape lower_precision.float16_code writes: a square of a square, a
+# constant sunk into a square, negations, vectors and scalars mixed, two samplers in one tree
+FLOAT16_TREES = """void mainImage(out vec4 c, in vec2 fc) {
+    vec2 uv = fc / iResolution.xy;
+    vec3 a = pow(texture(iChannel1, uv).rgb, vec3(2.0)) * 4.0 - texture(iChannel2, uv).xyz / 3.0;
+    float b = 0.5 * pow(pow(texture(iChannel2, uv * 3.0).x, 2.0) * 2.0 - 0.25, 2.0)
+        - -texture(iChannel1, uv).w;
+    vec2 d = (texture(iChannel1, uv).xy - 0.5) * (2.0 + texture(iChannel2, uv.yx).zw) / 7.0;
+    c = vec4(a + b, d.x + d.y);
+}
+"""
+
+
+@pytest.mark.parametrize("lanes", ["0", "8"])
+def test_float16_trees_bit_for_bit(numba, tmp_path, monkeypatch, lanes):
+    monkeypatch.setenv("GLSLCHECK_COMPILED_LANES", lanes)
+    folder = _folder(tmp_path, FLOAT16_TREES)
+    kw = dict(size=(16, 8), time=0.0)
+    want = glslcheck.compile(folder, backend="numpy").render(**kw)
+    assert _differing(glslcheck.compile(folder, backend="compiled").render(**kw), want) == 0
+    # and the lowp forms matter at these pixels: exact samplers (float32 lookups and arithmetic)
+    # give other bits
+    exact = glslcheck.compile(folder, backend="compiled")
+    exact.impl.lowp_samplers = False
+    assert _differing(exact.render(**kw), want) > 0
+
+
 def test_cube_maps_are_a_located_error(numba, make_shader):
     shader = make_shader(
         "void mainImage(out vec4 c, in vec2 f) {\n"

@@ -9,6 +9,8 @@ verdict of a test reaches another test or the user's cache.
 
 from __future__ import annotations
 
+import json
+
 import numpy as np
 import pytest
 
@@ -47,7 +49,7 @@ def eager(monkeypatch, tmp_path):
     monkeypatch.setattr(tiered, "CACHED_LOAD_SECONDS", 0.0)
     monkeypatch.setattr(tiered, "TRIAL_FRAMES", 0)
     monkeypatch.setattr(
-        tiered.TieredCpuProgram, "_record_path", lambda self: str(tmp_path / "t.tier")
+        tiered.TieredCpuProgram, "_record_path", lambda self: str(tmp_path / f"{self.tab}.tier")
     )
     monkeypatch.delenv("GLSLCHECK_TIERS", raising=False)
 
@@ -190,12 +192,87 @@ def test_a_driver_s_float_to_uint_model_stays_on_numpy(make_shader, eager):
     assert prog.engine == "numpy"
 
 
-def test_buffer_passes_are_numpy_programs(make_shader):
+def test_every_pass_is_a_tiered_program(make_shader, monkeypatch):
     from glslcheck.backends import registry
 
+    monkeypatch.delenv("GLSLCHECK_TIERS", raising=False)
     shader = make_shader(ANIMATED, Buffer_A=ANIMATED)
+    for tab in ("Buffer A", "Image"):
+        prog = registry.get("auto").compile_pass(shader, tab)
+        assert isinstance(prog, tiered.TieredCpuProgram) and prog.tab == tab
+    monkeypatch.setenv("GLSLCHECK_TIERS", "off")
     assert isinstance(registry.get("auto").compile_pass(shader, "Buffer A"), NumpyProgram)
-    assert isinstance(registry.get("auto").compile_pass(shader, "Image"), NumpyProgram)
+
+
+# Buffer A reads its own previous frame (feedback) and an image of a size not a power of two;
+# the Image reads Buffer A and the image with mipmaps (implicit LODs: lockstep from the start)
+FEEDBACK = """void mainImage(out vec4 fragColor, in vec2 fragCoord) {
+    vec2 uv = fragCoord / iResolution.xy;
+    vec4 prev = texture(iChannel0, uv + 0.01 * vec2(sin(uv.y * 12.0 + iTime), cos(uv.x * 9.0)));
+    float s = smoothstep(0.2, 0.0, length(uv - 0.5 - 0.2 * vec2(cos(iTime), sin(iTime))));
+    fragColor = prev * 0.9 + texture(iChannel1, uv * 2.0) * 0.05 + vec4(s, 0.5 * s, 0.1, 1.0);
+}
+"""
+TEXTURED = """void mainImage(out vec4 c, in vec2 fc) {
+    vec2 uv = fc / iResolution.xy;
+    vec4 b = texture(iChannel0, uv);
+    c = vec4(b.rgb / (1.0 + b.rgb) + texture(iChannel1, uv * (1.0 + 5.0 * uv.x)).rgb * 0.2, 1.0);
+}
+"""
+
+
+def _channel_folder(folder, image_filter: str = "mipmap") -> str:
+    from PIL import Image
+
+    rng = np.random.default_rng(3)
+    Image.fromarray(rng.integers(0, 256, (9, 13, 4), dtype=np.uint8), "RGBA").save(
+        folder / "tex.png"
+    )
+    (folder / "Buffer A.glsl").write_text(FEEDBACK)
+    (folder / "Image.glsl").write_text(TEXTURED)
+    texture = {"texture": "tex.png", "filter": image_filter, "wrap": "repeat"}
+    channels = {
+        "Buffer A": {"iChannel0": {"buffer": "Buffer A"}, "iChannel1": texture},
+        "Image": {"iChannel0": {"buffer": "Buffer A"}, "iChannel1": texture},
+    }
+    (folder / "channels.json").write_text(json.dumps(channels))
+    return str(folder)
+
+
+@pytest.mark.parametrize("size", [(40, 24), (41, 23)])
+def test_channel_passes_move_with_the_same_bits(numba, tmp_path, eager, size):
+    """Each pass of a multipass shader with textures and feedback moves on its own; every frame,
+    before and after the move, is the NumPy backend's bit for bit (the buffer carried)."""
+    folder = _channel_folder(tmp_path)
+    prog = glslcheck.compile(folder)
+    reference = glslcheck.compile(folder, backend="numpy")
+    passes = prog.impl.programs
+    got = [prog.render(size=size, frame=0, time=0.0)]
+    for p in passes.values():
+        assert p.settle(300)
+        assert p.mode.startswith("compiled"), (p.tab, p.stay)
+        assert p.record()["verdict"] == "same"
+    got += [prog.render(size=size, frame=k, time=k / 60) for k in range(1, 5)]
+    assert prog.engine == "compiled lanes8"  # (implicit mipmap LODs: lockstep from the start)
+    assert passes["Buffer A"].engine.startswith("compiled")
+    for k, image in enumerate(got):
+        want = reference.render(size=size, frame=k, time=k / 60)
+        assert _same(image, want), k
+
+
+def test_a_pass_s_verdict_is_kept_per_pass_and_binding(numba, tmp_path):
+    """The tier record of a pass is its own, and changes with its channel bindings (they choose
+    what the compiled module samples): a verdict is never read for another."""
+    a = glslcheck.compile(_channel_folder(_mkdir(tmp_path / "a")))
+    b = glslcheck.compile(_channel_folder(_mkdir(tmp_path / "b"), image_filter="linear"))
+    # the same two tab texts in both folders: only the tab and the bindings tell them apart
+    paths = [p._record_path() for prog in (a, b) for p in prog.impl.programs.values()]
+    assert None not in paths and len(set(paths)) == 4
+
+
+def _mkdir(path):
+    path.mkdir()
+    return path
 
 
 def test_a_lockstep_compile_over_the_budget_is_not_built(numba, make_shader, monkeypatch):

@@ -162,7 +162,7 @@ def lowp_tree(cg: Any, e: A.Binary) -> Val | None:
     """`e` as the NumPy backend computes it (nir_fold.lower_precision.lowp_tree): in float16
     when it is such a tree and every sampler it reads is lowp (tex_lowp, at run time), else
     in float32 (the written form); None when e is no such tree."""
-    from ..numpy_engine.transpile.nir_fold.lower_precision import float16_tree
+    from ..numpy_engine.transpile.nir_fold.lower_precision import float16_code, float16_tree
 
     if cg.fn is None or cg.fn.sym is None or id(e) in cg.lowp_written:
         return None
@@ -178,7 +178,7 @@ def lowp_tree(cg: Any, e: A.Binary) -> Val | None:
         cg.emit(f"{name} = F32(0.0)")
     cg.emit(f"if {cond}:")
     cg.indent += 1
-    low = _half_code(cg, e, ops, len(out))
+    low = float16_code(cg.model, e, ops, _Float16Parts(cg, len(out)))
     for name, part in zip(out, low):
         cg.emit(f"{name} = {part}")
     cg.indent -= 1
@@ -199,29 +199,26 @@ def _size(t: Any) -> int:
     return 1 if t.is_scalar else t.size
 
 
-def _half_code(cg: Any, node: Any, ops: set[int], n: int) -> list[str]:
-    """The float16 components of a tree (lower_precision._lowp_code's operations): leaves
-    rounded to float16 (`half`), each operation one float32 operation rounded to float16 (exact
-    for these: a float32 result of two float16 operands rounds to the float16 one)."""
-    if id(node) not in ops:
-        parts = [cg.atom(f"half({p})") for p in cg.expr(node).parts]
-        return parts if len(parts) == n else parts * n
-    if isinstance(node, A.Unary):
-        return [f"(-{x})" for x in _half_code(cg, node.operand, ops, n)]
-    if isinstance(node, A.Call):  # pow(x, 2.0): x * x
-        return [cg.atom(f"half({x} * {x})") for x in _half_code(cg, node.args[0], ops, n)]
-    square, k = (
-        (node.left, node.right) if isinstance(node.left, A.Call) else (node.right, node.left)
-    )
-    if (
-        node.op == "*"
-        and isinstance(square, A.Call)
-        and id(square) in ops
-        and cg.model.const_value(k) is not None
-    ):  # (x*x) * #k, the square used once: (x * #k) * x
-        xs = _half_code(cg, square.args[0], ops, n)
-        ks = _half_code(cg, k, ops, n)
-        return [cg.atom(f"half(half({x} * {c}) * {x})") for x, c in zip(xs, ks)]
-    a = _half_code(cg, node.left, ops, n)
-    b = _half_code(cg, node.right, ops, n)
-    return [cg.atom(f"half({x} {node.op} {y})") for x, y in zip(a, b)]
+class _Float16Parts:
+    """The compiled engine's float16 tree (lower_precision.float16_code writes it): the n float32
+    components of each value, a leaf's rounded to float16 (`half`) and each operation one
+    float32 operation rounded to float16 (exact for these: a float32 result of two float16
+    operands rounds to the float16 one); every component a name, so a value read twice is
+    computed once."""
+
+    def __init__(self, cg: Any, n: int) -> None:
+        self.cg, self.n = cg, n
+
+    def leaf(self, node: Any) -> list[str]:
+        parts = [self.cg.atom(f"half({p})") for p in self.cg.expr(node).parts]
+        return parts if len(parts) == self.n else parts * self.n
+
+    def negate(self, x: list[str]) -> list[str]:
+        return [f"(-{v})" for v in x]
+
+    def op(self, op: str, a: list[str], b: list[str]) -> list[str]:
+        return [self.cg.atom(f"half({x} {op} {y})") for x, y in zip(a, b)]
+
+    def shared(self, build: Any) -> tuple[list[str], list[str]]:
+        x = build()
+        return x, x

@@ -9,7 +9,7 @@ is 2.130859375 on llvmpipe where float32 gives 2.1319335."""
 
 from __future__ import annotations
 
-from typing import Any
+from typing import Any, Protocol
 
 from .....frontend import syntax as A
 from ....cpu_core.common import TEXTURE_FUNCTIONS
@@ -17,6 +17,8 @@ from .queries import constant_value, is_builtin
 
 TYPE_CHECKING = False  # not typing's: importing typing costs every start-up
 if TYPE_CHECKING:
+    from collections.abc import Callable
+
     from ..state import FoldEngine, TranspilerState
 
 LOWP_OPS = ("+", "-", "*", "/")
@@ -53,7 +55,7 @@ def lowp_tree(tr: TranspilerState, e: A.Binary, mask: str | None) -> str | None:
     nodes: list[Any] = []
     samplers: list[Any] = []
     _lowp_parts(e, memo, nodes, samplers)
-    low = _lowp_code(tr, e, mask, {id(n) for n in nodes})
+    low = float16_code(tr.model, e, {id(n) for n in nodes}, _NumpyFloat16(tr, mask))
     tr.fold_state.lowp_written = {
         id(n) for n in nodes
     }  # the written form: this tree without the rule
@@ -161,16 +163,29 @@ def _lowp_parts(node: Any, memo: dict[int, Any], nodes: list[Any], samplers: lis
         samplers.append(node.args[0])
 
 
-def _lowp_code(tr: TranspilerState, node: Any, mask: str | None, ops: set[int]) -> str:
-    """The float16 code of a tree found by :func:`_lowp_kind`: leaves rounded to float16
-    (``rt.half``), each operation a NumPy float16 operation (one rounding each)."""
+class Float16Emitter(Protocol):
+    """How an engine writes the values of a float16 tree (:func:`float16_code`): the NumPy
+    backend as expressions over float16 arrays (`_NumpyFloat16`), the compiled engine as float32
+    components rounded after each operation (compiled_engine/texture_calls.py)."""
+
+    def leaf(self, node: Any) -> Any: ...  # a leaf's value rounded to float16
+    def negate(self, x: Any) -> Any: ...
+    def op(self, op: str, a: Any, b: Any) -> Any: ...  # one float16 operation
+    # a value computed once (`build` runs inside) and read twice: (first read, second read)
+    def shared(self, build: Callable[[], Any]) -> tuple[Any, Any]: ...
+
+
+def float16_code(model: Any, node: Any, ops: set[int], em: Float16Emitter) -> Any:
+    """The operations of a float16 tree found by :func:`_lowp_kind` (`ops`: the ids of its
+    operation nodes), in llvmpipe's order, written by `em`: leaves rounded to float16, ``pow(x,
+    2.0)`` as ``x * x``, ``(x*x) * #k`` with the square used once as ``(x * #k) * x`` (NIR's
+    ``(a*b)*#c -> (a*#c)*b``), every other operation as written."""
     if id(node) not in ops:
-        return f"rt.half({tr.expr(node, mask)})"
+        return em.leaf(node)
     if isinstance(node, A.Unary):
-        return f"(-{_lowp_code(tr, node.operand, mask, ops)})"
+        return em.negate(float16_code(model, node.operand, ops, em))
     if isinstance(node, A.Call):  # pow(x, 2.0): x * x, x computed once
-        x = tr.fresh("h")
-        return f"(({x} := {_lowp_code(tr, node.args[0], mask, ops)}) * {x})"
+        return em.op("*", *em.shared(lambda: float16_code(model, node.args[0], ops, em)))
     square, k = (
         (node.left, node.right) if isinstance(node.left, A.Call) else (node.right, node.left)
     )
@@ -178,16 +193,30 @@ def _lowp_code(tr: TranspilerState, node: Any, mask: str | None, ops: set[int]) 
         node.op == "*"
         and isinstance(square, A.Call)
         and id(square) in ops
-        and tr.model.const_value(k) is not None
+        and model.const_value(k) is not None
     ):
-        # (x*x) * #k, the square used once: (x * #k) * x (``(a*b)*#c -> (a*#c)*b``)
-        x = tr.fresh("h")
-        xk = (
-            f"(({x} := {_lowp_code(tr, square.args[0], mask, ops)}) * "
-            f"{_lowp_code(tr, k, mask, ops)})"
-        )
-        return f"({xk} * {x})"
-    return (
-        f"({_lowp_code(tr, node.left, mask, ops)} {node.op} "
-        f"{_lowp_code(tr, node.right, mask, ops)})"
-    )
+        x, again = em.shared(lambda: float16_code(model, square.args[0], ops, em))
+        return em.op("*", em.op("*", x, float16_code(model, k, ops, em)), again)
+    left = float16_code(model, node.left, ops, em)
+    return em.op(node.op, left, float16_code(model, node.right, ops, em))
+
+
+class _NumpyFloat16:
+    """The NumPy backend's float16 tree: leaves rounded by ``rt.half``, each operation a NumPy
+    float16 operation (one rounding each), a value read twice named by ``:=``."""
+
+    def __init__(self, tr: TranspilerState, mask: str | None) -> None:
+        self.tr, self.mask = tr, mask
+
+    def leaf(self, node: Any) -> str:
+        return f"rt.half({self.tr.expr(node, self.mask)})"
+
+    def negate(self, x: str) -> str:
+        return f"(-{x})"
+
+    def op(self, op: str, a: str, b: str) -> str:
+        return f"({a} {op} {b})"
+
+    def shared(self, build: Callable[[], str]) -> tuple[str, str]:
+        h = self.tr.fresh("h")
+        return f"({h} := {build()})", h
