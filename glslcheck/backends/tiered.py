@@ -413,10 +413,12 @@ class TieredCpuProgram:
         the compiled program past its trial with its own move to lockstep made or ruled out."""
         if self.stay is not None:
             return True
+        from .compiled_engine.engine import TieredProgram
+
         second = self.second
         if second is None or len(self.trial) < TRIAL_FRAMES:
             return False
-        if not hasattr(second, "over_budget"):  # a program of one fixed mode
+        if not isinstance(second, TieredProgram):  # a program of one fixed mode
             return True
         return bool(second.fast is not None or second.stay or second.over_budget())
 
