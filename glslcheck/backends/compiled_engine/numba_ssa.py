@@ -23,11 +23,13 @@ against, whose internals they call: `CHECKED`).
 
 from __future__ import annotations
 
+import threading
 from collections import defaultdict
 from typing import Any
 
 CHECKED = ("0.68.",)  # the numba versions whose ssa.py this mirrors
 _STATE: dict[str, Any] = {}
+_LOCK = threading.Lock()
 
 
 class _BlockView:
@@ -210,8 +212,13 @@ def strip_phi_nodes(self: Any, func_ir: Any) -> Any:
 def install() -> bool:
     """Put run_ssa in the place of numba's ssa._run_ssa (once); False when this numba is not
     one it was checked against (numba's own pass then runs)."""
-    if "installed" in _STATE:
+    with _LOCK:
+        if "installed" not in _STATE:
+            _STATE["installed"] = _install()
         return _STATE["installed"]
+
+
+def _install() -> bool:
     from numba import __version__
     from numba.core import ssa, typed_passes
 
@@ -235,7 +242,6 @@ def install() -> bool:
         _STATE["strip"] = strip._strip_phi_nodes
         ssa._run_ssa = run_ssa
         strip._strip_phi_nodes = strip_phi_nodes
-    _STATE["installed"] = ok
     return ok
 
 
