@@ -432,6 +432,10 @@ class CompiledProgram:
         sys.modules[name] = mod
         exec(compile(self.source, file, "exec"), mod.__dict__)
         self.cold = not _cached(cache, self.key)
+        if self.cold:  # numba's SSA passes, the same IR in time linear in the names they fix
+            from .numba_ssa import install
+
+            install()
         slp, limit = config.SLP_VECTORIZE, sys.getrecursionlimit()
         if getattr(
             mod, "LANES", 0

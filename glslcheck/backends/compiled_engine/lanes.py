@@ -101,6 +101,19 @@ def _exits(stmts: list) -> set[str]:
     return out
 
 
+def _index_test(node: Any) -> bool:
+    """`i == 2` of a name and an int constant: the test of codegen's selects over an array's
+    elements at a run-time index (one per component read: `lsel(i == 0, a0, lsel(i == 1, ...))`)."""
+    return (
+        isinstance(node, ast.Compare)
+        and isinstance(node.left, ast.Name)
+        and len(node.ops) == 1
+        and isinstance(node.ops[0], ast.Eq)
+        and isinstance(node.comparators[0], ast.Constant)
+        and type(node.comparators[0].value) is int
+    )
+
+
 class _Rename(ast.NodeTransformer):
     def __init__(self, varying: set[str], k: int, quads: int = 0) -> None:
         self.varying = varying
@@ -307,6 +320,7 @@ class _Fn:
         self.live = False  # a divergent return happened: `live__k` lanes are still running
         self.defined = set(self.params)  # names written so far in the text
         self.calls = set()
+        self.tests: dict[tuple[str, int], str] = {}  # hoisted index tests (hoist_tests)
         self.block(self.fn.body, top=True)
 
     def block(self, stmts: list, top: bool = False) -> None:
@@ -353,7 +367,54 @@ class _Fn:
         method = getattr(self, "_" + type(s).__name__, None)
         if method is None:
             raise Unsupported(f"the statement {type(s).__name__}")
+        if isinstance(s, (ast.If, ast.While)):
+            self.tests = {}  # a hoisted test is defined in the straight-line run that made it
+            method(s, top)
+            self.tests = {}
+            return
+        s = self.hoist_tests(s)
         method(s, top)
+        written = {
+            n.id for n in ast.walk(s) if isinstance(n, ast.Name) and isinstance(n.ctx, ast.Store)
+        }
+        self.tests = {k: v for k, v in self.tests.items() if k[0] not in written}
+
+    def hoist_tests(self, s: Any) -> Any:
+        """s with the index tests of its selects (`_index_test`) read from names computed once
+        before it and kept until the name tested is written or control flow starts or ends: the
+        component reads of one element at a run-time index test the same `i == k` W times each
+        (the same compare, computed earlier: the same bits; a compare of a name has no effect)."""
+
+        def hoistable(n: Any) -> bool:
+            if isinstance(n, ast.IfExp):
+                return _index_test(n.test)
+            return _call_name(n) == "lsel" and bool(n.args) and _index_test(n.args[0])
+
+        if not any(hoistable(n) for n in ast.walk(s)):
+            return s
+        s = copy.deepcopy(s)
+        for n in ast.walk(s):
+            if hoistable(n):
+                if isinstance(n, ast.IfExp):
+                    n.test = ast.Name(self.hoisted(n.test), ast.Load())
+                elif isinstance(n, ast.Call):  # lsel(test, ...)
+                    n.args[0] = ast.Name(self.hoisted(n.args[0]), ast.Load())
+        return s
+
+    def hoisted(self, test: Any) -> str:
+        key = (test.left.id, test.comparators[0].value)
+        name = self.tests.get(key)
+        if name is None:
+            name = self.fresh("q")
+            if self.is_varying(test):
+                self.varying.add(name)  # (a name of this walk's text: not a fixpoint change)
+                for k, text in enumerate(self.lanes_of(test)):
+                    self.emit(f"{name}__{k} = {text}")
+            else:
+                self.varying.discard(name)
+                self.emit(f"{name} = {ast.unparse(test)}")
+            self.tests[key] = name
+        return name
 
     def _Pass(self, s: Any, top: bool) -> None:
         self.emit("pass")

@@ -17,7 +17,11 @@ from glslcheck.backends.compiled_engine.lanes_rt import lsel  # a branch-free se
 F32 = np.float32
 I32 = np.int32
 U32 = np.uint32
-jit = numba.njit(cache=True, nogil=True, error_model="numpy")'''
+# compiled code alone calls these functions (render_rows and globals_template are the entries):
+# no Python or C wrappers, which numba would otherwise lower and compile for each of them
+jit = numba.njit(
+    cache=True, nogil=True, error_model="numpy", no_cpython_wrapper=True, no_cfunc_wrapper=True
+)'''
 
 RENDER = '''
 @numba.njit(cache=True, nogil=True, error_model="numpy")
