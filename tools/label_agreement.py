@@ -7,7 +7,10 @@ labellers write them. Two labels agree when they name the same rule and share a 
 missing-comment label is the run [first, last], so two runs agree when they overlap); labels
 are paired one to one (maximum matching). Prints, per rule and overall, the labels of each
 reading, the pairs, and agreement = 2 * pairs / (first + second) (Dice / F1: 1.0 when both
-readings deduct the same, whichever is taken as the reference).
+readings deduct the same, whichever is taken as the reference). It also scores the second
+reading as `real_lint.py score` scores the linter against the first (recall = pairs / first,
+precision = pairs / second): what a second careful reader reaches, the ceiling to read the
+linter's figures against.
 """
 
 from __future__ import annotations
@@ -68,7 +71,10 @@ def main() -> int:
         na.update(x["rule"] for x in a)
         nb.update(x["rule"] for x in b)
         np_.update(a[j]["rule"] for j, _ in pairs(a, b))
-    print(f"{'rule':28} {'first':>6} {'second':>6} {'pairs':>6} {'agreement':>9}")
+    print(
+        f"{'rule':28} {'first':>6} {'second':>6} {'pairs':>6} {'agreement':>9}"
+        f"   second against first: {'recall':>6} {'precision':>9}"
+    )
     for rule in [*sorted(set(na) | set(nb)), "overall"]:
         x, y, p = (
             (sum(na.values()), sum(nb.values()), sum(np_.values()))
@@ -76,7 +82,8 @@ def main() -> int:
             else (na[rule], nb[rule], np_[rule])
         )
         agree = f"{2 * p / (x + y):.2f}" if x + y else "-"
-        print(f"{rule:28} {x:6d} {y:6d} {p:6d} {agree:>9}")
+        recall, precision = (f"{p / n:.2f}" if n else "-" for n in (x, y))
+        print(f"{rule:28} {x:6d} {y:6d} {p:6d} {agree:>9}   {'':22}{recall:>6} {precision:>9}")
     return 0
 
 

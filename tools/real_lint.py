@@ -42,6 +42,12 @@ and not one to one: "held", the share of labels sharing a line with some finding
 labeller disagree only on how to cut the same uncommented code into runs, these stay high).
 Certainty is reported apart: the recall of the certain and of the possible labels (a label
 without one is certain), the precision of the certain and of the possible findings.
+
+`--second L2.json` (a second blind reading of the same files) adds the figures with the readers'
+own disagreement taken out: recall on the labels both readings give (paired as
+tools/label_agreement.py pairs them), and precision against either reading (a finding counts
+when it matches a label of the first reading or an unpaired label of the second). The
+headline stays the first reading's figures.
 """
 
 from __future__ import annotations
@@ -62,6 +68,9 @@ TEXTS = CORPUS / "texts"
 sys.path.insert(0, str(ROOT))
 
 from glslcheck.lint.rules import all_rules  # noqa: E402
+
+sys.path.insert(0, str(Path(__file__).resolve().parent))
+from label_agreement import pairs as label_pairs  # noqa: E402
 
 # Every rule id of the labelling guide (/work/labels/RULES.md): what a blind labeller labels.
 GUIDE_RULES = [
@@ -296,10 +305,13 @@ def score(
     manifest_path: Path | None = None,
     texts: Path = TEXTS,
     rules: list[str] | None = None,
+    second_path: Path | None = None,
 ) -> int:
     manifest = json.loads((manifest_path or CORPUS / "manifest.json").read_text())
     labels = load_labels(labels_path, corrected, rules)
     rules = labels["rules"]
+    second = load_labels(second_path, corrected, rules)["files"] if second_path else None
+    both = Counter()  # against both readings: agreed labels (found), findings (either matched)
     ids = _ids(only)
     if ids is not None:
         manifest = [e for e in manifest if e["id"] in ids]
@@ -371,6 +383,15 @@ def score(
                 fp[f["rule"]] += 1
                 if verbose:
                     print(f"  extra   {e['id']}:{f['line']} {f['rule']}: {f['message']}")
+        if second is not None:
+            other = [lab for lab in second.get(e["id"], []) if lab["rule"] in rules]
+            agreed = label_pairs(want, other)
+            paired_other = {i for _, i in agreed}
+            both["agreed"] += len(agreed)
+            both["agreed found"] += sum(j in pairs for j, _ in agreed)
+            either = want + [lab for i, lab in enumerate(other) if i not in paired_other]
+            both["findings"] += len(got)
+            both["either matched"] += len(match(either, got))
         missed_other = [
             lab for j, lab in enumerate(want) if j not in pairs and lab["rule"] == OTHER
         ]
@@ -418,6 +439,13 @@ def score(
             f"same deduction, a specific id; counted above as a miss, and a scored rule's "
             f"finding as an extra): "
             f"{len(crossed)}: {', '.join(crossed)}"
+        )
+    if second is not None:
+        a, af = both["agreed"], both["agreed found"]
+        n, nm = both["findings"], both["either matched"]
+        print(
+            f"against both readings: recall on the labels both give {_rate(af, a)} ({af}/{a}), "
+            f"precision against either reading {_rate(nm, n)} ({nm}/{n})"
         )
     print("by certainty (labels: the labeller's; findings: the linter's)")
     for sure in ("certain", "possible"):
@@ -535,6 +563,12 @@ def main() -> int:
         metavar="R,...",
         help="the rules the labels cover (default: labels.json's, or every rule of the guide)",
     )
+    s.add_argument(
+        "--second",
+        type=Path,
+        metavar="FILE",
+        help="a second blind reading: also score on the labels both give, and against either",
+    )
     m = sub.add_parser("merge-labels", help="take another labeller's labels into labels.json")
     m.add_argument("source", type=Path, help="a labellers' file {id: [label, ...]}")
     m.add_argument("--rules", required=True, metavar="R,...", help="the rules to take")
@@ -553,6 +587,7 @@ def main() -> int:
         args.manifest,
         args.texts,
         args.rules.split(",") if args.rules else None,
+        args.second,
     )
 
 

@@ -140,3 +140,34 @@ def test_only_reads_each_sets_own_letter():
     assert real_lint._ids("m01-m03,k10") == {"m01", "m02", "m03", "k10"}
     assert real_lint._ids("f27-f28") == {"f27", "f28"}
     assert real_lint._ids(None) is None
+
+
+def test_a_second_reading_takes_the_readers_disagreement_out(tmp_path):
+    """The first reading misses the header the linter reports; the second labels it and a run of
+    its own cut: on the label both give the linter is found, and against either reading each of
+    its two findings matches."""
+    text = (
+        "void mainImage(out vec4 fragColor, in vec2 fragCoord)\n{\n    fragColor = vec4(1.0);\n}\n"
+    )
+    (tmp_path / "texts" / "t01").mkdir(parents=True)
+    (tmp_path / "texts" / "t01" / "Lab 4.txt").write_text(text)
+    manifest = [{"id": "t01", "repo": "ours/lab", "commit": "0" * 40, "path": "Lab 4.txt"}]
+    (tmp_path / "manifest.json").write_text(json.dumps(manifest))
+    run = {"rule": "missing-comment", "why": "no comment", "certainty": "certain"}
+    header = {"rule": "missing-header", "lines": [1], "why": "no author", "certainty": "certain"}
+    first = {"t01": [{**run, "lines": [1, 3]}]}
+    second = {"t01": [{**run, "lines": [2, 3]}, header]}
+    for name, labels in (("first.json", first), ("second.json", second)):
+        (tmp_path / name).write_text(json.dumps(labels))
+    cmd = [sys.executable, str(REPO_ROOT / "tools" / "real_lint.py"), "score"]
+    cmd += ["--labels", str(tmp_path / "first.json"), "--second", str(tmp_path / "second.json")]
+    cmd += ["--manifest", str(tmp_path / "manifest.json"), "--texts", str(tmp_path / "texts")]
+    cmd += ["--rules", "missing-header,missing-comment"]
+    proc = subprocess.run(cmd, capture_output=True, text=True, cwd=tmp_path)
+    assert proc.returncode == 0, proc.stderr
+    rows = {line.split()[0]: line.split()[1:] for line in proc.stdout.splitlines() if line}
+    assert rows["overall"][:5] == ["1", "2", "1", "1.00", "0.50"]
+    assert (
+        "against both readings: recall on the labels both give 1.00 (1/1), "
+        "precision against either reading 1.00 (2/2)" in proc.stdout
+    )
