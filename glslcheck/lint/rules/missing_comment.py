@@ -19,10 +19,11 @@ Coverage, what a comment explains:
   below). A comment heading a list of declarations (`// Variables for the camera`) explains
   the whole list, up to the blank line.
 - A trailing comment covers its statement (`x = 1.0; // why`, on any of its lines), and on a
-  signature or a loop/`if` header, the block it opens as a comment above would. A trailing
-  comment too long for its line, continued on the line below and indented well past the
-  statement (8 columns or more), is that statement's too, and so is a comment on the opening
-  brace's own line right under a signature or a header (`{ // a sine wave moving right`).
+  signature, a loop/`if` header or an `else`, the block it opens as a comment above would. A
+  trailing comment too long for its line, continued on the line below and indented well past
+  the statement (8 columns or more), is that statement's too, and so is a comment on the
+  opening brace's own line right under a signature or a header (`{ // a sine wave moving
+  right`).
 - A function's comment (above it, or a blank line above it when it names the function:
   `// shade: ...` above `vec3 shade(...)`) explains the function: its signature, and its body whole
   when the body is simple: at most 4 statements, with no branch or loop at 4, whatever comments
@@ -41,7 +42,8 @@ Coverage, what a comment explains:
   translated from ...", "Source for math: https://..."), section markers ("// part 3",
   "// TEST", "// END CLASS MATERIAL", a `-----` rule), a bare question ("// efficient?"),
   commented-out code (`//dp.z = r * r;`, a type name left alone: `//bool`) and `glslcheck:`
-  directives explain nothing: a TA reads past them.
+  directives explain nothing: a TA reads past them. A condition written out in words is not
+  code: `// if (x - cx)^2 + (y - cy)^2 <= r^2 then p is inside` explains the `if` below it.
 
 Runs, what one finding is: one finding per run of uncovered statements, at its first line and
 naming its last, as the rubric deducts "per ambiguous section/block/line". A run goes on across
@@ -185,7 +187,8 @@ ATTRIBUTION_RE = compiled(
 )
 # Commented-out code: a statement, a declaration, a call or a control header kept in a comment.
 COMMENTED_CODE_RE = compiled(
-    r"^\s*(?:(?:if|else\s+if|for|while)\s*\(.*"
+    # a control header ends in code (`)`, `{`, a statement); `// if (d < r) then it hits` is prose
+    r"^\s*(?:(?:if|else\s+if|for|while)\s*\(.*[);{}]\s*"
     r"|return\b[^;]*;"
     r"|[\w.\[\]]+\s*[-+*/]?=\s*[^=][^;]*;"
     r"|(?:const\s+)?(?:float|u?int|bool|void|[biu]?vec[234]|mat[234]|(?-i:[A-Z]\w*|s[A-Z]\w*))"
@@ -287,6 +290,7 @@ _SIGNATURE_RE = compiled(r"^(?:[A-Za-z_]\w*\s+)+[A-Za-z_]\w*\s*\([^;]*\)\s*\{?\s
 _SIGNATURE_START_RE = compiled(r"^(?:[A-Za-z_]\w*\s+)+[A-Za-z_]\w*\s*\(")
 _HEADER_RE = compiled(r"^\}?\s*(?:if|for|while|else\s+if|switch)\s*\(")  # a control header
 _IF_RE = compiled(r"^\}?\s*(?:else\s+)?if\s*\(")
+_ELSE_RE = compiled(r"^\}?\s*else\b")
 _STRUCT_RE = compiled(r"^struct\b")
 _BRACES_RE = compiled(r"\{+|\}+")
 
@@ -431,6 +435,10 @@ class _Reader:
                 self.cover = self.above  # the definition's own comment, across a blank line
         self.above = None
         if TRIVIAL_RE.match(text):
+            if _ELSE_RE.match(text) and self.own_comment(lines):
+                # `else // why`: its comment speaks for the block it opens, as on an `if`'s header
+                self.cover = _Cover(self.start_depth, self.span)
+                self.close_run()
             return  # needs no comment; neither covers nor breaks a run
         in_struct = bool(self.blocks) and self.blocks[-1] == "struct"
         cover = self.cover
