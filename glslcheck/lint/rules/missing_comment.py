@@ -40,7 +40,8 @@ Coverage, what a comment explains:
   compiled and not linted (where that is sure: `#ifdef`, `#ifndef`, `#if defined(X)`, `#if 0`).
 - Credits and attributions ("Code from class by ...", "Code by Peter Shirley in ...", "code
   translated from ...", "Source for math: https://..."), section markers ("// part 3",
-  "// TEST", "// END CLASS MATERIAL", a `-----` rule), a bare question ("// efficient?"),
+  "// TEST", "// END CLASS MATERIAL", a `-----` rule), a bare question ("// efficient?"), a
+  status note ("//Largely untested", "//WORKING!!!": how the code fares, not why it is there),
   commented-out code (`//dp.z = r * r;`, a type name left alone: `//bool`) and `glslcheck:`
   directives explain nothing: a TA reads past them. A condition written out in words is not
   code: `// if (x - cx)^2 + (y - cy)^2 <= r^2 then p is inside` explains the `if` below it.
@@ -182,6 +183,9 @@ ATTRIBUTION_RE = compiled(
     r"|(?:\w+\s+){0,3}by\s+(?-i:[A-Z][\w.]*)(?:\s+(?-i:[A-Z][\w.]*)){0,3}"
     r"|(?:parts?|pt|step|section|task|ch(?:apter)?)\s*[#\d.]+(?:\s*(?:and|&|,|-)\s*[#\d.]+)*"
     r"|test|todo|(?-i:(?:START|END|BEGIN)(?:\s+[A-Z]+){0,3})|(?:\w+\s+){0,2}(?:start|end|begin)"
+    # a status note ("Largely untested", "WORKING!!!", "still broken"): how the code fares, not
+    # why it is there
+    r"|(?:\w+\s+){0,2}(?:(?:un)?tested|work(?:s|ing)?|broken|wip|fixme)"
     r"|-{3,}|={3,}|\*{3,})[\s*/!.:-]*$",
     re.I,
 )
