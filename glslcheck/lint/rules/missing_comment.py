@@ -12,12 +12,13 @@ Coverage, what a comment explains:
   blank line, the next comment, or the end of the block it is in. A statement with a trailing
   comment of its own uses none of the group's few lines: `// PHONG` above three commented
   lines and three plain ones explains all six, and nor does a statement that repeats one of
-  the two before it but for its numbers (`initLight(light2, vec3(0.0, 1.0, 2.0));` after
-  `initLight(light1, vec3(2.0, 1.0, 0.0));`: one comment for the lines written once per
-  light). Lines of a comment block explain as one comment. A comment above an `if` or a loop
-  goes on into its body (one right above an `if` whose body has comment lines of its own:
-  below). A comment heading a list of declarations (`// Variables for the camera`) explains
-  the whole list, up to the blank line.
+  the two before it but for its numbers or a component (`initLight(light2, vec3(0.0, 1.0,
+  2.0));` after `initLight(light1, vec3(2.0, 1.0, 0.0));`: one comment for the lines written
+  once per light); nor does a blank line part such a line from the one it repeats (`col.r +=
+  ...;`, blank, `col.g += ...;`: the group's, as the first is). Lines of a comment block
+  explain as one comment. A comment above an `if` or a loop goes on into its body (one right
+  above an `if` whose body has comment lines of its own: below). A comment heading a list of
+  declarations (`// Variables for the camera`) explains the whole list, up to the blank line.
 - A trailing comment covers its statement (`x = 1.0; // why`, on any of its lines), and on a
   signature, a loop/`if` header or an `else`, the block it opens as a comment above would. A
   trailing comment too long for its line, continued on the line below and indented well past
@@ -288,7 +289,8 @@ class _Cover:
     shapes: tuple = ()  # the statements read under it, their numbers masked (_SHAPE_RE)
 
 
-_SHAPE_RE = compiled(r"\d+(?:\.\d*)?|\.\d+")  # numbers, in literals and in names (`light2`)
+# numbers, in literals and in names (`light2`), and a one-component selector (`col.r`, `p.x`)
+_SHAPE_RE = compiled(r"\d+(?:\.\d*)?|\.\d+|(?<=\.)[xyzwrgba]\b")
 _NAME_RE = compiled(r"(\w+)\s*(?:\(|\{|$)")  # a definition's name: before its `(` or `{`
 _SIGNATURE_RE = compiled(r"^(?:[A-Za-z_]\w*\s+)+[A-Za-z_]\w*\s*\([^;]*\)\s*\{?\s*$")
 _SIGNATURE_START_RE = compiled(r"^(?:[A-Za-z_]\w*\s+)+[A-Za-z_]\w*\s*\(")
@@ -374,6 +376,7 @@ class _Reader:
         self.header_line = 0  # the first line of the last statement read
         self.closed_at = 0  # the line the last top-level definition closed on
         self.previous: tuple[str, bool] | None = None  # the last function: name, explained
+        self.parted: _Cover | None = None  # the group a blank line in a body just ended
 
     def explains(self, number: int) -> bool:
         return _line_explains(self.on_line.get(number, []), number)
@@ -445,10 +448,20 @@ class _Reader:
                 self.close_run()
             return  # needs no comment; neither covers nor breaks a run
         in_struct = bool(self.blocks) and self.blocks[-1] == "struct"
+        shape = _SHAPE_RE.sub("#", text)
+        parted, self.parted = self.parted, None
+        if (
+            self.cover is None
+            and parted is not None
+            and parted.depth == self.start_depth
+            and parted.shapes[-1:] == (shape,)
+        ):
+            # the line before the blank written again for the next channel or light: a blank
+            # line between such lines does not part them from their group
+            self.cover = parted
         cover = self.cover
         covered = cover is not None and cover.left > 0
         own = self.own_comment(lines)
-        shape = _SHAPE_RE.sub("#", text)
         if covered and not (in_struct or header or own):
             # a statement its own comment explains uses up none of the group above's few lines
             assert cover is not None  # covered: a cover with lines left
@@ -708,6 +721,7 @@ class _Reader:
                         # a comment with a blank line below it, or a heading naming a stage
                         # whose group a blank line ends: it may head the section below
                         self.heading = self.cover.depth
+                    self.parted = self.cover if self.depth > 0 else None
                     self.cover = None
                     self.reach = 0
                     if self.depth == 0:
