@@ -12,13 +12,14 @@ Coverage, what a comment explains:
   blank line, the next comment, or the end of the block it is in. A statement with a trailing
   comment of its own uses none of the group's few lines: `// PHONG` above three commented
   lines and three plain ones explains all six, and nor does a statement that repeats one of
-  the two before it but for its numbers or a component (`initLight(light2, vec3(0.0, 1.0,
-  2.0));` after `initLight(light1, vec3(2.0, 1.0, 0.0));`: one comment for the lines written
-  once per light); nor does a blank line part such a line from the one it repeats (`col.r +=
-  ...;`, blank, `col.g += ...;`: the group's, as the first is). Lines of a comment block
-  explain as one comment. A comment above an `if` or a loop goes on into its body (one right
-  above an `if` whose body has comment lines of its own: below). A comment heading a list of
-  declarations (`// Variables for the camera`) explains the whole list, up to the blank line.
+  the two before it but for its numbers or components (`d2y = p.y - q.y;` after `d1x = p.x -
+  q.x;`, `initLight(light2, vec3(0.0, 1.0, 2.0));` after `initLight(light1, vec3(2.0, 1.0,
+  0.0));`: one comment for the lines written once per light). Nor does a blank line part
+  such a line from the one it repeats (`col.r += ...;`, blank, `col.g += ...;`: the group's,
+  as the first is). Lines of a comment block explain as one comment. A comment above an `if`
+  or a loop goes on into its body (one right above an `if` whose body has comment lines of
+  its own: below). A comment heading a list of declarations (`// Variables for the camera`)
+  explains the whole list, up to the blank line.
 - A trailing comment covers its statement (`x = 1.0; // why`, on any of its lines), and on a
   signature, a loop/`if` header or an `else`, the block it opens as a comment above would. A
   trailing comment too long for its line, continued on the line below and indented well past
@@ -289,8 +290,9 @@ class _Cover:
     shapes: tuple = ()  # the statements read under it, their numbers masked (_SHAPE_RE)
 
 
-# numbers, in literals and in names (`light2`), and a one-component selector (`col.r`, `p.x`)
-_SHAPE_RE = compiled(r"\d+(?:\.\d*)?|\.\d+|(?<=\.)[xyzwrgba]\b")
+# numbers, in literals and in names (`light2`, with a component after it: `temp2y`), and a
+# one-component selector (`col.r`, `p.x`)
+_SHAPE_RE = compiled(r"\d+[xyzwrgba]\b|\d+(?:\.\d*)?|\.\d+|(?<=\.)[xyzwrgba]\b")
 _NAME_RE = compiled(r"(\w+)\s*(?:\(|\{|$)")  # a definition's name: before its `(` or `{`
 _SIGNATURE_RE = compiled(r"^(?:[A-Za-z_]\w*\s+)+[A-Za-z_]\w*\s*\([^;]*\)\s*\{?\s*$")
 _SIGNATURE_START_RE = compiled(r"^(?:[A-Za-z_]\w*\s+)+[A-Za-z_]\w*\s*\(")
