@@ -17,9 +17,10 @@ Coverage, what a comment explains:
   0.0));`: one comment for the lines written once per light). Nor does a blank line part
   such a line from the one it repeats (`col.r += ...;`, blank, `col.g += ...;`: the group's,
   as the first is). Lines of a comment block explain as one comment. A comment above an `if`
-  or a loop goes on into its body (one right above an `if` whose body has comment lines of
-  its own: below). A comment heading a list of declarations (`// Variables for the camera`)
-  explains the whole list, up to the blank line.
+  or a loop goes on into its body, and its `else`'s, a blank line before the `else` or not
+  (one right above an `if` whose body has comment lines of its own: below). A comment
+  heading a list of declarations (`// Variables for the camera`) explains the whole list, up
+  to the blank line.
 - A trailing comment covers its statement (`x = 1.0; // why`, on any of its lines), and on a
   signature, a loop/`if` header or an `else`, the block it opens as a comment above would. A
   trailing comment too long for its line, continued on the line below and indented well past
@@ -711,8 +712,9 @@ class _Reader:
             line = self.code[number - 1].strip()
             if self.blank and not self.statement:
                 self.blank = False
-                # a blank line parts groups; one next to a brace parts nothing
-                if not line.startswith("}") and not self.after_open:
+                # a blank line parts groups; one next to a brace or before an `else` (the
+                # `if` statement goes on) parts nothing
+                if not line.startswith(("}", "else")) and not self.after_open:
                     if self.depth == 0 and self.cover is not None:
                         self.above = self.cover
                     if (
