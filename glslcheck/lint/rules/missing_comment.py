@@ -36,7 +36,10 @@ Coverage, what a comment explains:
   by one needs no comment of its own. Overloads written right under a commented one, with no
   blank line between (`// lengthSq: the squared length of a vector` above `lengthSq(vec2)`,
   `lengthSq(vec3)`, `lengthSq(vec4)`), are one group that comment explains; after a blank line
-  an overload is a definition of its own and needs its own comment.
+  an overload is a definition of its own and needs its own comment. A definition right under
+  a commented one whose comment names it in words (`// hash: a random value; hashSigned maps
+  it to [-1, 1)` above `hash`, then `hashSigned`; not in code: `hashSigned(`) is that
+  comment's too.
 - Trivial statements need no comment: returning a literal or a plain variable (`return true;`,
   `return col;`, or a vector of them: `return vec4(col, 1.0);`), `break;`, `continue;`,
   `discard;`, `else`, braces. Code in an `#ifdef`/`#if` branch the preprocessor skips is not
@@ -354,7 +357,8 @@ class _Reader:
         # body, "count": its body's statements, "last": its last code line, "runs": the index
         # of its first run}
         self.function: dict | None = None
-        self.signature: tuple[list[int], bool] | None = None  # the last signature read
+        # the last signature read: its lines, whether a comment explains it, and that comment
+        self.signature: tuple[list[int], bool, str] | None = None
         self.cover: _Cover | None = None
         self.above: _Cover | None = None  # a top-level comment a blank line parts from its code
         self.depth = 0
@@ -379,6 +383,7 @@ class _Reader:
         self.header_line = 0  # the first line of the last statement read
         self.closed_at = 0  # the line the last top-level definition closed on
         self.previous: tuple[str, bool] | None = None  # the last function: name, explained
+        self.previous_said = ""  # the words of the comment above the last function
         self.parted: _Cover | None = None  # the group a blank line in a body just ended
 
     def explains(self, number: int) -> bool:
@@ -484,7 +489,7 @@ class _Reader:
         if header:
             self.heading = None  # a definition with no comment of its own: certain
         if header and not _STRUCT_RE.match(text):
-            self.signature = (lines, covered or own)
+            self.signature = (lines, covered or own, cover.text if covered and cover else "")
         elif self.function is not None and self.start_depth > 0:
             self.function["count"] += 1
             self.function["first"] = self.function["first"] or lines[0]
@@ -548,11 +553,12 @@ class _Reader:
             ):
                 what = "other"  # a whole function on one line: one statement, a run of its own
             if what == "function" and self.signature is not None:
-                lines, explained = self.signature
+                lines, explained, said = self.signature
                 self.signature = None
                 self.function = {
                     "sig": lines,
                     "explained": explained,
+                    "said": said,  # the words of the comment above it
                     "inner": False,
                     "count": 0,
                     "first": 0,
@@ -652,7 +658,17 @@ class _Reader:
             return
         # an overload right under a commented one (no blank line): that comment speaks for both
         overload = f["after"] and self.previous == (f["name"], True)
+        # ... and a definition right under one whose comment names it (`// rand: ...; random_float
+        # is an alteration of it` above `rand`, then `random_float`): that comment speaks for it
+        overload = overload or bool(
+            f["after"]
+            and self.previous is not None
+            and self.previous[1]
+            and f["name"]
+            and re.search(rf"\b{re.escape(f['name'])}\b(?!\s*\()", self.previous_said)
+        )
         self.previous = (f["name"], f["explained"] or (overload and not f["inner"]))
+        self.previous_said = f["said"] if f["explained"] else ""
         mine = self.runs[f["runs"] :]
         if not f["explained"] and not f["inner"] and mine:
             first = min(f["sig"][0], mine[0][0])
