@@ -520,6 +520,7 @@ class _Reader:
             if self.blocks:
                 self.blocks.pop()
             self.depth = max(self.depth - 1, 0)
+            self.parted = None
             if self.cover is not None and (self.depth < self.cover.depth or self.depth == 0):
                 self.cover = None  # the block ends, or the definition a top comment stood above
             if self.heading is not None and (self.depth < self.heading or self.depth == 0):
@@ -754,6 +755,7 @@ class _Reader:
                 if not explaining and not self.statement and self.marks(number):
                     self.heading = None  # a credit or a marker starts a part no heading explains
                     self.reach = 0  # ... nor the function's comment
+                    self.parted = None  # ... nor the group a blank line parted
                     self.close_run()  # ... and a new run: what follows is another part
                 if explaining and not self.statement:
                     self.after_open = opened_before
