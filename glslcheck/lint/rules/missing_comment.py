@@ -45,12 +45,14 @@ Coverage, what a comment explains:
   `discard;`, `else`, braces. Code in an `#ifdef`/`#if` branch the preprocessor skips is not
   compiled and not linted (where that is sure: `#ifdef`, `#ifndef`, `#if defined(X)`, `#if 0`).
 - Credits and attributions ("Code from class by ...", "Code by Peter Shirley in ...", "code
-  translated from ...", "Source for math: https://..."), section markers ("// part 3",
-  "// TEST", "// END CLASS MATERIAL", a `-----` rule), a bare question ("// efficient?"), a
-  status note ("//Largely untested", "//WORKING!!!": how the code fares, not why it is there),
-  commented-out code (`//dp.z = r * r;`, a type name left alone: `//bool`) and `glslcheck:`
-  directives explain nothing: a TA reads past them. A condition written out in words is not
-  code: `// if (x - cx)^2 + (y - cy)^2 <= r^2 then p is inside` explains the `if` below it.
+  translated from ...", "function taught during Tuesday's class by ...", "Source for math:
+  https://..."), section markers ("// part 3", "// TEST", "// END CLASS MATERIAL", a `-----`
+  rule), a bare question ("// efficient?"), a status note ("//Largely untested",
+  "//WORKING!!!": how the code fares, not why it is there) or a note of not knowing ("//figure
+  out what this thing is"), commented-out code (`//dp.z = r * r;`, a type name left alone:
+  `//bool`) and `glslcheck:` directives explain nothing: a TA reads past them. A condition
+  written out in words is not code: `// if (x - cx)^2 + (y - cy)^2 <= r^2 then p is inside`
+  explains the `if` below it.
 
 Runs, what one finding is: one finding per run of uncovered statements, at its first line and
 naming its last, as the rubric deducts "per ambiguous section/block/line". A run goes on across
@@ -192,6 +194,8 @@ ATTRIBUTION_RE = compiled(
     # a status note ("Largely untested", "WORKING!!!", "still broken"): how the code fares, not
     # why it is there
     r"|(?:\w+\s+){0,2}(?:(?:un)?tested|work(?:s|ing)?|broken|wip|fixme)"
+    # a note of not knowing ("figure out what this thing is"): what is not known, not why
+    r"|(?:\w+\s+){0,3}(?:figure\s*out|not\s+sure|(?:don'?t|do\s+not)\s+know)\s+(?:what|why|how)\b.*"
     r"|-{3,}|={3,}|\*{3,})[\s*/!.:-]*$",
     re.I,
 )
@@ -231,6 +235,8 @@ CREDIT_RE = compiled(
     r"|(?:(?:base|original)\s+)?(?:code|functions?|framework)\s+(?:was\s+|is\s+)?"
     r"(?:written\s+|given\s+|provided\s+)?by\s*(?-i:[A-Z])"
     r"|(?:provided|written|modified|given)\s+by\s*(?-i:[A-Z])|based\s+(?:on|of)\s+(?:of\s+)?code\b"
+    # "function taught during Tuesday's class by ...": what was taught in class, credited
+    r"|(?:[\w']+\s+){0,8}taught\b.*\b(?:class|lecture|by\s+(?-i:[A-Z]))"
     # "These matrices from https://...", "Source for math: ...", "Link: ...", "Copy from Sphere",
     # "Idea for the wave was gotten from ...", "Used X as math references", "NOT ORIGINAL WORK"
     r"|(?:\w+\s+){0,4}from\s+(?:https?://|www\.)|sources?\b[^:]{0,20}:|links?\s*:|cop(?:y|ied)\s+from\b"
