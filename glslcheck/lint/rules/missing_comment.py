@@ -195,7 +195,7 @@ ATTRIBUTION_RE = compiled(
     # why it is there
     r"|(?:\w+\s+){0,2}(?:(?:un)?tested|work(?:s|ing)?|broken|wip|fixme)"
     # a note of not knowing ("figure out what this thing is"): what is not known, not why
-    r"|(?:\w+\s+){0,3}(?:figure\s*out|not\s+sure|(?:don'?t|do\s+not)\s+know)\s+(?:what|why|how)\b.*"
+    r"|(?:[\w']+\s+){0,3}(?:figure\s*out|not\s+sure|(?:don'?t|do\s+not)\s+know)\s+(?:what|why|how)\b.*"
     r"|-{3,}|={3,}|\*{3,})[\s*/!.:-]*$",
     re.I,
 )
