@@ -12,17 +12,21 @@ Coverage, what a comment explains:
   blank line, the next comment, or the end of the block it is in. A statement with a trailing
   comment of its own uses none of the group's few lines: `// PHONG` above three commented
   lines and three plain ones explains all six, and nor does a statement that repeats one of
-  the two before it but for its numbers (`initLight(light2, vec3(0.0, 1.0, 2.0));` after
-  `initLight(light1, vec3(2.0, 1.0, 0.0));`: one comment for the lines written once per
-  light). Lines of a comment block explain as one comment. A comment above an `if` or a loop
-  goes on into its body (one right above an `if` whose body has comment lines of its own:
-  below). A comment heading a list of declarations (`// Variables for the camera`) explains
-  the whole list, up to the blank line.
+  the two before it but for its numbers or components (`d2y = p.y - q.y;` after `d1x = p.x -
+  q.x;`, `initLight(light2, vec3(0.0, 1.0, 2.0));` after `initLight(light1, vec3(2.0, 1.0,
+  0.0));`: one comment for the lines written once per light). Nor does a blank line part
+  such a line from the one it repeats (`col.r += ...;`, blank, `col.g += ...;`: the group's,
+  as the first is). Lines of a comment block explain as one comment. A comment above an `if`
+  or a loop goes on into its body, and its `else`'s, a blank line before the `else` or not
+  (one right above an `if` whose body has comment lines of its own: below). A comment
+  heading a list of declarations (`// Variables for the camera`) explains the whole list, up
+  to the blank line.
 - A trailing comment covers its statement (`x = 1.0; // why`, on any of its lines), and on a
-  signature or a loop/`if` header, the block it opens as a comment above would. A trailing
-  comment too long for its line, continued on the line below and indented well past the
-  statement (8 columns or more), is that statement's too, and so is a comment on the opening
-  brace's own line right under a signature or a header (`{ // a sine wave moving right`).
+  signature, a loop/`if` header or an `else`, the block it opens as a comment above would. A
+  trailing comment too long for its line, continued on the line below and indented well past
+  the statement (8 columns or more), is that statement's too, and so is a comment on the
+  opening brace's own line right under a signature or a header (`{ // a sine wave moving
+  right`).
 - A function's comment (above it, or a blank line above it when it names the function:
   `// shade: ...` above `vec3 shade(...)`) explains the function: its signature, and its body whole
   when the body is simple: at most 4 statements, with no branch or loop at 4, whatever comments
@@ -32,16 +36,23 @@ Coverage, what a comment explains:
   by one needs no comment of its own. Overloads written right under a commented one, with no
   blank line between (`// lengthSq: the squared length of a vector` above `lengthSq(vec2)`,
   `lengthSq(vec3)`, `lengthSq(vec4)`), are one group that comment explains; after a blank line
-  an overload is a definition of its own and needs its own comment.
+  an overload is a definition of its own and needs its own comment. A definition right under
+  a commented one whose comment names it in words (`// hash: a random value; hashSigned maps
+  it to [-1, 1)` above `hash`, then `hashSigned`; not in code: `hashSigned(`) is that
+  comment's too.
 - Trivial statements need no comment: returning a literal or a plain variable (`return true;`,
   `return col;`, or a vector of them: `return vec4(col, 1.0);`), `break;`, `continue;`,
   `discard;`, `else`, braces. Code in an `#ifdef`/`#if` branch the preprocessor skips is not
   compiled and not linted (where that is sure: `#ifdef`, `#ifndef`, `#if defined(X)`, `#if 0`).
 - Credits and attributions ("Code from class by ...", "Code by Peter Shirley in ...", "code
-  translated from ...", "Source for math: https://..."), section markers ("// part 3",
-  "// TEST", "// END CLASS MATERIAL", a `-----` rule), a bare question ("// efficient?"),
-  commented-out code (`//dp.z = r * r;`, a type name left alone: `//bool`) and `glslcheck:`
-  directives explain nothing: a TA reads past them.
+  translated from ...", "function taught during Tuesday's class by ...", "Source for math:
+  https://..."), section markers ("// part 3", "// TEST", "// END CLASS MATERIAL", a `-----`
+  rule), a bare question ("// efficient?"), a status note ("//Largely untested",
+  "//WORKING!!!": how the code fares, not why it is there) or a note of not knowing ("//figure
+  out what this thing is"), commented-out code (`//dp.z = r * r;`, a type name left alone:
+  `//bool`) and `glslcheck:` directives explain nothing: a TA reads past them. A condition
+  written out in words is not code: `// if (x - cx)^2 + (y - cy)^2 <= r^2 then p is inside`
+  explains the `if` below it.
 
 Runs, what one finding is: one finding per run of uncovered statements, at its first line and
 naming its last, as the rubric deducts "per ambiguous section/block/line". A run goes on across
@@ -180,12 +191,18 @@ ATTRIBUTION_RE = compiled(
     r"|(?:\w+\s+){0,3}by\s+(?-i:[A-Z][\w.]*)(?:\s+(?-i:[A-Z][\w.]*)){0,3}"
     r"|(?:parts?|pt|step|section|task|ch(?:apter)?)\s*[#\d.]+(?:\s*(?:and|&|,|-)\s*[#\d.]+)*"
     r"|test|todo|(?-i:(?:START|END|BEGIN)(?:\s+[A-Z]+){0,3})|(?:\w+\s+){0,2}(?:start|end|begin)"
+    # a status note ("Largely untested", "WORKING!!!", "still broken"): how the code fares, not
+    # why it is there
+    r"|(?:\w+\s+){0,2}(?:(?:un)?tested|work(?:s|ing)?|broken|wip|fixme)"
+    # a note of not knowing ("figure out what this thing is"): what is not known, not why
+    r"|(?:[\w']+\s+){0,3}(?:figure\s*out|not\s+sure|(?:don'?t|do\s+not)\s+know)\s+(?:what|why|how)\b.*"
     r"|-{3,}|={3,}|\*{3,})[\s*/!.:-]*$",
     re.I,
 )
 # Commented-out code: a statement, a declaration, a call or a control header kept in a comment.
 COMMENTED_CODE_RE = compiled(
-    r"^\s*(?:(?:if|else\s+if|for|while)\s*\(.*"
+    # a control header ends in code (`)`, `{`, a statement); `// if (d < r) then it hits` is prose
+    r"^\s*(?:(?:if|else\s+if|for|while)\s*\(.*[);{}]\s*"
     r"|return\b[^;]*;"
     r"|[\w.\[\]]+\s*[-+*/]?=\s*[^=][^;]*;"
     r"|(?:const\s+)?(?:float|u?int|bool|void|[biu]?vec[234]|mat[234]|(?-i:[A-Z]\w*|s[A-Z]\w*))"
@@ -218,6 +235,8 @@ CREDIT_RE = compiled(
     r"|(?:(?:base|original)\s+)?(?:code|functions?|framework)\s+(?:was\s+|is\s+)?"
     r"(?:written\s+|given\s+|provided\s+)?by\s*(?-i:[A-Z])"
     r"|(?:provided|written|modified|given)\s+by\s*(?-i:[A-Z])|based\s+(?:on|of)\s+(?:of\s+)?code\b"
+    # "function taught during Tuesday's class by ...": what was taught in class, credited
+    r"|(?:[\w']+\s+){0,8}taught\b.*\b(?:class|lecture|by\s+(?-i:[A-Z]))"
     # "These matrices from https://...", "Source for math: ...", "Link: ...", "Copy from Sphere",
     # "Idea for the wave was gotten from ...", "Used X as math references", "NOT ORIGINAL WORK"
     r"|(?:\w+\s+){0,4}from\s+(?:https?://|www\.)|sources?\b[^:]{0,20}:|links?\s*:|cop(?:y|ied)\s+from\b"
@@ -281,12 +300,15 @@ class _Cover:
     shapes: tuple = ()  # the statements read under it, their numbers masked (_SHAPE_RE)
 
 
-_SHAPE_RE = compiled(r"\d+(?:\.\d*)?|\.\d+")  # numbers, in literals and in names (`light2`)
+# numbers, in literals and in names (`light2`, with a component after it: `temp2y`), and a
+# one-component selector (`col.r`, `p.x`)
+_SHAPE_RE = compiled(r"\d+[xyzwrgba]\b|\d+(?:\.\d*)?|\.\d+|(?<=\.)[xyzwrgba]\b")
 _NAME_RE = compiled(r"(\w+)\s*(?:\(|\{|$)")  # a definition's name: before its `(` or `{`
 _SIGNATURE_RE = compiled(r"^(?:[A-Za-z_]\w*\s+)+[A-Za-z_]\w*\s*\([^;]*\)\s*\{?\s*$")
 _SIGNATURE_START_RE = compiled(r"^(?:[A-Za-z_]\w*\s+)+[A-Za-z_]\w*\s*\(")
 _HEADER_RE = compiled(r"^\}?\s*(?:if|for|while|else\s+if|switch)\s*\(")  # a control header
 _IF_RE = compiled(r"^\}?\s*(?:else\s+)?if\s*\(")
+_ELSE_RE = compiled(r"^\}?\s*else\b")
 _STRUCT_RE = compiled(r"^struct\b")
 _BRACES_RE = compiled(r"\{+|\}+")
 
@@ -341,7 +363,8 @@ class _Reader:
         # body, "count": its body's statements, "last": its last code line, "runs": the index
         # of its first run}
         self.function: dict | None = None
-        self.signature: tuple[list[int], bool] | None = None  # the last signature read
+        # the last signature read: its lines, whether a comment explains it, and that comment
+        self.signature: tuple[list[int], bool, str] | None = None
         self.cover: _Cover | None = None
         self.above: _Cover | None = None  # a top-level comment a blank line parts from its code
         self.depth = 0
@@ -366,6 +389,8 @@ class _Reader:
         self.header_line = 0  # the first line of the last statement read
         self.closed_at = 0  # the line the last top-level definition closed on
         self.previous: tuple[str, bool] | None = None  # the last function: name, explained
+        self.previous_said = ""  # the words of the comment above the last function
+        self.parted: _Cover | None = None  # the group a blank line in a body just ended
 
     def explains(self, number: int) -> bool:
         return _line_explains(self.on_line.get(number, []), number)
@@ -431,12 +456,26 @@ class _Reader:
                 self.cover = self.above  # the definition's own comment, across a blank line
         self.above = None
         if TRIVIAL_RE.match(text):
+            if _ELSE_RE.match(text) and self.own_comment(lines):
+                # `else // why`: its comment speaks for the block it opens, as on an `if`'s header
+                self.cover = _Cover(self.start_depth, self.span)
+                self.close_run()
             return  # needs no comment; neither covers nor breaks a run
         in_struct = bool(self.blocks) and self.blocks[-1] == "struct"
+        shape = _SHAPE_RE.sub("#", text)
+        parted, self.parted = self.parted, None
+        if (
+            self.cover is None
+            and parted is not None
+            and parted.depth == self.start_depth
+            and parted.shapes[-1:] == (shape,)
+        ):
+            # the line before the blank written again for the next channel or light: a blank
+            # line between such lines does not part them from their group
+            self.cover = parted
         cover = self.cover
         covered = cover is not None and cover.left > 0
         own = self.own_comment(lines)
-        shape = _SHAPE_RE.sub("#", text)
         if covered and not (in_struct or header or own):
             # a statement its own comment explains uses up none of the group above's few lines
             assert cover is not None  # covered: a cover with lines left
@@ -456,7 +495,7 @@ class _Reader:
         if header:
             self.heading = None  # a definition with no comment of its own: certain
         if header and not _STRUCT_RE.match(text):
-            self.signature = (lines, covered or own)
+            self.signature = (lines, covered or own, cover.text if covered and cover else "")
         elif self.function is not None and self.start_depth > 0:
             self.function["count"] += 1
             self.function["first"] = self.function["first"] or lines[0]
@@ -487,6 +526,7 @@ class _Reader:
             if self.blocks:
                 self.blocks.pop()
             self.depth = max(self.depth - 1, 0)
+            self.parted = None
             if self.cover is not None and (self.depth < self.cover.depth or self.depth == 0):
                 self.cover = None  # the block ends, or the definition a top comment stood above
             if self.heading is not None and (self.depth < self.heading or self.depth == 0):
@@ -520,11 +560,12 @@ class _Reader:
             ):
                 what = "other"  # a whole function on one line: one statement, a run of its own
             if what == "function" and self.signature is not None:
-                lines, explained = self.signature
+                lines, explained, said = self.signature
                 self.signature = None
                 self.function = {
                     "sig": lines,
                     "explained": explained,
+                    "said": said,  # the words of the comment above it
                     "inner": False,
                     "count": 0,
                     "first": 0,
@@ -624,7 +665,17 @@ class _Reader:
             return
         # an overload right under a commented one (no blank line): that comment speaks for both
         overload = f["after"] and self.previous == (f["name"], True)
+        # ... and a definition right under one whose comment names it (`// rand: ...; random_float
+        # is an alteration of it` above `rand`, then `random_float`): that comment speaks for it
+        overload = overload or bool(
+            f["after"]
+            and self.previous is not None
+            and self.previous[1]
+            and f["name"]
+            and re.search(rf"\b{re.escape(f['name'])}\b(?!\s*\()", self.previous_said)
+        )
         self.previous = (f["name"], f["explained"] or (overload and not f["inner"]))
+        self.previous_said = f["said"] if f["explained"] else ""
         mine = self.runs[f["runs"] :]
         if not f["explained"] and not f["inner"] and mine:
             first = min(f["sig"][0], mine[0][0])
@@ -684,8 +735,9 @@ class _Reader:
             line = self.code[number - 1].strip()
             if self.blank and not self.statement:
                 self.blank = False
-                # a blank line parts groups; one next to a brace parts nothing
-                if not line.startswith("}") and not self.after_open:
+                # a blank line parts groups; one next to a brace or before an `else` (the
+                # `if` statement goes on) parts nothing
+                if not line.startswith(("}", "else")) and not self.after_open:
                     if self.depth == 0 and self.cover is not None:
                         self.above = self.cover
                     if (
@@ -696,6 +748,7 @@ class _Reader:
                         # a comment with a blank line below it, or a heading naming a stage
                         # whose group a blank line ends: it may head the section below
                         self.heading = self.cover.depth
+                    self.parted = self.cover if self.depth > 0 else None
                     self.cover = None
                     self.reach = 0
                     if self.depth == 0:
@@ -708,6 +761,7 @@ class _Reader:
                 if not explaining and not self.statement and self.marks(number):
                     self.heading = None  # a credit or a marker starts a part no heading explains
                     self.reach = 0  # ... nor the function's comment
+                    self.parted = None  # ... nor the group a blank line parted
                     self.close_run()  # ... and a new run: what follows is another part
                 if explaining and not self.statement:
                     self.after_open = opened_before
