@@ -14,8 +14,10 @@ from ..shadertoy.channels import (
     CHANNELS_FILE,
     ChannelInput,
     channel_reads,
+    cube_faces,
     folder_of,
     load_bindings,
+    read_cubemap,
     read_image,
     texture_path,
 )
@@ -58,8 +60,14 @@ class MultipassProgram:
                 def fail(key, message, b=b):
                     raise InputError(f"{self.channels_path}: error: {key}: {message}")
 
+                if b.cube:
+                    where = f'"{b.tab}"."iChannel{b.channel}"."cubemap"'
+                    self.textures[b.texture, True] = read_cubemap(
+                        cube_faces(shader, b.texture, where, fail), fail
+                    )
+                    continue
                 where = f'"{b.tab}"."iChannel{b.channel}"."texture"'
-                self.textures[b.texture] = read_image(
+                self.textures[b.texture, False] = read_image(
                     texture_path(shader, b.texture, where, fail), where, fail
                 )
         self.programs = {t: self._compile(t) for t in self.passes}
@@ -145,12 +153,13 @@ class MultipassProgram:
     def _image_input(self, b) -> ChannelInput:
         """An image channel, made once for all frames and passes: its mipmap levels are computed
         once, and a backend that keeps textures (WebGL) uploads it once."""
-        key = (b.texture, b.vflip, b.filter, b.wrap, self.lowp_samplers)
+        key = (b.texture, b.cube, b.vflip, b.filter, b.wrap, self.lowp_samplers)
         if key not in self._images:
-            texels = self.textures[b.texture]
-            texels = texels[::-1] if b.vflip else texels
+            texels = self.textures[b.texture, b.cube]
+            if b.vflip:  # an image's rows, or each cube face's
+                texels = texels[:, ::-1] if b.cube else texels[::-1]
             self._images[key] = ChannelInput(
-                np.ascontiguousarray(texels), b.filter, b.wrap, self.lowp_samplers
+                np.ascontiguousarray(texels), b.filter, b.wrap, self.lowp_samplers, b.cube
             )
         return self._images[key]
 
