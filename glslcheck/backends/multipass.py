@@ -53,6 +53,7 @@ class MultipassProgram:
         self.output = output
         self.bindings = {t: {b.channel: b for b in bindings if b.tab == t} for t in self.passes}
         self._check_reads()
+        self._check_kinds()
         self.textures = {}
         for b in bindings:
             if b.texture is not None:
@@ -106,6 +107,37 @@ class MultipassProgram:
                             rule="unbound-channel",
                         )
                     )
+        if diags:
+            raise GlslError(diags)
+
+    def _check_kinds(self) -> None:
+        """A channel bound to a cube map must be sampled as one (samplerCube, which both the
+        GL and the CPU programs declare from the uses: semantics.cube_samplers), and one
+        sampled as a cube map must be bound to one: on Shadertoy either would not compile."""
+        from ..semantics import cube_samplers
+
+        diags = []
+        for tab in self.passes:
+            cube = cube_samplers(self.shader.units_for(tab), tab)
+            for n, loc in sorted(channel_reads(self.shader, tab).items()):
+                b = self.bindings[tab].get(n)
+                if b is None or b.cube == (f"iChannel{n}" in cube):
+                    continue
+                what = (
+                    "bound to a cube map but not sampled as one (texture(iChannel{n}, dir) with "
+                    "a vec3 direction)"
+                    if b.cube
+                    else "sampled as a cube map (with a vec3 direction) but bound to a "
+                    + ("buffer" if b.buffer is not None else "2D image")
+                )
+                diags.append(
+                    Diagnostic(
+                        f"iChannel{n} is {what.format(n=n)}: see "
+                        f'{self.channels_path}, "{tab}": {{"iChannel{n}": ...}}',
+                        loc,
+                        rule="channel-type",
+                    )
+                )
         if diags:
             raise GlslError(diags)
 
