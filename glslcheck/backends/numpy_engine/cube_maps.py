@@ -80,13 +80,13 @@ def cube_coords(x, y, z, derivs: bool = False):
     return face, sc * ima + _HALF, tc * ima + _HALF
 
 
-def cube_rho(x, y, z, size: int, pixel_diff):
+def cube_rho(x, y, z, size: int, fine_diff):
     """rho^2 of an implicit-LOD cube lookup, per pixel (lp_build_cube_lookup with derivatives,
     then lp_build_rho; Mesa 22.3 gives a cube map one LOD per pixel, measured): the direction's
-    differences across the pixel's quad along its row and column (`pixel_diff(v, axis)`, gallivm's
-    ddx and ddy) carried onto the pixel's face, d.s = (d.sc - (d.ma * (1 / ma)) * sc) *
-    (0.5 * (1 / ma)) and the same for t, then max((n d.s)^2 + (n d.t)^2 along x, along y) with
-    x86 maxps, n the face size."""
+    differences across the pixel's quad along its row and column (`fine_diff(v, axis)`: dFdx,
+    dFdy, gallivm's ddx and ddy) carried onto the pixel's face,
+    d.s = (d.sc - (d.ma * (1 / ma)) * sc) * (0.5 * (1 / ma)) and the same for t, then
+    max((n d.s)^2 + (n d.t)^2 along x, along y) with x86 maxps, n the face size."""
     x, y, z = (np.asarray(v, dtype=np.float32) for v in (x, y, z))
     _, ma, sc, tc = cube_select(x, y, z)
     with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
@@ -95,7 +95,7 @@ def cube_rho(x, y, z, size: int, pixel_diff):
         n = np.float32(size)
         out = []
         for axis in (1, 0):
-            d = [pixel_diff(v, axis) for v in (x, y, z)]
+            d = [fine_diff(v, axis) for v in (x, y, z)]
             _, dma, dsc, dtc = cube_select_minors(x, y, z, *d)
             dmadivma = dma * ima
             ds = n * ((dsc - dmadivma * sc) * imahalf)

@@ -193,26 +193,12 @@ def _quad_corner_diff(v: np.ndarray, width: int, axis: int) -> np.ndarray:
     return np.ascontiguousarray(d).reshape(v.shape)
 
 
-def _pixel_diff(v: np.ndarray, width: int, axis: int) -> np.ndarray:
-    """Per pixel of a `width`-wide tile (lanes row by row from the bottom), gallivm's
-    lp_build_ddx (axis 1) or lp_build_ddy (axis 0): the difference across its 2x2 quad along
-    its own row or column, right minus left, upper minus lower. An odd last column or row pairs
-    with its left or lower neighbour."""
-    n = v.shape[-1]
-    img = v.reshape(v.shape[:-1] + (n // width, width))
-    size = img.shape[-2 + axis]
-    i = np.arange(size)
-    hi, lo = i | 1, i & ~1
-    hi, lo = np.where(hi < size, hi, i), np.where(hi < size, lo, np.maximum(i - 1, 0))
-    d = img[..., :, hi] - img[..., :, lo] if axis == 1 else img[..., hi, :] - img[..., lo, :]
-    return np.ascontiguousarray(d).reshape(v.shape)
-
-
 class TextureFunctions:
     """The texture lookup built-ins; mixed into `Runtime` (which provides `F` and `_f`)."""
 
     F: Any
     lp: Any
+    _quad_diff: Any  # Runtime's fine derivative (runtime_common.py)
 
     def _tex_result(self, s, texels: np.ndarray) -> np.ndarray:
         """(4, lanes) in the runtime's float type, truncated as a lowp sampler returns it."""
@@ -328,9 +314,9 @@ class TextureFunctions:
         p = np.asarray(p, dtype=np.float32)
         if p.shape[-1] == 1:
             rho2 = np.zeros(1, np.float32)
-        elif s.cube:  # per pixel: its own derivatives carried onto its face
+        elif s.cube:  # per pixel: its fine derivatives (dFdx, dFdy) carried onto its face
             rho2 = cube_maps.cube_rho(
-                p[0], p[1], p[2], w, lambda c, axis: _pixel_diff(c, width, axis)
+                p[0], p[1], p[2], w, lambda c, axis: self._quad_diff(c, width, axis)
             )
         else:  # the coordinates' differences, then scaled by the size (not the scaled coordinates')
             size = np.array([w, h], dtype=np.float32)[:, None]
