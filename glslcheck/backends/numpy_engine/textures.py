@@ -276,9 +276,9 @@ class TextureFunctions:
         if s.filter == "linear" or lod is None:
             return cube_maps.cube_bilinear(s.texels, face, u, v, _lerp)
         levels = s.levels()
-        lod = np.clip(
-            np.broadcast_to(np.asarray(lod, dtype=np.float32), u.shape), 0.0, len(levels) - 1
-        )
+        lod = np.broadcast_to(np.asarray(lod, dtype=np.float32), u.shape)
+        # a NaN LOD: llvmpipe's level is the first (its integer conversion, clamped), unblended
+        lod = np.clip(np.where(np.isnan(lod), np.float32(0), lod), 0.0, len(levels) - 1)
         lo = np.floor(lod)
         frac = (lod - lo)[..., None]
         lo = lo.astype(np.int64)
