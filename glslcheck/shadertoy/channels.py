@@ -45,7 +45,8 @@ the NumPy backend truncates every lookup as llvmpipe does (backends/numpy_engine
 
 Shadertoy's own JSON export of a shader (`glslcheck render shader.json`, see
 `sources.load_shadertoy_json`): the passes' code becomes the tabs and the inputs the bindings,
-with `/media/...` files taken from a `media/` folder beside the JSON.
+with `/media/...` files taken from a `media/` folder beside the JSON (a cube map's six faces
+with Shadertoy's names).
 
 Errors (InputError, exit 2, naming channels.json and the key): bad JSON, an unknown tab or
 key, a missing or unreadable image, an unsupported input kind, bad values. A pass reading an

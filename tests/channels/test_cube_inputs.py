@@ -162,3 +162,52 @@ def test_the_cli_reports_a_bad_cube_map_without_a_traceback(tmp_path):
     assert run.returncode == 2, run.stderr
     assert "Traceback" not in run.stderr and "pz.png" in run.stderr
     assert not out.exists()
+
+
+def _export(tmp_path, src="/media/a/sky.png", wrap="repeat"):
+    inputs = [
+        {
+            "id": 4,
+            "src": src,
+            "ctype": "cubemap",
+            "channel": 0,
+            "sampler": {"filter": "mipmap", "wrap": wrap, "vflip": "false", "srgb": "false"},
+        }
+    ]
+    data = {
+        "Shader": {
+            "info": {"name": "sky"},
+            "renderpass": [
+                {"inputs": inputs, "outputs": [], "code": SKY, "name": "Image", "type": "image"}
+            ],
+        }
+    }
+    (tmp_path / "shader.json").write_text(json.dumps(data))
+    return str(tmp_path / "shader.json")
+
+
+def test_a_shadertoy_export_reads_its_media_cube_map(tmp_path):
+    # Shadertoy's export names the first face; the other five are name_1 .. name_5 beside it.
+    # Its wrap is not applied (seamless filtering), as in a folder's channels.json
+    media = tmp_path / "media"
+    media.mkdir()
+    names = ["sky.png"] + [f"sky_{k}.png" for k in range(1, 6)]
+    for k, name in enumerate(names):
+        _face(media / name, 4, value=30 * k)
+    from_export = api.compile(_export(tmp_path), backend="numpy").render(size=(16, 8))
+    folder = tmp_path / "folder"
+    folder.mkdir()
+    for k, name in enumerate(CUBE_FACES):
+        _face(folder / f"{name}.png", 4, value=30 * k)
+    from_folder = api.compile(_shader(folder, {"cubemap": "."}), backend="numpy").render(
+        size=(16, 8)
+    )
+    assert np.array_equal(from_export, from_folder)
+    (media / "sky_3.png").unlink()
+    with pytest.raises(InputError, match="sky_3.png"):
+        api.compile(_export(tmp_path), backend="numpy")
+
+
+def test_a_shadertoy_export_reading_the_cube_a_pass_is_not_supported_yet(tmp_path):
+    with pytest.raises(InputError, match="Cube A pass's cube map is not supported yet"):
+        api.compile(_export(tmp_path, "/media/previz/cubemap00.png"), backend="numpy")
