@@ -5,8 +5,9 @@ The rules are Mesa 22.3's gallivm (lp_bld_sample.c: lp_build_cube_lookup, lp_bui
 lp_build_rho; lp_bld_sample_soa.c: lp_build_sample_image_linear with seamless_cube_map, which
 Shadertoy's WebGL 2 and the GL verifier's context enable), measured against the driver in
 tests/gl/test_cube_maps.py: docs/llvmpipe.md, "Cube maps". textures.TextureFunctions calls
-`sample_cube` for a channel whose `ChannelInput.cube` is set; texture_kernels.py has the
-one-pixel numba forms of the same functions (tests/compiled/test_cube_kernels.py runs both).
+these for a channel whose `ChannelInput.cube` is set (`_sample_cube`, `_implicit_lod`);
+texture_kernels.py has the one-pixel numba forms of the same functions
+(tests/compiled/test_cube_kernels.py runs both).
 
 Faces are numbered as OpenGL's: 0 +X, 1 -X, 2 +Y, 3 -Y, 4 +Z, 5 -Z; a face's texels are
 `levels[k][face, y, x]`.
@@ -22,13 +23,12 @@ _THIRD = np.float32(1.0 / 3.0)
 
 # lp_build_cube_new_coords as tables, per face 0..5, for a texel that falls off the face at
 # x < 0, x > max, y < 0, y > max (in this order): the face it is read from, and its new x and y
-# there as (constant, sign, operand): value = constant * max + sign * operand, the operand 0 for
-# none, 1 for the coordinate along the other axis (y for an x fall-off, x for a y fall-off).
+# there as pairs (a, b): a * max + b * the coordinate along the other axis (y for an x
+# fall-off, x for a y fall-off), max the level's size - 1.
 NEXT_FACE = np.array(
     [[4, 5, 1, 1, 1, 0], [5, 4, 0, 0, 0, 1], [2, 2, 5, 4, 2, 2], [3, 3, 4, 5, 3, 3]], np.int64
 )
-# (max coefficient, operand coefficient) of the new x, then of the new y
-_M, _O, _N = (1, 0), (0, 1), (1, -1)  # max, the operand, max - the operand
+_M, _O, _N = (1, 0), (0, 1), (1, -1)  # max, the coordinate, max - the coordinate
 _Z = (0, 0)
 NEXT_X = np.array(
     [
@@ -58,7 +58,9 @@ def _from_bits(b: np.ndarray) -> np.ndarray:
     return np.ascontiguousarray(b, dtype=np.uint32).view(np.float32)
 
 
-def _max_x86(a: np.ndarray, b: np.ndarray) -> np.ndarray:
+def max_x86(a: np.ndarray, b: np.ndarray) -> np.ndarray:
+    """lp_build_max as llvmpipe emits it on x86 (maxps): a > b ? a : b, so b where either is NaN
+    (the face choice here, and every rho of textures.py)."""
     return np.where(a > b, a, b)
 
 
@@ -101,7 +103,7 @@ def cube_rho(x, y, z, size: int, fine_diff):
             ds = n * ((dsc - dmadivma * sc) * imahalf)
             dt = n * ((dtc - dmadivma * tc) * imahalf)
             out.append(ds * ds + dt * dt)
-        return _max_x86(out[0], out[1])
+        return max_x86(out[0], out[1])
 
 
 def cube_select_minors(x, y, z, dx, dy, dz):
@@ -110,7 +112,7 @@ def cube_select_minors(x, y, z, dx, dy, dz):
     x, y, z = (np.asarray(v, dtype=np.float32) for v in (x, y, z))
     ax, ay, az = np.abs(x), np.abs(y), np.abs(z)
     xsel = ax > ay
-    zsel = az >= _max_x86(ax, ay)
+    zsel = az >= max_x86(ax, ay)
     ma = np.where(zsel, z, np.where(xsel, x, y))
     sign = _bits(ma) & _SIGN
     dx, dy, dz = (np.asarray(v, dtype=np.float32) for v in (dx, dy, dz))

@@ -160,11 +160,6 @@ def _fast_log2(x: np.ndarray) -> np.ndarray:
     return exponent.astype(np.float32) + mantissa
 
 
-def _max_x86(a: np.ndarray, b: np.ndarray) -> np.ndarray:
-    """lp_build_max as llvmpipe emits it on x86 (maxps): a > b ? a : b, so b where either is NaN."""
-    return np.where(a > b, a, b)
-
-
 def _quad_corner_diff(v: np.ndarray, width: int, axis: int) -> np.ndarray:
     """Per 2x2 quad of a `width`-wide tile (lanes row by row from the bottom): the difference
     between the quad's bottom-left pixel and its right (axis 1) or upper (axis 0) neighbour,
@@ -322,7 +317,7 @@ class TextureFunctions:
             size = np.array([w, h], dtype=np.float32)[:, None]
             dx = _quad_corner_diff(p, width, 1) * size
             dy = _quad_corner_diff(p, width, 0) * size
-            rho2 = _max_x86(dx[0] * dx[0] + dx[1] * dx[1], dy[0] * dy[0] + dy[1] * dy[1])
+            rho2 = cube_maps.max_x86(dx[0] * dx[0] + dx[1] * dx[1], dy[0] * dy[0] + dy[1] * dy[1])
         lod = np.float32(0.5) * _fast_log2(rho2)
         if bias is not None:
             lod = lod + np.asarray(bias, dtype=np.float32)
@@ -358,7 +353,7 @@ class TextureFunctions:
         h, w = s.texels.shape[:2]
         size = np.array([w, h], dtype=np.float32).reshape(2, *([1] * (np.ndim(dpdx) - 1)))
         dx, dy = np.asarray(dpdx, np.float32) * size, np.asarray(dpdy, np.float32) * size
-        rho2 = _max_x86(dx[0] * dx[0] + dx[1] * dx[1], dy[0] * dy[0] + dy[1] * dy[1])
+        rho2 = cube_maps.max_x86(dx[0] * dx[0] + dx[1] * dx[1], dy[0] * dy[0] + dy[1] * dy[1])
         rho2 = np.where(
             np.isfinite(rho2), rho2, np.float32(0)
         )  # lp_build_rho: explicit derivatives only
