@@ -14,8 +14,10 @@ from ..shadertoy.channels import (
     CHANNELS_FILE,
     ChannelInput,
     channel_reads,
+    cube_faces,
     folder_of,
     load_bindings,
+    read_cubemap,
     read_image,
     texture_path,
 )
@@ -51,6 +53,7 @@ class MultipassProgram:
         self.output = output
         self.bindings = {t: {b.channel: b for b in bindings if b.tab == t} for t in self.passes}
         self._check_reads()
+        self._check_kinds()
         self.textures = {}
         for b in bindings:
             if b.texture is not None:
@@ -58,8 +61,14 @@ class MultipassProgram:
                 def fail(key, message, b=b):
                     raise InputError(f"{self.channels_path}: error: {key}: {message}")
 
+                if b.cube:
+                    where = f'"{b.tab}"."iChannel{b.channel}"."cubemap"'
+                    self.textures[b.texture, True] = read_cubemap(
+                        cube_faces(shader, b.texture, where, fail), fail
+                    )
+                    continue
                 where = f'"{b.tab}"."iChannel{b.channel}"."texture"'
-                self.textures[b.texture] = read_image(
+                self.textures[b.texture, False] = read_image(
                     texture_path(shader, b.texture, where, fail), where, fail
                 )
         self.programs = {t: self._compile(t) for t in self.passes}
@@ -98,6 +107,37 @@ class MultipassProgram:
                             rule="unbound-channel",
                         )
                     )
+        if diags:
+            raise GlslError(diags)
+
+    def _check_kinds(self) -> None:
+        """A channel bound to a cube map must be sampled as one (samplerCube, which both the
+        GL and the CPU programs declare from the uses: semantics.cube_samplers), and one
+        sampled as a cube map must be bound to one: on Shadertoy either would not compile."""
+        from ..semantics import cube_samplers
+
+        diags = []
+        for tab in self.passes:
+            cube = cube_samplers(self.shader.units_for(tab), tab)
+            for n, loc in sorted(channel_reads(self.shader, tab).items()):
+                b = self.bindings[tab].get(n)
+                if b is None or b.cube == (f"iChannel{n}" in cube):
+                    continue
+                what = (
+                    "bound to a cube map but not sampled as one (texture(iChannel{n}, dir) with "
+                    "a vec3 direction)"
+                    if b.cube
+                    else "sampled as a cube map (with a vec3 direction) but bound to a "
+                    + ("buffer" if b.buffer is not None else "2D image")
+                )
+                diags.append(
+                    Diagnostic(
+                        f"iChannel{n} is {what.format(n=n)}: see "
+                        f'{self.channels_path}, "{tab}": {{"iChannel{n}": ...}}',
+                        loc,
+                        rule="channel-type",
+                    )
+                )
         if diags:
             raise GlslError(diags)
 
@@ -145,12 +185,13 @@ class MultipassProgram:
     def _image_input(self, b) -> ChannelInput:
         """An image channel, made once for all frames and passes: its mipmap levels are computed
         once, and a backend that keeps textures (WebGL) uploads it once."""
-        key = (b.texture, b.vflip, b.filter, b.wrap, self.lowp_samplers)
+        key = (b.texture, b.cube, b.vflip, b.filter, b.wrap, self.lowp_samplers)
         if key not in self._images:
-            texels = self.textures[b.texture]
-            texels = texels[::-1] if b.vflip else texels
+            texels = self.textures[b.texture, b.cube]
+            if b.vflip:  # an image's rows, or each cube face's
+                texels = texels[:, ::-1] if b.cube else texels[::-1]
             self._images[key] = ChannelInput(
-                np.ascontiguousarray(texels), b.filter, b.wrap, self.lowp_samplers
+                np.ascontiguousarray(texels), b.filter, b.wrap, self.lowp_samplers, b.cube
             )
         return self._images[key]
 

@@ -18,7 +18,7 @@ from __future__ import annotations
 
 from ..base.diagnostics import Diagnostic, Location
 from ..base.recursion import enter_deep, leave_deep
-from .channel_types import SAMPLER_CUBE, cube_channels
+from .channel_types import CHANNELS, SAMPLER_CUBE, cube_channels
 from .checker import Checker
 from .model import ERROR, CallTarget, CheckError, Constructor, ErrorType, Model, Symbol
 
@@ -35,6 +35,7 @@ __all__ = [
     "CheckError",
     "ERROR",
     "ErrorType",
+    "cube_samplers",
 ]
 
 
@@ -67,3 +68,26 @@ def check(parse_result: Any, tab: str = "Image", *, collect: bool = False) -> Mo
     if not collect and model.errors:
         raise CheckError(model.errors)
     return model
+
+
+def cube_samplers(units: list, tab: str = "Image") -> frozenset[str]:
+    """The iChannels the pass made of `units` (its Common and tab sources) samples as cube maps,
+    which both the GL and the CPU programs declare samplerCube (channel_types.py); empty when
+    the pass does not parse (its backend reports the errors)."""
+    from ..frontend.parser import parse_units
+
+    if not any("iChannel" in u.text for u in units) or any(u.is_plain_glsl for u in units):
+        return frozenset()
+    try:
+        model = check(parse_units(units), tab, collect=True)
+    except Exception:  # noqa: BLE001 - any front-end failure: the backend reports it
+        return frozenset()
+    from ..frontend import syntax as A
+
+    found = set()
+    for node in model.ast.walk():
+        if type(node) is A.Identifier and node.name in CHANNELS:
+            sym = model.symbol_of(node)
+            if sym is not None and sym.kind == "uniform" and sym.type == SAMPLER_CUBE:
+                found.add(node.name)
+    return frozenset(found)

@@ -14,8 +14,10 @@ channels.json binds buffers and images only, which are 2D):
   sampler2D: a built-in (`texture`, `textureLod`, `textureGrad`, `textureSize`, ...) whose
   overload resolves only with samplerCube given the other arguments' types, or a user function
   whose parameter at that place is declared samplerCube.
-* A channel all of whose uses (one or more) are cube-like is samplerCube and the program is
-  checked again; a channel with any 2D or unclear use stays sampler2D, so its errors stand.
+* A use is *neutral* when a built-in matches with both (`textureSize(iChannel0, 0)`).
+* A channel with one or more cube-like uses and no other use than neutral ones is samplerCube
+  and the program is checked again; a channel with any 2D or unclear use stays sampler2D, so
+  its errors stand.
 
 Nothing is inferred for sampler3D (no course file needs it), and a program that mixes 2D and cube
 uses of one channel keeps the errors of one of them: no binding could make both compile.
@@ -40,7 +42,7 @@ SAMPLER_CUBE = T.SAMPLERS["samplerCube"]
 def cube_channels(model: Model) -> frozenset[str]:
     """The channels a checked program (with errors, from the sampler2D pass) uses only as cube
     maps (see the module docstring)."""
-    uses: dict[str, list[bool]] = {}
+    uses: dict[str, list[bool | None]] = {}
     for call in model.ast.walk():
         if type(call) is not A.Call:
             continue
@@ -49,10 +51,13 @@ def cube_channels(model: Model) -> frozenset[str]:
                 sym = model.symbol_of(arg)
                 if sym is not None and sym.kind == "uniform":
                     uses.setdefault(arg.name, []).append(_cube_like(model, call, i))
-    return frozenset(name for name, cube in uses.items() if cube and all(cube))
+    return frozenset(
+        name for name, cube in uses.items() if any(cube) and all(c or c is None for c in cube)
+    )
 
 
-def _cube_like(model: Model, call: A.Call, i: int) -> bool:
+def _cube_like(model: Model, call: A.Call, i: int) -> bool | None:
+    """True for a cube-like use, None for a neutral one, False otherwise (module docstring)."""
     if call.array is not None or call.struct_ is not None:
         return False
     if B.is_builtin_function(call.callee) and call.callee not in model.functions:
@@ -65,6 +70,7 @@ def _cube_like(model: Model, call: A.Call, i: int) -> bool:
                 B.resolve(call.callee, types[:i] + [sampler] + types[i + 1 :]), B.Overload
             )
 
-        return fits(SAMPLER_CUBE) and not fits(SAMPLER_2D)
+        cube, flat = fits(SAMPLER_CUBE), fits(SAMPLER_2D)
+        return None if cube and flat else cube
     overloads = [f for f in model.functions.get(call.callee, []) if len(f.params) == len(call.args)]
     return bool(overloads) and all(f.params[i][1] == SAMPLER_CUBE for f in overloads)

@@ -11,11 +11,16 @@ channels.json, in the shader's folder (one object per tab that has inputs):
                "iChannel1": {"texture": "tex.png", "filter": "mipmap", "wrap": "repeat", "vflip":
                true}}}
 
-Each binding has `buffer` (a Buffer tab) or `texture` (an image path relative to the folder, read
-with Pillow), and optional `filter` (nearest | linear | mipmap; default mipmap for textures,
+Each binding has `buffer` (a Buffer tab), `texture` (an image path relative to the folder, read
+with Pillow) or `cubemap` (a cube map: a folder holding the six faces px, nx, py, ny, pz, nz as
+PNG or JPEG files, or the first of six files named as Shadertoy names its cube maps' faces,
+`name.png`, `name_1.png` .. `name_5.png` for +X, -X, +Y, -Y, +Z, -Z; square faces of one size),
+and optional `filter` (nearest | linear | mipmap; default mipmap for textures,
 linear for buffers), `wrap` (clamp | repeat; default repeat for textures, clamp for buffers) and
 `vflip` (default true for textures, false for buffers: Shadertoy flips images so that their top
-row is at t = 1).
+row is at t = 1; a cube map's defaults are Shadertoy's, mipmap, clamp and no flip: its faces'
+top rows are at t = 0, as OpenGL's cube maps have them). A cube map accepts only the clamp
+wrap: WebGL 2 filters cube maps seamlessly, and seamless filtering ignores the wrap.
 
 Passes, as Shadertoy runs them: every frame renders Buffer A, B, C, D (those the shader has),
 then Image. Buffers are RGBA float32 (Shadertoy allocates its buffers as 32-bit float RGBA
@@ -40,7 +45,8 @@ the NumPy backend truncates every lookup as llvmpipe does (backends/numpy_engine
 
 Shadertoy's own JSON export of a shader (`glslcheck render shader.json`, see
 `sources.load_shadertoy_json`): the passes' code becomes the tabs and the inputs the bindings,
-with `/media/...` files taken from a `media/` folder beside the JSON.
+with `/media/...` files taken from a `media/` folder beside the JSON (a cube map's six faces
+with Shadertoy's names).
 
 Errors (InputError, exit 2, naming channels.json and the key): bad JSON, an unknown tab or
 key, a missing or unreadable image, an unsupported input kind, bad values. A pass reading an
@@ -62,7 +68,7 @@ from pathlib import Path
 import numpy as np
 
 from ..base.diagnostics import InputError, Location
-from .bindings import FILTERS, KIND_DEFAULTS, WRAPS, Binding
+from .bindings import CUBE_FACES, FILTERS, KIND_DEFAULTS, WRAPS, Binding
 from .sources import BUFFER_TABS, Shader, read_json
 from .wrapper import PASS_TABS
 
@@ -72,7 +78,8 @@ if TYPE_CHECKING:
     from typing import NoReturn
 
 CHANNELS_FILE = "channels.json"
-_UNSUPPORTED = ("cubemap", "video", "webcam", "microphone", "music", "sound", "keyboard", "volume")
+KINDS = ("buffer", "texture", "cubemap")
+_UNSUPPORTED = ("video", "webcam", "microphone", "music", "sound", "keyboard", "volume")
 _SERIAL = itertools.count()
 _COMMENT_RE = re.compile(r"/\*.*?(\*/|\Z)|//[^\n]*", re.S)
 
@@ -80,12 +87,14 @@ _COMMENT_RE = re.compile(r"/\*.*?(\*/|\Z)|//[^\n]*", re.S)
 @dataclass(eq=False)
 class ChannelInput:
     """What a backend samples: `texels` float32 (height, width, 4), row 0 at t near 0 (OpenGL's
-    first row); `lowp`: lookups return lowp results (always, for Shadertoy's iChannels)."""
+    first row), or with `cube` (6, size, size, 4), the faces in OpenGL's order +X, -X, +Y, -Y,
+    +Z, -Z; `lowp`: lookups return lowp results (always, for Shadertoy's iChannels)."""
 
     texels: np.ndarray
     filter: str = "linear"
     wrap: str = "clamp"
     lowp: bool = True
+    cube: bool = False
     serial: int = field(default_factory=lambda: next(_SERIAL))
     _levels: list | None = field(default=None, repr=False)
 
@@ -95,7 +104,11 @@ class ChannelInput:
     def levels(self) -> list[np.ndarray]:
         """The mipmap levels (level 0 = texels), made once: see `mip_levels`."""
         if self._levels is None:
-            self._levels = mip_levels(self.texels)
+            if self.cube:  # each face's pyramid, the levels stacked as (6, size, size, 4)
+                faces = [mip_levels(f) for f in self.texels]
+                self._levels = [np.stack(level) for level in zip(*faces)]
+            else:
+                self._levels = mip_levels(self.texels)
         return self._levels
 
 
@@ -123,7 +136,9 @@ def channel_uniforms(channels) -> dict:
     chans = list(channels) + [None] * (4 - len(channels))
     values = {f"iChannel{i}": c for i, c in enumerate(chans)}
     values["iChannelResolution"] = tuple(
-        (0.0, 0.0, 0.0) if c is None else (float(c.texels.shape[1]), float(c.texels.shape[0]), 1.0)
+        (0.0, 0.0, 0.0)
+        if c is None
+        else (float(c.texels.shape[-2]), float(c.texels.shape[-3]), 1.0)
         for c in chans
     )
     return values
@@ -175,8 +190,8 @@ def _binding(
 ) -> Binding:
     if not isinstance(spec, dict):
         fail(where, 'must be an object with "buffer" or "texture"')
-    kinds = [k for k in ("buffer", "texture") if k in spec]
-    other = [k for k in spec if k not in ("buffer", "texture", "filter", "wrap", "vflip")]
+    kinds = [k for k in KINDS if k in spec]
+    other = [k for k in spec if k not in (*KINDS, "filter", "wrap", "vflip")]
     for k in other:
         if k in _UNSUPPORTED:
             fail(
@@ -185,10 +200,14 @@ def _binding(
             )
         fail(
             f"{where}.{json.dumps(k)}",
-            "unknown key (expected buffer or texture, filter, wrap, vflip)",
+            "unknown key (expected buffer, texture or cubemap, filter, wrap, vflip)",
         )
     if len(kinds) != 1:
-        fail(where, 'needs exactly one of "buffer" (a tab) and "texture" (an image file)')
+        fail(
+            where,
+            'needs exactly one of "buffer" (a tab), "texture" (an image file) and "cubemap" '
+            "(a folder of six faces)",
+        )
     kind = kinds[0]
     value = spec[kind]
     if not isinstance(value, str):
@@ -220,6 +239,14 @@ def _binding(
         fail(f'{where}."wrap"', f"must be one of {', '.join(WRAPS)}, not {json.dumps(wrap)}")
     if not isinstance(vflip, bool):
         fail(f'{where}."vflip"', f"must be true or false, not {json.dumps(vflip)}")
+    if kind == "cubemap" and wrap != "clamp":
+        fail(
+            f'{where}."wrap"',
+            "a cube map is sampled seamlessly (as WebGL 2 does), which clamps to the edges: "
+            'only "clamp" applies',
+        )
+    if kind == "cubemap":
+        read_cubemap(cube_faces(shader, value, f'{where}."cubemap"', fail), fail)  # fail early
     if kind == "texture":
         texture_path(shader, value, f'{where}."texture"', fail)
         read_image(folder_of(shader) / value, f'{where}."texture"', fail)  # fail early
@@ -227,10 +254,11 @@ def _binding(
         tab,
         channel,
         value if kind == "buffer" else None,
-        value if kind == "texture" else None,
+        value if kind != "buffer" else None,
         filt,
         wrap,
         vflip,
+        kind == "cubemap",
     )
 
 
@@ -246,6 +274,60 @@ def texture_path(shader: Shader, name: str, where: str, fail) -> Path:
             f"of the shader (copy the image there)",
         )
     return path
+
+
+def cube_faces(shader: Shader, name: str, where: str, fail) -> list[tuple[Path, str]]:
+    """The six face files of a cube binding, +X, -X, +Y, -Y, +Z, -Z, each with its key for an
+    error: a folder's px, nx, py, ny, pz, nz (.png, .jpg or .jpeg), or `name.ext` and Shadertoy's
+    `name_1.ext` .. `name_5.ext` beside it."""
+    path = texture_path(shader, name, where, fail)
+    if path.is_dir():
+        found = []
+        for stem in CUBE_FACES:
+            files = sorted(
+                p
+                for p in path.iterdir()
+                if p.stem.lower() == stem and p.suffix.lower() in (".png", ".jpg", ".jpeg")
+            )
+            if len(files) != 1:
+                what = "no" if not files else "more than one"
+                fail(
+                    where,
+                    f"{what} {stem} face in the folder {str(path)!r} (a cube map folder holds "
+                    f"{', '.join(CUBE_FACES)} as .png, .jpg or .jpeg files)",
+                )
+            rel = str(Path(name) / files[0].name)
+            found.append((texture_path(shader, rel, where, fail), where))
+        return found
+    if not path.exists():
+        fail(
+            where,
+            f"no such file or folder {str(path)!r} (a cube map is a folder of px, nx, py, ny, "
+            "pz, nz images, or Shadertoy's name.png, name_1.png .. name_5.png)",
+        )
+    stem, suffix = name[: len(name) - len(path.suffix)], path.suffix
+    names = [name] + [f"{stem}_{k}{suffix}" for k in range(1, 6)]
+    return [(texture_path(shader, n, where, fail), where) for n in names]
+
+
+def read_cubemap(faces: list[tuple[Path, str]], fail) -> np.ndarray:
+    """The faces as RGBA float32 (6, size, size, 4), each face's first row its image's top; a
+    face that is missing, not square or of another size than the first is an error naming it."""
+    out: list[np.ndarray] = []
+    for path, where in faces:
+        t = read_image(path, where, fail)
+        h, w = t.shape[:2]
+        if h != w:
+            fail(where, f"the cube map face {str(path)!r} is {w}x{h}, not square")
+        if out and t.shape != out[0].shape:
+            n = out[0].shape[0]
+            fail(
+                where,
+                f"the cube map face {str(path)!r} is {w}x{h}, the first face "
+                f"{str(faces[0][0])!r} is {n}x{n} (all six must be the same size)",
+            )
+        out.append(t)
+    return np.stack(out)
 
 
 def read_image(path: Path, where: str, fail) -> np.ndarray:
@@ -312,5 +394,18 @@ def input_files(shader: Shader) -> list[Path]:
         return files  # the render reports it
     if path is not None:
         files.append(Path(path))
-    files += [folder_of(shader) / b.texture for b in bindings if b.texture is not None]
+    for b in bindings:
+        if b.texture is None:
+            continue
+        if not b.cube:
+            files.append(folder_of(shader) / b.texture)
+            continue
+        try:
+            files += [p for p, _ in cube_faces(shader, b.texture, "", _raise)]
+        except InputError:
+            pass  # the render reports it
     return files
+
+
+def _raise(key: str, message: str) -> NoReturn:
+    raise InputError(f"{key}: {message}")

@@ -426,7 +426,7 @@ def _walk(folder: str, visited: set[str]) -> list[Shader]:
 
 # Shadertoy's export: pass types and input kinds (ctype) -> glslcheck's tabs and binding kinds.
 _ST_TABS = {"image": "Image", "common": "Common", "sound": "Sound", "cubemap": "Cube A"}
-_ST_INPUTS = {"texture": "texture", "buffer": "buffer"}
+_ST_INPUTS = {"texture": "texture", "buffer": "buffer", "cubemap": "cubemap"}
 
 
 def read_json(path: str | os.PathLike) -> object:
@@ -586,7 +586,11 @@ def _export_binding(
         # vflip is Shadertoy's UNPACK_FLIP_Y at an image's upload: it never applies to a buffer
         return Binding(tab, channel, buffer, None, filt, wrap, False)
     if not src:
-        fail(f"{at}.src ({where})", 'an input of type texture needs a "src" path (/media/...)')
+        fail(f"{at}.src ({where})", f'an input of type {ctype} needs a "src" path (/media/...)')
+    if kind == "cubemap":
+        if "previz" in src:  # Shadertoy's name for the Cube A pass's output
+            fail(where, "the Cube A pass's cube map is not supported yet (a media cube map is)")
+        wrap = "clamp"  # WebGL 2 filters cube maps seamlessly: Shadertoy's wrap does not apply
     local = f"media/{Path(src).name}"
     if not (folder / local).is_file():
         fail(
@@ -594,4 +598,13 @@ def _export_binding(
             f"no such file {str(folder / local)!r} (Shadertoy's {src}: download it into the media/ "
             "folder beside the JSON)",
         )
-    return Binding(tab, channel, None, local, filt, wrap, vflip)
+    if kind == "cubemap":  # its other faces: name_1.png .. name_5.png beside it
+        stem, suffix = local[: len(local) - len(Path(local).suffix)], Path(local).suffix
+        for k in range(1, 6):
+            if not (folder / f"{stem}_{k}{suffix}").is_file():
+                fail(
+                    where,
+                    f"no such file {str(folder / f'{stem}_{k}{suffix}')!r} (face {k} of "
+                    f"Shadertoy's cube map {src}: download all six into the media/ folder)",
+                )
+    return Binding(tab, channel, None, local, filt, wrap, vflip, kind == "cubemap")

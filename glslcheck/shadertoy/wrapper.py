@@ -16,7 +16,7 @@ import math
 from bisect import bisect_right
 
 from ..base.diagnostics import InputError
-from ..base.records import record
+from ..base.records import record, replace
 from .sources import BUFFER_TABS, Shader, Source
 
 # A fixed iDate so renders are reproducible: 2026-01-01 00:00:00 (Shadertoy's month is 0-based).
@@ -255,9 +255,14 @@ class _Builder:
         return Program("".join(self.parts), tab, tuple(self.segments), samples_offset)
 
 
-def prelude(uniforms: tuple[Uniform, ...] = UNIFORMS) -> str:
-    """The text before the user's code: version, precision, HW_PERFORMANCE, uniforms, output."""
-    decls = "".join(u.declaration + "\n" for u in uniforms)
+def prelude(uniforms: tuple[Uniform, ...] = UNIFORMS, cube: frozenset[str] = frozenset()) -> str:
+    """The text before the user's code: version, precision, HW_PERFORMANCE, uniforms, output.
+    The iChannels named in `cube` are declared samplerCube, as Shadertoy declares a channel
+    bound to a cube map (one line each still)."""
+    decls = "".join(
+        (replace(u, glsl_type="samplerCube") if u.name in cube else u).declaration + "\n"
+        for u in uniforms
+    )
     return _HEADER + decls + f"out vec4 {OUTPUT_NAME};\n"
 
 
@@ -284,8 +289,15 @@ def footer(tab: str = "Image", *, samples_offset: bool = False) -> str:
     )
 
 
-def build_program(shader: Shader, tab: str = "Image", *, samples_offset: bool = False) -> Program:
-    """The program Shadertoy compiles for `tab`: prelude, Common, the tab, footer.
+def build_program(
+    shader: Shader,
+    tab: str = "Image",
+    *,
+    samples_offset: bool = False,
+    cube: frozenset[str] = frozenset(),
+) -> Program:
+    """The program Shadertoy compiles for `tab`: prelude, Common, the tab, footer; the
+    iChannels in `cube` are samplerCube (`prelude`).
 
     A plain GLSL file (tab "GLSL", with its own #version and main) is returned as it is, line
     for line; `samples_offset` cannot apply to it and raises InputError. Asking for the Common
@@ -313,7 +325,7 @@ def build_program(shader: Shader, tab: str = "Image", *, samples_offset: bool = 
             f"(supported: {', '.join(PASS_TABS)})"
         )
     b = _Builder()
-    b.add(prelude())
+    b.add(prelude(cube=cube))
     if shader.common is not None:
         b.add_source(shader.common)
     b.add_source(src)

@@ -6,7 +6,8 @@ lowp lookups (float16 where the NumPy backend computes it so), texelFetch and te
 several frames (the Buffer carried from frame to frame by the one multipass driver), per pixel
 and in lockstep, at even and odd sizes (helper pixels past the edge of a quad). The NumPy
 backend's sampling is llvmpipe's (tests/channels/test_channels.py checks it against GL), so the
-compiled engine must give its bits. Cube maps are a located error on both CPU engines."""
+compiled engine must give its bits. Cube maps too (nearest, linear and mipmap channels, explicit
+and implicit LODs); textureGrad on a cube map is a located error on both CPU engines."""
 
 from __future__ import annotations
 
@@ -179,18 +180,77 @@ def test_float16_trees_bit_for_bit(numba, tmp_path, monkeypatch, lanes):
     assert _differing(exact.render(**kw), want) > 0
 
 
-def test_cube_maps_are_a_located_error(numba, make_shader):
-    shader = make_shader(
-        "void mainImage(out vec4 c, in vec2 f) {\n"
-        "    c = texture(iChannel0, normalize(vec3(f, 1.0)));\n}\n"
-    )
-    from glslcheck.backends.compiled_engine.engine import generate
+CUBE_PLAIN = """vec4 sky(samplerCube s, vec3 d) { return texture(s, d.zxy); }
+void mainImage(out vec4 c, in vec2 fc) {
+    vec2 q = (fc / iResolution.xy - 0.5) * 2.6;
+    vec3 d = vec3(q, 1.0 - 0.4 * iTime);
+    vec4 a = texture(iChannel0, d) + texture(iChannel1, -d.yzx) + sky(iChannel1, d);
+    a += textureLod(iChannel2, d.zyx, q.x * 3.0 + 1.0) + textureLod(iChannel2, d, 0.0);
+    if (q.y > 0.2 * sin(q.x * 7.0)) {
+        a += texture(iChannel0, vec3(d.x, -1.0, d.y));
+    }
+    a += vec4(vec2(textureSize(iChannel2, 1)), vec2(textureSize(iChannel0, 0))) * 0.01;
+    a.x += texture(iChannel1, d).x * 0.1 + 2.1;
+    c = a;
+}
+"""
 
-    with pytest.raises(GlslError) as err:
-        generate(shader)
-    d = err.value.diagnostics[0]
-    assert "cube maps" in d.message and "compiled engine" in d.message
-    assert (d.loc.path, d.loc.line, d.loc.column) == ("Image.glsl", 2, 9)
+# implicit cube LODs (per pixel, from fine derivatives: lockstep only), a bias, through a
+# sampler parameter and under a divergent branch
+CUBE_QUADS = """vec4 sky(samplerCube s, vec3 d) { return texture(s, d); }
+void mainImage(out vec4 c, in vec2 fc) {
+    vec2 q = (fc / iResolution.xy - 0.5) * (1.0 + 9.0 * fc.x / iResolution.x);
+    vec3 d = vec3(q.x, q.y * q.x, 0.9 - q.y);
+    vec4 a = texture(iChannel2, d) + texture(iChannel2, d.yzx * 3.0, 1.5) + sky(iChannel2, -d);
+    if (q.y > 0.3 * sin(q.x * 9.0)) {
+        a += texture(iChannel2, d * 5.0);
+    }
+    c = a + texture(iChannel0, d);
+}
+"""
+
+
+def _cube_folder(tmp_path, image: str) -> str:
+    for name, n, seed in (("sky8", 8, 3), ("sky6", 6, 4)):
+        (tmp_path / name).mkdir()
+        for k, face in enumerate(("px", "nx", "py", "ny", "pz", "nz")):
+            _png(tmp_path / name / f"{face}.png", n, n, seed * 10 + k)
+    (tmp_path / "Image.glsl").write_text(image)
+    channels = {
+        "Image": {
+            "iChannel0": {"cubemap": "sky6", "filter": "nearest"},
+            "iChannel1": {"cubemap": "sky8", "filter": "linear"},
+            "iChannel2": {"cubemap": "sky6", "filter": "mipmap"},
+        }
+    }
+    (tmp_path / "channels.json").write_text(json.dumps(channels))
+    return str(tmp_path)
+
+
+@pytest.mark.parametrize("lanes", ["0", "8"])
+@pytest.mark.parametrize("size", [(40, 24), (41, 23)])
+def test_cube_map_lookups_bit_for_bit(numba, tmp_path, monkeypatch, lanes, size):
+    monkeypatch.setenv("GLSLCHECK_COMPILED_LANES", lanes)
+    _agree(_cube_folder(tmp_path, CUBE_PLAIN), size)
+
+
+@pytest.mark.parametrize("size", [(40, 24), (41, 23)])
+def test_implicit_cube_lods_bit_for_bit(numba, tmp_path, size):
+    _agree(_cube_folder(tmp_path, CUBE_QUADS), size)
+
+
+def test_texture_grad_on_a_cube_map_is_a_located_error(numba, tmp_path):
+    image = (
+        "void mainImage(out vec4 c, in vec2 f) {\n"
+        "    c = textureGrad(iChannel1, vec3(f, 1.0), vec3(1.0), vec3(0.0));\n}\n"
+    )
+    folder = _cube_folder(tmp_path, image)
+    for backend in ("numpy", "compiled"):
+        with pytest.raises(GlslError) as err:
+            glslcheck.compile(folder, backend=backend).render(size=(8, 4))
+        d = err.value.diagnostics[0]
+        assert "textureGrad" in d.message, (backend, d.message)
+        assert (d.loc.line, d.loc.column) == (2, 9), backend
 
 
 def test_a_mipmap_channel_the_program_was_not_made_for_is_refused(numba, make_shader):

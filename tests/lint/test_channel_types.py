@@ -6,8 +6,6 @@ from __future__ import annotations
 
 from pathlib import Path
 
-import pytest
-
 from glslcheck.frontend.parser import parse_shader
 from glslcheck.lint import lint_paths
 from glslcheck.semantics import check
@@ -42,14 +40,20 @@ def test_a_channel_sampled_only_as_a_cube_map_is_a_samplercube(tmp_path: Path):
     assert uses == {"iChannel0": "sampler2D", "iChannel1": "samplerCube"}
 
 
-@pytest.mark.parametrize(
-    "use",
-    [
-        "texture(iChannel1, fragCoord / iResolution.xy)",  # a 2D use too: no binding compiles both
-        "vec4(textureSize(iChannel1, 0), 0.0, 0.0)",  # fits both: unclear, so 2D
-    ],
-)
-def test_a_channel_with_any_other_use_stays_2d_and_its_errors_stand(tmp_path: Path, use: str):
+def test_a_use_that_fits_both_leaves_the_cube_uses_deciding(tmp_path: Path):
+    # textureSize(iChannel1, 0) compiles on a sampler2D and a samplerCube: only the cube map
+    # binding compiles the whole program
+    use = "vec4(vec2(textureSize(iChannel1, 0)), 0.0, 0.0)"
+    model = _model(tmp_path, CUBE.replace("texture(iChannel0, fragCoord / iResolution.xy)", use))
+    assert model.errors == []
+    kinds = {
+        str(model.type_of(n)) for n in model.ast.walk() if getattr(n, "name", "") == "iChannel1"
+    }
+    assert kinds == {"samplerCube"}
+
+
+def test_a_channel_with_a_2d_use_too_stays_2d_and_its_errors_stand(tmp_path: Path):
+    use = "texture(iChannel1, fragCoord / iResolution.xy)"  # no binding compiles both
     text = CUBE.replace("+ texture(iChannel0, fragCoord / iResolution.xy)", f"+ {use}")
     model = _model(tmp_path, text)
     assert model.errors, "a vec3 lookup of a sampler2D must stay an error"

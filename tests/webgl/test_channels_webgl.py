@@ -217,3 +217,12 @@ def test_a_large_texture_is_uploaded_in_pieces_once_and_sampled_as_on_numpy(webg
     assert calls.count("textureBegin") == 1 and calls.count("render") == 3
     assert calls.count("textureChunk") > 1  # more than one piece: the split was exercised
     assert all(size <= webgl_program.KEPT_TEXTURE_BYTES for size in browser.textures.values())
+
+
+def test_a_cube_map_scene_against_webgl(webgl, gl):
+    # SwiftShader's WebGL samples the TEXTURE_CUBE_MAP the page uploads, seamlessly as WebGL 2
+    # always does; it ignores lowp (exact lookups) and picks its own implicit LODs, so the
+    # comparison is verify's, with the drivers' own differences set apart
+    scene = ROOT / "benchmarks" / "scenes" / "skybox"
+    results = list(verify_against_webgl(str(scene), size=SIZE, times=[0.0, 2.5]))
+    assert len(results) == 2 and all(r.match for r in results)

@@ -38,8 +38,8 @@ spends llvmpipe's pass budget as the NumPy backend does (`lc`, scalar.tick; `loo
 function returns a tuple: its value's leaves, then the leaves of its out/inout parameters,
 which the caller writes back left to right.
 
-Texture lookups on a sampler2D: texture_calls.py (a sampler is its channel number; texels and
-channel descriptions follow the uniforms in `uf`/`ui`).
+Texture lookups on a sampler2D or samplerCube: texture_calls.py (a sampler is its channel
+number; texels and channel descriptions follow the uniforms in `uf`/`ui`).
 
 Not supported yet (a GlslError at the construct, "not supported by the compiled engine yet"):
 cube maps and other sampler types, arrays of structs holding arrays, inverse() of 3x3 and 4x4
@@ -319,7 +319,7 @@ class Codegen(ExpressionEmitter):
         if sym.kind == "global" and sym.qualifier == "uniform":
             from ...shadertoy.wrapper import fed_uniform
 
-            if str(sym.type) == "sampler2D" and sym.name in _CHANNELS:
+            if str(sym.type) in ("sampler2D", "samplerCube") and sym.name in _CHANNELS:
                 return [self.ci(_CHANNELS.index(sym.name))]
 
             if fed_uniform(sym.name, str(sym.type)) is not None:

@@ -1,4 +1,5 @@
-"""Texture lookups in the compiled engine: the ES 3.00 built-ins on a sampler2D as calls of
+"""Texture lookups in the compiled engine: the ES 3.00 built-ins on a sampler2D, and texture,
+textureLod and textureSize on a samplerCube (a cube map channel), as calls of
 backends/numpy_engine/texture_kernels.py (the one-pixel form of the NumPy backend's
 textures.py), and arithmetic on lowp lookups in float16 where the NumPy backend computes it so
 (nir_fold.lower_precision: llvmpipe's float16 lowering).
@@ -10,14 +11,15 @@ constant, is where the channels' words start in `ui`). The implicit LOD of a mip
 `texture()` reads the differences of the coordinates across the 2x2 quad (`qdx`/`qdy`, which
 only the lockstep rewrite computes, lanes.py): the generator is told which channels are bound
 with mipmaps (`Codegen.mipmap`), and a lookup on any other channel reads level 0 without them.
-Cube maps are not sampled (neither does the NumPy backend): a located "not supported yet"."""
+A cube map's implicit LOD is per pixel, from the direction's fine derivatives (`dfdx`/`dfdy`, as
+dFdx: textures.py and cube_maps.py)."""
 
 from __future__ import annotations
 
 from typing import Any
 
 from ...frontend import syntax as A
-from ..cpu_core.common import TEXTURE_FUNCTIONS
+from ..cpu_core.common import CUBE_FUNCTIONS, TEXTURE_FUNCTIONS
 from .values import Val, not_yet
 
 
@@ -29,7 +31,7 @@ def _layout(name: str) -> tuple[str, bool, bool]:
     return lod, "Proj" in name, name.endswith("Offset")
 
 
-KERNELS = "tex_sample, tex_lod, tex_fetch, tex_size, tex_lowp, half"
+KERNELS = "tex_sample, tex_lod, tex_fetch, tex_size, tex_lowp, half, tex_sample_cube, tex_lod_cube"
 IMPORT = f"from glslcheck.backends.numpy_engine.texture_kernels import {KERNELS}  # noqa: F401"
 
 
@@ -42,11 +44,15 @@ def channel_of(cg: Any, sampler: Any) -> int | None:
 
 
 def texture_call(cg: Any, e: A.Call, name: str) -> Val:
-    """A lookup built-in (common.TEXTURE_FUNCTIONS) on a sampler2D."""
+    """A lookup built-in (common.TEXTURE_FUNCTIONS) on a sampler2D, or (common.CUBE_FUNCTIONS)
+    on a samplerCube."""
     stype = str(cg.type_of(e.args[0]))
-    if stype != "sampler2D":
-        what = "cube maps" if stype == "samplerCube" else f"'{stype}' lookups"
-        raise not_yet(f"{name}(): {what}", e)
+    if stype == "samplerCube" and name in CUBE_FUNCTIONS and name != "textureSize":
+        return _cube_call(cg, e, name)
+    if stype not in ("sampler2D", "samplerCube") or (
+        stype == "samplerCube" and name not in CUBE_FUNCTIONS
+    ):
+        raise not_yet(f"{name}(): '{stype}' lookups", e)
     cg.textures = True
     rtype = cg.type_of(e)
     ch = cg.atom(cg.expr(e.args[0]).parts[0])
@@ -102,6 +108,36 @@ def texture_call(cg: Any, e: A.Call, name: str) -> Val:
     return Val(rtype, [f"{t}[{i}]" for i in range(4)])
 
 
+def _cube_call(cg: Any, e: A.Call, name: str) -> Val:
+    """texture(samplerCube, vec3[, bias]) or textureLod: tex_sample_cube at the direction, with
+    the explicit LOD, or a mipmapped channel's implicit one (tex_lod_cube from the direction's
+    fine derivatives, lockstep only), or level 0."""
+    cg.textures = True
+    rtype = cg.type_of(e)
+    ch = cg.atom(cg.expr(e.args[0]).parts[0])
+    args = [cg.expr(a) for a in e.args[1:]]
+    d = [cg.atom(x) for x in args[0].parts]
+    has_lod, lod, implicit = "False", "F32(0.0)", "False"
+    if name == "textureLod":
+        has_lod, lod = "True", args[1].parts[0]
+    elif not _needs_lod(cg, e.args[0]):
+        cg.level0_lookups |= _channels(cg, e.args[0])
+    else:
+        if cg.derivative is None:
+            cg.derivative = e  # the pixels' fine differences: lockstep only, as dFdx
+        names = [c if c.isidentifier() else cg.tmp_fresh(c) for c in d]
+        diffs = [cg.tmp_fresh(f"{f}({c})") for f in ("dfdx", "dfdy") for c in names]
+        has_lod, implicit = "True", "True"
+        lod = cg.tmp_fresh(f"tex_lod_cube(ui, TM, {ch}, {', '.join(names + diffs)})")
+        if len(args) > 1:  # the bias, added to the implicit LOD
+            lod = cg.tmp_fresh(f"({lod} + {args[1].parts[0]})")
+        d = names
+    t = cg.tmp_fresh(
+        f"tex_sample_cube(uf, ui, TM, {ch}, {d[0]}, {d[1]}, {d[2]}, {has_lod}, {lod}, {implicit})"
+    )
+    return Val(rtype, [f"{t}[{i}]" for i in range(4)])
+
+
 def _needs_lod(cg: Any, sampler: Any) -> bool:
     """Whether an implicit-LOD lookup on this sampler may read mipmaps: its channel is bound
     with them, or (a sampler parameter) a channel its callers may pass is."""
@@ -122,7 +158,7 @@ def _channels(cg: Any, sampler: Any) -> set[int]:
 
 
 def sampler_flow(cg: Any) -> dict[tuple[int, str], set[int]]:
-    """(id of a function, name of its sampler2D parameter) -> the channels its calls pass
+    """(id of a function, name of its sampler parameter) -> the channels its calls pass
     there: an iChannel directly or through the caller's own sampler parameter (a fixpoint;
     GLSL has no recursion)."""
     if cg.sampler_flow is not None:
@@ -136,7 +172,7 @@ def sampler_flow(cg: Any) -> dict[tuple[int, str], set[int]]:
             if not isinstance(tgt, Symbol) or not tgt.params:
                 continue
             for a, (pname, ptype, _) in zip(n.args, tgt.params):
-                if str(ptype) == "sampler2D":
+                if str(ptype) in ("sampler2D", "samplerCube"):
                     edges.append(((id(tgt), pname), fn, a))
     flow: dict[tuple[int, str], set[int]] = {}
     changed = True

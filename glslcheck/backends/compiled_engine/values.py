@@ -150,7 +150,7 @@ def leaves(t: Any, node: Any) -> list[tuple[str, int | None]]:
         if t.array_size * len(inner) <= SMALL_ARRAY:  # scalars, leaf by leaf (see the docstring)
             return [(b, None) for b, _ in inner for _ in range(t.array_size)]
         return [(b, t.array_size) for b, _ in inner]
-    if str(t) == "sampler2D":  # its channel number (texture_calls.py)
+    if str(t) in ("sampler2D", "samplerCube"):  # its channel number (texture_calls.py)
         return [("int", None)]
     if t.contains_opaque:
         raise not_yet(f"'{t}' values", node)

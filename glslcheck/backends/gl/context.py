@@ -88,3 +88,25 @@ def get_context():
 def renderer_name() -> str:
     """The driver's GL_RENDERER string, e.g. 'llvmpipe (LLVM 15.0.6, 256 bits)'."""
     return get_context().info["GL_RENDERER"]
+
+
+_gl_functions: dict[str, object] = {}
+
+
+def gl_function(name: str, *argtypes):
+    """A GL entry point moderngl does not wrap (glTexSubImage2D on a cube face's mipmap level),
+    through EGL's eglGetProcAddress, as the context's own loader finds them; it acts on the
+    current context, the process-wide one."""
+    fn = _gl_functions.get(name)
+    if fn is None:
+        import ctypes
+
+        egl = ctypes.CDLL("libEGL.so.1")
+        egl.eglGetProcAddress.restype = ctypes.c_void_p
+        egl.eglGetProcAddress.argtypes = [ctypes.c_char_p]
+        address = egl.eglGetProcAddress(name.encode())
+        if not address:
+            raise GLUnavailable(f"error: the GL driver has no {name}; {ADVICE}")
+        fn = ctypes.CFUNCTYPE(None, *argtypes)(address)
+        _gl_functions[name] = fn
+    return fn

@@ -36,7 +36,7 @@ from ...shadertoy.frame_inputs import FrameInputs, frame_inputs
 from ...shadertoy.sources import Shader
 from ...shadertoy.wrapper import OFFSET_UNIFORM, UNIFORMS, UNIFORMS_BY_NAME, Program, build_program
 from ..driver_profile import driver_model
-from .context import get_context
+from .context import get_context, gl_function
 from .zero_init import zero_initialized
 
 TYPE_CHECKING = False  # not typing's: importing typing costs every start-up
@@ -233,6 +233,7 @@ class GLProgram:
     program: Program  # the one-sample program (exactly what Shadertoy compiles)
     ctx: moderngl.Context
     _variants: dict[bool, _Compiled] = field(default_factory=dict, repr=False)
+    cube: frozenset[str] = frozenset()  # the iChannels declared samplerCube
 
     @property
     def float_to_uint_model(self) -> str | None:
@@ -249,7 +250,9 @@ class GLProgram:
 
     def _variant(self, samples_offset: bool) -> _Compiled:
         if samples_offset not in self._variants:
-            program = build_program(self.shader, self.program.tab, samples_offset=samples_offset)
+            program = build_program(
+                self.shader, self.program.tab, samples_offset=samples_offset, cube=self.cube
+            )
             self._variants[samples_offset] = _compile(self.ctx, program)
         return self._variants[samples_offset]
 
@@ -310,11 +313,19 @@ class GLProgram:
         return np.ascontiguousarray(image[::-1])  # GL rows go bottom-up; images top-down
 
 
+# GL_TEXTURE_CUBE_MAP_SEAMLESS: off by default in a desktop GL context, always on in OpenGL ES 3
+# and WebGL 2, where Shadertoy runs
+_CUBE_MAP_SEAMLESS = 0x884F
+_CUBE_FACE_0, _RGBA, _FLOAT = 0x8515, 0x1908, 0x1406  # GL_TEXTURE_CUBE_MAP_POSITIVE_X ..
+
+
 def _bind_channel(ctx, unit: int, channel):
     """Upload a channels.ChannelInput as an RGBA32F texture on `unit` with its filter and wrap.
     Its texels' row 0 is texture coordinate t near 0, which is OpenGL's first row."""
     import moderngl
 
+    if channel.cube:
+        return _bind_cube(ctx, unit, channel)
     h, w = channel.texels.shape[:2]
     tex = ctx.texture(
         (w, h), 4, np.ascontiguousarray(channel.texels, dtype=np.float32).tobytes(), dtype="f4"
@@ -330,6 +341,39 @@ def _bind_channel(ctx, unit: int, channel):
         mode = moderngl.NEAREST if channel.filter == "nearest" else moderngl.LINEAR
         tex.filter = (mode, mode)
     tex.repeat_x = tex.repeat_y = channel.wrap == "repeat"
+    tex.use(unit)
+    return tex
+
+
+def _bind_cube(ctx, unit: int, channel):
+    """A cube map channel as an RGBA32F TextureCube (faces +X, -X, +Y, -Y, +Z, -Z, each face's
+    row 0 its first row), filtered seamlessly as on WebGL 2; its wrap is clamp to edge."""
+    import ctypes
+
+    import moderngl
+
+    ctx.enable_direct(_CUBE_MAP_SEAMLESS)
+    n = channel.texels.shape[1]
+    data = np.ascontiguousarray(channel.texels, dtype=np.float32).tobytes()
+    tex = ctx.texture_cube((n, n), 4, data, dtype="f4")
+    if channel.filter == "mipmap":  # glslcheck's own pyramid per face, as the NumPy side
+        tex.build_mipmaps()  # allocates the levels; moderngl writes level 0 only
+        tex.use(unit)
+        sub_image = gl_function(  # (target, level, x, y, width, height, format, type, data)
+            "glTexSubImage2D",
+            *[ctypes.c_uint] + [ctypes.c_int] * 5,
+            *[ctypes.c_uint] * 2,
+            ctypes.c_void_p,
+        )
+        for level, texels in enumerate(channel.levels()[1:], 1):
+            for face in range(6):
+                data = np.ascontiguousarray(texels[face], dtype=np.float32)
+                k = data.shape[0]
+                sub_image(_CUBE_FACE_0 + face, level, 0, 0, k, k, _RGBA, _FLOAT, data.ctypes.data)
+        tex.filter = (moderngl.LINEAR_MIPMAP_LINEAR, moderngl.LINEAR)
+    else:
+        mode = moderngl.NEAREST if channel.filter == "nearest" else moderngl.LINEAR
+        tex.filter = (mode, mode)
     tex.use(unit)
     return tex
 
@@ -354,6 +398,8 @@ def _set_uniform(gl_program, name: str, value, array_size: int | None = None) ->
         return
     uniform = gl_program[name]
     expected = _GL_TYPES.get(UNIFORMS_BY_NAME[name].glsl_type) if name in UNIFORMS_BY_NAME else None
+    if name.startswith("iChannel") and expected == _GL_TYPES["sampler2D"]:
+        expected = getattr(uniform, "gl_type", expected)  # sampler2D or samplerCube: a unit
     if expected is not None and getattr(uniform, "gl_type", expected) != expected:
         # a plain file's uniform of another type: not fed, 0 as on NumPy (shadertoy.fed_uniform)
         return
@@ -387,18 +433,21 @@ def compile_gl(shader: Shader, ctx=None, *, tab: str = "Image") -> GLProgram:
     with alpha kept; its iChannels are unbound unless `render(channels=...)` binds them
     (glslcheck.backends.multipass.MultipassProgram chains the passes frame after frame).
     """
+    from ...semantics import cube_samplers
+
     ctx = ctx if ctx is not None else get_context()
+    cube = cube_samplers(shader.units_for(tab), tab) if tab in shader.tabs else frozenset()
     zeroed = zero_initialized(shader, tab)  # WebGL zeroes struct locals; Mesa does not
     if zeroed is not shader:
         try:
-            program = build_program(zeroed, tab)
-            gl = GLProgram(zeroed, program, ctx)
+            program = build_program(zeroed, tab, cube=cube)
+            gl = GLProgram(zeroed, program, ctx, cube=cube)
             gl._variants[False] = _compile(ctx, program)
             return gl
         except GlslError:
             pass  # the driver's own errors come from the user's text, compiled below
-    program = build_program(shader, tab)
-    gl = GLProgram(shader, program, ctx)
+    program = build_program(shader, tab, cube=cube)
+    gl = GLProgram(shader, program, ctx, cube=cube)
     gl._variants[False] = _compile(ctx, program)
     return gl
 

@@ -12,7 +12,12 @@ texels differ by an infinity or a NaN); here each pixel decides for itself.
 The texels of the bound channels live in the float uniform array `uf` and their description in
 the int one `ui` (`pack` writes both; the generated module passes them as it passes the other
 uniforms): at `ui[tm + META * channel]` the words below, then each level's offset into `uf`,
-width and height. The texels of a level are row by row from the bottom, RGBA.
+width and height. The texels of a level are row by row from the bottom, RGBA; a cube map's
+level is its six faces one after the other (+X, -X, +Y, -Y, +Z, -Z), each of width x height.
+
+Cube maps: `tex_sample_cube`, `tex_lod_cube` and their helpers are the one-lane forms of
+cube_maps.py's functions of the same names (its tables, NEXT_FACE, NEXT_X, NEXT_Y, are read
+from there), tests/compiled/test_cube_kernels.py runs both on every path.
 """
 
 from __future__ import annotations
@@ -25,11 +30,13 @@ import numba  # noqa: E402
 import numpy as np  # noqa: E402
 
 from ..llvmpipe_math.lane import bits, from_bits  # noqa: E402
+from .cube_maps import NEXT_FACE, NEXT_X, NEXT_Y  # noqa: E402
 
 F32 = np.float32
 I32 = np.int32
-# a channel's words in ui: bound, filter, wrap, lowp, level count, level-0 power-of-two flags
-BOUND, FILTER, WRAP, LOWP, LEVELS, POT_W, POT_H = range(7)
+# a channel's words in ui: bound, filter, wrap, lowp, level count, level-0 power-of-two flags,
+# cube map
+BOUND, FILTER, WRAP, LOWP, LEVELS, POT_W, POT_H, CUBE = range(8)
 LEVEL0 = 8  # then (offset, width, height) per level
 MAX_LEVELS = 32  # a 2^31-texel side has 32 levels
 META = LEVEL0 + 3 * MAX_LEVELS
@@ -293,7 +300,7 @@ def pack(channels, uf_base: int) -> tuple[np.ndarray, np.ndarray]:
             continue
         m = META * c
         levels = s.levels() if s.filter == "mipmap" else [s.texels]
-        h, w = levels[0].shape[:2]
+        h, w = levels[0].shape[-3:-1]
         meta[m + BOUND] = 1
         meta[m + FILTER] = FILTERS[s.filter]
         meta[m + WRAP] = s.wrap == "repeat"
@@ -301,10 +308,200 @@ def pack(channels, uf_base: int) -> tuple[np.ndarray, np.ndarray]:
         meta[m + LEVELS] = len(levels)
         meta[m + POT_W] = (w & (w - 1)) == 0
         meta[m + POT_H] = (h & (h - 1)) == 0
+        meta[m + CUBE] = bool(s.cube)
         for k, t in enumerate(levels):
             j = m + LEVEL0 + 3 * k
-            meta[j], meta[j + 1], meta[j + 2] = at, t.shape[1], t.shape[0]
+            meta[j], meta[j + 1], meta[j + 2] = at, t.shape[-2], t.shape[-3]
             parts.append(np.ascontiguousarray(t, np.float32).reshape(-1))
             at += parts[-1].size
     floats = np.concatenate(parts) if parts else np.zeros(0, np.float32)
     return floats, meta
+
+
+# -- cube maps (cube_maps.py's functions, one lane) --------------------------------------------
+_SIGN = np.uint32(0x80000000)
+_THIRD = F32(1.0 / 3.0)
+_NEXT_FACE = NEXT_FACE.astype(np.int64)
+_NEXT_X = NEXT_X.astype(np.int64)
+_NEXT_Y = NEXT_Y.astype(np.int64)
+
+
+@numba.njit(inline="always", **_J)
+def _max_x86(a, b):
+    return a if a > b else b
+
+
+@numba.njit(**_J)
+def cube_select_minors(x, y, z, dx, dy, dz):
+    """cube_maps.cube_select_minors for one lane: (face, major component of d, its minors)."""
+    ax, ay, az = np.abs(x), np.abs(y), np.abs(z)
+    xsel = ax > ay
+    zsel = az >= _max_x86(ax, ay)
+    if zsel:
+        ma, dma, face = z, dz, np.int64(4)
+    elif xsel:
+        ma, dma, face = x, dx, np.int64(0)
+    else:
+        ma, dma, face = y, dy, np.int64(2)
+    sign = bits(ma) & _SIGN
+    if zsel:
+        sc, tc = bits(dx) ^ sign, bits(dy) ^ _SIGN
+    elif xsel:
+        sc, tc = bits(dz) ^ _SIGN ^ sign, bits(dy) ^ _SIGN
+    else:
+        sc, tc = bits(dx), bits(dz) ^ sign
+    return face + np.int64(sign >> np.uint32(31)), dma, from_bits(sc), from_bits(tc)
+
+
+@numba.njit(**_J)
+def cube_coords(x, y, z, derivs):
+    """cube_maps.cube_coords for one lane: (face, s, t)."""
+    face, ma, sc, tc = cube_select_minors(x, y, z, x, y, z)
+    ima = np.abs(_HALF * (F32(1) / ma)) if derivs else _HALF / np.abs(ma)
+    return face, sc * ima + _HALF, tc * ima + _HALF
+
+
+@numba.njit(**_J)
+def cube_rho(x, y, z, size, dxx, dxy, dxz, dyx, dyy, dyz):
+    """cube_maps.cube_rho for one lane, given its fine derivatives along x and y."""
+    _, ma, sc, tc = cube_select_minors(x, y, z, x, y, z)
+    ima = F32(1) / ma
+    imahalf = _HALF * ima
+    n = F32(size)
+    _, dma, dsc, dtc = cube_select_minors(x, y, z, dxx, dxy, dxz)
+    q = dma * ima
+    ds, dt = n * ((dsc - q * sc) * imahalf), n * ((dtc - q * tc) * imahalf)
+    rx = ds * ds + dt * dt
+    _, dma, dsc, dtc = cube_select_minors(x, y, z, dyx, dyy, dyz)
+    q = dma * ima
+    ds, dt = n * ((dsc - q * sc) * imahalf), n * ((dtc - q * tc) * imahalf)
+    return _max_x86(rx, ds * ds + dt * dt)
+
+
+@numba.njit(inline="always", **_J)
+def _cube_axis(c, n):
+    """cube_maps._axis for one lane: (i0, weight)."""
+    c = c if c > F32(0) else F32(0)  # np.fmax(c, 0): a NaN gives 0
+    x = c * F32(n) - _HALF
+    fl = np.floor(x)
+    i0 = np.int64(fl) if fl < F32(2.0**31) else np.int64(_INT_MIN)
+    return i0, x - fl
+
+
+@numba.njit(inline="always", **_J)
+def _cube_remap(face, fall, other, n_max):
+    """cube_maps._remap for one lane."""
+    return (
+        _NEXT_FACE[fall, face],
+        _NEXT_X[fall, face, 0] * n_max + _NEXT_X[fall, face, 1] * other,
+        _NEXT_Y[fall, face, 0] * n_max + _NEXT_Y[fall, face, 1] * other,
+    )
+
+
+@numba.njit(inline="always", **_J)
+def _cube_texel(face, xs, ys, xfall, yfall, offx, offy, n_max):
+    """One texel of cube_maps.cube_texel_indices: (face, y, x) of the texel at (xs, ys), read
+    across the x edge when it falls off there, else across the y edge."""
+    if offx:
+        f, x, y = _cube_remap(face, xfall, ys, n_max)
+        return f, y, x
+    if offy:
+        f, x, y = _cube_remap(face, yfall, xs, n_max)
+        return f, y, x
+    return face, ys, xs
+
+
+@numba.njit(**_J)
+def cube_bilinear(uf, at, n, face, s, t):
+    """cube_maps.cube_bilinear for one lane, on the level of size n whose faces start at uf[at]:
+    the seamless bilinear filter, corners weighted as llvmpipe weights them."""
+    x0, fx = _cube_axis(s, n)
+    y0, fy = _cube_axis(t, n)
+    x1, y1 = x0 + 1, y0 + 1
+    m = np.int64(n - 1)
+    o0, o1, o2, o3 = x0 < 0, x1 > m, y0 < 0, y1 > m
+    y0c, y1c = max(y0, np.int64(0)), min(y1, m)
+    fa, ya, xa = _cube_texel(face, x0, y0c, 0, 2, o0, o2, m)
+    fb, yb, xb = _cube_texel(face, x1, y0c, 1, 2, o1, o2, m)
+    fc, yc, xc = _cube_texel(face, x0, y1c, 0, 3, o0, o3, m)
+    fd, yd, xd = _cube_texel(face, x1, y1c, 1, 3, o1, o3, m)
+    side = n * n
+    a0, a1, a2, a3 = _texel(uf, at + fa * side * 4, n, xa, ya)
+    b0, b1, b2, b3 = _texel(uf, at + fb * side * 4, n, xb, yb)
+    c0, c1, c2, c3 = _texel(uf, at + fc * side * 4, n, xc, yc)
+    d0, d1, d2, d3 = _texel(uf, at + fd * side * 4, n, xd, yd)
+    k00, k01, k10, k11 = o0 and o2, o1 and o2, o0 and o3, o1 and o3
+    if not (k00 or k01 or k10 or k11):
+        return (
+            _lerp(_lerp(a0, b0, fx), _lerp(c0, d0, fx), fy),
+            _lerp(_lerp(a1, b1, fx), _lerp(c1, d1, fx), fy),
+            _lerp(_lerp(a2, b2, fx), _lerp(c2, d2, fx), fy),
+            _lerp(_lerp(a3, b3, fx), _lerp(c3, d3, fx), fy),
+        )
+    wx0, wy0 = F32(1) - fx, F32(1) - fy
+    w00, w01, w10, w11 = wx0 * wy0, fx * wy0, wx0 * fy, fx * fy
+    cw = F32(0)
+    if k00:
+        cw = w00
+    if k01:
+        cw = w01
+    if k10:
+        cw = w10
+    if k11:
+        cw = w11
+    cw = cw * _THIRD
+    w00 = F32(0) if k00 else w00 + cw
+    w01 = F32(0) if k01 else w01 + cw
+    w10 = F32(0) if k10 else w10 + cw
+    w11 = F32(0) if k11 else w11 + cw
+    return (
+        w11 * d0 + (w10 * c0 + (w01 * b0 + w00 * a0)),
+        w11 * d1 + (w10 * c1 + (w01 * b1 + w00 * a1)),
+        w11 * d2 + (w10 * c2 + (w01 * b2 + w00 * a2)),
+        w11 * d3 + (w10 * c3 + (w01 * b3 + w00 * a3)),
+    )
+
+
+@numba.njit(**_J)
+def tex_sample_cube(uf, ui, tm, ch, x, y, z, has_lod, lod, implicit):
+    """textures.TextureFunctions._sample_cube for one lane: direction (x, y, z); `lod` (when
+    has_lod) chooses a mipmap channel's levels, `implicit`: it came from derivatives."""
+    m = tm + META * ch
+    if ui[m + BOUND] == 0:
+        return F32(0), F32(0), F32(0), F32(1)
+    face, s, t = cube_coords(x, y, z, implicit and has_lod)
+    f = ui[m + FILTER]
+    at, n, _ = _level(ui, m, 0)
+    if f == 0:
+        xi = _axis_nearest(s, n, True, False, 0)
+        yi = _axis_nearest(t, n, True, False, 0)
+        r, g, b, a = _texel(uf, at + face * n * n * 4, n, xi, yi)
+        return _result(ui, m, r, g, b, a)
+    if f == 1 or not has_lod:
+        r, g, b, a = cube_bilinear(uf, at, n, face, s, t)
+        return _result(ui, m, r, g, b, a)
+    top = F32(ui[m + LEVELS] - 1)
+    if lod != lod:  # (a NaN LOD reads level 0, unblended, as cube_maps.py)
+        lo, frac = F32(0), F32(0)
+    else:
+        c = lod if lod > F32(0) else F32(0)
+        c = c if c < top else top
+        lo = np.floor(c)
+        frac = c - lo
+    k = np.int64(lo)
+    at, n, _ = _level(ui, m, k)
+    r, g, b, a = cube_bilinear(uf, at, n, face, s, t)
+    if k + 1 < ui[m + LEVELS] and frac > F32(0):
+        at, n, _ = _level(ui, m, k + 1)
+        r1, g1, b1, a1 = cube_bilinear(uf, at, n, face, s, t)
+        r, g, b, a = _lerp(r, r1, frac), _lerp(g, g1, frac), _lerp(b, b1, frac), _lerp(a, a1, frac)
+    return _result(ui, m, r, g, b, a)
+
+
+@numba.njit(**_J)
+def tex_lod_cube(ui, tm, ch, x, y, z, dxx, dxy, dxz, dyx, dyy, dyz):
+    """textures.TextureFunctions._implicit_lod of a cube map for one lane: its fine derivatives
+    along x and y carried onto its face (cube_rho), 0.5 * fast_log2."""
+    m = tm + META * ch
+    n = ui[m + LEVEL0 + 1]
+    return _HALF * _fast_log2(cube_rho(x, y, z, n, dxx, dxy, dxz, dyx, dyy, dyz))

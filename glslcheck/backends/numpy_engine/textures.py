@@ -2,7 +2,9 @@
 
 This module owns the ES 3.00 lookups on a sampler2D for the NumPy backend: `texture`,
 `textureLod`, `textureGrad`, `textureOffset`, their `Proj` and `Offset` combinations,
-`texelFetch`, `texelFetchOffset` and `textureSize`. `Runtime` inherits
+`texelFetch`, `texelFetchOffset` and `textureSize`; and `texture`, `textureLod` and
+`textureSize` on a samplerCube (a cube map channel: the face math is cube_maps.py's).
+`Runtime` inherits
 them (`TextureFunctions`), so generated code calls `rt.texture(S.u_iChannel0, uv, S.width)`.
 A sampler value is a `glslcheck.shadertoy.channels.ChannelInput` (texels float32 (height, width, 4),
 row 0 = texture coordinate t near 0, i.e. the bottom as OpenGL uploads it) or None (unbound: GL's
@@ -18,6 +20,8 @@ from __future__ import annotations
 from typing import Any
 
 import numpy as np
+
+from . import cube_maps
 
 _LOWP_MASK = np.uint32(0xFFFFE000)  # keep sign, exponent and the top 10 mantissa bits
 
@@ -156,11 +160,6 @@ def _fast_log2(x: np.ndarray) -> np.ndarray:
     return exponent.astype(np.float32) + mantissa
 
 
-def _max_x86(a: np.ndarray, b: np.ndarray) -> np.ndarray:
-    """lp_build_max as llvmpipe emits it on x86 (maxps): a > b ? a : b, so b where either is NaN."""
-    return np.where(a > b, a, b)
-
-
 def _quad_corner_diff(v: np.ndarray, width: int, axis: int) -> np.ndarray:
     """Per 2x2 quad of a `width`-wide tile (lanes row by row from the bottom): the difference
     between the quad's bottom-left pixel and its right (axis 1) or upper (axis 0) neighbour,
@@ -194,6 +193,7 @@ class TextureFunctions:
 
     F: Any
     lp: Any
+    _quad_diff: Any  # Runtime's fine derivative (runtime_common.py)
 
     def _tex_result(self, s, texels: np.ndarray) -> np.ndarray:
         """(4, lanes) in the runtime's float type, truncated as a lowp sampler returns it."""
@@ -223,13 +223,16 @@ class TextureFunctions:
         out[3] = 1.0
         return out
 
-    def _sample(self, s, p: np.ndarray, offset=(0, 0), lod=None) -> np.ndarray:
+    def _sample(self, s, p: np.ndarray, offset=(0, 0), lod=None, implicit=False) -> np.ndarray:
         """Filter `s` at texture coordinates p (2, lanes) float32, `offset` texels added to the
         texel coordinates (textureOffset) before the wrap. `lod` (lanes,) selects the mipmap
-        levels of a "mipmap" channel (None: level 0); other filters read level 0 only."""
+        levels of a "mipmap" channel (None: level 0); other filters read level 0 only. A cube
+        map's p is its direction (3, lanes); `implicit`: its LOD came from derivatives."""
         p = np.asarray(p, dtype=np.float32)
         if s is None:
             return self._unbound(p.shape[-1])
+        if s.cube:
+            return self._tex_result(s, self._sample_cube(s, p, lod, implicit))
         u, v = p[0], p[1]
         if s.filter == "nearest":
             return self._tex_result(s, _nearest(s.texels, u, v, offset, s.wrap))
@@ -256,6 +259,35 @@ class TextureFunctions:
         return self._tex_result(s, out)
 
     @staticmethod
+    def _sample_cube(s, d: np.ndarray, lod, implicit: bool) -> np.ndarray:
+        """A cube map lookup in direction d (3, lanes): the face and its coordinates, then
+        nearest (clamped to the face) or the seamless bilinear filter of one level, or of two
+        blended by the LOD's fraction as `_two_levels` does."""
+        face, u, v = cube_maps.cube_coords(d[0], d[1], d[2], implicit and lod is not None)
+        if s.filter == "nearest":
+            n = s.texels.shape[1]
+            x = _axis_nearest(u, n, True, "clamp", 0)
+            return s.texels[face, _axis_nearest(v, n, True, "clamp", 0), x]
+        if s.filter == "linear" or lod is None:
+            return cube_maps.cube_bilinear(s.texels, face, u, v, _lerp)
+        levels = s.levels()
+        lod = np.broadcast_to(np.asarray(lod, dtype=np.float32), u.shape)
+        # a NaN LOD: llvmpipe's level is the first (its integer conversion, clamped), unblended
+        lod = np.clip(np.where(np.isnan(lod), np.float32(0), lod), 0.0, len(levels) - 1)
+        lo = np.floor(lod)
+        frac = (lod - lo)[..., None]
+        lo = lo.astype(np.int64)
+        out = np.empty(u.shape + (4,), dtype=np.float32)
+        for k in np.unique(lo):  # lanes by their lower level: bilinear there and one level up
+            sel = lo == k
+            f, us, vs, fr = face[sel], u[sel], v[sel], frac[sel]
+            a = cube_maps.cube_bilinear(levels[k], f, us, vs, _lerp)
+            if k + 1 < len(levels) and (fr > 0).any():
+                a = _lerp(a, cube_maps.cube_bilinear(levels[k + 1], f, us, vs, _lerp), fr)
+            out[sel] = a
+        return out
+
+    @staticmethod
     def _two_levels(levels, k, u, v, offset, wrap, pot, frac) -> np.ndarray:
         """Level k's bilinear result, blended with level k + 1's by `frac`: lp_build_sample_mipmap
         samples the upper level only when some lane's fraction is above 0 (a NaN is not), so
@@ -269,18 +301,23 @@ class TextureFunctions:
         """llvmpipe's LOD of a 2x2 quad (measured, tools/measure_sampling.py): the
         derivatives of the scaled coordinates between the quad's bottom-left pixel and its right
         and upper neighbours, lod = 0.5 * fast_log2(max(dx.dx, dy.dy)) with fast_log2 the
-        piecewise-linear exponent + (mantissa - 1), the same for the four pixels."""
+        piecewise-linear exponent + (mantissa - 1), the same for the four pixels. A cube map's
+        LOD is per pixel (cube_maps.cube_rho, measured: tests/gl/test_cube_maps.py)."""
         if s is None or s.filter != "mipmap" or width is None:
             return None
-        h, w = s.texels.shape[:2]
+        h, w = s.texels.shape[-3:-1]
         p = np.asarray(p, dtype=np.float32)
         if p.shape[-1] == 1:
             rho2 = np.zeros(1, np.float32)
+        elif s.cube:  # per pixel: its fine derivatives (dFdx, dFdy) carried onto its face
+            rho2 = cube_maps.cube_rho(
+                p[0], p[1], p[2], w, lambda c, axis: self._quad_diff(c, width, axis)
+            )
         else:  # the coordinates' differences, then scaled by the size (not the scaled coordinates')
             size = np.array([w, h], dtype=np.float32)[:, None]
             dx = _quad_corner_diff(p, width, 1) * size
             dy = _quad_corner_diff(p, width, 0) * size
-            rho2 = _max_x86(dx[0] * dx[0] + dx[1] * dx[1], dy[0] * dy[0] + dy[1] * dy[1])
+            rho2 = cube_maps.max_x86(dx[0] * dx[0] + dx[1] * dx[1], dy[0] * dy[0] + dy[1] * dy[1])
         lod = np.float32(0.5) * _fast_log2(rho2)
         if bias is not None:
             lod = lod + np.asarray(bias, dtype=np.float32)
@@ -296,7 +333,7 @@ class TextureFunctions:
         mipmaps the LOD (and so the bias) only chooses between the magnification and
         minification filters, which glslcheck always sets alike."""
         p = self._coords(p)
-        return self._sample(s, p, lod=self._implicit_lod(s, p, width, bias))
+        return self._sample(s, p, lod=self._implicit_lod(s, p, width, bias), implicit=True)
 
     def textureLod(self, s, p, lod) -> np.ndarray:
         return self.textureLodOffset(s, p, lod, (0, 0))
@@ -316,7 +353,7 @@ class TextureFunctions:
         h, w = s.texels.shape[:2]
         size = np.array([w, h], dtype=np.float32).reshape(2, *([1] * (np.ndim(dpdx) - 1)))
         dx, dy = np.asarray(dpdx, np.float32) * size, np.asarray(dpdy, np.float32) * size
-        rho2 = _max_x86(dx[0] * dx[0] + dx[1] * dx[1], dy[0] * dy[0] + dy[1] * dy[1])
+        rho2 = cube_maps.max_x86(dx[0] * dx[0] + dx[1] * dx[1], dy[0] * dy[0] + dy[1] * dy[1])
         rho2 = np.where(
             np.isfinite(rho2), rho2, np.float32(0)
         )  # lp_build_rho: explicit derivatives only
@@ -370,7 +407,7 @@ class TextureFunctions:
         lod = np.asarray(lod, dtype=np.int32)
         if s is None:
             return np.zeros((2,) + lod.shape, dtype=np.int32)
-        h, w = s.texels.shape[:2]
+        h, w = s.texels.shape[-3:-1]
         return np.stack(
             [np.maximum(np.int32(w) >> lod, 1), np.maximum(np.int32(h) >> lod, 1)]
         ).astype(np.int32)

@@ -139,13 +139,14 @@
   // size, filter, wrap and the byte length of each level (RGBA32F, level 0 first, row 0 at t
   // near 0: glslcheck's own mipmap pyramid, as on the GL backend, so every backend samples the
   // same texels), `textureChunk` fills the bytes in pieces small enough for the DevTools
-  // protocol, `textureEnd` makes the texture.
+  // protocol, `textureEnd` makes the texture. A cube map (`cube`) has six faces per level, +X,
+  // -X, +Y, -Y, +Z, -Z one after the other; WebGL 2 filters it seamlessly, clamped to the edges.
   state.textures = new Map();
-  state.textureBegin = (key, width, height, filter, wrap, sizes) => {
+  state.textureBegin = (key, width, height, filter, wrap, sizes, cube) => {
     if (filter !== "nearest" && !state.floatLinear) {
       throw new Error("WebGL 2 has no OES_texture_float_linear: linear filtering of float channels is not available");
     }
-    state.textures.set(key, { width, height, filter, wrap, levels: sizes.map((n) => new Uint8Array(n)), texture: null });
+    state.textures.set(key, { width, height, filter, wrap, cube, levels: sizes.map((n) => new Uint8Array(n)), texture: null });
     return true;
   };
   state.textureChunk = (key, level, offset, text) => {
@@ -155,23 +156,28 @@
   state.textureEnd = (key) => {
     const c = state.textures.get(key);
     const texture = gl.createTexture();
-    gl.bindTexture(gl.TEXTURE_2D, texture);
+    const target = c.cube ? gl.TEXTURE_CUBE_MAP : gl.TEXTURE_2D;
+    gl.bindTexture(target, texture);
     gl.pixelStorei(gl.UNPACK_ALIGNMENT, 1);
     gl.pixelStorei(gl.UNPACK_FLIP_Y_WEBGL, false);
-    gl.texStorage2D(gl.TEXTURE_2D, c.levels.length, gl.RGBA32F, c.width, c.height);
+    gl.texStorage2D(target, c.levels.length, gl.RGBA32F, c.width, c.height);
     c.levels.forEach((bytes, level) => {
       const w = Math.max(1, c.width >> level), h = Math.max(1, c.height >> level);
-      const floats = new Float32Array(bytes.buffer, bytes.byteOffset, bytes.byteLength / 4);
-      gl.texSubImage2D(gl.TEXTURE_2D, level, 0, 0, w, h, gl.RGBA, gl.FLOAT, floats);
+      const faces = c.cube ? 6 : 1, n = bytes.byteLength / 4 / faces;
+      for (let f = 0; f < faces; f++) {
+        const floats = new Float32Array(bytes.buffer, bytes.byteOffset + 4 * n * f, n);
+        const place = c.cube ? gl.TEXTURE_CUBE_MAP_POSITIVE_X + f : gl.TEXTURE_2D;
+        gl.texSubImage2D(place, level, 0, 0, w, h, gl.RGBA, gl.FLOAT, floats);
+      }
     });
     const mag = c.filter === "nearest" ? gl.NEAREST : gl.LINEAR;
     const min = c.filter === "mipmap" ? gl.LINEAR_MIPMAP_LINEAR : mag;
-    gl.texParameteri(gl.TEXTURE_2D, gl.TEXTURE_MIN_FILTER, min);
-    gl.texParameteri(gl.TEXTURE_2D, gl.TEXTURE_MAG_FILTER, mag);
+    gl.texParameteri(target, gl.TEXTURE_MIN_FILTER, min);
+    gl.texParameteri(target, gl.TEXTURE_MAG_FILTER, mag);
     const wrap = c.wrap === "repeat" ? gl.REPEAT : gl.CLAMP_TO_EDGE;
-    gl.texParameteri(gl.TEXTURE_2D, gl.TEXTURE_WRAP_S, wrap);
-    gl.texParameteri(gl.TEXTURE_2D, gl.TEXTURE_WRAP_T, wrap);
-    gl.bindTexture(gl.TEXTURE_2D, null);
+    gl.texParameteri(target, gl.TEXTURE_WRAP_S, wrap);
+    gl.texParameteri(target, gl.TEXTURE_WRAP_T, wrap);
+    gl.bindTexture(target, null);
     c.levels = null;
     c.texture = texture;
     return true;
@@ -188,8 +194,10 @@
   // The units are 0..3 as iChannel0..3, each a key of an uploaded texture or null (unbound).
   function bindChannels(channels) {
     channels.forEach((key, unit) => {
+      const c = key === null ? null : state.textures.get(key);
       gl.activeTexture(gl.TEXTURE0 + unit);
-      gl.bindTexture(gl.TEXTURE_2D, key === null ? null : state.textures.get(key).texture);
+      gl.bindTexture(gl.TEXTURE_2D, c !== null && !c.cube ? c.texture : null);
+      gl.bindTexture(gl.TEXTURE_CUBE_MAP, c !== null && c.cube ? c.texture : null);
     });
     gl.activeTexture(gl.TEXTURE0);
   }
@@ -198,6 +206,7 @@
     for (let unit = 0; unit < 4; unit++) {
       gl.activeTexture(gl.TEXTURE0 + unit);
       gl.bindTexture(gl.TEXTURE_2D, null);
+      gl.bindTexture(gl.TEXTURE_CUBE_MAP, null);
     }
     gl.activeTexture(gl.TEXTURE0);
   }

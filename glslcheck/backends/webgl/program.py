@@ -121,8 +121,9 @@ def _texture_key(browser: Browser, channel, bound: set[str]) -> str | None:
         drop = old.pop(0)
         browser.call("textureDrop", [drop])
         del kept[drop]
-    h, w = channel.texels.shape[:2]
-    browser.call("textureBegin", key, w, h, channel.filter, channel.wrap, [len(d) for d in data])
+    h, w = channel.texels.shape[-3:-1]
+    sizes = [len(d) for d in data]
+    browser.call("textureBegin", key, w, h, channel.filter, channel.wrap, sizes, channel.cube)
     for level, raw in enumerate(data):
         for offset in range(0, len(raw), CHUNK_BYTES):
             text = base64.b64encode(raw[offset : offset + CHUNK_BYTES]).decode("ascii")
@@ -201,7 +202,7 @@ def webgl_diagnostics(
     """ANGLE's errors for the program Shadertoy compiles for `tab`; [] when it compiles and
     links."""
     browser = browser or get_browser()
-    program = build_program(shader, tab)
+    program = build_program(shader, tab, cube=_cube(shader, tab))
     try:
         program_id, _ = _compile(browser, program)
     except GlslError as e:
@@ -219,6 +220,7 @@ class WebGLProgram:
     browser: Browser
     _variants: dict[bool, int] = field(default_factory=dict, repr=False)
     active_uniforms: list[str] = field(default_factory=list)
+    cube: frozenset[str] = frozenset()  # the iChannels declared samplerCube
 
     def __post_init__(self) -> None:
         # Programs dropped without release() are deleted in the page at the browser's next call.
@@ -231,7 +233,9 @@ class WebGLProgram:
 
     def _variant(self, samples_offset: bool) -> int:
         if samples_offset not in self._variants:
-            program = build_program(self.shader, self.program.tab, samples_offset=samples_offset)
+            program = build_program(
+                self.shader, self.program.tab, samples_offset=samples_offset, cube=self.cube
+            )
             self._variants[samples_offset] = _compile(self.browser, program)[0]
         return self._variants[samples_offset]
 
@@ -308,6 +312,13 @@ class WebGLProgram:
             self.browser.call("release", ids)
 
 
+def _cube(shader: Shader, tab: str) -> frozenset[str]:
+    """The iChannels the pass samples as cube maps (declared samplerCube, as on GL)."""
+    from ...semantics import cube_samplers
+
+    return cube_samplers(shader.units_for(tab), tab) if tab in shader.tabs else frozenset()
+
+
 def _forget(browser: Browser, variants: dict[bool, int]) -> None:
     browser.pending_release.extend(variants.values())
 
@@ -321,10 +332,15 @@ def compile_webgl(
     InputError, exit 2) when no browser can be started.
     """
     browser = browser or get_browser()
-    program = build_program(shader, tab)
+    cube = _cube(shader, tab)
+    program = build_program(shader, tab, cube=cube)
     program_id, active = _compile(browser, program)
     webgl = WebGLProgram(
-        shader, program, browser, active_uniforms=[n for n in active if not n.startswith("gl_")]
+        shader,
+        program,
+        browser,
+        active_uniforms=[n for n in active if not n.startswith("gl_")],
+        cube=cube,
     )
     webgl._variants[False] = program_id
     return webgl

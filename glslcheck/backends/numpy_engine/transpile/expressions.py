@@ -14,7 +14,13 @@ from ....language import builtin_functions as B
 from ....language import glsl_types as T
 from ....semantics.analysis import param_directions
 from ....semantics.model import Constructor, Symbol
-from ...cpu_core.common import DERIVATIVES, IMPLICIT_LOD, TEXTURE_FUNCTIONS, fold_tree
+from ...cpu_core.common import (
+    CUBE_FUNCTIONS,
+    DERIVATIVES,
+    IMPLICIT_LOD,
+    TEXTURE_FUNCTIONS,
+    fold_tree,
+)
 from ...cpu_core.facts import is_plain_read
 from . import nir_fold
 from .common import (
@@ -500,7 +506,8 @@ class Expressions(TranspilerState):
             or name.startswith("texture")
             or name.startswith("texel")
         ):
-            if name not in TEXTURE_FUNCTIONS or str(self.type_of(e.args[0])) != "sampler2D":
+            sampler = str(self.type_of(e.args[0]))
+            if name not in (TEXTURE_FUNCTIONS if sampler == "sampler2D" else CUBE_FUNCTIONS):
                 raise _error(
                     f"{name}(): this texture lookup is not supported by the NumPy backend yet",
                     e,

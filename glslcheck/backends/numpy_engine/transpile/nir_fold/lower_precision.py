@@ -120,7 +120,7 @@ def _lowp_kind_of(tr: FoldEngine, node: Any, memo: dict[int, Any]) -> str | None
             getattr(tr.model.call_target(node), "name", None) not in TEXTURE_FUNCTIONS
             or sym is None
             or sym.kind != "uniform"
-            or str(tr.type_of(sampler)) != "sampler2D"
+            or str(tr.type_of(sampler)) not in ("sampler2D", "samplerCube")
         ):
             return None
         return "lookup"

@@ -1,0 +1,121 @@
+"""Cube map channels on the NumPy backend against llvmpipe (Mesa 22.3), bit for bit: face
+selection, face coordinates, seamless filtering across edges and corners, mipmap levels and the
+per-pixel implicit LOD (glslcheck/backends/numpy_engine/cube_maps.py; docs/llvmpipe.md, "Cube
+maps"). The expected values are the driver's, rendered in the same test."""
+
+from __future__ import annotations
+
+import json
+from pathlib import Path
+
+import numpy as np
+import pytest
+from PIL import Image
+
+from glslcheck.backends import registry as api
+from glslcheck.backends.driver_profile import host_fma
+from glslcheck.shadertoy.bindings import CUBE_FACES
+
+SIZE = (128, 64)
+
+# Eight 32x32 cells, each its own family of directions; q runs over about -1.1 .. 1.1 in a cell,
+# so each face is crossed past all four edges and corners (on an 8x8 face the texels within
+# half a texel of an edge, |q| > 0.875, fall off it; at 4x4, 2x2 and 1x1 levels nearly all do).
+# The direction is a highp local: a helper function's return value would reach the lookup
+# rounded to float16 on llvmpipe (Mesa lowers a precision-less return temporary that feeds a
+# lowp sampler's coordinate), which is not the cube code's business.
+DIRECTIONS = """
+    vec2 cell = floor(fragCoord / 32.0);
+    vec2 q = (fragCoord - cell * 32.0 - 16.0) * 0.069;
+    int k = int(cell.x) + 4 * int(cell.y);
+    vec3 d = vec3(q.x, q.x, q.y);  // |x| == |y|: the tie rules of the face choice
+    if (k == 0) d = vec3(1.0, q.x, q.y);
+    if (k == 1) d = vec3(-1.0, q.y, q.x);
+    if (k == 2) d = vec3(q.x, 1.0, q.y);
+    if (k == 3) d = vec3(q.y, -1.0, q.x);
+    if (k == 4) d = vec3(q.x, q.y, 1.0);
+    if (k == 5) d = vec3(q.y, q.x, -1.0);
+    if (k == 6) d = vec3(q.x, q.y * q.x, 0.9 - q.y);  // faces meeting inside 2x2 quads
+"""
+
+
+def _faces(folder, n: int, seed: int) -> None:
+    """Six faces of random RGBA texels: every face, texel and level distinct."""
+    rng = np.random.default_rng(seed)
+    folder.mkdir()
+    for name in CUBE_FACES:
+        texels = rng.integers(0, 256, (n, n, 4), dtype=np.uint8)
+        Image.fromarray(texels, "RGBA").save(folder / f"{name}.png")
+
+
+def _render_both(tmp_path, lookup: str, filt: str, n: int = 8):
+    _faces(tmp_path / "sky", n, seed=3)
+    (tmp_path / "Image.glsl").write_text(
+        "void mainImage(out vec4 fragColor, in vec2 fragCoord) {"
+        + DIRECTIONS
+        + f"    fragColor = {lookup};\n}}\n"
+    )
+    channels = {"Image": {"iChannel0": {"cubemap": "sky", "filter": filt}}}
+    (tmp_path / "channels.json").write_text(json.dumps(channels))
+    ours = api.compile(str(tmp_path), backend="numpy").render(size=SIZE)
+    theirs = api.compile(str(tmp_path), backend="gl").render(size=SIZE)
+    return ours, theirs
+
+
+def _assert_same(ours, theirs):
+    assert ours[..., :3].std() > 0.05  # the faces' texels, not a constant
+    if host_fma():  # llvmpipe fuses its lerps only where the CPU has FMA (docs/llvmpipe.md)
+        assert np.array_equal(ours, theirs), (
+            f"{int((ours != theirs).any(-1).sum())} of {ours[..., 0].size} pixels differ"
+        )
+    else:  # a last-bit difference of a lerp can cross one lowp truncation step
+        assert np.abs(ours - theirs).max() <= 2.0**-10
+
+
+@pytest.mark.usefixtures("llvmpipe")
+@pytest.mark.parametrize(
+    "filt, lookup",
+    [
+        ("nearest", "texture(iChannel0, d)"),
+        ("linear", "texture(iChannel0, d)"),
+        ("linear", "texture(iChannel0, d * 1e-3) + texture(iChannel0, -d) * 0.5"),
+        ("mipmap", "textureLod(iChannel0, d, fragCoord.y / 20.0)"),  # levels 0..3 and between
+        ("mipmap", "texture(iChannel0, d * (1.0 + fragCoord.x))"),  # implicit LOD, per pixel
+        ("mipmap", "texture(iChannel0, d, fragCoord.x / 32.0 - 2.0)"),  # with a bias
+    ],
+)
+def test_cube_lookups_bit_for_bit(tmp_path, filt, lookup):
+    _assert_same(*_render_both(tmp_path, lookup, filt))
+
+
+@pytest.mark.usefixtures("llvmpipe")
+def test_cube_lookups_on_a_face_size_that_is_no_power_of_two(tmp_path):
+    # 6x6 faces: levels 6, 3, 1 (the halved size rounded down)
+    _assert_same(
+        *_render_both(tmp_path, "textureLod(iChannel0, d, fragCoord.y / 24.0)", "mipmap", 6)
+    )
+
+
+@pytest.mark.usefixtures("llvmpipe")
+def test_texture_size_of_a_cube_map(tmp_path):
+    # (constant levels: llvmpipe answers a size query with one LOD per SIMD vector, measured)
+    lookup = (
+        "vec4(vec2(textureSize(iChannel0, 0)), vec2(textureSize(iChannel0, 2)))"
+        " + texture(iChannel0, d)"
+    )
+    ours, theirs = _render_both(tmp_path, lookup, "mipmap")
+    assert np.all(ours[..., 0] >= 8.0) and np.all(ours[..., 2] >= 2.0)
+    _assert_same(ours, theirs)
+
+
+@pytest.mark.usefixtures("llvmpipe")
+def test_the_skybox_scene_verifies_bit_for_bit(tmp_path):
+    # benchmarks/scenes/skybox: a mirror sphere reflecting a mipmapped sky box (implicit LOD on
+    # a curved mirror, the sky behind it), frames at several times as the camera turns
+    from glslcheck.verification.verify import verify_frames
+
+    scene = Path(__file__).resolve().parents[2] / "benchmarks" / "scenes" / "skybox"
+    results = list(verify_frames(str(scene), size=(96, 54), times=[0.0, 1.7, 4.2, 9.9]))
+    assert len(results) == 4 and all(r.match for r in results)
+    if host_fma():
+        assert max(r.comparison.max_abs_error for r in results) == 0.0
