@@ -367,9 +367,10 @@ def _bind_cube(ctx, unit: int, channel):
         )
         for level, texels in enumerate(channel.levels()[1:], 1):
             for face in range(6):
-                data = np.ascontiguousarray(texels[face], dtype=np.float32)
-                k = data.shape[0]
-                sub_image(_CUBE_FACE_0 + face, level, 0, 0, k, k, _RGBA, _FLOAT, data.ctypes.data)
+                face_texels = np.ascontiguousarray(texels[face], dtype=np.float32)
+                k = face_texels.shape[0]
+                address = face_texels.ctypes.data
+                sub_image(_CUBE_FACE_0 + face, level, 0, 0, k, k, _RGBA, _FLOAT, address)
         tex.filter = (moderngl.LINEAR_MIPMAP_LINEAR, moderngl.LINEAR)
     else:
         mode = moderngl.NEAREST if channel.filter == "nearest" else moderngl.LINEAR
