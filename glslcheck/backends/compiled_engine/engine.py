@@ -713,9 +713,9 @@ TIER_LANES = 8  # the lockstep width TieredProgram moves to (8: AVX2's float32 l
 OVER = "over budget"  # a marker's text when the lockstep build was stopped
 EXITING = "exiting"  # build_apart's answer when the process exits under it
 # Lockstep's cold compile over the per-pixel module's, for TieredProgram's estimate of what
-# moving costs: the median over the 67 lab and tuned real shaders (quartiles 3.5 and 6.2),
-# as benchmarks/bench_compiled.py --fresh-cache --lanes 0,8 prints both compile times.
-LOCKSTEP_COMPILE_RATIO = 4.7
+# moving costs: the median over 66 lab and tuned real shaders (quartiles 2.2 and 3.6, 0.9 to
+# 7.9), each module's load as benchmarks/bench_compiled.py --fresh-cache --lanes 0,8 prints it.
+LOCKSTEP_COMPILE_RATIO = 2.7
 # The most a lockstep compile may take: a module whose estimate (move_cost) is longer is not
 # built, and a build still running after it is stopped (build_apart; the program stays per
 # pixel, and later processes do not try again). The real corpora's slowest lockstep compiles
@@ -728,8 +728,8 @@ LOCKSTEP_BUDGET = 30.0
 PIXEL_BUDGET = 60.0
 # Seconds of lockstep compile per line of the per-pixel module, the estimate when the per-pixel
 # module's compile time is not known (a numba cache filled before compile times were recorded):
-# the median of the same run (quartiles 0.021 and 0.036; a machine's speed moves it).
-LOCKSTEP_SECONDS_PER_LINE = 0.026
+# the median of the same run (quartiles 0.0047 and 0.0093; a machine's speed moves it).
+LOCKSTEP_SECONDS_PER_LINE = 0.0063
 
 
 class TieredProgram:
