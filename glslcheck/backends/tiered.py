@@ -367,19 +367,22 @@ class TieredCpuProgram:
                 prog.loop_limit = limit
             base = prog if isinstance(prog, CompiledProgram) else prog.first
             base.frame_seconds = self.first.frame_seconds
-            # numba's compile in a child process, stopped at the budget: the NumPy frames keep
-            # this process's GIL and cores (but the one it takes)
-            with _COMPILING:
-                why = base.build_apart(PIXEL_BUDGET)
-            if why == EXITING:  # (the process ends: no verdict)
-                return
-            if why == "over budget":
-                self.stay = f"over budget: numba's compile passed {PIXEL_BUDGET:g} s"
-                self._keep(verdict=self.stay)
-                return
-            if why.startswith("killed"):
-                raise RuntimeError(why)
-            base.load(bounded=False)  # a cache load (a failure's compile here gives its error)
+            # a lockstep module an earlier process made: its frames from the first (checked and
+            # tried like any), with nothing to compile
+            if isinstance(prog, CompiledProgram) or not prog.load_cached():
+                # numba's compile in a child process, stopped at the budget: the NumPy frames
+                # keep this process's GIL and cores (but the one it takes)
+                with _COMPILING:
+                    why = base.build_apart(PIXEL_BUDGET)
+                if why == EXITING:  # (the process ends: no verdict)
+                    return
+                if why == "over budget":
+                    self.stay = f"over budget: numba's compile passed {PIXEL_BUDGET:g} s of CPU"
+                    self._keep(verdict=self.stay)
+                    return
+                if why.startswith("killed"):
+                    raise RuntimeError(why)
+                base.load(bounded=False)  # a cache load (a failure's compile here gives its error)
             got = prog.render(**kw)
         except GlslError as e:  # a construct the compiled engine refuses, a loop cap, a budget
             first = e.diagnostics[0] if getattr(e, "diagnostics", None) else None

@@ -120,3 +120,20 @@ def test_a_compile_whose_asking_process_is_gone_ends(numba, make_shader, own_cac
         timeout=120,
     )
     assert child.returncode == 1 and not child.stderr  # ended by the watch, not by an error
+
+
+def test_a_build_s_budget_is_its_cpu_time():
+    """A build waiting on a loaded machine is not stopped for the time it waits: a child that
+    sleeps past its budget ends by itself, one that computes past it is stopped."""
+    from glslcheck.backends.compiled_engine.budget import wait_child
+
+    sleeps = subprocess.Popen(
+        [sys.executable, "-c", "import time; time.sleep(1.5)"], stderr=subprocess.PIPE
+    )
+    assert wait_child(sleeps, 1.0) == b""
+    spins = subprocess.Popen([sys.executable, "-c", "while True: pass"], stderr=subprocess.PIPE)
+    try:
+        assert wait_child(spins, 1.0) is None
+    finally:
+        spins.kill()
+        spins.communicate()

@@ -297,8 +297,9 @@ def test_a_slower_per_pixel_program_is_tried_again_in_lockstep(
 
     monkeypatch.setattr(tiered, "TRIAL_FRAMES", 1)
     monkeypatch.delenv("GLSLCHECK_COMPILED_LANES", raising=False)
-    # lockstep never pays by itself (a module cached by an earlier run would load at once)
+    # lockstep never pays by itself, and no earlier run left it in numba's cache
     monkeypatch.setattr(engine.TieredProgram, "move_cost", lambda self: 1e9)
+    monkeypatch.setattr(engine.TieredProgram, "load_cached", lambda self: False)
     shader = make_shader(ANIMATED)
     prog = glslcheck.compile(shader)
     _frames(prog, [0.5])
@@ -313,6 +314,36 @@ def test_a_slower_per_pixel_program_is_tried_again_in_lockstep(
     times = [0.8, 0.9, 1.0]
     got = _frames(prog, times)
     assert prog.impl.mode == "compiled lanes8" and prog.impl.stay is None
+    want = _frames(glslcheck.compile(shader, backend="numpy"), times)
+    for t, image, w in zip(times, got, want):
+        assert _same(image, w), t
+
+
+def test_a_lockstep_module_made_earlier_renders_every_compiled_frame(
+    numba, make_shader, eager, monkeypatch, tmp_path
+):
+    """A later program of a shader whose lockstep module an earlier one made starts on it: no
+    per-pixel frame pays for it again, and its frames are the NumPy backend's bits."""
+    from glslcheck.backends.compiled_engine import engine
+
+    monkeypatch.setenv("NUMBA_CACHE_DIR", str(tmp_path / "numba"))
+    monkeypatch.delenv("GLSLCHECK_COMPILED_LANES", raising=False)
+    shader = make_shader(ANIMATED)
+    earlier = glslcheck.compile(shader)
+    _frames(earlier, [0.5])
+    assert earlier.impl.settle(300) and earlier.impl.mode == "compiled pixel", earlier.impl.stay
+    rule = engine.TieredProgram.move_cost
+    monkeypatch.setattr(engine.TieredProgram, "move_cost", lambda self: 0.0)  # lockstep paid
+    tier = earlier.impl.second
+    assert tier.move_now() and tier.settle(300) and tier.mode == "lanes8"
+    monkeypatch.setattr(engine.TieredProgram, "move_cost", rule)
+
+    later = glslcheck.compile(shader)
+    _frames(later, [0.5])  # NumPy's frame; the move starts beside it
+    assert later.impl.settle(300) and later.impl.mode == "compiled lanes8", later.impl.stay
+    times = [0.6, 0.7, 0.8]
+    got = _frames(later, times)
+    assert later.impl.second.pixels == 0  # no frame rendered per pixel
     want = _frames(glslcheck.compile(shader, backend="numpy"), times)
     for t, image, w in zip(times, got, want):
         assert _same(image, w), t
