@@ -347,3 +347,38 @@ def test_a_lockstep_module_made_earlier_renders_every_compiled_frame(
     want = _frames(glslcheck.compile(shader, backend="numpy"), times)
     for t, image, w in zip(times, got, want):
         assert _same(image, w), t
+
+
+def test_frames_before_lockstep_are_kept_for_later_processes(make_shader, eager, monkeypatch):
+    """The seconds of a pass's frames not yet in lockstep go to its record, added to what
+    earlier processes kept there."""
+    monkeypatch.setattr(tiered, "COMPILE_GUESS_SECONDS", 1e9)  # the frames stay on NumPy
+    monkeypatch.setattr(tiered, "REMEMBER_SECONDS", 0.0)
+    shader = make_shader(ANIMATED)
+    first = glslcheck.compile(shader)
+    _frames(first, [0.5, 0.6, 0.7])
+    kept = first.impl.record()["spent"]
+    assert kept == pytest.approx(first.impl.spent, abs=1e-3) and kept > 0
+    later = glslcheck.compile(shader)
+    _frames(later, [0.8, 0.9])
+    assert later.impl.paid == kept
+    assert later.impl.record()["spent"] == pytest.approx(kept + later.impl.spent, abs=1e-3)
+
+
+@pytest.mark.parametrize("paid", [0.0, 1e6])
+def test_frames_earlier_processes_rendered_pay_for_lockstep(
+    numba, make_shader, eager, monkeypatch, tmp_path, paid
+):
+    """A per-pixel program moves to lockstep once its frames and those earlier processes kept
+    in the record have paid for it; a few quick frames alone do not."""
+    monkeypatch.setenv("NUMBA_CACHE_DIR", str(tmp_path / "numba"))
+    monkeypatch.delenv("GLSLCHECK_COMPILED_LANES", raising=False)
+    (tmp_path / "Image.tier").write_text(json.dumps({"spent": paid}))
+    shader = make_shader(ANIMATED)
+    prog = glslcheck.compile(shader)
+    _frames(prog, [0.5])
+    assert prog.impl.settle(300) and prog.impl.mode == "compiled pixel", prog.impl.stay
+    assert prog.impl.second.paid == paid
+    _frames(prog, [0.6, 0.7])
+    assert prog.impl.settle(300)
+    assert prog.impl.mode == ("compiled lanes8" if paid else "compiled pixel")

@@ -771,6 +771,7 @@ class TieredProgram:
         self.fast: CompiledProgram | None = None  # the lockstep program once moved
         self.stay = False  # the lockstep module cannot be made: per pixel for good
         self.spent = 0.0  # wall seconds of per-pixel frames
+        self.paid = 0.0  # seconds of earlier frames towards the move (tiered.py's record)
         self.pixels = 0  # pixels those frames rendered
         self._lock = threading.Lock()
         self._found: list[
@@ -936,7 +937,7 @@ class TieredProgram:
             if self._mover is None and not self.stay and self.pixels:
                 ahead = self.spent / self.pixels * inputs.width * inputs.height
                 cost = self.move_cost()  # (over the budget: not built, the frames stay per pixel)
-                if cost <= LOCKSTEP_BUDGET and self.spent + ahead >= cost:
+                if cost <= LOCKSTEP_BUDGET and self.paid + self.spent + ahead >= cost:
                     # a daemon: a process that ends first drops the compile (numba writes its
                     # cache files whole, by rename; the marker follows a finished load)
                     self._mover = threading.Thread(
