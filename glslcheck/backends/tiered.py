@@ -405,8 +405,14 @@ class TieredCpuProgram:
             if not isinstance(prog, CompiledProgram):
                 prog.paid = self.paid  # (lockstep's rent: earlier processes' frames count)
             # a lockstep module an earlier process made: its frames from the first (checked and
-            # tried like any), with nothing to compile
-            if isinstance(prog, CompiledProgram) or not prog.load_cached():
+            # tried like any), with nothing to compile; or one that earlier processes' frames
+            # have paid for: made now, in place of the per-pixel tier (its trial frames would
+            # cost both engines' frames again)
+            if not isinstance(prog, CompiledProgram) and not prog.load_cached():
+                if prog.paid >= prog.move_cost() and prog.move_now():
+                    with _COMPILING:
+                        prog.settle(None)
+            if isinstance(prog, CompiledProgram) or prog.fast is None:
                 # numba's compile in a child process, stopped at the budget: the NumPy frames
                 # keep this process's GIL and cores (but the one it takes)
                 with _COMPILING:

@@ -369,16 +369,24 @@ def test_frames_before_lockstep_are_kept_for_later_processes(make_shader, eager,
 def test_frames_earlier_processes_rendered_pay_for_lockstep(
     numba, make_shader, eager, monkeypatch, tmp_path, paid
 ):
-    """A per-pixel program moves to lockstep once its frames and those earlier processes kept
-    in the record have paid for it; a few quick frames alone do not."""
+    """Frames earlier processes kept in the record that have paid for the lockstep module make
+    it at the move, in place of the per-pixel tier; a few quick frames alone do not."""
     monkeypatch.setenv("NUMBA_CACHE_DIR", str(tmp_path / "numba"))
     monkeypatch.delenv("GLSLCHECK_COMPILED_LANES", raising=False)
     (tmp_path / "Image.tier").write_text(json.dumps({"spent": paid}))
     shader = make_shader(ANIMATED)
     prog = glslcheck.compile(shader)
     _frames(prog, [0.5])
-    assert prog.impl.settle(300) and prog.impl.mode == "compiled pixel", prog.impl.stay
-    assert prog.impl.second.paid == paid
-    _frames(prog, [0.6, 0.7])
+    assert prog.impl.settle(300), prog.impl.stay
+    tier = prog.impl.second
+    assert tier.paid == paid
+    times = [0.6, 0.7]
+    got = _frames(prog, times)
     assert prog.impl.settle(300)
-    assert prog.impl.mode == ("compiled lanes8" if paid else "compiled pixel")
+    if paid:  # lockstep from the move on: the per-pixel module never loaded
+        assert prog.impl.mode == "compiled lanes8" and tier.first.mod is None and not tier.pixels
+    else:
+        assert prog.impl.mode == "compiled pixel"
+    want = _frames(glslcheck.compile(shader, backend="numpy"), times)
+    for t, image, w in zip(times, got, want):
+        assert _same(image, w), t
