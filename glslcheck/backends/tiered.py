@@ -386,6 +386,7 @@ class TieredCpuProgram:
     def _move(self, kw: dict, want: np.ndarray) -> None:
         """Make the compiled program and check it on one NumPy frame (in the mover thread)."""
         from ..base.diagnostics import GlslError
+        from .compiled_engine.budget import STARVED
         from .compiled_engine.engine import (
             EXITING,
             PIXEL_BUDGET,
@@ -418,6 +419,9 @@ class TieredCpuProgram:
                 with _COMPILING:
                     why = base.build_apart(PIXEL_BUDGET)
                 if why == EXITING:  # (the process ends: no verdict)
+                    return
+                if why == STARVED:  # (the machine's load: not kept, a later process tries)
+                    self.stay = f"{why}: numba's compile got too little of a loaded machine"
                     return
                 if why == "over budget":
                     self.stay = f"over budget: numba's compile passed {PIXEL_BUDGET:g} s of CPU"

@@ -9,6 +9,9 @@ import subprocess
 import time
 
 POLL_SECONDS = 0.25  # how often wait_child reads the child's CPU time
+OVER = "over budget"  # wait_child's answer when the child passed its CPU seconds
+# its answer when the wall-time limit stopped it first: the machine's load, not the compile
+STARVED = "starved"
 # a compile's budget is CPU seconds (what it takes from the frames beside it); on a machine so
 # loaded that it gets less than a core in WALL_FACTOR, it is stopped at that many times the budget
 WALL_FACTOR = 4.0
@@ -24,10 +27,10 @@ def cpu_seconds(pid: int) -> float | None:
         return None
 
 
-def wait_child(child: subprocess.Popen, seconds: float) -> bytes | None:
-    """The stderr of a build process once it ends, or None when it is still running after
-    `seconds` of CPU time (`seconds` of wall time where its CPU time cannot be read), or after
-    WALL_FACTOR x `seconds` of wall time. The caller stops it."""
+def wait_child(child: subprocess.Popen, seconds: float) -> bytes | str:
+    """The stderr of a build process once it ends; OVER when it is still running after
+    `seconds` of CPU time (`seconds` of wall time where its CPU time cannot be read), STARVED
+    after WALL_FACTOR x `seconds` of wall time. The caller stops it."""
     start = time.monotonic()
     while True:
         try:
@@ -36,5 +39,7 @@ def wait_child(child: subprocess.Popen, seconds: float) -> bytes | None:
             pass
         wall = time.monotonic() - start
         cpu = cpu_seconds(child.pid)
-        if wall > WALL_FACTOR * seconds or (cpu if cpu is not None else wall) > seconds:
-            return None
+        if (cpu if cpu is not None else wall) > seconds:
+            return OVER
+        if wall > WALL_FACTOR * seconds:
+            return STARVED

@@ -47,7 +47,7 @@ from ...base.diagnostics import Diagnostic, GlslError, InputError, Location
 from ...base.recursion import enter_deep, leave_deep
 from ...shadertoy.frame_inputs import FrameInputs, frame_inputs
 from ...shadertoy.wrapper import UNIFORMS_BY_NAME
-from .budget import wait_child
+from .budget import STARVED, wait_child
 from .values import BUDGET_OFF
 
 PIP = "pip install 'glslcheck[jit]'"
@@ -365,7 +365,8 @@ class CompiledProgram:
         this process's GIL nor its frames up, and stop it after `seconds` of its CPU time
         (budget.wait_child; numba's compile cannot be stopped inside a process, a child can). ""
         when the cache holds the machine code (`load` then loads it: tenths of a second), "over
-        budget" when stopped, EXITING when this process is exiting (the child stopped with it:
+        budget" when stopped there, budget.STARVED when stopped by the machine's load first (a later
+        process may try again), EXITING when this process is exiting (the child stopped with it:
         nothing to say), "failed: ..." when the child failed (its last line; `load` in this process
         gives the error itself) or "killed: ..." when it died of a signal. A cache numba cannot
         write leaves `load` to compile here."""
@@ -394,10 +395,10 @@ class CompiledProgram:
         _CHILDREN.add(child)
         try:
             err = wait_child(child, seconds)
-            if err is None:
+            if isinstance(err, str):  # OVER or STARVED
                 child.kill()
                 child.communicate()
-                return "over budget"
+                return err
         except BaseException:  # Ctrl-C
             child.kill()
             raise
@@ -878,7 +879,7 @@ class TieredProgram:
             fast.frame_seconds = self.first.frame_seconds
             fast.loop_limit = self.first.loop_limit
             why = fast.build_apart(LOCKSTEP_BUDGET)
-            if why == EXITING:
+            if why in (EXITING, STARVED):  # (no verdict: the next process tries again)
                 self.stay = True
                 return
             if why == "over budget":
