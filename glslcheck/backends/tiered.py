@@ -366,6 +366,9 @@ class TieredCpuProgram:
         if len(self.trial) < TRIAL_FRAMES:
             return
         mine = sorted(self.trial)[len(self.trial) // 2]
+        pixel = isinstance(self.second, TieredProgram) and self.second.mode == "pixel"
+        if pixel:  # (a hint for a later process's order of tiers, not a verdict: _move)
+            self._keep(pixel="slower" if mine >= self.numpy_rate else "faster")
         if mine >= self.numpy_rate:
             second, self.second = self.second, None
             # (a per-pixel TieredProgram whose lockstep module may still be made)
@@ -392,6 +395,7 @@ class TieredCpuProgram:
             PIXEL_BUDGET,
             CompiledProgram,
             compile_compiled,
+            module_cached,
         )
 
         try:
@@ -407,10 +411,12 @@ class TieredCpuProgram:
                 prog.paid = self.paid  # (lockstep's rent: earlier processes' frames count)
             # a lockstep module an earlier process made: its frames from the first (checked and
             # tried like any), with nothing to compile; or one that earlier processes' frames
-            # have paid for: made now, in place of the per-pixel tier (its trial frames would
-            # cost both engines' frames again)
+            # have paid for, made now in place of the per-pixel tier when that would be
+            # compiled too, or lost its last trial (its trial frames cost both engines' frames
+            # again); a per-pixel module that won renders beside lockstep's compile instead
             if not isinstance(prog, CompiledProgram) and not prog.load_cached():
-                if prog.paid >= prog.move_cost() and prog.move_now():
+                skip = self.record().get("pixel") == "slower" or not module_cached(base.key)
+                if skip and prog.paid >= prog.move_cost() and prog.move_now():
                     with _COMPILING:
                         prog.settle(None)
             if isinstance(prog, CompiledProgram) or prog.fast is None:

@@ -390,3 +390,21 @@ def test_frames_earlier_processes_rendered_pay_for_lockstep(
     want = _frames(glslcheck.compile(shader, backend="numpy"), times)
     for t, image, w in zip(times, got, want):
         assert _same(image, w), t
+
+
+def test_a_per_pixel_tier_that_won_renders_beside_lockstep_s_compile(
+    numba, make_shader, eager, monkeypatch, tmp_path
+):
+    """Lockstep paid for, and a per-pixel module in the cache that won its last trial: its
+    frames go on beside lockstep's compile instead of NumPy's."""
+    from glslcheck.backends.compiled_engine import engine
+
+    monkeypatch.setenv("NUMBA_CACHE_DIR", str(tmp_path / "numba"))
+    monkeypatch.delenv("GLSLCHECK_COMPILED_LANES", raising=False)
+    monkeypatch.setattr(engine, "module_cached", lambda key: True)  # (as a later process finds)
+    (tmp_path / "Image.tier").write_text(json.dumps({"spent": 1e6, "pixel": "faster"}))
+    prog = glslcheck.compile(make_shader(ANIMATED))
+    _frames(prog, [0.5])
+    assert prog.impl.settle(300) and prog.impl.mode == "compiled pixel", prog.impl.stay
+    _frames(prog, [0.6])  # paid: lockstep's compile starts beside this per-pixel frame
+    assert prog.impl.settle(300) and prog.impl.mode == "compiled lanes8"
