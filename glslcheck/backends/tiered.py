@@ -46,8 +46,10 @@ frames rendered before lockstep in every process so far are kept beside numba's 
 engine's code and the pass's channel bindings): a later process moves as soon as the cache load
 pays, counts the earlier processes' frames as paid towards its lockstep module (the ski rental
 over all the frames a user renders of a shader, not each process's alone), starts on that
-module when an earlier process made it (TieredProgram.load_cached), and never retries a shader
-refused or found to differ (a timing trial lost is not kept: it depends on the machine's load).
+module when an earlier process made it (TieredProgram.load_cached) or makes it first when it
+is paid for (unless the per-pixel module is cached and won its last trial: the record's
+"pixel" hint), and never retries a shader refused or found to differ (a timing trial lost is
+not kept as a verdict: it depends on the machine's load).
 `GLSLCHECK_TIERS=off` (config.tiers) keeps every frame on NumPy. One compile runs at a time in
 a process (`_COMPILING`): the passes of a multipass shader that pay at the same frame compile one
 after another instead of taking every core from the frames.
