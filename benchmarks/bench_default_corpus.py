@@ -3,7 +3,8 @@ corpora against llvmpipe: what an animation costs from its second frame on, and 
 program settles.
 
     python benchmarks/bench_default_corpus.py [--groups lab,main,holdout] [--size 400x225]
-        [--settle 60] [--frames 3] [--only NAME,...] [--timeout 300] [--json out.json]
+        [--settle 60] [--length 0] [--frames 3] [--only NAME,...] [--timeout 300]
+        [--json out.json]
 
 Each shader runs in a process of its own with the user's numba cache (a first run on a machine
 compiles the modules; later runs load them, as a user's later renders do):
@@ -13,7 +14,10 @@ compiles the modules; later runs load them, as a user's later renders do):
    nothing after its first frame), until
    it has settled: it stays on the NumPy backend for good (the tiered program's `stay`: refused,
    differs, slower, over budget), or the compiled engine renders past its trial and its own
-   lockstep move is made or ruled out; or `--settle` seconds of frames have passed.
+   lockstep move is made or ruled out; or `--settle` seconds of frames have passed. With
+   `--length` S, frames go on after it settles until S seconds have passed: animations of one
+   length, whose "from frame 2" compares between programs that settle at different times (a
+   program that settles at once would otherwise be judged on its few first frames alone).
 2. Then `--frames` frames of the settled program and as many of llvmpipe (the GL backend, same
    process, same inputs), in turns.
 
@@ -46,6 +50,7 @@ import glslcheck
 from glslcheck.base.diagnostics import GlslError
 
 path, size, settle, extra = sys.argv[1], sys.argv[2], float(sys.argv[3]), int(sys.argv[4])
+length = float(sys.argv[5])
 w, h = (int(x) for x in size.split("x"))
 prog = glslcheck.compile(path)
 impl = prog.impl
@@ -69,15 +74,16 @@ def settled():
     return all(getattr(p, "settled", lambda: True)() for p in passes)
 
 
-times, k = [], 0
+times, k, done, took, at = [], 0, False, 0.0, 0
 t0 = time.perf_counter()
 while True:
     times.append(render(prog, k))
     k += 1
-    if settled() or time.perf_counter() - t0 > settle:
+    now = time.perf_counter() - t0
+    if not done:
+        done, took, at = settled(), now, k
+    if (done and now >= length) or now > max(settle, length):
         break
-took = time.perf_counter() - t0
-done = settled()
 gl = glslcheck.compile(path, backend="gl")
 gl.render(size=(w, h), time=1.0)  # warm-up
 mine, theirs = [], []
@@ -88,7 +94,7 @@ times += mine
 gl_frame = statistics.median(theirs)
 print(json.dumps({
     "engine": prog.engine, "settled": statistics.median(mine) / gl_frame,
-    "from2": statistics.mean(times[1:]) / gl_frame, "frames": k, "seconds": took,
+    "from2": statistics.mean(times[1:]) / gl_frame, "frames": at, "seconds": took,
     "done": done, "stay": getattr(impl, "stay", None), "gl_ms": gl_frame * 1000,
 }))
 """
@@ -111,6 +117,9 @@ def main() -> int:
     p.add_argument("--groups", default="lab,main,holdout")
     p.add_argument("--size", default="400x225")
     p.add_argument("--settle", type=float, default=60.0, help="seconds of frames to settle in")
+    p.add_argument(
+        "--length", type=float, default=0.0, help="seconds of frames at least (after settling)"
+    )
     p.add_argument("--frames", type=int, default=3, help="settled frames timed against GL")
     p.add_argument("--only", default="", help="comma-separated shader names")
     p.add_argument("--timeout", type=float, default=300.0)
@@ -121,6 +130,7 @@ def main() -> int:
     only = set(filter(None, args.only.split(",")))
     for group, name, path in shaders(args.groups.split(","), only):
         cmd = [sys.executable, "-c", ONE, path, args.size, str(args.settle), str(args.frames)]
+        cmd.append(str(args.length))
         try:
             out = subprocess.run(cmd, capture_output=True, text=True, env=env, timeout=args.timeout)
             last = out.stdout.strip().splitlines()[-1:] or [""]

@@ -1,20 +1,20 @@
 """The default CPU program (`--backend auto`): the NumPy backend's frames first, the compiled
 engine's once they pay, the same bits.
 
-The NumPy backend's first frame is the cheapest there is (a transpile and a module import:
-tenths of a second), while the compiled engine renders each frame several times faster but must
-first be compiled by numba (seconds; a cache load in a later process). So frames are rendered by
-the NumPy backend until the time they have taken, counting the frame about to be rendered (its
-pixels at the rate measured so far), reaches what making the compiled program is expected to
-cost (`TieredCpuProgram.move_cost`); then the compiled program is made beside the frames, which
-go on in NumPy (no frame waits for numba): numba compiles it in a child process
-(CompiledProgram.build_apart), stopped after engine.PIXEL_BUDGET seconds (the shader then stays
-on NumPy, and the record keeps it there), and a thread of this process loads the machine code
-from numba's cache; every frame after it is ready and checked uses it. This is the compiled
-engine's ski-rental rule (compiled_engine/engine.py, TieredProgram) with the NumPy backend as
-the first tier: whatever the number of frames, the total is at most about twice what the better
-engine alone would have cost. The compiled program is itself tiered (per pixel, then lockstep
-within engine.LOCKSTEP_BUDGET).
+The NumPy backend's first frame is the cheapest there is (a transpile and a module import: tenths of
+a second), while the compiled engine renders each frame several times faster but must first be
+compiled by numba (seconds; a cache load in a later process). So frames are rendered by the NumPy
+backend until the time they have taken, counting the frame about to be rendered (its pixels at the
+rate measured so far), reaches what making the compiled program is expected to cost
+(`TieredCpuProgram.move_cost`); then the compiled program is made beside the frames, which go on in
+NumPy (no frame waits for numba): numba compiles it in a child process
+(CompiledProgram.build_apart), stopped after engine.PIXEL_BUDGET seconds of its CPU time (the shader
+then stays on NumPy, and the record keeps it there), and a thread of this process loads the machine
+code from numba's cache; every frame after it is ready and checked uses it. This is the compiled
+engine's ski-rental rule (compiled_engine/engine.py, TieredProgram) with the NumPy backend as the
+first tier: whatever the number of frames, the total is at most about twice what the better engine
+alone would have cost. The compiled program is itself tiered (per pixel, then lockstep within
+engine.LOCKSTEP_BUDGET).
 
 The move happens only where the two engines are known to give the same bits:
 
@@ -40,11 +40,16 @@ The move happens only where the two engines are known to give the same bits:
   then made beside them, checked on one frame against NumPy's and tried the same way; slower
   again (or no lockstep module, or a differing frame), NumPy keeps the frames for good.
 
-The verdict, the compiled module's key and what compiling it took are kept beside numba's cache
+The verdict, the compiled module's key, what compiling it took (CPU seconds) and the seconds of
+frames rendered before lockstep in every process so far are kept beside numba's cache
 (`<cache>/compiled/t<hash>.tier`, keyed by the NumPy module, the loop limiter, the compiled
-engine's code and the pass's channel bindings): a later
-process moves as soon as the cache load pays, and never retries a shader refused or found to
-differ (a timing trial lost is not kept: it depends on the machine's load).
+engine's code and the pass's channel bindings): a later process moves as soon as the cache load
+pays, counts the earlier processes' frames as paid towards its lockstep module (the ski rental
+over all the frames a user renders of a shader, not each process's alone), starts on that
+module when an earlier process made it (TieredProgram.load_cached) or makes it first when it
+is paid for (unless the per-pixel module is cached and won its last trial: the record's
+"pixel" hint), and never retries a shader refused or found to differ (a timing trial lost is
+not kept as a verdict: it depends on the machine's load).
 `GLSLCHECK_TIERS=off` (config.tiers) keeps every frame on NumPy. One compile runs at a time in
 a process (`_COMPILING`): the passes of a multipass shader that pay at the same frame compile one
 after another instead of taking every core from the frames.
@@ -80,11 +85,14 @@ COMPILE_GUESS_SECONDS = 3.0
 # uniform values once a tile, the compiled one per pixel) hands the frames back for good.
 TRIAL_FRAMES = 3
 RATE_FRAMES = 5
+# How often (seconds of frames before lockstep) the record keeps them for later processes
+REMEMBER_SECONDS = 2.0
 # Expected seconds of loading the compiled module from numba's cache (import of numba included:
 # 0.45 s measured on a lab shader, 0.04 s once numba is loaded).
 CACHED_LOAD_SECONDS = 0.5
 # held by a move while numba compiles its module (one compile at a time in a process)
 _COMPILING = threading.Lock()
+_KEEPING = threading.Lock()  # held while a record is updated and written
 
 
 class TieredCpuProgram:
@@ -108,6 +116,8 @@ class TieredCpuProgram:
     trial: list[float]
     later: TieredProgram | None
     engine: str
+    paid: float
+    _kept: float
 
     def __init__(self, shader: Any, first: NumpyProgram, tab: str = "Image") -> None:
         d = self.__dict__
@@ -128,6 +138,10 @@ class TieredCpuProgram:
         # TieredProgram): tried again once its lockstep module is ready
         d["later"] = None
         d["engine"] = "numpy"  # the engine that rendered the last frame (`mode` at that time)
+        # seconds of frames earlier processes rendered before lockstep (the record's "spent"),
+        # and this process's as last written there (_remember)
+        d["paid"] = 0.0
+        d["_kept"] = 0.0
 
     def __getattr__(self, name: str) -> Any:
         return getattr(self.__dict__["first"], name)
@@ -198,15 +212,31 @@ class TieredCpuProgram:
                 except (OSError, ValueError):
                     found = {}
             self._record = found if isinstance(found, dict) else {}
+            spent = self._record.get("spent")
+            self.paid = float(spent) if isinstance(spent, (int, float)) and spent > 0 else 0.0
         return self._record
+
+    def _remember(self) -> None:
+        """Keep in the record the seconds of this pass's frames rendered before lockstep, in
+        every process so far, every REMEMBER_SECONDS of them: a later process counts them as
+        paid towards its moves (the ski rental over all the frames a user renders of it)."""
+        tier = self.second or self.later
+        rent = self.spent + getattr(tier, "spent", 0.0)
+        if self.stay is not None or getattr(tier, "fast", None) is not None:
+            return
+        if rent - self._kept >= REMEMBER_SECONDS:
+            self.record()  # (read first: it sets `paid`)
+            self._kept = rent
+            self._keep(spent=round(self.paid + rent, 3))
 
     def _keep(self, **fields: Any) -> None:
         from .compiled_engine.engine import write_cache_file
 
         path = self._record_path()
-        self._record = {**self.record(), **fields}
-        if path is not None:
-            write_cache_file(path, json.dumps(self._record) + "\n")
+        with _KEEPING:  # (the mover's verdict and the frames' seconds, from two threads)
+            self._record = {**self.record(), **fields}
+            if path is not None:
+                write_cache_file(path, json.dumps(self._record) + "\n")
 
     # -- the rule --------------------------------------------------------------------------------
     def move_cost(self) -> float:
@@ -259,7 +289,9 @@ class TieredCpuProgram:
         if second is not None and not why:
             if len(self.trial) >= TRIAL_FRAMES:
                 self.engine = self.mode
-                return second.render(**ckw)
+                out = second.render(**ckw)
+                self._remember()
+                return out
             # a trial frame: timed, and checked against the NumPy backend's render of it
             t0 = time.perf_counter()
             got = second.render(**ckw)
@@ -299,15 +331,20 @@ class TieredCpuProgram:
             if later is not None and (
                 later.stay
                 or later.over_budget()
-                or (self.spent >= later.move_cost() and not later.move_now())
+                or (self.paid + self.spent >= later.move_cost() and not later.move_now())
             ):
                 self._give_up(later)
             if self._mover is not None or self.stay is not None:
+                self._remember()
                 return out
             # the next frame of this size, at the rate measured so far
             ahead = self.spent / self.pixels * pixels
-            # (no move costs less than a cache load: a quick frame reads no record)
-            if self.spent + ahead < CACHED_LOAD_SECONDS or self.spent + ahead < self.move_cost():
+            # (no move costs less than a cache load: a quick frame reads no record; the cost
+            # reads it, and with it what earlier processes paid)
+            if self.spent + ahead < CACHED_LOAD_SECONDS:
+                return out
+            if self.spent + ahead < self.move_cost() - self.paid:
+                self._remember()
                 return out
             why = self._eligible()
             if why:
@@ -331,6 +368,9 @@ class TieredCpuProgram:
         if len(self.trial) < TRIAL_FRAMES:
             return
         mine = sorted(self.trial)[len(self.trial) // 2]
+        pixel = isinstance(self.second, TieredProgram) and self.second.mode == "pixel"
+        if pixel:  # (a hint for a later process's order of tiers, not a verdict: _move)
+            self._keep(pixel="slower" if mine >= self.numpy_rate else "faster")
         if mine >= self.numpy_rate:
             second, self.second = self.second, None
             # (a per-pixel TieredProgram whose lockstep module may still be made)
@@ -351,11 +391,13 @@ class TieredCpuProgram:
     def _move(self, kw: dict, want: np.ndarray) -> None:
         """Make the compiled program and check it on one NumPy frame (in the mover thread)."""
         from ..base.diagnostics import GlslError
+        from .compiled_engine.budget import STARVED
         from .compiled_engine.engine import (
             EXITING,
             PIXEL_BUDGET,
             CompiledProgram,
             compile_compiled,
+            module_cached,
         )
 
         try:
@@ -367,19 +409,35 @@ class TieredCpuProgram:
                 prog.loop_limit = limit
             base = prog if isinstance(prog, CompiledProgram) else prog.first
             base.frame_seconds = self.first.frame_seconds
-            # numba's compile in a child process, stopped at the budget: the NumPy frames keep
-            # this process's GIL and cores (but the one it takes)
-            with _COMPILING:
-                why = base.build_apart(PIXEL_BUDGET)
-            if why == EXITING:  # (the process ends: no verdict)
-                return
-            if why == "over budget":
-                self.stay = f"over budget: numba's compile passed {PIXEL_BUDGET:g} s"
-                self._keep(verdict=self.stay)
-                return
-            if why.startswith("killed"):
-                raise RuntimeError(why)
-            base.load(bounded=False)  # a cache load (a failure's compile here gives its error)
+            if not isinstance(prog, CompiledProgram):
+                prog.paid = self.paid  # (lockstep's rent: earlier processes' frames count)
+            # a lockstep module an earlier process made: its frames from the first (checked and
+            # tried like any), with nothing to compile; or one that earlier processes' frames
+            # have paid for, made now in place of the per-pixel tier when that would be
+            # compiled too, or lost its last trial (its trial frames cost both engines' frames
+            # again); a per-pixel module that won renders beside lockstep's compile instead
+            if not isinstance(prog, CompiledProgram) and not prog.load_cached():
+                skip = self.record().get("pixel") == "slower" or not module_cached(base.key)
+                if skip and prog.paid >= prog.move_cost() and prog.move_now():
+                    with _COMPILING:
+                        prog.settle(None)
+            if isinstance(prog, CompiledProgram) or prog.fast is None:
+                # numba's compile in a child process, stopped at the budget: the NumPy frames
+                # keep this process's GIL and cores (but the one it takes)
+                with _COMPILING:
+                    why = base.build_apart(PIXEL_BUDGET)
+                if why == EXITING:  # (the process ends: no verdict)
+                    return
+                if why == STARVED:  # (the machine's load: not kept, a later process tries)
+                    self.stay = f"{why}: numba's compile got too little of a loaded machine"
+                    return
+                if why == "over budget":
+                    self.stay = f"over budget: numba's compile passed {PIXEL_BUDGET:g} s of CPU"
+                    self._keep(verdict=self.stay)
+                    return
+                if why.startswith("killed"):
+                    raise RuntimeError(why)
+                base.load(bounded=False)  # a cache load (a failure's compile here gives its error)
             got = prog.render(**kw)
         except GlslError as e:  # a construct the compiled engine refuses, a loop cap, a budget
             first = e.diagnostics[0] if getattr(e, "diagnostics", None) else None

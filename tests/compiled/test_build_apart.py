@@ -120,3 +120,47 @@ def test_a_compile_whose_asking_process_is_gone_ends(numba, make_shader, own_cac
         timeout=120,
     )
     assert child.returncode == 1 and not child.stderr  # ended by the watch, not by an error
+
+
+def test_a_build_s_budget_is_its_cpu_time():
+    """A build waiting on a loaded machine is not stopped for the time it waits: a child that
+    sleeps past its budget ends by itself, one that computes past it is stopped, and one that
+    waits past WALL_FACTOR times it is stopped as starved, not over budget."""
+    from glslcheck.backends.compiled_engine.budget import OVER, STARVED, WALL_FACTOR, wait_child
+
+    sleeps = subprocess.Popen(
+        [sys.executable, "-c", "import time; time.sleep(1.5)"], stderr=subprocess.PIPE
+    )
+    assert wait_child(sleeps, 1.0) == b""
+    spins = subprocess.Popen([sys.executable, "-c", "while True: pass"], stderr=subprocess.PIPE)
+    waits = subprocess.Popen(
+        [sys.executable, "-c", f"import time; time.sleep({4 * WALL_FACTOR})"],
+        stderr=subprocess.PIPE,
+    )
+    try:
+        # (OVER unless the machine starves it first: its CPU time comes at the machine's pace)
+        assert wait_child(spins, 1.0) in (OVER, STARVED)
+        assert wait_child(waits, 0.5) == STARVED  # (Python's start-up: far less than 0.5 s CPU)
+    finally:
+        for child in (spins, waits):
+            child.kill()
+            child.communicate()
+
+
+def test_a_lockstep_build_the_machine_starved_is_tried_again(
+    numba, make_shader, own_cache, monkeypatch
+):
+    from glslcheck.backends.compiled_engine.budget import STARVED
+
+    monkeypatch.delenv("GLSLCHECK_COMPILED_LANES", raising=False)
+    shader = _shader(make_shader, "0.125 + 0.875")
+    prog = engine.compile_compiled(shader)
+    prog.render(size=SIZE, time=0.5)  # the per-pixel module, compiled here
+    monkeypatch.setattr(engine, "wait_child", lambda child, seconds: STARVED)
+    monkeypatch.setattr(engine.TieredProgram, "move_cost", lambda self: 0.0)
+    assert prog.move_now() and prog.settle(600)
+    assert prog.stay and prog.mode == "pixel" and not prog.over_budget()
+    monkeypatch.undo()  # the real rule, the same cache
+    monkeypatch.setenv("NUMBA_CACHE_DIR", str(own_cache / "numba"))
+    again = engine.compile_compiled(shader)
+    assert not again.over_budget() and again.move_cost() < float("inf")

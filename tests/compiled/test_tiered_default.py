@@ -297,8 +297,9 @@ def test_a_slower_per_pixel_program_is_tried_again_in_lockstep(
 
     monkeypatch.setattr(tiered, "TRIAL_FRAMES", 1)
     monkeypatch.delenv("GLSLCHECK_COMPILED_LANES", raising=False)
-    # lockstep never pays by itself (a module cached by an earlier run would load at once)
+    # lockstep never pays by itself, and no earlier run left it in numba's cache
     monkeypatch.setattr(engine.TieredProgram, "move_cost", lambda self: 1e9)
+    monkeypatch.setattr(engine.TieredProgram, "load_cached", lambda self: False)
     shader = make_shader(ANIMATED)
     prog = glslcheck.compile(shader)
     _frames(prog, [0.5])
@@ -316,3 +317,94 @@ def test_a_slower_per_pixel_program_is_tried_again_in_lockstep(
     want = _frames(glslcheck.compile(shader, backend="numpy"), times)
     for t, image, w in zip(times, got, want):
         assert _same(image, w), t
+
+
+def test_a_lockstep_module_made_earlier_renders_every_compiled_frame(
+    numba, make_shader, eager, monkeypatch, tmp_path
+):
+    """A later program of a shader whose lockstep module an earlier one made starts on it: no
+    per-pixel frame pays for it again, and its frames are the NumPy backend's bits."""
+    from glslcheck.backends.compiled_engine import engine
+
+    monkeypatch.setenv("NUMBA_CACHE_DIR", str(tmp_path / "numba"))
+    monkeypatch.delenv("GLSLCHECK_COMPILED_LANES", raising=False)
+    shader = make_shader(ANIMATED)
+    earlier = glslcheck.compile(shader)
+    _frames(earlier, [0.5])
+    assert earlier.impl.settle(300) and earlier.impl.mode == "compiled pixel", earlier.impl.stay
+    rule = engine.TieredProgram.move_cost
+    monkeypatch.setattr(engine.TieredProgram, "move_cost", lambda self: 0.0)  # lockstep paid
+    tier = earlier.impl.second
+    assert tier.move_now() and tier.settle(300) and tier.mode == "lanes8"
+    monkeypatch.setattr(engine.TieredProgram, "move_cost", rule)
+
+    later = glslcheck.compile(shader)
+    _frames(later, [0.5])  # NumPy's frame; the move starts beside it
+    assert later.impl.settle(300) and later.impl.mode == "compiled lanes8", later.impl.stay
+    times = [0.6, 0.7, 0.8]
+    got = _frames(later, times)
+    assert later.impl.second.pixels == 0  # no frame rendered per pixel
+    want = _frames(glslcheck.compile(shader, backend="numpy"), times)
+    for t, image, w in zip(times, got, want):
+        assert _same(image, w), t
+
+
+def test_frames_before_lockstep_are_kept_for_later_processes(make_shader, eager, monkeypatch):
+    """The seconds of a pass's frames not yet in lockstep go to its record, added to what
+    earlier processes kept there."""
+    monkeypatch.setattr(tiered, "COMPILE_GUESS_SECONDS", 1e9)  # the frames stay on NumPy
+    monkeypatch.setattr(tiered, "REMEMBER_SECONDS", 0.0)
+    shader = make_shader(ANIMATED)
+    first = glslcheck.compile(shader)
+    _frames(first, [0.5, 0.6, 0.7])
+    kept = first.impl.record()["spent"]
+    assert kept == pytest.approx(first.impl.spent, abs=1e-3) and kept > 0
+    later = glslcheck.compile(shader)
+    _frames(later, [0.8, 0.9])
+    assert later.impl.paid == kept
+    assert later.impl.record()["spent"] == pytest.approx(kept + later.impl.spent, abs=1e-3)
+
+
+@pytest.mark.parametrize("paid", [0.0, 1e6])
+def test_frames_earlier_processes_rendered_pay_for_lockstep(
+    numba, make_shader, eager, monkeypatch, tmp_path, paid
+):
+    """Frames earlier processes kept in the record that have paid for the lockstep module make
+    it at the move, in place of the per-pixel tier; a few quick frames alone do not."""
+    monkeypatch.setenv("NUMBA_CACHE_DIR", str(tmp_path / "numba"))
+    monkeypatch.delenv("GLSLCHECK_COMPILED_LANES", raising=False)
+    (tmp_path / "Image.tier").write_text(json.dumps({"spent": paid}))
+    shader = make_shader(ANIMATED)
+    prog = glslcheck.compile(shader)
+    _frames(prog, [0.5])
+    assert prog.impl.settle(300), prog.impl.stay
+    tier = prog.impl.second
+    assert tier.paid == paid
+    times = [0.6, 0.7]
+    got = _frames(prog, times)
+    assert prog.impl.settle(300)
+    if paid:  # lockstep from the move on: the per-pixel module never loaded
+        assert prog.impl.mode == "compiled lanes8" and tier.first.mod is None and not tier.pixels
+    else:
+        assert prog.impl.mode == "compiled pixel"
+    want = _frames(glslcheck.compile(shader, backend="numpy"), times)
+    for t, image, w in zip(times, got, want):
+        assert _same(image, w), t
+
+
+def test_a_per_pixel_tier_that_won_renders_beside_lockstep_s_compile(
+    numba, make_shader, eager, monkeypatch, tmp_path
+):
+    """Lockstep paid for, and a per-pixel module in the cache that won its last trial: its
+    frames go on beside lockstep's compile instead of NumPy's."""
+    from glslcheck.backends.compiled_engine import engine
+
+    monkeypatch.setenv("NUMBA_CACHE_DIR", str(tmp_path / "numba"))
+    monkeypatch.delenv("GLSLCHECK_COMPILED_LANES", raising=False)
+    monkeypatch.setattr(engine, "module_cached", lambda key: True)  # (as a later process finds)
+    (tmp_path / "Image.tier").write_text(json.dumps({"spent": 1e6, "pixel": "faster"}))
+    prog = glslcheck.compile(make_shader(ANIMATED))
+    _frames(prog, [0.5])
+    assert prog.impl.settle(300) and prog.impl.mode == "compiled pixel", prog.impl.stay
+    _frames(prog, [0.6])  # paid: lockstep's compile starts beside this per-pixel frame
+    assert prog.impl.settle(300) and prog.impl.mode == "compiled lanes8"

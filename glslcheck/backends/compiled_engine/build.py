@@ -1,9 +1,9 @@
-"""`python -m glslcheck.backends.compiled_engine.build MODULE.py PATH PARENT`: compile one
-generated module into numba's cache, in a process of its own (CompiledProgram.build_apart, which
-stops it when it runs past its budget). PATH is the shader file the module's errors name;
-PARENT the process id of the process that asked: when that process is gone (it ended, however),
-so is this one, since nobody waits for the compile. Exit 0 once the machine code is in the
-cache; a failure's message goes to stderr, exit 1."""
+"""`python -m glslcheck.backends.compiled_engine.build MODULE.py PATH PARENT`: compile one generated
+module into numba's cache, in a process of its own (CompiledProgram.build_apart, which stops it when
+it runs past its budget: budget.wait_child). PATH is the shader file the module's errors name;
+PARENT the process id of the process that asked: when that process is gone (it ended, however), so
+is this one, since nobody waits for the compile. Exit 0 once the machine code is in the cache; a
+failure's message goes to stderr, exit 1."""
 
 from __future__ import annotations
 

@@ -47,6 +47,7 @@ from ...base.diagnostics import Diagnostic, GlslError, InputError, Location
 from ...base.recursion import enter_deep, leave_deep
 from ...shadertoy.frame_inputs import FrameInputs, frame_inputs
 from ...shadertoy.wrapper import UNIFORMS_BY_NAME
+from .budget import STARVED, wait_child
 from .values import BUDGET_OFF
 
 PIP = "pip install 'glslcheck[jit]'"
@@ -316,6 +317,7 @@ class CompiledProgram:
         self.mod: Any = None
         self.load_seconds: float | None = None  # wall time of import + numba compile or cache load
         self.cold: bool | None = None  # True when numba compiled (no cache), False when it loaded
+        self.cpu_seconds: float | None = None  # this process's CPU time of that compile (cold)
         self.key = hashlib.sha256((_versions() + "\n" + source).encode()).hexdigest()[:24]
 
     @property
@@ -341,7 +343,7 @@ class CompiledProgram:
                     :24
                 ]
                 self.mod = None
-                self.cold = self.load_seconds = None
+                self.cold = self.load_seconds = self.cpu_seconds = None
 
     def load(self, bounded: bool = True) -> Any:
         """The module, compiled or loaded from numba's cache; `bounded`: the compile has the
@@ -359,14 +361,15 @@ class CompiledProgram:
             return mod
 
     def build_apart(self, seconds: float) -> str:
-        """Compile the module into numba's cache in a child process (build.py), which holds
-        neither this process's GIL nor its frames up, and stop it after `seconds` (numba's
-        compile cannot be stopped inside a process; a child can). "" when the cache holds the
-        machine code (`load` then loads it: tenths of a second), "over budget" when stopped,
-        EXITING when this process is exiting (the child stopped with it: nothing to say),
-        "failed: ..." when the child failed (its last line; `load` in this process gives the
-        error itself) or "killed: ..." when it died of a signal. A cache numba cannot write
-        leaves `load` to compile here."""
+        """Compile the module into numba's cache in a child process (build.py), which holds neither
+        this process's GIL nor its frames up, and stop it after `seconds` of its CPU time
+        (budget.wait_child; numba's compile cannot be stopped inside a process, a child can). ""
+        when the cache holds the machine code (`load` then loads it: tenths of a second), "over
+        budget" when stopped there, budget.STARVED when stopped by the machine's load first (a later
+        process may try again), EXITING when this process is exiting (the child stopped with it:
+        nothing to say), "failed: ..." when the child failed (its last line; `load` in this process
+        gives the error itself) or "killed: ..." when it died of a signal. A cache numba cannot
+        write leaves `load` to compile here."""
         require_numba()
         from ..numpy_engine import jit
 
@@ -391,11 +394,11 @@ class CompiledProgram:
         # ends by itself when this process is gone without one: build.py)
         _CHILDREN.add(child)
         try:
-            _, err = child.communicate(timeout=seconds)
-        except subprocess.TimeoutExpired:
-            child.kill()
-            child.communicate()
-            return "over budget"
+            err = wait_child(child, seconds)
+            if isinstance(err, str):  # OVER or STARVED
+                child.kill()
+                child.communicate()
+                return err
         except BaseException:  # Ctrl-C
             child.kill()
             raise
@@ -426,7 +429,7 @@ class CompiledProgram:
         # differs from it (cut short, edited) is written anew, which makes numba's entries stale.
         if _read(file, strip=False) != self.source:
             _write(file, self.source, quiet=False)
-        t0 = time.perf_counter()
+        t0, c0 = time.perf_counter(), time.process_time()
         mod = types.ModuleType(name)
         mod.__file__ = file
         sys.modules[name] = mod
@@ -448,17 +451,17 @@ class CompiledProgram:
             config.SLP_VECTORIZE = slp
             leave_deep()
         self.load_seconds = time.perf_counter() - t0
-        if (
-            self.cold
-        ):  # what compiling this module took, for TieredProgram's estimate in later processes
-            _write(os.path.join(folder, f"m{self.key}.compile"), f"{self.load_seconds:.3f}\n")
+        if self.cold:  # what compiling it took, for TieredProgram's estimate in later processes
+            self.cpu_seconds = time.process_time() - c0
+            _write(os.path.join(folder, f"m{self.key}.compile"), f"{self.cpu_seconds:.3f}\n")
         return mod
 
     def compile_seconds(self) -> float | None:
-        """The wall time numba took to compile this module cold, in this process or an earlier
-        one (None when not recorded)."""
+        """The CPU seconds numba took to compile this module cold, in this process or an earlier
+        one (None when not recorded): what a compile beside the frames takes from them, where its
+        wall time also counts the waits of a loaded machine."""
         if self.cold:
-            return self.load_seconds
+            return self.cpu_seconds
         text = _read(os.path.join(_folder(), f"m{self.key}.compile"))
         try:
             return float(text) if text else None
@@ -696,8 +699,11 @@ def _read(path: str, strip: bool = True) -> str | None:
 
 
 def _cached(folder: str, key: str) -> bool:
-    """Whether numba had machine code for the module before this load (its index files)."""
-    return any(n.startswith(f"m{key}.") and n.endswith(".nbi") for n in _listdir(folder))
+    """Whether numba had machine code for the whole module before this load: the index file of
+    render_rows, which numba compiles and caches last (a compile stopped halfway leaves some of
+    the functions it calls)."""
+    head = f"m{key}.render_rows-"
+    return any(n.startswith(head) and n.endswith(".nbi") for n in _listdir(folder))
 
 
 def _listdir(folder: str) -> list[str]:
@@ -711,23 +717,24 @@ TIER_LANES = 8  # the lockstep width TieredProgram moves to (8: AVX2's float32 l
 OVER = "over budget"  # a marker's text when the lockstep build was stopped
 EXITING = "exiting"  # build_apart's answer when the process exits under it
 # Lockstep's cold compile over the per-pixel module's, for TieredProgram's estimate of what
-# moving costs: the median over the 67 lab and tuned real shaders (quartiles 3.5 and 6.2),
-# as benchmarks/bench_compiled.py --fresh-cache --lanes 0,8 prints both compile times.
-LOCKSTEP_COMPILE_RATIO = 4.7
-# The most a lockstep compile may take: a module whose estimate (move_cost) is longer is not
-# built, and a build still running after it is stopped (build_apart; the program stays per
+# moving costs: the median over 66 lab and tuned real shaders (quartiles 2.2 and 3.6, 0.9 to
+# 7.9), each module's load as benchmarks/bench_compiled.py --fresh-cache --lanes 0,8 prints it
+# (wall time on a machine with a core to spare: the ratio of the CPU times compile_seconds gives).
+LOCKSTEP_COMPILE_RATIO = 2.7
+# The most CPU time a lockstep compile may take: a module whose estimate (move_cost) is longer is
+# not built, and a build still running after it is stopped (build_apart; the program stays per
 # pixel, and later processes do not try again). The real corpora's slowest lockstep compiles
 # took 124 s cold, for 2-4x faster frames: minutes of rendering to pay back.
 LOCKSTEP_BUDGET = 30.0
-# The most the default CPU program's compile of a per-pixel module may take beside the NumPy
-# frames (tiered.py): the real corpora's per-pixel compiles took a median of 2 s and at most
+# The most CPU time the default CPU program's compile of a per-pixel module may take beside the
+# NumPy frames (tiered.py): the real corpora's per-pixel compiles took a median of 2 s and at most
 # 36 s (h38-2d-sprites) cold, and they pay back more than lockstep's (NumPy frames are 3-10x the
 # compiled engine's on heavy shaders), so the budget is twice the slowest.
 PIXEL_BUDGET = 60.0
 # Seconds of lockstep compile per line of the per-pixel module, the estimate when the per-pixel
 # module's compile time is not known (a numba cache filled before compile times were recorded):
-# the median of the same run (quartiles 0.021 and 0.036; a machine's speed moves it).
-LOCKSTEP_SECONDS_PER_LINE = 0.026
+# the median of the same run (quartiles 0.0047 and 0.0093; a machine's speed moves it).
+LOCKSTEP_SECONDS_PER_LINE = 0.0063
 
 
 class TieredProgram:
@@ -735,23 +742,24 @@ class TieredProgram:
 
     Lockstep (lanes.py) renders the same bits several times faster on heavy shaders, but numba
     compiles it several times longer than the per-pixel module (seconds to tens of seconds): a
-    student's one render of a lab shader would wait for it and gain milliseconds. So frames
-    are rendered per pixel until the time they have taken, counting the frame about to be
-    rendered (its pixels at the rate measured so far), reaches what compiling lockstep is
-    expected to cost; then the lockstep module is made beside the frames, which go on per pixel
-    (numba compiles it in a child process, build_apart, and a thread of this one loads it from
-    numba's cache: no frame waits for it), and every frame after it is ready uses it. This is
-    the ski-rental rule: whatever the number of frames to come, the total is at most about twice
-    what the better of the two modes alone would have cost (moving too late costs at most
-    the compile once more, moving never costs nothing when the frames stop first). The expected
-    cost: the lockstep module's load when numba's cache already holds it (an earlier process
-    moved), else LOCKSTEP_COMPILE_RATIO x the per-pixel module's compile time. The frames are
-    the same either way: lockstep is bit-identical to per pixel (tests/compiled/test_lanes.py),
-    so the moment of the move changes no pixel. A lockstep module that cannot be made (the
-    rewrite falls back, numba fails) leaves the program per pixel, with a warning for a failure,
-    and so does one expected to take more than LOCKSTEP_BUDGET seconds to compile, or whose
-    compile (in a child process: CompiledProgram.build_apart) runs longer than that: the
-    marker beside the per-pixel module then says so, and no later process builds it.
+    student's one render of a lab shader would wait for it and gain milliseconds. So frames are
+    rendered per pixel until the time they have taken, counting the frame about to be rendered (its
+    pixels at the rate measured so far), reaches what compiling lockstep is expected to cost; then
+    the lockstep module is made beside the frames, which go on per pixel (numba compiles it in a
+    child process, build_apart, and a thread of this one loads it from numba's cache: no frame waits
+    for it), and every frame after it is ready uses it. This is the ski-rental rule: whatever the
+    number of frames to come, the total is at most about twice what the better of the two modes
+    alone would have cost (moving too late costs at most the compile once more, moving never costs
+    nothing when the frames stop first). The expected cost: the lockstep module's load when numba's
+    cache already holds it (an earlier process moved), else LOCKSTEP_COMPILE_RATIO x the per-pixel
+    module's compile (CPU time: a compile beside the frames costs them the core it takes, not the
+    waits of a loaded machine). The frames are the same either way: lockstep is bit-identical to per
+    pixel (tests/compiled/test_lanes.py), so the moment of the move changes no pixel. A lockstep
+    module that cannot be made (the rewrite falls back, numba fails) leaves the program per pixel,
+    with a warning for a failure, and so does one expected to take more than LOCKSTEP_BUDGET CPU
+    seconds to compile, or whose compile (in a child process: CompiledProgram.build_apart) takes
+    more than that: the marker beside the per-pixel module then says so, and no later process builds
+    it.
     """
 
     def __init__(
@@ -764,6 +772,7 @@ class TieredProgram:
         self.fast: CompiledProgram | None = None  # the lockstep program once moved
         self.stay = False  # the lockstep module cannot be made: per pixel for good
         self.spent = 0.0  # wall seconds of per-pixel frames
+        self.paid = 0.0  # seconds of earlier frames towards the move (tiered.py's record)
         self.pixels = 0  # pixels those frames rendered
         self._lock = threading.Lock()
         self._found: list[
@@ -840,6 +849,22 @@ class TieredProgram:
             return LOCKSTEP_COMPILE_RATIO * known
         return LOCKSTEP_SECONDS_PER_LINE * self.first.source.count("\n")
 
+    def load_cached(self) -> bool:
+        """Load the lockstep module now when an earlier process made it and numba's cache holds
+        it (its marker), so that every frame is lockstep's: no per-pixel frame is left to pay
+        for it. Whether it did."""
+        source = self._cached_fast()
+        if self.fast is not None or source is None:
+            return self.fast is not None
+        if self.first.loop_limit is not None and BUDGET_OFF in source:
+            return False  # (a module without llvmpipe's loop budget: _move makes the other)
+        fast = CompiledProgram(source, self.first.path, self.threads, self._remake_fast)
+        fast.frame_seconds = self.first.frame_seconds
+        fast.loop_limit = self.first.loop_limit
+        fast.load(bounded=False)  # a cache load
+        self.fast = fast
+        return True
+
     def _move(self) -> None:
         """Make the lockstep module (in the mover thread); self.fast once it can render."""
         try:
@@ -854,7 +879,7 @@ class TieredProgram:
             fast.frame_seconds = self.first.frame_seconds
             fast.loop_limit = self.first.loop_limit
             why = fast.build_apart(LOCKSTEP_BUDGET)
-            if why == EXITING:
+            if why in (EXITING, STARVED):  # (no verdict: the next process tries again)
                 self.stay = True
                 return
             if why == "over budget":
@@ -913,7 +938,7 @@ class TieredProgram:
             if self._mover is None and not self.stay and self.pixels:
                 ahead = self.spent / self.pixels * inputs.width * inputs.height
                 cost = self.move_cost()  # (over the budget: not built, the frames stay per pixel)
-                if cost <= LOCKSTEP_BUDGET and self.spent + ahead >= cost:
+                if cost <= LOCKSTEP_BUDGET and self.paid + self.spent + ahead >= cost:
                     # a daemon: a process that ends first drops the compile (numba writes its
                     # cache files whole, by rename; the marker follows a finished load)
                     self._mover = threading.Thread(
