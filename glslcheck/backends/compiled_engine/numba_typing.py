@@ -7,10 +7,11 @@ in turn (scalars, NumPy's ufunc loops, ...) with literal and plain arguments, an
 again for each binary operator. A lockstep module spells every per-pixel operation W times, all on
 the same few types (float32, int32, uint32, bool), so most of those resolutions repeat one of a
 handful. `install()` remembers each successful resolution by (function type, typing context,
-argument types, keywords): the same signature object numba computed the first time, and the
-template's implementation key it recorded then (numba's types are interned, so an equal function
-type is the same object and keeps it). Failures are not remembered (numba tries other routes and
-raises its own errors). Only operators: their templates depend on the argument types alone.
+argument types, keywords, the compile's flags): the same signature object numba computed the
+first time, and the template's implementation key it recorded then (numba's types are interned,
+so an equal function type is the same object and keeps it). Failures are not remembered (numba
+tries other routes and raises its own errors). Only operators: what their templates answer
+depends on those alone.
 """
 
 from __future__ import annotations
@@ -28,11 +29,16 @@ OPERATORS = frozenset(
 
 
 def _memoized(numba_get_call_type: Any) -> Any:
+    from numba.core import targetconfig
+
     memo: dict = {}
 
     def get_call_type(self: Any, context: Any, args: Any, kws: Any) -> Any:
         try:  # (an unhashable key or argument: numba's own resolution)
-            key = (self, context, tuple(args), tuple(sorted(kws.items())))
+            # the compile's flags too: an operator numba implements by an @overload compiles
+            # its implementation for them (numba's own cache of those is keyed so)
+            flags = targetconfig.ConfigStack.top_or_none()
+            key = (self, context, tuple(args), tuple(sorted(kws.items())), flags)
             sig = memo.get(key) if self.typing_key in OPERATORS else None
             hit = sig is not None and sig.args in self._impl_keys
         except TypeError:
