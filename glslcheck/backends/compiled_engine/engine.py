@@ -435,10 +435,12 @@ class CompiledProgram:
         sys.modules[name] = mod
         exec(compile(self.source, file, "exec"), mod.__dict__)
         self.cold = not _cached(cache, self.key)
-        if self.cold:  # numba's SSA passes, the same IR in time linear in the names they fix
-            from .numba_ssa import install
+        if self.cold:  # numba's SSA passes, the same IR in time linear in the names they fix,
+            # and its operator typing once per argument types
+            from . import numba_ssa, numba_typing
 
-            install()
+            numba_ssa.install()
+            numba_typing.install()
         slp = config.SLP_VECTORIZE
         if getattr(
             mod, "LANES", 0

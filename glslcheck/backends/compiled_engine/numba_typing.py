@@ -1,0 +1,83 @@
+"""numba's typing of an operator (`a + b`, `a <= b`, `-a`) once per argument types per process,
+not once per use.
+
+numba resolves each use of an operator afresh: type inference asks the operator's function type
+for a signature (`BaseFunction.get_call_type`), which tries numba's templates for that operator
+in turn (scalars, NumPy's ufunc loops, ...) with literal and plain arguments, and lowering asks
+again for each binary operator. A lockstep module spells every per-pixel operation W times, all on
+the same few types (float32, int32, uint32, bool), so most of those resolutions repeat one of a
+handful. `install()` remembers each successful resolution by (function type, typing context,
+argument types, keywords, the compile's flags): the same signature object numba computed the
+first time, and the template's implementation key it recorded then (numba's types are interned,
+so an equal function type is the same object and keeps it). Failures are not remembered (numba
+tries other routes and raises its own errors). Only operators: what their templates answer
+depends on those alone.
+"""
+
+from __future__ import annotations
+
+import operator
+import threading
+from typing import Any
+
+CHECKED = ("0.68.",)  # the numba versions whose BaseFunction.get_call_type this wraps
+_STATE: dict[str, Any] = {}
+_LOCK = threading.Lock()
+OPERATORS = frozenset(
+    v for k, v in vars(operator).items() if callable(v) and not k.startswith("_")
+)  # (operator.add, operator.le, ...: the keys numba types Python's operators by)
+
+
+def _memoized(numba_get_call_type: Any) -> Any:
+    from numba.core import targetconfig
+
+    memo: dict = {}
+
+    def get_call_type(self: Any, context: Any, args: Any, kws: Any) -> Any:
+        try:  # (an unhashable key or argument: numba's own resolution)
+            # the compile's flags too: an operator numba implements by an @overload compiles
+            # its implementation for them (numba's own cache of those is keyed so)
+            flags = targetconfig.ConfigStack.top_or_none()
+            key = (self, context, tuple(args), tuple(sorted(kws.items())), flags)
+            sig = memo.get(key) if self.typing_key in OPERATORS else None
+            hit = sig is not None and sig.args in self._impl_keys
+        except TypeError:
+            key, hit = None, False
+        if hit:
+            return sig
+        sig = numba_get_call_type(self, context, args, kws)
+        if sig is not None and key is not None and self.typing_key in OPERATORS:
+            memo[key] = sig
+        return sig
+
+    return get_call_type
+
+
+def install() -> bool:
+    """Put the memoized resolution in the place of numba's (once); False when this numba is not
+    one it was checked against (numba's own then runs)."""
+    with _LOCK:
+        if "installed" not in _STATE:
+            _STATE["installed"] = _install()
+        return _STATE["installed"]
+
+
+def _install() -> bool:
+    from numba import __version__
+    from numba.core.types import functions
+
+    base = getattr(functions, "BaseFunction", None)
+    if not __version__.startswith(CHECKED) or base is None:
+        return False
+    if not hasattr(base, "get_call_type") or not hasattr(base, "get_impl_key"):
+        return False
+    _STATE["numba"] = base.get_call_type
+    base.get_call_type = _memoized(base.get_call_type)
+    return True
+
+
+def numba_get_call_type() -> Any:
+    """numba's own BaseFunction.get_call_type (the reference this is checked against)."""
+    from numba.core.types import functions
+
+    return _STATE.get("numba", functions.BaseFunction.get_call_type)

@@ -1,0 +1,108 @@
+"""numba_typing's memoized operator typing against numba's own resolution: the same signature
+and implementation for every operator and argument types the generated modules use, on the first
+use and on the remembered ones, and numba's own error where numba has no signature."""
+
+from __future__ import annotations
+
+import operator
+
+import pytest
+
+BINARY = [
+    operator.add,
+    operator.sub,
+    operator.mul,
+    operator.truediv,
+    operator.mod,
+    operator.lt,
+    operator.le,
+    operator.eq,
+    operator.ne,
+    operator.gt,
+    operator.ge,
+    operator.and_,
+    operator.or_,
+    operator.xor,
+    operator.lshift,
+    operator.rshift,
+]
+UNARY = [operator.neg, operator.not_, operator.invert, operator.pos]
+
+
+def _types():
+    from numba.core import types
+
+    return [
+        types.float32,
+        types.float64,
+        types.int32,
+        types.int64,
+        types.uint32,
+        types.boolean,
+        types.IntegerLiteral(3),
+        types.BooleanLiteral(True),
+    ]
+
+
+def _resolve(get_call_type, fnty, ctx, args):
+    """(signature, implementation key) or the error's type when numba has none."""
+    try:
+        sig = get_call_type(fnty, ctx, args, {})
+    except Exception as e:  # noqa: BLE001 (the comparison is of numba's errors)
+        return type(e)
+    return (sig, fnty.get_impl_key(sig)) if sig is not None else None
+
+
+def test_operators_same_signatures_as_numba(numba):
+    from numba.core import registry
+    from numba.core.types.functions import BaseFunction
+
+    from glslcheck.backends.compiled_engine import numba_typing
+
+    if not numba_typing.install():
+        pytest.skip(f"numba_typing is not installed on numba other than {numba_typing.CHECKED}")
+    ctx = registry.cpu_target.typing_context
+    ctx.refresh()
+    own = numba_typing.numba_get_call_type()
+    ts = _types()
+    cases = [(op, (a, b)) for op in BINARY for a in ts for b in ts]
+    cases += [(op, (a,)) for op in UNARY for a in ts]
+    resolved = 0
+    for op, args in cases:
+        fnty = ctx.resolve_value_type(op)
+        want = _resolve(own, fnty, ctx, args)
+        for _ in range(2):  # the first use, then the remembered one
+            got = _resolve(BaseFunction.get_call_type, fnty, ctx, args)
+            assert got == want, (op, args)
+        resolved += isinstance(want, tuple)
+    assert resolved > len(cases) // 2  # (most combinations have a signature)
+
+
+def test_other_functions_are_numba_s(numba):
+    """A function type that is not an operator's is resolved by numba each time."""
+    from numba.core import registry, types
+    from numba.core.types.functions import BaseFunction
+
+    from glslcheck.backends.compiled_engine import numba_typing
+
+    if not numba_typing.install():
+        pytest.skip(f"numba_typing is not installed on numba other than {numba_typing.CHECKED}")
+    ctx = registry.cpu_target.typing_context
+    ctx.refresh()
+    fnty = ctx.resolve_value_type(abs)
+    calls = []
+    own = numba_typing.numba_get_call_type()
+
+    def counting(self, context, args, kws):
+        calls.append(args)
+        return own(self, context, args, kws)
+
+    wrapped = numba_typing._memoized(counting)
+    for _ in range(2):
+        assert wrapped(fnty, ctx, (types.float32,), {}) == own(fnty, ctx, (types.float32,), {})
+    assert len(calls) == 2
+    le = ctx.resolve_value_type(operator.le)
+    for _ in range(3):
+        wrapped(le, ctx, (types.float32, types.float32), {})
+    assert len(calls) == 3  # (the operator resolved once)
+    assert BaseFunction.get_call_type is not own
