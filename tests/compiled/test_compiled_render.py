@@ -333,6 +333,21 @@ def test_mesa_reassociation_bit_for_bit(numba, make_shader):
     np.testing.assert_array_equal(got.view(np.uint32), want.view(np.uint32))
 
 
+def test_constants_merged_through_a_negation_bit_for_bit(numba, make_shader):
+    """``-x * #c`` with x's value ``y * #k`` is ``-(y * (k*c))`` on llvmpipe (NIR moves the
+    negation out of the product: nir_fold.constant_merge, measured in
+    tests/gl/test_llvmpipe_lowering.py): through a local, a parenthesized product, a local
+    holding the negation, a vector, on either side."""
+    shader = make_shader(
+        "void mainImage(out vec4 c, in vec2 p) {\n float a = fract(p.x * 0.1371 + p.y * 0.0917),"
+        " b = sin(p.y * 0.917 + p.x * 0.0311);\n float x = a * 0.85;\n"
+        " vec3 w = -(vec3(a, b, a - b) * 2.1);\n c = vec4(-x * 0.6, (0.45 * w).y + (w * 0.3).z,"
+        " -(b * 1.3) * 0.7, 1.0); }"
+    )
+    assert "if rt.lp else" in glslcheck.compile(shader, backend="numpy").source
+    _compare(shader)
+
+
 def test_uniform_products_merged_at_every_frame(numba, make_shader):
     """``float time = iTime * 0.85; sin(time * 0.2)`` is ``sin(iTime * (0.2*0.85))`` on
     llvmpipe (constant_merge through the SSA value, as above, here of a uniform: one lane in the
