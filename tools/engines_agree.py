@@ -2,7 +2,7 @@
 compiled engine (per pixel, and 8 pixels in lockstep) and compare the bits.
 
     python tools/engines_agree.py [--groups lab,main,holdout,scenes] [--size 64x36]
-                                  [--times 0,1.3] [--frame 60] [--mouse 40,20,40,20]
+                                  [--times 0,1.3,2.67,...] [--frame N] [--mouse 40,20,40,20]
                                   [--lanes 0,8] [--only NAME,...] [--timeout 600] [--json out.json]
 
 The shaders: lab_shaders/* (`lab`), the real corpora of tools/real_verify.py (`main`: texts/,
@@ -12,12 +12,19 @@ runs the CPU side: loops stop as llvmpipe's do (verify.llvmpipe_loop_limit); whe
 a value to the CPU (uint() of a negative float) both take this machine's predicted model
 (driver_profile.host_model), which verify replaces by the live driver's when it differs.
 
+The frames: one a time, as an animation at 60 fps has them (iFrame = round(60 * iTime), or
+--frame N for all), the mouse button down (--mouse) in the first, third, ... frame and released
+in the others (Shadertoy's iMouse after a click: z and w negative). An engine can differ at
+some inputs only (a value computed from iTime rounds to the other side at some times), so the
+default times are many and not round, at a small size that keeps the renders cheap.
+
 Each shader runs in its own process (a compile that crashes or a frame that never ends costs
 that shader only) and gets one line per lockstep width:
 
 - identical: every frame the same bits (a NaN equals any NaN: GLSL does not define payloads);
-- differs: the pixels that differ in the first frame that does, the largest difference, and the
-  first differing pixel (x, y from the top left) with both engines' values;
+- differs: the frames that differ, and in the first of them (its iTime, iFrame and iMouse) the
+  differing pixels, the largest difference, and the first differing pixel (x, y from the top
+  left) with both engines' values;
 - refused: an engine (or both) stops with an error, named with its message;
 - per pixel: the lockstep rewrite does not handle the program (the engine renders it one pixel
   a call, what the per-pixel line measures), and why;
@@ -40,6 +47,29 @@ from pathlib import Path
 ROOT = Path(__file__).resolve().parents[1]
 GROUPS = ("lab", "main", "holdout", "scenes")
 VERDICTS = ("identical", "differs", "refused", "per pixel", "timeout", "error")
+# iTime of the frames compared: 0 and times spread up to minutes, none a round number (a value
+# computed from iTime may round otherwise in one engine at some times only)
+TIMES = (0.0, 1.3, 2.67, 6.1, 9.83, 37.7, 123.4)
+SIZE = (64, 36)
+MOUSE = (40.0, 20.0, 40.0, 20.0)
+
+
+def frames(
+    times: list[float], frame: int | None = None, mouse: tuple[float, ...] = MOUSE
+) -> list[dict]:
+    """The render inputs of the frames compared: one a time, iFrame as an animation at 60 fps
+    has it (or `frame` for all), the mouse button down in every other frame and released (z and
+    w negative, as on Shadertoy) in the others."""
+    x, y, z, w = mouse
+    released = (x, y, -abs(z), -abs(w))
+    return [
+        dict(
+            time=t,
+            frame=round(60 * t) if frame is None else frame,
+            mouse=tuple(mouse) if i % 2 == 0 else released,
+        )
+        for i, t in enumerate(times)
+    ]
 
 
 def shaders(group: str) -> list[Path]:
@@ -97,11 +127,12 @@ def agree_one(
     path: str,
     size: tuple[int, int],
     times: list[float],
-    frame: int = 60,
-    mouse: tuple[float, float, float, float] = (0.0, 0.0, 0.0, 0.0),
+    frame: int | None = None,
+    mouse: tuple[float, float, float, float] = MOUSE,
     lanes: tuple[int, ...] = (0, 8),
 ) -> list[dict]:
-    """One result per lockstep width: {"lanes", "verdict", "reason", and for "differs" "diff"}."""
+    """One result per lockstep width: {"lanes", "verdict", "reason", and for "differs" "diff"
+    (the first differing frame's) and "frames" (how many of them differ)}; the frames: frames()."""
     from glslcheck.backends.compiled_engine.engine import CompiledProgram, generate
     from glslcheck.backends.numpy_engine.backend import BACKEND as NUMPY
     from glslcheck.base.diagnostics import GlslError
@@ -117,11 +148,11 @@ def agree_one(
         folder = tempfile.TemporaryDirectory(prefix="engines-agree-")  # gone with the call
         path = copy_scene(scene.name, folder.name)
     shader = load_shader(path)
-    kw = dict(size=size, frame=frame, mouse=mouse)
+    inputs = frames(times, frame, mouse)
     try:
         numpy = NUMPY.compile_pass(shader, "Image")
         llvmpipe_loop_limit(numpy)
-        reference = [numpy.render(time=t, **kw) for t in times]
+        reference = [numpy.render(size=size, **kw) for kw in inputs]
     except GlslError as e:
         return [
             {"lanes": w, "verdict": "refused", "reason": "numpy: " + _refusal(e)} for w in lanes
@@ -136,24 +167,30 @@ def agree_one(
                 continue
             prog = CompiledProgram(source, where)
             llvmpipe_loop_limit(prog)
-            images = [prog.render(time=t, **kw) for t in times]
+            images = [prog.render(size=size, **kw) for kw in inputs]
         except GlslError as e:
             out.append({"lanes": width, "verdict": "refused", "reason": "compiled: " + _refusal(e)})
             continue
         result = {"lanes": width, "verdict": "identical", "reason": ""}
-        for t, a, b in zip(times, reference, images, strict=True):
-            d = compare(a, b)
-            if d is not None:
-                result.update(
-                    verdict="differs",
-                    diff=dict(d, time=t),
-                    reason=(
-                        f"t={t:g}: {d['pixels']} px, max {d['max_abs']:.3g}, first "
-                        f"{d['first'][0]},{d['first'][1]}: numpy {_rgba(d['numpy'])} "
-                        f"compiled {_rgba(d['compiled'])}"
-                    ),
-                )
-                break
+        diffs = [
+            dict(d, **kw)
+            for kw, a, b in zip(inputs, reference, images, strict=True)
+            if (d := compare(a, b)) is not None
+        ]
+        if diffs:
+            d = diffs[0]
+            mouse_text = ",".join(f"{v:g}" for v in d["mouse"])
+            result.update(
+                verdict="differs",
+                diff=d,
+                frames=len(diffs),
+                reason=(
+                    f"{len(diffs)} of {len(inputs)} frames; t={d['time']:g} "
+                    f"iFrame {d['frame']} iMouse {mouse_text}: {d['pixels']} px, "
+                    f"max {d['max_abs']:.3g}, first {d['first'][0]},{d['first'][1]}: "
+                    f"numpy {_rgba(d['numpy'])} compiled {_rgba(d['compiled'])}"
+                ),
+            )
         out.append(result)
     return out
 
@@ -182,21 +219,26 @@ def main(argv: list[str] | None = None) -> int:
         return 0
     p = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     p.add_argument("--groups", default=",".join(GROUPS))
-    p.add_argument("--size", default="64x36")
-    p.add_argument("--times", default="0,1.3")
-    p.add_argument("--frame", type=int, default=60)
-    p.add_argument("--mouse", default="40,20,40,20", help="iMouse x,y,z,w (z>0: button down)")
+    p.add_argument("--size", default="x".join(map(str, SIZE)))
+    p.add_argument("--times", default=",".join(f"{t:g}" for t in TIMES), help="iTime of each frame")
+    p.add_argument("--frame", help="iFrame of every frame (default: round(60 * iTime) each)")
+    p.add_argument(
+        "--mouse",
+        default=",".join(f"{v:g}" for v in MOUSE),
+        help="iMouse x,y,z,w of every other frame (z>0: button down; released in the others)",
+    )
     p.add_argument("--lanes", default="0,8", help="the compiled engine's widths (0: per pixel)")
     p.add_argument("--only", default="", help="comma-separated shader names (file or folder stem)")
     p.add_argument("--timeout", type=float, default=600.0)
     p.add_argument("--json", type=Path, help="write the per-shader results here")
     a = p.parse_args(argv)
-    from glslcheck.base.limits import parse_size, parse_times
+    from glslcheck.base.limits import parse_frame, parse_mouse, parse_size, parse_times
 
     size = parse_size(a.size)
     times = list(parse_times(a.times))
+    frame = None if a.frame is None else parse_frame(a.frame)
     lanes = tuple(int(w) for w in a.lanes.split(","))
-    mouse = tuple(float(v) for v in a.mouse.split(","))
+    mouse = parse_mouse(a.mouse)
     only = {s for s in a.only.split(",") if s}
     results = []
     for group in a.groups.split(","):
@@ -210,7 +252,7 @@ def main(argv: list[str] | None = None) -> int:
         for path in (s for s in paths if s.exists()):
             started = time.perf_counter()
             job = dict(
-                path=str(path), size=size, times=times, frame=a.frame, mouse=mouse, lanes=lanes
+                path=str(path), size=size, times=times, frame=frame, mouse=mouse, lanes=lanes
             )
             rows = run_child([sys.executable, __file__, "_one", json.dumps(job)], a.timeout, lanes)
             seconds = round(time.perf_counter() - started, 1)

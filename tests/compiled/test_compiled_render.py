@@ -333,6 +333,46 @@ def test_mesa_reassociation_bit_for_bit(numba, make_shader):
     np.testing.assert_array_equal(got.view(np.uint32), want.view(np.uint32))
 
 
+def test_constants_merged_through_a_negation_bit_for_bit(numba, make_shader):
+    """``-x * #c`` with x's value ``y * #k`` is ``-(y * (k*c))`` on llvmpipe (NIR moves the
+    negation out of the product: nir_fold.constant_merge, measured in
+    tests/gl/test_llvmpipe_lowering.py): through a local, a parenthesized product, a local
+    holding the negation, a vector, on either side."""
+    shader = make_shader(
+        "void mainImage(out vec4 c, in vec2 p) {\n float a = fract(p.x * 0.1371 + p.y * 0.0917),"
+        " b = sin(p.y * 0.917 + p.x * 0.0311);\n float x = a * 0.85;\n"
+        " vec3 w = -(vec3(a, b, a - b) * 2.1);\n c = vec4(-x * 0.6, (0.45 * w).y + (w * 0.3).z,"
+        " -(b * 1.3) * 0.7, 1.0); }"
+    )
+    assert "if rt.lp else" in glslcheck.compile(shader, backend="numpy").source
+    _compare(shader)
+
+
+def test_uniform_products_merged_at_every_frame(numba, make_shader):
+    """``float time = iTime * 0.85; sin(time * 0.2)`` is ``sin(iTime * (0.2*0.85))`` on
+    llvmpipe (constant_merge through the SSA value, as above, here of a uniform: one lane in the
+    NumPy backend, one scalar a block in lockstep). The merged and the written product round
+    apart at some iTime values only, so one frame proves little: every frame of 4 s of
+    animation, per pixel and in lockstep, bit for bit against the NumPy backend."""
+    from glslcheck.backends.compiled_engine.engine import CompiledProgram, generate
+
+    shader = make_shader(
+        "void mainImage(out vec4 c, in vec2 f) {\n float time = iTime * 0.85;\n"
+        " c = vec4(sin(time * 0.2), cos(time * 0.28) * 0.4, -time * 0.6, f.x * time * 0.5); }"
+    )
+    times = [k / 60 for k in range(240)]
+    numpy = glslcheck.compile(shader, backend="numpy")
+    want = np.stack([numpy.render(size=(8, 1), time=t) for t in times])
+    for lanes in (0, 8):
+        prog = CompiledProgram(*generate(shader, lanes=lanes))
+        got = np.stack([prog.render(size=(8, 1), time=t) for t in times])
+        frames = (got.view(np.uint32) != want.view(np.uint32)).any(axis=(1, 2, 3))
+        assert not frames.any(), (
+            f"lanes {lanes}: {frames.sum()} of {len(times)} frames differ, the first at "
+            f"iTime {times[int(np.argmax(frames))]:.6g}"
+        )
+
+
 REPEATED_SUMS = """float rnd(inout float seed) { seed += 0.1; return seed; }
 vec2 hash2(inout float seed) { return vec2(seed += 0.1, seed += 0.1); }
 void mainImage(out vec4 c, in vec2 p) {

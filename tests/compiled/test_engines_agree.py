@@ -3,7 +3,9 @@
 The lab shaders, the render benchmark's scenes and the two real corpora of tools/real_verify.py
 (texts/ and holdout_texts/, fetched by `python tools/real_verify.py [--set holdout] fetch`) are
 rendered by the NumPy backend and by the compiled engine, per pixel and 8 pixels in lockstep,
-as verify renders them, and compared bit for bit (tools/engines_agree.py, one process a shader):
+as verify renders them, at the tool's default frames (several iTime values, iFrame as an
+animation has it, the mouse button down and released: engines_agree.frames), and compared bit
+for bit (tools/engines_agree.py, one process a shader):
 an engine may refuse a shader with an error at a line (or lockstep leave it to the per-pixel
 module), never render other bits. The corpora are third-party texts, never committed: where
 they are not fetched (a fresh checkout, CI) their shaders skip with the command that fetches
@@ -22,8 +24,6 @@ ROOT = Path(__file__).resolve().parents[2]
 sys.path.insert(0, str(ROOT / "tools"))
 import engines_agree  # noqa: E402
 
-SIZE = (64, 36)
-TIMES = [0.0, 1.3]
 LANES = (0, 8)
 TIMEOUT = 900.0  # seconds a shader may take (two cold numba compiles on a loaded machine)
 # Differences measured by tools/engines_agree.py and not fixed yet, each with its cause (strict:
@@ -50,7 +50,7 @@ def test_numpy_and_compiled_render_the_same_bits(numba, group, path):
     if not path.exists():
         fetch = "python tools/real_verify.py" + (" --set holdout" if group == "holdout" else "")
         pytest.skip(f"{path.relative_to(ROOT)} is not fetched ({fetch} fetch)")
-    job = dict(path=str(path), size=SIZE, times=TIMES, frame=60, mouse=(40.0, 20.0, 40.0, 20.0))
+    job = dict(path=str(path), size=engines_agree.SIZE, times=engines_agree.TIMES)
     cmd = [sys.executable, engines_agree.__file__, "_one", json.dumps(dict(job, lanes=LANES))]
     rows = engines_agree.run_child(cmd, TIMEOUT, LANES)
     bad = [r for r in rows if r["verdict"] not in ("identical", "refused", "per pixel")]

@@ -3,7 +3,9 @@ b``.
 
 nir_opt_algebraic folds the two constants into one (in float32) with no "used once" condition,
 so the rule reaches through any SSA value, here a never-written local: ``vec2 uv = q * 1.2;
-... uv * 0.2`` is ``q * 0.24`` on llvmpipe. Subtraction is addition of the negation. A float
+... uv * 0.2`` is ``q * 0.24`` on llvmpipe. Subtraction is addition of the negation. NIR moves
+a negation out of a product (``-x * #c -> -(x * #c)``), so the constants merge through it:
+``float time = iTime * 0.85; ... -time * 0.6`` is ``-(iTime * 0.51)``. A float
 ``dot`` is a multiply to Mesa (:func:`_scalar_dot`), and ``dot(vecN(s), #K)`` a product by the
 constants' sum (dot_constants.py), so a constant merges into those too."""
 
@@ -40,15 +42,21 @@ def merge_constants(tr: FoldEmitter, e: A.Binary, mask: str | None) -> Any:
     k_node, x_node = (e.right, e.left) if is_constant(tr, e.right) else (e.left, e.right)
     if not is_constant(tr, k_node) or is_constant(tr, x_node):
         return None
-    inner, kept = x_node, None
+    # -x * #c: NIR's fmul(fneg(x), c) -> fneg(fmul(x, c)), then x's constants merge with c
+    negated = e.op == "*" and _is_negation(x_node)
+    inner, kept = x_node.operand if negated else x_node, None
     if isinstance(inner, A.Identifier):
         parts: tuple[Any, ...] | None = product_parts(tr, inner) if e.op == "*" else None
         kept = (
             parts[2] if parts is not None else None
         )  # (y's value kept: :func:`ssa_values.keep_factor`)
         inner = reaching_value(tr, inner) if kept is not None else stable_init(tr, inner)
+        if e.op == "*" and kept is None and not negated and _is_negation(inner):
+            negated, inner = True, inner.operand  # a local holding -x
     ops = ("*",) if e.op == "*" else SUMS
-    factored = broadcast_dot_parts(tr, inner) if e.op == "*" and kept is None else None
+    factored = (
+        broadcast_dot_parts(tr, inner) if e.op == "*" and kept is None and not negated else None
+    )
     if (
         factored is not None and tr.type_of(k_node).is_scalar
     ):  # s * sum(K) by broadcast_dot, then merged
@@ -95,6 +103,8 @@ def merge_constants(tr: FoldEmitter, e: A.Binary, mask: str | None) -> Any:
     t = tr.type_of(e)
     if e.op == "*":
         rewritten = tr.binary_values("*", t, t, tb, tr.ieee("*", tk, tc))
+        if negated:
+            rewritten = tr.negate(rewritten)
         written = (
             tr.binary_values("*", t, t, tx, tk)
             if x_node is e.left
@@ -106,6 +116,10 @@ def merge_constants(tr: FoldEmitter, e: A.Binary, mask: str | None) -> Any:
         rewritten = tr.ieee(b_sign, tr.ieee("+", k, c), tb)
         written = tr.ieee(e.op, tx, tk) if x_node is e.left else tr.ieee(e.op, tk, tx)
     return tr.llvmpipe(rewritten, written)
+
+
+def _is_negation(node: Any) -> bool:
+    return isinstance(node, A.Unary) and node.op == "-"
 
 
 def _scalar_dot(tr: FoldEmitter, node: Any) -> tuple[str, Any, Any] | None:
