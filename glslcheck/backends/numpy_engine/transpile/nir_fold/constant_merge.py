@@ -44,7 +44,8 @@ def merge_constants(tr: FoldEmitter, e: A.Binary, mask: str | None) -> Any:
         return None
     # -x * #c: NIR's fmul(fneg(x), c) -> fneg(fmul(x, c)), then x's constants merge with c
     negated = e.op == "*" and _is_negation(x_node)
-    inner, kept = x_node.operand if negated else x_node, None
+    inner: Any = x_node.operand if isinstance(x_node, A.Unary) and negated else x_node
+    kept = None
     if isinstance(inner, A.Identifier):
         parts: tuple[Any, ...] | None = product_parts(tr, inner) if e.op == "*" else None
         kept = (
