@@ -363,6 +363,41 @@ def test_repeated_sums_bit_for_bit(numba, make_shader):
     _compare(shader, time=0.0)
 
 
+RETURNED_SUMS = """float fbm(vec3 p) {
+    float f;
+    f = 0.5 * sin(p.x); p = p * 2.02;
+    f += 0.25 * sin(p.y);
+    float n = sin(p.z * 3.5);
+    f += 0.03 * n * n;
+    return f;
+}
+vec2 waves(vec2 p) {
+    vec2 w = sin(p * 1.7);
+    w -= 0.125 * cos(p.yx * 3.1);
+    w += 0.0625 * sin(p * 5.3);
+    return w;
+}
+float terrain(vec3 pos) {
+    float h = 1.0 - smoothstep(1.0, 3.0, pos.y);
+    return pos.y * 0.1 + (fbm(pos * vec3(0.8, 1.0, 0.8)) - 0.4) * h;
+}
+void mainImage(out vec4 c, in vec2 f) {
+    vec3 p = vec3(f / iResolution.xy, 0.5) * 3.0;
+    vec2 w = waves(p.xy * 4.0) + vec2(0.3, -0.7);
+    c = vec4(terrain(p), w, fbm(p.zyx));
+}"""
+
+
+def test_returned_sums_bit_for_bit(numba, make_shader):
+    """``fbm(x) - 0.4`` of a function returning ``f = a; f += b; ...``: NIR inlines it and sinks
+    the constant into the sum (nir_fold.sunk_return, both engines from that rule), a float and
+    a vec2 sum, a ``-=`` term, and a call without a constant beside."""
+    shader = make_shader(RETURNED_SUMS)
+    source = glslcheck.compile(shader, backend="numpy").source
+    assert "_k is None" in source  # (the NumPy backend sinks the constants: the rule applies)
+    _compare(shader, time=0.0)
+
+
 PATH_TRACERS = os.path.join(os.path.dirname(__file__), "..", "gl", "path_tracers")
 
 

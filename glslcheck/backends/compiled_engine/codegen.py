@@ -513,6 +513,8 @@ class Codegen(ExpressionEmitter):
                 fs.outs += parts
         for i, program in sorted(nir_chain_params(self, sym).items()):  # a caller's chain
             params += [f"_c{i}f", f"_c{i}b"] + [f"_c{i}k{m}" for m in range(program.slots())]
+        if self.sunk_chain(sym) is not None:  # a caller's constant sunk into the returned sum
+            params += ["_kf"] + [f"_k{j}" for j in range(len(leaves(sym.type, node)))]
         def_at = len(self.lines)
         self.emit("")  # the def line, once the state arrays the body uses are known
         self.indent += 1
@@ -602,7 +604,8 @@ class Codegen(ExpressionEmitter):
             value = None
             if dec.init is not None:
                 merged = self.component_write(dec)  # (NIR's SSA per component: nir_fold)
-                value = (merged if merged is not None else self.expr(dec.init)).parts
+                value = self.keep_term(dec, merged if merged is not None else self.expr(dec.init))
+                value = value.parts
             parts = self.declare_local(sym, dec)
             if value is None:
                 value = self.zero_parts(sym.type, dec)
@@ -626,6 +629,7 @@ class Codegen(ExpressionEmitter):
         value = self.expr(s.value).parts if s.value is not None else None
         if value is not None:
             value = [self.atom(p) if not isinstance(p, Arr) else p for p in value]
+            value = self.sunk_return(value)
         assert self.fn is not None  # generating a function's body
         for kind, _ in self.fn.loops if self.budget else ():
             if kind == "loop":  # each loop it leaves (not a switch): its pass costs 1

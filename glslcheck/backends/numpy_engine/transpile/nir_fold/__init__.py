@@ -73,7 +73,14 @@ from .repeated_sums import (
     sum_entry,
 )
 from .return_register import register_call
-from .returned_sums import keep_term, return_constant_args, sunk_return, sunk_return_value
+from .returned_sums import (
+    keep_term,
+    return_constant_args,
+    sunk_call,
+    sunk_return,
+    sunk_return_value,
+    sunk_text,
+)
 
 __all__ = [
     "FoldContext",
@@ -101,7 +108,9 @@ __all__ = [
     "slot_code",
     "return_constant_args",
     "sum_entry",
+    "sunk_call",
     "sunk_return",
     "sunk_return_value",
+    "sunk_text",
     "zero_add",
 ]
