@@ -600,10 +600,14 @@ class ExpressionEmitter:
                 return low
         if self.fn is not None and self.fn.sym is not None:
             from ..numpy_engine.transpile import nir_fold
-            from .fold_values import COPIED
+            from .fold_values import COPIED, fused_sum
 
             if self.fold_context().has_effects(e):  # a constant sunk into a call's result
                 folded = self.sunk_into_call(e)
+                if folded is not None:
+                    return folded
+            elif op == "+":  # (factoring never applies: x is no product to NIR)
+                folded = fused_sum(self, e)  # ffma fused and split after a folded call
                 if folded is not None:
                     return folded
             folded = nir_fold.copied_binary(self.fold_context(), e, None, COPIED)  # Mesa's order

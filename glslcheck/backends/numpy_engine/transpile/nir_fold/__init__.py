@@ -55,6 +55,7 @@ from .components import component_write
 from .context import FoldContext
 from .dispatch import binary, copied_binary
 from .dot_constants import broadcast_dot, dot_operand, merged_dot
+from .ffma_split import fused_plan
 from .flrp import mix_hint
 from .repeated_sums import (
     Entry,
@@ -101,6 +102,7 @@ __all__ = [
     "dot_operand",
     "keep_term",
     "merged_dot",
+    "fused_plan",
     "mix_hint",
     "param_step",
     "register_call",
