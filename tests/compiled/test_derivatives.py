@@ -75,6 +75,22 @@ void mainImage(out vec4 c, in vec2 f) {
     vec2 w = max(abs(dFdx(p)), abs(dFdy(p))) + 0.01;
     c = vec4(w * 10.0, t, 1.0);
 }""",
+    # a local declared and written after a divergent early return, its derivative read there:
+    # a returned neighbour holds the value it computed (gargantua's GasDisc, radialCoords)
+    "local_after_early_return": """
+float disc(vec2 p) {
+    float c = sin(p.x * 7.0) + cos(p.y * 5.0);
+    if (c < 0.2) return c;
+    vec3 r;
+    r.x = p.x * 3.1 + c;
+    r.y = p.y * 2.3 - c * c;
+    r *= 0.95;
+    return dFdx(r.x) * 10.0 + dFdy(r.y) * 5.0;
+}
+void mainImage(out vec4 c, in vec2 f) {
+    vec2 uv = f / iResolution.xy;
+    c = vec4(disc(uv * 3.0), disc(uv.yx * 2.0 + 1.0), 0.0, 1.0);
+}""",
 }
 
 

@@ -339,7 +339,11 @@ class _Fn:
             if not self.live:
                 return
             self.div = True
-            self.ldiv = self.L.quads  # derivatives read a returned neighbour's locals
+            # a returned lane never reads this call's locals again: plain writes, as the NumPy
+            # backend's free writes (cpu_core/uniformity.py), whose values a neighbour's
+            # derivative reads as llvmpipe computes them in every lane; with derivatives, in a
+            # loop masked (a variable declared outside it is a loop-carried register there)
+            self.ldiv = self.L.quads and bool(self.loops)
             # a block whose every lane has returned stops here (the rest, loops included,
             # would run for nothing: the sky of a raymarcher after `if (miss) return`)
             self.emit(f"if not {self.any_of('live')}:")
