@@ -13,6 +13,7 @@ import os
 import sys
 
 import glslcheck
+from glslcheck.base.recursion import deep_recursion
 
 ROOT = os.path.dirname(glslcheck.__file__)
 
@@ -138,7 +139,6 @@ def _circles(edges: dict[str, set[str]]) -> list[list[str]]:
     stack: list[str] = []
     on: set[str] = set()
     out: list[list[str]] = []
-    sys.setrecursionlimit(max(sys.getrecursionlimit(), 10_000))
 
     def visit(v: str) -> None:
         index[v] = low[v] = len(index)
@@ -161,9 +161,10 @@ def _circles(edges: dict[str, set[str]]) -> list[list[str]]:
             if len(component) > 1:
                 out.append(sorted(component))
 
-    for v in sorted(edges):
-        if v not in index:
-            visit(v)
+    with deep_recursion():  # (the walk recurses along chains of imports)
+        for v in sorted(edges):
+            if v not in index:
+                visit(v)
     return out
 
 

@@ -18,10 +18,10 @@ compiles them), `parse_units(sources)` for any list of files, and `parse_string(
 from __future__ import annotations
 
 import gc
-import sys
 
 from ..base.diagnostics import Diagnostic, GlslError, Location, pending_location, register_source
 from ..base.records import field, record
+from ..base.recursion import enter_deep, leave_deep
 
 # The keywords (3.6), to tell "a keyword used as a name" in error messages.
 # one table, shared with the checker
@@ -133,9 +133,8 @@ def _parse_text_no_gc(text: str, locate_span: Callable[[int, int], Location]) ->
     except UnexpectedInput as e:
         raise GlslError(_syntax_error(e, lexed, locate_span)) from None
     builder = _Builder(locate_span, text)
-    old = sys.getrecursionlimit()
     # Deeply nested expressions (hundreds of levels) recurse in the builder: allow it.
-    sys.setrecursionlimit(max(old, 20000))
+    enter_deep()
     try:
         return builder.build(tree)
     except RecursionError:
@@ -143,7 +142,7 @@ def _parse_text_no_gc(text: str, locate_span: Callable[[int, int], Location]) ->
             Diagnostic("the program is nested too deeply to analyse", locate_span(0, 0))
         ) from None
     finally:
-        sys.setrecursionlimit(old)
+        leave_deep()
 
 
 # ---------------------------------------------------------------------------------------------

@@ -16,9 +16,8 @@ map is declared samplerCube, as Shadertoy's wrapper does for a bound cube map (c
 
 from __future__ import annotations
 
-import sys
-
 from ..base.diagnostics import Diagnostic, Location
+from ..base.recursion import enter_deep, leave_deep
 from .channel_types import SAMPLER_CUBE, cube_channels
 from .checker import Checker
 from .model import ERROR, CallTarget, CheckError, Constructor, ErrorType, Model, Symbol
@@ -41,10 +40,9 @@ __all__ = [
 
 def check(parse_result: Any, tab: str = "Image", *, collect: bool = False) -> Model:
     """Check a ParseResult (from parse_shader / parse_units) as the pass `tab`."""
-    old = sys.getrecursionlimit()
     # Blocks and expressions nested hundreds deep recurse in the checker (as in frontend/parser.py's
     # builder): allow it; deeper than even this becomes an error at the file's start.
-    sys.setrecursionlimit(max(old, 20000))
+    enter_deep()
     try:
         model = Checker(parse_result, tab).run()
         cube = cube_channels(model) if model.errors else frozenset()
@@ -59,7 +57,7 @@ def check(parse_result: Any, tab: str = "Image", *, collect: bool = False) -> Mo
         loc = Location(sources[-1].path, 1, 1) if sources else None
         raise CheckError([Diagnostic("the program is nested too deeply to analyse", loc)]) from None
     finally:
-        sys.setrecursionlimit(old)
+        leave_deep()
     order = {s.path: i for i, s in enumerate(getattr(parse_result, "sources", []) or [])}
     model.diagnostics.sort(
         key=lambda d: (

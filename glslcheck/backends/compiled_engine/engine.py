@@ -44,6 +44,7 @@ import numpy as np
 
 from ...base import config
 from ...base.diagnostics import Diagnostic, GlslError, InputError, Location
+from ...base.recursion import enter_deep, leave_deep
 from ...shadertoy.frame_inputs import FrameInputs, frame_inputs
 from ...shadertoy.wrapper import UNIFORMS_BY_NAME
 from .values import BUDGET_OFF
@@ -258,8 +259,7 @@ def generate(
     model = check_program(pr)
     src = shader.tabs.get(tab)
     path = src.path if src is not None else shader.root
-    old = sys.getrecursionlimit()
-    sys.setrecursionlimit(max(old, 20000))
+    enter_deep()
     try:
         cg = Codegen(
             model, path, HOST_FMA, host_model(), budget, mipmap, keep_alpha=tab.startswith("Buffer")
@@ -293,7 +293,7 @@ def generate(
                     f"\nLANES_FALLBACK = {str(e)!r}  # why this shader runs one pixel a call\n"
                 )
     finally:
-        sys.setrecursionlimit(old)
+        leave_deep()
     return source, path
 
 
@@ -436,19 +436,17 @@ class CompiledProgram:
             from .numba_ssa import install
 
             install()
-        slp, limit = config.SLP_VECTORIZE, sys.getrecursionlimit()
+        slp = config.SLP_VECTORIZE
         if getattr(
             mod, "LANES", 0
         ):  # LLVM's SLP vectorizer packs the lanes (no reassociation: same bits)
             config.SLP_VECTORIZE = 1
-            sys.setrecursionlimit(
-                max(limit, 20000)
-            )  # numba's SSA pass recurses along long functions
+        enter_deep()  # numba's SSA pass recurses along long functions
         try:
             self._compile(mod, bounded)
         finally:
             config.SLP_VECTORIZE = slp
-            sys.setrecursionlimit(limit)
+            leave_deep()
         self.load_seconds = time.perf_counter() - t0
         if (
             self.cold

@@ -4,11 +4,11 @@ points."""
 
 from __future__ import annotations
 
-import sys
 from dataclasses import dataclass
 from typing import Any
 
 from ....base.diagnostics import Location
+from ....base.recursion import enter_deep, leave_deep
 from ....frontend import syntax as A
 from ....semantics.analysis import origins
 from ...cpu_core.common import comment_safe
@@ -269,8 +269,7 @@ def transpile(
     tr = Transpiler(
         model, path, keep_alpha=keep_alpha, undefined=undefined, undefined_sites=undefined_sites
     )
-    old = sys.getrecursionlimit()
-    sys.setrecursionlimit(max(old, 20000))  # expressions nested as deep as the checker allows
+    enter_deep()  # expressions nested as deep as the checker allows
     try:
         source, meta = tr.module()
     except RecursionError:
@@ -279,7 +278,7 @@ def transpile(
             "it is nested too deeply", getattr(where, "loc", None) or Location(path, 1, 1)
         ) from None
     finally:
-        sys.setrecursionlimit(old)
+        leave_deep()
     filename = f"<glslcheck-numpy {comment_safe(path, 200)}>"
     return Transpiled(source, meta, filename, compile_generated(source, filename, path))
 
