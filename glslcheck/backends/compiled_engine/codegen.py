@@ -601,11 +601,11 @@ class Codegen(ExpressionEmitter):
             if sym is None:
                 continue
             self.comment(dec)
-            value = None
+            value: list | None = None
             if dec.init is not None:
                 merged = self.component_write(dec)  # (NIR's SSA per component: nir_fold)
-                value = self.keep_term(dec, merged if merged is not None else self.expr(dec.init))
-                value = value.parts
+                init = merged if merged is not None else self.expr(dec.init)
+                value = self.keep_term(dec, init).parts
             parts = self.declare_local(sym, dec)
             if value is None:
                 value = self.zero_parts(sym.type, dec)

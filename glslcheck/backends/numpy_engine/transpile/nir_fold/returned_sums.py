@@ -29,11 +29,10 @@ from .sink import known_term
 
 TYPE_CHECKING = False  # not typing's: importing typing costs every start-up
 if TYPE_CHECKING:
-    from ..state import TranspilerState
-    from .context import FoldContext
+    from ..state import FoldEngine, TranspilerState
 
 
-def sunk_return(tr: FoldContext, fn: Symbol) -> list[tuple[Any, Any, str]] | None:
+def sunk_return(tr: FoldEngine, fn: Symbol) -> list[tuple[Any, Any, str]] | None:
     """The sum a user function returns when a caller adds a constant to its result and NIR,
     which inlines every function, would sink that constant into it (:func:`sink._sink_sum`):
     ``float f; f = 0.5*noise(p); f += 0.25*noise(q); ... return f;`` called as
@@ -54,7 +53,7 @@ def sunk_return(tr: FoldContext, fn: Symbol) -> list[tuple[Any, Any, str]] | Non
     return cache[id(fn)]
 
 
-def _sink_calls(tr: TranspilerState) -> set[int]:
+def _sink_calls(tr: FoldEngine) -> set[int]:
     """ids of the user functions some call of which has a constant added to its result."""
     found = tr.fold_state.sink_calls
     if found is None:
@@ -69,7 +68,7 @@ def _sink_calls(tr: TranspilerState) -> set[int]:
     return found
 
 
-def _return_chain(tr: TranspilerState, fn: Symbol) -> list[tuple[Any, Any, str]] | None:
+def _return_chain(tr: FoldEngine, fn: Symbol) -> list[tuple[Any, Any, str]] | None:
     body = fn.node.body.stmts
     if (
         not body
@@ -130,7 +129,7 @@ def _return_chain(tr: TranspilerState, fn: Symbol) -> list[tuple[Any, Any, str]]
     return chain
 
 
-def sunk_call(tr: FoldContext, e: A.Binary) -> tuple[A.Call, Any, bool] | None:
+def sunk_call(tr: FoldEngine, e: A.Binary) -> tuple[A.Call, Any, bool] | None:
     """``f(...) +- #c`` where f has a :func:`sunk_return`: (the call, the constant, whether it
     is subtracted), else None. Not where the function computes the same sum for another call
     of this function (same arguments, or any other call of a vector function: NIR scalarises,
@@ -214,7 +213,7 @@ def sunk_return_value(tr: TranspilerState, ret: A.Return, code: str | None) -> s
     return f"({code} if _k is None else {sunk})"
 
 
-def sunk_text(tr: FoldContext, chain: list[tuple[Any, Any, str]], codes: list[str], k: str) -> str:
+def sunk_text(tr: FoldEngine, chain: list[tuple[Any, Any, str]], codes: list[str], k: str) -> str:
     """The sum of a :func:`sunk_return` chain with the constant ``k`` sunk as NIR sinks it,
     written with the operators over ``codes``, the terms' values (arrays or float32 scalars:
     the same text computes the same float32 operations in both engines)."""
