@@ -94,6 +94,39 @@ void mainImage(out vec4 c, in vec2 f) {
 }
 
 
+# a call's result in the lanes a mask leaves out, read by a neighbour's derivative: a lane that
+# returned holds the value of the last pass it ran the call in, in a loop NIR keeps (40 steps),
+# zero in one it unrolls (4) (llvmpipe's register for returns merged after inlining:
+# nir_fold.register_call; tests/gl's test_a_result_returned_from_a_branch_keeps_its_old_value_...)
+KEPT_RETURNS = """
+const float pi = 3.14159265;
+float atan2(float y, float x) {
+    if (x > 0.0) { return atan(y / x); }
+    else if (x == 0.0) {
+        if (y > 0.0) { return pi / 2.0; } else if (y < 0.0) { return -(pi / 2.0); }
+        else { return 0.0; }
+    } else {
+        if (y >= 0.0) { return atan(y / x) + pi; } else { return atan(y / x) - pi; }
+    }
+}
+void g(inout float acc, float t) {
+    if (t < 0.3) {
+        return;
+    }
+    float v = atan2(t - 0.6, 0.45 - t);
+    acc += dFdx(v) + dFdy(v);
+}
+void mainImage(out vec4 c, in vec2 p) {
+    float acc = 0.0;
+    for (int i = 0; i < STEPS; i++) {
+        g(acc, fract(p.x * 0.0173 + p.y * 0.0071 + float(i) * 0.37));
+    }
+    c = vec4(acc, 0.0, 0.0, 1.0);
+}"""
+DERIVATIVES["register_in_kept_loop"] = KEPT_RETURNS.replace("STEPS", "40")
+DERIVATIVES["register_in_unrolled_loop"] = KEPT_RETURNS.replace("STEPS", "4")
+
+
 def _compiled(shader, lanes: int, size, time: float = 1.3) -> np.ndarray:
     from glslcheck.backends.compiled_engine.engine import CompiledProgram, generate
 

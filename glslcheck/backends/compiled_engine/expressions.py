@@ -108,6 +108,7 @@ class ExpressionEmitter:
         def fn_name(self, sym: Symbol) -> str: ...
         def variant_name(self, sym: Symbol, seed: frozenset) -> str: ...
         def discard_flag(self) -> str: ...
+        def kept_register(self, e: A.Call, fn: Symbol, value: list) -> list: ...
         def leave_discarded(self, node: Any) -> None: ...
 
     # -- writes --------------------------------------------------------------------------------
@@ -919,7 +920,7 @@ class ExpressionEmitter:
         value = [
             Arr(r, 0, n, b) if n is not None else r for r, (b, n) in zip(res[:n_val], ret_leaves)
         ]
-        return Val(rtype, value)
+        return Val(rtype, self.kept_register(e, fn, value))
 
     def constructor(self, e: A.Call, t: Any) -> Val:
         args = [self.expr(a) for a in e.args]
