@@ -125,6 +125,25 @@ void mainImage(out vec4 c, in vec2 p) {
 }"""
 DERIVATIVES["register_in_kept_loop"] = KEPT_RETURNS.replace("STEPS", "40")
 DERIVATIVES["register_in_unrolled_loop"] = KEPT_RETURNS.replace("STEPS", "4")
+# an array returned from a branch, one element of it read by a neighbour's derivative (its
+# return slots, one per element, hold zero where no return wrote them: lanes_rt.lzero)
+DERIVATIVES["array_returned_from_a_branch"] = """
+float[8] pick(float x) {
+    float r[8];
+    for (int i = 0; i < 8; i++) { r[i] = sin(x * float(i)); }
+    if (x > 0.5) { return r; }
+    r[int(x * 7.0)] = 2.0 * x;
+    return r;
+}
+void mainImage(out vec4 c, in vec2 f) {
+    vec2 uv = f / iResolution.xy;
+    float a = 0.0;
+    if (uv.y > 0.3) {
+        float[8] r = pick(uv.x);
+        a = dFdx(r[1]) * 40.0 + r[int(uv.y * 7.0)];
+    }
+    c = vec4(a, uv, 1.0);
+}"""
 
 
 def _compiled(shader, lanes: int, size, time: float = 1.3) -> np.ndarray:
