@@ -403,6 +403,80 @@ def test_repeated_sums_bit_for_bit(numba, make_shader):
     _compare(shader, time=0.0)
 
 
+RETURNED_SUMS = """float fbm(vec3 p) {
+    float f;
+    f = 0.5 * sin(p.x); p = p * 2.02;
+    f += 0.25 * sin(p.y);
+    float n = sin(p.z * 3.5);
+    f += 0.03 * n * n;
+    return f;
+}
+vec2 waves(vec2 p) {
+    vec2 w = sin(p * 1.7);
+    w -= 0.125 * cos(p.yx * 3.1);
+    w += 0.0625 * sin(p * 5.3);
+    return w;
+}
+float terrain(vec3 pos) {
+    float h = 1.0 - smoothstep(1.0, 3.0, pos.y);
+    return pos.y * 0.1 + (fbm(pos * vec3(0.8, 1.0, 0.8)) - 0.4) * h;
+}
+void mainImage(out vec4 c, in vec2 f) {
+    vec3 p = vec3(f / iResolution.xy, 0.5) * 3.0;
+    vec2 w = waves(p.xy * 4.0) + vec2(0.3, -0.7);
+    c = vec4(terrain(p), w, fbm(p.zyx));
+}"""
+
+
+def test_returned_sums_bit_for_bit(numba, make_shader):
+    """``fbm(x) - 0.4`` of a function returning ``f = a; f += b; ...``: NIR inlines it and sinks
+    the constant into the sum (nir_fold.sunk_return, both engines from that rule), a float and
+    a vec2 sum, a ``-=`` term, and a call without a constant beside."""
+    shader = make_shader(RETURNED_SUMS)
+    source = glslcheck.compile(shader, backend="numpy").source
+    assert "_k is None" in source  # (the NumPy backend sinks the constants: the rule applies)
+    _compare(shader, time=0.0)
+
+
+FUSED_AFTER_CALL = """vec3 rotate(vec3 p, float x, float y, float z) {
+    mat3 matx = mat3(1.0, 0.0, 0.0, 0.0, cos(x), sin(x), 0.0, -sin(x), cos(x));
+    mat3 maty = mat3(cos(y), 0.0, -sin(y), 0.0, 1.0, 0.0, sin(y), 0.0, cos(y));
+    mat3 matz = mat3(cos(z), sin(z), 0.0, -sin(z), cos(z), 0.0, 0.0, 0.0, 1.0);
+    p = matx * p;
+    p = matz * p;
+    p = maty * p;
+    return p;
+}
+void turn(inout vec3 dir, inout vec3 pos) {
+    vec2 m = iMouse.xy / iResolution.xy;
+    vec3 angle = vec3(m.y * 0.05 + 0.05, 1.0 + m.x, -0.45);
+    dir = rotate(dir, angle.x, angle.y, angle.z);
+    pos = rotate(pos, angle.x, angle.y, angle.z);
+}
+void mainImage(out vec4 c, in vec2 f) {
+    vec2 uv = f / iResolution.xy;
+    vec3 dir = normalize(vec3(uv * 2.0 - 1.0, 6.0));
+    vec3 pos = vec3(0.0, -0.0, -10.0);
+    pos.x += 0.35 * 3.0 - 1.5;
+    turn(dir, pos);
+    float dither = fract(sin(dot(uv, vec2(12.9898, 78.223))) * 43758.5453) * 2.0;
+    vec3 ray = pos + dir * dither * 15.0 / 200.0;
+    c = vec4(ray, 1.0);
+}"""
+
+
+def test_fused_after_folded_call_bit_for_bit(numba, make_shader):
+    """``pos + e`` where a call folded per call site left ``p1 + p2`` in pos's components:
+    llvmpipe's ffma fusing and splitting makes it ``(p1 + e) + p2`` (nir_fold.fused_plan
+    decides for both engines; gargantua's camera)."""
+    import re
+
+    shader = make_shader(FUSED_AFTER_CALL)
+    source = glslcheck.compile(shader, backend="numpy").source
+    assert re.search(r"\(\(_t\d+ \+ _t\d+\[0\]\) \+ _t\d+\)", source)  # (the rule applies)
+    _compare(shader, time=0.0)
+
+
 PATH_TRACERS = os.path.join(os.path.dirname(__file__), "..", "gl", "path_tracers")
 
 

@@ -75,7 +75,75 @@ void mainImage(out vec4 c, in vec2 f) {
     vec2 w = max(abs(dFdx(p)), abs(dFdy(p))) + 0.01;
     c = vec4(w * 10.0, t, 1.0);
 }""",
+    # a local declared and written after a divergent early return, its derivative read there:
+    # a returned neighbour holds the value it computed (gargantua's GasDisc, radialCoords)
+    "local_after_early_return": """
+float disc(vec2 p) {
+    float c = sin(p.x * 7.0) + cos(p.y * 5.0);
+    if (c < 0.2) return c;
+    vec3 r;
+    r.x = p.x * 3.1 + c;
+    r.y = p.y * 2.3 - c * c;
+    r *= 0.95;
+    return dFdx(r.x) * 10.0 + dFdy(r.y) * 5.0;
 }
+void mainImage(out vec4 c, in vec2 f) {
+    vec2 uv = f / iResolution.xy;
+    c = vec4(disc(uv * 3.0), disc(uv.yx * 2.0 + 1.0), 0.0, 1.0);
+}""",
+}
+
+
+# a call's result in the lanes a mask leaves out, read by a neighbour's derivative: a lane that
+# returned holds the value of the last pass it ran the call in, in a loop NIR keeps (40 steps),
+# zero in one it unrolls (4) (llvmpipe's register for returns merged after inlining:
+# nir_fold.register_call; tests/gl's test_a_result_returned_from_a_branch_keeps_its_old_value_...)
+KEPT_RETURNS = """
+const float pi = 3.14159265;
+float atan2(float y, float x) {
+    if (x > 0.0) { return atan(y / x); }
+    else if (x == 0.0) {
+        if (y > 0.0) { return pi / 2.0; } else if (y < 0.0) { return -(pi / 2.0); }
+        else { return 0.0; }
+    } else {
+        if (y >= 0.0) { return atan(y / x) + pi; } else { return atan(y / x) - pi; }
+    }
+}
+void g(inout float acc, float t) {
+    if (t < 0.3) {
+        return;
+    }
+    float v = atan2(t - 0.6, 0.45 - t);
+    acc += dFdx(v) + dFdy(v);
+}
+void mainImage(out vec4 c, in vec2 p) {
+    float acc = 0.0;
+    for (int i = 0; i < STEPS; i++) {
+        g(acc, fract(p.x * 0.0173 + p.y * 0.0071 + float(i) * 0.37));
+    }
+    c = vec4(acc, 0.0, 0.0, 1.0);
+}"""
+DERIVATIVES["register_in_kept_loop"] = KEPT_RETURNS.replace("STEPS", "40")
+DERIVATIVES["register_in_unrolled_loop"] = KEPT_RETURNS.replace("STEPS", "4")
+# an array returned from a branch, one element of it read by a neighbour's derivative (its
+# return slots, one per element, hold zero where no return wrote them: lanes_rt.lzero)
+DERIVATIVES["array_returned_from_a_branch"] = """
+float[8] pick(float x) {
+    float r[8];
+    for (int i = 0; i < 8; i++) { r[i] = sin(x * float(i)); }
+    if (x > 0.5) { return r; }
+    r[int(x * 7.0)] = 2.0 * x;
+    return r;
+}
+void mainImage(out vec4 c, in vec2 f) {
+    vec2 uv = f / iResolution.xy;
+    float a = 0.0;
+    if (uv.y > 0.3) {
+        float[8] r = pick(uv.x);
+        a = dFdx(r[1]) * 40.0 + r[int(uv.y * 7.0)];
+    }
+    c = vec4(a, uv, 1.0);
+}"""
 
 
 def _compiled(shader, lanes: int, size, time: float = 1.3) -> np.ndarray:

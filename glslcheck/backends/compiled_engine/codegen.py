@@ -149,6 +149,8 @@ class Codegen(ExpressionEmitter):
         # only the lockstep rewrite computes (lanes.py: a block's lanes hold whole 2x2 quads)
         self.derivative: Any = None
         self._fold_context: FoldValues | None = None  # fold_context(): made on first use
+        self.registers: dict[int, list[str]] = {}  # a call -> its result's slots (kept_register)
+        self.numpy_uniformity: dict[int, Uniformity] = {}  # a function -> the NumPy backend's
 
     def fold_context(self) -> FoldValues:
         """The NumPy backend's Mesa rewrites' context at the current function: the decisions this
@@ -513,6 +515,8 @@ class Codegen(ExpressionEmitter):
                 fs.outs += parts
         for i, program in sorted(nir_chain_params(self, sym).items()):  # a caller's chain
             params += [f"_c{i}f", f"_c{i}b"] + [f"_c{i}k{m}" for m in range(program.slots())]
+        if self.sunk_chain(sym) is not None:  # a caller's constant sunk into the returned sum
+            params += ["_kf"] + [f"_k{j}" for j in range(len(leaves(sym.type, node)))]
         def_at = len(self.lines)
         self.emit("")  # the def line, once the state arrays the body uses are known
         self.indent += 1
@@ -599,10 +603,11 @@ class Codegen(ExpressionEmitter):
             if sym is None:
                 continue
             self.comment(dec)
-            value = None
+            value: list | None = None
             if dec.init is not None:
                 merged = self.component_write(dec)  # (NIR's SSA per component: nir_fold)
-                value = (merged if merged is not None else self.expr(dec.init)).parts
+                init = merged if merged is not None else self.expr(dec.init)
+                value = self.keep_term(dec, init).parts
             parts = self.declare_local(sym, dec)
             if value is None:
                 value = self.zero_parts(sym.type, dec)
@@ -626,6 +631,7 @@ class Codegen(ExpressionEmitter):
         value = self.expr(s.value).parts if s.value is not None else None
         if value is not None:
             value = [self.atom(p) if not isinstance(p, Arr) else p for p in value]
+            value = self.sunk_return(value)
         assert self.fn is not None  # generating a function's body
         for kind, _ in self.fn.loops if self.budget else ():
             if kind == "loop":  # each loop it leaves (not a switch): its pass costs 1
@@ -650,6 +656,45 @@ class Codegen(ExpressionEmitter):
             cont()
         self.emit("continue")
         return True
+
+    def kept_register(self, e: A.Call, fn: Symbol, value: list) -> list:
+        """The parts of the result of the call `e` of `fn`, where llvmpipe keeps that result in a
+        register (nir_fold.register_call: returns merged from inside a branch, in a function that
+        takes derivatives, in a loop NIR keeps): the value goes through per-pixel slots of this
+        call, which the lockstep rewrite writes under the mask, so a lane the mask leaves out
+        reads what the call gave it the last time it ran for it (zero before), as the NumPy
+        backend's tiles.LaneHelpers.reg. Not where the NumPy backend computes the call for every
+        lane (all arguments uniform by its own analysis, a function that reads no varying
+        global): there it has no mask."""
+        fs = self.fn
+        if fs is None or fs.sym is None or not value:
+            return value
+        from ..numpy_engine.transpile import nir_fold
+
+        if not nir_fold.register_call(self.fold_context(), e, fn):
+            return value
+        uni = self.numpy_uniformity.get(id(fs.sym))
+        if uni is None:
+            uni = Uniformity(self.model, self.facts, fs.sym, fs.sym is self.entry)
+            self.numpy_uniformity[id(fs.sym)] = uni
+        if self.facts.closed(fn) and all(
+            uni.is_uniform(a) or d == "out" for a, (_, _, d) in zip(e.args, fn.params)
+        ):
+            return value
+        if any(isinstance(p, Arr) for p in value):
+            raise not_yet("a call's array result kept in llvmpipe's register (derivatives)", e)
+        slots = self.registers.get(id(e))
+        if slots is None:  # one register a call in the GLSL text, for every variant of its function
+            slots = []
+            for base, _ in leaves(fn.type, e):
+                slots.append(f"{KIND_ARRAY[base]}[{self.slots[base]}]")
+                self.slots[base] += 1
+            self.registers[id(e)] = slots
+        out = []
+        for slot, part in zip(slots, value, strict=True):
+            self.emit(f"{slot} = {part}")
+            out.append(self.tmp_fresh(slot))
+        return out
 
     def discard_flag(self) -> str:
         """The per-pixel bool slot that says the pixel was discarded (one for the program; the

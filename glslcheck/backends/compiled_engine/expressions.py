@@ -73,6 +73,8 @@ class FnState:
         self.loops: list[tuple[str, Any]] = []  # (kind, continue emitter)
         self.sum_chains: dict[tuple, tuple[list, int]] = {}  # a chain -> its base, its depth
         self.sum_index: dict[int, str] = {}  # unrolled loop -> its pass count's name
+        self.terms: dict[int, list] = {}  # a write of a returned sum's term -> its kept parts
+        self.call_k: dict[int, list] = {}  # a call -> the constant sunk into its result
 
 
 class ExpressionEmitter:
@@ -98,6 +100,7 @@ class ExpressionEmitter:
         def emit(self, text: str) -> None: ...
         def fresh(self, prefix: str = "t") -> str: ...
         def tmp(self, value: str) -> str: ...
+        def tmp_fresh(self, value: str) -> str: ...
         def atom(self, value: Any) -> Any: ...
         def cf(self, v: float) -> str: ...
         def ci(self, v: int, unsigned: bool = False) -> str: ...
@@ -105,6 +108,7 @@ class ExpressionEmitter:
         def fn_name(self, sym: Symbol) -> str: ...
         def variant_name(self, sym: Symbol, seed: frozenset) -> str: ...
         def discard_flag(self) -> str: ...
+        def kept_register(self, e: A.Call, fn: Symbol, value: list) -> list: ...
         def leave_discarded(self, node: Any) -> None: ...
 
     # -- writes --------------------------------------------------------------------------------
@@ -357,7 +361,9 @@ class ExpressionEmitter:
             merged = self.repeated_sum(e, targets)
         if merged is not None:
             value = merged
-        elif e.op != "=":
+        else:
+            value = self.keep_term(e, value)
+        if merged is None and e.op != "=":
             old = Val(tt, [self.read(p) for p in targets])
             value = self.binary_values(e.op[:-1], old, value, e)
         parts = [self.tmp(p) if isinstance(p, str) else p for p in value.parts]
@@ -596,8 +602,16 @@ class ExpressionEmitter:
                 return low
         if self.fn is not None and self.fn.sym is not None:
             from ..numpy_engine.transpile import nir_fold
-            from .fold_values import COPIED
+            from .fold_values import COPIED, fused_sum
 
+            if self.fold_context().has_effects(e):  # a constant sunk into a call's result
+                folded = self.sunk_into_call(e)
+                if folded is not None:
+                    return folded
+            elif op == "+":  # (factoring never applies: x is no product to NIR)
+                folded = fused_sum(self, e)  # ffma fused and split after a folded call
+                if folded is not None:
+                    return folded
             folded = nir_fold.copied_binary(self.fold_context(), e, None, COPIED)  # Mesa's order
             if folded is not None:
                 return folded
@@ -775,6 +789,69 @@ class ExpressionEmitter:
             raise engine_error(f"the call of '{e.callee}' was not resolved by the checker", e)
         return builtin_call(self, e, tgt)
 
+    def sunk_chain(self, fn: Symbol) -> list | None:
+        """nir_fold.sunk_return of user function `fn`: the ``+=`` chain it returns, into which a
+        caller's constant sinks (the function then takes a flag `_kf` and the constant's parts
+        `_k0..`), else None."""
+        from ..numpy_engine.transpile import nir_fold
+
+        return nir_fold.sunk_return(self.fold_context(), fn)
+
+    def keep_term(self, node: Any, value: Val) -> Val:
+        """value, in temporaries where `node` writes a term of this function's returned sum
+        (nir_fold.keep_term): its return adds the terms in NIR's order."""
+        fs = self.fn
+        if fs is None or fs.sym is None:
+            return value
+        chain = self.sunk_chain(fs.sym)
+        if chain is None or not any(w is node for w, _, _ in chain):
+            return value
+        parts = [self.tmp_fresh(p) for p in value.parts]
+        fs.terms[id(node)] = parts
+        return Val(value.t, parts, value.const, value.uni, value.one)
+
+    def sunk_return(self, parts: list) -> list:
+        """The returned parts of a function with a returned sum (nir_fold.sunk_return_value):
+        with the caller's constant sunk into the terms where `_kf`, else as written."""
+        fs = self.fn
+        if fs is None or fs.sym is None:
+            return parts
+        chain = self.sunk_chain(fs.sym)
+        if chain is None or not all(id(w) in fs.terms for w, _, _ in chain):
+            return parts
+        from ..numpy_engine.transpile import nir_fold
+
+        out = []
+        for j, p in enumerate(parts):
+            codes = [fs.terms[id(w)][j] for w, _, _ in chain]
+            sunk = nir_fold.sunk_text(self.fold_context(), chain, codes, f"_k{j}")
+            out.append(self.tmp(f"({sunk} if _kf else {p})"))
+        return out
+
+    def sunk_into_call(self, e: A.Binary) -> Val | None:
+        """``f(...) +- #c`` where the constant sinks into f's returned sum (nir_fold.sunk_call):
+        the call, passed the constant, else None."""
+        from ..numpy_engine.transpile import nir_fold
+
+        sunk = nir_fold.sunk_call(self.fold_context(), e)
+        if sunk is None:
+            return None
+        call, k, negative = sunk
+        kv = self.expr(k)
+        assert self.fn is not None and kv.const is not None  # (a constant, in a function)
+        self.fn.call_k[id(call)] = [self.cf(f32(-c if negative else c)) for c in kv.const]
+        return self.expr(call)
+
+    def sunk_args(self, e: A.Call, fn: Symbol) -> list[str]:
+        """The flag and constant of a call of a function with a returned sum (:meth:`sunk_chain`):
+        the constant a caller's sum sinks into it, else a false flag and zeros; [] otherwise."""
+        if self.sunk_chain(fn) is None:
+            return []
+        k = self.fn.call_k.get(id(e)) if self.fn is not None else None
+        if k is not None:
+            return ["True", *k]
+        return ["False"] + [self.cf(0.0)] * len(leaves(fn.type, e))
+
     def user_call(self, e: A.Call, fn: Symbol) -> Val:
         if self.fn is not None and self.fn.sym is not None:
             from ..numpy_engine.transpile import nir_fold
@@ -808,7 +885,7 @@ class ExpressionEmitter:
 
             for key, g in nir_fold.chain_globals(self.fold_context(), fn):  # (globals' chains)
                 inouts[key] = self.tmp_copy(self.read(self.var_parts(g, e)[0]))
-        args += self.chain_args(e, fn, inouts)
+        args += self.chain_args(e, fn, inouts) + self.sunk_args(e, fn)
         rtype = fn.type
         n_val = 0 if rtype.is_void else len(leaves(rtype, e))
         ret_leaves = [] if rtype.is_void else leaves(rtype, e)
@@ -843,7 +920,7 @@ class ExpressionEmitter:
         value = [
             Arr(r, 0, n, b) if n is not None else r for r, (b, n) in zip(res[:n_val], ret_leaves)
         ]
-        return Val(rtype, value)
+        return Val(rtype, self.kept_register(e, fn, value))
 
     def constructor(self, e: A.Call, t: Any) -> Val:
         args = [self.expr(a) for a in e.args]

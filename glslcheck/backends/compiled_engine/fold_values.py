@@ -152,7 +152,7 @@ def folded_call(cg: Any, call: Any, fn: Any) -> Val | None:
     where the NumPy backend's transpile/call_fold.py decides so (fold_plan: the terms of its
     out parameters and its result), computed from those terms as the Transpiler emits them
     (call_fold._emit_call); None: the call as usual."""
-    from ..numpy_engine.transpile.call_fold import fold_plan, holder_leaf, term_fields
+    from ..numpy_engine.transpile.call_fold import fold_plan, holder_leaf, record_sums, term_fields
 
     plan = fold_plan(cg.fold_context(), call, fn, None)
     if plan is None:
@@ -192,7 +192,31 @@ def folded_call(cg: Any, call: Any, fn: Any) -> Val | None:
     for a, p, (_, _, d) in zip(call.args, params, fn.params):
         if d != "in":
             cg.write(cg.lvalue(a), [code(x) for x in env[id(p)]])
+            record_sums(fold, call, a, env[id(p)], memo)  # (for nir_fold.fused_plan)
     return Val(fn.type, [code(x) for x in result])
+
+
+def fused_sum(cg: Any, e: Any) -> Val | None:
+    """``x + e`` where x holds the sums of products a folded call wrote and llvmpipe's ffma
+    fusing and splitting reassociates them (nir_fold.fused_plan decides): ``(p1 + e) + p2``
+    per such component, as the NumPy backend's ffma_split computes it; None: the sum as usual."""
+    from ..numpy_engine.transpile import nir_fold
+
+    fold = cg.fold_context()
+    plan = nir_fold.fused_plan(fold, e)
+    if plan is None:
+        return None
+    x, other, sums = plan
+    tx, to = cg.type_of(x), cg.type_of(other)
+    left, right = cg.expr(e.left), cg.expr(e.right)
+    xv, ov = (left, right) if x is e.left else (right, left)
+    oparts = [cg.tmp_fresh(p) for p in ov.parts]  # (read after x's value, as there)
+    parts = []
+    for i, s in enumerate(sums):
+        oi = oparts[i] if to.is_vector else oparts[0]
+        xi = xv.parts[i] if tx.is_vector else xv.parts[0]
+        parts.append(f"(({s[0]} + {oi}) + {s[1]})" if s is not None else f"({xi} + {oi})")
+    return Val(tx, parts)
 
 
 def _runtime_text(cg: Any, method: str, xs: list[str]) -> str:

@@ -339,7 +339,11 @@ class _Fn:
             if not self.live:
                 return
             self.div = True
-            self.ldiv = self.L.quads  # derivatives read a returned neighbour's locals
+            # a returned lane never reads this call's locals again: plain writes, as the NumPy
+            # backend's free writes (cpu_core/uniformity.py), whose values a neighbour's
+            # derivative reads as llvmpipe computes them in every lane; with derivatives, in a
+            # loop masked (a variable declared outside it is a loop-carried register there)
+            self.ldiv = self.L.quads and bool(self.loops)
             # a block whose every lane has returned stops here (the rest, loops included,
             # would run for nothing: the sky of a raymarcher after `if (miss) return`)
             self.emit(f"if not {self.any_of('live')}:")
@@ -694,7 +698,7 @@ class _Fn:
                     continue
                 for k, text in enumerate(texts):
                     self.emit(
-                        f"_r{i}__{k} = {text}"
+                        f"_r{i}__{k} = {self.first_slot_value(k, text)}"
                         if first
                         else f"_r{i}__{k} = lsel({self.mask}__{k}, {text}, _r{i}__{k})"
                     )
@@ -720,11 +724,20 @@ class _Fn:
             self.lines.insert(0, "    " + f"{flag} = False")
         self.emit(f"if not {flag}:")  # (numba reads the plain write first: it defines the slot)
         for k, text in enumerate(texts):
-            self.emit(f"    _r{i}__{k} = {text}")
+            self.emit(f"    _r{i}__{k} = {self.first_slot_value(k, text)}")
         self.emit("else:")
         for k, text in enumerate(texts):
             self.emit(f"    _r{i}__{k} = lsel({self.mask}__{k}, {text}, _r{i}__{k})")
         self.emit(f"{flag} = True")
+
+    def first_slot_value(self, k: int, text: str) -> str:
+        """Lane k's first write of a return slot. With derivatives, a neighbour reads a call's
+        result in the lanes its mask leaves out (a plain write of it after a divergent return):
+        there the slot holds zero until a return writes it, as the NumPy backend's `_rv` and
+        llvmpipe's value (tests/gl: a loop NIR unrolls); else no lane reads it, and it is plain."""
+        if not self.L.quads:
+            return text
+        return f"lsel({self.mask}__{k}, {text}, lzero({text}))"
 
     def emit_slots_return(self, value: bool) -> None:
         if not value:
@@ -843,7 +856,7 @@ class Lanes:
                 and node.module == "glslcheck.backends.compiled_engine.scalar"
             ):
                 out += math_imports()
-                names = "lsel, dfdx, dfdy, qdx, qdy" if self.quads else "lsel"
+                names = "lsel, lzero, dfdx, dfdy, qdx, qdy" if self.quads else "lsel"
                 out.append(
                     f"from glslcheck.backends.compiled_engine.lanes_rt import {names}  # "
                     f"{_rt_hash()}"

@@ -53,3 +53,24 @@ def dfdx(typingctx, v):
 
 
 dfdy = qdx = qdy = dfdx  # the same 0 for a uniform value (qdx, qdy: lanes_render.quad_lanes)
+
+
+@intrinsic
+def lzero(typingctx, v):
+    """The zero (False) of v's type: what a function's return value holds, before any return
+    wrote it, in the lanes its mask leaves out (the NumPy backend's `_rv`, llvmpipe's). An
+    array (numba's) is v itself: its slot keeps the first value written."""
+    t = types.unliteral(v)
+    if isinstance(t, types.Array):
+
+        def same(context, builder, signature, args):
+            return impl_ret_borrowed(context, builder, t, args[0])
+
+        return t(v), same
+    if not isinstance(t, (types.Float, types.Integer, types.Boolean)):
+        return None
+
+    def codegen(context, builder, signature, args):
+        return context.get_constant(t, False if isinstance(t, types.Boolean) else 0)
+
+    return t(v), codegen

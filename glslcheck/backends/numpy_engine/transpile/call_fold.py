@@ -760,20 +760,10 @@ def _emit_call(
             return f"rt.vec({t.size}, {', '.join(cs)})"
         return f"rt.mat({t.cols}, {t.rows}, {', '.join(cs)})"
 
-    sums = tr.fold_state.call_fold_sums
     for a, p, (_, _, dr) in zip(call.args, params, fn.params):
         if dr != "in":
             tr.write(tr.lvalue(a, mask), value(env[id(p)], tr.type_of(a)), mask)
-            if isinstance(
-                a, A.Identifier
-            ):  # (the products summed in each component: `product_sums`)
-                sums[(id(call), id(tr.model.symbol_of(a)))] = (
-                    [
-                        tuple(memo[id(x)] for x in t.args) if _product_sum(t) else None
-                        for t in env[id(p)]
-                    ],
-                    tr.lines,
-                )
+            record_sums(tr, call, a, env[id(p)], memo)
     tr.emit(f"{r} = {value(result, tr.type_of(call)) if result else 'None'}")
     tr.indent -= 1
     tr.emit("else:")
@@ -819,8 +809,19 @@ def _product_sum(t: _T) -> bool:
     )
 
 
+def record_sums(tr: FoldEngine, call: A.Call, arg: Any, terms: list, memo: dict) -> None:
+    """Where the folded call `call` writes the variable `arg` (an out argument), the code of
+    the two products each of its components sums (`memo`: a term's id -> its code), for
+    :func:`product_sums`; read where the call was emitted (`tr.lines`)."""
+    if isinstance(arg, A.Identifier):
+        tr.fold_state.call_fold_sums[(id(call), id(tr.model.symbol_of(arg)))] = (
+            [tuple(memo[id(x)] for x in t.args) if _product_sum(t) else None for t in terms],
+            tr.lines,
+        )
+
+
 def product_sums(
-    tr: TranspilerState, call: A.Call, sym: Symbol | None
+    tr: FoldEngine, call: A.Call, sym: Symbol | None
 ) -> list[tuple[str, str] | None] | None:
     """Per component of the value the folded call `call` (emitted by :func:`folded_call` in the
     current Python function) wrote into the variable `sym`: the code of its two products when

@@ -55,6 +55,7 @@ from .components import component_write
 from .context import FoldContext
 from .dispatch import binary, copied_binary
 from .dot_constants import broadcast_dot, dot_operand, merged_dot
+from .ffma_split import fused_plan
 from .flrp import mix_hint
 from .repeated_sums import (
     Entry,
@@ -73,7 +74,14 @@ from .repeated_sums import (
     sum_entry,
 )
 from .return_register import register_call
-from .returned_sums import keep_term, return_constant_args, sunk_return, sunk_return_value
+from .returned_sums import (
+    keep_term,
+    return_constant_args,
+    sunk_call,
+    sunk_return,
+    sunk_return_value,
+    sunk_text,
+)
 
 __all__ = [
     "FoldContext",
@@ -94,6 +102,7 @@ __all__ = [
     "dot_operand",
     "keep_term",
     "merged_dot",
+    "fused_plan",
     "mix_hint",
     "param_step",
     "register_call",
@@ -101,7 +110,9 @@ __all__ = [
     "slot_code",
     "return_constant_args",
     "sum_entry",
+    "sunk_call",
     "sunk_return",
     "sunk_return_value",
+    "sunk_text",
     "zero_add",
 ]

@@ -17,10 +17,10 @@ from .queries import current_function
 TYPE_CHECKING = False  # not typing's: importing typing costs every start-up
 if TYPE_CHECKING:
     from .....semantics.model import Symbol
-    from ..state import FoldEngine, TranspilerState
+    from ..state import FoldEngine
 
 
-def register_call(tr: TranspilerState, call: A.Call, fn: Symbol) -> bool:
+def register_call(tr: FoldEngine, call: A.Call, fn: Symbol) -> bool:
     """The result of this call of ``fn``, made under a mask in a function that takes
     derivatives, is llvmpipe's register in the lanes the mask leaves out: they keep the value
     they had the last time this call ran for them (frame.Lanes.reg).
@@ -43,7 +43,7 @@ def register_call(tr: TranspilerState, call: A.Call, fn: Symbol) -> bool:
     return _in_kept_loop(tr, current_function(tr).sym, call, 0)
 
 
-def _returns_in_branch(tr: TranspilerState, fn: Symbol) -> bool:
+def _returns_in_branch(tr: FoldEngine, fn: Symbol) -> bool:
     """``fn`` returns a value from inside an ``if`` or a loop, computed there by a call."""
     if fn.type is None or str(fn.type) == "void":
         return False
@@ -58,7 +58,7 @@ def _returns_in_branch(tr: TranspilerState, fn: Symbol) -> bool:
     return False
 
 
-def _in_kept_loop(tr: TranspilerState, sym: Symbol, node: Any, depth: int) -> bool:
+def _in_kept_loop(tr: FoldEngine, sym: Symbol, node: Any, depth: int) -> bool:
     """``node`` (in function ``sym``) runs again and again in one invocation: its innermost
     loop, here or around every call of the function, is one NIR does not unroll."""
     from .....semantics.analysis.dataflow import FunctionFacts

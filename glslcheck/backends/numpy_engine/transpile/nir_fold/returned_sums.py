@@ -29,10 +29,10 @@ from .sink import known_term
 
 TYPE_CHECKING = False  # not typing's: importing typing costs every start-up
 if TYPE_CHECKING:
-    from ..state import TranspilerState
+    from ..state import FoldEngine, TranspilerState
 
 
-def sunk_return(tr: TranspilerState, fn: Symbol) -> list[tuple[Any, Any, str]] | None:
+def sunk_return(tr: FoldEngine, fn: Symbol) -> list[tuple[Any, Any, str]] | None:
     """The sum a user function returns when a caller adds a constant to its result and NIR,
     which inlines every function, would sink that constant into it (:func:`sink._sink_sum`):
     ``float f; f = 0.5*noise(p); f += 0.25*noise(q); ... return f;`` called as
@@ -53,7 +53,7 @@ def sunk_return(tr: TranspilerState, fn: Symbol) -> list[tuple[Any, Any, str]] |
     return cache[id(fn)]
 
 
-def _sink_calls(tr: TranspilerState) -> set[int]:
+def _sink_calls(tr: FoldEngine) -> set[int]:
     """ids of the user functions some call of which has a constant added to its result."""
     found = tr.fold_state.sink_calls
     if found is None:
@@ -68,7 +68,7 @@ def _sink_calls(tr: TranspilerState) -> set[int]:
     return found
 
 
-def _return_chain(tr: TranspilerState, fn: Symbol) -> list[tuple[Any, Any, str]] | None:
+def _return_chain(tr: FoldEngine, fn: Symbol) -> list[tuple[Any, Any, str]] | None:
     body = fn.node.body.stmts
     if (
         not body
@@ -129,19 +129,20 @@ def _return_chain(tr: TranspilerState, fn: Symbol) -> list[tuple[Any, Any, str]]
     return chain
 
 
-def sink_into_call(tr: TranspilerState, e: A.Binary, mask: str | None) -> str | None:
-    """``f(...) +- #c`` where f has a :func:`sunk_return`: the call, passed the constant in
-    llvmpipe mode (the callee adds it where NIR sinks it), else None. Not where the function
-    computes the same sum for another call of this function (same arguments, or any other call
-    of a vector function: NIR scalarises, then CSE merges equal components): that sum is used
-    twice there, and the constant stays outside (measured). Calls in other functions are not
-    compared: a copy CSE merges across functions is not detected."""
+def sunk_call(tr: FoldEngine, e: A.Binary) -> tuple[A.Call, Any, bool] | None:
+    """``f(...) +- #c`` where f has a :func:`sunk_return`: (the call, the constant, whether it
+    is subtracted), else None. Not where the function computes the same sum for another call
+    of this function (same arguments, or any other call of a vector function: NIR scalarises,
+    then CSE merges equal components): that sum is used twice there, and the constant stays
+    outside (measured). Calls in other functions are not compared: a copy CSE merges across
+    functions is not detected."""
     if e.op not in SUMS:
         return None
     call, k = (e.left, e.right) if isinstance(e.left, A.Call) else (e.right, e.left)
     target = tr.model.call_target(call) if isinstance(call, A.Call) else None
     if (
-        not isinstance(target, Symbol)
+        not isinstance(call, A.Call)
+        or not isinstance(target, Symbol)
         or tr.model.const_value(k) is None
         or tr.type_of(k) != tr.type_of(e)
         or call is e.right
@@ -163,8 +164,18 @@ def sink_into_call(tr: TranspilerState, e: A.Binary, mask: str | None) -> str | 
         and tr.type_of(call).is_vector
     ):
         return None  # NIR's CSE merges the inlined copies (per component for a vector): used twice
+    return call, k, e.op == "-"
+
+
+def sink_into_call(tr: TranspilerState, e: A.Binary, mask: str | None) -> str | None:
+    """``f(...) +- #c`` of a :func:`sunk_call`: the call, passed the constant in llvmpipe mode
+    (the callee adds it where NIR sinks it), else None."""
+    sunk = sunk_call(tr, e)
+    if sunk is None:
+        return None
+    call, k, negative = sunk
     tk = tr.expr(k, mask)
-    signed = f"(-{tk})" if e.op == "-" else tk
+    signed = f"(-{tk})" if negative else tk
     tr.fold_state.call_k[id(call)] = f"({signed} if rt.lp else None)"
     result = tr.tmp(tr.expr(call, mask))
     return f"({result} if rt.lp else ({result} {e.op} {tk}))"
@@ -198,12 +209,19 @@ def sunk_return_value(tr: TranspilerState, ret: A.Return, code: str | None) -> s
     terms = tr.fold_state.terms
     if chain is None or ret.value is None or not all(id(w) in terms for w, _, _ in chain):
         return code
-    codes = [terms[id(w)] for w, _, _ in chain]
+    sunk = sunk_text(tr, chain, [terms[id(w)] for w, _, _ in chain], "_k")
+    return f"({code} if _k is None else {sunk})"
+
+
+def sunk_text(tr: FoldEngine, chain: list[tuple[Any, Any, str]], codes: list[str], k: str) -> str:
+    """The sum of a :func:`sunk_return` chain with the constant ``k`` sunk as NIR sinks it,
+    written with the operators over ``codes``, the terms' values (arrays or float32 scalars:
+    the same text computes the same float32 operations in both engines)."""
     (_, a, _), (_, t1, op1) = chain[0], chain[1]
     if is_fmul(tr, t1) or not is_fmul(tr, a):
-        sunk = f"(({codes[0]} + _k) {op1} {codes[1]})"
+        sunk = f"(({codes[0]} + {k}) {op1} {codes[1]})"
     else:  # only a is a product: the constant joins the other term (its negation for -=)
-        sunk = f"(({'-' if op1 == '-' else ''}{codes[1]} + _k) + {codes[0]})"
+        sunk = f"(({'-' if op1 == '-' else ''}{codes[1]} + {k}) + {codes[0]})"
     for (_, _, op), c in zip(chain[2:], codes[2:]):
         sunk = f"({sunk} {op} {c})"
-    return f"({code} if _k is None else {sunk})"
+    return sunk
