@@ -7,7 +7,8 @@ amplifies the last bit, so verify mismatches unless the NumPy backend rewrites t
 The rules copied here, each measured bit for bit against llvmpipe on 50,000 random operands
 (tests/gl/test_llvmpipe_lowering.py), one family per module:
 
-- factoring.py: ``a*b + a*c -> a * (b + c)``, also through never-written locals;
+- factoring.py: ``a*b + a*c -> a * (b + c)``, also through never-written locals and values
+  ssa_values keeps, and again with a third term (``k*x + k*y + k*z`` is ``k * ((x + y) + z)``);
 - sink.py: constants sunk into a sum or a product used once, ``(a + b) + #c -> (a + #c) + b``;
 - squared_lengths.py: ``pow(length(x), 2.0) + #c`` is ``dot(x, x) + #c``, the constant inside;
 - constant_merge.py: ``#a * (b * #c) -> (a*c) * b`` and ``#a + (b + #c) -> (a + c) + b``;
