@@ -796,3 +796,29 @@ def test_the_compiled_engine_factors_a_sum_of_three_products_as_llvmpipe(
     got = np.asarray(compile_backend(shader, "compiled").render(size=(160, 90)), np.float32)
     same = got.view(np.int32) == got_gl.view(np.int32)
     assert same.all(), (~same).reshape(-1, 4).sum(0).tolist()
+
+
+# exp and log are Mesa's products by log2(e) and ln(2): a smooth minimum's exp(-k*a) with the
+# constant passed in, exp of a product of two values, a log scaled by a constant.
+EXP_LOG_PRODUCTS = """float smoothMin(float a, float b, float k) {
+    return -log(exp(-k * a) + exp(-k * b)) / k;
+}
+void mainImage(out vec4 c, in vec2 f) {
+    vec2 p = f / iResolution.y * 2.0 - 1.0 + iTime;
+    float q = fract(p.x * 7.31) + 0.1;
+    c = vec4(smoothMin(p.x, p.y, 1.56), exp(p.x * p.y), log(q) * 1.56, 1.0);
+}"""
+
+
+@pytest.mark.parametrize("backend", ["numpy", "compiled"])
+def test_exp_and_log_are_products_by_constants_to_nir(llvmpipe, make_shader, request, backend):
+    """``exp(x * #k)`` is ``exp2(x * (k*log2(e)))``, ``exp(a*b)`` is ``exp2((a*log2(e)) * b)``,
+    ``log(x) * #k`` is ``log2(x) * (ln(2)*k)`` (nir_fold.exp_log), in both engines. Measured
+    without it: 1819, 1956 and 3960 of the 14,400 pixels differed from llvmpipe per channel."""
+    if backend == "compiled":
+        request.getfixturevalue("numba")
+    shader = make_shader(EXP_LOG_PRODUCTS)
+    got_gl = np.asarray(compile_backend(shader, "gl").render(size=(160, 90)), np.float32)
+    got = np.asarray(compile_backend(shader, backend).render(size=(160, 90)), np.float32)
+    same = got.view(np.int32) == got_gl.view(np.int32)
+    assert same.all(), (~same).reshape(-1, 4).sum(0).tolist()

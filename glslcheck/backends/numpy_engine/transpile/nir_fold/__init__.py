@@ -13,6 +13,7 @@ The rules copied here, each measured bit for bit against llvmpipe on 50,000 rand
 - squared_lengths.py: ``pow(length(x), 2.0) + #c`` is ``dot(x, x) + #c``, the constant inside;
 - constant_merge.py: ``#a * (b * #c) -> (a*c) * b`` and ``#a + (b + #c) -> (a + c) + b``;
 - dot_constants.py: constants merged into a ``dot`` with a constant, ``dot(vecN(s), #K)`` factored;
+- exp_log.py: ``exp`` and ``log`` as Mesa's products, ``exp(x * #k)`` is ``exp2(x * (k*log2(e)))``;
 - ffma_split.py: ``(p1 + p2) + e`` returned through a folded call is ``(p1 + e) + p2`` (ffma);
 - returned_sums.py: a constant added to a call's result sinks into the ``+=`` chain it returns;
 - repeated_sums.py: ``seed += 0.1`` written again and again is ``seed0 + K``, also through calls
@@ -56,6 +57,7 @@ from .components import component_write
 from .context import FoldContext
 from .dispatch import binary, copied_binary
 from .dot_constants import broadcast_dot, dot_operand, merged_dot
+from .exp_log import exp_product
 from .flrp import mix_hint
 from .repeated_sums import (
     Entry,
@@ -78,6 +80,7 @@ from .returned_sums import keep_term, return_constant_args, sunk_return, sunk_re
 
 __all__ = [
     "FoldContext",
+    "exp_product",
     "Entry",
     "binary",
     "call_step",
