@@ -12,7 +12,8 @@ tests/real_verify/texts/ (git-ignored), `score` verifies each one as `glslcheck 
 Two corpora, one mechanism: `--set main` (the default; manifest.json, texts/) is the corpus the
 NumPy backend and the compiled engine were tuned on; `--set holdout` (holdout.json,
 holdout_texts/) is a second one chosen after that tuning, to measure how glslcheck does on
-shaders it was not tuned on (as a hidden corpus would). `--set` goes before the command
+shaders it was not tuned on (as a hidden corpus would); `--set fbm` (fbm.json, fbm_texts/) is
+the family of iq's sphere-grid fbm SDF, Shadertoy JSON exports. `--set` goes before the command
 (`python tools/real_verify.py --set holdout score`); the environment variable REAL_VERIFY_SET
 selects the set for every script that reads this module's manifest (benchmarks/bench_real_render.py,
 benchmarks/bench_compiled.py).
@@ -46,7 +47,11 @@ import urllib.request
 from pathlib import Path
 
 ROOT = Path(__file__).resolve().parents[1]
-SETS = {"main": ("manifest.json", "texts"), "holdout": ("holdout.json", "holdout_texts")}
+SETS = {
+    "main": ("manifest.json", "texts"),
+    "holdout": ("holdout.json", "holdout_texts"),
+    "fbm": ("fbm.json", "fbm_texts"),
+}
 
 
 def select(name: str) -> None:
@@ -69,7 +74,10 @@ def load_manifest() -> list[dict]:
 
 
 def text_path(entry: dict) -> Path:
-    return TEXTS / f"{entry['id']}.glsl"
+    """Where the fetched text of `entry` is: a Shadertoy JSON export keeps its suffix, which
+    tells load_shader to read its Image pass."""
+    suffix = ".json" if entry["path"].lower().endswith(".json") else ".glsl"
+    return TEXTS / f"{entry['id']}{suffix}"
 
 
 def _from_mirror(mirror: Path, entry: dict) -> bytes | None:
@@ -243,8 +251,8 @@ def arguments(
         p.add_argument(
             "--set",
             choices=tuple(SETS),
-            help="the corpus: main (the default, or REAL_VERIFY_SET) "
-            "or holdout (chosen after the tuning)",
+            help="the corpus: main (the default, or REAL_VERIFY_SET), holdout (chosen after "
+            "the tuning) or fbm (iq's sphere-grid fbm family)",
         )
     sub = p.add_subparsers(dest="command", required=True)
     f = sub.add_parser("fetch", help=f"re-read the texts into {texts}")

@@ -226,7 +226,7 @@ void mainImage(out vec4 c, in vec2 f) {
     float p2 = s(pow(x, 2.0)) + s(pow(-abs(x), 4.0)) + s(pow(x, 0.0)) + s(pow(1.0, x));  // \
         Mesa's rewrites
     float huge = s(sin(x * 1e8)) + s(cos(x * 1e12)) + s(tan(x * 3e9)) + s(sin(x)) + s(cos(x * 7.0));
-    float tiny = s(exp2(x * 10.0)) + s(log2(abs(x) * 1e-39)) + s(exp(-x * 5.0)) + s(log(x)) + \
+    float tiny = s(exp2(x * 10.0)) + s(log2(abs(x) * 1e-39)) + s(exp(x - x * 6.0)) + s(log(x)) + \
         s(log2(x));
     float inf = 1.0 / uv.x;                              // +-Inf, NaN for 0/0
     float q = inf * 0.0 + 0.0 * uv.x;                    // 0 * Inf: NaN, unless folded

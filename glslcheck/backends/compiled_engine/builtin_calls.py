@@ -94,6 +94,12 @@ def builtin_call(cg: Any, e: A.Call, ov: Any) -> Val:
         cols = [comps(a) for a in args]
         return Val(rtype, [fn(*xs) for xs in zip(*cols)])
 
+    if name == "exp" and base == "float" and cg.fn is not None and cg.fn.sym is not None:
+        from ..numpy_engine.transpile import nir_fold
+
+        lowered = nir_fold.exp_product(cg.fold_context(), e, args, None)  # exp2(x * (k*log2(e)))
+        if lowered is not None:
+            return lowered
     if base == "float" and componentwise_text(cg, name, "x") is not None:
         return each(lambda x: componentwise_text(cg, name, x))
     if name == "atan":

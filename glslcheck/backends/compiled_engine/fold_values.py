@@ -25,7 +25,16 @@ from .values import Val, not_yet
 
 # the families of nir_fold.copied_binary this engine computes (built from FoldEmitter's operations)
 COPIED = frozenset(
-    {"matrix", "factoring", "constant_merge", "components", "compound", "sink", "ssa_values"}
+    {
+        "matrix",
+        "factoring",
+        "exp_log",
+        "constant_merge",
+        "components",
+        "compound",
+        "sink",
+        "ssa_values",
+    }
 )
 
 
@@ -115,7 +124,7 @@ class FoldValues(FoldContext):
         """The Runtime's operation `name` (runtime_operators.py, runtime_transcendental.py), as
         the NumPy backend computes it: `dot` (Runtime.dot, products summed right to left),
         `dot_add` (the constant in the innermost sum), `inversesqrt`, `fadd` (a constant zero
-        added keeps the other operand)."""
+        added keeps the other operand), `exp`, `exp2`, `log2`."""
         cg = self.cg
         if name == "fadd":
             a, b = args
@@ -137,6 +146,9 @@ class FoldValues(FoldContext):
         if name == "inversesqrt":
             (x,) = args
             return _computed(Val(x.t, [f"inversesqrt({p})" for p in x.parts]), x, x)
+        if name in ("exp", "exp2", "log2"):  # (nir_fold.exp_log: the lowered forms)
+            (x,) = args
+            return _computed(Val(x.t, [componentwise_text(cg, name, p) for p in x.parts]), x, x)
         raise ValueError(f"no Runtime operation {name!r} here")
 
 

@@ -535,6 +535,10 @@ class Expressions(TranspilerState):
                 )  # dot(vec2(s), #K): s * (K.x + K.y)
             if merged is not None:
                 return merged
+        if name == "exp":
+            lowered = nir_fold.exp_product(self, e, args, mask)  # exp2(x * (k * log2(e)))
+            if lowered is not None:
+                return lowered
         if name == "pow":
             rewritten = self.pow_rewrite(e, args)
             if rewritten is not None:

@@ -7,11 +7,13 @@ amplifies the last bit, so verify mismatches unless the NumPy backend rewrites t
 The rules copied here, each measured bit for bit against llvmpipe on 50,000 random operands
 (tests/gl/test_llvmpipe_lowering.py), one family per module:
 
-- factoring.py: ``a*b + a*c -> a * (b + c)``, also through never-written locals;
+- factoring.py: ``a*b + a*c -> a * (b + c)``, also through never-written locals and values
+  ssa_values keeps, and again with a third term (``k*x + k*y + k*z`` is ``k * ((x + y) + z)``);
 - sink.py: constants sunk into a sum or a product used once, ``(a + b) + #c -> (a + #c) + b``;
 - squared_lengths.py: ``pow(length(x), 2.0) + #c`` is ``dot(x, x) + #c``, the constant inside;
 - constant_merge.py: ``#a * (b * #c) -> (a*c) * b`` and ``#a + (b + #c) -> (a + c) + b``;
 - dot_constants.py: constants merged into a ``dot`` with a constant, ``dot(vecN(s), #K)`` factored;
+- exp_log.py: ``exp`` and ``log`` as Mesa's products, ``exp(x * #k)`` is ``exp2(x * (k*log2(e)))``;
 - ffma_split.py: ``(p1 + p2) + e`` returned through a folded call is ``(p1 + e) + p2`` (ffma);
 - returned_sums.py: a constant added to a call's result sinks into the ``+=`` chain it returns;
 - repeated_sums.py: ``seed += 0.1`` written again and again is ``seed0 + K``, also through calls
@@ -55,6 +57,7 @@ from .components import component_write
 from .context import FoldContext
 from .dispatch import binary, copied_binary
 from .dot_constants import broadcast_dot, dot_operand, merged_dot
+from .exp_log import exp_product
 from .ffma_split import fused_plan
 from .flrp import mix_hint
 from .repeated_sums import (
@@ -85,6 +88,7 @@ from .returned_sums import (
 
 __all__ = [
     "FoldContext",
+    "exp_product",
     "Entry",
     "binary",
     "call_step",

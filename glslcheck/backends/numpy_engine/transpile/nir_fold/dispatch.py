@@ -5,8 +5,9 @@ Tried in this order: the float16 tree of lowp lookups (lower_precision.py: its t
 every operation in it); for an expression with side effects, only a constant added to a call's
 result (returned_sums.py); for a matrix operand, only constants merged into the matrix
 (ssa_values.py); for a sum, factoring (factoring.py) then the ffma split (ffma_split.py); then
-constants merged (constant_merge.py, components.py, compound_products.py) or sunk (sink.py);
-last, a product by a constant kept through a variable assigned again (ssa_values.py).
+a log scaled by a constant (exp_log.py), constants merged (constant_merge.py, components.py,
+compound_products.py) or sunk (sink.py); last, a product by a constant kept through a variable
+assigned again (ssa_values.py).
 
 :func:`copied_binary` is the same order for an engine that computes some families only (the
 compiled engine: compiled_engine/fold_values.COPIED, the families built from
@@ -18,6 +19,7 @@ from .....frontend import syntax as A
 from .components import merge_components
 from .compound_products import sunk_through_compound
 from .constant_merge import merge_constants
+from .exp_log import log_scaled
 from .factoring import factor
 from .ffma_split import fused_after_call
 from .lower_precision import LOWP_OPS, lowp_tree
@@ -51,7 +53,9 @@ def binary(tr: TranspilerState, e: A.Binary, mask: str | None) -> str | None:
             folded = fused_after_call(tr, e, mask)
         if folded is not None:
             return folded
-    folded = merge_constants(tr, e, mask)
+    folded = log_scaled(tr, e, mask)
+    if folded is None:
+        folded = merge_constants(tr, e, mask)
     if folded is not None:
         return folded
     folded = merge_components(tr, e, mask)
@@ -74,6 +78,10 @@ def copied_binary(tr: FoldEmitter, e: A.Binary, mask: str | None, copied: frozen
         return merge_into_matrix(tr, e, mask) if "matrix" in copied else None
     if e.op == "+" and "factoring" in copied:
         folded = factor(tr, e, mask)
+        if folded is not None:
+            return folded
+    if "exp_log" in copied:
+        folded = log_scaled(tr, e, mask)
         if folded is not None:
             return folded
     if "constant_merge" in copied:

@@ -80,21 +80,23 @@ def _write_of(tr: FoldEngine, value: Any) -> Any:
 
 
 def _merge_reads(tr: FoldEngine) -> dict[int, list[A.Identifier]]:
-    """id(symbol) -> the reads of it as a factor of a product by a constant, in the current
+    """id(symbol) -> the reads of it as a factor of a product by a constant, or (it or one of
+    its components) as a term of a sum (factoring.py factors ``x.x + x.y``), in the current
     function."""
     cache = tr.fold_state.merge_reads
     key = id(current_function(tr).sym)
     if key not in cache:
         out: dict[int, list[A.Identifier]] = {}
         for n in current_function(tr).sym.node.body.walk():
-            if isinstance(n, A.Binary) and n.op == "*":
-                for a, b in ((n.left, n.right), (n.right, n.left)):
-                    if (
-                        isinstance(b, A.Identifier)
-                        and is_constant(tr, a)
-                        and tr.model.symbol_of(b) is not None
-                    ):
-                        out.setdefault(id(tr.model.symbol_of(b)), []).append(b)
+            if not isinstance(n, A.Binary):
+                continue
+            for a, b in ((n.left, n.right), (n.right, n.left)):
+                if n.op == "+" and isinstance(b, A.Field) and len(b.name) == 1:
+                    b = b.base
+                elif not (n.op == "*" and is_constant(tr, a) or n.op == "+"):
+                    continue
+                if isinstance(b, A.Identifier) and tr.model.symbol_of(b) is not None:
+                    out.setdefault(id(tr.model.symbol_of(b)), []).append(b)
         cache[key] = out
     return cache[key]
 
