@@ -34,7 +34,7 @@ def exp_product(tr: FoldEmitter, call: A.Call, args: list[Any], mask: str | None
     if len(call.args) != 1 or tr.fn is None or tr.type_of(call).base != "float":
         return None
     arg = call.args[0]
-    if not is_product(tr, arg) or tr.has_effects(arg):
+    if not isinstance(arg, A.Binary) or not is_product(tr, arg) or tr.has_effects(arg):
         return None
     a, b = arg.left, arg.right
     t, ta, tb = tr.type_of(arg), tr.type_of(a), tr.type_of(b)

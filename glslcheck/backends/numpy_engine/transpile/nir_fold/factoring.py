@@ -131,7 +131,7 @@ def _factors(
     else:
         factors = (init.left, init.right)
     whole = tr.type_of(node)
-    parts = []
+    items: list[tuple[Any, str]] = []
     for f in factors:
         ft = tr.type_of(f)
         if comp is not None and not ft.is_scalar:
@@ -142,8 +142,8 @@ def _factors(
             item = f
         if kept is not None and f is kept[0]:
             item = _Kept(kept[2], f, comp if not ft.is_scalar else None)
-        parts.append((item, _text(item)))
-    return (parts[0][1], parts[1][1]), (parts[0][0], parts[1][0])
+        items.append((item, _text(item)))
+    return (items[0][1], items[1][1]), (items[0][0], items[1][0])
 
 
 def _text(x: Any) -> str:
