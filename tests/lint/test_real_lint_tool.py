@@ -82,7 +82,9 @@ def test_labels_json_is_kept_one_label_a_line():
     assert real_lint.labels_text(json.loads(path.read_text())) == path.read_text()
 
 
-def test_score_a_set_given_on_the_command_line(tmp_path):
+def _one_file_set(tmp_path) -> None:
+    """A set of one file of ours, t01 (an uncommented mainImage with no header): its text and
+    manifest under tmp_path, as `populate` leaves a set."""
     text = (
         "void mainImage(out vec4 fragColor, in vec2 fragCoord)\n{\n    fragColor = vec4(1.0);\n}\n"
     )
@@ -90,6 +92,10 @@ def test_score_a_set_given_on_the_command_line(tmp_path):
     (tmp_path / "texts" / "t01" / "Lab 4.txt").write_text(text)
     manifest = [{"id": "t01", "repo": "ours/lab", "commit": "0" * 40, "path": "Lab 4.txt"}]
     (tmp_path / "manifest.json").write_text(json.dumps(manifest))
+
+
+def test_score_a_set_given_on_the_command_line(tmp_path):
+    _one_file_set(tmp_path)
     labels = {
         "t01": [
             {"rule": "missing-header", "lines": [1], "why": "no author", "certainty": "certain"},
@@ -146,13 +152,7 @@ def test_a_second_reading_takes_the_readers_disagreement_out(tmp_path):
     """The first reading misses the header the linter reports; the second labels it and a run of
     its own cut: on the label both give the linter is found, and against either reading each of
     its two findings matches."""
-    text = (
-        "void mainImage(out vec4 fragColor, in vec2 fragCoord)\n{\n    fragColor = vec4(1.0);\n}\n"
-    )
-    (tmp_path / "texts" / "t01").mkdir(parents=True)
-    (tmp_path / "texts" / "t01" / "Lab 4.txt").write_text(text)
-    manifest = [{"id": "t01", "repo": "ours/lab", "commit": "0" * 40, "path": "Lab 4.txt"}]
-    (tmp_path / "manifest.json").write_text(json.dumps(manifest))
+    _one_file_set(tmp_path)
     run = {"rule": "missing-comment", "why": "no comment", "certainty": "certain"}
     header = {"rule": "missing-header", "lines": [1], "why": "no author", "certainty": "certain"}
     first = {"t01": [{**run, "lines": [1, 3]}]}
