@@ -77,30 +77,6 @@ def test_uninitialised_variables_read_zero_as_in_webgl(gl, make_shader):
     assert np.all(img[..., :3] == 0.25)
 
 
-ONE_CONSTANT_WRITE = """
-float edge%s;
-void mainImage(out vec4 c, in vec2 p) {
-    float e%s;
-    for (int i = 0; i < 2; i++) {
-        if (p.x > 2.0 + float(i)) edge = 1.0;
-    }
-    if (p.y > 1.0) e = 1.0;
-    c = vec4(mix(0.9, 0.3, edge), e, edge, 1.0);
-}
-"""
-
-
-def test_variables_written_one_constant_on_some_paths_read_zero_elsewhere(gl, make_shader):
-    # Mesa's implicit zero initialiser does not count as an assignment: a variable written one
-    # constant on some paths reads as that constant everywhere. WebGL reads zero on the other
-    # paths, as the same shader with explicit `= 0.0` initialisers does on the driver.
-    implicit = render_shader(make_shader(ONE_CONSTANT_WRITE % ("", "")), size=(4, 2))
-    explicit = render_shader(make_shader(ONE_CONSTANT_WRITE % (" = 0.0", " = 0.0")), size=(4, 2))
-    # both paths are taken: the written constant and the zero each show in the explicit render
-    assert len(np.unique(explicit[..., 0])) == 2 and len(np.unique(explicit[..., 1])) == 2
-    assert np.array_equal(implicit, explicit)
-
-
 def test_samples_average_a_regular_grid(gl, make_shader):
     # (fract(x) - 0.5)^2 is 0 at the pixel centre; at offsets +-0.25 it is 0.0625.
     body = "vec2 f = fract(p) - 0.5; c = vec4(f.x * f.x, p.y, f.y * f.y, 1.0);"

@@ -438,7 +438,7 @@ def compile_gl(shader: Shader, ctx=None, *, tab: str = "Image") -> GLProgram:
 
     ctx = ctx if ctx is not None else get_context()
     cube = cube_samplers(shader.units_for(tab), tab) if tab in shader.tabs else frozenset()
-    zeroed = zero_initialized(shader, tab)  # WebGL zeroes every variable; Mesa does not
+    zeroed = zero_initialized(shader, tab)  # WebGL zeroes struct locals; Mesa does not
     if zeroed is not shader:
         try:
             program = build_program(zeroed, tab, cube=cube)

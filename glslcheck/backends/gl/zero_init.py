@@ -1,4 +1,5 @@
-"""WebGL's zero initialisation of every variable, which Mesa's `glsl_zero_init` does not give.
+"""WebGL's zero initialisation of struct locals and out parameters, which Mesa's `glsl_zero_init`
+leaves out.
 
 Shadertoy runs on WebGL, which initialises every local variable to zero. The GL backend asks
 Mesa for the same with the driconf option `glsl_zero_init` (see context.py), but Mesa applies
@@ -6,17 +7,11 @@ it to numeric and bool types only (ast_to_hir.cpp: `type->is_numeric() || is_boo
 struct local, or an array of structs, stays undefined, and llvmpipe then folds reads of it to
 arbitrary values. Measured: `L one[2]; one[1].k + 3.0` renders 0, not 3; a GPR-200 Lab 4
 submission that fills two of five `pLight lights[5]` renders black on llvmpipe where WebGL
-and the NumPy backend agree on NaN from the unset lights. Even where it applies, Mesa's
-implicit initialiser is not an assignment to its optimiser: a numeric local or global written
-once with a constant, on some path only, reads as that constant on the others (measured:
-`float e; if (c) e = 1.0;` renders 1 where c is false, and `float edge;` at file scope, set
-to 1.0 only at an edge, makes `mix(col, vec3(0.3), edge)` 0.3 on every pixel while `edge`
-itself reads 0; WebGL and the NumPy backend read zero).
+and the NumPy backend agree on NaN from the unset lights.
 
-`zero_initialized(shader, tab)` returns the shader with ` = zero` written after each local
-declarator and each unqualified global declarator without an initialiser (same line, so every
-line number stays), or the shader itself when there is none; the GL backend compiles that.
-Declarators produced by a macro are left alone.
+`zero_initialized(shader, tab)` returns the shader with ` = S(...)` written after each such
+declarator (same line, so every line number stays), or the shader itself when there is none;
+the GL backend compiles that. Declarators produced by a macro are left alone.
 """
 
 from __future__ import annotations
@@ -44,21 +39,24 @@ def zero_text(t: T.Type) -> str | None:
     return base if name in ("float", "int", "uint", "bool") else f"{name}({base})"
 
 
-def _uninitialised_variables(model, tree) -> list[tuple[A.Declarator, str]]:
-    """(declarator, zero text) for declarations of a local, or of a global without a storage
-    qualifier, that have no initialiser (see the module docstring for why every type)."""
+def _struct_locals(model, tree) -> list[tuple[A.Declarator, str]]:
+    """(declarator, zero text) for local declarations of struct (or struct-array) type without
+    initializer."""
     found = []
-    for decl in tree.walk():
-        if not isinstance(decl, A.Declarator) or decl.init is not None:
+    for node in tree.walk():
+        if not isinstance(node, A.FunctionDefinition):
             continue
-        sym = model.symbol_of(decl)
-        if sym is None or not (
-            sym.kind == "local" or (sym.kind == "global" and sym.qualifier is None)
-        ):
-            continue
-        text = zero_text(sym.type)
-        if text is not None:
-            found.append((decl, text))
+        for decl in node.walk():
+            if not isinstance(decl, A.Declarator) or decl.init is not None:
+                continue
+            sym = model.symbol_of(decl)
+            t = getattr(sym, "type", None)
+            if t is None:
+                continue
+            element = t.element if t.is_array else t
+            text = zero_text(t) if element.is_struct else None
+            if text is not None:
+                found.append((decl, text))
     return found
 
 
@@ -85,7 +83,7 @@ def _out_params(model, tree) -> list[tuple[A.Compound, str]]:
 
 
 def zero_initialized(shader: Shader, tab: str = "Image") -> Shader:
-    """The shader with its uninitialised variables given zero initialisers (see module)."""
+    """The shader with its uninitialised struct locals given zero initialisers (see module)."""
     try:
         from ...frontend.parser import parse_units
         from ...semantics import check
@@ -98,7 +96,7 @@ def zero_initialized(shader: Shader, tab: str = "Image") -> Shader:
     except Exception:  # the driver reports whatever our own front end cannot read
         return shader
     edits: dict[str, list[tuple[int, int, str]]] = {}
-    for decl, text in _uninitialised_variables(model, parsed.ast):
+    for decl, text in _struct_locals(model, parsed.ast):
         loc = decl.loc
         if loc is None or loc.end_line != loc.line or loc.end_column is None:
             continue
