@@ -73,11 +73,18 @@ def load_manifest() -> list[dict]:
     return json.loads(MANIFEST.read_text())["shaders"]
 
 
-def text_path(entry: dict) -> Path:
-    """Where the fetched text of `entry` is: a Shadertoy JSON export keeps its suffix, which
-    tells load_shader to read its Image pass."""
+def text_path(entry: dict, texts: Path | None = None) -> Path:
+    """Where the fetched text of `entry` is (in `texts`, by default the selected set's folder):
+    a Shadertoy JSON export keeps its suffix, which tells load_shader to read its Image pass."""
     suffix = ".json" if entry["path"].lower().endswith(".json") else ".glsl"
-    return TEXTS / f"{entry['id']}{suffix}"
+    return (texts or TEXTS) / f"{entry['id']}{suffix}"
+
+
+def set_paths(name: str) -> list[Path]:
+    """The text paths of corpus set `name` of SETS, in manifest order (fetched or not), without
+    selecting it."""
+    manifest, texts = (ROOT / "tests" / "real_verify" / f for f in SETS[name])
+    return [text_path(e, texts) for e in json.loads(manifest.read_text())["shaders"]]
 
 
 def _from_mirror(mirror: Path, entry: dict) -> bytes | None:

@@ -1,7 +1,8 @@
 """Both CPU engines give one answer on every shader the project measures itself on.
 
-The lab shaders, the render benchmark's scenes and the two real corpora of tools/real_verify.py
-(texts/ and holdout_texts/, fetched by `python tools/real_verify.py [--set holdout] fetch`) are
+The lab shaders, the render benchmark's scenes and the real corpora of tools/real_verify.py
+(texts/, holdout_texts/ and fbm_texts/, fetched by `python tools/real_verify.py [--set NAME]
+fetch`) are
 rendered by the NumPy backend and by the compiled engine, per pixel and 8 pixels in lockstep,
 as verify renders them, at the tool's default frames (several iTime values, iFrame as an
 animation has it, the mouse button down and released: engines_agree.frames), and compared bit
@@ -48,7 +49,7 @@ CASES = [
 @pytest.mark.parametrize(("group", "path"), CASES)
 def test_numpy_and_compiled_render_the_same_bits(numba, group, path):
     if not path.exists():
-        fetch = "python tools/real_verify.py" + (" --set holdout" if group == "holdout" else "")
+        fetch = "python tools/real_verify.py" + ("" if group == "main" else f" --set {group}")
         pytest.skip(f"{path.relative_to(ROOT)} is not fetched ({fetch} fetch)")
     job = dict(path=str(path), size=engines_agree.SIZE, times=engines_agree.TIMES)
     cmd = [sys.executable, engines_agree.__file__, "_one", json.dumps(dict(job, lanes=LANES))]

@@ -405,6 +405,28 @@ def test_a_sum_returned_through_a_folded_call_fuses_with_its_next_addition(llvmp
     assert same.all(), (~same).reshape(-1, 4).sum(0).tolist()
 
 
+ADVANCED_HASH = """vec3 hash31(float q) {  // spqr's camera path hash (fbm set f04)
+    vec3 p2 = fract(q * vec3(5.3983, 5.4427, 6.9371));
+    p2 += dot(p2.zxy, p2.xyz + vec3(21.5351, 14.3137, 15.3219));
+    return fract(vec3(p2.x * p2.y * 95.4337, p2.y * p2.z * 97.597, p2.z * p2.x * 93.8365));
+}
+void mainImage(out vec4 c, in vec2 p) {
+    c = vec4(hash31(p.x * 0.731 + p.y * 91.3 + floor(iTime)), 1.0);
+}
+"""
+
+
+def test_a_constant_sinks_into_a_product_of_components_of_a_sum(llvmpipe, make_shader):
+    """``p2.x * p2.y * #K`` with p2 last written by ``p2 += dot(...)`` (to NIR a sum, which no
+    rule looks into as a factor) is ``(p2.x * #K) * p2.y`` (nir_fold.sink.product_sink); the
+    hash amplifies the ulp to a visible difference."""
+    shader = make_shader(ADVANCED_HASH)
+    got_gl = np.asarray(compile_backend(shader, "gl").render(size=(160, 90)), np.float32)
+    got_np = np.asarray(compile_backend(shader, "numpy").render(size=(160, 90)), np.float32)
+    same = got_np.view(np.int32) == got_gl.view(np.int32)
+    assert same.all(), (~same).reshape(-1, 4).sum(0).tolist()
+
+
 SQUARED_LENGTHS = """float warp(vec3 r) {
     vec3 origin = vec3(0.0);
     float d = distance(r, origin);

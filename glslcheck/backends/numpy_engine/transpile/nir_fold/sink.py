@@ -25,6 +25,7 @@ from .queries import (
     SUMS,
     call_write,
     current_function,
+    function_facts,
     has_matrix,
     is_builtin,
     is_constant,
@@ -70,8 +71,13 @@ def sink_constant(tr: FoldEmitter, e: A.Binary, mask: str | None) -> Any:
     if has_matrix(tr, a, b):
         return None  # a matrix product is not reassociated as numbers are
     if not (
-        (is_opaque(tr, a) or _settled(tr, a) or _normalized_once(tr, a) is not None)
-        and (is_opaque(tr, b) or _settled(tr, b) or _scaled(tr, b))
+        (
+            is_opaque(tr, a)
+            or _settled(tr, a)
+            or _advanced(tr, a)
+            or _normalized_once(tr, a) is not None
+        )
+        and (is_opaque(tr, b) or _settled(tr, b) or _advanced(tr, b) or _scaled(tr, b))
     ):
         return None  # an operand NIR would look into further: not copied
     t, ty = tr.type_of(e), [tr.type_of(x) for x in (a, b, k)]
@@ -153,6 +159,32 @@ def _settled(tr: FoldEmitter, node: Any) -> bool:
         return False
     roots = out_roots(tr, w.node, tr.model.symbol_of(node))
     return roots is not None and roots <= {"+", "call"}
+
+
+def _advanced(tr: FoldEngine, node: Any) -> bool:
+    """A local (or a component of one) whose value here is what a ``+=`` or ``-=`` of a value
+    that is not a constant wrote (on every path, nothing written since): to NIR a sum, which no
+    algebraic rule looks into as a factor (measured: a path hash's ``p2 += dot(...)`` then
+    ``p2.x * p2.y * #K`` is ``(p2.x * #K) * p2.y``)."""
+    while isinstance(node, A.Field) and tr.model.is_swizzle(node):
+        node = node.base
+    sym = tr.model.symbol_of(node) if isinstance(node, A.Identifier) else None
+    if sym is None or sym.kind not in ("local", "param") or tr.fn is None:
+        return False
+    facts = function_facts(tr)
+    if not facts.ok or id(node) not in facts.enter:
+        return False
+    before = [w for w in facts.writes_to(sym) if w.pos < facts.enter[id(node)]]
+    if not before or before[-1].kind != "op":
+        return False
+    w = before[-1].node
+    return (
+        isinstance(w, A.Assignment)
+        and w.op in ("+=", "-=")
+        and not is_constant(tr, w.value)
+        and facts.dominates(w, node)
+        and not facts.written_between(w, node, [sym])
+    )
 
 
 def _scaled(tr: FoldEngine, node: Any) -> bool:
