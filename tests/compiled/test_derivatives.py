@@ -244,3 +244,40 @@ def test_quad_lanes():
         (7, 6),
     ]
     assert [quad_lanes("dfdy", k, 8) for k in range(8)] == [(4, 0), (5, 1), (6, 2), (7, 3)] * 2
+
+
+SWITCH_LOCAL = """
+void mainImage(out vec4 c, in vec2 f) {
+    vec2 uv = f / iResolution.xy;
+    vec3 col = vec3(0.0);
+    switch (int(f.y) % 3) {
+        case 0:
+            col = vec3(uv, 1.0);
+            break;
+        case 1:
+            vec2 q = uv * 3.0;
+            q.x += sin(uv.y * 5.0);
+            col = vec3(dFdx(q.x), dFdy(q.x), q.y) * 10.0;
+            break;
+        default:
+            col = vec3(0.5);
+    }
+    c = vec4(col, 1.0);
+}"""
+
+
+def test_a_local_declared_in_a_switch_is_refused_with_derivatives(make_shader):
+    """A neighbour's derivative reads such a local in the lanes another case runs: llvmpipe
+    computes it in every lane, the NumPy backend writes it under the case's mask (`glslcheck
+    verify`: MISMATCH), so the compiled engine refuses it at its declaration rather than give
+    either's bits; without derivatives it runs."""
+    from glslcheck.backends.compiled_engine.engine import generate
+
+    with pytest.raises(GlslError) as err:
+        generate(make_shader(SWITCH_LOCAL), lanes=8)
+    d = err.value.diagnostics[0]
+    line = SWITCH_LOCAL.split("\n").index("            vec2 q = uv * 3.0;") + 1
+    assert "a local declared in a switch" in d.message and d.loc.line == line, (d.message, d.loc)
+    plain = SWITCH_LOCAL.replace("dFdx(q.x), dFdy(q.x)", "q.x, q.x")
+    source, _ = generate(make_shader(plain), lanes=8)
+    assert "QUADS = True" not in source
