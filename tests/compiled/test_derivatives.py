@@ -94,6 +94,37 @@ void mainImage(out vec4 c, in vec2 f) {
 }
 
 
+# a local written again at its declaration's level inside a branch (`q.x -= 0.05`), read by a
+# neighbour's derivative in a nested branch: the lanes outside the branch hold the value computed
+# in every lane (llvmpipe's SSA value, the NumPy backend's free write), not the value before the
+# write (surfer_boy's eye: `q.x -= eyeOff`, then `atan` of it under `if (m < 0.0)`)
+DERIVATIVES["write_at_declaration_level"] = """
+vec3 shade(vec2 uv, float id) {
+    vec3 col = vec3(0.1);
+    if (id < 1.5) {
+        col = vec3(uv, 0.0);
+    } else if (id < 2.5) {
+        vec2 q = abs(uv * 2.0 - 1.0);
+        q.x -= 0.05;
+        vec2 r = q - vec2(0.3, 0.1);
+        float m = length(r) - 0.4;
+        if (m < 0.0) {
+            float an = r.y * r.x + 1.5;
+            col = vec3(dFdx(an), dFdy(an), an);
+        }
+    }
+    return col;
+}
+void mainImage(out vec4 c, in vec2 f) {
+    vec2 uv = f / iResolution.xy;
+    vec3 col = vec3(0.0);
+    if (uv.y > 0.1) {
+        col = shade(uv, f.y > 13.0 ? 2.0 : 1.0);  // a quad row of each size is split here
+    }
+    c = vec4(col, 1.0);
+}"""
+
+
 # a call's result in the lanes a mask leaves out, read by a neighbour's derivative: a lane that
 # returned holds the value of the last pass it ran the call in, in a loop NIR keeps (40 steps),
 # zero in one it unrolls (4) (llvmpipe's register for returns merged after inlining:
@@ -213,3 +244,40 @@ def test_quad_lanes():
         (7, 6),
     ]
     assert [quad_lanes("dfdy", k, 8) for k in range(8)] == [(4, 0), (5, 1), (6, 2), (7, 3)] * 2
+
+
+SWITCH_LOCAL = """
+void mainImage(out vec4 c, in vec2 f) {
+    vec2 uv = f / iResolution.xy;
+    vec3 col = vec3(0.0);
+    switch (int(f.y) % 3) {
+        case 0:
+            col = vec3(uv, 1.0);
+            break;
+        case 1:
+            vec2 q = uv * 3.0;
+            q.x += sin(uv.y * 5.0);
+            col = vec3(dFdx(q.x), dFdy(q.x), q.y) * 10.0;
+            break;
+        default:
+            col = vec3(0.5);
+    }
+    c = vec4(col, 1.0);
+}"""
+
+
+def test_a_local_declared_in_a_switch_is_refused_with_derivatives(make_shader):
+    """A neighbour's derivative reads such a local in the lanes another case runs: llvmpipe
+    computes it in every lane, the NumPy backend writes it under the case's mask (`glslcheck
+    verify`: MISMATCH), so the compiled engine refuses it at its declaration rather than give
+    either's bits; without derivatives it runs."""
+    from glslcheck.backends.compiled_engine.engine import generate
+
+    with pytest.raises(GlslError) as err:
+        generate(make_shader(SWITCH_LOCAL), lanes=8)
+    d = err.value.diagnostics[0]
+    line = SWITCH_LOCAL.split("\n").index("            vec2 q = uv * 3.0;") + 1
+    assert "a local declared in a switch" in d.message and d.loc.line == line, (d.message, d.loc)
+    plain = SWITCH_LOCAL.replace("dFdx(q.x), dFdy(q.x)", "q.x, q.x")
+    source, _ = generate(make_shader(plain), lanes=8)
+    assert "QUADS = True" not in source

@@ -148,6 +148,8 @@ class Codegen(ExpressionEmitter):
         # the first dFdx/dFdy/fwidth call: its leaves are written `dfdx(v)` / `dfdy(v)`, which
         # only the lockstep rewrite computes (lanes.py: a block's lanes hold whole 2x2 quads)
         self.derivative: Any = None
+        # the first local declared inside a switch: engine.generate refuses it with derivatives
+        self.switch_local: Any = None
         self._fold_context: FoldValues | None = None  # fold_context(): made on first use
         self.registers: dict[int, list[str]] = {}  # a call -> its result's slots (kept_register)
         self.numpy_uniformity: dict[int, Uniformity] = {}  # a function -> the NumPy backend's
@@ -603,6 +605,9 @@ class Codegen(ExpressionEmitter):
             if sym is None:
                 continue
             self.comment(dec)
+            fs = self.fn
+            if self.switch_local is None and fs and any(k == "switch" for k, _ in fs.loops):
+                self.switch_local = dec
             value: list | None = None
             if dec.init is not None:
                 merged = self.component_write(dec)  # (NIR's SSA per component: nir_fold)

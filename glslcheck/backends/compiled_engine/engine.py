@@ -267,6 +267,13 @@ def generate(
         )
         source = cg.module()
         width = lanes_width(lanes)
+        if cg.derivative is not None and cg.switch_local is not None:
+            # a neighbour's derivative may read it: llvmpipe computes it in every lane, the NumPy
+            # backend writes it under the case's mask (cpu_core/uniformity.py), and this engine
+            # gives the bits of one of them only
+            raise not_yet(
+                "a local declared in a switch, in a program with derivatives", cg.switch_local
+            )
         if cg.derivative is not None and not width:
             if lanes is not None or not tiered():
                 raise engine_error(

@@ -319,6 +319,8 @@ class _Fn:
         self.guarded: set[int] = set()  # return slots written under a flag (guarded_write)
         self.live = False  # a divergent return happened: `live__k` lanes are still running
         self.defined = set(self.params)  # names written so far in the text
+        # with derivatives: each local's (mask, loop depth) at its declaration, its first write
+        self.declared: dict[str, tuple[str, int]] = {}
         self.calls = set()
         self.tests: dict[tuple[str, int], str] = {}  # hoisted index tests (hoist_tests)
         self.block(self.fn.body, top=True)
@@ -493,8 +495,20 @@ class _Fn:
             self.emit(f"{name} = {texts[0]}")
             return
         # plain: in uniform control, a name written once, or its first write in the text (a
-        # declaration, a ternary's first side: the lanes it does not concern read it nowhere)
-        plain = not self.ldiv or self.counts.get(name, 0) <= 1 or name not in self.defined
+        # declaration, a ternary's first side: the lanes it does not concern read it nowhere);
+        # with derivatives also a write in the region and loop its declaration is in: llvmpipe's
+        # SSA value, computed in every lane, which a neighbour's derivative reads (`q.x -= k;`
+        # after `vec3 q = ...;` in a branch), as the NumPy backend's free writes
+        # (cpu_core/uniformity.py); a write in a branch or loop nested inside stays masked
+        where = (self.mask, len(self.loops))
+        if name not in self.defined:
+            self.declared[name] = where
+        plain = (
+            not self.ldiv
+            or self.counts.get(name, 0) <= 1
+            or name not in self.defined
+            or (bool(self.L.quads) and self.declared.get(name) == where)
+        )
         self.defined.add(name)
         for k, text in enumerate(texts):
             if plain:
