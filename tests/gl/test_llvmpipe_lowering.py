@@ -670,24 +670,31 @@ def kept_returns_with_steps(steps: int, lines: int) -> str:
     return text.replace("STEPS", str(steps))
 
 
+@pytest.mark.parametrize("backend", ["numpy", "compiled"])
 @pytest.mark.parametrize(
     "steps, lines",
     [(6, 0), (6, 24), (8, 0)],
     ids=["cheap_body_unrolled", "costly_body_kept", "three_atans_kept_at_8"],
 )
 def test_the_register_is_kept_in_a_short_loop_nir_does_not_unroll(
-    llvmpipe, make_shader, steps, lines
+    llvmpipe, make_shader, request, steps, lines, backend
 ):
     """Six passes, within NIR's 32: with the plain body NIR unrolls the loop (zero in the lanes
     that returned), with 24 sin lines more the body costs too much to unroll and the lanes keep
-    the value of their last call (loop_unroll.nir_unrolls decides for register_call); the plain
-    body is kept at 8 passes, for the cost of its three atan calls. Measured: taking every loop
-    of at most 32 passes as unrolled put 1,522 and 2,134 of the 14,400 pixels of the kept loops
-    off; the register kept in the cheap one put 1,522 off. Where llvmpipe's limit lies, found
-    with these shaders: 7 passes of the plain body unrolled, 8 kept; 4 passes with 30 sin lines
-    unrolled, 31 kept (a body cost of 116 to 118; loop_unroll.py counts 112, so it takes 31
-    lines for unrolled)."""
-    _assert_bit_for_bit(make_shader(kept_returns_with_steps(steps, lines)))
+    the value of their last call (loop_unroll.nir_unrolls decides for register_call, in both
+    engines); the plain body is kept at 8 passes, for the cost of its three atan calls.
+    Measured: taking every loop of at most 32 passes as unrolled put 1,522 and 2,134 of the
+    14,400 pixels of the kept loops off (each engine); the register kept in the cheap one put
+    1,522 off. Where llvmpipe's limit lies, found with these shaders: 7 passes of the plain body
+    unrolled, 8 kept; 4 passes with 30 sin lines unrolled, 31 kept (a body cost of 116 to 118;
+    loop_unroll.py counts 112, so it takes 31 lines for unrolled)."""
+    if backend == "compiled":
+        request.getfixturevalue("numba")
+    shader = make_shader(kept_returns_with_steps(steps, lines))
+    got_gl = np.asarray(compile_backend(shader, "gl").render(size=(160, 90)), np.float32)
+    got = np.asarray(compile_backend(shader, backend).render(size=(160, 90)), np.float32)
+    same = got.view(np.int32) == got_gl.view(np.int32)
+    assert same.all(), (~same).reshape(-1, 4).sum(0).tolist()
 
 
 SUNK_THROUGH_COMPOUNDS = """float saturate(float x) { return clamp(x, 0.0, 1.0); }
