@@ -14,7 +14,9 @@ a + 0.5)`` among sin lines: 13 unrolled and 14 kept in 2 passes, 8 and 9 in 3, 6
 one atan line with 57 sin lines and 3 of ``a = sin(a)`` unrolled in 4 passes, with 4 kept, one
 atan(y, x) line with 49 and 5 unrolled, with 6 kept: atan costs 29 a component and atan(y, x)
 50, where the two additions and the loop cost 3 (the sin lines leave 2 to 4; only 3 agrees with
-every atan count; the count here takes 2).
+every atan count). Four such additions in the body of 16 sin lines still unroll 16 passes: the
+additions of constants are one once merged, the loop's own instructions 2, where the count here
+takes every addition for one and the loop for none (2 for the two additions: one short).
 
 The cost here is counted on the syntax tree (:func:`body_cost`): an operator or a built-in is
 its result's components (a ``dot`` of N components 2N - 1 instructions, a ``normalize`` 3N, a
