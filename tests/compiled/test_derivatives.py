@@ -156,6 +156,17 @@ void mainImage(out vec4 c, in vec2 p) {
 }"""
 DERIVATIVES["register_in_kept_loop"] = KEPT_RETURNS.replace("STEPS", "40")
 DERIVATIVES["register_in_unrolled_loop"] = KEPT_RETURNS.replace("STEPS", "4")
+# a loop of 6 passes whose body costs too much for NIR to unroll keeps the register
+# (nir_fold.loop_unroll.nir_unrolls; tests/gl's test_the_register_is_kept_in_a_short_loop_...)
+DERIVATIVES["register_in_short_kept_loop"] = (
+    KEPT_RETURNS.replace("STEPS", "6")
+    .replace("float acc = 0.0;", "float acc = 0.0, a = p.y * 0.013;")
+    .replace(
+        "float(i) * 0.37));",
+        "float(i) * 0.37));\n" + "".join(f"a = sin(a * 1.01 + {k + 1}.0);\n" for k in range(24)),
+    )
+    .replace("c = vec4(acc, 0.0, 0.0, 1.0);", "c = vec4(acc, a, 0.0, 1.0);")
+)
 # an array returned from a branch, one element of it read by a neighbour's derivative (its
 # return slots, one per element, hold zero where no return wrote them: lanes_rt.lzero)
 DERIVATIVES["array_returned_from_a_branch"] = """

@@ -682,6 +682,43 @@ def test_a_result_returned_from_a_branch_keeps_its_old_value_in_lanes_left_out(
     _assert_bit_for_bit(make_shader(KEPT_RETURNS.replace("STEPS", steps)))
 
 
+def kept_returns_with_steps(steps: int, lines: int) -> str:
+    """KEPT_RETURNS whose loop runs `steps` passes, with `lines` more lines of a sin step in its
+    body (3 instructions each for NIR's unroll cost, loop_unroll.py), their value in green."""
+    body = " ".join(f"a = sin(a * 1.01 + {k + 1}.0);" for k in range(lines))
+    text = KEPT_RETURNS.replace("float acc = 0.0;", "float acc = 0.0, a = p.y * 0.013;")
+    text = text.replace("float(i) * 0.37));", "float(i) * 0.37));\n        " + body)
+    text = text.replace("c = vec4(acc, 0.0, 0.0, 1.0);", "c = vec4(acc, a, 0.0, 1.0);")
+    return text.replace("STEPS", str(steps))
+
+
+@pytest.mark.parametrize("backend", ["numpy", "compiled"])
+@pytest.mark.parametrize(
+    "steps, lines",
+    [(6, 0), (6, 24), (8, 0)],
+    ids=["cheap_body_unrolled", "costly_body_kept", "three_atans_kept_at_8"],
+)
+def test_the_register_is_kept_in_a_short_loop_nir_does_not_unroll(
+    llvmpipe, make_shader, request, steps, lines, backend
+):
+    """Six passes, within NIR's 32: with the plain body NIR unrolls the loop (zero in the lanes
+    that returned), with 24 sin lines more the body costs too much to unroll and the lanes keep
+    the value of their last call (loop_unroll.nir_unrolls decides for register_call, in both
+    engines); the plain body is kept at 8 passes, for the cost of its three atan calls.
+    Measured: taking every loop of at most 32 passes as unrolled put 1,522 and 2,134 of the
+    14,400 pixels of the kept loops off (each engine); the register kept in the cheap one put
+    1,522 off. Where llvmpipe's limit lies, found with these shaders: 7 passes of the plain body
+    unrolled, 8 kept; 4 passes with 30 sin lines unrolled, 31 kept (a body cost of 116 to 118;
+    loop_unroll.py counts 112, so it takes 31 lines for unrolled)."""
+    if backend == "compiled":
+        request.getfixturevalue("numba")
+    shader = make_shader(kept_returns_with_steps(steps, lines))
+    got_gl = np.asarray(compile_backend(shader, "gl").render(size=(160, 90)), np.float32)
+    got = np.asarray(compile_backend(shader, backend).render(size=(160, 90)), np.float32)
+    same = got.view(np.int32) == got_gl.view(np.int32)
+    assert same.all(), (~same).reshape(-1, 4).sum(0).tolist()
+
+
 SUNK_THROUGH_COMPOUNDS = """float saturate(float x) { return clamp(x, 0.0, 1.0); }
 float pcurve(float x, float a, float b) {
     float k = pow(a + b, a + b) / (pow(a, a) * pow(b, b));

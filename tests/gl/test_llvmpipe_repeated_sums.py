@@ -162,6 +162,25 @@ def _sines(n):
     )
 
 
+def _atans(n, passes, two=False):
+    """A loop body of two additions and n lines of atan (``atan(y, x)`` with `two`): NIR
+    unrolls 4 passes of atan lines up to n = 6, 2 passes of atan(y, x) lines up to n = 7
+    (loop_unroll.py: 29 and 50 instructions a component)."""
+    y_x = "a * 1.01 + {}.0, a + 0.5" if two else "a * 1.01 + {}.0"
+    lines = " ".join(f"a = atan({y_x.format(i + 1)});" for i in range(n))
+    return (
+        f"float a = s0; for (int i = 0; i < {passes}; i++) {{ seed += 0.1; seed += 0.2; {lines} }}"
+        " c = vec4(s0, seed, a, 1.0);"
+    )
+
+
+def _orders(passes, unrolled):
+    """The channel of the seed: (the other order, Mesa's) for a loop NIR unrolls or keeps."""
+    kept = lambda s: _restarted(s, [K, K2], passes)  # noqa: E731
+    copies = lambda s: _unrolled(s, [], [K, K2], passes, [])  # noqa: E731
+    return {1: (kept, copies) if unrolled else (copies, kept)}
+
+
 # An unrolled loop whose body adds two constants merges them first, ``phi + (0.1 + 0.1)``, then
 # each copy's sum into the one before; a loop whose body costs too much is kept.
 UNROLLED_BODIES = {
@@ -173,6 +192,10 @@ UNROLLED_BODIES = {
         _sines(17),
         {1: (lambda s: _unrolled(s, [], [K, K2], 16, []), lambda s: _restarted(s, [K, K2], 16))},
     ),
+    "atan_lines_unrolled": (_atans(6, 4), _orders(4, True)),
+    "one_atan_line_too_many_to_unroll": (_atans(7, 4), _orders(4, False)),
+    "atan2_lines_unrolled": (_atans(7, 2, two=True), _orders(2, True)),
+    "one_atan2_line_too_many_to_unroll": (_atans(8, 2, two=True), _orders(2, False)),
     "unrolled_loop_of_two_steps": (
         "for (int i = 0; i < 4; i++) { seed += 0.1; seed += 0.1; } c = vec4(s0, seed, 0.0, 1.0);",
         {1: (lambda s: _merged(s, 8), lambda s: _unrolled(s, [], [K, K], 4, []))},

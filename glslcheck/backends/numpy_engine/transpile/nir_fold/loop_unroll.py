@@ -9,7 +9,14 @@ chain of ``+= 0.1`` in the body, whose constants merge across passes only when t
 unrolled): 16 passes of ``a = sin(a * 1.01 + k)`` lines (3 instructions each) and two
 additions are unrolled with 16 lines and not with 17; 8 passes with 34 and not 35; the same
 lines on a vec3, 9 instructions each, with 5 and not 6: cost 3n + 2 (9n + 2) times the count
-against 832.
+against 832. The same way, lines of ``a = atan(a * 1.01 + k)`` and of ``a = atan(a * 1.01 + k,
+a + 0.5)`` among sin lines: 13 unrolled and 14 kept in 2 passes, 8 and 9 in 3, 6 and 7 in 4,
+one atan line with 57 sin lines and 3 of ``a = sin(a)`` unrolled in 4 passes, with 4 kept, one
+atan(y, x) line with 49 and 5 unrolled, with 6 kept: atan costs 29 a component and atan(y, x)
+50, where the two additions and the loop cost 3 (the sin lines leave 2 to 4; only 3 agrees with
+every atan count). Four such additions in the body of 16 sin lines still unroll 16 passes: the
+additions of constants are one once merged, the loop's own instructions 2, where the count here
+takes every addition for one and the loop for none (2 for the two additions: one short).
 
 The cost here is counted on the syntax tree (:func:`body_cost`): an operator or a built-in is
 its result's components (a ``dot`` of N components 2N - 1 instructions, a ``normalize`` 3N, a
@@ -42,7 +49,7 @@ _PER_COMPONENT = {
     "smoothstep": 6,
     "mod": 4,
     "tan": 3,
-    "atan": 20,
+    "atan": 29,  # (one argument; two: ATAN2)
     "asin": 10,
     "acos": 10,
     "sinh": 6,
@@ -53,6 +60,7 @@ _PER_COMPONENT = {
     "radians": 1,
     "degrees": 1,
 }
+ATAN2 = 50  # atan(y, x), a component
 
 
 def trip_count(tr: FoldEngine, loop: Any) -> int | None:
@@ -173,5 +181,7 @@ def _own_cost(tr: FoldEngine, n: Any, induction: Any, depth: int) -> int:
             return 9
         if n.callee == "reflect":
             return 4 * size
+        if n.callee == "atan" and len(n.args) == 2:
+            return ATAN2 * _components(tr, n)
         return _PER_COMPONENT.get(n.callee, 1) * _components(tr, n)
     return 0

@@ -11,7 +11,7 @@ from __future__ import annotations
 from typing import Any
 
 from .....frontend import syntax as A
-from .loop_unroll import MAX_ITERATIONS, trip_count
+from .loop_unroll import nir_unrolls
 from .queries import current_function
 
 TYPE_CHECKING = False  # not typing's: importing typing costs every start-up
@@ -30,10 +30,11 @@ def register_call(tr: FoldEngine, call: A.Call, fn: Symbol) -> bool:
     phi becomes a register, stored under the exec mask, and a neighbour's derivative reads the
     old value in a lane that left (gargantua's GasDisc: ``atan2`` called after
     ``if (coverage < 0.01) return;`` in its 200-step loop, measured: the lane's value of the
-    iteration before). Only in a loop NIR keeps: a loop of at most 32 iterations
-    (max_unroll_iterations) is unrolled, each copy its own register, zero in such a lane
-    (measured on a 4-step loop: the register kept across iterations put 917 of 14,400 pixels
-    off, zero none)."""
+    iteration before). Only in a loop NIR keeps (loop_unroll.nir_unrolls: a constant count of
+    at most 32 passes and a body cheap enough): a loop it unrolls has each copy its own
+    register, zero in such a lane (measured on a 4-step loop: the register kept across
+    iterations put 917 of 14,400 pixels off, zero none; 6 steps with 24 lines of sin more in
+    the body are kept: zero there put 1,522 off, the register none)."""
     if (
         tr.fn is None
         or id(current_function(tr).sym) not in tr.facts.uses_derivs
@@ -73,7 +74,7 @@ def _in_kept_loop(tr: FoldEngine, sym: Symbol, node: Any, depth: int) -> bool:
         return False
     loops = facts.enclosing_loops(node)
     if loops:
-        return not unrolled(tr, loops[-1])
+        return not nir_unrolls(tr, loops[-1])
     sites = [
         (f, n)
         for f in tr.facts.functions
@@ -81,9 +82,3 @@ def _in_kept_loop(tr: FoldEngine, sym: Symbol, node: Any, depth: int) -> bool:
         if isinstance(n, A.Call) and tr.model.call_target(n) is sym
     ]
     return bool(sites) and all(_in_kept_loop(tr, f, n, depth + 1) for f, n in sites)
-
-
-def unrolled(tr: FoldEngine, loop: Any) -> bool:
-    """A ``for`` loop of a constant count of at most 32 iterations (NIR unrolls it)."""
-    count = trip_count(tr, loop)
-    return count is not None and count <= MAX_ITERATIONS
