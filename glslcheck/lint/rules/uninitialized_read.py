@@ -44,7 +44,7 @@ color += kS * specularColor;
 from __future__ import annotations
 
 from ...base.diagnostics import Diagnostic
-from ...semantics.analysis import global_reads, program_facts, unassigned_reads
+from ...semantics.analysis import global_reads, program_facts, reached_through, unassigned_reads
 
 TYPE_CHECKING = False  # not typing's: importing typing costs every start-up
 if TYPE_CHECKING:
@@ -77,7 +77,8 @@ def check(ctx: LintContext) -> Iterator[Diagnostic]:
         if u.loc.path == ctx.path:
             yield Diagnostic(
                 f"the global '{u.node.name}' may be read before it is assigned a value "
-                f"(declared at line {u.origin.loc.line} without an initializer)",
+                f"(declared at line {u.origin.loc.line} without an initializer"
+                f"{reached_through(model.entry, u.via)})",
                 u.loc,
                 help=u.help,
             )

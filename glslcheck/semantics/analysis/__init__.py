@@ -43,6 +43,7 @@ from .undefined import (
     UndefinedRead,
     global_reads,
     origins,
+    reached_through,
     stop_notes,
     unassigned_reads,
     undefined_reads,
@@ -71,6 +72,7 @@ __all__ = [
     "written_variable",
     "origins",
     "global_reads",
+    "reached_through",
     "unassigned_reads",
     "undefined_reads",
 ]

@@ -85,7 +85,8 @@ VARIABLE_KINDS = (
 class UndefinedRead:
     """One place a program reads an undefined value: `loc` the read (or the operation),
     `origin` the node whose value is undefined (a parameter or declarator, or the operation),
-    `symbol` the variable (None for an operation)."""
+    `symbol` the variable (None for an operation), `via` the calls from the entry point that
+    reach a global's read in a callee, outermost first."""
 
     kind: str
     loc: Location
@@ -94,6 +95,7 @@ class UndefinedRead:
     origin: Any
     node: Any
     symbol: Symbol | None = None
+    via: tuple = ()
 
 
 def undefined_reads(model: Model) -> list[UndefinedRead]:
@@ -309,21 +311,29 @@ def _global_read(
     model: Model, entry: Symbol, ident: A.Identifier, origin: Any, via: tuple
 ) -> UndefinedRead:
     name = ident.name
-    path = ""
-    if via:
-        calls = " -> ".join(f"{c.callee} (line {c.loc.line})" for c in via)
-        path = f"; reached from {entry.name} through {calls}"
     message = (
         f"the global '{name}' may be read before it is assigned a value (declared at line "
-        f"{origin.loc.line} without an initializer{path}): WebGL zero-initialises it, desktop "
-        "GL leaves it undefined (GLSL ES 3.00 4.3: globals without one enter main() undefined)"
+        f"{origin.loc.line} without an initializer{reached_through(entry, via)}): WebGL "
+        "zero-initialises it, desktop GL leaves it undefined (GLSL ES 3.00 4.3: globals without "
+        "one enter main() undefined)"
     )
     help = (
         f"initialise '{name}' where it is declared, or assign it at the start of {entry.name} "
         "(before the calls that read it)"
     )
     sym = model.symbol_of(ident)
-    return UndefinedRead("uninitialized-global", ident.loc, message, help, origin, ident, sym)
+    return UndefinedRead(
+        "uninitialized-global", ident.loc, message, help, origin, ident, sym, tuple(via)
+    )
+
+
+def reached_through(entry: Symbol | None, via: tuple) -> str:
+    """ "; reached from mainImage through march (line 40) -> step (line 12)" for a read in a
+    callee (`UndefinedRead.via`), "" for a read in the entry point."""
+    if not via or entry is None:
+        return ""
+    calls = " -> ".join(f"{c.callee} (line {c.loc.line})" for c in via)
+    return f"; reached from {entry.name} through {calls}"
 
 
 class _Flow:
