@@ -478,7 +478,7 @@ class _Flow:
         if type(root) is A.Identifier:
             if reads:
                 self.read(root, st)
-            return st | self._root(root) if assigns else st
+            return (st | self._root(root)) if assigns else st
         return self.expr(root, st)
 
     def call(self, e: A.Call, callee: Symbol, st: set) -> set:
