@@ -372,14 +372,16 @@ def channel_reads(shader: Shader, tab: str) -> dict[int, Location]:
 
 
 def needs_passes(shader: Shader) -> bool:
-    """Whether the shader has buffers, a channels.json, or reads an iChannel."""
+    """Whether the shader has buffers, bindings (a channels.json, or a Shadertoy JSON export's
+    inputs), or reads an iChannel. A JSON export of an Image pass with no inputs that reads no
+    channel is one pass, as the same code in a .glsl file is."""
     if "GLSL" in shader.tabs:
         return False
-    if shader.channels is not None:
+    if shader.channels:
         return True
     return (
         any(t in shader.tabs for t in BUFFER_TABS)
-        or (folder_of(shader) / CHANNELS_FILE).is_file()
+        or (shader.channels is None and (folder_of(shader) / CHANNELS_FILE).is_file())
         or ("Image" in shader.tabs and bool(channel_reads(shader, "Image")))
     )
 

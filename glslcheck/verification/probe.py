@@ -838,6 +838,7 @@ UNDEFINED_ENTRIES = {
     "out-parameter": "an out parameter's value on entry",
     "out-parameter-unwritten": "an out parameter a path returns without writing",
     "uninitialized-local": "a local declared without an initializer",
+    "uninitialized-global": "a global declared without an initializer, on entry to main",
     "division-by-zero": "an integer division by zero",
     "shift-out-of-range": "a shift out of range",
     "conversion-out-of-range": "a conversion out of range",

@@ -375,15 +375,15 @@ def verify_frames(
 
 class UndefinedSide:
     """Which pixels of a frame depend on the shader's undefined reads (semantics.analysis.undefined:
-    out parameters and locals read before written, operations on constants outside their
-    range), and which reads. The taint is differential: the NumPy backend renders the frame with
-    WebGL's values at those reads (zeros, its normal module) and with values drawn anew at each
-    (`undefined="vary"`, backends/numpy_engine/transpile); a pixel whose colour differs between
-    the two depends on an undefined value (compare.depends_on_undefined). Nothing else differs
-    between the renders, so a pixel found is certain; a pixel both values colour alike is left
-    to the other counts, which keeps a renderer's bug from hiding here. With several reads, each
-    of the first MAX_SITES gets a render of its own that varies it alone: the pixels it
-    changes are its count in `lines`.
+    out parameters, locals and globals read before written, operations on constants outside
+    their range), and which reads. The taint is differential: the NumPy backend renders the
+    frame with WebGL's values at those reads (zeros, its normal module) and with values drawn
+    anew at each (`undefined="vary"`, backends/numpy_engine/transpile); a pixel whose colour
+    differs between the two depends on an undefined value (compare.depends_on_undefined).
+    Nothing else differs between the renders, so a pixel found is certain; a pixel both values
+    colour alike is left to the other counts, which keeps a renderer's bug from hiding here.
+    With several reads, each of the first MAX_SITES gets a render of its own that varies it
+    alone: the pixels it changes are its count in `lines`.
 
     Renders happen only for a frame that fails and a program with undefined reads; a shader of
     several passes (buffers, channels) is not tainted: its undefined pixels stay mismatches."""

@@ -503,6 +503,30 @@ def test_shadertoy_json_export_reads_an_unbound_channel_as_shadertoy_does(gl, tm
         )
 
 
+def test_a_shadertoy_json_export_of_one_pass_without_inputs_is_one_pass(tmp_path):
+    """An Image pass with no inputs that reads no channel runs as the same code in a .glsl
+    file does (one pass: verify's taint of undefined values and probe take it); one that reads
+    a channel, even with nothing bound, or has inputs, still runs as passes."""
+    from glslcheck.shadertoy.channels import needs_passes
+    from glslcheck.shadertoy.sources import load_shader
+
+    code = "void mainImage(out vec4 c, in vec2 p) { c = vec4(p / iResolution.xy, 0.5, 1.0); }\n"
+    image = {"inputs": [], "outputs": [{"id": 37, "channel": 0}], "code": code}
+    image.update(name="Image", type="image")
+    data = {"Shader": {"ver": "0.1", "info": {"name": "one"}, "renderpass": [image]}}
+    (tmp_path / "one.json").write_text(json.dumps(data))
+    (tmp_path / "one.glsl").write_text(code)
+    one = load_shader(str(tmp_path / "one.json"))
+    assert one.channels == [] and not needs_passes(one)
+    json_img = api.compile(str(tmp_path / "one.json"), backend="numpy").render(size=(8, 4))
+    glsl_img = api.compile(str(tmp_path / "one.glsl"), backend="numpy").render(size=(8, 4))
+    assert np.array_equal(json_img, glsl_img)
+    image["code"] = code.replace("0.5, 1.0)", "0.5, 1.0) + texture(iChannel1, p)")
+    (tmp_path / "reads.json").write_text(json.dumps(data))
+    assert needs_passes(load_shader(str(tmp_path / "reads.json")))
+    assert needs_passes(load_shader(_export(tmp_path)))
+
+
 @pytest.mark.usefixtures("llvmpipe")  # bit for bit with Mesa 22.3's llvmpipe
 @pytest.mark.parametrize("size", [(15, 9), (9, 14)])
 def test_odd_sizes_shade_helper_pixels_as_llvmpipe(gl, tmp_path, size):

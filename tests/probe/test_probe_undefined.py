@@ -68,3 +68,16 @@ def test_nan_pixels_of_a_program_without_undefined_reads_stay_the_operations():
         Inputs(size=(80, 45))
     )
     assert report.undefined_reads == [] and all(o.undefined_pixels == 0 for o in report.origins)
+
+
+def test_uninitialized_global_enters_at_the_start_of_mainimage():
+    path = CASES / "global.glsl"
+    inputs = Inputs(size=(32, 18))
+    report = Probe(path).pixel(3, 9, inputs)
+    ((line, kind),) = _marked(path)
+    first = report.steps[0]  # before mainImage's first statement
+    assert (first.kind, first.why, first.read_line) == ("undefined", kind, line)
+    assert first.name == "edge" and first.line < line  # at the global's declaration
+    assert [s for s in report.steps if s.kind == "undefined"] == [first]
+    text = format_pixel(report, str(path), inputs)
+    assert "a global declared without an initializer" in text and f"(read at line {line})" in text

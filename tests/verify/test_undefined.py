@@ -126,3 +126,58 @@ def test_report_page_names_undefined_pixels(gl):
     assert c.verdict in ("match", "undefined") and c.mismatched_pixels == 0
     page = page_html([report], SIZE, 0.0, "report")
     assert ("undefined in the shader" in page) == (c.verdict == "undefined")
+
+
+def test_vary_module_draws_a_global_in_init_globals():
+    shader = load_shader(CASES / "global.glsl")
+    zero, vary = compile_numpy(shader), compile_numpy(shader, undefined="vary")
+    assert "X.undefined" not in zero.source
+    init = vary.source[vary.source.index("def init_globals") :]
+    assert vary.source.count("X.undefined(") == init.count("X.undefined(") == 1
+
+
+def test_a_global_set_on_some_paths_is_undefined_against_llvmpipe(llvmpipe):
+    """A global set to a constant inside a march loop on some paths only and read on every
+    pixel: llvmpipe folds it to that constant on the other paths, WebGL and the NumPy backend
+    read zero there. Every differing pixel must be named undefined, at the read, and none
+    counted as a mismatch; the pixels where the loop sets it are alike on both sides."""
+    path = CASES / "global.glsl"
+    (result,) = verify_frames(path, size=SIZE)
+    c = result.comparison
+    assert c.verdict == "undefined", c.summary()
+    assert c.mismatched_pixels == 0 and c.nan_mismatched_pixels == 0
+    assert 0 < c.undefined_pixels < SIZE[0] * SIZE[1]
+    assert [(u["line"], u["kind"], u["pixels"]) for u in c.undefined_lines] == [
+        (min(_marked_lines(path)), "uninitialized-global", c.undefined_pixels)
+    ]
+
+
+def test_globals_assigned_before_their_reads_match_llvmpipe(llvmpipe, capsys):
+    path = CASES / "global_assigned.glsl"
+    (result,) = verify_frames(path, size=SIZE)
+    c = result.comparison
+    assert c.verdict == "match" and c.undefined_pixels == 0, c.summary()
+    assert main(["check", str(path)]) == 0
+    assert "warning" not in capsys.readouterr().err
+
+
+def test_cli_names_the_global_in_text_and_json(llvmpipe, capsys):
+    path = CASES / "global.glsl"
+    assert main(["verify", str(path), "--size", "32x18", "--format", "json"]) == 1
+    out = json.loads(capsys.readouterr().out)
+    assert out["verdict"] == "undefined" and out["mismatched_pixels"] == 0
+    (read,) = out["undefined_lines"]
+    assert read["kind"] == "uninitialized-global" and read["pixels"] == out["undefined_pixels"]
+    assert main(["verify", str(path), "--size", "32x18"]) == 1
+    text = capsys.readouterr().out
+    assert "UNDEFINED IN THE SHADER" in text and "MISMATCH" not in text
+    assert f"{path}:{read['line']}:{read['column']}" in text
+    assert "a global read before it is assigned" in text
+
+
+def test_every_kind_has_words_in_verify_and_probe():
+    from glslcheck.cli.commands.verify import UNDEFINED_KINDS
+    from glslcheck.semantics.analysis.undefined import KINDS
+    from glslcheck.verification.probe import UNDEFINED_ENTRIES
+
+    assert set(UNDEFINED_KINDS) == set(UNDEFINED_ENTRIES) == set(KINDS)

@@ -215,6 +215,17 @@ class TraceTranspiler(Transpiler):
         sid = self.site("undefined", node, u.symbol.name if u.symbol else "", why=u)
         return f"T.u(S, {sid}, {mask}, {text})"
 
+    def entry_prologue(self) -> list[str]:
+        """A global the checker finds read before it is assigned enters undefined at the entry
+        point's start: a step there (at its declaration's line)."""
+        out = super().entry_prologue()
+        for u in self.undefined_at.values():
+            if u.kind == "uninitialized-global" and u.symbol is not None:
+                sid = self.site("undefined", u.origin, u.symbol.name, why=u)
+                name = self.var_name(u.symbol, u.origin)
+                out.append(f"{name} = T.u(S, {sid}, _m, {name})")
+        return out
+
     def expr(self, e: Any, mask: str | None) -> str:
         text = super().expr(e, mask)
         u = self.undefined_at.get(id(e))

@@ -33,14 +33,14 @@ frames show a progress bar on stderr when it is a terminal (--progress forces it
 "mismatch"; unstable pixels are those where both float32 renders are far from the float64
 reference, see verification/compare.py; unstable_lines names the statements where they lose
 precision, traced by glslcheck probe on a sample of them; undefined pixels are those over
-tolerance whose colour depends on a value the shader leaves undefined (an out parameter or a
-local read before it is written, an operation on constants outside its range: `glslcheck check`
-warns at each), found by rendering the NumPy side with other values at those reads
+tolerance whose colour depends on a value the shader leaves undefined (an out parameter, a
+local or a global read before it is written, an operation on constants outside its range:
+`glslcheck check` warns at each), found by rendering the NumPy side with other values at those reads
 (verification/verify.py, UndefinedSide); they are counted apart from the mismatches, and the
 verdict is "undefined" (match false, exit 1: the shader is at fault, not the renderer) when they
 are the only difference; undefined_lines is [{"file", "line", "column", "code", "kind",
 "pixels"}] of the reads, kind one of out-parameter, out-parameter-unwritten (at the return that
-leaves it so), uninitialized-local, division-by-zero, shift-out-of-range,
+leaves it so), uninitialized-local, uninitialized-global, division-by-zero, shift-out-of-range,
 conversion-out-of-range, domain; driver is {"renderer", "mesa", "emulated"} of the GL side,
 emulated false when the NumPy backend's bit-exact emulation was copied from another driver than
 this one, llvmpipe of Mesa 22.3: a mismatch then also says so in the text output, since it may
@@ -430,6 +430,7 @@ UNDEFINED_KINDS = {
     "out-parameter": "an out parameter read before it is written",
     "out-parameter-unwritten": "an out parameter a path leaves unwritten",
     "uninitialized-local": "a local read before it is assigned",
+    "uninitialized-global": "a global read before it is assigned",
     "division-by-zero": "integer division by zero",
     "shift-out-of-range": "a shift out of range",
     "conversion-out-of-range": "a conversion out of range",

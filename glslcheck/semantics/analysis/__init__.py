@@ -12,8 +12,9 @@
   for every stage.
 * `values.py`: the sign analysis (`value_range`: bounds and why a value can be negative).
 * `undefined.py`: where the program reads a value GLSL leaves undefined (`undefined_reads`:
-  out parameters and locals read before written, integer division by zero, out-of-range
-  shifts and conversions, built-ins outside their domain), for `check`, lint, verify and probe.
+  out parameters, locals and globals read before written (`global_reads` follows the calls),
+  integer division by zero, out-of-range shifts and conversions, built-ins outside their
+  domain), for `check`, lint, verify and probe.
 
 It reads the semantic model (`glslcheck.semantics.Model`) and the AST only; its users are the lint
 rules (glslcheck/lint/rules) and both CPU engines (backends/cpu_core/facts.py and
@@ -40,7 +41,9 @@ from .undefined import (
     STOPS,
     VARIABLE_KINDS,
     UndefinedRead,
+    global_reads,
     origins,
+    reached_through,
     stop_notes,
     unassigned_reads,
     undefined_reads,
@@ -68,6 +71,8 @@ __all__ = [
     "pure_function",
     "written_variable",
     "origins",
+    "global_reads",
+    "reached_through",
     "unassigned_reads",
     "undefined_reads",
 ]

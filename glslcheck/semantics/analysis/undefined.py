@@ -17,6 +17,12 @@ Kinds (`UndefinedRead.kind`):
 * "uninitialized-local": a local variable declared without an initializer and read before it
   is assigned (spec 4.3: undefined; WebGL zero-initialises it, desktop GL does not). `origin` is
   the declarator.
+* "uninitialized-global": a global variable declared without an initializer (and without
+  `const`, `uniform`, `in` or `out`) read before every path from the entry point assigns it
+  (spec 4.3: such globals "enter main() with undefined values"; WebGL zero-initialises them,
+  desktop GL does not). The read may be in a callee: the analysis follows the calls (a function
+  that assigns the global on every path to its return counts as assigning it). `origin` is the
+  global's declarator: a backend gives it its value at the entry point's start.
 * "division-by-zero": an integer `/` or `%` (or `/=`, `%=`) by a constant zero (spec 5.9).
 * "shift-out-of-range": `<<` or `>>` by a constant below 0 or of 32 or more (spec 5.9).
 * "conversion-out-of-range": `int(x)`/`uint(x)` of a constant float outside the type's range,
@@ -24,13 +30,17 @@ Kinds (`UndefinedRead.kind`):
 * "domain": `pow`, `log`, `log2`, `sqrt` or `inversesqrt` of constant arguments outside the
   domain where the built-in is defined (spec 8.2).
 
-The first two are found by definite assignment, path by path: a state is the set of tracked
+The variable kinds are found by definite assignment, path by path: a state is the set of tracked
 variables assigned on every path so far; an `if` without `else` (or with one arm only
 assigning), a loop body (which may run zero times), a `?:` or `&&`/`||` arm and a `switch` case
 are the paths. An assignment to a part (`v.x = ..`, `a[i] = ..`) counts as an assignment, and
 so does passing the variable as an `out` argument; an `inout` argument is a read. The first
-unassigned read of each variable is reported. For the other kinds `origin` is the operation
-itself: its value is the undefined one.
+unassigned read of each variable is reported. Globals are followed across calls: each
+function's summary (computed callees first: GLSL has no recursion) is the first read of each
+global that some path from its entry reaches unassigned, and the globals it assigns on every
+path to a return; at a call the caller's state decides which of the callee's reads are
+undefined, and the callee's assigned globals join the state. For the other kinds `origin` is
+the operation itself: its value is the undefined one.
 
 A backend that renders a program decides what these values are (the NumPy backend: zero, as
 WebGL); `verify` and `probe` use these sites to tell the shader's undefined behaviour from a
@@ -56,20 +66,27 @@ KINDS = (
     "out-parameter",
     "out-parameter-unwritten",
     "uninitialized-local",
+    "uninitialized-global",
     "division-by-zero",
     "shift-out-of-range",
     "conversion-out-of-range",
     "domain",
 )
 # The kinds whose undefined value is a variable's initial value (the others: an operation's).
-VARIABLE_KINDS = ("out-parameter", "out-parameter-unwritten", "uninitialized-local")
+VARIABLE_KINDS = (
+    "out-parameter",
+    "out-parameter-unwritten",
+    "uninitialized-local",
+    "uninitialized-global",
+)
 
 
 @record(frozen=True)
 class UndefinedRead:
     """One place a program reads an undefined value: `loc` the read (or the operation),
     `origin` the node whose value is undefined (a parameter or declarator, or the operation),
-    `symbol` the variable (None for an operation)."""
+    `symbol` the variable (None for an operation), `via` the calls from the entry point that
+    reach a global's read in a callee, outermost first."""
 
     kind: str
     loc: Location
@@ -78,6 +95,7 @@ class UndefinedRead:
     origin: Any
     node: Any
     symbol: Symbol | None = None
+    via: tuple = ()
 
 
 def undefined_reads(model: Model) -> list[UndefinedRead]:
@@ -86,7 +104,7 @@ def undefined_reads(model: Model) -> list[UndefinedRead]:
     cache = model.analysis_caches.setdefault("undefined_reads", {})
     got = cache.get("all")
     if got is None:
-        got = []
+        got = list(global_reads(model))
         for fn in model.reachable_functions():
             definition = fn.node
             if isinstance(definition, A.FunctionDefinition) and definition.body is not None:
@@ -174,7 +192,7 @@ def _assignment(model: Model, definition: A.FunctionDefinition) -> tuple[list, l
             end = flow.stmt(definition.body, set())
         except RecursionError:
             flow.found, flow.returns, end = [], [], None
-        reads = [_variable_read(model, ident, *tracked[i]) for i, ident in flow.found]
+        reads = [_variable_read(model, ident, *tracked[i]) for i, ident, _ in flow.found]
         exits = flow.returns + ([(None, end)] if end is not None else [])
         for p in definition.proto.params:
             sym = model.symbol_of(p)
@@ -234,14 +252,101 @@ def _variable_read(model: Model, ident: A.Identifier, kind: str, origin: Any) ->
     return UndefinedRead(kind, ident.loc, message, help, origin, ident, sym)
 
 
+# ---------------------------------------------------------------------------------------------
+# Globals read before they are assigned, across the calls from the entry point
+
+
+def global_reads(model: Model) -> list[UndefinedRead]:
+    """The first read of each global declared without an initializer that some path from the
+    entry point reaches before an assignment (kind "uninitialized-global"), in the entry point
+    or in a function it calls (cached on the model)."""
+    cache = model.analysis_caches.setdefault("undefined_reads", {})
+    got = cache.get("globals")
+    if got is not None:
+        return got
+    got = []
+    tracked = _uninitialized_globals(model)
+    entry = model.entry
+    if tracked and entry is not None:
+        summaries: dict[int, tuple[list, set | None]] = {}
+        for fn in model.reachable_functions():  # callees before callers
+            definition = fn.node
+            if isinstance(definition, A.FunctionDefinition) and definition.body is not None:
+                summaries[id(fn)] = _summary(model, definition, tracked, summaries)
+        found = summaries.get(id(entry), ([], None))[0]
+        got = [_global_read(model, entry, ident, tracked[i][1], via) for i, ident, via in found]
+    cache["globals"] = got
+    return got
+
+
+def _uninitialized_globals(model: Model) -> dict[int, tuple[str, Any]]:
+    """id(symbol) -> ("uninitialized-global", declarator) of each global variable without an
+    initializer and without a storage qualifier (a const has an initializer; a uniform or an
+    `in` is the application's value; an `out` is the shader's result)."""
+    out: dict[int, tuple[str, Any]] = {}
+    for sym in model.globals:
+        d = sym.node
+        if sym.kind == "global" and sym.qualifier is None and type(d) is A.Declarator:
+            if d.init is None:
+                out[id(sym)] = ("uninitialized-global", d)
+    return out
+
+
+def _summary(
+    model: Model, definition: A.FunctionDefinition, tracked: dict, summaries: dict
+) -> tuple[list, set | None]:
+    """A function's effect on the tracked globals: (id(symbol), first read some path from its
+    entry reaches unassigned, the calls it is reached through) of each, and the globals assigned
+    on every path to a return (None: no path returns, every one discards)."""
+    flow = _Flow(model, tracked, summaries)
+    try:
+        end = flow.stmt(definition.body, set())
+    except RecursionError:
+        return [], set(tracked)  # too deep to follow: nothing found in it, nor after it
+    exits = [st for _, st in flow.returns] + ([end] if end is not None else [])
+    return flow.found, _meet_all(exits)
+
+
+def _global_read(
+    model: Model, entry: Symbol, ident: A.Identifier, origin: Any, via: tuple
+) -> UndefinedRead:
+    name = ident.name
+    message = (
+        f"the global '{name}' may be read before it is assigned a value (declared at line "
+        f"{origin.loc.line} without an initializer{reached_through(entry, via)}): WebGL "
+        "zero-initialises it, desktop GL leaves it undefined (GLSL ES 3.00 4.3: globals without "
+        "one enter main() undefined)"
+    )
+    help = (
+        f"initialise '{name}' where it is declared, or assign it at the start of {entry.name} "
+        "(before the calls that read it)"
+    )
+    sym = model.symbol_of(ident)
+    return UndefinedRead(
+        "uninitialized-global", ident.loc, message, help, origin, ident, sym, tuple(via)
+    )
+
+
+def reached_through(entry: Symbol | None, via: tuple) -> str:
+    """ "; reached from mainImage through march (line 40) -> step (line 12)" for a read in a
+    callee (`UndefinedRead.via`), "" for a read in the entry point."""
+    if not via or entry is None:
+        return ""
+    calls = " -> ".join(f"{c.callee} (line {c.loc.line})" for c in via)
+    return f"; reached from {entry.name} through {calls}"
+
+
 class _Flow:
     """Definite assignment: a state is the set of tracked variables assigned on every path
     (None: unreachable, after return/break/continue/discard). `found`: (id(symbol), the first
-    unassigned read) in the order they are met."""
+    unassigned read, the calls it is reached through) in the order they are met. With
+    `summaries` (id(function symbol) -> `_summary`) a call applies its callee's: the globals
+    it reads unassigned, then the ones it assigns."""
 
-    def __init__(self, model: Model, tracked: dict) -> None:
+    def __init__(self, model: Model, tracked: dict, summaries: dict | None = None) -> None:
         self.model = model
         self.tracked = tracked
+        self.summaries = summaries
         self.reported: set[int] = set()
         self.found: list = []
         # (states at each break, states at each continue) of the loops and switches being
@@ -353,17 +458,18 @@ class _Flow:
         return self.expr(c, st)
 
     # -- expressions ---------------------------------------------------------------------------
-    def read(self, ident: A.Identifier, st: set) -> None:
+    def read(self, ident: A.Identifier, st: set, via: tuple = ()) -> None:
         sym = self.model.symbol_of(ident)
         if sym is None:
             return
         i = id(sym)
         if i in self.tracked and i not in st and i not in self.reported:
             self.reported.add(i)
-            self.found.append((i, ident))
+            self.found.append((i, ident, via))
 
-    def target(self, e: Any, st: set, reads: bool) -> set:
-        """Evaluate an l-value: index expressions are read; the variable is read when `reads`."""
+    def target(self, e: Any, st: set, reads: bool, assigns: bool = True) -> set:
+        """Evaluate an l-value: index expressions are read; the variable is read when `reads`,
+        and assigned when `assigns` (an out argument is assigned after the call)."""
         root = e
         while type(root) in (A.Field, A.Index):
             if type(root) is A.Index:
@@ -372,8 +478,19 @@ class _Flow:
         if type(root) is A.Identifier:
             if reads:
                 self.read(root, st)
-            return st | self._root(root)
+            return (st | self._root(root)) if assigns else st
         return self.expr(root, st)
+
+    def call(self, e: A.Call, callee: Symbol, st: set) -> set:
+        """The callee's effect at a call, after its arguments are evaluated."""
+        summary = self.summaries.get(id(callee)) if self.summaries is not None else None
+        if summary is None:
+            return st  # not a user function with a body (or recursion, which the checker rejects)
+        reads, assigned = summary
+        for i, ident, via in reads:
+            if i not in st:
+                self.read(ident, st, (e,) + via)
+        return st | (assigned if assigned is not None else set(self.tracked))
 
     def expr(self, e: Any, st: set) -> set:
         if e is None:
@@ -400,19 +517,22 @@ class _Flow:
             self.expr(e.right, set(st))
             return st
         if t is A.Call:
-            dirs = param_directions(self.model.call_target(e))
+            callee = self.model.call_target(e)
+            dirs = param_directions(callee)
             outs = []
             for i, arg in enumerate(e.args):
                 d = dirs[i] if i < len(dirs) else "in"
                 if d == "out":
                     outs.append(arg)
-                    st = self.target(arg, st, reads=False)  # assigned by the call
+                    st = self.target(arg, st, reads=False, assigns=False)  # assigned below
                 elif d == "inout":
                     outs.append(arg)
                     st = self.expr(arg, st)
                 else:
                     st = self.expr(arg, st)
-            for arg in outs:
+            if isinstance(callee, Symbol):
+                st = self.call(e, callee, st)
+            for arg in outs:  # copied out when the call returns
                 st = st | self._root(arg)
             return st
         for child in e.children():

@@ -44,6 +44,8 @@ class Functions(TranspilerState):
             if direction != "in":
                 fs.outs.append(pyname)
         fs.defined.append("_m")
+        if is_entry:
+            prologue += self.entry_prologue()
         if nir_fold.sunk_return(self, sym) is not None:
             params.append("_k")  # a constant the caller adds to the result (nir_fold.sunk_return)
         chains = nir_fold.chain_param_names(self, sym)  # the caller's `+= #c` chains
@@ -110,6 +112,11 @@ class Functions(TranspilerState):
             self.emit(self.final_return())
         self.indent -= 1
         self.fn = None
+
+    def entry_prologue(self) -> list[str]:
+        """Statements run first in the entry point (the tracing transpiler's: where the globals
+        that enter it undefined are reported)."""
+        return []
 
     def early_out(self, body: list[Any]) -> tuple[Any, Any] | None:
         """`if (c) return K; return e;` ending a function, K a constant and c, e without side

@@ -192,7 +192,9 @@ class Transpiler(Names, Functions, Statements, Expressions, PythonLimits):
             d = sym.node
             init = d.init if isinstance(d, A.Declarator) else None
             self.comment_line(d)
-            value = self.expr(init, None) if init is not None else self.zero(sym.type, d)
+            # (without an initializer: zero, WebGL's value, or in the "vary" mode a value drawn
+            # for a global the checker finds read before it is assigned)
+            value = self.expr(init, None) if init is not None else self.initial(sym.type, d)
             self.emit(f"{self.var_name(sym, d)} = {value}")
             empty = False
         if empty:
