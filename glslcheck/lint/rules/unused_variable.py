@@ -289,26 +289,29 @@ def _dead_stores(fn, reads: set[int]) -> Iterator[Diagnostic]:
             writes.append((w, value))
     if not writes:
         return
-    positions = _read_positions(fn)
+    positions = _read_positions(fn)  # in execution order: sorted
+    everywhere = sorted(p for read_at in positions.values() for p in read_at)
+    # Last first: a statement's reads come before its own position, so the statements that only
+    # a later one of the chain reads are met after it, in one pass.
+    writes.sort(key=lambda wv: -wv[0].pos)
 
-    def read_after(w, ignored) -> bool:
-        return any(
-            p > w.pos and not any(a <= p <= b for a, b in ignored)
-            for p in positions.get(id(w.symbol), [])
-        )
+    def read_after(w, ignored: set[int]) -> bool:
+        read_at = positions.get(id(w.symbol), [])
+        return any(p not in ignored for p in read_at[bisect_right(read_at, w.pos) :])
 
     for root, value in writes:
-        if root.kind == "init" or not _computed(fn, value) or read_after(root, []):
+        if root.kind == "init" or not _computed(fn, value) or read_after(root, set()):
             continue
         chain = [root]
-        grown = True
-        while grown:  # a read by a statement of the chain is no read: what it reads may be dead
-            grown = False
-            ignored = [(fn.enter[id(w.node)], fn.exit[id(w.node)]) for w in chain]
-            for w, _ in writes:
-                if w.pos < root.pos and w not in chain and not read_after(w, ignored):
-                    chain.append(w)
-                    grown = True
+        ignored: set[int] = set()  # the read positions inside the chain's statements: no reads
+        for w, _ in writes:
+            if w is not root and w.pos < root.pos and not read_after(w, ignored):
+                chain.append(w)
+            if w is root or w is chain[-1]:
+                lo, hi = fn.enter[id(w.node)], fn.exit[id(w.node)]
+                ignored.update(
+                    everywhere[bisect_right(everywhere, lo) : bisect_right(everywhere, hi)]
+                )
         feeding = sorted(
             (w for w in chain[1:] if w.kind != "init" or w.value is not None), key=lambda w: w.pos
         )
@@ -317,13 +320,7 @@ def _dead_stores(fn, reads: set[int]) -> Iterator[Diagnostic]:
         yield Diagnostic(
             f"the value assigned to '{name}' here is never read: nothing after it reads "
             f"'{name}'"
-            + (
-                f"; {at_lines([w.node for w in feeding])} "
-                + ("computes" if len({w.node.loc.line for w in feeding}) == 1 else "compute")
-                + " only what it reads"
-                if feeding
-                else ""
-            )
+            + (f"; {_where(feeding)} only what it reads" if feeding else "")
             + (
                 f" ('{name}' is an in parameter: the caller never sees what is written to it)"
                 if param
@@ -337,9 +334,23 @@ def _dead_stores(fn, reads: set[int]) -> Iterator[Diagnostic]:
                 else "remove the assignment and the work only it uses, or use the value"
             ),
             notes=[
-                Diagnostic("computed only for it", w.node.loc, severity="note") for w in feeding
+                Diagnostic("computed only for it", w.node.loc, severity="note")
+                for w in feeding[:_LISTED]
             ],
         )
+
+
+_LISTED = 8  # places a message lists one by one; more are given as a span
+
+
+def _where(writes: list) -> str:
+    """`line 4 computes`, `lines 4, 6 and 9 compute`, or `20 lines from 4 to 31 compute`."""
+    lines = sorted({w.node.loc.line for w in writes})
+    if len(lines) == 1:
+        return f"line {lines[0]} computes"
+    if len(lines) <= _LISTED:
+        return f"{at_lines([w.node for w in writes])} compute"
+    return f"{len(lines)} lines from {lines[0]} to {lines[-1]} compute"
 
 
 def _own_variables(fn) -> set[int]:
