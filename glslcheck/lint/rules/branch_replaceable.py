@@ -464,11 +464,13 @@ def _parity(fn, e, depth: int) -> str | None:
         ):
             return text(e)
     if type(e) is A.Binary and e.op == "%" and model.const_value(e.right) == 2:
-        if getattr(model.type_of(e), "base", None) in ("int", "uint"):
+        kind = model.type_of(e)
+        if getattr(kind, "base", None) in ("int", "uint") and getattr(kind, "is_scalar", False):
             left = (
                 text(e.left) if is_atom(e.left) or type(e.left) is A.Call else f"({text(e.left)})"
             )
-            return f"float({left} & 1)"  # n % 2 where n >= 0 (undefined below)
+            one = "1u" if kind.base == "uint" else "1"
+            return f"float({left} & {one})"  # n % 2 where n >= 0 (undefined below)
     return None
 
 
