@@ -515,7 +515,8 @@ def _nested(fn, node: A.If, nest: list) -> tuple[str, str] | None:
     if node.else_ is None:
         return None
     returned = _returned(node.then), _returned(node.else_)
-    if None not in returned and not (_value(fn, returned[0]) and _value(fn, returned[1])):
+    both = returned[0] is not None and returned[1] is not None
+    if both and not (_value(fn, returned[0]) and _value(fn, returned[1])):
         cmp = _comparison(fn, node.cond, "float")
         indicator, sense = _step(*cmp) if cmp is not None else (_indicator(fn, node.cond), True)
         if indicator is None or not _float_valued(fn, returned[0]):
