@@ -217,9 +217,10 @@ def label_lines(lab: dict) -> set[int]:
 
 
 def shares_line(lab: dict, f: dict, any_rule: bool = False) -> bool:
-    """Whether a finding and a label can match: the same rule (any rule with `any_rule`) and a
-    line in common."""
-    return (any_rule or f["rule"] == lab["rule"]) and bool(finding_lines(f) & label_lines(lab))
+    """Whether a finding and a label can match: the same rule (or the guide id the finding is
+    "also"; any rule with `any_rule`) and a line in common."""
+    same = any_rule or lab["rule"] in (f["rule"], f.get("also"))
+    return same and bool(finding_lines(f) & label_lines(lab))
 
 
 def line_level(labels: list[dict], findings: list[dict]) -> tuple[Counter, Counter]:
@@ -251,18 +252,28 @@ def match(labels: list[dict], findings: list[dict], any_rule: bool = False) -> d
     return {j: i for i, j in owner.items()}
 
 
+# A rule the guide has no id for whose deduction is also the one a guide id names: a value a
+# helper computes again in each call (repeated-across-calls) is "the same pure computation done
+# again with the same operand values", which readers label repeated-expression as often as
+# other-inefficiency (both readings of set 5 on m06's seven calls, set 2's on the view vector).
+ALSO = {"repeated-across-calls": "repeated-expression"}
+
+
 def scored_as(f: dict, rules: list[str]) -> dict:
     """The finding as scored: a deduction of an efficiency rule the guide has no id for
     (unused-variable, no-op-arithmetic) is what the guide's other-inefficiency labels (an
     inefficiency none of its ids fits), so where the labels cover that id it is scored as one,
-    its own rule kept in "as"."""
+    its own rule kept in "as"; where ALSO names a guide id the labels cover too, it may match
+    a label of either ("also")."""
     if (
         OTHER in rules
         and f["rule"] in EFFICIENCY_RULES
         and f["rule"] not in GUIDE_RULES
         and f["penalty"]
     ):
-        return {**f, "rule": OTHER, "as": f["rule"]}
+        also = ALSO.get(f["rule"])
+        extra = {"also": also} if also in rules else {}
+        return {**f, "rule": OTHER, "as": f["rule"], **extra}
     return f
 
 

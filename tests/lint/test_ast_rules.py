@@ -5,6 +5,7 @@ from __future__ import annotations
 
 from pathlib import Path
 
+import numpy as np
 import pytest
 
 from glslcheck.frontend import syntax as A
@@ -175,6 +176,54 @@ def test_faceforward_replacement_computes_what_the_branch_computes(gl, make_shad
     pixels = compile_gl(make_shader(image), gl).render(size=(9, 9))
     assert (pixels[..., 3] == 1.0).any()  # perpendicular directions were tried
     assert not pixels[..., :3].any()
+
+
+def test_shared_call_and_parity_replacements_compute_what_the_branches_compute(gl, make_shader):
+    """The help's statement for arms sharing a cos() (a checkerboard's parity, negative cells
+    included) and for an int parity choosing a mix's direction gives each branch's value, as the
+    GL driver computes both."""
+    from glslcheck.backends.gl import compile_gl
+
+    checker = "    vec2 cell = floor(coord / 2.0);\n    float parity = mod(cell.x + cell.y, 2.0);\n"
+    checker_branch = (
+        "    if (parity == 0.0) { return 0.5 + 0.5 * cos(8.0 * t + vec3(0.0, 2.0, 4.0)); }\n"
+        "    else { return 0.5 + 0.5 * cos(8.0 * t - vec3(4.0, 2.0, 0.0)); }\n"
+    )
+    fade_branch = (
+        "    if (int(cycles) % 2 == 0) { return mix(a, b, t - cycles); }\n"
+        "    else { return mix(b, a, t - cycles); }\n"
+    )
+    functions = (
+        f"vec3 checker(in vec2 coord, in float t)\n{{\n{checker}{checker_branch}}}\n"
+        "vec3 fade(in vec3 a, in vec3 b, in float t)\n{\n    float cycles = floor(t);\n"
+        f"{fade_branch}}}\n"
+    )
+    found = _findings(functions + MAIN, ["branch-replaceable"])
+    assert [f.loc.line for f in found] == [5, 11]
+    checker_help, fade_help = (f.help.removeprefix("write ") for f in found)
+    assert "cos(mix(" in checker_help and "& 1" in fade_help
+    image = (
+        functions
+        + f"vec3 checker2(in vec2 coord, in float t)\n{{\n{checker}    {checker_help}\n}}\n"
+        "vec3 fade2(in vec3 a, in vec3 b, in float t)\n{\n    float cycles = floor(t);\n"
+        f"    {fade_help}\n}}\n"
+        "void mainImage(out vec4 fragColor, in vec2 fragCoord)\n{\n"
+        "    vec2 coord = floor(fragCoord) - 4.0;\n"
+        "    float t = 0.37 + coord.x * 0.5;\n"
+        "    vec3 a = vec3(0.1, 0.7, 0.3), b = vec3(0.9, 0.2, 0.5);\n"
+        "    vec3 d1 = abs(checker(coord, t) - checker2(coord, t));\n"
+        "    vec3 d2 = abs(fade(a, b, abs(t)) - fade2(a, b, abs(t)));\n"
+        "    vec3 d = max(d1, d2);\n"
+        "    vec2 cell = floor(coord / 2.0);\n"
+        "    fragColor = vec4(max(d.x, max(d.y, d.z)), mod(floor(abs(t)), 2.0),\n"
+        "                     mod(cell.x + cell.y, 2.0), 1.0);\n}\n"
+    )
+    pixels = compile_gl(make_shader(image), gl).render(size=(9, 9))
+    # both parities of the cycles and of the checker's cells were tried
+    assert set(np.unique(pixels[..., 1])) == set(np.unique(pixels[..., 2])) == {0.0, 1.0}
+    # mix(x, y, s) with s exactly 0.0 or 1.0 is x or y up to the rounding of x + (y - x) * s
+    # (one or two roundings of values in [0, 1]: within 2 ulp of 1.0, 2.4e-7)
+    assert pixels[..., 0].max() <= 2.4e-7
 
 
 def test_a_repetition_inside_loop_invariant_work_is_left_to_loop_invariant():

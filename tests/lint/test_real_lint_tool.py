@@ -69,6 +69,28 @@ def test_a_deduction_the_guide_has_no_id_for_is_scored_as_other_inefficiency():
     assert real_lint.match(labels, [real_lint.scored_as(unused, guide)]) == {0: 0}
 
 
+def test_a_value_repeated_across_calls_matches_either_guide_id_once():
+    across = {
+        "rule": "repeated-across-calls",
+        "line": 77,
+        "message": "'length(dist)' has the same value in each of the 2 calls of f at lines 87 "
+        "and 88",
+        "notes": [{"line": 87}, {"line": 88}],
+        "penalty": 1,
+    }
+    scored = real_lint.scored_as(across, real_lint.GUIDE_RULES)
+    assert scored["rule"] == "other-inefficiency" and scored["also"] == "repeated-expression"
+    repeated = {"rule": "repeated-expression", "lines": [87, 88]}
+    other = {"rule": "other-inefficiency", "lines": [87]}
+    assert real_lint.match([repeated], [scored]) == {0: 0}
+    assert real_lint.match([other], [scored]) == {0: 0}
+    # one finding, one deduction: of two labels on its lines it matches one
+    assert len(real_lint.match([repeated, other], [scored])) == 1
+    # another guide id, or labels that do not cover repeated-expression, do not take it
+    assert real_lint.match([{"rule": "loop-invariant", "lines": [87]}], [scored]) == {}
+    assert "also" not in real_lint.scored_as(across, ["other-inefficiency"])
+
+
 def test_a_labellers_file_covers_every_rule_of_the_guide(tmp_path):
     path = tmp_path / "labels.json"
     path.write_text(json.dumps({"f01": [{"rule": "missing-header", "lines": [1]}], "f02": []}))

@@ -18,9 +18,16 @@ and shows the replacement:
 * nested if/else statements whose arms each give one variable (or the result) such a value
   (`if (..) { if (..) c = red; else c = blue; } else ...`, an `else if` chain of returns ending
   in an `else`): one finding at the outer if, with the mix of mixes;
+* arms that compute the same thing but for such values (`cos(8.0 * time + vec3(0, 2, 4))` or
+  `cos(8.0 * time - vec3(4, 2, 0))`, `mix(a, b, x)` or `mix(a, b, 1.0 - x)`): the values are
+  mixed and the rest, calls included, computed once (`cos(mix(..., ..., s))`), which the
+  branch computes once too;
 * conditions beyond one comparison: `&&`, `||` and `!` of float comparisons (a product, a max
-  and `1.0 -` of their steps), and a step() result compared with 0.0 or 1.0 (the branch on a
-  step value, which is the selector itself);
+  and `1.0 -` of their steps), a step() result compared with 0.0 or 1.0 (the branch on a
+  step value, which is the selector itself), and a parity compared with 0 or 1: `mod(n, 2.0)`
+  of a whole number (floor(), float() of an int, their sums and products, a local holding
+  one: a checkerboard's `mod(floor(p.x) + floor(p.y), 2.0)`) is exactly 0.0 or 1.0 and is the
+  selector, and an int's `n % 2` is `float(n & 1)`;
 * `dot(d, n) < 0.0 ? n : -n` (the front-face normal of a ray tracer) -> `faceforward(n, d, n)`,
   which is `n` exactly when `dot(n, d) < 0.0`, else `-n`; also when the comparison is kept in
   a bool variable or field first (`rec.frontFace = dot(d, n) < 0.0;
@@ -31,7 +38,9 @@ and shows the replacement:
 Except for faceforward, the condition must be made of comparisons of two float (or, for one
 min/max, int) scalars; the statement forms must be a single assignment to the same variable (or
 a return) in each arm. Ifs in a row that each select (`if (..) col.x = 1.0;`, then `col.y`,
-`col.z`) are one finding: the rubric deducts "per inefficient practice". The replacement gives
+`col.z`) are one finding, and so are selects on the same condition written again in a function
+(a checkerboard's `if (parity == 0.0)` in two arms): the rubric deducts "per inefficient
+practice". The replacement gives
 the same value on every path: conditions and arms are free of side effects, and step() is
 exactly 0.0 or 1.0, so the mix picks an arm (an arm the branch skipped may not divide by zero).
 
@@ -59,8 +68,9 @@ from __future__ import annotations
 
 from ...base.diagnostics import Diagnostic
 from ...frontend import syntax as A
+from ...frontend.printer import to_glsl
 from ...semantics.analysis import builtin_call, numbers, program_facts
-from ._text import text
+from ._text import at_lines, is_atom, text
 
 TYPE_CHECKING = False  # not typing's: importing typing costs every start-up
 if TYPE_CHECKING:
@@ -83,11 +93,12 @@ def check(ctx: LintContext) -> Iterator[Diagnostic]:
         inner: set[int] = set()  # ternaries already explained as part of a clamp
         covered: set[int] = set()  # ifs already explained as part of an outer one's select
         run: list[tuple[Any, str, tuple[str, str]]] = []  # selecting ifs in a row, one finding
+        runs: list[list[tuple[Any, str, tuple[str, str]]]] = []
         for node in fn.nodes:
             if type(node) is A.Ternary and id(node) not in inner:
                 fix = _select(fn, node.cond, node.then, node.else_, inner)
                 if fix is not None:
-                    yield _finding([(node, "?:", fix)])
+                    runs.append([(node, "?:", fix)])
             elif type(node) is A.If and id(node) not in covered:
                 nest: list[Any] = []
                 fix = _nested(fn, node, nest) or _if_statement(fn, node)
@@ -99,11 +110,34 @@ def check(ctx: LintContext) -> Iterator[Diagnostic]:
                     run.append((node, what, fix))
                     continue
                 if run:
-                    yield _finding(run)
+                    runs.append(run)
                 run = [(node, what, fix)]
         if run:
-            yield _finding(run)
+            runs.append(run)
             run = []
+        yield from _merged(runs)
+
+
+def _merged(runs: list[list[tuple[Any, str, tuple[str, str]]]]) -> Iterator[Diagnostic]:
+    """The findings of a function's selects: a select written again on the same condition
+    (`if (modulus == 0.0)` in two arms, each choosing its own pair of colors) is one finding
+    naming every place, the rubric's one inefficient practice."""
+    groups: dict[str, list] = {}
+    for run in runs:
+        node = run[0][0]
+        key = to_glsl(node.cond) if len(run) == 1 else f"#{id(node)}"
+        groups.setdefault(key, []).append(run)
+    for same in groups.values():
+        first = _finding(same[0])
+        if len(same) == 1:
+            yield first
+            continue
+        again = [r[0][0] for r in same[1:]]
+        yield Diagnostic(
+            f"{first.message}, and the same selection again at {at_lines(again)}",
+            first.loc,
+            help=f"{first.help} (and likewise at {at_lines(again)})",
+        )
 
 
 def _follows(fn, before: Any, node: Any) -> bool:
@@ -286,12 +320,71 @@ def _select(fn, cond, a, b, inner: set[int]) -> tuple[str, str] | None:
             return "step", t
         if ones and (va[0], vb[0]) == (0.0, 1.0):
             return "step", f"1.0 - {_factor(t)}"
+    first, second = (b, a) if sense else (a, b)
     if not (_value(fn, a) and _value(fn, b)):
-        return None
+        return _shared(fn, first, second, t)
     if not _float_valued(fn, a) or fn.model.type_of(b) != ta:
         return None
-    first, second = (b, a) if sense else (a, b)
     return "mix", f"mix({text(first)}, {text(second)}, {t})"
+
+
+def _shared(fn, first, second, t: str) -> tuple[str, str] | None:
+    """`mix` for arms that compute the same thing but for some values mix() may compute both
+    of (`cos(8.0 * time + vec3(0, 2, 4))` or `cos(8.0 * time - vec3(4, 2, 0))`): the rest,
+    calls included, is computed once on the selected values. `first` is the value at t == 0.0;
+    the text is `first` with each differing value replaced by its mix."""
+    if not (fn.is_pure(first) and fn.is_pure(second)):
+        return None
+    pairs: list[tuple[Any, Any]] = []
+    if not _differing(fn, first, second, pairs) or not pairs:
+        return None
+    mixed = {id(x): f"mix({text(x)}, {text(y)}, {t})" for x, y in pairs}
+    return "mix", to_glsl(_rebuilt(first, mixed))
+
+
+def _differing(fn, a, b, pairs: list) -> bool:
+    """Whether `a` and `b` are the same expression but for values mix() may compute both of,
+    of one float type (added to `pairs`, the largest ones)."""
+    if fn.key(a) == fn.key(b):
+        return True
+    kind = fn.model.type_of(a)
+    if _value(fn, a) and _value(fn, b) and _float_valued(fn, a) and fn.model.type_of(b) == kind:
+        pairs.append((a, b))
+        return True
+    t = type(a)
+    if t is not type(b) or t not in _SAME_HEAD or not _SAME_HEAD[t](fn, a, b):
+        return False
+    ca, cb = a.children(), b.children()
+    return len(ca) == len(cb) and all(_differing(fn, x, y, pairs) for x, y in zip(ca, cb))
+
+
+_SAME_HEAD = {
+    A.Binary: lambda fn, a, b: a.op == b.op,
+    A.Unary: lambda fn, a, b: a.op == b.op,
+    A.Field: lambda fn, a, b: a.name == b.name,
+    A.Index: lambda fn, a, b: True,
+    A.Call: lambda fn, a, b: (
+        a.callee == b.callee
+        and a.array is None
+        and b.array is None
+        and fn.model.call_target(a) is fn.model.call_target(b)
+    ),
+}
+
+
+def _rebuilt(e, mixed: dict[int, str]):
+    """A copy of `e` with the nodes `mixed` names replaced by their text (for printing)."""
+    if id(e) in mixed:
+        return A.Identifier(name=mixed[id(e)], loc=e.loc)
+    if not isinstance(e, A.Node):
+        return e
+    fields = {}
+    for f in type(e)._fields:
+        v = getattr(e, f)
+        if f in type(e)._children:
+            v = [_rebuilt(x, mixed) for x in v] if type(v) is list else _rebuilt(v, mixed)
+        fields[f] = v
+    return type(e)(**fields)
 
 
 def _step(left, op, right) -> tuple[str, bool]:
@@ -337,12 +430,81 @@ def _indicator(fn, cond) -> str | None:
             ):
                 one = (bound == [1.0]) == (cond.op == "==")  # the condition holds at 1.0
                 return text(side) if one else f"1.0 - {text(side)}"
+            parity = _parity(fn, side, 0) if bound in ([0.0], [1.0]) else None
+            if parity is not None:
+                one = (bound == [1.0]) == (cond.op == "==")
+                return parity if one else f"1.0 - {_factor(parity)}"
         return None
     cmp = _comparison(fn, cond, "float")
     if cmp is None:
         return None
     step, sense = _step(*cmp)
     return step if sense else f"1.0 - {step}"
+
+
+def _parity(fn, e, depth: int) -> str | None:
+    """A float that is exactly 0.0 or 1.0, as `e` is (`mod(floor(x) + floor(y), 2.0)`, an int
+    `n % 2` as `float(n & 1)`, or a local holding one); None for any other value."""
+    if depth > 8 or not fn.is_pure(e):
+        return None
+    model = fn.model
+    if type(e) is A.Identifier:
+        sym = model.symbol_of(e)
+        reaching = fn.reaching_value(e, sym) if sym is not None and sym.kind == "local" else None
+        if reaching is None or _parity(fn, reaching, depth + 1) is None:
+            return None
+        kind = model.type_of(e)
+        return text(e) if getattr(kind, "base", None) == "float" else f"float({text(e)} & 1)"
+    if builtin_call(model, e, "mod") and len(e.args) == 2:
+        t = model.type_of(e)
+        if (
+            getattr(t, "is_scalar", False)
+            and numbers(model.const_value(e.args[1])) == [2.0]
+            and _integral(fn, e.args[0], 0)
+        ):
+            return text(e)
+    if type(e) is A.Binary and e.op == "%" and model.const_value(e.right) == 2:
+        kind = model.type_of(e)
+        if getattr(kind, "base", None) in ("int", "uint") and getattr(kind, "is_scalar", False):
+            left = (
+                text(e.left) if is_atom(e.left) or type(e.left) is A.Call else f"({text(e.left)})"
+            )
+            one = "1u" if kind.base == "uint" else "1"
+            return f"float({left} & {one})"  # n % 2 where n >= 0 (undefined below)
+    return None
+
+
+_ROUNDING = ("floor", "ceil", "round", "roundEven", "trunc")
+
+
+def _integral(fn, e, depth: int) -> bool:
+    """Whether the float scalar `e` always holds an integer (a floor(), a float() of an int,
+    sums and products of such, a component of such a vector, a local holding one)."""
+    if depth > 8:
+        return False
+    model = fn.model
+    values = numbers(model.const_value(e))
+    if values:
+        return all(float(v).is_integer() for v in values)
+    t = type(e)
+    if t is A.Call:
+        if builtin_call(model, e, *_ROUNDING):
+            return True
+        arg_kind = model.type_of(e.args[0]) if e.constructor and len(e.args) == 1 else None
+        return getattr(arg_kind, "base", None) in ("int", "uint")
+    if t is A.Binary and e.op in ("+", "-", "*"):
+        return _integral(fn, e.left, depth + 1) and _integral(fn, e.right, depth + 1)
+    if t is A.Unary and e.op in ("-", "+"):
+        return _integral(fn, e.operand, depth + 1)
+    if t is A.Field and model.is_swizzle(e):
+        return _integral(fn, e.base, depth + 1)
+    if t is A.Identifier:
+        sym = model.symbol_of(e)
+        if sym is None or sym.kind != "local":
+            return False
+        reaching = fn.reaching_value(e, sym)
+        return reaching is not None and _integral(fn, reaching, depth + 1)
+    return False
 
 
 def _nested(fn, node: A.If, nest: list) -> tuple[str, str] | None:
@@ -352,6 +514,16 @@ def _nested(fn, node: A.If, nest: list) -> tuple[str, str] | None:
     nest, whose ifs go to `nest`. None for a single if/else assigning (`_if_statement`'s)."""
     if node.else_ is None:
         return None
+    returned = _returned(node.then), _returned(node.else_)
+    both = returned[0] is not None and returned[1] is not None
+    if both and not (_value(fn, returned[0]) and _value(fn, returned[1])):
+        cmp = _comparison(fn, node.cond, "float")
+        indicator, sense = _step(*cmp) if cmp is not None else (_indicator(fn, node.cond), True)
+        if indicator is None or not _float_valued(fn, returned[0]):
+            return None
+        first, second = returned[::-1] if sense else returned
+        found = _shared(fn, first, second, indicator)
+        return None if found is None else (found[0], f"return {found[1]};")
     leaf: Any = node.then
     while True:
         while type(leaf) is A.Compound and len(leaf.stmts) == 1:
@@ -405,6 +577,13 @@ def _arm(fn, stmt, target, nest: list, kinds: list) -> str | None:
         return None
     kinds.append(fn.model.type_of(value))
     return text(value)
+
+
+def _returned(stmt) -> Any:
+    """The value of an arm that is a single `return v;`, else None."""
+    while type(stmt) is A.Compound and len(stmt.stmts) == 1:
+        stmt = stmt.stmts[0]
+    return stmt.value if type(stmt) is A.Return else None
 
 
 def _float_valued(fn, e) -> bool:

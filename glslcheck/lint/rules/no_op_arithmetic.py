@@ -4,8 +4,9 @@
 Reports a multiply or divide by one (`x * 1.0`, `c * vec4(1.0, 1.0, 1.0, 1.0)`, `x / 1.0`)
 and an add or subtract of zero (`v + vec3(0.0)`, `x - 0.0`) whose result is the other operand
 itself: the constant, written out as a literal or a constructor of literals, has every
-component exactly 1 (or 0), and the other operand already has the result's type. A named
-constant (`x * kGain`) is a setting and is not reported.
+component exactly 1 (or 0), and the other operand already has the result's type. The compound
+assignments are the same operations (`uv /= 1.0;`, `p.xy -= vec2(0.0);`): the statement
+changes nothing. A named constant (`x * kGain`) is a setting and is not reported.
 
 The same no-op written again in a function (`time * 1.0` in each of its returns) is one
 finding naming every place: one unnecessary practice.
@@ -22,6 +23,7 @@ for nothing.
 
 ## Example
 ```glsl
+uv /= 1.0; // zoom
 return texture(iChannel0, uv) * vec4(1.0, 1.0, 1.0, 1.0) * diffuse;
 ```
 
@@ -62,12 +64,18 @@ def check(ctx: LintContext) -> Iterator[Diagnostic]:
         # unnecessary practice, as the rubric deducts it: one finding naming every place
         same: dict[tuple, list[tuple]] = {}  # (operator, the constant's values) -> places
         for n in fn.nodes:
-            if type(n) is not A.Binary or n.op not in _IDENTITY or fn.is_dead(n):
+            if fn.is_dead(n):
                 continue
-            found = _no_op(fn, n)
+            if type(n) is A.Binary and n.op in _IDENTITY:
+                found = _no_op(fn, n)
+            elif type(n) is A.Assignment and n.op[:-1] in _IDENTITY:
+                found = _no_op_update(fn, n)
+            else:
+                continue
             if found is not None:
                 constant, other = found
-                key = (n.op, tuple(numbers(fn.model.const_value(constant))))
+                op = n.op[0]
+                key = (op, tuple(numbers(fn.model.const_value(constant))))
                 same.setdefault(key, []).append((n, constant, other))
         for places in same.values():
             n, constant, other = places[0]
@@ -76,11 +84,20 @@ def check(ctx: LintContext) -> Iterator[Diagnostic]:
                 if len(places) == 1
                 else f", and {len(places) - 1} more at {at_lines([p[0] for p in places[1:]])}"
             )
+            likewise = " (and likewise at each place)" if again else ""
+            if type(n) is A.Assignment:
+                yield Diagnostic(
+                    f"'{text(n)}' leaves {text(other)} as it is: {_VERB[n.op[0]]} "
+                    f"{text(constant)} changes nothing{again}",
+                    n.loc,
+                    help="remove the statement" + likewise,
+                )
+                continue
             yield Diagnostic(
                 f"'{text(n)}' is {text(other)}: {_VERB[n.op]} {text(constant)} changes "
                 f"nothing{again}",
                 n.loc,
-                help=f"write {text(other)}" + (" (and likewise at each place)" if again else ""),
+                help=f"write {text(other)}" + likewise,
             )
 
 
@@ -103,6 +120,24 @@ def _no_op(fn, n: A.Binary):
         if model.type_of(other) == result:
             return constant, other
     return None
+
+
+def _no_op_update(fn, n: A.Assignment):
+    """(the constant, the target) when the compound assignment `n` (`x /= 1.0`) leaves its
+    target as it was: the operation `target op value` would give back the target."""
+    model = fn.model
+    identity, _ = _IDENTITY[n.op[0]]
+    if not _written_out(n.value) or not fn.is_pure(n.target):
+        return None
+    values = numbers(model.const_value(n.value))
+    if not values or any(v != identity for v in values):
+        return None
+    if getattr(model.type_of(n.value), "base", None) != "float":
+        return None
+    kind, target = model.type_of(n.value), model.type_of(n.target)
+    if kind != target and not getattr(kind, "is_scalar", False):
+        return None  # a constant of another shape: a conversion or an error, not a no-op
+    return n.value, n.target
 
 
 def _written_out(e) -> bool:

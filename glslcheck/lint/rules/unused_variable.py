@@ -22,6 +22,13 @@ block writing the whole variable replaces (`v = ...;`, or passing `v` to an `out
 before anything reads it (`dir = target - origin; calcRay(dir, ...);` with
 `calcRay(out vec4 dir, ...)`).
 
+Likewise a possible deduction: a value assigned to a local (or to an `in` parameter, the
+function's own copy) that nothing after it reads, outside any loop (`px = uv * res;` as the
+last use of `px`, with the return reading neither): one finding at that assignment, naming the
+earlier statements and declarations whose values only it reads (in turn). Writing the fields
+of an `in` parameter as the function's last work (`hit.normal = ...;` in a `void` function)
+is the same: the caller never sees it, and the fix says `inout` may have been meant.
+
 Likewise a possible deduction: a call, as a statement, of a user function whose results are
 its `out` arguments (it writes no global) when each of them is replaced before anything reads
 it, on every path from the call: by the next write of the whole variable in the same block, or
@@ -64,6 +71,7 @@ from ...semantics.analysis import (
 from ...semantics.hazards import loop_ranges
 from ...semantics.model import Symbol
 from ...shadertoy.wrapper import PASS_TABS
+from ._text import at_lines
 
 TYPE_CHECKING = False  # not typing's: importing typing costs every start-up
 if TYPE_CHECKING:
@@ -181,6 +189,7 @@ def check(ctx: LintContext) -> Iterator[Diagnostic]:
             if type(n) is A.Declarator:
                 yield from _unused(ctx, model, n, reads, "local", fn)
         yield from _overwritten(fn, reads)
+        yield from _dead_stores(fn, reads)
         yield from _dead_calls(fn)
 
 
@@ -252,6 +261,107 @@ def _overwritten(fn, reads: set[int]) -> Iterator[Diagnostic]:
                 help=f"remove this computation, or use '{sym.name}' before it is replaced",
                 notes=[Diagnostic("replaced here", then.node.loc, severity="note")],
             )
+
+
+def _dead_stores(fn, reads: set[int]) -> Iterator[Diagnostic]:
+    """A value assigned to a local (or an `in` parameter, the function's own copy) that nothing
+    after it reads: the statement is the variable's last write on its path, outside any loop
+    (the next iteration could read it), and computes something. The writes whose values only
+    such a statement reads (in turn) are work done for nothing too: one finding, at the value
+    never read, naming them."""
+    own = _own_variables(fn)
+    writes = []  # (write, the assignment or declaration it is): pure statements, not in a loop
+    for sym_id, ws in fn.writes.items():
+        if sym_id not in own or sym_id not in reads:
+            continue  # a variable never read at all is reported as unused
+        for w in ws:
+            node = w.node
+            if w.kind in ("=", "op", "part") and type(node) is A.Assignment:
+                if type(fn.parent.get(id(node))) is not A.ExpressionStatement:
+                    continue
+                value = node.value
+            elif w.kind == "init":
+                value = w.value
+            else:
+                continue
+            if _in_loop(fn, node) or fn.is_dead(node) or not fn.is_pure(value):
+                continue
+            writes.append((w, value))
+    if not writes:
+        return
+    positions = _read_positions(fn)  # in execution order: sorted
+    everywhere = sorted(p for read_at in positions.values() for p in read_at)
+    # Last first: a statement's reads come before its own position, so the statements that only
+    # a later one of the chain reads are met after it, in one pass.
+    writes.sort(key=lambda wv: -wv[0].pos)
+
+    def read_after(w, ignored: set[int]) -> bool:
+        read_at = positions.get(id(w.symbol), [])
+        return any(p not in ignored for p in read_at[bisect_right(read_at, w.pos) :])
+
+    for root, value in writes:
+        if root.kind == "init" or not _computed(fn, value) or read_after(root, set()):
+            continue
+        chain = [root]
+        ignored: set[int] = set()  # the read positions inside the chain's statements: no reads
+        for w, _ in writes:
+            if w is not root and w.pos < root.pos and not read_after(w, ignored):
+                chain.append(w)
+            if w is root or w is chain[-1]:
+                lo, hi = fn.enter[id(w.node)], fn.exit[id(w.node)]
+                ignored.update(
+                    everywhere[bisect_right(everywhere, lo) : bisect_right(everywhere, hi)]
+                )
+        feeding = sorted(
+            (w for w in chain[1:] if w.kind != "init" or w.value is not None), key=lambda w: w.pos
+        )
+        name = root.symbol.name
+        param = root.symbol.kind == "param"
+        yield Diagnostic(
+            f"the value assigned to '{name}' here is never read: nothing after it reads "
+            f"'{name}'"
+            + (f"; {_where(feeding)} only what it reads" if feeding else "")
+            + (
+                f" ('{name}' is an in parameter: the caller never sees what is written to it)"
+                if param
+                else ""
+            ),
+            root.node.loc,
+            help=(
+                f"declare '{name}' inout (or out) if the caller is meant to get it; else remove "
+                "the assignment"
+                if param
+                else "remove the assignment and the work only it uses, or use the value"
+            ),
+            notes=[
+                Diagnostic("computed only for it", w.node.loc, severity="note")
+                for w in feeding[:_LISTED]
+            ],
+        )
+
+
+_LISTED = 8  # places a message lists one by one; more are given as a span
+
+
+def _where(writes: list) -> str:
+    """`line 4 computes`, `lines 4, 6 and 9 compute`, or `20 lines from 4 to 31 compute`."""
+    lines = sorted({w.node.loc.line for w in writes})
+    if len(lines) == 1:
+        return f"line {lines[0]} computes"
+    if len(lines) <= _LISTED:
+        return f"{at_lines([w.node for w in writes])} compute"
+    return f"{len(lines)} lines from {lines[0]} to {lines[-1]} compute"
+
+
+def _own_variables(fn) -> set[int]:
+    """ids of the function's locals and `in` parameters: values no caller sees."""
+    own = {sym_id for sym_id, ws in fn.writes.items() if ws[0].symbol.kind == "local"}
+    if fn.symbol is not None:
+        for p, (_, _, direction) in zip(fn.definition.proto.params, fn.symbol.params):
+            sym = fn.model.symbol_of(p)
+            if sym is not None and direction == "in":
+                own.add(id(sym))
+    return own
 
 
 def _computed(fn, value) -> bool:

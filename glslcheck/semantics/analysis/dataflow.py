@@ -554,6 +554,7 @@ class FunctionFacts(ValueRanges):
 
         The same value written differently gets the same key: `+` and `*` operands in any order
         and grouping (not a matrix product), a component by its index (`v.x`, `v.r`, `v.xy.x`),
+        a swizzle that keeps every component in order as the vector itself (`p.xy` of a vec2),
         `dot(a, b)` as the sum of its component products, and a pure user function returning
         one expression as that expression of its arguments: `lenSq(dp.xy)` is
         `dp.x * dp.x + dp.y * dp.y`."""
@@ -609,8 +610,13 @@ class FunctionFacts(ValueRanges):
                 return inlined
             return ("C", e.callee, tuple(self.key(a) for a in e.args))
         if t is A.Field:
-            if self.model.is_swizzle(e) and len(self.model.swizzle_indices(e)) == 1:
-                return self._component(e.base, self.model.swizzle_indices(e)[0])
+            if self.model.is_swizzle(e):
+                picked = self.model.swizzle_indices(e)
+                if len(picked) == 1:
+                    return self._component(e.base, picked[0])
+                size = getattr(self.model.type_of(e.base), "size", None)
+                if list(picked) == list(range(size or 0)):
+                    return self.key(e.base)  # `v.xy` of a vec2 is `v`
             return (".", e.name, self.key(e.base))
         if t is A.Index:
             return ("[", self.key(e.base), self.key(e.index))
