@@ -74,7 +74,7 @@ from ._text import at_lines, is_atom, text
 
 TYPE_CHECKING = False  # not typing's: importing typing costs every start-up
 if TYPE_CHECKING:
-    from collections.abc import Iterator
+    from collections.abc import Callable, Iterator
     from typing import Any
 
     from ..engine import LintContext
@@ -358,7 +358,7 @@ def _differing(fn, a, b, pairs: list) -> bool:
     return len(ca) == len(cb) and all(_differing(fn, x, y, pairs) for x, y in zip(ca, cb))
 
 
-_SAME_HEAD = {
+_SAME_HEAD: dict[type, Callable[[Any, Any, Any], bool]] = {
     A.Binary: lambda fn, a, b: a.op == b.op,
     A.Unary: lambda fn, a, b: a.op == b.op,
     A.Field: lambda fn, a, b: a.name == b.name,
