@@ -21,8 +21,10 @@ from .....frontend import syntax as A
 from .....language import builtin_functions as B
 from .....semantics.analysis import param_directions
 from .....semantics.model import Symbol
+from ....cpu_core.common import fold_tree
 from ..inline import bound_argument, inline_owner
 from ..state import FnState, FoldedFunction, FoldEngine
+from .inlined_results import returned_value
 
 SUMS = ("+", "-")
 
@@ -146,11 +148,9 @@ def is_opaque(tr: FoldEngine, node: Any, depth: int = 0) -> bool:
     if isinstance(node, A.Call):
         if node.constructor:
             return False
-        return (
-            is_builtin(tr, node)
-            and node.callee not in _ARITHMETIC_BUILTINS
-            and not is_constant(tr, node)
-        )
+        if not is_builtin(tr, node):
+            return opaque_call(tr, node, depth)
+        return node.callee not in _ARITHMETIC_BUILTINS and not is_constant(tr, node)
     if isinstance(node, A.Identifier):
         sym = tr.model.symbol_of(node)
         if sym is None or is_constant(tr, node):
@@ -162,6 +162,37 @@ def is_opaque(tr: FoldEngine, node: Any, depth: int = 0) -> bool:
         init = stable_init(tr, node)
         return init is not None and is_opaque(tr, init, depth + 1)
     return False
+
+
+def opaque_call(tr: FoldEngine, call: A.Call, depth: int = 0) -> bool:
+    """A call of a user function that, inlined, is an opaque value (inlined_results.py: a
+    ``fract`` the function returns) with an argument that varies (constant arguments: NIR
+    folds the whole call to a constant)."""
+    value = returned_value(tr, call)
+    return (
+        isinstance(value, A.Call)
+        and is_builtin(tr, value)
+        and is_opaque(tr, value, depth + 1)
+        and any(is_varying(tr, a) for a in call.args)
+    )
+
+
+def inlined_calls_only(tr: FoldEngine, e: Any) -> bool:
+    """``e``'s only side effects are calls :func:`opaque_call` counts as values (their
+    arguments too): the rules may treat ``e`` as having none (dispatch.py)."""
+    return bool(fold_tree(e, tr.fold_state.opaque_calls, lambda n, kids: _inlined(tr, n, kids)))
+
+
+def _inlined(tr: FoldEngine, n: Any, kids: list[bool]) -> bool:
+    if not all(kids) or isinstance(n, (A.Assignment, A.Sequence)):
+        return False
+    if isinstance(n, (A.Unary, A.Postfix)) and n.op in ("++", "--"):
+        return False
+    if not isinstance(n, A.Call) or n.constructor:
+        return True
+    if is_builtin(tr, n):
+        return all(d == "in" for d in param_directions(tr.model.call_target(n)))
+    return opaque_call(tr, n)
 
 
 def used_once(tr: FoldEngine, e: Any) -> bool:
