@@ -53,3 +53,32 @@ def test_a_constant_sinks_into_a_product_of_user_function_results(
     got = np.asarray(compile_backend(shader, backend).render(size=(160, 90), time=time), np.float32)
     same = got.view(np.int32) == got_gl.view(np.int32)
     assert same.all(), (~same).reshape(-1, 4).sum(0).tolist()
+
+
+# constants a vector constructor passes into a call: nested (vec3(vec2(x, y), 2.5)), flat, and
+# a vec2, each multiplied in the callee by a constant beside the constant component
+CONSTRUCTED_ARGUMENTS = """float g3(vec3 p) { return fract(p.x * 0.7 * p.z + p.y); }
+float g2(vec2 p) { return fract(p.x * p.y * 0.3); }
+void mainImage(out vec4 c, in vec2 f) {
+    float x = fract(f.x * 0.0137 + f.y * 0.173) * 20.0 + iTime;
+    float y = sin(f.y * 0.05);
+    c = vec4(g3(vec3(vec2(x, y), 2.5)), g3(vec3(x, y, 1.3)), g2(vec2(x, 1.7)), 1.0);
+}"""
+
+
+@pytest.mark.parametrize("backend", ["numpy", "compiled"])
+@pytest.mark.parametrize("time", [0.0, 1.3])
+def test_constants_of_a_constructor_argument_merge_in_the_callee(
+    llvmpipe, make_shader, request, backend, time
+):
+    """``g3(vec3(vec2(x, y), 2.5))`` whose body computes ``p.x * 0.7 * p.z`` is ``x * (0.7 *
+    2.5)`` after inlining (transpile/call_fold.py: a constructor's constant arguments are
+    constant components, as a local's are). Measured without it at iTime 1.3: 6252, 5766 and
+    4566 of the 14,400 pixels differed from llvmpipe in x, y and z, in both engines."""
+    if backend == "compiled":
+        request.getfixturevalue("numba")
+    shader = make_shader(CONSTRUCTED_ARGUMENTS)
+    got_gl = np.asarray(compile_backend(shader, "gl").render(size=(160, 90), time=time), np.float32)
+    got = np.asarray(compile_backend(shader, backend).render(size=(160, 90), time=time), np.float32)
+    same = got.view(np.int32) == got_gl.view(np.int32)
+    assert same.all(), (~same).reshape(-1, 4).sum(0).tolist()

@@ -469,10 +469,17 @@ def _leaves(code: str, t: Any) -> list[_T]:
 
 
 def _constant_components(tr: FoldEmitter, arg: Any, call: A.Call) -> list[_T | None] | None:
-    """Per component of a local `arg` read by `call`: a constant term where its value is a
-    compile-time constant there, else None; None when `arg` is not such a local. Known only
-    for a local declared, then written, by top-level statements of the current function
-    before the one that holds `call` (writes of single components keep the others)."""
+    """Per component of an argument `arg` of `call`, a vector constructor or a local: a
+    constant term where its value is a compile-time constant there, else None; None when `arg`
+    is neither. A constructor's constant arguments are its constant components
+    (``f(vec2(x, 1.5))``: NIR's inlined ``p.y`` is 1.5). A local's are known only for a local
+    declared, then written, by top-level statements of the current function before the one
+    that holds `call` (writes of single components keep the others)."""
+    if isinstance(arg, A.Call):
+        t = tr.type_of(arg)
+        if not (arg.constructor and t.is_vector and t.base == "float" and len(arg.args) > 1):
+            return None
+        return _constructed_components(tr, arg, t)
     sym = tr.model.symbol_of(arg) if isinstance(arg, A.Identifier) else None
     if (
         sym is None
@@ -494,11 +501,7 @@ def _constant_components(tr: FoldEmitter, arg: Any, call: A.Call) -> list[_T | N
     if cv is not None:
         comps: list[_T | None] = [_k(v) for v in _flat(cv)]
     elif isinstance(init, A.Call) and init.constructor and t.is_vector and len(init.args) > 1:
-        comps = []
-        for a in init.args:
-            v = tr.model.const_value(a)
-            comps += [_k(x) for x in _flat(v)] if v is not None else [None] * _width(tr.type_of(a))
-        comps = comps[: t.size]
+        comps = _constructed_components(tr, init, t)
     else:
         return None
     for st in stmts[decl + 1 : at + 1]:
@@ -510,6 +513,16 @@ def _constant_components(tr: FoldEmitter, arg: Any, call: A.Call) -> list[_T | N
                 for i in hit:
                     comps[i] = None
     return comps
+
+
+def _constructed_components(tr: FoldEmitter, ctor: A.Call, t: Any) -> list[_T | None]:
+    """Per component of the vector constructor `ctor` (of type `t`): its constant term, or None
+    where an argument is not a compile-time constant."""
+    comps: list[_T | None] = []
+    for a in ctor.args:
+        v = tr.model.const_value(a)
+        comps += [_k(x) for x in _flat(v)] if v is not None else [None] * _width(tr.type_of(a))
+    return comps[: t.size]
 
 
 def _unchanged_init(tr: FoldEmitter, ident: A.Identifier, call: A.Call) -> Any:
