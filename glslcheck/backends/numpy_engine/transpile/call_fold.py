@@ -21,8 +21,9 @@ function once for every call, so its code cannot see the constants of one call s
 
 Here a call of a straight-line function (declarations, assignments and a final return; nested
 calls of such functions) is evaluated at the call site as NIR sees it: one scalar term per
-component, the arguments' compile-time constant components (literals, and a local's components
-that are constant where the call reads them: `_constant_components`) as constants, an argument
+component, the arguments' compile-time constant components (literals, a vector constructor's
+constant arguments, and a local's components that are constant where the call reads them:
+`_constant_components`) as constants, an argument
 ``y * #c`` as that product in each component (`_scaled_argument`), then
 
 - constants folded in float32 (``+ - * /``, negation; a built-in of constants is a constant
