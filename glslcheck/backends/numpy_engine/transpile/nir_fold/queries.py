@@ -214,7 +214,9 @@ def use_counts(tr: FoldEngine) -> tuple[dict[int, int], dict[int, int], set[int]
     parents = tr.fold_state.parents
     key = id(current_function(tr).sym)
     if key not in parents:
-        shapes = node_shapes(current_function(tr).sym.node.body)
+        shapes = node_shapes(
+            current_function(tr).sym.node.body, lambda n: not has_matrix(tr, n.left, n.right)
+        )
         counts: dict[int, int] = {}
         operands: set[int] = set()
         for n in current_function(tr).sym.node.body.walk():
@@ -227,11 +229,14 @@ def use_counts(tr: FoldEngine) -> tuple[dict[int, int], dict[int, int], set[int]
     return parents[key]
 
 
-def node_shapes(root: Any) -> dict[int, int]:
+def node_shapes(root: Any, commutes: Any = None) -> dict[int, int]:
     """id(node) -> a number shared by exactly the nodes of the same shape (same class, same
     fields, same shapes of children; locations left out): what equal GLSL text means, found in
     one pass (hash-consing) instead of printing every subtree, which is quadratic in a chain
-    `a + b + c + ...` of thousands of terms (as a hostile input may hold)."""
+    `a + b + c + ...` of thousands of terms (as a hostile input may hold). With `commutes` (a
+    test of a ``+`` or ``*``: no matrix operand), ``a * b`` and ``b * a`` are one shape, as
+    NIR's CSE compares a commutative operation's operands in either order
+    (nir_instrs_equal)."""
     ids: dict[int, int] = {}
     table: dict[tuple, int] = {}
     stack: list[tuple[Any, bool]] = [(root, False)]
@@ -254,6 +259,9 @@ def node_shapes(root: Any) -> dict[int, int]:
             elif isinstance(value, list):
                 value = tuple(value)
             parts.append(value)
+        if commutes is not None and isinstance(node, A.Binary) and node.op in ("+", "*"):
+            if parts[2] > parts[3] and commutes(node):  # ([Binary, op, left, right])
+                parts[2], parts[3] = parts[3], parts[2]
         ids[id(node)] = table.setdefault(tuple(parts), len(table))
     return ids
 
@@ -351,7 +359,8 @@ def is_builtin(tr: FoldEngine, call: A.Call) -> bool:
 
 def stable_init(tr: FoldEngine, ident: A.Identifier) -> Any:
     """The initializer of a local that is written only by its declaration, whose identifiers
-    are all such locals, never-written parameters, uniforms or constants; else None."""
+    are all such locals, never-written parameters, uniforms or constants, with no side effect
+    but calls :func:`inlined_calls_only` counts as values; else None."""
     sym = tr.model.symbol_of(ident)
     bound = bound_argument(tr, sym)  # a parameter of an inlined call (transpile/inline.py)
     if bound is not None:
@@ -364,8 +373,8 @@ def stable_init(tr: FoldEngine, ident: A.Identifier) -> Any:
     ):
         return None
     init = sym.node.init
-    if tr.has_effects(init):
-        return None
+    if tr.has_effects(init) and not inlined_calls_only(tr, init):
+        return None  # (a call that is its returned value once inlined is no effect)
     written = written_symbols(tr)
     if id(sym) in written:
         return None
