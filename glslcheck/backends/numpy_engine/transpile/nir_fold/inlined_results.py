@@ -10,14 +10,16 @@ Here a call counts as the value it returns where inlining adds nothing else: its
 qualifies (:func:`pure_function`) when, inlined, it is a value of its arguments only, so two
 calls with the same arguments are one value after CSE and evaluating it again or in another
 order changes nothing: every parameter ``in`` (an ``out`` writes the caller), no global
-written (by it or a function it calls), no written global or gl_FragCoord read (a value that
-changes between two calls), no ``discard``, a straight-line body (declarations and expression
-statements, then one final ``return <expression>``: no branch, so one value on every path),
-and only qualifying user functions called. Its result is what the final ``return`` gives, or
-the initializer of the returned local when nothing else writes it (:func:`returned_value`);
-queries.opaque_call counts the call as opaque where that result is (``fract(...)``, ``sin``:
-no rule looks into it). Other results (a product, a sum, a vector built in components) are not
-copied: the rules would have to look into the callee's arithmetic."""
+written (by it or a function it calls), no written global read (a value that may change
+between two calls; the test, facts.reads_lane_state, also counts gl_FragCoord), no
+``discard``, a straight-line body (declarations and expression statements, then one final
+``return <expression>``: no branch, so one value on every path), and only qualifying user
+functions called. Its result is what the final ``return`` gives, or the initializer of the
+returned local when nothing else writes it (:func:`returned_value`); queries.opaque_call
+counts the call as opaque where that result is (``fract(...)``, ``sin``: no rule looks into
+it), and queries.stable_init sees a never-written local initialised by such a call (``float
+r0 = hash(i); ... r0 * r0 * 0.55``). Other results (a product, a sum, a vector built in
+components) are not copied: the rules would have to look into the callee's arithmetic."""
 
 from __future__ import annotations
 
@@ -82,6 +84,13 @@ def returned_value(tr: FoldEngine, call: Any) -> Any:
     fn = called_function(tr, call)
     if fn is None or not pure_function(tr, fn):
         return None
+    memo = tr.fold_state.returned_values
+    if id(fn) not in memo:
+        memo[id(fn)] = _returned(tr, fn)
+    return memo[id(fn)]
+
+
+def _returned(tr: FoldEngine, fn: Symbol) -> Any:
     value = fn.node.body.stmts[-1].value
     sym = tr.model.symbol_of(value) if isinstance(value, A.Identifier) else None
     if sym is None or sym.kind != "local" or not isinstance(sym.node, A.Declarator):

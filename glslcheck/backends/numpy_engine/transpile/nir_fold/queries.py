@@ -168,13 +168,16 @@ def opaque_call(tr: FoldEngine, call: A.Call, depth: int = 0) -> bool:
     """A call of a user function that, inlined, is an opaque value (inlined_results.py: a
     ``fract`` the function returns) with an argument that varies (constant arguments: NIR
     folds the whole call to a constant)."""
-    value = returned_value(tr, call)
-    return (
-        isinstance(value, A.Call)
-        and is_builtin(tr, value)
-        and is_opaque(tr, value, depth + 1)
-        and any(is_varying(tr, a) for a in call.args)
-    )
+    memo = tr.fold_state.opaque_call
+    if id(call) not in memo:
+        value = returned_value(tr, call)
+        memo[id(call)] = (
+            isinstance(value, A.Call)
+            and is_builtin(tr, value)
+            and is_opaque(tr, value, depth + 1)
+            and any(is_varying(tr, a) for a in call.args)
+        )
+    return memo[id(call)]
 
 
 def inlined_calls_only(tr: FoldEngine, e: Any) -> bool:
