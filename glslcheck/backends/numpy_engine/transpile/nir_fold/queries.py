@@ -21,7 +21,7 @@ from .....frontend import syntax as A
 from .....language import builtin_functions as B
 from .....semantics.analysis import param_directions
 from .....semantics.model import Symbol
-from ....cpu_core.common import fold_tree
+from ....cpu_core.common import TEXTURE_FUNCTIONS, fold_tree
 from ..inline import bound_argument, inline_owner
 from ..state import FnState, FoldedFunction, FoldEngine
 from .inlined_results import returned_value
@@ -174,6 +174,7 @@ def opaque_call(tr: FoldEngine, call: A.Call, depth: int = 0) -> bool:
         memo[id(call)] = (
             isinstance(value, A.Call)
             and is_builtin(tr, value)
+            and value.callee not in TEXTURE_FUNCTIONS  # (a lookup's precision: lower_precision)
             and is_opaque(tr, value, depth + 1)
             and any(is_varying(tr, a) for a in call.args)
         )
