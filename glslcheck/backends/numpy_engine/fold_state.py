@@ -35,6 +35,12 @@ class FoldState:
     sink_calls: set | None = None  # functions some call of which has a constant added to its result
     call_k: dict = field(default_factory=dict)  # call -> the constant sunk into its result
     terms: dict = field(default_factory=dict)  # returned term -> its kept code
+    # nir_fold/inlined_results.py: function -> a value of its arguments; -> what it returns;
+    # call -> an opaque value; node -> its calls all opaque values
+    pure_functions: dict = field(default_factory=dict)
+    returned_values: dict = field(default_factory=dict)
+    opaque_call: dict = field(default_factory=dict)
+    opaque_calls: dict = field(default_factory=dict)
     # repeated_sums: (function, chain, symbol) -> (its base, lines); function -> its plan, its
     # chain parameters, their steps; (loop, symbol) -> copies continue it; loop -> pass count
     sum_chains: dict = field(default_factory=dict)

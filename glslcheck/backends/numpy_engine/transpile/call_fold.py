@@ -21,8 +21,9 @@ function once for every call, so its code cannot see the constants of one call s
 
 Here a call of a straight-line function (declarations, assignments and a final return; nested
 calls of such functions) is evaluated at the call site as NIR sees it: one scalar term per
-component, the arguments' compile-time constant components (literals, and a local's components
-that are constant where the call reads them: `_constant_components`) as constants, an argument
+component, the arguments' compile-time constant components (literals, a vector constructor's
+constant arguments, and a local's components that are constant where the call reads them:
+`_constant_components`) as constants, an argument
 ``y * #c`` as that product in each component (`_scaled_argument`), then
 
 - constants folded in float32 (``+ - * /``, negation; a built-in of constants is a constant
@@ -469,10 +470,17 @@ def _leaves(code: str, t: Any) -> list[_T]:
 
 
 def _constant_components(tr: FoldEmitter, arg: Any, call: A.Call) -> list[_T | None] | None:
-    """Per component of a local `arg` read by `call`: a constant term where its value is a
-    compile-time constant there, else None; None when `arg` is not such a local. Known only
-    for a local declared, then written, by top-level statements of the current function
-    before the one that holds `call` (writes of single components keep the others)."""
+    """Per component of an argument `arg` of `call`, a vector constructor or a local: a
+    constant term where its value is a compile-time constant there, else None; None when `arg`
+    is neither. A constructor's constant arguments are its constant components
+    (``f(vec2(x, 1.5))``: NIR's inlined ``p.y`` is 1.5). A local's are known only for a local
+    declared, then written, by top-level statements of the current function before the one
+    that holds `call` (writes of single components keep the others)."""
+    if isinstance(arg, A.Call):
+        t = tr.type_of(arg)
+        if not (arg.constructor and t.is_vector and t.base == "float" and len(arg.args) > 1):
+            return None
+        return _constructed_components(tr, arg, t)
     sym = tr.model.symbol_of(arg) if isinstance(arg, A.Identifier) else None
     if (
         sym is None
@@ -494,11 +502,7 @@ def _constant_components(tr: FoldEmitter, arg: Any, call: A.Call) -> list[_T | N
     if cv is not None:
         comps: list[_T | None] = [_k(v) for v in _flat(cv)]
     elif isinstance(init, A.Call) and init.constructor and t.is_vector and len(init.args) > 1:
-        comps = []
-        for a in init.args:
-            v = tr.model.const_value(a)
-            comps += [_k(x) for x in _flat(v)] if v is not None else [None] * _width(tr.type_of(a))
-        comps = comps[: t.size]
+        comps = _constructed_components(tr, init, t)
     else:
         return None
     for st in stmts[decl + 1 : at + 1]:
@@ -510,6 +514,16 @@ def _constant_components(tr: FoldEmitter, arg: Any, call: A.Call) -> list[_T | N
                 for i in hit:
                     comps[i] = None
     return comps
+
+
+def _constructed_components(tr: FoldEmitter, ctor: A.Call, t: Any) -> list[_T | None]:
+    """Per component of the vector constructor `ctor` (of type `t`): its constant term, or None
+    where an argument is not a compile-time constant."""
+    comps: list[_T | None] = []
+    for a in ctor.args:
+        v = tr.model.const_value(a)
+        comps += [_k(x) for x in _flat(v)] if v is not None else [None] * _width(tr.type_of(a))
+    return comps[: t.size]
 
 
 def _unchanged_init(tr: FoldEmitter, ident: A.Identifier, call: A.Call) -> Any:

@@ -24,6 +24,8 @@ The rules copied here, each measured bit for bit against llvmpipe on 50,000 rand
 - compound_products.py: ``x *= b; ... x * #c`` with the new x read once is ``(a * #c) * b``;
 - loop_unroll.py: which loops NIR unrolls (a constant count, a body small enough);
 - return_register.py: a call's result in the lanes a mask leaves out, llvmpipe's register;
+- inlined_results.py: a call of a function that, inlined, is a value of its arguments counts
+  as the value it returns (``hash(x) * hash(x) * 0.7`` is ``(h * 0.7) * h``);
 - added_zero.py: ``fadd(a, 0.0) -> a``, which keeps the sign of a -0.0;
 - flrp.py: nir_lower_flrp's formula for a `mix`, chosen from the other `mix` calls;
 - lower_precision.py: not a rewrite of the order but of the type, float16 arithmetic on lowp
@@ -38,11 +40,12 @@ Each rewrite is emitted as ``(<rewritten> if rt.lp else <written>)``: float32 re
 Mesa's order, float64 (the accuracy reference) and float16 keep the written one. Not copied
 (measured, left as written): chains GLSL IR rebalances before NIR sees them, such as
 ``(a + b + c) + K`` of variables (llvmpipe gives ``(a + b) + (c + K)``: do_rebalance_tree),
-other rewrites that reach across a call (NIR inlines every function: followed are a constant
-added to a returned ``+=`` chain, :func:`sunk_return`, products by constants merged into a
-``dot`` through an argument, transpile/inline.py, and constants a call site passes in, folded
-and merged through the callee's arithmetic, matrix products included, for straight-line
-callees: transpile/call_fold.py, gargantua's camera rotation ``(cos(-0.45)*10) * sin(x)``),
+other rewrites that reach across a call (NIR inlines every function: followed are an opaque
+result, inlined_results.py, a constant added to a returned ``+=`` chain,
+:func:`sunk_return`, products by constants merged into a ``dot`` through an argument,
+transpile/inline.py, and constants a call site passes in, folded and merged through the
+callee's arithmetic, matrix products included, for straight-line callees:
+transpile/call_fold.py, gargantua's camera rotation ``(cos(-0.45)*10) * sin(x)``),
 and a squared length that is not followed by a constant sum (``sqrt(a)*sqrt(a)`` stays).
 
 Every function takes the transpiler (`tr`, typed as transpile/state.py's TranspilerState,

@@ -2,10 +2,12 @@
 code.
 
 Tried in this order: the float16 tree of lowp lookups (lower_precision.py: its type decides
-every operation in it); for an expression with side effects, only a constant added to a call's
-result (returned_sums.py); for a matrix operand, only constants merged into the matrix
-(ssa_values.py); for a sum, factoring (factoring.py) then the ffma split (ffma_split.py); then
-a log scaled by a constant (exp_log.py), constants merged (constant_merge.py, components.py,
+every operation in it); for an expression with side effects, a constant added to a call's
+result (returned_sums.py), then, where its only effects are calls of user functions that are
+opaque values once inlined (queries.inlined_calls_only, inlined_results.py), the rules below as
+for any value; for a matrix operand, only constants merged into the matrix (ssa_values.py); for
+a sum, factoring (factoring.py) then the ffma split (ffma_split.py); then a log scaled by a
+constant (exp_log.py), constants merged (constant_merge.py, components.py,
 compound_products.py) or sunk (sink.py); last, a product by a constant kept through a variable
 assigned again (ssa_values.py).
 
@@ -23,6 +25,7 @@ from .exp_log import log_scaled
 from .factoring import factor
 from .ffma_split import fused_after_call
 from .lower_precision import LOWP_OPS, lowp_tree
+from .queries import inlined_calls_only
 from .returned_sums import sink_into_call
 from .sink import sink_constant
 from .ssa_values import keep_factor, merge_into_matrix
@@ -44,7 +47,9 @@ def binary(tr: TranspilerState, e: A.Binary, mask: str | None) -> str | None:
     if tr.type_of(e).base != "float":
         return None
     if tr.has_effects(e):
-        return sink_into_call(tr, e, mask)
+        folded = sink_into_call(tr, e, mask)
+        if folded is not None or not inlined_calls_only(tr, e):
+            return folded
     if tr.type_of(e.left).is_matrix or tr.type_of(e.right).is_matrix:
         return merge_into_matrix(tr, e, mask)
     if e.op == "+":
@@ -72,7 +77,7 @@ def copied_binary(tr: FoldEmitter, e: A.Binary, mask: str | None, copied: frozen
     same order; None where none of them rewrites ``e``."""
     if e.op not in ("+", "-", "*") or tr.fn is None or tr.type_of(e).base != "float":
         return None
-    if tr.has_effects(e):
+    if tr.has_effects(e) and not inlined_calls_only(tr, e):
         return None
     if tr.type_of(e.left).is_matrix or tr.type_of(e.right).is_matrix:
         return merge_into_matrix(tr, e, mask) if "matrix" in copied else None

@@ -21,8 +21,10 @@ from .....frontend import syntax as A
 from .....language import builtin_functions as B
 from .....semantics.analysis import param_directions
 from .....semantics.model import Symbol
+from ....cpu_core.common import TEXTURE_FUNCTIONS, fold_tree
 from ..inline import bound_argument, inline_owner
 from ..state import FnState, FoldedFunction, FoldEngine
+from .inlined_results import returned_value
 
 SUMS = ("+", "-")
 
@@ -146,11 +148,9 @@ def is_opaque(tr: FoldEngine, node: Any, depth: int = 0) -> bool:
     if isinstance(node, A.Call):
         if node.constructor:
             return False
-        return (
-            is_builtin(tr, node)
-            and node.callee not in _ARITHMETIC_BUILTINS
-            and not is_constant(tr, node)
-        )
+        if not is_builtin(tr, node):
+            return opaque_call(tr, node, depth)
+        return node.callee not in _ARITHMETIC_BUILTINS and not is_constant(tr, node)
     if isinstance(node, A.Identifier):
         sym = tr.model.symbol_of(node)
         if sym is None or is_constant(tr, node):
@@ -162,6 +162,41 @@ def is_opaque(tr: FoldEngine, node: Any, depth: int = 0) -> bool:
         init = stable_init(tr, node)
         return init is not None and is_opaque(tr, init, depth + 1)
     return False
+
+
+def opaque_call(tr: FoldEngine, call: A.Call, depth: int = 0) -> bool:
+    """A call of a user function that, inlined, is an opaque value (inlined_results.py: a
+    ``fract`` the function returns) with an argument that varies (constant arguments: NIR
+    folds the whole call to a constant)."""
+    memo = tr.fold_state.opaque_call
+    if id(call) not in memo:
+        value = returned_value(tr, call)
+        memo[id(call)] = (
+            isinstance(value, A.Call)
+            and is_builtin(tr, value)
+            and value.callee not in TEXTURE_FUNCTIONS  # (a lookup's precision: lower_precision)
+            and is_opaque(tr, value, depth + 1)
+            and any(is_varying(tr, a) for a in call.args)
+        )
+    return memo[id(call)]
+
+
+def inlined_calls_only(tr: FoldEngine, e: Any) -> bool:
+    """``e``'s only side effects are calls :func:`opaque_call` counts as values (their
+    arguments too): the rules may treat ``e`` as having none (dispatch.py)."""
+    return bool(fold_tree(e, tr.fold_state.opaque_calls, lambda n, kids: _inlined(tr, n, kids)))
+
+
+def _inlined(tr: FoldEngine, n: Any, kids: list[bool]) -> bool:
+    if not all(kids) or isinstance(n, (A.Assignment, A.Sequence)):
+        return False
+    if isinstance(n, (A.Unary, A.Postfix)) and n.op in ("++", "--"):
+        return False
+    if not isinstance(n, A.Call) or n.constructor:
+        return True
+    if is_builtin(tr, n):
+        return all(d == "in" for d in param_directions(tr.model.call_target(n)))
+    return opaque_call(tr, n)
 
 
 def used_once(tr: FoldEngine, e: Any) -> bool:
@@ -183,7 +218,9 @@ def use_counts(tr: FoldEngine) -> tuple[dict[int, int], dict[int, int], set[int]
     parents = tr.fold_state.parents
     key = id(current_function(tr).sym)
     if key not in parents:
-        shapes = node_shapes(current_function(tr).sym.node.body)
+        shapes = node_shapes(
+            current_function(tr).sym.node.body, lambda n: not has_matrix(tr, n.left, n.right)
+        )
         counts: dict[int, int] = {}
         operands: set[int] = set()
         for n in current_function(tr).sym.node.body.walk():
@@ -196,11 +233,14 @@ def use_counts(tr: FoldEngine) -> tuple[dict[int, int], dict[int, int], set[int]
     return parents[key]
 
 
-def node_shapes(root: Any) -> dict[int, int]:
+def node_shapes(root: Any, commutes: Any = None) -> dict[int, int]:
     """id(node) -> a number shared by exactly the nodes of the same shape (same class, same
     fields, same shapes of children; locations left out): what equal GLSL text means, found in
     one pass (hash-consing) instead of printing every subtree, which is quadratic in a chain
-    `a + b + c + ...` of thousands of terms (as a hostile input may hold)."""
+    `a + b + c + ...` of thousands of terms (as a hostile input may hold). With `commutes` (a
+    test of a ``+`` or ``*``: no matrix operand), ``a * b`` and ``b * a`` are one shape, as
+    NIR's CSE compares a commutative operation's operands in either order
+    (nir_instrs_equal)."""
     ids: dict[int, int] = {}
     table: dict[tuple, int] = {}
     stack: list[tuple[Any, bool]] = [(root, False)]
@@ -223,6 +263,9 @@ def node_shapes(root: Any) -> dict[int, int]:
             elif isinstance(value, list):
                 value = tuple(value)
             parts.append(value)
+        if commutes is not None and isinstance(node, A.Binary) and node.op in ("+", "*"):
+            if parts[2] > parts[3] and commutes(node):  # ([Binary, op, left, right])
+                parts[2], parts[3] = parts[3], parts[2]
         ids[id(node)] = table.setdefault(tuple(parts), len(table))
     return ids
 
@@ -320,7 +363,8 @@ def is_builtin(tr: FoldEngine, call: A.Call) -> bool:
 
 def stable_init(tr: FoldEngine, ident: A.Identifier) -> Any:
     """The initializer of a local that is written only by its declaration, whose identifiers
-    are all such locals, never-written parameters, uniforms or constants; else None."""
+    are all such locals, never-written parameters, uniforms or constants, with no side effect
+    but calls :func:`inlined_calls_only` counts as values; else None."""
     sym = tr.model.symbol_of(ident)
     bound = bound_argument(tr, sym)  # a parameter of an inlined call (transpile/inline.py)
     if bound is not None:
@@ -333,8 +377,8 @@ def stable_init(tr: FoldEngine, ident: A.Identifier) -> Any:
     ):
         return None
     init = sym.node.init
-    if tr.has_effects(init):
-        return None
+    if tr.has_effects(init) and not inlined_calls_only(tr, init):
+        return None  # (a call that is its returned value once inlined is no effect)
     written = written_symbols(tr)
     if id(sym) in written:
         return None
