@@ -5,9 +5,9 @@ Tried in this order: the float16 tree of lowp lookups (lower_precision.py: its t
 every operation in it); for an expression with side effects, only a constant added to a call's
 result (returned_sums.py); for a matrix operand, only constants merged into the matrix
 (ssa_values.py); for a sum, factoring (factoring.py) then the ffma split (ffma_split.py); then
-a log scaled by a constant (exp_log.py), constants merged (constant_merge.py, components.py,
-compound_products.py) or sunk (sink.py); last, a product by a constant kept through a variable
-assigned again (ssa_values.py).
+a log scaled by a constant (exp_log.py), constants merged (loop_copies.py, constant_merge.py,
+components.py, compound_products.py) or sunk (sink.py); last, a product by a constant kept
+through a variable assigned again (ssa_values.py).
 
 :func:`copied_binary` is the same order for an engine that computes some families only (the
 compiled engine: compiled_engine/fold_values.COPIED, the families built from
@@ -22,6 +22,7 @@ from .constant_merge import merge_constants
 from .exp_log import log_scaled
 from .factoring import factor
 from .ffma_split import fused_after_call
+from .loop_copies import merged_copies
 from .lower_precision import LOWP_OPS, lowp_tree
 from .returned_sums import sink_into_call
 from .sink import sink_constant
@@ -55,6 +56,8 @@ def binary(tr: TranspilerState, e: A.Binary, mask: str | None) -> str | None:
             return folded
     folded = log_scaled(tr, e, mask)
     if folded is None:
+        folded = merged_copies(tr, e, mask)
+    if folded is None:
         folded = merge_constants(tr, e, mask)
     if folded is not None:
         return folded
@@ -85,7 +88,9 @@ def copied_binary(tr: FoldEmitter, e: A.Binary, mask: str | None, copied: frozen
         if folded is not None:
             return folded
     if "constant_merge" in copied:
-        folded = merge_constants(tr, e, mask)
+        folded = merged_copies(tr, e, mask)
+        if folded is None:
+            folded = merge_constants(tr, e, mask)
         if folded is not None:
             return folded
     folded = merge_components(tr, e, mask) if "components" in copied else None
