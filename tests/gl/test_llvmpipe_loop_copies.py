@@ -13,17 +13,16 @@ same passes, a loop NIR keeps, whose top is a phi: the written order), and Mesa'
 out in GLSL (the constants in parentheses, folded in float32 by the compiler). The unrolled loop
 equals Mesa's order on every pixel, and the kept loop differs from it (the shape tells the two
 orders apart). Measured on llvmpipe of Mesa 22.3 (160x90, 14,400 pixels), the pixels where
-the unrolled loop and the kept one differ, and where the NumPy backend and the compiled engine
-differed from the unrolled loop before they copied the rule (the same on both engines):
-``a = p.y * 0.013`` then ``a = sin(a * 1.01)`` once 4,320 and 4,320, four times 3,360 and
-3,360; ``sin(a * 1.01) * 0.7`` three times 8,960 (the first copy and the later ones merge);
-the sums 160 and 4,800; ``a *= 1.01`` and ``a += 1.01`` in the body 3,680 and 160;
-``a * float(i) * 1.01`` 4,960; a vec2 12,224; ``p.y * float(i) * 1.01`` (i from 3) 8,640,
-``p.y + float(i) + 1.01`` 5,440, with a break in the body 9,120 (the NumPy backend before).
-Not copied: a write of one component (``a.x = sin(a.x - 1.01) - 0.7``: components.py's, 5,440
-pixels), chains of ``*=`` through the copies (measured only for the value before the loop), and
-in a loop NIR keeps, the constant sunk past the loop's variable (:func:`_kept`: 7,360 pixels of
-``p.y * float(i) * 1.01``, 1,600 of the sum)."""
+the NumPy backend and the compiled engine (the same on both) differed from the unrolled loop
+before they copied the rule: ``a = p.y * 0.013`` then ``a = sin(a * 1.01)`` once 4,320, four
+times 3,360; ``sin(a * 1.01) * 0.7`` three times 8,960 (the first copy and the later ones
+merge); the sums 160 and 4,800, the differences 5,440; ``a *= 1.01`` and ``a += 1.01`` in the
+body 3,680 and 160; a vec2 12,224; ``a * float(i) * 1.01`` 4,960, ``p.y * float(i) * 1.01``
+8,640, ``p.y + float(i) + 1.01`` 5,440, with a break in the body 7,840; the body written out
+without a loop 160 to 4,744. Not copied: a write of one component (``a.x = sin(a.x - 1.01) -
+0.7``: components.py's, 5,440 pixels), chains of ``*=`` through the copies (measured only for
+the value before the loop), and in a loop NIR keeps, the constant sunk past the loop's variable
+(:func:`_kept`: 7,360 pixels of ``p.y * float(i) * 1.01``, 1,600 of the sum)."""
 
 from __future__ import annotations
 

@@ -2,7 +2,8 @@
 code.
 
 Tried in this order: the float16 tree of lowp lookups (lower_precision.py: its type decides
-every operation in it); for an expression with side effects, only a constant added to a call's
+every operation in it); a value whose y a later copy of an unrolled loop reads from a temporary
+(loop_copies.kept_in_slot); for an expression with side effects, only a constant added to a call's
 result (returned_sums.py); for a matrix operand, only constants merged into the matrix
 (ssa_values.py); for a sum, factoring (factoring.py) then the ffma split (ffma_split.py); then
 a log scaled by a constant (exp_log.py), constants merged (loop_copies.py, constant_merge.py,
@@ -22,7 +23,7 @@ from .constant_merge import merge_constants
 from .exp_log import log_scaled
 from .factoring import factor
 from .ffma_split import fused_after_call
-from .loop_copies import merged_copies
+from .loop_copies import kept_in_slot, merged_copies
 from .lower_precision import LOWP_OPS, lowp_tree
 from .returned_sums import sink_into_call
 from .sink import sink_constant
@@ -44,6 +45,9 @@ def binary(tr: TranspilerState, e: A.Binary, mask: str | None) -> str | None:
         return None
     if tr.type_of(e).base != "float":
         return None
+    kept = kept_in_slot(tr, e, mask)  # (a later copy of a loop reads y from a temporary)
+    if kept is not None:
+        return kept
     if tr.has_effects(e):
         return sink_into_call(tr, e, mask)
     if tr.type_of(e.left).is_matrix or tr.type_of(e.right).is_matrix:
@@ -75,6 +79,9 @@ def copied_binary(tr: FoldEmitter, e: A.Binary, mask: str | None, copied: frozen
     same order; None where none of them rewrites ``e``."""
     if e.op not in ("+", "-", "*") or tr.fn is None or tr.type_of(e).base != "float":
         return None
+    kept = kept_in_slot(tr, e, mask) if "constant_merge" in copied else None
+    if kept is not None:
+        return kept
     if tr.has_effects(e):
         return None
     if tr.type_of(e.left).is_matrix or tr.type_of(e.right).is_matrix:

@@ -24,6 +24,7 @@ from typing import Any
 from .....frontend import syntax as A
 from .....semantics.model import Symbol
 from ....cpu_core.facts import induction_variable
+from .components import component_locals
 from .loop_unroll import nir_unrolls
 from .queries import (
     SUMS,
@@ -241,7 +242,7 @@ def _parts(tr: FoldEngine, op: str, value: Any, t: Any) -> tuple[Any, Any, str, 
         b, c, c_sign, b_sign = right, left, "+", value.op
     else:
         return None
-    if has_matrix(tr, b, c) or not is_varying(tr, b):
+    if has_matrix(tr, b, c) or not is_varying(tr, b) or tr.type_of(b) != t:
         return None
     if (
         isinstance(b, A.Binary)
@@ -319,8 +320,43 @@ def merged_value(tr: FoldEngine, value: Any) -> bool:
 def later_values(tr: FoldEngine, loop: Any) -> list[tuple[Any, Any]]:
     """(value, its variable) of the writes in `loop`'s body whose value a later copy merges a
     constant into: the engines hold its y in a temporary made before the loop (so the first
-    pass defines it, and a loop that moves lanes moves it too), which keep_factor fills."""
+    pass defines it, and a loop that moves lanes moves it too), which :func:`kept_in_slot`
+    fills."""
     return _merged_values(tr)[1].get(id(loop), [])
+
+
+def kept_in_slot(tr: FoldEmitter, e: A.Binary, mask: str | None) -> Any:
+    """The code of a write's value ``y * #c`` (``y +- #c``) that a later copy of its loop merges
+    a constant into (:func:`later_values`), as written, y stored in the temporary made before
+    the loop; None for any other expression. Tried before every other rule: the later copy's
+    read was emitted with that temporary, so y must be stored whatever else applies."""
+    slot = tr.fold_state.kept_slots.get(id(e))
+    if slot is None or slot[1] is not tr.lines:
+        return None
+    t = tr.type_of(e)
+    parts = _parts(tr, tr.fold_state.slot_ops[id(e)], e, t)
+    assert parts is not None  # (later_values took it for such a value)
+    y, c_node, _, _ = parts
+    ty = tr.store(slot[0], tr.expr(y, mask))
+    tc = tr.expr(c_node, mask)
+    tr.fold_state.kept[id(e)] = (ty, tr.lines)
+    if e.op == "*":
+        ct = tr.type_of(c_node)
+        left = y is e.left
+        return (
+            tr.binary_values("*", t, ct, ty, tc) if left else tr.binary_values("*", ct, t, tc, ty)
+        )
+    return tr.ieee(e.op, ty, tc) if y is e.left else tr.ieee(e.op, tc, ty)
+
+
+def _slot_filled(tr: FoldEngine, op: str, value: Any, sym: Any) -> bool:
+    """The engines emit `value` through the rules' dispatch, where :func:`kept_in_slot` stores
+    its y: not a write components.py computes per component, nor a step of a ``+=`` chain
+    (repeated_sums.py: ``x = x + #c``)."""
+    if id(sym) in component_locals(tr):
+        return False
+    y = _parts(tr, op, value, tr.type_of(value))
+    return y is not None and not (op != "*" and isinstance(y[0], A.Identifier))
 
 
 def _merged_values(tr: FoldEngine) -> tuple[set[int], dict[int, list[tuple[Any, Any]]]]:
@@ -339,8 +375,10 @@ def _merged_values(tr: FoldEngine) -> tuple[set[int], dict[int, list[tuple[Any, 
                 if _parts(tr, op, v, t) is None or id(v) in out:
                     continue
                 out.add(id(v))
-                if found[0] is not None and i == 1:
-                    later.setdefault(id(found[0]), []).append((v, tr.model.symbol_of(x_node)))
+                sym = tr.model.symbol_of(x_node)
+                if found[0] is not None and i == 1 and _slot_filled(tr, op, v, sym):
+                    later.setdefault(id(found[0]), []).append((v, sym))
+                    tr.fold_state.slot_ops[id(v)] = op
         cache[key] = out, later
     return cache[key]
 

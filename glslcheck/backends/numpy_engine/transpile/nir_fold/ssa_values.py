@@ -37,8 +37,8 @@ def keep_factor(tr: FoldEmitter, e: A.Binary, mask: str | None) -> Any:
     the second is ``(m*2.02) * (m*p)``, SSA); the generated code has one variable per GLSL
     one, so the value y had is kept here, in float32 and float64 mode alike (the same
     values: only llvmpipe mode reads the temporary). The same for ``x = y +- #c`` and for
-    a value read in a copy of an unrolled loop (loop_copies.merged_value: the temporary made
-    before the loop, loop_copies.later_values, when a later copy reads it)."""
+    the value before a loop NIR unrolls that its first copy reads (loop_copies.merged_value;
+    a value a later copy reads: loop_copies.kept_in_slot)."""
     if (
         e.op not in ("*", "+", "-")
         or tr.type_of(e.left) != tr.type_of(e.right)
@@ -63,11 +63,7 @@ def keep_factor(tr: FoldEmitter, e: A.Binary, mask: str | None) -> Any:
     reads = _merge_reads(tr, products=plain).get(id(w.symbol), ()) if e.op == "*" else ()
     if not (any(reaching_value(tr, r) is e for r in reads) or merged_value(tr, e)):
         return None  # (no product by (sum with) a constant reads this value)
-    slot = tr.fold_state.kept_slots.get(id(e))  # (made before a loop: loop_copies.later_values)
-    if slot is not None and slot[1] is tr.lines:
-        ty = tr.store(slot[0], tr.expr(y, mask))
-    else:
-        ty = tr.tmp(tr.expr(y, mask))
+    ty = tr.tmp(tr.expr(y, mask))
     tk = tr.expr(k, mask)
     tr.fold_state.kept[id(e)] = (ty, tr.lines)
     t = tr.type_of(e)
