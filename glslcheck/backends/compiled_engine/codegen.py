@@ -76,6 +76,7 @@ from .values import (
     STATE,
     STATE_NAME,
     Arr,
+    Val,
     engine_error,
     flatten,
     leaves,
@@ -798,8 +799,9 @@ class Codegen(ExpressionEmitter):
 
     def enter_unrolled(self, loop: A.For) -> None:
         """Before a loop NIR unrolls (nir_fold.enter_unrolled, the NumPy backend's): the value
-        before a chain that starts there, kept, and a count of its passes where its steps'
-        constants differ from copy to copy."""
+        before a chain that starts there, kept, the temporaries a later copy's merge reads
+        (nir_fold.later_values), and a count of its passes where its steps' constants (or a
+        merge) differ from copy to copy."""
         from ..numpy_engine.transpile import nir_fold
 
         fs = self.fn
@@ -808,6 +810,9 @@ class Codegen(ExpressionEmitter):
         entry = nir_fold.sum_entry(ctx, loop)
         if entry is not None and entry.root:
             self.chain_base(entry, [self.read(p) for p in self.var_parts(entry.sym, loop)])
+        for value, sym in nir_fold.later_values(ctx, loop):  # (a later copy's merge reads it)
+            parts = [self.tmp_fresh(self.read(p)) for p in self.var_parts(sym, loop)]
+            ctx.fold_state.kept_slots[id(value)] = (Val(self.type_of(value), parts), fs)
         if nir_fold.indexed_loop(ctx, loop):
             name = self.fresh("ix")
             self.emit(f"{name} = 0")

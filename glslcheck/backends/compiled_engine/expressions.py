@@ -373,15 +373,18 @@ class ExpressionEmitter:
     def component_write(self, node: Any, old: Val | None = None) -> Val | None:
         """The value a write gives a local as NIR sees it per component (nir_fold.component_write
         decides and computes it: constants merged through component writes, a ``+= e`` undone
-        by a later ``-= e``), or None: the write as usual. ``old``: the target's value before
-        an assignment."""
+        by a later ``-= e``; first, nir_fold.compound_copies: ``x op= #k`` merged in a copy of
+        an unrolled loop), or None: the write as usual. ``old``: the target's value before an
+        assignment."""
         if self.fn is None or self.fn.sym is None:
             return None
         if any(not isinstance(p, str) for p in (old.parts if old is not None else [])):
             return None
         from ..numpy_engine.transpile import nir_fold
 
-        return nir_fold.component_write(self.fold_context(), node, None, old)
+        ctx = self.fold_context()
+        merged = nir_fold.compound_copies(ctx, node, None, old) if old is not None else None
+        return merged if merged is not None else nir_fold.component_write(ctx, node, None, old)
 
     def repeated_sum(self, e: A.Assignment, targets: list) -> Val | None:
         """A step of a ``+= #c`` chain: ``base + K``, K from the NumPy backend's plan

@@ -90,6 +90,21 @@ class FoldValues(FoldContext):
         """Mesa's order: the compiled engine computes llvmpipe's float32 only."""
         return rewritten
 
+    def store(self, target: Val, value: Val) -> Val:
+        """value into the temporaries of `target` (made before a loop: Codegen.enter_unrolled)."""
+        for name, part in zip(target.parts, value.parts):
+            self.cg.emit(f"{name} = {part}")
+        return Val(target.t, target.parts, None, value.uni, value.one)
+
+    def by_copy(self, loop: Any, first: Val, later: Val) -> Val:
+        """`first` in the first pass of a loop NIR unrolls, `later` in the others (its pass
+        count: Codegen.enter_unrolled)."""
+        assert self.cg.fn is not None  # (generating a function)
+        ix = self.cg.fn.sum_index[id(loop)]
+        parts = [f"({a} if {ix} == 0 else {b})" for a, b in zip(first.parts, later.parts)]
+        one = first.one and later.one
+        return Val(first.t, parts, None, first.uni and later.uni, one)
+
     def tmp(self, value: Val) -> Val:
         """value in temporaries that later writes leave alone (a rule reads them after the
         variable they came from is written again: a variable's name is copied too)."""

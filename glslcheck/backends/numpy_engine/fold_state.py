@@ -51,6 +51,10 @@ class FoldState:
     sum_index: dict = field(default_factory=dict)
     sum_global_keys: dict = field(default_factory=dict)  # global -> (its chain key, itself)
     loop_costs: dict = field(default_factory=dict)  # loop -> its body's cost (loop_unroll)
+    copy_loops: dict = field(default_factory=dict)  # loop -> whether loop_copies counts passes
+    copy_values: dict = field(default_factory=dict)  # function -> values merged in loop copies
+    kept_slots: dict = field(default_factory=dict)  # value -> (its y's temporary, lines)
+    slot_ops: dict = field(default_factory=dict)  # value -> the op a later copy merges with
     sum_globals: list | None = None  # the globals the shader's functions read or write
     sum_global_writers: dict = field(default_factory=dict)  # (function, global) -> writes it
     # transpile/constant_flow.py

@@ -301,7 +301,9 @@ class Expressions(TranspilerState):
 
     def assignment(self, e: A.Assignment, mask: str | None, want_value: bool) -> str:
         lv = self.lvalue(e.target, mask)
-        value = nir_fold.component_write(self, e, mask, self.read(lv))  # NIR's view per component
+        value = nir_fold.compound_copies(self, e, mask, self.read(lv))  # x op= #k, merged
+        if value is None:
+            value = nir_fold.component_write(self, e, mask, self.read(lv))  # NIR's per component
         if value is None:
             value = nir_fold.repeated_sum(self, e, mask, self.read(lv))
         if value is None:
@@ -355,6 +357,16 @@ class Expressions(TranspilerState):
     def llvmpipe(rewritten: str, written: str) -> str:
         """Mesa's order in float32 (llvmpipe) mode, the written one in float64 and float16."""
         return f"({rewritten} if rt.lp else {written})"
+
+    def store(self, target: str, value: str) -> str:
+        """value into the temporary `target` (made before a loop: loop_copies.later_values)."""
+        self.emit(f"{target} = {value}")
+        return target
+
+    def by_copy(self, loop: Any, first: str, later: str) -> str:
+        """`first` in the first pass of a loop NIR unrolls, `later` in the others (its pass
+        count: repeated_sums.indexed_loop)."""
+        return f"({first} if {self.fold_state.sum_index[id(loop)]} == 0 else {later})"
 
     @staticmethod
     def component(value: str, i: int) -> str:

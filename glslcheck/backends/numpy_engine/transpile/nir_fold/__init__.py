@@ -22,6 +22,9 @@ The rules copied here, each measured bit for bit against llvmpipe on 50,000 rand
 - components.py: NIR's SSA per vector component, constants merged through component writes,
   a ``+= e`` undone by a later ``-= e``;
 - compound_products.py: ``x *= b; ... x * #c`` with the new x read once is ``(a * #c) * b``;
+- loop_copies.py: constants merged into the value a variable holds in each copy of a loop NIR
+  unrolls (the value before the loop in the first), and into a sum through a variable assigned
+  again; loop_compounds.py: the same for ``x *= #k`` (``+=``, ``-=``);
 - loop_unroll.py: which loops NIR unrolls (a constant count, a body small enough);
 - return_register.py: a call's result in the lanes a mask leaves out, llvmpipe's register;
 - inlined_results.py: a call of a function that, inlined, is a value of its arguments counts
@@ -63,6 +66,8 @@ from .dot_constants import broadcast_dot, dot_operand, merged_dot
 from .exp_log import exp_product
 from .ffma_split import fused_plan
 from .flrp import mix_hint
+from .loop_compounds import compound_copies
+from .loop_copies import later_values
 from .repeated_sums import (
     Entry,
     call_step,
@@ -102,9 +107,11 @@ __all__ = [
     "end_of_unrolled_body",
     "enter_unrolled",
     "indexed_loop",
+    "later_values",
     "loop_count",
     "broadcast_dot",
     "component_write",
+    "compound_copies",
     "copied_binary",
     "dot_operand",
     "keep_term",

@@ -252,6 +252,11 @@ def _target_components(tr: FoldEngine, target: Any) -> tuple[Any, tuple[int, ...
     return None, None
 
 
+def component_locals(tr: FoldEngine) -> set[int]:
+    """ids of the locals whose writes :func:`component_write` computes (loop_copies.py asks)."""
+    return _component_locals(tr)
+
+
 def _component_locals(tr: FoldEngine) -> set[int]:
     """ids of the float locals of the current function :func:`component_write` follows: written
     in part (a component, a compound assignment) and read in a product by a constant (or by

@@ -2,12 +2,13 @@
 code.
 
 Tried in this order: the float16 tree of lowp lookups (lower_precision.py: its type decides
-every operation in it); for an expression with side effects, a constant added to a call's
+every operation in it); a value whose y a later copy of an unrolled loop reads from a temporary
+(loop_copies.kept_in_slot); for an expression with side effects, a constant added to a call's
 result (returned_sums.py), then, where its only effects are calls of user functions that are
 opaque values once inlined (queries.inlined_calls_only, inlined_results.py), the rules below as
 for any value; for a matrix operand, only constants merged into the matrix (ssa_values.py); for
 a sum, factoring (factoring.py) then the ffma split (ffma_split.py); then a log scaled by a
-constant (exp_log.py), constants merged (constant_merge.py, components.py,
+constant (exp_log.py), constants merged (loop_copies.py, constant_merge.py, components.py,
 compound_products.py) or sunk (sink.py); last, a product by a constant kept through a variable
 assigned again (ssa_values.py).
 
@@ -24,6 +25,7 @@ from .constant_merge import merge_constants
 from .exp_log import log_scaled
 from .factoring import factor
 from .ffma_split import fused_after_call
+from .loop_copies import kept_in_slot, merged_copies
 from .lower_precision import LOWP_OPS, lowp_tree
 from .queries import inlined_calls_only
 from .returned_sums import sink_into_call
@@ -46,6 +48,9 @@ def binary(tr: TranspilerState, e: A.Binary, mask: str | None) -> str | None:
         return None
     if tr.type_of(e).base != "float":
         return None
+    kept = kept_in_slot(tr, e, mask)  # (a later copy of a loop reads y from a temporary)
+    if kept is not None:
+        return kept
     if tr.has_effects(e):
         folded = sink_into_call(tr, e, mask)
         if folded is not None or not inlined_calls_only(tr, e):
@@ -59,6 +64,8 @@ def binary(tr: TranspilerState, e: A.Binary, mask: str | None) -> str | None:
         if folded is not None:
             return folded
     folded = log_scaled(tr, e, mask)
+    if folded is None:
+        folded = merged_copies(tr, e, mask)
     if folded is None:
         folded = merge_constants(tr, e, mask)
     if folded is not None:
@@ -77,6 +84,9 @@ def copied_binary(tr: FoldEmitter, e: A.Binary, mask: str | None, copied: frozen
     same order; None where none of them rewrites ``e``."""
     if e.op not in ("+", "-", "*") or tr.fn is None or tr.type_of(e).base != "float":
         return None
+    kept = kept_in_slot(tr, e, mask) if "constant_merge" in copied else None
+    if kept is not None:
+        return kept
     if tr.has_effects(e) and not inlined_calls_only(tr, e):
         return None
     if tr.type_of(e.left).is_matrix or tr.type_of(e.right).is_matrix:
@@ -90,7 +100,9 @@ def copied_binary(tr: FoldEmitter, e: A.Binary, mask: str | None, copied: frozen
         if folded is not None:
             return folded
     if "constant_merge" in copied:
-        folded = merge_constants(tr, e, mask)
+        folded = merged_copies(tr, e, mask)
+        if folded is None:
+            folded = merge_constants(tr, e, mask)
         if folded is not None:
             return folded
     folded = merge_components(tr, e, mask) if "components" in copied else None

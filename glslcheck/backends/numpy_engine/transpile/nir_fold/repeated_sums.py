@@ -33,6 +33,7 @@ import numpy as np
 from .....frontend import syntax as A
 from .....semantics.analysis.dataflow import FunctionFacts, written_variable
 from .....semantics.model import Symbol
+from .loop_copies import later_values, merging_loop
 from .loop_unroll import nir_unrolls, trip_count
 from .queries import (
     FunctionStandin,
@@ -605,10 +606,13 @@ def sum_entry(tr: FoldEngine, node: Any) -> Entry | None:
 
 
 def indexed_loop(tr: FoldEngine, loop: Any) -> bool:
-    """Some step in the unrolled `loop` has a K per copy: the engines count its passes."""
+    """Some step in the unrolled `loop` has a K per copy, or a read merges a constant per copy
+    (loop_copies.merging_loop): the engines count its passes."""
     fn = current_function(tr).sym if tr.fn is not None else None
     if fn is None:
         return False
+    if merging_loop(tr, loop):
+        return True  # (a constant merged into another value in the first copy: loop_copies.py)
     if any(p.where.get(id(loop)) for p in chain_params(tr, fn).values()):
         return True
     return any(e.loop is loop and len(e.ks) > 1 for e in chain_plan(tr).values())
@@ -705,10 +709,13 @@ def chain_param_names(tr: TranspilerState, fn: Symbol) -> list[str]:
 
 def enter_unrolled(tr: TranspilerState, loop: Any) -> None:
     """Before an unrolled loop of the plan: the value before a chain that starts there, kept,
-    and a count of its passes where its steps' constants differ from copy to copy."""
+    the temporaries loop_copies.later_values names, and a count of its passes where its steps'
+    constants (or a merge: loop_copies.merging_loop) differ from copy to copy."""
     entry = sum_entry(tr, loop)
     if entry is not None and entry.root:
         _base(tr, entry, tr.var_name(entry.sym, entry.sym.node))
+    for value, sym in later_values(tr, loop):  # (a temporary a later copy merges into)
+        tr.fold_state.kept_slots[id(value)] = (tr.tmp(tr.var_name(sym, sym.node)), tr.lines)
     if indexed_loop(tr, loop):
         name = tr.fresh("ix")
         fn = tr.fn

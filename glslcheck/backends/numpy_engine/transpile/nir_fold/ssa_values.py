@@ -12,6 +12,7 @@ from __future__ import annotations
 from typing import Any
 
 from .....frontend import syntax as A
+from .loop_copies import merged_value, nonzero_constant
 from .queries import (
     current_function,
     function_facts,
@@ -35,9 +36,11 @@ def keep_factor(tr: FoldEmitter, e: A.Binary, mask: str | None) -> Any:
     through x to y however often x is assigned (``p = m*p*2.02; p = m*p*2.03;`` in an fbm:
     the second is ``(m*2.02) * (m*p)``, SSA); the generated code has one variable per GLSL
     one, so the value y had is kept here, in float32 and float64 mode alike (the same
-    values: only llvmpipe mode reads the temporary)."""
+    values: only llvmpipe mode reads the temporary). The same for ``x = y +- #c`` and for
+    the value before a loop NIR unrolls that its first copy reads (loop_copies.merged_value;
+    a value a later copy reads: loop_copies.kept_in_slot)."""
     if (
-        e.op != "*"
+        e.op not in ("*", "+", "-")
         or tr.type_of(e.left) != tr.type_of(e.right)
         and not (tr.type_of(e.left).is_scalar or tr.type_of(e.right).is_scalar)
     ):
@@ -46,17 +49,26 @@ def keep_factor(tr: FoldEmitter, e: A.Binary, mask: str | None) -> Any:
     y, k = (e.right, e.left) if k_left else (e.left, e.right)
     if not is_constant(tr, k) or is_constant(tr, y) or tr.type_of(y) != tr.type_of(e):
         return None
-    if not isinstance(y, (A.Binary, A.Call)) or is_fmul(tr, y) and product_parts(tr, y):
-        return None  # (a plain read is no new value to keep; a longer chain: not copied)
+    if e.op != "*" and (
+        not nonzero_constant(tr, k) or isinstance(y, A.Identifier) or tr.type_of(e).is_matrix
+    ):
+        return None  # (a sum: `x = x + #c` is repeated_sums.py's; `x + 0.0` is x to NIR)
+    plain = isinstance(y, (A.Identifier, A.Field, A.Index))  # (merged in a loop's copies too)
+    if not (isinstance(y, (A.Binary, A.Call)) or plain) or is_fmul(tr, y) and product_parts(tr, y):
+        return None  # (a longer chain: not copied)
     w = _write_of(tr, e)
     if w is None or id(w.symbol) not in written_symbols(tr):
         return None  # (a variable written once: its initializer is read again instead)
-    if not any(reaching_value(tr, r) is e for r in _merge_reads(tr).get(id(w.symbol), ())):
-        return None  # (no product by a constant reads this value)
+    # (a plain read is kept for a product by a constant only: the terms of a sum factor whole)
+    reads = _merge_reads(tr, products=plain).get(id(w.symbol), ()) if e.op == "*" else ()
+    if not (any(reaching_value(tr, r) is e for r in reads) or merged_value(tr, e)):
+        return None  # (no product by (sum with) a constant reads this value)
     ty = tr.tmp(tr.expr(y, mask))
     tk = tr.expr(k, mask)
     tr.fold_state.kept[id(e)] = (ty, tr.lines)
     t = tr.type_of(e)
+    if e.op != "*":
+        return tr.ieee(e.op, tk, ty) if k_left else tr.ieee(e.op, ty, tk)
     return tr.binary_values("*", t, t, tk, ty) if k_left else tr.binary_values("*", t, t, ty, tk)
 
 
@@ -79,18 +91,20 @@ def _write_of(tr: FoldEngine, value: Any) -> Any:
     return index[key].get(id(value))
 
 
-def _merge_reads(tr: FoldEngine) -> dict[int, list[A.Identifier]]:
+def _merge_reads(tr: FoldEngine, products: bool = False) -> dict[int, list[A.Identifier]]:
     """id(symbol) -> the reads of it as a factor of a product by a constant, or (it or one of
-    its components) as a term of a sum (factoring.py factors ``x.x + x.y``), in the current
-    function."""
+    its components) as a term of a sum (factoring.py factors ``x.x + x.y``; not with
+    `products`), in the current function."""
     cache = tr.fold_state.merge_reads
-    key = id(current_function(tr).sym)
+    key = (id(current_function(tr).sym), products)
     if key not in cache:
         out: dict[int, list[A.Identifier]] = {}
         for n in current_function(tr).sym.node.body.walk():
             if not isinstance(n, A.Binary):
                 continue
             for a, b in ((n.left, n.right), (n.right, n.left)):
+                if n.op == "+" and products:
+                    continue
                 if n.op == "+" and isinstance(b, A.Field) and len(b.name) == 1:
                     b = b.base
                 elif not (n.op == "*" and is_constant(tr, a) or n.op == "+"):
