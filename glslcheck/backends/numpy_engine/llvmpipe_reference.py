@@ -392,10 +392,14 @@ class LlvmpipeMath:
         return res
 
     def _pow(self, x: np.ndarray, y: np.ndarray) -> np.ndarray:
-        r = self._exp2(self._log2(x) * y)
         zero = ~(np.abs(x) >= FLT_MIN)  # x == 0 after DAZ, or NaN
-        if zero.any():
-            r = np.where(zero, F32(0.0), r)
+        if not zero.any():
+            return self._exp2(self._log2(x) * y)
+        # those lanes end 0 whatever log2 gives them (every step is elementwise): read as 1
+        # there, log2 keeps its path without edges when they were its only edge (a clamped
+        # base, max(dot, 0.0), has zeros on most tiles)
+        r = self._exp2(self._log2(np.where(zero, F32(1.0), x)) * y)
+        np.copyto(r, F32(0.0), where=zero)
         return r
 
 
