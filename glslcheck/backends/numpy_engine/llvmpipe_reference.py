@@ -55,8 +55,12 @@ DEFER_LANES = 4096
 
 def daz(x: np.ndarray) -> np.ndarray:
     """Subnormals as zero (same sign), as an x86 operand with MXCSR.DAZ set. Returns ``x``
-    itself when no |x| < FLT_MIN (zeros included) is present: the usual case, one test."""
+    itself when no subnormal is present: the usual case, one test (a second one when zeros
+    are present, which stay as they are)."""
     tiny = np.abs(x) < FLT_MIN
+    if not tiny.any():
+        return x
+    np.logical_and(tiny, x, out=tiny)  # (x read as a truth value: nonzero)
     if not tiny.any():
         return x
     return np.where(tiny, np.copysign(F32(0.0), x), x)
@@ -395,10 +399,11 @@ class LlvmpipeMath:
         zero = ~(np.abs(x) >= FLT_MIN)  # x == 0 after DAZ, or NaN
         if not zero.any():
             return self._exp2(self._log2(x) * y)
-        # those lanes end 0 whatever log2 gives them (every step is elementwise): read as 1
-        # there, log2 keeps its path without edges when they were its only edge (a clamped
-        # base, max(dot, 0.0), has zeros on most tiles)
-        r = self._exp2(self._log2(np.where(zero, F32(1.0), x)) * y)
+        # those lanes end 0 whatever log2 gives them (every step is elementwise): read as 0.5
+        # there (log2 exactly -1), log2 keeps its path without edges when they were its only
+        # edge (a clamped base, max(dot, 0.0), has zeros on most tiles), and exp2 gets no zero
+        # from them (log2(1) would be one, which costs daz a second test)
+        r = self._exp2(self._log2(np.where(zero, F32(0.5), x)) * y)
         np.copyto(r, F32(0.0), where=zero)
         return r
 
