@@ -165,3 +165,12 @@ def test_daz_flushes_subnormals_only(kinds: str) -> None:
     r = llvmpipe_reference.daz(x)
     np.testing.assert_array_equal(r.view(np.uint32), expected)
     assert (r is x) == (kinds in ("zeros", "neither"))
+
+
+def test_daz_of_scalars_and_0d_arrays() -> None:
+    """A NumPy scalar and a 0-d array (uniform operands) flush as a one-lane array does."""
+    for v in (0.0, -0.0, 1e-40, -1e-40, 2.0):
+        lane = llvmpipe_reference.daz(np.array([v], np.float32))
+        for x in (np.float32(v), np.array(v, np.float32)):
+            r = np.asarray(llvmpipe_reference.daz(x))
+            assert r.shape == () and r.view(np.uint32) == lane.view(np.uint32)[0], (v, type(x))

@@ -60,7 +60,7 @@ def daz(x: np.ndarray) -> np.ndarray:
     tiny = np.abs(x) < FLT_MIN
     if not tiny.any():
         return x
-    np.logical_and(tiny, x, out=tiny)  # (x read as a truth value: nonzero)
+    tiny = np.logical_and(tiny, x, out=tiny if tiny.ndim else None)  # x as a truth value
     if not tiny.any():
         return x
     return np.where(tiny, np.copysign(F32(0.0), x), x)
