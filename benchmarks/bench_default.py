@@ -3,6 +3,7 @@ and the compiled engine alone, as a user meets them.
 
     python benchmarks/bench_default.py [--repeat 5] [--frames 200] [--size 400x225]
                                        [--first LAB,...] [--steady PATH,...] [--during PATH,...]
+                                       [--computed PATH,...]
 
 1. First frame: a fresh process per run (`import glslcheck`, compile, one frame at 800x450,
    `render`'s default size), the default program and the NumPy backend in turns; the median
@@ -20,6 +21,13 @@ and the compiled engine alone, as a user meets them.
    median NumPy frame before the compile starts against the median and the slowest NumPy frame
    while it runs (the compile's cost to the frames beside it), and the seconds until the first
    frame of the compiled engine.
+4. Every frame computed (`--computed`): part 2 serves a scene that does not read iTime from
+   the NumPy frame cache after its first frame; here the cache is emptied before every frame
+   and NumPy runs on one thread, so that a frame's CPU time is the process's. One process per
+   shader and engine (the default program and the NumPy backend alone), `--frames` frames at
+   `--size`; the median CPU time of the last tenth against llvmpipe's median CPU time in the
+   same process, the mean from the second frame on, where the default settled and from which
+   frame it left NumPy.
 """
 
 from __future__ import annotations
@@ -111,6 +119,54 @@ print(json.dumps({"before": statistics.median(before) if before else None,
                   "first": first, "mode": impl.mode, "stay": getattr(impl, "stay", None)}))
 """
 
+COMPUTED_RUN = r"""
+import json, statistics, sys, time
+import glslcheck
+path, backend, frames = sys.argv[1], sys.argv[2], int(sys.argv[3])
+w, h = (int(x) for x in sys.argv[4].split("x"))
+prog = glslcheck.compile(path, backend=backend)
+impl = prog.impl
+numpy = getattr(impl, "first", impl)  # the tiered program's NumPy program, or NumPy itself
+impl.threads = 1
+cpu, modes = [], []
+for k in range(frames):
+    numpy._cache.clear()
+    c = time.process_time()
+    prog.render(size=(w, h), time=1.0 + k / 60)
+    cpu.append(time.process_time() - c)
+    modes.append(getattr(impl, "engine", "numpy"))
+g = glslcheck.compile(path, backend="gl")
+g.render(size=(w, h))
+gl = []
+for k in range(10):
+    c = time.process_time()
+    g.render(size=(w, h), time=1.0 + k / 60)
+    gl.append(time.process_time() - c)
+print(json.dumps({"tail": statistics.median(cpu[-max(1, frames // 10):]),
+                  "mean": statistics.mean(cpu[1:] or cpu), "gl": statistics.median(gl),
+                  "mode": modes[-1],
+                  "left": next((i for i, m in enumerate(modes) if m != "numpy"), None)}))
+"""
+
+
+def computed(paths: list[str], frames: int, size: str) -> None:
+    print(
+        f"== every frame computed: {frames} frames at {size}, one process per engine, NumPy on "
+        "one thread (CPU ms; ratio against llvmpipe's CPU time in the same process)"
+    )
+    for p in paths:
+        path = p if os.path.isabs(p) else os.path.join(ROOT, p)
+        row = []
+        for backend in ("auto", "numpy"):
+            r = _run(COMPUTED_RUN, path, backend, str(frames), size)
+            left = f", left NumPy at frame {r['left']}" if r["left"] is not None else ""
+            row.append(
+                f"{backend} last frames {r['tail'] * 1000:6.1f} ms = {r['tail'] / r['gl']:.2f}x, "
+                f"from the second {r['mean'] / r['gl']:.2f}x"
+                + (f" ({r['mode']}{left})" if backend == "auto" else "")
+            )
+        print(f"{os.path.basename(path.rstrip('/'))}: " + " | ".join(row))
+
 
 def during(paths: list[str], size: str) -> None:
     print(f"== NumPy frames beside a cold compile at {size} (wall ms; a numba cache of its own)")
@@ -187,6 +243,7 @@ def main() -> int:
     p.add_argument("--first", default=FIRST, help="lab shaders for part 1, comma-separated, or all")
     p.add_argument("--steady", default=STEADY, help="shaders for part 2, comma-separated")
     p.add_argument("--during", default="", help="shaders for part 3, comma-separated")
+    p.add_argument("--computed", default="", help="shaders for part 4, comma-separated")
     args = p.parse_args()
     if args.first:
         lab = os.path.join(ROOT, "lab_shaders")
@@ -200,6 +257,8 @@ def main() -> int:
         steady(args.steady.split(","), args.frames, args.size, args.repeat)
     if args.during:
         during(args.during.split(","), args.size)
+    if args.computed:
+        computed(args.computed.split(","), args.frames, args.size)
     return 0
 
 

@@ -147,3 +147,30 @@ def test_deferred_check_finds_a_midpoint_and_the_call_falls_back():
         DeferredFma.midpoint = orig
     assert calls == ["Spy"]  # the deferred run is DeferredFma's own; the fallback is Spy's
     assert np.array_equal(_bits(got), _bits(want))
+
+
+@pytest.mark.parametrize("kinds", ["zeros", "subnormals", "both", "neither"])
+def test_daz_flushes_subnormals_only(kinds: str) -> None:
+    """daz against the definition read off the bits (exponent field 0: zero or subnormal, made
+    a zero of the same sign); an array without a subnormal comes back as itself."""
+    x = RNG.uniform(-4.0, 4.0, 1000).astype(np.float32)
+    if kinds in ("zeros", "both"):
+        x[::7] = 0.0
+        x[3::7] = -0.0
+    if kinds in ("subnormals", "both"):
+        x[5::11] = np.float32(1e-40)
+        x[6::11] = np.float32(-3e-42)
+    bits = x.view(np.uint32)
+    expected = np.where((bits & 0x7F800000) == 0, bits & 0x80000000, bits).astype(np.uint32)
+    r = llvmpipe_reference.daz(x)
+    np.testing.assert_array_equal(r.view(np.uint32), expected)
+    assert (r is x) == (kinds in ("zeros", "neither"))
+
+
+def test_daz_of_scalars_and_0d_arrays() -> None:
+    """A NumPy scalar and a 0-d array (uniform operands) flush as a one-lane array does."""
+    for v in (0.0, -0.0, 1e-40, -1e-40, 2.0):
+        lane = llvmpipe_reference.daz(np.array([v], np.float32))
+        for x in (np.float32(v), np.array(v, np.float32)):
+            r = np.asarray(llvmpipe_reference.daz(x))
+            assert r.shape == () and r.view(np.uint32) == lane.view(np.uint32)[0], (v, type(x))

@@ -55,8 +55,12 @@ DEFER_LANES = 4096
 
 def daz(x: np.ndarray) -> np.ndarray:
     """Subnormals as zero (same sign), as an x86 operand with MXCSR.DAZ set. Returns ``x``
-    itself when no |x| < FLT_MIN (zeros included) is present: the usual case, one test."""
+    itself when no subnormal is present: the usual case, one test (a second one when zeros
+    are present, which stay as they are)."""
     tiny = np.abs(x) < FLT_MIN
+    if not tiny.any():
+        return x
+    tiny = np.logical_and(tiny, x, out=tiny if tiny.ndim else None)  # x as a truth value
     if not tiny.any():
         return x
     return np.where(tiny, np.copysign(F32(0.0), x), x)
@@ -392,10 +396,15 @@ class LlvmpipeMath:
         return res
 
     def _pow(self, x: np.ndarray, y: np.ndarray) -> np.ndarray:
-        r = self._exp2(self._log2(x) * y)
         zero = ~(np.abs(x) >= FLT_MIN)  # x == 0 after DAZ, or NaN
-        if zero.any():
-            r = np.where(zero, F32(0.0), r)
+        if not zero.any():
+            return self._exp2(self._log2(x) * y)
+        # those lanes end 0 whatever log2 gives them (every step is elementwise): read as 0.5
+        # there (log2 exactly -1), log2 keeps its path without edges when they were its only
+        # edge (a clamped base, max(dot, 0.0), has zeros on most tiles), and exp2 gets no zero
+        # from them (log2(1) would be one, which costs daz a second test)
+        r = self._exp2(self._log2(np.where(zero, F32(0.5), x)) * y)
+        np.copyto(r, F32(0.0), where=zero)
         return r
 
 
