@@ -1,5 +1,5 @@
 """Texture lookups in the compiled engine: the ES 3.00 built-ins on a sampler2D, and texture,
-textureLod and textureSize on a samplerCube (a cube map channel), as calls of
+textureLod, textureGrad and textureSize on a samplerCube (a cube map channel), as calls of
 backends/numpy_engine/texture_kernels.py (the one-pixel form of the NumPy backend's
 textures.py), and arithmetic on lowp lookups in float16 where the NumPy backend computes it so
 (nir_fold.lower_precision: llvmpipe's float16 lowering).
@@ -109,9 +109,10 @@ def texture_call(cg: Any, e: A.Call, name: str) -> Val:
 
 
 def _cube_call(cg: Any, e: A.Call, name: str) -> Val:
-    """texture(samplerCube, vec3[, bias]) or textureLod: tex_sample_cube at the direction, with
-    the explicit LOD, or a mipmapped channel's implicit one (tex_lod_cube from the direction's
-    fine derivatives, lockstep only), or level 0."""
+    """texture(samplerCube, vec3[, bias]), textureLod or textureGrad: tex_sample_cube at the
+    direction, with the explicit LOD, the given derivatives' (tex_lod_cube), a mipmapped
+    channel's implicit one (tex_lod_cube from the direction's fine derivatives, lockstep only),
+    or level 0."""
     cg.textures = True
     rtype = cg.type_of(e)
     ch = cg.atom(cg.expr(e.args[0]).parts[0])
@@ -120,6 +121,10 @@ def _cube_call(cg: Any, e: A.Call, name: str) -> Val:
     has_lod, lod, implicit = "False", "F32(0.0)", "False"
     if name == "textureLod":
         has_lod, lod = "True", args[1].parts[0]
+    elif name == "textureGrad":  # (a channel without mipmaps ignores the LOD)
+        grads = ", ".join(cg.atom(x) for a in args[1:3] for x in a.parts)
+        has_lod, implicit = "True", "True"
+        lod = cg.tmp_fresh(f"tex_lod_cube(ui, TM, {ch}, {', '.join(d)}, {grads}, True)")
     elif not _needs_lod(cg, e.args[0]):
         cg.level0_lookups |= _channels(cg, e.args[0])
     else:
@@ -128,7 +133,7 @@ def _cube_call(cg: Any, e: A.Call, name: str) -> Val:
         names = [c if c.isidentifier() else cg.tmp_fresh(c) for c in d]
         diffs = [cg.tmp_fresh(f"{f}({c})") for f in ("dfdx", "dfdy") for c in names]
         has_lod, implicit = "True", "True"
-        lod = cg.tmp_fresh(f"tex_lod_cube(ui, TM, {ch}, {', '.join(names + diffs)})")
+        lod = cg.tmp_fresh(f"tex_lod_cube(ui, TM, {ch}, {', '.join(names + diffs)}, False)")
         if len(args) > 1:  # the bias, added to the implicit LOD
             lod = cg.tmp_fresh(f"({lod} + {args[1].parts[0]})")
         d = names
