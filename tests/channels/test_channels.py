@@ -532,6 +532,8 @@ def test_odd_sizes_shade_helper_pixels_as_llvmpipe(gl, tmp_path, size):
         "texture(iChannel0, uv)",
         "texture(iChannel0, uv, fragCoord.x / 20.0 - 1.0)",  # a bias that differs within a quad
         "textureLod(iChannel0, uv, fragCoord.y / 9.0 - 0.5)",
+        # a NaN LOD on some pixels (level 0, unblended: textures.lod_split)
+        "textureLod(iChannel0, uv, fragCoord.x > 20.0 ? sqrt(-fragCoord.y) : fragCoord.y / 9.0)",
     ],
 )
 def test_filtering_bit_for_bit_on_a_ramp_of_scales(gl, tmp_path, lookup, wrap, filt):
