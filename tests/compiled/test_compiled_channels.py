@@ -266,6 +266,27 @@ def test_cube_texture_grad_bit_for_bit(numba, tmp_path, monkeypatch, lanes, size
     _agree(_cube_folder(tmp_path, CUBE_GRAD), size)
 
 
+# constant coordinates, LODs, biases and derivatives, rounded to float16 for the lowp channels
+# (nir_fold.lower_precision.float16_lookup_args), through a sampler parameter too
+CONSTANT_ARGS = """vec4 look(samplerCube s, vec3 d) { return textureLod(s, d, 1.3); }
+const float L = 0.3;
+void mainImage(out vec4 c, in vec2 fc) {
+    vec2 q = fc / iResolution.xy - 0.5;
+    vec3 d = vec3(q, 0.7);
+    vec4 a = textureLod(iChannel2, d, 1.3) + look(iChannel2, d.yxz) + textureLod(iChannel2, d, L);
+    a += textureGrad(iChannel2, d, vec3(0.3), vec3(0.0)) + texture(iChannel1, vec3(0.3, -0.7, L));
+    a += textureGrad(iChannel2, d * 1e30, vec3(3e29), vec3(0.0));
+    c = a;
+}
+"""
+
+
+@pytest.mark.parametrize("lanes", ["0", "8"])
+def test_constant_lookup_arguments_bit_for_bit(numba, tmp_path, monkeypatch, lanes):
+    monkeypatch.setenv("GLSLCHECK_COMPILED_LANES", lanes)
+    _agree(_cube_folder(tmp_path, CONSTANT_ARGS), (40, 24))
+
+
 def test_texture_grad_offset_on_a_cube_map_is_a_located_error(numba, tmp_path):
     # GLSL ES 3.00 has no offset form of a cube map lookup: no samplerCube overload matches, so
     # the channel is not sampled as a cube map (semantics/channel_types.py), located at it

@@ -39,8 +39,7 @@ DIRECTIONS = """
 """
 
 
-# textureGrad's derivative along y in the lookups below: it grows up the picture (highp: a constant
-# derivative would reach the lowp sampler rounded to float16, docs/llvmpipe.md)
+# textureGrad's derivative along y in the lookups below: it grows up the picture
 _GY = "vec3(0.0, fragCoord.y / 64.0, 0.01 * fragCoord.x))"
 
 
@@ -95,6 +94,10 @@ def _assert_same(ours, theirs):
         ("mipmap", "textureGrad(iChannel0, d, vec3(1e30, 0.0, 3e30) * fragCoord.x, d)"),
         ("mipmap", "textureGrad(iChannel0, d, d * (fragCoord.x - 64.0) * 1e30 * 1e30, d)"),
         ("linear", "textureGrad(iChannel0, d, vec3(fragCoord.x / 64.0), d)"),  # no levels
+        # constant arguments reach the lowp sampler as float16 (3e29: infinite, level 0)
+        ("mipmap", "textureGrad(iChannel0, d, vec3(0.3), vec3(0.0))"),
+        ("mipmap", "textureGrad(iChannel0, d * 1e30, vec3(3e29), vec3(0.0))"),
+        ("mipmap", "textureLod(iChannel0, d, 1.3) + texture(iChannel0, vec3(0.3, -0.7, 0.55))"),
     ],
 )
 def test_cube_lookups_bit_for_bit(tmp_path, filt, lookup):

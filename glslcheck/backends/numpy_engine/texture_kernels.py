@@ -279,6 +279,13 @@ def tex_lowp(ui, tm, ch):
     return ui[m + BOUND] == 0 or ui[m + LOWP] != 0
 
 
+@numba.njit(**_J)
+def lowp_const(ui, tm, ch, x):
+    """textures.TextureFunctions.lowp_constant for one value: a lookup's constant argument
+    rounded to float16 (`half`) where the channel is lowp."""
+    return half(x) if tex_lowp(ui, tm, ch) else x
+
+
 @numba.njit(**_J)  # (not inlined into numba's IR: a lockstep module calls it hundreds of times)
 def half(x):
     """TextureFunctions.half for one value: float32 x rounded to the nearest float16 (ties to

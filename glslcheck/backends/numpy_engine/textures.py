@@ -245,6 +245,15 @@ class TextureFunctions:
         nir_fold.lower_precision.lowp_tree."""
         return self.lp is not None and all(s is None or s.lowp for s in samplers)
 
+    def lowp_constant(self, s, x) -> np.ndarray:
+        """A lookup's constant argument as llvmpipe passes it to a lowp sampler: rounded to
+        float16 (to nearest, past 65504 an infinity) in float32 mode
+        (nir_fold.lower_precision.float16_lookup_args)."""
+        if not self.lowp_arith(s):
+            return x
+        with np.errstate(over="ignore"):
+            return np.asarray(x, np.float32).astype(np.float16).astype(self.F)
+
     @staticmethod
     def half(x) -> np.ndarray:
         """A float16 operand of nir_fold.lower_precision.lowp_tree's code (rounded to nearest; a
