@@ -17,6 +17,39 @@ from glslcheck.verification.verify import verify_frames
 
 SIZE = (64, 36)
 
+
+@pytest.mark.usefixtures("llvmpipe")  # bit for bit with Mesa 22.3's llvmpipe
+@pytest.mark.parametrize(
+    "lookup",
+    [
+        "textureLod(iChannel0, uv, 1.3) + textureLod(iChannel0, uv, 2.0 * 0.65)",
+        "texture(iChannel0, uv, 0.7) + texture(iChannel0, vec2(0.3, 0.7))",
+        "textureGrad(iChannel0, uv, vec2(0.03, 0.0), vec2(0.0, fragCoord.y * 1e-4))",
+        "textureProj(iChannel0, vec3(0.3, 0.7, 1.3)) + textureLod(iChannel0, uv, L)",
+    ],
+)
+def test_constant_lookup_arguments_reach_the_sampler_as_float16(gl, tmp_path, lookup):
+    # A constant coordinate, LOD, bias or derivative (a literal, a constant expression, a const
+    # global) reaches the lowp iChannel rounded to float16 on llvmpipe: LOD 1.3 reads
+    # 1.2998047 (nir_fold.lower_precision.float16_lookup_args). Without the rounding 812 of the
+    # 8192 pixels of `textureLod(iChannel0, uv, 1.3)` at 128x64 differ by a lowp step.
+    _png(tmp_path / "tex.png", 64, 64, seed=5)
+    body = f"""const float L = 2.3;
+void mainImage(out vec4 fragColor, in vec2 fragCoord) {{
+    vec2 uv = fragCoord / 64.0;
+    fragColor = {lookup};
+}}
+"""
+    folder = _folder(tmp_path, {"Image": body}, {"Image": {"iChannel0": {"texture": "tex.png"}}})
+    ours = api.compile(folder, backend="numpy").render(size=SIZE)
+    theirs = api.compile(folder, backend="gl").render(size=SIZE)
+    assert ours[..., :3].std() > 0.01
+    if host_fma():  # llvmpipe fuses its lerps only where the CPU has FMA (driver_profile)
+        assert np.array_equal(ours, theirs), f"{int((ours != theirs).any(-1).sum())} pixels differ"
+    else:
+        assert np.abs(ours - theirs).max() <= 2.0**-10
+
+
 FEEDBACK = """void mainImage(out vec4 fragColor, in vec2 fragCoord) {
     vec2 uv = fragCoord / iResolution.xy;
     vec4 prev = texture(iChannel0, uv);
@@ -556,6 +589,8 @@ def test_odd_sizes_shade_helper_pixels_as_llvmpipe(gl, tmp_path, size):
         "texture(iChannel0, uv)",
         "texture(iChannel0, uv, fragCoord.x / 20.0 - 1.0)",  # a bias that differs within a quad
         "textureLod(iChannel0, uv, fragCoord.y / 9.0 - 0.5)",
+        # a NaN LOD on some pixels (level 0, unblended: textures.lod_split)
+        "textureLod(iChannel0, uv, fragCoord.x > 20.0 ? sqrt(-fragCoord.y) : fragCoord.y / 9.0)",
     ],
 )
 def test_filtering_bit_for_bit_on_a_ramp_of_scales(gl, tmp_path, lookup, wrap, filt):

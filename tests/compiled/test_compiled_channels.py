@@ -7,7 +7,7 @@ several frames (the Buffer carried from frame to frame by the one multipass driv
 and in lockstep, at even and odd sizes (helper pixels past the edge of a quad). The NumPy
 backend's sampling is llvmpipe's (tests/channels/test_channels.py checks it against GL), so the
 compiled engine must give its bits. Cube maps too (nearest, linear and mipmap channels, explicit
-and implicit LODs); textureGrad on a cube map is a located error on both CPU engines."""
+and implicit LODs, textureGrad)."""
 
 from __future__ import annotations
 
@@ -239,18 +239,68 @@ def test_implicit_cube_lods_bit_for_bit(numba, tmp_path, size):
     _agree(_cube_folder(tmp_path, CUBE_QUADS), size)
 
 
-def test_texture_grad_on_a_cube_map_is_a_located_error(numba, tmp_path):
+# textureGrad on each kind of cube map channel, with derivatives that vary per pixel, through a
+# sampler parameter, infinite ones (rho^2 read as 0) under a divergent branch
+CUBE_GRAD = """vec4 sky(samplerCube s, vec3 d, vec3 gx, vec3 gy) {
+    return textureGrad(s, d, gx, gy);
+}
+void mainImage(out vec4 c, in vec2 fc) {
+    vec2 q = (fc / iResolution.xy - 0.5) * 2.6;
+    vec3 d = vec3(q.x, q.y * q.x, 0.9 - q.y);
+    vec3 gx = vec3(fc.x * 0.003, 0.02, q.y * 0.05) * exp2(q.x * 4.0);
+    vec3 gy = vec3(0.01, fc.y * 0.02, -0.03);
+    vec4 a = textureGrad(iChannel2, d, gx, gy) + sky(iChannel2, d.yzx, gy, gx);
+    a += textureGrad(iChannel0, d, gx, gy) + textureGrad(iChannel1, -d, gx, gy);
+    if (q.y > 0.2 * sin(q.x * 7.0)) {
+        a += textureGrad(iChannel2, d * 3.0, vec3(1.0 / 0.0, 0.0, 0.0) * q.x, gy);
+    }
+    c = a;
+}
+"""
+
+
+@pytest.mark.parametrize("lanes", ["0", "8"])
+@pytest.mark.parametrize("size", [(40, 24), (41, 23)])
+def test_cube_texture_grad_bit_for_bit(numba, tmp_path, monkeypatch, lanes, size):
+    monkeypatch.setenv("GLSLCHECK_COMPILED_LANES", lanes)
+    _agree(_cube_folder(tmp_path, CUBE_GRAD), size)
+
+
+# constant coordinates, LODs, biases and derivatives, rounded to float16 for the lowp channels
+# (nir_fold.lower_precision.float16_lookup_args), through a sampler parameter too
+CONSTANT_ARGS = """vec4 look(samplerCube s, vec3 d) { return textureLod(s, d, 1.3); }
+const float L = 0.3;
+void mainImage(out vec4 c, in vec2 fc) {
+    vec2 q = fc / iResolution.xy - 0.5;
+    vec3 d = vec3(q, 0.7);
+    vec4 a = textureLod(iChannel2, d, 1.3) + look(iChannel2, d.yxz) + textureLod(iChannel2, d, L);
+    a += textureGrad(iChannel2, d, vec3(0.3), vec3(0.0)) + texture(iChannel1, vec3(0.3, -0.7, L));
+    a += textureGrad(iChannel2, d * 1e30, vec3(3e29), vec3(0.0));
+    c = a;
+}
+"""
+
+
+@pytest.mark.parametrize("lanes", ["0", "8"])
+def test_constant_lookup_arguments_bit_for_bit(numba, tmp_path, monkeypatch, lanes):
+    monkeypatch.setenv("GLSLCHECK_COMPILED_LANES", lanes)
+    _agree(_cube_folder(tmp_path, CONSTANT_ARGS), (40, 24))
+
+
+def test_texture_grad_offset_on_a_cube_map_is_a_located_error(numba, tmp_path):
+    # GLSL ES 3.00 has no offset form of a cube map lookup: no samplerCube overload matches, so
+    # the channel is not sampled as a cube map (semantics/channel_types.py), located at it
     image = (
         "void mainImage(out vec4 c, in vec2 f) {\n"
-        "    c = textureGrad(iChannel1, vec3(f, 1.0), vec3(1.0), vec3(0.0));\n}\n"
+        "    c = textureGradOffset(iChannel1, vec3(f, 1.0), vec3(1.0), vec3(0.0), ivec2(1));\n}\n"
     )
     folder = _cube_folder(tmp_path, image)
     for backend in ("numpy", "compiled"):
         with pytest.raises(GlslError) as err:
             glslcheck.compile(folder, backend=backend).render(size=(8, 4))
         d = err.value.diagnostics[0]
-        assert "textureGrad" in d.message, (backend, d.message)
-        assert (d.loc.line, d.loc.column) == (2, 9), backend
+        assert "not sampled as one" in d.message, (backend, d.message)
+        assert (d.loc.line, d.loc.column) == (2, 27), backend
 
 
 def test_a_mipmap_channel_the_program_was_not_made_for_is_refused(numba, make_shader):

@@ -10,6 +10,7 @@ from __future__ import annotations
 
 import numpy as np
 import pytest
+from texture_kernel_helpers import bits, packed, reference
 
 from glslcheck.shadertoy.channels import ChannelInput
 
@@ -17,35 +18,10 @@ F = np.float32
 pytestmark = pytest.mark.filterwarnings("ignore::RuntimeWarning")
 
 
-class _Ref:
-    F = np.float32
-    lp = object()
-
-
-def _reference():
-    from glslcheck.backends.numpy_engine.textures import TextureFunctions
-
-    return type("Ref", (_Ref, TextureFunctions), {})()
-
-
-def _bits(a):
-    a = np.asarray(a, F)
-    return np.where(np.isnan(a), np.uint32(0x7FC00000), a.view(np.uint32))
-
-
 def _cube(rng, n, filter, lowp):
     texels = (rng.standard_normal((6, n, n, 4)) * 3).astype(F)
     texels[2, 0, 0, 0] = F(1e5)  # past float16's range: lowp gives 65504
     return ChannelInput(texels, filter, "clamp", lowp, cube=True)
-
-
-def _packed(channel):
-    from glslcheck.backends.numpy_engine import texture_kernels as tk
-
-    floats, meta = tk.pack([None, None, channel], 3)
-    uf = np.concatenate([np.zeros(3, F), floats])
-    ui = np.concatenate([np.zeros(5, np.int32), meta])
-    return uf, ui, 5
 
 
 def _directions(rng, n):
@@ -91,8 +67,8 @@ def test_cube_sample_agrees_bit_for_bit(numba, n, filter, lowp):
 
     rng = np.random.default_rng(n * 7 + len(filter) + lowp)
     s = _cube(rng, n, filter, lowp)
-    uf, ui, tm = _packed(s)
-    ref = _reference()
+    uf, ui, tm = packed(s, 2)
+    ref = reference()
     count = 800
     d = _directions(rng, count)
     lods = rng.uniform(-1.5, 5.5, count).astype(F)
@@ -108,42 +84,79 @@ def test_cube_sample_agrees_bit_for_bit(numba, n, filter, lowp):
                 for i in range(count)
             ]
         ).T
-        bad = (_bits(got) != _bits(want)).any(0)
+        bad = (bits(got) != bits(want)).any(0)
         assert not bad.any(), f"{int(bad.sum())} lanes differ, first {d[:, bad][:, 0]}"
     plain = ref._sample(s, d)
     got = np.array(
         [tk.tex_sample_cube(uf, ui, tm, 2, *d[:, i], False, F(0), False) for i in range(count)]
     ).T
-    assert (_bits(got) == _bits(plain)).all()
+    assert (bits(got) == bits(plain)).all()
 
 
-def test_cube_rho_and_lod_agree(numba):
+def _derivatives(rng, count):
+    """Random derivatives of a direction along x and y, with infinite, NaN, huge and zero ones."""
+    ddx = (rng.standard_normal((3, count)) * 0.05).astype(F)
+    ddy = (rng.standard_normal((3, count)) * 0.05).astype(F)
+    ddx[:, :4] = [[np.inf, 0, np.nan, 0], [0, 0, 1, 0], [1e30, 0, 0, 0]]
+    ddy[:, 3] = 0
+    scale = np.exp2(rng.uniform(-12, 8, count)).astype(F)  # LODs below, on and above the levels
+    return ddx * scale, ddy * scale
+
+
+@pytest.mark.parametrize("explicit", [False, True])
+def test_cube_rho_and_lod_agree(numba, explicit):
+    """rho^2 and the LOD from derivatives: the fine differences of an implicit LOD, or
+    textureGrad's given ones (an infinite or NaN rho^2 read as 0)."""
     from glslcheck.backends.numpy_engine import cube_maps
     from glslcheck.backends.numpy_engine import texture_kernels as tk
 
     rng = np.random.default_rng(5)
     count = 600
     d = _directions(rng, count)
-    ddx = (rng.standard_normal((3, count)) * 0.05).astype(F)
-    ddy = (rng.standard_normal((3, count)) * 0.05).astype(F)
-    ddx[:, :3] = [[np.inf, 0, np.nan], [0, 0, 1], [1e30, 0, 0]]
-    diffs = {1: ddx, 0: ddy}
-    k = {"i": 0}
-
-    def fine_diff(v, axis):  # the reference reads the derivatives of x, y, z in turn
-        out = diffs[axis][k["i"] % 3]
-        k["i"] += 1
-        return out
-
-    want = cube_maps.cube_rho(d[0], d[1], d[2], 8, fine_diff)
+    ddx, ddy = _derivatives(rng, count)
+    want = cube_maps.cube_rho(d[0], d[1], d[2], 8, ddx, ddy, explicit)
     s = _cube(rng, 8, "mipmap", True)
-    uf, ui, tm = _packed(s)
+    uf, ui, tm = packed(s, 2)
     for i in range(count):
         got = tk.cube_rho(d[0, i], d[1, i], d[2, i], 8, *ddx[:, i], *ddy[:, i])
-        assert _bits(got) == _bits(want[i]), (i, d[:, i])
-        lod = tk.tex_lod_cube(ui, tm, 2, *d[:, i], *ddx[:, i], *ddy[:, i])
-        want_lod = F(0.5) * _reference_fast_log2(want[i])
-        assert _bits(lod) == _bits(want_lod)
+        if explicit and not np.isfinite(got):
+            got = F(0)
+        assert bits(got) == bits(want[i]), (i, d[:, i])
+        lod = tk.tex_lod_cube(ui, tm, 2, *d[:, i], *ddx[:, i], *ddy[:, i], explicit)
+        assert bits(lod) == bits(F(0.5) * _reference_fast_log2(want[i]))
+    assert not explicit or np.isfinite(want).all()
+
+
+@pytest.mark.parametrize("n,filter,lowp", CASES)
+def test_cube_texture_grad_agrees_bit_for_bit(numba, n, filter, lowp):
+    """textureGrad on a cube map: the NumPy backend's lanes against the compiled engine's call
+    (tex_lod_cube of the given derivatives, then tex_sample_cube), every filter and size."""
+    from glslcheck.backends.numpy_engine import texture_kernels as tk
+
+    rng = np.random.default_rng(n * 5 + len(filter) + lowp)
+    s = _cube(rng, n, filter, lowp)
+    uf, ui, tm = packed(s, 2)
+    count = 800
+    d = _directions(rng, count)
+    ddx, ddy = _derivatives(rng, count)
+    want = reference().textureGrad(s, d, ddx, ddy)
+    got = np.array(
+        [
+            tk.tex_sample_cube(
+                uf,
+                ui,
+                tm,
+                2,
+                *d[:, i],
+                True,
+                tk.tex_lod_cube(ui, tm, 2, *d[:, i], *ddx[:, i], *ddy[:, i], True),
+                True,
+            )
+            for i in range(count)
+        ]
+    ).T
+    bad = (bits(got) != bits(want)).any(0)
+    assert not bad.any(), f"{int(bad.sum())} lanes differ, first {d[:, bad][:, 0]}"
 
 
 def _reference_fast_log2(x):
@@ -157,8 +170,8 @@ def test_cube_size_and_unbound_agree(numba):
 
     rng = np.random.default_rng(2)
     s = _cube(rng, 8, "mipmap", True)
-    uf, ui, tm = _packed(s)
-    ref = _reference()
+    uf, ui, tm = packed(s, 2)
+    ref = reference()
     for lod in range(5):
         assert tk.tex_size(ui, tm, 2, lod) == tuple(ref.textureSize(s, lod))
     assert tk.tex_sample_cube(uf, ui, tm, 0, F(1), F(0), F(0), False, F(0), False) == (0, 0, 0, 1)

@@ -9,25 +9,13 @@ from __future__ import annotations
 
 import numpy as np
 import pytest
+from texture_kernel_helpers import bits, packed, reference
 
 from glslcheck.shadertoy.channels import ChannelInput
 
 F = np.float32
 # the reference computes NaN and infinite coordinates as NumPy arrays, which warn about them
 pytestmark = pytest.mark.filterwarnings("ignore::RuntimeWarning")
-
-
-class _Ref:
-    """The NumPy backend's lookups (textures.TextureFunctions) in float32 with llvmpipe's rules."""
-
-    F = np.float32
-    lp = object()
-
-
-def _reference():
-    from glslcheck.backends.numpy_engine.textures import TextureFunctions
-
-    return type("Ref", (_Ref, TextureFunctions), {})()
 
 
 def _channels(rng, size, filter, wrap, lowp):
@@ -45,20 +33,6 @@ def _coords(rng, n):
     return u
 
 
-def _packed(channel):
-    from glslcheck.backends.numpy_engine import texture_kernels as tk
-
-    floats, meta = tk.pack([None, channel], 3)
-    uf = np.concatenate([np.zeros(3, F), floats])
-    ui = np.concatenate([np.zeros(5, np.int32), meta])
-    return uf, ui, 5
-
-
-def _bits(a):
-    a = np.asarray(a, F)
-    return np.where(np.isnan(a), np.uint32(0x7FC00000), a.view(np.uint32))
-
-
 CASES = [
     ((16, 8), f, w, lowp)
     for f in ("nearest", "linear", "mipmap")
@@ -73,12 +47,12 @@ def test_sample_agrees_bit_for_bit(numba, size, filter, wrap, lowp):
 
     rng = np.random.default_rng(hash((size, filter, wrap, lowp)) % 2**32)
     s = _channels(rng, size, filter, wrap, lowp)
-    uf, ui, tm = _packed(s)
-    ref = _reference()
+    uf, ui, tm = packed(s, 1)
+    ref = reference()
     n = 600
     u, v = _coords(rng, n), rng.permutation(_coords(rng, n))
     lods = rng.uniform(-1.5, 6.5, n).astype(F)
-    lods[:6] = [0.0, 1.0, 2.0, np.inf, -np.inf, 40.0]
+    lods[:7] = [0.0, 1.0, 2.0, np.inf, -np.inf, 40.0, np.nan]  # NaN: level 0, unblended
     for offset in ((0, 0), (1, -2)):
         want_plain = ref._sample(s, np.stack([u, v]), offset)
         want_lod = ref.textureLodOffset(s, np.stack([u, v]), lods, offset)
@@ -94,8 +68,8 @@ def test_sample_agrees_bit_for_bit(numba, size, filter, wrap, lowp):
                 for i in range(n)
             ]
         ).T
-        assert (_bits(got_plain) == _bits(want_plain)).all()
-        assert (_bits(got_lod) == _bits(want_lod)).all()
+        assert (bits(got_plain) == bits(want_plain)).all()
+        assert (bits(got_lod) == bits(want_lod)).all()
 
 
 @pytest.mark.parametrize("size", [(16, 8), (12, 10)])
@@ -106,8 +80,8 @@ def test_implicit_and_gradient_lod_agree(numba, size):
 
     rng = np.random.default_rng(7)
     s = _channels(rng, size, "mipmap", "repeat", True)
-    uf, ui, tm = _packed(s)
-    ref = _reference()
+    uf, ui, tm = packed(s, 1)
+    ref = reference()
     tw, th = 8, 6
     scale = np.float32(2.0) ** rng.uniform(-3, 8, tw * th).astype(F)
     p = (rng.uniform(0, 1, (2, tw * th)) * scale).astype(F)
@@ -118,14 +92,14 @@ def test_implicit_and_gradient_lod_agree(numba, size):
         dx = p[:, bl + 1] - p[:, bl]
         dy = p[:, bl + tw] - p[:, bl]
         got = tk.tex_lod(ui, tm, 1, dx[0], dx[1], dy[0], dy[1], False)
-        assert _bits(got) == _bits(want[k])
+        assert bits(got) == bits(want[k])
     g = (rng.standard_normal((4, 200)) * 0.05).astype(F)
     g[:, :3] = [[np.inf, 0, np.nan], [0, 0, 1], [1e30, 0, 0], [0, 0, 0]]
     want_grad = ref.textureGrad(s, g[:2] * 9, g[:2], g[2:])
     for k in range(200):
         lod = tk.tex_lod(ui, tm, 1, g[0, k], g[1, k], g[2, k], g[3, k], True)
         got = tk.tex_sample(uf, ui, tm, 1, g[0, k] * 9, g[1, k] * 9, 0, 0, True, lod)
-        assert (_bits(got) == _bits(want_grad[:, k])).all()
+        assert (bits(got) == bits(want_grad[:, k])).all()
 
 
 @pytest.mark.parametrize("lowp", [True, False])
@@ -135,14 +109,14 @@ def test_texel_fetch_size_and_unbound_agree(numba, lowp):
     rng = np.random.default_rng(3)
     s = _channels(rng, (12, 10), "mipmap", "clamp", lowp)
     s.texels[2, 3] = [np.inf, -np.inf, np.nan, -2.0]  # out of range these read 0 * t
-    uf, ui, tm = _packed(s)
-    ref = _reference()
+    uf, ui, tm = packed(s, 1)
+    ref = reference()
     xy = rng.integers(-3, 15, (2, 300)).astype(np.int32)
     xy[:, :2] = [[3, 3], [2, 2]]
     lod = rng.integers(0, 2, 300).astype(np.int32)
     want = ref.texelFetch(s, xy, lod)
     got = np.array([tk.tex_fetch(uf, ui, tm, 1, xy[0, i], xy[1, i], lod[i]) for i in range(300)]).T
-    assert (_bits(got) == _bits(want)).all()
+    assert (bits(got) == bits(want)).all()
     for level in (-1, 0, 1, 3, 5, 31, 32, 40):
         assert tuple(tk.tex_size(ui, tm, 1, level)) == tuple(
             ref.textureSize(s, np.int32(level)).tolist()
@@ -152,9 +126,9 @@ def test_texel_fetch_size_and_unbound_agree(numba, lowp):
         )
     unbound = ref.texture(None, np.zeros((2, 1), F))[:, 0]
     assert (
-        _bits(tk.tex_sample(uf, ui, tm, 0, F(0.5), F(0.5), 0, 0, False, F(0))) == _bits(unbound)
+        bits(tk.tex_sample(uf, ui, tm, 0, F(0.5), F(0.5), 0, 0, False, F(0))) == bits(unbound)
     ).all()
-    assert (_bits(tk.tex_fetch(uf, ui, tm, 2, 0, 0, 0)) == _bits(unbound)).all()
+    assert (bits(tk.tex_fetch(uf, ui, tm, 2, 0, 0, 0)) == bits(unbound)).all()
     assert tk.tex_lowp(ui, tm, 1) == ref.lowp_arith(s) and tk.tex_lowp(ui, tm, 0)
 
 
@@ -175,4 +149,23 @@ def test_half_rounds_as_numpy_float16(numba):
     for op in (np.add, np.subtract, np.multiply, np.divide):
         want = op(a, b).astype(F)
         got = np.array([tk.half(op(x, y)) for x, y in zip(a.astype(F), b.astype(F))], F)
-        assert (_bits(got) == _bits(want)).all()
+        assert (bits(got) == bits(want)).all()
+
+
+def test_lod_split_agrees_bit_for_bit(numba):
+    """The one rule both engines split a LOD by (textures.lod_split and its one-lane form):
+    the lower level and the fraction, clamped to the levels; NaN reads level 0 unblended."""
+    from glslcheck.backends.numpy_engine import texture_kernels as tk
+    from glslcheck.backends.numpy_engine.textures import lod_split
+
+    rng = np.random.default_rng(11)
+    lods = rng.uniform(-3, 9, 500).astype(F)
+    special = [0, -0.0, 1, 2.5, 5, 5.5, 6, 7, 1e30, -1e30, np.inf, -np.inf, np.nan, 1e-45]
+    lods[: len(special)] = special
+    for count in (1, 2, 6):
+        level, frac = lod_split(lods, lods.shape, count)
+        got = [tk.lod_split(lod, count) for lod in lods]
+        assert [int(k) for k, _ in got] == level.tolist()
+        assert (bits([f for _, f in got]) == bits(frac)).all()
+        assert level.min() >= 0 and level.max() <= count - 1
+    assert (level[12], frac[12]) == (0, 0)  # NaN

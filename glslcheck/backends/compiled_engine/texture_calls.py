@@ -1,5 +1,5 @@
 """Texture lookups in the compiled engine: the ES 3.00 built-ins on a sampler2D, and texture,
-textureLod and textureSize on a samplerCube (a cube map channel), as calls of
+textureLod, textureGrad and textureSize on a samplerCube (a cube map channel), as calls of
 backends/numpy_engine/texture_kernels.py (the one-pixel form of the NumPy backend's
 textures.py), and arithmetic on lowp lookups in float16 where the NumPy backend computes it so
 (nir_fold.lower_precision: llvmpipe's float16 lowering).
@@ -31,7 +31,10 @@ def _layout(name: str) -> tuple[str, bool, bool]:
     return lod, "Proj" in name, name.endswith("Offset")
 
 
-KERNELS = "tex_sample, tex_lod, tex_fetch, tex_size, tex_lowp, half, tex_sample_cube, tex_lod_cube"
+KERNELS = (
+    "tex_sample, tex_lod, tex_fetch, tex_size, tex_lowp, half, tex_sample_cube, tex_lod_cube, "
+    "lowp_const"
+)
 IMPORT = f"from glslcheck.backends.numpy_engine.texture_kernels import {KERNELS}  # noqa: F401"
 
 
@@ -56,7 +59,7 @@ def texture_call(cg: Any, e: A.Call, name: str) -> Val:
     cg.textures = True
     rtype = cg.type_of(e)
     ch = cg.atom(cg.expr(e.args[0]).parts[0])
-    args = [cg.expr(a) for a in e.args[1:]]
+    args = _args(cg, e, ch)
     if name == "textureSize":
         t = cg.tmp_fresh(f"tex_size(ui, TM, {ch}, {args[0].parts[0]})")
         return Val(rtype, [f"{t}[0]", f"{t}[1]"])
@@ -109,17 +112,22 @@ def texture_call(cg: Any, e: A.Call, name: str) -> Val:
 
 
 def _cube_call(cg: Any, e: A.Call, name: str) -> Val:
-    """texture(samplerCube, vec3[, bias]) or textureLod: tex_sample_cube at the direction, with
-    the explicit LOD, or a mipmapped channel's implicit one (tex_lod_cube from the direction's
-    fine derivatives, lockstep only), or level 0."""
+    """texture(samplerCube, vec3[, bias]), textureLod or textureGrad: tex_sample_cube at the
+    direction, with the explicit LOD, the given derivatives' (tex_lod_cube), a mipmapped
+    channel's implicit one (tex_lod_cube from the direction's fine derivatives, lockstep only),
+    or level 0."""
     cg.textures = True
     rtype = cg.type_of(e)
     ch = cg.atom(cg.expr(e.args[0]).parts[0])
-    args = [cg.expr(a) for a in e.args[1:]]
+    args = _args(cg, e, ch)
     d = [cg.atom(x) for x in args[0].parts]
     has_lod, lod, implicit = "False", "F32(0.0)", "False"
     if name == "textureLod":
         has_lod, lod = "True", args[1].parts[0]
+    elif name == "textureGrad":  # (a channel without mipmaps ignores the LOD)
+        grads = ", ".join(cg.atom(x) for a in args[1:3] for x in a.parts)
+        has_lod, implicit = "True", "True"
+        lod = cg.tmp_fresh(f"tex_lod_cube(ui, TM, {ch}, {', '.join(d)}, {grads}, True)")
     elif not _needs_lod(cg, e.args[0]):
         cg.level0_lookups |= _channels(cg, e.args[0])
     else:
@@ -128,7 +136,7 @@ def _cube_call(cg: Any, e: A.Call, name: str) -> Val:
         names = [c if c.isidentifier() else cg.tmp_fresh(c) for c in d]
         diffs = [cg.tmp_fresh(f"{f}({c})") for f in ("dfdx", "dfdy") for c in names]
         has_lod, implicit = "True", "True"
-        lod = cg.tmp_fresh(f"tex_lod_cube(ui, TM, {ch}, {', '.join(names + diffs)})")
+        lod = cg.tmp_fresh(f"tex_lod_cube(ui, TM, {ch}, {', '.join(names + diffs)}, False)")
         if len(args) > 1:  # the bias, added to the implicit LOD
             lod = cg.tmp_fresh(f"({lod} + {args[1].parts[0]})")
         d = names
@@ -136,6 +144,18 @@ def _cube_call(cg: Any, e: A.Call, name: str) -> Val:
         f"tex_sample_cube(uf, ui, TM, {ch}, {d[0]}, {d[1]}, {d[2]}, {has_lod}, {lod}, {implicit})"
     )
     return Val(rtype, [f"{t}[{i}]" for i in range(4)])
+
+
+def _args(cg: Any, e: A.Call, ch: str) -> list[Val]:
+    """The values of a lookup's arguments after the sampler, each constant one that a lowp
+    sampler reads rounded to float16 wrapped in lowp_const (nir_fold.float16_lookup_args)."""
+    from ..numpy_engine.transpile.nir_fold.lower_precision import float16_lookup_args
+
+    args = [cg.expr(a) for a in e.args[1:]]
+    for i in float16_lookup_args(cg.fold_context(), e):
+        v = args[i - 1]
+        args[i - 1] = Val(v.t, [cg.tmp_fresh(f"lowp_const(ui, TM, {ch}, {p})") for p in v.parts])
+    return args
 
 
 def _needs_lod(cg: Any, sampler: Any) -> bool:

@@ -26,9 +26,9 @@ TEXTURE_FUNCTIONS = (
     "textureProjGrad",
     "textureProjGradOffset",
 )
-# The lookups on a samplerCube they evaluate (ES 3.00 has no texelFetch or offsets on cube maps;
-# textureGrad's cube derivatives are not emulated).
-CUBE_FUNCTIONS = ("texture", "textureLod", "textureSize")
+# The lookups on a samplerCube they evaluate (every one ES 3.00 has: no texelFetch, offsets or
+# projection on cube maps).
+CUBE_FUNCTIONS = ("texture", "textureLod", "textureGrad", "textureSize")
 # Lookups whose mipmap level comes from derivatives (2x2 quads): their regions are never compacted.
 IMPLICIT_LOD = ("texture", "textureProj", "textureOffset", "textureProjOffset")
 

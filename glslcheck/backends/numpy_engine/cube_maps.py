@@ -25,29 +25,17 @@ _THIRD = np.float32(1.0 / 3.0)
 # x < 0, x > max, y < 0, y > max (in this order): the face it is read from, and its new x and y
 # there as pairs (a, b): a * max + b * the coordinate along the other axis (y for an x
 # fall-off, x for a y fall-off), max the level's size - 1.
-NEXT_FACE = np.array(
-    [[4, 5, 1, 1, 1, 0], [5, 4, 0, 0, 0, 1], [2, 2, 5, 4, 2, 2], [3, 3, 4, 5, 3, 3]], np.int64
-)
-_M, _O, _N = (1, 0), (0, 1), (1, -1)  # max, the coordinate, max - the coordinate
-_Z = (0, 0)
-NEXT_X = np.array(
-    [
-        [_M, _M, _O, _N, _M, _M],
-        [_Z, _Z, _N, _O, _Z, _Z],
-        [_M, _Z, _N, _O, _O, _N],
-        [_M, _Z, _O, _N, _O, _N],
-    ],
-    np.int64,
-)
-NEXT_Y = np.array(
-    [
-        [_O, _O, _Z, _M, _O, _O],
-        [_O, _O, _Z, _M, _O, _O],
-        [_N, _O, _Z, _M, _M, _Z],
-        [_O, _N, _Z, _M, _Z, _M],
-    ],
-    np.int64,
-)
+_M, _O, _N, _Z = (1, 0), (0, 1), (1, -1), (0, 0)  # max, the coordinate, max - it, 0
+# per fall-off direction, per face: (new face, new x rule, new y rule)
+_FALL_OFF = [
+    [(4, _M, _O), (5, _M, _O), (1, _O, _Z), (1, _N, _M), (1, _M, _O), (0, _M, _O)],
+    [(5, _Z, _O), (4, _Z, _O), (0, _N, _Z), (0, _O, _M), (0, _Z, _O), (1, _Z, _O)],
+    [(2, _M, _N), (2, _Z, _O), (5, _N, _Z), (4, _O, _M), (2, _O, _M), (2, _N, _Z)],
+    [(3, _M, _O), (3, _Z, _N), (4, _O, _Z), (5, _N, _M), (3, _O, _Z), (3, _N, _M)],
+]
+NEXT_FACE = np.array([[f for f, _, _ in row] for row in _FALL_OFF], np.int64)
+NEXT_X = np.array([[x for _, x, _ in row] for row in _FALL_OFF], np.int64)
+NEXT_Y = np.array([[y for _, _, y in row] for row in _FALL_OFF], np.int64)
 
 
 def _bits(v: np.ndarray) -> np.ndarray:
@@ -82,13 +70,15 @@ def cube_coords(x, y, z, derivs: bool = False):
     return face, sc * ima + _HALF, tc * ima + _HALF
 
 
-def cube_rho(x, y, z, size: int, fine_diff):
-    """rho^2 of an implicit-LOD cube lookup, per pixel (lp_build_cube_lookup with derivatives,
-    then lp_build_rho; Mesa 22.3 gives a cube map one LOD per pixel, measured): the direction's
-    differences across the pixel's quad along its row and column (`fine_diff(v, axis)`: dFdx,
-    dFdy, gallivm's ddx and ddy) carried onto the pixel's face,
+def cube_rho(x, y, z, size: int, ddx, ddy, explicit: bool = False):
+    """rho^2 of a cube lookup with derivatives, per pixel (lp_build_cube_lookup with
+    derivatives, then lp_build_rho; Mesa 22.3 gives a cube map one LOD per pixel, measured): the
+    direction's derivatives along x and y, `ddx` and `ddy` (3 components each: the fine
+    differences across the pixel's quad, gallivm's ddx and ddy, for an implicit LOD; the
+    shader's for textureGrad) carried onto the pixel's face,
     d.s = (d.sc - (d.ma * (1 / ma)) * sc) * (0.5 * (1 / ma)) and the same for t, then
-    max((n d.s)^2 + (n d.t)^2 along x, along y) with x86 maxps, n the face size."""
+    max((n d.s)^2 + (n d.t)^2 along x, along y) with x86 maxps, n the face size. `explicit`:
+    an infinite or NaN rho^2 reads 0, as lp_build_rho does for given derivatives."""
     x, y, z = (np.asarray(v, dtype=np.float32) for v in (x, y, z))
     _, ma, sc, tc = cube_select(x, y, z)
     with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
@@ -96,14 +86,14 @@ def cube_rho(x, y, z, size: int, fine_diff):
         imahalf = _HALF * ima
         n = np.float32(size)
         out = []
-        for axis in (1, 0):
-            d = [fine_diff(v, axis) for v in (x, y, z)]
+        for d in (ddx, ddy):
             _, dma, dsc, dtc = cube_select_minors(x, y, z, *d)
             dmadivma = dma * ima
             ds = n * ((dsc - dmadivma * sc) * imahalf)
             dt = n * ((dtc - dmadivma * tc) * imahalf)
             out.append(ds * ds + dt * dt)
-        return max_x86(out[0], out[1])
+        rho2 = max_x86(out[0], out[1])
+    return np.where(np.isfinite(rho2), rho2, np.float32(0)) if explicit else rho2
 
 
 def cube_select_minors(x, y, z, dx, dy, dz):

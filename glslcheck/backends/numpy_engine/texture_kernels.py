@@ -7,7 +7,8 @@ operations in the same order (the lerp through float64 as `_lerp` does), so both
 bit (tests/compiled/test_texture_kernels.py runs both on every path). One difference: where a
 mipmap LOD lies exactly on a level, textures.py blends in the next level when some other lane of
 the same level has a fraction above 0 (lerp by 0, which changes nothing unless the two levels'
-texels differ by an infinity or a NaN); here each pixel decides for itself.
+texels differ by an infinity or a NaN); here each pixel decides for itself. Both split a LOD
+into a level and a fraction with `lod_split`'s rule.
 
 The texels of the bound channels live in the float uniform array `uf` and their description in
 the int one `ui` (`pack` writes both; the generated module passes them as it passes the other
@@ -176,6 +177,19 @@ def _result(ui, m, r, g, b, a):
     return r, g, b, a
 
 
+@numba.njit(inline="always", **_J)
+def lod_split(lod, count):
+    """textures.lod_split for one lane: (the lower level, the blend fraction) of `lod` clamped
+    to the `count` levels; a NaN LOD reads level 0, unblended."""
+    if lod != lod:
+        return np.int64(0), F32(0)
+    top = F32(count - 1)
+    c = lod if lod > F32(0) else F32(0)
+    c = c if c < top else top
+    lo = np.floor(c)
+    return np.int64(lo), c - lo
+
+
 @numba.njit(**_J)
 def tex_sample(uf, ui, tm, ch, u, v, ox, oy, has_lod, lod):
     """textures.TextureFunctions._sample: the channel's filter and wrap at (u, v), texel offset
@@ -190,15 +204,7 @@ def tex_sample(uf, ui, tm, ch, u, v, ox, oy, has_lod, lod):
     if f == 1 or not has_lod:
         r, g, b, a = _bilinear(uf, ui, m, 0, u, v, ox, oy)
         return _result(ui, m, r, g, b, a)
-    top = F32(ui[m + LEVELS] - 1)
-    if lod != lod:  # (textures.py has no level for a NaN LOD: level 0 here)
-        lo, frac = F32(0), lod
-    else:
-        c = lod if lod > F32(0) else F32(0)
-        c = c if c < top else top
-        lo = np.floor(c)
-        frac = c - lo
-    k = np.int64(lo)
+    k, frac = lod_split(lod, ui[m + LEVELS])
     r, g, b, a = _bilinear(uf, ui, m, k, u, v, ox, oy)
     if k + 1 < ui[m + LEVELS] and frac > F32(0):
         r1, g1, b1, a1 = _bilinear(uf, ui, m, k + 1, u, v, ox, oy)
@@ -271,6 +277,13 @@ def tex_lowp(ui, tm, ch):
     """textures.TextureFunctions.lowp_arith for one channel: its lookups are lowp (or unbound)."""
     m = tm + META * ch
     return ui[m + BOUND] == 0 or ui[m + LOWP] != 0
+
+
+@numba.njit(**_J)
+def lowp_const(ui, tm, ch, x):
+    """textures.TextureFunctions.lowp_constant for one value: a lookup's constant argument
+    rounded to float16 (`half`) where the channel is lowp."""
+    return half(x) if tex_lowp(ui, tm, ch) else x
 
 
 @numba.njit(**_J)  # (not inlined into numba's IR: a lockstep module calls it hundreds of times)
@@ -361,21 +374,25 @@ def cube_coords(x, y, z, derivs):
     return face, sc * ima + _HALF, tc * ima + _HALF
 
 
+@numba.njit(inline="always", **_J)
+def _face_rho2(x, y, z, sc, tc, ima, n, dx, dy, dz):
+    """(n d.s)^2 + (n d.t)^2 of one derivative (dx, dy, dz) of direction (x, y, z) carried
+    onto its face (cube_maps.cube_rho's formula)."""
+    _, dma, dsc, dtc = cube_select_minors(x, y, z, dx, dy, dz)
+    q = dma * ima
+    imahalf = _HALF * ima
+    ds, dt = n * ((dsc - q * sc) * imahalf), n * ((dtc - q * tc) * imahalf)
+    return ds * ds + dt * dt
+
+
 @numba.njit(**_J)
 def cube_rho(x, y, z, size, dxx, dxy, dxz, dyx, dyy, dyz):
-    """cube_maps.cube_rho for one lane, given its fine derivatives along x and y."""
+    """cube_maps.cube_rho for one lane, given the direction's derivatives along x and y."""
     _, ma, sc, tc = cube_select_minors(x, y, z, x, y, z)
     ima = F32(1) / ma
-    imahalf = _HALF * ima
     n = F32(size)
-    _, dma, dsc, dtc = cube_select_minors(x, y, z, dxx, dxy, dxz)
-    q = dma * ima
-    ds, dt = n * ((dsc - q * sc) * imahalf), n * ((dtc - q * tc) * imahalf)
-    rx = ds * ds + dt * dt
-    _, dma, dsc, dtc = cube_select_minors(x, y, z, dyx, dyy, dyz)
-    q = dma * ima
-    ds, dt = n * ((dsc - q * sc) * imahalf), n * ((dtc - q * tc) * imahalf)
-    return _max_x86(rx, ds * ds + dt * dt)
+    rx = _face_rho2(x, y, z, sc, tc, ima, n, dxx, dxy, dxz)
+    return _max_x86(rx, _face_rho2(x, y, z, sc, tc, ima, n, dyx, dyy, dyz))
 
 
 @numba.njit(inline="always", **_J)
@@ -469,8 +486,8 @@ def tex_sample_cube(uf, ui, tm, ch, x, y, z, has_lod, lod, implicit):
     m = tm + META * ch
     if ui[m + BOUND] == 0:
         return F32(0), F32(0), F32(0), F32(1)
-    face, s, t = cube_coords(x, y, z, implicit and has_lod)
     f = ui[m + FILTER]
+    face, s, t = cube_coords(x, y, z, implicit and has_lod and f == 2)
     at, n, _ = _level(ui, m, 0)
     if f == 0:
         xi = _axis_nearest(s, n, True, False, 0)
@@ -480,15 +497,7 @@ def tex_sample_cube(uf, ui, tm, ch, x, y, z, has_lod, lod, implicit):
     if f == 1 or not has_lod:
         r, g, b, a = cube_bilinear(uf, at, n, face, s, t)
         return _result(ui, m, r, g, b, a)
-    top = F32(ui[m + LEVELS] - 1)
-    if lod != lod:  # (a NaN LOD reads level 0, unblended, as cube_maps.py)
-        lo, frac = F32(0), F32(0)
-    else:
-        c = lod if lod > F32(0) else F32(0)
-        c = c if c < top else top
-        lo = np.floor(c)
-        frac = c - lo
-    k = np.int64(lo)
+    k, frac = lod_split(lod, ui[m + LEVELS])
     at, n, _ = _level(ui, m, k)
     r, g, b, a = cube_bilinear(uf, at, n, face, s, t)
     if k + 1 < ui[m + LEVELS] and frac > F32(0):
@@ -499,9 +508,14 @@ def tex_sample_cube(uf, ui, tm, ch, x, y, z, has_lod, lod, implicit):
 
 
 @numba.njit(**_J)
-def tex_lod_cube(ui, tm, ch, x, y, z, dxx, dxy, dxz, dyx, dyy, dyz):
-    """textures.TextureFunctions._implicit_lod of a cube map for one lane: its fine derivatives
-    along x and y carried onto its face (cube_rho), 0.5 * fast_log2."""
+def tex_lod_cube(ui, tm, ch, x, y, z, dxx, dxy, dxz, dyx, dyy, dyz, explicit):
+    """The LOD of a cube map lookup for one lane from the direction's derivatives along x and
+    y carried onto its face (cube_rho), 0.5 * fast_log2: textures.TextureFunctions._implicit_lod
+    (its fine derivatives), or textureGrad's (`explicit`: the given ones, an infinite or NaN
+    rho^2 read as 0)."""
     m = tm + META * ch
     n = ui[m + LEVEL0 + 1]
-    return _HALF * _fast_log2(cube_rho(x, y, z, n, dxx, dxy, dxz, dyx, dyy, dyz))
+    rho2 = cube_rho(x, y, z, n, dxx, dxy, dxz, dyx, dyy, dyz)
+    if explicit and not np.isfinite(rho2):
+        rho2 = F32(0)
+    return _HALF * _fast_log2(rho2)

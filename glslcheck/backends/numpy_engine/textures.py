@@ -2,10 +2,10 @@
 
 This module owns the ES 3.00 lookups on a sampler2D for the NumPy backend: `texture`,
 `textureLod`, `textureGrad`, `textureOffset`, their `Proj` and `Offset` combinations,
-`texelFetch`, `texelFetchOffset` and `textureSize`; and `texture`, `textureLod` and
-`textureSize` on a samplerCube (a cube map channel: the face math is cube_maps.py's).
-`Runtime` inherits
-them (`TextureFunctions`), so generated code calls `rt.texture(S.u_iChannel0, uv, S.width)`.
+`texelFetch`, `texelFetchOffset` and `textureSize`; and `texture`, `textureLod`, `textureGrad`
+and `textureSize` on a samplerCube (a cube map channel: the face math is cube_maps.py's).
+`Runtime` inherits them (`TextureFunctions`), so generated code calls
+`rt.texture(S.u_iChannel0, uv, S.width)`.
 A sampler value is a `glslcheck.shadertoy.channels.ChannelInput` (texels float32 (height, width, 4),
 row 0 = texture coordinate t near 0, i.e. the bottom as OpenGL uploads it) or None (unbound: GL's
 incomplete texture, which reads (0, 0, 0, 1) and has size 0).
@@ -160,6 +160,43 @@ def _fast_log2(x: np.ndarray) -> np.ndarray:
     return exponent.astype(np.float32) + mantissa
 
 
+def lod_split(lod, shape: tuple, count: int) -> tuple[np.ndarray, np.ndarray]:
+    """A mipmap LOD per lane as lp_build_linear_mip_levels splits it: (the lower level, an int
+    array, and the blend fraction lod - floor(lod)) of the LOD clamped to the `count` levels; a
+    NaN LOD reads the first level, unblended (llvmpipe's integer conversion of it, clamped).
+    texture_kernels.lod_split is its one-lane form."""
+    lod = np.broadcast_to(np.asarray(lod, dtype=np.float32), shape)
+    lod = np.clip(np.where(np.isnan(lod), np.float32(0), lod), np.float32(0), np.float32(count - 1))
+    lo = np.floor(lod)
+    return lo.astype(np.int64), lod - lo
+
+
+def _mipmapped(level, count: int, lod, shape: tuple) -> np.ndarray:
+    """A lookup between mipmap levels, (lanes..., 4): `level(k, sel)` filters level k at the
+    lanes `sel` (None: every lane); the lanes go by their lower level (lod_split), each read
+    there and blended with the next level by the fraction (the fused lerp). lp_build_sample_mipmap
+    reads the upper level only when some lane's fraction is above 0, so an integer LOD reads
+    one level (an infinite texel one level up makes no 0 * inf = NaN); here the lanes that share
+    a lower level decide together (texture_kernels.py: each pixel alone)."""
+    lo, frac = lod_split(lod, shape, count)
+    frac = frac[..., None]
+
+    def two_levels(k, sel, fr):
+        a = level(k, sel)
+        if k + 1 < count and (fr > 0).any():
+            a = _lerp(a, level(k + 1, sel), fr)
+        return a
+
+    ks = np.unique(lo)
+    if len(ks) == 1:  # one level for every lane (textureLod(s, p, 0.0)): no selection
+        return two_levels(int(ks[0]), None, frac)
+    out = np.empty(shape + (4,), dtype=np.float32)
+    for k in ks:
+        sel = lo == k
+        out[sel] = two_levels(int(k), sel, frac[sel])
+    return out
+
+
 def _quad_corner_diff(v: np.ndarray, width: int, axis: int) -> np.ndarray:
     """Per 2x2 quad of a `width`-wide tile (lanes row by row from the bottom): the difference
     between the quad's bottom-left pixel and its right (axis 1) or upper (axis 0) neighbour,
@@ -208,6 +245,15 @@ class TextureFunctions:
         nir_fold.lower_precision.lowp_tree."""
         return self.lp is not None and all(s is None or s.lowp for s in samplers)
 
+    def lowp_constant(self, s, x) -> np.ndarray:
+        """A lookup's constant argument as llvmpipe passes it to a lowp sampler: rounded to
+        float16 (to nearest, past 65504 an infinity) in float32 mode
+        (nir_fold.lower_precision.float16_lookup_args)."""
+        if not self.lowp_arith(s):
+            return x
+        with np.errstate(over="ignore"):
+            return np.asarray(x, np.float32).astype(np.float16).astype(self.F)
+
     @staticmethod
     def half(x) -> np.ndarray:
         """A float16 operand of nir_fold.lower_precision.lowp_tree's code (rounded to nearest; a
@@ -240,29 +286,21 @@ class TextureFunctions:
             return self._tex_result(s, _bilinear(s.texels, u, v, offset, s.wrap))
         levels = s.levels()
         pot = _pot(levels[0])
-        lod = np.clip(
-            np.broadcast_to(np.asarray(lod, dtype=np.float32), u.shape), 0.0, len(levels) - 1
-        )
-        lo = np.floor(lod)
-        frac = (lod - lo)[..., None]
-        lo = lo.astype(np.int64)
-        ks = np.unique(lo)
-        if len(ks) == 1:  # one level for every lane (textureLod(s, p, 0.0)): no selection
-            return self._tex_result(
-                s, self._two_levels(levels, ks[0], u, v, offset, s.wrap, pot, frac)
-            )
-        out = np.empty(np.broadcast_shapes(u.shape, v.shape) + (4,), dtype=np.float32)
-        for k in ks:  # lanes by their lower level: bilinear there and one level up
-            sel = lo == k
-            us, vs = np.broadcast_to(u, sel.shape)[sel], np.broadcast_to(v, sel.shape)[sel]
-            out[sel] = self._two_levels(levels, k, us, vs, offset, s.wrap, pot, frac[sel])
-        return self._tex_result(s, out)
+        shape = np.broadcast_shapes(u.shape, v.shape, np.shape(lod))
+        u, v = np.broadcast_to(u, shape), np.broadcast_to(v, shape)
+
+        def level(k, sel):  # level k's bilinear result at the lanes `sel` (None: all)
+            us, vs = (u, v) if sel is None else (u[sel], v[sel])
+            return _bilinear(levels[k], us, vs, offset, s.wrap, pot)
+
+        return self._tex_result(s, _mipmapped(level, len(levels), lod, shape))
 
     @staticmethod
     def _sample_cube(s, d: np.ndarray, lod, implicit: bool) -> np.ndarray:
         """A cube map lookup in direction d (3, lanes): the face and its coordinates, then
         nearest (clamped to the face) or the seamless bilinear filter of one level, or of two
-        blended by the LOD's fraction as `_two_levels` does."""
+        blended by the LOD's fraction (`_mipmapped`). `implicit`: the LOD came from derivatives
+        (implicit or textureGrad's), whose lookup computes the face coordinates another way."""
         face, u, v = cube_maps.cube_coords(d[0], d[1], d[2], implicit and lod is not None)
         if s.filter == "nearest":
             n = s.texels.shape[1]
@@ -271,31 +309,14 @@ class TextureFunctions:
         if s.filter == "linear" or lod is None:
             return cube_maps.cube_bilinear(s.texels, face, u, v, _lerp)
         levels = s.levels()
-        lod = np.broadcast_to(np.asarray(lod, dtype=np.float32), u.shape)
-        # a NaN LOD: llvmpipe's level is the first (its integer conversion, clamped), unblended
-        lod = np.clip(np.where(np.isnan(lod), np.float32(0), lod), 0.0, len(levels) - 1)
-        lo = np.floor(lod)
-        frac = (lod - lo)[..., None]
-        lo = lo.astype(np.int64)
-        out = np.empty(u.shape + (4,), dtype=np.float32)
-        for k in np.unique(lo):  # lanes by their lower level: bilinear there and one level up
-            sel = lo == k
-            f, us, vs, fr = face[sel], u[sel], v[sel], frac[sel]
-            a = cube_maps.cube_bilinear(levels[k], f, us, vs, _lerp)
-            if k + 1 < len(levels) and (fr > 0).any():
-                a = _lerp(a, cube_maps.cube_bilinear(levels[k + 1], f, us, vs, _lerp), fr)
-            out[sel] = a
-        return out
+        shape = np.broadcast_shapes(u.shape, np.shape(lod))
+        face, u, v = (np.broadcast_to(a, shape) for a in (face, u, v))
 
-    @staticmethod
-    def _two_levels(levels, k, u, v, offset, wrap, pot, frac) -> np.ndarray:
-        """Level k's bilinear result, blended with level k + 1's by `frac`: lp_build_sample_mipmap
-        samples the upper level only when some lane's fraction is above 0 (a NaN is not), so
-        an integer LOD reads one level."""
-        a = _bilinear(levels[k], u, v, offset, wrap, pot)
-        if k + 1 < len(levels) and (frac > 0).any():
-            a = _lerp(a, _bilinear(levels[k + 1], u, v, offset, wrap, pot), frac)
-        return a
+        def level(k, sel):  # level k's seamless bilinear result at the lanes `sel` (None: all)
+            f, us, vs = (face, u, v) if sel is None else (face[sel], u[sel], v[sel])
+            return cube_maps.cube_bilinear(levels[k], f, us, vs, _lerp)
+
+        return _mipmapped(level, len(levels), lod, shape)
 
     def _implicit_lod(self, s, p: np.ndarray, width: int | None, bias=None):
         """llvmpipe's LOD of a 2x2 quad (measured, tools/measure_sampling.py): the
@@ -310,9 +331,8 @@ class TextureFunctions:
         if p.shape[-1] == 1:
             rho2 = np.zeros(1, np.float32)
         elif s.cube:  # per pixel: its fine derivatives (dFdx, dFdy) carried onto its face
-            rho2 = cube_maps.cube_rho(
-                p[0], p[1], p[2], w, lambda c, axis: self._quad_diff(c, width, axis)
-            )
+            ddx, ddy = ([self._quad_diff(c, width, axis) for c in p] for axis in (1, 0))
+            rho2 = cube_maps.cube_rho(p[0], p[1], p[2], w, ddx, ddy)
         else:  # the coordinates' differences, then scaled by the size (not the scaled coordinates')
             size = np.array([w, h], dtype=np.float32)[:, None]
             dx = _quad_corner_diff(p, width, 1) * size
@@ -343,7 +363,17 @@ class TextureFunctions:
         return self._sample(s, self._coords(p), _offset(offset), lod if mip else None)
 
     def textureGrad(self, s, p, dpdx, dpdy) -> np.ndarray:
-        return self.textureGradOffset(s, p, dpdx, dpdy, (0, 0))
+        """textureGrad(sampler2D, vec2, vec2, vec2) as textureGradOffset; on a samplerCube
+        (vec3s) the given derivatives of the direction are carried onto its face as the
+        implicit LOD carries its own (cube_maps.cube_rho)."""
+        if s is None or not s.cube:
+            return self.textureGradOffset(s, p, dpdx, dpdy, (0, 0))
+        p = self._coords(p)
+        if s.filter != "mipmap":
+            return self._sample(s, p)
+        p, ddx, ddy = np.broadcast_arrays(p, *(np.asarray(g, np.float32) for g in (dpdx, dpdy)))
+        rho2 = cube_maps.cube_rho(p[0], p[1], p[2], s.texels.shape[-2], ddx, ddy, explicit=True)
+        return self._sample(s, p, lod=np.float32(0.5) * _fast_log2(rho2), implicit=True)
 
     def textureGradOffset(self, s, p, dpdx, dpdy, offset) -> np.ndarray:
         """The LOD from the given gradients, by the implicit LOD's formula (`_implicit_lod`)."""

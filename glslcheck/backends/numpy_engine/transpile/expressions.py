@@ -526,7 +526,10 @@ class Expressions(TranspilerState):
                     help="render this shader with --backend gl",
                 )
             width = ", width=S.width" if name in IMPLICIT_LOD else ""
-            return f"rt.{name}({', '.join(self.exprs(e.args, mask))}{width})"  # textures.py
+            args = self.exprs(e.args, mask)
+            for i in nir_fold.float16_lookup_args(self, e):  # constants as a lowp sampler gets them
+                args[i] = f"rt.lowp_constant({args[0]}, {args[i]})"
+            return f"rt.{name}({', '.join(args)}{width})"  # textures.py
         quals = list(getattr(ov, "qualifiers", ()) or ())
         if name == "modf":
             x = self.expr(e.args[0], mask)

@@ -32,7 +32,7 @@ The rules copied here, each measured bit for bit against llvmpipe on 50,000 rand
 - added_zero.py: ``fadd(a, 0.0) -> a``, which keeps the sign of a -0.0;
 - flrp.py: nir_lower_flrp's formula for a `mix`, chosen from the other `mix` calls;
 - lower_precision.py: not a rewrite of the order but of the type, float16 arithmetic on lowp
-  lookups (Mesa's lower_precision.cpp).
+  lookups (Mesa's lower_precision.cpp), and a lookup's constant arguments rounded to float16.
 
 Constants are what Mesa knows as constants: also a global variable initialised by a constant
 expression and never written (queries.py :func:`constant_global`: GLSL IR propagates it).
@@ -68,6 +68,7 @@ from .ffma_split import fused_plan
 from .flrp import mix_hint
 from .loop_compounds import compound_copies
 from .loop_copies import later_values
+from .lower_precision import float16_lookup_args
 from .repeated_sums import (
     Entry,
     call_step,
@@ -116,6 +117,7 @@ __all__ = [
     "dot_operand",
     "keep_term",
     "merged_dot",
+    "float16_lookup_args",
     "fused_plan",
     "mix_hint",
     "param_step",

@@ -24,6 +24,33 @@ if TYPE_CHECKING:
 LOWP_OPS = ("+", "-", "*", "/")
 
 
+def float16_lookup_args(tr: FoldEngine, e: A.Call) -> list[int]:
+    """The arguments of lookup `e` that reach a lowp sampler rounded to float16 on llvmpipe:
+    its float ones (coordinate, LOD, bias, derivatives) that Mesa folds to a constant, whose
+    value float16 does not hold exactly (the others need no rounding). Measured
+    (tests/gl/test_cube_maps.py, tests/channels/test_channels.py): `textureLod(s, p, 1.3)` reads
+    LOD 1.2998047 (float16 to nearest), a literal, a constant expression, a `const` or a
+    never-written global or local alike, on sampler2D and samplerCube; a value computed from a
+    highp one is not rounded; a projective coordinate is rounded before its division. Copied
+    where queries.constant_value sees the constant (not Mesa's folds of `x * 0.0` or of a
+    variable written again)."""
+    import numpy as np
+
+    out = []
+    for i, a in enumerate(e.args[1:], 1):
+        t = tr.type_of(a)
+        if t.base != "float" or t.is_matrix or t.is_array:
+            continue
+        values = constant_value(tr, a)
+        if values is None:
+            continue
+        with np.errstate(over="ignore"):
+            half = np.asarray(values, np.float32).astype(np.float16).astype(np.float32)
+        if not np.array_equal(half, np.asarray(values, np.float32)):
+            out.append(i)
+    return out
+
+
 def lowp_tree(tr: TranspilerState, e: A.Binary, mask: str | None) -> str | None:
     """``e`` computed in float16 where llvmpipe does, else None.
 
