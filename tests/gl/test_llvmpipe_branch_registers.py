@@ -1,0 +1,130 @@
+"""A value merged out of a branch NIR keeps: llvmpipe stores it under the exec mask, and a
+derivative taken inside the branch reads that store in the lanes outside it.
+
+Mesa 22.3 flattens a divergent `if` into selects (nir_opt_peephole_select) when its body costs
+at most 8 ALU instructions (a negation, an `abs`, a vector constructor free; `dFdx` counted);
+a costlier one (an `atan` is 29 or 50) stays a branch. Out of SSA, a value the branch leaves in
+a variable read after it (a phi's source) is coalesced into the phi's register, and llvmpipe
+writes registers under the mask, so `an` of `float an = atan(...); col = vec3(dFdx(an), ...,
+an);` lives in col.z's register: a lane outside the branch holds what that register holds
+there (zero: llvmpipe's registers start at zero, and a constant `col` had before is copied in
+only after the branch, on the else side; col's old value when that was computed and is not read
+after `an` is). In a flattened branch `an` is an SSA value computed in every lane.
+
+Neither CPU engine copies this (docs/llvmpipe.md, "Derivatives"): both compute `an` in every
+lane. The first test measures the rule on the driver alone (every value from the driver: the
+branch's condition, the old value and `an` computed everywhere come from a second shader); the
+second bounds what the engines get wrong to the quads the branch splits.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+from glslcheck.verification.verify import compile_backend
+
+SIZE = (40, 24)
+
+SHADER = """void mainImage(out vec4 c, in vec2 f) {
+    vec2 r = f / iResolution.xy - 0.5;
+    vec3 col = OLD;
+    if (length(r) < 0.3) {
+        float an = VALUE;
+        STORE;
+    }
+    c = vec4(col, 1.0);
+}"""
+
+# the same values without the branch: its condition, `an` computed in every lane, col's old z
+PROBE = """void mainImage(out vec4 c, in vec2 f) {
+    vec2 r = f / iResolution.xy - 0.5;
+    vec3 col = OLD;
+    c = vec4(length(r) < 0.3 ? 1.0 : 0.0, VALUE, col.z, 1.0);
+}"""
+
+ATAN2 = "atan(r.y, r.x) + 1.5"
+CONSTANT = "vec3(5.0, 6.0, 7.0)"
+COMPUTED = "vec3(r.x, r.y, sin(r.x * 7.0) + 9.0)"
+STORE = "col = vec3(dFdx(an), dFdy(an), an)"
+# (value, col's old value, the store, what a lane outside the branch holds for `an`)
+CASES = {
+    "atan2_over_a_constant": (ATAN2, CONSTANT, STORE, "zero"),
+    "atan_over_a_constant": ("atan(r.y / r.x) + 1.5", CONSTANT, STORE, "zero"),
+    "atan2_over_a_computed_value": (ATAN2, COMPUTED, STORE, "old"),
+    # col.z's old value read after `an` is computed: the two interfere, `an` gets the register
+    "atan2_over_a_value_read_after_it": (
+        ATAN2,
+        COMPUTED,
+        "float t = col.z * 2.0; col = vec3(dFdx(an), t, an)",
+        "zero",
+    ),
+    # 7 instructions and two derivatives: 9, kept
+    "nine_instructions": ("sin(sin(r.y * 9.0) * 2.0) * 3.0 + r.x * r.y", CONSTANT, STORE, "zero"),
+    # 6 and two derivatives: 8, flattened
+    "eight_instructions": ("sin(sin(r.y * 9.0) * 2.0) * 3.0 + r.x", CONSTANT, STORE, "own"),
+}
+
+
+def _render(make_shader, text: str, backend: str) -> np.ndarray:
+    """The float32 image in gl_FragCoord order: [y][x] with y up."""
+    image = compile_backend(make_shader(text), backend).render(size=SIZE)
+    return np.asarray(image, np.float32)[::-1]
+
+
+def _case_texts(name: str) -> tuple[str, str]:
+    value, old, store, _ = CASES[name]
+    text = SHADER.replace("VALUE", value).replace("OLD", old).replace("STORE", store)
+    return text, PROBE.replace("VALUE", value).replace("OLD", old)
+
+
+def _split(inside: np.ndarray, axis: int) -> np.ndarray:
+    """Pixels inside the branch whose partner across the 2x2 quad along `axis` (1: x, 0: y)
+    is outside it."""
+    partner = inside.reshape(inside.shape[0] // 2, 2, inside.shape[1] // 2, 2)
+    partner = np.flip(partner, axis=3 if axis == 1 else 1).reshape(inside.shape)
+    return inside & ~partner
+
+
+@pytest.mark.parametrize("name", sorted(CASES))
+def test_a_lane_outside_a_kept_branch_holds_the_register_of_the_merged_value(
+    llvmpipe, make_shader, name
+):
+    text, probe_text = _case_texts(name)
+    got = _render(make_shader, text, "gl")
+    probe = _render(make_shader, probe_text, "gl")
+    inside = probe[..., 0] == 1.0
+    held = {"zero": np.zeros_like(probe[..., 1]), "old": probe[..., 2], "own": probe[..., 1]}
+    held = held[CASES[name][3]]
+    an = got[..., 2]
+    # fine dFdx at (x, y): v(x | 1, y) - v(x & ~1, y), the outside partner's v its register
+    partner = held.reshape(SIZE[1], SIZE[0] // 2, 2)[:, :, ::-1].reshape(SIZE[1], SIZE[0])
+    odd = (np.arange(SIZE[0]) % 2 == 1)[None, :]
+    want = np.where(odd, an - partner, partner - an).astype(np.float32)
+    split = _split(inside, axis=1)
+    assert split.sum() >= 8, "the branch splits too few quads to measure"
+    dfdx = got[..., 0]
+    assert (dfdx[split].view(np.int32) == want[split].view(np.int32)).all(), np.argwhere(
+        split & (dfdx != want)
+    ).tolist()
+
+
+@pytest.mark.parametrize("backend", ["numpy", "compiled"])
+@pytest.mark.parametrize("name", ["atan2_over_a_constant", "eight_instructions"])
+def test_the_engines_differ_only_in_quads_a_kept_branch_splits(
+    llvmpipe, make_shader, request, backend, name
+):
+    """Not copied: the engines read `an` computed in every lane, so they differ from llvmpipe in
+    the pixels of a kept branch whose quad partner is outside it, and nowhere else; a flattened
+    branch they match everywhere."""
+    if backend == "compiled":
+        request.getfixturevalue("numba")
+    text, probe_text = _case_texts(name)
+    want = _render(make_shader, text, "gl")
+    got = _render(make_shader, text, backend)
+    inside = _render(make_shader, probe_text, "gl")[..., 0] == 1.0
+    differ = (got.view(np.int32) != want.view(np.int32)).any(axis=-1)
+    allowed = np.zeros_like(inside)
+    if CASES[name][3] != "own":
+        allowed = _split(inside, axis=1) | _split(inside, axis=0)
+    assert not (differ & ~allowed).any(), np.argwhere(differ & ~allowed).tolist()
