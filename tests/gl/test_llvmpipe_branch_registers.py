@@ -11,10 +11,10 @@ there (zero: llvmpipe's registers start at zero, and a constant `col` had before
 only after the branch, on the else side; col's old value when that was computed and is not read
 after `an` is). In a flattened branch `an` is an SSA value computed in every lane.
 
-Neither CPU engine copies this (docs/llvmpipe.md, "Derivatives"): both compute `an` in every
-lane. The first test measures the rule on the driver alone (every value from the driver: the
-branch's condition, the old value and `an` computed everywhere come from a second shader); the
-second bounds what the engines get wrong to the quads the branch splits.
+Both CPU engines copy it (nir_fold.merged_register) where a local is so merged. The first test
+measures the rule on the driver alone (every value from the driver: the branch's condition,
+the old value and `an` computed everywhere come from a second shader); the second compares
+each engine with the driver.
 """
 
 from __future__ import annotations
@@ -58,6 +58,19 @@ CASES = {
         COMPUTED,
         "float t = col.z * 2.0; col = vec3(dFdx(an), t, an)",
         "zero",
+    ),
+    # the else arm writes col: col's old value is no phi's source, the then arm runs first
+    "atan2_with_an_else_writing_it": (
+        ATAN2,
+        COMPUTED,
+        STORE + "; } else { col = vec3(r.y, 0.5, r.x * 3.0)",
+        "zero",
+    ),
+    "atan2_with_an_else_reading_it": (
+        ATAN2,
+        COMPUTED,
+        STORE + "; } else { col.x = col.z * 0.5",
+        "old",
     ),
     # 7 instructions and two derivatives: 9, kept
     "nine_instructions": ("sin(sin(r.y * 9.0) * 2.0) * 3.0 + r.x * r.y", CONSTANT, STORE, "zero"),
@@ -109,22 +122,22 @@ def test_a_lane_outside_a_kept_branch_holds_the_register_of_the_merged_value(
     ).tolist()
 
 
+# what nir_fold.merged_register declines: a partial write of col in the else arm
+NOT_COPIED = {"atan2_with_an_else_reading_it"}
+
+
 @pytest.mark.parametrize("backend", ["numpy", "compiled"])
-@pytest.mark.parametrize("name", ["atan2_over_a_constant", "eight_instructions"])
-def test_the_engines_differ_only_in_quads_a_kept_branch_splits(
+@pytest.mark.parametrize("name", sorted(set(CASES) - NOT_COPIED))
+def test_both_engines_hold_what_llvmpipe_holds_outside_a_kept_branch(
     llvmpipe, make_shader, request, backend, name
 ):
-    """Not copied: the engines read `an` computed in every lane, so they differ from llvmpipe in
-    the pixels of a kept branch whose quad partner is outside it, and nowhere else; a flattened
-    branch they match everywhere."""
+    """nir_fold.merged_register: each engine writes the local under the branch's mask over
+    zero or col's old value, bit for bit llvmpipe's image. Measured before it: 28 of the 960
+    pixels differed in each engine for every kept case (the quads the branch splits)."""
     if backend == "compiled":
         request.getfixturevalue("numba")
-    text, probe_text = _case_texts(name)
+    text, _ = _case_texts(name)
     want = _render(make_shader, text, "gl")
     got = _render(make_shader, text, backend)
-    inside = _render(make_shader, probe_text, "gl")[..., 0] == 1.0
     differ = (got.view(np.int32) != want.view(np.int32)).any(axis=-1)
-    allowed = np.zeros_like(inside)
-    if CASES[name][3] != "own":
-        allowed = _split(inside, axis=1) | _split(inside, axis=0)
-    assert not (differ & ~allowed).any(), np.argwhere(differ & ~allowed).tolist()
+    assert not differ.any(), np.argwhere(differ).tolist()

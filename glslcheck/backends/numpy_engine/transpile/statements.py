@@ -265,12 +265,33 @@ class Statements(TranspilerState):
             if dec.init is not None:
                 value = nir_fold.keep_term(self, dec, value)
                 self.after_discarding_call(dec.init)
+            register = self.merged_register(dec, mask)
             if name in fs.switch_locals:  # (one in a block inside a case is scoped to it)
                 self.emit(f"{name} = X.put({name}, {value}, {mask})")
+            elif register is not None:  # (llvmpipe's register of a kept branch: nir_fold)
+                self.emit(f"{name} = X.put({register}, {value}, {mask})")
             else:
                 self.emit(f"{name} = {value}")
             if name not in fs.defined:
                 fs.defined.append(name)
+
+    def merged_register(self, dec: A.Declarator, mask: str | None) -> str | None:
+        """What the lanes outside a divergent kept branch hold for the local `dec` declares,
+        where llvmpipe keeps it in a register (nir_fold.merged_register): zero, or a component
+        of the variable it is merged into, read here; None where it is an SSA value."""
+        fs = self.fn
+        assert fs is not None  # generating a function's body
+        if mask is None:
+            return None
+        found = nir_fold.merged_register(self, dec)
+        if found is None or (fs.uni is not None and fs.uni.is_uniform(found.branch.cond)):
+            return None
+        sym = self.model.symbol_of(dec)
+        if found.target is None:
+            return self.zero(sym.type, dec)
+        old = self.expr(found.target, mask)
+        t = self.type_of(found.target)
+        return self.component(old, found.component) if t is not None and t.is_vector else old
 
     def declare_switch_locals(self, s: A.Switch) -> None:
         fs = self.fn
