@@ -72,6 +72,9 @@ CASES = {
         STORE + "; } else { col.x = col.z * 0.5",
         "old",
     ),
+    # `an` declared before the branch (7.0, read by no one) and assigned in it: the same
+    "atan2_assigned_over_a_constant": (ATAN2, CONSTANT, STORE, "zero"),
+    "atan2_assigned_over_a_computed_value": (ATAN2, COMPUTED, STORE, "old"),
     # 7 instructions and two derivatives: 9, kept
     "nine_instructions": ("sin(sin(r.y * 9.0) * 2.0) * 3.0 + r.x * r.y", CONSTANT, STORE, "zero"),
     # 6 and two derivatives: 8, flattened
@@ -88,6 +91,9 @@ def _render(make_shader, text: str, backend: str) -> np.ndarray:
 def _case_texts(name: str) -> tuple[str, str]:
     value, old, store, _ = CASES[name]
     text = SHADER.replace("VALUE", value).replace("OLD", old).replace("STORE", store)
+    if "_assigned_" in name:
+        text = text.replace(f"float an = {value}", f"an = {value}")
+        text = text.replace(f"vec3 col = {old};", f"vec3 col = {old};\n    float an = 7.0;")
     return text, PROBE.replace("VALUE", value).replace("OLD", old)
 
 
@@ -141,3 +147,36 @@ def test_both_engines_hold_what_llvmpipe_holds_outside_a_kept_branch(
     got = _render(make_shader, text, backend)
     differ = (got.view(np.int32) != want.view(np.int32)).any(axis=-1)
     assert not differ.any(), np.argwhere(differ).tolist()
+
+
+OUT_PARAMETER = """void shade(out vec3 col, vec2 r) {
+    col = vec3(5.0, 6.0, 7.0);
+    if (length(r) < 0.3) {
+        float an = atan(r.y, r.x) + 1.5;
+        col = vec3(dFdx(an), dFdy(an), an);
+    }
+}
+void mainImage(out vec4 c, in vec2 f) {
+    vec3 col;
+    shade(col, f / iResolution.xy - 0.5);
+    c = vec4(col, 1.0);
+}"""
+
+
+@pytest.mark.parametrize("backend", ["numpy", "compiled"])
+def test_a_merge_into_a_functions_out_parameter_differs_only_in_split_quads(
+    llvmpipe, make_shader, request, backend
+):
+    """Not copied: the variable merged into is another function's out parameter (llvmpipe's
+    register once NIR inlines the call; merged_register declines, it does not follow the
+    caller). The engines then read `an` computed in every lane: they differ from llvmpipe in
+    the pixels of the branch whose quad partner is outside it, and nowhere else."""
+    if backend == "compiled":
+        request.getfixturevalue("numba")
+    want = _render(make_shader, OUT_PARAMETER, "gl")
+    got = _render(make_shader, OUT_PARAMETER, backend)
+    probe = PROBE.replace("VALUE", ATAN2).replace("OLD", CONSTANT)
+    inside = _render(make_shader, probe, "gl")[..., 0] == 1.0
+    differ = (got.view(np.int32) != want.view(np.int32)).any(axis=-1)
+    allowed = _split(inside, axis=1) | _split(inside, axis=0)
+    assert not (differ & ~allowed).any(), np.argwhere(differ & ~allowed).tolist()

@@ -634,32 +634,31 @@ class Codegen(ExpressionEmitter):
 
     def merged_registers(self, s: A.If) -> None:
         """Before a divergent kept branch, the value a lane outside it holds for each local of
-        its then-arm that llvmpipe keeps in a register (nir_fold.merged_register): zero, or the
+        its then arm that llvmpipe keeps in a register (nir_fold.merged_register): zero, or the
         component of the variable it is merged into. The local is written here, so the lockstep
-        rewrite writes its declaration in the arm under the arm's mask over that value, as the
-        NumPy backend's `X.put` (per pixel the arm's write replaces it)."""
+        rewrite writes its value in the arm under the arm's mask over that one, as the NumPy
+        backend's `X.put` (per pixel the arm's write replaces it)."""
         fs = self.fn
         if fs is None or fs.sym is None or not isinstance(s.then, A.Compound):
             return
         from ..numpy_engine.transpile import nir_fold
 
-        for st in s.then.stmts:
-            if not (
-                isinstance(st, A.DeclarationStatement)
-                and isinstance(st.decl, A.VariableDeclaration)
-            ):
+        for node in nir_fold.arm_values(s.then):
+            found = nir_fold.merged_register(self.fold_context(), node)
+            if found is None or self.uniformity().is_uniform(s.cond):
                 continue
-            for dec in st.decl.declarators:
-                found = nir_fold.merged_register(self.fold_context(), dec)
-                if found is None or self.uniformity().is_uniform(s.cond):
-                    continue
-                sym = self.model.symbol_of(dec)
-                if found.target is None:
-                    fill = self.zero_parts(sym.type, dec)
-                else:
-                    fill = [self.expr(found.target).parts[found.component]]
-                self.comment(dec)
-                self.write(self.declare_local(sym, dec), fill, fresh_arrays=True)
+            if isinstance(node, A.Declarator):
+                sym = self.model.symbol_of(node)
+                parts = self.declare_local(sym, node)
+            else:
+                sym = self.model.symbol_of(node.target)
+                parts = self.vars[id(sym)]
+            if found.target is None:
+                fill = self.zero_parts(sym.type, node)
+            else:
+                fill = [self.expr(found.target).parts[found.component]]
+            self.comment(node)
+            self.write(parts, fill, fresh_arrays=True)
 
     def uniformity(self) -> Uniformity:
         """The NumPy backend's analysis of the current function (which branches diverge)."""

@@ -55,7 +55,7 @@ take a state.FoldEngine, what both provide.
 """
 
 from .added_zero import zero_add
-from .branch_register import MergedRegister, merged_register
+from .branch_register import MergedRegister, arm_values, merged_register
 from .components import component_write
 from .context import FoldContext
 from .dispatch import binary, copied_binary
@@ -92,6 +92,7 @@ from .returned_sums import (
 __all__ = [
     "FoldContext",
     "MergedRegister",
+    "arm_values",
     "merged_register",
     "exp_product",
     "Entry",

@@ -26,9 +26,10 @@ statement of that arm, ``X = an`` or ``X = vecN(..., an, ...)``, the arm's only 
 a local declared before the ``if`` (or the entry's out parameter) and read after it; an else
 arm that leaves ``X`` alone or assigns it whole before reading it; no loop around the ``if``
 (here or around a call of its function: NIR's unrolled copies and kept loops carry other
-values in the register); a derivative in the arm reading ``an``. Not copied: a local of the
-else arm, a value assigned to a variable declared before the branch (``an = atan(...);``), a
-branch in a loop."""
+values in the register); a derivative in the arm reading ``an``. The same for ``an = e;`` at
+the arm's top level, the branch's only write of a local declared before it that nothing reads
+from the branch on but after that write. Not copied: a local of the else arm, a branch in a
+loop."""
 
 from __future__ import annotations
 
@@ -36,6 +37,7 @@ from dataclasses import dataclass
 from typing import Any
 
 from .....frontend import syntax as A
+from .....semantics.analysis import written_variable
 from .....semantics.model import Symbol
 from ....cpu_core.common import DERIVATIVES, IMPLICIT_LOD
 from .loop_unroll import body_cost
@@ -59,26 +61,35 @@ class MergedRegister:
     component: int
 
 
-def merged_register(tr: FoldEngine, dec: A.Declarator) -> MergedRegister | None:
-    """llvmpipe's register for the local declared by `dec`, when the local's value is coalesced
-    with a phi's register of a kept branch (see the module docstring), else None."""
+def merged_register(tr: FoldEngine, node: A.Declarator | A.Assignment) -> MergedRegister | None:
+    """llvmpipe's register for the value the declaration `dec`, or the assignment ``an = e`` to
+    a local declared before the branch, gives a local, when that value is coalesced with a
+    phi's register of a kept branch (see the module docstring), else None."""
     fn = current_function(tr).sym
-    if dec.init is None or fn is None or id(fn) not in tr.facts.uses_derivs:
-        return None
-    v = tr.model.symbol_of(dec)
-    if v is None or v.kind != "local" or not _scalar(v.type):
+    if fn is None or id(fn) not in tr.facts.uses_derivs:
         return None
     facts = _facts(tr, fn)
-    if facts is None or id(dec) not in facts.enter:
+    if facts is None or id(node) not in facts.enter:
         return None
-    decl = facts.parent.get(id(facts.parent.get(id(dec))))
-    arm = facts.parent.get(id(decl))
+    if isinstance(node, A.Declarator):
+        v = tr.model.symbol_of(node)
+        stmt = facts.parent.get(id(facts.parent.get(id(node))))
+        ok = node.init is not None and v is not None and len(facts.writes_to(v)) == 1
+    else:
+        v, whole = written_variable(tr.model, node.target)
+        stmt = facts.parent.get(id(node))
+        ok = node.op == "=" and whole and isinstance(node.target, A.Identifier)
+    if not ok or v is None or v.kind != "local" or not _scalar(v.type):
+        return None
+    arm = facts.parent.get(id(stmt))
     branch = facts.parent.get(id(arm))
     if not (isinstance(arm, A.Compound) and isinstance(branch, A.If) and branch.then is arm):
         return None
-    if len(facts.writes_to(v)) != 1 or facts.enclosing_loops(branch) or _called_in_a_loop(tr, fn):
+    if facts.enclosing_loops(branch) or _called_in_a_loop(tr, fn):
         return None
-    found = _merge(tr, facts, arm, decl, v)
+    if isinstance(node, A.Assignment) and not _dead_before_and_after(tr, facts, branch, node, v):
+        return None
+    found = _merge(tr, facts, arm, stmt, v)
     if found is None or not _kept(tr, branch):
         return None
     write, x, k = found
@@ -94,9 +105,42 @@ def merged_register(tr: FoldEngine, dec: A.Declarator) -> MergedRegister | None:
     zero = (
         overwritten
         or _old_is_constant(tr, facts, branch, x, k)
-        or _read_between(tr, facts, dec, write, x)
+        or _read_between(tr, facts, node, write, x)
     )
     return MergedRegister(branch, None if zero else write.target, k)
+
+
+def arm_values(arm: A.Compound) -> list[A.Declarator | A.Assignment]:
+    """The declarators and plain assignments at the top level of `arm`: what
+    :func:`merged_register` is asked about."""
+    out: list = []
+    for st in arm.stmts:
+        if isinstance(st, A.DeclarationStatement) and isinstance(st.decl, A.VariableDeclaration):
+            out.extend(st.decl.declarators)
+        elif isinstance(st, A.ExpressionStatement) and isinstance(st.expr, A.Assignment):
+            out.append(st.expr)
+    return out
+
+
+def _dead_before_and_after(
+    tr: FoldEngine, facts: Any, branch: A.If, write: A.Assignment, v: Symbol
+) -> bool:
+    """The local `v` declared before `branch`, assigned by `write` in it, has no other value
+    anyone reads from the branch on: no read of it in the branch but after `write` in the then
+    arm, no other write in the branch, no read after it (so its old value can be replaced
+    before the branch)."""
+    if _inside(facts, branch, v.node):
+        return False
+    if any(facts.contains(branch, w.node) and w.node is not write for w in facts.writes_to(v)):
+        return False
+    if branch.else_ is not None and _reads_symbol(tr, branch.else_, v):
+        return False
+    after = facts.exit[id(write)]
+    for n in branch.walk():
+        if isinstance(n, A.Identifier) and n is not write.target and tr.model.symbol_of(n) is v:
+            if facts.enter[id(n)] < after:
+                return False
+    return not _live_after(tr, facts, branch, v, False)
 
 
 def _scalar(t: Any) -> bool:
@@ -123,12 +167,17 @@ def _merge(tr: FoldEngine, facts: Any, arm: A.Compound, decl: Any, v: Symbol) ->
         if not (isinstance(e, A.Assignment) and e.op == "=" and isinstance(e.target, A.Identifier)):
             continue
         x = tr.model.symbol_of(e.target)
-        if x is None or x.kind not in ("local", "param") or facts.contains(arm, x.node):
+        if x is None or x.kind not in ("local", "param") or _inside(facts, arm, x.node):
             continue
         k = _component_of(tr, e.value, v)
         if k is not None:
             return e, x, k
     return None
+
+
+def _inside(facts: Any, outer: Any, node: Any) -> bool:
+    """`node` (a declaration: a parameter's is not in the body) is inside `outer`."""
+    return id(node) in facts.enter and facts.contains(outer, node)
 
 
 def _component_of(tr: FoldEngine, value: Any, v: Symbol) -> int | None:
@@ -297,10 +346,11 @@ def _old_is_constant(tr: FoldEngine, facts: Any, branch: A.If, x: Symbol, k: int
     return False
 
 
-def _read_between(tr: FoldEngine, facts: Any, dec: A.Declarator, write: Any, x: Symbol) -> bool:
-    """`x` is read after the local's declaration and before (or in) the write that merges it:
-    its old value is live where the local's is, so the two take different registers."""
-    lo, hi = facts.exit[id(dec)], facts.enter[id(write.target)]
+def _read_between(tr: FoldEngine, facts: Any, node: Any, write: Any, x: Symbol) -> bool:
+    """`x` is read after the local's value is computed (`node`) and before (or in) the write
+    that merges it: its old value is live where the local's is, so the two take different
+    registers."""
+    lo, hi = facts.exit[id(node)], facts.enter[id(write.target)]
     for n in facts.nodes:
         pos = facts.enter[id(n)]
         if lo < pos and pos != hi and pos < facts.exit[id(write)]:
