@@ -180,3 +180,33 @@ def test_a_merge_into_a_functions_out_parameter_differs_only_in_split_quads(
     differ = (got.view(np.int32) != want.view(np.int32)).any(axis=-1)
     allowed = _split(inside, axis=1) | _split(inside, axis=0)
     assert not (differ & ~allowed).any(), np.argwhere(differ & ~allowed).tolist()
+
+
+ENTRY_OUTPUT = """void mainImage(out vec4 c, in vec2 f) {
+    vec2 r = f / iResolution.xy - 0.5;
+    OLD
+    if (length(r) < 0.3) {
+        float an = atan(r.y, r.x) + 1.5;
+        c = vec4(dFdx(an), dFdy(an), an, 1.0);
+    }
+}"""
+
+
+@pytest.mark.parametrize("backend", ["numpy", "compiled"])
+@pytest.mark.parametrize(
+    "old",
+    ["c = vec4(0.0);", "c = vec4(r, sin(r.x * 7.0) + 9.0, 1.0);", ""],
+    ids=["constant", "computed", "unwritten"],
+)
+def test_a_local_merged_into_the_entrys_output_is_held_as_llvmpipe_holds_it(
+    llvmpipe, make_shader, request, backend, old
+):
+    """The entry's out parameter is read after the branch (it is the output): its register
+    holds zero over a constant or unwritten old value, the old value over a computed one."""
+    if backend == "compiled":
+        request.getfixturevalue("numba")
+    text = ENTRY_OUTPUT.replace("OLD", old)
+    want = _render(make_shader, text, "gl")
+    got = _render(make_shader, text, backend)
+    differ = (got.view(np.int32) != want.view(np.int32)).any(axis=-1)
+    assert not differ.any(), np.argwhere(differ).tolist()

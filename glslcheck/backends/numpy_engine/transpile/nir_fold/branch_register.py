@@ -52,9 +52,10 @@ FLATTEN_LIMIT = 8  # st_nir_opts' nir_opt_peephole_select limit
 
 @dataclass(frozen=True)
 class MergedRegister:
-    """Where the local's value lives: `branch`'s then-arm declares it; a lane outside the arm
-    holds component `component` of `target` (read where the local is declared: its value from
-    before the branch), or zero when `target` is None."""
+    """Where the local's value lives: `branch`'s then arm gives it; a lane outside the arm holds
+    component `component` of `target` (the variable it is merged into, read before that
+    variable's write in the arm: its value from before the branch), or zero when `target` is
+    None."""
 
     branch: A.If
     target: A.Identifier | None
@@ -62,9 +63,9 @@ class MergedRegister:
 
 
 def merged_register(tr: FoldEngine, node: A.Declarator | A.Assignment) -> MergedRegister | None:
-    """llvmpipe's register for the value the declaration `dec`, or the assignment ``an = e`` to
-    a local declared before the branch, gives a local, when that value is coalesced with a
-    phi's register of a kept branch (see the module docstring), else None."""
+    """llvmpipe's register for the value a declarator, or an assignment ``an = e`` to a local
+    declared before the branch, gives a local, when that value is coalesced with a phi's
+    register of a kept branch (see the module docstring), else None."""
     fn = current_function(tr).sym
     if fn is None or id(fn) not in tr.facts.uses_derivs:
         return None
@@ -85,12 +86,12 @@ def merged_register(tr: FoldEngine, node: A.Declarator | A.Assignment) -> Merged
     branch = facts.parent.get(id(arm))
     if not (isinstance(arm, A.Compound) and isinstance(branch, A.If) and branch.then is arm):
         return None
-    if facts.enclosing_loops(branch) or _called_in_a_loop(tr, fn):
+    found = _merge(tr, facts, arm, stmt, v)
+    if found is None or facts.enclosing_loops(branch) or not _kept(tr, branch):
         return None
     if isinstance(node, A.Assignment) and not _dead_before_and_after(tr, facts, branch, node, v):
         return None
-    found = _merge(tr, facts, arm, stmt, v)
-    if found is None or not _kept(tr, branch):
+    if _called_in_a_loop(tr, fn):
         return None
     write, x, k = found
     if any(facts.contains(arm, w.node) and w.node is not write for w in facts.writes_to(x)):
