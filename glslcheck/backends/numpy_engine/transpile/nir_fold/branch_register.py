@@ -28,10 +28,10 @@ arm that leaves ``X`` alone or assigns it whole before reading it; no loop aroun
 (here or around a call of its function: NIR's unrolled copies and kept loops carry other
 values in the register); a derivative in the arm reading ``an``. The same for ``an = e;`` at
 the arm's top level, the branch's only write of a local declared before it that nothing reads
-from the branch on but after that write. A texture lookup's implicit derivatives count as a
-derivative (they read the quad as dFdx does; not measured with a lookup). Not copied: a local
-of the else arm, a merge into another function's out parameter (llvmpipe's register once NIR
-inlines the call), a branch in a loop."""
+from the branch on but after that write. A texture lookup's implicit LOD is a derivative too
+(measured: the lookup keeps even a cheap branch, and its LOD reads the register). Not copied:
+a local of the else arm, a merge into another function's out parameter (llvmpipe's register
+once NIR inlines the call), a branch in a loop."""
 
 from __future__ import annotations
 
