@@ -621,6 +621,7 @@ class Codegen(ExpressionEmitter):
 
     def _stmt_If(self, s: A.If) -> None:
         self.comment(s)
+        self.merged_registers(s)
         c = self.expr(s.cond).parts[0]
         self.emit(f"if {c}:")
         self.indent += 1
@@ -631,6 +632,44 @@ class Codegen(ExpressionEmitter):
             self.indent += 1
             self.sub(s.else_)
             self.indent -= 1
+
+    def merged_registers(self, s: A.If) -> None:
+        """Before a divergent kept branch, the value a lane outside it holds for each local of
+        its then arm that llvmpipe keeps in a register (nir_fold.merged_register): zero, or the
+        component of the variable it is merged into. The local is written here, so the lockstep
+        rewrite writes its value in the arm under the arm's mask over that one, as the NumPy
+        backend's `X.put` (per pixel the arm's write replaces it)."""
+        fs = self.fn
+        if fs is None or fs.sym is None or not isinstance(s.then, A.Compound):
+            return
+        from ..numpy_engine.transpile import nir_fold
+
+        for node in nir_fold.arm_values(s.then):
+            found = nir_fold.merged_register(self.fold_context(), node)
+            if found is None or self.uniformity().is_uniform(s.cond):
+                continue
+            if isinstance(node, A.Declarator):
+                sym = self.model.symbol_of(node)
+                parts = self.declare_local(sym, node)
+            else:
+                sym = self.model.symbol_of(node.target)
+                parts = self.vars[id(sym)]
+            if found.target is None:
+                fill = self.zero_parts(sym.type, node)
+            else:
+                fill = [self.expr(found.target).parts[found.component]]
+            self.comment(node)
+            self.write(parts, fill, fresh_arrays=True)
+
+    def uniformity(self) -> Uniformity:
+        """The NumPy backend's analysis of the current function (which branches diverge)."""
+        fs = self.fn
+        assert fs is not None and fs.sym is not None
+        uni = self.numpy_uniformity.get(id(fs.sym))
+        if uni is None:
+            uni = Uniformity(self.model, self.facts, fs.sym, fs.sym is self.entry)
+            self.numpy_uniformity[id(fs.sym)] = uni
+        return uni
 
     def _stmt_Return(self, s: A.Return) -> bool:
         self.comment(s)
@@ -679,10 +718,7 @@ class Codegen(ExpressionEmitter):
 
         if not nir_fold.register_call(self.fold_context(), e, fn):
             return value
-        uni = self.numpy_uniformity.get(id(fs.sym))
-        if uni is None:
-            uni = Uniformity(self.model, self.facts, fs.sym, fs.sym is self.entry)
-            self.numpy_uniformity[id(fs.sym)] = uni
+        uni = self.uniformity()
         if self.facts.closed(fn) and all(
             uni.is_uniform(a) or d == "out" for a, (_, _, d) in zip(e.args, fn.params)
         ):

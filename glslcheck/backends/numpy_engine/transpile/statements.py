@@ -265,12 +265,46 @@ class Statements(TranspilerState):
             if dec.init is not None:
                 value = nir_fold.keep_term(self, dec, value)
                 self.after_discarding_call(dec.init)
+            register = self.merged_register(dec, mask)
             if name in fs.switch_locals:  # (one in a block inside a case is scoped to it)
                 self.emit(f"{name} = X.put({name}, {value}, {mask})")
+            elif register is not None:  # (llvmpipe's register of a kept branch: nir_fold)
+                self.emit(f"{name} = X.put({register}, {value}, {mask})")
             else:
                 self.emit(f"{name} = {value}")
             if name not in fs.defined:
                 fs.defined.append(name)
+
+    def merged_register(self, node: Any, mask: str | None) -> str | None:
+        """What the lanes outside a divergent kept branch hold for the value the declarator or
+        assignment `node` gives a local, where llvmpipe keeps it in a register
+        (nir_fold.merged_register): zero, or a component of the variable it is merged into,
+        read here; None where it is an SSA value."""
+        fs = self.fn
+        assert fs is not None  # generating a function's body
+        found = nir_fold.merged_register(self, node)
+        if found is None or (fs.uni is not None and fs.uni.is_uniform(found.branch.cond)):
+            return None
+        target = node if isinstance(node, A.Declarator) else node.target
+        if found.target is None:
+            return self.zero(self.model.symbol_of(target).type, node)
+        old = self.expr(found.target, mask)
+        t = self.type_of(found.target)
+        return self.component(old, found.component) if t is not None and t.is_vector else old
+
+    def merged_registers(self, s: A.If, mask: str | None) -> None:
+        """Before a divergent kept branch, a local declared before it that the branch assigns
+        and merges into a variable (nir_fold.merged_register) takes what the lanes outside the
+        branch hold, so the arm's masked write of it leaves that there (its old value is dead:
+        the rule asks that). A local declared in the arm takes it at its declaration."""
+        if not isinstance(s.then, A.Compound):
+            return
+        for node in nir_fold.arm_values(s.then):
+            if isinstance(node, A.Assignment):
+                fill = self.merged_register(node, mask)
+                if fill is not None:
+                    self.comment_line(node)
+                    self.write(self.lvalue(node.target, mask), fill, None)
 
     def declare_switch_locals(self, s: A.Switch) -> None:
         fs = self.fn
@@ -291,6 +325,7 @@ class Statements(TranspilerState):
         self.comment_line(s)
         fs = self.fn
         assert fs is not None  # generating a function's body
+        self.merged_registers(s, mask)
         cond = self.expr(s.cond, mask)
         self.after_discarding_call(s.cond)
         if fs.uni is not None and fs.uni.is_uniform(s.cond):

@@ -29,6 +29,8 @@ The rules copied here, each measured bit for bit against llvmpipe on 50,000 rand
 - return_register.py: a call's result in the lanes a mask leaves out, llvmpipe's register;
 - inlined_results.py: a call of a function that, inlined, is a value of its arguments counts
   as the value it returns (``hash(x) * hash(x) * 0.7`` is ``(h * 0.7) * h``);
+- branch_register.py: a local a kept branch leaves in a variable read after it, in that
+  variable's register (what a lane outside the branch holds for a derivative);
 - added_zero.py: ``fadd(a, 0.0) -> a``, which keeps the sign of a -0.0;
 - flrp.py: nir_lower_flrp's formula for a `mix`, chosen from the other `mix` calls;
 - lower_precision.py: not a rewrite of the order but of the type, float16 arithmetic on lowp
@@ -59,6 +61,7 @@ take a state.FoldEngine, what both provide.
 """
 
 from .added_zero import zero_add
+from .branch_register import MergedRegister, arm_values, merged_register
 from .components import component_write
 from .context import FoldContext
 from .dispatch import binary, copied_binary
@@ -97,6 +100,9 @@ from .returned_sums import (
 
 __all__ = [
     "FoldContext",
+    "MergedRegister",
+    "arm_values",
+    "merged_register",
     "exp_product",
     "Entry",
     "binary",
