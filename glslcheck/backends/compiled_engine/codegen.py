@@ -648,11 +648,11 @@ class Codegen(ExpressionEmitter):
             found = nir_fold.merged_register(self.fold_context(), node)
             if found is None or self.uniformity().is_uniform(s.cond):
                 continue
+            sym = self.model.symbol_of(node if isinstance(node, A.Declarator) else node.target)
+            assert sym is not None  # (a local the checker declared)
             if isinstance(node, A.Declarator):
-                sym = self.model.symbol_of(node)
                 parts = self.declare_local(sym, node)
             else:
-                sym = self.model.symbol_of(node.target)
                 parts = self.vars[id(sym)]
             if found.target is None:
                 fill = self.zero_parts(sym.type, node)

@@ -287,7 +287,9 @@ class Statements(TranspilerState):
             return None
         target = node if isinstance(node, A.Declarator) else node.target
         if found.target is None:
-            return self.zero(self.model.symbol_of(target).type, node)
+            sym = self.model.symbol_of(target)
+            assert sym is not None  # (a local the checker declared)
+            return self.zero(sym.type, node)
         old = self.expr(found.target, mask)
         t = self.type_of(found.target)
         return self.component(old, found.component) if t is not None and t.is_vector else old
