@@ -11,6 +11,8 @@ lanes (quads of 4 and 8 columns: 41 is a multiple of neither, so a block lies pa
 
 from __future__ import annotations
 
+from pathlib import Path
+
 import numpy as np
 import pytest
 
@@ -129,31 +131,9 @@ void mainImage(out vec4 c, in vec2 f) {
 # returned holds the value of the last pass it ran the call in, in a loop NIR keeps (40 steps),
 # zero in one it unrolls (4) (llvmpipe's register for returns merged after inlining:
 # nir_fold.register_call; tests/gl's test_a_result_returned_from_a_branch_keeps_its_old_value_...)
-KEPT_RETURNS = """
-const float pi = 3.14159265;
-float atan2(float y, float x) {
-    if (x > 0.0) { return atan(y / x); }
-    else if (x == 0.0) {
-        if (y > 0.0) { return pi / 2.0; } else if (y < 0.0) { return -(pi / 2.0); }
-        else { return 0.0; }
-    } else {
-        if (y >= 0.0) { return atan(y / x) + pi; } else { return atan(y / x) - pi; }
-    }
-}
-void g(inout float acc, float t) {
-    if (t < 0.3) {
-        return;
-    }
-    float v = atan2(t - 0.6, 0.45 - t);
-    acc += dFdx(v) + dFdy(v);
-}
-void mainImage(out vec4 c, in vec2 p) {
-    float acc = 0.0;
-    for (int i = 0; i < STEPS; i++) {
-        g(acc, fract(p.x * 0.0173 + p.y * 0.0071 + float(i) * 0.37));
-    }
-    c = vec4(acc, 0.0, 0.0, 1.0);
-}"""
+KEPT_RETURNS = (
+    Path(__file__).resolve().parents[1] / "gl" / "shaders" / "kept_returns.glsl"
+).read_text()
 DERIVATIVES["register_in_kept_loop"] = KEPT_RETURNS.replace("STEPS", "40")
 DERIVATIVES["register_in_unrolled_loop"] = KEPT_RETURNS.replace("STEPS", "4")
 # a loop of 6 passes whose body costs too much for NIR to unroll keeps the register

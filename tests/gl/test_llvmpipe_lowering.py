@@ -19,6 +19,8 @@ that release on another driver).
 
 from __future__ import annotations
 
+from pathlib import Path
+
 import numpy as np
 import pytest
 
@@ -643,30 +645,9 @@ def test_a_negated_product_of_itime_merges_at_every_frame(llvmpipe, make_shader)
     assert not frames.any(), frames.sum(axis=0).tolist()
 
 
-KEPT_RETURNS = """const float pi = 3.14159265;
-float atan2(float y, float x) {  // gargantua's: returns from inside branches, after atan()
-    if (x > 0.0) { return atan(y / x); }
-    else if (x == 0.0) {
-        if (y > 0.0) { return pi / 2.0; } else if (y < 0.0) { return -(pi / 2.0); } else { return \
-            0.0; }
-    } else {
-        if (y >= 0.0) { return atan(y / x) + pi; } else { return atan(y / x) - pi; }
-    }
-}
-void g(inout float acc, float t) {
-    if (t < 0.3) {
-        return;
-    }
-    float v = atan2(t - 0.6, 0.45 - t);
-    acc += dFdx(v) + dFdy(v);
-}
-void mainImage(out vec4 c, in vec2 p) {
-    float acc = 0.0;
-    for (int i = 0; i < STEPS; i++) {
-        g(acc, fract(p.x * 0.0173 + p.y * 0.0071 + float(i) * 0.37));
-    }
-    c = vec4(acc, 0.0, 0.0, 1.0);
-}"""
+# gargantua's atan2 (returns from inside branches, after atan()) called in a loop of STEPS passes
+# (tests/compiled/test_derivatives.py reads it too)
+KEPT_RETURNS = (Path(__file__).resolve().parent / "shaders" / "kept_returns.glsl").read_text()
 
 
 @pytest.mark.parametrize("steps", ["40", "4"])
