@@ -33,8 +33,11 @@ The move happens only where the two engines are known to give the same bits:
   differences are listed in tests/compiled/test_engines_agree.py) are not caught: these checks
   are evidence on the frames this shader renders, the agreement tests are the proof;
 * and is faster on: the compiled program's first TRIAL_FRAMES frames, per pixel, against the
-  NumPy backend's last frames before the compile began (a light shader's NumPy frames, whose
-  uniform values are computed once a tile, can beat the compiled engine's per-pixel ones). A
+  NumPy backend's renders of the same frames (the check renders them, and timing them there
+  compares the engines at one load, past the NumPy backend's start-up: a process's first NumPy
+  frames start worker processes and load kernels, and a move that comes early would otherwise
+  be judged against them). A light shader's NumPy frames, whose uniform values are computed
+  once a tile, can beat the compiled engine's per-pixel ones. A
   per-pixel program found slower hands the frames back to NumPy until they have paid for its
   lockstep module too (engine.TieredProgram.move_cost, within engine.LOCKSTEP_BUDGET), which is
   then made beside them, checked on one frame against NumPy's and tried the same way; slower
@@ -80,11 +83,10 @@ if TYPE_CHECKING:
 # known about it yet: the hidden real set's median was 2.0 s (max 16 s), the lab shaders 4-7 s
 # on a loaded 2-core machine (benchmarks/bench_default.py prints both).
 COMPILE_GUESS_SECONDS = 3.0
-# The compiled program's first frames, timed against the NumPy backend's last ones (medians of
-# so many, per pixel): a compiled engine slower on this shader (the NumPy backend computes
-# uniform values once a tile, the compiled one per pixel) hands the frames back for good.
+# The compiled program's first frames, each timed against the NumPy backend's render of it (the
+# medians of so many, per pixel): a compiled engine slower on this shader (the NumPy backend
+# computes uniform values once a tile, the compiled one per pixel) hands the frames back.
 TRIAL_FRAMES = 3
-RATE_FRAMES = 5
 # How often (seconds of frames before lockstep) the record keeps them for later processes
 REMEMBER_SECONDS = 2.0
 # Expected seconds of loading the compiled module from numba's cache (import of numba included:
@@ -111,9 +113,9 @@ class TieredCpuProgram:
     _lock: threading.Lock
     _mover: threading.Thread | None
     _record: dict | None
-    rates: list[float]
     numpy_rate: float
     trial: list[float]
+    numpy_trial: list[float]
     later: TieredProgram | None
     engine: str
     paid: float
@@ -131,9 +133,9 @@ class TieredCpuProgram:
         d["_lock"] = threading.Lock()
         d["_mover"] = None  # the thread that makes the compiled program, once started
         d["_record"] = None  # the tier record read from the cache folder ({} when none)
-        d["rates"] = []  # seconds per pixel of the last NumPy frames (RATE_FRAMES)
-        d["numpy_rate"] = 0.0  # their median when the compile started (before it competed)
         d["trial"] = []  # seconds per pixel of the compiled program's first frames
+        d["numpy_trial"] = []  # and of the NumPy backend's renders of the same frames
+        d["numpy_rate"] = 0.0  # the median of those, once the trial is over
         # a compiled program slower per pixel that may still move to lockstep (engine's
         # TieredProgram): tried again once its lockstep module is ready
         d["later"] = None
@@ -292,11 +294,11 @@ class TieredCpuProgram:
                 out = second.render(**ckw)
                 self._remember()
                 return out
-            # a trial frame: timed, and checked against the NumPy backend's render of it
-            t0 = time.perf_counter()
-            got = second.render(**ckw)
-            rate = (time.perf_counter() - t0) / pixels
-            out = self.first.render(**kw, precision=precision, stats=stats, channels=channels)
+            # a trial frame: checked against the NumPy backend's render of it, both timed
+            got, took = self._timed(second.render, **ckw)
+            out, numpy_took = self._timed(
+                self.first.render, **kw, precision=precision, stats=stats, channels=channels
+            )
             self.engine = "numpy"
             differ = _differing(got, out)
             if differ:
@@ -304,14 +306,14 @@ class TieredCpuProgram:
                 self.stay = f"differs: {differ} pixels of a trial frame"
                 self._keep(verdict=self.stay)
             else:
-                self._judge(rate)
+                self._judge(took / pixels, numpy_took / pixels)
             return out
         later = self.later
         self.engine = "numpy"
         if later is not None and not why and getattr(later, "fast", None) is not None:
             # lockstep is ready: this frame on both engines (the check), then a new trial
             out = self.first.render(**kw, precision=precision, stats=stats, channels=channels)
-            self.later, self.trial = None, []
+            self.later, self.trial, self.numpy_trial = None, [], []
             differ = _differing(later.render(**ckw), out)
             if differ:
                 self.stay = f"differs: {differ} pixels of the lockstep check frame"
@@ -319,15 +321,14 @@ class TieredCpuProgram:
             else:
                 self.second = later
             return out
-        t0 = time.perf_counter()
-        out = self.first.render(**kw, precision=precision, stats=stats, channels=channels)
+        out, took = self._timed(
+            self.first.render, **kw, precision=precision, stats=stats, channels=channels
+        )
         if why:
             return out
         with self._lock:
-            took = time.perf_counter() - t0
             self.spent += took
             self.pixels += pixels
-            self.rates = [*self.rates[-(RATE_FRAMES - 1) :], took / pixels]
             if later is not None and (
                 later.stay
                 or later.over_budget()
@@ -352,22 +353,30 @@ class TieredCpuProgram:
                 return out
             # a daemon: a process that ends first drops the move (and stops the compile's child
             # process: engine.build_apart); the check frame is this one
-            self.numpy_rate = sorted(self.rates)[len(self.rates) // 2]
             self._mover = threading.Thread(
                 target=self._move, args=(ckw, out.copy()), name="glslcheck-tier", daemon=True
             )
             self._mover.start()
         return out
 
-    def _judge(self, rate: float) -> None:
-        """Time one of the compiled program's first frames; after TRIAL_FRAMES, keep it only
-        when its median is faster than the NumPy frames before the move."""
+    def _timed(self, render: Any, **kw: Any) -> tuple[np.ndarray, float]:
+        """One frame of either engine's `render` and its wall seconds (the rule's one clock)."""
+        t0 = time.perf_counter()
+        out = render(**kw)
+        return out, time.perf_counter() - t0
+
+    def _judge(self, rate: float, numpy_rate: float) -> None:
+        """Count one trial frame (seconds per pixel of the compiled program's render and of the
+        NumPy backend's); after TRIAL_FRAMES, keep the compiled program only when its median is
+        faster than the NumPy backend's."""
         from .compiled_engine.engine import TieredProgram
 
         self.trial.append(rate)
+        self.numpy_trial.append(numpy_rate)
         if len(self.trial) < TRIAL_FRAMES:
             return
         mine = sorted(self.trial)[len(self.trial) // 2]
+        self.numpy_rate = sorted(self.numpy_trial)[len(self.numpy_trial) // 2]
         pixel = isinstance(self.second, TieredProgram) and self.second.mode == "pixel"
         if pixel:  # (a hint for a later process's order of tiers, not a verdict: _move)
             self._keep(pixel="slower" if mine >= self.numpy_rate else "faster")

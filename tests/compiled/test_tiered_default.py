@@ -54,6 +54,21 @@ def eager(monkeypatch, tmp_path):
     monkeypatch.delenv("GLSLCHECK_TIERS", raising=False)
 
 
+@pytest.fixture
+def clock(monkeypatch):
+    """Frame timings set by the test, through the program's clock (TieredCpuProgram._timed):
+    every frame is rendered, and its seconds are the next of `clock[engine]` ("numpy" or
+    "compiled"; the last one repeats)."""
+    seconds = {"numpy": [0.1], "compiled": [0.1]}
+
+    def timed(self, render, **kw):
+        times = seconds["numpy" if getattr(render, "__self__", None) is self.first else "compiled"]
+        return render(**kw), times.pop(0) if len(times) > 1 else times[0]
+
+    monkeypatch.setattr(tiered.TieredCpuProgram, "_timed", timed)
+    return seconds
+
+
 def _frames(prog, times):
     return [prog.render(size=SIZE, time=t) for t in times]
 
@@ -123,15 +138,17 @@ def test_a_compiled_frame_that_differs_keeps_numpy(numba, make_shader, eager, mo
     assert _same(prog.render(size=SIZE, time=0.7), want)
 
 
-def test_a_slower_compiled_engine_hands_the_frames_back(numba, make_shader, eager, monkeypatch):
+def test_a_slower_compiled_engine_hands_the_frames_back(
+    numba, make_shader, eager, clock, monkeypatch
+):
     """A compiled program with no lockstep tier to try (a fixed mode) loses for good."""
     monkeypatch.setattr(tiered, "TRIAL_FRAMES", 2)
     monkeypatch.setenv("GLSLCHECK_COMPILED_LANES", "0")
+    clock["compiled"] = [1.0]  # (NumPy's frames 0.1 s)
     shader = make_shader(ANIMATED)
     prog = glslcheck.compile(shader)
     _frames(prog, [0.5])
     assert prog.impl.settle(300) and prog.impl.mode.startswith("compiled"), prog.impl.stay
-    prog.impl.numpy_rate = 0.0  # NumPy frames as fast as can be: no compiled frame is faster
     times = [0.6, 0.7, 0.8]
     got = _frames(prog, times)
     assert prog.impl.mode == "numpy" and prog.impl.stay.startswith("slower: ")
@@ -140,6 +157,35 @@ def test_a_slower_compiled_engine_hands_the_frames_back(numba, make_shader, eage
         times, got, _frames(glslcheck.compile(shader, backend="numpy"), times)
     ):
         assert _same(image, want), t
+
+
+@pytest.mark.parametrize("compiled, moves", [(0.2, False), (0.05, True)])
+def test_the_trial_times_both_engines_on_its_own_frames(
+    numba, make_shader, eager, clock, monkeypatch, compiled, moves
+):
+    """A process's first NumPy frame is slow (its start-up: worker processes, first calls) and
+    the move comes right after it: the compiled program keeps the frames only if it is faster
+    than the NumPy backend's renders of its trial frames, not than that first frame."""
+    monkeypatch.setattr(tiered, "TRIAL_FRAMES", 3)
+    monkeypatch.setenv("GLSLCHECK_COMPILED_LANES", "0")
+    clock["numpy"] = [1.0, 0.1]
+    clock["compiled"] = [compiled]
+    shader = make_shader(ANIMATED)
+    prog = glslcheck.compile(shader)
+    _frames(prog, [0.5])  # the slow frame; the move starts beside it
+    assert prog.impl.settle(300) and prog.impl.mode.startswith("compiled"), prog.impl.stay
+    times = [0.6, 0.7, 0.8, 0.9]  # three trial frames, then one on the engine that won
+    got = _frames(prog, times)
+    if moves:
+        assert prog.impl.mode.startswith("compiled") and prog.impl.stay is None
+        assert prog.engine.startswith("compiled")
+    else:
+        assert prog.impl.mode == "numpy" and prog.impl.stay.startswith("slower: ")
+        assert prog.engine == "numpy"
+    assert prog.impl.numpy_rate == 0.1 / (SIZE[0] * SIZE[1])  # the trial frames', not the first
+    want = _frames(glslcheck.compile(shader, backend="numpy"), times)
+    for t, image, w in zip(times, got, want):
+        assert _same(image, w), t
 
 
 @pytest.mark.parametrize(
@@ -289,7 +335,7 @@ def test_a_lockstep_compile_over_the_budget_is_not_built(numba, make_shader, mon
 
 
 def test_a_slower_per_pixel_program_is_tried_again_in_lockstep(
-    numba, make_shader, eager, monkeypatch
+    numba, make_shader, eager, clock, monkeypatch
 ):
     """Per pixel slower than NumPy: NumPy frames until they pay for lockstep, which is then made
     and tried; faster, it keeps the frames, with NumPy's bits."""
@@ -304,13 +350,13 @@ def test_a_slower_per_pixel_program_is_tried_again_in_lockstep(
     prog = glslcheck.compile(shader)
     _frames(prog, [0.5])
     assert prog.impl.settle(300) and prog.impl.mode == "compiled pixel", prog.impl.stay
-    prog.impl.numpy_rate = 0.0  # per pixel loses the trial
+    clock["compiled"] = [1.0]  # per pixel loses the trial (NumPy's frames 0.1 s)
     _frames(prog, [0.6])
     assert prog.impl.mode == "numpy" and prog.impl.later is not None and prog.impl.stay is None
     monkeypatch.setattr(engine.TieredProgram, "move_cost", lambda self: 0.0)  # lockstep paid
     _frames(prog, [0.7])
     assert prog.impl.later.settle(300) and prog.impl.later.mode == "lanes8"
-    prog.impl.numpy_rate = 1.0  # lockstep wins its trial
+    clock["compiled"] = [0.01]  # lockstep wins its trial
     times = [0.8, 0.9, 1.0]
     got = _frames(prog, times)
     assert prog.impl.mode == "compiled lanes8" and prog.impl.stay is None
