@@ -444,11 +444,11 @@ class CompiledProgram:
         self.cold = not _cached(cache, self.key)
         if self.cold:  # numba's SSA passes, the same IR in time linear in the names they fix,
             # its operator typing once per argument types, its liveness on bit sets
-            from . import numba_liveness, numba_ssa, numba_typing
+            from . import numba_analysis, numba_ssa, numba_typing
 
             numba_ssa.install()
             numba_typing.install()
-            numba_liveness.install()
+            numba_analysis.install()
         slp = config.SLP_VECTORIZE
         if getattr(
             mod, "LANES", 0

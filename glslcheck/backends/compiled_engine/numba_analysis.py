@@ -1,4 +1,6 @@
-"""numba's variable liveness (`analysis.compute_live_map`) on bit sets, with the same sets out.
+"""numba's analyses of a function's IR that it recomputes after its rewrites, with the same
+results in less time: variable liveness (`analysis.compute_live_map`) on bit sets, and the
+definition of every used name in each scope (`ir_utils.fixup_var_define_in_scope`) once per scope.
 
 numba recomputes the liveness of a whole function after each pass that may have rewritten its
 IR (`PostProcessor`, a few hundred times for a large module). Its `compute_live_map` runs two
@@ -6,14 +8,18 @@ fix points over Python sets of names: the names defined or used in every block t
 block (`def_reach`), then the names live at each block's entry. A lockstep function has W names
 for every per-pixel scalar and hundreds of blocks, so every union copies sets of thousands of
 names: blocks x names per sweep, most of the time of numba's liveness on the largest modules.
-
 `compute_live_map` here is the same two fix points in the same block order, each set a Python
 int with one bit per name (a union is an OR of machine words). Both are least fix points of
 monotone updates from the same start, so they are the same sets whatever the order of the
-updates; the result is converted back to numba's sets of names (tests/compiled/
-test_numba_liveness.py compares it with numba's on lockstep modules).
+updates; the result is converted back to numba's sets of names.
 
-`install()` puts it in place of numba's (once; only for the numba versions it was checked
+numba's `fixup_var_define_in_scope` checks every used name against the scope of every block:
+blocks x names, though the blocks of a function share one scope (or a few). Here each scope is
+checked once, in the order of its first block: numba's later visits of the same scope find every
+name defined and change nothing.
+
+tests/compiled/test_numba_analysis.py compares both with numba's on lockstep modules.
+`install()` puts them in place of numba's (once; only for the numba versions they were checked
 against: `CHECKED`).
 """
 
@@ -25,7 +31,7 @@ from typing import Any
 
 import numpy as np
 
-CHECKED = ("0.68.",)  # the numba versions whose analysis.compute_live_map this mirrors
+CHECKED = ("0.68.",)  # the numba versions whose functions these mirror
 _STATE: dict[str, Any] = {}
 _LOCK = threading.Lock()
 
@@ -94,9 +100,29 @@ def compute_live_map(cfg: Any, blocks: dict, var_use_map: dict, var_def_map: dic
     return {offset: bits.names_of(v) for offset, v in live_map.items()}
 
 
+def fixup_var_define_in_scope(blocks: dict) -> None:
+    """Define every name the blocks use in each of their scopes (numba's
+    fixup_var_define_in_scope, each scope once)."""
+    used_var = {}
+    for blk in blocks.values():
+        for inst in blk.body:
+            for var in inst.list_vars():
+                used_var[var] = inst
+    seen: set[int] = set()
+    for blk in blocks.values():
+        scope = blk.scope
+        if id(scope) in seen:
+            continue
+        seen.add(id(scope))
+        localvars = scope.localvars
+        for var in used_var:
+            if var.name not in localvars:
+                localvars.define(var.name, var)
+
+
 def install() -> bool:
-    """Put compute_live_map in the place of numba's (once); False when this numba is not one it
-    was checked against (numba's own then runs)."""
+    """Put both in the place of numba's (once); False when this numba is not one they were
+    checked against (numba's own then run)."""
     with _LOCK:
         if "installed" not in _STATE:
             _STATE["installed"] = _install()
@@ -105,19 +131,28 @@ def install() -> bool:
 
 def _install() -> bool:
     from numba import __version__
-    from numba.core import analysis, ir_utils
+    from numba.core import analysis, ir_utils, untyped_passes
 
-    if not __version__.startswith(CHECKED) or not hasattr(analysis, "compute_live_map"):
+    names = (
+        (analysis, "compute_live_map", compute_live_map),
+        (ir_utils, "fixup_var_define_in_scope", fixup_var_define_in_scope),
+    )
+    if not __version__.startswith(CHECKED) or not all(hasattr(m, n) for m, n, _ in names):
         return False
-    _STATE["numba"] = analysis.compute_live_map
-    analysis.compute_live_map = compute_live_map  # (postproc.VariableLifetime looks it up here)
-    if getattr(ir_utils, "compute_live_map", None) is _STATE["numba"]:
-        ir_utils.compute_live_map = compute_live_map  # (its own import of the name)
+    # numba's modules that call them by a name of their own (`from ... import`), and the
+    # modules that own them (postproc.VariableLifetime calls analysis.compute_live_map)
+    users = (analysis, ir_utils, untyped_passes)
+    for home, name, mine in names:
+        _STATE[name] = numba_own = getattr(home, name)
+        for m in users:
+            if getattr(m, name, None) is numba_own:
+                setattr(m, name, mine)
     return True
 
 
-def numba_compute_live_map() -> Any:
-    """numba's own analysis.compute_live_map (the reference this is checked against)."""
-    from numba.core import analysis
+def numba_own(name: str) -> Any:
+    """numba's own `compute_live_map` or `fixup_var_define_in_scope` (the references these are
+    checked against)."""
+    from numba.core import analysis, ir_utils
 
-    return _STATE.get("numba", analysis.compute_live_map)
+    return _STATE.get(name, getattr(analysis if name == "compute_live_map" else ir_utils, name))

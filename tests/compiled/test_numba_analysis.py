@@ -1,7 +1,8 @@
-"""numba_liveness's live map against numba's own compute_live_map: the same sets of names at each
-block's entry, on the functions of lockstep modules (the construct shaders, whose divergent loops,
-breaks and returns make loops and joins in numba's control flow graph, and lab shaders), as numba's
-frontend writes them and after its SSA pass (phi nodes, renamed versions)."""
+"""numba_analysis against numba's own functions on the functions of lockstep modules (the construct
+shaders, whose divergent loops, breaks and returns make loops and joins in numba's control flow
+graph, and lab shaders): the same sets of names live at each block's entry (compute_live_map), as
+numba's frontend writes the IR and after its SSA pass (phi nodes, renamed versions), and the same
+names defined in each scope (fixup_var_define_in_scope)."""
 
 from __future__ import annotations
 
@@ -14,16 +15,16 @@ from test_numba_ssa import _functions
 
 
 def _check(source: str) -> int:
-    """Both live maps of every function of the module, before and after SSA: the blocks with
-    names live at their entry."""
+    """Both live maps and both scope fix-ups of every function of the module, before and after
+    SSA: the blocks with names live at their entry."""
     from numba.core import analysis, ssa
     from numba.core.compiler import run_frontend
 
-    from glslcheck.backends.compiled_engine import numba_liveness
+    from glslcheck.backends.compiled_engine import numba_analysis
 
-    if not numba_liveness.install():
-        pytest.skip(f"numba_liveness is not installed on numba other than {numba_liveness.CHECKED}")
-    ref = numba_liveness.numba_compute_live_map()
+    if not numba_analysis.install():
+        pytest.skip(f"numba_analysis is not installed on numba other than {numba_analysis.CHECKED}")
+    ref = numba_analysis.numba_own("compute_live_map")
     live = 0
     for fn in _functions(source):
         frontend = run_frontend(fn).blocks
@@ -31,11 +32,34 @@ def _check(source: str) -> int:
             cfg = analysis.compute_cfg_from_blocks(blocks)
             usedefs = analysis.compute_use_defs(blocks)
             want = ref(cfg, blocks, usedefs.usemap, usedefs.defmap)
-            got = numba_liveness.compute_live_map(cfg, blocks, usedefs.usemap, usedefs.defmap)
+            got = numba_analysis.compute_live_map(cfg, blocks, usedefs.usemap, usedefs.defmap)
             assert list(got) == list(want), fn.__name__
             assert got == want, fn.__name__
             live += sum(bool(v) for v in want.values())
+            _check_scopes(blocks)
     return live
+
+
+def _check_scopes(blocks: dict) -> None:
+    """numba's and numba_analysis's fixup_var_define_in_scope on copies of blocks whose second half
+    has a scope of its own, empty: the same names, in the same order, in every scope."""
+    from numba.core import ir
+
+    from glslcheck.backends.compiled_engine import numba_analysis
+
+    ref = numba_analysis.numba_own("fixup_var_define_in_scope")
+    out = []
+    for fixup in (ref, numba_analysis.fixup_var_define_in_scope):
+        copied = copy.deepcopy(blocks)
+        first = next(iter(copied.values()))
+        own = ir.Scope(parent=first.scope.parent, loc=first.loc)
+        for blk in list(copied.values())[len(copied) // 2 :]:
+            blk.scope = own
+        fixup(copied)
+        scopes = {id(b.scope): b.scope for b in copied.values()}.values()
+        out.append([list(s.localvars._con) for s in scopes])
+    assert out[0] == out[1]
+    assert len(blocks) < 2 or out[0][-1]  # (the empty scope received the names used)
 
 
 @pytest.mark.parametrize("name", sorted(CONSTRUCTS))
@@ -60,7 +84,7 @@ def test_loop_and_unreachable_block(numba):
     from numba.core import analysis, ir
     from numba.core.compiler import run_frontend
 
-    from glslcheck.backends.compiled_engine import numba_liveness
+    from glslcheck.backends.compiled_engine import numba_analysis
 
     def f(n):
         s = 0.0
@@ -80,12 +104,12 @@ def test_loop_and_unreachable_block(numba):
     dead.append(ir.Assign(scope.get_exact("t"), scope.get_exact("s"), loc))
     dead.append(ir.Jump(min(blocks), loc))
     blocks[max(blocks) + 100] = dead
-    if not numba_liveness.install():
-        pytest.skip(f"numba_liveness is not installed on numba other than {numba_liveness.CHECKED}")
-    ref = numba_liveness.numba_compute_live_map()
+    if not numba_analysis.install():
+        pytest.skip(f"numba_analysis is not installed on numba other than {numba_analysis.CHECKED}")
+    ref = numba_analysis.numba_own("compute_live_map")
     cfg = analysis.compute_cfg_from_blocks(blocks)
     usedefs = analysis.compute_use_defs(blocks)
     want = ref(cfg, blocks, usedefs.usemap, usedefs.defmap)
-    got = numba_liveness.compute_live_map(cfg, blocks, usedefs.usemap, usedefs.defmap)
+    got = numba_analysis.compute_live_map(cfg, blocks, usedefs.usemap, usedefs.defmap)
     assert got == want and list(got) == list(want)
     assert any("s" in v and "t" in v for v in want.values())  # carried around the loop
