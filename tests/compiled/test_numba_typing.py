@@ -106,3 +106,42 @@ def test_other_functions_are_numba_s(numba):
         wrapped(le, ctx, (types.float32, types.float32), {})
     assert len(calls) == 3  # (the operator resolved once)
     assert BaseFunction.get_call_type is not own
+
+
+def test_intrinsics_same_signatures_as_numba(numba):
+    """An intrinsic's typing (lanes_rt.lsel, lzero) is numba's, resolved once per argument types;
+    an argument type it refuses is numba's error each time."""
+    from numba.core import registry, types
+    from numba.core.types.functions import BaseFunction
+
+    from glslcheck.backends.compiled_engine import lanes_rt, numba_typing
+
+    if not numba_typing.install():
+        pytest.skip(f"numba_typing is not installed on numba other than {numba_typing.CHECKED}")
+    ctx = registry.cpu_target.typing_context
+    ctx.refresh()
+    own = numba_typing.numba_get_call_type()
+    ts = _types()
+    cases = [(lanes_rt.lsel, (c, a, b)) for c in ts for a in ts for b in ts]
+    cases += [(lanes_rt.lzero, (a,)) for a in ts]
+    resolved = 0
+    for fn, args in cases:
+        fnty = ctx.resolve_value_type(fn)
+        want = _resolve(own, fnty, ctx, args)
+        for _ in range(2):  # the first use, then the remembered one
+            got = _resolve(BaseFunction.get_call_type, fnty, ctx, args)
+            assert got == want, (fn, args)
+        resolved += isinstance(want, tuple)
+    assert 0 < resolved < len(cases)  # (lsel refuses a condition that is not a bool)
+    calls = []
+
+    def counting(self, context, args, kws):
+        calls.append(args)
+        return own(self, context, args, kws)
+
+    wrapped = numba_typing._memoized(counting)
+    fnty = ctx.resolve_value_type(lanes_rt.lsel)
+    args = (types.boolean, types.float32, types.float32)
+    for _ in range(3):
+        assert wrapped(fnty, ctx, args, {}) == own(fnty, ctx, args, {})
+    assert len(calls) == 1

@@ -1,5 +1,5 @@
-"""numba's typing of an operator (`a + b`, `a <= b`, `-a`) once per argument types per process,
-not once per use.
+"""numba's typing of an operator (`a + b`, `a <= b`, `-a`) or an intrinsic (lanes_rt.lsel) once
+per argument types per process, not once per use.
 
 numba resolves each use of an operator afresh: type inference asks the operator's function type
 for a signature (`BaseFunction.get_call_type`), which tries numba's templates for that operator
@@ -10,8 +10,11 @@ handful. `install()` remembers each successful resolution by (function type, typ
 argument types, keywords, the compile's flags): the same signature object numba computed the
 first time, and the template's implementation key it recorded then (numba's types are interned,
 so an equal function type is the same object and keeps it). Failures are not remembered (numba
-tries other routes and raises its own errors). Only operators: what their templates answer
-depends on those alone.
+tries other routes and raises its own errors). Only operators, and functions whose templates
+are all intrinsics' (`@intrinsic`: lsel, W times per per-pixel select; the template answers from
+its own cache keyed by the context and the argument types, but first asks the target for its
+registry of implementations, which refreshes the target's registries on every use): what their
+templates answer depends on those alone.
 """
 
 from __future__ import annotations
@@ -30,8 +33,20 @@ OPERATORS = frozenset(
 
 def _memoized(numba_get_call_type: Any) -> Any:
     from numba.core import targetconfig
+    from numba.core.typing.templates import _IntrinsicTemplate as _Intrinsic
 
     memo: dict = {}
+    by_types: dict = {}  # function type -> whether its resolutions are remembered
+
+    def remembered(self: Any) -> bool:
+        known = by_types.get(self)
+        if known is None:
+            ts = getattr(self, "templates", ())
+            intrinsics = bool(ts) and all(
+                isinstance(t, type) and issubclass(t, _Intrinsic) for t in ts
+            )
+            known = by_types[self] = self.typing_key in OPERATORS or intrinsics
+        return known
 
     def get_call_type(self: Any, context: Any, args: Any, kws: Any) -> Any:
         try:  # (an unhashable key or argument: numba's own resolution)
@@ -39,14 +54,15 @@ def _memoized(numba_get_call_type: Any) -> Any:
             # its implementation for them (numba's own cache of those is keyed so)
             flags = targetconfig.ConfigStack.top_or_none()
             key = (self, context, tuple(args), tuple(sorted(kws.items())), flags)
-            sig = memo.get(key) if self.typing_key in OPERATORS else None
+            mine = remembered(self)
+            sig = memo.get(key) if mine else None
             hit = sig is not None and sig.args in self._impl_keys
         except TypeError:
-            key, hit = None, False
+            key, mine, hit = None, False, False
         if hit:
             return sig
         sig = numba_get_call_type(self, context, args, kws)
-        if sig is not None and key is not None and self.typing_key in OPERATORS:
+        if sig is not None and key is not None and mine:
             memo[key] = sig
         return sig
 
