@@ -30,11 +30,13 @@ if TYPE_CHECKING:
 
 def scaled_smoothstep(tr: FoldEmitter, e: A.Binary, mask: str | None) -> Any:
     """The code of ``e`` = ``#k * smoothstep(..)`` (either order) in Mesa's order, else None."""
-    if e.op != "*" or not _product_used_once(tr, e):
+    if e.op != "*":
         return None
     for call, k in ((e.right, e.left), (e.left, e.right)):
-        if not is_constant(tr, k) or is_constant(tr, call):
+        if not is_constant(tr, k) or is_constant(tr, call) or not _smoothstep_value(tr, call):
             continue
+        if not _product_used_once(tr, e):
+            return None
         found = _smoothstep_once(tr, call)
         if found is None:
             continue
@@ -48,6 +50,14 @@ def scaled_smoothstep(tr: FoldEmitter, e: A.Binary, mask: str | None) -> Any:
         written = tr.binary_values("*", tr.type_of(e.left), tr.type_of(e.right), *pair)
         return tr.llvmpipe(tr.runtime("smoothstep_scaled", e0, e1, x, kk), written)
     return None
+
+
+def _smoothstep_value(tr: FoldEngine, node: Any) -> bool:
+    """``node`` is a smoothstep call or a local it initialises (the cheap test, made first)."""
+    if isinstance(node, A.Identifier):
+        sym = tr.model.symbol_of(node)
+        node = sym.node.init if sym is not None and isinstance(sym.node, A.Declarator) else None
+    return isinstance(node, A.Call) and node.callee == "smoothstep"
 
 
 def _smoothstep_once(tr: FoldEngine, node: Any) -> A.Call | None:
