@@ -839,7 +839,7 @@ UNDEFINED_ENTRIES = {
     "out-parameter-unwritten": "an out parameter a path returns without writing",
     "uninitialized-local": "a local declared without an initializer",
     "uninitialized-global": "a global declared without an initializer, on entry to main",
-    "division-by-zero": "an integer division by zero",
+    "division-by-zero": "an integer division, or a float one by a constant, by zero",
     "shift-out-of-range": "a shift out of range",
     "conversion-out-of-range": "a conversion out of range",
     "domain": "a built-in outside its domain",

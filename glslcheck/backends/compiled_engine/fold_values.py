@@ -164,7 +164,17 @@ class FoldValues(FoldContext):
         if name in ("exp", "exp2", "log2"):  # (nir_fold.exp_log: the lowered forms)
             (x,) = args
             return _computed(Val(x.t, [componentwise_text(cg, name, p) for p in x.parts]), x, x)
+        if name == "smoothstep_scaled":  # (nir_fold.smoothstep_products)
+            return _smoothstep_scaled(cg, *args)
         raise ValueError(f"no Runtime operation {name!r} here")
+
+
+def _smoothstep_scaled(cg: Any, e0: Val, e1: Val, x: Val, k: Val) -> Val:
+    """Runtime.smoothstep_scaled per component (scalar edges and constants broadcast)."""
+    n = len(x.parts)
+    e0s, e1s, ks = ([v.parts[i if len(v.parts) > 1 else 0] for i in range(n)] for v in (e0, e1, k))
+    parts = [f"smoothstep_scaled({a}, {b}, {c}, {d})" for a, b, c, d in zip(e0s, e1s, x.parts, ks)]
+    return Val(x.t, parts)
 
 
 def _computed(v: Val, left: Val, right: Val) -> Val:

@@ -112,6 +112,14 @@ def smoothstep(e0, e1, x):
 
 
 @njit
+def smoothstep_scaled(e0, e1, x, k):
+    """k * smoothstep(e0, e1, x) in Mesa's order, (t*k) * (t*(3-2t)) (Runtime.smoothstep_scaled);
+    k is a constant with no zero component (nir_fold.smoothstep_products)."""
+    t = clamp(F32(F32(x - e0) / F32(e1 - e0)), _ZERO, _ONE)
+    return F32(F32(t * k) * F32(t * F32(_THREE - F32(_TWO * t))))
+
+
+@njit
 def inversesqrt(x):
     return F32(_ONE / np.sqrt(x))
 

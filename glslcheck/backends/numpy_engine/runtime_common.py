@@ -163,6 +163,13 @@ class CommonFunctions(RuntimeState):
         t = self.clamp((x - e0) / (e1 - e0), self._0, self._1)
         return t * (t * (self._3 - self._2 * t))
 
+    def smoothstep_scaled(self, e0: Any, e1: Any, x: Any, k: np.ndarray) -> np.ndarray:
+        """``k * smoothstep(e0, e1, x)`` with the constant k sunk into Mesa's product:
+        ``(t*k) * (t*(3-2t))`` (nir_fold.smoothstep_products; k has no zero component)."""
+        e0, e1, x = self._f(e0), self._f(e1), self._f(x)
+        t = self.clamp((x - e0) / (e1 - e0), self._0, self._1)
+        return (t * k) * (t * (self._3 - self._2 * t))
+
     @staticmethod
     def isnan(x: np.ndarray) -> np.ndarray:
         return np.isnan(x)

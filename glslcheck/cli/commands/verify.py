@@ -431,7 +431,7 @@ UNDEFINED_KINDS = {
     "out-parameter-unwritten": "an out parameter a path leaves unwritten",
     "uninitialized-local": "a local read before it is assigned",
     "uninitialized-global": "a global read before it is assigned",
-    "division-by-zero": "integer division by zero",
+    "division-by-zero": "division by zero (integer, or float by a constant)",
     "shift-out-of-range": "a shift out of range",
     "conversion-out-of-range": "a conversion out of range",
     "domain": "a built-in outside its domain",

@@ -23,7 +23,8 @@ Kinds (`UndefinedRead.kind`):
   desktop GL does not). The read may be in a callee: the analysis follows the calls (a function
   that assigns the global on every path to its return counts as assigning it). `origin` is the
   global's declarator: a backend gives it its value at the entry point's start.
-* "division-by-zero": an integer `/` or `%` (or `/=`, `%=`) by a constant zero (spec 5.9).
+* "division-by-zero": an integer `/` or `%` (or `/=`, `%=`) by a constant zero (spec 5.9), or a
+  float value that is not a constant divided by a constant zero (see `_float_division`).
 * "shift-out-of-range": `<<` or `>>` by a constant below 0 or of 32 or more (spec 5.9).
 * "conversion-out-of-range": `int(x)`/`uint(x)` of a constant float outside the type's range,
   or a negative float to `uint` (spec 5.4.1).
@@ -649,6 +650,8 @@ def _binary(model: Model, n: Any, op: str, right: Any) -> UndefinedRead | None:
     value = model.const_value(right)
     if value is None:
         return None
+    if op == "/" and model.type_of(n).base == "float":
+        return _float_division(model, n, value)
     scalars = [x for x in _components(value) if isinstance(x, int) and not isinstance(x, bool)]
     if op in ("/", "%"):
         if model.type_of(n).base not in ("int", "uint") or 0 not in scalars:
@@ -671,6 +674,29 @@ def _binary(model: Model, n: Any, op: str, right: Any) -> UndefinedRead | None:
         f"a shift by {bad[0]}: undefined for a count below 0 or of {SHIFT_BITS} or more "
         "(GLSL ES 3.00 5.9); drivers differ (most take the count modulo 32)",
         f"shift by a count in 0..{SHIFT_BITS - 1}",
+        n,
+        n,
+    )
+
+
+def _float_division(model: Model, n: Any, divisor: Any) -> UndefinedRead | None:
+    """A float value that is not a constant divided by a constant with a zero component. GLSL
+    ES 3.00 does not require infinities (4.5.1), and Mesa folds the constant's reciprocal at
+    compile time: llvmpipe then gives arbitrary bits (measured: 0, 1.0, NaN or a subnormal,
+    changing with the rest of the shader), where a zero known only at run time gives IEEE's
+    +-Inf. Two constants divide at compile time (``1.0 / 0.0`` is Inf): not reported."""
+    numerator = n.target if isinstance(n, A.Assignment) else n.left
+    if model.const_value(numerator) is not None:
+        return None
+    if not any(isinstance(x, float) and x == 0.0 for x in _components(divisor)):
+        return None
+    return UndefinedRead(
+        "division-by-zero",
+        (n.value if isinstance(n, A.Assignment) else n.right).loc,
+        "float division by a constant zero: GLSL ES 3.00 does not require infinities (4.5.1) "
+        "and drivers differ (llvmpipe folds the division at compile time into arbitrary "
+        "values, not +-Inf)",
+        "divide by a value that cannot be zero, or write the infinity you want (1e30)",
         n,
         n,
     )

@@ -9,8 +9,8 @@ opaque values once inlined (queries.inlined_calls_only, inlined_results.py), the
 for any value; for a matrix operand, only constants merged into the matrix (ssa_values.py); for
 a sum, factoring (factoring.py) then the ffma split (ffma_split.py); then a log scaled by a
 constant (exp_log.py), constants merged (loop_copies.py, constant_merge.py, components.py,
-compound_products.py) or sunk (sink.py); last, a product by a constant kept through a variable
-assigned again (ssa_values.py).
+compound_products.py) or sunk (smoothstep_products.py, sink.py); last, a product by a constant
+kept through a variable assigned again (ssa_values.py).
 
 :func:`copied_binary` is the same order for an engine that computes some families only (the
 compiled engine: compiled_engine/fold_values.COPIED, the families built from
@@ -30,6 +30,7 @@ from .lower_precision import LOWP_OPS, lowp_tree
 from .queries import inlined_calls_only
 from .returned_sums import sink_into_call
 from .sink import sink_constant
+from .smoothstep_products import scaled_smoothstep
 from .ssa_values import keep_factor, merge_into_matrix
 
 TYPE_CHECKING = False  # not typing's: importing typing costs every start-up
@@ -75,7 +76,9 @@ def binary(tr: TranspilerState, e: A.Binary, mask: str | None) -> str | None:
         folded = sunk_through_compound(tr, e, mask)
     if folded is not None:
         return folded
-    folded = sink_constant(tr, e, mask)
+    folded = scaled_smoothstep(tr, e, mask)
+    if folded is None:
+        folded = sink_constant(tr, e, mask)
     return folded if folded is not None else keep_factor(tr, e, mask)
 
 
@@ -110,7 +113,11 @@ def copied_binary(tr: FoldEmitter, e: A.Binary, mask: str | None, copied: frozen
         folded = sunk_through_compound(tr, e, mask)
     if folded is not None:
         return folded
-    folded = sink_constant(tr, e, mask) if "sink" in copied else None
+    folded = None
+    if "sink" in copied:
+        folded = scaled_smoothstep(tr, e, mask)
+        if folded is None:
+            folded = sink_constant(tr, e, mask)
     if folded is None and "ssa_values" in copied:
         folded = keep_factor(tr, e, mask)
     return folded
