@@ -498,11 +498,6 @@ def test_path_tracers_bit_for_bit(numba, name):
     "text, what",
     [
         (
-            "void mainImage(out vec4 c, in vec2 f) {"
-            " c = textureGrad(iChannel0, vec3(f, 1.0), vec3(1.0), vec3(0.0)); }",
-            "textureGrad(): 'samplerCube' lookups",
-        ),
-        (
             "void mainImage(out vec4 c, in vec2 f) { c = vec4(float(packHalf2x16(f))); }",
             "packHalf2x16",
         ),
