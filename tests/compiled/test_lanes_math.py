@@ -65,6 +65,7 @@ SPECS = {
     "mod": ("ff", "f", False),
     "step": ("ff", "f", False),
     "smoothstep": ("fff", "f", False),
+    "smoothstep_scaled": ("ffff", "f", False),
     "inversesqrt": ("f", "f", False),
     "ishl": ("ii", "i", False),
     "ishr": ("ii", "i", False),

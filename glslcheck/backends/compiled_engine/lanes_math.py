@@ -505,6 +505,7 @@ AS_IS = (
     "mod",
     "step",
     "smoothstep",
+    "smoothstep_scaled",
     "inversesqrt",
     "ishl",
     "ishr",
