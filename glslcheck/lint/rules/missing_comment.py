@@ -75,10 +75,11 @@ A run is a certain deduction, except where the readings of the rubric part (a po
   function's comment above would cover as a comment above a group (whether a function's
   comment reaches into its body is a reading);
 - the first statements of an `if`'s body that has comment lines of its own, under a comment
-  right above the `if` (not one whose group the `if` is further down in): that comment speaks
-  for the condition (`// if the discriminant is positive, the ray hits`), the body's comments
-  for the rest; whether it reaches the body's first statements is a reading, and the group it
-  started ends with the block;
+  right above the `if` (not one whose group the `if` is further down in) or trailing its
+  header (`else if (x < 0.75) // the middle band`): that comment speaks for the condition
+  (`// if the discriminant is positive, the ray hits`), the body's comments for the rest;
+  whether it reaches the body's first statements is a reading, and the group it started ends
+  with the block;
 - a function signature with no comment above whose body opens with a comment saying what the
   function does;
 - a definition with no comment at all right under another (blank lines between, nothing else),
@@ -177,7 +178,7 @@ HELP = "add a comment above saying why these lines are there"
 HEADING = "only a section heading explains it, parted from it by a blank line"
 BODY_ONLY = "the function's first body comment says what it does, none stands above it"
 REACH = "whether the function's comment above reaches into a body that has comments of its own"
-IF_REACH = "whether the comment above the `if` reaches into a body that has comments of its own"
+IF_REACH = "whether the `if`'s comment, above or beside it, reaches a body with comments of its own"
 LONG_BODY = "only the function's comment above explains its body, which is more than a few lines"
 ADJACENT = "one of several uncommented definitions in a row, which a TA may deduct once"
 
@@ -585,14 +586,14 @@ class _Reader:
                 self.cover = None
             elif (
                 self.cover is not None
-                and not self.own_header
+                and (self.own_header or self.last_comment == self.header_line - 1)
                 and _IF_RE.match(head.lstrip())
-                and self.last_comment == self.header_line - 1
                 and self.body_has_comments(rest)
             ):
-                # a comment right above an `if` whose body has comments of its own speaks for
-                # the condition: whether it reaches the body's first statements is a reading, as
-                # for a function's comment (the group it started ends with the block)
+                # a comment right above an `if`, or trailing its header, whose body has comments
+                # of its own speaks for the condition: whether it reaches the body's first
+                # statements is a reading, as for a function's comment (the group it started
+                # ends with the block)
                 self.reach, self.reach_reading = self.cover.left, IF_REACH
                 self.cover = None
             self.blocks.extend([what] * opened)
