@@ -24,7 +24,8 @@ Coverage, what a comment explains:
   based off the ray hitting the sphere` above `float t = ...;`) speaks of what it names: its
   group ends at a statement that mentions none of its words nor a variable the group's
   statements set (`float w = ...;` right after: a run of its own). A declaration with no value
-  sets nothing and stays in the group, and `a`, `it` or `to` in a sentence name no variable.
+  sets nothing and stays in the group, `a`, `it` or `to` in a sentence name no variable, and
+  a vector's components go together (`// x and y away from zero` names `z = z | k;` too).
 - A trailing comment covers its statement (`x = 1.0; // why`, on any of its lines), and on a
   signature, a loop/`if` header or an `else`, the block it opens as a comment above would. A
   trailing comment too long for its line, continued on the line below and indented well past
@@ -324,6 +325,7 @@ _SETS_RE = compiled(
     r"(?:\[[^\]]*\])?(?:\.\w+)*\s*[-+*/]?=(?!=)"
 )
 _WORD_RE = compiled(r"[A-Za-z_]\w*")
+_AXES = (frozenset("xyzw"), frozenset("rgba"))  # variables named as a vector's components
 # words of a sentence that may also name a variable (`// a ramp` above `float a = ...;`)
 _FUNCTION_WORDS = frozenset("a an and as at by is it of on or to".split())
 _BRACES_RE = compiled(r"\{+|\}+")
@@ -543,7 +545,11 @@ class _Reader:
         if not cover.shapes:  # the group's first statement
             named = target and target.group(1) not in _FUNCTION_WORDS
             if named and re.search(rf"(?<![\w.]){re.escape(target.group(1))}\b", cover.text):
-                cover.names = frozenset((*_WORD_RE.findall(cover.text), target.group(1)))
+                names = {*_WORD_RE.findall(cover.text), target.group(1)}
+                for axes in _AXES:  # `x` and `y` named: `z = z | k;` is one of them
+                    if names & axes:
+                        names |= axes
+                cover.names = frozenset(names)
             return True
         if not cover.names or shape in cover.shapes[-2:]:
             return True  # a comment that names nothing, or a line repeated but for its numbers
