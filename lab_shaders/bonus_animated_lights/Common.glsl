@@ -100,7 +100,7 @@ float traceScene(in sRay ray, out vec3 position, out vec3 normal, out vec3 albed
     // |p - c| is the radius on the surface, so dividing by it replaces normalize(); on the
     // background the mix substitutes a unit normal so later lighting math stays finite
     normal = mix(vec3(0.0, 0.0, 1.0), (position - best.center) / best.radius, hit);
-    albedo = best.albedo;
+    albedo = best.albedo; // the nearest sphere's own colour, which the lighting shades
     return hit;
 }
 

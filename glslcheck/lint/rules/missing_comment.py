@@ -20,7 +20,12 @@ Coverage, what a comment explains:
   or a loop goes on into its body, and its `else`'s, a blank line before the `else` or not
   (one right above an `if` whose body has comment lines of its own: below). A comment
   heading a list of declarations (`// Variables for the camera`) explains the whole list, up
-  to the blank line.
+  to the blank line. A comment that names the variable its first statement sets (`//Variable t
+  based off the ray hitting the sphere` above `float t = ...;`) speaks of what it names: its
+  group ends at a statement that mentions none of its words nor a variable the group's
+  statements set (`float w = ...;` right after: a run of its own). A declaration with no value
+  sets nothing and stays in the group, `a`, `it` or `to` in a sentence name no variable, and
+  a vector's components go together (`// x and y away from zero` names `z = z | k;` too).
 - A trailing comment covers its statement (`x = 1.0; // why`, on any of its lines), and on a
   signature, a loop/`if` header or an `else`, the block it opens as a comment above would. A
   trailing comment too long for its line, continued on the line below and indented well past
@@ -75,10 +80,11 @@ A run is a certain deduction, except where the readings of the rubric part (a po
   function's comment above would cover as a comment above a group (whether a function's
   comment reaches into its body is a reading);
 - the first statements of an `if`'s body that has comment lines of its own, under a comment
-  right above the `if` (not one whose group the `if` is further down in): that comment speaks
-  for the condition (`// if the discriminant is positive, the ray hits`), the body's comments
-  for the rest; whether it reaches the body's first statements is a reading, and the group it
-  started ends with the block;
+  right above the `if` (not one whose group the `if` is further down in) or trailing its
+  header (`else if (x < 0.75) // the middle band`): that comment speaks for the condition
+  (`// if the discriminant is positive, the ray hits`), the body's comments for the rest;
+  whether it reaches the body's first statements is a reading, and the group it started ends
+  with the block;
 - a function signature with no comment above whose body opens with a comment saying what the
   function does;
 - a definition with no comment at all right under another (blank lines between, nothing else),
@@ -177,7 +183,7 @@ HELP = "add a comment above saying why these lines are there"
 HEADING = "only a section heading explains it, parted from it by a blank line"
 BODY_ONLY = "the function's first body comment says what it does, none stands above it"
 REACH = "whether the function's comment above reaches into a body that has comments of its own"
-IF_REACH = "whether the comment above the `if` reaches into a body that has comments of its own"
+IF_REACH = "whether the `if`'s comment, above or beside it, reaches a body with comments of its own"
 LONG_BODY = "only the function's comment above explains its body, which is more than a few lines"
 ADJACENT = "one of several uncommented definitions in a row, which a TA may deduct once"
 
@@ -298,6 +304,9 @@ class _Cover:
     left: int
     text: str = ""  # the comment's words (a definition's name in them: it documents it)
     shapes: tuple = ()  # the statements read under it, their numbers masked (_SHAPE_RE)
+    # when it names the variable its first statement sets (`//Variable t ...` above `float t =
+    # ...;`): its words and the variables its statements set, what it speaks of (speaks_of)
+    names: frozenset = frozenset()
 
 
 # numbers, in literals and in names (`light2`, with a component after it: `temp2y`), and a
@@ -310,6 +319,15 @@ _HEADER_RE = compiled(r"^\}?\s*(?:if|for|while|else\s+if|switch)\s*\(")  # a con
 _IF_RE = compiled(r"^\}?\s*(?:else\s+)?if\s*\(")
 _ELSE_RE = compiled(r"^\}?\s*else\b")
 _STRUCT_RE = compiled(r"^struct\b")
+# the variable a statement sets: `float t = ...;`, `uv.x *= ...;`, `const vec3 c[2] = ...;`
+_SETS_RE = compiled(
+    r"^(?:const\s+)?(?:(?:high|medium|low)p\s+)?(?:[A-Za-z_]\w*\s+)?([A-Za-z_]\w*)"
+    r"(?:\[[^\]]*\])?(?:\.\w+)*\s*[-+*/]?=(?!=)"
+)
+_WORD_RE = compiled(r"[A-Za-z_]\w*")
+_AXES = (frozenset("xyzw"), frozenset("rgba"))  # variables named as a vector's components
+# words of a sentence that may also name a variable (`// a ramp` above `float a = ...;`)
+_FUNCTION_WORDS = frozenset("a an and as at by is it of on or to".split())
 _BRACES_RE = compiled(r"\{+|\}+")
 
 
@@ -476,6 +494,9 @@ class _Reader:
         cover = self.cover
         covered = cover is not None and cover.left > 0
         own = self.own_comment(lines)
+        if covered and not (in_struct or header or own) and not self.speaks_of(text, shape):
+            self.cover = cover = None  # the comment's group ends: it does not speak of this
+            covered = False
         if covered and not (in_struct or header or own):
             # a statement its own comment explains uses up none of the group above's few lines
             assert cover is not None  # covered: a cover with lines left
@@ -510,6 +531,33 @@ class _Reader:
         else:
             self.settle_deferred(False)
             self.add_to_run(lines, signature=header and not _STRUCT_RE.match(text))
+
+    def speaks_of(self, text: str, shape: str) -> bool:
+        """Whether the group comment above a statement speaks of it. A comment that names the
+        variable its first statement sets (`//Variable t based off the ray` above `float t =
+        ...;`) speaks of what it names: a later statement of its group that mentions none of its
+        words nor a variable its group's statements set (`float w = ...;`) is not its."""
+        cover = self.cover
+        assert cover is not None  # covered
+        if "=" not in text:
+            return True  # a declaration with no value, a call: it sets nothing the comment names
+        target = _SETS_RE.match(text)
+        if not cover.shapes:  # the group's first statement
+            named = target and target.group(1) not in _FUNCTION_WORDS
+            if named and re.search(rf"(?<![\w.]){re.escape(target.group(1))}\b", cover.text):
+                names = {*_WORD_RE.findall(cover.text), target.group(1)}
+                for axes in _AXES:  # `x` and `y` named: `z = z | k;` is one of them
+                    if names & axes:
+                        names |= axes
+                cover.names = frozenset(names)
+            return True
+        if not cover.names or shape in cover.shapes[-2:]:
+            return True  # a comment that names nothing, or a line repeated but for its numbers
+        if cover.names.isdisjoint(_WORD_RE.findall(text)):
+            return False
+        if target:
+            cover.names |= {target.group(1)}
+        return True
 
     def braces(self, line: str) -> None:
         """Follow the blocks a line closes and opens, in the order written (`} else {`,
@@ -585,14 +633,14 @@ class _Reader:
                 self.cover = None
             elif (
                 self.cover is not None
-                and not self.own_header
+                and (self.own_header or self.last_comment == self.header_line - 1)
                 and _IF_RE.match(head.lstrip())
-                and self.last_comment == self.header_line - 1
                 and self.body_has_comments(rest)
             ):
-                # a comment right above an `if` whose body has comments of its own speaks for
-                # the condition: whether it reaches the body's first statements is a reading, as
-                # for a function's comment (the group it started ends with the block)
+                # a comment right above an `if`, or trailing its header, whose body has comments
+                # of its own speaks for the condition: whether it reaches the body's first
+                # statements is a reading, as for a function's comment (the group it started
+                # ends with the block)
                 self.reach, self.reach_reading = self.cover.left, IF_REACH
                 self.cover = None
             self.blocks.extend([what] * opened)
