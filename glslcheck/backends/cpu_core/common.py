@@ -31,6 +31,9 @@ TEXTURE_FUNCTIONS = (
 CUBE_FUNCTIONS = ("texture", "textureLod", "textureGrad", "textureSize")
 # Lookups whose mipmap level comes from derivatives (2x2 quads): their regions are never compacted.
 IMPLICIT_LOD = ("texture", "textureProj", "textureOffset", "textureProjOffset")
+# The built-ins whose Runtime method (numpy_engine/runtime.py) bears another name: theirs is a
+# Python built-in or keyword. call_fold names a folded call's operation by it.
+RUNTIME_NAMES = {"min": "min_", "max": "max_", "not": "not_vec"}
 
 
 def comment_safe(text: str, limit: int = 100) -> str:

@@ -27,7 +27,6 @@ _LOCAL_REF = re.compile(r"(?<![.\w\"'])(v_\w+|_[a-z]+\d*)\b")
 _ASSIGNED = re.compile(
     r"^(?!(?:if|elif|while|return) )([^=]*?)\s*[-+*/]?=(?!=)"
 )  # a stripped statement's targets
-_RUNTIME_NAMES = {"min": "min_", "max": "max_", "not": "not_vec"}
 _FLOAT_OPERATORS = (
     "+",
     "-",

@@ -13,7 +13,7 @@ from ....frontend import syntax as A
 from ....semantics.analysis import origins
 from ...cpu_core.common import comment_safe
 from ...cpu_core.facts import Facts, SideEffects
-from ..fold_state import FoldState
+from ...cpu_core.fold_state import FoldState
 from .common import LOOP_CAP, SMALL_STATE, UNDEFINED_MODES, _error, check_program
 from .expressions import Expressions
 from .functions import Functions

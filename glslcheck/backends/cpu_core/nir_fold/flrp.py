@@ -10,13 +10,13 @@ one-pixel probe run picks what the render picks; the rest of the choice is made 
 
 from __future__ import annotations
 
-from .....frontend import syntax as A
-from .....frontend.printer import to_glsl
+from ....frontend import syntax as A
+from ....frontend.printer import to_glsl
 from .queries import constant_value, current_function, is_builtin
 
 TYPE_CHECKING = False  # not typing's: importing typing costs every start-up
 if TYPE_CHECKING:
-    from ..state import FoldEngine
+    from ..fold_protocols import FoldEngine
 
 
 def mix_hint(tr: FoldEngine, call: A.Call) -> list[str]:

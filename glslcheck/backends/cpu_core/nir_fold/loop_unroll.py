@@ -31,13 +31,13 @@ from __future__ import annotations
 
 from typing import Any
 
-from .....frontend import syntax as A
-from .....semantics.model import Symbol
-from ....cpu_core.facts import induction_variable
+from ....frontend import syntax as A
+from ....semantics.model import Symbol
+from ..facts import induction_variable
 
 TYPE_CHECKING = False  # not typing's: importing typing costs every start-up
 if TYPE_CHECKING:
-    from ..state import FoldEngine
+    from ..fold_protocols import FoldEngine
 
 MAX_ITERATIONS = 32  # llvmpipe's max_unroll_iterations
 UNROLL_LIMIT = 26  # nir_opt_loop_unroll.c LOOP_UNROLL_LIMIT

@@ -12,8 +12,8 @@ from __future__ import annotations
 
 from typing import Any
 
-from .....frontend import syntax as A
-from .....semantics.model import Symbol
+from ....frontend import syntax as A
+from ....semantics.model import Symbol
 from .queries import (
     SUMS,
     FunctionStandin,
@@ -29,7 +29,7 @@ from .sink import known_term
 
 TYPE_CHECKING = False  # not typing's: importing typing costs every start-up
 if TYPE_CHECKING:
-    from ..state import FoldEngine, TranspilerState
+    from ..fold_protocols import FoldEngine, LineWriter
 
 
 def sunk_return(tr: FoldEngine, fn: Symbol) -> list[tuple[Any, Any, str]] | None:
@@ -167,7 +167,7 @@ def sunk_call(tr: FoldEngine, e: A.Binary) -> tuple[A.Call, Any, bool] | None:
     return call, k, e.op == "-"
 
 
-def sink_into_call(tr: TranspilerState, e: A.Binary, mask: str | None) -> str | None:
+def sink_into_call(tr: LineWriter, e: A.Binary, mask: str | None) -> str | None:
     """``f(...) +- #c`` of a :func:`sunk_call`: the call, passed the constant in llvmpipe mode
     (the callee adds it where NIR sinks it), else None."""
     sunk = sunk_call(tr, e)
@@ -181,7 +181,7 @@ def sink_into_call(tr: TranspilerState, e: A.Binary, mask: str | None) -> str | 
     return f"({result} if rt.lp else ({result} {e.op} {tk}))"
 
 
-def return_constant_args(tr: TranspilerState, call: A.Call, fn: Symbol) -> list[str]:
+def return_constant_args(tr: LineWriter, call: A.Call, fn: Symbol) -> list[str]:
     """The extra argument of a call of a function with a :func:`sunk_return`: the constant the
     caller adds (:func:`sink._sink_sum`, llvmpipe mode) or None; [] for other functions."""
     if sunk_return(tr, fn) is None:
@@ -189,7 +189,7 @@ def return_constant_args(tr: TranspilerState, call: A.Call, fn: Symbol) -> list[
     return [tr.fold_state.call_k.get(id(call), "None")]
 
 
-def keep_term(tr: TranspilerState, node: Any, code: str) -> str:
+def keep_term(tr: LineWriter, node: Any, code: str) -> str:
     """The code of a term of a :func:`sunk_return` sum, kept in a temporary; other values as
     they are. ``node``: the assignment or declarator that writes it."""
     if tr.fn is None or isinstance(tr.fn, FunctionStandin):
@@ -202,7 +202,7 @@ def keep_term(tr: TranspilerState, node: Any, code: str) -> str:
     return t
 
 
-def sunk_return_value(tr: TranspilerState, ret: A.Return, code: str | None) -> str | None:
+def sunk_return_value(tr: LineWriter, ret: A.Return, code: str | None) -> str | None:
     """The returned value of a function with a :func:`sunk_return`: ``code`` when the caller
     adds nothing (``_k`` None), else the sum with the constant sunk as NIR sinks it."""
     chain = sunk_return(tr, current_function(tr).sym) if tr.fn is not None else None

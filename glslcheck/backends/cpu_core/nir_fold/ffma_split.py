@@ -4,12 +4,12 @@ llvmpipe fuses ``p1 + p2`` into an ffma (nir_opt_algebraic_late, fuse_ffma32), m
 addend, ``ffma(a, b, ffma(c, d, e))``, and splits each ffma again (lower_ffma32), so the sum
 is reassociated where the written code kept it apart: gargantua's ``raypos = eyepos +
 eyevec*dither*far/200`` after RotateCamera, measured in 576 of 576 pixels. Copied where the
-sum comes out of a call folded per call site (transpile/call_fold.py) and is read once;
+sum comes out of a call folded per call site (cpu_core/call_fold.py) and is read once;
 inside one written expression, ``(a*b + c*d) + e``, measured the same but not copied."""
 
 from __future__ import annotations
 
-from .....frontend import syntax as A
+from ....frontend import syntax as A
 from ..call_fold import product_sums
 from .queries import call_write, current_function, function_facts
 
@@ -17,12 +17,12 @@ TYPE_CHECKING = False  # not typing's: importing typing costs every start-up
 if TYPE_CHECKING:
     from typing import Any
 
-    from ..state import FoldEngine, TranspilerState
+    from ..fold_protocols import FoldEngine, LineWriter
 
 
 def fused_plan(tr: FoldEngine, e: A.Binary) -> tuple[Any, Any, list] | None:
     """``x + e`` where x's value, written by a call folded per call site
-    (transpile/call_fold.py), is ``p1 + p2`` in a component, two products, and this is x's
+    (cpu_core/call_fold.py), is ``p1 + p2`` in a component, two products, and this is x's
     only read: (x, e, per component of x the codes of (p1, p2) or None), else None."""
     if e.op != "+":
         return None
@@ -56,7 +56,7 @@ def fused_plan(tr: FoldEngine, e: A.Binary) -> tuple[Any, Any, list] | None:
     return None
 
 
-def fused_after_call(tr: TranspilerState, e: A.Binary, mask: str | None) -> str | None:
+def fused_after_call(tr: LineWriter, e: A.Binary, mask: str | None) -> str | None:
     """``(p1 + e) + p2`` for ``x + e`` of a :func:`fused_plan`, else None. llvmpipe fuses
     ``p1 + p2`` into ``ffma(p2's factors, p1)`` (nir_opt_algebraic_late, fuse_ffma32),
     ``ffma(a, b, fmul(c, d)) + e`` becomes ``ffma(a, b, ffma(c, d, e))``, and lower_ffma32

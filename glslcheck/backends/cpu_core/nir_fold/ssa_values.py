@@ -11,7 +11,7 @@ from __future__ import annotations
 
 from typing import Any
 
-from .....frontend import syntax as A
+from ....frontend import syntax as A
 from .loop_copies import merged_value, nonzero_constant
 from .queries import (
     current_function,
@@ -27,7 +27,7 @@ from .queries import (
 
 TYPE_CHECKING = False  # not typing's: importing typing costs every start-up
 if TYPE_CHECKING:
-    from ..state import FoldEmitter, FoldEngine
+    from ..fold_protocols import FoldEmitter, FoldEngine
 
 
 def keep_factor(tr: FoldEmitter, e: A.Binary, mask: str | None) -> Any:

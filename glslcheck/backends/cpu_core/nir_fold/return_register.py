@@ -10,14 +10,14 @@ from __future__ import annotations
 
 from typing import Any
 
-from .....frontend import syntax as A
+from ....frontend import syntax as A
 from .loop_unroll import nir_unrolls
 from .queries import current_function
 
 TYPE_CHECKING = False  # not typing's: importing typing costs every start-up
 if TYPE_CHECKING:
-    from .....semantics.model import Symbol
-    from ..state import FoldEngine
+    from ....semantics.model import Symbol
+    from ..fold_protocols import FoldEngine
 
 
 def register_call(tr: FoldEngine, call: A.Call, fn: Symbol) -> bool:
@@ -62,7 +62,7 @@ def _returns_in_branch(tr: FoldEngine, fn: Symbol) -> bool:
 def _in_kept_loop(tr: FoldEngine, sym: Symbol, node: Any, depth: int) -> bool:
     """``node`` (in function ``sym``) runs again and again in one invocation: its innermost
     loop, here or around every call of the function, is one NIR does not unroll."""
-    from .....semantics.analysis.dataflow import FunctionFacts
+    from ....semantics.analysis.dataflow import FunctionFacts
 
     if depth > 8:
         return False

@@ -13,10 +13,10 @@ from __future__ import annotations
 
 from typing import Any
 
-from .....frontend import syntax as A
-from .....frontend.printer import to_glsl
-from .....language.glsl_types import FLOAT
-from .....semantics.analysis import param_directions
+from ....frontend import syntax as A
+from ....frontend.printer import to_glsl
+from ....language.glsl_types import FLOAT
+from ....semantics.analysis import param_directions
 from .compound_products import kept_product
 from .queries import (
     FunctionStandin,
@@ -29,8 +29,8 @@ from .queries import (
 
 TYPE_CHECKING = False  # not typing's: importing typing costs every start-up
 if TYPE_CHECKING:
-    from .....semantics.model import Symbol
-    from ..state import FoldEmitter, FoldEngine
+    from ....semantics.model import Symbol
+    from ..fold_protocols import FoldEmitter, FoldEngine
 
 
 def component_write(tr: FoldEmitter, node: Any, mask: str | None, old: Any = None) -> Any:

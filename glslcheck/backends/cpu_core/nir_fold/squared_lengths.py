@@ -12,7 +12,7 @@ from __future__ import annotations
 
 from typing import Any
 
-from .....frontend import syntax as A
+from ....frontend import syntax as A
 from .queries import (
     asked_in,
     constant_value,
@@ -25,7 +25,7 @@ from .queries import (
 
 TYPE_CHECKING = False  # not typing's: importing typing costs every start-up
 if TYPE_CHECKING:
-    from ..state import FoldEngine
+    from ..fold_protocols import FoldEngine
 
 
 def squared_length(tr: FoldEngine, node: Any) -> Any:

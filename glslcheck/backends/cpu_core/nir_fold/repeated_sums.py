@@ -30,9 +30,9 @@ from typing import Any
 
 import numpy as np
 
-from .....frontend import syntax as A
-from .....semantics.analysis.dataflow import FunctionFacts, written_variable
-from .....semantics.model import Symbol
+from ....frontend import syntax as A
+from ....semantics.analysis.dataflow import FunctionFacts, written_variable
+from ....semantics.model import Symbol
 from .loop_copies import later_values, merging_loop
 from .loop_unroll import nir_unrolls, trip_count
 from .queries import (
@@ -48,7 +48,7 @@ from .sum_order import Loop, Step, chain_constants
 
 TYPE_CHECKING = False  # not typing's: importing typing costs every start-up
 if TYPE_CHECKING:
-    from ..state import FoldEngine, TranspilerState
+    from ..fold_protocols import FoldEngine, LineWriter
 
 
 class Entry:
@@ -628,7 +628,7 @@ def slot_code(tr: FoldEngine, own: tuple) -> str:
 
 
 # -- the NumPy backend's code ------------------------------------------------------------------
-def repeated_sum(tr: TranspilerState, e: A.Assignment, mask: str | None, old: str) -> str | None:
+def repeated_sum(tr: LineWriter, e: A.Assignment, mask: str | None, old: str) -> str | None:
     """The code of the new value of a step of a chain: ``base + K`` in llvmpipe mode (K
     :func:`chain_plan`'s), the written ``old + c`` otherwise; None for any other write. The
     first step of a chain keeps the value before it (`old`) in a temporary."""
@@ -650,7 +650,7 @@ def repeated_sum(tr: TranspilerState, e: A.Assignment, mask: str | None, old: st
     return f"(({base} + {k}) if rt.lp else {written})"
 
 
-def _base(tr: TranspilerState, entry: Entry | None, old: str | None) -> str | None:
+def _base(tr: LineWriter, entry: Entry | None, old: str | None) -> str | None:
     """The code of the value before the entry's chain: kept in a temporary at its first write
     (`old`: the value there), read in the same Python function after it."""
     if entry is None:
@@ -663,21 +663,19 @@ def _base(tr: TranspilerState, entry: Entry | None, old: str | None) -> str | No
     return known[0] if known is not None and known[1] is tr.lines else None
 
 
-def _vector(tr: TranspilerState, ks: list) -> str:
+def _vector(tr: LineWriter, ks: list) -> str:
     codes = [tr.const_float(float(k)) for k in ks]
     return codes[0] if len(codes) == 1 else tr.vector(codes)
 
 
-def _k_code(tr: TranspilerState, entry: Entry, codes: list[str]) -> str:
+def _k_code(tr: LineWriter, entry: Entry, codes: list[str]) -> str:
     """One code per copy: the copy's, indexed by the unrolled loop's pass when they differ."""
     if len(codes) == 1:
         return codes[0]
     return f"({', '.join(codes)})[{tr.fold_state.sum_index[id(entry.loop)]}]"
 
 
-def chain_call_args(
-    tr: TranspilerState, call: A.Call, fn: Symbol, args: dict[int, str]
-) -> list[str]:
+def chain_call_args(tr: LineWriter, call: A.Call, fn: Symbol, args: dict[int, str]) -> list[str]:
     """The chain arguments of a call of `fn`, two per :func:`chain_params` parameter, in
     order: the base and ``(K1, K2, ...)`` where the call continues or starts a chain of the
     caller (or passes on the caller's own chain parameter), None and None where it does not
@@ -701,13 +699,13 @@ def chain_call_args(
     return out
 
 
-def chain_param_names(tr: TranspilerState, fn: Symbol) -> list[str]:
+def chain_param_names(tr: LineWriter, fn: Symbol) -> list[str]:
     """The extra parameters of a function with :func:`chain_params`: the base and the
     constants of the caller's chain through each (:func:`chain_call_args`)."""
     return [f"_c{x}{i}" for i in sorted(chain_params(tr, fn)) for x in "bk"]
 
 
-def enter_unrolled(tr: TranspilerState, loop: Any) -> None:
+def enter_unrolled(tr: LineWriter, loop: Any) -> None:
     """Before an unrolled loop of the plan: the value before a chain that starts there, kept,
     the temporaries loop_copies.later_values names, and a count of its passes where its steps'
     constants (or a merge: loop_copies.merging_loop) differ from copy to copy."""
@@ -725,7 +723,7 @@ def enter_unrolled(tr: TranspilerState, loop: Any) -> None:
         tr.fold_state.sum_index[id(loop)] = name
 
 
-def end_of_unrolled_body(tr: TranspilerState, loop: Any) -> None:
+def end_of_unrolled_body(tr: LineWriter, loop: Any) -> None:
     """At the end of an unrolled loop's body: its pass count advanced (:func:`enter_unrolled`)."""
     name = tr.fold_state.sum_index.get(id(loop))
     if name is not None:

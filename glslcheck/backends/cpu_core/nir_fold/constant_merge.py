@@ -13,8 +13,8 @@ from __future__ import annotations
 
 from typing import Any
 
-from .....frontend import syntax as A
-from .....language.glsl_types import FLOAT
+from ....frontend import syntax as A
+from ....language.glsl_types import FLOAT
 from .dot_constants import broadcast_dot_parts
 from .queries import (
     SUMS,
@@ -29,7 +29,7 @@ from .ssa_values import product_parts
 
 TYPE_CHECKING = False  # not typing's: importing typing costs every start-up
 if TYPE_CHECKING:
-    from ..state import FoldEmitter
+    from ..fold_protocols import FoldEmitter
 
 
 def merge_constants(tr: FoldEmitter, e: A.Binary, mask: str | None) -> Any:

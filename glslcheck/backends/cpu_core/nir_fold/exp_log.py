@@ -16,14 +16,14 @@ from __future__ import annotations
 
 from typing import Any
 
-from .....frontend import syntax as A
-from .....language.glsl_types import FLOAT
+from ....frontend import syntax as A
+from ....language.glsl_types import FLOAT
 from .queries import is_builtin, is_constant, is_product, used_once
 from .ssa_values import product_parts
 
 TYPE_CHECKING = False  # not typing's: importing typing costs every start-up
 if TYPE_CHECKING:
-    from ..state import FoldEmitter
+    from ..fold_protocols import FoldEmitter
 
 LOG2E = 1.4426950408889634  # M_LOG2E: exp(x) = exp2(x * M_LOG2E)
 LN2 = 0.6931471805599453  # 1 / M_LOG2E: log(x) = log2(x) * (1 / M_LOG2E)

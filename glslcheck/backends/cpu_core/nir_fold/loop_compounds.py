@@ -8,14 +8,14 @@ from __future__ import annotations
 
 from typing import Any
 
-from .....frontend import syntax as A
+from ....frontend import syntax as A
 from .loop_copies import merged_copies
 from .queries import FunctionStandin
 from .repeated_sums import chain_plan, param_step, sum_entry
 
 TYPE_CHECKING = False  # not typing's: importing typing costs every start-up
 if TYPE_CHECKING:
-    from ..state import FoldEmitter, FoldEngine
+    from ..fold_protocols import FoldEmitter, FoldEngine
 
 
 def compound_copies(tr: FoldEmitter, e: A.Assignment, mask: str | None, old: Any) -> Any:

@@ -13,14 +13,14 @@ from __future__ import annotations
 
 from typing import Any
 
-from .....frontend import syntax as A
-from .....frontend.printer import to_glsl
+from ....frontend import syntax as A
+from ....frontend.printer import to_glsl
 from .queries import is_constant, is_opaque, is_product, stable_init
 from .ssa_values import product_parts
 
 TYPE_CHECKING = False  # not typing's: importing typing costs every start-up
 if TYPE_CHECKING:
-    from ..state import FoldEmitter, FoldEngine
+    from ..fold_protocols import FoldEmitter, FoldEngine
 
 
 class _Kept:

@@ -12,14 +12,14 @@ from __future__ import annotations
 
 from typing import Any
 
-from ....cpu_core.facts import Facts, SideEffects
-from ...fold_state import FoldState
+from ..facts import Facts, SideEffects
+from ..fold_state import FoldState
 
 TYPE_CHECKING = False  # not typing's: importing typing costs every start-up
 if TYPE_CHECKING:
     from typing import Self
 
-    from .....semantics.model import Model, Symbol
+    from ....semantics.model import Model, Symbol
 
 
 class EmittedFunction:

@@ -66,15 +66,15 @@ from typing import Any
 
 import numpy as np
 
-from ....frontend import syntax as A
-from ....language import builtin_functions as B
-from ....semantics.analysis import param_directions
-from ....semantics.model import Symbol
-from .common import _RUNTIME_NAMES
+from ...frontend import syntax as A
+from ...language import builtin_functions as B
+from ...semantics.analysis import param_directions
+from ...semantics.model import Symbol
+from .common import RUNTIME_NAMES
 
 TYPE_CHECKING = False  # not typing's: importing typing costs every start-up
 if TYPE_CHECKING:
-    from .state import FoldEmitter, FoldEngine, TranspilerState
+    from .fold_protocols import FoldEmitter, FoldEngine, LineWriter
 
 # built-ins computed component by component (the runtime's function of a scalar array)
 _COMPONENTWISE = (
@@ -333,7 +333,7 @@ class _Eval:
         if isinstance(target, B.Overload):
             if e.callee not in _COMPONENTWISE or len(args) != 1:
                 raise _Refuse
-            method = _RUNTIME_NAMES.get(e.callee, e.callee)
+            method = RUNTIME_NAMES.get(e.callee, e.callee)
             return [_T("call", (x,), const=x.const, code=method) for x in args[0]]
         if not e.constructor:
             raise _Refuse
@@ -584,7 +584,7 @@ def _written_components(tr: FoldEmitter, n: Any, sym: Symbol, call: A.Call) -> A
     return ()
 
 
-def folded_call(tr: TranspilerState, call: A.Call, fn: Symbol, mask: str | None) -> str | None:
+def folded_call(tr: LineWriter, call: A.Call, fn: Symbol, mask: str | None) -> str | None:
     """The code of the call `call` of user function `fn` with constants propagated as NIR does
     (module doc), emitted as ``if rt.lp: <folded> else: <the call as written>``; None where
     :func:`fold_plan` leaves the call as written."""
@@ -727,7 +727,7 @@ def _evaluate(
 
 
 def _emit_call(
-    tr: TranspilerState,
+    tr: LineWriter,
     call: A.Call,
     fn: Symbol,
     mask: str | None,

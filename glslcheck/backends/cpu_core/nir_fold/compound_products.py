@@ -10,9 +10,9 @@ from __future__ import annotations
 
 from typing import Any
 
-from .....frontend import syntax as A
-from .....frontend.printer import to_glsl
-from .....semantics.model import Symbol
+from ....frontend import syntax as A
+from ....frontend.printer import to_glsl
+from ....semantics.model import Symbol
 from .queries import (
     FunctionStandin,
     current_function,
@@ -24,7 +24,7 @@ from .queries import (
 
 TYPE_CHECKING = False  # not typing's: importing typing costs every start-up
 if TYPE_CHECKING:
-    from ..state import FoldEmitter, FoldEngine
+    from ..fold_protocols import FoldEmitter, FoldEngine
 
 
 def kept_product(tr: FoldEmitter, node: A.Assignment, mask: str | None, old: Any) -> Any:

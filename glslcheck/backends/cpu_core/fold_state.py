@@ -1,7 +1,7 @@
-"""The memo of the NumPy transpiler's Mesa rewrites (nir_fold, transpile/call_fold.py,
-transpile/inline.py, transpile/constant_flow.py): what they computed once about the program
-being transpiled, owned by its Transpiler (`Transpiler.fold_state`, one per transpile) and
-keyed by the ids of syntax nodes and symbols of that program."""
+"""The memo of the Mesa rewrites both CPU engines share (nir_fold, call_fold.py, inline.py,
+constant_flow.py): what they computed once about the program being translated, owned by the
+engine that asks them (the NumPy Transpiler's `fold_state`, or nir_fold's FoldContext; one per
+program) and keyed by the ids of syntax nodes and symbols of that program."""
 
 from __future__ import annotations
 
@@ -57,9 +57,9 @@ class FoldState:
     slot_ops: dict = field(default_factory=dict)  # value -> the op a later copy merges with
     sum_globals: list | None = None  # the globals the shader's functions read or write
     sum_global_writers: dict = field(default_factory=dict)  # (function, global) -> writes it
-    # transpile/constant_flow.py
+    # cpu_core/constant_flow.py
     constant_flow: Any = None  # the program's ConstantFlow, made on first use
-    # transpile/call_fold.py
+    # cpu_core/call_fold.py
     call_fold_off: bool = False  # emitting the written call inside a folded one
     call_fold_dots: dict = field(default_factory=dict)  # function -> whether its body calls dot
     call_fold_sums: dict = field(
@@ -68,6 +68,6 @@ class FoldState:
     call_fold_roots: dict = field(
         default_factory=dict
     )  # (call, symbol) -> root operations per component
-    # transpile/inline.py
+    # cpu_core/inline.py
     inline_frames: list = field(default_factory=list)  # the calls being inlined, innermost last
     inline_bodies: dict = field(default_factory=dict)  # function -> its inlinable body

@@ -28,14 +28,14 @@ from __future__ import annotations
 
 from typing import Any
 
-from ....frontend import syntax as A
-from ....semantics.analysis import param_directions, written_variable
-from ....semantics.model import Symbol
+from ...frontend import syntax as A
+from ...semantics.analysis import param_directions, written_variable
+from ...semantics.model import Symbol
 
 TYPE_CHECKING = False  # not typing's: importing typing costs every start-up
 if TYPE_CHECKING:
-    from ....semantics.model import Model
-    from .state import FoldEngine
+    from ...semantics.model import Model
+    from .fold_protocols import FoldEngine
 
 
 class ConstantFlow:

@@ -48,16 +48,17 @@ Mesa's order, float64 (the accuracy reference) and float16 keep the written one.
 other rewrites that reach across a call (NIR inlines every function: followed are an opaque
 result, inlined_results.py, a constant added to a returned ``+=`` chain,
 :func:`sunk_return`, products by constants merged into a ``dot`` through an argument,
-transpile/inline.py, and constants a call site passes in, folded and merged through the
+cpu_core/inline.py, and constants a call site passes in, folded and merged through the
 callee's arithmetic, matrix products included, for straight-line callees:
-transpile/call_fold.py, gargantua's camera rotation ``(cos(-0.45)*10) * sin(x)``),
+cpu_core/call_fold.py, gargantua's camera rotation ``(cos(-0.45)*10) * sin(x)``),
 and a squared length that is not followed by a constant sum (``sqrt(a)*sqrt(a)`` stays).
 
-Every function takes the transpiler (`tr`, typed as transpile/state.py's TranspilerState,
-which imports none of the transpiler's parts) and reads its model, facts, current function and
-`fold_state` (numpy_engine/fold_state.py, the rules' memo of the program); the compiled engine
-asks the two decisions it shares (and what they call) of a context.FoldContext instead: those
-take a state.FoldEngine, what both provide.
+Every function takes the engine that asks (`tr`), typed against cpu_core/fold_protocols.py: a
+FoldEngine for the decisions that emit nothing (the compiled engine asks them of a
+context.FoldContext), a FoldEmitter for the rewrites that build Mesa's order from the engine's
+operations (the NumPy transpiler, and the compiled engine's fold_values.py), a LineWriter for
+those that add statements of their own (the NumPy transpiler). Each reads the program's model,
+facts, current function and `fold_state` (cpu_core/fold_state.py, the rules' memo of the program).
 """
 
 from .added_zero import zero_add

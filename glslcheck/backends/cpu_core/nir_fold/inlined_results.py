@@ -25,13 +25,13 @@ from __future__ import annotations
 
 from typing import Any
 
-from .....frontend import syntax as A
-from .....semantics.analysis import param_directions
-from .....semantics.model import Symbol
+from ....frontend import syntax as A
+from ....semantics.analysis import param_directions
+from ....semantics.model import Symbol
 
 TYPE_CHECKING = False  # not typing's: importing typing costs every start-up
 if TYPE_CHECKING:
-    from ..state import FoldEngine
+    from ..fold_protocols import FoldEngine
 
 
 def called_function(tr: FoldEngine, call: Any) -> Symbol | None:

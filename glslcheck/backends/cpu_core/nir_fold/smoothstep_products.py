@@ -10,7 +10,7 @@ from __future__ import annotations
 
 from typing import Any
 
-from .....frontend import syntax as A
+from ....frontend import syntax as A
 from .queries import (
     constant_value,
     current_function,
@@ -25,7 +25,7 @@ from .queries import (
 
 TYPE_CHECKING = False  # not typing's: importing typing costs every start-up
 if TYPE_CHECKING:
-    from ..state import FoldEmitter, FoldEngine
+    from ..fold_protocols import FoldEmitter, FoldEngine
 
 
 def scaled_smoothstep(tr: FoldEmitter, e: A.Binary, mask: str | None) -> Any:

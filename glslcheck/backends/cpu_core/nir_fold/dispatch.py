@@ -14,11 +14,11 @@ kept through a variable assigned again (ssa_values.py).
 
 :func:`copied_binary` is the same order for an engine that computes some families only (the
 compiled engine: compiled_engine/fold_values.COPIED, the families built from
-state.FoldEmitter's operations)."""
+fold_protocols.FoldEmitter's operations)."""
 
 from __future__ import annotations
 
-from .....frontend import syntax as A
+from ....frontend import syntax as A
 from .components import merge_components
 from .compound_products import sunk_through_compound
 from .constant_merge import merge_constants
@@ -37,10 +37,10 @@ TYPE_CHECKING = False  # not typing's: importing typing costs every start-up
 if TYPE_CHECKING:
     from typing import Any
 
-    from ..state import FoldEmitter, TranspilerState
+    from ..fold_protocols import FoldEmitter, LineWriter
 
 
-def binary(tr: TranspilerState, e: A.Binary, mask: str | None) -> str | None:
+def binary(tr: LineWriter, e: A.Binary, mask: str | None) -> str | None:
     """The generated code of ``e`` when one of the package's rules rewrites it, else None."""
     low = lowp_tree(tr, e, mask) if e.op in LOWP_OPS else None
     if low is not None:

@@ -29,13 +29,13 @@ from __future__ import annotations
 
 from typing import Any
 
-from ....frontend import syntax as A
-from ....language import builtin_functions as B
-from ....semantics.model import Symbol
+from ...frontend import syntax as A
+from ...language import builtin_functions as B
+from ...semantics.model import Symbol
 
 TYPE_CHECKING = False  # not typing's: importing typing costs every start-up
 if TYPE_CHECKING:
-    from .state import FoldEmitter, FoldEngine
+    from .fold_protocols import FoldEmitter, FoldEngine
 
 
 def bound_argument(tr: FoldEngine, sym: Symbol) -> Any:
@@ -132,7 +132,7 @@ def worth_inlining(tr: FoldEngine, call: A.Call, fn: Symbol, constant_product: A
 def inline_call(tr: FoldEmitter, call: A.Call, fn: Symbol, mask: str | None) -> Any:
     """The callee's return expression at the call site, its parameters read as the arguments'
     values (each argument evaluated once, left to right, before the body as a call does)."""
-    from ...cpu_core.facts import is_plain_read
+    from .facts import is_plain_read
 
     params: dict[int, tuple[Any, Any]] = {}
     for p, arg in zip(fn.node.proto.params, call.args):

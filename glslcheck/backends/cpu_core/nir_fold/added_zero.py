@@ -3,18 +3,18 @@
 IEEE addition makes ``-0.0 + 0.0`` +0.0; NIR drops the addition and keeps the -0.0 (``1.0 / x``
 is then -inf). NIR applies it after inlining every
 function, so the zero may come through an argument or an out parameter (found by
-transpile/constant_flow.py); the runtime (`Runtime.fadd`) checks the value. The compiled engine
+cpu_core/constant_flow.py); the runtime (`Runtime.fadd`) checks the value. The compiled engine
 asks the same question (compiled_engine/expressions.py `zero_add`)."""
 
 from __future__ import annotations
 
-from .....frontend import syntax as A
+from ....frontend import syntax as A
 from ..constant_flow import constant_flow
 from .queries import SUMS
 
 TYPE_CHECKING = False  # not typing's: importing typing costs every start-up
 if TYPE_CHECKING:
-    from ..state import FoldEngine
+    from ..fold_protocols import FoldEngine
 
 
 def zero_add(tr: FoldEngine, e: A.Binary, left: str, right: str) -> str | None:
@@ -25,7 +25,7 @@ def zero_add(tr: FoldEngine, e: A.Binary, left: str, right: str) -> str | None:
     'a@32', 0.0) -> a``; llvmpipe lowers ``a - b`` to ``fadd(a, fneg(b))``), which keeps the
     sign of a -0.0 that IEEE addition would make +0.0. NIR applies it after inlining every
     function, so the zero may come through an argument or an out parameter, not only a
-    literal: `transpile.constant_flow` finds the operands that may be one, and the runtime
+    literal: `cpu_core.constant_flow` finds the operands that may be one, and the runtime
     (`Runtime.fadd`) checks the value they hold. Elsewhere, the common case, the operator
     stays a NumPy operator without a Python call."""
     if e.op not in SUMS or tr.fn is None:

@@ -21,9 +21,9 @@ from __future__ import annotations
 
 from typing import Any
 
-from .....frontend import syntax as A
-from .....semantics.model import Symbol
-from ....cpu_core.facts import induction_variable
+from ....frontend import syntax as A
+from ....semantics.model import Symbol
+from ..facts import induction_variable
 from .components import component_locals
 from .loop_unroll import nir_unrolls
 from .queries import (
@@ -39,7 +39,7 @@ from .queries import (
 
 TYPE_CHECKING = False  # not typing's: importing typing costs every start-up
 if TYPE_CHECKING:
-    from ..state import FoldEmitter, FoldEngine
+    from ..fold_protocols import FoldEmitter, FoldEngine
 
 _LEAVES = (A.Break, A.Continue, A.Return, A.Discard, A.For, A.While, A.DoWhile)
 

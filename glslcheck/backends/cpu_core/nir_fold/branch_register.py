@@ -38,16 +38,16 @@ from __future__ import annotations
 from dataclasses import dataclass
 from typing import Any
 
-from .....frontend import syntax as A
-from .....semantics.analysis import written_variable
-from .....semantics.model import Symbol
-from ....cpu_core.common import DERIVATIVES, IMPLICIT_LOD
+from ....frontend import syntax as A
+from ....semantics.analysis import written_variable
+from ....semantics.model import Symbol
+from ..common import DERIVATIVES, IMPLICIT_LOD
 from .loop_unroll import body_cost
 from .queries import current_function
 
 TYPE_CHECKING = False  # not typing's: importing typing costs every start-up
 if TYPE_CHECKING:
-    from ..state import FoldEngine
+    from ..fold_protocols import FoldEngine
 
 FLATTEN_LIMIT = 8  # st_nir_opts' nir_opt_peephole_select limit
 
@@ -151,7 +151,7 @@ def _scalar(t: Any) -> bool:
 
 
 def _facts(tr: FoldEngine, sym: Symbol) -> Any:
-    from .....semantics.analysis.dataflow import FunctionFacts
+    from ....semantics.analysis.dataflow import FunctionFacts
 
     cache = tr.fold_state.fn_facts
     if id(sym) not in cache:

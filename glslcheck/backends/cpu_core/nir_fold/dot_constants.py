@@ -3,7 +3,7 @@
 NIR lowers ``dot`` to component products summed right to left, then its reassociations merge
 constants into them: ``dot(x * #c, #K)`` is ``dot(x, K * c)``, tree by tree in the order GLSL
 IR and NIR fold them (:func:`merged_dot`), also through the parameter of a call inlined for it
-(transpile/inline.py: Mesa inlines every function before these passes, and asks
+(cpu_core/inline.py: Mesa inlines every function before these passes, and asks
 :func:`dot_operand` which calls to inline); ``dot(vecN(s), #K)`` is ``s * (K[0] + (K[1] +
 ...))`` by the factoring ``a*b + a*c -> a * (b + c)`` (:func:`broadcast_dot`: a hash's
 ``dot(vec2(index), vec2(12.9898, 78.233))``)."""
@@ -12,8 +12,8 @@ from __future__ import annotations
 
 from typing import Any
 
-from .....frontend import syntax as A
-from .....language.glsl_types import FLOAT
+from ....frontend import syntax as A
+from ....language.glsl_types import FLOAT
 from .queries import (
     constant_value,
     has_matrix,
@@ -26,7 +26,7 @@ from .queries import (
 
 TYPE_CHECKING = False  # not typing's: importing typing costs every start-up
 if TYPE_CHECKING:
-    from ..state import FoldEmitter, FoldEngine
+    from ..fold_protocols import FoldEmitter, FoldEngine
 
 
 def merged_dot(tr: FoldEmitter, call: A.Call, args: list[Any], mask: str | None) -> Any:
@@ -113,7 +113,7 @@ def broadcast_dot_parts(tr: FoldEngine, call: Any) -> tuple[Any, float] | None:
 def dot_operand(tr: FoldEngine, node: Any) -> bool:
     """``node`` is an operand the rules of a ``dot`` with a constant rewrite: a product by a
     constant (:func:`constant_product`, for :func:`merged_dot`) or ``vecN(s)`` (for
-    :func:`broadcast_dot`); transpile/inline.py inlines a call that passes one to such a dot."""
+    :func:`broadcast_dot`); cpu_core/inline.py inlines a call that passes one to such a dot."""
     return constant_product(tr, node) or tr.fn is not None and _broadcast(tr, node) is not None
 
 

@@ -16,14 +16,14 @@ from collections.abc import Iterator
 from contextlib import contextmanager
 from typing import Any
 
-from .....base.diagnostics import Location
-from .....frontend import syntax as A
-from .....language import builtin_functions as B
-from .....semantics.analysis import param_directions
-from .....semantics.model import Symbol
-from ....cpu_core.common import TEXTURE_FUNCTIONS, fold_tree
+from ....base.diagnostics import Location
+from ....frontend import syntax as A
+from ....language import builtin_functions as B
+from ....semantics.analysis import param_directions
+from ....semantics.model import Symbol
+from ..common import TEXTURE_FUNCTIONS, fold_tree
+from ..fold_protocols import FoldedFunction, FoldEngine
 from ..inline import bound_argument, inline_owner
-from ..state import FnState, FoldedFunction, FoldEngine
 from .inlined_results import returned_value
 
 SUMS = ("+", "-")
@@ -301,7 +301,7 @@ def is_fmul(tr: FoldEngine, node: Any) -> bool:
 
 def function_facts(tr: FoldEngine) -> Any:
     """analysis.dataflow's execution-order facts of the current function, made once."""
-    from .....semantics.analysis.dataflow import FunctionFacts
+    from ....semantics.analysis.dataflow import FunctionFacts
 
     cache = tr.fold_state.facts
     key = id(current_function(tr).sym)
@@ -366,7 +366,7 @@ def stable_init(tr: FoldEngine, ident: A.Identifier) -> Any:
     are all such locals, never-written parameters, uniforms or constants, with no side effect
     but calls :func:`inlined_calls_only` counts as values; else None."""
     sym = tr.model.symbol_of(ident)
-    bound = bound_argument(tr, sym)  # a parameter of an inlined call (transpile/inline.py)
+    bound = bound_argument(tr, sym)  # a parameter of an inlined call (cpu_core/inline.py)
     if bound is not None:
         return None if tr.has_effects(bound) else bound
     if (
@@ -423,11 +423,12 @@ def written_symbols(tr: FoldEngine) -> set[int]:
     return cache[key]
 
 
-class FunctionStandin(FnState):
-    """The transpiler's current function (`tr.fn`) as the rules read it, for another one."""
+class FunctionStandin:
+    """The engine's current function (`tr.fn`) as the rules read it, for another one."""
 
     def __init__(self, sym: Symbol) -> None:
-        super().__init__(sym, None, False)
+        self.sym = sym
+        self.is_entry = False
 
 
 @contextmanager

@@ -18,7 +18,7 @@ from __future__ import annotations
 
 from typing import Any
 
-from .....frontend import syntax as A
+from ....frontend import syntax as A
 from ..call_fold import out_roots
 from .factoring import factor_parts
 from .queries import (
@@ -42,7 +42,7 @@ from .squared_lengths import merged_argument, shared_dot, squared_length
 
 TYPE_CHECKING = False  # not typing's: importing typing costs every start-up
 if TYPE_CHECKING:
-    from ..state import FoldEmitter, FoldEngine
+    from ..fold_protocols import FoldEmitter, FoldEngine
 
 
 def sink_constant(tr: FoldEmitter, e: A.Binary, mask: str | None) -> Any:
@@ -152,7 +152,7 @@ def _normalized_once(tr: FoldEngine, node: Any) -> Any:
 def _settled(tr: FoldEmitter, node: Any) -> bool:
     """A variable whose value here is what a call of a user function wrote into it (an out or
     inout argument, nothing written since), where that value is, to NIR after inlining, a sum
-    or a built-in's result in every component (transpile/call_fold.out_roots: gargantua's
+    or a built-in's result in every component (cpu_core/call_fold.out_roots: gargantua's
     eyevec after RotateCamera): no algebraic rule looks into it as a factor."""
     w = call_write(tr, node)
     if w is None:

@@ -11,15 +11,15 @@ from __future__ import annotations
 
 from typing import Any, Protocol
 
-from .....frontend import syntax as A
-from ....cpu_core.common import TEXTURE_FUNCTIONS
+from ....frontend import syntax as A
+from ..common import TEXTURE_FUNCTIONS
 from .queries import constant_value, is_builtin
 
 TYPE_CHECKING = False  # not typing's: importing typing costs every start-up
 if TYPE_CHECKING:
     from collections.abc import Callable
 
-    from ..state import FoldEngine, TranspilerState
+    from ..fold_protocols import FoldEngine, LineWriter
 
 LOWP_OPS = ("+", "-", "*", "/")
 
@@ -51,7 +51,7 @@ def float16_lookup_args(tr: FoldEngine, e: A.Call) -> list[int]:
     return out
 
 
-def lowp_tree(tr: TranspilerState, e: A.Binary, mask: str | None) -> str | None:
+def lowp_tree(tr: LineWriter, e: A.Binary, mask: str | None) -> str | None:
     """``e`` computed in float16 where llvmpipe does, else None.
 
     Mesa's GLSL compiler lowers GLSL ES precision to float16 (glsl/lower_precision.cpp, on
@@ -232,7 +232,7 @@ class _NumpyFloat16:
     """The NumPy backend's float16 tree: leaves rounded by ``rt.half``, each operation a NumPy
     float16 operation (one rounding each), a value read twice named by ``:=``."""
 
-    def __init__(self, tr: TranspilerState, mask: str | None) -> None:
+    def __init__(self, tr: LineWriter, mask: str | None) -> None:
         self.tr, self.mask = tr, mask
 
     def leaf(self, node: Any) -> str:
