@@ -802,7 +802,6 @@ def test_float64_reference_is_the_same_without_these_rewrites(make_shader, monke
     """The rewrites and the inlining above are float32 (llvmpipe) only: the float64 render is
     bit for bit the one of the code generated without them."""
     from glslcheck.backends.cpu_core.nir_fold import dot_constants
-
     from glslcheck.backends.numpy_engine.transpile import functions
 
     shader = make_shader(text)

@@ -153,7 +153,6 @@ def test_nir_fold_shapes_are_equal_exactly_where_the_glsl_text_is():
     from pathlib import Path
 
     from glslcheck.backends.cpu_core.nir_fold.queries import node_shapes
-
     from glslcheck.frontend.parser import parse_shader
     from glslcheck.frontend.printer import to_glsl
     from glslcheck.shadertoy.sources import find_shaders

@@ -63,7 +63,7 @@ from ...base.diagnostics import Location
 from ...frontend import syntax as A
 from ...semantics.model import Constructor, Symbol
 from ..cpu_core import nir_fold
-from ..cpu_core.common import comment_safe
+from ..cpu_core.common import LOOP_CAP, comment_safe, python_ident
 from ..cpu_core.facts import Facts
 from ..cpu_core.uniformity import Uniformity
 from .expressions import ExpressionEmitter, FnState, nir_chain_params
@@ -249,8 +249,6 @@ class Codegen(ExpressionEmitter):
 
     # -- variables -----------------------------------------------------------------------------
     def declare_local(self, sym: Symbol, node: Any) -> list:
-        from ..numpy_engine.transpile.common import python_ident
-
         name = python_ident(sym.unique_name or sym.name, node)
         parts: list = []
         for k, (base, n) in enumerate(leaves(sym.type, node)):
@@ -480,8 +478,6 @@ class Codegen(ExpressionEmitter):
         return [a for a in STATE if a != "lc" or self.budget]
 
     def fn_name(self, sym: Symbol) -> str:
-        from ..numpy_engine.transpile.common import python_ident
-
         return "f_" + python_ident(sym.unique_name or sym.name, sym.node)
 
     def variant_name(self, sym: Symbol, seed: frozenset) -> str:
@@ -873,8 +869,6 @@ class Codegen(ExpressionEmitter):
         leaves (`tick_end`): every pass costs 1 when it ends, as in llvmpipe. Only in a module
         made with the budget (`budget`; engine.CompiledProgram.loop_limit makes it): the others
         neither count it nor pass `lc`."""
-        from ..numpy_engine.transpile.common import LOOP_CAP
-
         lid = len(self.loop_lines) + 1
         loc = s.loc
         self.loop_lines[lid] = (loc.path, loc.line, loc.column)

@@ -1,6 +1,6 @@
 """Texture lookups in the compiled engine: the ES 3.00 built-ins on a sampler2D, and texture,
 textureLod, textureGrad and textureSize on a samplerCube (a cube map channel), as calls of
-backends/numpy_engine/texture_kernels.py (the one-pixel form of the NumPy backend's
+backends/compiled_engine/texture_kernels.py (the one-pixel form of the NumPy backend's
 textures.py), and arithmetic on lowp lookups in float16 where the NumPy backend computes it so
 (nir_fold.lower_precision: llvmpipe's float16 lowering).
 
@@ -36,7 +36,7 @@ KERNELS = (
     "tex_sample, tex_lod, tex_fetch, tex_size, tex_lowp, half, tex_sample_cube, tex_lod_cube, "
     "lowp_const"
 )
-IMPORT = f"from glslcheck.backends.numpy_engine.texture_kernels import {KERNELS}  # noqa: F401"
+IMPORT = f"from glslcheck.backends.compiled_engine.texture_kernels import {KERNELS}  # noqa: F401"
 
 
 def channel_of(cg: Any, sampler: Any) -> int | None:

@@ -18,6 +18,7 @@ from ...cpu_core import nir_fold
 from ...cpu_core.common import (
     CUBE_FUNCTIONS,
     DERIVATIVES,
+    IDENT,
     IMPLICIT_LOD,
     RUNTIME_NAMES,
     TEXTURE_FUNCTIONS,
@@ -28,7 +29,6 @@ from ...cpu_core.inline import bound_code
 from .common import (
     _BIN_METHODS,
     _FLOAT_OPERATORS,
-    _IDENT,
     OUTLINE_EXPR_INDENT,
     SPILL_HEIGHT,
     _components,
@@ -565,7 +565,7 @@ class Expressions(TranspilerState):
         method = RUNTIME_NAMES.get(name, name)
         from ..runtime import Runtime
 
-        if not _IDENT.match(method) or not hasattr(Runtime, method):
+        if not IDENT.match(method) or not hasattr(Runtime, method):
             raise _error(f"the built-in {name}() is not supported by the NumPy backend", e)
         if name in DERIVATIVES:
             args.append("S.width")

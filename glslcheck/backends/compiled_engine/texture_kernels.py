@@ -1,14 +1,14 @@
 """Texture sampling for one pixel, as numba functions: the compiled engine's lookups.
 
-The same rules as textures.py (the NumPy backend's lookups over lanes, and the reference: what
-llvmpipe does, measured, docs/llvmpipe.md "Texture sampling"), written for one lane: every
-function here is the one-lane form of the function of the same name there, the same float32
-operations in the same order (the lerp through float64 as `_lerp` does), so both agree bit for
-bit (tests/compiled/test_texture_kernels.py runs both on every path). One difference: where a
-mipmap LOD lies exactly on a level, textures.py blends in the next level when some other lane of
-the same level has a fraction above 0 (lerp by 0, which changes nothing unless the two levels'
-texels differ by an infinity or a NaN); here each pixel decides for itself. Both split a LOD
-into a level and a fraction with `lod_split`'s rule.
+The same rules as numpy_engine/textures.py (the NumPy backend's lookups over lanes, and the
+reference: what llvmpipe does, measured, docs/llvmpipe.md "Texture sampling"), written for one
+lane: every function here is the one-lane form of the function of the same name there, the same
+float32 operations in the same order (the lerp through float64 as `_lerp` does), so both agree
+bit for bit (tests/compiled/test_texture_kernels.py runs both on every path). One difference:
+where a mipmap LOD lies exactly on a level, textures.py blends in the next level when some other
+lane of the same level has a fraction above 0 (lerp by 0, which changes nothing unless the two
+levels' texels differ by an infinity or a NaN); here each pixel decides for itself. Both split a
+LOD into a level and a fraction with `lod_split`'s rule.
 
 The texels of the bound channels live in the float uniform array `uf` and their description in
 the int one `ui` (`pack` writes both; the generated module passes them as it passes the other
@@ -17,21 +17,22 @@ width and height. The texels of a level are row by row from the bottom, RGBA; a 
 level is its six faces one after the other (+X, -X, +Y, -Y, +Z, -Z), each of width x height.
 
 Cube maps: `tex_sample_cube`, `tex_lod_cube` and their helpers are the one-lane forms of
-cube_maps.py's functions of the same names (its tables, NEXT_FACE, NEXT_X, NEXT_Y, are read
-from there), tests/compiled/test_cube_kernels.py runs both on every path.
+numpy_engine/cube_maps.py's functions of the same names (both read their tables, NEXT_FACE,
+NEXT_X, NEXT_Y, from llvmpipe_math/cube_faces.py); tests/compiled/test_cube_kernels.py runs
+both on every path.
 """
 
 from __future__ import annotations
 
-from .numba_cache import use_cache_dir
+from ..cpu_core.numba_cache import use_cache_dir
 
 use_cache_dir()  # numba's cache directory first
 
 import numba  # noqa: E402
 import numpy as np  # noqa: E402
 
+from ..llvmpipe_math.cube_faces import NEXT_FACE, NEXT_X, NEXT_Y  # noqa: E402
 from ..llvmpipe_math.lane import bits, from_bits  # noqa: E402
-from .cube_maps import NEXT_FACE, NEXT_X, NEXT_Y  # noqa: E402
 
 F32 = np.float32
 I32 = np.int32

@@ -1,8 +1,9 @@
-"""Where numba keeps its compiled machine code for glslcheck, set before anything compiles.
+"""Whether numba is installed, and where it keeps its compiled machine code for glslcheck, set
+before anything compiles: what both CPU engines need of numba before they import it.
 
-Its own module, imported by backends/numpy_engine/jit.py and jit_kernels.py (and through them by the
-compiled engine), so that jit_kernels can set the directory at its import without importing
-jit.py, which imports it.
+Its own module, imported by the NumPy engine (numpy_engine/jit.py and jit_kernels.py) and the
+compiled engine (engine.py, scalar.py, lanes_math.py, texture_kernels.py), so that a module of
+kernels can set the directory at its import without importing the code that loads it.
 
 The folder holds what runs as code: numba unpickles its index files, and the compiled engine
 runs the modules it finds there. So it is used only when no other user can write it or swap
@@ -11,11 +12,19 @@ it (:func:`trusted_dir`); otherwise a private temporary folder serves this proce
 
 from __future__ import annotations
 
+import functools
+import importlib.util
 import os
 import stat
 import sys
 
 _TRUSTED: dict[str, str] = {}  # wanted folder -> the folder used for it (itself or a private one)
+
+
+@functools.lru_cache(maxsize=1)
+def installed() -> bool:
+    """Whether numba is installed (the optional extra `glslcheck[jit]`), without importing it."""
+    return importlib.util.find_spec("numba") is not None
 
 
 def cache_dir() -> str:
