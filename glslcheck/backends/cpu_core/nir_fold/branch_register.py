@@ -231,21 +231,20 @@ def _else_overwrites(tr: FoldEngine, facts: Any, branch: A.If, x: Symbol) -> boo
     return True
 
 
+# What keeps a branch a branch in NIR, besides a texture lookup: in its arms, a jump (or a
+# discard); in a function the arms call, a loop (or a discard). A call is followed this many
+# deep; a longer chain counts as kept.
+_IN_ARM = (A.Return, A.Break, A.Continue, A.Discard)
+_IN_CALLEE = (A.For, A.While, A.DoWhile, A.Discard)
+_CALL_DEPTH = 9
+
+
 def _kept(tr: FoldEngine, branch: A.If) -> bool:
     """NIR keeps `branch` a branch: a loop, jump or texture lookup in it (here or in a callee),
     or more than FLATTEN_LIMIT instructions in its arms."""
     arms = [branch.then] + ([branch.else_] if branch.else_ is not None else [])
-    for arm in arms:
-        for n in arm.walk():
-            if isinstance(n, (A.Return, A.Break, A.Continue, A.Discard)):
-                return True
-            if isinstance(n, A.Call) and not n.constructor:
-                target = tr.model.call_target(n)
-                if isinstance(target, Symbol):
-                    if _kept_body(tr, target.node.body, 0):
-                        return True
-                elif _lookup(n):
-                    return True
+    if any(_holds(tr, arm, _IN_ARM, 0) for arm in arms):
+        return True
     return sum(body_cost(tr, arm, None, 0) - _moves(tr, arm) for arm in arms) > FLATTEN_LIMIT
 
 
@@ -263,18 +262,18 @@ def _moves(tr: FoldEngine, arm: Any) -> int:
     return free
 
 
-def _kept_body(tr: FoldEngine, body: Any, depth: int) -> bool:
-    """A callee's body that makes the branch it is called in a kept one (a loop, a texture
-    lookup, a return before its end)."""
-    if depth > 8:
+def _holds(tr: FoldEngine, node: Any, constructs: tuple[type, ...], depth: int) -> bool:
+    """`node` (an arm, or a callee's body `depth` calls deep) holds one of `constructs`, a
+    texture lookup, or a call of a user function whose body holds a loop, a discard or a lookup."""
+    if depth > _CALL_DEPTH:
         return True
-    for n in body.walk():
-        if isinstance(n, (A.For, A.While, A.DoWhile, A.Discard)):
+    for n in node.walk():
+        if isinstance(n, constructs):
             return True
         if isinstance(n, A.Call) and not n.constructor:
             target = tr.model.call_target(n)
             if isinstance(target, Symbol):
-                if _kept_body(tr, target.node.body, depth + 1):
+                if _holds(tr, target.node.body, _IN_CALLEE, depth + 1):
                     return True
             elif _lookup(n):
                 return True
