@@ -29,6 +29,27 @@ LAYERS = [
     ["glslcheck.cli"],
     ["glslcheck", "glslcheck.__main__"],
 ]
+# Floors inside glslcheck.backends, lowest first, read as LAYERS are: the two CPU engines are
+# siblings over what they share (cpu_core, llvmpipe_math, driver_profile) and never import each
+# other; gl and webgl are siblings over driver_log; tiered and multipass run the engines'
+# programs; the registry names every backend.
+BACKEND_FLOORS = [
+    [
+        "glslcheck.backends.interface",
+        "glslcheck.backends.driver_profile",
+        "glslcheck.backends.driver_log",
+        "glslcheck.backends.llvmpipe_math",
+    ],
+    ["glslcheck.backends.cpu_core"],
+    [
+        "glslcheck.backends.numpy_engine",
+        "glslcheck.backends.compiled_engine",
+        "glslcheck.backends.gl",
+        "glslcheck.backends.webgl",
+    ],
+    ["glslcheck.backends.tiered", "glslcheck.backends.multipass"],
+    ["glslcheck.backends.registry"],
+]
 # Written by tools, not by hand: exempt from the size limit.
 GENERATED = {"glslcheck.base._init_code", "glslcheck.base._regex_code"}
 MAX_LINES = 1000
@@ -103,9 +124,10 @@ def _edges() -> dict[str, set[str]]:
     return edges
 
 
-def _layer(name: str) -> tuple[int, str]:
+def _layer(name: str, layers: list[list[str]] = LAYERS) -> tuple[int, str]:
+    """(floor, the package of `layers` that holds `name`); (-1, "") when none does."""
     best = (-1, "")
-    for floor, packages in enumerate(LAYERS):
+    for floor, packages in enumerate(layers):
         for p in packages:
             if (name == p or name.startswith(p + ".")) and len(p) > len(best[1]):
                 best = (floor, p)
@@ -116,20 +138,55 @@ def test_every_module_is_on_a_floor():
     assert [m for m in MODULES if _layer(m)[0] < 0] == []
 
 
-def test_no_import_runs_up_or_sideways():
+def _breaks(imports: dict[str, list[tuple[str, int, list[str]]]], layers: list[list[str]]):
+    """Each import of `imports` (module -> its _imports) that runs up or sideways on `layers`,
+    as `file:line: ...`; a module or target on none of the floors is not judged here."""
     bad = []
-    for name in sorted(MODULES):
-        floor, home = _layer(name)
-        for target, line, _ in _imports(name):
+    for name in sorted(imports):
+        floor, home = _layer(name, layers)
+        if floor < 0:
+            continue
+        for target, line, _ in imports[name]:
             if name.startswith(target + "."):
                 continue  # its own package
-            t_floor, t_home = _layer(target)
+            t_floor, t_home = _layer(target, layers)
             if t_floor > floor or (t_floor == floor and t_home != home):
                 bad.append(
-                    f"{MODULES[name]}:{line}: {name} imports {target} ({t_home} is not below "
-                    f"{home})"
+                    f"{MODULES.get(name, name)}:{line}: {name} imports {target} ({t_home} is not "
+                    f"below {home})"
                 )
-    assert bad == []
+    return bad
+
+
+def test_no_import_runs_up_or_sideways():
+    assert _breaks({m: _imports(m) for m in MODULES}, LAYERS) == []
+
+
+def test_every_backend_module_is_on_a_backend_floor():
+    inside = [m for m in MODULES if m.startswith("glslcheck.backends.")]
+    assert inside and [m for m in inside if _layer(m, BACKEND_FLOORS)[0] < 0] == []
+
+
+def test_no_backend_imports_a_sibling_or_a_higher_floor():
+    """numpy_engine and compiled_engine share through cpu_core, never through each other."""
+    inside = [m for m in MODULES if m.startswith("glslcheck.backends.")]
+    assert _breaks({m: _imports(m) for m in inside}, BACKEND_FLOORS) == []
+
+
+def test_the_floor_checker_finds_a_sideways_and_an_upward_import():
+    engine, numpy = "glslcheck.backends.compiled_engine.codegen", "glslcheck.backends.numpy_engine"
+    imports = {
+        engine: [(f"{numpy}.transpile", 7, []), ("glslcheck.backends.cpu_core.facts", 8, [])],
+        "glslcheck.backends.cpu_core.facts": [("glslcheck.backends.tiered", 9, [])],
+        "glslcheck.backends.tiered": [
+            (f"{numpy}.program", 3, []),
+            ("glslcheck.base.config", 4, []),
+        ],
+    }
+    bad = _breaks(imports, BACKEND_FLOORS)
+    assert [b.split(": ", 1)[0].rpartition(":")[2] for b in bad] == ["7", "9"]
+    assert f"({numpy} is not below glslcheck.backends.compiled_engine)" in bad[0]
+    assert "(glslcheck.backends.tiered is not below glslcheck.backends.cpu_core)" in bad[1]
 
 
 def _circles(edges: dict[str, set[str]]) -> list[list[str]]:

@@ -108,9 +108,9 @@ FOREIGN = (
     (
         "NUMBA_CACHE_DIR",
         "numba's cache folder (glslcheck then sets it to the folder it trusts)",
-        "backends/numpy_engine/numba_cache.py",
+        "backends/cpu_core/numba_cache.py",
     ),
-    ("XDG_CACHE_HOME", "the user's cache folder", "backends/numpy_engine/numba_cache.py"),
+    ("XDG_CACHE_HOME", "the user's cache folder", "backends/cpu_core/numba_cache.py"),
     ("COLUMNS", "the terminal's width, for `--help`", "cli/main.py"),
     (
         "glsl_zero_init",

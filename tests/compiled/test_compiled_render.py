@@ -277,7 +277,7 @@ void mainImage(out vec4 c, in vec2 f) {
 def test_construct_bit_for_bit(numba, make_shader, name):
     shader = make_shader(CONSTRUCTS[name])
     # none of Mesa's reassociations, which the NumPy backend copies and this engine does not
-    # (backends/numpy_engine/transpile/nir_fold/ emits each as `(<Mesa's order> if rt.lp else
+    # (backends/cpu_core/nir_fold/ emits each as `(<Mesa's order> if rt.lp else
     # <written>)`): these shaders test the engine's own rules (the reassociations:
     # test_mesa_reassociation_...)
     assert "if rt.lp else" not in glslcheck.compile(shader, backend="numpy").source

@@ -63,7 +63,7 @@ CASES = [
 
 @pytest.mark.parametrize("n,filter,lowp", CASES)
 def test_cube_sample_agrees_bit_for_bit(numba, n, filter, lowp):
-    from glslcheck.backends.numpy_engine import texture_kernels as tk
+    from glslcheck.backends.compiled_engine import texture_kernels as tk
 
     rng = np.random.default_rng(n * 7 + len(filter) + lowp)
     s = _cube(rng, n, filter, lowp)
@@ -107,8 +107,8 @@ def _derivatives(rng, count):
 def test_cube_rho_and_lod_agree(numba, explicit):
     """rho^2 and the LOD from derivatives: the fine differences of an implicit LOD, or
     textureGrad's given ones (an infinite or NaN rho^2 read as 0)."""
+    from glslcheck.backends.compiled_engine import texture_kernels as tk
     from glslcheck.backends.numpy_engine import cube_maps
-    from glslcheck.backends.numpy_engine import texture_kernels as tk
 
     rng = np.random.default_rng(5)
     count = 600
@@ -131,7 +131,7 @@ def test_cube_rho_and_lod_agree(numba, explicit):
 def test_cube_texture_grad_agrees_bit_for_bit(numba, n, filter, lowp):
     """textureGrad on a cube map: the NumPy backend's lanes against the compiled engine's call
     (tex_lod_cube of the given derivatives, then tex_sample_cube), every filter and size."""
-    from glslcheck.backends.numpy_engine import texture_kernels as tk
+    from glslcheck.backends.compiled_engine import texture_kernels as tk
 
     rng = np.random.default_rng(n * 5 + len(filter) + lowp)
     s = _cube(rng, n, filter, lowp)
@@ -166,7 +166,7 @@ def _reference_fast_log2(x):
 
 
 def test_cube_size_and_unbound_agree(numba):
-    from glslcheck.backends.numpy_engine import texture_kernels as tk
+    from glslcheck.backends.compiled_engine import texture_kernels as tk
 
     rng = np.random.default_rng(2)
     s = _cube(rng, 8, "mipmap", True)

@@ -1,4 +1,4 @@
-"""The compiled engine's one-pixel texture sampling (backends/numpy_engine/texture_kernels.py)
+"""The compiled engine's one-pixel texture sampling (backends/compiled_engine/texture_kernels.py)
 against the NumPy backend's (textures.py), bit for bit, on every path: nearest, linear and
 mipmap filters, clamp and repeat on power-of-two and other sizes, texel offsets, explicit,
 implicit and gradient LODs, lowp and exact results, texelFetch in and out of range,
@@ -43,7 +43,7 @@ CASES = [
 
 @pytest.mark.parametrize("size,filter,wrap,lowp", CASES)
 def test_sample_agrees_bit_for_bit(numba, size, filter, wrap, lowp):
-    from glslcheck.backends.numpy_engine import texture_kernels as tk
+    from glslcheck.backends.compiled_engine import texture_kernels as tk
 
     rng = np.random.default_rng(hash((size, filter, wrap, lowp)) % 2**32)
     s = _channels(rng, size, filter, wrap, lowp)
@@ -76,7 +76,7 @@ def test_sample_agrees_bit_for_bit(numba, size, filter, wrap, lowp):
 def test_implicit_and_gradient_lod_agree(numba, size):
     """The implicit LOD of a tile's quads (the differences from each quad's bottom-left pixel,
     taken here by index) and textureGrad's, as the NumPy backend computes them."""
-    from glslcheck.backends.numpy_engine import texture_kernels as tk
+    from glslcheck.backends.compiled_engine import texture_kernels as tk
 
     rng = np.random.default_rng(7)
     s = _channels(rng, size, "mipmap", "repeat", True)
@@ -104,7 +104,7 @@ def test_implicit_and_gradient_lod_agree(numba, size):
 
 @pytest.mark.parametrize("lowp", [True, False])
 def test_texel_fetch_size_and_unbound_agree(numba, lowp):
-    from glslcheck.backends.numpy_engine import texture_kernels as tk
+    from glslcheck.backends.compiled_engine import texture_kernels as tk
 
     rng = np.random.default_rng(3)
     s = _channels(rng, (12, 10), "mipmap", "clamp", lowp)
@@ -135,7 +135,7 @@ def test_texel_fetch_size_and_unbound_agree(numba, lowp):
 def test_half_rounds_as_numpy_float16(numba):
     """half() against NumPy's float32 -> float16 conversion, on the float16 grid's ties, its
     subnormals, its overflow edge and random values, and float16 arithmetic through it."""
-    from glslcheck.backends.numpy_engine import texture_kernels as tk
+    from glslcheck.backends.compiled_engine import texture_kernels as tk
 
     rng = np.random.default_rng(5)
     h = np.arange(0, 0x7C01, dtype=np.uint16).view(np.float16).astype(F)  # every finite float16
@@ -155,7 +155,7 @@ def test_half_rounds_as_numpy_float16(numba):
 def test_lod_split_agrees_bit_for_bit(numba):
     """The one rule both engines split a LOD by (textures.lod_split and its one-lane form):
     the lower level and the fraction, clamped to the levels; NaN reads level 0 unblended."""
-    from glslcheck.backends.numpy_engine import texture_kernels as tk
+    from glslcheck.backends.compiled_engine import texture_kernels as tk
     from glslcheck.backends.numpy_engine.textures import lod_split
 
     rng = np.random.default_rng(11)

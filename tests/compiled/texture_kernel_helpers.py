@@ -23,7 +23,7 @@ def reference():
 def packed(channel, slot: int):
     """(uf, ui, tm): `channel` bound at iChannel<slot>, packed by texture_kernels.pack behind a
     few other uniforms, as a generated module holds it."""
-    from glslcheck.backends.numpy_engine import texture_kernels as tk
+    from glslcheck.backends.compiled_engine import texture_kernels as tk
 
     floats, meta = tk.pack([None] * slot + [channel], 3)
     uf = np.concatenate([np.zeros(3, F), floats])

@@ -3,7 +3,7 @@
 GLSL ES 3.00 has no `precise`, so Mesa reassociates: `mix` becomes one of four formulas
 (nir_lower_flrp: which one depends on the operands the compiler knows and on the other `mix`
 calls), and nir_opt_algebraic factors `a*b + a*c` and sinks constants into sums, products and
-dot products. `glslcheck/backends/numpy_engine/transpile/nir_fold/` and `Runtime.mix` repeat the
+dot products. `glslcheck/backends/cpu_core/nir_fold/` and `Runtime.mix` repeat the
 rewrites in float32 mode. Each shader below computes its operands with opaque built-ins (fract, sin,
 sqrt, floor: values NIR does not look into) over 160x90 pixels. Without the rewrites (written order,
 strict mix everywhere) these channels differ from llvmpipe (measured): constants_sunk 680, 4718
@@ -745,7 +745,7 @@ def without_rule(monkeypatch, name, value):
     import importlib
     import pkgutil
 
-    from glslcheck.backends.numpy_engine.transpile import nir_fold
+    from glslcheck.backends.cpu_core import nir_fold
 
     modules = [nir_fold] + [
         importlib.import_module(f"{nir_fold.__name__}.{m.name}")
@@ -801,8 +801,8 @@ def without_rule(monkeypatch, name, value):
 def test_float64_reference_is_the_same_without_these_rewrites(make_shader, monkeypatch, text):
     """The rewrites and the inlining above are float32 (llvmpipe) only: the float64 render is
     bit for bit the one of the code generated without them."""
+    from glslcheck.backends.cpu_core.nir_fold import dot_constants
     from glslcheck.backends.numpy_engine.transpile import functions
-    from glslcheck.backends.numpy_engine.transpile.nir_fold import dot_constants
 
     shader = make_shader(text)
     with_them = np.asarray(

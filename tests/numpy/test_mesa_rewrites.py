@@ -152,7 +152,7 @@ def test_nir_fold_shapes_are_equal_exactly_where_the_glsl_text_is():
     # printing every subtree (quadratic in a long chain): both must mean the same thing.
     from pathlib import Path
 
-    from glslcheck.backends.numpy_engine.transpile.nir_fold.queries import node_shapes
+    from glslcheck.backends.cpu_core.nir_fold.queries import node_shapes
     from glslcheck.frontend.parser import parse_shader
     from glslcheck.frontend.printer import to_glsl
     from glslcheck.shadertoy.sources import find_shaders
@@ -184,7 +184,7 @@ def test_nir_fold_on_a_chain_of_thousands_of_terms_is_linear(make_shader, monkey
     import importlib
     import pkgutil
 
-    from glslcheck.backends.numpy_engine.transpile import nir_fold
+    from glslcheck.backends.cpu_core import nir_fold
     from glslcheck.frontend.printer import to_glsl as real
 
     printed = [0]

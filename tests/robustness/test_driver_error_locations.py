@@ -56,7 +56,7 @@ def test_a_line_directive_with_a_source_number_in_hex(tmp_path, gl, capsys):
 
 
 def test_driver_line_map():
-    from glslcheck.backends.gl.program import driver_line_map
+    from glslcheck.backends.driver_log import driver_line_map
 
     text = "a\n#line 10\nb\nc\n#line 0x20 2\nd\n#line 010\ne\n#line FOO\nf\n"
     m = driver_line_map(text)

@@ -17,7 +17,7 @@ import numpy as np
 import pytest
 
 from glslcheck.backends.compiled_engine.engine import CompiledProgram, generate
-from glslcheck.backends.numpy_engine import numba_cache
+from glslcheck.backends.cpu_core import numba_cache
 from glslcheck.shadertoy.sources import load_shader
 
 SHADER = (

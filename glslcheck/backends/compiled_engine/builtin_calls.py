@@ -1,7 +1,7 @@
 """Built-in function calls of the compiled engine: each component as the NumPy runtime
 computes it (runtime.Runtime's method of the same name), with Mesa's compile-time rewrites of
 `pow` and nir_lower_flrp's choice of formula for `mix`
-(backends/numpy_engine/transpile/nir_fold.mix_hint)."""
+(backends/cpu_core/nir_fold.mix_hint)."""
 
 from __future__ import annotations
 
@@ -10,6 +10,7 @@ from typing import Any
 
 from ...frontend import syntax as A
 from ...language import builtin_functions as B
+from ..cpu_core import nir_fold
 from .values import Val, broadcast_const, engine_error, not_yet
 
 # one float32 component -> scalar.py function of the same rule (fma: llvmpipe's fused steps)
@@ -95,8 +96,6 @@ def builtin_call(cg: Any, e: A.Call, ov: Any) -> Val:
         return Val(rtype, [fn(*xs) for xs in zip(*cols)])
 
     if name == "exp" and base == "float" and cg.fn is not None and cg.fn.sym is not None:
-        from ..numpy_engine.transpile import nir_fold
-
         lowered = nir_fold.exp_product(cg.fold_context(), e, args, None)  # exp2(x * (k*log2(e)))
         if lowered is not None:
             return lowered
@@ -152,8 +151,6 @@ def builtin_call(cg: Any, e: A.Call, ov: Any) -> Val:
     if name == "not":
         return each(lambda x: f"(not {x})")
     if name == "dot" and cg.fn is not None and cg.fn.sym is not None:
-        from ..numpy_engine.transpile import nir_fold
-
         fold = cg.fold_context()  # constants merged into a dot product, dot(vec2(s), #K)
         merged = nir_fold.merged_dot(fold, e, args, None)
         if merged is None:
@@ -259,7 +256,6 @@ def mix_call(cg: Any, e: A.Call, args: list[Val], rtype: Any, n: int, comps) -> 
         return Val(
             rtype, [f"({yy} if {aa} else {xx})" for xx, yy, aa in zip(comps(x), comps(y), comps(a))]
         )
-    from ..numpy_engine.transpile import nir_fold
 
     hint = (
         nir_fold.mix_hint(cg.fold_context(), e)

@@ -46,7 +46,7 @@ cube maps and other sampler types, arrays of structs holding arrays, inverse() o
 matrices, and the packing built-ins; derivatives and implicit mipmap LODs only in lockstep
 (lanes.py).
 
-Mesa's reassociations (backends/numpy_engine/transpile/nir_fold/, call_fold.py, inline.py) are
+Mesa's reassociations (backends/cpu_core/nir_fold/, call_fold.py, inline.py) are
 decided there for both engines and computed here with this engine's values (fold_values.py;
 docs/compiled-engine.md lists what is asked and the few rules not yet). A value the NumPy
 backend holds as one lane for a tile counts there as a constant (Runtime.fmul/fadd/pow);
@@ -62,7 +62,8 @@ from typing import Any
 from ...base.diagnostics import Location
 from ...frontend import syntax as A
 from ...semantics.model import Constructor, Symbol
-from ..cpu_core.common import comment_safe
+from ..cpu_core import nir_fold
+from ..cpu_core.common import LOOP_CAP, comment_safe, python_ident
 from ..cpu_core.facts import Facts
 from ..cpu_core.uniformity import Uniformity
 from .expressions import ExpressionEmitter, FnState, nir_chain_params
@@ -248,8 +249,6 @@ class Codegen(ExpressionEmitter):
 
     # -- variables -----------------------------------------------------------------------------
     def declare_local(self, sym: Symbol, node: Any) -> list:
-        from ..numpy_engine.transpile.common import python_ident
-
         name = python_ident(sym.unique_name or sym.name, node)
         parts: list = []
         for k, (base, n) in enumerate(leaves(sym.type, node)):
@@ -479,8 +478,6 @@ class Codegen(ExpressionEmitter):
         return [a for a in STATE if a != "lc" or self.budget]
 
     def fn_name(self, sym: Symbol) -> str:
-        from ..numpy_engine.transpile.common import python_ident
-
         return "f_" + python_ident(sym.unique_name or sym.name, sym.node)
 
     def variant_name(self, sym: Symbol, seed: frozenset) -> str:
@@ -642,7 +639,6 @@ class Codegen(ExpressionEmitter):
         fs = self.fn
         if fs is None or fs.sym is None or not isinstance(s.then, A.Compound):
             return
-        from ..numpy_engine.transpile import nir_fold
 
         for node in nir_fold.arm_values(s.then):
             found = nir_fold.merged_register(self.fold_context(), node)
@@ -714,7 +710,6 @@ class Codegen(ExpressionEmitter):
         fs = self.fn
         if fs is None or fs.sym is None or not value:
             return value
-        from ..numpy_engine.transpile import nir_fold
 
         if not nir_fold.register_call(self.fold_context(), e, fn):
             return value
@@ -838,7 +833,6 @@ class Codegen(ExpressionEmitter):
         before a chain that starts there, kept, the temporaries a later copy's merge reads
         (nir_fold.later_values), and a count of its passes where its steps' constants (or a
         merge) differ from copy to copy."""
-        from ..numpy_engine.transpile import nir_fold
 
         fs = self.fn
         assert fs is not None  # generating a function's body
@@ -875,8 +869,6 @@ class Codegen(ExpressionEmitter):
         leaves (`tick_end`): every pass costs 1 when it ends, as in llvmpipe. Only in a module
         made with the budget (`budget`; engine.CompiledProgram.loop_limit makes it): the others
         neither count it nor pass `lc`."""
-        from ..numpy_engine.transpile.common import LOOP_CAP
-
         lid = len(self.loop_lines) + 1
         loc = s.loc
         self.loop_lines[lid] = (loc.path, loc.line, loc.column)

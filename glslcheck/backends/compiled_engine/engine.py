@@ -47,6 +47,8 @@ from ...base.diagnostics import Diagnostic, GlslError, InputError, Location
 from ...base.recursion import enter_deep, leave_deep
 from ...shadertoy.frame_inputs import FrameInputs, frame_inputs
 from ...shadertoy.wrapper import UNIFORMS_BY_NAME
+from ..cpu_core import numba_cache
+from ..cpu_core.common import LOOP_CAP
 from .budget import STARVED, wait_child
 from .values import BUDGET_OFF
 
@@ -174,10 +176,8 @@ def _drop(workers: Workers, futures: list[Future]) -> None:
 
 
 def available() -> bool:
-    """Whether numba is installed: backends/numpy_engine/jit.py's answer (numba is not imported)."""
-    from ..numpy_engine import jit
-
-    return jit.available()
+    """Whether numba is installed (numba is not imported)."""
+    return numba_cache.installed()
 
 
 def require_numba() -> None:
@@ -201,7 +201,8 @@ def _versions() -> str:
         os.path.join(here, "lanes_math.py"),
         os.path.join(math, "lane.py"),
         os.path.join(math, "coefficients.py"),
-        os.path.join(os.path.dirname(here), "numpy_engine", "texture_kernels.py"),
+        os.path.join(here, "texture_kernels.py"),
+        os.path.join(math, "cube_faces.py"),
     ):
         with open(path, "rb") as f:
             h.update(f.read())
@@ -246,9 +247,8 @@ def generate(
     (CompiledProgram.loop_limit); `mipmap`: the channels bound with mipmaps (default: as the
     shader's bindings say, mipmap_channels)."""
     from ...frontend.parser import parse_shader
-    from ..driver_profile import host_model
-    from ..numpy_engine.llvmpipe_reference import HOST_FMA
-    from ..numpy_engine.transpile.common import check_program
+    from ...semantics import check
+    from ..driver_profile import host_fma, host_model
     from .codegen import Codegen
     from .values import engine_error, not_yet
 
@@ -257,13 +257,19 @@ def generate(
     if mipmap is None:
         mipmap = mipmap_channels(shader, tab) if tab != "GLSL" else frozenset()
     pr = parse_shader(shader, tab)
-    model = check_program(pr)
+    model = check(pr)
     src = shader.tabs.get(tab)
     path = src.path if src is not None else shader.root
     enter_deep()
     try:
         cg = Codegen(
-            model, path, HOST_FMA, host_model(), budget, mipmap, keep_alpha=tab.startswith("Buffer")
+            model,
+            path,
+            host_fma(),
+            host_model(),
+            budget,
+            mipmap,
+            keep_alpha=tab.startswith("Buffer"),
         )
         source = cg.module()
         width = lanes_width(lanes)
@@ -378,9 +384,7 @@ class CompiledProgram:
         gives the error itself) or "killed: ..." when it died of a signal. A cache numba cannot
         write leaves `load` to compile here."""
         require_numba()
-        from ..numpy_engine import jit
-
-        cache = jit.use_cache_dir()  # (in the environment: the child's numba reads it)
+        cache = numba_cache.use_cache_dir()  # (in the environment: the child's numba reads it)
         if self.mod is not None or self.key in _MODULES or _cached(cache, self.key):
             return ""
         file = os.path.join(_folder(), f"m{self.key}.py")
@@ -421,10 +425,8 @@ class CompiledProgram:
         return ""
 
     def _import(self, bounded: bool) -> Any:
-        from ..numpy_engine import jit
-
         cache = (
-            jit.use_cache_dir()
+            numba_cache.use_cache_dir()
         )  # before the SLP setting below, which a reload of numba's config would undo
         from numba.core import config
 
@@ -486,7 +488,7 @@ class CompiledProgram:
         values = dict(values or {})
         if getattr(mod, "TEXTURES", False):  # the channels after the uniforms (texture_calls.py)
             from ...shadertoy.channels import channel_uniforms
-            from ..numpy_engine.texture_kernels import pack
+            from .texture_kernels import pack
 
             chans = list(channels or []) + [None] * 4
             for c, s in enumerate(chans[:4]):
@@ -520,9 +522,7 @@ class CompiledProgram:
         return uf, ui
 
     def budget(self) -> float:
-        from ..numpy_engine.program import frame_seconds
-
-        return self.frame_seconds if self.frame_seconds is not None else frame_seconds()
+        return self.frame_seconds if self.frame_seconds is not None else config.frame_seconds()
 
     def _compile(self, mod: Any, bounded: bool) -> None:
         """numba's compile (or cache load) of the module: a frame of no rows, which runs none of
@@ -586,8 +586,6 @@ class CompiledProgram:
             assert seconds is not None  # (only a deadline times out)
             raise self._over_budget(mod, seconds, first) from None
         except LoopCapError as e:
-            from ..numpy_engine.transpile.common import LOOP_CAP
-
             path, line, col = mod.LOOPS.get(int(e.args[0]), (self.path, 0, 0))
             raise GlslError(
                 Diagnostic(
@@ -647,8 +645,6 @@ class CompiledProgram:
 
 
 def _folder() -> str:
-    from ..numpy_engine import numba_cache
-
     return os.path.join(numba_cache.trusted_dir(), "compiled")
 
 

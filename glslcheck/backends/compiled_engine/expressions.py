@@ -14,6 +14,8 @@ from ...frontend import syntax as A
 from ...language import glsl_types as T
 from ...semantics.consteval import f32
 from ...semantics.model import Constructor, Symbol
+from ..cpu_core import nir_fold
+from ..cpu_core.inline import bound_code, inline_call, worth_inlining
 from .builtin_calls import builtin_call
 from .values import (
     CAST,
@@ -56,7 +58,6 @@ def _target_name(e: A.Assignment) -> str | None:
 def nir_chain_params(gen: Any, fn: Symbol) -> dict[int, Any]:  # index -> sum_order.Program
     """nir_fold.chain_params of user function `fn` (the parameters a caller's ``+= #c`` chain
     runs through), {} outside a function."""
-    from ..numpy_engine.transpile import nir_fold
 
     if gen.fn is None or gen.fn.sym is None:
         return {}
@@ -306,15 +307,13 @@ class ExpressionEmitter:
         if sym is None:
             raise engine_error(f"'{e.name}' has no symbol", e)
         if self.inlining():
-            from ..numpy_engine.transpile.inline import bound_code
-
             bound = bound_code(self.fold_context(), sym)  # a parameter of an inlined call
             if bound is not None:
                 return Val(bound.t, list(bound.parts), bound.const, bound.uni, bound.one)
         return Val(sym.type, [self.read(p) for p in self.var_parts(sym, e)])
 
     def inlining(self) -> bool:
-        """A call is being inlined (nir_fold's transpile/inline.py: Mesa's rewrites reach into
+        """A call is being inlined (nir_fold's cpu_core/inline.py: Mesa's rewrites reach into
         its argument)."""
         fold = self.fold_context() if self.fn is not None and self.fn.sym is not None else None
         return fold is not None and bool(fold.fold_state.inline_frames)
@@ -380,7 +379,6 @@ class ExpressionEmitter:
             return None
         if any(not isinstance(p, str) for p in (old.parts if old is not None else [])):
             return None
-        from ..numpy_engine.transpile import nir_fold
 
         ctx = self.fold_context()
         merged = nir_fold.compound_copies(ctx, node, None, old) if old is not None else None
@@ -391,7 +389,6 @@ class ExpressionEmitter:
         (nir_fold.repeated_sums: Mesa's order, sum_order.py), the base kept at the chain's
         first step; a step of a chain parameter of this function reads the caller's base and
         K (or computes as written when the caller passes none). None for any other write."""
-        from ..numpy_engine.transpile import nir_fold
 
         fn = self.fn
         if fn is None or fn.sym is None or any(not isinstance(p, str) for p in targets):
@@ -434,7 +431,6 @@ class ExpressionEmitter:
     def param_k(self, own: tuple, m: int) -> str:
         """The m-th K of a write of this function's chain parameter (nir_fold.param_step): its
         slot's argument, or in an unrolled loop the copies' arguments indexed by its pass."""
-        from ..numpy_engine.transpile import nir_fold
 
         i, at, stride, loop, _ = own
         if loop is None:
@@ -457,7 +453,6 @@ class ExpressionEmitter:
         parameter a flag, the base and one K per constant its callee adds: the caller's chain
         (or its own chain parameter passed on), or a false flag and zeros (the callee computes
         as written); `inouts`: each such argument's value, kept in a temporary."""
-        from ..numpy_engine.transpile import nir_fold
 
         if self.fn is None or self.fn.sym is None:
             return []
@@ -604,7 +599,6 @@ class ExpressionEmitter:
             if low is not None:
                 return low
         if self.fn is not None and self.fn.sym is not None:
-            from ..numpy_engine.transpile import nir_fold
             from .fold_values import COPIED, fused_sum
 
             if self.fold_context().has_effects(e):  # a constant sunk into a call's result
@@ -737,7 +731,6 @@ class ExpressionEmitter:
             return True
         if self.fn is None or self.fn.sym is None or not isinstance(e, A.Binary):
             return self.fn is None or self.fn.sym is None
-        from ..numpy_engine.transpile import nir_fold
 
         return nir_fold.zero_add(self.fold_context(), e, "l", "r") is not None
 
@@ -796,7 +789,6 @@ class ExpressionEmitter:
         """nir_fold.sunk_return of user function `fn`: the ``+=`` chain it returns, into which a
         caller's constant sinks (the function then takes a flag `_kf` and the constant's parts
         `_k0..`), else None."""
-        from ..numpy_engine.transpile import nir_fold
 
         return nir_fold.sunk_return(self.fold_context(), fn)
 
@@ -822,7 +814,6 @@ class ExpressionEmitter:
         chain = self.sunk_chain(fs.sym)
         if chain is None or not all(id(w) in fs.terms for w, _, _ in chain):
             return parts
-        from ..numpy_engine.transpile import nir_fold
 
         out = []
         for j, p in enumerate(parts):
@@ -834,7 +825,6 @@ class ExpressionEmitter:
     def sunk_into_call(self, e: A.Binary) -> Val | None:
         """``f(...) +- #c`` where the constant sinks into f's returned sum (nir_fold.sunk_call):
         the call, passed the constant, else None."""
-        from ..numpy_engine.transpile import nir_fold
 
         sunk = nir_fold.sunk_call(self.fold_context(), e)
         if sunk is None:
@@ -857,9 +847,6 @@ class ExpressionEmitter:
 
     def user_call(self, e: A.Call, fn: Symbol) -> Val:
         if self.fn is not None and self.fn.sym is not None:
-            from ..numpy_engine.transpile import nir_fold
-            from ..numpy_engine.transpile.inline import inline_call, worth_inlining
-
             if worth_inlining(self.fold_context(), e, fn, nir_fold.dot_operand):
                 return inline_call(self.fold_context(), e, fn, None)  # as the NumPy backend
             from .fold_values import folded_call
@@ -884,8 +871,6 @@ class ExpressionEmitter:
             for p in parts:
                 args.append(p.whole() if isinstance(p, Arr) else p)
         if self.fn is not None and self.fn.sym is not None:
-            from ..numpy_engine.transpile import nir_fold
-
             for key, g in nir_fold.chain_globals(self.fold_context(), fn):  # (globals' chains)
                 inouts[key] = self.tmp_copy(self.read(self.var_parts(g, e)[0]))
         args += self.chain_args(e, fn, inouts) + self.sunk_args(e, fn)

@@ -1,8 +1,8 @@
 """Mesa's rewrites (the NumPy backend's nir_fold) computed by the compiled engine: the rules decide,
 this module gives them the compiled engine's values to build Mesa's order from.
 
-A rule of backends/numpy_engine/transpile/nir_fold builds its rewrite from the operations of
-state.FoldEmitter (operands, products and sums as the engine writes them, IEEE operations,
+A rule of backends/cpu_core/nir_fold builds its rewrite from the operations of
+fold_protocols.FoldEmitter (operands, products and sums as the engine writes them, IEEE operations,
 negation) and never spells one itself; the NumPy Transpiler answers with Python text over lane
 arrays, :class:`FoldValues` with Codegen's `Val`s. So a rule changes both engines at once, and
 both compute the same float32 operations in the same order.
@@ -19,7 +19,9 @@ from typing import Any
 
 from ...language import glsl_types as T
 from ...semantics.consteval import f32
-from ..numpy_engine.transpile.nir_fold import FoldContext
+from ..cpu_core import nir_fold
+from ..cpu_core.call_fold import fold_plan, holder_leaf, record_sums, term_fields
+from ..cpu_core.nir_fold import FoldContext
 from .builtin_calls import componentwise_text, geometric
 from .values import Val, not_yet
 
@@ -40,7 +42,7 @@ COPIED = frozenset(
 
 class FoldValues(FoldContext):
     """nir_fold's context for the compiled engine, with the operations its rules emit through
-    (state.FoldEmitter): every value is a `Val` of the Codegen being generated."""
+    (fold_protocols.FoldEmitter): every value is a `Val` of the Codegen being generated."""
 
     def __init__(self, cg: Any) -> None:  # (a Codegen, which imports this module)
         super().__init__(cg.model, cg.facts)
@@ -186,10 +188,9 @@ def _computed(v: Val, left: Val, right: Val) -> Val:
 
 def folded_call(cg: Any, call: Any, fn: Any) -> Val | None:
     """The call `call` of user function `fn` with constants propagated into it as NIR does,
-    where the NumPy backend's transpile/call_fold.py decides so (fold_plan: the terms of its
+    where the NumPy backend's cpu_core/call_fold.py decides so (fold_plan: the terms of its
     out parameters and its result), computed from those terms as the Transpiler emits them
     (call_fold._emit_call); None: the call as usual."""
-    from ..numpy_engine.transpile.call_fold import fold_plan, holder_leaf, record_sums, term_fields
 
     plan = fold_plan(cg.fold_context(), call, fn, None)
     if plan is None:
@@ -237,7 +238,6 @@ def fused_sum(cg: Any, e: Any) -> Val | None:
     """``x + e`` where x holds the sums of products a folded call wrote and llvmpipe's ffma
     fusing and splitting reassociates them (nir_fold.fused_plan decides): ``(p1 + e) + p2``
     per such component, as the NumPy backend's ffma_split computes it; None: the sum as usual."""
-    from ..numpy_engine.transpile import nir_fold
 
     fold = cg.fold_context()
     plan = nir_fold.fused_plan(fold, e)

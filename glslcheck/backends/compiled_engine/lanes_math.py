@@ -55,7 +55,7 @@ the packing of the loads themselves (docs/performance.md, "Lane math").
 
 from __future__ import annotations
 
-from ..numpy_engine.numba_cache import use_cache_dir
+from ..cpu_core.numba_cache import use_cache_dir
 
 use_cache_dir()  # numba's cache directory first
 

@@ -16,7 +16,7 @@ points numba's cache directory, then imports numba.
 
 from __future__ import annotations
 
-from ..numpy_engine.numba_cache import use_cache_dir
+from ..cpu_core.numba_cache import use_cache_dir
 
 use_cache_dir()  # numba's cache directory first
 

@@ -1,6 +1,6 @@
 """Texture lookups in the compiled engine: the ES 3.00 built-ins on a sampler2D, and texture,
 textureLod, textureGrad and textureSize on a samplerCube (a cube map channel), as calls of
-backends/numpy_engine/texture_kernels.py (the one-pixel form of the NumPy backend's
+backends/compiled_engine/texture_kernels.py (the one-pixel form of the NumPy backend's
 textures.py), and arithmetic on lowp lookups in float16 where the NumPy backend computes it so
 (nir_fold.lower_precision: llvmpipe's float16 lowering).
 
@@ -20,6 +20,7 @@ from typing import Any
 
 from ...frontend import syntax as A
 from ..cpu_core.common import CUBE_FUNCTIONS, TEXTURE_FUNCTIONS
+from ..cpu_core.nir_fold.lower_precision import float16_code, float16_lookup_args, float16_tree
 from .values import Val, not_yet
 
 
@@ -35,7 +36,7 @@ KERNELS = (
     "tex_sample, tex_lod, tex_fetch, tex_size, tex_lowp, half, tex_sample_cube, tex_lod_cube, "
     "lowp_const"
 )
-IMPORT = f"from glslcheck.backends.numpy_engine.texture_kernels import {KERNELS}  # noqa: F401"
+IMPORT = f"from glslcheck.backends.compiled_engine.texture_kernels import {KERNELS}  # noqa: F401"
 
 
 def channel_of(cg: Any, sampler: Any) -> int | None:
@@ -149,7 +150,6 @@ def _cube_call(cg: Any, e: A.Call, name: str) -> Val:
 def _args(cg: Any, e: A.Call, ch: str) -> list[Val]:
     """The values of a lookup's arguments after the sampler, each constant one that a lowp
     sampler reads rounded to float16 wrapped in lowp_const (nir_fold.float16_lookup_args)."""
-    from ..numpy_engine.transpile.nir_fold.lower_precision import float16_lookup_args
 
     args = [cg.expr(a) for a in e.args[1:]]
     for i in float16_lookup_args(cg.fold_context(), e):
@@ -218,7 +218,6 @@ def lowp_tree(cg: Any, e: A.Binary) -> Val | None:
     """`e` as the NumPy backend computes it (nir_fold.lower_precision.lowp_tree): in float16
     when it is such a tree and every sampler it reads is lowp (tex_lowp, at run time), else
     in float32 (the written form); None when e is no such tree."""
-    from ..numpy_engine.transpile.nir_fold.lower_precision import float16_code, float16_tree
 
     if cg.fn is None or cg.fn.sym is None or id(e) in cg.lowp_written:
         return None

@@ -5,8 +5,14 @@ safe for a comment or docstring of generated Python."""
 
 from __future__ import annotations
 
+import re
 from typing import Any
 
+from ...base.diagnostics import Diagnostic, GlslError, Location
+
+TRANSPILE_RULE = "numpy-transpile"  # the rule of a program the CPU engines cannot write
+LOOP_CAP = 100_000  # iterations per execution of one loop before the render stops with an error
+IDENT = re.compile(r"^[A-Za-z_][A-Za-z0-9_]*$")  # a name the generated Python can bear as it is
 DERIVATIVES = ("dFdx", "dFdy", "fwidth")
 # The lookups on a sampler2D that textures.TextureFunctions evaluates.
 TEXTURE_FUNCTIONS = (
@@ -31,6 +37,9 @@ TEXTURE_FUNCTIONS = (
 CUBE_FUNCTIONS = ("texture", "textureLod", "textureGrad", "textureSize")
 # Lookups whose mipmap level comes from derivatives (2x2 quads): their regions are never compacted.
 IMPLICIT_LOD = ("texture", "textureProj", "textureOffset", "textureProjOffset")
+# The built-ins whose Runtime method (numpy_engine/runtime.py) bears another name: theirs is a
+# Python built-in or keyword. call_fold names a folded call's operation by it.
+RUNTIME_NAMES = {"min": "min_", "max": "max_", "not": "not_vec"}
 
 
 def comment_safe(text: str, limit: int = 100) -> str:
@@ -57,3 +66,14 @@ def fold_tree(root: Any, memo: dict[int, Any], own) -> Any:
             stack.append((node, True))
             stack.extend((k, False) for k in kids if id(k) not in memo)
     return memo[id(root)]
+
+
+def python_ident(name: str, node: Any) -> str:
+    """`name`, the GLSL name of a function, variable or field, as the generated Python names it;
+    a located error where Python cannot bear it as it is."""
+    if not IDENT.match(name or ""):
+        loc = node if isinstance(node, Location) else getattr(node, "loc", None)
+        raise GlslError(
+            Diagnostic(f"the name {name!r} cannot be transpiled", loc, rule=TRANSPILE_RULE)
+        )
+    return name

@@ -14,8 +14,9 @@ Library API (the `render` / `verify` commands call only this):
     img = render_shader(shader, size=(400, 225))   # compile + render in one call
 """
 
+from ..driver_log import driver_diagnostics, parse_driver_log
 from .context import GLUnavailable, create_context, get_context, renderer_name
-from .program import GLProgram, compile_gl, driver_diagnostics, parse_driver_log, render_shader
+from .program import GLProgram, compile_gl, render_shader
 
 __all__ = [
     "GLProgram",

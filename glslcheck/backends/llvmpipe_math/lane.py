@@ -18,7 +18,7 @@ those the lockstep code calls compute both sides of a choice and pick one by :fu
 nothing is contracted or reordered.
 
 Importing this module imports numba: its callers point numba's cache first
-(numpy_engine/numba_cache.use_cache_dir).
+(cpu_core/numba_cache.use_cache_dir).
 """
 
 from __future__ import annotations

@@ -6,7 +6,7 @@ lp_build_rho; lp_bld_sample_soa.c: lp_build_sample_image_linear with seamless_cu
 Shadertoy's WebGL 2 and the GL verifier's context enable), measured against the driver in
 tests/gl/test_cube_maps.py: docs/llvmpipe.md, "Cube maps". textures.TextureFunctions calls
 these for a channel whose `ChannelInput.cube` is set (`_sample_cube`, `_implicit_lod`);
-texture_kernels.py has the one-pixel numba forms of the same functions
+compiled_engine/texture_kernels.py has the one-pixel numba forms of the same functions
 (tests/compiled/test_cube_kernels.py runs both).
 
 Faces are numbered as OpenGL's: 0 +X, 1 -X, 2 +Y, 3 -Y, 4 +Z, 5 -Z; a face's texels are
@@ -17,25 +17,11 @@ from __future__ import annotations
 
 import numpy as np
 
+from ..llvmpipe_math.cube_faces import NEXT_FACE, NEXT_X, NEXT_Y
+
 _SIGN = np.uint32(0x80000000)
 _HALF = np.float32(0.5)
 _THIRD = np.float32(1.0 / 3.0)
-
-# lp_build_cube_new_coords as tables, per face 0..5, for a texel that falls off the face at
-# x < 0, x > max, y < 0, y > max (in this order): the face it is read from, and its new x and y
-# there as pairs (a, b): a * max + b * the coordinate along the other axis (y for an x
-# fall-off, x for a y fall-off), max the level's size - 1.
-_M, _O, _N, _Z = (1, 0), (0, 1), (1, -1), (0, 0)  # max, the coordinate, max - it, 0
-# per fall-off direction, per face: (new face, new x rule, new y rule)
-_FALL_OFF = [
-    [(4, _M, _O), (5, _M, _O), (1, _O, _Z), (1, _N, _M), (1, _M, _O), (0, _M, _O)],
-    [(5, _Z, _O), (4, _Z, _O), (0, _N, _Z), (0, _O, _M), (0, _Z, _O), (1, _Z, _O)],
-    [(2, _M, _N), (2, _Z, _O), (5, _N, _Z), (4, _O, _M), (2, _O, _M), (2, _N, _Z)],
-    [(3, _M, _O), (3, _Z, _N), (4, _O, _Z), (5, _N, _M), (3, _O, _Z), (3, _N, _M)],
-]
-NEXT_FACE = np.array([[f for f, _, _ in row] for row in _FALL_OFF], np.int64)
-NEXT_X = np.array([[x for _, x, _ in row] for row in _FALL_OFF], np.int64)
-NEXT_Y = np.array([[y for _, _, y in row] for row in _FALL_OFF], np.int64)
 
 
 def _bits(v: np.ndarray) -> np.ndarray:

@@ -48,7 +48,6 @@ bits either way.
 
 from __future__ import annotations
 
-import importlib.util
 import json
 import math
 import os
@@ -62,7 +61,8 @@ import numpy as np
 
 from ...base import config
 from ...base.diagnostics import InputError
-from .numba_cache import cache_dir, use_cache_dir  # noqa: F401  (jit.cache_dir, jit.use_cache_dir)
+from ..cpu_core import numba_cache
+from ..cpu_core.numba_cache import cache_dir, use_cache_dir  # noqa: F401  (jit.cache_dir, jit.use_cache_dir)
 
 COLD_SECONDS = (
     10.0  # the load cost assumed before one was measured in this cache (a first compile: 6-10 s)
@@ -100,7 +100,7 @@ def mode() -> str:
 def available() -> bool:
     """Whether numba is installed (without importing it)."""
     if _STATE.available is None:
-        _STATE.available = importlib.util.find_spec("numba") is not None
+        _STATE.available = numba_cache.installed()
     return _STATE.available
 
 

@@ -32,7 +32,7 @@ tests/numpy/test_jit_kernels.py; against llvmpipe itself: tests/gl/test_jit_llvm
 
 from __future__ import annotations
 
-from .numba_cache import use_cache_dir
+from ..cpu_core.numba_cache import use_cache_dir
 
 use_cache_dir()  # numba's cache directory first
 

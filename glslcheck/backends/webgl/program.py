@@ -43,7 +43,7 @@ from ...base.records import replace
 from ...shadertoy.frame_inputs import FrameInputs, frame_inputs
 from ...shadertoy.sources import Shader
 from ...shadertoy.wrapper import OFFSET_UNIFORM, UNIFORMS, Program, build_program, frame_uniforms
-from ..gl.program import driver_diagnostics, entry_location, parse_driver_log
+from ..driver_log import driver_diagnostics, entry_location, parse_driver_log
 from .browser import Browser, WebGLTimeout, get_browser
 
 RULE = "webgl-compile"

@@ -77,19 +77,20 @@ set") or a bool array; writes under a mask keep the old value elsewhere (`rt.ass
 # The passes, one module each (a newcomer reads them in this order):
 #   common.py       limits, names and helpers every pass shares
 #   (../../cpu_core: facts.py, the static facts; uniformity.py, which values are the same in every
-#   lane) names.py        mangled names, module constants and zero values
+#   lane; nir_fold/, call_fold.py, inline.py, constant_flow.py, Mesa's rewrites, shared with the
+#   compiled engine)
+#   names.py        mangled names, module constants and zero values
 #   expressions.py  expressions and l-values
 #   statements.py   statements, control flow, loops and compaction
 #   functions.py    functions and calls
 #   limits.py       Python's limits (spilling, outlining) and the lane-state estimate
 #   module.py       the Transpiler and the module it writes; transpile(), transpile_shader()
 
+from ...cpu_core.common import LOOP_CAP
 from .common import (
-    LOOP_CAP,
     OUTLINE_EXPR_INDENT,
     OUTLINE_INDENT,
     OUTLINE_LOOPS,
-    RULE,
     SMALL_STATE,
     SPILL_HEIGHT,
     check_program,
@@ -103,7 +104,6 @@ __all__ = [
     "OUTLINE_EXPR_INDENT",
     "OUTLINE_INDENT",
     "OUTLINE_LOOPS",
-    "RULE",
     "SMALL_STATE",
     "SPILL_HEIGHT",
     "check_program",

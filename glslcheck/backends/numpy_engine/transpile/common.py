@@ -8,9 +8,8 @@ import re
 from typing import Any
 
 from ....base.diagnostics import Diagnostic, GlslError, Location
+from ...cpu_core.common import TRANSPILE_RULE
 
-RULE = "numpy-transpile"
-LOOP_CAP = 100_000  # iterations per execution of one loop before the render stops with an error
 # Python's own limits, which deep GLSL would reach through the generated code (CPython 3.11:
 # 100 levels of indentation, 200 nested brackets, 20 nested loops in one function; see "Python's
 # limits" below). Normal shaders stay far below these thresholds, so their code is unchanged.
@@ -22,12 +21,10 @@ OUTLINE_LOOPS = 16  # and a statement inside this many Python loops of one funct
 # where the largest variable is declared) so the renderer sizes tiles to its memory budget;
 # below it the renderer assumes this many (`program.lane_bytes`).
 SMALL_STATE = 1024
-_IDENT = re.compile(r"^[A-Za-z_][A-Za-z0-9_]*$")
 _LOCAL_REF = re.compile(r"(?<![.\w\"'])(v_\w+|_[a-z]+\d*)\b")
 _ASSIGNED = re.compile(
     r"^(?!(?:if|elif|while|return) )([^=]*?)\s*[-+*/]?=(?!=)"
 )  # a stripped statement's targets
-_RUNTIME_NAMES = {"min": "min_", "max": "max_", "not": "not_vec"}
 _FLOAT_OPERATORS = (
     "+",
     "-",
@@ -82,13 +79,7 @@ def _components(v: Any) -> list[Any]:
 
 def _error(message: str, node: Any, help: str | None = None) -> GlslError:
     loc = node if isinstance(node, Location) else getattr(node, "loc", None)
-    return GlslError(Diagnostic(message, loc, rule=RULE, help=help))
-
-
-def python_ident(name: str, node: Any) -> str:
-    if not _IDENT.match(name or ""):
-        raise _error(f"the name {name!r} cannot be transpiled", node)
-    return name
+    return GlslError(Diagnostic(message, loc, rule=TRANSPILE_RULE, help=help))
 
 
 # ---------------------------------------------------------------------------------------------

@@ -14,27 +14,27 @@ from ....language import builtin_functions as B
 from ....language import glsl_types as T
 from ....semantics.analysis import param_directions
 from ....semantics.model import Constructor, Symbol
+from ...cpu_core import nir_fold
 from ...cpu_core.common import (
     CUBE_FUNCTIONS,
     DERIVATIVES,
+    IDENT,
     IMPLICIT_LOD,
+    RUNTIME_NAMES,
     TEXTURE_FUNCTIONS,
     fold_tree,
 )
 from ...cpu_core.facts import is_plain_read
-from . import nir_fold
+from ...cpu_core.inline import bound_code
 from .common import (
     _BIN_METHODS,
     _FLOAT_OPERATORS,
-    _IDENT,
-    _RUNTIME_NAMES,
     OUTLINE_EXPR_INDENT,
     SPILL_HEIGHT,
     _components,
     _error,
     _is_constant_text,
 )
-from .inline import bound_code
 from .state import LValue, TranspilerState
 
 # Built-ins whose runtime method, on float operands, is one NumPy ufunc (Runtime.np_*): called
@@ -343,7 +343,7 @@ class Expressions(TranspilerState):
             return f"({left} {op} {right})"  # the same, for int32 or uint32 arrays
         return f"rt.{_BIN_METHODS[op]}({left}, {right})"
 
-    # The operations nir_fold's rules build Mesa's order from (state.FoldEmitter).
+    # The operations nir_fold's rules build Mesa's order from (fold_protocols.FoldEmitter).
     @staticmethod
     def ieee(op: str, left: str, right: str) -> str:
         """`left op right` of two float values, IEEE (NumPy's operator: no constant folding)."""
@@ -562,10 +562,10 @@ class Expressions(TranspilerState):
             return f"rt.{_FLOAT_UFUNCS[name]}({', '.join(args)})"
         if name == "clamp" and all(self.type_of(a).base == "float" for a in e.args):
             return f"rt.np_fmin(rt.np_fmax({args[0]}, {args[1]}), {args[2]})"  # as Runtime.clamp
-        method = _RUNTIME_NAMES.get(name, name)
+        method = RUNTIME_NAMES.get(name, name)
         from ..runtime import Runtime
 
-        if not _IDENT.match(method) or not hasattr(Runtime, method):
+        if not IDENT.match(method) or not hasattr(Runtime, method):
             raise _error(f"the built-in {name}() is not supported by the NumPy backend", e)
         if name in DERIVATIVES:
             args.append("S.width")

@@ -8,12 +8,12 @@ from typing import Any
 
 from ....frontend import syntax as A
 from ....semantics.model import Symbol
+from ...cpu_core import nir_fold
+from ...cpu_core.call_fold import folded_call
 from ...cpu_core.common import comment_safe
 from ...cpu_core.facts import events_of
+from ...cpu_core.inline import inline_call, worth_inlining
 from ...cpu_core.uniformity import Uniformity
-from . import nir_fold
-from .call_fold import folded_call
-from .inline import inline_call, worth_inlining
 from .state import FnState, LValue, TranspilerState
 
 

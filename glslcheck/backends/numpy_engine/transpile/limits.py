@@ -8,8 +8,8 @@ from typing import Any
 
 from ....base.diagnostics import Diagnostic, GlslError, Location
 from ....frontend import syntax as A
-from ...cpu_core.common import comment_safe, fold_tree
-from .common import _ASSIGNED, _LOCAL_REF, OUTLINE_LOOPS, RULE, SPILL_HEIGHT
+from ...cpu_core.common import TRANSPILE_RULE, comment_safe, fold_tree
+from .common import _ASSIGNED, _LOCAL_REF, OUTLINE_LOOPS, SPILL_HEIGHT
 from .state import TranspilerState
 
 TYPE_CHECKING = False  # not typing's: importing typing costs every start-up
@@ -161,7 +161,7 @@ def too_complex(message: str, loc: Any) -> GlslError:
         Diagnostic(
             f"this program is too complex to render on the CPU ({message})",
             loc,
-            rule=RULE,
+            rule=TRANSPILE_RULE,
             help="simplify the nesting here, or render with --backend gl",
         )
     )

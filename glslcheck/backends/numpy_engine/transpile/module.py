@@ -11,10 +11,10 @@ from ....base.diagnostics import Location
 from ....base.recursion import enter_deep, leave_deep
 from ....frontend import syntax as A
 from ....semantics.analysis import origins
-from ...cpu_core.common import comment_safe
+from ...cpu_core.common import LOOP_CAP, comment_safe
 from ...cpu_core.facts import Facts, SideEffects
-from ..fold_state import FoldState
-from .common import LOOP_CAP, SMALL_STATE, UNDEFINED_MODES, _error, check_program
+from ...cpu_core.fold_state import FoldState
+from .common import SMALL_STATE, UNDEFINED_MODES, _error, check_program
 from .expressions import Expressions
 from .functions import Functions
 from .limits import PythonLimits, compile_generated, lane_state, too_complex

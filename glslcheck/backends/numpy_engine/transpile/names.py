@@ -8,8 +8,8 @@ from typing import Any
 
 from ....base.diagnostics import Location
 from ....semantics.model import Symbol
-from ...cpu_core.common import comment_safe
-from .common import _IDENT, _error, python_ident
+from ...cpu_core.common import IDENT, comment_safe, python_ident
+from .common import _error
 from .state import TranspilerState
 
 
@@ -103,7 +103,7 @@ class Names(TranspilerState):
     def struct_name(self, st: Any) -> str:
         key = id(st)
         if key not in self.struct_names:
-            name = st.name if _IDENT.match(st.name or "") else f"anon{len(self.struct_names)}"
+            name = st.name if IDENT.match(st.name or "") else f"anon{len(self.struct_names)}"
             names = set(self.struct_names.values())
             base, i = "s_" + name, 1
             cand = base

@@ -11,10 +11,10 @@ from ....frontend import syntax as A
 from ....language import builtin_functions as B
 from ....language import glsl_types as T
 from ....semantics.model import Symbol
-from ...cpu_core.common import DERIVATIVES, IMPLICIT_LOD, fold_tree
+from ...cpu_core import nir_fold
+from ...cpu_core.common import DERIVATIVES, IMPLICIT_LOD, LOOP_CAP, fold_tree
 from ...cpu_core.facts import Events, events_of, induction_variable
-from . import nir_fold
-from .common import LOOP_CAP, OUTLINE_INDENT, _error
+from .common import OUTLINE_INDENT, _error
 from .state import LoopCtx, TranspilerState
 
 

@@ -1,0 +1,848 @@
+"""Constants propagated into a call, per call site and per component, as NIR does after inlining.
+
+Mesa inlines every function before its optimisations run (nir_inline_functions), scalarises
+vectors and matrices (nir_lower_alu_to_scalar), then nir_opt_constant_folding and
+nir_opt_algebraic work on each component's SSA value. So a vector argument whose components
+are partly compile-time constants at one call site carries those constants into the callee's
+arithmetic, and Mesa's constant-merging rules then reach across the call. The real shader
+that shows it (gargantua, lstSRS, Buffer A):
+
+    vec3 rotate(vec3 p, float x, float y, float z) { mat3 matx = mat3(1.0, 0.0, 0.0, 0.0,
+        cos(x), sin(x), 0.0, -sin(x), cos(x)); ...  p = matx * p; p = matz * p; p = maty * p; }
+    void RotateCamera(inout vec3 eyevec, inout vec3 eyepos) { ... vec3 angle = vec3(..., -0.45);
+        eyepos = rotate(eyepos, angle.x, angle.y, angle.z); }
+    ... vec3 eyepos = vec3(0.0, -0.0, -10.0); eyepos.x += ...; RotateCamera(eyevec, eyepos);
+
+eyepos's y and z are -0.0 and -10.0 at the call, so the products by matx's zeros fold away
+and ``matz * p`` multiplies the constant ``cos(-0.45)`` by ``-sin(ax) * -10.0``: NIR's
+``#a * (b * #c) -> (a*c) * b`` gives ``(cos(-0.45) * 10) * sin(ax)`` (measured: llvmpipe's
+eyepos.y is ``sin(-0.45)*x + (cos(-0.45)*10)*sin(ax)`` bit for bit). The NumPy backend writes a
+function once for every call, so its code cannot see the constants of one call site.
+
+Here a call of a straight-line function (declarations, assignments and a final return; nested
+calls of such functions) is evaluated at the call site as NIR sees it: one scalar term per
+component, the arguments' compile-time constant components (literals, a vector constructor's
+constant arguments, and a local's components that are constant where the call reads them:
+`_constant_components`) as constants, an argument
+``y * #c`` as that product in each component (`_scaled_argument`), then
+
+- constants folded in float32 (``+ - * /``, negation; a built-in of constants is a constant
+  computed by the runtime's own function, as the written code computes it);
+- ``a * 1.0 -> a``, ``a * -1.0 -> -a``, ``a * 0.0 -> 0.0`` (inexact, a not constant),
+  ``a + 0.0 -> a``;
+- constants merged: ``#a * (b * #c) -> (a*c) * b`` and ``#a + (b + #c) -> (a+c) + b``;
+- matrix products in GLSL IR's order (``m * v`` is ``(m[0]*v.x + m[1]*v.y) + m[2]*v.z`` per
+  row), component-wise built-ins (sin, cos, ...) per component;
+- ``dot`` summed right to left as Runtime.dot, two products that share a value factored,
+  ``a*b + a*c -> a * (b + c)`` (`_Eval.factored_add`: a hash's ``vec3(p)`` has three equal
+  components).
+
+Only where a merge happens (the other folds give the written bits, up to a -0.0, a NaN or an
+infinity times a constant zero, which `Runtime.fmul`/`fadd` already fold at run time) is the
+call replaced, in llvmpipe mode only: ``if rt.lp:`` the folded components, ``else:`` the call
+as written, so the float64 reference and float16 keep the written order. Not copied: calls
+under a loop or a branch of the caller whose constants come from there (a local counts as
+constant only where its writes are top-level statements before the call), callees with
+branches, loops, arrays, structs or non-float arithmetic, ``vec * mat``, and the rewrites that
+need "used once" (constants sunk into sums: nir_fold's sink and sunk_return stay the rules for
+those).
+
+What it tells nir_fold about a folded call's results: :func:`out_roots` (the operation at the
+root of each component, so ``(eyevec * dither) * far`` may move its constant: eyevec is a
+sum to NIR) and :func:`product_sums` (the two products of a component ``p1 + p2``, for
+``(p1 + e) + p2``).
+
+It does not replace the two older rules that reach across a call. inline.py's inlining for
+``merged_dot`` needs the caller's never-written local seen through (``uv = q * 1.2`` passed as
+``uv * 0.2``) and a ``dot`` with a constant merged, neither evaluated here (an argument that
+is not a constant component is a run-time value); nir_fold.sunk_return sinks a constant into
+a ``+=`` chain, a rewrite that needs "used once", not copied here. Both stay as they are, and
+their generated code is unchanged.
+"""
+
+from __future__ import annotations
+
+from typing import Any
+
+import numpy as np
+
+from ...frontend import syntax as A
+from ...language import builtin_functions as B
+from ...semantics.analysis import param_directions
+from ...semantics.model import Symbol
+from .common import RUNTIME_NAMES
+
+TYPE_CHECKING = False  # not typing's: importing typing costs every start-up
+if TYPE_CHECKING:
+    from .fold_protocols import FoldEmitter, FoldEngine, LineWriter
+
+# built-ins computed component by component (the runtime's function of a scalar array)
+_COMPONENTWISE = (
+    "sin",
+    "cos",
+    "tan",
+    "asin",
+    "acos",
+    "exp",
+    "exp2",
+    "log",
+    "log2",
+    "sqrt",
+    "inversesqrt",
+    "abs",
+    "sign",
+    "floor",
+    "ceil",
+    "fract",
+    "radians",
+    "degrees",
+)
+
+
+class _Refuse(Exception):
+    """The call is not of the shape this module folds."""
+
+
+class _T:
+    """A scalar term: op "k" (a constant: value when known at compile time, else computed by
+    args), "x" (a run-time value: code), "*", "+", "/", "neg", "call" (code: the runtime method)."""
+
+    __slots__ = ("op", "args", "const", "value", "code")
+
+    def __init__(
+        self,
+        op: str,
+        args: tuple = (),
+        const: bool = False,
+        value: float | None = None,
+        code: str = "",
+    ) -> None:
+        self.op, self.args, self.const, self.value, self.code = op, args, const, value, code
+
+
+def _k(v: float) -> _T:
+    return _T("k", const=True, value=float(np.float32(v)))
+
+
+def fold_tree(op: str, a: float, b: float) -> float:
+    with np.errstate(all="ignore"):
+        x, y = np.float32(a), np.float32(b)
+        return float(x * y if op == "*" else x + y if op == "+" else x / y)
+
+
+class _Eval:
+    """The scalar evaluation of one call (see the module doc); `merges`: how often a merge rule
+    fired."""
+
+    def __init__(self, tr: FoldEmitter, mask: str | None) -> None:
+        self.tr, self.mask, self.merges, self.depth, self.factored = tr, mask, 0, 0, 0
+
+    # -- scalar rules ----------------------------------------------------------------------
+    def neg(self, a: _T) -> _T:
+        if a.op == "neg":
+            return a.args[0]
+        if a.value is not None:
+            return _k(-a.value)
+        return _T("neg", (a,), const=a.const)
+
+    def mul(self, a: _T, b: _T) -> _T:
+        if a.op == "neg" or b.op == "neg":  # (fmul(fneg a, b) -> fneg(fmul(a, b)): the same bits)
+            return (
+                self.neg(
+                    self.mul(a.args[0] if a.op == "neg" else a, b.args[0] if b.op == "neg" else b)
+                )
+                if (a.op == "neg") != (b.op == "neg")
+                else self.mul(a.args[0], b.args[0])
+            )
+        if a.value is not None and b.value is not None:
+            return _k(fold_tree("*", a.value, b.value))
+        for c, x in ((a, b), (b, a)):
+            if c.value is not None and not x.const:
+                if c.value == 1.0:
+                    return x
+                if c.value == -1.0:
+                    return self.neg(x)
+                if c.value == 0.0:
+                    return _k(0.0)
+        for c, x in ((a, b), (b, a)):
+            if (
+                c.value is not None
+                and x.op == "*"
+                and x.code == "once"
+                and not any(y.const for y in x.args)
+            ):
+                self.merges += 1  # ~fmul(is_used_once)(fmul(is_used_once)(a, b), #c) -> (a*c) * b
+                return self.mul(self.mul(x.args[0], c), x.args[1])
+        for c, x in ((a, b), (b, a)):
+            if c.const and not x.const and x.op == "*" and (x.args[0].const or x.args[1].const):
+                d, y = (x.args[0], x.args[1]) if x.args[0].const else (x.args[1], x.args[0])
+                self.merges += 1  # #a * (b * #c) -> (a*c) * b
+                return self.mul(self.mul(c, d), y)
+        return _T("*", (a, b), const=a.const and b.const)
+
+    def add(self, a: _T, b: _T) -> _T:
+        if a.value is not None and b.value is not None:
+            return _k(fold_tree("+", a.value, b.value))
+        for c, x in ((a, b), (b, a)):
+            if c.value == 0.0 and not x.const:
+                return x
+        for c, x in ((a, b), (b, a)):
+            if c.const and not x.const and x.op == "+" and (x.args[0].const or x.args[1].const):
+                d, y = (x.args[0], x.args[1]) if x.args[0].const else (x.args[1], x.args[0])
+                self.merges += 1  # #a + (b + #c) -> (a+c) + b
+                return self.add(self.add(c, d), y)
+        return _T("+", (a, b), const=a.const and b.const)
+
+    def factored_add(self, a: _T, b: _T) -> _T:
+        """``a*b + a*c -> a * (b + c)`` (``('~fadd', ('fmul', a, b), ('fmul', a, c))``), a the same
+        value to NIR (its SSA values are shared: :func:`_same`); applied to a dot product's sum,
+        where the components of one vector are often the same value: NebulaSmoke's
+        ``dot(p3, p3.yzx + 19.19)`` of ``p3 = fract(vec3(p) * K)`` is ``a * (b + (b + b))``
+        (measured on llvmpipe; the sum of the three products differs in 6,102 of 14,400 pixels)."""
+        if a.op == "*" and b.op == "*" and not a.const and not b.const:
+            for i in (0, 1):
+                for j in (0, 1):
+                    if _same(a.args[i], b.args[j]):
+                        self.merges += 1
+                        self.factored += 1
+                        return self.mul(a.args[i], self.add(a.args[1 - i], b.args[1 - j]))
+        return self.add(a, b)
+
+    def pow(self, a: _T, b: _T) -> _T:
+        """``pow(#a, #b)`` is folded at compile time by the host's powf (GLSL IR's and NIR's
+        constant folding), correctly rounded, not by llvmpipe's exp2(log2) of run time:
+        gargantua's ``pcurve(x, 4.0, 0.9)``, ``k = pow(a+b, a+b) / (pow(a,a)*pow(b,b))`` (measured:
+        llvmpipe's ``pcurve(0.5, 4.0, 0.9)`` is the float32 of the correctly rounded powers, the
+        run-time pow 5 ulps off). Counted as a merge: it changes the written bits."""
+        if a.value is not None and b.value is not None:
+            self.merges += 1
+            with np.errstate(all="ignore"):
+                return _k(
+                    float(
+                        np.float32(
+                            np.float64(np.float32(a.value)) ** np.float64(np.float32(b.value))
+                        )
+                    )
+                )
+        if b.value == 4.0:  # (fpow(a, 4.0) -> (a*a)*(a*a), its product used once: `mul`)
+            sq = self.mul(a, a)
+            return _T("*", (sq, sq), const=a.const, code="once")
+        if (
+            b.value is not None
+        ):  # (Mesa's fpow(a, 2.0) -> a*a, 4.0 -> (a*a)*(a*a): `Runtime.pow_const`)
+            return _T("call", (a,), const=a.const, code=f"pow_const({{}}, {b.value!r})")
+        return _T("call", (a, b), const=a.const and b.const, code="pow")
+
+    def div(self, a: _T, b: _T) -> _T:
+        if a.value is not None and b.value is not None:
+            return _k(fold_tree("/", a.value, b.value))
+        return _T("/", (a, b), const=a.const and b.const)
+
+    def binary(self, op: str, lt: Any, lv: list[_T], rt: Any, rv: list[_T]) -> list[_T]:
+        if op == "*" and lt.is_matrix and (rt.is_vector or rt.is_matrix):
+            rows, out = lt.rows, []
+            for c in range(rt.cols if rt.is_matrix else 1):
+                col = rv[c * lt.cols : (c + 1) * lt.cols]
+                for r in range(rows):
+                    s = self.mul(lv[r], col[0])
+                    for k in range(1, lt.cols):
+                        s = self.add(s, self.mul(lv[k * rows + r], col[k]))
+                    out.append(s)
+            return out
+        if op == "*" and lt.is_vector and rt.is_matrix:
+            raise _Refuse  # (dot products: llvmpipe's order is not copied here)
+        n = max(len(lv), len(rv))
+        lv, rv = lv * (n // len(lv)), rv * (n // len(rv))
+        if op == "+":
+            return [self.add(x, y) for x, y in zip(lv, rv)]
+        if op == "-":
+            return [self.add(x, self.neg(y)) for x, y in zip(lv, rv)]
+        if op == "*":
+            return [self.mul(x, y) for x, y in zip(lv, rv)]
+        if op == "/":
+            return [self.div(x, y) for x, y in zip(lv, rv)]
+        raise _Refuse
+
+    # -- expressions -------------------------------------------------------------------------
+    def expr(self, e: Any, env: dict[int, list]) -> list[_T]:
+        tr = self.tr
+        t = tr.type_of(e)
+        if (
+            t.is_array
+            or t.is_struct
+            or t.base not in ("float", "int")
+            or tr.has_effects(e)
+            and not isinstance(e, A.Call)
+        ):
+            raise _Refuse
+        cv = tr.model.const_value(e)
+        if cv is not None:
+            return [_k(v) for v in _flat(cv)]
+        if t.base != "float":
+            raise _Refuse
+        if isinstance(e, A.Identifier):
+            sym = tr.model.symbol_of(e)
+            if sym is not None and id(sym) in env:
+                if any(x is None for x in env[id(sym)]):
+                    raise _Refuse  # (an out parameter read before it is written)
+                return list(env[id(sym)])
+            if sym is None or sym.kind != "uniform":
+                raise _Refuse
+            return [_T("x", code=c) for c in tr.leaves(tr.expr(e, self.mask), t)]
+        if isinstance(e, A.Field):
+            if tr.type_of(e.base).is_struct:
+                raise _Refuse
+            base = self.expr(e.base, env)
+            return [base[i] for i in tr.model.swizzle_indices(e)]
+        if isinstance(e, A.Index):
+            i = tr.model.const_value(e.index)
+            bt = tr.type_of(e.base)
+            if not isinstance(i, int) or isinstance(i, bool) or bt.is_array:
+                raise _Refuse
+            base, w = self.expr(e.base, env), (bt.rows if bt.is_matrix else 1)
+            return base[i * w : (i + 1) * w]
+        if isinstance(e, A.Unary) and e.op in ("-", "+"):
+            v = self.expr(e.operand, env)
+            return [self.neg(x) for x in v] if e.op == "-" else v
+        if isinstance(e, A.Binary):
+            return self.binary(
+                e.op,
+                tr.type_of(e.left),
+                self.expr(e.left, env),
+                tr.type_of(e.right),
+                self.expr(e.right, env),
+            )
+        if isinstance(e, A.Call):
+            return self.call(e, t, env)
+        raise _Refuse
+
+    def call(self, e: A.Call, t: Any, env: dict[int, list]) -> list[_T]:
+        tr = self.tr
+        target = tr.model.call_target(e)
+        if isinstance(target, Symbol):
+            return self.user_call(target, e.args, env)
+        args = [self.expr(a, env) for a in e.args]
+        if isinstance(target, B.Overload) and e.callee == "pow" and len(args) == 2:
+            return [self.pow(x, y) for x, y in zip(args[0], args[1])]
+        if isinstance(target, B.Overload) and e.callee == "dot" and len(args) == 2:
+            u, v = args  # (Runtime.dot: products summed right to left, each rounded)
+            total = self.mul(u[-1], v[-1])
+            for x, y in zip(reversed(u[:-1]), reversed(v[:-1])):
+                total = self.factored_add(self.mul(x, y), total)
+            return [total]
+        if isinstance(target, B.Overload):
+            if e.callee not in _COMPONENTWISE or len(args) != 1:
+                raise _Refuse
+            method = RUNTIME_NAMES.get(e.callee, e.callee)
+            return [_T("call", (x,), const=x.const, code=method) for x in args[0]]
+        if not e.constructor:
+            raise _Refuse
+        flat = [x for a in args for x in a]
+        if t.is_vector:
+            return flat * t.size if len(flat) == 1 else flat[: t.size]
+        if t.is_matrix and len(args) == 1 and len(flat) == 1:
+            return [flat[0] if c == r else _k(0.0) for c in range(t.cols) for r in range(t.rows)]
+        if t.is_matrix and not any(tr.type_of(a).is_matrix for a in e.args) and len(flat) >= t.size:
+            return flat[: t.size]
+        if t.is_scalar:
+            return flat[:1]
+        raise _Refuse
+
+    def user_call(self, fn: Symbol, args: list[Any], env: dict[int, list]) -> list[_T]:
+        """The callee's result; its out/inout parameters written back into `env`."""
+        self.depth += 1
+        if self.depth > 16:
+            raise _Refuse
+        params = fn.node.proto.params
+        inner: dict[int, list] = {}
+        dirs = param_directions(fn)
+        for p, a, d in zip(params, args, dirs):
+            psym = self.tr.model.symbol_of(p)
+            if psym is None:
+                raise _Refuse
+            inner[id(psym)] = (
+                self.expr(a, env) if d != "out" else [None] * _width(self.tr.type_of(a))
+            )
+        result = self.body(fn, inner)
+        for p, a, d in zip(params, args, dirs):
+            if d != "in":
+                self.assign(a, inner[id(self.tr.model.symbol_of(p))], env)
+        self.depth -= 1
+        return result
+
+    def body(self, fn: Symbol, env: dict[int, list]) -> list[_T]:
+        stmts = fn.node.body.stmts
+        for i, st in enumerate(stmts):
+            if isinstance(st, A.Return) and i == len(stmts) - 1:
+                return self.expr(st.value, env) if st.value is not None else []
+            if isinstance(st, A.DeclarationStatement) and isinstance(
+                st.decl, A.VariableDeclaration
+            ):
+                for d in st.decl.declarators:
+                    sym = self.tr.model.symbol_of(d)
+                    if d.init is None or sym is None:
+                        raise _Refuse
+                    env[id(sym)] = self.expr(d.init, env)
+            elif isinstance(st, A.ExpressionStatement) and isinstance(st.expr, A.Assignment):
+                a = st.expr
+                value = self.expr(a.value, env)
+                if a.op != "=":
+                    value = self.binary(
+                        a.op[:-1],
+                        self.tr.type_of(a.target),
+                        self.expr(a.target, env),
+                        self.tr.type_of(a.value),
+                        value,
+                    )
+                self.assign(a.target, value, env)
+            elif (
+                isinstance(st, A.ExpressionStatement)
+                and isinstance(st.expr, A.Call)
+                and isinstance(target := self.tr.model.call_target(st.expr), Symbol)
+            ):
+                self.user_call(target, st.expr.args, env)
+            else:
+                raise _Refuse
+        return []  # (a function that returns a value ends with a return: checked by the checker)
+
+    def assign(self, target: Any, value: list[_T], env: dict[int, list]) -> None:
+        idx = None
+        if isinstance(target, A.Field) and not self.tr.type_of(target.base).is_struct:
+            idx, target = self.tr.model.swizzle_indices(target), target.base
+        sym = self.tr.model.symbol_of(target) if isinstance(target, A.Identifier) else None
+        if sym is None or id(sym) not in env:
+            raise _Refuse
+        if idx is None:
+            env[id(sym)] = list(value)
+        else:
+            new = list(env[id(sym)])
+            for i, v in zip(idx, value * len(idx) if len(value) == 1 else value):
+                new[i] = v
+            env[id(sym)] = new
+
+
+def _same(a: _T, b: _T) -> bool:
+    """The two terms are one value to NIR (the same operation of the same operands: its CSE)."""
+    if a is b:
+        return True
+    if a.op != b.op or a.code != b.code or len(a.args) != len(b.args):
+        return False
+    if a.op == "k":
+        return a.value is not None and a.value == b.value and not a.args
+    return all(_same(x, y) for x, y in zip(a.args, b.args))
+
+
+def _flat(v: Any) -> list[float]:
+    if isinstance(v, (tuple, list)):
+        return [x for item in v for x in _flat(item)]
+    if isinstance(v, bool):
+        raise _Refuse
+    return [float(v)]
+
+
+def holder_leaf(code: str) -> tuple[int, tuple[int, ...]] | None:
+    """(argument i, the indexes after it) of a term's code ``@i@[c][r]`` (:func:`_leaves`), or
+    None for the code of a value the engine computed (a uniform the callee reads)."""
+    if not code.startswith("@"):
+        return None
+    i, _, rest = code[1:].partition("@")
+    return int(i), tuple(int(x) for x in rest.replace("]", "").split("[")[1:])
+
+
+def term_fields(t: Any) -> tuple[str, tuple, float | None, str]:
+    """(op, args, value, code) of a term of :func:`fold_plan` (module doc: "k" a constant, "x" a
+    run-time value, "*", "+", "/", "neg", "call" of the Runtime's method `code`)."""
+    return t.op, t.args, t.value, t.code
+
+
+def _width(t: Any) -> int:
+    return t.size if t.is_matrix or t.is_vector else 1
+
+
+def _leaves(code: str, t: Any) -> list[_T]:
+    """The run-time components of the argument whose placeholder is `code` (``@i@``: argument
+    i, replaced by its value's code when emitted; :func:`holder_leaf` reads it back)."""
+    if t.is_scalar:
+        return [_T("x", code=code)]
+    if t.is_vector:
+        return [_T("x", code=f"{code}[{i}]") for i in range(t.size)]
+    return [_T("x", code=f"{code}[{c}][{r}]") for c in range(t.cols) for r in range(t.rows)]
+
+
+def _constant_components(tr: FoldEmitter, arg: Any, call: A.Call) -> list[_T | None] | None:
+    """Per component of an argument `arg` of `call`, a vector constructor or a local: a
+    constant term where its value is a compile-time constant there, else None; None when `arg`
+    is neither. A constructor's constant arguments are its constant components
+    (``f(vec2(x, 1.5))``: NIR's inlined ``p.y`` is 1.5). A local's are known only for a local
+    declared, then written, by top-level statements of the current function before the one
+    that holds `call` (writes of single components keep the others)."""
+    if isinstance(arg, A.Call):
+        t = tr.type_of(arg)
+        if not (arg.constructor and t.is_vector and t.base == "float" and len(arg.args) > 1):
+            return None
+        return _constructed_components(tr, arg, t)
+    sym = tr.model.symbol_of(arg) if isinstance(arg, A.Identifier) else None
+    if (
+        sym is None
+        or sym.kind != "local"
+        or not isinstance(sym.node, A.Declarator)
+        or sym.node.init is None
+    ):
+        return None
+    assert tr.fn is not None  # folding a call inside a function
+    stmts = tr.fn.sym.node.body.stmts
+    decl = next((i for i, st in enumerate(stmts) if any(n is sym.node for n in st.walk())), None)
+    at = next((i for i, st in enumerate(stmts) if any(n is call for n in st.walk())), None)
+    if decl is None or at is None or not isinstance(stmts[decl], A.DeclarationStatement):
+        return None
+    init, t = sym.node.init, tr.type_of(arg)
+    if t.is_array or t.is_struct or t.base != "float":
+        return None
+    cv = tr.model.const_value(init)
+    if cv is not None:
+        comps: list[_T | None] = [_k(v) for v in _flat(cv)]
+    elif isinstance(init, A.Call) and init.constructor and t.is_vector and len(init.args) > 1:
+        comps = _constructed_components(tr, init, t)
+    else:
+        return None
+    for st in stmts[decl + 1 : at + 1]:
+        for n in st.walk():
+            hit = _written_components(tr, n, sym, call)
+            if hit == "all":
+                comps = [None] * len(comps)
+            elif hit:
+                for i in hit:
+                    comps[i] = None
+    return comps
+
+
+def _constructed_components(tr: FoldEmitter, ctor: A.Call, t: Any) -> list[_T | None]:
+    """Per component of the vector constructor `ctor` (of type `t`): its constant term, or None
+    where an argument is not a compile-time constant."""
+    comps: list[_T | None] = []
+    for a in ctor.args:
+        v = tr.model.const_value(a)
+        comps += [_k(x) for x in _flat(v)] if v is not None else [None] * _width(tr.type_of(a))
+    return comps[: t.size]
+
+
+def _unchanged_init(tr: FoldEmitter, ident: A.Identifier, call: A.Call) -> Any:
+    """The initializer of the local `ident` when it is declared by a top-level statement of the
+    current function before the one that holds `call`, and neither it nor a local or parameter
+    the initializer reads is written in between (so the initializer, evaluated again at the
+    call, gives its value); else None."""
+    sym = tr.model.symbol_of(ident)
+    if (
+        sym is None
+        or sym.kind != "local"
+        or not isinstance(sym.node, A.Declarator)
+        or sym.node.init is None
+    ):
+        return None
+    assert tr.fn is not None  # folding a call inside a function
+    stmts = tr.fn.sym.node.body.stmts
+    decl = next((i for i, st in enumerate(stmts) if any(n is sym.node for n in st.walk())), None)
+    at = next((i for i, st in enumerate(stmts) if any(n is call for n in st.walk())), None)
+    if (
+        decl is None
+        or at is None
+        or not isinstance(stmts[decl], A.DeclarationStatement)
+        or decl >= at
+    ):
+        return None
+    init = sym.node.init
+    named = {sym} | {tr.model.symbol_of(n) for n in init.walk() if isinstance(n, A.Identifier)}
+    read = [r for r in named if r is not None and r.kind in ("local", "param")]
+    for st in stmts[decl + 1 : at + 1]:
+        for n in st.walk():
+            if any(_written_components(tr, n, r, call) for r in read):
+                return None
+    return init
+
+
+def _written_components(tr: FoldEmitter, n: Any, sym: Symbol, call: A.Call) -> Any:
+    """The components of `sym` the node `n` writes: "all", a tuple of indices, or ()."""
+    targets: list[Any] = []
+    if isinstance(n, A.Assignment):
+        targets.append(n.target)
+    elif isinstance(n, (A.Unary, A.Postfix)) and n.op in ("++", "--"):
+        targets.append(n.operand)
+    elif isinstance(n, A.Call) and n is not call:
+        tgt = tr.model.call_target(n)
+        if isinstance(tgt, Symbol):
+            targets += [a for a, d in zip(n.args, param_directions(tgt)) if d != "in"]
+        elif n.callee == "modf" and len(n.args) == 2:
+            targets.append(n.args[1])
+    for x in targets:
+        root = x
+        while isinstance(root, (A.Field, A.Index)):
+            root = root.base
+        if isinstance(root, A.Identifier) and tr.model.symbol_of(root) is sym:
+            if isinstance(x, A.Field) and x.base is root and tr.model.is_swizzle(x):
+                return tuple(tr.model.swizzle_indices(x))  # (a struct's member: "all" below)
+            return "all"
+    return ()
+
+
+def folded_call(tr: LineWriter, call: A.Call, fn: Symbol, mask: str | None) -> str | None:
+    """The code of the call `call` of user function `fn` with constants propagated as NIR does
+    (module doc), emitted as ``if rt.lp: <folded> else: <the call as written>``; None where
+    :func:`fold_plan` leaves the call as written."""
+    if tr.watched is not None:
+        return None
+    plan = fold_plan(tr, call, fn, mask)
+    return None if plan is None else _emit_call(tr, call, fn, mask, *plan)
+
+
+def fold_plan(tr: FoldEmitter, call: A.Call, fn: Symbol, mask: str | None) -> tuple | None:
+    """(the parameters' final terms by symbol id, the parameter symbols, the result's terms,
+    the arguments read at run time as (index, node)) of the call `call` of user function `fn`
+    evaluated with constants propagated as NIR does (module doc: each engine emits the terms);
+    None where this call is left as written (the common case): no argument has a constant
+    component, or the constants merge no more than they do with every argument a run-time value
+    (merges inside the callee alone are nir_fold's, in the function's own code), and no dot
+    product of the callee factors (``vec3(p.xyx)`` of Dave Hoskins' hash12: two products share
+    p.x)."""
+    if (
+        tr.fn is None
+        or tr.fold_state.call_fold_off
+        or tr.fold_state.inline_frames
+        or any(tr.has_effects(a) for a in call.args)
+    ):
+        return None
+    try:
+        constant = _has_constant_argument(tr, call, fn)
+        if not constant and not _calls_dot(tr, fn):
+            return None
+        ev, env, params, result, holders = _evaluate(tr, call, fn, mask, True)
+        if (
+            ev.factored == 0
+        ):  # (a factored dot product is folded here only: Runtime.dot keeps the products)
+            if not constant or ev.merges == 0:
+                return None
+            if _evaluate(tr, call, fn, mask, False)[0].merges >= ev.merges:
+                return None
+    except _Refuse:
+        return None
+    return env, params, result, holders
+
+
+def _calls_dot(tr: FoldEngine, fn: Symbol) -> bool:
+    """`fn`'s body calls the built-in dot (where :meth:`_Eval.factored_add` may apply)."""
+    memo = tr.fold_state.call_fold_dots
+    if id(fn) not in memo:
+        memo[id(fn)] = any(
+            isinstance(n, A.Call)
+            and n.callee == "dot"
+            and isinstance(tr.model.call_target(n), B.Overload)
+            for n in fn.node.body.walk()
+        )
+    return memo[id(fn)]
+
+
+def _has_constant_argument(tr: FoldEmitter, call: A.Call, fn: Symbol) -> bool:
+    for a, (_, _, dr) in zip(call.args, fn.params):
+        if dr != "out" and (
+            tr.model.const_value(a) is not None
+            or _scaled_argument(tr, a, call) is not None
+            or any(k is not None for k in _constant_components(tr, a, call) or ())
+        ):
+            return True
+    return False
+
+
+def _scaled_argument(tr: FoldEmitter, a: Any, call: A.Call) -> tuple[Any, Any] | None:
+    """(y, #c) for an argument written ``y * #c`` or ``#c * y`` (c a compile-time constant of
+    y's type or a scalar, y not constant, no matrix): after inlining each component of the
+    parameter is that product, into which NIR merges the callee's constants (NebulaSmoke's
+    ``hash11(fi * 0.017)`` with ``fract(vec3(p) * 443.8975)``: ``fi * (0.017*443.8975)``), also
+    through a local so initialised that nothing writes before `call` (NIR's SSA value)."""
+    if isinstance(a, A.Identifier):
+        a = _unchanged_init(tr, a, call)
+    if not (isinstance(a, A.Binary) and a.op == "*") or tr.has_effects(a):
+        return None
+    for y, c in ((a.left, a.right), (a.right, a.left)):
+        ty, tc = tr.type_of(y), tr.type_of(c)
+        if (
+            tr.model.const_value(c) is not None
+            and tr.model.const_value(y) is None
+            and ty == tr.type_of(a)
+            and not ty.is_matrix
+            and not tc.is_matrix
+            and (tc.is_scalar or tc == ty)
+        ):
+            return y, c
+    return None
+
+
+def _evaluate(
+    tr: FoldEmitter, call: A.Call, fn: Symbol, mask: str | None, constants: bool
+) -> tuple:
+    """The call evaluated with its arguments bound to stand-in parameters: (the evaluation,
+    the parameters' final terms by symbol id, the parameter symbols, the result's terms, the
+    arguments read at run time as (index, node)); `constants`: the arguments' constant
+    components as constants, else every argument a run-time value. Raises _Refuse."""
+    ev = _Eval(tr, mask)
+    env: dict[int, list] = {}
+    holders: list[tuple[int, Any]] = []
+    args: list[list[Any]] = []  # per argument, its components' terms (None: unknown)
+    for i, (a, (_, _, dr)) in enumerate(zip(call.args, fn.params)):
+        t = tr.type_of(a)
+        if t.is_array or t.is_struct or t.base != "float":
+            raise _Refuse
+        if dr == "out":
+            args.append([None] * _width(t))
+            continue
+        cv = tr.model.const_value(a) if constants else None
+        if cv is not None:
+            args.append([_k(v) for v in _flat(cv)])
+            continue
+        scaled = _scaled_argument(tr, a, call) if constants else None
+        if (
+            scaled is not None
+        ):  # y * #c: each component a product by the constant (NIR merges into it)
+            y, c = scaled
+            holders.append((i, y))
+            cs = [_k(v) for v in _flat(tr.model.const_value(c))]
+            args.append(
+                [
+                    _T("*", (x, cs[0] if len(cs) == 1 else cs[j]))
+                    for j, x in enumerate(_leaves(f"@{i}@", t))
+                ]
+            )
+            continue
+        known = _constant_components(tr, a, call) if constants else None
+        leaves = _leaves(f"@{i}@", t)
+        holders.append((i, a))
+        args.append(
+            [k if k is not None else x for k, x in zip(known or [None] * len(leaves), leaves)]
+        )
+    params = [tr.model.symbol_of(p) for p in fn.node.proto.params]
+    if any(p is None for p in params):
+        raise _Refuse
+    for p, v in zip(params, args):
+        env[id(p)] = v
+    result = ev.body(fn, env)
+    return ev, env, params, result, holders
+
+
+def _emit_call(
+    tr: LineWriter,
+    call: A.Call,
+    fn: Symbol,
+    mask: str | None,
+    env: dict[int, list],
+    params: list[Any],
+    result: list[_T],
+    holders: list[tuple[int, Any]],
+) -> str:
+    r = tr.fresh("t")
+    tr.emit("if rt.lp:  # constants propagated into the call as NIR does (transpile/call_fold.py)")
+    tr.indent += 1
+    names = {i: tr.tmp(tr.expr(a, mask)) for i, a in holders}
+    memo: dict[int, str] = {}
+
+    def code(t: _T) -> str:
+        if id(t) in memo:
+            return memo[id(t)]
+        if t.op == "k" and t.value is not None:
+            c = tr.const_float(t.value)
+        elif t.op == "x":
+            c = t.code
+            for i, name in names.items():
+                c = c.replace(f"@{i}@", name)
+        else:
+            parts = [code(x) for x in t.args]
+            if t.op == "neg":
+                c = tr.tmp(f"(-{parts[0]})")
+            elif t.op == "call":
+                c = tr.tmp(
+                    f"rt.{t.code.format(*parts)}"
+                    if "{" in t.code
+                    else f"rt.{t.code}({', '.join(parts)})"
+                )
+            else:
+                c = tr.tmp(f"({parts[0]} {t.op} {parts[1]})")
+        memo[id(t)] = c
+        return c
+
+    def value(terms: list[_T], t: Any) -> str:
+        cs = [code(x) for x in terms]
+        if t.is_scalar:
+            return cs[0]
+        if t.is_vector:
+            return f"rt.vec({t.size}, {', '.join(cs)})"
+        return f"rt.mat({t.cols}, {t.rows}, {', '.join(cs)})"
+
+    for a, p, (_, _, dr) in zip(call.args, params, fn.params):
+        if dr != "in":
+            tr.write(tr.lvalue(a, mask), value(env[id(p)], tr.type_of(a)), mask)
+            record_sums(tr, call, a, env[id(p)], memo)
+    tr.emit(f"{r} = {value(result, tr.type_of(call)) if result else 'None'}")
+    tr.indent -= 1
+    tr.emit("else:")
+    tr.indent += 1
+    tr.fold_state.call_fold_off = True
+    try:
+        written = tr.user_call(call, fn, mask)
+    finally:
+        tr.fold_state.call_fold_off = False
+    tr.emit(f"{r} = {written}")
+    tr.indent -= 1
+    return r
+
+
+def out_roots(tr: FoldEmitter, call: A.Call, sym: Symbol | None) -> set[str] | None:
+    """The operations at the root of each component of the value `call` (a call of a user
+    function in the current function) writes into the variable `sym` passed whole as an out
+    or inout argument, as NIR sees them after inlining: "+" (a sum), "*", "/", "neg", "call"
+    (a built-in), "x" (an argument read as it is), "k" (a constant); None when the callee is
+    not of the shape evaluated here (for nir_fold, which asks what a rule would look into)."""
+    fn = tr.model.call_target(call)
+    if not isinstance(fn, Symbol):
+        return None
+    memo = tr.fold_state.call_fold_roots
+    key = (id(call), id(sym))
+    if key not in memo:
+        memo[key] = None
+        try:
+            _, env, params, _, _ = _evaluate(tr, call, fn, None, True)
+        except _Refuse:
+            return None
+        for a, p, (_, _, dr) in zip(call.args, params, fn.params):
+            if dr != "in" and isinstance(a, A.Identifier) and tr.model.symbol_of(a) is sym:
+                memo[key] = {"k" if t.const else t.op for t in env[id(p)]}
+    return memo[key]
+
+
+def _product_sum(t: _T) -> bool:
+    """The term is ``p1 + p2`` of two run-time products (or negated products: fneg(fmul) is
+    fused as fmul of a negated factor)."""
+    return t.op == "+" and all(
+        (x.args[0] if x.op == "neg" else x).op == "*" and not x.const for x in t.args
+    )
+
+
+def record_sums(tr: FoldEngine, call: A.Call, arg: Any, terms: list, memo: dict) -> None:
+    """Where the folded call `call` writes the variable `arg` (an out argument), the code of
+    the two products each of its components sums (`memo`: a term's id -> its code), for
+    :func:`product_sums`; read where the call was emitted (`tr.lines`)."""
+    if isinstance(arg, A.Identifier):
+        tr.fold_state.call_fold_sums[(id(call), id(tr.model.symbol_of(arg)))] = (
+            [tuple(memo[id(x)] for x in t.args) if _product_sum(t) else None for t in terms],
+            tr.lines,
+        )
+
+
+def product_sums(
+    tr: FoldEngine, call: A.Call, sym: Symbol | None
+) -> list[tuple[str, str] | None] | None:
+    """Per component of the value the folded call `call` (emitted by :func:`folded_call` in the
+    current Python function) wrote into the variable `sym`: the code of its two products when
+    it is ``p1 + p2`` to NIR, else None; None when the call was not folded here. For
+    nir_fold's ``(p1 + p2) + e -> (p1 + e) + p2``, read in llvmpipe mode only: the codes are
+    temporaries of the ``if rt.lp:`` branch."""
+    found = tr.fold_state.call_fold_sums.get((id(call), id(sym)))
+    if found is None or found[1] is not tr.lines:
+        return None  # (not folded, or folded in another Python function: an outlined part)
+    return found[0]

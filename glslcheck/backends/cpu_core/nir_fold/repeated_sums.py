@@ -1,0 +1,730 @@
+"""A variable advanced by constants: ``seed += 0.1`` written again and again (path tracers'
+random numbers), through the calls NIR inlines and the loops it unrolls.
+
+NIR is SSA: ``seed += 0.1; seed += 0.1; seed += 0.1`` is ``((s0 + 0.1) + 0.1) + 0.1``, and
+``('~fadd', '#a', ('fadd', 'b(is_not_const)', '#c')) -> (a + c) + b`` merges the constants
+into one, ``s0 + K``, in an order sum_order.py simulates (not simply left to right). A chain
+runs while each step's previous write reaches it alone (analysis.dataflow: it runs before on
+every path, nothing writes the variable in between), so it restarts at the top of a loop NIR
+keeps and after the join of a branch that writes the variable (a phi to NIR), and not from a
+constant (NIR folds those step by step, as written).
+
+NIR inlines every call first, so a chain runs through a call that passes the variable to an
+``inout`` parameter, or a global the callee writes, that the callee only advances by constants
+(:func:`chain_params`: ``float rnd(inout float s) { s += 0.1; return s; }``, a path tracer's
+``float seed;`` advanced in ``hash2()``). It unrolls a ``for`` of a constant count and a small
+body after one pass of the rules over the body (:func:`unrolled_chain`, loop_unroll.py), so
+the copies continue it; a loop left early ends in a phi.
+
+:func:`chain_plan` builds each chain of a function (steps, calls spread into their callees'
+programs, unrolled loops) and asks sum_order.py for K at every step, per copy of an unrolled
+loop. The engines emit ``base + K`` in llvmpipe mode (the NumPy backend: repeated_sum and the
+functions after it; the compiled engine the same from the plan): the value before the chain
+kept in a temporary, K a constant, or a loop's constants indexed by its pass; a callee's step
+reads its K from two more arguments per chain variable, the caller's base and its constants
+``(K1, K2, ...)``, or None (no chain: the written order)."""
+
+from __future__ import annotations
+
+from typing import Any
+
+import numpy as np
+
+from ....frontend import syntax as A
+from ....semantics.analysis.dataflow import FunctionFacts, written_variable
+from ....semantics.model import Symbol
+from .loop_copies import later_values, merging_loop
+from .loop_unroll import nir_unrolls, trip_count
+from .queries import (
+    FunctionStandin,
+    asked_in,
+    constant_value,
+    current_function,
+    function_facts,
+    is_constant,
+    is_varying,
+)
+from .sum_order import Loop, Step, chain_constants
+
+TYPE_CHECKING = False  # not typing's: importing typing costs every start-up
+if TYPE_CHECKING:
+    from ..fold_protocols import FoldEngine, LineWriter
+
+
+class Entry:
+    """A write of a chain in the plan of a function: its chain (a number), whether it is the
+    chain's first (the value before it is the base), the K of its value for each copy of the
+    unrolled `loop` around it (one copy outside; a step: one K per component, a call: one per
+    step of its callee) and the written variable."""
+
+    __slots__ = ("chain", "root", "ks", "loop", "sym")
+
+    def __init__(self, chain: int, root: bool, ks: list, loop: Any, sym: Any) -> None:
+        self.chain, self.root, self.ks, self.loop, self.sym = chain, root, ks, loop, sym
+
+
+def _step(tr: FoldEngine, e: Any) -> tuple[str, Any] | None:
+    """("+" or "-", the constant) when `e` adds a float constant to a whole local, parameter or
+    global variable and stores the sum back in it; else None."""
+    if not isinstance(e, A.Assignment) or not isinstance(e.target, A.Identifier):
+        return None
+    sym = tr.model.symbol_of(e.target)
+    t = tr.type_of(e.target)
+    if not _variable(sym) or t.base != "float" or t.is_matrix:
+        return None
+    if e.op in ("+=", "-="):
+        sign, k_node = e.op[0], e.value
+    elif e.op == "=" and isinstance(e.value, A.Binary) and e.value.op in ("+", "-"):
+        left, right = e.value.left, e.value.right
+        if _reads(tr, left, sym) and is_constant(tr, right):
+            sign, k_node = e.value.op, right
+        elif e.value.op == "+" and _reads(tr, right, sym) and is_constant(tr, left):
+            sign, k_node = "+", left
+        else:
+            return None
+    else:
+        return None
+    kt = tr.type_of(k_node)
+    if not is_constant(tr, k_node) or kt.base != "float" or not (kt.is_scalar or kt == t):
+        return None
+    return sign, k_node
+
+
+def _variable(sym: Any) -> bool:
+    """A variable a chain may advance: a local, a parameter, a global the shader writes."""
+    return sym is not None and (
+        sym.kind in ("local", "param") or sym.kind == "global" and sym.qualifier is None
+    )
+
+
+class _CallWrite:
+    """A call of a user function that writes a global (what analysis.dataflow's Write is for a
+    direct write: its position is the call's exit)."""
+
+    __slots__ = ("symbol", "pos", "kind", "value", "node")
+
+    def __init__(self, symbol: Any, pos: int, node: Any) -> None:
+        self.symbol, self.pos, self.kind, self.value, self.node = symbol, pos, "out", None, node
+
+
+def _writes(tr: FoldEngine, facts: Any, sym: Any) -> list:
+    """The writes of `sym` in the function of `facts`, in order; for a global, also the calls of
+    user functions that write it (NIR inlines them: its chain runs through)."""
+    ws = facts.writes_to(sym)
+    if sym.kind != "global":
+        return ws
+    calls = [
+        _CallWrite(sym, facts.exit[id(c)], c)
+        for c in facts.calls
+        if isinstance(tr.model.call_target(c), Symbol)
+        and _writes_global(tr, tr.model.call_target(c), sym)
+    ]
+    return sorted(list(ws) + calls, key=lambda w: w.pos)
+
+
+def _writes_global(tr: FoldEngine, fn: Symbol, sym: Any) -> bool:
+    """User function `fn` writes the global `sym`, itself or through the functions it calls."""
+    cache = tr.fold_state.sum_global_writers
+    key = (id(fn), id(sym))
+    if key not in cache:
+        cache[key] = False  # (GLSL has no recursion: a guard only)
+        facts = _facts_of(tr, fn)
+        cache[key] = bool(facts.writes_to(sym)) or any(
+            isinstance(tr.model.call_target(c), Symbol)
+            and _writes_global(tr, tr.model.call_target(c), sym)
+            for c in facts.calls
+        )
+    return cache[key]
+
+
+def _written_between(tr: FoldEngine, facts: Any, a: Any, b: Any, sym: Any) -> bool:
+    """`sym` may be written after `a` and before `b` (analysis.dataflow's question; for a global
+    only the calls that write it count, not every call)."""
+    if sym.kind != "global":
+        return facts.written_between(a, b, [sym])
+    spans = [(facts.exit[id(a)], facts.enter[id(b)])]
+    around_a = {id(lp) for lp in facts.enclosing_loops(a)}
+    for loop in facts.enclosing_loops(b):
+        if id(loop) not in around_a:
+            spans.append((facts.enter[id(loop)], facts.exit[id(loop)]))
+    return any(lo < w.pos < hi for w in _writes(tr, facts, sym) for lo, hi in spans)
+
+
+def _reads(tr: FoldEngine, node: Any, sym: Any) -> bool:
+    return isinstance(node, A.Identifier) and tr.model.symbol_of(node) is sym
+
+
+def _previous_step(tr: FoldEngine, e: Any, sym: Any) -> Any:
+    """The step (or call of a :func:`chain_params` callee) whose value of `sym` alone reaches
+    `e` (NIR sees it as e's operand); the parameter's node at the first write of a chain
+    parameter of the function being emitted (the caller's chain comes in there); the loop at
+    the first write of `sym` in the body of an unrolled loop (:func:`unrolled_chain`), and
+    its body after such a loop that nothing leaves early; else None."""
+    facts = function_facts(tr)
+    if not facts.ok or id(e) not in facts.enter:
+        return None  # (a node of an inlined body: another function's)
+    before = [w for w in _writes(tr, facts, sym) if w.pos < facts.enter[id(e)]]
+    loops = [lp for lp in facts.enclosing_loops(e) if unrolled_chain(tr, lp, sym)]
+    if loops and not any(facts.contains(loops[-1].body, w.node) for w in before):
+        return loops[-1]  # (the first write of the body: its chain starts at the loop's phi)
+    if not before:
+        fn = current_function(tr).sym
+        index = [i for i, p in enumerate(fn.node.proto.params) if tr.model.symbol_of(p) is sym]
+        if index and index[0] in chain_params(tr, fn):
+            return fn.node.proto.params[index[0]]
+        if sym.kind == "global" and _key(tr, sym) in chain_params(tr, fn):
+            return sym.node  # (the caller's chain of the global comes in here)
+        return None
+    w = before[-1]
+    left = [lp for lp in facts.enclosing_loops(w.node) if not facts.contains(lp, e)]
+    if left:  # (the last write is in a loop `e` follows)
+        loop = left[-1]
+        if len(left) > 1 or not unrolled_chain(tr, loop, sym) or _leaves(loop):
+            return None
+        if facts.dominates(loop, e) and not _written_between(tr, facts, loop, e, sym):
+            return loop.body  # (after the loop: its last copy's value)
+        return None
+    if not _is_step(tr, w.node, sym) or not facts.dominates(w.node, e):
+        return None
+    if _written_between(tr, facts, w.node, e, sym):
+        return None
+    return w.node
+
+
+def _leaves(loop: Any) -> bool:
+    """The loop can be left before its last pass (a break or a return in its body)."""
+    return any(isinstance(n, (A.Break, A.Return)) for n in loop.body.walk())
+
+
+def _is_step(tr: FoldEngine, node: Any, sym: Any) -> bool:
+    if isinstance(node, A.Call):
+        step = call_step(tr, node)
+        return step is not None and step[1] is sym
+    return isinstance(node, A.Assignment) and _step(tr, node) is not None
+
+
+def _callee_program(tr: FoldEngine, call: A.Call) -> Program:
+    """The callee's :class:`Program` of a call that advances a chain (:func:`call_step`)."""
+    step = call_step(tr, call)
+    assert step is not None
+    return step[2]
+
+
+def call_step(tr: FoldEngine, call: A.Call) -> tuple[int, Any, Program] | None:
+    """(the parameter's index, the caller's variable, the callee's :class:`Program` for it) for
+    a call that passes a whole float variable to a :func:`chain_params` parameter; None for
+    any other call (or one with two such parameters)."""
+    target = tr.model.call_target(call)
+    if not isinstance(target, Symbol):
+        return None
+    found = []
+    for i, program in chain_params(tr, target).items():
+        if i >= _GLOBALS:
+            found.append((i, _global_of(tr, i), program))
+            continue
+        sym, whole = written_variable(tr.model, call.args[i])
+        if (
+            sym is not None
+            and whole
+            and isinstance(call.args[i], A.Identifier)
+            and sym.kind in ("local", "param")
+        ):
+            found.append((i, sym, program))
+    return found[0] if len(found) == 1 else None
+
+
+class Program:
+    """What a callee does to a chain parameter: its additions as sum_order ops (prev -1: the
+    value the caller passes), where each write's ops are (id(write) -> (the unrolled loop
+    around it or None, first op, how many)), and whether a loop it can leave early ends it
+    (the value after the call is then a phi: a chain of the caller restarts there)."""
+
+    __slots__ = ("ops", "where", "leaves")
+
+    def __init__(self, ops: list, where: dict, leaves: bool) -> None:
+        self.ops, self.where, self.leaves = ops, where, leaves
+
+    def slots(self) -> int:
+        """How many constants a caller passes: one per addition, per copy in a loop."""
+        return sum(1 if isinstance(op, Step) else op.count * len(op.body) for op in self.ops)
+
+    def slot(self, node: Any) -> tuple[int, int, Any, int]:
+        """(the slot of the write's first constant in the first copy, the stride between two
+        copies (0 outside a loop), the loop, how many constants the write adds a copy)."""
+        loop, first, count = self.where[id(node)]
+        at = 0
+        for j, op in enumerate(self.ops):
+            if loop is None and j == first:
+                return at, 0, None, count
+            if isinstance(op, Loop) and loop is not None and j == self.where[id(loop)][1]:
+                return at + first, len(op.body), loop, count
+            at += 1 if isinstance(op, Step) else op.count * len(op.body)
+        raise AssertionError("a write of the program")
+
+
+_GLOBALS = 1000  # chain_params' keys from here on are globals (_key), below parameters
+
+
+def _key(tr: FoldEngine, sym: Any) -> int:
+    """The chain_params key of a global: its number, in the order first asked, from _GLOBALS."""
+    keys = tr.fold_state.sum_global_keys
+    if id(sym) not in keys:
+        keys[id(sym)] = (_GLOBALS + len(keys), sym)
+    return keys[id(sym)][0]
+
+
+def _global_of(tr: FoldEngine, key: int) -> Any:
+    return next(sym for k, sym in tr.fold_state.sum_global_keys.values() if k == key)
+
+
+def chain_params(tr: FoldEngine, fn: Symbol) -> dict[int, Program]:
+    """index -> the :class:`Program` of each ``inout float`` parameter of user function `fn`
+    that it only advances by constants (steps, calls of such functions), in its body's
+    straight line or that of a loop NIR unrolls: NIR inlines the call and the caller's chain
+    runs through it. A float global written so (itself or by the functions `fn` calls) is
+    one too, under its :func:`_key`."""
+    cache = tr.fold_state.sum_params
+    if id(fn) not in cache:
+        cache[id(fn)] = {}  # (GLSL has no recursion: a guard only)
+        with asked_in(tr, fn):
+            cache[id(fn)] = _programs(tr, fn)
+    return cache[id(fn)]
+
+
+def _programs(tr: FoldEngine, fn: Symbol) -> dict[int, Program]:
+    facts = function_facts(tr)
+    if not facts.ok or any(isinstance(n, A.Discard) for n in fn.node.body.walk()):
+        return {}
+    out: dict[int, Program] = {}
+    for i, (p, (_, ptype, d)) in enumerate(zip(fn.node.proto.params, fn.params)):
+        psym = tr.model.symbol_of(p)
+        if d == "inout" and psym is not None and ptype.base == "float" and ptype.is_scalar:
+            program = _program(tr, fn, facts, psym)
+            if program is not None:
+                out[i] = program
+    for sym in _globals_written(tr, fn):
+        program = _program(tr, fn, facts, sym)
+        if program is not None:
+            out[_key(tr, sym)] = program
+    return out
+
+
+def _globals_written(tr: FoldEngine, fn: Symbol) -> list:
+    """The float scalar globals `fn` writes, itself or through the functions it calls."""
+    found = tr.fold_state.sum_globals
+    if found is None:
+        seen: dict[int, Any] = {}
+        for f in tr.model.reachable_functions():
+            for n in f.node.body.walk():
+                sym = tr.model.symbol_of(n) if isinstance(n, A.Identifier) else None
+                if sym is not None and sym.kind == "global" and _variable(sym):
+                    seen.setdefault(id(sym), sym)
+        found = tr.fold_state.sum_globals = list(seen.values())
+    out = found
+    return [
+        g
+        for g in out
+        if g.type is not None
+        and g.type.base == "float"
+        and g.type.is_scalar
+        and _writes_global(tr, fn, g)
+    ]
+
+
+def _program(tr: FoldEngine, fn: Symbol, facts: Any, sym: Any) -> Program | None:
+    ws = _writes(tr, facts, sym)
+    if not ws:
+        return None
+    body = fn.node.body.stmts
+    chains = _chains(tr, facts, sym, ws, param_root=True)
+    writes = [x for x in chains[0]["items"] if not isinstance(x, A.For)] if chains else []
+    if len(chains) != 1 or len(writes) != len({id(w.node) for w in ws}):
+        return None
+    loops = [x for x in chains[0]["items"] if isinstance(x, A.For)]
+    returns = [n for n in fn.node.body.walk() if isinstance(n, A.Return)]
+    if any(
+        r is not body[-1] and not any(facts.contains(lp.body, r) for lp in loops) for r in returns
+    ) or any(facts.region[id(x)] != () for x in loops):
+        return None  # (a return outside the unrolled loops: the rest runs on some lanes)
+    ops = chains[0]["ops"]
+    return Program(ops, chains[0]["where"], any(isinstance(op, Loop) and op.breaks for op in ops))
+
+
+def chain_globals(tr: FoldEngine, fn: Symbol) -> list[tuple[int, Any]]:
+    """(key, global) for each global among `fn`'s :func:`chain_params`: a call passes its value
+    before the call as the base where a chain starts there."""
+    return [(k, _global_of(tr, k)) for k in sorted(chain_params(tr, fn)) if k >= _GLOBALS]
+
+
+def param_step(tr: FoldEngine, node: Any) -> tuple[int, int, int, Any, int] | None:
+    """(the parameter's index, the slot of the node's first constant, the stride between two
+    copies of its loop, the loop, how many constants it adds a copy) for a write of a
+    :func:`chain_params` parameter of the function being emitted; else None."""
+    fn = current_function(tr).sym
+    if fn is None or isinstance(tr.fn, FunctionStandin):
+        return None
+    for i, program in chain_params(tr, fn).items():
+        if id(node) in program.where:
+            return (i, *program.slot(node))
+    return None
+
+
+def unrolled_chain(tr: FoldEngine, loop: Any, sym: Any) -> bool:
+    """`loop` is one NIR unrolls (loop_unroll.nir_unrolls, with no loop, continue or
+    discard in its body) and its body writes `sym` only by steps in its
+    straight line: each copy continues the chain of the one before."""
+    cache = tr.fold_state.sum_loops
+    key = (id(loop), id(sym))
+    if key not in cache:
+        cache[key] = False
+        facts = function_facts(tr)
+        if nir_unrolls(tr, loop) and not any(
+            isinstance(n, (A.Continue, A.Discard, A.For, A.While, A.DoWhile))
+            for n in loop.body.walk()
+        ):
+            inner = facts.region[id(loop.body)]
+            writes = [w for w in _writes(tr, facts, sym) if facts.contains(loop.body, w.node)]
+            cache[key] = bool(writes) and all(
+                facts.region[id(w.node)] == inner
+                and _is_step(tr, w.node, sym)
+                and not (
+                    isinstance(w.node, A.Call)
+                    and any(isinstance(op, Loop) for op in _callee_program(tr, w.node).ops)
+                )
+                for w in writes
+            )
+    return cache[key]
+
+
+def _facts_of(tr: FoldEngine, fn: Symbol) -> Any:
+    cache = tr.fold_state.fn_facts
+    if id(fn) not in cache:
+        cache[id(fn)] = FunctionFacts(fn.node, tr.model)
+    return cache[id(fn)]
+
+
+def _varying_start(tr: FoldEngine, e: Any, sym: Any) -> bool:
+    """The value before the chain is no constant to NIR (``b(is_not_const)``: a constant is
+    folded step by step instead)."""
+    facts = function_facts(tr)
+    before = [w for w in _writes(tr, facts, sym) if w.pos < facts.enter[id(e)]]
+    if not before:  # (a global is its constant initializer at the start of the entry point)
+        return sym.kind == "param" or sym.kind == "global" and not current_function(tr).is_entry
+    w = before[-1]
+    if w.kind in ("=", "init") and w.value is not None and facts.dominates(w.node, e):
+        return is_varying(tr, w.value)
+    return True
+
+
+# -- the plan ----------------------------------------------------------------------------------
+def chain_plan(tr: FoldEngine) -> dict[int, Entry]:
+    """id(step, call or loop) -> its :class:`Entry`, for the chains of the function being
+    emitted (its :func:`chain_params` variables apart: their steps read the caller's K)."""
+    fn = current_function(tr).sym
+    cache = tr.fold_state.sum_plans
+    if id(fn) not in cache:
+        cache[id(fn)] = {}
+        facts = function_facts(tr)
+        if facts.ok:
+            own = chain_params(tr, fn)
+            skip = {id(tr.model.symbol_of(fn.node.proto.params[i])) for i in own if i < _GLOBALS}
+            skip |= {id(_global_of(tr, k)) for k in own if k >= _GLOBALS}
+            syms = {id(ws[0].symbol): ws[0].symbol for ws in facts.writes.values()}
+            for g in _globals_written(tr, fn):
+                syms.setdefault(id(g), g)
+            for sym in syms.values():
+                t = sym.type
+                if (
+                    id(sym) in skip
+                    or not _variable(sym)
+                    or t is None
+                    or t.base != "float"
+                    or t.is_matrix
+                    or t.is_array
+                ):
+                    continue
+                _plan_variable(tr, facts, sym, _writes(tr, facts, sym), cache[id(fn)])
+    return cache[id(fn)]
+
+
+def _plan_variable(tr: FoldEngine, facts: Any, sym: Any, ws: list, plan: dict) -> None:
+    components = sym.type.size if sym.type.is_vector else 1
+    for number, chain in enumerate(_chains(tr, facts, sym, ws, param_root=False), 1):
+        ops = chain["ops"]
+        if len(ops) == 1 and isinstance(ops[0], Step) or _size(ops) > _MOST:
+            continue  # (one addition: as written; a very long chain too)
+        per_component = []
+        for c in range(components):
+            got = chain_constants(_component(ops, c))
+            if got is None:
+                break
+            per_component.append(got)
+        else:
+            for x in chain["items"]:
+                loop, first, count = chain["where"][id(x)]
+                ks = _ks(per_component, chain["where"], x, loop, first, count)
+                plan[id(x)] = Entry(number, id(x) in chain["roots"], ks, loop, sym)
+
+
+def _chains(tr: FoldEngine, facts: Any, sym: Any, ws: list, param_root: bool) -> list[dict]:
+    """The chains of `sym` in the function being emitted, each {"ops": sum_order ops, "where":
+    id(item) -> (its unrolled loop or None, first op, count), "items": its steps, calls and
+    loops, "roots": ids of its first items}. A chain starts where a step has no previous one
+    and the value is no constant, or (`param_root`: a chain parameter's program) at the
+    parameter."""
+    nodes: list = []
+    for w in ws:
+        if _is_step(tr, w.node, sym) and all(n is not w.node for n in nodes):
+            nodes.append(w.node)
+    if len(nodes) > _MOST:
+        return []  # (left as written: the simulation grows with the square of a chain)
+    loops: list = []
+    for n in nodes:
+        for lp in facts.enclosing_loops(n):
+            if unrolled_chain(tr, lp, sym) and all(lp is not x for x in loops):
+                loops.append(lp)
+    items = sorted(nodes + loops, key=lambda x: facts.enter[id(x)])
+    chain_of: dict[int, int] = {}
+    chains: list[dict] = []
+    where: dict[int, tuple[Any, int, int]] = {}
+    loop_ops: dict[int, list] = {}
+    for x in items:
+        loop = next((lp for lp in loops if lp is not x and facts.contains(lp.body, x)), None)
+        prev = _previous_step(tr, x, sym)
+        if loop is not None:  # (in an unrolled loop's body: its chain is the loop's)
+            if id(loop) not in chain_of:
+                continue
+            ops, start = loop_ops[id(loop)], -1
+            if prev is not loop:
+                if prev is None or id(prev) not in where:
+                    continue
+                start = where[id(prev)][1] + where[id(prev)][2] - 1
+            chain_of[id(x)] = chain_of[id(loop)]
+        elif prev is None or param_root and isinstance(prev, A.Param):
+            if not param_root and not _varying_start(tr, x, sym):
+                continue
+            chain_of[id(x)] = len(chains)
+            chains.append({"ops": [], "where": where, "items": [], "roots": {id(x)}})
+            ops, start = chains[-1]["ops"], -1
+        else:
+            ref = _owner(loops, prev) or prev  # (after a loop: its last copy's value)
+            if id(ref) not in chain_of or where[id(ref)][0] is not None:
+                continue
+            chain_of[id(x)] = chain_of[id(ref)]
+            ops = chains[chain_of[id(x)]]["ops"]
+            start = where[id(ref)][1] + where[id(ref)][2] - 1
+        chains[chain_of[id(x)]]["items"].append(x)
+        first = len(ops)
+        if isinstance(x, A.For):
+            body: list = []
+            loop_ops[id(x)] = body
+            ops.append(Loop(start, loop_count(tr, x), body, _leaves(x)))
+        elif isinstance(x, A.Call):
+            program = _callee_program(tr, x)
+            for op in program.ops:  # (the callee's ops, its entry the value here)
+                prev_op = start if op.prev < 0 else first + op.prev
+                if isinstance(op, Loop):
+                    ops.append(Loop(prev_op, op.count, op.body, op.breaks))
+                else:
+                    ops.append(Step(prev_op, op.k, op.neg))
+        else:
+            step = _step(tr, x)
+            assert step is not None  # (an item of a chain: a call or a step)
+            sign, k_node = step
+            constants = constant_value(tr, k_node)
+            assert constants is not None  # (_step's operand is a constant)
+            values = [float(v) for v in constants]
+            if sign == "-":
+                values = [-v for v in values]
+            ops.append(Step(start, values, sign == "-"))
+        where[id(x)] = (loop, first, len(ops) - first)
+    return chains
+
+
+_MOST = 200  # additions a chain may have (copies of unrolled loops counted) to be followed
+
+
+def _size(ops: list) -> int:
+    return sum(1 if isinstance(op, Step) else op.count * _size(op.body) for op in ops)
+
+
+def _owner(loops: list, prev: Any) -> Any:
+    """The loop whose body `prev` is (the value after that loop), else None."""
+    return next((lp for lp in loops if lp.body is prev), None)
+
+
+def loop_count(tr: FoldEngine, loop: Any) -> int:
+    """How many copies NIR makes of an unrolled loop (loop_unroll.trip_count)."""
+    count = trip_count(tr, loop)
+    assert count is not None  # (an unrolled loop)
+    return count
+
+
+def _component(ops: list, c: int) -> list:
+    out: list = []
+    for op in ops:
+        if isinstance(op, Loop):
+            out.append(Loop(op.prev, op.count, _component(op.body, c), op.breaks))
+        else:
+            k = np.atleast_1d(op.k)
+            out.append(Step(op.prev, k[c] if len(k) > 1 else k[0], op.neg))
+    return out
+
+
+def _ks(per_component: list, where: dict, x: Any, loop: Any, first: int, count: int) -> list:
+    """The K of item `x` per copy of its loop: per component for a step, per slot of the
+    callee's :class:`Program` for a call (its loops' copies one after the other)."""
+    if isinstance(x, A.For):
+        return []
+    copies = 1 if loop is None else len(per_component[0][where[id(loop)][1]])
+    out = []
+    for j in range(copies):
+        vals = []
+        for got in per_component:
+            level = got if loop is None else got[where[id(loop)][1]][j]
+            vals.append(_flat(level[first : first + count]))
+        out.append([v[0] for v in vals] if not isinstance(x, A.Call) else vals[0])
+    return out
+
+
+def _flat(values: list) -> list:
+    out: list = []
+    for v in values:
+        if isinstance(v, list):
+            for copy in v:
+                out += _flat(copy)
+        else:
+            out.append(v)
+    return out
+
+
+def sum_entry(tr: FoldEngine, node: Any) -> Entry | None:
+    """The :class:`Entry` of a step, call or loop of the function being emitted, else None."""
+    if tr.fn is None or current_function(tr).sym is None:
+        return None
+    return chain_plan(tr).get(id(node))
+
+
+def indexed_loop(tr: FoldEngine, loop: Any) -> bool:
+    """Some step in the unrolled `loop` has a K per copy, or a read merges a constant per copy
+    (loop_copies.merging_loop): the engines count its passes."""
+    fn = current_function(tr).sym if tr.fn is not None else None
+    if fn is None:
+        return False
+    if merging_loop(tr, loop):
+        return True  # (a constant merged into another value in the first copy: loop_copies.py)
+    if any(p.where.get(id(loop)) for p in chain_params(tr, fn).values()):
+        return True
+    return any(e.loop is loop and len(e.ks) > 1 for e in chain_plan(tr).values())
+
+
+def slot_code(tr: FoldEngine, own: tuple) -> str:
+    """The index of a chain parameter's write's first constant (:func:`param_step`) among the
+    constants the caller passed: its slot, plus the stride times the loop's pass."""
+    _, at, stride, loop, _ = own
+    if loop is None:
+        return str(at)
+    return f"{at} + {stride} * {tr.fold_state.sum_index[id(loop)]}"
+
+
+# -- the NumPy backend's code ------------------------------------------------------------------
+def repeated_sum(tr: LineWriter, e: A.Assignment, mask: str | None, old: str) -> str | None:
+    """The code of the new value of a step of a chain: ``base + K`` in llvmpipe mode (K
+    :func:`chain_plan`'s), the written ``old + c`` otherwise; None for any other write. The
+    first step of a chain keeps the value before it (`old`) in a temporary."""
+    step = _step(tr, e)
+    if step is None or tr.fn is None:
+        return None
+    sign, k_node = step
+    tk = tr.expr(k_node, mask)
+    written = tr.binary_values(sign, tr.type_of(e.target), tr.type_of(k_node), old, tk)
+    own = param_step(tr, e)
+    if own is not None:  # (a chain parameter: the caller's base and K, or None)
+        b, k = f"_cb{own[0]}", f"_ck{own[0]}"
+        return f"(({b} + {k}[{slot_code(tr, own)}]) if rt.lp and {k} is not None else {written})"
+    entry = sum_entry(tr, e)
+    base = _base(tr, entry, old)
+    if entry is None or base is None:
+        return None
+    k = _k_code(tr, entry, [_vector(tr, ks) for ks in entry.ks])
+    return f"(({base} + {k}) if rt.lp else {written})"
+
+
+def _base(tr: LineWriter, entry: Entry | None, old: str | None) -> str | None:
+    """The code of the value before the entry's chain: kept in a temporary at its first write
+    (`old`: the value there), read in the same Python function after it."""
+    if entry is None:
+        return None
+    bases = tr.fold_state.sum_chains
+    key = (id(current_function(tr).sym), entry.chain, id(entry.sym))
+    if entry.root and old is not None:
+        bases[key] = (tr.tmp(old), tr.lines)
+    known = bases.get(key)
+    return known[0] if known is not None and known[1] is tr.lines else None
+
+
+def _vector(tr: LineWriter, ks: list) -> str:
+    codes = [tr.const_float(float(k)) for k in ks]
+    return codes[0] if len(codes) == 1 else tr.vector(codes)
+
+
+def _k_code(tr: LineWriter, entry: Entry, codes: list[str]) -> str:
+    """One code per copy: the copy's, indexed by the unrolled loop's pass when they differ."""
+    if len(codes) == 1:
+        return codes[0]
+    return f"({', '.join(codes)})[{tr.fold_state.sum_index[id(entry.loop)]}]"
+
+
+def chain_call_args(tr: LineWriter, call: A.Call, fn: Symbol, args: dict[int, str]) -> list[str]:
+    """The chain arguments of a call of `fn`, two per :func:`chain_params` parameter, in
+    order: the base and ``(K1, K2, ...)`` where the call continues or starts a chain of the
+    caller (or passes on the caller's own chain parameter), None and None where it does not
+    (the callee computes as written). `args`: the code of each inout argument's value."""
+    out = []
+    for i in sorted(chain_params(tr, fn)):
+        entry = sum_entry(tr, call)
+        step = call_step(tr, call)
+        mine = step is not None and step[0] == i
+        own = param_step(tr, call) if mine else None
+        if own is not None:
+            j, a, n = own[0], slot_code(tr, own), own[4]
+            out += [f"_cb{j}", f"(None if _ck{j} is None else _ck{j}[{a}:{a} + {n}])"]
+            continue
+        base = _base(tr, entry, args.get(i)) if mine else None
+        if entry is None or base is None:
+            out += ["None", "None"]
+            continue
+        tuples = [f"({''.join(tr.const_float(float(k)) + ', ' for k in ks)})" for ks in entry.ks]
+        out += [base, _k_code(tr, entry, tuples)]
+    return out
+
+
+def chain_param_names(tr: LineWriter, fn: Symbol) -> list[str]:
+    """The extra parameters of a function with :func:`chain_params`: the base and the
+    constants of the caller's chain through each (:func:`chain_call_args`)."""
+    return [f"_c{x}{i}" for i in sorted(chain_params(tr, fn)) for x in "bk"]
+
+
+def enter_unrolled(tr: LineWriter, loop: Any) -> None:
+    """Before an unrolled loop of the plan: the value before a chain that starts there, kept,
+    the temporaries loop_copies.later_values names, and a count of its passes where its steps'
+    constants (or a merge: loop_copies.merging_loop) differ from copy to copy."""
+    entry = sum_entry(tr, loop)
+    if entry is not None and entry.root:
+        _base(tr, entry, tr.var_name(entry.sym, entry.sym.node))
+    for value, sym in later_values(tr, loop):  # (a temporary a later copy merges into)
+        tr.fold_state.kept_slots[id(value)] = (tr.tmp(tr.var_name(sym, sym.node)), tr.lines)
+    if indexed_loop(tr, loop):
+        name = tr.fresh("ix")
+        fn = tr.fn
+        assert fn is not None  # (emitting a function)
+        fn.defined.remove(name)  # (a pass count, no lane value)
+        tr.emit(f"{name} = 0")
+        tr.fold_state.sum_index[id(loop)] = name
+
+
+def end_of_unrolled_body(tr: LineWriter, loop: Any) -> None:
+    """At the end of an unrolled loop's body: its pass count advanced (:func:`enter_unrolled`)."""
+    name = tr.fold_state.sum_index.get(id(loop))
+    if name is not None:
+        tr.emit(f"{name} += 1")

@@ -1,0 +1,227 @@
+"""A constant added to a call's result, sunk into the ``+=`` chain the function returns.
+
+NIR inlines every function, so ``displacement(x) - 0.4`` (iq's terrain) over ``f = 0.5*noise(p);
+f += 0.25*noise(q); ... return f;`` is a sum the constant sinks into as sink.py sinks it:
+``((0.5*noise(p) - 0.4) + 0.25*noise(q)) + ...`` on llvmpipe. Such a function
+(:func:`sunk_return`) takes one more argument, the constant or None
+(:func:`return_constant_args`, passed by :func:`sink_into_call`), keeps its terms in
+temporaries (:func:`keep_term`) and adds the constant where NIR puts it
+(:func:`sunk_return_value`)."""
+
+from __future__ import annotations
+
+from typing import Any
+
+from ....frontend import syntax as A
+from ....semantics.model import Symbol
+from .queries import (
+    SUMS,
+    FunctionStandin,
+    asked_in,
+    current_function,
+    function_facts,
+    is_fmul,
+    is_opaque,
+    use_counts,
+    used_once,
+)
+from .sink import known_term
+
+TYPE_CHECKING = False  # not typing's: importing typing costs every start-up
+if TYPE_CHECKING:
+    from ..fold_protocols import FoldEngine, LineWriter
+
+
+def sunk_return(tr: FoldEngine, fn: Symbol) -> list[tuple[Any, Any, str]] | None:
+    """The sum a user function returns when a caller adds a constant to its result and NIR,
+    which inlines every function, would sink that constant into it (:func:`sink._sink_sum`):
+    ``float f; f = 0.5*noise(p); f += 0.25*noise(q); ... return f;`` called as
+    ``displacement(x) - 0.4`` (iq's terrain) is ``((0.5*noise(p) - 0.4) + 0.25*noise(q)) + ...``
+    on llvmpipe. Only the plain shape: the function's last statement returns a float local
+    that nothing else reads, written by statements of the function's body (no branch, no loop)
+    as ``f = a`` (or an initializer) then ``f += t`` / ``f -= t``; no out parameter, no other
+    return. The terms [(write, value, operator)], else None. Such a function takes one more
+    argument, the constant (None: add nothing; :func:`return_constant_args`), its terms are
+    kept in temporaries (:func:`keep_term`) and its return reads them
+    (:func:`sunk_return_value`)."""
+    cache = tr.fold_state.sunk_returns
+    if id(fn) not in cache:
+        cache[id(fn)] = None
+        if id(fn) in _sink_calls(tr) and all(d == "in" for _, _, d in fn.params):
+            with asked_in(tr, fn):
+                cache[id(fn)] = _return_chain(tr, fn)
+    return cache[id(fn)]
+
+
+def _sink_calls(tr: FoldEngine) -> set[int]:
+    """ids of the user functions some call of which has a constant added to its result."""
+    found = tr.fold_state.sink_calls
+    if found is None:
+        found = tr.fold_state.sink_calls = set()
+        for sym in tr.model.reachable_functions():
+            for n in sym.node.body.walk():
+                if isinstance(n, A.Binary) and n.op in SUMS:
+                    for call, k in ((n.left, n.right), (n.right, n.left)):
+                        target = tr.model.call_target(call) if isinstance(call, A.Call) else None
+                        if isinstance(target, Symbol) and tr.model.const_value(k) is not None:
+                            found.add(id(target))
+    return found
+
+
+def _return_chain(tr: FoldEngine, fn: Symbol) -> list[tuple[Any, Any, str]] | None:
+    body = fn.node.body.stmts
+    if (
+        not body
+        or not isinstance(body[-1], A.Return)
+        or not isinstance(body[-1].value, A.Identifier)
+    ):
+        return None
+    ret = body[-1].value
+    sym = tr.model.symbol_of(ret)
+    if (
+        sym is None
+        or sym.kind != "local"
+        or tr.type_of(ret).base != "float"
+        or tr.type_of(ret).is_matrix
+    ):
+        return None
+    for n in fn.node.body.walk():
+        if (
+            isinstance(n, (A.Return, A.Discard))
+            and n is not body[-1]
+            or isinstance(n, A.Call)
+            and id(tr.model.call_target(n)) in tr.facts.may_discard
+        ):
+            return None  # (an early exit: the return would not be the function's last statement)
+    top = {id(st.expr) for st in body if isinstance(st, A.ExpressionStatement)}
+    top |= {
+        id(d)
+        for st in body
+        if isinstance(st, A.DeclarationStatement) and isinstance(st.decl, A.VariableDeclaration)
+        for d in st.decl.declarators
+    }
+    writes = [w for w in function_facts(tr).writes_to(sym) if w.kind != "decl"]
+    if len(writes) < 2 or writes[0].kind not in ("=", "init") or writes[0].value is None:
+        return None
+    chain = [(writes[0].node, writes[0].value, "+")]
+    for w in writes[1:]:
+        if not (isinstance(w.node, A.Assignment) and w.node.op in ("+=", "-=")):
+            return None
+        chain.append((w.node, w.node.value, w.node.op[0]))
+    targets = {id(w.node.target) for w in writes if isinstance(w.node, A.Assignment)}
+    for n in fn.node.body.walk():
+        if (
+            isinstance(n, A.Identifier)
+            and tr.model.symbol_of(n) is sym
+            and n is not ret
+            and id(n) not in targets
+        ):
+            return None  # (f read elsewhere: an intermediate sum used twice)
+    if any(id(w) not in top or tr.type_of(v) != tr.type_of(ret) for w, v, _ in chain):
+        return None
+    first = chain[0][1]
+    if not (is_opaque(tr, first) or is_fmul(tr, first)):
+        return None  # a sum would take the constant further
+    if not all(known_term(tr, v) for _, v, _ in chain[1:]):
+        return None
+    if isinstance(first, A.Call) and isinstance(tr.model.call_target(first), Symbol):
+        return None  # (a user function's result: what NIR sees in it is not followed)
+    return chain
+
+
+def sunk_call(tr: FoldEngine, e: A.Binary) -> tuple[A.Call, Any, bool] | None:
+    """``f(...) +- #c`` where f has a :func:`sunk_return`: (the call, the constant, whether it
+    is subtracted), else None. Not where the function computes the same sum for another call
+    of this function (same arguments, or any other call of a vector function: NIR scalarises,
+    then CSE merges equal components): that sum is used twice there, and the constant stays
+    outside (measured). Calls in other functions are not compared: a copy CSE merges across
+    functions is not detected."""
+    if e.op not in SUMS:
+        return None
+    call, k = (e.left, e.right) if isinstance(e.left, A.Call) else (e.right, e.left)
+    target = tr.model.call_target(call) if isinstance(call, A.Call) else None
+    if (
+        not isinstance(call, A.Call)
+        or not isinstance(target, Symbol)
+        or tr.model.const_value(k) is None
+        or tr.type_of(k) != tr.type_of(e)
+        or call is e.right
+        and e.op == "-"
+        or sunk_return(tr, target) is None
+    ):
+        return None
+    if not (used_once(tr, e) and used_once(tr, call)):
+        return None
+    shapes = use_counts(tr)[0]
+    others = [
+        n
+        for n in current_function(tr).sym.node.body.walk()
+        if isinstance(n, A.Call) and n is not call and tr.model.call_target(n) is target
+    ]
+    if (
+        any(shapes.get(id(n)) == shapes.get(id(call)) for n in others)
+        or others
+        and tr.type_of(call).is_vector
+    ):
+        return None  # NIR's CSE merges the inlined copies (per component for a vector): used twice
+    return call, k, e.op == "-"
+
+
+def sink_into_call(tr: LineWriter, e: A.Binary, mask: str | None) -> str | None:
+    """``f(...) +- #c`` of a :func:`sunk_call`: the call, passed the constant in llvmpipe mode
+    (the callee adds it where NIR sinks it), else None."""
+    sunk = sunk_call(tr, e)
+    if sunk is None:
+        return None
+    call, k, negative = sunk
+    tk = tr.expr(k, mask)
+    signed = f"(-{tk})" if negative else tk
+    tr.fold_state.call_k[id(call)] = f"({signed} if rt.lp else None)"
+    result = tr.tmp(tr.expr(call, mask))
+    return f"({result} if rt.lp else ({result} {e.op} {tk}))"
+
+
+def return_constant_args(tr: LineWriter, call: A.Call, fn: Symbol) -> list[str]:
+    """The extra argument of a call of a function with a :func:`sunk_return`: the constant the
+    caller adds (:func:`sink._sink_sum`, llvmpipe mode) or None; [] for other functions."""
+    if sunk_return(tr, fn) is None:
+        return []
+    return [tr.fold_state.call_k.get(id(call), "None")]
+
+
+def keep_term(tr: LineWriter, node: Any, code: str) -> str:
+    """The code of a term of a :func:`sunk_return` sum, kept in a temporary; other values as
+    they are. ``node``: the assignment or declarator that writes it."""
+    if tr.fn is None or isinstance(tr.fn, FunctionStandin):
+        return code
+    chain = sunk_return(tr, current_function(tr).sym)
+    if chain is None or not any(w is node for w, _, _ in chain):
+        return code
+    t = tr.tmp(code)
+    tr.fold_state.terms[id(node)] = t
+    return t
+
+
+def sunk_return_value(tr: LineWriter, ret: A.Return, code: str | None) -> str | None:
+    """The returned value of a function with a :func:`sunk_return`: ``code`` when the caller
+    adds nothing (``_k`` None), else the sum with the constant sunk as NIR sinks it."""
+    chain = sunk_return(tr, current_function(tr).sym) if tr.fn is not None else None
+    terms = tr.fold_state.terms
+    if chain is None or ret.value is None or not all(id(w) in terms for w, _, _ in chain):
+        return code
+    sunk = sunk_text(tr, chain, [terms[id(w)] for w, _, _ in chain], "_k")
+    return f"({code} if _k is None else {sunk})"
+
+
+def sunk_text(tr: FoldEngine, chain: list[tuple[Any, Any, str]], codes: list[str], k: str) -> str:
+    """The sum of a :func:`sunk_return` chain with the constant ``k`` sunk as NIR sinks it,
+    written with the operators over ``codes``, the terms' values (arrays or float32 scalars:
+    the same text computes the same float32 operations in both engines)."""
+    (_, a, _), (_, t1, op1) = chain[0], chain[1]
+    if is_fmul(tr, t1) or not is_fmul(tr, a):
+        sunk = f"(({codes[0]} + {k}) {op1} {codes[1]})"
+    else:  # only a is a product: the constant joins the other term (its negation for -=)
+        sunk = f"(({'-' if op1 == '-' else ''}{codes[1]} + {k}) + {codes[0]})"
+    for (_, _, op), c in zip(chain[2:], codes[2:]):
+        sunk = f"({sunk} {op} {c})"
+    return sunk
