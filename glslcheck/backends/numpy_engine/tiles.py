@@ -240,6 +240,15 @@ class LaneHelpers:
         return m
 
     @staticmethod
+    def reads(S, m, lanes):
+        """The lanes of m a dead-lane region runs on (transpile/dead_lanes.py): those of
+        `lanes` (where the select reads its values; None: every lane). All of m under
+        llvmpipe's loop limiter, whose pass budget the region's loops spend as before."""
+        if lanes is None or S.passes is not None:
+            return m
+        return LaneHelpers.and_(m, lanes)
+
+    @staticmethod
     def not_(m):
         return None if m is None else ~m
 
