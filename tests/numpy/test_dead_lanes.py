@@ -14,6 +14,7 @@ import pytest
 
 from glslcheck.backends.numpy_engine.program import compile_numpy
 from glslcheck.backends.numpy_engine.runtime import Runtime
+from glslcheck.backends.numpy_engine.tiles import Compaction
 from glslcheck.backends.numpy_engine.transpile import dead_lanes, transpile_shader
 
 SIZE = (96, 54)  # 5,184 lanes: enough for a sparse region to be compacted
@@ -52,9 +53,11 @@ def _shader(make_shader, weight="step(0.0, d)", color="", body=MOVED_BODY):
     )
 
 
-def _render(shader, precision="float32"):
+def _render(shader, precision="float32", compaction=None):
     prog = compile_numpy(shader)
     prog.threads = 1
+    if compaction is not None:
+        prog.compaction = compaction
     img = prog.render(size=SIZE, time=0.0, precision=precision, stats=True)
     lanes = {(s.kind, s.function): s.lanes for s in prog.last_stats}
     return img, lanes
@@ -91,9 +94,10 @@ def test_a_value_only_a_select_reads_runs_on_its_lanes_with_the_same_pixels(
     shader = _shader(make_shader, weight=weight, color=color)
     assert "rt.mix_reads(" in transpile_shader(shader).source
     img, lanes = _render(shader)
+    masked, _ = _render(shader, compaction=Compaction(select_fraction=0.0))  # (never gathered)
     _unmoved(monkeypatch)
     before, lanes_before = _render(_shader(make_shader, weight=weight, color=color))
-    assert _same(img, before)
+    assert _same(img, before) and _same(masked, before)
     assert lanes_before[("function", "shade")] == SIZE[0] * SIZE[1]
     assert lanes[("function", "shade")] == _weight_lanes(make_shader, weight)
     assert lanes[("function", "shade")] < SIZE[0] * SIZE[1] // 4  # (the disc: a sparse region)

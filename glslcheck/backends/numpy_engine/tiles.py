@@ -66,6 +66,11 @@ class Compaction:
     # (docs/performance.md) it moved no real shader beyond the noise of a shared
     # machine and added gathers to a Mandelbrot loop whose lanes leave a few at a time
     loop_fraction: float = 0.5
+    # the same for a dead-lane region (transpile/dead_lanes.py), which holds a loop, a call or
+    # enough arithmetic that its lanes left out cost more than the gather: on 07_final at
+    # 800x450 (three tiles of 50-55% hit lanes) one-thread frames of 42 ms at 0.5, 35-38 ms
+    # at 0.75, 0.9 and 1.01 alike (docs/performance.md)
+    select_fraction: float = 0.75
 
 
 # ---------------------------------------------------------------------------------------------
@@ -387,6 +392,11 @@ class LaneHelpers:
         if np.count_nonzero(m) >= (c.fraction if fraction is None else fraction) * S.lanes:
             return None  # (counted first: no index array on the passes that do not compact)
         return np.flatnonzero(m)
+
+    @staticmethod
+    def select_sparse(S, m):
+        """`sparse` for a dead-lane region (`Compaction.select_fraction`)."""
+        return LaneHelpers.sparse(S, m, S.compaction.select_fraction)
 
     @staticmethod
     def loop_sparse(S, m):

@@ -149,7 +149,8 @@ class Statements(TranspilerState):
         used = lanes + uniform + dead
         del self.lines[start:]
         tup = "(" + "".join(n + ", " for n in used) + ")"
-        self.emit(f"{ix} = X.sparse(S, {mask})")
+        sparse = "X.select_sparse" if kind == "select" else "X.sparse"
+        self.emit(f"{ix} = {sparse}(S, {mask})")
         self.emit(f"if {ix} is not None:")
         self.emit(f"    S, {saved} = X.gather(S, {ix}, {tup})")
         if used:
