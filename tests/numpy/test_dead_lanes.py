@@ -146,6 +146,8 @@ def test_float64_renders_interpolate_and_run_the_region_on_every_lane(make_shade
         "vec3 color = shade(n, view);\n o = vec4(mix(bg, color, hit), hit = 0.5);",
         # a constant weight: Mesa's strict formula, no select
         "vec3 color = shade(n, view);\n o = vec4(mix(bg, color, 0.5), 1.0);",
+        # a few operations, no loop: cheaper on every lane than behind a region
+        "vec3 color = normalize(view + n) * 0.5;\n o = vec4(mix(bg, color, hit), 1.0);",
         # a program that takes derivatives: lanes outside the mask are read
         "vec3 color = shade(n, view);\n o = vec4(mix(bg, color, hit), dFdx(hit));",
     ],

