@@ -103,6 +103,28 @@ def test_a_value_only_a_select_reads_runs_on_its_lanes_with_the_same_pixels(
     assert lanes[("function", "shade")] < SIZE[0] * SIZE[1] // 4  # (the disc: a sparse region)
 
 
+LOOP_BODY = """if (uv.y > 0.8) { o = vec4(1.0); return; }
+    vec3 acc = vec3(0.0);
+    for (int k = 0; k < 3; ++k) {
+        if (k == 2 && uv.x > 0.5) break;
+        float w = step(0.0, d - 0.1 * float(k));
+        vec3 c = shade(n, view) * float(k + 1);
+        acc += mix(bg, c, w);
+    }
+    o = vec4(acc, 1.0);"""
+
+
+def test_a_select_in_a_loop_after_an_early_return(make_shader, monkeypatch):
+    """The region sits in the loop's body, under the mask the return and the break leave."""
+    shader = _shader(make_shader, body=LOOP_BODY)
+    assert "rt.mix_reads(" in transpile_shader(shader).source
+    img, lanes = _render(shader)
+    _unmoved(monkeypatch)
+    before, lanes_before = _render(_shader(make_shader, body=LOOP_BODY))
+    assert _same(img, before)
+    assert lanes[("function", "shade")] < lanes_before[("function", "shade")] // 4
+
+
 def test_a_bool_select_in_float32_and_float64(make_shader, monkeypatch):
     """A bool weight selects in every precision: the x side runs where it is false."""
     body = "bvec3 miss = bvec3(hit < 0.5);\n" + MOVED_BODY.replace(
