@@ -46,8 +46,9 @@ if TYPE_CHECKING:
 STATEMENTS = (A.ExpressionStatement, A.DeclarationStatement, A.Return)  # where a select may be
 # A region without a loop pays from this many syntax nodes (its callees' bodies counted): the
 # ones of 8-62 nodes in the lab and the hold-out shaders (a normalize, two small calls, a few
-# `?:`) saved nothing measurable at 400x225, or lost up to 1 ms a frame; with the lights' loop,
-# 158-178 nodes, 07_final's frame lost a third
+# `?:`) saved nothing at 400x225 (03_lambert_color 9.3-9.5 -> 10.3-10.4 ms a frame, the others
+# within the noise of a loaded machine); with the lights' loop, 158-178 nodes, 07_final's
+# frame lost a third
 REGION_NODES = 96
 
 
