@@ -1,11 +1,13 @@
 """Values a select throws away: computed only on the lanes that keep them.
 
 `mix(x, y, w)` with a bool weight, or in the float32 "fast" form (nir_fold.mix_hint) with a
-weight of exactly 0 or 1 in a lane, is a select there: the other side is ignored, NaN included
-(`Runtime.mix_reads` says which lanes read which side, from the one predicate the runtime's mix
-itself uses). A branchless shader computes a value for every pixel and keeps it only where
-such a weight selects it: 07_final lights every pixel and then keeps the background with
-`mix(background, color, hit)`, so the lighting of the pixels that hit nothing is dead work.
+weight of exactly 0 or 1 in a lane, is a select there in the runtime's copy of llvmpipe: the
+other side is ignored, NaN included (`Runtime.mix_reads` says which lanes read which side, from
+the one predicate the runtime's mix itself uses; llvmpipe itself selects where NIR sees a b2f
+weight, docs/performance.md "07_final's dead lanes"). A branchless shader computes a value for
+every pixel and keeps it only where such a weight selects it: 07_final lights every pixel and
+then keeps the background with `mix(background, color, hit)`, so the lighting of the pixels
+that hit nothing is dead work.
 
 `plan` finds, in one block, the statements whose values only such a select reads and moves them
 to just before it, into a region that runs on the lanes whose weight reads that side
@@ -23,7 +25,8 @@ statement moves when
 * the statements moved are worth a region: a loop, or REGION_NODES syntax nodes.
 
 Exact, not approximate: the moved values are the same in every lane that reads them, and a lane
-that does not read them selects the other side whatever they hold. What lanes outside the
+that does not read them selects the other side whatever they hold, so every pixel keeps the
+bits of the program as written. What lanes outside the
 current mask hold is observable through derivatives only, so a program that takes derivatives
 (or implicit-LOD texture lookups) is left as it is; so are the traced module (tracing.py, which
 reports what every lane computes) and the "vary" module of undefined values.
