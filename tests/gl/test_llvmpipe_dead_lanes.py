@@ -27,23 +27,25 @@ void mainImage(out vec4 o, in vec2 f) {
     vec3 n = vec3(uv, sqrt(max(d, 0.0)));
     vec3 bg = vec3(0.1, 0.2, 0.3) * (uv.y + 1.0);
     vec3 color = shade(n, -normalize(vec3(uv, -2.0))) + vec3(sqrt(d));
-    o = vec4(mix(bg, color, hit), 1.0);
+    bool lit = hit > 0.5;
+    o = vec4(SELECT, 1.0);
 }
 """
 
 
 @pytest.mark.parametrize(
-    "weight",
+    ("weight", "select"),
     [
-        "step(0.0, d)",  # color is NaN wherever the weight is 0
-        "float(d >= 0.0)",
-        "step(0.0, d) * step(d, 2.0)",  # a product of two: 07_final's hitSphere
+        ("step(0.0, d)", "mix(bg, color, hit)"),  # color is NaN wherever the weight is 0
+        ("float(d >= 0.0)", "mix(bg, color, hit)"),
+        ("step(0.0, d) * step(d, 2.0)", "mix(bg, color, hit)"),  # 07_final's hitSphere
+        ("step(0.0, d)", "lit ? color : bg"),  # a conditional: Mesa's bcsel
     ],
 )
 def test_numpy_computes_a_selected_value_on_its_lanes_as_llvmpipe_everywhere(
-    llvmpipe, make_shader, weight
+    llvmpipe, make_shader, weight, select
 ):
-    shader = make_shader(SCENE.replace("WEIGHT", weight))
+    shader = make_shader(SCENE.replace("WEIGHT", weight).replace("SELECT", select))
     assert "rt.mix_reads(" in transpile_shader(shader).source
     got_gl = np.asarray(compile_backend(shader, "gl").render(size=(160, 90), frame=0), np.float32)
     got_np = np.asarray(

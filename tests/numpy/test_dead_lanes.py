@@ -103,6 +103,19 @@ def test_a_value_only_a_select_reads_runs_on_its_lanes_with_the_same_pixels(
     assert lanes[("function", "shade")] < SIZE[0] * SIZE[1] // 4  # (the disc: a sparse region)
 
 
+def test_a_value_only_a_conditional_reads_runs_on_its_lanes(make_shader, monkeypatch):
+    """`c ? a : b` without side effects is a select in every lane (Mesa's bcsel, np.where): the
+    value of its then side is computed where c holds."""
+    body = "bool lit = hit > 0.5;\n" + MOVED_BODY.replace("mix(bg, color, hit)", "lit ? color : bg")
+    shader = _shader(make_shader, color="+ vec3(sqrt(d))", body=body)
+    assert "rt.mix_reads(" in transpile_shader(shader).source
+    img, lanes = _render(shader)
+    _unmoved(monkeypatch)
+    before, _ = _render(_shader(make_shader, color="+ vec3(sqrt(d))", body=body))
+    assert _same(img, before)
+    assert lanes[("function", "shade")] == _weight_lanes(make_shader, "step(0.0, d)")
+
+
 LOOP_BODY = """if (uv.y > 0.8) { o = vec4(1.0); return; }
     vec3 acc = vec3(0.0);
     for (int k = 0; k < 3; ++k) {

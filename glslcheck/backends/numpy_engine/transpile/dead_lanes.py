@@ -4,7 +4,8 @@
 weight of exactly 0 or 1 in a lane, is a select there in the runtime's copy of llvmpipe: the
 other side is ignored, NaN included (`Runtime.mix_reads` says which lanes read which side, from
 the one predicate the runtime's mix itself uses; llvmpipe itself selects where NIR sees a b2f
-weight, docs/performance.md "07_final's dead lanes"). A branchless shader computes a value for
+weight, docs/performance.md "07_final's dead lanes"); so is a `?:` without side effects, by its
+condition (np.where, Mesa's bcsel). A branchless shader computes a value for
 every pixel and keeps it only where such a weight selects it: 07_final lights every pixel and
 then keeps the background with `mix(background, color, hit)`, so the lighting of the pixels
 that hit nothing is dead work.
@@ -57,11 +58,11 @@ REGION_NODES = 96
 
 @dataclass(frozen=True)
 class Move:
-    """Statements computed only on the lanes where the select `call` reads its argument `side`
-    (0: x, 1: y), emitted just before the statement that holds the call."""
+    """Statements computed only on the lanes where a select reads its argument `side` (0: x or
+    the `?:`'s else, 1: y or its then), emitted just before the statement that holds it."""
 
     stmts: tuple[Any, ...]  # in their order in the block
-    call: A.Call
+    weight: A.Identifier  # the mix's weight, or the `?:`'s condition
     side: int
     form: str | None  # rt.mix's form: "fast", or None for a bool weight
     declared: tuple[tuple[Symbol, A.Declarator], ...]  # the locals they declare
@@ -94,29 +95,34 @@ def plan(tr: TranspilerState, stmts: list[Any]) -> Plan:
     for k, s in enumerate(stmts):
         if not isinstance(s, STATEMENTS):
             continue
-        for call in (n for n in s.walk() if builtin_call(tr.model, n, "mix")):
-            found = _selected_side(tr, s, call)
+        for sel in (n for n in s.walk() if _is_select(tr, n)):
+            found = _selected_side(tr, s, sel)
             if found is None:
                 continue
-            form, sides = found
-            for side in sides:
-                move = _move(tr, stmts, k, call, side, form, result.moved)
+            weight, form, sides = found
+            for side, arg in sides:
+                move = _move(tr, stmts, k, weight, arg, side, form, result.moved)
                 if move is not None:
                     result.at.setdefault(id(s), []).append(move)
                     result.moved.update(id(m) for m in move.stmts)
     return result if result.moved else NO_PLAN
 
 
+def _is_select(tr: TranspilerState, n: Any) -> bool:
+    """A `mix` call, or a `?:` without side effects (np.where: a select in every lane)."""
+    if isinstance(n, A.Ternary):
+        return not (tr.has_effects(n.then) or tr.has_effects(n.else_))
+    return builtin_call(tr.model, n, "mix") and len(n.args) == 3
+
+
 def _selected_side(
-    tr: TranspilerState, s: Any, call: A.Call
-) -> tuple[str | None, list[int]] | None:
-    """(rt.mix's form, the sides worth a look) when `call` is a select in some lanes whose weight
-    is a varying local that `s` does not write; else None."""
+    tr: TranspilerState, s: Any, sel: Any
+) -> tuple[A.Identifier, str | None, list[tuple[int, Any]]] | None:
+    """(the weight, rt.mix's form, the (side, argument) pairs worth a look) when `sel` selects
+    in some lanes by a varying local that `s` does not write; else None."""
     fs = tr.fn
     assert fs is not None and fs.uni is not None  # (plan checked)
-    if len(call.args) != 3:
-        return None
-    w = call.args[2]
+    w = sel.cond if isinstance(sel, A.Ternary) else sel.args[2]
     sym = tr.model.symbol_of(w) if isinstance(w, A.Identifier) else None
     if sym is None or sym.kind not in ("local", "param") or fs.uni.is_uniform(w):
         return None
@@ -125,26 +131,35 @@ def _selected_side(
     base = tr.type_of(w).base
     if base == "bool":
         form = None
-    elif base == "float" and nir_fold.mix_hint(tr, call) == ["'fast'"]:
+    elif base == "float" and nir_fold.mix_hint(tr, sel) == ["'fast'"]:
         form = "fast"
     else:
         return None
-    sides = [i for i in (1, 0) if isinstance(call.args[i], A.Identifier)]
-    return (form, sides) if sides else None
+    pairs = (
+        [(1, sel.then), (0, sel.else_)]
+        if isinstance(sel, A.Ternary)
+        else [
+            (1, sel.args[1]),
+            (0, sel.args[0]),
+        ]
+    )
+    sides = [(i, a) for i, a in pairs if isinstance(a, A.Identifier)]
+    return (w, form, sides) if sides else None
 
 
 def _move(
     tr: TranspilerState,
     stmts: list[Any],
     k: int,
-    call: A.Call,
+    weight: A.Identifier,
+    arg: A.Identifier,
     side: int,
     form: str | None,
     taken: set[int],
 ) -> Move | None:
-    """The statements before stmts[k] that compute only the select's argument `side` (the
+    """The statements before stmts[k] that compute only the select's argument `arg` (the
     backward slice of its variable, within the block), when moving them is exact and pays."""
-    y = tr.model.symbol_of(call.args[side])
+    y = tr.model.symbol_of(arg)
     reads = read_counts(tr)
     if y is None or y.kind != "local" or reads.get(id(y)) != 1:
         return None
@@ -174,7 +189,7 @@ def _move(
     if not _worth_a_region(tr, moved):
         return None
     declared = tuple(d for s in moved for d in _declared(tr, s))
-    return Move(moved, call, side, form, declared)
+    return Move(moved, weight, side, form, declared)
 
 
 def _worth_a_region(tr: TranspilerState, moved: tuple[Any, ...]) -> bool:

@@ -93,10 +93,10 @@ class Statements(TranspilerState):
             self.emit(f"{name} = {self.zero(sym.type, dec)}")
             if name not in fs.defined:
                 fs.defined.append(name)
-        weight = self.expr(move.call.args[2], mask)
+        weight = self.expr(move.weight, mask)
         m = self.fresh("m")
         lanes = f"rt.mix_reads({weight}, {move.side}, {move.form!r})"
-        self.emit(f"{m} = X.reads(S, {mask}, {lanes})  # the lanes the mix keeps them in")
+        self.emit(f"{m} = X.reads(S, {mask}, {lanes})  # the lanes the select keeps them in")
         self.emit(f"if X.live({m}):")
         self.indent += 1
         node = A.Compound(stmts=list(move.stmts), loc=move.stmts[0].loc)
