@@ -3,8 +3,8 @@ coordinates in compacted regions (nested too), uniform masks, early-out returns 
 constant expressions as module constants, tiles written straight into the image, the frame cache.
 
 Each shader is rendered with compaction on and off (`Compaction(fraction=0,
-loop_fraction=0)` never compacts), with loops compacted earlier than branches, and with several
-tile sizes; the images must be bit-identical.
+loop_fraction=0, select_fraction=0)` never compacts), with loops compacted earlier than
+branches, and with several tile sizes; the images must be bit-identical.
 """
 
 from __future__ import annotations
@@ -84,7 +84,10 @@ def test_compaction_and_tiles_change_no_pixel(make_shader, knobs):
     for fraction, loop_fraction in ((0.0, 0.0), (0.5, 0.5), (0.5, 0.9), (0.9, 0.9)):
         for lanes in (64, 600, 10_000):
             prog.compaction = Compaction(
-                fraction=fraction, min_lanes=16, loop_fraction=loop_fraction
+                fraction=fraction,
+                min_lanes=16,
+                loop_fraction=loop_fraction,
+                select_fraction=loop_fraction,
             )
             knobs(TILE_LANES=lanes)
             img = _render(prog)

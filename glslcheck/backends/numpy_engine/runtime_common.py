@@ -109,7 +109,7 @@ class CommonFunctions(RuntimeState):
         nir_opt_algebraic, before the lowering. Per lane, so a one-pixel probe run agrees with
         the render. Where every lane is such a select (a branchless shader's whole tile), the
         arithmetic is skipped: the same values, a third of the passes."""
-        one, zero = a == self._1, a == self._0
+        one, zero = self._mix_selects(a)
         n_one, n_zero = np.count_nonzero(one), np.count_nonzero(zero)
         if n_one + n_zero == a.size:
             return np.where(one, y, x)
@@ -121,6 +121,30 @@ class CommonFunctions(RuntimeState):
         if n_zero:
             np.copyto(r, x, where=zero)
         return r
+
+    def _mix_selects(self, a: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        """The weights of the "fast" form that select instead of interpolating: (a == 1: y
+        only, a == 0: x only), per lane and component (NaN is neither)."""
+        return a == self._1, a == self._0
+
+    def mix_reads(self, a: Any, side: int, form: str | None) -> np.ndarray | None:
+        """The lanes in which ``mix(x, y, a, form)`` reads its argument ``side`` (0: x, 1: y), as
+        a bool array over the lanes, or None for every lane: a bool weight and the float32
+        "fast" form ignore the other side where they select (:meth:`_mix_selects`), NaN
+        included; the other forms, and float64 or float16 renders, read both sides
+        everywhere. For the transpiler's dead-lane regions (transpile/dead_lanes.py)."""
+        if not isinstance(a, np.ndarray) or a.ndim == 0 or a.shape[-1] == 1:
+            return None  # (one value for every lane: nothing to gain per lane)
+        if a.dtype == BOOL:
+            reads = a if side == 1 else ~a
+        elif form == "fast" and self.lp is not None and a.dtype == np.float32:
+            one, zero = self._mix_selects(a)
+            reads = ~(zero if side == 1 else one)
+        else:
+            return None
+        return np.asarray(
+            reads if reads.ndim == 1 else reads.any(axis=tuple(range(reads.ndim - 1)))
+        )
 
     def _flrp_form(self, x: np.ndarray, y: np.ndarray, a: np.ndarray) -> str:
         """The lowering ``convert_flrp_instruction`` (Mesa nir_lower_flrp.c; llvmpipe sets

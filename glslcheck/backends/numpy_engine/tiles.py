@@ -66,6 +66,11 @@ class Compaction:
     # (docs/performance.md) it moved no real shader beyond the noise of a shared
     # machine and added gathers to a Mandelbrot loop whose lanes leave a few at a time
     loop_fraction: float = 0.5
+    # the same for a dead-lane region (transpile/dead_lanes.py), which holds a loop, a call or
+    # enough arithmetic that its lanes left out cost more than the gather: on 07_final at
+    # 800x450 (three tiles of 50-55% hit lanes) one-thread frames of 42 ms at 0.5, 35-38 ms
+    # at 0.75, 0.9 and 1.01 alike (docs/performance.md)
+    select_fraction: float = 0.75
 
 
 # ---------------------------------------------------------------------------------------------
@@ -240,6 +245,15 @@ class LaneHelpers:
         return m
 
     @staticmethod
+    def reads(S, m, lanes):
+        """The lanes of m a dead-lane region runs on (transpile/dead_lanes.py): those of
+        `lanes` (where the select reads its values; None: every lane). All of m under
+        llvmpipe's loop limiter, whose pass budget the region's loops spend as before."""
+        if lanes is None or S.passes is not None:
+            return m
+        return LaneHelpers.and_(m, lanes)
+
+    @staticmethod
     def not_(m):
         return None if m is None else ~m
 
@@ -378,6 +392,11 @@ class LaneHelpers:
         if np.count_nonzero(m) >= (c.fraction if fraction is None else fraction) * S.lanes:
             return None  # (counted first: no index array on the passes that do not compact)
         return np.flatnonzero(m)
+
+    @staticmethod
+    def select_sparse(S, m):
+        """`sparse` for a dead-lane region (`Compaction.select_fraction`)."""
+        return LaneHelpers.sparse(S, m, S.compaction.select_fraction)
 
     @staticmethod
     def loop_sparse(S, m):

@@ -543,8 +543,12 @@ class _Reader:
             return True  # a declaration with no value, a call: it sets nothing the comment names
         target = _SETS_RE.match(text)
         if not cover.shapes:  # the group's first statement
-            named = target and target.group(1) not in _FUNCTION_WORDS
-            if named and re.search(rf"(?<![\w.]){re.escape(target.group(1))}\b", cover.text):
+            named = target is not None and target.group(1) not in _FUNCTION_WORDS
+            if (
+                named
+                and target is not None
+                and re.search(rf"(?<![\w.]){re.escape(target.group(1))}\b", cover.text)
+            ):
                 names = {*_WORD_RE.findall(cover.text), target.group(1)}
                 for axes in _AXES:  # `x` and `y` named: `z = z | k;` is one of them
                     if names & axes:

@@ -91,6 +91,7 @@ class Transpiler(Names, Functions, Statements, Expressions, PythonLimits):
         self._hoists: dict[int, bool] = {}
         self._derivs: dict[int, bool] = {}
         self._line_names: dict[str, frozenset] = {}
+        self.dead_lane_reads: dict[int, dict[int, int]] = {}  # dead_lanes.read_counts' memo
 
     # -- module --------------------------------------------------------------------------------
     def module(self) -> tuple[str, dict]:

@@ -99,6 +99,7 @@ class TranspilerState:
         _hoists: dict[int, bool]
         _derivs: dict[int, bool]
         _line_names: dict[str, frozenset]
+        dead_lane_reads: dict[int, dict[int, int]]
         cse: tuple[set[int], dict[str, str]] | None
         # The tracing transpiler's expressions to report (tracing.py), else None.
         watched: dict[int, tuple[str, Any, str]] | None
@@ -128,6 +129,7 @@ class TranspilerState:
         # Statements (statements.py)
         def block(self, stmts: list[Any], mask: str | None, top: bool = False) -> bool: ...
         def assign_stmt(self, target: str, value: str, mask: str | None) -> None: ...
+        def _worth_compacting(self, node: Any) -> bool: ...
         def effect(self, e: Any, mask: str | None, step_unmasked: bool = False) -> None: ...
 
         # Expressions (expressions.py)

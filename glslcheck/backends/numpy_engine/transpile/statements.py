@@ -14,6 +14,7 @@ from ....semantics.model import Symbol
 from ...cpu_core import nir_fold
 from ...cpu_core.common import DERIVATIVES, IMPLICIT_LOD, LOOP_CAP, fold_tree
 from ...cpu_core.facts import Events, events_of, induction_variable
+from . import dead_lanes
 from .common import OUTLINE_INDENT, _error
 from .state import LoopCtx, TranspilerState
 
@@ -28,8 +29,13 @@ class Statements(TranspilerState):
         fs = self.fn
         assert fs is not None  # generating a function's body
         start_indent = self.indent
+        moves = dead_lanes.plan(self, stmts)
         for i, s in enumerate(stmts):
             last = i == len(stmts) - 1
+            if id(s) in moves.moved:
+                continue  # (emitted before the select that reads it: dead_lane_region)
+            for move in moves.at.get(id(s), ()):
+                self.dead_lane_region(move, mask)
             if top and last and isinstance(s, A.Return):
                 # the function's last statement: return directly (when it is nested under the
                 # `if X.live(...)` of earlier returns, the final `return _rv` follows that `if`)
@@ -75,6 +81,28 @@ class Statements(TranspilerState):
             return False
         self.region_body(lambda m: self.block(rest, m), mask, "rest", node)
         return True
+
+    def dead_lane_region(self, move: dead_lanes.Move, mask: str | None) -> None:
+        """The statements of `move` on the lanes whose select reads what they compute (the
+        others select the other side whatever these hold: dead_lanes.py), as a region that is
+        compacted when few lanes are in it and skipped when none is. Their locals start at
+        zero before it, so the select reads a full-lane value."""
+        fs = self.fn
+        assert fs is not None  # generating a function's body
+        for sym, dec in move.declared:
+            name = self.var_name(sym, dec)
+            self.emit(f"{name} = {self.zero(sym.type, dec)}")
+            if name not in fs.defined:
+                fs.defined.append(name)
+        weight = self.expr(move.weight, mask)
+        m = self.fresh("m")
+        lanes = f"rt.mix_reads({weight}, {move.side}, {move.form!r})"
+        self.emit(f"{m} = X.reads(S, {mask}, {lanes})  # the lanes the select keeps them in")
+        self.emit(f"if X.live({m}):")
+        self.indent += 1
+        node = A.Compound(stmts=list(move.stmts), loc=move.stmts[0].loc)
+        self.region_body(lambda mb: self.block(list(move.stmts), mb), m, "select", node)
+        self.indent -= 1
 
     def refresh(self, mask: str | None, ev: Events) -> str:
         fs = self.fn
@@ -122,7 +150,8 @@ class Statements(TranspilerState):
         used = lanes + uniform + dead
         del self.lines[start:]
         tup = "(" + "".join(n + ", " for n in used) + ")"
-        self.emit(f"{ix} = X.sparse(S, {mask})")
+        sparse = "X.select_sparse" if kind == "select" else "X.sparse"
+        self.emit(f"{ix} = {sparse}(S, {mask})")
         self.emit(f"if {ix} is not None:")
         self.emit(f"    S, {saved} = X.gather(S, {ix}, {tup})")
         if used:
