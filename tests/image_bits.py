@@ -1,11 +1,13 @@
-"""Two float32 images compared bit for bit, and a message that says where and how they differ.
+"""Two float32 images (or arrays of lanes) compared bit for bit, and a message that says where
+and how they differ.
 
 The GL tests render a shader on a CPU engine and on llvmpipe and compare the images as int32
 bit patterns (a NaN must be the same NaN, -0.0 is not +0.0); the compiled engine's tests compare
 it with the NumPy backend, or its lockstep module with its per-pixel one. When the images differ,
 the assertion names the shader and the frame, counts the differing pixels per channel and shows
 the first one (from the top left, as `glslcheck probe --pixel` takes it) in both images, values
-and bits: what a developer needs to start probing.
+and bits: what a developer needs to start probing. The math tests compare lanes (a built-in's
+results on many arguments) the same way: the first differing lanes with their arguments.
 
 Imported by basename (tests/ is on sys.path through tests/conftest.py), as tests/gl's
 llvmpipe_eval.
@@ -128,3 +130,40 @@ def assert_same_frames(
             f"{len(times)} frames (per channel: {per_channel}); the first at iTime "
             f"{times[first]:.9g}"
         )
+
+
+def _shown(values: np.ndarray, at: np.ndarray) -> str:
+    values = np.asarray(values, np.float32).reshape(-1)[at]
+    bits = values.view(np.uint32)
+    return (
+        "[" + ", ".join(f"{v:.9g} ({b:08x})" for v, b in zip(values.tolist(), bits.tolist())) + "]"
+    )
+
+
+def assert_same_lanes(
+    got, want, args=(), *, what: str, names=("got", "want"), mode: str = "bits", shown: int = 5
+) -> None:
+    """Assert that two arrays of float32 results (lanes; any shape, compared element by element)
+    agree as `mode` says (MODES); the message counts the differing lanes and shows the first
+    `shown` of them: each argument of `args` there (broadcast to the results' shape) and both
+    results, values and bits."""
+    equal = same(got, want, mode).reshape(-1)
+    if equal.all():
+        return
+    bad = np.flatnonzero(~equal)
+    at = bad[:shown]
+    shape = np.shape(got)
+    arguments = []
+    for k, arg in enumerate(args):
+        if arg is None:
+            continue
+        try:
+            arguments.append(f"argument {k} {_shown(np.broadcast_to(arg, shape), at)}")
+        except ValueError:  # not of the results' shape: not shown
+            continue
+    a, b = names
+    raise AssertionError(
+        f"{what}: {a} differs from {b} ({mode}) in {bad.size} of {equal.size} lanes; the first "
+        f"at lanes {at.tolist()}: "
+        + "; ".join(arguments + [f"{a} {_shown(got, at)}", f"{b} {_shown(want, at)}"])
+    )
