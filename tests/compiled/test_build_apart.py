@@ -11,8 +11,8 @@ import os
 import subprocess
 import sys
 
-import numpy as np
 import pytest
+from image_bits import assert_same
 
 import glslcheck
 from glslcheck.backends import tiered
@@ -42,8 +42,11 @@ def own_cache(monkeypatch, tmp_path):
     # numba's config follows the environment again at the next use_cache_dir (a changed value)
 
 
-def _same(a: np.ndarray, b: np.ndarray) -> bool:
-    return bool(((a.view(np.uint32) == b.view(np.uint32)) | (np.isnan(a) & np.isnan(b))).all())
+def _same_as_numpy(shader, prog, time: float, name: str) -> None:
+    """`prog`'s frame at iTime `time` is the NumPy backend's bits (a NaN any NaN)."""
+    want = glslcheck.compile(shader, backend="numpy").render(size=SIZE, time=time)
+    got = prog.render(size=SIZE, time=time)
+    assert_same(got, want, what=f"iTime {time}", names=(name, "numpy"), mode="bits_any_nan")
 
 
 def test_the_child_compiles_and_this_process_loads_its_machine_code(numba, make_shader, own_cache):
@@ -56,8 +59,7 @@ def test_the_child_compiles_and_this_process_loads_its_machine_code(numba, make_
     assert prog.compile_seconds() is not None  # and what its compile took
     prog.load(bounded=False)
     assert prog.cold is False  # loaded, not compiled here
-    want = glslcheck.compile(shader, backend="numpy").render(size=SIZE, time=0.7)
-    assert _same(prog.render(size=SIZE, time=0.7), want)
+    _same_as_numpy(shader, prog, 0.7, "compiled")
     assert prog.build_apart(600.0) == ""  # in the cache already: no child
 
 
@@ -103,8 +105,8 @@ def test_the_default_program_stays_on_numpy_past_the_budget(
     assert prog.impl.settle(600)
     assert prog.impl.mode == "numpy" and prog.impl.stay.startswith("over budget")
     assert prog.impl.record()["verdict"] == prog.impl.stay  # kept: not tried again
-    want = glslcheck.compile(shader, backend="numpy").render(size=SIZE, time=0.6)
-    assert _same(prog.render(size=SIZE, time=0.6), want) and prog.engine == "numpy"
+    _same_as_numpy(shader, prog, 0.6, "auto")
+    assert prog.engine == "numpy"
 
 
 def test_a_compile_whose_asking_process_is_gone_ends(numba, make_shader, own_cache):

@@ -15,6 +15,7 @@ import json
 
 import numpy as np
 import pytest
+from image_bits import assert_same, differing_pixels, frame_text
 from PIL import Image
 
 import glslcheck
@@ -100,18 +101,14 @@ def _folder(tmp_path, image: str) -> str:
     return str(tmp_path)
 
 
-def _differing(got: np.ndarray, want: np.ndarray) -> int:
-    same = (got.view(np.uint32) == want.view(np.uint32)) | (np.isnan(got) & np.isnan(want))
-    return int((~same.all(axis=-1)).sum())
-
-
 def _agree(folder: str, size, output: str = "Image") -> None:
     kw = dict(size=size, time=1.3, frame=FRAMES - 1)
     want = glslcheck.compile(folder, backend="numpy", output=output).render(**kw)
     prog = glslcheck.compile(folder, backend="compiled", output=output)
     got = prog.render(**kw)
     assert np.isfinite(want).all()
-    assert _differing(got, want) == 0, f"{output} at {size}"
+    what = f"{output} at {frame_text(**kw)}"
+    assert_same(got, want, what=what, names=("compiled", "numpy"), mode="bits_any_nan")
 
 
 @pytest.mark.parametrize("lanes", ["0", "8"])
@@ -145,12 +142,17 @@ def test_lowp_arithmetic_is_float16_and_changes_bits(numba, tmp_path):
     low = glslcheck.compile(folder, backend="compiled")
     want = glslcheck.compile(folder, backend="numpy").render(**kw)
     got = low.render(**kw)
-    assert _differing(got, want) == 0
+    lowp = f"lowp samplers at {frame_text(**kw)}"
+    assert_same(got, want, what=lowp, names=("compiled", "numpy"), mode="bits_any_nan")
     exact, exact_numpy = (glslcheck.compile(folder, backend=b) for b in ("compiled", "numpy"))
     exact.impl.lowp_samplers = exact_numpy.impl.lowp_samplers = False  # (WebGL's exact lookups)
     got_exact = exact.render(**kw)
-    assert _differing(got_exact, want) > 0
-    assert _differing(got_exact, exact_numpy.render(**kw)) == 0
+    assert differing_pixels(got_exact, want, "bits_any_nan") > 0
+    exact_what = f"exact samplers at {frame_text(**kw)}"
+    got_numpy = exact_numpy.render(**kw)
+    assert_same(
+        got_exact, got_numpy, what=exact_what, names=("compiled", "numpy"), mode="bits_any_nan"
+    )
 
 
 # float16 trees of every shape lower_precision.float16_code writes: a square of a square, a
@@ -172,12 +174,14 @@ def test_float16_trees_bit_for_bit(numba, tmp_path, monkeypatch, lanes):
     folder = _folder(tmp_path, FLOAT16_TREES)
     kw = dict(size=(16, 8), time=0.0)
     want = glslcheck.compile(folder, backend="numpy").render(**kw)
-    assert _differing(glslcheck.compile(folder, backend="compiled").render(**kw), want) == 0
+    got = glslcheck.compile(folder, backend="compiled").render(**kw)
+    what = f"FLOAT16_TREES at {frame_text(**kw)}"
+    assert_same(got, want, what=what, names=("compiled", "numpy"), mode="bits_any_nan")
     # and the lowp forms matter at these pixels: exact samplers (float32 lookups and arithmetic)
     # give other bits
     exact = glslcheck.compile(folder, backend="compiled")
     exact.impl.lowp_samplers = False
-    assert _differing(exact.render(**kw), want) > 0
+    assert differing_pixels(exact.render(**kw), want, "bits_any_nan") > 0
 
 
 CUBE_PLAIN = """vec4 sky(samplerCube s, vec3 d) { return texture(s, d.zxy); }

@@ -18,11 +18,13 @@ import os
 
 import numpy as np
 import pytest
+from image_bits import assert_same, assert_same_frames, frame_text
 
 import glslcheck
 from glslcheck.base.diagnostics import GlslError
 
 SIZE = (40, 24)
+MOUSE = (10.0, 7.0, 3.0, -2.0)
 LAB = os.path.join(os.path.dirname(__file__), "..", "..", "lab_shaders")
 # a sample of the lab shaders (all of them: benchmarks/bench_compiled.py, which reports the
 # agreement of every lab and real shader): one of each structure
@@ -37,20 +39,15 @@ LAB_SAMPLE = (
 
 
 def _compare(shader, time: float = 1.3) -> None:
+    """The compiled engine's render of `shader` (a Shader or a path) is the NumPy backend's, as
+    numbers (a NaN any NaN: the engines need not make the same payload)."""
     from glslcheck.backends.compiled_engine.engine import compile_compiled
 
-    got = compile_compiled(shader).render(size=SIZE, time=time, mouse=(10.0, 7.0, 3.0, -2.0))
-    want = glslcheck.compile(shader, backend="numpy").render(
-        size=SIZE, time=time, mouse=(10.0, 7.0, 3.0, -2.0)
-    )
-    same = (got == want) | (np.isnan(got) & np.isnan(want))
-    if not same.all():
-        where = np.argwhere(~same.all(axis=2))
-        y, x = where[0]
-        raise AssertionError(
-            f"{len(where)} of {SIZE[0] * SIZE[1]} pixels differ; first at row {y} col {x}: "
-            f"compiled {got[y, x]}, numpy {want[y, x]}"
-        )
+    inputs = dict(size=SIZE, time=time, mouse=MOUSE)
+    got = compile_compiled(shader).render(**inputs)
+    want = glslcheck.compile(shader, backend="numpy").render(**inputs)
+    what = f"{getattr(shader, 'root', shader)} at {frame_text(**inputs)}"
+    assert_same(got, want, what=what, names=("compiled", "numpy"), mode="values_any_nan")
 
 
 @pytest.mark.parametrize("name", LAB_SAMPLE)
@@ -330,7 +327,7 @@ def test_mesa_reassociation_bit_for_bit(numba, make_shader):
     assert "(F_3p1 * F_40p0)" in generate(shader)[0]
     got = compile_compiled(shader).render(size=SIZE)
     want = glslcheck.compile(shader, backend="numpy").render(size=SIZE)
-    np.testing.assert_array_equal(got.view(np.uint32), want.view(np.uint32))
+    assert_same(got, want, what=f"{SIZE[0]}x{SIZE[1]}, iTime 0", names=("compiled", "numpy"))
 
 
 def test_constants_merged_through_a_negation_bit_for_bit(numba, make_shader):
@@ -366,11 +363,7 @@ def test_uniform_products_merged_at_every_frame(numba, make_shader):
     for lanes in (0, 8):
         prog = CompiledProgram(*generate(shader, lanes=lanes))
         got = np.stack([prog.render(size=(8, 1), time=t) for t in times])
-        frames = (got.view(np.uint32) != want.view(np.uint32)).any(axis=(1, 2, 3))
-        assert not frames.any(), (
-            f"lanes {lanes}: {frames.sum()} of {len(times)} frames differ, the first at "
-            f"iTime {times[int(np.argmax(frames))]:.6g}"
-        )
+        assert_same_frames(got, want, times, what="8x1", names=(f"lanes {lanes}", "numpy"))
 
 
 REPEATED_SUMS = """float rnd(inout float seed) { seed += 0.1; return seed; }

@@ -15,6 +15,7 @@ from pathlib import Path
 
 import numpy as np
 import pytest
+from image_bits import assert_same, frame_text
 
 import glslcheck
 from glslcheck.base.diagnostics import GlslError
@@ -183,14 +184,8 @@ def test_derivatives_bit_for_bit(numba, make_shader, name, lanes, size):
     shader = make_shader(DERIVATIVES[name])
     got = _compiled(shader, lanes, size)
     want = glslcheck.compile(shader, backend="numpy").render(size=size, time=1.3, mouse=MOUSE)
-    same = (got.view(np.uint32) == want.view(np.uint32)) | (np.isnan(got) & np.isnan(want))
-    if not same.all():
-        where = np.argwhere(~same.all(axis=2))
-        y, x = where[0]
-        raise AssertionError(
-            f"{len(where)} of {size[0] * size[1]} pixels differ; first at row {y} col {x}: "
-            f"compiled {got[y, x]}, numpy {want[y, x]}"
-        )
+    what = f"{name} at {frame_text(size, time=1.3, mouse=MOUSE)}"
+    assert_same(got, want, what=what, names=(f"lanes {lanes}", "numpy"), mode="bits_any_nan")
     # not trivially equal: the derivatives are not all zero
     assert np.ptp(want[..., :3]) > 0.0
 

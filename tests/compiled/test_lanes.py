@@ -18,6 +18,7 @@ import re
 
 import numpy as np
 import pytest
+from image_bits import assert_same, frame_text
 from test_compiled_render import CONSTRUCTS, LAB, SIZE
 
 MOUSE = (10.0, 7.0, 3.0, -2.0)
@@ -33,16 +34,11 @@ def _render(shader, lanes: int, time: float = 1.3) -> np.ndarray:
 
 
 def _same_bits(shader, lanes: int) -> None:
-    want = _render(shader, 0)
-    got = _render(shader, lanes)
-    same = got.view(np.uint32) == want.view(np.uint32)
-    if not same.all():
-        where = np.argwhere(~same.all(axis=2))
-        y, x = where[0]
-        raise AssertionError(
-            f"{len(where)} of {SIZE[0] * SIZE[1]} pixels differ; first at row {y} col {x}: "
-            f"lanes {got[y, x]}, per pixel {want[y, x]}"
-        )
+    """`lanes` pixels in lockstep render `shader` (iTime 1.3) to the per-pixel module's bits."""
+    what = f"{getattr(shader, 'root', shader)} at {frame_text(SIZE, time=1.3, mouse=MOUSE)}"
+    assert_same(
+        _render(shader, lanes), _render(shader, 0), what=what, names=(f"lanes {lanes}", "per pixel")
+    )
 
 
 @pytest.mark.parametrize("lanes", [8, 16])
@@ -169,15 +165,14 @@ def test_tiered_program_moves(numba, make_shader, monkeypatch, tmp_path):
     )  # no lockstep module cached by an earlier run
     shader = make_shader(CONSTRUCTS["control_flow"])
     want = _render(shader, 0, time=2.0)
+    frame = f"control_flow at {frame_text(SIZE, time=2.0, mouse=MOUSE)}"
     prog = engine.compile_compiled(shader)
     assert isinstance(prog, engine.TieredProgram) and prog.mode == "pixel"
     monkeypatch.setattr(engine, "LOCKSTEP_COMPILE_RATIO", 1e9)  # never pays: stays per pixel
     monkeypatch.setattr(engine, "LOCKSTEP_SECONDS_PER_LINE", 1e9)
     for _ in range(3):
-        assert (
-            prog.render(size=SIZE, time=2.0, mouse=MOUSE).view(np.uint32).tolist()
-            == want.view(np.uint32).tolist()
-        )
+        got = prog.render(size=SIZE, time=2.0, mouse=MOUSE)
+        assert_same(got, want, what=frame, names=(prog.mode, "per pixel"))
     assert prog.mode == "pixel" and prog.pixels == 3 * SIZE[0] * SIZE[1]
     monkeypatch.setattr(
         engine, "LOCKSTEP_COMPILE_RATIO", 0.0
@@ -185,7 +180,7 @@ def test_tiered_program_moves(numba, make_shader, monkeypatch, tmp_path):
     monkeypatch.setattr(engine, "LOCKSTEP_SECONDS_PER_LINE", 0.0)
     # the lockstep compile runs in its own thread; frames meanwhile are per pixel, the same bits
     got = prog.render(size=SIZE, time=2.0, mouse=MOUSE)
-    assert got.view(np.uint32).tolist() == want.view(np.uint32).tolist()
+    assert_same(got, want, what=frame, names=(prog.mode, "per pixel"))
     assert (
         prog._mover is not None
         and prog.settle(600)
@@ -193,7 +188,7 @@ def test_tiered_program_moves(numba, make_shader, monkeypatch, tmp_path):
         and "LANES = 8" in prog.source
     )
     got = prog.render(size=SIZE, time=2.0, mouse=MOUSE)
-    assert got.view(np.uint32).tolist() == want.view(np.uint32).tolist()
+    assert_same(got, want, what=frame, names=(prog.mode, "per pixel"))
     again = engine.compile_compiled(shader)
     again.first.load()
     assert again._cached_fast() == prog.fast.source

@@ -16,8 +16,8 @@ from __future__ import annotations
 
 import time
 
-import numpy as np
 import pytest
+from image_bits import assert_same, frame_text
 from test_compiled_render import SIZE
 
 import glslcheck
@@ -107,6 +107,10 @@ class _Memo:
         return self.last
 
 
+def _frame(limit) -> str:
+    return f"{frame_text(SIZE, time=0.5)}, loop limit {limit}"
+
+
 def _render(prog, limit):
     prog.loop_limit = limit
     image = prog.render(size=SIZE, time=0.5)
@@ -119,7 +123,7 @@ def test_budget_spent_as_the_numpy_backend_spends_it(programs, budget, lanes):
     numpy, compiled, _ = programs
     want, want_loops = _render(numpy, budget)
     got, got_loops = _render(compiled[lanes], budget)
-    assert got.view(np.uint32).tolist() == want.view(np.uint32).tolist()
+    assert_same(got, want, what=_frame(budget), names=(f"lanes {lanes}", "numpy"))
     assert got_loops == want_loops
     if budget == LLVMPIPE_LOOP_LIMIT:
         assert got_loops == []  # the program's 2,000-odd passes never reach llvmpipe's limit
@@ -137,16 +141,15 @@ def test_no_limit_renders_every_pass(programs):
     want, _ = _render(numpy, None)
     for lanes, prog in compiled.items():
         got, loops = _render(prog, None)
-        assert got.view(np.uint32).tolist() == want.view(np.uint32).tolist()
+        assert_same(got, want, what=_frame(None), names=(f"lanes {lanes}", "numpy"))
         assert loops == []
-        assert (
-            got.view(np.uint32).tolist()
-            == _render(prog, LLVMPIPE_LOOP_LIMIT)[0].view(np.uint32).tolist()
-        )
+        limited, _ = _render(prog, LLVMPIPE_LOOP_LIMIT)
+        limit = _frame(LLVMPIPE_LOOP_LIMIT)
+        assert_same(got, limited, what=limit, names=("no limit", "llvmpipe's limit"))
         source, path = generate(shader, lanes=lanes)
         assert "tick(" not in source and "BUDGET = False" in source
         image = CompiledProgram(source, path).render(size=SIZE, time=0.5)
-        assert image.view(np.uint32).tolist() == want.view(np.uint32).tolist()
+        assert_same(image, want, what=_frame(None), names=("the module without a budget", "numpy"))
 
 
 NESTED = """void mainImage(out vec4 fragColor, in vec2 fragCoord)
@@ -182,6 +185,7 @@ def test_three_nested_runaway_loops_stop_as_llvmpipe_does(numba, make_shader, la
     t0 = time.perf_counter()
     got, got_loops = _render(compiled, LLVMPIPE_LOOP_LIMIT)
     seconds = time.perf_counter() - t0
-    assert got.view(np.uint32).tolist() == want.view(np.uint32).tolist()
+    what = f"NESTED at {frame_text(SIZE, time=0.5)}, loop limit {LLVMPIPE_LOOP_LIMIT}"
+    assert_same(got, want, what=what, names=(f"lanes {lanes}", "numpy"))
     assert [line for _, line in got_loops] == [4, 5, 6] == [line for _, line in want_loops]
     assert seconds < 120.0

@@ -11,14 +11,12 @@ import os
 
 import pytest
 from test_compiled_render import CONSTRUCTS, LAB
-from test_numba_ssa import _functions
 
 
-def _check(source: str) -> int:
-    """Both live maps and both scope fix-ups of every function of the module, before and after
-    SSA: the blocks with names live at their entry."""
+def _check(functions: list[tuple[str, dict]]) -> int:
+    """Both live maps and both scope fix-ups of every function of a module (lockstep_ir's),
+    before and after SSA: the blocks with names live at their entry."""
     from numba.core import analysis, ssa
-    from numba.core.compiler import run_frontend
 
     from glslcheck.backends.compiled_engine import numba_analysis
 
@@ -26,15 +24,14 @@ def _check(source: str) -> int:
         pytest.skip(f"numba_analysis is not installed on numba other than {numba_analysis.CHECKED}")
     ref = numba_analysis.numba_own("compute_live_map")
     live = 0
-    for fn in _functions(source):
-        frontend = run_frontend(fn).blocks
+    for name, frontend in functions:
         for blocks in (frontend, ssa._run_ssa(copy.deepcopy(frontend))):
             cfg = analysis.compute_cfg_from_blocks(blocks)
             usedefs = analysis.compute_use_defs(blocks)
             want = ref(cfg, blocks, usedefs.usemap, usedefs.defmap)
             got = numba_analysis.compute_live_map(cfg, blocks, usedefs.usemap, usedefs.defmap)
-            assert list(got) == list(want), fn.__name__
-            assert got == want, fn.__name__
+            assert list(got) == list(want), name
+            assert got == want, name
             live += sum(bool(v) for v in want.values())
             _check_scopes(blocks)
     return live
@@ -63,20 +60,16 @@ def _check_scopes(blocks: dict) -> None:
 
 
 @pytest.mark.parametrize("name", sorted(CONSTRUCTS))
-def test_constructs_same_live_map_as_numba(numba, make_shader, name):
-    from glslcheck.backends.compiled_engine.engine import generate
-
-    source, _ = generate(make_shader(CONSTRUCTS[name]), lanes=8)
-    _check(source)
+def test_constructs_same_live_map_as_numba(lockstep_ir, make_shader, name):
+    _check(lockstep_ir(make_shader(CONSTRUCTS[name])))
 
 
 @pytest.mark.parametrize("name", ["07_final", "bonus_spot_lights"])
-def test_lab_same_live_map_as_numba(numba, name):
-    from glslcheck.backends.compiled_engine.engine import generate
+def test_lab_same_live_map_as_numba(lockstep_ir, name):
     from glslcheck.shadertoy.sources import load_shader
 
-    source, _ = generate(load_shader(os.path.join(LAB, name)), lanes=8)
-    assert _check(source)  # (names live across blocks: the fix points were at work)
+    live = _check(lockstep_ir(load_shader(os.path.join(LAB, name))))
+    assert live  # (names live across blocks: the fix points were at work)
 
 
 def test_loop_and_unreachable_block(numba):

@@ -16,19 +16,10 @@ def _dump(blocks: dict) -> dict:
     return {label: [str(s) for s in b.body] for label, b in blocks.items()}
 
 
-def _functions(source: str) -> list:
-    """The Python functions of a generated module (what numba's passes see)."""
-    ns: dict = {"__name__": "glslcheck_test_module"}
-    # (numba's cache needs a file; nothing is compiled here)
-    exec(compile(source.replace("cache=True", "cache=False"), "<lockstep>", "exec"), ns)
-    return [v.py_func for v in ns.values() if getattr(v, "py_func", None) is not None]
-
-
-def _check(source: str) -> tuple[int, int]:
-    """Both passes on every function of the module, numba's and numba_ssa's, on copies of the same
-    IR: (functions with re-assigned names, phi nodes stripped)."""
+def _check(functions: list[tuple[str, dict]]) -> tuple[int, int]:
+    """Both passes on every function of a module (lockstep_ir's), numba's and numba_ssa's, on
+    copies of the same IR: (functions with re-assigned names, phi nodes stripped)."""
     from numba.core import ir
-    from numba.core.compiler import run_frontend
 
     from glslcheck.backends.compiled_engine import numba_ssa
 
@@ -36,11 +27,10 @@ def _check(source: str) -> tuple[int, int]:
         pytest.skip(f"numba_ssa is not installed on numba other than {numba_ssa.CHECKED}")
     ref_ssa, ref_strip = numba_ssa.numba_passes()
     fixed = phis = 0
-    for fn in _functions(source):
-        blocks = run_frontend(fn).blocks
+    for name, blocks in functions:
         want = ref_ssa(copy.deepcopy(blocks))
         got = numba_ssa.run_ssa(copy.deepcopy(blocks))
-        assert _dump(got) == _dump(want), fn.__name__
+        assert _dump(got) == _dump(want), name
         fixed += want is not blocks
         n = sum(
             isinstance(s, ir.Assign) and isinstance(s.value, ir.Expr) and s.value.op == "phi"
@@ -53,25 +43,20 @@ def _check(source: str) -> tuple[int, int]:
         b = types.SimpleNamespace(blocks=copy.deepcopy(want), loc=loc)
         ref_strip(None, a)
         numba_ssa.strip_phi_nodes(None, b)
-        assert _dump(b.blocks) == _dump(a.blocks), fn.__name__
+        assert _dump(b.blocks) == _dump(a.blocks), name
     return fixed, phis
 
 
 @pytest.mark.parametrize("name", sorted(CONSTRUCTS))
-def test_constructs_same_ir_as_numba(numba, make_shader, name):
-    from glslcheck.backends.compiled_engine.engine import generate
-
-    source, _ = generate(make_shader(CONSTRUCTS[name]), lanes=8)
-    _check(source)
+def test_constructs_same_ir_as_numba(lockstep_ir, make_shader, name):
+    _check(lockstep_ir(make_shader(CONSTRUCTS[name])))
 
 
 @pytest.mark.parametrize("name", ["07_final", "bonus_spot_lights"])
-def test_lab_same_ir_as_numba(numba, name):
-    from glslcheck.backends.compiled_engine.engine import generate
+def test_lab_same_ir_as_numba(lockstep_ir, name):
     from glslcheck.shadertoy.sources import load_shader
 
-    source, _ = generate(load_shader(os.path.join(LAB, name)), lanes=8)
-    fixed, phis = _check(source)
+    fixed, phis = _check(lockstep_ir(load_shader(os.path.join(LAB, name))))
     assert fixed and phis  # (the comparison saw both passes at work)
 
 

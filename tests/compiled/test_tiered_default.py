@@ -10,9 +10,11 @@ verdict of a test reaches another test or the user's cache.
 from __future__ import annotations
 
 import json
+from functools import partial
 
 import numpy as np
 import pytest
+from image_bits import assert_same
 
 import glslcheck
 from glslcheck.backends import tiered
@@ -69,12 +71,12 @@ def clock(monkeypatch):
     return seconds
 
 
+# the default program's frames are the NumPy backend's bits (a NaN any NaN: payloads may differ)
+_same_as_numpy = partial(assert_same, names=("auto", "numpy"), mode="bits_any_nan")
+
+
 def _frames(prog, times):
     return [prog.render(size=SIZE, time=t) for t in times]
-
-
-def _same(a: np.ndarray, b: np.ndarray) -> bool:
-    return bool(((a.view(np.uint32) == b.view(np.uint32)) | (np.isnan(a) & np.isnan(b))).all())
 
 
 def test_the_default_backend_is_the_tiered_program(make_shader, monkeypatch):
@@ -99,7 +101,7 @@ def test_frames_move_to_the_compiled_engine_with_the_same_bits(numba, make_shade
     assert prog.impl.record()["verdict"] == "same"
     got += _frames(prog, times[1:])
     for t, image, want in zip(times, got, _frames(reference, times)):
-        assert _same(image, want), t
+        _same_as_numpy(image, want, what=f"iTime {t}")
 
 
 def test_a_shader_the_compiled_engine_refuses_stays_on_numpy(numba, make_shader, eager):
@@ -114,7 +116,7 @@ def test_a_shader_the_compiled_engine_refuses_stays_on_numpy(numba, make_shader,
     _frames(again, [0.5, 0.6])
     assert again.impl.stay == prog.impl.stay and again.impl._mover is None
     want = glslcheck.compile(shader, backend="numpy").render(size=SIZE, time=0.6)
-    assert _same(again.render(size=SIZE, time=0.6), want)
+    _same_as_numpy(again.render(size=SIZE, time=0.6), want, what="iTime 0.6")
 
 
 def test_a_compiled_frame_that_differs_keeps_numpy(numba, make_shader, eager, monkeypatch):
@@ -135,7 +137,7 @@ def test_a_compiled_frame_that_differs_keeps_numpy(numba, make_shader, eager, mo
     assert prog.impl.settle(300)
     assert prog.impl.mode == "numpy" and prog.impl.stay.startswith("differs: 1 pixels")
     want = glslcheck.compile(shader, backend="numpy").render(size=SIZE, time=0.7)
-    assert _same(prog.render(size=SIZE, time=0.7), want)
+    _same_as_numpy(prog.render(size=SIZE, time=0.7), want, what="iTime 0.7")
 
 
 def test_a_slower_compiled_engine_hands_the_frames_back(
@@ -156,7 +158,7 @@ def test_a_slower_compiled_engine_hands_the_frames_back(
     for t, image, want in zip(
         times, got, _frames(glslcheck.compile(shader, backend="numpy"), times)
     ):
-        assert _same(image, want), t
+        _same_as_numpy(image, want, what=f"iTime {t}")
 
 
 @pytest.mark.parametrize("compiled, moves", [(0.2, False), (0.05, True)])
@@ -185,7 +187,7 @@ def test_the_trial_times_both_engines_on_its_own_frames(
     assert prog.impl.numpy_rate == 0.1 / (SIZE[0] * SIZE[1])  # the trial frames', not the first
     want = _frames(glslcheck.compile(shader, backend="numpy"), times)
     for t, image, w in zip(times, got, want):
-        assert _same(image, w), t
+        _same_as_numpy(image, w, what=f"iTime {t}")
 
 
 @pytest.mark.parametrize(
@@ -225,7 +227,7 @@ def test_verify_s_loop_limiter_moves_with_the_frames(numba, make_shader, eager):
     reference = glslcheck.compile(shader, backend="numpy")
     reference.impl.loop_limit = 1000
     for t, image, want in zip(times, got, _frames(reference, times)):
-        assert _same(image, want), t
+        _same_as_numpy(image, want, what=f"iTime {t}")
 
 
 def test_a_driver_s_float_to_uint_model_stays_on_numpy(make_shader, eager):
@@ -303,7 +305,7 @@ def test_channel_passes_move_with_the_same_bits(numba, tmp_path, eager, size):
     assert passes["Buffer A"].engine.startswith("compiled")
     for k, image in enumerate(got):
         want = reference.render(size=size, frame=k, time=k / 60)
-        assert _same(image, want), k
+        _same_as_numpy(image, want, what=f"iFrame {k}")
 
 
 def test_a_pass_s_verdict_is_kept_per_pass_and_binding(numba, tmp_path):
@@ -362,7 +364,7 @@ def test_a_slower_per_pixel_program_is_tried_again_in_lockstep(
     assert prog.impl.mode == "compiled lanes8" and prog.impl.stay is None
     want = _frames(glslcheck.compile(shader, backend="numpy"), times)
     for t, image, w in zip(times, got, want):
-        assert _same(image, w), t
+        _same_as_numpy(image, w, what=f"iTime {t}")
 
 
 def test_a_lockstep_module_made_earlier_renders_every_compiled_frame(
@@ -392,7 +394,7 @@ def test_a_lockstep_module_made_earlier_renders_every_compiled_frame(
     assert later.impl.second.pixels == 0  # no frame rendered per pixel
     want = _frames(glslcheck.compile(shader, backend="numpy"), times)
     for t, image, w in zip(times, got, want):
-        assert _same(image, w), t
+        _same_as_numpy(image, w, what=f"iTime {t}")
 
 
 def test_frames_before_lockstep_are_kept_for_later_processes(make_shader, eager, monkeypatch):
@@ -435,7 +437,7 @@ def test_frames_earlier_processes_rendered_pay_for_lockstep(
         assert prog.impl.mode == "compiled pixel"
     want = _frames(glslcheck.compile(shader, backend="numpy"), times)
     for t, image, w in zip(times, got, want):
-        assert _same(image, w), t
+        _same_as_numpy(image, w, what=f"iTime {t}")
 
 
 def test_a_per_pixel_tier_that_won_renders_beside_lockstep_s_compile(

@@ -25,7 +25,6 @@ import numpy as np
 import pytest
 from PIL import Image
 
-from glslcheck.backends import registry
 from glslcheck.verification.verify import compile_backend
 
 SIZE = (40, 24)
@@ -139,18 +138,13 @@ NOT_COPIED = {"atan2_with_an_else_reading_it"}
 @pytest.mark.parametrize("backend", ["numpy", "compiled"])
 @pytest.mark.parametrize("name", sorted(set(CASES) - NOT_COPIED))
 def test_both_engines_hold_what_llvmpipe_holds_outside_a_kept_branch(
-    llvmpipe, make_shader, request, backend, name
+    renders_as_llvmpipe, make_shader, backend, name
 ):
     """nir_fold.merged_register: each engine writes the local under the branch's mask over
     zero or col's old value, bit for bit llvmpipe's image. Measured before it: 28 of the 960
     pixels differed in each engine for every kept case (the quads the branch splits)."""
-    if backend == "compiled":
-        request.getfixturevalue("numba")
     text, _ = _case_texts(name)
-    want = _render(make_shader, text, "gl")
-    got = _render(make_shader, text, backend)
-    differ = (got.view(np.int32) != want.view(np.int32)).any(axis=-1)
-    assert not differ.any(), np.argwhere(differ).tolist()
+    renders_as_llvmpipe(make_shader(text), backend, name=name, size=SIZE)
 
 
 OUT_PARAMETER = """void shade(out vec3 col, vec2 r) {
@@ -203,17 +197,12 @@ ENTRY_OUTPUT = """void mainImage(out vec4 c, in vec2 f) {
     ids=["constant", "computed", "unwritten"],
 )
 def test_a_local_merged_into_the_entrys_output_is_held_as_llvmpipe_holds_it(
-    llvmpipe, make_shader, request, backend, old
+    renders_as_llvmpipe, make_shader, backend, old
 ):
     """The entry's out parameter is read after the branch (it is the output): its register
     holds zero over a constant or unwritten old value, the old value over a computed one."""
-    if backend == "compiled":
-        request.getfixturevalue("numba")
-    text = ENTRY_OUTPUT.replace("OLD", old)
-    want = _render(make_shader, text, "gl")
-    got = _render(make_shader, text, backend)
-    differ = (got.view(np.int32) != want.view(np.int32)).any(axis=-1)
-    assert not differ.any(), np.argwhere(differ).tolist()
+    shader = make_shader(ENTRY_OUTPUT.replace("OLD", old))
+    renders_as_llvmpipe(shader, backend, name=f"ENTRY_OUTPUT over {old!r}", size=SIZE)
 
 
 LOOKUP = """void mainImage(out vec4 c, in vec2 f) {
@@ -229,12 +218,12 @@ LOOKUP = """void mainImage(out vec4 c, in vec2 f) {
 
 @pytest.mark.parametrize("backend", ["numpy", "compiled"])
 @pytest.mark.parametrize("value", ["atan(r.y, r.x) * 0.3 + 1.5", "r.x * r.y * 3.0 + 1.5"])
-def test_a_lookups_implicit_lod_reads_the_register_too(llvmpipe, tmp_path, request, backend, value):
+def test_a_lookups_implicit_lod_reads_the_register_too(
+    renders_as_llvmpipe, tmp_path, backend, value
+):
     """A texture lookup keeps the branch (a tex instruction is never flattened), and its
     implicit LOD reads `an`'s register in the quad's lanes outside the branch as dFdx does.
     Measured before the rule: 28 of the 960 pixels differed in each engine, for both values."""
-    if backend == "compiled":
-        request.getfixturevalue("numba")
     rng = np.random.default_rng(10)
     Image.fromarray(rng.integers(0, 256, (64, 64, 4), dtype=np.uint8), "RGBA").save(
         tmp_path / "tex.png"
@@ -243,7 +232,4 @@ def test_a_lookups_implicit_lod_reads_the_register_too(llvmpipe, tmp_path, reque
     (tmp_path / "channels.json").write_text(
         json.dumps({"Image": {"iChannel0": {"texture": "tex.png"}}})
     )
-    want = np.asarray(registry.compile(str(tmp_path), backend="gl").render(size=SIZE), np.float32)
-    got = np.asarray(registry.compile(str(tmp_path), backend=backend).render(size=SIZE), np.float32)
-    differ = (got.view(np.int32) != want.view(np.int32)).any(axis=-1)
-    assert not differ.any(), np.argwhere(differ).tolist()
+    renders_as_llvmpipe(str(tmp_path), backend, name=f"LOOKUP of {value}", size=SIZE)

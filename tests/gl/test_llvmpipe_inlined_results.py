@@ -10,10 +10,7 @@ elsewhere, naming the driver)."""
 
 from __future__ import annotations
 
-import numpy as np
 import pytest
-
-from glslcheck.verification.verify import compile_backend
 
 # x: iq's sdBase (a hash returning a fract, its square by a constant, two lattice corners);
 # y: two calls with different arguments; z: a function that returns a local, a sine
@@ -40,19 +37,13 @@ void mainImage(out vec4 c, in vec2 f) {
 @pytest.mark.parametrize("backend", ["numpy", "compiled"])
 @pytest.mark.parametrize("time", [0.0, 1.3])
 def test_a_constant_sinks_into_a_product_of_user_function_results(
-    llvmpipe, make_shader, request, backend, time
+    renders_as_llvmpipe, make_shader, backend, time
 ):
     """``(g(x) * g(y)) * #c`` is ``(g(x) * #c) * g(y)`` where g, inlined, returns an opaque
     value, in both engines (the compiled engine asks the same plan: copied_binary). Measured
     without it at iTime 1.3: 2285, 1568 and 1854 of the 14,400 pixels differed from llvmpipe
     in x, y and z, in both engines."""
-    if backend == "compiled":
-        request.getfixturevalue("numba")
-    shader = make_shader(INLINED_RESULTS)
-    got_gl = np.asarray(compile_backend(shader, "gl").render(size=(160, 90), time=time), np.float32)
-    got = np.asarray(compile_backend(shader, backend).render(size=(160, 90), time=time), np.float32)
-    same = got.view(np.int32) == got_gl.view(np.int32)
-    assert same.all(), (~same).reshape(-1, 4).sum(0).tolist()
+    renders_as_llvmpipe(make_shader(INLINED_RESULTS), backend, name="INLINED_RESULTS", time=time)
 
 
 # constants a vector constructor passes into a call: nested (vec3(vec2(x, y), 2.5)), flat, and
@@ -69,19 +60,15 @@ void mainImage(out vec4 c, in vec2 f) {
 @pytest.mark.parametrize("backend", ["numpy", "compiled"])
 @pytest.mark.parametrize("time", [0.0, 1.3])
 def test_constants_of_a_constructor_argument_merge_in_the_callee(
-    llvmpipe, make_shader, request, backend, time
+    renders_as_llvmpipe, make_shader, backend, time
 ):
     """``g3(vec3(vec2(x, y), 2.5))`` whose body computes ``p.x * 0.7 * p.z`` is ``x * (0.7 *
     2.5)`` after inlining (transpile/call_fold.py: a constructor's constant arguments are
     constant components, as a local's are). Measured without it at iTime 1.3: 6252, 5766 and
     4566 of the 14,400 pixels differed from llvmpipe in x, y and z, in both engines."""
-    if backend == "compiled":
-        request.getfixturevalue("numba")
-    shader = make_shader(CONSTRUCTED_ARGUMENTS)
-    got_gl = np.asarray(compile_backend(shader, "gl").render(size=(160, 90), time=time), np.float32)
-    got = np.asarray(compile_backend(shader, backend).render(size=(160, 90), time=time), np.float32)
-    same = got.view(np.int32) == got_gl.view(np.int32)
-    assert same.all(), (~same).reshape(-1, 4).sum(0).tolist()
+    renders_as_llvmpipe(
+        make_shader(CONSTRUCTED_ARGUMENTS), backend, name="CONSTRUCTED_ARGUMENTS", time=time
+    )
 
 
 # iq's sdBase with simplex cells: the hashes stored in locals first (r0, r1), then squared;
@@ -102,7 +89,7 @@ void mainImage(out vec4 c, in vec2 f) {
 @pytest.mark.parametrize("backend", ["numpy", "compiled"])
 @pytest.mark.parametrize("time", [0.0, 1.3])
 def test_a_local_holding_a_user_function_result_is_that_value(
-    llvmpipe, make_shader, request, backend, time
+    renders_as_llvmpipe, make_shader, backend, time
 ):
     """``float r0 = hash(i);`` never written again stands for hash's ``fract`` as a local
     initialised by ``fract(...)`` does (queries.stable_init), so ``(r0 * r0) * 0.55`` is
@@ -110,10 +97,4 @@ def test_a_local_holding_a_user_function_result_is_that_value(
     constant sinks into (queries.node_shapes). Measured at iTime 1.3, of the 14,400 pixels
     per channel, in both engines: without the local seen through, 964 differed from llvmpipe
     in x; with it but the two products counted apart, 728 in y and 232 in z."""
-    if backend == "compiled":
-        request.getfixturevalue("numba")
-    shader = make_shader(STORED_RESULTS)
-    got_gl = np.asarray(compile_backend(shader, "gl").render(size=(160, 90), time=time), np.float32)
-    got = np.asarray(compile_backend(shader, backend).render(size=(160, 90), time=time), np.float32)
-    same = got.view(np.int32) == got_gl.view(np.int32)
-    assert same.all(), (~same).reshape(-1, 4).sum(0).tolist()
+    renders_as_llvmpipe(make_shader(STORED_RESULTS), backend, name="STORED_RESULTS", time=time)

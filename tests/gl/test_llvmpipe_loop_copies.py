@@ -26,10 +26,8 @@ the value before the loop), and in a loop NIR keeps, the constant sunk past the 
 
 from __future__ import annotations
 
-import numpy as np
 import pytest
-
-from glslcheck.verification.verify import compile_backend
+from image_bits import assert_same, differing_pixels, render
 
 W = "void mainImage(out vec4 c, in vec2 p) {\n%s\n    c = vec4(a, 0.0, 1.0);\n}"
 
@@ -150,29 +148,22 @@ def _mesa(name: str) -> str:
     return W % (text + _result(text))
 
 
-def _render(make_shader, text: str, backend: str) -> np.ndarray:
-    got = compile_backend(make_shader(text), backend).render(size=(160, 90), frame=0)
-    return np.asarray(got, np.float32).reshape(-1, 4)
-
-
-def _differ(x: np.ndarray, y: np.ndarray) -> int:
-    return int((x.view(np.int32) != y.view(np.int32)).any(axis=1).sum())
-
-
 @pytest.mark.parametrize("name", sorted(SHAPES))
 def test_llvmpipe_merges_the_constants_in_the_copies_of_an_unrolled_loop(
     llvmpipe, make_shader, name
 ):
     """The unrolled loop (and the body written out as often) is Mesa's order on every pixel;
     the loop NIR keeps is not (else the shape could not tell the orders apart)."""
-    unrolled = _render(make_shader, _loop(name, kept=False), "gl")
-    mesa = _render(make_shader, _mesa(name), "gl")
-    kept = _render(make_shader, _loop(name, kept=True), "gl")
-    assert _differ(unrolled, mesa) == 0, name
-    assert _differ(kept, mesa) > 0, name
+    unrolled = render(make_shader(_loop(name, kept=False)), "gl", frame=0)
+    mesa = render(make_shader(_mesa(name)), "gl", frame=0)
+    kept = render(make_shader(_loop(name, kept=True)), "gl", frame=0)
+    what = f"{name} on llvmpipe at 160x90, iFrame 0"
+    assert_same(unrolled, mesa, what=what, names=("the unrolled loop", "Mesa's order"))
+    assert differing_pixels(kept, mesa) > 0, name
     straight = _straight(name)
     if straight is not None:
-        assert _differ(_render(make_shader, straight, "gl"), mesa) == 0, name
+        straight_image = render(make_shader(straight), "gl", frame=0)
+        assert_same(straight_image, mesa, what=what, names=("the body written out", "Mesa's order"))
 
 
 def _kept(name: str) -> str | None:
@@ -194,12 +185,8 @@ CASES = [(n, f) for n in sorted(SHAPES) for f in FORMS if FORMS[f](n) is not Non
 @pytest.mark.parametrize("backend", ["numpy", "compiled"])
 @pytest.mark.parametrize("name, form", CASES, ids=[f"{n}-{f}" for n, f in CASES])
 def test_engines_merge_the_constants_in_the_copies_as_llvmpipe(
-    llvmpipe, make_shader, request, name, form, backend
+    renders_as_llvmpipe, make_shader, name, form, backend
 ):
     """Both CPU engines render the unrolled loop, the kept one and the body written out as the
     driver does."""
-    if backend == "compiled":
-        request.getfixturevalue("numba")
-    text = FORMS[form](name)
-    got_gl, got = _render(make_shader, text, "gl"), _render(make_shader, text, backend)
-    assert _differ(got, got_gl) == 0, (name, form)
+    renders_as_llvmpipe(make_shader(FORMS[form](name)), backend, name=f"{name}, {form}", frame=0)

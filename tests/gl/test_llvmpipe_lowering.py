@@ -21,6 +21,7 @@ from __future__ import annotations
 
 from pathlib import Path
 
+import image_bits
 import numpy as np
 import pytest
 
@@ -81,14 +82,9 @@ CASES = {
 
 
 @pytest.mark.parametrize("name", sorted(CASES))
-def test_numpy_rewrites_as_mesa(llvmpipe, make_shader, name):
+def test_numpy_rewrites_as_mesa(renders_as_llvmpipe, make_shader, name):
     shader = make_shader("void mainImage(out vec4 c, in vec2 p) {" + OPERANDS + CASES[name] + "}")
-    got_gl = compile_backend(shader, "gl").render(size=(160, 90))
-    got_np = compile_backend(shader, "numpy").render(size=(160, 90))
-    same = np.asarray(got_np, np.float32).view(np.int32) == np.asarray(got_gl, np.float32).view(
-        np.int32
-    )
-    assert same.all(), (name, (~same).reshape(-1, 4).sum(0).tolist())
+    renders_as_llvmpipe(shader, name=name)
 
 
 def test_float64_reference_keeps_the_written_order(make_shader):
@@ -137,20 +133,16 @@ void mainImage(out vec4 c, in vec2 p) {
 }"""
 
 
-def test_an_added_constant_zero_keeps_the_sign_of_zero(llvmpipe, make_shader):
+def test_an_added_constant_zero_keeps_the_sign_of_zero(renders_as_llvmpipe, make_shader):
     """nir_opt_algebraic drops ``x + 0.0`` (and ``0.0 - x`` is ``-x``: llvmpipe lowers fsub to
     fadd of fneg), also when the zero reaches the addition through a function argument or an
     out parameter (NIR inlines first): 1/x is then -inf where IEEE gives +inf. Each channel
     mixes a literal case with one through a function; with IEEE additions all 14,400 pixels
     of each channel differed from llvmpipe (measured). The float64 reference keeps IEEE."""
     shader = make_shader(ZERO_ADDS)
-    got_gl = np.asarray(compile_backend(shader, "gl").render(size=(160, 90)), np.float32)
-    prog = compile_backend(shader, "numpy")
-    got_np = np.asarray(prog.render(size=(160, 90)), np.float32)
-    same = got_np.view(np.int32) == got_gl.view(np.int32)
-    assert same.all(), (~same).reshape(-1, 4).sum(0).tolist()
+    _, got_gl = renders_as_llvmpipe(shader, name="ZERO_ADDS")
     assert (got_gl[..., 0] == -np.inf).all()  # the case the test is about, not an accident
-    f64 = np.asarray(prog.render(size=(8, 4), precision="float64"))
+    f64 = np.asarray(compile_backend(shader, "numpy").render(size=(8, 4), precision="float64"))
     assert (f64[..., 0] == np.inf).all() and (f64[..., 2] == np.inf).all()
 
 
@@ -164,18 +156,16 @@ void mainImage(out vec4 c, in vec2 p) {
 }"""
 
 
-def test_constants_merge_into_a_dot_product_also_through_an_inlined_argument(llvmpipe, make_shader):
+def test_constants_merge_into_a_dot_product_also_through_an_inlined_argument(
+    renders_as_llvmpipe, make_shader
+):
     """dot(v, #K) with v a product by constants: ``dot(uv * 0.2, K)``, uv = q * 1.2 read
     several times, is ``dot(q, (K * 0.2) * 1.2)``; ``r * 2.1 * 0.7`` (one expression: GLSL IR
     folds 2.1 * 0.7 first) gives ``dot(r, K * (2.1 * 0.7))``; the third channel reaches uv * 0.2
     through the parameter of an inlined hash (a real shader's star field, tests/real_verify
     23-2d). Without the dot rule 9,560 and 4,180 pixels of the first two channels differed from
     llvmpipe, without the inlining 11,820 of the third (measured)."""
-    shader = make_shader(MERGED_DOTS)
-    got_gl = np.asarray(compile_backend(shader, "gl").render(size=(160, 90)), np.float32)
-    got_np = np.asarray(compile_backend(shader, "numpy").render(size=(160, 90)), np.float32)
-    same = got_np.view(np.int32) == got_gl.view(np.int32)
-    assert same.all(), (~same).reshape(-1, 4).sum(0).tolist()
+    renders_as_llvmpipe(make_shader(MERGED_DOTS), name="MERGED_DOTS")
 
 
 ONE_VALUE_DOTS = """float hash(vec2 co) { return fract(sin(dot(co.xy, vec2(12.9898, 78.233))) * \
@@ -189,7 +179,7 @@ void mainImage(out vec4 c, in vec2 p) {
 }"""
 
 
-def test_a_dot_product_of_one_value_is_a_product(llvmpipe, make_shader):
+def test_a_dot_product_of_one_value_is_a_product(renders_as_llvmpipe, make_shader):
     """Mesa's ``dot`` of two floats is a multiply, so a constant merges into it: ``dot(a, #b) *
     #c`` is ``a * (b*c)``; ``dot(vecN(s), #K)`` is ``s * (K[0] + (K[1] + ...))`` (the component
     products factored, the constants summed right to left), also with a constant factor merged
@@ -197,7 +187,7 @@ def test_a_dot_product_of_one_value_is_a_product(llvmpipe, make_shader):
     of two real shaders not tuned on (tests/real_verify/holdout.json h12, h14). Without the
     rules the first three channels differed from llvmpipe in 3,669, 9,677 and 3,460 pixels
     (measured; the third's through the inlining)."""
-    _assert_bit_for_bit(make_shader(ONE_VALUE_DOTS))
+    renders_as_llvmpipe(make_shader(ONE_VALUE_DOTS), name="ONE_VALUE_DOTS")
 
 
 GLOBAL_CONSTANTS = """float PI = 3.14159265;  // globals that are not const but never written: \
@@ -211,16 +201,14 @@ void mainImage(out vec4 c, in vec2 p) {
 }"""
 
 
-def test_a_global_initialised_by_a_constant_and_never_written_is_a_constant(llvmpipe, make_shader):
+def test_a_global_initialised_by_a_constant_and_never_written_is_a_constant(
+    renders_as_llvmpipe, make_shader
+):
     """GLSL IR propagates such a global as a constant before NIR's rewrites, so they apply as
     for a `const` (factoring through uv, constants merged in a product and in a dot product).
     Read as a variable, the three channels differed from llvmpipe in 979, 4,543 and 3,181
     pixels (measured; the first is the hash of a real shader, tests/real_verify 33)."""
-    shader = make_shader(GLOBAL_CONSTANTS)
-    got_gl = np.asarray(compile_backend(shader, "gl").render(size=(160, 90)), np.float32)
-    got_np = np.asarray(compile_backend(shader, "numpy").render(size=(160, 90)), np.float32)
-    same = got_np.view(np.int32) == got_gl.view(np.int32)
-    assert same.all(), (~same).reshape(-1, 4).sum(0).tolist()
+    renders_as_llvmpipe(make_shader(GLOBAL_CONSTANTS), name="GLOBAL_CONSTANTS")
 
 
 SSA_VALUES = (
@@ -244,18 +232,14 @@ void mainImage(out vec4 c, in vec2 q) {
 
 
 def test_a_constant_added_to_a_result_sinks_into_the_sum_the_function_returns(
-    llvmpipe, make_shader
+    renders_as_llvmpipe, make_shader
 ):
     """NIR inlines every function, so ``fbm(p) - 0.4`` with fbm returning ``f`` built as
     ``f = 0.5*h(p); f += ...`` is ``((0.5*h(p) - 0.4) + 0.25*h(..)) + ...`` on llvmpipe (iq's
     terrain ``displacement(x) - 0.4``, the real shader volcanic). Measured: 299, 4398 and 1293
     pixels of the three channels differed from llvmpipe without it."""
-    for text in (RETURNED_SUMS, RETURNED_SUMS_SHARED):
-        shader = make_shader(text)
-        got_gl = np.asarray(compile_backend(shader, "gl").render(size=(160, 90)), np.float32)
-        got_np = np.asarray(compile_backend(shader, "numpy").render(size=(160, 90)), np.float32)
-        same = got_np.view(np.int32) == got_gl.view(np.int32)
-        assert same.all(), (~same).reshape(-1, 4).sum(0).tolist()
+    renders_as_llvmpipe(make_shader(RETURNED_SUMS), name="RETURNED_SUMS")
+    renders_as_llvmpipe(make_shader(RETURNED_SUMS_SHARED), name="RETURNED_SUMS_SHARED")
 
 
 # the same sum computed for another call (same argument; for a vector function, any other call:
@@ -312,7 +296,7 @@ CALL_CONSTANTS_STEP = (
 )
 
 
-def test_constants_propagated_into_a_call_per_component(llvmpipe, make_shader):
+def test_constants_propagated_into_a_call_per_component(renders_as_llvmpipe, make_shader):
     """NIR inlines every function, scalarises, then folds: pos = (x, -0.0, -10.0) passed inout
     through camera() into rotate() with the constant angle -0.45 is ``sin(-0.45)*x +
     (cos(-0.45)*10)*sin(ax)`` in y (``#a * (b * #c)`` across two calls: the real shader
@@ -320,11 +304,7 @@ def test_constants_propagated_into_a_call_per_component(llvmpipe, make_shader):
     pixels of pos's three channels differed from llvmpipe. The fourth channel, lift()'s
     ``(1.6 + t*rd.y) - 2.4`` folded to ``(1.6 - 2.4) + t*rd.y`` through a component written
     by a compound assignment, gives llvmpipe's bits either way here (no pixel differed)."""
-    shader = make_shader(CALL_CONSTANTS)
-    got_gl = np.asarray(compile_backend(shader, "gl").render(size=(160, 90)), np.float32)
-    got_np = np.asarray(compile_backend(shader, "numpy").render(size=(160, 90)), np.float32)
-    same = got_np.view(np.int32) == got_gl.view(np.int32)
-    assert same.all(), (~same).reshape(-1, 4).sum(0).tolist()
+    renders_as_llvmpipe(make_shader(CALL_CONSTANTS), name="CALL_CONSTANTS")
 
 
 SCALED_ARGUMENTS = """float hash11(float p) { vec3 p3 = fract(vec3(p) * 443.8975); p3 += dot(p3, \
@@ -337,7 +317,7 @@ void mainImage(out vec4 c, in vec2 p) {
 
 
 def test_a_product_by_a_constant_passed_into_a_call_merges_with_its_constants(
-    llvmpipe, make_shader
+    renders_as_llvmpipe, make_shader
 ):
     """An argument ``y * #c`` is that product in each component of the parameter after inlining,
     so the callee's constants merge into it (``fract(vec3(p) * 443.8975)`` of ``p = fi * 0.017``
@@ -346,7 +326,7 @@ def test_a_product_by_a_constant_passed_into_a_call_merges_with_its_constants(
     Dave Hoskins' hash11 in NebulaSmoke (tests/real_verify/holdout.json h40; call_fold.py).
     Without the product arguments 9,013, 8,948 and 7,680 pixels of the three channels differed
     from llvmpipe, without the factoring 6,040 and 6,166 of the first two (measured)."""
-    _assert_bit_for_bit(make_shader(SCALED_ARGUMENTS))
+    renders_as_llvmpipe(make_shader(SCALED_ARGUMENTS), name="SCALED_ARGUMENTS")
 
 
 HASHES_WITHOUT_SINE = """float hash11(float p) { vec3 p3 = fract(vec3(p) * .1031); p3 += dot(p3, \
@@ -362,7 +342,7 @@ void mainImage(out vec4 c, in vec2 p) {
 }"""
 
 
-def test_a_dot_product_whose_products_share_a_value_is_factored(llvmpipe, make_shader):
+def test_a_dot_product_whose_products_share_a_value_is_factored(renders_as_llvmpipe, make_shader):
     """Dave Hoskins' hashes without sine, as written on Shadertoy: hash11's ``vec3(p)`` has three
     equal components and hash12's ``vec3(p.xyx)`` two, so two products of ``dot(p3, p3.yzx +
     33.33)`` share a value and NIR factors them (``a*b + a*c -> a * (b + c)``; call_fold.py
@@ -370,16 +350,16 @@ def test_a_dot_product_whose_products_share_a_value_is_factored(llvmpipe, make_s
     ... * 50.0`` also merges 50.0 into the hash's constant. hash13 has no shared product (a
     check that nothing else moves). Without the factoring 7,588 and 2,007 pixels of the first two
     channels differed from llvmpipe, without the merge through q 4,629 of the first (measured)."""
-    _assert_bit_for_bit(make_shader(HASHES_WITHOUT_SINE))
+    renders_as_llvmpipe(make_shader(HASHES_WITHOUT_SINE), name="HASHES_WITHOUT_SINE")
 
 
 def test_a_scaled_local_whose_operand_changes_before_the_call_is_not_evaluated_again(
-    llvmpipe, make_shader
+    renders_as_llvmpipe, make_shader
 ):
     """q = s.m * 0.5 and then s.m = 2.0 before hash11(q): the product is not q's value at the
     call, so it is not merged (it was read again there, and a struct member's write raised a
     KeyError in the scan for writes: a real textured shader, tests/real_channels ice_primitives)."""
-    _assert_bit_for_bit(
+    renders_as_llvmpipe(
         make_shader(
             SCALED_ARGUMENTS.split("float scaled")[0]
             + """struct S { float m; };
@@ -393,18 +373,16 @@ void mainImage(out vec4 c, in vec2 p) {
     )
 
 
-def test_a_sum_returned_through_a_folded_call_fuses_with_its_next_addition(llvmpipe, make_shader):
+def test_a_sum_returned_through_a_folded_call_fuses_with_its_next_addition(
+    renders_as_llvmpipe, make_shader
+):
     """gargantua's first ray step, ``pos + dir * dither * far / 200.0`` with pos folded by the
     call (each component ``p1 + p2`` of two products) and read only there: llvmpipe fuses and
     splits again, ``(p1 + step) + p2`` (nir_fold.ffma_split.fused_after_call), and ``(dir * dither)
     * 15.0`` is ``(dir * 15.0) * dither`` (the product sink past a broadcast operand: dir is what
     the call wrote, dither a product by a constant). Measured: 3832, 4665 and 3901 pixels
     differed from llvmpipe with the call folded alone, 4127, 8716 and 4021 without any of it."""
-    shader = make_shader(CALL_CONSTANTS_STEP)
-    got_gl = np.asarray(compile_backend(shader, "gl").render(size=(160, 90)), np.float32)
-    got_np = np.asarray(compile_backend(shader, "numpy").render(size=(160, 90)), np.float32)
-    same = got_np.view(np.int32) == got_gl.view(np.int32)
-    assert same.all(), (~same).reshape(-1, 4).sum(0).tolist()
+    renders_as_llvmpipe(make_shader(CALL_CONSTANTS_STEP), name="CALL_CONSTANTS_STEP")
 
 
 ADVANCED_HASH = """vec3 hash31(float q) {  // spqr's camera path hash (fbm set f04)
@@ -418,15 +396,11 @@ void mainImage(out vec4 c, in vec2 p) {
 """
 
 
-def test_a_constant_sinks_into_a_product_of_components_of_a_sum(llvmpipe, make_shader):
+def test_a_constant_sinks_into_a_product_of_components_of_a_sum(renders_as_llvmpipe, make_shader):
     """``p2.x * p2.y * #K`` with p2 last written by ``p2 += dot(...)`` (to NIR a sum, which no
     rule looks into as a factor) is ``(p2.x * #K) * p2.y`` (nir_fold.sink.product_sink); the
     hash amplifies the ulp to a visible difference."""
-    shader = make_shader(ADVANCED_HASH)
-    got_gl = np.asarray(compile_backend(shader, "gl").render(size=(160, 90)), np.float32)
-    got_np = np.asarray(compile_backend(shader, "numpy").render(size=(160, 90)), np.float32)
-    same = got_np.view(np.int32) == got_gl.view(np.int32)
-    assert same.all(), (~same).reshape(-1, 4).sum(0).tolist()
+    renders_as_llvmpipe(make_shader(ADVANCED_HASH), name="ADVANCED_HASH")
 
 
 SQUARED_LENGTHS = """float warp(vec3 r) {
@@ -447,18 +421,14 @@ void mainImage(out vec4 c, in vec2 q) {
 }"""
 
 
-def test_a_squared_length_plus_a_constant_is_a_dot_product(llvmpipe, make_shader):
+def test_a_squared_length_plus_a_constant_is_a_dot_product(renders_as_llvmpipe, make_shader):
     """``pow(distance(r, vec3(0.0)), 2.0) + K`` (gargantua's WarpSpace) is ``dot(r, r) + K`` on
     llvmpipe: fpow(a, 2.0) -> a*a, sqrt(a)*sqrt(a) -> a, and K joins the dot product's
     innermost addition, unless another length/normalize/dot of r shares that dot product
     (steer(): K stays outside; nir_fold.squared_lengths.squared_length). Measured without the rule:
     6048, 6791 and 6168 of the 14,400 pixels differed from llvmpipe; with K always sunk, 477 of
     steer()'s."""
-    shader = make_shader(SQUARED_LENGTHS)
-    got_gl = np.asarray(compile_backend(shader, "gl").render(size=(160, 90)), np.float32)
-    got_np = np.asarray(compile_backend(shader, "numpy").render(size=(160, 90)), np.float32)
-    same = got_np.view(np.int32) == got_gl.view(np.int32)
-    assert same.all(), (~same).reshape(-1, 4).sum(0).tolist()
+    renders_as_llvmpipe(make_shader(SQUARED_LENGTHS), name="SQUARED_LENGTHS")
 
 
 NORMALIZED_STEPS = """void warp(inout vec3 e, inout vec3 r) {  // gargantua's WarpSpace
@@ -477,17 +447,13 @@ void mainImage(out vec4 c, in vec2 q) {
 }"""
 
 
-def test_a_constant_sinks_into_a_normalize_used_once(llvmpipe, make_shader):
+def test_a_constant_sinks_into_a_normalize_used_once(renders_as_llvmpipe, make_shader):
     """``(sv * wf) * wa`` with sv = normalize(x) read once, wf = 1.0 / (...) and the local
     constant wa = 5.0: NIR sees sv as ``x * frsq(dot(x, x))``, and the constant sinks twice,
     ``((x * 5.0) * inversesqrt(dot(x, x))) * wf`` (nir_fold.sink._normalized_once). Measured
     without it: 5, 0 and 3 of the 14,400 pixels differed from llvmpipe (1 ulp; gargantua's
     second ray step)."""
-    shader = make_shader(NORMALIZED_STEPS)
-    got_gl = np.asarray(compile_backend(shader, "gl").render(size=(160, 90)), np.float32)
-    got_np = np.asarray(compile_backend(shader, "numpy").render(size=(160, 90)), np.float32)
-    same = got_np.view(np.int32) == got_gl.view(np.int32)
-    assert same.all(), (~same).reshape(-1, 4).sum(0).tolist()
+    renders_as_llvmpipe(make_shader(NORMALIZED_STEPS), name="NORMALIZED_STEPS")
 
 
 def _warp_after(steps: str) -> str:
@@ -506,17 +472,15 @@ def _warp_after(steps: str) -> str:
     ],
     ids=["loop", "branch"],
 )
-def test_a_constant_joins_a_shared_dot_product_of_a_merged_value(llvmpipe, make_shader, steps):
+def test_a_constant_joins_a_shared_dot_product_of_a_merged_value(
+    renders_as_llvmpipe, make_shader, steps
+):
     """The same warp, its r written in the loop around the call (gargantua's ray steps) or in a
     branch before it: the constant joins the dot product's innermost addition although
     normalize() shares it (nir_fold.squared_lengths.merged_argument). Measured with it kept outside:
     3 and 1 of the 14,400 pixels differed from llvmpipe (x); NORMALIZED_STEPS itself: 0 outside, 1
     sunk."""
-    shader = make_shader(_warp_after(steps))
-    got_gl = np.asarray(compile_backend(shader, "gl").render(size=(160, 90)), np.float32)
-    got_np = np.asarray(compile_backend(shader, "numpy").render(size=(160, 90)), np.float32)
-    same = got_np.view(np.int32) == got_gl.view(np.int32)
-    assert same.all(), (~same).reshape(-1, 4).sum(0).tolist()
+    renders_as_llvmpipe(make_shader(_warp_after(steps)))
 
 
 CONSTANT_POWERS = """float pcurve(float x, float a, float b) {  // gargantua's GasDisc
@@ -529,30 +493,13 @@ void mainImage(out vec4 c, in vec2 q) {
 }"""
 
 
-def test_powers_of_constants_propagated_into_a_call_are_folded(llvmpipe, make_shader):
+def test_powers_of_constants_propagated_into_a_call_are_folded(renders_as_llvmpipe, make_shader):
     """``pcurve(x, 4.0, 0.9)``: after inlining, Mesa folds ``pow`` of the constant arguments
     with the host's powf (correctly rounded), and ``k * pow(x, 4.0)``, pow(x, 4.0) being
     ``(x*x)*(x*x)`` used once, is ``((x*x) * k) * (x*x)`` (call_fold._Eval.pow / mul).
     Measured without the fold: 14,400 and 14,400 of the 14,400 pixels differed in
     x and y (2-6 ulps); z, no exponent 4.0, already agreed."""
-    shader = make_shader(CONSTANT_POWERS)
-    got_gl = np.asarray(compile_backend(shader, "gl").render(size=(160, 90)), np.float32)
-    got_np = np.asarray(compile_backend(shader, "numpy").render(size=(160, 90)), np.float32)
-    same = got_np.view(np.int32) == got_gl.view(np.int32)
-    assert same.all(), (~same).reshape(-1, 4).sum(0).tolist()
-
-
-def _assert_bit_for_bit(shader, **uniforms) -> None:
-    """The NumPy render of ``shader`` is llvmpipe's bit for bit (160x90); the message counts
-    the pixels that differ per channel."""
-    got_gl = np.asarray(
-        compile_backend(shader, "gl").render(size=(160, 90), **uniforms), np.float32
-    )
-    got_np = np.asarray(
-        compile_backend(shader, "numpy").render(size=(160, 90), **uniforms), np.float32
-    )
-    same = got_np.view(np.int32) == got_gl.view(np.int32)
-    assert same.all(), (~same).reshape(-1, 4).sum(0).tolist()
+    renders_as_llvmpipe(make_shader(CONSTANT_POWERS), name="CONSTANT_POWERS")
 
 
 _RADIAL = """void mainImage(out vec4 c, in vec2 p) {  // gargantua's GasDisc
@@ -577,7 +524,7 @@ COMPONENT_WRITES = (
 )
 
 
-def test_constants_merge_through_the_last_write_of_each_component(llvmpipe, make_shader):
+def test_constants_merge_through_the_last_write_of_each_component(renders_as_llvmpipe, make_shader):
     """NIR sees each component's last write (SSA after splitting vectors into components), so a
     product by a constant written to a component, or to a whole local, merges with a later
     ``*=`` or ``*`` by a constant, also through a copy (``q = r + 0.0`` is r):
@@ -586,7 +533,7 @@ def test_constants_merge_through_the_last_write_of_each_component(llvmpipe, make
     ``(r.yx * vec2(0.15, 0.27)).y`` is ``(a*1.7 + 0.55) * (0.95*0.27)`` (nir_fold.component_write,
     _merge_components). Measured without it: 4772, 6413 and 3607 of the 14,400 pixels
     differed from llvmpipe (with the constants folded left to right, s.z: 11,111)."""
-    _assert_bit_for_bit(make_shader(COMPONENT_WRITES))
+    renders_as_llvmpipe(make_shader(COMPONENT_WRITES), name="COMPONENT_WRITES")
 
 
 CANCELLED_SUMS = (
@@ -602,13 +549,13 @@ CANCELLED_SUMS = (
 )
 
 
-def test_a_sum_cancelled_by_its_difference_is_the_value_before_it(llvmpipe, make_shader):
+def test_a_sum_cancelled_by_its_difference_is_the_value_before_it(renders_as_llvmpipe, make_shader):
     """``q.y += e; ... q.y -= e`` is q.y as it was to NIR (``('~fadd', ('fneg', a), ('fadd', a,
     b)) -> b``), so a later product by a constant merges with the constants q.y had:
     u.y is ``sin(..) * (1.5*(0.95*6.1))`` (nir_fold.components._cancelled_sum). Measured without it:
     13,446 and 13,377 of the 14,400 pixels differed from llvmpipe (u.y and the last, after
     a second cancelled pair); s.y (no cancellation) pins the sum read between."""
-    _assert_bit_for_bit(make_shader(CANCELLED_SUMS), time=0.7)
+    renders_as_llvmpipe(make_shader(CANCELLED_SUMS), name="CANCELLED_SUMS", time=0.7)
 
 
 NEGATED_PRODUCTS = """void mainImage(out vec4 c, in vec2 p) {
@@ -619,13 +566,13 @@ NEGATED_PRODUCTS = """void mainImage(out vec4 c, in vec2 p) {
 }"""
 
 
-def test_constants_merge_through_a_negation(llvmpipe, make_shader):
+def test_constants_merge_through_a_negation(renders_as_llvmpipe, make_shader):
     """NIR moves a negation out of a product (``fmul(fneg(a), b) -> fneg(fmul(a, b))``), so
     ``-x * #c`` with x's value ``y * #k`` is ``-(y * (k*c))``: through a local, a parenthesized
     product, a local holding the negation, on either side, inside clamp
     (nir_fold.constant_merge). Measured without it: 5780, 5371 and 2331 of the 14,400 pixels
     differed from llvmpipe."""
-    _assert_bit_for_bit(make_shader(NEGATED_PRODUCTS))
+    renders_as_llvmpipe(make_shader(NEGATED_PRODUCTS), name="NEGATED_PRODUCTS")
 
 
 def test_a_negated_product_of_itime_merges_at_every_frame(llvmpipe, make_shader):
@@ -641,8 +588,9 @@ def test_a_negated_product_of_itime_merges_at_every_frame(llvmpipe, make_shader)
     times = [k / 60 for k in range(240)]
     want = np.stack([np.asarray(gl.render(size=(1, 1), time=t), np.float32) for t in times])
     got = np.stack([np.asarray(numpy.render(size=(1, 1), time=t), np.float32) for t in times])
-    frames = (got.view(np.int32) != want.view(np.int32)).reshape(len(times), 4)
-    assert not frames.any(), frames.sum(axis=0).tolist()
+    image_bits.assert_same_frames(
+        got, want, times, what="iTime * 0.85 negated, 1x1", names=("numpy", "llvmpipe")
+    )
 
 
 # gargantua's atan2 (returns from inside branches, after atan()) called in a loop of STEPS passes
@@ -652,7 +600,7 @@ KEPT_RETURNS = (Path(__file__).resolve().parent / "shaders" / "kept_returns.glsl
 
 @pytest.mark.parametrize("steps", ["40", "4"])
 def test_a_result_returned_from_a_branch_keeps_its_old_value_in_lanes_left_out(
-    llvmpipe, make_shader, steps
+    renders_as_llvmpipe, make_shader, steps
 ):
     """A neighbour that returned early still has atan2's result in a derivative: llvmpipe's
     register for the merged returns, stored under the exec mask, so its value of the last
@@ -660,7 +608,7 @@ def test_a_result_returned_from_a_branch_keeps_its_old_value_in_lanes_left_out(
     (4 steps: each copy its own register) (nir_fold.register_call, tiles.LaneHelpers.reg).
     Measured: 40 steps, zero in those lanes: 10,218 of the 14,400 pixels differed from
     llvmpipe; 4 steps, the register kept across iterations: 917."""
-    _assert_bit_for_bit(make_shader(KEPT_RETURNS.replace("STEPS", steps)))
+    renders_as_llvmpipe(make_shader(KEPT_RETURNS.replace("STEPS", steps)), name="KEPT_RETURNS")
 
 
 def kept_returns_with_steps(steps: int, lines: int) -> str:
@@ -680,7 +628,7 @@ def kept_returns_with_steps(steps: int, lines: int) -> str:
     ids=["cheap_body_unrolled", "costly_body_kept", "three_atans_kept_at_8"],
 )
 def test_the_register_is_kept_in_a_short_loop_nir_does_not_unroll(
-    llvmpipe, make_shader, request, steps, lines, backend
+    renders_as_llvmpipe, make_shader, steps, lines, backend
 ):
     """Six passes, within NIR's 32: with the plain body NIR unrolls the loop (zero in the lanes
     that returned), with 24 sin lines more the body costs too much to unroll and the lanes keep
@@ -691,13 +639,7 @@ def test_the_register_is_kept_in_a_short_loop_nir_does_not_unroll(
     1,522 off. Where llvmpipe's limit lies, found with these shaders: 7 passes of the plain body
     unrolled, 8 kept; 4 passes with 30 sin lines unrolled, 31 kept (a body cost of 116 to 118;
     loop_unroll.py counts 112, so it takes 31 lines for unrolled)."""
-    if backend == "compiled":
-        request.getfixturevalue("numba")
-    shader = make_shader(kept_returns_with_steps(steps, lines))
-    got_gl = np.asarray(compile_backend(shader, "gl").render(size=(160, 90)), np.float32)
-    got = np.asarray(compile_backend(shader, backend).render(size=(160, 90)), np.float32)
-    same = got.view(np.int32) == got_gl.view(np.int32)
-    assert same.all(), (~same).reshape(-1, 4).sum(0).tolist()
+    renders_as_llvmpipe(make_shader(kept_returns_with_steps(steps, lines)), backend)
 
 
 SUNK_THROUGH_COMPOUNDS = """float saturate(float x) { return clamp(x, 0.0, 1.0); }
@@ -717,12 +659,12 @@ void mainImage(out vec4 c, in vec2 p) {  // gargantua's GasDisc
 }"""
 
 
-def test_a_constant_sinks_into_a_compound_product_read_once(llvmpipe, make_shader):
+def test_a_constant_sinks_into_a_compound_product_read_once(renders_as_llvmpipe, make_shader):
     """``x *= b; ... x * #c`` with x's new value read only there is ``(a * #c) * b`` (a: x
     before), the product used once in SSA (nir_fold.compound_products.sunk_through_compound); copied
     one level: a is a sin() here, and the pcurve() value that CSE shares with the second identical
     call. Measured without it: 4537 and 5121 of the 14,400 pixels differed from llvmpipe."""
-    _assert_bit_for_bit(make_shader(SUNK_THROUGH_COMPOUNDS))
+    renders_as_llvmpipe(make_shader(SUNK_THROUGH_COMPOUNDS), name="SUNK_THROUGH_COMPOUNDS")
 
 
 def test_a_product_in_a_global_initializer_is_no_local_write(make_shader):
@@ -852,24 +794,22 @@ void mainImage(out vec4 c, in vec2 p) {
 }"""
 
 
-def test_a_sum_of_three_products_by_one_constant_is_factored_twice(llvmpipe, make_shader):
+def test_a_sum_of_three_products_by_one_constant_is_factored_twice(
+    renders_as_llvmpipe, make_shader
+):
     """``k*x + k*y + k*z`` is ``k * ((x + y) + z)`` on llvmpipe: the first factoring makes a
     product, which factors with the third term again (nir_fold.factoring, a _Sum factor), also
     where the products are the components of a parameter assigned again (ssa_values keeps
     the factor). Measured without it: 5428, 3421 and 2819 of the 14,400 pixels differed from
     llvmpipe in the three channels."""
-    _assert_bit_for_bit(make_shader(FACTORED_TWICE))
+    renders_as_llvmpipe(make_shader(FACTORED_TWICE), name="FACTORED_TWICE")
 
 
 def test_the_compiled_engine_factors_a_sum_of_three_products_as_llvmpipe(
-    llvmpipe, numba, make_shader
+    renders_as_llvmpipe, numba, make_shader
 ):
     """The compiled engine takes the factoring from the same plan (copied_binary)."""
-    shader = make_shader(FACTORED_TWICE)
-    got_gl = np.asarray(compile_backend(shader, "gl").render(size=(160, 90)), np.float32)
-    got = np.asarray(compile_backend(shader, "compiled").render(size=(160, 90)), np.float32)
-    same = got.view(np.int32) == got_gl.view(np.int32)
-    assert same.all(), (~same).reshape(-1, 4).sum(0).tolist()
+    renders_as_llvmpipe(make_shader(FACTORED_TWICE), "compiled", name="FACTORED_TWICE")
 
 
 # exp and log are Mesa's products by log2(e) and ln(2): a smooth minimum's exp(-k*a) with the
@@ -885,14 +825,8 @@ void mainImage(out vec4 c, in vec2 f) {
 
 
 @pytest.mark.parametrize("backend", ["numpy", "compiled"])
-def test_exp_and_log_are_products_by_constants_to_nir(llvmpipe, make_shader, request, backend):
+def test_exp_and_log_are_products_by_constants_to_nir(renders_as_llvmpipe, make_shader, backend):
     """``exp(x * #k)`` is ``exp2(x * (k*log2(e)))``, ``exp(a*b)`` is ``exp2((a*log2(e)) * b)``,
     ``log(x) * #k`` is ``log2(x) * (ln(2)*k)`` (nir_fold.exp_log), in both engines. Measured
     without it: 1819, 1956 and 3960 of the 14,400 pixels differed from llvmpipe per channel."""
-    if backend == "compiled":
-        request.getfixturevalue("numba")
-    shader = make_shader(EXP_LOG_PRODUCTS)
-    got_gl = np.asarray(compile_backend(shader, "gl").render(size=(160, 90)), np.float32)
-    got = np.asarray(compile_backend(shader, backend).render(size=(160, 90)), np.float32)
-    same = got.view(np.int32) == got_gl.view(np.int32)
-    assert same.all(), (~same).reshape(-1, 4).sum(0).tolist()
+    renders_as_llvmpipe(make_shader(EXP_LOG_PRODUCTS), backend, name="EXP_LOG_PRODUCTS")

@@ -15,14 +15,16 @@ from __future__ import annotations
 
 import numpy as np
 import pytest
+from image_bits import assert_same_lanes
 from test_llvmpipe_fast_kernels import KERNELS as FAST_KERNELS
-from test_llvmpipe_fast_kernels import RNG, SPECIALS, _bits, _sample
+from test_llvmpipe_fast_kernels import RNG, SPECIALS, _sample
 
 from glslcheck.backends.numpy_engine import jit
 from glslcheck.backends.numpy_engine.llvmpipe_reference import LlvmpipeMath, blocked
 from glslcheck.backends.numpy_engine.runtime import Runtime
 
 F32 = np.float32
+NAMES = ("the kernel", "the reference")
 KERNELS = dict(FAST_KERNELS, _tan=(-3, 9.5, False))  # (scale exponents, positive only)
 
 
@@ -60,19 +62,12 @@ def test_kernel_equals_reference(jit_kernels, name, fma):
             got = fn(*args)
             lanes += n
             assert got.dtype == np.float32 and got.shape == want.shape
+            mode = "bits_any_nan"
             if len(declined) == before:  # the kernel's lanes: every bit, no NaN among them
                 taken += n
-                bad = np.flatnonzero(got.view(np.int32) != want.view(np.int32))
-            else:
-                bad = np.flatnonzero(_bits(got) != _bits(want))
-            assert bad.size == 0, (
-                name,
-                fma,
-                n,
-                [a[bad[:5]] for a in args],
-                got[bad[:5]],
-                want[bad[:5]],
-            )
+                mode = "bits"
+            what = f"{name}, fma {fma}, a call of {n} lanes"
+            assert_same_lanes(got, want, args, what=what, names=NAMES, mode=mode)
     assert taken > lanes // 2, (name, fma, taken, lanes)
 
 
@@ -98,7 +93,9 @@ def test_specials_one_by_one(jit_kernels, name):
                     )
                     for a in cases:
                         want = blocked(getattr(lp, name), *a)
-                        assert np.array_equal(_bits(fn(*a)), _bits(want)), (name, fma, a)
+                        what = f"{name}, fma {fma}, special {s!r}"
+                        got = fn(*a)
+                        assert_same_lanes(got, want, a, what=what, names=NAMES, mode="bits_any_nan")
 
 
 def test_shapes_and_layouts(jit_kernels):
@@ -179,20 +176,14 @@ def test_arc_kernels_equal_reference(jit_kernels, name, fma):
             got = fn(*args)
             lanes += n
             assert got.dtype == np.float32 and got.shape == want.shape
+            mode = "bits_any_nan"
             if len(declined) == before:
                 taken += n
-                bad = np.flatnonzero(got.view(np.int32) != want.view(np.int32))
+                mode = "bits"
             else:
                 assert name in ("_asin", "_acos"), name
-                bad = np.flatnonzero(_bits(got) != _bits(want))
-            assert bad.size == 0, (
-                name,
-                fma,
-                n,
-                [a[bad[:5]] for a in args],
-                got[bad[:5]],
-                want[bad[:5]],
-            )
+            what = f"{name}, fma {fma}, a call of {n} lanes"
+            assert_same_lanes(got, want, args, what=what, names=NAMES, mode=mode)
     assert taken > lanes // 2, (name, fma, taken, lanes)
 
 
@@ -214,7 +205,8 @@ def test_arc_specials(jit_kernels, name):
             ]
         for args in cases:
             want = getattr(rt, ref)(*args)
-            assert np.array_equal(_bits(fn(*args)), _bits(want)), (name, args)
+            got = fn(*args)
+            assert_same_lanes(got, want, args, what=name, names=NAMES, mode="bits_any_nan")
 
 
 def test_arc_dispatch_in_runtime(jit_kernels, monkeypatch):
@@ -291,19 +283,14 @@ def test_mix_kernel_equals_reference(jit_kernels, fma):
             got = fn(x, y, a)
             lanes += want.size
             assert got.dtype == np.float32 and got.shape == want.shape
+            mode = "bits_any_nan"
             if len(declined) == before:
                 taken += want.size
-                bad = np.flatnonzero(got.view(np.int32) != want.view(np.int32))
+                mode = "bits"
             else:
                 assert np.isnan(want).any()
-                bad = np.flatnonzero(_bits(got) != _bits(want))
-            assert bad.size == 0, (
-                fma,
-                n,
-                x.reshape(-1)[bad[:5]],
-                got.reshape(-1)[bad[:5]],
-                want.reshape(-1)[bad[:5]],
-            )
+            what = f"mix, fma {fma}, shape {shape}, {n} lanes"
+            assert_same_lanes(got, want, (x, y, a), what=what, names=NAMES, mode=mode)
     assert taken > lanes // 2, (fma, taken, lanes)
 
 

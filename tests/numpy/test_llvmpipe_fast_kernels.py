@@ -14,6 +14,7 @@ from __future__ import annotations
 
 import numpy as np
 import pytest
+from image_bits import assert_same_lanes
 
 from glslcheck.backends.numpy_engine import llvmpipe_fast
 from glslcheck.backends.numpy_engine.llvmpipe_reference import LlvmpipeMath, blocked
@@ -54,6 +55,8 @@ SPECIALS = np.array(
     ],
     F32,
 )
+NAMES = ("the fast path", "the reference")
+ANY_NAN = "bits_any_nan"  # every NaN as one pattern (the sign of a NaN means nothing in GLSL)
 # (kernel name, exponent range of the arguments' scale, positive only)
 KERNELS = {
     "_sin": (-3, 9.5, False),
@@ -82,12 +85,6 @@ def _sample(n: int, lo: float, hi: float, positive: bool, specials: bool) -> np.
         k = min(n, 1 + RNG.integers(0, 3))
         x[RNG.choice(n, k, replace=False)] = RNG.choice(SPECIALS, k)
     return np.abs(x) if positive else x
-
-
-def _bits(a: np.ndarray) -> np.ndarray:
-    """Bit patterns, every NaN as one pattern (the sign of a NaN means nothing in GLSL)."""
-    a = np.asarray(a, F32)
-    return np.where(np.isnan(a), np.int32(0x7FC00000), a.view(np.int32))
 
 
 def _kernel(name: str, fma: bool, ref=None):
@@ -137,15 +134,8 @@ def test_kernel_equals_reference(name, fma):
                 taken += n
             lanes += n
             assert got.dtype == np.float32 and got.shape == want.shape
-            bad = np.flatnonzero(_bits(got) != _bits(want))
-            assert bad.size == 0, (
-                name,
-                fma,
-                n,
-                [a[bad[:5]] for a in args],
-                got[bad[:5]],
-                want[bad[:5]],
-            )
+            what = f"{name}, fma {fma}, a call of {n} lanes"
+            assert_same_lanes(got, want, args, what=what, names=NAMES, mode=ANY_NAN)
     assert taken > lanes // 3, (name, fma, taken, lanes)
 
 
@@ -166,7 +156,8 @@ def test_specials_one_by_one(name):
                     for a in args:
                         want = blocked(getattr(lp, name), *a)
                         got = _public(lp, name)(*a)
-                        assert np.array_equal(_bits(got), _bits(want)), (name, fma, a, got, want)
+                        what = f"{name}, fma {fma}, special {s!r}"
+                        assert_same_lanes(got, want, a, what=what, names=NAMES, mode=ANY_NAN)
 
 
 def test_fused_rows_find_a_midpoint():
@@ -211,5 +202,8 @@ def test_midpoint_lanes_get_the_reference(monkeypatch):
 
             got = _kernel(name, True, negated_ref)(*args)
             assert calls == [100]
-            assert np.array_equal(_bits(got), _bits(np.where(flagged, -want, want)))
-            assert np.array_equal(_bits(_public(lp, name)(*args)), _bits(want))
+            negated = np.where(flagged, -want, want)
+            what = f"{name}, every third lane flagged"
+            assert_same_lanes(got, negated, args, what=what, names=NAMES, mode=ANY_NAN)
+            got = _public(lp, name)(*args)
+            assert_same_lanes(got, want, args, what=what, names=NAMES, mode=ANY_NAN)

@@ -8,6 +8,7 @@ from __future__ import annotations
 
 import numpy as np
 import pytest
+from image_bits import assert_same_lanes
 
 from glslcheck.backends.numpy_engine import llvmpipe_reference
 from glslcheck.backends.numpy_engine.llvmpipe_reference import DeferredFma, LlvmpipeMath, blocked
@@ -50,6 +51,9 @@ SPECIALS = np.array(
     ],
     np.float32,
 )
+# both paths make NaN the same way, but the sign of a NaN carries no meaning in GLSL: every NaN
+# is one pattern
+ANY_NAN = "bits_any_nan"
 
 
 def _sample(n: int) -> np.ndarray:
@@ -66,13 +70,6 @@ def _sample(n: int) -> np.ndarray:
         x = np.concatenate([RNG.uniform(-100, 100, k), spread, bits]).astype(np.float32)
     x[RNG.choice(n, SPECIALS.size, replace=False)] = SPECIALS
     return x
-
-
-def _bits(a: np.ndarray) -> np.ndarray:
-    """Bit patterns, with every NaN as one pattern (both paths make NaN the same way, but the
-    sign of a NaN carries no meaning in GLSL)."""
-    a = np.asarray(a, np.float32)
-    return np.where(np.isnan(a), np.int32(0x7FC00000), a.view(np.int32))
 
 
 @pytest.mark.parametrize("fma", [True, False])
@@ -107,15 +104,9 @@ def test_fast_path_equals_reference(fma, shape):
             want = blocked(getattr(lp, name), *args)
             got = public(*args)
             assert got.dtype == np.float32
-            bad = np.flatnonzero(_bits(got) != _bits(want))
-            assert bad.size == 0, (
-                name,
-                fma,
-                n,
-                [a[bad[:5]] for a in args],
-                got[bad[:5]],
-                want[bad[:5]],
-            )
+            what = f"{name}, fma {fma}, {n} lanes"
+            names = ("the public method", "the reference")
+            assert_same_lanes(got, want, args, what=what, names=names, mode=ANY_NAN)
 
 
 def test_deferred_check_finds_a_midpoint_and_the_call_falls_back():
@@ -146,7 +137,7 @@ def test_deferred_check_finds_a_midpoint_and_the_call_falls_back():
     finally:
         DeferredFma.midpoint = orig
     assert calls == ["Spy"]  # the deferred run is DeferredFma's own; the fallback is Spy's
-    assert np.array_equal(_bits(got), _bits(want))
+    assert_same_lanes(got, want, (x,), what="exp2, a midpoint check that fires", mode=ANY_NAN)
 
 
 @pytest.mark.parametrize("kinds", ["zeros", "subnormals", "both", "neither"])
