@@ -25,7 +25,7 @@ hash such as `fract(sin(x) * 43758.5453)` into other values, which the tolerance
 not absorb. Declaring `precision highp float;` compares like with like. A lookup's own lowp
 result (Shadertoy's samplers are lowp) is emulated (backends/numpy_engine/textures.py); arithmetic
 on it directly (`0.5 * texture(...)`) is float16 on llvmpipe too, and here for `+ - * /` over
-lookups and constants (backends/cpu_core/nir_fold/lower_precision.py `lowp_tree`);
+lookups and constants (backends/cpu_core/nir_fold/lower_precision.py `float16_tree`);
 built-in calls on it stay float32, within the same 2^-11 per operation, and are not flagged (nearly
 every textured shader has them).
 """

@@ -681,17 +681,20 @@ def test_a_product_in_a_global_initializer_is_no_local_write(make_shader):
 
 
 def without_rule(monkeypatch, name, value):
-    """Patch `name` in every module of the nir_fold package that binds it: the module that
-    defines it, each module that imports it (`from .queries import ...` binds a name of its
-    own there) and the package, whose names the transpiler reads."""
+    """Patch `name` in every module of the nir_fold package, and of the NumPy transpiler that
+    writes its rewrites, that binds it: the module that defines it, each module that imports it
+    (`from .queries import ...` binds a name of its own there) and the package, whose names the
+    transpiler reads."""
     import importlib
     import pkgutil
 
     from glslcheck.backends.cpu_core import nir_fold
 
+    transpile = importlib.import_module("glslcheck.backends.numpy_engine.transpile")
     modules = [nir_fold] + [
-        importlib.import_module(f"{nir_fold.__name__}.{m.name}")
-        for m in pkgutil.iter_modules(nir_fold.__path__)
+        importlib.import_module(f"{package.__name__}.{m.name}")
+        for package in (nir_fold, transpile)
+        for m in pkgutil.iter_modules(package.__path__)
     ]
     bound = [m for m in modules if hasattr(m, name)]
     assert bound, name

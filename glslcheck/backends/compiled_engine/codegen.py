@@ -829,10 +829,10 @@ class Codegen(ExpressionEmitter):
         self.loop(s, s.cond, s.body, None, do_while=False)
 
     def enter_unrolled(self, loop: A.For) -> None:
-        """Before a loop NIR unrolls (nir_fold.enter_unrolled, the NumPy backend's): the value
-        before a chain that starts there, kept, the temporaries a later copy's merge reads
-        (nir_fold.later_values), and a count of its passes where its steps' constants (or a
-        merge) differ from copy to copy."""
+        """Before a loop NIR unrolls (as the NumPy backend's transpile/sum_chains.enter_unrolled):
+        the value before a chain that starts there, kept, the temporaries a later copy's merge
+        reads (nir_fold.later_values), and a count of its passes where its steps' constants (or
+        a merge) differ from copy to copy."""
 
         fs = self.fn
         assert fs is not None  # generating a function's body

@@ -732,7 +732,7 @@ class ExpressionEmitter:
         if self.fn is None or self.fn.sym is None or not isinstance(e, A.Binary):
             return self.fn is None or self.fn.sym is None
 
-        return nir_fold.zero_add(self.fold_context(), e, "l", "r") is not None
+        return nir_fold.zero_add(self.fold_context(), e)
 
     def linear_product(self, left: Val, right: Val, rtype: Any) -> Val:
         lt, rt_ = left.t, right.t
@@ -794,7 +794,8 @@ class ExpressionEmitter:
 
     def keep_term(self, node: Any, value: Val) -> Val:
         """value, in temporaries where `node` writes a term of this function's returned sum
-        (nir_fold.keep_term): its return adds the terms in NIR's order."""
+        (nir_fold.sunk_return; the NumPy backend's keep_term): its return adds the terms in
+        NIR's order."""
         fs = self.fn
         if fs is None or fs.sym is None:
             return value
@@ -806,8 +807,9 @@ class ExpressionEmitter:
         return Val(value.t, parts, value.const, value.uni, value.one)
 
     def sunk_return(self, parts: list) -> list:
-        """The returned parts of a function with a returned sum (nir_fold.sunk_return_value):
-        with the caller's constant sunk into the terms where `_kf`, else as written."""
+        """The returned parts of a function with a returned sum (nir_fold.sunk_text; the NumPy
+        backend's sunk_return_value): with the caller's constant sunk into the terms where
+        `_kf`, else as written."""
         fs = self.fn
         if fs is None or fs.sym is None:
             return parts

@@ -215,7 +215,7 @@ def sampler_flow(cg: Any) -> dict[tuple[int, str], set[int]]:
 
 # -- float16 arithmetic on lowp lookups ------------------------------------------------------
 def lowp_tree(cg: Any, e: A.Binary) -> Val | None:
-    """`e` as the NumPy backend computes it (nir_fold.lower_precision.lowp_tree): in float16
+    """`e` as the NumPy backend computes it (nir_fold.lower_precision.float16_tree): in float16
     when it is such a tree and every sampler it reads is lowp (tex_lowp, at run time), else
     in float32 (the written form); None when e is no such tree."""
 

@@ -5,4 +5,10 @@ values of a function are the same in every lane (uniformity.py), Mesa's rewrites
 computes them (nir_fold/, with call_fold.py, inline.py and constant_flow.py; their memo
 fold_state.py, and fold_protocols.py, what they read of the engine that asks them), what the
 code writers share (common.py), and where numba keeps its machine code (numba_cache.py).
-Nothing here imports either engine."""
+Nothing here imports either engine, and nothing here writes code of either engine: a rule
+decides what to compute, in which order, with which constants, and builds it from the
+operations the engine that asks offers (fold_protocols.FoldEmitter); what an engine writes of
+its own is in its package (the NumPy transpiler's: numpy_engine/transpile/binary_rules.py,
+call_fold.py, float16.py, returned_sums.py, sum_chains.py). Two answers are Python text that
+both engines' code reads alike, operators over the asking engine's values
+(nir_fold.returned_sums.sunk_text) and the name of a `mix` formula (nir_fold.flrp.mix_hint)."""

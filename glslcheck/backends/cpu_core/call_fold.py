@@ -74,7 +74,7 @@ from .common import RUNTIME_NAMES
 
 TYPE_CHECKING = False  # not typing's: importing typing costs every start-up
 if TYPE_CHECKING:
-    from .fold_protocols import FoldEmitter, FoldEngine, LineWriter
+    from .fold_protocols import FoldEmitter, FoldEngine
 
 # built-ins computed component by component (the runtime's function of a scalar array)
 _COMPONENTWISE = (
@@ -584,16 +584,6 @@ def _written_components(tr: FoldEmitter, n: Any, sym: Symbol, call: A.Call) -> A
     return ()
 
 
-def folded_call(tr: LineWriter, call: A.Call, fn: Symbol, mask: str | None) -> str | None:
-    """The code of the call `call` of user function `fn` with constants propagated as NIR does
-    (module doc), emitted as ``if rt.lp: <folded> else: <the call as written>``; None where
-    :func:`fold_plan` leaves the call as written."""
-    if tr.watched is not None:
-        return None
-    plan = fold_plan(tr, call, fn, mask)
-    return None if plan is None else _emit_call(tr, call, fn, mask, *plan)
-
-
 def fold_plan(tr: FoldEmitter, call: A.Call, fn: Symbol, mask: str | None) -> tuple | None:
     """(the parameters' final terms by symbol id, the parameter symbols, the result's terms,
     the arguments read at run time as (index, node)) of the call `call` of user function `fn`
@@ -726,72 +716,6 @@ def _evaluate(
     return ev, env, params, result, holders
 
 
-def _emit_call(
-    tr: LineWriter,
-    call: A.Call,
-    fn: Symbol,
-    mask: str | None,
-    env: dict[int, list],
-    params: list[Any],
-    result: list[_T],
-    holders: list[tuple[int, Any]],
-) -> str:
-    r = tr.fresh("t")
-    tr.emit("if rt.lp:  # constants propagated into the call as NIR does (transpile/call_fold.py)")
-    tr.indent += 1
-    names = {i: tr.tmp(tr.expr(a, mask)) for i, a in holders}
-    memo: dict[int, str] = {}
-
-    def code(t: _T) -> str:
-        if id(t) in memo:
-            return memo[id(t)]
-        if t.op == "k" and t.value is not None:
-            c = tr.const_float(t.value)
-        elif t.op == "x":
-            c = t.code
-            for i, name in names.items():
-                c = c.replace(f"@{i}@", name)
-        else:
-            parts = [code(x) for x in t.args]
-            if t.op == "neg":
-                c = tr.tmp(f"(-{parts[0]})")
-            elif t.op == "call":
-                c = tr.tmp(
-                    f"rt.{t.code.format(*parts)}"
-                    if "{" in t.code
-                    else f"rt.{t.code}({', '.join(parts)})"
-                )
-            else:
-                c = tr.tmp(f"({parts[0]} {t.op} {parts[1]})")
-        memo[id(t)] = c
-        return c
-
-    def value(terms: list[_T], t: Any) -> str:
-        cs = [code(x) for x in terms]
-        if t.is_scalar:
-            return cs[0]
-        if t.is_vector:
-            return f"rt.vec({t.size}, {', '.join(cs)})"
-        return f"rt.mat({t.cols}, {t.rows}, {', '.join(cs)})"
-
-    for a, p, (_, _, dr) in zip(call.args, params, fn.params):
-        if dr != "in":
-            tr.write(tr.lvalue(a, mask), value(env[id(p)], tr.type_of(a)), mask)
-            record_sums(tr, call, a, env[id(p)], memo)
-    tr.emit(f"{r} = {value(result, tr.type_of(call)) if result else 'None'}")
-    tr.indent -= 1
-    tr.emit("else:")
-    tr.indent += 1
-    tr.fold_state.call_fold_off = True
-    try:
-        written = tr.user_call(call, fn, mask)
-    finally:
-        tr.fold_state.call_fold_off = False
-    tr.emit(f"{r} = {written}")
-    tr.indent -= 1
-    return r
-
-
 def out_roots(tr: FoldEmitter, call: A.Call, sym: Symbol | None) -> set[str] | None:
     """The operations at the root of each component of the value `call` (a call of a user
     function in the current function) writes into the variable `sym` passed whole as an out
@@ -837,11 +761,11 @@ def record_sums(tr: FoldEngine, call: A.Call, arg: Any, terms: list, memo: dict)
 def product_sums(
     tr: FoldEngine, call: A.Call, sym: Symbol | None
 ) -> list[tuple[str, str] | None] | None:
-    """Per component of the value the folded call `call` (emitted by :func:`folded_call` in the
-    current Python function) wrote into the variable `sym`: the code of its two products when
-    it is ``p1 + p2`` to NIR, else None; None when the call was not folded here. For
-    nir_fold's ``(p1 + p2) + e -> (p1 + e) + p2``, read in llvmpipe mode only: the codes are
-    temporaries of the ``if rt.lp:`` branch."""
+    """Per component of the value the folded call `call` (written by an engine in the current
+    Python function: :func:`record_sums`) wrote into the variable `sym`: the code of its two
+    products when it is ``p1 + p2`` to NIR, else None; None when the call was not folded here.
+    For nir_fold's ``(p1 + p2) + e -> (p1 + e) + p2``, read in llvmpipe mode only: the codes
+    are temporaries of the ``if rt.lp:`` branch."""
     found = tr.fold_state.call_fold_sums.get((id(call), id(sym)))
     if found is None or found[1] is not tr.lines:
         return None  # (not folded, or folded in another Python function: an outlined part)

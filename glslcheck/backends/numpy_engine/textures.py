@@ -242,7 +242,7 @@ class TextureFunctions:
     def lowp_arith(self, *samplers) -> bool:
         """Whether arithmetic on these samplers' lookups is float16, as on llvmpipe: float32 mode
         (llvmpipe's) and lowp samplers (an unbound channel is lowp too).
-        nir_fold.lower_precision.lowp_tree."""
+        transpile/float16.lowp_tree."""
         return self.lp is not None and all(s is None or s.lowp for s in samplers)
 
     def lowp_constant(self, s, x) -> np.ndarray:
@@ -256,7 +256,7 @@ class TextureFunctions:
 
     @staticmethod
     def half(x) -> np.ndarray:
-        """A float16 operand of nir_fold.lower_precision.lowp_tree's code (rounded to nearest; a
+        """A float16 operand of transpile/float16.lowp_tree's code (rounded to nearest; a
         lookup's lowp result is already a float16 value)."""
         return np.asarray(x, dtype=np.float16)
 

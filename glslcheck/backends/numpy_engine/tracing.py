@@ -616,7 +616,7 @@ def lane_value(v: Any, i: int) -> Any:
     """Lane i of a value (a copy): arrays lose their lane axis, structs keep their fields."""
     if isinstance(v, Struct):
         return v.map(lambda x: lane_value(x, i))
-    if isinstance(v, tuple):  # (a chain's base and constants: nir_fold.chain_call_args)
+    if isinstance(v, tuple):  # (a chain's base and constants: sum_chains.chain_call_args)
         return tuple(lane_value(x, i) for x in v)
     if isinstance(v, np.ndarray) and v.ndim:
         return np.array(v[..., i if v.shape[-1] > 1 else 0])

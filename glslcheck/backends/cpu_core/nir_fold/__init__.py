@@ -56,16 +56,19 @@ and a squared length that is not followed by a constant sum (``sqrt(a)*sqrt(a)``
 Every function takes the engine that asks (`tr`), typed against cpu_core/fold_protocols.py: a
 FoldEngine for the decisions that emit nothing (the compiled engine asks them of a
 context.FoldContext), a FoldEmitter for the rewrites that build Mesa's order from the engine's
-operations (the NumPy transpiler, and the compiled engine's fold_values.py), a LineWriter for
-those that add statements of their own (the NumPy transpiler). Each reads the program's model,
-facts, current function and `fold_state` (cpu_core/fold_state.py, the rules' memo of the program).
+operations (the NumPy transpiler, and the compiled engine's fold_values.py). Each reads the
+program's model, facts, current function and `fold_state` (cpu_core/fold_state.py, the rules'
+memo of the program). The code an engine writes of its own for a rule (a chain's base kept in a
+temporary, a float16 tree, a call folded per call site) is that engine's: the NumPy transpiler's
+in numpy_engine/transpile (binary_rules.py, call_fold.py, float16.py, returned_sums.py,
+sum_chains.py), the compiled engine's in compiled_engine/.
 """
 
 from .added_zero import zero_add
 from .branch_register import MergedRegister, arm_values, merged_register
 from .components import component_write
 from .context import FoldContext
-from .dispatch import binary, copied_binary
+from .dispatch import copied_binary
 from .dot_constants import broadcast_dot, dot_operand, merged_dot
 from .exp_log import exp_product
 from .ffma_split import fused_plan
@@ -76,26 +79,17 @@ from .lower_precision import float16_lookup_args
 from .repeated_sums import (
     Entry,
     call_step,
-    chain_call_args,
     chain_globals,
-    chain_param_names,
     chain_params,
-    end_of_unrolled_body,
-    enter_unrolled,
     indexed_loop,
     loop_count,
     param_step,
-    repeated_sum,
-    slot_code,
     sum_entry,
 )
 from .return_register import register_call
 from .returned_sums import (
-    keep_term,
-    return_constant_args,
     sunk_call,
     sunk_return,
-    sunk_return_value,
     sunk_text,
 )
 
@@ -106,14 +100,9 @@ __all__ = [
     "merged_register",
     "exp_product",
     "Entry",
-    "binary",
     "call_step",
-    "chain_call_args",
     "chain_globals",
-    "chain_param_names",
     "chain_params",
-    "end_of_unrolled_body",
-    "enter_unrolled",
     "indexed_loop",
     "later_values",
     "loop_count",
@@ -122,20 +111,15 @@ __all__ = [
     "compound_copies",
     "copied_binary",
     "dot_operand",
-    "keep_term",
     "merged_dot",
     "float16_lookup_args",
     "fused_plan",
     "mix_hint",
     "param_step",
     "register_call",
-    "repeated_sum",
-    "slot_code",
-    "return_constant_args",
     "sum_entry",
     "sunk_call",
     "sunk_return",
-    "sunk_return_value",
     "sunk_text",
     "zero_add",
 ]

@@ -17,9 +17,10 @@ if TYPE_CHECKING:
     from ..fold_protocols import FoldEngine
 
 
-def zero_add(tr: FoldEngine, e: A.Binary, left: str, right: str) -> str | None:
-    """``rt.fadd(l, r)`` / ``rt.fsub(l, r)`` for a float ``+`` / ``-`` whose operand may be a
-    constant zero once Mesa has inlined the function, else None (the plain operator).
+def zero_add(tr: FoldEngine, e: A.Binary) -> bool:
+    """A float ``+`` / ``-`` whose operand may be a constant zero once Mesa has inlined the
+    function: the engines compute it as ``Runtime.fadd`` / ``fsub`` do, else as the plain
+    operator.
 
     Mesa 22.3's nir_opt_algebraic drops ``fadd(a, 0.0)`` (``('fadd(is_only_used_as_float)',
     'a@32', 0.0) -> a``; llvmpipe lowers ``a - b`` to ``fadd(a, fneg(b))``), which keeps the
@@ -29,10 +30,8 @@ def zero_add(tr: FoldEngine, e: A.Binary, left: str, right: str) -> str | None:
     (`Runtime.fadd`) checks the value they hold. Elsewhere, the common case, the operator
     stays a NumPy operator without a Python call."""
     if e.op not in SUMS or tr.fn is None:
-        return None
+        return False
     if any(tr.type_of(x).base != "float" for x in (e, e.left, e.right)):
-        return None
+        return False
     flow = constant_flow(tr)
-    if not (flow.may_be_zero_constant(e.left) or flow.may_be_zero_constant(e.right)):
-        return None
-    return f"rt.{'fadd' if e.op == '+' else 'fsub'}({left}, {right})"
+    return flow.may_be_zero_constant(e.left) or flow.may_be_zero_constant(e.right)

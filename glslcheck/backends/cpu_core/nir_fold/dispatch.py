@@ -1,8 +1,9 @@
 """Which of nir_fold's rules rewrites a binary expression: the first one that applies gives the
 code.
 
-Tried in this order: the float16 tree of lowp lookups (lower_precision.py: its type decides
-every operation in it); a value whose y a later copy of an unrolled loop reads from a temporary
+The NumPy transpiler tries them all (numpy_engine/transpile/binary_rules.py), in this order: the
+float16 tree of lowp lookups (lower_precision.py: its type decides every operation in it); a
+value whose y a later copy of an unrolled loop reads from a temporary
 (loop_copies.kept_in_slot); for an expression with side effects, a constant added to a call's
 result (returned_sums.py), then, where its only effects are calls of user functions that are
 opaque values once inlined (queries.inlined_calls_only, inlined_results.py), the rules below as
@@ -24,11 +25,8 @@ from .compound_products import sunk_through_compound
 from .constant_merge import merge_constants
 from .exp_log import log_scaled
 from .factoring import factor
-from .ffma_split import fused_after_call
 from .loop_copies import kept_in_slot, merged_copies
-from .lower_precision import LOWP_OPS, lowp_tree
 from .queries import inlined_calls_only
-from .returned_sums import sink_into_call
 from .sink import sink_constant
 from .smoothstep_products import scaled_smoothstep
 from .ssa_values import keep_factor, merge_into_matrix
@@ -37,54 +35,12 @@ TYPE_CHECKING = False  # not typing's: importing typing costs every start-up
 if TYPE_CHECKING:
     from typing import Any
 
-    from ..fold_protocols import FoldEmitter, LineWriter
-
-
-def binary(tr: LineWriter, e: A.Binary, mask: str | None) -> str | None:
-    """The generated code of ``e`` when one of the package's rules rewrites it, else None."""
-    low = lowp_tree(tr, e, mask) if e.op in LOWP_OPS else None
-    if low is not None:
-        return low
-    if e.op not in ("+", "-", "*") or tr.fn is None:
-        return None
-    if tr.type_of(e).base != "float":
-        return None
-    kept = kept_in_slot(tr, e, mask)  # (a later copy of a loop reads y from a temporary)
-    if kept is not None:
-        return kept
-    if tr.has_effects(e):
-        folded = sink_into_call(tr, e, mask)
-        if folded is not None or not inlined_calls_only(tr, e):
-            return folded
-    if tr.type_of(e.left).is_matrix or tr.type_of(e.right).is_matrix:
-        return merge_into_matrix(tr, e, mask)
-    if e.op == "+":
-        folded = factor(tr, e, mask)
-        if folded is None:
-            folded = fused_after_call(tr, e, mask)
-        if folded is not None:
-            return folded
-    folded = log_scaled(tr, e, mask)
-    if folded is None:
-        folded = merged_copies(tr, e, mask)
-    if folded is None:
-        folded = merge_constants(tr, e, mask)
-    if folded is not None:
-        return folded
-    folded = merge_components(tr, e, mask)
-    if folded is None:
-        folded = sunk_through_compound(tr, e, mask)
-    if folded is not None:
-        return folded
-    folded = scaled_smoothstep(tr, e, mask)
-    if folded is None:
-        folded = sink_constant(tr, e, mask)
-    return folded if folded is not None else keep_factor(tr, e, mask)
+    from ..fold_protocols import FoldEmitter
 
 
 def copied_binary(tr: FoldEmitter, e: A.Binary, mask: str | None, copied: frozenset[str]) -> Any:
-    """:func:`binary` for an engine that computes the families `copied` only: those, in the
-    same order; None where none of them rewrites ``e``."""
+    """The rules of the module doc for an engine that computes the families `copied` only:
+    those, in the same order; None where none of them rewrites ``e``."""
     if e.op not in ("+", "-", "*") or tr.fn is None or tr.type_of(e).base != "float":
         return None
     kept = kept_in_slot(tr, e, mask) if "constant_merge" in copied else None

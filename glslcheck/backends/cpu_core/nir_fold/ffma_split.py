@@ -17,7 +17,7 @@ TYPE_CHECKING = False  # not typing's: importing typing costs every start-up
 if TYPE_CHECKING:
     from typing import Any
 
-    from ..fold_protocols import FoldEngine, LineWriter
+    from ..fold_protocols import FoldEngine
 
 
 def fused_plan(tr: FoldEngine, e: A.Binary) -> tuple[Any, Any, list] | None:
@@ -54,34 +54,3 @@ def fused_plan(tr: FoldEngine, e: A.Binary) -> tuple[Any, Any, list] | None:
             return None  # (x read again: the sum is used twice)
         return x, other, sums
     return None
-
-
-def fused_after_call(tr: LineWriter, e: A.Binary, mask: str | None) -> str | None:
-    """``(p1 + e) + p2`` for ``x + e`` of a :func:`fused_plan`, else None. llvmpipe fuses
-    ``p1 + p2`` into ``ffma(p2's factors, p1)`` (nir_opt_algebraic_late, fuse_ffma32),
-    ``ffma(a, b, fmul(c, d)) + e`` becomes ``ffma(a, b, ffma(c, d, e))``, and lower_ffma32
-    splits each ffma into a product and a sum (measured: gargantua's ``raypos = eyepos +
-    eyevec*dither*far/200`` after RotateCamera, 576 of 576 pixels; ``(a*e + b*h) + d`` is
-    ``(a*e + d) + b*h`` in every pixel, while ``(a*e + b) + d`` keeps its order). In the
-    written code, inside one expression, not copied here."""
-    plan = fused_plan(tr, e)
-    if plan is None:
-        return None
-    x, other, sums = plan
-    tx, to = tr.type_of(x), tr.type_of(other)
-    tl, trr = tr.exprs([e.left, e.right], mask)
-    if other is e.right:
-        trr = to_code = tr.tmp(trr)
-    else:
-        tl = to_code = tr.tmp(tl)
-    tx_code = tl if x is e.left else trr
-    parts = []
-    for i, s in enumerate(sums):
-        oi = f"{to_code}[{i}]" if to.is_vector else to_code
-        xi = f"{tx_code}[{i}]" if tx.is_vector else tx_code
-        parts.append(f"(({s[0]} + {oi}) + {s[1]})" if s is not None else f"({xi} + {oi})")
-    rewritten = parts[0] if tx.is_scalar else f"rt.vec({tx.size}, {', '.join(parts)})"
-    return (
-        f"({rewritten} if rt.lp else "
-        f"{tr.binary_values('+', tr.type_of(e.left), tr.type_of(e.right), tl, trr)})"
-    )

@@ -4,7 +4,7 @@ Not a rewrite of the order but of the type: Shadertoy's iChannels are lowp sampl
 GLSL compiler runs an operation whose operands are all lowp or mediump in float16. Copied for
 trees of ``+ - * /`` over lookups and literal constants, ``pow(x, 2.0)`` among them as ``x * x``
 (``fpow(a, 2.0) -> a * a``) with a constant factor sunk into it, ``(x * #k) * x``
-(:func:`lowp_tree`, :func:`_square`): elephant's terrain height, ``2.1 + 0.1*textureLod(..).x``,
+(:func:`float16_tree`, :func:`_square`): elephant's terrain height, ``2.1 + 0.1*textureLod(..).x``,
 is 2.130859375 on llvmpipe where float32 gives 2.1319335."""
 
 from __future__ import annotations
@@ -19,7 +19,7 @@ TYPE_CHECKING = False  # not typing's: importing typing costs every start-up
 if TYPE_CHECKING:
     from collections.abc import Callable
 
-    from ..fold_protocols import FoldEngine, LineWriter
+    from ..fold_protocols import FoldEngine
 
 LOWP_OPS = ("+", "-", "*", "/")
 
@@ -51,53 +51,11 @@ def float16_lookup_args(tr: FoldEngine, e: A.Call) -> list[int]:
     return out
 
 
-def lowp_tree(tr: LineWriter, e: A.Binary, mask: str | None) -> str | None:
-    """``e`` computed in float16 where llvmpipe does, else None.
-
-    Mesa's GLSL compiler lowers GLSL ES precision to float16 (glsl/lower_precision.cpp, on
-    for llvmpipe): an operation whose operands are all lowp or mediump runs in float16, a
-    constant taking its partner's precision (rounded to float16 to nearest), and the result
-    is converted to float32 where a highp operand or variable takes it. Shadertoy's iChannels
-    are lowp sampler2D (backends/numpy_engine/textures.py), so ``2.1 + 0.1*textureLod(iChannel2, uv,
-    0.0).x`` (elephant's terrain height) is two float16 operations on llvmpipe: 2.130859375
-    where float32 gives 2.1319335. Copied for trees of ``+ - * /`` and negation whose leaves
-    are literal constants (a `const` variable or a never-written global is a highp variable
-    here, measured) and lookups on an iChannel (swizzled or not), at least one lookup; measured
-    bit for bit (tests/gl/test_llvmpipe_lowering.py). Emitted as ``(rt.lowp_full(<float16
-    tree>) if rt.lowp_arith(<samplers>) else <written>)``: float64 and float16 renders, and
-    samplers that are not lowp (the WebGL comparison's), keep float32. ``pow(x, 2.0)`` is
-    ``x * x`` there (:func:`_square`, measured). Not copied: other built-in calls on such
-    values (``smoothstep(0.3, 0.4, texture(..).x)`` is float16 on llvmpipe too,
-    not measured), lookups through a sampler parameter, mediump/lowp variables (see
-    glslcheck/semantics/mediump.py), and NIR's reassociations inside the float16 tree."""
-    if (
-        tr.fn is None
-        or tr.fold_state.lowp_written is not None
-        and id(e) in tr.fold_state.lowp_written
-    ):
-        return None
-    memo = tr.fold_state.lowp  # id(node) -> kind: linear in a chain
-    if _lowp_kind(tr, e, memo) != "low" or tr.has_effects(e):
-        return None
-    nodes: list[Any] = []
-    samplers: list[Any] = []
-    _lowp_parts(e, memo, nodes, samplers)
-    low = float16_code(tr.model, e, {id(n) for n in nodes}, _NumpyFloat16(tr, mask))
-    tr.fold_state.lowp_written = {
-        id(n) for n in nodes
-    }  # the written form: this tree without the rule
-    try:
-        written = tr.expr(e, mask)
-    finally:
-        tr.fold_state.lowp_written = None
-    used = ", ".join(dict.fromkeys(tr.expr(s, mask) for s in samplers))
-    return f"(rt.lowp_full({low}) if rt.lowp_arith({used}) else {written})"
-
-
 def float16_tree(tr: FoldEngine, e: A.Binary) -> tuple[set[int], list[Any]] | None:
-    """For an engine that writes its own code (the compiled engine): when :func:`lowp_tree`
-    computes ``e`` in float16, the ids of the tree's operation nodes and its lookups' sampler
-    operands, else None."""
+    """When llvmpipe computes ``e`` in float16 (a tree of ``+ - * /`` and negation over lookups
+    on an iChannel and literal constants, at least one lookup): the ids of the tree's operation
+    nodes and its lookups' sampler operands, else None. Each engine writes the tree with
+    :func:`float16_code` (the NumPy backend: numpy_engine/transpile/float16.py)."""
     if e.op not in LOWP_OPS:
         return None
     memo = tr.fold_state.lowp
@@ -192,8 +150,9 @@ def _lowp_parts(node: Any, memo: dict[int, Any], nodes: list[Any], samplers: lis
 
 class Float16Emitter(Protocol):
     """How an engine writes the values of a float16 tree (:func:`float16_code`): the NumPy
-    backend as expressions over float16 arrays (`_NumpyFloat16`), the compiled engine as float32
-    components rounded after each operation (compiled_engine/texture_calls.py)."""
+    backend as expressions over float16 arrays (numpy_engine/transpile/float16.py), the
+    compiled engine as float32 components rounded after each operation
+    (compiled_engine/texture_calls.py)."""
 
     def leaf(self, node: Any) -> Any: ...  # a leaf's value rounded to float16
     def negate(self, x: Any) -> Any: ...
@@ -226,24 +185,3 @@ def float16_code(model: Any, node: Any, ops: set[int], em: Float16Emitter) -> An
         return em.op("*", em.op("*", x, float16_code(model, k, ops, em)), again)
     left = float16_code(model, node.left, ops, em)
     return em.op(node.op, left, float16_code(model, node.right, ops, em))
-
-
-class _NumpyFloat16:
-    """The NumPy backend's float16 tree: leaves rounded by ``rt.half``, each operation a NumPy
-    float16 operation (one rounding each), a value read twice named by ``:=``."""
-
-    def __init__(self, tr: LineWriter, mask: str | None) -> None:
-        self.tr, self.mask = tr, mask
-
-    def leaf(self, node: Any) -> str:
-        return f"rt.half({self.tr.expr(node, self.mask)})"
-
-    def negate(self, x: str) -> str:
-        return f"(-{x})"
-
-    def op(self, op: str, a: str, b: str) -> str:
-        return f"({a} {op} {b})"
-
-    def shared(self, build: Callable[[], str]) -> tuple[str, str]:
-        h = self.tr.fresh("h")
-        return f"({h} := {build()})", h

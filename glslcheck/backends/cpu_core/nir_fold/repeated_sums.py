@@ -18,11 +18,11 @@ the copies continue it; a loop left early ends in a phi.
 
 :func:`chain_plan` builds each chain of a function (steps, calls spread into their callees'
 programs, unrolled loops) and asks sum_order.py for K at every step, per copy of an unrolled
-loop. The engines emit ``base + K`` in llvmpipe mode (the NumPy backend: repeated_sum and the
-functions after it; the compiled engine the same from the plan): the value before the chain
-kept in a temporary, K a constant, or a loop's constants indexed by its pass; a callee's step
-reads its K from two more arguments per chain variable, the caller's base and its constants
-``(K1, K2, ...)``, or None (no chain: the written order)."""
+loop. The engines emit ``base + K`` in llvmpipe mode from the plan (the NumPy backend:
+numpy_engine/transpile/sum_chains.py; the compiled engine: its expressions.py): the value
+before the chain kept in a temporary, K a constant, or a loop's constants indexed by its pass;
+a callee's step reads its K from two more arguments per chain variable, the caller's base and
+its constants ``(K1, K2, ...)``, or None (no chain: the written order)."""
 
 from __future__ import annotations
 
@@ -33,7 +33,7 @@ import numpy as np
 from ....frontend import syntax as A
 from ....semantics.analysis.dataflow import FunctionFacts, written_variable
 from ....semantics.model import Symbol
-from .loop_copies import later_values, merging_loop
+from .loop_copies import merging_loop
 from .loop_unroll import nir_unrolls, trip_count
 from .queries import (
     FunctionStandin,
@@ -48,7 +48,7 @@ from .sum_order import Loop, Step, chain_constants
 
 TYPE_CHECKING = False  # not typing's: importing typing costs every start-up
 if TYPE_CHECKING:
-    from ..fold_protocols import FoldEngine, LineWriter
+    from ..fold_protocols import FoldEngine
 
 
 class Entry:
@@ -63,7 +63,7 @@ class Entry:
         self.chain, self.root, self.ks, self.loop, self.sym = chain, root, ks, loop, sym
 
 
-def _step(tr: FoldEngine, e: Any) -> tuple[str, Any] | None:
+def chain_step(tr: FoldEngine, e: Any) -> tuple[str, Any] | None:
     """("+" or "-", the constant) when `e` adds a float constant to a whole local, parameter or
     global variable and stores the sum back in it; else None."""
     if not isinstance(e, A.Assignment) or not isinstance(e.target, A.Identifier):
@@ -200,7 +200,7 @@ def _is_step(tr: FoldEngine, node: Any, sym: Any) -> bool:
     if isinstance(node, A.Call):
         step = call_step(tr, node)
         return step is not None and step[1] is sym
-    return isinstance(node, A.Assignment) and _step(tr, node) is not None
+    return isinstance(node, A.Assignment) and chain_step(tr, node) is not None
 
 
 def _callee_program(tr: FoldEngine, call: A.Call) -> Program:
@@ -528,11 +528,11 @@ def _chains(tr: FoldEngine, facts: Any, sym: Any, ws: list, param_root: bool) ->
                 else:
                     ops.append(Step(prev_op, op.k, op.neg))
         else:
-            step = _step(tr, x)
+            step = chain_step(tr, x)
             assert step is not None  # (an item of a chain: a call or a step)
             sign, k_node = step
             constants = constant_value(tr, k_node)
-            assert constants is not None  # (_step's operand is a constant)
+            assert constants is not None  # (chain_step's operand is a constant)
             values = [float(v) for v in constants]
             if sign == "-":
                 values = [-v for v in values]
@@ -616,115 +616,3 @@ def indexed_loop(tr: FoldEngine, loop: Any) -> bool:
     if any(p.where.get(id(loop)) for p in chain_params(tr, fn).values()):
         return True
     return any(e.loop is loop and len(e.ks) > 1 for e in chain_plan(tr).values())
-
-
-def slot_code(tr: FoldEngine, own: tuple) -> str:
-    """The index of a chain parameter's write's first constant (:func:`param_step`) among the
-    constants the caller passed: its slot, plus the stride times the loop's pass."""
-    _, at, stride, loop, _ = own
-    if loop is None:
-        return str(at)
-    return f"{at} + {stride} * {tr.fold_state.sum_index[id(loop)]}"
-
-
-# -- the NumPy backend's code ------------------------------------------------------------------
-def repeated_sum(tr: LineWriter, e: A.Assignment, mask: str | None, old: str) -> str | None:
-    """The code of the new value of a step of a chain: ``base + K`` in llvmpipe mode (K
-    :func:`chain_plan`'s), the written ``old + c`` otherwise; None for any other write. The
-    first step of a chain keeps the value before it (`old`) in a temporary."""
-    step = _step(tr, e)
-    if step is None or tr.fn is None:
-        return None
-    sign, k_node = step
-    tk = tr.expr(k_node, mask)
-    written = tr.binary_values(sign, tr.type_of(e.target), tr.type_of(k_node), old, tk)
-    own = param_step(tr, e)
-    if own is not None:  # (a chain parameter: the caller's base and K, or None)
-        b, k = f"_cb{own[0]}", f"_ck{own[0]}"
-        return f"(({b} + {k}[{slot_code(tr, own)}]) if rt.lp and {k} is not None else {written})"
-    entry = sum_entry(tr, e)
-    base = _base(tr, entry, old)
-    if entry is None or base is None:
-        return None
-    k = _k_code(tr, entry, [_vector(tr, ks) for ks in entry.ks])
-    return f"(({base} + {k}) if rt.lp else {written})"
-
-
-def _base(tr: LineWriter, entry: Entry | None, old: str | None) -> str | None:
-    """The code of the value before the entry's chain: kept in a temporary at its first write
-    (`old`: the value there), read in the same Python function after it."""
-    if entry is None:
-        return None
-    bases = tr.fold_state.sum_chains
-    key = (id(current_function(tr).sym), entry.chain, id(entry.sym))
-    if entry.root and old is not None:
-        bases[key] = (tr.tmp(old), tr.lines)
-    known = bases.get(key)
-    return known[0] if known is not None and known[1] is tr.lines else None
-
-
-def _vector(tr: LineWriter, ks: list) -> str:
-    codes = [tr.const_float(float(k)) for k in ks]
-    return codes[0] if len(codes) == 1 else tr.vector(codes)
-
-
-def _k_code(tr: LineWriter, entry: Entry, codes: list[str]) -> str:
-    """One code per copy: the copy's, indexed by the unrolled loop's pass when they differ."""
-    if len(codes) == 1:
-        return codes[0]
-    return f"({', '.join(codes)})[{tr.fold_state.sum_index[id(entry.loop)]}]"
-
-
-def chain_call_args(tr: LineWriter, call: A.Call, fn: Symbol, args: dict[int, str]) -> list[str]:
-    """The chain arguments of a call of `fn`, two per :func:`chain_params` parameter, in
-    order: the base and ``(K1, K2, ...)`` where the call continues or starts a chain of the
-    caller (or passes on the caller's own chain parameter), None and None where it does not
-    (the callee computes as written). `args`: the code of each inout argument's value."""
-    out = []
-    for i in sorted(chain_params(tr, fn)):
-        entry = sum_entry(tr, call)
-        step = call_step(tr, call)
-        mine = step is not None and step[0] == i
-        own = param_step(tr, call) if mine else None
-        if own is not None:
-            j, a, n = own[0], slot_code(tr, own), own[4]
-            out += [f"_cb{j}", f"(None if _ck{j} is None else _ck{j}[{a}:{a} + {n}])"]
-            continue
-        base = _base(tr, entry, args.get(i)) if mine else None
-        if entry is None or base is None:
-            out += ["None", "None"]
-            continue
-        tuples = [f"({''.join(tr.const_float(float(k)) + ', ' for k in ks)})" for ks in entry.ks]
-        out += [base, _k_code(tr, entry, tuples)]
-    return out
-
-
-def chain_param_names(tr: LineWriter, fn: Symbol) -> list[str]:
-    """The extra parameters of a function with :func:`chain_params`: the base and the
-    constants of the caller's chain through each (:func:`chain_call_args`)."""
-    return [f"_c{x}{i}" for i in sorted(chain_params(tr, fn)) for x in "bk"]
-
-
-def enter_unrolled(tr: LineWriter, loop: Any) -> None:
-    """Before an unrolled loop of the plan: the value before a chain that starts there, kept,
-    the temporaries loop_copies.later_values names, and a count of its passes where its steps'
-    constants (or a merge: loop_copies.merging_loop) differ from copy to copy."""
-    entry = sum_entry(tr, loop)
-    if entry is not None and entry.root:
-        _base(tr, entry, tr.var_name(entry.sym, entry.sym.node))
-    for value, sym in later_values(tr, loop):  # (a temporary a later copy merges into)
-        tr.fold_state.kept_slots[id(value)] = (tr.tmp(tr.var_name(sym, sym.node)), tr.lines)
-    if indexed_loop(tr, loop):
-        name = tr.fresh("ix")
-        fn = tr.fn
-        assert fn is not None  # (emitting a function)
-        fn.defined.remove(name)  # (a pass count, no lane value)
-        tr.emit(f"{name} = 0")
-        tr.fold_state.sum_index[id(loop)] = name
-
-
-def end_of_unrolled_body(tr: LineWriter, loop: Any) -> None:
-    """At the end of an unrolled loop's body: its pass count advanced (:func:`enter_unrolled`)."""
-    name = tr.fold_state.sum_index.get(id(loop))
-    if name is not None:
-        tr.emit(f"{name} += 1")

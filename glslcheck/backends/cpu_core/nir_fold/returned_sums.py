@@ -3,10 +3,10 @@
 NIR inlines every function, so ``displacement(x) - 0.4`` (iq's terrain) over ``f = 0.5*noise(p);
 f += 0.25*noise(q); ... return f;`` is a sum the constant sinks into as sink.py sinks it:
 ``((0.5*noise(p) - 0.4) + 0.25*noise(q)) + ...`` on llvmpipe. Such a function
-(:func:`sunk_return`) takes one more argument, the constant or None
-(:func:`return_constant_args`, passed by :func:`sink_into_call`), keeps its terms in
-temporaries (:func:`keep_term`) and adds the constant where NIR puts it
-(:func:`sunk_return_value`)."""
+(:func:`sunk_return`) takes one more argument, the constant or None, passed by the call of
+:func:`sunk_call`, keeps its terms in temporaries and adds the constant where NIR puts it
+(:func:`sunk_text`); each engine writes these (the NumPy backend:
+numpy_engine/transpile/returned_sums.py)."""
 
 from __future__ import annotations
 
@@ -16,7 +16,6 @@ from ....frontend import syntax as A
 from ....semantics.model import Symbol
 from .queries import (
     SUMS,
-    FunctionStandin,
     asked_in,
     current_function,
     function_facts,
@@ -29,7 +28,7 @@ from .sink import known_term
 
 TYPE_CHECKING = False  # not typing's: importing typing costs every start-up
 if TYPE_CHECKING:
-    from ..fold_protocols import FoldEngine, LineWriter
+    from ..fold_protocols import FoldEngine
 
 
 def sunk_return(tr: FoldEngine, fn: Symbol) -> list[tuple[Any, Any, str]] | None:
@@ -41,9 +40,8 @@ def sunk_return(tr: FoldEngine, fn: Symbol) -> list[tuple[Any, Any, str]] | None
     that nothing else reads, written by statements of the function's body (no branch, no loop)
     as ``f = a`` (or an initializer) then ``f += t`` / ``f -= t``; no out parameter, no other
     return. The terms [(write, value, operator)], else None. Such a function takes one more
-    argument, the constant (None: add nothing; :func:`return_constant_args`), its terms are
-    kept in temporaries (:func:`keep_term`) and its return reads them
-    (:func:`sunk_return_value`)."""
+    argument, the constant (None: add nothing), its terms are kept in temporaries and its
+    return reads them (module doc)."""
     cache = tr.fold_state.sunk_returns
     if id(fn) not in cache:
         cache[id(fn)] = None
@@ -165,52 +163,6 @@ def sunk_call(tr: FoldEngine, e: A.Binary) -> tuple[A.Call, Any, bool] | None:
     ):
         return None  # NIR's CSE merges the inlined copies (per component for a vector): used twice
     return call, k, e.op == "-"
-
-
-def sink_into_call(tr: LineWriter, e: A.Binary, mask: str | None) -> str | None:
-    """``f(...) +- #c`` of a :func:`sunk_call`: the call, passed the constant in llvmpipe mode
-    (the callee adds it where NIR sinks it), else None."""
-    sunk = sunk_call(tr, e)
-    if sunk is None:
-        return None
-    call, k, negative = sunk
-    tk = tr.expr(k, mask)
-    signed = f"(-{tk})" if negative else tk
-    tr.fold_state.call_k[id(call)] = f"({signed} if rt.lp else None)"
-    result = tr.tmp(tr.expr(call, mask))
-    return f"({result} if rt.lp else ({result} {e.op} {tk}))"
-
-
-def return_constant_args(tr: LineWriter, call: A.Call, fn: Symbol) -> list[str]:
-    """The extra argument of a call of a function with a :func:`sunk_return`: the constant the
-    caller adds (:func:`sink._sink_sum`, llvmpipe mode) or None; [] for other functions."""
-    if sunk_return(tr, fn) is None:
-        return []
-    return [tr.fold_state.call_k.get(id(call), "None")]
-
-
-def keep_term(tr: LineWriter, node: Any, code: str) -> str:
-    """The code of a term of a :func:`sunk_return` sum, kept in a temporary; other values as
-    they are. ``node``: the assignment or declarator that writes it."""
-    if tr.fn is None or isinstance(tr.fn, FunctionStandin):
-        return code
-    chain = sunk_return(tr, current_function(tr).sym)
-    if chain is None or not any(w is node for w, _, _ in chain):
-        return code
-    t = tr.tmp(code)
-    tr.fold_state.terms[id(node)] = t
-    return t
-
-
-def sunk_return_value(tr: LineWriter, ret: A.Return, code: str | None) -> str | None:
-    """The returned value of a function with a :func:`sunk_return`: ``code`` when the caller
-    adds nothing (``_k`` None), else the sum with the constant sunk as NIR sinks it."""
-    chain = sunk_return(tr, current_function(tr).sym) if tr.fn is not None else None
-    terms = tr.fold_state.terms
-    if chain is None or ret.value is None or not all(id(w) in terms for w, _, _ in chain):
-        return code
-    sunk = sunk_text(tr, chain, [terms[id(w)] for w, _, _ in chain], "_k")
-    return f"({code} if _k is None else {sunk})"
 
 
 def sunk_text(tr: FoldEngine, chain: list[tuple[Any, Any, str]], codes: list[str], k: str) -> str:

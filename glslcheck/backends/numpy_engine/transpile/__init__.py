@@ -84,6 +84,8 @@ set") or a bool array; writes under a mask keep the old value elsewhere (`rt.ass
 #   statements.py   statements, control flow, loops and compaction
 #   functions.py    functions and calls
 #   limits.py       Python's limits (spilling, outlining) and the lane-state estimate
+#   binary_rules.py, call_fold.py, float16.py, returned_sums.py, sum_chains.py: the code this
+#                   transpiler writes of its own for the rewrites of ../../cpu_core/nir_fold
 #   module.py       the Transpiler and the module it writes; transpile(), transpile_shader()
 
 from ...cpu_core.common import LOOP_CAP

@@ -26,6 +26,7 @@ from ...cpu_core.common import (
 )
 from ...cpu_core.facts import is_plain_read
 from ...cpu_core.inline import bound_code
+from .binary_rules import binary
 from .common import (
     _BIN_METHODS,
     _FLOAT_OPERATORS,
@@ -35,7 +36,9 @@ from .common import (
     _error,
     _is_constant_text,
 )
+from .returned_sums import keep_term
 from .state import LValue, TranspilerState
+from .sum_chains import repeated_sum
 
 # Built-ins whose runtime method, on float operands, is one NumPy ufunc (Runtime.np_*): called
 # directly, as `rt.np_fmin(a, b)`, without the method's Python frame (`Runtime.min_` ...)
@@ -210,7 +213,7 @@ class Expressions(TranspilerState):
         return bound if bound is not None else self.var_name(sym, e)
 
     def _print_Binary(self, e: A.Binary, mask: str | None) -> str:
-        folded = nir_fold.binary(self, e, mask)  # Mesa's reassociations (llvmpipe mode)
+        folded = binary(self, e, mask)  # Mesa's reassociations (llvmpipe mode)
         if folded is not None:
             return folded
         op = e.op
@@ -219,9 +222,8 @@ class Expressions(TranspilerState):
             # it (`t > 0.0 && t < best` in a tile where every t is -1)
             return self.short_circuit(e, mask)
         left, right = self.exprs([e.left, e.right], mask)
-        zero = nir_fold.zero_add(self, e, left, right)  # x + 0.0 is x on llvmpipe (nir_fold)
-        if zero is not None:
-            return zero
+        if nir_fold.zero_add(self, e):  # x + 0.0 is x on llvmpipe (nir_fold)
+            return f"rt.{'fadd' if e.op == '+' else 'fsub'}({left}, {right})"
         lt, rtp = self.type_of(e.left), self.type_of(e.right)
         if op in ("==", "!="):
             if lt.is_scalar and rtp.is_scalar:
@@ -305,9 +307,9 @@ class Expressions(TranspilerState):
         if value is None:
             value = nir_fold.component_write(self, e, mask, self.read(lv))  # NIR's per component
         if value is None:
-            value = nir_fold.repeated_sum(self, e, mask, self.read(lv))
+            value = repeated_sum(self, e, mask, self.read(lv))
         if value is None:
-            value = nir_fold.keep_term(self, e, self.expr(e.value, mask))
+            value = keep_term(self, e, self.expr(e.value, mask))
             if e.op != "=":
                 value = self.binary_values(
                     e.op[:-1], self.type_of(e.target), self.type_of(e.value), self.read(lv), value

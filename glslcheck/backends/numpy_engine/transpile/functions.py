@@ -9,12 +9,14 @@ from typing import Any
 from ....frontend import syntax as A
 from ....semantics.model import Symbol
 from ...cpu_core import nir_fold
-from ...cpu_core.call_fold import folded_call
 from ...cpu_core.common import comment_safe
 from ...cpu_core.facts import events_of
 from ...cpu_core.inline import inline_call, worth_inlining
 from ...cpu_core.uniformity import Uniformity
+from .call_fold import folded_call
+from .returned_sums import return_constant_args
 from .state import FnState, LValue, TranspilerState
+from .sum_chains import chain_call_args, chain_param_names
 
 
 class Functions(TranspilerState):
@@ -48,7 +50,7 @@ class Functions(TranspilerState):
             prologue += self.entry_prologue()
         if nir_fold.sunk_return(self, sym) is not None:
             params.append("_k")  # a constant the caller adds to the result (nir_fold.sunk_return)
-        chains = nir_fold.chain_param_names(self, sym)  # the caller's `+= #c` chains
+        chains = chain_param_names(self, sym)  # the caller's `+= #c` chains
         params += chains
         fs.defined += chains[::2]  # (a base has lanes: a compacted region gathers it)
         self.last_line = None
@@ -191,10 +193,10 @@ class Functions(TranspilerState):
                 if d == "inout":
                     args.append(self.tmp(self.read(lv)))
                     inouts[i] = args[-1]
-        args += nir_fold.return_constant_args(self, e, fn)
+        args += return_constant_args(self, e, fn)
         for key, g in nir_fold.chain_globals(self, fn):  # (a global's chain runs through too)
             inouts[key] = self.tmp(self.var_name(g, e))
-        args += nir_fold.chain_call_args(self, e, fn, inouts)
+        args += chain_call_args(self, e, fn, inouts)
         call = self.call_text(e, fn, call_mask, args, mask)
         if call_mask is not None and nir_fold.register_call(self, e, fn):
             self.n += 1  # (a name no GLSL global has: `__` is reserved)

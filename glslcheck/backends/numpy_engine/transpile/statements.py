@@ -16,7 +16,9 @@ from ...cpu_core.common import DERIVATIVES, IMPLICIT_LOD, LOOP_CAP, fold_tree
 from ...cpu_core.facts import Events, events_of, induction_variable
 from . import dead_lanes
 from .common import OUTLINE_INDENT, _error
+from .returned_sums import keep_term, sunk_return_value
 from .state import LoopCtx, TranspilerState
+from .sum_chains import end_of_unrolled_body, enter_unrolled
 
 
 class Statements(TranspilerState):
@@ -41,7 +43,7 @@ class Statements(TranspilerState):
                 # `if X.live(...)` of earlier returns, the final `return _rv` follows that `if`)
                 self.comment_line(s)
                 val = self.expr(s.value, mask) if s.value is not None else None
-                val = nir_fold.sunk_return_value(self, s, val)  # (a constant the caller adds)
+                val = sunk_return_value(self, s, val)  # (a constant the caller adds)
                 if val is not None and fs.rv is not None and mask not in (None, "_m"):
                     val = f"X.put({fs.rv}, {val}, {mask})"
                 self.emit(self.final_return(val) if val is not None or fs.outs else "return None")
@@ -292,7 +294,7 @@ class Statements(TranspilerState):
                     else self.initial(sym.type, dec, mask)
                 )
             if dec.init is not None:
-                value = nir_fold.keep_term(self, dec, value)
+                value = keep_term(self, dec, value)
                 self.after_discarding_call(dec.init)
             register = self.merged_register(dec, mask)
             if name in fs.switch_locals:  # (one in a block inside a case is scoped to it)
@@ -497,7 +499,7 @@ class Statements(TranspilerState):
         self.comment_line(s)
         if s.init is not None:
             self.stmt(s.init, mask)
-        nir_fold.enter_unrolled(self, s)  # a `+= #c` chain the unrolled copies continue
+        enter_unrolled(self, s)  # a `+= #c` chain the unrolled copies continue
         self.loop(s, mask, s.cond, s.body, s.step, do_while=False)
 
     def _stmt_While(self, s: A.While, mask: str | None) -> None:
@@ -558,7 +560,7 @@ class Statements(TranspilerState):
         bmask = live
         self.sub(body, bmask)
         if isinstance(s, A.For):
-            nir_fold.end_of_unrolled_body(self, s)
+            end_of_unrolled_body(self, s)
         fs.loops.pop()
         if do_while:
             c = self.condition(cond, live)
@@ -628,7 +630,7 @@ class Statements(TranspilerState):
         self.emit(f"X.count(S, {lid}, {mask})")
         self.sub(body, mask)
         if isinstance(s, A.For):
-            nir_fold.end_of_unrolled_body(self, s)
+            end_of_unrolled_body(self, s)
         fs.loops.pop()
         if step is not None:
             self.comment_line(step)
