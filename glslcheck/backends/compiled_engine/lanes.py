@@ -858,10 +858,10 @@ class Lanes:
 
     def module(self) -> str:
         out: list[str] = []
+        variants = self.reachable()
         constants, own = hoistable_globals(self.tree)
-        functions = [
-            "@jit\n" + slim_function(fn.source(), constants, own) for fn in self.reachable()
-        ]
+        own |= {fn.name for fn in variants}  # (called as numba's dispatchers: not hoisted)
+        functions = ["@jit\n" + slim_function(fn.source(), constants, own) for fn in variants]
         for node in self.tree.body:
             if isinstance(node, ast.FunctionDef):
                 if node.name == "shade":

@@ -30,8 +30,9 @@ _NP_VALUES = ("float32", "int32", "uint32")
 def hoistable_globals(tree: ast.Module) -> tuple[set[str], set[str]]:
     """(constants, own) of a generated module: the globals that hold a NumPy scalar or a NumPy
     scalar type (`F_7p0 = np.float32(7.0)`, `F32 = np.float32`), and the other names the module
-    binds itself (its functions, its settings such as `FMA`, which numba folds as constants).
-    A called name of neither kind is the runtime's (`lsel`, `mod`: imported)."""
+    binds itself (its functions, its settings such as `FMA`, which numba folds as constants;
+    the caller adds the lockstep variants' names). A called name of neither kind is the
+    runtime's (`lsel`, `mod`: imported)."""
     constants: set[str] = set()
     own: set[str] = set()
     for node in tree.body:
