@@ -445,12 +445,14 @@ class CompiledProgram:
         exec(compile(self.source, file, "exec"), mod.__dict__)
         self.cold = not _cached(cache, self.key)
         if self.cold:  # numba's SSA passes, the same IR in time linear in the names they fix,
-            # its operator typing once per argument types, its liveness on bit sets
-            from . import numba_analysis, numba_ssa, numba_typing
+            # its operator typing once per argument types, its liveness on bit sets, a type's
+            # size asked of LLVM once
+            from . import numba_analysis, numba_lowering, numba_ssa, numba_typing
 
             numba_ssa.install()
             numba_typing.install()
             numba_analysis.install()
+            numba_lowering.install()
         slp = config.SLP_VECTORIZE
         if getattr(
             mod, "LANES", 0

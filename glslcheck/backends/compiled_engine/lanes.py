@@ -39,6 +39,7 @@ import importlib.util
 from typing import Any
 
 from .lanes_render import ROW_UNIFORM, STATE_LANES, quad_lanes, render_source
+from .lanes_slim import hoistable_globals, slim_function
 from .values import pure_expr
 
 UNIFORM_STATE = ("uf", "ui", "lc")  # lc: llvmpipe's loop budget, one per block as there
@@ -857,7 +858,10 @@ class Lanes:
 
     def module(self) -> str:
         out: list[str] = []
-        functions = ["@jit\n" + fn.source() for fn in self.reachable()]
+        variants = self.reachable()
+        constants, own = hoistable_globals(self.tree)
+        own |= {fn.name for fn in variants}  # (called as numba's dispatchers: not hoisted)
+        functions = ["@jit\n" + slim_function(fn.source(), constants, own) for fn in variants]
         for node in self.tree.body:
             if isinstance(node, ast.FunctionDef):
                 if node.name == "shade":
