@@ -1,4 +1,5 @@
-"""`mix` as nir_lower_flrp lowers it: the formula chosen from what the compiler knows.
+"""`mix` as nir_lower_flrp lowers it: the formula chosen from what the compiler knows, or a
+select where the weight is a bool converted to float.
 
 Mesa 22.3 has no FFMA on llvmpipe, so nir_lower_flrp rewrites every ``flrp`` (GLSL's `mix`)
 into one of three formulas, ``x + t*(y-x)``, ``x*(1-t) + y*t`` or a form for x = ±1, and the
@@ -6,13 +7,33 @@ choice depends on the operands (constants, their magnitudes) and on the other `m
 the function that share t and x or y (get_similar_flrp_stats). The formulas round
 differently, so :func:`mix_hint` passes the choice to ``rt.mix`` from the source, where a
 one-pixel probe run picks what the render picks; the rest of the choice is made at run time
-(`Runtime._flrp_form`). The compiled engine asks the same question (builtin_calls.mix_call)."""
+(`Runtime._flrp_form`). The compiled engine asks the same question (builtin_calls.mix_call).
+
+Before the lowering, nir_opt_algebraic's ``('~flrp', a, b, ('b2f', 'c@1')) -> ('bcsel', c, b,
+a)`` makes a `mix` whose weight NIR sees as a bool converted to float a select, the other side
+ignored (NaN included). :func:`b2f_weight` tells that form from the source; measured on
+llvmpipe (Mesa 22.3, docs/llvmpipe.md "mix weights that select"): ``step()``, ``float(bool)``,
+``c ? 1.0 : 0.0`` and ``c ? 0.0 : 1.0``, their products, min, max, abs, clamp to [0, 1] and
+``* 1.0``, through locals, calls and parameters select; ``1.0 - step()``, ``step() +
+step()``, a saturated ``clamp()``, ``floor``, ``sign`` and ``smoothstep`` interpolate even
+where the weight is exactly 0 or 1."""
 
 from __future__ import annotations
 
+import numpy as np
+
 from ....frontend import syntax as A
 from ....frontend.printer import to_glsl
-from .queries import constant_value, current_function, is_builtin
+from ..inline import bound_argument
+from .inlined_results import called_function, returned_value
+from .queries import (
+    asked_in,
+    constant_value,
+    current_function,
+    is_builtin,
+    reaching_value,
+    written_symbols,
+)
 
 TYPE_CHECKING = False  # not typing's: importing typing costs every start-up
 if TYPE_CHECKING:
@@ -27,10 +48,14 @@ def mix_hint(tr: FoldEngine, call: A.Call) -> list[str]:
     mix of the function with the same t and the same x (or y) -> "strict"; a constant t ->
     "strict"; else "fast". "Constant": a constant expression or a never-written local
     initialised by one (NIR propagates it); "the same": the same GLSL text (SSA after CSE).
-    Decided here, from the source, so a one-pixel probe run picks what the render picks."""
+    Decided here, from the source, so a one-pixel probe run picks what the render picks.
+    Before all these: a weight NIR sees as a bool converted to float -> "select"
+    (:func:`b2f_weight`)."""
     if len(call.args) != 3 or tr.fn is None or tr.type_of(call.args[2]).base != "float":
         return []
     x, y, t = call.args
+    if b2f_weight(tr, t):
+        return ["'select'"]
     cx, cy = constant_value(tr, x), constant_value(tr, y)
     if cx is not None and cy is not None and _similar(cx, cy):
         return ["'fast'"]
@@ -75,3 +100,96 @@ def _shared_mixes(tr: FoldEngine) -> set[int]:
             if any(m is not n and t == t2 and (x == x2 or y == y2) for m, (x2, y2, t2) in texts)
         }
     return cache[key]
+
+
+_BOOL_FLOAT = ("min", "max", "abs")  # of b2f values: a b2f value again (nir_opt_algebraic)
+
+
+def b2f_weight(tr: FoldEngine, e: A.Node, depth: int = 0) -> bool:
+    """NIR sees `e`, a float expression of the function being emitted, as ``b2f`` of a bool
+    after inlining and nir_opt_algebraic: ``step()``, ``float(bool)``, ``c ? 1.0 : 0.0`` (or
+    ``0.0 : 1.0``), a component of one, their products, min, max, abs, clamp to [0, 1],
+    ``* 1.0``, a local whose reaching value is one, a parameter every call passes one to, a
+    call of a user function that returns one. Anything else (``1.0 - step()``: measured) is
+    arithmetic to NIR."""
+    if depth > 8:
+        return False
+    d = depth + 1
+    if isinstance(e, A.Call) and e.constructor:  # float(bool), vec3(b2f, ...): components
+        return all(tr.type_of(a).base == "bool" or b2f_weight(tr, a, d) for a in e.args)
+    if isinstance(e, A.Call) and is_builtin(tr, e):
+        if e.callee == "step":
+            return True
+        if e.callee in _BOOL_FLOAT:
+            return all(b2f_weight(tr, a, d) for a in e.args)
+        if e.callee == "clamp" and len(e.args) == 3:
+            bounds = [constant_value(tr, b) for b in e.args[1:]]
+            return bounds == [[0.0], [1.0]] and b2f_weight(tr, e.args[0], d)
+        return False
+    if isinstance(e, A.Call):
+        fn, value = called_function(tr, e), returned_value(tr, e)
+        if fn is None or value is None:
+            return False
+        with asked_in(tr, fn):
+            return b2f_weight(tr, value, d)
+    if isinstance(e, A.Ternary):
+        arms = [constant_value(tr, e.then), constant_value(tr, e.else_)]
+        return arms in ([[1.0], [0.0]], [[0.0], [1.0]])
+    if isinstance(e, A.Field):
+        return b2f_weight(tr, e.base, d)
+    if isinstance(e, A.Binary) and e.op == "*":  # b2f factors, constants of product 1
+        factors = _factors(e)
+        ks = [constant_value(tr, f) for f in factors]
+        product = np.float32(1.0)
+        for k in ks:
+            product = product * np.float32(k[0]) if k is not None and len(k) == 1 else product
+        others = [f for f, k in zip(factors, ks) if k is None]
+        return product == 1.0 and bool(others) and all(b2f_weight(tr, f, d) for f in others)
+    if isinstance(e, A.Binary) and e.op == "-" and constant_value(tr, e.left) == [1.0]:
+        inner = e.right  # 1.0 - (1.0 - b): b
+        return (
+            isinstance(inner, A.Binary)
+            and inner.op == "-"
+            and constant_value(tr, inner.left) == [1.0]
+            and b2f_weight(tr, inner.right, d)
+        )
+    if isinstance(e, A.Identifier):
+        return _b2f_variable(tr, e, d)
+    return False
+
+
+def _factors(e: A.Node) -> list:
+    if isinstance(e, A.Binary) and e.op == "*":
+        return _factors(e.left) + _factors(e.right)
+    return [e]
+
+
+def _b2f_variable(tr: FoldEngine, e: A.Identifier, depth: int) -> bool:
+    """A local whose value here is a b2f one, or a parameter (of an inlined call: its argument;
+    of the function being emitted: every call's argument, NIR inlines each)."""
+    sym = tr.model.symbol_of(e)
+    if sym is None:
+        return False
+    bound = bound_argument(tr, sym)
+    if bound is not None:
+        return b2f_weight(tr, bound, depth)
+    value = reaching_value(tr, e)
+    if value is not None:
+        return b2f_weight(tr, value, depth)
+    if sym.kind != "param" or id(sym) in written_symbols(tr):
+        return False
+    fn = current_function(tr).sym
+    index = [i for i, p in enumerate(fn.node.proto.params) if tr.model.symbol_of(p) is sym]
+    calls = [
+        (caller, c)
+        for caller in tr.model.reachable_functions()
+        for c in caller.node.body.walk()
+        if isinstance(c, A.Call) and tr.model.call_target(c) is fn
+    ]
+    if not index or not calls:
+        return False
+    for caller, c in calls:
+        with asked_in(tr, caller):
+            if not b2f_weight(tr, c.args[index[0]], depth):
+                return False
+    return True
