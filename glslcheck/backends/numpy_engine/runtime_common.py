@@ -74,7 +74,7 @@ class CommonFunctions(RuntimeState):
         """``min(max(x, lo), hi)`` exactly (lo > hi gives hi; NaN x gives lo)."""
         return self.min_(self.max_(x, lo), hi)
 
-    def mix(self, x: Any, y: Any, a: Any, form: str | None = None) -> np.ndarray:
+    def mix(self, x: Any, y: Any, a: Any, form: str | tuple | None = None) -> np.ndarray:
         """``x*(1-a) + y*a``; with a bool ``a`` selects y where a is true.
 
         In float32 (llvmpipe) mode, ``form`` is the formula Mesa's nir_lower_flrp picks for this
@@ -84,13 +84,19 @@ class CommonFunctions(RuntimeState):
         ``x*(1-a) + y*a`` (a constant ``a``, or ``y`` = +-1),
         ``"fast"`` ``x + a*(y-x)`` (run-time ``a``: measured bit for bit), ``"one"`` /
         ``"minus_one"`` ``(x - a) + y*a`` / ``(x + a) + y*a`` for a constant ``x`` of +1 / -1.
-        None: :meth:`_flrp_form` guesses it from the operands. float64 and float16 keep the GLSL
+        None: :meth:`_flrp_form` guesses it from the operands. A tuple: one form per component
+        (llvmpipe lowers a vector mix to scalars first). float64 and float16 keep the GLSL
         formula."""
         if isinstance(a, np.ndarray) and a.dtype == BOOL:
             x, y = self._pair(x, y)
             return np.where(a, y, x)
         x, y, a = self._f(x), self._f(y), self._f(a)
         if self.lp is not None:
+            if isinstance(form, tuple):
+                parts = [
+                    self.mix(_row(x, i), _row(y, i), _row(a, i), f) for i, f in enumerate(form)
+                ]
+                return np.stack(np.broadcast_arrays(*parts))
             if form is None:
                 form = self._flrp_form(x, y, a)
             if form == "select":
@@ -379,3 +385,9 @@ class CommonFunctions(RuntimeState):
         raise GLSLRuntimeError(
             f"{name}{where}: texture lookups are not supported by the NumPy backend"
         )
+
+
+def _row(v: np.ndarray, i: int) -> np.ndarray:
+    """Component `i` of a vector value of shape (components, lanes) or (components, 1); a
+    scalar (one dimension or none) is every component."""
+    return v if v.ndim < 2 else v[i if v.shape[0] > 1 else 0]

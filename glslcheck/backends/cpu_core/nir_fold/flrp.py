@@ -56,17 +56,39 @@ def mix_hint(tr: FoldEngine, call: A.Call) -> list[str]:
     x, y, t = call.args
     if b2f_weight(tr, t):
         return ["'select'"]
-    cx, cy = constant_value(tr, x), constant_value(tr, y)
-    if cx is not None and cy is not None and _similar(cx, cy):
-        return ["'fast'"]
-    for v, form in ((cx, "one"), (cy, "strict")):
-        if v is not None and len(set(v)) == 1 and v[0] == 1.0:
-            return [f"'{form}'"]
-        if v is not None and len(set(v)) == 1 and v[0] == -1.0:
-            return [f"'{'minus_one' if form == 'one' else form}'"]
-    if id(call) in _shared_mixes(tr) or constant_value(tr, t) is not None:
-        return ["'strict'"]
-    return ["'fast'"]
+    size = tr.type_of(call).size if tr.type_of(call).is_vector else 1
+    forms = [_component_form(tr, call, c) for c in range(size)]
+    return [repr(forms[0])] if len(set(forms)) == 1 else [repr(tuple(forms))]
+
+
+def _component_form(tr: FoldEngine, call: A.Call, c: int) -> str:
+    """The form of component `c` of a `mix`: llvmpipe lowers it to scalars before
+    nir_lower_flrp, so each component has its operands and its similar flrps."""
+    kx, ky, kt = (_scalar(tr, a, c) for a in call.args)
+    if kx[0] == "k" and ky[0] == "k" and _similar([kx[1]], [ky[1]]):
+        return "fast"
+    if kx in (("k", 1.0), ("k", -1.0)):
+        return "one" if kx[1] == 1.0 else "minus_one"
+    if ky in (("k", 1.0), ("k", -1.0)):
+        return "strict"
+    if (id(call), c) in _shared_mixes(tr) or kt[0] == "k":
+        return "strict"
+    return "fast"
+
+
+def _scalar(tr: FoldEngine, e: A.Node, c: int) -> tuple:
+    """What NIR sees as component `c` of operand `e`, as a key: ("k", value) for a constant,
+    the GLSL text of a scalar (a float, or the one argument of a ``vec3(s)``: every component
+    the same value after CSE), else the text and the component."""
+    v = constant_value(tr, e)
+    if v is not None:
+        return ("k", v[c] if len(v) > 1 else v[0])
+    if tr.type_of(e).is_scalar:
+        return ("e", to_glsl(e))
+    if isinstance(e, A.Call) and e.constructor and len(e.args) == 1:
+        if tr.type_of(e.args[0]).is_scalar:
+            return ("e", to_glsl(e.args[0]))
+    return ("e", to_glsl(e), c)
 
 
 def _similar(a: list[float], b: list[float]) -> bool:
@@ -78,9 +100,10 @@ def _similar(a: list[float], b: list[float]) -> bool:
     return all(abs(math.frexp(p)[1] - math.frexp(q)[1]) <= 11 for p, q in zip(a, b))
 
 
-def _shared_mixes(tr: FoldEngine) -> set[int]:
-    """Float-weighted mix calls of the current function that share t and x (or t and y) with
-    another one (get_similar_flrp_stats)."""
+def _shared_mixes(tr: FoldEngine) -> set[tuple[int, int]]:
+    """(id(call), component) of the scalar flrps of the current function's float-weighted mix
+    calls that share t and x (or t and y) with another scalar flrp (get_similar_flrp_stats,
+    after the lowering to scalars)."""
     cache = tr.fold_state.mix
     key = id(current_function(tr).sym)
     if key not in cache:
@@ -93,11 +116,14 @@ def _shared_mixes(tr: FoldEngine) -> set[int]:
             and is_builtin(tr, n)
             and tr.type_of(n.args[2]).base == "float"
         ]
-        texts = [(n, [to_glsl(a) for a in n.args]) for n in calls]
+        flrps = []
+        for n in calls:
+            size = tr.type_of(n).size if tr.type_of(n).is_vector else 1
+            flrps += [((id(n), c), [_scalar(tr, a, c) for a in n.args]) for c in range(size)]
         cache[key] = {
-            id(n)
-            for n, (x, y, t) in texts
-            if any(m is not n and t == t2 and (x == x2 or y == y2) for m, (x2, y2, t2) in texts)
+            k
+            for k, (x, y, t) in flrps
+            if any(m != k and t == t2 and (x == x2 or y == y2) for m, (x2, y2, t2) in flrps)
         }
     return cache[key]
 
