@@ -112,3 +112,38 @@ def test_numpy_mix_as_llvmpipe(llvmpipe, make_shader, name, nan):
 def test_compiled_mix_as_llvmpipe(llvmpipe, numba, make_shader, name, nan):
     text = _text(name, nan)
     assert _same(_render(make_shader, text, "compiled"), _render(make_shader, text, "gl")).all()
+
+
+VECTORS = {  # a vec3 mix of a constant x whose components differ: a formula per component
+    "mixed_constant_one_minus_step": ("1.0 - step(d, 0.0)", (0.0, 0.5, 1.0)),
+    "signed_constant_clamp": ("clamp(2.0 * d, 0.0, 1.0)", (1.0, -1.0, 3.0)),
+}
+
+
+def _vector_text(name: str, out: str) -> str:
+    weight, x = VECTORS[name]
+    vec = f"vec3({', '.join(str(v) for v in x)})"
+    return HEAD.replace("WEIGHT", weight).replace("NANX", "").replace("OUT", out.format(x=vec))
+
+
+@pytest.mark.parametrize("name", sorted(VECTORS))
+def test_llvmpipe_lowers_a_vector_mix_per_component(llvmpipe, make_shader, name):
+    """Each component is ``x*(1-w) + y*w`` (its flrp shares t and y with the other two: strict),
+    where ``x + w*(y - x)`` differs on some pixels of each component not 0 in x."""
+    w, _, y, _ = _render(make_shader, _vector_text(name, "vec4(W, 0.0, Y, 1.0)"), "gl").T
+    got = _render(make_shader, _vector_text(name, "vec4(mix({x}, vec3(Y), W), 1.0)"), "gl")
+    x = np.array(VECTORS[name][1], np.float32)
+    for c in range(3):
+        strict = x[c] * (np.float32(1.0) - w) + y * w
+        assert (got[:, c] == strict).all(), c
+        if x[c] != 0.0:
+            assert (got[:, c] != x[c] + w * (y - x[c])).sum() > 100, c
+
+
+@pytest.mark.parametrize("backend", ["numpy", "compiled"])
+@pytest.mark.parametrize("name", sorted(VECTORS))
+def test_engines_lower_a_vector_mix_as_llvmpipe(llvmpipe, make_shader, request, name, backend):
+    if backend == "compiled":
+        request.getfixturevalue("numba")
+    text = _vector_text(name, "vec4(mix({x}, vec3(Y), W), 1.0)")
+    assert _same(_render(make_shader, text, backend), _render(make_shader, text, "gl")).all()
