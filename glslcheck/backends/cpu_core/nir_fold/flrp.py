@@ -42,15 +42,16 @@ if TYPE_CHECKING:
 
 def mix_hint(tr: FoldEngine, call: A.Call) -> list[str]:
     """The extra argument of ``rt.mix``: the formula nir_lower_flrp (Mesa 22.3, no FFMA on
-    llvmpipe) picks for this float-weighted `mix`, in its order: x and y constants whose
-    exponents differ by at most 11 -> "fast" ``x + t*(y-x)``; x a constant of all +1 / -1 ->
-    "one" / "minus_one"; y a constant of all +1 or -1 -> "strict" ``x*(1-t) + y*t``; another
-    mix of the function with the same t and the same x (or y) -> "strict"; a constant t ->
-    "strict"; else "fast". "Constant": a constant expression or a never-written local
-    initialised by one (NIR propagates it); "the same": the same GLSL text (SSA after CSE).
-    Decided here, from the source, so a one-pixel probe run picks what the render picks.
-    Before all these: a weight NIR sees as a bool converted to float -> "select"
-    (:func:`b2f_weight`)."""
+    llvmpipe) picks for each component of this float-weighted `mix` (llvmpipe lowers it to
+    scalars first), in its order: x and y constants whose exponents differ by at most 11 ->
+    "fast" ``x + t*(y-x)``; x a constant +1 / -1 -> "one" / "minus_one"; y a constant +1 or
+    -1 -> "strict" ``x*(1-t) + y*t``; another scalar flrp of the function (another component
+    included) with the same t and the same x (or y) -> "strict"; a constant t -> "strict";
+    else "fast". "Constant": a constant expression or a never-written local initialised by
+    one (NIR propagates it); "the same": the same value or GLSL text (SSA after CSE). One form,
+    or a tuple of one per component where they differ. Decided here, from the source, so a
+    one-pixel probe run picks what the render picks. Before all these: a weight NIR sees as a
+    bool converted to float -> "select" (:func:`b2f_weight`)."""
     if len(call.args) != 3 or tr.fn is None or tr.type_of(call.args[2]).base != "float":
         return []
     x, y, t = call.args
