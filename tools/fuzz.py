@@ -429,6 +429,9 @@ class ProgramGenerator:
                 scope.append((v, t))
             elif k < 0.55:
                 v, t = r.choice(writable)
+                if v.startswith("g") and r.random() < 0.5:  # a global advanced by a constant
+                    out.append(f"{indent}{r.choice([f'{v} += {self.lit()}', f'{v}++'])};")
+                    continue
                 op = r.choice(["=", "+=", "-=", "*="])
                 rhs = self.expr(t, scope, ints, 3)
                 out.append(f"{indent}{v} {op} {rhs};")
@@ -496,6 +499,11 @@ class ProgramGenerator:
             )
             out.append(f"const {t} {k} = {init};")
             scope.append((k, t))
+        for _ in range(r.randint(0, 2) if r.random() < 0.5 else 0):
+            # a global the functions change (a counter or a seed), initialized or not
+            g = self.name("g")
+            out.append(f"float {g}{f' = {self.lit()}' if r.random() < 0.5 else ''};")
+            scope.append((g, "float"))
         if r.random() < 0.5:
             s = self.name("S")
             fields = [(f"f{j}", r.choice(FLOATS)) for j in range(r.randint(1, 3))]

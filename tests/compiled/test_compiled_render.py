@@ -518,3 +518,15 @@ def test_runaway_loop_is_a_located_error(numba, make_shader):
         prog.render(size=(2, 2))
     loc = info.value.diagnostics[0].loc
     assert (loc.path, loc.line, loc.column) == ("Image.glsl", 3, 2)
+
+
+GLOBAL_COUNTERS = os.path.join(os.path.dirname(__file__), "..", "gl", "global_counters")
+
+
+@pytest.mark.parametrize(
+    "name", sorted(n[:-5] for n in os.listdir(GLOBAL_COUNTERS) if n.endswith(".glsl"))
+)
+def test_global_counters_bit_for_bit(numba, name):
+    """Globals changed in the functions mainImage calls (compared with llvmpipe in
+    tests/gl/test_llvmpipe_global_counters.py)."""
+    _compare(os.path.join(GLOBAL_COUNTERS, f"{name}.glsl"))

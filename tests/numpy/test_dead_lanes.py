@@ -84,8 +84,8 @@ def _weight_lanes(make_shader, weight):
     [
         ("step(0.0, d)", ""),  # 0 or 1: a select in every lane
         ("step(0.0, d)", "+ vec3(sqrt(d))"),  # NaN where the select throws it away
-        ("clamp(d * 8.0, 0.0, 1.0)", ""),  # weights between 0 and 1 at the disc's edge
-        ("clamp(d * 8.0, 0.0, 1.0) + (d < -12.0 ? sqrt(d) : 0.0)", ""),  # NaN in the corners
+        ("step(0.0, d) * float(d < 0.5)", "+ vec3(sqrt(d))"),  # a product of b2f: a select
+        ("max(step(0.0, d), float(d < -12.0))", ""),  # the corners too
     ],
 )
 def test_a_value_only_a_select_reads_runs_on_its_lanes_with_the_same_pixels(
@@ -101,6 +101,13 @@ def test_a_value_only_a_select_reads_runs_on_its_lanes_with_the_same_pixels(
     assert lanes_before[("function", "shade")] == SIZE[0] * SIZE[1]
     assert lanes[("function", "shade")] == _weight_lanes(make_shader, weight)
     assert lanes[("function", "shade")] < SIZE[0] * SIZE[1] // 4  # (the disc: a sparse region)
+
+
+@pytest.mark.parametrize("weight", ["clamp(d * 8.0, 0.0, 1.0)", "1.0 - step(d, 0.0)"])
+def test_an_interpolating_weight_moves_nothing(make_shader, weight):
+    """A weight NIR does not see as a bool converted to float interpolates in every lane, 0 and
+    1 included (nir_fold.mix_hint): both sides are read everywhere, nothing moves."""
+    assert "rt.mix_reads(" not in transpile_shader(_shader(make_shader, weight=weight)).source
 
 
 def test_a_value_only_a_conditional_reads_runs_on_its_lanes(make_shader, monkeypatch):
@@ -213,15 +220,16 @@ def test_mix_reads_names_every_lane_whose_result_depends_on_that_side(side):
     rt = Runtime("float32")
     rng = np.random.default_rng(7)
     n = 4096
-    specials = np.array([0.0, -0.0, 1.0, np.nan, 0.5, np.inf, 1e-30], np.float32)
-    a = rng.choice(specials, size=n).astype(np.float32)
+    a = rng.choice(np.array([0.0, 1.0], np.float32), size=n)  # (a b2f weight: 0 or 1)
     x, y = (rng.standard_normal((3, n)).astype(np.float32) for _ in range(2))
-    reads = rt.mix_reads(a, side, "fast")
+    reads = rt.mix_reads(a, side, "select")
     assert reads is not None and reads.shape == (n,)
     nan = np.full_like(x, np.nan)
-    base = rt.mix(x, y, a, "fast")
-    other = rt.mix(nan, y, a, "fast") if side == 0 else rt.mix(x, nan, a, "fast")
+    base = rt.mix(x, y, a, "select")
+    other = rt.mix(nan, y, a, "select") if side == 0 else rt.mix(x, nan, a, "select")
     assert _same(base[:, ~reads], other[:, ~reads])
     assert np.isnan(other[:, reads]).all()
     assert rt.mix_reads(a, side, "strict") is None
-    assert Runtime("float64").mix_reads(a.astype(np.float64), side, "fast") is None
+    assert rt.mix_reads(a, side, "fast") is None  # (interpolates: x + a*(y - x) everywhere)
+    assert np.isnan(rt.mix(nan, y, a, "fast")).all()
+    assert Runtime("float64").mix_reads(a.astype(np.float64), side, "select") is None

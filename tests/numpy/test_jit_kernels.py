@@ -242,7 +242,7 @@ def _weights(n: int) -> np.ndarray:
 
 @pytest.mark.parametrize("fma", [True, False])
 def test_mix_kernel_equals_reference(jit_kernels, fma):
-    """mix's fast form, x + a*(y - x) with 0/1 weights selecting: about 1,500,000 lanes per FMA
+    """mix's fast form, x + a*(y - x) in every lane: about 1,500,000 lanes per FMA
     choice in calls of 1 to 49,152 lanes, same shapes and the broadcasts the transpiler makes
     (vec3 x, y and a float a; a one-lane x or y; vec3 constants of shape (3, 1), read-only
     ones, strided views), specials among x, y and a; a call with an arithmetic NaN is declined

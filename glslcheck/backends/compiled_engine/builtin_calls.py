@@ -5,6 +5,7 @@ computes it (runtime.Runtime's method of the same name), with Mesa's compile-tim
 
 from __future__ import annotations
 
+import ast
 import math
 from typing import Any
 
@@ -262,8 +263,18 @@ def mix_call(cg: Any, e: A.Call, args: list[Val], rtype: Any, n: int, comps) -> 
         if cg.fn is not None and cg.fn.sym is not None
         else []
     )
-    form = hint[0].strip("'") if hint else ("strict" if a.const is not None else "fast")
+    form = ast.literal_eval(hint[0]) if hint else ("strict" if a.const is not None else "fast")
+    if isinstance(form, tuple):  # a form per component (nir_fold.mix_hint)
+        vals = {f: _mix_form(cg, f, x, y, a, rtype, comps) for f in set(form)}
+        return Val(rtype, [vals[f].parts[i] for i, f in enumerate(form)])
+    return _mix_form(cg, form, x, y, a, rtype, comps)
+
+
+def _mix_form(cg: Any, form: str, x: Val, y: Val, a: Val, rtype: Any, comps) -> Val:
     xs, ys, as_ = comps(x), comps(y), comps(a)
+    if form == "select":  # a b2f weight: y where it is 1 (Runtime.mix)
+        one = cg.cf(1.0)
+        return Val(rtype, [f"({q} if {t} == {one} else {p})" for p, q, t in zip(xs, ys, as_)])
     if form == "fast":
         return Val(rtype, [f"mix_fast({p}, {q}, {t})" for p, q, t in zip(xs, ys, as_)])
     if form in ("one", "minus_one"):

@@ -170,9 +170,8 @@ def sign(x):
 
 @njit
 def mix_fast(x, y, a):
-    """``x + a*(y-x)``, y where a is exactly 1, x where 0 (scalar.mix_fast)."""
-    t = F32(x + F32(a * F32(y - x)))
-    return select(a == _ONE, y, select(a == _ZERO, x, t))
+    """``x + a*(y-x)`` in every lane (scalar.mix_fast)."""
+    return F32(x + F32(a * F32(y - x)))
 
 
 # -- ints ------------------------------------------------------------------------------------

@@ -132,12 +132,8 @@ def daz(x):
 
 @njit
 def mix_fast(x, y, a):
-    """nir_lower_flrp's ``x + a*(y-x)``; a weight of exactly 1 or 0 is NIR's b2f select
-    (Runtime.mix, form "fast")."""
-    if a == _ONE:
-        return y
-    if a == _ZERO:
-        return x
+    """nir_lower_flrp's ``x + a*(y-x)`` in every lane, a weight of 0 or 1 included (Runtime.mix,
+    form "fast"; the "select" form is builtin_calls.mix_call's)."""
     return F32(x + F32(a * F32(y - x)))
 
 

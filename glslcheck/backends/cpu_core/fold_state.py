@@ -14,7 +14,7 @@ class FoldState:
     """Per-transpile caches of the rewrites; each field names the question it memoizes."""
 
     # nir_fold: per function (id of its symbol) or per node
-    mix: dict = field(default_factory=dict)  # function -> ids of mix calls sharing t and x (or y)
+    mix: dict = field(default_factory=dict)  # function -> mix components sharing t and x (or y)
     lowp: dict = field(default_factory=dict)  # node -> kind of a lowp lookup tree
     lowp_written: set | None = None  # ids of the float16 tree being emitted in its written form
     kept: dict = field(default_factory=dict)  # product kept whole -> (its type, the lines list)

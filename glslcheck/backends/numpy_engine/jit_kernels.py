@@ -119,12 +119,11 @@ def arc(x, y, out, fma, which):
 # ---------------------------------------------------------------- mix
 @numba.njit("boolean(float32[:, ::1], float32[:, ::1], float32[:, ::1], float32[:, ::1])", **_OPTS)
 def mix(x, y, a, out):
-    """Runtime.mix's "fast" form (nir_lower_flrp's ``x + a*(y - x)``, a weight of exactly 1 or 0
-    a select of y or x) into ``out``, of shape (components, lanes); x, y and a have out's
-    number of rows or one, and its number of columns or one (broadcast, as a vec3 constant of
-    shape (3, 1) or a float weight against vec3 lanes: nothing is copied to broadcast). False
-    (declined) where an arithmetic lane gives a NaN (its bits are NumPy's to choose; a NaN that
-    is selected is copied, the same bits)."""
+    """Runtime.mix's "fast" form (nir_lower_flrp's ``x + a*(y - x)`` in every lane) into
+    ``out``, of shape (components, lanes); x, y and a have out's number of rows or one, and its
+    number of columns or one (broadcast, as a vec3 constant of shape (3, 1) or a float weight
+    against vec3 lanes: nothing is copied to broadcast). False (declined) where a lane gives a
+    NaN (its bits are NumPy's to choose)."""
     rows, cols = out.shape
     nan = False
     for i in range(rows):
@@ -135,11 +134,7 @@ def mix(x, y, a, out):
             xk = x[xi, k if x.shape[1] > 1 else 0]
             yk = y[yi, k if y.shape[1] > 1 else 0]
             ak = a[ai, k if a.shape[1] > 1 else 0]
-            t = F32(
-                xk + F32(ak * F32(yk - xk))
-            )  # computed in every lane, then selected: no branch,
-            one = ak == _ONE  # so that LLVM vectorises the loop
-            zero = ak == _ZERO
-            nan |= (t != t) & ~one & ~zero
-            out[i, k] = yk if one else xk if zero else t
+            t = F32(xk + F32(ak * F32(yk - xk)))
+            nan |= t != t
+            out[i, k] = t
     return not nan

@@ -74,23 +74,34 @@ class CommonFunctions(RuntimeState):
         """``min(max(x, lo), hi)`` exactly (lo > hi gives hi; NaN x gives lo)."""
         return self.min_(self.max_(x, lo), hi)
 
-    def mix(self, x: Any, y: Any, a: Any, form: str | None = None) -> np.ndarray:
+    def mix(self, x: Any, y: Any, a: Any, form: str | tuple | None = None) -> np.ndarray:
         """``x*(1-a) + y*a``; with a bool ``a`` selects y where a is true.
 
         In float32 (llvmpipe) mode, ``form`` is the formula Mesa's nir_lower_flrp picks for this
-        call (llvmpipe has no FFMA; :func:`nir_fold.mix_form` decides from the operands the
-        compiler knows): ``"strict"`` ``x*(1-a) + y*a`` (a constant ``a``, or ``y`` = +-1),
+        call (llvmpipe has no FFMA; :func:`nir_fold.mix_hint` decides from the operands the
+        compiler knows), or ``"select"`` for a weight NIR sees as a bool converted to float
+        (``step()``: nir_opt_algebraic's bcsel, y where a is 1, else x): ``"strict"``
+        ``x*(1-a) + y*a`` (a constant ``a``, or ``y`` = +-1),
         ``"fast"`` ``x + a*(y-x)`` (run-time ``a``: measured bit for bit), ``"one"`` /
         ``"minus_one"`` ``(x - a) + y*a`` / ``(x + a) + y*a`` for a constant ``x`` of +1 / -1.
-        None: :meth:`_flrp_form` guesses it from the operands. float64 and float16 keep the GLSL
+        None: :meth:`_flrp_form` guesses it from the operands. A tuple: one form per component
+        (llvmpipe lowers a vector mix to scalars first). float64 and float16 keep the GLSL
         formula."""
         if isinstance(a, np.ndarray) and a.dtype == BOOL:
             x, y = self._pair(x, y)
             return np.where(a, y, x)
         x, y, a = self._f(x), self._f(y), self._f(a)
         if self.lp is not None:
+            if isinstance(form, tuple):
+                parts = [
+                    self.mix(_row(x, i), _row(y, i), _row(a, i), f) for i, f in enumerate(form)
+                ]
+                return np.stack(np.broadcast_arrays(*parts))
             if form is None:
                 form = self._flrp_form(x, y, a)
+            if form == "select":
+                one, _ = self._mix_selects(a)
+                return np.where(one, y, x)
             if form == "fast":  # compiled (jit.py) where that pays; the same bits
                 return self.lp.builtin("_mix", self._mix_fast)(x, y, a)
             if form in ("one", "minus_one"):
@@ -103,41 +114,28 @@ class CommonFunctions(RuntimeState):
         return r + t
 
     def _mix_fast(self, x: np.ndarray, y: np.ndarray, a: np.ndarray) -> np.ndarray:
-        """mix's "fast" form in float32: ``x + a*(y - x)``. A lane whose weight is exactly 0 or
-        1 is taken for NIR's b2f(c) (step(), 1.0 - step(), float(bool), their products: the lab
-        shaders' branchless selects): ``flrp(x, y, b2f(c))`` is ``bcsel(c, y, x)`` in
-        nir_opt_algebraic, before the lowering. Per lane, so a one-pixel probe run agrees with
-        the render. Where every lane is such a select (a branchless shader's whole tile), the
-        arithmetic is skipped: the same values, a third of the passes."""
-        one, zero = self._mix_selects(a)
-        n_one, n_zero = np.count_nonzero(one), np.count_nonzero(zero)
-        if n_one + n_zero == a.size:
-            return np.where(one, y, x)
+        """mix's "fast" form in float32: ``x + a*(y - x)`` in every lane, a weight of 0 or 1
+        included (``x + (y - x)`` need not be y; a NaN on either side stays)."""
         r = np.subtract(y, x)
         r = np.multiply(a, r, out=r if keeps_shape(r, a) else None)
-        r = np.add(x, r, out=r if keeps_shape(r, x) else None)
-        if n_one:  # r is a new array of the broadcast shape here
-            np.copyto(r, y, where=one)
-        if n_zero:
-            np.copyto(r, x, where=zero)
-        return r
+        return np.add(x, r, out=r if keeps_shape(r, x) else None)
 
     def _mix_selects(self, a: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-        """The weights of the "fast" form that select instead of interpolating: (a == 1: y
-        only, a == 0: x only), per lane and component (NaN is neither)."""
+        """What the "select" form (a b2f weight, 0 or 1) takes: (a == 1: y only, a == 0: x
+        only), per lane and component."""
         return a == self._1, a == self._0
 
     def mix_reads(self, a: Any, side: int, form: str | None) -> np.ndarray | None:
         """The lanes in which ``mix(x, y, a, form)`` reads its argument ``side`` (0: x, 1: y), as
         a bool array over the lanes, or None for every lane: a bool weight and the float32
-        "fast" form ignore the other side where they select (:meth:`_mix_selects`), NaN
-        included; the other forms, and float64 or float16 renders, read both sides
-        everywhere. For the transpiler's dead-lane regions (transpile/dead_lanes.py)."""
+        "select" form ignore the other side (:meth:`_mix_selects`), NaN included; the other
+        forms, and float64 or float16 renders, read both sides everywhere. For the
+        transpiler's dead-lane regions (transpile/dead_lanes.py)."""
         if not isinstance(a, np.ndarray) or a.ndim == 0 or a.shape[-1] == 1:
             return None  # (one value for every lane: nothing to gain per lane)
         if a.dtype == BOOL:
             reads = a if side == 1 else ~a
-        elif form == "fast" and self.lp is not None and a.dtype == np.float32:
+        elif form == "select" and self.lp is not None and a.dtype == np.float32:
             one, zero = self._mix_selects(a)
             reads = ~(zero if side == 1 else one)
         else:
@@ -387,3 +385,9 @@ class CommonFunctions(RuntimeState):
         raise GLSLRuntimeError(
             f"{name}{where}: texture lookups are not supported by the NumPy backend"
         )
+
+
+def _row(v: np.ndarray, i: int) -> np.ndarray:
+    """Component `i` of a vector value of shape (components, lanes) or (components, 1); a
+    scalar (one dimension or none) is every component."""
+    return v if v.ndim < 2 else v[i if v.shape[0] > 1 else 0]

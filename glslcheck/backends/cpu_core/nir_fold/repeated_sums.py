@@ -282,10 +282,13 @@ def chain_params(tr: FoldEngine, fn: Symbol) -> dict[int, Program]:
     that it only advances by constants (steps, calls of such functions), in its body's
     straight line or that of a loop NIR unrolls: NIR inlines the call and the caller's chain
     runs through it. A float global written so (itself or by the functions `fn` calls) is
-    one too, under its :func:`_key`."""
+    one too, under its :func:`_key`. The entry point has none: no user code calls it, and
+    its globals start at their constant initializers (the chains start in it)."""
     cache = tr.fold_state.sum_params
     if id(fn) not in cache:
         cache[id(fn)] = {}  # (GLSL has no recursion: a guard only)
+        if fn is tr.model.entry:
+            return cache[id(fn)]
         with asked_in(tr, fn):
             cache[id(fn)] = _programs(tr, fn)
     return cache[id(fn)]

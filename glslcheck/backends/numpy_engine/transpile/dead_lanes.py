@@ -1,10 +1,10 @@
 """Values a select throws away: computed only on the lanes that keep them.
 
-`mix(x, y, w)` with a bool weight, or in the float32 "fast" form (nir_fold.mix_hint) with a
-weight of exactly 0 or 1 in a lane, is a select there in the runtime's copy of llvmpipe: the
-other side is ignored, NaN included (`Runtime.mix_reads` says which lanes read which side, from
-the one predicate the runtime's mix itself uses; llvmpipe itself selects where NIR sees a b2f
-weight, docs/performance.md "07_final's dead lanes"); so is a `?:` without side effects, by its
+`mix(x, y, w)` with a bool weight, or in the float32 "select" form (nir_fold.mix_hint: a weight
+NIR sees as a bool converted to float, ``step()``), is a select in the runtime's copy of
+llvmpipe: the other side is ignored, NaN included (`Runtime.mix_reads` says which lanes read
+which side, from the one predicate the runtime's mix itself uses; docs/performance.md
+"07_final's dead lanes"); so is a `?:` without side effects, by its
 condition (np.where, Mesa's bcsel). A branchless shader computes a value for
 every pixel and keeps it only where such a weight selects it: 07_final lights every pixel and
 then keeps the background with `mix(background, color, hit)`, so the lighting of the pixels
@@ -131,8 +131,8 @@ def _selected_side(
     base = tr.type_of(w).base
     if base == "bool":
         form = None
-    elif base == "float" and nir_fold.mix_hint(tr, sel) == ["'fast'"]:
-        form = "fast"
+    elif base == "float" and nir_fold.mix_hint(tr, sel) == ["'select'"]:
+        form = "select"
     else:
         return None
     pairs = (
