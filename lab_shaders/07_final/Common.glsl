@@ -95,8 +95,9 @@ float traceScene(in sRay ray, out vec3 position, out vec3 normal, out vec3 albed
     }
     // the ray position is evaluated a single time and reused for normal and lighting
     position = rayAt(ray, tBest);
-    // a ray that kept kNoHit saw only background
-    float hit = 1.0 - step(kNoHit, tBest);
+    // a ray that kept kNoHit saw only background; a compared bool as 0 or 1 lets the mixes
+    // below become selects
+    float hit = float(tBest < kNoHit);
     // |p - c| is the radius on the surface, so dividing by it replaces normalize(); on the
     // background the mix substitutes a unit normal so later lighting math stays finite
     normal = mix(vec3(0.0, 0.0, 1.0), (position - best.center) / best.radius, hit);

@@ -22,6 +22,12 @@ from glslcheck.verification.verify import compile_backend
 
 HEAD = """
 float pick(float v) { return step(0.0, v); }
+float pickWrites(float v, out float o) {
+    o = v;
+    for (int i = 0; i < 3; i++) { o += 1.0; }
+    float h = float(v > 0.0);
+    return h;
+}
 float mixp(float x, float y, float w) { return mix(x, y, w); }
 vec3 mixv(vec3 x, vec3 y, vec3 w) { return mix(x, y, w); }
 void mainImage(out vec4 c, in vec2 p) {
@@ -52,6 +58,7 @@ FORMS = {
     "one_minus_one_minus_step": ("1.0 - (1.0 - step(d, 0.0))", MIX, True),
     "component_of_a_vector_step": ("step(vec2(d), vec2(0.0)).x", MIX, True),
     "function_returning_step": ("pick(d)", MIX, True),
+    "function_with_out_parameter_and_loop": ("0.0; float o; W = pickWrites(d, o)", MIX, True),
     "local_of_step": ("0.0; float w = step(d, 0.0); w = w * step(e, 0.0); W = w", MIX, True),
     "parameter_passed_a_step": ("step(d, 0.0)", VIA_PARAM, True),
     "vector_of_a_step": ("step(d, 0.0)", VIA_VEC3, True),

@@ -25,7 +25,7 @@ import numpy as np
 from ....frontend import syntax as A
 from ....frontend.printer import to_glsl
 from ..inline import bound_argument
-from .inlined_results import called_function, returned_value
+from .inlined_results import called_function, only_return
 from .queries import (
     asked_in,
     constant_value,
@@ -154,7 +154,8 @@ def b2f_weight(tr: FoldEngine, e: A.Node, depth: int = 0) -> bool:
             return bounds == [[0.0], [1.0]] and b2f_weight(tr, e.args[0], d)
         return False
     if isinstance(e, A.Call):
-        fn, value = called_function(tr, e), returned_value(tr, e)
+        fn = called_function(tr, e)
+        value = None if fn is None else only_return(tr, fn)
         if fn is None or value is None:
             return False
         with asked_in(tr, fn):

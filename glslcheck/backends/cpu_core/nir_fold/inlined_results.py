@@ -90,6 +90,22 @@ def returned_value(tr: FoldEngine, call: Any) -> Any:
     return memo[id(fn)]
 
 
+def only_return(tr: FoldEngine, fn: Symbol) -> Any:
+    """The expression a user function's one ``return`` gives, its last statement (or the
+    initializer of the local it returns when only the declaration writes that local), for
+    questions of the value's form alone (is it a b2f): unlike :func:`returned_value` the
+    function may write out parameters and globals. None when it returns anywhere else."""
+    body = getattr(getattr(fn, "node", None), "body", None)
+    if not isinstance(body, A.Compound) or not body.stmts:
+        return None
+    last = body.stmts[-1]
+    if not (isinstance(last, A.Return) and last.value is not None):
+        return None
+    if sum(isinstance(n, A.Return) for n in body.walk()) != 1:
+        return None
+    return _returned(tr, fn)
+
+
 def _returned(tr: FoldEngine, fn: Symbol) -> Any:
     value = fn.node.body.stmts[-1].value
     sym = tr.model.symbol_of(value) if isinstance(value, A.Identifier) else None
