@@ -273,8 +273,10 @@ def mix_call(cg: Any, e: A.Call, args: list[Val], rtype: Any, n: int, comps) -> 
 def _mix_form(cg: Any, form: str, x: Val, y: Val, a: Val, rtype: Any, comps) -> Val:
     xs, ys, as_ = comps(x), comps(y), comps(a)
     if form == "select":  # a b2f weight: y where it is 1 (Runtime.mix)
-        one = cg.cf(1.0)
-        return Val(rtype, [f"({q} if {t} == {one} else {p})" for p, q, t in zip(xs, ys, as_)])
+        one = cg.cf(1.0)  # (the weight a name: a pure select, lsel in lockstep lanes)
+        return Val(
+            rtype, [f"({q} if {cg.atom(t)} == {one} else {p})" for p, q, t in zip(xs, ys, as_)]
+        )
     if form == "fast":
         return Val(rtype, [f"mix_fast({p}, {q}, {t})" for p, q, t in zip(xs, ys, as_)])
     if form in ("one", "minus_one"):
