@@ -140,6 +140,42 @@ def test_named_students(header, expected):
     assert named_students(header) == expected
 
 
+# The course's header template: its fields below the author are no contributors.
+_TEMPLATE = (
+    "Author: Ana Ruiz\nClass: GPR-200-01\nAssignment: Lab 4: Lighting\n"
+    "Date Assigned: 09/25/2020\nDue Date: 10/02/2020\nDescription: lit spheres\n"
+)
+
+
+def test_template_fields_end_the_author_list():
+    assert contributors(_TEMPLATE) == "ok"  # one author, the rest are the template's fields
+    two = _TEMPLATE.replace("Author: Ana Ruiz", "Authors:\n  Ana Ruiz\n  Ben Li")
+    assert contributors(two) == "bare"  # two names, nothing said of who did what
+
+
+@pytest.mark.parametrize(
+    "header, path, named",
+    [
+        (_TEMPLATE, "Lab4 - Lighting.txt", True),  # the template's Assignment names its lab
+        (_TEMPLATE, "shaders/Ana_Lab4_Text.txt", True),
+        (_TEMPLATE, "Lab 3.txt", False),  # another lab
+        (_TEMPLATE, "main.txt", False),  # a file not called after its lab
+        ("Ana Ruiz\nLab 4\nPurpose: lit spheres", "Lab 4.txt", False),  # `Lab 4` alone
+        ("Assignment: Lab 14", "Lab 4.txt", False),
+    ],
+)
+def test_assignment_label_names_a_file_called_after_its_lab(header, path, named):
+    assert names_file(header, path, "") is named
+
+
+def test_template_header_is_complete():
+    text = "/*\n" + _TEMPLATE + "*/\nvoid mainImage(out vec4 c, in vec2 p) { c = vec4(1.0); }\n"
+    rules = {"missing-header", "incomplete-header"}
+    assert [f for f in lint_source(Source("Lab4 - Lighting.txt", text)) if f.rule in rules] == []
+    found = lint_source(Source("main.txt", text))
+    assert [f.rule for f in found if f.rule in rules] == ["incomplete-header"]
+
+
 def test_image_as_a_word_does_not_name_the_file():
     assert not names_file("renders an image of spheres", "lab/Image.glsl", "Image")
 

@@ -6,7 +6,9 @@ comments also
 1. name the file: its file name with or without extension, its Shadertoy tab name
    (`Image.glsl`, `File: Image`, `Buffer A tab`, or a line starting with the name), or a
    `Title:` line; a file called after its lab (`Lab 3.txt`) is not named by a line `Lab 3`
-   alone, which names the lab;
+   alone, which names the lab, but is by the course template's `Assignment: Lab 3` field,
+   which says the file is that lab's (a `Class:`, `Assignment:` or `Due Date:` field under an
+   `Author:` line is no contributor);
 2. state its purpose: a `Purpose:`, `Description:`, `Brief:`, `Summary:` or `About:` label, a
    sentence starting "This file/shader/tab ...", or words after the name (`Image: lit spheres`);
 3. say what each contributor did (`Ana Ruiz: lighting`, `Ben Li - optimization`,

@@ -93,9 +93,12 @@ _CONTRIB_LABEL = compiled(
     r"|(?:written|created|made|modified|edited|coded|programmed)\s+by|by)\b\s*:?\s*(?P<rest>.*)$",
     re.I,
 )
+# The header's other fields, which end a contributor list above them: the course template's
+# `Class:`, `Assignment:`, `Date Assigned:`, `Due Date:` too.
 _OTHER_LABEL = compiled(
     r"^\W*(?:file(?:name)?|tab|name|titt?le|purpose|description|brief|summary|about|license|copyright"
-    r"|credits?|sources?|references?|date|version|course|instructor)\b\s*[:\-]",
+    r"|credits?|sources?|references?|version|course|instructor|class|section|semester|assignment"
+    r"|(?:due\s+)?date(?:\s+(?:assigned|due|created|modified|submitted))?)\b\s*[:\-]",
     re.I,
 )
 _DID = compiled(
@@ -132,6 +135,7 @@ def _names(path: str, tab: str) -> tuple[str, list[str]]:
 
 # A file named after its assignment (`Lab 3.txt`, `lab4`, `A3`): the name is the lab's too.
 _ASSIGNMENT = compiled(r"(?:lab|assignment|project|homework|hw|a)[\s_-]*\d+", re.I)
+_LAB_NUMBER = compiled(r"(?<![a-z])lab[\s_-]*0*(\d+)(?!\d)", re.I)  # `RLittleton_Lab4_Text`: 4
 _TITLE = compiled(r"^\W*(?:titt?le|name)\s*[:\-]\s*\w", re.I | re.M)  # `Title: Lab 2 effects`
 
 
@@ -150,6 +154,9 @@ def names_file(text: str, path: str, tab: str) -> bool:
         )
         if not _ASSIGNMENT.match(n):  # `Lab 3` alone names the lab, even in `Lab 3.txt`
             patterns += (rf"^[\W_]*[\"'`]?{f}[\"'`]?\s*(?:$|{_SEP}|,)",)
+        lab = _LAB_NUMBER.search(n)
+        if lab:  # ... but the template's `Assignment: Lab 3` says the file is that lab's
+            patterns += (rf"^\W*assignment\s*[:\-]\s*lab[\s_\-#]*0*{lab.group(1)}(?!\d)",)
         if any(re.search(pat, text, re.I | re.M) for pat in patterns):
             return True
     return False
