@@ -87,7 +87,7 @@ from .llvmpipe_reference import HOST_FMA, LlvmpipeMath
 from .runtime_common import CommonFunctions
 from .runtime_operators import ArithmeticOps
 from .runtime_transcendental import TranscendentalFunctions
-from .runtime_values import ValueOps
+from .runtime_values import ValueOps, where
 from .textures import TextureFunctions
 
 
@@ -126,7 +126,7 @@ class Runtime(ValueOps, ArithmeticOps, TranscendentalFunctions, CommonFunctions,
     # of one float dtype (GLSL float operands always are): the built-in's exact operation,
     # without a Python frame and the operand coercions of the methods below (`min_`, `abs`...)
     # on every call. A ufunc is no descriptor, so `rt.np_fmin` is np.fmin itself.
-    np_where = staticmethod(np.where)  # `c ? a : b` of one array each (select: also structs)
+    np_where = staticmethod(where)  # `c ? a : b` of one array each (select: also structs)
     np_fmin = np.fmin  # min: a NaN operand yields the other (IEEE minNum, as llvmpipe; min_)
     np_fmax = np.fmax
     np_abs = np.abs

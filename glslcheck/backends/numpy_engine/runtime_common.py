@@ -8,7 +8,7 @@ import numpy as np
 
 from .llvmpipe_reference import keeps_shape
 from .runtime_state import RuntimeState
-from .runtime_values import BOOL, I32, U32, GLSLRuntimeError
+from .runtime_values import BOOL, I32, U32, GLSLRuntimeError, where
 
 
 class CommonFunctions(RuntimeState):
@@ -89,7 +89,7 @@ class CommonFunctions(RuntimeState):
         formula."""
         if isinstance(a, np.ndarray) and a.dtype == BOOL:
             x, y = self._pair(x, y)
-            return np.where(a, y, x)
+            return where(a, y, x)
         x, y, a = self._f(x), self._f(y), self._f(a)
         if self.lp is not None:
             if isinstance(form, tuple):
@@ -99,9 +99,8 @@ class CommonFunctions(RuntimeState):
                 return np.stack(np.broadcast_arrays(*parts))
             if form is None:
                 form = self._flrp_form(x, y, a)
-            if form == "select":
-                one, _ = self._mix_selects(a)
-                return np.where(one, y, x)
+            if form == "select":  # a b2f weight: 0 or 1, so y exactly where it is 1
+                return x if x is y else where(a == self._1, y, x)
             if form == "fast":  # compiled (jit.py) where that pays; the same bits
                 return self.lp.builtin("_mix", self._mix_fast)(x, y, a)
             if form in ("one", "minus_one"):

@@ -449,8 +449,16 @@ class Expressions(TranspilerState):
         return f"rt.index({base}, {idx})"
 
     def _print_Field(self, e: A.Field, mask: str | None) -> str:
-        base = self.expr(e.base, mask)
         bt = self.type_of(e.base)
+        if bt.is_struct and isinstance(e.base, A.Index) and self.type_of(e.base.base).is_array:
+            # `a[i].f`: an array of structs is a Struct of arrays, so the one field's array is
+            # indexed (one gather) rather than every field and then one of them kept
+            arr, at = self.exprs([e.base.base, e.base.index], mask)
+            cv = self.model.const_value(e.base.index)
+            if isinstance(cv, int) and not isinstance(cv, bool):
+                at = str(cv)
+            return f'rt.index(rt.field({arr}, "{self.member(e.name, e)}"), {at})'
+        base = self.expr(e.base, mask)
         if bt.is_struct:
             return f'rt.field({base}, "{self.member(e.name, e)}")'
         idx = self.model.swizzle_indices(e)
