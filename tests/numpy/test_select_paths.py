@@ -156,3 +156,41 @@ def test_a_field_of_an_indexed_struct_array_reads_the_same_as_a_copied_element(m
     a, b = direct.render(size=size), copied.render(size=size)
     assert np.array_equal(a, b) and np.isfinite(a).all()
     assert len(np.unique(a[..., 0])) > 3  # the index varies over the lanes
+
+
+# A mix whose weight is a product of step() and float(bool) (NIR: b2f, a select), with NaN on
+# the side the weight drops on some lanes; WEIGHT is the weight as written, or through a local
+# (the "select" form of rt.mix, the path before the bools were used directly).
+B2F = """
+void mainImage(out vec4 o, in vec2 f) {
+    vec3 nan = vec3(sqrt(f.x - 9.5));
+    vec3 lit = vec3(f.x * 0.1, f.y * 0.2, 0.3);
+    float t = f.x - f.y;
+    WEIGHT
+    o = vec4(mix(nan, lit, w), 1.0);
+}
+"""
+DIRECT_W = "#define w (step(0.0, t) * float(f.x > 9.5))"
+LOCAL_W = "float w = step(0.0, t); w = w * float(f.x > 9.5);"
+
+
+@pytest.mark.parametrize("precision", ["float32", "float64"])
+def test_a_b2f_weight_of_steps_and_bools_selects_on_the_bools(make_shader, precision):
+    direct = compile_numpy(make_shader(B2F.replace("WEIGHT", DIRECT_W)))
+    local = compile_numpy(make_shader(B2F.replace("WEIGHT", LOCAL_W)))
+    assert "rt.mix_b2f(" in direct.source and "rt.step_mask(" in direct.source
+    assert "rt.mix_b2f(" not in local.source and "'select'" in local.source
+    size = (16, 8)
+    a = direct.render(size=size, precision=precision)
+    b = local.render(size=size, precision=precision)
+    assert np.array_equal(_bits(a), _bits(b))
+    if precision == "float32":  # the select drops the NaN side where the weight is 1
+        assert np.isfinite(a).any() and np.isnan(a).any()
+
+
+def test_a_weight_that_is_arithmetic_to_nir_is_no_select(make_shader):
+    # 1.0 - step(): NIR interpolates (docs/llvmpipe.md "mix weights that select")
+    prog = compile_numpy(make_shader(B2F.replace("WEIGHT", "float w = 1.0 - step(t, 0.0);")))
+    assert "rt.mix_b2f(" not in prog.source
+    img = prog.render(size=(16, 8))
+    assert np.isnan(img[..., :3]).all(axis=-1)[:, :9].all()  # x + w * (y - x): NaN read

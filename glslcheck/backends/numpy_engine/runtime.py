@@ -118,6 +118,7 @@ class Runtime(ValueOps, ArithmeticOps, TranscendentalFunctions, CommonFunctions,
         self._dtype = np.dtype(F)  # `x.dtype is self._dtype`: the fast test in _f
         self._0 = F(0.0)
         self._1 = F(1.0)
+        self._last_weight = (None, None)  # (b2f weight, weight == 1): mix's select
         self._2 = F(2.0)
         self._3 = F(3.0)
         self._half = F(0.5)

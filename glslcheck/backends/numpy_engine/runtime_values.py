@@ -136,16 +136,39 @@ def where(cond: Any, a: Any, b: Any) -> Any:
     bits = _BITS.get(a.dtype.itemsize)
     if bits is None or a.dtype.kind not in "fiub":
         return np.where(cond, a, b)
+    a, b = _one_lane(a), _one_lane(b)
     if a.size <= 16 and a.shape == b.shape and a.tobytes() == b.tobytes():
         # both sides one value of the same bits (a constant table's row against itself):
         # that value in every lane, read-only as a uniform input is (runtime_operators._const)
         return np.broadcast_to(a, np.broadcast_shapes(cond.shape, a.shape))
     bv = b.view(bits)
     r = np.bitwise_xor(a.view(bits), bv)
-    m = np.negative(cond.view(np.int8), dtype=bits)  # every bit set where cond
+    m = _select_mask(cond, bits)
     r = np.bitwise_and(r, m, out=r if keeps_shape(r, m) else None)
     r = np.bitwise_xor(r, bv, out=r if keeps_shape(r, bv) else None)
     return r.view(a.dtype)
+
+
+def _one_lane(v: np.ndarray) -> np.ndarray:
+    """A value broadcast over the lanes (lane stride 0: an earlier select of one value) as its
+    one lane, which the select broadcasts again (NumPy's loops are 2x slower on such views)."""
+    return v[..., :1] if v.ndim and v.strides[-1] == 0 and v.shape[-1] > 1 else v
+
+
+# The last mask `where` made, as (cond, bits, mask): the selects of a struct's fields and of
+# a branch's variables share one condition. One tuple, replaced whole (threads share it).
+_last_mask: tuple = (None, None, None)
+
+
+def _select_mask(cond: np.ndarray, bits: np.dtype) -> np.ndarray:
+    """Every bit set where ``cond``, none elsewhere, in integers of dtype ``bits``."""
+    global _last_mask
+    last = _last_mask
+    if last[0] is cond and last[1] is bits:
+        return last[2]
+    m = np.negative(cond.view(np.int8), dtype=bits)
+    _last_mask = (cond, bits, m)
+    return m
 
 
 _CONVERTERS = {"float": "to_float", "int": "to_int", "uint": "to_uint", "bool": "to_bool"}
