@@ -76,6 +76,17 @@ def test_where_is_np_where_bit_for_bit(dtype, mask, shapes):
     assert np.array_equal(_bits(got), _bits(want))
 
 
+@pytest.mark.parametrize("cond_lanes", [LANES, 1])
+def test_where_of_values_broadcast_over_the_lanes_keeps_np_where_s_shape(cond_lanes):
+    rng = np.random.default_rng(4)
+    cond = rng.random(cond_lanes) < 0.5
+    a = np.broadcast_to(np.array([[1.5], [np.nan], [-0.0]], np.float32), (3, LANES))
+    for b in (np.broadcast_to(np.array([[2.5], [3.0], [0.0]], np.float32), (3, LANES)), a):
+        got, want = where(cond, a, b), np.where(cond, a, b)
+        assert got.shape == want.shape
+        assert np.array_equal(_bits(got), _bits(want))
+
+
 def test_where_of_one_value_on_both_sides_is_that_value_per_lane_and_no_constant():
     rt = Runtime("float32")
     k = np.array([[np.nan], [-0.0], [2.5]], dtype=np.float32)

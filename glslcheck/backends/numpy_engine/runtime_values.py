@@ -136,7 +136,7 @@ def where(cond: Any, a: Any, b: Any) -> Any:
     bits = _BITS.get(a.dtype.itemsize)
     if bits is None or a.dtype.kind not in "fiub":
         return np.where(cond, a, b)
-    a, b = _one_lane(a), _one_lane(b)
+    a, b = _one_lane(a, cond), _one_lane(b, cond)
     if a.size <= 16 and a.shape == b.shape and a.tobytes() == b.tobytes():
         # both sides one value of the same bits (a constant table's row against itself):
         # that value in every lane, read-only as a uniform input is (runtime_operators._const)
@@ -149,10 +149,13 @@ def where(cond: Any, a: Any, b: Any) -> Any:
     return r.view(a.dtype)
 
 
-def _one_lane(v: np.ndarray) -> np.ndarray:
+def _one_lane(v: np.ndarray, cond: np.ndarray) -> np.ndarray:
     """A value broadcast over the lanes (lane stride 0: an earlier select of one value) as its
-    one lane, which the select broadcasts again (NumPy's loops are 2x slower on such views)."""
-    return v[..., :1] if v.ndim and v.strides[-1] == 0 and v.shape[-1] > 1 else v
+    one lane, which the select broadcasts again over ``cond``'s lanes (NumPy's loops are 2x
+    slower on such views)."""
+    if v.ndim and v.strides[-1] == 0 and v.shape[-1] > 1 and cond.shape[-1] == v.shape[-1]:
+        return v[..., :1]
+    return v
 
 
 # The last mask `where` made, as (cond, bits, mask): the selects of a struct's fields and of
