@@ -62,6 +62,13 @@ FORMS = {
     "local_of_step": ("0.0; float w = step(d, 0.0); w = w * step(e, 0.0); W = w", MIX, True),
     "parameter_passed_a_step": ("step(d, 0.0)", VIA_PARAM, True),
     "vector_of_a_step": ("step(d, 0.0)", VIA_VEC3, True),
+    # written in the call: the NumPy backend selects on the compares themselves (mix_b2f)
+    "step_in_the_call": ("step(d, 0.0)", "vec4(mix(X, Y, step(d, 0.0)), 0.0, 0.0, 1.0)", True),
+    "step_and_bool_in_the_call": (
+        "step(d, 0.0) * float(e > 0.0)",
+        "vec4(mix(X, Y, step(d, 0.0) * float(e > 0.0)), 0.0, 0.0, 1.0)",
+        True,
+    ),
     "one_minus_step": ("1.0 - step(d, 0.0)", MIX, False),
     "one_minus_float_of_bool": ("1.0 - float(d > 0.0)", MIX, False),
     "sum_of_steps": ("step(d, 0.0) + step(e, 0.0)", MIX, False),

@@ -87,7 +87,7 @@ from .llvmpipe_reference import HOST_FMA, LlvmpipeMath
 from .runtime_common import CommonFunctions
 from .runtime_operators import ArithmeticOps
 from .runtime_transcendental import TranscendentalFunctions
-from .runtime_values import ValueOps
+from .runtime_values import ValueOps, where
 from .textures import TextureFunctions
 
 
@@ -118,6 +118,7 @@ class Runtime(ValueOps, ArithmeticOps, TranscendentalFunctions, CommonFunctions,
         self._dtype = np.dtype(F)  # `x.dtype is self._dtype`: the fast test in _f
         self._0 = F(0.0)
         self._1 = F(1.0)
+        self._last_weight = (None, None)  # (b2f weight, weight == 1): mix's select
         self._2 = F(2.0)
         self._3 = F(3.0)
         self._half = F(0.5)
@@ -126,7 +127,7 @@ class Runtime(ValueOps, ArithmeticOps, TranscendentalFunctions, CommonFunctions,
     # of one float dtype (GLSL float operands always are): the built-in's exact operation,
     # without a Python frame and the operand coercions of the methods below (`min_`, `abs`...)
     # on every call. A ufunc is no descriptor, so `rt.np_fmin` is np.fmin itself.
-    np_where = staticmethod(np.where)  # `c ? a : b` of one array each (select: also structs)
+    np_where = staticmethod(where)  # `c ? a : b` of one array each (select: also structs)
     np_fmin = np.fmin  # min: a NaN operand yields the other (IEEE minNum, as llvmpipe; min_)
     np_fmax = np.fmax
     np_abs = np.abs

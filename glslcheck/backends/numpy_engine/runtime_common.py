@@ -8,7 +8,7 @@ import numpy as np
 
 from .llvmpipe_reference import keeps_shape
 from .runtime_state import RuntimeState
-from .runtime_values import BOOL, I32, U32, GLSLRuntimeError
+from .runtime_values import BOOL, I32, U32, GLSLRuntimeError, where
 
 
 class CommonFunctions(RuntimeState):
@@ -89,7 +89,7 @@ class CommonFunctions(RuntimeState):
         formula."""
         if isinstance(a, np.ndarray) and a.dtype == BOOL:
             x, y = self._pair(x, y)
-            return np.where(a, y, x)
+            return where(a, y, x)
         x, y, a = self._f(x), self._f(y), self._f(a)
         if self.lp is not None:
             if isinstance(form, tuple):
@@ -99,9 +99,8 @@ class CommonFunctions(RuntimeState):
                 return np.stack(np.broadcast_arrays(*parts))
             if form is None:
                 form = self._flrp_form(x, y, a)
-            if form == "select":
-                one, _ = self._mix_selects(a)
-                return np.where(one, y, x)
+            if form == "select":  # a b2f weight: 0 or 1, so y exactly where it is 1
+                return where(self._selects_y(a), y, x)
             if form == "fast":  # compiled (jit.py) where that pays; the same bits
                 return self.lp.builtin("_mix", self._mix_fast)(x, y, a)
             if form in ("one", "minus_one"):
@@ -119,6 +118,16 @@ class CommonFunctions(RuntimeState):
         r = np.subtract(y, x)
         r = np.multiply(a, r, out=r if keeps_shape(r, a) else None)
         return np.add(x, r, out=r if keeps_shape(r, x) else None)
+
+    def _selects_y(self, a: np.ndarray) -> np.ndarray:
+        """``a == 1`` for a b2f weight, made once for the mixes that share the weight (a
+        struct's fields selected field by field): the last one is kept, as one tuple."""
+        last = self._last_weight
+        if last[0] is a:
+            return last[1]
+        one = a == self._1
+        self._last_weight = (a, one)
+        return one
 
     def _mix_selects(self, a: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
         """What the "select" form (a b2f weight, 0 or 1) takes: (a == 1: y only, a == 0: x
@@ -175,8 +184,20 @@ class CommonFunctions(RuntimeState):
 
     def step(self, edge: Any, x: Any) -> np.ndarray:
         """0 where x < edge else 1; NaN gives 0 (llvmpipe computes x >= edge)."""
-        edge, x = self._f(edge), self._f(x)
-        return (x >= edge).astype(self.F)
+        return self.step_mask(edge, x).astype(self.F)
+
+    def step_mask(self, edge: Any, x: Any) -> np.ndarray:
+        """Where `step(edge, x)` is 1, as bools: ``x >= edge`` (false for NaN)."""
+        return self._f(x) >= self._f(edge)
+
+    def mix_b2f(self, x: Any, y: Any, c: Any) -> np.ndarray:
+        """``mix(x, y, float(c))`` for the bools ``c`` of a weight NIR sees as b2f (transpile:
+        Expressions.b2f_select): in float32 (llvmpipe) nir_opt_algebraic's select, y where c,
+        the other side ignored (NaN included), as `mix`'s "select" form; float64 and float16
+        renders keep mix's formula."""
+        if self.lp is None:
+            return self.mix(x, y, self._f(c), "select")  # (float(c): _f as to_float)
+        return where(c, self._f(y), self._f(x))
 
     def smoothstep(self, e0: Any, e1: Any, x: Any) -> np.ndarray:
         """t = clamp((x-e0)/(e1-e0), 0, 1); t*(t*(3-2t)). Equal edges follow the formula

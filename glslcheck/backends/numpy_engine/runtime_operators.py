@@ -48,7 +48,21 @@ class ArithmeticOps(RuntimeState):
             if ca != cb:
                 z = a if ca else b
                 if z.size <= 16 and np.count_nonzero(z) != z.size:  # (z.all() costs 4x that)
-                    r = np.where(z == 0, self._0, r)
+                    r = self._zero_rows(r, z)
+        return r
+
+    def _zero_rows(self, r: Any, z: np.ndarray) -> Any:
+        """``np.where(z == 0, 0.0, r)`` for the product ``r`` of a lane-uniform ``z`` (shape
+        (..., 1)) and a per-lane operand: r is a fresh array of the broadcast shape, so the rows
+        where z is zero are set to +0.0 in place (a fill per row, not a select per lane)."""
+        rows = (z == 0).reshape(z.shape[:-1])
+        if type(r) is not np.ndarray or r.ndim != rows.ndim + 1 and rows.ndim != 0:
+            return np.where(z == 0, self._0, r)
+        if rows.ndim == 0 or r.ndim == 1:
+            if rows.all():
+                r[...] = self._0
+            return r
+        r[np.broadcast_to(rows, r.shape[:-1])] = self._0
         return r
 
     def fadd(self, a: np.ndarray, b: np.ndarray) -> np.ndarray:

@@ -33,6 +33,7 @@ class RuntimeState:
         _2: np.floating
         _3: np.floating
         _half: np.floating
+        _last_weight: tuple
 
         # ValueOps (runtime_values.py)
         def _f(self, x: Any) -> np.ndarray: ...

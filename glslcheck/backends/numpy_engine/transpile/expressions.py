@@ -449,8 +449,16 @@ class Expressions(TranspilerState):
         return f"rt.index({base}, {idx})"
 
     def _print_Field(self, e: A.Field, mask: str | None) -> str:
-        base = self.expr(e.base, mask)
         bt = self.type_of(e.base)
+        if bt.is_struct and isinstance(e.base, A.Index) and self.type_of(e.base.base).is_array:
+            # `a[i].f`: an array of structs is a Struct of arrays, so the one field's array is
+            # indexed (one gather) rather than every field and then one of them kept
+            arr, at = self.exprs([e.base.base, e.base.index], mask)
+            cv = self.model.const_value(e.base.index)
+            if isinstance(cv, int) and not isinstance(cv, bool):
+                at = str(cv)
+            return f'rt.index(rt.field({arr}, "{self.member(e.name, e)}"), {at})'
+        base = self.expr(e.base, mask)
         if bt.is_struct:
             return f'rt.field({base}, "{self.member(e.name, e)}")'
         idx = self.model.swizzle_indices(e)
@@ -486,6 +494,48 @@ class Expressions(TranspilerState):
         if text not in done:
             done[text] = self.tmp(text)
         return done[text]
+
+    def b2f_select(self, e: A.Call, mask: str | None) -> str | None:
+        """`mix(x, y, w)` whose weight NIR sees as b2f (nir_fold.mix_hint's "select") and is
+        built of `step()` calls, `float(bool)` and their products: ``rt.mix_b2f`` on the bools
+        themselves (`x >= edge` and `&`: no float weight made, no compare of it with 1). The
+        operands are printed in their order (x, y, then the weight's, left to right)."""
+        w = e.args[2]
+        if not self._b2f_tree(w) or nir_fold.mix_hint(self, e) != ["'select'"]:
+            return None
+        x, y = self.exprs(e.args[:2], mask)
+        return f"rt.mix_b2f({x}, {y}, {self._b2f_condition(w, mask)})"
+
+    def _b2f_tree(self, w: A.Node) -> bool:
+        if isinstance(w, A.Binary):
+            return w.op == "*" and self._b2f_tree(w.left) and self._b2f_tree(w.right)
+        if not isinstance(w, A.Call):
+            return False
+        tgt = self.model.call_target(w)
+        if isinstance(tgt, Constructor):  # float(b) of one bool scalar
+            return (
+                tgt.type.is_scalar
+                and tgt.type.base == "float"
+                and len(w.args) == 1
+                and self.type_of(w.args[0]).is_scalar
+                and self.type_of(w.args[0]).base == "bool"
+            )
+        return (
+            tgt is not None
+            and not isinstance(tgt, Symbol)
+            and getattr(tgt, "name", None) == "step"
+            and len(w.args) == 2
+        )
+
+    def _b2f_condition(self, w: A.Node, mask: str | None) -> str:
+        """The bool of a `_b2f_tree` weight: step(edge, x) is `x >= edge` (NaN: false, as
+        step's 0), float(b) is b, a product the `&` of its factors' bools."""
+        if isinstance(w, A.Binary):
+            left = self._b2f_condition(w.left, mask)
+            return f"({left} & {self._b2f_condition(w.right, mask)})"
+        assert isinstance(w, A.Call)
+        args = self.exprs(w.args, mask)
+        return args[0] if len(args) == 1 else f"rt.step_mask({args[0]}, {args[1]})"
 
     def constructor(self, e: A.Call, t: Any, mask: str | None) -> str:
         args = self.exprs(e.args, mask)
@@ -541,6 +591,10 @@ class Expressions(TranspilerState):
             return f"{r}[0]"
         if any(q == "out" for q in quals):
             raise _error(f"{name}() with an out parameter is not supported", e)
+        if name == "mix":
+            selected = self.b2f_select(e, mask)
+            if selected is not None:
+                return selected
         args = self.exprs(e.args, mask)
         if name == "mix":
             args += nir_fold.mix_hint(self, e)  # Mesa's flrp lowering: see nir_fold
