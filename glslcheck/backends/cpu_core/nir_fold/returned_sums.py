@@ -14,6 +14,7 @@ from typing import Any
 
 from ....frontend import syntax as A
 from ....semantics.model import Symbol
+from .inlined_results import final_return
 from .queries import (
     SUMS,
     asked_in,
@@ -67,14 +68,11 @@ def _sink_calls(tr: FoldEngine) -> set[int]:
 
 
 def _return_chain(tr: FoldEngine, fn: Symbol) -> list[tuple[Any, Any, str]] | None:
-    body = fn.node.body.stmts
-    if (
-        not body
-        or not isinstance(body[-1], A.Return)
-        or not isinstance(body[-1].value, A.Identifier)
-    ):
+    last = final_return(fn)
+    if last is None or not isinstance(last.value, A.Identifier):
         return None
-    ret = body[-1].value
+    body = fn.node.body.stmts
+    ret = last.value
     sym = tr.model.symbol_of(ret)
     if (
         sym is None
@@ -85,8 +83,7 @@ def _return_chain(tr: FoldEngine, fn: Symbol) -> list[tuple[Any, Any, str]] | No
         return None
     for n in fn.node.body.walk():
         if (
-            isinstance(n, (A.Return, A.Discard))
-            and n is not body[-1]
+            isinstance(n, A.Discard)
             or isinstance(n, A.Call)
             and id(tr.model.call_target(n)) in tr.facts.may_discard
         ):
