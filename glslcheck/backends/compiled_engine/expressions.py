@@ -609,7 +609,7 @@ class ExpressionEmitter:
                 folded = fused_sum(self, e)  # ffma fused and split after a folded call
                 if folded is not None:
                     return folded
-            folded = nir_fold.copied_binary(self.fold_context(), e, None, COPIED)  # Mesa's order
+            folded = nir_fold.rewrite_binary(self.fold_context(), e, None, COPIED)  # Mesa's order
             if folded is not None:
                 return folded
         left = self.expr(e.left)
