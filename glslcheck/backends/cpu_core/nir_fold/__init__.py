@@ -89,14 +89,16 @@ from .repeated_sums import (
 )
 from .return_register import register_call
 from .returned_sums import (
+    SunkOrder,
     sunk_call,
+    sunk_order,
     sunk_return,
-    sunk_text,
 )
 
 __all__ = [
     "FoldContext",
     "MergedRegister",
+    "SunkOrder",
     "arm_values",
     "merged_register",
     "exp_product",
@@ -121,6 +123,6 @@ __all__ = [
     "sum_entry",
     "sunk_call",
     "sunk_return",
-    "sunk_text",
+    "sunk_order",
     "zero_add",
 ]

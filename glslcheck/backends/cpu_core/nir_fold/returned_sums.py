@@ -5,12 +5,12 @@ f += 0.25*noise(q); ... return f;`` is a sum the constant sinks into as sink.py 
 ``((0.5*noise(p) - 0.4) + 0.25*noise(q)) + ...`` on llvmpipe. Such a function
 (:func:`sunk_return`) takes one more argument, the constant or None, passed by the call of
 :func:`sunk_call`, keeps its terms in temporaries and adds the constant where NIR puts it
-(:func:`sunk_text`); each engine writes these (the NumPy backend:
-numpy_engine/transpile/returned_sums.py)."""
+(:func:`sunk_order`); each engine writes these (the NumPy backend:
+numpy_engine/transpile/returned_sums.py; the sum's text: cpu_core/common.sum_in_order)."""
 
 from __future__ import annotations
 
-from typing import Any
+from typing import Any, NamedTuple
 
 from ....frontend import syntax as A
 from ....semantics.model import Symbol
@@ -162,15 +162,22 @@ def sunk_call(tr: FoldEngine, e: A.Binary) -> tuple[A.Call, Any, bool] | None:
     return call, k, e.op == "-"
 
 
-def sunk_text(tr: FoldEngine, chain: list[tuple[Any, Any, str]], codes: list[str], k: str) -> str:
-    """The sum of a :func:`sunk_return` chain with the constant ``k`` sunk as NIR sinks it,
-    written with the operators over ``codes``, the terms' values (arrays or float32 scalars:
-    the same text computes the same float32 operations in both engines)."""
+class SunkOrder(NamedTuple):
+    """The order NIR adds a :func:`sunk_return` chain ``t0 op1 t1 op2 t2 ...`` in when a caller's
+    constant k sinks into it: first ``t[joined] + k`` (``-t[joined] + k`` where `negated`), then
+    each (operator, term index) of `then`, left to right."""
+
+    joined: int
+    negated: bool
+    then: tuple[tuple[str, int], ...]
+
+
+def sunk_order(tr: FoldEngine, chain: list[tuple[Any, Any, str]]) -> SunkOrder:
+    """Where the constant sinks into a :func:`sunk_return` chain: beside the first term, or,
+    when only the first term is a product, beside the second (negated for a ``-=``), the first
+    added after it."""
     (_, a, _), (_, t1, op1) = chain[0], chain[1]
+    later = tuple((op, i) for i, (_, _, op) in enumerate(chain[2:], 2))
     if is_fmul(tr, t1) or not is_fmul(tr, a):
-        sunk = f"(({codes[0]} + {k}) {op1} {codes[1]})"
-    else:  # only a is a product: the constant joins the other term (its negation for -=)
-        sunk = f"(({'-' if op1 == '-' else ''}{codes[1]} + {k}) + {codes[0]})"
-    for (_, _, op), c in zip(chain[2:], codes[2:]):
-        sunk = f"({sunk} {op} {c})"
-    return sunk
+        return SunkOrder(0, False, ((op1, 1), *later))
+    return SunkOrder(1, op1 == "-", (("+", 0), *later))
