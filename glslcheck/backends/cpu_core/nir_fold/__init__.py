@@ -73,7 +73,7 @@ from .dispatch import rewrite_binary
 from .dot_constants import broadcast_dot, dot_operand, merged_dot
 from .exp_log import exp_product
 from .ffma_split import fused_plan
-from .flrp import mix_hint
+from .flrp import mix_form
 from .loop_compounds import compound_copies
 from .loop_copies import later_values
 from .lower_precision import float16_lookup_args
@@ -116,7 +116,7 @@ __all__ = [
     "merged_dot",
     "float16_lookup_args",
     "fused_plan",
-    "mix_hint",
+    "mix_form",
     "param_step",
     "register_call",
     "rewrite_binary",
