@@ -21,7 +21,7 @@ class Patch(Protocol):
 
 
 _LOCK = threading.Lock()
-_INSTALLED: dict[int, bool] = {}  # id(patch) -> whether it is in place
+_INSTALLED: dict[int, tuple[Patch, bool]] = {}  # id(patch) -> (it, kept alive; whether in place)
 
 
 def install(patch: Patch) -> bool:
@@ -31,8 +31,9 @@ def install(patch: Patch) -> bool:
 
     with _LOCK:
         if id(patch) not in _INSTALLED:
-            _INSTALLED[id(patch)] = __version__.startswith(patch.CHECKED) and patch.replace()
-        return _INSTALLED[id(patch)]
+            ok = __version__.startswith(patch.CHECKED) and patch.replace()
+            _INSTALLED[id(patch)] = (patch, ok)
+        return _INSTALLED[id(patch)][1]
 
 
 def install_all() -> None:

@@ -19,7 +19,7 @@ if TYPE_CHECKING:
 
 def binary(tr: TranspilerState, e: A.Binary, mask: str | None) -> str | None:
     """The generated code of ``e`` when one of the rules rewrites it, else None."""
-    return rewrite_binary(tr, e, mask, FAMILIES, _OWN)
+    return rewrite_binary(tr, e, mask, FAMILIES, OWN)
 
 
 def fused_after_call(tr: TranspilerState, e: A.Binary, mask: str | None) -> str | None:
@@ -54,7 +54,7 @@ def fused_after_call(tr: TranspilerState, e: A.Binary, mask: str | None) -> str 
 
 
 # the families of dispatch.BINARY_RULES whose code this transpiler writes itself
-_OWN = {
+OWN = {
     "lower_precision": lowp_tree,
     "returned_sums": sink_into_call,
     "ffma_split": fused_after_call,
