@@ -160,9 +160,9 @@ def test_type_sizes_as_numba_gives_them(numba):
     from llvmlite import ir
     from numba.core import registry
 
-    from glslcheck.backends.compiled_engine import numba_lowering
+    from glslcheck.backends.compiled_engine import numba_lowering, numba_patches
 
-    if not numba_lowering.install():
+    if not numba_patches.install(numba_lowering):
         pytest.skip(f"numba_lowering is not installed on numba other than {numba_lowering.CHECKED}")
     ctx = registry.cpu_target.target_context
     own = numba_lowering.numba_get_abi_sizeof()

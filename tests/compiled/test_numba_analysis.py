@@ -18,9 +18,9 @@ def _check(functions: list[tuple[str, dict]]) -> int:
     before and after SSA: the blocks with names live at their entry."""
     from numba.core import analysis, ssa
 
-    from glslcheck.backends.compiled_engine import numba_analysis
+    from glslcheck.backends.compiled_engine import numba_analysis, numba_patches
 
-    if not numba_analysis.install():
+    if not numba_patches.install(numba_analysis):
         pytest.skip(f"numba_analysis is not installed on numba other than {numba_analysis.CHECKED}")
     ref = numba_analysis.numba_own("compute_live_map")
     live = 0
@@ -77,7 +77,7 @@ def test_loop_and_unreachable_block(numba):
     from numba.core import analysis, ir
     from numba.core.compiler import run_frontend
 
-    from glslcheck.backends.compiled_engine import numba_analysis
+    from glslcheck.backends.compiled_engine import numba_analysis, numba_patches
 
     def f(n):
         s = 0.0
@@ -97,7 +97,7 @@ def test_loop_and_unreachable_block(numba):
     dead.append(ir.Assign(scope.get_exact("t"), scope.get_exact("s"), loc))
     dead.append(ir.Jump(min(blocks), loc))
     blocks[max(blocks) + 100] = dead
-    if not numba_analysis.install():
+    if not numba_patches.install(numba_analysis):
         pytest.skip(f"numba_analysis is not installed on numba other than {numba_analysis.CHECKED}")
     ref = numba_analysis.numba_own("compute_live_map")
     cfg = analysis.compute_cfg_from_blocks(blocks)

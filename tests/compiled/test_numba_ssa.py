@@ -21,9 +21,9 @@ def _check(functions: list[tuple[str, dict]]) -> tuple[int, int]:
     copies of the same IR: (functions with re-assigned names, phi nodes stripped)."""
     from numba.core import ir
 
-    from glslcheck.backends.compiled_engine import numba_ssa
+    from glslcheck.backends.compiled_engine import numba_patches, numba_ssa
 
-    if not numba_ssa.install():  # (numba's own passes run there: nothing of ours to check)
+    if not numba_patches.install(numba_ssa):  # (numba's own passes run there: nothing to check)
         pytest.skip(f"numba_ssa is not installed on numba other than {numba_ssa.CHECKED}")
     ref_ssa, ref_strip = numba_ssa.numba_passes()
     fixed = phis = 0
@@ -66,7 +66,7 @@ def test_block_with_a_name_assigned_twice(numba):
     from numba.core import ir
     from numba.core.compiler import run_frontend
 
-    from glslcheck.backends.compiled_engine import numba_ssa
+    from glslcheck.backends.compiled_engine import numba_patches, numba_ssa
 
     def f(a):
         x = a + 1
@@ -88,7 +88,7 @@ def test_block_with_a_name_assigned_twice(numba):
     phi.incoming_values.append(x)
     phi.incoming_blocks.append(label)
     body.insert(0, ir.Assign(target=target, value=phi, loc=loc))
-    if not numba_ssa.install():
+    if not numba_patches.install(numba_ssa):
         pytest.skip(f"numba_ssa is not installed on numba other than {numba_ssa.CHECKED}")
     _, ref_strip = numba_ssa.numba_passes()
     a = types.SimpleNamespace(blocks=copy.deepcopy(blocks), loc=loc)

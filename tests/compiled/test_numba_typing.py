@@ -60,9 +60,13 @@ def typing(numba):
     is imported first: the refresh registers its intrinsics."""
     from numba.core import registry
 
-    from glslcheck.backends.compiled_engine import lanes_rt, numba_typing  # noqa: F401
+    from glslcheck.backends.compiled_engine import (
+        lanes_rt,  # noqa: F401
+        numba_patches,
+        numba_typing,
+    )
 
-    if not numba_typing.install():
+    if not numba_patches.install(numba_typing):
         pytest.skip(f"numba_typing is not installed on numba other than {numba_typing.CHECKED}")
     ctx = registry.cpu_target.typing_context
     ctx.refresh()

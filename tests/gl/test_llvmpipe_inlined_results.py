@@ -40,7 +40,7 @@ def test_a_constant_sinks_into_a_product_of_user_function_results(
     renders_as_llvmpipe, make_shader, backend, time
 ):
     """``(g(x) * g(y)) * #c`` is ``(g(x) * #c) * g(y)`` where g, inlined, returns an opaque
-    value, in both engines (the compiled engine asks the same plan: copied_binary). Measured
+    value, in both engines (the compiled engine asks the same plan: rewrite_binary). Measured
     without it at iTime 1.3: 2285, 1568 and 1854 of the 14,400 pixels differed from llvmpipe
     in x, y and z, in both engines."""
     renders_as_llvmpipe(make_shader(INLINED_RESULTS), backend, name="INLINED_RESULTS", time=time)

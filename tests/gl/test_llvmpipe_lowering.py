@@ -811,7 +811,7 @@ def test_a_sum_of_three_products_by_one_constant_is_factored_twice(
 def test_the_compiled_engine_factors_a_sum_of_three_products_as_llvmpipe(
     renders_as_llvmpipe, numba, make_shader
 ):
-    """The compiled engine takes the factoring from the same plan (copied_binary)."""
+    """The compiled engine takes the factoring from the same plan (rewrite_binary)."""
     renders_as_llvmpipe(make_shader(FACTORED_TWICE), "compiled", name="FACTORED_TWICE")
 
 

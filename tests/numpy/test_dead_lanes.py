@@ -106,7 +106,7 @@ def test_a_value_only_a_select_reads_runs_on_its_lanes_with_the_same_pixels(
 @pytest.mark.parametrize("weight", ["clamp(d * 8.0, 0.0, 1.0)", "1.0 - step(d, 0.0)"])
 def test_an_interpolating_weight_moves_nothing(make_shader, weight):
     """A weight NIR does not see as a bool converted to float interpolates in every lane, 0 and
-    1 included (nir_fold.mix_hint): both sides are read everywhere, nothing moves."""
+    1 included (nir_fold.mix_form): both sides are read everywhere, nothing moves."""
     assert "rt.mix_reads(" not in transpile_shader(_shader(make_shader, weight=weight)).source
 
 

@@ -178,6 +178,17 @@ def test_nir_fold_shapes_are_equal_exactly_where_the_glsl_text_is():
     assert checked > 5000
 
 
+def test_each_engine_reads_families_of_the_one_table_of_binary_rewrites():
+    """The families an engine names are the table's (a misspelt one would silently drop its
+    rewrites), and the NumPy transpiler writes exactly the families the table has no rule for."""
+    from glslcheck.backends.compiled_engine.fold_values import COPIED
+    from glslcheck.backends.cpu_core.nir_fold.dispatch import BINARY_RULES, FAMILIES
+    from glslcheck.backends.numpy_engine.transpile.binary_rules import OWN
+
+    assert COPIED <= FAMILIES
+    assert set(OWN) == {family for family, rule, _ in BINARY_RULES if rule is None}
+
+
 def test_nir_fold_on_a_chain_of_thousands_of_terms_is_linear(make_shader, monkeypatch):
     # 3,000 terms: printing every partial sum was 4.5 million node prints (142 s). Counted, not
     # timed: the GLSL text nir_fold prints stays within a small multiple of the source's size.

@@ -1,11 +1,10 @@
 """Built-in function calls of the compiled engine: each component as the NumPy runtime
 computes it (runtime.Runtime's method of the same name), with Mesa's compile-time rewrites of
 `pow` and nir_lower_flrp's choice of formula for `mix`
-(backends/cpu_core/nir_fold.mix_hint)."""
+(backends/cpu_core/nir_fold.mix_form)."""
 
 from __future__ import annotations
 
-import ast
 import math
 from typing import Any
 
@@ -258,13 +257,14 @@ def mix_call(cg: Any, e: A.Call, args: list[Val], rtype: Any, n: int, comps) -> 
             rtype, [f"({yy} if {aa} else {xx})" for xx, yy, aa in zip(comps(x), comps(y), comps(a))]
         )
 
-    hint = (
-        nir_fold.mix_hint(cg.fold_context(), e)
+    form = (
+        nir_fold.mix_form(cg.fold_context(), e)
         if cg.fn is not None and cg.fn.sym is not None
-        else []
+        else None
     )
-    form = ast.literal_eval(hint[0]) if hint else ("strict" if a.const is not None else "fast")
-    if isinstance(form, tuple):  # a form per component (nir_fold.mix_hint)
+    if form is None:
+        form = "strict" if a.const is not None else "fast"
+    if isinstance(form, tuple):  # a form per component (nir_fold.mix_form)
         vals = {f: _mix_form(cg, f, x, y, a, rtype, comps) for f in set(form)}
         return Val(rtype, [vals[f].parts[i] for i, f in enumerate(form)])
     return _mix_form(cg, form, x, y, a, rtype, comps)

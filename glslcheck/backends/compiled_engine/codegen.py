@@ -128,7 +128,7 @@ class Codegen(ExpressionEmitter):
             for fn in self.functions
             for n in fn.node.body.walk()
         )
-        self.facts = Facts(model, self.functions)  # (nir_fold.mix_hint reads it: fold_context)
+        self.facts = Facts(model, self.functions)  # (nir_fold.mix_form reads it: fold_context)
         self.lines: list[str] = []
         self.indent = 0
         self.n = 0
@@ -158,7 +158,7 @@ class Codegen(ExpressionEmitter):
 
     def fold_context(self) -> FoldValues:
         """The NumPy backend's Mesa rewrites' context at the current function: the decisions this
-        engine shares with it (nir_fold.mix_hint: nir_lower_flrp's formula for a `mix`;
+        engine shares with it (nir_fold.mix_form: nir_lower_flrp's formula for a `mix`;
         nir_fold.zero_add: an added constant zero) and the rewrites it computes with this
         engine's values (fold_values.py)."""
         from .fold_values import FoldValues

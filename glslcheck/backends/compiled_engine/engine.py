@@ -447,12 +447,9 @@ class CompiledProgram:
         if self.cold:  # numba's SSA passes, the same IR in time linear in the names they fix,
             # its operator typing once per argument types, its liveness on bit sets, a type's
             # size asked of LLVM once
-            from . import numba_analysis, numba_lowering, numba_ssa, numba_typing
+            from .numba_patches import install_all
 
-            numba_ssa.install()
-            numba_typing.install()
-            numba_analysis.install()
-            numba_lowering.install()
+            install_all()
         slp = config.SLP_VECTORIZE
         if getattr(
             mod, "LANES", 0

@@ -15,6 +15,7 @@ from ...language import glsl_types as T
 from ...semantics.consteval import f32
 from ...semantics.model import Constructor, Symbol
 from ..cpu_core import nir_fold
+from ..cpu_core.common import sum_in_order
 from ..cpu_core.inline import bound_code, inline_call, worth_inlining
 from .builtin_calls import builtin_call
 from .values import (
@@ -609,7 +610,7 @@ class ExpressionEmitter:
                 folded = fused_sum(self, e)  # ffma fused and split after a folded call
                 if folded is not None:
                     return folded
-            folded = nir_fold.copied_binary(self.fold_context(), e, None, COPIED)  # Mesa's order
+            folded = nir_fold.rewrite_binary(self.fold_context(), e, None, COPIED)  # Mesa's order
             if folded is not None:
                 return folded
         left = self.expr(e.left)
@@ -807,7 +808,7 @@ class ExpressionEmitter:
         return Val(value.t, parts, value.const, value.uni, value.one)
 
     def sunk_return(self, parts: list) -> list:
-        """The returned parts of a function with a returned sum (nir_fold.sunk_text; the NumPy
+        """The returned parts of a function with a returned sum (nir_fold.sunk_order; the NumPy
         backend's sunk_return_value): with the caller's constant sunk into the terms where
         `_kf`, else as written."""
         fs = self.fn
@@ -817,10 +818,10 @@ class ExpressionEmitter:
         if chain is None or not all(id(w) in fs.terms for w, _, _ in chain):
             return parts
 
+        order = nir_fold.sunk_order(self.fold_context(), chain)
         out = []
         for j, p in enumerate(parts):
-            codes = [fs.terms[id(w)][j] for w, _, _ in chain]
-            sunk = nir_fold.sunk_text(self.fold_context(), chain, codes, f"_k{j}")
+            sunk = sum_in_order(order, [fs.terms[id(w)][j] for w, _, _ in chain], f"_k{j}")
             out.append(self.tmp(f"({sunk} if _kf else {p})"))
         return out
 

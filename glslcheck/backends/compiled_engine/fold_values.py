@@ -25,7 +25,7 @@ from ..cpu_core.nir_fold import FoldContext
 from .builtin_calls import componentwise_text, geometric
 from .values import Val, not_yet
 
-# the families of nir_fold.copied_binary this engine computes (built from FoldEmitter's operations)
+# the families of nir_fold.BINARY_RULES this engine computes (built from FoldEmitter's operations)
 COPIED = frozenset(
     {
         "matrix",

@@ -19,21 +19,19 @@ checked once, in the order of its first block: numba's later visits of the same 
 name defined and change nothing.
 
 tests/compiled/test_numba_analysis.py compares both with numba's on lockstep modules.
-`install()` puts them in place of numba's (once; only for the numba versions they were checked
-against: `CHECKED`).
+`replace()` puts them in place of numba's (numba_patches.install: once, and only on the numba
+versions they were checked against: `CHECKED`).
 """
 
 from __future__ import annotations
 
-import threading
 from collections import defaultdict
 from typing import Any
 
 import numpy as np
 
 CHECKED = ("0.68.",)  # the numba versions whose functions these mirror
-_STATE: dict[str, Any] = {}
-_LOCK = threading.Lock()
+_NUMBA: dict[str, Any] = {}  # numba's own functions that replace() took the place of
 
 
 class _Bits:
@@ -120,30 +118,21 @@ def fixup_var_define_in_scope(blocks: dict) -> None:
                 localvars.define(var.name, var)
 
 
-def install() -> bool:
-    """Put both in the place of numba's (once); False when this numba is not one they were
-    checked against (numba's own then run)."""
-    with _LOCK:
-        if "installed" not in _STATE:
-            _STATE["installed"] = _install()
-        return _STATE["installed"]
-
-
-def _install() -> bool:
-    from numba import __version__
+def replace() -> bool:
+    """Put both in the place of numba's; False when this numba lacks either."""
     from numba.core import analysis, ir_utils, untyped_passes
 
     names = (
         (analysis, "compute_live_map", compute_live_map),
         (ir_utils, "fixup_var_define_in_scope", fixup_var_define_in_scope),
     )
-    if not __version__.startswith(CHECKED) or not all(hasattr(m, n) for m, n, _ in names):
+    if not all(hasattr(m, n) for m, n, _ in names):
         return False
     # numba's modules that call them by a name of their own (`from ... import`), and the
     # modules that own them (postproc.VariableLifetime calls analysis.compute_live_map)
     users = (analysis, ir_utils, untyped_passes)
     for home, name, mine in names:
-        _STATE[name] = numba_own = getattr(home, name)
+        _NUMBA[name] = numba_own = getattr(home, name)
         for m in users:
             if getattr(m, name, None) is numba_own:
                 setattr(m, name, mine)
@@ -155,4 +144,4 @@ def numba_own(name: str) -> Any:
     checked against)."""
     from numba.core import analysis, ir_utils
 
-    return _STATE.get(name, getattr(analysis if name == "compute_live_map" else ir_utils, name))
+    return _NUMBA.get(name, getattr(analysis if name == "compute_live_map" else ir_utils, name))

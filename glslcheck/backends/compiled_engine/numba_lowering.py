@@ -5,19 +5,17 @@ it asks the size of the slot's LLVM type (`BaseContext.get_abi_sizeof`, for debu
 it then does not emit unless asked): llvmlite answers by writing a module that declares a
 global of that type and having LLVM parse it. A lockstep module names W variables for every
 per-pixel one, all of a few types (float, i1, i32, an array's struct), so the parses repeat a
-handful of answers thousands of times. `install()` remembers each answer by the type's IR text
+handful of answers thousands of times. `replace()` remembers each answer by the type's IR text
 and the target's data layout: a literal type's size is a function of those alone (identified
 structs, named and defined elsewhere, are not remembered).
 """
 
 from __future__ import annotations
 
-import threading
 from typing import Any
 
 CHECKED = ("0.68.",)  # the numba versions whose BaseContext.get_abi_sizeof this wraps
-_STATE: dict[str, Any] = {}
-_LOCK = threading.Lock()
+_NUMBA: dict[str, Any] = {}  # numba's own function that replace() took the place of
 
 
 def _memoized(numba_get_abi_sizeof: Any) -> Any:
@@ -53,27 +51,15 @@ def _identified(ty: Any) -> bool:
     return False
 
 
-def install() -> bool:
-    """Put the memoized size in the place of numba's (once); False when this numba is not one
-    it was checked against (numba's own then runs)."""
-    with _LOCK:
-        if "installed" not in _STATE:
-            _STATE["installed"] = _install()
-        return _STATE["installed"]
-
-
-def _install() -> bool:
-    from numba import __version__
+def replace() -> bool:
+    """Put the memoized size in the place of numba's (numba_patches.install: once, on the
+    `CHECKED` versions); False when this numba lacks what it wraps."""
     from numba.core import base
 
     context = getattr(base, "BaseContext", None)
-    if (
-        context is None
-        or not __version__.startswith(CHECKED)
-        or not hasattr(context, "get_abi_sizeof")
-    ):
+    if context is None or not hasattr(context, "get_abi_sizeof"):
         return False
-    _STATE["numba"] = context.get_abi_sizeof
+    _NUMBA["numba"] = context.get_abi_sizeof
     context.get_abi_sizeof = _memoized(context.get_abi_sizeof)
     return True
 
@@ -82,4 +68,4 @@ def numba_get_abi_sizeof() -> Any:
     """numba's own BaseContext.get_abi_sizeof (the reference this is checked against)."""
     from numba.core import base
 
-    return _STATE.get("numba", base.BaseContext.get_abi_sizeof)
+    return _NUMBA.get("numba", base.BaseContext.get_abi_sizeof)

@@ -17,19 +17,17 @@ last assignment to that value, which it finds by walking the block for each phi:
 statements again. `strip_phi_nodes` finds it from a map of the block's assignments when every
 name is assigned once in the block (SSA form: the usual case; numba's walk decides otherwise).
 
-`install()` puts both in place of numba's (once; only for the numba versions they were checked
-against, whose internals they call: `CHECKED`).
+`replace()` puts both in place of numba's (numba_patches.install: once, and only on the numba
+versions they were checked against, whose internals they call: `CHECKED`).
 """
 
 from __future__ import annotations
 
-import threading
 from collections import defaultdict
 from typing import Any
 
 CHECKED = ("0.68.",)  # the numba versions whose ssa.py this mirrors
-_STATE: dict[str, Any] = {}
-_LOCK = threading.Lock()
+_NUMBA: dict[str, Any] = {}  # numba's own functions that replace() took the place of
 
 
 class _BlockView:
@@ -209,20 +207,12 @@ def strip_phi_nodes(self: Any, func_ir: Any) -> Any:
     return func_ir
 
 
-def install() -> bool:
-    """Put run_ssa in the place of numba's ssa._run_ssa (once); False when this numba is not
-    one it was checked against (numba's own pass then runs)."""
-    with _LOCK:
-        if "installed" not in _STATE:
-            _STATE["installed"] = _install()
-        return _STATE["installed"]
-
-
-def _install() -> bool:
-    from numba import __version__
+def replace() -> bool:
+    """Put run_ssa and strip_phi_nodes in the place of numba's ssa._run_ssa and
+    PreLowerStripPhis._strip_phi_nodes; False when this numba lacks what they call."""
     from numba.core import ssa, typed_passes
 
-    ok = __version__.startswith(CHECKED) and all(
+    ok = all(
         hasattr(ssa, n)
         for n in (
             "_run_ssa",
@@ -238,8 +228,8 @@ def _install() -> bool:
     strip = getattr(typed_passes, "PreLowerStripPhis", None)
     ok = ok and strip is not None and hasattr(strip, "_strip_phi_nodes")
     if ok and strip is not None:
-        _STATE["numba"] = ssa._run_ssa
-        _STATE["strip"] = strip._strip_phi_nodes
+        _NUMBA["numba"] = ssa._run_ssa
+        _NUMBA["strip"] = strip._strip_phi_nodes
         ssa._run_ssa = run_ssa
         strip._strip_phi_nodes = strip_phi_nodes
     return ok
@@ -251,6 +241,6 @@ def numba_passes() -> tuple[Any, Any]:
     from numba.core import ssa, typed_passes
 
     return (
-        _STATE.get("numba", ssa._run_ssa),
-        _STATE.get("strip", typed_passes.PreLowerStripPhis._strip_phi_nodes),
+        _NUMBA.get("numba", ssa._run_ssa),
+        _NUMBA.get("strip", typed_passes.PreLowerStripPhis._strip_phi_nodes),
     )

@@ -6,7 +6,7 @@ for a signature (`BaseFunction.get_call_type`), which tries numba's templates fo
 in turn (scalars, NumPy's ufunc loops, ...) with literal and plain arguments, and lowering asks
 again for each binary operator. A lockstep module spells every per-pixel operation W times, all on
 the same few types (float32, int32, uint32, bool), so most of those resolutions repeat one of a
-handful. `install()` remembers each successful resolution by (function type, typing context,
+handful. `replace()` remembers each successful resolution by (function type, typing context,
 argument types, keywords, the compile's flags): the same signature object numba computed the
 first time, and the template's implementation key it recorded then (numba's types are interned,
 so an equal function type is the same object and keeps it). Failures are not remembered (numba
@@ -20,12 +20,10 @@ templates answer depends on those alone.
 from __future__ import annotations
 
 import operator
-import threading
 from typing import Any
 
 CHECKED = ("0.68.",)  # the numba versions whose BaseFunction.get_call_type this wraps
-_STATE: dict[str, Any] = {}
-_LOCK = threading.Lock()
+_NUMBA: dict[str, Any] = {}  # numba's own function that replace() took the place of
 OPERATORS = frozenset(
     v for k, v in vars(operator).items() if callable(v) and not k.startswith("_")
 )  # (operator.add, operator.le, ...: the keys numba types Python's operators by)
@@ -69,25 +67,17 @@ def _memoized(numba_get_call_type: Any) -> Any:
     return get_call_type
 
 
-def install() -> bool:
-    """Put the memoized resolution in the place of numba's (once); False when this numba is not
-    one it was checked against (numba's own then runs)."""
-    with _LOCK:
-        if "installed" not in _STATE:
-            _STATE["installed"] = _install()
-        return _STATE["installed"]
-
-
-def _install() -> bool:
-    from numba import __version__
+def replace() -> bool:
+    """Put the memoized resolution in the place of numba's (numba_patches.install: once, on
+    the `CHECKED` versions); False when this numba lacks what it wraps."""
     from numba.core.types import functions
 
     base = getattr(functions, "BaseFunction", None)
-    if not __version__.startswith(CHECKED) or base is None:
+    if base is None:
         return False
     if not hasattr(base, "get_call_type") or not hasattr(base, "get_impl_key"):
         return False
-    _STATE["numba"] = base.get_call_type
+    _NUMBA["numba"] = base.get_call_type
     base.get_call_type = _memoized(base.get_call_type)
     return True
 
@@ -96,4 +86,4 @@ def numba_get_call_type() -> Any:
     """numba's own BaseFunction.get_call_type (the reference this is checked against)."""
     from numba.core.types import functions
 
-    return _STATE.get("numba", functions.BaseFunction.get_call_type)
+    return _NUMBA.get("numba", functions.BaseFunction.get_call_type)

@@ -9,6 +9,7 @@ Nothing here imports either engine, and nothing here writes code of either engin
 decides what to compute, in which order, with which constants, and builds it from the
 operations the engine that asks offers (fold_protocols.FoldEmitter); what an engine writes of
 its own is in its package (the NumPy transpiler's: numpy_engine/transpile/binary_rules.py,
-call_fold.py, float16.py, returned_sums.py, sum_chains.py). Two answers are Python text that
-both engines' code reads alike, operators over the asking engine's values
-(nir_fold.returned_sums.sunk_text) and the name of a `mix` formula (nir_fold.flrp.mix_hint)."""
+call_fold.py, float16.py, returned_sums.py, sum_chains.py). Decisions that are not built from
+those operations are data the engine spells: the order a returned sum adds its terms in
+(nir_fold.returned_sums.SunkOrder), the name of a `mix` formula (nir_fold.flrp.mix_form); the
+few spellings both engines' generated Python shares alike are common.py's."""

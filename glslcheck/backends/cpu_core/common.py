@@ -1,7 +1,9 @@
 """What both CPU engines share below their code writers: the groups of built-in names their
 analyses decide by (derivatives, texture lookups), `fold_tree`, the memoized bottom-up walk
-that asks a question of every node of a tree in linear time, and `comment_safe`, GLSL text made
-safe for a comment or docstring of generated Python."""
+that asks a question of every node of a tree in linear time, and the few spellings both engines'
+generated Python shares: `comment_safe` (GLSL text made safe for a comment or docstring),
+`python_ident` (a GLSL name as Python bears it) and `sum_in_order` (a sum in the order
+nir_fold decided)."""
 
 from __future__ import annotations
 
@@ -46,6 +48,20 @@ def comment_safe(text: str, limit: int = 100) -> str:
     """Text safe inside a Python comment or docstring: printable ASCII, no quotes or backslashes."""
     out = "".join(c if (" " <= c <= "~" and c not in '"\\') else "?" for c in text.strip())
     return out if len(out) <= limit else out[: limit - 3] + "..."
+
+
+def sum_in_order(
+    order: tuple[int, bool, tuple[tuple[str, int], ...]], terms: list[str], k: str
+) -> str:
+    """A sum in the order nir_fold decided (returned_sums.SunkOrder: `k` added to one of
+    `terms`, negated or not, then the others in turn, left to right), over `terms`, the terms'
+    values: Python's operators on float32 values compute the same IEEE operations on the NumPy
+    transpiler's arrays and the compiled engine's scalars, so both spell it alike."""
+    joined, negated, then = order
+    text = f"({'-' if negated else ''}{terms[joined]} + {k})"
+    for op, i in then:
+        text = f"({text} {op} {terms[i]})"
+    return text
 
 
 def fold_tree(root: Any, memo: dict[int, Any], own) -> Any:

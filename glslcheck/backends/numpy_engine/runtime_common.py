@@ -78,7 +78,7 @@ class CommonFunctions(RuntimeState):
         """``x*(1-a) + y*a``; with a bool ``a`` selects y where a is true.
 
         In float32 (llvmpipe) mode, ``form`` is the formula Mesa's nir_lower_flrp picks for this
-        call (llvmpipe has no FFMA; :func:`nir_fold.mix_hint` decides from the operands the
+        call (llvmpipe has no FFMA; :func:`nir_fold.mix_form` decides from the operands the
         compiler knows), or ``"select"`` for a weight NIR sees as a bool converted to float
         (``step()``: nir_opt_algebraic's bcsel, y where a is 1, else x): ``"strict"``
         ``x*(1-a) + y*a`` (a constant ``a``, or ``y`` = +-1),
@@ -158,7 +158,7 @@ class CommonFunctions(RuntimeState):
         lower_ffma32, so no FMA form) picks for ``mix(x, y, a)``, in its order: x and y both
         constants whose exponents differ by at most 11 -> fast; x a constant of all +1 / -1 ->
         one / minus_one; y a constant of all +1 or all -1 -> strict; a constant -> strict; else
-        fast. For direct calls only: transpiled code passes the form :func:`nir_fold.mix_hint`
+        fast. For direct calls only: transpiled code passes the form :func:`nir_fold.mix_form`
         decides from the source (this run-time guess depends on the lane count). "Constant" is
         :meth:`_const` (lane-uniform and not a uniform input, as for :meth:`fmul`) with
         ``fold_constants``; direct calls count a lane-uniform ``a`` only. Approximation: a value

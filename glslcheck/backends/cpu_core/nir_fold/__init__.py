@@ -39,7 +39,8 @@ The rules copied here, each measured bit for bit against llvmpipe on 50,000 rand
 Constants are what Mesa knows as constants: also a global variable initialised by a constant
 expression and never written (queries.py :func:`constant_global`: GLSL IR propagates it).
 queries.py holds the questions several families ask (is this a constant, a product, the value
-a local holds here, ...); dispatch.py tries the rules on a binary expression in Mesa's order.
+a local holds here, ...); dispatch.py tries the rules on a binary expression in Mesa's order
+(one table, read by both engines).
 
 Each rewrite is emitted as ``(<rewritten> if rt.lp else <written>)``: float32 renders take
 Mesa's order, float64 (the accuracy reference) and float16 keep the written one. Not copied
@@ -68,11 +69,11 @@ from .added_zero import zero_add
 from .branch_register import MergedRegister, arm_values, merged_register
 from .components import component_write
 from .context import FoldContext
-from .dispatch import copied_binary
+from .dispatch import rewrite_binary
 from .dot_constants import broadcast_dot, dot_operand, merged_dot
 from .exp_log import exp_product
 from .ffma_split import fused_plan
-from .flrp import mix_hint
+from .flrp import mix_form
 from .loop_compounds import compound_copies
 from .loop_copies import later_values
 from .lower_precision import float16_lookup_args
@@ -88,14 +89,16 @@ from .repeated_sums import (
 )
 from .return_register import register_call
 from .returned_sums import (
+    SunkOrder,
     sunk_call,
+    sunk_order,
     sunk_return,
-    sunk_text,
 )
 
 __all__ = [
     "FoldContext",
     "MergedRegister",
+    "SunkOrder",
     "arm_values",
     "merged_register",
     "exp_product",
@@ -109,17 +112,17 @@ __all__ = [
     "broadcast_dot",
     "component_write",
     "compound_copies",
-    "copied_binary",
     "dot_operand",
     "merged_dot",
     "float16_lookup_args",
     "fused_plan",
-    "mix_hint",
+    "mix_form",
     "param_step",
     "register_call",
+    "rewrite_binary",
     "sum_entry",
     "sunk_call",
     "sunk_return",
-    "sunk_text",
+    "sunk_order",
     "zero_add",
 ]

@@ -13,6 +13,7 @@ from typing import Any
 from ....frontend import syntax as A
 from ....frontend.printer import to_glsl
 from ....semantics.model import Symbol
+from .inlined_results import final_return
 from .queries import (
     FunctionStandin,
     current_function,
@@ -72,14 +73,8 @@ def _returns_product(tr: FoldEngine, call: A.Call) -> bool:
     its result is not known here."""
     target = tr.model.call_target(call)
     assert isinstance(target, Symbol)  # asked for calls of user functions
-    stmts = target.node.body.stmts
-    last = stmts[-1] if stmts else None
-    return (
-        not isinstance(last, A.Return)
-        or last.value is None
-        or is_product(tr, last.value)
-        or any(isinstance(n, A.Return) for st in stmts[:-1] for n in st.walk())
-    )
+    last = final_return(target)
+    return last is None or is_product(tr, last.value)
 
 
 def _sink_reads(tr: FoldEngine) -> dict[int, int]:

@@ -5,7 +5,7 @@ The rules take the NumPy Transpiler (`tr`) and read of it the program (`model`, 
 function being emitted (`fn`: its `sym` and `is_entry`), their memo (`fold_state`), `type_of`
 and `has_effects`; the rewrites also emit code through it. The compiled engine shares two
 decisions with the NumPy backend that emit nothing, nir_lower_flrp's formula for a `mix`
-(flrp.mix_hint) and the test of an added constant zero (added_zero.zero_add): it asks them of
+(flrp.mix_form) and the test of an added constant zero (added_zero.zero_add): it asks them of
 a :class:`FoldContext`, which holds just what they read."""
 
 from __future__ import annotations

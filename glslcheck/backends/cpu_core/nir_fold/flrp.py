@@ -5,9 +5,10 @@ Mesa 22.3 has no FFMA on llvmpipe, so nir_lower_flrp rewrites every ``flrp`` (GL
 into one of three formulas, ``x + t*(y-x)``, ``x*(1-t) + y*t`` or a form for x = ±1, and the
 choice depends on the operands (constants, their magnitudes) and on the other `mix` calls of
 the function that share t and x or y (get_similar_flrp_stats). The formulas round
-differently, so :func:`mix_hint` passes the choice to ``rt.mix`` from the source, where a
-one-pixel probe run picks what the render picks; the rest of the choice is made at run time
-(`Runtime._flrp_form`). The compiled engine asks the same question (builtin_calls.mix_call).
+differently, so :func:`mix_form` decides from the source, where a one-pixel probe run picks
+what the render picks: the NumPy transpiler passes the form to ``rt.mix`` (the rest of the
+choice is made at run time, `Runtime._flrp_form`), the compiled engine writes its formula
+(builtin_calls.mix_call).
 
 Before the lowering, nir_opt_algebraic's ``('~flrp', a, b, ('b2f', 'c@1')) -> ('bcsel', c, b,
 a)`` makes a `mix` whose weight NIR sees as a bool converted to float a select, the other side
@@ -40,26 +41,26 @@ if TYPE_CHECKING:
     from ..fold_protocols import FoldEngine
 
 
-def mix_hint(tr: FoldEngine, call: A.Call) -> list[str]:
-    """The extra argument of ``rt.mix``: the formula nir_lower_flrp (Mesa 22.3, no FFMA on
-    llvmpipe) picks for each component of this float-weighted `mix` (llvmpipe lowers it to
-    scalars first), in its order: x and y constants whose exponents differ by at most 11 ->
-    "fast" ``x + t*(y-x)``; x a constant +1 / -1 -> "one" / "minus_one"; y a constant +1 or
-    -1 -> "strict" ``x*(1-t) + y*t``; another scalar flrp of the function (another component
-    included) with the same t and the same x (or y) -> "strict"; a constant t -> "strict";
-    else "fast". "Constant": a constant expression or a never-written local initialised by
-    one (NIR propagates it); "the same": the same value or GLSL text (SSA after CSE). One form,
-    or a tuple of one per component where they differ. Decided here, from the source, so a
-    one-pixel probe run picks what the render picks. Before all these: a weight NIR sees as a
-    bool converted to float -> "select" (:func:`b2f_weight`)."""
+def mix_form(tr: FoldEngine, call: A.Call) -> str | tuple[str, ...] | None:
+    """The formula nir_lower_flrp (Mesa 22.3, no FFMA on llvmpipe) picks for each component of this
+    float-weighted `mix` (llvmpipe lowers it to scalars first), in its order: x and y constants
+    whose exponents differ by at most 11 -> "fast" ``x + t*(y-x)``; x a constant +1 / -1 -> "one" /
+    "minus_one"; y a constant +1 or -1 -> "strict" ``x*(1-t) + y*t``; another scalar flrp of the
+    function (another component included) with the same t and the same x (or y) -> "strict"; a
+    constant t -> "strict"; else "fast". "Constant": a constant expression or a never-written local
+    initialised by one (NIR propagates it); "the same": the same value or GLSL text (SSA after CSE).
+    One form, or a tuple of one per component where they differ; None for a `mix` with a bool weight
+    or outside a function. Decided here, from the source, so a one-pixel probe run picks what the
+    render picks. Before all these: a weight NIR sees as a bool converted to float -> "select"
+    (:func:`b2f_weight`)."""
     if len(call.args) != 3 or tr.fn is None or tr.type_of(call.args[2]).base != "float":
-        return []
+        return None
     x, y, t = call.args
     if b2f_weight(tr, t):
-        return ["'select'"]
+        return "select"
     size = tr.type_of(call).size if tr.type_of(call).is_vector else 1
     forms = [_component_form(tr, call, c) for c in range(size)]
-    return [repr(forms[0])] if len(set(forms)) == 1 else [repr(tuple(forms))]
+    return forms[0] if len(set(forms)) == 1 else tuple(forms)
 
 
 def _component_form(tr: FoldEngine, call: A.Call, c: int) -> str:

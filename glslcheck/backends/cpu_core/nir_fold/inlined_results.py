@@ -12,8 +12,8 @@ calls with the same arguments are one value after CSE and evaluating it again or
 order changes nothing: every parameter ``in`` (an ``out`` writes the caller), no global
 written (by it or a function it calls), no written global read (a value that may change
 between two calls; the test, facts.reads_lane_state, also counts gl_FragCoord), no
-``discard``, a straight-line body (declarations and expression statements, then one final
-``return <expression>``: no branch, so one value on every path), and only qualifying user
+``discard``, a straight-line body (declarations and expression statements, then its
+:func:`final_return`: no branch, so one value on every path), and only qualifying user
 functions called. Its result is what the final ``return`` gives, or the initializer of the
 returned local when nothing else writes it (:func:`returned_value`); queries.opaque_call
 counts the call as opaque where that result is (``fract(...)``, ``sin``: no rule looks into
@@ -61,9 +61,9 @@ def _qualifies(tr: FoldEngine, fn: Symbol) -> bool:
     facts = tr.facts
     if id(fn) in facts.may_discard or id(fn) in facts.reads_lane_state or facts.writes_globals(fn):
         return False
-    *steps, last = body.stmts
-    if not (isinstance(last, A.Return) and last.value is not None):
+    if final_return(fn) is None:
         return False
+    steps = body.stmts[:-1]
     if not all(isinstance(s, (A.DeclarationStatement, A.ExpressionStatement)) for s in steps):
         return False
     for n in body.walk():
@@ -90,11 +90,9 @@ def returned_value(tr: FoldEngine, call: Any) -> Any:
     return memo[id(fn)]
 
 
-def only_return(tr: FoldEngine, fn: Symbol) -> Any:
-    """The expression a user function's one ``return`` gives, its last statement (or the
-    initializer of the local it returns when only the declaration writes that local), for
-    questions of the value's form alone (is it a b2f): unlike :func:`returned_value` the
-    function may write out parameters and globals. None when it returns anywhere else."""
+def final_return(fn: Symbol) -> A.Return | None:
+    """A user function's last statement when it is its one ``return`` and gives a value (one
+    value on every path that returns), else None."""
     body = getattr(getattr(fn, "node", None), "body", None)
     if not isinstance(body, A.Compound) or not body.stmts:
         return None
@@ -103,7 +101,15 @@ def only_return(tr: FoldEngine, fn: Symbol) -> Any:
         return None
     if sum(isinstance(n, A.Return) for n in body.walk()) != 1:
         return None
-    return _returned(tr, fn)
+    return last
+
+
+def only_return(tr: FoldEngine, fn: Symbol) -> Any:
+    """The expression a user function's :func:`final_return` gives (or the initializer of the
+    local it returns when only the declaration writes that local), for questions of the value's
+    form alone (is it a b2f): unlike :func:`returned_value` the function may write out
+    parameters and globals. None when it returns anywhere else."""
+    return None if final_return(fn) is None else _returned(tr, fn)
 
 
 def _returned(tr: FoldEngine, fn: Symbol) -> Any:

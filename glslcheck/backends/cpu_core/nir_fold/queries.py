@@ -30,7 +30,7 @@ SUMS = ("+", "-")
 
 
 def constant_value(tr: FoldEngine, node: Any) -> list[float] | None:
-    """The scalars of a constant operand (see :func:`flrp.mix_hint`), else None."""
+    """The scalars of a constant operand (see :func:`flrp.mix_form`), else None."""
     v = tr.model.const_value(node)
     if (
         v is None

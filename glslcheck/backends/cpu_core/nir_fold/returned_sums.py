@@ -5,15 +5,16 @@ f += 0.25*noise(q); ... return f;`` is a sum the constant sinks into as sink.py 
 ``((0.5*noise(p) - 0.4) + 0.25*noise(q)) + ...`` on llvmpipe. Such a function
 (:func:`sunk_return`) takes one more argument, the constant or None, passed by the call of
 :func:`sunk_call`, keeps its terms in temporaries and adds the constant where NIR puts it
-(:func:`sunk_text`); each engine writes these (the NumPy backend:
-numpy_engine/transpile/returned_sums.py)."""
+(:func:`sunk_order`); each engine writes these (the NumPy backend:
+numpy_engine/transpile/returned_sums.py; the sum's text: cpu_core/common.sum_in_order)."""
 
 from __future__ import annotations
 
-from typing import Any
+from typing import Any, NamedTuple
 
 from ....frontend import syntax as A
 from ....semantics.model import Symbol
+from .inlined_results import final_return
 from .queries import (
     SUMS,
     asked_in,
@@ -67,14 +68,11 @@ def _sink_calls(tr: FoldEngine) -> set[int]:
 
 
 def _return_chain(tr: FoldEngine, fn: Symbol) -> list[tuple[Any, Any, str]] | None:
-    body = fn.node.body.stmts
-    if (
-        not body
-        or not isinstance(body[-1], A.Return)
-        or not isinstance(body[-1].value, A.Identifier)
-    ):
+    last = final_return(fn)
+    if last is None or not isinstance(last.value, A.Identifier):
         return None
-    ret = body[-1].value
+    body = fn.node.body.stmts
+    ret = last.value
     sym = tr.model.symbol_of(ret)
     if (
         sym is None
@@ -85,8 +83,7 @@ def _return_chain(tr: FoldEngine, fn: Symbol) -> list[tuple[Any, Any, str]] | No
         return None
     for n in fn.node.body.walk():
         if (
-            isinstance(n, (A.Return, A.Discard))
-            and n is not body[-1]
+            isinstance(n, A.Discard)
             or isinstance(n, A.Call)
             and id(tr.model.call_target(n)) in tr.facts.may_discard
         ):
@@ -165,15 +162,22 @@ def sunk_call(tr: FoldEngine, e: A.Binary) -> tuple[A.Call, Any, bool] | None:
     return call, k, e.op == "-"
 
 
-def sunk_text(tr: FoldEngine, chain: list[tuple[Any, Any, str]], codes: list[str], k: str) -> str:
-    """The sum of a :func:`sunk_return` chain with the constant ``k`` sunk as NIR sinks it,
-    written with the operators over ``codes``, the terms' values (arrays or float32 scalars:
-    the same text computes the same float32 operations in both engines)."""
+class SunkOrder(NamedTuple):
+    """The order NIR adds a :func:`sunk_return` chain ``t0 op1 t1 op2 t2 ...`` in when a caller's
+    constant k sinks into it: first ``t[joined] + k`` (``-t[joined] + k`` where `negated`), then
+    each (operator, term index) of `then`, left to right."""
+
+    joined: int
+    negated: bool
+    then: tuple[tuple[str, int], ...]
+
+
+def sunk_order(tr: FoldEngine, chain: list[tuple[Any, Any, str]]) -> SunkOrder:
+    """Where the constant sinks into a :func:`sunk_return` chain: beside the first term, or,
+    when only the first term is a product, beside the second (negated for a ``-=``), the first
+    added after it."""
     (_, a, _), (_, t1, op1) = chain[0], chain[1]
+    later = tuple((op, i) for i, (_, _, op) in enumerate(chain[2:], 2))
     if is_fmul(tr, t1) or not is_fmul(tr, a):
-        sunk = f"(({codes[0]} + {k}) {op1} {codes[1]})"
-    else:  # only a is a product: the constant joins the other term (its negation for -=)
-        sunk = f"(({'-' if op1 == '-' else ''}{codes[1]} + {k}) + {codes[0]})"
-    for (_, _, op), c in zip(chain[2:], codes[2:]):
-        sunk = f"({sunk} {op} {c})"
-    return sunk
+        return SunkOrder(0, False, ((op1, 1), *later))
+    return SunkOrder(1, op1 == "-", (("+", 0), *later))

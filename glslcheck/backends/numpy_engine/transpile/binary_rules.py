@@ -1,25 +1,14 @@
-"""Which of nir_fold's rules rewrites a binary expression in the NumPy transpiler's code, tried in
-Mesa's order (cpu_core/nir_fold/dispatch.py states it; `copied_binary` there is the same order
-for the families both engines compute), with the rewrites the transpiler writes itself: the
-float16 tree of lowp lookups (float16.py), a constant sunk into a call's returned sum
-(returned_sums.py) and a sum returned through a folded call split as llvmpipe's ffma
-(:func:`fused_after_call`)."""
+"""The NumPy transpiler's reading of nir_fold's table of binary rewrites
+(cpu_core/nir_fold/dispatch.py: Mesa's order, shared with the compiled engine): every family,
+with the rewrites the transpiler writes itself: the float16 tree of lowp lookups (float16.py),
+a constant sunk into a call's returned sum (returned_sums.py) and a sum returned through a
+folded call split as llvmpipe's ffma (:func:`fused_after_call`)."""
 
 from __future__ import annotations
 
 from ....frontend import syntax as A
-from ...cpu_core.nir_fold.components import merge_components
-from ...cpu_core.nir_fold.compound_products import sunk_through_compound
-from ...cpu_core.nir_fold.constant_merge import merge_constants
-from ...cpu_core.nir_fold.exp_log import log_scaled
-from ...cpu_core.nir_fold.factoring import factor
+from ...cpu_core.nir_fold.dispatch import FAMILIES, rewrite_binary
 from ...cpu_core.nir_fold.ffma_split import fused_plan
-from ...cpu_core.nir_fold.loop_copies import kept_in_slot, merged_copies
-from ...cpu_core.nir_fold.lower_precision import LOWP_OPS
-from ...cpu_core.nir_fold.queries import inlined_calls_only
-from ...cpu_core.nir_fold.sink import sink_constant
-from ...cpu_core.nir_fold.smoothstep_products import scaled_smoothstep
-from ...cpu_core.nir_fold.ssa_values import keep_factor, merge_into_matrix
 from .float16 import lowp_tree
 from .returned_sums import sink_into_call
 
@@ -29,45 +18,8 @@ if TYPE_CHECKING:
 
 
 def binary(tr: TranspilerState, e: A.Binary, mask: str | None) -> str | None:
-    """The generated code of ``e`` when one of the package's rules rewrites it, else None."""
-    low = lowp_tree(tr, e, mask) if e.op in LOWP_OPS else None
-    if low is not None:
-        return low
-    if e.op not in ("+", "-", "*") or tr.fn is None:
-        return None
-    if tr.type_of(e).base != "float":
-        return None
-    kept = kept_in_slot(tr, e, mask)  # (a later copy of a loop reads y from a temporary)
-    if kept is not None:
-        return kept
-    if tr.has_effects(e):
-        folded = sink_into_call(tr, e, mask)
-        if folded is not None or not inlined_calls_only(tr, e):
-            return folded
-    if tr.type_of(e.left).is_matrix or tr.type_of(e.right).is_matrix:
-        return merge_into_matrix(tr, e, mask)
-    if e.op == "+":
-        folded = factor(tr, e, mask)
-        if folded is None:
-            folded = fused_after_call(tr, e, mask)
-        if folded is not None:
-            return folded
-    folded = log_scaled(tr, e, mask)
-    if folded is None:
-        folded = merged_copies(tr, e, mask)
-    if folded is None:
-        folded = merge_constants(tr, e, mask)
-    if folded is not None:
-        return folded
-    folded = merge_components(tr, e, mask)
-    if folded is None:
-        folded = sunk_through_compound(tr, e, mask)
-    if folded is not None:
-        return folded
-    folded = scaled_smoothstep(tr, e, mask)
-    if folded is None:
-        folded = sink_constant(tr, e, mask)
-    return folded if folded is not None else keep_factor(tr, e, mask)
+    """The generated code of ``e`` when one of the rules rewrites it, else None."""
+    return rewrite_binary(tr, e, mask, FAMILIES, OWN)
 
 
 def fused_after_call(tr: TranspilerState, e: A.Binary, mask: str | None) -> str | None:
@@ -99,3 +51,11 @@ def fused_after_call(tr: TranspilerState, e: A.Binary, mask: str | None) -> str 
         f"({rewritten} if rt.lp else "
         f"{tr.binary_values('+', tr.type_of(e.left), tr.type_of(e.right), tl, trr)})"
     )
+
+
+# the families of dispatch.BINARY_RULES whose code this transpiler writes itself
+OWN = {
+    "lower_precision": lowp_tree,
+    "returned_sums": sink_into_call,
+    "ffma_split": fused_after_call,
+}

@@ -1,6 +1,6 @@
 """Values a select throws away: computed only on the lanes that keep them.
 
-`mix(x, y, w)` with a bool weight, or in the float32 "select" form (nir_fold.mix_hint: a weight
+`mix(x, y, w)` with a bool weight, or in the float32 "select" form (nir_fold.mix_form: a weight
 NIR sees as a bool converted to float, ``step()``), is a select in the runtime's copy of
 llvmpipe: the other side is ignored, NaN included (`Runtime.mix_reads` says which lanes read
 which side, from the one predicate the runtime's mix itself uses; docs/performance.md
@@ -131,7 +131,7 @@ def _selected_side(
     base = tr.type_of(w).base
     if base == "bool":
         form = None
-    elif base == "float" and nir_fold.mix_hint(tr, sel) == ["'select'"]:
+    elif base == "float" and nir_fold.mix_form(tr, sel) == "select":
         form = "select"
     else:
         return None

@@ -597,7 +597,9 @@ class Expressions(TranspilerState):
                 return selected
         args = self.exprs(e.args, mask)
         if name == "mix":
-            args += nir_fold.mix_hint(self, e)  # Mesa's flrp lowering: see nir_fold
+            form = nir_fold.mix_form(self, e)  # Mesa's flrp lowering: see nir_fold
+            if form is not None:
+                args.append(repr(form))  # rt.mix's last argument
         if name == "dot":
             merged = nir_fold.merged_dot(self, e, args, mask)  # constants merged into a dot product
             if merged is None:

@@ -9,8 +9,9 @@ from typing import Any
 
 from ....frontend import syntax as A
 from ....semantics.model import Symbol
+from ...cpu_core.common import sum_in_order
 from ...cpu_core.nir_fold.queries import FunctionStandin, current_function
-from ...cpu_core.nir_fold.returned_sums import sunk_call, sunk_return, sunk_text
+from ...cpu_core.nir_fold.returned_sums import sunk_call, sunk_order, sunk_return
 
 TYPE_CHECKING = False  # not typing's: importing typing costs every start-up
 if TYPE_CHECKING:
@@ -59,5 +60,5 @@ def sunk_return_value(tr: TranspilerState, ret: A.Return, code: str | None) -> s
     terms = tr.fold_state.terms
     if chain is None or ret.value is None or not all(id(w) in terms for w, _, _ in chain):
         return code
-    sunk = sunk_text(tr, chain, [terms[id(w)] for w, _, _ in chain], "_k")
+    sunk = sum_in_order(sunk_order(tr, chain), [terms[id(w)] for w, _, _ in chain], "_k")
     return f"({code} if _k is None else {sunk})"
