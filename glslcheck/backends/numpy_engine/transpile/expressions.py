@@ -496,12 +496,12 @@ class Expressions(TranspilerState):
         return done[text]
 
     def b2f_select(self, e: A.Call, mask: str | None) -> str | None:
-        """`mix(x, y, w)` whose weight NIR sees as b2f (nir_fold.mix_hint's "select") and is
+        """`mix(x, y, w)` whose weight NIR sees as b2f (nir_fold.mix_form's "select") and is
         built of `step()` calls, `float(bool)` and their products: ``rt.mix_b2f`` on the bools
         themselves (`x >= edge` and `&`: no float weight made, no compare of it with 1). The
         operands are printed in their order (x, y, then the weight's, left to right)."""
         w = e.args[2]
-        if not self._b2f_tree(w) or nir_fold.mix_hint(self, e) != ["'select'"]:
+        if not self._b2f_tree(w) or nir_fold.mix_form(self, e) != "select":
             return None
         x, y = self.exprs(e.args[:2], mask)
         return f"rt.mix_b2f({x}, {y}, {self._b2f_condition(w, mask)})"
