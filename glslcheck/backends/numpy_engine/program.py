@@ -2,10 +2,11 @@
 stats.
 
 This module owns what happens around one frame: the frame cache for shaders that do not
-animate, the uniform values and globals every tile shares (`FrameSpec`), the order and the
-workers of the tiles (worker processes, workers.py, or a thread pool), the frame's budgets,
-time (config.FRAME_SECONDS, `tiles.Budget`) and memory (MEMORY_FRACTION, tiles sized to the shader's
-per-lane state, `NumpyProgram._fit_memory`), and the lane statistics. What runs inside a tile
+animate, the uniform values, globals and frame values every tile shares (`FrameSpec`), the
+order and the workers of the tiles (worker processes, workers.py, or a thread pool), the
+frame's budgets, time (config.FRAME_SECONDS, `tiles.Budget`) and memory (MEMORY_FRACTION,
+tiles sized to the shader's per-lane state, `NumpyProgram._fit_memory`), and the lane
+statistics. What runs inside a tile
 (the namespace of the generated code, `State`, `LaneHelpers`, `render_tile`) is tiles.py's, shared
 with the worker processes; the imports go one way: program -> workers -> tiles.
 

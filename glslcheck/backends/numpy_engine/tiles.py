@@ -30,7 +30,7 @@ import functools
 import linecache
 import threading
 import time as _time
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from typing import Any
 
 import numpy as np
@@ -131,6 +131,7 @@ class State:
     passes = (
         None  # [passes left] of llvmpipe's loop limiter when emulated (LaneHelpers.tick), else None
     )
+    frame_values: dict | None = None  # the frame's values (`LaneHelpers.frame`); None: none kept
 
     if TYPE_CHECKING:  # a compacted view's own fields (`compact`), and gl_FragCoord
         parent: State
@@ -273,6 +274,23 @@ class LaneHelpers:
         if c.shape[-1] != 1:
             raise AssertionError("internal error: a condition judged uniform varies across lanes")
         return bool(c.reshape(-1)[0])
+
+    # values computed once a frame (transpile/frame_values.py) ----------------------------------
+    @staticmethod
+    def frame(S, key: int):
+        """The values the statements `key` computed in an earlier tile of this frame, or None
+        (not yet, or no table kept: then the tile computes them)."""
+        table = S.frame_values
+        return None if table is None else table.get(key)
+
+    @staticmethod
+    def keep(S, key: int, values: tuple) -> None:
+        """Keep what the statements `key` computed for the frame's later tiles: one-lane values
+        only (a value of several lanes would be this tile's, a broken promise of the
+        transpiler's, so nothing is kept and every tile computes its own)."""
+        table = S.frame_values
+        if table is not None and lanes_of(*values) == 1:
+            table[key] = values
 
     # statistics, budget and loops ---------------------------------------------------------------
     def count(self, S, rid: int, m) -> None:
@@ -552,6 +570,14 @@ class FrameSpec:
     need4: bool  # the code reads gl_FragCoord: build it
     stats: bool  # count the lanes of each region
     compaction: Compaction = Compaction()  # the program's setting, the same in every worker
+    # the values computed once a frame (LaneHelpers.frame), filled by the first tile that needs
+    # each; a worker process fills its own copy
+    values: dict = field(default_factory=dict)
+
+    def __getstate__(self) -> dict:
+        # a worker computes its own: an unpickled array is writable, and Runtime.fmul tells a
+        # uniform input (read-only) from a constant by that flag
+        return {**self.__dict__, "values": {}}
 
 
 def frame_tiles(
@@ -664,6 +690,9 @@ def render_tile(
             budget=budget,
             passes=None if limit is None else [limit],
             compaction=spec.compaction,
+            # none kept where a tile counts what the statements do: lane statistics, llvmpipe's
+            # pass budget per invocation
+            frame_values=spec.values if limit is None and not spec.stats else None,
         )
         if spec.need4:
             S.frag_coord4 = frag4

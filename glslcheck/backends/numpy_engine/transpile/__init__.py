@@ -31,7 +31,9 @@ set") or a bool array; writes under a mask keep the old value elsewhere (`rt.ass
   variables; backends/cpu_core/uniformity.py) are arrays of one lane, computed once per tile.
   A write needs no mask where no lane the mask leaves out reads the variable again (declared
   in the same branch, or the others returned: `Uniformity.is_free`), so
-  `Light L[4]; L[0] = Light(...);` after an early return stays one value per tile.
+  `Light L[4]; L[0] = Light(...);` after an early return stays one value per tile. A run of
+  statements that only computes such values, outside loops, is run by the first tile of the
+  frame that reaches it and read back by the others (`X.frame` / `X.keep`, frame_values.py).
 * `if`/`?:`/`&&`/`||` with a lane-dependent condition run each side under its mask, and only
   when some lane takes it. A uniform condition is a plain Python `if`.
 * loops keep `_live` (lanes still looping): the condition, `break` and `return` remove lanes;
@@ -82,6 +84,7 @@ set") or a bool array; writes under a mask keep the old value elsewhere (`rt.ass
 #   names.py        mangled names, module constants and zero values
 #   expressions.py  expressions and l-values
 #   statements.py   statements, control flow, loops and compaction
+#   frame_values.py the statements computed once a frame, not once a tile
 #   functions.py    functions and calls
 #   limits.py       Python's limits (spilling, outlining) and the lane-state estimate
 #   binary_rules.py, call_fold.py, float16.py, returned_sums.py, sum_chains.py: the code this

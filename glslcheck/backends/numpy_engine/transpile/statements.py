@@ -14,7 +14,7 @@ from ....semantics.model import Symbol
 from ...cpu_core import nir_fold
 from ...cpu_core.common import DERIVATIVES, IMPLICIT_LOD, LOOP_CAP, fold_tree
 from ...cpu_core.facts import Events, events_of, induction_variable
-from . import dead_lanes
+from . import dead_lanes, frame_values
 from .common import OUTLINE_INDENT, _error
 from .returned_sums import keep_term, sunk_return_value
 from .state import LoopCtx, TranspilerState
@@ -24,6 +24,8 @@ from .sum_chains import end_of_unrolled_body, enter_unrolled
 class Statements(TranspilerState):
     """The statement pass of `Transpiler`."""
 
+    FRAME_VALUES = True  # values the same in every tile computed once a frame (frame_values.py)
+
     # -- blocks and masks ----------------------------------------------------------------------
     def block(self, stmts: list[Any], mask: str | None, top: bool = False) -> bool:
         """Emit statements under `mask`; returns True when the Python code ended with `return`
@@ -32,8 +34,23 @@ class Statements(TranspilerState):
         assert fs is not None  # generating a function's body
         start_indent = self.indent
         moves = dead_lanes.plan(self, stmts)
+        run: list[Any] = []  # statements computing frame values (frame_values.py), and where
+        run_start = 0
         for i, s in enumerate(stmts):
             last = i == len(stmts) - 1
+            hoist = (
+                self.FRAME_VALUES
+                and id(s) not in moves.moved
+                and not moves.at.get(id(s))
+                and frame_values.qualifies(self, s)
+            )
+            if run and not hoist:
+                self.frame_run(run, run_start)
+                run = []
+            if hoist and not run:
+                run_start = len(self.lines)
+            if hoist:
+                run.append(s)
             if id(s) in moves.moved:
                 continue  # (emitted before the select that reads it: dead_lane_region)
             for move in moves.at.get(id(s), ()):
@@ -61,9 +78,16 @@ class Statements(TranspilerState):
                     fs.nest += 1
                     if self.rest_compacted(stmts[i + 1 :], mask):
                         break
+        if run:
+            self.frame_run(run, run_start)
         fs.nest -= self.indent - start_indent
         self.indent = start_indent
         return False
+
+    def frame_run(self, run: list[Any], start: int) -> None:
+        """The lines of `run` since `start` computed once a frame when that pays off."""
+        if frame_values.worth_it(run):
+            frame_values.wrap(self, start, self.indent)
 
     def rest_compacted(self, rest: list[Any], mask: str) -> bool:
         """The statements after an early exit (`if (miss) { ...; return; }`, a `break` or
