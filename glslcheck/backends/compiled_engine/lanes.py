@@ -115,8 +115,12 @@ def _index_test(node: Any) -> bool:
     )
 
 
+_QUAD_CALLS = ("dfdx", "dfdy", "qdx", "qdy")  # a difference of two lanes of a quad
+_LANE_MARK = "\x00"  # a lane number to come (lanes_of)
+
+
 class _Rename(ast.NodeTransformer):
-    def __init__(self, varying: set[str], k: int, quads: int = 0) -> None:
+    def __init__(self, varying: set[str], k: int | str, quads: int = 0) -> None:
         self.varying = varying
         self.k = k
         self.quads = quads  # W when the block is 2x2 quads (derivatives), else 0
@@ -138,13 +142,14 @@ class _Rename(ast.NodeTransformer):
         if (
             self.quads
             and isinstance(f, ast.Name)
-            and f.id in ("dfdx", "dfdy", "qdx", "qdy")
+            and f.id in _QUAD_CALLS
             and len(node.args) == 1
             and isinstance(node.args[0], ast.Name)
             and node.args[0].id in self.varying
         ):
             # a difference of two lanes of the quad; of a uniform value, lanes_rt.dfdx (0)
             v = node.args[0].id
+            assert isinstance(self.k, int)  # (with quads, lanes_of renames lane by lane)
             a, b = quad_lanes(f.id, self.k, self.quads)
             return ast.copy_location(
                 ast.BinOp(
@@ -246,18 +251,24 @@ class _Fn:
     def is_varying(self, e: Any) -> bool:
         return bool(_names(e) & self.varying)
 
-    def lane(self, e: Any, k: int) -> str:
-        if not self.is_varying(e):
-            return ast.unparse(e)
-        return ast.unparse(
-            _Rename(self.varying, k, self.W if self.L.quads else 0).visit(copy.deepcopy(e))
-        )
-
     def lanes_of(self, e: Any) -> list[str]:
+        """e's text in each lane. A lane differs from lane 0 only in its names' suffixes, so e
+        is renamed and unparsed once, with a lane mark no text can hold (a NUL in a name) that
+        each lane replaces; a derivative's lanes differ in more (the quad's neighbours) and are
+        written one by one."""
         if not self.is_varying(e):
             text = ast.unparse(e)
             return [text] * self.W
-        return [self.lane(e, k) for k in range(self.W)]
+        if self.L.quads and any(
+            isinstance(n, ast.Call) and isinstance(n.func, ast.Name) and n.func.id in _QUAD_CALLS
+            for n in ast.walk(e)
+        ):
+            return [
+                ast.unparse(_Rename(self.varying, k, self.W).visit(copy.deepcopy(e)))
+                for k in range(self.W)
+            ]
+        text = ast.unparse(_Rename(self.varying, _LANE_MARK).visit(copy.deepcopy(e)))
+        return [text.replace(_LANE_MARK, str(k)) for k in range(self.W)]
 
     def lane_names(self, name: str) -> list[str]:
         return [f"{name}__{k}" for k in range(self.W)]
