@@ -35,11 +35,12 @@ from __future__ import annotations
 
 import ast
 import copy
+import gc
 import importlib.util
 from typing import Any
 
 from .lanes_render import ROW_UNIFORM, STATE_LANES, quad_lanes, render_source
-from .lanes_slim import hoistable_globals, slim_function
+from .lanes_slim import hoistable_globals, slim_function, walk_nodes
 from .values import pure_expr
 
 UNIFORM_STATE = ("uf", "ui", "lc")  # lc: llvmpipe's loop budget, one per block as there
@@ -65,7 +66,7 @@ def math_imports() -> list[str]:
 
 
 def _names(node: Any) -> set[str]:
-    return {n.id for n in ast.walk(node) if isinstance(n, ast.Name)}
+    return {n.id for n in walk_nodes(node) if isinstance(n, ast.Name)}
 
 
 def _is_counter(name: str) -> bool:
@@ -230,7 +231,7 @@ class _Fn:
         }
         self.varying: set[str] = {p for p in self.params if p not in self.scalar_params}
         self.counts: dict[str, int] = {p: 1 for p in self.params}
-        for n in ast.walk(fn):
+        for n in walk_nodes(fn):
             if isinstance(n, ast.Assign):
                 for t in n.targets:
                     for x in [t] if not isinstance(t, ast.Tuple) else t.elts:
@@ -393,7 +394,7 @@ class _Fn:
         s = self.hoist_tests(s)
         method(s, top)
         written = {
-            n.id for n in ast.walk(s) if isinstance(n, ast.Name) and isinstance(n.ctx, ast.Store)
+            n.id for n in walk_nodes(s) if isinstance(n, ast.Name) and isinstance(n.ctx, ast.Store)
         }
         self.tests = {k: v for k, v in self.tests.items() if k[0] not in written}
 
@@ -406,9 +407,15 @@ class _Fn:
         def hoistable(n: Any) -> bool:
             if isinstance(n, ast.IfExp):
                 return _index_test(n.test)
-            return _call_name(n) == "lsel" and bool(n.args) and _index_test(n.args[0])
+            return (
+                isinstance(n, ast.Call)
+                and isinstance(n.func, ast.Name)
+                and n.func.id == "lsel"
+                and bool(n.args)
+                and _index_test(n.args[0])
+            )
 
-        if not any(hoistable(n) for n in ast.walk(s)):
+        if not any(hoistable(n) for n in walk_nodes(s)):
             return s
         s = copy.deepcopy(s)
         for n in ast.walk(s):
@@ -936,7 +943,15 @@ def _rt_hash() -> str:
 def lanes_module(source: str, width: int = 8) -> str:
     """The per-pixel module `source` (codegen.Codegen.module) for blocks of `width` pixels;
     Unsupported when it has a construct this rewrite does not handle."""
+    # the rewrite makes and drops some hundred thousand syntax nodes, none in a cycle: Python's
+    # cycle collector, run every 700 allocations, would walk them for nothing (an eighth of the
+    # largest module's rewrite); paused here, then back as it was (freed by their counts)
+    collecting = gc.isenabled()
+    gc.disable()
     try:
         return Lanes(source, width).module()
     except RecursionError:
         raise Unsupported("an expression nested too deep") from None
+    finally:
+        if collecting:
+            gc.enable()

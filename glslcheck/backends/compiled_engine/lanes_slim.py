@@ -80,14 +80,14 @@ def _hoist_globals(fn: ast.FunctionDef, constants: set[str], own: set[str]) -> N
     index: set[str] = set()  # a name indexing a subscript: numba's static index needs a global
     called: set[str] = set()
     reads: dict[str, list[ast.Name]] = {}
-    for n in _walk(fn):
+    for n in walk_nodes(fn):
         if isinstance(n, ast.Name):
             if not isinstance(n.ctx, ast.Load):
                 local.add(n.id)
             elif n.id not in own:
                 reads.setdefault(n.id, []).append(n)
         elif isinstance(n, ast.Subscript):
-            index |= {m.id for m in _walk(n.slice) if isinstance(m, ast.Name)}
+            index |= {m.id for m in walk_nodes(n.slice) if isinstance(m, ast.Name)}
         elif isinstance(n, ast.Call) and isinstance(n.func, ast.Name):
             called.add(n.func.id)
     runtime = {c for c in called if c not in constants and not hasattr(builtins, c)}
@@ -115,7 +115,7 @@ def _hoist_globals(fn: ast.FunctionDef, constants: set[str], own: set[str]) -> N
 def _fold_copies(fn: ast.FunctionDef) -> None:
     stores: dict[str, int] = {a.arg: 1 for a in fn.args.args}
     loads: dict[str, int] = {}
-    for n in _walk(fn):
+    for n in walk_nodes(fn):
         if isinstance(n, ast.Name):
             counts = loads if isinstance(n.ctx, ast.Load) else stores
             counts[n.id] = counts.get(n.id, 0) + 1
@@ -154,9 +154,9 @@ def _fold_copies(fn: ast.FunctionDef) -> None:
     fn.body = fold(fn.body)
 
 
-def _walk(node: Any) -> Any:
-    """Every node under node (node included), as ast.walk but depth first: the passes only
-    count and collect, in no order."""
+def walk_nodes(node: Any) -> Any:
+    """Every node under node (node included), as ast.walk but depth first and without its
+    per-node generators: for what counts and collects, in no order."""
     todo = [node]
     while todo:
         n = todo.pop()
@@ -172,7 +172,7 @@ def _walk(node: Any) -> Any:
 def _names_at(stmts: list, cache: list, k: int) -> set[str]:
     got = cache[k]
     if got is None:
-        got = cache[k] = {n.id for n in _walk(stmts[k]) if isinstance(n, ast.Name)}
+        got = cache[k] = {n.id for n in walk_nodes(stmts[k]) if isinstance(n, ast.Name)}
     return got
 
 
@@ -229,7 +229,7 @@ _OPERATORS = (ast.operator, ast.unaryop, ast.cmpop, ast.boolop)
 def _common_values(fn: ast.FunctionDef) -> None:
     stores: dict[str, int] = {a.arg: 1 for a in fn.args.args}
     first_read: dict[str, int] = {}  # a name's first read in the text (its line)
-    for n in _walk(fn):
+    for n in walk_nodes(fn):
         if isinstance(n, ast.Name) and not isinstance(n.ctx, ast.Load):
             stores[n.id] = stores.get(n.id, 0) + 1
         elif isinstance(n, ast.Name):
