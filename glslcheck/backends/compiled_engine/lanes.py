@@ -35,11 +35,12 @@ from __future__ import annotations
 
 import ast
 import copy
+import gc
 import importlib.util
 from typing import Any
 
 from .lanes_render import ROW_UNIFORM, STATE_LANES, quad_lanes, render_source
-from .lanes_slim import hoistable_globals, slim_function
+from .lanes_slim import hoistable_globals, slim_function, walk_nodes
 from .values import pure_expr
 
 UNIFORM_STATE = ("uf", "ui", "lc")  # lc: llvmpipe's loop budget, one per block as there
@@ -65,7 +66,7 @@ def math_imports() -> list[str]:
 
 
 def _names(node: Any) -> set[str]:
-    return {n.id for n in ast.walk(node) if isinstance(n, ast.Name)}
+    return {n.id for n in walk_nodes(node) if isinstance(n, ast.Name)}
 
 
 def _is_counter(name: str) -> bool:
@@ -115,8 +116,12 @@ def _index_test(node: Any) -> bool:
     )
 
 
+_QUAD_CALLS = ("dfdx", "dfdy", "qdx", "qdy")  # a difference of two lanes of a quad
+_LANE_MARK = "\x00"  # a lane number to come (lanes_of)
+
+
 class _Rename(ast.NodeTransformer):
-    def __init__(self, varying: set[str], k: int, quads: int = 0) -> None:
+    def __init__(self, varying: set[str], k: int | str, quads: int = 0) -> None:
         self.varying = varying
         self.k = k
         self.quads = quads  # W when the block is 2x2 quads (derivatives), else 0
@@ -138,13 +143,14 @@ class _Rename(ast.NodeTransformer):
         if (
             self.quads
             and isinstance(f, ast.Name)
-            and f.id in ("dfdx", "dfdy", "qdx", "qdy")
+            and f.id in _QUAD_CALLS
             and len(node.args) == 1
             and isinstance(node.args[0], ast.Name)
             and node.args[0].id in self.varying
         ):
             # a difference of two lanes of the quad; of a uniform value, lanes_rt.dfdx (0)
             v = node.args[0].id
+            assert isinstance(self.k, int)  # (with quads, lanes_of renames lane by lane)
             a, b = quad_lanes(f.id, self.k, self.quads)
             return ast.copy_location(
                 ast.BinOp(
@@ -225,7 +231,7 @@ class _Fn:
         }
         self.varying: set[str] = {p for p in self.params if p not in self.scalar_params}
         self.counts: dict[str, int] = {p: 1 for p in self.params}
-        for n in ast.walk(fn):
+        for n in walk_nodes(fn):
             if isinstance(n, ast.Assign):
                 for t in n.targets:
                     for x in [t] if not isinstance(t, ast.Tuple) else t.elts:
@@ -246,18 +252,24 @@ class _Fn:
     def is_varying(self, e: Any) -> bool:
         return bool(_names(e) & self.varying)
 
-    def lane(self, e: Any, k: int) -> str:
-        if not self.is_varying(e):
-            return ast.unparse(e)
-        return ast.unparse(
-            _Rename(self.varying, k, self.W if self.L.quads else 0).visit(copy.deepcopy(e))
-        )
-
     def lanes_of(self, e: Any) -> list[str]:
+        """e's text in each lane. A lane differs from lane 0 only in its names' suffixes, so e
+        is renamed and unparsed once, with a lane mark no text can hold (a NUL in a name) that
+        each lane replaces; a derivative's lanes differ in more (the quad's neighbours) and are
+        written one by one."""
         if not self.is_varying(e):
             text = ast.unparse(e)
             return [text] * self.W
-        return [self.lane(e, k) for k in range(self.W)]
+        if self.L.quads and any(
+            isinstance(n, ast.Call) and isinstance(n.func, ast.Name) and n.func.id in _QUAD_CALLS
+            for n in ast.walk(e)
+        ):
+            return [
+                ast.unparse(_Rename(self.varying, k, self.W).visit(copy.deepcopy(e)))
+                for k in range(self.W)
+            ]
+        text = ast.unparse(_Rename(self.varying, _LANE_MARK).visit(copy.deepcopy(e)))
+        return [text.replace(_LANE_MARK, str(k)) for k in range(self.W)]
 
     def lane_names(self, name: str) -> list[str]:
         return [f"{name}__{k}" for k in range(self.W)]
@@ -382,7 +394,7 @@ class _Fn:
         s = self.hoist_tests(s)
         method(s, top)
         written = {
-            n.id for n in ast.walk(s) if isinstance(n, ast.Name) and isinstance(n.ctx, ast.Store)
+            n.id for n in walk_nodes(s) if isinstance(n, ast.Name) and isinstance(n.ctx, ast.Store)
         }
         self.tests = {k: v for k, v in self.tests.items() if k[0] not in written}
 
@@ -395,9 +407,15 @@ class _Fn:
         def hoistable(n: Any) -> bool:
             if isinstance(n, ast.IfExp):
                 return _index_test(n.test)
-            return _call_name(n) == "lsel" and bool(n.args) and _index_test(n.args[0])
+            return (
+                isinstance(n, ast.Call)
+                and isinstance(n.func, ast.Name)
+                and n.func.id == "lsel"
+                and bool(n.args)
+                and _index_test(n.args[0])
+            )
 
-        if not any(hoistable(n) for n in ast.walk(s)):
+        if not any(hoistable(n) for n in walk_nodes(s)):
             return s
         s = copy.deepcopy(s)
         for n in ast.walk(s):
@@ -925,7 +943,15 @@ def _rt_hash() -> str:
 def lanes_module(source: str, width: int = 8) -> str:
     """The per-pixel module `source` (codegen.Codegen.module) for blocks of `width` pixels;
     Unsupported when it has a construct this rewrite does not handle."""
+    # the rewrite makes and drops some hundred thousand syntax nodes, none in a cycle: Python's
+    # cycle collector, run every 700 allocations, would walk them for nothing (an eighth of the
+    # largest module's rewrite); paused here, then back as it was (freed by their counts)
+    collecting = gc.isenabled()
+    gc.disable()
     try:
         return Lanes(source, width).module()
     except RecursionError:
         raise Unsupported("an expression nested too deep") from None
+    finally:
+        if collecting:
+            gc.enable()

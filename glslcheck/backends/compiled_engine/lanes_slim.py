@@ -80,14 +80,14 @@ def _hoist_globals(fn: ast.FunctionDef, constants: set[str], own: set[str]) -> N
     index: set[str] = set()  # a name indexing a subscript: numba's static index needs a global
     called: set[str] = set()
     reads: dict[str, list[ast.Name]] = {}
-    for n in ast.walk(fn):
+    for n in walk_nodes(fn):
         if isinstance(n, ast.Name):
             if not isinstance(n.ctx, ast.Load):
                 local.add(n.id)
             elif n.id not in own:
                 reads.setdefault(n.id, []).append(n)
         elif isinstance(n, ast.Subscript):
-            index |= {m.id for m in ast.walk(n.slice) if isinstance(m, ast.Name)}
+            index |= {m.id for m in walk_nodes(n.slice) if isinstance(m, ast.Name)}
         elif isinstance(n, ast.Call) and isinstance(n.func, ast.Name):
             called.add(n.func.id)
     runtime = {c for c in called if c not in constants and not hasattr(builtins, c)}
@@ -115,7 +115,7 @@ def _hoist_globals(fn: ast.FunctionDef, constants: set[str], own: set[str]) -> N
 def _fold_copies(fn: ast.FunctionDef) -> None:
     stores: dict[str, int] = {a.arg: 1 for a in fn.args.args}
     loads: dict[str, int] = {}
-    for n in ast.walk(fn):
+    for n in walk_nodes(fn):
         if isinstance(n, ast.Name):
             counts = loads if isinstance(n.ctx, ast.Load) else stores
             counts[n.id] = counts.get(n.id, 0) + 1
@@ -154,10 +154,25 @@ def _fold_copies(fn: ast.FunctionDef) -> None:
     fn.body = fold(fn.body)
 
 
+def walk_nodes(node: Any) -> Any:
+    """Every node under node (node included), as ast.walk but depth first and without its
+    per-node generators: for what counts and collects, in no order."""
+    todo = [node]
+    while todo:
+        n = todo.pop()
+        yield n
+        for field in n._fields:
+            x = getattr(n, field, None)
+            if isinstance(x, list):
+                todo += [y for y in x if isinstance(y, ast.AST)]
+            elif isinstance(x, ast.AST):
+                todo.append(x)
+
+
 def _names_at(stmts: list, cache: list, k: int) -> set[str]:
     got = cache[k]
     if got is None:
-        got = cache[k] = {n.id for n in ast.walk(stmts[k]) if isinstance(n, ast.Name)}
+        got = cache[k] = {n.id for n in walk_nodes(stmts[k]) if isinstance(n, ast.Name)}
     return got
 
 
@@ -170,22 +185,51 @@ _PURE = (
 )
 
 
-def _pure(v: Any) -> bool:
-    """An expression of names and constants with operators and lsel calls only: no effect, and
-    its value a function of its names' values."""
-    for n in ast.walk(v):
-        if isinstance(n, ast.Call):
-            if not (isinstance(n.func, ast.Name) and n.func.id == "lsel" and not n.keywords):
-                return False
-        elif not isinstance(n, _PURE):
-            return False
-    return True
+def _pure_value(v: Any, names: set[str]) -> Any:
+    """An expression of names and constants with operators and lsel calls only (no effect, and
+    its value a function of its names' values): a key equal for two such expressions exactly
+    when their `ast.dump`s are (constants by their repr, as the dump: 0.0 is not -0.0, nor 1
+    1.0), its names added to `names`; None for any other expression."""
+    if isinstance(v, ast.Name):
+        if not isinstance(v.ctx, ast.Load):
+            return None
+        names.add(v.id)
+        return v.id
+    if isinstance(v, ast.Constant):
+        return (ast.Constant, repr(v.value), v.kind)
+    if isinstance(v, ast.Call):
+        if not (isinstance(v.func, ast.Name) and v.func.id == "lsel" and not v.keywords):
+            return None
+        parts: list = [ast.Call, _pure_value(v.func, names)]
+        parts += [_pure_value(a, names) for a in v.args]
+        return None if None in parts else tuple(parts)
+    if not isinstance(v, _PURE):
+        return None
+    parts = [type(v)]
+    for field in v._fields:
+        x = getattr(v, field)
+        for y in x if isinstance(x, list) else [x]:
+            if isinstance(y, _OPERATORS):
+                if not isinstance(y, _PURE):
+                    return None
+                parts.append(type(y))
+            elif isinstance(y, ast.AST):
+                k = _pure_value(y, names)
+                if k is None:
+                    return None
+                parts.append(k)
+            else:
+                return None  # (no field of these nodes but Constant's holds a plain value)
+    return tuple(parts)
+
+
+_OPERATORS = (ast.operator, ast.unaryop, ast.cmpop, ast.boolop)
 
 
 def _common_values(fn: ast.FunctionDef) -> None:
     stores: dict[str, int] = {a.arg: 1 for a in fn.args.args}
     first_read: dict[str, int] = {}  # a name's first read in the text (its line)
-    for n in ast.walk(fn):
+    for n in walk_nodes(fn):
         if isinstance(n, ast.Name) and not isinstance(n.ctx, ast.Load):
             stores[n.id] = stores.get(n.id, 0) + 1
         elif isinstance(n, ast.Name):
@@ -193,7 +237,8 @@ def _common_values(fn: ast.FunctionDef) -> None:
     same: dict[str, str] = {}  # a dropped temporary -> the one that holds its value
 
     def run(stmts: list) -> list:
-        held: dict[str, tuple[str, set[str]]] = {}  # ast.dump of a value -> (temporary, names)
+        held: dict[Any, str] = {}  # the key of a value (_pure_value) -> its temporary
+        reading: dict[str, set] = {}  # a name -> the keys held of the values that read it
         out = []
         for s in stmts:
             _rename(s, same)
@@ -203,6 +248,7 @@ def _common_values(fn: ast.FunctionDef) -> None:
                     setattr(s, block, run(inner))
             if isinstance(s, (ast.If, ast.While)):
                 held.clear()  # a value of the run before it is not known to be computed after
+                reading.clear()
             elif (
                 isinstance(s, ast.Assign)
                 and len(s.targets) == 1
@@ -211,19 +257,21 @@ def _common_values(fn: ast.FunctionDef) -> None:
                 # read nowhere before its write (a loop's next pass would read the old value)
                 and first_read.get(s.targets[0].id, s.lineno + 1) > s.lineno
                 and not isinstance(s.value, (ast.Name, ast.Constant))
-                and _pure(s.value)
             ):
-                key = ast.dump(s.value)
-                got = held.get(key)
-                if got is not None:
-                    same[s.targets[0].id] = got[0]
-                    continue
-                names = {n.id for n in ast.walk(s.value) if isinstance(n, ast.Name)}
-                held[key] = (s.targets[0].id, names)
-            written = _targets(s)
-            if written and held:
-                for key in [k for k, (_, names) in held.items() if names & written]:
-                    del held[key]
+                names: set[str] = set()
+                key = _pure_value(s.value, names)
+                if key is not None:
+                    got = held.get(key)
+                    if got is not None:
+                        same[s.targets[0].id] = got
+                        continue
+                    held[key] = s.targets[0].id
+                    for name in names:
+                        reading.setdefault(name, set()).add(key)
+            if held:
+                for name in _targets(s):
+                    for key in reading.pop(name, ()):
+                        held.pop(key, None)
             out.append(s)
         return out or [ast.Pass()]
 
