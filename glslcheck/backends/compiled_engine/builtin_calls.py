@@ -265,7 +265,7 @@ def mix_call(cg: Any, e: A.Call, args: list[Val], rtype: Any, n: int, comps) -> 
     if form is None:
         form = "strict" if a.const is not None else "fast"
     if isinstance(form, tuple):  # a form per component (nir_fold.mix_form)
-        vals = {f: _mix_form(cg, f, x, y, a, rtype, comps) for f in set(form)}
+        vals = {f: _mix_form(cg, f, x, y, a, rtype, comps) for f in dict.fromkeys(form)}
         return Val(rtype, [vals[f].parts[i] for i, f in enumerate(form)])
     return _mix_form(cg, form, x, y, a, rtype, comps)
 
