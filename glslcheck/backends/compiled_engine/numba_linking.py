@@ -7,16 +7,18 @@ and optimizes and emits the whole again. Only a module's entries (`render_rows`,
 `globals_template`: the functions with a Python wrapper) are ever called from Python, and their
 machine code holds every function they call. `install()` finalizes the other functions of a
 generated module (`module_text`'s `jit`: no Python wrapper; a module named `MODULE_PREFIX`...)
-as numba does up to the module passes (their callees linked in, optimized: the IR their callers
-link in, so the entries' IR and machine code are numba's own), but adds nothing to the execution
-engine: no machine code, and no cache entry (nothing to write; a module loaded from the cache
-runs its entries' code, which needs none of theirs). Every other library (the scalar runtime's,
-lanes_math's, any other program's) is numba's own. Only for the numba versions this was checked
-against (`CHECKED`); `numba_own()` suspends it (the reference the tests compare with).
+as numba does up to the module passes (their callees linked in, then optimized: the IR their
+callers link in), but adds nothing to the execution engine: no machine code, and no cache entry
+(nothing to write; a module loaded from the cache runs its entries' code, which needs none of
+theirs). Every other library (the scalar runtime's, lanes_math's, any other program's) is
+numba's own. Only for the numba versions this was checked against (`CHECKED`); `numba_own()`
+suspends it (the reference the tests compare with).
 
-Skipping the callees' module passes too (the entries optimize what they link in anyway) gives
-the same bits but other machine code: LLVM's inliner and SLP vectorizer see unoptimized callees
-and decide otherwise (docs/performance.md, "Compile time").
+What a caller links in is the optimizer's output; under numba's own it is that module after
+the execution engine's code generation rewrote its IR in place (loop strength reduction, loop
+preheaders), so an entry's machine code can differ where that changed LLVM's inlining: the same
+operations, the same bits. Skipping the callees' module passes too (the entries optimize what
+they link in anyway) gave code that ran slower (docs/performance.md, "Compile time").
 """
 
 from __future__ import annotations
