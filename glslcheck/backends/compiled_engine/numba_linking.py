@@ -62,7 +62,7 @@ def _finalize_linking(library: Any) -> None:
             library._reload_init.update(lib._reload_init)
             seen.add(lib)
             library._final_module.link_in(lib._get_module_for_linking(), preserve=True)
-    library._optimize_final_module()  # what its callers link in: numba's IR, so their code
+    library._optimize_final_module()  # the IR its callers link in (numba's passes, numba's order)
     library._final_module.verify()
     library._finalize_dynamic_globals()
     library._verify_declare_only_symbols()
