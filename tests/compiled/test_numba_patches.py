@@ -28,11 +28,12 @@ def test_a_patch_replaces_once_and_only_on_a_checked_version(numba):
 
 
 def test_the_engine_patches_are_in_place_exactly_on_their_checked_versions(numba):
-    """install_all puts each of the four in place where numba's version is one it names."""
+    """install_all puts each of the five in place where numba's version is one it names."""
     from numba import __version__
 
     from glslcheck.backends.compiled_engine import (
         numba_analysis,
+        numba_linking,
         numba_lowering,
         numba_patches,
         numba_ssa,
@@ -40,7 +41,7 @@ def test_the_engine_patches_are_in_place_exactly_on_their_checked_versions(numba
     )
 
     numba_patches.install_all()
-    patches = (numba_ssa, numba_typing, numba_analysis, numba_lowering)
+    patches = (numba_ssa, numba_typing, numba_analysis, numba_lowering, numba_linking)
     assert [numba_patches.install(p) for p in patches] == [
         __version__.startswith(p.CHECKED) for p in patches
     ]

@@ -49,6 +49,7 @@ from ...shadertoy.frame_inputs import FrameInputs, frame_inputs
 from ...shadertoy.wrapper import UNIFORMS_BY_NAME
 from ..cpu_core import numba_cache
 from ..cpu_core.common import LOOP_CAP
+from . import numba_linking
 from .budget import STARVED, wait_child
 from .values import BUDGET_OFF
 
@@ -431,7 +432,7 @@ class CompiledProgram:
         from numba.core import config
 
         folder = _folder()
-        name = f"glslcheck_compiled_m{self.key}"
+        name = f"{numba_linking.MODULE_PREFIX}{self.key}"
         file = os.path.join(folder, f"m{self.key}.py")
         # numba's cache needs the module as a file (it keys machine code to its path and stamp);
         # what runs is the source generated here, never what the file holds, and a file that
@@ -446,7 +447,7 @@ class CompiledProgram:
         self.cold = not _cached(cache, self.key)
         if self.cold:  # numba's SSA passes, the same IR in time linear in the names they fix,
             # its operator typing once per argument types, its liveness on bit sets, a type's
-            # size asked of LLVM once
+            # size asked of LLVM once, its callees optimized and emitted inside its entries only
             from .numba_patches import install_all
 
             install_all()

@@ -1,9 +1,10 @@
 """Where glslcheck's code takes the place of parts of numba's compiler, and installing it once
 per process: numba_ssa (SSA reconstruction, phi removal), numba_typing (operator typing),
-numba_analysis (liveness, scope fix-up) and numba_lowering (ABI sizes). Each such module names
-the numba versions whose internals it was checked against (`CHECKED`) and puts itself in place
-(`replace()`: False when this numba lacks what it replaces); :func:`install` runs that once, on
-those versions only, and numba's own code runs everywhere else."""
+numba_analysis (liveness, scope fix-up), numba_lowering (ABI sizes) and numba_linking (no
+machine code for a generated module's callees). Each such module names the numba versions whose
+internals it was checked against (`CHECKED`) and puts itself in place (`replace()`: False when
+this numba lacks what it replaces); :func:`install` runs that once, on those versions only, and
+numba's own code runs everywhere else."""
 
 from __future__ import annotations
 
@@ -38,7 +39,7 @@ def install(patch: Patch) -> bool:
 
 def install_all() -> None:
     """Every patch (before numba compiles a module cold: what each saves is compile time)."""
-    from . import numba_analysis, numba_lowering, numba_ssa, numba_typing
+    from . import numba_analysis, numba_linking, numba_lowering, numba_ssa, numba_typing
 
-    for patch in (numba_ssa, numba_typing, numba_analysis, numba_lowering):
+    for patch in (numba_ssa, numba_typing, numba_analysis, numba_lowering, numba_linking):
         install(patch)
