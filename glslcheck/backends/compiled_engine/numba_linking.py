@@ -5,12 +5,12 @@ library's module passes (LLVM's O3 pipeline), then its machine code, which the c
 (object code and bitcode). A caller links each callee's optimized module in as `linkonce_odr`
 and optimizes and emits the whole again. Only a module's entries (`render_rows`,
 `globals_template`: the functions with a Python wrapper) are ever called from Python, and their
-machine code holds every function they call. `replace()` (installed by numba_patches) finalizes
-the other functions of a generated module (`module_text`'s `jit`: no Python wrapper; a module
-named `MODULE_PREFIX`...) as numba does up to the module passes (their callees linked in, then
-optimized: the IR their callers link in), but adds nothing to the execution engine: no machine code, and no cache entry
-(nothing to write; a module loaded from the cache runs its entries' code, which needs none of
-theirs). Every other library (the scalar runtime's, lanes_math's, any other program's) is
+machine code holds every function they call. `replace()` (installed by numba_patches) finalizes the
+other functions of a generated module (`module_text`'s `jit`: no Python wrapper; a module named
+`MODULE_PREFIX`...) as numba does up to the module passes (their callees linked in, then optimized:
+the IR their callers link in), but adds nothing to the execution engine: no machine code, and no
+cache entry (nothing to write; a module loaded from the cache runs its entries' code, which needs
+none of theirs). Every other library (the scalar runtime's, lanes_math's, any other program's) is
 numba's own. Only for the numba versions this was checked against (`CHECKED`); `numba_own()`
 suspends it (the reference the tests compare with).
 
