@@ -82,6 +82,6 @@ globals_template(
     np.zeros(max(1, USLOTS["float"]), F32),
     np.zeros(max(1, USLOTS["int"]), I32),
     GCF, GCI, GCU, GCB,
-    np.full(1 + len(LOOPS), 1 << 40, np.int64),
+    np.array([1 << 40] + [0] * len(LOOPS), np.int64),  # (the initializers run no loop)
 )
 """
