@@ -31,7 +31,9 @@ frames lose the default program's trial against NumPy, and 07_final), in this on
   whose CPU time is read from /proc), its frame cache emptied before each frame.
 
 The variants are measurements, not the engine's code: they show how much a change of where the
-uniform values live could gain, the same operations in the same order.
+uniform values live could gain, the same operations in the same order. Where the engine's module
+reads the globals from its own constants and resets no state (constant_globals.py: no function
+writes them), `noreset` and `const` are the module as generated.
 """
 
 from __future__ import annotations

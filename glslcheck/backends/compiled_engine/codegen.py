@@ -24,7 +24,9 @@ Global variables and Shadertoy's uniforms live in per-pixel state arrays, one pe
 (`gf` float32, `gi` int32, `gu` uint32, `gb` bool; uniforms `uf`, `ui`); a function receives
 those it reads or writes, itself or through its callees, as its first parameters (passing an
 array costs numba two atomic reference-count updates a call, so a distance function that reads
-no global gets none); the globals are reset to their initial values before each pixel.
+no global gets none); the globals are reset to their initial values before each pixel. Globals
+no function writes are read from module constants instead (constant_globals.py: numba freezes
+them into the machine code, LLVM folds them), and a state array no function writes is not reset.
 
 Control flow is Python's own: `if`, `while` loops for GLSL's three loops (a `continue` in a
 `for` runs the step first; in a `do`-`while` it tests the condition), `return` anywhere,
@@ -56,6 +58,7 @@ the value is not known when generating.
 
 from __future__ import annotations
 
+import ast
 import math
 from typing import Any
 
@@ -66,8 +69,9 @@ from ..cpu_core import nir_fold
 from ..cpu_core.common import LOOP_CAP, comment_safe, python_ident
 from ..cpu_core.facts import Facts
 from ..cpu_core.uniformity import Uniformity
+from .constant_globals import frozen_globals, frozen_parts, reset_kinds, written_state
 from .expressions import ExpressionEmitter, FnState, nir_chain_params
-from .module_text import HEADER, RENDER
+from .module_text import FREEZE, HEADER, RENDER
 from .values import (
     ATOM,
     BUDGET_OFF,
@@ -129,6 +133,8 @@ class Codegen(ExpressionEmitter):
             for n in fn.node.body.walk()
         )
         self.facts = Facts(model, self.functions)  # (nir_fold.mix_form reads it: fold_context)
+        # globals the functions read from module constants (constant_globals.py)
+        self.frozen = frozen_globals(model, self.facts)
         self.lines: list[str] = []
         self.indent = 0
         self.n = 0
@@ -335,7 +341,10 @@ class Codegen(ExpressionEmitter):
             literal = self.literal_global(sym)
             if literal is not None:
                 return literal
-            return self.global_parts(sym, node)
+            parts = self.global_parts(sym, node)
+            if id(sym) in self.frozen and self.fn is not None and self.fn.sym is not None:
+                return frozen_parts(parts)  # (init_globals computes them in the state arrays)
+            return parts
         if sym.kind == "uniform":
             return self.uniform_parts(sym.name, node)
         if sym.kind == "builtin-var":
@@ -399,7 +408,13 @@ class Codegen(ExpressionEmitter):
         out.append("")
         for f in funcs + [init, shade]:
             out += ["", "@jit", *f.split("\n"), ""]
-        out.append(RENDER if self.budget else RENDER.replace("uf, ui, lc,", "uf, ui,"))
+        render = RENDER if self.budget else RENDER.replace("uf, ui, lc,", "uf, ui,")
+        resets = reset_kinds(written_state(ast.parse("\n".join(funcs + [shade])).body))
+        for kind in sorted(set(KIND_ARRAY.values()) - resets):  # (its template all frame)
+            render = render.replace(f"                aset({kind}, 0, gt{kind[1]})\n", "")
+        out.append(render)
+        if self.frozen:
+            out.append(FREEZE)
         return "\n".join(out) + "\n"
 
     def gen_globals(self) -> None:

@@ -443,7 +443,6 @@ class CompiledProgram:
         mod = types.ModuleType(name)
         mod.__file__ = file
         sys.modules[name] = mod
-        exec(compile(self.source, file, "exec"), mod.__dict__)
         self.cold = not _cached(cache, self.key)
         if self.cold:  # numba's SSA passes, the same IR in time linear in the names they fix,
             # its operator typing once per argument types, its liveness on bit sets, a type's
@@ -452,12 +451,12 @@ class CompiledProgram:
 
             install_all()
         slp = config.SLP_VECTORIZE
-        if getattr(
-            mod, "LANES", 0
-        ):  # LLVM's SLP vectorizer packs the lanes (no reassociation: same bits)
+        if "\nLANES = " in self.source:  # LLVM's SLP vectorizer packs the lanes (no reassociation)
             config.SLP_VECTORIZE = 1
         enter_deep()  # numba's SSA pass recurses along long functions
         try:
+            # (the module's import compiles its initializer: constant_globals.py)
+            exec(compile(self.source, file, "exec"), mod.__dict__)
             self._compile(mod, bounded)
         finally:
             config.SLP_VECTORIZE = slp

@@ -39,6 +39,7 @@ import gc
 import importlib.util
 from typing import Any
 
+from .constant_globals import reset_kinds, written_state
 from .lanes_render import ROW_UNIFORM, STATE_LANES, quad_lanes, render_source
 from .lanes_slim import hoistable_globals, slim_function, walk_nodes
 from .values import pure_expr
@@ -174,26 +175,7 @@ class _SharedReads(ast.NodeTransformer):
     makes the whole state array written."""
 
     def __init__(self, functions: Any) -> None:
-        self.written: dict[str, set | None] = {k: set() for k in STATE_LANES}
-        for f in functions:
-            for n in ast.walk(f):
-                if (
-                    isinstance(n, ast.Subscript)
-                    and isinstance(n.ctx, ast.Store)
-                    and isinstance(n.value, ast.Name)
-                ):
-                    self.store(n.value.id, n.slice)
-                elif isinstance(n, ast.Call) and _call_name(n) == "aset":
-                    if n.args and isinstance(n.args[0], ast.Name):
-                        self.store(n.args[0].id, None)
-
-    def store(self, kind: str, index: Any) -> None:
-        if (written := self.written.get(kind)) is None:
-            return
-        if isinstance(index, ast.Constant) and isinstance(index.value, int):
-            written.add(index.value)
-        else:
-            self.written[kind] = None
+        self.written = written_state(functions)
 
     def visit_Subscript(self, node: ast.Subscript) -> Any:
         self.generic_visit(node)
@@ -829,6 +811,7 @@ class Lanes:
         shared = _SharedReads(self.functions.values())
         for f in self.functions.values():
             shared.visit(f)
+        self.resets = reset_kinds(shared.written)  # the state reset before each block
         self.variants: dict[tuple[str, frozenset], _Fn] = {}
         self.pending: set[tuple[str, frozenset]] = set()
 
@@ -905,19 +888,9 @@ class Lanes:
                 continue  # the per-pixel module's lsel import: the line above, with the hash
             out.append(ast.unparse(node))
         out.append(f"LANES = {self.W}  # pixels per call of shade")
-        slots = next(
-            (
-                ast.literal_eval(n.value)
-                for n in self.tree.body
-                if isinstance(n, ast.Assign)
-                and isinstance(n.targets[0], ast.Name)
-                and n.targets[0].id == "SLOTS"
-            ),
-            None,
-        )
         shade = self.variants[self.entry()]
         render = render_source(
-            self.W, slots, shade.name, shade.scalar_params, shade.ret_uniform, self.quads
+            self.W, self.resets, shade.name, shade.scalar_params, shade.ret_uniform, self.quads
         )
         out.append(render if "lc" in shade.params else render.replace("uf, ui, lc,", "uf, ui,"))
         return "\n\n".join(out) + "\n"

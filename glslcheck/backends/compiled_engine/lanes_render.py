@@ -32,14 +32,15 @@ def quad_lanes(name: str, k: int, W: int) -> tuple[int, int]:
 
 def render_source(
     W: int,
-    slots: dict | None = None,
+    resets: Any = None,
     shade: str = "shade",
     scalar: Any = (),
     ret_uniform: Any = (),
     quads: bool = False,
 ) -> str:
     """render_rows for blocks of W pixels of a row (the last block repeats the row's last pixel);
-    slots: the module's SLOTS (a state kind without globals is not reset per pixel); shade: the
+    resets: the state arrays reset before each block, those a function writes (None: all of
+    them; constant_globals.reset_kinds: the others hold the template all frame); shade: the
     entry's name, scalar: its parameters passed as one value for the block (ROW_UNIFORM),
     ret_uniform: which of its four results are one value for the block.
 
@@ -48,7 +49,7 @@ def render_source(
     image (x = width, y = height: computed, not written, as the NumPy backend's tiles); a quad
     wholly past the right edge repeats the row's last whole quad."""
     if quads:
-        return _render_quads(W, slots, shade, ret_uniform)
+        return _render_quads(W, resets, shade, ret_uniform)
     st = [f"{a}__{k}" for a in STATE_LANES for k in range(W)]
     lines = _prologue(
         W,
@@ -66,7 +67,7 @@ def render_source(
     ]
     for k in range(W):
         lines.append(f"            px__{k} = F32(min(x0 + {k}, width - 1) + 0.5)")
-    lines += _sample_head(W, slots)
+    lines += _sample_head(W, resets)
     lines.append("                oy = F32(py + F32(offs[s, 1]))")
     args = ["True"] * W + st + ["uf", "ui", "lc"]
     args += [f"F32(px__{k} + ox)" for k in range(W)] + (["oy"] if "fy" in scalar else ["oy"] * W)
@@ -92,14 +93,12 @@ def _prologue(W: int, doc: list[str]) -> list[str]:
     return lines + ["    samples = offs.shape[0]", f"    acc = np.zeros((4, {W}), np.float64)"]
 
 
-def _sample_head(W: int, slots: dict | None) -> list[str]:
+def _sample_head(W: int, resets: Any) -> list[str]:
     """The loop over the samples: the per-pixel state reset to its template before each call of
     shade, and the sample's x offset."""
     lines = ["            for s in range(samples):"]
-    for a, t, kind in zip(
-        STATE_LANES, ("gtf", "gti", "gtu", "gtb"), ("float", "int", "uint", "bool")
-    ):
-        if slots is not None and not slots.get(kind):
+    for a, t in zip(STATE_LANES, ("gtf", "gti", "gtu", "gtb")):
+        if resets is not None and a not in resets:
             continue
         lines += [f"                aset({a}__{k}, 0, {t})" for k in range(W)]
     return lines + ["                lc[0] = lt[0]", "                ox = F32(offs[s, 0])"]
@@ -128,7 +127,7 @@ def _accumulate(W: int, ret_uniform: Any) -> list[str]:
     return lines
 
 
-def _render_quads(W: int, slots: dict | None, shade: str, ret_uniform: Any) -> str:
+def _render_quads(W: int, resets: Any, shade: str, ret_uniform: Any) -> str:
     """render_source for blocks of 2x2 quads (derivatives): see render_source."""
     h = W // 2
     st = [f"{a}__{k}" for a in STATE_LANES for k in range(W)]
@@ -153,7 +152,7 @@ def _render_quads(W: int, slots: dict | None, shade: str, ret_uniform: Any) -> s
             f"            px__{c} = F32((x0 + {c} if x0 + {c & ~1} < width else last + {c & 1}) "
             "+ 0.5)"
         )
-    lines += _sample_head(W, slots)
+    lines += _sample_head(W, resets)
     lines += [
         "                oy0 = F32(py0 + F32(offs[s, 1]))",
         "                oy1 = F32(py1 + F32(offs[s, 1]))",
