@@ -183,14 +183,14 @@ def test_settings_and_static_indices_stay_globals():
 
 def test_type_sizes_as_numba_gives_them(numba):
     from llvmlite import ir
-    from numba.core import registry
+    from numba.core import base, registry
 
     from glslcheck.backends.compiled_engine import numba_lowering, numba_patches
 
     if not numba_patches.install(numba_lowering):
         pytest.skip(f"numba_lowering is not installed on numba other than {numba_lowering.CHECKED}")
     ctx = registry.cpu_target.target_context
-    own = numba_lowering.numba_get_abi_sizeof()
+    own = numba_patches.original(base.BaseContext, "get_abi_sizeof")
     i8p = ir.IntType(8).as_pointer()
     kinds = [
         ir.FloatType(),

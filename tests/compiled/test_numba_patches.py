@@ -45,3 +45,26 @@ def test_the_engine_patches_are_in_place_exactly_on_their_checked_versions(numba
     assert [numba_patches.install(p) for p in patches] == [
         __version__.startswith(p.CHECKED) for p in patches
     ]
+
+
+def test_swap_keeps_the_first_original():
+    """swap puts the wrapper in place; original gives what the first swap replaced, through a
+    second swap of the same attribute, and the attribute itself where nothing was swapped."""
+    from glslcheck.backends.compiled_engine import numba_patches
+
+    def own() -> str:
+        return "own"
+
+    def first() -> str:
+        return "first"
+
+    def second() -> str:
+        return "second"
+
+    owner, other = SimpleNamespace(f=own), SimpleNamespace(f=own)
+    assert numba_patches.original(owner, "f") is own
+    numba_patches.swap(owner, "f", first)
+    assert owner.f is first and numba_patches.original(owner, "f") is own
+    numba_patches.swap(owner, "f", second)
+    assert owner.f is second and numba_patches.original(owner, "f") is own
+    assert other.f is own and numba_patches.original(other, "f") is own

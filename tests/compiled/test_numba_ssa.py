@@ -19,13 +19,14 @@ def _dump(blocks: dict) -> dict:
 def _check(functions: list[tuple[str, dict]]) -> tuple[int, int]:
     """Both passes on every function of a module (lockstep_ir's), numba's and numba_ssa's, on
     copies of the same IR: (functions with re-assigned names, phi nodes stripped)."""
-    from numba.core import ir
+    from numba.core import ir, ssa, typed_passes
 
     from glslcheck.backends.compiled_engine import numba_patches, numba_ssa
 
     if not numba_patches.install(numba_ssa):  # (numba's own passes run there: nothing to check)
         pytest.skip(f"numba_ssa is not installed on numba other than {numba_ssa.CHECKED}")
-    ref_ssa, ref_strip = numba_ssa.numba_passes()
+    ref_ssa = numba_patches.original(ssa, "_run_ssa")
+    ref_strip = numba_patches.original(typed_passes.PreLowerStripPhis, "_strip_phi_nodes")
     fixed = phis = 0
     for name, blocks in functions:
         want = ref_ssa(copy.deepcopy(blocks))
@@ -63,7 +64,7 @@ def test_lab_same_ir_as_numba(lockstep_ir, name):
 def test_block_with_a_name_assigned_twice(numba):
     """A block that assigns a name twice (not SSA form) takes numba's walk: the exported value
     goes after the last assignment."""
-    from numba.core import ir
+    from numba.core import ir, typed_passes
     from numba.core.compiler import run_frontend
 
     from glslcheck.backends.compiled_engine import numba_patches, numba_ssa
@@ -90,7 +91,7 @@ def test_block_with_a_name_assigned_twice(numba):
     body.insert(0, ir.Assign(target=target, value=phi, loc=loc))
     if not numba_patches.install(numba_ssa):
         pytest.skip(f"numba_ssa is not installed on numba other than {numba_ssa.CHECKED}")
-    _, ref_strip = numba_ssa.numba_passes()
+    ref_strip = numba_patches.original(typed_passes.PreLowerStripPhis, "_strip_phi_nodes")
     a = types.SimpleNamespace(blocks=copy.deepcopy(blocks), loc=loc)
     b = types.SimpleNamespace(blocks=copy.deepcopy(blocks), loc=loc)
     ref_strip(None, a)

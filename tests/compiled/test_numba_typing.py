@@ -59,6 +59,7 @@ def typing(numba):
     installed in its place (skipped on a numba other than the one it was checked on). lanes_rt
     is imported first: the refresh registers its intrinsics."""
     from numba.core import registry
+    from numba.core.types.functions import BaseFunction
 
     from glslcheck.backends.compiled_engine import (
         lanes_rt,  # noqa: F401
@@ -70,7 +71,7 @@ def typing(numba):
         pytest.skip(f"numba_typing is not installed on numba other than {numba_typing.CHECKED}")
     ctx = registry.cpu_target.typing_context
     ctx.refresh()
-    return ctx, numba_typing.numba_get_call_type()
+    return ctx, numba_patches.original(BaseFunction, "get_call_type")
 
 
 def _same_resolutions(ctx, own, cases) -> int:

@@ -30,8 +30,9 @@ from typing import Any
 
 import numpy as np
 
+from .numba_patches import swap
+
 CHECKED = ("0.68.",)  # the numba versions whose functions these mirror
-_NUMBA: dict[str, Any] = {}  # numba's own functions that replace() took the place of
 
 
 class _Bits:
@@ -132,16 +133,8 @@ def replace() -> bool:
     # modules that own them (postproc.VariableLifetime calls analysis.compute_live_map)
     users = (analysis, ir_utils, untyped_passes)
     for home, name, mine in names:
-        _NUMBA[name] = numba_own = getattr(home, name)
+        numba_own = getattr(home, name)
         for m in users:
             if getattr(m, name, None) is numba_own:
-                setattr(m, name, mine)
+                swap(m, name, mine)
     return True
-
-
-def numba_own(name: str) -> Any:
-    """numba's own `compute_live_map` or `fixup_var_define_in_scope` (the references these are
-    checked against)."""
-    from numba.core import analysis, ir_utils
-
-    return _NUMBA.get(name, getattr(analysis if name == "compute_live_map" else ir_utils, name))

@@ -29,6 +29,8 @@ import weakref
 from collections.abc import Iterator
 from typing import Any
 
+from .numba_patches import swap
+
 CHECKED = ("0.68.",)  # the numba versions whose CPUContext.get_executable and cache this wraps
 MODULE_PREFIX = "glslcheck_compiled_m"  # the generated modules' names (engine.CompiledProgram)
 _STATE: dict[str, Any] = {}
@@ -146,8 +148,8 @@ def replace() -> bool:
         or not all(hasattr(library, n) for n in needed)
     ):
         return False
-    context.get_executable = _wrapped_get_executable(context.get_executable)
-    impl.check_cachable = _wrapped_check_cachable(impl.check_cachable)
+    swap(context, "get_executable", _wrapped_get_executable(context.get_executable))
+    swap(impl, "check_cachable", _wrapped_check_cachable(impl.check_cachable))
     return True
 
 

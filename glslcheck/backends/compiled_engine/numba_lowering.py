@@ -14,8 +14,9 @@ from __future__ import annotations
 
 from typing import Any
 
+from .numba_patches import swap
+
 CHECKED = ("0.68.",)  # the numba versions whose BaseContext.get_abi_sizeof this wraps
-_NUMBA: dict[str, Any] = {}  # numba's own function that replace() took the place of
 
 
 def _memoized(numba_get_abi_sizeof: Any) -> Any:
@@ -59,13 +60,5 @@ def replace() -> bool:
     context = getattr(base, "BaseContext", None)
     if context is None or not hasattr(context, "get_abi_sizeof"):
         return False
-    _NUMBA["numba"] = context.get_abi_sizeof
-    context.get_abi_sizeof = _memoized(context.get_abi_sizeof)
+    swap(context, "get_abi_sizeof", _memoized(context.get_abi_sizeof))
     return True
-
-
-def numba_get_abi_sizeof() -> Any:
-    """numba's own BaseContext.get_abi_sizeof (the reference this is checked against)."""
-    from numba.core import base
-
-    return _NUMBA.get("numba", base.BaseContext.get_abi_sizeof)

@@ -26,8 +26,9 @@ from __future__ import annotations
 from collections import defaultdict
 from typing import Any
 
+from .numba_patches import swap
+
 CHECKED = ("0.68.",)  # the numba versions whose ssa.py this mirrors
-_NUMBA: dict[str, Any] = {}  # numba's own functions that replace() took the place of
 
 
 class _BlockView:
@@ -228,19 +229,6 @@ def replace() -> bool:
     strip = getattr(typed_passes, "PreLowerStripPhis", None)
     ok = ok and strip is not None and hasattr(strip, "_strip_phi_nodes")
     if ok and strip is not None:
-        _NUMBA["numba"] = ssa._run_ssa
-        _NUMBA["strip"] = strip._strip_phi_nodes
-        ssa._run_ssa = run_ssa
-        strip._strip_phi_nodes = strip_phi_nodes
+        swap(ssa, "_run_ssa", run_ssa)
+        swap(strip, "_strip_phi_nodes", strip_phi_nodes)
     return ok
-
-
-def numba_passes() -> tuple[Any, Any]:
-    """numba's own ssa._run_ssa and PreLowerStripPhis._strip_phi_nodes (the references these
-    are checked against)."""
-    from numba.core import ssa, typed_passes
-
-    return (
-        _NUMBA.get("numba", ssa._run_ssa),
-        _NUMBA.get("strip", typed_passes.PreLowerStripPhis._strip_phi_nodes),
-    )

@@ -22,8 +22,9 @@ from __future__ import annotations
 import operator
 from typing import Any
 
+from .numba_patches import swap
+
 CHECKED = ("0.68.",)  # the numba versions whose BaseFunction.get_call_type this wraps
-_NUMBA: dict[str, Any] = {}  # numba's own function that replace() took the place of
 OPERATORS = frozenset(
     v for k, v in vars(operator).items() if callable(v) and not k.startswith("_")
 )  # (operator.add, operator.le, ...: the keys numba types Python's operators by)
@@ -77,13 +78,5 @@ def replace() -> bool:
         return False
     if not hasattr(base, "get_call_type") or not hasattr(base, "get_impl_key"):
         return False
-    _NUMBA["numba"] = base.get_call_type
-    base.get_call_type = _memoized(base.get_call_type)
+    swap(base, "get_call_type", _memoized(base.get_call_type))
     return True
-
-
-def numba_get_call_type() -> Any:
-    """numba's own BaseFunction.get_call_type (the reference this is checked against)."""
-    from numba.core.types import functions
-
-    return _NUMBA.get("numba", functions.BaseFunction.get_call_type)
