@@ -185,7 +185,9 @@ def populate(
                 continue
             out = texts / e["id"] / Path(e["path"]).name  # where score looks first
             data = shown.stdout
-            if "tab" in e:  # a Shadertoy JSON export: the tab's code, as the student's editor had it
+            if (
+                "tab" in e
+            ):  # a Shadertoy JSON export: the tab's code, as the student's editor had it
                 data, out = _tab_code(data, e["tab"]).encode(), out.with_suffix(".txt")
             out.parent.mkdir(parents=True, exist_ok=True)
             out.write_bytes(data)
