@@ -184,10 +184,27 @@ def populate(
                 missing += 1
                 continue
             out = texts / e["id"] / Path(e["path"]).name  # where score looks first
+            data = shown.stdout
+            if (
+                "tab" in e
+            ):  # a Shadertoy JSON export: the tab's code, as the student's editor had it
+                data, out = _tab_code(data, e["tab"]).encode(), out.with_suffix(".txt")
             out.parent.mkdir(parents=True, exist_ok=True)
-            out.write_bytes(shown.stdout)
+            out.write_bytes(data)
     print(f"{len(manifest) - missing} of {len(manifest)} files in {texts}")
     return 1 if missing else 0
+
+
+def _tab_code(export: bytes, tab: str) -> str:
+    """The code of pass `tab` ("Image", "Common", "Buffer A", ...) of a Shadertoy JSON export: one
+    shader (`{"info", "renderpass"}`) or an account's export (`{"shaders": [...]}`, its first)."""
+    shader = json.loads(export)
+    if "renderpass" not in shader:
+        shader = shader["shaders"][0]
+    for rp in shader["renderpass"]:
+        if rp.get("name") == tab or (tab == "Image" and rp.get("type") == "image"):
+            return rp["code"]
+    raise KeyError(f"no pass {tab!r} in the export")
 
 
 _RUN = re.compile(r"\(lines? (\d+)(?:-(\d+))?\)")

@@ -344,6 +344,7 @@ class Lexer:
         depth = parens = 0
         hidden: list[tuple[str, int, bool]] = []  # (name, depth it shows again at, parameter)
         prev_type = False  # the previous token is a type: a struct name now is a declared name
+        prev_dot = False  # the previous token is '.': a name now selects a field, never a type
         error: Exception | None = None
         for m in self.master.finditer(text):
             kind = m.lastgroup
@@ -361,7 +362,7 @@ class Lexer:
                     if after_struct:
                         struct_names.add(value)
                         after_struct = False
-                    elif value in struct_names:
+                    elif value in struct_names and not prev_dot:
                         if prev_type and (depth > 0 or parens > 0):
                             struct_names.discard(value)  # `sphere sphere`: hides the type
                             hidden.append((value, depth if parens else depth - 1, parens > 0))
@@ -385,6 +386,7 @@ class Lexer:
                     error = UnexpectedCharacters(text, start, tok.line, tok.column, self.allowed)
                     break
             prev_type = kind == TYPE_NAME or value in _TYPE_WORDS
+            prev_dot = value == "."
             tok = _new_str(Token, value)
             tok.type = kind
             tok.value = value

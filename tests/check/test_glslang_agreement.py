@@ -46,6 +46,26 @@ MAIN = (
     "\nvoid mainImage(out vec4 fragColor, in vec2 fragCoord)\n{\n    fragColor = vec4(g(1.0));\n}\n"
 )
 
+# Names a field selection (after '.') takes that also name a struct: a member's name lives in its
+# struct's own name space, so `t.L` selects member L even where L is a type.
+FIELDS_NAMED_LIKE_TYPES = [
+    "struct S { float v; };\nstruct L { S L[2]; float n; };\n"
+    "float g(float x) { L t; t.L[0] = S(x); t.n = 2.0; return t.L[0].v + t.n; }\n",
+    "struct P { float P; };\nfloat g(float x) { P p = P(x); p.P += 1.0; return p.P; }\n",
+    "struct A { float b; };\nstruct B { A A; };\n"
+    "float g(float x) { B q = B(A(x)); return q.A.b; }\n",
+]
+
+
+@pytest.mark.parametrize("text", FIELDS_NAMED_LIKE_TYPES)
+def test_fields_named_like_types_are_accepted_by_both(text, glslang):
+    shader = Shader(root="fields")
+    register_source("Image.glsl", text + MAIN)
+    shader.tabs["Image"] = Source("Image.glsl", text + MAIN, "Image")
+    assert [d.message for d in our_errors(shader)] == []
+    assert glslang_errors(shader) == []
+
+
 # Programs where glslangValidator (as glslcheck.semantics.glslang runs it: compile only, no -l)
 # accepts what a GL driver rejects. Each: (name, Image tab text, why glslang is wrong here).
 KNOWN_DIFFERENCES = [

@@ -193,3 +193,41 @@ def test_a_second_reading_takes_the_readers_disagreement_out(tmp_path):
         "against both readings: recall on the labels both give 1.00 (1/1), "
         "precision against either reading 1.00 (2/2)" in proc.stdout
     )
+
+
+def test_populate_takes_a_json_export_s_image_tab(tmp_path):
+    """A manifest entry with `"tab"` names a Shadertoy JSON export: populate writes that pass's
+    code (one shader's export, or an account's, whose first shader it takes) as a .txt file."""
+    image = "void mainImage(out vec4 c, in vec2 f) { c = vec4(1.0); }\n"
+    one = {
+        "info": {},
+        "renderpass": [
+            {"type": "buffer", "name": "Buffer A", "code": "x"},
+            {"type": "image", "name": "Image", "code": image},
+        ],
+    }
+    account = {"userName": "s", "shaders": [one]}
+    repo = tmp_path / "mirrors" / "a+b" / "repo"
+    subprocess.run(["git", "init", "-q", str(repo)], check=True)
+    for name, data in (("one.json", one), ("all shaders.json", account)):
+        (repo / name).write_text(json.dumps(data))
+    subprocess.run(["git", "-C", str(repo), "add", "."], check=True)
+    subprocess.run(
+        ["git", "-C", str(repo), "-c", "user.name=t", "-c", "user.email=t@t", "commit", "-qm", "t"],
+        check=True,
+    )
+    commit = subprocess.run(
+        ["git", "-C", str(repo), "rev-parse", "HEAD"], capture_output=True, text=True, check=True
+    ).stdout.strip()
+    entries = [
+        {"id": "n1", "repo": "a/b", "commit": commit, "path": "one.json", "tab": "Image"},
+        {"id": "n2", "repo": "a/b", "commit": commit, "path": "all shaders.json", "tab": "Image"},
+        {"id": "n3", "repo": "a/b", "commit": commit, "path": "one.json", "tab": "Buffer A"},
+    ]
+    manifest = tmp_path / "m.json"
+    manifest.write_text(json.dumps(entries))
+    texts = tmp_path / "texts"
+    assert real_lint.populate(tmp_path / "mirrors", False, manifest, texts) == 0
+    assert (texts / "n1" / "one.txt").read_text() == image
+    assert (texts / "n2" / "all shaders.txt").read_text() == image
+    assert (texts / "n3" / "one.txt").read_text() == "x"

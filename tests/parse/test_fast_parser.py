@@ -58,12 +58,15 @@ class _Reference(PostLex):
     def process(self, stream):
         after_struct = False
         after_type = False
+        after_dot = False
         braces = parens = 0
         hiding: list[tuple[str, int, bool]] = []  # (name, braces when it shows again, parameter)
         for tok in stream:
             if tok.type == "IDENTIFIER":
                 if after_struct:
                     self.struct_names.add(tok.value)
+                elif after_dot:  # a field's name, never a type
+                    pass
                 elif tok.value in self.struct_names and after_type and (braces or parens):
                     self.struct_names.remove(tok.value)
                     hiding.append((tok.value, braces if parens else braces - 1, parens > 0))
@@ -72,6 +75,7 @@ class _Reference(PostLex):
                 if tok.value in RESERVED_WORDS:
                     raise _Reserved(tok)
             after_struct = tok.type == "STRUCT"
+            after_dot = tok.value == "."
             after_type = tok.type == "TYPE_NAME" or tok.value in BY_NAME
             braces += {"{": 1, "}": -1}.get(tok.value, 0)
             parens = max(parens + {"(": 1, ")": -1}.get(tok.value, 0), 0)
@@ -300,6 +304,7 @@ def test_mutations_reach_every_outcome(reference):
         "float x;\n\n   ",
         "float x = 1.;\nfloat y = .5e-3; uint z = 0xFFu; int w = 077;",
         "struct S { float a; }; S s; S[2] t; float f() { return S(1.0).a; }",
+        "struct S { float S; }; struct L { S L[2]; }; float f(L l) { return l.L[0].S; }",
         "float a = b<<=c>>=d<=e>=f==g!=h&&i||j^^k++--l;",
         "int x = 1\x0b;",
         "float\x00 x;",
