@@ -797,6 +797,9 @@ class TieredProgram:
         self._mover: threading.Thread | None = None  # the lockstep compile, once started
         self._over = False  # a lockstep build was stopped at the budget (over_budget)
         self._slower = False  # the marker's hint: lockstep lost its last trial (load_cached)
+        # a caller's trial is timing these frames (tiered.py): no move starts meanwhile, which
+        # would time a compile beside them or another mode (move_now still starts one)
+        self.hold = False
         self.rates: list[float] = []  # seconds per pixel of the latest per-pixel frames
         self.trial: list[float] = []  # and of lockstep's first frames (its trial)
 
@@ -956,7 +959,7 @@ class TieredProgram:
         """One frame (CompiledProgram.render), by whichever program is current."""
         kw = dict(inputs.keywords(), precision=precision, stats=stats, channels=channels)
         with self._lock:
-            if self._mover is None and not self.stay and self.pixels:
+            if self._mover is None and not self.stay and not self.hold and self.pixels:
                 ahead = self.spent / self.pixels * inputs.width * inputs.height
                 cost = self.move_cost()  # (over the budget: not built, the frames stay per pixel)
                 if cost <= LOCKSTEP_BUDGET and self.paid + self.spent + ahead >= cost:
