@@ -38,6 +38,8 @@ The move happens only where the two engines are known to give the same bits:
   frames start worker processes and load kernels, and a move that comes early would otherwise
   be judged against them). A light shader's NumPy frames, whose uniform values are computed
   once a tile, can beat the compiled engine's per-pixel ones. A
+  per-pixel program's own move to lockstep waits for the trial's end (a compile beside the
+  trial frames, or a mode changed among them, would be what the trial times). A
   per-pixel program found slower hands the frames back to NumPy until they have paid for its
   lockstep module too (engine.TieredProgram.move_cost, within engine.LOCKSTEP_BUDGET), which is
   then made beside them, checked on one frame against NumPy's and tried the same way; slower
@@ -380,17 +382,20 @@ class TieredCpuProgram:
         pixel = isinstance(self.second, TieredProgram) and self.second.mode == "pixel"
         if pixel:  # (a hint for a later process's order of tiers, not a verdict: _move)
             self._keep(pixel="slower" if mine >= self.numpy_rate else "faster")
-        if mine >= self.numpy_rate:
-            second, self.second = self.second, None
-            # (a per-pixel TieredProgram whose lockstep module may still be made)
-            if isinstance(second, TieredProgram) and second.mode == "pixel" and not second.stay:
-                self.later = second  # NumPy frames until lockstep pays and is made, then a trial
-                return
-            # (not recorded: a timing on a loaded machine; a later process tries again)
-            self.stay = (
-                f"slower: the compiled engine {mine * 1e9:.0f} ns a pixel, "
-                f"the NumPy backend {self.numpy_rate * 1e9:.0f}"
-            )
+        if mine < self.numpy_rate:
+            if isinstance(self.second, TieredProgram):
+                self.second.hold = False  # kept: its frames may now pay for lockstep
+            return
+        second, self.second = self.second, None
+        # (a per-pixel TieredProgram whose lockstep module may still be made)
+        if isinstance(second, TieredProgram) and second.mode == "pixel" and not second.stay:
+            self.later = second  # NumPy frames until lockstep pays and is made, then a trial
+            return
+        # (not recorded: a timing on a loaded machine; a later process tries again)
+        self.stay = (
+            f"slower: the compiled engine {mine * 1e9:.0f} ns a pixel, "
+            f"the NumPy backend {self.numpy_rate * 1e9:.0f}"
+        )
 
     def _give_up(self, later: Any) -> None:
         """The lockstep module of a slower per-pixel program cannot be made: NumPy for good."""
@@ -473,6 +478,8 @@ class TieredCpuProgram:
         if seconds is not None:
             fields["seconds"] = round(seconds, 3)
         self._keep(**fields)
+        if not isinstance(prog, CompiledProgram):
+            prog.hold = TRIAL_FRAMES > 0  # its own move waits for the trial (_judge)
         self.second = prog
 
     def settled(self) -> bool:

@@ -197,6 +197,43 @@ def test_tiered_program_moves(numba, make_shader, monkeypatch, tmp_path):
     )  # None: loaded already in this process
 
 
+@pytest.mark.parametrize("lockstep", [0.5, 2.0])
+def test_a_lockstep_module_is_tried_against_per_pixel(
+    numba, make_shader, monkeypatch, tmp_path, lockstep
+):
+    """Lockstep's first frames are timed against the per-pixel frames before the move: slower,
+    it hands the frames back to per pixel for good, and a later program starts per pixel (the
+    marker's hint); faster, it keeps them. The bits are per pixel's either way."""
+    from glslcheck.backends.compiled_engine import engine
+
+    monkeypatch.delenv("GLSLCHECK_COMPILED_LANES", raising=False)
+    monkeypatch.setenv("NUMBA_CACHE_DIR", str(tmp_path))
+    monkeypatch.setattr(engine, "LOCKSTEP_TRIAL_FRAMES", 2)
+    seconds = {"pixel": 1.0, "lanes8": lockstep}  # a frame's seconds, by the module's mode
+
+    def timed(self, render, **kw):
+        mode = "pixel" if getattr(render, "__self__", None) is self.first else "lanes8"
+        return render(**kw), seconds[mode]
+
+    monkeypatch.setattr(engine.TieredProgram, "_timed", timed)
+    shader = make_shader(CONSTRUCTS["control_flow"])
+    want = _render(shader, 0, time=2.0)
+    prog = engine.compile_compiled(shader)
+    prog.render(size=SIZE, time=2.0, mouse=MOUSE)
+    assert prog.move_now() and prog.settle(600) and prog.mode == "lanes8"
+    modes = []
+    for _ in range(4):
+        got = prog.render(size=SIZE, time=2.0, mouse=MOUSE)
+        assert_same(got, want, what="control_flow", names=(prog.mode, "per pixel"))
+        modes.append(prog.mode)
+    slower = lockstep >= 1.0
+    assert modes == (["lanes8", "pixel", "pixel", "pixel"] if slower else ["lanes8"] * 4)
+    assert prog.stay == slower and prog.trial == [lockstep / (SIZE[0] * SIZE[1])] * 2
+    again = engine.compile_compiled(shader)
+    assert again.load_cached() != slower  # slower: per pixel first, lockstep tried again later
+    assert again._cached_fast() is not None
+
+
 def test_fixed_mode_is_not_tiered(numba, make_shader, monkeypatch):
     """GLSLCHECK_COMPILED_LANES=0 or a width: that module only, no tiers."""
     from glslcheck.backends.compiled_engine import engine

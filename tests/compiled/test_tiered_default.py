@@ -367,6 +367,28 @@ def test_a_slower_per_pixel_program_is_tried_again_in_lockstep(
         _same_as_numpy(image, w, what=f"iTime {t}")
 
 
+def test_no_lockstep_move_starts_during_the_trial(numba, make_shader, eager, clock, monkeypatch):
+    """The trial times the per-pixel program alone: its own move to lockstep, paid for already,
+    starts only once the trial has kept it."""
+    from glslcheck.backends.compiled_engine import engine
+
+    monkeypatch.setattr(tiered, "TRIAL_FRAMES", 2)
+    monkeypatch.delenv("GLSLCHECK_COMPILED_LANES", raising=False)
+    monkeypatch.setattr(engine.TieredProgram, "move_cost", lambda self: 0.0)  # lockstep paid
+    monkeypatch.setattr(engine.TieredProgram, "load_cached", lambda self: False)
+    monkeypatch.setattr(tiered.TieredCpuProgram, "record", lambda self: {"pixel": "faster"})
+    monkeypatch.setattr(engine, "module_cached", lambda key: True)
+    clock["compiled"] = [0.01]  # per pixel wins its trial
+    prog = glslcheck.compile(make_shader(ANIMATED))
+    _frames(prog, [0.5])
+    assert prog.impl.settle(300) and prog.impl.mode == "compiled pixel", prog.impl.stay
+    tier = prog.impl.second
+    _frames(prog, [0.6, 0.7])  # the trial's frames: nothing starts beside them
+    assert tier._mover is None and prog.impl.second is tier and not tier.hold
+    _frames(prog, [0.8])  # kept: this frame starts the move
+    assert tier._mover is not None and tier.settle(300) and tier.mode == "lanes8"
+
+
 def test_a_lockstep_module_made_earlier_renders_every_compiled_frame(
     numba, make_shader, eager, monkeypatch, tmp_path
 ):

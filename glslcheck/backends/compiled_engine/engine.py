@@ -740,6 +740,13 @@ PIXEL_BUDGET = 60.0
 # module's compile time is not known (a numba cache filled before compile times were recorded):
 # the median of the same run (quartiles 0.0047 and 0.0093; a machine's speed moves it).
 LOCKSTEP_SECONDS_PER_LINE = 0.0063
+# Lockstep's first frames after a move, timed against the per-pixel frames before it (medians of
+# so many): lockstep is slower than per pixel on light shaders whose loops run over constant
+# arrays (the per-pixel module folds their globals; benchmarks/bench_compiled.py --lab-only).
+LOCKSTEP_TRIAL_FRAMES = 3
+# the per-pixel frames whose rates the trial compares with (the latest so many)
+PIXEL_RATES_KEPT = 5
+SLOWER = "slower"  # a marker's hint: the lockstep module lost its last trial against per pixel
 
 
 class TieredProgram:
@@ -764,7 +771,11 @@ class TieredProgram:
     with a warning for a failure, and so does one expected to take more than LOCKSTEP_BUDGET CPU
     seconds to compile, or whose compile (in a child process: CompiledProgram.build_apart) takes
     more than that: the marker beside the per-pixel module then says so, and no later process builds
-    it.
+    it. A lockstep module is not always the faster: its first LOCKSTEP_TRIAL_FRAMES frames are
+    timed against the per-pixel frames this process rendered before the move, and a module slower
+    per pixel hands the frames back to the per-pixel one for good; the marker keeps the hint, so a
+    later process starts per pixel and tries the (cached) lockstep module again once its load is
+    paid (a timing depends on the machine's load: it is a hint, not a verdict).
     """
 
     def __init__(
@@ -785,6 +796,12 @@ class TieredProgram:
         ] = []  # _cached_fast's answer, looked up once (it walks the cache)
         self._mover: threading.Thread | None = None  # the lockstep compile, once started
         self._over = False  # a lockstep build was stopped at the budget (over_budget)
+        self._slower = False  # the marker's hint: lockstep lost its last trial (load_cached)
+        # a caller's trial is timing these frames (tiered.py): no move starts meanwhile, which
+        # would time a compile beside them or another mode (move_now still starts one)
+        self.hold = False
+        self.rates: list[float] = []  # seconds per pixel of the latest per-pixel frames
+        self.trial: list[float] = []  # and of lockstep's first frames (its trial)
 
     @property
     def path(self) -> str:
@@ -831,8 +848,10 @@ class TieredProgram:
         return self._over
 
     def _lookup_fast(self) -> str | None:
-        key = _read(self._marker())
-        self._over = key is not None and key.startswith(OVER)
+        marker = _read(self._marker())
+        self._over = marker is not None and marker.startswith(OVER)
+        key, _, hint = (marker or "").partition(" ")
+        self._slower = hint == SLOWER
         if key in _SOURCES:  # loaded in this process already
             return _SOURCES[key]
         if not key or not _cached(os.path.dirname(_folder()), key):
@@ -859,7 +878,7 @@ class TieredProgram:
         it (its marker), so that every frame is lockstep's: no per-pixel frame is left to pay
         for it. Whether it did."""
         source = self._cached_fast()
-        if self.fast is not None or source is None:
+        if self.fast is not None or source is None or self._slower:
             return self.fast is not None
         if self.first.loop_limit is not None and BUDGET_OFF in source:
             return False  # (a module without llvmpipe's loop budget: _move makes the other)
@@ -940,7 +959,7 @@ class TieredProgram:
         """One frame (CompiledProgram.render), by whichever program is current."""
         kw = dict(inputs.keywords(), precision=precision, stats=stats, channels=channels)
         with self._lock:
-            if self._mover is None and not self.stay and self.pixels:
+            if self._mover is None and not self.stay and not self.hold and self.pixels:
                 ahead = self.spent / self.pixels * inputs.width * inputs.height
                 cost = self.move_cost()  # (over the budget: not built, the frames stay per pixel)
                 if cost <= LOCKSTEP_BUDGET and self.paid + self.spent + ahead >= cost:
@@ -951,15 +970,42 @@ class TieredProgram:
                     )
                     self._mover.start()
         fast = self.fast
+        pixels = inputs.width * inputs.height
         if fast is not None:
-            return fast.render(**kw)
+            if not self.rates or len(self.trial) >= LOCKSTEP_TRIAL_FRAMES:
+                return fast.render(**kw)  # (no per-pixel frame to compare with: no trial)
+            out, took = self._timed(fast.render, **kw)
+            self._judge(took / pixels, fast)
+            return out
         self.first.load()  # its compile is not a frame's time
-        t0 = time.perf_counter()
-        out = self.first.render(**kw)
+        out, took = self._timed(self.first.render, **kw)
         with self._lock:
-            self.spent += time.perf_counter() - t0
-            self.pixels += inputs.width * inputs.height
+            self.spent += took
+            self.pixels += pixels
+            self.rates = [*self.rates, took / pixels][-PIXEL_RATES_KEPT:]
         return out
+
+    def _timed(self, render: Any, **kw: Any) -> tuple[np.ndarray, float]:
+        """One frame of either module's `render` and its wall seconds (the rule's one clock)."""
+        t0 = time.perf_counter()
+        out = render(**kw)
+        return out, time.perf_counter() - t0
+
+    def _judge(self, rate: float, fast: CompiledProgram) -> None:
+        """Count one trial frame of the lockstep module (seconds per pixel); after
+        LOCKSTEP_TRIAL_FRAMES, hand the frames back to per pixel when its median is not faster
+        than the latest per-pixel frames' (the marker keeps the hint for later processes)."""
+        self.trial.append(rate)
+        if len(self.trial) < LOCKSTEP_TRIAL_FRAMES:
+            return
+        mine = sorted(self.trial)[len(self.trial) // 2]
+        pixel = sorted(self.rates)[len(self.rates) // 2]
+        if mine >= pixel:
+            self.fast, self.stay = None, True
+            _write(self._marker(), f"{fast.key} {SLOWER}\n")
+        elif self._slower:  # won this time: a later process starts on it again
+            self._slower = False
+            _write(self._marker(), fast.key + "\n")
 
 
 def compile_compiled(
