@@ -14,7 +14,7 @@ from glslcheck.lint import engine, lint_paths, lint_source
 from glslcheck.lint.config import LintConfig
 from glslcheck.lint.rules import all_rules
 from glslcheck.semantics import check
-from glslcheck.semantics.analysis import FunctionFacts
+from glslcheck.semantics.analysis import FunctionFacts, ignored_parameters
 from glslcheck.shadertoy.sources import Shader, Source, find_shaders
 
 from .conftest import REPO_ROOT
@@ -381,3 +381,43 @@ def test_one_answer_for_lvalues_and_call_targets():
     # the writes the analysis records come from the same two answers: v by g's out and modf's out
     v = written_variable(model, targets[0])[0]
     assert [w.kind for w in fn.writes_to(v)] == ["decl", "part", "out", "out", "="]
+
+
+_HIT_BODIES = [
+    # the record's fields are filled in on the function's own copy: never in the result
+    "if (t < 0.0) { return false; }\n    rec.t = t;\n    rec.p = o + t * rec.p;\n    return true;",
+    # a condition reads the record
+    "if (rec.t < t) { return false; }\n    return true;",
+    # the record reaches the returned value through a local
+    "float s = rec.t * 2.0;\n    return s > t;",
+    # a loop's bound reads the point: the writes of every iteration depend on it
+    "bool h = false;\n    for (float u = 0.0; u < o.x; u += 1.0) { h = !h; }\n    return h;",
+]
+
+
+@pytest.mark.parametrize("body", _HIT_BODIES)
+def test_ignored_parameters_are_those_the_result_never_changes_with(body, gl, make_shader):
+    """The parameters a pure function's result is said to ignore are those whose argument,
+    changed, changes no result the GL driver computes over a grid of the others' values (both
+    signs of t and of rec.t, o.x from 0 to 4)."""
+    from glslcheck.backends.gl import compile_gl
+
+    function = (
+        "struct Rec { float t; vec3 p; };\n"
+        f"bool f(in float t, in Rec rec, in vec3 o)\n{{\n    {body}\n}}\n"
+    )
+    fn = _function(function + MAIN)
+    ignored = ignored_parameters(fn.model, fn.symbol)
+    image = function + (
+        "void mainImage(out vec4 fragColor, in vec2 fragCoord)\n{\n"
+        "    vec2 c = floor(fragCoord) * 0.5 - 2.0;\n"
+        "    float t = c.x;\n    Rec rec = Rec(c.y, vec3(c, 1.0));\n"
+        "    vec3 o = vec3(c + 2.0, 0.5);\n"
+        "    bool base = f(t, rec, o);\n"
+        "    fragColor = vec4(f(t + 1.5, rec, o) != base ? 1.0 : 0.0,\n"
+        "                     f(t, Rec(rec.t + 1.5, rec.p + 1.5), o) != base ? 1.0 : 0.0,\n"
+        "                     f(t, rec, o + 1.0) != base ? 1.0 : 0.0, 1.0);\n}\n"
+    )
+    pixels = compile_gl(make_shader(image), gl).render(size=(9, 9))
+    changes = {i for i in range(3) if pixels[..., i].any()}
+    assert set(ignored) == set(range(3)) - changes

@@ -7,7 +7,10 @@ operation such as the ambient term `ambientIntensity * ambientColor`) in the con
 or step of a `for`, `while` or `do` loop that depends on nothing the loop changes: it reads no
 variable written anywhere in the loop (the loop counter included), no variable declared in the
 loop, calls only pure user functions and no built-in with an `out` parameter, and reads no
-global variable when the loop calls a user function (which could write it). One operation in a
+global variable when the loop calls a user function (which could write it). An argument of a
+pure user function for a parameter its result never depends on (a hit record it only fills in
+its own copy of) does not count: `hit(ray, rec, spheres[0])` in a loop that writes `rec` still
+tests the same sphere every time. One operation in a
 loop bound (`i < n - 1`) is idiomatic and not reported; nor is code after a `return` or `break`.
 A call of a user function with `out` parameters whose results depend only on its inputs (it
 reads and writes no global, nor an `out` parameter before writing it), none of which the loop
@@ -53,6 +56,7 @@ from __future__ import annotations
 from ...base.diagnostics import Diagnostic
 from ...frontend import syntax as A
 from ...semantics.analysis import (
+    ignored_parameters,
     param_directions,
     program_facts,
     pure_function,
@@ -164,7 +168,7 @@ def _invariant_places(fn) -> list[tuple[A.Expr, A.Node]]:
                 continue
             if not fn.is_nontrivial(n) and not fn.contains(loop.body, n):
                 continue  # a bound like `i < n - 1`: one operation, idiomatic, hoisted by compilers
-            ops = fn.operands(n)
+            ops = _value_operands(fn, n)
             if any(id(s) in written for s in ops):
                 continue
             if calls_user and any(s.kind == "global" and s.qualifier != "const" for s in ops):
@@ -182,6 +186,22 @@ def _invariant_places(fn) -> list[tuple[A.Expr, A.Node]]:
                 found.append((call, loop))
     found.sort(key=lambda pair: fn.enter[id(pair[0])])
     return found
+
+
+def _value_operands(fn, e) -> frozenset:
+    """The variables `e`'s value depends on: what it reads (`fn.operands`) but the arguments a
+    user function it calls never lets reach its result (`ignored_parameters`: the record a
+    `bool hit(..., in Hit rec)` only fills in its own copy of)."""
+    lo, hi = fn.enter[id(e)], fn.exit[id(e)]
+    if not any(lo <= p <= hi for p in fn.user_calls):
+        return fn.operands(e)
+    if type(e) is A.Call:
+        target = fn.model.call_target(e)
+        ignored = ignored_parameters(fn.model, target) if isinstance(target, Symbol) else ()
+        if ignored:
+            args = [a for i, a in enumerate(e.args) if i not in ignored]
+            return frozenset().union(*(_value_operands(fn, a) for a in args))
+    return frozenset().union(*(_value_operands(fn, c) for c in e.children()))
 
 
 def _same_outputs(fn, call, written: set[int], calls_user: bool) -> bool:

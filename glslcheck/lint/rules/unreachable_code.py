@@ -5,7 +5,9 @@ Reports the statements of a block that follow a `return`, `break`, `continue` or
 that block: control never reaches them. One finding per block, at its first unreachable
 statement, naming the jump and the lines that never run. A jump inside a nested block (`if (hit)
 { return c; }`) leaves the code after that block reachable and is not reported; neither are
-comments and empty statements.
+comments and empty statements. Returns after a `return` that each carry a comment on their line
+(`return fade(loc); // cross fade`) are outputs kept to switch between and are not reported; a
+bare one (the starter's `return vec4(0.5);` left under the student's return) is.
 
 It is a possible deduction: the compiler drops code that never runs, so the cost is to the reader
 (and to the student, whose code after the jump does not do what it seems to).
@@ -52,6 +54,7 @@ _JUMPS = {A.Return: "return", A.Break: "break", A.Continue: "continue", A.Discar
 
 
 def check(ctx: LintContext) -> Iterator[Diagnostic]:
+    noted = {c.end_line for c in ctx.comments if not c.block}  # lines ending in a // comment
     for fn in program_facts(ctx.model).in_file(ctx.path):
         for block in fn.nodes:
             if type(block) is not A.Compound or fn.is_dead(block):
@@ -61,8 +64,8 @@ def check(ctx: LintContext) -> Iterator[Diagnostic]:
                 continue
             after = block.stmts[block.stmts.index(jump) + 1 :]
             after = [s for s in after if not (type(s) is A.ExpressionStatement and s.expr is None)]
-            if not after or all(type(s) is A.Return for s in after):
-                continue  # returns after a return: other outputs kept to switch between
+            if not after or all(type(s) is A.Return and s.loc.line in noted for s in after):
+                continue  # returns each named by a comment: other outputs kept to switch between
             first, last = after[0].loc.line, max(s.loc.end_line or s.loc.line for s in after)
             lines = f"line {first}" if first == last else f"lines {first}-{last}"
             yield Diagnostic(

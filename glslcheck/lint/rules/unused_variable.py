@@ -6,7 +6,9 @@ file scope) that nothing in the program reads. Assigning it (`x = ...`, `x.y = .
 read, nor is a local's update of itself with no other effect (`loc *= 4.0;`, `sum += d;`,
 `i++` as a statement: the value it updates is still never used); an argument (also `out`: the
 call needs a variable to write, even when only another of its outputs is wanted) or any other
-use is.
+use is, but for an argument of a call, as a statement, of a user function that takes `in`
+parameters only and writes no global (`add(world, s);` with `void add(in List l, in Sphere s)`):
+such a call changes nothing the caller sees, so passing the variable to it reads nothing.
 Parameters, uniforms and shader inputs/outputs are not reported. A Common tab is checked
 together with the Image tab, so a global of Common that only Image reads is used; when the
 shader has other passes too (Buffer A..D), Common's globals are not reported at all.
@@ -125,6 +127,8 @@ def read_symbols(model: Model) -> set[int]:
     for node in model.nodes():
         if id(node) in statements and (target := _self_update(model, node)) is not None:
             written.add(id(target))
+        elif id(node) in statements and no_effect_call(model, node):
+            written.update(id(n) for a in node.args for n in a.walk() if type(n) is A.Identifier)
     symbol_of = model.symbol_of
     reads: set[int] = set()
     for node in idents:
@@ -138,6 +142,35 @@ def read_symbols(model: Model) -> set[int]:
 
 
 _program_reads: dict[str, Any] = {}
+
+
+def no_effect_call(model: Model, node: Any) -> bool:
+    """A call, as a statement, of a user function that takes `in` parameters only and writes no
+    global (`add(list, s);` with `void add(in List l, in Sphere s)` writing only its copies): it
+    does nothing the caller sees, so what its arguments read is no read."""
+    if type(node) is not A.Call:
+        return False
+    target = model.call_target(node)
+    return (
+        isinstance(target, Symbol)
+        and pure_function(model, target)
+        and all(_pure_value(model, a) for a in node.args)
+    )
+
+
+def _pure_value(model: Model, e: Any) -> bool:
+    """`e` writes nothing and calls only pure functions."""
+    for n in e.walk():
+        k = type(n)
+        if k in (A.Assignment, A.Postfix, A.Sequence) or (k is A.Unary and n.op in ("++", "--")):
+            return False
+        if k is A.Call:
+            callee = model.call_target(n)
+            if callee is None or (isinstance(callee, Symbol) and not pure_function(model, callee)):
+                return False
+            if getattr(callee, "out_params", None):
+                return False
+    return True
 
 
 def _self_update(model: Model, node: Any) -> A.Identifier | None:
@@ -156,16 +189,8 @@ def _self_update(model: Model, node: Any) -> A.Identifier | None:
     sym = model.symbol_of(target)
     if sym is None or sym.kind != "local":
         return None
-    for n in value.walk() if value is not None else ():
-        k = type(n)
-        if k in (A.Assignment, A.Postfix, A.Sequence) or (k is A.Unary and n.op in ("++", "--")):
-            return None
-        if k is A.Call:
-            callee = model.call_target(n)
-            if callee is None or (isinstance(callee, Symbol) and not pure_function(model, callee)):
-                return None
-            if getattr(callee, "out_params", None):
-                return None
+    if value is not None and not _pure_value(model, value):
+        return None
     return target
 
 
@@ -389,9 +414,21 @@ def _unused(
             value = w.value if w.kind in ("init", "=") else getattr(w.node, "value", None)
             if value is not None and w.kind in ("init", "=", "part", "op") and _computed(fn, value):
                 work.append(value)
+    callees = sorted({c.callee for c in _passed_to_no_effect_calls(fn, sym)} if fn else ())
+    only = (
+        f" (only passed to {', '.join(c + '()' for c in callees)}, which "
+        + (
+            "takes in parameters only and changes"
+            if len(callees) == 1
+            else "take in parameters only and change"
+        )
+        + " nothing the caller sees)"
+        if callees
+        else ""
+    )
     if not work:
         yield Diagnostic(
-            f"the {kind} {what} '{d.name}' is never read", loc, help=help_, severity="note"
+            f"the {kind} {what} '{d.name}' is never read{only}", loc, help=help_, severity="note"
         )
         return
     lines = sorted({v.loc.line for v in work})
@@ -402,7 +439,7 @@ def _unused(
     )
     yield Diagnostic(
         f"the {kind} {what} '{d.name}' is never read: its value, computed at {where}, is work "
-        "done for nothing",
+        f"done for nothing{only}",
         loc,
         help=help_,
         notes=[
@@ -411,6 +448,21 @@ def _unused(
             if v.loc.line != loc.line
         ],
     )
+
+
+def _passed_to_no_effect_calls(fn, sym) -> list[A.Call]:
+    """The call statements with no effect (`no_effect_call`) whose arguments name `sym`."""
+    return [
+        c
+        for c in fn.calls
+        if type(fn.parent.get(id(c))) is A.ExpressionStatement
+        and no_effect_call(fn.model, c)
+        and any(
+            type(n) is A.Identifier and fn.model.symbol_of(n) is sym
+            for a in c.args
+            for n in a.walk()
+        )
+    ]
 
 
 _JUMPS = (A.Break, A.Continue, A.Return, A.Discard)

@@ -269,6 +269,56 @@ def pure_function(
     return ok
 
 
+def ignored_parameters(model: Model, sym: Symbol) -> frozenset[int]:
+    """Indexes of the parameters of a pure function (`pure_function`) whose value never reaches
+    its result: no returned value and no condition (of a branch, a loop, a `?:` or a switch)
+    reads it, directly or through the variables assigned from it (`rec` of `bool hit(in Ray r,
+    in Hit rec)` that only fills in the fields of its own copy). Flow-insensitive: a variable
+    any of whose values reads a parameter depends on it everywhere, so it errs toward
+    dependence."""
+    cache = _model_cache(model, "ignored_parameters")
+    found = cache.get(id(sym))
+    if found is not None:
+        return found
+    found = cache[id(sym)] = frozenset()
+    if not pure_function(model, sym):
+        return found
+    symbol_of = model.symbol_of
+
+    def reads(e: Any) -> set[int]:
+        return {
+            id(v) for n in e.walk() if type(n) is A.Identifier and (v := symbol_of(n)) is not None
+        }
+
+    flows: dict[int, set[int]] = {}  # id(variable) -> ids of the variables its values read
+    reached: set[int] = set()  # the variables a returned value or a condition reads
+    for n in model.body_nodes(sym.node):
+        t = type(n)
+        if t is A.Assignment:
+            target, _ = written_variable(model, n.target)
+            if target is not None:
+                flows.setdefault(id(target), set()).update(reads(n.value), reads(n.target))
+        elif t is A.Declarator and n.init is not None and (v := symbol_of(n)) is not None:
+            flows.setdefault(id(v), set()).update(reads(n.init))
+        elif t is A.Return and n.value is not None:
+            reached |= reads(n.value)
+        elif t in (A.If, A.While, A.DoWhile, A.Ternary, A.For) and n.cond is not None:
+            reached |= reads(n.cond)
+        elif t is A.Switch:
+            reached |= reads(n.expr)
+    todo = list(reached)
+    while todo:
+        for other in flows.get(todo.pop(), ()):
+            if other not in reached:
+                reached.add(other)
+                todo.append(other)
+    params = [symbol_of(p) for p in sym.node.proto.params]
+    found = cache[id(sym)] = frozenset(
+        i for i, p in enumerate(params) if p is not None and id(p) not in reached
+    )
+    return found
+
+
 def function_cost(model: Model, sym: Symbol) -> bool:
     """Whether calling the user function costs more than an add: two operations or a costly
     built-in in its body (a wrapper like `asPoint(v)`, `vec4(v, 1.0)`, does not)."""
