@@ -1,17 +1,18 @@
 """Do the two CPU engines give one answer? Render each shader with the NumPy backend and the
 compiled engine (per pixel, and 8 pixels in lockstep) and compare the bits.
 
-    python tools/engines_agree.py [--groups lab,main,holdout,fbm,scenes] [--size 64x36]
-                                  [--times 0,1.3,2.67,...] [--frame N] [--mouse 40,20,40,20]
-                                  [--lanes 0,8] [--only NAME,...] [--timeout 600] [--json out.json]
+    python tools/engines_agree.py [--groups lab,main,holdout,fbm,pathtracers,scenes]
+                                  [--size 64x36] [--times 0,1.3,2.67,...] [--frame N]
+                                  [--mouse 40,20,40,20] [--lanes 0,8]
+                                  [--only NAME,...] [--timeout 600] [--json out.json]
 
 The shaders: lab_shaders/* (`lab`), the real corpora of tools/real_verify.py (`main`: texts/,
-`holdout`: holdout_texts/, `fbm`: fbm_texts/, fetched by `python tools/real_verify.py [--set
-NAME] fetch`) and the render benchmark's scenes (`scenes`: benchmarks/scenes/*). Both engines
-render as `verify` runs the CPU side: loops stop as llvmpipe's do (verify.llvmpipe_loop_limit);
-where GLSL leaves a value to the CPU (uint() of a negative float) both take this machine's
-predicted model (driver_profile.host_model), which verify replaces by the live driver's when it
-differs.
+`holdout`: holdout_texts/, `fbm`: fbm_texts/, `pathtracers`: pathtracers_texts/, fetched by
+`python tools/real_verify.py [--set NAME] fetch`) and the render benchmark's scenes (`scenes`:
+benchmarks/scenes/*). Both engines render as `verify` runs the CPU side: loops stop as
+llvmpipe's do (verify.llvmpipe_loop_limit); where GLSL leaves a value to the CPU (uint() of a
+negative float) both take this machine's predicted model (driver_profile.host_model), which
+verify replaces by the live driver's when it differs.
 
 The frames: one a time, as an animation at 60 fps has them (iFrame = round(60 * iTime), or
 --frame N for all), the mouse button down (--mouse) in the first, third, ... frame and released
@@ -46,7 +47,7 @@ import time
 from pathlib import Path
 
 ROOT = Path(__file__).resolve().parents[1]
-GROUPS = ("lab", "main", "holdout", "fbm", "scenes")
+GROUPS = ("lab", "main", "holdout", "fbm", "pathtracers", "scenes")
 VERDICTS = ("identical", "differs", "refused", "per pixel", "timeout", "error")
 # iTime of the frames compared: 0 and times spread up to minutes, none a round number (a value
 # computed from iTime may round otherwise in one engine at some times only)
@@ -79,7 +80,7 @@ def shaders(group: str) -> list[Path]:
         return sorted(p for p in (ROOT / "lab_shaders").iterdir() if p.is_dir())
     if group == "scenes":
         return sorted(p for p in (ROOT / "benchmarks" / "scenes").iterdir() if p.is_dir())
-    if group in ("main", "holdout", "fbm"):
+    if group in ("main", "holdout", "fbm", "pathtracers"):
         from real_verify import set_paths  # this folder: the corpora's one home
 
         return set_paths(group)

@@ -9,11 +9,14 @@ tests/real_verify/texts/ (git-ignored), `score` verifies each one as `glslcheck 
     python tools/real_verify.py score [--size 160x90] [--times 0,1.7,5.3] [--timeout 300]
                                       [--only ID,...] [--json out.json]
 
-Two corpora, one mechanism: `--set main` (the default; manifest.json, texts/) is the corpus the
+Four corpora, one mechanism: `--set main` (the default; manifest.json, texts/) is the corpus the
 NumPy backend and the compiled engine were tuned on; `--set holdout` (holdout.json,
 holdout_texts/) is a second one chosen after that tuning, to measure how glslcheck does on
 shaders it was not tuned on (as a hidden corpus would); `--set fbm` (fbm.json, fbm_texts/) is
-the family of iq's sphere-grid fbm SDF, Shadertoy JSON exports. `--set` goes before the command
+the family of iq's sphere-grid fbm SDF, Shadertoy JSON exports; `--set pathtracers`
+(pathtracers.json, pathtracers_texts/) is a family of path tracers whose random numbers advance
+a seed twice in one constructor's arguments (`vec2(seed+=.1, seed+=.1)`) fed to a sin hash or to
+floatBitsToUint and an integer hash. `--set` goes before the command
 (`python tools/real_verify.py --set holdout score`); the environment variable REAL_VERIFY_SET
 selects the set for every script that reads this module's manifest (benchmarks/bench_real_render.py,
 benchmarks/bench_compiled.py).
@@ -51,6 +54,7 @@ SETS = {
     "main": ("manifest.json", "texts"),
     "holdout": ("holdout.json", "holdout_texts"),
     "fbm": ("fbm.json", "fbm_texts"),
+    "pathtracers": ("pathtracers.json", "pathtracers_texts"),
 }
 
 

@@ -1,16 +1,15 @@
 """Both CPU engines give one answer on every shader the project measures itself on.
 
 The lab shaders, the render benchmark's scenes and the real corpora of tools/real_verify.py
-(texts/, holdout_texts/ and fbm_texts/, fetched by `python tools/real_verify.py [--set NAME]
-fetch`) are
-rendered by the NumPy backend and by the compiled engine, per pixel and 8 pixels in lockstep,
-as verify renders them, at the tool's default frames (several iTime values, iFrame as an
-animation has it, the mouse button down and released: engines_agree.frames), and compared bit
-for bit (tools/engines_agree.py, one process a shader):
-an engine may refuse a shader with an error at a line (or lockstep leave it to the per-pixel
-module), never render other bits. The corpora are third-party texts, never committed: where
-they are not fetched (a fresh checkout, CI) their shaders skip with the command that fetches
-them, and the lab and the scenes, which are in the repository, still run.
+(texts/, holdout_texts/, fbm_texts/ and pathtracers_texts/, fetched by `python
+tools/real_verify.py [--set NAME] fetch`) are rendered by the NumPy backend and by the
+compiled engine, per pixel and 8 pixels in lockstep, as verify renders them, at the tool's
+default frames (several iTime values, iFrame as an animation has it, the mouse button down and
+released: engines_agree.frames), and compared bit for bit (tools/engines_agree.py, one process
+a shader): an engine may refuse a shader with an error at a line (or lockstep leave it to the
+per-pixel module), never render other bits. The corpora are third-party texts, never committed:
+where they are not fetched (a fresh checkout, CI) their shaders skip with the command that
+fetches them, and the lab and the scenes, which are in the repository, still run.
 """
 
 from __future__ import annotations
