@@ -12,6 +12,7 @@ import textwrap
 import numpy as np
 import pytest
 
+from glslcheck.backends.compiled_engine import numba_swaps
 from glslcheck.backends.compiled_engine.lanes_slim import hoistable_globals, slim_function
 
 MODULE = textwrap.dedent(
@@ -190,7 +191,7 @@ def test_type_sizes_as_numba_gives_them(numba):
     if not numba_patches.install(numba_lowering):
         pytest.skip(f"numba_lowering is not installed on numba other than {numba_lowering.CHECKED}")
     ctx = registry.cpu_target.target_context
-    own = numba_patches.original(base.BaseContext, "get_abi_sizeof")
+    own = numba_swaps.original(base.BaseContext, "get_abi_sizeof")
     i8p = ir.IntType(8).as_pointer()
     kinds = [
         ir.FloatType(),

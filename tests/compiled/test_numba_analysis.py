@@ -12,6 +12,8 @@ import os
 import pytest
 from test_compiled_render import CONSTRUCTS, LAB
 
+from glslcheck.backends.compiled_engine import numba_swaps
+
 
 def _check(functions: list[tuple[str, dict]]) -> int:
     """Both live maps and both scope fix-ups of every function of a module (lockstep_ir's),
@@ -22,7 +24,7 @@ def _check(functions: list[tuple[str, dict]]) -> int:
 
     if not numba_patches.install(numba_analysis):
         pytest.skip(f"numba_analysis is not installed on numba other than {numba_analysis.CHECKED}")
-    ref = numba_patches.original(analysis, "compute_live_map")
+    ref = numba_swaps.original(analysis, "compute_live_map")
     live = 0
     for name, frontend in functions:
         for blocks in (frontend, ssa._run_ssa(copy.deepcopy(frontend))):
@@ -42,9 +44,9 @@ def _check_scopes(blocks: dict) -> None:
     has a scope of its own, empty: the same names, in the same order, in every scope."""
     from numba.core import ir, ir_utils
 
-    from glslcheck.backends.compiled_engine import numba_analysis, numba_patches
+    from glslcheck.backends.compiled_engine import numba_analysis
 
-    ref = numba_patches.original(ir_utils, "fixup_var_define_in_scope")
+    ref = numba_swaps.original(ir_utils, "fixup_var_define_in_scope")
     out = []
     for fixup in (ref, numba_analysis.fixup_var_define_in_scope):
         copied = copy.deepcopy(blocks)
@@ -99,7 +101,7 @@ def test_loop_and_unreachable_block(numba):
     blocks[max(blocks) + 100] = dead
     if not numba_patches.install(numba_analysis):
         pytest.skip(f"numba_analysis is not installed on numba other than {numba_analysis.CHECKED}")
-    ref = numba_patches.original(analysis, "compute_live_map")
+    ref = numba_swaps.original(analysis, "compute_live_map")
     cfg = analysis.compute_cfg_from_blocks(blocks)
     usedefs = analysis.compute_use_defs(blocks)
     want = ref(cfg, blocks, usedefs.usemap, usedefs.defmap)

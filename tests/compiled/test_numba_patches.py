@@ -5,6 +5,8 @@ from __future__ import annotations
 
 from types import SimpleNamespace
 
+from glslcheck.backends.compiled_engine import numba_swaps
+
 
 def _patch(checked: tuple[str, ...], calls: list[str], name: str) -> SimpleNamespace:
     def replace() -> bool:
@@ -50,7 +52,6 @@ def test_the_engine_patches_are_in_place_exactly_on_their_checked_versions(numba
 def test_swap_keeps_the_first_original():
     """swap puts the wrapper in place; original gives what the first swap replaced, through a
     second swap of the same attribute, and the attribute itself where nothing was swapped."""
-    from glslcheck.backends.compiled_engine import numba_patches
 
     def own() -> str:
         return "own"
@@ -62,9 +63,9 @@ def test_swap_keeps_the_first_original():
         return "second"
 
     owner, other = SimpleNamespace(f=own), SimpleNamespace(f=own)
-    assert numba_patches.original(owner, "f") is own
-    numba_patches.swap(owner, "f", first)
-    assert owner.f is first and numba_patches.original(owner, "f") is own
-    numba_patches.swap(owner, "f", second)
-    assert owner.f is second and numba_patches.original(owner, "f") is own
-    assert other.f is own and numba_patches.original(other, "f") is own
+    assert numba_swaps.original(owner, "f") is own
+    numba_swaps.swap(owner, "f", first)
+    assert owner.f is first and numba_swaps.original(owner, "f") is own
+    numba_swaps.swap(owner, "f", second)
+    assert owner.f is second and numba_swaps.original(owner, "f") is own
+    assert other.f is own and numba_swaps.original(other, "f") is own

@@ -11,6 +11,8 @@ import types
 import pytest
 from test_compiled_render import CONSTRUCTS, LAB
 
+from glslcheck.backends.compiled_engine import numba_swaps
+
 
 def _dump(blocks: dict) -> dict:
     return {label: [str(s) for s in b.body] for label, b in blocks.items()}
@@ -25,8 +27,8 @@ def _check(functions: list[tuple[str, dict]]) -> tuple[int, int]:
 
     if not numba_patches.install(numba_ssa):  # (numba's own passes run there: nothing to check)
         pytest.skip(f"numba_ssa is not installed on numba other than {numba_ssa.CHECKED}")
-    ref_ssa = numba_patches.original(ssa, "_run_ssa")
-    ref_strip = numba_patches.original(typed_passes.PreLowerStripPhis, "_strip_phi_nodes")
+    ref_ssa = numba_swaps.original(ssa, "_run_ssa")
+    ref_strip = numba_swaps.original(typed_passes.PreLowerStripPhis, "_strip_phi_nodes")
     fixed = phis = 0
     for name, blocks in functions:
         want = ref_ssa(copy.deepcopy(blocks))
@@ -91,7 +93,7 @@ def test_block_with_a_name_assigned_twice(numba):
     body.insert(0, ir.Assign(target=target, value=phi, loc=loc))
     if not numba_patches.install(numba_ssa):
         pytest.skip(f"numba_ssa is not installed on numba other than {numba_ssa.CHECKED}")
-    ref_strip = numba_patches.original(typed_passes.PreLowerStripPhis, "_strip_phi_nodes")
+    ref_strip = numba_swaps.original(typed_passes.PreLowerStripPhis, "_strip_phi_nodes")
     a = types.SimpleNamespace(blocks=copy.deepcopy(blocks), loc=loc)
     b = types.SimpleNamespace(blocks=copy.deepcopy(blocks), loc=loc)
     ref_strip(None, a)

@@ -8,6 +8,8 @@ import operator
 
 import pytest
 
+from glslcheck.backends.compiled_engine import numba_swaps
+
 BINARY = [
     operator.add,
     operator.sub,
@@ -71,7 +73,7 @@ def typing(numba):
         pytest.skip(f"numba_typing is not installed on numba other than {numba_typing.CHECKED}")
     ctx = registry.cpu_target.typing_context
     ctx.refresh()
-    return ctx, numba_patches.original(BaseFunction, "get_call_type")
+    return ctx, numba_swaps.original(BaseFunction, "get_call_type")
 
 
 def _same_resolutions(ctx, own, cases) -> int:

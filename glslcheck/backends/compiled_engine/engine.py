@@ -49,7 +49,7 @@ from ...shadertoy.frame_inputs import FrameInputs, frame_inputs
 from ...shadertoy.wrapper import UNIFORMS_BY_NAME
 from ..cpu_core import numba_cache
 from ..cpu_core.common import LOOP_CAP
-from . import numba_linking
+from . import cache_files, numba_linking
 from .budget import STARVED, wait_child
 from .values import BUDGET_OFF
 
@@ -386,11 +386,11 @@ class CompiledProgram:
         write leaves `load` to compile here."""
         require_numba()
         cache = numba_cache.use_cache_dir()  # (in the environment: the child's numba reads it)
-        if self.mod is not None or self.key in _MODULES or _cached(cache, self.key):
+        if self.mod is not None or self.key in _MODULES or cache_files.cached(cache, self.key):
             return ""
-        file = os.path.join(_folder(), f"m{self.key}.py")
-        if _read(file, strip=False) != self.source:
-            _write(file, self.source, quiet=False)
+        file = os.path.join(cache_files.folder(), f"m{self.key}.py")
+        if cache_files.read(file, strip=False) != self.source:
+            cache_files.write(file, self.source, quiet=False)
         env = dict(os.environ)
         # the child imports this glslcheck, wherever this process found it
         root = os.path.dirname(os.path.dirname(os.path.dirname(os.path.dirname(__file__))))
@@ -431,19 +431,19 @@ class CompiledProgram:
         )  # before the SLP setting below, which a reload of numba's config would undo
         from numba.core import config
 
-        folder = _folder()
+        folder = cache_files.folder()
         name = f"{numba_linking.MODULE_PREFIX}{self.key}"
         file = os.path.join(folder, f"m{self.key}.py")
         # numba's cache needs the module as a file (it keys machine code to its path and stamp);
         # what runs is the source generated here, never what the file holds, and a file that
         # differs from it (cut short, edited) is written anew, which makes numba's entries stale.
-        if _read(file, strip=False) != self.source:
-            _write(file, self.source, quiet=False)
+        if cache_files.read(file, strip=False) != self.source:
+            cache_files.write(file, self.source, quiet=False)
         t0, c0 = time.perf_counter(), time.process_time()
         mod = types.ModuleType(name)
         mod.__file__ = file
         sys.modules[name] = mod
-        self.cold = not _cached(cache, self.key)
+        self.cold = not cache_files.cached(cache, self.key)
         if self.cold:  # numba's SSA passes, the same IR in time linear in the names they fix,
             # its operator typing once per argument types, its liveness on bit sets, a type's
             # size asked of LLVM once, its callees optimized and emitted inside its entries only
@@ -464,7 +464,9 @@ class CompiledProgram:
         self.load_seconds = time.perf_counter() - t0
         if self.cold:  # what compiling it took, for TieredProgram's estimate in later processes
             self.cpu_seconds = time.process_time() - c0
-            _write(os.path.join(folder, f"m{self.key}.compile"), f"{self.cpu_seconds:.3f}\n")
+            cache_files.write(
+                os.path.join(folder, f"m{self.key}.compile"), f"{self.cpu_seconds:.3f}\n"
+            )
         return mod
 
     def compile_seconds(self) -> float | None:
@@ -473,7 +475,7 @@ class CompiledProgram:
         wall time also counts the waits of a loaded machine."""
         if self.cold:
             return self.cpu_seconds
-        text = _read(os.path.join(_folder(), f"m{self.key}.compile"))
+        text = cache_files.read(os.path.join(cache_files.folder(), f"m{self.key}.compile"))
         try:
             return float(text) if text else None
         except ValueError:
@@ -643,19 +645,15 @@ class CompiledProgram:
         return self._frame(mod, inputs.width, inputs.height, offs, uf, ui)
 
 
-def _folder() -> str:
-    return os.path.join(numba_cache.trusted_dir(), "compiled")
-
-
 def compiled_folder() -> str:
     """The folder of the compiled modules, beside numba's cache (what other tiers record there
     lives with them)."""
-    return _folder()
+    return cache_files.folder()
 
 
 def write_cache_file(path: str, text: str) -> None:
     """A small record in the cache folder, written atomically; a read-only cache keeps none."""
-    _write(path, text)
+    cache_files.write(path, text)
 
 
 _FINGERPRINT: list[str] = []
@@ -677,45 +675,7 @@ def engine_fingerprint() -> str:
 
 def module_cached(key: str) -> bool:
     """Whether numba's cache holds the machine code of the module of this key."""
-    return bool(key) and _cached(os.path.dirname(_folder()), key)
-
-
-def _write(path: str, text: str, quiet: bool = True) -> None:
-    """A file of the cache, atomically (a reader sees all of it or none); `quiet`: a read-only
-    cache is no error (a record not kept)."""
-    try:
-        os.makedirs(os.path.dirname(path), mode=0o700, exist_ok=True)
-        tmp = f"{path}.{os.getpid()}"
-        with open(tmp, "w") as f:
-            f.write(text)
-        os.replace(tmp, path)
-    except OSError:
-        if not quiet:
-            raise
-
-
-def _read(path: str, strip: bool = True) -> str | None:
-    try:
-        with open(path) as f:
-            text = f.read()
-    except OSError:
-        return None
-    return text.strip() if strip else text
-
-
-def _cached(folder: str, key: str) -> bool:
-    """Whether numba had machine code for the whole module before this load: the index file of
-    render_rows, which numba compiles and caches last (a compile stopped halfway leaves some of
-    the functions it calls)."""
-    head = f"m{key}.render_rows-"
-    return any(n.startswith(head) and n.endswith(".nbi") for n in _listdir(folder))
-
-
-def _listdir(folder: str) -> list[str]:
-    out = []
-    for root, _, files in os.walk(folder):
-        out += files
-    return out
+    return bool(key) and cache_files.cached(os.path.dirname(cache_files.folder()), key)
 
 
 TIER_LANES = 8  # the lockstep width TieredProgram moves to (8: AVX2's float32 lanes)
@@ -833,7 +793,7 @@ class TieredProgram:
         return f"lanes{TIER_LANES}" if self.fast is not None else "pixel"
 
     def _marker(self) -> str:
-        return os.path.join(_folder(), f"m{self.first.key}.lanes{TIER_LANES}")
+        return os.path.join(cache_files.folder(), f"m{self.first.key}.lanes{TIER_LANES}")
 
     def _cached_fast(self) -> str | None:
         """The lockstep module's source when an earlier process made it and numba cached it
@@ -848,16 +808,16 @@ class TieredProgram:
         return self._over
 
     def _lookup_fast(self) -> str | None:
-        marker = _read(self._marker())
+        marker = cache_files.read(self._marker())
         self._over = marker is not None and marker.startswith(OVER)
         key, _, hint = (marker or "").partition(" ")
         self._slower = hint == SLOWER
         if key in _SOURCES:  # loaded in this process already
             return _SOURCES[key]
-        if not key or not _cached(os.path.dirname(_folder()), key):
+        if not key or not cache_files.cached(os.path.dirname(cache_files.folder()), key):
             return None
-        source = _read(
-            os.path.join(_folder(), f"m{key}.py"), strip=False
+        source = cache_files.read(
+            os.path.join(cache_files.folder(), f"m{key}.py"), strip=False
         )  # as written: its hash is its key
         return source if source is not None and CompiledProgram(source, "").key == key else None
 
@@ -907,7 +867,7 @@ class TieredProgram:
                 self.stay = True
                 return
             if why == "over budget":
-                _write(self._marker(), f"{OVER} {LOCKSTEP_BUDGET:g} s\n")
+                cache_files.write(self._marker(), f"{OVER} {LOCKSTEP_BUDGET:g} s\n")
                 self._over, self.stay = True, True
                 return
             if why.startswith("killed"):
@@ -926,7 +886,7 @@ class TieredProgram:
             )
             self.stay = True
             return
-        _write(self._marker(), fast.key + "\n")
+        cache_files.write(self._marker(), fast.key + "\n")
         self.fast = fast
 
     def move_now(self) -> bool:
@@ -1002,10 +962,10 @@ class TieredProgram:
         pixel = sorted(self.rates)[len(self.rates) // 2]
         if mine >= pixel:
             self.fast, self.stay = None, True
-            _write(self._marker(), f"{fast.key} {SLOWER}\n")
+            cache_files.write(self._marker(), f"{fast.key} {SLOWER}\n")
         elif self._slower:  # won this time: a later process starts on it again
             self._slower = False
-            _write(self._marker(), fast.key + "\n")
+            cache_files.write(self._marker(), fast.key + "\n")
 
 
 def compile_compiled(

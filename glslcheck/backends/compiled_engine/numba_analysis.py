@@ -30,7 +30,7 @@ from typing import Any
 
 import numpy as np
 
-from .numba_patches import swap
+from .numba_swaps import swap
 
 CHECKED = ("0.68.",)  # the numba versions whose functions these mirror
 

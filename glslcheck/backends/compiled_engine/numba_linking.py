@@ -29,7 +29,7 @@ import weakref
 from collections.abc import Iterator
 from typing import Any
 
-from .numba_patches import swap
+from .numba_swaps import swap
 
 CHECKED = ("0.68.",)  # the numba versions whose CPUContext.get_executable and cache this wraps
 MODULE_PREFIX = "glslcheck_compiled_m"  # the generated modules' names (engine.CompiledProgram)

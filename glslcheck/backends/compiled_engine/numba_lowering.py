@@ -14,7 +14,7 @@ from __future__ import annotations
 
 from typing import Any
 
-from .numba_patches import swap
+from .numba_swaps import swap
 
 CHECKED = ("0.68.",)  # the numba versions whose BaseContext.get_abi_sizeof this wraps
 

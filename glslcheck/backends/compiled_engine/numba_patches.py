@@ -3,14 +3,14 @@ per process: numba_ssa (SSA reconstruction, phi removal), numba_typing (operator
 numba_analysis (liveness, scope fix-up), numba_lowering (ABI sizes) and numba_linking (no
 machine code for a generated module's callees). Each such module names the numba versions whose
 internals it was checked against (`CHECKED`) and puts itself in place (`replace()`: False when
-this numba lacks what it replaces) by :func:`swap`, which keeps numba's own for :func:`original`
-(the reference each one's tests compare with); :func:`install` runs that once, on those versions
-only, and numba's own code runs everywhere else."""
+this numba lacks what it replaces) by numba_swaps.swap, which keeps numba's own for
+numba_swaps.original (the reference each one's tests compare with); :func:`install` runs that
+once, on those versions only, and numba's own code runs everywhere else."""
 
 from __future__ import annotations
 
 import threading
-from typing import Any, Protocol
+from typing import Protocol
 
 
 class Patch(Protocol):
@@ -24,22 +24,6 @@ class Patch(Protocol):
 
 _LOCK = threading.Lock()
 _INSTALLED: dict[int, tuple[Patch, bool]] = {}  # id(patch) -> (it, kept alive; whether in place)
-# (id(owner), name) -> (owner, kept alive; numba's own owner.name before the first swap)
-_ORIGINALS: dict[tuple[int, str], tuple[Any, Any]] = {}
-
-
-def swap(owner: Any, name: str, wrapper: Any) -> None:
-    """Put wrapper in the place of owner.name (a module's function, a class's method), keeping
-    what was there for :func:`original`: only the first time, so a later swap of the same
-    attribute still leaves numba's own as the original."""
-    _ORIGINALS.setdefault((id(owner), name), (owner, getattr(owner, name)))
-    setattr(owner, name, wrapper)
-
-
-def original(owner: Any, name: str) -> Any:
-    """numba's own owner.name: what the first swap of it replaced, else the attribute itself."""
-    kept = _ORIGINALS.get((id(owner), name))
-    return kept[1] if kept is not None else getattr(owner, name)
 
 
 def install(patch: Patch) -> bool:

@@ -26,7 +26,7 @@ from __future__ import annotations
 from collections import defaultdict
 from typing import Any
 
-from .numba_patches import swap
+from .numba_swaps import swap
 
 CHECKED = ("0.68.",)  # the numba versions whose ssa.py this mirrors
 

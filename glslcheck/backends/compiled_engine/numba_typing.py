@@ -22,7 +22,7 @@ from __future__ import annotations
 import operator
 from typing import Any
 
-from .numba_patches import swap
+from .numba_swaps import swap
 
 CHECKED = ("0.68.",)  # the numba versions whose BaseFunction.get_call_type this wraps
 OPERATORS = frozenset(
