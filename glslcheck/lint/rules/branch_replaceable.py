@@ -13,8 +13,9 @@ and shows the replacement:
 * `x < e ? a : b` with `a` and `b` float values mix() may compute both of (names, literals,
   fields, swizzles, constants, and constructors, negations, sums, differences and products of
   those, or one divided by a value that cannot be zero; no call) -> `mix(a, b, step(e, x))`,
-  also as `if (..) v = a; else v = b;`, as `if (..) v = a;` (`v = mix(v, a, ...)`) and as
-  `if (..) return a; else return b;`;
+  also as `if (..) v = a; else v = b;`, as `if (..) v = a;` (`v = mix(v, a, ...)`), as
+  `if (..) return a; else return b;` and as `if (..) return a; return b;` (the return right
+  after the if runs exactly when the condition is false);
 * nested if/else statements whose arms each give one variable (or the result) such a value
   (`if (..) { if (..) c = red; else c = blue; } else ...`, an `else if` chain of returns ending
   in an `else`): one finding at the outer if, with the mix of mixes;
@@ -37,10 +38,12 @@ and shows the replacement:
 
 Except for faceforward, the condition must be made of comparisons of two float (or, for one
 min/max, int) scalars; the statement forms must be a single assignment to the same variable (or
-a return) in each arm. Ifs in a row that each select (`if (..) col.x = 1.0;`, then `col.y`,
-`col.z`) are one finding, and so are selects on the same condition written again in a function
-(a checkerboard's `if (parity == 0.0)` in two arms): the rubric deducts "per inefficient
-practice". The replacement gives
+a return) in each arm. Ifs in a row that each select a part of one variable (`if (..) col.x =
+1.0;`, then `col.y`, `col.z`) are one finding, and so are selects on the same condition written
+again in a function (a checkerboard's `if (parity == 0.0)` in two arms): the rubric deducts
+"per inefficient practice". Ifs in a row setting different variables (three layers' alphas)
+are a finding each, and the same words on a variable written between (`center` moved for the
+next circle) are another condition. The replacement gives
 the same value on every path: conditions and arms are free of side effects, and step() is
 exactly 0.0 or 1.0, so the mix picks an arm (an arm the branch skipped may not divide by zero).
 
@@ -101,12 +104,25 @@ def check(ctx: LintContext) -> Iterator[Diagnostic]:
                     runs.append([(node, "?:", fix)])
             elif type(node) is A.If and id(node) not in covered:
                 nest: list[Any] = []
-                fix = _nested(fn, node, nest) or _if_statement(fn, node)
+                fallthrough = _return_after(fn, node)
+                fix = (
+                    _nested(fn, fallthrough, nest)
+                    if fallthrough is not None
+                    else _nested(fn, node, nest) or _if_statement(fn, node)
+                )
                 if fix is None:
                     continue
                 covered.update(id(n) for n in nest)
-                what = "nest" if len(nest) > 1 else "if" if node.else_ is not None else "lone if"
-                if run and _follows(fn, run[-1][0], node):
+                what = (
+                    "nest"
+                    if len(nest) > 1
+                    else "if return"
+                    if fallthrough is not None
+                    else "if"
+                    if node.else_ is not None
+                    else "lone if"
+                )
+                if run and _follows(fn, run[-1][0], node) and _same_target(fn, run[-1][0], node):
                     run.append((node, what, fix))
                     continue
                 if run:
@@ -115,17 +131,52 @@ def check(ctx: LintContext) -> Iterator[Diagnostic]:
         if run:
             runs.append(run)
             run = []
-        yield from _merged(runs)
+        yield from _merged(fn, runs)
 
 
-def _merged(runs: list[list[tuple[Any, str, tuple[str, str]]]]) -> Iterator[Diagnostic]:
+def _return_after(fn, node: A.If) -> A.If | None:
+    """`if (c) return a; return b;` read as `if (c) return a; else return b;` (the same
+    selection: the return after the if runs exactly when the condition is false), or None."""
+    if node.else_ is None and _returned(node.then) is not None:
+        block = fn.parent.get(id(node))
+        if type(block) is A.Compound:
+            stmts = block.stmts
+            i = next((k for k, st in enumerate(stmts) if st is node), len(stmts))
+            after: Any = stmts[i + 1] if i + 1 < len(stmts) else None
+            if type(after) is A.Return and after.value is not None:
+                return A.If(cond=node.cond, then=node.then, else_=after, loc=node.loc)
+    return None
+
+
+def _root(stmt: Any) -> Any:
+    """The variable a selecting if assigns (`col` of `col.x = 1.0;`), or None."""
+    assign = _single_assignment(stmt.then)
+    target: Any = assign.target if assign is not None else None
+    while type(target) in (A.Field, A.Index):
+        target = target.base
+    return target.name if type(target) is A.Identifier else None
+
+
+def _same_target(fn, before: A.If, node: A.If) -> bool:
+    """Ifs in a row are one selection when they set the same variable (`col.x`, `col.y`,
+    `col.z`: one colour chosen); ifs setting different variables (three layers' alphas) are
+    as many selections."""
+    first = _root(before)
+    return first is not None and first == _root(node)
+
+
+def _merged(fn, runs: list[list[tuple[Any, str, tuple[str, str]]]]) -> Iterator[Diagnostic]:
     """The findings of a function's selects: a select written again on the same condition
     (`if (modulus == 0.0)` in two arms, each choosing its own pair of colors) is one finding
-    naming every place, the rubric's one inefficient practice."""
+    naming every place, the rubric's one inefficient practice; the same words on values
+    written between (`center` moved for the next circle) are another condition."""
     groups: dict[str, list] = {}
     for run in runs:
         node = run[0][0]
         key = to_glsl(node.cond) if len(run) == 1 else f"#{id(node)}"
+        same = groups.get(key)
+        if same is not None and _rewritten(fn, same[0][0][0], node):
+            key = f"#{id(node)}"
         groups.setdefault(key, []).append(run)
     for same in groups.values():
         first = _finding(same[0])
@@ -138,6 +189,21 @@ def _merged(runs: list[list[tuple[Any, str, tuple[str, str]]]]) -> Iterator[Diag
             first.loc,
             help=f"{first.help} (and likewise at {at_lines(again)})",
         )
+
+
+def _rewritten(fn, first: Any, node: Any) -> bool:
+    """Whether a variable both conditions read may be written after `first`'s and before
+    `node`'s (the same words, another value). Locals of their own in each arm, computed the
+    same way (a checker's `modulus` declared again in the next arm), are the same condition."""
+
+    def read(cond: Any) -> set:
+        return {
+            sym
+            for n in cond.walk()
+            if type(n) is A.Identifier and (sym := fn.model.symbol_of(n)) is not None
+        }
+
+    return fn.written_between(first.cond, node.cond, read(first.cond) & read(node.cond))
 
 
 def _follows(fn, before: Any, node: Any) -> bool:
@@ -153,9 +219,14 @@ def _finding(run: list[tuple[Any, str, tuple[str, str]]]) -> Diagnostic:
     """One finding for a select, or for a run of if statements in a row that each select (three
     ifs setting `col.x`, `col.y`, `col.z`): the rubric's one inefficient practice."""
     node, what, (fn_name, replacement) = run[0]
-    kinds = {"if": "an if/else", "lone if": "an if", "nest": "nested if/else statements"}
+    kinds = {
+        "if": "an if/else",
+        "lone if": "an if",
+        "if return": "an if and the return after it",
+        "nest": "nested if/else statements",
+    }
     if len(run) == 1:
-        verb = "compute" if what == "nest" else "computes"
+        verb = "compute" if what in ("nest", "if return") else "computes"
         return Diagnostic(
             f"{kinds.get(what, 'a ?: selection')} {verb} what {fn_name}() computes without a "
             "branch",

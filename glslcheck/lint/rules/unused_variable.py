@@ -17,7 +17,14 @@ A local whose value is a computation (`float h = dot(n, normalize(l + v));`: an 
 call of a built-in or user function, not a literal or a constructor of constants) is a possible
 deduction: the shader does that work for nothing, an "unnecessary practice" of the standards
 (possible: the compiler drops the dead code, so the cost is to the reader). The finding lists
-every place the value is computed. Any other unused variable is a note, not a deduction.
+every place the value is computed. A global, a `const` local (a named constant, as the starter's
+`warm` and `cool`), a local declared with no value or copied from another variable is a note,
+not a deduction.
+
+Unused locals (not `const`) whose every value is typed in (`float waveFrequency = 7.5;`,
+`vec3 bgColor = vec3(0, 1, 0);`: literals and constructors of them) are one possible deduction
+a function, a setting left behind when its use was removed or commented out: readers deduct
+such leftovers once for the function, joined to its unused computed local where it has one.
 
 Likewise a possible deduction: a local's computed value that the next statement of the same
 block writing the whole variable replaces (`v = ...;`, or passing `v` to an `out` parameter)
@@ -210,9 +217,15 @@ def check(ctx: LintContext) -> Iterator[Diagnostic]:
             for d in decl.declarators:
                 yield from _unused(ctx, model, d, reads, "global")
     for fn in program_facts(ctx.model).in_file(ctx.path):
+        found: list[Diagnostic] = []
+        typed: list[A.Declarator] = []  # unused locals set only to values typed in
         for n in fn.nodes:
             if type(n) is A.Declarator:
-                yield from _unused(ctx, model, n, reads, "local", fn)
+                if _typed_in_only(fn, n, reads):
+                    typed.append(n)
+                else:
+                    found.extend(_unused(ctx, model, n, reads, "local", fn))
+        yield from _with_typed_in(found, typed)
         yield from _overwritten(fn, reads)
         yield from _dead_stores(fn, reads)
         yield from _dead_calls(fn)
@@ -447,6 +460,67 @@ def _unused(
             for v in work
             if v.loc.line != loc.line
         ],
+    )
+
+
+def _typed_in(model, value) -> bool:
+    """`value` is typed in: literals, their negations and constructors of them (`7.5`,
+    `vec3(0, 1, 0)`), no operation and no other variable."""
+    for n in value.walk():
+        k = type(n)
+        if k is A.Call and n.constructor:
+            continue
+        if k is A.Unary and n.op in ("-", "+"):
+            continue
+        if k not in (A.IntLiteral, A.FloatLiteral, A.BoolLiteral):
+            return False
+    return True
+
+
+def _typed_in_only(fn, d: A.Declarator, reads: set[int]) -> bool:
+    """A local, not `const`, never read, whose every value is typed in (a setting declared and
+    left unused: `float waveFrequency = 7.5;` whose one use was commented out)."""
+    model = fn.model
+    sym = model.symbol_of(d)
+    if sym is None or id(sym) in reads or sym.qualifier == "const" or d.init is None:
+        return False
+    if _passed_to_no_effect_calls(fn, sym):
+        return False
+    for w in fn.writes_to(sym):
+        value = w.value if w.kind in ("init", "=") else None
+        if value is None or not _typed_in(model, value):
+            return False
+    return True
+
+
+def _with_typed_in(found: list[Diagnostic], typed: list[A.Declarator]) -> Iterator[Diagnostic]:
+    """The function's unused-variable findings, with its unused locals set to values typed in
+    as one more deduction: readers deduct such leftover settings once a function (or with the
+    function's unused computed local, where it has one), not once a variable."""
+    if not typed:
+        yield from found
+        return
+    locs = [d.name_loc if d.name_loc.line else d.loc for d in typed]
+    names = ", ".join(f"'{d.name}'" for d in typed)
+    notes = [Diagnostic("also set and never read", loc, severity="note") for loc in locs]
+    deduction = next((f for f in found if f.severity != "note"), None)
+    if deduction is not None:
+        deduction.message += (
+            f"; {names}, set to {'values' if len(typed) > 1 else 'a value'} typed in, "
+            f"{'are' if len(typed) > 1 else 'is'} never read either"
+        )
+        deduction.notes.extend(notes)
+        yield from found
+        return
+    yield from found
+    many = len(typed) > 1
+    yield Diagnostic(
+        f"the local variable{'s' if many else ''} {names} {'are' if many else 'is'} set to "
+        f"{'values' if many else 'a value'} typed in and never read: "
+        f"{'declarations' if many else 'a declaration'} left for nothing",
+        locs[0],
+        help=f"remove {names}, or use {'them' if many else 'it'} where meant",
+        notes=notes[1:],
     )
 
 
