@@ -33,8 +33,9 @@ passed to the ``inout`` parameter of ``hash2`` is merged as a local is (the para
 it, copied back): one call, merged 14,400, stepwise 7,812; three calls 14,400 against 295; a
 call in a function that passes the global, 162; a function writing ``gseed * 1.5`` between two
 calls restarts the chain, 14,400 that way, 2,605 stepwise; the callee writing the global too
-loses its write to the copy back (14,400 merged). Written for llvmpipe of Mesa 22.3 (the
-`llvmpipe` fixture skips elsewhere).
+loses its write to the copy back (14,400 merged). A callee calling ``hash2`` in a loop NIR
+keeps restarts the chain at every pass, 14,400 that way, 7,056 as one chain (7,038 for a
+global). Written for llvmpipe of Mesa 22.3 (the `llvmpipe` fixture skips elsewhere).
 """
 
 from __future__ import annotations
@@ -54,6 +55,8 @@ vec2 hash2_aliased(inout float seed) {
 }
 void scale() { gseed = gseed * 1.5; }
 vec2 two() { hash2(gseed); return hash2(gseed); }
+float walk(inout float seed) { for (int i = 0; i < iFrame + 2; i++) { hash2(seed); } return seed; }
+void gwalk() { for (int i = 0; i < iFrame + 2; i++) { hash2(gseed); } }
 void mainImage(out vec4 c, in vec2 p) {
     float s0 = fract(p.x * 0.1371 + p.y * 0.0917) * 40.0;
     float seed = s0;
@@ -179,6 +182,14 @@ THROUGH_CALLS = {
     "a_global_through_a_sin_hash": (
         "gseed = s0; vec2 h = shash(gseed); c = vec4(s0, gseed, h);",
         {1: (lambda s: _steps(s, 2), lambda s: _merged(s, 2))},
+    ),
+    "a_call_advancing_in_a_loop_kept": (
+        "seed += 0.1; float r = walk(seed); c = vec4(s0, r, 0.0, 1.0);",
+        {1: (lambda s: _merged(s, 5), lambda s: _restarted(s + K, [K, K], 2))},
+    ),
+    "a_global_advanced_in_a_loop_kept": (
+        "gseed = s0; gwalk(); c = vec4(s0, gseed, 0.0, 1.0);",
+        {1: (lambda s: _merged(s, 4), lambda s: _restarted(s, [K, K], 2))},
     ),
     "unrolled_loop": (
         "for (int i = 0; i < 4; i++) { rnd(seed); } c = vec4(s0, seed, 0.0, 1.0);",
@@ -316,12 +327,13 @@ def test_numpy_merges_the_constants_through_calls_as_mesa(renders_as_llvmpipe, m
     renders_as_llvmpipe(shader, name=name, frame=0)
 
 
-# Every shape of a global passed to an ``inout`` parameter above in one shader, whose merged
-# constants each change the bits of the output.
+# Every shape of a global passed to an ``inout`` parameter above, and the calls advancing a
+# seed in a loop NIR keeps, in one shader whose merged constants each change the output's bits.
 GLOBAL_ARGUMENTS = (
     "gseed = s0; vec2 h = hash2(gseed); h += hash2(gseed); float r = gseed; h += two();"
     " h += hash2_reading(gseed); scale(); h += shash(gseed); h += hash2_aliased(gseed);"
-    " for (int i = 0; i < 3; i++) { h += hash2(gseed); } c = vec4(h, r, gseed);"
+    " for (int i = 0; i < 3; i++) { h += hash2(gseed); } gwalk(); h.x += walk(seed);"
+    " c = vec4(h, r, gseed);"
 )
 
 

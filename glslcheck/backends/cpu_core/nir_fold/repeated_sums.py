@@ -354,6 +354,9 @@ def _program(tr: FoldEngine, fn: Symbol, facts: Any, sym: Any) -> Program | None
         r is not body[-1] and not any(facts.contains(lp.body, r) for lp in loops) for r in returns
     ) or any(facts.region[id(x)] != () for x in loops):
         return None  # (a return outside the unrolled loops: the rest runs on some lanes)
+    where = chains[0]["where"]
+    if any(where[id(x)][0] is None and facts.region[id(x)] != () for x in writes):
+        return None  # (a write in a branch or a loop NIR keeps: a phi follows, not the chain)
     ops = chains[0]["ops"]
     return Program(ops, chains[0]["where"], any(isinstance(op, Loop) and op.breaks for op in ops))
 
