@@ -473,7 +473,9 @@ def test_fused_after_folded_call_bit_for_bit(numba, make_shader):
 PATH_TRACERS = os.path.join(os.path.dirname(__file__), "..", "gl", "path_tracers")
 
 
-@pytest.mark.parametrize("name", ["global_seed_sin_hash", "inout_seed_bits_hash"])
+@pytest.mark.parametrize(
+    "name", ["global_seed_sin_hash", "inout_seed_bits_hash", "global_seed_bits_hash"]
+)
 def test_path_tracers_bit_for_bit(numba, name):
     """A seed advanced through calls and an unrolled bounce loop (a global, an inout
     parameter): the chain's constants from one plan in both engines

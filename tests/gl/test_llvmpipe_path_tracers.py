@@ -1,8 +1,9 @@
-"""Two small path tracers in the shapes public ones draw their random numbers in, verified
+"""Three small path tracers in the shapes public ones draw their random numbers in, verified
 against llvmpipe: a global seed advanced by ``vec2(seed += 0.1, seed += 0.1)`` into a sin hash
 (path_tracers/global_seed_sin_hash.glsl), and an ``inout`` seed advanced so into
 floatBitsToUint and an integer hash, through a bounce loop of a constant count left by a
-return (path_tracers/inout_seed_bits_hash.glsl).
+return (path_tracers/inout_seed_bits_hash.glsl), its seed a local passed down or a global
+passed to the ``inout`` parameter (path_tracers/global_seed_bits_hash.glsl).
 
 Mesa inlines every function and unrolls the bounce loop, and nir_opt_algebraic merges the
 seed's constants across calls and copies (nir_fold/repeated_sums.py, in the order
@@ -22,7 +23,9 @@ from glslcheck.verification.verify import verify
 HERE = Path(__file__).resolve().parent / "path_tracers"
 
 
-@pytest.mark.parametrize("name", ["global_seed_sin_hash", "inout_seed_bits_hash"])
+@pytest.mark.parametrize(
+    "name", ["global_seed_sin_hash", "inout_seed_bits_hash", "global_seed_bits_hash"]
+)
 def test_path_tracer_matches_llvmpipe(llvmpipe, name):
     """Verify's frames (iTime 0 and 1.3, iFrame 60, mouse down) match with no pixel over the
     tolerance (about a thousand differed while the chains were not followed)."""

@@ -28,20 +28,35 @@ its last value merged 14,400, stepwise 162 (so a global seed advanced in ``ghash
 stepwise 162; two ``+=`` a pass, the body's sum first: 14,400, left to right 13,250; a
 constant before the loop, added after the loop's own: 14,400, left to right 12,483; a loop
 NIR keeps for the size of its body restarts the chain at every pass (16 passes of 17 lines of
-3 instructions: 14,400 that way, 364 as if unrolled; of 16 lines: unrolled, 14,400). Written
-for llvmpipe of Mesa 22.3 (the `llvmpipe` fixture skips elsewhere).
+3 instructions: 14,400 that way, 364 as if unrolled; of 16 lines: unrolled, 14,400). A global
+passed to the ``inout`` parameter of ``hash2`` is merged as a local is (the parameter a copy of
+it, copied back): one call, merged 14,400, stepwise 7,812; three calls 14,400 against 295; a
+call in a function that passes the global, 162; a function writing ``gseed * 1.5`` between two
+calls restarts the chain, 14,400 that way, 2,605 stepwise; the callee writing the global too
+loses its write to the copy back (14,400 merged). A callee calling ``hash2`` in a loop NIR
+keeps restarts the chain at every pass, 14,400 that way, 7,056 as one chain (7,038 for a
+global). Written for llvmpipe of Mesa 22.3 (the `llvmpipe` fixture skips elsewhere).
 """
 
 from __future__ import annotations
 
 import numpy as np
 import pytest
-from image_bits import render
+from image_bits import SIZE, assert_same, render
 
 HEAD = """float rnd(inout float seed) { seed += 0.1; return seed; }
 vec2 hash2(inout float seed) { return vec2(seed += 0.1, seed += 0.1); }
 float gseed;
 vec2 ghash() { return vec2(gseed += 0.1, gseed += 0.1); }
+vec2 shash(inout float seed) { return fract(sin(vec2(seed += 0.1, seed += 0.1)) * 43758.5453); }
+vec2 hash2_reading(inout float seed) { float a = seed += 0.1; return vec2(a + gseed, seed += 0.1); }
+vec2 hash2_aliased(inout float seed) {
+    float a = seed += 0.1; gseed += 0.5; return vec2(a, seed += 0.1);
+}
+void scale() { gseed = gseed * 1.5; }
+vec2 two() { hash2(gseed); return hash2(gseed); }
+float walk(inout float seed) { for (int i = 0; i < iFrame + 2; i++) { hash2(seed); } return seed; }
+void gwalk() { for (int i = 0; i < iFrame + 2; i++) { hash2(gseed); } }
 void mainImage(out vec4 c, in vec2 p) {
     float s0 = fract(p.x * 0.1371 + p.y * 0.0917) * 40.0;
     float seed = s0;
@@ -122,6 +137,59 @@ THROUGH_CALLS = {
     "a_global_through_calls": (
         "gseed = s0; ghash(); vec2 h = ghash(); c = vec4(s0, h.y, 0.0, 1.0);",
         {1: (lambda s: _steps(s, 4), lambda s: _merged(s, 4))},
+    ),
+    "a_global_passed_to_an_inout": (
+        "gseed = s0; vec2 h = hash2(gseed); c = vec4(s0, h.y, gseed, 1.0);",
+        {n: (lambda s: _steps(s, 2), lambda s: _merged(s, 2)) for n in (1, 2)},
+    ),
+    "a_global_passed_three_times": (
+        "gseed = s0; hash2(gseed); hash2(gseed); vec2 h = hash2(gseed);"
+        " c = vec4(s0, h.y, 0.0, 1.0);",
+        {1: (lambda s: _steps(s, 6), lambda s: _merged(s, 6))},
+    ),
+    "a_global_passed_and_advanced_by_calls": (
+        "gseed = s0; rnd(gseed); ghash(); vec2 h = hash2(gseed); c = vec4(s0, h.y, 0.0, 1.0);",
+        {1: (lambda s: _steps(s, 5), lambda s: _merged(s, 5))},
+    ),
+    "a_global_passed_by_a_function": (
+        "gseed = s0; vec2 h = two(); c = vec4(s0, h.y, gseed, 1.0);",
+        {n: (lambda s: _steps(s, 4), lambda s: _merged(s, 4)) for n in (1, 2)},
+    ),
+    "a_global_read_between_calls": (
+        "gseed = s0; hash2(gseed); float r = gseed; hash2(gseed); c = vec4(s0, r, gseed, 1.0);",
+        {
+            1: (lambda s: _steps(s, 2), lambda s: _merged(s, 2)),
+            2: (lambda s: _steps(s, 4), lambda s: _merged(s, 4)),
+        },
+    ),
+    "a_global_read_in_the_callee": (
+        "gseed = s0; vec2 h = hash2_reading(gseed); c = vec4(s0, h.y, h.x, 1.0);",
+        {1: (lambda s: _steps(s, 2), lambda s: _merged(s, 2))},
+    ),
+    "a_global_the_callee_writes_too": (
+        "gseed = s0; vec2 h = hash2_aliased(gseed); c = vec4(s0, h.y, gseed, 1.0);",
+        {n: (lambda s: _steps(s, 2), lambda s: _merged(s, 2)) for n in (1, 2)},
+    ),
+    "a_global_written_by_another_function": (
+        "gseed = s0; hash2(gseed); scale(); vec2 h = hash2(gseed); c = vec4(s0, h.y, 0.0, 1.0);",
+        {
+            1: (
+                lambda s: _steps(_steps(s, 2) * np.float32(1.5), 2),
+                lambda s: _merged(_merged(s, 2) * np.float32(1.5), 2),
+            )
+        },
+    ),
+    "a_global_through_a_sin_hash": (
+        "gseed = s0; vec2 h = shash(gseed); c = vec4(s0, gseed, h);",
+        {1: (lambda s: _steps(s, 2), lambda s: _merged(s, 2))},
+    ),
+    "a_call_advancing_in_a_loop_kept": (
+        "seed += 0.1; float r = walk(seed); c = vec4(s0, r, 0.0, 1.0);",
+        {1: (lambda s: _merged(s, 5), lambda s: _restarted(s + K, [K, K], 2))},
+    ),
+    "a_global_advanced_in_a_loop_kept": (
+        "gseed = s0; gwalk(); c = vec4(s0, gseed, 0.0, 1.0);",
+        {1: (lambda s: _merged(s, 4), lambda s: _restarted(s, [K, K], 2))},
     ),
     "unrolled_loop": (
         "for (int i = 0; i < 4; i++) { rnd(seed); } c = vec4(s0, seed, 0.0, 1.0);",
@@ -257,3 +325,26 @@ def test_numpy_merges_the_constants_of_a_repeated_sum_as_mesa(
 def test_numpy_merges_the_constants_through_calls_as_mesa(renders_as_llvmpipe, make_shader, name):
     shader = make_shader(HEAD + {**THROUGH_CALLS, **UNROLLED_BODIES}[name][0] + "\n}")
     renders_as_llvmpipe(shader, name=name, frame=0)
+
+
+# Every shape of a global passed to an ``inout`` parameter above, and the calls advancing a
+# seed in a loop NIR keeps, in one shader whose merged constants each change the output's bits.
+GLOBAL_ARGUMENTS = (
+    "gseed = s0; vec2 h = hash2(gseed); h += hash2(gseed); float r = gseed; h += two();"
+    " h += hash2_reading(gseed); scale(); h += shash(gseed); h += hash2_aliased(gseed);"
+    " for (int i = 0; i < 3; i++) { h += hash2(gseed); } gwalk(); h.x += walk(seed);"
+    " c = vec4(h, r, gseed);"
+)
+
+
+@pytest.mark.parametrize("lanes", [0, 8])
+def test_compiled_merges_the_constants_of_a_global_argument_as_mesa(
+    llvmpipe, numba, make_shader, lanes
+):
+    """The compiled engine per pixel and in lockstep (its `lanes`), against the driver."""
+    from glslcheck.backends.compiled_engine.engine import CompiledProgram, generate
+
+    shader = make_shader(HEAD + GLOBAL_ARGUMENTS + "\n}")
+    want = render(shader, "gl", frame=0)
+    got = CompiledProgram(*generate(shader, lanes=lanes)).render(size=SIZE, time=0.0, frame=0)
+    assert_same(got, want, what=f"lanes {lanes}", names=("compiled", "llvmpipe"))

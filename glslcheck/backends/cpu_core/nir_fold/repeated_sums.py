@@ -9,12 +9,13 @@ every path, nothing writes the variable in between), so it restarts at the top o
 keeps and after the join of a branch that writes the variable (a phi to NIR), and not from a
 constant (NIR folds those step by step, as written).
 
-NIR inlines every call first, so a chain runs through a call that passes the variable to an
-``inout`` parameter, or a global the callee writes, that the callee only advances by constants
-(:func:`chain_params`: ``float rnd(inout float s) { s += 0.1; return s; }``, a path tracer's
-``float seed;`` advanced in ``hash2()``). It unrolls a ``for`` of a constant count and a small
-body after one pass of the rules over the body (:func:`unrolled_chain`, loop_unroll.py), so
-the copies continue it; a loop left early ends in a phi.
+NIR inlines every call first, so a chain runs through a call that passes the variable (a
+local or a global) to an ``inout`` parameter, or a global the callee writes, that the callee
+only advances by constants (:func:`chain_params`: ``float rnd(inout float s) { s += 0.1;
+return s; }``, a path tracer's ``float seed;`` advanced in ``hash2()`` or passed as
+``hash2(seed)``). It unrolls a ``for`` of a constant count and a small body after one pass of
+the rules over the body (:func:`unrolled_chain`, loop_unroll.py), so the copies continue it; a
+loop left early ends in a phi.
 
 :func:`chain_plan` builds each chain of a function (steps, calls spread into their callees'
 programs, unrolled loops) and asks sum_order.py for K at every step, per copy of an unrolled
@@ -212,23 +213,27 @@ def _callee_program(tr: FoldEngine, call: A.Call) -> Program:
 
 def call_step(tr: FoldEngine, call: A.Call) -> tuple[int, Any, Program] | None:
     """(the parameter's index, the caller's variable, the callee's :class:`Program` for it) for
-    a call that passes a whole float variable to a :func:`chain_params` parameter; None for
-    any other call (or one with two such parameters)."""
+    a call that passes a whole float variable (a local, parameter or global: after inlining
+    the parameter is a copy of it) to a :func:`chain_params` parameter, or whose callee
+    advances a global; None for any other call (or one with two such chains). A global also
+    passed to an ``out`` or ``inout`` parameter is the copy back at the return, not what the
+    callee wrote to it."""
     target = tr.model.call_target(call)
     if not isinstance(target, Symbol):
         return None
     found = []
+    copied_out = {
+        id(written_variable(tr.model, a)[0])
+        for a, (_, _, d) in zip(call.args, target.params)
+        if d != "in"
+    }
     for i, program in chain_params(tr, target).items():
         if i >= _GLOBALS:
-            found.append((i, _global_of(tr, i), program))
+            if id(_global_of(tr, i)) not in copied_out:
+                found.append((i, _global_of(tr, i), program))
             continue
         sym, whole = written_variable(tr.model, call.args[i])
-        if (
-            sym is not None
-            and whole
-            and isinstance(call.args[i], A.Identifier)
-            and sym.kind in ("local", "param")
-        ):
+        if sym is not None and whole and isinstance(call.args[i], A.Identifier) and _variable(sym):
             found.append((i, sym, program))
     return found[0] if len(found) == 1 else None
 
@@ -349,6 +354,9 @@ def _program(tr: FoldEngine, fn: Symbol, facts: Any, sym: Any) -> Program | None
         r is not body[-1] and not any(facts.contains(lp.body, r) for lp in loops) for r in returns
     ) or any(facts.region[id(x)] != () for x in loops):
         return None  # (a return outside the unrolled loops: the rest runs on some lanes)
+    where = chains[0]["where"]
+    if any(where[id(x)][0] is None and facts.region[id(x)] != () for x in writes):
+        return None  # (a write in a branch or a loop NIR keeps: a phi follows, not the chain)
     ops = chains[0]["ops"]
     return Program(ops, chains[0]["where"], any(isinstance(op, Loop) and op.breaks for op in ops))
 
