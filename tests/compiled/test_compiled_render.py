@@ -470,7 +470,8 @@ def test_fused_after_folded_call_bit_for_bit(numba, make_shader):
     _compare(shader, time=0.0)
 
 
-PRODUCT_SUMS = """void mainImage(out vec4 c, in vec2 p) {
+PRODUCT_SUMS = """vec2 G = vec2(0.6 * 1.5 + 0.25 * 2.0 + 1.85, 1.25);
+void mainImage(out vec4 c, in vec2 p) {
     float u = fract(p.x * 0.1371 + p.y * 0.0917) * 40.0, v = fract(p.x * 0.0371 + p.y * 0.917);
     float k = p.x * 0.0123 + p.y * 0.457;
     vec2 q = p / 7.0; q.x *= iResolution.x / iResolution.y;
@@ -478,7 +479,7 @@ PRODUCT_SUMS = """void mainImage(out vec4 c, in vec2 p) {
     c = vec4(p.x * 0.0123 + p.y * 0.457 + fract(1.12 * iTime) + (u * v - p.y * 0.457 - iTime),
              iTime + (u * v + u * p.y) + (k + iTime),
              q.x + q.y * 3.43 + fract(1.12 * iTime) + w.y,
-             u * v + p.x * 0.37 + p.y * 0.457 + iTime);
+             u * v + p.x * 0.37 + p.y * 0.457 + iTime + G.x * G.y);
 }"""
 
 
@@ -486,8 +487,9 @@ def test_product_sums_bit_for_bit(numba, make_shader):
     """``(p1 + p2) + e`` is ``(p1 + e) + p2`` on llvmpipe where e is no product
     (nir_fold.product_sums, measured in tests/gl/test_llvmpipe_product_sums.py): a uniform, a
     uniform expression, a difference, e first, a factorable sum, a local, a component ``*=``
-    wrote, a vector, and three products kept; per pixel and in lockstep against the NumPy
-    backend, over frames where the orders round apart."""
+    wrote, a vector, and three products kept (a global's initializer is left as written); per
+    pixel and in lockstep against the NumPy backend, over frames where the orders round
+    apart."""
     from glslcheck.backends.compiled_engine.engine import CompiledProgram, generate
 
     shader = make_shader(PRODUCT_SUMS)

@@ -27,6 +27,7 @@ from typing import Any
 from ....frontend import syntax as A
 from .queries import (
     SUMS,
+    current_function,
     function_facts,
     is_constant,
     is_fmul,
@@ -59,6 +60,8 @@ def product_sum_parts(tr: FoldEngine, e: A.Binary) -> tuple[Any, Any, str, Any] 
     """(p1, p2, the sum's operator, e) when ``e`` is a sum the rule rewrites, else None."""
     if e.op not in SUMS or tr.has_effects(e):
         return None
+    if getattr(current_function(tr).sym.node, "body", None) is None:
+        return None  # (a global's initializer: computed as written)
     t = tr.type_of(e)
     if t.base != "float" or t.is_matrix:
         return None
@@ -89,11 +92,9 @@ def _sum_value(tr: FoldEngine, x: Any) -> A.Binary | None:
         if init is None or not one_copy(tr, init):
             return None
         inner = init
-    elif not used_once(tr, x):
-        return None
     if not (isinstance(inner, A.Binary) and inner.op in SUMS):
         return None  # (a sum NIR would factor still is one: it reaches the outer sum first)
-    return inner
+    return inner if inner is not x or used_once(tr, x) else None
 
 
 def _fmul(tr: FoldEngine, node: Any) -> bool:
