@@ -470,6 +470,40 @@ def test_fused_after_folded_call_bit_for_bit(numba, make_shader):
     _compare(shader, time=0.0)
 
 
+PRODUCT_SUMS = """vec2 G = vec2(0.6 * 1.5 + 0.25 * 2.0 + 1.85, 1.25);
+void mainImage(out vec4 c, in vec2 p) {
+    float u = fract(p.x * 0.1371 + p.y * 0.0917) * 40.0, v = fract(p.x * 0.0371 + p.y * 0.917);
+    float k = p.x * 0.0123 + p.y * 0.457;
+    vec2 q = p / 7.0; q.x *= iResolution.x / iResolution.y;
+    vec2 w = p * 0.0123 + p.yx * 0.457 + iTime;
+    c = vec4(p.x * 0.0123 + p.y * 0.457 + fract(1.12 * iTime) + (u * v - p.y * 0.457 - iTime),
+             iTime + (u * v + u * p.y) + (k + iTime),
+             q.x + q.y * 3.43 + fract(1.12 * iTime) + w.y,
+             u * v + p.x * 0.37 + p.y * 0.457 + iTime + G.x * G.y);
+}"""
+
+
+def test_product_sums_bit_for_bit(numba, make_shader):
+    """``(p1 + p2) + e`` is ``(p1 + e) + p2`` on llvmpipe where e is no product
+    (nir_fold.product_sums, measured in tests/gl/test_llvmpipe_product_sums.py): a uniform, a
+    uniform expression, a difference, e first, a factorable sum, a local, a component ``*=``
+    wrote, a vector, and three products kept (a global's initializer is left as written); per
+    pixel and in lockstep against the NumPy backend, over frames where the orders round
+    apart."""
+    from glslcheck.backends.compiled_engine.engine import CompiledProgram, generate
+
+    shader = make_shader(PRODUCT_SUMS)
+    assert "if rt.lp else" in glslcheck.compile(shader, backend="numpy").source
+    times = [0.3 + k / 7 for k in range(12)]
+    numpy = glslcheck.compile(shader, backend="numpy")
+    want = np.stack([numpy.render(size=SIZE, time=t) for t in times])
+    for lanes in (0, 8):
+        prog = CompiledProgram(*generate(shader, lanes=lanes))
+        got = np.stack([prog.render(size=SIZE, time=t) for t in times])
+        what = f"{SIZE[0]}x{SIZE[1]}"
+        assert_same_frames(got, want, times, what=what, names=(f"lanes {lanes}", "numpy"))
+
+
 PATH_TRACERS = os.path.join(os.path.dirname(__file__), "..", "gl", "path_tracers")
 
 

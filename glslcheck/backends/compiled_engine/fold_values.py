@@ -29,6 +29,7 @@ from .values import Val, not_yet
 COPIED = frozenset(
     {
         "matrix",
+        "product_sums",
         "factoring",
         "exp_log",
         "constant_merge",

@@ -15,6 +15,8 @@ The rules copied here, each measured bit for bit against llvmpipe on 50,000 rand
 - dot_constants.py: constants merged into a ``dot`` with a constant, ``dot(vecN(s), #K)`` factored;
 - exp_log.py: ``exp`` and ``log`` as Mesa's products, ``exp(x * #k)`` is ``exp2(x * (k*log2(e)))``;
 - ffma_split.py: ``(p1 + p2) + e`` returned through a folded call is ``(p1 + e) + p2`` (ffma);
+- product_sums.py: ``(p1 + p2) + e`` is ``(p1 + e) + p2`` where p1 and p2 are products and e
+  is none (a path tracer's ``p.x*c1 + p.y*c2 + iTime``);
 - returned_sums.py: a constant added to a call's result sinks into the ``+=`` chain it returns;
 - repeated_sums.py: ``seed += 0.1`` written again and again is ``seed0 + K``, also through calls
   NIR inlines and loops it unrolls; sum_order.py: K in the order Mesa's passes merge it;

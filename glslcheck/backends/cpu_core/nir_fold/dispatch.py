@@ -7,7 +7,9 @@ operation in it); a value whose y a later copy of an unrolled loop reads from a 
 result (returned_sums.py), then, where its only effects are calls of user functions that are
 opaque values once inlined (queries.inlined_calls_only, inlined_results.py), the rules below as
 for any value; for a matrix operand, only constants merged into the matrix (ssa_values.py); for
-a sum, factoring (factoring.py) then the ffma split (ffma_split.py); then a log scaled by a
+a sum or difference, a term joining the first of two products it is added to (product_sums.py:
+NIR rewrites the outer addition before the inner one is factored); for a sum, factoring
+(factoring.py) then the ffma split (ffma_split.py); then a log scaled by a
 constant (exp_log.py), constants merged (loop_copies.py, constant_merge.py, components.py,
 compound_products.py) or sunk (smoothstep_products.py, sink.py); last, a product by a constant
 kept through a variable assigned again (ssa_values.py).
@@ -27,7 +29,8 @@ from .exp_log import log_scaled
 from .factoring import factor
 from .loop_copies import kept_in_slot, merged_copies
 from .lower_precision import LOWP_OPS
-from .queries import inlined_calls_only
+from .product_sums import product_sum
+from .queries import SUMS, inlined_calls_only
 from .sink import sink_constant
 from .smoothstep_products import scaled_smoothstep
 from .ssa_values import keep_factor, merge_into_matrix
@@ -44,14 +47,15 @@ if TYPE_CHECKING:
 # (family, rule, where it is tried), in Mesa's order; None: a family each engine writes itself.
 # where: "lowp" any operator of LOWP_OPS, before the tests below; "first" a float +, - or * of a
 # function; "effects" one with side effects; "matrix" one with a matrix operand (nothing after);
-# "sum" a +; "any" every other float +, - or *.
+# "sums" a + or -, "sum" a +, before "any": every other float +, - or *.
 BINARY_RULES: tuple[tuple[str, Rule | None, str], ...] = (
     ("lower_precision", None, "lowp"),  # the float16 tree (its type decides every operation)
     ("constant_merge", kept_in_slot, "first"),  # y read from a later copy's temporary
     ("returned_sums", None, "effects"),  # a constant sunk into a call's returned sum
     ("matrix", merge_into_matrix, "matrix"),
+    ("product_sums", product_sum, "sums"),
     ("factoring", factor, "sum"),
-    ("ffma_split", None, "sum"),  # a sum returned through a folded call, split as llvmpipe's ffma
+    ("ffma_split", None, "sum"),  # a sum of two products a folded call returns, a term added
     ("exp_log", log_scaled, "any"),
     ("constant_merge", merged_copies, "any"),
     ("constant_merge", merge_constants, "any"),
@@ -98,5 +102,7 @@ def rewrite_binary(
             return folded
     if tr.type_of(e.left).is_matrix or tr.type_of(e.right).is_matrix:
         return tried("matrix")
-    folded = tried("sum") if e.op == "+" else None
+    folded = tried("sums") if e.op in SUMS else None
+    if folded is None and e.op == "+":
+        folded = tried("sum")
     return folded if folded is not None else tried("any")

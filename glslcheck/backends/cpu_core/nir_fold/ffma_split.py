@@ -1,11 +1,10 @@
 """A sum of two products returned through a folded call: ``(p1 + p2) + e`` is ``(p1 + e) + p2``.
 
-llvmpipe fuses ``p1 + p2`` into an ffma (nir_opt_algebraic_late, fuse_ffma32), moves e into its
-addend, ``ffma(a, b, ffma(c, d, e))``, and splits each ffma again (lower_ffma32), so the sum
-is reassociated where the written code kept it apart: gargantua's ``raypos = eyepos +
-eyevec*dither*far/200`` after RotateCamera, measured in 576 of 576 pixels. Copied where the
-sum comes out of a call folded per call site (cpu_core/call_fold.py) and is read once;
-inside one written expression, ``(a*b + c*d) + e``, measured the same but not copied."""
+The reassociation of product_sums.py (nir_opt_algebraic's add chains: the bits are those of
+``(p1 + e) + p2`` rounded step by step, no fused multiply-add) where the sum comes out of a call
+folded per call site (cpu_core/call_fold.py) and is read once: gargantua's ``raypos = eyepos +
+eyevec*dither*far/200`` after RotateCamera, measured in 576 of 576 pixels. A sum written in the
+shader, ``(a*b + c*d) + e``, is product_sums.py's."""
 
 from __future__ import annotations
 

@@ -1,8 +1,8 @@
 """The NumPy transpiler's reading of nir_fold's table of binary rewrites
 (cpu_core/nir_fold/dispatch.py: Mesa's order, shared with the compiled engine): every family,
 with the rewrites the transpiler writes itself: the float16 tree of lowp lookups (float16.py),
-a constant sunk into a call's returned sum (returned_sums.py) and a sum returned through a
-folded call split as llvmpipe's ffma (:func:`fused_after_call`)."""
+a constant sunk into a call's returned sum (returned_sums.py) and a sum of two products returned
+through a folded call with a term added (:func:`fused_after_call`)."""
 
 from __future__ import annotations
 
@@ -23,13 +23,12 @@ def binary(tr: TranspilerState, e: A.Binary, mask: str | None) -> str | None:
 
 
 def fused_after_call(tr: TranspilerState, e: A.Binary, mask: str | None) -> str | None:
-    """``(p1 + e) + p2`` for ``x + e`` of a :func:`fused_plan`, else None. llvmpipe fuses
-    ``p1 + p2`` into ``ffma(p2's factors, p1)`` (nir_opt_algebraic_late, fuse_ffma32),
-    ``ffma(a, b, fmul(c, d)) + e`` becomes ``ffma(a, b, ffma(c, d, e))``, and lower_ffma32
-    splits each ffma into a product and a sum (measured: gargantua's ``raypos = eyepos +
-    eyevec*dither*far/200`` after RotateCamera, 576 of 576 pixels; ``(a*e + b*h) + d`` is
-    ``(a*e + d) + b*h`` in every pixel, while ``(a*e + b) + d`` keeps its order). In the
-    written code, inside one expression, not copied here."""
+    """``(p1 + e) + p2`` for ``x + e`` of a :func:`fused_plan`, else None: nir_opt_algebraic's
+    reassociation of add chains (nir_fold/product_sums.py) where a folded call left ``p1 + p2``
+    in x (measured: gargantua's ``raypos = eyepos + eyevec*dither*far/200`` after
+    RotateCamera, 576 of 576 pixels; ``(a*e + b*h) + d`` is ``(a*e + d) + b*h`` in every
+    pixel, while ``(a*e + b) + d`` keeps its order). A sum written in one expression is
+    product_sums.py's, from the shared table."""
     plan = fused_plan(tr, e)
     if plan is None:
         return None
