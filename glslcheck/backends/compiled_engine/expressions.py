@@ -30,6 +30,7 @@ from .values import (
     engine_error,
     flatten,
     leaves,
+    may_change,
     not_yet,
     pure_expr,
 )
@@ -237,6 +238,10 @@ class ExpressionEmitter:
         ):
             v.const = flatten(cv)
         v.uni = self.lane_uniform(e)
+        if self.fn is not None and self.fn.sym is not None and self.facts.order.needs_temp(e):
+            # Mesa computes e here, before a later part of the statement writes what it reads
+            # (cpu_core/eval_order.py): a variable's name is copied too, as it may be rebound
+            v.parts = [self.tmp_fresh(p) if may_change(p) else p for p in v.parts]
         # long expressions go to temporaries (Python's parser nests 200 brackets at most)
         v.parts = [self.tmp(p) if isinstance(p, str) and len(p) > 300 else p for p in v.parts]
         return v

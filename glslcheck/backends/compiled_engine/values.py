@@ -66,6 +66,15 @@ def pure_expr(e: Any) -> bool:
 
 
 ATOM = re.compile(r"^(?:[A-Za-z_][A-Za-z0-9_]*(?:\[[A-Za-z0-9_ +]+\])?|True|False)$")
+_FIXED = re.compile(r"[FIU]_\w+|True|False|_t\d+")  # constants, bools, temporaries
+
+
+def may_change(part: Any) -> bool:
+    """A value part whose text may read something a later write changes (a variable's name, an
+    expression): anything but a module constant, a bool literal or a temporary `fresh` made."""
+    return isinstance(part, str) and _FIXED.fullmatch(part) is None
+
+
 KIND_ARRAY = {"float": "gf", "int": "gi", "uint": "gu", "bool": "gb"}
 DTYPE = {"float": "np.float32", "int": "np.int32", "uint": "np.uint32", "bool": "np.bool_"}
 CAST = {"float": "F32", "int": "I32", "uint": "U32", "bool": "bool"}

@@ -49,6 +49,7 @@ class Facts:
         self.events: dict[int, Events] = {}  # node id -> events_of(node)
         self._discarding: dict[int, bool] = {}  # node id -> a discarding call in its subtree
         self._write_counts: dict[int, int] | None = None
+        self._order: Any = None
         # (function id, ids of its uniform parameters) -> its out parameters left uniform
         # (Uniformity.uniform_outs)
         self.uniform_outs: dict[tuple[int, frozenset], set[int]] = {}
@@ -82,6 +83,16 @@ class Facts:
                     tgt = model.call_target(node)
                     if isinstance(tgt, Symbol) and id(tgt) in self.reads_lane_state:
                         self.reads_lane_state.add(id(fn))
+
+    @property
+    def order(self) -> Any:
+        """The program's EvalOrder (eval_order.py): which values Mesa computes before a later
+        part of their statement writes what they read."""
+        if self._order is None:
+            from .eval_order import EvalOrder
+
+            self._order = EvalOrder(self.model, self)
+        return self._order
 
     def write_counts(self) -> dict[int, int]:
         """Symbol id -> how many places in the program's functions write it (assignments,

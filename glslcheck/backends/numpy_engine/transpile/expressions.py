@@ -5,6 +5,7 @@ constants, and reads and masked writes through fields, swizzles and indices. Mix
 
 from __future__ import annotations
 
+import re
 from typing import Any
 
 from ....base.precision import float32_literal
@@ -55,6 +56,7 @@ _FLOAT_UFUNCS = {
 # as constants and every runtime result are): rt.add is np.add, rt.bit_xor np.bitwise_xor ...
 # (`/` and `%` have GLSL's own rules for zero and signs; `<<` on int goes through unsigned bits)
 _INT_OPERATORS = ("+", "-", "*", "<", "<=", ">", ">=", "&", "|", "^")
+_TEMPORARY = re.compile(r"_t\d+(\[\d+\])?")  # a temporary (or a call's result in one): computed
 
 
 def _own_mask(e: Any) -> bool:
@@ -86,10 +88,21 @@ class Expressions(TranspilerState):
                 None if self.has_effects(e) else (self.repeated_calls(e), {}),
             )
             try:
-                return self.print_expr(e, mask)
+                text = self.print_expr(e, mask)
             finally:
                 self.cse = saved
-        return self.print_expr(e, mask)
+        else:
+            text = self.print_expr(e, mask)
+        if (
+            self.fn is not None
+            and not self.in_const
+            and self.facts.order.needs_temp(e)
+            and not _TEMPORARY.fullmatch(text)
+        ):
+            # Mesa computes e here, before a later part of the statement writes what it reads
+            # (cpu_core/eval_order.py): not when the statement's text is evaluated
+            return self.tmp(text)
+        return text
 
     def print_expr(self, e: Any, mask: str | None) -> str:
         method = getattr(self, "_print_" + type(e).__name__, None)
@@ -190,10 +203,11 @@ class Expressions(TranspilerState):
 
     def exprs(self, items: list[Any], mask: str | None) -> list[str]:
         """Evaluate expressions as Mesa does: a later operand's side effects (calls with out
-        arguments, assignments, ++/--) are emitted as statements first and every operand is
-        read after them, so `vec4(ip, modf(x, ip), ...)` and `vec2(i, i++)` see the updated
-        value in every position (measured on llvmpipe; GLSL IR hoists such calls and reads
-        variables lazily). Earlier operands are not copied to temporaries."""
+        arguments or global writes, assignments, ++/--) are emitted as statements first and a
+        variable, swizzle, index or operator is read after them, so `vec4(ip, modf(x, ip),
+        ...)` and `vec2(i, i++)` see the updated value in every position (measured on
+        llvmpipe; GLSL IR hoists such calls and reads variables lazily). A call, a constructor
+        or a `?:` before them is computed where it stands (`expr`, cpu_core/eval_order.py)."""
         return [self.expr(e, mask) for e in items]
 
     def _print_IntLiteral(self, e: A.IntLiteral, mask: str | None) -> str:

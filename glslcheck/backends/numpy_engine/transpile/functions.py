@@ -184,6 +184,7 @@ class Functions(TranspilerState):
         outs: list[tuple[int, LValue]] = []
         inouts: dict[int, str] = {}
         directions = [d for _, _, d in fn.params]
+        order = self.facts.order
         for i, (a, d) in enumerate(zip(e.args, directions)):  # (after earlier side effects)
             if d == "in":
                 args.append(self.expr(a, mask))
@@ -191,7 +192,9 @@ class Functions(TranspilerState):
                 lv = self.lvalue(a, mask)
                 outs.append((len(outs) + 1, lv))
                 if d == "inout":
-                    args.append(self.tmp(self.read(lv)))
+                    # read at the call, as Mesa copies it in: after the later arguments' effects
+                    later = order.reads(a) & order.written_after(e, i)
+                    args.append(self.read(lv) if later else self.tmp(self.read(lv)))
                     inouts[i] = args[-1]
         args += return_constant_args(self, e, fn)
         for key, g in nir_fold.chain_globals(self, fn):  # (a global's chain runs through too)
@@ -202,7 +205,9 @@ class Functions(TranspilerState):
             self.n += 1  # (a name no GLSL global has: `__` is reserved)
             call = f'X.reg(S, "g___r{self.n}", {call}, {call_mask})'  # (tiles.LaneHelpers.reg)
         if not outs:
-            return call
+            # a call that writes a global an earlier part of the statement reads runs where it
+            # stands (Mesa emits every call as it meets it and evaluates that read later)
+            return self.tmp(call) if self.facts.order.runs_first(e) else call
         r = self.fresh("t")
         self.emit(f"{r} = {call}")
         for k, lv in outs:
