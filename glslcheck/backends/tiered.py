@@ -379,12 +379,12 @@ class TieredCpuProgram:
             return
         mine = sorted(self.trial)[len(self.trial) // 2]
         self.numpy_rate = sorted(self.numpy_trial)[len(self.numpy_trial) // 2]
+        if isinstance(self.second, TieredProgram):
+            self.second.hold = False  # the trial is over: its own move is its rule's again
         pixel = isinstance(self.second, TieredProgram) and self.second.mode == "pixel"
         if pixel:  # (a hint for a later process's order of tiers, not a verdict: _move)
             self._keep(pixel="slower" if mine >= self.numpy_rate else "faster")
         if mine < self.numpy_rate:
-            if isinstance(self.second, TieredProgram):
-                self.second.hold = False  # kept: its frames may now pay for lockstep
             return
         second, self.second = self.second, None
         # (a per-pixel TieredProgram whose lockstep module may still be made)

@@ -40,12 +40,11 @@ EMPTY: frozenset[int] = frozenset()
 
 class EvalOrder:
     """Per program: the variables each expression node reads and writes (a user call: its
-    callee's globals too, through its calls), and the nodes that need a temporary."""
+    callee's globals too, Facts.global_effects), and the nodes that need a temporary."""
 
     def __init__(self, model: Model, facts: Any) -> None:  # (facts.Facts, which builds it)
         self.model = model
         self.facts = facts
-        self._fn_globals: dict[int, tuple[frozenset[int], frozenset[int]]] = {}
         self._reads: dict[int, frozenset[int]] = {}
         self._writes: dict[int, frozenset[int]] = {}
         self._temps: set[int] | None = None
@@ -53,32 +52,6 @@ class EvalOrder:
         self._after: dict[tuple[int, int], frozenset[int]] = {}
 
     # -- what a node reads and writes ------------------------------------------------------
-    def callee_globals(self, fn: Symbol) -> tuple[frozenset[int], frozenset[int]]:
-        """(globals read, globals written) by a call of `fn`, through the functions it calls."""
-        key = id(fn)
-        known = self._fn_globals.get(key)
-        if known is not None:
-            return known
-        self._fn_globals[key] = (EMPTY, EMPTY)  # (recursion is not GLSL; a guard all the same)
-        reads: set[int] = set()
-        writes: set[int] = set()
-        for node in fn.node.body.walk():
-            if isinstance(node, A.Identifier):
-                sym = self.model.symbol_of(node)
-                if sym is not None and sym.kind == "global":
-                    reads.add(id(sym))
-            elif isinstance(node, A.Call):
-                tgt = self.model.call_target(node)
-                if isinstance(tgt, Symbol) and tgt is not fn:
-                    r, w = self.callee_globals(tgt)
-                    reads |= r
-                    writes |= w
-            for sym in self.facts.written_variables(node):
-                if sym.kind == "global":
-                    writes.add(id(sym))
-        self._fn_globals[key] = (frozenset(reads), frozenset(writes))
-        return self._fn_globals[key]
-
     def reads(self, e: Any) -> frozenset[int]:
         """Ids of the variables evaluating `e` reads."""
         return self._fold(e, self._reads, self._reads_here)
@@ -94,7 +67,7 @@ class EvalOrder:
         if isinstance(n, A.Call):
             tgt = self.model.call_target(n)
             if isinstance(tgt, Symbol):
-                return self.callee_globals(tgt)[0]
+                return self.facts.global_effects(tgt)[0]
         return EMPTY
 
     def _writes_here(self, n: Any) -> frozenset[int]:
@@ -102,7 +75,7 @@ class EvalOrder:
         if isinstance(n, A.Call):
             tgt = self.model.call_target(n)
             if isinstance(tgt, Symbol):
-                own |= self.callee_globals(tgt)[1]
+                own |= self.facts.global_effects(tgt)[1]
         return own
 
     @staticmethod
@@ -180,7 +153,7 @@ class EvalOrder:
                 temps.add(id(node))
             if before and isinstance(node, A.Call):
                 tgt = self.model.call_target(node)
-                if isinstance(tgt, Symbol) and self.callee_globals(tgt)[1] & before:
+                if isinstance(tgt, Symbol) and self.facts.global_effects(tgt)[1] & before:
                     first.add(id(node))
             kids = node.children()
             if not isinstance(node, A.Expr):

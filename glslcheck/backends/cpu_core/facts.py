@@ -45,7 +45,8 @@ class Facts:
         self.uses_derivs: set[int] = set()
         self.written_globals: set[int] = set()
         self.reads_lane_state: set[int] = set()  # reads gl_FragCoord or a written global
-        self._calls_cache: dict[int, list[Any]] = {}
+        # function id -> (globals it reads, globals it writes), through its calls
+        self._global_effects: dict[int, tuple[frozenset[int], frozenset[int]]] = {}
         self.events: dict[int, Events] = {}  # node id -> events_of(node)
         self._discarding: dict[int, bool] = {}  # node id -> a discarding call in its subtree
         self._write_counts: dict[int, int] | None = None
@@ -132,18 +133,33 @@ class Facts:
         )
 
     def writes_globals(self, fn: Symbol) -> bool:
+        """A call of `fn` writes a global, through the functions it calls."""
+        return bool(self.global_effects(fn)[1])
+
+    def global_effects(self, fn: Symbol) -> tuple[frozenset[int], frozenset[int]]:
+        """(ids of the globals read, ids of the globals written) by a call of `fn`, through
+        the functions it calls."""
         key = id(fn)
-        if key not in self._calls_cache:
-            res = False
-            for node in fn.node.body.walk():
-                if any(sym.kind == "global" for sym in self.written_variables(node)):
-                    res = True
-                if isinstance(node, A.Call):
-                    tgt = self.model.call_target(node)
-                    if isinstance(tgt, Symbol) and tgt is not fn and self.writes_globals(tgt):
-                        res = True
-            self._calls_cache[key] = [res]
-        return self._calls_cache[key][0]
+        known = self._global_effects.get(key)
+        if known is not None:
+            return known
+        self._global_effects[key] = (frozenset(), frozenset())  # (no recursion in GLSL: a guard)
+        reads: set[int] = set()
+        writes: set[int] = set()
+        for node in fn.node.body.walk():
+            if isinstance(node, A.Identifier):
+                sym = self.model.symbol_of(node)
+                if sym is not None and sym.kind == "global":
+                    reads.add(id(sym))
+            elif isinstance(node, A.Call):
+                tgt = self.model.call_target(node)
+                if isinstance(tgt, Symbol) and tgt is not fn:
+                    r, w = self.global_effects(tgt)
+                    reads |= r
+                    writes |= w
+            writes.update(id(sym) for sym in self.written_variables(node) if sym.kind == "global")
+        self._global_effects[key] = (frozenset(reads), frozenset(writes))
+        return self._global_effects[key]
 
 
 def written_lvalues(model: Model, node: Any) -> list[Any]:

@@ -65,6 +65,7 @@ RULE_TABLE: tuple[tuple[str, str], ...] = (
     ("length-computed-twice", "length_computed_twice"),
     ("unit-length", "unit_length"),
     ("no-op-arithmetic", "no_op_arithmetic"),
+    ("hand-written-builtin", "hand_written_builtin"),
     ("unreachable-code", "unreachable_code"),
     ("unset-array-elements", "unset_array_elements"),
     ("out-parameter-read", "out_parameter_read"),

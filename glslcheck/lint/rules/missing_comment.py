@@ -89,7 +89,8 @@ A run is a certain deduction, except where the readings of the rubric part (a po
   whether it reaches the body's first statements is a reading, and the group it started ends
   with the block;
 - a function signature with no comment above whose body opens with a comment saying what the
-  function does;
+  function does; not `mainImage`'s, the signature every Shadertoy shader starts with, whose
+  purpose is known: with a comment opening its body it is not reported at all;
 - a definition with no comment at all right under another (blank lines between, nothing else),
   each after the first: one reading deducts such a region once, the others each definition.
 
@@ -757,7 +758,12 @@ class _Reader:
         """An explaining comment line: it covers the group below it (a run of comment lines is
         one comment)."""
         if self.run is not None and self.signature_run and self.after_open and self.depth == 1:
-            self.run[3] = BODY_ONLY  # the body opens with what the function does
+            if self.function is not None and self.function["name"] == "mainImage":
+                # Shadertoy's entry point, its signature the one every new shader starts with:
+                # its purpose is known, and its body's comments say what it does
+                self.run = None
+            else:
+                self.run[3] = BODY_ONLY  # the body opens with what the function does
         if self.function is not None and self.depth > 0:
             self.function["inner"] = True
         self.close_run()
