@@ -45,6 +45,9 @@ from ..lint.fixes import Fix
 from ..lint.fixes.edits import EditError, apply_fixes, line_map, position_map
 from ..lint.fixes.files import FileText, read_file
 from ..lint.rules import rule_names
+from ..lint.rules.missing_comment import TRIVIAL_RE
+from ..lint.textscan import TextScan
+from ..lint.textscan import scan as scan_text
 from ..shadertoy.sources import Shader, Source, find_shaders, tab_name
 from ..shadertoy.wrapper import DEFAULT_SIZE
 from .compare import Comparison, compare
@@ -434,10 +437,13 @@ def _comments_changed(old: str, new: str, new_lines: list[int], every, shader, s
     explained = _with_text(shader, source, variant)
     after = _lint(explained, Source(source.path, variant, source.tab), every)
     had = {n for f in before if f.rule == EXPECTED_ON_NEW_LINES for n in _uncovered(f)}
+    lines_of = scan_text(variant)
     for f in after:
         if f.rule != EXPECTED_ON_NEW_LINES:
             continue
-        lost = [n for n in _uncovered(f) if mapping.get(n) not in had]
+        lost = [
+            n for n in _uncovered(f) if mapping.get(n) not in had and _needs_comment(lines_of, n)
+        ]
         if lost:
             return (
                 f"a new finding: {f.rule} at line {_line(f)}: {f.message} (line {lost[0]} "
@@ -447,6 +453,14 @@ def _comments_changed(old: str, new: str, new_lines: list[int], every, shader, s
 
 
 _RUN = re.compile(r"\(lines? (\d+)(?:-(\d+))?\)$")
+
+
+def _needs_comment(text: TextScan, line: int) -> bool:
+    """Whether a line holds code a comment must explain: not a blank, brace or comment line nor
+    a statement that needs none (`return c;`). A run read whole (a function with no comment, one
+    run from its signature to its end) spans such lines; read group by group at its blank lines
+    (a mostly uncommented file, which a fix's lines can make one no longer) it does not."""
+    return text.kind(line).has_code and not TRIVIAL_RE.match(text.code_lines[line - 1])
 
 
 def _uncovered(f: Finding) -> range:

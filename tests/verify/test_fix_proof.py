@@ -115,6 +115,44 @@ def test_diff_writes_nothing_and_shows_what_fix_would_write(workdir, capsys):
     assert all(line not in fixed.split("\n") for line in removed)
 
 
+# Mostly uncommented (more than three quarters of its code lines uncovered): missing-comment
+# reads `wave` group by group at its blank line. The repeated-expression fix adds a line, which
+# the proof's placeholder comment covers: the file is then no longer mostly uncommented and
+# `wave` is one run over its blank line, a line no comment had to explain before or after.
+SPARSE = (
+    HEADER
+    + """
+float wave(float x)
+{
+    float a = x * 2.0;
+    float b = a + 1.0;
+
+    float c = b * b;
+    return c;
+}
+
+void mainImage(out vec4 fragColor, in vec2 fragCoord)
+{
+    vec2 uv = fragCoord / iResolution.xy;
+    float r = sin(uv.x * 3.0) + sin(uv.x * 3.0) * uv.y;
+    fragColor = vec4(r, wave(uv.y), 0.0, 1.0);
+}
+"""
+)
+
+
+def test_a_fix_whose_line_makes_a_sparse_file_no_longer_so_is_proven(workdir, capsys):
+    path = workdir / "Image.glsl"
+    path.write_text(SPARSE)
+    assert "repeated-expression" in rules_with_fixes(path)
+    before = render(path)
+    main(["lint", "--fix", "Image.glsl"])
+    err = capsys.readouterr().err
+    assert "repeated-expression" not in {f.rule for f in lint_paths([str(path)]).findings}, err
+    for old, new in zip(before, render(path)):
+        assert compare(old, new).match
+
+
 def test_diff_of_a_clean_file_exits_0(workdir, capsys):
     path = workdir / "Image.glsl"
     path.write_text(HEADER + "// white\nvoid mainImage(out vec4 c, in vec2 p) { c = vec4(1.0); }\n")

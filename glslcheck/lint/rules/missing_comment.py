@@ -66,7 +66,10 @@ spaced. It ends at an explaining comment, a covered statement, a credit or a sec
 (they start another part), and the close of the block it is in (`} else {` goes on). Each
 top-level function or struct is a run of its own, and a function with no explaining comment
 anywhere is one run from its signature to its last line: the one ambiguous block the rubric
-deducts once.
+deducts once. But in a mostly uncommented file (more than three quarters of its code lines in
+uncovered runs) the blank lines are the only sections the student marks: there a blank line
+inside a body ends a run too, in a function with no comment as in any other, and each group is
+a deduction of its own.
 
 A run is a certain deduction, except where the readings of the rubric part (a possible one):
 - the code of a section below its heading, parted from it by a blank line, when the heading is
@@ -364,8 +367,10 @@ def _simple(function: dict) -> bool:
 class _Reader:
     """Reads a file's lines into statements and decides which are covered (see uncovered_runs)."""
 
-    def __init__(self, scan, kinds: list[LineKind], span: int):
+    def __init__(self, scan, kinds: list[LineKind], span: int, sections: bool = False):
         self.scan, self.kinds, self.span = scan, kinds, span
+        # a mostly uncommented file (sparse): a blank line in a body ends a run too
+        self.sections = sections
         self.code = scan.code_lines
         self.on_line: dict[int, list] = {}  # line -> the comments on it (built once: linear)
         for c in scan.comments:
@@ -730,7 +735,7 @@ class _Reader:
         self.previous = (f["name"], f["explained"] or (overload and not f["inner"]))
         self.previous_said = f["said"] if f["explained"] else ""
         mine = self.runs[f["runs"] :]
-        if not f["explained"] and not f["inner"] and mine:
+        if not f["explained"] and not f["inner"] and mine and not self.sections:
             first = min(f["sig"][0], mine[0][0])
             count = sum(r[2] for r in mine)
             # an overload right under a commented one, no blank line between: one group the
@@ -809,8 +814,10 @@ class _Reader:
                     self.parted = self.cover if self.depth > 0 else None
                     self.cover = None
                     self.reach = 0
-                    if self.depth == 0:
-                        self.close_run()  # between definitions; in a body a run goes on
+                    if self.depth == 0 or self.sections:
+                        # between definitions; in a body a run goes on, but for a mostly
+                        # uncommented file's, whose blank lines are the only sections it marks
+                        self.close_run()
             self.blank = False
             opened_before = self.after_open
             self.after_open = line.endswith("{")
@@ -880,8 +887,27 @@ def uncovered_runs(scan, kinds: list[LineKind], span: int) -> list[tuple[int, in
     function's signature use up none of the span; trivial statements need no comment; credits,
     markers and commented-out code explain nothing. A run ends at a covered statement, an
     explaining comment, a credit or a marker, the close of its block, or (at top level) a blank
-    line; in a body it goes on across blank lines and commented-out code."""
-    return _Reader(scan, kinds, span).read()
+    line; in a body it goes on across blank lines and commented-out code, but for a mostly
+    uncommented file's (sparse), read again with a blank line ending a run in a body too."""
+    runs = _Reader(scan, kinds, span).read()
+    if sparse(runs, kinds):
+        runs = _Reader(scan, kinds, span, sections=True).read()
+    return runs
+
+
+# Of a file's code lines, the share that no comment covers above which the file is mostly
+# uncommented (SPARSE_UNCOVERED of SPARSE_OF)
+SPARSE_UNCOVERED, SPARSE_OF = 3, 4
+
+
+def sparse(runs: list[tuple[int, int, int, str]], kinds: list[LineKind]) -> bool:
+    """Whether a file is mostly uncommented: more than three quarters of its code lines in
+    uncovered runs. Its blank lines are then the only sections it marks, and each group they
+    part is one the rubric deducts ("per ambiguous section"); in a commented file the comments
+    mark its sections and an uncovered stretch between two is one, however it is spaced."""
+    code = sum(1 for k in kinds if k is CODE or k is TRAILING or k is LEADING)
+    uncovered = sum(r[2] for r in runs)
+    return uncovered * SPARSE_OF > code * SPARSE_UNCOVERED
 
 
 def check(ctx: LintContext) -> Iterator[Diagnostic]:
