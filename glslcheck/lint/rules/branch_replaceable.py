@@ -41,8 +41,9 @@ min/max, int) scalars; the statement forms must be a single assignment to the sa
 a return) in each arm. Ifs in a row that each select a part of one variable (`if (..) col.x =
 1.0;`, then `col.y`, `col.z`) are one finding, and so are selects on the same condition written
 again in a function (a checkerboard's `if (parity == 0.0)` in two arms): the rubric deducts
-"per inefficient practice". Ifs in a row setting different variables (three layers' alphas)
-are a finding each, and the same words on a variable written between (`center` moved for the
+"per inefficient practice". Ifs in a row setting different variables (three layers' alphas),
+or one variable whole (one of two images chosen, then black past the last tile), are a finding
+each, and the same words on a variable written between (`center` moved for the
 next circle) are another condition. The replacement gives
 the same value on every path: conditions and arms are free of side effects, and step() is
 exactly 0.0 or 1.0, so the mix picks an arm (an arm the branch skipped may not divide by zero).
@@ -148,21 +149,30 @@ def _return_after(fn, node: A.If) -> A.If | None:
     return None
 
 
-def _root(stmt: Any) -> Any:
-    """The variable a selecting if assigns (`col` of `col.x = 1.0;`), or None."""
+def _part(stmt: Any) -> tuple[str, str] | None:
+    """(the variable, the part of it) a selecting if assigns (`col`, `col.x` of `col.x =
+    1.0;`), or None; the part of a whole variable is its name."""
     assign = _single_assignment(stmt.then)
     target: Any = assign.target if assign is not None else None
+    part = to_glsl(target) if target is not None else ""
     while type(target) in (A.Field, A.Index):
         target = target.base
-    return target.name if type(target) is A.Identifier else None
+    return (target.name, part) if type(target) is A.Identifier else None
 
 
 def _same_target(fn, before: A.If, node: A.If) -> bool:
-    """Ifs in a row are one selection when they set the same variable (`col.x`, `col.y`,
-    `col.z`: one colour chosen); ifs setting different variables (three layers' alphas) are
-    as many selections."""
-    first = _root(before)
-    return first is not None and first == _root(node)
+    """Ifs in a row are one selection when they set parts of the same variable (`col.x`,
+    `col.y`, `col.z`: one colour chosen); ifs setting different variables (three layers'
+    alphas), or the same one whole (a pair of images chosen, then black past the last tile),
+    are as many selections."""
+    first, then = _part(before), _part(node)
+    return (
+        first is not None
+        and then is not None
+        and first[0] == then[0]
+        and first[1] != first[0]
+        and then[1] != then[0]
+    )
 
 
 def _merged(fn, runs: list[list[tuple[Any, str, tuple[str, str]]]]) -> Iterator[Diagnostic]:
