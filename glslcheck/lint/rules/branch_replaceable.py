@@ -560,7 +560,8 @@ _ROUNDING = ("floor", "ceil", "round", "roundEven", "trunc")
 
 def _integral(fn, e, depth: int) -> bool:
     """Whether the float scalar `e` always holds an integer (a floor(), a float() of an int,
-    sums and products of such, a component of such a vector, a local holding one)."""
+    sums and products of such, a component of such a vector, a local holding one or a
+    parameter written over with one: `uv = floor(uv);`)."""
     if depth > 8:
         return False
     model = fn.model
@@ -581,7 +582,7 @@ def _integral(fn, e, depth: int) -> bool:
         return _integral(fn, e.base, depth + 1)
     if t is A.Identifier:
         sym = model.symbol_of(e)
-        if sym is None or sym.kind != "local":
+        if sym is None or sym.kind not in ("local", "param"):  # (a parameter written over)
             return False
         reaching = fn.reaching_value(e, sym)
         return reaching is not None and _integral(fn, reaching, depth + 1)
