@@ -236,6 +236,39 @@ BRANCHED_CALLS = {
         },
     ),
 }
+# A callee advancing its inout parameter only in a branch: inlined, the branch's additions
+# continue the caller's chain (dominated by its last step), and a phi joins the branch.
+BRANCHED_HEAD = """void maybe(inout float seed, float d) {
+    if (d < 20.0) { seed += 0.1; seed += 0.1; }
+}
+vec2 hash2_if(inout float seed, float d) {
+    vec2 h = vec2(d); if (d < 20.0) { h = hash2(seed); } return h;
+}
+"""
+BRANCHED_CALLEES = {
+    "a_callee_advancing_in_a_branch": (
+        "seed += 0.1; maybe(seed, s0); float r = seed; seed += 0.1; c = vec4(s0, r, seed, 1.0);",
+        {
+            1: (
+                lambda s: np.where(s < 20.0, (s + K) + K2, s + K),
+                lambda s: np.where(s < 20.0, _merged(s, 3), s + K),
+            ),
+            2: (
+                lambda s: np.where(s < 20.0, _steps(s, 4), _steps(s, 2)),
+                lambda s: np.where(s < 20.0, _merged(s, 3), s + K) + K,
+            ),
+        },
+    ),
+    "a_callee_calling_in_a_branch": (
+        "seed += 0.1; vec2 h = hash2_if(seed, s0); c = vec4(s0, seed, h);",
+        {
+            1: (
+                lambda s: np.where(s < 20.0, (s + K) + K2, s + K),
+                lambda s: np.where(s < 20.0, _merged(s, 3), s + K),
+            )
+        },
+    ),
+}
 # Not followed by the engines: a third copy restarts the chain at the second copy's phi.
 BRANCHED_THIRD_COPY = {
     "a_third_copy_after_a_folded_branch": (
@@ -339,11 +372,27 @@ def _left_to_right(s0, ks):
     return s0 + acc
 
 
+def _text(name, body):
+    """The shader of a shape: HEAD's functions (BRANCHED_HEAD's too for BRANCHED_CALLEES), then
+    `body` in mainImage."""
+    head = HEAD
+    if name in BRANCHED_CALLEES:
+        head = HEAD.replace("void mainImage", BRANCHED_HEAD + "void mainImage")
+    return head + body + "\n}"
+
+
 def _render(shader, backend):
     return render(shader, backend, frame=0).reshape(-1, 4)
 
 
-MEASURED = {**SHAPES, **THROUGH_CALLS, **UNROLLED_BODIES, **BRANCHED_CALLS, **BRANCHED_THIRD_COPY}
+MEASURED = {
+    **SHAPES,
+    **THROUGH_CALLS,
+    **UNROLLED_BODIES,
+    **BRANCHED_CALLS,
+    **BRANCHED_THIRD_COPY,
+    **BRANCHED_CALLEES,
+}
 
 
 @pytest.mark.parametrize("name", sorted(MEASURED))
@@ -351,7 +400,7 @@ def test_llvmpipe_merges_the_constants_of_a_repeated_sum(llvmpipe, make_shader, 
     """The driver's value is the merged order on every pixel, and the shape tells the orders
     apart (else the comparison proves nothing)."""
     body, channels = MEASURED[name]
-    got = _render(make_shader(HEAD + body + "\n}"), "gl")
+    got = _render(make_shader(_text(name, body)), "gl")
     s0 = got[:, 0]
     for ch, (stepwise, merged) in channels.items():
         want, other = merged(s0).astype(np.float32), stepwise(s0).astype(np.float32)
@@ -366,12 +415,12 @@ def test_numpy_merges_the_constants_of_a_repeated_sum_as_mesa(
     renders_as_llvmpipe(make_shader(HEAD + SHAPES[name][0] + "\n}"), name=name, frame=0)
 
 
-FOLLOWED = {**THROUGH_CALLS, **UNROLLED_BODIES, **BRANCHED_CALLS}
+FOLLOWED = {**THROUGH_CALLS, **UNROLLED_BODIES, **BRANCHED_CALLS, **BRANCHED_CALLEES}
 
 
 @pytest.mark.parametrize("name", sorted(FOLLOWED))
 def test_numpy_merges_the_constants_through_calls_as_mesa(renders_as_llvmpipe, make_shader, name):
-    shader = make_shader(HEAD + FOLLOWED[name][0] + "\n}")
+    shader = make_shader(_text(name, FOLLOWED[name][0]))
     renders_as_llvmpipe(shader, name=name, frame=0)
 
 
@@ -399,13 +448,13 @@ def test_compiled_merges_the_constants_of_a_global_argument_as_mesa(
 
 
 @pytest.mark.parametrize("lanes", [0, 8])
-@pytest.mark.parametrize("name", sorted(BRANCHED_CALLS))
+@pytest.mark.parametrize("name", sorted(BRANCHED_CALLS) + sorted(BRANCHED_CALLEES))
 def test_compiled_follows_a_call_in_an_unrolled_branch_as_mesa(
     llvmpipe, numba, make_shader, name, lanes
 ):
     from glslcheck.backends.compiled_engine.engine import CompiledProgram, generate
 
-    shader = make_shader(HEAD + BRANCHED_CALLS[name][0] + "\n}")
+    shader = make_shader(_text(name, {**BRANCHED_CALLS, **BRANCHED_CALLEES}[name][0]))
     want = render(shader, "gl", frame=0)
     got = CompiledProgram(*generate(shader, lanes=lanes)).render(size=SIZE, time=0.0, frame=0)
     assert_same(got, want, what=f"{name}, lanes {lanes}", names=("compiled", "llvmpipe"))

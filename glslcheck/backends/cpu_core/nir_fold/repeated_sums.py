@@ -186,7 +186,7 @@ def _previous_step(tr: FoldEngine, e: Any, sym: Any) -> Any:
         if facts.dominates(loop, e) and not _written_between(tr, facts, loop, e, sym):
             return loop.body  # (after the loop: its last copy's value)
         return None
-    if not _is_step(tr, w.node, sym) or not facts.dominates(w.node, e):
+    if not _is_step(tr, w.node, sym) or not facts.dominates(w.node, e) or _joins(tr, w.node):
         return None
     if _written_between(tr, facts, w.node, e, sym):
         return None
@@ -196,6 +196,11 @@ def _previous_step(tr: FoldEngine, e: Any, sym: Any) -> Any:
 def _leaves(loop: Any) -> bool:
     """The loop can be left before its last pass (a break or a return in its body)."""
     return any(isinstance(n, (A.Break, A.Return)) for n in loop.body.walk())
+
+
+def _joins(tr: FoldEngine, node: Any) -> bool:
+    """`node` is a call whose callee advances the chain in a branch (Program.joins)."""
+    return isinstance(node, A.Call) and _callee_program(tr, node).joins
 
 
 def _is_step(tr: FoldEngine, node: Any, sym: Any) -> bool:
@@ -242,13 +247,14 @@ def call_step(tr: FoldEngine, call: A.Call) -> tuple[int, Any, Program] | None:
 class Program:
     """What a callee does to a chain parameter: its additions as sum_order ops (prev -1: the
     value the caller passes), where each write's ops are (id(write) -> (the unrolled loop
-    around it or None, first op, how many)), and whether a loop it can leave early ends it
-    (the value after the call is then a phi: a chain of the caller restarts there)."""
+    around it or None, first op, how many)), whether a loop it can leave early ends it, and
+    whether its writes are all in one branch of an ``if`` (`joins`; the value after the call
+    is then a phi: a chain of the caller restarts there)."""
 
-    __slots__ = ("ops", "where", "leaves")
+    __slots__ = ("ops", "where", "leaves", "joins")
 
-    def __init__(self, ops: list, where: dict, leaves: bool) -> None:
-        self.ops, self.where, self.leaves = ops, where, leaves
+    def __init__(self, ops: list, where: dict, leaves: bool, joins: bool = False) -> None:
+        self.ops, self.where, self.leaves, self.joins = ops, where, leaves, joins
 
     def slots(self) -> int:
         """How many constants a caller passes: one per addition, per copy in a loop."""
@@ -356,10 +362,24 @@ def _program(tr: FoldEngine, fn: Symbol, facts: Any, sym: Any) -> Program | None
     ) or any(facts.region[id(x)] != () for x in loops):
         return None  # (a return outside the unrolled loops: the rest runs on some lanes)
     where = chains[0]["where"]
-    if any(where[id(x)][0] is None and facts.region[id(x)] != () for x in writes):
-        return None  # (a write in a branch or a loop NIR keeps: a phi follows, not the chain)
+    regions = {facts.region[id(x)] for x in writes if where[id(x)][0] is None}
+    joins = regions != {()} and bool(regions)
+    if joins and (loops or not _one_branch(fn, regions)):
+        return None  # (writes in a loop NIR keeps or in several branches: phis between)
     ops = chains[0]["ops"]
-    return Program(ops, chains[0]["where"], any(isinstance(op, Loop) and op.breaks for op in ops))
+    leaves = any(isinstance(op, Loop) and op.breaks for op in ops)
+    return Program(ops, chains[0]["where"], leaves, joins)
+
+
+def _one_branch(fn: Symbol, regions: set) -> bool:
+    """`regions` is the one branch of an ``if`` of `fn`'s straight line: inlined, its writes
+    continue the caller's chain (dominated by its last write), a phi joins it after."""
+    if len(regions) != 1:
+        return False
+    (region,) = regions
+    if len(region) != 1 or region[0][1] not in (0, 1):
+        return False
+    return any(isinstance(n, A.If) and id(n) == region[0][0] for n in fn.node.body.walk())
 
 
 def chain_globals(tr: FoldEngine, fn: Symbol) -> list[tuple[int, Any]]:
@@ -406,10 +426,14 @@ def unrolled_chain(tr: FoldEngine, loop: Any, sym: Any) -> bool:
 
 
 def _chain_write(tr: FoldEngine, node: Any, sym: Any) -> bool:
-    """A step of `sym`, or a call advancing it whose callee unrolls no loop of its own."""
+    """A step of `sym`, or a call advancing it whose callee unrolls no loop of its own and
+    advances it outside any branch."""
     return _is_step(tr, node, sym) and not (
         isinstance(node, A.Call)
-        and any(isinstance(op, Loop) for op in _callee_program(tr, node).ops)
+        and (
+            any(isinstance(op, Loop) for op in _callee_program(tr, node).ops)
+            or _callee_program(tr, node).joins
+        )
     )
 
 
