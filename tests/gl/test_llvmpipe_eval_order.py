@@ -55,6 +55,8 @@ SHAPES = {
     ),
     "array_elements": "c = vec4(id(a[0]), bumpa(a), a[0], id(a[1]));",
     "a_ternary": "c = vec4(seed > 0.5 ? seed : -seed, bump(seed), seed, 1.0);",
+    # x * 1.0 + 0.0 is x to NIR (added_zero.py): still an operator tree, read after the call
+    "an_added_zero": "c = vec4(seed * 1.0 + 0.0, bump(seed), seed, 1.0);",
 }
 
 ENGINES = [("numpy", None), ("compiled", "0"), ("compiled", "8")]

@@ -208,6 +208,81 @@ THROUGH_CALLS = {
 }
 
 
+# A call in a branch of a two-pass unrolled loop: where the branch's condition is a constant in
+# the first copy, NIR folds that copy's branch away and the second copy's call continues its
+# chain (then a phi); where it is not, both copies' calls follow a phi and restart the chain.
+_BRANCHED = (
+    "gseed = s0; float d = {start}; float n = 0.0;"
+    " for (int i = 0; i < {passes}; i++) {{ if (d < 0.5) {{ vec2 h = ghash(); d = fract(h.y) * 0.1;"
+    " n += 1.0; }} }} c = vec4(s0, gseed, n, 1.0);"
+)
+BRANCHED_CALLS = {
+    "a_branch_folded_in_the_first_copy": (
+        _BRANCHED.format(start="0.0", passes=2),
+        {
+            1: (
+                lambda s: _restarted(s, [K, K], 2),
+                lambda s: _unrolled(s, [], [K, K], 2, []),
+            )
+        },
+    ),
+    "a_branch_kept_in_the_first_copy": (
+        _BRANCHED.format(start="fract(s0) * 0.1", passes=2),
+        {
+            1: (
+                lambda s: _unrolled(s, [], [K, K], 2, []),
+                lambda s: _restarted(s, [K, K], 2),
+            )
+        },
+    ),
+}
+# A callee advancing its inout parameter only in a branch: inlined, the branch's additions
+# continue the caller's chain (dominated by its last step), and a phi joins the branch.
+BRANCHED_HEAD = """void maybe(inout float seed, float d) {
+    if (d < 20.0) { seed += 0.1; seed += 0.1; }
+}
+vec2 hash2_if(inout float seed, float d) {
+    vec2 h = vec2(d); if (d < 20.0) { h = hash2(seed); } return h;
+}
+"""
+BRANCHED_CALLEES = {
+    "a_callee_advancing_in_a_branch": (
+        "seed += 0.1; maybe(seed, s0); float r = seed; seed += 0.1; c = vec4(s0, r, seed, 1.0);",
+        {
+            1: (
+                lambda s: np.where(s < 20.0, (s + K) + K2, s + K),
+                lambda s: np.where(s < 20.0, _merged(s, 3), s + K),
+            ),
+            2: (
+                lambda s: np.where(s < 20.0, _steps(s, 4), _steps(s, 2)),
+                lambda s: np.where(s < 20.0, _merged(s, 3), s + K) + K,
+            ),
+        },
+    ),
+    "a_callee_calling_in_a_branch": (
+        "seed += 0.1; vec2 h = hash2_if(seed, s0); c = vec4(s0, seed, h);",
+        {
+            1: (
+                lambda s: np.where(s < 20.0, (s + K) + K2, s + K),
+                lambda s: np.where(s < 20.0, _merged(s, 3), s + K),
+            )
+        },
+    ),
+}
+# Not followed by the engines: a third copy restarts the chain at the second copy's phi.
+BRANCHED_THIRD_COPY = {
+    "a_third_copy_after_a_folded_branch": (
+        _BRANCHED.format(start="0.0", passes=3),
+        {
+            1: (
+                lambda s: _restarted(s, [K, K], 3),
+                lambda s: _restarted(_unrolled(s, [], [K, K], 2, []), [K, K], 1),
+            )
+        },
+    ),
+}
+
+
 def _restarted(s0, body, times):
     """A loop NIR keeps: the body's constants merged, the chain restarted at each pass."""
     step = np.float32(0.0)
@@ -297,16 +372,35 @@ def _left_to_right(s0, ks):
     return s0 + acc
 
 
+def _text(name, body):
+    """The shader of a shape: HEAD's functions (BRANCHED_HEAD's too for BRANCHED_CALLEES), then
+    `body` in mainImage."""
+    head = HEAD
+    if name in BRANCHED_CALLEES:
+        head = HEAD.replace("void mainImage", BRANCHED_HEAD + "void mainImage")
+    return head + body + "\n}"
+
+
 def _render(shader, backend):
     return render(shader, backend, frame=0).reshape(-1, 4)
 
 
-@pytest.mark.parametrize("name", sorted(SHAPES) + sorted(THROUGH_CALLS) + sorted(UNROLLED_BODIES))
+MEASURED = {
+    **SHAPES,
+    **THROUGH_CALLS,
+    **UNROLLED_BODIES,
+    **BRANCHED_CALLS,
+    **BRANCHED_THIRD_COPY,
+    **BRANCHED_CALLEES,
+}
+
+
+@pytest.mark.parametrize("name", sorted(MEASURED))
 def test_llvmpipe_merges_the_constants_of_a_repeated_sum(llvmpipe, make_shader, name):
     """The driver's value is the merged order on every pixel, and the shape tells the orders
     apart (else the comparison proves nothing)."""
-    body, channels = {**SHAPES, **THROUGH_CALLS, **UNROLLED_BODIES}[name]
-    got = _render(make_shader(HEAD + body + "\n}"), "gl")
+    body, channels = MEASURED[name]
+    got = _render(make_shader(_text(name, body)), "gl")
     s0 = got[:, 0]
     for ch, (stepwise, merged) in channels.items():
         want, other = merged(s0).astype(np.float32), stepwise(s0).astype(np.float32)
@@ -321,9 +415,12 @@ def test_numpy_merges_the_constants_of_a_repeated_sum_as_mesa(
     renders_as_llvmpipe(make_shader(HEAD + SHAPES[name][0] + "\n}"), name=name, frame=0)
 
 
-@pytest.mark.parametrize("name", sorted(THROUGH_CALLS) + sorted(UNROLLED_BODIES))
+FOLLOWED = {**THROUGH_CALLS, **UNROLLED_BODIES, **BRANCHED_CALLS, **BRANCHED_CALLEES}
+
+
+@pytest.mark.parametrize("name", sorted(FOLLOWED))
 def test_numpy_merges_the_constants_through_calls_as_mesa(renders_as_llvmpipe, make_shader, name):
-    shader = make_shader(HEAD + {**THROUGH_CALLS, **UNROLLED_BODIES}[name][0] + "\n}")
+    shader = make_shader(_text(name, FOLLOWED[name][0]))
     renders_as_llvmpipe(shader, name=name, frame=0)
 
 
@@ -348,3 +445,16 @@ def test_compiled_merges_the_constants_of_a_global_argument_as_mesa(
     want = render(shader, "gl", frame=0)
     got = CompiledProgram(*generate(shader, lanes=lanes)).render(size=SIZE, time=0.0, frame=0)
     assert_same(got, want, what=f"lanes {lanes}", names=("compiled", "llvmpipe"))
+
+
+@pytest.mark.parametrize("lanes", [0, 8])
+@pytest.mark.parametrize("name", sorted(BRANCHED_CALLS) + sorted(BRANCHED_CALLEES))
+def test_compiled_follows_a_call_in_an_unrolled_branch_as_mesa(
+    llvmpipe, numba, make_shader, name, lanes
+):
+    from glslcheck.backends.compiled_engine.engine import CompiledProgram, generate
+
+    shader = make_shader(_text(name, {**BRANCHED_CALLS, **BRANCHED_CALLEES}[name][0]))
+    want = render(shader, "gl", frame=0)
+    got = CompiledProgram(*generate(shader, lanes=lanes)).render(size=SIZE, time=0.0, frame=0)
+    assert_same(got, want, what=f"{name}, lanes {lanes}", names=("compiled", "llvmpipe"))

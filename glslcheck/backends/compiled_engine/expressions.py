@@ -718,8 +718,11 @@ class ExpressionEmitter:
         zleft = left.constlike  # the operand that may be a constant zero: the left one?
         zc = broadcast_const((left if zleft else right).const, n)
         zero = self.cf(0.0)
-        left = Val(left.t, [self.atom(p) for p in left.parts], left.const, left.uni)
-        right = Val(right.t, [self.atom(p) for p in right.parts], right.const, right.uni)
+        if zc is None:  # (the operands are read twice below: once, in temporaries; a known
+            # zero reads each once, so the text stays lazy, read where Mesa reads it, after
+            # a later call of the statement: cpu_core/eval_order.py)
+            left = Val(left.t, [self.atom(p) for p in left.parts], left.const, left.uni)
+            right = Val(right.t, [self.atom(p) for p in right.parts], right.const, right.uni)
 
         def one(a: str, b: str, i: int) -> str:
             z = a if zleft else b

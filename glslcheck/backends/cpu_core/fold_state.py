@@ -42,7 +42,8 @@ class FoldState:
     opaque_call: dict = field(default_factory=dict)
     opaque_calls: dict = field(default_factory=dict)
     # repeated_sums: (function, chain, symbol) -> (its base, lines); function -> its plan, its
-    # chain parameters, their steps; (loop, symbol) -> copies continue it; loop -> pass count
+    # chain parameters, their steps; (loop, symbol) -> copies continue it, ("branch", loop,
+    # symbol) -> the if its first copy folds (repeated_sums.folded_branch); loop -> pass count
     sum_chains: dict = field(default_factory=dict)
     sum_plans: dict = field(default_factory=dict)
     sum_params: dict = field(default_factory=dict)

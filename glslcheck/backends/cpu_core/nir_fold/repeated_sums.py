@@ -15,7 +15,8 @@ only advances by constants (:func:`chain_params`: ``float rnd(inout float s) { s
 return s; }``, a path tracer's ``float seed;`` advanced in ``hash2()`` or passed as
 ``hash2(seed)``). It unrolls a ``for`` of a constant count and a small body after one pass of
 the rules over the body (:func:`unrolled_chain`, loop_unroll.py), so the copies continue it; a
-loop left early ends in a phi.
+loop left early ends in a phi, and so does a two-pass loop whose branch NIR folds in the first
+copy only, the second copy's branch continuing the first copy's chain (:func:`folded_branch`).
 
 :func:`chain_plan` builds each chain of a function (steps, calls spread into their callees'
 programs, unrolled loops) and asks sum_order.py for K at every step, per copy of an unrolled
@@ -180,12 +181,12 @@ def _previous_step(tr: FoldEngine, e: Any, sym: Any) -> Any:
     left = [lp for lp in facts.enclosing_loops(w.node) if not facts.contains(lp, e)]
     if left:  # (the last write is in a loop `e` follows)
         loop = left[-1]
-        if len(left) > 1 or not unrolled_chain(tr, loop, sym) or _leaves(loop):
+        if len(left) > 1 or not unrolled_chain(tr, loop, sym) or _phi_after(tr, loop, sym):
             return None
         if facts.dominates(loop, e) and not _written_between(tr, facts, loop, e, sym):
             return loop.body  # (after the loop: its last copy's value)
         return None
-    if not _is_step(tr, w.node, sym) or not facts.dominates(w.node, e):
+    if not _is_step(tr, w.node, sym) or not facts.dominates(w.node, e) or _joins(tr, w.node):
         return None
     if _written_between(tr, facts, w.node, e, sym):
         return None
@@ -195,6 +196,11 @@ def _previous_step(tr: FoldEngine, e: Any, sym: Any) -> Any:
 def _leaves(loop: Any) -> bool:
     """The loop can be left before its last pass (a break or a return in its body)."""
     return any(isinstance(n, (A.Break, A.Return)) for n in loop.body.walk())
+
+
+def _joins(tr: FoldEngine, node: Any) -> bool:
+    """`node` is a call whose callee advances the chain in a branch (Program.joins)."""
+    return isinstance(node, A.Call) and _callee_program(tr, node).joins
 
 
 def _is_step(tr: FoldEngine, node: Any, sym: Any) -> bool:
@@ -241,13 +247,14 @@ def call_step(tr: FoldEngine, call: A.Call) -> tuple[int, Any, Program] | None:
 class Program:
     """What a callee does to a chain parameter: its additions as sum_order ops (prev -1: the
     value the caller passes), where each write's ops are (id(write) -> (the unrolled loop
-    around it or None, first op, how many)), and whether a loop it can leave early ends it
-    (the value after the call is then a phi: a chain of the caller restarts there)."""
+    around it or None, first op, how many)), whether a loop it can leave early ends it, and
+    whether its writes are all in one branch of an ``if`` (`joins`; the value after the call
+    is then a phi: a chain of the caller restarts there)."""
 
-    __slots__ = ("ops", "where", "leaves")
+    __slots__ = ("ops", "where", "leaves", "joins")
 
-    def __init__(self, ops: list, where: dict, leaves: bool) -> None:
-        self.ops, self.where, self.leaves = ops, where, leaves
+    def __init__(self, ops: list, where: dict, leaves: bool, joins: bool = False) -> None:
+        self.ops, self.where, self.leaves, self.joins = ops, where, leaves, joins
 
     def slots(self) -> int:
         """How many constants a caller passes: one per addition, per copy in a loop."""
@@ -355,10 +362,24 @@ def _program(tr: FoldEngine, fn: Symbol, facts: Any, sym: Any) -> Program | None
     ) or any(facts.region[id(x)] != () for x in loops):
         return None  # (a return outside the unrolled loops: the rest runs on some lanes)
     where = chains[0]["where"]
-    if any(where[id(x)][0] is None and facts.region[id(x)] != () for x in writes):
-        return None  # (a write in a branch or a loop NIR keeps: a phi follows, not the chain)
+    regions = {facts.region[id(x)] for x in writes if where[id(x)][0] is None}
+    joins = regions != {()} and bool(regions)
+    if joins and (loops or not _one_branch(fn, regions)):
+        return None  # (writes in a loop NIR keeps or in several branches: phis between)
     ops = chains[0]["ops"]
-    return Program(ops, chains[0]["where"], any(isinstance(op, Loop) and op.breaks for op in ops))
+    leaves = any(isinstance(op, Loop) and op.breaks for op in ops)
+    return Program(ops, chains[0]["where"], leaves, joins)
+
+
+def _one_branch(fn: Symbol, regions: set) -> bool:
+    """`regions` is the one branch of an ``if`` of `fn`'s straight line: inlined, its writes
+    continue the caller's chain (dominated by its last write), a phi joins it after."""
+    if len(regions) != 1:
+        return False
+    (region,) = regions
+    if len(region) != 1 or region[0][1] not in (0, 1):
+        return False
+    return any(isinstance(n, A.If) and id(n) == region[0][0] for n in fn.node.body.walk())
 
 
 def chain_globals(tr: FoldEngine, fn: Symbol) -> list[tuple[int, Any]]:
@@ -383,7 +404,8 @@ def param_step(tr: FoldEngine, node: Any) -> tuple[int, int, int, Any, int] | No
 def unrolled_chain(tr: FoldEngine, loop: Any, sym: Any) -> bool:
     """`loop` is one NIR unrolls (loop_unroll.nir_unrolls, with no loop, continue or
     discard in its body) and its body writes `sym` only by steps in its
-    straight line: each copy continues the chain of the one before."""
+    straight line: each copy continues the chain of the one before; or only in the branch
+    :func:`folded_branch` finds (the second copy continues the first's, a phi follows)."""
     cache = tr.fold_state.sum_loops
     key = (id(loop), id(sym))
     if key not in cache:
@@ -396,15 +418,124 @@ def unrolled_chain(tr: FoldEngine, loop: Any, sym: Any) -> bool:
             inner = facts.region[id(loop.body)]
             writes = [w for w in _writes(tr, facts, sym) if facts.contains(loop.body, w.node)]
             cache[key] = bool(writes) and all(
-                facts.region[id(w.node)] == inner
-                and _is_step(tr, w.node, sym)
-                and not (
-                    isinstance(w.node, A.Call)
-                    and any(isinstance(op, Loop) for op in _callee_program(tr, w.node).ops)
-                )
-                for w in writes
+                facts.region[id(w.node)] == inner and _chain_write(tr, w.node, sym) for w in writes
             )
+            if writes and not cache[key]:
+                cache[key] = folded_branch(tr, loop, sym) is not None
     return cache[key]
+
+
+def _chain_write(tr: FoldEngine, node: Any, sym: Any) -> bool:
+    """A step of `sym`, or a call advancing it whose callee unrolls no loop of its own and
+    advances it outside any branch."""
+    return _is_step(tr, node, sym) and not (
+        isinstance(node, A.Call)
+        and (
+            any(isinstance(op, Loop) for op in _callee_program(tr, node).ops)
+            or _callee_program(tr, node).joins
+        )
+    )
+
+
+_COMPARED = {"<": np.less, "<=": np.less_equal, ">": np.greater, ">=": np.greater_equal}
+_SWAPPED = {"<": ">", "<=": ">=", ">": "<", ">=": "<="}
+
+
+def folded_branch(tr: FoldEngine, loop: Any, sym: Any) -> Any:
+    """The ``if`` of a two-pass `loop` NIR unrolls whose then-branch's straight line holds
+    every write of `sym` in the body (steps), when NIR folds that branch away in the first
+    copy and keeps it in the second: its condition compares a component of a local with a
+    constant, the local a constant before the loop that the body writes after the condition
+    (``vec3 d = vec3(0, 0, 1); for (2 passes) { if (d.y < 0.5) d = scatter(d); ... }``).
+    The first copy's writes are then straight line, the second's dominated by them (the
+    chain runs on), and a phi joins the second copy's branch (a third copy would restart
+    there: not followed); else None."""
+    cache = tr.fold_state.sum_loops
+    key = ("branch", id(loop), id(sym))
+    if key not in cache:
+        cache[key] = None
+        facts = function_facts(tr)
+        if (
+            isinstance(loop, A.For)
+            and nir_unrolls(tr, loop)
+            and trip_count(tr, loop) == 2
+            and not any(
+                isinstance(n, (A.Break, A.Return, A.Continue, A.Discard, A.For, A.While, A.DoWhile))
+                for n in loop.body.walk()
+            )
+        ):
+            inner = facts.region[id(loop.body)]
+            writes = [w for w in _writes(tr, facts, sym) if facts.contains(loop.body, w.node)]
+            branch = next(
+                (
+                    n
+                    for n in loop.body.walk()
+                    if isinstance(n, A.If)
+                    and facts.region[id(n)] == inner
+                    and writes
+                    and all(facts.contains(n.then, w.node) for w in writes)
+                ),
+                None,
+            )
+            if (
+                branch is not None
+                and all(
+                    facts.region[id(w.node)] == facts.region[id(branch.then)]
+                    and _chain_write(tr, w.node, sym)
+                    for w in writes
+                )
+                and _true_in_first_copy(tr, facts, loop, branch)
+            ):
+                cache[key] = branch
+    return cache[key]
+
+
+def _true_in_first_copy(tr: FoldEngine, facts: Any, loop: Any, branch: A.If) -> bool:
+    """`branch`'s condition, ``x < #k`` (any order or comparison) with x a local or one of its
+    components, is true on the value x holds before `loop`, a constant, and the body gives x
+    another value after the ``if`` (so the second copy's condition is no constant)."""
+    c = branch.cond
+    if not isinstance(c, A.Binary) or c.op not in _COMPARED:
+        return False
+    if is_constant(tr, c.right) and not is_constant(tr, c.left):
+        read, k, op = c.left, c.right, c.op
+    elif is_constant(tr, c.left) and not is_constant(tr, c.right):
+        read, k, op = c.right, c.left, _SWAPPED[c.op]
+    else:
+        return False
+    comp = 0
+    if isinstance(read, A.Field) and len(read.name) == 1:
+        index = [s.find(read.name) for s in ("xyzw", "rgba", "stpq") if read.name in s]
+        read, comp = read.base, index[0] if index else -1
+    var = tr.model.symbol_of(read) if isinstance(read, A.Identifier) else None
+    if var is None or var.kind != "local" or comp < 0:
+        return False
+    inside = [w for w in facts.writes_to(var) if facts.contains(loop.body, w.node)]
+    if not inside or any(w.pos < facts.exit[id(c)] for w in inside):
+        return False
+    if not any(w.kind != "=" or w.value is None or not is_constant(tr, w.value) for w in inside):
+        return False  # (a constant again: the second copy's branch is folded too)
+    before = [w for w in facts.writes_to(var) if w.pos < facts.enter[id(loop)]]
+    if not before:
+        return False
+    w = before[-1]
+    if (
+        w.kind not in ("=", "init")
+        or w.value is None
+        or not facts.dominates(w.node, loop)
+        or facts.written_between(w.node, loop, [var])
+    ):
+        return False
+    values, bound = constant_value(tr, w.value), constant_value(tr, k)
+    if values is None or bound is None or len(bound) != 1 or comp >= len(values):
+        return False
+    return bool(_COMPARED[op](np.float32(values[comp]), np.float32(bound[0])))
+
+
+def _phi_after(tr: FoldEngine, loop: Any, sym: Any) -> bool:
+    """The value of `sym` after the unrolled `loop` is a phi: the loop can be left early, or
+    the second copy's writes are in a branch (:func:`folded_branch`)."""
+    return _leaves(loop) or folded_branch(tr, loop, sym) is not None
 
 
 def _facts_of(tr: FoldEngine, fn: Symbol) -> Any:
@@ -529,7 +660,7 @@ def _chains(tr: FoldEngine, facts: Any, sym: Any, ws: list, param_root: bool) ->
         if isinstance(x, A.For):
             body: list = []
             loop_ops[id(x)] = body
-            ops.append(Loop(start, loop_count(tr, x), body, _leaves(x)))
+            ops.append(Loop(start, loop_count(tr, x), body, _phi_after(tr, x, sym)))
         elif isinstance(x, A.Call):
             program = _callee_program(tr, x)
             for op in program.ops:  # (the callee's ops, its entry the value here)
