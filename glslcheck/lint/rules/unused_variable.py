@@ -29,11 +29,14 @@ such leftovers once for the function, joined to its unused computed local where 
 Likewise a possible deduction: a local's computed value that the next statement of the same
 block writing the whole variable replaces (`v = ...;`, or passing `v` to an `out` parameter)
 before anything reads it (`dir = target - origin; calcRay(dir, ...);` with
-`calcRay(out vec4 dir, ...)`).
+`calcRay(out vec4 dir, ...)`). A parameter's value written over so is one too, whatever it is
+but a constant (a default): `fragColor = vec4(d, d, d, 1.0);` left above the final
+`fragColor = ...;`, the shader's output computed twice.
 
 Likewise a possible deduction: a value assigned to a local (or to an `in` parameter, the
-function's own copy) that nothing after it reads, outside any loop (`px = uv * res;` as the
-last use of `px`, with the return reading neither): one finding at that assignment, naming the
+function's own copy) that nothing after it reads, a compound update (`uv *= 0.25;`) included,
+outside any loop (`px = uv * res;` as the last use of `px`, with the return reading neither):
+one finding at that assignment, naming the
 earlier statements and declarations whose values only it reads (in turn). Writing the fields
 of an `in` parameter as the function's last work (`hit.normal = ...;` in a `void` function)
 is the same: the caller never sees it, and the fix says `inout` may have been meant.
@@ -265,19 +268,26 @@ def _out_writes(fn, sym) -> list[int]:
 
 
 def _overwritten(fn, reads: set[int]) -> Iterator[Diagnostic]:
-    """A local's computed value that the next statement writing the variable replaces, in the
-    same block, before anything reads it (`d = a - b; calc(d);` with `calc(out vec4 d)`)."""
+    """A local's computed value (a parameter's value not constant) that the next statement
+    writing the variable replaces, in the same block, before anything reads it (`d = a - b;
+    calc(d);` with `calc(out vec4 d)`; `fragColor = a; fragColor = b;`)."""
     positions = None
     for sym_id, writes in fn.writes.items():
         sym = writes[0].symbol
-        if sym.kind != "local" or sym_id not in reads:
+        if sym.kind == "param":  # (an out parameter is never read: its last value is the result)
+            pass
+        elif sym.kind != "local" or sym_id not in reads:
             continue  # a variable never read at all is reported as unused
         whole = sorted(
             [w for w in writes if w.kind in ("=", "init")] + _out_writes(fn, sym),
             key=lambda w: w.pos,
         )
         for first, then in zip(whole, whole[1:]):
-            if not _computed(fn, first.value) or first.kind not in ("=", "init"):
+            # (a parameter's first output written over: any value not constant, `fragColor =
+            # vec4(d, d, d, 1.0);` left above the final one; a constant is a default)
+            shown = sym.kind == "param" and first.value is not None
+            shown = shown and not fn.model.is_constant(first.value)
+            if not (_computed(fn, first.value) or shown) or first.kind not in ("=", "init"):
                 continue
             if fn.region[id(first.node)] != fn.region[id(then.node)] or fn.is_dead(then.node):
                 continue
@@ -338,7 +348,9 @@ def _dead_stores(fn, reads: set[int]) -> Iterator[Diagnostic]:
         return any(p not in ignored for p in read_at[bisect_right(read_at, w.pos) :])
 
     for root, value in writes:
-        if root.kind == "init" or not _computed(fn, value) or read_after(root, set()):
+        # (`uv *= 0.25;` computes: the update is an operation whatever its operand)
+        work = _computed(fn, value) or (root.kind == "op" and not fn.model.is_constant(value))
+        if root.kind == "init" or not work or read_after(root, set()):
             continue
         chain = [root]
         ignored: set[int] = set()  # the read positions inside the chain's statements: no reads
