@@ -8,6 +8,10 @@ component exactly 1 (or 0), and the other operand already has the result's type.
 assignments are the same operations (`uv /= 1.0;`, `p.xy -= vec2(0.0);`): the statement
 changes nothing. A named constant (`x * kGain`) is a setting and is not reported.
 
+Likewise `abs`, `max`, `min` and `clamp` of a value already in their range, as far as the value
+analysis knows it (`abs(t)` of `t = fract(...)`, `max(d, 0.0)` of `d = clamp(x, 0.2, 1.0)`): the
+call gives its argument back.
+
 The same no-op written again in a function (`time * 1.0` in each of its returns) is one
 finding naming every place: one unnecessary practice.
 
@@ -66,6 +70,17 @@ def check(ctx: LintContext) -> Iterator[Diagnostic]:
         for n in fn.nodes:
             if fn.is_dead(n):
                 continue
+            if type(n) is A.Call and n.callee in _RANGED and len(n.args) == _RANGED[n.callee]:
+                why = _in_range(fn, n)
+                if why is not None:
+                    x = n.args[0]
+                    yield Diagnostic(
+                        f"'{text(n)}' is {text(x)}: {text(x)} is {why} here, so "
+                        f"{n.callee}() changes nothing",
+                        n.loc,
+                        help=f"write {text(x)}",
+                    )
+                continue
             if type(n) is A.Binary and n.op in _IDENTITY:
                 found = _no_op(fn, n)
             elif type(n) is A.Assignment and n.op[:-1] in _IDENTITY:
@@ -99,6 +114,40 @@ def check(ctx: LintContext) -> Iterator[Diagnostic]:
                 n.loc,
                 help=f"write {text(other)}" + likewise,
             )
+
+
+# built-ins that give back their first argument on the range their other arguments set
+_RANGED = {"abs": 1, "max": 2, "min": 2, "clamp": 3}
+
+
+def _in_range(fn, n: A.Call) -> str | None:
+    """Why `n` (abs, max, min or clamp of a float value with constant bounds) gives back its
+    first argument: the range the value analysis knows it in, else None."""
+    model = fn.model
+    x = n.args[0]
+    if model.is_constant(n) or getattr(model.type_of(x), "base", None) != "float":
+        return None
+    if model.type_of(n) != model.type_of(x):
+        return None
+    lo, hi, _ = fn.value_range(x)
+    bounds = [numbers(model.const_value(a)) for a in n.args[1:]]
+    if any(len(b) != 1 for b in bounds):
+        return None
+    b = [v[0] for v in bounds]
+    shown = f"in [{_num(lo)}, {_num(hi)}]" if lo is not None and hi is not None else None
+    if n.callee == "abs" and lo is not None and lo >= 0:
+        return shown or "never negative"
+    if n.callee == "max" and lo is not None and lo >= b[0]:
+        return shown or f"never below {_num(b[0])}"
+    if n.callee == "min" and hi is not None and hi <= b[0]:
+        return shown or f"never above {_num(b[0])}"
+    if n.callee == "clamp" and lo is not None and hi is not None and b[0] <= lo and hi <= b[1]:
+        return shown
+    return None
+
+
+def _num(v: float | None) -> str:
+    return "?" if v is None else f"{v:g}"
 
 
 def _no_op(fn, n: A.Binary):
