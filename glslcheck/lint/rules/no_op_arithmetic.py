@@ -8,9 +8,10 @@ component exactly 1 (or 0), and the other operand already has the result's type.
 assignments are the same operations (`uv /= 1.0;`, `p.xy -= vec2(0.0);`): the statement
 changes nothing. A named constant (`x * kGain`) is a setting and is not reported.
 
-Likewise `abs`, `max`, `min` and `clamp` of a value already in their range, as far as the value
-analysis knows it (`abs(t)` of `t = fract(...)`, `max(d, 0.0)` of `d = clamp(x, 0.2, 1.0)`): the
-call gives its argument back.
+Likewise `abs`, `max`, `min`, `clamp`, `fract` and `mod` of a value already in their range, as
+far as the value analysis knows it (`abs(t)` of `t = fract(...)`, `max(d, 0.0)` of `d =
+clamp(x, 0.2, 1.0)`, `fract(uv)` of `uv = fragCoord / iResolution.xy`, in [0, 1)): the call
+gives its argument back.
 
 The same no-op written again in a function (`time * 1.0` in each of its returns) is one
 finding naming every place: one unnecessary practice.
@@ -117,7 +118,7 @@ def check(ctx: LintContext) -> Iterator[Diagnostic]:
 
 
 # built-ins that give back their first argument on the range their other arguments set
-_RANGED = {"abs": 1, "max": 2, "min": 2, "clamp": 3}
+_RANGED = {"abs": 1, "max": 2, "min": 2, "clamp": 3, "fract": 1, "mod": 2}
 
 
 def _in_range(fn, n: A.Call) -> str | None:
@@ -143,6 +144,10 @@ def _in_range(fn, n: A.Call) -> str | None:
         return shown or f"never above {_num(b[0])}"
     if n.callee == "clamp" and lo is not None and hi is not None and b[0] <= lo and hi <= b[1]:
         return shown
+    if n.callee == "fract" and lo is not None and lo >= 0 and hi is not None and hi < 1:
+        return f"in [{_num(lo)}, 1)"
+    if n.callee == "mod" and lo is not None and lo >= 0 and hi is not None and hi < b[0]:
+        return f"in [{_num(lo)}, {_num(b[0])})"
     return None
 
 

@@ -5,7 +5,8 @@ sub-expression that makes it so (a dot product of two different vectors, a diffe
 negation, sin/cos, a reflect/refract/cross result, a negative constant). Unknown values (a
 parameter, a user function's result) have no witness: rules report "can be negative" only with
 one. Dot products of different vectors are taken as cosines in [-1, 1] (lighting code dots unit
-vectors), so `1.0 - max(dot(n, v), 0.0)` is known to be >= 0. A variable's value is the one
+vectors), so `1.0 - max(dot(n, v), 0.0)` is known to be >= 0. The pixel's coordinate over the
+viewport's size (`fragCoord / iResolution.xy` in mainImage) is in [0, 1). A variable's value is the one
 assigned by its last write before the use when that write is on every path to the use (else
 unknown: `FunctionFacts.reaching_value`).
 
@@ -28,6 +29,10 @@ if TYPE_CHECKING:
     from ..model import Model, Symbol
 
 Range = tuple  # (lo: float | None, hi: float | None, witness: tuple[str, node] | None)
+
+# below 1: the most a pixel's centre over the viewport's size reaches ((w - 0.5) / w for any
+# width up to 2^14), so that fract() of it and mod() by 1 or more are known to change nothing
+BELOW_ONE = 1.0 - 2.0**-15
 
 NONNEGATIVE_UNIFORMS = frozenset(
     {
@@ -54,6 +59,7 @@ class ValueRanges:
 
         def reaching_value(self, ident: A.Identifier, sym: Symbol) -> Any: ...
         def key(self, e: Any) -> Any: ...
+        def writes_to(self, sym: Symbol) -> list: ...
 
     def value_range(self, e: Any, depth: int = 0) -> tuple:
         """(lo, hi, witness) of an expression; lo/hi None when unbounded; witness is None or
@@ -145,10 +151,45 @@ class ValueRanges:
                 return (lo, hi, None if lo >= 0 else (aw or bw))
             return (None, None, aw or bw)
         if op == "/":
+            if self._frag_fraction(e):
+                return (0.0, BELOW_ONE, None)
             if _nonneg(alo) and blo is not None and blo > 0:
                 return (0.0, None, None)
             return (None, None, aw or bw)
         return (None, None, None)
+
+    def _frag_fraction(self, e: A.Binary) -> bool:
+        """`fragCoord / iResolution.xy` (or one component over the same one): a pixel's centre
+        over the viewport's size, in [0, 1) (`fragCoord` being mainImage's, never written)."""
+        model = self.model
+        left, right = e.left, e.right
+        if type(right) is not A.Field or not model.is_swizzle(right):
+            return False
+        res = model.symbol_of(right.base)
+        if res is None or res.kind != "uniform" or res.name != "iResolution":
+            return False
+        lsw: tuple[int, ...] = (0, 1)  # fragCoord itself: its x and y
+        if type(left) is A.Field and model.is_swizzle(left):
+            lsw, left = tuple(model.swizzle_indices(left)), left.base
+        sym = model.symbol_of(left) if type(left) is A.Identifier else None
+        if sym is None or not self._frag_coord(sym):
+            return False
+        rsw = tuple(model.swizzle_indices(right))
+        return lsw == rsw
+
+    def _frag_coord(self, sym: Symbol) -> bool:
+        """`sym` is the pixel's coordinate: gl_FragCoord, or mainImage's second parameter when
+        the function never writes it."""
+        if sym.kind == "builtin-var":
+            return sym.name == "gl_FragCoord"
+        fn = getattr(self, "symbol", None)
+        if sym.kind != "param" or fn is None or fn.name != "mainImage":
+            return False
+        node = getattr(self, "definition", None)
+        params = node.proto.params if node is not None else []
+        return (
+            len(params) == 2 and self.model.symbol_of(params[1]) is sym and not self.writes_to(sym)
+        )
 
     def _call_range(self, e: A.Call, rec) -> tuple:
         target = self.model.call_target(e)
