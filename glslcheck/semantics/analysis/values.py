@@ -6,9 +6,9 @@ negation, sin/cos, a reflect/refract/cross result, a negative constant). Unknown
 parameter, a user function's result) have no witness: rules report "can be negative" only with
 one. Dot products of different vectors are taken as cosines in [-1, 1] (lighting code dots unit
 vectors), so `1.0 - max(dot(n, v), 0.0)` is known to be >= 0. The pixel's coordinate over the
-viewport's size (`fragCoord / iResolution.xy` in mainImage) is in [0, 1). A variable's value is the one
-assigned by its last write before the use when that write is on every path to the use (else
-unknown: `FunctionFacts.reaching_value`).
+viewport's size (`fragCoord / iResolution.xy` in mainImage) is in [0, 1). A variable's value is
+the one assigned by its last write before the use when that write is on every path to the use
+(else unknown: `FunctionFacts.reaching_value`).
 
 `ValueRanges` is a mixin of `glslcheck.semantics.analysis.dataflow.FunctionFacts`, whose value keys
 and reaching definitions it reads.
