@@ -64,7 +64,8 @@ naming its last, as the rubric deducts "per ambiguous section/block/line". A run
 blank lines and commented-out code: uncommented code is one ambiguous section however it is
 spaced. It ends at an explaining comment, a covered statement, a credit or a section marker
 (they start another part), and the close of the block it is in (`} else {` goes on). Each
-top-level function or struct is a run of its own, and a function with no explaining comment
+top-level function or struct is a run of its own (global declarations in a row are one region,
+however blank lines space them), and a function with no explaining comment
 anywhere is one run from its signature to its last line: the one ambiguous block the rubric
 deducts once. But in a mostly uncommented file (more than three quarters of its code lines in
 uncovered runs) the blank lines are the only sections the student marks: there a blank line
@@ -814,9 +815,16 @@ class _Reader:
                     self.parted = self.cover if self.depth > 0 else None
                     self.cover = None
                     self.reach = 0
-                    if self.depth == 0 or self.sections:
-                        # between definitions; in a body a run goes on, but for a mostly
-                        # uncommented file's, whose blank lines are the only sections it marks
+                    declarations = (
+                        self.depth == 0
+                        and self.last_head.endswith(";")
+                        and not _SIGNATURE_START_RE.match(line)
+                        and not _STRUCT_RE.match(line)
+                    )
+                    if (self.depth == 0 and not declarations) or self.sections:
+                        # between definitions (global declarations in a row, blank lines
+                        # between them, are one region); in a body a run goes on, but for a
+                        # mostly uncommented file's, whose blank lines are the only sections
                         self.close_run()
             self.blank = False
             opened_before = self.after_open
