@@ -188,6 +188,17 @@ class _NoFacts:
 _NO_FACTS = _NoFacts()
 
 
+def _written_number(e: Any) -> bool:
+    """A number written out: a literal, a negated one, or a constructor of them (`vec3(1.0)`)."""
+    while type(e) is A.Unary and e.op in ("-", "+"):
+        e = e.operand
+    if type(e) in (A.FloatLiteral, A.IntLiteral):
+        return True
+    return (
+        type(e) is A.Call and e.constructor and bool(e.args) and all(map(_written_number, e.args))
+    )
+
+
 def _any_between(positions: list[int], lo: int, hi: int) -> bool:
     """Whether the sorted `positions` hold a value strictly between lo and hi."""
     i = bisect_right(positions, lo)
@@ -855,8 +866,12 @@ class FunctionFacts(ValueRanges):
             return not self.model.is_constant(e)
         if n != 1 or not is_float_type(self.model.type_of(e)) or self.model.is_constant(e):
             return False
+        # a unit written out (`-1.0 * n`: a sign change); a named one (`iTime * FREQ`, FREQ 1.0
+        # for now) is a setting, and the product is worth reusing like any other
         unit = [
-            x for x in (e.left, e.right) if numbers(self.model.const_value(x)) in ([1.0], [-1.0])
+            x
+            for x in (e.left, e.right)
+            if _written_number(x) and numbers(self.model.const_value(x)) in ([1.0], [-1.0])
         ]
         return not (unit and e.op in ("*", "/"))
 
