@@ -44,7 +44,10 @@ Coverage, what a comment explains:
   an overload is a definition of its own and needs its own comment. A definition right under
   a commented one whose comment names it in words (`// hash: a random value; hashSigned maps
   it to [-1, 1)` above `hash`, then `hashSigned`; not in code: `hashSigned(`) is that
-  comment's too.
+  comment's too. A body that opens with a comment saying what the function does (`vec3
+  gradient(vec2 p) {`, then `// makes a magenta and green gradient`) explains its signature:
+  readers take it for the function's comment; a note, no deduction, suggests moving it above
+  (not for `mainImage`, the signature every Shadertoy shader starts with).
 - Trivial statements need no comment: returning a literal or a plain variable (`return true;`,
   `return col;`, or a vector of them: `return vec4(col, 1.0);`), `break;`, `continue;`,
   `discard;`, `else`, braces. Code in an `#ifdef`/`#if` branch the preprocessor skips is not
@@ -89,9 +92,6 @@ A run is a certain deduction, except where the readings of the rubric part (a po
   (`// if the discriminant is positive, the ray hits`), the body's comments for the rest;
   whether it reaches the body's first statements is a reading, and the group it started ends
   with the block;
-- a function signature with no comment above whose body opens with a comment saying what the
-  function does; not `mainImage`'s, the signature every Shadertoy shader starts with, whose
-  purpose is known: with a comment opening its body it is not reported at all;
 - a definition with no comment at all right under another (blank lines between, nothing else),
   each after the first: one reading deducts such a region once, the others each definition.
 
@@ -886,7 +886,8 @@ class _Reader:
 def uncovered_runs(scan, kinds: list[LineKind], span: int) -> list[tuple[int, int, int, str]]:
     """(first line, last line, number of code lines, reading) of each run of uncovered
     statements; `reading` is "" for a certain deduction, else why it is only a possible one
-    (HEADING, BODY_ONLY, REACH, IF_REACH, LONG_BODY, ADJACENT).
+    (HEADING, REACH, IF_REACH, LONG_BODY, ADJACENT), or BODY_ONLY for a signature whose body's
+    first comment explains it (a note, not a run).
 
     Statements are read whole (a signature or a call over several lines is one). A comment
     covers up to `span` statements below it, stopping at a blank line, the next explaining
@@ -898,7 +899,8 @@ def uncovered_runs(scan, kinds: list[LineKind], span: int) -> list[tuple[int, in
     line; in a body it goes on across blank lines and commented-out code, but for a mostly
     uncommented file's (sparse), read again with a blank line ending a run in a body too."""
     runs = _Reader(scan, kinds, span).read()
-    if sparse(runs, kinds):
+    # (a signature its body's first comment explains is covered: a note, no run)
+    if sparse([r for r in runs if r[3] != BODY_ONLY], kinds):
         runs = _Reader(scan, kinds, span, sections=True).read()
     return runs
 
@@ -931,6 +933,14 @@ def check(ctx: LintContext) -> Iterator[Diagnostic]:
 
 
 def _finding(ctx: LintContext, first: int, last: int, count: int, reading: str) -> Diagnostic:
+    if reading == BODY_ONLY:
+        # advice, not a deduction: readers take the body's opening comment for the function's
+        return Diagnostic(
+            "the function's comment is the first line of its body, not above its signature",
+            ctx.location(first),
+            help="move that comment above the signature, where readers look for it",
+            severity="note",
+        )
     lines = f"line {first}" if first == last else f"lines {first}-{last}"
     noun = "line" if count == 1 else "lines"
     return Diagnostic(
