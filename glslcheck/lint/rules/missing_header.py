@@ -19,7 +19,8 @@ The instructor's starter line ("GLSL STARTER CODE BY DANIEL S. BUCKSTEIN"), than
 credits ("Thanks to Dan Buckstein", "Got assistance from ...") name no author of the file, nor
 does a `Created by` line right under a line crediting borrowed code by its link (`// Random
 generator from https://...` / `// Created by dcerisano`: the author of the source; `Modified
-by` there names the student).
+by` there names the student), nor a starter's own credits (`// Originally by Nikos
+Papadopoulos`, `// Heavily modified by Dr. Sajid Farooq`: a name with an instructor's title).
 
 One finding per file, at line 1. It is a certain deduction: the rubric's "Add author
 information to the top of each code file (-1 for each omission)" leaves no reading in which a
@@ -276,7 +277,7 @@ _AUTHOR_PHRASE = compiled(
 )
 # What a `by`/`with` phrase credits rather than authors: the starter code, sources, help.
 _CREDIT_PHRASE = compiled(
-    r"\b(?:starter|framework|provided|original|inspired|adapted|based|taken|borrowed|courtesy"
+    r"\b(?:starter|framework|provided|original(?:ly)?|inspired|adapted|based|taken|borrowed|courtesy"
     r"|thanks?|referenc\w*|tutorial|book|assist\w*|help\w*|source\w*|derived|from)\b",
     re.I,
 )
@@ -304,8 +305,16 @@ _LINK = compiled(r"https?://|www\.", re.I)
 _CREATED_BY = compiled(r"^\W*(?:created|written|made|authored)?\s*by\b", re.I)
 
 
+# an instructor's title before a name (`Heavily modified by Dr. Sajid Farooq`): not a student
+_TITLED = compiled(r"^\s*(?:dr|prof|professor)\b\.?", re.I)
+
+
 def _is_person(text: str) -> bool:
-    return not _INSTRUCTOR.search(text) and not _NOT_NAME_WORDS.search(text)
+    return (
+        not _INSTRUCTOR.search(text)
+        and not _NOT_NAME_WORDS.search(text)
+        and not _TITLED.match(text)
+    )
 
 
 def named_students(text: str) -> list[str]:
