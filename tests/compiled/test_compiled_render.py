@@ -508,7 +508,13 @@ PATH_TRACERS = os.path.join(os.path.dirname(__file__), "..", "gl", "path_tracers
 
 
 @pytest.mark.parametrize(
-    "name", ["global_seed_sin_hash", "inout_seed_bits_hash", "global_seed_bits_hash"]
+    "name",
+    [
+        "global_seed_sin_hash",
+        "inout_seed_bits_hash",
+        "global_seed_bits_hash",
+        "bounce_arms_sin_hash",
+    ],
 )
 def test_path_tracers_bit_for_bit(numba, name):
     """A seed advanced through calls and an unrolled bounce loop (a global, an inout
