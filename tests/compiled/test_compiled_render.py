@@ -396,6 +396,38 @@ def test_repeated_sums_bit_for_bit(numba, make_shader):
     _compare(shader, time=0.0)
 
 
+ARMS_BY_BLOCK = """vec2 hash2(inout float seed) {
+    return fract(sin(vec2(seed += 0.1, seed += 0.1)) * vec2(43758.5453123, 22578.1459123));
+}
+float trace(inout float seed, bool u) {
+    float acc = 0.0;
+    for (int j = 0; j < 3; ++j) {
+        if (u) { acc += hash2(seed).x; } else { acc += hash2(seed).y; }
+    }
+    return acc;
+}
+void mainImage(out vec4 c, in vec2 f) {
+    float seed = f.x * 0.0217 + f.y * 0.0731;
+    hash2(seed);
+    float acc = trace(seed, f.x < 16.0);
+    c = vec4(seed, acc, 0.0, 1.0);
+}"""
+
+
+def test_seed_chains_in_arms_bit_for_bit(numba, make_shader):
+    """A seed's chain into the arms of an ``if`` in an unrolled loop: the first pass reads the
+    caller's constants, the later ones their own (nir_fold.repeated_sums.later_entry, chosen
+    by the pass count in both arms); per pixel and in lockstep, whose blocks of 8 pixels here
+    take one arm only (a compare hoisted in one arm is not read in the other)."""
+    from glslcheck.backends.compiled_engine.engine import CompiledProgram, generate
+
+    shader = make_shader(ARMS_BY_BLOCK)
+    want = glslcheck.compile(shader, backend="numpy").render(size=SIZE, time=0.0)
+    for lanes in (0, 8):
+        got = CompiledProgram(*generate(shader, lanes=lanes)).render(size=SIZE, time=0.0)
+        assert_same(got, want, what=f"lanes {lanes}", names=("compiled", "numpy"))
+
+
 RETURNED_SUMS = """float fbm(vec3 p) {
     float f;
     f = 0.5 * sin(p.x); p = p * 2.02;
@@ -508,7 +540,13 @@ PATH_TRACERS = os.path.join(os.path.dirname(__file__), "..", "gl", "path_tracers
 
 
 @pytest.mark.parametrize(
-    "name", ["global_seed_sin_hash", "inout_seed_bits_hash", "global_seed_bits_hash"]
+    "name",
+    [
+        "global_seed_sin_hash",
+        "inout_seed_bits_hash",
+        "global_seed_bits_hash",
+        "bounce_arms_sin_hash",
+    ],
 )
 def test_path_tracers_bit_for_bit(numba, name):
     """A seed advanced through calls and an unrolled bounce loop (a global, an inout

@@ -35,7 +35,11 @@ call in a function that passes the global, 162; a function writing ``gseed * 1.5
 calls restarts the chain, 14,400 that way, 2,605 stepwise; the callee writing the global too
 loses its write to the copy back (14,400 merged). A callee calling ``hash2`` in a loop NIR
 keeps restarts the chain at every pass, 14,400 that way, 7,056 as one chain (7,038 for a
-global). Written for llvmpipe of Mesa 22.3 (the `llvmpipe` fixture skips elsewhere).
+global). Writes in arms of an ``if`` (IN_ARMS): a callee advancing the seed in an arm after an
+unrolled loop of its own merged 14,400, stepwise 303, the step after the call restarted at the
+phi 14,400, continued 10,616; three passes of a loop calling a callee that writes in arms, the
+first copy continuing the chain 14,400, restarting it 6,651. Written for llvmpipe of Mesa 22.3
+(the `llvmpipe` fixture skips elsewhere).
 """
 
 from __future__ import annotations
@@ -54,6 +58,29 @@ vec2 hash2_aliased(inout float seed) {
     float a = seed += 0.1; gseed += 0.5; return vec2(a, seed += 0.1);
 }
 void scale() { gseed = gseed * 1.5; }
+void arms(inout float seed, float s0) { if (s0 > 20.0) { hash2(seed); } else { rnd(seed); } }
+void looped(inout float seed, float s0) {
+    for (int i = 0; i < 2; i++) { rnd(seed); }
+    if (s0 > 20.0) { hash2(seed); }
+}
+float returning(inout float seed, float s0) {
+    if (s0 > 30.0) { hash2(seed); return 1.0; }
+    if (s0 > 10.0) { rnd(seed); return 2.0; }
+    hash2(seed);
+    return 3.0;
+}
+float greturning(float s0) {
+    if (s0 > 30.0) { ghash(); return 1.0; }
+    if (s0 > 10.0) { gseed += 0.1; return 2.0; }
+    ghash();
+    return 3.0;
+}
+void bounce(inout float seed, float s0) {
+    for (int j = 0; j < 3; j++) {
+        if (j == 1 && s0 > 30.0) break;
+        if (s0 > 20.0) { hash2(seed); } else { rnd(seed); }
+    }
+}
 vec2 two() { hash2(gseed); return hash2(gseed); }
 float walk(inout float seed) { for (int i = 0; i < iFrame + 2; i++) { hash2(seed); } return seed; }
 void gwalk() { for (int i = 0; i < iFrame + 2; i++) { hash2(gseed); } }
@@ -283,6 +310,137 @@ BRANCHED_THIRD_COPY = {
 }
 
 
+# A write in an arm of an ``if`` is an SSA addition of the value before the ``if``: the chain
+# runs into either arm (and into a callee writing in arms, once inlined) and stops at the join.
+# An unrolled loop whose body writes in arms continues the chain in its first copy only; each
+# later copy starts from the phi its arms joined into.
+def _arms(then_, else_):
+    return lambda s: np.where(s > 20.0, then_(s), else_(s))
+
+
+def _bounce(first, rest):
+    """The seed after `bounce`: its first pass as `first` orders it, then the later passes
+    (two, or none where it breaks) each from the pass before."""
+
+    def after(s, then_, else_):
+        out = np.where(s > 20.0, first(s, then_), first(s, else_))
+        later = np.where(s > 20.0, rest(out, then_), rest(out, else_))
+        later = np.where(s > 20.0, rest(later, then_), rest(later, else_))
+        return np.where(s > 30.0, out, later)
+
+    return lambda s: after(s, 2, 1)
+
+
+def _passes(first, rest):
+    """The seed after three passes of ``arms``: its first as `first` orders it, the two later
+    ones each from the pass before as `rest` does."""
+
+    def after(s, n):
+        out = first(s, n)
+        for _ in range(2):
+            out = rest(out, n)
+        return out
+
+    return lambda s: np.where(s > 20.0, after(s, 2), after(s, 1))
+
+
+def _returning(second, third):
+    """The seed after `returning`: merged in its first arm, `second` and `third` (its second
+    arm, what follows both) ordered as given."""
+    return lambda s: np.where(s > 30.0, _merged(s, 3), np.where(s > 10.0, second(s), third(s)))
+
+
+IN_ARMS = {
+    "into_an_else_arm": (
+        "seed += 0.1; seed += 0.1; if (s0 > 20.0) { seed += 0.1; } else { seed += 0.7; }"
+        " c = vec4(s0, seed, 0.0, 1.0);",
+        {
+            1: (
+                _arms(lambda s: _steps(s, 3), lambda s: _merged(s, 2) + np.float32(0.7)),
+                _arms(lambda s: _merged(s, 3), lambda s: s + ((np.float32(0.7) + K) + K)),
+            )
+        },
+    ),
+    "into_a_callee_writing_in_arms": (
+        "seed += 0.1; arms(seed, s0); c = vec4(s0, seed, 0.0, 1.0);",
+        {
+            1: (
+                _arms(lambda s: _steps(s, 3), lambda s: _steps(s, 2)),
+                _arms(lambda s: _merged(s, 3), lambda s: _merged(s, 2)),
+            )
+        },
+    ),
+    "past_an_arm_that_returns": (
+        "seed += 0.1; returning(seed, s0); c = vec4(s0, seed, 0.0, 1.0);",
+        {
+            1: (
+                _returning(lambda s: _steps(s, 2), lambda s: _merged(s, 1) + (K + K)),
+                _returning(lambda s: _merged(s, 2), lambda s: _merged(s, 3)),
+            )
+        },
+    ),
+    "a_global_past_an_arm_that_returns": (
+        "gseed = s0; gseed += 0.1; greturning(s0); c = vec4(s0, gseed, 0.0, 1.0);",
+        {
+            1: (
+                _returning(lambda s: _steps(s, 2), lambda s: _merged(s, 1) + (K + K)),
+                _returning(lambda s: _merged(s, 2), lambda s: _merged(s, 3)),
+            )
+        },
+    ),
+    "into_the_first_pass_of_a_loop_with_arms": (
+        "seed += 0.1; bounce(seed, s0); c = vec4(s0, seed, 0.0, 1.0);",
+        {
+            1: (
+                _bounce(
+                    lambda s, n: _merged(s, 1) + _merged(np.float32(0.0), n),
+                    lambda s, n: _merged(s, n),
+                ),
+                _bounce(lambda s, n: _merged(s, n + 1), lambda s, n: _merged(s, n)),
+            )
+        },
+    ),
+    "into_the_first_pass_of_a_loop_calling_a_callee_writing_in_arms": (
+        "seed += 0.1; for (int j = 0; j < 3; j++) { arms(seed, s0); }"
+        " c = vec4(s0, seed, 0.0, 1.0);",
+        {
+            1: (
+                _passes(
+                    lambda s, n: _merged(s, 1) + _merged(np.float32(0.0), n),
+                    lambda s, n: _merged(s, n),
+                ),
+                _passes(lambda s, n: _merged(s, n + 1), lambda s, n: _merged(s, n)),
+            )
+        },
+    ),
+    "into_a_callee_writing_in_an_arm_after_its_unrolled_loop": (
+        "seed += 0.1; looped(seed, s0); float r = seed; seed += 0.1; c = vec4(s0, r, seed, 1.0);",
+        {
+            1: (
+                _arms(lambda s: _steps(s, 5), lambda s: _steps(s, 3)),
+                _arms(
+                    lambda s: _unrolled(s, [K], [K], 2, [K, K]),
+                    lambda s: _unrolled(s, [K], [K], 2, []),
+                ),
+            ),
+            2: (
+                _arms(
+                    lambda s: _unrolled(s, [K], [K], 2, [K, K, K]),
+                    lambda s: _unrolled(s, [K], [K], 2, [K]),
+                ),
+                lambda s: (
+                    _arms(
+                        lambda s: _unrolled(s, [K], [K], 2, [K, K]),
+                        lambda s: _unrolled(s, [K], [K], 2, []),
+                    )(s)
+                    + K
+                ),
+            ),
+        },
+    ),
+}
+
+
 def _restarted(s0, body, times):
     """A loop NIR keeps: the body's constants merged, the chain restarted at each pass."""
     step = np.float32(0.0)
@@ -392,6 +550,7 @@ MEASURED = {
     **BRANCHED_CALLS,
     **BRANCHED_THIRD_COPY,
     **BRANCHED_CALLEES,
+    **IN_ARMS,
 }
 
 
@@ -422,6 +581,23 @@ FOLLOWED = {**THROUGH_CALLS, **UNROLLED_BODIES, **BRANCHED_CALLS, **BRANCHED_CAL
 def test_numpy_merges_the_constants_through_calls_as_mesa(renders_as_llvmpipe, make_shader, name):
     shader = make_shader(_text(name, FOLLOWED[name][0]))
     renders_as_llvmpipe(shader, name=name, frame=0)
+
+
+@pytest.mark.parametrize("name", sorted(IN_ARMS))
+def test_numpy_merges_the_constants_in_arms_as_mesa(renders_as_llvmpipe, make_shader, name):
+    renders_as_llvmpipe(make_shader(_text(name, IN_ARMS[name][0])), name=name, frame=0)
+
+
+@pytest.mark.parametrize("lanes", [0, 8])
+@pytest.mark.parametrize("name", sorted(IN_ARMS))
+def test_compiled_merges_the_constants_in_arms_as_mesa(llvmpipe, numba, make_shader, name, lanes):
+    """The compiled engine per pixel and in lockstep (its `lanes`), against the driver."""
+    from glslcheck.backends.compiled_engine.engine import CompiledProgram, generate
+
+    shader = make_shader(_text(name, IN_ARMS[name][0]))
+    want = render(shader, "gl", frame=0)
+    got = CompiledProgram(*generate(shader, lanes=lanes)).render(size=SIZE, time=0.0, frame=0)
+    assert_same(got, want, what=f"{name}, lanes {lanes}", names=("compiled", "llvmpipe"))
 
 
 # Every shape of a global passed to an ``inout`` parameter above, and the calls advancing a

@@ -400,19 +400,38 @@ class ExpressionEmitter:
         if fn is None or fn.sym is None or any(not isinstance(p, str) for p in targets):
             return None
         ctx = self.fold_context()
-        own = nir_fold.param_step(ctx, e)
-        if own is not None:
-            i = own[0]
-            old = Val(self.type_of(e.target), [self.read(p) for p in targets])
-            if e.op == "=":  # x = x + #c
-                assert isinstance(e.value, A.Binary)
-                op = e.value.op
-            else:  # x += #c
-                op = e.op[:-1]
-            written = self.binary_values(op, old, self.expr(_step_constant(e)), e)
-            k = self.param_k(own, 0)
+        later = nir_fold.later_entry(ctx, e)
+        first = self.chain_step(e, targets, nir_fold.sum_entry(ctx, e), True)
+        if later is None:
+            return first
+        # (a first-copy loop: its first pass continues the chain, the later ones start afresh)
+        rest = self.chain_step(e, targets, later[1], False) or self.written_step(e, targets)
+        first = first or self.written_step(e, targets)
+        ix = fn.sum_index[id(later[0])]
+        return Val(
+            first.t,
+            [f"({a} if {ix} == 0 else {b})" for a, b in zip(first.parts, rest.parts)],
+        )
+
+    def written_step(self, e: A.Assignment, targets: list) -> Val:
+        """A step of a chain as written: the old value plus the constant."""
+        old = Val(self.type_of(e.target), [self.read(p) for p in targets])
+        if e.op == "=":  # x = x + #c
+            assert isinstance(e.value, A.Binary)
+            op = e.value.op
+        else:  # x += #c
+            op = e.op[:-1]
+        return self.binary_values(op, old, self.expr(_step_constant(e)), e)
+
+    def chain_step(self, e: A.Assignment, targets: list, entry: Any, own: bool) -> Val | None:
+        """A step's ``base + K`` from a chain parameter's caller (`own`) or from `entry`."""
+        ctx = self.fold_context()
+        mine = nir_fold.param_step(ctx, e) if own else None
+        if mine is not None:
+            i = mine[0]
+            written = self.written_step(e, targets)
+            k = self.param_k(mine, 0)
             return Val(written.t, [f"((_c{i}b + {k}) if _c{i}f else {written.parts[0]})"])
-        entry = nir_fold.sum_entry(ctx, e)
         base = self.chain_base(entry, [self.read(p) for p in targets])
         if entry is None or base is None:
             return None
@@ -444,6 +463,8 @@ class ExpressionEmitter:
         assert self.fn is not None
         copies = nir_fold.loop_count(self.fold_context(), loop)
         names = [f"_c{i}k{at + m + stride * j}" for j in range(copies)]
+        if len(names) == 1:  # (a first-copy loop: only its first pass reads the caller's K)
+            return names[0]
         return f"({', '.join(names)})[{self.fn.sum_index[id(loop)]}]"
 
     def k_code(self, entry: Any, codes: list[str]) -> str:
@@ -463,18 +484,31 @@ class ExpressionEmitter:
         if self.fn is None or self.fn.sym is None:
             return []
         ctx = self.fold_context()
+        later = nir_fold.later_entry(ctx, e)
+        first = self.chain_call_args(e, fn, inouts, nir_fold.sum_entry(ctx, e), True)
+        if later is None:
+            return first
+        rest = self.chain_call_args(e, fn, inouts, later[1], False)
+        ix = self.fn.sum_index[id(later[0])]
+        return [f"({a} if {ix} == 0 else {b})" for a, b in zip(first, rest)]
+
+    def chain_call_args(
+        self, e: A.Call, fn: Symbol, inouts: dict[int, str], entry: Any, own_chain: bool
+    ) -> list[str]:
+        """:meth:`chain_args` from the caller's chain parameter (`own_chain`) or `entry`."""
+        ctx = self.fold_context()
         params = nir_fold.chain_params(ctx, fn)
         zero = self.cf(0.0) if params else ""
         out: list[str] = []
         for i, program in sorted(params.items()):
             step = nir_fold.call_step(ctx, e)
             mine = step is not None and step[0] == i
-            own = nir_fold.param_step(ctx, e) if mine else None
+            own = nir_fold.param_step(ctx, e) if mine and own_chain else None
             if own is not None:
                 j = own[0]
                 out += [f"_c{j}f", f"_c{j}b"] + [self.param_k(own, m) for m in range(own[4])]
                 continue
-            entry = nir_fold.sum_entry(ctx, e) if mine else None
+            entry = entry if mine else None
             base = self.chain_base(entry, [inouts[i]] if i in inouts else None)
             if entry is None or base is None:
                 out += ["False", zero] + [zero] * program.slots()

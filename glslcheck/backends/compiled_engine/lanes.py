@@ -590,7 +590,9 @@ class _Fn:
         saved = (self.div, self.mask, self.ldiv)
         self.div, self.mask, self.ldiv = div, mask, ldiv
         self.indent += 1
+        self.tests = {}  # (a test hoisted in one arm is not defined in the other)
         self.block(stmts)
+        self.tests = {}
         self.indent -= 1
         self.div, self.mask, self.ldiv = saved
 

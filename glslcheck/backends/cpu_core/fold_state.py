@@ -51,6 +51,11 @@ class FoldState:
     sum_loops: dict = field(default_factory=dict)
     sum_index: dict = field(default_factory=dict)
     sum_global_keys: dict = field(default_factory=dict)  # global -> (its chain key, itself)
+    # function -> its first-copy loops (id -> loop); function -> the plan of their later passes
+    sum_first: dict = field(default_factory=dict)
+    sum_later_plans: dict = field(default_factory=dict)
+    sum_later: bool = False  # planning those later passes
+
     loop_costs: dict = field(default_factory=dict)  # loop -> its body's cost (loop_unroll)
     copy_loops: dict = field(default_factory=dict)  # loop -> whether loop_copies counts passes
     copy_values: dict = field(default_factory=dict)  # function -> values merged in loop copies

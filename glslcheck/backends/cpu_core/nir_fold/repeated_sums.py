@@ -7,7 +7,9 @@ into one, ``s0 + K``, in an order sum_order.py simulates (not simply left to rig
 runs while each step's previous write reaches it alone (analysis.dataflow: it runs before on
 every path, nothing writes the variable in between), so it restarts at the top of a loop NIR
 keeps and after the join of a branch that writes the variable (a phi to NIR), and not from a
-constant (NIR folds those step by step, as written).
+constant (NIR folds those step by step, as written). It runs into either arm of an ``if`` (a
+write there adds to the value from before the ``if``) and past an arm that ends in a
+``return`` (what follows is the other arm to NIR).
 
 NIR inlines every call first, so a chain runs through a call that passes the variable (a
 local or a global) to an ``inout`` parameter, or a global the callee writes, that the callee
@@ -17,6 +19,10 @@ return s; }``, a path tracer's ``float seed;`` advanced in ``hash2()`` or passed
 the rules over the body (:func:`unrolled_chain`, loop_unroll.py), so the copies continue it; a
 loop left early ends in a phi, and so does a two-pass loop whose branch NIR folds in the first
 copy only, the second copy's branch continuing the first copy's chain (:func:`folded_branch`).
+A body that writes the variable in arms NIR keeps continues it in the first copy only, each
+later copy starting from the phi of the arms before (:func:`first_copy_loop`; the later
+passes' plan: :func:`later_entry`). A callee that writes it in arms continues the caller's
+chain in each arm, and the chain restarts after the call (the join's phi).
 
 :func:`chain_plan` builds each chain of a function (steps, calls spread into their callees'
 programs, unrolled loops) and asks sum_order.py for K at every step, per copy of an unrolled
@@ -141,15 +147,60 @@ def _writes_global(tr: FoldEngine, fn: Symbol, sym: Any) -> bool:
 
 def _written_between(tr: FoldEngine, facts: Any, a: Any, b: Any, sym: Any) -> bool:
     """`sym` may be written after `a` and before `b` (analysis.dataflow's question; for a global
-    only the calls that write it count, not every call)."""
-    if sym.kind != "global":
-        return facts.written_between(a, b, [sym])
+    only the calls that write it count, not every call), a write in the other arm of an ``if``
+    `b` is in not counting (no path from it reaches `b` but through a loop, counted whole)."""
     spans = [(facts.exit[id(a)], facts.enter[id(b)])]
     around_a = {id(lp) for lp in facts.enclosing_loops(a)}
     for loop in facts.enclosing_loops(b):
         if id(loop) not in around_a:
             spans.append((facts.enter[id(loop)], facts.exit[id(loop)]))
-    return any(lo < w.pos < hi for w in _writes(tr, facts, sym) for lo, hi in spans)
+    return any(
+        lo < w.pos < hi and (i > 0 or not _cut_off(facts, w.node, b))
+        for w in _writes(tr, facts, sym)
+        for i, (lo, hi) in enumerate(spans)
+    )
+
+
+def _cut_off(facts: Any, a: Any, b: Any) -> bool:
+    """No path runs `a` then `b` but through a loop: they are in the two arms of one ``if``,
+    or `a` is in an arm of an ``if`` that ends in a ``return`` and `b` is outside that arm
+    (NIR moves what follows such an ``if`` into its other arm)."""
+    if _other_arm(facts, a, b):
+        return True
+    up = a
+    while True:
+        parent = facts.parent.get(id(up))
+        if parent is None:
+            return False
+        if (
+            isinstance(parent, A.If)
+            and (up is parent.then or up is parent.else_)
+            and _returns(up)
+            and not facts.contains(up, b)
+        ):
+            return True
+        up = parent
+
+
+def _returns(arm: Any) -> bool:
+    """The arm of an ``if`` always ends in a ``return``."""
+    if isinstance(arm, A.Compound):
+        return any(isinstance(x, A.Return) for x in arm.stmts)
+    return isinstance(arm, A.Return)
+
+
+def _other_arm(facts: Any, a: Any, b: Any) -> bool:
+    """`a` and `b` are in the two arms of one ``if`` (or ``?:``): no path runs both."""
+    ra, rb = facts.region[id(a)], facts.region[id(b)]
+    for x, y in zip(ra, rb):
+        if x != y:
+            if x[0] != y[0] or {x[1], y[1]} != {0, 1}:
+                return False
+            up = facts.parent.get(id(a))
+            while up is not None and id(up) != x[0]:
+                up = facts.parent.get(id(up))
+            return isinstance(up, (A.If, A.Ternary))
+    return False
 
 
 def _reads(tr: FoldEngine, node: Any, sym: Any) -> bool:
@@ -165,11 +216,17 @@ def _previous_step(tr: FoldEngine, e: Any, sym: Any) -> Any:
     facts = function_facts(tr)
     if not facts.ok or id(e) not in facts.enter:
         return None  # (a node of an inlined body: another function's)
-    before = [w for w in _writes(tr, facts, sym) if w.pos < facts.enter[id(e)]]
-    loops = [lp for lp in facts.enclosing_loops(e) if unrolled_chain(tr, lp, sym)]
+    before = [
+        w
+        for w in _writes(tr, facts, sym)
+        if w.pos < facts.enter[id(e)] and not _cut_off(facts, w.node, e)
+    ]
+    loops = [lp for lp in facts.enclosing_loops(e) if _chained_loop(tr, lp, sym)]
     if loops and not any(facts.contains(loops[-1].body, w.node) for w in before):
         return loops[-1]  # (the first write of the body: its chain starts at the loop's phi)
     if not before:
+        if tr.fold_state.sum_later:
+            return None  # (the caller's chain parameter is not planned in later passes)
         fn = current_function(tr).sym
         index = [i for i, p in enumerate(fn.node.proto.params) if tr.model.symbol_of(p) is sym]
         if index and index[0] in chain_params(tr, fn):
@@ -186,21 +243,28 @@ def _previous_step(tr: FoldEngine, e: Any, sym: Any) -> Any:
         if facts.dominates(loop, e) and not _written_between(tr, facts, loop, e, sym):
             return loop.body  # (after the loop: its last copy's value)
         return None
-    if not _is_step(tr, w.node, sym) or not facts.dominates(w.node, e) or _joins(tr, w.node):
+    if not _is_step(tr, w.node, sym) or not facts.dominates(w.node, e):
         return None
+    if isinstance(w.node, A.Call) and _callee_program(tr, w.node).leaves:
+        return None  # (the value after the call is a phi: a chain starts afresh from it)
     if _written_between(tr, facts, w.node, e, sym):
         return None
     return w.node
 
 
+def _first_write(tr: FoldEngine, e: Any, sym: Any) -> bool:
+    """No write of `sym` runs before `e` in its function (one in another arm of an ``if``
+    around `e` does not)."""
+    facts = function_facts(tr)
+    return not any(
+        w.pos < facts.enter[id(e)] and not _cut_off(facts, w.node, e)
+        for w in _writes(tr, facts, sym)
+    )
+
+
 def _leaves(loop: Any) -> bool:
     """The loop can be left before its last pass (a break or a return in its body)."""
     return any(isinstance(n, (A.Break, A.Return)) for n in loop.body.walk())
-
-
-def _joins(tr: FoldEngine, node: Any) -> bool:
-    """`node` is a call whose callee advances the chain in a branch (Program.joins)."""
-    return isinstance(node, A.Call) and _callee_program(tr, node).joins
 
 
 def _is_step(tr: FoldEngine, node: Any, sym: Any) -> bool:
@@ -247,14 +311,14 @@ def call_step(tr: FoldEngine, call: A.Call) -> tuple[int, Any, Program] | None:
 class Program:
     """What a callee does to a chain parameter: its additions as sum_order ops (prev -1: the
     value the caller passes), where each write's ops are (id(write) -> (the unrolled loop
-    around it or None, first op, how many)), whether a loop it can leave early ends it, and
-    whether its writes are all in one branch of an ``if`` (`joins`; the value after the call
-    is then a phi: a chain of the caller restarts there)."""
+    around it or None, first op, how many)), and whether the value after the call is a phi
+    (`leaves`: a loop it can leave early ends it, it writes in arms of an ``if``, or an arm
+    ends in a ``return``): a chain of the caller restarts there."""
 
-    __slots__ = ("ops", "where", "leaves", "joins")
+    __slots__ = ("ops", "where", "leaves")
 
-    def __init__(self, ops: list, where: dict, leaves: bool, joins: bool = False) -> None:
-        self.ops, self.where, self.leaves, self.joins = ops, where, leaves, joins
+    def __init__(self, ops: list, where: dict, leaves: bool) -> None:
+        self.ops, self.where, self.leaves = ops, where, leaves
 
     def slots(self) -> int:
         """How many constants a caller passes: one per addition, per copy in a loop."""
@@ -301,8 +365,12 @@ def chain_params(tr: FoldEngine, fn: Symbol) -> dict[int, Program]:
         cache[id(fn)] = {}  # (GLSL has no recursion: a guard only)
         if fn is tr.model.entry:
             return cache[id(fn)]
-        with asked_in(tr, fn):
-            cache[id(fn)] = _programs(tr, fn)
+        later, tr.fold_state.sum_later = tr.fold_state.sum_later, False
+        try:
+            with asked_in(tr, fn):
+                cache[id(fn)] = _programs(tr, fn)
+        finally:
+            tr.fold_state.sum_later = later
     return cache[id(fn)]
 
 
@@ -357,29 +425,39 @@ def _program(tr: FoldEngine, fn: Symbol, facts: Any, sym: Any) -> Program | None
         return None
     loops = [x for x in chains[0]["items"] if isinstance(x, A.For)]
     returns = [n for n in fn.node.body.walk() if isinstance(n, A.Return)]
+    armed_returns = [
+        r
+        for r in returns
+        if r is not body[-1]
+        and not any(facts.contains(lp.body, r) for lp in loops)
+        and _in_arms(facts, r)
+    ]
     if any(
-        r is not body[-1] and not any(facts.contains(lp.body, r) for lp in loops) for r in returns
+        r is not body[-1]
+        and not any(facts.contains(lp.body, r) for lp in loops)
+        and all(r is not x for x in armed_returns)
+        for r in returns
     ) or any(facts.region[id(x)] != () for x in loops):
         return None  # (a return outside the unrolled loops: the rest runs on some lanes)
     where = chains[0]["where"]
-    regions = {facts.region[id(x)] for x in writes if where[id(x)][0] is None}
-    joins = regions != {()} and bool(regions)
-    if joins and (loops or not _one_branch(fn, regions)):
-        return None  # (writes in a loop NIR keeps or in several branches: phis between)
+    armed = [x for x in writes if where[id(x)][0] is None and facts.region[id(x)] != ()]
+    if not all(_in_arms(facts, x) for x in armed):
+        return None  # (a write in a loop NIR keeps: a phi follows, not the chain)
     ops = chains[0]["ops"]
-    leaves = any(isinstance(op, Loop) and op.breaks for op in ops)
-    return Program(ops, chains[0]["where"], leaves, joins)
+    leaves = any(isinstance(op, Loop) and op.breaks for op in ops) or bool(armed or armed_returns)
+    return Program(ops, chains[0]["where"], leaves)
 
 
-def _one_branch(fn: Symbol, regions: set) -> bool:
-    """`regions` is the one branch of an ``if`` of `fn`'s straight line: inlined, its writes
-    continue the caller's chain (dominated by its last write), a phi joins it after."""
-    if len(regions) != 1:
-        return False
-    (region,) = regions
-    if len(region) != 1 or region[0][1] not in (0, 1):
-        return False
-    return any(isinstance(n, A.If) and id(n) == region[0][0] for n in fn.node.body.walk())
+def _in_arms(facts: Any, node: Any, top: Any = None) -> bool:
+    """`node` is in arms of ``if`` statements only (no loop, switch or ``?:`` around it, up
+    to `top`): NIR keeps the value written there and the one around it apart, a phi at the
+    join."""
+    up = facts.parent.get(id(node))
+    while up is not None and up is not top:
+        if isinstance(up, (A.For, A.While, A.DoWhile, A.Switch, A.Ternary, A.Binary)):
+            return False
+        up = facts.parent.get(id(up))
+    return True
 
 
 def chain_globals(tr: FoldEngine, fn: Symbol) -> list[tuple[int, Any]]:
@@ -425,14 +503,54 @@ def unrolled_chain(tr: FoldEngine, loop: Any, sym: Any) -> bool:
     return cache[key]
 
 
+def _chained_loop(tr: FoldEngine, loop: Any, sym: Any) -> bool:
+    return unrolled_chain(tr, loop, sym) or (
+        not tr.fold_state.sum_later and first_copy_loop(tr, loop, sym)
+    )
+
+
+def first_copy_loop(tr: FoldEngine, loop: Any, sym: Any) -> bool:
+    """`loop` is one NIR unrolls whose body writes `sym` by steps in arms of ``if`` statements
+    (or after them): its first copy continues the chain it is entered with (the writes there
+    are SSA additions of that value), a later copy starts from the phi the arms join into.
+    The chain takes the first copy (a loop op of one copy, left early: a phi after it)."""
+    cache = tr.fold_state.sum_loops
+    key = (id(loop), id(sym), "first")
+    if key not in cache:
+        cache[key] = False
+        facts = function_facts(tr)
+        if (
+            not unrolled_chain(tr, loop, sym)
+            and nir_unrolls(tr, loop)
+            and not any(
+                isinstance(n, (A.Continue, A.Discard, A.For, A.While, A.DoWhile))
+                for n in loop.body.walk()
+            )
+        ):
+            writes = [w for w in _writes(tr, facts, sym) if facts.contains(loop.body, w.node)]
+            cache[key] = bool(writes) and all(
+                _is_step(tr, w.node, sym)
+                and _in_arms(facts, w.node, loop.body)
+                and not (
+                    isinstance(w.node, A.Call)
+                    and any(isinstance(op, Loop) for op in _callee_program(tr, w.node).ops)
+                )
+                for w in writes
+            )
+        if cache[key]:
+            fn = current_function(tr).sym
+            tr.fold_state.sum_first.setdefault(id(fn), {})[id(loop)] = loop
+    return cache[key]
+
+
 def _chain_write(tr: FoldEngine, node: Any, sym: Any) -> bool:
     """A step of `sym`, or a call advancing it whose callee unrolls no loop of its own and
-    advances it outside any branch."""
+    leaves no phi after it (Program.leaves: writes in arms, an arm ending in a return)."""
     return _is_step(tr, node, sym) and not (
         isinstance(node, A.Call)
         and (
             any(isinstance(op, Loop) for op in _callee_program(tr, node).ops)
-            or _callee_program(tr, node).joins
+            or _callee_program(tr, node).leaves
         )
     )
 
@@ -571,6 +689,8 @@ def chain_plan(tr: FoldEngine) -> dict[int, Entry]:
             own = chain_params(tr, fn)
             skip = {id(tr.model.symbol_of(fn.node.proto.params[i])) for i in own if i < _GLOBALS}
             skip |= {id(_global_of(tr, k)) for k in own if k >= _GLOBALS}
+            if tr.fold_state.sum_later:
+                skip = set()  # (a later pass of a first-copy loop: no caller's chain there)
             syms = {id(ws[0].symbol): ws[0].symbol for ws in facts.writes.values()}
             for g in _globals_written(tr, fn):
                 syms.setdefault(id(g), g)
@@ -623,7 +743,7 @@ def _chains(tr: FoldEngine, facts: Any, sym: Any, ws: list, param_root: bool) ->
     loops: list = []
     for n in nodes:
         for lp in facts.enclosing_loops(n):
-            if unrolled_chain(tr, lp, sym) and all(lp is not x for x in loops):
+            if _chained_loop(tr, lp, sym) and all(lp is not x for x in loops):
                 loops.append(lp)
     items = sorted(nodes + loops, key=lambda x: facts.enter[id(x)])
     chain_of: dict[int, int] = {}
@@ -642,6 +762,10 @@ def _chains(tr: FoldEngine, facts: Any, sym: Any, ws: list, param_root: bool) ->
                     continue
                 start = where[id(prev)][1] + where[id(prev)][2] - 1
             chain_of[id(x)] = chain_of[id(loop)]
+        elif param_root and chains and (isinstance(prev, A.Param) or _first_write(tr, x, sym)):
+            chain_of[id(x)] = 0  # (another arm of an if: the parameter's chain again)
+            chains[0]["roots"].add(id(x))
+            ops, start = chains[0]["ops"], -1
         elif prev is None or param_root and isinstance(prev, A.Param):
             if not param_root and not _varying_start(tr, x, sym):
                 continue
@@ -660,7 +784,8 @@ def _chains(tr: FoldEngine, facts: Any, sym: Any, ws: list, param_root: bool) ->
         if isinstance(x, A.For):
             body: list = []
             loop_ops[id(x)] = body
-            ops.append(Loop(start, loop_count(tr, x), body, _phi_after(tr, x, sym)))
+            copies = 1 if first_copy_loop(tr, x, sym) else loop_count(tr, x)
+            ops.append(Loop(start, copies, body, _phi_after(tr, x, sym) or copies == 1))
         elif isinstance(x, A.Call):
             program = _callee_program(tr, x)
             for op in program.ops:  # (the callee's ops, its entry the value here)
@@ -696,7 +821,10 @@ def _owner(loops: list, prev: Any) -> Any:
 
 
 def loop_count(tr: FoldEngine, loop: Any) -> int:
-    """How many copies NIR makes of an unrolled loop (loop_unroll.trip_count)."""
+    """How many copies NIR makes of an unrolled loop (loop_unroll.trip_count), one for a
+    :func:`first_copy_loop` (the copies its chain takes)."""
+    if any(id(loop) in loops for loops in tr.fold_state.sum_first.values()):
+        return 1
     count = trip_count(tr, loop)
     assert count is not None  # (an unrolled loop)
     return count
@@ -747,6 +875,43 @@ def sum_entry(tr: FoldEngine, node: Any) -> Entry | None:
     return chain_plan(tr).get(id(node))
 
 
+def later_entry(tr: FoldEngine, node: Any) -> tuple[Any, Entry | None] | None:
+    """For a step or call in a :func:`first_copy_loop` (whose :func:`sum_entry` or
+    :func:`param_step` is its first pass's): (the loop, the :class:`Entry` of the passes after
+    the first, None where they compute as written); else None. In those passes the variable
+    is a phi at the top of the pass, and the chains start afresh from it (the plan made as if
+    NIR kept the loop; its chain numbers are negative, apart from the first pass's)."""
+    if tr.fn is None or current_function(tr).sym is None:
+        return None
+    fn = current_function(tr).sym
+    facts = function_facts(tr)
+    if not facts.ok or id(node) not in facts.enter:
+        return None
+    step = call_step(tr, node) if isinstance(node, A.Call) else chain_step(tr, node)
+    if step is None:
+        return None
+    loops = tr.fold_state.sum_first.get(id(fn), {})
+    loop = next((lp for lp in facts.enclosing_loops(node) if id(lp) in loops), None)
+    if loop is None:
+        return None
+    cache = tr.fold_state.sum_later_plans
+    if id(fn) not in cache:
+        main = tr.fold_state.sum_plans.pop(id(fn), None)
+        tr.fold_state.sum_later = True
+        try:
+            plan = chain_plan(tr)
+        finally:
+            tr.fold_state.sum_later = False
+            if main is not None:
+                tr.fold_state.sum_plans[id(fn)] = main
+            else:
+                tr.fold_state.sum_plans.pop(id(fn), None)
+        for entry in plan.values():
+            entry.chain = -entry.chain
+        cache[id(fn)] = plan
+    return loop, cache[id(fn)].get(id(node))
+
+
 def indexed_loop(tr: FoldEngine, loop: Any) -> bool:
     """Some step in the unrolled `loop` has a K per copy, or a read merges a constant per copy
     (loop_copies.merging_loop): the engines count its passes."""
@@ -755,6 +920,8 @@ def indexed_loop(tr: FoldEngine, loop: Any) -> bool:
         return False
     if merging_loop(tr, loop):
         return True  # (a constant merged into another value in the first copy: loop_copies.py)
+    if id(loop) in tr.fold_state.sum_first.get(id(fn), {}):
+        return True  # (the first pass continues a chain, the later ones start afresh)
     if any(p.where.get(id(loop)) for p in chain_params(tr, fn).values()):
         return True
     return any(e.loop is loop and len(e.ks) > 1 for e in chain_plan(tr).values())

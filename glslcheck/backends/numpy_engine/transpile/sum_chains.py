@@ -17,6 +17,7 @@ from ...cpu_core.nir_fold.repeated_sums import (
     chain_params,
     chain_step,
     indexed_loop,
+    later_entry,
     param_step,
     sum_entry,
 )
@@ -45,14 +46,25 @@ def repeated_sum(tr: TranspilerState, e: A.Assignment, mask: str | None, old: st
     sign, k_node = step
     tk = tr.expr(k_node, mask)
     written = tr.binary_values(sign, tr.type_of(e.target), tr.type_of(k_node), old, tk)
-    own = param_step(tr, e)
-    if own is not None:  # (a chain parameter: the caller's base and K, or None)
-        b, k = f"_cb{own[0]}", f"_ck{own[0]}"
-        return f"(({b} + {k}[{slot_code(tr, own)}]) if rt.lp and {k} is not None else {written})"
-    entry = sum_entry(tr, e)
+    later = later_entry(tr, e)
+    first = _step_code(tr, e, sum_entry(tr, e), old, written)
+    if later is None:
+        return first
+    rest = _step_code(tr, e, later[1], old, written, own=False)
+    return f"(({first or written}) if {tr.fold_state.sum_index[id(later[0])]} == 0 else {rest})"
+
+
+def _step_code(
+    tr: TranspilerState, e: Any, entry: Entry | None, old: str, written: str, own: bool = True
+) -> str | None:
+    """A step's ``base + K`` from a chain parameter's caller (`own`) or from `entry`."""
+    mine = param_step(tr, e) if own else None
+    if mine is not None:  # (a chain parameter: the caller's base and K, or None)
+        b, k = f"_cb{mine[0]}", f"_ck{mine[0]}"
+        return f"(({b} + {k}[{slot_code(tr, mine)}]) if rt.lp and {k} is not None else {written})"
     base = _base(tr, entry, old)
     if entry is None or base is None:
-        return None
+        return None if own else written
     k = _k_code(tr, entry, [_vector(tr, ks) for ks in entry.ks])
     return f"(({base} + {k}) if rt.lp else {written})"
 
@@ -89,12 +101,28 @@ def chain_call_args(
     order: the base and ``(K1, K2, ...)`` where the call continues or starts a chain of the
     caller (or passes on the caller's own chain parameter), None and None where it does not
     (the callee computes as written). `args`: the code of each inout argument's value."""
+    later = later_entry(tr, call)
+    first = _call_args(tr, call, fn, args, sum_entry(tr, call), True)
+    if later is None:
+        return first
+    rest = _call_args(tr, call, fn, args, later[1], False)
+    ix = tr.fold_state.sum_index[id(later[0])]
+    return [f"({a} if {ix} == 0 else {b})" for a, b in zip(first, rest)]
+
+
+def _call_args(
+    tr: TranspilerState,
+    call: A.Call,
+    fn: Symbol,
+    args: dict[int, str],
+    entry: Entry | None,
+    own_chain: bool,
+) -> list[str]:
     out = []
     for i in sorted(chain_params(tr, fn)):
-        entry = sum_entry(tr, call)
         step = call_step(tr, call)
         mine = step is not None and step[0] == i
-        own = param_step(tr, call) if mine else None
+        own = param_step(tr, call) if mine and own_chain else None
         if own is not None:
             j, a, n = own[0], slot_code(tr, own), own[4]
             out += [f"_cb{j}", f"(None if _ck{j} is None else _ck{j}[{a}:{a} + {n}])"]
