@@ -7,7 +7,9 @@ into one, ``s0 + K``, in an order sum_order.py simulates (not simply left to rig
 runs while each step's previous write reaches it alone (analysis.dataflow: it runs before on
 every path, nothing writes the variable in between), so it restarts at the top of a loop NIR
 keeps and after the join of a branch that writes the variable (a phi to NIR), and not from a
-constant (NIR folds those step by step, as written).
+constant (NIR folds those step by step, as written). A write in the other arm of an ``if``
+around a step is on no path to it: a step in the else arm continues the chain before the
+``if`` as one in the then arm does.
 
 NIR inlines every call first, so a chain runs through a call that passes the variable (a
 local or a global) to an ``inout`` parameter, or a global the callee writes, that the callee
@@ -142,14 +144,20 @@ def _writes_global(tr: FoldEngine, fn: Symbol, sym: Any) -> bool:
 def _written_between(tr: FoldEngine, facts: Any, a: Any, b: Any, sym: Any) -> bool:
     """`sym` may be written after `a` and before `b` (analysis.dataflow's question; for a global
     only the calls that write it count, not every call)."""
-    if sym.kind != "global":
+    here = facts.region[id(b)]
+    sibling = any(_other_arm(facts.region[id(w.node)], here) for w in _writes(tr, facts, sym))
+    if sym.kind != "global" and not sibling:
         return facts.written_between(a, b, [sym])
     spans = [(facts.exit[id(a)], facts.enter[id(b)])]
     around_a = {id(lp) for lp in facts.enclosing_loops(a)}
     for loop in facts.enclosing_loops(b):
         if id(loop) not in around_a:
             spans.append((facts.enter[id(loop)], facts.exit[id(loop)]))
-    return any(lo < w.pos < hi for w in _writes(tr, facts, sym) for lo, hi in spans)
+    return any(
+        lo < w.pos < hi and not _other_arm(facts.region[id(w.node)], here)
+        for w in _writes(tr, facts, sym)
+        for lo, hi in spans
+    )  # (a write in another arm of an ``if`` around b is on no path to it)
 
 
 def _reads(tr: FoldEngine, node: Any, sym: Any) -> bool:
@@ -165,7 +173,12 @@ def _previous_step(tr: FoldEngine, e: Any, sym: Any) -> Any:
     facts = function_facts(tr)
     if not facts.ok or id(e) not in facts.enter:
         return None  # (a node of an inlined body: another function's)
-    before = [w for w in _writes(tr, facts, sym) if w.pos < facts.enter[id(e)]]
+    here = facts.region[id(e)]
+    before = [
+        w
+        for w in _writes(tr, facts, sym)
+        if w.pos < facts.enter[id(e)] and not _other_arm(facts.region[id(w.node)], here)
+    ]  # (a write in the other arm of an ``if`` around e is on no path to e)
     loops = [lp for lp in facts.enclosing_loops(e) if unrolled_chain(tr, lp, sym)]
     if loops and not any(facts.contains(loops[-1].body, w.node) for w in before):
         return loops[-1]  # (the first write of the body: its chain starts at the loop's phi)
@@ -191,6 +204,14 @@ def _previous_step(tr: FoldEngine, e: Any, sym: Any) -> Any:
     if _written_between(tr, facts, w.node, e, sym):
         return None
     return w.node
+
+
+def _other_arm(region: tuple, here: tuple) -> bool:
+    """`region` is inside another arm of an ``if`` (a ``switch``) that `here` is inside."""
+    for a, b in zip(region, here):
+        if a != b:
+            return a[0] == b[0]
+    return False
 
 
 def _leaves(loop: Any) -> bool:
