@@ -38,8 +38,10 @@ keeps restarts the chain at every pass, 14,400 that way, 7,056 as one chain (7,0
 global). Writes in arms of an ``if`` (IN_ARMS): a callee advancing the seed in an arm after an
 unrolled loop of its own merged 14,400, stepwise 303, the step after the call restarted at the
 phi 14,400, continued 10,616; three passes of a loop calling a callee that writes in arms, the
-first copy continuing the chain 14,400, restarting it 6,651. Written for llvmpipe of Mesa 22.3
-(the `llvmpipe` fixture skips elsewhere).
+first copy continuing the chain 14,400, restarting it 6,651. A call in each arm of the caller's
+``if`` (CALLER_ARMS) continues the chain from before the ``if`` in both arms, 14,400 that way,
+10,179 with the else arm restarting; a call in the else arm alone, 14,400 against 10,216.
+Written for llvmpipe of Mesa 22.3 (the `llvmpipe` fixture skips elsewhere).
 """
 
 from __future__ import annotations
@@ -292,6 +294,31 @@ BRANCHED_CALLEES = {
             1: (
                 lambda s: np.where(s < 20.0, (s + K) + K2, s + K),
                 lambda s: np.where(s < 20.0, _merged(s, 3), s + K),
+            )
+        },
+    ),
+}
+# A call in an arm of the caller's ``if``: the arm is dominated by the chain before the ``if``
+# (not by the other arm), so inlined, the call continues it in either arm.
+CALLER_ARMS = {
+    "a_call_in_each_arm": (
+        "hash2(seed); float r;"
+        " if (s0 < 20.0) r = hash2(seed).y; else r = hash2(seed).x * 2.0;"
+        " c = vec4(s0, r, 0.0, 1.0);",
+        {
+            1: (
+                lambda s: np.where(s < 20.0, _merged(s, 4), (_merged(s, 2) + K) * 2.0),
+                lambda s: np.where(s < 20.0, _merged(s, 4), _merged(s, 3) * 2.0),
+            )
+        },
+    ),
+    "a_call_in_the_else_arm": (
+        "hash2(seed); float r = 0.0; if (s0 < 20.0) r = seed; else r = hash2(seed).y;"
+        " c = vec4(s0, r, 0.0, 1.0);",
+        {
+            1: (
+                lambda s: np.where(s < 20.0, _merged(s, 2), _merged(s, 2) + K2),
+                lambda s: np.where(s < 20.0, _merged(s, 2), _merged(s, 4)),
             )
         },
     ),
@@ -551,6 +578,7 @@ MEASURED = {
     **BRANCHED_THIRD_COPY,
     **BRANCHED_CALLEES,
     **IN_ARMS,
+    **CALLER_ARMS,
 }
 
 
@@ -574,7 +602,13 @@ def test_numpy_merges_the_constants_of_a_repeated_sum_as_mesa(
     renders_as_llvmpipe(make_shader(HEAD + SHAPES[name][0] + "\n}"), name=name, frame=0)
 
 
-FOLLOWED = {**THROUGH_CALLS, **UNROLLED_BODIES, **BRANCHED_CALLS, **BRANCHED_CALLEES}
+FOLLOWED = {
+    **THROUGH_CALLS,
+    **UNROLLED_BODIES,
+    **BRANCHED_CALLS,
+    **BRANCHED_CALLEES,
+    **CALLER_ARMS,
+}
 
 
 @pytest.mark.parametrize("name", sorted(FOLLOWED))
@@ -624,13 +658,15 @@ def test_compiled_merges_the_constants_of_a_global_argument_as_mesa(
 
 
 @pytest.mark.parametrize("lanes", [0, 8])
-@pytest.mark.parametrize("name", sorted(BRANCHED_CALLS) + sorted(BRANCHED_CALLEES))
-def test_compiled_follows_a_call_in_an_unrolled_branch_as_mesa(
-    llvmpipe, numba, make_shader, name, lanes
-):
+@pytest.mark.parametrize(
+    "name", sorted(BRANCHED_CALLS) + sorted(BRANCHED_CALLEES) + sorted(CALLER_ARMS)
+)
+def test_compiled_follows_a_call_in_a_branch_as_mesa(llvmpipe, numba, make_shader, name, lanes):
     from glslcheck.backends.compiled_engine.engine import CompiledProgram, generate
 
-    shader = make_shader(_text(name, {**BRANCHED_CALLS, **BRANCHED_CALLEES}[name][0]))
+    shader = make_shader(
+        _text(name, {**BRANCHED_CALLS, **BRANCHED_CALLEES, **CALLER_ARMS}[name][0])
+    )
     want = render(shader, "gl", frame=0)
     got = CompiledProgram(*generate(shader, lanes=lanes)).render(size=SIZE, time=0.0, frame=0)
     assert_same(got, want, what=f"{name}, lanes {lanes}", names=("compiled", "llvmpipe"))

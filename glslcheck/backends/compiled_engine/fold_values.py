@@ -33,6 +33,7 @@ COPIED = frozenset(
         "factoring",
         "exp_log",
         "constant_merge",
+        "constant_components",
         "components",
         "compound",
         "sink",

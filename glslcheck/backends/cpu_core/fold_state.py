@@ -27,6 +27,8 @@ class FoldState:
     components: dict = field(default_factory=dict)  # component write -> its record
     component_locals: dict = field(default_factory=dict)  # function -> locals written per component
     component_reads: dict = field(default_factory=dict)  # function -> component reads
+    constant_components: dict = field(default_factory=dict)  # node -> a constructor in reach
+    component_inits: dict = field(default_factory=dict)  # function -> initializer -> declarator
     undo: dict = field(default_factory=dict)  # `+= e` -> the later `-= e` that cancels it
     kept_products: dict = field(default_factory=dict)  # `x *= b` -> (lines, its operands)
     sink_reads: dict = field(default_factory=dict)  # function -> reads a sunk constant goes through

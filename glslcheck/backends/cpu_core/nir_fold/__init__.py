@@ -12,6 +12,8 @@ The rules copied here, each measured bit for bit against llvmpipe on 50,000 rand
 - sink.py: constants sunk into a sum or a product used once, ``(a + b) + #c -> (a + #c) + b``;
 - squared_lengths.py: ``pow(length(x), 2.0) + #c`` is ``dot(x, x) + #c``, the constant inside;
 - constant_merge.py: ``#a * (b * #c) -> (a*c) * b`` and ``#a + (b + #c) -> (a + c) + b``;
+- constant_components.py: those merges, and the sink, where a vector constructor's constant
+  component takes part (``7.0 * normalize(vec3(x, y, -6.0))`` is ``-42.0 * rsq`` in z);
 - dot_constants.py: constants merged into a ``dot`` with a constant, ``dot(vecN(s), #K)`` factored;
 - exp_log.py: ``exp`` and ``log`` as Mesa's products, ``exp(x * #k)`` is ``exp2(x * (k*log2(e)))``;
 - ffma_split.py: ``(p1 + p2) + e`` returned through a folded call is ``(p1 + e) + p2`` (ffma);

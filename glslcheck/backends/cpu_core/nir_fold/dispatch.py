@@ -9,8 +9,9 @@ opaque values once inlined (queries.inlined_calls_only, inlined_results.py), the
 for any value; for a matrix operand, only constants merged into the matrix (ssa_values.py); for
 a sum or difference, a term joining the first of two products it is added to (product_sums.py:
 NIR rewrites the outer addition before the inner one is factored); for a sum, factoring
-(factoring.py) then the ffma split (ffma_split.py); then a log scaled by a
-constant (exp_log.py), constants merged (loop_copies.py, constant_merge.py, components.py,
+(factoring.py) then the ffma split (ffma_split.py); then a vector constructor's constant
+component in the constant rules (constant_components.py), a log scaled by a constant
+(exp_log.py), constants merged (loop_copies.py, constant_merge.py, components.py,
 compound_products.py) or sunk (smoothstep_products.py, sink.py); last, a product by a constant
 kept through a variable assigned again (ssa_values.py).
 
@@ -24,6 +25,7 @@ from __future__ import annotations
 from ....frontend import syntax as A
 from .components import merge_components
 from .compound_products import sunk_through_compound
+from .constant_components import component_constants
 from .constant_merge import merge_constants
 from .exp_log import log_scaled
 from .factoring import factor
@@ -56,6 +58,7 @@ BINARY_RULES: tuple[tuple[str, Rule | None, str], ...] = (
     ("product_sums", product_sum, "sums"),
     ("factoring", factor, "sum"),
     ("ffma_split", None, "sum"),  # a sum of two products a folded call returns, a term added
+    ("constant_components", component_constants, "any"),
     ("exp_log", log_scaled, "any"),
     ("constant_merge", merged_copies, "any"),
     ("constant_merge", merge_constants, "any"),
