@@ -540,13 +540,7 @@ PATH_TRACERS = os.path.join(os.path.dirname(__file__), "..", "gl", "path_tracers
 
 
 @pytest.mark.parametrize(
-    "name",
-    [
-        "global_seed_sin_hash",
-        "inout_seed_bits_hash",
-        "global_seed_bits_hash",
-        "bounce_arms_sin_hash",
-    ],
+    "name", sorted(f[:-5] for f in os.listdir(PATH_TRACERS) if f.endswith(".glsl"))
 )
 def test_path_tracers_bit_for_bit(numba, name):
     """A seed advanced through calls and an unrolled bounce loop (a global, an inout

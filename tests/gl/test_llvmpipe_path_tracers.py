@@ -27,15 +27,11 @@ from glslcheck.verification.verify import verify
 HERE = Path(__file__).resolve().parent / "path_tracers"
 
 
-@pytest.mark.parametrize(
-    "name",
-    [
-        "global_seed_sin_hash",
-        "inout_seed_bits_hash",
-        "global_seed_bits_hash",
-        "bounce_arms_sin_hash",
-    ],
-)
+# every reproducer in the folder (tests/compiled/test_compiled_render.py renders the same ones)
+NAMES = sorted(p.stem for p in HERE.glob("*.glsl"))
+
+
+@pytest.mark.parametrize("name", NAMES)
 def test_path_tracer_matches_llvmpipe(llvmpipe, name):
     """Verify's frames (iTime 0 and 1.3, iFrame 60, mouse down) match with no pixel over the
     tolerance (about a thousand differed while the chains were not followed)."""

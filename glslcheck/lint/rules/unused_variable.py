@@ -274,10 +274,10 @@ def _overwritten(fn, reads: set[int]) -> Iterator[Diagnostic]:
     positions = None
     for sym_id, writes in fn.writes.items():
         sym = writes[0].symbol
-        if sym.kind == "param":  # (an out parameter is never read: its last value is the result)
-            pass
-        elif sym.kind != "local" or sym_id not in reads:
-            continue  # a variable never read at all is reported as unused
+        # a local never read at all is reported as unused; a parameter's last value is the
+        # result its caller sees, read or not
+        if sym.kind != "param" and (sym.kind != "local" or sym_id not in reads):
+            continue
         whole = sorted(
             [w for w in writes if w.kind in ("=", "init")] + _out_writes(fn, sym),
             key=lambda w: w.pos,
