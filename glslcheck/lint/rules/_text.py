@@ -31,19 +31,6 @@ def negative_reason(fn: FunctionFacts, e: A.Expr) -> str | None:
     )
 
 
-def compared_calls(model: Model, path: str, *names: str) -> Iterator[tuple[A.Call, A.Expr, str]]:
-    """Every side of a comparison (`<`, `<=`, `>`, `>=`) in the file `path` that calls one of the
-    built-in functions `names`: (the call, the other side, the operator read with the call on
-    the left: `r > length(v)` gives `<`)."""
-    for fn in program_facts(model).in_file(path):
-        for node in fn.nodes:
-            if type(node) is not A.Binary or node.op not in COMPARISONS:
-                continue
-            for side, other in ((node.left, node.right), (node.right, node.left)):
-                if type(side) is A.Call and builtin_call(model, side, *names):
-                    yield side, other, node.op if side is node.left else FLIPPED[node.op]
-
-
 def _compared(fn, e) -> tuple[Any, str] | None:
     """(the other side, the operator read with `e` on the left) when `e` is a side of a
     comparison or an argument of step(), the comparison it makes (`step(edge, x)` is
@@ -58,32 +45,87 @@ def _compared(fn, e) -> tuple[Any, str] | None:
 
 def compared_values(
     model: Model, path: str, *names: str
-) -> Iterator[tuple[A.Call, A.Expr, str, bool]]:
+) -> Iterator[tuple[A.Call, A.Expr, str, str]]:
     """Every call of one of the built-in functions `names` computed only to be compared, in the
     file `path`: a side of a comparison or of a step(), directly (`length(v) < r`, `step(r,
-    length(v))`), or through a local it initializes and that is never written again, every read
-    of which is such a side (`float d = length(v); ... step(r, d)`). (The call, the other side of
-    its first comparison, the operator read with the call on the left, whether directly.)"""
+    length(v))`), through a local that holds it and is written nowhere else, every read of which
+    is such a side (`float d = length(v); ... step(r, d)`), or returned by a user function every
+    call of which is only compared so (`float mag(vec3 c) { return sqrt(...); } ... if (mag(c)
+    > x)`). (The call, the other side of its first comparison, the operator read with the
+    call on the left, how: "" directly, "local", or the name of the function returning it.)"""
     for fn in program_facts(model).in_file(path):
         for node in fn.nodes:
             if type(node) is A.Call and builtin_call(model, node, *names):
-                found = _compared(fn, node)
+                found = _only_compared(fn, node, True)
                 if found is not None:
-                    yield node, found[0], found[1], True
-            elif type(node) is A.Declarator and type(node.init) is A.Call:
-                if not builtin_call(model, node.init, *names):
-                    continue
-                sym = model.symbol_of(node)
-                if sym is None or len(fn.writes_to(sym)) != 1:
-                    continue
-                reads = [
-                    n for n in fn.nodes if type(n) is A.Identifier and model.symbol_of(n) is sym
-                ]
-                sides = [_compared(fn, r) for r in reads]
-                if reads and all(x is not None for x in sides):
-                    first = sides[0]
-                    assert first is not None
-                    yield node.init, first[0], first[1], False
+                    yield (node, *found)
+
+
+def _only_compared(fn, e, through_calls: bool) -> tuple[Any, str, str] | None:
+    """(the other side of the first comparison, the operator, how) when the value of `e` is only
+    ever compared (see compared_values); None otherwise. `through_calls`: a returned value may
+    be compared by the function's callers."""
+    direct = _compared(fn, e)
+    if direct is not None:
+        return (*direct, "")
+    up = fn.parent.get(id(e))
+    if type(up) is A.Return and through_calls:
+        return _compared_by_callers(fn)
+    sym = None
+    if type(up) is A.Declarator and up.init is e:
+        sym = fn.model.symbol_of(up)
+    elif type(up) is A.Assignment and up.op == "=" and up.value is e:
+        if type(up.target) is A.Identifier:
+            sym = fn.model.symbol_of(up.target)
+    if sym is None or sym.kind != "local":
+        return None
+    if [w.node for w in fn.writes_to(sym) if w.kind != "decl"] != [up]:
+        return None
+    target = up.target if type(up) is A.Assignment else None
+    reads = [
+        n
+        for n in fn.nodes
+        if type(n) is A.Identifier and n is not target and fn.model.symbol_of(n) is sym
+    ]
+    first = None  # (nothing read: the unused-variable rule's)
+    for r in reads:
+        side = _compared(fn, r)
+        if side is not None:
+            found: tuple[Any, str, str] | None = (*side, "local")
+        elif through_calls and type(fn.parent.get(id(r))) is A.Return:
+            found = _compared_by_callers(fn)
+        else:
+            return None
+        if found is None:
+            return None
+        first = first or found
+    return first
+
+
+def _compared_by_callers(fn) -> tuple[Any, str, str] | None:
+    """(other side, operator, the function's name) of its first call when every call of the
+    user function `fn` is only compared, directly or through a local; None otherwise."""
+    if fn.symbol is None or fn.symbol.name == "mainImage":
+        return None
+    sites = program_facts(fn.model).call_sites(fn.symbol)
+    first = None
+    for caller, call in sites:
+        found = _only_compared(caller, call, False)
+        if found is None:
+            return None
+        first = first or found
+    return None if first is None else (first[0], first[1], fn.symbol.name)
+
+
+def kept(via: str, other: A.Expr) -> str:
+    """How compared_values' value reaches its comparison, for a message: "" when directly."""
+    if via == "local":
+        return ", its value kept in a local that is only compared"
+    if via:
+        return (
+            f", returned by {via}() whose every call is only compared (as at line {other.loc.line})"
+        )
+    return ""
 
 
 def text(e: Any) -> str:

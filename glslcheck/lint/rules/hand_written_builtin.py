@@ -15,8 +15,10 @@ Reports arithmetic that spells out what one built-in function computes on whole 
 - an average of a vector's components, `(c.r + c.g + c.b) / 3.0` (`dot(c.rgb, vec3(1.0 / 3.0))`).
 
 Each sum is one finding however long; a length written out is one finding at its `sqrt`, not
-a second one for the dot product inside it. The components must be distinct components of the
-same vectors, every term of the sum taking part: `v.x * v.x + 1.0` is not a squared length.
+a second one for the dot product inside it, and none when the `sqrt` is only compared with a
+bound (sqrt-comparison's finding: compare the sum itself). The components must be distinct
+components of the same vectors, every term of the sum taking part: `v.x * v.x + 1.0` is not a
+squared length.
 
 A possible deduction: a TA may count the hand-written form as an inefficient method, or as a
 matter of style (the compiler may emit the same instructions for both).
@@ -47,7 +49,7 @@ from __future__ import annotations
 from ...base.diagnostics import Diagnostic
 from ...frontend import syntax as A
 from ...semantics.analysis import numbers, program_facts
-from ._text import text, wrap
+from ._text import compared_values, text, wrap
 
 TYPE_CHECKING = False  # not typing's: importing typing costs every start-up
 if TYPE_CHECKING:
@@ -67,6 +69,10 @@ _SETS = ("xyzw", "rgba", "stpq")
 
 
 def check(ctx: LintContext) -> Iterator[Diagnostic]:
+    if ctx.model is None:  # (no semantic model: no function has facts)
+        return
+    # a square root only compared is sqrt-comparison's one deduction, the sum inside it too
+    compared = {id(c) for c, *_ in compared_values(ctx.model, ctx.path, "sqrt")}
     for fn in program_facts(ctx.model).in_file(ctx.path):
         model = fn.model
         found = []
@@ -77,6 +83,7 @@ def check(ctx: LintContext) -> Iterator[Diagnostic]:
                     found.append((n, what))
         # the largest form only: a length's dot product, a longer sum's first terms are in it
         inside = {id(k) for n, _ in found for k in n.walk() if k is not n}
+        inside |= {id(k) for n, _ in found if id(n) in compared for k in n.walk()}
         for n, (message, help) in found:
             if id(n) not in inside:
                 yield Diagnostic(message, n.loc, help=help)

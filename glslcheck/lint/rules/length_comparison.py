@@ -31,7 +31,7 @@ from __future__ import annotations
 
 from ..fixes import Fix, Fixable
 from ..fixes.build import declare_before, facts_of, fit, name_hint, node_text, operand_text, replace
-from ._text import compared_values, is_atom, squared, squared_bound, text
+from ._text import compared_values, is_atom, kept, squared, squared_bound, text
 
 TYPE_CHECKING = False  # not typing's: importing typing costs every start-up
 if TYPE_CHECKING:
@@ -51,7 +51,7 @@ def check(ctx: LintContext) -> Iterator[Diagnostic]:
     model = ctx.model
     if model is None:  # (no semantic model: no function has facts)
         return
-    for side, other, op, direct in compared_values(model, ctx.path, "length", "distance"):
+    for side, other, op, via in compared_values(model, ctx.path, "length", "distance"):
         bound = squared(model, other)
         if side.callee == "length":
             v = text(side.args[0])
@@ -59,12 +59,12 @@ def check(ctx: LintContext) -> Iterator[Diagnostic]:
         else:
             a, b = text(side.args[0]), text(side.args[1])
             fix = f"compare the squared distance: with d = {a} - {b}, dot(d, d) {op} {bound}"
-        kept = "" if direct else ", its value kept in a local that is only compared"
         yield Fixable(
-            f"{side.callee}() is compared with a bound{kept}: its square root is not needed",
+            f"{side.callee}() is compared with a bound{kept(via, other)}: its square root is not "
+            "needed",
             side.loc,
             help=fix,
-            fix=_fix(ctx, side, other) if direct else None,
+            fix=None if via else _fix(ctx, side, other),
         )
 
 

@@ -1,7 +1,10 @@
 """A square root is computed only to be compared with a bound.
 
 ## What it does
-Reports `sqrt(x)` used directly as an operand of `<`, `<=`, `>` or `>=`.
+Reports `sqrt(x)` computed only to be an operand of `<`, `<=`, `>` or `>=`: directly, through
+a local that holds it and is only compared, or returned by a function every call of which is
+only compared (`float brightness(vec3 c) { return sqrt(dot(c, c)); }` read only as
+`brightness(c) > 0.5`). The fix, for a direct comparison, squares both sides.
 
 ## Why is this bad?
 The course's coding standards: "Use the most efficient methods (-1 per inefficient/unnecessary
@@ -24,7 +27,7 @@ from __future__ import annotations
 
 from ..fixes import Fix, Fixable
 from ..fixes.build import facts_of, fit, node_text, precedence, replace
-from ._text import compared_calls, squared, squared_bound, text
+from ._text import compared_values, kept, squared, squared_bound, text
 
 TYPE_CHECKING = False  # not typing's: importing typing costs every start-up
 if TYPE_CHECKING:
@@ -44,13 +47,14 @@ def check(ctx: LintContext) -> Iterator[Diagnostic]:
     model = ctx.model
     if model is None:  # (no semantic model: no function has facts)
         return
-    for side, other, op in compared_calls(model, ctx.path, "sqrt"):
+    for side, other, op, via in compared_values(model, ctx.path, "sqrt"):
         x, bound = text(side.args[0]), squared(model, other)
         yield Fixable(
-            "sqrt() is compared with a bound: compare its argument with the squared bound",
+            f"sqrt() is compared with a bound{kept(via, other)}: compare its argument with the "
+            "squared bound",
             side.loc,
             help=f"write {x} {op} {bound} (for a bound >= 0)",
-            fix=_fix(ctx, side, other),
+            fix=None if via else _fix(ctx, side, other),
         )
 
 
