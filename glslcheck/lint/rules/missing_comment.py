@@ -73,7 +73,8 @@ anywhere is one run from its signature to its last line: the one ambiguous block
 deducts once. But in a mostly uncommented file (more than three quarters of its code lines in
 uncovered runs) the blank lines are the only sections the student marks: there a blank line
 inside a body ends a run too, in a function with no comment as in any other, and each group is
-a deduction of its own.
+a deduction of its own; in a function with no comment the close of an inner block does not
+(`if (a) { ... }` then `if (b) { ... }` with no blank line between: one group).
 
 A run is a certain deduction, except where the readings of the rubric part (a possible one):
 - the code of a section below its heading, parted from it by a blank line, when the heading is
@@ -596,8 +597,14 @@ class _Reader:
                 self.end_function()
                 self.adjacent_definitions()
                 self.closed_at = self.number
-            elif not self.else_follows(line):
+            elif not self.else_follows(line) and not self.bare_sections():
                 self.close_run()  # the block the run was in ends (`} else {` goes on)
+
+    def bare_sections(self) -> bool:
+        """Whether a mostly uncommented file's function with no comment so far is being read:
+        there only blank lines part its runs, not the blocks inside it."""
+        f = self.function
+        return self.sections and f is not None and not f["explained"] and not f["inner"]
 
     def open_blocks(self, opened: int, rest: str = "") -> None:
         """Open `opened` blocks of the statement just read (a struct, a function or other);
