@@ -32,6 +32,10 @@ before anything reads it (`dir = target - origin; calcRay(dir, ...);` with
 `calcRay(out vec4 dir, ...)`). A parameter's value written over so is one too, whatever it is
 but a constant (a default): `fragColor = vec4(d, d, d, 1.0);` left above the final
 `fragColor = ...;`, the shader's output computed twice.
+So is a value, not a constant, that the statements after it in its block replace on every
+path before anything reads it: an `if` whose arms both assign the whole variable (`vec3 col =
+randColOne; if (c) { col = randColTwo; } else { col = randColOne; }`), or a copy the next
+assignment replaces. A loop or a jump after it ends the search (no finding).
 
 Likewise a possible deduction: a value assigned to a local (or to an `in` parameter, the
 function's own copy) that nothing after it reads, a compound update (`uv *= 0.25;`) included,
@@ -229,7 +233,9 @@ def check(ctx: LintContext) -> Iterator[Diagnostic]:
                 else:
                     found.extend(_unused(ctx, model, n, reads, "local", fn))
         yield from _with_typed_in(found, typed)
-        yield from _overwritten(fn, reads)
+        reported: set[int] = set()
+        yield from _overwritten(fn, reads, reported)
+        yield from _replaced_on_every_path(fn, reads, reported)
         yield from _dead_stores(fn, reads)
         yield from _dead_calls(fn)
 
@@ -267,7 +273,7 @@ def _out_writes(fn, sym) -> list[int]:
     return found
 
 
-def _overwritten(fn, reads: set[int]) -> Iterator[Diagnostic]:
+def _overwritten(fn, reads: set[int], reported: set[int]) -> Iterator[Diagnostic]:
     """A local's computed value (a parameter's value not constant) that the next statement
     writing the variable replaces, in the same block, before anything reads it (`d = a - b;
     calc(d);` with `calc(out vec4 d)`; `fragColor = a; fragColor = b;`)."""
@@ -297,6 +303,7 @@ def _overwritten(fn, reads: set[int]) -> Iterator[Diagnostic]:
             i = bisect_right(read_at, first.pos)
             if i < len(read_at) and read_at[i] < then.pos:
                 continue
+            reported.add(id(first.node))
             how = (
                 f"{then.node.callee}()'s out parameter"
                 if type(then.node) is A.Call
@@ -309,6 +316,92 @@ def _overwritten(fn, reads: set[int]) -> Iterator[Diagnostic]:
                 help=f"remove this computation, or use '{sym.name}' before it is replaced",
                 notes=[Diagnostic("replaced here", then.node.loc, severity="note")],
             )
+
+
+def _replaced_on_every_path(fn, reads: set[int], reported: set[int]) -> Iterator[Diagnostic]:
+    """A variable's value, not a constant, that the statements after it in its block replace
+    whole on every path before anything reads it: an `if` whose arms both assign it (`col =
+    a; if (c) col = b; else col = a;`), or a copy of another variable the next assignment
+    replaces (`vec3 col = base; col = shade(p);`)."""
+    for writes in fn.writes.values():
+        sym = writes[0].symbol
+        if sym.kind not in ("local", "param") or (sym.kind == "local" and id(sym) not in reads):
+            continue
+        for w in writes:
+            if w.kind not in ("=", "init") or w.value is None or id(w.node) in reported:
+                continue
+            if fn.model.is_constant(w.value) or fn.is_dead(w.node) or _in_loop(fn, w.node):
+                continue
+            if not fn.is_pure(w.value):
+                continue  # (a call writing something else is wanted for that)
+            stmt = fn.parent.get(id(w.node))
+            if type(stmt) is A.VariableDeclaration:
+                stmt = fn.parent.get(id(stmt))
+            block = fn.parent.get(id(stmt))
+            if type(block) is not A.Compound:
+                continue
+            at = next(i for i, x in enumerate(block.stmts) if x is stmt)
+            fate, by = _fate(fn, block.stmts[at + 1 :], sym)
+            if fate != "replaced" or not by:
+                continue
+            arms = " on every path" if len(by) > 1 else ""
+            yield Diagnostic(
+                f"the value given to '{sym.name}' here is never read: {at_lines(by)} "
+                f"replace{'' if len(by) > 1 else 's'} it first{arms}",
+                w.value.loc,
+                help=f"remove this assignment, or use '{sym.name}' before it is replaced",
+                notes=[Diagnostic("replaced here", b.loc, severity="note") for b in by],
+            )
+
+
+def _fate(fn, stmts: list, sym) -> tuple[str, list]:
+    """What the statements `stmts`, run in order, do first with the variable `sym`: ("read",
+    []) when a path may read it (or anything the reading cannot follow: a loop, a jump that
+    mentions it or leaves), ("replaced", the assignments) when every path assigns it whole
+    first, ("none", the assignments of the paths that do) when some path does neither."""
+    by: list = []
+    for st in stmts:
+        if type(st) is A.Compound:
+            fate, found = _fate(fn, st.stmts, sym)
+        elif type(st) is A.If:
+            if _mentions(fn, st.cond, sym):
+                return "read", []
+            fate, found = _fate(fn, _body(st.then), sym)
+            if fate != "read":
+                other, more = _fate(fn, _body(st.else_), sym)
+                found = found + more
+                fate = "read" if other == "read" else fate if fate == other else "none"
+        elif type(st) is A.ExpressionStatement:
+            e = st.expr
+            if (
+                type(e) is A.Assignment
+                and e.op == "="
+                and type(e.target) is A.Identifier
+                and fn.model.symbol_of(e.target) is sym
+            ):
+                fate, found = ("read", []) if _mentions(fn, e.value, sym) else ("replaced", [e])
+            else:
+                fate, found = (
+                    ("read", []) if e is not None and _mentions(fn, e, sym) else ("none", [])
+                )
+        elif type(st) is A.DeclarationStatement:
+            fate, found = ("read", []) if _mentions(fn, st, sym) else ("none", [])
+        else:  # a loop, a switch, a jump: not followed
+            return "read", []
+        if fate == "read":
+            return "read", []
+        by += found
+        if fate == "replaced":
+            return "replaced", by
+    return "none", by
+
+
+def _body(st) -> list:
+    return [] if st is None else st.stmts if type(st) is A.Compound else [st]
+
+
+def _mentions(fn, node, sym) -> bool:
+    return any(type(n) is A.Identifier and fn.model.symbol_of(n) is sym for n in node.walk())
 
 
 def _dead_stores(fn, reads: set[int]) -> Iterator[Diagnostic]:
