@@ -18,7 +18,8 @@ and shows the replacement:
   after the if runs exactly when the condition is false);
 * nested if/else statements whose arms each give one variable (or the result) such a value
   (`if (..) { if (..) c = red; else c = blue; } else ...`, an `else if` chain of returns ending
-  in an `else`): one finding at the outer if, with the mix of mixes;
+  in an `else`, or of assignments with no last `else`, which keeps the variable's value): one
+  finding at the outer if, with the mix of mixes;
 * arms that compute the same thing but for such values (`cos(8.0 * time + vec3(0, 2, 4))` or
   `cos(8.0 * time - vec3(4, 2, 0))`, `mix(a, b, x)` or `mix(a, b, 1.0 - x)`): the values are
   mixed and the rest, calls included, computed once (`cos(mix(..., ..., s))`), which the
@@ -27,8 +28,8 @@ and shows the replacement:
   and `1.0 -` of their steps), a step() result compared with 0.0 or 1.0 (the branch on a
   step value, which is the selector itself), and a parity compared with 0 or 1: `mod(n, 2.0)`
   of a whole number (floor(), float() of an int, their sums and products, a local holding
-  one: a checkerboard's `mod(floor(p.x) + floor(p.y), 2.0)`) is exactly 0.0 or 1.0 and is the
-  selector, and an int's `n % 2` is `float(n & 1)`;
+  one, its operands written since or not: a checkerboard's `mod(floor(p.x) + floor(p.y),
+  2.0)`) is exactly 0.0 or 1.0 and is the selector, and an int's `n % 2` is `float(n & 1)`;
 * `dot(d, n) < 0.0 ? n : -n` (the front-face normal of a ray tracer) -> `faceforward(n, d, n)`,
   which is `n` exactly when `dot(n, d) < 0.0`, else `-n`; also when the comparison is kept in
   a bool variable or field first (`rec.frontFace = dot(d, n) < 0.0;
@@ -531,7 +532,8 @@ def _parity(fn, e, depth: int) -> str | None:
     model = fn.model
     if type(e) is A.Identifier:
         sym = model.symbol_of(e)
-        reaching = fn.reaching_value(e, sym) if sym is not None and sym.kind == "local" else None
+        local = sym is not None and sym.kind == "local"
+        reaching = fn.reaching_value(e, sym, as_computed=True) if local else None
         if reaching is None or _parity(fn, reaching, depth + 1) is None:
             return None
         kind = model.type_of(e)
@@ -584,7 +586,7 @@ def _integral(fn, e, depth: int) -> bool:
         sym = model.symbol_of(e)
         if sym is None or sym.kind not in ("local", "param"):  # (a parameter written over)
             return False
-        reaching = fn.reaching_value(e, sym)
+        reaching = fn.reaching_value(e, sym, as_computed=True)
         return reaching is not None and _integral(fn, reaching, depth + 1)
     return False
 
@@ -636,14 +638,15 @@ def _arm(fn, stmt, target, nest: list, kinds: list) -> str | None:
     while type(stmt) is A.Compound and len(stmt.stmts) == 1:
         stmt = stmt.stmts[0]
     if type(stmt) is A.If:
-        if stmt.else_ is None:
+        if stmt.else_ is None and target is None:
             return None
         cmp = _comparison(fn, stmt.cond, "float")
         indicator, sense = _step(*cmp) if cmp is not None else (_indicator(fn, stmt.cond), True)
         if indicator is None:
             return None
         a = _arm(fn, stmt.then, target, nest, kinds)
-        b = _arm(fn, stmt.else_, target, nest, kinds)
+        # an inner if with no else keeps the variable's value (`else if (b) c = x;`)
+        b = text(target) if stmt.else_ is None else _arm(fn, stmt.else_, target, nest, kinds)
         if a is None or b is None:
             return None
         nest.append(stmt)

@@ -888,10 +888,12 @@ class FunctionFacts(ValueRanges):
             self._operands[i] = r
         return r
 
-    def reaching_value(self, ident: A.Identifier, sym: Symbol) -> Any:
+    def reaching_value(self, ident: A.Identifier, sym: Symbol, as_computed: bool = False) -> Any:
         """The expression last assigned to `sym` before `ident` when that assignment is on every
         path to it, no other write can reach it, it assigns the whole value and no variable the
-        expression reads is written in between (so it still has that value); else None."""
+        expression reads is written in between (so it still has that value); else None.
+        `as_computed`: the expression as it was computed then, its variables written since or
+        not (for what is true of any value it computes: an integer from `floor()`)."""
         pos = self.enter.get(id(ident))
         if pos is None:
             return None
@@ -907,7 +909,7 @@ class FunctionFacts(ValueRanges):
                 return None
         # `l = lengthSq(dp.xy); dp.xy = ...; use(l)`: l no longer equals its expression
         others = self.operands(last.value) - {sym}
-        if others and self.written_between(last.node, ident, others):
+        if others and not as_computed and self.written_between(last.node, ident, others):
             return None
         return last.value
 
