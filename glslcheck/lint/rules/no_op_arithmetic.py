@@ -13,6 +13,13 @@ far as the value analysis knows it (`abs(t)` of `t = fract(...)`, `max(d, 0.0)` 
 clamp(x, 0.2, 1.0)`, `fract(uv)` of `uv = fragCoord / iResolution.xy`, in [0, 1)): the call
 gives its argument back.
 
+Likewise a mod inside a mod by the same constant (`mod(p.x + mod(p.y, 2.0), 2.0)`, an int's
+`(x + y % 2) % 2`, or a local holding `x + y % 2` that is only ever taken `% 2`): the outer mod
+gives the same remainder without the inner one. And a float product that multiplies and
+divides by the same value (`columns / rows * rows`, `height * width / height`, or through a
+local holding a quotient: `ratio * height` with `ratio = width / height`): the two cancel (a
+quotient that cancels inside a local's own value is reported where the local is set).
+
 The same no-op written again in a function (`time * 1.0` in each of its returns) is one
 finding naming every place: one unnecessary practice.
 
@@ -48,6 +55,7 @@ from ._text import at_lines, text
 TYPE_CHECKING = False  # not typing's: importing typing costs every start-up
 if TYPE_CHECKING:
     from collections.abc import Iterator
+    from typing import Any
 
     from ..engine import LintContext
 
@@ -68,8 +76,14 @@ def check(ctx: LintContext) -> Iterator[Diagnostic]:
         # the same no-op written again in a function (`time * 1.0` in each of its returns) is one
         # unnecessary practice, as the rubric deducts it: one finding naming every place
         same: dict[tuple, list[tuple]] = {}  # (operator, the constant's values) -> places
+        reported: set[int] = set()  # inner mods found (a local's, through each of its reads)
         for n in fn.nodes:
             if fn.is_dead(n):
+                continue
+            inner = _inner_mod(fn, n)
+            if inner is not None and id(inner[0]) not in reported:
+                reported.add(id(inner[0]))
+                yield _inner_mod_finding(*inner)
                 continue
             if type(n) is A.Call and n.callee in _RANGED and len(n.args) == _RANGED[n.callee]:
                 why = _in_range(fn, n)
@@ -82,6 +96,10 @@ def check(ctx: LintContext) -> Iterator[Diagnostic]:
                         help=f"write {text(x)}",
                     )
                 continue
+            if _product_top(fn, n):
+                cancelled = _cancelled(fn, n)
+                if cancelled is not None:
+                    yield cancelled
             if type(n) is A.Binary and n.op in _IDENTITY:
                 found = _no_op(fn, n)
             elif type(n) is A.Assignment and n.op[:-1] in _IDENTITY:
@@ -153,6 +171,125 @@ def _in_range(fn, n: A.Call) -> str | None:
 
 def _num(v: float | None) -> str:
     return "?" if v is None else f"{v:g}"
+
+
+def _inner_mod(fn, n) -> tuple[Any, Any, Any] | None:
+    """(the inner mod, the outer, the local followed or None) when `n` is `mod(a + mod(b, m),
+    m)`, `(a + b % m) % m` or the same with `-`, the two `m` the same constant, directly or
+    through a local that holds `a + mod(b, m)` and is read only by such mods: the outer mod
+    gives the same parity (the same remainder) without the inner one."""
+    modulus = _modulus(fn, n)
+    if modulus is None:
+        return None
+    x, m = modulus
+    via = None
+    if type(x) is A.Identifier:
+        sym = fn.model.symbol_of(x)
+        if sym is None or sym.kind != "local":
+            return None
+        value = fn.reaching_value(x, sym)
+        reads = [r for r in fn.nodes if type(r) is A.Identifier and fn.model.symbol_of(r) is sym]
+        if value is None or any(_read_modulus(fn, r) != m for r in reads):
+            return None
+        x, via = value, x
+    if type(x) is not A.Binary or x.op not in ("+", "-"):
+        return None
+    for side in (x.left, x.right):
+        inner = _modulus(fn, side)
+        if inner is not None and inner[1] == m and fn.is_pure(side):
+            return side, n, via
+    return None
+
+
+def _modulus(fn, e) -> tuple[Any, list] | None:
+    """(the dividend, the constant modulus's values) of `mod(x, m)` or of an int `x % m`."""
+    model = fn.model
+    if type(e) is A.Call and e.callee == "mod" and len(e.args) == 2 and not e.constructor:
+        m = numbers(model.const_value(e.args[1]))
+        return (e.args[0], m) if m and getattr(model.type_of(e), "is_scalar", False) else None
+    if type(e) is A.Binary and e.op == "%":
+        m = numbers(model.const_value(e.right))
+        return (e.left, m) if m and getattr(model.type_of(e), "is_scalar", False) else None
+    return None
+
+
+def _read_modulus(fn, r) -> list | None:
+    """The modulus of the mod whose dividend is the read `r`, else None."""
+    up = fn.parent.get(id(r))
+    found = _modulus(fn, up) if up is not None else None
+    return found[1] if found is not None and found[0] is r else None
+
+
+def _inner_mod_finding(inner, outer, via) -> Diagnostic:
+    held = "" if via is None else f" (through '{text(via)}', only ever taken mod it)"
+    return Diagnostic(
+        f"'{text(inner)}' is needless: the outer '{text(outer)}'{held} gives the same "
+        "remainder without it",
+        inner.loc,
+        help=f"write {text(_modulus_dividend(inner))} in its place",
+    )
+
+
+def _modulus_dividend(e):
+    return e.args[0] if type(e) is A.Call else e.left
+
+
+def _product_top(fn, n) -> bool:
+    """Whether `n` is a float `*` or `/` that no other such operation contains."""
+    if type(n) is not A.Binary or n.op not in ("*", "/") or not _float_factor(fn, n):
+        return False
+    up = fn.parent.get(id(n))
+    return not (type(up) is A.Binary and up.op in ("*", "/") and _float_factor(fn, up))
+
+
+def _float_factor(fn, e) -> bool:
+    t = fn.model.type_of(e)
+    return getattr(t, "base", None) == "float" and (t.is_scalar or t.is_vector)
+
+
+def _cancelled(fn, n: A.Binary) -> Diagnostic | None:
+    """A float product that multiplies and divides by the same value (`columns / rows * rows`,
+    `height * width / height`, or through a local holding a quotient: `numHeight * ratio` with
+    `ratio = numWide / numHeight`): the two cancel."""
+    if fn.model.is_constant(n) or not fn.is_pure(n):
+        return None
+    num: list = []
+    den: list = []
+    via: list = []
+    _factors(fn, n, num, den, via, 0, None)
+    for d, d_from in den:
+        k = fn.key(d)
+        # (a pair both inside one local's value is that local's own finding, where it is set)
+        if any(fn.key(m) == k and (m_from is None or m_from is not d_from) for m, m_from in num):
+            held = "".join(f"; {text(v)} is {text(value)}" for v, value in via)
+            return Diagnostic(
+                f"'{text(n)}' multiplies and divides by {text(d)}{held}: the two cancel",
+                n.loc,
+                help=f"leave out both the factor {text(d)} and the division by it",
+            )
+    return None
+
+
+def _factors(fn, e, num: list, den: list, via: list, depth: int, held) -> None:
+    """Split the float product `e` into the factors it multiplies by (`num`) and divides by
+    (`den`), each with the local's value it was reached through (`held`, None: written in
+    `e`), through locals holding a product or a quotient (each added to `via`)."""
+    if depth < 8 and type(e) is A.Binary and e.op in ("*", "/") and _float_factor(fn, e):
+        if all(_float_factor(fn, x) for x in (e.left, e.right)):
+            _factors(fn, e.left, num, den, via, depth + 1, held)
+            if e.op == "*":
+                _factors(fn, e.right, num, den, via, depth + 1, held)
+            else:
+                _factors(fn, e.right, den, num, via, depth + 1, held)
+            return
+    if depth < 8 and type(e) is A.Identifier:
+        sym = fn.model.symbol_of(e)
+        value = fn.reaching_value(e, sym) if sym is not None and sym.kind == "local" else None
+        if type(value) is A.Binary and value.op in ("*", "/") and _float_factor(fn, value):
+            via.append((e, value))
+            _factors(fn, value, num, den, via, depth + 1, value)
+            return
+    num.append((e, held))
 
 
 def _no_op(fn, n: A.Binary):
