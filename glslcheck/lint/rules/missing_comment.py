@@ -73,7 +73,9 @@ anywhere is one run from its signature to its last line: the one ambiguous block
 deducts once. But in a mostly uncommented file (more than three quarters of its code lines in
 uncovered runs) the blank lines are the only sections the student marks: there a blank line
 inside a body ends a run too, in a function with no comment as in any other, and each group is
-a deduction of its own; in a function with no comment the close of an inner block does not
+a deduction of its own (possible after the first group of what a reading across blank lines
+deducts once: blind readers part here); in a function with no comment the close of an inner
+block does not
 (`if (a) { ... }` then `if (b) { ... }` with no blank line between: one group).
 
 A run is a certain deduction, except where the readings of the rubric part (a possible one):
@@ -192,6 +194,7 @@ REACH = "whether the function's comment above reaches into a body that has comme
 IF_REACH = "whether the `if`'s comment, above or beside it, reaches a body with comments of its own"
 LONG_BODY = "only the function's comment above explains its body, which is more than a few lines"
 ADJACENT = "one of several uncommented definitions in a row, which a TA may deduct once"
+GROUP = "a blank line parts it from uncommented code above, in a mostly uncommented file"
 
 
 # A comment that only credits or marks ("code from class by ...", "// part 3", "// TEST"):
@@ -893,8 +896,8 @@ class _Reader:
 def uncovered_runs(scan, kinds: list[LineKind], span: int) -> list[tuple[int, int, int, str]]:
     """(first line, last line, number of code lines, reading) of each run of uncovered
     statements; `reading` is "" for a certain deduction, else why it is only a possible one
-    (HEADING, REACH, IF_REACH, LONG_BODY, ADJACENT), or BODY_ONLY for a signature whose body's
-    first comment explains it (a note, not a run).
+    (HEADING, REACH, IF_REACH, LONG_BODY, ADJACENT, GROUP), or BODY_ONLY for a signature whose
+    body's first comment explains it (a note, not a run).
 
     Statements are read whole (a signature or a call over several lines is one). A comment
     covers up to `span` statements below it, stopping at a blank line, the next explaining
@@ -907,9 +910,21 @@ def uncovered_runs(scan, kinds: list[LineKind], span: int) -> list[tuple[int, in
     uncommented file's (sparse), read again with a blank line ending a run in a body too."""
     runs = _Reader(scan, kinds, span).read()
     # (a signature its body's first comment explains is covered: a note, no run)
-    if sparse([r for r in runs if r[3] != BODY_ONLY], kinds):
-        runs = _Reader(scan, kinds, span, sections=True).read()
-    return runs
+    if not sparse([r for r in runs if r[3] != BODY_ONLY], kinds):
+        return runs
+    # each run of the reading across blank lines: its first group is certain, the groups a
+    # blank line parts from it are one reading of the rubric (readers part here)
+    grouped = _Reader(scan, kinds, span, sections=True).read()
+    whole = [(r[0], r[1]) for r in runs if r[3] != BODY_ONLY]
+    seen: set[int] = set()
+    out = []
+    for r in grouped:
+        inside = next((i for i, (a, b) in enumerate(whole) if a <= r[0] and r[1] <= b), None)
+        if inside is not None and inside in seen and not r[3]:
+            r = r[:3] + (GROUP,)
+        seen.add(-1 if inside is None else inside)
+        out.append(r)
+    return out
 
 
 # Of a file's code lines, the share that no comment covers above which the file is mostly
