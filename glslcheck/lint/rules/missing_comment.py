@@ -26,7 +26,10 @@ Coverage, what a comment explains:
   statements set (`float w = ...;` right after: a run of its own). A declaration with no value
   sets nothing and stays in the group, `a`, `it` or `to` in a sentence name no variable, and
   a vector's components go together (`// x and y away from zero` names `z = z | k;` too).
-- A trailing comment covers its statement (`x = 1.0; // why`, on any of its lines), and on a
+- A trailing comment covers its statement (`x = 1.0; // why`, on any of its lines) and the
+  statements right below it written the same way but for names and numbers (`vec4 image1 =
+  texture(iChannel0, uv); // declare both textures` over `vec4 image2 = texture(iChannel1,
+  uv);`; a third of the tokens at most differ), and on a
   signature, a loop/`if` header or an `else`, the block it opens as a comment above would. A
   trailing comment too long for its line, continued on the line below and indented well past
   the statement (8 columns or more), is that statement's too, and so is a comment on the
@@ -362,6 +365,25 @@ SHORT_BODY = 8  # more, or a branching body longer than this, is a certain run u
 _GOES_ON = (",", "+", "-", "*", "/", "=", "&", "|", "?", ":", "<", ">", "(", "!")
 
 
+_TOKEN_RE = compiled(r"[A-Za-z_]\w*|\d+(?:\.\d*)?|\.\d+|\S")
+
+
+def _parallel(trailed: tuple[list[str], int], tokens: list[str], depth: int) -> bool:
+    """Whether a statement (its `tokens`, at `depth`) is written as the trailing-commented one
+    above it but for names and numbers: the same tokens in the same order, at most a third of
+    them (and at least one) a different name or number."""
+    above, at = trailed
+    if at != depth or len(above) != len(tokens) or len(tokens) < 3:
+        return False
+    differ = 0
+    for a, b in zip(above, tokens):
+        if a != b:
+            if not (a[0].isalnum() or a[0] in "_.") or not (b[0].isalnum() or b[0] in "_."):
+                return False  # an operator or a bracket differs: another statement
+            differ += 1
+    return 0 < differ and 3 * differ <= len(tokens)
+
+
 def _simple(function: dict) -> bool:
     """Whether a function's body is "a few related lines" its comment above explains whole: at
     most SIMPLE_BODY statements, with no branch or loop at SIMPLE_BODY."""
@@ -420,6 +442,9 @@ class _Reader:
         self.previous: tuple[str, bool] | None = None  # the last function: name, explained
         self.previous_said = ""  # the words of the comment above the last function
         self.parted: _Cover | None = None  # the group a blank line in a body just ended
+        # the tokens and depth of the last statement its own trailing comment explains: the
+        # statements right below it written the same way but for names and numbers share it
+        self.trailed: tuple[list[str], int] | None = None
 
     def explains(self, number: int) -> bool:
         return _line_explains(self.on_line.get(number, []), number)
@@ -505,6 +530,14 @@ class _Reader:
         cover = self.cover
         covered = cover is not None and cover.left > 0
         own = self.own_comment(lines)
+        trailed, self.trailed = self.trailed, None
+        tokens = _TOKEN_RE.findall(text)
+        if own and not header:
+            self.trailed = (tokens, self.start_depth)
+        elif trailed is not None and not header and _parallel(trailed, tokens, self.start_depth):
+            # `vec4 image1 = ...; // declare both textures` over `vec4 image2 = ...;`
+            own = True
+            self.trailed = trailed
         if covered and not (in_struct or header or own) and not self.speaks_of(text, shape):
             self.cover = cover = None  # the comment's group ends: it does not speak of this
             covered = False
@@ -803,6 +836,7 @@ class _Reader:
             if kind is BLANK:
                 self.blank = True
                 self.macro = False
+                self.trailed = None
                 continue
             if kind is DIRECTIVE:
                 continue  # a glslcheck directive, or code the preprocessor skips
@@ -841,6 +875,7 @@ class _Reader:
             self.after_open = line.endswith("{")
             explaining = kind is not CODE and kind is not BRACE and self.explains(number)
             if kind is COMMENT:
+                self.trailed = None
                 if not explaining and not self.statement and self.marks(number):
                     self.heading = None  # a credit or a marker starts a part no heading explains
                     self.reach = 0  # ... nor the function's comment
