@@ -2,8 +2,9 @@
 
 ## What it does
 Reports a pure expression worth reusing (at least two operations, like the ray position
-`ro + t * rd`; a call of a built-in costlier than an add, like `dot`, `normalize`, `length`,
-`mix`, or of a pure user function that costs as much; or one float or vector operation on
+`ro + t * rd`; a call of a built-in, like `dot`, `normalize`, `length`, `mix`, or a cheap
+one like `step` or `floor`, or of a pure user function that costs more than an add; or one
+float or vector operation on
 variables, like `d * invIntensity` or `light.center - position`, but not a sign change like
 `-1.0 * n`) that a function evaluates again after an identical evaluation, when
 

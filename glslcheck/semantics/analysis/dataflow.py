@@ -856,9 +856,12 @@ class FunctionFacts(ValueRanges):
         return (n >= 2 or costly) and not self.model.is_constant(e)
 
     def worth_reusing(self, e: Any) -> bool:
-        """Non-trivial, or one float or vector arithmetic operation that is not a sign change
-        (`d * invI`, `light.center - position`; not `-1.0 * n`): a value a TA expects to be
-        computed once."""
+        """Non-trivial, a call of a built-in (`step(1.0, uv.x)`), or one float or vector arithmetic
+        operation that is not a sign change (`d * invI`, `light.center - position`; not `-1.0 *
+        n`): a value a TA expects to be computed once."""
+        builtin = type(e) is A.Call and not e.constructor
+        if builtin and isinstance(self.model.call_target(e), B.Overload):
+            return not self.model.is_constant(e)  # a built-in's call, however cheap: `step(a, x)`
         if type(e) is not A.Binary or e.op not in ("+", "-", "*", "/"):
             return self.is_nontrivial(e)
         n, costly = self.op_count(e)
