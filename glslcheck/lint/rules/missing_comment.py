@@ -100,6 +100,9 @@ A run is a certain deduction, except where the readings of the rubric part (a po
   with the block;
 - a definition with no comment at all right under another (blank lines between, nothing else),
   each after the first: one reading deducts such a region once, the others each definition.
+- the lines under a bare label of their kind (`// Variables`, `// Set Variables`,
+  `//Constants`): it names what the lines are, not why they are there; one reading deducts
+  them, another takes the label for their comment.
 
 Examples, all covered: the function's comment covers both signature lines and the short body,
 `return true;` and `return false;` need none, the trailing comment covers its two-line call:
@@ -198,6 +201,15 @@ IF_REACH = "whether the `if`'s comment, above or beside it, reaches a body with 
 LONG_BODY = "only the function's comment above explains its body, which is more than a few lines"
 ADJACENT = "one of several uncommented definitions in a row, which a TA may deduct once"
 GROUP = "a blank line parts it from uncommented code above, in a mostly uncommented file"
+BARE = "only a bare label ('Variables', 'Constants') stands above it, naming what it declares"
+
+# A comment that only labels declarations by their kind (`// Variables`, `// Set Variables`,
+# `//Constants`): it says what the lines are, which the code says too, not why they are there.
+_BARE_RE = compiled(
+    r"^[\s/*!-]*(?:(?:set|setting|declare|declaring|define|defining|initiali[sz]e|initiali[sz]ing)"
+    r"\s+)?(?:the\s+|all\s+|my\s+|some\s+)?(?:variables?|vars?|constants?|globals?)\s*:?\s*$",
+    re.IGNORECASE,
+)
 
 
 # A comment that only credits or marks ("code from class by ...", "// part 3", "// TEST"):
@@ -541,6 +553,8 @@ class _Reader:
         if covered and not (in_struct or header or own) and not self.speaks_of(text, shape):
             self.cover = cover = None  # the comment's group ends: it does not speak of this
             covered = False
+        bare = covered and not (in_struct or header or own)
+        bare = bare and cover is not None and _BARE_RE.match(cover.text) is not None
         if covered and not (in_struct or header or own):
             # a statement its own comment explains uses up none of the group above's few lines
             assert cover is not None  # covered: a cover with lines left
@@ -569,11 +583,21 @@ class _Reader:
             self.function["branches"] = self.function["branches"] or bool(_HEADER_RE.match(text))
         if self.start_depth > 0 and not in_struct:
             self.reach -= 1  # as a comment above would, past trailing comments
-        if covered or own:
+        if bare:
+            # under a bare label only: a run whose deduction is a reading
+            self.settle_deferred(False)
+            if self.run is not None and self.run[3] != BARE:
+                self.close_run()
+            self.add_to_run(lines)
+            assert self.run is not None
+            self.run[3] = BARE
+        elif covered or own:
             self.settle_deferred(own or in_struct)
             self.close_run()
         else:
             self.settle_deferred(False)
+            if self.run is not None and self.run[3] == BARE:
+                self.close_run()  # the bare label's lines end: certain ones start
             self.add_to_run(lines, signature=header and not _STRUCT_RE.match(text))
 
     def speaks_of(self, text: str, shape: str) -> bool:
