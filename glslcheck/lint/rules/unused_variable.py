@@ -442,7 +442,7 @@ def _dead_stores(fn, reads: set[int]) -> Iterator[Diagnostic]:
 
     for root, value in writes:
         # (`uv *= 0.25;` computes: the update is an operation whatever its operand)
-        work = _computed(fn, value) or (root.kind == "op" and not fn.model.is_constant(value))
+        work = _computed(fn, value) or root.kind == "op"
         if root.kind == "init" or not work or read_after(root, set()):
             continue
         chain = [root]
