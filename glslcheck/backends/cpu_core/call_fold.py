@@ -40,12 +40,26 @@ constant arguments, and a local's components that are constant where the call re
 Only where a merge happens (the other folds give the written bits, up to a -0.0, a NaN or an
 infinity times a constant zero, which `Runtime.fmul`/`fadd` already fold at run time) is the
 call replaced, in llvmpipe mode only: ``if rt.lp:`` the folded components, ``else:`` the call
-as written, so the float64 reference and float16 keep the written order. Not copied: calls
-under a loop or a branch of the caller whose constants come from there (a local counts as
-constant only where its writes are top-level statements before the call), callees with
-branches, loops, arrays, structs or non-float arithmetic, ``vec * mat``, and the rewrites that
-need "used once" (constants sunk into sums: nir_fold's sink and sunk_return stay the rules for
-those).
+as written, so the float64 reference and float16 keep the written order.
+
+Structs of float members are values of their members' components one after the other (a
+member read or written is a slice; ``S r;`` declares it unknown until written), ``normalize``
+is ``x * inversesqrt(dot(x, x))`` and ``cross`` is Runtime.cross, per component. A struct
+argument is followed where it is a local initialised by a call of such a function
+(``cam k = make(vec3(off, -6.0), 7.0); ... ray(k, s, t)``): that call is evaluated again at
+the call, its arguments read there (:func:`_struct_source` checks that nothing they read is
+written in between), so the constant -6.0 reaches ``ray``'s arithmetic as it does after NIR
+inlines both. An argument's constant is also sunk down sums each used once,
+``(a + b) + #c -> (a + #c) + b`` (:meth:`_Eval.sunk`), where it cancels a constant of the same
+component (the camera ray's ``ll + s*h + t*v - orig``, measured:
+tests/gl/test_llvmpipe_constant_components.py). A call whose result or out argument is a
+struct is left as written (the engines write a folded call's terms as vectors).
+
+Not copied: calls under a loop or a branch of the caller whose constants come from there (a
+local counts as constant only where its writes are top-level statements before the call),
+callees with branches, loops, arrays or non-float arithmetic, ``vec * mat``, and the other
+rewrites that need "used once" (nir_fold's sink and sunk_return stay the rules within a
+function).
 
 What it tells nir_fold about a folded call's results: :func:`out_roots` (the operation at the
 root of each component, so ``(eyevec * dither) * far`` may move its constant: eyevec is a
@@ -105,9 +119,10 @@ class _Refuse(Exception):
 
 class _T:
     """A scalar term: op "k" (a constant: value when known at compile time, else computed by
-    args), "x" (a run-time value: code), "*", "+", "/", "neg", "call" (code: the runtime method)."""
+    args), "x" (a run-time value: code), "*", "+", "/", "neg", "call" (code: the runtime method);
+    `comp`: a constant an argument gives (or folded from one), which :meth:`_Eval.sunk` sinks."""
 
-    __slots__ = ("op", "args", "const", "value", "code")
+    __slots__ = ("op", "args", "const", "value", "code", "comp")
 
     def __init__(
         self,
@@ -116,12 +131,14 @@ class _T:
         const: bool = False,
         value: float | None = None,
         code: str = "",
+        comp: bool = False,
     ) -> None:
         self.op, self.args, self.const, self.value, self.code = op, args, const, value, code
+        self.comp = comp
 
 
-def _k(v: float) -> _T:
-    return _T("k", const=True, value=float(np.float32(v)))
+def _k(v: float, comp: bool = False) -> _T:
+    return _T("k", const=True, value=float(np.float32(v)), comp=comp)
 
 
 def fold_tree(op: str, a: float, b: float) -> float:
@@ -136,13 +153,14 @@ class _Eval:
 
     def __init__(self, tr: FoldEmitter, mask: str | None) -> None:
         self.tr, self.mask, self.merges, self.depth, self.factored = tr, mask, 0, 0, 0
+        self.slots = 0  # the next free slot of an argument read at run time (_argument_terms)
 
     # -- scalar rules ----------------------------------------------------------------------
     def neg(self, a: _T) -> _T:
         if a.op == "neg":
             return a.args[0]
         if a.value is not None:
-            return _k(-a.value)
+            return _k(-a.value, a.comp)
         return _T("neg", (a,), const=a.const)
 
     def mul(self, a: _T, b: _T) -> _T:
@@ -155,7 +173,7 @@ class _Eval:
                 else self.mul(a.args[0], b.args[0])
             )
         if a.value is not None and b.value is not None:
-            return _k(fold_tree("*", a.value, b.value))
+            return _k(fold_tree("*", a.value, b.value), a.comp or b.comp)
         for c, x in ((a, b), (b, a)):
             if c.value is not None and not x.const:
                 if c.value == 1.0:
@@ -182,7 +200,7 @@ class _Eval:
 
     def add(self, a: _T, b: _T) -> _T:
         if a.value is not None and b.value is not None:
-            return _k(fold_tree("+", a.value, b.value))
+            return _k(fold_tree("+", a.value, b.value), a.comp or b.comp)
         for c, x in ((a, b), (b, a)):
             if c.value == 0.0 and not x.const:
                 return x
@@ -235,8 +253,15 @@ class _Eval:
 
     def div(self, a: _T, b: _T) -> _T:
         if a.value is not None and b.value is not None:
-            return _k(fold_tree("/", a.value, b.value))
+            return _k(fold_tree("/", a.value, b.value), a.comp or b.comp)
         return _T("/", (a, b), const=a.const and b.const)
+
+    def dot(self, u: list[_T], v: list[_T]) -> _T:
+        """Runtime.dot: the products summed right to left, each rounded."""
+        total = self.mul(u[-1], v[-1])
+        for x, y in zip(reversed(u[:-1]), reversed(v[:-1])):
+            total = self.factored_add(self.mul(x, y), total)
+        return total
 
     def binary(self, op: str, lt: Any, lv: list[_T], rt: Any, rv: list[_T]) -> list[_T]:
         if op == "*" and lt.is_matrix and (rt.is_vector or rt.is_matrix):
@@ -269,17 +294,26 @@ class _Eval:
         t = tr.type_of(e)
         if (
             t.is_array
-            or t.is_struct
-            or t.base not in ("float", "int")
+            or not t.is_struct
+            and t.base not in ("float", "int")
             or tr.has_effects(e)
             and not isinstance(e, A.Call)
         ):
             raise _Refuse
-        cv = tr.model.const_value(e)
-        if cv is not None:
-            return [_k(v) for v in _flat(cv)]
-        if t.base != "float":
-            raise _Refuse
+        if t.is_struct:
+            _size(t)  # (float members only, else _Refuse)
+        else:
+            cv = tr.model.const_value(e)
+            if cv is not None:
+                return [_k(v) for v in _flat(cv)]
+            if t.base != "float":
+                raise _Refuse
+        place = self.place(e, env)
+        if place is not None:  # (a local or a parameter, a struct's member, a swizzle of one)
+            values = env[place[0]]
+            if any(values[i] is None for i in place[1]):
+                raise _Refuse  # (read before it is written: an out parameter, `S s;`)
+            return [values[i] for i in place[1]]
         if isinstance(e, A.Identifier):
             sym = tr.model.symbol_of(e)
             if sym is not None and id(sym) in env:
@@ -290,9 +324,11 @@ class _Eval:
                 raise _Refuse
             return [_T("x", code=c) for c in tr.leaves(tr.expr(e, self.mask), t)]
         if isinstance(e, A.Field):
-            if tr.type_of(e.base).is_struct:
-                raise _Refuse
+            bt = tr.type_of(e.base)
             base = self.expr(e.base, env)
+            if bt.is_struct:
+                at, width = _member(bt, e.name)
+                return base[at : at + width]
             return [base[i] for i in tr.model.swizzle_indices(e)]
         if isinstance(e, A.Index):
             i = tr.model.const_value(e.index)
@@ -325,11 +361,17 @@ class _Eval:
         if isinstance(target, B.Overload) and e.callee == "pow" and len(args) == 2:
             return [self.pow(x, y) for x, y in zip(args[0], args[1])]
         if isinstance(target, B.Overload) and e.callee == "dot" and len(args) == 2:
-            u, v = args  # (Runtime.dot: products summed right to left, each rounded)
-            total = self.mul(u[-1], v[-1])
-            for x, y in zip(reversed(u[:-1]), reversed(v[:-1])):
-                total = self.factored_add(self.mul(x, y), total)
-            return [total]
+            return [self.dot(args[0], args[1])]
+        if isinstance(target, B.Overload) and e.callee == "normalize" and t.is_vector:
+            # (Runtime.normalize: x * inversesqrt(dot(x, x)), Mesa's fmul(x, frsq(fdot)))
+            rsq = _T("call", (self.dot(args[0], args[0]),), code="inversesqrt")
+            return [self.mul(x, rsq) for x in args[0]]
+        if isinstance(target, B.Overload) and e.callee == "cross":
+            a, b = args  # (Runtime.cross: a.y*b.z - a.z*b.y, ...)
+            return [
+                self.add(self.mul(a[i], b[j]), self.neg(self.mul(a[j], b[i])))
+                for i, j in ((1, 2), (2, 0), (0, 1))
+            ]
         if isinstance(target, B.Overload):
             if e.callee not in _COMPONENTWISE or len(args) != 1:
                 raise _Refuse
@@ -338,6 +380,10 @@ class _Eval:
         if not e.constructor:
             raise _Refuse
         flat = [x for a in args for x in a]
+        if t.is_struct:
+            if len(flat) != _size(t):
+                raise _Refuse
+            return flat
         if t.is_vector:
             return flat * t.size if len(flat) == 1 else flat[: t.size]
         if t.is_matrix and len(args) == 1 and len(flat) == 1:
@@ -361,7 +407,7 @@ class _Eval:
             if psym is None:
                 raise _Refuse
             inner[id(psym)] = (
-                self.expr(a, env) if d != "out" else [None] * _width(self.tr.type_of(a))
+                self.expr(a, env) if d != "out" else [None] * _size(self.tr.type_of(a))
             )
         result = self.body(fn, inner)
         for p, a, d in zip(params, args, dirs):
@@ -369,6 +415,71 @@ class _Eval:
                 self.assign(a, inner[id(self.tr.model.symbol_of(p))], env)
         self.depth -= 1
         return result
+
+    def bound_call(self, fn: Symbol, values: list[list]) -> list[_T]:
+        """The result of `fn` with its (in) parameters bound to the terms `values`."""
+        self.depth += 1
+        if self.depth > 16:
+            raise _Refuse
+        inner: dict[int, list] = {}
+        for p, v in zip(fn.node.proto.params, values):
+            psym = self.tr.model.symbol_of(p)
+            if psym is None:
+                raise _Refuse
+            inner[id(psym)] = v
+        result = self.body(fn, inner)
+        self.depth -= 1
+        return result
+
+    def sunk(self, outs: list[list]) -> list[list]:
+        """`outs` (lists of terms) with an argument's constant sunk down sums as NIR does:
+        ``(a + b) + #c -> (a + #c) + b``, each sum used once (its term feeds one term of
+        `outs`; a product b kept whole, as is_fmul asks), so that it meets and merges with a
+        constant there (``#a + (b + #c) -> (a + c) + b``: a camera's ``ll + s*h + t*v - orig``
+        cancels the ``orig.z`` inside ``ll``; nir_fold/sink.py and constant_components.py are
+        the rule within one function)."""
+        uses: dict[int, int] = {}
+
+        def count(t: _T) -> None:
+            uses[id(t)] = uses.get(id(t), 0) + 1
+            if uses[id(t)] == 1:
+                for a in t.args:
+                    count(a)
+
+        for terms in outs:
+            for t in terms:
+                if t is not None:
+                    count(t)
+        memo: dict[int, _T] = {}
+
+        def once_sum(t: _T) -> bool:
+            return t.op == "+" and uses[id(t)] == 1 and not any(a.const for a in t.args)
+
+        def push(a: _T, c: _T) -> _T:
+            if once_sum(a):
+                p, q = a.args
+                if q.op != "*" and p.op == "*":
+                    p, q = q, p
+                self.merges += 1
+                return self.add(push(p, c), walk(q))
+            return self.add(walk(a), c)
+
+        def walk(t: _T) -> _T:
+            if id(t) not in memo:
+                x = t
+                if t.op == "+" and uses[id(t)] == 1:
+                    for c, a in (t.args, t.args[::-1]):
+                        if c.value is not None and c.comp and once_sum(a):
+                            x = push(a, c)
+                            break
+                if x is t and t.args:
+                    args = tuple(walk(a) for a in t.args)
+                    if any(a is not b for a, b in zip(args, t.args)):
+                        x = _T(t.op, args, t.const, t.value, t.code, t.comp)
+                memo[id(t)] = x
+            return memo[id(t)]
+
+        return [[None if t is None else walk(t) for t in terms] for terms in outs]
 
     def body(self, fn: Symbol, env: dict[int, list]) -> list[_T]:
         stmts = fn.node.body.stmts
@@ -380,9 +491,11 @@ class _Eval:
             ):
                 for d in st.decl.declarators:
                     sym = self.tr.model.symbol_of(d)
-                    if d.init is None or sym is None:
+                    if sym is None or d.array is not None:
                         raise _Refuse
-                    env[id(sym)] = self.expr(d.init, env)
+                    env[id(sym)] = (
+                        self.expr(d.init, env) if d.init is not None else [None] * _size(sym.type)
+                    )
             elif isinstance(st, A.ExpressionStatement) and isinstance(st.expr, A.Assignment):
                 a = st.expr
                 value = self.expr(a.value, env)
@@ -406,19 +519,36 @@ class _Eval:
         return []  # (a function that returns a value ends with a return: checked by the checker)
 
     def assign(self, target: Any, value: list[_T], env: dict[int, list]) -> None:
-        idx = None
-        if isinstance(target, A.Field) and not self.tr.type_of(target.base).is_struct:
-            idx, target = self.tr.model.swizzle_indices(target), target.base
-        sym = self.tr.model.symbol_of(target) if isinstance(target, A.Identifier) else None
-        if sym is None or id(sym) not in env:
+        place = self.place(target, env)
+        if place is None:
             raise _Refuse
-        if idx is None:
-            env[id(sym)] = list(value)
-        else:
-            new = list(env[id(sym)])
-            for i, v in zip(idx, value * len(idx) if len(value) == 1 else value):
-                new[i] = v
-            env[id(sym)] = new
+        key, idx = place
+        new = list(env[key])
+        for i, v in zip(idx, value * len(idx) if len(value) == 1 else value):
+            new[i] = v
+        env[key] = new
+
+    def place(self, e: Any, env: dict[int, list]) -> tuple[int, list[int]] | None:
+        """(the key in `env`, the indexes of the components) of a local or parameter of the
+        evaluation, a member of such a struct or a swizzle of such a vector; else None."""
+        tr = self.tr
+        if isinstance(e, A.Identifier):
+            sym = tr.model.symbol_of(e)
+            if sym is None or id(sym) not in env:
+                return None
+            return id(sym), list(range(len(env[id(sym)])))
+        if isinstance(e, A.Field):
+            base = self.place(e.base, env)
+            if base is None:
+                return None
+            bt = tr.type_of(e.base)
+            if bt.is_struct:
+                at, width = _member(bt, e.name)
+                return base[0], base[1][at : at + width]
+            if not tr.model.is_swizzle(e):
+                raise _Refuse
+            return base[0], [base[1][i] for i in tr.model.swizzle_indices(e)]
+        return None
 
 
 def _same(a: _T, b: _T) -> bool:
@@ -457,6 +587,26 @@ def term_fields(t: Any) -> tuple[str, tuple, float | None, str]:
 
 def _width(t: Any) -> int:
     return t.size if t.is_matrix or t.is_vector else 1
+
+
+def _size(t: Any) -> int:
+    """The float components of a value of type t, a struct's members one after the other;
+    raises _Refuse for a struct with a member that is not a float scalar, vector or matrix."""
+    if t.is_struct:
+        return sum(_size(ft) for _, ft in t.fields)
+    if t.is_array or t.base != "float":
+        raise _Refuse
+    return _width(t)
+
+
+def _member(t: Any, name: str) -> tuple[int, int]:
+    """(offset, width) of the member `name` among the components of the struct type t."""
+    at = 0
+    for fname, ft in t.fields:
+        if fname == name:
+            return at, _size(ft)
+        at += _size(ft)
+    raise _Refuse
 
 
 def _leaves(code: str, t: Any) -> list[_T]:
@@ -500,7 +650,7 @@ def _constant_components(tr: FoldEmitter, arg: Any, call: A.Call) -> list[_T | N
         return None
     cv = tr.model.const_value(init)
     if cv is not None:
-        comps: list[_T | None] = [_k(v) for v in _flat(cv)]
+        comps: list[_T | None] = [_k(v, True) for v in _flat(cv)]
     elif isinstance(init, A.Call) and init.constructor and t.is_vector and len(init.args) > 1:
         comps = _constructed_components(tr, init, t)
     else:
@@ -522,7 +672,9 @@ def _constructed_components(tr: FoldEmitter, ctor: A.Call, t: Any) -> list[_T | 
     comps: list[_T | None] = []
     for a in ctor.args:
         v = tr.model.const_value(a)
-        comps += [_k(x) for x in _flat(v)] if v is not None else [None] * _width(tr.type_of(a))
+        comps += (
+            [_k(x, True) for x in _flat(v)] if v is not None else [None] * _width(tr.type_of(a))
+        )
     return comps[: t.size]
 
 
@@ -598,6 +750,8 @@ def fold_plan(tr: FoldEmitter, call: A.Call, fn: Symbol, mask: str | None) -> tu
         or tr.fold_state.call_fold_off
         or tr.fold_state.inline_frames
         or any(tr.has_effects(a) for a in call.args)
+        or tr.type_of(call).is_struct  # (the engines write a folded call's terms as vectors)
+        or any(d != "in" and tr.type_of(a).is_struct for a, (_, _, d) in zip(call.args, fn.params))
     ):
         return None
     try:
@@ -632,7 +786,16 @@ def _calls_dot(tr: FoldEngine, fn: Symbol) -> bool:
 
 def _has_constant_argument(tr: FoldEmitter, call: A.Call, fn: Symbol) -> bool:
     for a, (_, _, dr) in zip(call.args, fn.params):
-        if dr != "out" and (
+        if dr == "in" and tr.type_of(a).is_struct:
+            source = _struct_source(tr, a, call)
+            inner = tr.model.call_target(source) if source is not None else None
+            if (
+                source is not None
+                and isinstance(inner, Symbol)
+                and _has_constant_argument(tr, source, inner)
+            ):
+                return True
+        elif dr != "out" and (
             tr.model.const_value(a) is not None
             or _scaled_argument(tr, a, call) is not None
             or any(k is not None for k in _constant_components(tr, a, call) or ())
@@ -673,11 +836,55 @@ def _evaluate(
     arguments read at run time as (index, node)); `constants`: the arguments' constant
     components as constants, else every argument a run-time value. Raises _Refuse."""
     ev = _Eval(tr, mask)
+    ev.slots = len(call.args)
     env: dict[int, list] = {}
     holders: list[tuple[int, Any]] = []
-    args: list[list[Any]] = []  # per argument, its components' terms (None: unknown)
-    for i, (a, (_, _, dr)) in enumerate(zip(call.args, fn.params)):
+    args = _argument_terms(tr, ev, call, fn, constants, holders, list(range(len(call.args))))
+    params = [tr.model.symbol_of(p) for p in fn.node.proto.params]
+    if any(p is None for p in params):
+        raise _Refuse
+    for p, v in zip(params, args):
+        env[id(p)] = v
+    result = ev.body(fn, env)
+    if constants:
+        outs = [id(p) for p, (_, _, dr) in zip(params, fn.params) if dr != "in"]
+        result, *written = ev.sunk([result] + [env[k] for k in outs])
+        env.update(zip(outs, written))
+    return ev, env, params, result, holders
+
+
+def _argument_terms(
+    tr: FoldEmitter,
+    ev: _Eval,
+    call: A.Call,
+    fn: Symbol,
+    constants: bool,
+    holders: list[tuple[int, Any]],
+    slots: list[int],
+    source_of: A.Call | None = None,
+) -> list[list[Any]]:
+    """Per argument of `call` (of `fn`), its components' terms (None: an out parameter's,
+    unknown); an argument read at run time is added to `holders` as (its slot, the node). A
+    struct argument is a local the value of a call of a user function initialises
+    (:func:`_struct_source`): that call is evaluated here, its own arguments in new slots
+    (`source_of`: the call they are then read at)."""
+    args: list[list[Any]] = []
+    for a, (_, _, dr), i in zip(call.args, fn.params, slots):
         t = tr.type_of(a)
+        if t.is_struct and dr == "in":
+            source = _struct_source(tr, a, call)
+            inner = tr.model.call_target(source) if source is not None else None
+            if (
+                source is None
+                or not isinstance(inner, Symbol)
+                or any(d != "in" for _, _, d in inner.params)
+            ):
+                raise _Refuse
+            more = list(range(ev.slots, ev.slots + len(source.args)))
+            ev.slots += len(source.args)
+            values = _argument_terms(tr, ev, source, inner, constants, holders, more, call)
+            args.append(ev.bound_call(inner, values))
+            continue
         if t.is_array or t.is_struct or t.base != "float":
             raise _Refuse
         if dr == "out":
@@ -685,15 +892,19 @@ def _evaluate(
             continue
         cv = tr.model.const_value(a) if constants else None
         if cv is not None:
-            args.append([_k(v) for v in _flat(cv)])
+            args.append([_k(v, True) for v in _flat(cv)])
             continue
-        scaled = _scaled_argument(tr, a, call) if constants else None
+        scaled = (
+            _scaled_argument(tr, a, call)
+            if constants and (source_of is None or not isinstance(a, A.Identifier))
+            else None
+        )  # (a local's initializer read at another call than its own: not followed)
         if (
             scaled is not None
         ):  # y * #c: each component a product by the constant (NIR merges into it)
             y, c = scaled
             holders.append((i, y))
-            cs = [_k(v) for v in _flat(tr.model.const_value(c))]
+            cs = [_k(v, True) for v in _flat(tr.model.const_value(c))]
             args.append(
                 [
                     _T("*", (x, cs[0] if len(cs) == 1 else cs[j]))
@@ -707,13 +918,29 @@ def _evaluate(
         args.append(
             [k if k is not None else x for k, x in zip(known or [None] * len(leaves), leaves)]
         )
-    params = [tr.model.symbol_of(p) for p in fn.node.proto.params]
-    if any(p is None for p in params):
-        raise _Refuse
-    for p, v in zip(params, args):
-        env[id(p)] = v
-    result = ev.body(fn, env)
-    return ev, env, params, result, holders
+    return args
+
+
+def _struct_source(tr: FoldEmitter, a: Any, call: A.Call) -> A.Call | None:
+    """The call of a user function that initialises the struct local `a`, where evaluating it
+    again at `call` gives a's value there: `a` declared by a top-level statement before the one
+    that holds `call`, and neither it nor a local or parameter the initializer reads written
+    in between, no global read but constants and uniforms (a call may write a global); else
+    None."""
+    init = _unchanged_init(tr, a, call) if isinstance(a, A.Identifier) else None
+    if not (
+        isinstance(init, A.Call)
+        and not init.constructor
+        and isinstance(tr.model.call_target(init), Symbol)
+        and not any(tr.has_effects(x) for x in init.args)
+    ):
+        return None
+    for n in init.walk():
+        sym = tr.model.symbol_of(n) if isinstance(n, A.Identifier) else None
+        if sym is not None and sym.kind not in ("local", "param", "uniform"):
+            if tr.model.const_value(n) is None:
+                return None
+    return init
 
 
 def out_roots(tr: FoldEmitter, call: A.Call, sym: Symbol | None) -> set[str] | None:
