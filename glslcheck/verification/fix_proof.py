@@ -45,7 +45,7 @@ from ..lint.fixes import Fix
 from ..lint.fixes.edits import EditError, apply_fixes, line_map, position_map
 from ..lint.fixes.files import FileText, read_file
 from ..lint.rules import rule_names
-from ..lint.rules.missing_comment import TRIVIAL_RE
+from ..lint.rules._comment_kinds import TRIVIAL_RE
 from ..lint.textscan import TextScan
 from ..lint.textscan import scan as scan_text
 from ..shadertoy.sources import Shader, Source, find_shaders, tab_name
