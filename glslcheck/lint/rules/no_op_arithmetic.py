@@ -20,6 +20,11 @@ divides by the same value (`columns / rows * rows`, `height * width / height`, o
 local holding a quotient: `ratio * height` with `ratio = width / height`): the two cancel (a
 quotient that cancels inside a local's own value is reported where the local is set).
 
+Likewise `mix(a, b, 1.0)` (which is `b`) and `mix(a, b, 0.0)` (`a`), the weight written out,
+and a float product by a factor that is zero in every component, written out or a local
+holding zero (`vec3 black = vec3(0.0); ... black * mask`): the product is zero whatever the rest
+(the same zero factor in a function is one finding naming every place).
+
 The same no-op written again in a function (`time * 1.0` in each of its returns) is one
 finding naming every place: one unnecessary practice.
 
@@ -77,6 +82,7 @@ def check(ctx: LintContext) -> Iterator[Diagnostic]:
         # unnecessary practice, as the rubric deducts it: one finding naming every place
         same: dict[tuple, list[tuple]] = {}  # (operator, the constant's values) -> places
         reported: set[int] = set()  # inner mods found (a local's, through each of its reads)
+        zeros: dict[str, list[tuple]] = {}  # products by the same zero: one practice
         for n in fn.nodes:
             if fn.is_dead(n):
                 continue
@@ -85,6 +91,21 @@ def check(ctx: LintContext) -> Iterator[Diagnostic]:
                 reported.add(id(inner[0]))
                 yield _inner_mod_finding(*inner)
                 continue
+            if type(n) is A.Call and n.callee == "mix" and len(n.args) == 3:
+                picked = _mix_end(fn, n)
+                if picked is not None:
+                    yield Diagnostic(
+                        f"'{text(n)}' is {text(picked)}: a mix() by {text(n.args[2])} gives "
+                        "that end whole",
+                        n.loc,
+                        help=f"write {text(picked)}",
+                    )
+                    continue
+            if type(n) is A.Binary and n.op == "*" and _product_top(fn, n):
+                zero = _zero_factor(fn, n)
+                if zero is not None:
+                    zeros.setdefault(text(zero), []).append((n, zero))
+                    continue
             if type(n) is A.Call and n.callee in _RANGED and len(n.args) == _RANGED[n.callee]:
                 why = _in_range(fn, n)
                 if why is not None:
@@ -111,6 +132,19 @@ def check(ctx: LintContext) -> Iterator[Diagnostic]:
                 op = n.op[0]
                 key = (op, tuple(numbers(fn.model.const_value(constant))))
                 same.setdefault(key, []).append((n, constant, other))
+        for places in zeros.values():
+            n, zero = places[0]
+            again = (
+                ""
+                if len(places) == 1
+                else f", and {len(places) - 1} more at {at_lines([p[0] for p in places[1:]])}"
+            )
+            yield Diagnostic(
+                f"'{text(n)}' is always zero: it multiplies by {text(zero)}, which is zero "
+                f"here{again}",
+                n.loc,
+                help="write the zero value, or remove the term",
+            )
         for places in same.values():
             n, constant, other = places[0]
             again = (
@@ -232,6 +266,45 @@ def _inner_mod_finding(inner, outer, via) -> Diagnostic:
 
 def _modulus_dividend(e):
     return e.args[0] if type(e) is A.Call else e.left
+
+
+def _mix_end(fn, n: A.Call):
+    """The end `mix(a, b, t)` gives back when `t` is a written 0.0 (a) or 1.0 (b), every
+    component; None otherwise (a named weight is a setting)."""
+    t = n.args[2]
+    if not _written_out(t) or fn.model.is_constant(n.args[0]) and fn.model.is_constant(n.args[1]):
+        return None
+    values = numbers(fn.model.const_value(t))
+    kind = fn.model.type_of(n)
+    if not values or getattr(kind, "base", None) != "float":
+        return None
+    end = n.args[0] if all(v == 0.0 for v in values) else None
+    end = n.args[1] if all(v == 1.0 for v in values) else end
+    if end is None or fn.model.type_of(end) != kind or not fn.is_pure(n):
+        return None
+    return end
+
+
+def _zero_factor(fn, n: A.Binary):
+    """A factor of the float product `n` that is zero in every component: written out, or a
+    local whose value reaching here is (`vec3 black = vec3(0.0); ... black * mask`); None
+    otherwise. The product is zero whatever the rest (but for infinities and NaN)."""
+    if fn.model.is_constant(n) or not fn.is_pure(n):
+        return None
+    num: list = []
+    _factors(fn, n, num, [], [], 0, None)
+    for f, _ in num:
+        value = fn.model.const_value(f)
+        if value is None and type(f) is A.Identifier:
+            sym = fn.model.symbol_of(f)
+            reaching = (
+                fn.reaching_value(f, sym) if sym is not None and sym.kind == "local" else None
+            )
+            value = None if reaching is None else fn.model.const_value(reaching)
+        values = numbers(value)
+        if values and all(v == 0.0 for v in values):
+            return f
+    return None
 
 
 def _product_top(fn, n) -> bool:
