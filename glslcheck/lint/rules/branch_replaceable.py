@@ -37,6 +37,12 @@ and shows the replacement:
   `if (..) v = n; else v = -n;`. A comparison that differs from faceforward's where the dot
   product is 0 (`<= 0.0`) is not reported.
 
+Arms that sample a texture (`if (uv.x <= split) col = texture(iChannel0, uv); else col =
+texture(iChannel1, uv);`, lookups of a named sampler at cheap coordinates) are a possible
+deduction: mix() of both lookups gives the same colour without a branch, but samples each
+texture where the branch samples one; readers of the rubric part on whether that is the more
+efficient method.
+
 Except for faceforward, the condition must be made of comparisons of two float (or, for one
 min/max, int) scalars; the statement forms must be a single assignment to the same variable (or
 a return) in each arm. Ifs in a row that each select a part of one variable (`if (..) col.x =
@@ -199,6 +205,7 @@ def _merged(fn, runs: list[list[tuple[Any, str, tuple[str, str]]]]) -> Iterator[
             f"{first.message}, and the same selection again at {at_lines(again)}",
             first.loc,
             help=f"{first.help} (and likewise at {at_lines(again)})",
+            certainty=first.certainty,
         )
 
 
@@ -230,6 +237,10 @@ def _finding(run: list[tuple[Any, str, tuple[str, str]]]) -> Diagnostic:
     """One finding for a select, or for a run of if statements in a row that each select (three
     ifs setting `col.x`, `col.y`, `col.z`): the rubric's one inefficient practice."""
     node, what, (fn_name, replacement) = run[0]
+    # a reading: the branch samples one texture where the mix samples each (possible)
+    sampled = any(_picks_lookup(n) for n, _, _ in run)
+    certainty = "possible" if sampled else None
+    also = ", sampling each texture where the branch samples one" if sampled else ""
     kinds = {
         "if": "an if/else",
         "lone if": "an if",
@@ -240,17 +251,19 @@ def _finding(run: list[tuple[Any, str, tuple[str, str]]]) -> Diagnostic:
         verb = "compute" if what in ("nest", "if return") else "computes"
         return Diagnostic(
             f"{kinds.get(what, 'a ?: selection')} {verb} what {fn_name}() computes without a "
-            "branch",
+            f"branch{also}",
             node.loc,
             help=f"write {replacement}",
+            certainty=certainty,
         )
     names = list(dict.fromkeys(f"{f[0]}()" for _, _, f in run))
     return Diagnostic(
         f"{len(run)} if statements in a row (lines {node.loc.line}-{run[-1][0].loc.line}) compute "
         f"what {' and '.join(names)} {'computes' if len(names) == 1 else 'compute'} without a "
-        "branch",
+        f"branch{also}",
         node.loc,
         help="write " + " ".join(f[1] for _, _, f in run),
+        certainty=certainty,
     )
 
 
@@ -769,6 +782,33 @@ def _cheap(fn, e) -> bool:
     return False
 
 
+# the texture lookups a mix() may take both of (a reading: the branch samples one of them)
+_LOOKUPS = ("texture", "textureLod", "textureOffset", "textureProj", "texelFetch")
+
+
+def _lookup(fn, e) -> bool:
+    """A texture lookup of a named sampler whose other arguments are cheap values."""
+    return (
+        type(e) is A.Call
+        and builtin_call(fn.model, e, *_LOOKUPS)
+        and bool(e.args)
+        and type(e.args[0]) is A.Identifier
+        and all(_value(fn, a) for a in e.args[1:])
+    )
+
+
+def _picks_lookup(node) -> bool:
+    """Whether a select's arms give a texture lookup (`if (c) col = texture(iChannel0, uv);`):
+    the branch-free form samples every arm's texture, the branch one."""
+    arms = [node.then, node.else_]
+    return any(
+        type(n) is A.Call and n.callee in _LOOKUPS
+        for arm in arms
+        if arm is not None
+        for n in arm.walk()
+    )
+
+
 def _value(fn, e) -> bool:
     """A value mix() may compute on both sides: a cheap value (`_cheap`), or a constructor, a
     negation, a sum, difference or product of such, or one divided by a value that cannot be
@@ -780,6 +820,8 @@ def _value(fn, e) -> bool:
     if t is A.Unary and e.op == "-":
         return _value(fn, e.operand)
     if t is A.Call:
+        if _lookup(fn, e):
+            return True
         return e.constructor and e.array is None and all(_value(fn, a) for a in e.args)
     if t is A.Binary and e.op in ("+", "-", "*"):
         return _value(fn, e.left) and _value(fn, e.right)
