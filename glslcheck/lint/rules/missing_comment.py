@@ -77,8 +77,7 @@ deducts once. But in a mostly uncommented file (more than three quarters of its 
 uncovered runs) the blank lines are the only sections the student marks: there a blank line
 inside a body ends a run too, in a function with no comment as in any other, and each group is
 a deduction of its own (possible after the first group of what a reading across blank lines
-deducts once: blind readers part here); in a function with no comment the close of an inner
-block does not
+deducts once: blind readers part here); the close of an inner block does not
 (`if (a) { ... }` then `if (b) { ... }` with no blank line between: one group).
 
 A run is a certain deduction, except where the readings of the rubric part (a possible one):
@@ -553,10 +552,10 @@ class _Reader:
                 self.close_run()  # the block the run was in ends (`} else {` goes on)
 
     def bare_sections(self) -> bool:
-        """Whether a mostly uncommented file's function with no comment so far is being read:
-        there only blank lines part its runs, not the blocks inside it."""
+        """Whether a mostly uncommented file's function is being read: there only blank lines
+        and comments part its runs, not the blocks inside it."""
         f = self.function
-        return self.sections and f is not None and not f["explained"] and not f["inner"]
+        return self.sections and f is not None
 
     def open_blocks(self, opened: int, rest: str = "") -> None:
         """Open `opened` blocks of the statement just read (a struct, a function or other);
