@@ -26,7 +26,9 @@ and shows the replacement:
   branch computes once too;
 * conditions beyond one comparison: `&&`, `||` and `!` of float comparisons (a product, a max
   and `1.0 -` of their steps), a step() result compared with 0.0 or 1.0 (the branch on a
-  step value, which is the selector itself), and a parity compared with 0 or 1: `mod(n, 2.0)`
+  step value, which is the selector itself), `^^` of such (`abs(a - b)`), two parities compared
+  with each other (`mod(x, 2.0) == mod(y, 2.0)`: `1.0 - abs(px - py)`), and a parity compared
+  with 0 or 1: `mod(n, 2.0)`
   of a whole number (floor(), float() of an int, their sums and products, a local holding
   one, its operands written since or not: a checkerboard's `mod(floor(p.x) + floor(p.y),
   2.0)`) is exactly 0.0 or 1.0 and is the selector, and an int's `n % 2` is `float(n & 1)`;
@@ -513,6 +515,16 @@ def _indicator(fn, cond) -> str | None:
     if t is A.Unary and cond.op == "!":
         a = _indicator(fn, cond.operand)
         return None if a is None else f"1.0 - {_factor(a)}"
+    if t is A.Binary and cond.op == "^^":
+        a, b = _indicator(fn, cond.left), _indicator(fn, cond.right)
+        return None if a is None or b is None else f"abs({a} - {_factor(b)})"
+    if t is A.Binary and cond.op in ("==", "!=") and not fn.model.is_constant(cond.right):
+        # two parities compared (`mod(x, 2.0) == mod(y, 2.0)`, a checkerboard's test): each is
+        # exactly 0.0 or 1.0, so they are equal where their difference is 0
+        pa, pb = _parity(fn, cond.left, 0), _parity(fn, cond.right, 0)
+        if pa is not None and pb is not None and not fn.model.is_constant(cond.left):
+            differ = f"abs({pa} - {_factor(pb)})"
+            return differ if cond.op == "!=" else f"1.0 - {differ}"
     if t is A.Binary and cond.op in ("==", "!="):
         for side, other in ((cond.left, cond.right), (cond.right, cond.left)):
             bound = numbers(fn.model.const_value(other))
