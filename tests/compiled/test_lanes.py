@@ -336,3 +336,56 @@ def test_a_local_used_only_inside_a_branch_has_the_numpy_backends_bits(numba, ma
     shader = make_shader(FILLED_IN_A_BRANCH)
     _compare(shader)
     _same_bits(shader, 8)
+
+
+SELECT_CHAINS = """
+float table(float x, float y, float frame) {
+    float idx = 0.0;
+    if (frame == 0.0) {
+        idx = y == 3.0 ? (x <= 7.0 ? 1.0 : 2.0) : idx;
+        idx = y == 2.0 ? (x <= 7.0 ? 3.0 : 4.0) : idx;
+        idx = y == 1.0 ? 5.0 : idx;
+        idx = y == 3.0 ? (x <= 7.0 ? 6.0 : 7.0) : idx;  // the last that holds wins
+        idx = y == 0.0 ? (x <= 7.0 ? 8.0 : (x <= 11.0 ? 9.0 : 10.0)) : idx;  // another tree
+        idx = y == 8.0 ? (x <= 7.0 ? 11.0 : (x <= 11.0 ? 12.0 : 13.0)) : idx;
+    } else {
+        idx = y == 4.0 ? (x <= 5.0 ? 0.0 : (x <= 11.0 ? 9.0 : 10.0)) : idx;
+        idx = y == 5.0 ? (x <= 5.0 ? 11.0 : (x <= 11.0 ? 12.0 : 13.0)) : idx;
+        float k = idx;  // a read between two chains
+        idx = y == 6.0 ? 14.0 : idx;
+        idx = y == 7.0 ? (frame > 1.5 ? 15.0 : 16.0) : idx;
+        idx = y == 6.0 ? idx + 1.0 : idx;  // reads idx: not a table's step
+        idx += k;
+    }
+    return idx;
+}
+void mainImage(out vec4 fragColor, in vec2 fragCoord) {
+    float y = mod(floor(fragCoord.y), 9.0);  // one value a row
+    float x = mod(floor(fragCoord.x), 16.0);
+    float a = table(x, y, floor(mod(iTime, 3.0)));  // frame one value a block
+    float b = table(x, y, step(8.0, x) * 2.0);  // frame per lane: the arms under masks
+    float c = table(x, mod(floor(fragCoord.x + fragCoord.y), 9.0), 0.0);  // y per lane
+    fragColor = vec4(a / 16.0, b / 16.0, c / 16.0, 1.0);
+}
+"""
+
+
+def test_select_chains_over_uniform_conditions(numba, make_shader):
+    """A sprite's table, `idx = y == 3.0 ? (x <= 7.0 ? 1.0 : 2.0) : idx;` a row, with y one
+    value for the block: the run's constants are chosen once for the block (scalars `_u..L`)
+    and idx written once per lane, in uniform control and under a mask; where y has lanes
+    every row is written per lane. The bits are the per-pixel engine's, at times that take each
+    arm."""
+    from glslcheck.backends.compiled_engine.engine import generate
+
+    shader = make_shader(SELECT_CHAINS)
+    source, _ = generate(shader, lanes=8)
+    assert re.search(r"= (_g_)?lsel\(_u\d+L, (_g_)?F_\d+p0, _u\d+L\)", source), source
+    for time in (0.4, 1.3, 2.5):
+        what = f"select chains at {frame_text(SIZE, time=time, mouse=MOUSE)}"
+        assert_same(
+            _render(shader, 8, time),
+            _render(shader, 0, time),
+            what=what,
+            names=("lanes 8", "per pixel"),
+        )
