@@ -154,6 +154,11 @@ def _fold_copies(fn: ast.FunctionDef) -> None:
     fn.body = fold(fn.body)
 
 
+def names_in(node: Any) -> set[str]:
+    """The names node reads or writes (node included)."""
+    return {n.id for n in walk_nodes(node) if isinstance(n, ast.Name)}
+
+
 def walk_nodes(node: Any) -> Any:
     """Every node under node (node included), as ast.walk but depth first and without its
     per-node generators: for what counts and collects, in no order."""
