@@ -200,6 +200,12 @@ def folded_call(cg: Any, call: Any, fn: Any) -> Val | None:
     env, params, result, holders = plan
     fold = cg.fold_context()
     held = {i: (fold.tmp(cg.expr(a)).parts, cg.type_of(a)) for i, a in holders}
+    if fold.facts.writes_globals(fn):  # (its terms read the globals' known values: its writes)
+        fold.fold_state.call_fold_off = True
+        try:
+            cg.user_call(call, fn)
+        finally:
+            fold.fold_state.call_fold_off = False
     memo: dict[int, str] = {}
 
     def code(term: Any) -> str:

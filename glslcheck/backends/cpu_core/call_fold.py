@@ -154,6 +154,12 @@ class _Eval:
     def __init__(self, tr: FoldEmitter, mask: str | None) -> None:
         self.tr, self.mask, self.merges, self.depth, self.factored = tr, mask, 0, 0, 0
         self.slots = 0  # the next free slot of an argument read at run time (_argument_terms)
+        # the globals whose values are known where the call starts (:func:`known_globals`), by
+        # symbol id, written as the callee writes them; reading any other global refuses
+        self.globals: dict[int, list] = {}
+        # any other float global is then a value unknown here (_UNKNOWN): written, or read into
+        # a global's value only (a result or out parameter that reads one refuses: _evaluate)
+        self.unknown = False
 
     # -- scalar rules ----------------------------------------------------------------------
     def neg(self, a: _T) -> _T:
@@ -310,7 +316,7 @@ class _Eval:
                 raise _Refuse
         place = self.place(e, env)
         if place is not None:  # (a local or a parameter, a struct's member, a swizzle of one)
-            values = env[place[0]]
+            values = self.slot(place[0], env)
             if any(values[i] is None for i in place[1]):
                 raise _Refuse  # (read before it is written: an out parameter, `S s;`)
             return [values[i] for i in place[1]]
@@ -510,6 +516,16 @@ class _Eval:
                 self.assign(a.target, value, env)
             elif (
                 isinstance(st, A.ExpressionStatement)
+                and isinstance(st.expr, (A.Unary, A.Postfix))
+                and st.expr.op in ("++", "--")
+            ):  # (a float ++ or --: x += 1.0, x -= 1.0; expr refuses any other type)
+                x = st.expr.operand
+                value = [
+                    self.add(v, _k(1.0 if st.expr.op == "++" else -1.0)) for v in self.expr(x, env)
+                ]
+                self.assign(x, value, env)
+            elif (
+                isinstance(st, A.ExpressionStatement)
                 and isinstance(st.expr, A.Call)
                 and isinstance(target := self.tr.model.call_target(st.expr), Symbol)
             ):
@@ -523,10 +539,16 @@ class _Eval:
         if place is None:
             raise _Refuse
         key, idx = place
-        new = list(env[key])
+        store = env if key in env else self.globals
+        new = list(store[key])
         for i, v in zip(idx, value * len(idx) if len(value) == 1 else value):
             new[i] = v
-        env[key] = new
+        store[key] = new
+
+    def slot(self, key: int, env: dict[int, list]) -> list:
+        """The terms of the variable `key` of :meth:`place`: a local or parameter of `env`, else a
+        known global."""
+        return env[key] if key in env else self.globals[key]
 
     def place(self, e: Any, env: dict[int, list]) -> tuple[int, list[int]] | None:
         """(the key in `env`, the indexes of the components) of a local or parameter of the
@@ -534,9 +556,11 @@ class _Eval:
         tr = self.tr
         if isinstance(e, A.Identifier):
             sym = tr.model.symbol_of(e)
-            if sym is None or id(sym) not in env:
-                return None
-            return id(sym), list(range(len(env[id(sym)])))
+            if sym is None or id(sym) not in env and id(sym) not in self.globals:
+                if not (self.unknown and _float_global(sym)):
+                    return None
+                self.globals[id(sym)] = [_UNKNOWN] * _size(sym.type)
+            return id(sym), list(range(len(self.slot(id(sym), env))))
         if isinstance(e, A.Field):
             base = self.place(e.base, env)
             if base is None:
@@ -837,6 +861,9 @@ def _evaluate(
     components as constants, else every argument a run-time value. Raises _Refuse."""
     ev = _Eval(tr, mask)
     ev.slots = len(call.args)
+    known = known_globals(tr, call)
+    ev.globals = {k: [_k(v) for v in vs] for k, vs in (known or {}).items()}
+    ev.unknown = known is not None
     env: dict[int, list] = {}
     holders: list[tuple[int, Any]] = []
     args = _argument_terms(tr, ev, call, fn, constants, holders, list(range(len(call.args))))
@@ -846,6 +873,10 @@ def _evaluate(
     for p, v in zip(params, args):
         env[id(p)] = v
     result = ev.body(fn, env)
+    if ev.unknown and _reads_unknown(
+        [result] + [env[id(p)] for p, (_, _, d) in zip(params, fn.params) if d != "in"]
+    ):
+        raise _Refuse
     if constants:
         outs = [id(p) for p, (_, _, dr) in zip(params, fn.params) if dr != "in"]
         result, *written = ev.sunk([result] + [env[k] for k in outs])
@@ -997,3 +1028,182 @@ def product_sums(
     if found is None or found[1] is not tr.lines:
         return None  # (not folded, or folded in another Python function: an outlined part)
     return found[0]
+
+
+_UNKNOWN = _T("x", code="@global@")  # a global's value where it is not known (_Eval.unknown)
+
+
+def _float_global(sym: Symbol) -> bool:
+    """A global variable (no `const`, no uniform) of float, vecN or matN."""
+    t = sym.type
+    return (
+        sym.kind == "global"
+        and sym.qualifier is None
+        and sym.const_value is None
+        and not t.is_array
+        and not t.is_struct
+        and t.base == "float"
+    )
+
+
+def _reads_unknown(outs: list[list]) -> bool:
+    """Some term of `outs` reads a global's unknown value."""
+    seen: set[int] = set()
+    todo = [t for terms in outs for t in terms if t is not None]
+    while todo:
+        t = todo.pop()
+        if t is _UNKNOWN:
+            return True
+        if id(t) not in seen:
+            seen.add(id(t))
+            todo.extend(t.args)
+    return False
+
+
+def known_globals(tr: FoldEmitter, call: A.Call) -> dict[int, list[float]] | None:
+    """The float globals whose values are compile-time constants where the entry point makes
+    `call` (by symbol id, their components), as Mesa knows them after inlining every call: the
+    entry has no caller, so its globals start at their constant initializers (zero without
+    one), and a top-level statement before `call` that only calls straight-line functions
+    (:meth:`_Eval.body`) leaves each global it writes at the constant those functions compute
+    (``bump(); bump();`` with ``gCount += 1.0``). A global written under a branch or a loop, by
+    a function this evaluation refuses, or from a run-time value is unknown from there on. Empty
+    for a call in any other function, or under a branch or a loop of the entry: None."""
+    f = tr.fn
+    if f is None or not f.is_entry or f.sym is None:
+        return None
+    memo = tr.fold_state.call_fold_globals
+    if memo is None:
+        memo = tr.fold_state.call_fold_globals = _entry_globals(tr, f.sym)
+    return memo.get(id(call))
+
+
+def _entry_globals(tr: FoldEmitter, entry: Symbol) -> dict[int, dict[int, list[float]]]:
+    """:func:`known_globals` for each call of a user function at the entry's top level."""
+    state: dict[int, list[float]] = {}
+    for sym in _globals(tr):
+        t = sym.type
+        init = sym.node.init if isinstance(sym.node, A.Declarator) else None
+        if not _float_global(sym):
+            continue
+        cv = tr.model.const_value(init) if init is not None else None
+        if init is None:
+            state[id(sym)] = [0.0] * _size(t)
+        elif cv is not None:
+            state[id(sym)] = _flat(cv)
+    found: dict[int, dict[int, list[float]]] = {}
+    for st in entry.node.body.stmts:
+        calls = _straight_calls(tr, st)
+        if calls is None:
+            _forget(tr, st, state)
+            continue
+        for c in calls:
+            found[id(c)] = dict(state)
+            _call_effect(tr, c, state)
+        if isinstance(st, A.ExpressionStatement) and isinstance(st.expr, A.Assignment):
+            a = st.expr
+            g = tr.model.symbol_of(a.target) if isinstance(a.target, A.Identifier) else None
+            if g is not None and id(g) in state:
+                cv = tr.model.const_value(a.value) if a.op == "=" else None
+                if cv is not None and len(_flat(cv)) == len(state[id(g)]):
+                    state[id(g)] = _flat(cv)
+                else:
+                    del state[id(g)]
+    return found
+
+
+def _globals(tr: FoldEmitter) -> list[Symbol]:
+    """The global variables the entry's calls may read or write."""
+    seen: dict[int, Symbol] = {}
+    for root in _reached(tr):
+        for n in root.node.body.walk():
+            if isinstance(n, A.Identifier):
+                sym = tr.model.symbol_of(n)
+                if sym is not None and sym.kind == "global" and sym.const_value is None:
+                    seen[id(sym)] = sym
+    return list(seen.values())
+
+
+def _reached(tr: FoldEmitter) -> list[Symbol]:
+    """The entry and the user functions it calls, through the functions they call."""
+    assert tr.fn is not None and tr.fn.sym is not None
+    out: dict[int, Symbol] = {}
+    todo = [tr.fn.sym]
+    while todo:
+        fn = todo.pop()
+        if id(fn) in out:
+            continue
+        out[id(fn)] = fn
+        for n in fn.node.body.walk():
+            if isinstance(n, A.Call) and isinstance(t := tr.model.call_target(n), Symbol):
+                todo.append(t)
+    return list(out.values())
+
+
+def _straight_calls(tr: FoldEmitter, st: Any) -> list[A.Call] | None:
+    """The calls of user functions of a declaration or expression statement of the entry, in the
+    order they run (arguments first); None for any other statement, or one that writes a
+    global other than as ``g = value;`` or chooses what runs (``?:``, ``&&``, ``||``)."""
+    if isinstance(st, A.ExpressionStatement):
+        root: Any = st.expr
+    elif isinstance(st, A.DeclarationStatement) and isinstance(st.decl, A.VariableDeclaration):
+        root = st.decl
+    else:
+        return None
+    top = root.target if isinstance(root, A.Assignment) else None
+    calls: list[A.Call] = []
+
+    def visit(n: Any) -> bool:
+        if isinstance(n, A.Ternary) or isinstance(n, A.Binary) and n.op in ("&&", "||"):
+            return False
+        for c in n.children():
+            if not visit(c):
+                return False
+        for sym in tr.facts.written_variables(n):
+            if sym.kind == "global" and not (n is root and top is not None):
+                return False
+        if isinstance(n, A.Call) and isinstance(tr.model.call_target(n), Symbol):
+            calls.append(n)
+        return True
+
+    return calls if visit(root) else None
+
+
+def _call_effect(tr: FoldEmitter, call: A.Call, state: dict[int, list[float]]) -> None:
+    """`state` after `call`: the globals the callee writes at the constants it computes from
+    `state`, or unknown."""
+    fn = tr.model.call_target(call)
+    written = tr.facts.global_effects(fn)[1]
+    if not written:
+        return
+    ev = _Eval(tr, None)
+    ev.slots = len(call.args)
+    ev.globals = {k: [_k(v) for v in vs] for k, vs in state.items()}
+    ev.unknown = True
+    try:
+        args = _argument_terms(tr, ev, call, fn, False, [], list(range(len(call.args))))
+        params = [tr.model.symbol_of(p) for p in fn.node.proto.params]
+        if any(p is None for p in params):
+            raise _Refuse
+        ev.body(fn, {id(p): v for p, v in zip(params, args)})
+    except _Refuse:
+        for k in written:
+            state.pop(k, None)
+        return
+    for k in written:
+        terms = ev.globals.get(k)
+        if terms is not None and all(t.op == "k" and t.value is not None for t in terms):
+            state[k] = [float(t.value) for t in terms]
+        else:
+            state.pop(k, None)
+
+
+def _forget(tr: FoldEmitter, st: Any, state: dict[int, list[float]]) -> None:
+    """Every global statement `st` may write (itself or through the functions it calls) is
+    unknown from there on."""
+    for n in st.walk():
+        for sym in tr.facts.written_variables(n):
+            state.pop(id(sym), None)
+        if isinstance(n, A.Call) and isinstance(t := tr.model.call_target(n), Symbol):
+            for k in tr.facts.global_effects(t)[1]:
+                state.pop(k, None)

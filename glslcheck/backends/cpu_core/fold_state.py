@@ -70,6 +70,7 @@ class FoldState:
     # cpu_core/call_fold.py
     call_fold_off: bool = False  # emitting the written call inside a folded one
     call_fold_dots: dict = field(default_factory=dict)  # function -> whether its body calls dot
+    call_fold_globals: dict | None = None  # entry's top-level call -> globals known there
     call_fold_sums: dict = field(
         default_factory=dict
     )  # (call, symbol) -> products summed per component

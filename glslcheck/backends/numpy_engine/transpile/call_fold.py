@@ -36,9 +36,14 @@ def _emit_call(
     holders: list[tuple[int, Any]],
 ) -> str:
     r = tr.fresh("t")
+    effects = tr.facts.writes_globals(fn)
+    if effects:  # (the terms read the globals' known values: the call as written writes them)
+        names = {i: tr.tmp(tr.expr(a, mask)) for i, a in holders}
+        tr.emit(f"{r} = {_written_call(tr, call, fn, mask)}")
     tr.emit("if rt.lp:  # constants propagated into the call as NIR does (transpile/call_fold.py)")
     tr.indent += 1
-    names = {i: tr.tmp(tr.expr(a, mask)) for i, a in holders}
+    if not effects:
+        names = {i: tr.tmp(tr.expr(a, mask)) for i, a in holders}
     memo: dict[int, str] = {}
 
     def code(t: Any) -> str:
@@ -79,13 +84,18 @@ def _emit_call(
             record_sums(tr, call, a, env[id(p)], memo)
     tr.emit(f"{r} = {value(result, tr.type_of(call)) if result else 'None'}")
     tr.indent -= 1
-    tr.emit("else:")
-    tr.indent += 1
+    if not effects:
+        tr.emit("else:")
+        tr.indent += 1
+        tr.emit(f"{r} = {_written_call(tr, call, fn, mask)}")
+        tr.indent -= 1
+    return r
+
+
+def _written_call(tr: TranspilerState, call: A.Call, fn: Symbol, mask: str | None) -> str:
+    """The code of the call as written (its value)."""
     tr.fold_state.call_fold_off = True
     try:
-        written = tr.user_call(call, fn, mask)
+        return tr.user_call(call, fn, mask)
     finally:
         tr.fold_state.call_fold_off = False
-    tr.emit(f"{r} = {written}")
-    tr.indent -= 1
-    return r
