@@ -47,9 +47,9 @@ member read or written is a slice; ``S r;`` declares it unknown until written), 
 is ``x * inversesqrt(dot(x, x))`` and ``cross`` is Runtime.cross, per component. A struct
 argument is followed where it is a local initialised by a call of such a function
 (``cam k = make(vec3(off, -6.0), 7.0); ... ray(k, s, t)``): that call is evaluated again at
-the call, its arguments read there (:func:`_struct_source` checks that nothing they read is
-written in between), so the constant -6.0 reaches ``ray``'s arithmetic as it does after NIR
-inlines both. An argument's constant is also sunk down sums each used once,
+the call, its arguments read there (:func:`.call_sites.struct_source` checks that nothing
+they read is written in between), so the constant -6.0 reaches ``ray``'s arithmetic as it
+does after NIR inlines both. An argument's constant is also sunk down sums each used once,
 ``(a + b) + #c -> (a + #c) + b`` (:meth:`_Eval.sunk`), where it cancels a constant of the same
 component (the camera ray's ``ll + s*h + t*v - orig``, measured:
 tests/gl/test_llvmpipe_constant_components.py). A call whose result or out argument is a
@@ -84,6 +84,7 @@ from ...frontend import syntax as A
 from ...language import builtin_functions as B
 from ...semantics.analysis import param_directions
 from ...semantics.model import Symbol
+from .call_sites import struct_source, unchanged_init, written_components
 from .common import RUNTIME_NAMES
 
 TYPE_CHECKING = False  # not typing's: importing typing costs every start-up
@@ -657,7 +658,7 @@ def _constant_components(tr: FoldEmitter, arg: Any, call: A.Call) -> list[_T | N
         return None
     for st in stmts[decl + 1 : at + 1]:
         for n in st.walk():
-            hit = _written_components(tr, n, sym, call)
+            hit = written_components(tr, n, sym, call)
             if hit == "all":
                 comps = [None] * len(comps)
             elif hit:
@@ -676,64 +677,6 @@ def _constructed_components(tr: FoldEmitter, ctor: A.Call, t: Any) -> list[_T | 
             [_k(x, True) for x in _flat(v)] if v is not None else [None] * _width(tr.type_of(a))
         )
     return comps[: t.size]
-
-
-def _unchanged_init(tr: FoldEmitter, ident: A.Identifier, call: A.Call) -> Any:
-    """The initializer of the local `ident` when it is declared by a top-level statement of the
-    current function before the one that holds `call`, and neither it nor a local or parameter
-    the initializer reads is written in between (so the initializer, evaluated again at the
-    call, gives its value); else None."""
-    sym = tr.model.symbol_of(ident)
-    if (
-        sym is None
-        or sym.kind != "local"
-        or not isinstance(sym.node, A.Declarator)
-        or sym.node.init is None
-    ):
-        return None
-    assert tr.fn is not None  # folding a call inside a function
-    stmts = tr.fn.sym.node.body.stmts
-    decl = next((i for i, st in enumerate(stmts) if any(n is sym.node for n in st.walk())), None)
-    at = next((i for i, st in enumerate(stmts) if any(n is call for n in st.walk())), None)
-    if (
-        decl is None
-        or at is None
-        or not isinstance(stmts[decl], A.DeclarationStatement)
-        or decl >= at
-    ):
-        return None
-    init = sym.node.init
-    named = {sym} | {tr.model.symbol_of(n) for n in init.walk() if isinstance(n, A.Identifier)}
-    read = [r for r in named if r is not None and r.kind in ("local", "param")]
-    for st in stmts[decl + 1 : at + 1]:
-        for n in st.walk():
-            if any(_written_components(tr, n, r, call) for r in read):
-                return None
-    return init
-
-
-def _written_components(tr: FoldEmitter, n: Any, sym: Symbol, call: A.Call) -> Any:
-    """The components of `sym` the node `n` writes: "all", a tuple of indices, or ()."""
-    targets: list[Any] = []
-    if isinstance(n, A.Assignment):
-        targets.append(n.target)
-    elif isinstance(n, (A.Unary, A.Postfix)) and n.op in ("++", "--"):
-        targets.append(n.operand)
-    elif isinstance(n, A.Call) and n is not call:
-        tgt = tr.model.call_target(n)
-        if isinstance(tgt, Symbol):
-            targets += [a for a, d in zip(n.args, param_directions(tgt)) if d != "in"]
-        elif n.callee == "modf" and len(n.args) == 2:
-            targets.append(n.args[1])
-    for x in targets:
-        root = x
-        while isinstance(root, (A.Field, A.Index)):
-            root = root.base
-        if isinstance(root, A.Identifier) and tr.model.symbol_of(root) is sym:
-            if isinstance(x, A.Field) and x.base is root and tr.model.is_swizzle(x):
-                return tuple(tr.model.swizzle_indices(x))  # (a struct's member: "all" below)
-            return "all"
-    return ()
 
 
 def fold_plan(tr: FoldEmitter, call: A.Call, fn: Symbol, mask: str | None) -> tuple | None:
@@ -787,7 +730,7 @@ def _calls_dot(tr: FoldEngine, fn: Symbol) -> bool:
 def _has_constant_argument(tr: FoldEmitter, call: A.Call, fn: Symbol) -> bool:
     for a, (_, _, dr) in zip(call.args, fn.params):
         if dr == "in" and tr.type_of(a).is_struct:
-            source = _struct_source(tr, a, call)
+            source = struct_source(tr, a, call)
             inner = tr.model.call_target(source) if source is not None else None
             if (
                 source is not None
@@ -811,7 +754,7 @@ def _scaled_argument(tr: FoldEmitter, a: Any, call: A.Call) -> tuple[Any, Any] |
     ``hash11(fi * 0.017)`` with ``fract(vec3(p) * 443.8975)``: ``fi * (0.017*443.8975)``), also
     through a local so initialised that nothing writes before `call` (NIR's SSA value)."""
     if isinstance(a, A.Identifier):
-        a = _unchanged_init(tr, a, call)
+        a = unchanged_init(tr, a, call)
     if not (isinstance(a, A.Binary) and a.op == "*") or tr.has_effects(a):
         return None
     for y, c in ((a.left, a.right), (a.right, a.left)):
@@ -866,13 +809,13 @@ def _argument_terms(
     """Per argument of `call` (of `fn`), its components' terms (None: an out parameter's,
     unknown); an argument read at run time is added to `holders` as (its slot, the node). A
     struct argument is a local the value of a call of a user function initialises
-    (:func:`_struct_source`): that call is evaluated here, its own arguments in new slots
+    (:func:`.call_sites.struct_source`): that call is evaluated here, its own arguments in new slots
     (`source_of`: the call they are then read at)."""
     args: list[list[Any]] = []
     for a, (_, _, dr), i in zip(call.args, fn.params, slots):
         t = tr.type_of(a)
         if t.is_struct and dr == "in":
-            source = _struct_source(tr, a, call)
+            source = struct_source(tr, a, call)
             inner = tr.model.call_target(source) if source is not None else None
             if (
                 source is None
@@ -919,28 +862,6 @@ def _argument_terms(
             [k if k is not None else x for k, x in zip(known or [None] * len(leaves), leaves)]
         )
     return args
-
-
-def _struct_source(tr: FoldEmitter, a: Any, call: A.Call) -> A.Call | None:
-    """The call of a user function that initialises the struct local `a`, where evaluating it
-    again at `call` gives a's value there: `a` declared by a top-level statement before the one
-    that holds `call`, and neither it nor a local or parameter the initializer reads written
-    in between, no global read but constants and uniforms (a call may write a global); else
-    None."""
-    init = _unchanged_init(tr, a, call) if isinstance(a, A.Identifier) else None
-    if not (
-        isinstance(init, A.Call)
-        and not init.constructor
-        and isinstance(tr.model.call_target(init), Symbol)
-        and not any(tr.has_effects(x) for x in init.args)
-    ):
-        return None
-    for n in init.walk():
-        sym = tr.model.symbol_of(n) if isinstance(n, A.Identifier) else None
-        if sym is not None and sym.kind not in ("local", "param", "uniform"):
-            if tr.model.const_value(n) is None:
-                return None
-    return init
 
 
 def out_roots(tr: FoldEmitter, call: A.Call, sym: Symbol | None) -> set[str] | None:
