@@ -15,7 +15,9 @@ used twice) the -6.0 still cancels: Mesa's on 14,151 of 14,151, the written one 
 Both CPU engines (nir_fold/constant_components.py) render these shaders, and a negated
 component times a constant, as the driver does; the camera split into a function returning a
 struct and one reading its fields too (cpu_core/call_fold.py: the written order differed from
-the driver in z on 14,231 of 14,400 pixels). Written for llvmpipe of Mesa 22.3."""
+the driver in z on 14,231 of 14,400 pixels), and p05-3lccz8's camera, whose get_ray returns a
+struct (the call as written differed in z on 2,114 pixels). Written for llvmpipe of Mesa
+22.3."""
 
 from __future__ import annotations
 
@@ -85,10 +87,57 @@ void mainImage(out vec4 c, in vec2 fragCoord) {
     vec2 st = fragCoord / iResolution.xy;
     c = vec4(ray(k, st.x, st.y), 1.0);
 }"""
+# p05-3lccz8's camera: a maker returning a struct (radians and tan of its constant 30.0, the
+# -6.0 of orig), and get_ray returning a struct `ray` from the camera's fields; NIR inlines both
+# and the -6.0 cancels in the ray's z as above (the engines build the struct from its members'
+# terms: call_fold.py). The driver's tan(radians(30.0)/2.0) folded at compile time has the bits
+# of the engines' run-time tan here (see the tan test below: not for every constant).
+STRUCT_CAMERA = """struct camera {
+    vec3 origin; vec3 lower_left_corner; vec3 horizontal; vec3 vertical; vec3 u, v, w;
+    float lens_radius;
+};
+struct ray { vec3 origin; vec3 dir; };
+camera cameraCreator(vec3 orig, vec3 lookat, vec3 up, float vfov, float aspect_ratio,
+                     float aperture, float focus_dist) {
+    camera outCam;
+    float theta = radians(vfov);
+    float h = tan(theta / 2.0);
+    float viewport_height = 2.0 * h;
+    float viewport_width = aspect_ratio * viewport_height;
+    vec3 w = normalize(orig - lookat);
+    vec3 u = normalize(cross(up, w));
+    vec3 v = cross(w, u);
+    outCam.origin = orig;
+    outCam.horizontal = focus_dist * viewport_width * u;
+    outCam.vertical = focus_dist * viewport_height * v;
+    outCam.lower_left_corner = orig - outCam.horizontal / 2.0 - outCam.vertical / 2.0
+        - focus_dist * w;
+    outCam.lens_radius = aperture / 2.0;
+    outCam.u = u;
+    outCam.v = v;
+    outCam.w = w;
+    return outCam;
+}
+ray get_ray(camera cam, float s, float t) {
+    return ray(cam.origin, cam.lower_left_corner + s * cam.horizontal + t * cam.vertical
+        - cam.origin);
+}
+void mainImage(out vec4 c, in vec2 fragCoord) {
+    float aspect = iResolution.x / iResolution.y;
+    vec2 off = vec2(-6, 3) - abs(iMouse.xy) / iResolution.xy * vec2(-12.0, 4.0);
+    float aperture = 0.4;
+    float focus_dist = 7.0;
+    camera cam = cameraCreator(vec3(off, -6), vec3(0), vec3(0, 1, 0), 30.0, aspect, aperture,
+        focus_dist);
+    vec2 uv = fragCoord.xy / iResolution.xy;
+    ray r = get_ray(cam, uv.x, uv.y);
+    c = vec4(r.dir, 1.0);
+}"""
 
 SHADERS = {
     "product": PRODUCT,
     "through_calls": THROUGH_CALLS,
+    "struct_camera": STRUCT_CAMERA,
     "negated_product": NEGATED,
     **{"ray_" + k: RAY.replace("READ_LL", v) for k, v in RAYS.items()},
 }

@@ -52,8 +52,10 @@ they read is written in between), so the constant -6.0 reaches ``ray``'s arithme
 does after NIR inlines both. An argument's constant is also sunk down sums each used once,
 ``(a + b) + #c -> (a + #c) + b`` (:meth:`_Eval.sunk`), where it cancels a constant of the same
 component (the camera ray's ``ll + s*h + t*v - orig``, measured:
-tests/gl/test_llvmpipe_constant_components.py). A call whose result or out argument is a
-struct is left as written (the engines write a folded call's terms as vectors).
+tests/gl/test_llvmpipe_constant_components.py). A call returning a struct of float members
+is folded where an argument carries a constant (``ray get_ray(camera k, float s, float t)``:
+the engines build the struct from its members' terms); a call writing a struct through an
+out argument is left as written.
 
 Not copied: calls under a loop or a branch of the caller whose constants come from there (a
 local counts as constant only where its writes are top-level statements before the call),
@@ -600,6 +602,12 @@ def _size(t: Any) -> int:
     return _width(t)
 
 
+def member_size(t: Any) -> int:
+    """The number of terms a value of type t (a member of a folded call's struct result, all
+    of whose members are float: :func:`fold_plan` checked) takes."""
+    return _size(t)
+
+
 def _member(t: Any, name: str) -> tuple[int, int]:
     """(offset, width) of the member `name` among the components of the struct type t."""
     at = 0
@@ -693,14 +701,13 @@ def fold_plan(tr: FoldEmitter, call: A.Call, fn: Symbol, mask: str | None) -> tu
         or tr.fold_state.call_fold_off
         or tr.fold_state.inline_frames
         or any(tr.has_effects(a) for a in call.args)
-        or tr.type_of(call).is_struct  # (the engines write a folded call's terms as vectors)
         or any(d != "in" and tr.type_of(a).is_struct for a, (_, _, d) in zip(call.args, fn.params))
     ):
         return None
     try:
         constant = _has_constant_argument(tr, call, fn)
-        if not constant and not _calls_dot(tr, fn):
-            return None
+        if not constant and (tr.type_of(call).is_struct or not _calls_dot(tr, fn)):
+            return None  # (a struct result: only where an argument carries a constant)
         ev, env, params, result, holders = _evaluate(tr, call, fn, mask, True)
         if (
             ev.factored == 0

@@ -8,7 +8,7 @@ from typing import Any
 
 from ....frontend import syntax as A
 from ....semantics.model import Symbol
-from ...cpu_core.call_fold import fold_plan, record_sums
+from ...cpu_core.call_fold import fold_plan, member_size, record_sums
 
 TYPE_CHECKING = False  # not typing's: importing typing costs every start-up
 if TYPE_CHECKING:
@@ -66,6 +66,13 @@ def _emit_call(
         return c
 
     def value(terms: list[Any], t: Any) -> str:
+        if t.is_struct:  # (members one after the other, as call_fold evaluates them)
+            fields, at = [], 0
+            for fname, ft in t.fields:
+                width = member_size(ft)
+                fields.append(f"{tr.member(fname, call)}={value(terms[at : at + width], ft)}")
+                at += width
+            return f'rt.struct("{tr.struct_name(t)}", {", ".join(fields)})'
         cs = [code(x) for x in terms]
         if t.is_scalar:
             return cs[0]
