@@ -16,8 +16,8 @@ Both CPU engines (nir_fold/constant_components.py) render these shaders, and a n
 component times a constant, as the driver does; the camera split into a function returning a
 struct and one reading its fields too (cpu_core/call_fold.py: the written order differed from
 the driver in z on 14,231 of 14,400 pixels), and p05-3lccz8's camera, whose get_ray returns a
-struct (the call as written differed in z on 2,114 pixels). Written for llvmpipe of Mesa
-22.3."""
+struct (the call as written differed in z on 2,114 pixels), also with the lens offset drawn
+from a loop that advances a global seed (1,534 pixels). Written for llvmpipe of Mesa 22.3."""
 
 from __future__ import annotations
 
@@ -92,7 +92,7 @@ void mainImage(out vec4 c, in vec2 fragCoord) {
 # and the -6.0 cancels in the ray's z as above (the engines build the struct from its members'
 # terms: call_fold.py). The driver's tan(radians(30.0)/2.0) folded at compile time has the bits
 # of the engines' run-time tan here (see the tan test below: not for every constant).
-STRUCT_CAMERA = """struct camera {
+CAMERA_MAKER = """struct camera {
     vec3 origin; vec3 lower_left_corner; vec3 horizontal; vec3 vertical; vec3 u, v, w;
     float lens_radius;
 };
@@ -118,11 +118,8 @@ camera cameraCreator(vec3 orig, vec3 lookat, vec3 up, float vfov, float aspect_r
     outCam.w = w;
     return outCam;
 }
-ray get_ray(camera cam, float s, float t) {
-    return ray(cam.origin, cam.lower_left_corner + s * cam.horizontal + t * cam.vertical
-        - cam.origin);
-}
-void mainImage(out vec4 c, in vec2 fragCoord) {
+"""
+CAMERA_AT = """
     float aspect = iResolution.x / iResolution.y;
     vec2 off = vec2(-6, 3) - abs(iMouse.xy) / iResolution.xy * vec2(-12.0, 4.0);
     float aperture = 0.4;
@@ -130,14 +127,67 @@ void mainImage(out vec4 c, in vec2 fragCoord) {
     camera cam = cameraCreator(vec3(off, -6), vec3(0), vec3(0, 1, 0), 30.0, aspect, aperture,
         focus_dist);
     vec2 uv = fragCoord.xy / iResolution.xy;
-    ray r = get_ray(cam, uv.x, uv.y);
+"""
+STRUCT_CAMERA = (
+    CAMERA_MAKER
+    + """ray get_ray(camera cam, float s, float t) {
+    return ray(cam.origin, cam.lower_left_corner + s * cam.horizontal + t * cam.vertical
+        - cam.origin);
+}
+void mainImage(out vec4 c, in vec2 fragCoord) {"""
+    + CAMERA_AT
+    + """    ray r = get_ray(cam, uv.x, uv.y);
     c = vec4(r.dir, 1.0);
 }"""
+)
+# The whole of p05-3lccz8's get_ray: the lens offset drawn by random_in_unit_disk() (a loop
+# that advances the global seed) is an unknown value inside the folded terms, the call made
+# once where get_ray's arguments have been read; get_ray called in the sample loop, whose
+# hash2 advances the seed too (call_fold.py's opaque calls).
+LENS_CAMERA = (
+    CAMERA_MAKER
+    + """uint base_hash(uvec2 p) {
+    p = 1103515245U * ((p >> 1U) ^ (p.yx));
+    uint h32 = 1103515245U * ((p.x) ^ (p.y >> 3U));
+    return h32 ^ (h32 >> 16);
+}
+float g_seed = 0.0;
+vec2 hash2(inout float seed) {
+    uint n = base_hash(floatBitsToUint(vec2(seed += 0.1, seed += 0.1)));
+    uvec2 rz = uvec2(n, n * 48271U);
+    return vec2(rz.xy & uvec2(0x7fffffffU)) / float(0x7fffffff);
+}
+vec3 random_in_unit_disk() {
+    while (true) {
+        vec3 p = vec3(hash2(g_seed) - vec2(0.5), 0.0);
+        if (dot(p, p) >= 1.0) continue;
+        return p;
+    }
+}
+ray get_ray(camera cam, float s, float t) {
+    vec3 rd = cam.lens_radius * random_in_unit_disk();
+    vec3 offset = cam.u * rd[0] + cam.v * rd[1];
+    return ray(cam.origin + offset,
+        cam.lower_left_corner + s * cam.horizontal + t * cam.vertical - cam.origin - offset);
+}
+void mainImage(out vec4 c, in vec2 fragCoord) {
+    g_seed = float(base_hash(floatBitsToUint(fragCoord))) / float(0xffffffffU) + iTime;"""
+    + CAMERA_AT
+    + """    vec3 acc = vec3(0.0);
+    for (int i = 0; i < 4; ++i) {
+        vec2 sloc = 2.0 * (hash2(g_seed) / iResolution.xy) + uv;
+        ray r = get_ray(cam, sloc.x, sloc.y);
+        acc += r.dir;
+    }
+    c = vec4(acc, 1.0);
+}"""
+)
 
 SHADERS = {
     "product": PRODUCT,
     "through_calls": THROUGH_CALLS,
     "struct_camera": STRUCT_CAMERA,
+    "lens_camera": LENS_CAMERA,
     "negated_product": NEGATED,
     **{"ray_" + k: RAY.replace("READ_LL", v) for k, v in RAYS.items()},
 }

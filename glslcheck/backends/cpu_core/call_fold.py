@@ -57,6 +57,13 @@ is folded where an argument carries a constant (``ray get_ray(camera k, float s,
 the engines build the struct from its members' terms); a call writing a struct through an
 out argument is left as written.
 
+A call without arguments inside the callee that is not followed (a loop, a global written:
+p05-3lccz8's ``cam.lens_radius * random_in_unit_disk()``, whose loop advances the global seed)
+is an unknown value to NIR's rules after inlining, as a loop's result is: it is a run-time
+value of the terms, the call made once by the engines among the values read at run time
+(after the folded call's arguments, in the order of the callee's statements:
+:meth:`_Eval.opaque_call`).
+
 Not copied: calls under a loop or a branch of the caller whose constants come from there (a
 local counts as constant only where its writes are top-level statements before the call),
 callees with branches, loops, arrays or non-float arithmetic, ``vec * mat``, and the other
@@ -157,6 +164,8 @@ class _Eval:
     def __init__(self, tr: FoldEmitter, mask: str | None) -> None:
         self.tr, self.mask, self.merges, self.depth, self.factored = tr, mask, 0, 0, 0
         self.slots = 0  # the next free slot of an argument read at run time (_argument_terms)
+        self.holders: list[tuple[int, Any]] = []  # (slot, node) of the values read at run time
+        self.opaque = True  # whether a call not followed may be an opaque value (`opaque_call`)
 
     # -- scalar rules ----------------------------------------------------------------------
     def neg(self, a: _T) -> _T:
@@ -295,14 +304,9 @@ class _Eval:
     def expr(self, e: Any, env: dict[int, list]) -> list[_T]:
         tr = self.tr
         t = tr.type_of(e)
-        if (
-            t.is_array
-            or not t.is_struct
-            and t.base not in ("float", "int")
-            or tr.has_effects(e)
-            and not isinstance(e, A.Call)
-        ):
-            raise _Refuse
+        if t.is_array or not t.is_struct and t.base not in ("float", "int"):
+            raise _Refuse  # (effects: an assignment, ++ or a built-in's out argument is refused
+            # by its shape below, a user call followed or an opaque value: `call`)
         if t.is_struct:
             _size(t)  # (float members only, else _Refuse)
         else:
@@ -359,7 +363,12 @@ class _Eval:
         tr = self.tr
         target = tr.model.call_target(e)
         if isinstance(target, Symbol):
-            return self.user_call(target, e.args, env)
+            depth, held = self.depth, len(self.holders)
+            try:
+                return self.user_call(target, e.args, env)
+            except _Refuse:  # (an opaque call it made inside is not made: it is made whole)
+                self.depth, self.holders[held:] = depth, []
+                return self.opaque_call(e, t)
         args = [self.expr(a, env) for a in e.args]
         if isinstance(target, B.Overload) and e.callee == "pow" and len(args) == 2:
             return [self.pow(x, y) for x, y in zip(args[0], args[1])]
@@ -397,6 +406,20 @@ class _Eval:
             return flat[:1]
         raise _Refuse
 
+    def opaque_call(self, e: A.Call, t: Any) -> list[_T]:
+        """A call of a user function without arguments that is not followed (a loop, a global
+        written: a random draw advancing a global seed) as a run-time value: the engines make the
+        call once, where the folded call's arguments have been read (its slot in `holders`, in
+        the order of the callee's statements), and NIR's rules see its result as an unknown
+        value, as they see a loop's result after inlining. Not in a struct argument's source
+        call (`bound_call`), which is evaluated again at the call that reads it."""
+        if not self.opaque or e.args or t.is_struct or t.is_array or t.base != "float":
+            raise _Refuse
+        slot = self.slots
+        self.slots += 1
+        self.holders.append((slot, e))
+        return _leaves(f"@{slot}@", t)
+
     def user_call(self, fn: Symbol, args: list[Any], env: dict[int, list]) -> list[_T]:
         """The callee's result; its out/inout parameters written back into `env`."""
         self.depth += 1
@@ -430,7 +453,9 @@ class _Eval:
             if psym is None:
                 raise _Refuse
             inner[id(psym)] = v
+        opaque, self.opaque = self.opaque, False
         result = self.body(fn, inner)
+        self.opaque = opaque
         self.depth -= 1
         return result
 
@@ -788,7 +813,7 @@ def _evaluate(
     ev = _Eval(tr, mask)
     ev.slots = len(call.args)
     env: dict[int, list] = {}
-    holders: list[tuple[int, Any]] = []
+    holders = ev.holders
     args = _argument_terms(tr, ev, call, fn, constants, holders, list(range(len(call.args))))
     params = [tr.model.symbol_of(p) for p in fn.node.proto.params]
     if any(p is None for p in params):
