@@ -238,3 +238,43 @@ def test_compiled_follows_constant_components_as_mesa(llvmpipe, numba, make_shad
     want = render(shader, "gl", frame=0)
     got = CompiledProgram(*generate(shader, lanes=lanes)).render(size=SIZE, time=0.0, frame=0)
     assert_same(got, want, what=f"{name}, lanes {lanes}", names=("compiled", "llvmpipe"))
+
+
+def _tan_constants() -> list[float]:
+    """Angles in degrees: every 5 from 5 to 175 and 60 drawn uniformly from 1 to 179 (float32)."""
+    drawn = np.random.default_rng(1).uniform(1.0, 179.0, 60)
+    return [float(F(v)) for v in np.concatenate([np.arange(5.0, 176.0, 5.0), drawn])]
+
+
+def test_llvmpipe_folds_tan_of_a_constant_argument_with_the_host_sinf(llvmpipe, make_shader):
+    """``2.0 * tan(radians(vfov) / 2.0)`` in a function called with a constant vfov (p05-3lccz8's
+    cameraCreator) is folded at compile time, after inlining, as the C library's float32
+    ``sinf(x) / cosf(x)`` (Mesa's GLSL tan is sin/cos; nir_opt_constant_folding computes fsin
+    and fcos with the host's sinf and cosf), not as gallivm's tan at run time: pixel i holds
+    the folded value and the run-time one (vfov through a uniform's max) of constant i."""
+    import ctypes
+    import ctypes.util
+    import math
+
+    libm = ctypes.CDLL(ctypes.util.find_library("m"))
+    for name in ("sinf", "cosf"):
+        getattr(libm, name).restype = ctypes.c_float
+        getattr(libm, name).argtypes = [ctypes.c_float]
+    vfovs = _tan_constants()
+    picks = "\n".join(
+        f"    if (int(fragCoord.x) == {i}) c = vec4(vh({v!r}), vh(max(abs(iMouse.x), {v!r})),"
+        " 0.0, 1.0);"
+        for i, v in enumerate(vfovs)
+    )
+    got = render(
+        make_shader(
+            "float vh(float vfov) { float h = tan(radians(vfov) / 2.0); return 2.0 * h; }\n"
+            "void mainImage(out vec4 c, in vec2 fragCoord) {\n    c = vec4(0.0);\n" + picks + "\n}"
+        ),
+        "gl",
+        frame=0,
+    )[0, : len(vfovs)]
+    x = [F(F(v) * F(math.pi / 180.0)) / F(2.0) for v in vfovs]  # (radians: x * (pi/180))
+    host = [F(2.0) * (F(libm.sinf(float(a))) / F(libm.cosf(float(a)))) for a in x]
+    assert (_bits(got[:, 0]) != _bits(got[:, 1])).any()  # (the run-time tan differs)
+    assert (_bits(got[:, 0]) == _bits(host)).all()
