@@ -166,6 +166,7 @@ class _Eval:
         self.slots = 0  # the next free slot of an argument read at run time (_argument_terms)
         self.holders: list[tuple[int, Any]] = []  # (slot, node) of the values read at run time
         self.opaque = True  # whether a call not followed may be an opaque value (`opaque_call`)
+        self.chained: Any = None  # whether a seed chain runs through a function (`opaque_call`)
 
     # -- scalar rules ----------------------------------------------------------------------
     def neg(self, a: _T) -> _T:
@@ -412,8 +413,21 @@ class _Eval:
         call once, where the folded call's arguments have been read (its slot in `holders`, in
         the order of the callee's statements), and NIR's rules see its result as an unknown
         value, as they see a loop's result after inlining. Not in a struct argument's source
-        call (`bound_call`), which is evaluated again at the call that reads it."""
-        if not self.opaque or e.args or t.is_struct or t.is_array or t.base != "float":
+        call (`bound_call`), which is evaluated again at the call that reads it, nor for a
+        function a seed chain runs through (`chained`, the engines' nir_fold.repeated_sums
+        .chain_params: the caller passes it the chain's base and constants, which the call made
+        here would not); none where `chained` is not given (:func:`out_roots`)."""
+        target = self.tr.model.call_target(e)
+        if (
+            not self.opaque
+            or self.chained is None
+            or e.args
+            or t.is_struct
+            or t.is_array
+            or t.base != "float"
+            or not isinstance(target, Symbol)
+            or self.chained(target)
+        ):
             raise _Refuse
         slot = self.slots
         self.slots += 1
@@ -712,7 +726,9 @@ def _constructed_components(tr: FoldEmitter, ctor: A.Call, t: Any) -> list[_T | 
     return comps[: t.size]
 
 
-def fold_plan(tr: FoldEmitter, call: A.Call, fn: Symbol, mask: str | None) -> tuple | None:
+def fold_plan(
+    tr: FoldEmitter, call: A.Call, fn: Symbol, mask: str | None, chained: Any = None
+) -> tuple | None:
     """(the parameters' final terms by symbol id, the parameter symbols, the result's terms,
     the arguments read at run time as (index, node)) of the call `call` of user function `fn`
     evaluated with constants propagated as NIR does (module doc: each engine emits the terms);
@@ -720,7 +736,8 @@ def fold_plan(tr: FoldEmitter, call: A.Call, fn: Symbol, mask: str | None) -> tu
     component, or the constants merge no more than they do with every argument a run-time value
     (merges inside the callee alone are nir_fold's, in the function's own code), and no dot
     product of the callee factors (``vec3(p.xyx)`` of Dave Hoskins' hash12: two products share
-    p.x)."""
+    p.x). `chained(fn)`: whether a seed chain runs through user function fn (the engines
+    pass nir_fold.repeated_sums.chain_params, which imports this module: _Eval.opaque_call)."""
     if (
         tr.fn is None
         or tr.fold_state.call_fold_off
@@ -733,13 +750,13 @@ def fold_plan(tr: FoldEmitter, call: A.Call, fn: Symbol, mask: str | None) -> tu
         constant = _has_constant_argument(tr, call, fn)
         if not constant and (tr.type_of(call).is_struct or not _calls_dot(tr, fn)):
             return None  # (a struct result: only where an argument carries a constant)
-        ev, env, params, result, holders = _evaluate(tr, call, fn, mask, True)
+        ev, env, params, result, holders = _evaluate(tr, call, fn, mask, True, chained)
         if (
             ev.factored == 0
         ):  # (a factored dot product is folded here only: Runtime.dot keeps the products)
             if not constant or ev.merges == 0:
                 return None
-            if _evaluate(tr, call, fn, mask, False)[0].merges >= ev.merges:
+            if _evaluate(tr, call, fn, mask, False, chained)[0].merges >= ev.merges:
                 return None
     except _Refuse:
         return None
@@ -804,14 +821,19 @@ def _scaled_argument(tr: FoldEmitter, a: Any, call: A.Call) -> tuple[Any, Any] |
 
 
 def _evaluate(
-    tr: FoldEmitter, call: A.Call, fn: Symbol, mask: str | None, constants: bool
+    tr: FoldEmitter,
+    call: A.Call,
+    fn: Symbol,
+    mask: str | None,
+    constants: bool,
+    chained: Any = None,
 ) -> tuple:
     """The call evaluated with its arguments bound to stand-in parameters: (the evaluation,
     the parameters' final terms by symbol id, the parameter symbols, the result's terms, the
     arguments read at run time as (index, node)); `constants`: the arguments' constant
     components as constants, else every argument a run-time value. Raises _Refuse."""
     ev = _Eval(tr, mask)
-    ev.slots = len(call.args)
+    ev.slots, ev.chained = len(call.args), chained
     env: dict[int, list] = {}
     holders = ev.holders
     args = _argument_terms(tr, ev, call, fn, constants, holders, list(range(len(call.args))))

@@ -9,6 +9,7 @@ from typing import Any
 from ....frontend import syntax as A
 from ....semantics.model import Symbol
 from ...cpu_core.call_fold import fold_plan, member_size, record_sums
+from ...cpu_core.nir_fold.repeated_sums import chain_params
 
 TYPE_CHECKING = False  # not typing's: importing typing costs every start-up
 if TYPE_CHECKING:
@@ -21,7 +22,7 @@ def folded_call(tr: TranspilerState, call: A.Call, fn: Symbol, mask: str | None)
     None where :func:`fold_plan` leaves the call as written."""
     if tr.watched is not None:
         return None
-    plan = fold_plan(tr, call, fn, mask)
+    plan = fold_plan(tr, call, fn, mask, lambda f: bool(chain_params(tr, f)))
     return None if plan is None else _emit_call(tr, call, fn, mask, *plan)
 
 
