@@ -183,11 +183,33 @@ void mainImage(out vec4 c, in vec2 fragCoord) {
 }"""
 )
 
+
+def _tan_constants() -> list[float]:
+    """Angles in degrees: every 5 from 5 to 175 and 60 drawn uniformly from 1 to 179 (float32)."""
+    drawn = np.random.default_rng(1).uniform(1.0, 179.0, 60)
+    return [float(F(v)) for v in np.concatenate([np.arange(5.0, 176.0, 5.0), drawn])]
+
+
+TAN_VFOVS = _tan_constants()
+# Pixel column i: 2.0 * tan(radians(vfov) / 2.0) of constant i passed to a function (folded at
+# compile time after inlining), and of the same value through a uniform's max (at run time).
+TAN_CONSTANTS = (
+    "float vh(float vfov) { float h = tan(radians(vfov) / 2.0); return 2.0 * h; }\n"
+    "void mainImage(out vec4 c, in vec2 fragCoord) {\n    c = vec4(0.0);\n"
+    + "\n".join(
+        f"    if (int(fragCoord.x) == {i}) c = vec4(vh({v!r}), vh(max(abs(iMouse.x), {v!r})),"
+        " 0.0, 1.0);"
+        for i, v in enumerate(TAN_VFOVS)
+    )
+    + "\n}"
+)
+
 SHADERS = {
     "product": PRODUCT,
     "through_calls": THROUGH_CALLS,
     "struct_camera": STRUCT_CAMERA,
     "lens_camera": LENS_CAMERA,
+    "tan_constants": TAN_CONSTANTS,
     "negated_product": NEGATED,
     **{"ray_" + k: RAY.replace("READ_LL", v) for k, v in RAYS.items()},
 }
@@ -240,18 +262,12 @@ def test_compiled_follows_constant_components_as_mesa(llvmpipe, numba, make_shad
     assert_same(got, want, what=f"{name}, lanes {lanes}", names=("compiled", "llvmpipe"))
 
 
-def _tan_constants() -> list[float]:
-    """Angles in degrees: every 5 from 5 to 175 and 60 drawn uniformly from 1 to 179 (float32)."""
-    drawn = np.random.default_rng(1).uniform(1.0, 179.0, 60)
-    return [float(F(v)) for v in np.concatenate([np.arange(5.0, 176.0, 5.0), drawn])]
-
-
 def test_llvmpipe_folds_tan_of_a_constant_argument_with_the_host_sinf(llvmpipe, make_shader):
     """``2.0 * tan(radians(vfov) / 2.0)`` in a function called with a constant vfov (p05-3lccz8's
     cameraCreator) is folded at compile time, after inlining, as the C library's float32
     ``sinf(x) / cosf(x)`` (Mesa's GLSL tan is sin/cos; nir_opt_constant_folding computes fsin
-    and fcos with the host's sinf and cosf), not as gallivm's tan at run time: pixel i holds
-    the folded value and the run-time one (vfov through a uniform's max) of constant i."""
+    and fcos with the host's sinf and cosf), not as gallivm's tan at run time (TAN_CONSTANTS:
+    the folded value and the run-time one of each constant)."""
     import ctypes
     import ctypes.util
     import math
@@ -260,21 +276,8 @@ def test_llvmpipe_folds_tan_of_a_constant_argument_with_the_host_sinf(llvmpipe, 
     for name in ("sinf", "cosf"):
         getattr(libm, name).restype = ctypes.c_float
         getattr(libm, name).argtypes = [ctypes.c_float]
-    vfovs = _tan_constants()
-    picks = "\n".join(
-        f"    if (int(fragCoord.x) == {i}) c = vec4(vh({v!r}), vh(max(abs(iMouse.x), {v!r})),"
-        " 0.0, 1.0);"
-        for i, v in enumerate(vfovs)
-    )
-    got = render(
-        make_shader(
-            "float vh(float vfov) { float h = tan(radians(vfov) / 2.0); return 2.0 * h; }\n"
-            "void mainImage(out vec4 c, in vec2 fragCoord) {\n    c = vec4(0.0);\n" + picks + "\n}"
-        ),
-        "gl",
-        frame=0,
-    )[0, : len(vfovs)]
-    x = [F(F(v) * F(math.pi / 180.0)) / F(2.0) for v in vfovs]  # (radians: x * (pi/180))
+    got = render(make_shader(TAN_CONSTANTS), "gl", frame=0)[0, : len(TAN_VFOVS)]
+    x = [F(F(v) * F(math.pi / 180.0)) / F(2.0) for v in TAN_VFOVS]  # (radians: x * (pi/180))
     host = [F(2.0) * (F(libm.sinf(float(a))) / F(libm.cosf(float(a)))) for a in x]
     assert (_bits(got[:, 0]) != _bits(got[:, 1])).any()  # (the run-time tan differs)
     assert (_bits(got[:, 0]) == _bits(host)).all()

@@ -27,7 +27,8 @@ constant arguments, and a local's components that are constant where the call re
 ``y * #c`` as that product in each component (`_scaled_argument`), then
 
 - constants folded in float32 (``+ - * /``, negation; a built-in of constants is a constant
-  computed by the runtime's own function, as the written code computes it);
+  computed by the runtime's own function, as the written code computes it, but ``radians``
+  and ``tan``, folded at compile time as Mesa does: :meth:`_Eval.angle`);
 - ``a * 1.0 -> a``, ``a * -1.0 -> -a``, ``a * 0.0 -> 0.0`` (inexact, a not constant),
   ``a + 0.0 -> a``;
 - constants merged: ``#a * (b * #c) -> (a*c) * b`` and ``#a + (b + #c) -> (a+c) + b``;
@@ -95,6 +96,7 @@ from ...semantics.analysis import param_directions
 from ...semantics.model import Symbol
 from .call_sites import struct_source, unchanged_init, written_components
 from .common import RUNTIME_NAMES
+from .host_math import host_sin_cos
 
 TYPE_CHECKING = False  # not typing's: importing typing costs every start-up
 if TYPE_CHECKING:
@@ -385,6 +387,8 @@ class _Eval:
                 self.add(self.mul(a[i], b[j]), self.neg(self.mul(a[j], b[i])))
                 for i, j in ((1, 2), (2, 0), (0, 1))
             ]
+        if isinstance(target, B.Overload) and e.callee in ("radians", "tan") and len(args) == 1:
+            return [self.angle(e.callee, x) for x in args[0]]
         if isinstance(target, B.Overload):
             if e.callee not in _COMPONENTWISE or len(args) != 1:
                 raise _Refuse
@@ -406,6 +410,21 @@ class _Eval:
         if t.is_scalar:
             return flat[:1]
         raise _Refuse
+
+    def angle(self, name: str, x: _T) -> _T:
+        """``radians`` or ``tan`` of one component, folded at compile time where x is a known
+        constant, as NIR folds it after inlining: radians is ``x * (pi/180)`` in float32 (the
+        run-time product's bits), tan the host C library's float32 ``sinf(x) / cosf(x)``
+        (Mesa's GLSL tan is sin/cos, and fsin, fcos fold with the C library; measured:
+        tests/gl/test_llvmpipe_constant_components.py, 95 of 95 constants, gallivm's run-time tan
+        75). A folded tan counts as a merge: it may change the written bits."""
+        host = host_sin_cos(x.value) if x.value is not None and name == "tan" else None
+        if x.value is not None and name == "radians":
+            return _k(fold_tree("*", x.value, np.pi / 180.0), x.comp)
+        if host is None:
+            return _T("call", (x,), const=x.const, code=RUNTIME_NAMES.get(name, name))
+        self.merges += 1
+        return _k(fold_tree("/", *host), x.comp)
 
     def opaque_call(self, e: A.Call, t: Any) -> list[_T]:
         """A call of a user function without arguments that is not followed (a loop, a global
