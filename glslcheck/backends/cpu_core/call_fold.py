@@ -27,7 +27,8 @@ constant arguments, and a local's components that are constant where the call re
 ``y * #c`` as that product in each component (`_scaled_argument`), then
 
 - constants folded in float32 (``+ - * /``, negation; a built-in of constants is a constant
-  computed by the runtime's own function, as the written code computes it);
+  computed by the runtime's own function, as the written code computes it, but ``radians``
+  and ``tan``, folded at compile time as Mesa does: :meth:`_Eval.angle`);
 - ``a * 1.0 -> a``, ``a * -1.0 -> -a``, ``a * 0.0 -> 0.0`` (inexact, a not constant),
   ``a + 0.0 -> a``;
 - constants merged: ``#a * (b * #c) -> (a*c) * b`` and ``#a + (b + #c) -> (a+c) + b``;
@@ -47,13 +48,22 @@ member read or written is a slice; ``S r;`` declares it unknown until written), 
 is ``x * inversesqrt(dot(x, x))`` and ``cross`` is Runtime.cross, per component. A struct
 argument is followed where it is a local initialised by a call of such a function
 (``cam k = make(vec3(off, -6.0), 7.0); ... ray(k, s, t)``): that call is evaluated again at
-the call, its arguments read there (:func:`_struct_source` checks that nothing they read is
-written in between), so the constant -6.0 reaches ``ray``'s arithmetic as it does after NIR
-inlines both. An argument's constant is also sunk down sums each used once,
+the call, its arguments read there (:func:`.call_sites.struct_source` checks that nothing
+they read is written in between), so the constant -6.0 reaches ``ray``'s arithmetic as it
+does after NIR inlines both. An argument's constant is also sunk down sums each used once,
 ``(a + b) + #c -> (a + #c) + b`` (:meth:`_Eval.sunk`), where it cancels a constant of the same
 component (the camera ray's ``ll + s*h + t*v - orig``, measured:
-tests/gl/test_llvmpipe_constant_components.py). A call whose result or out argument is a
-struct is left as written (the engines write a folded call's terms as vectors).
+tests/gl/test_llvmpipe_constant_components.py). A call returning a struct of float members
+is folded where an argument carries a constant (``ray get_ray(camera k, float s, float t)``:
+the engines build the struct from its members' terms); a call writing a struct through an
+out argument is left as written.
+
+A call without arguments inside the callee that is not followed (a loop, a global written:
+p05-3lccz8's ``cam.lens_radius * random_in_unit_disk()``, whose loop advances the global seed)
+is an unknown value to NIR's rules after inlining, as a loop's result is: it is a run-time
+value of the terms, the call made once by the engines among the values read at run time
+(after the folded call's arguments, in the order of the callee's statements:
+:meth:`_Eval.opaque_call`).
 
 Not copied: calls under a loop or a branch of the caller whose constants come from there (a
 local counts as constant only where its writes are top-level statements before the call),
@@ -84,7 +94,9 @@ from ...frontend import syntax as A
 from ...language import builtin_functions as B
 from ...semantics.analysis import param_directions
 from ...semantics.model import Symbol
+from .call_sites import struct_source, unchanged_init, written_components
 from .common import RUNTIME_NAMES
+from .host_math import host_sin_cos
 
 TYPE_CHECKING = False  # not typing's: importing typing costs every start-up
 if TYPE_CHECKING:
@@ -160,6 +172,9 @@ class _Eval:
         # any other float global is then a value unknown here (_UNKNOWN): written, or read into
         # a global's value only (a result or out parameter that reads one refuses: _evaluate)
         self.unknown = False
+        self.holders: list[tuple[int, Any]] = []  # (slot, node) of the values read at run time
+        self.opaque = True  # whether a call not followed may be an opaque value (`opaque_call`)
+        self.chained: Any = None  # whether a seed chain runs through a function (`opaque_call`)
 
     # -- scalar rules ----------------------------------------------------------------------
     def neg(self, a: _T) -> _T:
@@ -298,14 +313,9 @@ class _Eval:
     def expr(self, e: Any, env: dict[int, list]) -> list[_T]:
         tr = self.tr
         t = tr.type_of(e)
-        if (
-            t.is_array
-            or not t.is_struct
-            and t.base not in ("float", "int")
-            or tr.has_effects(e)
-            and not isinstance(e, A.Call)
-        ):
-            raise _Refuse
+        if t.is_array or not t.is_struct and t.base not in ("float", "int"):
+            raise _Refuse  # (effects: an assignment, ++ or a built-in's out argument is refused
+            # by its shape below, a user call followed or an opaque value: `call`)
         if t.is_struct:
             _size(t)  # (float members only, else _Refuse)
         else:
@@ -362,7 +372,12 @@ class _Eval:
         tr = self.tr
         target = tr.model.call_target(e)
         if isinstance(target, Symbol):
-            return self.user_call(target, e.args, env)
+            depth, held = self.depth, len(self.holders)
+            try:
+                return self.user_call(target, e.args, env)
+            except _Refuse:  # (an opaque call it made inside is not made: it is made whole)
+                self.depth, self.holders[held:] = depth, []
+                return self.opaque_call(e, t)
         args = [self.expr(a, env) for a in e.args]
         if isinstance(target, B.Overload) and e.callee == "pow" and len(args) == 2:
             return [self.pow(x, y) for x, y in zip(args[0], args[1])]
@@ -378,6 +393,8 @@ class _Eval:
                 self.add(self.mul(a[i], b[j]), self.neg(self.mul(a[j], b[i])))
                 for i, j in ((1, 2), (2, 0), (0, 1))
             ]
+        if isinstance(target, B.Overload) and e.callee in ("radians", "tan") and len(args) == 1:
+            return [self.angle(e.callee, x) for x in args[0]]
         if isinstance(target, B.Overload):
             if e.callee not in _COMPONENTWISE or len(args) != 1:
                 raise _Refuse
@@ -399,6 +416,48 @@ class _Eval:
         if t.is_scalar:
             return flat[:1]
         raise _Refuse
+
+    def angle(self, name: str, x: _T) -> _T:
+        """``radians`` or ``tan`` of one component, folded at compile time where x is a known
+        constant, as NIR folds it after inlining: radians is ``x * (pi/180)`` in float32 (the
+        run-time product's bits), tan the host C library's float32 ``sinf(x) / cosf(x)``
+        (Mesa's GLSL tan is sin/cos, and fsin, fcos fold with the C library; measured:
+        tests/gl/test_llvmpipe_constant_components.py, 95 of 95 constants, gallivm's run-time tan
+        75). A folded tan counts as a merge: it may change the written bits."""
+        host = host_sin_cos(x.value) if x.value is not None and name == "tan" else None
+        if x.value is not None and name == "radians":
+            return _k(fold_tree("*", x.value, np.pi / 180.0), x.comp)
+        if host is None:
+            return _T("call", (x,), const=x.const, code=RUNTIME_NAMES.get(name, name))
+        self.merges += 1
+        return _k(fold_tree("/", *host), x.comp)
+
+    def opaque_call(self, e: A.Call, t: Any) -> list[_T]:
+        """A call of a user function without arguments that is not followed (a loop, a global
+        written: a random draw advancing a global seed) as a run-time value: the engines make the
+        call once, where the folded call's arguments have been read (its slot in `holders`, in
+        the order of the callee's statements), and NIR's rules see its result as an unknown
+        value, as they see a loop's result after inlining. Not in a struct argument's source
+        call (`bound_call`), which is evaluated again at the call that reads it, nor for a
+        function a seed chain runs through (`chained`, the engines' nir_fold.repeated_sums
+        .chain_params: the caller passes it the chain's base and constants, which the call made
+        here would not); none where `chained` is not given (:func:`out_roots`)."""
+        target = self.tr.model.call_target(e)
+        if (
+            not self.opaque
+            or self.chained is None
+            or e.args
+            or t.is_struct
+            or t.is_array
+            or t.base != "float"
+            or not isinstance(target, Symbol)
+            or self.chained(target)
+        ):
+            raise _Refuse
+        slot = self.slots
+        self.slots += 1
+        self.holders.append((slot, e))
+        return _leaves(f"@{slot}@", t)
 
     def user_call(self, fn: Symbol, args: list[Any], env: dict[int, list]) -> list[_T]:
         """The callee's result; its out/inout parameters written back into `env`."""
@@ -433,7 +492,9 @@ class _Eval:
             if psym is None:
                 raise _Refuse
             inner[id(psym)] = v
+        opaque, self.opaque = self.opaque, False
         result = self.body(fn, inner)
+        self.opaque = opaque
         self.depth -= 1
         return result
 
@@ -623,6 +684,12 @@ def _size(t: Any) -> int:
     return _width(t)
 
 
+def member_size(t: Any) -> int:
+    """The number of terms a value of type t (a member of a folded call's struct result, all
+    of whose members are float: :func:`fold_plan` checked) takes."""
+    return _size(t)
+
+
 def _member(t: Any, name: str) -> tuple[int, int]:
     """(offset, width) of the member `name` among the components of the struct type t."""
     at = 0
@@ -681,7 +748,7 @@ def _constant_components(tr: FoldEmitter, arg: Any, call: A.Call) -> list[_T | N
         return None
     for st in stmts[decl + 1 : at + 1]:
         for n in st.walk():
-            hit = _written_components(tr, n, sym, call)
+            hit = written_components(tr, n, sym, call)
             if hit == "all":
                 comps = [None] * len(comps)
             elif hit:
@@ -702,65 +769,9 @@ def _constructed_components(tr: FoldEmitter, ctor: A.Call, t: Any) -> list[_T | 
     return comps[: t.size]
 
 
-def _unchanged_init(tr: FoldEmitter, ident: A.Identifier, call: A.Call) -> Any:
-    """The initializer of the local `ident` when it is declared by a top-level statement of the
-    current function before the one that holds `call`, and neither it nor a local or parameter
-    the initializer reads is written in between (so the initializer, evaluated again at the
-    call, gives its value); else None."""
-    sym = tr.model.symbol_of(ident)
-    if (
-        sym is None
-        or sym.kind != "local"
-        or not isinstance(sym.node, A.Declarator)
-        or sym.node.init is None
-    ):
-        return None
-    assert tr.fn is not None  # folding a call inside a function
-    stmts = tr.fn.sym.node.body.stmts
-    decl = next((i for i, st in enumerate(stmts) if any(n is sym.node for n in st.walk())), None)
-    at = next((i for i, st in enumerate(stmts) if any(n is call for n in st.walk())), None)
-    if (
-        decl is None
-        or at is None
-        or not isinstance(stmts[decl], A.DeclarationStatement)
-        or decl >= at
-    ):
-        return None
-    init = sym.node.init
-    named = {sym} | {tr.model.symbol_of(n) for n in init.walk() if isinstance(n, A.Identifier)}
-    read = [r for r in named if r is not None and r.kind in ("local", "param")]
-    for st in stmts[decl + 1 : at + 1]:
-        for n in st.walk():
-            if any(_written_components(tr, n, r, call) for r in read):
-                return None
-    return init
-
-
-def _written_components(tr: FoldEmitter, n: Any, sym: Symbol, call: A.Call) -> Any:
-    """The components of `sym` the node `n` writes: "all", a tuple of indices, or ()."""
-    targets: list[Any] = []
-    if isinstance(n, A.Assignment):
-        targets.append(n.target)
-    elif isinstance(n, (A.Unary, A.Postfix)) and n.op in ("++", "--"):
-        targets.append(n.operand)
-    elif isinstance(n, A.Call) and n is not call:
-        tgt = tr.model.call_target(n)
-        if isinstance(tgt, Symbol):
-            targets += [a for a, d in zip(n.args, param_directions(tgt)) if d != "in"]
-        elif n.callee == "modf" and len(n.args) == 2:
-            targets.append(n.args[1])
-    for x in targets:
-        root = x
-        while isinstance(root, (A.Field, A.Index)):
-            root = root.base
-        if isinstance(root, A.Identifier) and tr.model.symbol_of(root) is sym:
-            if isinstance(x, A.Field) and x.base is root and tr.model.is_swizzle(x):
-                return tuple(tr.model.swizzle_indices(x))  # (a struct's member: "all" below)
-            return "all"
-    return ()
-
-
-def fold_plan(tr: FoldEmitter, call: A.Call, fn: Symbol, mask: str | None) -> tuple | None:
+def fold_plan(
+    tr: FoldEmitter, call: A.Call, fn: Symbol, mask: str | None, chained: Any = None
+) -> tuple | None:
     """(the parameters' final terms by symbol id, the parameter symbols, the result's terms,
     the arguments read at run time as (index, node)) of the call `call` of user function `fn`
     evaluated with constants propagated as NIR does (module doc: each engine emits the terms);
@@ -768,27 +779,27 @@ def fold_plan(tr: FoldEmitter, call: A.Call, fn: Symbol, mask: str | None) -> tu
     component, or the constants merge no more than they do with every argument a run-time value
     (merges inside the callee alone are nir_fold's, in the function's own code), and no dot
     product of the callee factors (``vec3(p.xyx)`` of Dave Hoskins' hash12: two products share
-    p.x)."""
+    p.x). `chained(fn)`: whether a seed chain runs through user function fn (the engines
+    pass nir_fold.repeated_sums.chain_params, which imports this module: _Eval.opaque_call)."""
     if (
         tr.fn is None
         or tr.fold_state.call_fold_off
         or tr.fold_state.inline_frames
         or any(tr.has_effects(a) for a in call.args)
-        or tr.type_of(call).is_struct  # (the engines write a folded call's terms as vectors)
         or any(d != "in" and tr.type_of(a).is_struct for a, (_, _, d) in zip(call.args, fn.params))
     ):
         return None
     try:
         constant = _has_constant_argument(tr, call, fn)
-        if not constant and not _calls_dot(tr, fn):
-            return None
-        ev, env, params, result, holders = _evaluate(tr, call, fn, mask, True)
+        if not constant and (tr.type_of(call).is_struct or not _calls_dot(tr, fn)):
+            return None  # (a struct result: only where an argument carries a constant)
+        ev, env, params, result, holders = _evaluate(tr, call, fn, mask, True, chained)
         if (
             ev.factored == 0
         ):  # (a factored dot product is folded here only: Runtime.dot keeps the products)
             if not constant or ev.merges == 0:
                 return None
-            if _evaluate(tr, call, fn, mask, False)[0].merges >= ev.merges:
+            if _evaluate(tr, call, fn, mask, False, chained)[0].merges >= ev.merges:
                 return None
     except _Refuse:
         return None
@@ -811,7 +822,7 @@ def _calls_dot(tr: FoldEngine, fn: Symbol) -> bool:
 def _has_constant_argument(tr: FoldEmitter, call: A.Call, fn: Symbol) -> bool:
     for a, (_, _, dr) in zip(call.args, fn.params):
         if dr == "in" and tr.type_of(a).is_struct:
-            source = _struct_source(tr, a, call)
+            source = struct_source(tr, a, call)
             inner = tr.model.call_target(source) if source is not None else None
             if (
                 source is not None
@@ -835,7 +846,7 @@ def _scaled_argument(tr: FoldEmitter, a: Any, call: A.Call) -> tuple[Any, Any] |
     ``hash11(fi * 0.017)`` with ``fract(vec3(p) * 443.8975)``: ``fi * (0.017*443.8975)``), also
     through a local so initialised that nothing writes before `call` (NIR's SSA value)."""
     if isinstance(a, A.Identifier):
-        a = _unchanged_init(tr, a, call)
+        a = unchanged_init(tr, a, call)
     if not (isinstance(a, A.Binary) and a.op == "*") or tr.has_effects(a):
         return None
     for y, c in ((a.left, a.right), (a.right, a.left)):
@@ -853,19 +864,24 @@ def _scaled_argument(tr: FoldEmitter, a: Any, call: A.Call) -> tuple[Any, Any] |
 
 
 def _evaluate(
-    tr: FoldEmitter, call: A.Call, fn: Symbol, mask: str | None, constants: bool
+    tr: FoldEmitter,
+    call: A.Call,
+    fn: Symbol,
+    mask: str | None,
+    constants: bool,
+    chained: Any = None,
 ) -> tuple:
     """The call evaluated with its arguments bound to stand-in parameters: (the evaluation,
     the parameters' final terms by symbol id, the parameter symbols, the result's terms, the
     arguments read at run time as (index, node)); `constants`: the arguments' constant
     components as constants, else every argument a run-time value. Raises _Refuse."""
     ev = _Eval(tr, mask)
-    ev.slots = len(call.args)
+    ev.slots, ev.chained = len(call.args), chained
     known = known_globals(tr, call)
     ev.globals = {k: [_k(v) for v in vs] for k, vs in (known or {}).items()}
     ev.unknown = known is not None
     env: dict[int, list] = {}
-    holders: list[tuple[int, Any]] = []
+    holders = ev.holders
     args = _argument_terms(tr, ev, call, fn, constants, holders, list(range(len(call.args))))
     params = [tr.model.symbol_of(p) for p in fn.node.proto.params]
     if any(p is None for p in params):
@@ -897,13 +913,13 @@ def _argument_terms(
     """Per argument of `call` (of `fn`), its components' terms (None: an out parameter's,
     unknown); an argument read at run time is added to `holders` as (its slot, the node). A
     struct argument is a local the value of a call of a user function initialises
-    (:func:`_struct_source`): that call is evaluated here, its own arguments in new slots
+    (:func:`.call_sites.struct_source`): that call is evaluated here, its own arguments in new slots
     (`source_of`: the call they are then read at)."""
     args: list[list[Any]] = []
     for a, (_, _, dr), i in zip(call.args, fn.params, slots):
         t = tr.type_of(a)
         if t.is_struct and dr == "in":
-            source = _struct_source(tr, a, call)
+            source = struct_source(tr, a, call)
             inner = tr.model.call_target(source) if source is not None else None
             if (
                 source is None
@@ -950,28 +966,6 @@ def _argument_terms(
             [k if k is not None else x for k, x in zip(known or [None] * len(leaves), leaves)]
         )
     return args
-
-
-def _struct_source(tr: FoldEmitter, a: Any, call: A.Call) -> A.Call | None:
-    """The call of a user function that initialises the struct local `a`, where evaluating it
-    again at `call` gives a's value there: `a` declared by a top-level statement before the one
-    that holds `call`, and neither it nor a local or parameter the initializer reads written
-    in between, no global read but constants and uniforms (a call may write a global); else
-    None."""
-    init = _unchanged_init(tr, a, call) if isinstance(a, A.Identifier) else None
-    if not (
-        isinstance(init, A.Call)
-        and not init.constructor
-        and isinstance(tr.model.call_target(init), Symbol)
-        and not any(tr.has_effects(x) for x in init.args)
-    ):
-        return None
-    for n in init.walk():
-        sym = tr.model.symbol_of(n) if isinstance(n, A.Identifier) else None
-        if sym is not None and sym.kind not in ("local", "param", "uniform"):
-            if tr.model.const_value(n) is None:
-                return None
-    return init
 
 
 def out_roots(tr: FoldEmitter, call: A.Call, sym: Symbol | None) -> set[str] | None:
