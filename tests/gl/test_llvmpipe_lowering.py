@@ -496,7 +496,7 @@ void mainImage(out vec4 c, in vec2 q) {
 def test_powers_of_constants_propagated_into_a_call_are_folded(renders_as_llvmpipe, make_shader):
     """``pcurve(x, 4.0, 0.9)``: after inlining, Mesa folds ``pow`` of the constant arguments
     with the host's powf (correctly rounded), and ``k * pow(x, 4.0)``, pow(x, 4.0) being
-    ``(x*x)*(x*x)`` used once, is ``((x*x) * k) * (x*x)`` (call_fold._Eval.pow / mul).
+    ``(x*x)*(x*x)`` used once, is ``((x*x) * k) * (x*x)`` (fold_eval.Evaluator.pow / mul).
     Measured without the fold: 14,400 and 14,400 of the 14,400 pixels differed in
     x and y (2-6 ulps); z, no exponent 4.0, already agreed."""
     renders_as_llvmpipe(make_shader(CONSTANT_POWERS), name="CONSTANT_POWERS")

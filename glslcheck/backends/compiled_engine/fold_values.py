@@ -20,7 +20,8 @@ from typing import Any
 from ...language import glsl_types as T
 from ...semantics.consteval import f32
 from ..cpu_core import nir_fold
-from ..cpu_core.call_fold import fold_plan, holder_leaf, record_sums, term_fields
+from ..cpu_core.call_fold import fold_plan, record_sums
+from ..cpu_core.fold_eval import holder_leaf, term_fields
 from ..cpu_core.nir_fold import FoldContext
 from ..cpu_core.nir_fold.repeated_sums import chain_params
 from .builtin_calls import componentwise_text, geometric

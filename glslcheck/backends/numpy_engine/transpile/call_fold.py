@@ -8,7 +8,8 @@ from typing import Any
 
 from ....frontend import syntax as A
 from ....semantics.model import Symbol
-from ...cpu_core.call_fold import fold_plan, member_size, record_sums
+from ...cpu_core.call_fold import fold_plan, record_sums
+from ...cpu_core.fold_eval import member_size
 from ...cpu_core.nir_fold.repeated_sums import chain_params
 
 TYPE_CHECKING = False  # not typing's: importing typing costs every start-up
