@@ -205,7 +205,16 @@ def fold_plan(
                 return None
     except Refuse:
         return None
+    if ev.wrote_global and opaque_calls(call, holders):
+        return None  # (the call as written makes the global writes, the opaque call its own)
     return env, params, result, holders
+
+
+def opaque_calls(call: A.Call, holders: list[tuple[int, Any]]) -> bool:
+    """Whether a folded call's run-time values include calls the callee makes
+    (:meth:`Evaluator.opaque_call`): their side effects (a global seed advanced) happen in the
+    folded code, so the call is not run as written too."""
+    return any(i >= len(call.args) for i, _ in holders)
 
 
 def _calls_dot(tr: FoldEngine, fn: Symbol) -> bool:

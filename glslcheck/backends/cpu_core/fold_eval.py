@@ -90,6 +90,7 @@ class Evaluator:
         # any other float global is then a value unknown here (UNKNOWN): written, or read into
         # a global's value only (a result or out parameter that reads one refuses: _evaluate)
         self.unknown = False
+        self.wrote_global = False  # whether the evaluation assigns a global (`assign`)
         self.holders: list[tuple[int, Any]] = []  # (slot, node) of the values read at run time
         self.opaque = True  # whether a call not followed may be an opaque value (`opaque_call`)
         self.chained: Any = None  # whether a seed chain runs through a function (`opaque_call`)
@@ -377,6 +378,9 @@ class Evaluator:
         slot = self.slots
         self.slots += 1
         self.holders.append((slot, e))
+        # the call may write any global (a seed it advances): none is known after it
+        for k, terms in self.globals.items():
+            self.globals[k] = [UNKNOWN] * len(terms)
         return leaves_of(f"@{slot}@", t)
 
     def user_call(self, fn: Symbol, args: list[Any], env: dict[int, list]) -> list[Term]:
@@ -522,6 +526,7 @@ class Evaluator:
             raise Refuse
         key, idx = place
         store = env if key in env else self.globals
+        self.wrote_global = self.wrote_global or store is self.globals
         new = list(store[key])
         for i, v in zip(idx, value * len(idx) if len(value) == 1 else value):
             new[i] = v

@@ -8,7 +8,7 @@ from typing import Any
 
 from ....frontend import syntax as A
 from ....semantics.model import Symbol
-from ...cpu_core.call_fold import fold_plan, record_sums
+from ...cpu_core.call_fold import fold_plan, opaque_calls, record_sums
 from ...cpu_core.fold_eval import member_size
 from ...cpu_core.nir_fold.repeated_sums import chain_params
 
@@ -38,8 +38,10 @@ def _emit_call(
     holders: list[tuple[int, Any]],
 ) -> str:
     r = tr.fresh("t")
-    effects = tr.facts.writes_globals(fn)
-    if effects:  # (the terms read the globals' known values: the call as written writes them)
+    # (the terms read the globals' known values: the call as written writes them, unless the
+    # writes are the callee's calls made in the folded code: cpu_core.call_fold.opaque_calls)
+    effects = tr.facts.writes_globals(fn) and not opaque_calls(call, holders)
+    if effects:
         names = {i: tr.tmp(tr.expr(a, mask)) for i, a in holders}
         tr.emit(f"{r} = {_written_call(tr, call, fn, mask)}")
     tr.emit("if rt.lp:  # constants propagated into the call as NIR does (transpile/call_fold.py)")
