@@ -20,9 +20,10 @@ from typing import Any
 from ...language import glsl_types as T
 from ...semantics.consteval import f32
 from ..cpu_core import nir_fold
-from ..cpu_core.call_fold import fold_plan, record_sums
+from ..cpu_core.call_fold import fold_plan, opaque_calls, record_sums
 from ..cpu_core.fold_eval import holder_leaf, term_fields
 from ..cpu_core.nir_fold import FoldContext
+from ..cpu_core.nir_fold.repeated_sums import chain_params
 from .builtin_calls import componentwise_text, geometric
 from .values import Val, not_yet
 
@@ -195,13 +196,15 @@ def folded_call(cg: Any, call: Any, fn: Any) -> Val | None:
     out parameters and its result), computed from those terms as the Transpiler emits them
     (call_fold._emit_call); None: the call as usual."""
 
-    plan = fold_plan(cg.fold_context(), call, fn, None)
+    fold = cg.fold_context()
+    plan = fold_plan(fold, call, fn, None, lambda f: bool(chain_params(fold, f)))
     if plan is None:
         return None
     env, params, result, holders = plan
-    fold = cg.fold_context()
     held = {i: (fold.tmp(cg.expr(a)).parts, cg.type_of(a)) for i, a in holders}
-    if fold.facts.writes_globals(fn):  # (its terms read the globals' known values: its writes)
+    # (its terms read the globals' known values: its writes, unless they are made by the
+    # callee's calls in the folded code: cpu_core.call_fold.opaque_calls)
+    if fold.facts.writes_globals(fn) and not opaque_calls(call, holders):
         fold.fold_state.call_fold_off = True
         try:
             cg.user_call(call, fn)

@@ -27,7 +27,8 @@ constant arguments, and a local's components that are constant where the call re
 ``y * #c`` as that product in each component (`_scaled_argument`), then
 
 - constants folded in float32 (``+ - * /``, negation; a built-in of constants is a constant
-  computed by the runtime's own function, as the written code computes it);
+  computed by the runtime's own function, as the written code computes it, but ``radians``
+  and ``tan``, folded at compile time as Mesa does: :meth:`Evaluator.angle`);
 - ``a * 1.0 -> a``, ``a * -1.0 -> -a``, ``a * 0.0 -> 0.0`` (inexact, a not constant),
   ``a + 0.0 -> a``;
 - constants merged: ``#a * (b * #c) -> (a*c) * b`` and ``#a + (b + #c) -> (a+c) + b``;
@@ -47,13 +48,22 @@ member read or written is a slice; ``S r;`` declares it unknown until written), 
 is ``x * inversesqrt(dot(x, x))`` and ``cross`` is Runtime.cross, per component. A struct
 argument is followed where it is a local initialised by a call of such a function
 (``cam k = make(vec3(off, -6.0), 7.0); ... ray(k, s, t)``): that call is evaluated again at
-the call, its arguments read there (:func:`_struct_source` checks that nothing they read is
-written in between), so the constant -6.0 reaches ``ray``'s arithmetic as it does after NIR
-inlines both. An argument's constant is also sunk down sums each used once,
+the call, its arguments read there (:func:`.call_sites.struct_source` checks that nothing
+they read is written in between), so the constant -6.0 reaches ``ray``'s arithmetic as it
+does after NIR inlines both. An argument's constant is also sunk down sums each used once,
 ``(a + b) + #c -> (a + #c) + b`` (:meth:`Evaluator.sunk`), where it cancels a constant of the same
 component (the camera ray's ``ll + s*h + t*v - orig``, measured:
-tests/gl/test_llvmpipe_constant_components.py). A call whose result or out argument is a
-struct is left as written (the engines write a folded call's terms as vectors).
+tests/gl/test_llvmpipe_constant_components.py). A call returning a struct of float members
+is folded where an argument carries a constant (``ray get_ray(camera k, float s, float t)``:
+the engines build the struct from its members' terms); a call writing a struct through an
+out argument is left as written.
+
+A call without arguments inside the callee that is not followed (a loop, a global written:
+p05-3lccz8's ``cam.lens_radius * random_in_unit_disk()``, whose loop advances the global seed)
+is an unknown value to NIR's rules after inlining, as a loop's result is: it is a run-time
+value of the terms, the call made once by the engines among the values read at run time
+(after the folded call's arguments, in the order of the callee's statements:
+:meth:`Evaluator.opaque_call`).
 
 Not copied: calls under a loop or a branch of the caller whose constants come from there (a
 local counts as constant only where its writes are top-level statements before the call),
@@ -80,8 +90,8 @@ from typing import Any
 
 from ...frontend import syntax as A
 from ...language import builtin_functions as B
-from ...semantics.analysis import param_directions
 from ...semantics.model import Symbol
+from .call_sites import struct_source, unchanged_init, written_components
 from .fold_eval import (
     UNKNOWN,
     Evaluator,
@@ -138,7 +148,7 @@ def _constant_components(tr: FoldEmitter, arg: Any, call: A.Call) -> list[Term |
         return None
     for st in stmts[decl + 1 : at + 1]:
         for n in st.walk():
-            hit = _written_components(tr, n, sym, call)
+            hit = written_components(tr, n, sym, call)
             if hit == "all":
                 comps = [None] * len(comps)
             elif hit:
@@ -161,65 +171,9 @@ def _constructed_components(tr: FoldEmitter, ctor: A.Call, t: Any) -> list[Term 
     return comps[: t.size]
 
 
-def _unchanged_init(tr: FoldEmitter, ident: A.Identifier, call: A.Call) -> Any:
-    """The initializer of the local `ident` when it is declared by a top-level statement of the
-    current function before the one that holds `call`, and neither it nor a local or parameter
-    the initializer reads is written in between (so the initializer, evaluated again at the
-    call, gives its value); else None."""
-    sym = tr.model.symbol_of(ident)
-    if (
-        sym is None
-        or sym.kind != "local"
-        or not isinstance(sym.node, A.Declarator)
-        or sym.node.init is None
-    ):
-        return None
-    assert tr.fn is not None  # folding a call inside a function
-    stmts = tr.fn.sym.node.body.stmts
-    decl = next((i for i, st in enumerate(stmts) if any(n is sym.node for n in st.walk())), None)
-    at = next((i for i, st in enumerate(stmts) if any(n is call for n in st.walk())), None)
-    if (
-        decl is None
-        or at is None
-        or not isinstance(stmts[decl], A.DeclarationStatement)
-        or decl >= at
-    ):
-        return None
-    init = sym.node.init
-    named = {sym} | {tr.model.symbol_of(n) for n in init.walk() if isinstance(n, A.Identifier)}
-    read = [r for r in named if r is not None and r.kind in ("local", "param")]
-    for st in stmts[decl + 1 : at + 1]:
-        for n in st.walk():
-            if any(_written_components(tr, n, r, call) for r in read):
-                return None
-    return init
-
-
-def _written_components(tr: FoldEmitter, n: Any, sym: Symbol, call: A.Call) -> Any:
-    """The components of `sym` the node `n` writes: "all", a tuple of indices, or ()."""
-    targets: list[Any] = []
-    if isinstance(n, A.Assignment):
-        targets.append(n.target)
-    elif isinstance(n, (A.Unary, A.Postfix)) and n.op in ("++", "--"):
-        targets.append(n.operand)
-    elif isinstance(n, A.Call) and n is not call:
-        tgt = tr.model.call_target(n)
-        if isinstance(tgt, Symbol):
-            targets += [a for a, d in zip(n.args, param_directions(tgt)) if d != "in"]
-        elif n.callee == "modf" and len(n.args) == 2:
-            targets.append(n.args[1])
-    for x in targets:
-        root = x
-        while isinstance(root, (A.Field, A.Index)):
-            root = root.base
-        if isinstance(root, A.Identifier) and tr.model.symbol_of(root) is sym:
-            if isinstance(x, A.Field) and x.base is root and tr.model.is_swizzle(x):
-                return tuple(tr.model.swizzle_indices(x))  # (a struct's member: "all" below)
-            return "all"
-    return ()
-
-
-def fold_plan(tr: FoldEmitter, call: A.Call, fn: Symbol, mask: str | None) -> tuple | None:
+def fold_plan(
+    tr: FoldEmitter, call: A.Call, fn: Symbol, mask: str | None, chained: Any = None
+) -> tuple | None:
     """(the parameters' final terms by symbol id, the parameter symbols, the result's terms,
     the arguments read at run time as (index, node)) of the call `call` of user function `fn`
     evaluated with constants propagated as NIR does (module doc: each engine emits the terms);
@@ -227,31 +181,40 @@ def fold_plan(tr: FoldEmitter, call: A.Call, fn: Symbol, mask: str | None) -> tu
     component, or the constants merge no more than they do with every argument a run-time value
     (merges inside the callee alone are nir_fold's, in the function's own code), and no dot
     product of the callee factors (``vec3(p.xyx)`` of Dave Hoskins' hash12: two products share
-    p.x)."""
+    p.x). `chained(fn)`: whether a seed chain runs through user function fn (the engines
+    pass nir_fold.repeated_sums.chain_params, which imports this module: Evaluator.opaque_call)."""
     if (
         tr.fn is None
         or tr.fold_state.call_fold_off
         or tr.fold_state.inline_frames
         or any(tr.has_effects(a) for a in call.args)
-        or tr.type_of(call).is_struct  # (the engines write a folded call's terms as vectors)
         or any(d != "in" and tr.type_of(a).is_struct for a, (_, _, d) in zip(call.args, fn.params))
     ):
         return None
     try:
         constant = _has_constant_argument(tr, call, fn)
-        if not constant and not _calls_dot(tr, fn):
-            return None
-        ev, env, params, result, holders = _evaluate(tr, call, fn, mask, True)
+        if not constant and (tr.type_of(call).is_struct or not _calls_dot(tr, fn)):
+            return None  # (a struct result: only where an argument carries a constant)
+        ev, env, params, result, holders = _evaluate(tr, call, fn, mask, True, chained)
         if (
             ev.factored == 0
         ):  # (a factored dot product is folded here only: Runtime.dot keeps the products)
             if not constant or ev.merges == 0:
                 return None
-            if _evaluate(tr, call, fn, mask, False)[0].merges >= ev.merges:
+            if _evaluate(tr, call, fn, mask, False, chained)[0].merges >= ev.merges:
                 return None
     except Refuse:
         return None
+    if ev.wrote_global and opaque_calls(call, holders):
+        return None  # (the call as written makes the global writes, the opaque call its own)
     return env, params, result, holders
+
+
+def opaque_calls(call: A.Call, holders: list[tuple[int, Any]]) -> bool:
+    """Whether a folded call's run-time values include calls the callee makes
+    (:meth:`Evaluator.opaque_call`): their side effects (a global seed advanced) happen in the
+    folded code, so the call is not run as written too."""
+    return any(i >= len(call.args) for i, _ in holders)
 
 
 def _calls_dot(tr: FoldEngine, fn: Symbol) -> bool:
@@ -270,7 +233,7 @@ def _calls_dot(tr: FoldEngine, fn: Symbol) -> bool:
 def _has_constant_argument(tr: FoldEmitter, call: A.Call, fn: Symbol) -> bool:
     for a, (_, _, dr) in zip(call.args, fn.params):
         if dr == "in" and tr.type_of(a).is_struct:
-            source = _struct_source(tr, a, call)
+            source = struct_source(tr, a, call)
             inner = tr.model.call_target(source) if source is not None else None
             if (
                 source is not None
@@ -294,7 +257,7 @@ def _scaled_argument(tr: FoldEmitter, a: Any, call: A.Call) -> tuple[Any, Any] |
     ``hash11(fi * 0.017)`` with ``fract(vec3(p) * 443.8975)``: ``fi * (0.017*443.8975)``), also
     through a local so initialised that nothing writes before `call` (NIR's SSA value)."""
     if isinstance(a, A.Identifier):
-        a = _unchanged_init(tr, a, call)
+        a = unchanged_init(tr, a, call)
     if not (isinstance(a, A.Binary) and a.op == "*") or tr.has_effects(a):
         return None
     for y, c in ((a.left, a.right), (a.right, a.left)):
@@ -312,19 +275,24 @@ def _scaled_argument(tr: FoldEmitter, a: Any, call: A.Call) -> tuple[Any, Any] |
 
 
 def _evaluate(
-    tr: FoldEmitter, call: A.Call, fn: Symbol, mask: str | None, constants: bool
+    tr: FoldEmitter,
+    call: A.Call,
+    fn: Symbol,
+    mask: str | None,
+    constants: bool,
+    chained: Any = None,
 ) -> tuple:
     """The call evaluated with its arguments bound to stand-in parameters: (the evaluation,
     the parameters' final terms by symbol id, the parameter symbols, the result's terms, the
     arguments read at run time as (index, node)); `constants`: the arguments' constant
     components as constants, else every argument a run-time value. Raises Refuse."""
     ev = Evaluator(tr, mask)
-    ev.slots = len(call.args)
+    ev.slots, ev.chained = len(call.args), chained
     known = known_globals(tr, call)
     ev.globals = {k: [const_term(v) for v in vs] for k, vs in (known or {}).items()}
     ev.unknown = known is not None
     env: dict[int, list] = {}
-    holders: list[tuple[int, Any]] = []
+    holders = ev.holders
     args = _argument_terms(tr, ev, call, fn, constants, holders, list(range(len(call.args))))
     params = [tr.model.symbol_of(p) for p in fn.node.proto.params]
     if any(p is None for p in params):
@@ -356,13 +324,13 @@ def _argument_terms(
     """Per argument of `call` (of `fn`), its components' terms (None: an out parameter's,
     unknown); an argument read at run time is added to `holders` as (its slot, the node). A
     struct argument is a local the value of a call of a user function initialises
-    (:func:`_struct_source`): that call is evaluated here, its own arguments in new slots
+    (:func:`.call_sites.struct_source`): that call is evaluated here, its own arguments in new slots
     (`source_of`: the call they are then read at)."""
     args: list[list[Any]] = []
     for a, (_, _, dr), i in zip(call.args, fn.params, slots):
         t = tr.type_of(a)
         if t.is_struct and dr == "in":
-            source = _struct_source(tr, a, call)
+            source = struct_source(tr, a, call)
             inner = tr.model.call_target(source) if source is not None else None
             if (
                 source is None
@@ -409,28 +377,6 @@ def _argument_terms(
             [k if k is not None else x for k, x in zip(known or [None] * len(leaves), leaves)]
         )
     return args
-
-
-def _struct_source(tr: FoldEmitter, a: Any, call: A.Call) -> A.Call | None:
-    """The call of a user function that initialises the struct local `a`, where evaluating it
-    again at `call` gives a's value there: `a` declared by a top-level statement before the one
-    that holds `call`, and neither it nor a local or parameter the initializer reads written
-    in between, no global read but constants and uniforms (a call may write a global); else
-    None."""
-    init = _unchanged_init(tr, a, call) if isinstance(a, A.Identifier) else None
-    if not (
-        isinstance(init, A.Call)
-        and not init.constructor
-        and isinstance(tr.model.call_target(init), Symbol)
-        and not any(tr.has_effects(x) for x in init.args)
-    ):
-        return None
-    for n in init.walk():
-        sym = tr.model.symbol_of(n) if isinstance(n, A.Identifier) else None
-        if sym is not None and sym.kind not in ("local", "param", "uniform"):
-            if tr.model.const_value(n) is None:
-                return None
-    return init
 
 
 def out_roots(tr: FoldEmitter, call: A.Call, sym: Symbol | None) -> set[str] | None:

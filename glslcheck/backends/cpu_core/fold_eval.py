@@ -13,6 +13,7 @@ from ...language import builtin_functions as B
 from ...semantics.analysis import param_directions
 from ...semantics.model import Symbol
 from .common import RUNTIME_NAMES
+from .host_math import host_sin_cos
 
 TYPE_CHECKING = False  # not typing's: importing typing costs every start-up
 if TYPE_CHECKING:
@@ -89,6 +90,10 @@ class Evaluator:
         # any other float global is then a value unknown here (UNKNOWN): written, or read into
         # a global's value only (a result or out parameter that reads one refuses: _evaluate)
         self.unknown = False
+        self.wrote_global = False  # whether the evaluation assigns a global (`assign`)
+        self.holders: list[tuple[int, Any]] = []  # (slot, node) of the values read at run time
+        self.opaque = True  # whether a call not followed may be an opaque value (`opaque_call`)
+        self.chained: Any = None  # whether a seed chain runs through a function (`opaque_call`)
 
     # -- scalar rules ----------------------------------------------------------------------
     def neg(self, a: Term) -> Term:
@@ -227,14 +232,9 @@ class Evaluator:
     def expr(self, e: Any, env: dict[int, list]) -> list[Term]:
         tr = self.tr
         t = tr.type_of(e)
-        if (
-            t.is_array
-            or not t.is_struct
-            and t.base not in ("float", "int")
-            or tr.has_effects(e)
-            and not isinstance(e, A.Call)
-        ):
-            raise Refuse
+        if t.is_array or not t.is_struct and t.base not in ("float", "int"):
+            raise Refuse  # (effects: an assignment, ++ or a built-in's out argument is refused
+            # by its shape below, a user call followed or an opaque value: `call`)
         if t.is_struct:
             size_of(t)  # (float members only, else Refuse)
         else:
@@ -291,7 +291,12 @@ class Evaluator:
         tr = self.tr
         target = tr.model.call_target(e)
         if isinstance(target, Symbol):
-            return self.user_call(target, e.args, env)
+            depth, held = self.depth, len(self.holders)
+            try:
+                return self.user_call(target, e.args, env)
+            except Refuse:  # (an opaque call it made inside is not made: it is made whole)
+                self.depth, self.holders[held:] = depth, []
+                return self.opaque_call(e, t)
         args = [self.expr(a, env) for a in e.args]
         if isinstance(target, B.Overload) and e.callee == "pow" and len(args) == 2:
             return [self.pow(x, y) for x, y in zip(args[0], args[1])]
@@ -307,6 +312,8 @@ class Evaluator:
                 self.add(self.mul(a[i], b[j]), self.neg(self.mul(a[j], b[i])))
                 for i, j in ((1, 2), (2, 0), (0, 1))
             ]
+        if isinstance(target, B.Overload) and e.callee in ("radians", "tan") and len(args) == 1:
+            return [self.angle(e.callee, x) for x in args[0]]
         if isinstance(target, B.Overload):
             if e.callee not in _COMPONENTWISE or len(args) != 1:
                 raise Refuse
@@ -330,6 +337,51 @@ class Evaluator:
         if t.is_scalar:
             return flat[:1]
         raise Refuse
+
+    def angle(self, name: str, x: Term) -> Term:
+        """``radians`` or ``tan`` of one component, folded at compile time where x is a known
+        constant, as NIR folds it after inlining: radians is ``x * (pi/180)`` in float32 (the
+        run-time product's bits), tan the host C library's float32 ``sinf(x) / cosf(x)``
+        (Mesa's GLSL tan is sin/cos, and fsin, fcos fold with the C library; measured:
+        tests/gl/test_llvmpipe_constant_components.py, 95 of 95 constants, gallivm's run-time tan
+        75). A folded tan counts as a merge: it may change the written bits."""
+        host = host_sin_cos(x.value) if x.value is not None and name == "tan" else None
+        if x.value is not None and name == "radians":
+            return const_term(fold_tree("*", x.value, np.pi / 180.0), x.comp)
+        if host is None:
+            return Term("call", (x,), const=x.const, code=RUNTIME_NAMES.get(name, name))
+        self.merges += 1
+        return const_term(fold_tree("/", *host), x.comp)
+
+    def opaque_call(self, e: A.Call, t: Any) -> list[Term]:
+        """A call of a user function without arguments that is not followed (a loop, a global
+        written: a random draw advancing a global seed) as a run-time value: the engines make the
+        call once, where the folded call's arguments have been read (its slot in `holders`, in
+        the order of the callee's statements), and NIR's rules see its result as an unknown
+        value, as they see a loop's result after inlining. Not in a struct argument's source
+        call (`bound_call`), which is evaluated again at the call that reads it, nor for a
+        function a seed chain runs through (`chained`, the engines' nir_fold.repeated_sums
+        .chain_params: the caller passes it the chain's base and constants, which the call made
+        here would not); none where `chained` is not given (:func:`out_roots`)."""
+        target = self.tr.model.call_target(e)
+        if (
+            not self.opaque
+            or self.chained is None
+            or e.args
+            or t.is_struct
+            or t.is_array
+            or t.base != "float"
+            or not isinstance(target, Symbol)
+            or self.chained(target)
+        ):
+            raise Refuse
+        slot = self.slots
+        self.slots += 1
+        self.holders.append((slot, e))
+        # the call may write any global (a seed it advances): none is known after it
+        for k, terms in self.globals.items():
+            self.globals[k] = [UNKNOWN] * len(terms)
+        return leaves_of(f"@{slot}@", t)
 
     def user_call(self, fn: Symbol, args: list[Any], env: dict[int, list]) -> list[Term]:
         """The callee's result; its out/inout parameters written back into `env`."""
@@ -364,7 +416,9 @@ class Evaluator:
             if psym is None:
                 raise Refuse
             inner[id(psym)] = v
+        opaque, self.opaque = self.opaque, False
         result = self.body(fn, inner)
+        self.opaque = opaque
         self.depth -= 1
         return result
 
@@ -472,6 +526,7 @@ class Evaluator:
             raise Refuse
         key, idx = place
         store = env if key in env else self.globals
+        self.wrote_global = self.wrote_global or store is self.globals
         new = list(store[key])
         for i, v in zip(idx, value * len(idx) if len(value) == 1 else value):
             new[i] = v
@@ -553,6 +608,12 @@ def size_of(t: Any) -> int:
     if t.is_array or t.base != "float":
         raise Refuse
     return width_of(t)
+
+
+def member_size(t: Any) -> int:
+    """The number of terms a value of type t (a member of a folded call's struct result, all
+    of whose members are float: :func:`fold_plan` checked) takes."""
+    return size_of(t)
 
 
 def _member(t: Any, name: str) -> tuple[int, int]:

@@ -8,7 +8,9 @@ from typing import Any
 
 from ....frontend import syntax as A
 from ....semantics.model import Symbol
-from ...cpu_core.call_fold import fold_plan, record_sums
+from ...cpu_core.call_fold import fold_plan, opaque_calls, record_sums
+from ...cpu_core.fold_eval import member_size
+from ...cpu_core.nir_fold.repeated_sums import chain_params
 
 TYPE_CHECKING = False  # not typing's: importing typing costs every start-up
 if TYPE_CHECKING:
@@ -21,7 +23,7 @@ def folded_call(tr: TranspilerState, call: A.Call, fn: Symbol, mask: str | None)
     None where :func:`fold_plan` leaves the call as written."""
     if tr.watched is not None:
         return None
-    plan = fold_plan(tr, call, fn, mask)
+    plan = fold_plan(tr, call, fn, mask, lambda f: bool(chain_params(tr, f)))
     return None if plan is None else _emit_call(tr, call, fn, mask, *plan)
 
 
@@ -36,8 +38,10 @@ def _emit_call(
     holders: list[tuple[int, Any]],
 ) -> str:
     r = tr.fresh("t")
-    effects = tr.facts.writes_globals(fn)
-    if effects:  # (the terms read the globals' known values: the call as written writes them)
+    # (the terms read the globals' known values: the call as written writes them, unless the
+    # writes are the callee's calls made in the folded code: cpu_core.call_fold.opaque_calls)
+    effects = tr.facts.writes_globals(fn) and not opaque_calls(call, holders)
+    if effects:
         names = {i: tr.tmp(tr.expr(a, mask)) for i, a in holders}
         tr.emit(f"{r} = {_written_call(tr, call, fn, mask)}")
     tr.emit("if rt.lp:  # constants propagated into the call as NIR does (transpile/call_fold.py)")
@@ -71,6 +75,13 @@ def _emit_call(
         return c
 
     def value(terms: list[Any], t: Any) -> str:
+        if t.is_struct:  # (members one after the other, as call_fold evaluates them)
+            fields, at = [], 0
+            for fname, ft in t.fields:
+                width = member_size(ft)
+                fields.append(f"{tr.member(fname, call)}={value(terms[at : at + width], ft)}")
+                at += width
+            return f'rt.struct("{tr.struct_name(t)}", {", ".join(fields)})'
         cs = [code(x) for x in terms]
         if t.is_scalar:
             return cs[0]
