@@ -91,7 +91,7 @@ from typing import Any
 from ...frontend import syntax as A
 from ...language import builtin_functions as B
 from ...semantics.model import Symbol
-from .call_sites import struct_source, unchanged_init, written_components
+from .call_sites import struct_source, top_level_places, unchanged_init, written_components
 from .fold_eval import (
     UNKNOWN,
     Evaluator,
@@ -123,19 +123,11 @@ def _constant_components(tr: FoldEmitter, arg: Any, call: A.Call) -> list[Term |
             return None
         return _constructed_components(tr, arg, t)
     sym = tr.model.symbol_of(arg) if isinstance(arg, A.Identifier) else None
-    if (
-        sym is None
-        or sym.kind != "local"
-        or not isinstance(sym.node, A.Declarator)
-        or sym.node.init is None
-    ):
+    places = top_level_places(tr, sym, call)
+    if places is None:
         return None
-    assert tr.fn is not None  # folding a call inside a function
-    stmts = tr.fn.sym.node.body.stmts
-    decl = next((i for i, st in enumerate(stmts) if any(n is sym.node for n in st.walk())), None)
-    at = next((i for i, st in enumerate(stmts) if any(n is call for n in st.walk())), None)
-    if decl is None or at is None or not isinstance(stmts[decl], A.DeclarationStatement):
-        return None
+    stmts, decl, at = places
+    assert sym is not None and isinstance(sym.node, A.Declarator) and sym.node.init is not None
     init, t = sym.node.init, tr.type_of(arg)
     if t.is_array or t.is_struct or t.base != "float":
         return None

@@ -22,6 +22,27 @@ def unchanged_init(tr: FoldEmitter, ident: A.Identifier, call: A.Call) -> Any:
     the initializer reads is written in between (so the initializer, evaluated again at the
     call, gives its value); else None."""
     sym = tr.model.symbol_of(ident)
+    places = top_level_places(tr, sym, call)
+    if places is None or places[1] >= places[2]:
+        return None
+    stmts, decl, at = places
+    assert sym is not None and isinstance(sym.node, A.Declarator) and sym.node.init is not None
+    init = sym.node.init
+    named = {sym} | {tr.model.symbol_of(n) for n in init.walk() if isinstance(n, A.Identifier)}
+    read = [r for r in named if r is not None and r.kind in ("local", "param")]
+    for st in stmts[decl + 1 : at + 1]:
+        for n in st.walk():
+            if any(written_components(tr, n, r, call) for r in read):
+                return None
+    return init
+
+
+def top_level_places(
+    tr: FoldEmitter, sym: Symbol | None, call: A.Call
+) -> tuple[list, int, int] | None:
+    """(the current function's top-level statements, the index of the declaration statement
+    of the local `sym`, the index of the statement holding `call`) when `sym` is a local with
+    an initializer declared by a top-level statement; else None."""
     if (
         sym is None
         or sym.kind != "local"
@@ -33,21 +54,9 @@ def unchanged_init(tr: FoldEmitter, ident: A.Identifier, call: A.Call) -> Any:
     stmts = tr.fn.sym.node.body.stmts
     decl = next((i for i, st in enumerate(stmts) if any(n is sym.node for n in st.walk())), None)
     at = next((i for i, st in enumerate(stmts) if any(n is call for n in st.walk())), None)
-    if (
-        decl is None
-        or at is None
-        or not isinstance(stmts[decl], A.DeclarationStatement)
-        or decl >= at
-    ):
+    if decl is None or at is None or not isinstance(stmts[decl], A.DeclarationStatement):
         return None
-    init = sym.node.init
-    named = {sym} | {tr.model.symbol_of(n) for n in init.walk() if isinstance(n, A.Identifier)}
-    read = [r for r in named if r is not None and r.kind in ("local", "param")]
-    for st in stmts[decl + 1 : at + 1]:
-        for n in st.walk():
-            if any(written_components(tr, n, r, call) for r in read):
-                return None
-    return init
+    return stmts, decl, at
 
 
 def written_components(tr: FoldEmitter, n: Any, sym: Symbol, call: A.Call) -> Any:
