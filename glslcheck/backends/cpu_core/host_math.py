@@ -1,7 +1,7 @@
 """The host C library's float32 sin and cos, as Mesa's constant folding computes fsin and fcos
 (nir_constant_expressions calls sinf and cosf): what llvmpipe's compile-time value of a
 built-in of constants is, where it differs from gallivm's run-time function
-(cpu_core/call_fold.py's tan; measured: tests/gl/test_llvmpipe_constant_components.py)."""
+(cpu_core/fold_eval.py's tan; measured: tests/gl/test_llvmpipe_constant_components.py)."""
 
 from __future__ import annotations
 

@@ -101,8 +101,9 @@ def check(ctx: LintContext) -> Iterator[Diagnostic]:
                         help=f"write {text(picked)}",
                     )
                     continue
-            if type(n) is A.Binary and n.op == "*" and _product_top(fn, n):
-                zero = _zero_factor(fn, n)
+            split = _split(fn, n) if _product_top(fn, n) else None
+            if split is not None and n.op == "*":
+                zero = _zero_factor(fn, split[0])
                 if zero is not None:
                     zeros.setdefault(text(zero), []).append((n, zero))
                     continue
@@ -117,8 +118,8 @@ def check(ctx: LintContext) -> Iterator[Diagnostic]:
                         help=f"write {text(x)}",
                     )
                 continue
-            if _product_top(fn, n):
-                cancelled = _cancelled(fn, n)
+            if split is not None:
+                cancelled = _cancelled(fn, n, *split)
                 if cancelled is not None:
                     yield cancelled
             if type(n) is A.Binary and n.op in _IDENTITY:
@@ -285,15 +286,26 @@ def _mix_end(fn, n: A.Call):
     return end
 
 
-def _zero_factor(fn, n: A.Binary):
-    """A factor of the float product `n` that is zero in every component: written out, or a
-    local whose value reaching here is (`vec3 black = vec3(0.0); ... black * mask`); None
-    otherwise. The product is zero whatever the rest (but for infinities and NaN)."""
+def _split(fn, n: A.Binary) -> tuple[list, list, list] | None:
+    """The factors the top float product `n` multiplies and divides by, and the locals followed
+    (`_factors`); None for a constant or impure product."""
     if fn.model.is_constant(n) or not fn.is_pure(n):
         return None
     num: list = []
-    _factors(fn, n, num, [], [], 0, None)
-    for f, _ in num:
+    den: list = []
+    via: list = []
+    _factors(fn, n, num, den, via, 0, None)
+    return num, den, via
+
+
+def _zero_factor(fn, num: list):
+    """A factor written in the product (`num`: `_factors`'s, not one inside a local's value,
+    reported where that local is set) that is zero in every component: written out, or a local
+    whose value reaching here is (`vec3 black = vec3(0.0); ... black * mask`); None otherwise.
+    The product is zero whatever the rest (but for infinities and NaN)."""
+    for f, held in num:
+        if held is not None:
+            continue
         value = fn.model.const_value(f)
         if value is None and type(f) is A.Identifier:
             sym = fn.model.symbol_of(f)
@@ -320,16 +332,11 @@ def _float_factor(fn, e) -> bool:
     return getattr(t, "base", None) == "float" and (t.is_scalar or t.is_vector)
 
 
-def _cancelled(fn, n: A.Binary) -> Diagnostic | None:
-    """A float product that multiplies and divides by the same value (`columns / rows * rows`,
-    `height * width / height`, or through a local holding a quotient: `numHeight * ratio` with
-    `ratio = numWide / numHeight`): the two cancel."""
-    if fn.model.is_constant(n) or not fn.is_pure(n):
-        return None
-    num: list = []
-    den: list = []
-    via: list = []
-    _factors(fn, n, num, den, via, 0, None)
+def _cancelled(fn, n: A.Binary, num: list, den: list, via: list) -> Diagnostic | None:
+    """A float product (its factors `num` / `den`, the locals followed `via`: `_split`) that
+    multiplies and divides by the same value (`columns / rows * rows`, `height * width /
+    height`, or through a local holding a quotient: `numHeight * ratio` with `ratio = numWide /
+    numHeight`): the two cancel."""
     for d, d_from in den:
         k = fn.key(d)
         # (a pair both inside one local's value is that local's own finding, where it is set)
