@@ -557,8 +557,8 @@ def _parity(fn, e, depth: int) -> str | None:
     model = fn.model
     if type(e) is A.Identifier:
         sym = model.symbol_of(e)
-        local = sym is not None and sym.kind == "local"
-        reaching = fn.reaching_value(e, sym, as_computed=True) if local else None
+        variable = sym is not None and sym.kind in _VARIABLES
+        reaching = fn.reaching_value(e, sym, as_computed=True) if variable else None
         if reaching is None or _parity(fn, reaching, depth + 1) is None:
             return None
         kind = model.type_of(e)
@@ -583,12 +583,17 @@ def _parity(fn, e, depth: int) -> str | None:
 
 
 _ROUNDING = ("floor", "ceil", "round", "roundEven", "trunc")
+# built-ins whose value is a whole number when their arguments are (mod(n, 2.0) of a floor)
+_WHOLE_OF_WHOLE = ("mod", "abs", "min", "max")
+# variables whose last write a read is followed to (a global: written in this function)
+_VARIABLES = ("local", "param", "global")
 
 
 def _integral(fn, e, depth: int) -> bool:
-    """Whether the float scalar `e` always holds an integer (a floor(), a float() of an int,
-    sums and products of such, a component of such a vector, a local holding one or a
-    parameter written over with one: `uv = floor(uv);`)."""
+    """Whether the float `e` always holds integers (a floor(), a float() of an int, a vector
+    made of such, sums, products and mods of such, a component of such a vector, a local
+    holding one, a parameter or global written over with one: `uv = floor(uv);`, and a
+    component written with one: `uv.x = floor(uv.x * 8.0);`)."""
     if depth > 8:
         return False
     model = fn.model
@@ -599,17 +604,28 @@ def _integral(fn, e, depth: int) -> bool:
     if t is A.Call:
         if builtin_call(model, e, *_ROUNDING):
             return True
-        arg_kind = model.type_of(e.args[0]) if e.constructor and len(e.args) == 1 else None
-        return getattr(arg_kind, "base", None) in ("int", "uint")
+        made = e.constructor and e.array is None and _float_valued(fn, e)  # (not a struct)
+        if made or builtin_call(model, e, *_WHOLE_OF_WHOLE):
+            return bool(e.args) and all(
+                getattr(model.type_of(a), "base", None) in ("int", "uint")
+                or _integral(fn, a, depth + 1)
+                for a in e.args
+            )
+        return False
     if t is A.Binary and e.op in ("+", "-", "*"):
         return _integral(fn, e.left, depth + 1) and _integral(fn, e.right, depth + 1)
     if t is A.Unary and e.op in ("-", "+"):
         return _integral(fn, e.operand, depth + 1)
     if t is A.Field and model.is_swizzle(e):
+        sym = model.symbol_of(e.base) if type(e.base) is A.Identifier else None
+        if sym is not None and sym.kind in _VARIABLES and len(model.swizzle_indices(e)) == 1:
+            written = fn.reaching_component(e, sym)
+            if written is not None:
+                return _integral(fn, written, depth + 1)
         return _integral(fn, e.base, depth + 1)
     if t is A.Identifier:
         sym = model.symbol_of(e)
-        if sym is None or sym.kind not in ("local", "param"):  # (a parameter written over)
+        if sym is None or sym.kind not in _VARIABLES:
             return False
         reaching = fn.reaching_value(e, sym, as_computed=True)
         return reaching is not None and _integral(fn, reaching, depth + 1)

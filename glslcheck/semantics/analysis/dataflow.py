@@ -893,28 +893,59 @@ class FunctionFacts(ValueRanges):
 
     def reaching_value(self, ident: A.Identifier, sym: Symbol, as_computed: bool = False) -> Any:
         """The expression last assigned to `sym` before `ident` when that assignment is on every
-        path to it, no other write can reach it, it assigns the whole value and no variable the
-        expression reads is written in between (so it still has that value); else None.
-        `as_computed`: the expression as it was computed then, its variables written since or
-        not (for what is true of any value it computes: an integer from `floor()`)."""
-        pos = self.enter.get(id(ident))
+        path to it, no other write can reach it (for a global, no call between), it assigns the
+        whole value and no variable the expression reads is written in between (so it still has
+        that value); else None. `as_computed`: the expression as it was computed then, its
+        variables written since or not (for what is true of any value it computes: an integer
+        from `floor()`)."""
+        return self._reaching(ident, sym, None, as_computed)
+
+    def reaching_component(self, read: A.Field, sym: Symbol) -> Any:
+        """reaching_value of one component of a vector variable, as computed: the value last
+        assigned to the component `read` reads (`v.x = floor(v.x * n);` before `v.x`), past
+        writes of its other components (`v.y = ...`)."""
+        return self._reaching(read, sym, read, True)
+
+    def _reaching(self, node: Any, sym: Symbol, component: Any, as_computed: bool) -> Any:
+        pos = self.enter.get(id(node))
         if pos is None:
             return None
         ws = self.writes_to(sym)
         before = [w for w in ws if w.pos < pos]
+        if component is not None:
+            mine = set(self.model.swizzle_indices(component))
+            while before and not mine & self._components_written(before[-1].node, sym):
+                before.pop()
         if not before:
             return None
         last = before[-1]
-        if last.kind not in ("=", "init") or not self.dominates(last.node, ident):
+        if component is None:
+            if last.kind not in ("=", "init"):
+                return None
+        elif last.kind != "part" or self.key(last.node.target) != self.key(component):
             return None
-        for loop in self.enclosing_loops(ident):  # a later write in the loop reaches it again
+        value = last.node.value if component is not None else last.value
+        if not self.dominates(last.node, node):
+            return None
+        for loop in self.enclosing_loops(node):  # a later write in the loop reaches it again
             if any(w.pos > pos and self.contains(loop, w.node) for w in ws):
                 return None
+        if sym.kind == "global" and _any_between(
+            self._positions("calls", lambda: self.user_calls), last.pos, pos
+        ):
+            return None  # a call between may write it
         # `l = lengthSq(dp.xy); dp.xy = ...; use(l)`: l no longer equals its expression
-        others = self.operands(last.value) - {sym}
-        if others and not as_computed and self.written_between(last.node, ident, others):
+        others = self.operands(value) - {sym}
+        if others and not as_computed and self.written_between(last.node, node, others):
             return None
-        return last.value
+        return value
+
+    def _components_written(self, node: Any, sym: Symbol) -> set[int]:
+        """The components of `sym` a write writes: a swizzle's (`v.y = ...`), else all (-1)."""
+        t = node.target if type(node) is A.Assignment else None
+        if type(t) is A.Field and type(t.base) is A.Identifier and self.model.is_swizzle(t):
+            return set(self.model.swizzle_indices(t))  # (the write is to sym: t.base is sym)
+        return {0, 1, 2, 3, -1}
 
     def constant_through_locals(self, e: Any) -> tuple[Any, A.Identifier | None]:
         """The constant value of `e` (None: not constant) and the local variable it was reached
