@@ -3,14 +3,13 @@ the same arguments (shared by repeated-across-calls and loop-invariant).
 
 A value of a helper `H` is an expression worth reusing (as repeated-expression means it) that
 takes a square root, a transcendental function or a division (`normalize`, `length`, `sqrt`,
-`pow`, `sin`, ..., `(p - c) / r`, or a user function that does), pure, that reads only `in`
-parameters `H` never writes (and constants), that `H` computes on every call (not inside a
-branch or a loop of `H`, nor after its `return`), and that is not part of a returned value
-computed from those parameters alone (then the calls themselves are the repeated value, the
-caller's to reuse). Two calls of `H` with the same arguments for those parameters compute it
-twice with the same value; a call in a loop whose arguments for them the loop does not change
-computes it on every iteration with the same value.
-"""
+`pow`, `sin`, ..., `(p - c) / r`, or a user function that does), pure, that reads `in`
+parameters `H` never writes and nothing else but constants and uniforms, that `H` computes on
+every call (not inside a branch or a loop of `H`, nor after its `return`), and that is not part
+of a returned value computed from those parameters alone (then the calls themselves are the
+repeated value, the caller's to reuse). Two calls of `H` with the same arguments for those
+parameters compute it twice with the same value; a call in a loop whose arguments for them the
+loop does not change computes it on every iteration with the same value."""
 
 from __future__ import annotations
 
@@ -51,10 +50,8 @@ def helper_values(fn) -> list[tuple[A.Expr, list[int]]]:
             continue
         if fn.enter[id(n)] <= skip_until:
             continue
-        ops = fn.operands(n)  # (cached) the cheap test first: parameters only
-        if not ops or any(
-            id(s) not in usable and not (s.kind == "global" and s.qualifier == "const") for s in ops
-        ):
+        ops = fn.operands(n)  # (cached) the cheap test first: parameters (and frame inputs)
+        if not any(id(s) in usable for s in ops) or not all(_fixed(s, usable) for s in ops):
             continue
         if fn.is_dead(n) or model.is_constant(n) or not (fn.worth_reusing(n) and fn.is_pure(n)):
             continue
@@ -62,7 +59,7 @@ def helper_values(fn) -> list[tuple[A.Expr, list[int]]]:
         if any(type(a) in _CONDITIONAL or _short_circuit(a) for a in ups):
             continue
         ret = next((a for a in ups if type(a) is A.Return), None)
-        if ret is not None and all(id(s) in usable for s in fn.operands(ret.value)):
+        if ret is not None and all(_fixed(s, usable) for s in fn.operands(ret.value)):
             continue  # what the helper returns comes from those parameters alone
         if not _costly(model, n, 0):
             continue
@@ -94,6 +91,12 @@ def _costly(model, e, depth: int) -> bool:
         if body is not None and depth < 4 and _costly(model, body, depth + 1):
             return True
     return False
+
+
+def _fixed(s: Symbol, usable: dict[int, int]) -> bool:
+    """A variable a value may read: a usable parameter, a constant, or a uniform (the same for
+    every call in a frame: `fragCoord / iResolution.xy` is a value of `fragCoord` alone)."""
+    return id(s) in usable or s.kind == "uniform" or (s.kind == "global" and s.qualifier == "const")
 
 
 def _ancestors(fn, n) -> list[Any]:

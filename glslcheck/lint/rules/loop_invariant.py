@@ -17,8 +17,9 @@ reads and writes no global, nor an `out` parameter before writing it), none of w
 changes, is reported too: it computes the same outputs on every iteration (an anti-aliasing
 loop that calls `calcRay(dir, origin, viewport)` with a viewport computed before it traces the
 same ray every time).
-A value a helper function computes from its `in` parameters alone (one worth reusing that
-takes a square root, a transcendental function or a division, on every call of the helper) is
+A value a helper function computes from its `in` parameters alone, uniforms aside (one worth
+reusing that takes a square root, a transcendental function or a division, on every call of
+the helper: a filter's `fragCoord / iResolution.xy` in the sample helper of each tap) is
 reported in the helper when a loop calls it with the same arguments for those parameters on
 every iteration (the lighting helper called per light computes the view vector from the same
 eye and surface point each time), unless every argument is the same (then the call itself is).

@@ -2,15 +2,15 @@
 
 ## What it does
 Reports a value a helper function computes from its `in` parameters alone (an expression worth
-reusing, as `repeated-expression` means it, that takes a square root, a transcendental
-function or a division: `normalize(eye - position)`, `pow(k, shininess)`, `(p - c) / r`, or a
-user function that does (a dot product is too cheap to pass around); pure,
-reading only parameters the helper never writes, computed on every call: not in a branch or a
-loop of the helper, and not the value the helper returns, which makes the calls themselves the
-repeated value) when a function calls the helper two or more times, each call on every path
-to the next, with the same arguments for those parameters and nothing they read written in
-between: the lighting helper called once per light computes the view vector once per light,
-from the same eye and surface point. One finding per value, at the value, naming the calls.
+reusing, as `repeated-expression` means it, that takes a square root, a transcendental function
+or a division: `normalize(eye - position)`, `pow(k, shininess)`, `(p - c) / r`, or a user
+function that does (a dot product is too cheap to pass around); pure, reading only parameters
+the helper never writes (and uniforms), computed on every call: not in a branch or a loop of the
+helper, and not the value the helper returns, which makes the calls themselves the repeated
+value) when a function calls the helper two or more times, each call on every path to the next,
+with the same arguments for those parameters and nothing they read written in between: the
+lighting helper called once per light computes the view vector once per light, from the same eye
+and surface point. One finding per value, at the value, naming the calls.
 Calls that pass the same value for every argument are not reported here: the call itself is
 then the repeated value (`repeated-expression`'s, for a pure function).
 A call in a loop that gives the helper the same arguments on every iteration is
