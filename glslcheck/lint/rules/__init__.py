@@ -60,6 +60,7 @@ RULE_TABLE: tuple[tuple[str, str], ...] = (
     ("repeated-expression", "repeated_expression"),
     ("repeated-across-calls", "repeated_across_calls"),
     ("loop-invariant", "loop_invariant"),
+    ("cell-search-loop", "cell_search_loop"),
     ("branch-replaceable", "branch_replaceable"),
     ("normalize-known-length", "normalize_known_length"),
     ("length-computed-twice", "length_computed_twice"),
