@@ -32,7 +32,9 @@ Reports `normalize(v)` when the length of `v` is already known in that function:
   divide by that length;
 * **a squared length already computed**: `dot(v, v)` likewise: multiply by its
   `inversesqrt` (the light-vector idiom of Lab 4: one `inversesqrt` gives both the unit vector
-  and the distance).
+  and the distance);
+* **a length of 1**: `v` is already of unit length (`_unit_vectors.py`: a normalize, through a
+  local too, a helper returning one, `reflect()` of one about another): drop the normalize.
 
 A length computed after the normalize (`L = normalize(light - p); d = distance(light, p);`) is
 not known at the normalize: that is `length-computed-twice`.
@@ -74,6 +76,7 @@ from ...semantics.model import Constructor, Symbol
 from ..fixes import Fix, Fixable
 from ..fixes.build import facts_of, fit, node_text, operand_text, replace
 from ._text import text, wrap
+from ._unit_vectors import normalized_again
 
 TYPE_CHECKING = False  # not typing's: importing typing costs every start-up
 if TYPE_CHECKING:
@@ -106,6 +109,8 @@ def check(ctx: LintContext) -> Iterator[Diagnostic]:
             if found is not None:
                 message, fix, by = found
                 yield Fixable(message, node.loc, help=fix, fix=_fix(ctx, node, v, by))
+            elif type(node) is A.Call and (again := normalized_again(fn, node)) is not None:
+                yield Diagnostic(again[0], node.loc, help=again[1])
 
 
 _NAME_OR_NUMBER = r"[A-Za-z_][\w.]*|[0-9][0-9.eE+\-]*"

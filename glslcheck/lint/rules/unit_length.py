@@ -3,7 +3,9 @@
 ## What it does
 Reports `length(u)` and `dot(u, u)` (also inside `sqrt(dot(u, u))`) where `u` is the result of
 `normalize`, written there or held in a local variable
-that the normalize's value reaches on every path with no other write in between. That length
+that the normalize's value reaches on every path with no other write in between, or another
+value of unit length (`_unit_vectors.py`: a helper returning a normalize, `reflect()` of a unit
+vector about a unit normal). That length
 is 1 (wherever the normalize is defined: not for a zero vector): a square root computed for a
 value known in advance, and often a bug (the distance to the
 light was meant: `length(light - p)`, not the length of the normalized vector).
@@ -33,6 +35,7 @@ from ...base.diagnostics import Diagnostic
 from ...frontend import syntax as A
 from ...semantics.analysis import builtin_call, program_facts
 from ._text import text
+from ._unit_vectors import held, unit_source
 
 TYPE_CHECKING = False  # not typing's: importing typing costs every start-up
 if TYPE_CHECKING:
@@ -56,16 +59,13 @@ def check(ctx: LintContext) -> Iterator[Diagnostic]:
             v = _measured(fn, n)
             if v is None:
                 continue
-            unit = _unit(fn, v)
+            unit = unit_source(fn, v)
             if unit is None:
                 continue
-            held = ""
-            if v is not unit:
-                held = f" ('{v.name}' holds {text(unit)}, line {unit.loc.line})"
             square = n.callee == "dot"
             yield Diagnostic(
-                f"'{text(n)}' is the {'squared ' if square else ''}length of a normalized "
-                f"vector{held}: it is 1.0 wherever the normalize is defined",
+                f"'{text(n)}' is the {'squared ' if square else ''}length of a unit vector"
+                f"{held(v, unit)}: it is 1.0 wherever the normalize is defined",
                 n.loc,
                 help="write 1.0, or measure the vector before normalizing it if its length was "
                 "meant (the distance to a light: length(light - p))",
@@ -81,17 +81,4 @@ def _measured(fn, n: A.Call) -> Any:
     if builtin_call(model, n, "dot") and len(n.args) == 2:
         if fn.key(n.args[0]) == fn.key(n.args[1]) and fn.is_pure(n.args[0]):
             return n.args[0]
-    return None
-
-
-def _unit(fn, v) -> A.Call | None:
-    """The normalize call `v` is, or that a local `v` holds where it is read, else None."""
-    model = fn.model
-    if type(v) is A.Identifier:
-        sym = model.symbol_of(v)
-        if sym is None or sym.kind != "local":
-            return None
-        v = fn.reaching_value(v, sym)
-    if builtin_call(model, v, "normalize"):
-        return v
     return None
