@@ -3,10 +3,12 @@
 ## What it does
 Reports `pow(x, e)` where the exponent `e` is a constant (a literal or a folded constant
 expression, every component equal) of 2, 3 or 4 (multiply `x` by itself), 0.5 (`sqrt`), -0.5
-(`inversesqrt`), 1 (`x` itself) or -1 (`1.0 / x`). The constant may reach the call through
-local variables (`float highlight = 4.0; ... pow(specCo, highlight)`) when that value reaches
-it on every path, with no other write between (the dataflow's `reaching_value`), and through
-scalar arithmetic of such locals (`float eh = 2.0; eh = eh * eh; ... pow(Ks, eh)`: 4).
+(`inversesqrt`), 1 (`x` itself) or -1 (`1.0 / x`); and, as a possible deduction (whether they
+count as small is a reading), 8 and 16, three and four squarings (a Blinn-Phong exponent). The
+constant may reach the call through local variables (`float highlight = 4.0; ... pow(specCo,
+highlight)`) when that value reaches it on every path, with no other write between (the
+dataflow's `reaching_value`), and through scalar arithmetic of such locals (`float eh = 2.0; eh
+= eh * eh; ... pow(Ks, eh)`: 4).
 
 The rubric deducts "per inefficient practice": the calls of one line (`pow(dx, 2.0) +
 pow(dy, 2.0)`) are one finding that names each call, and so are the same calls written again on
@@ -77,7 +79,13 @@ def _replacement(e: float, base) -> str | None:
         -0.5: f"inversesqrt({x})",
         1.0: f"{x}",
         -1.0: f"1.0 / {wrap(base)}",
+        8.0: f"{pre}float v2 = {v} * {v}; float v4 = v2 * v2; then v4 * v4",
+        16.0: f"{pre}float v2 = {v} * {v}; float v4 = v2 * v2; float v8 = v4 * v4; then v8 * v8",
     }.get(e)
+
+
+# exponents reached by squaring three or four times: whether they count as small is a reading
+SQUARINGS = {8.0: 3, 16.0: 4}
 
 
 def small_exponent(fn, node) -> tuple[float, Any] | None:
@@ -119,6 +127,15 @@ def _finding(ctx: LintContext, calls: list[tuple]) -> Fixable:
     node, e, through = calls[0]
     if len(calls) == 1:
         via = f" (through `{through.name}`)" if through is not None else ""
+        if e in SQUARINGS:
+            return Fixable(
+                f"pow() with the constant exponent {_shown(e)}{via} costs two transcendentals "
+                f"where {SQUARINGS[e]} squarings do (a possible deduction: whether "
+                f"{_shown(e)} counts as a small exponent)",
+                node.loc,
+                help=f"write {_replacement(e, node.args[0])}",
+                certainty="possible",
+            )
         return Fixable(
             f"pow() with the constant exponent {_shown(e)}{via} costs two transcendentals",
             node.loc,
@@ -141,6 +158,7 @@ def _finding(ctx: LintContext, calls: list[tuple]) -> Fixable:
         node.loc,
         help="write " + "; ".join(helps),
         fix=_joined(ctx, [_fix(ctx, n, ne) for n, ne, _ in calls]),
+        certainty="possible" if all(ne in SQUARINGS for _, ne, _ in calls) else None,
     )
 
 
@@ -179,6 +197,8 @@ def _fix(ctx: LintContext, node, e: float) -> Fix | None:
     if fn is None or x is None or operand is None:
         return None
     edits = []
+    if e in SQUARINGS:
+        return None  # (a reading, not a sure deduction: no fix offered)
     if e in (0.5, -0.5):
         new, binds = f"{'sqrt' if e > 0 else 'inversesqrt'}({x})", 16
     elif e == 1.0:
