@@ -10,7 +10,8 @@ variables, like `d * invIntensity` or `light.center - position`, but not a sign 
 
 * the first evaluation happens on every path to the second one (the same straight-line code,
   or an enclosing block: two occurrences in the two arms of an `if`/`else` or `?:` are not
-  repeated),
+  repeated), or both are parts of one test joined by `&&` and `||` (`mod(y, 2.0) == 0.0` and
+  `mod(y, 2.0) == 1.0` on either side of an `||`: written twice in one condition),
 * no variable it reads is written in between (an assignment, `++`/`--`, an `out` or `inout`
   argument, or any write in a loop around the second one but not the first; a global it reads
   is taken as written by any user function called in between; an assignment to a field of a
@@ -202,7 +203,11 @@ def _check_function(fn, ctx: LintContext, hoisted: list) -> Iterator[Diagnostic]
                 (
                     a
                     for a in occ[: min(j, _CANDIDATES)]
-                    if (fn.dominates(a, b) or (id(b) in within and fn.contains(b, a)))
+                    if (
+                        fn.dominates(a, b)
+                        or (id(b) in within and fn.contains(b, a))
+                        or _one_test(fn, a, b)
+                    )
                     and not fn.written_between(a, b, operands, reads=b)
                 ),
                 None,
@@ -289,3 +294,29 @@ def _fix(ctx: LintContext, fn, same: list, holder: str | None, sym) -> Fix | Non
         return None
     name, edits = found
     return Fix(f"compute it once into '{name}'", ctx.path, tuple(edits))
+
+
+def _one_test(fn, a, b) -> bool:
+    """Whether `a` and then `b` are parts of one condition joined by `&&` and `||` (`x == 0.0 &&
+    mod(y, 2.0) == 0.0 || x == 1.0 && mod(y, 2.0) == 1.0`): written twice in one test, which
+    a TA reads as computed twice, though `||` may skip one of them."""
+    if fn.exit[id(a)] >= fn.enter[id(b)]:
+        return False
+    up: dict[int, object] = {}
+    n = fn.parent.get(id(a))
+    while n is not None and isinstance(n, A.Expr):
+        up[id(n)] = n
+        n = fn.parent.get(id(n))
+    n = fn.parent.get(id(b))
+    while n is not None and id(n) not in up:
+        if not isinstance(n, A.Expr) or type(n) is A.Ternary:
+            return False
+        n = fn.parent.get(id(n))
+    if n is None or type(n) is not A.Binary or n.op not in ("&&", "||"):
+        return False
+    m = fn.parent.get(id(a))
+    while m is not n:  # (no `?:` arm between the test and `a` either)
+        if type(m) is A.Ternary:
+            return False
+        m = fn.parent.get(id(m))
+    return True
