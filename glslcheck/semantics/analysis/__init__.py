@@ -30,11 +30,13 @@ from .dataflow import (
     builtin_call,
     builtin_calls,
     calls_in,
+    is_float_type,
+    program_facts,
+)
+from .purity import (
     function_cost,
     ignored_parameters,
-    is_float_type,
     param_directions,
-    program_facts,
     pure_function,
     written_variable,
 )

@@ -56,7 +56,8 @@ from ...base.diagnostics import Diagnostic, Location
 from ...base.records import record
 from ...frontend import syntax as A
 from ..model import Model, Symbol
-from .dataflow import builtin_call, param_directions, written_variable
+from .dataflow import builtin_call
+from .purity import param_directions, written_variable
 
 TYPE_CHECKING = False  # not typing's: importing typing costs every start-up
 if TYPE_CHECKING:

@@ -39,7 +39,7 @@ from typing import Any
 import numpy as np
 
 from ....frontend import syntax as A
-from ....semantics.analysis.dataflow import FunctionFacts, written_variable
+from ....semantics.analysis import FunctionFacts, written_variable
 from ....semantics.model import Symbol
 from .loop_copies import merging_loop
 from .loop_unroll import nir_unrolls, trip_count
