@@ -49,7 +49,8 @@ def pure_function(
 ) -> bool:
     """A user function whose result depends only on its arguments: `in` parameters only, no
     write to a global, no read of a global variable that is not const (uniforms are constant in
-    a frame), and only pure functions called (`float lenSq(vec2 v) { return dot(v, v); }`).
+    a frame), and only pure functions called (`float lenSq(vec2 v) { return dot(v, v); }`), or
+    ones whose `out` arguments are its own locals.
     With `outputs`, `out` and `inout` parameters are allowed too: its results (returned and
     written out) depend only on its arguments' values."""
     cache = _model_cache(model, "pure_outputs" if outputs else "pure_function")
@@ -72,20 +73,31 @@ def pure_function(
                     ok = False
             elif t is A.Call:
                 target = model.call_target(n)
-                if (
-                    target is None
-                    or (isinstance(target, B.Overload) and target.out_params)
-                    or (
-                        isinstance(target, Symbol)
-                        and not pure_function(model, target, _seen | {id(sym)}, outputs)
-                    )
-                ):
+                seen = _seen | {id(sym)}
+                if target is None:
                     ok = False
+                elif isinstance(target, B.Overload) and target.out_params:
+                    ok = _local_outputs(model, n)
+                elif isinstance(target, Symbol) and not pure_function(model, target, seen, outputs):
+                    # a call whose outputs are this function's own locals writes nothing else
+                    # (`float sdf(vec3 p) { int id; return sdf(p, id); }`)
+                    ok = _local_outputs(model, n) and pure_function(model, target, seen, True)
             if not ok:
                 break
     if not _seen:
         cache[id(sym)] = ok
     return ok
+
+
+def _local_outputs(model: Model, call: A.Call) -> bool:
+    """Whether every `out` or `inout` argument of a call is a local variable (or a part of one)
+    of the function making it."""
+    for arg, direction in zip(call.args, param_directions(model.call_target(call))):
+        if direction in ("out", "inout"):
+            written, _ = written_variable(model, arg)
+            if written is None or written.kind != "local":
+                return False
+    return True
 
 
 def ignored_parameters(model: Model, sym: Symbol) -> frozenset[int]:
