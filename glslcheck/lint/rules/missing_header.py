@@ -14,7 +14,8 @@ student. A student is named by
 - a line of people's names (`// Eli Moore`, `// Jane Doe & John Smith`, `// Eli Moore,
   GPR-200`), or names after the lab they are for (`// GPR-200 Lab 4 - Eli Moore`), unless it
   sits under a heading that credits help or sources (`// Source assistance` / `// Jake Siede`);
-  a title of capitalised words (`// Lighting - Phong Shading`, `// TYPE ALIASES`) is no name.
+  a title of capitalised words (`// Lighting - Phong Shading`, `// TYPE ALIASES`, `// Collision
+  IDs`: an acronym with a suffix) is no name.
 The instructor's starter line ("GLSL STARTER CODE BY DANIEL S. BUCKSTEIN"), thanks and source
 credits ("Thanks to Dan Buckstein", "Got assistance from ...") name no author of the file, nor
 does a `Created by` line right under a line crediting borrowed code by its link (`// Random
@@ -309,11 +310,16 @@ _CREATED_BY = compiled(r"^\W*(?:created|written|made|authored)?\s*by\b", re.I)
 _TITLED = compiled(r"^\s*(?:dr|prof|professor)\b\.?", re.I)
 
 
+# an acronym with a suffix (`Collision IDs`, `UVs`): a heading's word, not a name's
+_ACRONYM_WORD = compiled(r"\b[A-Z]{2,}[a-z]+\b")
+
+
 def _is_person(text: str) -> bool:
     return (
         not _INSTRUCTOR.search(text)
         and not _NOT_NAME_WORDS.search(text)
         and not _TITLED.match(text)
+        and not _ACRONYM_WORD.search(text)
     )
 
 
