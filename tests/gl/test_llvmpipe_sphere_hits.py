@@ -10,14 +10,18 @@ rsq)`` (read once, the product sink makes it ``(1.78 * v.x) * rsq``). The normal
 sph.xyz) / sph.w`` with pos ``ro + t*rd`` (an argument used once) sinks the sphere's constant
 into the argument's sum, the product kept whole (``(a + b) + #c -> (a + #c) + b``): ``(ro -
 sph.xyz) + t*rd``. Each shader writes the operands the driver computed to other channels, and
-the test computes Mesa's order and the written one from them in NumPy float32. The CPU
-engines do not follow these across the calls yet (docs/llvmpipe.md, "A camera's constant
-component reaches a sphere's hit"). Written for llvmpipe of Mesa 22.3."""
+the test computes Mesa's order and the written one from them in NumPy float32. Both CPU engines
+follow the first (nir_fold/ray_dots.py: the hidden ray arguments), also in the first copy of
+an unrolled loop with the sphere a global an init function sets to constants (p03-fdS3zw's
+traceEyePath); not yet the read-once product sink nor the normal's sink across the call
+(docs/llvmpipe.md, "A camera's constant component reaches a sphere's hit"). Written for
+llvmpipe of Mesa 22.3."""
 
 from __future__ import annotations
 
 import numpy as np
-from image_bits import render
+import pytest
+from image_bits import SIZE, assert_same, differing_pixels, render
 
 F = np.float32
 
@@ -41,6 +45,48 @@ void mainImage(out vec4 c, in vec2 fragCoord) {
     if (mod(fragCoord.y, 2.0) < 1.0) c = vec4(b, v.x, v.y, 1.0);
     else c = vec4(inversesqrt(dot(v, v)), rd.x, rd.y, 1.0);
 }"""
+# p03-fdS3zw's shape: the sphere a global an init function sets to constants, the hits in an
+# unrolled loop that writes rd after them (its first copy sees the camera's ray; the later ones
+# a ray without constants). x and y: the first copy's b of each sphere (-b where missed).
+LOOP = """vec4 movingSphere;
+void initSphere(float time) {
+    time = 0.0;
+    movingSphere = vec4(1.0 + abs(sin(time * 1.3)), 1.0 + abs(2.0 * sin(time)),
+                        7.0 - abs(6.0 * cos(time * 0.4)), 1.0);
+}
+float sphereB(in vec3 ro, in vec3 rd, in vec4 sph) {
+    vec3 oc = ro - sph.xyz;
+    float b = dot(oc, rd);
+    float c = dot(oc, oc) - sph.w * sph.w;
+    float h = b * b - c;
+    if (h < 0.0) return -b;
+    return b;
+}
+vec2 hit(in vec3 ro, in vec3 rd) {
+    return vec2(sphereB(ro, rd, movingSphere), sphereB(ro, rd, vec4(3.0, 7.5, 2.5, 0.5)));
+}
+vec3 trace(in vec3 ro, in vec3 rd) {
+    vec3 o = vec3(0.0);
+    for (int j = 0; j < 3; ++j) {
+        vec2 t = hit(ro, rd);
+        if (j == 0) o.xy = t;
+        o.z += step(0.0, t.x);
+        rd = normalize(vec3(t.x, t.y, t.x * t.y));
+    }
+    return o;
+}
+void mainImage(out vec4 c, in vec2 fragCoord) {
+    vec2 p = -1.0 + 2.0 * fragCoord / iResolution.xy + 0.01 * sin(fragCoord.yx);
+    p.x *= iResolution.x / iResolution.y;
+    vec3 ro = vec3(2.78, 2.73, -8.0);
+    vec3 ww = normalize(vec3(2.78, 2.73, 0.0) - ro);
+    vec3 uu = normalize(cross(ww, vec3(0.0, 1.0, 0.0)));
+    vec3 vv = normalize(cross(uu, ww));
+    initSphere(iTime);
+    vec3 rd = normalize(p.x * uu + p.y * vv + 3.0 * ww);
+    c = vec4(trace(ro, rd), 1.0);
+}"""
+ENGINE_SHADERS = {"sphere_b": SPHERE_B, "loop": LOOP}
 # rd.x read once (the bottom half) and rd.y read once (the top half), each times a constant.
 READ_ONCE = """void mainImage(out vec4 c, in vec2 fragCoord) {
     vec2 p = -1.0 + 2.0 * fragCoord / iResolution.xy + 0.01 * sin(fragCoord.yx);
@@ -101,3 +147,31 @@ def test_llvmpipe_sinks_the_spheres_constant_into_the_argument(llvmpipe, make_sh
     mesa, written = (ro - F(1.0)) + trd, (ro + trd) - F(1.0)
     assert (_bits(mesa) != _bits(written)).any()
     assert (_bits(n) == _bits(mesa)).all()
+
+
+@pytest.mark.parametrize("name", sorted(ENGINE_SHADERS))
+def test_numpy_merges_the_cameras_constant_into_the_spheres(
+    renders_as_llvmpipe, make_shader, monkeypatch, name
+):
+    """The NumPy engine gives the driver's bits, and without the hidden ray arguments it does
+    not (the merge is what these shapes test)."""
+    from glslcheck.backends.cpu_core.nir_fold import ray_dots
+
+    shader = make_shader(ENGINE_SHADERS[name])
+    _, want = renders_as_llvmpipe(shader, "numpy", name=name, frame=0)
+    monkeypatch.setattr(ray_dots, "_live", lambda tr: set())
+    assert differing_pixels(render(make_shader(ENGINE_SHADERS[name]), "numpy", frame=0), want)
+
+
+@pytest.mark.parametrize("lanes", [0, 8])
+@pytest.mark.parametrize("name", sorted(ENGINE_SHADERS))
+def test_compiled_merges_the_cameras_constant_into_the_spheres(
+    llvmpipe, numba, make_shader, name, lanes
+):
+    """The compiled engine per pixel and in lockstep (its `lanes`), against the driver."""
+    from glslcheck.backends.compiled_engine.engine import CompiledProgram, generate
+
+    shader = make_shader(ENGINE_SHADERS[name])
+    want = render(shader, "gl", frame=0)
+    got = CompiledProgram(*generate(shader, lanes=lanes)).render(size=SIZE, time=0.0, frame=0)
+    assert_same(got, want, what=f"{name}, lanes {lanes}", names=("compiled", "llvmpipe"))

@@ -11,6 +11,7 @@ from typing import Any
 from ...frontend import syntax as A
 from ...language import builtin_functions as B
 from ..cpu_core import nir_fold
+from .ray_dots import ray_dot_val, ray_normalize
 from .values import Val, broadcast_const, engine_error, not_yet
 
 # one float32 component -> scalar.py function of the same rule (fma: llvmpipe's fused steps)
@@ -155,8 +156,15 @@ def builtin_call(cg: Any, e: A.Call, ov: Any) -> Val:
         merged = nir_fold.merged_dot(fold, e, args, None)
         if merged is None:
             merged = nir_fold.broadcast_dot(fold, e, args, None)
+        if nir_fold.ray_dot(fold, e) is not None:  # a caller's ray's constants merged
+            written = merged if merged is not None else geometric(cg, name, args, rtype)
+            return ray_dot_val(cg, e, args, written)
         if merged is not None:
             return merged
+    if name == "normalize":
+        kept = ray_normalize(cg, e, args, rtype)  # a ray root's rsq kept (nir_fold.ray_dots)
+        if kept is not None:
+            return kept
     if name in (
         "dot",
         "length",

@@ -72,6 +72,7 @@ from ..cpu_core.uniformity import Uniformity
 from .constant_globals import frozen_globals, frozen_parts, reset_kinds, written_state
 from .expressions import ExpressionEmitter, FnState, nir_chain_params
 from .module_text import FREEZE, HEADER, RENDER
+from .ray_dots import ray_param_names
 from .values import (
     ATOM,
     BUDGET_OFF,
@@ -530,6 +531,7 @@ class Codegen(ExpressionEmitter):
                 fs.outs += parts
         for i, program in sorted(nir_chain_params(self, sym).items()):  # a caller's chain
             params += [f"_c{i}f", f"_c{i}b"] + [f"_c{i}k{m}" for m in range(program.slots())]
+        params += ray_param_names(self, sym)  # a caller's ray (nir_fold.ray_dots)
         if self.sunk_chain(sym) is not None:  # a caller's constant sunk into the returned sum
             params += ["_kf"] + [f"_k{j}" for j in range(len(leaves(sym.type, node)))]
         def_at = len(self.lines)

@@ -18,6 +18,7 @@ from ..cpu_core import nir_fold
 from ..cpu_core.common import sum_in_order
 from ..cpu_core.inline import bound_code, inline_call, worth_inlining
 from .builtin_calls import builtin_call
+from .ray_dots import ray_call_args
 from .sum_chains import SumChains, nir_chain_params
 from .values import (
     CAST,
@@ -53,6 +54,7 @@ class FnState:
         self.loops: list[tuple[str, Any]] = []  # (kind, continue emitter)
         self.sum_chains: dict[tuple, tuple[list, int]] = {}  # a chain -> its base, its depth
         self.sum_index: dict[int, str] = {}  # unrolled loop -> its pass count's name
+        self.ray_roots: dict[int, tuple[str, int]] = {}  # ray root -> its rsq's name, depth
         self.terms: dict[int, list] = {}  # a write of a returned sum's term -> its kept parts
         self.call_k: dict[int, list] = {}  # a call -> the constant sunk into its result
 
@@ -766,6 +768,8 @@ class ExpressionEmitter(SumChains):
             for key, g in nir_fold.chain_globals(self.fold_context(), fn):  # (globals' chains)
                 inouts[key] = self.tmp_copy(self.read(self.var_parts(g, e)[0]))
         args += self.chain_args(e, fn, inouts) + self.sunk_args(e, fn)
+        if self.fn is not None and self.fn.sym is not None:
+            args += ray_call_args(self, e, fn)  # a ray's constants (nir_fold.ray_dots)
         rtype = fn.type
         n_val = 0 if rtype.is_void else len(leaves(rtype, e))
         ret_leaves = [] if rtype.is_void else leaves(rtype, e)

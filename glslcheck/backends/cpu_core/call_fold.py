@@ -579,6 +579,27 @@ def _call_effect(tr: FoldEmitter, call: A.Call, state: dict[int, list[float]]) -
             state.pop(k, None)
 
 
+def writes_constants(tr: FoldEmitter, call: A.Call, key: int) -> bool:
+    """The straight-line function `call` calls leaves global `key` at constants (call_fold's
+    evaluation: its arguments' constants, built-ins of constants, computed at run time or not),
+    whatever it was before: a compile-time constant to Mesa there (nir_fold/ray_dots.py)."""
+    fn = tr.model.call_target(call)
+    ev = Evaluator(tr, None)
+    ev.slots = len(call.args)
+    ev.globals = {}
+    ev.unknown = True
+    try:
+        args = _argument_terms(tr, ev, call, fn, False, [], list(range(len(call.args))))
+        params = [tr.model.symbol_of(p) for p in fn.node.proto.params]
+        if any(p is None for p in params):
+            return False
+        ev.body(fn, {id(p): v for p, v in zip(params, args)})
+    except Refuse:
+        return False
+    terms = ev.globals.get(key)
+    return terms is not None and all(t.const for t in terms)
+
+
 def _forget(tr: FoldEmitter, st: Any, state: dict[int, list[float]]) -> None:
     """Every global statement `st` may write (itself or through the functions it calls) is
     unknown from there on."""

@@ -65,6 +65,7 @@ class FoldState:
     slot_ops: dict = field(default_factory=dict)  # value -> the op a later copy merges with
     sum_globals: list | None = None  # the globals the shader's functions read or write
     sum_global_writers: dict = field(default_factory=dict)  # (function, global) -> writes it
+    ray_fns: dict = field(default_factory=dict)  # function -> its ray_dots.RayFn (or None)
     # cpu_core/constant_flow.py
     constant_flow: Any = None  # the program's ConstantFlow, made on first use
     # cpu_core/call_fold.py

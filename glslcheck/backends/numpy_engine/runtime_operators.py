@@ -300,6 +300,21 @@ class ArithmeticOps(RuntimeState):
             s += p[i]
         return s
 
+    def ray_dot(self, x: Any, p: Any, rq: Any, ks: tuple) -> np.ndarray:
+        """``dot(x, p)`` with x a constant of Mesa's and p a ray ``v * rq`` whose component i
+        is the constant ``ks[i]`` times rq (None where not): those products are ``(x[i] *
+        ks[i]) * rq`` (``#a * (b * #c) -> (a*c) * b``, nir_fold/ray_dots.py), the others as
+        written, summed right to left as :meth:`dot`."""
+        x, p = self._f(x), self._f(p)
+        terms = [
+            self.fmul(x[i], p[i]) if k is None else (x[i] * self._f(k)) * self._f(rq)
+            for i, k in enumerate(ks)
+        ]
+        s = terms[-1]
+        for t in terms[-2::-1]:
+            s = t + s
+        return s
+
     def dot_add(self, a: Any, b: Any, k: Any) -> np.ndarray:
         """``dot(a, b) + k`` for a constant ``k`` as Mesa compiles it (nir_fold): the constant
         joins the innermost addition, ``x0*y0 + (x1*y1 + (x2*y2 + k))``."""

@@ -81,6 +81,7 @@ from .flrp import mix_form
 from .loop_compounds import compound_copies
 from .loop_copies import later_values
 from .lower_precision import float16_lookup_args
+from .ray_dots import RayCall, RayFn, ray_call, ray_dot, ray_fn, ray_loop
 from .repeated_sums import (
     Entry,
     call_step,
@@ -124,6 +125,12 @@ __all__ = [
     "fused_plan",
     "mix_form",
     "param_step",
+    "RayCall",
+    "RayFn",
+    "ray_call",
+    "ray_dot",
+    "ray_fn",
+    "ray_loop",
     "register_call",
     "rewrite_binary",
     "sum_entry",

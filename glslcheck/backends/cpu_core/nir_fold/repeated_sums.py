@@ -52,6 +52,7 @@ from .queries import (
     is_constant,
     is_varying,
 )
+from .ray_dots import ray_loop
 from .sum_order import Loop, Step, chain_constants
 
 TYPE_CHECKING = False  # not typing's: importing typing costs every start-up
@@ -924,4 +925,6 @@ def indexed_loop(tr: FoldEngine, loop: Any) -> bool:
         return True  # (the first pass continues a chain, the later ones start afresh)
     if any(p.where.get(id(loop)) for p in chain_params(tr, fn).values()):
         return True
+    if ray_loop(tr, loop):
+        return True  # (only the first copy passes a ray on: ray_dots.py)
     return any(e.loop is loop and len(e.ks) > 1 for e in chain_plan(tr).values())

@@ -37,6 +37,7 @@ from .common import (
     _error,
     _is_constant_text,
 )
+from .ray_dots import ray_dot_code, ray_normalize
 from .returned_sums import keep_term
 from .state import LValue, TranspilerState
 from .sum_chains import repeated_sum
@@ -609,6 +610,10 @@ class Expressions(TranspilerState):
             selected = self.b2f_select(e, mask)
             if selected is not None:
                 return selected
+        if name == "normalize":
+            kept = ray_normalize(self, e, mask)  # a ray root's v kept (nir_fold.ray_dots)
+            if kept is not None:
+                return kept
         args = self.exprs(e.args, mask)
         if name == "mix":
             form = nir_fold.mix_form(self, e)  # Mesa's flrp lowering: see nir_fold
@@ -620,6 +625,9 @@ class Expressions(TranspilerState):
                 merged = nir_fold.broadcast_dot(
                     self, e, args, mask
                 )  # dot(vec2(s), #K): s * (K.x + K.y)
+            ray = ray_dot_code(self, e, args, merged)  # a caller's ray's constants merged
+            if ray is not None:
+                return ray
             if merged is not None:
                 return merged
         if name == "exp":

@@ -14,6 +14,7 @@ from ...cpu_core.facts import events_of
 from ...cpu_core.inline import inline_call, worth_inlining
 from ...cpu_core.uniformity import Uniformity
 from .call_fold import folded_call
+from .ray_dots import ray_call_args, ray_param_names
 from .returned_sums import return_constant_args
 from .state import FnState, LValue, TranspilerState
 from .sum_chains import chain_call_args, chain_param_names
@@ -53,6 +54,9 @@ class Functions(TranspilerState):
         chains = chain_param_names(self, sym)  # the caller's `+= #c` chains
         params += chains
         fs.defined += chains[::2]  # (a base has lanes: a compacted region gathers it)
+        rays = ray_param_names(self, sym)  # a caller's ray (nir_fold.ray_dots)
+        params += rays
+        fs.defined += rays[:1]  # (its rsq has lanes)
         self.last_line = None
         sig = ", ".join(["S", "_m"] + params)
         self.emit(f"def {self.fn_name(sym)}({sig}):")
@@ -200,6 +204,7 @@ class Functions(TranspilerState):
         for key, g in nir_fold.chain_globals(self, fn):  # (a global's chain runs through too)
             inouts[key] = self.tmp(self.var_name(g, e))
         args += chain_call_args(self, e, fn, inouts)
+        args += ray_call_args(self, e, fn)
         call = self.call_text(e, fn, call_mask, args, mask)
         if call_mask is not None and nir_fold.register_call(self, e, fn):
             self.n += 1  # (a name no GLSL global has: `__` is reserved)
