@@ -64,6 +64,31 @@ def test_image_file_picks_up_sibling_common(tmp_path):
     assert [s.tab for s in shader.units_for("Image")] == ["Common", "Image"]
 
 
+# names of real GPR-200 repositories' Lab 6 tabs (the texts are ours)
+@pytest.mark.parametrize(
+    "image, common",
+    [("Lab06Image.txt", "Lab06Common.txt"), ("Lab 6.txt", "Lab 6 Common.txt")],
+)
+def test_pass_file_picks_up_the_common_named_for_it(tmp_path, image, common):
+    (tmp_path / image).write_text("void mainImage(out vec4 c, in vec2 f) { c = vec4(g()); }\n")
+    (tmp_path / common).write_text("float g() { return 1.0; }\n")
+    (tmp_path / "Lab05Common.txt").write_text("float h() { return 2.0; }\n")
+    shader = load_shader(tmp_path / image)
+    assert [s.tab for s in shader.units_for("Image")] == ["Common", "Image"]
+    assert shader.common is not None and shader.common.path.endswith(common)
+    walked = {s.root: sorted(s.tabs) for s in find_shaders([str(tmp_path)])}
+    assert walked[str(tmp_path / image)] == ["Common", "Image"]
+    assert walked[str(tmp_path / common)] == ["Common"]  # linted as the Common tab it is
+
+
+def test_a_common_named_for_no_pass_is_not_picked_up(tmp_path):
+    (tmp_path / "Lab06Image.txt").write_text(
+        "void mainImage(out vec4 c, in vec2 f) { c = vec4(1.0); }\n"
+    )
+    (tmp_path / "Lab05Common.txt").write_text("float h() { return 2.0; }\n")
+    assert sorted(load_shader(tmp_path / "Lab06Image.txt").tabs) == ["Image"]
+
+
 def test_two_files_for_one_tab_is_an_error(tmp_path):
     (tmp_path / "Image.glsl").write_text("x")
     (tmp_path / "image.frag").write_text("y")

@@ -68,6 +68,7 @@ TEXTS = CORPUS / "texts"
 sys.path.insert(0, str(ROOT))
 
 from glslcheck.lint.rules import all_rules  # noqa: E402
+from glslcheck.shadertoy.sources import common_sibling  # noqa: E402
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 from label_agreement import pairs as label_pairs  # noqa: E402
@@ -191,8 +192,28 @@ def populate(
                 data, out = _tab_code(data, e["tab"]).encode(), out.with_suffix(".txt")
             out.parent.mkdir(parents=True, exist_ok=True)
             out.write_bytes(data)
+            if "tab" not in e:  # the Common tab beside it, which glslcheck reads with it
+                _copy_common(git_dir, e, out.parent)
     print(f"{len(manifest) - missing} of {len(manifest)} files in {texts}")
     return 1 if missing else 0
+
+
+def _copy_common(git_dir: Path, e: dict, folder: Path) -> None:
+    """Write the Common tab file beside the entry's file in its repository (as glslcheck finds
+    it: `common_sibling`) into `folder`, as a student's checkout has it."""
+    parent = str(Path(e["path"]).parent)
+    listed = subprocess.run(
+        ["git", f"--git-dir={git_dir}", "ls-tree", "--name-only", e["commit"], f"{parent}/"],
+        capture_output=True,
+        text=True,
+    ).stdout.split("\n")
+    common = common_sibling(e["path"], [n for n in listed if n])
+    if common is not None:
+        shown = subprocess.run(
+            ["git", f"--git-dir={git_dir}", "show", f"{e['commit']}:{common}"], capture_output=True
+        )
+        if not shown.returncode:
+            (folder / Path(common).name).write_bytes(shown.stdout)
 
 
 def _tab_code(export: bytes, tab: str) -> str:

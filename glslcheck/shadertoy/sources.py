@@ -359,16 +359,55 @@ def load_shader(path: str | os.PathLike) -> Shader:
                 )
             shader.tabs[src.tab] = src
         return shader
-    src = read_source(p)
+    src = read_source(p, "Common" if _named_common(p) else None)
     shader.tabs[src.tab] = src
     if src.tab not in ("Common", "GLSL"):
         # Shadertoy prepends the Common tab to every pass: pick up a sibling Common file.
-        parent = _parent(p)
-        for f in folder_entries(parent) if os.path.exists(parent) else []:
-            if f != p and _is_tab_file(f) and tab_name(f) == "Common":
-                shader.tabs["Common"] = read_source(f)
-                break
+        common = _sibling_common(p)
+        if common is not None:
+            shader.tabs["Common"] = read_source(common, "Common")
     return shader
+
+
+def _name_key(path: str) -> str:
+    """A file's name as tab names are compared: no extension, separators or case."""
+    stem = path_name(path)
+    for ext in SHADER_EXTENSIONS[:-1]:
+        if stem.lower().endswith(ext):
+            stem = stem[: -len(ext)]
+            break
+    return _SEPARATORS.sub("", stem).lower()
+
+
+def _named_common(path: str) -> bool:
+    """A file named as a Common tab after a prefix (`Lab06Common.txt`, `lab 6 common.txt`)."""
+    key = _name_key(path)
+    return key.endswith("common") and key != "common" and name_says_shader(path) is not False
+
+
+def _sibling_common(p: str) -> str | None:
+    """The Common tab beside a pass file in its folder (`common_sibling`)."""
+    parent = _parent(p)
+    if not os.path.exists(parent):
+        return None
+    return common_sibling(p, [f for f in folder_entries(parent) if os.path.isfile(f)])
+
+
+def common_sibling(path: str, siblings: list[str]) -> str | None:
+    """Which of a pass file's siblings is its Common tab: a file named `Common`, else the one
+    named for the pass file's prefix (`Lab06Common.txt` beside `Lab06Image.txt` or
+    `Lab06.txt`); None when there is none, or several."""
+    own = _name_key(path)
+    prefix = own[: -len("image")] if own.endswith("image") else own
+    prefixed = []
+    for f in siblings:
+        if f == path:
+            continue
+        if tab_name(f) == "Common" and name_says_shader(f) is True:
+            return f
+        if _named_common(f) and _name_key(f)[: -len("common")] == prefix:
+            prefixed.append(f)
+    return prefixed[0] if len(prefixed) == 1 else None
 
 
 def find_shaders(paths: list[str]) -> list[Shader]:
@@ -417,9 +456,7 @@ def _walk(folder: str, visited: set[str]) -> list[Shader]:
             else:
                 found.extend(_walk(f, visited))
         elif _is_shader_file(f):
-            shader = Shader(root=f)
-            src = read_source(f)
-            shader.tabs[src.tab] = src
+            shader = load_shader(f)  # (a pass with the Common tab named for it beside it)
             found.append(shader)
     return found
 
