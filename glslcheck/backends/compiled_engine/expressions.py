@@ -570,10 +570,12 @@ class ExpressionEmitter(SumChains):
 
     def fmul(self, left: Val, right: Val, rtype: Any) -> Val:
         """Float `*` as Runtime.fmul: a compile-time constant zero component times a value that
-        is not a constant is 0 (NIR folds x * 0.0), also for NaN and Inf."""
+        is not a constant is 0 (NIR folds x * 0.0), also for NaN and Inf; a subnormal product
+        of two values that are not constants is a zero of its sign (llvmpipe's FTZ)."""
         n = max(len(left.parts), len(right.parts))
         if left.constlike == right.constlike:
-            return self.componentwise(left, right, rtype, lambda a, b, i: f"({a} * {b})")
+            ftz = "daz" if not left.constlike else ""
+            return self.componentwise(left, right, rtype, lambda a, b, i: f"{ftz}({a} * {b})")
         zv = left if left.constlike else right
         zc = broadcast_const(zv.const, n)
         zero = self.cf(0.0)

@@ -8,6 +8,7 @@ from typing import Any
 
 import numpy as np
 
+from .llvmpipe_reference import daz
 from .runtime_state import RuntimeState
 from .runtime_values import BOOL, I32, U32, Struct, lanes_of
 
@@ -39,7 +40,13 @@ class ArithmeticOps(RuntimeState):
         gives 0 there. Approximation: a uniform input that happens to be 0 (iTime at t = 0)
         also folds, where llvmpipe would give NaN for a NaN or Inf other operand; uniforms
         read directly (read-only arrays, and their swizzles) do not. Only with
-        ``fold_constants`` (set for transpiled shaders)."""
+        ``fold_constants`` (set for transpiled shaders).
+
+        In float32 the product of two values that are not constants is flushed to a zero of
+        its sign where it is subnormal: llvmpipe runs shaders with MXCSR.FTZ
+        (lp_build_fpstate_set_denorms_zero), so such a product is 0 there and a later division
+        by a small value leaves it 0 (measured: tests/gl/test_llvmpipe_subnormals.py). A
+        product with a constant operand is not flushed (an approximation, docs/llvmpipe.md)."""
         r = a * b
         if self.fold_constants:
             # _const_zero of (a, b) or of (b, a): one operand constant, the other not (a hot
@@ -49,6 +56,8 @@ class ArithmeticOps(RuntimeState):
                 z = a if ca else b
                 if z.size <= 16 and np.count_nonzero(z) != z.size:  # (z.all() costs 4x that)
                     r = self._zero_rows(r, z)
+            elif not ca and self.lp is not None:
+                r = daz(r)  # FTZ: a subnormal product is a zero of its sign there
         return r
 
     def _zero_rows(self, r: Any, z: np.ndarray) -> Any:
