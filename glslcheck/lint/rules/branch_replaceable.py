@@ -25,13 +25,14 @@ and shows the replacement:
   mixed and the rest, calls included, computed once (`cos(mix(..., ..., s))`), which the
   branch computes once too;
 * conditions beyond one comparison: `&&`, `||` and `!` of float comparisons (a product, a max
-  and `1.0 -` of their steps), a step() result compared with 0.0 or 1.0 (the branch on a
-  step value, which is the selector itself), `^^` of such (`abs(a - b)`), two parities compared
-  with each other (`mod(x, 2.0) == mod(y, 2.0)`: `1.0 - abs(px - py)`), and a parity compared
-  with 0 or 1: `mod(n, 2.0)`
-  of a whole number (floor(), float() of an int, their sums and products, a local holding
-  one, its operands written since or not: a checkerboard's `mod(floor(p.x) + floor(p.y),
-  2.0)`) is exactly 0.0 or 1.0 and is the selector, and an int's `n % 2` is `float(n & 1)`;
+  and `1.0 -` of their steps), an equality of floats (`fragCoord.y == 50.5`: `step(y, 50.5) *
+  step(50.5, y)`, 1.0 exactly where they are equal), a step() result compared with 0.0 or 1.0
+  (the branch on a step value, which is the selector itself), `^^` of such (`abs(a - b)`), two
+  parities compared with each other (`mod(x, 2.0) == mod(y, 2.0)`: `1.0 - abs(px - py)`), and a
+  parity compared with 0 or 1: `mod(n, 2.0)` of a whole number (floor(), float() of an int,
+  their sums and products, a local holding one, its operands written since or not: a
+  checkerboard's `mod(floor(p.x) + floor(p.y), 2.0)`) is exactly 0.0 or 1.0 and is the selector,
+  and an int's `n % 2` is `float(n & 1)`;
 * `dot(d, n) < 0.0 ? n : -n` (the front-face normal of a ray tracer) -> `faceforward(n, d, n)`,
   which is `n` exactly when `dot(n, d) < 0.0`, else `-n`; also when the comparison is kept in
   a bool variable or field first (`rec.frontFace = dot(d, n) < 0.0;
@@ -302,15 +303,17 @@ def _if_statement(fn, node: A.If) -> tuple[str, str] | None:
 def _comparison(fn, cond: Any, *bases: str) -> tuple[Any, str, Any] | None:
     if type(cond) is not A.Binary or cond.op not in _OPS:
         return None
-    t = fn.model.type_of(cond.left)
-    if (
-        not (getattr(t, "is_scalar", False) and t.base in bases)
-        or fn.model.type_of(cond.right) != t
-    ):
-        return None
-    if not (fn.is_pure(cond.left) and fn.is_pure(cond.right)):
+    if not _scalars(fn, cond.left, cond.right, bases):
         return None
     return cond.left, cond.op, cond.right
+
+
+def _scalars(fn, a, b, bases: tuple[str, ...]) -> bool:
+    """Whether `a` and `b` are pure scalars of one type whose base is one of `bases`."""
+    t = fn.model.type_of(a)
+    if not (getattr(t, "is_scalar", False) and t.base in bases) or fn.model.type_of(b) != t:
+        return False
+    return fn.is_pure(a) and fn.is_pure(b)
 
 
 def _minmax(fn, cond, a, b) -> tuple[str, Any, Any] | None:
@@ -541,6 +544,11 @@ def _indicator(fn, cond) -> str | None:
             if parity is not None:
                 one = (bound == [1.0]) == (cond.op == "==")
                 return parity if one else f"1.0 - {_factor(parity)}"
+        # float scalars equal (`fragCoord.y == 50.5`): both steps 1.0 exactly there
+        if _scalars(fn, cond.left, cond.right, ("float",)):
+            a, b = text(cond.left), text(cond.right)
+            equal = f"step({a}, {b}) * step({b}, {a})"
+            return equal if cond.op == "==" else f"1.0 - {equal}"
         return None
     cmp = _comparison(fn, cond, "float")
     if cmp is None:
