@@ -9,7 +9,7 @@ from typing import Any
 
 from ...frontend import syntax as A
 from ...semantics.model import Symbol
-from ..cpu_core.nir_fold.ray_dots import current_definition, ray_call, ray_dot, ray_fn
+from ..cpu_core.nir_fold.ray_dots import ray_call, ray_dot, ray_fn, ray_roots
 from .values import Val
 
 _HIDDEN = ["_rf", "_rq", "_rk0", "_rk1", "_rk2"]
@@ -43,21 +43,7 @@ def ray_call_args(cg: Any, call: A.Call, fn: Symbol) -> list[str]:
 
 def _root_of(cg: Any, e: A.Call) -> Symbol | None:
     """The ray root local `e` (a ``normalize``) initialises, or None."""
-    ctx = cg.fold_context()
-    fn = current_definition(ctx)
-    if fn is None:
-        return None
-    key = ("roots", id(fn))
-    memo = ctx.fold_state.ray_fns
-    if key not in memo:
-        found: dict[int, Symbol] = {}
-        for n in fn.node.body.walk():
-            if isinstance(n, A.Call) and isinstance(cg.model.call_target(n), Symbol):
-                rc = ray_call(ctx, n)
-                if rc is not None and rc.root is not None:
-                    found[id(rc.root.node.init)] = rc.root
-        memo[key] = found
-    return memo[key].get(id(e))
+    return ray_roots(cg.fold_context()).get(id(e))
 
 
 def ray_normalize(cg: Any, e: A.Call, args: list[Val], rtype: Any) -> Val | None:

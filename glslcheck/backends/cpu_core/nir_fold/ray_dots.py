@@ -69,6 +69,25 @@ def current_definition(tr: FoldEngine) -> Symbol | None:
     return sym if sym is not None and isinstance(sym.node, A.FunctionDefinition) else None
 
 
+def ray_roots(tr: FoldEngine) -> dict[int, Symbol]:
+    """The locals of the current function some call passes as a ray root, by the id of the
+    normalize() that initialises each (in the order the calls name them); memoized."""
+    fn = current_definition(tr)
+    if fn is None:
+        return {}
+    key = ("roots", id(fn))
+    memo = tr.fold_state.ray_fns
+    if key not in memo:
+        found: dict[int, Symbol] = {}
+        for n in fn.node.body.walk():
+            if isinstance(n, A.Call) and isinstance(tr.model.call_target(n), Symbol):
+                rc = ray_call(tr, n)
+                if rc is not None and rc.root is not None:
+                    found[id(rc.root.node.init)] = rc.root
+        memo[key] = found
+    return memo[key]
+
+
 def ray_fn(tr: FoldEngine, fn: Symbol) -> RayFn | None:
     """The ray `fn`'s dot products see (the module's doc) where some root call's ray reaches
     it (the lowest such parameter), or None."""

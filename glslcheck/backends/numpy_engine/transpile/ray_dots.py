@@ -8,7 +8,7 @@ from __future__ import annotations
 
 from ....frontend import syntax as A
 from ....semantics.model import Symbol
-from ...cpu_core.nir_fold.ray_dots import current_definition, ray_call, ray_dot, ray_fn
+from ...cpu_core.nir_fold.ray_dots import ray_call, ray_dot, ray_fn, ray_roots
 
 TYPE_CHECKING = False  # not typing's: importing typing costs every start-up
 if TYPE_CHECKING:
@@ -43,20 +43,7 @@ def ray_call_args(tr: TranspilerState, call: A.Call, fn: Symbol) -> list[str]:
 
 def _roots(tr: TranspilerState) -> list[Symbol]:
     """The locals of the current function some call passes as a ray root."""
-    fn = current_definition(tr)
-    if fn is None:
-        return []
-    key = ("roots", id(fn))
-    memo = tr.fold_state.ray_fns
-    if key not in memo:
-        found: dict[int, Symbol] = {}
-        for n in fn.node.body.walk():
-            if isinstance(n, A.Call) and isinstance(tr.model.call_target(n), Symbol):
-                rc = ray_call(tr, n)
-                if rc is not None and rc.root is not None:
-                    found[id(rc.root)] = rc.root
-        memo[key] = list(found.values())
-    return memo[key]
+    return list(ray_roots(tr).values())
 
 
 def ray_normalize(tr: TranspilerState, e: A.Call, mask: str | None) -> str | None:
