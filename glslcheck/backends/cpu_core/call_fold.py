@@ -557,16 +557,8 @@ def _call_effect(tr: FoldEmitter, call: A.Call, state: dict[int, list[float]]) -
     written = tr.facts.global_effects(fn)[1]
     if not written:
         return
-    ev = Evaluator(tr, None)
-    ev.slots = len(call.args)
-    ev.globals = {k: [const_term(v) for v in vs] for k, vs in state.items()}
-    ev.unknown = True
     try:
-        args = _argument_terms(tr, ev, call, fn, False, [], list(range(len(call.args))))
-        params = [tr.model.symbol_of(p) for p in fn.node.proto.params]
-        if any(p is None for p in params):
-            raise Refuse
-        ev.body(fn, {id(p): v for p, v in zip(params, args)})
+        ev = _evaluated(tr, call, {k: [const_term(v) for v in vs] for k, vs in state.items()})
     except Refuse:
         for k in written:
             state.pop(k, None)
@@ -583,21 +575,28 @@ def writes_constants(tr: FoldEmitter, call: A.Call, key: int) -> bool:
     """The straight-line function `call` calls leaves global `key` at constants (call_fold's
     evaluation: its arguments' constants, built-ins of constants, computed at run time or not),
     whatever it was before: a compile-time constant to Mesa there (nir_fold/ray_dots.py)."""
-    fn = tr.model.call_target(call)
-    ev = Evaluator(tr, None)
-    ev.slots = len(call.args)
-    ev.globals = {}
-    ev.unknown = True
     try:
-        args = _argument_terms(tr, ev, call, fn, False, [], list(range(len(call.args))))
-        params = [tr.model.symbol_of(p) for p in fn.node.proto.params]
-        if any(p is None for p in params):
-            return False
-        ev.body(fn, {id(p): v for p, v in zip(params, args)})
+        ev = _evaluated(tr, call, {})
     except Refuse:
         return False
     terms = ev.globals.get(key)
     return terms is not None and all(t.const for t in terms)
+
+
+def _evaluated(tr: FoldEmitter, call: A.Call, known: dict[int, list[Any]]) -> Evaluator:
+    """An evaluation of the body of the straight-line function `call` calls, on its arguments'
+    terms and the globals `known` (their terms by key); Refuse when it cannot be made."""
+    fn = tr.model.call_target(call)
+    ev = Evaluator(tr, None)
+    ev.slots = len(call.args)
+    ev.globals = known
+    ev.unknown = True
+    args = _argument_terms(tr, ev, call, fn, False, [], list(range(len(call.args))))
+    params = [tr.model.symbol_of(p) for p in fn.node.proto.params]
+    if any(p is None for p in params):
+        raise Refuse
+    ev.body(fn, {id(p): v for p, v in zip(params, args)})
+    return ev
 
 
 def _forget(tr: FoldEmitter, st: Any, state: dict[int, list[float]]) -> None:
