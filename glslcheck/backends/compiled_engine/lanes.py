@@ -580,7 +580,7 @@ class _Fn(SelectChains):
         if _is_counter(name):
             self.emit(ast.unparse(s))
             return
-        if self.ldiv or self.is_varying(v) or _makes_array(v):
+        if self.masked(name) or self.is_varying(v) or _makes_array(v):
             self.mark(name)
         self.write(name, self.lanes_of(v) if name in self.varying else [ast.unparse(v)])
 
@@ -600,6 +600,13 @@ class _Fn(SelectChains):
                 self.emit(f"{name}__{k} = {text}")
             else:
                 self.emit(f"{name}__{k} = lsel({self.mask}__{k}, {text}, {name}__{k})")
+
+    def masked(self, name: str) -> bool:
+        """Whether a write of `name` here may keep other lanes' values (then it has lanes). A
+        name written once is written in every lane (plain: `write`), so a value free of lanes
+        keeps it one scalar also in a divergent region; with derivatives it has lanes there
+        (a neighbour's difference of it is computed, as the NumPy backend's)."""
+        return self.ldiv and (self.counts.get(name, 0) > 1 or bool(self.L.quads))
 
     def plain_write(self, name: str) -> bool:
         """Whether this write of the varying `name` is plain (`write`), recorded as written."""
@@ -649,7 +656,7 @@ class _Fn(SelectChains):
             raise Unsupported("a call's results")
         res = [self.fresh("c") for _ in targets]
         for x, uni in zip(targets, fn.ret_uniform):
-            if self.ldiv or not uni:
+            if self.masked(x) or not uni:
                 self.mark(x)  # a result per lane (or written under a mask)
         # a result whose write would be a plain copy (one scalar into a name free of lanes, a
         # lane into its lane) is the call's own target: W copies fewer for numba
@@ -678,12 +685,14 @@ class _Fn(SelectChains):
         else:
             base = self.mask if self.div else "m"
             tests = self.lanes_of(s.test)
-            # the masks are made before either arm writes the test's names: a name tested is read
-            # as it is, any other test computed once
+            # the masks are made before either arm writes the test's names: a name tested, or a
+            # test the `then` mask alone reads, is read as it is; a test of both masks computed once
             if all(t.isidentifier() for t in tests):
                 conds = tests
-            else:
+            elif s.orelse:
                 conds = self.lanenames_in(self.new_mask("c", tests))
+            else:
+                conds = [f"({t})" for t in tests]
             then = self.new_mask("mt", [f"({base}__{k} & {c})" for k, c in enumerate(conds)])
             other = None
             if s.orelse:
