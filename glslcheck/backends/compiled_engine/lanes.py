@@ -409,6 +409,7 @@ class _Fn(SelectChains):
                 and self.reads.get(c.value.id) == 1
                 and self.counts.get(c.value.id) == 1
                 and c.targets[0].id not in targets
+                and not _is_counter(c.targets[0].id)
             ):
                 break
             targets[targets.index(c.value.id)] = c.targets[0].id
