@@ -389,3 +389,53 @@ def test_select_chains_over_uniform_conditions(numba, make_shader):
             what=what,
             names=("lanes 8", "per pixel"),
         )
+
+
+SHORT_CIRCUITS = """
+void paint(inout vec3 c, float x, float y) {
+    c = vec3(fract(x * 0.37), fract(y * 0.11), c.b);
+}
+void mainImage(out vec4 fragColor, in vec2 fragCoord) {
+    float x = floor(fragCoord.x), y = floor(fragCoord.y);
+    float t = floor(mod(iTime * 3.0, 5.0));
+    vec3 col = vec3(0.1, 0.2, 0.3);
+    paint(col, y, x);                                      // in uniform control
+    bool band = x > 4.0 && x < 20.0 || y == t;             // pure sides
+    // codegen's short circuit with a statement first: `if` arms that write pure values
+    if (y <= 12.0 && !(x >= 7.0 && x < 9.0) && !(x >= 13.0 + t && x < 15.0)) {
+        paint(col, x, y);                                  // under a mask
+    }
+    float k = 0.0;
+    if (band) { k = x * 0.5; } else { k = y * 0.25; }
+    fragColor = vec4(col, k / 16.0);
+}
+"""
+
+
+def test_short_circuits_and_straight_arms_branch_once_a_block(numba, make_shader):
+    """A pure `&&`/`||` with lanes is `&`/`|` of each lane's bools (a short circuit is a branch
+    per lane); an arm of a divergent `if` that writes a few pure values runs in every lane under
+    its mask, with no `if` of its lanes (codegen's `&&` chains, `band`'s two arms); a call's
+    results are written into the names they go to, not copied there. The bits are the
+    per-pixel engine's, at times that move the chains' bounds."""
+    from glslcheck.backends.compiled_engine.engine import generate
+
+    shader = make_shader(SHORT_CIRCUITS)
+    source, _ = generate(shader, lanes=8)
+    fn = source[source.index("def f_mainImage") :]
+    fn = re.sub(r"\b_g_", "", fn[: fn.index("\n\n")])  # (globals read from locals: lanes_slim)
+    lane_lines = [line for line in fn.splitlines() if re.match(r"\s+\w+__\d+ = ", line)]
+    assert not [line for line in lane_lines if re.search(r"\b(and|or)\b", line)], lane_lines
+    assert re.search(r"\bv_band_\d+__0 = \w+ \| \(", fn), fn
+    # one `if` of a mask's lanes: the arm that calls paint
+    assert len(re.findall(r"^\s+if \w+__0 \| ", fn, re.M)) == 1, fn
+    assert re.search(r"^    v_col_\d+__0, v_col_\d+__1, .* = f_paint", fn, re.M), fn
+    for lanes in (8, 16):
+        for time in (0.4, 1.3, 2.5):
+            what = f"short circuits at {frame_text(SIZE, time=time, mouse=MOUSE)}"
+            assert_same(
+                _render(shader, lanes, time),
+                _render(shader, 0, time),
+                what=what,
+                names=(f"lanes {lanes}", "per pixel"),
+            )

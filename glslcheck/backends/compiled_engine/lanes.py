@@ -43,7 +43,7 @@ from .constant_globals import reset_kinds, written_state
 from .lanes_render import ROW_UNIFORM, STATE_LANES, quad_lanes, render_source
 from .lanes_slim import hoistable_globals, names_in, slim_function, walk_nodes
 from .select_chains import SelectChains, is_temp_write
-from .values import pure_expr
+from .values import PURE_NODES, pure_expr
 
 UNIFORM_STATE = ("uf", "ui", "lc")  # lc: llvmpipe's loop budget, one per block as there
 BLOCK_CALLS = ("limited", "tick_end")  # the loop budget's statements (scalar.tick)
@@ -114,6 +114,37 @@ def _index_test(node: Any) -> bool:
     )
 
 
+def _pure(e: Any) -> bool:
+    """values.pure_expr of a renamed expression, whose pure `and`/`or` may already be `&`/`|`
+    of bools (_Rename.visit_BoolOp: no effect, no failure either)."""
+    for n in ast.walk(e):
+        if isinstance(n, ast.Call):
+            if not (isinstance(n.func, ast.Name) and n.func.id == "lsel" and not n.keywords):
+                return False
+        elif not isinstance(n, (*PURE_NODES, ast.BitAnd, ast.BitOr)):
+            return False
+    return True
+
+
+STRAIGHT_ARM = 8  # the most statements of a divergent arm computed in every lane (_straight)
+
+
+def _straight(stmts: list) -> bool:
+    """An arm of a divergent `if` run in every lane, its writes under the arm's mask, with no
+    `if` of the mask around it: a few writes of pure values to names (no effect, no failure:
+    lanes the mask leaves out keep their values, and what the arm computes there is dropped).
+    The `if` and its test of the lanes were two blocks more for numba and split the run the
+    SLP vectorizer packs; the && chains of codegen's short circuits are such arms."""
+    return 0 < len(stmts) <= STRAIGHT_ARM and all(
+        isinstance(s, ast.Assign)
+        and len(s.targets) == 1
+        and isinstance(s.targets[0], ast.Name)
+        and not _is_counter(s.targets[0].id)
+        and pure_expr(s.value)
+        for s in stmts
+    )
+
+
 _QUAD_CALLS = ("dfdx", "dfdy", "qdx", "qdy")  # a difference of two lanes of a quad
 _LANE_MARK = "\x00"  # a lane number to come (lanes_of)
 
@@ -129,12 +160,27 @@ class _Rename(ast.NodeTransformer):
         backend takes for a constant) as lsel: two basic blocks per lane stop the SLP
         vectorizer from packing the lanes; both sides computed, the same value picked."""
         self.generic_visit(node)  # (in place: it returns `node`)
-        if pure_expr(node):
+        if _pure(node):
             return ast.copy_location(
                 ast.Call(ast.Name("lsel", ast.Load()), [node.test, node.body, node.orelse], []),
                 node,
             )
         return node
+
+    def visit_BoolOp(self, node: ast.BoolOp) -> Any:
+        """`a and b` of pure sides (GLSL's `&&`, `||`, any, all: bools) as `a & b`: Python's
+        short circuit is a branch and a block per lane in numba's IR (h38-2d-sprites' DrawGame:
+        1,210 blocks, 240 without), which numba's passes walk and which split the lanes' runs
+        for the SLP vectorizer; the right side computed also where the left decides (no effect,
+        no failure), the same bool."""
+        self.generic_visit(node)
+        if not _pure(node):
+            return node
+        op: ast.operator = ast.BitAnd() if isinstance(node.op, ast.And) else ast.BitOr()
+        out = node.values[0]
+        for v in node.values[1:]:
+            out = ast.BinOp(out, op, v)
+        return ast.copy_location(out, node)
 
     def visit_Call(self, node: ast.Call) -> Any:
         f = node.func
@@ -328,12 +374,52 @@ class _Fn(SelectChains):
             # a chain starts where a statement follows one that is not a temporary's
             chain = None if i and is_temp_write(stmts[i - 1]) else self.select_chain(stmts, i)
             if chain is None:
-                self.stmt(stmts[i], top)
-                i += 1
+                s, i = self.result_copies(stmts, i)
+                self.stmt(s, top)
             else:
                 i = self.fuse_chain(chain, top)
         if len(self.lines) == n0:
             self.emit("pass")
+
+    def result_copies(self, stmts: list, i: int) -> tuple[Any, int]:
+        """stmts[i], and the index of the statement after it. A call's results into temporaries
+        (`_t1, _t2 = f(...)`) that the statements right after copy into names (`a = _t1`, each
+        temporary read there alone) is the call with those names as its targets, `a, _t2 = f(...)`:
+        the same values written to the same names (the arguments are read before either write),
+        without W copies a result in the lockstep text."""
+        s = stmts[i]
+        if not (
+            isinstance(s, ast.Assign)
+            and len(s.targets) == 1
+            and isinstance(s.targets[0], ast.Tuple)
+            and _call_name(s.value) in self.L.functions
+            and all(isinstance(x, ast.Name) for x in s.targets[0].elts)
+        ):
+            return s, i + 1
+        targets = [x.id for x in s.targets[0].elts if isinstance(x, ast.Name)]  # (all are)
+        j = i + 1
+        while j < len(stmts):
+            c = stmts[j]
+            if not (
+                isinstance(c, ast.Assign)
+                and len(c.targets) == 1
+                and isinstance(c.targets[0], ast.Name)
+                and isinstance(c.value, ast.Name)
+                and c.value.id in targets
+                and self.reads.get(c.value.id) == 1
+                and self.counts.get(c.value.id) == 1
+                and c.targets[0].id not in targets
+                and not _is_counter(c.targets[0].id)
+            ):
+                break
+            targets[targets.index(c.value.id)] = c.targets[0].id
+            j += 1
+        if j == i + 1:
+            return s, j
+        folded = ast.Assign(
+            [ast.Tuple([ast.Name(x, ast.Store()) for x in targets], ast.Store())], s.value
+        )
+        return ast.copy_location(folded, s), j
 
     def refresh(self) -> None:
         """After a statement with exits, the current region loses the lanes that left."""
@@ -495,7 +581,7 @@ class _Fn(SelectChains):
         if _is_counter(name):
             self.emit(ast.unparse(s))
             return
-        if self.ldiv or self.is_varying(v) or _makes_array(v):
+        if self.masked(name) or self.is_varying(v) or _makes_array(v):
             self.mark(name)
         self.write(name, self.lanes_of(v) if name in self.varying else [ast.unparse(v)])
 
@@ -509,6 +595,22 @@ class _Fn(SelectChains):
         # SSA value, computed in every lane, which a neighbour's derivative reads (`q.x -= k;`
         # after `vec3 q = ...;` in a branch), as the NumPy backend's free writes
         # (cpu_core/uniformity.py); a write in a branch or loop nested inside stays masked
+        plain = self.plain_write(name)
+        for k, text in enumerate(texts):
+            if plain:
+                self.emit(f"{name}__{k} = {text}")
+            else:
+                self.emit(f"{name}__{k} = lsel({self.mask}__{k}, {text}, {name}__{k})")
+
+    def masked(self, name: str) -> bool:
+        """Whether a write of `name` here may keep other lanes' values (then it has lanes). A
+        name written once is written in every lane (plain: `write`), so a value free of lanes
+        keeps it one scalar also in a divergent region; with derivatives it has lanes there
+        (a neighbour's difference of it is computed, as the NumPy backend's)."""
+        return self.ldiv and (self.counts.get(name, 0) > 1 or bool(self.L.quads))
+
+    def plain_write(self, name: str) -> bool:
+        """Whether this write of the varying `name` is plain (`write`), recorded as written."""
         where = (self.mask, len(self.loops))
         if name not in self.defined:
             self.declared[name] = where
@@ -519,11 +621,7 @@ class _Fn(SelectChains):
             or (bool(self.L.quads) and self.declared.get(name) == where)
         )
         self.defined.add(name)
-        for k, text in enumerate(texts):
-            if plain:
-                self.emit(f"{name}__{k} = {text}")
-            else:
-                self.emit(f"{name}__{k} = lsel({self.mask}__{k}, {text}, {name}__{k})")
+        return plain
 
     def _AugAssign(self, s: ast.AugAssign, top: bool) -> None:
         if not (isinstance(s.target, ast.Name) and _is_counter(s.target.id)):
@@ -558,16 +656,24 @@ class _Fn(SelectChains):
         if len(targets) != fn.nret:
             raise Unsupported("a call's results")
         res = [self.fresh("c") for _ in targets]
-        flat: list[str] = []
-        for x, r, uni in zip(targets, res, fn.ret_uniform):
-            flat += [r] if uni else self.lanenames_in(r)
-            if self.ldiv or not uni:
+        for x, uni in zip(targets, fn.ret_uniform):
+            if self.masked(x) or not uni:
                 self.mark(x)  # a result per lane (or written under a mask)
-        self.emit(f"{', '.join(flat)}, = {text}")
+        # a result whose write would be a plain copy (one scalar into a name free of lanes, a
+        # lane into its lane) is the call's own target: W copies fewer for numba
+        flat: list[str] = []
+        after = []
         for x, r, uni in zip(targets, res, fn.ret_uniform):
-            self.write(
-                x, ([r] * self.W if x in self.varying else [r]) if uni else self.lanenames_in(r)
-            )
+            if x not in self.varying:
+                flat.append(x)
+            elif not uni and self.plain_write(x):
+                flat += self.lanenames_in(x)
+            else:
+                flat += [r] if uni else self.lanenames_in(r)
+                after.append((x, r, uni))
+        self.emit(f"{', '.join(flat)}, = {text}")
+        for x, r, uni in after:
+            self.write(x, [r] * self.W if uni else self.lanenames_in(r))
 
     def _If(self, s: ast.If, top: bool) -> None:
         exits = _exits([s])
@@ -579,29 +685,47 @@ class _Fn(SelectChains):
                 self.nested(s.orelse, self.div, self.mask, self.ldiv)
         else:
             base = self.mask if self.div else "m"
-            cond = self.new_mask("c", self.lanes_of(s.test))
-            then = self.new_mask("mt", [f"({base}__{k} & {cond}__{k})" for k in range(self.W)])
+            tests = self.lanes_of(s.test)
+            # the masks are made before either arm writes the test's names: a name tested, or a
+            # test the `then` mask alone reads, is read as it is; a test of both masks computed once
+            if all(t.isidentifier() for t in tests):
+                conds = tests
+            elif s.orelse:
+                conds = self.lanenames_in(self.new_mask("c", tests))
+            else:
+                conds = [f"({t})" for t in tests]
+            then = self.new_mask("mt", [f"({base}__{k} & {c})" for k, c in enumerate(conds)])
             other = None
             if s.orelse:
                 other = self.new_mask(
-                    "me", [f"({base}__{k} & (not {cond}__{k}))" for k in range(self.W)]
+                    "me", [f"({base}__{k} & (not {c}))" for k, c in enumerate(conds)]
                 )
-            self.emit(f"if {self.any_of(then)}:")
-            self.nested(s.body, True, then, True)
-            if other is not None:
-                self.emit(f"if {self.any_of(other)}:")
-                self.nested(s.orelse, True, other, True)
+            for arm, mask in ((s.body, then), (s.orelse, other)):
+                if mask is None:
+                    continue
+                if _straight(arm):  # computed in every lane, written under the mask
+                    self.nested(arm, True, mask, True, flat=True)
+                else:
+                    self.emit(f"if {self.any_of(mask)}:")
+                    self.nested(arm, True, mask, True)
         if exits:
             self.refresh()
 
-    def nested(self, stmts: list, div: bool, mask: str, ldiv: bool) -> None:
+    def nested(self, stmts: list, div: bool, mask: str, ldiv: bool, flat: bool = False) -> None:
+        """An arm's statements under `mask`, in an `if` of it (indented) or, `flat`, in the
+        straight-line run around it."""
         saved = (self.div, self.mask, self.ldiv)
         self.div, self.mask, self.ldiv = div, mask, ldiv
-        self.indent += 1
+        if not flat:
+            self.indent += 1
         self.tests = {}  # (a test hoisted in one arm is not defined in the other)
+        n0 = len(self.lines)
         self.block(stmts)
+        if flat and len(self.lines) == n0 + 1 and self.lines[-1].strip() == "pass":
+            self.lines.pop()
         self.tests = {}
-        self.indent -= 1
+        if not flat:
+            self.indent -= 1
         self.div, self.mask, self.ldiv = saved
 
     def loop_divergent(self, body: list) -> bool:
