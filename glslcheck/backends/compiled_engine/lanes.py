@@ -41,9 +41,17 @@ from typing import Any
 
 from .constant_globals import reset_kinds, written_state
 from .lanes_render import ROW_UNIFORM, STATE_LANES, quad_lanes, render_source
+from .lanes_shapes import (
+    call_name,
+    exits_of,
+    index_test,
+    is_counter,
+    makes_array,
+    pure_value,
+    straight_arm,
+)
 from .lanes_slim import hoistable_globals, names_in, slim_function, walk_nodes
 from .select_chains import SelectChains, is_temp_write
-from .values import PURE_NODES, pure_expr
 
 UNIFORM_STATE = ("uf", "ui", "lc")  # lc: llvmpipe's loop budget, one per block as there
 BLOCK_CALLS = ("limited", "tick_end")  # the loop budget's statements (scalar.tick)
@@ -67,84 +75,6 @@ def math_imports() -> list[str]:
     return out
 
 
-def _is_counter(name: str) -> bool:
-    return name.startswith("_n") and name[2:].isdigit()
-
-
-_ARRAY_CALLS = {"acopy", "aslice", "np.zeros", "np.empty"}
-
-
-def _call_name(node: Any) -> str | None:
-    if isinstance(node, ast.Call):
-        return ast.unparse(node.func)
-    return None
-
-
-def _makes_array(value: Any) -> bool:
-    return any(_call_name(n) in _ARRAY_CALLS for n in ast.walk(value))
-
-
-def _exits(stmts: list) -> set[str]:
-    """The exits in stmts: 'return' anywhere, 'break'/'continue' of the enclosing loop."""
-    out: set[str] = set()
-    for s in stmts:
-        if isinstance(s, ast.Return):
-            out.add("return")
-        elif isinstance(s, ast.Break):
-            out.add("break")
-        elif isinstance(s, ast.Continue):
-            out.add("continue")
-        elif isinstance(s, ast.If):
-            out |= _exits(s.body) | _exits(s.orelse)
-        elif isinstance(s, ast.While):
-            out |= _exits(s.body) & {"return"}
-    return out
-
-
-def _index_test(node: Any) -> bool:
-    """`i == 2` of a name and an int constant: the test of codegen's selects over an array's
-    elements at a run-time index (one per component read: `lsel(i == 0, a0, lsel(i == 1, ...))`)."""
-    return (
-        isinstance(node, ast.Compare)
-        and isinstance(node.left, ast.Name)
-        and len(node.ops) == 1
-        and isinstance(node.ops[0], ast.Eq)
-        and isinstance(node.comparators[0], ast.Constant)
-        and type(node.comparators[0].value) is int
-    )
-
-
-def _pure(e: Any) -> bool:
-    """values.pure_expr of a renamed expression, whose pure `and`/`or` may already be `&`/`|`
-    of bools (_Rename.visit_BoolOp: no effect, no failure either)."""
-    for n in ast.walk(e):
-        if isinstance(n, ast.Call):
-            if not (isinstance(n.func, ast.Name) and n.func.id == "lsel" and not n.keywords):
-                return False
-        elif not isinstance(n, (*PURE_NODES, ast.BitAnd, ast.BitOr)):
-            return False
-    return True
-
-
-STRAIGHT_ARM = 8  # the most statements of a divergent arm computed in every lane (_straight)
-
-
-def _straight(stmts: list) -> bool:
-    """An arm of a divergent `if` run in every lane, its writes under the arm's mask, with no
-    `if` of the mask around it: a few writes of pure values to names (no effect, no failure:
-    lanes the mask leaves out keep their values, and what the arm computes there is dropped).
-    The `if` and its test of the lanes were two blocks more for numba and split the run the
-    SLP vectorizer packs; the && chains of codegen's short circuits are such arms."""
-    return 0 < len(stmts) <= STRAIGHT_ARM and all(
-        isinstance(s, ast.Assign)
-        and len(s.targets) == 1
-        and isinstance(s.targets[0], ast.Name)
-        and not _is_counter(s.targets[0].id)
-        and pure_expr(s.value)
-        for s in stmts
-    )
-
-
 _QUAD_CALLS = ("dfdx", "dfdy", "qdx", "qdy")  # a difference of two lanes of a quad
 _LANE_MARK = "\x00"  # a lane number to come (lanes_of)
 
@@ -160,7 +90,7 @@ class _Rename(ast.NodeTransformer):
         backend takes for a constant) as lsel: two basic blocks per lane stop the SLP
         vectorizer from packing the lanes; both sides computed, the same value picked."""
         self.generic_visit(node)  # (in place: it returns `node`)
-        if _pure(node):
+        if pure_value(node):
             return ast.copy_location(
                 ast.Call(ast.Name("lsel", ast.Load()), [node.test, node.body, node.orelse], []),
                 node,
@@ -174,7 +104,7 @@ class _Rename(ast.NodeTransformer):
         for the SLP vectorizer; the right side computed also where the left decides (no effect,
         no failure), the same bool."""
         self.generic_visit(node)
-        if not _pure(node):
+        if not pure_value(node):
             return node
         op: ast.operator = ast.BitAnd() if isinstance(node.op, ast.And) else ast.BitOr()
         out = node.values[0]
@@ -330,7 +260,7 @@ class _Fn(SelectChains):
         return name
 
     def mark(self, name: str) -> None:
-        if not _is_counter(name) and name not in self.varying:
+        if not is_counter(name) and name not in self.varying:
             self.varying.add(name)
             self.changed = True
 
@@ -392,7 +322,7 @@ class _Fn(SelectChains):
             isinstance(s, ast.Assign)
             and len(s.targets) == 1
             and isinstance(s.targets[0], ast.Tuple)
-            and _call_name(s.value) in self.L.functions
+            and call_name(s.value) in self.L.functions
             and all(isinstance(x, ast.Name) for x in s.targets[0].elts)
         ):
             return s, i + 1
@@ -409,7 +339,7 @@ class _Fn(SelectChains):
                 and self.reads.get(c.value.id) == 1
                 and self.counts.get(c.value.id) == 1
                 and c.targets[0].id not in targets
-                and not _is_counter(c.targets[0].id)
+                and not is_counter(c.targets[0].id)
             ):
                 break
             targets[targets.index(c.value.id)] = c.targets[0].id
@@ -475,20 +405,20 @@ class _Fn(SelectChains):
         self.tests = {k: v for k, v in self.tests.items() if k[0] not in written}
 
     def hoist_tests(self, s: Any) -> Any:
-        """s with the index tests of its selects (`_index_test`) read from names computed once
+        """s with the index tests of its selects (`index_test`) read from names computed once
         before it and kept until the name tested is written or control flow starts or ends: the
         component reads of one element at a run-time index test the same `i == k` W times each
         (the same compare, computed earlier: the same bits; a compare of a name has no effect)."""
 
         def hoistable(n: Any) -> bool:
             if isinstance(n, ast.IfExp):
-                return _index_test(n.test)
+                return index_test(n.test)
             return (
                 isinstance(n, ast.Call)
                 and isinstance(n.func, ast.Name)
                 and n.func.id == "lsel"
                 and bool(n.args)
-                and _index_test(n.args[0])
+                and index_test(n.args[0])
             )
 
         if not any(hoistable(n) for n in walk_nodes(s)):
@@ -530,7 +460,7 @@ class _Fn(SelectChains):
         if isinstance(v, ast.Constant):
             self.emit(ast.unparse(s))
             return
-        name = _call_name(v)
+        name = call_name(v)
         if name in self.L.functions and isinstance(v, ast.Call):  # (a name: a call)
             self.user_call(v, [])
             return
@@ -560,9 +490,9 @@ class _Fn(SelectChains):
             raise Unsupported("chained assignments")
         t = s.targets[0]
         v = s.value
-        if isinstance(t, ast.Tuple) or (_call_name(v) in self.L.functions):
+        if isinstance(t, ast.Tuple) or (call_name(v) in self.L.functions):
             targets = t.elts if isinstance(t, ast.Tuple) else [t]
-            if _call_name(v) not in self.L.functions or not all(
+            if call_name(v) not in self.L.functions or not all(
                 isinstance(x, ast.Name) for x in targets
             ):
                 raise Unsupported("a tuple assignment")
@@ -578,10 +508,10 @@ class _Fn(SelectChains):
         if not isinstance(t, ast.Name):
             raise Unsupported("an assignment target")
         name = t.id
-        if _is_counter(name):
+        if is_counter(name):
             self.emit(ast.unparse(s))
             return
-        if self.masked(name) or self.is_varying(v) or _makes_array(v):
+        if self.masked(name) or self.is_varying(v) or makes_array(v):
             self.mark(name)
         self.write(name, self.lanes_of(v) if name in self.varying else [ast.unparse(v)])
 
@@ -624,12 +554,12 @@ class _Fn(SelectChains):
         return plain
 
     def _AugAssign(self, s: ast.AugAssign, top: bool) -> None:
-        if not (isinstance(s.target, ast.Name) and _is_counter(s.target.id)):
+        if not (isinstance(s.target, ast.Name) and is_counter(s.target.id)):
             raise Unsupported("an augmented assignment")
         self.emit(ast.unparse(s))
 
     def user_call(self, call: ast.Call, targets: list[str]) -> None:
-        name = ast.unparse(call.func)  # (_call_name of a call)
+        name = ast.unparse(call.func)  # (call_name of a call)
         callee = self.L.functions[name]
         params = [a.arg for a in callee.args.args]
         if len(params) != len(call.args) or call.keywords:
@@ -676,7 +606,7 @@ class _Fn(SelectChains):
             self.write(x, [r] * self.W if uni else self.lanenames_in(r))
 
     def _If(self, s: ast.If, top: bool) -> None:
-        exits = _exits([s])
+        exits = exits_of([s])
         if not self.is_varying(s.test):
             self.emit(f"if {ast.unparse(s.test)}:")
             self.nested(s.body, self.div, self.mask, self.ldiv)
@@ -703,7 +633,7 @@ class _Fn(SelectChains):
             for arm, mask in ((s.body, then), (s.orelse, other)):
                 if mask is None:
                     continue
-                if _straight(arm):  # computed in every lane, written under the mask
+                if straight_arm(arm):  # computed in every lane, written under the mask
                     self.nested(arm, True, mask, True, flat=True)
                 else:
                     self.emit(f"if {self.any_of(mask)}:")
@@ -734,7 +664,7 @@ class _Fn(SelectChains):
         def scan(stmts: list, inner: bool) -> bool:
             for s in stmts:
                 if isinstance(s, ast.If):
-                    ex = _exits(s.body) | _exits(s.orelse)
+                    ex = exits_of(s.body) | exits_of(s.orelse)
                     if inner:
                         ex &= {"return"}
                     if self.is_varying(s.test) and ex:
@@ -742,7 +672,7 @@ class _Fn(SelectChains):
                     if scan(s.body, inner) or scan(s.orelse, inner):
                         return True
                 elif isinstance(s, ast.While):
-                    if "return" in _exits(s.body) and self.loop_divergent(s.body):
+                    if "return" in exits_of(s.body) and self.loop_divergent(s.body):
                         return True
                     if scan(s.body, True):
                         return True
@@ -753,7 +683,7 @@ class _Fn(SelectChains):
     def _While(self, s: ast.While, top: bool) -> None:
         if not (isinstance(s.test, ast.Constant) and s.test.value is True) or s.orelse:
             raise Unsupported("a while loop with a condition")
-        exits = _exits(s.body)
+        exits = exits_of(s.body)
         # a plain loop also after returns (the returned lanes run it for nothing), unless it can
         # return: under a mask a return does not leave the Python loop
         if (
@@ -784,7 +714,7 @@ class _Fn(SelectChains):
         self.div, self.mask, self.ldiv = True, body, True
         for st in s.body:
             self.stmt(st, False)
-            ex = _exits([st])
+            ex = exits_of([st])
             if ex:
                 self.refresh()
                 self.emit(f"if not {self.any_of(act)}:")
