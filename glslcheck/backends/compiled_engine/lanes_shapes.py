@@ -7,7 +7,7 @@ from __future__ import annotations
 import ast
 from typing import Any
 
-from .values import PURE_NODES, pure_expr
+from .values import PURE_CALLS, PURE_NODES, pure_expr
 
 
 def is_counter(name: str) -> bool:
@@ -62,7 +62,7 @@ def pure_value(e: Any) -> bool:
     of bools (_Rename.visit_BoolOp: no effect, no failure either)."""
     for n in ast.walk(e):
         if isinstance(n, ast.Call):
-            if not (isinstance(n.func, ast.Name) and n.func.id == "lsel" and not n.keywords):
+            if not (isinstance(n.func, ast.Name) and n.func.id in PURE_CALLS and not n.keywords):
                 return False
         elif not isinstance(n, (*PURE_NODES, ast.BitAnd, ast.BitOr)):
             return False

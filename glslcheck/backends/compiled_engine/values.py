@@ -47,8 +47,8 @@ PURE_NODES = (
 
 def pure_expr(e: Any) -> bool:
     """A generated expression (its text or its Python ast) that reads names and constants with
-    float arithmetic, compares, `and`/`or`/`not` and lsel only: it has no effect and cannot fail
-    (error_model="numpy"; this generator wraps int arithmetic in casts, which are calls), so
+    float arithmetic, compares, `and`/`or`/`not`, lsel and daz only: it has no effect and cannot
+    fail (error_model="numpy"; this generator wraps int arithmetic in casts, which are calls), so
     computing it where its value is not used changes nothing (codegen's ternaries, lanes.py's
     conditional expressions)."""
     if isinstance(e, str):
@@ -58,11 +58,15 @@ def pure_expr(e: Any) -> bool:
             return False
     for n in pyast.walk(e):
         if isinstance(n, pyast.Call):
-            if not (isinstance(n.func, pyast.Name) and n.func.id == "lsel" and not n.keywords):
+            if not (isinstance(n.func, pyast.Name) and n.func.id in PURE_CALLS and not n.keywords):
                 return False
         elif not isinstance(n, PURE_NODES):
             return False
     return True
+
+
+# calls of the runtime a pure expression may make: a select, and a subnormal flushed to zero
+PURE_CALLS = ("lsel", "daz")
 
 
 ATOM = re.compile(r"^(?:[A-Za-z_][A-Za-z0-9_]*(?:\[[A-Za-z0-9_ +]+\])?|True|False)$")
