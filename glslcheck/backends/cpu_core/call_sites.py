@@ -37,20 +37,22 @@ def unchanged_init(tr: FoldEmitter, ident: A.Identifier, call: A.Call) -> Any:
     return init
 
 
+def local_initializer(sym: Symbol | None) -> Any:
+    """The initializer of a local variable declared with one (`float k = 5.0;`), else None."""
+    if sym is None or sym.kind != "local" or not isinstance(sym.node, A.Declarator):
+        return None
+    return sym.node.init
+
+
 def top_level_places(
     tr: FoldEmitter, sym: Symbol | None, call: A.Call
 ) -> tuple[list, int, int] | None:
     """(the current function's top-level statements, the index of the declaration statement
     of the local `sym`, the index of the statement holding `call`) when `sym` is a local with
     an initializer declared by a top-level statement; else None."""
-    if (
-        sym is None
-        or sym.kind != "local"
-        or not isinstance(sym.node, A.Declarator)
-        or sym.node.init is None
-    ):
+    if local_initializer(sym) is None:
         return None
-    assert tr.fn is not None  # folding a call inside a function
+    assert sym is not None and tr.fn is not None  # folding a call inside a function
     stmts = tr.fn.sym.node.body.stmts
     decl = next((i for i, st in enumerate(stmts) if any(n is sym.node for n in st.walk())), None)
     at = next((i for i, st in enumerate(stmts) if any(n is call for n in st.walk())), None)

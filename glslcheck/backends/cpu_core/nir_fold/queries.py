@@ -21,6 +21,7 @@ from ....frontend import syntax as A
 from ....language import builtin_functions as B
 from ....semantics.analysis import param_directions
 from ....semantics.model import Symbol
+from ..call_sites import local_initializer
 from ..common import TEXTURE_FUNCTIONS, fold_tree
 from ..fold_protocols import FoldedFunction, FoldEngine
 from ..inline import bound_argument, inline_owner
@@ -369,14 +370,10 @@ def stable_init(tr: FoldEngine, ident: A.Identifier) -> Any:
     bound = bound_argument(tr, sym)  # a parameter of an inlined call (cpu_core/inline.py)
     if bound is not None:
         return None if tr.has_effects(bound) else bound
-    if (
-        sym is None
-        or sym.kind != "local"
-        or not isinstance(sym.node, A.Declarator)
-        or sym.node.init is None
-    ):
+    init = local_initializer(sym)
+    if init is None:
         return None
-    init = sym.node.init
+    assert sym is not None  # (a local's initializer)
     if tr.has_effects(init) and not inlined_calls_only(tr, init):
         return None  # (a call that is its returned value once inlined is no effect)
     written = written_symbols(tr)

@@ -20,6 +20,7 @@ from typing import Any
 
 from ....frontend import syntax as A
 from ..call_fold import out_roots
+from ..call_sites import local_initializer
 from .factoring import factor_parts
 from .queries import (
     SUMS,
@@ -107,14 +108,10 @@ def _local_constant(tr: FoldEngine, node: Any) -> bool:
     """A never-written local initialised by a constant expression (``float warpAmount = 5.0;``):
     a constant to NIR (GLSL IR's constant propagation), counted as one by the product sink."""
     sym = tr.model.symbol_of(node) if isinstance(node, A.Identifier) else None
-    if (
-        sym is None
-        or sym.kind != "local"
-        or not isinstance(sym.node, A.Declarator)
-        or sym.node.init is None
-    ):
+    init = local_initializer(sym)
+    if init is None:
         return False
-    return tr.model.const_value(sym.node.init) is not None and id(sym) not in written_symbols(tr)
+    return tr.model.const_value(init) is not None and id(sym) not in written_symbols(tr)
 
 
 def _normalized_once(tr: FoldEngine, node: Any) -> Any:
