@@ -359,14 +359,27 @@ def load_shader(path: str | os.PathLike) -> Shader:
                 )
             shader.tabs[src.tab] = src
         return shader
+    parent = _parent(p)
+    siblings = folder_entries(parent) if os.path.exists(parent) else []
+    return _file_shader(p, spath, _commons(siblings))
+
+
+def _file_shader(p: str, root: str, siblings: list[str]) -> Shader:
+    """One tab file as a shader, with the Common tab among its folder's `siblings` (Shadertoy
+    prepends it to every pass)."""
+    shader = Shader(root=root)
     src = read_source(p, "Common" if _named_common(p) else None)
     shader.tabs[src.tab] = src
     if src.tab not in ("Common", "GLSL"):
-        # Shadertoy prepends the Common tab to every pass: pick up a sibling Common file.
-        common = _sibling_common(p)
-        if common is not None:
+        common = common_sibling(p, siblings)
+        if common is not None and os.path.isfile(common):
             shader.tabs["Common"] = read_source(common, "Common")
     return shader
+
+
+def _commons(entries: list[str]) -> list[str]:
+    """The entries of a folder named as a Common tab (`Common.txt`, `Lab06Common.txt`)."""
+    return [f for f in entries if tab_name(f) == "Common" or _named_common(f)]
 
 
 def _name_key(path: str) -> str:
@@ -383,14 +396,6 @@ def _named_common(path: str) -> bool:
     """A file named as a Common tab after a prefix (`Lab06Common.txt`, `lab 6 common.txt`)."""
     key = _name_key(path)
     return key.endswith("common") and key != "common" and name_says_shader(path) is not False
-
-
-def _sibling_common(p: str) -> str | None:
-    """The Common tab beside a pass file in its folder (`common_sibling`)."""
-    parent = _parent(p)
-    if not os.path.exists(parent):
-        return None
-    return common_sibling(p, [f for f in folder_entries(parent) if os.path.isfile(f)])
 
 
 def common_sibling(path: str, siblings: list[str]) -> str | None:
@@ -442,7 +447,9 @@ def _walk(folder: str, visited: set[str]) -> list[Shader]:
     """The shaders under `folder`; `visited` holds the real folders this walk has entered (a
     real sub-folder is always entered, a symbolic link only to a real folder not in it)."""
     found: list[Shader] = []
-    for f in folder_entries(folder):
+    entries = folder_entries(folder)
+    commons = _commons(entries)  # (once a folder: each loose file looks for its Common here)
+    for f in entries:
         name = path_name(f)
         if name.startswith(".") or name == "__pycache__":
             continue
@@ -456,8 +463,7 @@ def _walk(folder: str, visited: set[str]) -> list[Shader]:
             else:
                 found.extend(_walk(f, visited))
         elif _is_shader_file(f):
-            shader = load_shader(f)  # (a pass with the Common tab named for it beside it)
-            found.append(shader)
+            found.append(_file_shader(f, f, commons))
     return found
 
 
