@@ -59,9 +59,9 @@ def unit_source(fn, v, depth: int = 0) -> Any:
 
 def held(v, unit) -> str:
     """` ('v' holds normalize(...), line 7)` when a local `v` holds the unit value, else ``."""
-    if builtin_call_name(unit) == "reflect":
+    if _callee(unit) == "reflect":
         why = " (a unit vector reflected about a unit normal)"
-    elif type(unit) is A.Call and builtin_call_name(unit) != "normalize":
+    elif type(unit) is A.Call and _callee(unit) != "normalize":
         why = f" ({unit.callee}() returns a normalized vector)"
     else:
         why = ""
@@ -70,8 +70,8 @@ def held(v, unit) -> str:
     return f" ('{v.name}' holds {text(unit)}, line {unit.loc.line}){why}"
 
 
-def builtin_call_name(e) -> str:
-    """The callee's name of a call (a user function's too), else ``."""
+def _callee(e) -> str:
+    """The name a call calls (a built-in or a user function), else ``."""
     return e.callee if type(e) is A.Call else ""
 
 
