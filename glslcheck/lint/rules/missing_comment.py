@@ -73,12 +73,8 @@ spaced. It ends at an explaining comment, a covered statement, a credit or a sec
 top-level function or struct is a run of its own (global declarations in a row are one region,
 however blank lines space them), and a function with no explaining comment
 anywhere is one run from its signature to its last line: the one ambiguous block the rubric
-deducts once. But in a mostly uncommented file (more than three quarters of its code lines in
-uncovered runs) the blank lines are the only sections the student marks: there a blank line
-inside a body ends a run too, in a function with no comment as in any other, and each group is
-a deduction of its own (possible after the first group of what a reading across blank lines
-deducts once: blind readers part here); the close of an inner block does not
-(`if (a) { ... }` then `if (b) { ... }` with no blank line between: one group).
+deducts once. That holds in a mostly uncommented file too, where some readers deduct each group
+a blank line parts (a reading too rare to report: docs/rules-accuracy.md, round 46).
 
 A run is a certain deduction, except where the readings of the rubric part (a possible one):
 - the code of a section below its heading, parted from it by a blank line, when the heading is
@@ -207,7 +203,6 @@ REACH = "whether the function's comment above reaches into a body that has comme
 IF_REACH = "whether the `if`'s comment, above or beside it, reaches a body with comments of its own"
 LONG_BODY = "only the function's comment above explains its body, which is more than a few lines"
 ADJACENT = "one of several uncommented definitions in a row, which a TA may deduct once"
-GROUP = "a blank line parts it from uncommented code above, in a mostly uncommented file"
 BARE = "only a bare label ('Variables', 'Constants') stands above it, naming what it declares"
 
 
@@ -297,10 +292,8 @@ def _simple(function: dict) -> bool:
 class _Reader:
     """Reads a file's lines into statements and decides which are covered (see uncovered_runs)."""
 
-    def __init__(self, scan, kinds: list[LineKind], span: int, sections: bool = False):
+    def __init__(self, scan, kinds: list[LineKind], span: int):
         self.scan, self.kinds, self.span = scan, kinds, span
-        # a mostly uncommented file (sparse): a blank line in a body ends a run too
-        self.sections = sections
         self.code = scan.code_lines
         self.on_line: dict[int, list] = {}  # line -> the comments on it (built once: linear)
         for c in scan.comments:
@@ -548,14 +541,8 @@ class _Reader:
                 self.end_function()
                 self.adjacent_definitions()
                 self.closed_at = self.number
-            elif not self.else_follows(line) and not self.bare_sections():
+            elif not self.else_follows(line):
                 self.close_run()  # the block the run was in ends (`} else {` goes on)
-
-    def bare_sections(self) -> bool:
-        """Whether a mostly uncommented file's function is being read: there only blank lines
-        and comments part its runs, not the blocks inside it."""
-        f = self.function
-        return self.sections and f is not None
 
     def open_blocks(self, opened: int, rest: str = "") -> None:
         """Open `opened` blocks of the statement just read (a struct, a function or other);
@@ -694,7 +681,7 @@ class _Reader:
         self.previous = (f["name"], f["explained"] or (overload and not f["inner"]))
         self.previous_said = f["said"] if f["explained"] else ""
         mine = self.runs[f["runs"] :]
-        if not f["explained"] and not f["inner"] and mine and not self.sections:
+        if not f["explained"] and not f["inner"] and mine:
             first = min(f["sig"][0], mine[0][0])
             count = sum(r[2] for r in mine)
             # an overload right under a commented one, no blank line between: one group the
@@ -780,10 +767,9 @@ class _Reader:
                         and not _SIGNATURE_START_RE.match(line)
                         and not _STRUCT_RE.match(line)
                     )
-                    if (self.depth == 0 and not declarations) or self.sections:
+                    if self.depth == 0 and not declarations:
                         # between definitions (global declarations in a row, blank lines
-                        # between them, are one region); in a body a run goes on, but for a
-                        # mostly uncommented file's, whose blank lines are the only sections
+                        # between them, are one region); in a body a run goes on
                         self.close_run()
             self.blank = False
             opened_before = self.after_open
@@ -846,7 +832,7 @@ class _Reader:
 def uncovered_runs(scan, kinds: list[LineKind], span: int) -> list[tuple[int, int, int, str]]:
     """(first line, last line, number of code lines, reading) of each run of uncovered
     statements; `reading` is "" for a certain deduction, else why it is only a possible one
-    (HEADING, REACH, IF_REACH, LONG_BODY, ADJACENT, GROUP), or BODY_ONLY for a signature whose
+    (HEADING, REACH, IF_REACH, LONG_BODY, ADJACENT, BARE), or BODY_ONLY for a signature whose
     body's first comment explains it (a note, not a run).
 
     Statements are read whole (a signature or a call over several lines is one). A comment
@@ -856,40 +842,8 @@ def uncovered_runs(scan, kinds: list[LineKind], span: int) -> list[tuple[int, in
     function's signature use up none of the span; trivial statements need no comment; credits,
     markers and commented-out code explain nothing. A run ends at a covered statement, an
     explaining comment, a credit or a marker, the close of its block, or (at top level) a blank
-    line; in a body it goes on across blank lines and commented-out code, but for a mostly
-    uncommented file's (sparse), read again with a blank line ending a run in a body too."""
-    runs = _Reader(scan, kinds, span).read()
-    # (a signature its body's first comment explains is covered: a note, no run)
-    if not sparse([r for r in runs if r[3] != BODY_ONLY], kinds):
-        return runs
-    # each run of the reading across blank lines: its first group is certain, the groups a
-    # blank line parts from it are one reading of the rubric (readers part here)
-    grouped = _Reader(scan, kinds, span, sections=True).read()
-    whole = [(r[0], r[1]) for r in runs if r[3] != BODY_ONLY]
-    seen: set[int] = set()
-    out = []
-    for r in grouped:
-        inside = next((i for i, (a, b) in enumerate(whole) if a <= r[0] and r[1] <= b), None)
-        if inside is not None and inside in seen and not r[3]:
-            r = r[:3] + (GROUP,)
-        seen.add(-1 if inside is None else inside)
-        out.append(r)
-    return out
-
-
-# Of a file's code lines, the share that no comment covers above which the file is mostly
-# uncommented (SPARSE_UNCOVERED of SPARSE_OF)
-SPARSE_UNCOVERED, SPARSE_OF = 3, 4
-
-
-def sparse(runs: list[tuple[int, int, int, str]], kinds: list[LineKind]) -> bool:
-    """Whether a file is mostly uncommented: more than three quarters of its code lines in
-    uncovered runs. Its blank lines are then the only sections it marks, and each group they
-    part is one the rubric deducts ("per ambiguous section"); in a commented file the comments
-    mark its sections and an uncovered stretch between two is one, however it is spaced."""
-    code = sum(1 for k in kinds if k is CODE or k is TRAILING or k is LEADING)
-    uncovered = sum(r[2] for r in runs)
-    return uncovered * SPARSE_OF > code * SPARSE_UNCOVERED
+    line; in a body it goes on across blank lines and commented-out code."""
+    return _Reader(scan, kinds, span).read()
 
 
 def check(ctx: LintContext) -> Iterator[Diagnostic]:
