@@ -117,6 +117,15 @@ LIST_HEADING = compiled(
     r"^[\s/*!-]*(?:\w+\s+){0,2}(?:vars?|variables|declarations?|constants)\b", re.I
 )
 
+# The comments of Shadertoy's new-shader template, each over its one line (`vec2 uv =
+# fragCoord/iResolution.xy;`, the cosine colour, `fragColor = vec4(col,1.0);`): they speak of
+# that line, not of what a student adds under them (an aspect-ratio fix, a texture blend).
+TEMPLATE_COMMENT = compiled(
+    r"^[\s/*]*(?:normalized pixel coordinates \(from 0 to 1\)|time varying pixel colou?r"
+    r"|output to screen)[\s.*/]*$",
+    re.I,
+)
+
 
 def is_heading(text: str) -> bool:
     words = text.strip(" \t/*!-=:").split()

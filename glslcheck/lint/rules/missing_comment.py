@@ -51,6 +51,11 @@ Coverage, what a comment explains:
   gradient(vec2 p) {`, then `// makes a magenta and green gradient`) explains its signature:
   readers take it for the function's comment; a note, no deduction, suggests moving it above
   (not for `mainImage`, the signature every Shadertoy shader starts with).
+- The comments of Shadertoy's new-shader template ("Normalized pixel coordinates (from 0 to
+  1)", "Time varying pixel color", "Output to screen") speak of the template's line under them:
+  they cover that line, the same line written again but for its numbers (`vec3 col2 = ...`
+  under `vec3 col = ...`) and, under "Output to screen", the writes of `fragColor`; an aspect
+  fix added under the first (`uv.x *= iResolution.x / iResolution.y;`) needs its own comment.
 - Trivial statements need no comment: returning a literal or a plain variable (`return true;`,
   `return col;`, or a vector of them: `return vec4(col, 1.0);`), `break;`, `continue;`,
   `discard;`, `else`, braces. Code in an `#ifdef`/`#if` branch the preprocessor skips is not
@@ -178,6 +183,7 @@ from ._comment_kinds import (
     BARE_RE,
     COMMENTED_CODE_RE,
     LIST_HEADING,
+    TEMPLATE_COMMENT,
     TRIVIAL_RE,
     is_heading,
     line_explains,
@@ -235,6 +241,9 @@ _SETS_RE = compiled(
     r"(?:\[[^\]]*\])?(?:\.\w+)*\s*[-+*/]?=(?!=)"
 )
 _WORD_RE = compiled(r"[A-Za-z_]\w*")
+_NAME_NUMBER_RE = compiled(r"(?<=[A-Za-z_])#")  # a masked number ending a name (`col#`)
+_OUTPUT_RE = compiled(r"output to screen", re.I)  # the template's comment over the output
+_WRITES_OUTPUT_RE = compiled(r"^fragColor\b(?:\.\w+)?\s*[-+*/]?=(?!=)")  # a write of the output
 _AXES = (frozenset("xyzw"), frozenset("rgba"))  # variables named as a vector's components
 # words of a sentence that may also name a variable (`// a ramp` above `float a = ...;`)
 _FUNCTION_WORDS = frozenset("a an and as at by is it of on or to".split())
@@ -280,6 +289,22 @@ def _parallel(trailed: tuple[list[str], int], tokens: list[str], depth: int) -> 
                 return False  # an operator or a bracket differs: another statement
             differ += 1
     return 0 < differ and 3 * differ <= len(tokens)
+
+
+def _unnumbered(shape: str) -> str:
+    """A statement's shape with the numbers after names dropped (`col` and `col2` alike)."""
+    return _NAME_NUMBER_RE.sub("", shape)
+
+
+def _template_goes_on(cover: _Cover, shape: str, text: str) -> bool:
+    """Whether a statement past a template comment's one line is still its own: that line
+    written again but for its numbers (`vec3 col2 = ...` under `vec3 col = ...`), or under
+    "Output to screen" another write of the output."""
+    if not TEMPLATE_COMMENT.match(cover.text):
+        return False
+    if _unnumbered(shape) in map(_unnumbered, cover.shapes[-2:]):
+        return True
+    return _OUTPUT_RE.search(cover.text) is not None and _WRITES_OUTPUT_RE.match(text) is not None
 
 
 def _simple(function: dict) -> bool:
@@ -424,7 +449,9 @@ class _Reader:
             # line between such lines does not part them from their group
             self.cover = parted
         cover = self.cover
-        covered = cover is not None and cover.left > 0
+        covered = cover is not None and (cover.left > 0 or _template_goes_on(cover, shape, text))
+        if cover is not None and not covered and TEMPLATE_COMMENT.match(cover.text):
+            self.cover = cover = None  # the template's line and its repeats end there
         own = self.own_comment(lines)
         trailed, self.trailed = self.trailed, None
         tokens = _TOKEN_RE.findall(text)
@@ -716,7 +743,13 @@ class _Reader:
         self.heading = None
         self.reach = 0
         text = " ".join(c.text for c in self.on_line.get(number, ()))
-        span = UNLIMITED if LIST_HEADING.match(text) else self.span
+        span = (
+            UNLIMITED
+            if LIST_HEADING.match(text)
+            else 1
+            if TEMPLATE_COMMENT.match(text)
+            else self.span
+        )
         if self.cover is not None and self.last_comment == number - 1:
             self.cover.left = max(self.span, span)
             self.cover.text += " " + text
