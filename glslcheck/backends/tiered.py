@@ -39,7 +39,9 @@ The move happens only where the two engines are known to give the same bits:
   be judged against them). A light shader's NumPy frames, whose uniform values are computed
   once a tile, can beat the compiled engine's per-pixel ones. A
   per-pixel program's own move to lockstep waits for the trial's end (a compile beside the
-  trial frames, or a mode changed among them, would be what the trial times). A
+  trial frames, or a mode changed among them, would be what the trial times), and counts the
+  NumPy frames before it as paid towards lockstep's compile (the rent of the ski rental is
+  every frame rendered on a slower engine: lockstep comes about as soon as they paid for it). A
   per-pixel program found slower hands the frames back to NumPy until they have paid for its
   lockstep module too (engine.TieredProgram.move_cost, within engine.LOCKSTEP_BUDGET), which is
   then made beside them, checked on one frame against NumPy's and tried the same way; slower
@@ -381,6 +383,7 @@ class TieredCpuProgram:
         self.numpy_rate = sorted(self.numpy_trial)[len(self.numpy_trial) // 2]
         if isinstance(self.second, TieredProgram):
             self.second.hold = False  # the trial is over: its own move is its rule's again
+            self.second.paid = self.paid + self.spent  # (the NumPy frames during the compile)
         pixel = isinstance(self.second, TieredProgram) and self.second.mode == "pixel"
         if pixel:  # (a hint for a later process's order of tiers, not a verdict: _move)
             self._keep(pixel="slower" if mine >= self.numpy_rate else "faster")
@@ -424,7 +427,9 @@ class TieredCpuProgram:
             base = prog if isinstance(prog, CompiledProgram) else prog.first
             base.frame_seconds = self.first.frame_seconds
             if not isinstance(prog, CompiledProgram):
-                prog.paid = self.paid  # (lockstep's rent: earlier processes' frames count)
+                # lockstep's rent: the frames before it, earlier processes' and this one's NumPy
+                # frames alike (the rule's rent is every frame on a slower engine)
+                prog.paid = self.paid + self.spent
             # a lockstep module an earlier process made: its frames from the first (checked and
             # tried like any), with nothing to compile; or one that earlier processes' frames
             # have paid for, made now in place of the per-pixel tier when that would be

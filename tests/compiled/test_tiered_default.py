@@ -389,6 +389,30 @@ def test_no_lockstep_move_starts_during_the_trial(numba, make_shader, eager, clo
     assert tier._mover is not None and tier.settle(300) and tier.mode == "lanes8"
 
 
+def test_numpy_frames_pay_for_the_lockstep_move(numba, make_shader, eager, clock, monkeypatch):
+    """The NumPy frames rendered before the per-pixel tier count towards lockstep's compile: a
+    NumPy frame that cost more than lockstep starts the move right after the trial, where the
+    per-pixel frames alone would take long to pay for it."""
+    from glslcheck.backends.compiled_engine import engine
+
+    monkeypatch.setattr(tiered, "TRIAL_FRAMES", 1)
+    monkeypatch.delenv("GLSLCHECK_COMPILED_LANES", raising=False)
+    monkeypatch.setattr(engine.TieredProgram, "move_cost", lambda self: 5.0)  # lockstep: 5 s
+    monkeypatch.setattr(engine.TieredProgram, "load_cached", lambda self: False)
+    monkeypatch.setattr(tiered.TieredCpuProgram, "record", lambda self: {"pixel": "faster"})
+    monkeypatch.setattr(engine, "module_cached", lambda key: True)
+    clock["numpy"] = [10.0]  # NumPy's frames: 10 s each, twice lockstep's compile
+    clock["compiled"] = [0.001]  # per pixel wins its trial
+    prog = glslcheck.compile(make_shader(ANIMATED))
+    _frames(prog, [0.5])
+    assert prog.impl.settle(300) and prog.impl.mode == "compiled pixel", prog.impl.stay
+    tier = prog.impl.second
+    _frames(prog, [0.6])  # the trial's frame
+    assert tier.paid == pytest.approx(prog.impl.spent) and tier.paid >= 10.0
+    _frames(prog, [0.7])  # the trial kept it: paid for, this frame starts the move
+    assert tier._mover is not None and tier.settle(300) and tier.mode == "lanes8"
+
+
 def test_a_lockstep_module_made_earlier_renders_every_compiled_frame(
     numba, make_shader, eager, monkeypatch, tmp_path
 ):
@@ -440,7 +464,8 @@ def test_frames_earlier_processes_rendered_pay_for_lockstep(
     numba, make_shader, eager, monkeypatch, tmp_path, paid
 ):
     """Frames earlier processes kept in the record that have paid for the lockstep module make
-    it at the move, in place of the per-pixel tier; a few quick frames alone do not."""
+    it at the move, in place of the per-pixel tier; a few quick frames alone do not (this
+    process's NumPy frames count towards it too)."""
     monkeypatch.setenv("NUMBA_CACHE_DIR", str(tmp_path / "numba"))
     monkeypatch.delenv("GLSLCHECK_COMPILED_LANES", raising=False)
     (tmp_path / "Image.tier").write_text(json.dumps({"spent": paid}))
@@ -449,7 +474,7 @@ def test_frames_earlier_processes_rendered_pay_for_lockstep(
     _frames(prog, [0.5])
     assert prog.impl.settle(300), prog.impl.stay
     tier = prog.impl.second
-    assert tier.paid == paid
+    assert tier.paid == pytest.approx(paid + prog.impl.spent)  # this process's NumPy frame too
     times = [0.6, 0.7]
     got = _frames(prog, times)
     assert prog.impl.settle(300)
