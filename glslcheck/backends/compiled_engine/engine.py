@@ -682,24 +682,24 @@ TIER_LANES = 8  # the lockstep width TieredProgram moves to (8: AVX2's float32 l
 OVER = "over budget"  # a marker's text when the lockstep build was stopped
 EXITING = "exiting"  # build_apart's answer when the process exits under it
 # Lockstep's cold compile over the per-pixel module's, for TieredProgram's estimate of what
-# moving costs: the median over 66 lab and tuned real shaders (quartiles 2.2 and 3.6, 0.9 to
-# 7.9), each module's load as benchmarks/bench_compiled.py --fresh-cache --lanes 0,8 prints it
-# (wall time on a machine with a core to spare: the ratio of the CPU times compile_seconds gives).
-LOCKSTEP_COMPILE_RATIO = 2.7
+# moving costs: the median over 125 lab and real shaders (quartiles 2.14 and 2.69, 0.96 to 5.7),
+# in CPU seconds as compile_seconds records them (benchmarks/bench_lockstep_compile.py --lanes 0
+# and --lanes 8; docs/performance.md, "The lockstep estimate measured again").
+LOCKSTEP_COMPILE_RATIO = 2.4
 # The most CPU time a lockstep compile may take: a module whose estimate (move_cost) is longer is
 # not built, and a build still running after it is stopped (build_apart; the program stays per
-# pixel, and later processes do not try again). The real corpora's slowest lockstep compiles
-# took 124 s cold, for 2-4x faster frames: minutes of rendering to pay back.
+# pixel, and later processes do not try again). The real corpora's lockstep compiles take a
+# median of 3.3 s and at most 26 s CPU cold (h38-2d-sprites), for 2-4x faster frames.
 LOCKSTEP_BUDGET = 30.0
 # The most CPU time the default CPU program's compile of a per-pixel module may take beside the
-# NumPy frames (tiered.py): the real corpora's per-pixel compiles took a median of 2 s and at most
-# 36 s (h38-2d-sprites) cold, and they pay back more than lockstep's (NumPy frames are 3-10x the
-# compiled engine's on heavy shaders), so the budget is twice the slowest.
+# NumPy frames (tiered.py): the real corpora's per-pixel compiles take a median of 1.4 s and at
+# most 7.5 s CPU cold (h38-2d-sprites), and they pay back more than lockstep's (NumPy frames are
+# 3-10x the compiled engine's on heavy shaders); the budget leaves room for a slower machine.
 PIXEL_BUDGET = 60.0
 # Seconds of lockstep compile per line of the per-pixel module, the estimate when the per-pixel
 # module's compile time is not known (a numba cache filled before compile times were recorded):
-# the median of the same run (quartiles 0.0047 and 0.0093; a machine's speed moves it).
-LOCKSTEP_SECONDS_PER_LINE = 0.0063
+# the median of the same run (quartiles 0.0063 and 0.0124; a machine's speed moves it).
+LOCKSTEP_SECONDS_PER_LINE = 0.0083
 # Lockstep's first frames after a move, timed against the per-pixel frames before it (medians of
 # so many): lockstep is slower than per pixel on light shaders whose loops run over constant
 # arrays (the per-pixel module folds their globals; benchmarks/bench_compiled.py --lab-only).
