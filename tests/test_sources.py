@@ -67,7 +67,11 @@ def test_image_file_picks_up_sibling_common(tmp_path):
 # names of real GPR-200 repositories' Lab 6 tabs (the texts are ours)
 @pytest.mark.parametrize(
     "image, common",
-    [("Lab06Image.txt", "Lab06Common.txt"), ("Lab 6.txt", "Lab 6 Common.txt")],
+    [
+        ("Lab06Image.txt", "Lab06Common.txt"),
+        ("Lab 6.txt", "Lab 6 Common.txt"),
+        ("midTermBufA.txt", "midTermCommon.txt"),
+    ],
 )
 def test_pass_file_picks_up_the_common_named_for_it(tmp_path, image, common):
     (tmp_path / image).write_text("void mainImage(out vec4 c, in vec2 f) { c = vec4(g()); }\n")

@@ -137,6 +137,8 @@ def local_path(entry: dict, texts: Path = TEXTS) -> Path:
     path = texts / entry["id"] / Path(entry["path"]).name
     if path.exists():
         return path
+    if "tab" in entry and path.with_suffix(".txt").exists():  # a JSON export's tab (populate)
+        return path.with_suffix(".txt")
     if (texts / entry["id"]).is_dir():
         inside = [p for p in (texts / entry["id"]).iterdir() if p.is_file()]
         if len(inside) == 1:
@@ -189,11 +191,21 @@ def populate(
             if (
                 "tab" in e
             ):  # a Shadertoy JSON export: the tab's code, as the student's editor had it
-                data, out = _tab_code(data, e["tab"]).encode(), out.with_suffix(".txt")
+                code = _tab_code(data, e["tab"])
+                if code is None:
+                    print(f"missing: {e['id']} has no {e['tab']} pass")
+                    missing += 1
+                    continue
+                data, out = code.encode(), out.with_suffix(".txt")
             out.parent.mkdir(parents=True, exist_ok=True)
             out.write_bytes(data)
-            if "tab" not in e:  # the Common tab beside it, which glslcheck reads with it
+            # the Common tab beside it, which glslcheck reads with it
+            if "tab" not in e:
                 _copy_common(git_dir, e, out.parent)
+            elif e["tab"] != "Common":
+                common = _tab_code(shown.stdout, "Common")
+                if common is not None:
+                    (out.parent / "Common.txt").write_text(common)
     print(f"{len(manifest) - missing} of {len(manifest)} files in {texts}")
     return 1 if missing else 0
 
@@ -216,16 +228,17 @@ def _copy_common(git_dir: Path, e: dict, folder: Path) -> None:
             (folder / Path(common).name).write_bytes(shown.stdout)
 
 
-def _tab_code(export: bytes, tab: str) -> str:
+def _tab_code(export: bytes, tab: str) -> str | None:
     """The code of pass `tab` ("Image", "Common", "Buffer A", ...) of a Shadertoy JSON export: one
-    shader (`{"info", "renderpass"}`) or an account's export (`{"shaders": [...]}`, its first)."""
+    shader (`{"info", "renderpass"}`) or an account's export (`{"shaders": [...]}`, its first);
+    None when it has no such pass."""
     shader = json.loads(export)
     if "renderpass" not in shader:
         shader = shader["shaders"][0]
     for rp in shader["renderpass"]:
         if rp.get("name") == tab or (tab == "Image" and rp.get("type") == "image"):
             return rp["code"]
-    raise KeyError(f"no pass {tab!r} in the export")
+    return None
 
 
 _RUN = re.compile(r"\(lines? (\d+)(?:-(\d+))?\)")

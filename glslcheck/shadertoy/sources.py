@@ -398,12 +398,16 @@ def _named_common(path: str) -> bool:
     return key.endswith("common") and key != "common" and name_says_shader(path) is not False
 
 
+# the pass a prefixed tab file names after its prefix (`Lab06Image`, `midTermBufA`)
+_PASS_SUFFIX = compiled(r"(?:image|buf(?:fer)?[a-d]|cube(?:map)?a?|sound)$")
+
+
 def common_sibling(path: str, siblings: list[str]) -> str | None:
     """Which of a pass file's siblings is its Common tab: a file named `Common`, else the one
     named for the pass file's prefix (`Lab06Common.txt` beside `Lab06Image.txt` or
-    `Lab06.txt`); None when there is none, or several."""
-    own = _name_key(path)
-    prefix = own[: -len("image")] if own.endswith("image") else own
+    `Lab06.txt`, `midTermCommon.txt` beside `midTermBufA.txt`); None when there is none, or
+    several."""
+    prefix = _PASS_SUFFIX.sub("", _name_key(path))
     prefixed = []
     for f in siblings:
         if f == path:
