@@ -269,7 +269,7 @@ _NOT_NAME_WORDS = compiled(
 _AUTHOR_LABEL = compiled(
     r"^\W*@?(?:(?:modification|modifying|lead|co|student|project|lab|assignment|code|file)[\s-]+)?"
     r"(?:auth[oe]rs?|contributors?|team(?:\s+members)?|students?|names?|group(?:\s+members)?"
-    r"|partners?|programmers?|developers?)\s*[:\-]\s*(?P<rest>.*)$",
+    r"|partners?|programmers?|developers?|creators?)\s*(?:[:\-]|\s(?:are|is)\b)\s*(?P<rest>.*)$",
     re.I,
 )
 _AUTHOR_PHRASE = compiled(
