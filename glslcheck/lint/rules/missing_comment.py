@@ -78,8 +78,8 @@ spaced. It ends at an explaining comment, a covered statement, a credit or a sec
 top-level function or struct is a run of its own (global declarations in a row are one region,
 however blank lines space them), and a function with no explaining comment
 anywhere is one run from its signature to its last line: the one ambiguous block the rubric
-deducts once. That holds in a mostly uncommented file too, where some readers deduct each group
-a blank line parts (a reading too rare to report: docs/rules-accuracy.md, round 46).
+deducts once. That holds in a mostly uncommented file too: a few readers deduct each group a
+blank line parts there, most read the stretch as one section.
 
 A run is a certain deduction, except where the readings of the rubric part (a possible one):
 - the code of a section below its heading, parted from it by a blank line, when the heading is
@@ -743,13 +743,11 @@ class _Reader:
         self.heading = None
         self.reach = 0
         text = " ".join(c.text for c in self.on_line.get(number, ()))
-        span = (
-            UNLIMITED
-            if LIST_HEADING.match(text)
-            else 1
-            if TEMPLATE_COMMENT.match(text)
-            else self.span
-        )
+        span = self.span
+        if LIST_HEADING.match(text):
+            span = UNLIMITED  # a list's heading: the whole list
+        elif TEMPLATE_COMMENT.match(text):
+            span = 1  # the template's comment: its own line (and its copies: _template_goes_on)
         if self.cover is not None and self.last_comment == number - 1:
             self.cover.left = max(self.span, span)
             self.cover.text += " " + text
