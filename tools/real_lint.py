@@ -131,14 +131,19 @@ def load(corrected: bool = True) -> tuple[list[dict], dict]:
     return json.loads((CORPUS / "manifest.json").read_text()), load_labels(None, corrected)
 
 
-def local_path(entry: dict, texts: Path = TEXTS) -> Path:
-    """Where a manifest entry's text is: <texts>/<id>/<file name>, else the one file in
-    <texts>/<id>/, else a flat folder's <texts>/<id>.<ext> or <texts>/<file name>."""
+def text_path(entry: dict, texts: Path = TEXTS) -> Path:
+    """Where `populate` writes a manifest entry's text: <texts>/<id>/<file name>, a JSON export's
+    tab as <file stem>.txt."""
     path = texts / entry["id"] / Path(entry["path"]).name
+    return path.with_suffix(".txt") if "tab" in entry else path
+
+
+def local_path(entry: dict, texts: Path = TEXTS) -> Path:
+    """Where a manifest entry's text is: `text_path`, else the one file in <texts>/<id>/, else
+    a flat folder's <texts>/<id>.<ext> or <texts>/<file name>."""
+    path = text_path(entry, texts)
     if path.exists():
         return path
-    if "tab" in entry and path.with_suffix(".txt").exists():  # a JSON export's tab (populate)
-        return path.with_suffix(".txt")
     if (texts / entry["id"]).is_dir():
         inside = [p for p in (texts / entry["id"]).iterdir() if p.is_file()]
         if len(inside) == 1:
@@ -186,26 +191,24 @@ def populate(
                 print(f"missing: {e['id']} {e['repo']}@{e['commit'][:8]}:{e['path']}")
                 missing += 1
                 continue
-            out = texts / e["id"] / Path(e["path"]).name  # where score looks first
-            data = shown.stdout
-            if (
-                "tab" in e
-            ):  # a Shadertoy JSON export: the tab's code, as the student's editor had it
-                code = _tab_code(data, e["tab"])
+            out = text_path(e, texts)  # where score looks first
+            data, common = shown.stdout, None
+            if "tab" in e:  # a Shadertoy JSON export: the tab as the student's editor had it
+                passes = _export_passes(data)
+                code = _tab_code(passes, e["tab"])
                 if code is None:
                     print(f"missing: {e['id']} has no {e['tab']} pass")
                     missing += 1
                     continue
-                data, out = code.encode(), out.with_suffix(".txt")
+                data = code.encode()
+                common = _tab_code(passes, "Common") if e["tab"] != "Common" else None
             out.parent.mkdir(parents=True, exist_ok=True)
             out.write_bytes(data)
             # the Common tab beside it, which glslcheck reads with it
             if "tab" not in e:
                 _copy_common(git_dir, e, out.parent)
-            elif e["tab"] != "Common":
-                common = _tab_code(shown.stdout, "Common")
-                if common is not None:
-                    (out.parent / "Common.txt").write_text(common)
+            elif common is not None:
+                (out.parent / "Common.txt").write_text(common)
     print(f"{len(manifest) - missing} of {len(manifest)} files in {texts}")
     return 1 if missing else 0
 
@@ -228,14 +231,19 @@ def _copy_common(git_dir: Path, e: dict, folder: Path) -> None:
             (folder / Path(common).name).write_bytes(shown.stdout)
 
 
-def _tab_code(export: bytes, tab: str) -> str | None:
-    """The code of pass `tab` ("Image", "Common", "Buffer A", ...) of a Shadertoy JSON export: one
-    shader (`{"info", "renderpass"}`) or an account's export (`{"shaders": [...]}`, its first);
-    None when it has no such pass."""
+def _export_passes(export: bytes) -> list[dict]:
+    """The render passes of a Shadertoy JSON export: one shader (`{"info", "renderpass"}`) or an
+    account's export (`{"shaders": [...]}`, its first)."""
     shader = json.loads(export)
     if "renderpass" not in shader:
         shader = shader["shaders"][0]
-    for rp in shader["renderpass"]:
+    return shader["renderpass"]
+
+
+def _tab_code(passes: list[dict], tab: str) -> str | None:
+    """The code of pass `tab` ("Image", "Common", "Buffer A", ...) among an export's passes;
+    None when it has no such pass."""
+    for rp in passes:
         if rp.get("name") == tab or (tab == "Image" and rp.get("type") == "image"):
             return rp["code"]
     return None
