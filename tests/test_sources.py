@@ -38,6 +38,14 @@ from glslcheck.shadertoy.sources import (
         ("Cube A.glsl", "Cube A"),
         ("sound.glsl", "Sound"),
         ("spheres.glsl", None),
+        # what students add to a tab's name in real course repositories
+        ("Common Tab.txt", "Common"),
+        ("Image Tab.txt", "Image"),
+        ("Buffer A (Rotating Cube Map + Lambert).txt", "Buffer A"),
+        ("Buffer C (FIREBENDING).txt", "Buffer C"),
+        ("notes (old).txt", None),
+        ("kebab.txt", None),
+        ("tab.txt", None),
     ],
 )
 def test_tab_names(name, tab):
@@ -71,6 +79,7 @@ def test_image_file_picks_up_sibling_common(tmp_path):
         ("Lab06Image.txt", "Lab06Common.txt"),
         ("Lab 6.txt", "Lab 6 Common.txt"),
         ("midTermBufA.txt", "midTermCommon.txt"),
+        ("shadertoy_midterm_bufferA.txt", "shadertoy_midterm_common_tab.txt"),
     ],
 )
 def test_pass_file_picks_up_the_common_named_for_it(tmp_path, image, common):
@@ -83,6 +92,24 @@ def test_pass_file_picks_up_the_common_named_for_it(tmp_path, image, common):
     walked = {s.root: sorted(s.tabs) for s in find_shaders([str(tmp_path)])}
     assert walked[str(tmp_path / image)] == ["Common", "Image"]
     assert walked[str(tmp_path / common)] == ["Common"]  # linted as the Common tab it is
+
+
+def test_a_folder_of_tabs_named_with_tab_and_descriptions(tmp_path):
+    # a real Fall 2020 midterm's layout (names only; the texts are ours)
+    (tmp_path / "Image Tab.txt").write_text(
+        "void mainImage(out vec4 c, in vec2 f) { c = texture(iChannel0, f) * g(); }\n"
+    )
+    (tmp_path / "Buffer A (Rotating Cube Map + Lambert).txt").write_text(
+        "void mainImage(out vec4 c, in vec2 f) { c = vec4(g()); }\n"
+    )
+    (tmp_path / "Buffer B.txt").write_text(
+        "void mainImage(out vec4 c, in vec2 f) { c = vec4(g()); }\n"
+    )
+    (tmp_path / "Common Tab.txt").write_text("float g() { return 1.0; }\n")
+    shader = load_shader(tmp_path)
+    assert sorted(shader.tabs) == ["Buffer A", "Buffer B", "Common", "Image"]
+    alone = load_shader(tmp_path / "Buffer B.txt")
+    assert alone.common is not None and alone.common.path.endswith("Common Tab.txt")
 
 
 def test_a_common_named_for_no_pass_is_not_picked_up(tmp_path):

@@ -40,6 +40,8 @@ TAB_NAMES = ("Common", "Buffer A", "Buffer B", "Buffer C", "Buffer D", "Cube A",
 BUFFER_TABS = tuple(t for t in TAB_NAMES if t.startswith("Buffer "))
 _SEPARATORS = compiled(r"[\s_\-]")  # spaces, `_` and `-` in a tab file's name
 _TAB_KEYS = {_SEPARATORS.sub("", t).lower(): t for t in TAB_NAMES}
+_BRACKETS = compiled(r"\s*\([^()]*\)")  # `Buffer C (FIREBENDING)`: a description
+_TAB_WORD = compiled(r"(?i)[\s_\-]+tab$")  # `Common Tab`, `midterm_common_tab`
 MAX_FILE_BYTES = 1_000_000
 
 
@@ -134,12 +136,7 @@ class Shader:
 
 def tab_name(path: str | os.PathLike) -> str | None:
     """The canonical tab a file name denotes, or None when it names no tab."""
-    stem = path_name(path)
-    for ext in SHADER_EXTENSIONS[:-1]:
-        if stem.lower().endswith(ext):
-            stem = stem[: -len(ext)]
-            break
-    return _TAB_KEYS.get(_SEPARATORS.sub("", stem).lower())
+    return _TAB_KEYS.get(_name_key(path))
 
 
 def decode(data: bytes, path: str) -> str:
@@ -382,13 +379,16 @@ def _commons(entries: list[str]) -> list[str]:
     return [f for f in entries if tab_name(f) == "Common" or _named_common(f)]
 
 
-def _name_key(path: str) -> str:
-    """A file's name as tab names are compared: no extension, separators or case."""
+def _name_key(path: str | os.PathLike) -> str:
+    """A file's name as tab names are compared: no extension, separators or case, nor what
+    students add to a tab's name: a description in brackets (`Buffer A (Cube Map).txt`) or
+    the word "tab" (`Common Tab.txt`, `midterm_image_tab.txt`)."""
     stem = path_name(path)
     for ext in SHADER_EXTENSIONS[:-1]:
         if stem.lower().endswith(ext):
             stem = stem[: -len(ext)]
             break
+    stem = _TAB_WORD.sub("", _BRACKETS.sub("", stem))
     return _SEPARATORS.sub("", stem).lower()
 
 
