@@ -9,16 +9,20 @@ core; a compile that never ends costs that shader only, stopped at --timeout), w
 the shader's module with --lanes pixels in lockstep (engine.generate) and loads it
 (CompiledProgram.load: numba compiles every function the module's render loop reaches). All
 children share one numba cache, empty at the start and first filled by a warm-up child (the
-first lab shader, not counted): the scalar runtime's own functions are then loaded from it, as
-on a user's machine, and every module is compiled cold (its key is new to the cache).
+first lab shader, not counted): the runtime's functions it calls are then loaded from it, as on
+a user's machine, and every module is compiled cold (its key is new to the cache). A runtime
+function is compiled once a cache for each argument types, by the first shader that calls it
+so (sin and cos, pow...): the "runtime" seconds of that shader, which the shaders after it in
+the same run do not pay (the order of the shaders moves them).
 
 Per shader: the seconds of generating the module ("gen") and of compiling it ("compile", numba's
 wall time, the figure the goal is about; "cpu", the CPU time of it, which a loaded machine moves
-less), the module's lines, its largest function's
-statements, and numba's slowest passes over all its functions (--passes of them). A shader the
-rewrite does not handle is compiled per pixel and says so ("per pixel"). Then the median and the
-maximum of the compile times and the slowest shaders, with the load average at the start and the
-end (the machine is shared: a loaded machine moves every figure).
+less; "runtime", the part of it that compiled runtime functions the cache lacked, see above),
+the module's lines, its largest function's statements, and numba's slowest passes over all its
+functions (--passes of them). A shader the rewrite does not handle is compiled per pixel and
+says so ("per pixel"). Then the median and the maximum of the compile times and the slowest
+shaders, with the load average at the start and the end (the machine is shared: a loaded machine
+moves every figure).
 
 --against CHECKOUT: before and after a change. The shaders are compiled by that checkout's
 glslcheck and by this one in turns (each with its own cache, warmed alike), so both see the same
@@ -47,14 +51,40 @@ CHILD = r"""
 import ast, json, sys, time
 from collections import defaultdict
 
+from numba.core import event
+
 from glslcheck.backends.compiled_engine.engine import CompiledProgram, generate
+from glslcheck.backends.compiled_engine.numba_linking import MODULE_PREFIX
 from glslcheck.shadertoy.sources import load_shader
+
+
+# CPU seconds numba spends compiling functions that are not the module's (the runtime's, for
+# argument types the cache lacks: numba signals compiles, not cache loads), counted from the
+# outermost such compile (one thread compiles at a time: numba's compiler lock)
+class Runtime(event.Listener):
+    def __init__(self):
+        self.depth, self.start, self.seconds = 0, 0.0, 0.0
+
+    def on_start(self, ev):
+        if not ev.data["dispatcher"].py_func.__module__.startswith(MODULE_PREFIX):
+            if self.depth == 0:
+                self.start = time.process_time()
+            self.depth += 1
+
+    def on_end(self, ev):
+        if not ev.data["dispatcher"].py_func.__module__.startswith(MODULE_PREFIX):
+            self.depth -= 1
+            if self.depth == 0:
+                self.seconds += time.process_time() - self.start
+
 
 path, lanes = sys.argv[1], int(sys.argv[2])
 t0 = time.perf_counter()
 source, tab = generate(load_shader(path), lanes=lanes)
 gen = time.perf_counter() - t0
 prog = CompiledProgram(source, tab)
+runtime = Runtime()
+event.register("numba:compile", runtime)
 c0 = time.process_time()
 mod = prog.load(bounded=False)
 cpu = time.process_time() - c0
@@ -80,6 +110,7 @@ print(json.dumps(dict(
     gen=gen,
     compile=prog.load_seconds,
     cpu=cpu,
+    runtime=runtime.seconds,
     cold=prog.cold,
     lockstep="LANES_FALLBACK" not in source and lanes > 0,
     lines=source.count("\n"),
@@ -125,7 +156,8 @@ def _line(r: dict, passes: int, label: str) -> str:
     top = ", ".join(f"{n} {t:.1f}" for n, t in r["passes"][:passes])
     mode = "lockstep" if r["lockstep"] else "per pixel"
     return (
-        f"  {r['shader']:28s}{label} compile {r['compile']:7.2f} s (cpu {r['cpu']:6.2f})"
+        f"  {r['shader']:28s}{label} compile {r['compile']:7.2f} s (cpu {r['cpu']:6.2f}, "
+        f"runtime {r.get('runtime', 0.0):5.2f})"
         f"  gen {r['gen']:5.2f} s  {mode:9s} {r['lines']:6d} lines, largest "
         f"{r['largest'][1]} {r['largest'][0]} stmts  ({top})"
     )

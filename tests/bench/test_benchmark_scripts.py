@@ -100,3 +100,34 @@ def test_ab_lanes_math_prints_its_figures(numba):
         timeout=600,
     )
     assert "05_blinn_phong" in out and "same bits True" in out and "after/before" in out, out
+
+
+def test_bench_lockstep_compile_tells_the_runtime_apart(numba, tmp_path):
+    """Per pixel, after the warm-up child (01_spheres_procedural): that shader's module compiles
+    with every runtime function it calls cached (no runtime seconds), bonus_animated_lights's
+    compiles sin and cos, which the warm-up never called (runtime seconds counted)."""
+    import json
+    import re
+
+    def calls_trig(shader: str) -> bool:
+        text = "".join(p.read_text() for p in (ROOT / "lab_shaders" / shader).glob("*.glsl"))
+        return re.search(r"\b(sin|cos)\s*\(", text) is not None
+
+    assert not calls_trig("01_spheres_procedural") and calls_trig("bonus_animated_lights")
+    out = tmp_path / "rows.json"
+    _run(
+        "bench_lockstep_compile.py",
+        "--groups",
+        "lab",
+        "--lanes",
+        "0",
+        "--only",
+        "01_spheres_procedural,bonus_animated_lights",
+        "--json",
+        str(out),
+        timeout=600,
+    )
+    rows = {r["shader"]: r for r in json.loads(out.read_text())}
+    assert rows["01_spheres_procedural"]["runtime"] == 0.0, rows
+    animated = rows["bonus_animated_lights"]
+    assert 0.0 < animated["runtime"] < animated["cpu"], rows
