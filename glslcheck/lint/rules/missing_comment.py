@@ -74,7 +74,9 @@ Runs, what one finding is: one finding per run of uncovered statements, at its f
 naming its last, as the rubric deducts "per ambiguous section/block/line". A run goes on across
 blank lines and commented-out code: uncommented code is one ambiguous section however it is
 spaced. It ends at an explaining comment, a covered statement, a credit or a section marker
-(they start another part), and the close of the block it is in (`} else {` goes on). Each
+(they start another part), and the close of the block it started in (`} else {` goes on): a
+run that reaches into an `if`'s or a loop's body goes on past its close, since an uncommented
+stretch with a branch in it is still one section. Each
 top-level function or struct is a run of its own (global declarations in a row are one region,
 however blank lines space them), and a function with no explaining comment
 anywhere is one run from its signature to its last line: the one ambiguous block the rubric
@@ -326,6 +328,7 @@ class _Reader:
                 self.on_line.setdefault(n, []).append(c)
         self.runs: list[tuple[int, int, int, str]] = []
         self.run: list | None = None  # [first, last, code lines, reading or ""]
+        self.run_depth = 0  # the block depth the open run started at
         # the depth of a heading: an explaining comment followed by a blank line. Whether it
         # explains the groups of its section below the blank is a reading (a possible deduction)
         self.heading: int | None = None
@@ -381,6 +384,7 @@ class _Reader:
             reach = self.reach > 0 and self.function is not None and self.depth > 0
             reading = self.reach_reading if reach else HEADING if under_heading else ""
             self.run = [lines[0], lines[-1], len(lines), reading]
+            self.run_depth = self.depth
             self.signature_run = signature
         else:
             self.run[1] = lines[-1]
@@ -568,7 +572,7 @@ class _Reader:
                 self.end_function()
                 self.adjacent_definitions()
                 self.closed_at = self.number
-            elif not self.else_follows(line):
+            elif not self.else_follows(line) and self.run_depth > self.depth:
                 self.close_run()  # the block the run was in ends (`} else {` goes on)
 
     def open_blocks(self, opened: int, rest: str = "") -> None:
@@ -872,8 +876,8 @@ def uncovered_runs(scan, kinds: list[LineKind], span: int) -> list[tuple[int, in
     as end_function decides. A trailing comment covers its statement. Struct members and a
     function's signature use up none of the span; trivial statements need no comment; credits,
     markers and commented-out code explain nothing. A run ends at a covered statement, an
-    explaining comment, a credit or a marker, the close of its block, or (at top level) a blank
-    line; in a body it goes on across blank lines and commented-out code."""
+    explaining comment, a credit or a marker, the close of the block it started in, or (at top
+    level) a blank line; in a body it goes on across blank lines and commented-out code."""
     return _Reader(scan, kinds, span).read()
 
 
