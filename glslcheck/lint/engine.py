@@ -187,38 +187,51 @@ _MAX_RECOVERIES = 8
 
 def _build_tree(units: list[Source], tab: str) -> ProgramTree:
     from ..base.diagnostics import GlslError
+    from ..base.records import replace
     from ..frontend.parser import parse_units
     from ..semantics import check
-    from .recover import drop_declaration
+    from .recover import RENAMED, drop_declaration, rename_reserved
 
     errors: list[Diagnostic] = []
+    renamed: list[Diagnostic] = []  # reserved words used as names: reported, the code read whole
     dropped: list[tuple[str, int, int, str]] = []
     for _ in range(_MAX_RECOVERIES + 1):
         try:
             parsed = parse_units(units)
             break
         except GlslError as e:
-            errors.extend(d for d in e.diagnostics if d.severity == "error")
+            found = [d for d in e.diagnostics if d.severity == "error"]
             loc = next((d.loc for d in e.diagnostics if d.loc is not None), None)
+            spelt = rename_reserved(units, loc) if loc is not None else None
+            if spelt is not None:
+                units, name = spelt
+                said = f"the rest of the file is linted with it read as '{name}'"
+                renamed.extend(
+                    replace(d, rule=RENAMED, notes=[*d.notes, Diagnostic(said, loc, "note")])
+                    for d in found
+                )
+                continue
+            errors.extend(found)
             units, region = (
                 drop_declaration(units, loc, dropped) if loc is not None else (units, None)
             )
             if region is None:
-                return ProgramTree(errors=errors, dropped=dropped)
+                return ProgramTree(errors=renamed + errors, dropped=dropped)
             dropped.append(region)
         except RecursionError:
-            return ProgramTree(errors=errors, dropped=dropped)
+            return ProgramTree(errors=renamed + errors, dropped=dropped)
     else:
-        return ProgramTree(errors=errors, dropped=dropped)
+        return ProgramTree(errors=renamed + errors, dropped=dropped)
     try:
         model = check(parsed, tab, collect=True)
     except (GlslError, RecursionError) as e:
-        return ProgramTree(errors=errors + list(getattr(e, "diagnostics", [])), dropped=dropped)
+        found = list(getattr(e, "diagnostics", []))
+        return ProgramTree(errors=renamed + errors + found, dropped=dropped)
     if dropped:  # a kept prototype has no body: "declared but not defined" is not the user's error
         texts = {u.path: u.text.split("\n") for u in units}
         model.diagnostics = [d for d in model.diagnostics if not _in_dropped(d, dropped, texts)]
     model.diagnostics[:0] = errors
-    return ProgramTree(model.ast, model, model.errors, dropped)
+    return ProgramTree(model.ast, model, renamed + model.errors, dropped)
 
 
 def _in_dropped(
@@ -284,11 +297,7 @@ def lint_source(
         for rule in rules.values():
             if rule.needs != phase or not config.enabled(rule.name):
                 continue
-            if (
-                phase == "ast"
-                and config.enabled(COMPILE_ERROR)
-                and (ctx.compile_errors or ctx.dropped)
-            ):
+            if phase == "ast" and config.enabled(COMPILE_ERROR) and (_blocking(ctx) or ctx.dropped):
                 findings.extend(_not_run(rule, ctx))
             if phase == "ast" and (
                 ctx.ast is None or (rule.reads == "program" and _has_errors(ctx))
@@ -316,14 +325,23 @@ COMPILE_ERROR = "compile-error"
 
 
 def _has_errors(ctx: LintContext) -> bool:
-    return bool(ctx.compile_errors or ctx.dropped or (ctx.model is not None and ctx.model.errors))
+    return bool(_blocking(ctx) or ctx.dropped or (ctx.model is not None and ctx.model.errors))
+
+
+def _blocking(ctx: LintContext) -> list[Diagnostic]:
+    """This file's compile errors but the reserved words recovery renamed: the code they are
+    in was read whole, and every rule ran on it."""
+    from .recover import RENAMED
+
+    return [d for d in ctx.compile_errors if d.rule != RENAMED]
 
 
 def _not_run(rule: Rule, ctx: LintContext) -> list[Finding]:
     """One note when the AST rule `rule` could not run on all of this file: on which functions
     (they do not compile), or on the whole file (no tree, or a rule that reads the whole
     program, which has errors)."""
-    first = ctx.compile_errors[0] if ctx.compile_errors else None
+    blocking = _blocking(ctx)
+    first = blocking[0] if blocking else None
     if ctx.ast is None or (rule.reads == "program" and _has_errors(ctx)):
         if first is None:
             return []

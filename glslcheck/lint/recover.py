@@ -8,7 +8,10 @@ take the declaration holding the error out of the user's text and parses again:
   still checks; only its body is blanked;
 * anything else (a struct, a global, a function whose header is the broken part, a second
   error in a kept prototype) is blanked whole;
-* a preprocessor directive with an error is blanked (its line only).
+* a preprocessor directive with an error is blanked (its line only);
+* a word GLSL ES 3.00 reserves used as a name (`float sample(vec2 uv)`, `vec3 filter`) is
+  spelt with one letter's case changed (`Sample`) wherever the program uses it, so nothing is
+  dropped: the error is reported once, at its first use, and every rule reads the rest.
 
 Blanking replaces characters with spaces and keeps every newline, so every location after the
 drop still points at the user's own line and column. Declarations are found on the file's text
@@ -157,3 +160,37 @@ def drop_declaration(
     new_units = list(units)
     new_units[index] = replace(unit, text=new_text)
     return new_units, (unit.path, first, last, name)
+
+
+_WORD = compiled(r"[A-Za-z_]\w*")
+RENAMED = "reserved-word"  # the rule of a reserved word's error that rename_reserved recovered
+
+
+def rename_reserved(units: list[Source], loc: Location) -> tuple[list[Source], str] | None:
+    """`units` with the reserved word at `loc` used as a name renamed in the code of every unit
+    (the same length, so every location stays the user's), and the name it is read as; None
+    when the error at `loc` is not such a word, or no spelling of it is free."""
+    from ..language.builtin_functions import RESERVED_WORDS
+
+    unit = next((u for u in units if u.path == loc.path), None)
+    if unit is None:
+        return None
+    at = _offset(unit.text, loc.line, loc.column)
+    found = _WORD.match(unit.text, at)
+    word = found.group(0) if found else ""
+    if word not in RESERVED_WORDS:
+        return None
+    used = {m.group(0) for u in units for m in _WORD.finditer(u.text)}
+    spellings = (word[:k] + word[k].swapcase() + word[k + 1 :] for k in range(len(word)))
+    name = next((n for n in spellings if n not in used and n not in RESERVED_WORDS), None)
+    if name is None:
+        return None
+    out = []
+    for u in units:
+        code = dict(_code_chars(u.text))
+        text = u.text
+        for m in reversed(list(_WORD.finditer(text))):
+            if m.group(0) == word and m.start() in code:
+                text = text[: m.start()] + name + text[m.end() :]
+        out.append(replace(u, text=text) if text != u.text else u)
+    return out, name

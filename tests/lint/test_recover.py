@@ -72,3 +72,41 @@ def test_a_dropped_declaration_whose_text_is_no_regular_expression(tmp_path, cap
     assert (
         "Image.glsl:5:14: compile-error 'float f(float)' is declared but has no definition" in out
     )
+
+
+RESERVED = """// sample: one texel of the background (sample is also this comment's word)
+vec3 sample(in vec2 uv) { return vec3(uv, iTime); }
+void mainImage(out vec4 c, in vec2 f) { c = vec4(sample(f / iResolution.xy), 1.0); }
+"""
+
+
+def test_a_reserved_word_as_a_name_is_spelt_another_way_in_the_code_only():
+    from glslcheck.lint.recover import rename_reserved
+
+    units = [Source("Image.glsl", RESERVED)]
+    new, name = rename_reserved(units, Location("Image.glsl", 2, 6))
+    assert name == "Sample"
+    assert new[0].text == RESERVED.replace("vec3 sample(", "vec3 Sample(").replace(
+        "vec4(sample(", "vec4(Sample("
+    )
+    taken = [Source("Image.glsl", RESERVED + "float Sample = 1.0;\n")]
+    assert rename_reserved(taken, Location("Image.glsl", 2, 6))[1] == "sAmple"
+    assert rename_reserved(units, Location("Image.glsl", 2, 1)) is None  # `vec3`: no such word
+
+
+def test_a_reserved_word_as_a_name_leaves_every_rule_running(tmp_path):
+    """One compile error, with a note of the name the rest is read as, and the findings of the
+    function it names: no rule is left out of it."""
+    from glslcheck.lint.engine import lint_paths
+
+    path = tmp_path / "Image.glsl"
+    path.write_text(RESERVED)
+    findings = [f for f in lint_paths([str(path)]).findings if f.rule != "missing-comment"]
+    errors = [f for f in findings if f.rule == "compile-error"]
+    assert [(f.loc.line, f.loc.column, f.severity) for f in errors] == [(2, 6, "error")]
+    assert "'sample' is a reserved word" in errors[0].message
+    assert [n.message for n in errors[0].notes] == [
+        "the rest of the file is linted with it read as 'Sample'"
+    ]
+    uniforms = [f for f in findings if f.rule == "uniform-outside-mainimage"]
+    assert [(f.loc.line, f.loc.column) for f in uniforms] == [(2, 43)]
