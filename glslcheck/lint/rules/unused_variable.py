@@ -21,6 +21,11 @@ every place the value is computed. A global, a `const` local (a named constant, 
 `warm` and `cool`), a local declared with no value or copied from another variable is a note,
 not a deduction.
 
+Unused computed locals declared in statements one right after the other in a block (`vec4
+chan2 = chan2(uv); vec4 chan3 = chan3(uv);`, or effects tried one after another and none kept)
+are one finding, at the first: a group of values left unused together is one leftover, which
+readers deduct once.
+
 Unused locals (not `const`) whose every value is typed in (`float waveFrequency = 7.5;`,
 `vec3 bgColor = vec3(0, 1, 0);`: literals and constructors of them) are one possible deduction
 a function, a setting left behind when its use was removed or commented out: readers deduct
@@ -224,15 +229,15 @@ def check(ctx: LintContext) -> Iterator[Diagnostic]:
             for d in decl.declarators:
                 yield from _unused(ctx, model, d, reads, "global")
     for fn in program_facts(ctx.model).in_file(ctx.path):
-        found: list[Diagnostic] = []
+        found: list[tuple[A.Declarator, Diagnostic]] = []
         typed: list[A.Declarator] = []  # unused locals set only to values typed in
         for n in fn.nodes:
             if type(n) is A.Declarator:
                 if _typed_in_only(fn, n, reads):
                     typed.append(n)
                 else:
-                    found.extend(_unused(ctx, model, n, reads, "local", fn))
-        yield from _with_typed_in(found, typed)
+                    found.extend((n, f) for f in _unused(ctx, model, n, reads, "local", fn))
+        yield from _with_typed_in(_adjacent_joined(fn, found), typed)
         reported: set[int] = set()
         yield from _overwritten(fn, reads, reported)
         yield from _replaced_on_every_path(fn, reads, reported)
@@ -596,6 +601,51 @@ def _typed_in_only(fn, d: A.Declarator, reads: set[int]) -> bool:
         if value is None or not _typed_in(model, value):
             return False
     return True
+
+
+def _adjacent_joined(fn, found: list[tuple[A.Declarator, Diagnostic]]) -> list[Diagnostic]:
+    """The unused computed locals' findings, those declared in statements one right after the
+    other in a block joined into the first's: a group of values left unused together (`vec4
+    chan2 = chan2(uv); vec4 chan3 = chan3(uv);`) is one leftover, deducted once."""
+    out: list[Diagnostic] = []
+    groups: list[tuple[Diagnostic, list[str]]] = []  # each group's finding, and the others
+    last: tuple[Any, int] | None = None  # the block and index of the last deduction's statement
+    for d, f in found:
+        at = _statement_at(fn, d)
+        if f.severity == "note" or at is None:
+            out.append(f)
+            continue
+        if groups and last is not None and at[0] is last[0] and at[1] - last[1] <= 1:
+            loc = d.name_loc if d.name_loc.line else d.loc
+            groups[-1][1].append(f"'{d.name}' (line {loc.line})")
+            groups[-1][0].notes.append(
+                Diagnostic("also computed and never read", loc, severity="note")
+            )
+            groups[-1][0].notes.extend(f.notes)
+        else:
+            out.append(f)
+            groups.append((f, []))
+        last = at
+    for f, others in groups:
+        if others:
+            f.message += (
+                f"; nor {'is' if len(others) == 1 else 'are'} {', '.join(others)}, declared in "
+                f"the statement{'s' if len(others) > 1 else ''} right after it"
+            )
+    return out
+
+
+def _statement_at(fn, d: A.Declarator) -> tuple[Any, int] | None:
+    """(the block, the index in it) of the statement declaring `d`."""
+    node: Any = d
+    while True:
+        parent = fn.parent.get(id(node))
+        if parent is None:
+            return None
+        if type(parent) is A.Compound:
+            index = next((i for i, s in enumerate(parent.stmts) if s is node), None)
+            return None if index is None else (parent, index)
+        node = parent
 
 
 def _with_typed_in(found: list[Diagnostic], typed: list[A.Declarator]) -> Iterator[Diagnostic]:
