@@ -189,3 +189,53 @@ def test_a_module_from_numbas_cache_gives_the_same_bits(numba, tmp_path, lanes):
     source, where = generate(load_shader(lab), lanes=lanes)
     here = CompiledProgram(source, where).render(size=(64, 36), time=1.3)
     assert runs[0][1] == runs[1][1] == hashlib.sha256(here.tobytes()).hexdigest()
+
+
+# calls the same in every pixel (constant_globals.load_time_call): computed when the module
+# loads, by init_globals; and calls that are not
+LOAD_TIME = """
+const float kTilt = 0.35;
+mat2 rot(float a) { return mat2(cos(a), sin(a), -sin(a), cos(a)); }
+vec2 offset(float a, vec2 b) { return b * exp2(a) + vec2(sin(a)); }
+float wobble(float a) { return sin(a + iTime); }
+float summed(float a) { float s = 0.0; for (int i = 0; i < 3; i++) s += a * float(i); return s; }
+float scene(vec3 p) {
+    p.xz = rot(0.7) * p.xz;                   // frozen
+    p.yz = rot(-kTilt) * p.yz;                // frozen: a const global argument
+    p.xy += offset(-1.25, vec2(0.5, -0.25));  // frozen: two arguments
+    p.x += wobble(0.3);                       // not: it reads iTime
+    p.y += summed(0.2);                       // not: it runs a loop
+    p.z *= rot(p.x)[0].x;                     // not: an argument per pixel
+    return length(p) - 1.0;
+}
+void mainImage(out vec4 c, in vec2 f) {
+    vec2 uv = (f - 0.5 * iResolution.xy) / iResolution.y;
+    vec3 ro = vec3(0.0, 0.0, -3.0), rd = normalize(vec3(uv, 1.0));
+    float t = 0.0;
+    for (int i = 0; i < 40; i++) { float d = scene(ro + rd * t); if (d < 1e-3) break; t += d; }
+    c = vec4(vec3(exp(-0.3 * t)) * (rot(0.7) * vec2(1.0, 0.5)).xyx, 1.0);
+}
+"""
+
+
+def test_constant_calls_are_computed_at_load(numba, make_shader):
+    """rot(0.7) twice (one value), rot(-kTilt) and offset(-1.25, ...) run in init_globals; the
+    calls that read a uniform, run a loop or take a per-pixel argument stay where they are. The
+    frames are the bits of the NumPy backend and of lockstep."""
+    from glslcheck.backends.compiled_engine.engine import generate
+
+    shader = make_shader(LOAD_TIME)
+    source, _ = generate(shader, lanes=0)
+    init = source[source.index("def init_globals") : source.index("def shade")]
+    scene = source[source.index("def f_scene") : source.index("def f_mainImage")]
+    assert init.count("= f_rot") == 2 and init.count("= f_offset") == 1
+    assert "f_rot" not in scene.replace("f_rot(", "") and scene.count("f_rot(") == 1
+    assert "f_wobble" in scene and "f_summed" in scene and "f_offset" not in scene
+    _compare(shader)
+    _compare(shader, time=2.75)
+    _same_bits(shader, 8)
+    lanes, _ = generate(shader, lanes=8)
+    assert "LANES = 8" in lanes
+    init8 = lanes[lanes.index("def init_globals") :]
+    init8 = init8[: init8.index("\n@")]
+    assert init8.count("= f_rot") == 2 and init8.count("(True, True") == 3

@@ -69,7 +69,13 @@ from ..cpu_core import nir_fold
 from ..cpu_core.common import LOOP_CAP, comment_safe, python_ident
 from ..cpu_core.facts import Facts
 from ..cpu_core.uniformity import Uniformity
-from .constant_globals import frozen_globals, frozen_parts, reset_kinds, written_state
+from .constant_globals import (
+    emit_load_time_calls,
+    frozen_globals,
+    frozen_parts,
+    reset_kinds,
+    written_state,
+)
 from .expressions import ExpressionEmitter, FnState, nir_chain_params
 from .module_text import FREEZE, HEADER, RENDER
 from .ray_dots import ray_param_names
@@ -136,6 +142,9 @@ class Codegen(ExpressionEmitter):
         self.facts = Facts(model, self.functions)  # (nir_fold.mix_form reads it: fold_context)
         # globals the functions read from module constants (constant_globals.py)
         self.frozen = frozen_globals(model, self.facts)
+        # calls computed once at load (constant_globals.load_time_parts): key -> (call,
+        # function, variant seed, state slots)
+        self.load_calls: dict[tuple, tuple[A.Call, Symbol, frozenset, list[str]]] = {}
         self.lines: list[str] = []
         self.indent = 0
         self.n = 0
@@ -414,7 +423,7 @@ class Codegen(ExpressionEmitter):
         for kind in sorted(set(KIND_ARRAY.values()) - resets):  # (its template all frame)
             render = render.replace(f"                aset({kind}, 0, gt{kind[1]})\n", "")
         out.append(render)
-        if self.frozen:
+        if self.frozen or self.load_calls:
             out.append(FREEZE)
         return "\n".join(out) + "\n"
 
@@ -440,6 +449,7 @@ class Codegen(ExpressionEmitter):
                 self.write(parts, self.expr(init).parts)
             else:
                 self.write(parts, self.zero_parts(sym.type, d))
+        emit_load_time_calls(self)
         self.emit("return 0")
         self.indent -= 1
         self.fn = None

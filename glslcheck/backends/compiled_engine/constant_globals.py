@@ -16,6 +16,11 @@ Not frozen: a global whose initializer reads a uniform (its value changes with t
 nothing at all when a global initializer calls a user function (a call may run a loop, whose
 budget and cap belong to a frame, not to the load).
 
+A call whose value is the same in every pixel of every frame is computed there too
+(`load_time_call`): `rotmat(-0.7)` in a raymarcher's distance function, which every pixel would
+otherwise compute at every step (its sin and cos llvmpipe's, not cheap). The initializer calls
+the same generated function with the same constant arguments, so the value has the call's bits.
+
 The per-pixel reset (render_rows copying the template into the state before each pixel) is
 needed only for the state kinds a function writes (`written_state`): the others hold the
 template's values for the whole frame.
@@ -27,7 +32,7 @@ import ast
 from typing import Any
 
 from ...frontend import syntax as A
-from .values import Arr
+from .values import KIND_ARRAY, Arr, leaves
 
 TYPE_CHECKING = False  # not typing's: importing typing costs every start-up
 if TYPE_CHECKING:
@@ -135,3 +140,104 @@ def written_state(functions: Any) -> dict[str, set | None]:
 def reset_kinds(written: dict[str, set | None]) -> set[str]:
     """The state arrays reset before each pixel: those some function writes."""
     return {k for k, slots in written.items() if slots is None or slots}
+
+
+def load_time_call(model: Model, facts: Facts, frozen: set[int], call: A.Call, fn: Any) -> bool:
+    """Whether the call of user function `fn` can be computed once, when the module is loaded:
+    each argument a constant expression (literals, and globals only), each parameter `in`, and
+    `fn`, through the functions it calls, runs no
+    loop (the load has no loop budget), reads no uniform, no lane state and no global but the
+    frozen ones, writes no global, never discards and takes no derivative."""
+    from ...semantics.model import Symbol
+
+    if fn.type.is_void or any(d != "in" for _, _, d in fn.params):
+        return False
+    for a in call.args:
+        if model.const_value(a) is None:
+            return False
+        for n in a.walk():
+            if isinstance(n, A.Identifier):
+                sym = model.symbol_of(n)
+                if sym is None or sym.kind != "global" or id(sym) not in frozen:
+                    return False
+    if not facts.closed(fn) or id(fn) in facts.uses_derivs:
+        return False
+    if not facts.global_effects(fn)[0] <= frozen:
+        return False
+    seen: set[int] = set()
+    todo = [fn]
+    while todo:
+        f = todo.pop()
+        if id(f) in seen:
+            continue
+        seen.add(id(f))
+        for n in f.node.body.walk():
+            if isinstance(n, (A.For, A.While, A.DoWhile)):
+                return False
+            if isinstance(n, A.Identifier):
+                sym = model.symbol_of(n)
+                if sym is not None and (
+                    sym.kind == "uniform"
+                    or (sym.kind == "global" and sym.qualifier == "uniform")
+                    or (sym.kind == "builtin-var" and sym.const_value is None)
+                ):
+                    return False
+            elif isinstance(n, A.Call):
+                tgt = model.call_target(n)
+                if isinstance(tgt, Symbol):
+                    todo.append(tgt)
+    return True
+
+
+def load_time_parts(cg: Any, call: A.Call, fn: Any) -> list | None:
+    """The parts of a call that `load_time_call` allows and nothing of Mesa's across calls
+    touches at this call site (no chain, sunk constant or ray passed in, no result kept in a
+    register): slots of the per-pixel state that init_globals fills (`emit_load_time_calls`),
+    read as module constants; the same call with the same arguments shares them. None for a
+    call computed where it stands."""
+    from ..cpu_core import nir_fold
+    from ..cpu_core.nir_fold.ray_dots import ray_fn
+    from .sum_chains import nir_chain_params
+
+    if not load_time_call(cg.model, cg.facts, cg.frozen, call, fn):
+        return None
+    ret = leaves(fn.type, call)
+    if any(n is not None for _, n in ret):
+        return None
+    ctx = cg.fold_context()
+    if (
+        nir_chain_params(cg, fn)
+        or any(True for _ in nir_fold.chain_globals(ctx, fn))
+        or cg.sunk_chain(fn) is not None
+        or ray_fn(ctx, fn) is not None
+        or nir_fold.register_call(ctx, call, fn)
+    ):
+        return None
+    # the variant the call would call: the NumPy backend's constant folding decides its text
+    seed = frozenset(i for i, a in enumerate(call.args) if cg.lane_uniform(a))
+    if seed and (id(fn), seed) not in cg.variants:
+        cg.variants.add((id(fn), seed))
+        cg.pending.append((fn, seed))
+    key = (cg.variant_name(fn, seed), tuple(repr(cg.model.const_value(a)) for a in call.args))
+    known = cg.load_calls.get(key)
+    if known is None:
+        parts = []
+        for base, _ in ret:
+            parts.append(f"{KIND_ARRAY[base]}[{cg.slots[base]}]")
+            cg.slots[base] += 1
+        known = cg.load_calls[key] = (call, fn, seed, parts)
+    return frozen_parts(known[3])
+
+
+def emit_load_time_calls(cg: Any) -> None:
+    """In init_globals: each call `load_time_parts` took, as the call site would have made it,
+    into its slots."""
+    for call, fn, seed, parts in cg.load_calls.values():
+        cg.comment(call)
+        args: list[str] = []
+        for a in call.args:
+            args += [p.whole() if isinstance(p, Arr) else p for p in cg.expr(a).parts]
+        res = [cg.fresh() for _ in parts]
+        name = cg.variant_name(fn, seed)
+        cg.emit(f"{', '.join(res)}, = {name}({', '.join(cg.needs[cg.fn_name(fn)] + args)})")
+        cg.write(parts, res)

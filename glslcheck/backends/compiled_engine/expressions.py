@@ -18,6 +18,7 @@ from ..cpu_core import nir_fold
 from ..cpu_core.common import sum_in_order
 from ..cpu_core.inline import bound_code, inline_call, worth_inlining
 from .builtin_calls import builtin_call
+from .constant_globals import load_time_parts
 from .ray_dots import ray_call_args
 from .sum_chains import SumChains, nir_chain_params
 from .values import (
@@ -750,6 +751,9 @@ class ExpressionEmitter(SumChains):
             folded = folded_call(self, e, fn)  # constants propagated into the call
             if folded is not None:
                 return folded
+            frozen = load_time_parts(self, e, fn)  # the same in every pixel: computed at load
+            if frozen is not None:
+                return Val(fn.type, frozen)
         args: list[str] = []
         outs: list[list] = []
         chained = nir_chain_params(self, fn)

@@ -36,11 +36,18 @@ from __future__ import annotations
 import ast
 import copy
 import gc
-import importlib.util
 from typing import Any
 
 from .constant_globals import reset_kinds, written_state
-from .lanes_render import ROW_UNIFORM, STATE_LANES, quad_lanes, render_source
+from .lanes_init import lockstep_init
+from .lanes_render import (
+    ROW_UNIFORM,
+    STATE_LANES,
+    math_imports,
+    quad_lanes,
+    render_source,
+    rt_hash,
+)
 from .lanes_shapes import (
     call_name,
     exits_of,
@@ -55,24 +62,11 @@ from .select_chains import SelectChains, is_temp_write
 
 UNIFORM_STATE = ("uf", "ui", "lc")  # lc: llvmpipe's loop budget, one per block as there
 BLOCK_CALLS = ("limited", "tick_end")  # the loop budget's statements (scalar.tick)
-MATH = tuple(
-    f"glslcheck.backends.compiled_engine.{m}" for m in ("scalar", "lanes_math")
-)  # later wins
 
 
 class Unsupported(Exception):
     """A construct of the per-pixel module this rewrite does not handle (the engine renders the
     shader per pixel)."""
-
-
-def math_imports() -> list[str]:
-    """The generated module's math imports: scalar.py's names, then lanes_math.py's (when that
-    module exists) over them."""
-    out = []
-    for name in MATH:
-        if importlib.util.find_spec(name) is not None:
-            out.append(f"from {name} import *  # noqa: F401,F403")
-    return out
 
 
 _QUAD_CALLS = ("dfdx", "dfdy", "qdx", "qdy")  # a difference of two lanes of a quad
@@ -904,8 +898,8 @@ class Lanes:
             return "shade", frozenset()
         return "shade", frozenset(i for i, p in enumerate(params) if p in ROW_UNIFORM)
 
-    def reachable(self) -> list[_Fn]:
-        """The variants the entry's final code calls, callees first."""
+    def reachable(self, more: tuple = ()) -> list[_Fn]:
+        """The variants the entry's final code calls (and the keys `more`), callees first."""
         order: list[_Fn] = []
         seen: set = set()
 
@@ -918,12 +912,17 @@ class Lanes:
                 visit(callee)
             order.append(fn)
 
-        visit(self.entry())
+        for key in [self.entry(), *more]:
+            visit(key)
         return order
 
     def module(self) -> str:
         out: list[str] = []
-        variants = self.reachable()
+        made = lockstep_init(self)
+        if made is None:
+            raise Unsupported("a call of a global initializer's")
+        init, keys = made
+        variants = self.reachable(keys)
         constants, own = hoistable_globals(self.tree)
         own |= {fn.name for fn in variants}  # (called as numba's dispatchers: not hoisted)
         functions = ["@jit\n" + slim_function(fn.source(), constants, own) for fn in variants]
@@ -931,7 +930,9 @@ class Lanes:
             if isinstance(node, ast.FunctionDef):
                 if node.name == "shade":
                     out += functions
-                elif node.name in ("init_globals", "globals_template"):
+                elif node.name == "init_globals":
+                    out.append(init)
+                elif node.name == "globals_template":
                     out.append(ast.unparse(node))
                 continue
             if (
@@ -942,7 +943,7 @@ class Lanes:
                 names = "lsel, lzero, dfdx, dfdy, qdx, qdy" if self.quads else "lsel"
                 out.append(
                     f"from glslcheck.backends.compiled_engine.lanes_rt import {names}  # "
-                    f"{_rt_hash()}"
+                    f"{rt_hash()}"
                 )
                 continue
             if (
@@ -958,23 +959,6 @@ class Lanes:
         )
         out.append(render if "lc" in shade.params else render.replace("uf, ui, lc,", "uf, ui,"))
         return "\n\n".join(out) + "\n"
-
-
-def _rt_hash() -> str:
-    """The hash of lanes.py, select_chains.py, lanes_render.py, lanes_rt.py and lanes_math.py
-    (when it exists): numba's cache does not see a callee's change, the engine's module key (a
-    hash of the source) does."""
-    import hashlib
-    import os
-
-    h = hashlib.sha256()
-    here = os.path.dirname(__file__)
-    for name in ("lanes_rt.py", "lanes.py", "select_chains.py", "lanes_render.py", "lanes_math.py"):
-        path = os.path.join(here, name)
-        if os.path.exists(path):
-            with open(path, "rb") as f:
-                h.update(f.read())
-    return h.hexdigest()[:16]
 
 
 def lanes_module(source: str, width: int = 8) -> str:

@@ -1,14 +1,45 @@
-"""The render loop of a lockstep module (lanes.py): rows cut into blocks of W pixels, or into
-2x2 quads for a module with derivatives, each block one call of the shading function, its
-samples summed as the per-pixel loop sums them."""
+"""The fixed text of a lockstep module (lanes.py): its math imports, and its render loop: rows cut
+into blocks of W pixels, or into 2x2 quads for a module with derivatives, each block one call of
+the shading function, its samples summed as the per-pixel loop sums them."""
 
 from __future__ import annotations
 
+import importlib.util
 from typing import Any
 
 STATE_LANES = ("gf", "gi", "gu", "gb")  # per-pixel state: one array per lane
 # shade's fragCoord.y and pixel centre y: one value for a block (a row's)
 ROW_UNIFORM = ("fy", "py")
+MATH = tuple(
+    f"glslcheck.backends.compiled_engine.{m}" for m in ("scalar", "lanes_math")
+)  # later wins
+
+
+def math_imports() -> list[str]:
+    """The generated module's math imports: scalar.py's names, then lanes_math.py's (when that
+    module exists) over them."""
+    out = []
+    for name in MATH:
+        if importlib.util.find_spec(name) is not None:
+            out.append(f"from {name} import *  # noqa: F401,F403")
+    return out
+
+
+def rt_hash() -> str:
+    """The hash of lanes.py, select_chains.py, lanes_render.py, lanes_rt.py and lanes_math.py
+    (when it exists): numba's cache does not see a callee's change, the engine's module key (a
+    hash of the source) does."""
+    import hashlib
+    import os
+
+    h = hashlib.sha256()
+    here = os.path.dirname(__file__)
+    for name in ("lanes_rt.py", "lanes.py", "select_chains.py", "lanes_render.py", "lanes_math.py"):
+        path = os.path.join(here, name)
+        if os.path.exists(path):
+            with open(path, "rb") as f:
+                h.update(f.read())
+    return h.hexdigest()[:16]
 
 
 def quad_lanes(name: str, k: int, W: int) -> tuple[int, int]:
