@@ -203,9 +203,11 @@ float scene(vec3 p) {
     p.xz = rot(0.7) * p.xz;                   // frozen
     p.yz = rot(-kTilt) * p.yz;                // frozen: a const global argument
     p.xy += offset(-1.25, vec2(0.5, -0.25));  // frozen: two arguments
-    p.x += wobble(0.3);                       // not: it reads iTime
+    p.x += wobble(0.3);                       // once a frame: it reads iTime
+    p.x += wobble(p.y);                       // not: an argument per pixel
     p.y += summed(0.2);                       // not: it runs a loop
     p.z *= rot(p.x)[0].x;                     // not: an argument per pixel
+    p.y *= rot(iTime * 0.5)[1].y;             // once a frame: an argument of iTime
     return length(p) - 1.0;
 }
 void mainImage(out vec4 c, in vec2 f) {
@@ -219,18 +221,22 @@ void mainImage(out vec4 c, in vec2 f) {
 
 
 def test_constant_calls_are_computed_at_load(numba, make_shader):
-    """rot(0.7) twice (one value), rot(-kTilt) and offset(-1.25, ...) run in init_globals; the
-    calls that read a uniform, run a loop or take a per-pixel argument stay where they are. The
-    frames are the bits of the NumPy backend and of lockstep."""
+    """rot(0.7) twice (one value), rot(-kTilt) and offset(-1.25, ...) run in init_globals and
+    are read from the module's constants; wobble(0.3) and rot(iTime * 0.5), which read iTime,
+    run there too and are read from the frame's state; the calls that run a loop or take a
+    per-pixel argument stay where they are. Lockstep moves the load's only. The frames are the
+    bits of the NumPy backend and of lockstep."""
     from glslcheck.backends.compiled_engine.engine import generate
 
     shader = make_shader(LOAD_TIME)
     source, _ = generate(shader, lanes=0)
     init = source[source.index("def init_globals") : source.index("def shade")]
     scene = source[source.index("def f_scene") : source.index("def f_mainImage")]
-    assert init.count("= f_rot") == 2 and init.count("= f_offset") == 1
+    assert init.count("= f_rot") == 3 and init.count("= f_offset") == 1
+    assert init.count("= f_wobble") == 1 and "uf[" in init
     assert "f_rot" not in scene.replace("f_rot(", "") and scene.count("f_rot(") == 1
-    assert "f_wobble" in scene and "f_summed" in scene and "f_offset" not in scene
+    assert scene.count("f_wobble(") == 1 and "f_summed" in scene and "f_offset" not in scene
+    assert "GCF[" in scene and "gf[" in scene  # the load's values, and the frame's
     _compare(shader)
     _compare(shader, time=2.75)
     _same_bits(shader, 8)
@@ -238,4 +244,6 @@ def test_constant_calls_are_computed_at_load(numba, make_shader):
     assert "LANES = 8" in lanes
     init8 = lanes[lanes.index("def init_globals") :]
     init8 = init8[: init8.index("\n@")]
+    # lockstep computes a value of the frame once a block already: only the load's are moved
     assert init8.count("= f_rot") == 2 and init8.count("(True, True") == 3
+    assert "f_wobble" not in init8

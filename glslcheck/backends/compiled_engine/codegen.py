@@ -113,8 +113,13 @@ class Codegen(ExpressionEmitter):
         budget: bool = False,
         mipmap: frozenset = frozenset(),
         keep_alpha: bool = False,
+        frame_calls: bool = True,
     ) -> None:
         self.model = model
+        # calls the same in every pixel of a frame computed once a frame (load_time_parts): a
+        # per-pixel module's gain; lockstep computes them once a block already, and reading
+        # them from the state costs its functions an array each
+        self.frame_calls = frame_calls
         self.keep_alpha = keep_alpha  # a Buffer pass: Shadertoy keeps the alpha mainImage wrote
         # texture lookups (texture_calls.py): the channels bound with mipmaps, whether the
         # module samples, and the float16 trees being written in their float32 form

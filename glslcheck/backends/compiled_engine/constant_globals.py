@@ -142,28 +142,34 @@ def reset_kinds(written: dict[str, set | None]) -> set[str]:
     return {k for k, slots in written.items() if slots is None or slots}
 
 
-def load_time_call(model: Model, facts: Facts, frozen: set[int], call: A.Call, fn: Any) -> bool:
-    """Whether the call of user function `fn` can be computed once, when the module is loaded:
-    each argument a constant expression (literals, and globals only), each parameter `in`, and
-    `fn`, through the functions it calls, runs no
-    loop (the load has no loop budget), reads no uniform, no lane state and no global but the
-    frozen ones, writes no global, never discards and takes no derivative."""
+def load_time_call(
+    model: Model, facts: Facts, frozen: set[int], call: A.Call, fn: Any
+) -> str | None:
+    """Whether the call of user function `fn` is the same in every pixel, and when it can be
+    computed: "load" (once, when the module is loaded) or "frame" (once a frame: it reads a
+    uniform), else None. Each argument is an expression of literals, frozen globals and
+    uniforms (no user call), each parameter `in`, and `fn`, through the functions it calls,
+    runs no loop (init_globals has no loop budget), reads no channel, no lane state and no
+    global but the frozen ones, writes no global, never discards and takes no derivative."""
     from ...semantics.model import Symbol
 
     if fn.type.is_void or any(d != "in" for _, _, d in fn.params):
-        return False
+        return None
+    frame = False
     for a in call.args:
-        if model.const_value(a) is None:
-            return False
         for n in a.walk():
+            if isinstance(n, A.Call) and isinstance(model.call_target(n), Symbol):
+                return None
             if isinstance(n, A.Identifier):
                 sym = model.symbol_of(n)
-                if sym is None or sym.kind != "global" or id(sym) not in frozen:
-                    return False
+                read = _frame_read(sym)
+                if read is None and not (sym and sym.kind == "global" and id(sym) in frozen):
+                    return None
+                frame = frame or bool(read)
     if not facts.closed(fn) or id(fn) in facts.uses_derivs:
-        return False
+        return None
     if not facts.global_effects(fn)[0] <= frozen:
-        return False
+        return None
     seen: set[int] = set()
     todo = [fn]
     while todo:
@@ -173,33 +179,45 @@ def load_time_call(model: Model, facts: Facts, frozen: set[int], call: A.Call, f
         seen.add(id(f))
         for n in f.node.body.walk():
             if isinstance(n, (A.For, A.While, A.DoWhile)):
-                return False
+                return None
             if isinstance(n, A.Identifier):
                 sym = model.symbol_of(n)
-                if sym is not None and (
-                    sym.kind == "uniform"
-                    or (sym.kind == "global" and sym.qualifier == "uniform")
-                    or (sym.kind == "builtin-var" and sym.const_value is None)
-                ):
-                    return False
+                if sym is not None and sym.kind in ("uniform", "global", "builtin-var"):
+                    read = _frame_read(sym)
+                    if read is None and sym.kind != "global":
+                        return None  # (a global read is one of the frozen ones: above)
+                    frame = frame or bool(read)
             elif isinstance(n, A.Call):
                 tgt = model.call_target(n)
                 if isinstance(tgt, Symbol):
                     todo.append(tgt)
-    return True
+    return "frame" if frame else "load"
+
+
+def _frame_read(sym: Any) -> bool | None:
+    """True for a Shadertoy uniform that is no channel (the same in every pixel of a frame),
+    False for a built-in constant, None for anything else."""
+    if sym is None:
+        return None
+    if sym.kind == "uniform" or (sym.kind == "global" and sym.qualifier == "uniform"):
+        return None if sym.type.contains_opaque else True
+    if sym.kind == "builtin-var" and sym.const_value is not None:
+        return False
+    return None
 
 
 def load_time_parts(cg: Any, call: A.Call, fn: Any) -> list | None:
     """The parts of a call that `load_time_call` allows and nothing of Mesa's across calls
     touches at this call site (no chain, sunk constant or ray passed in, no result kept in a
     register): slots of the per-pixel state that init_globals fills (`emit_load_time_calls`),
-    read as module constants; the same call with the same arguments shares them. None for a
-    call computed where it stands."""
+    read as module constants for a value of the load; the same call with the same arguments
+    shares them. None for a call computed where it stands."""
     from ..cpu_core import nir_fold
     from ..cpu_core.nir_fold.ray_dots import ray_fn
     from .sum_chains import nir_chain_params
 
-    if not load_time_call(cg.model, cg.facts, cg.frozen, call, fn):
+    when = load_time_call(cg.model, cg.facts, cg.frozen, call, fn)
+    if when is None or (when == "frame" and not cg.frame_calls):
         return None
     ret = leaves(fn.type, call)
     if any(n is not None for _, n in ret):
@@ -218,7 +236,7 @@ def load_time_parts(cg: Any, call: A.Call, fn: Any) -> list | None:
     if seed and (id(fn), seed) not in cg.variants:
         cg.variants.add((id(fn), seed))
         cg.pending.append((fn, seed))
-    key = (cg.variant_name(fn, seed), tuple(repr(cg.model.const_value(a)) for a in call.args))
+    key = (cg.variant_name(fn, seed), tuple(repr(A.dump(a)) for a in call.args))
     known = cg.load_calls.get(key)
     if known is None:
         parts = []
@@ -226,7 +244,9 @@ def load_time_parts(cg: Any, call: A.Call, fn: Any) -> list | None:
             parts.append(f"{KIND_ARRAY[base]}[{cg.slots[base]}]")
             cg.slots[base] += 1
         known = cg.load_calls[key] = (call, fn, seed, parts)
-    return frozen_parts(known[3])
+    # a value of the frame is read from the state, which no function writes: the template
+    # init_globals filled this frame (the lockstep rewrite reads it once for a block)
+    return frozen_parts(known[3]) if when == "load" else list(known[3])
 
 
 def emit_load_time_calls(cg: Any) -> None:

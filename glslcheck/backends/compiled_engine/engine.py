@@ -271,6 +271,7 @@ def generate(
             budget,
             mipmap,
             keep_alpha=tab.startswith("Buffer"),
+            frame_calls=lanes_width(lanes) == 0,
         )
         source = cg.module()
         width = lanes_width(lanes)
