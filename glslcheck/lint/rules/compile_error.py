@@ -6,11 +6,11 @@ as the Shadertoy pass the file belongs to compiles it), first, before every othe
 
 Linting goes on past them: a syntax error takes out only the top-level declaration it is in (a
 function keeps its prototype, so its callers still check), a type error only the function it is
-in, and a word GLSL reserves used as a name (`vec3 sample(...)`) nothing at all: the rest of the
-file is read with it spelt another way (a note says how), and every rule runs. The rules that read names and scopes (`uniform-outside-mainimage`) still read that
+in. The rules that read names and scopes (`uniform-outside-mainimage`) still read that
 function; the rules that need types skip it, and one note per rule says which functions it could
 not run in. `unused-variable` and `unused-function` read the whole program and do not run on a
-program with errors.
+program with errors. A word GLSL reserves used as a name (`vec3 sample(...)`) takes out nothing:
+the rest of the file is read with it spelt another way (a note says how), and every rule runs.
 
 A compile error is not a coding-standard deduction: it costs no points here (a shader that does
 not compile costs far more). The exit status is 1, as for any finding.
