@@ -25,14 +25,16 @@ if TYPE_CHECKING:
 _CONDITIONAL = (A.If, A.For, A.While, A.DoWhile, A.Switch, A.Ternary)
 
 
-def helper_values(fn) -> list[tuple[A.Expr, list[int]]]:
+def helper_values(fn, only: frozenset[int] | None = None) -> list[tuple[A.Expr, list[int]]]:
     """The values of the helper `fn` (see the module's doc), the largest ones only, each with
-    the indexes of the parameters it reads; cached on the facts."""
-    cached = fn.__dict__.get("_helper_values")
+    the indexes of the parameters it reads; `only`: of those parameters alone (the others are
+    read as variables of the call). Cached on the facts."""
+    key = "_helper_values" if only is None else f"_helper_values{sorted(only)}"
+    cached = fn.__dict__.get(key)
     if cached is not None:
         return cached
     found: list[tuple[A.Expr, list[int]]] = []
-    fn.__dict__["_helper_values"] = found
+    fn.__dict__[key] = found
     if fn.symbol is None:
         return found
     model = fn.model
@@ -40,7 +42,10 @@ def helper_values(fn) -> list[tuple[A.Expr, list[int]]]:
     usable = {
         id(p): i
         for i, p in enumerate(params)
-        if p is not None and fn.symbol.params[i][2] == "in" and not fn.writes_to(p)
+        if p is not None
+        and fn.symbol.params[i][2] == "in"
+        and not fn.writes_to(p)
+        and (only is None or i in only)
     }
     if not usable:
         return found

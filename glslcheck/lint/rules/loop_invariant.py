@@ -23,6 +23,9 @@ the helper: a filter's `fragCoord / iResolution.xy` in the sample helper of each
 reported in the helper when a loop calls it with the same arguments for those parameters on
 every iteration (the lighting helper called per light computes the view vector from the same
 eye and surface point each time), unless every argument is the same (then the call itself is).
+So is one a helper computes on every step of a loop that calls it through another function
+(a march loop calls `scene(p, time)`, which calls `shape(p, time)`: its `sin(time)` is the same
+at every step), when that function passes it arguments the loop does not change.
 Only the largest such expression is reported, for the outermost loop it does not depend on:
 one finding per run of adjacent statements of the loop holding such work, naming every value
 to compute before it and every place it is computed (hoisting them is one fix: `u` and `v` of
@@ -96,6 +99,7 @@ def _helper_in_loop(fn) -> Iterator[Diagnostic]:
     parameters: then the call itself is the same every time, reported where it is)."""
     sites = [(caller, call) for caller, call in call_sites(fn) if caller.enclosing_loops(call)]
     if not sites:
+        yield from _helper_through_call(fn)
         return
     values = helper_values(fn)
     every = [i for i, param in enumerate(fn.symbol.params) if param[2] != "out"]
@@ -124,6 +128,76 @@ def _helper_in_loop(fn) -> Iterator[Diagnostic]:
                 help="compute it once before the loop and pass it in as a parameter",
                 notes=[Diagnostic("called here, in the loop", call.loc, severity="note")],
             )
+
+
+def _helper_through_call(fn) -> Iterator[Diagnostic]:
+    """A value of the helper `fn` (_helper_values) whose parameters come, through a function
+    `g` that calls `fn` outside any loop, from arguments a loop passes `g` unchanged: a march
+    loop calls `scene(p, time)` at every step, and `scene` calls `shape(p, time)`, whose
+    `sin(time)` is the same at every step."""
+    if not helper_values(fn):
+        return
+    reported: set[int] = set()
+    for g, inner in call_sites(fn):
+        if g.enclosing_loops(inner) or g.is_dead(inner) or g.symbol is None:
+            continue
+        for caller, outer in call_sites(g):
+            loop = next(
+                (lp for lp in caller.enclosing_loops(outer) if caller.contains(lp.body, outer)),
+                None,
+            )
+            if loop is None or caller.is_dead(outer):
+                continue
+            fixed = _fixed_through(g, inner, caller, outer, loop)
+            if not fixed:
+                continue
+            for value, indexes in helper_values(fn, frozenset(fixed)):
+                if id(value) in reported:
+                    continue
+                reported.add(id(value))
+                named = [fn.definition.proto.params[i].name for i in indexes]
+                names = ", ".join(named[:-1]) + " and " + named[-1] if len(named) > 1 else named[0]
+                yield Diagnostic(
+                    f"'{text(value)}' in {fn.definition.proto.name} has the same value on every "
+                    f"iteration of the {_LOOP_WORD[type(loop)]} loop at line {loop.loc.line}, "
+                    f"which calls {g.definition.proto.name} (line {outer.loc.line}), which calls "
+                    f"{fn.definition.proto.name} (line {inner.loc.line}) with the same {names} "
+                    "each time",
+                    value.loc,
+                    help="compute it once before the loop and pass it in as a parameter",
+                    notes=[
+                        Diagnostic("called here", inner.loc, severity="note"),
+                        Diagnostic("called here, in the loop", outer.loc, severity="note"),
+                    ],
+                )
+
+
+def _fixed_through(g, inner: A.Call, caller, outer: A.Call, loop) -> set[int]:
+    """The indexes of the parameters of the call `inner` (in `g`) whose arguments are the same
+    on every iteration of `loop` that calls `g` (`outer`, in `caller`): pure, reading only
+    constants, uniforms and `in` parameters of `g` it never writes whose arguments at `outer`
+    the loop does not change."""
+    params = [g.model.symbol_of(p) for p in g.definition.proto.params]
+    same = {
+        id(p)
+        for i, p in enumerate(params)
+        if p is not None
+        and g.symbol.params[i][2] == "in"
+        and not g.writes_to(p)
+        and invariant_arguments(caller, outer, loop, [i])
+    }
+    out: set[int] = set()
+    for j, arg in enumerate(inner.args):
+        if not g.is_pure(arg):
+            continue
+        if all(
+            id(sym) in same
+            or sym.kind == "uniform"
+            or (sym.kind == "global" and sym.qualifier == "const")
+            for sym in g.operands(arg)
+        ):
+            out.add(j)
+    return out
 
 
 def invariant_places(fn) -> list[tuple[A.Expr, A.Node]]:
