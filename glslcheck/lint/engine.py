@@ -322,6 +322,8 @@ def lint_source(
 
 
 COMPILE_ERROR = "compile-error"
+# the help of a note that a rule could not run on all of a file (_not_run)
+NOT_RUN_HELP = "fix the compile errors above, then lint again for this rule's findings there"
 
 
 def _has_errors(ctx: LintContext) -> bool:
@@ -369,7 +371,7 @@ def _not_run(rule: Rule, ctx: LintContext) -> list[Finding]:
             loc=loc,
             severity="note",
             rule=COMPILE_ERROR,
-            help="fix the compile errors above, then lint again for this rule's findings there",
+            help=NOT_RUN_HELP,
             penalty=0,
         )
     ]

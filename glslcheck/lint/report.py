@@ -34,7 +34,7 @@ import os
 
 from ..base.diagnostics import format_text, printable
 from ..shadertoy.sources import posix_path
-from .engine import Finding, LintResult
+from .engine import NOT_RUN_HELP, Finding, LintResult
 from .rules import all_rules
 
 TYPE_CHECKING = False  # not typing's: importing typing costs every start-up
@@ -93,9 +93,11 @@ def summary_line(result: LintResult) -> str:
         )
     errors = sum(1 for f in result.findings if f.severity == "error")
     if errors:
+        # (a reserved word used as a name is an error that leaves every rule running)
+        partial = any(f.help == NOT_RUN_HELP for f in result.findings)
         line += (
             f" ({_plural(errors, 'compile error')}, not counted: they are not coding-standard "
-            "deductions, and the code they are in was not fully linted)"
+            "deductions" + (", and the code they are in was not fully linted)" if partial else ")")
         )
     return line
 

@@ -98,10 +98,12 @@ def test_a_reserved_word_as_a_name_leaves_every_rule_running(tmp_path):
     """One compile error, with a note of the name the rest is read as, and the findings of the
     function it names: no rule is left out of it."""
     from glslcheck.lint.engine import lint_paths
+    from glslcheck.lint.report import summary_line
 
     path = tmp_path / "Image.glsl"
     path.write_text(RESERVED)
-    findings = [f for f in lint_paths([str(path)]).findings if f.rule != "missing-comment"]
+    result = lint_paths([str(path)])
+    findings = [f for f in result.findings if f.rule != "missing-comment"]
     errors = [f for f in findings if f.rule == "compile-error"]
     assert [(f.loc.line, f.loc.column, f.severity) for f in errors] == [(2, 6, "error")]
     assert "'sample' is a reserved word" in errors[0].message
@@ -110,3 +112,5 @@ def test_a_reserved_word_as_a_name_leaves_every_rule_running(tmp_path):
     ]
     uniforms = [f for f in findings if f.rule == "uniform-outside-mainimage"]
     assert [(f.loc.line, f.loc.column) for f in uniforms] == [(2, 43)]
+    summary = summary_line(result)
+    assert "1 compile error, not counted" in summary and "not fully linted" not in summary
