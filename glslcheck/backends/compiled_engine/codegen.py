@@ -147,8 +147,8 @@ class Codegen(ExpressionEmitter):
         self.facts = Facts(model, self.functions)  # (nir_fold.mix_form reads it: fold_context)
         # globals the functions read from module constants (constant_globals.py)
         self.frozen = frozen_globals(model, self.facts)
-        # calls computed once at load (constant_globals.load_time_parts): key -> (call,
-        # function, variant seed, state slots)
+        # calls computed once, at load or once a frame (constant_globals.load_time_parts):
+        # key -> (call, function, variant seed, state slots)
         self.load_calls: dict[tuple, tuple[A.Call, Symbol, frozenset, list[str]]] = {}
         self.lines: list[str] = []
         self.indent = 0

@@ -20,6 +20,8 @@ A call whose value is the same in every pixel of every frame is computed there t
 (`load_time_call`): `rotmat(-0.7)` in a raymarcher's distance function, which every pixel would
 otherwise compute at every step (its sin and cos llvmpipe's, not cheap). The initializer calls
 the same generated function with the same constant arguments, so the value has the call's bits.
+A per-pixel module does the same once a frame with a call that also reads uniforms
+(`rot(iTime * 0.3)`), read from the state's template, which no function writes.
 
 The per-pixel reset (render_rows copying the template into the state before each pixel) is
 needed only for the state kinds a function writes (`written_state`): the others hold the

@@ -751,9 +751,9 @@ class ExpressionEmitter(SumChains):
             folded = folded_call(self, e, fn)  # constants propagated into the call
             if folded is not None:
                 return folded
-            frozen = load_time_parts(self, e, fn)  # the same in every pixel: computed at load
-            if frozen is not None:
-                return Val(fn.type, frozen)
+            once = load_time_parts(self, e, fn)  # the same in every pixel: at load, or a frame
+            if once is not None:
+                return Val(fn.type, once)
         args: list[str] = []
         outs: list[list] = []
         chained = nir_chain_params(self, fn)
