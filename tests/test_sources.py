@@ -80,6 +80,8 @@ def test_image_file_picks_up_sibling_common(tmp_path):
         ("Lab 6.txt", "Lab 6 Common.txt"),
         ("midTermBufA.txt", "midTermCommon.txt"),
         ("shadertoy_midterm_bufferA.txt", "shadertoy_midterm_common_tab.txt"),
+        ("GPR-200 Midterm (Buffer A).txt", "GPR-200 Midterm (Common).txt"),
+        ("bufferB_lab6_name .txt", "common_lab6_name.txt"),
     ],
 )
 def test_pass_file_picks_up_the_common_named_for_it(tmp_path, image, common):
@@ -118,6 +120,15 @@ def test_a_common_named_for_no_pass_is_not_picked_up(tmp_path):
     )
     (tmp_path / "Lab05Common.txt").write_text("float h() { return 2.0; }\n")
     assert sorted(load_shader(tmp_path / "Lab06Image.txt").tabs) == ["Image"]
+
+
+def test_a_common_named_first_for_another_project_is_not_picked_up(tmp_path):
+    (tmp_path / "bufferB_lab6_name.txt").write_text(
+        "void mainImage(out vec4 c, in vec2 f) { c = vec4(1.0); }\n"
+    )
+    (tmp_path / "common_lab5_name.txt").write_text("float h() { return 2.0; }\n")
+    (tmp_path / "commonplace.txt").write_text("float h() { return 2.0; }\n")
+    assert sorted(load_shader(tmp_path / "bufferB_lab6_name.txt").tabs) == ["Image"]
 
 
 def test_two_files_for_one_tab_is_an_error(tmp_path):

@@ -40,7 +40,15 @@ TAB_NAMES = ("Common", "Buffer A", "Buffer B", "Buffer C", "Buffer D", "Cube A",
 BUFFER_TABS = tuple(t for t in TAB_NAMES if t.startswith("Buffer "))
 _SEPARATORS = compiled(r"[\s_\-]")  # spaces, `_` and `-` in a tab file's name
 _TAB_KEYS = {_SEPARATORS.sub("", t).lower(): t for t in TAB_NAMES}
-_BRACKETS = compiled(r"\s*\([^()]*\)")  # `Buffer C (FIREBENDING)`: a description
+# a bracketed part of a tab file's name: a description (`Buffer C (FIREBENDING)`), or the tab
+# itself after the project's name (`GPR-200 Midterm (Buffer A)`)
+_BRACKETS = compiled(r"\s*\(([^()]*)\)")
+# a pass's word in a file's name (`Image`, `BufA`, `Buffer_A`, `CubeMap`), and Common's
+_PASS_WORD = r"(?:image|buf(?:fer)?[\s_\-]?[a-d]|cube(?:[\s_\-]?map)?(?:[\s_\-]?a)?|sound)"
+_TAB_WORD_ONLY = compiled(rf"(?i){_PASS_WORD}|common")
+# the pass or Common first, then the project's name (`bufferB_lab6_name`, `common_lab6_name`)
+_PASS_FIRST = compiled(rf"(?i){_PASS_WORD}[\s_\-]+(?=\S)")
+_COMMON_FIRST = compiled(r"(?i)common[\s_\-]+(?=\S)")
 _TAB_WORD = compiled(r"(?i)[\s_\-]+tab$")  # `Common Tab`, `midterm_common_tab`
 MAX_FILE_BYTES = 1_000_000
 
@@ -379,23 +387,49 @@ def _commons(entries: list[str]) -> list[str]:
     return [f for f in entries if tab_name(f) == "Common" or _named_common(f)]
 
 
-def _name_key(path: str | os.PathLike) -> str:
-    """A file's name as tab names are compared: no extension, separators or case, nor what
-    students add to a tab's name: a description in brackets (`Buffer A (Cube Map).txt`) or
-    the word "tab" (`Common Tab.txt`, `midterm_image_tab.txt`)."""
+def _stem(path: str | os.PathLike) -> str:
+    """A file's name without its shader extension."""
     stem = path_name(path)
     for ext in SHADER_EXTENSIONS[:-1]:
         if stem.lower().endswith(ext):
-            stem = stem[: -len(ext)]
-            break
-    stem = _TAB_WORD.sub("", _BRACKETS.sub("", stem))
+            return stem[: -len(ext)]
+    return stem
+
+
+def _bracket(m: re.Match) -> str:
+    """A bracketed part of a name: kept when it names a tab, dropped as a description."""
+    return m.group(1) if _TAB_WORD_ONLY.fullmatch(m.group(1).strip()) else ""
+
+
+def _key(stem: str) -> str:
+    """A name as tab names are compared: no separators or case, nor what students add to a
+    tab's name: a description in brackets (`Buffer A (Cube Map).txt`) or the word "tab"
+    (`Common Tab.txt`, `midterm_image_tab.txt`); a tab named in brackets after the project's
+    name is kept (`GPR-200 Midterm (Common).txt`)."""
+    stem = _TAB_WORD.sub("", _BRACKETS.sub(_bracket, stem))
     return _SEPARATORS.sub("", stem).lower()
 
 
+def _name_key(path: str | os.PathLike) -> str:
+    """A file's name as tab names are compared (`_key`), without its extension."""
+    return _key(_stem(path))
+
+
 def _named_common(path: str) -> bool:
-    """A file named as a Common tab after a prefix (`Lab06Common.txt`, `lab 6 common.txt`)."""
+    """A file named as a Common tab with a project's name before or after the word
+    (`Lab06Common.txt`, `lab 6 common.txt`, `common_lab6_name.txt`)."""
+    return _common_project(path) is not None and name_says_shader(path) is not False
+
+
+def _common_project(path: str) -> str | None:
+    """The project a Common tab file is named for: the rest of its name, marked by the side the
+    word Common is on (`Lab06Common` -> "<lab06", `common_lab6_x` -> ">lab6x"); None for a
+    name that is not such a Common."""
     key = _name_key(path)
-    return key.endswith("common") and key != "common" and name_says_shader(path) is not False
+    if key.endswith("common") and key != "common":
+        return "<" + key[: -len("common")]
+    first = _COMMON_FIRST.match(_stem(path))
+    return ">" + _key(_stem(path)[first.end() :]) if first else None
 
 
 # the pass a prefixed tab file names after its prefix (`Lab06Image`, `midTermBufA`)
@@ -404,17 +438,20 @@ _PASS_SUFFIX = compiled(r"(?:image|buf(?:fer)?[a-d]|cube(?:map)?a?|sound)$")
 
 def common_sibling(path: str, siblings: list[str]) -> str | None:
     """Which of a pass file's siblings is its Common tab: a file named `Common`, else the one
-    named for the pass file's prefix (`Lab06Common.txt` beside `Lab06Image.txt` or
-    `Lab06.txt`, `midTermCommon.txt` beside `midTermBufA.txt`); None when there is none, or
-    several."""
-    prefix = _PASS_SUFFIX.sub("", _name_key(path))
+    named for the pass file's project, the rest of its name (`Lab06Common.txt` beside
+    `Lab06Image.txt` or `Lab06.txt`, `midTermCommon.txt` beside `midTermBufA.txt`,
+    `common_lab6_x.txt` beside `bufferB_lab6_x.txt`); None when there is none, or several."""
+    projects = {"<" + _PASS_SUFFIX.sub("", _name_key(path))}
+    first = _PASS_FIRST.match(_stem(path))
+    if first:
+        projects.add(">" + _key(_stem(path)[first.end() :]))
     prefixed = []
     for f in siblings:
         if f == path:
             continue
         if tab_name(f) == "Common" and name_says_shader(f) is True:
             return f
-        if _named_common(f) and _name_key(f)[: -len("common")] == prefix:
+        if _named_common(f) and _common_project(f) in projects:
             prefixed.append(f)
     return prefixed[0] if len(prefixed) == 1 else None
 
