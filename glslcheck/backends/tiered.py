@@ -9,12 +9,13 @@ rate measured so far), reaches what making the compiled program is expected to c
 (`TieredCpuProgram.move_cost`); then the compiled program is made beside the frames, which go on in
 NumPy (no frame waits for numba): numba compiles it in a child process
 (CompiledProgram.build_apart), stopped after engine.PIXEL_BUDGET seconds of its CPU time (the shader
-then stays on NumPy, and the record keeps it there), and a thread of this process loads the machine
-code from numba's cache; every frame after it is ready and checked uses it. This is the compiled
-engine's ski-rental rule (compiled_engine/engine.py, TieredProgram) with the NumPy backend as the
-first tier: whatever the number of frames, the total is at most about twice what the better engine
-alone would have cost. The compiled program is itself tiered (per pixel, then lockstep within
-engine.LOCKSTEP_BUDGET).
+then stays on NumPy, and the record keeps it there), and the frames' own thread loads the machine
+code from numba's cache before its next frame (tenths of a second; in another thread the load waits
+on the frames' interpreter lock and slows them); every frame after it is ready and checked uses it.
+This is the compiled engine's ski-rental rule (compiled_engine/engine.py, TieredProgram) with the
+NumPy backend as the first tier: whatever the number of frames, the total is at most about twice
+what the better engine alone would have cost. The compiled program is itself tiered (per pixel, then
+lockstep within engine.LOCKSTEP_BUDGET).
 
 The move happens only where the two engines are known to give the same bits:
 
@@ -116,6 +117,7 @@ class TieredCpuProgram:
     pixels: int
     _lock: threading.Lock
     _mover: threading.Thread | None
+    _ready: tuple | None
     _record: dict | None
     numpy_rate: float
     trial: list[float]
@@ -136,6 +138,7 @@ class TieredCpuProgram:
         d["pixels"] = 0  # their pixels
         d["_lock"] = threading.Lock()
         d["_mover"] = None  # the thread that makes the compiled program, once started
+        d["_ready"] = None  # (program, check frame's inputs, its NumPy pixels) to load: _finish
         d["_record"] = None  # the tier record read from the cache folder ({} when none)
         d["trial"] = []  # seconds per pixel of the compiled program's first frames
         d["numpy_trial"] = []  # and of the NumPy backend's renders of the same frames
@@ -291,6 +294,8 @@ class TieredCpuProgram:
         # a compiled frame: the same inputs, channels included
         ckw = {**kw, "channels": channels} if channels is not None else kw
         pixels = inputs.width * inputs.height
+        if self._ready is not None:
+            self._finish()
         second = self.second
         if second is not None and not why:
             if len(self.trial) >= TRIAL_FRAMES:
@@ -406,8 +411,8 @@ class TieredCpuProgram:
         self.stay = "slower: the compiled engine per pixel, and no lockstep module"
 
     def _move(self, kw: dict, want: np.ndarray) -> None:
-        """Make the compiled program and check it on one NumPy frame (in the mover thread)."""
-        from ..base.diagnostics import GlslError
+        """Make the compiled program (in the mover thread): generate it and have numba compile
+        it into its cache; `_finish`, in the frames' thread, loads and checks it."""
         from .compiled_engine.budget import STARVED
         from .compiled_engine.engine import (
             EXITING,
@@ -435,12 +440,12 @@ class TieredCpuProgram:
             # have paid for, made now in place of the per-pixel tier when that would be
             # compiled too, or lost its last trial (its trial frames cost both engines' frames
             # again); a per-pixel module that won renders beside lockstep's compile instead
-            if not isinstance(prog, CompiledProgram) and not prog.load_cached():
+            if not isinstance(prog, CompiledProgram) and not prog.can_load_cached():
                 skip = self.record().get("pixel") == "slower" or not module_cached(base.key)
                 if skip and prog.paid >= prog.move_cost() and prog.move_now():
                     with _COMPILING:
-                        prog.settle(None)
-            if isinstance(prog, CompiledProgram) or prog.fast is None:
+                        prog.settle(None, adopt=False)
+            if isinstance(prog, CompiledProgram) or not prog.ready():
                 # numba's compile in a child process, stopped at the budget: the NumPy frames
                 # keep this process's GIL and cores (but the one it takes)
                 with _COMPILING:
@@ -456,29 +461,37 @@ class TieredCpuProgram:
                     return
                 if why.startswith("killed"):
                     raise RuntimeError(why)
-                base.load(bounded=False)  # a cache load (a failure's compile here gives its error)
-            got = prog.render(**kw)
-        except GlslError as e:  # a construct the compiled engine refuses, a loop cap, a budget
-            first = e.diagnostics[0] if getattr(e, "diagnostics", None) else None
-            self.stay = f"refused: {first.message if first is not None else e}"
-            self._keep(verdict=self.stay)
+                if why:  # a failure: its compile here gives the error
+                    base.load(bounded=False)
+        except Exception as e:  # noqa: BLE001 - refused, or an engine bug: NumPy renders on
+            self._failed(e)
             return
-        except Exception as e:  # noqa: BLE001 - an engine bug: the NumPy program still renders
-            warnings.warn(
-                f"glslcheck: the compiled engine failed on this shader ({type(e).__name__}: {e}); "
-                "rendering with the NumPy backend",
-                RuntimeWarning,
-                stacklevel=2,
-            )
-            self.stay = f"failed: {type(e).__name__}"
+        self._ready = (prog, kw, want)
+
+    def _finish(self) -> None:
+        """Load the compiled program the mover made (machine code from numba's cache) and check
+        it on the NumPy frame the move started on, in the frames' thread: a load beside NumPy
+        frames waits on their GIL (0.2 s of CPU took 2.7 s in a thread) and slows them."""
+        from .compiled_engine.engine import CompiledProgram
+
+        ready, self._ready = self._ready, None
+        if ready is None:
+            return
+        prog, kw, want = ready
+        try:
+            if not isinstance(prog, CompiledProgram) and not prog.load_cached():
+                prog.adopt()  # a lockstep module made in place of the per-pixel tier
+            got = prog.render(**kw)
+        except Exception as e:  # noqa: BLE001 - as in _move
+            self._failed(e)
             return
         differ = _differing(got, want)
         if differ:
             self.stay = f"differs: {differ} pixels of the check frame"
             self._keep(verdict=self.stay)
             return
-        key = base.key
-        fields: dict[str, Any] = {"verdict": "same", "key": key}
+        base = prog if isinstance(prog, CompiledProgram) else prog.first
+        fields: dict[str, Any] = {"verdict": "same", "key": base.key}
         seconds = base.compile_seconds()  # (the child's compile, recorded beside the module)
         if seconds is not None:
             fields["seconds"] = round(seconds, 3)
@@ -486,6 +499,24 @@ class TieredCpuProgram:
         if not isinstance(prog, CompiledProgram):
             prog.hold = TRIAL_FRAMES > 0  # its own move waits for the trial (_judge)
         self.second = prog
+
+    def _failed(self, e: Exception) -> None:
+        """The frames stay on NumPy: a construct the compiled engine refuses (a loop cap, a
+        budget: kept as the verdict), or an engine bug (a warning; tried again later)."""
+        from ..base.diagnostics import GlslError
+
+        if isinstance(e, GlslError):
+            first = e.diagnostics[0] if getattr(e, "diagnostics", None) else None
+            self.stay = f"refused: {first.message if first is not None else e}"
+            self._keep(verdict=self.stay)
+            return
+        warnings.warn(
+            f"glslcheck: the compiled engine failed on this shader ({type(e).__name__}: {e}); "
+            "rendering with the NumPy backend",
+            RuntimeWarning,
+            stacklevel=3,
+        )
+        self.stay = f"failed: {type(e).__name__}"
 
     def settled(self) -> bool:
         """Whether the engine of this program's frames is decided: NumPy for good (`stay`), or
@@ -508,6 +539,7 @@ class TieredCpuProgram:
             mover.join(timeout)
             if mover.is_alive():
                 return False
+        self._finish()
         second = self.second
         return second is None or getattr(second, "settle", lambda t: True)(timeout)
 

@@ -182,7 +182,7 @@ def _exit_if_abandoned(code: int) -> None:
     would wait for them or pull the runtime from under them (an LLVM abort mid-compile)."""
     if "glslcheck.backends.compiled_engine.engine" not in sys.modules:
         return
-    from ..backends.compiled_engine.engine import abandoned
+    from ..backends.compiled_engine.workers import abandoned
 
     if abandoned():
         for stream in (sys.stdout, sys.stderr):

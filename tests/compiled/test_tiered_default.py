@@ -10,6 +10,7 @@ verdict of a test reaches another test or the user's cache.
 from __future__ import annotations
 
 import json
+import threading
 from functools import partial
 
 import numpy as np
@@ -457,6 +458,42 @@ def test_frames_before_lockstep_are_kept_for_later_processes(make_shader, eager,
     _frames(later, [0.8, 0.9])
     assert later.impl.paid == kept
     assert later.impl.record()["spent"] == pytest.approx(kept + later.impl.spent, abs=1e-3)
+
+
+def test_compiled_modules_are_loaded_in_the_frames_thread(
+    numba, make_shader, eager, monkeypatch, tmp_path
+):
+    """The movers only compile (in child processes); each module's load from numba's cache is
+    made by the thread that renders the frames, where it does not wait on their GIL: the
+    per-pixel module at the move, then the lockstep module the per-pixel tier moves to."""
+    from glslcheck.backends.compiled_engine import engine
+
+    monkeypatch.setenv("NUMBA_CACHE_DIR", str(tmp_path / "numba"))
+    monkeypatch.delenv("GLSLCHECK_COMPILED_LANES", raising=False)
+    threads = []
+    load = engine.CompiledProgram.load
+
+    def recorded(self, *args, **kw):
+        if self.mod is None:
+            threads.append(("lanes" if "\nLANES = " in self.source else "pixel", is_main()))
+        return load(self, *args, **kw)
+
+    def is_main():
+        return threading.current_thread() is threading.main_thread()
+
+    monkeypatch.setattr(engine.CompiledProgram, "load", recorded)
+    prog = glslcheck.compile(make_shader(ANIMATED))
+    _frames(prog, [0.5])
+    assert prog.impl.settle(300) and prog.impl.mode == "compiled pixel", prog.impl.stay
+    monkeypatch.setattr(engine.TieredProgram, "move_cost", lambda self: 0.0)  # lockstep paid
+    _frames(prog, [0.6])  # starts lockstep's compile beside the per-pixel frame
+    tier = prog.impl.second
+    assert tier._mover is not None
+    tier._mover.join(300)
+    assert tier.mode == "pixel"  # made, not loaded yet: the next frame loads it
+    _frames(prog, [0.7])
+    assert prog.impl.mode == "compiled lanes8"
+    assert threads == [("pixel", True), ("lanes", True)]
 
 
 @pytest.mark.parametrize("paid", [0.0, 1e6])

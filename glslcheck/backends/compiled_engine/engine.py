@@ -21,7 +21,7 @@ threads; later frames run on fresh threads. A library user who must have the CPU
 process, and a process that did abandon one should end with os._exit after flushing its
 output (as the command line does): the interpreter's own shutdown does not wait for daemon
 threads, but it may pull the runtime from under them (LLVM aborts a compile cut off that way).
-`abandoned()` says whether that happened.
+`workers.abandoned()` says whether that happened.
 """
 
 from __future__ import annotations
@@ -30,14 +30,12 @@ import atexit
 import hashlib
 import math
 import os
-import queue
 import subprocess
 import sys
 import threading
 import time
 import types
 from collections.abc import Callable
-from concurrent.futures import FIRST_EXCEPTION, Future, wait
 from typing import Any
 
 import numpy as np
@@ -52,6 +50,7 @@ from ..cpu_core.common import LOOP_CAP
 from . import cache_files, numba_linking
 from .budget import STARVED, wait_child
 from .values import BUDGET_OFF
+from .workers import run_bounded
 
 PIP = "pip install 'glslcheck[jit]'"
 NO_LIMIT = 2**62  # the loop budget without llvmpipe's limiter: more passes than any frame runs
@@ -59,49 +58,9 @@ _LOCK = threading.Lock()
 _MODULES: dict[str, Any] = {}  # hash -> loaded module (one per process)
 _SOURCES: dict[str, str] = {}  # hash -> the loaded module's source
 PARALLEL_PIXELS = 4096  # smaller frames in one band (a hand-off between threads costs more)
-WAIT_SLICE = (
-    0.1  # seconds the calling thread waits at a time: how soon Ctrl-C and the budget are seen
-)
 # numba's compile (or cache load) has the frame budget, but at least this many seconds: a small
 # program takes seconds to compile cold, whatever budget its frames have.
 COMPILE_SECONDS = 60.0
-
-
-class Workers:
-    """Daemon threads that run the bands of frames (made once per thread count: starting
-    threads costs a frame of a small shader). A daemon, unlike ThreadPoolExecutor's threads, is
-    not joined at the interpreter's exit: a band that never ends cannot hold the process."""
-
-    def __init__(self, threads: int) -> None:
-        self.jobs: queue.SimpleQueue = queue.SimpleQueue()
-        for k in range(threads):
-            threading.Thread(
-                target=self._serve, name=f"glslcheck-compiled-{k}", daemon=True
-            ).start()
-        self.threads = threads
-
-    def _serve(self) -> None:
-        while True:
-            job = self.jobs.get()
-            if job is None:  # retired
-                return
-            fn, args, future = job
-            if not future.set_running_or_notify_cancel():
-                continue
-            try:
-                future.set_result(fn(*args))
-            except BaseException as e:  # noqa: BLE001 - handed to the waiting thread
-                future.set_exception(e)
-
-    def submit(self, fn: Callable, *args: Any) -> Future:
-        future: Future = Future()
-        self.jobs.put((fn, args, future))
-        return future
-
-    def retire(self) -> None:
-        """No more jobs: each thread ends once its current band does."""
-        for _ in range(self.threads):
-            self.jobs.put(None)
 
 
 _CHILDREN: set[subprocess.Popen] = set()  # compiles under way in child processes (build_apart)
@@ -113,67 +72,6 @@ def _stop_children() -> None:
     _EXITING.append(True)
     for child in list(_CHILDREN):
         child.kill()
-
-
-_WORKERS: dict[int, Workers] = {}
-_WORKERS_LOCK = (
-    threading.Lock()
-)  # apart from _LOCK, which a compile holds while it waits for its thread
-_ABANDONED: list[float] = []  # when frames or compiles were left running (abandoned())
-
-
-def _workers(threads: int) -> Workers:
-    with _WORKERS_LOCK:
-        workers = _WORKERS.get(threads)
-        if workers is None:
-            workers = _WORKERS[threads] = Workers(threads)
-        return workers
-
-
-def abandoned() -> bool:
-    """Whether this process left a frame or a compile running (over budget or interrupted):
-    its threads go on until the process ends (the module docstring)."""
-    return bool(_ABANDONED)
-
-
-def run_bounded(threads: int, calls: list[tuple], deadline: float | None) -> None:
-    """Run `calls` ((function, *args) each) on the worker threads; the calling thread waits in
-    slices of WAIT_SLICE, so Ctrl-C (KeyboardInterrupt) reaches it. Raises TimeoutError when
-    they have not all returned by `deadline` (time.monotonic(); None: none), KeyboardInterrupt as it
-    came, or the first call's exception; on a timeout or an interrupt the calls not yet started are
-    dropped and the threads of the others are retired (`abandoned()`)."""
-    workers = _workers(threads)
-    futures = [workers.submit(*c) for c in calls]
-    try:
-        while True:
-            left = None if deadline is None else deadline - time.monotonic()
-            if left is not None and left <= 0:
-                raise TimeoutError
-            done, pending = wait(
-                futures, WAIT_SLICE if left is None else min(WAIT_SLICE, left), FIRST_EXCEPTION
-            )
-            for f in done:
-                error = f.exception()
-                if error is not None:
-                    _drop(workers, futures)
-                    raise error
-            if not pending:
-                return
-    except (TimeoutError, KeyboardInterrupt):
-        _drop(workers, futures)
-        raise
-
-
-def _drop(workers: Workers, futures: list[Future]) -> None:
-    """Cancel the calls not started; retire the threads when some are still running."""
-    for f in futures:
-        f.cancel()
-    if any(not f.done() for f in futures):
-        with _WORKERS_LOCK:
-            if _WORKERS.get(workers.threads) is workers:
-                del _WORKERS[workers.threads]
-        workers.retire()
-        _ABANDONED.append(time.monotonic())
 
 
 def available() -> bool:
@@ -719,24 +617,25 @@ class TieredProgram:
     rendered per pixel until the time they have taken, counting the frame about to be rendered (its
     pixels at the rate measured so far), reaches what compiling lockstep is expected to cost; then
     the lockstep module is made beside the frames, which go on per pixel (numba compiles it in a
-    child process, build_apart, and a thread of this one loads it from numba's cache: no frame waits
-    for it), and every frame after it is ready uses it. This is the ski-rental rule: whatever the
-    number of frames to come, the total is at most about twice what the better of the two modes
-    alone would have cost (moving too late costs at most the compile once more, moving never costs
-    nothing when the frames stop first). The expected cost: the lockstep module's load when numba's
-    cache already holds it (an earlier process moved), else LOCKSTEP_COMPILE_RATIO x the per-pixel
-    module's compile (CPU time: a compile beside the frames costs them the core it takes, not the
-    waits of a loaded machine). The frames are the same either way: lockstep is bit-identical to per
-    pixel (tests/compiled/test_lanes.py), so the moment of the move changes no pixel. A lockstep
-    module that cannot be made (the rewrite falls back, numba fails) leaves the program per pixel,
-    with a warning for a failure, and so does one expected to take more than LOCKSTEP_BUDGET CPU
-    seconds to compile, or whose compile (in a child process: CompiledProgram.build_apart) takes
-    more than that: the marker beside the per-pixel module then says so, and no later process builds
-    it. A lockstep module is not always the faster: its first LOCKSTEP_TRIAL_FRAMES frames are
-    timed against the per-pixel frames this process rendered before the move, and a module slower
-    per pixel hands the frames back to the per-pixel one for good; the marker keeps the hint, so a
-    later process starts per pixel and tries the (cached) lockstep module again once its load is
-    paid (a timing depends on the machine's load: it is a hint, not a verdict).
+    child process, build_apart, and the frames' thread loads it from numba's cache before its next
+    frame: no frame waits for the compile), and every frame after it is ready uses it. This is the
+    ski-rental rule: whatever the number of frames to come, the total is at most about twice what
+    the better of the two modes alone would have cost (moving too late costs at most the compile
+    once more, moving never costs nothing when the frames stop first). The expected cost: the
+    lockstep module's load when numba's cache already holds it (an earlier process moved), else
+    LOCKSTEP_COMPILE_RATIO x the per-pixel module's compile (CPU time: a compile beside the frames
+    costs them the core it takes, not the waits of a loaded machine). The frames are the same either
+    way: lockstep is bit-identical to per pixel (tests/compiled/test_lanes.py), so the moment of the
+    move changes no pixel. A lockstep module that cannot be made (the rewrite falls back, numba
+    fails) leaves the program per pixel, with a warning for a failure, and so does one expected to
+    take more than LOCKSTEP_BUDGET CPU seconds to compile, or whose compile (in a child process:
+    CompiledProgram.build_apart) takes more than that: the marker beside the per-pixel module then
+    says so, and no later process builds it. A lockstep module is not always the faster: its first
+    LOCKSTEP_TRIAL_FRAMES frames are timed against the per-pixel frames this process rendered before
+    the move, and a module slower per pixel hands the frames back to the per-pixel one for good; the
+    marker keeps the hint, so a later process starts per pixel and tries the (cached) lockstep
+    module again once its load is paid (a timing depends on the machine's load: it is a hint, not a
+    verdict).
     """
 
     def __init__(
@@ -756,6 +655,7 @@ class TieredProgram:
             str | None
         ] = []  # _cached_fast's answer, looked up once (it walks the cache)
         self._mover: threading.Thread | None = None  # the lockstep compile, once started
+        self._built: CompiledProgram | None = None  # made by the mover, loaded by adopt
         self._over = False  # a lockstep build was stopped at the budget (over_budget)
         self._slower = False  # the marker's hint: lockstep lost its last trial (load_cached)
         # a caller's trial is timing these frames (tiered.py): no move starts meanwhile, which
@@ -834,15 +734,21 @@ class TieredProgram:
             return LOCKSTEP_COMPILE_RATIO * known
         return LOCKSTEP_SECONDS_PER_LINE * self.first.source.count("\n")
 
+    def can_load_cached(self) -> bool:
+        """Whether load_cached would load a module (or one is loaded)."""
+        source = self._cached_fast()
+        if self.fast is not None or source is None or self._slower:
+            return self.fast is not None
+        # (a module without llvmpipe's loop budget: _move makes the other)
+        return self.first.loop_limit is None or BUDGET_OFF not in source
+
     def load_cached(self) -> bool:
         """Load the lockstep module now when an earlier process made it and numba's cache holds
         it (its marker), so that every frame is lockstep's: no per-pixel frame is left to pay
         for it. Whether it did."""
         source = self._cached_fast()
-        if self.fast is not None or source is None or self._slower:
+        if self.fast is not None or source is None or not self.can_load_cached():
             return self.fast is not None
-        if self.first.loop_limit is not None and BUDGET_OFF in source:
-            return False  # (a module without llvmpipe's loop budget: _move makes the other)
         fast = CompiledProgram(source, self.first.path, self.threads, self._remake_fast)
         fast.frame_seconds = self.first.frame_seconds
         fast.loop_limit = self.first.loop_limit
@@ -873,22 +779,42 @@ class TieredProgram:
                 return
             if why.startswith("killed"):
                 raise RuntimeError(why)
-            fast.load(bounded=False)  # a cache load (a failure's compile here gives its error)
-        except (
-            Exception
-        ) as e:  # an engine bug in the lockstep path: the per-pixel program still renders
-            import warnings
+            if why:  # a failure: its compile here gives the error
+                fast.load(bounded=False)
+        except Exception as e:  # noqa: BLE001 - an engine bug: the per-pixel program renders
+            self._failed(e)
+            return
+        self._built = fast
 
-            warnings.warn(
-                f"glslcheck: the lockstep module failed to compile ({type(e).__name__}: {e}); "
-                f"rendering per pixel",
-                RuntimeWarning,
-                stacklevel=2,
-            )
-            self.stay = True
+    def adopt(self) -> None:
+        """Load the lockstep module the mover made (machine code from numba's cache) in the
+        frames' thread: a load beside the frames waits on their GIL, and slows them."""
+        fast, self._built = self._built, None
+        if fast is None:
+            return
+        try:
+            fast.load(bounded=False)
+        except Exception as e:  # noqa: BLE001 - as in _move
+            self._failed(e)
             return
         cache_files.write(self._marker(), fast.key + "\n")
         self.fast = fast
+
+    def ready(self) -> bool:
+        """Whether the lockstep module is loaded or made."""
+        return self.fast is not None or self._built is not None
+
+    def _failed(self, e: Exception) -> None:
+        """An engine bug in the lockstep path: per pixel for good, with a warning."""
+        import warnings
+
+        warnings.warn(
+            f"glslcheck: the lockstep module failed to compile ({type(e).__name__}: {e}); "
+            "rendering per pixel",
+            RuntimeWarning,
+            stacklevel=3,
+        )
+        self.stay = True
 
     def move_now(self) -> bool:
         """Start making the lockstep module now (a caller whose own frames paid for it: the
@@ -905,12 +831,17 @@ class TieredProgram:
     def _remake_fast(self) -> str:
         return generate(self.shader, self.tab, lanes=TIER_LANES, budget=True)[0]
 
-    def settle(self, timeout: float | None = None) -> bool:
-        """Wait for a lockstep compile under way (at most timeout seconds); whether none is left."""
+    def settle(self, timeout: float | None = None, adopt: bool = True) -> bool:
+        """Wait for a lockstep compile under way (at most timeout seconds), then load it unless
+        told not to (the mover of tiered.py, which leaves that to the frames' thread); whether
+        none is left."""
         mover = self._mover
         if mover is not None:
             mover.join(timeout)
-            return not mover.is_alive()
+            if mover.is_alive():
+                return False
+        if adopt:
+            self.adopt()
         return True
 
     @frame_inputs
@@ -919,6 +850,7 @@ class TieredProgram:
     ) -> np.ndarray:
         """One frame (CompiledProgram.render), by whichever program is current."""
         kw = dict(inputs.keywords(), precision=precision, stats=stats, channels=channels)
+        self.adopt()
         with self._lock:
             if self._mover is None and not self.stay and not self.hold and self.pixels:
                 ahead = self.spent / self.pixels * inputs.width * inputs.height
