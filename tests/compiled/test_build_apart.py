@@ -10,6 +10,7 @@ from __future__ import annotations
 import os
 import subprocess
 import sys
+import time
 
 import pytest
 from image_bits import assert_same
@@ -122,6 +123,95 @@ def test_a_compile_whose_asking_process_is_gone_ends(numba, make_shader, own_cac
         timeout=120,
     )
     assert child.returncode == 1 and not child.stderr  # ended by the watch, not by an error
+
+
+def test_a_compile_left_to_finish_goes_on_and_marks_its_module(numba, make_shader, own_cache):
+    """A child whose parent left it to finish (the file MARKER.finish) goes on when the parent
+    is gone, and writes the module's key into MARKER once numba's cache holds it."""
+    source, _ = engine.generate(_shader(make_shader, "0.03125 + 0.96875"), lanes=0)
+    prog = engine.CompiledProgram(source, "Image.glsl")
+    file = own_cache / "m.py"
+    file.write_text(source)
+    marker = own_cache / "m.lanes8"
+    (own_cache / "m.lanes8.finish").write_text("")
+    child = subprocess.run(
+        [sys.executable, "-m", "glslcheck.backends.compiled_engine.build", str(file), "x", "1"]
+        + ["600", str(marker)],
+        env=dict(os.environ, PYTHONPATH=os.pathsep.join(sys.path)),
+        capture_output=True,
+        timeout=600,
+    )
+    assert child.returncode == 0, child.stderr
+    assert marker.read_text() == prog.key + "\n"
+    assert not (own_cache / "m.lanes8.finish").exists()
+    assert engine.module_cached(prog.key)
+
+
+def test_a_paid_lockstep_compile_outlives_its_process(numba, own_cache, tmp_path):
+    """A process that ends while the lockstep compile it paid for runs leaves it to finish: the
+    marker says over budget meanwhile, then the module's key, and a later program starts on
+    that module with no compile of its own."""
+    shader = tmp_path / "ring.glsl"  # (a file: the script below loads it)
+    shader.write_text(SHADER % "0.015625 + 0.984375")
+    script = tmp_path / "leave.py"
+    script.write_text(
+        "import sys, glslcheck\n"
+        "from glslcheck.backends.compiled_engine import engine\n"
+        "prog = engine.compile_compiled(sys.argv[1])\n"
+        "prog.render(size=(24, 16), time=0.5)\n"  # the per-pixel module, compiled here
+        "engine.TieredProgram.move_cost = lambda self: 0.0\n"
+        "assert prog.move_now()\n"
+        "while not engine._CHILDREN: prog.settle(0.05)\n"  # its compile under way,
+        "print(prog._marker(), flush=True)\n"  # the process ends
+    )
+    env = dict(os.environ, PYTHONPATH=os.pathsep.join(sys.path))
+    env.pop("GLSLCHECK_COMPILED_LANES", None)
+    out = subprocess.run(
+        [sys.executable, str(script), str(shader)], env=env, capture_output=True, timeout=600
+    )
+    assert out.returncode == 0, out.stderr
+    marker = out.stdout.decode().strip().splitlines()[-1]
+    deadline = time.monotonic() + 600
+    text = ""
+    while time.monotonic() < deadline:
+        text = open(marker).read()
+        if not text.startswith(engine.OVER):
+            break
+        time.sleep(0.5)
+    later = engine.compile_compiled(str(shader))
+    assert text.strip() and not later.over_budget()
+    assert later.load_cached() and later.mode == "lanes8"
+    assert not os.path.exists(os.path.join(os.path.dirname(marker), engine.FINISHING))
+
+
+def test_a_compile_left_to_finish_says_how_it_ended(numba, make_shader, own_cache, monkeypatch):
+    """While a child left to finish compiles, its marker holds off every other process (over
+    budget, with its pid); a child gone without a word (killed, the machine restarted) leaves the
+    compile to a later process; one stopped by its budget (SIGXCPU) says over budget for good."""
+    monkeypatch.delenv("GLSLCHECK_COMPILED_LANES", raising=False)
+    prog = engine.compile_compiled(_shader(make_shader, "0.0078125 + 0.9921875"))
+    marker = prog._marker()
+    os.makedirs(os.path.dirname(marker), exist_ok=True)
+    gone = subprocess.run([sys.executable, "-c", "import os; print(os.getpid())"], stdout=-1)
+    for pid, over in ((os.getpid(), True), (int(gone.stdout), False)):
+        with open(marker, "w") as f:
+            f.write(f"{engine.OVER} 30 s: {engine.LEFT_TO_FINISH} {pid}\n")
+        again = engine.compile_compiled(_shader(make_shader, "0.0078125 + 0.9921875"))
+        assert again.over_budget() is over, pid
+    stop = subprocess.run(
+        [
+            sys.executable,
+            "-c",
+            "import sys; from glslcheck.backends.compiled_engine import build; "
+            "build._LEFT.append(True); build._over(sys.argv[1], 30.0)",
+            marker,
+        ],
+        env=dict(os.environ, PYTHONPATH=os.pathsep.join(sys.path)),
+        timeout=120,
+    )
+    assert stop.returncode == 1
+    assert open(marker).read() == f"{engine.OVER} 30 s\n"
+    assert engine.compile_compiled(_shader(make_shader, "0.0078125 + 0.9921875")).over_budget()
 
 
 def test_a_build_s_budget_is_its_cpu_time():

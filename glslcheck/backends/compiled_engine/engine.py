@@ -63,15 +63,56 @@ PARALLEL_PIXELS = 4096  # smaller frames in one band (a hand-off between threads
 COMPILE_SECONDS = 60.0
 
 
-_CHILDREN: set[subprocess.Popen] = set()  # compiles under way in child processes (build_apart)
+# compiles under way in child processes (build_apart), each with the marker a paid-for lockstep
+# compile may finish into after this process ends (None: stopped with it)
+_CHILDREN: dict[subprocess.Popen, str | None] = {}
 _EXITING: list[bool] = []  # the interpreter is exiting: the children were stopped on purpose
+FINISHING = "finishing.pid"  # in the modules' folder: the child left to finish, one at a time
+LEFT_TO_FINISH = "left to finish after its process, pid"  # a marker's text meanwhile
 
 
 @atexit.register
 def _stop_children() -> None:
     _EXITING.append(True)
-    for child in list(_CHILDREN):
-        child.kill()
+    for child, marker in list(_CHILDREN.items()):
+        if marker is None or not _leave_to_finish(child, marker):
+            child.kill()
+
+
+def _leave_to_finish(child: subprocess.Popen, marker: str) -> bool:
+    """Let a lockstep compile that this process's frames paid for finish after it (build.py), so
+    that a later process loads it instead of paying again for a compile its exit would cut off
+    again; one such child at a time in a cache. Until the child writes the module's key there,
+    the marker says over budget, so no process starts the same compile meanwhile, nor after a
+    child its budget (RLIMIT_CPU) or the machine stopped. Whether it was left."""
+    if child.poll() is not None:  # (it ended as this process did: nothing to leave)
+        return True
+    lock = os.path.join(cache_files.folder(), FINISHING)
+    other = cache_files.read(lock)
+    if other and other.isdigit() and _alive(int(other)):
+        return False
+    cache_files.write(lock, f"{child.pid}\n")
+    cache_files.write(marker, f"{OVER} {LOCKSTEP_BUDGET:g} s: {LEFT_TO_FINISH} {child.pid}\n")
+    cache_files.write(marker + ".finish", "")  # the child's leave to go on (build.py)
+    return True
+
+
+def _died(marker: str) -> bool:
+    """Whether a marker names a child left to finish that ended without a word: its budget
+    writes the marker (build.py), so a child gone otherwise (killed, the machine restarted) says
+    nothing of the compile, which a later process may try again."""
+    head, _, pid = marker.rpartition(" ")
+    return head.endswith(LEFT_TO_FINISH) and pid.isdigit() and not _alive(int(pid))
+
+
+def _alive(pid: int) -> bool:
+    try:
+        os.kill(pid, 0)
+    except ProcessLookupError:
+        return False
+    except OSError:
+        return True  # (another user's process)
+    return True
 
 
 def available() -> bool:
@@ -273,7 +314,7 @@ class CompiledProgram:
             self.mod = mod
             return mod
 
-    def build_apart(self, seconds: float) -> str:
+    def build_apart(self, seconds: float, finish_into: str | None = None) -> str:
         """Compile the module into numba's cache in a child process (build.py), which holds neither
         this process's GIL nor its frames up, and stop it after `seconds` of its CPU time
         (budget.wait_child; numba's compile cannot be stopped inside a process, a child can). ""
@@ -282,7 +323,9 @@ class CompiledProgram:
         process may try again), EXITING when this process is exiting (the child stopped with it:
         nothing to say), "failed: ..." when the child failed (its last line; `load` in this process
         gives the error itself) or "killed: ..." when it died of a signal. A cache numba cannot
-        write leaves `load` to compile here."""
+        write leaves `load` to compile here. `finish_into`: the marker file of a compile this
+        process may leave to finish after it ends (_leave_to_finish), which the child then writes
+        the module's key into."""
         require_numba()
         cache = numba_cache.use_cache_dir()  # (in the environment: the child's numba reads it)
         if self.mod is not None or self.key in _MODULES or cache_files.cached(cache, self.key):
@@ -295,7 +338,11 @@ class CompiledProgram:
         root = os.path.dirname(os.path.dirname(os.path.dirname(os.path.dirname(__file__))))
         env["PYTHONPATH"] = os.pathsep.join(p for p in (root, env.get("PYTHONPATH")) if p)
         child = subprocess.Popen(
-            [sys.executable, "-m", f"{__package__}.build", file, self.path, str(os.getpid())],
+            [
+                sys.executable,
+                *("-m", f"{__package__}.build", file, self.path, str(os.getpid())),
+                *(f"{seconds:g}", finish_into or ""),
+            ],
             stdin=subprocess.DEVNULL,
             stdout=subprocess.DEVNULL,
             stderr=subprocess.PIPE,
@@ -303,7 +350,7 @@ class CompiledProgram:
         )
         # no compile outlives the process that wanted it: stopped at its exit (and the child
         # ends by itself when this process is gone without one: build.py)
-        _CHILDREN.add(child)
+        _CHILDREN[child] = finish_into
         try:
             err = wait_child(child, seconds)
             if isinstance(err, str):  # OVER or STARVED
@@ -314,7 +361,7 @@ class CompiledProgram:
             child.kill()
             raise
         finally:
-            _CHILDREN.discard(child)
+            _CHILDREN.pop(child, None)
         if _EXITING:
             return EXITING
         if child.returncode < 0:
@@ -621,21 +668,23 @@ class TieredProgram:
     frame: no frame waits for the compile), and every frame after it is ready uses it. This is the
     ski-rental rule: whatever the number of frames to come, the total is at most about twice what
     the better of the two modes alone would have cost (moving too late costs at most the compile
-    once more, moving never costs nothing when the frames stop first). The expected cost: the
-    lockstep module's load when numba's cache already holds it (an earlier process moved), else
-    LOCKSTEP_COMPILE_RATIO x the per-pixel module's compile (CPU time: a compile beside the frames
-    costs them the core it takes, not the waits of a loaded machine). The frames are the same either
-    way: lockstep is bit-identical to per pixel (tests/compiled/test_lanes.py), so the moment of the
-    move changes no pixel. A lockstep module that cannot be made (the rewrite falls back, numba
-    fails) leaves the program per pixel, with a warning for a failure, and so does one expected to
-    take more than LOCKSTEP_BUDGET CPU seconds to compile, or whose compile (in a child process:
-    CompiledProgram.build_apart) takes more than that: the marker beside the per-pixel module then
-    says so, and no later process builds it. A lockstep module is not always the faster: its first
-    LOCKSTEP_TRIAL_FRAMES frames are timed against the per-pixel frames this process rendered before
-    the move, and a module slower per pixel hands the frames back to the per-pixel one for good; the
-    marker keeps the hint, so a later process starts per pixel and tries the (cached) lockstep
-    module again once its load is paid (a timing depends on the machine's load: it is a hint, not a
-    verdict).
+    once more, moving never costs nothing when the frames stop first). A process that ends while the
+    compile it paid for runs leaves it to finish (engine._leave_to_finish, build.py), for a later
+    process to load: otherwise each process shorter than the compile would pay its rent and cut its
+    compile off again. The expected cost: the lockstep module's load when numba's cache already
+    holds it (an earlier process moved), else LOCKSTEP_COMPILE_RATIO x the per-pixel module's
+    compile (CPU time: a compile beside the frames costs them the core it takes, not the waits of a
+    loaded machine). The frames are the same either way: lockstep is bit-identical to per pixel
+    (tests/compiled/test_lanes.py), so the moment of the move changes no pixel. A lockstep module
+    that cannot be made (the rewrite falls back, numba fails) leaves the program per pixel, with a
+    warning for a failure, and so does one expected to take more than LOCKSTEP_BUDGET CPU seconds to
+    compile, or whose compile (in a child process: CompiledProgram.build_apart) takes more than
+    that: the marker beside the per-pixel module then says so, and no later process builds it. A
+    lockstep module is not always the faster: its first LOCKSTEP_TRIAL_FRAMES frames are timed
+    against the per-pixel frames this process rendered before the move, and a module slower per
+    pixel hands the frames back to the per-pixel one for good; the marker keeps the hint, so a later
+    process starts per pixel and tries the (cached) lockstep module again once its load is paid (a
+    timing depends on the machine's load: it is a hint, not a verdict).
     """
 
     def __init__(
@@ -710,7 +759,7 @@ class TieredProgram:
 
     def _lookup_fast(self) -> str | None:
         marker = cache_files.read(self._marker())
-        self._over = marker is not None and marker.startswith(OVER)
+        self._over = marker is not None and marker.startswith(OVER) and not _died(marker)
         key, _, hint = (marker or "").partition(" ")
         self._slower = hint == SLOWER
         if key in _SOURCES:  # loaded in this process already
@@ -769,7 +818,7 @@ class TieredProgram:
             fast = CompiledProgram(source, self.first.path, self.threads, self._remake_fast)
             fast.frame_seconds = self.first.frame_seconds
             fast.loop_limit = self.first.loop_limit
-            why = fast.build_apart(LOCKSTEP_BUDGET)
+            why = fast.build_apart(LOCKSTEP_BUDGET, finish_into=self._marker())
             if why in (EXITING, STARVED):  # (no verdict: the next process tries again)
                 self.stay = True
                 return
