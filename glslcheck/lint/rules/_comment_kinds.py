@@ -22,8 +22,9 @@ BARE_RE = compiled(
 ATTRIBUTION_RE = compiled(
     r"^[\s*/!-]*(?:"
     r"(?:code\s+|taken\s+|copied\s+|adapted\s+|borrowed\s+)?from\s+(?:class|the\s+starter|lecture)\b[^.;]*"
-    # "Code by Dan Buckstein"
+    # "Code by Dan Buckstein", "following code by me"
     r"|(?:\w+\s+){0,3}by\s+(?-i:[A-Z][\w.]*)(?:\s+(?-i:[A-Z][\w.]*)){0,3}"
+    r"|(?:\w+\s+){0,3}by\s+(?:me|myself|us|ourselves)"
     r"|(?:parts?|pt|step|section|task|ch(?:apter)?)\s*[#\d.]+(?:\s*(?:and|&|,|-)\s*[#\d.]+)*"
     r"|test|todo|(?-i:(?:START|END|BEGIN)(?:\s+[A-Z]+){0,3})|(?:\w+\s+){0,2}(?:start|end|begin)"
     # a status note ("Largely untested", "WORKING!!!", "still broken"): how the code fares, not
@@ -75,7 +76,11 @@ CREDIT_RE = compiled(
     # "These matrices from https://...", "Source for math: ...", "Link: ...", "Copy from Sphere",
     # "Idea for the wave was gotten from ...", "Used X as math references", "NOT ORIGINAL WORK"
     r"|(?:\w+\s+){0,4}from\s+(?:https?://|www\.)|sources?\b[^:]{0,20}:|links?\s*:|cop(?:y|ied)\s+from\b"
-    r"|ideas?\b.*\b(?:from|by)\b|(?:\w+\s+){0,8}as\s+(?:\w+\s+)?references?\b|not\s+(?:my\s+)?original\b)",
+    r"|ideas?\b.*\b(?:from|by)\b|(?:\w+\s+){0,8}as\s+(?:\w+\s+)?references?\b|not\s+(?:my\s+)?original\b"
+    # "Followed this tutorial for tone mapping https://...", "a modified version of https://..."
+    r"|(?:\w+\s+){0,2}(?:followed|used|watched)\s+(?:this|the|a|an)\s+(?:\w+\s+){0,2}"
+    r"(?:tutorial|guide|video|article)\b"
+    r"|(?:\w+\s+){0,3}modified\s+version\s+of\s+(?:https?://|www\.))",
     re.I,
 )
 

@@ -62,7 +62,8 @@ Coverage, what a comment explains:
   compiled and not linted (where that is sure: `#ifdef`, `#ifndef`, `#if defined(X)`, `#if 0`).
 - Credits and attributions ("Code from class by ...", "Code by Peter Shirley in ...", "code
   translated from ...", "function taught during Tuesday's class by ...", "Source for math:
-  https://..."), section markers ("// part 3", "// TEST", "// END CLASS MATERIAL", a `-----`
+  https://...", "following code by me", "Followed this tutorial for tone mapping https://...",
+  "This is a modified version of https://..."), section markers ("// part 3", "// TEST", "// END CLASS MATERIAL", a `-----`
   rule), a bare question ("// efficient?"), a status note ("//Largely untested",
   "//WORKING!!!": how the code fares, not why it is there) or a note of not knowing ("//figure
   out what this thing is"), commented-out code (`//dp.z = r * r;`, a type name left alone:
