@@ -471,7 +471,7 @@ class TieredCpuProgram:
     def _finish(self) -> None:
         """Load the compiled program the mover made (machine code from numba's cache) and check
         it on the NumPy frame the move started on, in the frames' thread: a load beside NumPy
-        frames waits on their GIL (0.2 s of CPU took 2.7 s in a thread) and slows them."""
+        frames waits on their GIL, and slows them."""
         from .compiled_engine.engine import CompiledProgram
 
         ready, self._ready = self._ready, None
