@@ -63,13 +63,13 @@ Coverage, what a comment explains:
 - Credits and attributions ("Code from class by ...", "Code by Peter Shirley in ...", "code
   translated from ...", "function taught during Tuesday's class by ...", "Source for math:
   https://...", "following code by me", "Followed this tutorial for tone mapping https://...",
-  "This is a modified version of https://..."), section markers ("// part 3", "// TEST", "// END CLASS MATERIAL", a `-----`
-  rule), a bare question ("// efficient?"), a status note ("//Largely untested",
-  "//WORKING!!!": how the code fares, not why it is there) or a note of not knowing ("//figure
-  out what this thing is"), commented-out code (`//dp.z = r * r;`, a type name left alone:
-  `//bool`) and `glslcheck:` directives explain nothing: a TA reads past them. A condition
-  written out in words is not code: `// if (x - cx)^2 + (y - cy)^2 <= r^2 then p is inside`
-  explains the `if` below it.
+  "This is a modified version of https://..."), section markers ("// part 3", "// TEST",
+  "// END CLASS MATERIAL", a `-----` rule), a bare question ("// efficient?"), a status note
+  ("//Largely untested", "//WORKING!!!": how the code fares, not why it is there) or a note of
+  not knowing ("//figure out what this thing is"), commented-out code (`//dp.z = r * r;`, a type
+  name left alone: `//bool`) and `glslcheck:` directives explain nothing: a TA reads past them. A
+  condition written out in words is not code:
+  `// if (x - cx)^2 + (y - cy)^2 <= r^2 then p is inside` explains the `if` below it.
 
 Runs, what one finding is: one finding per run of uncovered statements, at its first line and
 naming its last, as the rubric deducts "per ambiguous section/block/line". A run goes on across
