@@ -428,12 +428,13 @@ def _common_project(path: str) -> str | None:
     key = _name_key(path)
     if key.endswith("common") and key != "common":
         return "<" + key[: -len("common")]
-    first = _COMMON_FIRST.match(_stem(path))
-    return ">" + _key(_stem(path)[first.end() :]) if first else None
+    stem = _stem(path)
+    first = _COMMON_FIRST.match(stem)
+    return ">" + _key(stem[first.end() :]) if first else None
 
 
 # the pass a prefixed tab file names after its prefix (`Lab06Image`, `midTermBufA`)
-_PASS_SUFFIX = compiled(r"(?:image|buf(?:fer)?[a-d]|cube(?:map)?a?|sound)$")
+_PASS_SUFFIX = compiled(rf"{_PASS_WORD}$")
 
 
 def common_sibling(path: str, siblings: list[str]) -> str | None:
@@ -441,10 +442,11 @@ def common_sibling(path: str, siblings: list[str]) -> str | None:
     named for the pass file's project, the rest of its name (`Lab06Common.txt` beside
     `Lab06Image.txt` or `Lab06.txt`, `midTermCommon.txt` beside `midTermBufA.txt`,
     `common_lab6_x.txt` beside `bufferB_lab6_x.txt`); None when there is none, or several."""
-    projects = {"<" + _PASS_SUFFIX.sub("", _name_key(path))}
-    first = _PASS_FIRST.match(_stem(path))
+    stem = _stem(path)
+    projects = {"<" + _PASS_SUFFIX.sub("", _key(stem))}
+    first = _PASS_FIRST.match(stem)
     if first:
-        projects.add(">" + _key(_stem(path)[first.end() :]))
+        projects.add(">" + _key(stem[first.end() :]))
     prefixed = []
     for f in siblings:
         if f == path:
