@@ -59,7 +59,7 @@ TRIVIAL = (
     "void mainImage(out vec4 fragColor, in vec2 fragCoord)\n"
     "{\n    fragColor = vec4(fragCoord / iResolution.xy, 0.0, 1.0);\n}\n"
 )
-STATE_FNS = ("init_globals", "render_rows", "globals_template")
+STATE_FNS = ("init_globals", "render_rows", "rows_loop", "globals_template")
 TIMING_ONLY = ("numpy", "nopow", "cheaptrig")  # other bits than `pixel`: not compared
 
 

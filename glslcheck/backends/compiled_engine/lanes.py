@@ -864,7 +864,7 @@ class Lanes:
             f.name: f
             for f in self.tree.body
             if isinstance(f, ast.FunctionDef)
-            and f.name not in ("init_globals", "render_rows", "globals_template")
+            and f.name not in ("init_globals", "render_rows", "rows_loop", "globals_template")
         }
         shared = _SharedReads(self.functions.values())
         for f in self.functions.values():

@@ -115,13 +115,27 @@ def render_source(
 
 
 def _prologue(W: int, doc: list[str]) -> list[str]:
-    """render_rows' signature, docstring, per-lane state copies and accumulator."""
+    """render_rows (its per-lane state copies and accumulator), then the signature of the loop
+    it calls (module_text's rows_loop: no reference counts), up to its body."""
     sig = "def render_rows(out, y0, y1, width, height, offs, uf, ui, gtf, gti, gtu, gtb, lt):"
     head = ["@numba.njit(cache=True, nogil=True, error_model='numpy')", sig]
     lines = head + doc + ["    lc = acopy(lt)"]  # the loop budget: per block (scalar.tick)
+    state = [f"{a}__{k}" for a in STATE_LANES for k in range(W)]
     for a, t in zip(STATE_LANES, ("gtf", "gti", "gtu", "gtb")):
         lines += [f"    {a}__{k} = acopy({t})" for k in range(W)]
-    return lines + ["    samples = offs.shape[0]", f"    acc = np.zeros((4, {W}), np.float64)"]
+    params = ", ".join(
+        ["out, y0, y1, width, height, offs, uf, ui, gtf, gti, gtu, gtb, lt, lc, acc", *state]
+    )
+    return lines + [
+        f"    acc = np.zeros((4, {W}), np.float64)",
+        f"    rows_loop({params})",
+        "",
+        "",
+        "@jit_loop",
+        f"def rows_loop({params}):",
+        '    """render_rows\' blocks, with its state copies and accumulator."""',
+        "    samples = offs.shape[0]",
+    ]
 
 
 def _sample_head(W: int, resets: Any) -> list[str]:

@@ -19,8 +19,26 @@ I32 = np.int32
 U32 = np.uint32
 # compiled code alone calls these functions (render_rows and globals_template are the entries):
 # no Python or C wrappers, which numba would otherwise lower and compile for each of them
+# (numba's runtime named: a function called from the pixel loop would otherwise inherit its
+# _nrt=False, and a GLSL array is a numba array)
 jit = numba.njit(
-    cache=True, nogil=True, error_model="numpy", no_cpython_wrapper=True, no_cfunc_wrapper=True
+    cache=True,
+    nogil=True,
+    error_model="numpy",
+    no_cpython_wrapper=True,
+    no_cfunc_wrapper=True,
+    _nrt=True,
+)
+# the pixel loop counts no references: numba counts each array passed to a call with an atomic
+# add and subtract, per pixel, which can cost more than the pixel; the loop allocates nothing,
+# and its caller holds the arrays it reads
+jit_loop = numba.njit(
+    cache=True,
+    nogil=True,
+    error_model="numpy",
+    no_cpython_wrapper=True,
+    no_cfunc_wrapper=True,
+    _nrt=False,
 )'''
 
 RENDER = '''
@@ -34,6 +52,14 @@ def render_rows(out, y0, y1, width, height, offs, uf, ui, gtf, gti, gtu, gtb, lt
     gi = acopy(gti)
     gu = acopy(gtu)
     gb = acopy(gtb)
+    rows_loop(out, y0, y1, width, height, offs, uf, ui, gtf, gti, gtu, gtb, lt, lc, gf, gi, gu, gb)
+
+
+@jit_loop
+def rows_loop(
+    out, y0, y1, width, height, offs, uf, ui, gtf, gti, gtu, gtb, lt, lc, gf, gi, gu, gb
+):
+    """render_rows' pixels, with its copies of the loop budget (lc) and the globals."""
     samples = offs.shape[0]
     for y in range(y0, y1):
         row = height - 1 - y
