@@ -134,3 +134,31 @@ def test_a_cached_module_loads_in_a_new_process_without_compiling(numba, make_sh
     assert got["hits"] == ["globals_template", "render_rows"]  # loaded from the cache
     assert got["compiled"] == ["globals_template", "render_rows"]  # no callee compiled
     assert got["frames"] == want
+
+
+def _entry_increfs(source: str) -> int:
+    """NRT_incref calls in render_rows' own code (callees inlined into it, not the functions it
+    links in), compiled here: numba inspects no code loaded from its cache."""
+    prog = engine.CompiledProgram(source, "Image.glsl")
+    prog.load(bounded=False)
+    assert prog.cold
+    (ir,) = prog.mod.render_rows.inspect_llvm().values()
+    count, inside = 0, False
+    for line in ir.splitlines():
+        if line.startswith("define "):
+            inside = "render_rows" in line and "linkonce" not in line and "cpython" not in line
+            inside = inside and not line.split("@", 1)[1].startswith("cfunc")
+        elif inside and "call void @NRT_incref(" in line:
+            count += 1
+    return count
+
+
+def test_the_pixel_loop_counts_no_references(numba, own_cache):
+    # numba counts each array passed to a call (an atomic add and subtract): a block of 8 lanes
+    # passes shade 32 state arrays where a pixel passes 4, and render_rows' code counts as many
+    # references for one as for the other (its copies of the state, made once a band)
+    from glslcheck.shadertoy.sources import load_shader
+
+    shader = load_shader(os.path.join(ROOT, "lab_shaders", "05_blinn_phong"))
+    counts = [_entry_increfs(engine.generate(shader, lanes=w)[0]) for w in (0, 8)]
+    assert counts[0] == counts[1]

@@ -421,8 +421,9 @@ class Codegen(ExpressionEmitter):
         for name, lit in self.consts.items():
             out.append(f"{name} = {lit}")
         out.append("")
-        for f in funcs + [init, shade]:
+        for f in funcs + [init]:
             out += ["", "@jit", *f.split("\n"), ""]
+        out += ["", "@jit_loop", *shade.split("\n"), ""]  # (the pixel loop's: module_text)
         render = RENDER if self.budget else RENDER.replace("uf, ui, lc,", "uf, ui,")
         resets = reset_kinds(written_state(ast.parse("\n".join(funcs + [shade])).body))
         for kind in sorted(set(KIND_ARRAY.values()) - resets):  # (its template all frame)

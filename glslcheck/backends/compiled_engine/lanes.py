@@ -925,7 +925,12 @@ class Lanes:
         variants = self.reachable(keys)
         constants, own = hoistable_globals(self.tree)
         own |= {fn.name for fn in variants}  # (called as numba's dispatchers: not hoisted)
-        functions = ["@jit\n" + slim_function(fn.source(), constants, own) for fn in variants]
+        entry = self.variant(*self.entry())  # shade: as the pixel loop, no reference counts
+        functions = [
+            ("@jit_loop\n" if fn is entry else "@jit\n")
+            + slim_function(fn.source(), constants, own)
+            for fn in variants
+        ]
         for node in self.tree.body:
             if isinstance(node, ast.FunctionDef):
                 if node.name == "shade":

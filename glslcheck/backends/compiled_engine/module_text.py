@@ -29,9 +29,9 @@ jit = numba.njit(
     no_cfunc_wrapper=True,
     _nrt=True,
 )
-# the pixel loop counts no references: numba counts each array passed to a call with an atomic
-# add and subtract, per pixel, which can cost more than the pixel; the loop allocates nothing,
-# and its caller holds the arrays it reads
+# the pixel loop and shade count no references: numba counts each array passed to a call with
+# an atomic add and subtract, per pixel, which can cost more than the pixel; neither allocates,
+# and render_rows holds the arrays they read
 jit_loop = numba.njit(
     cache=True,
     nogil=True,
