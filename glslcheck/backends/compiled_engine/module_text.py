@@ -19,27 +19,16 @@ I32 = np.int32
 U32 = np.uint32
 # compiled code alone calls these functions (render_rows and globals_template are the entries):
 # no Python or C wrappers, which numba would otherwise lower and compile for each of them
+CALLEE = dict(
+    cache=True, nogil=True, error_model="numpy", no_cpython_wrapper=True, no_cfunc_wrapper=True
+)
 # (numba's runtime named: a function called from the pixel loop would otherwise inherit its
 # _nrt=False, and a GLSL array is a numba array)
-jit = numba.njit(
-    cache=True,
-    nogil=True,
-    error_model="numpy",
-    no_cpython_wrapper=True,
-    no_cfunc_wrapper=True,
-    _nrt=True,
-)
+jit = numba.njit(**CALLEE, _nrt=True)
 # the pixel loop and shade count no references: numba counts each array passed to a call with
 # an atomic add and subtract, per pixel, which can cost more than the pixel; neither allocates,
 # and render_rows holds the arrays they read
-jit_loop = numba.njit(
-    cache=True,
-    nogil=True,
-    error_model="numpy",
-    no_cpython_wrapper=True,
-    no_cfunc_wrapper=True,
-    _nrt=False,
-)'''
+jit_loop = numba.njit(**CALLEE, _nrt=False)'''
 
 RENDER = '''
 @numba.njit(cache=True, nogil=True, error_model="numpy")
