@@ -439,3 +439,40 @@ def test_short_circuits_and_straight_arms_branch_once_a_block(numba, make_shader
                 what=what,
                 names=(f"lanes {lanes}", "per pixel"),
             )
+
+
+ARRAY_CALLS_SHADER = """
+const int kCount = 50;
+float spread(float x) {
+    vec2 pts[kCount];
+    for (int i = 0; i < kCount; i++) { pts[i] = vec2(x + float(i) * 0.01, x); }
+    return pts[int(x * 7.0) % kCount].x;  // an index with lanes
+}
+float blur(float x) { return 0.5 * sin(spread(x)); }
+float shape(vec2 p) { return length(p) - 0.3 * sin(iTime); }
+float march(vec2 p) {
+    float d = 0.0;
+    for (int i = 0; i < 8; i++) { d += shape(p + float(i) * 0.01); }
+    return d;
+}
+void mainImage(out vec4 c, in vec2 f) {
+    vec2 p = f / iResolution.xy;
+    c = vec4(blur(p.x), march(p), p.y, 1.0);
+}
+"""
+
+
+def test_functions_that_make_no_array_count_no_references(numba, make_shader):
+    """A lockstep function runs without numba's reference counts (module_text's jit_loop) when
+    neither it nor a function it calls makes an array: `shape` and `march` (and shade); `spread`
+    makes one (an array indexed with lanes), and `blur`, which calls it, and mainImage, which
+    calls blur, keep them. The bits are the per-pixel engine's."""
+    from glslcheck.backends.compiled_engine.engine import generate
+
+    shader = make_shader(ARRAY_CALLS_SHADER)
+    source, _ = generate(shader, lanes=8)
+    found = re.findall(r"^@(\w+)\ndef (f_[a-zA-Z]+|shade)", source, re.M)
+    decorated = {name: deco for deco, name in found}
+    assert decorated["f_shape"] == decorated["f_march"] == decorated["shade"] == "jit_loop"
+    assert decorated["f_spread"] == decorated["f_blur"] == decorated["f_mainImage"] == "jit"
+    _same_bits(shader, 8)

@@ -50,6 +50,7 @@ from .lanes_render import (
 )
 from .lanes_shapes import (
     call_name,
+    count_free,
     exits_of,
     index_test,
     is_counter,
@@ -925,10 +926,14 @@ class Lanes:
         variants = self.reachable(keys)
         constants, own = hoistable_globals(self.tree)
         own |= {fn.name for fn in variants}  # (called as numba's dispatchers: not hoisted)
-        entry = self.variant(*self.entry())  # shade: as the pixel loop, no reference counts
+        texts = {fn.name: fn.source() for fn in variants}
+        free = count_free(
+            texts, {fn.name: {self.variants[c].name for c in fn.calls} for fn in variants}
+        )
+        free.add(self.variant(*self.entry()).name)  # shade: makes no array, returns none
         functions = [
-            ("@jit_loop\n" if fn is entry else "@jit\n")
-            + slim_function(fn.source(), constants, own)
+            ("@jit_loop\n" if fn.name in free else "@jit\n")
+            + slim_function(texts[fn.name], constants, own)
             for fn in variants
         ]
         for node in self.tree.body:

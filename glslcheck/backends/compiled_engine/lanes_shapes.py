@@ -27,6 +27,25 @@ def makes_array(value: Any) -> bool:
     return any(call_name(n) in ARRAY_CALLS for n in ast.walk(value))
 
 
+def count_free(texts: dict[str, str], calls: dict[str, set[str]]) -> set[str]:
+    """The functions (name -> text, name -> the names it calls) that may run without numba's
+    reference counts (module_text's jit_loop): neither they nor a function they call makes an
+    array (a GLSL array, or one returned: `acopy`), so each array they see is one render_rows
+    holds, and no count is owed on any."""
+    bad: dict[str, bool] = {}
+
+    def makes(name: str) -> bool:
+        if name not in bad:
+            bad[name] = True  # (GLSL has no recursion: a cycle keeps its counts)
+            text = texts[name]
+            bad[name] = any(f"{c}(" in text for c in ARRAY_CALLS) or any(
+                makes(c) for c in calls[name]
+            )
+        return bad[name]
+
+    return {name for name in texts if not makes(name)}
+
+
 def exits_of(stmts: list) -> set[str]:
     """The exits in stmts: 'return' anywhere, 'break'/'continue' of the enclosing loop."""
     out: set[str] = set()
